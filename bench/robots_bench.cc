@@ -123,7 +123,8 @@ void compare(const char* robot, const char* urdf, int rounds) {
     std::printf("%-48s %10.1f %10.1f\n", c.name, summaries.back().min, summaries.back().median);
   }
   const auto ratio = [&](int mujoco_index, int ours_index, const char* what) {
-    std::printf("%-48s %10.2f %10.2f\n", what, summaries[mujoco_index].min / summaries[ours_index].min,
+    std::printf("%-48s %10.2f %10.2f\n", what,
+                summaries[mujoco_index].min / summaries[ours_index].min,
                 summaries[mujoco_index].median / summaries[ours_index].median);
   };
   ratio(1, 0, "ratio mj_forward / qddot");
@@ -143,6 +144,5 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "bench_robots: could not pin to core 0; figures may be noisier\n");
   }
   compare<gencoord::models::Iiwa14>("iiwa14", GENCOORD_ROOT "/models/iiwa14.urdf", rounds);
-  compare<gencoord::models::Quadruped>("quadruped", GENCOORD_ROOT "/models/quadruped.urdf",
-                                       rounds);
+  compare<gencoord::models::Quadruped>("quadruped", GENCOORD_ROOT "/models/quadruped.urdf", rounds);
 }

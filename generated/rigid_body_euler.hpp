@@ -7,7 +7,7 @@
 // Chart 'zyx' (rigid_body_euler):
 //   Singular configurations (J loses rank): cos(pitch) = 0
 //     found from the rank of J at the zeros of sin and cos of each angle
-//   Worst conditioning of J in 200 random configurations: sigma_min / sigma_max = 0.000822 at
+//   Worst conditioning of J in 200 random configurations: sigma_min / sigma_max = 0.000934 at
 //     x = -2.825, y = -1.914, z = -0.7811, yaw = -2.523, pitch = -1.565, roll = 2.549
 //   Redundancy (warning): distinct coordinates give the same positions, e.g. x = 0.7722, y =
 //     1.519, z = 1.855, yaw = 2.78, pitch = 1.507, roll = 2.654 and x = 0.7722, y = 1.519, z =
@@ -16,16 +16,16 @@
 // Chart 'yzx' (rigid_body_euler_yzx):
 //   Singular configurations (J loses rank): cos(attitude) = 0
 //     found from the rank of J at the zeros of sin and cos of each angle
-//   Worst conditioning of J in 200 random configurations: sigma_min / sigma_max = 0.000789 at
+//   Worst conditioning of J in 200 random configurations: sigma_min / sigma_max = 0.000929 at
 //     x = -2.825, y = -1.914, z = -0.7811, heading = -2.523, attitude = -1.565, bank = 2.549
 //   Redundancy (warning): distinct coordinates give the same positions, e.g. x = 0.7722, y =
 //     1.519, z = 1.855, heading = 2.78, attitude = 1.507, bank = 2.654 and x = 0.7722, y =
 //     1.519, z = 1.855, heading = -0.3616, attitude = 1.634, bank = -0.488; mapping positions
 //     back to q (the inverse map, an atlas) depends on the first guess
 //
-// Total ops: 14549
-// Intermediate terms (2662)
-// Output terms (994)
+// Total ops: 13620
+// Intermediate terms (2309)
+// Output terms (996)
 #pragma once
 
 #include <array>
@@ -38,20 +38,24 @@
 #include <Eigen/Core>
 
 /*
- * A free 3D rigid body in Z-Y-X Euler angles.
+ * A free 3D rigid body built from four point masses, in Z-Y-X Euler angles.
  *
- * q = (x, y, z, yaw, pitch, roll): the centre of mass and R = Rz(yaw) Ry(pitch) Rx(roll), the
- * orientation of the body axes. The body is a uniform box of mass m with sides a > b > c along
- * its x, y and z axes, its principal axes, so its principal moments m (b^2 + c^2) / 12 <
- * m (a^2 + c^2) / 12 < m (a^2 + b^2) / 12 grow from x to z.
- * The parameterization is singular at pitch = +-pi/2 (gimbal lock: yaw and roll turn about the
- * same axis), that is wherever the body's x axis points along the world's z axis.
+ *               z ^    d (m_d)
+ *                 |   /|
+ *                 |  / |        body frame: a, b, c on the axes, d off them, so the
+ *                 | /  |        inertia tensor has three different principal moments
+ *          c (m_c)o----o b (m_b)
+ *                /
+ *               o a (m_a)
+ *
+ * q = (x, y, z, yaw, pitch, roll): the centre of the body frame and R = Rz(yaw) Ry(pitch)
+ * Rx(roll). The parameterization is singular at pitch = +-pi/2 (gimbal lock: yaw and roll turn
+ * about the same axis), that is wherever the body's x axis points along the world's z axis.
  *
  * A second chart, 'yzx', uses R = Ry(heading) Rz(attitude) Rx(bank), singular at
  * attitude = +-pi/2, where the body's x axis points along the world's y axis. The two singular
  * sets are disjoint, so the atlas (gencoord/atlas.hpp) can tumble through either. No gravity
- * by default, so energy and angular momentum are conserved; spun about the intermediate axis
- * the body flips over and over (the Dzhanibekov effect).
+ * by default, so energy and angular momentum are conserved.
  */
 
 namespace gencoord {
@@ -60,17 +64,17 @@ namespace models {
 /// RigidBodyEuler: reduced (generalized-coordinate) dynamics of model 'rigid_body_euler'.
 ///
 /// Coordinates q (nq = 6), velocities v = dq/dt:
-///   q(0) = x: centre of mass, x (m)
-///   q(1) = y: centre of mass, y (m)
-///   q(2) = z: centre of mass, z (m)
+///   q(0) = x: body origin, x (m)
+///   q(1) = y: body origin, y (m)
+///   q(2) = z: body origin, z (m)
 ///   q(3) = yaw: rotation about z (rad)
 ///   q(4) = pitch: rotation about the new y (rad)
 ///   q(5) = roll: rotation about the new x (rad)
 /// Particles (4, 3D; positions stacked in x, nx = 12):
-///   x(0..2) = body_0, mass m/4
-///   x(3..5) = body_1, mass m/4
-///   x(6..8) = body_2, mass m/4
-///   x(9..11) = body_3, mass m/4
+///   x(0..2) = a, mass m_a
+///   x(3..5) = b, mass m_b
+///   x(6..8) = c, mass m_c
+///   x(9..11) = d, mass m_d
 /// Kernels are static functions templated on Scalar; every one takes the parameters last.
 /// Equations of motion: mass_matrix(q, t) * qddot = forces(q, v, t).
 struct RigidBodyEuler {
@@ -87,8 +91,7 @@ struct RigidBodyEuler {
   /// A suggested initial state, from the model file.
   static constexpr std::array<double, nq> initial_q{{0.0, 0.0, 0.0, 0.0, 0.2, 0.0}};
   static constexpr std::array<double, nq> initial_v{{0.0, 0.0, 0.0, 0.3, 1.0, 2.0}};
-  static constexpr std::array<const char*, num_particles> particle_names{{"body_0", "body_1",
-      "body_2", "body_3"}};
+  static constexpr std::array<const char*, num_particles> particle_names{{"a", "b", "c", "d"}};
   static constexpr std::array<const char*, num_fixed_points> fixed_point_names{{}};
   /// Whether applied_forces at rest (v = 0) is -d(potential_energy)/dq: every force without
   /// a declared potential vanishes at rest (generator/conservative.py).
@@ -114,204 +117,184 @@ struct RigidBodyEuler {
   /// Model parameters; the defaults are the model file's.
   struct Params {
     double g = 0.0;  ///< gravitational acceleration (m/s^2)
-    double m = 7.5;  ///< mass (kg)
-    double a = 0.6;  ///< side of the box along body axis x (m)
-    double b = 0.45;  ///< side of the box along body axis y (m)
-    double c = 0.3;  ///< side of the box along body axis z (m)
+    double m_a = 1.0;  ///< mass of point a (kg)
+    double m_b = 2.0;  ///< mass of point b (kg)
+    double m_c = 3.0;  ///< mass of point c (kg)
+    double m_d = 1.5;  ///< mass of point d (kg)
 
     /// The parameter called `key`, or nullptr: lets tools set parameters by name.
     double* find(std::string_view key) {
       if (key == "g") return &g;
-      if (key == "m") return &m;
-      if (key == "a") return &a;
-      if (key == "b") return &b;
-      if (key == "c") return &c;
+      if (key == "m_a") return &m_a;
+      if (key == "m_b") return &m_b;
+      if (key == "m_c") return &m_c;
+      if (key == "m_d") return &m_d;
       return nullptr;
     }
   };
-  static constexpr std::array<const char*,
-      num_parameters> parameter_names{{"g", "m", "a", "b", "c"}};
+  static constexpr std::array<const char*, num_parameters> parameter_names{{"g", "m_a", "m_b",
+      "m_c", "m_d"}};
 
   /// Reduced mass matrix Mt = J^T M J (symmetric).
   /// \param[in] q  generalized coordinates (nq = 6)
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return Mt (nq x nq)
-  /// Ops: 350
+  /// Ops: 303
   template <typename Scalar>
   static QMatrix<Scalar> mass_matrix(const QVector<Scalar>& q,
                                      const Scalar& /*t*/,
                                      const Params& params) {
     using std::cos;
     using std::sin;
-    using std::sqrt;
     const Scalar yaw = q(3);
     const Scalar pitch = q(4);
     const Scalar roll = q(5);
-    const Scalar m = Scalar(params.m);
-    const Scalar a = Scalar(params.a);
-    const Scalar b = Scalar(params.b);
-    const Scalar c = Scalar(params.c);
+    const Scalar m_a = Scalar(params.m_a);
+    const Scalar m_b = Scalar(params.m_b);
+    const Scalar m_c = Scalar(params.m_c);
+    const Scalar m_d = Scalar(params.m_d);
     const Scalar tmp0 = cos(yaw);
     const Scalar tmp1 = cos(pitch);
-    const Scalar tmp2 = (Scalar(1)/sqrt(m));
-    const Scalar tmp3 = (a*a);
-    const Scalar tmp4 = (b*b);
-    const Scalar tmp5 = ((Scalar(1)/Scalar(24)))*m;
-    const Scalar tmp6 = tmp5*(tmp3 + tmp4);
-    const Scalar tmp7 = (c*c);
-    const Scalar tmp8 = tmp5*(tmp3 + tmp7);
-    const Scalar tmp9 = tmp5*(tmp4 + tmp7);
-    const Scalar tmp10 = tmp6 + tmp8 - tmp9;
-    const Scalar tmp11 = tmp2*sqrt(tmp10);
-    const Scalar tmp12 = tmp1*tmp11;
-    const Scalar tmp13 = tmp0*tmp12;
-    const Scalar tmp14 = sin(roll);
-    const Scalar tmp15 = sin(yaw);
-    const Scalar tmp16 = tmp14*tmp15;
-    const Scalar tmp17 = sin(pitch);
-    const Scalar tmp18 = cos(roll);
-    const Scalar tmp19 = tmp0*tmp18;
-    const Scalar tmp20 = tmp17*tmp19;
-    const Scalar tmp21 = tmp16 + tmp20;
-    const Scalar tmp22 = tmp8 + tmp9 - tmp6;
-    const Scalar tmp23 = tmp2*sqrt(tmp22);
-    const Scalar tmp24 = tmp21*tmp23;
-    const Scalar tmp25 = tmp15*tmp18;
-    const Scalar tmp26 = tmp0*tmp14;
-    const Scalar tmp27 = tmp17*tmp26;
-    const Scalar tmp28 = tmp27 - tmp25;
-    const Scalar tmp29 = tmp6 + tmp9 - tmp8;
-    const Scalar tmp30 = tmp2*sqrt(tmp29);
-    const Scalar tmp31 = tmp28*tmp30;
-    const Scalar tmp32 = tmp24 + tmp31;
-    const Scalar tmp33 = tmp13 + tmp32;
-    const Scalar tmp35 = tmp17*tmp25;
-    const Scalar tmp36 = tmp35 - tmp26;
-    const Scalar tmp38 = tmp16*tmp17;
-    const Scalar tmp39 = tmp19 + tmp38;
-    const Scalar tmp41 = tmp12*tmp15;
-    const Scalar tmp44 = tmp11*tmp17;
-    const Scalar tmp45 = tmp18*tmp23;
-    const Scalar tmp47 = tmp14*tmp30;
-    const Scalar tmp52 = tmp21*tmp30;
-    const Scalar tmp53 = -tmp28;
-    const Scalar tmp54 = tmp23*tmp53;
-    const Scalar tmp55 = tmp52 + tmp54;
-    const Scalar tmp56 = tmp0*tmp44;
-    const Scalar tmp57 = tmp1*tmp23;
-    const Scalar tmp58 = tmp19*tmp57;
-    const Scalar tmp59 = tmp1*tmp30;
-    const Scalar tmp60 = tmp26*tmp59;
-    const Scalar tmp61 = tmp58 + tmp60;
-    const Scalar tmp62 = tmp61 - tmp56;
-    const Scalar tmp63 = -tmp41;
-    const Scalar tmp64 = -tmp36;
-    const Scalar tmp65 = tmp23*tmp64;
-    const Scalar tmp66 = -tmp39;
-    const Scalar tmp67 = tmp30*tmp66;
-    const Scalar tmp68 = tmp65 + tmp67;
-    const Scalar tmp69 = tmp63 + tmp68;
-    const Scalar tmp72 = tmp30*tmp36;
-    const Scalar tmp73 = tmp23*tmp66;
-    const Scalar tmp74 = tmp72 + tmp73;
-    const Scalar tmp75 = tmp15*tmp44;
-    const Scalar tmp76 = tmp25*tmp57;
-    const Scalar tmp77 = tmp16*tmp59;
-    const Scalar tmp78 = tmp76 + tmp77;
-    const Scalar tmp79 = tmp78 - tmp75;
-    const Scalar tmp81 = tmp14*tmp23;
-    const Scalar tmp82 = tmp1*tmp81;
-    const Scalar tmp83 = tmp18*tmp30;
-    const Scalar tmp84 = tmp1*tmp83;
-    const Scalar tmp85 = tmp82 - tmp84;
-    const Scalar tmp86 = -tmp85;
-    const Scalar tmp87 = tmp17*tmp45;
-    const Scalar tmp88 = tmp17*tmp47;
-    const Scalar tmp89 = tmp87 + tmp88;
-    const Scalar tmp90 = -tmp12 - tmp89;
-    const Scalar tmp92 = -tmp24;
-    const Scalar tmp93 = -tmp31;
-    const Scalar tmp94 = tmp13 + tmp93;
-    const Scalar tmp101 = -tmp55;
-    const Scalar tmp102 = -tmp56 - tmp61;
-    const Scalar tmp103 = -tmp41 - tmp68;
-    const Scalar tmp106 = -tmp74;
-    const Scalar tmp107 = tmp75 + tmp78;
-    const Scalar tmp108 = -tmp107;
-    const Scalar tmp109 = -tmp13;
-    const Scalar tmp110 = -tmp32 - tmp109;
-    const Scalar tmp112 = tmp89 - tmp12;
-    const Scalar tmp114 = tmp31 + tmp92;
-    const Scalar tmp121 = tmp54 - tmp52;
-    const Scalar tmp122 = -tmp121;
-    const Scalar tmp123 = tmp56 + tmp60 - tmp58;
-    const Scalar tmp124 = tmp67 - tmp65;
-    const Scalar tmp125 = tmp124 + tmp41;
-    const Scalar tmp128 = tmp73 - tmp72;
-    const Scalar tmp129 = -tmp128;
-    const Scalar tmp130 = tmp75 + tmp77 - tmp76;
-    const Scalar tmp131 = -tmp24 - tmp94;
-    const Scalar tmp133 = tmp82 + tmp84;
-    const Scalar tmp134 = tmp12 + tmp87 - tmp88;
-    const Scalar tmp141 = tmp56 + tmp58 - tmp60;
-    const Scalar tmp142 = tmp41 + tmp65 - tmp67;
-    const Scalar tmp145 = tmp75 + tmp76 - tmp77;
-    const Scalar tmp146 = -tmp114 - tmp13;
-    const Scalar tmp148 = -tmp133;
-    const Scalar tmp149 = tmp12 + tmp88 - tmp87;
-    const Scalar tmp151 = (Scalar(0.25))*m;
-    const Scalar tmp203 = tmp125*tmp151 + tmp142*tmp151 + tmp151*tmp69 + tmp151*tmp103;
-    const Scalar tmp204 = tmp110*tmp151 + tmp131*tmp151 + tmp146*tmp151 + tmp151*tmp33;
-    const Scalar tmp205 = tmp151*((tmp110*tmp110) + (tmp103*tmp103))
-        + tmp151*((tmp125*tmp125) + (tmp131*tmp131)) + tmp151*((tmp142*tmp142) + (tmp146*tmp146))
-        + tmp151*((tmp33*tmp33) + (tmp69*tmp69));
-    const Scalar tmp206 = tmp123*tmp151 + tmp141*tmp151 + tmp151*tmp62 + tmp151*tmp102;
-    const Scalar tmp207 = tmp130*tmp151 + tmp145*tmp151 + tmp151*tmp79 + tmp151*tmp108;
-    const Scalar tmp208 = tmp112*tmp151 + tmp134*tmp151 + tmp149*tmp151 + tmp151*tmp90;
-    const Scalar tmp209 = tmp151*(tmp110*tmp108 + tmp102*tmp103)
-        + tmp151*(tmp123*tmp125 + tmp130*tmp131) + tmp151*(tmp141*tmp142 + tmp145*tmp146)
-        + tmp151*(tmp33*tmp79 + tmp62*tmp69);
-    const Scalar tmp210 = tmp151*((tmp112*tmp112) + (tmp102*tmp102) + (tmp108*tmp108))
-        + tmp151*((tmp123*tmp123) + (tmp130*tmp130) + (tmp134*tmp134))
-        + tmp151*((tmp141*tmp141) + (tmp145*tmp145) + (tmp149*tmp149))
-        + tmp151*((tmp62*tmp62) + (tmp79*tmp79) + (tmp90*tmp90));
-    const Scalar tmp211 = tmp121*tmp151 + tmp122*tmp151 + tmp151*tmp55 + tmp151*tmp101;
-    const Scalar tmp212 = tmp128*tmp151 + tmp129*tmp151 + tmp151*tmp74 + tmp151*tmp106;
-    const Scalar tmp213 = tmp133*tmp151 + tmp148*tmp151 + tmp151*tmp85 + tmp151*tmp86;
-    const Scalar tmp214 = tmp151*(tmp110*tmp106 + tmp101*tmp103)
-        + tmp151*(tmp121*tmp142 + tmp128*tmp146) + tmp151*(tmp122*tmp125 + tmp129*tmp131)
-        + tmp151*(tmp33*tmp74 + tmp55*tmp69);
-    const Scalar tmp215 = tmp151*(tmp112*tmp85 + tmp101*tmp102 + tmp106*tmp108)
-        + tmp151*(tmp121*tmp141 + tmp128*tmp145 + tmp148*tmp149)
-        + tmp151*(tmp122*tmp123 + tmp129*tmp130 + tmp133*tmp134)
-        + tmp151*(tmp55*tmp62 + tmp74*tmp79 + tmp86*tmp90);
-    const Scalar tmp216 = tmp151*((tmp121*tmp121) + (tmp128*tmp128) + (tmp148*tmp148))
-        + tmp151*((tmp122*tmp122) + (tmp129*tmp129) + (tmp133*tmp133))
-        + tmp151*((tmp55*tmp55) + (tmp74*tmp74) + (tmp86*tmp86))
-        + tmp151*((tmp85*tmp85) + (tmp101*tmp101) + (tmp106*tmp106));
+    const Scalar tmp2 = Scalar(0.5)*tmp1;
+    const Scalar tmp3 = tmp0*tmp2;
+    const Scalar tmp5 = sin(yaw);
+    const Scalar tmp6 = tmp2*tmp5;
+    const Scalar tmp8 = sin(pitch);
+    const Scalar tmp9 = Scalar(0.5)*tmp8;
+    const Scalar tmp11 = tmp0*tmp9;
+    const Scalar tmp14 = tmp5*tmp9;
+    const Scalar tmp20 = cos(roll);
+    const Scalar tmp21 = Scalar(0.4)*tmp20;
+    const Scalar tmp22 = tmp21*tmp5;
+    const Scalar tmp23 = sin(roll);
+    const Scalar tmp24 = Scalar(0.4)*tmp23;
+    const Scalar tmp25 = tmp0*tmp24;
+    const Scalar tmp26 = tmp25*tmp8;
+    const Scalar tmp27 = tmp26 - tmp22;
+    const Scalar tmp29 = tmp0*tmp21;
+    const Scalar tmp30 = tmp24*tmp5;
+    const Scalar tmp31 = tmp30*tmp8;
+    const Scalar tmp32 = tmp29 + tmp31;
+    const Scalar tmp34 = tmp1*tmp24;
+    const Scalar tmp37 = tmp30 + tmp29*tmp8;
+    const Scalar tmp38 = -tmp32;
+    const Scalar tmp42 = -tmp25 + tmp22*tmp8;
+    const Scalar tmp44 = tmp24*tmp8;
+    const Scalar tmp45 = tmp1*tmp21;
+    const Scalar tmp47 = Scalar(0.3)*tmp23;
+    const Scalar tmp48 = tmp47*tmp5;
+    const Scalar tmp49 = Scalar(0.3)*tmp20;
+    const Scalar tmp50 = tmp0*tmp49;
+    const Scalar tmp51 = tmp50*tmp8;
+    const Scalar tmp52 = tmp48 + tmp51;
+    const Scalar tmp54 = tmp0*tmp47;
+    const Scalar tmp55 = tmp49*tmp5;
+    const Scalar tmp56 = tmp55*tmp8;
+    const Scalar tmp57 = tmp56 - tmp54;
+    const Scalar tmp59 = tmp1*tmp49;
+    const Scalar tmp62 = tmp54*tmp8;
+    const Scalar tmp63 = tmp62 - tmp55;
+    const Scalar tmp64 = -tmp63;
+    const Scalar tmp65 = -tmp57;
+    const Scalar tmp69 = tmp48*tmp8;
+    const Scalar tmp70 = tmp50 + tmp69;
+    const Scalar tmp71 = -tmp70;
+    const Scalar tmp73 = tmp49*tmp8;
+    const Scalar tmp74 = tmp1*tmp47;
+    const Scalar tmp76 = Scalar(0.2)*tmp1;
+    const Scalar tmp77 = Scalar(0.25)*tmp20;
+    const Scalar tmp78 = tmp0*tmp77;
+    const Scalar tmp79 = tmp8*tmp78;
+    const Scalar tmp80 = tmp79 + tmp0*tmp76;
+    const Scalar tmp81 = Scalar(0.25)*tmp23;
+    const Scalar tmp82 = tmp5*tmp81;
+    const Scalar tmp83 = tmp63 + tmp82;
+    const Scalar tmp84 = tmp80 + tmp83;
+    const Scalar tmp86 = tmp5*tmp77;
+    const Scalar tmp87 = tmp8*tmp86;
+    const Scalar tmp88 = tmp87 + tmp5*tmp76;
+    const Scalar tmp89 = tmp0*tmp81;
+    const Scalar tmp90 = tmp70 - tmp89;
+    const Scalar tmp91 = tmp88 + tmp90;
+    const Scalar tmp93 = Scalar(0.2)*tmp8;
+    const Scalar tmp94 = tmp1*tmp77;
+    const Scalar tmp98 = tmp1*tmp54;
+    const Scalar tmp99 = tmp98 + tmp0*tmp94 - tmp0*tmp93;
+    const Scalar tmp100 = tmp52 + tmp86 - tmp8*tmp89;
+    const Scalar tmp101 = -tmp91;
+    const Scalar tmp104 = tmp1*tmp48;
+    const Scalar tmp105 = tmp104 + tmp5*tmp94 - tmp5*tmp93;
+    const Scalar tmp106 = tmp54 + tmp78 - tmp56 + tmp8*tmp82;
+    const Scalar tmp107 = -tmp106;
+    const Scalar tmp109 = -tmp1*tmp81 + Scalar(0.3)*tmp1*tmp20;
+    const Scalar tmp110 = tmp47*tmp8;
+    const Scalar tmp111 = -tmp76 - tmp110 - tmp77*tmp8;
+    const Scalar tmp124 = tmp34*tmp5;
+    const Scalar tmp129 = tmp0*tmp34;
+    const Scalar tmp133 = tmp5*tmp59;
+    const Scalar tmp146 = m_a + m_b + m_c + m_d;
+    const Scalar tmp147 = tmp38*m_b + tmp65*m_c + tmp101*m_d - tmp6*m_a;
+    const Scalar tmp148 = tmp27*m_b + tmp3*m_a + tmp52*m_c + tmp84*m_d;
+    const Scalar tmp149 = (tmp5*tmp5);
+    const Scalar tmp150 = (tmp1*tmp1);
+    const Scalar tmp151 = Scalar(0.25)*tmp150;
+    const Scalar tmp152 = (tmp0*tmp0);
+    const Scalar tmp153 = m_a*(tmp149*tmp151 + tmp151*tmp152) + m_b*((tmp27*tmp27) + (tmp38*tmp38))
+        + m_c*((tmp52*tmp52) + (tmp65*tmp65)) + m_d*((tmp84*tmp84) + (tmp101*tmp101));
+    const Scalar tmp154 = tmp0*tmp59;
+    const Scalar tmp155 = tmp129*m_b + tmp154*m_c + tmp99*m_d - tmp11*m_a;
+    const Scalar tmp156 = tmp133*m_c + tmp105*m_d + tmp124*m_b - tmp14*m_a;
+    const Scalar tmp157 = tmp111*m_d - tmp2*m_a - tmp44*m_b - tmp73*m_c;
+    const Scalar tmp158 = m_b*(tmp129*tmp38 + tmp27*tmp124) + m_c*(tmp133*tmp52 + tmp154*tmp65)
+        + m_d*(tmp84*tmp105 + tmp99*tmp101);
+    const Scalar tmp159 = (tmp8*tmp8);
+    const Scalar tmp160 = Scalar(0.25)*tmp159;
+    const Scalar tmp161 = (tmp23*tmp23);
+    const Scalar tmp162 = Scalar(0.16000000000000003)*tmp161;
+    const Scalar tmp163 = tmp150*tmp162;
+    const Scalar tmp164 = (tmp20*tmp20);
+    const Scalar tmp165 = Scalar(0.09)*tmp164;
+    const Scalar tmp166 = tmp150*tmp165;
+    const Scalar tmp167 = m_a*(tmp151 + tmp149*tmp160 + tmp152*tmp160)
+        + m_b*(tmp149*tmp163 + tmp152*tmp163 + tmp159*tmp162)
+        + m_c*(tmp149*tmp166 + tmp152*tmp166 + tmp159*tmp165)
+        + m_d*((tmp99*tmp99) + (tmp105*tmp105) + (tmp111*tmp111));
+    const Scalar tmp168 = tmp37*m_b + tmp64*m_c + tmp100*m_d;
+    const Scalar tmp169 = tmp42*m_b + tmp71*m_c + tmp107*m_d;
+    const Scalar tmp170 = tmp45*m_b + tmp109*m_d - tmp74*m_c;
+    const Scalar tmp171 = m_b*(tmp27*tmp42 + tmp37*tmp38) + m_c*(tmp52*tmp71 + tmp64*tmp65)
+        + m_d*(tmp84*tmp107 + tmp100*tmp101);
+    const Scalar tmp172 = tmp1*tmp20*tmp23*tmp8;
+    const Scalar tmp173 = m_b*(-Scalar(0.16000000000000003)*tmp172 + tmp129*tmp37 + tmp42*tmp124)
+        + m_c*(Scalar(0.09)*tmp172 + tmp133*tmp71 + tmp154*tmp64)
+        + m_d*(tmp99*tmp100 + tmp105*tmp107 + tmp109*tmp111);
+    const Scalar tmp174 = m_b*((tmp37*tmp37) + (tmp42*tmp42)
+            + Scalar(0.16000000000000003)*tmp150*tmp164)
+        + m_c*((tmp64*tmp64) + (tmp71*tmp71) + Scalar(0.09)*tmp150*tmp161)
+        + m_d*((tmp100*tmp100) + (tmp107*tmp107) + (tmp109*tmp109));
     QMatrix<Scalar> result;
-    result(0, 0) = m;
+    result(0, 0) = tmp146;
     result(1, 0) = Scalar(0);
-    result(1, 1) = m;
+    result(1, 1) = tmp146;
     result(2, 0) = Scalar(0);
     result(2, 1) = Scalar(0);
-    result(2, 2) = m;
-    result(3, 0) = tmp203;
-    result(3, 1) = tmp204;
+    result(2, 2) = tmp146;
+    result(3, 0) = tmp147;
+    result(3, 1) = tmp148;
     result(3, 2) = Scalar(0);
-    result(3, 3) = tmp205;
-    result(4, 0) = tmp206;
-    result(4, 1) = tmp207;
-    result(4, 2) = tmp208;
-    result(4, 3) = tmp209;
-    result(4, 4) = tmp210;
-    result(5, 0) = tmp211;
-    result(5, 1) = tmp212;
-    result(5, 2) = tmp213;
-    result(5, 3) = tmp214;
-    result(5, 4) = tmp215;
-    result(5, 5) = tmp216;
+    result(3, 3) = tmp153;
+    result(4, 0) = tmp155;
+    result(4, 1) = tmp156;
+    result(4, 2) = tmp157;
+    result(4, 3) = tmp158;
+    result(4, 4) = tmp167;
+    result(5, 0) = tmp168;
+    result(5, 1) = tmp169;
+    result(5, 2) = tmp170;
+    result(5, 3) = tmp171;
+    result(5, 4) = tmp173;
+    result(5, 5) = tmp174;
     result(0, 1) = result(1, 0);
     result(0, 2) = result(2, 0);
     result(1, 2) = result(2, 1);
@@ -336,7 +319,7 @@ struct RigidBodyEuler {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return Ft (nq)
-  /// Ops: 74
+  /// Ops: 55
   template <typename Scalar>
   static QVector<Scalar> applied_forces(const QVector<Scalar>& q,
                                         const QVector<Scalar>& /*v*/,
@@ -344,63 +327,50 @@ struct RigidBodyEuler {
                                         const Params& params) {
     using std::cos;
     using std::sin;
-    using std::sqrt;
     const Scalar pitch = q(4);
     const Scalar roll = q(5);
     const Scalar g = Scalar(params.g);
-    const Scalar m = Scalar(params.m);
-    const Scalar a = Scalar(params.a);
-    const Scalar b = Scalar(params.b);
-    const Scalar c = Scalar(params.c);
+    const Scalar m_a = Scalar(params.m_a);
+    const Scalar m_b = Scalar(params.m_b);
+    const Scalar m_c = Scalar(params.m_c);
+    const Scalar m_d = Scalar(params.m_d);
     const Scalar tmp1 = cos(pitch);
-    const Scalar tmp2 = (Scalar(1)/sqrt(m));
-    const Scalar tmp3 = (a*a);
-    const Scalar tmp4 = (b*b);
-    const Scalar tmp5 = ((Scalar(1)/Scalar(24)))*m;
-    const Scalar tmp6 = tmp5*(tmp3 + tmp4);
-    const Scalar tmp7 = (c*c);
-    const Scalar tmp8 = tmp5*(tmp3 + tmp7);
-    const Scalar tmp9 = tmp5*(tmp4 + tmp7);
-    const Scalar tmp10 = tmp6 + tmp8 - tmp9;
-    const Scalar tmp11 = tmp2*sqrt(tmp10);
-    const Scalar tmp12 = tmp1*tmp11;
-    const Scalar tmp14 = sin(roll);
-    const Scalar tmp17 = sin(pitch);
-    const Scalar tmp18 = cos(roll);
-    const Scalar tmp22 = tmp8 + tmp9 - tmp6;
-    const Scalar tmp23 = tmp2*sqrt(tmp22);
-    const Scalar tmp29 = tmp6 + tmp9 - tmp8;
-    const Scalar tmp30 = tmp2*sqrt(tmp29);
-    const Scalar tmp45 = tmp18*tmp23;
-    const Scalar tmp47 = tmp14*tmp30;
-    const Scalar tmp81 = tmp14*tmp23;
-    const Scalar tmp82 = tmp1*tmp81;
-    const Scalar tmp83 = tmp18*tmp30;
-    const Scalar tmp84 = tmp1*tmp83;
-    const Scalar tmp85 = tmp82 - tmp84;
-    const Scalar tmp86 = -tmp85;
-    const Scalar tmp87 = tmp17*tmp45;
-    const Scalar tmp88 = tmp17*tmp47;
-    const Scalar tmp89 = tmp87 + tmp88;
-    const Scalar tmp90 = -tmp12 - tmp89;
-    const Scalar tmp112 = tmp89 - tmp12;
-    const Scalar tmp133 = tmp82 + tmp84;
-    const Scalar tmp134 = tmp12 + tmp87 - tmp88;
-    const Scalar tmp148 = -tmp133;
-    const Scalar tmp149 = tmp12 + tmp88 - tmp87;
-    const Scalar tmp151 = (Scalar(0.25))*m;
-    const Scalar tmp152 = tmp151*g;
-    const Scalar tmp153 = -tmp152;
-    const Scalar tmp217 = Scalar(4)*tmp153;
-    const Scalar tmp233 = tmp112*tmp153 + tmp134*tmp153 + tmp149*tmp153 + tmp153*tmp90;
-    const Scalar tmp234 = tmp133*tmp153 + tmp148*tmp153 + tmp153*tmp85 + tmp153*tmp86;
+    const Scalar tmp2 = Scalar(0.5)*tmp1;
+    const Scalar tmp8 = sin(pitch);
+    const Scalar tmp20 = cos(roll);
+    const Scalar tmp21 = Scalar(0.4)*tmp20;
+    const Scalar tmp23 = sin(roll);
+    const Scalar tmp24 = Scalar(0.4)*tmp23;
+    const Scalar tmp44 = tmp24*tmp8;
+    const Scalar tmp45 = tmp1*tmp21;
+    const Scalar tmp47 = Scalar(0.3)*tmp23;
+    const Scalar tmp49 = Scalar(0.3)*tmp20;
+    const Scalar tmp73 = tmp49*tmp8;
+    const Scalar tmp74 = tmp1*tmp47;
+    const Scalar tmp76 = Scalar(0.2)*tmp1;
+    const Scalar tmp77 = Scalar(0.25)*tmp20;
+    const Scalar tmp81 = Scalar(0.25)*tmp23;
+    const Scalar tmp109 = -tmp1*tmp81 + Scalar(0.3)*tmp1*tmp20;
+    const Scalar tmp110 = tmp47*tmp8;
+    const Scalar tmp111 = -tmp76 - tmp110 - tmp77*tmp8;
+    const Scalar tmp113 = g*m_a;
+    const Scalar tmp114 = -tmp113;
+    const Scalar tmp115 = g*m_b;
+    const Scalar tmp116 = -tmp115;
+    const Scalar tmp117 = g*m_c;
+    const Scalar tmp118 = -tmp117;
+    const Scalar tmp119 = g*m_d;
+    const Scalar tmp120 = -tmp119;
+    const Scalar tmp175 = tmp114 + tmp116 + tmp118 + tmp120;
+    const Scalar tmp191 = tmp111*tmp120 - tmp2*tmp114 - tmp44*tmp116 - tmp73*tmp118;
+    const Scalar tmp192 = tmp45*tmp116 + tmp109*tmp120 - tmp74*tmp118;
     QVector<Scalar> result;
     result(0) = Scalar(0);
     result(1) = Scalar(0);
-    result(2) = tmp217;
+    result(2) = tmp175;
     result(3) = Scalar(0);
-    result(4) = tmp233;
-    result(5) = tmp234;
+    result(4) = tmp191;
+    result(5) = tmp192;
     return result;
   }
 
@@ -432,7 +402,7 @@ struct RigidBodyEuler {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return Fi (nq)
-  /// Ops: 561
+  /// Ops: 466
   template <typename Scalar>
   static QVector<Scalar> inertial_forces(const QVector<Scalar>& q,
                                          const QVector<Scalar>& v,
@@ -440,242 +410,179 @@ struct RigidBodyEuler {
                                          const Params& params) {
     using std::cos;
     using std::sin;
-    using std::sqrt;
     const Scalar yaw = q(3);
     const Scalar pitch = q(4);
     const Scalar roll = q(5);
     const Scalar yaw_dot = v(3);
     const Scalar pitch_dot = v(4);
     const Scalar roll_dot = v(5);
-    const Scalar m = Scalar(params.m);
-    const Scalar a = Scalar(params.a);
-    const Scalar b = Scalar(params.b);
-    const Scalar c = Scalar(params.c);
+    const Scalar m_a = Scalar(params.m_a);
+    const Scalar m_b = Scalar(params.m_b);
+    const Scalar m_c = Scalar(params.m_c);
+    const Scalar m_d = Scalar(params.m_d);
     const Scalar tmp0 = cos(yaw);
     const Scalar tmp1 = cos(pitch);
-    const Scalar tmp2 = (Scalar(1)/sqrt(m));
-    const Scalar tmp3 = (a*a);
-    const Scalar tmp4 = (b*b);
-    const Scalar tmp5 = ((Scalar(1)/Scalar(24)))*m;
-    const Scalar tmp6 = tmp5*(tmp3 + tmp4);
-    const Scalar tmp7 = (c*c);
-    const Scalar tmp8 = tmp5*(tmp3 + tmp7);
-    const Scalar tmp9 = tmp5*(tmp4 + tmp7);
-    const Scalar tmp10 = tmp6 + tmp8 - tmp9;
-    const Scalar tmp11 = tmp2*sqrt(tmp10);
-    const Scalar tmp12 = tmp1*tmp11;
-    const Scalar tmp13 = tmp0*tmp12;
-    const Scalar tmp14 = sin(roll);
-    const Scalar tmp15 = sin(yaw);
-    const Scalar tmp16 = tmp14*tmp15;
-    const Scalar tmp17 = sin(pitch);
-    const Scalar tmp18 = cos(roll);
-    const Scalar tmp19 = tmp0*tmp18;
-    const Scalar tmp20 = tmp17*tmp19;
-    const Scalar tmp21 = tmp16 + tmp20;
-    const Scalar tmp22 = tmp8 + tmp9 - tmp6;
-    const Scalar tmp23 = tmp2*sqrt(tmp22);
-    const Scalar tmp24 = tmp21*tmp23;
-    const Scalar tmp25 = tmp15*tmp18;
-    const Scalar tmp26 = tmp0*tmp14;
-    const Scalar tmp27 = tmp17*tmp26;
-    const Scalar tmp28 = tmp27 - tmp25;
-    const Scalar tmp29 = tmp6 + tmp9 - tmp8;
-    const Scalar tmp30 = tmp2*sqrt(tmp29);
-    const Scalar tmp31 = tmp28*tmp30;
-    const Scalar tmp32 = tmp24 + tmp31;
-    const Scalar tmp33 = tmp13 + tmp32;
-    const Scalar tmp35 = tmp17*tmp25;
-    const Scalar tmp36 = tmp35 - tmp26;
-    const Scalar tmp38 = tmp16*tmp17;
-    const Scalar tmp39 = tmp19 + tmp38;
-    const Scalar tmp41 = tmp12*tmp15;
-    const Scalar tmp44 = tmp11*tmp17;
-    const Scalar tmp45 = tmp18*tmp23;
-    const Scalar tmp46 = tmp1*tmp45;
-    const Scalar tmp47 = tmp14*tmp30;
-    const Scalar tmp48 = tmp1*tmp47;
-    const Scalar tmp49 = tmp46 + tmp48;
-    const Scalar tmp50 = tmp49 - tmp44;
-    const Scalar tmp52 = tmp21*tmp30;
-    const Scalar tmp53 = -tmp28;
-    const Scalar tmp54 = tmp23*tmp53;
-    const Scalar tmp55 = tmp52 + tmp54;
-    const Scalar tmp56 = tmp0*tmp44;
-    const Scalar tmp57 = tmp1*tmp23;
-    const Scalar tmp58 = tmp19*tmp57;
-    const Scalar tmp59 = tmp1*tmp30;
-    const Scalar tmp60 = tmp26*tmp59;
-    const Scalar tmp61 = tmp58 + tmp60;
-    const Scalar tmp62 = tmp61 - tmp56;
-    const Scalar tmp63 = -tmp41;
-    const Scalar tmp64 = -tmp36;
-    const Scalar tmp65 = tmp23*tmp64;
-    const Scalar tmp66 = -tmp39;
-    const Scalar tmp67 = tmp30*tmp66;
-    const Scalar tmp68 = tmp65 + tmp67;
-    const Scalar tmp69 = tmp63 + tmp68;
-    const Scalar tmp70 = tmp55*roll_dot + tmp62*pitch_dot + tmp69*yaw_dot;
-    const Scalar tmp72 = tmp30*tmp36;
-    const Scalar tmp73 = tmp23*tmp66;
-    const Scalar tmp74 = tmp72 + tmp73;
-    const Scalar tmp75 = tmp15*tmp44;
-    const Scalar tmp76 = tmp25*tmp57;
-    const Scalar tmp77 = tmp16*tmp59;
-    const Scalar tmp78 = tmp76 + tmp77;
-    const Scalar tmp79 = tmp78 - tmp75;
-    const Scalar tmp81 = tmp14*tmp23;
-    const Scalar tmp82 = tmp1*tmp81;
-    const Scalar tmp83 = tmp18*tmp30;
-    const Scalar tmp84 = tmp1*tmp83;
-    const Scalar tmp85 = tmp82 - tmp84;
-    const Scalar tmp86 = -tmp85;
-    const Scalar tmp87 = tmp17*tmp45;
-    const Scalar tmp88 = tmp17*tmp47;
-    const Scalar tmp89 = tmp87 + tmp88;
-    const Scalar tmp90 = -tmp12 - tmp89;
-    const Scalar tmp92 = -tmp24;
-    const Scalar tmp93 = -tmp31;
-    const Scalar tmp94 = tmp13 + tmp93;
-    const Scalar tmp99 = tmp44 + tmp49;
-    const Scalar tmp101 = -tmp55;
-    const Scalar tmp102 = -tmp56 - tmp61;
-    const Scalar tmp103 = -tmp41 - tmp68;
-    const Scalar tmp104 = tmp101*roll_dot + tmp102*pitch_dot + tmp103*yaw_dot;
-    const Scalar tmp106 = -tmp74;
-    const Scalar tmp107 = tmp75 + tmp78;
-    const Scalar tmp108 = -tmp107;
-    const Scalar tmp109 = -tmp13;
-    const Scalar tmp110 = -tmp32 - tmp109;
-    const Scalar tmp112 = tmp89 - tmp12;
-    const Scalar tmp114 = tmp31 + tmp92;
-    const Scalar tmp119 = tmp44 + tmp48 - tmp46;
-    const Scalar tmp121 = tmp54 - tmp52;
-    const Scalar tmp122 = -tmp121;
-    const Scalar tmp123 = tmp56 + tmp60 - tmp58;
-    const Scalar tmp124 = tmp67 - tmp65;
-    const Scalar tmp125 = tmp124 + tmp41;
-    const Scalar tmp126 = tmp122*roll_dot + tmp123*pitch_dot + tmp125*yaw_dot;
-    const Scalar tmp128 = tmp73 - tmp72;
-    const Scalar tmp129 = -tmp128;
-    const Scalar tmp130 = tmp75 + tmp77 - tmp76;
-    const Scalar tmp131 = -tmp24 - tmp94;
-    const Scalar tmp133 = tmp82 + tmp84;
-    const Scalar tmp134 = tmp12 + tmp87 - tmp88;
-    const Scalar tmp138 = tmp46 - tmp48;
-    const Scalar tmp139 = tmp138 + tmp44;
-    const Scalar tmp141 = tmp56 + tmp58 - tmp60;
-    const Scalar tmp142 = tmp41 + tmp65 - tmp67;
-    const Scalar tmp143 = tmp121*roll_dot + tmp141*pitch_dot + tmp142*yaw_dot;
-    const Scalar tmp145 = tmp75 + tmp76 - tmp77;
-    const Scalar tmp146 = -tmp114 - tmp13;
-    const Scalar tmp148 = -tmp133;
-    const Scalar tmp149 = tmp12 + tmp88 - tmp87;
-    const Scalar tmp151 = (Scalar(0.25))*m;
-    const Scalar tmp154 = tmp26*tmp57;
-    const Scalar tmp155 = tmp19*tmp59;
-    const Scalar tmp156 = tmp154 - tmp155;
-    const Scalar tmp157 = -tmp156;
-    const Scalar tmp158 = tmp23*tmp39;
-    const Scalar tmp159 = tmp30*tmp64;
-    const Scalar tmp160 = tmp158 + tmp159;
-    const Scalar tmp161 = tmp30*tmp53;
-    const Scalar tmp162 = -tmp21*tmp23;
-    const Scalar tmp163 = tmp161 + tmp162;
-    const Scalar tmp164 = -tmp79;
-    const Scalar tmp165 = tmp20*tmp23;
-    const Scalar tmp166 = tmp27*tmp30;
-    const Scalar tmp167 = tmp165 + tmp166;
-    const Scalar tmp168 = pitch_dot*(tmp157*roll_dot + tmp164*yaw_dot + pitch_dot*(-tmp13 - tmp167))
-        + roll_dot*(tmp157*pitch_dot + tmp160*yaw_dot + tmp163*roll_dot)
-        + yaw_dot*(tmp160*roll_dot + tmp164*pitch_dot + yaw_dot*(tmp163 + tmp109));
-    const Scalar tmp169 = tmp16*tmp57;
-    const Scalar tmp170 = tmp25*tmp59;
-    const Scalar tmp171 = tmp169 - tmp170;
-    const Scalar tmp172 = -tmp171;
-    const Scalar tmp173 = tmp23*tmp35;
-    const Scalar tmp174 = tmp30*tmp38;
-    const Scalar tmp175 = tmp173 + tmp174;
-    const Scalar tmp176 = tmp70*yaw_dot
-        + pitch_dot*(tmp172*roll_dot + tmp62*yaw_dot + pitch_dot*(-tmp175 - tmp41))
-        + roll_dot*(tmp172*pitch_dot + tmp55*yaw_dot + tmp68*roll_dot);
-    const Scalar tmp177 = tmp17*tmp81;
-    const Scalar tmp178 = tmp17*tmp83;
-    const Scalar tmp179 = tmp177 - tmp178;
-    const Scalar tmp180 = pitch_dot*(tmp179*roll_dot - tmp50*pitch_dot)
-        + roll_dot*(tmp179*pitch_dot - tmp49*roll_dot);
-    const Scalar tmp181 = -tmp160;
-    const Scalar tmp182 = pitch_dot*(tmp156*roll_dot + tmp107*yaw_dot + pitch_dot*(tmp167 + tmp109))
-        + roll_dot*(tmp156*pitch_dot + tmp181*yaw_dot - tmp163*roll_dot)
-        + yaw_dot*(tmp181*roll_dot + tmp107*pitch_dot + yaw_dot*(-tmp13 - tmp163));
-    const Scalar tmp183 = tmp104*yaw_dot
-        + pitch_dot*(tmp171*roll_dot + tmp102*yaw_dot + pitch_dot*(tmp175 + tmp63))
-        + roll_dot*(tmp171*pitch_dot + tmp101*yaw_dot - tmp68*roll_dot);
-    const Scalar tmp184 = -tmp179;
-    const Scalar tmp185 = pitch_dot*(tmp184*roll_dot + tmp99*pitch_dot)
-        + roll_dot*(tmp184*pitch_dot + tmp49*roll_dot);
-    const Scalar tmp186 = tmp154 + tmp155;
-    const Scalar tmp187 = tmp158 - tmp159;
-    const Scalar tmp188 = -tmp187;
-    const Scalar tmp189 = tmp161 - tmp162;
-    const Scalar tmp190 = -tmp130;
-    const Scalar tmp191 = pitch_dot*(tmp186*roll_dot + tmp190*yaw_dot
-            + pitch_dot*(tmp13 + tmp165 - tmp166))
-        + roll_dot*(tmp186*pitch_dot + tmp188*yaw_dot + tmp189*roll_dot)
-        + yaw_dot*(tmp188*roll_dot + tmp190*pitch_dot + yaw_dot*(tmp13 + tmp189));
-    const Scalar tmp192 = tmp169 + tmp170;
-    const Scalar tmp193 = tmp126*yaw_dot
-        + pitch_dot*(tmp123*yaw_dot + tmp192*roll_dot + pitch_dot*(tmp173 + tmp41 - tmp174))
-        + roll_dot*(tmp122*yaw_dot + tmp124*roll_dot + tmp192*pitch_dot);
-    const Scalar tmp194 = tmp177 + tmp178;
-    const Scalar tmp195 = -tmp194;
-    const Scalar tmp196 = pitch_dot*(tmp195*roll_dot - tmp119*pitch_dot)
-        + roll_dot*(tmp138*roll_dot + tmp195*pitch_dot);
-    const Scalar tmp197 = -tmp186;
-    const Scalar tmp198 = -tmp145;
-    const Scalar tmp199 = pitch_dot*(tmp197*roll_dot + tmp198*yaw_dot
-            + pitch_dot*(tmp13 + tmp166 - tmp165))
-        + roll_dot*(tmp187*yaw_dot + tmp197*pitch_dot - tmp189*roll_dot)
-        + yaw_dot*(tmp187*roll_dot + tmp198*pitch_dot + yaw_dot*(tmp13 + tmp162 - tmp161));
-    const Scalar tmp200 = -tmp192;
-    const Scalar tmp201 = tmp143*yaw_dot
-        + pitch_dot*(tmp141*yaw_dot + tmp200*roll_dot + pitch_dot*(tmp174 + tmp41 - tmp173))
-        + roll_dot*(tmp121*yaw_dot + tmp200*pitch_dot - tmp124*roll_dot);
-    const Scalar tmp202 = pitch_dot*(tmp194*roll_dot - tmp139*pitch_dot)
-        + roll_dot*(tmp194*pitch_dot - tmp138*roll_dot);
-    const Scalar tmp218 = tmp151*tmp168;
-    const Scalar tmp219 = tmp151*tmp176;
-    const Scalar tmp220 = tmp151*tmp182;
-    const Scalar tmp221 = tmp151*tmp183;
-    const Scalar tmp222 = tmp151*tmp191;
-    const Scalar tmp223 = tmp151*tmp193;
-    const Scalar tmp224 = tmp151*tmp199;
-    const Scalar tmp225 = tmp151*tmp201;
-    const Scalar tmp226 = tmp151*tmp180;
-    const Scalar tmp227 = tmp151*tmp185;
-    const Scalar tmp228 = tmp151*tmp196;
-    const Scalar tmp229 = tmp151*tmp202;
-    const Scalar tmp230 = tmp220 + tmp222 + tmp224 + tmp218;
-    const Scalar tmp231 = tmp221 + tmp223 + tmp225 + tmp219;
-    const Scalar tmp232 = tmp227 + tmp228 + tmp229 + tmp226;
-    const Scalar tmp235 = -tmp230;
-    const Scalar tmp236 = -tmp231;
-    const Scalar tmp237 = -tmp232;
-    const Scalar tmp238 = -tmp110*tmp221 - tmp125*tmp222 - tmp131*tmp223 - tmp142*tmp224
-        - tmp146*tmp225 - tmp220*tmp103 - tmp33*tmp219 - tmp69*tmp218;
-    const Scalar tmp239 = -tmp112*tmp227 - tmp123*tmp222 - tmp130*tmp223 - tmp134*tmp228
-        - tmp141*tmp224 - tmp145*tmp225 - tmp149*tmp229 - tmp220*tmp102 - tmp221*tmp108
-        - tmp62*tmp218 - tmp79*tmp219 - tmp90*tmp226;
-    const Scalar tmp240 = -tmp121*tmp224 - tmp122*tmp222 - tmp128*tmp225 - tmp129*tmp223
-        - tmp133*tmp228 - tmp148*tmp229 - tmp220*tmp101 - tmp221*tmp106 - tmp227*tmp85
-        - tmp55*tmp218 - tmp74*tmp219 - tmp86*tmp226;
+    const Scalar tmp2 = Scalar(0.5)*tmp1;
+    const Scalar tmp3 = tmp0*tmp2;
+    const Scalar tmp5 = sin(yaw);
+    const Scalar tmp6 = tmp2*tmp5;
+    const Scalar tmp8 = sin(pitch);
+    const Scalar tmp9 = Scalar(0.5)*tmp8;
+    const Scalar tmp11 = tmp0*tmp9;
+    const Scalar tmp12 = tmp6*yaw_dot + tmp11*pitch_dot;
+    const Scalar tmp14 = tmp5*tmp9;
+    const Scalar tmp15 = tmp14*pitch_dot;
+    const Scalar tmp16 = tmp3*yaw_dot;
+    const Scalar tmp20 = cos(roll);
+    const Scalar tmp21 = Scalar(0.4)*tmp20;
+    const Scalar tmp22 = tmp21*tmp5;
+    const Scalar tmp23 = sin(roll);
+    const Scalar tmp24 = Scalar(0.4)*tmp23;
+    const Scalar tmp25 = tmp0*tmp24;
+    const Scalar tmp26 = tmp25*tmp8;
+    const Scalar tmp27 = tmp26 - tmp22;
+    const Scalar tmp29 = tmp0*tmp21;
+    const Scalar tmp30 = tmp24*tmp5;
+    const Scalar tmp31 = tmp30*tmp8;
+    const Scalar tmp32 = tmp29 + tmp31;
+    const Scalar tmp34 = tmp1*tmp24;
+    const Scalar tmp36 = tmp34*pitch_dot;
+    const Scalar tmp37 = tmp30 + tmp29*tmp8;
+    const Scalar tmp38 = -tmp32;
+    const Scalar tmp39 = tmp0*tmp36 + tmp37*roll_dot + tmp38*yaw_dot;
+    const Scalar tmp41 = tmp36*tmp5;
+    const Scalar tmp42 = -tmp25 + tmp22*tmp8;
+    const Scalar tmp45 = tmp1*tmp21;
+    const Scalar tmp47 = Scalar(0.3)*tmp23;
+    const Scalar tmp48 = tmp47*tmp5;
+    const Scalar tmp49 = Scalar(0.3)*tmp20;
+    const Scalar tmp50 = tmp0*tmp49;
+    const Scalar tmp51 = tmp50*tmp8;
+    const Scalar tmp52 = tmp48 + tmp51;
+    const Scalar tmp54 = tmp0*tmp47;
+    const Scalar tmp55 = tmp49*tmp5;
+    const Scalar tmp56 = tmp55*tmp8;
+    const Scalar tmp57 = tmp56 - tmp54;
+    const Scalar tmp59 = tmp1*tmp49;
+    const Scalar tmp61 = tmp59*pitch_dot;
+    const Scalar tmp62 = tmp54*tmp8;
+    const Scalar tmp63 = tmp62 - tmp55;
+    const Scalar tmp64 = -tmp63;
+    const Scalar tmp65 = -tmp57;
+    const Scalar tmp66 = tmp0*tmp61 + tmp64*roll_dot + tmp65*yaw_dot;
+    const Scalar tmp68 = tmp5*tmp61;
+    const Scalar tmp69 = tmp48*tmp8;
+    const Scalar tmp70 = tmp50 + tmp69;
+    const Scalar tmp71 = -tmp70;
+    const Scalar tmp73 = tmp49*tmp8;
+    const Scalar tmp74 = tmp1*tmp47;
+    const Scalar tmp76 = Scalar(0.2)*tmp1;
+    const Scalar tmp77 = Scalar(0.25)*tmp20;
+    const Scalar tmp78 = tmp0*tmp77;
+    const Scalar tmp79 = tmp8*tmp78;
+    const Scalar tmp80 = tmp79 + tmp0*tmp76;
+    const Scalar tmp81 = Scalar(0.25)*tmp23;
+    const Scalar tmp82 = tmp5*tmp81;
+    const Scalar tmp83 = tmp63 + tmp82;
+    const Scalar tmp84 = tmp80 + tmp83;
+    const Scalar tmp86 = tmp5*tmp77;
+    const Scalar tmp87 = tmp8*tmp86;
+    const Scalar tmp88 = tmp87 + tmp5*tmp76;
+    const Scalar tmp89 = tmp0*tmp81;
+    const Scalar tmp90 = tmp70 - tmp89;
+    const Scalar tmp91 = tmp88 + tmp90;
+    const Scalar tmp93 = Scalar(0.2)*tmp8;
+    const Scalar tmp94 = tmp1*tmp77;
+    const Scalar tmp95 = tmp74 + tmp94;
+    const Scalar tmp96 = tmp95 - tmp93;
+    const Scalar tmp98 = tmp1*tmp54;
+    const Scalar tmp99 = tmp98 + tmp0*tmp94 - tmp0*tmp93;
+    const Scalar tmp100 = tmp52 + tmp86 - tmp8*tmp89;
+    const Scalar tmp101 = -tmp91;
+    const Scalar tmp102 = tmp99*pitch_dot + tmp100*roll_dot + tmp101*yaw_dot;
+    const Scalar tmp104 = tmp1*tmp48;
+    const Scalar tmp105 = tmp104 + tmp5*tmp94 - tmp5*tmp93;
+    const Scalar tmp106 = tmp54 + tmp78 - tmp56 + tmp8*tmp82;
+    const Scalar tmp107 = -tmp106;
+    const Scalar tmp109 = -tmp1*tmp81 + Scalar(0.3)*tmp1*tmp20;
+    const Scalar tmp110 = tmp47*tmp8;
+    const Scalar tmp111 = -tmp76 - tmp110 - tmp77*tmp8;
+    const Scalar tmp121 = pitch_dot*(-tmp3*pitch_dot + Scalar(0.5)*tmp5*tmp8*yaw_dot)
+        + yaw_dot*(tmp15 - tmp16);
+    const Scalar tmp122 = pitch_dot*(-tmp6*pitch_dot - tmp11*yaw_dot) - tmp12*yaw_dot;
+    const Scalar tmp123 = tmp9*(pitch_dot*pitch_dot);
+    const Scalar tmp124 = tmp34*tmp5;
+    const Scalar tmp125 = -tmp27;
+    const Scalar tmp126 = -tmp42;
+    const Scalar tmp127 = pitch_dot*(-tmp26*pitch_dot - tmp124*yaw_dot
+            + Scalar(0.4)*tmp0*tmp1*tmp20*roll_dot)
+        + roll_dot*(tmp125*roll_dot + tmp126*yaw_dot + tmp1*tmp29*pitch_dot)
+        + yaw_dot*(-tmp41 + tmp125*yaw_dot + tmp126*roll_dot);
+    const Scalar tmp128 = tmp1*tmp22;
+    const Scalar tmp129 = tmp0*tmp34;
+    const Scalar tmp130 = tmp39*yaw_dot
+        + pitch_dot*(tmp128*roll_dot + tmp129*yaw_dot - tmp31*pitch_dot)
+        + roll_dot*(tmp128*pitch_dot + tmp37*yaw_dot + tmp38*roll_dot);
+    const Scalar tmp131 = tmp21*tmp8;
+    const Scalar tmp132 = pitch_dot*(-tmp36 - tmp131*roll_dot)
+        + roll_dot*(-tmp131*pitch_dot - tmp34*roll_dot);
+    const Scalar tmp133 = tmp5*tmp59;
+    const Scalar tmp134 = -tmp52;
+    const Scalar tmp135 = pitch_dot*(-tmp133*yaw_dot - tmp51*pitch_dot - tmp98*roll_dot)
+        + roll_dot*(tmp134*roll_dot + tmp70*yaw_dot - tmp98*pitch_dot)
+        + yaw_dot*(-tmp68 + tmp134*yaw_dot + tmp70*roll_dot);
+    const Scalar tmp136 = tmp66*yaw_dot
+        + pitch_dot*(-tmp56*pitch_dot - tmp104*roll_dot + Scalar(0.3)*tmp0*tmp1*tmp20*yaw_dot)
+        + roll_dot*(tmp64*yaw_dot + tmp65*roll_dot - tmp104*pitch_dot);
+    const Scalar tmp137 = pitch_dot*(-tmp61 + Scalar(0.3)*tmp23*tmp8*roll_dot)
+        + roll_dot*(tmp110*pitch_dot - tmp59*roll_dot);
+    const Scalar tmp138 = -tmp1*tmp89 + Scalar(0.3)*tmp0*tmp1*tmp20;
+    const Scalar tmp139 = -tmp105;
+    const Scalar tmp140 = pitch_dot*(tmp138*roll_dot + tmp139*yaw_dot + pitch_dot*(-tmp62 - tmp80))
+        + roll_dot*(tmp138*pitch_dot + tmp106*yaw_dot + roll_dot*(-tmp79 - tmp83))
+        + yaw_dot*(tmp139*pitch_dot + tmp106*roll_dot - tmp84*yaw_dot);
+    const Scalar tmp141 = -tmp1*tmp82 + Scalar(0.3)*tmp1*tmp20*tmp5;
+    const Scalar tmp142 = tmp102*yaw_dot
+        + pitch_dot*(tmp141*roll_dot + tmp99*yaw_dot + pitch_dot*(-tmp69 - tmp88))
+        + roll_dot*(tmp141*pitch_dot + tmp100*yaw_dot + roll_dot*(-tmp87 - tmp90));
+    const Scalar tmp143 = -tmp73;
+    const Scalar tmp144 = tmp143 + tmp8*tmp81;
+    const Scalar tmp145 = pitch_dot*(tmp144*roll_dot - tmp96*pitch_dot)
+        + roll_dot*(tmp144*pitch_dot - tmp95*roll_dot);
+    const Scalar tmp154 = tmp0*tmp59;
+    const Scalar tmp176 = tmp121*m_a;
+    const Scalar tmp177 = tmp122*m_a;
+    const Scalar tmp178 = tmp127*m_b;
+    const Scalar tmp179 = tmp130*m_b;
+    const Scalar tmp180 = tmp135*m_c;
+    const Scalar tmp181 = tmp136*m_c;
+    const Scalar tmp182 = tmp140*m_d;
+    const Scalar tmp183 = tmp142*m_d;
+    const Scalar tmp184 = tmp123*m_a;
+    const Scalar tmp185 = tmp132*m_b;
+    const Scalar tmp186 = tmp137*m_c;
+    const Scalar tmp187 = tmp145*m_d;
+    const Scalar tmp188 = tmp178 + tmp180 + tmp182 + tmp176;
+    const Scalar tmp189 = tmp179 + tmp181 + tmp183 + tmp177;
+    const Scalar tmp190 = tmp185 + tmp186 + tmp187 + tmp184;
+    const Scalar tmp193 = -tmp188;
+    const Scalar tmp194 = -tmp189;
+    const Scalar tmp195 = -tmp190;
+    const Scalar tmp196 = -tmp178*tmp38 - tmp179*tmp27 - tmp180*tmp65 - tmp181*tmp52 - tmp182*tmp101
+        - tmp183*tmp84 - tmp3*tmp177 + Scalar(0.5)*tmp1*tmp5*tmp176;
+    const Scalar tmp197 = -tmp129*tmp178 - tmp133*tmp181 - tmp154*tmp180 - tmp179*tmp124
+        - tmp182*tmp99 - tmp183*tmp105 - tmp187*tmp111 + Scalar(0.5)*tmp1*tmp184
+        + Scalar(0.5)*tmp0*tmp8*tmp176 + Scalar(0.5)*tmp5*tmp8*tmp177
+        + Scalar(0.4)*tmp185*tmp23*tmp8 + Scalar(0.3)*tmp186*tmp20*tmp8;
+    const Scalar tmp198 = -tmp178*tmp37 - tmp179*tmp42 - tmp180*tmp64 - tmp181*tmp71 - tmp182*tmp100
+        - tmp183*tmp107 - tmp185*tmp45 - tmp187*tmp109 + Scalar(0.3)*tmp1*tmp186*tmp23;
     QVector<Scalar> result;
-    result(0) = tmp235;
-    result(1) = tmp236;
-    result(2) = tmp237;
-    result(3) = tmp238;
-    result(4) = tmp239;
-    result(5) = tmp240;
+    result(0) = tmp193;
+    result(1) = tmp194;
+    result(2) = tmp195;
+    result(3) = tmp196;
+    result(4) = tmp197;
+    result(5) = tmp198;
     return result;
   }
 
@@ -685,7 +592,7 @@ struct RigidBodyEuler {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return Ft + Fi (nq)
-  /// Ops: 581
+  /// Ops: 497
   template <typename Scalar>
   static QVector<Scalar> forces(const QVector<Scalar>& q,
                                 const QVector<Scalar>& v,
@@ -693,7 +600,6 @@ struct RigidBodyEuler {
                                 const Params& params) {
     using std::cos;
     using std::sin;
-    using std::sqrt;
     const Scalar yaw = q(3);
     const Scalar pitch = q(4);
     const Scalar roll = q(5);
@@ -701,240 +607,185 @@ struct RigidBodyEuler {
     const Scalar pitch_dot = v(4);
     const Scalar roll_dot = v(5);
     const Scalar g = Scalar(params.g);
-    const Scalar m = Scalar(params.m);
-    const Scalar a = Scalar(params.a);
-    const Scalar b = Scalar(params.b);
-    const Scalar c = Scalar(params.c);
+    const Scalar m_a = Scalar(params.m_a);
+    const Scalar m_b = Scalar(params.m_b);
+    const Scalar m_c = Scalar(params.m_c);
+    const Scalar m_d = Scalar(params.m_d);
     const Scalar tmp0 = cos(yaw);
     const Scalar tmp1 = cos(pitch);
-    const Scalar tmp2 = (Scalar(1)/sqrt(m));
-    const Scalar tmp3 = (a*a);
-    const Scalar tmp4 = (b*b);
-    const Scalar tmp5 = ((Scalar(1)/Scalar(24)))*m;
-    const Scalar tmp6 = tmp5*(tmp3 + tmp4);
-    const Scalar tmp7 = (c*c);
-    const Scalar tmp8 = tmp5*(tmp3 + tmp7);
-    const Scalar tmp9 = tmp5*(tmp4 + tmp7);
-    const Scalar tmp10 = tmp6 + tmp8 - tmp9;
-    const Scalar tmp11 = tmp2*sqrt(tmp10);
-    const Scalar tmp12 = tmp1*tmp11;
-    const Scalar tmp13 = tmp0*tmp12;
-    const Scalar tmp14 = sin(roll);
-    const Scalar tmp15 = sin(yaw);
-    const Scalar tmp16 = tmp14*tmp15;
-    const Scalar tmp17 = sin(pitch);
-    const Scalar tmp18 = cos(roll);
-    const Scalar tmp19 = tmp0*tmp18;
-    const Scalar tmp20 = tmp17*tmp19;
-    const Scalar tmp21 = tmp16 + tmp20;
-    const Scalar tmp22 = tmp8 + tmp9 - tmp6;
-    const Scalar tmp23 = tmp2*sqrt(tmp22);
-    const Scalar tmp24 = tmp21*tmp23;
-    const Scalar tmp25 = tmp15*tmp18;
-    const Scalar tmp26 = tmp0*tmp14;
-    const Scalar tmp27 = tmp17*tmp26;
-    const Scalar tmp28 = tmp27 - tmp25;
-    const Scalar tmp29 = tmp6 + tmp9 - tmp8;
-    const Scalar tmp30 = tmp2*sqrt(tmp29);
-    const Scalar tmp31 = tmp28*tmp30;
-    const Scalar tmp32 = tmp24 + tmp31;
-    const Scalar tmp33 = tmp13 + tmp32;
-    const Scalar tmp35 = tmp17*tmp25;
-    const Scalar tmp36 = tmp35 - tmp26;
-    const Scalar tmp38 = tmp16*tmp17;
-    const Scalar tmp39 = tmp19 + tmp38;
-    const Scalar tmp41 = tmp12*tmp15;
-    const Scalar tmp44 = tmp11*tmp17;
-    const Scalar tmp45 = tmp18*tmp23;
-    const Scalar tmp46 = tmp1*tmp45;
-    const Scalar tmp47 = tmp14*tmp30;
-    const Scalar tmp48 = tmp1*tmp47;
-    const Scalar tmp49 = tmp46 + tmp48;
-    const Scalar tmp50 = tmp49 - tmp44;
-    const Scalar tmp52 = tmp21*tmp30;
-    const Scalar tmp53 = -tmp28;
-    const Scalar tmp54 = tmp23*tmp53;
-    const Scalar tmp55 = tmp52 + tmp54;
-    const Scalar tmp56 = tmp0*tmp44;
-    const Scalar tmp57 = tmp1*tmp23;
-    const Scalar tmp58 = tmp19*tmp57;
-    const Scalar tmp59 = tmp1*tmp30;
-    const Scalar tmp60 = tmp26*tmp59;
-    const Scalar tmp61 = tmp58 + tmp60;
-    const Scalar tmp62 = tmp61 - tmp56;
-    const Scalar tmp63 = -tmp41;
-    const Scalar tmp64 = -tmp36;
-    const Scalar tmp65 = tmp23*tmp64;
-    const Scalar tmp66 = -tmp39;
-    const Scalar tmp67 = tmp30*tmp66;
-    const Scalar tmp68 = tmp65 + tmp67;
-    const Scalar tmp69 = tmp63 + tmp68;
-    const Scalar tmp70 = tmp55*roll_dot + tmp62*pitch_dot + tmp69*yaw_dot;
-    const Scalar tmp72 = tmp30*tmp36;
-    const Scalar tmp73 = tmp23*tmp66;
-    const Scalar tmp74 = tmp72 + tmp73;
-    const Scalar tmp75 = tmp15*tmp44;
-    const Scalar tmp76 = tmp25*tmp57;
-    const Scalar tmp77 = tmp16*tmp59;
-    const Scalar tmp78 = tmp76 + tmp77;
-    const Scalar tmp79 = tmp78 - tmp75;
-    const Scalar tmp81 = tmp14*tmp23;
-    const Scalar tmp82 = tmp1*tmp81;
-    const Scalar tmp83 = tmp18*tmp30;
-    const Scalar tmp84 = tmp1*tmp83;
-    const Scalar tmp85 = tmp82 - tmp84;
-    const Scalar tmp86 = -tmp85;
-    const Scalar tmp87 = tmp17*tmp45;
-    const Scalar tmp88 = tmp17*tmp47;
-    const Scalar tmp89 = tmp87 + tmp88;
-    const Scalar tmp90 = -tmp12 - tmp89;
-    const Scalar tmp92 = -tmp24;
-    const Scalar tmp93 = -tmp31;
-    const Scalar tmp94 = tmp13 + tmp93;
-    const Scalar tmp99 = tmp44 + tmp49;
-    const Scalar tmp101 = -tmp55;
-    const Scalar tmp102 = -tmp56 - tmp61;
-    const Scalar tmp103 = -tmp41 - tmp68;
-    const Scalar tmp104 = tmp101*roll_dot + tmp102*pitch_dot + tmp103*yaw_dot;
-    const Scalar tmp106 = -tmp74;
-    const Scalar tmp107 = tmp75 + tmp78;
-    const Scalar tmp108 = -tmp107;
-    const Scalar tmp109 = -tmp13;
-    const Scalar tmp110 = -tmp32 - tmp109;
-    const Scalar tmp112 = tmp89 - tmp12;
-    const Scalar tmp114 = tmp31 + tmp92;
-    const Scalar tmp119 = tmp44 + tmp48 - tmp46;
-    const Scalar tmp121 = tmp54 - tmp52;
-    const Scalar tmp122 = -tmp121;
-    const Scalar tmp123 = tmp56 + tmp60 - tmp58;
-    const Scalar tmp124 = tmp67 - tmp65;
-    const Scalar tmp125 = tmp124 + tmp41;
-    const Scalar tmp126 = tmp122*roll_dot + tmp123*pitch_dot + tmp125*yaw_dot;
-    const Scalar tmp128 = tmp73 - tmp72;
-    const Scalar tmp129 = -tmp128;
-    const Scalar tmp130 = tmp75 + tmp77 - tmp76;
-    const Scalar tmp131 = -tmp24 - tmp94;
-    const Scalar tmp133 = tmp82 + tmp84;
-    const Scalar tmp134 = tmp12 + tmp87 - tmp88;
-    const Scalar tmp138 = tmp46 - tmp48;
-    const Scalar tmp139 = tmp138 + tmp44;
-    const Scalar tmp141 = tmp56 + tmp58 - tmp60;
-    const Scalar tmp142 = tmp41 + tmp65 - tmp67;
-    const Scalar tmp143 = tmp121*roll_dot + tmp141*pitch_dot + tmp142*yaw_dot;
-    const Scalar tmp145 = tmp75 + tmp76 - tmp77;
-    const Scalar tmp146 = -tmp114 - tmp13;
-    const Scalar tmp148 = -tmp133;
-    const Scalar tmp149 = tmp12 + tmp88 - tmp87;
-    const Scalar tmp151 = (Scalar(0.25))*m;
-    const Scalar tmp152 = tmp151*g;
-    const Scalar tmp153 = -tmp152;
-    const Scalar tmp154 = tmp26*tmp57;
-    const Scalar tmp155 = tmp19*tmp59;
-    const Scalar tmp156 = tmp154 - tmp155;
-    const Scalar tmp157 = -tmp156;
-    const Scalar tmp158 = tmp23*tmp39;
-    const Scalar tmp159 = tmp30*tmp64;
-    const Scalar tmp160 = tmp158 + tmp159;
-    const Scalar tmp161 = tmp30*tmp53;
-    const Scalar tmp162 = -tmp21*tmp23;
-    const Scalar tmp163 = tmp161 + tmp162;
-    const Scalar tmp164 = -tmp79;
-    const Scalar tmp165 = tmp20*tmp23;
-    const Scalar tmp166 = tmp27*tmp30;
-    const Scalar tmp167 = tmp165 + tmp166;
-    const Scalar tmp168 = pitch_dot*(tmp157*roll_dot + tmp164*yaw_dot + pitch_dot*(-tmp13 - tmp167))
-        + roll_dot*(tmp157*pitch_dot + tmp160*yaw_dot + tmp163*roll_dot)
-        + yaw_dot*(tmp160*roll_dot + tmp164*pitch_dot + yaw_dot*(tmp163 + tmp109));
-    const Scalar tmp169 = tmp16*tmp57;
-    const Scalar tmp170 = tmp25*tmp59;
-    const Scalar tmp171 = tmp169 - tmp170;
-    const Scalar tmp172 = -tmp171;
-    const Scalar tmp173 = tmp23*tmp35;
-    const Scalar tmp174 = tmp30*tmp38;
-    const Scalar tmp175 = tmp173 + tmp174;
-    const Scalar tmp176 = tmp70*yaw_dot
-        + pitch_dot*(tmp172*roll_dot + tmp62*yaw_dot + pitch_dot*(-tmp175 - tmp41))
-        + roll_dot*(tmp172*pitch_dot + tmp55*yaw_dot + tmp68*roll_dot);
-    const Scalar tmp177 = tmp17*tmp81;
-    const Scalar tmp178 = tmp17*tmp83;
-    const Scalar tmp179 = tmp177 - tmp178;
-    const Scalar tmp180 = pitch_dot*(tmp179*roll_dot - tmp50*pitch_dot)
-        + roll_dot*(tmp179*pitch_dot - tmp49*roll_dot);
-    const Scalar tmp181 = -tmp160;
-    const Scalar tmp182 = pitch_dot*(tmp156*roll_dot + tmp107*yaw_dot + pitch_dot*(tmp167 + tmp109))
-        + roll_dot*(tmp156*pitch_dot + tmp181*yaw_dot - tmp163*roll_dot)
-        + yaw_dot*(tmp181*roll_dot + tmp107*pitch_dot + yaw_dot*(-tmp13 - tmp163));
-    const Scalar tmp183 = tmp104*yaw_dot
-        + pitch_dot*(tmp171*roll_dot + tmp102*yaw_dot + pitch_dot*(tmp175 + tmp63))
-        + roll_dot*(tmp171*pitch_dot + tmp101*yaw_dot - tmp68*roll_dot);
-    const Scalar tmp184 = -tmp179;
-    const Scalar tmp185 = pitch_dot*(tmp184*roll_dot + tmp99*pitch_dot)
-        + roll_dot*(tmp184*pitch_dot + tmp49*roll_dot);
-    const Scalar tmp186 = tmp154 + tmp155;
-    const Scalar tmp187 = tmp158 - tmp159;
-    const Scalar tmp188 = -tmp187;
-    const Scalar tmp189 = tmp161 - tmp162;
-    const Scalar tmp190 = -tmp130;
-    const Scalar tmp191 = pitch_dot*(tmp186*roll_dot + tmp190*yaw_dot
-            + pitch_dot*(tmp13 + tmp165 - tmp166))
-        + roll_dot*(tmp186*pitch_dot + tmp188*yaw_dot + tmp189*roll_dot)
-        + yaw_dot*(tmp188*roll_dot + tmp190*pitch_dot + yaw_dot*(tmp13 + tmp189));
-    const Scalar tmp192 = tmp169 + tmp170;
-    const Scalar tmp193 = tmp126*yaw_dot
-        + pitch_dot*(tmp123*yaw_dot + tmp192*roll_dot + pitch_dot*(tmp173 + tmp41 - tmp174))
-        + roll_dot*(tmp122*yaw_dot + tmp124*roll_dot + tmp192*pitch_dot);
-    const Scalar tmp194 = tmp177 + tmp178;
-    const Scalar tmp195 = -tmp194;
-    const Scalar tmp196 = pitch_dot*(tmp195*roll_dot - tmp119*pitch_dot)
-        + roll_dot*(tmp138*roll_dot + tmp195*pitch_dot);
-    const Scalar tmp197 = -tmp186;
-    const Scalar tmp198 = -tmp145;
-    const Scalar tmp199 = pitch_dot*(tmp197*roll_dot + tmp198*yaw_dot
-            + pitch_dot*(tmp13 + tmp166 - tmp165))
-        + roll_dot*(tmp187*yaw_dot + tmp197*pitch_dot - tmp189*roll_dot)
-        + yaw_dot*(tmp187*roll_dot + tmp198*pitch_dot + yaw_dot*(tmp13 + tmp162 - tmp161));
-    const Scalar tmp200 = -tmp192;
-    const Scalar tmp201 = tmp143*yaw_dot
-        + pitch_dot*(tmp141*yaw_dot + tmp200*roll_dot + pitch_dot*(tmp174 + tmp41 - tmp173))
-        + roll_dot*(tmp121*yaw_dot + tmp200*pitch_dot - tmp124*roll_dot);
-    const Scalar tmp202 = pitch_dot*(tmp194*roll_dot - tmp139*pitch_dot)
-        + roll_dot*(tmp194*pitch_dot - tmp138*roll_dot);
-    const Scalar tmp217 = Scalar(4)*tmp153;
-    const Scalar tmp218 = tmp151*tmp168;
-    const Scalar tmp219 = tmp151*tmp176;
-    const Scalar tmp220 = tmp151*tmp182;
-    const Scalar tmp221 = tmp151*tmp183;
-    const Scalar tmp222 = tmp151*tmp191;
-    const Scalar tmp223 = tmp151*tmp193;
-    const Scalar tmp224 = tmp151*tmp199;
-    const Scalar tmp225 = tmp151*tmp201;
-    const Scalar tmp226 = tmp151*tmp180;
-    const Scalar tmp227 = tmp151*tmp185;
-    const Scalar tmp228 = tmp151*tmp196;
-    const Scalar tmp229 = tmp151*tmp202;
-    const Scalar tmp230 = tmp220 + tmp222 + tmp224 + tmp218;
-    const Scalar tmp231 = tmp221 + tmp223 + tmp225 + tmp219;
-    const Scalar tmp232 = tmp227 + tmp228 + tmp229 + tmp226;
-    const Scalar tmp233 = tmp112*tmp153 + tmp134*tmp153 + tmp149*tmp153 + tmp153*tmp90;
-    const Scalar tmp234 = tmp133*tmp153 + tmp148*tmp153 + tmp153*tmp85 + tmp153*tmp86;
-    const Scalar tmp235 = -tmp230;
-    const Scalar tmp236 = -tmp231;
-    const Scalar tmp237 = -tmp232;
-    const Scalar tmp238 = -tmp110*tmp221 - tmp125*tmp222 - tmp131*tmp223 - tmp142*tmp224
-        - tmp146*tmp225 - tmp220*tmp103 - tmp33*tmp219 - tmp69*tmp218;
-    const Scalar tmp239 = -tmp112*tmp227 - tmp123*tmp222 - tmp130*tmp223 - tmp134*tmp228
-        - tmp141*tmp224 - tmp145*tmp225 - tmp149*tmp229 - tmp220*tmp102 - tmp221*tmp108
-        - tmp62*tmp218 - tmp79*tmp219 - tmp90*tmp226;
-    const Scalar tmp240 = -tmp121*tmp224 - tmp122*tmp222 - tmp128*tmp225 - tmp129*tmp223
-        - tmp133*tmp228 - tmp148*tmp229 - tmp220*tmp101 - tmp221*tmp106 - tmp227*tmp85
-        - tmp55*tmp218 - tmp74*tmp219 - tmp86*tmp226;
+    const Scalar tmp2 = Scalar(0.5)*tmp1;
+    const Scalar tmp3 = tmp0*tmp2;
+    const Scalar tmp5 = sin(yaw);
+    const Scalar tmp6 = tmp2*tmp5;
+    const Scalar tmp8 = sin(pitch);
+    const Scalar tmp9 = Scalar(0.5)*tmp8;
+    const Scalar tmp11 = tmp0*tmp9;
+    const Scalar tmp12 = tmp6*yaw_dot + tmp11*pitch_dot;
+    const Scalar tmp14 = tmp5*tmp9;
+    const Scalar tmp15 = tmp14*pitch_dot;
+    const Scalar tmp16 = tmp3*yaw_dot;
+    const Scalar tmp20 = cos(roll);
+    const Scalar tmp21 = Scalar(0.4)*tmp20;
+    const Scalar tmp22 = tmp21*tmp5;
+    const Scalar tmp23 = sin(roll);
+    const Scalar tmp24 = Scalar(0.4)*tmp23;
+    const Scalar tmp25 = tmp0*tmp24;
+    const Scalar tmp26 = tmp25*tmp8;
+    const Scalar tmp27 = tmp26 - tmp22;
+    const Scalar tmp29 = tmp0*tmp21;
+    const Scalar tmp30 = tmp24*tmp5;
+    const Scalar tmp31 = tmp30*tmp8;
+    const Scalar tmp32 = tmp29 + tmp31;
+    const Scalar tmp34 = tmp1*tmp24;
+    const Scalar tmp36 = tmp34*pitch_dot;
+    const Scalar tmp37 = tmp30 + tmp29*tmp8;
+    const Scalar tmp38 = -tmp32;
+    const Scalar tmp39 = tmp0*tmp36 + tmp37*roll_dot + tmp38*yaw_dot;
+    const Scalar tmp41 = tmp36*tmp5;
+    const Scalar tmp42 = -tmp25 + tmp22*tmp8;
+    const Scalar tmp44 = tmp24*tmp8;
+    const Scalar tmp45 = tmp1*tmp21;
+    const Scalar tmp47 = Scalar(0.3)*tmp23;
+    const Scalar tmp48 = tmp47*tmp5;
+    const Scalar tmp49 = Scalar(0.3)*tmp20;
+    const Scalar tmp50 = tmp0*tmp49;
+    const Scalar tmp51 = tmp50*tmp8;
+    const Scalar tmp52 = tmp48 + tmp51;
+    const Scalar tmp54 = tmp0*tmp47;
+    const Scalar tmp55 = tmp49*tmp5;
+    const Scalar tmp56 = tmp55*tmp8;
+    const Scalar tmp57 = tmp56 - tmp54;
+    const Scalar tmp59 = tmp1*tmp49;
+    const Scalar tmp61 = tmp59*pitch_dot;
+    const Scalar tmp62 = tmp54*tmp8;
+    const Scalar tmp63 = tmp62 - tmp55;
+    const Scalar tmp64 = -tmp63;
+    const Scalar tmp65 = -tmp57;
+    const Scalar tmp66 = tmp0*tmp61 + tmp64*roll_dot + tmp65*yaw_dot;
+    const Scalar tmp68 = tmp5*tmp61;
+    const Scalar tmp69 = tmp48*tmp8;
+    const Scalar tmp70 = tmp50 + tmp69;
+    const Scalar tmp71 = -tmp70;
+    const Scalar tmp73 = tmp49*tmp8;
+    const Scalar tmp74 = tmp1*tmp47;
+    const Scalar tmp76 = Scalar(0.2)*tmp1;
+    const Scalar tmp77 = Scalar(0.25)*tmp20;
+    const Scalar tmp78 = tmp0*tmp77;
+    const Scalar tmp79 = tmp8*tmp78;
+    const Scalar tmp80 = tmp79 + tmp0*tmp76;
+    const Scalar tmp81 = Scalar(0.25)*tmp23;
+    const Scalar tmp82 = tmp5*tmp81;
+    const Scalar tmp83 = tmp63 + tmp82;
+    const Scalar tmp84 = tmp80 + tmp83;
+    const Scalar tmp86 = tmp5*tmp77;
+    const Scalar tmp87 = tmp8*tmp86;
+    const Scalar tmp88 = tmp87 + tmp5*tmp76;
+    const Scalar tmp89 = tmp0*tmp81;
+    const Scalar tmp90 = tmp70 - tmp89;
+    const Scalar tmp91 = tmp88 + tmp90;
+    const Scalar tmp93 = Scalar(0.2)*tmp8;
+    const Scalar tmp94 = tmp1*tmp77;
+    const Scalar tmp95 = tmp74 + tmp94;
+    const Scalar tmp96 = tmp95 - tmp93;
+    const Scalar tmp98 = tmp1*tmp54;
+    const Scalar tmp99 = tmp98 + tmp0*tmp94 - tmp0*tmp93;
+    const Scalar tmp100 = tmp52 + tmp86 - tmp8*tmp89;
+    const Scalar tmp101 = -tmp91;
+    const Scalar tmp102 = tmp99*pitch_dot + tmp100*roll_dot + tmp101*yaw_dot;
+    const Scalar tmp104 = tmp1*tmp48;
+    const Scalar tmp105 = tmp104 + tmp5*tmp94 - tmp5*tmp93;
+    const Scalar tmp106 = tmp54 + tmp78 - tmp56 + tmp8*tmp82;
+    const Scalar tmp107 = -tmp106;
+    const Scalar tmp109 = -tmp1*tmp81 + Scalar(0.3)*tmp1*tmp20;
+    const Scalar tmp110 = tmp47*tmp8;
+    const Scalar tmp111 = -tmp76 - tmp110 - tmp77*tmp8;
+    const Scalar tmp113 = g*m_a;
+    const Scalar tmp114 = -tmp113;
+    const Scalar tmp115 = g*m_b;
+    const Scalar tmp116 = -tmp115;
+    const Scalar tmp117 = g*m_c;
+    const Scalar tmp118 = -tmp117;
+    const Scalar tmp119 = g*m_d;
+    const Scalar tmp120 = -tmp119;
+    const Scalar tmp121 = pitch_dot*(-tmp3*pitch_dot + Scalar(0.5)*tmp5*tmp8*yaw_dot)
+        + yaw_dot*(tmp15 - tmp16);
+    const Scalar tmp122 = pitch_dot*(-tmp6*pitch_dot - tmp11*yaw_dot) - tmp12*yaw_dot;
+    const Scalar tmp123 = tmp9*(pitch_dot*pitch_dot);
+    const Scalar tmp124 = tmp34*tmp5;
+    const Scalar tmp125 = -tmp27;
+    const Scalar tmp126 = -tmp42;
+    const Scalar tmp127 = pitch_dot*(-tmp26*pitch_dot - tmp124*yaw_dot
+            + Scalar(0.4)*tmp0*tmp1*tmp20*roll_dot)
+        + roll_dot*(tmp125*roll_dot + tmp126*yaw_dot + tmp1*tmp29*pitch_dot)
+        + yaw_dot*(-tmp41 + tmp125*yaw_dot + tmp126*roll_dot);
+    const Scalar tmp128 = tmp1*tmp22;
+    const Scalar tmp129 = tmp0*tmp34;
+    const Scalar tmp130 = tmp39*yaw_dot
+        + pitch_dot*(tmp128*roll_dot + tmp129*yaw_dot - tmp31*pitch_dot)
+        + roll_dot*(tmp128*pitch_dot + tmp37*yaw_dot + tmp38*roll_dot);
+    const Scalar tmp131 = tmp21*tmp8;
+    const Scalar tmp132 = pitch_dot*(-tmp36 - tmp131*roll_dot)
+        + roll_dot*(-tmp131*pitch_dot - tmp34*roll_dot);
+    const Scalar tmp133 = tmp5*tmp59;
+    const Scalar tmp134 = -tmp52;
+    const Scalar tmp135 = pitch_dot*(-tmp133*yaw_dot - tmp51*pitch_dot - tmp98*roll_dot)
+        + roll_dot*(tmp134*roll_dot + tmp70*yaw_dot - tmp98*pitch_dot)
+        + yaw_dot*(-tmp68 + tmp134*yaw_dot + tmp70*roll_dot);
+    const Scalar tmp136 = tmp66*yaw_dot
+        + pitch_dot*(-tmp56*pitch_dot - tmp104*roll_dot + Scalar(0.3)*tmp0*tmp1*tmp20*yaw_dot)
+        + roll_dot*(tmp64*yaw_dot + tmp65*roll_dot - tmp104*pitch_dot);
+    const Scalar tmp137 = pitch_dot*(-tmp61 + Scalar(0.3)*tmp23*tmp8*roll_dot)
+        + roll_dot*(tmp110*pitch_dot - tmp59*roll_dot);
+    const Scalar tmp138 = -tmp1*tmp89 + Scalar(0.3)*tmp0*tmp1*tmp20;
+    const Scalar tmp139 = -tmp105;
+    const Scalar tmp140 = pitch_dot*(tmp138*roll_dot + tmp139*yaw_dot + pitch_dot*(-tmp62 - tmp80))
+        + roll_dot*(tmp138*pitch_dot + tmp106*yaw_dot + roll_dot*(-tmp79 - tmp83))
+        + yaw_dot*(tmp139*pitch_dot + tmp106*roll_dot - tmp84*yaw_dot);
+    const Scalar tmp141 = -tmp1*tmp82 + Scalar(0.3)*tmp1*tmp20*tmp5;
+    const Scalar tmp142 = tmp102*yaw_dot
+        + pitch_dot*(tmp141*roll_dot + tmp99*yaw_dot + pitch_dot*(-tmp69 - tmp88))
+        + roll_dot*(tmp141*pitch_dot + tmp100*yaw_dot + roll_dot*(-tmp87 - tmp90));
+    const Scalar tmp143 = -tmp73;
+    const Scalar tmp144 = tmp143 + tmp8*tmp81;
+    const Scalar tmp145 = pitch_dot*(tmp144*roll_dot - tmp96*pitch_dot)
+        + roll_dot*(tmp144*pitch_dot - tmp95*roll_dot);
+    const Scalar tmp154 = tmp0*tmp59;
+    const Scalar tmp175 = tmp114 + tmp116 + tmp118 + tmp120;
+    const Scalar tmp176 = tmp121*m_a;
+    const Scalar tmp177 = tmp122*m_a;
+    const Scalar tmp178 = tmp127*m_b;
+    const Scalar tmp179 = tmp130*m_b;
+    const Scalar tmp180 = tmp135*m_c;
+    const Scalar tmp181 = tmp136*m_c;
+    const Scalar tmp182 = tmp140*m_d;
+    const Scalar tmp183 = tmp142*m_d;
+    const Scalar tmp184 = tmp123*m_a;
+    const Scalar tmp185 = tmp132*m_b;
+    const Scalar tmp186 = tmp137*m_c;
+    const Scalar tmp187 = tmp145*m_d;
+    const Scalar tmp188 = tmp178 + tmp180 + tmp182 + tmp176;
+    const Scalar tmp189 = tmp179 + tmp181 + tmp183 + tmp177;
+    const Scalar tmp190 = tmp185 + tmp186 + tmp187 + tmp184;
+    const Scalar tmp191 = tmp111*tmp120 - tmp2*tmp114 - tmp44*tmp116 - tmp73*tmp118;
+    const Scalar tmp192 = tmp45*tmp116 + tmp109*tmp120 - tmp74*tmp118;
+    const Scalar tmp193 = -tmp188;
+    const Scalar tmp194 = -tmp189;
+    const Scalar tmp195 = -tmp190;
+    const Scalar tmp196 = -tmp178*tmp38 - tmp179*tmp27 - tmp180*tmp65 - tmp181*tmp52 - tmp182*tmp101
+        - tmp183*tmp84 - tmp3*tmp177 + Scalar(0.5)*tmp1*tmp5*tmp176;
+    const Scalar tmp197 = -tmp129*tmp178 - tmp133*tmp181 - tmp154*tmp180 - tmp179*tmp124
+        - tmp182*tmp99 - tmp183*tmp105 - tmp187*tmp111 + Scalar(0.5)*tmp1*tmp184
+        + Scalar(0.5)*tmp0*tmp8*tmp176 + Scalar(0.5)*tmp5*tmp8*tmp177
+        + Scalar(0.4)*tmp185*tmp23*tmp8 + Scalar(0.3)*tmp186*tmp20*tmp8;
+    const Scalar tmp198 = -tmp178*tmp37 - tmp179*tmp42 - tmp180*tmp64 - tmp181*tmp71 - tmp182*tmp100
+        - tmp183*tmp107 - tmp185*tmp45 - tmp187*tmp109 + Scalar(0.3)*tmp1*tmp186*tmp23;
     QVector<Scalar> result;
-    result(0) = tmp235;
-    result(1) = tmp236;
-    result(2) = tmp217 + tmp237;
-    result(3) = tmp238;
-    result(4) = tmp233 + tmp239;
-    result(5) = tmp234 + tmp240;
+    result(0) = tmp193;
+    result(1) = tmp194;
+    result(2) = tmp175 + tmp195;
+    result(3) = tmp196;
+    result(4) = tmp191 + tmp197;
+    result(5) = tmp192 + tmp198;
     return result;
   }
 
@@ -944,7 +795,7 @@ struct RigidBodyEuler {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// Mt and f must not be null.
-  /// Ops: 775
+  /// Ops: 687
   template <typename Scalar>
   static void dynamics(const QVector<Scalar>& q,
                        const QVector<Scalar>& v,
@@ -954,7 +805,6 @@ struct RigidBodyEuler {
                        QVector<Scalar>* f) {
     using std::cos;
     using std::sin;
-    using std::sqrt;
     const Scalar yaw = q(3);
     const Scalar pitch = q(4);
     const Scalar roll = q(5);
@@ -962,289 +812,244 @@ struct RigidBodyEuler {
     const Scalar pitch_dot = v(4);
     const Scalar roll_dot = v(5);
     const Scalar g = Scalar(params.g);
-    const Scalar m = Scalar(params.m);
-    const Scalar a = Scalar(params.a);
-    const Scalar b = Scalar(params.b);
-    const Scalar c = Scalar(params.c);
+    const Scalar m_a = Scalar(params.m_a);
+    const Scalar m_b = Scalar(params.m_b);
+    const Scalar m_c = Scalar(params.m_c);
+    const Scalar m_d = Scalar(params.m_d);
     const Scalar tmp0 = cos(yaw);
     const Scalar tmp1 = cos(pitch);
-    const Scalar tmp2 = (Scalar(1)/sqrt(m));
-    const Scalar tmp3 = (a*a);
-    const Scalar tmp4 = (b*b);
-    const Scalar tmp5 = ((Scalar(1)/Scalar(24)))*m;
-    const Scalar tmp6 = tmp5*(tmp3 + tmp4);
-    const Scalar tmp7 = (c*c);
-    const Scalar tmp8 = tmp5*(tmp3 + tmp7);
-    const Scalar tmp9 = tmp5*(tmp4 + tmp7);
-    const Scalar tmp10 = tmp6 + tmp8 - tmp9;
-    const Scalar tmp11 = tmp2*sqrt(tmp10);
-    const Scalar tmp12 = tmp1*tmp11;
-    const Scalar tmp13 = tmp0*tmp12;
-    const Scalar tmp14 = sin(roll);
-    const Scalar tmp15 = sin(yaw);
-    const Scalar tmp16 = tmp14*tmp15;
-    const Scalar tmp17 = sin(pitch);
-    const Scalar tmp18 = cos(roll);
-    const Scalar tmp19 = tmp0*tmp18;
-    const Scalar tmp20 = tmp17*tmp19;
-    const Scalar tmp21 = tmp16 + tmp20;
-    const Scalar tmp22 = tmp8 + tmp9 - tmp6;
-    const Scalar tmp23 = tmp2*sqrt(tmp22);
-    const Scalar tmp24 = tmp21*tmp23;
-    const Scalar tmp25 = tmp15*tmp18;
-    const Scalar tmp26 = tmp0*tmp14;
-    const Scalar tmp27 = tmp17*tmp26;
-    const Scalar tmp28 = tmp27 - tmp25;
-    const Scalar tmp29 = tmp6 + tmp9 - tmp8;
-    const Scalar tmp30 = tmp2*sqrt(tmp29);
-    const Scalar tmp31 = tmp28*tmp30;
-    const Scalar tmp32 = tmp24 + tmp31;
-    const Scalar tmp33 = tmp13 + tmp32;
-    const Scalar tmp35 = tmp17*tmp25;
-    const Scalar tmp36 = tmp35 - tmp26;
-    const Scalar tmp38 = tmp16*tmp17;
-    const Scalar tmp39 = tmp19 + tmp38;
-    const Scalar tmp41 = tmp12*tmp15;
-    const Scalar tmp44 = tmp11*tmp17;
-    const Scalar tmp45 = tmp18*tmp23;
-    const Scalar tmp46 = tmp1*tmp45;
-    const Scalar tmp47 = tmp14*tmp30;
-    const Scalar tmp48 = tmp1*tmp47;
-    const Scalar tmp49 = tmp46 + tmp48;
-    const Scalar tmp50 = tmp49 - tmp44;
-    const Scalar tmp52 = tmp21*tmp30;
-    const Scalar tmp53 = -tmp28;
-    const Scalar tmp54 = tmp23*tmp53;
-    const Scalar tmp55 = tmp52 + tmp54;
-    const Scalar tmp56 = tmp0*tmp44;
-    const Scalar tmp57 = tmp1*tmp23;
-    const Scalar tmp58 = tmp19*tmp57;
-    const Scalar tmp59 = tmp1*tmp30;
-    const Scalar tmp60 = tmp26*tmp59;
-    const Scalar tmp61 = tmp58 + tmp60;
-    const Scalar tmp62 = tmp61 - tmp56;
-    const Scalar tmp63 = -tmp41;
-    const Scalar tmp64 = -tmp36;
-    const Scalar tmp65 = tmp23*tmp64;
-    const Scalar tmp66 = -tmp39;
-    const Scalar tmp67 = tmp30*tmp66;
-    const Scalar tmp68 = tmp65 + tmp67;
-    const Scalar tmp69 = tmp63 + tmp68;
-    const Scalar tmp70 = tmp55*roll_dot + tmp62*pitch_dot + tmp69*yaw_dot;
-    const Scalar tmp72 = tmp30*tmp36;
-    const Scalar tmp73 = tmp23*tmp66;
-    const Scalar tmp74 = tmp72 + tmp73;
-    const Scalar tmp75 = tmp15*tmp44;
-    const Scalar tmp76 = tmp25*tmp57;
-    const Scalar tmp77 = tmp16*tmp59;
-    const Scalar tmp78 = tmp76 + tmp77;
-    const Scalar tmp79 = tmp78 - tmp75;
-    const Scalar tmp81 = tmp14*tmp23;
-    const Scalar tmp82 = tmp1*tmp81;
-    const Scalar tmp83 = tmp18*tmp30;
-    const Scalar tmp84 = tmp1*tmp83;
-    const Scalar tmp85 = tmp82 - tmp84;
-    const Scalar tmp86 = -tmp85;
-    const Scalar tmp87 = tmp17*tmp45;
-    const Scalar tmp88 = tmp17*tmp47;
-    const Scalar tmp89 = tmp87 + tmp88;
-    const Scalar tmp90 = -tmp12 - tmp89;
-    const Scalar tmp92 = -tmp24;
-    const Scalar tmp93 = -tmp31;
-    const Scalar tmp94 = tmp13 + tmp93;
-    const Scalar tmp99 = tmp44 + tmp49;
-    const Scalar tmp101 = -tmp55;
-    const Scalar tmp102 = -tmp56 - tmp61;
-    const Scalar tmp103 = -tmp41 - tmp68;
-    const Scalar tmp104 = tmp101*roll_dot + tmp102*pitch_dot + tmp103*yaw_dot;
-    const Scalar tmp106 = -tmp74;
-    const Scalar tmp107 = tmp75 + tmp78;
-    const Scalar tmp108 = -tmp107;
-    const Scalar tmp109 = -tmp13;
-    const Scalar tmp110 = -tmp32 - tmp109;
-    const Scalar tmp112 = tmp89 - tmp12;
-    const Scalar tmp114 = tmp31 + tmp92;
-    const Scalar tmp119 = tmp44 + tmp48 - tmp46;
-    const Scalar tmp121 = tmp54 - tmp52;
-    const Scalar tmp122 = -tmp121;
-    const Scalar tmp123 = tmp56 + tmp60 - tmp58;
-    const Scalar tmp124 = tmp67 - tmp65;
-    const Scalar tmp125 = tmp124 + tmp41;
-    const Scalar tmp126 = tmp122*roll_dot + tmp123*pitch_dot + tmp125*yaw_dot;
-    const Scalar tmp128 = tmp73 - tmp72;
-    const Scalar tmp129 = -tmp128;
-    const Scalar tmp130 = tmp75 + tmp77 - tmp76;
-    const Scalar tmp131 = -tmp24 - tmp94;
-    const Scalar tmp133 = tmp82 + tmp84;
-    const Scalar tmp134 = tmp12 + tmp87 - tmp88;
-    const Scalar tmp138 = tmp46 - tmp48;
-    const Scalar tmp139 = tmp138 + tmp44;
-    const Scalar tmp141 = tmp56 + tmp58 - tmp60;
-    const Scalar tmp142 = tmp41 + tmp65 - tmp67;
-    const Scalar tmp143 = tmp121*roll_dot + tmp141*pitch_dot + tmp142*yaw_dot;
-    const Scalar tmp145 = tmp75 + tmp76 - tmp77;
-    const Scalar tmp146 = -tmp114 - tmp13;
-    const Scalar tmp148 = -tmp133;
-    const Scalar tmp149 = tmp12 + tmp88 - tmp87;
-    const Scalar tmp151 = (Scalar(0.25))*m;
-    const Scalar tmp152 = tmp151*g;
-    const Scalar tmp153 = -tmp152;
-    const Scalar tmp154 = tmp26*tmp57;
-    const Scalar tmp155 = tmp19*tmp59;
-    const Scalar tmp156 = tmp154 - tmp155;
-    const Scalar tmp157 = -tmp156;
-    const Scalar tmp158 = tmp23*tmp39;
-    const Scalar tmp159 = tmp30*tmp64;
-    const Scalar tmp160 = tmp158 + tmp159;
-    const Scalar tmp161 = tmp30*tmp53;
-    const Scalar tmp162 = -tmp21*tmp23;
-    const Scalar tmp163 = tmp161 + tmp162;
-    const Scalar tmp164 = -tmp79;
-    const Scalar tmp165 = tmp20*tmp23;
-    const Scalar tmp166 = tmp27*tmp30;
-    const Scalar tmp167 = tmp165 + tmp166;
-    const Scalar tmp168 = pitch_dot*(tmp157*roll_dot + tmp164*yaw_dot + pitch_dot*(-tmp13 - tmp167))
-        + roll_dot*(tmp157*pitch_dot + tmp160*yaw_dot + tmp163*roll_dot)
-        + yaw_dot*(tmp160*roll_dot + tmp164*pitch_dot + yaw_dot*(tmp163 + tmp109));
-    const Scalar tmp169 = tmp16*tmp57;
-    const Scalar tmp170 = tmp25*tmp59;
-    const Scalar tmp171 = tmp169 - tmp170;
-    const Scalar tmp172 = -tmp171;
-    const Scalar tmp173 = tmp23*tmp35;
-    const Scalar tmp174 = tmp30*tmp38;
-    const Scalar tmp175 = tmp173 + tmp174;
-    const Scalar tmp176 = tmp70*yaw_dot
-        + pitch_dot*(tmp172*roll_dot + tmp62*yaw_dot + pitch_dot*(-tmp175 - tmp41))
-        + roll_dot*(tmp172*pitch_dot + tmp55*yaw_dot + tmp68*roll_dot);
-    const Scalar tmp177 = tmp17*tmp81;
-    const Scalar tmp178 = tmp17*tmp83;
-    const Scalar tmp179 = tmp177 - tmp178;
-    const Scalar tmp180 = pitch_dot*(tmp179*roll_dot - tmp50*pitch_dot)
-        + roll_dot*(tmp179*pitch_dot - tmp49*roll_dot);
-    const Scalar tmp181 = -tmp160;
-    const Scalar tmp182 = pitch_dot*(tmp156*roll_dot + tmp107*yaw_dot + pitch_dot*(tmp167 + tmp109))
-        + roll_dot*(tmp156*pitch_dot + tmp181*yaw_dot - tmp163*roll_dot)
-        + yaw_dot*(tmp181*roll_dot + tmp107*pitch_dot + yaw_dot*(-tmp13 - tmp163));
-    const Scalar tmp183 = tmp104*yaw_dot
-        + pitch_dot*(tmp171*roll_dot + tmp102*yaw_dot + pitch_dot*(tmp175 + tmp63))
-        + roll_dot*(tmp171*pitch_dot + tmp101*yaw_dot - tmp68*roll_dot);
-    const Scalar tmp184 = -tmp179;
-    const Scalar tmp185 = pitch_dot*(tmp184*roll_dot + tmp99*pitch_dot)
-        + roll_dot*(tmp184*pitch_dot + tmp49*roll_dot);
-    const Scalar tmp186 = tmp154 + tmp155;
-    const Scalar tmp187 = tmp158 - tmp159;
-    const Scalar tmp188 = -tmp187;
-    const Scalar tmp189 = tmp161 - tmp162;
-    const Scalar tmp190 = -tmp130;
-    const Scalar tmp191 = pitch_dot*(tmp186*roll_dot + tmp190*yaw_dot
-            + pitch_dot*(tmp13 + tmp165 - tmp166))
-        + roll_dot*(tmp186*pitch_dot + tmp188*yaw_dot + tmp189*roll_dot)
-        + yaw_dot*(tmp188*roll_dot + tmp190*pitch_dot + yaw_dot*(tmp13 + tmp189));
-    const Scalar tmp192 = tmp169 + tmp170;
-    const Scalar tmp193 = tmp126*yaw_dot
-        + pitch_dot*(tmp123*yaw_dot + tmp192*roll_dot + pitch_dot*(tmp173 + tmp41 - tmp174))
-        + roll_dot*(tmp122*yaw_dot + tmp124*roll_dot + tmp192*pitch_dot);
-    const Scalar tmp194 = tmp177 + tmp178;
-    const Scalar tmp195 = -tmp194;
-    const Scalar tmp196 = pitch_dot*(tmp195*roll_dot - tmp119*pitch_dot)
-        + roll_dot*(tmp138*roll_dot + tmp195*pitch_dot);
-    const Scalar tmp197 = -tmp186;
-    const Scalar tmp198 = -tmp145;
-    const Scalar tmp199 = pitch_dot*(tmp197*roll_dot + tmp198*yaw_dot
-            + pitch_dot*(tmp13 + tmp166 - tmp165))
-        + roll_dot*(tmp187*yaw_dot + tmp197*pitch_dot - tmp189*roll_dot)
-        + yaw_dot*(tmp187*roll_dot + tmp198*pitch_dot + yaw_dot*(tmp13 + tmp162 - tmp161));
-    const Scalar tmp200 = -tmp192;
-    const Scalar tmp201 = tmp143*yaw_dot
-        + pitch_dot*(tmp141*yaw_dot + tmp200*roll_dot + pitch_dot*(tmp174 + tmp41 - tmp173))
-        + roll_dot*(tmp121*yaw_dot + tmp200*pitch_dot - tmp124*roll_dot);
-    const Scalar tmp202 = pitch_dot*(tmp194*roll_dot - tmp139*pitch_dot)
-        + roll_dot*(tmp194*pitch_dot - tmp138*roll_dot);
-    const Scalar tmp203 = tmp125*tmp151 + tmp142*tmp151 + tmp151*tmp69 + tmp151*tmp103;
-    const Scalar tmp204 = tmp110*tmp151 + tmp131*tmp151 + tmp146*tmp151 + tmp151*tmp33;
-    const Scalar tmp205 = tmp151*((tmp110*tmp110) + (tmp103*tmp103))
-        + tmp151*((tmp125*tmp125) + (tmp131*tmp131)) + tmp151*((tmp142*tmp142) + (tmp146*tmp146))
-        + tmp151*((tmp33*tmp33) + (tmp69*tmp69));
-    const Scalar tmp206 = tmp123*tmp151 + tmp141*tmp151 + tmp151*tmp62 + tmp151*tmp102;
-    const Scalar tmp207 = tmp130*tmp151 + tmp145*tmp151 + tmp151*tmp79 + tmp151*tmp108;
-    const Scalar tmp208 = tmp112*tmp151 + tmp134*tmp151 + tmp149*tmp151 + tmp151*tmp90;
-    const Scalar tmp209 = tmp151*(tmp110*tmp108 + tmp102*tmp103)
-        + tmp151*(tmp123*tmp125 + tmp130*tmp131) + tmp151*(tmp141*tmp142 + tmp145*tmp146)
-        + tmp151*(tmp33*tmp79 + tmp62*tmp69);
-    const Scalar tmp210 = tmp151*((tmp112*tmp112) + (tmp102*tmp102) + (tmp108*tmp108))
-        + tmp151*((tmp123*tmp123) + (tmp130*tmp130) + (tmp134*tmp134))
-        + tmp151*((tmp141*tmp141) + (tmp145*tmp145) + (tmp149*tmp149))
-        + tmp151*((tmp62*tmp62) + (tmp79*tmp79) + (tmp90*tmp90));
-    const Scalar tmp211 = tmp121*tmp151 + tmp122*tmp151 + tmp151*tmp55 + tmp151*tmp101;
-    const Scalar tmp212 = tmp128*tmp151 + tmp129*tmp151 + tmp151*tmp74 + tmp151*tmp106;
-    const Scalar tmp213 = tmp133*tmp151 + tmp148*tmp151 + tmp151*tmp85 + tmp151*tmp86;
-    const Scalar tmp214 = tmp151*(tmp110*tmp106 + tmp101*tmp103)
-        + tmp151*(tmp121*tmp142 + tmp128*tmp146) + tmp151*(tmp122*tmp125 + tmp129*tmp131)
-        + tmp151*(tmp33*tmp74 + tmp55*tmp69);
-    const Scalar tmp215 = tmp151*(tmp112*tmp85 + tmp101*tmp102 + tmp106*tmp108)
-        + tmp151*(tmp121*tmp141 + tmp128*tmp145 + tmp148*tmp149)
-        + tmp151*(tmp122*tmp123 + tmp129*tmp130 + tmp133*tmp134)
-        + tmp151*(tmp55*tmp62 + tmp74*tmp79 + tmp86*tmp90);
-    const Scalar tmp216 = tmp151*((tmp121*tmp121) + (tmp128*tmp128) + (tmp148*tmp148))
-        + tmp151*((tmp122*tmp122) + (tmp129*tmp129) + (tmp133*tmp133))
-        + tmp151*((tmp55*tmp55) + (tmp74*tmp74) + (tmp86*tmp86))
-        + tmp151*((tmp85*tmp85) + (tmp101*tmp101) + (tmp106*tmp106));
-    const Scalar tmp217 = Scalar(4)*tmp153;
-    const Scalar tmp218 = tmp151*tmp168;
-    const Scalar tmp219 = tmp151*tmp176;
-    const Scalar tmp220 = tmp151*tmp182;
-    const Scalar tmp221 = tmp151*tmp183;
-    const Scalar tmp222 = tmp151*tmp191;
-    const Scalar tmp223 = tmp151*tmp193;
-    const Scalar tmp224 = tmp151*tmp199;
-    const Scalar tmp225 = tmp151*tmp201;
-    const Scalar tmp226 = tmp151*tmp180;
-    const Scalar tmp227 = tmp151*tmp185;
-    const Scalar tmp228 = tmp151*tmp196;
-    const Scalar tmp229 = tmp151*tmp202;
-    const Scalar tmp230 = tmp220 + tmp222 + tmp224 + tmp218;
-    const Scalar tmp231 = tmp221 + tmp223 + tmp225 + tmp219;
-    const Scalar tmp232 = tmp227 + tmp228 + tmp229 + tmp226;
-    const Scalar tmp233 = tmp112*tmp153 + tmp134*tmp153 + tmp149*tmp153 + tmp153*tmp90;
-    const Scalar tmp234 = tmp133*tmp153 + tmp148*tmp153 + tmp153*tmp85 + tmp153*tmp86;
-    const Scalar tmp235 = -tmp230;
-    const Scalar tmp236 = -tmp231;
-    const Scalar tmp237 = -tmp232;
-    const Scalar tmp238 = -tmp110*tmp221 - tmp125*tmp222 - tmp131*tmp223 - tmp142*tmp224
-        - tmp146*tmp225 - tmp220*tmp103 - tmp33*tmp219 - tmp69*tmp218;
-    const Scalar tmp239 = -tmp112*tmp227 - tmp123*tmp222 - tmp130*tmp223 - tmp134*tmp228
-        - tmp141*tmp224 - tmp145*tmp225 - tmp149*tmp229 - tmp220*tmp102 - tmp221*tmp108
-        - tmp62*tmp218 - tmp79*tmp219 - tmp90*tmp226;
-    const Scalar tmp240 = -tmp121*tmp224 - tmp122*tmp222 - tmp128*tmp225 - tmp129*tmp223
-        - tmp133*tmp228 - tmp148*tmp229 - tmp220*tmp101 - tmp221*tmp106 - tmp227*tmp85
-        - tmp55*tmp218 - tmp74*tmp219 - tmp86*tmp226;
-    (*Mt)(0, 0) = m;
+    const Scalar tmp2 = Scalar(0.5)*tmp1;
+    const Scalar tmp3 = tmp0*tmp2;
+    const Scalar tmp5 = sin(yaw);
+    const Scalar tmp6 = tmp2*tmp5;
+    const Scalar tmp8 = sin(pitch);
+    const Scalar tmp9 = Scalar(0.5)*tmp8;
+    const Scalar tmp11 = tmp0*tmp9;
+    const Scalar tmp12 = tmp6*yaw_dot + tmp11*pitch_dot;
+    const Scalar tmp14 = tmp5*tmp9;
+    const Scalar tmp15 = tmp14*pitch_dot;
+    const Scalar tmp16 = tmp3*yaw_dot;
+    const Scalar tmp20 = cos(roll);
+    const Scalar tmp21 = Scalar(0.4)*tmp20;
+    const Scalar tmp22 = tmp21*tmp5;
+    const Scalar tmp23 = sin(roll);
+    const Scalar tmp24 = Scalar(0.4)*tmp23;
+    const Scalar tmp25 = tmp0*tmp24;
+    const Scalar tmp26 = tmp25*tmp8;
+    const Scalar tmp27 = tmp26 - tmp22;
+    const Scalar tmp29 = tmp0*tmp21;
+    const Scalar tmp30 = tmp24*tmp5;
+    const Scalar tmp31 = tmp30*tmp8;
+    const Scalar tmp32 = tmp29 + tmp31;
+    const Scalar tmp34 = tmp1*tmp24;
+    const Scalar tmp36 = tmp34*pitch_dot;
+    const Scalar tmp37 = tmp30 + tmp29*tmp8;
+    const Scalar tmp38 = -tmp32;
+    const Scalar tmp39 = tmp0*tmp36 + tmp37*roll_dot + tmp38*yaw_dot;
+    const Scalar tmp41 = tmp36*tmp5;
+    const Scalar tmp42 = -tmp25 + tmp22*tmp8;
+    const Scalar tmp44 = tmp24*tmp8;
+    const Scalar tmp45 = tmp1*tmp21;
+    const Scalar tmp47 = Scalar(0.3)*tmp23;
+    const Scalar tmp48 = tmp47*tmp5;
+    const Scalar tmp49 = Scalar(0.3)*tmp20;
+    const Scalar tmp50 = tmp0*tmp49;
+    const Scalar tmp51 = tmp50*tmp8;
+    const Scalar tmp52 = tmp48 + tmp51;
+    const Scalar tmp54 = tmp0*tmp47;
+    const Scalar tmp55 = tmp49*tmp5;
+    const Scalar tmp56 = tmp55*tmp8;
+    const Scalar tmp57 = tmp56 - tmp54;
+    const Scalar tmp59 = tmp1*tmp49;
+    const Scalar tmp61 = tmp59*pitch_dot;
+    const Scalar tmp62 = tmp54*tmp8;
+    const Scalar tmp63 = tmp62 - tmp55;
+    const Scalar tmp64 = -tmp63;
+    const Scalar tmp65 = -tmp57;
+    const Scalar tmp66 = tmp0*tmp61 + tmp64*roll_dot + tmp65*yaw_dot;
+    const Scalar tmp68 = tmp5*tmp61;
+    const Scalar tmp69 = tmp48*tmp8;
+    const Scalar tmp70 = tmp50 + tmp69;
+    const Scalar tmp71 = -tmp70;
+    const Scalar tmp73 = tmp49*tmp8;
+    const Scalar tmp74 = tmp1*tmp47;
+    const Scalar tmp76 = Scalar(0.2)*tmp1;
+    const Scalar tmp77 = Scalar(0.25)*tmp20;
+    const Scalar tmp78 = tmp0*tmp77;
+    const Scalar tmp79 = tmp8*tmp78;
+    const Scalar tmp80 = tmp79 + tmp0*tmp76;
+    const Scalar tmp81 = Scalar(0.25)*tmp23;
+    const Scalar tmp82 = tmp5*tmp81;
+    const Scalar tmp83 = tmp63 + tmp82;
+    const Scalar tmp84 = tmp80 + tmp83;
+    const Scalar tmp86 = tmp5*tmp77;
+    const Scalar tmp87 = tmp8*tmp86;
+    const Scalar tmp88 = tmp87 + tmp5*tmp76;
+    const Scalar tmp89 = tmp0*tmp81;
+    const Scalar tmp90 = tmp70 - tmp89;
+    const Scalar tmp91 = tmp88 + tmp90;
+    const Scalar tmp93 = Scalar(0.2)*tmp8;
+    const Scalar tmp94 = tmp1*tmp77;
+    const Scalar tmp95 = tmp74 + tmp94;
+    const Scalar tmp96 = tmp95 - tmp93;
+    const Scalar tmp98 = tmp1*tmp54;
+    const Scalar tmp99 = tmp98 + tmp0*tmp94 - tmp0*tmp93;
+    const Scalar tmp100 = tmp52 + tmp86 - tmp8*tmp89;
+    const Scalar tmp101 = -tmp91;
+    const Scalar tmp102 = tmp99*pitch_dot + tmp100*roll_dot + tmp101*yaw_dot;
+    const Scalar tmp104 = tmp1*tmp48;
+    const Scalar tmp105 = tmp104 + tmp5*tmp94 - tmp5*tmp93;
+    const Scalar tmp106 = tmp54 + tmp78 - tmp56 + tmp8*tmp82;
+    const Scalar tmp107 = -tmp106;
+    const Scalar tmp109 = -tmp1*tmp81 + Scalar(0.3)*tmp1*tmp20;
+    const Scalar tmp110 = tmp47*tmp8;
+    const Scalar tmp111 = -tmp76 - tmp110 - tmp77*tmp8;
+    const Scalar tmp113 = g*m_a;
+    const Scalar tmp114 = -tmp113;
+    const Scalar tmp115 = g*m_b;
+    const Scalar tmp116 = -tmp115;
+    const Scalar tmp117 = g*m_c;
+    const Scalar tmp118 = -tmp117;
+    const Scalar tmp119 = g*m_d;
+    const Scalar tmp120 = -tmp119;
+    const Scalar tmp121 = pitch_dot*(-tmp3*pitch_dot + Scalar(0.5)*tmp5*tmp8*yaw_dot)
+        + yaw_dot*(tmp15 - tmp16);
+    const Scalar tmp122 = pitch_dot*(-tmp6*pitch_dot - tmp11*yaw_dot) - tmp12*yaw_dot;
+    const Scalar tmp123 = tmp9*(pitch_dot*pitch_dot);
+    const Scalar tmp124 = tmp34*tmp5;
+    const Scalar tmp125 = -tmp27;
+    const Scalar tmp126 = -tmp42;
+    const Scalar tmp127 = pitch_dot*(-tmp26*pitch_dot - tmp124*yaw_dot
+            + Scalar(0.4)*tmp0*tmp1*tmp20*roll_dot)
+        + roll_dot*(tmp125*roll_dot + tmp126*yaw_dot + tmp1*tmp29*pitch_dot)
+        + yaw_dot*(-tmp41 + tmp125*yaw_dot + tmp126*roll_dot);
+    const Scalar tmp128 = tmp1*tmp22;
+    const Scalar tmp129 = tmp0*tmp34;
+    const Scalar tmp130 = tmp39*yaw_dot
+        + pitch_dot*(tmp128*roll_dot + tmp129*yaw_dot - tmp31*pitch_dot)
+        + roll_dot*(tmp128*pitch_dot + tmp37*yaw_dot + tmp38*roll_dot);
+    const Scalar tmp131 = tmp21*tmp8;
+    const Scalar tmp132 = pitch_dot*(-tmp36 - tmp131*roll_dot)
+        + roll_dot*(-tmp131*pitch_dot - tmp34*roll_dot);
+    const Scalar tmp133 = tmp5*tmp59;
+    const Scalar tmp134 = -tmp52;
+    const Scalar tmp135 = pitch_dot*(-tmp133*yaw_dot - tmp51*pitch_dot - tmp98*roll_dot)
+        + roll_dot*(tmp134*roll_dot + tmp70*yaw_dot - tmp98*pitch_dot)
+        + yaw_dot*(-tmp68 + tmp134*yaw_dot + tmp70*roll_dot);
+    const Scalar tmp136 = tmp66*yaw_dot
+        + pitch_dot*(-tmp56*pitch_dot - tmp104*roll_dot + Scalar(0.3)*tmp0*tmp1*tmp20*yaw_dot)
+        + roll_dot*(tmp64*yaw_dot + tmp65*roll_dot - tmp104*pitch_dot);
+    const Scalar tmp137 = pitch_dot*(-tmp61 + Scalar(0.3)*tmp23*tmp8*roll_dot)
+        + roll_dot*(tmp110*pitch_dot - tmp59*roll_dot);
+    const Scalar tmp138 = -tmp1*tmp89 + Scalar(0.3)*tmp0*tmp1*tmp20;
+    const Scalar tmp139 = -tmp105;
+    const Scalar tmp140 = pitch_dot*(tmp138*roll_dot + tmp139*yaw_dot + pitch_dot*(-tmp62 - tmp80))
+        + roll_dot*(tmp138*pitch_dot + tmp106*yaw_dot + roll_dot*(-tmp79 - tmp83))
+        + yaw_dot*(tmp139*pitch_dot + tmp106*roll_dot - tmp84*yaw_dot);
+    const Scalar tmp141 = -tmp1*tmp82 + Scalar(0.3)*tmp1*tmp20*tmp5;
+    const Scalar tmp142 = tmp102*yaw_dot
+        + pitch_dot*(tmp141*roll_dot + tmp99*yaw_dot + pitch_dot*(-tmp69 - tmp88))
+        + roll_dot*(tmp141*pitch_dot + tmp100*yaw_dot + roll_dot*(-tmp87 - tmp90));
+    const Scalar tmp143 = -tmp73;
+    const Scalar tmp144 = tmp143 + tmp8*tmp81;
+    const Scalar tmp145 = pitch_dot*(tmp144*roll_dot - tmp96*pitch_dot)
+        + roll_dot*(tmp144*pitch_dot - tmp95*roll_dot);
+    const Scalar tmp146 = m_a + m_b + m_c + m_d;
+    const Scalar tmp147 = tmp38*m_b + tmp65*m_c + tmp101*m_d - tmp6*m_a;
+    const Scalar tmp148 = tmp27*m_b + tmp3*m_a + tmp52*m_c + tmp84*m_d;
+    const Scalar tmp149 = (tmp5*tmp5);
+    const Scalar tmp150 = (tmp1*tmp1);
+    const Scalar tmp151 = Scalar(0.25)*tmp150;
+    const Scalar tmp152 = (tmp0*tmp0);
+    const Scalar tmp153 = m_a*(tmp149*tmp151 + tmp151*tmp152) + m_b*((tmp27*tmp27) + (tmp38*tmp38))
+        + m_c*((tmp52*tmp52) + (tmp65*tmp65)) + m_d*((tmp84*tmp84) + (tmp101*tmp101));
+    const Scalar tmp154 = tmp0*tmp59;
+    const Scalar tmp155 = tmp129*m_b + tmp154*m_c + tmp99*m_d - tmp11*m_a;
+    const Scalar tmp156 = tmp133*m_c + tmp105*m_d + tmp124*m_b - tmp14*m_a;
+    const Scalar tmp157 = tmp111*m_d - tmp2*m_a - tmp44*m_b - tmp73*m_c;
+    const Scalar tmp158 = m_b*(tmp129*tmp38 + tmp27*tmp124) + m_c*(tmp133*tmp52 + tmp154*tmp65)
+        + m_d*(tmp84*tmp105 + tmp99*tmp101);
+    const Scalar tmp159 = (tmp8*tmp8);
+    const Scalar tmp160 = Scalar(0.25)*tmp159;
+    const Scalar tmp161 = (tmp23*tmp23);
+    const Scalar tmp162 = Scalar(0.16000000000000003)*tmp161;
+    const Scalar tmp163 = tmp150*tmp162;
+    const Scalar tmp164 = (tmp20*tmp20);
+    const Scalar tmp165 = Scalar(0.09)*tmp164;
+    const Scalar tmp166 = tmp150*tmp165;
+    const Scalar tmp167 = m_a*(tmp151 + tmp149*tmp160 + tmp152*tmp160)
+        + m_b*(tmp149*tmp163 + tmp152*tmp163 + tmp159*tmp162)
+        + m_c*(tmp149*tmp166 + tmp152*tmp166 + tmp159*tmp165)
+        + m_d*((tmp99*tmp99) + (tmp105*tmp105) + (tmp111*tmp111));
+    const Scalar tmp168 = tmp37*m_b + tmp64*m_c + tmp100*m_d;
+    const Scalar tmp169 = tmp42*m_b + tmp71*m_c + tmp107*m_d;
+    const Scalar tmp170 = tmp45*m_b + tmp109*m_d - tmp74*m_c;
+    const Scalar tmp171 = m_b*(tmp27*tmp42 + tmp37*tmp38) + m_c*(tmp52*tmp71 + tmp64*tmp65)
+        + m_d*(tmp84*tmp107 + tmp100*tmp101);
+    const Scalar tmp172 = tmp1*tmp20*tmp23*tmp8;
+    const Scalar tmp173 = m_b*(-Scalar(0.16000000000000003)*tmp172 + tmp129*tmp37 + tmp42*tmp124)
+        + m_c*(Scalar(0.09)*tmp172 + tmp133*tmp71 + tmp154*tmp64)
+        + m_d*(tmp99*tmp100 + tmp105*tmp107 + tmp109*tmp111);
+    const Scalar tmp174 = m_b*((tmp37*tmp37) + (tmp42*tmp42)
+            + Scalar(0.16000000000000003)*tmp150*tmp164)
+        + m_c*((tmp64*tmp64) + (tmp71*tmp71) + Scalar(0.09)*tmp150*tmp161)
+        + m_d*((tmp100*tmp100) + (tmp107*tmp107) + (tmp109*tmp109));
+    const Scalar tmp175 = tmp114 + tmp116 + tmp118 + tmp120;
+    const Scalar tmp176 = tmp121*m_a;
+    const Scalar tmp177 = tmp122*m_a;
+    const Scalar tmp178 = tmp127*m_b;
+    const Scalar tmp179 = tmp130*m_b;
+    const Scalar tmp180 = tmp135*m_c;
+    const Scalar tmp181 = tmp136*m_c;
+    const Scalar tmp182 = tmp140*m_d;
+    const Scalar tmp183 = tmp142*m_d;
+    const Scalar tmp184 = tmp123*m_a;
+    const Scalar tmp185 = tmp132*m_b;
+    const Scalar tmp186 = tmp137*m_c;
+    const Scalar tmp187 = tmp145*m_d;
+    const Scalar tmp188 = tmp178 + tmp180 + tmp182 + tmp176;
+    const Scalar tmp189 = tmp179 + tmp181 + tmp183 + tmp177;
+    const Scalar tmp190 = tmp185 + tmp186 + tmp187 + tmp184;
+    const Scalar tmp191 = tmp111*tmp120 - tmp2*tmp114 - tmp44*tmp116 - tmp73*tmp118;
+    const Scalar tmp192 = tmp45*tmp116 + tmp109*tmp120 - tmp74*tmp118;
+    const Scalar tmp193 = -tmp188;
+    const Scalar tmp194 = -tmp189;
+    const Scalar tmp195 = -tmp190;
+    const Scalar tmp196 = -tmp178*tmp38 - tmp179*tmp27 - tmp180*tmp65 - tmp181*tmp52 - tmp182*tmp101
+        - tmp183*tmp84 - tmp3*tmp177 + Scalar(0.5)*tmp1*tmp5*tmp176;
+    const Scalar tmp197 = -tmp129*tmp178 - tmp133*tmp181 - tmp154*tmp180 - tmp179*tmp124
+        - tmp182*tmp99 - tmp183*tmp105 - tmp187*tmp111 + Scalar(0.5)*tmp1*tmp184
+        + Scalar(0.5)*tmp0*tmp8*tmp176 + Scalar(0.5)*tmp5*tmp8*tmp177
+        + Scalar(0.4)*tmp185*tmp23*tmp8 + Scalar(0.3)*tmp186*tmp20*tmp8;
+    const Scalar tmp198 = -tmp178*tmp37 - tmp179*tmp42 - tmp180*tmp64 - tmp181*tmp71 - tmp182*tmp100
+        - tmp183*tmp107 - tmp185*tmp45 - tmp187*tmp109 + Scalar(0.3)*tmp1*tmp186*tmp23;
+    (*Mt)(0, 0) = tmp146;
     (*Mt)(1, 0) = Scalar(0);
-    (*Mt)(1, 1) = m;
+    (*Mt)(1, 1) = tmp146;
     (*Mt)(2, 0) = Scalar(0);
     (*Mt)(2, 1) = Scalar(0);
-    (*Mt)(2, 2) = m;
-    (*Mt)(3, 0) = tmp203;
-    (*Mt)(3, 1) = tmp204;
+    (*Mt)(2, 2) = tmp146;
+    (*Mt)(3, 0) = tmp147;
+    (*Mt)(3, 1) = tmp148;
     (*Mt)(3, 2) = Scalar(0);
-    (*Mt)(3, 3) = tmp205;
-    (*Mt)(4, 0) = tmp206;
-    (*Mt)(4, 1) = tmp207;
-    (*Mt)(4, 2) = tmp208;
-    (*Mt)(4, 3) = tmp209;
-    (*Mt)(4, 4) = tmp210;
-    (*Mt)(5, 0) = tmp211;
-    (*Mt)(5, 1) = tmp212;
-    (*Mt)(5, 2) = tmp213;
-    (*Mt)(5, 3) = tmp214;
-    (*Mt)(5, 4) = tmp215;
-    (*Mt)(5, 5) = tmp216;
-    (*f)(0) = tmp235;
-    (*f)(1) = tmp236;
-    (*f)(2) = tmp217 + tmp237;
-    (*f)(3) = tmp238;
-    (*f)(4) = tmp233 + tmp239;
-    (*f)(5) = tmp234 + tmp240;
+    (*Mt)(3, 3) = tmp153;
+    (*Mt)(4, 0) = tmp155;
+    (*Mt)(4, 1) = tmp156;
+    (*Mt)(4, 2) = tmp157;
+    (*Mt)(4, 3) = tmp158;
+    (*Mt)(4, 4) = tmp167;
+    (*Mt)(5, 0) = tmp168;
+    (*Mt)(5, 1) = tmp169;
+    (*Mt)(5, 2) = tmp170;
+    (*Mt)(5, 3) = tmp171;
+    (*Mt)(5, 4) = tmp173;
+    (*Mt)(5, 5) = tmp174;
+    (*f)(0) = tmp193;
+    (*f)(1) = tmp194;
+    (*f)(2) = tmp175 + tmp195;
+    (*f)(3) = tmp196;
+    (*f)(4) = tmp191 + tmp197;
+    (*f)(5) = tmp192 + tmp198;
     (*Mt)(0, 1) = (*Mt)(1, 0);
     (*Mt)(0, 2) = (*Mt)(2, 0);
     (*Mt)(1, 2) = (*Mt)(2, 1);
@@ -1270,7 +1075,7 @@ struct RigidBodyEuler {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return r = tau (nq)
-  /// Ops: 840
+  /// Ops: 752
   template <typename Scalar>
   static QVector<Scalar> inverse_dynamics(const QVector<Scalar>& q,
                                           const QVector<Scalar>& v,
@@ -1279,7 +1084,6 @@ struct RigidBodyEuler {
                                           const Params& params) {
     using std::cos;
     using std::sin;
-    using std::sqrt;
     const Scalar yaw = q(3);
     const Scalar pitch = q(4);
     const Scalar roll = q(5);
@@ -1293,272 +1097,227 @@ struct RigidBodyEuler {
     const Scalar pitch_ddot = qdd(4);
     const Scalar roll_ddot = qdd(5);
     const Scalar g = Scalar(params.g);
-    const Scalar m = Scalar(params.m);
-    const Scalar a = Scalar(params.a);
-    const Scalar b = Scalar(params.b);
-    const Scalar c = Scalar(params.c);
+    const Scalar m_a = Scalar(params.m_a);
+    const Scalar m_b = Scalar(params.m_b);
+    const Scalar m_c = Scalar(params.m_c);
+    const Scalar m_d = Scalar(params.m_d);
     const Scalar tmp0 = cos(yaw);
     const Scalar tmp1 = cos(pitch);
-    const Scalar tmp2 = (Scalar(1)/sqrt(m));
-    const Scalar tmp3 = (a*a);
-    const Scalar tmp4 = (b*b);
-    const Scalar tmp5 = ((Scalar(1)/Scalar(24)))*m;
-    const Scalar tmp6 = tmp5*(tmp3 + tmp4);
-    const Scalar tmp7 = (c*c);
-    const Scalar tmp8 = tmp5*(tmp3 + tmp7);
-    const Scalar tmp9 = tmp5*(tmp4 + tmp7);
-    const Scalar tmp10 = tmp6 + tmp8 - tmp9;
-    const Scalar tmp11 = tmp2*sqrt(tmp10);
-    const Scalar tmp12 = tmp1*tmp11;
-    const Scalar tmp13 = tmp0*tmp12;
-    const Scalar tmp14 = sin(roll);
-    const Scalar tmp15 = sin(yaw);
-    const Scalar tmp16 = tmp14*tmp15;
-    const Scalar tmp17 = sin(pitch);
-    const Scalar tmp18 = cos(roll);
-    const Scalar tmp19 = tmp0*tmp18;
-    const Scalar tmp20 = tmp17*tmp19;
-    const Scalar tmp21 = tmp16 + tmp20;
-    const Scalar tmp22 = tmp8 + tmp9 - tmp6;
-    const Scalar tmp23 = tmp2*sqrt(tmp22);
-    const Scalar tmp24 = tmp21*tmp23;
-    const Scalar tmp25 = tmp15*tmp18;
-    const Scalar tmp26 = tmp0*tmp14;
-    const Scalar tmp27 = tmp17*tmp26;
-    const Scalar tmp28 = tmp27 - tmp25;
-    const Scalar tmp29 = tmp6 + tmp9 - tmp8;
-    const Scalar tmp30 = tmp2*sqrt(tmp29);
-    const Scalar tmp31 = tmp28*tmp30;
-    const Scalar tmp32 = tmp24 + tmp31;
-    const Scalar tmp33 = tmp13 + tmp32;
-    const Scalar tmp35 = tmp17*tmp25;
-    const Scalar tmp36 = tmp35 - tmp26;
-    const Scalar tmp38 = tmp16*tmp17;
-    const Scalar tmp39 = tmp19 + tmp38;
-    const Scalar tmp41 = tmp12*tmp15;
-    const Scalar tmp44 = tmp11*tmp17;
-    const Scalar tmp45 = tmp18*tmp23;
-    const Scalar tmp46 = tmp1*tmp45;
-    const Scalar tmp47 = tmp14*tmp30;
-    const Scalar tmp48 = tmp1*tmp47;
-    const Scalar tmp49 = tmp46 + tmp48;
-    const Scalar tmp50 = tmp49 - tmp44;
-    const Scalar tmp52 = tmp21*tmp30;
-    const Scalar tmp53 = -tmp28;
-    const Scalar tmp54 = tmp23*tmp53;
-    const Scalar tmp55 = tmp52 + tmp54;
-    const Scalar tmp56 = tmp0*tmp44;
-    const Scalar tmp57 = tmp1*tmp23;
-    const Scalar tmp58 = tmp19*tmp57;
-    const Scalar tmp59 = tmp1*tmp30;
-    const Scalar tmp60 = tmp26*tmp59;
-    const Scalar tmp61 = tmp58 + tmp60;
-    const Scalar tmp62 = tmp61 - tmp56;
-    const Scalar tmp63 = -tmp41;
-    const Scalar tmp64 = -tmp36;
-    const Scalar tmp65 = tmp23*tmp64;
-    const Scalar tmp66 = -tmp39;
-    const Scalar tmp67 = tmp30*tmp66;
-    const Scalar tmp68 = tmp65 + tmp67;
-    const Scalar tmp69 = tmp63 + tmp68;
-    const Scalar tmp70 = tmp55*roll_dot + tmp62*pitch_dot + tmp69*yaw_dot;
-    const Scalar tmp72 = tmp30*tmp36;
-    const Scalar tmp73 = tmp23*tmp66;
-    const Scalar tmp74 = tmp72 + tmp73;
-    const Scalar tmp75 = tmp15*tmp44;
-    const Scalar tmp76 = tmp25*tmp57;
-    const Scalar tmp77 = tmp16*tmp59;
-    const Scalar tmp78 = tmp76 + tmp77;
-    const Scalar tmp79 = tmp78 - tmp75;
-    const Scalar tmp81 = tmp14*tmp23;
-    const Scalar tmp82 = tmp1*tmp81;
-    const Scalar tmp83 = tmp18*tmp30;
-    const Scalar tmp84 = tmp1*tmp83;
-    const Scalar tmp85 = tmp82 - tmp84;
-    const Scalar tmp86 = -tmp85;
-    const Scalar tmp87 = tmp17*tmp45;
-    const Scalar tmp88 = tmp17*tmp47;
-    const Scalar tmp89 = tmp87 + tmp88;
-    const Scalar tmp90 = -tmp12 - tmp89;
-    const Scalar tmp92 = -tmp24;
-    const Scalar tmp93 = -tmp31;
-    const Scalar tmp94 = tmp13 + tmp93;
-    const Scalar tmp99 = tmp44 + tmp49;
-    const Scalar tmp101 = -tmp55;
-    const Scalar tmp102 = -tmp56 - tmp61;
-    const Scalar tmp103 = -tmp41 - tmp68;
-    const Scalar tmp104 = tmp101*roll_dot + tmp102*pitch_dot + tmp103*yaw_dot;
-    const Scalar tmp106 = -tmp74;
-    const Scalar tmp107 = tmp75 + tmp78;
-    const Scalar tmp108 = -tmp107;
-    const Scalar tmp109 = -tmp13;
-    const Scalar tmp110 = -tmp32 - tmp109;
-    const Scalar tmp112 = tmp89 - tmp12;
-    const Scalar tmp114 = tmp31 + tmp92;
-    const Scalar tmp119 = tmp44 + tmp48 - tmp46;
-    const Scalar tmp121 = tmp54 - tmp52;
-    const Scalar tmp122 = -tmp121;
-    const Scalar tmp123 = tmp56 + tmp60 - tmp58;
-    const Scalar tmp124 = tmp67 - tmp65;
-    const Scalar tmp125 = tmp124 + tmp41;
-    const Scalar tmp126 = tmp122*roll_dot + tmp123*pitch_dot + tmp125*yaw_dot;
-    const Scalar tmp128 = tmp73 - tmp72;
-    const Scalar tmp129 = -tmp128;
-    const Scalar tmp130 = tmp75 + tmp77 - tmp76;
-    const Scalar tmp131 = -tmp24 - tmp94;
-    const Scalar tmp133 = tmp82 + tmp84;
-    const Scalar tmp134 = tmp12 + tmp87 - tmp88;
-    const Scalar tmp138 = tmp46 - tmp48;
-    const Scalar tmp139 = tmp138 + tmp44;
-    const Scalar tmp141 = tmp56 + tmp58 - tmp60;
-    const Scalar tmp142 = tmp41 + tmp65 - tmp67;
-    const Scalar tmp143 = tmp121*roll_dot + tmp141*pitch_dot + tmp142*yaw_dot;
-    const Scalar tmp145 = tmp75 + tmp76 - tmp77;
-    const Scalar tmp146 = -tmp114 - tmp13;
-    const Scalar tmp148 = -tmp133;
-    const Scalar tmp149 = tmp12 + tmp88 - tmp87;
-    const Scalar tmp151 = (Scalar(0.25))*m;
-    const Scalar tmp152 = tmp151*g;
-    const Scalar tmp153 = -tmp152;
-    const Scalar tmp154 = tmp26*tmp57;
-    const Scalar tmp155 = tmp19*tmp59;
-    const Scalar tmp156 = tmp154 - tmp155;
-    const Scalar tmp157 = -tmp156;
-    const Scalar tmp158 = tmp23*tmp39;
-    const Scalar tmp159 = tmp30*tmp64;
-    const Scalar tmp160 = tmp158 + tmp159;
-    const Scalar tmp161 = tmp30*tmp53;
-    const Scalar tmp162 = -tmp21*tmp23;
-    const Scalar tmp163 = tmp161 + tmp162;
-    const Scalar tmp164 = -tmp79;
-    const Scalar tmp165 = tmp20*tmp23;
-    const Scalar tmp166 = tmp27*tmp30;
-    const Scalar tmp167 = tmp165 + tmp166;
-    const Scalar tmp168 = pitch_dot*(tmp157*roll_dot + tmp164*yaw_dot + pitch_dot*(-tmp13 - tmp167))
-        + roll_dot*(tmp157*pitch_dot + tmp160*yaw_dot + tmp163*roll_dot)
-        + yaw_dot*(tmp160*roll_dot + tmp164*pitch_dot + yaw_dot*(tmp163 + tmp109));
-    const Scalar tmp169 = tmp16*tmp57;
-    const Scalar tmp170 = tmp25*tmp59;
-    const Scalar tmp171 = tmp169 - tmp170;
-    const Scalar tmp172 = -tmp171;
-    const Scalar tmp173 = tmp23*tmp35;
-    const Scalar tmp174 = tmp30*tmp38;
-    const Scalar tmp175 = tmp173 + tmp174;
-    const Scalar tmp176 = tmp70*yaw_dot
-        + pitch_dot*(tmp172*roll_dot + tmp62*yaw_dot + pitch_dot*(-tmp175 - tmp41))
-        + roll_dot*(tmp172*pitch_dot + tmp55*yaw_dot + tmp68*roll_dot);
-    const Scalar tmp177 = tmp17*tmp81;
-    const Scalar tmp178 = tmp17*tmp83;
-    const Scalar tmp179 = tmp177 - tmp178;
-    const Scalar tmp180 = pitch_dot*(tmp179*roll_dot - tmp50*pitch_dot)
-        + roll_dot*(tmp179*pitch_dot - tmp49*roll_dot);
-    const Scalar tmp181 = -tmp160;
-    const Scalar tmp182 = pitch_dot*(tmp156*roll_dot + tmp107*yaw_dot + pitch_dot*(tmp167 + tmp109))
-        + roll_dot*(tmp156*pitch_dot + tmp181*yaw_dot - tmp163*roll_dot)
-        + yaw_dot*(tmp181*roll_dot + tmp107*pitch_dot + yaw_dot*(-tmp13 - tmp163));
-    const Scalar tmp183 = tmp104*yaw_dot
-        + pitch_dot*(tmp171*roll_dot + tmp102*yaw_dot + pitch_dot*(tmp175 + tmp63))
-        + roll_dot*(tmp171*pitch_dot + tmp101*yaw_dot - tmp68*roll_dot);
-    const Scalar tmp184 = -tmp179;
-    const Scalar tmp185 = pitch_dot*(tmp184*roll_dot + tmp99*pitch_dot)
-        + roll_dot*(tmp184*pitch_dot + tmp49*roll_dot);
-    const Scalar tmp186 = tmp154 + tmp155;
-    const Scalar tmp187 = tmp158 - tmp159;
-    const Scalar tmp188 = -tmp187;
-    const Scalar tmp189 = tmp161 - tmp162;
-    const Scalar tmp190 = -tmp130;
-    const Scalar tmp191 = pitch_dot*(tmp186*roll_dot + tmp190*yaw_dot
-            + pitch_dot*(tmp13 + tmp165 - tmp166))
-        + roll_dot*(tmp186*pitch_dot + tmp188*yaw_dot + tmp189*roll_dot)
-        + yaw_dot*(tmp188*roll_dot + tmp190*pitch_dot + yaw_dot*(tmp13 + tmp189));
-    const Scalar tmp192 = tmp169 + tmp170;
-    const Scalar tmp193 = tmp126*yaw_dot
-        + pitch_dot*(tmp123*yaw_dot + tmp192*roll_dot + pitch_dot*(tmp173 + tmp41 - tmp174))
-        + roll_dot*(tmp122*yaw_dot + tmp124*roll_dot + tmp192*pitch_dot);
-    const Scalar tmp194 = tmp177 + tmp178;
-    const Scalar tmp195 = -tmp194;
-    const Scalar tmp196 = pitch_dot*(tmp195*roll_dot - tmp119*pitch_dot)
-        + roll_dot*(tmp138*roll_dot + tmp195*pitch_dot);
-    const Scalar tmp197 = -tmp186;
-    const Scalar tmp198 = -tmp145;
-    const Scalar tmp199 = pitch_dot*(tmp197*roll_dot + tmp198*yaw_dot
-            + pitch_dot*(tmp13 + tmp166 - tmp165))
-        + roll_dot*(tmp187*yaw_dot + tmp197*pitch_dot - tmp189*roll_dot)
-        + yaw_dot*(tmp187*roll_dot + tmp198*pitch_dot + yaw_dot*(tmp13 + tmp162 - tmp161));
-    const Scalar tmp200 = -tmp192;
-    const Scalar tmp201 = tmp143*yaw_dot
-        + pitch_dot*(tmp141*yaw_dot + tmp200*roll_dot + pitch_dot*(tmp174 + tmp41 - tmp173))
-        + roll_dot*(tmp121*yaw_dot + tmp200*pitch_dot - tmp124*roll_dot);
-    const Scalar tmp202 = pitch_dot*(tmp194*roll_dot - tmp139*pitch_dot)
-        + roll_dot*(tmp194*pitch_dot - tmp138*roll_dot);
-    const Scalar tmp203 = tmp125*tmp151 + tmp142*tmp151 + tmp151*tmp69 + tmp151*tmp103;
-    const Scalar tmp204 = tmp110*tmp151 + tmp131*tmp151 + tmp146*tmp151 + tmp151*tmp33;
-    const Scalar tmp205 = tmp151*((tmp110*tmp110) + (tmp103*tmp103))
-        + tmp151*((tmp125*tmp125) + (tmp131*tmp131)) + tmp151*((tmp142*tmp142) + (tmp146*tmp146))
-        + tmp151*((tmp33*tmp33) + (tmp69*tmp69));
-    const Scalar tmp206 = tmp123*tmp151 + tmp141*tmp151 + tmp151*tmp62 + tmp151*tmp102;
-    const Scalar tmp207 = tmp130*tmp151 + tmp145*tmp151 + tmp151*tmp79 + tmp151*tmp108;
-    const Scalar tmp208 = tmp112*tmp151 + tmp134*tmp151 + tmp149*tmp151 + tmp151*tmp90;
-    const Scalar tmp209 = tmp151*(tmp110*tmp108 + tmp102*tmp103)
-        + tmp151*(tmp123*tmp125 + tmp130*tmp131) + tmp151*(tmp141*tmp142 + tmp145*tmp146)
-        + tmp151*(tmp33*tmp79 + tmp62*tmp69);
-    const Scalar tmp210 = tmp151*((tmp112*tmp112) + (tmp102*tmp102) + (tmp108*tmp108))
-        + tmp151*((tmp123*tmp123) + (tmp130*tmp130) + (tmp134*tmp134))
-        + tmp151*((tmp141*tmp141) + (tmp145*tmp145) + (tmp149*tmp149))
-        + tmp151*((tmp62*tmp62) + (tmp79*tmp79) + (tmp90*tmp90));
-    const Scalar tmp211 = tmp121*tmp151 + tmp122*tmp151 + tmp151*tmp55 + tmp151*tmp101;
-    const Scalar tmp212 = tmp128*tmp151 + tmp129*tmp151 + tmp151*tmp74 + tmp151*tmp106;
-    const Scalar tmp213 = tmp133*tmp151 + tmp148*tmp151 + tmp151*tmp85 + tmp151*tmp86;
-    const Scalar tmp214 = tmp151*(tmp110*tmp106 + tmp101*tmp103)
-        + tmp151*(tmp121*tmp142 + tmp128*tmp146) + tmp151*(tmp122*tmp125 + tmp129*tmp131)
-        + tmp151*(tmp33*tmp74 + tmp55*tmp69);
-    const Scalar tmp215 = tmp151*(tmp112*tmp85 + tmp101*tmp102 + tmp106*tmp108)
-        + tmp151*(tmp121*tmp141 + tmp128*tmp145 + tmp148*tmp149)
-        + tmp151*(tmp122*tmp123 + tmp129*tmp130 + tmp133*tmp134)
-        + tmp151*(tmp55*tmp62 + tmp74*tmp79 + tmp86*tmp90);
-    const Scalar tmp216 = tmp151*((tmp121*tmp121) + (tmp128*tmp128) + (tmp148*tmp148))
-        + tmp151*((tmp122*tmp122) + (tmp129*tmp129) + (tmp133*tmp133))
-        + tmp151*((tmp55*tmp55) + (tmp74*tmp74) + (tmp86*tmp86))
-        + tmp151*((tmp85*tmp85) + (tmp101*tmp101) + (tmp106*tmp106));
-    const Scalar tmp217 = Scalar(4)*tmp153;
-    const Scalar tmp218 = tmp151*tmp168;
-    const Scalar tmp219 = tmp151*tmp176;
-    const Scalar tmp220 = tmp151*tmp182;
-    const Scalar tmp221 = tmp151*tmp183;
-    const Scalar tmp222 = tmp151*tmp191;
-    const Scalar tmp223 = tmp151*tmp193;
-    const Scalar tmp224 = tmp151*tmp199;
-    const Scalar tmp225 = tmp151*tmp201;
-    const Scalar tmp226 = tmp151*tmp180;
-    const Scalar tmp227 = tmp151*tmp185;
-    const Scalar tmp228 = tmp151*tmp196;
-    const Scalar tmp229 = tmp151*tmp202;
-    const Scalar tmp230 = tmp220 + tmp222 + tmp224 + tmp218;
-    const Scalar tmp231 = tmp221 + tmp223 + tmp225 + tmp219;
-    const Scalar tmp232 = tmp227 + tmp228 + tmp229 + tmp226;
-    const Scalar tmp233 = tmp112*tmp153 + tmp134*tmp153 + tmp149*tmp153 + tmp153*tmp90;
-    const Scalar tmp234 = tmp133*tmp153 + tmp148*tmp153 + tmp153*tmp85 + tmp153*tmp86;
-    const Scalar tmp235 = -tmp230;
-    const Scalar tmp236 = -tmp231;
-    const Scalar tmp237 = -tmp232;
-    const Scalar tmp238 = -tmp110*tmp221 - tmp125*tmp222 - tmp131*tmp223 - tmp142*tmp224
-        - tmp146*tmp225 - tmp220*tmp103 - tmp33*tmp219 - tmp69*tmp218;
-    const Scalar tmp239 = -tmp112*tmp227 - tmp123*tmp222 - tmp130*tmp223 - tmp134*tmp228
-        - tmp141*tmp224 - tmp145*tmp225 - tmp149*tmp229 - tmp220*tmp102 - tmp221*tmp108
-        - tmp62*tmp218 - tmp79*tmp219 - tmp90*tmp226;
-    const Scalar tmp240 = -tmp121*tmp224 - tmp122*tmp222 - tmp128*tmp225 - tmp129*tmp223
-        - tmp133*tmp228 - tmp148*tmp229 - tmp220*tmp101 - tmp221*tmp106 - tmp227*tmp85
-        - tmp55*tmp218 - tmp74*tmp219 - tmp86*tmp226;
+    const Scalar tmp2 = Scalar(0.5)*tmp1;
+    const Scalar tmp3 = tmp0*tmp2;
+    const Scalar tmp5 = sin(yaw);
+    const Scalar tmp6 = tmp2*tmp5;
+    const Scalar tmp8 = sin(pitch);
+    const Scalar tmp9 = Scalar(0.5)*tmp8;
+    const Scalar tmp11 = tmp0*tmp9;
+    const Scalar tmp12 = tmp6*yaw_dot + tmp11*pitch_dot;
+    const Scalar tmp14 = tmp5*tmp9;
+    const Scalar tmp15 = tmp14*pitch_dot;
+    const Scalar tmp16 = tmp3*yaw_dot;
+    const Scalar tmp20 = cos(roll);
+    const Scalar tmp21 = Scalar(0.4)*tmp20;
+    const Scalar tmp22 = tmp21*tmp5;
+    const Scalar tmp23 = sin(roll);
+    const Scalar tmp24 = Scalar(0.4)*tmp23;
+    const Scalar tmp25 = tmp0*tmp24;
+    const Scalar tmp26 = tmp25*tmp8;
+    const Scalar tmp27 = tmp26 - tmp22;
+    const Scalar tmp29 = tmp0*tmp21;
+    const Scalar tmp30 = tmp24*tmp5;
+    const Scalar tmp31 = tmp30*tmp8;
+    const Scalar tmp32 = tmp29 + tmp31;
+    const Scalar tmp34 = tmp1*tmp24;
+    const Scalar tmp36 = tmp34*pitch_dot;
+    const Scalar tmp37 = tmp30 + tmp29*tmp8;
+    const Scalar tmp38 = -tmp32;
+    const Scalar tmp39 = tmp0*tmp36 + tmp37*roll_dot + tmp38*yaw_dot;
+    const Scalar tmp41 = tmp36*tmp5;
+    const Scalar tmp42 = -tmp25 + tmp22*tmp8;
+    const Scalar tmp44 = tmp24*tmp8;
+    const Scalar tmp45 = tmp1*tmp21;
+    const Scalar tmp47 = Scalar(0.3)*tmp23;
+    const Scalar tmp48 = tmp47*tmp5;
+    const Scalar tmp49 = Scalar(0.3)*tmp20;
+    const Scalar tmp50 = tmp0*tmp49;
+    const Scalar tmp51 = tmp50*tmp8;
+    const Scalar tmp52 = tmp48 + tmp51;
+    const Scalar tmp54 = tmp0*tmp47;
+    const Scalar tmp55 = tmp49*tmp5;
+    const Scalar tmp56 = tmp55*tmp8;
+    const Scalar tmp57 = tmp56 - tmp54;
+    const Scalar tmp59 = tmp1*tmp49;
+    const Scalar tmp61 = tmp59*pitch_dot;
+    const Scalar tmp62 = tmp54*tmp8;
+    const Scalar tmp63 = tmp62 - tmp55;
+    const Scalar tmp64 = -tmp63;
+    const Scalar tmp65 = -tmp57;
+    const Scalar tmp66 = tmp0*tmp61 + tmp64*roll_dot + tmp65*yaw_dot;
+    const Scalar tmp68 = tmp5*tmp61;
+    const Scalar tmp69 = tmp48*tmp8;
+    const Scalar tmp70 = tmp50 + tmp69;
+    const Scalar tmp71 = -tmp70;
+    const Scalar tmp73 = tmp49*tmp8;
+    const Scalar tmp74 = tmp1*tmp47;
+    const Scalar tmp76 = Scalar(0.2)*tmp1;
+    const Scalar tmp77 = Scalar(0.25)*tmp20;
+    const Scalar tmp78 = tmp0*tmp77;
+    const Scalar tmp79 = tmp8*tmp78;
+    const Scalar tmp80 = tmp79 + tmp0*tmp76;
+    const Scalar tmp81 = Scalar(0.25)*tmp23;
+    const Scalar tmp82 = tmp5*tmp81;
+    const Scalar tmp83 = tmp63 + tmp82;
+    const Scalar tmp84 = tmp80 + tmp83;
+    const Scalar tmp86 = tmp5*tmp77;
+    const Scalar tmp87 = tmp8*tmp86;
+    const Scalar tmp88 = tmp87 + tmp5*tmp76;
+    const Scalar tmp89 = tmp0*tmp81;
+    const Scalar tmp90 = tmp70 - tmp89;
+    const Scalar tmp91 = tmp88 + tmp90;
+    const Scalar tmp93 = Scalar(0.2)*tmp8;
+    const Scalar tmp94 = tmp1*tmp77;
+    const Scalar tmp95 = tmp74 + tmp94;
+    const Scalar tmp96 = tmp95 - tmp93;
+    const Scalar tmp98 = tmp1*tmp54;
+    const Scalar tmp99 = tmp98 + tmp0*tmp94 - tmp0*tmp93;
+    const Scalar tmp100 = tmp52 + tmp86 - tmp8*tmp89;
+    const Scalar tmp101 = -tmp91;
+    const Scalar tmp102 = tmp99*pitch_dot + tmp100*roll_dot + tmp101*yaw_dot;
+    const Scalar tmp104 = tmp1*tmp48;
+    const Scalar tmp105 = tmp104 + tmp5*tmp94 - tmp5*tmp93;
+    const Scalar tmp106 = tmp54 + tmp78 - tmp56 + tmp8*tmp82;
+    const Scalar tmp107 = -tmp106;
+    const Scalar tmp109 = -tmp1*tmp81 + Scalar(0.3)*tmp1*tmp20;
+    const Scalar tmp110 = tmp47*tmp8;
+    const Scalar tmp111 = -tmp76 - tmp110 - tmp77*tmp8;
+    const Scalar tmp113 = g*m_a;
+    const Scalar tmp114 = -tmp113;
+    const Scalar tmp115 = g*m_b;
+    const Scalar tmp116 = -tmp115;
+    const Scalar tmp117 = g*m_c;
+    const Scalar tmp118 = -tmp117;
+    const Scalar tmp119 = g*m_d;
+    const Scalar tmp120 = -tmp119;
+    const Scalar tmp121 = pitch_dot*(-tmp3*pitch_dot + Scalar(0.5)*tmp5*tmp8*yaw_dot)
+        + yaw_dot*(tmp15 - tmp16);
+    const Scalar tmp122 = pitch_dot*(-tmp6*pitch_dot - tmp11*yaw_dot) - tmp12*yaw_dot;
+    const Scalar tmp123 = tmp9*(pitch_dot*pitch_dot);
+    const Scalar tmp124 = tmp34*tmp5;
+    const Scalar tmp125 = -tmp27;
+    const Scalar tmp126 = -tmp42;
+    const Scalar tmp127 = pitch_dot*(-tmp26*pitch_dot - tmp124*yaw_dot
+            + Scalar(0.4)*tmp0*tmp1*tmp20*roll_dot)
+        + roll_dot*(tmp125*roll_dot + tmp126*yaw_dot + tmp1*tmp29*pitch_dot)
+        + yaw_dot*(-tmp41 + tmp125*yaw_dot + tmp126*roll_dot);
+    const Scalar tmp128 = tmp1*tmp22;
+    const Scalar tmp129 = tmp0*tmp34;
+    const Scalar tmp130 = tmp39*yaw_dot
+        + pitch_dot*(tmp128*roll_dot + tmp129*yaw_dot - tmp31*pitch_dot)
+        + roll_dot*(tmp128*pitch_dot + tmp37*yaw_dot + tmp38*roll_dot);
+    const Scalar tmp131 = tmp21*tmp8;
+    const Scalar tmp132 = pitch_dot*(-tmp36 - tmp131*roll_dot)
+        + roll_dot*(-tmp131*pitch_dot - tmp34*roll_dot);
+    const Scalar tmp133 = tmp5*tmp59;
+    const Scalar tmp134 = -tmp52;
+    const Scalar tmp135 = pitch_dot*(-tmp133*yaw_dot - tmp51*pitch_dot - tmp98*roll_dot)
+        + roll_dot*(tmp134*roll_dot + tmp70*yaw_dot - tmp98*pitch_dot)
+        + yaw_dot*(-tmp68 + tmp134*yaw_dot + tmp70*roll_dot);
+    const Scalar tmp136 = tmp66*yaw_dot
+        + pitch_dot*(-tmp56*pitch_dot - tmp104*roll_dot + Scalar(0.3)*tmp0*tmp1*tmp20*yaw_dot)
+        + roll_dot*(tmp64*yaw_dot + tmp65*roll_dot - tmp104*pitch_dot);
+    const Scalar tmp137 = pitch_dot*(-tmp61 + Scalar(0.3)*tmp23*tmp8*roll_dot)
+        + roll_dot*(tmp110*pitch_dot - tmp59*roll_dot);
+    const Scalar tmp138 = -tmp1*tmp89 + Scalar(0.3)*tmp0*tmp1*tmp20;
+    const Scalar tmp139 = -tmp105;
+    const Scalar tmp140 = pitch_dot*(tmp138*roll_dot + tmp139*yaw_dot + pitch_dot*(-tmp62 - tmp80))
+        + roll_dot*(tmp138*pitch_dot + tmp106*yaw_dot + roll_dot*(-tmp79 - tmp83))
+        + yaw_dot*(tmp139*pitch_dot + tmp106*roll_dot - tmp84*yaw_dot);
+    const Scalar tmp141 = -tmp1*tmp82 + Scalar(0.3)*tmp1*tmp20*tmp5;
+    const Scalar tmp142 = tmp102*yaw_dot
+        + pitch_dot*(tmp141*roll_dot + tmp99*yaw_dot + pitch_dot*(-tmp69 - tmp88))
+        + roll_dot*(tmp141*pitch_dot + tmp100*yaw_dot + roll_dot*(-tmp87 - tmp90));
+    const Scalar tmp143 = -tmp73;
+    const Scalar tmp144 = tmp143 + tmp8*tmp81;
+    const Scalar tmp145 = pitch_dot*(tmp144*roll_dot - tmp96*pitch_dot)
+        + roll_dot*(tmp144*pitch_dot - tmp95*roll_dot);
+    const Scalar tmp146 = m_a + m_b + m_c + m_d;
+    const Scalar tmp147 = tmp38*m_b + tmp65*m_c + tmp101*m_d - tmp6*m_a;
+    const Scalar tmp148 = tmp27*m_b + tmp3*m_a + tmp52*m_c + tmp84*m_d;
+    const Scalar tmp149 = (tmp5*tmp5);
+    const Scalar tmp150 = (tmp1*tmp1);
+    const Scalar tmp151 = Scalar(0.25)*tmp150;
+    const Scalar tmp152 = (tmp0*tmp0);
+    const Scalar tmp153 = m_a*(tmp149*tmp151 + tmp151*tmp152) + m_b*((tmp27*tmp27) + (tmp38*tmp38))
+        + m_c*((tmp52*tmp52) + (tmp65*tmp65)) + m_d*((tmp84*tmp84) + (tmp101*tmp101));
+    const Scalar tmp154 = tmp0*tmp59;
+    const Scalar tmp155 = tmp129*m_b + tmp154*m_c + tmp99*m_d - tmp11*m_a;
+    const Scalar tmp156 = tmp133*m_c + tmp105*m_d + tmp124*m_b - tmp14*m_a;
+    const Scalar tmp157 = tmp111*m_d - tmp2*m_a - tmp44*m_b - tmp73*m_c;
+    const Scalar tmp158 = m_b*(tmp129*tmp38 + tmp27*tmp124) + m_c*(tmp133*tmp52 + tmp154*tmp65)
+        + m_d*(tmp84*tmp105 + tmp99*tmp101);
+    const Scalar tmp159 = (tmp8*tmp8);
+    const Scalar tmp160 = Scalar(0.25)*tmp159;
+    const Scalar tmp161 = (tmp23*tmp23);
+    const Scalar tmp162 = Scalar(0.16000000000000003)*tmp161;
+    const Scalar tmp163 = tmp150*tmp162;
+    const Scalar tmp164 = (tmp20*tmp20);
+    const Scalar tmp165 = Scalar(0.09)*tmp164;
+    const Scalar tmp166 = tmp150*tmp165;
+    const Scalar tmp167 = m_a*(tmp151 + tmp149*tmp160 + tmp152*tmp160)
+        + m_b*(tmp149*tmp163 + tmp152*tmp163 + tmp159*tmp162)
+        + m_c*(tmp149*tmp166 + tmp152*tmp166 + tmp159*tmp165)
+        + m_d*((tmp99*tmp99) + (tmp105*tmp105) + (tmp111*tmp111));
+    const Scalar tmp168 = tmp37*m_b + tmp64*m_c + tmp100*m_d;
+    const Scalar tmp169 = tmp42*m_b + tmp71*m_c + tmp107*m_d;
+    const Scalar tmp170 = tmp45*m_b + tmp109*m_d - tmp74*m_c;
+    const Scalar tmp171 = m_b*(tmp27*tmp42 + tmp37*tmp38) + m_c*(tmp52*tmp71 + tmp64*tmp65)
+        + m_d*(tmp84*tmp107 + tmp100*tmp101);
+    const Scalar tmp172 = tmp1*tmp20*tmp23*tmp8;
+    const Scalar tmp173 = m_b*(-Scalar(0.16000000000000003)*tmp172 + tmp129*tmp37 + tmp42*tmp124)
+        + m_c*(Scalar(0.09)*tmp172 + tmp133*tmp71 + tmp154*tmp64)
+        + m_d*(tmp99*tmp100 + tmp105*tmp107 + tmp109*tmp111);
+    const Scalar tmp174 = m_b*((tmp37*tmp37) + (tmp42*tmp42)
+            + Scalar(0.16000000000000003)*tmp150*tmp164)
+        + m_c*((tmp64*tmp64) + (tmp71*tmp71) + Scalar(0.09)*tmp150*tmp161)
+        + m_d*((tmp100*tmp100) + (tmp107*tmp107) + (tmp109*tmp109));
+    const Scalar tmp175 = tmp114 + tmp116 + tmp118 + tmp120;
+    const Scalar tmp176 = tmp121*m_a;
+    const Scalar tmp177 = tmp122*m_a;
+    const Scalar tmp178 = tmp127*m_b;
+    const Scalar tmp179 = tmp130*m_b;
+    const Scalar tmp180 = tmp135*m_c;
+    const Scalar tmp181 = tmp136*m_c;
+    const Scalar tmp182 = tmp140*m_d;
+    const Scalar tmp183 = tmp142*m_d;
+    const Scalar tmp184 = tmp123*m_a;
+    const Scalar tmp185 = tmp132*m_b;
+    const Scalar tmp186 = tmp137*m_c;
+    const Scalar tmp187 = tmp145*m_d;
+    const Scalar tmp188 = tmp178 + tmp180 + tmp182 + tmp176;
+    const Scalar tmp189 = tmp179 + tmp181 + tmp183 + tmp177;
+    const Scalar tmp190 = tmp185 + tmp186 + tmp187 + tmp184;
+    const Scalar tmp191 = tmp111*tmp120 - tmp2*tmp114 - tmp44*tmp116 - tmp73*tmp118;
+    const Scalar tmp192 = tmp45*tmp116 + tmp109*tmp120 - tmp74*tmp118;
+    const Scalar tmp193 = -tmp188;
+    const Scalar tmp194 = -tmp189;
+    const Scalar tmp195 = -tmp190;
+    const Scalar tmp196 = -tmp178*tmp38 - tmp179*tmp27 - tmp180*tmp65 - tmp181*tmp52 - tmp182*tmp101
+        - tmp183*tmp84 - tmp3*tmp177 + Scalar(0.5)*tmp1*tmp5*tmp176;
+    const Scalar tmp197 = -tmp129*tmp178 - tmp133*tmp181 - tmp154*tmp180 - tmp179*tmp124
+        - tmp182*tmp99 - tmp183*tmp105 - tmp187*tmp111 + Scalar(0.5)*tmp1*tmp184
+        + Scalar(0.5)*tmp0*tmp8*tmp176 + Scalar(0.5)*tmp5*tmp8*tmp177
+        + Scalar(0.4)*tmp185*tmp23*tmp8 + Scalar(0.3)*tmp186*tmp20*tmp8;
+    const Scalar tmp198 = -tmp178*tmp37 - tmp179*tmp42 - tmp180*tmp64 - tmp181*tmp71 - tmp182*tmp100
+        - tmp183*tmp107 - tmp185*tmp45 - tmp187*tmp109 + Scalar(0.3)*tmp1*tmp186*tmp23;
     QVector<Scalar> result;
-    result(0) = -tmp235 + tmp203*yaw_ddot + tmp206*pitch_ddot + tmp211*roll_ddot + m*x_ddot;
-    result(1) = -tmp236 + tmp204*yaw_ddot + tmp207*pitch_ddot + tmp212*roll_ddot + m*y_ddot;
-    result(2) = -tmp217 - tmp237 + tmp208*pitch_ddot + tmp213*roll_ddot + m*z_ddot;
-    result(3) = -tmp238 + tmp203*x_ddot + tmp204*y_ddot + tmp205*yaw_ddot + tmp209*pitch_ddot
-        + tmp214*roll_ddot;
-    result(4) = -tmp233 - tmp239 + tmp206*x_ddot + tmp207*y_ddot + tmp208*z_ddot + tmp209*yaw_ddot
-        + tmp210*pitch_ddot + tmp215*roll_ddot;
-    result(5) = -tmp234 - tmp240 + tmp211*x_ddot + tmp212*y_ddot + tmp213*z_ddot + tmp214*yaw_ddot
-        + tmp215*pitch_ddot + tmp216*roll_ddot;
+    result(0) = -tmp193 + tmp146*x_ddot + tmp147*yaw_ddot + tmp155*pitch_ddot + tmp168*roll_ddot;
+    result(1) = -tmp194 + tmp146*y_ddot + tmp148*yaw_ddot + tmp156*pitch_ddot + tmp169*roll_ddot;
+    result(2) = -tmp175 - tmp195 + tmp146*z_ddot + tmp157*pitch_ddot + tmp170*roll_ddot;
+    result(3) = -tmp196 + tmp147*x_ddot + tmp148*y_ddot + tmp153*yaw_ddot + tmp158*pitch_ddot
+        + tmp171*roll_ddot;
+    result(4) = -tmp191 - tmp197 + tmp155*x_ddot + tmp156*y_ddot + tmp157*z_ddot + tmp158*yaw_ddot
+        + tmp167*pitch_ddot + tmp173*roll_ddot;
+    result(5) = -tmp192 - tmp198 + tmp168*x_ddot + tmp169*y_ddot + tmp170*z_ddot + tmp171*yaw_ddot
+        + tmp173*pitch_ddot + tmp174*roll_ddot;
     return result;
   }
 
@@ -1569,7 +1328,7 @@ struct RigidBodyEuler {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// dr_dq and dr_dv must not be null.
-  /// Ops: 3961
+  /// Ops: 3343
   template <typename Scalar>
   static void residual_jacobians(const QVector<Scalar>& q,
                                  const QVector<Scalar>& v,
@@ -1580,7 +1339,6 @@ struct RigidBodyEuler {
                                  QMatrix<Scalar>* dr_dv) {
     using std::cos;
     using std::sin;
-    using std::sqrt;
     const Scalar yaw = q(3);
     const Scalar pitch = q(4);
     const Scalar roll = q(5);
@@ -1594,1075 +1352,861 @@ struct RigidBodyEuler {
     const Scalar pitch_ddot = qdd(4);
     const Scalar roll_ddot = qdd(5);
     const Scalar g = Scalar(params.g);
-    const Scalar m = Scalar(params.m);
-    const Scalar a = Scalar(params.a);
-    const Scalar b = Scalar(params.b);
-    const Scalar c = Scalar(params.c);
+    const Scalar m_a = Scalar(params.m_a);
+    const Scalar m_b = Scalar(params.m_b);
+    const Scalar m_c = Scalar(params.m_c);
+    const Scalar m_d = Scalar(params.m_d);
     const Scalar tmp0 = cos(yaw);
     const Scalar tmp1 = cos(pitch);
-    const Scalar tmp2 = (Scalar(1)/sqrt(m));
-    const Scalar tmp3 = (a*a);
-    const Scalar tmp4 = (b*b);
-    const Scalar tmp5 = ((Scalar(1)/Scalar(24)))*m;
-    const Scalar tmp6 = tmp5*(tmp3 + tmp4);
-    const Scalar tmp7 = (c*c);
-    const Scalar tmp8 = tmp5*(tmp3 + tmp7);
-    const Scalar tmp9 = tmp5*(tmp4 + tmp7);
-    const Scalar tmp10 = tmp6 + tmp8 - tmp9;
-    const Scalar tmp11 = tmp2*sqrt(tmp10);
-    const Scalar tmp12 = tmp1*tmp11;
-    const Scalar tmp13 = tmp0*tmp12;
-    const Scalar tmp14 = sin(roll);
-    const Scalar tmp15 = sin(yaw);
-    const Scalar tmp16 = tmp14*tmp15;
-    const Scalar tmp17 = sin(pitch);
-    const Scalar tmp18 = cos(roll);
-    const Scalar tmp19 = tmp0*tmp18;
-    const Scalar tmp20 = tmp17*tmp19;
-    const Scalar tmp21 = tmp16 + tmp20;
-    const Scalar tmp22 = tmp8 + tmp9 - tmp6;
-    const Scalar tmp23 = tmp2*sqrt(tmp22);
-    const Scalar tmp24 = tmp21*tmp23;
-    const Scalar tmp25 = tmp15*tmp18;
-    const Scalar tmp26 = tmp0*tmp14;
-    const Scalar tmp27 = tmp17*tmp26;
-    const Scalar tmp28 = tmp27 - tmp25;
-    const Scalar tmp29 = tmp6 + tmp9 - tmp8;
-    const Scalar tmp30 = tmp2*sqrt(tmp29);
-    const Scalar tmp31 = tmp28*tmp30;
-    const Scalar tmp32 = tmp24 + tmp31;
-    const Scalar tmp33 = tmp13 + tmp32;
-    const Scalar tmp35 = tmp17*tmp25;
-    const Scalar tmp36 = tmp35 - tmp26;
-    const Scalar tmp38 = tmp16*tmp17;
-    const Scalar tmp39 = tmp19 + tmp38;
-    const Scalar tmp41 = tmp12*tmp15;
-    const Scalar tmp44 = tmp11*tmp17;
-    const Scalar tmp45 = tmp18*tmp23;
-    const Scalar tmp46 = tmp1*tmp45;
-    const Scalar tmp47 = tmp14*tmp30;
-    const Scalar tmp48 = tmp1*tmp47;
-    const Scalar tmp49 = tmp46 + tmp48;
-    const Scalar tmp50 = tmp49 - tmp44;
-    const Scalar tmp52 = tmp21*tmp30;
-    const Scalar tmp53 = -tmp28;
-    const Scalar tmp54 = tmp23*tmp53;
-    const Scalar tmp55 = tmp52 + tmp54;
-    const Scalar tmp56 = tmp0*tmp44;
-    const Scalar tmp57 = tmp1*tmp23;
-    const Scalar tmp58 = tmp19*tmp57;
-    const Scalar tmp59 = tmp1*tmp30;
-    const Scalar tmp60 = tmp26*tmp59;
-    const Scalar tmp61 = tmp58 + tmp60;
-    const Scalar tmp62 = tmp61 - tmp56;
-    const Scalar tmp63 = -tmp41;
-    const Scalar tmp64 = -tmp36;
-    const Scalar tmp65 = tmp23*tmp64;
-    const Scalar tmp66 = -tmp39;
-    const Scalar tmp67 = tmp30*tmp66;
-    const Scalar tmp68 = tmp65 + tmp67;
-    const Scalar tmp69 = tmp63 + tmp68;
-    const Scalar tmp70 = tmp55*roll_dot + tmp62*pitch_dot + tmp69*yaw_dot;
-    const Scalar tmp72 = tmp30*tmp36;
-    const Scalar tmp73 = tmp23*tmp66;
-    const Scalar tmp74 = tmp72 + tmp73;
-    const Scalar tmp75 = tmp15*tmp44;
-    const Scalar tmp76 = tmp25*tmp57;
-    const Scalar tmp77 = tmp16*tmp59;
-    const Scalar tmp78 = tmp76 + tmp77;
-    const Scalar tmp79 = tmp78 - tmp75;
-    const Scalar tmp81 = tmp14*tmp23;
-    const Scalar tmp82 = tmp1*tmp81;
-    const Scalar tmp83 = tmp18*tmp30;
-    const Scalar tmp84 = tmp1*tmp83;
-    const Scalar tmp85 = tmp82 - tmp84;
-    const Scalar tmp86 = -tmp85;
-    const Scalar tmp87 = tmp17*tmp45;
-    const Scalar tmp88 = tmp17*tmp47;
-    const Scalar tmp89 = tmp87 + tmp88;
-    const Scalar tmp90 = -tmp12 - tmp89;
-    const Scalar tmp92 = -tmp24;
-    const Scalar tmp93 = -tmp31;
-    const Scalar tmp94 = tmp13 + tmp93;
-    const Scalar tmp99 = tmp44 + tmp49;
-    const Scalar tmp101 = -tmp55;
-    const Scalar tmp102 = -tmp56 - tmp61;
-    const Scalar tmp103 = -tmp41 - tmp68;
-    const Scalar tmp104 = tmp101*roll_dot + tmp102*pitch_dot + tmp103*yaw_dot;
-    const Scalar tmp106 = -tmp74;
-    const Scalar tmp107 = tmp75 + tmp78;
-    const Scalar tmp108 = -tmp107;
-    const Scalar tmp109 = -tmp13;
-    const Scalar tmp110 = -tmp32 - tmp109;
-    const Scalar tmp112 = tmp89 - tmp12;
-    const Scalar tmp114 = tmp31 + tmp92;
-    const Scalar tmp119 = tmp44 + tmp48 - tmp46;
-    const Scalar tmp121 = tmp54 - tmp52;
-    const Scalar tmp122 = -tmp121;
-    const Scalar tmp123 = tmp56 + tmp60 - tmp58;
-    const Scalar tmp124 = tmp67 - tmp65;
-    const Scalar tmp125 = tmp124 + tmp41;
-    const Scalar tmp126 = tmp122*roll_dot + tmp123*pitch_dot + tmp125*yaw_dot;
-    const Scalar tmp128 = tmp73 - tmp72;
-    const Scalar tmp129 = -tmp128;
-    const Scalar tmp130 = tmp75 + tmp77 - tmp76;
-    const Scalar tmp131 = -tmp24 - tmp94;
-    const Scalar tmp133 = tmp82 + tmp84;
-    const Scalar tmp134 = tmp12 + tmp87 - tmp88;
-    const Scalar tmp138 = tmp46 - tmp48;
-    const Scalar tmp139 = tmp138 + tmp44;
-    const Scalar tmp141 = tmp56 + tmp58 - tmp60;
-    const Scalar tmp142 = tmp41 + tmp65 - tmp67;
-    const Scalar tmp143 = tmp121*roll_dot + tmp141*pitch_dot + tmp142*yaw_dot;
-    const Scalar tmp145 = tmp75 + tmp76 - tmp77;
-    const Scalar tmp146 = -tmp114 - tmp13;
-    const Scalar tmp148 = -tmp133;
-    const Scalar tmp149 = tmp12 + tmp88 - tmp87;
-    const Scalar tmp151 = (Scalar(0.25))*m;
-    const Scalar tmp152 = tmp151*g;
-    const Scalar tmp153 = -tmp152;
-    const Scalar tmp154 = tmp26*tmp57;
-    const Scalar tmp155 = tmp19*tmp59;
-    const Scalar tmp156 = tmp154 - tmp155;
-    const Scalar tmp157 = -tmp156;
-    const Scalar tmp158 = tmp23*tmp39;
-    const Scalar tmp159 = tmp30*tmp64;
-    const Scalar tmp160 = tmp158 + tmp159;
-    const Scalar tmp161 = tmp30*tmp53;
-    const Scalar tmp162 = -tmp21*tmp23;
-    const Scalar tmp163 = tmp161 + tmp162;
-    const Scalar tmp164 = -tmp79;
-    const Scalar tmp165 = tmp20*tmp23;
-    const Scalar tmp166 = tmp27*tmp30;
-    const Scalar tmp167 = tmp165 + tmp166;
-    const Scalar tmp168 = pitch_dot*(tmp157*roll_dot + tmp164*yaw_dot + pitch_dot*(-tmp13 - tmp167))
-        + roll_dot*(tmp157*pitch_dot + tmp160*yaw_dot + tmp163*roll_dot)
-        + yaw_dot*(tmp160*roll_dot + tmp164*pitch_dot + yaw_dot*(tmp163 + tmp109));
-    const Scalar tmp169 = tmp16*tmp57;
-    const Scalar tmp170 = tmp25*tmp59;
-    const Scalar tmp171 = tmp169 - tmp170;
-    const Scalar tmp172 = -tmp171;
-    const Scalar tmp173 = tmp23*tmp35;
-    const Scalar tmp174 = tmp30*tmp38;
-    const Scalar tmp175 = tmp173 + tmp174;
-    const Scalar tmp176 = tmp70*yaw_dot
-        + pitch_dot*(tmp172*roll_dot + tmp62*yaw_dot + pitch_dot*(-tmp175 - tmp41))
-        + roll_dot*(tmp172*pitch_dot + tmp55*yaw_dot + tmp68*roll_dot);
-    const Scalar tmp177 = tmp17*tmp81;
-    const Scalar tmp178 = tmp17*tmp83;
-    const Scalar tmp179 = tmp177 - tmp178;
-    const Scalar tmp180 = pitch_dot*(tmp179*roll_dot - tmp50*pitch_dot)
-        + roll_dot*(tmp179*pitch_dot - tmp49*roll_dot);
-    const Scalar tmp181 = -tmp160;
-    const Scalar tmp182 = pitch_dot*(tmp156*roll_dot + tmp107*yaw_dot + pitch_dot*(tmp167 + tmp109))
-        + roll_dot*(tmp156*pitch_dot + tmp181*yaw_dot - tmp163*roll_dot)
-        + yaw_dot*(tmp181*roll_dot + tmp107*pitch_dot + yaw_dot*(-tmp13 - tmp163));
-    const Scalar tmp183 = tmp104*yaw_dot
-        + pitch_dot*(tmp171*roll_dot + tmp102*yaw_dot + pitch_dot*(tmp175 + tmp63))
-        + roll_dot*(tmp171*pitch_dot + tmp101*yaw_dot - tmp68*roll_dot);
-    const Scalar tmp184 = -tmp179;
-    const Scalar tmp185 = pitch_dot*(tmp184*roll_dot + tmp99*pitch_dot)
-        + roll_dot*(tmp184*pitch_dot + tmp49*roll_dot);
-    const Scalar tmp186 = tmp154 + tmp155;
-    const Scalar tmp187 = tmp158 - tmp159;
-    const Scalar tmp188 = -tmp187;
-    const Scalar tmp189 = tmp161 - tmp162;
-    const Scalar tmp190 = -tmp130;
-    const Scalar tmp191 = pitch_dot*(tmp186*roll_dot + tmp190*yaw_dot
-            + pitch_dot*(tmp13 + tmp165 - tmp166))
-        + roll_dot*(tmp186*pitch_dot + tmp188*yaw_dot + tmp189*roll_dot)
-        + yaw_dot*(tmp188*roll_dot + tmp190*pitch_dot + yaw_dot*(tmp13 + tmp189));
-    const Scalar tmp192 = tmp169 + tmp170;
-    const Scalar tmp193 = tmp126*yaw_dot
-        + pitch_dot*(tmp123*yaw_dot + tmp192*roll_dot + pitch_dot*(tmp173 + tmp41 - tmp174))
-        + roll_dot*(tmp122*yaw_dot + tmp124*roll_dot + tmp192*pitch_dot);
-    const Scalar tmp194 = tmp177 + tmp178;
-    const Scalar tmp195 = -tmp194;
-    const Scalar tmp196 = pitch_dot*(tmp195*roll_dot - tmp119*pitch_dot)
-        + roll_dot*(tmp138*roll_dot + tmp195*pitch_dot);
-    const Scalar tmp197 = -tmp186;
-    const Scalar tmp198 = -tmp145;
-    const Scalar tmp199 = pitch_dot*(tmp197*roll_dot + tmp198*yaw_dot
-            + pitch_dot*(tmp13 + tmp166 - tmp165))
-        + roll_dot*(tmp187*yaw_dot + tmp197*pitch_dot - tmp189*roll_dot)
-        + yaw_dot*(tmp187*roll_dot + tmp198*pitch_dot + yaw_dot*(tmp13 + tmp162 - tmp161));
-    const Scalar tmp200 = -tmp192;
-    const Scalar tmp201 = tmp143*yaw_dot
-        + pitch_dot*(tmp141*yaw_dot + tmp200*roll_dot + pitch_dot*(tmp174 + tmp41 - tmp173))
-        + roll_dot*(tmp121*yaw_dot + tmp200*pitch_dot - tmp124*roll_dot);
-    const Scalar tmp202 = pitch_dot*(tmp194*roll_dot - tmp139*pitch_dot)
-        + roll_dot*(tmp194*pitch_dot - tmp138*roll_dot);
-    const Scalar tmp218 = tmp151*tmp168;
-    const Scalar tmp219 = tmp151*tmp176;
-    const Scalar tmp220 = tmp151*tmp182;
-    const Scalar tmp221 = tmp151*tmp183;
-    const Scalar tmp222 = tmp151*tmp191;
-    const Scalar tmp223 = tmp151*tmp193;
-    const Scalar tmp224 = tmp151*tmp199;
-    const Scalar tmp225 = tmp151*tmp201;
-    const Scalar tmp226 = tmp151*tmp180;
-    const Scalar tmp227 = tmp151*tmp185;
-    const Scalar tmp228 = tmp151*tmp196;
-    const Scalar tmp229 = tmp151*tmp202;
-    const Scalar tmp345 = -tmp15;
-    const Scalar tmp346 = tmp12*tmp345;
-    const Scalar tmp347 = tmp14*tmp0;
-    const Scalar tmp348 = tmp18*tmp345;
-    const Scalar tmp349 = tmp17*tmp348;
-    const Scalar tmp350 = tmp347 + tmp349;
-    const Scalar tmp351 = tmp23*tmp350;
-    const Scalar tmp352 = tmp18*tmp0;
-    const Scalar tmp353 = tmp14*tmp345;
-    const Scalar tmp354 = tmp17*tmp353;
-    const Scalar tmp355 = -tmp352 + tmp354;
-    const Scalar tmp356 = tmp30*tmp355;
-    const Scalar tmp357 = tmp351 + tmp356;
-    const Scalar tmp358 = tmp346 + tmp357;
-    const Scalar tmp359 = tmp17*tmp352;
-    const Scalar tmp360 = -tmp353 + tmp359;
-    const Scalar tmp361 = tmp17*tmp347;
-    const Scalar tmp362 = tmp348 + tmp361;
-    const Scalar tmp363 = tmp12*tmp0;
-    const Scalar tmp364 = tmp30*tmp350;
-    const Scalar tmp365 = -tmp355;
-    const Scalar tmp366 = tmp23*tmp365;
-    const Scalar tmp367 = tmp364 + tmp366;
-    const Scalar tmp368 = tmp44*tmp345;
-    const Scalar tmp369 = tmp57*tmp348;
-    const Scalar tmp370 = tmp59*tmp353;
-    const Scalar tmp371 = tmp369 + tmp370;
-    const Scalar tmp372 = -tmp368 + tmp371;
-    const Scalar tmp373 = -tmp363;
-    const Scalar tmp374 = -tmp360;
-    const Scalar tmp375 = tmp23*tmp374;
-    const Scalar tmp376 = -tmp362;
-    const Scalar tmp377 = tmp30*tmp376;
-    const Scalar tmp378 = tmp375 + tmp377;
-    const Scalar tmp379 = tmp373 + tmp378;
-    const Scalar tmp380 = roll_dot*tmp367 + pitch_dot*tmp372 + yaw_dot*tmp379;
-    const Scalar tmp381 = tmp30*tmp360;
-    const Scalar tmp382 = tmp23*tmp376;
-    const Scalar tmp383 = tmp381 + tmp382;
-    const Scalar tmp384 = tmp44*tmp0;
-    const Scalar tmp385 = tmp57*tmp352;
-    const Scalar tmp386 = tmp59*tmp347;
-    const Scalar tmp387 = tmp385 + tmp386;
-    const Scalar tmp388 = -tmp384 + tmp387;
-    const Scalar tmp389 = -tmp351;
-    const Scalar tmp390 = -tmp356;
-    const Scalar tmp391 = tmp346 + tmp390;
-    const Scalar tmp392 = -tmp367;
-    const Scalar tmp393 = -tmp368 - tmp371;
-    const Scalar tmp394 = -tmp363 - tmp378;
-    const Scalar tmp395 = roll_dot*tmp392 + pitch_dot*tmp393 + yaw_dot*tmp394;
-    const Scalar tmp396 = -tmp383;
-    const Scalar tmp397 = tmp384 + tmp387;
-    const Scalar tmp398 = -tmp397;
-    const Scalar tmp399 = -tmp346;
-    const Scalar tmp400 = -tmp357 - tmp399;
-    const Scalar tmp401 = tmp356 + tmp389;
-    const Scalar tmp402 = -tmp364 + tmp366;
-    const Scalar tmp403 = -tmp402;
-    const Scalar tmp404 = tmp368 - tmp369 + tmp370;
-    const Scalar tmp405 = -tmp375 + tmp377;
-    const Scalar tmp406 = tmp405 + tmp363;
-    const Scalar tmp407 = roll_dot*tmp403 + pitch_dot*tmp404 + yaw_dot*tmp406;
-    const Scalar tmp408 = -tmp381 + tmp382;
-    const Scalar tmp409 = -tmp408;
-    const Scalar tmp410 = tmp384 - tmp385 + tmp386;
-    const Scalar tmp411 = -tmp351 - tmp391;
-    const Scalar tmp412 = tmp368 + tmp369 - tmp370;
-    const Scalar tmp413 = tmp363 + tmp375 - tmp377;
-    const Scalar tmp414 = roll_dot*tmp402 + pitch_dot*tmp412 + yaw_dot*tmp413;
-    const Scalar tmp415 = tmp384 + tmp385 - tmp386;
-    const Scalar tmp416 = -tmp401 - tmp346;
-    const Scalar tmp417 = tmp57*tmp353;
-    const Scalar tmp418 = tmp59*tmp348;
-    const Scalar tmp419 = tmp417 - tmp418;
-    const Scalar tmp420 = -tmp419;
-    const Scalar tmp421 = tmp23*tmp362;
-    const Scalar tmp422 = tmp30*tmp374;
-    const Scalar tmp423 = tmp421 + tmp422;
-    const Scalar tmp424 = tmp30*tmp365;
-    const Scalar tmp425 = -tmp23*tmp350;
-    const Scalar tmp426 = tmp424 + tmp425;
-    const Scalar tmp427 = -tmp388;
-    const Scalar tmp428 = tmp23*tmp349;
-    const Scalar tmp429 = tmp30*tmp354;
-    const Scalar tmp430 = tmp428 + tmp429;
-    const Scalar tmp431 = -(pitch_dot*pitch_dot)*tmp346 + Scalar(2)*pitch_dot*roll_dot*tmp420
-        + Scalar(2)*roll_dot*yaw_dot*tmp423 + ((roll_dot*roll_dot) + (yaw_dot*yaw_dot))*tmp426
-        + Scalar(2)*pitch_dot*yaw_dot*tmp427 - (pitch_dot*pitch_dot)*tmp430
-        + (yaw_dot*yaw_dot)*tmp399;
-    const Scalar tmp432 = tmp57*tmp347;
-    const Scalar tmp433 = tmp59*tmp352;
-    const Scalar tmp434 = tmp432 - tmp433;
-    const Scalar tmp435 = -tmp434;
-    const Scalar tmp436 = tmp23*tmp359;
-    const Scalar tmp437 = tmp30*tmp361;
-    const Scalar tmp438 = tmp436 + tmp437;
-    const Scalar tmp439 = Scalar(2)*pitch_dot*roll_dot*tmp435 - (pitch_dot*pitch_dot)*tmp438
-        - (pitch_dot*pitch_dot)*tmp363 + roll_dot*yaw_dot*tmp367 + pitch_dot*yaw_dot*tmp372
-        + (roll_dot*roll_dot)*tmp378 + yaw_dot*tmp380;
-    const Scalar tmp440 = -tmp423;
-    const Scalar tmp441 = -(yaw_dot*yaw_dot)*tmp346 + Scalar(2)*pitch_dot*roll_dot*tmp419
-        + (-(roll_dot*roll_dot) - (yaw_dot*yaw_dot))*tmp426 + (pitch_dot*pitch_dot)*tmp430
-        + Scalar(2)*roll_dot*yaw_dot*tmp440 + Scalar(2)*pitch_dot*yaw_dot*tmp397
-        + (pitch_dot*pitch_dot)*tmp399;
-    const Scalar tmp442 = Scalar(2)*pitch_dot*roll_dot*tmp434 + (pitch_dot*pitch_dot)*tmp438
-        + (pitch_dot*pitch_dot)*tmp373 - (roll_dot*roll_dot)*tmp378 + roll_dot*yaw_dot*tmp392
-        + pitch_dot*yaw_dot*tmp393 + yaw_dot*tmp395;
-    const Scalar tmp443 = tmp417 + tmp418;
-    const Scalar tmp444 = tmp421 - tmp422;
-    const Scalar tmp445 = -tmp444;
-    const Scalar tmp446 = tmp424 - tmp425;
-    const Scalar tmp447 = -tmp410;
-    const Scalar tmp448 = ((pitch_dot*pitch_dot) + (yaw_dot*yaw_dot))*tmp346
-        + (pitch_dot*pitch_dot)*tmp428 - (pitch_dot*pitch_dot)*tmp429
-        + Scalar(2)*pitch_dot*roll_dot*tmp443 + Scalar(2)*roll_dot*yaw_dot*tmp445
-        + ((roll_dot*roll_dot) + (yaw_dot*yaw_dot))*tmp446 + Scalar(2)*pitch_dot*yaw_dot*tmp447;
-    const Scalar tmp449 = tmp432 + tmp433;
-    const Scalar tmp450 = roll_dot*yaw_dot*tmp403 + pitch_dot*yaw_dot*tmp404
-        + (roll_dot*roll_dot)*tmp405 + yaw_dot*tmp407 + (pitch_dot*pitch_dot)*tmp436
-        - (pitch_dot*pitch_dot)*tmp437 + Scalar(2)*pitch_dot*roll_dot*tmp449
-        + (pitch_dot*pitch_dot)*tmp363;
-    const Scalar tmp451 = -tmp443;
-    const Scalar tmp452 = -tmp415;
-    const Scalar tmp453 = ((pitch_dot*pitch_dot) + (yaw_dot*yaw_dot))*tmp346
-        - (yaw_dot*yaw_dot)*tmp424 + (yaw_dot*yaw_dot)*tmp425 - (pitch_dot*pitch_dot)*tmp428
-        + (pitch_dot*pitch_dot)*tmp429 + Scalar(2)*roll_dot*yaw_dot*tmp444
-        - (roll_dot*roll_dot)*tmp446 + Scalar(2)*pitch_dot*roll_dot*tmp451
-        + Scalar(2)*pitch_dot*yaw_dot*tmp452;
-    const Scalar tmp454 = -tmp449;
-    const Scalar tmp455 = roll_dot*yaw_dot*tmp402 - (roll_dot*roll_dot)*tmp405
-        + pitch_dot*yaw_dot*tmp412 + yaw_dot*tmp414 - (pitch_dot*pitch_dot)*tmp436
-        + (pitch_dot*pitch_dot)*tmp437 + Scalar(2)*pitch_dot*roll_dot*tmp454
-        + (pitch_dot*pitch_dot)*tmp363;
-    const Scalar tmp456 = tmp151*tmp406 + tmp151*tmp413 + tmp151*tmp379 + tmp151*tmp394;
-    const Scalar tmp457 = tmp151*tmp400 + tmp151*tmp411 + tmp151*tmp416 + tmp151*tmp358;
-    const Scalar tmp458 = Scalar(2)*tmp110*tmp151*tmp400 + Scalar(2)*tmp125*tmp151*tmp406
-        + Scalar(2)*tmp131*tmp151*tmp411 + Scalar(2)*tmp142*tmp151*tmp413
-        + Scalar(2)*tmp146*tmp151*tmp416 + Scalar(2)*tmp151*tmp33*tmp358
-        + Scalar(2)*tmp151*tmp69*tmp379 + Scalar(2)*tmp151*tmp103*tmp394;
-    const Scalar tmp459 = tmp151*tmp404 + tmp151*tmp412 + tmp151*tmp372 + tmp151*tmp393;
-    const Scalar tmp460 = tmp151*tmp410 + tmp151*tmp415 + tmp151*tmp388 + tmp151*tmp398;
-    const Scalar tmp461 = tmp151*tmp108*tmp400 + tmp125*tmp151*tmp404 + tmp123*tmp151*tmp406
-        + tmp131*tmp151*tmp410 + tmp130*tmp151*tmp411 + tmp142*tmp151*tmp412 + tmp141*tmp151*tmp413
-        + tmp146*tmp151*tmp415 + tmp145*tmp151*tmp416 + tmp151*tmp79*tmp358 + tmp151*tmp69*tmp372
-        + tmp151*tmp62*tmp379 + tmp151*tmp33*tmp388 + tmp151*tmp103*tmp393 + tmp151*tmp102*tmp394
-        + tmp110*tmp151*tmp398;
-    const Scalar tmp462 = Scalar(2)*tmp123*tmp151*tmp404 + Scalar(2)*tmp130*tmp151*tmp410
-        + Scalar(2)*tmp141*tmp151*tmp412 + Scalar(2)*tmp145*tmp151*tmp415
-        + Scalar(2)*tmp151*tmp62*tmp372 + Scalar(2)*tmp151*tmp79*tmp388
-        + Scalar(2)*tmp151*tmp102*tmp393 + Scalar(2)*tmp151*tmp108*tmp398;
-    const Scalar tmp463 = tmp151*tmp402 + tmp151*tmp403 + tmp151*tmp367 + tmp151*tmp392;
-    const Scalar tmp464 = tmp151*tmp408 + tmp151*tmp409 + tmp151*tmp383 + tmp151*tmp396;
-    const Scalar tmp465 = tmp151*tmp106*tmp400 + tmp142*tmp151*tmp402 + tmp125*tmp151*tmp403
-        + tmp122*tmp151*tmp406 + tmp146*tmp151*tmp408 + tmp131*tmp151*tmp409 + tmp129*tmp151*tmp411
-        + tmp121*tmp151*tmp413 + tmp128*tmp151*tmp416 + tmp151*tmp74*tmp358 + tmp151*tmp69*tmp367
-        + tmp151*tmp55*tmp379 + tmp151*tmp33*tmp383 + tmp151*tmp103*tmp392 + tmp151*tmp101*tmp394
-        + tmp110*tmp151*tmp396;
-    const Scalar tmp466 = tmp141*tmp151*tmp402 + tmp123*tmp151*tmp403 + tmp122*tmp151*tmp404
-        + tmp145*tmp151*tmp408 + tmp130*tmp151*tmp409 + tmp129*tmp151*tmp410 + tmp121*tmp151*tmp412
-        + tmp128*tmp151*tmp415 + tmp151*tmp62*tmp367 + tmp151*tmp55*tmp372 + tmp151*tmp79*tmp383
-        + tmp151*tmp74*tmp388 + tmp151*tmp102*tmp392 + tmp151*tmp101*tmp393 + tmp151*tmp108*tmp396
-        + tmp151*tmp106*tmp398;
-    const Scalar tmp467 = Scalar(2)*tmp121*tmp151*tmp402 + Scalar(2)*tmp122*tmp151*tmp403
-        + Scalar(2)*tmp128*tmp151*tmp408 + Scalar(2)*tmp129*tmp151*tmp409
-        + Scalar(2)*tmp151*tmp55*tmp367 + Scalar(2)*tmp151*tmp74*tmp383
-        + Scalar(2)*tmp151*tmp101*tmp392 + Scalar(2)*tmp151*tmp106*tmp396;
-    const Scalar tmp468 = tmp151*tmp431;
-    const Scalar tmp469 = tmp151*tmp439;
-    const Scalar tmp470 = tmp151*tmp441;
-    const Scalar tmp471 = tmp151*tmp442;
-    const Scalar tmp472 = tmp151*tmp448;
-    const Scalar tmp473 = tmp151*tmp450;
-    const Scalar tmp474 = tmp151*tmp453;
-    const Scalar tmp475 = tmp151*tmp455;
-    const Scalar tmp476 = tmp470 + tmp472 + tmp474 + tmp468;
-    const Scalar tmp477 = tmp471 + tmp473 + tmp475 + tmp469;
-    const Scalar tmp478 = -tmp476;
-    const Scalar tmp479 = -tmp477;
-    const Scalar tmp480 = -tmp221*tmp400 - tmp222*tmp406 - tmp223*tmp411 - tmp224*tmp413
-        - tmp225*tmp416 - tmp103*tmp470 - tmp110*tmp471 - tmp125*tmp472 - tmp131*tmp473
-        - tmp142*tmp474 - tmp146*tmp475 - tmp219*tmp358 - tmp218*tmp379 - tmp220*tmp394
-        - tmp69*tmp468 - tmp33*tmp469;
-    const Scalar tmp481 = -tmp222*tmp404 - tmp223*tmp410 - tmp224*tmp412 - tmp225*tmp415
-        - tmp102*tmp470 - tmp108*tmp471 - tmp123*tmp472 - tmp130*tmp473 - tmp141*tmp474
-        - tmp145*tmp475 - tmp218*tmp372 - tmp219*tmp388 - tmp220*tmp393 - tmp221*tmp398
-        - tmp62*tmp468 - tmp79*tmp469;
-    const Scalar tmp482 = -tmp224*tmp402 - tmp222*tmp403 - tmp225*tmp408 - tmp223*tmp409
-        - tmp101*tmp470 - tmp106*tmp471 - tmp122*tmp472 - tmp129*tmp473 - tmp121*tmp474
-        - tmp128*tmp475 - tmp218*tmp367 - tmp219*tmp383 - tmp220*tmp392 - tmp221*tmp396
-        - tmp55*tmp468 - tmp74*tmp469;
-    const Scalar tmp483 = -tmp17;
-    const Scalar tmp484 = tmp11*tmp483;
-    const Scalar tmp485 = tmp0*tmp484;
-    const Scalar tmp486 = tmp19*tmp1;
-    const Scalar tmp487 = tmp23*tmp486;
-    const Scalar tmp488 = tmp26*tmp1;
-    const Scalar tmp489 = tmp30*tmp488;
-    const Scalar tmp490 = tmp487 + tmp489;
-    const Scalar tmp491 = tmp485 + tmp490;
-    const Scalar tmp492 = tmp25*tmp1;
-    const Scalar tmp493 = tmp16*tmp1;
-    const Scalar tmp494 = tmp15*tmp484;
-    const Scalar tmp495 = tmp11*tmp1;
-    const Scalar tmp496 = tmp45*tmp483;
-    const Scalar tmp497 = tmp47*tmp483;
-    const Scalar tmp498 = tmp496 + tmp497;
-    const Scalar tmp499 = -tmp495 + tmp498;
-    const Scalar tmp500 = tmp30*tmp486;
-    const Scalar tmp501 = -tmp488;
-    const Scalar tmp502 = tmp23*tmp501;
-    const Scalar tmp503 = tmp500 + tmp502;
-    const Scalar tmp504 = tmp0*tmp495;
-    const Scalar tmp505 = tmp23*tmp483;
-    const Scalar tmp506 = tmp19*tmp505;
-    const Scalar tmp507 = tmp30*tmp483;
-    const Scalar tmp508 = tmp26*tmp507;
-    const Scalar tmp509 = tmp506 + tmp508;
-    const Scalar tmp510 = -tmp504 + tmp509;
-    const Scalar tmp511 = -tmp494;
-    const Scalar tmp512 = -tmp492;
-    const Scalar tmp513 = tmp23*tmp512;
-    const Scalar tmp514 = -tmp493;
-    const Scalar tmp515 = tmp30*tmp514;
-    const Scalar tmp516 = tmp513 + tmp515;
-    const Scalar tmp517 = tmp511 + tmp516;
-    const Scalar tmp518 = roll_dot*tmp503 + pitch_dot*tmp510 + yaw_dot*tmp517;
-    const Scalar tmp519 = tmp30*tmp492;
-    const Scalar tmp520 = tmp23*tmp514;
-    const Scalar tmp521 = tmp519 + tmp520;
-    const Scalar tmp522 = tmp15*tmp495;
-    const Scalar tmp523 = tmp25*tmp505;
-    const Scalar tmp524 = tmp16*tmp507;
-    const Scalar tmp525 = tmp523 + tmp524;
-    const Scalar tmp526 = -tmp522 + tmp525;
-    const Scalar tmp527 = tmp81*tmp483;
-    const Scalar tmp528 = tmp83*tmp483;
-    const Scalar tmp529 = tmp527 - tmp528;
-    const Scalar tmp530 = -tmp529;
-    const Scalar tmp531 = tmp45*tmp1;
-    const Scalar tmp532 = tmp47*tmp1;
-    const Scalar tmp533 = tmp531 + tmp532;
-    const Scalar tmp534 = -tmp484 - tmp533;
-    const Scalar tmp535 = -tmp487;
-    const Scalar tmp536 = -tmp489;
-    const Scalar tmp537 = tmp485 + tmp536;
-    const Scalar tmp538 = tmp495 + tmp498;
-    const Scalar tmp539 = -tmp503;
-    const Scalar tmp540 = -tmp504 - tmp509;
-    const Scalar tmp541 = -tmp494 - tmp516;
-    const Scalar tmp542 = roll_dot*tmp539 + pitch_dot*tmp540 + yaw_dot*tmp541;
-    const Scalar tmp543 = -tmp521;
-    const Scalar tmp544 = tmp522 + tmp525;
-    const Scalar tmp545 = -tmp544;
-    const Scalar tmp546 = -tmp485;
-    const Scalar tmp547 = -tmp490 - tmp546;
-    const Scalar tmp548 = -tmp484 + tmp533;
-    const Scalar tmp549 = tmp489 + tmp535;
-    const Scalar tmp550 = tmp495 - tmp496 + tmp497;
-    const Scalar tmp551 = -tmp500 + tmp502;
-    const Scalar tmp552 = -tmp551;
-    const Scalar tmp553 = tmp504 - tmp506 + tmp508;
-    const Scalar tmp554 = -tmp513 + tmp515;
-    const Scalar tmp555 = tmp554 + tmp494;
-    const Scalar tmp556 = roll_dot*tmp552 + pitch_dot*tmp553 + yaw_dot*tmp555;
-    const Scalar tmp557 = -tmp519 + tmp520;
-    const Scalar tmp558 = -tmp557;
-    const Scalar tmp559 = tmp522 - tmp523 + tmp524;
-    const Scalar tmp560 = -tmp487 - tmp537;
-    const Scalar tmp561 = tmp527 + tmp528;
-    const Scalar tmp562 = tmp484 + tmp531 - tmp532;
-    const Scalar tmp563 = tmp496 - tmp497;
-    const Scalar tmp564 = tmp563 + tmp495;
-    const Scalar tmp565 = tmp504 + tmp506 - tmp508;
-    const Scalar tmp566 = tmp494 + tmp513 - tmp515;
-    const Scalar tmp567 = roll_dot*tmp551 + pitch_dot*tmp565 + yaw_dot*tmp566;
-    const Scalar tmp568 = tmp522 + tmp523 - tmp524;
-    const Scalar tmp569 = -tmp549 - tmp485;
-    const Scalar tmp570 = -tmp561;
-    const Scalar tmp571 = tmp484 - tmp531 + tmp532;
-    const Scalar tmp572 = tmp26*tmp505;
-    const Scalar tmp573 = tmp19*tmp507;
-    const Scalar tmp574 = tmp572 - tmp573;
-    const Scalar tmp575 = -tmp574;
-    const Scalar tmp576 = tmp23*tmp493;
-    const Scalar tmp577 = tmp30*tmp512;
-    const Scalar tmp578 = tmp576 + tmp577;
-    const Scalar tmp579 = tmp30*tmp501;
-    const Scalar tmp580 = -tmp23*tmp486;
-    const Scalar tmp581 = tmp579 + tmp580;
-    const Scalar tmp582 = -tmp526;
-    const Scalar tmp583 = tmp23*tmp486;
-    const Scalar tmp584 = tmp30*tmp488;
-    const Scalar tmp585 = tmp583 + tmp584;
-    const Scalar tmp586 = -(pitch_dot*pitch_dot)*tmp485 + Scalar(2)*pitch_dot*roll_dot*tmp575
-        + Scalar(2)*roll_dot*yaw_dot*tmp578 + ((roll_dot*roll_dot) + (yaw_dot*yaw_dot))*tmp581
-        + Scalar(2)*pitch_dot*yaw_dot*tmp582 - (pitch_dot*pitch_dot)*tmp585
-        + (yaw_dot*yaw_dot)*tmp546;
-    const Scalar tmp587 = tmp16*tmp505;
-    const Scalar tmp588 = tmp25*tmp507;
-    const Scalar tmp589 = tmp587 - tmp588;
-    const Scalar tmp590 = -tmp589;
-    const Scalar tmp591 = tmp23*tmp492;
-    const Scalar tmp592 = tmp30*tmp493;
-    const Scalar tmp593 = tmp591 + tmp592;
-    const Scalar tmp594 = Scalar(2)*pitch_dot*roll_dot*tmp590 - (pitch_dot*pitch_dot)*tmp593
-        - (pitch_dot*pitch_dot)*tmp494 + roll_dot*yaw_dot*tmp503 + pitch_dot*yaw_dot*tmp510
-        + (roll_dot*roll_dot)*tmp516 + yaw_dot*tmp518;
-    const Scalar tmp595 = tmp81*tmp1;
-    const Scalar tmp596 = tmp83*tmp1;
-    const Scalar tmp597 = tmp595 - tmp596;
-    const Scalar tmp598 = Scalar(2)*pitch_dot*roll_dot*tmp597 - (roll_dot*roll_dot)*tmp498
-        - (pitch_dot*pitch_dot)*tmp499;
-    const Scalar tmp599 = -tmp578;
-    const Scalar tmp600 = -(yaw_dot*yaw_dot)*tmp485 + Scalar(2)*pitch_dot*roll_dot*tmp574
-        + (-(roll_dot*roll_dot) - (yaw_dot*yaw_dot))*tmp581 + (pitch_dot*pitch_dot)*tmp585
-        + Scalar(2)*roll_dot*yaw_dot*tmp599 + Scalar(2)*pitch_dot*yaw_dot*tmp544
-        + (pitch_dot*pitch_dot)*tmp546;
-    const Scalar tmp601 = Scalar(2)*pitch_dot*roll_dot*tmp589 + (pitch_dot*pitch_dot)*tmp593
-        + (pitch_dot*pitch_dot)*tmp511 - (roll_dot*roll_dot)*tmp516 + roll_dot*yaw_dot*tmp539
-        + pitch_dot*yaw_dot*tmp540 + yaw_dot*tmp542;
-    const Scalar tmp602 = -tmp597;
-    const Scalar tmp603 = Scalar(2)*pitch_dot*roll_dot*tmp602 + (roll_dot*roll_dot)*tmp498
-        + (pitch_dot*pitch_dot)*tmp538;
-    const Scalar tmp604 = tmp572 + tmp573;
-    const Scalar tmp605 = tmp576 - tmp577;
-    const Scalar tmp606 = -tmp605;
-    const Scalar tmp607 = tmp579 - tmp580;
-    const Scalar tmp608 = -tmp559;
-    const Scalar tmp609 = ((pitch_dot*pitch_dot) + (yaw_dot*yaw_dot))*tmp485
-        + (pitch_dot*pitch_dot)*tmp583 - (pitch_dot*pitch_dot)*tmp584
-        + Scalar(2)*pitch_dot*roll_dot*tmp604 + Scalar(2)*roll_dot*yaw_dot*tmp606
-        + ((roll_dot*roll_dot) + (yaw_dot*yaw_dot))*tmp607 + Scalar(2)*pitch_dot*yaw_dot*tmp608;
-    const Scalar tmp610 = tmp587 + tmp588;
-    const Scalar tmp611 = roll_dot*yaw_dot*tmp552 + pitch_dot*yaw_dot*tmp553
-        + (roll_dot*roll_dot)*tmp554 + yaw_dot*tmp556 + (pitch_dot*pitch_dot)*tmp591
-        - (pitch_dot*pitch_dot)*tmp592 + Scalar(2)*pitch_dot*roll_dot*tmp610
-        + (pitch_dot*pitch_dot)*tmp494;
-    const Scalar tmp612 = tmp595 + tmp596;
-    const Scalar tmp613 = -tmp612;
-    const Scalar tmp614 = -(pitch_dot*pitch_dot)*tmp550 + (roll_dot*roll_dot)*tmp563
-        + Scalar(2)*pitch_dot*roll_dot*tmp613;
-    const Scalar tmp615 = -tmp604;
-    const Scalar tmp616 = -tmp568;
-    const Scalar tmp617 = ((pitch_dot*pitch_dot) + (yaw_dot*yaw_dot))*tmp485
-        - (yaw_dot*yaw_dot)*tmp579 + (yaw_dot*yaw_dot)*tmp580 - (pitch_dot*pitch_dot)*tmp583
-        + (pitch_dot*pitch_dot)*tmp584 + Scalar(2)*roll_dot*yaw_dot*tmp605
-        - (roll_dot*roll_dot)*tmp607 + Scalar(2)*pitch_dot*roll_dot*tmp615
-        + Scalar(2)*pitch_dot*yaw_dot*tmp616;
-    const Scalar tmp618 = -tmp610;
-    const Scalar tmp619 = roll_dot*yaw_dot*tmp551 - (roll_dot*roll_dot)*tmp554
-        + pitch_dot*yaw_dot*tmp565 + yaw_dot*tmp567 - (pitch_dot*pitch_dot)*tmp591
-        + (pitch_dot*pitch_dot)*tmp592 + Scalar(2)*pitch_dot*roll_dot*tmp618
-        + (pitch_dot*pitch_dot)*tmp494;
-    const Scalar tmp620 = -(roll_dot*roll_dot)*tmp563 - (pitch_dot*pitch_dot)*tmp564
-        + Scalar(2)*pitch_dot*roll_dot*tmp612;
-    const Scalar tmp621 = tmp151*tmp555 + tmp151*tmp566 + tmp151*tmp517 + tmp151*tmp541;
-    const Scalar tmp622 = tmp151*tmp547 + tmp151*tmp560 + tmp151*tmp569 + tmp151*tmp491;
-    const Scalar tmp623 = Scalar(2)*tmp110*tmp151*tmp547 + Scalar(2)*tmp125*tmp151*tmp555
-        + Scalar(2)*tmp131*tmp151*tmp560 + Scalar(2)*tmp142*tmp151*tmp566
-        + Scalar(2)*tmp146*tmp151*tmp569 + Scalar(2)*tmp151*tmp33*tmp491
-        + Scalar(2)*tmp151*tmp69*tmp517 + Scalar(2)*tmp151*tmp103*tmp541;
-    const Scalar tmp624 = tmp151*tmp553 + tmp151*tmp565 + tmp151*tmp510 + tmp151*tmp540;
-    const Scalar tmp625 = tmp151*tmp559 + tmp151*tmp568 + tmp151*tmp526 + tmp151*tmp545;
-    const Scalar tmp626 = tmp151*tmp548 + tmp151*tmp562 + tmp151*tmp571 + tmp151*tmp534;
-    const Scalar tmp627 = tmp151*tmp108*tmp547 + tmp125*tmp151*tmp553 + tmp123*tmp151*tmp555
-        + tmp131*tmp151*tmp559 + tmp130*tmp151*tmp560 + tmp142*tmp151*tmp565 + tmp141*tmp151*tmp566
-        + tmp146*tmp151*tmp568 + tmp145*tmp151*tmp569 + tmp151*tmp79*tmp491 + tmp151*tmp69*tmp510
-        + tmp151*tmp62*tmp517 + tmp151*tmp33*tmp526 + tmp151*tmp103*tmp540 + tmp151*tmp102*tmp541
-        + tmp110*tmp151*tmp545;
-    const Scalar tmp628 = Scalar(2)*tmp112*tmp151*tmp548 + Scalar(2)*tmp123*tmp151*tmp553
-        + Scalar(2)*tmp130*tmp151*tmp559 + Scalar(2)*tmp134*tmp151*tmp562
-        + Scalar(2)*tmp141*tmp151*tmp565 + Scalar(2)*tmp145*tmp151*tmp568
-        + Scalar(2)*tmp149*tmp151*tmp571 + Scalar(2)*tmp151*tmp62*tmp510
-        + Scalar(2)*tmp151*tmp79*tmp526 + Scalar(2)*tmp151*tmp90*tmp534
-        + Scalar(2)*tmp151*tmp102*tmp540 + Scalar(2)*tmp151*tmp108*tmp545;
-    const Scalar tmp629 = tmp151*tmp551 + tmp151*tmp552 + tmp151*tmp503 + tmp151*tmp539;
-    const Scalar tmp630 = tmp151*tmp557 + tmp151*tmp558 + tmp151*tmp521 + tmp151*tmp543;
-    const Scalar tmp631 = tmp151*tmp561 + tmp151*tmp570 + tmp151*tmp529 + tmp151*tmp530;
-    const Scalar tmp632 = tmp151*tmp106*tmp547 + tmp142*tmp151*tmp551 + tmp125*tmp151*tmp552
-        + tmp122*tmp151*tmp555 + tmp146*tmp151*tmp557 + tmp131*tmp151*tmp558 + tmp129*tmp151*tmp560
-        + tmp121*tmp151*tmp566 + tmp128*tmp151*tmp569 + tmp151*tmp74*tmp491 + tmp151*tmp69*tmp503
-        + tmp151*tmp55*tmp517 + tmp151*tmp33*tmp521 + tmp151*tmp103*tmp539 + tmp151*tmp101*tmp541
-        + tmp110*tmp151*tmp543;
-    const Scalar tmp633 = tmp151*tmp85*tmp548 + tmp141*tmp151*tmp551 + tmp123*tmp151*tmp552
-        + tmp122*tmp151*tmp553 + tmp145*tmp151*tmp557 + tmp130*tmp151*tmp558 + tmp129*tmp151*tmp559
-        + tmp134*tmp151*tmp561 + tmp133*tmp151*tmp562 + tmp121*tmp151*tmp565 + tmp128*tmp151*tmp568
-        + tmp149*tmp151*tmp570 + tmp148*tmp151*tmp571 + tmp151*tmp62*tmp503 + tmp151*tmp55*tmp510
-        + tmp151*tmp79*tmp521 + tmp151*tmp74*tmp526 + tmp112*tmp151*tmp529 + tmp151*tmp90*tmp530
-        + tmp151*tmp86*tmp534 + tmp151*tmp102*tmp539 + tmp151*tmp101*tmp540 + tmp151*tmp108*tmp543
-        + tmp151*tmp106*tmp545;
-    const Scalar tmp634 = Scalar(2)*tmp121*tmp151*tmp551 + Scalar(2)*tmp122*tmp151*tmp552
-        + Scalar(2)*tmp128*tmp151*tmp557 + Scalar(2)*tmp129*tmp151*tmp558
-        + Scalar(2)*tmp133*tmp151*tmp561 + Scalar(2)*tmp148*tmp151*tmp570
-        + Scalar(2)*tmp151*tmp55*tmp503 + Scalar(2)*tmp151*tmp74*tmp521
-        + Scalar(2)*tmp151*tmp85*tmp529 + Scalar(2)*tmp151*tmp86*tmp530
-        + Scalar(2)*tmp151*tmp101*tmp539 + Scalar(2)*tmp151*tmp106*tmp543;
-    const Scalar tmp635 = tmp151*tmp586;
-    const Scalar tmp636 = tmp151*tmp594;
-    const Scalar tmp637 = tmp151*tmp600;
-    const Scalar tmp638 = tmp151*tmp601;
-    const Scalar tmp639 = tmp151*tmp609;
-    const Scalar tmp640 = tmp151*tmp611;
-    const Scalar tmp641 = tmp151*tmp617;
-    const Scalar tmp642 = tmp151*tmp619;
-    const Scalar tmp643 = tmp151*tmp598;
-    const Scalar tmp644 = tmp151*tmp603;
-    const Scalar tmp645 = tmp151*tmp614;
-    const Scalar tmp646 = tmp151*tmp620;
-    const Scalar tmp647 = tmp637 + tmp639 + tmp641 + tmp635;
-    const Scalar tmp648 = tmp638 + tmp640 + tmp642 + tmp636;
-    const Scalar tmp649 = tmp644 + tmp645 + tmp646 + tmp643;
-    const Scalar tmp650 = tmp153*tmp548 + tmp153*tmp562 + tmp153*tmp571 + tmp153*tmp534;
-    const Scalar tmp651 = tmp153*tmp561 + tmp153*tmp570 + tmp153*tmp529 + tmp153*tmp530;
-    const Scalar tmp652 = -tmp647;
-    const Scalar tmp653 = -tmp648;
-    const Scalar tmp654 = -tmp649;
-    const Scalar tmp655 = -tmp221*tmp547 - tmp222*tmp555 - tmp223*tmp560 - tmp224*tmp566
-        - tmp225*tmp569 - tmp103*tmp637 - tmp110*tmp638 - tmp125*tmp639 - tmp131*tmp640
-        - tmp142*tmp641 - tmp146*tmp642 - tmp219*tmp491 - tmp218*tmp517 - tmp220*tmp541
-        - tmp69*tmp635 - tmp33*tmp636;
-    const Scalar tmp656 = -tmp227*tmp548 - tmp222*tmp553 - tmp223*tmp559 - tmp228*tmp562
-        - tmp224*tmp565 - tmp225*tmp568 - tmp229*tmp571 - tmp102*tmp637 - tmp108*tmp638
-        - tmp123*tmp639 - tmp130*tmp640 - tmp141*tmp641 - tmp145*tmp642 - tmp112*tmp644
-        - tmp134*tmp645 - tmp149*tmp646 - tmp218*tmp510 - tmp219*tmp526 - tmp226*tmp534
-        - tmp220*tmp540 - tmp221*tmp545 - tmp62*tmp635 - tmp79*tmp636 - tmp90*tmp643;
-    const Scalar tmp657 = -tmp224*tmp551 - tmp222*tmp552 - tmp225*tmp557 - tmp223*tmp558
-        - tmp228*tmp561 - tmp229*tmp570 - tmp101*tmp637 - tmp106*tmp638 - tmp122*tmp639
-        - tmp129*tmp640 - tmp121*tmp641 - tmp128*tmp642 - tmp85*tmp644 - tmp133*tmp645
-        - tmp148*tmp646 - tmp218*tmp503 - tmp219*tmp521 - tmp227*tmp529 - tmp226*tmp530
-        - tmp220*tmp539 - tmp221*tmp543 - tmp55*tmp635 - tmp74*tmp636 - tmp86*tmp643;
-    const Scalar tmp658 = tmp15*tmp18;
-    const Scalar tmp659 = -tmp14;
-    const Scalar tmp660 = tmp0*tmp659;
-    const Scalar tmp661 = tmp17*tmp660;
-    const Scalar tmp662 = tmp658 + tmp661;
-    const Scalar tmp663 = tmp23*tmp662;
-    const Scalar tmp664 = tmp15*tmp659;
-    const Scalar tmp665 = tmp0*tmp18;
-    const Scalar tmp666 = tmp17*tmp665;
-    const Scalar tmp667 = -tmp664 + tmp666;
-    const Scalar tmp668 = tmp30*tmp667;
-    const Scalar tmp669 = tmp663 + tmp668;
-    const Scalar tmp670 = tmp17*tmp664;
-    const Scalar tmp671 = -tmp665 + tmp670;
-    const Scalar tmp672 = tmp17*tmp658;
-    const Scalar tmp673 = tmp660 + tmp672;
-    const Scalar tmp674 = tmp23*tmp659;
-    const Scalar tmp675 = tmp1*tmp674;
-    const Scalar tmp676 = tmp30*tmp18;
-    const Scalar tmp677 = tmp1*tmp676;
-    const Scalar tmp678 = tmp675 + tmp677;
-    const Scalar tmp679 = tmp30*tmp662;
-    const Scalar tmp680 = -tmp667;
-    const Scalar tmp681 = tmp23*tmp680;
-    const Scalar tmp682 = tmp679 + tmp681;
-    const Scalar tmp683 = tmp57*tmp660;
-    const Scalar tmp684 = tmp59*tmp665;
-    const Scalar tmp685 = tmp683 + tmp684;
-    const Scalar tmp686 = -tmp671;
-    const Scalar tmp687 = tmp23*tmp686;
-    const Scalar tmp688 = -tmp673;
-    const Scalar tmp689 = tmp30*tmp688;
-    const Scalar tmp690 = tmp687 + tmp689;
-    const Scalar tmp691 = roll_dot*tmp682 + pitch_dot*tmp685 + yaw_dot*tmp690;
-    const Scalar tmp692 = tmp30*tmp671;
-    const Scalar tmp693 = tmp23*tmp688;
-    const Scalar tmp694 = tmp692 + tmp693;
-    const Scalar tmp695 = tmp57*tmp664;
-    const Scalar tmp696 = tmp59*tmp658;
-    const Scalar tmp697 = tmp695 + tmp696;
-    const Scalar tmp698 = tmp23*tmp18;
-    const Scalar tmp699 = tmp1*tmp698;
-    const Scalar tmp700 = tmp30*tmp659;
-    const Scalar tmp701 = tmp1*tmp700;
-    const Scalar tmp702 = tmp699 - tmp701;
-    const Scalar tmp703 = -tmp702;
-    const Scalar tmp704 = tmp17*tmp674;
-    const Scalar tmp705 = tmp17*tmp676;
-    const Scalar tmp706 = tmp704 + tmp705;
-    const Scalar tmp707 = -tmp706;
-    const Scalar tmp708 = -tmp663;
-    const Scalar tmp709 = -tmp668;
-    const Scalar tmp710 = -tmp682;
-    const Scalar tmp711 = -tmp685;
-    const Scalar tmp712 = -tmp690;
-    const Scalar tmp713 = roll_dot*tmp710 + pitch_dot*tmp711 + yaw_dot*tmp712;
-    const Scalar tmp714 = -tmp694;
-    const Scalar tmp715 = -tmp697;
-    const Scalar tmp716 = -tmp669;
-    const Scalar tmp717 = tmp668 + tmp708;
-    const Scalar tmp718 = -tmp675 + tmp677;
-    const Scalar tmp719 = -tmp679 + tmp681;
-    const Scalar tmp720 = -tmp719;
-    const Scalar tmp721 = -tmp683 + tmp684;
-    const Scalar tmp722 = -tmp687 + tmp689;
-    const Scalar tmp723 = roll_dot*tmp720 + pitch_dot*tmp721 + yaw_dot*tmp722;
-    const Scalar tmp724 = -tmp692 + tmp693;
-    const Scalar tmp725 = -tmp724;
-    const Scalar tmp726 = -tmp695 + tmp696;
-    const Scalar tmp727 = -tmp663 - tmp709;
-    const Scalar tmp728 = tmp699 + tmp701;
-    const Scalar tmp729 = tmp704 - tmp705;
-    const Scalar tmp730 = tmp675 - tmp677;
-    const Scalar tmp731 = tmp683 - tmp684;
-    const Scalar tmp732 = tmp687 - tmp689;
-    const Scalar tmp733 = roll_dot*tmp719 + pitch_dot*tmp731 + yaw_dot*tmp732;
-    const Scalar tmp734 = tmp695 - tmp696;
-    const Scalar tmp735 = -tmp717;
-    const Scalar tmp736 = -tmp728;
-    const Scalar tmp737 = -tmp704 + tmp705;
-    const Scalar tmp738 = tmp57*tmp665;
-    const Scalar tmp739 = tmp59*tmp660;
-    const Scalar tmp740 = tmp738 - tmp739;
-    const Scalar tmp741 = -tmp740;
-    const Scalar tmp742 = tmp23*tmp673;
-    const Scalar tmp743 = tmp30*tmp686;
-    const Scalar tmp744 = tmp742 + tmp743;
-    const Scalar tmp745 = tmp30*tmp680;
-    const Scalar tmp746 = -tmp23*tmp662;
-    const Scalar tmp747 = tmp745 + tmp746;
-    const Scalar tmp748 = -tmp697;
-    const Scalar tmp749 = tmp23*tmp661;
-    const Scalar tmp750 = tmp30*tmp666;
-    const Scalar tmp751 = tmp749 + tmp750;
-    const Scalar tmp752 = Scalar(2)*pitch_dot*roll_dot*tmp741 + Scalar(2)*roll_dot*yaw_dot*tmp744
-        + ((roll_dot*roll_dot) + (yaw_dot*yaw_dot))*tmp747 + Scalar(2)*pitch_dot*yaw_dot*tmp748
-        - (pitch_dot*pitch_dot)*tmp751;
-    const Scalar tmp753 = tmp57*tmp658;
-    const Scalar tmp754 = tmp59*tmp664;
-    const Scalar tmp755 = tmp753 - tmp754;
-    const Scalar tmp756 = -tmp755;
-    const Scalar tmp757 = tmp23*tmp670;
-    const Scalar tmp758 = tmp30*tmp672;
-    const Scalar tmp759 = tmp757 + tmp758;
-    const Scalar tmp760 = Scalar(2)*pitch_dot*roll_dot*tmp756 - (pitch_dot*pitch_dot)*tmp759
-        + roll_dot*yaw_dot*tmp682 + pitch_dot*yaw_dot*tmp685 + (roll_dot*roll_dot)*tmp690
-        + yaw_dot*tmp691;
-    const Scalar tmp761 = tmp17*tmp698;
-    const Scalar tmp762 = tmp17*tmp700;
-    const Scalar tmp763 = tmp761 - tmp762;
-    const Scalar tmp764 = Scalar(2)*pitch_dot*roll_dot*tmp763
-        + (-(pitch_dot*pitch_dot) - (roll_dot*roll_dot))*tmp678;
-    const Scalar tmp765 = -tmp744;
-    const Scalar tmp766 = Scalar(2)*pitch_dot*roll_dot*tmp740
-        + (-(roll_dot*roll_dot) - (yaw_dot*yaw_dot))*tmp747 + (pitch_dot*pitch_dot)*tmp751
-        + Scalar(2)*roll_dot*yaw_dot*tmp765 + Scalar(2)*pitch_dot*yaw_dot*tmp697;
-    const Scalar tmp767 = Scalar(2)*pitch_dot*roll_dot*tmp755 + (pitch_dot*pitch_dot)*tmp759
-        - (roll_dot*roll_dot)*tmp690 + roll_dot*yaw_dot*tmp710 + pitch_dot*yaw_dot*tmp711
-        + yaw_dot*tmp713;
-    const Scalar tmp768 = -tmp763;
-    const Scalar tmp769 = Scalar(2)*pitch_dot*roll_dot*tmp768
-        + ((pitch_dot*pitch_dot) + (roll_dot*roll_dot))*tmp678;
-    const Scalar tmp770 = tmp738 + tmp739;
-    const Scalar tmp771 = tmp742 - tmp743;
-    const Scalar tmp772 = -tmp771;
-    const Scalar tmp773 = tmp745 - tmp746;
-    const Scalar tmp774 = -tmp726;
-    const Scalar tmp775 = (pitch_dot*pitch_dot)*tmp749 - (pitch_dot*pitch_dot)*tmp750
-        + Scalar(2)*pitch_dot*roll_dot*tmp770 + Scalar(2)*roll_dot*yaw_dot*tmp772
-        + ((roll_dot*roll_dot) + (yaw_dot*yaw_dot))*tmp773 + Scalar(2)*pitch_dot*yaw_dot*tmp774;
-    const Scalar tmp776 = tmp753 + tmp754;
-    const Scalar tmp777 = roll_dot*yaw_dot*tmp720 + pitch_dot*yaw_dot*tmp721
-        + (roll_dot*roll_dot)*tmp722 + yaw_dot*tmp723 + (pitch_dot*pitch_dot)*tmp757
-        - (pitch_dot*pitch_dot)*tmp758 + Scalar(2)*pitch_dot*roll_dot*tmp776;
-    const Scalar tmp778 = tmp761 + tmp762;
-    const Scalar tmp779 = -tmp778;
-    const Scalar tmp780 = -(pitch_dot*pitch_dot)*tmp718 + (roll_dot*roll_dot)*tmp730
-        + Scalar(2)*pitch_dot*roll_dot*tmp779;
-    const Scalar tmp781 = -tmp770;
-    const Scalar tmp782 = -tmp734;
-    const Scalar tmp783 = -(yaw_dot*yaw_dot)*tmp745 + (yaw_dot*yaw_dot)*tmp746
-        - (pitch_dot*pitch_dot)*tmp749 + (pitch_dot*pitch_dot)*tmp750
-        + Scalar(2)*roll_dot*yaw_dot*tmp771 - (roll_dot*roll_dot)*tmp773
-        + Scalar(2)*pitch_dot*roll_dot*tmp781 + Scalar(2)*pitch_dot*yaw_dot*tmp782;
-    const Scalar tmp784 = -tmp776;
-    const Scalar tmp785 = roll_dot*yaw_dot*tmp719 - (roll_dot*roll_dot)*tmp722
-        + pitch_dot*yaw_dot*tmp731 + yaw_dot*tmp733 - (pitch_dot*pitch_dot)*tmp757
-        + (pitch_dot*pitch_dot)*tmp758 + Scalar(2)*pitch_dot*roll_dot*tmp784;
-    const Scalar tmp786 = (-(pitch_dot*pitch_dot) - (roll_dot*roll_dot))*tmp730
-        + Scalar(2)*pitch_dot*roll_dot*tmp778;
-    const Scalar tmp787 = tmp151*tmp722 + tmp151*tmp732 + tmp151*tmp690 + tmp151*tmp712;
-    const Scalar tmp788 = tmp151*tmp716 + tmp151*tmp727 + tmp151*tmp735 + tmp151*tmp669;
-    const Scalar tmp789 = Scalar(2)*tmp110*tmp151*tmp716 + Scalar(2)*tmp125*tmp151*tmp722
-        + Scalar(2)*tmp131*tmp151*tmp727 + Scalar(2)*tmp142*tmp151*tmp732
-        + Scalar(2)*tmp146*tmp151*tmp735 + Scalar(2)*tmp151*tmp33*tmp669
-        + Scalar(2)*tmp151*tmp69*tmp690 + Scalar(2)*tmp151*tmp103*tmp712;
-    const Scalar tmp790 = tmp151*tmp721 + tmp151*tmp731 + tmp151*tmp685 + tmp151*tmp711;
-    const Scalar tmp791 = tmp151*tmp726 + tmp151*tmp734 + tmp151*tmp697 + tmp151*tmp715;
-    const Scalar tmp792 = tmp151*tmp706 + tmp151*tmp729 + tmp151*tmp737 + tmp151*tmp707;
-    const Scalar tmp793 = tmp151*tmp108*tmp716 + tmp125*tmp151*tmp721 + tmp123*tmp151*tmp722
-        + tmp131*tmp151*tmp726 + tmp130*tmp151*tmp727 + tmp142*tmp151*tmp731 + tmp141*tmp151*tmp732
-        + tmp146*tmp151*tmp734 + tmp145*tmp151*tmp735 + tmp151*tmp79*tmp669 + tmp151*tmp69*tmp685
-        + tmp151*tmp62*tmp690 + tmp151*tmp33*tmp697 + tmp151*tmp103*tmp711 + tmp151*tmp102*tmp712
-        + tmp110*tmp151*tmp715;
-    const Scalar tmp794 = Scalar(2)*tmp112*tmp151*tmp706 + Scalar(2)*tmp123*tmp151*tmp721
-        + Scalar(2)*tmp130*tmp151*tmp726 + Scalar(2)*tmp134*tmp151*tmp729
-        + Scalar(2)*tmp141*tmp151*tmp731 + Scalar(2)*tmp145*tmp151*tmp734
-        + Scalar(2)*tmp149*tmp151*tmp737 + Scalar(2)*tmp151*tmp62*tmp685
-        + Scalar(2)*tmp151*tmp79*tmp697 + Scalar(2)*tmp151*tmp90*tmp707
-        + Scalar(2)*tmp151*tmp102*tmp711 + Scalar(2)*tmp151*tmp108*tmp715;
-    const Scalar tmp795 = tmp151*tmp719 + tmp151*tmp720 + tmp151*tmp682 + tmp151*tmp710;
-    const Scalar tmp796 = tmp151*tmp724 + tmp151*tmp725 + tmp151*tmp694 + tmp151*tmp714;
-    const Scalar tmp797 = tmp151*tmp728 + tmp151*tmp736 + tmp151*tmp702 + tmp151*tmp703;
-    const Scalar tmp798 = tmp151*tmp106*tmp716 + tmp142*tmp151*tmp719 + tmp125*tmp151*tmp720
-        + tmp122*tmp151*tmp722 + tmp146*tmp151*tmp724 + tmp131*tmp151*tmp725 + tmp129*tmp151*tmp727
-        + tmp121*tmp151*tmp732 + tmp128*tmp151*tmp735 + tmp151*tmp74*tmp669 + tmp151*tmp69*tmp682
-        + tmp151*tmp55*tmp690 + tmp151*tmp33*tmp694 + tmp151*tmp103*tmp710 + tmp151*tmp101*tmp712
-        + tmp110*tmp151*tmp714;
-    const Scalar tmp799 = tmp151*tmp85*tmp706 + tmp141*tmp151*tmp719 + tmp123*tmp151*tmp720
-        + tmp122*tmp151*tmp721 + tmp145*tmp151*tmp724 + tmp130*tmp151*tmp725 + tmp129*tmp151*tmp726
-        + tmp134*tmp151*tmp728 + tmp133*tmp151*tmp729 + tmp121*tmp151*tmp731 + tmp128*tmp151*tmp734
-        + tmp149*tmp151*tmp736 + tmp148*tmp151*tmp737 + tmp151*tmp62*tmp682 + tmp151*tmp55*tmp685
-        + tmp151*tmp79*tmp694 + tmp151*tmp74*tmp697 + tmp112*tmp151*tmp702 + tmp151*tmp90*tmp703
-        + tmp151*tmp86*tmp707 + tmp151*tmp102*tmp710 + tmp151*tmp101*tmp711 + tmp151*tmp108*tmp714
-        + tmp151*tmp106*tmp715;
-    const Scalar tmp800 = Scalar(2)*tmp121*tmp151*tmp719 + Scalar(2)*tmp122*tmp151*tmp720
-        + Scalar(2)*tmp128*tmp151*tmp724 + Scalar(2)*tmp129*tmp151*tmp725
-        + Scalar(2)*tmp133*tmp151*tmp728 + Scalar(2)*tmp148*tmp151*tmp736
-        + Scalar(2)*tmp151*tmp55*tmp682 + Scalar(2)*tmp151*tmp74*tmp694
-        + Scalar(2)*tmp151*tmp85*tmp702 + Scalar(2)*tmp151*tmp86*tmp703
-        + Scalar(2)*tmp151*tmp101*tmp710 + Scalar(2)*tmp151*tmp106*tmp714;
-    const Scalar tmp801 = tmp151*tmp752;
-    const Scalar tmp802 = tmp151*tmp760;
-    const Scalar tmp803 = tmp151*tmp766;
-    const Scalar tmp804 = tmp151*tmp767;
-    const Scalar tmp805 = tmp151*tmp775;
-    const Scalar tmp806 = tmp151*tmp777;
-    const Scalar tmp807 = tmp151*tmp783;
-    const Scalar tmp808 = tmp151*tmp785;
-    const Scalar tmp809 = tmp151*tmp764;
-    const Scalar tmp810 = tmp151*tmp769;
-    const Scalar tmp811 = tmp151*tmp780;
-    const Scalar tmp812 = tmp151*tmp786;
-    const Scalar tmp813 = tmp803 + tmp805 + tmp807 + tmp801;
-    const Scalar tmp814 = tmp804 + tmp806 + tmp808 + tmp802;
-    const Scalar tmp815 = tmp810 + tmp811 + tmp812 + tmp809;
-    const Scalar tmp816 = tmp153*tmp706 + tmp153*tmp729 + tmp153*tmp737 + tmp153*tmp707;
-    const Scalar tmp817 = tmp153*tmp728 + tmp153*tmp736 + tmp153*tmp702 + tmp153*tmp703;
-    const Scalar tmp818 = -tmp813;
-    const Scalar tmp819 = -tmp814;
-    const Scalar tmp820 = -tmp815;
-    const Scalar tmp821 = -tmp221*tmp716 - tmp222*tmp722 - tmp223*tmp727 - tmp224*tmp732
-        - tmp225*tmp735 - tmp103*tmp803 - tmp110*tmp804 - tmp125*tmp805 - tmp131*tmp806
-        - tmp142*tmp807 - tmp146*tmp808 - tmp219*tmp669 - tmp218*tmp690 - tmp220*tmp712
-        - tmp69*tmp801 - tmp33*tmp802;
-    const Scalar tmp822 = -tmp227*tmp706 - tmp222*tmp721 - tmp223*tmp726 - tmp228*tmp729
-        - tmp224*tmp731 - tmp225*tmp734 - tmp229*tmp737 - tmp102*tmp803 - tmp108*tmp804
-        - tmp123*tmp805 - tmp130*tmp806 - tmp141*tmp807 - tmp145*tmp808 - tmp112*tmp810
-        - tmp134*tmp811 - tmp149*tmp812 - tmp218*tmp685 - tmp219*tmp697 - tmp226*tmp707
-        - tmp220*tmp711 - tmp221*tmp715 - tmp62*tmp801 - tmp79*tmp802 - tmp90*tmp809;
-    const Scalar tmp823 = -tmp224*tmp719 - tmp222*tmp720 - tmp225*tmp724 - tmp223*tmp725
-        - tmp228*tmp728 - tmp229*tmp736 - tmp101*tmp803 - tmp106*tmp804 - tmp122*tmp805
-        - tmp129*tmp806 - tmp121*tmp807 - tmp128*tmp808 - tmp85*tmp810 - tmp133*tmp811
-        - tmp148*tmp812 - tmp218*tmp682 - tmp219*tmp694 - tmp227*tmp702 - tmp226*tmp703
-        - tmp220*tmp710 - tmp221*tmp714 - tmp55*tmp801 - tmp74*tmp802 - tmp86*tmp809;
-    const Scalar tmp824 = Scalar(2)*tmp160*roll_dot + Scalar(2)*tmp164*pitch_dot
-        + Scalar(2)*yaw_dot*(tmp163 + tmp109);
-    const Scalar tmp825 = tmp70 + tmp55*roll_dot + tmp62*pitch_dot + yaw_dot*tmp69;
-    const Scalar tmp826 = Scalar(2)*tmp181*roll_dot + Scalar(2)*tmp107*pitch_dot
-        + Scalar(2)*yaw_dot*(-tmp13 - tmp163);
-    const Scalar tmp827 = tmp104 + tmp101*roll_dot + tmp102*pitch_dot + yaw_dot*tmp103;
-    const Scalar tmp828 = Scalar(2)*tmp188*roll_dot + Scalar(2)*tmp190*pitch_dot
-        + Scalar(2)*yaw_dot*(tmp13 + tmp189);
-    const Scalar tmp829 = tmp126 + tmp122*roll_dot + tmp123*pitch_dot + yaw_dot*tmp125;
-    const Scalar tmp830 = Scalar(2)*tmp187*roll_dot + Scalar(2)*tmp198*pitch_dot
-        + Scalar(2)*yaw_dot*(tmp13 + tmp162 - tmp161);
-    const Scalar tmp831 = tmp143 + tmp121*roll_dot + tmp141*pitch_dot + yaw_dot*tmp142;
-    const Scalar tmp832 = tmp151*tmp824;
-    const Scalar tmp833 = tmp151*tmp825;
-    const Scalar tmp834 = tmp151*tmp826;
-    const Scalar tmp835 = tmp151*tmp827;
-    const Scalar tmp836 = tmp151*tmp828;
-    const Scalar tmp837 = tmp151*tmp829;
-    const Scalar tmp838 = tmp151*tmp830;
-    const Scalar tmp839 = tmp151*tmp831;
-    const Scalar tmp840 = tmp834 + tmp836 + tmp838 + tmp832;
-    const Scalar tmp841 = tmp835 + tmp837 + tmp839 + tmp833;
-    const Scalar tmp842 = -tmp840;
-    const Scalar tmp843 = -tmp841;
-    const Scalar tmp844 = -tmp103*tmp834 - tmp110*tmp835 - tmp125*tmp836 - tmp131*tmp837
-        - tmp142*tmp838 - tmp146*tmp839 - tmp69*tmp832 - tmp33*tmp833;
-    const Scalar tmp845 = -tmp102*tmp834 - tmp108*tmp835 - tmp123*tmp836 - tmp130*tmp837
-        - tmp141*tmp838 - tmp145*tmp839 - tmp62*tmp832 - tmp79*tmp833;
-    const Scalar tmp846 = -tmp101*tmp834 - tmp106*tmp835 - tmp122*tmp836 - tmp129*tmp837
-        - tmp121*tmp838 - tmp128*tmp839 - tmp55*tmp832 - tmp74*tmp833;
-    const Scalar tmp847 = Scalar(2)*tmp157*roll_dot + Scalar(2)*tmp164*yaw_dot
-        + Scalar(2)*pitch_dot*(-tmp13 - tmp167);
-    const Scalar tmp848 = tmp62*yaw_dot + Scalar(2)*tmp172*roll_dot
-        + Scalar(2)*pitch_dot*(-tmp175 - tmp41) + yaw_dot*tmp62;
-    const Scalar tmp849 = -Scalar(2)*tmp50*pitch_dot + Scalar(2)*tmp179*roll_dot;
-    const Scalar tmp850 = Scalar(2)*tmp156*roll_dot + Scalar(2)*tmp107*yaw_dot
-        + Scalar(2)*pitch_dot*(tmp167 + tmp109);
-    const Scalar tmp851 = tmp102*yaw_dot + Scalar(2)*tmp171*roll_dot
-        + Scalar(2)*pitch_dot*(tmp175 + tmp63) + yaw_dot*tmp102;
-    const Scalar tmp852 = Scalar(2)*tmp184*roll_dot + Scalar(2)*tmp99*pitch_dot;
-    const Scalar tmp853 = Scalar(2)*tmp186*roll_dot + Scalar(2)*tmp190*yaw_dot
-        + Scalar(2)*pitch_dot*(tmp13 + tmp165 - tmp166);
-    const Scalar tmp854 = tmp123*yaw_dot + Scalar(2)*tmp192*roll_dot
-        + Scalar(2)*pitch_dot*(tmp173 + tmp41 - tmp174) + yaw_dot*tmp123;
-    const Scalar tmp855 = -Scalar(2)*tmp119*pitch_dot + Scalar(2)*tmp195*roll_dot;
-    const Scalar tmp856 = Scalar(2)*tmp197*roll_dot + Scalar(2)*tmp198*yaw_dot
-        + Scalar(2)*pitch_dot*(tmp13 + tmp166 - tmp165);
-    const Scalar tmp857 = tmp141*yaw_dot + Scalar(2)*tmp200*roll_dot
-        + Scalar(2)*pitch_dot*(tmp174 + tmp41 - tmp173) + yaw_dot*tmp141;
-    const Scalar tmp858 = -Scalar(2)*tmp139*pitch_dot + Scalar(2)*tmp194*roll_dot;
-    const Scalar tmp859 = tmp151*tmp847;
-    const Scalar tmp860 = tmp151*tmp848;
-    const Scalar tmp861 = tmp151*tmp850;
-    const Scalar tmp862 = tmp151*tmp851;
-    const Scalar tmp863 = tmp151*tmp853;
-    const Scalar tmp864 = tmp151*tmp854;
-    const Scalar tmp865 = tmp151*tmp856;
-    const Scalar tmp866 = tmp151*tmp857;
-    const Scalar tmp867 = tmp151*tmp849;
-    const Scalar tmp868 = tmp151*tmp852;
-    const Scalar tmp869 = tmp151*tmp855;
-    const Scalar tmp870 = tmp151*tmp858;
-    const Scalar tmp871 = tmp861 + tmp863 + tmp865 + tmp859;
-    const Scalar tmp872 = tmp862 + tmp864 + tmp866 + tmp860;
-    const Scalar tmp873 = tmp868 + tmp869 + tmp870 + tmp867;
-    const Scalar tmp874 = -tmp871;
-    const Scalar tmp875 = -tmp872;
-    const Scalar tmp876 = -tmp873;
-    const Scalar tmp877 = -tmp103*tmp861 - tmp110*tmp862 - tmp125*tmp863 - tmp131*tmp864
-        - tmp142*tmp865 - tmp146*tmp866 - tmp69*tmp859 - tmp33*tmp860;
-    const Scalar tmp878 = -tmp102*tmp861 - tmp108*tmp862 - tmp123*tmp863 - tmp130*tmp864
-        - tmp141*tmp865 - tmp145*tmp866 - tmp112*tmp868 - tmp134*tmp869 - tmp149*tmp870
-        - tmp62*tmp859 - tmp79*tmp860 - tmp90*tmp867;
-    const Scalar tmp879 = -tmp101*tmp861 - tmp106*tmp862 - tmp122*tmp863 - tmp129*tmp864
-        - tmp121*tmp865 - tmp128*tmp866 - tmp85*tmp868 - tmp133*tmp869 - tmp148*tmp870
-        - tmp55*tmp859 - tmp74*tmp860 - tmp86*tmp867;
-    const Scalar tmp880 = Scalar(2)*tmp157*pitch_dot + Scalar(2)*tmp160*yaw_dot
-        + Scalar(2)*tmp163*roll_dot;
-    const Scalar tmp881 = tmp55*yaw_dot + Scalar(2)*tmp172*pitch_dot + Scalar(2)*tmp68*roll_dot
-        + yaw_dot*tmp55;
-    const Scalar tmp882 = -Scalar(2)*tmp49*roll_dot + Scalar(2)*tmp179*pitch_dot;
-    const Scalar tmp883 = -Scalar(2)*tmp163*roll_dot + Scalar(2)*tmp156*pitch_dot
-        + Scalar(2)*tmp181*yaw_dot;
-    const Scalar tmp884 = tmp101*yaw_dot - Scalar(2)*tmp68*roll_dot + Scalar(2)*tmp171*pitch_dot
-        + yaw_dot*tmp101;
-    const Scalar tmp885 = Scalar(2)*tmp184*pitch_dot + Scalar(2)*tmp49*roll_dot;
-    const Scalar tmp886 = Scalar(2)*tmp186*pitch_dot + Scalar(2)*tmp188*yaw_dot
-        + Scalar(2)*tmp189*roll_dot;
-    const Scalar tmp887 = tmp122*yaw_dot + Scalar(2)*tmp124*roll_dot + Scalar(2)*tmp192*pitch_dot
-        + yaw_dot*tmp122;
-    const Scalar tmp888 = Scalar(2)*tmp138*roll_dot + Scalar(2)*tmp195*pitch_dot;
-    const Scalar tmp889 = -Scalar(2)*tmp189*roll_dot + Scalar(2)*tmp187*yaw_dot
-        + Scalar(2)*tmp197*pitch_dot;
-    const Scalar tmp890 = tmp121*yaw_dot - Scalar(2)*tmp124*roll_dot + Scalar(2)*tmp200*pitch_dot
-        + yaw_dot*tmp121;
-    const Scalar tmp891 = -Scalar(2)*tmp138*roll_dot + Scalar(2)*tmp194*pitch_dot;
-    const Scalar tmp892 = tmp151*tmp880;
-    const Scalar tmp893 = tmp151*tmp881;
-    const Scalar tmp894 = tmp151*tmp883;
-    const Scalar tmp895 = tmp151*tmp884;
-    const Scalar tmp896 = tmp151*tmp886;
-    const Scalar tmp897 = tmp151*tmp887;
-    const Scalar tmp898 = tmp151*tmp889;
-    const Scalar tmp899 = tmp151*tmp890;
-    const Scalar tmp900 = tmp151*tmp882;
-    const Scalar tmp901 = tmp151*tmp885;
-    const Scalar tmp902 = tmp151*tmp888;
-    const Scalar tmp903 = tmp151*tmp891;
-    const Scalar tmp904 = tmp894 + tmp896 + tmp898 + tmp892;
-    const Scalar tmp905 = tmp895 + tmp897 + tmp899 + tmp893;
-    const Scalar tmp906 = tmp901 + tmp902 + tmp903 + tmp900;
-    const Scalar tmp907 = -tmp904;
-    const Scalar tmp908 = -tmp905;
-    const Scalar tmp909 = -tmp906;
-    const Scalar tmp910 = -tmp103*tmp894 - tmp110*tmp895 - tmp125*tmp896 - tmp131*tmp897
-        - tmp142*tmp898 - tmp146*tmp899 - tmp69*tmp892 - tmp33*tmp893;
-    const Scalar tmp911 = -tmp102*tmp894 - tmp108*tmp895 - tmp123*tmp896 - tmp130*tmp897
-        - tmp141*tmp898 - tmp145*tmp899 - tmp112*tmp901 - tmp134*tmp902 - tmp149*tmp903
-        - tmp62*tmp892 - tmp79*tmp893 - tmp90*tmp900;
-    const Scalar tmp912 = -tmp101*tmp894 - tmp106*tmp895 - tmp122*tmp896 - tmp129*tmp897
-        - tmp121*tmp898 - tmp128*tmp899 - tmp85*tmp901 - tmp133*tmp902 - tmp148*tmp903
-        - tmp55*tmp892 - tmp74*tmp893 - tmp86*tmp900;
+    const Scalar tmp2 = Scalar(0.5)*tmp1;
+    const Scalar tmp3 = tmp0*tmp2;
+    const Scalar tmp5 = sin(yaw);
+    const Scalar tmp6 = tmp2*tmp5;
+    const Scalar tmp8 = sin(pitch);
+    const Scalar tmp9 = Scalar(0.5)*tmp8;
+    const Scalar tmp11 = tmp0*tmp9;
+    const Scalar tmp12 = tmp6*yaw_dot + tmp11*pitch_dot;
+    const Scalar tmp14 = tmp5*tmp9;
+    const Scalar tmp15 = tmp14*pitch_dot;
+    const Scalar tmp16 = tmp3*yaw_dot;
+    const Scalar tmp20 = cos(roll);
+    const Scalar tmp21 = Scalar(0.4)*tmp20;
+    const Scalar tmp22 = tmp21*tmp5;
+    const Scalar tmp23 = sin(roll);
+    const Scalar tmp24 = Scalar(0.4)*tmp23;
+    const Scalar tmp25 = tmp0*tmp24;
+    const Scalar tmp26 = tmp25*tmp8;
+    const Scalar tmp27 = tmp26 - tmp22;
+    const Scalar tmp29 = tmp0*tmp21;
+    const Scalar tmp30 = tmp24*tmp5;
+    const Scalar tmp31 = tmp30*tmp8;
+    const Scalar tmp32 = tmp29 + tmp31;
+    const Scalar tmp34 = tmp1*tmp24;
+    const Scalar tmp36 = tmp34*pitch_dot;
+    const Scalar tmp37 = tmp30 + tmp29*tmp8;
+    const Scalar tmp38 = -tmp32;
+    const Scalar tmp39 = tmp0*tmp36 + tmp37*roll_dot + tmp38*yaw_dot;
+    const Scalar tmp41 = tmp36*tmp5;
+    const Scalar tmp42 = -tmp25 + tmp22*tmp8;
+    const Scalar tmp45 = tmp1*tmp21;
+    const Scalar tmp47 = Scalar(0.3)*tmp23;
+    const Scalar tmp48 = tmp47*tmp5;
+    const Scalar tmp49 = Scalar(0.3)*tmp20;
+    const Scalar tmp50 = tmp0*tmp49;
+    const Scalar tmp51 = tmp50*tmp8;
+    const Scalar tmp52 = tmp48 + tmp51;
+    const Scalar tmp54 = tmp0*tmp47;
+    const Scalar tmp55 = tmp49*tmp5;
+    const Scalar tmp56 = tmp55*tmp8;
+    const Scalar tmp57 = tmp56 - tmp54;
+    const Scalar tmp59 = tmp1*tmp49;
+    const Scalar tmp61 = tmp59*pitch_dot;
+    const Scalar tmp62 = tmp54*tmp8;
+    const Scalar tmp63 = tmp62 - tmp55;
+    const Scalar tmp64 = -tmp63;
+    const Scalar tmp65 = -tmp57;
+    const Scalar tmp66 = tmp0*tmp61 + tmp64*roll_dot + tmp65*yaw_dot;
+    const Scalar tmp68 = tmp5*tmp61;
+    const Scalar tmp69 = tmp48*tmp8;
+    const Scalar tmp70 = tmp50 + tmp69;
+    const Scalar tmp71 = -tmp70;
+    const Scalar tmp73 = tmp49*tmp8;
+    const Scalar tmp74 = tmp1*tmp47;
+    const Scalar tmp76 = Scalar(0.2)*tmp1;
+    const Scalar tmp77 = Scalar(0.25)*tmp20;
+    const Scalar tmp78 = tmp0*tmp77;
+    const Scalar tmp79 = tmp8*tmp78;
+    const Scalar tmp80 = tmp79 + tmp0*tmp76;
+    const Scalar tmp81 = Scalar(0.25)*tmp23;
+    const Scalar tmp82 = tmp5*tmp81;
+    const Scalar tmp83 = tmp63 + tmp82;
+    const Scalar tmp84 = tmp80 + tmp83;
+    const Scalar tmp86 = tmp5*tmp77;
+    const Scalar tmp87 = tmp8*tmp86;
+    const Scalar tmp88 = tmp87 + tmp5*tmp76;
+    const Scalar tmp89 = tmp0*tmp81;
+    const Scalar tmp90 = tmp70 - tmp89;
+    const Scalar tmp91 = tmp88 + tmp90;
+    const Scalar tmp93 = Scalar(0.2)*tmp8;
+    const Scalar tmp94 = tmp1*tmp77;
+    const Scalar tmp95 = tmp74 + tmp94;
+    const Scalar tmp96 = tmp95 - tmp93;
+    const Scalar tmp98 = tmp1*tmp54;
+    const Scalar tmp99 = tmp98 + tmp0*tmp94 - tmp0*tmp93;
+    const Scalar tmp100 = tmp52 + tmp86 - tmp8*tmp89;
+    const Scalar tmp101 = -tmp91;
+    const Scalar tmp102 = tmp99*pitch_dot + tmp100*roll_dot + tmp101*yaw_dot;
+    const Scalar tmp104 = tmp1*tmp48;
+    const Scalar tmp105 = tmp104 + tmp5*tmp94 - tmp5*tmp93;
+    const Scalar tmp106 = tmp54 + tmp78 - tmp56 + tmp8*tmp82;
+    const Scalar tmp107 = -tmp106;
+    const Scalar tmp109 = -tmp1*tmp81 + Scalar(0.3)*tmp1*tmp20;
+    const Scalar tmp110 = tmp47*tmp8;
+    const Scalar tmp111 = -tmp76 - tmp110 - tmp77*tmp8;
+    const Scalar tmp113 = g*m_a;
+    const Scalar tmp114 = -tmp113;
+    const Scalar tmp115 = g*m_b;
+    const Scalar tmp116 = -tmp115;
+    const Scalar tmp117 = g*m_c;
+    const Scalar tmp118 = -tmp117;
+    const Scalar tmp119 = g*m_d;
+    const Scalar tmp120 = -tmp119;
+    const Scalar tmp121 = pitch_dot*(-tmp3*pitch_dot + Scalar(0.5)*tmp5*tmp8*yaw_dot)
+        + yaw_dot*(tmp15 - tmp16);
+    const Scalar tmp122 = pitch_dot*(-tmp6*pitch_dot - tmp11*yaw_dot) - tmp12*yaw_dot;
+    const Scalar tmp123 = tmp9*(pitch_dot*pitch_dot);
+    const Scalar tmp124 = tmp34*tmp5;
+    const Scalar tmp125 = -tmp27;
+    const Scalar tmp126 = -tmp42;
+    const Scalar tmp127 = pitch_dot*(-tmp26*pitch_dot - tmp124*yaw_dot
+            + Scalar(0.4)*tmp0*tmp1*tmp20*roll_dot)
+        + roll_dot*(tmp125*roll_dot + tmp126*yaw_dot + tmp1*tmp29*pitch_dot)
+        + yaw_dot*(-tmp41 + tmp125*yaw_dot + tmp126*roll_dot);
+    const Scalar tmp128 = tmp1*tmp22;
+    const Scalar tmp129 = tmp0*tmp34;
+    const Scalar tmp130 = tmp39*yaw_dot
+        + pitch_dot*(tmp128*roll_dot + tmp129*yaw_dot - tmp31*pitch_dot)
+        + roll_dot*(tmp128*pitch_dot + tmp37*yaw_dot + tmp38*roll_dot);
+    const Scalar tmp131 = tmp21*tmp8;
+    const Scalar tmp132 = pitch_dot*(-tmp36 - tmp131*roll_dot)
+        + roll_dot*(-tmp131*pitch_dot - tmp34*roll_dot);
+    const Scalar tmp133 = tmp5*tmp59;
+    const Scalar tmp134 = -tmp52;
+    const Scalar tmp135 = pitch_dot*(-tmp133*yaw_dot - tmp51*pitch_dot - tmp98*roll_dot)
+        + roll_dot*(tmp134*roll_dot + tmp70*yaw_dot - tmp98*pitch_dot)
+        + yaw_dot*(-tmp68 + tmp134*yaw_dot + tmp70*roll_dot);
+    const Scalar tmp136 = tmp66*yaw_dot
+        + pitch_dot*(-tmp56*pitch_dot - tmp104*roll_dot + Scalar(0.3)*tmp0*tmp1*tmp20*yaw_dot)
+        + roll_dot*(tmp64*yaw_dot + tmp65*roll_dot - tmp104*pitch_dot);
+    const Scalar tmp137 = pitch_dot*(-tmp61 + Scalar(0.3)*tmp23*tmp8*roll_dot)
+        + roll_dot*(tmp110*pitch_dot - tmp59*roll_dot);
+    const Scalar tmp138 = -tmp1*tmp89 + Scalar(0.3)*tmp0*tmp1*tmp20;
+    const Scalar tmp139 = -tmp105;
+    const Scalar tmp140 = pitch_dot*(tmp138*roll_dot + tmp139*yaw_dot + pitch_dot*(-tmp62 - tmp80))
+        + roll_dot*(tmp138*pitch_dot + tmp106*yaw_dot + roll_dot*(-tmp79 - tmp83))
+        + yaw_dot*(tmp139*pitch_dot + tmp106*roll_dot - tmp84*yaw_dot);
+    const Scalar tmp141 = -tmp1*tmp82 + Scalar(0.3)*tmp1*tmp20*tmp5;
+    const Scalar tmp142 = tmp102*yaw_dot
+        + pitch_dot*(tmp141*roll_dot + tmp99*yaw_dot + pitch_dot*(-tmp69 - tmp88))
+        + roll_dot*(tmp141*pitch_dot + tmp100*yaw_dot + roll_dot*(-tmp87 - tmp90));
+    const Scalar tmp143 = -tmp73;
+    const Scalar tmp144 = tmp143 + tmp8*tmp81;
+    const Scalar tmp145 = pitch_dot*(tmp144*roll_dot - tmp96*pitch_dot)
+        + roll_dot*(tmp144*pitch_dot - tmp95*roll_dot);
+    const Scalar tmp149 = (tmp5*tmp5);
+    const Scalar tmp150 = (tmp1*tmp1);
+    const Scalar tmp151 = Scalar(0.25)*tmp150;
+    const Scalar tmp152 = (tmp0*tmp0);
+    const Scalar tmp154 = tmp0*tmp59;
+    const Scalar tmp159 = (tmp8*tmp8);
+    const Scalar tmp160 = Scalar(0.25)*tmp159;
+    const Scalar tmp161 = (tmp23*tmp23);
+    const Scalar tmp162 = Scalar(0.16000000000000003)*tmp161;
+    const Scalar tmp163 = tmp150*tmp162;
+    const Scalar tmp164 = (tmp20*tmp20);
+    const Scalar tmp165 = Scalar(0.09)*tmp164;
+    const Scalar tmp166 = tmp150*tmp165;
+    const Scalar tmp176 = tmp121*m_a;
+    const Scalar tmp177 = tmp122*m_a;
+    const Scalar tmp178 = tmp127*m_b;
+    const Scalar tmp179 = tmp130*m_b;
+    const Scalar tmp180 = tmp135*m_c;
+    const Scalar tmp181 = tmp136*m_c;
+    const Scalar tmp182 = tmp140*m_d;
+    const Scalar tmp183 = tmp142*m_d;
+    const Scalar tmp184 = tmp123*m_a;
+    const Scalar tmp185 = tmp132*m_b;
+    const Scalar tmp186 = tmp137*m_c;
+    const Scalar tmp187 = tmp145*m_d;
+    const Scalar tmp283 = -tmp5;
+    const Scalar tmp284 = tmp2*tmp283;
+    const Scalar tmp285 = tmp2*tmp0;
+    const Scalar tmp286 = tmp9*tmp283;
+    const Scalar tmp287 = yaw_dot*tmp285 + pitch_dot*tmp286;
+    const Scalar tmp288 = tmp9*tmp0;
+    const Scalar tmp289 = pitch_dot*tmp288;
+    const Scalar tmp290 = yaw_dot*tmp284;
+    const Scalar tmp291 = tmp21*tmp0;
+    const Scalar tmp292 = tmp24*tmp283;
+    const Scalar tmp293 = tmp8*tmp292;
+    const Scalar tmp294 = -tmp291 + tmp293;
+    const Scalar tmp295 = tmp21*tmp283;
+    const Scalar tmp296 = tmp24*tmp0;
+    const Scalar tmp297 = tmp8*tmp296;
+    const Scalar tmp298 = tmp295 + tmp297;
+    const Scalar tmp299 = tmp8*tmp295 + tmp296;
+    const Scalar tmp300 = -tmp298;
+    const Scalar tmp301 = tmp36*tmp283 + roll_dot*tmp299 + yaw_dot*tmp300;
+    const Scalar tmp302 = tmp36*tmp0;
+    const Scalar tmp303 = tmp8*tmp291 - tmp292;
+    const Scalar tmp304 = tmp47*tmp0;
+    const Scalar tmp305 = tmp49*tmp283;
+    const Scalar tmp306 = tmp8*tmp305;
+    const Scalar tmp307 = tmp304 + tmp306;
+    const Scalar tmp308 = tmp47*tmp283;
+    const Scalar tmp309 = tmp49*tmp0;
+    const Scalar tmp310 = tmp8*tmp309;
+    const Scalar tmp311 = -tmp308 + tmp310;
+    const Scalar tmp312 = tmp8*tmp308;
+    const Scalar tmp313 = -tmp309 + tmp312;
+    const Scalar tmp314 = -tmp313;
+    const Scalar tmp315 = -tmp311;
+    const Scalar tmp316 = tmp61*tmp283 + roll_dot*tmp314 + yaw_dot*tmp315;
+    const Scalar tmp317 = tmp61*tmp0;
+    const Scalar tmp318 = tmp8*tmp304;
+    const Scalar tmp319 = tmp305 + tmp318;
+    const Scalar tmp320 = -tmp319;
+    const Scalar tmp321 = tmp77*tmp283;
+    const Scalar tmp322 = tmp8*tmp321;
+    const Scalar tmp323 = tmp76*tmp283 + tmp322;
+    const Scalar tmp324 = tmp81*tmp0;
+    const Scalar tmp325 = tmp313 + tmp324;
+    const Scalar tmp326 = tmp323 + tmp325;
+    const Scalar tmp327 = tmp77*tmp0;
+    const Scalar tmp328 = tmp8*tmp327;
+    const Scalar tmp329 = tmp76*tmp0 + tmp328;
+    const Scalar tmp330 = tmp81*tmp283;
+    const Scalar tmp331 = tmp319 - tmp330;
+    const Scalar tmp332 = tmp329 + tmp331;
+    const Scalar tmp333 = tmp1*tmp308;
+    const Scalar tmp334 = (tmp94 - tmp93)*tmp283 + tmp333;
+    const Scalar tmp335 = tmp307 + tmp327 - tmp8*tmp330;
+    const Scalar tmp336 = -tmp332;
+    const Scalar tmp337 = pitch_dot*tmp334 + roll_dot*tmp335 + yaw_dot*tmp336;
+    const Scalar tmp338 = tmp1*tmp304;
+    const Scalar tmp339 = (tmp94 - tmp93)*tmp0 + tmp338;
+    const Scalar tmp340 = tmp308 - tmp310 + tmp321 + tmp8*tmp324;
+    const Scalar tmp341 = -tmp340;
+    const Scalar tmp342 = yaw_dot*tmp289 - yaw_dot*tmp290 - (pitch_dot*pitch_dot)*tmp284
+        + Scalar(0.5)*tmp8*pitch_dot*yaw_dot*tmp0;
+    const Scalar tmp343 = -(pitch_dot*pitch_dot)*tmp285 - pitch_dot*yaw_dot*tmp286 - yaw_dot*tmp287;
+    const Scalar tmp344 = tmp34*tmp0;
+    const Scalar tmp345 = -tmp294;
+    const Scalar tmp346 = -tmp303;
+    const Scalar tmp347 = Scalar(0.4)*tmp1*tmp20*pitch_dot*roll_dot*tmp283
+        - (pitch_dot*pitch_dot)*tmp293 + tmp1*pitch_dot*roll_dot*tmp295 - yaw_dot*tmp302
+        - pitch_dot*yaw_dot*tmp344 + ((roll_dot*roll_dot) + (yaw_dot*yaw_dot))*tmp345
+        + Scalar(2)*roll_dot*yaw_dot*tmp346;
+    const Scalar tmp348 = tmp1*tmp291;
+    const Scalar tmp349 = tmp34*tmp283;
+    const Scalar tmp350 = Scalar(2)*pitch_dot*roll_dot*tmp348 + pitch_dot*yaw_dot*tmp349
+        - (pitch_dot*pitch_dot)*tmp297 + roll_dot*yaw_dot*tmp299 + (roll_dot*roll_dot)*tmp300
+        + yaw_dot*tmp301;
+    const Scalar tmp351 = tmp59*tmp0;
+    const Scalar tmp352 = -tmp307;
+    const Scalar tmp353 = -pitch_dot*yaw_dot*tmp351
+        + ((roll_dot*roll_dot) + (yaw_dot*yaw_dot))*tmp352 - (pitch_dot*pitch_dot)*tmp306
+        - yaw_dot*tmp317 + Scalar(2)*roll_dot*yaw_dot*tmp319 - Scalar(2)*pitch_dot*roll_dot*tmp333;
+    const Scalar tmp354 = Scalar(0.3)*tmp1*tmp20*pitch_dot*yaw_dot*tmp283
+        - (pitch_dot*pitch_dot)*tmp310 + roll_dot*yaw_dot*tmp314 + (roll_dot*roll_dot)*tmp315
+        + yaw_dot*tmp316 - Scalar(2)*pitch_dot*roll_dot*tmp338;
+    const Scalar tmp355 = Scalar(0.3)*tmp1*tmp20*tmp283 - tmp1*tmp330;
+    const Scalar tmp356 = -tmp339;
+    const Scalar tmp357 = Scalar(2)*pitch_dot*roll_dot*tmp355 + Scalar(2)*pitch_dot*yaw_dot*tmp356
+        - (pitch_dot*pitch_dot)*tmp312 - (roll_dot*roll_dot)*tmp322 - (pitch_dot*pitch_dot)*tmp323
+        - (roll_dot*roll_dot)*tmp325 - (yaw_dot*yaw_dot)*tmp326 + Scalar(2)*roll_dot*yaw_dot*tmp340;
+    const Scalar tmp358 = Scalar(0.3)*tmp1*tmp20*tmp0 - tmp1*tmp324;
+    const Scalar tmp359 = Scalar(2)*pitch_dot*roll_dot*tmp358 - (pitch_dot*pitch_dot)*tmp318
+        - (roll_dot*roll_dot)*tmp328 - (pitch_dot*pitch_dot)*tmp329 - (roll_dot*roll_dot)*tmp331
+        + pitch_dot*yaw_dot*tmp334 + roll_dot*yaw_dot*tmp335 + yaw_dot*tmp337;
+    const Scalar tmp360 = m_b*tmp300 - m_a*tmp285 + m_c*tmp315 + m_d*tmp336;
+    const Scalar tmp361 = m_b*tmp294 + m_a*tmp284 + m_c*tmp307 + m_d*tmp326;
+    const Scalar tmp362 = Scalar(2)*tmp5*tmp0;
+    const Scalar tmp363 = Scalar(2)*tmp0*tmp283;
+    const Scalar tmp364 = tmp151*m_a*tmp362 + tmp151*m_a*tmp363 + Scalar(2)*tmp27*m_b*tmp294
+        + Scalar(2)*tmp38*m_b*tmp300 + Scalar(2)*tmp52*m_c*tmp307 + Scalar(2)*tmp65*m_c*tmp315
+        + Scalar(2)*tmp84*m_d*tmp326 + Scalar(2)*tmp101*m_d*tmp336;
+    const Scalar tmp365 = tmp59*tmp283;
+    const Scalar tmp366 = m_b*tmp349 + m_c*tmp365 + m_d*tmp334 - m_a*tmp286;
+    const Scalar tmp367 = -m_a*tmp288 + m_c*tmp351 + m_d*tmp339 + m_b*tmp344;
+    const Scalar tmp368 = tmp38*m_b*tmp349 + tmp52*m_c*tmp351 + tmp65*m_c*tmp365 + tmp124*m_b*tmp294
+        + tmp129*m_b*tmp300 + tmp133*m_c*tmp307 + tmp154*m_c*tmp315 + tmp105*m_d*tmp326
+        + tmp101*m_d*tmp334 + tmp99*m_d*tmp336 + tmp84*m_d*tmp339 + tmp27*m_b*tmp344;
+    const Scalar tmp369 = (tmp160*m_a + tmp163*m_b + tmp166*m_c)*tmp362
+        + (tmp160*m_a + tmp163*m_b + tmp166*m_c)*tmp363 + Scalar(2)*tmp99*m_d*tmp334
+        + Scalar(2)*tmp105*m_d*tmp339;
+    const Scalar tmp370 = m_b*tmp299 + m_c*tmp314 + m_d*tmp335;
+    const Scalar tmp371 = m_b*tmp303 + m_c*tmp320 + m_d*tmp341;
+    const Scalar tmp372 = tmp42*m_b*tmp294 + tmp38*m_b*tmp299 + tmp37*m_b*tmp300 + tmp27*m_b*tmp303
+        + tmp71*m_c*tmp307 + tmp65*m_c*tmp314 + tmp64*m_c*tmp315 + tmp52*m_c*tmp320
+        + tmp107*m_d*tmp326 + tmp101*m_d*tmp335 + tmp100*m_d*tmp336 + tmp84*m_d*tmp341;
+    const Scalar tmp373 = tmp37*m_b*tmp349 + tmp71*m_c*tmp351 + tmp64*m_c*tmp365 + tmp129*m_b*tmp299
+        + tmp124*m_b*tmp303 + tmp154*m_c*tmp314 + tmp133*m_c*tmp320 + tmp100*m_d*tmp334
+        + tmp99*m_d*tmp335 + tmp107*m_d*tmp339 + tmp105*m_d*tmp341 + tmp42*m_b*tmp344;
+    const Scalar tmp374 = Scalar(2)*tmp37*m_b*tmp299 + Scalar(2)*tmp42*m_b*tmp303
+        + Scalar(2)*tmp64*m_c*tmp314 + Scalar(2)*tmp71*m_c*tmp320 + Scalar(2)*tmp100*m_d*tmp335
+        + Scalar(2)*tmp107*m_d*tmp341;
+    const Scalar tmp375 = m_a*tmp342;
+    const Scalar tmp376 = m_a*tmp343;
+    const Scalar tmp377 = m_b*tmp347;
+    const Scalar tmp378 = m_b*tmp350;
+    const Scalar tmp379 = m_c*tmp353;
+    const Scalar tmp380 = m_c*tmp354;
+    const Scalar tmp381 = m_d*tmp357;
+    const Scalar tmp382 = m_d*tmp359;
+    const Scalar tmp383 = tmp377 + tmp379 + tmp381 + tmp375;
+    const Scalar tmp384 = tmp378 + tmp380 + tmp382 + tmp376;
+    const Scalar tmp385 = -tmp383;
+    const Scalar tmp386 = -tmp384;
+    const Scalar tmp387 = -tmp38*tmp377 - tmp27*tmp378 - tmp65*tmp379 - tmp52*tmp380 - tmp101*tmp381
+        - tmp84*tmp382 - tmp179*tmp294 - tmp178*tmp300 - tmp177*tmp284
+        + Scalar(0.5)*tmp1*tmp176*tmp0 - tmp181*tmp307 - tmp180*tmp315 - tmp183*tmp326
+        - tmp182*tmp336 + Scalar(0.5)*tmp1*tmp5*tmp375 - tmp3*tmp376;
+    const Scalar tmp388 = Scalar(0.5)*tmp8*tmp176*tmp283 - tmp178*tmp349 - tmp181*tmp351
+        - tmp180*tmp365 - tmp129*tmp377 - tmp124*tmp378 - tmp154*tmp379 - tmp133*tmp380
+        - tmp99*tmp381 - tmp105*tmp382 + Scalar(0.5)*tmp8*tmp177*tmp0 - tmp182*tmp334
+        - tmp183*tmp339 - tmp179*tmp344 + Scalar(0.5)*tmp0*tmp8*tmp375
+        + Scalar(0.5)*tmp5*tmp8*tmp376;
+    const Scalar tmp389 = -tmp37*tmp377 - tmp42*tmp378 - tmp64*tmp379 - tmp71*tmp380 - tmp100*tmp381
+        - tmp107*tmp382 - tmp178*tmp299 - tmp179*tmp303 - tmp180*tmp314 - tmp181*tmp320
+        - tmp182*tmp335 - tmp183*tmp341;
+    const Scalar tmp390 = -tmp8;
+    const Scalar tmp391 = Scalar(0.5)*tmp390;
+    const Scalar tmp392 = tmp0*tmp391;
+    const Scalar tmp393 = tmp5*tmp391;
+    const Scalar tmp394 = Scalar(0.5)*tmp1;
+    const Scalar tmp395 = tmp0*tmp394;
+    const Scalar tmp396 = yaw_dot*tmp393 + pitch_dot*tmp395;
+    const Scalar tmp397 = tmp5*tmp394;
+    const Scalar tmp398 = pitch_dot*tmp397;
+    const Scalar tmp399 = yaw_dot*tmp392;
+    const Scalar tmp400 = tmp25*tmp1;
+    const Scalar tmp401 = tmp30*tmp1;
+    const Scalar tmp402 = tmp24*tmp390;
+    const Scalar tmp403 = pitch_dot*tmp402;
+    const Scalar tmp404 = tmp29*tmp1;
+    const Scalar tmp405 = -tmp401;
+    const Scalar tmp406 = tmp0*tmp403 + roll_dot*tmp404 + yaw_dot*tmp405;
+    const Scalar tmp407 = tmp5*tmp403;
+    const Scalar tmp408 = tmp22*tmp1;
+    const Scalar tmp409 = tmp24*tmp1;
+    const Scalar tmp410 = tmp21*tmp390;
+    const Scalar tmp411 = tmp50*tmp1;
+    const Scalar tmp412 = tmp55*tmp1;
+    const Scalar tmp413 = tmp49*tmp390;
+    const Scalar tmp414 = pitch_dot*tmp413;
+    const Scalar tmp415 = tmp54*tmp1;
+    const Scalar tmp416 = -tmp415;
+    const Scalar tmp417 = -tmp412;
+    const Scalar tmp418 = tmp0*tmp414 + roll_dot*tmp416 + yaw_dot*tmp417;
+    const Scalar tmp419 = tmp5*tmp414;
+    const Scalar tmp420 = tmp48*tmp1;
+    const Scalar tmp421 = -tmp420;
+    const Scalar tmp422 = tmp49*tmp1;
+    const Scalar tmp423 = tmp47*tmp390;
+    const Scalar tmp424 = Scalar(0.2)*tmp390;
+    const Scalar tmp425 = tmp78*tmp1;
+    const Scalar tmp426 = tmp0*tmp424 + tmp425;
+    const Scalar tmp427 = tmp426 + tmp415;
+    const Scalar tmp428 = tmp86*tmp1;
+    const Scalar tmp429 = tmp5*tmp424 + tmp428;
+    const Scalar tmp430 = tmp429 + tmp420;
+    const Scalar tmp431 = Scalar(0.2)*tmp1;
+    const Scalar tmp432 = tmp77*tmp390;
+    const Scalar tmp433 = tmp423 + tmp432;
+    const Scalar tmp434 = -tmp431 + tmp433;
+    const Scalar tmp435 = tmp54*tmp390;
+    const Scalar tmp436 = -tmp0*tmp431 + tmp0*tmp432 + tmp435;
+    const Scalar tmp437 = tmp411 - tmp89*tmp1;
+    const Scalar tmp438 = -tmp430;
+    const Scalar tmp439 = pitch_dot*tmp436 + roll_dot*tmp437 + yaw_dot*tmp438;
+    const Scalar tmp440 = tmp48*tmp390;
+    const Scalar tmp441 = -tmp5*tmp431 + tmp5*tmp432 + tmp440;
+    const Scalar tmp442 = -tmp412 + tmp82*tmp1;
+    const Scalar tmp443 = -tmp442;
+    const Scalar tmp444 = (-tmp81 + Scalar(0.3)*tmp20)*tmp390;
+    const Scalar tmp445 = tmp47*tmp1;
+    const Scalar tmp446 = -tmp424 - tmp77*tmp1 - tmp445;
+    const Scalar tmp447 = yaw_dot*tmp398 - yaw_dot*tmp399 - (pitch_dot*pitch_dot)*tmp392
+        + Scalar(0.5)*tmp5*pitch_dot*yaw_dot*tmp1;
+    const Scalar tmp448 = -(pitch_dot*pitch_dot)*tmp393 - pitch_dot*yaw_dot*tmp395 - yaw_dot*tmp396;
+    const Scalar tmp449 = (pitch_dot*pitch_dot)*tmp394;
+    const Scalar tmp450 = tmp5*tmp402;
+    const Scalar tmp451 = -tmp400;
+    const Scalar tmp452 = -tmp408;
+    const Scalar tmp453 = (tmp29*pitch_dot*roll_dot
+            + Scalar(0.4)*tmp0*tmp20*pitch_dot*roll_dot)*tmp390
+        - (pitch_dot*pitch_dot)*tmp400 - yaw_dot*tmp407 - pitch_dot*yaw_dot*tmp450
+        + ((roll_dot*roll_dot) + (yaw_dot*yaw_dot))*tmp451 + Scalar(2)*roll_dot*yaw_dot*tmp452;
+    const Scalar tmp454 = tmp22*tmp390;
+    const Scalar tmp455 = tmp0*tmp402;
+    const Scalar tmp456 = Scalar(2)*pitch_dot*roll_dot*tmp454 + pitch_dot*yaw_dot*tmp455
+        - (pitch_dot*pitch_dot)*tmp401 + roll_dot*yaw_dot*tmp404 + (roll_dot*roll_dot)*tmp405
+        + yaw_dot*tmp406;
+    const Scalar tmp457 = tmp21*tmp1;
+    const Scalar tmp458 = -Scalar(2)*pitch_dot*roll_dot*tmp457 - (roll_dot*roll_dot)*tmp402
+        - pitch_dot*tmp403;
+    const Scalar tmp459 = tmp5*tmp413;
+    const Scalar tmp460 = -tmp411;
+    const Scalar tmp461 = -pitch_dot*yaw_dot*tmp459
+        + ((roll_dot*roll_dot) + (yaw_dot*yaw_dot))*tmp460 - (pitch_dot*pitch_dot)*tmp411
+        - yaw_dot*tmp419 + Scalar(2)*roll_dot*yaw_dot*tmp420 - Scalar(2)*pitch_dot*roll_dot*tmp435;
+    const Scalar tmp462 = Scalar(0.3)*tmp0*tmp20*pitch_dot*yaw_dot*tmp390
+        - (pitch_dot*pitch_dot)*tmp412 + roll_dot*yaw_dot*tmp416 + (roll_dot*roll_dot)*tmp417
+        + yaw_dot*tmp418 - Scalar(2)*pitch_dot*roll_dot*tmp440;
+    const Scalar tmp463 = -(roll_dot*roll_dot)*tmp413 - pitch_dot*tmp414
+        + Scalar(0.3)*tmp23*pitch_dot*roll_dot*tmp1 + pitch_dot*roll_dot*tmp445;
+    const Scalar tmp464 = (-tmp89 + Scalar(0.3)*tmp0*tmp20)*tmp390;
+    const Scalar tmp465 = -tmp441;
+    const Scalar tmp466 = Scalar(2)*pitch_dot*roll_dot*tmp464 + Scalar(2)*pitch_dot*yaw_dot*tmp465
+        + (-(pitch_dot*pitch_dot) - (roll_dot*roll_dot))*tmp415 - (roll_dot*roll_dot)*tmp425
+        - (pitch_dot*pitch_dot)*tmp426 - (yaw_dot*yaw_dot)*tmp427
+        + Scalar(2)*roll_dot*yaw_dot*tmp442;
+    const Scalar tmp467 = (-tmp82 + Scalar(0.3)*tmp20*tmp5)*tmp390;
+    const Scalar tmp468 = Scalar(2)*pitch_dot*roll_dot*tmp467
+        + (-(pitch_dot*pitch_dot) - (roll_dot*roll_dot))*tmp420 - (roll_dot*roll_dot)*tmp428
+        - (pitch_dot*pitch_dot)*tmp429 + pitch_dot*yaw_dot*tmp436 + roll_dot*yaw_dot*tmp437
+        + yaw_dot*tmp439;
+    const Scalar tmp469 = -tmp422;
+    const Scalar tmp470 = tmp469 + tmp81*tmp1;
+    const Scalar tmp471 = Scalar(2)*pitch_dot*roll_dot*tmp470 - (roll_dot*roll_dot)*tmp433
+        - (pitch_dot*pitch_dot)*tmp434;
+    const Scalar tmp472 = m_b*tmp405 - m_a*tmp393 + m_c*tmp417 + m_d*tmp438;
+    const Scalar tmp473 = m_b*tmp400 + m_a*tmp392 + m_c*tmp411 + m_d*tmp427;
+    const Scalar tmp474 = Scalar(2)*tmp1*tmp390;
+    const Scalar tmp475 = Scalar(0.25)*tmp474;
+    const Scalar tmp476 = m_a*(tmp149 + tmp152)*tmp475 + Scalar(2)*tmp27*m_b*tmp400
+        + Scalar(2)*tmp38*m_b*tmp405 + Scalar(2)*tmp52*m_c*tmp411 + Scalar(2)*tmp65*m_c*tmp417
+        + Scalar(2)*tmp84*m_d*tmp427 + Scalar(2)*tmp101*m_d*tmp438;
+    const Scalar tmp477 = tmp0*tmp413;
+    const Scalar tmp478 = m_b*tmp455 + m_c*tmp477 + m_d*tmp436 - m_a*tmp395;
+    const Scalar tmp479 = -m_a*tmp397 + m_c*tmp459 + m_d*tmp441 + m_b*tmp450;
+    const Scalar tmp480 = -m_a*tmp391 - m_b*tmp409 - m_c*tmp422 + m_d*tmp446;
+    const Scalar tmp481 = tmp38*m_b*tmp455 + tmp52*m_c*tmp459 + tmp65*m_c*tmp477 + tmp124*m_b*tmp400
+        + tmp129*m_b*tmp405 + tmp133*m_c*tmp411 + tmp154*m_c*tmp417 + tmp105*m_d*tmp427
+        + tmp101*m_d*tmp436 + tmp99*m_d*tmp438 + tmp84*m_d*tmp441 + tmp27*m_b*tmp450;
+    const Scalar tmp482 = Scalar(2)*tmp8*tmp1;
+    const Scalar tmp483 = Scalar(0.25)*tmp482;
+    const Scalar tmp484 = tmp162*tmp474;
+    const Scalar tmp485 = tmp165*tmp474;
+    const Scalar tmp486 = m_a*tmp475 + (tmp162*m_b + tmp165*m_c)*tmp482
+        + m_a*(tmp149 + tmp152)*tmp483 + m_b*(tmp149 + tmp152)*tmp484 + m_c*(tmp149 + tmp152)*tmp485
+        + Scalar(2)*tmp99*m_d*tmp436 + Scalar(2)*tmp105*m_d*tmp441 + Scalar(2)*tmp111*m_d*tmp446;
+    const Scalar tmp487 = m_b*tmp404 + m_c*tmp416 + m_d*tmp437;
+    const Scalar tmp488 = m_b*tmp408 + m_c*tmp421 + m_d*tmp443;
+    const Scalar tmp489 = m_b*tmp410 - m_c*tmp423 + m_d*tmp444;
+    const Scalar tmp490 = tmp42*m_b*tmp400 + tmp38*m_b*tmp404 + tmp37*m_b*tmp405 + tmp27*m_b*tmp408
+        + tmp71*m_c*tmp411 + tmp65*m_c*tmp416 + tmp64*m_c*tmp417 + tmp52*m_c*tmp421
+        + tmp107*m_d*tmp427 + tmp101*m_d*tmp437 + tmp100*m_d*tmp438 + tmp84*m_d*tmp443;
+    const Scalar tmp491 = tmp20*tmp23*tmp8*tmp390 + tmp1*tmp20*tmp23*tmp1;
+    const Scalar tmp492 = tmp37*m_b*tmp455 + tmp71*m_c*tmp459 + tmp64*m_c*tmp477
+        + (Scalar(0.09)*m_c - Scalar(0.16000000000000003)*m_b)*tmp491 + tmp129*m_b*tmp404
+        + tmp124*m_b*tmp408 + tmp154*m_c*tmp416 + tmp133*m_c*tmp421 + tmp100*m_d*tmp436
+        + tmp99*m_d*tmp437 + tmp107*m_d*tmp441 + tmp105*m_d*tmp443 + tmp111*m_d*tmp444
+        + tmp109*m_d*tmp446 + tmp42*m_b*tmp450;
+    const Scalar tmp493 = (Scalar(0.16000000000000003)*tmp164*m_b + Scalar(0.09)*tmp161*m_c)*tmp474
+        + Scalar(2)*tmp37*m_b*tmp404 + Scalar(2)*tmp42*m_b*tmp408 + Scalar(2)*tmp64*m_c*tmp416
+        + Scalar(2)*tmp71*m_c*tmp421 + Scalar(2)*tmp100*m_d*tmp437 + Scalar(2)*tmp107*m_d*tmp443
+        + Scalar(2)*tmp109*m_d*tmp444;
+    const Scalar tmp494 = m_a*tmp447;
+    const Scalar tmp495 = m_a*tmp448;
+    const Scalar tmp496 = m_b*tmp453;
+    const Scalar tmp497 = m_b*tmp456;
+    const Scalar tmp498 = m_c*tmp461;
+    const Scalar tmp499 = m_c*tmp462;
+    const Scalar tmp500 = m_d*tmp466;
+    const Scalar tmp501 = m_d*tmp468;
+    const Scalar tmp502 = m_a*tmp449;
+    const Scalar tmp503 = m_b*tmp458;
+    const Scalar tmp504 = m_c*tmp463;
+    const Scalar tmp505 = m_d*tmp471;
+    const Scalar tmp506 = tmp496 + tmp498 + tmp500 + tmp494;
+    const Scalar tmp507 = tmp497 + tmp499 + tmp501 + tmp495;
+    const Scalar tmp508 = tmp503 + tmp504 + tmp505 + tmp502;
+    const Scalar tmp509 = -tmp114*tmp391 - tmp116*tmp409 - tmp118*tmp422 + tmp120*tmp446;
+    const Scalar tmp510 = tmp116*tmp410 - tmp118*tmp423 + tmp120*tmp444;
+    const Scalar tmp511 = -tmp506;
+    const Scalar tmp512 = -tmp507;
+    const Scalar tmp513 = -tmp508;
+    const Scalar tmp514 = Scalar(0.5)*tmp5*tmp176*tmp390 - tmp38*tmp496 - tmp27*tmp497
+        - tmp65*tmp498 - tmp52*tmp499 - tmp101*tmp500 - tmp84*tmp501 - tmp179*tmp400 - tmp178*tmp405
+        - tmp177*tmp392 - tmp181*tmp411 - tmp180*tmp417 - tmp183*tmp427 - tmp182*tmp438
+        + Scalar(0.5)*tmp1*tmp5*tmp494 - tmp3*tmp495;
+    const Scalar tmp515 = Scalar(0.5)*tmp184*tmp390 - tmp178*tmp455 - tmp181*tmp459 - tmp180*tmp477
+        - tmp129*tmp496 - tmp124*tmp497 - tmp154*tmp498 - tmp133*tmp499 - tmp99*tmp500
+        - tmp105*tmp501 + Scalar(0.4)*tmp23*tmp8*tmp503 + Scalar(0.3)*tmp20*tmp8*tmp504
+        - tmp111*tmp505
+        + (Scalar(0.5)*tmp0*tmp176 + Scalar(0.5)*tmp5*tmp177 + Scalar(0.4)*tmp185*tmp23
+            + Scalar(0.3)*tmp186*tmp20)*tmp1
+        - tmp182*tmp436 - tmp183*tmp441 - tmp187*tmp446 - tmp179*tmp450
+        + Scalar(0.5)*tmp0*tmp8*tmp494 + Scalar(0.5)*tmp5*tmp8*tmp495 + Scalar(0.5)*tmp1*tmp502;
+    const Scalar tmp516 = Scalar(0.3)*tmp186*tmp23*tmp390 - tmp37*tmp496 - tmp42*tmp497
+        - tmp64*tmp498 - tmp71*tmp499 - tmp100*tmp500 - tmp107*tmp501 - tmp45*tmp503
+        + Scalar(0.3)*tmp1*tmp23*tmp504 - tmp109*tmp505 - tmp178*tmp404 - tmp179*tmp408
+        - tmp185*tmp410 - tmp180*tmp416 - tmp181*tmp421 - tmp182*tmp437 - tmp183*tmp443
+        - tmp187*tmp444;
+    const Scalar tmp517 = -tmp23;
+    const Scalar tmp518 = Scalar(0.4)*tmp517;
+    const Scalar tmp519 = tmp5*tmp518;
+    const Scalar tmp520 = Scalar(0.4)*tmp20;
+    const Scalar tmp521 = tmp0*tmp520;
+    const Scalar tmp522 = tmp8*tmp521;
+    const Scalar tmp523 = -tmp519 + tmp522;
+    const Scalar tmp524 = tmp0*tmp518;
+    const Scalar tmp525 = tmp5*tmp520;
+    const Scalar tmp526 = tmp8*tmp525;
+    const Scalar tmp527 = tmp524 + tmp526;
+    const Scalar tmp528 = tmp1*tmp520;
+    const Scalar tmp529 = pitch_dot*tmp528;
+    const Scalar tmp530 = tmp8*tmp524 + tmp525;
+    const Scalar tmp531 = -tmp527;
+    const Scalar tmp532 = tmp0*tmp529 + roll_dot*tmp530 + yaw_dot*tmp531;
+    const Scalar tmp533 = tmp5*tmp529;
+    const Scalar tmp534 = tmp8*tmp519 - tmp521;
+    const Scalar tmp535 = tmp8*tmp520;
+    const Scalar tmp536 = tmp1*tmp518;
+    const Scalar tmp537 = Scalar(0.3)*tmp20;
+    const Scalar tmp538 = tmp5*tmp537;
+    const Scalar tmp539 = Scalar(0.3)*tmp517;
+    const Scalar tmp540 = tmp0*tmp539;
+    const Scalar tmp541 = tmp8*tmp540;
+    const Scalar tmp542 = tmp538 + tmp541;
+    const Scalar tmp543 = tmp0*tmp537;
+    const Scalar tmp544 = tmp5*tmp539;
+    const Scalar tmp545 = tmp8*tmp544;
+    const Scalar tmp546 = -tmp543 + tmp545;
+    const Scalar tmp547 = tmp1*tmp539;
+    const Scalar tmp548 = pitch_dot*tmp547;
+    const Scalar tmp549 = tmp8*tmp543;
+    const Scalar tmp550 = -tmp544 + tmp549;
+    const Scalar tmp551 = -tmp550;
+    const Scalar tmp552 = -tmp546;
+    const Scalar tmp553 = tmp0*tmp548 + roll_dot*tmp551 + yaw_dot*tmp552;
+    const Scalar tmp554 = tmp5*tmp548;
+    const Scalar tmp555 = tmp8*tmp538;
+    const Scalar tmp556 = tmp540 + tmp555;
+    const Scalar tmp557 = -tmp556;
+    const Scalar tmp558 = tmp8*tmp539;
+    const Scalar tmp559 = tmp1*tmp537;
+    const Scalar tmp560 = Scalar(0.25)*tmp517;
+    const Scalar tmp561 = tmp0*tmp560;
+    const Scalar tmp562 = tmp8*tmp561;
+    const Scalar tmp563 = Scalar(0.25)*tmp20;
+    const Scalar tmp564 = tmp5*tmp563;
+    const Scalar tmp565 = tmp550 + tmp564;
+    const Scalar tmp566 = tmp562 + tmp565;
+    const Scalar tmp567 = tmp5*tmp560;
+    const Scalar tmp568 = tmp8*tmp567;
+    const Scalar tmp569 = tmp0*tmp563;
+    const Scalar tmp570 = tmp556 - tmp569;
+    const Scalar tmp571 = tmp568 + tmp570;
+    const Scalar tmp572 = tmp1*tmp560;
+    const Scalar tmp573 = tmp559 + tmp572;
+    const Scalar tmp574 = tmp1*tmp543;
+    const Scalar tmp575 = tmp0*tmp572 + tmp574;
+    const Scalar tmp576 = tmp542 + tmp567 - tmp8*tmp569;
+    const Scalar tmp577 = -tmp571;
+    const Scalar tmp578 = pitch_dot*tmp575 + roll_dot*tmp576 + yaw_dot*tmp577;
+    const Scalar tmp579 = tmp1*tmp538;
+    const Scalar tmp580 = tmp5*tmp572 + tmp579;
+    const Scalar tmp581 = tmp543 - tmp545 + tmp561 + tmp8*tmp564;
+    const Scalar tmp582 = -tmp581;
+    const Scalar tmp583 = Scalar(0.3)*tmp1*tmp517 - tmp1*tmp563;
+    const Scalar tmp584 = tmp8*tmp537;
+    const Scalar tmp585 = -tmp8*tmp560 - tmp584;
+    const Scalar tmp586 = tmp5*tmp528;
+    const Scalar tmp587 = -tmp523;
+    const Scalar tmp588 = -tmp534;
+    const Scalar tmp589 = Scalar(0.4)*tmp0*tmp1*pitch_dot*roll_dot*tmp517
+        - (pitch_dot*pitch_dot)*tmp522 + tmp1*pitch_dot*roll_dot*tmp524 - yaw_dot*tmp533
+        - pitch_dot*yaw_dot*tmp586 + ((roll_dot*roll_dot) + (yaw_dot*yaw_dot))*tmp587
+        + Scalar(2)*roll_dot*yaw_dot*tmp588;
+    const Scalar tmp590 = tmp1*tmp519;
+    const Scalar tmp591 = tmp0*tmp528;
+    const Scalar tmp592 = Scalar(2)*pitch_dot*roll_dot*tmp590 + pitch_dot*yaw_dot*tmp591
+        - (pitch_dot*pitch_dot)*tmp526 + roll_dot*yaw_dot*tmp530 + (roll_dot*roll_dot)*tmp531
+        + yaw_dot*tmp532;
+    const Scalar tmp593 = tmp8*tmp518;
+    const Scalar tmp594 = -Scalar(2)*pitch_dot*roll_dot*tmp593 - (roll_dot*roll_dot)*tmp528
+        - pitch_dot*tmp529;
+    const Scalar tmp595 = tmp5*tmp547;
+    const Scalar tmp596 = -tmp542;
+    const Scalar tmp597 = -pitch_dot*yaw_dot*tmp595
+        + ((roll_dot*roll_dot) + (yaw_dot*yaw_dot))*tmp596 - (pitch_dot*pitch_dot)*tmp541
+        - yaw_dot*tmp554 + Scalar(2)*roll_dot*yaw_dot*tmp556 - Scalar(2)*pitch_dot*roll_dot*tmp574;
+    const Scalar tmp598 = Scalar(0.3)*tmp0*tmp1*pitch_dot*yaw_dot*tmp517
+        - (pitch_dot*pitch_dot)*tmp545 + roll_dot*yaw_dot*tmp551 + (roll_dot*roll_dot)*tmp552
+        + yaw_dot*tmp553 - Scalar(2)*pitch_dot*roll_dot*tmp579;
+    const Scalar tmp599 = Scalar(0.3)*tmp8*pitch_dot*roll_dot*tmp20 - (roll_dot*roll_dot)*tmp547
+        - pitch_dot*tmp548 + pitch_dot*roll_dot*tmp584;
+    const Scalar tmp600 = Scalar(0.3)*tmp0*tmp1*tmp517 - tmp1*tmp569;
+    const Scalar tmp601 = -tmp580;
+    const Scalar tmp602 = Scalar(2)*pitch_dot*roll_dot*tmp600 + Scalar(2)*pitch_dot*yaw_dot*tmp601
+        - (pitch_dot*pitch_dot)*tmp549 + (-(pitch_dot*pitch_dot) - (roll_dot*roll_dot))*tmp562
+        - (roll_dot*roll_dot)*tmp565 - (yaw_dot*yaw_dot)*tmp566 + Scalar(2)*roll_dot*yaw_dot*tmp581;
+    const Scalar tmp603 = Scalar(0.3)*tmp1*tmp5*tmp517 - tmp1*tmp564;
+    const Scalar tmp604 = Scalar(2)*pitch_dot*roll_dot*tmp603 - (pitch_dot*pitch_dot)*tmp555
+        + (-(pitch_dot*pitch_dot) - (roll_dot*roll_dot))*tmp568 - (roll_dot*roll_dot)*tmp570
+        + pitch_dot*yaw_dot*tmp575 + roll_dot*yaw_dot*tmp576 + yaw_dot*tmp578;
+    const Scalar tmp605 = -tmp558;
+    const Scalar tmp606 = tmp605 + tmp8*tmp563;
+    const Scalar tmp607 = Scalar(2)*pitch_dot*roll_dot*tmp606
+        + (-(pitch_dot*pitch_dot) - (roll_dot*roll_dot))*tmp573;
+    const Scalar tmp608 = m_b*tmp531 + m_c*tmp552 + m_d*tmp577;
+    const Scalar tmp609 = m_b*tmp523 + m_c*tmp542 + m_d*tmp566;
+    const Scalar tmp610 = Scalar(2)*tmp27*m_b*tmp523 + Scalar(2)*tmp38*m_b*tmp531
+        + Scalar(2)*tmp52*m_c*tmp542 + Scalar(2)*tmp65*m_c*tmp552 + Scalar(2)*tmp84*m_d*tmp566
+        + Scalar(2)*tmp101*m_d*tmp577;
+    const Scalar tmp611 = tmp0*tmp547;
+    const Scalar tmp612 = m_b*tmp591 + m_c*tmp611 + m_d*tmp575;
+    const Scalar tmp613 = m_c*tmp595 + m_d*tmp580 + m_b*tmp586;
+    const Scalar tmp614 = -m_b*tmp535 - m_c*tmp558 + m_d*tmp585;
+    const Scalar tmp615 = tmp38*m_b*tmp591 + tmp52*m_c*tmp595 + tmp65*m_c*tmp611 + tmp124*m_b*tmp523
+        + tmp129*m_b*tmp531 + tmp133*m_c*tmp542 + tmp154*m_c*tmp552 + tmp105*m_d*tmp566
+        + tmp101*m_d*tmp575 + tmp99*m_d*tmp577 + tmp84*m_d*tmp580 + tmp27*m_b*tmp586;
+    const Scalar tmp616 = Scalar(2)*tmp23*tmp20;
+    const Scalar tmp617 = Scalar(0.16000000000000003)*tmp616;
+    const Scalar tmp618 = tmp150*tmp617;
+    const Scalar tmp619 = Scalar(2)*tmp20*tmp517;
+    const Scalar tmp620 = Scalar(0.09)*tmp619;
+    const Scalar tmp621 = tmp150*tmp620;
+    const Scalar tmp622 = tmp159*m_b*tmp617 + m_b*(tmp149 + tmp152)*tmp618 + tmp159*m_c*tmp620
+        + m_c*(tmp149 + tmp152)*tmp621 + Scalar(2)*tmp99*m_d*tmp575 + Scalar(2)*tmp105*m_d*tmp580
+        + Scalar(2)*tmp111*m_d*tmp585;
+    const Scalar tmp623 = m_b*tmp530 + m_c*tmp551 + m_d*tmp576;
+    const Scalar tmp624 = m_b*tmp534 + m_c*tmp557 + m_d*tmp582;
+    const Scalar tmp625 = m_b*tmp536 - m_c*tmp559 + m_d*tmp583;
+    const Scalar tmp626 = tmp42*m_b*tmp523 + tmp38*m_b*tmp530 + tmp37*m_b*tmp531 + tmp27*m_b*tmp534
+        + tmp71*m_c*tmp542 + tmp65*m_c*tmp551 + tmp64*m_c*tmp552 + tmp52*m_c*tmp557
+        + tmp107*m_d*tmp566 + tmp101*m_d*tmp576 + tmp100*m_d*tmp577 + tmp84*m_d*tmp582;
+    const Scalar tmp627 = tmp1*tmp23*tmp8*tmp517 + tmp1*tmp20*tmp8*tmp20;
+    const Scalar tmp628 = tmp37*m_b*tmp591 + tmp71*m_c*tmp595 + tmp64*m_c*tmp611
+        + (Scalar(0.09)*m_c - Scalar(0.16000000000000003)*m_b)*tmp627 + tmp129*m_b*tmp530
+        + tmp124*m_b*tmp534 + tmp154*m_c*tmp551 + tmp133*m_c*tmp557 + tmp100*m_d*tmp575
+        + tmp99*m_d*tmp576 + tmp107*m_d*tmp580 + tmp105*m_d*tmp582 + tmp111*m_d*tmp583
+        + tmp109*m_d*tmp585 + tmp42*m_b*tmp586;
+    const Scalar tmp629 = Scalar(0.09)*tmp150*m_c*tmp616
+        + Scalar(0.16000000000000003)*tmp150*m_b*tmp619 + Scalar(2)*tmp37*m_b*tmp530
+        + Scalar(2)*tmp42*m_b*tmp534 + Scalar(2)*tmp64*m_c*tmp551 + Scalar(2)*tmp71*m_c*tmp557
+        + Scalar(2)*tmp100*m_d*tmp576 + Scalar(2)*tmp107*m_d*tmp582 + Scalar(2)*tmp109*m_d*tmp583;
+    const Scalar tmp630 = m_b*tmp589;
+    const Scalar tmp631 = m_b*tmp592;
+    const Scalar tmp632 = m_c*tmp597;
+    const Scalar tmp633 = m_c*tmp598;
+    const Scalar tmp634 = m_d*tmp602;
+    const Scalar tmp635 = m_d*tmp604;
+    const Scalar tmp636 = m_b*tmp594;
+    const Scalar tmp637 = m_c*tmp599;
+    const Scalar tmp638 = m_d*tmp607;
+    const Scalar tmp639 = tmp630 + tmp632 + tmp634;
+    const Scalar tmp640 = tmp631 + tmp633 + tmp635;
+    const Scalar tmp641 = tmp636 + tmp637 + tmp638;
+    const Scalar tmp642 = -tmp116*tmp535 - tmp118*tmp558 + tmp120*tmp585;
+    const Scalar tmp643 = tmp116*tmp536 - tmp118*tmp559 + tmp120*tmp583;
+    const Scalar tmp644 = -tmp639;
+    const Scalar tmp645 = -tmp640;
+    const Scalar tmp646 = -tmp641;
+    const Scalar tmp647 = -tmp38*tmp630 - tmp27*tmp631 - tmp65*tmp632 - tmp52*tmp633 - tmp101*tmp634
+        - tmp84*tmp635 - tmp179*tmp523 - tmp178*tmp531 - tmp181*tmp542 - tmp180*tmp552
+        - tmp183*tmp566 - tmp182*tmp577;
+    const Scalar tmp648 = -tmp178*tmp591 - tmp181*tmp595 - tmp180*tmp611 - tmp129*tmp630
+        - tmp124*tmp631 - tmp154*tmp632 - tmp133*tmp633 - tmp99*tmp634 - tmp105*tmp635
+        + Scalar(0.4)*tmp23*tmp8*tmp636 + Scalar(0.3)*tmp20*tmp8*tmp637 - tmp111*tmp638
+        + Scalar(0.3)*tmp186*tmp8*tmp517 + Scalar(0.4)*tmp185*tmp8*tmp20 - tmp182*tmp575
+        - tmp183*tmp580 - tmp187*tmp585 - tmp179*tmp586;
+    const Scalar tmp649 = -tmp37*tmp630 - tmp42*tmp631 - tmp64*tmp632 - tmp71*tmp633 - tmp100*tmp634
+        - tmp107*tmp635 - tmp45*tmp636 + Scalar(0.3)*tmp1*tmp23*tmp637 - tmp109*tmp638
+        + Scalar(0.3)*tmp1*tmp186*tmp20 - tmp178*tmp530 - tmp179*tmp534 - tmp185*tmp536
+        - tmp180*tmp551 - tmp181*tmp557 - tmp182*tmp576 - tmp183*tmp582 - tmp187*tmp583;
+    const Scalar tmp650 = tmp15 - tmp16 + Scalar(0.5)*tmp5*tmp8*pitch_dot - yaw_dot*tmp3;
+    const Scalar tmp651 = -tmp12 - tmp11*pitch_dot - yaw_dot*tmp6;
+    const Scalar tmp652 = -tmp41 - tmp124*pitch_dot + Scalar(2)*tmp125*yaw_dot
+        + Scalar(2)*tmp126*roll_dot;
+    const Scalar tmp653 = tmp39 + tmp129*pitch_dot + tmp37*roll_dot + yaw_dot*tmp38;
+    const Scalar tmp654 = -tmp68 - tmp133*pitch_dot + Scalar(2)*tmp134*yaw_dot
+        + Scalar(2)*tmp70*roll_dot;
+    const Scalar tmp655 = tmp66 + tmp64*roll_dot + Scalar(0.3)*tmp0*tmp1*tmp20*pitch_dot
+        + yaw_dot*tmp65;
+    const Scalar tmp656 = -Scalar(2)*tmp84*yaw_dot + Scalar(2)*tmp139*pitch_dot
+        + Scalar(2)*tmp106*roll_dot;
+    const Scalar tmp657 = tmp102 + tmp99*pitch_dot + tmp100*roll_dot + yaw_dot*tmp101;
+    const Scalar tmp658 = m_a*tmp650;
+    const Scalar tmp659 = m_a*tmp651;
+    const Scalar tmp660 = m_b*tmp652;
+    const Scalar tmp661 = m_b*tmp653;
+    const Scalar tmp662 = m_c*tmp654;
+    const Scalar tmp663 = m_c*tmp655;
+    const Scalar tmp664 = m_d*tmp656;
+    const Scalar tmp665 = m_d*tmp657;
+    const Scalar tmp666 = tmp660 + tmp662 + tmp664 + tmp658;
+    const Scalar tmp667 = tmp661 + tmp663 + tmp665 + tmp659;
+    const Scalar tmp668 = -tmp666;
+    const Scalar tmp669 = -tmp667;
+    const Scalar tmp670 = -tmp38*tmp660 - tmp27*tmp661 - tmp65*tmp662 - tmp52*tmp663 - tmp101*tmp664
+        - tmp84*tmp665 + Scalar(0.5)*tmp1*tmp5*tmp658 - tmp3*tmp659;
+    const Scalar tmp671 = -tmp129*tmp660 - tmp124*tmp661 - tmp154*tmp662 - tmp133*tmp663
+        - tmp99*tmp664 - tmp105*tmp665 + Scalar(0.5)*tmp0*tmp8*tmp658
+        + Scalar(0.5)*tmp5*tmp8*tmp659;
+    const Scalar tmp672 = -tmp37*tmp660 - tmp42*tmp661 - tmp64*tmp662 - tmp71*tmp663 - tmp100*tmp664
+        - tmp107*tmp665;
+    const Scalar tmp673 = tmp0*tmp34;
+    const Scalar tmp674 = tmp5*tmp34;
+    const Scalar tmp675 = tmp0*tmp59;
+    const Scalar tmp676 = tmp5*tmp59;
+    const Scalar tmp677 = -Scalar(2)*tmp3*pitch_dot + Scalar(0.5)*tmp5*tmp8*yaw_dot + yaw_dot*tmp14;
+    const Scalar tmp678 = -tmp11*yaw_dot - Scalar(2)*tmp6*pitch_dot - yaw_dot*tmp11;
+    const Scalar tmp679 = Scalar(2)*tmp9*pitch_dot;
+    const Scalar tmp680 = -tmp124*yaw_dot - Scalar(2)*tmp26*pitch_dot + tmp1*tmp29*roll_dot
+        + Scalar(0.4)*tmp0*tmp1*tmp20*roll_dot - yaw_dot*tmp674;
+    const Scalar tmp681 = tmp129*yaw_dot - Scalar(2)*tmp31*pitch_dot + Scalar(2)*tmp128*roll_dot
+        + yaw_dot*tmp673;
+    const Scalar tmp682 = -tmp36 - Scalar(2)*tmp131*roll_dot - pitch_dot*tmp34;
+    const Scalar tmp683 = -tmp133*yaw_dot - Scalar(2)*tmp51*pitch_dot - Scalar(2)*tmp98*roll_dot
+        - yaw_dot*tmp676;
+    const Scalar tmp684 = -Scalar(2)*tmp56*pitch_dot - Scalar(2)*tmp104*roll_dot
+        + Scalar(0.3)*tmp0*tmp1*tmp20*yaw_dot + yaw_dot*tmp675;
+    const Scalar tmp685 = -tmp61 + tmp110*roll_dot + Scalar(0.3)*tmp23*tmp8*roll_dot
+        - pitch_dot*tmp59;
+    const Scalar tmp686 = Scalar(2)*tmp138*roll_dot + Scalar(2)*tmp139*yaw_dot
+        + Scalar(2)*pitch_dot*(-tmp62 - tmp80);
+    const Scalar tmp687 = tmp99*yaw_dot + Scalar(2)*tmp141*roll_dot
+        + Scalar(2)*pitch_dot*(-tmp69 - tmp88) + yaw_dot*tmp99;
+    const Scalar tmp688 = -Scalar(2)*tmp96*pitch_dot + Scalar(2)*tmp144*roll_dot;
+    const Scalar tmp689 = m_a*tmp677;
+    const Scalar tmp690 = m_a*tmp678;
+    const Scalar tmp691 = m_b*tmp680;
+    const Scalar tmp692 = m_b*tmp681;
+    const Scalar tmp693 = m_c*tmp683;
+    const Scalar tmp694 = m_c*tmp684;
+    const Scalar tmp695 = m_d*tmp686;
+    const Scalar tmp696 = m_d*tmp687;
+    const Scalar tmp697 = m_a*tmp679;
+    const Scalar tmp698 = m_b*tmp682;
+    const Scalar tmp699 = m_c*tmp685;
+    const Scalar tmp700 = m_d*tmp688;
+    const Scalar tmp701 = tmp691 + tmp693 + tmp695 + tmp689;
+    const Scalar tmp702 = tmp692 + tmp694 + tmp696 + tmp690;
+    const Scalar tmp703 = tmp698 + tmp699 + tmp700 + tmp697;
+    const Scalar tmp704 = -tmp701;
+    const Scalar tmp705 = -tmp702;
+    const Scalar tmp706 = -tmp703;
+    const Scalar tmp707 = -tmp38*tmp691 - tmp27*tmp692 - tmp65*tmp693 - tmp52*tmp694 - tmp101*tmp695
+        - tmp84*tmp696 + Scalar(0.5)*tmp1*tmp5*tmp689 - tmp3*tmp690;
+    const Scalar tmp708 = -tmp129*tmp691 - tmp124*tmp692 - tmp154*tmp693 - tmp133*tmp694
+        - tmp99*tmp695 - tmp105*tmp696 + Scalar(0.4)*tmp23*tmp8*tmp698
+        + Scalar(0.3)*tmp20*tmp8*tmp699 - tmp111*tmp700 + Scalar(0.5)*tmp0*tmp8*tmp689
+        + Scalar(0.5)*tmp5*tmp8*tmp690 + Scalar(0.5)*tmp1*tmp697;
+    const Scalar tmp709 = -tmp37*tmp691 - tmp42*tmp692 - tmp64*tmp693 - tmp71*tmp694 - tmp100*tmp695
+        - tmp107*tmp696 - tmp45*tmp698 + Scalar(0.3)*tmp1*tmp23*tmp699 - tmp109*tmp700;
+    const Scalar tmp710 = Scalar(2)*tmp125*roll_dot + Scalar(2)*tmp126*yaw_dot
+        + tmp1*tmp29*pitch_dot + Scalar(0.4)*tmp0*tmp1*tmp20*pitch_dot;
+    const Scalar tmp711 = tmp37*yaw_dot + Scalar(2)*tmp128*pitch_dot + Scalar(2)*tmp38*roll_dot
+        + yaw_dot*tmp37;
+    const Scalar tmp712 = -Scalar(2)*tmp131*pitch_dot - Scalar(2)*tmp34*roll_dot;
+    const Scalar tmp713 = -Scalar(2)*tmp98*pitch_dot + Scalar(2)*tmp134*roll_dot
+        + Scalar(2)*tmp70*yaw_dot;
+    const Scalar tmp714 = tmp64*yaw_dot - Scalar(2)*tmp104*pitch_dot + Scalar(2)*tmp65*roll_dot
+        + yaw_dot*tmp64;
+    const Scalar tmp715 = tmp110*pitch_dot - Scalar(2)*tmp59*roll_dot
+        + Scalar(0.3)*tmp23*tmp8*pitch_dot;
+    const Scalar tmp716 = Scalar(2)*tmp138*pitch_dot + Scalar(2)*tmp106*yaw_dot
+        + Scalar(2)*roll_dot*(-tmp79 - tmp83);
+    const Scalar tmp717 = tmp100*yaw_dot + Scalar(2)*tmp141*pitch_dot
+        + Scalar(2)*roll_dot*(-tmp87 - tmp90) + yaw_dot*tmp100;
+    const Scalar tmp718 = -Scalar(2)*tmp95*roll_dot + Scalar(2)*tmp144*pitch_dot;
+    const Scalar tmp719 = m_b*tmp710;
+    const Scalar tmp720 = m_b*tmp711;
+    const Scalar tmp721 = m_c*tmp713;
+    const Scalar tmp722 = m_c*tmp714;
+    const Scalar tmp723 = m_d*tmp716;
+    const Scalar tmp724 = m_d*tmp717;
+    const Scalar tmp725 = m_b*tmp712;
+    const Scalar tmp726 = m_c*tmp715;
+    const Scalar tmp727 = m_d*tmp718;
+    const Scalar tmp728 = tmp719 + tmp721 + tmp723;
+    const Scalar tmp729 = tmp720 + tmp722 + tmp724;
+    const Scalar tmp730 = tmp725 + tmp726 + tmp727;
+    const Scalar tmp731 = -tmp728;
+    const Scalar tmp732 = -tmp729;
+    const Scalar tmp733 = -tmp730;
+    const Scalar tmp734 = -tmp38*tmp719 - tmp27*tmp720 - tmp65*tmp721 - tmp52*tmp722 - tmp101*tmp723
+        - tmp84*tmp724;
+    const Scalar tmp735 = -tmp129*tmp719 - tmp124*tmp720 - tmp154*tmp721 - tmp133*tmp722
+        - tmp99*tmp723 - tmp105*tmp724 + Scalar(0.4)*tmp23*tmp8*tmp725
+        + Scalar(0.3)*tmp20*tmp8*tmp726 - tmp111*tmp727;
+    const Scalar tmp736 = -tmp37*tmp719 - tmp42*tmp720 - tmp64*tmp721 - tmp71*tmp722 - tmp100*tmp723
+        - tmp107*tmp724 - tmp45*tmp725 + Scalar(0.3)*tmp1*tmp23*tmp726 - tmp109*tmp727;
     (*dr_dq)(0, 0) = Scalar(0);
     (*dr_dq)(0, 1) = Scalar(0);
     (*dr_dq)(0, 2) = Scalar(0);
-    (*dr_dq)(0, 3) = yaw_ddot*tmp456 + pitch_ddot*tmp459 + roll_ddot*tmp463 - tmp478;
-    (*dr_dq)(0, 4) = yaw_ddot*tmp621 + pitch_ddot*tmp624 + roll_ddot*tmp629 - tmp652;
-    (*dr_dq)(0, 5) = yaw_ddot*tmp787 + pitch_ddot*tmp790 + roll_ddot*tmp795 - tmp818;
+    (*dr_dq)(0, 3) = yaw_ddot*tmp360 + pitch_ddot*tmp366 + roll_ddot*tmp370 - tmp385;
+    (*dr_dq)(0, 4) = yaw_ddot*tmp472 + pitch_ddot*tmp478 + roll_ddot*tmp487 - tmp511;
+    (*dr_dq)(0, 5) = yaw_ddot*tmp608 + pitch_ddot*tmp612 + roll_ddot*tmp623 - tmp644;
     (*dr_dq)(1, 0) = Scalar(0);
     (*dr_dq)(1, 1) = Scalar(0);
     (*dr_dq)(1, 2) = Scalar(0);
-    (*dr_dq)(1, 3) = yaw_ddot*tmp457 + pitch_ddot*tmp460 + roll_ddot*tmp464 - tmp479;
-    (*dr_dq)(1, 4) = yaw_ddot*tmp622 + pitch_ddot*tmp625 + roll_ddot*tmp630 - tmp653;
-    (*dr_dq)(1, 5) = yaw_ddot*tmp788 + pitch_ddot*tmp791 + roll_ddot*tmp796 - tmp819;
+    (*dr_dq)(1, 3) = yaw_ddot*tmp361 + pitch_ddot*tmp367 + roll_ddot*tmp371 - tmp386;
+    (*dr_dq)(1, 4) = yaw_ddot*tmp473 + pitch_ddot*tmp479 + roll_ddot*tmp488 - tmp512;
+    (*dr_dq)(1, 5) = yaw_ddot*tmp609 + pitch_ddot*tmp613 + roll_ddot*tmp624 - tmp645;
     (*dr_dq)(2, 0) = Scalar(0);
     (*dr_dq)(2, 1) = Scalar(0);
     (*dr_dq)(2, 2) = Scalar(0);
     (*dr_dq)(2, 3) = Scalar(0);
-    (*dr_dq)(2, 4) = pitch_ddot*tmp626 + roll_ddot*tmp631 - tmp654;
-    (*dr_dq)(2, 5) = pitch_ddot*tmp792 + roll_ddot*tmp797 - tmp820;
+    (*dr_dq)(2, 4) = pitch_ddot*tmp480 + roll_ddot*tmp489 - tmp513;
+    (*dr_dq)(2, 5) = pitch_ddot*tmp614 + roll_ddot*tmp625 - tmp646;
     (*dr_dq)(3, 0) = Scalar(0);
     (*dr_dq)(3, 1) = Scalar(0);
     (*dr_dq)(3, 2) = Scalar(0);
-    (*dr_dq)(3, 3) = x_ddot*tmp456 + y_ddot*tmp457 + yaw_ddot*tmp458 + pitch_ddot*tmp461
-        + roll_ddot*tmp465 - tmp480;
-    (*dr_dq)(3, 4) = x_ddot*tmp621 + y_ddot*tmp622 + yaw_ddot*tmp623 + pitch_ddot*tmp627
-        + roll_ddot*tmp632 - tmp655;
-    (*dr_dq)(3, 5) = x_ddot*tmp787 + y_ddot*tmp788 + yaw_ddot*tmp789 + pitch_ddot*tmp793
-        + roll_ddot*tmp798 - tmp821;
+    (*dr_dq)(3, 3) = x_ddot*tmp360 + y_ddot*tmp361 + yaw_ddot*tmp364 + pitch_ddot*tmp368
+        + roll_ddot*tmp372 - tmp387;
+    (*dr_dq)(3, 4) = x_ddot*tmp472 + y_ddot*tmp473 + yaw_ddot*tmp476 + pitch_ddot*tmp481
+        + roll_ddot*tmp490 - tmp514;
+    (*dr_dq)(3, 5) = x_ddot*tmp608 + y_ddot*tmp609 + yaw_ddot*tmp610 + pitch_ddot*tmp615
+        + roll_ddot*tmp626 - tmp647;
     (*dr_dq)(4, 0) = Scalar(0);
     (*dr_dq)(4, 1) = Scalar(0);
     (*dr_dq)(4, 2) = Scalar(0);
-    (*dr_dq)(4, 3) = x_ddot*tmp459 + y_ddot*tmp460 + yaw_ddot*tmp461 + pitch_ddot*tmp462
-        + roll_ddot*tmp466 - tmp481;
-    (*dr_dq)(4, 4) = x_ddot*tmp624 + y_ddot*tmp625 + z_ddot*tmp626 + yaw_ddot*tmp627
-        + pitch_ddot*tmp628 + roll_ddot*tmp633 - tmp650 - tmp656;
-    (*dr_dq)(4, 5) = x_ddot*tmp790 + y_ddot*tmp791 + z_ddot*tmp792 + yaw_ddot*tmp793
-        + pitch_ddot*tmp794 + roll_ddot*tmp799 - tmp816 - tmp822;
+    (*dr_dq)(4, 3) = x_ddot*tmp366 + y_ddot*tmp367 + yaw_ddot*tmp368 + pitch_ddot*tmp369
+        + roll_ddot*tmp373 - tmp388;
+    (*dr_dq)(4, 4) = x_ddot*tmp478 + y_ddot*tmp479 + z_ddot*tmp480 + yaw_ddot*tmp481
+        + pitch_ddot*tmp486 + roll_ddot*tmp492 - tmp509 - tmp515;
+    (*dr_dq)(4, 5) = x_ddot*tmp612 + y_ddot*tmp613 + z_ddot*tmp614 + yaw_ddot*tmp615
+        + pitch_ddot*tmp622 + roll_ddot*tmp628 - tmp642 - tmp648;
     (*dr_dq)(5, 0) = Scalar(0);
     (*dr_dq)(5, 1) = Scalar(0);
     (*dr_dq)(5, 2) = Scalar(0);
-    (*dr_dq)(5, 3) = x_ddot*tmp463 + y_ddot*tmp464 + yaw_ddot*tmp465 + pitch_ddot*tmp466
-        + roll_ddot*tmp467 - tmp482;
-    (*dr_dq)(5, 4) = x_ddot*tmp629 + y_ddot*tmp630 + z_ddot*tmp631 + yaw_ddot*tmp632
-        + pitch_ddot*tmp633 + roll_ddot*tmp634 - tmp651 - tmp657;
-    (*dr_dq)(5, 5) = x_ddot*tmp795 + y_ddot*tmp796 + z_ddot*tmp797 + yaw_ddot*tmp798
-        + pitch_ddot*tmp799 + roll_ddot*tmp800 - tmp817 - tmp823;
+    (*dr_dq)(5, 3) = x_ddot*tmp370 + y_ddot*tmp371 + yaw_ddot*tmp372 + pitch_ddot*tmp373
+        + roll_ddot*tmp374 - tmp389;
+    (*dr_dq)(5, 4) = x_ddot*tmp487 + y_ddot*tmp488 + z_ddot*tmp489 + yaw_ddot*tmp490
+        + pitch_ddot*tmp492 + roll_ddot*tmp493 - tmp510 - tmp516;
+    (*dr_dq)(5, 5) = x_ddot*tmp623 + y_ddot*tmp624 + z_ddot*tmp625 + yaw_ddot*tmp626
+        + pitch_ddot*tmp628 + roll_ddot*tmp629 - tmp643 - tmp649;
     (*dr_dv)(0, 0) = Scalar(0);
     (*dr_dv)(0, 1) = Scalar(0);
     (*dr_dv)(0, 2) = Scalar(0);
-    (*dr_dv)(0, 3) = -tmp842;
-    (*dr_dv)(0, 4) = -tmp874;
-    (*dr_dv)(0, 5) = -tmp907;
+    (*dr_dv)(0, 3) = -tmp668;
+    (*dr_dv)(0, 4) = -tmp704;
+    (*dr_dv)(0, 5) = -tmp731;
     (*dr_dv)(1, 0) = Scalar(0);
     (*dr_dv)(1, 1) = Scalar(0);
     (*dr_dv)(1, 2) = Scalar(0);
-    (*dr_dv)(1, 3) = -tmp843;
-    (*dr_dv)(1, 4) = -tmp875;
-    (*dr_dv)(1, 5) = -tmp908;
+    (*dr_dv)(1, 3) = -tmp669;
+    (*dr_dv)(1, 4) = -tmp705;
+    (*dr_dv)(1, 5) = -tmp732;
     (*dr_dv)(2, 0) = Scalar(0);
     (*dr_dv)(2, 1) = Scalar(0);
     (*dr_dv)(2, 2) = Scalar(0);
     (*dr_dv)(2, 3) = Scalar(0);
-    (*dr_dv)(2, 4) = -tmp876;
-    (*dr_dv)(2, 5) = -tmp909;
+    (*dr_dv)(2, 4) = -tmp706;
+    (*dr_dv)(2, 5) = -tmp733;
     (*dr_dv)(3, 0) = Scalar(0);
     (*dr_dv)(3, 1) = Scalar(0);
     (*dr_dv)(3, 2) = Scalar(0);
-    (*dr_dv)(3, 3) = -tmp844;
-    (*dr_dv)(3, 4) = -tmp877;
-    (*dr_dv)(3, 5) = -tmp910;
+    (*dr_dv)(3, 3) = -tmp670;
+    (*dr_dv)(3, 4) = -tmp707;
+    (*dr_dv)(3, 5) = -tmp734;
     (*dr_dv)(4, 0) = Scalar(0);
     (*dr_dv)(4, 1) = Scalar(0);
     (*dr_dv)(4, 2) = Scalar(0);
-    (*dr_dv)(4, 3) = -tmp845;
-    (*dr_dv)(4, 4) = -tmp878;
-    (*dr_dv)(4, 5) = -tmp911;
+    (*dr_dv)(4, 3) = -tmp671;
+    (*dr_dv)(4, 4) = -tmp708;
+    (*dr_dv)(4, 5) = -tmp735;
     (*dr_dv)(5, 0) = Scalar(0);
     (*dr_dv)(5, 1) = Scalar(0);
     (*dr_dv)(5, 2) = Scalar(0);
-    (*dr_dv)(5, 3) = -tmp846;
-    (*dr_dv)(5, 4) = -tmp879;
-    (*dr_dv)(5, 5) = -tmp912;
+    (*dr_dv)(5, 3) = -tmp672;
+    (*dr_dv)(5, 4) = -tmp709;
+    (*dr_dv)(5, 5) = -tmp736;
   }
 
   /// Kinetic energy T = 1/2 xdot^T M xdot.
@@ -2671,7 +2215,7 @@ struct RigidBodyEuler {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return T
-  /// Ops: 247
+  /// Ops: 209
   template <typename Scalar>
   static Scalar kinetic_energy(const QVector<Scalar>& q,
                                const QVector<Scalar>& v,
@@ -2679,7 +2223,6 @@ struct RigidBodyEuler {
                                const Params& params) {
     using std::cos;
     using std::sin;
-    using std::sqrt;
     const Scalar yaw = q(3);
     const Scalar pitch = q(4);
     const Scalar roll = q(5);
@@ -2689,141 +2232,115 @@ struct RigidBodyEuler {
     const Scalar yaw_dot = v(3);
     const Scalar pitch_dot = v(4);
     const Scalar roll_dot = v(5);
-    const Scalar m = Scalar(params.m);
-    const Scalar a = Scalar(params.a);
-    const Scalar b = Scalar(params.b);
-    const Scalar c = Scalar(params.c);
+    const Scalar m_a = Scalar(params.m_a);
+    const Scalar m_b = Scalar(params.m_b);
+    const Scalar m_c = Scalar(params.m_c);
+    const Scalar m_d = Scalar(params.m_d);
     const Scalar tmp0 = cos(yaw);
     const Scalar tmp1 = cos(pitch);
-    const Scalar tmp2 = (Scalar(1)/sqrt(m));
-    const Scalar tmp3 = (a*a);
-    const Scalar tmp4 = (b*b);
-    const Scalar tmp5 = ((Scalar(1)/Scalar(24)))*m;
-    const Scalar tmp6 = tmp5*(tmp3 + tmp4);
-    const Scalar tmp7 = (c*c);
-    const Scalar tmp8 = tmp5*(tmp3 + tmp7);
-    const Scalar tmp9 = tmp5*(tmp4 + tmp7);
-    const Scalar tmp10 = tmp6 + tmp8 - tmp9;
-    const Scalar tmp11 = tmp2*sqrt(tmp10);
-    const Scalar tmp12 = tmp1*tmp11;
-    const Scalar tmp13 = tmp0*tmp12;
-    const Scalar tmp14 = sin(roll);
-    const Scalar tmp15 = sin(yaw);
-    const Scalar tmp16 = tmp14*tmp15;
-    const Scalar tmp17 = sin(pitch);
-    const Scalar tmp18 = cos(roll);
-    const Scalar tmp19 = tmp0*tmp18;
-    const Scalar tmp20 = tmp17*tmp19;
-    const Scalar tmp21 = tmp16 + tmp20;
-    const Scalar tmp22 = tmp8 + tmp9 - tmp6;
-    const Scalar tmp23 = tmp2*sqrt(tmp22);
-    const Scalar tmp24 = tmp21*tmp23;
-    const Scalar tmp25 = tmp15*tmp18;
-    const Scalar tmp26 = tmp0*tmp14;
-    const Scalar tmp27 = tmp17*tmp26;
-    const Scalar tmp28 = tmp27 - tmp25;
-    const Scalar tmp29 = tmp6 + tmp9 - tmp8;
-    const Scalar tmp30 = tmp2*sqrt(tmp29);
-    const Scalar tmp31 = tmp28*tmp30;
-    const Scalar tmp32 = tmp24 + tmp31;
-    const Scalar tmp33 = tmp13 + tmp32;
-    const Scalar tmp35 = tmp17*tmp25;
-    const Scalar tmp36 = tmp35 - tmp26;
-    const Scalar tmp38 = tmp16*tmp17;
-    const Scalar tmp39 = tmp19 + tmp38;
-    const Scalar tmp41 = tmp12*tmp15;
-    const Scalar tmp44 = tmp11*tmp17;
-    const Scalar tmp45 = tmp18*tmp23;
-    const Scalar tmp47 = tmp14*tmp30;
-    const Scalar tmp52 = tmp21*tmp30;
-    const Scalar tmp53 = -tmp28;
-    const Scalar tmp54 = tmp23*tmp53;
-    const Scalar tmp55 = tmp52 + tmp54;
-    const Scalar tmp56 = tmp0*tmp44;
-    const Scalar tmp57 = tmp1*tmp23;
-    const Scalar tmp58 = tmp19*tmp57;
-    const Scalar tmp59 = tmp1*tmp30;
-    const Scalar tmp60 = tmp26*tmp59;
-    const Scalar tmp61 = tmp58 + tmp60;
-    const Scalar tmp62 = tmp61 - tmp56;
-    const Scalar tmp63 = -tmp41;
-    const Scalar tmp64 = -tmp36;
-    const Scalar tmp65 = tmp23*tmp64;
-    const Scalar tmp66 = -tmp39;
-    const Scalar tmp67 = tmp30*tmp66;
-    const Scalar tmp68 = tmp65 + tmp67;
-    const Scalar tmp69 = tmp63 + tmp68;
-    const Scalar tmp70 = tmp55*roll_dot + tmp62*pitch_dot + tmp69*yaw_dot;
-    const Scalar tmp71 = tmp70 + x_dot;
-    const Scalar tmp72 = tmp30*tmp36;
-    const Scalar tmp73 = tmp23*tmp66;
-    const Scalar tmp74 = tmp72 + tmp73;
-    const Scalar tmp75 = tmp15*tmp44;
-    const Scalar tmp76 = tmp25*tmp57;
-    const Scalar tmp77 = tmp16*tmp59;
-    const Scalar tmp78 = tmp76 + tmp77;
-    const Scalar tmp79 = tmp78 - tmp75;
-    const Scalar tmp80 = y_dot + tmp33*yaw_dot + tmp74*roll_dot + tmp79*pitch_dot;
-    const Scalar tmp81 = tmp14*tmp23;
-    const Scalar tmp82 = tmp1*tmp81;
-    const Scalar tmp83 = tmp18*tmp30;
-    const Scalar tmp84 = tmp1*tmp83;
-    const Scalar tmp85 = tmp82 - tmp84;
-    const Scalar tmp86 = -tmp85;
-    const Scalar tmp87 = tmp17*tmp45;
-    const Scalar tmp88 = tmp17*tmp47;
-    const Scalar tmp89 = tmp87 + tmp88;
-    const Scalar tmp90 = -tmp12 - tmp89;
-    const Scalar tmp91 = z_dot + tmp86*roll_dot + tmp90*pitch_dot;
-    const Scalar tmp92 = -tmp24;
-    const Scalar tmp93 = -tmp31;
-    const Scalar tmp94 = tmp13 + tmp93;
-    const Scalar tmp101 = -tmp55;
-    const Scalar tmp102 = -tmp56 - tmp61;
-    const Scalar tmp103 = -tmp41 - tmp68;
-    const Scalar tmp104 = tmp101*roll_dot + tmp102*pitch_dot + tmp103*yaw_dot;
-    const Scalar tmp105 = tmp104 + x_dot;
-    const Scalar tmp106 = -tmp74;
-    const Scalar tmp107 = tmp75 + tmp78;
-    const Scalar tmp108 = -tmp107;
-    const Scalar tmp109 = -tmp13;
-    const Scalar tmp110 = -tmp32 - tmp109;
-    const Scalar tmp111 = y_dot + tmp110*yaw_dot + tmp106*roll_dot + tmp108*pitch_dot;
-    const Scalar tmp112 = tmp89 - tmp12;
-    const Scalar tmp113 = z_dot + tmp112*pitch_dot + tmp85*roll_dot;
-    const Scalar tmp114 = tmp31 + tmp92;
-    const Scalar tmp121 = tmp54 - tmp52;
-    const Scalar tmp122 = -tmp121;
-    const Scalar tmp123 = tmp56 + tmp60 - tmp58;
-    const Scalar tmp124 = tmp67 - tmp65;
-    const Scalar tmp125 = tmp124 + tmp41;
-    const Scalar tmp126 = tmp122*roll_dot + tmp123*pitch_dot + tmp125*yaw_dot;
-    const Scalar tmp127 = tmp126 + x_dot;
-    const Scalar tmp128 = tmp73 - tmp72;
-    const Scalar tmp129 = -tmp128;
-    const Scalar tmp130 = tmp75 + tmp77 - tmp76;
-    const Scalar tmp131 = -tmp24 - tmp94;
-    const Scalar tmp132 = y_dot + tmp129*roll_dot + tmp130*pitch_dot + tmp131*yaw_dot;
-    const Scalar tmp133 = tmp82 + tmp84;
-    const Scalar tmp134 = tmp12 + tmp87 - tmp88;
-    const Scalar tmp135 = z_dot + tmp133*roll_dot + tmp134*pitch_dot;
-    const Scalar tmp141 = tmp56 + tmp58 - tmp60;
-    const Scalar tmp142 = tmp41 + tmp65 - tmp67;
-    const Scalar tmp143 = tmp121*roll_dot + tmp141*pitch_dot + tmp142*yaw_dot;
-    const Scalar tmp144 = tmp143 + x_dot;
-    const Scalar tmp145 = tmp75 + tmp76 - tmp77;
-    const Scalar tmp146 = -tmp114 - tmp13;
-    const Scalar tmp147 = y_dot + tmp128*roll_dot + tmp145*pitch_dot + tmp146*yaw_dot;
-    const Scalar tmp148 = -tmp133;
-    const Scalar tmp149 = tmp12 + tmp88 - tmp87;
-    const Scalar tmp150 = z_dot + tmp148*roll_dot + tmp149*pitch_dot;
-    const Scalar tmp241 = (Scalar(0.125))*m;
-    const Scalar tmp242 = tmp241*((tmp111*tmp111) + (tmp113*tmp113) + (tmp105*tmp105))
-        + tmp241*((tmp127*tmp127) + (tmp132*tmp132) + (tmp135*tmp135))
-        + tmp241*((tmp144*tmp144) + (tmp147*tmp147) + (tmp150*tmp150))
-        + tmp241*((tmp71*tmp71) + (tmp80*tmp80) + (tmp91*tmp91));
+    const Scalar tmp2 = Scalar(0.5)*tmp1;
+    const Scalar tmp3 = tmp0*tmp2;
+    const Scalar tmp5 = sin(yaw);
+    const Scalar tmp6 = tmp2*tmp5;
+    const Scalar tmp8 = sin(pitch);
+    const Scalar tmp9 = Scalar(0.5)*tmp8;
+    const Scalar tmp11 = tmp0*tmp9;
+    const Scalar tmp12 = tmp6*yaw_dot + tmp11*pitch_dot;
+    const Scalar tmp13 = x_dot - tmp12;
+    const Scalar tmp14 = tmp5*tmp9;
+    const Scalar tmp15 = tmp14*pitch_dot;
+    const Scalar tmp16 = tmp3*yaw_dot;
+    const Scalar tmp17 = tmp16 + y_dot - tmp15;
+    const Scalar tmp18 = -z_dot;
+    const Scalar tmp19 = -tmp18 - tmp2*pitch_dot;
+    const Scalar tmp20 = cos(roll);
+    const Scalar tmp21 = Scalar(0.4)*tmp20;
+    const Scalar tmp22 = tmp21*tmp5;
+    const Scalar tmp23 = sin(roll);
+    const Scalar tmp24 = Scalar(0.4)*tmp23;
+    const Scalar tmp25 = tmp0*tmp24;
+    const Scalar tmp26 = tmp25*tmp8;
+    const Scalar tmp27 = tmp26 - tmp22;
+    const Scalar tmp29 = tmp0*tmp21;
+    const Scalar tmp30 = tmp24*tmp5;
+    const Scalar tmp31 = tmp30*tmp8;
+    const Scalar tmp32 = tmp29 + tmp31;
+    const Scalar tmp34 = tmp1*tmp24;
+    const Scalar tmp36 = tmp34*pitch_dot;
+    const Scalar tmp37 = tmp30 + tmp29*tmp8;
+    const Scalar tmp38 = -tmp32;
+    const Scalar tmp39 = tmp0*tmp36 + tmp37*roll_dot + tmp38*yaw_dot;
+    const Scalar tmp40 = tmp39 + x_dot;
+    const Scalar tmp41 = tmp36*tmp5;
+    const Scalar tmp42 = -tmp25 + tmp22*tmp8;
+    const Scalar tmp43 = tmp41 + y_dot + tmp27*yaw_dot + tmp42*roll_dot;
+    const Scalar tmp44 = tmp24*tmp8;
+    const Scalar tmp45 = tmp1*tmp21;
+    const Scalar tmp46 = z_dot + tmp45*roll_dot - tmp44*pitch_dot;
+    const Scalar tmp47 = Scalar(0.3)*tmp23;
+    const Scalar tmp48 = tmp47*tmp5;
+    const Scalar tmp49 = Scalar(0.3)*tmp20;
+    const Scalar tmp50 = tmp0*tmp49;
+    const Scalar tmp51 = tmp50*tmp8;
+    const Scalar tmp52 = tmp48 + tmp51;
+    const Scalar tmp54 = tmp0*tmp47;
+    const Scalar tmp55 = tmp49*tmp5;
+    const Scalar tmp56 = tmp55*tmp8;
+    const Scalar tmp57 = tmp56 - tmp54;
+    const Scalar tmp59 = tmp1*tmp49;
+    const Scalar tmp61 = tmp59*pitch_dot;
+    const Scalar tmp62 = tmp54*tmp8;
+    const Scalar tmp63 = tmp62 - tmp55;
+    const Scalar tmp64 = -tmp63;
+    const Scalar tmp65 = -tmp57;
+    const Scalar tmp66 = tmp0*tmp61 + tmp64*roll_dot + tmp65*yaw_dot;
+    const Scalar tmp67 = tmp66 + x_dot;
+    const Scalar tmp68 = tmp5*tmp61;
+    const Scalar tmp69 = tmp48*tmp8;
+    const Scalar tmp70 = tmp50 + tmp69;
+    const Scalar tmp71 = -tmp70;
+    const Scalar tmp72 = tmp68 + y_dot + tmp52*yaw_dot + tmp71*roll_dot;
+    const Scalar tmp73 = tmp49*tmp8;
+    const Scalar tmp74 = tmp1*tmp47;
+    const Scalar tmp75 = -tmp18 - tmp73*pitch_dot - tmp74*roll_dot;
+    const Scalar tmp76 = Scalar(0.2)*tmp1;
+    const Scalar tmp77 = Scalar(0.25)*tmp20;
+    const Scalar tmp78 = tmp0*tmp77;
+    const Scalar tmp79 = tmp8*tmp78;
+    const Scalar tmp80 = tmp79 + tmp0*tmp76;
+    const Scalar tmp81 = Scalar(0.25)*tmp23;
+    const Scalar tmp82 = tmp5*tmp81;
+    const Scalar tmp83 = tmp63 + tmp82;
+    const Scalar tmp84 = tmp80 + tmp83;
+    const Scalar tmp86 = tmp5*tmp77;
+    const Scalar tmp87 = tmp8*tmp86;
+    const Scalar tmp88 = tmp87 + tmp5*tmp76;
+    const Scalar tmp89 = tmp0*tmp81;
+    const Scalar tmp90 = tmp70 - tmp89;
+    const Scalar tmp91 = tmp88 + tmp90;
+    const Scalar tmp93 = Scalar(0.2)*tmp8;
+    const Scalar tmp94 = tmp1*tmp77;
+    const Scalar tmp98 = tmp1*tmp54;
+    const Scalar tmp99 = tmp98 + tmp0*tmp94 - tmp0*tmp93;
+    const Scalar tmp100 = tmp52 + tmp86 - tmp8*tmp89;
+    const Scalar tmp101 = -tmp91;
+    const Scalar tmp102 = tmp99*pitch_dot + tmp100*roll_dot + tmp101*yaw_dot;
+    const Scalar tmp103 = tmp102 + x_dot;
+    const Scalar tmp104 = tmp1*tmp48;
+    const Scalar tmp105 = tmp104 + tmp5*tmp94 - tmp5*tmp93;
+    const Scalar tmp106 = tmp54 + tmp78 - tmp56 + tmp8*tmp82;
+    const Scalar tmp107 = -tmp106;
+    const Scalar tmp108 = y_dot + tmp84*yaw_dot + tmp105*pitch_dot + tmp107*roll_dot;
+    const Scalar tmp109 = -tmp1*tmp81 + Scalar(0.3)*tmp1*tmp20;
+    const Scalar tmp110 = tmp47*tmp8;
+    const Scalar tmp111 = -tmp76 - tmp110 - tmp77*tmp8;
+    const Scalar tmp112 = z_dot + tmp109*roll_dot + tmp111*pitch_dot;
+    const Scalar tmp199 = (Scalar(0.5))*m_a*((tmp13*tmp13) + (tmp17*tmp17) + (tmp19*tmp19))
+        + (Scalar(0.5))*m_b*((tmp43*tmp43) + (tmp46*tmp46) + (tmp40*tmp40))
+        + (Scalar(0.5))*m_c*((tmp67*tmp67) + (tmp72*tmp72) + (tmp75*tmp75))
+        + (Scalar(0.5))*m_d*((tmp103*tmp103) + (tmp108*tmp108) + (tmp112*tmp112));
     Scalar result;
-    result = tmp242;
+    result = tmp199;
     return result;
   }
 
@@ -2832,60 +2349,48 @@ struct RigidBodyEuler {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return V
-  /// Ops: 59
+  /// Ops: 33
   template <typename Scalar>
   static Scalar potential_energy(const QVector<Scalar>& q,
                                  const Scalar& /*t*/,
                                  const Params& params) {
     using std::cos;
     using std::sin;
-    using std::sqrt;
     const Scalar z = q(2);
     const Scalar pitch = q(4);
     const Scalar roll = q(5);
     const Scalar g = Scalar(params.g);
-    const Scalar m = Scalar(params.m);
-    const Scalar a = Scalar(params.a);
-    const Scalar b = Scalar(params.b);
-    const Scalar c = Scalar(params.c);
+    const Scalar m_a = Scalar(params.m_a);
+    const Scalar m_b = Scalar(params.m_b);
+    const Scalar m_c = Scalar(params.m_c);
+    const Scalar m_d = Scalar(params.m_d);
     const Scalar tmp1 = cos(pitch);
-    const Scalar tmp2 = (Scalar(1)/sqrt(m));
-    const Scalar tmp3 = (a*a);
-    const Scalar tmp4 = (b*b);
-    const Scalar tmp5 = ((Scalar(1)/Scalar(24)))*m;
-    const Scalar tmp6 = tmp5*(tmp3 + tmp4);
-    const Scalar tmp7 = (c*c);
-    const Scalar tmp8 = tmp5*(tmp3 + tmp7);
-    const Scalar tmp9 = tmp5*(tmp4 + tmp7);
-    const Scalar tmp10 = tmp6 + tmp8 - tmp9;
-    const Scalar tmp11 = tmp2*sqrt(tmp10);
-    const Scalar tmp14 = sin(roll);
-    const Scalar tmp17 = sin(pitch);
-    const Scalar tmp18 = cos(roll);
-    const Scalar tmp22 = tmp8 + tmp9 - tmp6;
-    const Scalar tmp23 = tmp2*sqrt(tmp22);
-    const Scalar tmp29 = tmp6 + tmp9 - tmp8;
-    const Scalar tmp30 = tmp2*sqrt(tmp29);
-    const Scalar tmp44 = tmp11*tmp17;
-    const Scalar tmp45 = tmp18*tmp23;
-    const Scalar tmp46 = tmp1*tmp45;
-    const Scalar tmp47 = tmp14*tmp30;
-    const Scalar tmp48 = tmp1*tmp47;
-    const Scalar tmp49 = tmp46 + tmp48;
-    const Scalar tmp50 = tmp49 - tmp44;
-    const Scalar tmp51 = tmp50 + z;
-    const Scalar tmp99 = tmp44 + tmp49;
-    const Scalar tmp100 = z - tmp99;
-    const Scalar tmp119 = tmp44 + tmp48 - tmp46;
-    const Scalar tmp120 = tmp119 + z;
-    const Scalar tmp138 = tmp46 - tmp48;
-    const Scalar tmp139 = tmp138 + tmp44;
-    const Scalar tmp140 = tmp139 + z;
-    const Scalar tmp151 = (Scalar(0.25))*m;
-    const Scalar tmp152 = tmp151*g;
-    const Scalar tmp243 = tmp152*tmp120 + tmp152*tmp51 + tmp152*tmp140 + tmp152*tmp100;
+    const Scalar tmp8 = sin(pitch);
+    const Scalar tmp9 = Scalar(0.5)*tmp8;
+    const Scalar tmp10 = z - tmp9;
+    const Scalar tmp20 = cos(roll);
+    const Scalar tmp23 = sin(roll);
+    const Scalar tmp24 = Scalar(0.4)*tmp23;
+    const Scalar tmp34 = tmp1*tmp24;
+    const Scalar tmp35 = tmp34 + z;
+    const Scalar tmp47 = Scalar(0.3)*tmp23;
+    const Scalar tmp49 = Scalar(0.3)*tmp20;
+    const Scalar tmp59 = tmp1*tmp49;
+    const Scalar tmp60 = tmp59 + z;
+    const Scalar tmp74 = tmp1*tmp47;
+    const Scalar tmp77 = Scalar(0.25)*tmp20;
+    const Scalar tmp93 = Scalar(0.2)*tmp8;
+    const Scalar tmp94 = tmp1*tmp77;
+    const Scalar tmp95 = tmp74 + tmp94;
+    const Scalar tmp96 = tmp95 - tmp93;
+    const Scalar tmp97 = tmp96 + z;
+    const Scalar tmp113 = g*m_a;
+    const Scalar tmp115 = g*m_b;
+    const Scalar tmp117 = g*m_c;
+    const Scalar tmp119 = g*m_d;
+    const Scalar tmp200 = tmp113*tmp10 + tmp115*tmp35 + tmp117*tmp60 + tmp119*tmp97;
     Scalar result;
-    result = tmp243;
+    result = tmp200;
     return result;
   }
 
@@ -2910,7 +2415,7 @@ struct RigidBodyEuler {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return T + V
-  /// Ops: 274
+  /// Ops: 229
   template <typename Scalar>
   static Scalar energy(const QVector<Scalar>& q,
                        const QVector<Scalar>& v,
@@ -2918,7 +2423,6 @@ struct RigidBodyEuler {
                        const Params& params) {
     using std::cos;
     using std::sin;
-    using std::sqrt;
     const Scalar z = q(2);
     const Scalar yaw = q(3);
     const Scalar pitch = q(4);
@@ -2930,156 +2434,126 @@ struct RigidBodyEuler {
     const Scalar pitch_dot = v(4);
     const Scalar roll_dot = v(5);
     const Scalar g = Scalar(params.g);
-    const Scalar m = Scalar(params.m);
-    const Scalar a = Scalar(params.a);
-    const Scalar b = Scalar(params.b);
-    const Scalar c = Scalar(params.c);
+    const Scalar m_a = Scalar(params.m_a);
+    const Scalar m_b = Scalar(params.m_b);
+    const Scalar m_c = Scalar(params.m_c);
+    const Scalar m_d = Scalar(params.m_d);
     const Scalar tmp0 = cos(yaw);
     const Scalar tmp1 = cos(pitch);
-    const Scalar tmp2 = (Scalar(1)/sqrt(m));
-    const Scalar tmp3 = (a*a);
-    const Scalar tmp4 = (b*b);
-    const Scalar tmp5 = ((Scalar(1)/Scalar(24)))*m;
-    const Scalar tmp6 = tmp5*(tmp3 + tmp4);
-    const Scalar tmp7 = (c*c);
-    const Scalar tmp8 = tmp5*(tmp3 + tmp7);
-    const Scalar tmp9 = tmp5*(tmp4 + tmp7);
-    const Scalar tmp10 = tmp6 + tmp8 - tmp9;
-    const Scalar tmp11 = tmp2*sqrt(tmp10);
-    const Scalar tmp12 = tmp1*tmp11;
-    const Scalar tmp13 = tmp0*tmp12;
-    const Scalar tmp14 = sin(roll);
-    const Scalar tmp15 = sin(yaw);
-    const Scalar tmp16 = tmp14*tmp15;
-    const Scalar tmp17 = sin(pitch);
-    const Scalar tmp18 = cos(roll);
-    const Scalar tmp19 = tmp0*tmp18;
-    const Scalar tmp20 = tmp17*tmp19;
-    const Scalar tmp21 = tmp16 + tmp20;
-    const Scalar tmp22 = tmp8 + tmp9 - tmp6;
-    const Scalar tmp23 = tmp2*sqrt(tmp22);
-    const Scalar tmp24 = tmp21*tmp23;
-    const Scalar tmp25 = tmp15*tmp18;
-    const Scalar tmp26 = tmp0*tmp14;
-    const Scalar tmp27 = tmp17*tmp26;
-    const Scalar tmp28 = tmp27 - tmp25;
-    const Scalar tmp29 = tmp6 + tmp9 - tmp8;
-    const Scalar tmp30 = tmp2*sqrt(tmp29);
-    const Scalar tmp31 = tmp28*tmp30;
-    const Scalar tmp32 = tmp24 + tmp31;
-    const Scalar tmp33 = tmp13 + tmp32;
-    const Scalar tmp35 = tmp17*tmp25;
-    const Scalar tmp36 = tmp35 - tmp26;
-    const Scalar tmp38 = tmp16*tmp17;
-    const Scalar tmp39 = tmp19 + tmp38;
-    const Scalar tmp41 = tmp12*tmp15;
-    const Scalar tmp44 = tmp11*tmp17;
-    const Scalar tmp45 = tmp18*tmp23;
-    const Scalar tmp46 = tmp1*tmp45;
-    const Scalar tmp47 = tmp14*tmp30;
-    const Scalar tmp48 = tmp1*tmp47;
-    const Scalar tmp49 = tmp46 + tmp48;
-    const Scalar tmp50 = tmp49 - tmp44;
-    const Scalar tmp51 = tmp50 + z;
-    const Scalar tmp52 = tmp21*tmp30;
-    const Scalar tmp53 = -tmp28;
-    const Scalar tmp54 = tmp23*tmp53;
-    const Scalar tmp55 = tmp52 + tmp54;
-    const Scalar tmp56 = tmp0*tmp44;
-    const Scalar tmp57 = tmp1*tmp23;
-    const Scalar tmp58 = tmp19*tmp57;
-    const Scalar tmp59 = tmp1*tmp30;
-    const Scalar tmp60 = tmp26*tmp59;
-    const Scalar tmp61 = tmp58 + tmp60;
-    const Scalar tmp62 = tmp61 - tmp56;
-    const Scalar tmp63 = -tmp41;
-    const Scalar tmp64 = -tmp36;
-    const Scalar tmp65 = tmp23*tmp64;
-    const Scalar tmp66 = -tmp39;
-    const Scalar tmp67 = tmp30*tmp66;
-    const Scalar tmp68 = tmp65 + tmp67;
-    const Scalar tmp69 = tmp63 + tmp68;
-    const Scalar tmp70 = tmp55*roll_dot + tmp62*pitch_dot + tmp69*yaw_dot;
-    const Scalar tmp71 = tmp70 + x_dot;
-    const Scalar tmp72 = tmp30*tmp36;
-    const Scalar tmp73 = tmp23*tmp66;
-    const Scalar tmp74 = tmp72 + tmp73;
-    const Scalar tmp75 = tmp15*tmp44;
-    const Scalar tmp76 = tmp25*tmp57;
-    const Scalar tmp77 = tmp16*tmp59;
-    const Scalar tmp78 = tmp76 + tmp77;
-    const Scalar tmp79 = tmp78 - tmp75;
-    const Scalar tmp80 = y_dot + tmp33*yaw_dot + tmp74*roll_dot + tmp79*pitch_dot;
-    const Scalar tmp81 = tmp14*tmp23;
-    const Scalar tmp82 = tmp1*tmp81;
-    const Scalar tmp83 = tmp18*tmp30;
-    const Scalar tmp84 = tmp1*tmp83;
-    const Scalar tmp85 = tmp82 - tmp84;
-    const Scalar tmp86 = -tmp85;
-    const Scalar tmp87 = tmp17*tmp45;
-    const Scalar tmp88 = tmp17*tmp47;
-    const Scalar tmp89 = tmp87 + tmp88;
-    const Scalar tmp90 = -tmp12 - tmp89;
-    const Scalar tmp91 = z_dot + tmp86*roll_dot + tmp90*pitch_dot;
-    const Scalar tmp92 = -tmp24;
-    const Scalar tmp93 = -tmp31;
-    const Scalar tmp94 = tmp13 + tmp93;
-    const Scalar tmp99 = tmp44 + tmp49;
-    const Scalar tmp100 = z - tmp99;
-    const Scalar tmp101 = -tmp55;
-    const Scalar tmp102 = -tmp56 - tmp61;
-    const Scalar tmp103 = -tmp41 - tmp68;
-    const Scalar tmp104 = tmp101*roll_dot + tmp102*pitch_dot + tmp103*yaw_dot;
-    const Scalar tmp105 = tmp104 + x_dot;
-    const Scalar tmp106 = -tmp74;
-    const Scalar tmp107 = tmp75 + tmp78;
-    const Scalar tmp108 = -tmp107;
-    const Scalar tmp109 = -tmp13;
-    const Scalar tmp110 = -tmp32 - tmp109;
-    const Scalar tmp111 = y_dot + tmp110*yaw_dot + tmp106*roll_dot + tmp108*pitch_dot;
-    const Scalar tmp112 = tmp89 - tmp12;
-    const Scalar tmp113 = z_dot + tmp112*pitch_dot + tmp85*roll_dot;
-    const Scalar tmp114 = tmp31 + tmp92;
-    const Scalar tmp119 = tmp44 + tmp48 - tmp46;
-    const Scalar tmp120 = tmp119 + z;
-    const Scalar tmp121 = tmp54 - tmp52;
-    const Scalar tmp122 = -tmp121;
-    const Scalar tmp123 = tmp56 + tmp60 - tmp58;
-    const Scalar tmp124 = tmp67 - tmp65;
-    const Scalar tmp125 = tmp124 + tmp41;
-    const Scalar tmp126 = tmp122*roll_dot + tmp123*pitch_dot + tmp125*yaw_dot;
-    const Scalar tmp127 = tmp126 + x_dot;
-    const Scalar tmp128 = tmp73 - tmp72;
-    const Scalar tmp129 = -tmp128;
-    const Scalar tmp130 = tmp75 + tmp77 - tmp76;
-    const Scalar tmp131 = -tmp24 - tmp94;
-    const Scalar tmp132 = y_dot + tmp129*roll_dot + tmp130*pitch_dot + tmp131*yaw_dot;
-    const Scalar tmp133 = tmp82 + tmp84;
-    const Scalar tmp134 = tmp12 + tmp87 - tmp88;
-    const Scalar tmp135 = z_dot + tmp133*roll_dot + tmp134*pitch_dot;
-    const Scalar tmp138 = tmp46 - tmp48;
-    const Scalar tmp139 = tmp138 + tmp44;
-    const Scalar tmp140 = tmp139 + z;
-    const Scalar tmp141 = tmp56 + tmp58 - tmp60;
-    const Scalar tmp142 = tmp41 + tmp65 - tmp67;
-    const Scalar tmp143 = tmp121*roll_dot + tmp141*pitch_dot + tmp142*yaw_dot;
-    const Scalar tmp144 = tmp143 + x_dot;
-    const Scalar tmp145 = tmp75 + tmp76 - tmp77;
-    const Scalar tmp146 = -tmp114 - tmp13;
-    const Scalar tmp147 = y_dot + tmp128*roll_dot + tmp145*pitch_dot + tmp146*yaw_dot;
-    const Scalar tmp148 = -tmp133;
-    const Scalar tmp149 = tmp12 + tmp88 - tmp87;
-    const Scalar tmp150 = z_dot + tmp148*roll_dot + tmp149*pitch_dot;
-    const Scalar tmp151 = (Scalar(0.25))*m;
-    const Scalar tmp152 = tmp151*g;
-    const Scalar tmp241 = (Scalar(0.125))*m;
-    const Scalar tmp242 = tmp241*((tmp111*tmp111) + (tmp113*tmp113) + (tmp105*tmp105))
-        + tmp241*((tmp127*tmp127) + (tmp132*tmp132) + (tmp135*tmp135))
-        + tmp241*((tmp144*tmp144) + (tmp147*tmp147) + (tmp150*tmp150))
-        + tmp241*((tmp71*tmp71) + (tmp80*tmp80) + (tmp91*tmp91));
-    const Scalar tmp243 = tmp152*tmp120 + tmp152*tmp51 + tmp152*tmp140 + tmp152*tmp100;
+    const Scalar tmp2 = Scalar(0.5)*tmp1;
+    const Scalar tmp3 = tmp0*tmp2;
+    const Scalar tmp5 = sin(yaw);
+    const Scalar tmp6 = tmp2*tmp5;
+    const Scalar tmp8 = sin(pitch);
+    const Scalar tmp9 = Scalar(0.5)*tmp8;
+    const Scalar tmp10 = z - tmp9;
+    const Scalar tmp11 = tmp0*tmp9;
+    const Scalar tmp12 = tmp6*yaw_dot + tmp11*pitch_dot;
+    const Scalar tmp13 = x_dot - tmp12;
+    const Scalar tmp14 = tmp5*tmp9;
+    const Scalar tmp15 = tmp14*pitch_dot;
+    const Scalar tmp16 = tmp3*yaw_dot;
+    const Scalar tmp17 = tmp16 + y_dot - tmp15;
+    const Scalar tmp18 = -z_dot;
+    const Scalar tmp19 = -tmp18 - tmp2*pitch_dot;
+    const Scalar tmp20 = cos(roll);
+    const Scalar tmp21 = Scalar(0.4)*tmp20;
+    const Scalar tmp22 = tmp21*tmp5;
+    const Scalar tmp23 = sin(roll);
+    const Scalar tmp24 = Scalar(0.4)*tmp23;
+    const Scalar tmp25 = tmp0*tmp24;
+    const Scalar tmp26 = tmp25*tmp8;
+    const Scalar tmp27 = tmp26 - tmp22;
+    const Scalar tmp29 = tmp0*tmp21;
+    const Scalar tmp30 = tmp24*tmp5;
+    const Scalar tmp31 = tmp30*tmp8;
+    const Scalar tmp32 = tmp29 + tmp31;
+    const Scalar tmp34 = tmp1*tmp24;
+    const Scalar tmp35 = tmp34 + z;
+    const Scalar tmp36 = tmp34*pitch_dot;
+    const Scalar tmp37 = tmp30 + tmp29*tmp8;
+    const Scalar tmp38 = -tmp32;
+    const Scalar tmp39 = tmp0*tmp36 + tmp37*roll_dot + tmp38*yaw_dot;
+    const Scalar tmp40 = tmp39 + x_dot;
+    const Scalar tmp41 = tmp36*tmp5;
+    const Scalar tmp42 = -tmp25 + tmp22*tmp8;
+    const Scalar tmp43 = tmp41 + y_dot + tmp27*yaw_dot + tmp42*roll_dot;
+    const Scalar tmp44 = tmp24*tmp8;
+    const Scalar tmp45 = tmp1*tmp21;
+    const Scalar tmp46 = z_dot + tmp45*roll_dot - tmp44*pitch_dot;
+    const Scalar tmp47 = Scalar(0.3)*tmp23;
+    const Scalar tmp48 = tmp47*tmp5;
+    const Scalar tmp49 = Scalar(0.3)*tmp20;
+    const Scalar tmp50 = tmp0*tmp49;
+    const Scalar tmp51 = tmp50*tmp8;
+    const Scalar tmp52 = tmp48 + tmp51;
+    const Scalar tmp54 = tmp0*tmp47;
+    const Scalar tmp55 = tmp49*tmp5;
+    const Scalar tmp56 = tmp55*tmp8;
+    const Scalar tmp57 = tmp56 - tmp54;
+    const Scalar tmp59 = tmp1*tmp49;
+    const Scalar tmp60 = tmp59 + z;
+    const Scalar tmp61 = tmp59*pitch_dot;
+    const Scalar tmp62 = tmp54*tmp8;
+    const Scalar tmp63 = tmp62 - tmp55;
+    const Scalar tmp64 = -tmp63;
+    const Scalar tmp65 = -tmp57;
+    const Scalar tmp66 = tmp0*tmp61 + tmp64*roll_dot + tmp65*yaw_dot;
+    const Scalar tmp67 = tmp66 + x_dot;
+    const Scalar tmp68 = tmp5*tmp61;
+    const Scalar tmp69 = tmp48*tmp8;
+    const Scalar tmp70 = tmp50 + tmp69;
+    const Scalar tmp71 = -tmp70;
+    const Scalar tmp72 = tmp68 + y_dot + tmp52*yaw_dot + tmp71*roll_dot;
+    const Scalar tmp73 = tmp49*tmp8;
+    const Scalar tmp74 = tmp1*tmp47;
+    const Scalar tmp75 = -tmp18 - tmp73*pitch_dot - tmp74*roll_dot;
+    const Scalar tmp76 = Scalar(0.2)*tmp1;
+    const Scalar tmp77 = Scalar(0.25)*tmp20;
+    const Scalar tmp78 = tmp0*tmp77;
+    const Scalar tmp79 = tmp8*tmp78;
+    const Scalar tmp80 = tmp79 + tmp0*tmp76;
+    const Scalar tmp81 = Scalar(0.25)*tmp23;
+    const Scalar tmp82 = tmp5*tmp81;
+    const Scalar tmp83 = tmp63 + tmp82;
+    const Scalar tmp84 = tmp80 + tmp83;
+    const Scalar tmp86 = tmp5*tmp77;
+    const Scalar tmp87 = tmp8*tmp86;
+    const Scalar tmp88 = tmp87 + tmp5*tmp76;
+    const Scalar tmp89 = tmp0*tmp81;
+    const Scalar tmp90 = tmp70 - tmp89;
+    const Scalar tmp91 = tmp88 + tmp90;
+    const Scalar tmp93 = Scalar(0.2)*tmp8;
+    const Scalar tmp94 = tmp1*tmp77;
+    const Scalar tmp95 = tmp74 + tmp94;
+    const Scalar tmp96 = tmp95 - tmp93;
+    const Scalar tmp97 = tmp96 + z;
+    const Scalar tmp98 = tmp1*tmp54;
+    const Scalar tmp99 = tmp98 + tmp0*tmp94 - tmp0*tmp93;
+    const Scalar tmp100 = tmp52 + tmp86 - tmp8*tmp89;
+    const Scalar tmp101 = -tmp91;
+    const Scalar tmp102 = tmp99*pitch_dot + tmp100*roll_dot + tmp101*yaw_dot;
+    const Scalar tmp103 = tmp102 + x_dot;
+    const Scalar tmp104 = tmp1*tmp48;
+    const Scalar tmp105 = tmp104 + tmp5*tmp94 - tmp5*tmp93;
+    const Scalar tmp106 = tmp54 + tmp78 - tmp56 + tmp8*tmp82;
+    const Scalar tmp107 = -tmp106;
+    const Scalar tmp108 = y_dot + tmp84*yaw_dot + tmp105*pitch_dot + tmp107*roll_dot;
+    const Scalar tmp109 = -tmp1*tmp81 + Scalar(0.3)*tmp1*tmp20;
+    const Scalar tmp110 = tmp47*tmp8;
+    const Scalar tmp111 = -tmp76 - tmp110 - tmp77*tmp8;
+    const Scalar tmp112 = z_dot + tmp109*roll_dot + tmp111*pitch_dot;
+    const Scalar tmp113 = g*m_a;
+    const Scalar tmp115 = g*m_b;
+    const Scalar tmp117 = g*m_c;
+    const Scalar tmp119 = g*m_d;
+    const Scalar tmp199 = (Scalar(0.5))*m_a*((tmp13*tmp13) + (tmp17*tmp17) + (tmp19*tmp19))
+        + (Scalar(0.5))*m_b*((tmp43*tmp43) + (tmp46*tmp46) + (tmp40*tmp40))
+        + (Scalar(0.5))*m_c*((tmp67*tmp67) + (tmp72*tmp72) + (tmp75*tmp75))
+        + (Scalar(0.5))*m_d*((tmp103*tmp103) + (tmp108*tmp108) + (tmp112*tmp112));
+    const Scalar tmp200 = tmp113*tmp10 + tmp115*tmp35 + tmp117*tmp60 + tmp119*tmp97;
     Scalar result;
-    result = tmp242 + tmp243;
+    result = tmp199 + tmp200;
     return result;
   }
 
@@ -3088,112 +2562,100 @@ struct RigidBodyEuler {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return x (nx)
-  /// Ops: 100
+  /// Ops: 76
   template <typename Scalar>
   static XVector<Scalar> positions(const QVector<Scalar>& q,
                                    const Scalar& /*t*/,
-                                   const Params& params) {
+                                   const Params& /*params*/) {
     using std::cos;
     using std::sin;
-    using std::sqrt;
     const Scalar x = q(0);
     const Scalar y = q(1);
     const Scalar z = q(2);
     const Scalar yaw = q(3);
     const Scalar pitch = q(4);
     const Scalar roll = q(5);
-    const Scalar m = Scalar(params.m);
-    const Scalar a = Scalar(params.a);
-    const Scalar b = Scalar(params.b);
-    const Scalar c = Scalar(params.c);
     const Scalar tmp0 = cos(yaw);
     const Scalar tmp1 = cos(pitch);
-    const Scalar tmp2 = (Scalar(1)/sqrt(m));
-    const Scalar tmp3 = (a*a);
-    const Scalar tmp4 = (b*b);
-    const Scalar tmp5 = ((Scalar(1)/Scalar(24)))*m;
-    const Scalar tmp6 = tmp5*(tmp3 + tmp4);
-    const Scalar tmp7 = (c*c);
-    const Scalar tmp8 = tmp5*(tmp3 + tmp7);
-    const Scalar tmp9 = tmp5*(tmp4 + tmp7);
-    const Scalar tmp10 = tmp6 + tmp8 - tmp9;
-    const Scalar tmp11 = tmp2*sqrt(tmp10);
-    const Scalar tmp12 = tmp1*tmp11;
-    const Scalar tmp13 = tmp0*tmp12;
-    const Scalar tmp14 = sin(roll);
-    const Scalar tmp15 = sin(yaw);
-    const Scalar tmp16 = tmp14*tmp15;
-    const Scalar tmp17 = sin(pitch);
-    const Scalar tmp18 = cos(roll);
-    const Scalar tmp19 = tmp0*tmp18;
-    const Scalar tmp20 = tmp17*tmp19;
-    const Scalar tmp21 = tmp16 + tmp20;
-    const Scalar tmp22 = tmp8 + tmp9 - tmp6;
-    const Scalar tmp23 = tmp2*sqrt(tmp22);
-    const Scalar tmp24 = tmp21*tmp23;
-    const Scalar tmp25 = tmp15*tmp18;
-    const Scalar tmp26 = tmp0*tmp14;
-    const Scalar tmp27 = tmp17*tmp26;
-    const Scalar tmp28 = tmp27 - tmp25;
-    const Scalar tmp29 = tmp6 + tmp9 - tmp8;
-    const Scalar tmp30 = tmp2*sqrt(tmp29);
-    const Scalar tmp31 = tmp28*tmp30;
-    const Scalar tmp32 = tmp24 + tmp31;
-    const Scalar tmp33 = tmp13 + tmp32;
-    const Scalar tmp34 = tmp33 + x;
-    const Scalar tmp35 = tmp17*tmp25;
-    const Scalar tmp36 = tmp35 - tmp26;
-    const Scalar tmp37 = tmp23*tmp36;
-    const Scalar tmp38 = tmp16*tmp17;
-    const Scalar tmp39 = tmp19 + tmp38;
-    const Scalar tmp40 = tmp30*tmp39;
-    const Scalar tmp41 = tmp12*tmp15;
-    const Scalar tmp42 = tmp41 + y;
-    const Scalar tmp43 = tmp37 + tmp40 + tmp42;
-    const Scalar tmp44 = tmp11*tmp17;
-    const Scalar tmp45 = tmp18*tmp23;
-    const Scalar tmp46 = tmp1*tmp45;
-    const Scalar tmp47 = tmp14*tmp30;
-    const Scalar tmp48 = tmp1*tmp47;
-    const Scalar tmp49 = tmp46 + tmp48;
-    const Scalar tmp50 = tmp49 - tmp44;
-    const Scalar tmp51 = tmp50 + z;
-    const Scalar tmp63 = -tmp41;
-    const Scalar tmp92 = -tmp24;
-    const Scalar tmp93 = -tmp31;
-    const Scalar tmp94 = tmp13 + tmp93;
-    const Scalar tmp95 = tmp92 + tmp94 + x;
-    const Scalar tmp96 = -tmp37;
-    const Scalar tmp97 = -tmp40;
-    const Scalar tmp98 = tmp42 + tmp96 + tmp97;
-    const Scalar tmp99 = tmp44 + tmp49;
-    const Scalar tmp100 = z - tmp99;
-    const Scalar tmp109 = -tmp13;
-    const Scalar tmp114 = tmp31 + tmp92;
-    const Scalar tmp115 = tmp109 + x;
-    const Scalar tmp116 = tmp114 + tmp115;
-    const Scalar tmp117 = tmp63 + y;
-    const Scalar tmp118 = tmp117 + tmp40 + tmp96;
-    const Scalar tmp119 = tmp44 + tmp48 - tmp46;
-    const Scalar tmp120 = tmp119 + z;
-    const Scalar tmp136 = tmp115 + tmp24 + tmp93;
-    const Scalar tmp137 = tmp117 + tmp37 + tmp97;
-    const Scalar tmp138 = tmp46 - tmp48;
-    const Scalar tmp139 = tmp138 + tmp44;
-    const Scalar tmp140 = tmp139 + z;
+    const Scalar tmp2 = Scalar(0.5)*tmp1;
+    const Scalar tmp3 = tmp0*tmp2;
+    const Scalar tmp4 = tmp3 + x;
+    const Scalar tmp5 = sin(yaw);
+    const Scalar tmp6 = tmp2*tmp5;
+    const Scalar tmp7 = tmp6 + y;
+    const Scalar tmp8 = sin(pitch);
+    const Scalar tmp9 = Scalar(0.5)*tmp8;
+    const Scalar tmp10 = z - tmp9;
+    const Scalar tmp20 = cos(roll);
+    const Scalar tmp21 = Scalar(0.4)*tmp20;
+    const Scalar tmp22 = tmp21*tmp5;
+    const Scalar tmp23 = sin(roll);
+    const Scalar tmp24 = Scalar(0.4)*tmp23;
+    const Scalar tmp25 = tmp0*tmp24;
+    const Scalar tmp26 = tmp25*tmp8;
+    const Scalar tmp27 = tmp26 - tmp22;
+    const Scalar tmp28 = tmp27 + x;
+    const Scalar tmp29 = tmp0*tmp21;
+    const Scalar tmp30 = tmp24*tmp5;
+    const Scalar tmp31 = tmp30*tmp8;
+    const Scalar tmp32 = tmp29 + tmp31;
+    const Scalar tmp33 = tmp32 + y;
+    const Scalar tmp34 = tmp1*tmp24;
+    const Scalar tmp35 = tmp34 + z;
+    const Scalar tmp47 = Scalar(0.3)*tmp23;
+    const Scalar tmp48 = tmp47*tmp5;
+    const Scalar tmp49 = Scalar(0.3)*tmp20;
+    const Scalar tmp50 = tmp0*tmp49;
+    const Scalar tmp51 = tmp50*tmp8;
+    const Scalar tmp52 = tmp48 + tmp51;
+    const Scalar tmp53 = tmp52 + x;
+    const Scalar tmp54 = tmp0*tmp47;
+    const Scalar tmp55 = tmp49*tmp5;
+    const Scalar tmp56 = tmp55*tmp8;
+    const Scalar tmp57 = tmp56 - tmp54;
+    const Scalar tmp58 = tmp57 + y;
+    const Scalar tmp59 = tmp1*tmp49;
+    const Scalar tmp60 = tmp59 + z;
+    const Scalar tmp62 = tmp54*tmp8;
+    const Scalar tmp63 = tmp62 - tmp55;
+    const Scalar tmp69 = tmp48*tmp8;
+    const Scalar tmp70 = tmp50 + tmp69;
+    const Scalar tmp74 = tmp1*tmp47;
+    const Scalar tmp76 = Scalar(0.2)*tmp1;
+    const Scalar tmp77 = Scalar(0.25)*tmp20;
+    const Scalar tmp78 = tmp0*tmp77;
+    const Scalar tmp79 = tmp8*tmp78;
+    const Scalar tmp80 = tmp79 + tmp0*tmp76;
+    const Scalar tmp81 = Scalar(0.25)*tmp23;
+    const Scalar tmp82 = tmp5*tmp81;
+    const Scalar tmp83 = tmp63 + tmp82;
+    const Scalar tmp84 = tmp80 + tmp83;
+    const Scalar tmp85 = tmp84 + x;
+    const Scalar tmp86 = tmp5*tmp77;
+    const Scalar tmp87 = tmp8*tmp86;
+    const Scalar tmp88 = tmp87 + tmp5*tmp76;
+    const Scalar tmp89 = tmp0*tmp81;
+    const Scalar tmp90 = tmp70 - tmp89;
+    const Scalar tmp91 = tmp88 + tmp90;
+    const Scalar tmp92 = tmp91 + y;
+    const Scalar tmp93 = Scalar(0.2)*tmp8;
+    const Scalar tmp94 = tmp1*tmp77;
+    const Scalar tmp95 = tmp74 + tmp94;
+    const Scalar tmp96 = tmp95 - tmp93;
+    const Scalar tmp97 = tmp96 + z;
     XVector<Scalar> result;
-    result(0) = tmp34;
-    result(1) = tmp43;
-    result(2) = tmp51;
-    result(3) = tmp95;
-    result(4) = tmp98;
-    result(5) = tmp100;
-    result(6) = tmp116;
-    result(7) = tmp118;
-    result(8) = tmp120;
-    result(9) = tmp136;
-    result(10) = tmp137;
-    result(11) = tmp140;
+    result(0) = tmp4;
+    result(1) = tmp7;
+    result(2) = tmp10;
+    result(3) = tmp28;
+    result(4) = tmp33;
+    result(5) = tmp35;
+    result(6) = tmp53;
+    result(7) = tmp58;
+    result(8) = tmp60;
+    result(9) = tmp85;
+    result(10) = tmp92;
+    result(11) = tmp97;
     return result;
   }
 
@@ -3203,15 +2665,14 @@ struct RigidBodyEuler {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return xdot (nx)
-  /// Ops: 219
+  /// Ops: 178
   template <typename Scalar>
   static XVector<Scalar> velocities(const QVector<Scalar>& q,
                                     const QVector<Scalar>& v,
                                     const Scalar& /*t*/,
-                                    const Params& params) {
+                                    const Params& /*params*/) {
     using std::cos;
     using std::sin;
-    using std::sqrt;
     const Scalar yaw = q(3);
     const Scalar pitch = q(4);
     const Scalar roll = q(5);
@@ -3221,147 +2682,118 @@ struct RigidBodyEuler {
     const Scalar yaw_dot = v(3);
     const Scalar pitch_dot = v(4);
     const Scalar roll_dot = v(5);
-    const Scalar m = Scalar(params.m);
-    const Scalar a = Scalar(params.a);
-    const Scalar b = Scalar(params.b);
-    const Scalar c = Scalar(params.c);
     const Scalar tmp0 = cos(yaw);
     const Scalar tmp1 = cos(pitch);
-    const Scalar tmp2 = (Scalar(1)/sqrt(m));
-    const Scalar tmp3 = (a*a);
-    const Scalar tmp4 = (b*b);
-    const Scalar tmp5 = ((Scalar(1)/Scalar(24)))*m;
-    const Scalar tmp6 = tmp5*(tmp3 + tmp4);
-    const Scalar tmp7 = (c*c);
-    const Scalar tmp8 = tmp5*(tmp3 + tmp7);
-    const Scalar tmp9 = tmp5*(tmp4 + tmp7);
-    const Scalar tmp10 = tmp6 + tmp8 - tmp9;
-    const Scalar tmp11 = tmp2*sqrt(tmp10);
-    const Scalar tmp12 = tmp1*tmp11;
-    const Scalar tmp13 = tmp0*tmp12;
-    const Scalar tmp14 = sin(roll);
-    const Scalar tmp15 = sin(yaw);
-    const Scalar tmp16 = tmp14*tmp15;
-    const Scalar tmp17 = sin(pitch);
-    const Scalar tmp18 = cos(roll);
-    const Scalar tmp19 = tmp0*tmp18;
-    const Scalar tmp20 = tmp17*tmp19;
-    const Scalar tmp21 = tmp16 + tmp20;
-    const Scalar tmp22 = tmp8 + tmp9 - tmp6;
-    const Scalar tmp23 = tmp2*sqrt(tmp22);
-    const Scalar tmp24 = tmp21*tmp23;
-    const Scalar tmp25 = tmp15*tmp18;
-    const Scalar tmp26 = tmp0*tmp14;
-    const Scalar tmp27 = tmp17*tmp26;
-    const Scalar tmp28 = tmp27 - tmp25;
-    const Scalar tmp29 = tmp6 + tmp9 - tmp8;
-    const Scalar tmp30 = tmp2*sqrt(tmp29);
-    const Scalar tmp31 = tmp28*tmp30;
-    const Scalar tmp32 = tmp24 + tmp31;
-    const Scalar tmp33 = tmp13 + tmp32;
-    const Scalar tmp35 = tmp17*tmp25;
-    const Scalar tmp36 = tmp35 - tmp26;
-    const Scalar tmp38 = tmp16*tmp17;
-    const Scalar tmp39 = tmp19 + tmp38;
-    const Scalar tmp41 = tmp12*tmp15;
-    const Scalar tmp44 = tmp11*tmp17;
-    const Scalar tmp45 = tmp18*tmp23;
-    const Scalar tmp47 = tmp14*tmp30;
-    const Scalar tmp52 = tmp21*tmp30;
-    const Scalar tmp53 = -tmp28;
-    const Scalar tmp54 = tmp23*tmp53;
-    const Scalar tmp55 = tmp52 + tmp54;
-    const Scalar tmp56 = tmp0*tmp44;
-    const Scalar tmp57 = tmp1*tmp23;
-    const Scalar tmp58 = tmp19*tmp57;
-    const Scalar tmp59 = tmp1*tmp30;
-    const Scalar tmp60 = tmp26*tmp59;
-    const Scalar tmp61 = tmp58 + tmp60;
-    const Scalar tmp62 = tmp61 - tmp56;
-    const Scalar tmp63 = -tmp41;
-    const Scalar tmp64 = -tmp36;
-    const Scalar tmp65 = tmp23*tmp64;
-    const Scalar tmp66 = -tmp39;
-    const Scalar tmp67 = tmp30*tmp66;
-    const Scalar tmp68 = tmp65 + tmp67;
-    const Scalar tmp69 = tmp63 + tmp68;
-    const Scalar tmp70 = tmp55*roll_dot + tmp62*pitch_dot + tmp69*yaw_dot;
-    const Scalar tmp71 = tmp70 + x_dot;
-    const Scalar tmp72 = tmp30*tmp36;
-    const Scalar tmp73 = tmp23*tmp66;
-    const Scalar tmp74 = tmp72 + tmp73;
-    const Scalar tmp75 = tmp15*tmp44;
-    const Scalar tmp76 = tmp25*tmp57;
-    const Scalar tmp77 = tmp16*tmp59;
-    const Scalar tmp78 = tmp76 + tmp77;
-    const Scalar tmp79 = tmp78 - tmp75;
-    const Scalar tmp80 = y_dot + tmp33*yaw_dot + tmp74*roll_dot + tmp79*pitch_dot;
-    const Scalar tmp81 = tmp14*tmp23;
-    const Scalar tmp82 = tmp1*tmp81;
-    const Scalar tmp83 = tmp18*tmp30;
-    const Scalar tmp84 = tmp1*tmp83;
-    const Scalar tmp85 = tmp82 - tmp84;
-    const Scalar tmp86 = -tmp85;
-    const Scalar tmp87 = tmp17*tmp45;
-    const Scalar tmp88 = tmp17*tmp47;
-    const Scalar tmp89 = tmp87 + tmp88;
-    const Scalar tmp90 = -tmp12 - tmp89;
-    const Scalar tmp91 = z_dot + tmp86*roll_dot + tmp90*pitch_dot;
-    const Scalar tmp92 = -tmp24;
-    const Scalar tmp93 = -tmp31;
-    const Scalar tmp94 = tmp13 + tmp93;
-    const Scalar tmp101 = -tmp55;
-    const Scalar tmp102 = -tmp56 - tmp61;
-    const Scalar tmp103 = -tmp41 - tmp68;
-    const Scalar tmp104 = tmp101*roll_dot + tmp102*pitch_dot + tmp103*yaw_dot;
-    const Scalar tmp105 = tmp104 + x_dot;
-    const Scalar tmp106 = -tmp74;
-    const Scalar tmp107 = tmp75 + tmp78;
-    const Scalar tmp108 = -tmp107;
-    const Scalar tmp109 = -tmp13;
-    const Scalar tmp110 = -tmp32 - tmp109;
-    const Scalar tmp111 = y_dot + tmp110*yaw_dot + tmp106*roll_dot + tmp108*pitch_dot;
-    const Scalar tmp112 = tmp89 - tmp12;
-    const Scalar tmp113 = z_dot + tmp112*pitch_dot + tmp85*roll_dot;
-    const Scalar tmp114 = tmp31 + tmp92;
-    const Scalar tmp121 = tmp54 - tmp52;
-    const Scalar tmp122 = -tmp121;
-    const Scalar tmp123 = tmp56 + tmp60 - tmp58;
-    const Scalar tmp124 = tmp67 - tmp65;
-    const Scalar tmp125 = tmp124 + tmp41;
-    const Scalar tmp126 = tmp122*roll_dot + tmp123*pitch_dot + tmp125*yaw_dot;
-    const Scalar tmp127 = tmp126 + x_dot;
-    const Scalar tmp128 = tmp73 - tmp72;
-    const Scalar tmp129 = -tmp128;
-    const Scalar tmp130 = tmp75 + tmp77 - tmp76;
-    const Scalar tmp131 = -tmp24 - tmp94;
-    const Scalar tmp132 = y_dot + tmp129*roll_dot + tmp130*pitch_dot + tmp131*yaw_dot;
-    const Scalar tmp133 = tmp82 + tmp84;
-    const Scalar tmp134 = tmp12 + tmp87 - tmp88;
-    const Scalar tmp135 = z_dot + tmp133*roll_dot + tmp134*pitch_dot;
-    const Scalar tmp141 = tmp56 + tmp58 - tmp60;
-    const Scalar tmp142 = tmp41 + tmp65 - tmp67;
-    const Scalar tmp143 = tmp121*roll_dot + tmp141*pitch_dot + tmp142*yaw_dot;
-    const Scalar tmp144 = tmp143 + x_dot;
-    const Scalar tmp145 = tmp75 + tmp76 - tmp77;
-    const Scalar tmp146 = -tmp114 - tmp13;
-    const Scalar tmp147 = y_dot + tmp128*roll_dot + tmp145*pitch_dot + tmp146*yaw_dot;
-    const Scalar tmp148 = -tmp133;
-    const Scalar tmp149 = tmp12 + tmp88 - tmp87;
-    const Scalar tmp150 = z_dot + tmp148*roll_dot + tmp149*pitch_dot;
+    const Scalar tmp2 = Scalar(0.5)*tmp1;
+    const Scalar tmp3 = tmp0*tmp2;
+    const Scalar tmp5 = sin(yaw);
+    const Scalar tmp6 = tmp2*tmp5;
+    const Scalar tmp8 = sin(pitch);
+    const Scalar tmp9 = Scalar(0.5)*tmp8;
+    const Scalar tmp11 = tmp0*tmp9;
+    const Scalar tmp12 = tmp6*yaw_dot + tmp11*pitch_dot;
+    const Scalar tmp13 = x_dot - tmp12;
+    const Scalar tmp14 = tmp5*tmp9;
+    const Scalar tmp15 = tmp14*pitch_dot;
+    const Scalar tmp16 = tmp3*yaw_dot;
+    const Scalar tmp17 = tmp16 + y_dot - tmp15;
+    const Scalar tmp18 = -z_dot;
+    const Scalar tmp19 = -tmp18 - tmp2*pitch_dot;
+    const Scalar tmp20 = cos(roll);
+    const Scalar tmp21 = Scalar(0.4)*tmp20;
+    const Scalar tmp22 = tmp21*tmp5;
+    const Scalar tmp23 = sin(roll);
+    const Scalar tmp24 = Scalar(0.4)*tmp23;
+    const Scalar tmp25 = tmp0*tmp24;
+    const Scalar tmp26 = tmp25*tmp8;
+    const Scalar tmp27 = tmp26 - tmp22;
+    const Scalar tmp29 = tmp0*tmp21;
+    const Scalar tmp30 = tmp24*tmp5;
+    const Scalar tmp31 = tmp30*tmp8;
+    const Scalar tmp32 = tmp29 + tmp31;
+    const Scalar tmp34 = tmp1*tmp24;
+    const Scalar tmp36 = tmp34*pitch_dot;
+    const Scalar tmp37 = tmp30 + tmp29*tmp8;
+    const Scalar tmp38 = -tmp32;
+    const Scalar tmp39 = tmp0*tmp36 + tmp37*roll_dot + tmp38*yaw_dot;
+    const Scalar tmp40 = tmp39 + x_dot;
+    const Scalar tmp41 = tmp36*tmp5;
+    const Scalar tmp42 = -tmp25 + tmp22*tmp8;
+    const Scalar tmp43 = tmp41 + y_dot + tmp27*yaw_dot + tmp42*roll_dot;
+    const Scalar tmp44 = tmp24*tmp8;
+    const Scalar tmp45 = tmp1*tmp21;
+    const Scalar tmp46 = z_dot + tmp45*roll_dot - tmp44*pitch_dot;
+    const Scalar tmp47 = Scalar(0.3)*tmp23;
+    const Scalar tmp48 = tmp47*tmp5;
+    const Scalar tmp49 = Scalar(0.3)*tmp20;
+    const Scalar tmp50 = tmp0*tmp49;
+    const Scalar tmp51 = tmp50*tmp8;
+    const Scalar tmp52 = tmp48 + tmp51;
+    const Scalar tmp54 = tmp0*tmp47;
+    const Scalar tmp55 = tmp49*tmp5;
+    const Scalar tmp56 = tmp55*tmp8;
+    const Scalar tmp57 = tmp56 - tmp54;
+    const Scalar tmp59 = tmp1*tmp49;
+    const Scalar tmp61 = tmp59*pitch_dot;
+    const Scalar tmp62 = tmp54*tmp8;
+    const Scalar tmp63 = tmp62 - tmp55;
+    const Scalar tmp64 = -tmp63;
+    const Scalar tmp65 = -tmp57;
+    const Scalar tmp66 = tmp0*tmp61 + tmp64*roll_dot + tmp65*yaw_dot;
+    const Scalar tmp67 = tmp66 + x_dot;
+    const Scalar tmp68 = tmp5*tmp61;
+    const Scalar tmp69 = tmp48*tmp8;
+    const Scalar tmp70 = tmp50 + tmp69;
+    const Scalar tmp71 = -tmp70;
+    const Scalar tmp72 = tmp68 + y_dot + tmp52*yaw_dot + tmp71*roll_dot;
+    const Scalar tmp73 = tmp49*tmp8;
+    const Scalar tmp74 = tmp1*tmp47;
+    const Scalar tmp75 = -tmp18 - tmp73*pitch_dot - tmp74*roll_dot;
+    const Scalar tmp76 = Scalar(0.2)*tmp1;
+    const Scalar tmp77 = Scalar(0.25)*tmp20;
+    const Scalar tmp78 = tmp0*tmp77;
+    const Scalar tmp79 = tmp8*tmp78;
+    const Scalar tmp80 = tmp79 + tmp0*tmp76;
+    const Scalar tmp81 = Scalar(0.25)*tmp23;
+    const Scalar tmp82 = tmp5*tmp81;
+    const Scalar tmp83 = tmp63 + tmp82;
+    const Scalar tmp84 = tmp80 + tmp83;
+    const Scalar tmp86 = tmp5*tmp77;
+    const Scalar tmp87 = tmp8*tmp86;
+    const Scalar tmp88 = tmp87 + tmp5*tmp76;
+    const Scalar tmp89 = tmp0*tmp81;
+    const Scalar tmp90 = tmp70 - tmp89;
+    const Scalar tmp91 = tmp88 + tmp90;
+    const Scalar tmp93 = Scalar(0.2)*tmp8;
+    const Scalar tmp94 = tmp1*tmp77;
+    const Scalar tmp98 = tmp1*tmp54;
+    const Scalar tmp99 = tmp98 + tmp0*tmp94 - tmp0*tmp93;
+    const Scalar tmp100 = tmp52 + tmp86 - tmp8*tmp89;
+    const Scalar tmp101 = -tmp91;
+    const Scalar tmp102 = tmp99*pitch_dot + tmp100*roll_dot + tmp101*yaw_dot;
+    const Scalar tmp103 = tmp102 + x_dot;
+    const Scalar tmp104 = tmp1*tmp48;
+    const Scalar tmp105 = tmp104 + tmp5*tmp94 - tmp5*tmp93;
+    const Scalar tmp106 = tmp54 + tmp78 - tmp56 + tmp8*tmp82;
+    const Scalar tmp107 = -tmp106;
+    const Scalar tmp108 = y_dot + tmp84*yaw_dot + tmp105*pitch_dot + tmp107*roll_dot;
+    const Scalar tmp109 = -tmp1*tmp81 + Scalar(0.3)*tmp1*tmp20;
+    const Scalar tmp110 = tmp47*tmp8;
+    const Scalar tmp111 = -tmp76 - tmp110 - tmp77*tmp8;
+    const Scalar tmp112 = z_dot + tmp109*roll_dot + tmp111*pitch_dot;
     XVector<Scalar> result;
-    result(0) = tmp71;
-    result(1) = tmp80;
-    result(2) = tmp91;
-    result(3) = tmp105;
-    result(4) = tmp111;
-    result(5) = tmp113;
-    result(6) = tmp127;
-    result(7) = tmp132;
-    result(8) = tmp135;
-    result(9) = tmp144;
-    result(10) = tmp147;
-    result(11) = tmp150;
+    result(0) = tmp13;
+    result(1) = tmp17;
+    result(2) = tmp19;
+    result(3) = tmp40;
+    result(4) = tmp43;
+    result(5) = tmp46;
+    result(6) = tmp67;
+    result(7) = tmp72;
+    result(8) = tmp75;
+    result(9) = tmp103;
+    result(10) = tmp108;
+    result(11) = tmp112;
     return result;
   }
 
@@ -3370,202 +2802,170 @@ struct RigidBodyEuler {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return J (nx x nq)
-  /// Ops: 155
+  /// Ops: 120
   template <typename Scalar>
   static XJacobian<Scalar> jacobian(const QVector<Scalar>& q,
                                     const Scalar& /*t*/,
-                                    const Params& params) {
+                                    const Params& /*params*/) {
     using std::cos;
     using std::sin;
-    using std::sqrt;
     const Scalar yaw = q(3);
     const Scalar pitch = q(4);
     const Scalar roll = q(5);
-    const Scalar m = Scalar(params.m);
-    const Scalar a = Scalar(params.a);
-    const Scalar b = Scalar(params.b);
-    const Scalar c = Scalar(params.c);
     const Scalar tmp0 = cos(yaw);
     const Scalar tmp1 = cos(pitch);
-    const Scalar tmp2 = (Scalar(1)/sqrt(m));
-    const Scalar tmp3 = (a*a);
-    const Scalar tmp4 = (b*b);
-    const Scalar tmp5 = ((Scalar(1)/Scalar(24)))*m;
-    const Scalar tmp6 = tmp5*(tmp3 + tmp4);
-    const Scalar tmp7 = (c*c);
-    const Scalar tmp8 = tmp5*(tmp3 + tmp7);
-    const Scalar tmp9 = tmp5*(tmp4 + tmp7);
-    const Scalar tmp10 = tmp6 + tmp8 - tmp9;
-    const Scalar tmp11 = tmp2*sqrt(tmp10);
-    const Scalar tmp12 = tmp1*tmp11;
-    const Scalar tmp13 = tmp0*tmp12;
-    const Scalar tmp14 = sin(roll);
-    const Scalar tmp15 = sin(yaw);
-    const Scalar tmp16 = tmp14*tmp15;
-    const Scalar tmp17 = sin(pitch);
-    const Scalar tmp18 = cos(roll);
-    const Scalar tmp19 = tmp0*tmp18;
-    const Scalar tmp20 = tmp17*tmp19;
-    const Scalar tmp21 = tmp16 + tmp20;
-    const Scalar tmp22 = tmp8 + tmp9 - tmp6;
-    const Scalar tmp23 = tmp2*sqrt(tmp22);
-    const Scalar tmp24 = tmp21*tmp23;
-    const Scalar tmp25 = tmp15*tmp18;
-    const Scalar tmp26 = tmp0*tmp14;
-    const Scalar tmp27 = tmp17*tmp26;
-    const Scalar tmp28 = tmp27 - tmp25;
-    const Scalar tmp29 = tmp6 + tmp9 - tmp8;
-    const Scalar tmp30 = tmp2*sqrt(tmp29);
-    const Scalar tmp31 = tmp28*tmp30;
-    const Scalar tmp32 = tmp24 + tmp31;
-    const Scalar tmp33 = tmp13 + tmp32;
-    const Scalar tmp35 = tmp17*tmp25;
-    const Scalar tmp36 = tmp35 - tmp26;
-    const Scalar tmp38 = tmp16*tmp17;
-    const Scalar tmp39 = tmp19 + tmp38;
-    const Scalar tmp41 = tmp12*tmp15;
-    const Scalar tmp44 = tmp11*tmp17;
-    const Scalar tmp45 = tmp18*tmp23;
-    const Scalar tmp47 = tmp14*tmp30;
-    const Scalar tmp52 = tmp21*tmp30;
-    const Scalar tmp53 = -tmp28;
-    const Scalar tmp54 = tmp23*tmp53;
-    const Scalar tmp55 = tmp52 + tmp54;
-    const Scalar tmp56 = tmp0*tmp44;
-    const Scalar tmp57 = tmp1*tmp23;
-    const Scalar tmp58 = tmp19*tmp57;
-    const Scalar tmp59 = tmp1*tmp30;
-    const Scalar tmp60 = tmp26*tmp59;
-    const Scalar tmp61 = tmp58 + tmp60;
-    const Scalar tmp62 = tmp61 - tmp56;
-    const Scalar tmp63 = -tmp41;
-    const Scalar tmp64 = -tmp36;
-    const Scalar tmp65 = tmp23*tmp64;
-    const Scalar tmp66 = -tmp39;
-    const Scalar tmp67 = tmp30*tmp66;
-    const Scalar tmp68 = tmp65 + tmp67;
-    const Scalar tmp69 = tmp63 + tmp68;
-    const Scalar tmp72 = tmp30*tmp36;
-    const Scalar tmp73 = tmp23*tmp66;
-    const Scalar tmp74 = tmp72 + tmp73;
-    const Scalar tmp75 = tmp15*tmp44;
-    const Scalar tmp76 = tmp25*tmp57;
-    const Scalar tmp77 = tmp16*tmp59;
-    const Scalar tmp78 = tmp76 + tmp77;
-    const Scalar tmp79 = tmp78 - tmp75;
-    const Scalar tmp81 = tmp14*tmp23;
-    const Scalar tmp82 = tmp1*tmp81;
-    const Scalar tmp83 = tmp18*tmp30;
-    const Scalar tmp84 = tmp1*tmp83;
-    const Scalar tmp85 = tmp82 - tmp84;
-    const Scalar tmp86 = -tmp85;
-    const Scalar tmp87 = tmp17*tmp45;
-    const Scalar tmp88 = tmp17*tmp47;
-    const Scalar tmp89 = tmp87 + tmp88;
-    const Scalar tmp90 = -tmp12 - tmp89;
-    const Scalar tmp92 = -tmp24;
-    const Scalar tmp93 = -tmp31;
-    const Scalar tmp94 = tmp13 + tmp93;
-    const Scalar tmp101 = -tmp55;
-    const Scalar tmp102 = -tmp56 - tmp61;
-    const Scalar tmp103 = -tmp41 - tmp68;
-    const Scalar tmp106 = -tmp74;
-    const Scalar tmp107 = tmp75 + tmp78;
-    const Scalar tmp108 = -tmp107;
-    const Scalar tmp109 = -tmp13;
-    const Scalar tmp110 = -tmp32 - tmp109;
-    const Scalar tmp112 = tmp89 - tmp12;
-    const Scalar tmp114 = tmp31 + tmp92;
-    const Scalar tmp121 = tmp54 - tmp52;
-    const Scalar tmp122 = -tmp121;
-    const Scalar tmp123 = tmp56 + tmp60 - tmp58;
-    const Scalar tmp124 = tmp67 - tmp65;
-    const Scalar tmp125 = tmp124 + tmp41;
-    const Scalar tmp128 = tmp73 - tmp72;
-    const Scalar tmp129 = -tmp128;
-    const Scalar tmp130 = tmp75 + tmp77 - tmp76;
-    const Scalar tmp131 = -tmp24 - tmp94;
-    const Scalar tmp133 = tmp82 + tmp84;
-    const Scalar tmp134 = tmp12 + tmp87 - tmp88;
-    const Scalar tmp141 = tmp56 + tmp58 - tmp60;
-    const Scalar tmp142 = tmp41 + tmp65 - tmp67;
-    const Scalar tmp145 = tmp75 + tmp76 - tmp77;
-    const Scalar tmp146 = -tmp114 - tmp13;
-    const Scalar tmp148 = -tmp133;
-    const Scalar tmp149 = tmp12 + tmp88 - tmp87;
+    const Scalar tmp2 = Scalar(0.5)*tmp1;
+    const Scalar tmp3 = tmp0*tmp2;
+    const Scalar tmp5 = sin(yaw);
+    const Scalar tmp6 = tmp2*tmp5;
+    const Scalar tmp8 = sin(pitch);
+    const Scalar tmp9 = Scalar(0.5)*tmp8;
+    const Scalar tmp11 = tmp0*tmp9;
+    const Scalar tmp14 = tmp5*tmp9;
+    const Scalar tmp20 = cos(roll);
+    const Scalar tmp21 = Scalar(0.4)*tmp20;
+    const Scalar tmp22 = tmp21*tmp5;
+    const Scalar tmp23 = sin(roll);
+    const Scalar tmp24 = Scalar(0.4)*tmp23;
+    const Scalar tmp25 = tmp0*tmp24;
+    const Scalar tmp26 = tmp25*tmp8;
+    const Scalar tmp27 = tmp26 - tmp22;
+    const Scalar tmp29 = tmp0*tmp21;
+    const Scalar tmp30 = tmp24*tmp5;
+    const Scalar tmp31 = tmp30*tmp8;
+    const Scalar tmp32 = tmp29 + tmp31;
+    const Scalar tmp34 = tmp1*tmp24;
+    const Scalar tmp37 = tmp30 + tmp29*tmp8;
+    const Scalar tmp38 = -tmp32;
+    const Scalar tmp42 = -tmp25 + tmp22*tmp8;
+    const Scalar tmp44 = tmp24*tmp8;
+    const Scalar tmp45 = tmp1*tmp21;
+    const Scalar tmp47 = Scalar(0.3)*tmp23;
+    const Scalar tmp48 = tmp47*tmp5;
+    const Scalar tmp49 = Scalar(0.3)*tmp20;
+    const Scalar tmp50 = tmp0*tmp49;
+    const Scalar tmp51 = tmp50*tmp8;
+    const Scalar tmp52 = tmp48 + tmp51;
+    const Scalar tmp54 = tmp0*tmp47;
+    const Scalar tmp55 = tmp49*tmp5;
+    const Scalar tmp56 = tmp55*tmp8;
+    const Scalar tmp57 = tmp56 - tmp54;
+    const Scalar tmp59 = tmp1*tmp49;
+    const Scalar tmp62 = tmp54*tmp8;
+    const Scalar tmp63 = tmp62 - tmp55;
+    const Scalar tmp64 = -tmp63;
+    const Scalar tmp65 = -tmp57;
+    const Scalar tmp69 = tmp48*tmp8;
+    const Scalar tmp70 = tmp50 + tmp69;
+    const Scalar tmp71 = -tmp70;
+    const Scalar tmp73 = tmp49*tmp8;
+    const Scalar tmp74 = tmp1*tmp47;
+    const Scalar tmp76 = Scalar(0.2)*tmp1;
+    const Scalar tmp77 = Scalar(0.25)*tmp20;
+    const Scalar tmp78 = tmp0*tmp77;
+    const Scalar tmp79 = tmp8*tmp78;
+    const Scalar tmp80 = tmp79 + tmp0*tmp76;
+    const Scalar tmp81 = Scalar(0.25)*tmp23;
+    const Scalar tmp82 = tmp5*tmp81;
+    const Scalar tmp83 = tmp63 + tmp82;
+    const Scalar tmp84 = tmp80 + tmp83;
+    const Scalar tmp86 = tmp5*tmp77;
+    const Scalar tmp87 = tmp8*tmp86;
+    const Scalar tmp88 = tmp87 + tmp5*tmp76;
+    const Scalar tmp89 = tmp0*tmp81;
+    const Scalar tmp90 = tmp70 - tmp89;
+    const Scalar tmp91 = tmp88 + tmp90;
+    const Scalar tmp93 = Scalar(0.2)*tmp8;
+    const Scalar tmp94 = tmp1*tmp77;
+    const Scalar tmp98 = tmp1*tmp54;
+    const Scalar tmp99 = tmp98 + tmp0*tmp94 - tmp0*tmp93;
+    const Scalar tmp100 = tmp52 + tmp86 - tmp8*tmp89;
+    const Scalar tmp101 = -tmp91;
+    const Scalar tmp104 = tmp1*tmp48;
+    const Scalar tmp105 = tmp104 + tmp5*tmp94 - tmp5*tmp93;
+    const Scalar tmp106 = tmp54 + tmp78 - tmp56 + tmp8*tmp82;
+    const Scalar tmp107 = -tmp106;
+    const Scalar tmp109 = -tmp1*tmp81 + Scalar(0.3)*tmp1*tmp20;
+    const Scalar tmp110 = tmp47*tmp8;
+    const Scalar tmp111 = -tmp76 - tmp110 - tmp77*tmp8;
+    const Scalar tmp124 = tmp34*tmp5;
+    const Scalar tmp129 = tmp0*tmp34;
+    const Scalar tmp133 = tmp5*tmp59;
+    const Scalar tmp143 = -tmp73;
+    const Scalar tmp154 = tmp0*tmp59;
     XJacobian<Scalar> result;
     result(0, 0) = Scalar(1);
     result(0, 1) = Scalar(0);
     result(0, 2) = Scalar(0);
-    result(0, 3) = tmp69;
-    result(0, 4) = tmp62;
-    result(0, 5) = tmp55;
+    result(0, 3) = -tmp6;
+    result(0, 4) = -tmp11;
+    result(0, 5) = Scalar(0);
     result(1, 0) = Scalar(0);
     result(1, 1) = Scalar(1);
     result(1, 2) = Scalar(0);
-    result(1, 3) = tmp33;
-    result(1, 4) = tmp79;
-    result(1, 5) = tmp74;
+    result(1, 3) = tmp3;
+    result(1, 4) = -tmp14;
+    result(1, 5) = Scalar(0);
     result(2, 0) = Scalar(0);
     result(2, 1) = Scalar(0);
     result(2, 2) = Scalar(1);
     result(2, 3) = Scalar(0);
-    result(2, 4) = tmp90;
-    result(2, 5) = tmp86;
+    result(2, 4) = -tmp2;
+    result(2, 5) = Scalar(0);
     result(3, 0) = Scalar(1);
     result(3, 1) = Scalar(0);
     result(3, 2) = Scalar(0);
-    result(3, 3) = tmp103;
-    result(3, 4) = tmp102;
-    result(3, 5) = tmp101;
+    result(3, 3) = tmp38;
+    result(3, 4) = tmp129;
+    result(3, 5) = tmp37;
     result(4, 0) = Scalar(0);
     result(4, 1) = Scalar(1);
     result(4, 2) = Scalar(0);
-    result(4, 3) = tmp110;
-    result(4, 4) = tmp108;
-    result(4, 5) = tmp106;
+    result(4, 3) = tmp27;
+    result(4, 4) = tmp124;
+    result(4, 5) = tmp42;
     result(5, 0) = Scalar(0);
     result(5, 1) = Scalar(0);
     result(5, 2) = Scalar(1);
     result(5, 3) = Scalar(0);
-    result(5, 4) = tmp112;
-    result(5, 5) = tmp85;
+    result(5, 4) = -tmp44;
+    result(5, 5) = tmp45;
     result(6, 0) = Scalar(1);
     result(6, 1) = Scalar(0);
     result(6, 2) = Scalar(0);
-    result(6, 3) = tmp125;
-    result(6, 4) = tmp123;
-    result(6, 5) = tmp122;
+    result(6, 3) = tmp65;
+    result(6, 4) = tmp154;
+    result(6, 5) = tmp64;
     result(7, 0) = Scalar(0);
     result(7, 1) = Scalar(1);
     result(7, 2) = Scalar(0);
-    result(7, 3) = tmp131;
-    result(7, 4) = tmp130;
-    result(7, 5) = tmp129;
+    result(7, 3) = tmp52;
+    result(7, 4) = tmp133;
+    result(7, 5) = tmp71;
     result(8, 0) = Scalar(0);
     result(8, 1) = Scalar(0);
     result(8, 2) = Scalar(1);
     result(8, 3) = Scalar(0);
-    result(8, 4) = tmp134;
-    result(8, 5) = tmp133;
+    result(8, 4) = tmp143;
+    result(8, 5) = -tmp74;
     result(9, 0) = Scalar(1);
     result(9, 1) = Scalar(0);
     result(9, 2) = Scalar(0);
-    result(9, 3) = tmp142;
-    result(9, 4) = tmp141;
-    result(9, 5) = tmp121;
+    result(9, 3) = tmp101;
+    result(9, 4) = tmp99;
+    result(9, 5) = tmp100;
     result(10, 0) = Scalar(0);
     result(10, 1) = Scalar(1);
     result(10, 2) = Scalar(0);
-    result(10, 3) = tmp146;
-    result(10, 4) = tmp145;
-    result(10, 5) = tmp128;
+    result(10, 3) = tmp84;
+    result(10, 4) = tmp105;
+    result(10, 5) = tmp107;
     result(11, 0) = Scalar(0);
     result(11, 1) = Scalar(0);
     result(11, 2) = Scalar(1);
     result(11, 3) = Scalar(0);
-    result(11, 4) = tmp149;
-    result(11, 5) = tmp148;
+    result(11, 4) = tmp111;
+    result(11, 5) = tmp109;
     return result;
   }
 
@@ -3575,198 +2975,157 @@ struct RigidBodyEuler {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return gamma (nx)
-  /// Ops: 397
+  /// Ops: 337
   template <typename Scalar>
   static XVector<Scalar> bias_acceleration(const QVector<Scalar>& q,
                                            const QVector<Scalar>& v,
                                            const Scalar& /*t*/,
-                                           const Params& params) {
+                                           const Params& /*params*/) {
     using std::cos;
     using std::sin;
-    using std::sqrt;
     const Scalar yaw = q(3);
     const Scalar pitch = q(4);
     const Scalar roll = q(5);
     const Scalar yaw_dot = v(3);
     const Scalar pitch_dot = v(4);
     const Scalar roll_dot = v(5);
-    const Scalar m = Scalar(params.m);
-    const Scalar a = Scalar(params.a);
-    const Scalar b = Scalar(params.b);
-    const Scalar c = Scalar(params.c);
     const Scalar tmp0 = cos(yaw);
     const Scalar tmp1 = cos(pitch);
-    const Scalar tmp2 = (Scalar(1)/sqrt(m));
-    const Scalar tmp3 = (a*a);
-    const Scalar tmp4 = (b*b);
-    const Scalar tmp5 = ((Scalar(1)/Scalar(24)))*m;
-    const Scalar tmp6 = tmp5*(tmp3 + tmp4);
-    const Scalar tmp7 = (c*c);
-    const Scalar tmp8 = tmp5*(tmp3 + tmp7);
-    const Scalar tmp9 = tmp5*(tmp4 + tmp7);
-    const Scalar tmp10 = tmp6 + tmp8 - tmp9;
-    const Scalar tmp11 = tmp2*sqrt(tmp10);
-    const Scalar tmp12 = tmp1*tmp11;
-    const Scalar tmp13 = tmp0*tmp12;
-    const Scalar tmp14 = sin(roll);
-    const Scalar tmp15 = sin(yaw);
-    const Scalar tmp16 = tmp14*tmp15;
-    const Scalar tmp17 = sin(pitch);
-    const Scalar tmp18 = cos(roll);
-    const Scalar tmp19 = tmp0*tmp18;
-    const Scalar tmp20 = tmp17*tmp19;
-    const Scalar tmp21 = tmp16 + tmp20;
-    const Scalar tmp22 = tmp8 + tmp9 - tmp6;
-    const Scalar tmp23 = tmp2*sqrt(tmp22);
-    const Scalar tmp25 = tmp15*tmp18;
-    const Scalar tmp26 = tmp0*tmp14;
-    const Scalar tmp27 = tmp17*tmp26;
-    const Scalar tmp28 = tmp27 - tmp25;
-    const Scalar tmp29 = tmp6 + tmp9 - tmp8;
-    const Scalar tmp30 = tmp2*sqrt(tmp29);
-    const Scalar tmp35 = tmp17*tmp25;
-    const Scalar tmp36 = tmp35 - tmp26;
-    const Scalar tmp38 = tmp16*tmp17;
-    const Scalar tmp39 = tmp19 + tmp38;
-    const Scalar tmp41 = tmp12*tmp15;
-    const Scalar tmp44 = tmp11*tmp17;
-    const Scalar tmp45 = tmp18*tmp23;
-    const Scalar tmp46 = tmp1*tmp45;
-    const Scalar tmp47 = tmp14*tmp30;
-    const Scalar tmp48 = tmp1*tmp47;
-    const Scalar tmp49 = tmp46 + tmp48;
-    const Scalar tmp50 = tmp49 - tmp44;
-    const Scalar tmp52 = tmp21*tmp30;
-    const Scalar tmp53 = -tmp28;
-    const Scalar tmp54 = tmp23*tmp53;
-    const Scalar tmp55 = tmp52 + tmp54;
-    const Scalar tmp56 = tmp0*tmp44;
-    const Scalar tmp57 = tmp1*tmp23;
-    const Scalar tmp58 = tmp19*tmp57;
-    const Scalar tmp59 = tmp1*tmp30;
-    const Scalar tmp60 = tmp26*tmp59;
-    const Scalar tmp61 = tmp58 + tmp60;
-    const Scalar tmp62 = tmp61 - tmp56;
-    const Scalar tmp63 = -tmp41;
-    const Scalar tmp64 = -tmp36;
-    const Scalar tmp65 = tmp23*tmp64;
-    const Scalar tmp66 = -tmp39;
-    const Scalar tmp67 = tmp30*tmp66;
-    const Scalar tmp68 = tmp65 + tmp67;
-    const Scalar tmp69 = tmp63 + tmp68;
-    const Scalar tmp70 = tmp55*roll_dot + tmp62*pitch_dot + tmp69*yaw_dot;
-    const Scalar tmp75 = tmp15*tmp44;
-    const Scalar tmp76 = tmp25*tmp57;
-    const Scalar tmp77 = tmp16*tmp59;
-    const Scalar tmp78 = tmp76 + tmp77;
-    const Scalar tmp79 = tmp78 - tmp75;
-    const Scalar tmp81 = tmp14*tmp23;
-    const Scalar tmp83 = tmp18*tmp30;
-    const Scalar tmp99 = tmp44 + tmp49;
-    const Scalar tmp101 = -tmp55;
-    const Scalar tmp102 = -tmp56 - tmp61;
-    const Scalar tmp103 = -tmp41 - tmp68;
-    const Scalar tmp104 = tmp101*roll_dot + tmp102*pitch_dot + tmp103*yaw_dot;
-    const Scalar tmp107 = tmp75 + tmp78;
-    const Scalar tmp109 = -tmp13;
-    const Scalar tmp119 = tmp44 + tmp48 - tmp46;
-    const Scalar tmp121 = tmp54 - tmp52;
-    const Scalar tmp122 = -tmp121;
-    const Scalar tmp123 = tmp56 + tmp60 - tmp58;
-    const Scalar tmp124 = tmp67 - tmp65;
-    const Scalar tmp125 = tmp124 + tmp41;
-    const Scalar tmp126 = tmp122*roll_dot + tmp123*pitch_dot + tmp125*yaw_dot;
-    const Scalar tmp130 = tmp75 + tmp77 - tmp76;
-    const Scalar tmp138 = tmp46 - tmp48;
-    const Scalar tmp139 = tmp138 + tmp44;
-    const Scalar tmp141 = tmp56 + tmp58 - tmp60;
-    const Scalar tmp142 = tmp41 + tmp65 - tmp67;
-    const Scalar tmp143 = tmp121*roll_dot + tmp141*pitch_dot + tmp142*yaw_dot;
-    const Scalar tmp145 = tmp75 + tmp76 - tmp77;
-    const Scalar tmp154 = tmp26*tmp57;
-    const Scalar tmp155 = tmp19*tmp59;
-    const Scalar tmp156 = tmp154 - tmp155;
-    const Scalar tmp157 = -tmp156;
-    const Scalar tmp158 = tmp23*tmp39;
-    const Scalar tmp159 = tmp30*tmp64;
-    const Scalar tmp160 = tmp158 + tmp159;
-    const Scalar tmp161 = tmp30*tmp53;
-    const Scalar tmp162 = -tmp21*tmp23;
-    const Scalar tmp163 = tmp161 + tmp162;
-    const Scalar tmp164 = -tmp79;
-    const Scalar tmp165 = tmp20*tmp23;
-    const Scalar tmp166 = tmp27*tmp30;
-    const Scalar tmp167 = tmp165 + tmp166;
-    const Scalar tmp168 = pitch_dot*(tmp157*roll_dot + tmp164*yaw_dot + pitch_dot*(-tmp13 - tmp167))
-        + roll_dot*(tmp157*pitch_dot + tmp160*yaw_dot + tmp163*roll_dot)
-        + yaw_dot*(tmp160*roll_dot + tmp164*pitch_dot + yaw_dot*(tmp163 + tmp109));
-    const Scalar tmp169 = tmp16*tmp57;
-    const Scalar tmp170 = tmp25*tmp59;
-    const Scalar tmp171 = tmp169 - tmp170;
-    const Scalar tmp172 = -tmp171;
-    const Scalar tmp173 = tmp23*tmp35;
-    const Scalar tmp174 = tmp30*tmp38;
-    const Scalar tmp175 = tmp173 + tmp174;
-    const Scalar tmp176 = tmp70*yaw_dot
-        + pitch_dot*(tmp172*roll_dot + tmp62*yaw_dot + pitch_dot*(-tmp175 - tmp41))
-        + roll_dot*(tmp172*pitch_dot + tmp55*yaw_dot + tmp68*roll_dot);
-    const Scalar tmp177 = tmp17*tmp81;
-    const Scalar tmp178 = tmp17*tmp83;
-    const Scalar tmp179 = tmp177 - tmp178;
-    const Scalar tmp180 = pitch_dot*(tmp179*roll_dot - tmp50*pitch_dot)
-        + roll_dot*(tmp179*pitch_dot - tmp49*roll_dot);
-    const Scalar tmp181 = -tmp160;
-    const Scalar tmp182 = pitch_dot*(tmp156*roll_dot + tmp107*yaw_dot + pitch_dot*(tmp167 + tmp109))
-        + roll_dot*(tmp156*pitch_dot + tmp181*yaw_dot - tmp163*roll_dot)
-        + yaw_dot*(tmp181*roll_dot + tmp107*pitch_dot + yaw_dot*(-tmp13 - tmp163));
-    const Scalar tmp183 = tmp104*yaw_dot
-        + pitch_dot*(tmp171*roll_dot + tmp102*yaw_dot + pitch_dot*(tmp175 + tmp63))
-        + roll_dot*(tmp171*pitch_dot + tmp101*yaw_dot - tmp68*roll_dot);
-    const Scalar tmp184 = -tmp179;
-    const Scalar tmp185 = pitch_dot*(tmp184*roll_dot + tmp99*pitch_dot)
-        + roll_dot*(tmp184*pitch_dot + tmp49*roll_dot);
-    const Scalar tmp186 = tmp154 + tmp155;
-    const Scalar tmp187 = tmp158 - tmp159;
-    const Scalar tmp188 = -tmp187;
-    const Scalar tmp189 = tmp161 - tmp162;
-    const Scalar tmp190 = -tmp130;
-    const Scalar tmp191 = pitch_dot*(tmp186*roll_dot + tmp190*yaw_dot
-            + pitch_dot*(tmp13 + tmp165 - tmp166))
-        + roll_dot*(tmp186*pitch_dot + tmp188*yaw_dot + tmp189*roll_dot)
-        + yaw_dot*(tmp188*roll_dot + tmp190*pitch_dot + yaw_dot*(tmp13 + tmp189));
-    const Scalar tmp192 = tmp169 + tmp170;
-    const Scalar tmp193 = tmp126*yaw_dot
-        + pitch_dot*(tmp123*yaw_dot + tmp192*roll_dot + pitch_dot*(tmp173 + tmp41 - tmp174))
-        + roll_dot*(tmp122*yaw_dot + tmp124*roll_dot + tmp192*pitch_dot);
-    const Scalar tmp194 = tmp177 + tmp178;
-    const Scalar tmp195 = -tmp194;
-    const Scalar tmp196 = pitch_dot*(tmp195*roll_dot - tmp119*pitch_dot)
-        + roll_dot*(tmp138*roll_dot + tmp195*pitch_dot);
-    const Scalar tmp197 = -tmp186;
-    const Scalar tmp198 = -tmp145;
-    const Scalar tmp199 = pitch_dot*(tmp197*roll_dot + tmp198*yaw_dot
-            + pitch_dot*(tmp13 + tmp166 - tmp165))
-        + roll_dot*(tmp187*yaw_dot + tmp197*pitch_dot - tmp189*roll_dot)
-        + yaw_dot*(tmp187*roll_dot + tmp198*pitch_dot + yaw_dot*(tmp13 + tmp162 - tmp161));
-    const Scalar tmp200 = -tmp192;
-    const Scalar tmp201 = tmp143*yaw_dot
-        + pitch_dot*(tmp141*yaw_dot + tmp200*roll_dot + pitch_dot*(tmp174 + tmp41 - tmp173))
-        + roll_dot*(tmp121*yaw_dot + tmp200*pitch_dot - tmp124*roll_dot);
-    const Scalar tmp202 = pitch_dot*(tmp194*roll_dot - tmp139*pitch_dot)
-        + roll_dot*(tmp194*pitch_dot - tmp138*roll_dot);
+    const Scalar tmp2 = Scalar(0.5)*tmp1;
+    const Scalar tmp3 = tmp0*tmp2;
+    const Scalar tmp5 = sin(yaw);
+    const Scalar tmp6 = tmp2*tmp5;
+    const Scalar tmp8 = sin(pitch);
+    const Scalar tmp9 = Scalar(0.5)*tmp8;
+    const Scalar tmp11 = tmp0*tmp9;
+    const Scalar tmp12 = tmp6*yaw_dot + tmp11*pitch_dot;
+    const Scalar tmp14 = tmp5*tmp9;
+    const Scalar tmp15 = tmp14*pitch_dot;
+    const Scalar tmp16 = tmp3*yaw_dot;
+    const Scalar tmp20 = cos(roll);
+    const Scalar tmp21 = Scalar(0.4)*tmp20;
+    const Scalar tmp22 = tmp21*tmp5;
+    const Scalar tmp23 = sin(roll);
+    const Scalar tmp24 = Scalar(0.4)*tmp23;
+    const Scalar tmp25 = tmp0*tmp24;
+    const Scalar tmp26 = tmp25*tmp8;
+    const Scalar tmp27 = tmp26 - tmp22;
+    const Scalar tmp29 = tmp0*tmp21;
+    const Scalar tmp30 = tmp24*tmp5;
+    const Scalar tmp31 = tmp30*tmp8;
+    const Scalar tmp32 = tmp29 + tmp31;
+    const Scalar tmp34 = tmp1*tmp24;
+    const Scalar tmp36 = tmp34*pitch_dot;
+    const Scalar tmp37 = tmp30 + tmp29*tmp8;
+    const Scalar tmp38 = -tmp32;
+    const Scalar tmp39 = tmp0*tmp36 + tmp37*roll_dot + tmp38*yaw_dot;
+    const Scalar tmp41 = tmp36*tmp5;
+    const Scalar tmp42 = -tmp25 + tmp22*tmp8;
+    const Scalar tmp47 = Scalar(0.3)*tmp23;
+    const Scalar tmp48 = tmp47*tmp5;
+    const Scalar tmp49 = Scalar(0.3)*tmp20;
+    const Scalar tmp50 = tmp0*tmp49;
+    const Scalar tmp51 = tmp50*tmp8;
+    const Scalar tmp52 = tmp48 + tmp51;
+    const Scalar tmp54 = tmp0*tmp47;
+    const Scalar tmp55 = tmp49*tmp5;
+    const Scalar tmp56 = tmp55*tmp8;
+    const Scalar tmp57 = tmp56 - tmp54;
+    const Scalar tmp59 = tmp1*tmp49;
+    const Scalar tmp61 = tmp59*pitch_dot;
+    const Scalar tmp62 = tmp54*tmp8;
+    const Scalar tmp63 = tmp62 - tmp55;
+    const Scalar tmp64 = -tmp63;
+    const Scalar tmp65 = -tmp57;
+    const Scalar tmp66 = tmp0*tmp61 + tmp64*roll_dot + tmp65*yaw_dot;
+    const Scalar tmp68 = tmp5*tmp61;
+    const Scalar tmp69 = tmp48*tmp8;
+    const Scalar tmp70 = tmp50 + tmp69;
+    const Scalar tmp73 = tmp49*tmp8;
+    const Scalar tmp74 = tmp1*tmp47;
+    const Scalar tmp76 = Scalar(0.2)*tmp1;
+    const Scalar tmp77 = Scalar(0.25)*tmp20;
+    const Scalar tmp78 = tmp0*tmp77;
+    const Scalar tmp79 = tmp8*tmp78;
+    const Scalar tmp80 = tmp79 + tmp0*tmp76;
+    const Scalar tmp81 = Scalar(0.25)*tmp23;
+    const Scalar tmp82 = tmp5*tmp81;
+    const Scalar tmp83 = tmp63 + tmp82;
+    const Scalar tmp84 = tmp80 + tmp83;
+    const Scalar tmp86 = tmp5*tmp77;
+    const Scalar tmp87 = tmp8*tmp86;
+    const Scalar tmp88 = tmp87 + tmp5*tmp76;
+    const Scalar tmp89 = tmp0*tmp81;
+    const Scalar tmp90 = tmp70 - tmp89;
+    const Scalar tmp91 = tmp88 + tmp90;
+    const Scalar tmp93 = Scalar(0.2)*tmp8;
+    const Scalar tmp94 = tmp1*tmp77;
+    const Scalar tmp95 = tmp74 + tmp94;
+    const Scalar tmp96 = tmp95 - tmp93;
+    const Scalar tmp98 = tmp1*tmp54;
+    const Scalar tmp99 = tmp98 + tmp0*tmp94 - tmp0*tmp93;
+    const Scalar tmp100 = tmp52 + tmp86 - tmp8*tmp89;
+    const Scalar tmp101 = -tmp91;
+    const Scalar tmp102 = tmp99*pitch_dot + tmp100*roll_dot + tmp101*yaw_dot;
+    const Scalar tmp104 = tmp1*tmp48;
+    const Scalar tmp105 = tmp104 + tmp5*tmp94 - tmp5*tmp93;
+    const Scalar tmp106 = tmp54 + tmp78 - tmp56 + tmp8*tmp82;
+    const Scalar tmp110 = tmp47*tmp8;
+    const Scalar tmp121 = pitch_dot*(-tmp3*pitch_dot + Scalar(0.5)*tmp5*tmp8*yaw_dot)
+        + yaw_dot*(tmp15 - tmp16);
+    const Scalar tmp122 = pitch_dot*(-tmp6*pitch_dot - tmp11*yaw_dot) - tmp12*yaw_dot;
+    const Scalar tmp123 = tmp9*(pitch_dot*pitch_dot);
+    const Scalar tmp124 = tmp34*tmp5;
+    const Scalar tmp125 = -tmp27;
+    const Scalar tmp126 = -tmp42;
+    const Scalar tmp127 = pitch_dot*(-tmp26*pitch_dot - tmp124*yaw_dot
+            + Scalar(0.4)*tmp0*tmp1*tmp20*roll_dot)
+        + roll_dot*(tmp125*roll_dot + tmp126*yaw_dot + tmp1*tmp29*pitch_dot)
+        + yaw_dot*(-tmp41 + tmp125*yaw_dot + tmp126*roll_dot);
+    const Scalar tmp128 = tmp1*tmp22;
+    const Scalar tmp129 = tmp0*tmp34;
+    const Scalar tmp130 = tmp39*yaw_dot
+        + pitch_dot*(tmp128*roll_dot + tmp129*yaw_dot - tmp31*pitch_dot)
+        + roll_dot*(tmp128*pitch_dot + tmp37*yaw_dot + tmp38*roll_dot);
+    const Scalar tmp131 = tmp21*tmp8;
+    const Scalar tmp132 = pitch_dot*(-tmp36 - tmp131*roll_dot)
+        + roll_dot*(-tmp131*pitch_dot - tmp34*roll_dot);
+    const Scalar tmp133 = tmp5*tmp59;
+    const Scalar tmp134 = -tmp52;
+    const Scalar tmp135 = pitch_dot*(-tmp133*yaw_dot - tmp51*pitch_dot - tmp98*roll_dot)
+        + roll_dot*(tmp134*roll_dot + tmp70*yaw_dot - tmp98*pitch_dot)
+        + yaw_dot*(-tmp68 + tmp134*yaw_dot + tmp70*roll_dot);
+    const Scalar tmp136 = tmp66*yaw_dot
+        + pitch_dot*(-tmp56*pitch_dot - tmp104*roll_dot + Scalar(0.3)*tmp0*tmp1*tmp20*yaw_dot)
+        + roll_dot*(tmp64*yaw_dot + tmp65*roll_dot - tmp104*pitch_dot);
+    const Scalar tmp137 = pitch_dot*(-tmp61 + Scalar(0.3)*tmp23*tmp8*roll_dot)
+        + roll_dot*(tmp110*pitch_dot - tmp59*roll_dot);
+    const Scalar tmp138 = -tmp1*tmp89 + Scalar(0.3)*tmp0*tmp1*tmp20;
+    const Scalar tmp139 = -tmp105;
+    const Scalar tmp140 = pitch_dot*(tmp138*roll_dot + tmp139*yaw_dot + pitch_dot*(-tmp62 - tmp80))
+        + roll_dot*(tmp138*pitch_dot + tmp106*yaw_dot + roll_dot*(-tmp79 - tmp83))
+        + yaw_dot*(tmp139*pitch_dot + tmp106*roll_dot - tmp84*yaw_dot);
+    const Scalar tmp141 = -tmp1*tmp82 + Scalar(0.3)*tmp1*tmp20*tmp5;
+    const Scalar tmp142 = tmp102*yaw_dot
+        + pitch_dot*(tmp141*roll_dot + tmp99*yaw_dot + pitch_dot*(-tmp69 - tmp88))
+        + roll_dot*(tmp141*pitch_dot + tmp100*yaw_dot + roll_dot*(-tmp87 - tmp90));
+    const Scalar tmp143 = -tmp73;
+    const Scalar tmp144 = tmp143 + tmp8*tmp81;
+    const Scalar tmp145 = pitch_dot*(tmp144*roll_dot - tmp96*pitch_dot)
+        + roll_dot*(tmp144*pitch_dot - tmp95*roll_dot);
     XVector<Scalar> result;
-    result(0) = tmp168;
-    result(1) = tmp176;
-    result(2) = tmp180;
-    result(3) = tmp182;
-    result(4) = tmp183;
-    result(5) = tmp185;
-    result(6) = tmp191;
-    result(7) = tmp193;
-    result(8) = tmp196;
-    result(9) = tmp199;
-    result(10) = tmp201;
-    result(11) = tmp202;
+    result(0) = tmp121;
+    result(1) = tmp122;
+    result(2) = tmp123;
+    result(3) = tmp127;
+    result(4) = tmp130;
+    result(5) = tmp132;
+    result(6) = tmp135;
+    result(7) = tmp136;
+    result(8) = tmp137;
+    result(9) = tmp140;
+    result(10) = tmp142;
+    result(11) = tmp145;
     return result;
   }
 
@@ -3776,7 +3135,7 @@ struct RigidBodyEuler {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return p (dim)
-  /// Ops: 241
+  /// Ops: 199
   template <typename Scalar>
   static SpaceVector<Scalar> linear_momentum(const QVector<Scalar>& q,
                                              const QVector<Scalar>& v,
@@ -3784,7 +3143,6 @@ struct RigidBodyEuler {
                                              const Params& params) {
     using std::cos;
     using std::sin;
-    using std::sqrt;
     const Scalar yaw = q(3);
     const Scalar pitch = q(4);
     const Scalar roll = q(5);
@@ -3794,139 +3152,113 @@ struct RigidBodyEuler {
     const Scalar yaw_dot = v(3);
     const Scalar pitch_dot = v(4);
     const Scalar roll_dot = v(5);
-    const Scalar m = Scalar(params.m);
-    const Scalar a = Scalar(params.a);
-    const Scalar b = Scalar(params.b);
-    const Scalar c = Scalar(params.c);
+    const Scalar m_a = Scalar(params.m_a);
+    const Scalar m_b = Scalar(params.m_b);
+    const Scalar m_c = Scalar(params.m_c);
+    const Scalar m_d = Scalar(params.m_d);
     const Scalar tmp0 = cos(yaw);
     const Scalar tmp1 = cos(pitch);
-    const Scalar tmp2 = (Scalar(1)/sqrt(m));
-    const Scalar tmp3 = (a*a);
-    const Scalar tmp4 = (b*b);
-    const Scalar tmp5 = ((Scalar(1)/Scalar(24)))*m;
-    const Scalar tmp6 = tmp5*(tmp3 + tmp4);
-    const Scalar tmp7 = (c*c);
-    const Scalar tmp8 = tmp5*(tmp3 + tmp7);
-    const Scalar tmp9 = tmp5*(tmp4 + tmp7);
-    const Scalar tmp10 = tmp6 + tmp8 - tmp9;
-    const Scalar tmp11 = tmp2*sqrt(tmp10);
-    const Scalar tmp12 = tmp1*tmp11;
-    const Scalar tmp13 = tmp0*tmp12;
-    const Scalar tmp14 = sin(roll);
-    const Scalar tmp15 = sin(yaw);
-    const Scalar tmp16 = tmp14*tmp15;
-    const Scalar tmp17 = sin(pitch);
-    const Scalar tmp18 = cos(roll);
-    const Scalar tmp19 = tmp0*tmp18;
-    const Scalar tmp20 = tmp17*tmp19;
-    const Scalar tmp21 = tmp16 + tmp20;
-    const Scalar tmp22 = tmp8 + tmp9 - tmp6;
-    const Scalar tmp23 = tmp2*sqrt(tmp22);
-    const Scalar tmp24 = tmp21*tmp23;
-    const Scalar tmp25 = tmp15*tmp18;
-    const Scalar tmp26 = tmp0*tmp14;
-    const Scalar tmp27 = tmp17*tmp26;
-    const Scalar tmp28 = tmp27 - tmp25;
-    const Scalar tmp29 = tmp6 + tmp9 - tmp8;
-    const Scalar tmp30 = tmp2*sqrt(tmp29);
-    const Scalar tmp31 = tmp28*tmp30;
-    const Scalar tmp32 = tmp24 + tmp31;
-    const Scalar tmp33 = tmp13 + tmp32;
-    const Scalar tmp35 = tmp17*tmp25;
-    const Scalar tmp36 = tmp35 - tmp26;
-    const Scalar tmp38 = tmp16*tmp17;
-    const Scalar tmp39 = tmp19 + tmp38;
-    const Scalar tmp41 = tmp12*tmp15;
-    const Scalar tmp44 = tmp11*tmp17;
-    const Scalar tmp45 = tmp18*tmp23;
-    const Scalar tmp47 = tmp14*tmp30;
-    const Scalar tmp52 = tmp21*tmp30;
-    const Scalar tmp53 = -tmp28;
-    const Scalar tmp54 = tmp23*tmp53;
-    const Scalar tmp55 = tmp52 + tmp54;
-    const Scalar tmp56 = tmp0*tmp44;
-    const Scalar tmp57 = tmp1*tmp23;
-    const Scalar tmp58 = tmp19*tmp57;
-    const Scalar tmp59 = tmp1*tmp30;
-    const Scalar tmp60 = tmp26*tmp59;
-    const Scalar tmp61 = tmp58 + tmp60;
-    const Scalar tmp62 = tmp61 - tmp56;
-    const Scalar tmp63 = -tmp41;
-    const Scalar tmp64 = -tmp36;
-    const Scalar tmp65 = tmp23*tmp64;
-    const Scalar tmp66 = -tmp39;
-    const Scalar tmp67 = tmp30*tmp66;
-    const Scalar tmp68 = tmp65 + tmp67;
-    const Scalar tmp69 = tmp63 + tmp68;
-    const Scalar tmp70 = tmp55*roll_dot + tmp62*pitch_dot + tmp69*yaw_dot;
-    const Scalar tmp71 = tmp70 + x_dot;
-    const Scalar tmp72 = tmp30*tmp36;
-    const Scalar tmp73 = tmp23*tmp66;
-    const Scalar tmp74 = tmp72 + tmp73;
-    const Scalar tmp75 = tmp15*tmp44;
-    const Scalar tmp76 = tmp25*tmp57;
-    const Scalar tmp77 = tmp16*tmp59;
-    const Scalar tmp78 = tmp76 + tmp77;
-    const Scalar tmp79 = tmp78 - tmp75;
-    const Scalar tmp80 = y_dot + tmp33*yaw_dot + tmp74*roll_dot + tmp79*pitch_dot;
-    const Scalar tmp81 = tmp14*tmp23;
-    const Scalar tmp82 = tmp1*tmp81;
-    const Scalar tmp83 = tmp18*tmp30;
-    const Scalar tmp84 = tmp1*tmp83;
-    const Scalar tmp85 = tmp82 - tmp84;
-    const Scalar tmp86 = -tmp85;
-    const Scalar tmp87 = tmp17*tmp45;
-    const Scalar tmp88 = tmp17*tmp47;
-    const Scalar tmp89 = tmp87 + tmp88;
-    const Scalar tmp90 = -tmp12 - tmp89;
-    const Scalar tmp91 = z_dot + tmp86*roll_dot + tmp90*pitch_dot;
-    const Scalar tmp92 = -tmp24;
-    const Scalar tmp93 = -tmp31;
-    const Scalar tmp94 = tmp13 + tmp93;
-    const Scalar tmp101 = -tmp55;
-    const Scalar tmp102 = -tmp56 - tmp61;
-    const Scalar tmp103 = -tmp41 - tmp68;
-    const Scalar tmp104 = tmp101*roll_dot + tmp102*pitch_dot + tmp103*yaw_dot;
-    const Scalar tmp105 = tmp104 + x_dot;
-    const Scalar tmp106 = -tmp74;
-    const Scalar tmp107 = tmp75 + tmp78;
-    const Scalar tmp108 = -tmp107;
-    const Scalar tmp109 = -tmp13;
-    const Scalar tmp110 = -tmp32 - tmp109;
-    const Scalar tmp111 = y_dot + tmp110*yaw_dot + tmp106*roll_dot + tmp108*pitch_dot;
-    const Scalar tmp112 = tmp89 - tmp12;
-    const Scalar tmp113 = z_dot + tmp112*pitch_dot + tmp85*roll_dot;
-    const Scalar tmp114 = tmp31 + tmp92;
-    const Scalar tmp121 = tmp54 - tmp52;
-    const Scalar tmp122 = -tmp121;
-    const Scalar tmp123 = tmp56 + tmp60 - tmp58;
-    const Scalar tmp124 = tmp67 - tmp65;
-    const Scalar tmp125 = tmp124 + tmp41;
-    const Scalar tmp126 = tmp122*roll_dot + tmp123*pitch_dot + tmp125*yaw_dot;
-    const Scalar tmp127 = tmp126 + x_dot;
-    const Scalar tmp128 = tmp73 - tmp72;
-    const Scalar tmp129 = -tmp128;
-    const Scalar tmp130 = tmp75 + tmp77 - tmp76;
-    const Scalar tmp131 = -tmp24 - tmp94;
-    const Scalar tmp132 = y_dot + tmp129*roll_dot + tmp130*pitch_dot + tmp131*yaw_dot;
-    const Scalar tmp133 = tmp82 + tmp84;
-    const Scalar tmp134 = tmp12 + tmp87 - tmp88;
-    const Scalar tmp135 = z_dot + tmp133*roll_dot + tmp134*pitch_dot;
-    const Scalar tmp141 = tmp56 + tmp58 - tmp60;
-    const Scalar tmp142 = tmp41 + tmp65 - tmp67;
-    const Scalar tmp143 = tmp121*roll_dot + tmp141*pitch_dot + tmp142*yaw_dot;
-    const Scalar tmp144 = tmp143 + x_dot;
-    const Scalar tmp145 = tmp75 + tmp76 - tmp77;
-    const Scalar tmp146 = -tmp114 - tmp13;
-    const Scalar tmp147 = y_dot + tmp128*roll_dot + tmp145*pitch_dot + tmp146*yaw_dot;
-    const Scalar tmp148 = -tmp133;
-    const Scalar tmp149 = tmp12 + tmp88 - tmp87;
-    const Scalar tmp150 = z_dot + tmp148*roll_dot + tmp149*pitch_dot;
-    const Scalar tmp151 = (Scalar(0.25))*m;
+    const Scalar tmp2 = Scalar(0.5)*tmp1;
+    const Scalar tmp3 = tmp0*tmp2;
+    const Scalar tmp5 = sin(yaw);
+    const Scalar tmp6 = tmp2*tmp5;
+    const Scalar tmp8 = sin(pitch);
+    const Scalar tmp9 = Scalar(0.5)*tmp8;
+    const Scalar tmp11 = tmp0*tmp9;
+    const Scalar tmp12 = tmp6*yaw_dot + tmp11*pitch_dot;
+    const Scalar tmp13 = x_dot - tmp12;
+    const Scalar tmp14 = tmp5*tmp9;
+    const Scalar tmp15 = tmp14*pitch_dot;
+    const Scalar tmp16 = tmp3*yaw_dot;
+    const Scalar tmp17 = tmp16 + y_dot - tmp15;
+    const Scalar tmp18 = -z_dot;
+    const Scalar tmp19 = -tmp18 - tmp2*pitch_dot;
+    const Scalar tmp20 = cos(roll);
+    const Scalar tmp21 = Scalar(0.4)*tmp20;
+    const Scalar tmp22 = tmp21*tmp5;
+    const Scalar tmp23 = sin(roll);
+    const Scalar tmp24 = Scalar(0.4)*tmp23;
+    const Scalar tmp25 = tmp0*tmp24;
+    const Scalar tmp26 = tmp25*tmp8;
+    const Scalar tmp27 = tmp26 - tmp22;
+    const Scalar tmp29 = tmp0*tmp21;
+    const Scalar tmp30 = tmp24*tmp5;
+    const Scalar tmp31 = tmp30*tmp8;
+    const Scalar tmp32 = tmp29 + tmp31;
+    const Scalar tmp34 = tmp1*tmp24;
+    const Scalar tmp36 = tmp34*pitch_dot;
+    const Scalar tmp37 = tmp30 + tmp29*tmp8;
+    const Scalar tmp38 = -tmp32;
+    const Scalar tmp39 = tmp0*tmp36 + tmp37*roll_dot + tmp38*yaw_dot;
+    const Scalar tmp40 = tmp39 + x_dot;
+    const Scalar tmp41 = tmp36*tmp5;
+    const Scalar tmp42 = -tmp25 + tmp22*tmp8;
+    const Scalar tmp43 = tmp41 + y_dot + tmp27*yaw_dot + tmp42*roll_dot;
+    const Scalar tmp44 = tmp24*tmp8;
+    const Scalar tmp45 = tmp1*tmp21;
+    const Scalar tmp46 = z_dot + tmp45*roll_dot - tmp44*pitch_dot;
+    const Scalar tmp47 = Scalar(0.3)*tmp23;
+    const Scalar tmp48 = tmp47*tmp5;
+    const Scalar tmp49 = Scalar(0.3)*tmp20;
+    const Scalar tmp50 = tmp0*tmp49;
+    const Scalar tmp51 = tmp50*tmp8;
+    const Scalar tmp52 = tmp48 + tmp51;
+    const Scalar tmp54 = tmp0*tmp47;
+    const Scalar tmp55 = tmp49*tmp5;
+    const Scalar tmp56 = tmp55*tmp8;
+    const Scalar tmp57 = tmp56 - tmp54;
+    const Scalar tmp59 = tmp1*tmp49;
+    const Scalar tmp61 = tmp59*pitch_dot;
+    const Scalar tmp62 = tmp54*tmp8;
+    const Scalar tmp63 = tmp62 - tmp55;
+    const Scalar tmp64 = -tmp63;
+    const Scalar tmp65 = -tmp57;
+    const Scalar tmp66 = tmp0*tmp61 + tmp64*roll_dot + tmp65*yaw_dot;
+    const Scalar tmp67 = tmp66 + x_dot;
+    const Scalar tmp68 = tmp5*tmp61;
+    const Scalar tmp69 = tmp48*tmp8;
+    const Scalar tmp70 = tmp50 + tmp69;
+    const Scalar tmp71 = -tmp70;
+    const Scalar tmp72 = tmp68 + y_dot + tmp52*yaw_dot + tmp71*roll_dot;
+    const Scalar tmp73 = tmp49*tmp8;
+    const Scalar tmp74 = tmp1*tmp47;
+    const Scalar tmp75 = -tmp18 - tmp73*pitch_dot - tmp74*roll_dot;
+    const Scalar tmp76 = Scalar(0.2)*tmp1;
+    const Scalar tmp77 = Scalar(0.25)*tmp20;
+    const Scalar tmp78 = tmp0*tmp77;
+    const Scalar tmp79 = tmp8*tmp78;
+    const Scalar tmp80 = tmp79 + tmp0*tmp76;
+    const Scalar tmp81 = Scalar(0.25)*tmp23;
+    const Scalar tmp82 = tmp5*tmp81;
+    const Scalar tmp83 = tmp63 + tmp82;
+    const Scalar tmp84 = tmp80 + tmp83;
+    const Scalar tmp86 = tmp5*tmp77;
+    const Scalar tmp87 = tmp8*tmp86;
+    const Scalar tmp88 = tmp87 + tmp5*tmp76;
+    const Scalar tmp89 = tmp0*tmp81;
+    const Scalar tmp90 = tmp70 - tmp89;
+    const Scalar tmp91 = tmp88 + tmp90;
+    const Scalar tmp93 = Scalar(0.2)*tmp8;
+    const Scalar tmp94 = tmp1*tmp77;
+    const Scalar tmp98 = tmp1*tmp54;
+    const Scalar tmp99 = tmp98 + tmp0*tmp94 - tmp0*tmp93;
+    const Scalar tmp100 = tmp52 + tmp86 - tmp8*tmp89;
+    const Scalar tmp101 = -tmp91;
+    const Scalar tmp102 = tmp99*pitch_dot + tmp100*roll_dot + tmp101*yaw_dot;
+    const Scalar tmp103 = tmp102 + x_dot;
+    const Scalar tmp104 = tmp1*tmp48;
+    const Scalar tmp105 = tmp104 + tmp5*tmp94 - tmp5*tmp93;
+    const Scalar tmp106 = tmp54 + tmp78 - tmp56 + tmp8*tmp82;
+    const Scalar tmp107 = -tmp106;
+    const Scalar tmp108 = y_dot + tmp84*yaw_dot + tmp105*pitch_dot + tmp107*roll_dot;
+    const Scalar tmp109 = -tmp1*tmp81 + Scalar(0.3)*tmp1*tmp20;
+    const Scalar tmp110 = tmp47*tmp8;
+    const Scalar tmp111 = -tmp76 - tmp110 - tmp77*tmp8;
+    const Scalar tmp112 = z_dot + tmp109*roll_dot + tmp111*pitch_dot;
     SpaceVector<Scalar> result;
-    result(0) = tmp151*tmp127 + tmp151*tmp144 + tmp151*tmp71 + tmp151*tmp105;
-    result(1) = tmp151*tmp111 + tmp151*tmp132 + tmp151*tmp147 + tmp151*tmp80;
-    result(2) = tmp151*tmp113 + tmp151*tmp135 + tmp151*tmp150 + tmp151*tmp91;
+    result(0) = tmp67*m_c + tmp103*m_d + tmp13*m_a + tmp40*m_b;
+    result(1) = tmp43*m_b + tmp72*m_c + tmp108*m_d + tmp17*m_a;
+    result(2) = tmp46*m_b + tmp75*m_c + tmp112*m_d + tmp19*m_a;
     return result;
   }
 
@@ -3936,7 +3268,7 @@ struct RigidBodyEuler {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return L (angular_dim)
-  /// Ops: 327
+  /// Ops: 263
   template <typename Scalar>
   static AngularVector<Scalar> angular_momentum(const QVector<Scalar>& q,
                                                 const QVector<Scalar>& v,
@@ -3944,7 +3276,6 @@ struct RigidBodyEuler {
                                                 const Params& params) {
     using std::cos;
     using std::sin;
-    using std::sqrt;
     const Scalar x = q(0);
     const Scalar y = q(1);
     const Scalar z = q(2);
@@ -3957,185 +3288,148 @@ struct RigidBodyEuler {
     const Scalar yaw_dot = v(3);
     const Scalar pitch_dot = v(4);
     const Scalar roll_dot = v(5);
-    const Scalar m = Scalar(params.m);
-    const Scalar a = Scalar(params.a);
-    const Scalar b = Scalar(params.b);
-    const Scalar c = Scalar(params.c);
+    const Scalar m_a = Scalar(params.m_a);
+    const Scalar m_b = Scalar(params.m_b);
+    const Scalar m_c = Scalar(params.m_c);
+    const Scalar m_d = Scalar(params.m_d);
     const Scalar tmp0 = cos(yaw);
     const Scalar tmp1 = cos(pitch);
-    const Scalar tmp2 = (Scalar(1)/sqrt(m));
-    const Scalar tmp3 = (a*a);
-    const Scalar tmp4 = (b*b);
-    const Scalar tmp5 = ((Scalar(1)/Scalar(24)))*m;
-    const Scalar tmp6 = tmp5*(tmp3 + tmp4);
-    const Scalar tmp7 = (c*c);
-    const Scalar tmp8 = tmp5*(tmp3 + tmp7);
-    const Scalar tmp9 = tmp5*(tmp4 + tmp7);
-    const Scalar tmp10 = tmp6 + tmp8 - tmp9;
-    const Scalar tmp11 = tmp2*sqrt(tmp10);
-    const Scalar tmp12 = tmp1*tmp11;
-    const Scalar tmp13 = tmp0*tmp12;
-    const Scalar tmp14 = sin(roll);
-    const Scalar tmp15 = sin(yaw);
-    const Scalar tmp16 = tmp14*tmp15;
-    const Scalar tmp17 = sin(pitch);
-    const Scalar tmp18 = cos(roll);
-    const Scalar tmp19 = tmp0*tmp18;
-    const Scalar tmp20 = tmp17*tmp19;
-    const Scalar tmp21 = tmp16 + tmp20;
-    const Scalar tmp22 = tmp8 + tmp9 - tmp6;
-    const Scalar tmp23 = tmp2*sqrt(tmp22);
-    const Scalar tmp24 = tmp21*tmp23;
-    const Scalar tmp25 = tmp15*tmp18;
-    const Scalar tmp26 = tmp0*tmp14;
-    const Scalar tmp27 = tmp17*tmp26;
-    const Scalar tmp28 = tmp27 - tmp25;
-    const Scalar tmp29 = tmp6 + tmp9 - tmp8;
-    const Scalar tmp30 = tmp2*sqrt(tmp29);
-    const Scalar tmp31 = tmp28*tmp30;
-    const Scalar tmp32 = tmp24 + tmp31;
-    const Scalar tmp33 = tmp13 + tmp32;
-    const Scalar tmp34 = tmp33 + x;
-    const Scalar tmp35 = tmp17*tmp25;
-    const Scalar tmp36 = tmp35 - tmp26;
-    const Scalar tmp37 = tmp23*tmp36;
-    const Scalar tmp38 = tmp16*tmp17;
-    const Scalar tmp39 = tmp19 + tmp38;
-    const Scalar tmp40 = tmp30*tmp39;
-    const Scalar tmp41 = tmp12*tmp15;
-    const Scalar tmp42 = tmp41 + y;
-    const Scalar tmp43 = tmp37 + tmp40 + tmp42;
-    const Scalar tmp44 = tmp11*tmp17;
-    const Scalar tmp45 = tmp18*tmp23;
-    const Scalar tmp46 = tmp1*tmp45;
-    const Scalar tmp47 = tmp14*tmp30;
-    const Scalar tmp48 = tmp1*tmp47;
-    const Scalar tmp49 = tmp46 + tmp48;
-    const Scalar tmp50 = tmp49 - tmp44;
-    const Scalar tmp51 = tmp50 + z;
-    const Scalar tmp52 = tmp21*tmp30;
-    const Scalar tmp53 = -tmp28;
-    const Scalar tmp54 = tmp23*tmp53;
-    const Scalar tmp55 = tmp52 + tmp54;
-    const Scalar tmp56 = tmp0*tmp44;
-    const Scalar tmp57 = tmp1*tmp23;
-    const Scalar tmp58 = tmp19*tmp57;
-    const Scalar tmp59 = tmp1*tmp30;
-    const Scalar tmp60 = tmp26*tmp59;
-    const Scalar tmp61 = tmp58 + tmp60;
-    const Scalar tmp62 = tmp61 - tmp56;
-    const Scalar tmp63 = -tmp41;
-    const Scalar tmp64 = -tmp36;
-    const Scalar tmp65 = tmp23*tmp64;
-    const Scalar tmp66 = -tmp39;
-    const Scalar tmp67 = tmp30*tmp66;
-    const Scalar tmp68 = tmp65 + tmp67;
-    const Scalar tmp69 = tmp63 + tmp68;
-    const Scalar tmp70 = tmp55*roll_dot + tmp62*pitch_dot + tmp69*yaw_dot;
-    const Scalar tmp71 = tmp70 + x_dot;
-    const Scalar tmp72 = tmp30*tmp36;
-    const Scalar tmp73 = tmp23*tmp66;
-    const Scalar tmp74 = tmp72 + tmp73;
-    const Scalar tmp75 = tmp15*tmp44;
-    const Scalar tmp76 = tmp25*tmp57;
-    const Scalar tmp77 = tmp16*tmp59;
-    const Scalar tmp78 = tmp76 + tmp77;
-    const Scalar tmp79 = tmp78 - tmp75;
-    const Scalar tmp80 = y_dot + tmp33*yaw_dot + tmp74*roll_dot + tmp79*pitch_dot;
-    const Scalar tmp81 = tmp14*tmp23;
-    const Scalar tmp82 = tmp1*tmp81;
-    const Scalar tmp83 = tmp18*tmp30;
-    const Scalar tmp84 = tmp1*tmp83;
-    const Scalar tmp85 = tmp82 - tmp84;
-    const Scalar tmp86 = -tmp85;
-    const Scalar tmp87 = tmp17*tmp45;
-    const Scalar tmp88 = tmp17*tmp47;
-    const Scalar tmp89 = tmp87 + tmp88;
-    const Scalar tmp90 = -tmp12 - tmp89;
-    const Scalar tmp91 = z_dot + tmp86*roll_dot + tmp90*pitch_dot;
-    const Scalar tmp92 = -tmp24;
-    const Scalar tmp93 = -tmp31;
-    const Scalar tmp94 = tmp13 + tmp93;
-    const Scalar tmp95 = tmp92 + tmp94 + x;
-    const Scalar tmp96 = -tmp37;
-    const Scalar tmp97 = -tmp40;
-    const Scalar tmp98 = tmp42 + tmp96 + tmp97;
-    const Scalar tmp99 = tmp44 + tmp49;
-    const Scalar tmp100 = z - tmp99;
-    const Scalar tmp101 = -tmp55;
-    const Scalar tmp102 = -tmp56 - tmp61;
-    const Scalar tmp103 = -tmp41 - tmp68;
-    const Scalar tmp104 = tmp101*roll_dot + tmp102*pitch_dot + tmp103*yaw_dot;
-    const Scalar tmp105 = tmp104 + x_dot;
-    const Scalar tmp106 = -tmp74;
-    const Scalar tmp107 = tmp75 + tmp78;
-    const Scalar tmp108 = -tmp107;
-    const Scalar tmp109 = -tmp13;
-    const Scalar tmp110 = -tmp32 - tmp109;
-    const Scalar tmp111 = y_dot + tmp110*yaw_dot + tmp106*roll_dot + tmp108*pitch_dot;
-    const Scalar tmp112 = tmp89 - tmp12;
-    const Scalar tmp113 = z_dot + tmp112*pitch_dot + tmp85*roll_dot;
-    const Scalar tmp114 = tmp31 + tmp92;
-    const Scalar tmp115 = tmp109 + x;
-    const Scalar tmp116 = tmp114 + tmp115;
-    const Scalar tmp117 = tmp63 + y;
-    const Scalar tmp118 = tmp117 + tmp40 + tmp96;
-    const Scalar tmp119 = tmp44 + tmp48 - tmp46;
-    const Scalar tmp120 = tmp119 + z;
-    const Scalar tmp121 = tmp54 - tmp52;
-    const Scalar tmp122 = -tmp121;
-    const Scalar tmp123 = tmp56 + tmp60 - tmp58;
-    const Scalar tmp124 = tmp67 - tmp65;
-    const Scalar tmp125 = tmp124 + tmp41;
-    const Scalar tmp126 = tmp122*roll_dot + tmp123*pitch_dot + tmp125*yaw_dot;
-    const Scalar tmp127 = tmp126 + x_dot;
-    const Scalar tmp128 = tmp73 - tmp72;
-    const Scalar tmp129 = -tmp128;
-    const Scalar tmp130 = tmp75 + tmp77 - tmp76;
-    const Scalar tmp131 = -tmp24 - tmp94;
-    const Scalar tmp132 = y_dot + tmp129*roll_dot + tmp130*pitch_dot + tmp131*yaw_dot;
-    const Scalar tmp133 = tmp82 + tmp84;
-    const Scalar tmp134 = tmp12 + tmp87 - tmp88;
-    const Scalar tmp135 = z_dot + tmp133*roll_dot + tmp134*pitch_dot;
-    const Scalar tmp136 = tmp115 + tmp24 + tmp93;
-    const Scalar tmp137 = tmp117 + tmp37 + tmp97;
-    const Scalar tmp138 = tmp46 - tmp48;
-    const Scalar tmp139 = tmp138 + tmp44;
-    const Scalar tmp140 = tmp139 + z;
-    const Scalar tmp141 = tmp56 + tmp58 - tmp60;
-    const Scalar tmp142 = tmp41 + tmp65 - tmp67;
-    const Scalar tmp143 = tmp121*roll_dot + tmp141*pitch_dot + tmp142*yaw_dot;
-    const Scalar tmp144 = tmp143 + x_dot;
-    const Scalar tmp145 = tmp75 + tmp76 - tmp77;
-    const Scalar tmp146 = -tmp114 - tmp13;
-    const Scalar tmp147 = y_dot + tmp128*roll_dot + tmp145*pitch_dot + tmp146*yaw_dot;
-    const Scalar tmp148 = -tmp133;
-    const Scalar tmp149 = tmp12 + tmp88 - tmp87;
-    const Scalar tmp150 = z_dot + tmp148*roll_dot + tmp149*pitch_dot;
-    const Scalar tmp151 = (Scalar(0.25))*m;
+    const Scalar tmp2 = Scalar(0.5)*tmp1;
+    const Scalar tmp3 = tmp0*tmp2;
+    const Scalar tmp4 = tmp3 + x;
+    const Scalar tmp5 = sin(yaw);
+    const Scalar tmp6 = tmp2*tmp5;
+    const Scalar tmp7 = tmp6 + y;
+    const Scalar tmp8 = sin(pitch);
+    const Scalar tmp9 = Scalar(0.5)*tmp8;
+    const Scalar tmp10 = z - tmp9;
+    const Scalar tmp11 = tmp0*tmp9;
+    const Scalar tmp12 = tmp6*yaw_dot + tmp11*pitch_dot;
+    const Scalar tmp13 = x_dot - tmp12;
+    const Scalar tmp14 = tmp5*tmp9;
+    const Scalar tmp15 = tmp14*pitch_dot;
+    const Scalar tmp16 = tmp3*yaw_dot;
+    const Scalar tmp17 = tmp16 + y_dot - tmp15;
+    const Scalar tmp18 = -z_dot;
+    const Scalar tmp19 = -tmp18 - tmp2*pitch_dot;
+    const Scalar tmp20 = cos(roll);
+    const Scalar tmp21 = Scalar(0.4)*tmp20;
+    const Scalar tmp22 = tmp21*tmp5;
+    const Scalar tmp23 = sin(roll);
+    const Scalar tmp24 = Scalar(0.4)*tmp23;
+    const Scalar tmp25 = tmp0*tmp24;
+    const Scalar tmp26 = tmp25*tmp8;
+    const Scalar tmp27 = tmp26 - tmp22;
+    const Scalar tmp28 = tmp27 + x;
+    const Scalar tmp29 = tmp0*tmp21;
+    const Scalar tmp30 = tmp24*tmp5;
+    const Scalar tmp31 = tmp30*tmp8;
+    const Scalar tmp32 = tmp29 + tmp31;
+    const Scalar tmp33 = tmp32 + y;
+    const Scalar tmp34 = tmp1*tmp24;
+    const Scalar tmp35 = tmp34 + z;
+    const Scalar tmp36 = tmp34*pitch_dot;
+    const Scalar tmp37 = tmp30 + tmp29*tmp8;
+    const Scalar tmp38 = -tmp32;
+    const Scalar tmp39 = tmp0*tmp36 + tmp37*roll_dot + tmp38*yaw_dot;
+    const Scalar tmp40 = tmp39 + x_dot;
+    const Scalar tmp41 = tmp36*tmp5;
+    const Scalar tmp42 = -tmp25 + tmp22*tmp8;
+    const Scalar tmp43 = tmp41 + y_dot + tmp27*yaw_dot + tmp42*roll_dot;
+    const Scalar tmp44 = tmp24*tmp8;
+    const Scalar tmp45 = tmp1*tmp21;
+    const Scalar tmp46 = z_dot + tmp45*roll_dot - tmp44*pitch_dot;
+    const Scalar tmp47 = Scalar(0.3)*tmp23;
+    const Scalar tmp48 = tmp47*tmp5;
+    const Scalar tmp49 = Scalar(0.3)*tmp20;
+    const Scalar tmp50 = tmp0*tmp49;
+    const Scalar tmp51 = tmp50*tmp8;
+    const Scalar tmp52 = tmp48 + tmp51;
+    const Scalar tmp53 = tmp52 + x;
+    const Scalar tmp54 = tmp0*tmp47;
+    const Scalar tmp55 = tmp49*tmp5;
+    const Scalar tmp56 = tmp55*tmp8;
+    const Scalar tmp57 = tmp56 - tmp54;
+    const Scalar tmp58 = tmp57 + y;
+    const Scalar tmp59 = tmp1*tmp49;
+    const Scalar tmp60 = tmp59 + z;
+    const Scalar tmp61 = tmp59*pitch_dot;
+    const Scalar tmp62 = tmp54*tmp8;
+    const Scalar tmp63 = tmp62 - tmp55;
+    const Scalar tmp64 = -tmp63;
+    const Scalar tmp65 = -tmp57;
+    const Scalar tmp66 = tmp0*tmp61 + tmp64*roll_dot + tmp65*yaw_dot;
+    const Scalar tmp67 = tmp66 + x_dot;
+    const Scalar tmp68 = tmp5*tmp61;
+    const Scalar tmp69 = tmp48*tmp8;
+    const Scalar tmp70 = tmp50 + tmp69;
+    const Scalar tmp71 = -tmp70;
+    const Scalar tmp72 = tmp68 + y_dot + tmp52*yaw_dot + tmp71*roll_dot;
+    const Scalar tmp73 = tmp49*tmp8;
+    const Scalar tmp74 = tmp1*tmp47;
+    const Scalar tmp75 = -tmp18 - tmp73*pitch_dot - tmp74*roll_dot;
+    const Scalar tmp76 = Scalar(0.2)*tmp1;
+    const Scalar tmp77 = Scalar(0.25)*tmp20;
+    const Scalar tmp78 = tmp0*tmp77;
+    const Scalar tmp79 = tmp8*tmp78;
+    const Scalar tmp80 = tmp79 + tmp0*tmp76;
+    const Scalar tmp81 = Scalar(0.25)*tmp23;
+    const Scalar tmp82 = tmp5*tmp81;
+    const Scalar tmp83 = tmp63 + tmp82;
+    const Scalar tmp84 = tmp80 + tmp83;
+    const Scalar tmp85 = tmp84 + x;
+    const Scalar tmp86 = tmp5*tmp77;
+    const Scalar tmp87 = tmp8*tmp86;
+    const Scalar tmp88 = tmp87 + tmp5*tmp76;
+    const Scalar tmp89 = tmp0*tmp81;
+    const Scalar tmp90 = tmp70 - tmp89;
+    const Scalar tmp91 = tmp88 + tmp90;
+    const Scalar tmp92 = tmp91 + y;
+    const Scalar tmp93 = Scalar(0.2)*tmp8;
+    const Scalar tmp94 = tmp1*tmp77;
+    const Scalar tmp95 = tmp74 + tmp94;
+    const Scalar tmp96 = tmp95 - tmp93;
+    const Scalar tmp97 = tmp96 + z;
+    const Scalar tmp98 = tmp1*tmp54;
+    const Scalar tmp99 = tmp98 + tmp0*tmp94 - tmp0*tmp93;
+    const Scalar tmp100 = tmp52 + tmp86 - tmp8*tmp89;
+    const Scalar tmp101 = -tmp91;
+    const Scalar tmp102 = tmp99*pitch_dot + tmp100*roll_dot + tmp101*yaw_dot;
+    const Scalar tmp103 = tmp102 + x_dot;
+    const Scalar tmp104 = tmp1*tmp48;
+    const Scalar tmp105 = tmp104 + tmp5*tmp94 - tmp5*tmp93;
+    const Scalar tmp106 = tmp54 + tmp78 - tmp56 + tmp8*tmp82;
+    const Scalar tmp107 = -tmp106;
+    const Scalar tmp108 = y_dot + tmp84*yaw_dot + tmp105*pitch_dot + tmp107*roll_dot;
+    const Scalar tmp109 = -tmp1*tmp81 + Scalar(0.3)*tmp1*tmp20;
+    const Scalar tmp110 = tmp47*tmp8;
+    const Scalar tmp111 = -tmp76 - tmp110 - tmp77*tmp8;
+    const Scalar tmp112 = z_dot + tmp109*roll_dot + tmp111*pitch_dot;
     AngularVector<Scalar> result;
-    result(0) = tmp151*(tmp43*tmp91 - tmp51*tmp80) + tmp151*(tmp113*tmp98 - tmp111*tmp100)
-        + tmp151*(tmp118*tmp135 - tmp120*tmp132) + tmp151*(tmp137*tmp150 - tmp140*tmp147);
-    result(1) = tmp151*(tmp120*tmp127 - tmp116*tmp135) + tmp151*(tmp51*tmp71 - tmp34*tmp91)
-        + tmp151*(tmp140*tmp144 - tmp136*tmp150) + tmp151*(tmp100*tmp105 - tmp113*tmp95);
-    result(2) = tmp151*(tmp34*tmp80 - tmp43*tmp71) + tmp151*(tmp111*tmp95 - tmp98*tmp105)
-        + tmp151*(tmp116*tmp132 - tmp118*tmp127) + tmp151*(tmp136*tmp147 - tmp137*tmp144);
+    result(0) = m_a*(tmp7*tmp19 - tmp10*tmp17) + m_b*(tmp46*tmp33 - tmp43*tmp35)
+        + m_c*(tmp58*tmp75 - tmp60*tmp72) + m_d*(tmp92*tmp112 - tmp97*tmp108);
+    result(1) = m_a*(tmp10*tmp13 - tmp4*tmp19) + m_b*(tmp35*tmp40 - tmp46*tmp28)
+        + m_c*(tmp60*tmp67 - tmp53*tmp75) + m_d*(tmp97*tmp103 - tmp85*tmp112);
+    result(2) = m_a*(tmp4*tmp17 - tmp7*tmp13) + m_b*(tmp43*tmp28 - tmp33*tmp40)
+        + m_c*(tmp53*tmp72 - tmp58*tmp67) + m_d*(tmp85*tmp108 - tmp92*tmp103);
     return result;
   }
 
   /// Particle masses, in particle order.
   /// \param[in] params  model parameters
   /// \return masses (num_particles)
-  /// Ops: 1
+  /// Ops: 0
   template <typename Scalar>
   static ParticleVector<Scalar> particle_masses(const Params& params) {
-    const Scalar m = Scalar(params.m);
-    const Scalar tmp151 = (Scalar(0.25))*m;
+    const Scalar m_a = Scalar(params.m_a);
+    const Scalar m_b = Scalar(params.m_b);
+    const Scalar m_c = Scalar(params.m_c);
+    const Scalar m_d = Scalar(params.m_d);
     ParticleVector<Scalar> result;
-    result(0) = tmp151;
-    result(1) = tmp151;
-    result(2) = tmp151;
-    result(3) = tmp151;
+    result(0) = m_a;
+    result(1) = m_b;
+    result(2) = m_c;
+    result(3) = m_d;
     return result;
   }
 
@@ -4258,9 +3552,8 @@ struct RigidBodyEuler {
     /// Whether the reduced model has forces acting directly on q (see generalized_forces).
     static constexpr bool has_generalized_forces = false;
     static constexpr int num_constraints = 6;
-    static constexpr std::array<const char*, num_constraints> constraint_names{{
-        "rod 'body_0-body_1'", "rod 'body_0-body_2'", "rod 'body_0-body_3'", "rod 'body_1-body_2'",
-        "rod 'body_1-body_3'", "rod 'body_2-body_3'"}};
+    static constexpr std::array<const char*, num_constraints> constraint_names{{"rod 'a-b'",
+        "rod 'a-c'", "rod 'a-d'", "rod 'b-c'", "rod 'b-d'", "rod 'c-d'"}};
     /// Sparsity of force_jacobian_x and force_jacobian_xdot (row, column of each value).
     static constexpr int jacobian_x_nonzeros = 144;
     static constexpr std::array<int, jacobian_x_nonzeros> jacobian_x_rows{{0, 0, 0, 0, 0, 0, 0, 0,
@@ -4298,30 +3591,38 @@ struct RigidBodyEuler {
     /// \param[in] t  time
     /// \param[in] params  model parameters
     /// \return F (nx)
-    /// Ops: 3
+    /// Ops: 8
     template <typename Scalar>
     static XVector<Scalar> external_forces(const XVector<Scalar>& /*pos*/,
                                            const XVector<Scalar>& /*vel*/,
                                            const Scalar& /*t*/,
                                            const Params& params) {
       const Scalar g = Scalar(params.g);
-      const Scalar m = Scalar(params.m);
-      const Scalar tmp151 = (Scalar(0.25))*m;
-      const Scalar tmp152 = tmp151*g;
-      const Scalar tmp153 = -tmp152;
+      const Scalar m_a = Scalar(params.m_a);
+      const Scalar m_b = Scalar(params.m_b);
+      const Scalar m_c = Scalar(params.m_c);
+      const Scalar m_d = Scalar(params.m_d);
+      const Scalar tmp113 = g*m_a;
+      const Scalar tmp114 = -tmp113;
+      const Scalar tmp115 = g*m_b;
+      const Scalar tmp116 = -tmp115;
+      const Scalar tmp117 = g*m_c;
+      const Scalar tmp118 = -tmp117;
+      const Scalar tmp119 = g*m_d;
+      const Scalar tmp120 = -tmp119;
       XVector<Scalar> result;
       result(0) = Scalar(0);
       result(1) = Scalar(0);
-      result(2) = tmp153;
+      result(2) = tmp114;
       result(3) = Scalar(0);
       result(4) = Scalar(0);
-      result(5) = tmp153;
+      result(5) = tmp116;
       result(6) = Scalar(0);
       result(7) = Scalar(0);
-      result(8) = tmp153;
+      result(8) = tmp118;
       result(9) = Scalar(0);
       result(10) = Scalar(0);
-      result(11) = tmp153;
+      result(11) = tmp120;
       return result;
     }
 
@@ -4333,151 +3634,122 @@ struct RigidBodyEuler {
     /// \param[in] penalty_damping  penalty damping coefficient
     /// \param[in] params  model parameters
     /// \return F_penalty (nx)
-    /// Ops: 339
+    /// Ops: 306
     template <typename Scalar>
     static XVector<Scalar> penalty_forces(const XVector<Scalar>& pos,
                                           const XVector<Scalar>& vel,
                                           const Scalar& /*t*/,
                                           const Scalar& kappa,
                                           const Scalar& penalty_damping,
-                                          const Params& params) {
+                                          const Params& /*params*/) {
       using std::sqrt;
-      const Scalar m = Scalar(params.m);
-      const Scalar a = Scalar(params.a);
-      const Scalar b = Scalar(params.b);
-      const Scalar c = Scalar(params.c);
-      const Scalar tmp3 = (a*a);
-      const Scalar tmp4 = (b*b);
-      const Scalar tmp5 = ((Scalar(1)/Scalar(24)))*m;
-      const Scalar tmp6 = tmp5*(tmp3 + tmp4);
-      const Scalar tmp7 = (c*c);
-      const Scalar tmp8 = tmp5*(tmp3 + tmp7);
-      const Scalar tmp9 = tmp5*(tmp4 + tmp7);
-      const Scalar tmp10 = tmp6 + tmp8 - tmp9;
-      const Scalar tmp22 = tmp8 + tmp9 - tmp6;
-      const Scalar tmp29 = tmp6 + tmp9 - tmp8;
-      const Scalar tmp244 = pos(3) - pos(0);
-      const Scalar tmp245 = pos(4) - pos(1);
-      const Scalar tmp246 = pos(5) - pos(2);
-      const Scalar tmp247 = sqrt((tmp244*tmp244) + (tmp245*tmp245) + (tmp246*tmp246));
-      const Scalar tmp248 = Scalar(4)/m;
-      const Scalar tmp249 = tmp248*tmp22;
-      const Scalar tmp250 = tmp248*tmp29;
-      const Scalar tmp251 = sqrt(tmp249 + tmp250);
-      const Scalar tmp252 = tmp247 - tmp251;
-      const Scalar tmp253 = (Scalar(1)/tmp251);
-      const Scalar tmp254 = tmp253*kappa;
-      const Scalar tmp255 = (Scalar(1)/tmp247);
-      const Scalar tmp256 = tmp244*tmp255;
-      const Scalar tmp257 = tmp245*tmp255;
-      const Scalar tmp258 = tmp246*tmp255;
-      const Scalar tmp259 = tmp253*penalty_damping;
-      const Scalar tmp260 = tmp252*tmp254
-          + tmp259*(tmp256*(vel(3) - vel(0)) + tmp257*(vel(4) - vel(1)) + tmp258*(vel(5) - vel(2)));
-      const Scalar tmp261 = -pos(6);
-      const Scalar tmp262 = -tmp261 - pos(0);
-      const Scalar tmp263 = -pos(7);
-      const Scalar tmp264 = -tmp263 - pos(1);
-      const Scalar tmp265 = -pos(8);
-      const Scalar tmp266 = -tmp265 - pos(2);
-      const Scalar tmp267 = sqrt((tmp262*tmp262) + (tmp264*tmp264) + (tmp266*tmp266));
-      const Scalar tmp268 = tmp10*tmp248;
-      const Scalar tmp269 = sqrt(tmp249 + tmp268);
-      const Scalar tmp270 = tmp267 - tmp269;
-      const Scalar tmp271 = (Scalar(1)/tmp269);
-      const Scalar tmp272 = tmp271*kappa;
-      const Scalar tmp273 = -vel(6);
-      const Scalar tmp274 = (Scalar(1)/tmp267);
-      const Scalar tmp275 = tmp262*tmp274;
-      const Scalar tmp276 = -vel(7);
-      const Scalar tmp277 = tmp264*tmp274;
-      const Scalar tmp278 = -vel(8);
-      const Scalar tmp279 = tmp266*tmp274;
-      const Scalar tmp280 = tmp271*penalty_damping;
-      const Scalar tmp281 = tmp270*tmp272
-          + tmp280*(tmp275*(-tmp273 - vel(0)) + tmp277*(-tmp276 - vel(1))
-              + tmp279*(-tmp278 - vel(2)));
-      const Scalar tmp282 = -pos(9);
-      const Scalar tmp283 = -tmp282 - pos(0);
-      const Scalar tmp284 = -pos(10);
-      const Scalar tmp285 = -tmp284 - pos(1);
-      const Scalar tmp286 = -pos(11);
-      const Scalar tmp287 = -tmp286 - pos(2);
-      const Scalar tmp288 = sqrt((tmp283*tmp283) + (tmp285*tmp285) + (tmp287*tmp287));
-      const Scalar tmp289 = sqrt(tmp250 + tmp268);
-      const Scalar tmp290 = tmp288 - tmp289;
-      const Scalar tmp291 = (Scalar(1)/tmp289);
-      const Scalar tmp292 = tmp291*kappa;
-      const Scalar tmp293 = -vel(9);
-      const Scalar tmp294 = (Scalar(1)/tmp288);
-      const Scalar tmp295 = tmp283*tmp294;
-      const Scalar tmp296 = -vel(10);
-      const Scalar tmp297 = tmp285*tmp294;
-      const Scalar tmp298 = -vel(11);
-      const Scalar tmp299 = tmp287*tmp294;
-      const Scalar tmp300 = tmp291*penalty_damping;
-      const Scalar tmp301 = tmp290*tmp292
-          + tmp300*(tmp295*(-tmp293 - vel(0)) + tmp297*(-tmp296 - vel(1))
-              + tmp299*(-tmp298 - vel(2)));
-      const Scalar tmp302 = tmp258*tmp260 + tmp279*tmp281 + tmp299*tmp301;
-      const Scalar tmp303 = -tmp261 - pos(3);
-      const Scalar tmp304 = -tmp263 - pos(4);
-      const Scalar tmp305 = -tmp265 - pos(5);
-      const Scalar tmp306 = sqrt((tmp303*tmp303) + (tmp304*tmp304) + (tmp305*tmp305));
-      const Scalar tmp307 = tmp306 - tmp289;
-      const Scalar tmp308 = (Scalar(1)/tmp306);
-      const Scalar tmp309 = tmp303*tmp308;
-      const Scalar tmp310 = tmp304*tmp308;
-      const Scalar tmp311 = tmp305*tmp308;
-      const Scalar tmp312 = tmp292*tmp307
-          + tmp300*(tmp309*(-tmp273 - vel(3)) + tmp310*(-tmp276 - vel(4))
-              + tmp311*(-tmp278 - vel(5)));
-      const Scalar tmp313 = -tmp282 - pos(3);
-      const Scalar tmp314 = -tmp284 - pos(4);
-      const Scalar tmp315 = -tmp286 - pos(5);
-      const Scalar tmp316 = sqrt((tmp313*tmp313) + (tmp314*tmp314) + (tmp315*tmp315));
-      const Scalar tmp317 = tmp316 - tmp269;
-      const Scalar tmp318 = (Scalar(1)/tmp316);
-      const Scalar tmp319 = tmp313*tmp318;
-      const Scalar tmp320 = tmp314*tmp318;
-      const Scalar tmp321 = tmp315*tmp318;
-      const Scalar tmp322 = tmp272*tmp317
-          + tmp280*(tmp319*(-tmp293 - vel(3)) + tmp320*(-tmp296 - vel(4))
-              + tmp321*(-tmp298 - vel(5)));
-      const Scalar tmp323 = -tmp260;
-      const Scalar tmp324 = tmp258*tmp323 + tmp311*tmp312 + tmp321*tmp322;
-      const Scalar tmp325 = -tmp282 - pos(6);
-      const Scalar tmp326 = -tmp284 - pos(7);
-      const Scalar tmp327 = -tmp286 - pos(8);
-      const Scalar tmp328 = sqrt((tmp325*tmp325) + (tmp326*tmp326) + (tmp327*tmp327));
-      const Scalar tmp329 = tmp328 - tmp251;
-      const Scalar tmp330 = (Scalar(1)/tmp328);
-      const Scalar tmp331 = tmp325*tmp330;
-      const Scalar tmp332 = tmp326*tmp330;
-      const Scalar tmp333 = tmp327*tmp330;
-      const Scalar tmp334 = tmp254*tmp329
-          + tmp259*(tmp331*(-tmp293 - vel(6)) + tmp332*(-tmp296 - vel(7))
-              + tmp333*(-tmp298 - vel(8)));
-      const Scalar tmp335 = -tmp281;
-      const Scalar tmp336 = -tmp312;
-      const Scalar tmp337 = tmp279*tmp335 + tmp311*tmp336 + tmp333*tmp334;
-      const Scalar tmp338 = -tmp301;
-      const Scalar tmp339 = -tmp322;
-      const Scalar tmp340 = -tmp334;
-      const Scalar tmp341 = tmp299*tmp338 + tmp321*tmp339 + tmp333*tmp340;
+      const Scalar tmp201 = pos(3) - pos(0);
+      const Scalar tmp202 = pos(4) - pos(1);
+      const Scalar tmp203 = pos(5) - pos(2);
+      const Scalar tmp204 = sqrt((tmp201*tmp201) + (tmp202*tmp202) + (tmp203*tmp203));
+      const Scalar tmp205 = Scalar(-0.6403124237432849) + tmp204;
+      const Scalar tmp206 = (Scalar(1)/tmp204);
+      const Scalar tmp207 = tmp201*tmp206;
+      const Scalar tmp208 = tmp202*tmp206;
+      const Scalar tmp209 = tmp203*tmp206;
+      const Scalar tmp210 = Scalar(1.5617376188860606)*tmp205*kappa
+          + Scalar(1.5617376188860606)*penalty_damping*(tmp207*(vel(3) - vel(0))
+              + tmp208*(vel(4) - vel(1)) + tmp209*(vel(5) - vel(2)));
+      const Scalar tmp211 = -pos(6);
+      const Scalar tmp212 = -tmp211 - pos(0);
+      const Scalar tmp213 = -pos(7);
+      const Scalar tmp214 = -tmp213 - pos(1);
+      const Scalar tmp215 = -pos(8);
+      const Scalar tmp216 = -tmp215 - pos(2);
+      const Scalar tmp217 = sqrt((tmp212*tmp212) + (tmp214*tmp214) + (tmp216*tmp216));
+      const Scalar tmp218 = Scalar(-0.58309518948453) + tmp217;
+      const Scalar tmp219 = -vel(6);
+      const Scalar tmp220 = (Scalar(1)/tmp217);
+      const Scalar tmp221 = tmp212*tmp220;
+      const Scalar tmp222 = -vel(7);
+      const Scalar tmp223 = tmp214*tmp220;
+      const Scalar tmp224 = -vel(8);
+      const Scalar tmp225 = tmp216*tmp220;
+      const Scalar tmp226 = Scalar(1.7149858514250886)*tmp218*kappa
+          + Scalar(1.7149858514250886)*penalty_damping*(tmp221*(-tmp219 - vel(0))
+              + tmp223*(-tmp222 - vel(1)) + tmp225*(-tmp224 - vel(2)));
+      const Scalar tmp227 = -pos(9);
+      const Scalar tmp228 = -tmp227 - pos(0);
+      const Scalar tmp229 = -pos(10);
+      const Scalar tmp230 = -tmp229 - pos(1);
+      const Scalar tmp231 = -pos(11);
+      const Scalar tmp232 = -tmp231 - pos(2);
+      const Scalar tmp233 = sqrt((tmp228*tmp228) + (tmp230*tmp230) + (tmp232*tmp232));
+      const Scalar tmp234 = Scalar(-0.49244289008980524) + tmp233;
+      const Scalar tmp235 = -vel(9);
+      const Scalar tmp236 = (Scalar(1)/tmp233);
+      const Scalar tmp237 = tmp228*tmp236;
+      const Scalar tmp238 = -vel(10);
+      const Scalar tmp239 = tmp230*tmp236;
+      const Scalar tmp240 = -vel(11);
+      const Scalar tmp241 = tmp232*tmp236;
+      const Scalar tmp242 = Scalar(2.030692330267238)*tmp234*kappa
+          + Scalar(2.030692330267238)*penalty_damping*(tmp237*(-tmp235 - vel(0))
+              + tmp239*(-tmp238 - vel(1)) + tmp241*(-tmp240 - vel(2)));
+      const Scalar tmp243 = tmp209*tmp210 + tmp225*tmp226 + tmp241*tmp242;
+      const Scalar tmp244 = -tmp210;
+      const Scalar tmp245 = -tmp211 - pos(3);
+      const Scalar tmp246 = -tmp213 - pos(4);
+      const Scalar tmp247 = -tmp215 - pos(5);
+      const Scalar tmp248 = sqrt((tmp245*tmp245) + (tmp246*tmp246) + (tmp247*tmp247));
+      const Scalar tmp249 = Scalar(-0.5) + tmp248;
+      const Scalar tmp250 = (Scalar(1)/tmp248);
+      const Scalar tmp251 = tmp245*tmp250;
+      const Scalar tmp252 = tmp246*tmp250;
+      const Scalar tmp253 = tmp247*tmp250;
+      const Scalar tmp254 = Scalar(2.0)*tmp249*kappa
+          + Scalar(2.0)*penalty_damping*(tmp251*(-tmp219 - vel(3)) + tmp252*(-tmp222 - vel(4))
+              + tmp253*(-tmp224 - vel(5)));
+      const Scalar tmp255 = -tmp227 - pos(3);
+      const Scalar tmp256 = -tmp229 - pos(4);
+      const Scalar tmp257 = -tmp231 - pos(5);
+      const Scalar tmp258 = sqrt((tmp255*tmp255) + (tmp256*tmp256) + (tmp257*tmp257));
+      const Scalar tmp259 = Scalar(-0.33541019662496846) + tmp258;
+      const Scalar tmp260 = (Scalar(1)/tmp258);
+      const Scalar tmp261 = tmp255*tmp260;
+      const Scalar tmp262 = tmp256*tmp260;
+      const Scalar tmp263 = tmp257*tmp260;
+      const Scalar tmp264 = Scalar(2.9814239699997196)*tmp259*kappa
+          + Scalar(2.9814239699997196)*penalty_damping*(tmp261*(-tmp235 - vel(3))
+              + tmp262*(-tmp238 - vel(4)) + tmp263*(-tmp240 - vel(5)));
+      const Scalar tmp265 = tmp209*tmp244 + tmp253*tmp254 + tmp263*tmp264;
+      const Scalar tmp266 = -tmp226;
+      const Scalar tmp267 = -tmp254;
+      const Scalar tmp268 = -tmp227 - pos(6);
+      const Scalar tmp269 = -tmp229 - pos(7);
+      const Scalar tmp270 = -tmp231 - pos(8);
+      const Scalar tmp271 = sqrt((tmp268*tmp268) + (tmp269*tmp269) + (tmp270*tmp270));
+      const Scalar tmp272 = Scalar(-0.3640054944640259) + tmp271;
+      const Scalar tmp273 = (Scalar(1)/tmp271);
+      const Scalar tmp274 = tmp268*tmp273;
+      const Scalar tmp275 = tmp269*tmp273;
+      const Scalar tmp276 = tmp270*tmp273;
+      const Scalar tmp277 = Scalar(2.7472112789737806)*tmp272*kappa
+          + Scalar(2.7472112789737806)*penalty_damping*(tmp274*(-tmp235 - vel(6))
+              + tmp275*(-tmp238 - vel(7)) + tmp276*(-tmp240 - vel(8)));
+      const Scalar tmp278 = tmp225*tmp266 + tmp253*tmp267 + tmp276*tmp277;
+      const Scalar tmp279 = -tmp242;
+      const Scalar tmp280 = -tmp264;
+      const Scalar tmp281 = -tmp277;
+      const Scalar tmp282 = tmp241*tmp279 + tmp263*tmp280 + tmp276*tmp281;
       XVector<Scalar> result;
-      result(0) = tmp256*tmp260 + tmp275*tmp281 + tmp295*tmp301;
-      result(1) = tmp257*tmp260 + tmp277*tmp281 + tmp297*tmp301;
-      result(2) = tmp302;
-      result(3) = tmp256*tmp323 + tmp309*tmp312 + tmp319*tmp322;
-      result(4) = tmp257*tmp323 + tmp310*tmp312 + tmp320*tmp322;
-      result(5) = tmp324;
-      result(6) = tmp275*tmp335 + tmp309*tmp336 + tmp331*tmp334;
-      result(7) = tmp277*tmp335 + tmp310*tmp336 + tmp332*tmp334;
-      result(8) = tmp337;
-      result(9) = tmp295*tmp338 + tmp319*tmp339 + tmp331*tmp340;
-      result(10) = tmp297*tmp338 + tmp320*tmp339 + tmp332*tmp340;
-      result(11) = tmp341;
+      result(0) = tmp207*tmp210 + tmp221*tmp226 + tmp237*tmp242;
+      result(1) = tmp208*tmp210 + tmp223*tmp226 + tmp239*tmp242;
+      result(2) = tmp243;
+      result(3) = tmp207*tmp244 + tmp251*tmp254 + tmp261*tmp264;
+      result(4) = tmp208*tmp244 + tmp252*tmp254 + tmp262*tmp264;
+      result(5) = tmp265;
+      result(6) = tmp221*tmp266 + tmp251*tmp267 + tmp274*tmp277;
+      result(7) = tmp223*tmp266 + tmp252*tmp267 + tmp275*tmp277;
+      result(8) = tmp278;
+      result(9) = tmp237*tmp279 + tmp261*tmp280 + tmp274*tmp281;
+      result(10) = tmp239*tmp279 + tmp262*tmp280 + tmp275*tmp281;
+      result(11) = tmp282;
       return result;
     }
 
@@ -4489,651 +3761,694 @@ struct RigidBodyEuler {
     /// \param[in] penalty_damping  penalty damping coefficient
     /// \param[in] params  model parameters
     /// \return values (jacobian_x_nonzeros)
-    /// Ops: 2241
+    /// Ops: 2352
     template <typename Scalar>
     static std::array<Scalar, 144> force_jacobian_x(const XVector<Scalar>& pos,
                                                     const XVector<Scalar>& vel,
                                                     const Scalar& /*t*/,
                                                     const Scalar& kappa,
                                                     const Scalar& penalty_damping,
-                                                    const Params& params) {
+                                                    const Params& /*params*/) {
       using std::sqrt;
-      const Scalar m = Scalar(params.m);
-      const Scalar a = Scalar(params.a);
-      const Scalar b = Scalar(params.b);
-      const Scalar c = Scalar(params.c);
-      const Scalar tmp3 = (a*a);
-      const Scalar tmp4 = (b*b);
-      const Scalar tmp5 = ((Scalar(1)/Scalar(24)))*m;
-      const Scalar tmp6 = tmp5*(tmp3 + tmp4);
-      const Scalar tmp7 = (c*c);
-      const Scalar tmp8 = tmp5*(tmp3 + tmp7);
-      const Scalar tmp9 = tmp5*(tmp4 + tmp7);
-      const Scalar tmp10 = tmp6 + tmp8 - tmp9;
-      const Scalar tmp22 = tmp8 + tmp9 - tmp6;
-      const Scalar tmp29 = tmp6 + tmp9 - tmp8;
-      const Scalar tmp244 = pos(3) - pos(0);
-      const Scalar tmp245 = pos(4) - pos(1);
-      const Scalar tmp246 = pos(5) - pos(2);
-      const Scalar tmp247 = sqrt((tmp244*tmp244) + (tmp245*tmp245) + (tmp246*tmp246));
-      const Scalar tmp248 = Scalar(4)/m;
-      const Scalar tmp249 = tmp248*tmp22;
-      const Scalar tmp250 = tmp248*tmp29;
-      const Scalar tmp251 = sqrt(tmp249 + tmp250);
-      const Scalar tmp252 = tmp247 - tmp251;
-      const Scalar tmp253 = (Scalar(1)/tmp251);
-      const Scalar tmp254 = tmp253*kappa;
-      const Scalar tmp255 = (Scalar(1)/tmp247);
-      const Scalar tmp256 = tmp244*tmp255;
-      const Scalar tmp257 = tmp245*tmp255;
-      const Scalar tmp258 = tmp246*tmp255;
-      const Scalar tmp259 = tmp253*penalty_damping;
-      const Scalar tmp260 = tmp252*tmp254
-          + tmp259*(tmp256*(vel(3) - vel(0)) + tmp257*(vel(4) - vel(1)) + tmp258*(vel(5) - vel(2)));
-      const Scalar tmp261 = -pos(6);
-      const Scalar tmp262 = -tmp261 - pos(0);
-      const Scalar tmp263 = -pos(7);
-      const Scalar tmp264 = -tmp263 - pos(1);
-      const Scalar tmp265 = -pos(8);
-      const Scalar tmp266 = -tmp265 - pos(2);
-      const Scalar tmp267 = sqrt((tmp262*tmp262) + (tmp264*tmp264) + (tmp266*tmp266));
-      const Scalar tmp268 = tmp10*tmp248;
-      const Scalar tmp269 = sqrt(tmp249 + tmp268);
-      const Scalar tmp270 = tmp267 - tmp269;
-      const Scalar tmp271 = (Scalar(1)/tmp269);
-      const Scalar tmp272 = tmp271*kappa;
-      const Scalar tmp273 = -vel(6);
-      const Scalar tmp274 = (Scalar(1)/tmp267);
-      const Scalar tmp275 = tmp262*tmp274;
-      const Scalar tmp276 = -vel(7);
-      const Scalar tmp277 = tmp264*tmp274;
-      const Scalar tmp278 = -vel(8);
-      const Scalar tmp279 = tmp266*tmp274;
-      const Scalar tmp280 = tmp271*penalty_damping;
-      const Scalar tmp281 = tmp270*tmp272
-          + tmp280*(tmp275*(-tmp273 - vel(0)) + tmp277*(-tmp276 - vel(1))
-              + tmp279*(-tmp278 - vel(2)));
-      const Scalar tmp282 = -pos(9);
-      const Scalar tmp283 = -tmp282 - pos(0);
-      const Scalar tmp284 = -pos(10);
-      const Scalar tmp285 = -tmp284 - pos(1);
-      const Scalar tmp286 = -pos(11);
-      const Scalar tmp287 = -tmp286 - pos(2);
-      const Scalar tmp288 = sqrt((tmp283*tmp283) + (tmp285*tmp285) + (tmp287*tmp287));
-      const Scalar tmp289 = sqrt(tmp250 + tmp268);
-      const Scalar tmp290 = tmp288 - tmp289;
-      const Scalar tmp291 = (Scalar(1)/tmp289);
-      const Scalar tmp292 = tmp291*kappa;
-      const Scalar tmp293 = -vel(9);
-      const Scalar tmp294 = (Scalar(1)/tmp288);
-      const Scalar tmp295 = tmp283*tmp294;
-      const Scalar tmp296 = -vel(10);
-      const Scalar tmp297 = tmp285*tmp294;
-      const Scalar tmp298 = -vel(11);
-      const Scalar tmp299 = tmp287*tmp294;
-      const Scalar tmp300 = tmp291*penalty_damping;
-      const Scalar tmp301 = tmp290*tmp292
-          + tmp300*(tmp295*(-tmp293 - vel(0)) + tmp297*(-tmp296 - vel(1))
-              + tmp299*(-tmp298 - vel(2)));
-      const Scalar tmp303 = -tmp261 - pos(3);
-      const Scalar tmp304 = -tmp263 - pos(4);
-      const Scalar tmp305 = -tmp265 - pos(5);
-      const Scalar tmp306 = sqrt((tmp303*tmp303) + (tmp304*tmp304) + (tmp305*tmp305));
-      const Scalar tmp307 = tmp306 - tmp289;
-      const Scalar tmp308 = (Scalar(1)/tmp306);
-      const Scalar tmp309 = tmp303*tmp308;
-      const Scalar tmp310 = tmp304*tmp308;
-      const Scalar tmp311 = tmp305*tmp308;
-      const Scalar tmp312 = tmp292*tmp307
-          + tmp300*(tmp309*(-tmp273 - vel(3)) + tmp310*(-tmp276 - vel(4))
-              + tmp311*(-tmp278 - vel(5)));
-      const Scalar tmp313 = -tmp282 - pos(3);
-      const Scalar tmp314 = -tmp284 - pos(4);
-      const Scalar tmp315 = -tmp286 - pos(5);
-      const Scalar tmp316 = sqrt((tmp313*tmp313) + (tmp314*tmp314) + (tmp315*tmp315));
-      const Scalar tmp317 = tmp316 - tmp269;
-      const Scalar tmp318 = (Scalar(1)/tmp316);
-      const Scalar tmp319 = tmp313*tmp318;
-      const Scalar tmp320 = tmp314*tmp318;
-      const Scalar tmp321 = tmp315*tmp318;
-      const Scalar tmp322 = tmp272*tmp317
-          + tmp280*(tmp319*(-tmp293 - vel(3)) + tmp320*(-tmp296 - vel(4))
-              + tmp321*(-tmp298 - vel(5)));
-      const Scalar tmp323 = -tmp260;
-      const Scalar tmp325 = -tmp282 - pos(6);
-      const Scalar tmp326 = -tmp284 - pos(7);
-      const Scalar tmp327 = -tmp286 - pos(8);
-      const Scalar tmp328 = sqrt((tmp325*tmp325) + (tmp326*tmp326) + (tmp327*tmp327));
-      const Scalar tmp329 = tmp328 - tmp251;
-      const Scalar tmp330 = (Scalar(1)/tmp328);
-      const Scalar tmp331 = tmp325*tmp330;
-      const Scalar tmp332 = tmp326*tmp330;
-      const Scalar tmp333 = tmp327*tmp330;
-      const Scalar tmp334 = tmp254*tmp329
-          + tmp259*(tmp331*(-tmp293 - vel(6)) + tmp332*(-tmp296 - vel(7))
-              + tmp333*(-tmp298 - vel(8)));
-      const Scalar tmp335 = -tmp281;
-      const Scalar tmp336 = -tmp312;
-      const Scalar tmp338 = -tmp301;
-      const Scalar tmp339 = -tmp322;
-      const Scalar tmp340 = -tmp334;
-      const Scalar tmp913 = -tmp244/sqrt((tmp244*tmp244) + (tmp245*tmp245) + (tmp246*tmp246));
-      const Scalar tmp914 = -(Scalar(1)/(tmp247*tmp247))*tmp913;
-      const Scalar tmp915 = -tmp255 + tmp244*tmp914;
-      const Scalar tmp916 = tmp245*tmp914;
-      const Scalar tmp917 = tmp246*tmp914;
-      const Scalar tmp918 = tmp254*tmp913 + tmp259*(vel(3) - vel(0))*tmp915
-          + tmp259*(vel(4) - vel(1))*tmp916 + tmp259*(vel(5) - vel(2))*tmp917;
-      const Scalar tmp919 = -tmp262/sqrt((tmp262*tmp262) + (tmp264*tmp264) + (tmp266*tmp266));
-      const Scalar tmp920 = -(Scalar(1)/(tmp267*tmp267))*tmp919;
-      const Scalar tmp921 = -tmp274 + tmp262*tmp920;
-      const Scalar tmp922 = tmp264*tmp920;
-      const Scalar tmp923 = tmp266*tmp920;
-      const Scalar tmp924 = tmp272*tmp919 + tmp280*(-tmp273 - vel(0))*tmp921
-          + tmp280*(-tmp276 - vel(1))*tmp922 + tmp280*(-tmp278 - vel(2))*tmp923;
-      const Scalar tmp925 = -tmp283/sqrt((tmp283*tmp283) + (tmp285*tmp285) + (tmp287*tmp287));
-      const Scalar tmp926 = -(Scalar(1)/(tmp288*tmp288))*tmp925;
-      const Scalar tmp927 = -tmp294 + tmp283*tmp926;
-      const Scalar tmp928 = tmp285*tmp926;
-      const Scalar tmp929 = tmp287*tmp926;
-      const Scalar tmp930 = tmp292*tmp925 + tmp300*(-tmp293 - vel(0))*tmp927
-          + tmp300*(-tmp296 - vel(1))*tmp928 + tmp300*(-tmp298 - vel(2))*tmp929;
-      const Scalar tmp931 = tmp260*tmp917 + tmp258*tmp918 + tmp281*tmp923 + tmp279*tmp924
-          + tmp301*tmp929 + tmp299*tmp930;
-      const Scalar tmp932 = -tmp918;
-      const Scalar tmp933 = tmp323*tmp917 + tmp258*tmp932;
-      const Scalar tmp934 = -tmp924;
-      const Scalar tmp935 = tmp335*tmp923 + tmp279*tmp934;
-      const Scalar tmp936 = -tmp930;
-      const Scalar tmp937 = tmp338*tmp929 + tmp299*tmp936;
-      const Scalar tmp938 = -tmp245/sqrt((tmp244*tmp244) + (tmp245*tmp245) + (tmp246*tmp246));
-      const Scalar tmp939 = -(Scalar(1)/(tmp247*tmp247))*tmp938;
-      const Scalar tmp940 = tmp244*tmp939;
-      const Scalar tmp941 = -tmp255 + tmp245*tmp939;
-      const Scalar tmp942 = tmp246*tmp939;
-      const Scalar tmp943 = tmp254*tmp938 + tmp259*(vel(3) - vel(0))*tmp940
-          + tmp259*(vel(4) - vel(1))*tmp941 + tmp259*(vel(5) - vel(2))*tmp942;
-      const Scalar tmp944 = -tmp264/sqrt((tmp262*tmp262) + (tmp264*tmp264) + (tmp266*tmp266));
-      const Scalar tmp945 = -(Scalar(1)/(tmp267*tmp267))*tmp944;
-      const Scalar tmp946 = tmp262*tmp945;
-      const Scalar tmp947 = -tmp274 + tmp264*tmp945;
-      const Scalar tmp948 = tmp266*tmp945;
-      const Scalar tmp949 = tmp272*tmp944 + tmp280*(-tmp273 - vel(0))*tmp946
-          + tmp280*(-tmp276 - vel(1))*tmp947 + tmp280*(-tmp278 - vel(2))*tmp948;
-      const Scalar tmp950 = -tmp285/sqrt((tmp283*tmp283) + (tmp285*tmp285) + (tmp287*tmp287));
-      const Scalar tmp951 = -(Scalar(1)/(tmp288*tmp288))*tmp950;
-      const Scalar tmp952 = tmp283*tmp951;
-      const Scalar tmp953 = -tmp294 + tmp285*tmp951;
-      const Scalar tmp954 = tmp287*tmp951;
-      const Scalar tmp955 = tmp292*tmp950 + tmp300*(-tmp293 - vel(0))*tmp952
-          + tmp300*(-tmp296 - vel(1))*tmp953 + tmp300*(-tmp298 - vel(2))*tmp954;
-      const Scalar tmp956 = tmp260*tmp942 + tmp258*tmp943 + tmp281*tmp948 + tmp279*tmp949
-          + tmp301*tmp954 + tmp299*tmp955;
-      const Scalar tmp957 = -tmp943;
-      const Scalar tmp958 = tmp323*tmp942 + tmp258*tmp957;
-      const Scalar tmp959 = -tmp949;
-      const Scalar tmp960 = tmp335*tmp948 + tmp279*tmp959;
-      const Scalar tmp961 = -tmp955;
-      const Scalar tmp962 = tmp338*tmp954 + tmp299*tmp961;
-      const Scalar tmp963 = -tmp246/sqrt((tmp244*tmp244) + (tmp245*tmp245) + (tmp246*tmp246));
-      const Scalar tmp964 = -(Scalar(1)/(tmp247*tmp247))*tmp963;
-      const Scalar tmp965 = tmp244*tmp964;
-      const Scalar tmp966 = tmp245*tmp964;
-      const Scalar tmp967 = -tmp255 + tmp246*tmp964;
-      const Scalar tmp968 = tmp254*tmp963 + tmp259*(vel(3) - vel(0))*tmp965
-          + tmp259*(vel(4) - vel(1))*tmp966 + tmp259*(vel(5) - vel(2))*tmp967;
-      const Scalar tmp969 = -tmp266/sqrt((tmp262*tmp262) + (tmp264*tmp264) + (tmp266*tmp266));
-      const Scalar tmp970 = -(Scalar(1)/(tmp267*tmp267))*tmp969;
-      const Scalar tmp971 = tmp262*tmp970;
-      const Scalar tmp972 = tmp264*tmp970;
-      const Scalar tmp973 = -tmp274 + tmp266*tmp970;
-      const Scalar tmp974 = tmp272*tmp969 + tmp280*(-tmp273 - vel(0))*tmp971
-          + tmp280*(-tmp276 - vel(1))*tmp972 + tmp280*(-tmp278 - vel(2))*tmp973;
-      const Scalar tmp975 = -tmp287/sqrt((tmp283*tmp283) + (tmp285*tmp285) + (tmp287*tmp287));
-      const Scalar tmp976 = -(Scalar(1)/(tmp288*tmp288))*tmp975;
-      const Scalar tmp977 = tmp283*tmp976;
-      const Scalar tmp978 = tmp285*tmp976;
-      const Scalar tmp979 = -tmp294 + tmp287*tmp976;
-      const Scalar tmp980 = tmp292*tmp975 + tmp300*(-tmp293 - vel(0))*tmp977
-          + tmp300*(-tmp296 - vel(1))*tmp978 + tmp300*(-tmp298 - vel(2))*tmp979;
-      const Scalar tmp981 = tmp260*tmp967 + tmp258*tmp968 + tmp281*tmp973 + tmp279*tmp974
-          + tmp301*tmp979 + tmp299*tmp980;
-      const Scalar tmp982 = -tmp968;
-      const Scalar tmp983 = tmp323*tmp967 + tmp258*tmp982;
+      const Scalar tmp201 = pos(3) - pos(0);
+      const Scalar tmp202 = pos(4) - pos(1);
+      const Scalar tmp203 = pos(5) - pos(2);
+      const Scalar tmp204 = sqrt((tmp201*tmp201) + (tmp202*tmp202) + (tmp203*tmp203));
+      const Scalar tmp205 = Scalar(-0.6403124237432849) + tmp204;
+      const Scalar tmp206 = (Scalar(1)/tmp204);
+      const Scalar tmp207 = tmp201*tmp206;
+      const Scalar tmp208 = tmp202*tmp206;
+      const Scalar tmp209 = tmp203*tmp206;
+      const Scalar tmp210 = Scalar(1.5617376188860606)*tmp205*kappa
+          + Scalar(1.5617376188860606)*penalty_damping*(tmp207*(vel(3) - vel(0))
+              + tmp208*(vel(4) - vel(1)) + tmp209*(vel(5) - vel(2)));
+      const Scalar tmp211 = -pos(6);
+      const Scalar tmp212 = -tmp211 - pos(0);
+      const Scalar tmp213 = -pos(7);
+      const Scalar tmp214 = -tmp213 - pos(1);
+      const Scalar tmp215 = -pos(8);
+      const Scalar tmp216 = -tmp215 - pos(2);
+      const Scalar tmp217 = sqrt((tmp212*tmp212) + (tmp214*tmp214) + (tmp216*tmp216));
+      const Scalar tmp218 = Scalar(-0.58309518948453) + tmp217;
+      const Scalar tmp219 = -vel(6);
+      const Scalar tmp220 = (Scalar(1)/tmp217);
+      const Scalar tmp221 = tmp212*tmp220;
+      const Scalar tmp222 = -vel(7);
+      const Scalar tmp223 = tmp214*tmp220;
+      const Scalar tmp224 = -vel(8);
+      const Scalar tmp225 = tmp216*tmp220;
+      const Scalar tmp226 = Scalar(1.7149858514250886)*tmp218*kappa
+          + Scalar(1.7149858514250886)*penalty_damping*(tmp221*(-tmp219 - vel(0))
+              + tmp223*(-tmp222 - vel(1)) + tmp225*(-tmp224 - vel(2)));
+      const Scalar tmp227 = -pos(9);
+      const Scalar tmp228 = -tmp227 - pos(0);
+      const Scalar tmp229 = -pos(10);
+      const Scalar tmp230 = -tmp229 - pos(1);
+      const Scalar tmp231 = -pos(11);
+      const Scalar tmp232 = -tmp231 - pos(2);
+      const Scalar tmp233 = sqrt((tmp228*tmp228) + (tmp230*tmp230) + (tmp232*tmp232));
+      const Scalar tmp234 = Scalar(-0.49244289008980524) + tmp233;
+      const Scalar tmp235 = -vel(9);
+      const Scalar tmp236 = (Scalar(1)/tmp233);
+      const Scalar tmp237 = tmp228*tmp236;
+      const Scalar tmp238 = -vel(10);
+      const Scalar tmp239 = tmp230*tmp236;
+      const Scalar tmp240 = -vel(11);
+      const Scalar tmp241 = tmp232*tmp236;
+      const Scalar tmp242 = Scalar(2.030692330267238)*tmp234*kappa
+          + Scalar(2.030692330267238)*penalty_damping*(tmp237*(-tmp235 - vel(0))
+              + tmp239*(-tmp238 - vel(1)) + tmp241*(-tmp240 - vel(2)));
+      const Scalar tmp244 = -tmp210;
+      const Scalar tmp245 = -tmp211 - pos(3);
+      const Scalar tmp246 = -tmp213 - pos(4);
+      const Scalar tmp247 = -tmp215 - pos(5);
+      const Scalar tmp248 = sqrt((tmp245*tmp245) + (tmp246*tmp246) + (tmp247*tmp247));
+      const Scalar tmp249 = Scalar(-0.5) + tmp248;
+      const Scalar tmp250 = (Scalar(1)/tmp248);
+      const Scalar tmp251 = tmp245*tmp250;
+      const Scalar tmp252 = tmp246*tmp250;
+      const Scalar tmp253 = tmp247*tmp250;
+      const Scalar tmp254 = Scalar(2.0)*tmp249*kappa
+          + Scalar(2.0)*penalty_damping*(tmp251*(-tmp219 - vel(3)) + tmp252*(-tmp222 - vel(4))
+              + tmp253*(-tmp224 - vel(5)));
+      const Scalar tmp255 = -tmp227 - pos(3);
+      const Scalar tmp256 = -tmp229 - pos(4);
+      const Scalar tmp257 = -tmp231 - pos(5);
+      const Scalar tmp258 = sqrt((tmp255*tmp255) + (tmp256*tmp256) + (tmp257*tmp257));
+      const Scalar tmp259 = Scalar(-0.33541019662496846) + tmp258;
+      const Scalar tmp260 = (Scalar(1)/tmp258);
+      const Scalar tmp261 = tmp255*tmp260;
+      const Scalar tmp262 = tmp256*tmp260;
+      const Scalar tmp263 = tmp257*tmp260;
+      const Scalar tmp264 = Scalar(2.9814239699997196)*tmp259*kappa
+          + Scalar(2.9814239699997196)*penalty_damping*(tmp261*(-tmp235 - vel(3))
+              + tmp262*(-tmp238 - vel(4)) + tmp263*(-tmp240 - vel(5)));
+      const Scalar tmp266 = -tmp226;
+      const Scalar tmp267 = -tmp254;
+      const Scalar tmp268 = -tmp227 - pos(6);
+      const Scalar tmp269 = -tmp229 - pos(7);
+      const Scalar tmp270 = -tmp231 - pos(8);
+      const Scalar tmp271 = sqrt((tmp268*tmp268) + (tmp269*tmp269) + (tmp270*tmp270));
+      const Scalar tmp272 = Scalar(-0.3640054944640259) + tmp271;
+      const Scalar tmp273 = (Scalar(1)/tmp271);
+      const Scalar tmp274 = tmp268*tmp273;
+      const Scalar tmp275 = tmp269*tmp273;
+      const Scalar tmp276 = tmp270*tmp273;
+      const Scalar tmp277 = Scalar(2.7472112789737806)*tmp272*kappa
+          + Scalar(2.7472112789737806)*penalty_damping*(tmp274*(-tmp235 - vel(6))
+              + tmp275*(-tmp238 - vel(7)) + tmp276*(-tmp240 - vel(8)));
+      const Scalar tmp279 = -tmp242;
+      const Scalar tmp280 = -tmp264;
+      const Scalar tmp281 = -tmp277;
+      const Scalar tmp737 = -tmp201/sqrt((tmp201*tmp201) + (tmp202*tmp202) + (tmp203*tmp203));
+      const Scalar tmp738 = -(Scalar(1)/(tmp204*tmp204))*tmp737;
+      const Scalar tmp739 = -tmp206 + tmp201*tmp738;
+      const Scalar tmp740 = tmp202*tmp738;
+      const Scalar tmp741 = tmp203*tmp738;
+      const Scalar tmp742 = Scalar(1.5617376188860606)*kappa*tmp737
+          + Scalar(1.5617376188860606)*penalty_damping*(vel(3) - vel(0))*tmp739
+          + Scalar(1.5617376188860606)*penalty_damping*(vel(4) - vel(1))*tmp740
+          + Scalar(1.5617376188860606)*penalty_damping*(vel(5) - vel(2))*tmp741;
+      const Scalar tmp743 = -tmp212/sqrt((tmp212*tmp212) + (tmp214*tmp214) + (tmp216*tmp216));
+      const Scalar tmp744 = -(Scalar(1)/(tmp217*tmp217))*tmp743;
+      const Scalar tmp745 = -tmp220 + tmp212*tmp744;
+      const Scalar tmp746 = tmp214*tmp744;
+      const Scalar tmp747 = tmp216*tmp744;
+      const Scalar tmp748 = Scalar(1.7149858514250886)*kappa*tmp743
+          + Scalar(1.7149858514250886)*penalty_damping*(-tmp219 - vel(0))*tmp745
+          + Scalar(1.7149858514250886)*penalty_damping*(-tmp222 - vel(1))*tmp746
+          + Scalar(1.7149858514250886)*penalty_damping*(-tmp224 - vel(2))*tmp747;
+      const Scalar tmp749 = -tmp228/sqrt((tmp228*tmp228) + (tmp230*tmp230) + (tmp232*tmp232));
+      const Scalar tmp750 = -(Scalar(1)/(tmp233*tmp233))*tmp749;
+      const Scalar tmp751 = -tmp236 + tmp228*tmp750;
+      const Scalar tmp752 = tmp230*tmp750;
+      const Scalar tmp753 = tmp232*tmp750;
+      const Scalar tmp754 = Scalar(2.030692330267238)*kappa*tmp749
+          + Scalar(2.030692330267238)*penalty_damping*(-tmp235 - vel(0))*tmp751
+          + Scalar(2.030692330267238)*penalty_damping*(-tmp238 - vel(1))*tmp752
+          + Scalar(2.030692330267238)*penalty_damping*(-tmp240 - vel(2))*tmp753;
+      const Scalar tmp755 = tmp210*tmp741 + tmp209*tmp742 + tmp226*tmp747 + tmp225*tmp748
+          + tmp242*tmp753 + tmp241*tmp754;
+      const Scalar tmp756 = -tmp742;
+      const Scalar tmp757 = tmp244*tmp741 + tmp209*tmp756;
+      const Scalar tmp758 = -tmp748;
+      const Scalar tmp759 = tmp266*tmp747 + tmp225*tmp758;
+      const Scalar tmp760 = -tmp754;
+      const Scalar tmp761 = tmp279*tmp753 + tmp241*tmp760;
+      const Scalar tmp762 = -tmp202/sqrt((tmp201*tmp201) + (tmp202*tmp202) + (tmp203*tmp203));
+      const Scalar tmp763 = -(Scalar(1)/(tmp204*tmp204))*tmp762;
+      const Scalar tmp764 = tmp201*tmp763;
+      const Scalar tmp765 = -tmp206 + tmp202*tmp763;
+      const Scalar tmp766 = tmp203*tmp763;
+      const Scalar tmp767 = Scalar(1.5617376188860606)*kappa*tmp762
+          + Scalar(1.5617376188860606)*penalty_damping*(vel(3) - vel(0))*tmp764
+          + Scalar(1.5617376188860606)*penalty_damping*(vel(4) - vel(1))*tmp765
+          + Scalar(1.5617376188860606)*penalty_damping*(vel(5) - vel(2))*tmp766;
+      const Scalar tmp768 = -tmp214/sqrt((tmp212*tmp212) + (tmp214*tmp214) + (tmp216*tmp216));
+      const Scalar tmp769 = -(Scalar(1)/(tmp217*tmp217))*tmp768;
+      const Scalar tmp770 = tmp212*tmp769;
+      const Scalar tmp771 = -tmp220 + tmp214*tmp769;
+      const Scalar tmp772 = tmp216*tmp769;
+      const Scalar tmp773 = Scalar(1.7149858514250886)*kappa*tmp768
+          + Scalar(1.7149858514250886)*penalty_damping*(-tmp219 - vel(0))*tmp770
+          + Scalar(1.7149858514250886)*penalty_damping*(-tmp222 - vel(1))*tmp771
+          + Scalar(1.7149858514250886)*penalty_damping*(-tmp224 - vel(2))*tmp772;
+      const Scalar tmp774 = -tmp230/sqrt((tmp228*tmp228) + (tmp230*tmp230) + (tmp232*tmp232));
+      const Scalar tmp775 = -(Scalar(1)/(tmp233*tmp233))*tmp774;
+      const Scalar tmp776 = tmp228*tmp775;
+      const Scalar tmp777 = -tmp236 + tmp230*tmp775;
+      const Scalar tmp778 = tmp232*tmp775;
+      const Scalar tmp779 = Scalar(2.030692330267238)*kappa*tmp774
+          + Scalar(2.030692330267238)*penalty_damping*(-tmp235 - vel(0))*tmp776
+          + Scalar(2.030692330267238)*penalty_damping*(-tmp238 - vel(1))*tmp777
+          + Scalar(2.030692330267238)*penalty_damping*(-tmp240 - vel(2))*tmp778;
+      const Scalar tmp780 = tmp210*tmp766 + tmp209*tmp767 + tmp226*tmp772 + tmp225*tmp773
+          + tmp242*tmp778 + tmp241*tmp779;
+      const Scalar tmp781 = -tmp767;
+      const Scalar tmp782 = tmp244*tmp766 + tmp209*tmp781;
+      const Scalar tmp783 = -tmp773;
+      const Scalar tmp784 = tmp266*tmp772 + tmp225*tmp783;
+      const Scalar tmp785 = -tmp779;
+      const Scalar tmp786 = tmp279*tmp778 + tmp241*tmp785;
+      const Scalar tmp787 = -tmp203/sqrt((tmp201*tmp201) + (tmp202*tmp202) + (tmp203*tmp203));
+      const Scalar tmp788 = -(Scalar(1)/(tmp204*tmp204))*tmp787;
+      const Scalar tmp789 = tmp201*tmp788;
+      const Scalar tmp790 = tmp202*tmp788;
+      const Scalar tmp791 = -tmp206 + tmp203*tmp788;
+      const Scalar tmp792 = Scalar(1.5617376188860606)*kappa*tmp787
+          + Scalar(1.5617376188860606)*penalty_damping*(vel(3) - vel(0))*tmp789
+          + Scalar(1.5617376188860606)*penalty_damping*(vel(4) - vel(1))*tmp790
+          + Scalar(1.5617376188860606)*penalty_damping*(vel(5) - vel(2))*tmp791;
+      const Scalar tmp793 = -tmp216/sqrt((tmp212*tmp212) + (tmp214*tmp214) + (tmp216*tmp216));
+      const Scalar tmp794 = -(Scalar(1)/(tmp217*tmp217))*tmp793;
+      const Scalar tmp795 = tmp212*tmp794;
+      const Scalar tmp796 = tmp214*tmp794;
+      const Scalar tmp797 = -tmp220 + tmp216*tmp794;
+      const Scalar tmp798 = Scalar(1.7149858514250886)*kappa*tmp793
+          + Scalar(1.7149858514250886)*penalty_damping*(-tmp219 - vel(0))*tmp795
+          + Scalar(1.7149858514250886)*penalty_damping*(-tmp222 - vel(1))*tmp796
+          + Scalar(1.7149858514250886)*penalty_damping*(-tmp224 - vel(2))*tmp797;
+      const Scalar tmp799 = -tmp232/sqrt((tmp228*tmp228) + (tmp230*tmp230) + (tmp232*tmp232));
+      const Scalar tmp800 = -(Scalar(1)/(tmp233*tmp233))*tmp799;
+      const Scalar tmp801 = tmp228*tmp800;
+      const Scalar tmp802 = tmp230*tmp800;
+      const Scalar tmp803 = -tmp236 + tmp232*tmp800;
+      const Scalar tmp804 = Scalar(2.030692330267238)*kappa*tmp799
+          + Scalar(2.030692330267238)*penalty_damping*(-tmp235 - vel(0))*tmp801
+          + Scalar(2.030692330267238)*penalty_damping*(-tmp238 - vel(1))*tmp802
+          + Scalar(2.030692330267238)*penalty_damping*(-tmp240 - vel(2))*tmp803;
+      const Scalar tmp805 = tmp210*tmp791 + tmp209*tmp792 + tmp226*tmp797 + tmp225*tmp798
+          + tmp242*tmp803 + tmp241*tmp804;
+      const Scalar tmp806 = -tmp792;
+      const Scalar tmp807 = tmp244*tmp791 + tmp209*tmp806;
+      const Scalar tmp808 = -tmp798;
+      const Scalar tmp809 = tmp266*tmp797 + tmp225*tmp808;
+      const Scalar tmp810 = -tmp804;
+      const Scalar tmp811 = tmp279*tmp803 + tmp241*tmp810;
+      const Scalar tmp812 = tmp201/sqrt((tmp201*tmp201) + (tmp202*tmp202) + (tmp203*tmp203));
+      const Scalar tmp813 = -(Scalar(1)/(tmp204*tmp204))*tmp812;
+      const Scalar tmp814 = tmp206 + tmp201*tmp813;
+      const Scalar tmp815 = tmp202*tmp813;
+      const Scalar tmp816 = tmp203*tmp813;
+      const Scalar tmp817 = Scalar(1.5617376188860606)*kappa*tmp812
+          + Scalar(1.5617376188860606)*penalty_damping*(vel(3) - vel(0))*tmp814
+          + Scalar(1.5617376188860606)*penalty_damping*(vel(4) - vel(1))*tmp815
+          + Scalar(1.5617376188860606)*penalty_damping*(vel(5) - vel(2))*tmp816;
+      const Scalar tmp818 = tmp210*tmp816 + tmp209*tmp817;
+      const Scalar tmp819 = -tmp817;
+      const Scalar tmp820 = -tmp245/sqrt((tmp245*tmp245) + (tmp246*tmp246) + (tmp247*tmp247));
+      const Scalar tmp821 = -(Scalar(1)/(tmp248*tmp248))*tmp820;
+      const Scalar tmp822 = -tmp250 + tmp245*tmp821;
+      const Scalar tmp823 = tmp246*tmp821;
+      const Scalar tmp824 = tmp247*tmp821;
+      const Scalar tmp825 = Scalar(2.0)*kappa*tmp820
+          + Scalar(2.0)*penalty_damping*(-tmp219 - vel(3))*tmp822
+          + Scalar(2.0)*penalty_damping*(-tmp222 - vel(4))*tmp823
+          + Scalar(2.0)*penalty_damping*(-tmp224 - vel(5))*tmp824;
+      const Scalar tmp826 = -tmp255/sqrt((tmp255*tmp255) + (tmp256*tmp256) + (tmp257*tmp257));
+      const Scalar tmp827 = -(Scalar(1)/(tmp258*tmp258))*tmp826;
+      const Scalar tmp828 = -tmp260 + tmp255*tmp827;
+      const Scalar tmp829 = tmp256*tmp827;
+      const Scalar tmp830 = tmp257*tmp827;
+      const Scalar tmp831 = Scalar(2.9814239699997196)*kappa*tmp826
+          + Scalar(2.9814239699997196)*penalty_damping*(-tmp235 - vel(3))*tmp828
+          + Scalar(2.9814239699997196)*penalty_damping*(-tmp238 - vel(4))*tmp829
+          + Scalar(2.9814239699997196)*penalty_damping*(-tmp240 - vel(5))*tmp830;
+      const Scalar tmp832 = tmp244*tmp816 + tmp209*tmp819 + tmp254*tmp824 + tmp253*tmp825
+          + tmp264*tmp830 + tmp263*tmp831;
+      const Scalar tmp833 = -tmp825;
+      const Scalar tmp834 = tmp267*tmp824 + tmp253*tmp833;
+      const Scalar tmp835 = -tmp831;
+      const Scalar tmp836 = tmp280*tmp830 + tmp263*tmp835;
+      const Scalar tmp837 = tmp202/sqrt((tmp201*tmp201) + (tmp202*tmp202) + (tmp203*tmp203));
+      const Scalar tmp838 = -(Scalar(1)/(tmp204*tmp204))*tmp837;
+      const Scalar tmp839 = tmp201*tmp838;
+      const Scalar tmp840 = tmp206 + tmp202*tmp838;
+      const Scalar tmp841 = tmp203*tmp838;
+      const Scalar tmp842 = Scalar(1.5617376188860606)*kappa*tmp837
+          + Scalar(1.5617376188860606)*penalty_damping*(vel(3) - vel(0))*tmp839
+          + Scalar(1.5617376188860606)*penalty_damping*(vel(4) - vel(1))*tmp840
+          + Scalar(1.5617376188860606)*penalty_damping*(vel(5) - vel(2))*tmp841;
+      const Scalar tmp843 = tmp210*tmp841 + tmp209*tmp842;
+      const Scalar tmp844 = -tmp842;
+      const Scalar tmp845 = -tmp246/sqrt((tmp245*tmp245) + (tmp246*tmp246) + (tmp247*tmp247));
+      const Scalar tmp846 = -(Scalar(1)/(tmp248*tmp248))*tmp845;
+      const Scalar tmp847 = tmp245*tmp846;
+      const Scalar tmp848 = -tmp250 + tmp246*tmp846;
+      const Scalar tmp849 = tmp247*tmp846;
+      const Scalar tmp850 = Scalar(2.0)*kappa*tmp845
+          + Scalar(2.0)*penalty_damping*(-tmp219 - vel(3))*tmp847
+          + Scalar(2.0)*penalty_damping*(-tmp222 - vel(4))*tmp848
+          + Scalar(2.0)*penalty_damping*(-tmp224 - vel(5))*tmp849;
+      const Scalar tmp851 = -tmp256/sqrt((tmp255*tmp255) + (tmp256*tmp256) + (tmp257*tmp257));
+      const Scalar tmp852 = -(Scalar(1)/(tmp258*tmp258))*tmp851;
+      const Scalar tmp853 = tmp255*tmp852;
+      const Scalar tmp854 = -tmp260 + tmp256*tmp852;
+      const Scalar tmp855 = tmp257*tmp852;
+      const Scalar tmp856 = Scalar(2.9814239699997196)*kappa*tmp851
+          + Scalar(2.9814239699997196)*penalty_damping*(-tmp235 - vel(3))*tmp853
+          + Scalar(2.9814239699997196)*penalty_damping*(-tmp238 - vel(4))*tmp854
+          + Scalar(2.9814239699997196)*penalty_damping*(-tmp240 - vel(5))*tmp855;
+      const Scalar tmp857 = tmp244*tmp841 + tmp209*tmp844 + tmp254*tmp849 + tmp253*tmp850
+          + tmp264*tmp855 + tmp263*tmp856;
+      const Scalar tmp858 = -tmp850;
+      const Scalar tmp859 = tmp267*tmp849 + tmp253*tmp858;
+      const Scalar tmp860 = -tmp856;
+      const Scalar tmp861 = tmp280*tmp855 + tmp263*tmp860;
+      const Scalar tmp862 = tmp203/sqrt((tmp201*tmp201) + (tmp202*tmp202) + (tmp203*tmp203));
+      const Scalar tmp863 = -(Scalar(1)/(tmp204*tmp204))*tmp862;
+      const Scalar tmp864 = tmp201*tmp863;
+      const Scalar tmp865 = tmp202*tmp863;
+      const Scalar tmp866 = tmp206 + tmp203*tmp863;
+      const Scalar tmp867 = Scalar(1.5617376188860606)*kappa*tmp862
+          + Scalar(1.5617376188860606)*penalty_damping*(vel(3) - vel(0))*tmp864
+          + Scalar(1.5617376188860606)*penalty_damping*(vel(4) - vel(1))*tmp865
+          + Scalar(1.5617376188860606)*penalty_damping*(vel(5) - vel(2))*tmp866;
+      const Scalar tmp868 = tmp210*tmp866 + tmp209*tmp867;
+      const Scalar tmp869 = -tmp867;
+      const Scalar tmp870 = -tmp247/sqrt((tmp245*tmp245) + (tmp246*tmp246) + (tmp247*tmp247));
+      const Scalar tmp871 = -(Scalar(1)/(tmp248*tmp248))*tmp870;
+      const Scalar tmp872 = tmp245*tmp871;
+      const Scalar tmp873 = tmp246*tmp871;
+      const Scalar tmp874 = -tmp250 + tmp247*tmp871;
+      const Scalar tmp875 = Scalar(2.0)*kappa*tmp870
+          + Scalar(2.0)*penalty_damping*(-tmp219 - vel(3))*tmp872
+          + Scalar(2.0)*penalty_damping*(-tmp222 - vel(4))*tmp873
+          + Scalar(2.0)*penalty_damping*(-tmp224 - vel(5))*tmp874;
+      const Scalar tmp876 = -tmp257/sqrt((tmp255*tmp255) + (tmp256*tmp256) + (tmp257*tmp257));
+      const Scalar tmp877 = -(Scalar(1)/(tmp258*tmp258))*tmp876;
+      const Scalar tmp878 = tmp255*tmp877;
+      const Scalar tmp879 = tmp256*tmp877;
+      const Scalar tmp880 = -tmp260 + tmp257*tmp877;
+      const Scalar tmp881 = Scalar(2.9814239699997196)*kappa*tmp876
+          + Scalar(2.9814239699997196)*penalty_damping*(-tmp235 - vel(3))*tmp878
+          + Scalar(2.9814239699997196)*penalty_damping*(-tmp238 - vel(4))*tmp879
+          + Scalar(2.9814239699997196)*penalty_damping*(-tmp240 - vel(5))*tmp880;
+      const Scalar tmp882 = tmp244*tmp866 + tmp209*tmp869 + tmp254*tmp874 + tmp253*tmp875
+          + tmp264*tmp880 + tmp263*tmp881;
+      const Scalar tmp883 = -tmp875;
+      const Scalar tmp884 = tmp267*tmp874 + tmp253*tmp883;
+      const Scalar tmp885 = -tmp881;
+      const Scalar tmp886 = tmp280*tmp880 + tmp263*tmp885;
+      const Scalar tmp887 = tmp212/sqrt((tmp212*tmp212) + (tmp214*tmp214) + (tmp216*tmp216));
+      const Scalar tmp888 = -(Scalar(1)/(tmp217*tmp217))*tmp887;
+      const Scalar tmp889 = tmp220 + tmp212*tmp888;
+      const Scalar tmp890 = tmp214*tmp888;
+      const Scalar tmp891 = tmp216*tmp888;
+      const Scalar tmp892 = Scalar(1.7149858514250886)*kappa*tmp887
+          + Scalar(1.7149858514250886)*penalty_damping*(-tmp219 - vel(0))*tmp889
+          + Scalar(1.7149858514250886)*penalty_damping*(-tmp222 - vel(1))*tmp890
+          + Scalar(1.7149858514250886)*penalty_damping*(-tmp224 - vel(2))*tmp891;
+      const Scalar tmp893 = tmp226*tmp891 + tmp225*tmp892;
+      const Scalar tmp894 = tmp245/sqrt((tmp245*tmp245) + (tmp246*tmp246) + (tmp247*tmp247));
+      const Scalar tmp895 = -(Scalar(1)/(tmp248*tmp248))*tmp894;
+      const Scalar tmp896 = tmp250 + tmp245*tmp895;
+      const Scalar tmp897 = tmp246*tmp895;
+      const Scalar tmp898 = tmp247*tmp895;
+      const Scalar tmp899 = Scalar(2.0)*kappa*tmp894
+          + Scalar(2.0)*penalty_damping*(-tmp219 - vel(3))*tmp896
+          + Scalar(2.0)*penalty_damping*(-tmp222 - vel(4))*tmp897
+          + Scalar(2.0)*penalty_damping*(-tmp224 - vel(5))*tmp898;
+      const Scalar tmp900 = tmp254*tmp898 + tmp253*tmp899;
+      const Scalar tmp901 = -tmp892;
+      const Scalar tmp902 = -tmp899;
+      const Scalar tmp903 = -tmp268/sqrt((tmp268*tmp268) + (tmp269*tmp269) + (tmp270*tmp270));
+      const Scalar tmp904 = -(Scalar(1)/(tmp271*tmp271))*tmp903;
+      const Scalar tmp905 = -tmp273 + tmp268*tmp904;
+      const Scalar tmp906 = tmp269*tmp904;
+      const Scalar tmp907 = tmp270*tmp904;
+      const Scalar tmp908 = Scalar(2.7472112789737806)*kappa*tmp903
+          + Scalar(2.7472112789737806)*penalty_damping*(-tmp235 - vel(6))*tmp905
+          + Scalar(2.7472112789737806)*penalty_damping*(-tmp238 - vel(7))*tmp906
+          + Scalar(2.7472112789737806)*penalty_damping*(-tmp240 - vel(8))*tmp907;
+      const Scalar tmp909 = tmp266*tmp891 + tmp267*tmp898 + tmp225*tmp901 + tmp253*tmp902
+          + tmp277*tmp907 + tmp276*tmp908;
+      const Scalar tmp910 = -tmp908;
+      const Scalar tmp911 = tmp281*tmp907 + tmp276*tmp910;
+      const Scalar tmp912 = tmp214/sqrt((tmp212*tmp212) + (tmp214*tmp214) + (tmp216*tmp216));
+      const Scalar tmp913 = -(Scalar(1)/(tmp217*tmp217))*tmp912;
+      const Scalar tmp914 = tmp212*tmp913;
+      const Scalar tmp915 = tmp220 + tmp214*tmp913;
+      const Scalar tmp916 = tmp216*tmp913;
+      const Scalar tmp917 = Scalar(1.7149858514250886)*kappa*tmp912
+          + Scalar(1.7149858514250886)*penalty_damping*(-tmp219 - vel(0))*tmp914
+          + Scalar(1.7149858514250886)*penalty_damping*(-tmp222 - vel(1))*tmp915
+          + Scalar(1.7149858514250886)*penalty_damping*(-tmp224 - vel(2))*tmp916;
+      const Scalar tmp918 = tmp226*tmp916 + tmp225*tmp917;
+      const Scalar tmp919 = tmp246/sqrt((tmp245*tmp245) + (tmp246*tmp246) + (tmp247*tmp247));
+      const Scalar tmp920 = -(Scalar(1)/(tmp248*tmp248))*tmp919;
+      const Scalar tmp921 = tmp245*tmp920;
+      const Scalar tmp922 = tmp250 + tmp246*tmp920;
+      const Scalar tmp923 = tmp247*tmp920;
+      const Scalar tmp924 = Scalar(2.0)*kappa*tmp919
+          + Scalar(2.0)*penalty_damping*(-tmp219 - vel(3))*tmp921
+          + Scalar(2.0)*penalty_damping*(-tmp222 - vel(4))*tmp922
+          + Scalar(2.0)*penalty_damping*(-tmp224 - vel(5))*tmp923;
+      const Scalar tmp925 = tmp254*tmp923 + tmp253*tmp924;
+      const Scalar tmp926 = -tmp917;
+      const Scalar tmp927 = -tmp924;
+      const Scalar tmp928 = -tmp269/sqrt((tmp268*tmp268) + (tmp269*tmp269) + (tmp270*tmp270));
+      const Scalar tmp929 = -(Scalar(1)/(tmp271*tmp271))*tmp928;
+      const Scalar tmp930 = tmp268*tmp929;
+      const Scalar tmp931 = -tmp273 + tmp269*tmp929;
+      const Scalar tmp932 = tmp270*tmp929;
+      const Scalar tmp933 = Scalar(2.7472112789737806)*kappa*tmp928
+          + Scalar(2.7472112789737806)*penalty_damping*(-tmp235 - vel(6))*tmp930
+          + Scalar(2.7472112789737806)*penalty_damping*(-tmp238 - vel(7))*tmp931
+          + Scalar(2.7472112789737806)*penalty_damping*(-tmp240 - vel(8))*tmp932;
+      const Scalar tmp934 = tmp266*tmp916 + tmp267*tmp923 + tmp225*tmp926 + tmp253*tmp927
+          + tmp277*tmp932 + tmp276*tmp933;
+      const Scalar tmp935 = -tmp933;
+      const Scalar tmp936 = tmp281*tmp932 + tmp276*tmp935;
+      const Scalar tmp937 = tmp216/sqrt((tmp212*tmp212) + (tmp214*tmp214) + (tmp216*tmp216));
+      const Scalar tmp938 = -(Scalar(1)/(tmp217*tmp217))*tmp937;
+      const Scalar tmp939 = tmp212*tmp938;
+      const Scalar tmp940 = tmp214*tmp938;
+      const Scalar tmp941 = tmp220 + tmp216*tmp938;
+      const Scalar tmp942 = Scalar(1.7149858514250886)*kappa*tmp937
+          + Scalar(1.7149858514250886)*penalty_damping*(-tmp219 - vel(0))*tmp939
+          + Scalar(1.7149858514250886)*penalty_damping*(-tmp222 - vel(1))*tmp940
+          + Scalar(1.7149858514250886)*penalty_damping*(-tmp224 - vel(2))*tmp941;
+      const Scalar tmp943 = tmp226*tmp941 + tmp225*tmp942;
+      const Scalar tmp944 = tmp247/sqrt((tmp245*tmp245) + (tmp246*tmp246) + (tmp247*tmp247));
+      const Scalar tmp945 = -(Scalar(1)/(tmp248*tmp248))*tmp944;
+      const Scalar tmp946 = tmp245*tmp945;
+      const Scalar tmp947 = tmp246*tmp945;
+      const Scalar tmp948 = tmp250 + tmp247*tmp945;
+      const Scalar tmp949 = Scalar(2.0)*kappa*tmp944
+          + Scalar(2.0)*penalty_damping*(-tmp219 - vel(3))*tmp946
+          + Scalar(2.0)*penalty_damping*(-tmp222 - vel(4))*tmp947
+          + Scalar(2.0)*penalty_damping*(-tmp224 - vel(5))*tmp948;
+      const Scalar tmp950 = tmp254*tmp948 + tmp253*tmp949;
+      const Scalar tmp951 = -tmp942;
+      const Scalar tmp952 = -tmp949;
+      const Scalar tmp953 = -tmp270/sqrt((tmp268*tmp268) + (tmp269*tmp269) + (tmp270*tmp270));
+      const Scalar tmp954 = -(Scalar(1)/(tmp271*tmp271))*tmp953;
+      const Scalar tmp955 = tmp268*tmp954;
+      const Scalar tmp956 = tmp269*tmp954;
+      const Scalar tmp957 = -tmp273 + tmp270*tmp954;
+      const Scalar tmp958 = Scalar(2.7472112789737806)*kappa*tmp953
+          + Scalar(2.7472112789737806)*penalty_damping*(-tmp235 - vel(6))*tmp955
+          + Scalar(2.7472112789737806)*penalty_damping*(-tmp238 - vel(7))*tmp956
+          + Scalar(2.7472112789737806)*penalty_damping*(-tmp240 - vel(8))*tmp957;
+      const Scalar tmp959 = tmp266*tmp941 + tmp267*tmp948 + tmp225*tmp951 + tmp253*tmp952
+          + tmp277*tmp957 + tmp276*tmp958;
+      const Scalar tmp960 = -tmp958;
+      const Scalar tmp961 = tmp281*tmp957 + tmp276*tmp960;
+      const Scalar tmp962 = tmp228/sqrt((tmp228*tmp228) + (tmp230*tmp230) + (tmp232*tmp232));
+      const Scalar tmp963 = -(Scalar(1)/(tmp233*tmp233))*tmp962;
+      const Scalar tmp964 = tmp236 + tmp228*tmp963;
+      const Scalar tmp965 = tmp230*tmp963;
+      const Scalar tmp966 = tmp232*tmp963;
+      const Scalar tmp967 = Scalar(2.030692330267238)*kappa*tmp962
+          + Scalar(2.030692330267238)*penalty_damping*(-tmp235 - vel(0))*tmp964
+          + Scalar(2.030692330267238)*penalty_damping*(-tmp238 - vel(1))*tmp965
+          + Scalar(2.030692330267238)*penalty_damping*(-tmp240 - vel(2))*tmp966;
+      const Scalar tmp968 = tmp242*tmp966 + tmp241*tmp967;
+      const Scalar tmp969 = tmp255/sqrt((tmp255*tmp255) + (tmp256*tmp256) + (tmp257*tmp257));
+      const Scalar tmp970 = -(Scalar(1)/(tmp258*tmp258))*tmp969;
+      const Scalar tmp971 = tmp260 + tmp255*tmp970;
+      const Scalar tmp972 = tmp256*tmp970;
+      const Scalar tmp973 = tmp257*tmp970;
+      const Scalar tmp974 = Scalar(2.9814239699997196)*kappa*tmp969
+          + Scalar(2.9814239699997196)*penalty_damping*(-tmp235 - vel(3))*tmp971
+          + Scalar(2.9814239699997196)*penalty_damping*(-tmp238 - vel(4))*tmp972
+          + Scalar(2.9814239699997196)*penalty_damping*(-tmp240 - vel(5))*tmp973;
+      const Scalar tmp975 = tmp264*tmp973 + tmp263*tmp974;
+      const Scalar tmp976 = tmp268/sqrt((tmp268*tmp268) + (tmp269*tmp269) + (tmp270*tmp270));
+      const Scalar tmp977 = -(Scalar(1)/(tmp271*tmp271))*tmp976;
+      const Scalar tmp978 = tmp273 + tmp268*tmp977;
+      const Scalar tmp979 = tmp269*tmp977;
+      const Scalar tmp980 = tmp270*tmp977;
+      const Scalar tmp981 = Scalar(2.7472112789737806)*kappa*tmp976
+          + Scalar(2.7472112789737806)*penalty_damping*(-tmp235 - vel(6))*tmp978
+          + Scalar(2.7472112789737806)*penalty_damping*(-tmp238 - vel(7))*tmp979
+          + Scalar(2.7472112789737806)*penalty_damping*(-tmp240 - vel(8))*tmp980;
+      const Scalar tmp982 = tmp277*tmp980 + tmp276*tmp981;
+      const Scalar tmp983 = -tmp967;
       const Scalar tmp984 = -tmp974;
-      const Scalar tmp985 = tmp335*tmp973 + tmp279*tmp984;
-      const Scalar tmp986 = -tmp980;
-      const Scalar tmp987 = tmp338*tmp979 + tmp299*tmp986;
-      const Scalar tmp988 = tmp244/sqrt((tmp244*tmp244) + (tmp245*tmp245) + (tmp246*tmp246));
-      const Scalar tmp989 = -(Scalar(1)/(tmp247*tmp247))*tmp988;
-      const Scalar tmp990 = tmp255 + tmp244*tmp989;
-      const Scalar tmp991 = tmp245*tmp989;
-      const Scalar tmp992 = tmp246*tmp989;
-      const Scalar tmp993 = tmp254*tmp988 + tmp259*(vel(3) - vel(0))*tmp990
-          + tmp259*(vel(4) - vel(1))*tmp991 + tmp259*(vel(5) - vel(2))*tmp992;
-      const Scalar tmp994 = tmp260*tmp992 + tmp258*tmp993;
-      const Scalar tmp995 = -tmp303/sqrt((tmp303*tmp303) + (tmp304*tmp304) + (tmp305*tmp305));
-      const Scalar tmp996 = -(Scalar(1)/(tmp306*tmp306))*tmp995;
-      const Scalar tmp997 = -tmp308 + tmp303*tmp996;
-      const Scalar tmp998 = tmp304*tmp996;
-      const Scalar tmp999 = tmp305*tmp996;
-      const Scalar tmp1000 = tmp292*tmp995 + tmp300*(-tmp273 - vel(3))*tmp997
-          + tmp300*(-tmp276 - vel(4))*tmp998 + tmp300*(-tmp278 - vel(5))*tmp999;
-      const Scalar tmp1001 = -tmp313/sqrt((tmp313*tmp313) + (tmp314*tmp314) + (tmp315*tmp315));
-      const Scalar tmp1002 = -(Scalar(1)/(tmp316*tmp316))*tmp1001;
-      const Scalar tmp1003 = -tmp318 + tmp313*tmp1002;
-      const Scalar tmp1004 = tmp314*tmp1002;
-      const Scalar tmp1005 = tmp315*tmp1002;
-      const Scalar tmp1006 = tmp272*tmp1001 + tmp280*(-tmp293 - vel(3))*tmp1003
-          + tmp280*(-tmp296 - vel(4))*tmp1004 + tmp280*(-tmp298 - vel(5))*tmp1005;
-      const Scalar tmp1007 = -tmp993;
-      const Scalar tmp1008 = tmp323*tmp992 + tmp312*tmp999 + tmp311*tmp1000 + tmp322*tmp1005
-          + tmp321*tmp1006 + tmp258*tmp1007;
-      const Scalar tmp1009 = -tmp1000;
-      const Scalar tmp1010 = tmp336*tmp999 + tmp311*tmp1009;
-      const Scalar tmp1011 = -tmp1006;
-      const Scalar tmp1012 = tmp339*tmp1005 + tmp321*tmp1011;
-      const Scalar tmp1013 = tmp245/sqrt((tmp244*tmp244) + (tmp245*tmp245) + (tmp246*tmp246));
-      const Scalar tmp1014 = -(Scalar(1)/(tmp247*tmp247))*tmp1013;
-      const Scalar tmp1015 = tmp244*tmp1014;
-      const Scalar tmp1016 = tmp255 + tmp245*tmp1014;
-      const Scalar tmp1017 = tmp246*tmp1014;
-      const Scalar tmp1018 = tmp254*tmp1013 + tmp259*(vel(3) - vel(0))*tmp1015
-          + tmp259*(vel(4) - vel(1))*tmp1016 + tmp259*(vel(5) - vel(2))*tmp1017;
-      const Scalar tmp1019 = tmp260*tmp1017 + tmp258*tmp1018;
-      const Scalar tmp1020 = -tmp304/sqrt((tmp303*tmp303) + (tmp304*tmp304) + (tmp305*tmp305));
-      const Scalar tmp1021 = -(Scalar(1)/(tmp306*tmp306))*tmp1020;
-      const Scalar tmp1022 = tmp303*tmp1021;
-      const Scalar tmp1023 = -tmp308 + tmp304*tmp1021;
-      const Scalar tmp1024 = tmp305*tmp1021;
-      const Scalar tmp1025 = tmp292*tmp1020 + tmp300*(-tmp273 - vel(3))*tmp1022
-          + tmp300*(-tmp276 - vel(4))*tmp1023 + tmp300*(-tmp278 - vel(5))*tmp1024;
-      const Scalar tmp1026 = -tmp314/sqrt((tmp313*tmp313) + (tmp314*tmp314) + (tmp315*tmp315));
-      const Scalar tmp1027 = -(Scalar(1)/(tmp316*tmp316))*tmp1026;
-      const Scalar tmp1028 = tmp313*tmp1027;
-      const Scalar tmp1029 = -tmp318 + tmp314*tmp1027;
-      const Scalar tmp1030 = tmp315*tmp1027;
-      const Scalar tmp1031 = tmp272*tmp1026 + tmp280*(-tmp293 - vel(3))*tmp1028
-          + tmp280*(-tmp296 - vel(4))*tmp1029 + tmp280*(-tmp298 - vel(5))*tmp1030;
-      const Scalar tmp1032 = -tmp1018;
-      const Scalar tmp1033 = tmp323*tmp1017 + tmp312*tmp1024 + tmp311*tmp1025 + tmp322*tmp1030
-          + tmp321*tmp1031 + tmp258*tmp1032;
-      const Scalar tmp1034 = -tmp1025;
-      const Scalar tmp1035 = tmp336*tmp1024 + tmp311*tmp1034;
-      const Scalar tmp1036 = -tmp1031;
-      const Scalar tmp1037 = tmp339*tmp1030 + tmp321*tmp1036;
-      const Scalar tmp1038 = tmp246/sqrt((tmp244*tmp244) + (tmp245*tmp245) + (tmp246*tmp246));
-      const Scalar tmp1039 = -(Scalar(1)/(tmp247*tmp247))*tmp1038;
-      const Scalar tmp1040 = tmp244*tmp1039;
-      const Scalar tmp1041 = tmp245*tmp1039;
-      const Scalar tmp1042 = tmp255 + tmp246*tmp1039;
-      const Scalar tmp1043 = tmp254*tmp1038 + tmp259*(vel(3) - vel(0))*tmp1040
-          + tmp259*(vel(4) - vel(1))*tmp1041 + tmp259*(vel(5) - vel(2))*tmp1042;
-      const Scalar tmp1044 = tmp260*tmp1042 + tmp258*tmp1043;
-      const Scalar tmp1045 = -tmp305/sqrt((tmp303*tmp303) + (tmp304*tmp304) + (tmp305*tmp305));
-      const Scalar tmp1046 = -(Scalar(1)/(tmp306*tmp306))*tmp1045;
-      const Scalar tmp1047 = tmp303*tmp1046;
-      const Scalar tmp1048 = tmp304*tmp1046;
-      const Scalar tmp1049 = -tmp308 + tmp305*tmp1046;
-      const Scalar tmp1050 = tmp292*tmp1045 + tmp300*(-tmp273 - vel(3))*tmp1047
-          + tmp300*(-tmp276 - vel(4))*tmp1048 + tmp300*(-tmp278 - vel(5))*tmp1049;
-      const Scalar tmp1051 = -tmp315/sqrt((tmp313*tmp313) + (tmp314*tmp314) + (tmp315*tmp315));
-      const Scalar tmp1052 = -(Scalar(1)/(tmp316*tmp316))*tmp1051;
-      const Scalar tmp1053 = tmp313*tmp1052;
-      const Scalar tmp1054 = tmp314*tmp1052;
-      const Scalar tmp1055 = -tmp318 + tmp315*tmp1052;
-      const Scalar tmp1056 = tmp272*tmp1051 + tmp280*(-tmp293 - vel(3))*tmp1053
-          + tmp280*(-tmp296 - vel(4))*tmp1054 + tmp280*(-tmp298 - vel(5))*tmp1055;
-      const Scalar tmp1057 = -tmp1043;
-      const Scalar tmp1058 = tmp323*tmp1042 + tmp312*tmp1049 + tmp311*tmp1050 + tmp322*tmp1055
-          + tmp321*tmp1056 + tmp258*tmp1057;
-      const Scalar tmp1059 = -tmp1050;
-      const Scalar tmp1060 = tmp336*tmp1049 + tmp311*tmp1059;
-      const Scalar tmp1061 = -tmp1056;
-      const Scalar tmp1062 = tmp339*tmp1055 + tmp321*tmp1061;
-      const Scalar tmp1063 = tmp262/sqrt((tmp262*tmp262) + (tmp264*tmp264) + (tmp266*tmp266));
-      const Scalar tmp1064 = -(Scalar(1)/(tmp267*tmp267))*tmp1063;
-      const Scalar tmp1065 = tmp274 + tmp262*tmp1064;
-      const Scalar tmp1066 = tmp264*tmp1064;
-      const Scalar tmp1067 = tmp266*tmp1064;
-      const Scalar tmp1068 = tmp272*tmp1063 + tmp280*(-tmp273 - vel(0))*tmp1065
-          + tmp280*(-tmp276 - vel(1))*tmp1066 + tmp280*(-tmp278 - vel(2))*tmp1067;
-      const Scalar tmp1069 = tmp281*tmp1067 + tmp279*tmp1068;
-      const Scalar tmp1070 = tmp303/sqrt((tmp303*tmp303) + (tmp304*tmp304) + (tmp305*tmp305));
-      const Scalar tmp1071 = -(Scalar(1)/(tmp306*tmp306))*tmp1070;
-      const Scalar tmp1072 = tmp308 + tmp303*tmp1071;
-      const Scalar tmp1073 = tmp304*tmp1071;
-      const Scalar tmp1074 = tmp305*tmp1071;
-      const Scalar tmp1075 = tmp292*tmp1070 + tmp300*(-tmp273 - vel(3))*tmp1072
-          + tmp300*(-tmp276 - vel(4))*tmp1073 + tmp300*(-tmp278 - vel(5))*tmp1074;
-      const Scalar tmp1076 = tmp312*tmp1074 + tmp311*tmp1075;
-      const Scalar tmp1077 = -tmp325/sqrt((tmp325*tmp325) + (tmp326*tmp326) + (tmp327*tmp327));
-      const Scalar tmp1078 = -(Scalar(1)/(tmp328*tmp328))*tmp1077;
-      const Scalar tmp1079 = -tmp330 + tmp325*tmp1078;
-      const Scalar tmp1080 = tmp326*tmp1078;
-      const Scalar tmp1081 = tmp327*tmp1078;
-      const Scalar tmp1082 = tmp254*tmp1077 + tmp259*(-tmp293 - vel(6))*tmp1079
-          + tmp259*(-tmp296 - vel(7))*tmp1080 + tmp259*(-tmp298 - vel(8))*tmp1081;
-      const Scalar tmp1083 = -tmp1068;
-      const Scalar tmp1084 = -tmp1075;
-      const Scalar tmp1085 = tmp335*tmp1067 + tmp336*tmp1074 + tmp334*tmp1081 + tmp333*tmp1082
-          + tmp279*tmp1083 + tmp311*tmp1084;
-      const Scalar tmp1086 = -tmp1082;
-      const Scalar tmp1087 = tmp340*tmp1081 + tmp333*tmp1086;
-      const Scalar tmp1088 = tmp264/sqrt((tmp262*tmp262) + (tmp264*tmp264) + (tmp266*tmp266));
-      const Scalar tmp1089 = -(Scalar(1)/(tmp267*tmp267))*tmp1088;
-      const Scalar tmp1090 = tmp262*tmp1089;
-      const Scalar tmp1091 = tmp274 + tmp264*tmp1089;
-      const Scalar tmp1092 = tmp266*tmp1089;
-      const Scalar tmp1093 = tmp272*tmp1088 + tmp280*(-tmp273 - vel(0))*tmp1090
-          + tmp280*(-tmp276 - vel(1))*tmp1091 + tmp280*(-tmp278 - vel(2))*tmp1092;
-      const Scalar tmp1094 = tmp281*tmp1092 + tmp279*tmp1093;
-      const Scalar tmp1095 = tmp304/sqrt((tmp303*tmp303) + (tmp304*tmp304) + (tmp305*tmp305));
-      const Scalar tmp1096 = -(Scalar(1)/(tmp306*tmp306))*tmp1095;
-      const Scalar tmp1097 = tmp303*tmp1096;
-      const Scalar tmp1098 = tmp308 + tmp304*tmp1096;
-      const Scalar tmp1099 = tmp305*tmp1096;
-      const Scalar tmp1100 = tmp292*tmp1095 + tmp300*(-tmp273 - vel(3))*tmp1097
-          + tmp300*(-tmp276 - vel(4))*tmp1098 + tmp300*(-tmp278 - vel(5))*tmp1099;
-      const Scalar tmp1101 = tmp312*tmp1099 + tmp311*tmp1100;
-      const Scalar tmp1102 = -tmp326/sqrt((tmp325*tmp325) + (tmp326*tmp326) + (tmp327*tmp327));
-      const Scalar tmp1103 = -(Scalar(1)/(tmp328*tmp328))*tmp1102;
-      const Scalar tmp1104 = tmp325*tmp1103;
-      const Scalar tmp1105 = -tmp330 + tmp326*tmp1103;
-      const Scalar tmp1106 = tmp327*tmp1103;
-      const Scalar tmp1107 = tmp254*tmp1102 + tmp259*(-tmp293 - vel(6))*tmp1104
-          + tmp259*(-tmp296 - vel(7))*tmp1105 + tmp259*(-tmp298 - vel(8))*tmp1106;
-      const Scalar tmp1108 = -tmp1093;
-      const Scalar tmp1109 = -tmp1100;
-      const Scalar tmp1110 = tmp335*tmp1092 + tmp336*tmp1099 + tmp334*tmp1106 + tmp333*tmp1107
-          + tmp279*tmp1108 + tmp311*tmp1109;
-      const Scalar tmp1111 = -tmp1107;
-      const Scalar tmp1112 = tmp340*tmp1106 + tmp333*tmp1111;
-      const Scalar tmp1113 = tmp266/sqrt((tmp262*tmp262) + (tmp264*tmp264) + (tmp266*tmp266));
-      const Scalar tmp1114 = -(Scalar(1)/(tmp267*tmp267))*tmp1113;
-      const Scalar tmp1115 = tmp262*tmp1114;
-      const Scalar tmp1116 = tmp264*tmp1114;
-      const Scalar tmp1117 = tmp274 + tmp266*tmp1114;
-      const Scalar tmp1118 = tmp272*tmp1113 + tmp280*(-tmp273 - vel(0))*tmp1115
-          + tmp280*(-tmp276 - vel(1))*tmp1116 + tmp280*(-tmp278 - vel(2))*tmp1117;
-      const Scalar tmp1119 = tmp281*tmp1117 + tmp279*tmp1118;
-      const Scalar tmp1120 = tmp305/sqrt((tmp303*tmp303) + (tmp304*tmp304) + (tmp305*tmp305));
-      const Scalar tmp1121 = -(Scalar(1)/(tmp306*tmp306))*tmp1120;
-      const Scalar tmp1122 = tmp303*tmp1121;
-      const Scalar tmp1123 = tmp304*tmp1121;
-      const Scalar tmp1124 = tmp308 + tmp305*tmp1121;
-      const Scalar tmp1125 = tmp292*tmp1120 + tmp300*(-tmp273 - vel(3))*tmp1122
-          + tmp300*(-tmp276 - vel(4))*tmp1123 + tmp300*(-tmp278 - vel(5))*tmp1124;
-      const Scalar tmp1126 = tmp312*tmp1124 + tmp311*tmp1125;
-      const Scalar tmp1127 = -tmp327/sqrt((tmp325*tmp325) + (tmp326*tmp326) + (tmp327*tmp327));
-      const Scalar tmp1128 = -(Scalar(1)/(tmp328*tmp328))*tmp1127;
-      const Scalar tmp1129 = tmp325*tmp1128;
-      const Scalar tmp1130 = tmp326*tmp1128;
-      const Scalar tmp1131 = -tmp330 + tmp327*tmp1128;
-      const Scalar tmp1132 = tmp254*tmp1127 + tmp259*(-tmp293 - vel(6))*tmp1129
-          + tmp259*(-tmp296 - vel(7))*tmp1130 + tmp259*(-tmp298 - vel(8))*tmp1131;
-      const Scalar tmp1133 = -tmp1118;
-      const Scalar tmp1134 = -tmp1125;
-      const Scalar tmp1135 = tmp335*tmp1117 + tmp336*tmp1124 + tmp334*tmp1131 + tmp333*tmp1132
-          + tmp279*tmp1133 + tmp311*tmp1134;
-      const Scalar tmp1136 = -tmp1132;
-      const Scalar tmp1137 = tmp340*tmp1131 + tmp333*tmp1136;
-      const Scalar tmp1138 = tmp283/sqrt((tmp283*tmp283) + (tmp285*tmp285) + (tmp287*tmp287));
-      const Scalar tmp1139 = -(Scalar(1)/(tmp288*tmp288))*tmp1138;
-      const Scalar tmp1140 = tmp294 + tmp283*tmp1139;
-      const Scalar tmp1141 = tmp285*tmp1139;
-      const Scalar tmp1142 = tmp287*tmp1139;
-      const Scalar tmp1143 = tmp292*tmp1138 + tmp300*(-tmp293 - vel(0))*tmp1140
-          + tmp300*(-tmp296 - vel(1))*tmp1141 + tmp300*(-tmp298 - vel(2))*tmp1142;
-      const Scalar tmp1144 = tmp301*tmp1142 + tmp299*tmp1143;
-      const Scalar tmp1145 = tmp313/sqrt((tmp313*tmp313) + (tmp314*tmp314) + (tmp315*tmp315));
-      const Scalar tmp1146 = -(Scalar(1)/(tmp316*tmp316))*tmp1145;
-      const Scalar tmp1147 = tmp318 + tmp313*tmp1146;
-      const Scalar tmp1148 = tmp314*tmp1146;
-      const Scalar tmp1149 = tmp315*tmp1146;
-      const Scalar tmp1150 = tmp272*tmp1145 + tmp280*(-tmp293 - vel(3))*tmp1147
-          + tmp280*(-tmp296 - vel(4))*tmp1148 + tmp280*(-tmp298 - vel(5))*tmp1149;
-      const Scalar tmp1151 = tmp322*tmp1149 + tmp321*tmp1150;
-      const Scalar tmp1152 = tmp325/sqrt((tmp325*tmp325) + (tmp326*tmp326) + (tmp327*tmp327));
-      const Scalar tmp1153 = -(Scalar(1)/(tmp328*tmp328))*tmp1152;
-      const Scalar tmp1154 = tmp330 + tmp325*tmp1153;
-      const Scalar tmp1155 = tmp326*tmp1153;
-      const Scalar tmp1156 = tmp327*tmp1153;
-      const Scalar tmp1157 = tmp254*tmp1152 + tmp259*(-tmp293 - vel(6))*tmp1154
-          + tmp259*(-tmp296 - vel(7))*tmp1155 + tmp259*(-tmp298 - vel(8))*tmp1156;
-      const Scalar tmp1158 = tmp334*tmp1156 + tmp333*tmp1157;
-      const Scalar tmp1159 = -tmp1143;
-      const Scalar tmp1160 = -tmp1150;
-      const Scalar tmp1161 = -tmp1157;
-      const Scalar tmp1162 = tmp338*tmp1142 + tmp339*tmp1149 + tmp340*tmp1156 + tmp299*tmp1159
-          + tmp321*tmp1160 + tmp333*tmp1161;
-      const Scalar tmp1163 = tmp285/sqrt((tmp283*tmp283) + (tmp285*tmp285) + (tmp287*tmp287));
-      const Scalar tmp1164 = -(Scalar(1)/(tmp288*tmp288))*tmp1163;
-      const Scalar tmp1165 = tmp283*tmp1164;
-      const Scalar tmp1166 = tmp294 + tmp285*tmp1164;
-      const Scalar tmp1167 = tmp287*tmp1164;
-      const Scalar tmp1168 = tmp292*tmp1163 + tmp300*(-tmp293 - vel(0))*tmp1165
-          + tmp300*(-tmp296 - vel(1))*tmp1166 + tmp300*(-tmp298 - vel(2))*tmp1167;
-      const Scalar tmp1169 = tmp301*tmp1167 + tmp299*tmp1168;
-      const Scalar tmp1170 = tmp314/sqrt((tmp313*tmp313) + (tmp314*tmp314) + (tmp315*tmp315));
-      const Scalar tmp1171 = -(Scalar(1)/(tmp316*tmp316))*tmp1170;
-      const Scalar tmp1172 = tmp313*tmp1171;
-      const Scalar tmp1173 = tmp318 + tmp314*tmp1171;
-      const Scalar tmp1174 = tmp315*tmp1171;
-      const Scalar tmp1175 = tmp272*tmp1170 + tmp280*(-tmp293 - vel(3))*tmp1172
-          + tmp280*(-tmp296 - vel(4))*tmp1173 + tmp280*(-tmp298 - vel(5))*tmp1174;
-      const Scalar tmp1176 = tmp322*tmp1174 + tmp321*tmp1175;
-      const Scalar tmp1177 = tmp326/sqrt((tmp325*tmp325) + (tmp326*tmp326) + (tmp327*tmp327));
-      const Scalar tmp1178 = -(Scalar(1)/(tmp328*tmp328))*tmp1177;
-      const Scalar tmp1179 = tmp325*tmp1178;
-      const Scalar tmp1180 = tmp330 + tmp326*tmp1178;
-      const Scalar tmp1181 = tmp327*tmp1178;
-      const Scalar tmp1182 = tmp254*tmp1177 + tmp259*(-tmp293 - vel(6))*tmp1179
-          + tmp259*(-tmp296 - vel(7))*tmp1180 + tmp259*(-tmp298 - vel(8))*tmp1181;
-      const Scalar tmp1183 = tmp334*tmp1181 + tmp333*tmp1182;
-      const Scalar tmp1184 = -tmp1168;
-      const Scalar tmp1185 = -tmp1175;
-      const Scalar tmp1186 = -tmp1182;
-      const Scalar tmp1187 = tmp338*tmp1167 + tmp339*tmp1174 + tmp340*tmp1181 + tmp299*tmp1184
-          + tmp321*tmp1185 + tmp333*tmp1186;
-      const Scalar tmp1188 = tmp287/sqrt((tmp283*tmp283) + (tmp285*tmp285) + (tmp287*tmp287));
-      const Scalar tmp1189 = -(Scalar(1)/(tmp288*tmp288))*tmp1188;
-      const Scalar tmp1190 = tmp283*tmp1189;
-      const Scalar tmp1191 = tmp285*tmp1189;
-      const Scalar tmp1192 = tmp294 + tmp287*tmp1189;
-      const Scalar tmp1193 = tmp292*tmp1188 + tmp300*(-tmp293 - vel(0))*tmp1190
-          + tmp300*(-tmp296 - vel(1))*tmp1191 + tmp300*(-tmp298 - vel(2))*tmp1192;
-      const Scalar tmp1194 = tmp301*tmp1192 + tmp299*tmp1193;
-      const Scalar tmp1195 = tmp315/sqrt((tmp313*tmp313) + (tmp314*tmp314) + (tmp315*tmp315));
-      const Scalar tmp1196 = -(Scalar(1)/(tmp316*tmp316))*tmp1195;
-      const Scalar tmp1197 = tmp313*tmp1196;
-      const Scalar tmp1198 = tmp314*tmp1196;
-      const Scalar tmp1199 = tmp318 + tmp315*tmp1196;
-      const Scalar tmp1200 = tmp272*tmp1195 + tmp280*(-tmp293 - vel(3))*tmp1197
-          + tmp280*(-tmp296 - vel(4))*tmp1198 + tmp280*(-tmp298 - vel(5))*tmp1199;
-      const Scalar tmp1201 = tmp322*tmp1199 + tmp321*tmp1200;
-      const Scalar tmp1202 = tmp327/sqrt((tmp325*tmp325) + (tmp326*tmp326) + (tmp327*tmp327));
-      const Scalar tmp1203 = -(Scalar(1)/(tmp328*tmp328))*tmp1202;
-      const Scalar tmp1204 = tmp325*tmp1203;
-      const Scalar tmp1205 = tmp326*tmp1203;
-      const Scalar tmp1206 = tmp330 + tmp327*tmp1203;
-      const Scalar tmp1207 = tmp254*tmp1202 + tmp259*(-tmp293 - vel(6))*tmp1204
-          + tmp259*(-tmp296 - vel(7))*tmp1205 + tmp259*(-tmp298 - vel(8))*tmp1206;
-      const Scalar tmp1208 = tmp334*tmp1206 + tmp333*tmp1207;
-      const Scalar tmp1209 = -tmp1193;
-      const Scalar tmp1210 = -tmp1200;
-      const Scalar tmp1211 = -tmp1207;
-      const Scalar tmp1212 = tmp338*tmp1192 + tmp339*tmp1199 + tmp340*tmp1206 + tmp299*tmp1209
-          + tmp321*tmp1210 + tmp333*tmp1211;
+      const Scalar tmp985 = -tmp981;
+      const Scalar tmp986 = tmp279*tmp966 + tmp280*tmp973 + tmp281*tmp980 + tmp241*tmp983
+          + tmp263*tmp984 + tmp276*tmp985;
+      const Scalar tmp987 = tmp230/sqrt((tmp228*tmp228) + (tmp230*tmp230) + (tmp232*tmp232));
+      const Scalar tmp988 = -(Scalar(1)/(tmp233*tmp233))*tmp987;
+      const Scalar tmp989 = tmp228*tmp988;
+      const Scalar tmp990 = tmp236 + tmp230*tmp988;
+      const Scalar tmp991 = tmp232*tmp988;
+      const Scalar tmp992 = Scalar(2.030692330267238)*kappa*tmp987
+          + Scalar(2.030692330267238)*penalty_damping*(-tmp235 - vel(0))*tmp989
+          + Scalar(2.030692330267238)*penalty_damping*(-tmp238 - vel(1))*tmp990
+          + Scalar(2.030692330267238)*penalty_damping*(-tmp240 - vel(2))*tmp991;
+      const Scalar tmp993 = tmp242*tmp991 + tmp241*tmp992;
+      const Scalar tmp994 = tmp256/sqrt((tmp255*tmp255) + (tmp256*tmp256) + (tmp257*tmp257));
+      const Scalar tmp995 = -(Scalar(1)/(tmp258*tmp258))*tmp994;
+      const Scalar tmp996 = tmp255*tmp995;
+      const Scalar tmp997 = tmp260 + tmp256*tmp995;
+      const Scalar tmp998 = tmp257*tmp995;
+      const Scalar tmp999 = Scalar(2.9814239699997196)*kappa*tmp994
+          + Scalar(2.9814239699997196)*penalty_damping*(-tmp235 - vel(3))*tmp996
+          + Scalar(2.9814239699997196)*penalty_damping*(-tmp238 - vel(4))*tmp997
+          + Scalar(2.9814239699997196)*penalty_damping*(-tmp240 - vel(5))*tmp998;
+      const Scalar tmp1000 = tmp264*tmp998 + tmp263*tmp999;
+      const Scalar tmp1001 = tmp269/sqrt((tmp268*tmp268) + (tmp269*tmp269) + (tmp270*tmp270));
+      const Scalar tmp1002 = -(Scalar(1)/(tmp271*tmp271))*tmp1001;
+      const Scalar tmp1003 = tmp268*tmp1002;
+      const Scalar tmp1004 = tmp273 + tmp269*tmp1002;
+      const Scalar tmp1005 = tmp270*tmp1002;
+      const Scalar tmp1006 = Scalar(2.7472112789737806)*kappa*tmp1001
+          + Scalar(2.7472112789737806)*penalty_damping*(-tmp235 - vel(6))*tmp1003
+          + Scalar(2.7472112789737806)*penalty_damping*(-tmp238 - vel(7))*tmp1004
+          + Scalar(2.7472112789737806)*penalty_damping*(-tmp240 - vel(8))*tmp1005;
+      const Scalar tmp1007 = tmp277*tmp1005 + tmp276*tmp1006;
+      const Scalar tmp1008 = -tmp992;
+      const Scalar tmp1009 = -tmp999;
+      const Scalar tmp1010 = -tmp1006;
+      const Scalar tmp1011 = tmp279*tmp991 + tmp280*tmp998 + tmp281*tmp1005 + tmp241*tmp1008
+          + tmp263*tmp1009 + tmp276*tmp1010;
+      const Scalar tmp1012 = tmp232/sqrt((tmp228*tmp228) + (tmp230*tmp230) + (tmp232*tmp232));
+      const Scalar tmp1013 = -(Scalar(1)/(tmp233*tmp233))*tmp1012;
+      const Scalar tmp1014 = tmp228*tmp1013;
+      const Scalar tmp1015 = tmp230*tmp1013;
+      const Scalar tmp1016 = tmp236 + tmp232*tmp1013;
+      const Scalar tmp1017 = Scalar(2.030692330267238)*kappa*tmp1012
+          + Scalar(2.030692330267238)*penalty_damping*(-tmp235 - vel(0))*tmp1014
+          + Scalar(2.030692330267238)*penalty_damping*(-tmp238 - vel(1))*tmp1015
+          + Scalar(2.030692330267238)*penalty_damping*(-tmp240 - vel(2))*tmp1016;
+      const Scalar tmp1018 = tmp242*tmp1016 + tmp241*tmp1017;
+      const Scalar tmp1019 = tmp257/sqrt((tmp255*tmp255) + (tmp256*tmp256) + (tmp257*tmp257));
+      const Scalar tmp1020 = -(Scalar(1)/(tmp258*tmp258))*tmp1019;
+      const Scalar tmp1021 = tmp255*tmp1020;
+      const Scalar tmp1022 = tmp256*tmp1020;
+      const Scalar tmp1023 = tmp260 + tmp257*tmp1020;
+      const Scalar tmp1024 = Scalar(2.9814239699997196)*kappa*tmp1019
+          + Scalar(2.9814239699997196)*penalty_damping*(-tmp235 - vel(3))*tmp1021
+          + Scalar(2.9814239699997196)*penalty_damping*(-tmp238 - vel(4))*tmp1022
+          + Scalar(2.9814239699997196)*penalty_damping*(-tmp240 - vel(5))*tmp1023;
+      const Scalar tmp1025 = tmp264*tmp1023 + tmp263*tmp1024;
+      const Scalar tmp1026 = tmp270/sqrt((tmp268*tmp268) + (tmp269*tmp269) + (tmp270*tmp270));
+      const Scalar tmp1027 = -(Scalar(1)/(tmp271*tmp271))*tmp1026;
+      const Scalar tmp1028 = tmp268*tmp1027;
+      const Scalar tmp1029 = tmp269*tmp1027;
+      const Scalar tmp1030 = tmp273 + tmp270*tmp1027;
+      const Scalar tmp1031 = Scalar(2.7472112789737806)*kappa*tmp1026
+          + Scalar(2.7472112789737806)*penalty_damping*(-tmp235 - vel(6))*tmp1028
+          + Scalar(2.7472112789737806)*penalty_damping*(-tmp238 - vel(7))*tmp1029
+          + Scalar(2.7472112789737806)*penalty_damping*(-tmp240 - vel(8))*tmp1030;
+      const Scalar tmp1032 = tmp277*tmp1030 + tmp276*tmp1031;
+      const Scalar tmp1033 = -tmp1017;
+      const Scalar tmp1034 = -tmp1024;
+      const Scalar tmp1035 = -tmp1031;
+      const Scalar tmp1036 = tmp279*tmp1016 + tmp280*tmp1023 + tmp281*tmp1030 + tmp241*tmp1033
+          + tmp263*tmp1034 + tmp276*tmp1035;
       std::array<Scalar, 144> result;
-      result[0] = tmp260*tmp915 + tmp256*tmp918 + tmp281*tmp921 + tmp275*tmp924 + tmp301*tmp927
-          + tmp295*tmp930;
-      result[1] = tmp260*tmp940 + tmp256*tmp943 + tmp281*tmp946 + tmp275*tmp949 + tmp301*tmp952
-          + tmp295*tmp955;
-      result[2] = tmp260*tmp965 + tmp256*tmp968 + tmp281*tmp971 + tmp275*tmp974 + tmp301*tmp977
-          + tmp295*tmp980;
-      result[3] = tmp260*tmp990 + tmp256*tmp993;
-      result[4] = tmp260*tmp1015 + tmp256*tmp1018;
-      result[5] = tmp260*tmp1040 + tmp256*tmp1043;
-      result[6] = tmp281*tmp1065 + tmp275*tmp1068;
-      result[7] = tmp281*tmp1090 + tmp275*tmp1093;
-      result[8] = tmp281*tmp1115 + tmp275*tmp1118;
-      result[9] = tmp301*tmp1140 + tmp295*tmp1143;
-      result[10] = tmp301*tmp1165 + tmp295*tmp1168;
-      result[11] = tmp301*tmp1190 + tmp295*tmp1193;
-      result[12] = tmp260*tmp916 + tmp257*tmp918 + tmp281*tmp922 + tmp277*tmp924 + tmp301*tmp928
-          + tmp297*tmp930;
-      result[13] = tmp260*tmp941 + tmp257*tmp943 + tmp281*tmp947 + tmp277*tmp949 + tmp301*tmp953
-          + tmp297*tmp955;
-      result[14] = tmp260*tmp966 + tmp257*tmp968 + tmp281*tmp972 + tmp277*tmp974 + tmp301*tmp978
-          + tmp297*tmp980;
-      result[15] = tmp260*tmp991 + tmp257*tmp993;
-      result[16] = tmp260*tmp1016 + tmp257*tmp1018;
-      result[17] = tmp260*tmp1041 + tmp257*tmp1043;
-      result[18] = tmp281*tmp1066 + tmp277*tmp1068;
-      result[19] = tmp281*tmp1091 + tmp277*tmp1093;
-      result[20] = tmp281*tmp1116 + tmp277*tmp1118;
-      result[21] = tmp301*tmp1141 + tmp297*tmp1143;
-      result[22] = tmp301*tmp1166 + tmp297*tmp1168;
-      result[23] = tmp301*tmp1191 + tmp297*tmp1193;
-      result[24] = tmp931;
-      result[25] = tmp956;
-      result[26] = tmp981;
-      result[27] = tmp994;
-      result[28] = tmp1019;
-      result[29] = tmp1044;
-      result[30] = tmp1069;
-      result[31] = tmp1094;
-      result[32] = tmp1119;
-      result[33] = tmp1144;
-      result[34] = tmp1169;
-      result[35] = tmp1194;
-      result[36] = tmp323*tmp915 + tmp256*tmp932;
-      result[37] = tmp323*tmp940 + tmp256*tmp957;
-      result[38] = tmp323*tmp965 + tmp256*tmp982;
-      result[39] = tmp323*tmp990 + tmp312*tmp997 + tmp309*tmp1000 + tmp322*tmp1003 + tmp319*tmp1006
-          + tmp256*tmp1007;
-      result[40] = tmp323*tmp1015 + tmp312*tmp1022 + tmp309*tmp1025 + tmp322*tmp1028
-          + tmp319*tmp1031 + tmp256*tmp1032;
-      result[41] = tmp323*tmp1040 + tmp312*tmp1047 + tmp309*tmp1050 + tmp322*tmp1053
-          + tmp319*tmp1056 + tmp256*tmp1057;
-      result[42] = tmp312*tmp1072 + tmp309*tmp1075;
-      result[43] = tmp312*tmp1097 + tmp309*tmp1100;
-      result[44] = tmp312*tmp1122 + tmp309*tmp1125;
-      result[45] = tmp322*tmp1147 + tmp319*tmp1150;
-      result[46] = tmp322*tmp1172 + tmp319*tmp1175;
-      result[47] = tmp322*tmp1197 + tmp319*tmp1200;
-      result[48] = tmp323*tmp916 + tmp257*tmp932;
-      result[49] = tmp323*tmp941 + tmp257*tmp957;
-      result[50] = tmp323*tmp966 + tmp257*tmp982;
-      result[51] = tmp323*tmp991 + tmp312*tmp998 + tmp310*tmp1000 + tmp322*tmp1004 + tmp320*tmp1006
-          + tmp257*tmp1007;
-      result[52] = tmp323*tmp1016 + tmp312*tmp1023 + tmp310*tmp1025 + tmp322*tmp1029
-          + tmp320*tmp1031 + tmp257*tmp1032;
-      result[53] = tmp323*tmp1041 + tmp312*tmp1048 + tmp310*tmp1050 + tmp322*tmp1054
-          + tmp320*tmp1056 + tmp257*tmp1057;
-      result[54] = tmp312*tmp1073 + tmp310*tmp1075;
-      result[55] = tmp312*tmp1098 + tmp310*tmp1100;
-      result[56] = tmp312*tmp1123 + tmp310*tmp1125;
-      result[57] = tmp322*tmp1148 + tmp320*tmp1150;
-      result[58] = tmp322*tmp1173 + tmp320*tmp1175;
-      result[59] = tmp322*tmp1198 + tmp320*tmp1200;
-      result[60] = tmp933;
-      result[61] = tmp958;
-      result[62] = tmp983;
-      result[63] = tmp1008;
-      result[64] = tmp1033;
-      result[65] = tmp1058;
-      result[66] = tmp1076;
-      result[67] = tmp1101;
-      result[68] = tmp1126;
-      result[69] = tmp1151;
-      result[70] = tmp1176;
-      result[71] = tmp1201;
-      result[72] = tmp335*tmp921 + tmp275*tmp934;
-      result[73] = tmp335*tmp946 + tmp275*tmp959;
-      result[74] = tmp335*tmp971 + tmp275*tmp984;
-      result[75] = tmp336*tmp997 + tmp309*tmp1009;
-      result[76] = tmp336*tmp1022 + tmp309*tmp1034;
-      result[77] = tmp336*tmp1047 + tmp309*tmp1059;
-      result[78] = tmp335*tmp1065 + tmp336*tmp1072 + tmp334*tmp1079 + tmp331*tmp1082
-          + tmp275*tmp1083 + tmp309*tmp1084;
-      result[79] = tmp335*tmp1090 + tmp336*tmp1097 + tmp334*tmp1104 + tmp331*tmp1107
-          + tmp275*tmp1108 + tmp309*tmp1109;
-      result[80] = tmp335*tmp1115 + tmp336*tmp1122 + tmp334*tmp1129 + tmp331*tmp1132
-          + tmp275*tmp1133 + tmp309*tmp1134;
-      result[81] = tmp334*tmp1154 + tmp331*tmp1157;
-      result[82] = tmp334*tmp1179 + tmp331*tmp1182;
-      result[83] = tmp334*tmp1204 + tmp331*tmp1207;
-      result[84] = tmp335*tmp922 + tmp277*tmp934;
-      result[85] = tmp335*tmp947 + tmp277*tmp959;
-      result[86] = tmp335*tmp972 + tmp277*tmp984;
-      result[87] = tmp336*tmp998 + tmp310*tmp1009;
-      result[88] = tmp336*tmp1023 + tmp310*tmp1034;
-      result[89] = tmp336*tmp1048 + tmp310*tmp1059;
-      result[90] = tmp335*tmp1066 + tmp336*tmp1073 + tmp334*tmp1080 + tmp332*tmp1082
-          + tmp277*tmp1083 + tmp310*tmp1084;
-      result[91] = tmp335*tmp1091 + tmp336*tmp1098 + tmp334*tmp1105 + tmp332*tmp1107
-          + tmp277*tmp1108 + tmp310*tmp1109;
-      result[92] = tmp335*tmp1116 + tmp336*tmp1123 + tmp334*tmp1130 + tmp332*tmp1132
-          + tmp277*tmp1133 + tmp310*tmp1134;
-      result[93] = tmp334*tmp1155 + tmp332*tmp1157;
-      result[94] = tmp334*tmp1180 + tmp332*tmp1182;
-      result[95] = tmp334*tmp1205 + tmp332*tmp1207;
-      result[96] = tmp935;
-      result[97] = tmp960;
-      result[98] = tmp985;
-      result[99] = tmp1010;
-      result[100] = tmp1035;
-      result[101] = tmp1060;
-      result[102] = tmp1085;
-      result[103] = tmp1110;
-      result[104] = tmp1135;
-      result[105] = tmp1158;
-      result[106] = tmp1183;
-      result[107] = tmp1208;
-      result[108] = tmp338*tmp927 + tmp295*tmp936;
-      result[109] = tmp338*tmp952 + tmp295*tmp961;
-      result[110] = tmp338*tmp977 + tmp295*tmp986;
-      result[111] = tmp339*tmp1003 + tmp319*tmp1011;
-      result[112] = tmp339*tmp1028 + tmp319*tmp1036;
-      result[113] = tmp339*tmp1053 + tmp319*tmp1061;
-      result[114] = tmp340*tmp1079 + tmp331*tmp1086;
-      result[115] = tmp340*tmp1104 + tmp331*tmp1111;
-      result[116] = tmp340*tmp1129 + tmp331*tmp1136;
-      result[117] = tmp338*tmp1140 + tmp339*tmp1147 + tmp340*tmp1154 + tmp295*tmp1159
-          + tmp319*tmp1160 + tmp331*tmp1161;
-      result[118] = tmp338*tmp1165 + tmp339*tmp1172 + tmp340*tmp1179 + tmp295*tmp1184
-          + tmp319*tmp1185 + tmp331*tmp1186;
-      result[119] = tmp338*tmp1190 + tmp339*tmp1197 + tmp340*tmp1204 + tmp295*tmp1209
-          + tmp319*tmp1210 + tmp331*tmp1211;
-      result[120] = tmp338*tmp928 + tmp297*tmp936;
-      result[121] = tmp338*tmp953 + tmp297*tmp961;
-      result[122] = tmp338*tmp978 + tmp297*tmp986;
-      result[123] = tmp339*tmp1004 + tmp320*tmp1011;
-      result[124] = tmp339*tmp1029 + tmp320*tmp1036;
-      result[125] = tmp339*tmp1054 + tmp320*tmp1061;
-      result[126] = tmp340*tmp1080 + tmp332*tmp1086;
-      result[127] = tmp340*tmp1105 + tmp332*tmp1111;
-      result[128] = tmp340*tmp1130 + tmp332*tmp1136;
-      result[129] = tmp338*tmp1141 + tmp339*tmp1148 + tmp340*tmp1155 + tmp297*tmp1159
-          + tmp320*tmp1160 + tmp332*tmp1161;
-      result[130] = tmp338*tmp1166 + tmp339*tmp1173 + tmp340*tmp1180 + tmp297*tmp1184
-          + tmp320*tmp1185 + tmp332*tmp1186;
-      result[131] = tmp338*tmp1191 + tmp339*tmp1198 + tmp340*tmp1205 + tmp297*tmp1209
-          + tmp320*tmp1210 + tmp332*tmp1211;
-      result[132] = tmp937;
-      result[133] = tmp962;
-      result[134] = tmp987;
-      result[135] = tmp1012;
-      result[136] = tmp1037;
-      result[137] = tmp1062;
-      result[138] = tmp1087;
-      result[139] = tmp1112;
-      result[140] = tmp1137;
-      result[141] = tmp1162;
-      result[142] = tmp1187;
-      result[143] = tmp1212;
+      result[0] = tmp210*tmp739 + tmp207*tmp742 + tmp226*tmp745 + tmp221*tmp748 + tmp242*tmp751
+          + tmp237*tmp754;
+      result[1] = tmp210*tmp764 + tmp207*tmp767 + tmp226*tmp770 + tmp221*tmp773 + tmp242*tmp776
+          + tmp237*tmp779;
+      result[2] = tmp210*tmp789 + tmp207*tmp792 + tmp226*tmp795 + tmp221*tmp798 + tmp242*tmp801
+          + tmp237*tmp804;
+      result[3] = tmp210*tmp814 + tmp207*tmp817;
+      result[4] = tmp210*tmp839 + tmp207*tmp842;
+      result[5] = tmp210*tmp864 + tmp207*tmp867;
+      result[6] = tmp226*tmp889 + tmp221*tmp892;
+      result[7] = tmp226*tmp914 + tmp221*tmp917;
+      result[8] = tmp226*tmp939 + tmp221*tmp942;
+      result[9] = tmp242*tmp964 + tmp237*tmp967;
+      result[10] = tmp242*tmp989 + tmp237*tmp992;
+      result[11] = tmp242*tmp1014 + tmp237*tmp1017;
+      result[12] = tmp210*tmp740 + tmp208*tmp742 + tmp226*tmp746 + tmp223*tmp748 + tmp242*tmp752
+          + tmp239*tmp754;
+      result[13] = tmp210*tmp765 + tmp208*tmp767 + tmp226*tmp771 + tmp223*tmp773 + tmp242*tmp777
+          + tmp239*tmp779;
+      result[14] = tmp210*tmp790 + tmp208*tmp792 + tmp226*tmp796 + tmp223*tmp798 + tmp242*tmp802
+          + tmp239*tmp804;
+      result[15] = tmp210*tmp815 + tmp208*tmp817;
+      result[16] = tmp210*tmp840 + tmp208*tmp842;
+      result[17] = tmp210*tmp865 + tmp208*tmp867;
+      result[18] = tmp226*tmp890 + tmp223*tmp892;
+      result[19] = tmp226*tmp915 + tmp223*tmp917;
+      result[20] = tmp226*tmp940 + tmp223*tmp942;
+      result[21] = tmp242*tmp965 + tmp239*tmp967;
+      result[22] = tmp242*tmp990 + tmp239*tmp992;
+      result[23] = tmp242*tmp1015 + tmp239*tmp1017;
+      result[24] = tmp755;
+      result[25] = tmp780;
+      result[26] = tmp805;
+      result[27] = tmp818;
+      result[28] = tmp843;
+      result[29] = tmp868;
+      result[30] = tmp893;
+      result[31] = tmp918;
+      result[32] = tmp943;
+      result[33] = tmp968;
+      result[34] = tmp993;
+      result[35] = tmp1018;
+      result[36] = tmp244*tmp739 + tmp207*tmp756;
+      result[37] = tmp244*tmp764 + tmp207*tmp781;
+      result[38] = tmp244*tmp789 + tmp207*tmp806;
+      result[39] = tmp244*tmp814 + tmp207*tmp819 + tmp254*tmp822 + tmp251*tmp825 + tmp264*tmp828
+          + tmp261*tmp831;
+      result[40] = tmp244*tmp839 + tmp207*tmp844 + tmp254*tmp847 + tmp251*tmp850 + tmp264*tmp853
+          + tmp261*tmp856;
+      result[41] = tmp244*tmp864 + tmp207*tmp869 + tmp254*tmp872 + tmp251*tmp875 + tmp264*tmp878
+          + tmp261*tmp881;
+      result[42] = tmp254*tmp896 + tmp251*tmp899;
+      result[43] = tmp254*tmp921 + tmp251*tmp924;
+      result[44] = tmp254*tmp946 + tmp251*tmp949;
+      result[45] = tmp264*tmp971 + tmp261*tmp974;
+      result[46] = tmp264*tmp996 + tmp261*tmp999;
+      result[47] = tmp264*tmp1021 + tmp261*tmp1024;
+      result[48] = tmp244*tmp740 + tmp208*tmp756;
+      result[49] = tmp244*tmp765 + tmp208*tmp781;
+      result[50] = tmp244*tmp790 + tmp208*tmp806;
+      result[51] = tmp244*tmp815 + tmp208*tmp819 + tmp254*tmp823 + tmp252*tmp825 + tmp264*tmp829
+          + tmp262*tmp831;
+      result[52] = tmp244*tmp840 + tmp208*tmp844 + tmp254*tmp848 + tmp252*tmp850 + tmp264*tmp854
+          + tmp262*tmp856;
+      result[53] = tmp244*tmp865 + tmp208*tmp869 + tmp254*tmp873 + tmp252*tmp875 + tmp264*tmp879
+          + tmp262*tmp881;
+      result[54] = tmp254*tmp897 + tmp252*tmp899;
+      result[55] = tmp254*tmp922 + tmp252*tmp924;
+      result[56] = tmp254*tmp947 + tmp252*tmp949;
+      result[57] = tmp264*tmp972 + tmp262*tmp974;
+      result[58] = tmp264*tmp997 + tmp262*tmp999;
+      result[59] = tmp264*tmp1022 + tmp262*tmp1024;
+      result[60] = tmp757;
+      result[61] = tmp782;
+      result[62] = tmp807;
+      result[63] = tmp832;
+      result[64] = tmp857;
+      result[65] = tmp882;
+      result[66] = tmp900;
+      result[67] = tmp925;
+      result[68] = tmp950;
+      result[69] = tmp975;
+      result[70] = tmp1000;
+      result[71] = tmp1025;
+      result[72] = tmp266*tmp745 + tmp221*tmp758;
+      result[73] = tmp266*tmp770 + tmp221*tmp783;
+      result[74] = tmp266*tmp795 + tmp221*tmp808;
+      result[75] = tmp267*tmp822 + tmp251*tmp833;
+      result[76] = tmp267*tmp847 + tmp251*tmp858;
+      result[77] = tmp267*tmp872 + tmp251*tmp883;
+      result[78] = tmp266*tmp889 + tmp267*tmp896 + tmp221*tmp901 + tmp251*tmp902 + tmp277*tmp905
+          + tmp274*tmp908;
+      result[79] = tmp266*tmp914 + tmp267*tmp921 + tmp221*tmp926 + tmp251*tmp927 + tmp277*tmp930
+          + tmp274*tmp933;
+      result[80] = tmp266*tmp939 + tmp267*tmp946 + tmp221*tmp951 + tmp251*tmp952 + tmp277*tmp955
+          + tmp274*tmp958;
+      result[81] = tmp277*tmp978 + tmp274*tmp981;
+      result[82] = tmp277*tmp1003 + tmp274*tmp1006;
+      result[83] = tmp277*tmp1028 + tmp274*tmp1031;
+      result[84] = tmp266*tmp746 + tmp223*tmp758;
+      result[85] = tmp266*tmp771 + tmp223*tmp783;
+      result[86] = tmp266*tmp796 + tmp223*tmp808;
+      result[87] = tmp267*tmp823 + tmp252*tmp833;
+      result[88] = tmp267*tmp848 + tmp252*tmp858;
+      result[89] = tmp267*tmp873 + tmp252*tmp883;
+      result[90] = tmp266*tmp890 + tmp267*tmp897 + tmp223*tmp901 + tmp252*tmp902 + tmp277*tmp906
+          + tmp275*tmp908;
+      result[91] = tmp266*tmp915 + tmp267*tmp922 + tmp223*tmp926 + tmp252*tmp927 + tmp277*tmp931
+          + tmp275*tmp933;
+      result[92] = tmp266*tmp940 + tmp267*tmp947 + tmp223*tmp951 + tmp252*tmp952 + tmp277*tmp956
+          + tmp275*tmp958;
+      result[93] = tmp277*tmp979 + tmp275*tmp981;
+      result[94] = tmp277*tmp1004 + tmp275*tmp1006;
+      result[95] = tmp277*tmp1029 + tmp275*tmp1031;
+      result[96] = tmp759;
+      result[97] = tmp784;
+      result[98] = tmp809;
+      result[99] = tmp834;
+      result[100] = tmp859;
+      result[101] = tmp884;
+      result[102] = tmp909;
+      result[103] = tmp934;
+      result[104] = tmp959;
+      result[105] = tmp982;
+      result[106] = tmp1007;
+      result[107] = tmp1032;
+      result[108] = tmp279*tmp751 + tmp237*tmp760;
+      result[109] = tmp279*tmp776 + tmp237*tmp785;
+      result[110] = tmp279*tmp801 + tmp237*tmp810;
+      result[111] = tmp280*tmp828 + tmp261*tmp835;
+      result[112] = tmp280*tmp853 + tmp261*tmp860;
+      result[113] = tmp280*tmp878 + tmp261*tmp885;
+      result[114] = tmp281*tmp905 + tmp274*tmp910;
+      result[115] = tmp281*tmp930 + tmp274*tmp935;
+      result[116] = tmp281*tmp955 + tmp274*tmp960;
+      result[117] = tmp279*tmp964 + tmp280*tmp971 + tmp281*tmp978 + tmp237*tmp983 + tmp261*tmp984
+          + tmp274*tmp985;
+      result[118] = tmp279*tmp989 + tmp280*tmp996 + tmp281*tmp1003 + tmp237*tmp1008 + tmp261*tmp1009
+          + tmp274*tmp1010;
+      result[119] = tmp279*tmp1014 + tmp280*tmp1021 + tmp281*tmp1028 + tmp237*tmp1033
+          + tmp261*tmp1034 + tmp274*tmp1035;
+      result[120] = tmp279*tmp752 + tmp239*tmp760;
+      result[121] = tmp279*tmp777 + tmp239*tmp785;
+      result[122] = tmp279*tmp802 + tmp239*tmp810;
+      result[123] = tmp280*tmp829 + tmp262*tmp835;
+      result[124] = tmp280*tmp854 + tmp262*tmp860;
+      result[125] = tmp280*tmp879 + tmp262*tmp885;
+      result[126] = tmp281*tmp906 + tmp275*tmp910;
+      result[127] = tmp281*tmp931 + tmp275*tmp935;
+      result[128] = tmp281*tmp956 + tmp275*tmp960;
+      result[129] = tmp279*tmp965 + tmp280*tmp972 + tmp281*tmp979 + tmp239*tmp983 + tmp262*tmp984
+          + tmp275*tmp985;
+      result[130] = tmp279*tmp990 + tmp280*tmp997 + tmp281*tmp1004 + tmp239*tmp1008 + tmp262*tmp1009
+          + tmp275*tmp1010;
+      result[131] = tmp279*tmp1015 + tmp280*tmp1022 + tmp281*tmp1029 + tmp239*tmp1033
+          + tmp262*tmp1034 + tmp275*tmp1035;
+      result[132] = tmp761;
+      result[133] = tmp786;
+      result[134] = tmp811;
+      result[135] = tmp836;
+      result[136] = tmp861;
+      result[137] = tmp886;
+      result[138] = tmp911;
+      result[139] = tmp936;
+      result[140] = tmp961;
+      result[141] = tmp986;
+      result[142] = tmp1011;
+      result[143] = tmp1036;
       return result;
     }
 
@@ -5145,361 +4460,334 @@ struct RigidBodyEuler {
     /// \param[in] penalty_damping  penalty damping coefficient
     /// \param[in] params  model parameters
     /// \return values (jacobian_xdot_nonzeros)
-    /// Ops: 531
+    /// Ops: 513
     template <typename Scalar>
     static std::array<Scalar, 144> force_jacobian_xdot(const XVector<Scalar>& pos,
                                                        const XVector<Scalar>& /*vel*/,
                                                        const Scalar& /*t*/,
                                                        const Scalar& /*kappa*/,
                                                        const Scalar& penalty_damping,
-                                                       const Params& params) {
+                                                       const Params& /*params*/) {
       using std::sqrt;
-      const Scalar m = Scalar(params.m);
-      const Scalar a = Scalar(params.a);
-      const Scalar b = Scalar(params.b);
-      const Scalar c = Scalar(params.c);
-      const Scalar tmp3 = (a*a);
-      const Scalar tmp4 = (b*b);
-      const Scalar tmp5 = ((Scalar(1)/Scalar(24)))*m;
-      const Scalar tmp6 = tmp5*(tmp3 + tmp4);
-      const Scalar tmp7 = (c*c);
-      const Scalar tmp8 = tmp5*(tmp3 + tmp7);
-      const Scalar tmp9 = tmp5*(tmp4 + tmp7);
-      const Scalar tmp10 = tmp6 + tmp8 - tmp9;
-      const Scalar tmp22 = tmp8 + tmp9 - tmp6;
-      const Scalar tmp29 = tmp6 + tmp9 - tmp8;
-      const Scalar tmp244 = pos(3) - pos(0);
-      const Scalar tmp245 = pos(4) - pos(1);
-      const Scalar tmp246 = pos(5) - pos(2);
-      const Scalar tmp247 = sqrt((tmp244*tmp244) + (tmp245*tmp245) + (tmp246*tmp246));
-      const Scalar tmp248 = Scalar(4)/m;
-      const Scalar tmp249 = tmp248*tmp22;
-      const Scalar tmp250 = tmp248*tmp29;
-      const Scalar tmp251 = sqrt(tmp249 + tmp250);
-      const Scalar tmp253 = (Scalar(1)/tmp251);
-      const Scalar tmp255 = (Scalar(1)/tmp247);
-      const Scalar tmp256 = tmp244*tmp255;
-      const Scalar tmp257 = tmp245*tmp255;
-      const Scalar tmp258 = tmp246*tmp255;
-      const Scalar tmp259 = tmp253*penalty_damping;
-      const Scalar tmp261 = -pos(6);
-      const Scalar tmp262 = -tmp261 - pos(0);
-      const Scalar tmp263 = -pos(7);
-      const Scalar tmp264 = -tmp263 - pos(1);
-      const Scalar tmp265 = -pos(8);
-      const Scalar tmp266 = -tmp265 - pos(2);
-      const Scalar tmp267 = sqrt((tmp262*tmp262) + (tmp264*tmp264) + (tmp266*tmp266));
-      const Scalar tmp268 = tmp10*tmp248;
-      const Scalar tmp269 = sqrt(tmp249 + tmp268);
-      const Scalar tmp271 = (Scalar(1)/tmp269);
-      const Scalar tmp274 = (Scalar(1)/tmp267);
-      const Scalar tmp275 = tmp262*tmp274;
-      const Scalar tmp277 = tmp264*tmp274;
-      const Scalar tmp279 = tmp266*tmp274;
-      const Scalar tmp280 = tmp271*penalty_damping;
-      const Scalar tmp282 = -pos(9);
-      const Scalar tmp283 = -tmp282 - pos(0);
-      const Scalar tmp284 = -pos(10);
-      const Scalar tmp285 = -tmp284 - pos(1);
-      const Scalar tmp286 = -pos(11);
-      const Scalar tmp287 = -tmp286 - pos(2);
-      const Scalar tmp288 = sqrt((tmp283*tmp283) + (tmp285*tmp285) + (tmp287*tmp287));
-      const Scalar tmp289 = sqrt(tmp250 + tmp268);
-      const Scalar tmp291 = (Scalar(1)/tmp289);
-      const Scalar tmp294 = (Scalar(1)/tmp288);
-      const Scalar tmp295 = tmp283*tmp294;
-      const Scalar tmp297 = tmp285*tmp294;
-      const Scalar tmp299 = tmp287*tmp294;
-      const Scalar tmp300 = tmp291*penalty_damping;
-      const Scalar tmp303 = -tmp261 - pos(3);
-      const Scalar tmp304 = -tmp263 - pos(4);
-      const Scalar tmp305 = -tmp265 - pos(5);
-      const Scalar tmp306 = sqrt((tmp303*tmp303) + (tmp304*tmp304) + (tmp305*tmp305));
-      const Scalar tmp308 = (Scalar(1)/tmp306);
-      const Scalar tmp309 = tmp303*tmp308;
-      const Scalar tmp310 = tmp304*tmp308;
-      const Scalar tmp311 = tmp305*tmp308;
-      const Scalar tmp313 = -tmp282 - pos(3);
-      const Scalar tmp314 = -tmp284 - pos(4);
-      const Scalar tmp315 = -tmp286 - pos(5);
-      const Scalar tmp316 = sqrt((tmp313*tmp313) + (tmp314*tmp314) + (tmp315*tmp315));
-      const Scalar tmp318 = (Scalar(1)/tmp316);
-      const Scalar tmp319 = tmp313*tmp318;
-      const Scalar tmp320 = tmp314*tmp318;
-      const Scalar tmp321 = tmp315*tmp318;
-      const Scalar tmp325 = -tmp282 - pos(6);
-      const Scalar tmp326 = -tmp284 - pos(7);
-      const Scalar tmp327 = -tmp286 - pos(8);
-      const Scalar tmp328 = sqrt((tmp325*tmp325) + (tmp326*tmp326) + (tmp327*tmp327));
-      const Scalar tmp330 = (Scalar(1)/tmp328);
-      const Scalar tmp331 = tmp325*tmp330;
-      const Scalar tmp332 = tmp326*tmp330;
-      const Scalar tmp333 = tmp327*tmp330;
-      const Scalar tmp1213 = -tmp256*tmp259;
-      const Scalar tmp1214 = -tmp275*tmp280;
-      const Scalar tmp1215 = -tmp295*tmp300;
-      const Scalar tmp1216 = tmp258*tmp1213 + tmp279*tmp1214 + tmp299*tmp1215;
-      const Scalar tmp1217 = -tmp1213;
-      const Scalar tmp1218 = tmp258*tmp1217;
-      const Scalar tmp1219 = -tmp1214;
-      const Scalar tmp1220 = tmp279*tmp1219;
-      const Scalar tmp1221 = -tmp1215;
-      const Scalar tmp1222 = tmp299*tmp1221;
-      const Scalar tmp1223 = -tmp257*tmp259;
-      const Scalar tmp1224 = -tmp277*tmp280;
-      const Scalar tmp1225 = -tmp297*tmp300;
-      const Scalar tmp1226 = tmp258*tmp1223 + tmp279*tmp1224 + tmp299*tmp1225;
-      const Scalar tmp1227 = -tmp1223;
-      const Scalar tmp1228 = tmp258*tmp1227;
-      const Scalar tmp1229 = -tmp1224;
-      const Scalar tmp1230 = tmp279*tmp1229;
-      const Scalar tmp1231 = -tmp1225;
-      const Scalar tmp1232 = tmp299*tmp1231;
-      const Scalar tmp1233 = -tmp258*tmp259;
-      const Scalar tmp1234 = -tmp279*tmp280;
-      const Scalar tmp1235 = -tmp299*tmp300;
-      const Scalar tmp1236 = tmp258*tmp1233 + tmp279*tmp1234 + tmp299*tmp1235;
-      const Scalar tmp1237 = -tmp1233;
-      const Scalar tmp1238 = tmp258*tmp1237;
-      const Scalar tmp1239 = -tmp1234;
-      const Scalar tmp1240 = tmp279*tmp1239;
-      const Scalar tmp1241 = -tmp1235;
-      const Scalar tmp1242 = tmp299*tmp1241;
-      const Scalar tmp1243 = tmp256*tmp259;
-      const Scalar tmp1244 = tmp258*tmp1243;
-      const Scalar tmp1245 = -tmp300*tmp309;
-      const Scalar tmp1246 = -tmp280*tmp319;
-      const Scalar tmp1247 = -tmp1243;
-      const Scalar tmp1248 = tmp311*tmp1245 + tmp321*tmp1246 + tmp258*tmp1247;
-      const Scalar tmp1249 = -tmp1245;
-      const Scalar tmp1250 = tmp311*tmp1249;
-      const Scalar tmp1251 = -tmp1246;
-      const Scalar tmp1252 = tmp321*tmp1251;
-      const Scalar tmp1253 = tmp257*tmp259;
-      const Scalar tmp1254 = tmp258*tmp1253;
-      const Scalar tmp1255 = -tmp300*tmp310;
-      const Scalar tmp1256 = -tmp280*tmp320;
-      const Scalar tmp1257 = -tmp1253;
-      const Scalar tmp1258 = tmp311*tmp1255 + tmp321*tmp1256 + tmp258*tmp1257;
-      const Scalar tmp1259 = -tmp1255;
-      const Scalar tmp1260 = tmp311*tmp1259;
-      const Scalar tmp1261 = -tmp1256;
-      const Scalar tmp1262 = tmp321*tmp1261;
-      const Scalar tmp1263 = tmp258*tmp259;
-      const Scalar tmp1264 = tmp258*tmp1263;
-      const Scalar tmp1265 = -tmp300*tmp311;
-      const Scalar tmp1266 = -tmp280*tmp321;
-      const Scalar tmp1267 = -tmp1263;
-      const Scalar tmp1268 = tmp311*tmp1265 + tmp321*tmp1266 + tmp258*tmp1267;
-      const Scalar tmp1269 = -tmp1265;
-      const Scalar tmp1270 = tmp311*tmp1269;
-      const Scalar tmp1271 = -tmp1266;
-      const Scalar tmp1272 = tmp321*tmp1271;
-      const Scalar tmp1273 = tmp275*tmp280;
-      const Scalar tmp1274 = tmp279*tmp1273;
-      const Scalar tmp1275 = tmp300*tmp309;
-      const Scalar tmp1276 = tmp311*tmp1275;
-      const Scalar tmp1277 = -tmp259*tmp331;
-      const Scalar tmp1278 = -tmp1273;
-      const Scalar tmp1279 = -tmp1275;
-      const Scalar tmp1280 = tmp333*tmp1277 + tmp279*tmp1278 + tmp311*tmp1279;
-      const Scalar tmp1281 = -tmp1277;
-      const Scalar tmp1282 = tmp333*tmp1281;
-      const Scalar tmp1283 = tmp277*tmp280;
-      const Scalar tmp1284 = tmp279*tmp1283;
-      const Scalar tmp1285 = tmp300*tmp310;
-      const Scalar tmp1286 = tmp311*tmp1285;
-      const Scalar tmp1287 = -tmp259*tmp332;
-      const Scalar tmp1288 = -tmp1283;
-      const Scalar tmp1289 = -tmp1285;
-      const Scalar tmp1290 = tmp333*tmp1287 + tmp279*tmp1288 + tmp311*tmp1289;
-      const Scalar tmp1291 = -tmp1287;
-      const Scalar tmp1292 = tmp333*tmp1291;
-      const Scalar tmp1293 = tmp279*tmp280;
-      const Scalar tmp1294 = tmp279*tmp1293;
-      const Scalar tmp1295 = tmp300*tmp311;
-      const Scalar tmp1296 = tmp311*tmp1295;
-      const Scalar tmp1297 = -tmp259*tmp333;
-      const Scalar tmp1298 = -tmp1293;
-      const Scalar tmp1299 = -tmp1295;
-      const Scalar tmp1300 = tmp333*tmp1297 + tmp279*tmp1298 + tmp311*tmp1299;
-      const Scalar tmp1301 = -tmp1297;
-      const Scalar tmp1302 = tmp333*tmp1301;
-      const Scalar tmp1303 = tmp295*tmp300;
-      const Scalar tmp1304 = tmp299*tmp1303;
-      const Scalar tmp1305 = tmp280*tmp319;
-      const Scalar tmp1306 = tmp321*tmp1305;
-      const Scalar tmp1307 = tmp259*tmp331;
-      const Scalar tmp1308 = tmp333*tmp1307;
-      const Scalar tmp1309 = -tmp1303;
-      const Scalar tmp1310 = -tmp1305;
-      const Scalar tmp1311 = -tmp1307;
-      const Scalar tmp1312 = tmp299*tmp1309 + tmp321*tmp1310 + tmp333*tmp1311;
-      const Scalar tmp1313 = tmp297*tmp300;
-      const Scalar tmp1314 = tmp299*tmp1313;
-      const Scalar tmp1315 = tmp280*tmp320;
-      const Scalar tmp1316 = tmp321*tmp1315;
-      const Scalar tmp1317 = tmp259*tmp332;
-      const Scalar tmp1318 = tmp333*tmp1317;
-      const Scalar tmp1319 = -tmp1313;
-      const Scalar tmp1320 = -tmp1315;
-      const Scalar tmp1321 = -tmp1317;
-      const Scalar tmp1322 = tmp299*tmp1319 + tmp321*tmp1320 + tmp333*tmp1321;
-      const Scalar tmp1323 = tmp299*tmp300;
-      const Scalar tmp1324 = tmp299*tmp1323;
-      const Scalar tmp1325 = tmp280*tmp321;
-      const Scalar tmp1326 = tmp321*tmp1325;
-      const Scalar tmp1327 = tmp259*tmp333;
-      const Scalar tmp1328 = tmp333*tmp1327;
-      const Scalar tmp1329 = -tmp1323;
-      const Scalar tmp1330 = -tmp1325;
-      const Scalar tmp1331 = -tmp1327;
-      const Scalar tmp1332 = tmp299*tmp1329 + tmp321*tmp1330 + tmp333*tmp1331;
+      const Scalar tmp201 = pos(3) - pos(0);
+      const Scalar tmp202 = pos(4) - pos(1);
+      const Scalar tmp203 = pos(5) - pos(2);
+      const Scalar tmp204 = sqrt((tmp201*tmp201) + (tmp202*tmp202) + (tmp203*tmp203));
+      const Scalar tmp206 = (Scalar(1)/tmp204);
+      const Scalar tmp207 = tmp201*tmp206;
+      const Scalar tmp208 = tmp202*tmp206;
+      const Scalar tmp209 = tmp203*tmp206;
+      const Scalar tmp211 = -pos(6);
+      const Scalar tmp212 = -tmp211 - pos(0);
+      const Scalar tmp213 = -pos(7);
+      const Scalar tmp214 = -tmp213 - pos(1);
+      const Scalar tmp215 = -pos(8);
+      const Scalar tmp216 = -tmp215 - pos(2);
+      const Scalar tmp217 = sqrt((tmp212*tmp212) + (tmp214*tmp214) + (tmp216*tmp216));
+      const Scalar tmp220 = (Scalar(1)/tmp217);
+      const Scalar tmp221 = tmp212*tmp220;
+      const Scalar tmp223 = tmp214*tmp220;
+      const Scalar tmp225 = tmp216*tmp220;
+      const Scalar tmp227 = -pos(9);
+      const Scalar tmp228 = -tmp227 - pos(0);
+      const Scalar tmp229 = -pos(10);
+      const Scalar tmp230 = -tmp229 - pos(1);
+      const Scalar tmp231 = -pos(11);
+      const Scalar tmp232 = -tmp231 - pos(2);
+      const Scalar tmp233 = sqrt((tmp228*tmp228) + (tmp230*tmp230) + (tmp232*tmp232));
+      const Scalar tmp236 = (Scalar(1)/tmp233);
+      const Scalar tmp237 = tmp228*tmp236;
+      const Scalar tmp239 = tmp230*tmp236;
+      const Scalar tmp241 = tmp232*tmp236;
+      const Scalar tmp245 = -tmp211 - pos(3);
+      const Scalar tmp246 = -tmp213 - pos(4);
+      const Scalar tmp247 = -tmp215 - pos(5);
+      const Scalar tmp248 = sqrt((tmp245*tmp245) + (tmp246*tmp246) + (tmp247*tmp247));
+      const Scalar tmp250 = (Scalar(1)/tmp248);
+      const Scalar tmp251 = tmp245*tmp250;
+      const Scalar tmp252 = tmp246*tmp250;
+      const Scalar tmp253 = tmp247*tmp250;
+      const Scalar tmp255 = -tmp227 - pos(3);
+      const Scalar tmp256 = -tmp229 - pos(4);
+      const Scalar tmp257 = -tmp231 - pos(5);
+      const Scalar tmp258 = sqrt((tmp255*tmp255) + (tmp256*tmp256) + (tmp257*tmp257));
+      const Scalar tmp260 = (Scalar(1)/tmp258);
+      const Scalar tmp261 = tmp255*tmp260;
+      const Scalar tmp262 = tmp256*tmp260;
+      const Scalar tmp263 = tmp257*tmp260;
+      const Scalar tmp268 = -tmp227 - pos(6);
+      const Scalar tmp269 = -tmp229 - pos(7);
+      const Scalar tmp270 = -tmp231 - pos(8);
+      const Scalar tmp271 = sqrt((tmp268*tmp268) + (tmp269*tmp269) + (tmp270*tmp270));
+      const Scalar tmp273 = (Scalar(1)/tmp271);
+      const Scalar tmp274 = tmp268*tmp273;
+      const Scalar tmp275 = tmp269*tmp273;
+      const Scalar tmp276 = tmp270*tmp273;
+      const Scalar tmp1037 = -Scalar(1.5617376188860606)*tmp207*penalty_damping;
+      const Scalar tmp1038 = -Scalar(1.7149858514250886)*tmp221*penalty_damping;
+      const Scalar tmp1039 = -Scalar(2.030692330267238)*tmp237*penalty_damping;
+      const Scalar tmp1040 = tmp209*tmp1037 + tmp225*tmp1038 + tmp241*tmp1039;
+      const Scalar tmp1041 = -tmp1037;
+      const Scalar tmp1042 = tmp209*tmp1041;
+      const Scalar tmp1043 = -tmp1038;
+      const Scalar tmp1044 = tmp225*tmp1043;
+      const Scalar tmp1045 = -tmp1039;
+      const Scalar tmp1046 = tmp241*tmp1045;
+      const Scalar tmp1047 = -Scalar(1.5617376188860606)*tmp208*penalty_damping;
+      const Scalar tmp1048 = -Scalar(1.7149858514250886)*tmp223*penalty_damping;
+      const Scalar tmp1049 = -Scalar(2.030692330267238)*tmp239*penalty_damping;
+      const Scalar tmp1050 = tmp209*tmp1047 + tmp225*tmp1048 + tmp241*tmp1049;
+      const Scalar tmp1051 = -tmp1047;
+      const Scalar tmp1052 = tmp209*tmp1051;
+      const Scalar tmp1053 = -tmp1048;
+      const Scalar tmp1054 = tmp225*tmp1053;
+      const Scalar tmp1055 = -tmp1049;
+      const Scalar tmp1056 = tmp241*tmp1055;
+      const Scalar tmp1057 = -Scalar(1.5617376188860606)*tmp209*penalty_damping;
+      const Scalar tmp1058 = -Scalar(1.7149858514250886)*tmp225*penalty_damping;
+      const Scalar tmp1059 = -Scalar(2.030692330267238)*tmp241*penalty_damping;
+      const Scalar tmp1060 = tmp209*tmp1057 + tmp225*tmp1058 + tmp241*tmp1059;
+      const Scalar tmp1061 = -tmp1057;
+      const Scalar tmp1062 = tmp209*tmp1061;
+      const Scalar tmp1063 = -tmp1058;
+      const Scalar tmp1064 = tmp225*tmp1063;
+      const Scalar tmp1065 = -tmp1059;
+      const Scalar tmp1066 = tmp241*tmp1065;
+      const Scalar tmp1067 = Scalar(1.5617376188860606)*tmp207*penalty_damping;
+      const Scalar tmp1068 = tmp209*tmp1067;
+      const Scalar tmp1069 = -tmp1067;
+      const Scalar tmp1070 = -Scalar(2.0)*tmp251*penalty_damping;
+      const Scalar tmp1071 = -Scalar(2.9814239699997196)*tmp261*penalty_damping;
+      const Scalar tmp1072 = tmp209*tmp1069 + tmp253*tmp1070 + tmp263*tmp1071;
+      const Scalar tmp1073 = -tmp1070;
+      const Scalar tmp1074 = tmp253*tmp1073;
+      const Scalar tmp1075 = -tmp1071;
+      const Scalar tmp1076 = tmp263*tmp1075;
+      const Scalar tmp1077 = Scalar(1.5617376188860606)*tmp208*penalty_damping;
+      const Scalar tmp1078 = tmp209*tmp1077;
+      const Scalar tmp1079 = -tmp1077;
+      const Scalar tmp1080 = -Scalar(2.0)*tmp252*penalty_damping;
+      const Scalar tmp1081 = -Scalar(2.9814239699997196)*tmp262*penalty_damping;
+      const Scalar tmp1082 = tmp209*tmp1079 + tmp253*tmp1080 + tmp263*tmp1081;
+      const Scalar tmp1083 = -tmp1080;
+      const Scalar tmp1084 = tmp253*tmp1083;
+      const Scalar tmp1085 = -tmp1081;
+      const Scalar tmp1086 = tmp263*tmp1085;
+      const Scalar tmp1087 = Scalar(1.5617376188860606)*tmp209*penalty_damping;
+      const Scalar tmp1088 = tmp209*tmp1087;
+      const Scalar tmp1089 = -tmp1087;
+      const Scalar tmp1090 = -Scalar(2.0)*tmp253*penalty_damping;
+      const Scalar tmp1091 = -Scalar(2.9814239699997196)*tmp263*penalty_damping;
+      const Scalar tmp1092 = tmp209*tmp1089 + tmp253*tmp1090 + tmp263*tmp1091;
+      const Scalar tmp1093 = -tmp1090;
+      const Scalar tmp1094 = tmp253*tmp1093;
+      const Scalar tmp1095 = -tmp1091;
+      const Scalar tmp1096 = tmp263*tmp1095;
+      const Scalar tmp1097 = Scalar(1.7149858514250886)*tmp221*penalty_damping;
+      const Scalar tmp1098 = tmp225*tmp1097;
+      const Scalar tmp1099 = Scalar(2.0)*tmp251*penalty_damping;
+      const Scalar tmp1100 = tmp253*tmp1099;
+      const Scalar tmp1101 = -tmp1097;
+      const Scalar tmp1102 = -tmp1099;
+      const Scalar tmp1103 = -Scalar(2.7472112789737806)*tmp274*penalty_damping;
+      const Scalar tmp1104 = tmp225*tmp1101 + tmp253*tmp1102 + tmp276*tmp1103;
+      const Scalar tmp1105 = -tmp1103;
+      const Scalar tmp1106 = tmp276*tmp1105;
+      const Scalar tmp1107 = Scalar(1.7149858514250886)*tmp223*penalty_damping;
+      const Scalar tmp1108 = tmp225*tmp1107;
+      const Scalar tmp1109 = Scalar(2.0)*tmp252*penalty_damping;
+      const Scalar tmp1110 = tmp253*tmp1109;
+      const Scalar tmp1111 = -tmp1107;
+      const Scalar tmp1112 = -tmp1109;
+      const Scalar tmp1113 = -Scalar(2.7472112789737806)*tmp275*penalty_damping;
+      const Scalar tmp1114 = tmp225*tmp1111 + tmp253*tmp1112 + tmp276*tmp1113;
+      const Scalar tmp1115 = -tmp1113;
+      const Scalar tmp1116 = tmp276*tmp1115;
+      const Scalar tmp1117 = Scalar(1.7149858514250886)*tmp225*penalty_damping;
+      const Scalar tmp1118 = tmp225*tmp1117;
+      const Scalar tmp1119 = Scalar(2.0)*tmp253*penalty_damping;
+      const Scalar tmp1120 = tmp253*tmp1119;
+      const Scalar tmp1121 = -tmp1117;
+      const Scalar tmp1122 = -tmp1119;
+      const Scalar tmp1123 = -Scalar(2.7472112789737806)*tmp276*penalty_damping;
+      const Scalar tmp1124 = tmp225*tmp1121 + tmp253*tmp1122 + tmp276*tmp1123;
+      const Scalar tmp1125 = -tmp1123;
+      const Scalar tmp1126 = tmp276*tmp1125;
+      const Scalar tmp1127 = Scalar(2.030692330267238)*tmp237*penalty_damping;
+      const Scalar tmp1128 = tmp241*tmp1127;
+      const Scalar tmp1129 = Scalar(2.9814239699997196)*tmp261*penalty_damping;
+      const Scalar tmp1130 = tmp263*tmp1129;
+      const Scalar tmp1131 = Scalar(2.7472112789737806)*tmp274*penalty_damping;
+      const Scalar tmp1132 = tmp276*tmp1131;
+      const Scalar tmp1133 = -tmp1127;
+      const Scalar tmp1134 = -tmp1129;
+      const Scalar tmp1135 = -tmp1131;
+      const Scalar tmp1136 = tmp241*tmp1133 + tmp263*tmp1134 + tmp276*tmp1135;
+      const Scalar tmp1137 = Scalar(2.030692330267238)*tmp239*penalty_damping;
+      const Scalar tmp1138 = tmp241*tmp1137;
+      const Scalar tmp1139 = Scalar(2.9814239699997196)*tmp262*penalty_damping;
+      const Scalar tmp1140 = tmp263*tmp1139;
+      const Scalar tmp1141 = Scalar(2.7472112789737806)*tmp275*penalty_damping;
+      const Scalar tmp1142 = tmp276*tmp1141;
+      const Scalar tmp1143 = -tmp1137;
+      const Scalar tmp1144 = -tmp1139;
+      const Scalar tmp1145 = -tmp1141;
+      const Scalar tmp1146 = tmp241*tmp1143 + tmp263*tmp1144 + tmp276*tmp1145;
+      const Scalar tmp1147 = Scalar(2.030692330267238)*tmp241*penalty_damping;
+      const Scalar tmp1148 = tmp241*tmp1147;
+      const Scalar tmp1149 = Scalar(2.9814239699997196)*tmp263*penalty_damping;
+      const Scalar tmp1150 = tmp263*tmp1149;
+      const Scalar tmp1151 = Scalar(2.7472112789737806)*tmp276*penalty_damping;
+      const Scalar tmp1152 = tmp276*tmp1151;
+      const Scalar tmp1153 = -tmp1147;
+      const Scalar tmp1154 = -tmp1149;
+      const Scalar tmp1155 = -tmp1151;
+      const Scalar tmp1156 = tmp241*tmp1153 + tmp263*tmp1154 + tmp276*tmp1155;
       std::array<Scalar, 144> result;
-      result[0] = tmp256*tmp1213 + tmp275*tmp1214 + tmp295*tmp1215;
-      result[1] = tmp256*tmp1223 + tmp275*tmp1224 + tmp295*tmp1225;
-      result[2] = tmp256*tmp1233 + tmp275*tmp1234 + tmp295*tmp1235;
-      result[3] = tmp256*tmp1243;
-      result[4] = tmp256*tmp1253;
-      result[5] = tmp256*tmp1263;
-      result[6] = tmp275*tmp1273;
-      result[7] = tmp275*tmp1283;
-      result[8] = tmp275*tmp1293;
-      result[9] = tmp295*tmp1303;
-      result[10] = tmp295*tmp1313;
-      result[11] = tmp295*tmp1323;
-      result[12] = tmp257*tmp1213 + tmp277*tmp1214 + tmp297*tmp1215;
-      result[13] = tmp257*tmp1223 + tmp277*tmp1224 + tmp297*tmp1225;
-      result[14] = tmp257*tmp1233 + tmp277*tmp1234 + tmp297*tmp1235;
-      result[15] = tmp257*tmp1243;
-      result[16] = tmp257*tmp1253;
-      result[17] = tmp257*tmp1263;
-      result[18] = tmp277*tmp1273;
-      result[19] = tmp277*tmp1283;
-      result[20] = tmp277*tmp1293;
-      result[21] = tmp297*tmp1303;
-      result[22] = tmp297*tmp1313;
-      result[23] = tmp297*tmp1323;
-      result[24] = tmp1216;
-      result[25] = tmp1226;
-      result[26] = tmp1236;
-      result[27] = tmp1244;
-      result[28] = tmp1254;
-      result[29] = tmp1264;
-      result[30] = tmp1274;
-      result[31] = tmp1284;
-      result[32] = tmp1294;
-      result[33] = tmp1304;
-      result[34] = tmp1314;
-      result[35] = tmp1324;
-      result[36] = tmp256*tmp1217;
-      result[37] = tmp256*tmp1227;
-      result[38] = tmp256*tmp1237;
-      result[39] = tmp309*tmp1245 + tmp319*tmp1246 + tmp256*tmp1247;
-      result[40] = tmp309*tmp1255 + tmp319*tmp1256 + tmp256*tmp1257;
-      result[41] = tmp309*tmp1265 + tmp319*tmp1266 + tmp256*tmp1267;
-      result[42] = tmp309*tmp1275;
-      result[43] = tmp309*tmp1285;
-      result[44] = tmp309*tmp1295;
-      result[45] = tmp319*tmp1305;
-      result[46] = tmp319*tmp1315;
-      result[47] = tmp319*tmp1325;
-      result[48] = tmp257*tmp1217;
-      result[49] = tmp257*tmp1227;
-      result[50] = tmp257*tmp1237;
-      result[51] = tmp310*tmp1245 + tmp320*tmp1246 + tmp257*tmp1247;
-      result[52] = tmp310*tmp1255 + tmp320*tmp1256 + tmp257*tmp1257;
-      result[53] = tmp310*tmp1265 + tmp320*tmp1266 + tmp257*tmp1267;
-      result[54] = tmp310*tmp1275;
-      result[55] = tmp310*tmp1285;
-      result[56] = tmp310*tmp1295;
-      result[57] = tmp320*tmp1305;
-      result[58] = tmp320*tmp1315;
-      result[59] = tmp320*tmp1325;
-      result[60] = tmp1218;
-      result[61] = tmp1228;
-      result[62] = tmp1238;
-      result[63] = tmp1248;
-      result[64] = tmp1258;
-      result[65] = tmp1268;
-      result[66] = tmp1276;
-      result[67] = tmp1286;
-      result[68] = tmp1296;
-      result[69] = tmp1306;
-      result[70] = tmp1316;
-      result[71] = tmp1326;
-      result[72] = tmp275*tmp1219;
-      result[73] = tmp275*tmp1229;
-      result[74] = tmp275*tmp1239;
-      result[75] = tmp309*tmp1249;
-      result[76] = tmp309*tmp1259;
-      result[77] = tmp309*tmp1269;
-      result[78] = tmp331*tmp1277 + tmp275*tmp1278 + tmp309*tmp1279;
-      result[79] = tmp331*tmp1287 + tmp275*tmp1288 + tmp309*tmp1289;
-      result[80] = tmp331*tmp1297 + tmp275*tmp1298 + tmp309*tmp1299;
-      result[81] = tmp331*tmp1307;
-      result[82] = tmp331*tmp1317;
-      result[83] = tmp331*tmp1327;
-      result[84] = tmp277*tmp1219;
-      result[85] = tmp277*tmp1229;
-      result[86] = tmp277*tmp1239;
-      result[87] = tmp310*tmp1249;
-      result[88] = tmp310*tmp1259;
-      result[89] = tmp310*tmp1269;
-      result[90] = tmp332*tmp1277 + tmp277*tmp1278 + tmp310*tmp1279;
-      result[91] = tmp332*tmp1287 + tmp277*tmp1288 + tmp310*tmp1289;
-      result[92] = tmp332*tmp1297 + tmp277*tmp1298 + tmp310*tmp1299;
-      result[93] = tmp332*tmp1307;
-      result[94] = tmp332*tmp1317;
-      result[95] = tmp332*tmp1327;
-      result[96] = tmp1220;
-      result[97] = tmp1230;
-      result[98] = tmp1240;
-      result[99] = tmp1250;
-      result[100] = tmp1260;
-      result[101] = tmp1270;
-      result[102] = tmp1280;
-      result[103] = tmp1290;
-      result[104] = tmp1300;
-      result[105] = tmp1308;
-      result[106] = tmp1318;
-      result[107] = tmp1328;
-      result[108] = tmp295*tmp1221;
-      result[109] = tmp295*tmp1231;
-      result[110] = tmp295*tmp1241;
-      result[111] = tmp319*tmp1251;
-      result[112] = tmp319*tmp1261;
-      result[113] = tmp319*tmp1271;
-      result[114] = tmp331*tmp1281;
-      result[115] = tmp331*tmp1291;
-      result[116] = tmp331*tmp1301;
-      result[117] = tmp295*tmp1309 + tmp319*tmp1310 + tmp331*tmp1311;
-      result[118] = tmp295*tmp1319 + tmp319*tmp1320 + tmp331*tmp1321;
-      result[119] = tmp295*tmp1329 + tmp319*tmp1330 + tmp331*tmp1331;
-      result[120] = tmp297*tmp1221;
-      result[121] = tmp297*tmp1231;
-      result[122] = tmp297*tmp1241;
-      result[123] = tmp320*tmp1251;
-      result[124] = tmp320*tmp1261;
-      result[125] = tmp320*tmp1271;
-      result[126] = tmp332*tmp1281;
-      result[127] = tmp332*tmp1291;
-      result[128] = tmp332*tmp1301;
-      result[129] = tmp297*tmp1309 + tmp320*tmp1310 + tmp332*tmp1311;
-      result[130] = tmp297*tmp1319 + tmp320*tmp1320 + tmp332*tmp1321;
-      result[131] = tmp297*tmp1329 + tmp320*tmp1330 + tmp332*tmp1331;
-      result[132] = tmp1222;
-      result[133] = tmp1232;
-      result[134] = tmp1242;
-      result[135] = tmp1252;
-      result[136] = tmp1262;
-      result[137] = tmp1272;
-      result[138] = tmp1282;
-      result[139] = tmp1292;
-      result[140] = tmp1302;
-      result[141] = tmp1312;
-      result[142] = tmp1322;
-      result[143] = tmp1332;
+      result[0] = tmp207*tmp1037 + tmp221*tmp1038 + tmp237*tmp1039;
+      result[1] = tmp207*tmp1047 + tmp221*tmp1048 + tmp237*tmp1049;
+      result[2] = tmp207*tmp1057 + tmp221*tmp1058 + tmp237*tmp1059;
+      result[3] = tmp207*tmp1067;
+      result[4] = tmp207*tmp1077;
+      result[5] = tmp207*tmp1087;
+      result[6] = tmp221*tmp1097;
+      result[7] = tmp221*tmp1107;
+      result[8] = tmp221*tmp1117;
+      result[9] = tmp237*tmp1127;
+      result[10] = tmp237*tmp1137;
+      result[11] = tmp237*tmp1147;
+      result[12] = tmp208*tmp1037 + tmp223*tmp1038 + tmp239*tmp1039;
+      result[13] = tmp208*tmp1047 + tmp223*tmp1048 + tmp239*tmp1049;
+      result[14] = tmp208*tmp1057 + tmp223*tmp1058 + tmp239*tmp1059;
+      result[15] = tmp208*tmp1067;
+      result[16] = tmp208*tmp1077;
+      result[17] = tmp208*tmp1087;
+      result[18] = tmp223*tmp1097;
+      result[19] = tmp223*tmp1107;
+      result[20] = tmp223*tmp1117;
+      result[21] = tmp239*tmp1127;
+      result[22] = tmp239*tmp1137;
+      result[23] = tmp239*tmp1147;
+      result[24] = tmp1040;
+      result[25] = tmp1050;
+      result[26] = tmp1060;
+      result[27] = tmp1068;
+      result[28] = tmp1078;
+      result[29] = tmp1088;
+      result[30] = tmp1098;
+      result[31] = tmp1108;
+      result[32] = tmp1118;
+      result[33] = tmp1128;
+      result[34] = tmp1138;
+      result[35] = tmp1148;
+      result[36] = tmp207*tmp1041;
+      result[37] = tmp207*tmp1051;
+      result[38] = tmp207*tmp1061;
+      result[39] = tmp207*tmp1069 + tmp251*tmp1070 + tmp261*tmp1071;
+      result[40] = tmp207*tmp1079 + tmp251*tmp1080 + tmp261*tmp1081;
+      result[41] = tmp207*tmp1089 + tmp251*tmp1090 + tmp261*tmp1091;
+      result[42] = tmp251*tmp1099;
+      result[43] = tmp251*tmp1109;
+      result[44] = tmp251*tmp1119;
+      result[45] = tmp261*tmp1129;
+      result[46] = tmp261*tmp1139;
+      result[47] = tmp261*tmp1149;
+      result[48] = tmp208*tmp1041;
+      result[49] = tmp208*tmp1051;
+      result[50] = tmp208*tmp1061;
+      result[51] = tmp208*tmp1069 + tmp252*tmp1070 + tmp262*tmp1071;
+      result[52] = tmp208*tmp1079 + tmp252*tmp1080 + tmp262*tmp1081;
+      result[53] = tmp208*tmp1089 + tmp252*tmp1090 + tmp262*tmp1091;
+      result[54] = tmp252*tmp1099;
+      result[55] = tmp252*tmp1109;
+      result[56] = tmp252*tmp1119;
+      result[57] = tmp262*tmp1129;
+      result[58] = tmp262*tmp1139;
+      result[59] = tmp262*tmp1149;
+      result[60] = tmp1042;
+      result[61] = tmp1052;
+      result[62] = tmp1062;
+      result[63] = tmp1072;
+      result[64] = tmp1082;
+      result[65] = tmp1092;
+      result[66] = tmp1100;
+      result[67] = tmp1110;
+      result[68] = tmp1120;
+      result[69] = tmp1130;
+      result[70] = tmp1140;
+      result[71] = tmp1150;
+      result[72] = tmp221*tmp1043;
+      result[73] = tmp221*tmp1053;
+      result[74] = tmp221*tmp1063;
+      result[75] = tmp251*tmp1073;
+      result[76] = tmp251*tmp1083;
+      result[77] = tmp251*tmp1093;
+      result[78] = tmp221*tmp1101 + tmp251*tmp1102 + tmp274*tmp1103;
+      result[79] = tmp221*tmp1111 + tmp251*tmp1112 + tmp274*tmp1113;
+      result[80] = tmp221*tmp1121 + tmp251*tmp1122 + tmp274*tmp1123;
+      result[81] = tmp274*tmp1131;
+      result[82] = tmp274*tmp1141;
+      result[83] = tmp274*tmp1151;
+      result[84] = tmp223*tmp1043;
+      result[85] = tmp223*tmp1053;
+      result[86] = tmp223*tmp1063;
+      result[87] = tmp252*tmp1073;
+      result[88] = tmp252*tmp1083;
+      result[89] = tmp252*tmp1093;
+      result[90] = tmp223*tmp1101 + tmp252*tmp1102 + tmp275*tmp1103;
+      result[91] = tmp223*tmp1111 + tmp252*tmp1112 + tmp275*tmp1113;
+      result[92] = tmp223*tmp1121 + tmp252*tmp1122 + tmp275*tmp1123;
+      result[93] = tmp275*tmp1131;
+      result[94] = tmp275*tmp1141;
+      result[95] = tmp275*tmp1151;
+      result[96] = tmp1044;
+      result[97] = tmp1054;
+      result[98] = tmp1064;
+      result[99] = tmp1074;
+      result[100] = tmp1084;
+      result[101] = tmp1094;
+      result[102] = tmp1104;
+      result[103] = tmp1114;
+      result[104] = tmp1124;
+      result[105] = tmp1132;
+      result[106] = tmp1142;
+      result[107] = tmp1152;
+      result[108] = tmp237*tmp1045;
+      result[109] = tmp237*tmp1055;
+      result[110] = tmp237*tmp1065;
+      result[111] = tmp261*tmp1075;
+      result[112] = tmp261*tmp1085;
+      result[113] = tmp261*tmp1095;
+      result[114] = tmp274*tmp1105;
+      result[115] = tmp274*tmp1115;
+      result[116] = tmp274*tmp1125;
+      result[117] = tmp237*tmp1133 + tmp261*tmp1134 + tmp274*tmp1135;
+      result[118] = tmp237*tmp1143 + tmp261*tmp1144 + tmp274*tmp1145;
+      result[119] = tmp237*tmp1153 + tmp261*tmp1154 + tmp274*tmp1155;
+      result[120] = tmp239*tmp1045;
+      result[121] = tmp239*tmp1055;
+      result[122] = tmp239*tmp1065;
+      result[123] = tmp262*tmp1075;
+      result[124] = tmp262*tmp1085;
+      result[125] = tmp262*tmp1095;
+      result[126] = tmp275*tmp1105;
+      result[127] = tmp275*tmp1115;
+      result[128] = tmp275*tmp1125;
+      result[129] = tmp239*tmp1133 + tmp262*tmp1134 + tmp275*tmp1135;
+      result[130] = tmp239*tmp1143 + tmp262*tmp1144 + tmp275*tmp1145;
+      result[131] = tmp239*tmp1153 + tmp262*tmp1154 + tmp275*tmp1155;
+      result[132] = tmp1046;
+      result[133] = tmp1056;
+      result[134] = tmp1066;
+      result[135] = tmp1076;
+      result[136] = tmp1086;
+      result[137] = tmp1096;
+      result[138] = tmp1106;
+      result[139] = tmp1116;
+      result[140] = tmp1126;
+      result[141] = tmp1136;
+      result[142] = tmp1146;
+      result[143] = tmp1156;
       return result;
     }
 
@@ -5508,17 +4796,22 @@ struct RigidBodyEuler {
     /// \param[in] t  time
     /// \param[in] params  model parameters
     /// \return V
-    /// Ops: 9
+    /// Ops: 11
     template <typename Scalar>
     static Scalar potential_energy(const XVector<Scalar>& pos,
                                    const Scalar& /*t*/,
                                    const Params& params) {
       const Scalar g = Scalar(params.g);
-      const Scalar m = Scalar(params.m);
-      const Scalar tmp151 = (Scalar(0.25))*m;
-      const Scalar tmp152 = tmp151*g;
+      const Scalar m_a = Scalar(params.m_a);
+      const Scalar m_b = Scalar(params.m_b);
+      const Scalar m_c = Scalar(params.m_c);
+      const Scalar m_d = Scalar(params.m_d);
+      const Scalar tmp113 = g*m_a;
+      const Scalar tmp115 = g*m_b;
+      const Scalar tmp117 = g*m_c;
+      const Scalar tmp119 = g*m_d;
       Scalar result;
-      result = tmp152*pos(2) + tmp152*pos(5) + tmp152*pos(8) + tmp152*pos(11);
+      result = tmp113*pos(2) + tmp115*pos(5) + tmp117*pos(8) + tmp119*pos(11);
       return result;
     }
 
@@ -5528,82 +4821,55 @@ struct RigidBodyEuler {
     /// \param[in] kappa  penalty stiffness (rods: force per strain; pins, planes: N/m)
     /// \param[in] params  model parameters
     /// \return V_penalty
-    /// Ops: 161
+    /// Ops: 122
     template <typename Scalar>
     static Scalar penalty_energy(const XVector<Scalar>& pos,
                                  const Scalar& /*t*/,
                                  const Scalar& kappa,
-                                 const Params& params) {
+                                 const Params& /*params*/) {
       using std::sqrt;
-      const Scalar m = Scalar(params.m);
-      const Scalar a = Scalar(params.a);
-      const Scalar b = Scalar(params.b);
-      const Scalar c = Scalar(params.c);
-      const Scalar tmp3 = (a*a);
-      const Scalar tmp4 = (b*b);
-      const Scalar tmp5 = ((Scalar(1)/Scalar(24)))*m;
-      const Scalar tmp6 = tmp5*(tmp3 + tmp4);
-      const Scalar tmp7 = (c*c);
-      const Scalar tmp8 = tmp5*(tmp3 + tmp7);
-      const Scalar tmp9 = tmp5*(tmp4 + tmp7);
-      const Scalar tmp10 = tmp6 + tmp8 - tmp9;
-      const Scalar tmp22 = tmp8 + tmp9 - tmp6;
-      const Scalar tmp29 = tmp6 + tmp9 - tmp8;
-      const Scalar tmp244 = pos(3) - pos(0);
-      const Scalar tmp245 = pos(4) - pos(1);
-      const Scalar tmp246 = pos(5) - pos(2);
-      const Scalar tmp247 = sqrt((tmp244*tmp244) + (tmp245*tmp245) + (tmp246*tmp246));
-      const Scalar tmp248 = Scalar(4)/m;
-      const Scalar tmp249 = tmp248*tmp22;
-      const Scalar tmp250 = tmp248*tmp29;
-      const Scalar tmp251 = sqrt(tmp249 + tmp250);
-      const Scalar tmp252 = tmp247 - tmp251;
-      const Scalar tmp253 = (Scalar(1)/tmp251);
-      const Scalar tmp254 = tmp253*kappa;
-      const Scalar tmp261 = -pos(6);
-      const Scalar tmp262 = -tmp261 - pos(0);
-      const Scalar tmp263 = -pos(7);
-      const Scalar tmp264 = -tmp263 - pos(1);
-      const Scalar tmp265 = -pos(8);
-      const Scalar tmp266 = -tmp265 - pos(2);
-      const Scalar tmp267 = sqrt((tmp262*tmp262) + (tmp264*tmp264) + (tmp266*tmp266));
-      const Scalar tmp268 = tmp10*tmp248;
-      const Scalar tmp269 = sqrt(tmp249 + tmp268);
-      const Scalar tmp270 = tmp267 - tmp269;
-      const Scalar tmp271 = (Scalar(1)/tmp269);
-      const Scalar tmp272 = tmp271*kappa;
-      const Scalar tmp282 = -pos(9);
-      const Scalar tmp283 = -tmp282 - pos(0);
-      const Scalar tmp284 = -pos(10);
-      const Scalar tmp285 = -tmp284 - pos(1);
-      const Scalar tmp286 = -pos(11);
-      const Scalar tmp287 = -tmp286 - pos(2);
-      const Scalar tmp288 = sqrt((tmp283*tmp283) + (tmp285*tmp285) + (tmp287*tmp287));
-      const Scalar tmp289 = sqrt(tmp250 + tmp268);
-      const Scalar tmp290 = tmp288 - tmp289;
-      const Scalar tmp291 = (Scalar(1)/tmp289);
-      const Scalar tmp292 = tmp291*kappa;
-      const Scalar tmp303 = -tmp261 - pos(3);
-      const Scalar tmp304 = -tmp263 - pos(4);
-      const Scalar tmp305 = -tmp265 - pos(5);
-      const Scalar tmp306 = sqrt((tmp303*tmp303) + (tmp304*tmp304) + (tmp305*tmp305));
-      const Scalar tmp307 = tmp306 - tmp289;
-      const Scalar tmp313 = -tmp282 - pos(3);
-      const Scalar tmp314 = -tmp284 - pos(4);
-      const Scalar tmp315 = -tmp286 - pos(5);
-      const Scalar tmp316 = sqrt((tmp313*tmp313) + (tmp314*tmp314) + (tmp315*tmp315));
-      const Scalar tmp317 = tmp316 - tmp269;
-      const Scalar tmp325 = -tmp282 - pos(6);
-      const Scalar tmp326 = -tmp284 - pos(7);
-      const Scalar tmp327 = -tmp286 - pos(8);
-      const Scalar tmp328 = sqrt((tmp325*tmp325) + (tmp326*tmp326) + (tmp327*tmp327));
-      const Scalar tmp329 = tmp328 - tmp251;
-      const Scalar tmp342 = (Scalar(0.5))*tmp254;
-      const Scalar tmp343 = (Scalar(0.5))*tmp272;
-      const Scalar tmp344 = (Scalar(0.5))*tmp292;
+      const Scalar tmp201 = pos(3) - pos(0);
+      const Scalar tmp202 = pos(4) - pos(1);
+      const Scalar tmp203 = pos(5) - pos(2);
+      const Scalar tmp204 = sqrt((tmp201*tmp201) + (tmp202*tmp202) + (tmp203*tmp203));
+      const Scalar tmp205 = Scalar(-0.6403124237432849) + tmp204;
+      const Scalar tmp211 = -pos(6);
+      const Scalar tmp212 = -tmp211 - pos(0);
+      const Scalar tmp213 = -pos(7);
+      const Scalar tmp214 = -tmp213 - pos(1);
+      const Scalar tmp215 = -pos(8);
+      const Scalar tmp216 = -tmp215 - pos(2);
+      const Scalar tmp217 = sqrt((tmp212*tmp212) + (tmp214*tmp214) + (tmp216*tmp216));
+      const Scalar tmp218 = Scalar(-0.58309518948453) + tmp217;
+      const Scalar tmp227 = -pos(9);
+      const Scalar tmp228 = -tmp227 - pos(0);
+      const Scalar tmp229 = -pos(10);
+      const Scalar tmp230 = -tmp229 - pos(1);
+      const Scalar tmp231 = -pos(11);
+      const Scalar tmp232 = -tmp231 - pos(2);
+      const Scalar tmp233 = sqrt((tmp228*tmp228) + (tmp230*tmp230) + (tmp232*tmp232));
+      const Scalar tmp234 = Scalar(-0.49244289008980524) + tmp233;
+      const Scalar tmp245 = -tmp211 - pos(3);
+      const Scalar tmp246 = -tmp213 - pos(4);
+      const Scalar tmp247 = -tmp215 - pos(5);
+      const Scalar tmp248 = sqrt((tmp245*tmp245) + (tmp246*tmp246) + (tmp247*tmp247));
+      const Scalar tmp249 = Scalar(-0.5) + tmp248;
+      const Scalar tmp255 = -tmp227 - pos(3);
+      const Scalar tmp256 = -tmp229 - pos(4);
+      const Scalar tmp257 = -tmp231 - pos(5);
+      const Scalar tmp258 = sqrt((tmp255*tmp255) + (tmp256*tmp256) + (tmp257*tmp257));
+      const Scalar tmp259 = Scalar(-0.33541019662496846) + tmp258;
+      const Scalar tmp268 = -tmp227 - pos(6);
+      const Scalar tmp269 = -tmp229 - pos(7);
+      const Scalar tmp270 = -tmp231 - pos(8);
+      const Scalar tmp271 = sqrt((tmp268*tmp268) + (tmp269*tmp269) + (tmp270*tmp270));
+      const Scalar tmp272 = Scalar(-0.3640054944640259) + tmp271;
       Scalar result;
-      result = tmp342*(tmp252*tmp252) + tmp342*(tmp329*tmp329) + tmp343*(tmp270*tmp270)
-          + tmp343*(tmp317*tmp317) + tmp344*(tmp290*tmp290) + tmp344*(tmp307*tmp307);
+      result = Scalar(1.0)*kappa*(tmp249*tmp249) + Scalar(0.7808688094430303)*kappa*(tmp205*tmp205)
+          + Scalar(0.8574929257125443)*kappa*(tmp218*tmp218)
+          + Scalar(1.015346165133619)*kappa*(tmp234*tmp234)
+          + Scalar(1.3736056394868903)*kappa*(tmp272*tmp272)
+          + Scalar(1.4907119849998598)*kappa*(tmp259*tmp259);
       return result;
     }
 
@@ -5612,76 +4878,55 @@ struct RigidBodyEuler {
     /// \param[in] t  time
     /// \param[in] params  model parameters
     /// \return C (num_constraints)
-    /// Ops: 135
+    /// Ops: 99
     template <typename Scalar>
     static ConstraintVector<Scalar> constraint_violations(const XVector<Scalar>& pos,
                                                           const Scalar& /*t*/,
-                                                          const Params& params) {
+                                                          const Params& /*params*/) {
       using std::sqrt;
-      const Scalar m = Scalar(params.m);
-      const Scalar a = Scalar(params.a);
-      const Scalar b = Scalar(params.b);
-      const Scalar c = Scalar(params.c);
-      const Scalar tmp3 = (a*a);
-      const Scalar tmp4 = (b*b);
-      const Scalar tmp5 = ((Scalar(1)/Scalar(24)))*m;
-      const Scalar tmp6 = tmp5*(tmp3 + tmp4);
-      const Scalar tmp7 = (c*c);
-      const Scalar tmp8 = tmp5*(tmp3 + tmp7);
-      const Scalar tmp9 = tmp5*(tmp4 + tmp7);
-      const Scalar tmp10 = tmp6 + tmp8 - tmp9;
-      const Scalar tmp22 = tmp8 + tmp9 - tmp6;
-      const Scalar tmp29 = tmp6 + tmp9 - tmp8;
-      const Scalar tmp244 = pos(3) - pos(0);
-      const Scalar tmp245 = pos(4) - pos(1);
-      const Scalar tmp246 = pos(5) - pos(2);
-      const Scalar tmp247 = sqrt((tmp244*tmp244) + (tmp245*tmp245) + (tmp246*tmp246));
-      const Scalar tmp248 = Scalar(4)/m;
-      const Scalar tmp249 = tmp248*tmp22;
-      const Scalar tmp250 = tmp248*tmp29;
-      const Scalar tmp251 = sqrt(tmp249 + tmp250);
-      const Scalar tmp252 = tmp247 - tmp251;
-      const Scalar tmp261 = -pos(6);
-      const Scalar tmp262 = -tmp261 - pos(0);
-      const Scalar tmp263 = -pos(7);
-      const Scalar tmp264 = -tmp263 - pos(1);
-      const Scalar tmp265 = -pos(8);
-      const Scalar tmp266 = -tmp265 - pos(2);
-      const Scalar tmp267 = sqrt((tmp262*tmp262) + (tmp264*tmp264) + (tmp266*tmp266));
-      const Scalar tmp268 = tmp10*tmp248;
-      const Scalar tmp269 = sqrt(tmp249 + tmp268);
-      const Scalar tmp270 = tmp267 - tmp269;
-      const Scalar tmp282 = -pos(9);
-      const Scalar tmp283 = -tmp282 - pos(0);
-      const Scalar tmp284 = -pos(10);
-      const Scalar tmp285 = -tmp284 - pos(1);
-      const Scalar tmp286 = -pos(11);
-      const Scalar tmp287 = -tmp286 - pos(2);
-      const Scalar tmp288 = sqrt((tmp283*tmp283) + (tmp285*tmp285) + (tmp287*tmp287));
-      const Scalar tmp289 = sqrt(tmp250 + tmp268);
-      const Scalar tmp290 = tmp288 - tmp289;
-      const Scalar tmp303 = -tmp261 - pos(3);
-      const Scalar tmp304 = -tmp263 - pos(4);
-      const Scalar tmp305 = -tmp265 - pos(5);
-      const Scalar tmp306 = sqrt((tmp303*tmp303) + (tmp304*tmp304) + (tmp305*tmp305));
-      const Scalar tmp307 = tmp306 - tmp289;
-      const Scalar tmp313 = -tmp282 - pos(3);
-      const Scalar tmp314 = -tmp284 - pos(4);
-      const Scalar tmp315 = -tmp286 - pos(5);
-      const Scalar tmp316 = sqrt((tmp313*tmp313) + (tmp314*tmp314) + (tmp315*tmp315));
-      const Scalar tmp317 = tmp316 - tmp269;
-      const Scalar tmp325 = -tmp282 - pos(6);
-      const Scalar tmp326 = -tmp284 - pos(7);
-      const Scalar tmp327 = -tmp286 - pos(8);
-      const Scalar tmp328 = sqrt((tmp325*tmp325) + (tmp326*tmp326) + (tmp327*tmp327));
-      const Scalar tmp329 = tmp328 - tmp251;
+      const Scalar tmp201 = pos(3) - pos(0);
+      const Scalar tmp202 = pos(4) - pos(1);
+      const Scalar tmp203 = pos(5) - pos(2);
+      const Scalar tmp204 = sqrt((tmp201*tmp201) + (tmp202*tmp202) + (tmp203*tmp203));
+      const Scalar tmp205 = Scalar(-0.6403124237432849) + tmp204;
+      const Scalar tmp211 = -pos(6);
+      const Scalar tmp212 = -tmp211 - pos(0);
+      const Scalar tmp213 = -pos(7);
+      const Scalar tmp214 = -tmp213 - pos(1);
+      const Scalar tmp215 = -pos(8);
+      const Scalar tmp216 = -tmp215 - pos(2);
+      const Scalar tmp217 = sqrt((tmp212*tmp212) + (tmp214*tmp214) + (tmp216*tmp216));
+      const Scalar tmp218 = Scalar(-0.58309518948453) + tmp217;
+      const Scalar tmp227 = -pos(9);
+      const Scalar tmp228 = -tmp227 - pos(0);
+      const Scalar tmp229 = -pos(10);
+      const Scalar tmp230 = -tmp229 - pos(1);
+      const Scalar tmp231 = -pos(11);
+      const Scalar tmp232 = -tmp231 - pos(2);
+      const Scalar tmp233 = sqrt((tmp228*tmp228) + (tmp230*tmp230) + (tmp232*tmp232));
+      const Scalar tmp234 = Scalar(-0.49244289008980524) + tmp233;
+      const Scalar tmp245 = -tmp211 - pos(3);
+      const Scalar tmp246 = -tmp213 - pos(4);
+      const Scalar tmp247 = -tmp215 - pos(5);
+      const Scalar tmp248 = sqrt((tmp245*tmp245) + (tmp246*tmp246) + (tmp247*tmp247));
+      const Scalar tmp249 = Scalar(-0.5) + tmp248;
+      const Scalar tmp255 = -tmp227 - pos(3);
+      const Scalar tmp256 = -tmp229 - pos(4);
+      const Scalar tmp257 = -tmp231 - pos(5);
+      const Scalar tmp258 = sqrt((tmp255*tmp255) + (tmp256*tmp256) + (tmp257*tmp257));
+      const Scalar tmp259 = Scalar(-0.33541019662496846) + tmp258;
+      const Scalar tmp268 = -tmp227 - pos(6);
+      const Scalar tmp269 = -tmp229 - pos(7);
+      const Scalar tmp270 = -tmp231 - pos(8);
+      const Scalar tmp271 = sqrt((tmp268*tmp268) + (tmp269*tmp269) + (tmp270*tmp270));
+      const Scalar tmp272 = Scalar(-0.3640054944640259) + tmp271;
       ConstraintVector<Scalar> result;
-      result(0) = tmp252;
-      result(1) = tmp270;
-      result(2) = tmp290;
-      result(3) = tmp307;
-      result(4) = tmp317;
-      result(5) = tmp329;
+      result(0) = tmp205;
+      result(1) = tmp218;
+      result(2) = tmp234;
+      result(3) = tmp249;
+      result(4) = tmp259;
+      result(5) = tmp272;
       return result;
     }
   };
@@ -5690,17 +4935,17 @@ struct RigidBodyEuler {
 /// RigidBodyEulerYzx: reduced (generalized-coordinate) dynamics of model 'rigid_body_euler_yzx'.
 ///
 /// Coordinates q (nq = 6), velocities v = dq/dt:
-///   q(0) = x: centre of mass, x (m)
-///   q(1) = y: centre of mass, y (m)
-///   q(2) = z: centre of mass, z (m)
+///   q(0) = x: body origin, x (m)
+///   q(1) = y: body origin, y (m)
+///   q(2) = z: body origin, z (m)
 ///   q(3) = heading: rotation about y (rad)
 ///   q(4) = attitude: rotation about the new z (rad)
 ///   q(5) = bank: rotation about the new x (rad)
 /// Particles (4, 3D; positions stacked in x, nx = 12):
-///   x(0..2) = body_0, mass m/4
-///   x(3..5) = body_1, mass m/4
-///   x(6..8) = body_2, mass m/4
-///   x(9..11) = body_3, mass m/4
+///   x(0..2) = a, mass m_a
+///   x(3..5) = b, mass m_b
+///   x(6..8) = c, mass m_c
+///   x(9..11) = d, mass m_d
 /// Kernels are static functions templated on Scalar; every one takes the parameters last.
 /// Equations of motion: mass_matrix(q, t) * qddot = forces(q, v, t).
 struct RigidBodyEulerYzx {
@@ -5717,8 +4962,7 @@ struct RigidBodyEulerYzx {
   /// A suggested initial state, from the model file.
   static constexpr std::array<double, nq> initial_q{{0.0, 0.0, 0.0, 0.0, 0.0, 0.0}};
   static constexpr std::array<double, nq> initial_v{{0.0, 0.0, 0.0, 0.0, 0.0, 0.0}};
-  static constexpr std::array<const char*, num_particles> particle_names{{"body_0", "body_1",
-      "body_2", "body_3"}};
+  static constexpr std::array<const char*, num_particles> particle_names{{"a", "b", "c", "d"}};
   static constexpr std::array<const char*, num_fixed_points> fixed_point_names{{}};
   /// Whether applied_forces at rest (v = 0) is -d(potential_energy)/dq: every force without
   /// a declared potential vanishes at rest (generator/conservative.py).
@@ -5743,188 +4987,167 @@ struct RigidBodyEulerYzx {
 
   /// Model parameters: one type for every chart of the atlas (RigidBodyEuler's).
   using Params = RigidBodyEuler::Params;
-  static constexpr std::array<const char*,
-      num_parameters> parameter_names{{"g", "m", "a", "b", "c"}};
+  static constexpr std::array<const char*, num_parameters> parameter_names{{"g", "m_a", "m_b",
+      "m_c", "m_d"}};
 
   /// Reduced mass matrix Mt = J^T M J (symmetric).
   /// \param[in] q  generalized coordinates (nq = 6)
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return Mt (nq x nq)
-  /// Ops: 349
+  /// Ops: 321
   template <typename Scalar>
   static QMatrix<Scalar> mass_matrix(const QVector<Scalar>& q,
                                      const Scalar& /*t*/,
                                      const Params& params) {
     using std::cos;
     using std::sin;
-    using std::sqrt;
     const Scalar heading = q(3);
     const Scalar attitude = q(4);
     const Scalar bank = q(5);
-    const Scalar m = Scalar(params.m);
-    const Scalar a = Scalar(params.a);
-    const Scalar b = Scalar(params.b);
-    const Scalar c = Scalar(params.c);
-    const Scalar tmp0 = sin(heading);
-    const Scalar tmp1 = cos(bank);
-    const Scalar tmp2 = tmp0*tmp1;
-    const Scalar tmp3 = sin(attitude);
-    const Scalar tmp4 = sin(bank);
-    const Scalar tmp5 = cos(heading);
-    const Scalar tmp6 = tmp4*tmp5;
-    const Scalar tmp7 = tmp3*tmp6;
-    const Scalar tmp8 = tmp2 + tmp7;
-    const Scalar tmp9 = (Scalar(1)/sqrt(m));
-    const Scalar tmp10 = (a*a);
-    const Scalar tmp11 = (b*b);
-    const Scalar tmp12 = ((Scalar(1)/Scalar(24)))*m;
-    const Scalar tmp13 = tmp12*(tmp10 + tmp11);
-    const Scalar tmp14 = (c*c);
-    const Scalar tmp15 = tmp12*(tmp10 + tmp14);
-    const Scalar tmp16 = tmp12*(tmp11 + tmp14);
-    const Scalar tmp17 = tmp15 + tmp16 - tmp13;
-    const Scalar tmp18 = tmp9*sqrt(tmp17);
-    const Scalar tmp20 = tmp1*tmp5;
-    const Scalar tmp21 = tmp20*tmp3;
-    const Scalar tmp22 = tmp21 - tmp0*tmp4;
-    const Scalar tmp24 = tmp13 + tmp16 - tmp15;
-    const Scalar tmp25 = tmp9*sqrt(tmp24);
-    const Scalar tmp27 = cos(attitude);
-    const Scalar tmp28 = tmp13 + tmp15 - tmp16;
-    const Scalar tmp29 = tmp9*sqrt(tmp28);
-    const Scalar tmp30 = tmp27*tmp29;
-    const Scalar tmp31 = tmp30*tmp5;
-    const Scalar tmp34 = tmp29*tmp3;
-    const Scalar tmp35 = tmp1*tmp25;
-    const Scalar tmp37 = tmp18*tmp4;
-    const Scalar tmp41 = tmp0*tmp30;
-    const Scalar tmp42 = -tmp41;
-    const Scalar tmp43 = tmp0*tmp4;
-    const Scalar tmp44 = tmp3*tmp43;
-    const Scalar tmp45 = tmp44 - tmp1*tmp5;
-    const Scalar tmp46 = -tmp45;
-    const Scalar tmp47 = tmp18*tmp46;
-    const Scalar tmp48 = tmp2*tmp3;
-    const Scalar tmp49 = tmp48 + tmp6;
-    const Scalar tmp50 = tmp25*tmp49;
-    const Scalar tmp51 = tmp47 + tmp50;
-    const Scalar tmp52 = tmp42 + tmp51;
-    const Scalar tmp54 = tmp25*tmp8;
-    const Scalar tmp55 = tmp18*tmp22;
-    const Scalar tmp56 = tmp54 + tmp55;
-    const Scalar tmp57 = tmp18*tmp27;
-    const Scalar tmp58 = tmp57*tmp6;
-    const Scalar tmp59 = tmp34*tmp5;
-    const Scalar tmp60 = tmp25*tmp27;
-    const Scalar tmp61 = tmp20*tmp60;
-    const Scalar tmp62 = tmp59 + tmp61;
-    const Scalar tmp63 = tmp62 - tmp58;
-    const Scalar tmp64 = -tmp63;
-    const Scalar tmp66 = tmp1*tmp18;
-    const Scalar tmp67 = tmp27*tmp66;
-    const Scalar tmp68 = tmp25*tmp4;
-    const Scalar tmp69 = tmp27*tmp68;
-    const Scalar tmp70 = tmp67 + tmp69;
-    const Scalar tmp71 = -tmp70;
-    const Scalar tmp72 = tmp3*tmp35;
-    const Scalar tmp73 = tmp3*tmp37;
-    const Scalar tmp74 = tmp30 + tmp73;
-    const Scalar tmp75 = tmp74 - tmp72;
-    const Scalar tmp77 = tmp25*tmp46;
-    const Scalar tmp78 = -tmp49;
-    const Scalar tmp79 = tmp18*tmp78;
-    const Scalar tmp80 = tmp77 + tmp79;
-    const Scalar tmp81 = tmp43*tmp57;
-    const Scalar tmp82 = tmp0*tmp34;
-    const Scalar tmp83 = tmp2*tmp60;
-    const Scalar tmp84 = tmp82 + tmp83;
-    const Scalar tmp85 = tmp84 - tmp81;
-    const Scalar tmp86 = -tmp31;
-    const Scalar tmp87 = tmp22*tmp25;
-    const Scalar tmp88 = -tmp8;
-    const Scalar tmp89 = tmp18*tmp88;
-    const Scalar tmp90 = tmp87 + tmp89;
-    const Scalar tmp91 = tmp86 + tmp90;
-    const Scalar tmp100 = tmp41 + tmp51;
-    const Scalar tmp102 = -tmp56;
-    const Scalar tmp103 = tmp58 + tmp59 - tmp61;
-    const Scalar tmp104 = -tmp103;
-    const Scalar tmp105 = -tmp100;
-    const Scalar tmp107 = tmp30 + tmp72 - tmp73;
-    const Scalar tmp109 = -tmp80;
-    const Scalar tmp110 = tmp81 + tmp82 - tmp83;
-    const Scalar tmp111 = -tmp31 - tmp90;
-    const Scalar tmp119 = tmp41 + tmp50 - tmp47;
-    const Scalar tmp121 = tmp54 - tmp55;
-    const Scalar tmp122 = tmp58 + tmp61 - tmp59;
-    const Scalar tmp123 = -tmp122;
-    const Scalar tmp125 = tmp67 - tmp69;
-    const Scalar tmp126 = -tmp72 - tmp74;
-    const Scalar tmp128 = tmp77 - tmp79;
-    const Scalar tmp129 = tmp81 + tmp83 - tmp82;
-    const Scalar tmp130 = tmp31 + tmp87 - tmp89;
-    const Scalar tmp136 = tmp41 + tmp47 - tmp50;
-    const Scalar tmp138 = -tmp121;
-    const Scalar tmp139 = tmp58 + tmp62;
-    const Scalar tmp141 = -tmp125;
-    const Scalar tmp142 = tmp72 + tmp73 - tmp30;
-    const Scalar tmp144 = -tmp128;
-    const Scalar tmp145 = -tmp81 - tmp84;
-    const Scalar tmp146 = tmp89 - tmp87;
-    const Scalar tmp147 = tmp146 + tmp31;
-    const Scalar tmp150 = (Scalar(0.25))*m;
-    const Scalar tmp200 = tmp119*tmp150 + tmp136*tmp150 + tmp150*tmp52 + tmp150*tmp105;
-    const Scalar tmp201 = tmp111*tmp150 + tmp130*tmp150 + tmp147*tmp150 + tmp150*tmp91;
-    const Scalar tmp202 = tmp150*((tmp111*tmp111) + (tmp105*tmp105))
-        + tmp150*((tmp119*tmp119) + (tmp130*tmp130)) + tmp150*((tmp136*tmp136) + (tmp147*tmp147))
-        + tmp150*((tmp52*tmp52) + (tmp91*tmp91));
-    const Scalar tmp203 = tmp123*tmp150 + tmp139*tmp150 + tmp150*tmp64 + tmp150*tmp104;
-    const Scalar tmp204 = tmp126*tmp150 + tmp142*tmp150 + tmp150*tmp75 + tmp150*tmp107;
-    const Scalar tmp205 = tmp129*tmp150 + tmp145*tmp150 + tmp150*tmp85 + tmp150*tmp110;
-    const Scalar tmp206 = tmp150*(tmp111*tmp110 + tmp104*tmp105)
-        + tmp150*(tmp119*tmp123 + tmp129*tmp130) + tmp150*(tmp136*tmp139 + tmp145*tmp147)
-        + tmp150*(tmp52*tmp64 + tmp85*tmp91);
-    const Scalar tmp207 = tmp150*((tmp123*tmp123) + (tmp126*tmp126) + (tmp129*tmp129))
-        + tmp150*((tmp139*tmp139) + (tmp142*tmp142) + (tmp145*tmp145))
-        + tmp150*((tmp64*tmp64) + (tmp75*tmp75) + (tmp85*tmp85))
-        + tmp150*((tmp104*tmp104) + (tmp107*tmp107) + (tmp110*tmp110));
-    const Scalar tmp208 = tmp121*tmp150 + tmp138*tmp150 + tmp150*tmp56 + tmp150*tmp102;
-    const Scalar tmp209 = tmp125*tmp150 + tmp141*tmp150 + tmp150*tmp70 + tmp150*tmp71;
-    const Scalar tmp210 = tmp128*tmp150 + tmp144*tmp150 + tmp150*tmp80 + tmp150*tmp109;
-    const Scalar tmp211 = tmp150*(tmp111*tmp109 + tmp102*tmp105)
-        + tmp150*(tmp119*tmp121 + tmp128*tmp130) + tmp150*(tmp136*tmp138 + tmp144*tmp147)
-        + tmp150*(tmp52*tmp56 + tmp80*tmp91);
-    const Scalar tmp212 = tmp150*(tmp121*tmp123 + tmp125*tmp126 + tmp128*tmp129)
-        + tmp150*(tmp138*tmp139 + tmp141*tmp142 + tmp144*tmp145)
-        + tmp150*(tmp56*tmp64 + tmp71*tmp75 + tmp80*tmp85)
-        + tmp150*(tmp70*tmp107 + tmp102*tmp104 + tmp109*tmp110);
-    const Scalar tmp213 = tmp150*((tmp121*tmp121) + (tmp125*tmp125) + (tmp128*tmp128))
-        + tmp150*((tmp138*tmp138) + (tmp141*tmp141) + (tmp144*tmp144))
-        + tmp150*((tmp56*tmp56) + (tmp71*tmp71) + (tmp80*tmp80))
-        + tmp150*((tmp70*tmp70) + (tmp102*tmp102) + (tmp109*tmp109));
+    const Scalar m_a = Scalar(params.m_a);
+    const Scalar m_b = Scalar(params.m_b);
+    const Scalar m_c = Scalar(params.m_c);
+    const Scalar m_d = Scalar(params.m_d);
+    const Scalar tmp0 = cos(heading);
+    const Scalar tmp1 = cos(attitude);
+    const Scalar tmp2 = Scalar(0.5)*tmp1;
+    const Scalar tmp3 = tmp0*tmp2;
+    const Scalar tmp5 = sin(attitude);
+    const Scalar tmp6 = Scalar(0.5)*tmp5;
+    const Scalar tmp8 = sin(heading);
+    const Scalar tmp9 = tmp2*tmp8;
+    const Scalar tmp12 = tmp0*tmp6;
+    const Scalar tmp16 = tmp6*tmp8;
+    const Scalar tmp19 = sin(bank);
+    const Scalar tmp20 = Scalar(0.4)*tmp19;
+    const Scalar tmp21 = tmp20*tmp8;
+    const Scalar tmp22 = cos(bank);
+    const Scalar tmp23 = Scalar(0.4)*tmp22;
+    const Scalar tmp24 = tmp0*tmp23*tmp5;
+    const Scalar tmp26 = tmp1*tmp23;
+    const Scalar tmp28 = tmp0*tmp20;
+    const Scalar tmp29 = tmp23*tmp8;
+    const Scalar tmp30 = tmp29*tmp5;
+    const Scalar tmp31 = tmp28 + tmp30;
+    const Scalar tmp35 = tmp29 + tmp28*tmp5;
+    const Scalar tmp37 = tmp23*tmp5;
+    const Scalar tmp38 = tmp1*tmp20;
+    const Scalar tmp40 = -tmp21*tmp5 + Scalar(0.4)*tmp0*tmp22;
+    const Scalar tmp41 = tmp24 - tmp21;
+    const Scalar tmp44 = Scalar(0.3)*tmp22;
+    const Scalar tmp45 = tmp44*tmp8;
+    const Scalar tmp46 = Scalar(0.3)*tmp19;
+    const Scalar tmp47 = tmp0*tmp46;
+    const Scalar tmp48 = tmp47*tmp5;
+    const Scalar tmp49 = tmp45 + tmp48;
+    const Scalar tmp51 = tmp1*tmp46;
+    const Scalar tmp53 = tmp0*tmp44;
+    const Scalar tmp54 = tmp46*tmp8;
+    const Scalar tmp55 = tmp5*tmp54;
+    const Scalar tmp59 = tmp53*tmp5;
+    const Scalar tmp60 = tmp59 - tmp54;
+    const Scalar tmp61 = tmp55 - Scalar(0.3)*tmp0*tmp22;
+    const Scalar tmp62 = -tmp61;
+    const Scalar tmp64 = tmp46*tmp5;
+    const Scalar tmp65 = tmp1*tmp44;
+    const Scalar tmp67 = tmp45*tmp5;
+    const Scalar tmp68 = tmp47 + tmp67;
+    const Scalar tmp69 = -tmp68;
+    const Scalar tmp70 = -tmp49;
+    const Scalar tmp73 = Scalar(0.2)*tmp1;
+    const Scalar tmp74 = Scalar(0.25)*tmp19;
+    const Scalar tmp75 = tmp5*tmp74;
+    const Scalar tmp76 = -tmp59 + tmp0*tmp75;
+    const Scalar tmp77 = tmp76 + tmp0*tmp73;
+    const Scalar tmp78 = Scalar(0.25)*tmp22;
+    const Scalar tmp79 = tmp8*tmp78;
+    const Scalar tmp80 = tmp54 + tmp79;
+    const Scalar tmp81 = tmp77 + tmp80;
+    const Scalar tmp83 = Scalar(0.2)*tmp5;
+    const Scalar tmp84 = tmp1*tmp74;
+    const Scalar tmp87 = tmp73*tmp8;
+    const Scalar tmp88 = tmp0*tmp78;
+    const Scalar tmp89 = tmp74*tmp8;
+    const Scalar tmp90 = tmp5*tmp89;
+    const Scalar tmp91 = tmp68 + tmp88 - tmp90;
+    const Scalar tmp92 = tmp91 - tmp87;
+    const Scalar tmp94 = tmp1*tmp53;
+    const Scalar tmp95 = tmp94 + tmp0*tmp83 - Scalar(0.25)*tmp0*tmp1*tmp19;
+    const Scalar tmp96 = -tmp95;
+    const Scalar tmp97 = tmp49 - tmp89 + tmp5*tmp88;
+    const Scalar tmp99 = -tmp51 - tmp1*tmp78;
+    const Scalar tmp100 = tmp44*tmp5;
+    const Scalar tmp101 = tmp73 + tmp75 - tmp100;
+    const Scalar tmp103 = tmp1*tmp45;
+    const Scalar tmp104 = tmp103 + tmp8*tmp83 - tmp8*tmp84;
+    const Scalar tmp105 = -tmp61 - tmp0*tmp74 - tmp5*tmp79;
+    const Scalar tmp106 = -tmp81;
+    const Scalar tmp121 = tmp26*tmp8;
+    const Scalar tmp128 = tmp51*tmp8;
+    const Scalar tmp131 = tmp0*tmp51;
+    const Scalar tmp142 = m_a + m_b + m_c + m_d;
+    const Scalar tmp143 = tmp31*m_b + tmp62*m_c + tmp92*m_d - tmp9*m_a;
+    const Scalar tmp144 = tmp41*m_b + tmp70*m_c + tmp106*m_d - tmp3*m_a;
+    const Scalar tmp145 = (tmp8*tmp8);
+    const Scalar tmp146 = (tmp1*tmp1);
+    const Scalar tmp147 = Scalar(0.25)*tmp146;
+    const Scalar tmp148 = (tmp0*tmp0);
+    const Scalar tmp149 = m_a*(tmp145*tmp147 + tmp147*tmp148) + m_b*((tmp31*tmp31) + (tmp41*tmp41))
+        + m_c*((tmp62*tmp62) + (tmp70*tmp70)) + m_d*((tmp92*tmp92) + (tmp106*tmp106));
+    const Scalar tmp150 = tmp0*tmp26;
+    const Scalar tmp151 = tmp96*m_d - tmp150*m_b - tmp12*m_a + Scalar(0.3)*tmp0*tmp1*tmp19*m_c;
+    const Scalar tmp152 = tmp2*m_a + tmp64*m_c + tmp101*m_d - tmp37*m_b;
+    const Scalar tmp153 = tmp16*m_a + tmp104*m_d + tmp121*m_b - tmp128*m_c;
+    const Scalar tmp154 = m_b*(-tmp150*tmp31 + Scalar(0.4)*tmp1*tmp22*tmp41*tmp8)
+        + m_c*(tmp62*tmp131 - tmp70*tmp128) + m_d*(tmp92*tmp96 + tmp104*tmp106);
+    const Scalar tmp155 = (tmp5*tmp5);
+    const Scalar tmp156 = Scalar(0.25)*tmp155;
+    const Scalar tmp157 = (tmp22*tmp22);
+    const Scalar tmp158 = Scalar(0.16000000000000003)*tmp157;
+    const Scalar tmp159 = tmp146*tmp158;
+    const Scalar tmp160 = (tmp19*tmp19);
+    const Scalar tmp161 = Scalar(0.09)*tmp160;
+    const Scalar tmp162 = tmp146*tmp161;
+    const Scalar tmp163 = m_a*(tmp147 + tmp145*tmp156 + tmp148*tmp156)
+        + m_b*(tmp145*tmp159 + tmp148*tmp159 + tmp155*tmp158)
+        + m_c*(tmp145*tmp162 + tmp148*tmp162 + tmp155*tmp161)
+        + m_d*((tmp96*tmp96) + (tmp101*tmp101) + (tmp104*tmp104));
+    const Scalar tmp164 = tmp35*m_b + tmp60*m_c + tmp97*m_d;
+    const Scalar tmp165 = tmp99*m_d - tmp38*m_b - tmp65*m_c;
+    const Scalar tmp166 = tmp40*m_b + tmp69*m_c + tmp105*m_d;
+    const Scalar tmp167 = m_b*(tmp31*tmp35 + tmp40*tmp41) + m_c*(tmp60*tmp62 + tmp69*tmp70)
+        + m_d*(tmp92*tmp97 + tmp105*tmp106);
+    const Scalar tmp168 = tmp1*tmp19*tmp22*tmp5;
+    const Scalar tmp169 = m_b*(Scalar(0.16000000000000003)*tmp168 + tmp40*tmp121 - tmp150*tmp35)
+        + m_c*(-Scalar(0.09)*tmp168 - tmp69*tmp128 + Scalar(0.3)*tmp0*tmp1*tmp19*tmp60)
+        + m_d*(tmp96*tmp97 + tmp99*tmp101 + tmp104*tmp105);
+    const Scalar tmp170 = m_b*((tmp35*tmp35) + (tmp40*tmp40)
+            + Scalar(0.16000000000000003)*tmp146*tmp160)
+        + m_c*((tmp60*tmp60) + (tmp69*tmp69) + Scalar(0.09)*tmp146*tmp157)
+        + m_d*((tmp97*tmp97) + (tmp99*tmp99) + (tmp105*tmp105));
     QMatrix<Scalar> result;
-    result(0, 0) = m;
+    result(0, 0) = tmp142;
     result(1, 0) = Scalar(0);
-    result(1, 1) = m;
+    result(1, 1) = tmp142;
     result(2, 0) = Scalar(0);
     result(2, 1) = Scalar(0);
-    result(2, 2) = m;
-    result(3, 0) = tmp200;
+    result(2, 2) = tmp142;
+    result(3, 0) = tmp143;
     result(3, 1) = Scalar(0);
-    result(3, 2) = tmp201;
-    result(3, 3) = tmp202;
-    result(4, 0) = tmp203;
-    result(4, 1) = tmp204;
-    result(4, 2) = tmp205;
-    result(4, 3) = tmp206;
-    result(4, 4) = tmp207;
-    result(5, 0) = tmp208;
-    result(5, 1) = tmp209;
-    result(5, 2) = tmp210;
-    result(5, 3) = tmp211;
-    result(5, 4) = tmp212;
-    result(5, 5) = tmp213;
+    result(3, 2) = tmp144;
+    result(3, 3) = tmp149;
+    result(4, 0) = tmp151;
+    result(4, 1) = tmp152;
+    result(4, 2) = tmp153;
+    result(4, 3) = tmp154;
+    result(4, 4) = tmp163;
+    result(5, 0) = tmp164;
+    result(5, 1) = tmp165;
+    result(5, 2) = tmp166;
+    result(5, 3) = tmp167;
+    result(5, 4) = tmp169;
+    result(5, 5) = tmp170;
     result(0, 1) = result(1, 0);
     result(0, 2) = result(2, 0);
     result(1, 2) = result(2, 1);
@@ -5949,7 +5172,7 @@ struct RigidBodyEulerYzx {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return Ft (nq)
-  /// Ops: 117
+  /// Ops: 103
   template <typename Scalar>
   static QVector<Scalar> applied_forces(const QVector<Scalar>& q,
                                         const QVector<Scalar>& /*v*/,
@@ -5957,92 +5180,83 @@ struct RigidBodyEulerYzx {
                                         const Params& params) {
     using std::cos;
     using std::sin;
-    using std::sqrt;
     const Scalar heading = q(3);
     const Scalar attitude = q(4);
     const Scalar bank = q(5);
     const Scalar g = Scalar(params.g);
-    const Scalar m = Scalar(params.m);
-    const Scalar a = Scalar(params.a);
-    const Scalar b = Scalar(params.b);
-    const Scalar c = Scalar(params.c);
-    const Scalar tmp0 = sin(heading);
-    const Scalar tmp1 = cos(bank);
-    const Scalar tmp2 = tmp0*tmp1;
-    const Scalar tmp3 = sin(attitude);
-    const Scalar tmp4 = sin(bank);
-    const Scalar tmp5 = cos(heading);
-    const Scalar tmp6 = tmp4*tmp5;
-    const Scalar tmp7 = tmp3*tmp6;
-    const Scalar tmp8 = tmp2 + tmp7;
-    const Scalar tmp9 = (Scalar(1)/sqrt(m));
-    const Scalar tmp10 = (a*a);
-    const Scalar tmp11 = (b*b);
-    const Scalar tmp12 = ((Scalar(1)/Scalar(24)))*m;
-    const Scalar tmp13 = tmp12*(tmp10 + tmp11);
-    const Scalar tmp14 = (c*c);
-    const Scalar tmp15 = tmp12*(tmp10 + tmp14);
-    const Scalar tmp16 = tmp12*(tmp11 + tmp14);
-    const Scalar tmp17 = tmp15 + tmp16 - tmp13;
-    const Scalar tmp18 = tmp9*sqrt(tmp17);
-    const Scalar tmp20 = tmp1*tmp5;
-    const Scalar tmp21 = tmp20*tmp3;
-    const Scalar tmp22 = tmp21 - tmp0*tmp4;
-    const Scalar tmp24 = tmp13 + tmp16 - tmp15;
-    const Scalar tmp25 = tmp9*sqrt(tmp24);
-    const Scalar tmp27 = cos(attitude);
-    const Scalar tmp28 = tmp13 + tmp15 - tmp16;
-    const Scalar tmp29 = tmp9*sqrt(tmp28);
-    const Scalar tmp30 = tmp27*tmp29;
-    const Scalar tmp31 = tmp30*tmp5;
-    const Scalar tmp34 = tmp29*tmp3;
-    const Scalar tmp43 = tmp0*tmp4;
-    const Scalar tmp44 = tmp3*tmp43;
-    const Scalar tmp45 = tmp44 - tmp1*tmp5;
-    const Scalar tmp46 = -tmp45;
-    const Scalar tmp48 = tmp2*tmp3;
-    const Scalar tmp49 = tmp48 + tmp6;
-    const Scalar tmp57 = tmp18*tmp27;
-    const Scalar tmp60 = tmp25*tmp27;
-    const Scalar tmp77 = tmp25*tmp46;
-    const Scalar tmp78 = -tmp49;
-    const Scalar tmp79 = tmp18*tmp78;
-    const Scalar tmp80 = tmp77 + tmp79;
-    const Scalar tmp81 = tmp43*tmp57;
-    const Scalar tmp82 = tmp0*tmp34;
-    const Scalar tmp83 = tmp2*tmp60;
-    const Scalar tmp84 = tmp82 + tmp83;
-    const Scalar tmp85 = tmp84 - tmp81;
-    const Scalar tmp86 = -tmp31;
-    const Scalar tmp87 = tmp22*tmp25;
-    const Scalar tmp88 = -tmp8;
-    const Scalar tmp89 = tmp18*tmp88;
-    const Scalar tmp90 = tmp87 + tmp89;
-    const Scalar tmp91 = tmp86 + tmp90;
-    const Scalar tmp109 = -tmp80;
-    const Scalar tmp110 = tmp81 + tmp82 - tmp83;
-    const Scalar tmp111 = -tmp31 - tmp90;
-    const Scalar tmp128 = tmp77 - tmp79;
-    const Scalar tmp129 = tmp81 + tmp83 - tmp82;
-    const Scalar tmp130 = tmp31 + tmp87 - tmp89;
-    const Scalar tmp144 = -tmp128;
-    const Scalar tmp145 = -tmp81 - tmp84;
-    const Scalar tmp146 = tmp89 - tmp87;
-    const Scalar tmp147 = tmp146 + tmp31;
-    const Scalar tmp150 = (Scalar(0.25))*m;
-    const Scalar tmp151 = tmp150*g;
-    const Scalar tmp152 = -tmp151;
-    const Scalar tmp214 = Scalar(4)*tmp152;
-    const Scalar tmp230 = tmp111*tmp152 + tmp130*tmp152 + tmp147*tmp152 + tmp152*tmp91;
-    const Scalar tmp231 = tmp129*tmp152 + tmp145*tmp152 + tmp152*tmp85 + tmp152*tmp110;
-    const Scalar tmp232 = tmp128*tmp152 + tmp144*tmp152 + tmp152*tmp80 + tmp152*tmp109;
+    const Scalar m_a = Scalar(params.m_a);
+    const Scalar m_b = Scalar(params.m_b);
+    const Scalar m_c = Scalar(params.m_c);
+    const Scalar m_d = Scalar(params.m_d);
+    const Scalar tmp0 = cos(heading);
+    const Scalar tmp1 = cos(attitude);
+    const Scalar tmp2 = Scalar(0.5)*tmp1;
+    const Scalar tmp3 = tmp0*tmp2;
+    const Scalar tmp5 = sin(attitude);
+    const Scalar tmp6 = Scalar(0.5)*tmp5;
+    const Scalar tmp8 = sin(heading);
+    const Scalar tmp16 = tmp6*tmp8;
+    const Scalar tmp19 = sin(bank);
+    const Scalar tmp20 = Scalar(0.4)*tmp19;
+    const Scalar tmp21 = tmp20*tmp8;
+    const Scalar tmp22 = cos(bank);
+    const Scalar tmp23 = Scalar(0.4)*tmp22;
+    const Scalar tmp24 = tmp0*tmp23*tmp5;
+    const Scalar tmp26 = tmp1*tmp23;
+    const Scalar tmp40 = -tmp21*tmp5 + Scalar(0.4)*tmp0*tmp22;
+    const Scalar tmp41 = tmp24 - tmp21;
+    const Scalar tmp44 = Scalar(0.3)*tmp22;
+    const Scalar tmp45 = tmp44*tmp8;
+    const Scalar tmp46 = Scalar(0.3)*tmp19;
+    const Scalar tmp47 = tmp0*tmp46;
+    const Scalar tmp48 = tmp47*tmp5;
+    const Scalar tmp49 = tmp45 + tmp48;
+    const Scalar tmp51 = tmp1*tmp46;
+    const Scalar tmp53 = tmp0*tmp44;
+    const Scalar tmp54 = tmp46*tmp8;
+    const Scalar tmp55 = tmp5*tmp54;
+    const Scalar tmp59 = tmp53*tmp5;
+    const Scalar tmp61 = tmp55 - Scalar(0.3)*tmp0*tmp22;
+    const Scalar tmp67 = tmp45*tmp5;
+    const Scalar tmp68 = tmp47 + tmp67;
+    const Scalar tmp69 = -tmp68;
+    const Scalar tmp70 = -tmp49;
+    const Scalar tmp73 = Scalar(0.2)*tmp1;
+    const Scalar tmp74 = Scalar(0.25)*tmp19;
+    const Scalar tmp75 = tmp5*tmp74;
+    const Scalar tmp76 = -tmp59 + tmp0*tmp75;
+    const Scalar tmp77 = tmp76 + tmp0*tmp73;
+    const Scalar tmp78 = Scalar(0.25)*tmp22;
+    const Scalar tmp79 = tmp8*tmp78;
+    const Scalar tmp80 = tmp54 + tmp79;
+    const Scalar tmp81 = tmp77 + tmp80;
+    const Scalar tmp83 = Scalar(0.2)*tmp5;
+    const Scalar tmp84 = tmp1*tmp74;
+    const Scalar tmp103 = tmp1*tmp45;
+    const Scalar tmp104 = tmp103 + tmp8*tmp83 - tmp8*tmp84;
+    const Scalar tmp105 = -tmp61 - tmp0*tmp74 - tmp5*tmp79;
+    const Scalar tmp106 = -tmp81;
+    const Scalar tmp109 = g*m_a;
+    const Scalar tmp110 = -tmp109;
+    const Scalar tmp111 = g*m_b;
+    const Scalar tmp112 = -tmp111;
+    const Scalar tmp113 = g*m_c;
+    const Scalar tmp114 = -tmp113;
+    const Scalar tmp115 = g*m_d;
+    const Scalar tmp116 = -tmp115;
+    const Scalar tmp121 = tmp26*tmp8;
+    const Scalar tmp128 = tmp51*tmp8;
+    const Scalar tmp171 = tmp110 + tmp112 + tmp114 + tmp116;
+    const Scalar tmp187 = tmp41*tmp112 + tmp70*tmp114 + tmp106*tmp116 - tmp3*tmp110;
+    const Scalar tmp188 = tmp16*tmp110 + tmp104*tmp116 + tmp112*tmp121 - tmp114*tmp128;
+    const Scalar tmp189 = tmp40*tmp112 + tmp69*tmp114 + tmp105*tmp116;
     QVector<Scalar> result;
     result(0) = Scalar(0);
     result(1) = Scalar(0);
-    result(2) = tmp214;
-    result(3) = tmp230;
-    result(4) = tmp231;
-    result(5) = tmp232;
+    result(2) = tmp171;
+    result(3) = tmp187;
+    result(4) = tmp188;
+    result(5) = tmp189;
     return result;
   }
 
@@ -6074,7 +5288,7 @@ struct RigidBodyEulerYzx {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return Fi (nq)
-  /// Ops: 563
+  /// Ops: 457
   template <typename Scalar>
   static QVector<Scalar> inertial_forces(const QVector<Scalar>& q,
                                          const QVector<Scalar>& v,
@@ -6082,245 +5296,177 @@ struct RigidBodyEulerYzx {
                                          const Params& params) {
     using std::cos;
     using std::sin;
-    using std::sqrt;
     const Scalar heading = q(3);
     const Scalar attitude = q(4);
     const Scalar bank = q(5);
     const Scalar heading_dot = v(3);
     const Scalar attitude_dot = v(4);
     const Scalar bank_dot = v(5);
-    const Scalar m = Scalar(params.m);
-    const Scalar a = Scalar(params.a);
-    const Scalar b = Scalar(params.b);
-    const Scalar c = Scalar(params.c);
-    const Scalar tmp0 = sin(heading);
-    const Scalar tmp1 = cos(bank);
-    const Scalar tmp2 = tmp0*tmp1;
-    const Scalar tmp3 = sin(attitude);
-    const Scalar tmp4 = sin(bank);
-    const Scalar tmp5 = cos(heading);
-    const Scalar tmp6 = tmp4*tmp5;
-    const Scalar tmp7 = tmp3*tmp6;
-    const Scalar tmp8 = tmp2 + tmp7;
-    const Scalar tmp9 = (Scalar(1)/sqrt(m));
-    const Scalar tmp10 = (a*a);
-    const Scalar tmp11 = (b*b);
-    const Scalar tmp12 = ((Scalar(1)/Scalar(24)))*m;
-    const Scalar tmp13 = tmp12*(tmp10 + tmp11);
-    const Scalar tmp14 = (c*c);
-    const Scalar tmp15 = tmp12*(tmp10 + tmp14);
-    const Scalar tmp16 = tmp12*(tmp11 + tmp14);
-    const Scalar tmp17 = tmp15 + tmp16 - tmp13;
-    const Scalar tmp18 = tmp9*sqrt(tmp17);
-    const Scalar tmp20 = tmp1*tmp5;
-    const Scalar tmp21 = tmp20*tmp3;
-    const Scalar tmp22 = tmp21 - tmp0*tmp4;
-    const Scalar tmp23 = -tmp22;
-    const Scalar tmp24 = tmp13 + tmp16 - tmp15;
-    const Scalar tmp25 = tmp9*sqrt(tmp24);
-    const Scalar tmp27 = cos(attitude);
-    const Scalar tmp28 = tmp13 + tmp15 - tmp16;
-    const Scalar tmp29 = tmp9*sqrt(tmp28);
-    const Scalar tmp30 = tmp27*tmp29;
-    const Scalar tmp31 = tmp30*tmp5;
-    const Scalar tmp34 = tmp29*tmp3;
-    const Scalar tmp35 = tmp1*tmp25;
-    const Scalar tmp36 = tmp27*tmp35;
-    const Scalar tmp37 = tmp18*tmp4;
-    const Scalar tmp38 = tmp27*tmp37;
-    const Scalar tmp39 = tmp34 + tmp36 - tmp38;
-    const Scalar tmp41 = tmp0*tmp30;
-    const Scalar tmp42 = -tmp41;
-    const Scalar tmp43 = tmp0*tmp4;
-    const Scalar tmp44 = tmp3*tmp43;
-    const Scalar tmp45 = tmp44 - tmp1*tmp5;
-    const Scalar tmp46 = -tmp45;
-    const Scalar tmp47 = tmp18*tmp46;
-    const Scalar tmp48 = tmp2*tmp3;
-    const Scalar tmp49 = tmp48 + tmp6;
-    const Scalar tmp50 = tmp25*tmp49;
-    const Scalar tmp51 = tmp47 + tmp50;
-    const Scalar tmp52 = tmp42 + tmp51;
-    const Scalar tmp54 = tmp25*tmp8;
-    const Scalar tmp55 = tmp18*tmp22;
-    const Scalar tmp56 = tmp54 + tmp55;
-    const Scalar tmp57 = tmp18*tmp27;
-    const Scalar tmp58 = tmp57*tmp6;
-    const Scalar tmp59 = tmp34*tmp5;
-    const Scalar tmp60 = tmp25*tmp27;
-    const Scalar tmp61 = tmp20*tmp60;
-    const Scalar tmp62 = tmp59 + tmp61;
-    const Scalar tmp63 = tmp62 - tmp58;
-    const Scalar tmp64 = -tmp63;
-    const Scalar tmp66 = tmp1*tmp18;
-    const Scalar tmp67 = tmp27*tmp66;
-    const Scalar tmp68 = tmp25*tmp4;
-    const Scalar tmp69 = tmp27*tmp68;
-    const Scalar tmp70 = tmp67 + tmp69;
-    const Scalar tmp71 = -tmp70;
-    const Scalar tmp72 = tmp3*tmp35;
-    const Scalar tmp73 = tmp3*tmp37;
-    const Scalar tmp74 = tmp30 + tmp73;
-    const Scalar tmp75 = tmp74 - tmp72;
-    const Scalar tmp77 = tmp25*tmp46;
-    const Scalar tmp78 = -tmp49;
-    const Scalar tmp79 = tmp18*tmp78;
-    const Scalar tmp80 = tmp77 + tmp79;
-    const Scalar tmp81 = tmp43*tmp57;
-    const Scalar tmp82 = tmp0*tmp34;
-    const Scalar tmp83 = tmp2*tmp60;
-    const Scalar tmp84 = tmp82 + tmp83;
-    const Scalar tmp85 = tmp84 - tmp81;
-    const Scalar tmp86 = -tmp31;
-    const Scalar tmp87 = tmp22*tmp25;
-    const Scalar tmp88 = -tmp8;
-    const Scalar tmp89 = tmp18*tmp88;
-    const Scalar tmp90 = tmp87 + tmp89;
-    const Scalar tmp91 = tmp86 + tmp90;
-    const Scalar tmp92 = tmp80*bank_dot + tmp85*attitude_dot + tmp91*heading_dot;
-    const Scalar tmp97 = tmp38 - tmp36;
-    const Scalar tmp98 = tmp34 + tmp97;
-    const Scalar tmp100 = tmp41 + tmp51;
-    const Scalar tmp102 = -tmp56;
-    const Scalar tmp103 = tmp58 + tmp59 - tmp61;
-    const Scalar tmp104 = -tmp103;
-    const Scalar tmp105 = -tmp100;
-    const Scalar tmp107 = tmp30 + tmp72 - tmp73;
-    const Scalar tmp109 = -tmp80;
-    const Scalar tmp110 = tmp81 + tmp82 - tmp83;
-    const Scalar tmp111 = -tmp31 - tmp90;
-    const Scalar tmp112 = tmp111*heading_dot + tmp109*bank_dot + tmp110*attitude_dot;
-    const Scalar tmp116 = tmp36 + tmp38;
-    const Scalar tmp117 = tmp116 - tmp34;
-    const Scalar tmp119 = tmp41 + tmp50 - tmp47;
-    const Scalar tmp121 = tmp54 - tmp55;
-    const Scalar tmp122 = tmp58 + tmp61 - tmp59;
-    const Scalar tmp123 = -tmp122;
-    const Scalar tmp125 = tmp67 - tmp69;
-    const Scalar tmp126 = -tmp72 - tmp74;
-    const Scalar tmp128 = tmp77 - tmp79;
-    const Scalar tmp129 = tmp81 + tmp83 - tmp82;
-    const Scalar tmp130 = tmp31 + tmp87 - tmp89;
-    const Scalar tmp131 = tmp128*bank_dot + tmp129*attitude_dot + tmp130*heading_dot;
-    const Scalar tmp134 = tmp116 + tmp34;
-    const Scalar tmp136 = tmp41 + tmp47 - tmp50;
-    const Scalar tmp138 = -tmp121;
-    const Scalar tmp139 = tmp58 + tmp62;
-    const Scalar tmp141 = -tmp125;
-    const Scalar tmp142 = tmp72 + tmp73 - tmp30;
-    const Scalar tmp144 = -tmp128;
-    const Scalar tmp145 = -tmp81 - tmp84;
-    const Scalar tmp146 = tmp89 - tmp87;
-    const Scalar tmp147 = tmp146 + tmp31;
-    const Scalar tmp148 = tmp144*bank_dot + tmp145*attitude_dot + tmp147*heading_dot;
-    const Scalar tmp150 = (Scalar(0.25))*m;
-    const Scalar tmp153 = tmp20*tmp57;
-    const Scalar tmp154 = tmp60*tmp6;
-    const Scalar tmp155 = tmp153 + tmp154;
-    const Scalar tmp156 = tmp21*tmp25;
-    const Scalar tmp157 = tmp18*tmp7;
-    const Scalar tmp158 = tmp157 + tmp31;
-    const Scalar tmp159 = tmp92*heading_dot
-        + attitude_dot*(tmp155*bank_dot + tmp85*heading_dot + attitude_dot*(tmp156 - tmp158))
-        + bank_dot*(tmp155*attitude_dot + tmp80*heading_dot + tmp90*bank_dot);
-    const Scalar tmp160 = tmp3*tmp66;
-    const Scalar tmp161 = tmp3*tmp68;
-    const Scalar tmp162 = tmp160 + tmp161;
-    const Scalar tmp163 = attitude_dot*(tmp162*bank_dot - tmp39*attitude_dot)
-        + bank_dot*(tmp162*attitude_dot + tmp97*bank_dot);
-    const Scalar tmp164 = tmp2*tmp57;
-    const Scalar tmp165 = tmp43*tmp60;
-    const Scalar tmp166 = tmp164 + tmp165;
-    const Scalar tmp167 = -tmp166;
-    const Scalar tmp168 = tmp18*tmp45;
-    const Scalar tmp169 = tmp25*tmp78;
-    const Scalar tmp170 = tmp168 + tmp169;
-    const Scalar tmp171 = tmp18*tmp23;
-    const Scalar tmp172 = tmp25*tmp88;
-    const Scalar tmp173 = tmp171 + tmp172;
-    const Scalar tmp174 = tmp25*tmp48;
-    const Scalar tmp175 = tmp18*tmp44;
-    const Scalar tmp176 = tmp175 + tmp41;
-    const Scalar tmp177 = attitude_dot*(tmp167*bank_dot + tmp63*heading_dot
-            + attitude_dot*(tmp176 - tmp174))
-        + bank_dot*(tmp167*attitude_dot + tmp170*bank_dot + tmp173*heading_dot)
-        + heading_dot*(tmp173*bank_dot + tmp63*attitude_dot + heading_dot*(tmp170 + tmp41));
-    const Scalar tmp178 = -tmp155;
-    const Scalar tmp179 = tmp112*heading_dot
-        + attitude_dot*(tmp178*bank_dot + tmp110*heading_dot
-            + attitude_dot*(tmp157 - tmp156 - tmp31))
-        + bank_dot*(tmp178*attitude_dot + tmp109*heading_dot - tmp90*bank_dot);
-    const Scalar tmp180 = -tmp162;
-    const Scalar tmp181 = attitude_dot*(tmp180*bank_dot - tmp98*attitude_dot)
-        + bank_dot*(tmp180*attitude_dot - tmp97*bank_dot);
-    const Scalar tmp182 = -tmp173;
-    const Scalar tmp183 = attitude_dot*(tmp166*bank_dot + tmp103*heading_dot
-            + attitude_dot*(tmp174 + tmp41 - tmp175))
-        + bank_dot*(tmp166*attitude_dot + tmp182*heading_dot - tmp170*bank_dot)
-        + heading_dot*(tmp182*bank_dot + tmp103*attitude_dot + heading_dot*(-tmp170 - tmp42));
-    const Scalar tmp184 = tmp153 - tmp154;
-    const Scalar tmp185 = -tmp184;
-    const Scalar tmp186 = tmp131*heading_dot
-        + attitude_dot*(tmp129*heading_dot + tmp185*bank_dot + attitude_dot*(tmp156 + tmp158))
-        + bank_dot*(tmp128*heading_dot + tmp185*attitude_dot - tmp146*bank_dot);
-    const Scalar tmp187 = tmp160 - tmp161;
-    const Scalar tmp188 = -tmp187;
-    const Scalar tmp189 = attitude_dot*(tmp188*bank_dot - tmp117*attitude_dot)
-        + bank_dot*(tmp188*attitude_dot - tmp116*bank_dot);
-    const Scalar tmp190 = tmp164 - tmp165;
-    const Scalar tmp191 = tmp168 - tmp169;
-    const Scalar tmp192 = tmp172 - tmp171;
-    const Scalar tmp193 = attitude_dot*(tmp122*heading_dot + tmp190*bank_dot
-            + attitude_dot*(-tmp174 - tmp176))
-        + bank_dot*(tmp190*attitude_dot + tmp192*heading_dot - tmp191*bank_dot)
-        + heading_dot*(tmp122*attitude_dot + tmp192*bank_dot + heading_dot*(-tmp191 - tmp41));
-    const Scalar tmp194 = tmp148*heading_dot
-        + attitude_dot*(tmp145*heading_dot + tmp184*bank_dot
-            + attitude_dot*(-tmp156 - tmp157 - tmp86))
-        + bank_dot*(tmp144*heading_dot + tmp146*bank_dot + tmp184*attitude_dot);
-    const Scalar tmp195 = attitude_dot*(tmp134*attitude_dot + tmp187*bank_dot)
-        + bank_dot*(tmp116*bank_dot + tmp187*attitude_dot);
-    const Scalar tmp196 = -tmp190;
-    const Scalar tmp197 = -tmp192;
-    const Scalar tmp198 = -tmp139;
-    const Scalar tmp199 = attitude_dot*(tmp196*bank_dot + tmp198*heading_dot
-            + attitude_dot*(tmp174 + tmp175 + tmp42))
-        + bank_dot*(tmp191*bank_dot + tmp196*attitude_dot + tmp197*heading_dot)
-        + heading_dot*(tmp197*bank_dot + tmp198*attitude_dot
-            + heading_dot*(tmp168 - tmp169 - tmp41));
-    const Scalar tmp215 = tmp150*tmp159;
-    const Scalar tmp216 = tmp150*tmp177;
-    const Scalar tmp217 = tmp150*tmp179;
-    const Scalar tmp218 = tmp150*tmp183;
-    const Scalar tmp219 = tmp150*tmp186;
-    const Scalar tmp220 = tmp150*tmp193;
-    const Scalar tmp221 = tmp150*tmp194;
-    const Scalar tmp222 = tmp150*tmp199;
-    const Scalar tmp223 = tmp150*tmp163;
-    const Scalar tmp224 = tmp150*tmp181;
-    const Scalar tmp225 = tmp150*tmp189;
-    const Scalar tmp226 = tmp150*tmp195;
-    const Scalar tmp227 = tmp217 + tmp219 + tmp221 + tmp215;
-    const Scalar tmp228 = tmp224 + tmp225 + tmp226 + tmp223;
-    const Scalar tmp229 = tmp218 + tmp220 + tmp222 + tmp216;
-    const Scalar tmp233 = -tmp227;
-    const Scalar tmp234 = -tmp228;
-    const Scalar tmp235 = -tmp229;
-    const Scalar tmp236 = -tmp111*tmp218 - tmp119*tmp219 - tmp130*tmp220 - tmp136*tmp221
-        - tmp147*tmp222 - tmp217*tmp105 - tmp52*tmp215 - tmp91*tmp216;
-    const Scalar tmp237 = -tmp123*tmp219 - tmp126*tmp225 - tmp129*tmp220 - tmp139*tmp221
-        - tmp142*tmp226 - tmp145*tmp222 - tmp217*tmp104 - tmp218*tmp110 - tmp224*tmp107
-        - tmp64*tmp215 - tmp75*tmp223 - tmp85*tmp216;
-    const Scalar tmp238 = -tmp121*tmp219 - tmp125*tmp225 - tmp128*tmp220 - tmp138*tmp221
-        - tmp141*tmp226 - tmp144*tmp222 - tmp217*tmp102 - tmp218*tmp109 - tmp224*tmp70
-        - tmp56*tmp215 - tmp71*tmp223 - tmp80*tmp216;
+    const Scalar m_a = Scalar(params.m_a);
+    const Scalar m_b = Scalar(params.m_b);
+    const Scalar m_c = Scalar(params.m_c);
+    const Scalar m_d = Scalar(params.m_d);
+    const Scalar tmp0 = cos(heading);
+    const Scalar tmp1 = cos(attitude);
+    const Scalar tmp2 = Scalar(0.5)*tmp1;
+    const Scalar tmp3 = tmp0*tmp2;
+    const Scalar tmp5 = sin(attitude);
+    const Scalar tmp6 = Scalar(0.5)*tmp5;
+    const Scalar tmp8 = sin(heading);
+    const Scalar tmp9 = tmp2*tmp8;
+    const Scalar tmp12 = tmp0*tmp6;
+    const Scalar tmp13 = tmp9*heading_dot + tmp12*attitude_dot;
+    const Scalar tmp16 = tmp6*tmp8;
+    const Scalar tmp17 = tmp16*attitude_dot - tmp3*heading_dot;
+    const Scalar tmp19 = sin(bank);
+    const Scalar tmp20 = Scalar(0.4)*tmp19;
+    const Scalar tmp21 = tmp20*tmp8;
+    const Scalar tmp22 = cos(bank);
+    const Scalar tmp23 = Scalar(0.4)*tmp22;
+    const Scalar tmp24 = tmp0*tmp23*tmp5;
+    const Scalar tmp26 = tmp1*tmp23;
+    const Scalar tmp28 = tmp0*tmp20;
+    const Scalar tmp29 = tmp23*tmp8;
+    const Scalar tmp30 = tmp29*tmp5;
+    const Scalar tmp31 = tmp28 + tmp30;
+    const Scalar tmp33 = tmp26*attitude_dot;
+    const Scalar tmp34 = tmp0*tmp33;
+    const Scalar tmp35 = tmp29 + tmp28*tmp5;
+    const Scalar tmp40 = -tmp21*tmp5 + Scalar(0.4)*tmp0*tmp22;
+    const Scalar tmp41 = tmp24 - tmp21;
+    const Scalar tmp42 = tmp33*tmp8 + tmp40*bank_dot + tmp41*heading_dot;
+    const Scalar tmp44 = Scalar(0.3)*tmp22;
+    const Scalar tmp45 = tmp44*tmp8;
+    const Scalar tmp46 = Scalar(0.3)*tmp19;
+    const Scalar tmp47 = tmp0*tmp46;
+    const Scalar tmp48 = tmp47*tmp5;
+    const Scalar tmp49 = tmp45 + tmp48;
+    const Scalar tmp51 = tmp1*tmp46;
+    const Scalar tmp53 = tmp0*tmp44;
+    const Scalar tmp54 = tmp46*tmp8;
+    const Scalar tmp55 = tmp5*tmp54;
+    const Scalar tmp57 = tmp51*attitude_dot;
+    const Scalar tmp58 = tmp0*tmp57;
+    const Scalar tmp59 = tmp53*tmp5;
+    const Scalar tmp60 = tmp59 - tmp54;
+    const Scalar tmp61 = tmp55 - Scalar(0.3)*tmp0*tmp22;
+    const Scalar tmp62 = -tmp61;
+    const Scalar tmp64 = tmp46*tmp5;
+    const Scalar tmp65 = tmp1*tmp44;
+    const Scalar tmp67 = tmp45*tmp5;
+    const Scalar tmp68 = tmp47 + tmp67;
+    const Scalar tmp69 = -tmp68;
+    const Scalar tmp70 = -tmp49;
+    const Scalar tmp71 = tmp69*bank_dot + tmp70*heading_dot - tmp57*tmp8;
+    const Scalar tmp73 = Scalar(0.2)*tmp1;
+    const Scalar tmp74 = Scalar(0.25)*tmp19;
+    const Scalar tmp75 = tmp5*tmp74;
+    const Scalar tmp76 = -tmp59 + tmp0*tmp75;
+    const Scalar tmp77 = tmp76 + tmp0*tmp73;
+    const Scalar tmp78 = Scalar(0.25)*tmp22;
+    const Scalar tmp79 = tmp8*tmp78;
+    const Scalar tmp80 = tmp54 + tmp79;
+    const Scalar tmp81 = tmp77 + tmp80;
+    const Scalar tmp83 = Scalar(0.2)*tmp5;
+    const Scalar tmp84 = tmp1*tmp74;
+    const Scalar tmp85 = tmp65 + tmp83 - tmp84;
+    const Scalar tmp87 = tmp73*tmp8;
+    const Scalar tmp88 = tmp0*tmp78;
+    const Scalar tmp89 = tmp74*tmp8;
+    const Scalar tmp90 = tmp5*tmp89;
+    const Scalar tmp91 = tmp68 + tmp88 - tmp90;
+    const Scalar tmp92 = tmp91 - tmp87;
+    const Scalar tmp94 = tmp1*tmp53;
+    const Scalar tmp95 = tmp94 + tmp0*tmp83 - Scalar(0.25)*tmp0*tmp1*tmp19;
+    const Scalar tmp96 = -tmp95;
+    const Scalar tmp97 = tmp49 - tmp89 + tmp5*tmp88;
+    const Scalar tmp99 = -tmp51 - tmp1*tmp78;
+    const Scalar tmp100 = tmp44*tmp5;
+    const Scalar tmp101 = tmp73 + tmp75 - tmp100;
+    const Scalar tmp103 = tmp1*tmp45;
+    const Scalar tmp104 = tmp103 + tmp8*tmp83 - tmp8*tmp84;
+    const Scalar tmp105 = -tmp61 - tmp0*tmp74 - tmp5*tmp79;
+    const Scalar tmp106 = -tmp81;
+    const Scalar tmp107 = tmp104*attitude_dot + tmp105*bank_dot + tmp106*heading_dot;
+    const Scalar tmp117 = tmp17*heading_dot
+        + attitude_dot*(-tmp3*attitude_dot + Scalar(0.5)*tmp5*tmp8*heading_dot);
+    const Scalar tmp118 = -tmp6*(attitude_dot*attitude_dot);
+    const Scalar tmp119 = tmp13*heading_dot + attitude_dot*(tmp9*attitude_dot + tmp12*heading_dot);
+    const Scalar tmp120 = tmp1*tmp28;
+    const Scalar tmp121 = tmp26*tmp8;
+    const Scalar tmp122 = tmp42*heading_dot
+        + attitude_dot*(tmp24*attitude_dot + tmp120*bank_dot + tmp121*heading_dot)
+        + bank_dot*(tmp40*heading_dot + tmp41*bank_dot + tmp120*attitude_dot);
+    const Scalar tmp123 = attitude_dot*(-tmp33 + Scalar(0.4)*tmp19*tmp5*bank_dot)
+        + bank_dot*(-tmp26*bank_dot + tmp20*tmp5*attitude_dot);
+    const Scalar tmp124 = tmp1*tmp21;
+    const Scalar tmp125 = -tmp31;
+    const Scalar tmp126 = -tmp35;
+    const Scalar tmp127 = attitude_dot*(-tmp30*attitude_dot - tmp124*bank_dot
+            + Scalar(0.4)*tmp0*tmp1*tmp22*heading_dot)
+        + bank_dot*(tmp125*bank_dot + tmp126*heading_dot - tmp124*attitude_dot)
+        + heading_dot*(tmp34 + tmp125*heading_dot + tmp126*bank_dot);
+    const Scalar tmp128 = tmp51*tmp8;
+    const Scalar tmp129 = tmp71*heading_dot
+        + attitude_dot*(-tmp48*attitude_dot - tmp128*heading_dot
+            + Scalar(0.3)*tmp0*tmp1*tmp22*bank_dot)
+        + bank_dot*(tmp69*heading_dot + tmp70*bank_dot + tmp94*attitude_dot);
+    const Scalar tmp130 = attitude_dot*(tmp57 + tmp100*bank_dot)
+        + bank_dot*(tmp51*bank_dot + tmp100*attitude_dot);
+    const Scalar tmp131 = tmp0*tmp51;
+    const Scalar tmp132 = -tmp60;
+    const Scalar tmp133 = attitude_dot*(-tmp103*bank_dot - tmp131*heading_dot
+            + Scalar(0.3)*tmp19*tmp5*tmp8*attitude_dot)
+        + bank_dot*(tmp132*heading_dot + tmp61*bank_dot - tmp103*attitude_dot)
+        + heading_dot*(-tmp58 + tmp132*bank_dot + tmp61*heading_dot);
+    const Scalar tmp134 = tmp131 + tmp1*tmp88;
+    const Scalar tmp135 = tmp107*heading_dot
+        + attitude_dot*(tmp134*bank_dot + tmp104*heading_dot - tmp77*attitude_dot)
+        + bank_dot*(tmp134*attitude_dot + tmp105*heading_dot + bank_dot*(-tmp76 - tmp80));
+    const Scalar tmp136 = tmp64 + tmp5*tmp78;
+    const Scalar tmp137 = -tmp65;
+    const Scalar tmp138 = attitude_dot*(tmp136*bank_dot - tmp85*attitude_dot)
+        + bank_dot*(tmp136*attitude_dot + bank_dot*(tmp137 + tmp84));
+    const Scalar tmp139 = -tmp128 - tmp1*tmp79;
+    const Scalar tmp140 = -tmp97;
+    const Scalar tmp141 = attitude_dot*(tmp139*bank_dot + tmp95*heading_dot
+            + attitude_dot*(tmp87 + tmp90 - tmp67))
+        + bank_dot*(tmp139*attitude_dot + tmp140*heading_dot - tmp91*bank_dot)
+        + heading_dot*(tmp140*bank_dot + tmp95*attitude_dot - tmp92*heading_dot);
+    const Scalar tmp172 = tmp117*m_a;
+    const Scalar tmp173 = tmp119*m_a;
+    const Scalar tmp174 = tmp122*m_b;
+    const Scalar tmp175 = tmp127*m_b;
+    const Scalar tmp176 = tmp129*m_c;
+    const Scalar tmp177 = tmp133*m_c;
+    const Scalar tmp178 = tmp135*m_d;
+    const Scalar tmp179 = tmp141*m_d;
+    const Scalar tmp180 = tmp118*m_a;
+    const Scalar tmp181 = tmp123*m_b;
+    const Scalar tmp182 = tmp130*m_c;
+    const Scalar tmp183 = tmp138*m_d;
+    const Scalar tmp184 = tmp174 + tmp176 + tmp178 + tmp172;
+    const Scalar tmp185 = tmp181 + tmp182 + tmp183 + tmp180;
+    const Scalar tmp186 = tmp175 + tmp177 + tmp179 + tmp173;
+    const Scalar tmp190 = -tmp184;
+    const Scalar tmp191 = -tmp185;
+    const Scalar tmp192 = -tmp186;
+    const Scalar tmp193 = -tmp174*tmp31 - tmp175*tmp41 - tmp176*tmp62 - tmp177*tmp70 - tmp178*tmp92
+        - tmp179*tmp106 + Scalar(0.5)*tmp0*tmp1*tmp173 + Scalar(0.5)*tmp1*tmp8*tmp172;
+    const Scalar tmp194 = -tmp16*tmp173 - tmp175*tmp121 - tmp176*tmp131 - tmp178*tmp96
+        - tmp179*tmp104 - tmp182*tmp64 - tmp183*tmp101 - tmp2*tmp180 + Scalar(0.5)*tmp0*tmp5*tmp172
+        + Scalar(0.4)*tmp181*tmp22*tmp5 + Scalar(0.4)*tmp0*tmp1*tmp174*tmp22
+        + Scalar(0.3)*tmp1*tmp177*tmp19*tmp8;
+    const Scalar tmp195 = -tmp174*tmp35 - tmp175*tmp40 - tmp176*tmp60 - tmp177*tmp69 - tmp178*tmp97
+        - tmp179*tmp105 - tmp183*tmp99 + Scalar(0.4)*tmp1*tmp181*tmp19
+        + Scalar(0.3)*tmp1*tmp182*tmp22;
     QVector<Scalar> result;
-    result(0) = tmp233;
-    result(1) = tmp234;
-    result(2) = tmp235;
-    result(3) = tmp236;
-    result(4) = tmp237;
-    result(5) = tmp238;
+    result(0) = tmp190;
+    result(1) = tmp191;
+    result(2) = tmp192;
+    result(3) = tmp193;
+    result(4) = tmp194;
+    result(5) = tmp195;
     return result;
   }
 
@@ -6330,7 +5476,7 @@ struct RigidBodyEulerYzx {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return Ft + Fi (nq)
-  /// Ops: 591
+  /// Ops: 493
   template <typename Scalar>
   static QVector<Scalar> forces(const QVector<Scalar>& q,
                                 const QVector<Scalar>& v,
@@ -6338,7 +5484,6 @@ struct RigidBodyEulerYzx {
                                 const Params& params) {
     using std::cos;
     using std::sin;
-    using std::sqrt;
     const Scalar heading = q(3);
     const Scalar attitude = q(4);
     const Scalar bank = q(5);
@@ -6346,244 +5491,183 @@ struct RigidBodyEulerYzx {
     const Scalar attitude_dot = v(4);
     const Scalar bank_dot = v(5);
     const Scalar g = Scalar(params.g);
-    const Scalar m = Scalar(params.m);
-    const Scalar a = Scalar(params.a);
-    const Scalar b = Scalar(params.b);
-    const Scalar c = Scalar(params.c);
-    const Scalar tmp0 = sin(heading);
-    const Scalar tmp1 = cos(bank);
-    const Scalar tmp2 = tmp0*tmp1;
-    const Scalar tmp3 = sin(attitude);
-    const Scalar tmp4 = sin(bank);
-    const Scalar tmp5 = cos(heading);
-    const Scalar tmp6 = tmp4*tmp5;
-    const Scalar tmp7 = tmp3*tmp6;
-    const Scalar tmp8 = tmp2 + tmp7;
-    const Scalar tmp9 = (Scalar(1)/sqrt(m));
-    const Scalar tmp10 = (a*a);
-    const Scalar tmp11 = (b*b);
-    const Scalar tmp12 = ((Scalar(1)/Scalar(24)))*m;
-    const Scalar tmp13 = tmp12*(tmp10 + tmp11);
-    const Scalar tmp14 = (c*c);
-    const Scalar tmp15 = tmp12*(tmp10 + tmp14);
-    const Scalar tmp16 = tmp12*(tmp11 + tmp14);
-    const Scalar tmp17 = tmp15 + tmp16 - tmp13;
-    const Scalar tmp18 = tmp9*sqrt(tmp17);
-    const Scalar tmp20 = tmp1*tmp5;
-    const Scalar tmp21 = tmp20*tmp3;
-    const Scalar tmp22 = tmp21 - tmp0*tmp4;
-    const Scalar tmp23 = -tmp22;
-    const Scalar tmp24 = tmp13 + tmp16 - tmp15;
-    const Scalar tmp25 = tmp9*sqrt(tmp24);
-    const Scalar tmp27 = cos(attitude);
-    const Scalar tmp28 = tmp13 + tmp15 - tmp16;
-    const Scalar tmp29 = tmp9*sqrt(tmp28);
-    const Scalar tmp30 = tmp27*tmp29;
-    const Scalar tmp31 = tmp30*tmp5;
-    const Scalar tmp34 = tmp29*tmp3;
-    const Scalar tmp35 = tmp1*tmp25;
-    const Scalar tmp36 = tmp27*tmp35;
-    const Scalar tmp37 = tmp18*tmp4;
-    const Scalar tmp38 = tmp27*tmp37;
-    const Scalar tmp39 = tmp34 + tmp36 - tmp38;
-    const Scalar tmp41 = tmp0*tmp30;
-    const Scalar tmp42 = -tmp41;
-    const Scalar tmp43 = tmp0*tmp4;
-    const Scalar tmp44 = tmp3*tmp43;
-    const Scalar tmp45 = tmp44 - tmp1*tmp5;
-    const Scalar tmp46 = -tmp45;
-    const Scalar tmp47 = tmp18*tmp46;
-    const Scalar tmp48 = tmp2*tmp3;
-    const Scalar tmp49 = tmp48 + tmp6;
-    const Scalar tmp50 = tmp25*tmp49;
-    const Scalar tmp51 = tmp47 + tmp50;
-    const Scalar tmp52 = tmp42 + tmp51;
-    const Scalar tmp54 = tmp25*tmp8;
-    const Scalar tmp55 = tmp18*tmp22;
-    const Scalar tmp56 = tmp54 + tmp55;
-    const Scalar tmp57 = tmp18*tmp27;
-    const Scalar tmp58 = tmp57*tmp6;
-    const Scalar tmp59 = tmp34*tmp5;
-    const Scalar tmp60 = tmp25*tmp27;
-    const Scalar tmp61 = tmp20*tmp60;
-    const Scalar tmp62 = tmp59 + tmp61;
-    const Scalar tmp63 = tmp62 - tmp58;
-    const Scalar tmp64 = -tmp63;
-    const Scalar tmp66 = tmp1*tmp18;
-    const Scalar tmp67 = tmp27*tmp66;
-    const Scalar tmp68 = tmp25*tmp4;
-    const Scalar tmp69 = tmp27*tmp68;
-    const Scalar tmp70 = tmp67 + tmp69;
-    const Scalar tmp71 = -tmp70;
-    const Scalar tmp72 = tmp3*tmp35;
-    const Scalar tmp73 = tmp3*tmp37;
-    const Scalar tmp74 = tmp30 + tmp73;
-    const Scalar tmp75 = tmp74 - tmp72;
-    const Scalar tmp77 = tmp25*tmp46;
-    const Scalar tmp78 = -tmp49;
-    const Scalar tmp79 = tmp18*tmp78;
-    const Scalar tmp80 = tmp77 + tmp79;
-    const Scalar tmp81 = tmp43*tmp57;
-    const Scalar tmp82 = tmp0*tmp34;
-    const Scalar tmp83 = tmp2*tmp60;
-    const Scalar tmp84 = tmp82 + tmp83;
-    const Scalar tmp85 = tmp84 - tmp81;
-    const Scalar tmp86 = -tmp31;
-    const Scalar tmp87 = tmp22*tmp25;
-    const Scalar tmp88 = -tmp8;
-    const Scalar tmp89 = tmp18*tmp88;
-    const Scalar tmp90 = tmp87 + tmp89;
-    const Scalar tmp91 = tmp86 + tmp90;
-    const Scalar tmp92 = tmp80*bank_dot + tmp85*attitude_dot + tmp91*heading_dot;
-    const Scalar tmp97 = tmp38 - tmp36;
-    const Scalar tmp98 = tmp34 + tmp97;
-    const Scalar tmp100 = tmp41 + tmp51;
-    const Scalar tmp102 = -tmp56;
-    const Scalar tmp103 = tmp58 + tmp59 - tmp61;
-    const Scalar tmp104 = -tmp103;
-    const Scalar tmp105 = -tmp100;
-    const Scalar tmp107 = tmp30 + tmp72 - tmp73;
-    const Scalar tmp109 = -tmp80;
-    const Scalar tmp110 = tmp81 + tmp82 - tmp83;
-    const Scalar tmp111 = -tmp31 - tmp90;
-    const Scalar tmp112 = tmp111*heading_dot + tmp109*bank_dot + tmp110*attitude_dot;
-    const Scalar tmp116 = tmp36 + tmp38;
-    const Scalar tmp117 = tmp116 - tmp34;
-    const Scalar tmp119 = tmp41 + tmp50 - tmp47;
-    const Scalar tmp121 = tmp54 - tmp55;
-    const Scalar tmp122 = tmp58 + tmp61 - tmp59;
-    const Scalar tmp123 = -tmp122;
-    const Scalar tmp125 = tmp67 - tmp69;
-    const Scalar tmp126 = -tmp72 - tmp74;
-    const Scalar tmp128 = tmp77 - tmp79;
-    const Scalar tmp129 = tmp81 + tmp83 - tmp82;
-    const Scalar tmp130 = tmp31 + tmp87 - tmp89;
-    const Scalar tmp131 = tmp128*bank_dot + tmp129*attitude_dot + tmp130*heading_dot;
-    const Scalar tmp134 = tmp116 + tmp34;
-    const Scalar tmp136 = tmp41 + tmp47 - tmp50;
-    const Scalar tmp138 = -tmp121;
-    const Scalar tmp139 = tmp58 + tmp62;
-    const Scalar tmp141 = -tmp125;
-    const Scalar tmp142 = tmp72 + tmp73 - tmp30;
-    const Scalar tmp144 = -tmp128;
-    const Scalar tmp145 = -tmp81 - tmp84;
-    const Scalar tmp146 = tmp89 - tmp87;
-    const Scalar tmp147 = tmp146 + tmp31;
-    const Scalar tmp148 = tmp144*bank_dot + tmp145*attitude_dot + tmp147*heading_dot;
-    const Scalar tmp150 = (Scalar(0.25))*m;
-    const Scalar tmp151 = tmp150*g;
-    const Scalar tmp152 = -tmp151;
-    const Scalar tmp153 = tmp20*tmp57;
-    const Scalar tmp154 = tmp60*tmp6;
-    const Scalar tmp155 = tmp153 + tmp154;
-    const Scalar tmp156 = tmp21*tmp25;
-    const Scalar tmp157 = tmp18*tmp7;
-    const Scalar tmp158 = tmp157 + tmp31;
-    const Scalar tmp159 = tmp92*heading_dot
-        + attitude_dot*(tmp155*bank_dot + tmp85*heading_dot + attitude_dot*(tmp156 - tmp158))
-        + bank_dot*(tmp155*attitude_dot + tmp80*heading_dot + tmp90*bank_dot);
-    const Scalar tmp160 = tmp3*tmp66;
-    const Scalar tmp161 = tmp3*tmp68;
-    const Scalar tmp162 = tmp160 + tmp161;
-    const Scalar tmp163 = attitude_dot*(tmp162*bank_dot - tmp39*attitude_dot)
-        + bank_dot*(tmp162*attitude_dot + tmp97*bank_dot);
-    const Scalar tmp164 = tmp2*tmp57;
-    const Scalar tmp165 = tmp43*tmp60;
-    const Scalar tmp166 = tmp164 + tmp165;
-    const Scalar tmp167 = -tmp166;
-    const Scalar tmp168 = tmp18*tmp45;
-    const Scalar tmp169 = tmp25*tmp78;
-    const Scalar tmp170 = tmp168 + tmp169;
-    const Scalar tmp171 = tmp18*tmp23;
-    const Scalar tmp172 = tmp25*tmp88;
-    const Scalar tmp173 = tmp171 + tmp172;
-    const Scalar tmp174 = tmp25*tmp48;
-    const Scalar tmp175 = tmp18*tmp44;
-    const Scalar tmp176 = tmp175 + tmp41;
-    const Scalar tmp177 = attitude_dot*(tmp167*bank_dot + tmp63*heading_dot
-            + attitude_dot*(tmp176 - tmp174))
-        + bank_dot*(tmp167*attitude_dot + tmp170*bank_dot + tmp173*heading_dot)
-        + heading_dot*(tmp173*bank_dot + tmp63*attitude_dot + heading_dot*(tmp170 + tmp41));
-    const Scalar tmp178 = -tmp155;
-    const Scalar tmp179 = tmp112*heading_dot
-        + attitude_dot*(tmp178*bank_dot + tmp110*heading_dot
-            + attitude_dot*(tmp157 - tmp156 - tmp31))
-        + bank_dot*(tmp178*attitude_dot + tmp109*heading_dot - tmp90*bank_dot);
-    const Scalar tmp180 = -tmp162;
-    const Scalar tmp181 = attitude_dot*(tmp180*bank_dot - tmp98*attitude_dot)
-        + bank_dot*(tmp180*attitude_dot - tmp97*bank_dot);
-    const Scalar tmp182 = -tmp173;
-    const Scalar tmp183 = attitude_dot*(tmp166*bank_dot + tmp103*heading_dot
-            + attitude_dot*(tmp174 + tmp41 - tmp175))
-        + bank_dot*(tmp166*attitude_dot + tmp182*heading_dot - tmp170*bank_dot)
-        + heading_dot*(tmp182*bank_dot + tmp103*attitude_dot + heading_dot*(-tmp170 - tmp42));
-    const Scalar tmp184 = tmp153 - tmp154;
-    const Scalar tmp185 = -tmp184;
-    const Scalar tmp186 = tmp131*heading_dot
-        + attitude_dot*(tmp129*heading_dot + tmp185*bank_dot + attitude_dot*(tmp156 + tmp158))
-        + bank_dot*(tmp128*heading_dot + tmp185*attitude_dot - tmp146*bank_dot);
-    const Scalar tmp187 = tmp160 - tmp161;
-    const Scalar tmp188 = -tmp187;
-    const Scalar tmp189 = attitude_dot*(tmp188*bank_dot - tmp117*attitude_dot)
-        + bank_dot*(tmp188*attitude_dot - tmp116*bank_dot);
-    const Scalar tmp190 = tmp164 - tmp165;
-    const Scalar tmp191 = tmp168 - tmp169;
-    const Scalar tmp192 = tmp172 - tmp171;
-    const Scalar tmp193 = attitude_dot*(tmp122*heading_dot + tmp190*bank_dot
-            + attitude_dot*(-tmp174 - tmp176))
-        + bank_dot*(tmp190*attitude_dot + tmp192*heading_dot - tmp191*bank_dot)
-        + heading_dot*(tmp122*attitude_dot + tmp192*bank_dot + heading_dot*(-tmp191 - tmp41));
-    const Scalar tmp194 = tmp148*heading_dot
-        + attitude_dot*(tmp145*heading_dot + tmp184*bank_dot
-            + attitude_dot*(-tmp156 - tmp157 - tmp86))
-        + bank_dot*(tmp144*heading_dot + tmp146*bank_dot + tmp184*attitude_dot);
-    const Scalar tmp195 = attitude_dot*(tmp134*attitude_dot + tmp187*bank_dot)
-        + bank_dot*(tmp116*bank_dot + tmp187*attitude_dot);
-    const Scalar tmp196 = -tmp190;
-    const Scalar tmp197 = -tmp192;
-    const Scalar tmp198 = -tmp139;
-    const Scalar tmp199 = attitude_dot*(tmp196*bank_dot + tmp198*heading_dot
-            + attitude_dot*(tmp174 + tmp175 + tmp42))
-        + bank_dot*(tmp191*bank_dot + tmp196*attitude_dot + tmp197*heading_dot)
-        + heading_dot*(tmp197*bank_dot + tmp198*attitude_dot
-            + heading_dot*(tmp168 - tmp169 - tmp41));
-    const Scalar tmp214 = Scalar(4)*tmp152;
-    const Scalar tmp215 = tmp150*tmp159;
-    const Scalar tmp216 = tmp150*tmp177;
-    const Scalar tmp217 = tmp150*tmp179;
-    const Scalar tmp218 = tmp150*tmp183;
-    const Scalar tmp219 = tmp150*tmp186;
-    const Scalar tmp220 = tmp150*tmp193;
-    const Scalar tmp221 = tmp150*tmp194;
-    const Scalar tmp222 = tmp150*tmp199;
-    const Scalar tmp223 = tmp150*tmp163;
-    const Scalar tmp224 = tmp150*tmp181;
-    const Scalar tmp225 = tmp150*tmp189;
-    const Scalar tmp226 = tmp150*tmp195;
-    const Scalar tmp227 = tmp217 + tmp219 + tmp221 + tmp215;
-    const Scalar tmp228 = tmp224 + tmp225 + tmp226 + tmp223;
-    const Scalar tmp229 = tmp218 + tmp220 + tmp222 + tmp216;
-    const Scalar tmp230 = tmp111*tmp152 + tmp130*tmp152 + tmp147*tmp152 + tmp152*tmp91;
-    const Scalar tmp231 = tmp129*tmp152 + tmp145*tmp152 + tmp152*tmp85 + tmp152*tmp110;
-    const Scalar tmp232 = tmp128*tmp152 + tmp144*tmp152 + tmp152*tmp80 + tmp152*tmp109;
-    const Scalar tmp233 = -tmp227;
-    const Scalar tmp234 = -tmp228;
-    const Scalar tmp235 = -tmp229;
-    const Scalar tmp236 = -tmp111*tmp218 - tmp119*tmp219 - tmp130*tmp220 - tmp136*tmp221
-        - tmp147*tmp222 - tmp217*tmp105 - tmp52*tmp215 - tmp91*tmp216;
-    const Scalar tmp237 = -tmp123*tmp219 - tmp126*tmp225 - tmp129*tmp220 - tmp139*tmp221
-        - tmp142*tmp226 - tmp145*tmp222 - tmp217*tmp104 - tmp218*tmp110 - tmp224*tmp107
-        - tmp64*tmp215 - tmp75*tmp223 - tmp85*tmp216;
-    const Scalar tmp238 = -tmp121*tmp219 - tmp125*tmp225 - tmp128*tmp220 - tmp138*tmp221
-        - tmp141*tmp226 - tmp144*tmp222 - tmp217*tmp102 - tmp218*tmp109 - tmp224*tmp70
-        - tmp56*tmp215 - tmp71*tmp223 - tmp80*tmp216;
+    const Scalar m_a = Scalar(params.m_a);
+    const Scalar m_b = Scalar(params.m_b);
+    const Scalar m_c = Scalar(params.m_c);
+    const Scalar m_d = Scalar(params.m_d);
+    const Scalar tmp0 = cos(heading);
+    const Scalar tmp1 = cos(attitude);
+    const Scalar tmp2 = Scalar(0.5)*tmp1;
+    const Scalar tmp3 = tmp0*tmp2;
+    const Scalar tmp5 = sin(attitude);
+    const Scalar tmp6 = Scalar(0.5)*tmp5;
+    const Scalar tmp8 = sin(heading);
+    const Scalar tmp9 = tmp2*tmp8;
+    const Scalar tmp12 = tmp0*tmp6;
+    const Scalar tmp13 = tmp9*heading_dot + tmp12*attitude_dot;
+    const Scalar tmp16 = tmp6*tmp8;
+    const Scalar tmp17 = tmp16*attitude_dot - tmp3*heading_dot;
+    const Scalar tmp19 = sin(bank);
+    const Scalar tmp20 = Scalar(0.4)*tmp19;
+    const Scalar tmp21 = tmp20*tmp8;
+    const Scalar tmp22 = cos(bank);
+    const Scalar tmp23 = Scalar(0.4)*tmp22;
+    const Scalar tmp24 = tmp0*tmp23*tmp5;
+    const Scalar tmp26 = tmp1*tmp23;
+    const Scalar tmp28 = tmp0*tmp20;
+    const Scalar tmp29 = tmp23*tmp8;
+    const Scalar tmp30 = tmp29*tmp5;
+    const Scalar tmp31 = tmp28 + tmp30;
+    const Scalar tmp33 = tmp26*attitude_dot;
+    const Scalar tmp34 = tmp0*tmp33;
+    const Scalar tmp35 = tmp29 + tmp28*tmp5;
+    const Scalar tmp40 = -tmp21*tmp5 + Scalar(0.4)*tmp0*tmp22;
+    const Scalar tmp41 = tmp24 - tmp21;
+    const Scalar tmp42 = tmp33*tmp8 + tmp40*bank_dot + tmp41*heading_dot;
+    const Scalar tmp44 = Scalar(0.3)*tmp22;
+    const Scalar tmp45 = tmp44*tmp8;
+    const Scalar tmp46 = Scalar(0.3)*tmp19;
+    const Scalar tmp47 = tmp0*tmp46;
+    const Scalar tmp48 = tmp47*tmp5;
+    const Scalar tmp49 = tmp45 + tmp48;
+    const Scalar tmp51 = tmp1*tmp46;
+    const Scalar tmp53 = tmp0*tmp44;
+    const Scalar tmp54 = tmp46*tmp8;
+    const Scalar tmp55 = tmp5*tmp54;
+    const Scalar tmp57 = tmp51*attitude_dot;
+    const Scalar tmp58 = tmp0*tmp57;
+    const Scalar tmp59 = tmp53*tmp5;
+    const Scalar tmp60 = tmp59 - tmp54;
+    const Scalar tmp61 = tmp55 - Scalar(0.3)*tmp0*tmp22;
+    const Scalar tmp62 = -tmp61;
+    const Scalar tmp64 = tmp46*tmp5;
+    const Scalar tmp65 = tmp1*tmp44;
+    const Scalar tmp67 = tmp45*tmp5;
+    const Scalar tmp68 = tmp47 + tmp67;
+    const Scalar tmp69 = -tmp68;
+    const Scalar tmp70 = -tmp49;
+    const Scalar tmp71 = tmp69*bank_dot + tmp70*heading_dot - tmp57*tmp8;
+    const Scalar tmp73 = Scalar(0.2)*tmp1;
+    const Scalar tmp74 = Scalar(0.25)*tmp19;
+    const Scalar tmp75 = tmp5*tmp74;
+    const Scalar tmp76 = -tmp59 + tmp0*tmp75;
+    const Scalar tmp77 = tmp76 + tmp0*tmp73;
+    const Scalar tmp78 = Scalar(0.25)*tmp22;
+    const Scalar tmp79 = tmp8*tmp78;
+    const Scalar tmp80 = tmp54 + tmp79;
+    const Scalar tmp81 = tmp77 + tmp80;
+    const Scalar tmp83 = Scalar(0.2)*tmp5;
+    const Scalar tmp84 = tmp1*tmp74;
+    const Scalar tmp85 = tmp65 + tmp83 - tmp84;
+    const Scalar tmp87 = tmp73*tmp8;
+    const Scalar tmp88 = tmp0*tmp78;
+    const Scalar tmp89 = tmp74*tmp8;
+    const Scalar tmp90 = tmp5*tmp89;
+    const Scalar tmp91 = tmp68 + tmp88 - tmp90;
+    const Scalar tmp92 = tmp91 - tmp87;
+    const Scalar tmp94 = tmp1*tmp53;
+    const Scalar tmp95 = tmp94 + tmp0*tmp83 - Scalar(0.25)*tmp0*tmp1*tmp19;
+    const Scalar tmp96 = -tmp95;
+    const Scalar tmp97 = tmp49 - tmp89 + tmp5*tmp88;
+    const Scalar tmp99 = -tmp51 - tmp1*tmp78;
+    const Scalar tmp100 = tmp44*tmp5;
+    const Scalar tmp101 = tmp73 + tmp75 - tmp100;
+    const Scalar tmp103 = tmp1*tmp45;
+    const Scalar tmp104 = tmp103 + tmp8*tmp83 - tmp8*tmp84;
+    const Scalar tmp105 = -tmp61 - tmp0*tmp74 - tmp5*tmp79;
+    const Scalar tmp106 = -tmp81;
+    const Scalar tmp107 = tmp104*attitude_dot + tmp105*bank_dot + tmp106*heading_dot;
+    const Scalar tmp109 = g*m_a;
+    const Scalar tmp110 = -tmp109;
+    const Scalar tmp111 = g*m_b;
+    const Scalar tmp112 = -tmp111;
+    const Scalar tmp113 = g*m_c;
+    const Scalar tmp114 = -tmp113;
+    const Scalar tmp115 = g*m_d;
+    const Scalar tmp116 = -tmp115;
+    const Scalar tmp117 = tmp17*heading_dot
+        + attitude_dot*(-tmp3*attitude_dot + Scalar(0.5)*tmp5*tmp8*heading_dot);
+    const Scalar tmp118 = -tmp6*(attitude_dot*attitude_dot);
+    const Scalar tmp119 = tmp13*heading_dot + attitude_dot*(tmp9*attitude_dot + tmp12*heading_dot);
+    const Scalar tmp120 = tmp1*tmp28;
+    const Scalar tmp121 = tmp26*tmp8;
+    const Scalar tmp122 = tmp42*heading_dot
+        + attitude_dot*(tmp24*attitude_dot + tmp120*bank_dot + tmp121*heading_dot)
+        + bank_dot*(tmp40*heading_dot + tmp41*bank_dot + tmp120*attitude_dot);
+    const Scalar tmp123 = attitude_dot*(-tmp33 + Scalar(0.4)*tmp19*tmp5*bank_dot)
+        + bank_dot*(-tmp26*bank_dot + tmp20*tmp5*attitude_dot);
+    const Scalar tmp124 = tmp1*tmp21;
+    const Scalar tmp125 = -tmp31;
+    const Scalar tmp126 = -tmp35;
+    const Scalar tmp127 = attitude_dot*(-tmp30*attitude_dot - tmp124*bank_dot
+            + Scalar(0.4)*tmp0*tmp1*tmp22*heading_dot)
+        + bank_dot*(tmp125*bank_dot + tmp126*heading_dot - tmp124*attitude_dot)
+        + heading_dot*(tmp34 + tmp125*heading_dot + tmp126*bank_dot);
+    const Scalar tmp128 = tmp51*tmp8;
+    const Scalar tmp129 = tmp71*heading_dot
+        + attitude_dot*(-tmp48*attitude_dot - tmp128*heading_dot
+            + Scalar(0.3)*tmp0*tmp1*tmp22*bank_dot)
+        + bank_dot*(tmp69*heading_dot + tmp70*bank_dot + tmp94*attitude_dot);
+    const Scalar tmp130 = attitude_dot*(tmp57 + tmp100*bank_dot)
+        + bank_dot*(tmp51*bank_dot + tmp100*attitude_dot);
+    const Scalar tmp131 = tmp0*tmp51;
+    const Scalar tmp132 = -tmp60;
+    const Scalar tmp133 = attitude_dot*(-tmp103*bank_dot - tmp131*heading_dot
+            + Scalar(0.3)*tmp19*tmp5*tmp8*attitude_dot)
+        + bank_dot*(tmp132*heading_dot + tmp61*bank_dot - tmp103*attitude_dot)
+        + heading_dot*(-tmp58 + tmp132*bank_dot + tmp61*heading_dot);
+    const Scalar tmp134 = tmp131 + tmp1*tmp88;
+    const Scalar tmp135 = tmp107*heading_dot
+        + attitude_dot*(tmp134*bank_dot + tmp104*heading_dot - tmp77*attitude_dot)
+        + bank_dot*(tmp134*attitude_dot + tmp105*heading_dot + bank_dot*(-tmp76 - tmp80));
+    const Scalar tmp136 = tmp64 + tmp5*tmp78;
+    const Scalar tmp137 = -tmp65;
+    const Scalar tmp138 = attitude_dot*(tmp136*bank_dot - tmp85*attitude_dot)
+        + bank_dot*(tmp136*attitude_dot + bank_dot*(tmp137 + tmp84));
+    const Scalar tmp139 = -tmp128 - tmp1*tmp79;
+    const Scalar tmp140 = -tmp97;
+    const Scalar tmp141 = attitude_dot*(tmp139*bank_dot + tmp95*heading_dot
+            + attitude_dot*(tmp87 + tmp90 - tmp67))
+        + bank_dot*(tmp139*attitude_dot + tmp140*heading_dot - tmp91*bank_dot)
+        + heading_dot*(tmp140*bank_dot + tmp95*attitude_dot - tmp92*heading_dot);
+    const Scalar tmp171 = tmp110 + tmp112 + tmp114 + tmp116;
+    const Scalar tmp172 = tmp117*m_a;
+    const Scalar tmp173 = tmp119*m_a;
+    const Scalar tmp174 = tmp122*m_b;
+    const Scalar tmp175 = tmp127*m_b;
+    const Scalar tmp176 = tmp129*m_c;
+    const Scalar tmp177 = tmp133*m_c;
+    const Scalar tmp178 = tmp135*m_d;
+    const Scalar tmp179 = tmp141*m_d;
+    const Scalar tmp180 = tmp118*m_a;
+    const Scalar tmp181 = tmp123*m_b;
+    const Scalar tmp182 = tmp130*m_c;
+    const Scalar tmp183 = tmp138*m_d;
+    const Scalar tmp184 = tmp174 + tmp176 + tmp178 + tmp172;
+    const Scalar tmp185 = tmp181 + tmp182 + tmp183 + tmp180;
+    const Scalar tmp186 = tmp175 + tmp177 + tmp179 + tmp173;
+    const Scalar tmp187 = tmp41*tmp112 + tmp70*tmp114 + tmp106*tmp116 - tmp3*tmp110;
+    const Scalar tmp188 = tmp16*tmp110 + tmp104*tmp116 + tmp112*tmp121 - tmp114*tmp128;
+    const Scalar tmp189 = tmp40*tmp112 + tmp69*tmp114 + tmp105*tmp116;
+    const Scalar tmp190 = -tmp184;
+    const Scalar tmp191 = -tmp185;
+    const Scalar tmp192 = -tmp186;
+    const Scalar tmp193 = -tmp174*tmp31 - tmp175*tmp41 - tmp176*tmp62 - tmp177*tmp70 - tmp178*tmp92
+        - tmp179*tmp106 + Scalar(0.5)*tmp0*tmp1*tmp173 + Scalar(0.5)*tmp1*tmp8*tmp172;
+    const Scalar tmp194 = -tmp16*tmp173 - tmp175*tmp121 - tmp176*tmp131 - tmp178*tmp96
+        - tmp179*tmp104 - tmp182*tmp64 - tmp183*tmp101 - tmp2*tmp180 + Scalar(0.5)*tmp0*tmp5*tmp172
+        + Scalar(0.4)*tmp181*tmp22*tmp5 + Scalar(0.4)*tmp0*tmp1*tmp174*tmp22
+        + Scalar(0.3)*tmp1*tmp177*tmp19*tmp8;
+    const Scalar tmp195 = -tmp174*tmp35 - tmp175*tmp40 - tmp176*tmp60 - tmp177*tmp69 - tmp178*tmp97
+        - tmp179*tmp105 - tmp183*tmp99 + Scalar(0.4)*tmp1*tmp181*tmp19
+        + Scalar(0.3)*tmp1*tmp182*tmp22;
     QVector<Scalar> result;
-    result(0) = tmp233;
-    result(1) = tmp234;
-    result(2) = tmp214 + tmp235;
-    result(3) = tmp230 + tmp236;
-    result(4) = tmp231 + tmp237;
-    result(5) = tmp232 + tmp238;
+    result(0) = tmp190;
+    result(1) = tmp191;
+    result(2) = tmp171 + tmp192;
+    result(3) = tmp187 + tmp193;
+    result(4) = tmp188 + tmp194;
+    result(5) = tmp189 + tmp195;
     return result;
   }
 
@@ -6593,7 +5677,7 @@ struct RigidBodyEulerYzx {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// Mt and f must not be null.
-  /// Ops: 785
+  /// Ops: 700
   template <typename Scalar>
   static void dynamics(const QVector<Scalar>& q,
                        const QVector<Scalar>& v,
@@ -6603,7 +5687,6 @@ struct RigidBodyEulerYzx {
                        QVector<Scalar>* f) {
     using std::cos;
     using std::sin;
-    using std::sqrt;
     const Scalar heading = q(3);
     const Scalar attitude = q(4);
     const Scalar bank = q(5);
@@ -6611,293 +5694,245 @@ struct RigidBodyEulerYzx {
     const Scalar attitude_dot = v(4);
     const Scalar bank_dot = v(5);
     const Scalar g = Scalar(params.g);
-    const Scalar m = Scalar(params.m);
-    const Scalar a = Scalar(params.a);
-    const Scalar b = Scalar(params.b);
-    const Scalar c = Scalar(params.c);
-    const Scalar tmp0 = sin(heading);
-    const Scalar tmp1 = cos(bank);
-    const Scalar tmp2 = tmp0*tmp1;
-    const Scalar tmp3 = sin(attitude);
-    const Scalar tmp4 = sin(bank);
-    const Scalar tmp5 = cos(heading);
-    const Scalar tmp6 = tmp4*tmp5;
-    const Scalar tmp7 = tmp3*tmp6;
-    const Scalar tmp8 = tmp2 + tmp7;
-    const Scalar tmp9 = (Scalar(1)/sqrt(m));
-    const Scalar tmp10 = (a*a);
-    const Scalar tmp11 = (b*b);
-    const Scalar tmp12 = ((Scalar(1)/Scalar(24)))*m;
-    const Scalar tmp13 = tmp12*(tmp10 + tmp11);
-    const Scalar tmp14 = (c*c);
-    const Scalar tmp15 = tmp12*(tmp10 + tmp14);
-    const Scalar tmp16 = tmp12*(tmp11 + tmp14);
-    const Scalar tmp17 = tmp15 + tmp16 - tmp13;
-    const Scalar tmp18 = tmp9*sqrt(tmp17);
-    const Scalar tmp20 = tmp1*tmp5;
-    const Scalar tmp21 = tmp20*tmp3;
-    const Scalar tmp22 = tmp21 - tmp0*tmp4;
-    const Scalar tmp23 = -tmp22;
-    const Scalar tmp24 = tmp13 + tmp16 - tmp15;
-    const Scalar tmp25 = tmp9*sqrt(tmp24);
-    const Scalar tmp27 = cos(attitude);
-    const Scalar tmp28 = tmp13 + tmp15 - tmp16;
-    const Scalar tmp29 = tmp9*sqrt(tmp28);
-    const Scalar tmp30 = tmp27*tmp29;
-    const Scalar tmp31 = tmp30*tmp5;
-    const Scalar tmp34 = tmp29*tmp3;
-    const Scalar tmp35 = tmp1*tmp25;
-    const Scalar tmp36 = tmp27*tmp35;
-    const Scalar tmp37 = tmp18*tmp4;
-    const Scalar tmp38 = tmp27*tmp37;
-    const Scalar tmp39 = tmp34 + tmp36 - tmp38;
-    const Scalar tmp41 = tmp0*tmp30;
-    const Scalar tmp42 = -tmp41;
-    const Scalar tmp43 = tmp0*tmp4;
-    const Scalar tmp44 = tmp3*tmp43;
-    const Scalar tmp45 = tmp44 - tmp1*tmp5;
-    const Scalar tmp46 = -tmp45;
-    const Scalar tmp47 = tmp18*tmp46;
-    const Scalar tmp48 = tmp2*tmp3;
-    const Scalar tmp49 = tmp48 + tmp6;
-    const Scalar tmp50 = tmp25*tmp49;
-    const Scalar tmp51 = tmp47 + tmp50;
-    const Scalar tmp52 = tmp42 + tmp51;
-    const Scalar tmp54 = tmp25*tmp8;
-    const Scalar tmp55 = tmp18*tmp22;
-    const Scalar tmp56 = tmp54 + tmp55;
-    const Scalar tmp57 = tmp18*tmp27;
-    const Scalar tmp58 = tmp57*tmp6;
-    const Scalar tmp59 = tmp34*tmp5;
-    const Scalar tmp60 = tmp25*tmp27;
-    const Scalar tmp61 = tmp20*tmp60;
-    const Scalar tmp62 = tmp59 + tmp61;
-    const Scalar tmp63 = tmp62 - tmp58;
-    const Scalar tmp64 = -tmp63;
-    const Scalar tmp66 = tmp1*tmp18;
-    const Scalar tmp67 = tmp27*tmp66;
-    const Scalar tmp68 = tmp25*tmp4;
-    const Scalar tmp69 = tmp27*tmp68;
-    const Scalar tmp70 = tmp67 + tmp69;
-    const Scalar tmp71 = -tmp70;
-    const Scalar tmp72 = tmp3*tmp35;
-    const Scalar tmp73 = tmp3*tmp37;
-    const Scalar tmp74 = tmp30 + tmp73;
-    const Scalar tmp75 = tmp74 - tmp72;
-    const Scalar tmp77 = tmp25*tmp46;
-    const Scalar tmp78 = -tmp49;
-    const Scalar tmp79 = tmp18*tmp78;
-    const Scalar tmp80 = tmp77 + tmp79;
-    const Scalar tmp81 = tmp43*tmp57;
-    const Scalar tmp82 = tmp0*tmp34;
-    const Scalar tmp83 = tmp2*tmp60;
-    const Scalar tmp84 = tmp82 + tmp83;
-    const Scalar tmp85 = tmp84 - tmp81;
-    const Scalar tmp86 = -tmp31;
-    const Scalar tmp87 = tmp22*tmp25;
-    const Scalar tmp88 = -tmp8;
-    const Scalar tmp89 = tmp18*tmp88;
-    const Scalar tmp90 = tmp87 + tmp89;
-    const Scalar tmp91 = tmp86 + tmp90;
-    const Scalar tmp92 = tmp80*bank_dot + tmp85*attitude_dot + tmp91*heading_dot;
-    const Scalar tmp97 = tmp38 - tmp36;
-    const Scalar tmp98 = tmp34 + tmp97;
-    const Scalar tmp100 = tmp41 + tmp51;
-    const Scalar tmp102 = -tmp56;
-    const Scalar tmp103 = tmp58 + tmp59 - tmp61;
-    const Scalar tmp104 = -tmp103;
-    const Scalar tmp105 = -tmp100;
-    const Scalar tmp107 = tmp30 + tmp72 - tmp73;
-    const Scalar tmp109 = -tmp80;
-    const Scalar tmp110 = tmp81 + tmp82 - tmp83;
-    const Scalar tmp111 = -tmp31 - tmp90;
-    const Scalar tmp112 = tmp111*heading_dot + tmp109*bank_dot + tmp110*attitude_dot;
-    const Scalar tmp116 = tmp36 + tmp38;
-    const Scalar tmp117 = tmp116 - tmp34;
-    const Scalar tmp119 = tmp41 + tmp50 - tmp47;
-    const Scalar tmp121 = tmp54 - tmp55;
-    const Scalar tmp122 = tmp58 + tmp61 - tmp59;
-    const Scalar tmp123 = -tmp122;
-    const Scalar tmp125 = tmp67 - tmp69;
-    const Scalar tmp126 = -tmp72 - tmp74;
-    const Scalar tmp128 = tmp77 - tmp79;
-    const Scalar tmp129 = tmp81 + tmp83 - tmp82;
-    const Scalar tmp130 = tmp31 + tmp87 - tmp89;
-    const Scalar tmp131 = tmp128*bank_dot + tmp129*attitude_dot + tmp130*heading_dot;
-    const Scalar tmp134 = tmp116 + tmp34;
-    const Scalar tmp136 = tmp41 + tmp47 - tmp50;
-    const Scalar tmp138 = -tmp121;
-    const Scalar tmp139 = tmp58 + tmp62;
-    const Scalar tmp141 = -tmp125;
-    const Scalar tmp142 = tmp72 + tmp73 - tmp30;
-    const Scalar tmp144 = -tmp128;
-    const Scalar tmp145 = -tmp81 - tmp84;
-    const Scalar tmp146 = tmp89 - tmp87;
-    const Scalar tmp147 = tmp146 + tmp31;
-    const Scalar tmp148 = tmp144*bank_dot + tmp145*attitude_dot + tmp147*heading_dot;
-    const Scalar tmp150 = (Scalar(0.25))*m;
-    const Scalar tmp151 = tmp150*g;
-    const Scalar tmp152 = -tmp151;
-    const Scalar tmp153 = tmp20*tmp57;
-    const Scalar tmp154 = tmp60*tmp6;
-    const Scalar tmp155 = tmp153 + tmp154;
-    const Scalar tmp156 = tmp21*tmp25;
-    const Scalar tmp157 = tmp18*tmp7;
-    const Scalar tmp158 = tmp157 + tmp31;
-    const Scalar tmp159 = tmp92*heading_dot
-        + attitude_dot*(tmp155*bank_dot + tmp85*heading_dot + attitude_dot*(tmp156 - tmp158))
-        + bank_dot*(tmp155*attitude_dot + tmp80*heading_dot + tmp90*bank_dot);
-    const Scalar tmp160 = tmp3*tmp66;
-    const Scalar tmp161 = tmp3*tmp68;
-    const Scalar tmp162 = tmp160 + tmp161;
-    const Scalar tmp163 = attitude_dot*(tmp162*bank_dot - tmp39*attitude_dot)
-        + bank_dot*(tmp162*attitude_dot + tmp97*bank_dot);
-    const Scalar tmp164 = tmp2*tmp57;
-    const Scalar tmp165 = tmp43*tmp60;
-    const Scalar tmp166 = tmp164 + tmp165;
-    const Scalar tmp167 = -tmp166;
-    const Scalar tmp168 = tmp18*tmp45;
-    const Scalar tmp169 = tmp25*tmp78;
-    const Scalar tmp170 = tmp168 + tmp169;
-    const Scalar tmp171 = tmp18*tmp23;
-    const Scalar tmp172 = tmp25*tmp88;
-    const Scalar tmp173 = tmp171 + tmp172;
-    const Scalar tmp174 = tmp25*tmp48;
-    const Scalar tmp175 = tmp18*tmp44;
-    const Scalar tmp176 = tmp175 + tmp41;
-    const Scalar tmp177 = attitude_dot*(tmp167*bank_dot + tmp63*heading_dot
-            + attitude_dot*(tmp176 - tmp174))
-        + bank_dot*(tmp167*attitude_dot + tmp170*bank_dot + tmp173*heading_dot)
-        + heading_dot*(tmp173*bank_dot + tmp63*attitude_dot + heading_dot*(tmp170 + tmp41));
-    const Scalar tmp178 = -tmp155;
-    const Scalar tmp179 = tmp112*heading_dot
-        + attitude_dot*(tmp178*bank_dot + tmp110*heading_dot
-            + attitude_dot*(tmp157 - tmp156 - tmp31))
-        + bank_dot*(tmp178*attitude_dot + tmp109*heading_dot - tmp90*bank_dot);
-    const Scalar tmp180 = -tmp162;
-    const Scalar tmp181 = attitude_dot*(tmp180*bank_dot - tmp98*attitude_dot)
-        + bank_dot*(tmp180*attitude_dot - tmp97*bank_dot);
-    const Scalar tmp182 = -tmp173;
-    const Scalar tmp183 = attitude_dot*(tmp166*bank_dot + tmp103*heading_dot
-            + attitude_dot*(tmp174 + tmp41 - tmp175))
-        + bank_dot*(tmp166*attitude_dot + tmp182*heading_dot - tmp170*bank_dot)
-        + heading_dot*(tmp182*bank_dot + tmp103*attitude_dot + heading_dot*(-tmp170 - tmp42));
-    const Scalar tmp184 = tmp153 - tmp154;
-    const Scalar tmp185 = -tmp184;
-    const Scalar tmp186 = tmp131*heading_dot
-        + attitude_dot*(tmp129*heading_dot + tmp185*bank_dot + attitude_dot*(tmp156 + tmp158))
-        + bank_dot*(tmp128*heading_dot + tmp185*attitude_dot - tmp146*bank_dot);
-    const Scalar tmp187 = tmp160 - tmp161;
-    const Scalar tmp188 = -tmp187;
-    const Scalar tmp189 = attitude_dot*(tmp188*bank_dot - tmp117*attitude_dot)
-        + bank_dot*(tmp188*attitude_dot - tmp116*bank_dot);
-    const Scalar tmp190 = tmp164 - tmp165;
-    const Scalar tmp191 = tmp168 - tmp169;
-    const Scalar tmp192 = tmp172 - tmp171;
-    const Scalar tmp193 = attitude_dot*(tmp122*heading_dot + tmp190*bank_dot
-            + attitude_dot*(-tmp174 - tmp176))
-        + bank_dot*(tmp190*attitude_dot + tmp192*heading_dot - tmp191*bank_dot)
-        + heading_dot*(tmp122*attitude_dot + tmp192*bank_dot + heading_dot*(-tmp191 - tmp41));
-    const Scalar tmp194 = tmp148*heading_dot
-        + attitude_dot*(tmp145*heading_dot + tmp184*bank_dot
-            + attitude_dot*(-tmp156 - tmp157 - tmp86))
-        + bank_dot*(tmp144*heading_dot + tmp146*bank_dot + tmp184*attitude_dot);
-    const Scalar tmp195 = attitude_dot*(tmp134*attitude_dot + tmp187*bank_dot)
-        + bank_dot*(tmp116*bank_dot + tmp187*attitude_dot);
-    const Scalar tmp196 = -tmp190;
-    const Scalar tmp197 = -tmp192;
-    const Scalar tmp198 = -tmp139;
-    const Scalar tmp199 = attitude_dot*(tmp196*bank_dot + tmp198*heading_dot
-            + attitude_dot*(tmp174 + tmp175 + tmp42))
-        + bank_dot*(tmp191*bank_dot + tmp196*attitude_dot + tmp197*heading_dot)
-        + heading_dot*(tmp197*bank_dot + tmp198*attitude_dot
-            + heading_dot*(tmp168 - tmp169 - tmp41));
-    const Scalar tmp200 = tmp119*tmp150 + tmp136*tmp150 + tmp150*tmp52 + tmp150*tmp105;
-    const Scalar tmp201 = tmp111*tmp150 + tmp130*tmp150 + tmp147*tmp150 + tmp150*tmp91;
-    const Scalar tmp202 = tmp150*((tmp111*tmp111) + (tmp105*tmp105))
-        + tmp150*((tmp119*tmp119) + (tmp130*tmp130)) + tmp150*((tmp136*tmp136) + (tmp147*tmp147))
-        + tmp150*((tmp52*tmp52) + (tmp91*tmp91));
-    const Scalar tmp203 = tmp123*tmp150 + tmp139*tmp150 + tmp150*tmp64 + tmp150*tmp104;
-    const Scalar tmp204 = tmp126*tmp150 + tmp142*tmp150 + tmp150*tmp75 + tmp150*tmp107;
-    const Scalar tmp205 = tmp129*tmp150 + tmp145*tmp150 + tmp150*tmp85 + tmp150*tmp110;
-    const Scalar tmp206 = tmp150*(tmp111*tmp110 + tmp104*tmp105)
-        + tmp150*(tmp119*tmp123 + tmp129*tmp130) + tmp150*(tmp136*tmp139 + tmp145*tmp147)
-        + tmp150*(tmp52*tmp64 + tmp85*tmp91);
-    const Scalar tmp207 = tmp150*((tmp123*tmp123) + (tmp126*tmp126) + (tmp129*tmp129))
-        + tmp150*((tmp139*tmp139) + (tmp142*tmp142) + (tmp145*tmp145))
-        + tmp150*((tmp64*tmp64) + (tmp75*tmp75) + (tmp85*tmp85))
-        + tmp150*((tmp104*tmp104) + (tmp107*tmp107) + (tmp110*tmp110));
-    const Scalar tmp208 = tmp121*tmp150 + tmp138*tmp150 + tmp150*tmp56 + tmp150*tmp102;
-    const Scalar tmp209 = tmp125*tmp150 + tmp141*tmp150 + tmp150*tmp70 + tmp150*tmp71;
-    const Scalar tmp210 = tmp128*tmp150 + tmp144*tmp150 + tmp150*tmp80 + tmp150*tmp109;
-    const Scalar tmp211 = tmp150*(tmp111*tmp109 + tmp102*tmp105)
-        + tmp150*(tmp119*tmp121 + tmp128*tmp130) + tmp150*(tmp136*tmp138 + tmp144*tmp147)
-        + tmp150*(tmp52*tmp56 + tmp80*tmp91);
-    const Scalar tmp212 = tmp150*(tmp121*tmp123 + tmp125*tmp126 + tmp128*tmp129)
-        + tmp150*(tmp138*tmp139 + tmp141*tmp142 + tmp144*tmp145)
-        + tmp150*(tmp56*tmp64 + tmp71*tmp75 + tmp80*tmp85)
-        + tmp150*(tmp70*tmp107 + tmp102*tmp104 + tmp109*tmp110);
-    const Scalar tmp213 = tmp150*((tmp121*tmp121) + (tmp125*tmp125) + (tmp128*tmp128))
-        + tmp150*((tmp138*tmp138) + (tmp141*tmp141) + (tmp144*tmp144))
-        + tmp150*((tmp56*tmp56) + (tmp71*tmp71) + (tmp80*tmp80))
-        + tmp150*((tmp70*tmp70) + (tmp102*tmp102) + (tmp109*tmp109));
-    const Scalar tmp214 = Scalar(4)*tmp152;
-    const Scalar tmp215 = tmp150*tmp159;
-    const Scalar tmp216 = tmp150*tmp177;
-    const Scalar tmp217 = tmp150*tmp179;
-    const Scalar tmp218 = tmp150*tmp183;
-    const Scalar tmp219 = tmp150*tmp186;
-    const Scalar tmp220 = tmp150*tmp193;
-    const Scalar tmp221 = tmp150*tmp194;
-    const Scalar tmp222 = tmp150*tmp199;
-    const Scalar tmp223 = tmp150*tmp163;
-    const Scalar tmp224 = tmp150*tmp181;
-    const Scalar tmp225 = tmp150*tmp189;
-    const Scalar tmp226 = tmp150*tmp195;
-    const Scalar tmp227 = tmp217 + tmp219 + tmp221 + tmp215;
-    const Scalar tmp228 = tmp224 + tmp225 + tmp226 + tmp223;
-    const Scalar tmp229 = tmp218 + tmp220 + tmp222 + tmp216;
-    const Scalar tmp230 = tmp111*tmp152 + tmp130*tmp152 + tmp147*tmp152 + tmp152*tmp91;
-    const Scalar tmp231 = tmp129*tmp152 + tmp145*tmp152 + tmp152*tmp85 + tmp152*tmp110;
-    const Scalar tmp232 = tmp128*tmp152 + tmp144*tmp152 + tmp152*tmp80 + tmp152*tmp109;
-    const Scalar tmp233 = -tmp227;
-    const Scalar tmp234 = -tmp228;
-    const Scalar tmp235 = -tmp229;
-    const Scalar tmp236 = -tmp111*tmp218 - tmp119*tmp219 - tmp130*tmp220 - tmp136*tmp221
-        - tmp147*tmp222 - tmp217*tmp105 - tmp52*tmp215 - tmp91*tmp216;
-    const Scalar tmp237 = -tmp123*tmp219 - tmp126*tmp225 - tmp129*tmp220 - tmp139*tmp221
-        - tmp142*tmp226 - tmp145*tmp222 - tmp217*tmp104 - tmp218*tmp110 - tmp224*tmp107
-        - tmp64*tmp215 - tmp75*tmp223 - tmp85*tmp216;
-    const Scalar tmp238 = -tmp121*tmp219 - tmp125*tmp225 - tmp128*tmp220 - tmp138*tmp221
-        - tmp141*tmp226 - tmp144*tmp222 - tmp217*tmp102 - tmp218*tmp109 - tmp224*tmp70
-        - tmp56*tmp215 - tmp71*tmp223 - tmp80*tmp216;
-    (*Mt)(0, 0) = m;
+    const Scalar m_a = Scalar(params.m_a);
+    const Scalar m_b = Scalar(params.m_b);
+    const Scalar m_c = Scalar(params.m_c);
+    const Scalar m_d = Scalar(params.m_d);
+    const Scalar tmp0 = cos(heading);
+    const Scalar tmp1 = cos(attitude);
+    const Scalar tmp2 = Scalar(0.5)*tmp1;
+    const Scalar tmp3 = tmp0*tmp2;
+    const Scalar tmp5 = sin(attitude);
+    const Scalar tmp6 = Scalar(0.5)*tmp5;
+    const Scalar tmp8 = sin(heading);
+    const Scalar tmp9 = tmp2*tmp8;
+    const Scalar tmp12 = tmp0*tmp6;
+    const Scalar tmp13 = tmp9*heading_dot + tmp12*attitude_dot;
+    const Scalar tmp16 = tmp6*tmp8;
+    const Scalar tmp17 = tmp16*attitude_dot - tmp3*heading_dot;
+    const Scalar tmp19 = sin(bank);
+    const Scalar tmp20 = Scalar(0.4)*tmp19;
+    const Scalar tmp21 = tmp20*tmp8;
+    const Scalar tmp22 = cos(bank);
+    const Scalar tmp23 = Scalar(0.4)*tmp22;
+    const Scalar tmp24 = tmp0*tmp23*tmp5;
+    const Scalar tmp26 = tmp1*tmp23;
+    const Scalar tmp28 = tmp0*tmp20;
+    const Scalar tmp29 = tmp23*tmp8;
+    const Scalar tmp30 = tmp29*tmp5;
+    const Scalar tmp31 = tmp28 + tmp30;
+    const Scalar tmp33 = tmp26*attitude_dot;
+    const Scalar tmp34 = tmp0*tmp33;
+    const Scalar tmp35 = tmp29 + tmp28*tmp5;
+    const Scalar tmp37 = tmp23*tmp5;
+    const Scalar tmp38 = tmp1*tmp20;
+    const Scalar tmp40 = -tmp21*tmp5 + Scalar(0.4)*tmp0*tmp22;
+    const Scalar tmp41 = tmp24 - tmp21;
+    const Scalar tmp42 = tmp33*tmp8 + tmp40*bank_dot + tmp41*heading_dot;
+    const Scalar tmp44 = Scalar(0.3)*tmp22;
+    const Scalar tmp45 = tmp44*tmp8;
+    const Scalar tmp46 = Scalar(0.3)*tmp19;
+    const Scalar tmp47 = tmp0*tmp46;
+    const Scalar tmp48 = tmp47*tmp5;
+    const Scalar tmp49 = tmp45 + tmp48;
+    const Scalar tmp51 = tmp1*tmp46;
+    const Scalar tmp53 = tmp0*tmp44;
+    const Scalar tmp54 = tmp46*tmp8;
+    const Scalar tmp55 = tmp5*tmp54;
+    const Scalar tmp57 = tmp51*attitude_dot;
+    const Scalar tmp58 = tmp0*tmp57;
+    const Scalar tmp59 = tmp53*tmp5;
+    const Scalar tmp60 = tmp59 - tmp54;
+    const Scalar tmp61 = tmp55 - Scalar(0.3)*tmp0*tmp22;
+    const Scalar tmp62 = -tmp61;
+    const Scalar tmp64 = tmp46*tmp5;
+    const Scalar tmp65 = tmp1*tmp44;
+    const Scalar tmp67 = tmp45*tmp5;
+    const Scalar tmp68 = tmp47 + tmp67;
+    const Scalar tmp69 = -tmp68;
+    const Scalar tmp70 = -tmp49;
+    const Scalar tmp71 = tmp69*bank_dot + tmp70*heading_dot - tmp57*tmp8;
+    const Scalar tmp73 = Scalar(0.2)*tmp1;
+    const Scalar tmp74 = Scalar(0.25)*tmp19;
+    const Scalar tmp75 = tmp5*tmp74;
+    const Scalar tmp76 = -tmp59 + tmp0*tmp75;
+    const Scalar tmp77 = tmp76 + tmp0*tmp73;
+    const Scalar tmp78 = Scalar(0.25)*tmp22;
+    const Scalar tmp79 = tmp8*tmp78;
+    const Scalar tmp80 = tmp54 + tmp79;
+    const Scalar tmp81 = tmp77 + tmp80;
+    const Scalar tmp83 = Scalar(0.2)*tmp5;
+    const Scalar tmp84 = tmp1*tmp74;
+    const Scalar tmp85 = tmp65 + tmp83 - tmp84;
+    const Scalar tmp87 = tmp73*tmp8;
+    const Scalar tmp88 = tmp0*tmp78;
+    const Scalar tmp89 = tmp74*tmp8;
+    const Scalar tmp90 = tmp5*tmp89;
+    const Scalar tmp91 = tmp68 + tmp88 - tmp90;
+    const Scalar tmp92 = tmp91 - tmp87;
+    const Scalar tmp94 = tmp1*tmp53;
+    const Scalar tmp95 = tmp94 + tmp0*tmp83 - Scalar(0.25)*tmp0*tmp1*tmp19;
+    const Scalar tmp96 = -tmp95;
+    const Scalar tmp97 = tmp49 - tmp89 + tmp5*tmp88;
+    const Scalar tmp99 = -tmp51 - tmp1*tmp78;
+    const Scalar tmp100 = tmp44*tmp5;
+    const Scalar tmp101 = tmp73 + tmp75 - tmp100;
+    const Scalar tmp103 = tmp1*tmp45;
+    const Scalar tmp104 = tmp103 + tmp8*tmp83 - tmp8*tmp84;
+    const Scalar tmp105 = -tmp61 - tmp0*tmp74 - tmp5*tmp79;
+    const Scalar tmp106 = -tmp81;
+    const Scalar tmp107 = tmp104*attitude_dot + tmp105*bank_dot + tmp106*heading_dot;
+    const Scalar tmp109 = g*m_a;
+    const Scalar tmp110 = -tmp109;
+    const Scalar tmp111 = g*m_b;
+    const Scalar tmp112 = -tmp111;
+    const Scalar tmp113 = g*m_c;
+    const Scalar tmp114 = -tmp113;
+    const Scalar tmp115 = g*m_d;
+    const Scalar tmp116 = -tmp115;
+    const Scalar tmp117 = tmp17*heading_dot
+        + attitude_dot*(-tmp3*attitude_dot + Scalar(0.5)*tmp5*tmp8*heading_dot);
+    const Scalar tmp118 = -tmp6*(attitude_dot*attitude_dot);
+    const Scalar tmp119 = tmp13*heading_dot + attitude_dot*(tmp9*attitude_dot + tmp12*heading_dot);
+    const Scalar tmp120 = tmp1*tmp28;
+    const Scalar tmp121 = tmp26*tmp8;
+    const Scalar tmp122 = tmp42*heading_dot
+        + attitude_dot*(tmp24*attitude_dot + tmp120*bank_dot + tmp121*heading_dot)
+        + bank_dot*(tmp40*heading_dot + tmp41*bank_dot + tmp120*attitude_dot);
+    const Scalar tmp123 = attitude_dot*(-tmp33 + Scalar(0.4)*tmp19*tmp5*bank_dot)
+        + bank_dot*(-tmp26*bank_dot + tmp20*tmp5*attitude_dot);
+    const Scalar tmp124 = tmp1*tmp21;
+    const Scalar tmp125 = -tmp31;
+    const Scalar tmp126 = -tmp35;
+    const Scalar tmp127 = attitude_dot*(-tmp30*attitude_dot - tmp124*bank_dot
+            + Scalar(0.4)*tmp0*tmp1*tmp22*heading_dot)
+        + bank_dot*(tmp125*bank_dot + tmp126*heading_dot - tmp124*attitude_dot)
+        + heading_dot*(tmp34 + tmp125*heading_dot + tmp126*bank_dot);
+    const Scalar tmp128 = tmp51*tmp8;
+    const Scalar tmp129 = tmp71*heading_dot
+        + attitude_dot*(-tmp48*attitude_dot - tmp128*heading_dot
+            + Scalar(0.3)*tmp0*tmp1*tmp22*bank_dot)
+        + bank_dot*(tmp69*heading_dot + tmp70*bank_dot + tmp94*attitude_dot);
+    const Scalar tmp130 = attitude_dot*(tmp57 + tmp100*bank_dot)
+        + bank_dot*(tmp51*bank_dot + tmp100*attitude_dot);
+    const Scalar tmp131 = tmp0*tmp51;
+    const Scalar tmp132 = -tmp60;
+    const Scalar tmp133 = attitude_dot*(-tmp103*bank_dot - tmp131*heading_dot
+            + Scalar(0.3)*tmp19*tmp5*tmp8*attitude_dot)
+        + bank_dot*(tmp132*heading_dot + tmp61*bank_dot - tmp103*attitude_dot)
+        + heading_dot*(-tmp58 + tmp132*bank_dot + tmp61*heading_dot);
+    const Scalar tmp134 = tmp131 + tmp1*tmp88;
+    const Scalar tmp135 = tmp107*heading_dot
+        + attitude_dot*(tmp134*bank_dot + tmp104*heading_dot - tmp77*attitude_dot)
+        + bank_dot*(tmp134*attitude_dot + tmp105*heading_dot + bank_dot*(-tmp76 - tmp80));
+    const Scalar tmp136 = tmp64 + tmp5*tmp78;
+    const Scalar tmp137 = -tmp65;
+    const Scalar tmp138 = attitude_dot*(tmp136*bank_dot - tmp85*attitude_dot)
+        + bank_dot*(tmp136*attitude_dot + bank_dot*(tmp137 + tmp84));
+    const Scalar tmp139 = -tmp128 - tmp1*tmp79;
+    const Scalar tmp140 = -tmp97;
+    const Scalar tmp141 = attitude_dot*(tmp139*bank_dot + tmp95*heading_dot
+            + attitude_dot*(tmp87 + tmp90 - tmp67))
+        + bank_dot*(tmp139*attitude_dot + tmp140*heading_dot - tmp91*bank_dot)
+        + heading_dot*(tmp140*bank_dot + tmp95*attitude_dot - tmp92*heading_dot);
+    const Scalar tmp142 = m_a + m_b + m_c + m_d;
+    const Scalar tmp143 = tmp31*m_b + tmp62*m_c + tmp92*m_d - tmp9*m_a;
+    const Scalar tmp144 = tmp41*m_b + tmp70*m_c + tmp106*m_d - tmp3*m_a;
+    const Scalar tmp145 = (tmp8*tmp8);
+    const Scalar tmp146 = (tmp1*tmp1);
+    const Scalar tmp147 = Scalar(0.25)*tmp146;
+    const Scalar tmp148 = (tmp0*tmp0);
+    const Scalar tmp149 = m_a*(tmp145*tmp147 + tmp147*tmp148) + m_b*((tmp31*tmp31) + (tmp41*tmp41))
+        + m_c*((tmp62*tmp62) + (tmp70*tmp70)) + m_d*((tmp92*tmp92) + (tmp106*tmp106));
+    const Scalar tmp150 = tmp0*tmp26;
+    const Scalar tmp151 = tmp96*m_d - tmp150*m_b - tmp12*m_a + Scalar(0.3)*tmp0*tmp1*tmp19*m_c;
+    const Scalar tmp152 = tmp2*m_a + tmp64*m_c + tmp101*m_d - tmp37*m_b;
+    const Scalar tmp153 = tmp16*m_a + tmp104*m_d + tmp121*m_b - tmp128*m_c;
+    const Scalar tmp154 = m_b*(-tmp150*tmp31 + Scalar(0.4)*tmp1*tmp22*tmp41*tmp8)
+        + m_c*(tmp62*tmp131 - tmp70*tmp128) + m_d*(tmp92*tmp96 + tmp104*tmp106);
+    const Scalar tmp155 = (tmp5*tmp5);
+    const Scalar tmp156 = Scalar(0.25)*tmp155;
+    const Scalar tmp157 = (tmp22*tmp22);
+    const Scalar tmp158 = Scalar(0.16000000000000003)*tmp157;
+    const Scalar tmp159 = tmp146*tmp158;
+    const Scalar tmp160 = (tmp19*tmp19);
+    const Scalar tmp161 = Scalar(0.09)*tmp160;
+    const Scalar tmp162 = tmp146*tmp161;
+    const Scalar tmp163 = m_a*(tmp147 + tmp145*tmp156 + tmp148*tmp156)
+        + m_b*(tmp145*tmp159 + tmp148*tmp159 + tmp155*tmp158)
+        + m_c*(tmp145*tmp162 + tmp148*tmp162 + tmp155*tmp161)
+        + m_d*((tmp96*tmp96) + (tmp101*tmp101) + (tmp104*tmp104));
+    const Scalar tmp164 = tmp35*m_b + tmp60*m_c + tmp97*m_d;
+    const Scalar tmp165 = tmp99*m_d - tmp38*m_b - tmp65*m_c;
+    const Scalar tmp166 = tmp40*m_b + tmp69*m_c + tmp105*m_d;
+    const Scalar tmp167 = m_b*(tmp31*tmp35 + tmp40*tmp41) + m_c*(tmp60*tmp62 + tmp69*tmp70)
+        + m_d*(tmp92*tmp97 + tmp105*tmp106);
+    const Scalar tmp168 = tmp1*tmp19*tmp22*tmp5;
+    const Scalar tmp169 = m_b*(Scalar(0.16000000000000003)*tmp168 + tmp40*tmp121 - tmp150*tmp35)
+        + m_c*(-Scalar(0.09)*tmp168 - tmp69*tmp128 + Scalar(0.3)*tmp0*tmp1*tmp19*tmp60)
+        + m_d*(tmp96*tmp97 + tmp99*tmp101 + tmp104*tmp105);
+    const Scalar tmp170 = m_b*((tmp35*tmp35) + (tmp40*tmp40)
+            + Scalar(0.16000000000000003)*tmp146*tmp160)
+        + m_c*((tmp60*tmp60) + (tmp69*tmp69) + Scalar(0.09)*tmp146*tmp157)
+        + m_d*((tmp97*tmp97) + (tmp99*tmp99) + (tmp105*tmp105));
+    const Scalar tmp171 = tmp110 + tmp112 + tmp114 + tmp116;
+    const Scalar tmp172 = tmp117*m_a;
+    const Scalar tmp173 = tmp119*m_a;
+    const Scalar tmp174 = tmp122*m_b;
+    const Scalar tmp175 = tmp127*m_b;
+    const Scalar tmp176 = tmp129*m_c;
+    const Scalar tmp177 = tmp133*m_c;
+    const Scalar tmp178 = tmp135*m_d;
+    const Scalar tmp179 = tmp141*m_d;
+    const Scalar tmp180 = tmp118*m_a;
+    const Scalar tmp181 = tmp123*m_b;
+    const Scalar tmp182 = tmp130*m_c;
+    const Scalar tmp183 = tmp138*m_d;
+    const Scalar tmp184 = tmp174 + tmp176 + tmp178 + tmp172;
+    const Scalar tmp185 = tmp181 + tmp182 + tmp183 + tmp180;
+    const Scalar tmp186 = tmp175 + tmp177 + tmp179 + tmp173;
+    const Scalar tmp187 = tmp41*tmp112 + tmp70*tmp114 + tmp106*tmp116 - tmp3*tmp110;
+    const Scalar tmp188 = tmp16*tmp110 + tmp104*tmp116 + tmp112*tmp121 - tmp114*tmp128;
+    const Scalar tmp189 = tmp40*tmp112 + tmp69*tmp114 + tmp105*tmp116;
+    const Scalar tmp190 = -tmp184;
+    const Scalar tmp191 = -tmp185;
+    const Scalar tmp192 = -tmp186;
+    const Scalar tmp193 = -tmp174*tmp31 - tmp175*tmp41 - tmp176*tmp62 - tmp177*tmp70 - tmp178*tmp92
+        - tmp179*tmp106 + Scalar(0.5)*tmp0*tmp1*tmp173 + Scalar(0.5)*tmp1*tmp8*tmp172;
+    const Scalar tmp194 = -tmp16*tmp173 - tmp175*tmp121 - tmp176*tmp131 - tmp178*tmp96
+        - tmp179*tmp104 - tmp182*tmp64 - tmp183*tmp101 - tmp2*tmp180 + Scalar(0.5)*tmp0*tmp5*tmp172
+        + Scalar(0.4)*tmp181*tmp22*tmp5 + Scalar(0.4)*tmp0*tmp1*tmp174*tmp22
+        + Scalar(0.3)*tmp1*tmp177*tmp19*tmp8;
+    const Scalar tmp195 = -tmp174*tmp35 - tmp175*tmp40 - tmp176*tmp60 - tmp177*tmp69 - tmp178*tmp97
+        - tmp179*tmp105 - tmp183*tmp99 + Scalar(0.4)*tmp1*tmp181*tmp19
+        + Scalar(0.3)*tmp1*tmp182*tmp22;
+    (*Mt)(0, 0) = tmp142;
     (*Mt)(1, 0) = Scalar(0);
-    (*Mt)(1, 1) = m;
+    (*Mt)(1, 1) = tmp142;
     (*Mt)(2, 0) = Scalar(0);
     (*Mt)(2, 1) = Scalar(0);
-    (*Mt)(2, 2) = m;
-    (*Mt)(3, 0) = tmp200;
+    (*Mt)(2, 2) = tmp142;
+    (*Mt)(3, 0) = tmp143;
     (*Mt)(3, 1) = Scalar(0);
-    (*Mt)(3, 2) = tmp201;
-    (*Mt)(3, 3) = tmp202;
-    (*Mt)(4, 0) = tmp203;
-    (*Mt)(4, 1) = tmp204;
-    (*Mt)(4, 2) = tmp205;
-    (*Mt)(4, 3) = tmp206;
-    (*Mt)(4, 4) = tmp207;
-    (*Mt)(5, 0) = tmp208;
-    (*Mt)(5, 1) = tmp209;
-    (*Mt)(5, 2) = tmp210;
-    (*Mt)(5, 3) = tmp211;
-    (*Mt)(5, 4) = tmp212;
-    (*Mt)(5, 5) = tmp213;
-    (*f)(0) = tmp233;
-    (*f)(1) = tmp234;
-    (*f)(2) = tmp214 + tmp235;
-    (*f)(3) = tmp230 + tmp236;
-    (*f)(4) = tmp231 + tmp237;
-    (*f)(5) = tmp232 + tmp238;
+    (*Mt)(3, 2) = tmp144;
+    (*Mt)(3, 3) = tmp149;
+    (*Mt)(4, 0) = tmp151;
+    (*Mt)(4, 1) = tmp152;
+    (*Mt)(4, 2) = tmp153;
+    (*Mt)(4, 3) = tmp154;
+    (*Mt)(4, 4) = tmp163;
+    (*Mt)(5, 0) = tmp164;
+    (*Mt)(5, 1) = tmp165;
+    (*Mt)(5, 2) = tmp166;
+    (*Mt)(5, 3) = tmp167;
+    (*Mt)(5, 4) = tmp169;
+    (*Mt)(5, 5) = tmp170;
+    (*f)(0) = tmp190;
+    (*f)(1) = tmp191;
+    (*f)(2) = tmp171 + tmp192;
+    (*f)(3) = tmp187 + tmp193;
+    (*f)(4) = tmp188 + tmp194;
+    (*f)(5) = tmp189 + tmp195;
     (*Mt)(0, 1) = (*Mt)(1, 0);
     (*Mt)(0, 2) = (*Mt)(2, 0);
     (*Mt)(1, 2) = (*Mt)(2, 1);
@@ -6923,7 +5958,7 @@ struct RigidBodyEulerYzx {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return r = tau (nq)
-  /// Ops: 851
+  /// Ops: 766
   template <typename Scalar>
   static QVector<Scalar> inverse_dynamics(const QVector<Scalar>& q,
                                           const QVector<Scalar>& v,
@@ -6932,7 +5967,6 @@ struct RigidBodyEulerYzx {
                                           const Params& params) {
     using std::cos;
     using std::sin;
-    using std::sqrt;
     const Scalar heading = q(3);
     const Scalar attitude = q(4);
     const Scalar bank = q(5);
@@ -6946,277 +5980,230 @@ struct RigidBodyEulerYzx {
     const Scalar attitude_ddot = qdd(4);
     const Scalar bank_ddot = qdd(5);
     const Scalar g = Scalar(params.g);
-    const Scalar m = Scalar(params.m);
-    const Scalar a = Scalar(params.a);
-    const Scalar b = Scalar(params.b);
-    const Scalar c = Scalar(params.c);
-    const Scalar tmp0 = sin(heading);
-    const Scalar tmp1 = cos(bank);
-    const Scalar tmp2 = tmp0*tmp1;
-    const Scalar tmp3 = sin(attitude);
-    const Scalar tmp4 = sin(bank);
-    const Scalar tmp5 = cos(heading);
-    const Scalar tmp6 = tmp4*tmp5;
-    const Scalar tmp7 = tmp3*tmp6;
-    const Scalar tmp8 = tmp2 + tmp7;
-    const Scalar tmp9 = (Scalar(1)/sqrt(m));
-    const Scalar tmp10 = (a*a);
-    const Scalar tmp11 = (b*b);
-    const Scalar tmp12 = ((Scalar(1)/Scalar(24)))*m;
-    const Scalar tmp13 = tmp12*(tmp10 + tmp11);
-    const Scalar tmp14 = (c*c);
-    const Scalar tmp15 = tmp12*(tmp10 + tmp14);
-    const Scalar tmp16 = tmp12*(tmp11 + tmp14);
-    const Scalar tmp17 = tmp15 + tmp16 - tmp13;
-    const Scalar tmp18 = tmp9*sqrt(tmp17);
-    const Scalar tmp20 = tmp1*tmp5;
-    const Scalar tmp21 = tmp20*tmp3;
-    const Scalar tmp22 = tmp21 - tmp0*tmp4;
-    const Scalar tmp23 = -tmp22;
-    const Scalar tmp24 = tmp13 + tmp16 - tmp15;
-    const Scalar tmp25 = tmp9*sqrt(tmp24);
-    const Scalar tmp27 = cos(attitude);
-    const Scalar tmp28 = tmp13 + tmp15 - tmp16;
-    const Scalar tmp29 = tmp9*sqrt(tmp28);
-    const Scalar tmp30 = tmp27*tmp29;
-    const Scalar tmp31 = tmp30*tmp5;
-    const Scalar tmp34 = tmp29*tmp3;
-    const Scalar tmp35 = tmp1*tmp25;
-    const Scalar tmp36 = tmp27*tmp35;
-    const Scalar tmp37 = tmp18*tmp4;
-    const Scalar tmp38 = tmp27*tmp37;
-    const Scalar tmp39 = tmp34 + tmp36 - tmp38;
-    const Scalar tmp41 = tmp0*tmp30;
-    const Scalar tmp42 = -tmp41;
-    const Scalar tmp43 = tmp0*tmp4;
-    const Scalar tmp44 = tmp3*tmp43;
-    const Scalar tmp45 = tmp44 - tmp1*tmp5;
-    const Scalar tmp46 = -tmp45;
-    const Scalar tmp47 = tmp18*tmp46;
-    const Scalar tmp48 = tmp2*tmp3;
-    const Scalar tmp49 = tmp48 + tmp6;
-    const Scalar tmp50 = tmp25*tmp49;
-    const Scalar tmp51 = tmp47 + tmp50;
-    const Scalar tmp52 = tmp42 + tmp51;
-    const Scalar tmp54 = tmp25*tmp8;
-    const Scalar tmp55 = tmp18*tmp22;
-    const Scalar tmp56 = tmp54 + tmp55;
-    const Scalar tmp57 = tmp18*tmp27;
-    const Scalar tmp58 = tmp57*tmp6;
-    const Scalar tmp59 = tmp34*tmp5;
-    const Scalar tmp60 = tmp25*tmp27;
-    const Scalar tmp61 = tmp20*tmp60;
-    const Scalar tmp62 = tmp59 + tmp61;
-    const Scalar tmp63 = tmp62 - tmp58;
-    const Scalar tmp64 = -tmp63;
-    const Scalar tmp66 = tmp1*tmp18;
-    const Scalar tmp67 = tmp27*tmp66;
-    const Scalar tmp68 = tmp25*tmp4;
-    const Scalar tmp69 = tmp27*tmp68;
-    const Scalar tmp70 = tmp67 + tmp69;
-    const Scalar tmp71 = -tmp70;
-    const Scalar tmp72 = tmp3*tmp35;
-    const Scalar tmp73 = tmp3*tmp37;
-    const Scalar tmp74 = tmp30 + tmp73;
-    const Scalar tmp75 = tmp74 - tmp72;
-    const Scalar tmp77 = tmp25*tmp46;
-    const Scalar tmp78 = -tmp49;
-    const Scalar tmp79 = tmp18*tmp78;
-    const Scalar tmp80 = tmp77 + tmp79;
-    const Scalar tmp81 = tmp43*tmp57;
-    const Scalar tmp82 = tmp0*tmp34;
-    const Scalar tmp83 = tmp2*tmp60;
-    const Scalar tmp84 = tmp82 + tmp83;
-    const Scalar tmp85 = tmp84 - tmp81;
-    const Scalar tmp86 = -tmp31;
-    const Scalar tmp87 = tmp22*tmp25;
-    const Scalar tmp88 = -tmp8;
-    const Scalar tmp89 = tmp18*tmp88;
-    const Scalar tmp90 = tmp87 + tmp89;
-    const Scalar tmp91 = tmp86 + tmp90;
-    const Scalar tmp92 = tmp80*bank_dot + tmp85*attitude_dot + tmp91*heading_dot;
-    const Scalar tmp97 = tmp38 - tmp36;
-    const Scalar tmp98 = tmp34 + tmp97;
-    const Scalar tmp100 = tmp41 + tmp51;
-    const Scalar tmp102 = -tmp56;
-    const Scalar tmp103 = tmp58 + tmp59 - tmp61;
-    const Scalar tmp104 = -tmp103;
-    const Scalar tmp105 = -tmp100;
-    const Scalar tmp107 = tmp30 + tmp72 - tmp73;
-    const Scalar tmp109 = -tmp80;
-    const Scalar tmp110 = tmp81 + tmp82 - tmp83;
-    const Scalar tmp111 = -tmp31 - tmp90;
-    const Scalar tmp112 = tmp111*heading_dot + tmp109*bank_dot + tmp110*attitude_dot;
-    const Scalar tmp116 = tmp36 + tmp38;
-    const Scalar tmp117 = tmp116 - tmp34;
-    const Scalar tmp119 = tmp41 + tmp50 - tmp47;
-    const Scalar tmp121 = tmp54 - tmp55;
-    const Scalar tmp122 = tmp58 + tmp61 - tmp59;
-    const Scalar tmp123 = -tmp122;
-    const Scalar tmp125 = tmp67 - tmp69;
-    const Scalar tmp126 = -tmp72 - tmp74;
-    const Scalar tmp128 = tmp77 - tmp79;
-    const Scalar tmp129 = tmp81 + tmp83 - tmp82;
-    const Scalar tmp130 = tmp31 + tmp87 - tmp89;
-    const Scalar tmp131 = tmp128*bank_dot + tmp129*attitude_dot + tmp130*heading_dot;
-    const Scalar tmp134 = tmp116 + tmp34;
-    const Scalar tmp136 = tmp41 + tmp47 - tmp50;
-    const Scalar tmp138 = -tmp121;
-    const Scalar tmp139 = tmp58 + tmp62;
-    const Scalar tmp141 = -tmp125;
-    const Scalar tmp142 = tmp72 + tmp73 - tmp30;
-    const Scalar tmp144 = -tmp128;
-    const Scalar tmp145 = -tmp81 - tmp84;
-    const Scalar tmp146 = tmp89 - tmp87;
-    const Scalar tmp147 = tmp146 + tmp31;
-    const Scalar tmp148 = tmp144*bank_dot + tmp145*attitude_dot + tmp147*heading_dot;
-    const Scalar tmp150 = (Scalar(0.25))*m;
-    const Scalar tmp151 = tmp150*g;
-    const Scalar tmp152 = -tmp151;
-    const Scalar tmp153 = tmp20*tmp57;
-    const Scalar tmp154 = tmp60*tmp6;
-    const Scalar tmp155 = tmp153 + tmp154;
-    const Scalar tmp156 = tmp21*tmp25;
-    const Scalar tmp157 = tmp18*tmp7;
-    const Scalar tmp158 = tmp157 + tmp31;
-    const Scalar tmp159 = tmp92*heading_dot
-        + attitude_dot*(tmp155*bank_dot + tmp85*heading_dot + attitude_dot*(tmp156 - tmp158))
-        + bank_dot*(tmp155*attitude_dot + tmp80*heading_dot + tmp90*bank_dot);
-    const Scalar tmp160 = tmp3*tmp66;
-    const Scalar tmp161 = tmp3*tmp68;
-    const Scalar tmp162 = tmp160 + tmp161;
-    const Scalar tmp163 = attitude_dot*(tmp162*bank_dot - tmp39*attitude_dot)
-        + bank_dot*(tmp162*attitude_dot + tmp97*bank_dot);
-    const Scalar tmp164 = tmp2*tmp57;
-    const Scalar tmp165 = tmp43*tmp60;
-    const Scalar tmp166 = tmp164 + tmp165;
-    const Scalar tmp167 = -tmp166;
-    const Scalar tmp168 = tmp18*tmp45;
-    const Scalar tmp169 = tmp25*tmp78;
-    const Scalar tmp170 = tmp168 + tmp169;
-    const Scalar tmp171 = tmp18*tmp23;
-    const Scalar tmp172 = tmp25*tmp88;
-    const Scalar tmp173 = tmp171 + tmp172;
-    const Scalar tmp174 = tmp25*tmp48;
-    const Scalar tmp175 = tmp18*tmp44;
-    const Scalar tmp176 = tmp175 + tmp41;
-    const Scalar tmp177 = attitude_dot*(tmp167*bank_dot + tmp63*heading_dot
-            + attitude_dot*(tmp176 - tmp174))
-        + bank_dot*(tmp167*attitude_dot + tmp170*bank_dot + tmp173*heading_dot)
-        + heading_dot*(tmp173*bank_dot + tmp63*attitude_dot + heading_dot*(tmp170 + tmp41));
-    const Scalar tmp178 = -tmp155;
-    const Scalar tmp179 = tmp112*heading_dot
-        + attitude_dot*(tmp178*bank_dot + tmp110*heading_dot
-            + attitude_dot*(tmp157 - tmp156 - tmp31))
-        + bank_dot*(tmp178*attitude_dot + tmp109*heading_dot - tmp90*bank_dot);
-    const Scalar tmp180 = -tmp162;
-    const Scalar tmp181 = attitude_dot*(tmp180*bank_dot - tmp98*attitude_dot)
-        + bank_dot*(tmp180*attitude_dot - tmp97*bank_dot);
-    const Scalar tmp182 = -tmp173;
-    const Scalar tmp183 = attitude_dot*(tmp166*bank_dot + tmp103*heading_dot
-            + attitude_dot*(tmp174 + tmp41 - tmp175))
-        + bank_dot*(tmp166*attitude_dot + tmp182*heading_dot - tmp170*bank_dot)
-        + heading_dot*(tmp182*bank_dot + tmp103*attitude_dot + heading_dot*(-tmp170 - tmp42));
-    const Scalar tmp184 = tmp153 - tmp154;
-    const Scalar tmp185 = -tmp184;
-    const Scalar tmp186 = tmp131*heading_dot
-        + attitude_dot*(tmp129*heading_dot + tmp185*bank_dot + attitude_dot*(tmp156 + tmp158))
-        + bank_dot*(tmp128*heading_dot + tmp185*attitude_dot - tmp146*bank_dot);
-    const Scalar tmp187 = tmp160 - tmp161;
-    const Scalar tmp188 = -tmp187;
-    const Scalar tmp189 = attitude_dot*(tmp188*bank_dot - tmp117*attitude_dot)
-        + bank_dot*(tmp188*attitude_dot - tmp116*bank_dot);
-    const Scalar tmp190 = tmp164 - tmp165;
-    const Scalar tmp191 = tmp168 - tmp169;
-    const Scalar tmp192 = tmp172 - tmp171;
-    const Scalar tmp193 = attitude_dot*(tmp122*heading_dot + tmp190*bank_dot
-            + attitude_dot*(-tmp174 - tmp176))
-        + bank_dot*(tmp190*attitude_dot + tmp192*heading_dot - tmp191*bank_dot)
-        + heading_dot*(tmp122*attitude_dot + tmp192*bank_dot + heading_dot*(-tmp191 - tmp41));
-    const Scalar tmp194 = tmp148*heading_dot
-        + attitude_dot*(tmp145*heading_dot + tmp184*bank_dot
-            + attitude_dot*(-tmp156 - tmp157 - tmp86))
-        + bank_dot*(tmp144*heading_dot + tmp146*bank_dot + tmp184*attitude_dot);
-    const Scalar tmp195 = attitude_dot*(tmp134*attitude_dot + tmp187*bank_dot)
-        + bank_dot*(tmp116*bank_dot + tmp187*attitude_dot);
-    const Scalar tmp196 = -tmp190;
-    const Scalar tmp197 = -tmp192;
-    const Scalar tmp198 = -tmp139;
-    const Scalar tmp199 = attitude_dot*(tmp196*bank_dot + tmp198*heading_dot
-            + attitude_dot*(tmp174 + tmp175 + tmp42))
-        + bank_dot*(tmp191*bank_dot + tmp196*attitude_dot + tmp197*heading_dot)
-        + heading_dot*(tmp197*bank_dot + tmp198*attitude_dot
-            + heading_dot*(tmp168 - tmp169 - tmp41));
-    const Scalar tmp200 = tmp119*tmp150 + tmp136*tmp150 + tmp150*tmp52 + tmp150*tmp105;
-    const Scalar tmp201 = tmp111*tmp150 + tmp130*tmp150 + tmp147*tmp150 + tmp150*tmp91;
-    const Scalar tmp202 = tmp150*((tmp111*tmp111) + (tmp105*tmp105))
-        + tmp150*((tmp119*tmp119) + (tmp130*tmp130)) + tmp150*((tmp136*tmp136) + (tmp147*tmp147))
-        + tmp150*((tmp52*tmp52) + (tmp91*tmp91));
-    const Scalar tmp203 = tmp123*tmp150 + tmp139*tmp150 + tmp150*tmp64 + tmp150*tmp104;
-    const Scalar tmp204 = tmp126*tmp150 + tmp142*tmp150 + tmp150*tmp75 + tmp150*tmp107;
-    const Scalar tmp205 = tmp129*tmp150 + tmp145*tmp150 + tmp150*tmp85 + tmp150*tmp110;
-    const Scalar tmp206 = tmp150*(tmp111*tmp110 + tmp104*tmp105)
-        + tmp150*(tmp119*tmp123 + tmp129*tmp130) + tmp150*(tmp136*tmp139 + tmp145*tmp147)
-        + tmp150*(tmp52*tmp64 + tmp85*tmp91);
-    const Scalar tmp207 = tmp150*((tmp123*tmp123) + (tmp126*tmp126) + (tmp129*tmp129))
-        + tmp150*((tmp139*tmp139) + (tmp142*tmp142) + (tmp145*tmp145))
-        + tmp150*((tmp64*tmp64) + (tmp75*tmp75) + (tmp85*tmp85))
-        + tmp150*((tmp104*tmp104) + (tmp107*tmp107) + (tmp110*tmp110));
-    const Scalar tmp208 = tmp121*tmp150 + tmp138*tmp150 + tmp150*tmp56 + tmp150*tmp102;
-    const Scalar tmp209 = tmp125*tmp150 + tmp141*tmp150 + tmp150*tmp70 + tmp150*tmp71;
-    const Scalar tmp210 = tmp128*tmp150 + tmp144*tmp150 + tmp150*tmp80 + tmp150*tmp109;
-    const Scalar tmp211 = tmp150*(tmp111*tmp109 + tmp102*tmp105)
-        + tmp150*(tmp119*tmp121 + tmp128*tmp130) + tmp150*(tmp136*tmp138 + tmp144*tmp147)
-        + tmp150*(tmp52*tmp56 + tmp80*tmp91);
-    const Scalar tmp212 = tmp150*(tmp121*tmp123 + tmp125*tmp126 + tmp128*tmp129)
-        + tmp150*(tmp138*tmp139 + tmp141*tmp142 + tmp144*tmp145)
-        + tmp150*(tmp56*tmp64 + tmp71*tmp75 + tmp80*tmp85)
-        + tmp150*(tmp70*tmp107 + tmp102*tmp104 + tmp109*tmp110);
-    const Scalar tmp213 = tmp150*((tmp121*tmp121) + (tmp125*tmp125) + (tmp128*tmp128))
-        + tmp150*((tmp138*tmp138) + (tmp141*tmp141) + (tmp144*tmp144))
-        + tmp150*((tmp56*tmp56) + (tmp71*tmp71) + (tmp80*tmp80))
-        + tmp150*((tmp70*tmp70) + (tmp102*tmp102) + (tmp109*tmp109));
-    const Scalar tmp214 = Scalar(4)*tmp152;
-    const Scalar tmp215 = tmp150*tmp159;
-    const Scalar tmp216 = tmp150*tmp177;
-    const Scalar tmp217 = tmp150*tmp179;
-    const Scalar tmp218 = tmp150*tmp183;
-    const Scalar tmp219 = tmp150*tmp186;
-    const Scalar tmp220 = tmp150*tmp193;
-    const Scalar tmp221 = tmp150*tmp194;
-    const Scalar tmp222 = tmp150*tmp199;
-    const Scalar tmp223 = tmp150*tmp163;
-    const Scalar tmp224 = tmp150*tmp181;
-    const Scalar tmp225 = tmp150*tmp189;
-    const Scalar tmp226 = tmp150*tmp195;
-    const Scalar tmp227 = tmp217 + tmp219 + tmp221 + tmp215;
-    const Scalar tmp228 = tmp224 + tmp225 + tmp226 + tmp223;
-    const Scalar tmp229 = tmp218 + tmp220 + tmp222 + tmp216;
-    const Scalar tmp230 = tmp111*tmp152 + tmp130*tmp152 + tmp147*tmp152 + tmp152*tmp91;
-    const Scalar tmp231 = tmp129*tmp152 + tmp145*tmp152 + tmp152*tmp85 + tmp152*tmp110;
-    const Scalar tmp232 = tmp128*tmp152 + tmp144*tmp152 + tmp152*tmp80 + tmp152*tmp109;
-    const Scalar tmp233 = -tmp227;
-    const Scalar tmp234 = -tmp228;
-    const Scalar tmp235 = -tmp229;
-    const Scalar tmp236 = -tmp111*tmp218 - tmp119*tmp219 - tmp130*tmp220 - tmp136*tmp221
-        - tmp147*tmp222 - tmp217*tmp105 - tmp52*tmp215 - tmp91*tmp216;
-    const Scalar tmp237 = -tmp123*tmp219 - tmp126*tmp225 - tmp129*tmp220 - tmp139*tmp221
-        - tmp142*tmp226 - tmp145*tmp222 - tmp217*tmp104 - tmp218*tmp110 - tmp224*tmp107
-        - tmp64*tmp215 - tmp75*tmp223 - tmp85*tmp216;
-    const Scalar tmp238 = -tmp121*tmp219 - tmp125*tmp225 - tmp128*tmp220 - tmp138*tmp221
-        - tmp141*tmp226 - tmp144*tmp222 - tmp217*tmp102 - tmp218*tmp109 - tmp224*tmp70
-        - tmp56*tmp215 - tmp71*tmp223 - tmp80*tmp216;
+    const Scalar m_a = Scalar(params.m_a);
+    const Scalar m_b = Scalar(params.m_b);
+    const Scalar m_c = Scalar(params.m_c);
+    const Scalar m_d = Scalar(params.m_d);
+    const Scalar tmp0 = cos(heading);
+    const Scalar tmp1 = cos(attitude);
+    const Scalar tmp2 = Scalar(0.5)*tmp1;
+    const Scalar tmp3 = tmp0*tmp2;
+    const Scalar tmp5 = sin(attitude);
+    const Scalar tmp6 = Scalar(0.5)*tmp5;
+    const Scalar tmp8 = sin(heading);
+    const Scalar tmp9 = tmp2*tmp8;
+    const Scalar tmp12 = tmp0*tmp6;
+    const Scalar tmp13 = tmp9*heading_dot + tmp12*attitude_dot;
+    const Scalar tmp16 = tmp6*tmp8;
+    const Scalar tmp17 = tmp16*attitude_dot - tmp3*heading_dot;
+    const Scalar tmp19 = sin(bank);
+    const Scalar tmp20 = Scalar(0.4)*tmp19;
+    const Scalar tmp21 = tmp20*tmp8;
+    const Scalar tmp22 = cos(bank);
+    const Scalar tmp23 = Scalar(0.4)*tmp22;
+    const Scalar tmp24 = tmp0*tmp23*tmp5;
+    const Scalar tmp26 = tmp1*tmp23;
+    const Scalar tmp28 = tmp0*tmp20;
+    const Scalar tmp29 = tmp23*tmp8;
+    const Scalar tmp30 = tmp29*tmp5;
+    const Scalar tmp31 = tmp28 + tmp30;
+    const Scalar tmp33 = tmp26*attitude_dot;
+    const Scalar tmp34 = tmp0*tmp33;
+    const Scalar tmp35 = tmp29 + tmp28*tmp5;
+    const Scalar tmp37 = tmp23*tmp5;
+    const Scalar tmp38 = tmp1*tmp20;
+    const Scalar tmp40 = -tmp21*tmp5 + Scalar(0.4)*tmp0*tmp22;
+    const Scalar tmp41 = tmp24 - tmp21;
+    const Scalar tmp42 = tmp33*tmp8 + tmp40*bank_dot + tmp41*heading_dot;
+    const Scalar tmp44 = Scalar(0.3)*tmp22;
+    const Scalar tmp45 = tmp44*tmp8;
+    const Scalar tmp46 = Scalar(0.3)*tmp19;
+    const Scalar tmp47 = tmp0*tmp46;
+    const Scalar tmp48 = tmp47*tmp5;
+    const Scalar tmp49 = tmp45 + tmp48;
+    const Scalar tmp51 = tmp1*tmp46;
+    const Scalar tmp53 = tmp0*tmp44;
+    const Scalar tmp54 = tmp46*tmp8;
+    const Scalar tmp55 = tmp5*tmp54;
+    const Scalar tmp57 = tmp51*attitude_dot;
+    const Scalar tmp58 = tmp0*tmp57;
+    const Scalar tmp59 = tmp53*tmp5;
+    const Scalar tmp60 = tmp59 - tmp54;
+    const Scalar tmp61 = tmp55 - Scalar(0.3)*tmp0*tmp22;
+    const Scalar tmp62 = -tmp61;
+    const Scalar tmp64 = tmp46*tmp5;
+    const Scalar tmp65 = tmp1*tmp44;
+    const Scalar tmp67 = tmp45*tmp5;
+    const Scalar tmp68 = tmp47 + tmp67;
+    const Scalar tmp69 = -tmp68;
+    const Scalar tmp70 = -tmp49;
+    const Scalar tmp71 = tmp69*bank_dot + tmp70*heading_dot - tmp57*tmp8;
+    const Scalar tmp73 = Scalar(0.2)*tmp1;
+    const Scalar tmp74 = Scalar(0.25)*tmp19;
+    const Scalar tmp75 = tmp5*tmp74;
+    const Scalar tmp76 = -tmp59 + tmp0*tmp75;
+    const Scalar tmp77 = tmp76 + tmp0*tmp73;
+    const Scalar tmp78 = Scalar(0.25)*tmp22;
+    const Scalar tmp79 = tmp8*tmp78;
+    const Scalar tmp80 = tmp54 + tmp79;
+    const Scalar tmp81 = tmp77 + tmp80;
+    const Scalar tmp83 = Scalar(0.2)*tmp5;
+    const Scalar tmp84 = tmp1*tmp74;
+    const Scalar tmp85 = tmp65 + tmp83 - tmp84;
+    const Scalar tmp87 = tmp73*tmp8;
+    const Scalar tmp88 = tmp0*tmp78;
+    const Scalar tmp89 = tmp74*tmp8;
+    const Scalar tmp90 = tmp5*tmp89;
+    const Scalar tmp91 = tmp68 + tmp88 - tmp90;
+    const Scalar tmp92 = tmp91 - tmp87;
+    const Scalar tmp94 = tmp1*tmp53;
+    const Scalar tmp95 = tmp94 + tmp0*tmp83 - Scalar(0.25)*tmp0*tmp1*tmp19;
+    const Scalar tmp96 = -tmp95;
+    const Scalar tmp97 = tmp49 - tmp89 + tmp5*tmp88;
+    const Scalar tmp99 = -tmp51 - tmp1*tmp78;
+    const Scalar tmp100 = tmp44*tmp5;
+    const Scalar tmp101 = tmp73 + tmp75 - tmp100;
+    const Scalar tmp103 = tmp1*tmp45;
+    const Scalar tmp104 = tmp103 + tmp8*tmp83 - tmp8*tmp84;
+    const Scalar tmp105 = -tmp61 - tmp0*tmp74 - tmp5*tmp79;
+    const Scalar tmp106 = -tmp81;
+    const Scalar tmp107 = tmp104*attitude_dot + tmp105*bank_dot + tmp106*heading_dot;
+    const Scalar tmp109 = g*m_a;
+    const Scalar tmp110 = -tmp109;
+    const Scalar tmp111 = g*m_b;
+    const Scalar tmp112 = -tmp111;
+    const Scalar tmp113 = g*m_c;
+    const Scalar tmp114 = -tmp113;
+    const Scalar tmp115 = g*m_d;
+    const Scalar tmp116 = -tmp115;
+    const Scalar tmp117 = tmp17*heading_dot
+        + attitude_dot*(-tmp3*attitude_dot + Scalar(0.5)*tmp5*tmp8*heading_dot);
+    const Scalar tmp118 = -tmp6*(attitude_dot*attitude_dot);
+    const Scalar tmp119 = tmp13*heading_dot + attitude_dot*(tmp9*attitude_dot + tmp12*heading_dot);
+    const Scalar tmp120 = tmp1*tmp28;
+    const Scalar tmp121 = tmp26*tmp8;
+    const Scalar tmp122 = tmp42*heading_dot
+        + attitude_dot*(tmp24*attitude_dot + tmp120*bank_dot + tmp121*heading_dot)
+        + bank_dot*(tmp40*heading_dot + tmp41*bank_dot + tmp120*attitude_dot);
+    const Scalar tmp123 = attitude_dot*(-tmp33 + Scalar(0.4)*tmp19*tmp5*bank_dot)
+        + bank_dot*(-tmp26*bank_dot + tmp20*tmp5*attitude_dot);
+    const Scalar tmp124 = tmp1*tmp21;
+    const Scalar tmp125 = -tmp31;
+    const Scalar tmp126 = -tmp35;
+    const Scalar tmp127 = attitude_dot*(-tmp30*attitude_dot - tmp124*bank_dot
+            + Scalar(0.4)*tmp0*tmp1*tmp22*heading_dot)
+        + bank_dot*(tmp125*bank_dot + tmp126*heading_dot - tmp124*attitude_dot)
+        + heading_dot*(tmp34 + tmp125*heading_dot + tmp126*bank_dot);
+    const Scalar tmp128 = tmp51*tmp8;
+    const Scalar tmp129 = tmp71*heading_dot
+        + attitude_dot*(-tmp48*attitude_dot - tmp128*heading_dot
+            + Scalar(0.3)*tmp0*tmp1*tmp22*bank_dot)
+        + bank_dot*(tmp69*heading_dot + tmp70*bank_dot + tmp94*attitude_dot);
+    const Scalar tmp130 = attitude_dot*(tmp57 + tmp100*bank_dot)
+        + bank_dot*(tmp51*bank_dot + tmp100*attitude_dot);
+    const Scalar tmp131 = tmp0*tmp51;
+    const Scalar tmp132 = -tmp60;
+    const Scalar tmp133 = attitude_dot*(-tmp103*bank_dot - tmp131*heading_dot
+            + Scalar(0.3)*tmp19*tmp5*tmp8*attitude_dot)
+        + bank_dot*(tmp132*heading_dot + tmp61*bank_dot - tmp103*attitude_dot)
+        + heading_dot*(-tmp58 + tmp132*bank_dot + tmp61*heading_dot);
+    const Scalar tmp134 = tmp131 + tmp1*tmp88;
+    const Scalar tmp135 = tmp107*heading_dot
+        + attitude_dot*(tmp134*bank_dot + tmp104*heading_dot - tmp77*attitude_dot)
+        + bank_dot*(tmp134*attitude_dot + tmp105*heading_dot + bank_dot*(-tmp76 - tmp80));
+    const Scalar tmp136 = tmp64 + tmp5*tmp78;
+    const Scalar tmp137 = -tmp65;
+    const Scalar tmp138 = attitude_dot*(tmp136*bank_dot - tmp85*attitude_dot)
+        + bank_dot*(tmp136*attitude_dot + bank_dot*(tmp137 + tmp84));
+    const Scalar tmp139 = -tmp128 - tmp1*tmp79;
+    const Scalar tmp140 = -tmp97;
+    const Scalar tmp141 = attitude_dot*(tmp139*bank_dot + tmp95*heading_dot
+            + attitude_dot*(tmp87 + tmp90 - tmp67))
+        + bank_dot*(tmp139*attitude_dot + tmp140*heading_dot - tmp91*bank_dot)
+        + heading_dot*(tmp140*bank_dot + tmp95*attitude_dot - tmp92*heading_dot);
+    const Scalar tmp142 = m_a + m_b + m_c + m_d;
+    const Scalar tmp143 = tmp31*m_b + tmp62*m_c + tmp92*m_d - tmp9*m_a;
+    const Scalar tmp144 = tmp41*m_b + tmp70*m_c + tmp106*m_d - tmp3*m_a;
+    const Scalar tmp145 = (tmp8*tmp8);
+    const Scalar tmp146 = (tmp1*tmp1);
+    const Scalar tmp147 = Scalar(0.25)*tmp146;
+    const Scalar tmp148 = (tmp0*tmp0);
+    const Scalar tmp149 = m_a*(tmp145*tmp147 + tmp147*tmp148) + m_b*((tmp31*tmp31) + (tmp41*tmp41))
+        + m_c*((tmp62*tmp62) + (tmp70*tmp70)) + m_d*((tmp92*tmp92) + (tmp106*tmp106));
+    const Scalar tmp150 = tmp0*tmp26;
+    const Scalar tmp151 = tmp96*m_d - tmp150*m_b - tmp12*m_a + Scalar(0.3)*tmp0*tmp1*tmp19*m_c;
+    const Scalar tmp152 = tmp2*m_a + tmp64*m_c + tmp101*m_d - tmp37*m_b;
+    const Scalar tmp153 = tmp16*m_a + tmp104*m_d + tmp121*m_b - tmp128*m_c;
+    const Scalar tmp154 = m_b*(-tmp150*tmp31 + Scalar(0.4)*tmp1*tmp22*tmp41*tmp8)
+        + m_c*(tmp62*tmp131 - tmp70*tmp128) + m_d*(tmp92*tmp96 + tmp104*tmp106);
+    const Scalar tmp155 = (tmp5*tmp5);
+    const Scalar tmp156 = Scalar(0.25)*tmp155;
+    const Scalar tmp157 = (tmp22*tmp22);
+    const Scalar tmp158 = Scalar(0.16000000000000003)*tmp157;
+    const Scalar tmp159 = tmp146*tmp158;
+    const Scalar tmp160 = (tmp19*tmp19);
+    const Scalar tmp161 = Scalar(0.09)*tmp160;
+    const Scalar tmp162 = tmp146*tmp161;
+    const Scalar tmp163 = m_a*(tmp147 + tmp145*tmp156 + tmp148*tmp156)
+        + m_b*(tmp145*tmp159 + tmp148*tmp159 + tmp155*tmp158)
+        + m_c*(tmp145*tmp162 + tmp148*tmp162 + tmp155*tmp161)
+        + m_d*((tmp96*tmp96) + (tmp101*tmp101) + (tmp104*tmp104));
+    const Scalar tmp164 = tmp35*m_b + tmp60*m_c + tmp97*m_d;
+    const Scalar tmp165 = tmp99*m_d - tmp38*m_b - tmp65*m_c;
+    const Scalar tmp166 = tmp40*m_b + tmp69*m_c + tmp105*m_d;
+    const Scalar tmp167 = m_b*(tmp31*tmp35 + tmp40*tmp41) + m_c*(tmp60*tmp62 + tmp69*tmp70)
+        + m_d*(tmp92*tmp97 + tmp105*tmp106);
+    const Scalar tmp168 = tmp1*tmp19*tmp22*tmp5;
+    const Scalar tmp169 = m_b*(Scalar(0.16000000000000003)*tmp168 + tmp40*tmp121 - tmp150*tmp35)
+        + m_c*(-Scalar(0.09)*tmp168 - tmp69*tmp128 + Scalar(0.3)*tmp0*tmp1*tmp19*tmp60)
+        + m_d*(tmp96*tmp97 + tmp99*tmp101 + tmp104*tmp105);
+    const Scalar tmp170 = m_b*((tmp35*tmp35) + (tmp40*tmp40)
+            + Scalar(0.16000000000000003)*tmp146*tmp160)
+        + m_c*((tmp60*tmp60) + (tmp69*tmp69) + Scalar(0.09)*tmp146*tmp157)
+        + m_d*((tmp97*tmp97) + (tmp99*tmp99) + (tmp105*tmp105));
+    const Scalar tmp171 = tmp110 + tmp112 + tmp114 + tmp116;
+    const Scalar tmp172 = tmp117*m_a;
+    const Scalar tmp173 = tmp119*m_a;
+    const Scalar tmp174 = tmp122*m_b;
+    const Scalar tmp175 = tmp127*m_b;
+    const Scalar tmp176 = tmp129*m_c;
+    const Scalar tmp177 = tmp133*m_c;
+    const Scalar tmp178 = tmp135*m_d;
+    const Scalar tmp179 = tmp141*m_d;
+    const Scalar tmp180 = tmp118*m_a;
+    const Scalar tmp181 = tmp123*m_b;
+    const Scalar tmp182 = tmp130*m_c;
+    const Scalar tmp183 = tmp138*m_d;
+    const Scalar tmp184 = tmp174 + tmp176 + tmp178 + tmp172;
+    const Scalar tmp185 = tmp181 + tmp182 + tmp183 + tmp180;
+    const Scalar tmp186 = tmp175 + tmp177 + tmp179 + tmp173;
+    const Scalar tmp187 = tmp41*tmp112 + tmp70*tmp114 + tmp106*tmp116 - tmp3*tmp110;
+    const Scalar tmp188 = tmp16*tmp110 + tmp104*tmp116 + tmp112*tmp121 - tmp114*tmp128;
+    const Scalar tmp189 = tmp40*tmp112 + tmp69*tmp114 + tmp105*tmp116;
+    const Scalar tmp190 = -tmp184;
+    const Scalar tmp191 = -tmp185;
+    const Scalar tmp192 = -tmp186;
+    const Scalar tmp193 = -tmp174*tmp31 - tmp175*tmp41 - tmp176*tmp62 - tmp177*tmp70 - tmp178*tmp92
+        - tmp179*tmp106 + Scalar(0.5)*tmp0*tmp1*tmp173 + Scalar(0.5)*tmp1*tmp8*tmp172;
+    const Scalar tmp194 = -tmp16*tmp173 - tmp175*tmp121 - tmp176*tmp131 - tmp178*tmp96
+        - tmp179*tmp104 - tmp182*tmp64 - tmp183*tmp101 - tmp2*tmp180 + Scalar(0.5)*tmp0*tmp5*tmp172
+        + Scalar(0.4)*tmp181*tmp22*tmp5 + Scalar(0.4)*tmp0*tmp1*tmp174*tmp22
+        + Scalar(0.3)*tmp1*tmp177*tmp19*tmp8;
+    const Scalar tmp195 = -tmp174*tmp35 - tmp175*tmp40 - tmp176*tmp60 - tmp177*tmp69 - tmp178*tmp97
+        - tmp179*tmp105 - tmp183*tmp99 + Scalar(0.4)*tmp1*tmp181*tmp19
+        + Scalar(0.3)*tmp1*tmp182*tmp22;
     QVector<Scalar> result;
-    result(0) = -tmp233 + tmp200*heading_ddot + tmp203*attitude_ddot + tmp208*bank_ddot + m*x_ddot;
-    result(1) = -tmp234 + tmp204*attitude_ddot + tmp209*bank_ddot + m*y_ddot;
-    result(2) = -tmp214 - tmp235 + tmp201*heading_ddot + tmp205*attitude_ddot + tmp210*bank_ddot
-        + m*z_ddot;
-    result(3) = -tmp230 - tmp236 + tmp200*x_ddot + tmp201*z_ddot + tmp202*heading_ddot
-        + tmp206*attitude_ddot + tmp211*bank_ddot;
-    result(4) = -tmp231 - tmp237 + tmp203*x_ddot + tmp204*y_ddot + tmp205*z_ddot
-        + tmp206*heading_ddot + tmp207*attitude_ddot + tmp212*bank_ddot;
-    result(5) = -tmp232 - tmp238 + tmp208*x_ddot + tmp209*y_ddot + tmp210*z_ddot
-        + tmp211*heading_ddot + tmp212*attitude_ddot + tmp213*bank_ddot;
+    result(0) = -tmp190 + tmp142*x_ddot + tmp143*heading_ddot + tmp151*attitude_ddot
+        + tmp164*bank_ddot;
+    result(1) = -tmp191 + tmp142*y_ddot + tmp152*attitude_ddot + tmp165*bank_ddot;
+    result(2) = -tmp171 - tmp192 + tmp142*z_ddot + tmp144*heading_ddot + tmp153*attitude_ddot
+        + tmp166*bank_ddot;
+    result(3) = -tmp187 - tmp193 + tmp143*x_ddot + tmp144*z_ddot + tmp149*heading_ddot
+        + tmp154*attitude_ddot + tmp167*bank_ddot;
+    result(4) = -tmp188 - tmp194 + tmp151*x_ddot + tmp152*y_ddot + tmp153*z_ddot
+        + tmp154*heading_ddot + tmp163*attitude_ddot + tmp169*bank_ddot;
+    result(5) = -tmp189 - tmp195 + tmp164*x_ddot + tmp165*y_ddot + tmp166*z_ddot
+        + tmp167*heading_ddot + tmp169*attitude_ddot + tmp170*bank_ddot;
     return result;
   }
 
@@ -7227,7 +6214,7 @@ struct RigidBodyEulerYzx {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// dr_dq and dr_dv must not be null.
-  /// Ops: 4036
+  /// Ops: 3438
   template <typename Scalar>
   static void residual_jacobians(const QVector<Scalar>& q,
                                  const QVector<Scalar>& v,
@@ -7238,7 +6225,6 @@ struct RigidBodyEulerYzx {
                                  QMatrix<Scalar>* dr_dv) {
     using std::cos;
     using std::sin;
-    using std::sqrt;
     const Scalar heading = q(3);
     const Scalar attitude = q(4);
     const Scalar bank = q(5);
@@ -7252,1090 +6238,880 @@ struct RigidBodyEulerYzx {
     const Scalar attitude_ddot = qdd(4);
     const Scalar bank_ddot = qdd(5);
     const Scalar g = Scalar(params.g);
-    const Scalar m = Scalar(params.m);
-    const Scalar a = Scalar(params.a);
-    const Scalar b = Scalar(params.b);
-    const Scalar c = Scalar(params.c);
-    const Scalar tmp0 = sin(heading);
-    const Scalar tmp1 = cos(bank);
-    const Scalar tmp2 = tmp0*tmp1;
-    const Scalar tmp3 = sin(attitude);
-    const Scalar tmp4 = sin(bank);
-    const Scalar tmp5 = cos(heading);
-    const Scalar tmp6 = tmp4*tmp5;
-    const Scalar tmp7 = tmp3*tmp6;
-    const Scalar tmp8 = tmp2 + tmp7;
-    const Scalar tmp9 = (Scalar(1)/sqrt(m));
-    const Scalar tmp10 = (a*a);
-    const Scalar tmp11 = (b*b);
-    const Scalar tmp12 = ((Scalar(1)/Scalar(24)))*m;
-    const Scalar tmp13 = tmp12*(tmp10 + tmp11);
-    const Scalar tmp14 = (c*c);
-    const Scalar tmp15 = tmp12*(tmp10 + tmp14);
-    const Scalar tmp16 = tmp12*(tmp11 + tmp14);
-    const Scalar tmp17 = tmp15 + tmp16 - tmp13;
-    const Scalar tmp18 = tmp9*sqrt(tmp17);
-    const Scalar tmp20 = tmp1*tmp5;
-    const Scalar tmp21 = tmp20*tmp3;
-    const Scalar tmp22 = tmp21 - tmp0*tmp4;
-    const Scalar tmp23 = -tmp22;
-    const Scalar tmp24 = tmp13 + tmp16 - tmp15;
-    const Scalar tmp25 = tmp9*sqrt(tmp24);
-    const Scalar tmp27 = cos(attitude);
-    const Scalar tmp28 = tmp13 + tmp15 - tmp16;
-    const Scalar tmp29 = tmp9*sqrt(tmp28);
-    const Scalar tmp30 = tmp27*tmp29;
-    const Scalar tmp31 = tmp30*tmp5;
-    const Scalar tmp34 = tmp29*tmp3;
-    const Scalar tmp35 = tmp1*tmp25;
-    const Scalar tmp36 = tmp27*tmp35;
-    const Scalar tmp37 = tmp18*tmp4;
-    const Scalar tmp38 = tmp27*tmp37;
-    const Scalar tmp39 = tmp34 + tmp36 - tmp38;
-    const Scalar tmp41 = tmp0*tmp30;
-    const Scalar tmp42 = -tmp41;
-    const Scalar tmp43 = tmp0*tmp4;
-    const Scalar tmp44 = tmp3*tmp43;
-    const Scalar tmp45 = tmp44 - tmp1*tmp5;
-    const Scalar tmp46 = -tmp45;
-    const Scalar tmp47 = tmp18*tmp46;
-    const Scalar tmp48 = tmp2*tmp3;
-    const Scalar tmp49 = tmp48 + tmp6;
-    const Scalar tmp50 = tmp25*tmp49;
-    const Scalar tmp51 = tmp47 + tmp50;
-    const Scalar tmp52 = tmp42 + tmp51;
-    const Scalar tmp54 = tmp25*tmp8;
-    const Scalar tmp55 = tmp18*tmp22;
-    const Scalar tmp56 = tmp54 + tmp55;
-    const Scalar tmp57 = tmp18*tmp27;
-    const Scalar tmp58 = tmp57*tmp6;
-    const Scalar tmp59 = tmp34*tmp5;
-    const Scalar tmp60 = tmp25*tmp27;
-    const Scalar tmp61 = tmp20*tmp60;
-    const Scalar tmp62 = tmp59 + tmp61;
-    const Scalar tmp63 = tmp62 - tmp58;
-    const Scalar tmp64 = -tmp63;
-    const Scalar tmp66 = tmp1*tmp18;
-    const Scalar tmp67 = tmp27*tmp66;
-    const Scalar tmp68 = tmp25*tmp4;
-    const Scalar tmp69 = tmp27*tmp68;
-    const Scalar tmp70 = tmp67 + tmp69;
-    const Scalar tmp71 = -tmp70;
-    const Scalar tmp72 = tmp3*tmp35;
-    const Scalar tmp73 = tmp3*tmp37;
-    const Scalar tmp74 = tmp30 + tmp73;
-    const Scalar tmp75 = tmp74 - tmp72;
-    const Scalar tmp77 = tmp25*tmp46;
-    const Scalar tmp78 = -tmp49;
-    const Scalar tmp79 = tmp18*tmp78;
-    const Scalar tmp80 = tmp77 + tmp79;
-    const Scalar tmp81 = tmp43*tmp57;
-    const Scalar tmp82 = tmp0*tmp34;
-    const Scalar tmp83 = tmp2*tmp60;
-    const Scalar tmp84 = tmp82 + tmp83;
-    const Scalar tmp85 = tmp84 - tmp81;
-    const Scalar tmp86 = -tmp31;
-    const Scalar tmp87 = tmp22*tmp25;
-    const Scalar tmp88 = -tmp8;
-    const Scalar tmp89 = tmp18*tmp88;
-    const Scalar tmp90 = tmp87 + tmp89;
-    const Scalar tmp91 = tmp86 + tmp90;
-    const Scalar tmp92 = tmp80*bank_dot + tmp85*attitude_dot + tmp91*heading_dot;
-    const Scalar tmp97 = tmp38 - tmp36;
-    const Scalar tmp98 = tmp34 + tmp97;
-    const Scalar tmp100 = tmp41 + tmp51;
-    const Scalar tmp102 = -tmp56;
-    const Scalar tmp103 = tmp58 + tmp59 - tmp61;
-    const Scalar tmp104 = -tmp103;
-    const Scalar tmp105 = -tmp100;
-    const Scalar tmp107 = tmp30 + tmp72 - tmp73;
-    const Scalar tmp109 = -tmp80;
-    const Scalar tmp110 = tmp81 + tmp82 - tmp83;
-    const Scalar tmp111 = -tmp31 - tmp90;
-    const Scalar tmp112 = tmp111*heading_dot + tmp109*bank_dot + tmp110*attitude_dot;
-    const Scalar tmp116 = tmp36 + tmp38;
-    const Scalar tmp117 = tmp116 - tmp34;
-    const Scalar tmp119 = tmp41 + tmp50 - tmp47;
-    const Scalar tmp121 = tmp54 - tmp55;
-    const Scalar tmp122 = tmp58 + tmp61 - tmp59;
-    const Scalar tmp123 = -tmp122;
-    const Scalar tmp125 = tmp67 - tmp69;
-    const Scalar tmp126 = -tmp72 - tmp74;
-    const Scalar tmp128 = tmp77 - tmp79;
-    const Scalar tmp129 = tmp81 + tmp83 - tmp82;
-    const Scalar tmp130 = tmp31 + tmp87 - tmp89;
-    const Scalar tmp131 = tmp128*bank_dot + tmp129*attitude_dot + tmp130*heading_dot;
-    const Scalar tmp134 = tmp116 + tmp34;
-    const Scalar tmp136 = tmp41 + tmp47 - tmp50;
-    const Scalar tmp138 = -tmp121;
-    const Scalar tmp139 = tmp58 + tmp62;
-    const Scalar tmp141 = -tmp125;
-    const Scalar tmp142 = tmp72 + tmp73 - tmp30;
-    const Scalar tmp144 = -tmp128;
-    const Scalar tmp145 = -tmp81 - tmp84;
-    const Scalar tmp146 = tmp89 - tmp87;
-    const Scalar tmp147 = tmp146 + tmp31;
-    const Scalar tmp148 = tmp144*bank_dot + tmp145*attitude_dot + tmp147*heading_dot;
-    const Scalar tmp150 = (Scalar(0.25))*m;
-    const Scalar tmp151 = tmp150*g;
-    const Scalar tmp152 = -tmp151;
-    const Scalar tmp153 = tmp20*tmp57;
-    const Scalar tmp154 = tmp60*tmp6;
-    const Scalar tmp155 = tmp153 + tmp154;
-    const Scalar tmp156 = tmp21*tmp25;
-    const Scalar tmp157 = tmp18*tmp7;
-    const Scalar tmp158 = tmp157 + tmp31;
-    const Scalar tmp159 = tmp92*heading_dot
-        + attitude_dot*(tmp155*bank_dot + tmp85*heading_dot + attitude_dot*(tmp156 - tmp158))
-        + bank_dot*(tmp155*attitude_dot + tmp80*heading_dot + tmp90*bank_dot);
-    const Scalar tmp160 = tmp3*tmp66;
-    const Scalar tmp161 = tmp3*tmp68;
-    const Scalar tmp162 = tmp160 + tmp161;
-    const Scalar tmp163 = attitude_dot*(tmp162*bank_dot - tmp39*attitude_dot)
-        + bank_dot*(tmp162*attitude_dot + tmp97*bank_dot);
-    const Scalar tmp164 = tmp2*tmp57;
-    const Scalar tmp165 = tmp43*tmp60;
-    const Scalar tmp166 = tmp164 + tmp165;
-    const Scalar tmp167 = -tmp166;
-    const Scalar tmp168 = tmp18*tmp45;
-    const Scalar tmp169 = tmp25*tmp78;
-    const Scalar tmp170 = tmp168 + tmp169;
-    const Scalar tmp171 = tmp18*tmp23;
-    const Scalar tmp172 = tmp25*tmp88;
-    const Scalar tmp173 = tmp171 + tmp172;
-    const Scalar tmp174 = tmp25*tmp48;
-    const Scalar tmp175 = tmp18*tmp44;
-    const Scalar tmp176 = tmp175 + tmp41;
-    const Scalar tmp177 = attitude_dot*(tmp167*bank_dot + tmp63*heading_dot
-            + attitude_dot*(tmp176 - tmp174))
-        + bank_dot*(tmp167*attitude_dot + tmp170*bank_dot + tmp173*heading_dot)
-        + heading_dot*(tmp173*bank_dot + tmp63*attitude_dot + heading_dot*(tmp170 + tmp41));
-    const Scalar tmp178 = -tmp155;
-    const Scalar tmp179 = tmp112*heading_dot
-        + attitude_dot*(tmp178*bank_dot + tmp110*heading_dot
-            + attitude_dot*(tmp157 - tmp156 - tmp31))
-        + bank_dot*(tmp178*attitude_dot + tmp109*heading_dot - tmp90*bank_dot);
-    const Scalar tmp180 = -tmp162;
-    const Scalar tmp181 = attitude_dot*(tmp180*bank_dot - tmp98*attitude_dot)
-        + bank_dot*(tmp180*attitude_dot - tmp97*bank_dot);
-    const Scalar tmp182 = -tmp173;
-    const Scalar tmp183 = attitude_dot*(tmp166*bank_dot + tmp103*heading_dot
-            + attitude_dot*(tmp174 + tmp41 - tmp175))
-        + bank_dot*(tmp166*attitude_dot + tmp182*heading_dot - tmp170*bank_dot)
-        + heading_dot*(tmp182*bank_dot + tmp103*attitude_dot + heading_dot*(-tmp170 - tmp42));
-    const Scalar tmp184 = tmp153 - tmp154;
-    const Scalar tmp185 = -tmp184;
-    const Scalar tmp186 = tmp131*heading_dot
-        + attitude_dot*(tmp129*heading_dot + tmp185*bank_dot + attitude_dot*(tmp156 + tmp158))
-        + bank_dot*(tmp128*heading_dot + tmp185*attitude_dot - tmp146*bank_dot);
-    const Scalar tmp187 = tmp160 - tmp161;
-    const Scalar tmp188 = -tmp187;
-    const Scalar tmp189 = attitude_dot*(tmp188*bank_dot - tmp117*attitude_dot)
-        + bank_dot*(tmp188*attitude_dot - tmp116*bank_dot);
-    const Scalar tmp190 = tmp164 - tmp165;
-    const Scalar tmp191 = tmp168 - tmp169;
-    const Scalar tmp192 = tmp172 - tmp171;
-    const Scalar tmp193 = attitude_dot*(tmp122*heading_dot + tmp190*bank_dot
-            + attitude_dot*(-tmp174 - tmp176))
-        + bank_dot*(tmp190*attitude_dot + tmp192*heading_dot - tmp191*bank_dot)
-        + heading_dot*(tmp122*attitude_dot + tmp192*bank_dot + heading_dot*(-tmp191 - tmp41));
-    const Scalar tmp194 = tmp148*heading_dot
-        + attitude_dot*(tmp145*heading_dot + tmp184*bank_dot
-            + attitude_dot*(-tmp156 - tmp157 - tmp86))
-        + bank_dot*(tmp144*heading_dot + tmp146*bank_dot + tmp184*attitude_dot);
-    const Scalar tmp195 = attitude_dot*(tmp134*attitude_dot + tmp187*bank_dot)
-        + bank_dot*(tmp116*bank_dot + tmp187*attitude_dot);
-    const Scalar tmp196 = -tmp190;
-    const Scalar tmp197 = -tmp192;
-    const Scalar tmp198 = -tmp139;
-    const Scalar tmp199 = attitude_dot*(tmp196*bank_dot + tmp198*heading_dot
-            + attitude_dot*(tmp174 + tmp175 + tmp42))
-        + bank_dot*(tmp191*bank_dot + tmp196*attitude_dot + tmp197*heading_dot)
-        + heading_dot*(tmp197*bank_dot + tmp198*attitude_dot
-            + heading_dot*(tmp168 - tmp169 - tmp41));
-    const Scalar tmp215 = tmp150*tmp159;
-    const Scalar tmp216 = tmp150*tmp177;
-    const Scalar tmp217 = tmp150*tmp179;
-    const Scalar tmp218 = tmp150*tmp183;
-    const Scalar tmp219 = tmp150*tmp186;
-    const Scalar tmp220 = tmp150*tmp193;
-    const Scalar tmp221 = tmp150*tmp194;
-    const Scalar tmp222 = tmp150*tmp199;
-    const Scalar tmp223 = tmp150*tmp163;
-    const Scalar tmp224 = tmp150*tmp181;
-    const Scalar tmp225 = tmp150*tmp189;
-    const Scalar tmp226 = tmp150*tmp195;
-    const Scalar tmp343 = tmp1*tmp5;
-    const Scalar tmp344 = -tmp0;
-    const Scalar tmp345 = tmp4*tmp344;
-    const Scalar tmp346 = tmp3*tmp345;
-    const Scalar tmp347 = tmp343 + tmp346;
-    const Scalar tmp348 = tmp1*tmp344;
-    const Scalar tmp349 = tmp3*tmp348;
-    const Scalar tmp350 = -tmp4*tmp5 + tmp349;
-    const Scalar tmp351 = -tmp350;
-    const Scalar tmp352 = tmp30*tmp344;
-    const Scalar tmp353 = tmp30*tmp5;
-    const Scalar tmp354 = -tmp353;
-    const Scalar tmp355 = tmp4*tmp5;
-    const Scalar tmp356 = tmp3*tmp355;
-    const Scalar tmp357 = tmp356 - tmp1*tmp344;
-    const Scalar tmp358 = -tmp357;
-    const Scalar tmp359 = tmp18*tmp358;
-    const Scalar tmp360 = tmp3*tmp343;
-    const Scalar tmp361 = tmp360 + tmp345;
-    const Scalar tmp362 = tmp25*tmp361;
-    const Scalar tmp363 = tmp359 + tmp362;
-    const Scalar tmp364 = tmp354 + tmp363;
-    const Scalar tmp365 = tmp25*tmp347;
-    const Scalar tmp366 = tmp18*tmp350;
-    const Scalar tmp367 = tmp365 + tmp366;
-    const Scalar tmp368 = tmp57*tmp345;
-    const Scalar tmp369 = tmp34*tmp344;
-    const Scalar tmp370 = tmp60*tmp348;
-    const Scalar tmp371 = tmp369 + tmp370;
-    const Scalar tmp372 = -tmp368 + tmp371;
-    const Scalar tmp373 = -tmp372;
-    const Scalar tmp374 = tmp25*tmp358;
-    const Scalar tmp375 = -tmp361;
-    const Scalar tmp376 = tmp18*tmp375;
-    const Scalar tmp377 = tmp374 + tmp376;
-    const Scalar tmp378 = tmp57*tmp355;
-    const Scalar tmp379 = tmp34*tmp5;
-    const Scalar tmp380 = tmp60*tmp343;
-    const Scalar tmp381 = tmp379 + tmp380;
-    const Scalar tmp382 = -tmp378 + tmp381;
-    const Scalar tmp383 = -tmp352;
-    const Scalar tmp384 = tmp25*tmp350;
-    const Scalar tmp385 = -tmp347;
-    const Scalar tmp386 = tmp18*tmp385;
-    const Scalar tmp387 = tmp384 + tmp386;
-    const Scalar tmp388 = tmp383 + tmp387;
-    const Scalar tmp389 = bank_dot*tmp377 + attitude_dot*tmp382 + heading_dot*tmp388;
-    const Scalar tmp390 = tmp353 + tmp363;
-    const Scalar tmp391 = -tmp367;
-    const Scalar tmp392 = tmp368 + tmp369 - tmp370;
-    const Scalar tmp393 = -tmp392;
-    const Scalar tmp394 = -tmp390;
-    const Scalar tmp395 = -tmp377;
-    const Scalar tmp396 = tmp378 + tmp379 - tmp380;
-    const Scalar tmp397 = -tmp352 - tmp387;
-    const Scalar tmp398 = heading_dot*tmp397 + bank_dot*tmp395 + attitude_dot*tmp396;
-    const Scalar tmp399 = tmp353 - tmp359 + tmp362;
-    const Scalar tmp400 = tmp365 - tmp366;
-    const Scalar tmp401 = tmp368 - tmp369 + tmp370;
-    const Scalar tmp402 = -tmp401;
-    const Scalar tmp403 = tmp374 - tmp376;
-    const Scalar tmp404 = tmp378 - tmp379 + tmp380;
-    const Scalar tmp405 = tmp352 + tmp384 - tmp386;
-    const Scalar tmp406 = bank_dot*tmp403 + attitude_dot*tmp404 + heading_dot*tmp405;
-    const Scalar tmp407 = tmp353 + tmp359 - tmp362;
-    const Scalar tmp408 = -tmp400;
-    const Scalar tmp409 = tmp368 + tmp371;
-    const Scalar tmp410 = -tmp403;
-    const Scalar tmp411 = -tmp378 - tmp381;
-    const Scalar tmp412 = -tmp384 + tmp386;
-    const Scalar tmp413 = tmp412 + tmp352;
-    const Scalar tmp414 = bank_dot*tmp410 + attitude_dot*tmp411 + heading_dot*tmp413;
-    const Scalar tmp415 = tmp57*tmp348;
-    const Scalar tmp416 = tmp60*tmp345;
-    const Scalar tmp417 = tmp415 + tmp416;
-    const Scalar tmp418 = tmp25*tmp349;
-    const Scalar tmp419 = tmp18*tmp346;
-    const Scalar tmp420 = tmp419 + tmp352;
-    const Scalar tmp421 = Scalar(2)*attitude_dot*bank_dot*tmp417
-        + (attitude_dot*attitude_dot)*tmp418 - (attitude_dot*attitude_dot)*tmp420
-        + bank_dot*heading_dot*tmp377 + attitude_dot*heading_dot*tmp382 + (bank_dot*bank_dot)*tmp387
-        + heading_dot*tmp389;
-    const Scalar tmp422 = tmp57*tmp343;
-    const Scalar tmp423 = tmp60*tmp355;
-    const Scalar tmp424 = tmp422 + tmp423;
-    const Scalar tmp425 = -tmp424;
-    const Scalar tmp426 = tmp18*tmp357;
-    const Scalar tmp427 = tmp25*tmp375;
-    const Scalar tmp428 = tmp426 + tmp427;
-    const Scalar tmp429 = tmp18*tmp351;
-    const Scalar tmp430 = tmp25*tmp385;
-    const Scalar tmp431 = tmp429 + tmp430;
-    const Scalar tmp432 = tmp25*tmp360;
-    const Scalar tmp433 = tmp18*tmp356;
-    const Scalar tmp434 = tmp433 + tmp353;
-    const Scalar tmp435 = Scalar(2)*attitude_dot*bank_dot*tmp425
-        + ((bank_dot*bank_dot) + (heading_dot*heading_dot))*tmp428
-        + Scalar(2)*bank_dot*heading_dot*tmp431 - (attitude_dot*attitude_dot)*tmp432
-        + (attitude_dot*attitude_dot)*tmp434 + (heading_dot*heading_dot)*tmp353
-        + Scalar(2)*attitude_dot*heading_dot*tmp372;
-    const Scalar tmp436 = -tmp417;
-    const Scalar tmp437 = heading_dot*tmp398 - (attitude_dot*attitude_dot)*tmp418
-        + (attitude_dot*attitude_dot)*tmp419 + Scalar(2)*attitude_dot*bank_dot*tmp436
-        - (attitude_dot*attitude_dot)*tmp352 - (bank_dot*bank_dot)*tmp387
-        + bank_dot*heading_dot*tmp395 + attitude_dot*heading_dot*tmp396;
-    const Scalar tmp438 = -tmp431;
-    const Scalar tmp439 = Scalar(2)*attitude_dot*bank_dot*tmp424
-        + (-(bank_dot*bank_dot) - (heading_dot*heading_dot))*tmp428
-        + (attitude_dot*attitude_dot)*tmp432 - (attitude_dot*attitude_dot)*tmp433
-        + Scalar(2)*bank_dot*heading_dot*tmp438 + (attitude_dot*attitude_dot)*tmp353
-        - (heading_dot*heading_dot)*tmp354 + Scalar(2)*attitude_dot*heading_dot*tmp392;
-    const Scalar tmp440 = tmp415 - tmp416;
-    const Scalar tmp441 = -tmp440;
-    const Scalar tmp442 = bank_dot*heading_dot*tmp403 + attitude_dot*heading_dot*tmp404
-        + heading_dot*tmp406 - (bank_dot*bank_dot)*tmp412 + (attitude_dot*attitude_dot)*tmp418
-        + (attitude_dot*attitude_dot)*tmp420 + Scalar(2)*attitude_dot*bank_dot*tmp441;
-    const Scalar tmp443 = tmp422 - tmp423;
-    const Scalar tmp444 = tmp426 - tmp427;
-    const Scalar tmp445 = -tmp429 + tmp430;
-    const Scalar tmp446 = Scalar(2)*attitude_dot*heading_dot*tmp401
-        - (attitude_dot*attitude_dot)*tmp432 - (attitude_dot*attitude_dot)*tmp434
-        + Scalar(2)*attitude_dot*bank_dot*tmp443
-        + (-(bank_dot*bank_dot) - (heading_dot*heading_dot))*tmp444
-        + Scalar(2)*bank_dot*heading_dot*tmp445 - (heading_dot*heading_dot)*tmp353;
-    const Scalar tmp447 = bank_dot*heading_dot*tmp410 + attitude_dot*heading_dot*tmp411
-        + (bank_dot*bank_dot)*tmp412 + heading_dot*tmp414 - (attitude_dot*attitude_dot)*tmp418
-        - (attitude_dot*attitude_dot)*tmp419 + Scalar(2)*attitude_dot*bank_dot*tmp440
-        - (attitude_dot*attitude_dot)*tmp383;
-    const Scalar tmp448 = -tmp443;
-    const Scalar tmp449 = -tmp445;
-    const Scalar tmp450 = -tmp409;
-    const Scalar tmp451 = (heading_dot*heading_dot)*tmp426 - (heading_dot*heading_dot)*tmp427
-        + (attitude_dot*attitude_dot)*tmp432 + (attitude_dot*attitude_dot)*tmp433
-        + (bank_dot*bank_dot)*tmp444 + Scalar(2)*attitude_dot*bank_dot*tmp448
-        + Scalar(2)*bank_dot*heading_dot*tmp449 + Scalar(2)*attitude_dot*heading_dot*tmp450
-        - (heading_dot*heading_dot)*tmp353 + (attitude_dot*attitude_dot)*tmp354;
-    const Scalar tmp452 = tmp150*tmp399 + tmp150*tmp407 + tmp150*tmp364 + tmp150*tmp394;
-    const Scalar tmp453 = tmp150*tmp397 + tmp150*tmp405 + tmp150*tmp413 + tmp150*tmp388;
-    const Scalar tmp454 = Scalar(2)*tmp111*tmp150*tmp397 + Scalar(2)*tmp119*tmp150*tmp399
-        + Scalar(2)*tmp130*tmp150*tmp405 + Scalar(2)*tmp136*tmp150*tmp407
-        + Scalar(2)*tmp147*tmp150*tmp413 + Scalar(2)*tmp150*tmp52*tmp364
-        + Scalar(2)*tmp150*tmp91*tmp388 + Scalar(2)*tmp150*tmp105*tmp394;
-    const Scalar tmp455 = tmp150*tmp402 + tmp150*tmp409 + tmp150*tmp373 + tmp150*tmp393;
-    const Scalar tmp456 = tmp150*tmp404 + tmp150*tmp411 + tmp150*tmp382 + tmp150*tmp396;
-    const Scalar tmp457 = tmp150*tmp110*tmp397 + tmp123*tmp150*tmp399 + tmp119*tmp150*tmp402
-        + tmp130*tmp150*tmp404 + tmp129*tmp150*tmp405 + tmp139*tmp150*tmp407 + tmp136*tmp150*tmp409
-        + tmp147*tmp150*tmp411 + tmp145*tmp150*tmp413 + tmp150*tmp64*tmp364 + tmp150*tmp52*tmp373
-        + tmp150*tmp91*tmp382 + tmp150*tmp85*tmp388 + tmp150*tmp105*tmp393 + tmp150*tmp104*tmp394
-        + tmp111*tmp150*tmp396;
-    const Scalar tmp458 = Scalar(2)*tmp123*tmp150*tmp402 + Scalar(2)*tmp129*tmp150*tmp404
-        + Scalar(2)*tmp139*tmp150*tmp409 + Scalar(2)*tmp145*tmp150*tmp411
-        + Scalar(2)*tmp150*tmp64*tmp373 + Scalar(2)*tmp150*tmp85*tmp382
-        + Scalar(2)*tmp150*tmp104*tmp393 + Scalar(2)*tmp150*tmp110*tmp396;
-    const Scalar tmp459 = tmp150*tmp400 + tmp150*tmp408 + tmp150*tmp367 + tmp150*tmp391;
-    const Scalar tmp460 = tmp150*tmp403 + tmp150*tmp410 + tmp150*tmp377 + tmp150*tmp395;
-    const Scalar tmp461 = tmp150*tmp109*tmp397 + tmp121*tmp150*tmp399 + tmp119*tmp150*tmp400
-        + tmp130*tmp150*tmp403 + tmp128*tmp150*tmp405 + tmp138*tmp150*tmp407 + tmp136*tmp150*tmp408
-        + tmp147*tmp150*tmp410 + tmp144*tmp150*tmp413 + tmp150*tmp56*tmp364 + tmp150*tmp52*tmp367
-        + tmp150*tmp91*tmp377 + tmp150*tmp80*tmp388 + tmp150*tmp105*tmp391 + tmp150*tmp102*tmp394
-        + tmp111*tmp150*tmp395;
-    const Scalar tmp462 = tmp123*tmp150*tmp400 + tmp121*tmp150*tmp402 + tmp129*tmp150*tmp403
-        + tmp128*tmp150*tmp404 + tmp139*tmp150*tmp408 + tmp138*tmp150*tmp409 + tmp145*tmp150*tmp410
-        + tmp144*tmp150*tmp411 + tmp150*tmp64*tmp367 + tmp150*tmp56*tmp373 + tmp150*tmp85*tmp377
-        + tmp150*tmp80*tmp382 + tmp150*tmp104*tmp391 + tmp150*tmp102*tmp393 + tmp150*tmp110*tmp395
-        + tmp150*tmp109*tmp396;
-    const Scalar tmp463 = Scalar(2)*tmp121*tmp150*tmp400 + Scalar(2)*tmp128*tmp150*tmp403
-        + Scalar(2)*tmp138*tmp150*tmp408 + Scalar(2)*tmp144*tmp150*tmp410
-        + Scalar(2)*tmp150*tmp56*tmp367 + Scalar(2)*tmp150*tmp80*tmp377
-        + Scalar(2)*tmp150*tmp102*tmp391 + Scalar(2)*tmp150*tmp109*tmp395;
-    const Scalar tmp464 = tmp150*tmp421;
-    const Scalar tmp465 = tmp150*tmp435;
-    const Scalar tmp466 = tmp150*tmp437;
-    const Scalar tmp467 = tmp150*tmp439;
-    const Scalar tmp468 = tmp150*tmp442;
-    const Scalar tmp469 = tmp150*tmp446;
-    const Scalar tmp470 = tmp150*tmp447;
-    const Scalar tmp471 = tmp150*tmp451;
-    const Scalar tmp472 = tmp466 + tmp468 + tmp470 + tmp464;
-    const Scalar tmp473 = tmp467 + tmp469 + tmp471 + tmp465;
-    const Scalar tmp474 = tmp152*tmp397 + tmp152*tmp405 + tmp152*tmp413 + tmp152*tmp388;
-    const Scalar tmp475 = tmp152*tmp404 + tmp152*tmp411 + tmp152*tmp382 + tmp152*tmp396;
-    const Scalar tmp476 = tmp152*tmp403 + tmp152*tmp410 + tmp152*tmp377 + tmp152*tmp395;
-    const Scalar tmp477 = -tmp472;
-    const Scalar tmp478 = -tmp473;
-    const Scalar tmp479 = -tmp218*tmp397 - tmp219*tmp399 - tmp220*tmp405 - tmp221*tmp407
-        - tmp222*tmp413 - tmp105*tmp466 - tmp111*tmp467 - tmp119*tmp468 - tmp130*tmp469
-        - tmp136*tmp470 - tmp147*tmp471 - tmp215*tmp364 - tmp216*tmp388 - tmp217*tmp394
-        - tmp52*tmp464 - tmp91*tmp465;
-    const Scalar tmp480 = -tmp219*tmp402 - tmp220*tmp404 - tmp221*tmp409 - tmp222*tmp411
-        - tmp104*tmp466 - tmp110*tmp467 - tmp123*tmp468 - tmp129*tmp469 - tmp139*tmp470
-        - tmp145*tmp471 - tmp215*tmp373 - tmp216*tmp382 - tmp217*tmp393 - tmp218*tmp396
-        - tmp64*tmp464 - tmp85*tmp465;
-    const Scalar tmp481 = -tmp219*tmp400 - tmp220*tmp403 - tmp221*tmp408 - tmp222*tmp410
-        - tmp102*tmp466 - tmp109*tmp467 - tmp121*tmp468 - tmp128*tmp469 - tmp138*tmp470
-        - tmp144*tmp471 - tmp215*tmp367 - tmp216*tmp377 - tmp217*tmp391 - tmp218*tmp395
-        - tmp56*tmp464 - tmp80*tmp465;
-    const Scalar tmp482 = tmp6*tmp27;
-    const Scalar tmp483 = tmp20*tmp27;
-    const Scalar tmp484 = -tmp483;
-    const Scalar tmp485 = -tmp3;
-    const Scalar tmp486 = tmp29*tmp485;
-    const Scalar tmp487 = tmp5*tmp486;
-    const Scalar tmp488 = tmp29*tmp27;
-    const Scalar tmp489 = tmp35*tmp485;
-    const Scalar tmp490 = tmp37*tmp485;
-    const Scalar tmp491 = tmp488 + tmp489 - tmp490;
-    const Scalar tmp492 = tmp0*tmp486;
-    const Scalar tmp493 = -tmp492;
-    const Scalar tmp494 = tmp43*tmp27;
-    const Scalar tmp495 = -tmp494;
-    const Scalar tmp496 = tmp18*tmp495;
-    const Scalar tmp497 = tmp2*tmp27;
-    const Scalar tmp498 = tmp25*tmp497;
-    const Scalar tmp499 = tmp496 + tmp498;
-    const Scalar tmp500 = tmp493 + tmp499;
-    const Scalar tmp501 = tmp25*tmp482;
-    const Scalar tmp502 = tmp18*tmp483;
-    const Scalar tmp503 = tmp501 + tmp502;
-    const Scalar tmp504 = tmp18*tmp485;
-    const Scalar tmp505 = tmp6*tmp504;
-    const Scalar tmp506 = tmp5*tmp488;
-    const Scalar tmp507 = tmp25*tmp485;
-    const Scalar tmp508 = tmp20*tmp507;
-    const Scalar tmp509 = tmp506 + tmp508;
-    const Scalar tmp510 = -tmp505 + tmp509;
-    const Scalar tmp511 = -tmp510;
-    const Scalar tmp512 = tmp66*tmp485;
-    const Scalar tmp513 = tmp68*tmp485;
-    const Scalar tmp514 = tmp512 + tmp513;
-    const Scalar tmp515 = -tmp514;
-    const Scalar tmp516 = tmp35*tmp27;
-    const Scalar tmp517 = tmp37*tmp27;
-    const Scalar tmp518 = tmp486 + tmp517;
-    const Scalar tmp519 = -tmp516 + tmp518;
-    const Scalar tmp520 = tmp25*tmp495;
-    const Scalar tmp521 = -tmp497;
-    const Scalar tmp522 = tmp18*tmp521;
-    const Scalar tmp523 = tmp520 + tmp522;
-    const Scalar tmp524 = tmp43*tmp504;
-    const Scalar tmp525 = tmp0*tmp488;
-    const Scalar tmp526 = tmp2*tmp507;
-    const Scalar tmp527 = tmp525 + tmp526;
-    const Scalar tmp528 = -tmp524 + tmp527;
-    const Scalar tmp529 = -tmp487;
-    const Scalar tmp530 = tmp25*tmp483;
-    const Scalar tmp531 = -tmp482;
-    const Scalar tmp532 = tmp18*tmp531;
-    const Scalar tmp533 = tmp530 + tmp532;
-    const Scalar tmp534 = tmp529 + tmp533;
-    const Scalar tmp535 = bank_dot*tmp523 + attitude_dot*tmp528 + heading_dot*tmp534;
-    const Scalar tmp536 = -tmp489 + tmp490;
-    const Scalar tmp537 = tmp488 + tmp536;
-    const Scalar tmp538 = tmp492 + tmp499;
-    const Scalar tmp539 = -tmp503;
-    const Scalar tmp540 = tmp505 + tmp506 - tmp508;
-    const Scalar tmp541 = -tmp540;
-    const Scalar tmp542 = -tmp538;
-    const Scalar tmp543 = tmp486 + tmp516 - tmp517;
-    const Scalar tmp544 = -tmp523;
-    const Scalar tmp545 = tmp524 + tmp525 - tmp526;
-    const Scalar tmp546 = -tmp487 - tmp533;
-    const Scalar tmp547 = heading_dot*tmp546 + bank_dot*tmp544 + attitude_dot*tmp545;
-    const Scalar tmp548 = tmp489 + tmp490;
-    const Scalar tmp549 = tmp548 - tmp488;
-    const Scalar tmp550 = tmp492 - tmp496 + tmp498;
-    const Scalar tmp551 = tmp501 - tmp502;
-    const Scalar tmp552 = tmp505 - tmp506 + tmp508;
-    const Scalar tmp553 = -tmp552;
-    const Scalar tmp554 = tmp512 - tmp513;
-    const Scalar tmp555 = -tmp516 - tmp518;
-    const Scalar tmp556 = tmp520 - tmp522;
-    const Scalar tmp557 = tmp524 - tmp525 + tmp526;
-    const Scalar tmp558 = tmp487 + tmp530 - tmp532;
-    const Scalar tmp559 = bank_dot*tmp556 + attitude_dot*tmp557 + heading_dot*tmp558;
-    const Scalar tmp560 = tmp548 + tmp488;
-    const Scalar tmp561 = tmp492 + tmp496 - tmp498;
-    const Scalar tmp562 = -tmp551;
-    const Scalar tmp563 = tmp505 + tmp509;
-    const Scalar tmp564 = -tmp554;
-    const Scalar tmp565 = -tmp486 + tmp516 + tmp517;
-    const Scalar tmp566 = -tmp556;
-    const Scalar tmp567 = -tmp524 - tmp527;
-    const Scalar tmp568 = -tmp530 + tmp532;
-    const Scalar tmp569 = tmp568 + tmp487;
-    const Scalar tmp570 = bank_dot*tmp566 + attitude_dot*tmp567 + heading_dot*tmp569;
-    const Scalar tmp571 = tmp20*tmp504;
-    const Scalar tmp572 = tmp6*tmp507;
-    const Scalar tmp573 = tmp571 + tmp572;
-    const Scalar tmp574 = tmp25*tmp483;
-    const Scalar tmp575 = tmp18*tmp482;
-    const Scalar tmp576 = tmp575 + tmp487;
-    const Scalar tmp577 = Scalar(2)*attitude_dot*bank_dot*tmp573
-        + (attitude_dot*attitude_dot)*tmp574 - (attitude_dot*attitude_dot)*tmp576
-        + bank_dot*heading_dot*tmp523 + attitude_dot*heading_dot*tmp528 + (bank_dot*bank_dot)*tmp533
-        + heading_dot*tmp535;
-    const Scalar tmp578 = tmp66*tmp27;
-    const Scalar tmp579 = tmp68*tmp27;
-    const Scalar tmp580 = tmp578 + tmp579;
-    const Scalar tmp581 = Scalar(2)*attitude_dot*bank_dot*tmp580
-        - (attitude_dot*attitude_dot)*tmp491 + (bank_dot*bank_dot)*tmp536;
-    const Scalar tmp582 = tmp2*tmp504;
-    const Scalar tmp583 = tmp43*tmp507;
-    const Scalar tmp584 = tmp582 + tmp583;
-    const Scalar tmp585 = -tmp584;
-    const Scalar tmp586 = tmp18*tmp494;
-    const Scalar tmp587 = tmp25*tmp521;
-    const Scalar tmp588 = tmp586 + tmp587;
-    const Scalar tmp589 = tmp18*tmp484;
-    const Scalar tmp590 = tmp25*tmp531;
-    const Scalar tmp591 = tmp589 + tmp590;
-    const Scalar tmp592 = tmp25*tmp497;
-    const Scalar tmp593 = tmp18*tmp494;
-    const Scalar tmp594 = tmp593 + tmp492;
-    const Scalar tmp595 = Scalar(2)*attitude_dot*bank_dot*tmp585
-        + ((bank_dot*bank_dot) + (heading_dot*heading_dot))*tmp588
-        + Scalar(2)*bank_dot*heading_dot*tmp591 - (attitude_dot*attitude_dot)*tmp592
-        + (attitude_dot*attitude_dot)*tmp594 + (heading_dot*heading_dot)*tmp492
-        + Scalar(2)*attitude_dot*heading_dot*tmp510;
-    const Scalar tmp596 = -tmp573;
-    const Scalar tmp597 = heading_dot*tmp547 - (attitude_dot*attitude_dot)*tmp574
-        + (attitude_dot*attitude_dot)*tmp575 + Scalar(2)*attitude_dot*bank_dot*tmp596
-        - (attitude_dot*attitude_dot)*tmp487 - (bank_dot*bank_dot)*tmp533
-        + bank_dot*heading_dot*tmp544 + attitude_dot*heading_dot*tmp545;
-    const Scalar tmp598 = -tmp580;
-    const Scalar tmp599 = Scalar(2)*attitude_dot*bank_dot*tmp598 - (bank_dot*bank_dot)*tmp536
-        - (attitude_dot*attitude_dot)*tmp537;
-    const Scalar tmp600 = -tmp591;
-    const Scalar tmp601 = Scalar(2)*attitude_dot*bank_dot*tmp584
-        + (-(bank_dot*bank_dot) - (heading_dot*heading_dot))*tmp588
-        + (attitude_dot*attitude_dot)*tmp592 - (attitude_dot*attitude_dot)*tmp593
-        + Scalar(2)*bank_dot*heading_dot*tmp600 + (attitude_dot*attitude_dot)*tmp492
-        - (heading_dot*heading_dot)*tmp493 + Scalar(2)*attitude_dot*heading_dot*tmp540;
-    const Scalar tmp602 = tmp571 - tmp572;
-    const Scalar tmp603 = -tmp602;
-    const Scalar tmp604 = bank_dot*heading_dot*tmp556 + attitude_dot*heading_dot*tmp557
-        + heading_dot*tmp559 - (bank_dot*bank_dot)*tmp568 + (attitude_dot*attitude_dot)*tmp574
-        + (attitude_dot*attitude_dot)*tmp576 + Scalar(2)*attitude_dot*bank_dot*tmp603;
-    const Scalar tmp605 = tmp578 - tmp579;
-    const Scalar tmp606 = -tmp605;
-    const Scalar tmp607 = -(bank_dot*bank_dot)*tmp548 - (attitude_dot*attitude_dot)*tmp549
-        + Scalar(2)*attitude_dot*bank_dot*tmp606;
-    const Scalar tmp608 = tmp582 - tmp583;
-    const Scalar tmp609 = tmp586 - tmp587;
-    const Scalar tmp610 = -tmp589 + tmp590;
-    const Scalar tmp611 = Scalar(2)*attitude_dot*heading_dot*tmp552
-        - (attitude_dot*attitude_dot)*tmp592 - (attitude_dot*attitude_dot)*tmp594
-        + Scalar(2)*attitude_dot*bank_dot*tmp608
-        + (-(bank_dot*bank_dot) - (heading_dot*heading_dot))*tmp609
-        + Scalar(2)*bank_dot*heading_dot*tmp610 - (heading_dot*heading_dot)*tmp492;
-    const Scalar tmp612 = bank_dot*heading_dot*tmp566 + attitude_dot*heading_dot*tmp567
-        + (bank_dot*bank_dot)*tmp568 + heading_dot*tmp570 - (attitude_dot*attitude_dot)*tmp574
-        - (attitude_dot*attitude_dot)*tmp575 + Scalar(2)*attitude_dot*bank_dot*tmp602
-        - (attitude_dot*attitude_dot)*tmp529;
-    const Scalar tmp613 = (bank_dot*bank_dot)*tmp548 + (attitude_dot*attitude_dot)*tmp560
-        + Scalar(2)*attitude_dot*bank_dot*tmp605;
-    const Scalar tmp614 = -tmp608;
-    const Scalar tmp615 = -tmp610;
-    const Scalar tmp616 = -tmp563;
-    const Scalar tmp617 = (heading_dot*heading_dot)*tmp586 - (heading_dot*heading_dot)*tmp587
-        + (attitude_dot*attitude_dot)*tmp592 + (attitude_dot*attitude_dot)*tmp593
-        + (bank_dot*bank_dot)*tmp609 + Scalar(2)*attitude_dot*bank_dot*tmp614
-        + Scalar(2)*bank_dot*heading_dot*tmp615 + Scalar(2)*attitude_dot*heading_dot*tmp616
-        - (heading_dot*heading_dot)*tmp492 + (attitude_dot*attitude_dot)*tmp493;
-    const Scalar tmp618 = tmp150*tmp550 + tmp150*tmp561 + tmp150*tmp500 + tmp150*tmp542;
-    const Scalar tmp619 = tmp150*tmp546 + tmp150*tmp558 + tmp150*tmp569 + tmp150*tmp534;
-    const Scalar tmp620 = Scalar(2)*tmp111*tmp150*tmp546 + Scalar(2)*tmp119*tmp150*tmp550
-        + Scalar(2)*tmp130*tmp150*tmp558 + Scalar(2)*tmp136*tmp150*tmp561
-        + Scalar(2)*tmp147*tmp150*tmp569 + Scalar(2)*tmp150*tmp52*tmp500
-        + Scalar(2)*tmp150*tmp91*tmp534 + Scalar(2)*tmp150*tmp105*tmp542;
-    const Scalar tmp621 = tmp150*tmp553 + tmp150*tmp563 + tmp150*tmp511 + tmp150*tmp541;
-    const Scalar tmp622 = tmp150*tmp555 + tmp150*tmp565 + tmp150*tmp519 + tmp150*tmp543;
-    const Scalar tmp623 = tmp150*tmp557 + tmp150*tmp567 + tmp150*tmp528 + tmp150*tmp545;
-    const Scalar tmp624 = tmp150*tmp110*tmp546 + tmp123*tmp150*tmp550 + tmp119*tmp150*tmp553
-        + tmp130*tmp150*tmp557 + tmp129*tmp150*tmp558 + tmp139*tmp150*tmp561 + tmp136*tmp150*tmp563
-        + tmp147*tmp150*tmp567 + tmp145*tmp150*tmp569 + tmp150*tmp64*tmp500 + tmp150*tmp52*tmp511
-        + tmp150*tmp91*tmp528 + tmp150*tmp85*tmp534 + tmp150*tmp105*tmp541 + tmp150*tmp104*tmp542
-        + tmp111*tmp150*tmp545;
-    const Scalar tmp625 = Scalar(2)*tmp123*tmp150*tmp553 + Scalar(2)*tmp126*tmp150*tmp555
-        + Scalar(2)*tmp129*tmp150*tmp557 + Scalar(2)*tmp139*tmp150*tmp563
-        + Scalar(2)*tmp142*tmp150*tmp565 + Scalar(2)*tmp145*tmp150*tmp567
-        + Scalar(2)*tmp150*tmp64*tmp511 + Scalar(2)*tmp150*tmp75*tmp519
-        + Scalar(2)*tmp150*tmp85*tmp528 + Scalar(2)*tmp150*tmp104*tmp541
-        + Scalar(2)*tmp150*tmp107*tmp543 + Scalar(2)*tmp150*tmp110*tmp545;
-    const Scalar tmp626 = tmp150*tmp551 + tmp150*tmp562 + tmp150*tmp503 + tmp150*tmp539;
-    const Scalar tmp627 = tmp150*tmp554 + tmp150*tmp564 + tmp150*tmp514 + tmp150*tmp515;
-    const Scalar tmp628 = tmp150*tmp556 + tmp150*tmp566 + tmp150*tmp523 + tmp150*tmp544;
-    const Scalar tmp629 = tmp150*tmp109*tmp546 + tmp121*tmp150*tmp550 + tmp119*tmp150*tmp551
-        + tmp130*tmp150*tmp556 + tmp128*tmp150*tmp558 + tmp138*tmp150*tmp561 + tmp136*tmp150*tmp562
-        + tmp147*tmp150*tmp566 + tmp144*tmp150*tmp569 + tmp150*tmp56*tmp500 + tmp150*tmp52*tmp503
-        + tmp150*tmp91*tmp523 + tmp150*tmp80*tmp534 + tmp150*tmp105*tmp539 + tmp150*tmp102*tmp542
-        + tmp111*tmp150*tmp544;
-    const Scalar tmp630 = tmp123*tmp150*tmp551 + tmp121*tmp150*tmp553 + tmp126*tmp150*tmp554
-        + tmp125*tmp150*tmp555 + tmp129*tmp150*tmp556 + tmp128*tmp150*tmp557 + tmp139*tmp150*tmp562
-        + tmp138*tmp150*tmp563 + tmp142*tmp150*tmp564 + tmp141*tmp150*tmp565 + tmp145*tmp150*tmp566
-        + tmp144*tmp150*tmp567 + tmp150*tmp64*tmp503 + tmp150*tmp56*tmp511 + tmp150*tmp107*tmp514
-        + tmp150*tmp75*tmp515 + tmp150*tmp71*tmp519 + tmp150*tmp85*tmp523 + tmp150*tmp80*tmp528
-        + tmp150*tmp104*tmp539 + tmp150*tmp102*tmp541 + tmp150*tmp70*tmp543 + tmp150*tmp110*tmp544
-        + tmp150*tmp109*tmp545;
-    const Scalar tmp631 = Scalar(2)*tmp121*tmp150*tmp551 + Scalar(2)*tmp125*tmp150*tmp554
-        + Scalar(2)*tmp128*tmp150*tmp556 + Scalar(2)*tmp138*tmp150*tmp562
-        + Scalar(2)*tmp141*tmp150*tmp564 + Scalar(2)*tmp144*tmp150*tmp566
-        + Scalar(2)*tmp150*tmp56*tmp503 + Scalar(2)*tmp150*tmp70*tmp514
-        + Scalar(2)*tmp150*tmp71*tmp515 + Scalar(2)*tmp150*tmp80*tmp523
-        + Scalar(2)*tmp150*tmp102*tmp539 + Scalar(2)*tmp150*tmp109*tmp544;
-    const Scalar tmp632 = tmp150*tmp577;
-    const Scalar tmp633 = tmp150*tmp595;
-    const Scalar tmp634 = tmp150*tmp597;
-    const Scalar tmp635 = tmp150*tmp601;
-    const Scalar tmp636 = tmp150*tmp604;
-    const Scalar tmp637 = tmp150*tmp611;
-    const Scalar tmp638 = tmp150*tmp612;
-    const Scalar tmp639 = tmp150*tmp617;
-    const Scalar tmp640 = tmp150*tmp581;
-    const Scalar tmp641 = tmp150*tmp599;
-    const Scalar tmp642 = tmp150*tmp607;
-    const Scalar tmp643 = tmp150*tmp613;
-    const Scalar tmp644 = tmp634 + tmp636 + tmp638 + tmp632;
-    const Scalar tmp645 = tmp641 + tmp642 + tmp643 + tmp640;
-    const Scalar tmp646 = tmp635 + tmp637 + tmp639 + tmp633;
-    const Scalar tmp647 = tmp152*tmp546 + tmp152*tmp558 + tmp152*tmp569 + tmp152*tmp534;
-    const Scalar tmp648 = tmp152*tmp557 + tmp152*tmp567 + tmp152*tmp528 + tmp152*tmp545;
-    const Scalar tmp649 = tmp152*tmp556 + tmp152*tmp566 + tmp152*tmp523 + tmp152*tmp544;
-    const Scalar tmp650 = -tmp644;
-    const Scalar tmp651 = -tmp645;
-    const Scalar tmp652 = -tmp646;
-    const Scalar tmp653 = -tmp218*tmp546 - tmp219*tmp550 - tmp220*tmp558 - tmp221*tmp561
-        - tmp222*tmp569 - tmp105*tmp634 - tmp111*tmp635 - tmp119*tmp636 - tmp130*tmp637
-        - tmp136*tmp638 - tmp147*tmp639 - tmp215*tmp500 - tmp216*tmp534 - tmp217*tmp542
-        - tmp52*tmp632 - tmp91*tmp633;
-    const Scalar tmp654 = -tmp219*tmp553 - tmp225*tmp555 - tmp220*tmp557 - tmp221*tmp563
-        - tmp226*tmp565 - tmp222*tmp567 - tmp104*tmp634 - tmp110*tmp635 - tmp123*tmp636
-        - tmp129*tmp637 - tmp139*tmp638 - tmp145*tmp639 - tmp107*tmp641 - tmp126*tmp642
-        - tmp142*tmp643 - tmp215*tmp511 - tmp223*tmp519 - tmp216*tmp528 - tmp217*tmp541
-        - tmp224*tmp543 - tmp218*tmp545 - tmp64*tmp632 - tmp85*tmp633 - tmp75*tmp640;
-    const Scalar tmp655 = -tmp219*tmp551 - tmp225*tmp554 - tmp220*tmp556 - tmp221*tmp562
-        - tmp226*tmp564 - tmp222*tmp566 - tmp102*tmp634 - tmp109*tmp635 - tmp121*tmp636
-        - tmp128*tmp637 - tmp138*tmp638 - tmp144*tmp639 - tmp70*tmp641 - tmp125*tmp642
-        - tmp141*tmp643 - tmp215*tmp503 - tmp224*tmp514 - tmp223*tmp515 - tmp216*tmp523
-        - tmp217*tmp539 - tmp218*tmp544 - tmp56*tmp632 - tmp80*tmp633 - tmp71*tmp640;
-    const Scalar tmp656 = -tmp4;
-    const Scalar tmp657 = tmp0*tmp656;
-    const Scalar tmp658 = tmp5*tmp1;
-    const Scalar tmp659 = tmp3*tmp658;
-    const Scalar tmp660 = tmp657 + tmp659;
-    const Scalar tmp661 = tmp5*tmp656;
-    const Scalar tmp662 = tmp3*tmp661;
-    const Scalar tmp663 = tmp662 - tmp0*tmp1;
-    const Scalar tmp664 = -tmp663;
-    const Scalar tmp665 = tmp25*tmp656;
-    const Scalar tmp666 = tmp27*tmp665;
-    const Scalar tmp667 = tmp18*tmp1;
-    const Scalar tmp668 = tmp27*tmp667;
-    const Scalar tmp669 = tmp666 - tmp668;
-    const Scalar tmp670 = tmp0*tmp1;
-    const Scalar tmp671 = tmp3*tmp670;
-    const Scalar tmp672 = -tmp5*tmp656 + tmp671;
-    const Scalar tmp673 = -tmp672;
-    const Scalar tmp674 = tmp18*tmp673;
-    const Scalar tmp675 = tmp3*tmp657;
-    const Scalar tmp676 = tmp675 + tmp658;
-    const Scalar tmp677 = tmp25*tmp676;
-    const Scalar tmp678 = tmp674 + tmp677;
-    const Scalar tmp679 = tmp25*tmp660;
-    const Scalar tmp680 = tmp18*tmp663;
-    const Scalar tmp681 = tmp679 + tmp680;
-    const Scalar tmp682 = tmp57*tmp658;
-    const Scalar tmp683 = tmp60*tmp661;
-    const Scalar tmp684 = -tmp682 + tmp683;
-    const Scalar tmp685 = -tmp684;
-    const Scalar tmp686 = tmp18*tmp656;
-    const Scalar tmp687 = tmp27*tmp686;
-    const Scalar tmp688 = tmp25*tmp1;
-    const Scalar tmp689 = tmp27*tmp688;
-    const Scalar tmp690 = tmp687 + tmp689;
-    const Scalar tmp691 = -tmp690;
-    const Scalar tmp692 = tmp3*tmp665;
-    const Scalar tmp693 = tmp3*tmp667;
-    const Scalar tmp694 = -tmp692 + tmp693;
-    const Scalar tmp695 = tmp25*tmp673;
-    const Scalar tmp696 = -tmp676;
-    const Scalar tmp697 = tmp18*tmp696;
-    const Scalar tmp698 = tmp695 + tmp697;
-    const Scalar tmp699 = tmp57*tmp670;
-    const Scalar tmp700 = tmp60*tmp657;
-    const Scalar tmp701 = -tmp699 + tmp700;
-    const Scalar tmp702 = tmp25*tmp663;
-    const Scalar tmp703 = -tmp660;
-    const Scalar tmp704 = tmp18*tmp703;
-    const Scalar tmp705 = tmp702 + tmp704;
-    const Scalar tmp706 = bank_dot*tmp698 + attitude_dot*tmp701 + heading_dot*tmp705;
-    const Scalar tmp707 = -tmp666 + tmp668;
-    const Scalar tmp708 = -tmp681;
-    const Scalar tmp709 = tmp682 - tmp683;
-    const Scalar tmp710 = -tmp709;
-    const Scalar tmp711 = -tmp678;
-    const Scalar tmp712 = tmp692 - tmp693;
-    const Scalar tmp713 = -tmp698;
-    const Scalar tmp714 = tmp699 - tmp700;
-    const Scalar tmp715 = -tmp705;
-    const Scalar tmp716 = heading_dot*tmp715 + bank_dot*tmp713 + attitude_dot*tmp714;
-    const Scalar tmp717 = tmp666 + tmp668;
-    const Scalar tmp718 = -tmp674 + tmp677;
-    const Scalar tmp719 = tmp679 - tmp680;
-    const Scalar tmp720 = tmp682 + tmp683;
-    const Scalar tmp721 = -tmp720;
-    const Scalar tmp722 = tmp687 - tmp689;
-    const Scalar tmp723 = -tmp692 - tmp693;
-    const Scalar tmp724 = tmp695 - tmp697;
-    const Scalar tmp725 = tmp699 + tmp700;
-    const Scalar tmp726 = tmp702 - tmp704;
-    const Scalar tmp727 = bank_dot*tmp724 + attitude_dot*tmp725 + heading_dot*tmp726;
-    const Scalar tmp728 = tmp674 - tmp677;
-    const Scalar tmp729 = -tmp719;
-    const Scalar tmp730 = tmp682 + tmp683;
-    const Scalar tmp731 = -tmp722;
-    const Scalar tmp732 = tmp692 + tmp693;
-    const Scalar tmp733 = -tmp724;
-    const Scalar tmp734 = -tmp699 - tmp700;
-    const Scalar tmp735 = -tmp702 + tmp704;
-    const Scalar tmp736 = bank_dot*tmp733 + attitude_dot*tmp734 + heading_dot*tmp735;
-    const Scalar tmp737 = tmp57*tmp661;
-    const Scalar tmp738 = tmp60*tmp658;
-    const Scalar tmp739 = tmp737 + tmp738;
-    const Scalar tmp740 = tmp25*tmp662;
-    const Scalar tmp741 = tmp18*tmp659;
-    const Scalar tmp742 = Scalar(2)*attitude_dot*bank_dot*tmp739
-        + (attitude_dot*attitude_dot)*tmp740 - (attitude_dot*attitude_dot)*tmp741
-        + bank_dot*heading_dot*tmp698 + attitude_dot*heading_dot*tmp701 + (bank_dot*bank_dot)*tmp705
-        + heading_dot*tmp706;
-    const Scalar tmp743 = tmp3*tmp686;
-    const Scalar tmp744 = tmp3*tmp688;
-    const Scalar tmp745 = tmp743 + tmp744;
-    const Scalar tmp746 = Scalar(2)*attitude_dot*bank_dot*tmp745
-        - (attitude_dot*attitude_dot)*tmp669 + (bank_dot*bank_dot)*tmp707;
-    const Scalar tmp747 = tmp57*tmp657;
-    const Scalar tmp748 = tmp60*tmp670;
-    const Scalar tmp749 = tmp747 + tmp748;
-    const Scalar tmp750 = -tmp749;
-    const Scalar tmp751 = tmp18*tmp672;
-    const Scalar tmp752 = tmp25*tmp696;
-    const Scalar tmp753 = tmp751 + tmp752;
-    const Scalar tmp754 = tmp18*tmp664;
-    const Scalar tmp755 = tmp25*tmp703;
-    const Scalar tmp756 = tmp754 + tmp755;
-    const Scalar tmp757 = tmp25*tmp675;
-    const Scalar tmp758 = tmp18*tmp671;
-    const Scalar tmp759 = Scalar(2)*attitude_dot*bank_dot*tmp750
-        + ((bank_dot*bank_dot) + (heading_dot*heading_dot))*tmp753
-        + Scalar(2)*bank_dot*heading_dot*tmp756 - (attitude_dot*attitude_dot)*tmp757
-        + (attitude_dot*attitude_dot)*tmp758 + Scalar(2)*attitude_dot*heading_dot*tmp684;
-    const Scalar tmp760 = -tmp739;
-    const Scalar tmp761 = heading_dot*tmp716 - (attitude_dot*attitude_dot)*tmp740
-        + (attitude_dot*attitude_dot)*tmp741 + Scalar(2)*attitude_dot*bank_dot*tmp760
-        - (bank_dot*bank_dot)*tmp705 + bank_dot*heading_dot*tmp713
-        + attitude_dot*heading_dot*tmp714;
-    const Scalar tmp762 = -tmp745;
-    const Scalar tmp763 = Scalar(2)*attitude_dot*bank_dot*tmp762
-        + (-(attitude_dot*attitude_dot) - (bank_dot*bank_dot))*tmp707;
-    const Scalar tmp764 = -tmp756;
-    const Scalar tmp765 = Scalar(2)*attitude_dot*bank_dot*tmp749
-        + (-(bank_dot*bank_dot) - (heading_dot*heading_dot))*tmp753
-        + (attitude_dot*attitude_dot)*tmp757 - (attitude_dot*attitude_dot)*tmp758
-        + Scalar(2)*bank_dot*heading_dot*tmp764 + Scalar(2)*attitude_dot*heading_dot*tmp709;
-    const Scalar tmp766 = tmp737 - tmp738;
-    const Scalar tmp767 = -tmp766;
-    const Scalar tmp768 = bank_dot*heading_dot*tmp724 + attitude_dot*heading_dot*tmp725
-        + heading_dot*tmp727 - (bank_dot*bank_dot)*tmp735 + (attitude_dot*attitude_dot)*tmp740
-        + (attitude_dot*attitude_dot)*tmp741 + Scalar(2)*attitude_dot*bank_dot*tmp767;
-    const Scalar tmp769 = tmp743 - tmp744;
-    const Scalar tmp770 = -tmp769;
-    const Scalar tmp771 = (-(attitude_dot*attitude_dot) - (bank_dot*bank_dot))*tmp717
-        + Scalar(2)*attitude_dot*bank_dot*tmp770;
-    const Scalar tmp772 = tmp747 - tmp748;
-    const Scalar tmp773 = tmp751 - tmp752;
-    const Scalar tmp774 = -tmp754 + tmp755;
-    const Scalar tmp775 = Scalar(2)*attitude_dot*heading_dot*tmp720
-        - (attitude_dot*attitude_dot)*tmp757 - (attitude_dot*attitude_dot)*tmp758
-        + Scalar(2)*attitude_dot*bank_dot*tmp772
-        + (-(bank_dot*bank_dot) - (heading_dot*heading_dot))*tmp773
-        + Scalar(2)*bank_dot*heading_dot*tmp774;
-    const Scalar tmp776 = bank_dot*heading_dot*tmp733 + attitude_dot*heading_dot*tmp734
-        + (bank_dot*bank_dot)*tmp735 + heading_dot*tmp736 - (attitude_dot*attitude_dot)*tmp740
-        - (attitude_dot*attitude_dot)*tmp741 + Scalar(2)*attitude_dot*bank_dot*tmp766;
-    const Scalar tmp777 = ((attitude_dot*attitude_dot) + (bank_dot*bank_dot))*tmp717
-        + Scalar(2)*attitude_dot*bank_dot*tmp769;
-    const Scalar tmp778 = -tmp772;
-    const Scalar tmp779 = -tmp774;
-    const Scalar tmp780 = -tmp730;
-    const Scalar tmp781 = (heading_dot*heading_dot)*tmp751 - (heading_dot*heading_dot)*tmp752
-        + (attitude_dot*attitude_dot)*tmp757 + (attitude_dot*attitude_dot)*tmp758
-        + (bank_dot*bank_dot)*tmp773 + Scalar(2)*attitude_dot*bank_dot*tmp778
-        + Scalar(2)*bank_dot*heading_dot*tmp779 + Scalar(2)*attitude_dot*heading_dot*tmp780;
-    const Scalar tmp782 = tmp150*tmp718 + tmp150*tmp728 + tmp150*tmp678 + tmp150*tmp711;
-    const Scalar tmp783 = tmp150*tmp715 + tmp150*tmp726 + tmp150*tmp735 + tmp150*tmp705;
-    const Scalar tmp784 = Scalar(2)*tmp111*tmp150*tmp715 + Scalar(2)*tmp119*tmp150*tmp718
-        + Scalar(2)*tmp130*tmp150*tmp726 + Scalar(2)*tmp136*tmp150*tmp728
-        + Scalar(2)*tmp147*tmp150*tmp735 + Scalar(2)*tmp150*tmp52*tmp678
-        + Scalar(2)*tmp150*tmp91*tmp705 + Scalar(2)*tmp150*tmp105*tmp711;
-    const Scalar tmp785 = tmp150*tmp721 + tmp150*tmp730 + tmp150*tmp685 + tmp150*tmp710;
-    const Scalar tmp786 = tmp150*tmp723 + tmp150*tmp732 + tmp150*tmp694 + tmp150*tmp712;
-    const Scalar tmp787 = tmp150*tmp725 + tmp150*tmp734 + tmp150*tmp701 + tmp150*tmp714;
-    const Scalar tmp788 = tmp150*tmp110*tmp715 + tmp123*tmp150*tmp718 + tmp119*tmp150*tmp721
-        + tmp130*tmp150*tmp725 + tmp129*tmp150*tmp726 + tmp139*tmp150*tmp728 + tmp136*tmp150*tmp730
-        + tmp147*tmp150*tmp734 + tmp145*tmp150*tmp735 + tmp150*tmp64*tmp678 + tmp150*tmp52*tmp685
-        + tmp150*tmp91*tmp701 + tmp150*tmp85*tmp705 + tmp150*tmp105*tmp710 + tmp150*tmp104*tmp711
-        + tmp111*tmp150*tmp714;
-    const Scalar tmp789 = Scalar(2)*tmp123*tmp150*tmp721 + Scalar(2)*tmp126*tmp150*tmp723
-        + Scalar(2)*tmp129*tmp150*tmp725 + Scalar(2)*tmp139*tmp150*tmp730
-        + Scalar(2)*tmp142*tmp150*tmp732 + Scalar(2)*tmp145*tmp150*tmp734
-        + Scalar(2)*tmp150*tmp64*tmp685 + Scalar(2)*tmp150*tmp75*tmp694
-        + Scalar(2)*tmp150*tmp85*tmp701 + Scalar(2)*tmp150*tmp104*tmp710
-        + Scalar(2)*tmp150*tmp107*tmp712 + Scalar(2)*tmp150*tmp110*tmp714;
-    const Scalar tmp790 = tmp150*tmp719 + tmp150*tmp729 + tmp150*tmp681 + tmp150*tmp708;
-    const Scalar tmp791 = tmp150*tmp722 + tmp150*tmp731 + tmp150*tmp690 + tmp150*tmp691;
-    const Scalar tmp792 = tmp150*tmp724 + tmp150*tmp733 + tmp150*tmp698 + tmp150*tmp713;
-    const Scalar tmp793 = tmp150*tmp109*tmp715 + tmp121*tmp150*tmp718 + tmp119*tmp150*tmp719
-        + tmp130*tmp150*tmp724 + tmp128*tmp150*tmp726 + tmp138*tmp150*tmp728 + tmp136*tmp150*tmp729
-        + tmp147*tmp150*tmp733 + tmp144*tmp150*tmp735 + tmp150*tmp56*tmp678 + tmp150*tmp52*tmp681
-        + tmp150*tmp91*tmp698 + tmp150*tmp80*tmp705 + tmp150*tmp105*tmp708 + tmp150*tmp102*tmp711
-        + tmp111*tmp150*tmp713;
-    const Scalar tmp794 = tmp123*tmp150*tmp719 + tmp121*tmp150*tmp721 + tmp126*tmp150*tmp722
-        + tmp125*tmp150*tmp723 + tmp129*tmp150*tmp724 + tmp128*tmp150*tmp725 + tmp139*tmp150*tmp729
-        + tmp138*tmp150*tmp730 + tmp142*tmp150*tmp731 + tmp141*tmp150*tmp732 + tmp145*tmp150*tmp733
-        + tmp144*tmp150*tmp734 + tmp150*tmp64*tmp681 + tmp150*tmp56*tmp685 + tmp150*tmp107*tmp690
-        + tmp150*tmp75*tmp691 + tmp150*tmp71*tmp694 + tmp150*tmp85*tmp698 + tmp150*tmp80*tmp701
-        + tmp150*tmp104*tmp708 + tmp150*tmp102*tmp710 + tmp150*tmp70*tmp712 + tmp150*tmp110*tmp713
-        + tmp150*tmp109*tmp714;
-    const Scalar tmp795 = Scalar(2)*tmp121*tmp150*tmp719 + Scalar(2)*tmp125*tmp150*tmp722
-        + Scalar(2)*tmp128*tmp150*tmp724 + Scalar(2)*tmp138*tmp150*tmp729
-        + Scalar(2)*tmp141*tmp150*tmp731 + Scalar(2)*tmp144*tmp150*tmp733
-        + Scalar(2)*tmp150*tmp56*tmp681 + Scalar(2)*tmp150*tmp70*tmp690
-        + Scalar(2)*tmp150*tmp71*tmp691 + Scalar(2)*tmp150*tmp80*tmp698
-        + Scalar(2)*tmp150*tmp102*tmp708 + Scalar(2)*tmp150*tmp109*tmp713;
-    const Scalar tmp796 = tmp150*tmp742;
-    const Scalar tmp797 = tmp150*tmp759;
-    const Scalar tmp798 = tmp150*tmp761;
-    const Scalar tmp799 = tmp150*tmp765;
-    const Scalar tmp800 = tmp150*tmp768;
-    const Scalar tmp801 = tmp150*tmp775;
-    const Scalar tmp802 = tmp150*tmp776;
-    const Scalar tmp803 = tmp150*tmp781;
-    const Scalar tmp804 = tmp150*tmp746;
-    const Scalar tmp805 = tmp150*tmp763;
-    const Scalar tmp806 = tmp150*tmp771;
-    const Scalar tmp807 = tmp150*tmp777;
-    const Scalar tmp808 = tmp798 + tmp800 + tmp802 + tmp796;
-    const Scalar tmp809 = tmp805 + tmp806 + tmp807 + tmp804;
-    const Scalar tmp810 = tmp799 + tmp801 + tmp803 + tmp797;
-    const Scalar tmp811 = tmp152*tmp715 + tmp152*tmp726 + tmp152*tmp735 + tmp152*tmp705;
-    const Scalar tmp812 = tmp152*tmp725 + tmp152*tmp734 + tmp152*tmp701 + tmp152*tmp714;
-    const Scalar tmp813 = tmp152*tmp724 + tmp152*tmp733 + tmp152*tmp698 + tmp152*tmp713;
-    const Scalar tmp814 = -tmp808;
-    const Scalar tmp815 = -tmp809;
-    const Scalar tmp816 = -tmp810;
-    const Scalar tmp817 = -tmp218*tmp715 - tmp219*tmp718 - tmp220*tmp726 - tmp221*tmp728
-        - tmp222*tmp735 - tmp105*tmp798 - tmp111*tmp799 - tmp119*tmp800 - tmp130*tmp801
-        - tmp136*tmp802 - tmp147*tmp803 - tmp215*tmp678 - tmp216*tmp705 - tmp217*tmp711
-        - tmp52*tmp796 - tmp91*tmp797;
-    const Scalar tmp818 = -tmp219*tmp721 - tmp225*tmp723 - tmp220*tmp725 - tmp221*tmp730
-        - tmp226*tmp732 - tmp222*tmp734 - tmp104*tmp798 - tmp110*tmp799 - tmp123*tmp800
-        - tmp129*tmp801 - tmp139*tmp802 - tmp145*tmp803 - tmp107*tmp805 - tmp126*tmp806
-        - tmp142*tmp807 - tmp215*tmp685 - tmp223*tmp694 - tmp216*tmp701 - tmp217*tmp710
-        - tmp224*tmp712 - tmp218*tmp714 - tmp64*tmp796 - tmp85*tmp797 - tmp75*tmp804;
-    const Scalar tmp819 = -tmp219*tmp719 - tmp225*tmp722 - tmp220*tmp724 - tmp221*tmp729
-        - tmp226*tmp731 - tmp222*tmp733 - tmp102*tmp798 - tmp109*tmp799 - tmp121*tmp800
-        - tmp128*tmp801 - tmp138*tmp802 - tmp144*tmp803 - tmp70*tmp805 - tmp125*tmp806
-        - tmp141*tmp807 - tmp215*tmp681 - tmp224*tmp690 - tmp223*tmp691 - tmp216*tmp698
-        - tmp217*tmp708 - tmp218*tmp713 - tmp56*tmp796 - tmp80*tmp797 - tmp71*tmp804;
-    const Scalar tmp820 = tmp92 + tmp80*bank_dot + tmp85*attitude_dot + heading_dot*tmp91;
-    const Scalar tmp821 = Scalar(2)*tmp173*bank_dot + Scalar(2)*tmp63*attitude_dot
-        + Scalar(2)*heading_dot*(tmp170 + tmp41);
-    const Scalar tmp822 = tmp112 + tmp109*bank_dot + tmp110*attitude_dot + heading_dot*tmp111;
-    const Scalar tmp823 = Scalar(2)*tmp182*bank_dot + Scalar(2)*tmp103*attitude_dot
-        + Scalar(2)*heading_dot*(-tmp170 - tmp42);
-    const Scalar tmp824 = tmp131 + tmp128*bank_dot + tmp129*attitude_dot + heading_dot*tmp130;
-    const Scalar tmp825 = Scalar(2)*tmp122*attitude_dot + Scalar(2)*tmp192*bank_dot
-        + Scalar(2)*heading_dot*(-tmp191 - tmp41);
-    const Scalar tmp826 = tmp148 + tmp144*bank_dot + tmp145*attitude_dot + heading_dot*tmp147;
-    const Scalar tmp827 = Scalar(2)*tmp197*bank_dot + Scalar(2)*tmp198*attitude_dot
-        + Scalar(2)*heading_dot*(tmp168 - tmp169 - tmp41);
-    const Scalar tmp828 = tmp150*tmp820;
-    const Scalar tmp829 = tmp150*tmp821;
-    const Scalar tmp830 = tmp150*tmp822;
-    const Scalar tmp831 = tmp150*tmp823;
-    const Scalar tmp832 = tmp150*tmp824;
-    const Scalar tmp833 = tmp150*tmp825;
-    const Scalar tmp834 = tmp150*tmp826;
-    const Scalar tmp835 = tmp150*tmp827;
-    const Scalar tmp836 = tmp830 + tmp832 + tmp834 + tmp828;
-    const Scalar tmp837 = tmp831 + tmp833 + tmp835 + tmp829;
-    const Scalar tmp838 = -tmp836;
-    const Scalar tmp839 = -tmp837;
-    const Scalar tmp840 = -tmp105*tmp830 - tmp111*tmp831 - tmp119*tmp832 - tmp130*tmp833
-        - tmp136*tmp834 - tmp147*tmp835 - tmp52*tmp828 - tmp91*tmp829;
-    const Scalar tmp841 = -tmp104*tmp830 - tmp110*tmp831 - tmp123*tmp832 - tmp129*tmp833
-        - tmp139*tmp834 - tmp145*tmp835 - tmp64*tmp828 - tmp85*tmp829;
-    const Scalar tmp842 = -tmp102*tmp830 - tmp109*tmp831 - tmp121*tmp832 - tmp128*tmp833
-        - tmp138*tmp834 - tmp144*tmp835 - tmp56*tmp828 - tmp80*tmp829;
-    const Scalar tmp843 = tmp85*heading_dot + Scalar(2)*tmp155*bank_dot
-        + Scalar(2)*attitude_dot*(tmp156 - tmp158) + heading_dot*tmp85;
-    const Scalar tmp844 = -Scalar(2)*tmp39*attitude_dot + Scalar(2)*tmp162*bank_dot;
-    const Scalar tmp845 = Scalar(2)*tmp167*bank_dot + Scalar(2)*tmp63*heading_dot
-        + Scalar(2)*attitude_dot*(tmp176 - tmp174);
-    const Scalar tmp846 = tmp110*heading_dot + Scalar(2)*tmp178*bank_dot
-        + Scalar(2)*attitude_dot*(tmp157 - tmp156 - tmp31) + heading_dot*tmp110;
-    const Scalar tmp847 = -Scalar(2)*tmp98*attitude_dot + Scalar(2)*tmp180*bank_dot;
-    const Scalar tmp848 = Scalar(2)*tmp166*bank_dot + Scalar(2)*tmp103*heading_dot
-        + Scalar(2)*attitude_dot*(tmp174 + tmp41 - tmp175);
-    const Scalar tmp849 = tmp129*heading_dot + Scalar(2)*tmp185*bank_dot
-        + Scalar(2)*attitude_dot*(tmp156 + tmp158) + heading_dot*tmp129;
-    const Scalar tmp850 = -Scalar(2)*tmp117*attitude_dot + Scalar(2)*tmp188*bank_dot;
-    const Scalar tmp851 = Scalar(2)*tmp122*heading_dot + Scalar(2)*tmp190*bank_dot
-        + Scalar(2)*attitude_dot*(-tmp174 - tmp176);
-    const Scalar tmp852 = tmp145*heading_dot + Scalar(2)*tmp184*bank_dot
-        + Scalar(2)*attitude_dot*(-tmp156 - tmp157 - tmp86) + heading_dot*tmp145;
-    const Scalar tmp853 = Scalar(2)*tmp134*attitude_dot + Scalar(2)*tmp187*bank_dot;
-    const Scalar tmp854 = Scalar(2)*tmp196*bank_dot + Scalar(2)*tmp198*heading_dot
-        + Scalar(2)*attitude_dot*(tmp174 + tmp175 + tmp42);
-    const Scalar tmp855 = tmp150*tmp843;
-    const Scalar tmp856 = tmp150*tmp845;
-    const Scalar tmp857 = tmp150*tmp846;
-    const Scalar tmp858 = tmp150*tmp848;
-    const Scalar tmp859 = tmp150*tmp849;
-    const Scalar tmp860 = tmp150*tmp851;
-    const Scalar tmp861 = tmp150*tmp852;
-    const Scalar tmp862 = tmp150*tmp854;
-    const Scalar tmp863 = tmp150*tmp844;
-    const Scalar tmp864 = tmp150*tmp847;
-    const Scalar tmp865 = tmp150*tmp850;
-    const Scalar tmp866 = tmp150*tmp853;
-    const Scalar tmp867 = tmp857 + tmp859 + tmp861 + tmp855;
-    const Scalar tmp868 = tmp864 + tmp865 + tmp866 + tmp863;
-    const Scalar tmp869 = tmp858 + tmp860 + tmp862 + tmp856;
-    const Scalar tmp870 = -tmp867;
-    const Scalar tmp871 = -tmp868;
-    const Scalar tmp872 = -tmp869;
-    const Scalar tmp873 = -tmp105*tmp857 - tmp111*tmp858 - tmp119*tmp859 - tmp130*tmp860
-        - tmp136*tmp861 - tmp147*tmp862 - tmp52*tmp855 - tmp91*tmp856;
-    const Scalar tmp874 = -tmp104*tmp857 - tmp110*tmp858 - tmp123*tmp859 - tmp129*tmp860
-        - tmp139*tmp861 - tmp145*tmp862 - tmp107*tmp864 - tmp126*tmp865 - tmp142*tmp866
-        - tmp64*tmp855 - tmp85*tmp856 - tmp75*tmp863;
-    const Scalar tmp875 = -tmp102*tmp857 - tmp109*tmp858 - tmp121*tmp859 - tmp128*tmp860
-        - tmp138*tmp861 - tmp144*tmp862 - tmp70*tmp864 - tmp125*tmp865 - tmp141*tmp866
-        - tmp56*tmp855 - tmp80*tmp856 - tmp71*tmp863;
-    const Scalar tmp876 = tmp80*heading_dot + Scalar(2)*tmp155*attitude_dot
-        + Scalar(2)*tmp90*bank_dot + heading_dot*tmp80;
-    const Scalar tmp877 = Scalar(2)*tmp162*attitude_dot + Scalar(2)*tmp97*bank_dot;
-    const Scalar tmp878 = Scalar(2)*tmp167*attitude_dot + Scalar(2)*tmp170*bank_dot
-        + Scalar(2)*tmp173*heading_dot;
-    const Scalar tmp879 = tmp109*heading_dot - Scalar(2)*tmp90*bank_dot
-        + Scalar(2)*tmp178*attitude_dot + heading_dot*tmp109;
-    const Scalar tmp880 = -Scalar(2)*tmp97*bank_dot + Scalar(2)*tmp180*attitude_dot;
-    const Scalar tmp881 = -Scalar(2)*tmp170*bank_dot + Scalar(2)*tmp166*attitude_dot
-        + Scalar(2)*tmp182*heading_dot;
-    const Scalar tmp882 = tmp128*heading_dot - Scalar(2)*tmp146*bank_dot
-        + Scalar(2)*tmp185*attitude_dot + heading_dot*tmp128;
-    const Scalar tmp883 = -Scalar(2)*tmp116*bank_dot + Scalar(2)*tmp188*attitude_dot;
-    const Scalar tmp884 = -Scalar(2)*tmp191*bank_dot + Scalar(2)*tmp190*attitude_dot
-        + Scalar(2)*tmp192*heading_dot;
-    const Scalar tmp885 = tmp144*heading_dot + Scalar(2)*tmp146*bank_dot
-        + Scalar(2)*tmp184*attitude_dot + heading_dot*tmp144;
-    const Scalar tmp886 = Scalar(2)*tmp116*bank_dot + Scalar(2)*tmp187*attitude_dot;
-    const Scalar tmp887 = Scalar(2)*tmp191*bank_dot + Scalar(2)*tmp196*attitude_dot
-        + Scalar(2)*tmp197*heading_dot;
-    const Scalar tmp888 = tmp150*tmp876;
-    const Scalar tmp889 = tmp150*tmp878;
-    const Scalar tmp890 = tmp150*tmp879;
-    const Scalar tmp891 = tmp150*tmp881;
-    const Scalar tmp892 = tmp150*tmp882;
-    const Scalar tmp893 = tmp150*tmp884;
-    const Scalar tmp894 = tmp150*tmp885;
-    const Scalar tmp895 = tmp150*tmp887;
-    const Scalar tmp896 = tmp150*tmp877;
-    const Scalar tmp897 = tmp150*tmp880;
-    const Scalar tmp898 = tmp150*tmp883;
-    const Scalar tmp899 = tmp150*tmp886;
-    const Scalar tmp900 = tmp890 + tmp892 + tmp894 + tmp888;
-    const Scalar tmp901 = tmp897 + tmp898 + tmp899 + tmp896;
-    const Scalar tmp902 = tmp891 + tmp893 + tmp895 + tmp889;
-    const Scalar tmp903 = -tmp900;
-    const Scalar tmp904 = -tmp901;
-    const Scalar tmp905 = -tmp902;
-    const Scalar tmp906 = -tmp105*tmp890 - tmp111*tmp891 - tmp119*tmp892 - tmp130*tmp893
-        - tmp136*tmp894 - tmp147*tmp895 - tmp52*tmp888 - tmp91*tmp889;
-    const Scalar tmp907 = -tmp104*tmp890 - tmp110*tmp891 - tmp123*tmp892 - tmp129*tmp893
-        - tmp139*tmp894 - tmp145*tmp895 - tmp107*tmp897 - tmp126*tmp898 - tmp142*tmp899
-        - tmp64*tmp888 - tmp85*tmp889 - tmp75*tmp896;
-    const Scalar tmp908 = -tmp102*tmp890 - tmp109*tmp891 - tmp121*tmp892 - tmp128*tmp893
-        - tmp138*tmp894 - tmp144*tmp895 - tmp70*tmp897 - tmp125*tmp898 - tmp141*tmp899
-        - tmp56*tmp888 - tmp80*tmp889 - tmp71*tmp896;
+    const Scalar m_a = Scalar(params.m_a);
+    const Scalar m_b = Scalar(params.m_b);
+    const Scalar m_c = Scalar(params.m_c);
+    const Scalar m_d = Scalar(params.m_d);
+    const Scalar tmp0 = cos(heading);
+    const Scalar tmp1 = cos(attitude);
+    const Scalar tmp2 = Scalar(0.5)*tmp1;
+    const Scalar tmp3 = tmp0*tmp2;
+    const Scalar tmp5 = sin(attitude);
+    const Scalar tmp6 = Scalar(0.5)*tmp5;
+    const Scalar tmp8 = sin(heading);
+    const Scalar tmp9 = tmp2*tmp8;
+    const Scalar tmp12 = tmp0*tmp6;
+    const Scalar tmp13 = tmp9*heading_dot + tmp12*attitude_dot;
+    const Scalar tmp16 = tmp6*tmp8;
+    const Scalar tmp17 = tmp16*attitude_dot - tmp3*heading_dot;
+    const Scalar tmp19 = sin(bank);
+    const Scalar tmp20 = Scalar(0.4)*tmp19;
+    const Scalar tmp21 = tmp20*tmp8;
+    const Scalar tmp22 = cos(bank);
+    const Scalar tmp23 = Scalar(0.4)*tmp22;
+    const Scalar tmp24 = tmp0*tmp23*tmp5;
+    const Scalar tmp26 = tmp1*tmp23;
+    const Scalar tmp28 = tmp0*tmp20;
+    const Scalar tmp29 = tmp23*tmp8;
+    const Scalar tmp30 = tmp29*tmp5;
+    const Scalar tmp31 = tmp28 + tmp30;
+    const Scalar tmp33 = tmp26*attitude_dot;
+    const Scalar tmp34 = tmp0*tmp33;
+    const Scalar tmp35 = tmp29 + tmp28*tmp5;
+    const Scalar tmp40 = -tmp21*tmp5 + Scalar(0.4)*tmp0*tmp22;
+    const Scalar tmp41 = tmp24 - tmp21;
+    const Scalar tmp42 = tmp33*tmp8 + tmp40*bank_dot + tmp41*heading_dot;
+    const Scalar tmp44 = Scalar(0.3)*tmp22;
+    const Scalar tmp45 = tmp44*tmp8;
+    const Scalar tmp46 = Scalar(0.3)*tmp19;
+    const Scalar tmp47 = tmp0*tmp46;
+    const Scalar tmp48 = tmp47*tmp5;
+    const Scalar tmp49 = tmp45 + tmp48;
+    const Scalar tmp51 = tmp1*tmp46;
+    const Scalar tmp53 = tmp0*tmp44;
+    const Scalar tmp54 = tmp46*tmp8;
+    const Scalar tmp55 = tmp5*tmp54;
+    const Scalar tmp57 = tmp51*attitude_dot;
+    const Scalar tmp58 = tmp0*tmp57;
+    const Scalar tmp59 = tmp53*tmp5;
+    const Scalar tmp60 = tmp59 - tmp54;
+    const Scalar tmp61 = tmp55 - Scalar(0.3)*tmp0*tmp22;
+    const Scalar tmp62 = -tmp61;
+    const Scalar tmp64 = tmp46*tmp5;
+    const Scalar tmp65 = tmp1*tmp44;
+    const Scalar tmp67 = tmp45*tmp5;
+    const Scalar tmp68 = tmp47 + tmp67;
+    const Scalar tmp69 = -tmp68;
+    const Scalar tmp70 = -tmp49;
+    const Scalar tmp71 = tmp69*bank_dot + tmp70*heading_dot - tmp57*tmp8;
+    const Scalar tmp73 = Scalar(0.2)*tmp1;
+    const Scalar tmp74 = Scalar(0.25)*tmp19;
+    const Scalar tmp75 = tmp5*tmp74;
+    const Scalar tmp76 = -tmp59 + tmp0*tmp75;
+    const Scalar tmp77 = tmp76 + tmp0*tmp73;
+    const Scalar tmp78 = Scalar(0.25)*tmp22;
+    const Scalar tmp79 = tmp8*tmp78;
+    const Scalar tmp80 = tmp54 + tmp79;
+    const Scalar tmp81 = tmp77 + tmp80;
+    const Scalar tmp83 = Scalar(0.2)*tmp5;
+    const Scalar tmp84 = tmp1*tmp74;
+    const Scalar tmp85 = tmp65 + tmp83 - tmp84;
+    const Scalar tmp87 = tmp73*tmp8;
+    const Scalar tmp88 = tmp0*tmp78;
+    const Scalar tmp89 = tmp74*tmp8;
+    const Scalar tmp90 = tmp5*tmp89;
+    const Scalar tmp91 = tmp68 + tmp88 - tmp90;
+    const Scalar tmp92 = tmp91 - tmp87;
+    const Scalar tmp94 = tmp1*tmp53;
+    const Scalar tmp95 = tmp94 + tmp0*tmp83 - Scalar(0.25)*tmp0*tmp1*tmp19;
+    const Scalar tmp96 = -tmp95;
+    const Scalar tmp97 = tmp49 - tmp89 + tmp5*tmp88;
+    const Scalar tmp99 = -tmp51 - tmp1*tmp78;
+    const Scalar tmp100 = tmp44*tmp5;
+    const Scalar tmp101 = tmp73 + tmp75 - tmp100;
+    const Scalar tmp103 = tmp1*tmp45;
+    const Scalar tmp104 = tmp103 + tmp8*tmp83 - tmp8*tmp84;
+    const Scalar tmp105 = -tmp61 - tmp0*tmp74 - tmp5*tmp79;
+    const Scalar tmp106 = -tmp81;
+    const Scalar tmp107 = tmp104*attitude_dot + tmp105*bank_dot + tmp106*heading_dot;
+    const Scalar tmp109 = g*m_a;
+    const Scalar tmp110 = -tmp109;
+    const Scalar tmp111 = g*m_b;
+    const Scalar tmp112 = -tmp111;
+    const Scalar tmp113 = g*m_c;
+    const Scalar tmp114 = -tmp113;
+    const Scalar tmp115 = g*m_d;
+    const Scalar tmp116 = -tmp115;
+    const Scalar tmp117 = tmp17*heading_dot
+        + attitude_dot*(-tmp3*attitude_dot + Scalar(0.5)*tmp5*tmp8*heading_dot);
+    const Scalar tmp118 = -tmp6*(attitude_dot*attitude_dot);
+    const Scalar tmp119 = tmp13*heading_dot + attitude_dot*(tmp9*attitude_dot + tmp12*heading_dot);
+    const Scalar tmp120 = tmp1*tmp28;
+    const Scalar tmp121 = tmp26*tmp8;
+    const Scalar tmp122 = tmp42*heading_dot
+        + attitude_dot*(tmp24*attitude_dot + tmp120*bank_dot + tmp121*heading_dot)
+        + bank_dot*(tmp40*heading_dot + tmp41*bank_dot + tmp120*attitude_dot);
+    const Scalar tmp123 = attitude_dot*(-tmp33 + Scalar(0.4)*tmp19*tmp5*bank_dot)
+        + bank_dot*(-tmp26*bank_dot + tmp20*tmp5*attitude_dot);
+    const Scalar tmp124 = tmp1*tmp21;
+    const Scalar tmp125 = -tmp31;
+    const Scalar tmp126 = -tmp35;
+    const Scalar tmp127 = attitude_dot*(-tmp30*attitude_dot - tmp124*bank_dot
+            + Scalar(0.4)*tmp0*tmp1*tmp22*heading_dot)
+        + bank_dot*(tmp125*bank_dot + tmp126*heading_dot - tmp124*attitude_dot)
+        + heading_dot*(tmp34 + tmp125*heading_dot + tmp126*bank_dot);
+    const Scalar tmp128 = tmp51*tmp8;
+    const Scalar tmp129 = tmp71*heading_dot
+        + attitude_dot*(-tmp48*attitude_dot - tmp128*heading_dot
+            + Scalar(0.3)*tmp0*tmp1*tmp22*bank_dot)
+        + bank_dot*(tmp69*heading_dot + tmp70*bank_dot + tmp94*attitude_dot);
+    const Scalar tmp130 = attitude_dot*(tmp57 + tmp100*bank_dot)
+        + bank_dot*(tmp51*bank_dot + tmp100*attitude_dot);
+    const Scalar tmp131 = tmp0*tmp51;
+    const Scalar tmp132 = -tmp60;
+    const Scalar tmp133 = attitude_dot*(-tmp103*bank_dot - tmp131*heading_dot
+            + Scalar(0.3)*tmp19*tmp5*tmp8*attitude_dot)
+        + bank_dot*(tmp132*heading_dot + tmp61*bank_dot - tmp103*attitude_dot)
+        + heading_dot*(-tmp58 + tmp132*bank_dot + tmp61*heading_dot);
+    const Scalar tmp134 = tmp131 + tmp1*tmp88;
+    const Scalar tmp135 = tmp107*heading_dot
+        + attitude_dot*(tmp134*bank_dot + tmp104*heading_dot - tmp77*attitude_dot)
+        + bank_dot*(tmp134*attitude_dot + tmp105*heading_dot + bank_dot*(-tmp76 - tmp80));
+    const Scalar tmp136 = tmp64 + tmp5*tmp78;
+    const Scalar tmp137 = -tmp65;
+    const Scalar tmp138 = attitude_dot*(tmp136*bank_dot - tmp85*attitude_dot)
+        + bank_dot*(tmp136*attitude_dot + bank_dot*(tmp137 + tmp84));
+    const Scalar tmp139 = -tmp128 - tmp1*tmp79;
+    const Scalar tmp140 = -tmp97;
+    const Scalar tmp141 = attitude_dot*(tmp139*bank_dot + tmp95*heading_dot
+            + attitude_dot*(tmp87 + tmp90 - tmp67))
+        + bank_dot*(tmp139*attitude_dot + tmp140*heading_dot - tmp91*bank_dot)
+        + heading_dot*(tmp140*bank_dot + tmp95*attitude_dot - tmp92*heading_dot);
+    const Scalar tmp145 = (tmp8*tmp8);
+    const Scalar tmp146 = (tmp1*tmp1);
+    const Scalar tmp147 = Scalar(0.25)*tmp146;
+    const Scalar tmp148 = (tmp0*tmp0);
+    const Scalar tmp150 = tmp0*tmp26;
+    const Scalar tmp155 = (tmp5*tmp5);
+    const Scalar tmp156 = Scalar(0.25)*tmp155;
+    const Scalar tmp157 = (tmp22*tmp22);
+    const Scalar tmp158 = Scalar(0.16000000000000003)*tmp157;
+    const Scalar tmp159 = tmp146*tmp158;
+    const Scalar tmp160 = (tmp19*tmp19);
+    const Scalar tmp161 = Scalar(0.09)*tmp160;
+    const Scalar tmp162 = tmp146*tmp161;
+    const Scalar tmp172 = tmp117*m_a;
+    const Scalar tmp173 = tmp119*m_a;
+    const Scalar tmp174 = tmp122*m_b;
+    const Scalar tmp175 = tmp127*m_b;
+    const Scalar tmp176 = tmp129*m_c;
+    const Scalar tmp177 = tmp133*m_c;
+    const Scalar tmp178 = tmp135*m_d;
+    const Scalar tmp179 = tmp141*m_d;
+    const Scalar tmp180 = tmp118*m_a;
+    const Scalar tmp181 = tmp123*m_b;
+    const Scalar tmp182 = tmp130*m_c;
+    const Scalar tmp183 = tmp138*m_d;
+    const Scalar tmp280 = -tmp8;
+    const Scalar tmp281 = tmp2*tmp280;
+    const Scalar tmp282 = tmp2*tmp0;
+    const Scalar tmp283 = tmp6*tmp280;
+    const Scalar tmp284 = heading_dot*tmp282 + attitude_dot*tmp283;
+    const Scalar tmp285 = tmp6*tmp0;
+    const Scalar tmp286 = attitude_dot*tmp285 - heading_dot*tmp281;
+    const Scalar tmp287 = tmp20*tmp0;
+    const Scalar tmp288 = tmp23*tmp5*tmp280;
+    const Scalar tmp289 = tmp20*tmp280;
+    const Scalar tmp290 = tmp23*tmp0;
+    const Scalar tmp291 = tmp5*tmp290;
+    const Scalar tmp292 = tmp289 + tmp291;
+    const Scalar tmp293 = tmp33*tmp280;
+    const Scalar tmp294 = tmp5*tmp289 + tmp290;
+    const Scalar tmp295 = Scalar(0.4)*tmp22*tmp280 - tmp5*tmp287;
+    const Scalar tmp296 = -tmp287 + tmp288;
+    const Scalar tmp297 = bank_dot*tmp295 + heading_dot*tmp296 + tmp33*tmp0;
+    const Scalar tmp298 = tmp44*tmp0;
+    const Scalar tmp299 = tmp46*tmp280;
+    const Scalar tmp300 = tmp5*tmp299;
+    const Scalar tmp301 = tmp298 + tmp300;
+    const Scalar tmp302 = tmp44*tmp280;
+    const Scalar tmp303 = tmp46*tmp0;
+    const Scalar tmp304 = tmp5*tmp303;
+    const Scalar tmp305 = tmp57*tmp280;
+    const Scalar tmp306 = tmp5*tmp302;
+    const Scalar tmp307 = -tmp303 + tmp306;
+    const Scalar tmp308 = -Scalar(0.3)*tmp22*tmp280 + tmp304;
+    const Scalar tmp309 = -tmp308;
+    const Scalar tmp310 = tmp5*tmp298;
+    const Scalar tmp311 = tmp299 + tmp310;
+    const Scalar tmp312 = -tmp311;
+    const Scalar tmp313 = -tmp301;
+    const Scalar tmp314 = bank_dot*tmp312 + heading_dot*tmp313 - tmp57*tmp0;
+    const Scalar tmp315 = tmp75*tmp280 - tmp306;
+    const Scalar tmp316 = tmp73*tmp280 + tmp315;
+    const Scalar tmp317 = tmp78*tmp0;
+    const Scalar tmp318 = tmp303 + tmp317;
+    const Scalar tmp319 = tmp316 + tmp318;
+    const Scalar tmp320 = tmp73*tmp0;
+    const Scalar tmp321 = tmp78*tmp280;
+    const Scalar tmp322 = tmp74*tmp0;
+    const Scalar tmp323 = tmp5*tmp322;
+    const Scalar tmp324 = tmp311 + tmp321 - tmp323;
+    const Scalar tmp325 = -tmp320 + tmp324;
+    const Scalar tmp326 = tmp1*tmp302;
+    const Scalar tmp327 = (tmp83 - Scalar(0.25)*tmp1*tmp19)*tmp280 + tmp326;
+    const Scalar tmp328 = -tmp327;
+    const Scalar tmp329 = tmp301 + tmp5*tmp321 - tmp322;
+    const Scalar tmp330 = tmp1*tmp298;
+    const Scalar tmp331 = (tmp83 - tmp84)*tmp0 + tmp330;
+    const Scalar tmp332 = -tmp74*tmp280 - tmp308 - tmp5*tmp317;
+    const Scalar tmp333 = -tmp319;
+    const Scalar tmp334 = attitude_dot*tmp331 + bank_dot*tmp332 + heading_dot*tmp333;
+    const Scalar tmp335 = heading_dot*tmp286 - (attitude_dot*attitude_dot)*tmp281
+        + Scalar(0.5)*tmp5*attitude_dot*heading_dot*tmp0;
+    const Scalar tmp336 = heading_dot*tmp284 + (attitude_dot*attitude_dot)*tmp282
+        + attitude_dot*heading_dot*tmp283;
+    const Scalar tmp337 = tmp1*tmp289;
+    const Scalar tmp338 = tmp26*tmp0;
+    const Scalar tmp339 = (attitude_dot*attitude_dot)*tmp288 + bank_dot*heading_dot*tmp295
+        + (bank_dot*bank_dot)*tmp296 + heading_dot*tmp297 + Scalar(2)*attitude_dot*bank_dot*tmp337
+        + attitude_dot*heading_dot*tmp338;
+    const Scalar tmp340 = tmp1*tmp287;
+    const Scalar tmp341 = -tmp292;
+    const Scalar tmp342 = -tmp294;
+    const Scalar tmp343 = Scalar(0.4)*tmp1*tmp22*attitude_dot*heading_dot*tmp280
+        - (attitude_dot*attitude_dot)*tmp291 + heading_dot*tmp293
+        - Scalar(2)*attitude_dot*bank_dot*tmp340
+        + ((bank_dot*bank_dot) + (heading_dot*heading_dot))*tmp341
+        + Scalar(2)*bank_dot*heading_dot*tmp342;
+    const Scalar tmp344 = tmp51*tmp0;
+    const Scalar tmp345 = Scalar(0.3)*tmp1*tmp22*attitude_dot*bank_dot*tmp280
+        - (attitude_dot*attitude_dot)*tmp300 + bank_dot*heading_dot*tmp312
+        + (bank_dot*bank_dot)*tmp313 + heading_dot*tmp314 + attitude_dot*bank_dot*tmp326
+        - attitude_dot*heading_dot*tmp344;
+    const Scalar tmp346 = tmp51*tmp280;
+    const Scalar tmp347 = -tmp307;
+    const Scalar tmp348 = Scalar(2)*bank_dot*heading_dot*tmp347 - heading_dot*tmp305
+        + ((bank_dot*bank_dot) + (heading_dot*heading_dot))*tmp308
+        + Scalar(0.3)*tmp19*tmp5*(attitude_dot*attitude_dot)*tmp0
+        - Scalar(2)*attitude_dot*bank_dot*tmp330 - attitude_dot*heading_dot*tmp346;
+    const Scalar tmp349 = tmp1*tmp321 + tmp346;
+    const Scalar tmp350 = Scalar(2)*attitude_dot*bank_dot*tmp349 - (bank_dot*bank_dot)*tmp315
+        - (attitude_dot*attitude_dot)*tmp316 - (bank_dot*bank_dot)*tmp318
+        + attitude_dot*heading_dot*tmp331 + bank_dot*heading_dot*tmp332 + heading_dot*tmp334;
+    const Scalar tmp351 = -tmp1*tmp317 - tmp344;
+    const Scalar tmp352 = -tmp329;
+    const Scalar tmp353 = Scalar(2)*attitude_dot*bank_dot*tmp351
+        + Scalar(2)*bank_dot*heading_dot*tmp352 - (attitude_dot*attitude_dot)*tmp310
+        + (attitude_dot*attitude_dot)*tmp320 + (attitude_dot*attitude_dot)*tmp323
+        - (bank_dot*bank_dot)*tmp324 - (heading_dot*heading_dot)*tmp325
+        + Scalar(2)*attitude_dot*heading_dot*tmp327;
+    const Scalar tmp354 = m_b*tmp292 + m_c*tmp309 - m_a*tmp282 + m_d*tmp325;
+    const Scalar tmp355 = -m_a*tmp281 + m_b*tmp296 + m_c*tmp313 + m_d*tmp333;
+    const Scalar tmp356 = Scalar(2)*tmp8*tmp0;
+    const Scalar tmp357 = Scalar(2)*tmp0*tmp280;
+    const Scalar tmp358 = tmp147*m_a*tmp356 + tmp147*m_a*tmp357 + Scalar(2)*tmp31*m_b*tmp292
+        + Scalar(2)*tmp41*m_b*tmp296 + Scalar(2)*tmp62*m_c*tmp309 + Scalar(2)*tmp70*m_c*tmp313
+        + Scalar(2)*tmp92*m_d*tmp325 + Scalar(2)*tmp106*m_d*tmp333;
+    const Scalar tmp359 = tmp26*tmp280;
+    const Scalar tmp360 = Scalar(0.3)*tmp1*tmp19*m_c*tmp280 - m_b*tmp359 + m_d*tmp328 - m_a*tmp283;
+    const Scalar tmp361 = m_a*tmp285 + m_d*tmp331 + m_b*tmp338 - m_c*tmp344;
+    const Scalar tmp362 = -tmp31*m_b*tmp359 - tmp150*m_b*tmp292
+        + Scalar(0.4)*tmp1*tmp22*tmp8*m_b*tmp296 + tmp131*m_c*tmp309 - tmp128*m_c*tmp313
+        + Scalar(0.4)*tmp1*tmp22*tmp41*m_b*tmp0 + tmp96*m_d*tmp325 + tmp92*m_d*tmp328
+        + tmp106*m_d*tmp331 + tmp104*m_d*tmp333 - tmp70*m_c*tmp344 + tmp62*m_c*tmp346;
+    const Scalar tmp363 = (tmp156*m_a + tmp159*m_b + tmp162*m_c)*tmp356
+        + (tmp156*m_a + tmp159*m_b + tmp162*m_c)*tmp357 + Scalar(2)*tmp96*m_d*tmp328
+        + Scalar(2)*tmp104*m_d*tmp331;
+    const Scalar tmp364 = m_b*tmp294 + m_c*tmp307 + m_d*tmp329;
+    const Scalar tmp365 = m_b*tmp295 + m_c*tmp312 + m_d*tmp332;
+    const Scalar tmp366 = tmp35*m_b*tmp292 + tmp31*m_b*tmp294 + tmp41*m_b*tmp295 + tmp40*m_b*tmp296
+        + tmp62*m_c*tmp307 + tmp60*m_c*tmp309 + tmp70*m_c*tmp312 + tmp69*m_c*tmp313
+        + tmp97*m_d*tmp325 + tmp92*m_d*tmp329 + tmp106*m_d*tmp332 + tmp105*m_d*tmp333;
+    const Scalar tmp367 = Scalar(0.3)*tmp1*tmp19*tmp60*m_c*tmp280 - tmp35*m_b*tmp359
+        - tmp150*m_b*tmp294 + tmp121*m_b*tmp295 + Scalar(0.3)*tmp0*tmp1*tmp19*m_c*tmp307
+        - tmp128*m_c*tmp312 + tmp97*m_d*tmp328 + tmp96*m_d*tmp329 + tmp105*m_d*tmp331
+        + tmp104*m_d*tmp332 + tmp40*m_b*tmp338 - tmp69*m_c*tmp344;
+    const Scalar tmp368 = Scalar(2)*tmp35*m_b*tmp294 + Scalar(2)*tmp40*m_b*tmp295
+        + Scalar(2)*tmp60*m_c*tmp307 + Scalar(2)*tmp69*m_c*tmp312 + Scalar(2)*tmp97*m_d*tmp329
+        + Scalar(2)*tmp105*m_d*tmp332;
+    const Scalar tmp369 = m_a*tmp335;
+    const Scalar tmp370 = m_a*tmp336;
+    const Scalar tmp371 = m_b*tmp339;
+    const Scalar tmp372 = m_b*tmp343;
+    const Scalar tmp373 = m_c*tmp345;
+    const Scalar tmp374 = m_c*tmp348;
+    const Scalar tmp375 = m_d*tmp350;
+    const Scalar tmp376 = m_d*tmp353;
+    const Scalar tmp377 = tmp371 + tmp373 + tmp375 + tmp369;
+    const Scalar tmp378 = tmp372 + tmp374 + tmp376 + tmp370;
+    const Scalar tmp379 = -tmp110*tmp281 + tmp112*tmp296 + tmp114*tmp313 + tmp116*tmp333;
+    const Scalar tmp380 = tmp110*tmp285 + tmp116*tmp331 + tmp112*tmp338 - tmp114*tmp344;
+    const Scalar tmp381 = tmp112*tmp295 + tmp114*tmp312 + tmp116*tmp332;
+    const Scalar tmp382 = -tmp377;
+    const Scalar tmp383 = -tmp378;
+    const Scalar tmp384 = Scalar(0.5)*tmp1*tmp173*tmp280 - tmp31*tmp371 - tmp41*tmp372
+        - tmp62*tmp373 - tmp70*tmp374 - tmp92*tmp375 - tmp106*tmp376 - tmp174*tmp292 - tmp175*tmp296
+        - tmp176*tmp309 - tmp177*tmp313 + Scalar(0.5)*tmp1*tmp172*tmp0 - tmp178*tmp325
+        - tmp179*tmp333 + Scalar(0.5)*tmp1*tmp8*tmp369 + Scalar(0.5)*tmp0*tmp1*tmp370;
+    const Scalar tmp385 = (Scalar(0.5)*tmp5*tmp172 + Scalar(0.4)*tmp1*tmp174*tmp22)*tmp280
+        - tmp173*tmp285 + Scalar(0.4)*tmp0*tmp1*tmp22*tmp371 - tmp121*tmp372 - tmp131*tmp373
+        + Scalar(0.3)*tmp1*tmp19*tmp8*tmp374 - tmp96*tmp375 - tmp104*tmp376
+        + Scalar(0.3)*tmp1*tmp177*tmp19*tmp0 - tmp178*tmp328 - tmp179*tmp331 - tmp175*tmp338
+        - tmp176*tmp346 + Scalar(0.5)*tmp0*tmp5*tmp369 - tmp16*tmp370;
+    const Scalar tmp386 = -tmp35*tmp371 - tmp40*tmp372 - tmp60*tmp373 - tmp69*tmp374 - tmp97*tmp375
+        - tmp105*tmp376 - tmp174*tmp294 - tmp175*tmp295 - tmp176*tmp307 - tmp177*tmp312
+        - tmp178*tmp329 - tmp179*tmp332;
+    const Scalar tmp387 = -tmp5;
+    const Scalar tmp388 = Scalar(0.5)*tmp387;
+    const Scalar tmp389 = tmp0*tmp388;
+    const Scalar tmp390 = Scalar(0.5)*tmp1;
+    const Scalar tmp391 = tmp8*tmp388;
+    const Scalar tmp392 = tmp0*tmp390;
+    const Scalar tmp393 = heading_dot*tmp391 + attitude_dot*tmp392;
+    const Scalar tmp394 = tmp8*tmp390;
+    const Scalar tmp395 = attitude_dot*tmp394 - heading_dot*tmp389;
+    const Scalar tmp396 = tmp0*tmp23*tmp1;
+    const Scalar tmp397 = tmp23*tmp387;
+    const Scalar tmp398 = tmp29*tmp1;
+    const Scalar tmp399 = attitude_dot*tmp397;
+    const Scalar tmp400 = tmp0*tmp399;
+    const Scalar tmp401 = tmp28*tmp1;
+    const Scalar tmp402 = tmp23*tmp1;
+    const Scalar tmp403 = tmp20*tmp387;
+    const Scalar tmp404 = -tmp21*tmp1;
+    const Scalar tmp405 = tmp8*tmp399 + bank_dot*tmp404 + heading_dot*tmp396;
+    const Scalar tmp406 = tmp47*tmp1;
+    const Scalar tmp407 = tmp46*tmp387;
+    const Scalar tmp408 = tmp54*tmp1;
+    const Scalar tmp409 = attitude_dot*tmp407;
+    const Scalar tmp410 = tmp0*tmp409;
+    const Scalar tmp411 = tmp53*tmp1;
+    const Scalar tmp412 = -tmp408;
+    const Scalar tmp413 = tmp46*tmp1;
+    const Scalar tmp414 = tmp44*tmp387;
+    const Scalar tmp415 = tmp45*tmp1;
+    const Scalar tmp416 = -tmp415;
+    const Scalar tmp417 = -tmp406;
+    const Scalar tmp418 = -tmp8*tmp409 + bank_dot*tmp416 + heading_dot*tmp417;
+    const Scalar tmp419 = Scalar(0.2)*tmp387;
+    const Scalar tmp420 = tmp74*tmp1;
+    const Scalar tmp421 = -tmp411 + tmp0*tmp420;
+    const Scalar tmp422 = tmp0*tmp419 + tmp421;
+    const Scalar tmp423 = Scalar(0.2)*tmp1;
+    const Scalar tmp424 = tmp74*tmp387;
+    const Scalar tmp425 = tmp414 + tmp423 - tmp424;
+    const Scalar tmp426 = tmp8*tmp419;
+    const Scalar tmp427 = tmp89*tmp1;
+    const Scalar tmp428 = tmp415 - tmp427;
+    const Scalar tmp429 = -tmp426 + tmp428;
+    const Scalar tmp430 = tmp53*tmp387;
+    const Scalar tmp431 = -Scalar(0.25)*tmp0*tmp19*tmp387 + tmp0*tmp423 + tmp430;
+    const Scalar tmp432 = -tmp431;
+    const Scalar tmp433 = tmp406 + tmp88*tmp1;
+    const Scalar tmp434 = -tmp78*tmp387 - tmp407;
+    const Scalar tmp435 = tmp44*tmp1;
+    const Scalar tmp436 = tmp419 + tmp420 - tmp435;
+    const Scalar tmp437 = tmp45*tmp387;
+    const Scalar tmp438 = tmp8*tmp423 - tmp8*tmp424 + tmp437;
+    const Scalar tmp439 = -tmp79*tmp1 - tmp408;
+    const Scalar tmp440 = -tmp422;
+    const Scalar tmp441 = attitude_dot*tmp438 + bank_dot*tmp439 + heading_dot*tmp440;
+    const Scalar tmp442 = heading_dot*tmp395 - (attitude_dot*attitude_dot)*tmp389
+        + Scalar(0.5)*tmp8*attitude_dot*heading_dot*tmp1;
+    const Scalar tmp443 = -(attitude_dot*attitude_dot)*tmp390;
+    const Scalar tmp444 = heading_dot*tmp393 + (attitude_dot*attitude_dot)*tmp391
+        + attitude_dot*heading_dot*tmp392;
+    const Scalar tmp445 = tmp28*tmp387;
+    const Scalar tmp446 = tmp8*tmp397;
+    const Scalar tmp447 = ((attitude_dot*attitude_dot) + (bank_dot*bank_dot))*tmp396
+        + bank_dot*heading_dot*tmp404 + heading_dot*tmp405 + Scalar(2)*attitude_dot*bank_dot*tmp445
+        + attitude_dot*heading_dot*tmp446;
+    const Scalar tmp448 = -(bank_dot*bank_dot)*tmp397 - attitude_dot*tmp399
+        + (tmp20*attitude_dot*bank_dot + Scalar(0.4)*tmp19*attitude_dot*bank_dot)*tmp1;
+    const Scalar tmp449 = tmp21*tmp387;
+    const Scalar tmp450 = -tmp398;
+    const Scalar tmp451 = -tmp401;
+    const Scalar tmp452 = Scalar(0.4)*tmp0*tmp22*attitude_dot*heading_dot*tmp387
+        - (attitude_dot*attitude_dot)*tmp398 + heading_dot*tmp400
+        - Scalar(2)*attitude_dot*bank_dot*tmp449
+        + ((bank_dot*bank_dot) + (heading_dot*heading_dot))*tmp450
+        + Scalar(2)*bank_dot*heading_dot*tmp451;
+    const Scalar tmp453 = tmp8*tmp407;
+    const Scalar tmp454 = Scalar(0.3)*tmp0*tmp22*attitude_dot*bank_dot*tmp387
+        - (attitude_dot*attitude_dot)*tmp406 + bank_dot*heading_dot*tmp416
+        + (bank_dot*bank_dot)*tmp417 + heading_dot*tmp418 + attitude_dot*bank_dot*tmp430
+        - attitude_dot*heading_dot*tmp453;
+    const Scalar tmp455 = (bank_dot*bank_dot)*tmp407 + attitude_dot*tmp409
+        + Scalar(2)*attitude_dot*bank_dot*tmp435;
+    const Scalar tmp456 = tmp0*tmp407;
+    const Scalar tmp457 = -tmp411;
+    const Scalar tmp458 = Scalar(2)*bank_dot*heading_dot*tmp457
+        + Scalar(0.3)*tmp19*tmp8*(attitude_dot*attitude_dot)*tmp1 - heading_dot*tmp410
+        + ((bank_dot*bank_dot) + (heading_dot*heading_dot))*tmp408
+        - Scalar(2)*attitude_dot*bank_dot*tmp437 - attitude_dot*heading_dot*tmp456;
+    const Scalar tmp459 = tmp88*tmp387 + tmp456;
+    const Scalar tmp460 = Scalar(2)*attitude_dot*bank_dot*tmp459 - (bank_dot*bank_dot)*tmp421
+        - (attitude_dot*attitude_dot)*tmp422 + attitude_dot*heading_dot*tmp438
+        + bank_dot*heading_dot*tmp439 + heading_dot*tmp441;
+    const Scalar tmp461 = tmp78*tmp1 + tmp413;
+    const Scalar tmp462 = -tmp414;
+    const Scalar tmp463 = Scalar(2)*attitude_dot*bank_dot*tmp461 + (bank_dot*bank_dot)*tmp462
+        + (bank_dot*bank_dot)*tmp424 - (attitude_dot*attitude_dot)*tmp425;
+    const Scalar tmp464 = -tmp79*tmp387 - tmp453;
+    const Scalar tmp465 = -tmp433;
+    const Scalar tmp466 = Scalar(2)*attitude_dot*bank_dot*tmp464
+        + Scalar(2)*bank_dot*heading_dot*tmp465 - (attitude_dot*attitude_dot)*tmp415
+        + (attitude_dot*attitude_dot)*tmp426 + (attitude_dot*attitude_dot)*tmp427
+        - (bank_dot*bank_dot)*tmp428 - (heading_dot*heading_dot)*tmp429
+        + Scalar(2)*attitude_dot*heading_dot*tmp431;
+    const Scalar tmp467 = m_b*tmp398 + m_c*tmp412 - m_a*tmp391 + m_d*tmp429;
+    const Scalar tmp468 = -m_a*tmp389 + m_b*tmp396 + m_c*tmp417 + m_d*tmp440;
+    const Scalar tmp469 = Scalar(2)*tmp1*tmp387;
+    const Scalar tmp470 = Scalar(0.25)*tmp469;
+    const Scalar tmp471 = m_a*(tmp145 + tmp148)*tmp470 + Scalar(2)*tmp31*m_b*tmp398
+        + Scalar(2)*tmp41*m_b*tmp396 + Scalar(2)*tmp62*m_c*tmp412 + Scalar(2)*tmp70*m_c*tmp417
+        + Scalar(2)*tmp92*m_d*tmp429 + Scalar(2)*tmp106*m_d*tmp440;
+    const Scalar tmp472 = tmp0*tmp397;
+    const Scalar tmp473 = Scalar(0.3)*tmp0*tmp19*m_c*tmp387 - m_b*tmp472 + m_d*tmp432 - m_a*tmp392;
+    const Scalar tmp474 = m_a*tmp388 - m_b*tmp402 + m_c*tmp413 + m_d*tmp436;
+    const Scalar tmp475 = m_a*tmp394 + m_d*tmp438 + m_b*tmp446 - m_c*tmp453;
+    const Scalar tmp476 = Scalar(0.4)*tmp22*tmp41*tmp8*m_b*tmp387 - tmp31*m_b*tmp472
+        - tmp150*m_b*tmp398 + Scalar(0.4)*tmp1*tmp22*tmp8*m_b*tmp396 + tmp131*m_c*tmp412
+        - tmp128*m_c*tmp417 + tmp96*m_d*tmp429 + tmp92*m_d*tmp432 + tmp106*m_d*tmp438
+        + tmp104*m_d*tmp440 - tmp70*m_c*tmp453 + tmp62*m_c*tmp456;
+    const Scalar tmp477 = Scalar(2)*tmp5*tmp1;
+    const Scalar tmp478 = Scalar(0.25)*tmp477;
+    const Scalar tmp479 = tmp158*tmp469;
+    const Scalar tmp480 = tmp161*tmp469;
+    const Scalar tmp481 = m_a*tmp470 + (tmp158*m_b + tmp161*m_c)*tmp477
+        + m_a*(tmp145 + tmp148)*tmp478 + m_b*(tmp145 + tmp148)*tmp479 + m_c*(tmp145 + tmp148)*tmp480
+        + Scalar(2)*tmp96*m_d*tmp432 + Scalar(2)*tmp101*m_d*tmp436 + Scalar(2)*tmp104*m_d*tmp438;
+    const Scalar tmp482 = m_b*tmp401 + m_c*tmp411 + m_d*tmp433;
+    const Scalar tmp483 = -m_b*tmp403 - m_c*tmp414 + m_d*tmp434;
+    const Scalar tmp484 = m_b*tmp404 + m_c*tmp416 + m_d*tmp439;
+    const Scalar tmp485 = tmp35*m_b*tmp398 + tmp31*m_b*tmp401 + tmp41*m_b*tmp404 + tmp40*m_b*tmp396
+        + tmp62*m_c*tmp411 + tmp60*m_c*tmp412 + tmp70*m_c*tmp416 + tmp69*m_c*tmp417
+        + tmp97*m_d*tmp429 + tmp92*m_d*tmp433 + tmp106*m_d*tmp439 + tmp105*m_d*tmp440;
+    const Scalar tmp486 = tmp19*tmp22*tmp5*tmp387 + tmp1*tmp19*tmp22*tmp1;
+    const Scalar tmp487 = Scalar(0.3)*tmp0*tmp19*tmp60*m_c*tmp387 - tmp35*m_b*tmp472
+        + (Scalar(0.16000000000000003)*m_b - Scalar(0.09)*m_c)*tmp486 - tmp150*m_b*tmp401
+        + tmp121*m_b*tmp404 + Scalar(0.3)*tmp0*tmp1*tmp19*m_c*tmp411 - tmp128*m_c*tmp416
+        + tmp97*m_d*tmp432 + tmp96*m_d*tmp433 + tmp101*m_d*tmp434 + tmp99*m_d*tmp436
+        + tmp105*m_d*tmp438 + tmp104*m_d*tmp439 + tmp40*m_b*tmp446 - tmp69*m_c*tmp453;
+    const Scalar tmp488 = (Scalar(0.16000000000000003)*tmp160*m_b + Scalar(0.09)*tmp157*m_c)*tmp469
+        + Scalar(2)*tmp35*m_b*tmp401 + Scalar(2)*tmp40*m_b*tmp404 + Scalar(2)*tmp60*m_c*tmp411
+        + Scalar(2)*tmp69*m_c*tmp416 + Scalar(2)*tmp97*m_d*tmp433 + Scalar(2)*tmp99*m_d*tmp434
+        + Scalar(2)*tmp105*m_d*tmp439;
+    const Scalar tmp489 = m_a*tmp442;
+    const Scalar tmp490 = m_a*tmp444;
+    const Scalar tmp491 = m_b*tmp447;
+    const Scalar tmp492 = m_b*tmp452;
+    const Scalar tmp493 = m_c*tmp454;
+    const Scalar tmp494 = m_c*tmp458;
+    const Scalar tmp495 = m_d*tmp460;
+    const Scalar tmp496 = m_d*tmp466;
+    const Scalar tmp497 = m_a*tmp443;
+    const Scalar tmp498 = m_b*tmp448;
+    const Scalar tmp499 = m_c*tmp455;
+    const Scalar tmp500 = m_d*tmp463;
+    const Scalar tmp501 = tmp491 + tmp493 + tmp495 + tmp489;
+    const Scalar tmp502 = tmp498 + tmp499 + tmp500 + tmp497;
+    const Scalar tmp503 = tmp492 + tmp494 + tmp496 + tmp490;
+    const Scalar tmp504 = -tmp110*tmp389 + tmp112*tmp396 + tmp114*tmp417 + tmp116*tmp440;
+    const Scalar tmp505 = tmp110*tmp394 + tmp116*tmp438 + tmp112*tmp446 - tmp114*tmp453;
+    const Scalar tmp506 = tmp112*tmp404 + tmp114*tmp416 + tmp116*tmp439;
+    const Scalar tmp507 = -tmp501;
+    const Scalar tmp508 = -tmp502;
+    const Scalar tmp509 = -tmp503;
+    const Scalar tmp510 = (Scalar(0.5)*tmp0*tmp173 + Scalar(0.5)*tmp8*tmp172)*tmp387 - tmp31*tmp491
+        - tmp41*tmp492 - tmp62*tmp493 - tmp70*tmp494 - tmp92*tmp495 - tmp106*tmp496 - tmp174*tmp398
+        - tmp175*tmp396 - tmp176*tmp412 - tmp177*tmp417 - tmp178*tmp429 - tmp179*tmp440
+        + Scalar(0.5)*tmp1*tmp8*tmp489 + Scalar(0.5)*tmp0*tmp1*tmp490;
+    const Scalar tmp511 = (Scalar(0.4)*tmp0*tmp174*tmp22 + Scalar(0.3)*tmp177*tmp19*tmp8)*tmp387
+        - tmp173*tmp394 + Scalar(0.4)*tmp0*tmp1*tmp22*tmp491 - tmp121*tmp492 - tmp131*tmp493
+        + Scalar(0.3)*tmp1*tmp19*tmp8*tmp494 - tmp96*tmp495 - tmp104*tmp496
+        + Scalar(0.4)*tmp22*tmp5*tmp498 - tmp64*tmp499 - tmp101*tmp500 - tmp180*tmp388
+        + (Scalar(0.5)*tmp0*tmp172 + Scalar(0.4)*tmp181*tmp22)*tmp1 - tmp182*tmp413 - tmp178*tmp432
+        - tmp183*tmp436 - tmp179*tmp438 - tmp175*tmp446 - tmp176*tmp456
+        + Scalar(0.5)*tmp0*tmp5*tmp489 - tmp16*tmp490 - tmp2*tmp497;
+    const Scalar tmp512 = (Scalar(0.4)*tmp181*tmp19 + Scalar(0.3)*tmp182*tmp22)*tmp387
+        - tmp35*tmp491 - tmp40*tmp492 - tmp60*tmp493 - tmp69*tmp494 - tmp97*tmp495 - tmp105*tmp496
+        + Scalar(0.4)*tmp1*tmp19*tmp498 + Scalar(0.3)*tmp1*tmp22*tmp499 - tmp99*tmp500
+        - tmp174*tmp401 - tmp175*tmp404 - tmp176*tmp411 - tmp177*tmp416 - tmp178*tmp433
+        - tmp183*tmp434 - tmp179*tmp439;
+    const Scalar tmp513 = Scalar(0.4)*tmp22;
+    const Scalar tmp514 = tmp8*tmp513;
+    const Scalar tmp515 = -tmp19;
+    const Scalar tmp516 = Scalar(0.4)*tmp515;
+    const Scalar tmp517 = tmp0*tmp5*tmp516;
+    const Scalar tmp518 = tmp1*tmp516;
+    const Scalar tmp519 = tmp0*tmp513;
+    const Scalar tmp520 = tmp8*tmp516;
+    const Scalar tmp521 = tmp5*tmp520;
+    const Scalar tmp522 = tmp519 + tmp521;
+    const Scalar tmp523 = attitude_dot*tmp518;
+    const Scalar tmp524 = tmp0*tmp523;
+    const Scalar tmp525 = tmp5*tmp519 + tmp520;
+    const Scalar tmp526 = tmp5*tmp516;
+    const Scalar tmp527 = tmp1*tmp513;
+    const Scalar tmp528 = -tmp5*tmp514 + Scalar(0.4)*tmp0*tmp515;
+    const Scalar tmp529 = -tmp514 + tmp517;
+    const Scalar tmp530 = tmp8*tmp523 + bank_dot*tmp528 + heading_dot*tmp529;
+    const Scalar tmp531 = Scalar(0.3)*tmp515;
+    const Scalar tmp532 = tmp8*tmp531;
+    const Scalar tmp533 = Scalar(0.3)*tmp22;
+    const Scalar tmp534 = tmp0*tmp533;
+    const Scalar tmp535 = tmp5*tmp534;
+    const Scalar tmp536 = tmp532 + tmp535;
+    const Scalar tmp537 = tmp1*tmp533;
+    const Scalar tmp538 = tmp0*tmp531;
+    const Scalar tmp539 = tmp8*tmp533;
+    const Scalar tmp540 = tmp5*tmp539;
+    const Scalar tmp541 = attitude_dot*tmp537;
+    const Scalar tmp542 = tmp0*tmp541;
+    const Scalar tmp543 = tmp5*tmp538;
+    const Scalar tmp544 = -tmp539 + tmp543;
+    const Scalar tmp545 = -Scalar(0.3)*tmp0*tmp515 + tmp540;
+    const Scalar tmp546 = -tmp545;
+    const Scalar tmp547 = tmp5*tmp533;
+    const Scalar tmp548 = tmp1*tmp531;
+    const Scalar tmp549 = tmp5*tmp532;
+    const Scalar tmp550 = tmp534 + tmp549;
+    const Scalar tmp551 = -tmp550;
+    const Scalar tmp552 = -tmp536;
+    const Scalar tmp553 = -tmp8*tmp541 + bank_dot*tmp551 + heading_dot*tmp552;
+    const Scalar tmp554 = Scalar(0.25)*tmp22;
+    const Scalar tmp555 = tmp5*tmp554;
+    const Scalar tmp556 = -tmp543 + tmp0*tmp555;
+    const Scalar tmp557 = Scalar(0.25)*tmp515;
+    const Scalar tmp558 = tmp8*tmp557;
+    const Scalar tmp559 = tmp539 + tmp558;
+    const Scalar tmp560 = tmp556 + tmp559;
+    const Scalar tmp561 = tmp1*tmp554;
+    const Scalar tmp562 = tmp548 - tmp561;
+    const Scalar tmp563 = tmp0*tmp557;
+    const Scalar tmp564 = tmp8*tmp554;
+    const Scalar tmp565 = tmp5*tmp564;
+    const Scalar tmp566 = tmp550 + tmp563 - tmp565;
+    const Scalar tmp567 = tmp1*tmp538;
+    const Scalar tmp568 = -Scalar(0.25)*tmp0*tmp1*tmp22 + tmp567;
+    const Scalar tmp569 = -tmp568;
+    const Scalar tmp570 = tmp536 + tmp5*tmp563 - tmp564;
+    const Scalar tmp571 = -tmp537 - tmp1*tmp557;
+    const Scalar tmp572 = tmp5*tmp531;
+    const Scalar tmp573 = tmp555 - tmp572;
+    const Scalar tmp574 = tmp1*tmp532;
+    const Scalar tmp575 = -tmp8*tmp561 + tmp574;
+    const Scalar tmp576 = -tmp545 - tmp0*tmp554 - tmp5*tmp558;
+    const Scalar tmp577 = -tmp560;
+    const Scalar tmp578 = attitude_dot*tmp575 + bank_dot*tmp576 + heading_dot*tmp577;
+    const Scalar tmp579 = tmp1*tmp519;
+    const Scalar tmp580 = tmp8*tmp518;
+    const Scalar tmp581 = (attitude_dot*attitude_dot)*tmp517 + bank_dot*heading_dot*tmp528
+        + (bank_dot*bank_dot)*tmp529 + heading_dot*tmp530 + Scalar(2)*attitude_dot*bank_dot*tmp579
+        + attitude_dot*heading_dot*tmp580;
+    const Scalar tmp582 = Scalar(0.4)*tmp5*attitude_dot*bank_dot*tmp22
+        + tmp5*attitude_dot*bank_dot*tmp513 - (bank_dot*bank_dot)*tmp518 - attitude_dot*tmp523;
+    const Scalar tmp583 = tmp1*tmp514;
+    const Scalar tmp584 = -tmp522;
+    const Scalar tmp585 = -tmp525;
+    const Scalar tmp586 = Scalar(0.4)*tmp0*tmp1*attitude_dot*heading_dot*tmp515
+        - (attitude_dot*attitude_dot)*tmp521 + heading_dot*tmp524
+        - Scalar(2)*attitude_dot*bank_dot*tmp583
+        + ((bank_dot*bank_dot) + (heading_dot*heading_dot))*tmp584
+        + Scalar(2)*bank_dot*heading_dot*tmp585;
+    const Scalar tmp587 = tmp8*tmp537;
+    const Scalar tmp588 = Scalar(0.3)*tmp0*tmp1*attitude_dot*bank_dot*tmp515
+        - (attitude_dot*attitude_dot)*tmp535 + bank_dot*heading_dot*tmp551
+        + (bank_dot*bank_dot)*tmp552 + heading_dot*tmp553 + attitude_dot*bank_dot*tmp567
+        - attitude_dot*heading_dot*tmp587;
+    const Scalar tmp589 = (bank_dot*bank_dot)*tmp537 + attitude_dot*tmp541
+        + Scalar(2)*attitude_dot*bank_dot*tmp572;
+    const Scalar tmp590 = tmp0*tmp537;
+    const Scalar tmp591 = -tmp544;
+    const Scalar tmp592 = Scalar(2)*bank_dot*heading_dot*tmp591
+        + Scalar(0.3)*tmp5*tmp8*(attitude_dot*attitude_dot)*tmp22 - heading_dot*tmp542
+        + ((bank_dot*bank_dot) + (heading_dot*heading_dot))*tmp545
+        - Scalar(2)*attitude_dot*bank_dot*tmp574 - attitude_dot*heading_dot*tmp590;
+    const Scalar tmp593 = tmp1*tmp563 + tmp590;
+    const Scalar tmp594 = Scalar(2)*attitude_dot*bank_dot*tmp593
+        + (-(attitude_dot*attitude_dot) - (bank_dot*bank_dot))*tmp556 - (bank_dot*bank_dot)*tmp559
+        + attitude_dot*heading_dot*tmp575 + bank_dot*heading_dot*tmp576 + heading_dot*tmp578;
+    const Scalar tmp595 = tmp547 + tmp5*tmp557;
+    const Scalar tmp596 = -tmp548;
+    const Scalar tmp597 = Scalar(2)*attitude_dot*bank_dot*tmp595 + (bank_dot*bank_dot)*tmp596
+        + (bank_dot*bank_dot)*tmp561 - (attitude_dot*attitude_dot)*tmp562;
+    const Scalar tmp598 = -tmp1*tmp558 - tmp587;
+    const Scalar tmp599 = -tmp570;
+    const Scalar tmp600 = Scalar(2)*attitude_dot*bank_dot*tmp598
+        + Scalar(2)*bank_dot*heading_dot*tmp599 - (attitude_dot*attitude_dot)*tmp549
+        + (attitude_dot*attitude_dot)*tmp565
+        + (-(bank_dot*bank_dot) - (heading_dot*heading_dot))*tmp566
+        + Scalar(2)*attitude_dot*heading_dot*tmp568;
+    const Scalar tmp601 = m_b*tmp522 + m_c*tmp546 + m_d*tmp566;
+    const Scalar tmp602 = m_b*tmp529 + m_c*tmp552 + m_d*tmp577;
+    const Scalar tmp603 = Scalar(2)*tmp31*m_b*tmp522 + Scalar(2)*tmp41*m_b*tmp529
+        + Scalar(2)*tmp62*m_c*tmp546 + Scalar(2)*tmp70*m_c*tmp552 + Scalar(2)*tmp92*m_d*tmp566
+        + Scalar(2)*tmp106*m_d*tmp577;
+    const Scalar tmp604 = tmp0*tmp518;
+    const Scalar tmp605 = -m_b*tmp604 + Scalar(0.3)*tmp0*tmp1*m_c*tmp22 + m_d*tmp569;
+    const Scalar tmp606 = -m_b*tmp526 + m_c*tmp547 + m_d*tmp573;
+    const Scalar tmp607 = m_d*tmp575 + m_b*tmp580 - m_c*tmp587;
+    const Scalar tmp608 = -tmp31*m_b*tmp604 + Scalar(0.4)*tmp1*tmp41*tmp8*m_b*tmp515
+        - tmp150*m_b*tmp522 + Scalar(0.4)*tmp1*tmp22*tmp8*m_b*tmp529 + tmp131*m_c*tmp546
+        - tmp128*m_c*tmp552 + tmp96*m_d*tmp566 + tmp92*m_d*tmp569 + tmp106*m_d*tmp575
+        + tmp104*m_d*tmp577 - tmp70*m_c*tmp587 + tmp62*m_c*tmp590;
+    const Scalar tmp609 = Scalar(2)*tmp22*tmp515;
+    const Scalar tmp610 = Scalar(0.16000000000000003)*tmp609;
+    const Scalar tmp611 = tmp146*tmp610;
+    const Scalar tmp612 = Scalar(2)*tmp19*tmp22;
+    const Scalar tmp613 = Scalar(0.09)*tmp612;
+    const Scalar tmp614 = tmp146*tmp613;
+    const Scalar tmp615 = tmp155*m_b*tmp610 + m_b*(tmp145 + tmp148)*tmp611 + tmp155*m_c*tmp613
+        + m_c*(tmp145 + tmp148)*tmp614 + Scalar(2)*tmp96*m_d*tmp569 + Scalar(2)*tmp101*m_d*tmp573
+        + Scalar(2)*tmp104*m_d*tmp575;
+    const Scalar tmp616 = m_b*tmp525 + m_c*tmp544 + m_d*tmp570;
+    const Scalar tmp617 = -m_b*tmp527 - m_c*tmp548 + m_d*tmp571;
+    const Scalar tmp618 = m_b*tmp528 + m_c*tmp551 + m_d*tmp576;
+    const Scalar tmp619 = tmp35*m_b*tmp522 + tmp31*m_b*tmp525 + tmp41*m_b*tmp528 + tmp40*m_b*tmp529
+        + tmp62*m_c*tmp544 + tmp60*m_c*tmp546 + tmp70*m_c*tmp551 + tmp69*m_c*tmp552
+        + tmp97*m_d*tmp566 + tmp92*m_d*tmp570 + tmp106*m_d*tmp576 + tmp105*m_d*tmp577;
+    const Scalar tmp620 = tmp1*tmp22*tmp5*tmp22 + tmp1*tmp19*tmp5*tmp515;
+    const Scalar tmp621 = -tmp35*m_b*tmp604
+        + (Scalar(0.16000000000000003)*m_b - Scalar(0.09)*m_c)*tmp620
+        + Scalar(0.3)*tmp0*tmp1*tmp60*m_c*tmp22 - tmp150*m_b*tmp525 + tmp121*m_b*tmp528
+        + Scalar(0.3)*tmp0*tmp1*tmp19*m_c*tmp544 - tmp128*m_c*tmp551 + tmp97*m_d*tmp569
+        + tmp96*m_d*tmp570 + tmp101*m_d*tmp571 + tmp99*m_d*tmp573 + tmp105*m_d*tmp575
+        + tmp104*m_d*tmp576 + tmp40*m_b*tmp580 - tmp69*m_c*tmp587;
+    const Scalar tmp622 = Scalar(0.09)*tmp146*m_c*tmp609
+        + Scalar(0.16000000000000003)*tmp146*m_b*tmp612 + Scalar(2)*tmp35*m_b*tmp525
+        + Scalar(2)*tmp40*m_b*tmp528 + Scalar(2)*tmp60*m_c*tmp544 + Scalar(2)*tmp69*m_c*tmp551
+        + Scalar(2)*tmp97*m_d*tmp570 + Scalar(2)*tmp99*m_d*tmp571 + Scalar(2)*tmp105*m_d*tmp576;
+    const Scalar tmp623 = m_b*tmp581;
+    const Scalar tmp624 = m_b*tmp586;
+    const Scalar tmp625 = m_c*tmp588;
+    const Scalar tmp626 = m_c*tmp592;
+    const Scalar tmp627 = m_d*tmp594;
+    const Scalar tmp628 = m_d*tmp600;
+    const Scalar tmp629 = m_b*tmp582;
+    const Scalar tmp630 = m_c*tmp589;
+    const Scalar tmp631 = m_d*tmp597;
+    const Scalar tmp632 = tmp623 + tmp625 + tmp627;
+    const Scalar tmp633 = tmp629 + tmp630 + tmp631;
+    const Scalar tmp634 = tmp624 + tmp626 + tmp628;
+    const Scalar tmp635 = tmp112*tmp529 + tmp114*tmp552 + tmp116*tmp577;
+    const Scalar tmp636 = tmp116*tmp575 + tmp112*tmp580 - tmp114*tmp587;
+    const Scalar tmp637 = tmp112*tmp528 + tmp114*tmp551 + tmp116*tmp576;
+    const Scalar tmp638 = -tmp632;
+    const Scalar tmp639 = -tmp633;
+    const Scalar tmp640 = -tmp634;
+    const Scalar tmp641 = -tmp31*tmp623 - tmp41*tmp624 - tmp62*tmp625 - tmp70*tmp626 - tmp92*tmp627
+        - tmp106*tmp628 - tmp174*tmp522 - tmp175*tmp529 - tmp176*tmp546 - tmp177*tmp552
+        - tmp178*tmp566 - tmp179*tmp577;
+    const Scalar tmp642 = Scalar(0.4)*tmp0*tmp1*tmp22*tmp623 - tmp121*tmp624 - tmp131*tmp625
+        + Scalar(0.3)*tmp1*tmp19*tmp8*tmp626 - tmp96*tmp627 - tmp104*tmp628
+        + Scalar(0.4)*tmp22*tmp5*tmp629 - tmp64*tmp630 - tmp101*tmp631
+        + Scalar(0.3)*tmp1*tmp177*tmp8*tmp22
+        + (Scalar(0.4)*tmp181*tmp5 + Scalar(0.4)*tmp0*tmp1*tmp174)*tmp515 - tmp182*tmp547
+        - tmp178*tmp569 - tmp183*tmp573 - tmp179*tmp575 - tmp175*tmp580 - tmp176*tmp590;
+    const Scalar tmp643 = -tmp35*tmp623 - tmp40*tmp624 - tmp60*tmp625 - tmp69*tmp626 - tmp97*tmp627
+        - tmp105*tmp628 + Scalar(0.4)*tmp1*tmp19*tmp629 + Scalar(0.3)*tmp1*tmp22*tmp630
+        - tmp99*tmp631 + Scalar(0.4)*tmp1*tmp181*tmp22 + Scalar(0.3)*tmp1*tmp182*tmp515
+        - tmp174*tmp525 - tmp175*tmp528 - tmp176*tmp544 - tmp177*tmp551 - tmp178*tmp570
+        - tmp183*tmp571 - tmp179*tmp576;
+    const Scalar tmp644 = -tmp3;
+    const Scalar tmp645 = tmp17 + Scalar(0.5)*tmp5*tmp8*attitude_dot + heading_dot*tmp644;
+    const Scalar tmp646 = tmp13 + tmp12*attitude_dot + heading_dot*tmp9;
+    const Scalar tmp647 = tmp42 + tmp40*bank_dot + tmp121*attitude_dot + heading_dot*tmp41;
+    const Scalar tmp648 = tmp34 + Scalar(2)*tmp125*heading_dot + Scalar(2)*tmp126*bank_dot
+        + Scalar(0.4)*tmp0*tmp1*tmp22*attitude_dot;
+    const Scalar tmp649 = tmp71 + tmp69*bank_dot - tmp128*attitude_dot + heading_dot*tmp70;
+    const Scalar tmp650 = -tmp58 - tmp131*attitude_dot + Scalar(2)*tmp132*bank_dot
+        + Scalar(2)*tmp61*heading_dot;
+    const Scalar tmp651 = tmp107 + tmp104*attitude_dot + tmp105*bank_dot + heading_dot*tmp106;
+    const Scalar tmp652 = -Scalar(2)*tmp92*heading_dot + Scalar(2)*tmp140*bank_dot
+        + Scalar(2)*tmp95*attitude_dot;
+    const Scalar tmp653 = m_a*tmp645;
+    const Scalar tmp654 = m_a*tmp646;
+    const Scalar tmp655 = m_b*tmp647;
+    const Scalar tmp656 = m_b*tmp648;
+    const Scalar tmp657 = m_c*tmp649;
+    const Scalar tmp658 = m_c*tmp650;
+    const Scalar tmp659 = m_d*tmp651;
+    const Scalar tmp660 = m_d*tmp652;
+    const Scalar tmp661 = tmp655 + tmp657 + tmp659 + tmp653;
+    const Scalar tmp662 = tmp656 + tmp658 + tmp660 + tmp654;
+    const Scalar tmp663 = -tmp661;
+    const Scalar tmp664 = -tmp662;
+    const Scalar tmp665 = -tmp31*tmp655 - tmp41*tmp656 - tmp62*tmp657 - tmp70*tmp658 - tmp92*tmp659
+        - tmp106*tmp660 + Scalar(0.5)*tmp1*tmp8*tmp653 + Scalar(0.5)*tmp0*tmp1*tmp654;
+    const Scalar tmp666 = Scalar(0.4)*tmp0*tmp1*tmp22*tmp655 - tmp121*tmp656 - tmp131*tmp657
+        + Scalar(0.3)*tmp1*tmp19*tmp8*tmp658 - tmp96*tmp659 - tmp104*tmp660
+        + Scalar(0.5)*tmp0*tmp5*tmp653 - tmp16*tmp654;
+    const Scalar tmp667 = -tmp35*tmp655 - tmp40*tmp656 - tmp60*tmp657 - tmp69*tmp658 - tmp97*tmp659
+        - tmp105*tmp660;
+    const Scalar tmp668 = tmp0*tmp26;
+    const Scalar tmp669 = tmp8*tmp26;
+    const Scalar tmp670 = tmp0*tmp51;
+    const Scalar tmp671 = -tmp8*tmp51;
+    const Scalar tmp672 = -Scalar(2)*tmp3*attitude_dot + Scalar(0.5)*tmp5*tmp8*heading_dot
+        + heading_dot*tmp16;
+    const Scalar tmp673 = -Scalar(2)*tmp6*attitude_dot;
+    const Scalar tmp674 = tmp12*heading_dot + Scalar(2)*tmp9*attitude_dot + heading_dot*tmp12;
+    const Scalar tmp675 = tmp121*heading_dot + Scalar(2)*tmp24*attitude_dot
+        + Scalar(2)*tmp120*bank_dot + heading_dot*tmp669;
+    const Scalar tmp676 = -tmp33 + tmp20*tmp5*bank_dot + Scalar(0.4)*tmp19*tmp5*bank_dot
+        - attitude_dot*tmp26;
+    const Scalar tmp677 = -Scalar(2)*tmp30*attitude_dot - Scalar(2)*tmp124*bank_dot
+        + Scalar(0.4)*tmp0*tmp1*tmp22*heading_dot + heading_dot*tmp668;
+    const Scalar tmp678 = tmp94*bank_dot - tmp128*heading_dot - Scalar(2)*tmp48*attitude_dot
+        + Scalar(0.3)*tmp0*tmp1*tmp22*bank_dot + heading_dot*tmp671;
+    const Scalar tmp679 = tmp57 + Scalar(2)*tmp100*bank_dot + attitude_dot*tmp51;
+    const Scalar tmp680 = -tmp131*heading_dot - Scalar(2)*tmp103*bank_dot
+        + Scalar(0.6)*tmp19*tmp5*tmp8*attitude_dot - heading_dot*tmp670;
+    const Scalar tmp681 = tmp104*heading_dot - Scalar(2)*tmp77*attitude_dot
+        + Scalar(2)*tmp134*bank_dot + heading_dot*tmp104;
+    const Scalar tmp682 = -Scalar(2)*tmp85*attitude_dot + Scalar(2)*tmp136*bank_dot;
+    const Scalar tmp683 = Scalar(2)*tmp139*bank_dot + Scalar(2)*tmp95*heading_dot
+        + Scalar(2)*attitude_dot*(tmp87 + tmp90 - tmp67);
+    const Scalar tmp684 = m_a*tmp672;
+    const Scalar tmp685 = m_a*tmp674;
+    const Scalar tmp686 = m_b*tmp675;
+    const Scalar tmp687 = m_b*tmp677;
+    const Scalar tmp688 = m_c*tmp678;
+    const Scalar tmp689 = m_c*tmp680;
+    const Scalar tmp690 = m_d*tmp681;
+    const Scalar tmp691 = m_d*tmp683;
+    const Scalar tmp692 = m_a*tmp673;
+    const Scalar tmp693 = m_b*tmp676;
+    const Scalar tmp694 = m_c*tmp679;
+    const Scalar tmp695 = m_d*tmp682;
+    const Scalar tmp696 = tmp686 + tmp688 + tmp690 + tmp684;
+    const Scalar tmp697 = tmp693 + tmp694 + tmp695 + tmp692;
+    const Scalar tmp698 = tmp687 + tmp689 + tmp691 + tmp685;
+    const Scalar tmp699 = -tmp696;
+    const Scalar tmp700 = -tmp697;
+    const Scalar tmp701 = -tmp698;
+    const Scalar tmp702 = -tmp31*tmp686 - tmp41*tmp687 - tmp62*tmp688 - tmp70*tmp689 - tmp92*tmp690
+        - tmp106*tmp691 + Scalar(0.5)*tmp1*tmp8*tmp684 + Scalar(0.5)*tmp0*tmp1*tmp685;
+    const Scalar tmp703 = Scalar(0.4)*tmp0*tmp1*tmp22*tmp686 - tmp121*tmp687 - tmp131*tmp688
+        + Scalar(0.3)*tmp1*tmp19*tmp8*tmp689 - tmp96*tmp690 - tmp104*tmp691
+        + Scalar(0.4)*tmp22*tmp5*tmp693 - tmp64*tmp694 - tmp101*tmp695
+        + Scalar(0.5)*tmp0*tmp5*tmp684 - tmp16*tmp685 - tmp2*tmp692;
+    const Scalar tmp704 = -tmp35*tmp686 - tmp40*tmp687 - tmp60*tmp688 - tmp69*tmp689 - tmp97*tmp690
+        - tmp105*tmp691 + Scalar(0.4)*tmp1*tmp19*tmp693 + Scalar(0.3)*tmp1*tmp22*tmp694
+        - tmp99*tmp695;
+    const Scalar tmp705 = tmp40*heading_dot + Scalar(2)*tmp41*bank_dot
+        + Scalar(2)*tmp120*attitude_dot + heading_dot*tmp40;
+    const Scalar tmp706 = -Scalar(2)*tmp26*bank_dot + tmp20*tmp5*attitude_dot
+        + Scalar(0.4)*tmp19*tmp5*attitude_dot;
+    const Scalar tmp707 = -Scalar(2)*tmp124*attitude_dot + Scalar(2)*tmp125*bank_dot
+        + Scalar(2)*tmp126*heading_dot;
+    const Scalar tmp708 = tmp69*heading_dot + tmp94*attitude_dot + Scalar(2)*tmp70*bank_dot
+        + Scalar(0.3)*tmp0*tmp1*tmp22*attitude_dot + heading_dot*tmp69;
+    const Scalar tmp709 = Scalar(2)*tmp51*bank_dot + Scalar(2)*tmp100*attitude_dot;
+    const Scalar tmp710 = -Scalar(2)*tmp103*attitude_dot + Scalar(2)*tmp132*heading_dot
+        + Scalar(2)*tmp61*bank_dot;
+    const Scalar tmp711 = tmp105*heading_dot + Scalar(2)*tmp134*attitude_dot
+        + Scalar(2)*bank_dot*(-tmp76 - tmp80) + heading_dot*tmp105;
+    const Scalar tmp712 = Scalar(2)*tmp136*attitude_dot + Scalar(2)*bank_dot*(tmp137 + tmp84);
+    const Scalar tmp713 = -Scalar(2)*tmp91*bank_dot + Scalar(2)*tmp139*attitude_dot
+        + Scalar(2)*tmp140*heading_dot;
+    const Scalar tmp714 = m_b*tmp705;
+    const Scalar tmp715 = m_b*tmp707;
+    const Scalar tmp716 = m_c*tmp708;
+    const Scalar tmp717 = m_c*tmp710;
+    const Scalar tmp718 = m_d*tmp711;
+    const Scalar tmp719 = m_d*tmp713;
+    const Scalar tmp720 = m_b*tmp706;
+    const Scalar tmp721 = m_c*tmp709;
+    const Scalar tmp722 = m_d*tmp712;
+    const Scalar tmp723 = tmp714 + tmp716 + tmp718;
+    const Scalar tmp724 = tmp720 + tmp721 + tmp722;
+    const Scalar tmp725 = tmp715 + tmp717 + tmp719;
+    const Scalar tmp726 = -tmp723;
+    const Scalar tmp727 = -tmp724;
+    const Scalar tmp728 = -tmp725;
+    const Scalar tmp729 = -tmp31*tmp714 - tmp41*tmp715 - tmp62*tmp716 - tmp70*tmp717 - tmp92*tmp718
+        - tmp106*tmp719;
+    const Scalar tmp730 = Scalar(0.4)*tmp0*tmp1*tmp22*tmp714 - tmp121*tmp715 - tmp131*tmp716
+        + Scalar(0.3)*tmp1*tmp19*tmp8*tmp717 - tmp96*tmp718 - tmp104*tmp719
+        + Scalar(0.4)*tmp22*tmp5*tmp720 - tmp64*tmp721 - tmp101*tmp722;
+    const Scalar tmp731 = -tmp35*tmp714 - tmp40*tmp715 - tmp60*tmp716 - tmp69*tmp717 - tmp97*tmp718
+        - tmp105*tmp719 + Scalar(0.4)*tmp1*tmp19*tmp720 + Scalar(0.3)*tmp1*tmp22*tmp721
+        - tmp99*tmp722;
     (*dr_dq)(0, 0) = Scalar(0);
     (*dr_dq)(0, 1) = Scalar(0);
     (*dr_dq)(0, 2) = Scalar(0);
-    (*dr_dq)(0, 3) = heading_ddot*tmp452 + attitude_ddot*tmp455 + bank_ddot*tmp459 - tmp477;
-    (*dr_dq)(0, 4) = heading_ddot*tmp618 + attitude_ddot*tmp621 + bank_ddot*tmp626 - tmp650;
-    (*dr_dq)(0, 5) = heading_ddot*tmp782 + attitude_ddot*tmp785 + bank_ddot*tmp790 - tmp814;
+    (*dr_dq)(0, 3) = heading_ddot*tmp354 + attitude_ddot*tmp360 + bank_ddot*tmp364 - tmp382;
+    (*dr_dq)(0, 4) = heading_ddot*tmp467 + attitude_ddot*tmp473 + bank_ddot*tmp482 - tmp507;
+    (*dr_dq)(0, 5) = heading_ddot*tmp601 + attitude_ddot*tmp605 + bank_ddot*tmp616 - tmp638;
     (*dr_dq)(1, 0) = Scalar(0);
     (*dr_dq)(1, 1) = Scalar(0);
     (*dr_dq)(1, 2) = Scalar(0);
     (*dr_dq)(1, 3) = Scalar(0);
-    (*dr_dq)(1, 4) = attitude_ddot*tmp622 + bank_ddot*tmp627 - tmp651;
-    (*dr_dq)(1, 5) = attitude_ddot*tmp786 + bank_ddot*tmp791 - tmp815;
+    (*dr_dq)(1, 4) = attitude_ddot*tmp474 + bank_ddot*tmp483 - tmp508;
+    (*dr_dq)(1, 5) = attitude_ddot*tmp606 + bank_ddot*tmp617 - tmp639;
     (*dr_dq)(2, 0) = Scalar(0);
     (*dr_dq)(2, 1) = Scalar(0);
     (*dr_dq)(2, 2) = Scalar(0);
-    (*dr_dq)(2, 3) = heading_ddot*tmp453 + attitude_ddot*tmp456 + bank_ddot*tmp460 - tmp478;
-    (*dr_dq)(2, 4) = heading_ddot*tmp619 + attitude_ddot*tmp623 + bank_ddot*tmp628 - tmp652;
-    (*dr_dq)(2, 5) = heading_ddot*tmp783 + attitude_ddot*tmp787 + bank_ddot*tmp792 - tmp816;
+    (*dr_dq)(2, 3) = heading_ddot*tmp355 + attitude_ddot*tmp361 + bank_ddot*tmp365 - tmp383;
+    (*dr_dq)(2, 4) = heading_ddot*tmp468 + attitude_ddot*tmp475 + bank_ddot*tmp484 - tmp509;
+    (*dr_dq)(2, 5) = heading_ddot*tmp602 + attitude_ddot*tmp607 + bank_ddot*tmp618 - tmp640;
     (*dr_dq)(3, 0) = Scalar(0);
     (*dr_dq)(3, 1) = Scalar(0);
     (*dr_dq)(3, 2) = Scalar(0);
-    (*dr_dq)(3, 3) = x_ddot*tmp452 + z_ddot*tmp453 + heading_ddot*tmp454 + attitude_ddot*tmp457
-        + bank_ddot*tmp461 - tmp474 - tmp479;
-    (*dr_dq)(3, 4) = x_ddot*tmp618 + z_ddot*tmp619 + heading_ddot*tmp620 + attitude_ddot*tmp624
-        + bank_ddot*tmp629 - tmp647 - tmp653;
-    (*dr_dq)(3, 5) = x_ddot*tmp782 + z_ddot*tmp783 + heading_ddot*tmp784 + attitude_ddot*tmp788
-        + bank_ddot*tmp793 - tmp811 - tmp817;
+    (*dr_dq)(3, 3) = x_ddot*tmp354 + z_ddot*tmp355 + heading_ddot*tmp358 + attitude_ddot*tmp362
+        + bank_ddot*tmp366 - tmp379 - tmp384;
+    (*dr_dq)(3, 4) = x_ddot*tmp467 + z_ddot*tmp468 + heading_ddot*tmp471 + attitude_ddot*tmp476
+        + bank_ddot*tmp485 - tmp504 - tmp510;
+    (*dr_dq)(3, 5) = x_ddot*tmp601 + z_ddot*tmp602 + heading_ddot*tmp603 + attitude_ddot*tmp608
+        + bank_ddot*tmp619 - tmp635 - tmp641;
     (*dr_dq)(4, 0) = Scalar(0);
     (*dr_dq)(4, 1) = Scalar(0);
     (*dr_dq)(4, 2) = Scalar(0);
-    (*dr_dq)(4, 3) = x_ddot*tmp455 + z_ddot*tmp456 + heading_ddot*tmp457 + attitude_ddot*tmp458
-        + bank_ddot*tmp462 - tmp475 - tmp480;
-    (*dr_dq)(4, 4) = x_ddot*tmp621 + y_ddot*tmp622 + z_ddot*tmp623 + heading_ddot*tmp624
-        + attitude_ddot*tmp625 + bank_ddot*tmp630 - tmp648 - tmp654;
-    (*dr_dq)(4, 5) = x_ddot*tmp785 + y_ddot*tmp786 + z_ddot*tmp787 + heading_ddot*tmp788
-        + attitude_ddot*tmp789 + bank_ddot*tmp794 - tmp812 - tmp818;
+    (*dr_dq)(4, 3) = x_ddot*tmp360 + z_ddot*tmp361 + heading_ddot*tmp362 + attitude_ddot*tmp363
+        + bank_ddot*tmp367 - tmp380 - tmp385;
+    (*dr_dq)(4, 4) = x_ddot*tmp473 + y_ddot*tmp474 + z_ddot*tmp475 + heading_ddot*tmp476
+        + attitude_ddot*tmp481 + bank_ddot*tmp487 - tmp505 - tmp511;
+    (*dr_dq)(4, 5) = x_ddot*tmp605 + y_ddot*tmp606 + z_ddot*tmp607 + heading_ddot*tmp608
+        + attitude_ddot*tmp615 + bank_ddot*tmp621 - tmp636 - tmp642;
     (*dr_dq)(5, 0) = Scalar(0);
     (*dr_dq)(5, 1) = Scalar(0);
     (*dr_dq)(5, 2) = Scalar(0);
-    (*dr_dq)(5, 3) = x_ddot*tmp459 + z_ddot*tmp460 + heading_ddot*tmp461 + attitude_ddot*tmp462
-        + bank_ddot*tmp463 - tmp476 - tmp481;
-    (*dr_dq)(5, 4) = x_ddot*tmp626 + y_ddot*tmp627 + z_ddot*tmp628 + heading_ddot*tmp629
-        + attitude_ddot*tmp630 + bank_ddot*tmp631 - tmp649 - tmp655;
-    (*dr_dq)(5, 5) = x_ddot*tmp790 + y_ddot*tmp791 + z_ddot*tmp792 + heading_ddot*tmp793
-        + attitude_ddot*tmp794 + bank_ddot*tmp795 - tmp813 - tmp819;
+    (*dr_dq)(5, 3) = x_ddot*tmp364 + z_ddot*tmp365 + heading_ddot*tmp366 + attitude_ddot*tmp367
+        + bank_ddot*tmp368 - tmp381 - tmp386;
+    (*dr_dq)(5, 4) = x_ddot*tmp482 + y_ddot*tmp483 + z_ddot*tmp484 + heading_ddot*tmp485
+        + attitude_ddot*tmp487 + bank_ddot*tmp488 - tmp506 - tmp512;
+    (*dr_dq)(5, 5) = x_ddot*tmp616 + y_ddot*tmp617 + z_ddot*tmp618 + heading_ddot*tmp619
+        + attitude_ddot*tmp621 + bank_ddot*tmp622 - tmp637 - tmp643;
     (*dr_dv)(0, 0) = Scalar(0);
     (*dr_dv)(0, 1) = Scalar(0);
     (*dr_dv)(0, 2) = Scalar(0);
-    (*dr_dv)(0, 3) = -tmp838;
-    (*dr_dv)(0, 4) = -tmp870;
-    (*dr_dv)(0, 5) = -tmp903;
+    (*dr_dv)(0, 3) = -tmp663;
+    (*dr_dv)(0, 4) = -tmp699;
+    (*dr_dv)(0, 5) = -tmp726;
     (*dr_dv)(1, 0) = Scalar(0);
     (*dr_dv)(1, 1) = Scalar(0);
     (*dr_dv)(1, 2) = Scalar(0);
     (*dr_dv)(1, 3) = Scalar(0);
-    (*dr_dv)(1, 4) = -tmp871;
-    (*dr_dv)(1, 5) = -tmp904;
+    (*dr_dv)(1, 4) = -tmp700;
+    (*dr_dv)(1, 5) = -tmp727;
     (*dr_dv)(2, 0) = Scalar(0);
     (*dr_dv)(2, 1) = Scalar(0);
     (*dr_dv)(2, 2) = Scalar(0);
-    (*dr_dv)(2, 3) = -tmp839;
-    (*dr_dv)(2, 4) = -tmp872;
-    (*dr_dv)(2, 5) = -tmp905;
+    (*dr_dv)(2, 3) = -tmp664;
+    (*dr_dv)(2, 4) = -tmp701;
+    (*dr_dv)(2, 5) = -tmp728;
     (*dr_dv)(3, 0) = Scalar(0);
     (*dr_dv)(3, 1) = Scalar(0);
     (*dr_dv)(3, 2) = Scalar(0);
-    (*dr_dv)(3, 3) = -tmp840;
-    (*dr_dv)(3, 4) = -tmp873;
-    (*dr_dv)(3, 5) = -tmp906;
+    (*dr_dv)(3, 3) = -tmp665;
+    (*dr_dv)(3, 4) = -tmp702;
+    (*dr_dv)(3, 5) = -tmp729;
     (*dr_dv)(4, 0) = Scalar(0);
     (*dr_dv)(4, 1) = Scalar(0);
     (*dr_dv)(4, 2) = Scalar(0);
-    (*dr_dv)(4, 3) = -tmp841;
-    (*dr_dv)(4, 4) = -tmp874;
-    (*dr_dv)(4, 5) = -tmp907;
+    (*dr_dv)(4, 3) = -tmp666;
+    (*dr_dv)(4, 4) = -tmp703;
+    (*dr_dv)(4, 5) = -tmp730;
     (*dr_dv)(5, 0) = Scalar(0);
     (*dr_dv)(5, 1) = Scalar(0);
     (*dr_dv)(5, 2) = Scalar(0);
-    (*dr_dv)(5, 3) = -tmp842;
-    (*dr_dv)(5, 4) = -tmp875;
-    (*dr_dv)(5, 5) = -tmp908;
+    (*dr_dv)(5, 3) = -tmp667;
+    (*dr_dv)(5, 4) = -tmp704;
+    (*dr_dv)(5, 5) = -tmp731;
   }
 
   /// Kinetic energy T = 1/2 xdot^T M xdot.
@@ -8344,7 +7120,7 @@ struct RigidBodyEulerYzx {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return T
-  /// Ops: 246
+  /// Ops: 211
   template <typename Scalar>
   static Scalar kinetic_energy(const QVector<Scalar>& q,
                                const QVector<Scalar>& v,
@@ -8352,7 +7128,6 @@ struct RigidBodyEulerYzx {
                                const Params& params) {
     using std::cos;
     using std::sin;
-    using std::sqrt;
     const Scalar heading = q(3);
     const Scalar attitude = q(4);
     const Scalar bank = q(5);
@@ -8362,140 +7137,111 @@ struct RigidBodyEulerYzx {
     const Scalar heading_dot = v(3);
     const Scalar attitude_dot = v(4);
     const Scalar bank_dot = v(5);
-    const Scalar m = Scalar(params.m);
-    const Scalar a = Scalar(params.a);
-    const Scalar b = Scalar(params.b);
-    const Scalar c = Scalar(params.c);
-    const Scalar tmp0 = sin(heading);
-    const Scalar tmp1 = cos(bank);
-    const Scalar tmp2 = tmp0*tmp1;
-    const Scalar tmp3 = sin(attitude);
-    const Scalar tmp4 = sin(bank);
-    const Scalar tmp5 = cos(heading);
-    const Scalar tmp6 = tmp4*tmp5;
-    const Scalar tmp7 = tmp3*tmp6;
-    const Scalar tmp8 = tmp2 + tmp7;
-    const Scalar tmp9 = (Scalar(1)/sqrt(m));
-    const Scalar tmp10 = (a*a);
-    const Scalar tmp11 = (b*b);
-    const Scalar tmp12 = ((Scalar(1)/Scalar(24)))*m;
-    const Scalar tmp13 = tmp12*(tmp10 + tmp11);
-    const Scalar tmp14 = (c*c);
-    const Scalar tmp15 = tmp12*(tmp10 + tmp14);
-    const Scalar tmp16 = tmp12*(tmp11 + tmp14);
-    const Scalar tmp17 = tmp15 + tmp16 - tmp13;
-    const Scalar tmp18 = tmp9*sqrt(tmp17);
-    const Scalar tmp20 = tmp1*tmp5;
-    const Scalar tmp21 = tmp20*tmp3;
-    const Scalar tmp22 = tmp21 - tmp0*tmp4;
-    const Scalar tmp24 = tmp13 + tmp16 - tmp15;
-    const Scalar tmp25 = tmp9*sqrt(tmp24);
-    const Scalar tmp27 = cos(attitude);
-    const Scalar tmp28 = tmp13 + tmp15 - tmp16;
-    const Scalar tmp29 = tmp9*sqrt(tmp28);
-    const Scalar tmp30 = tmp27*tmp29;
-    const Scalar tmp31 = tmp30*tmp5;
-    const Scalar tmp34 = tmp29*tmp3;
-    const Scalar tmp35 = tmp1*tmp25;
-    const Scalar tmp37 = tmp18*tmp4;
-    const Scalar tmp41 = tmp0*tmp30;
-    const Scalar tmp42 = -tmp41;
-    const Scalar tmp43 = tmp0*tmp4;
-    const Scalar tmp44 = tmp3*tmp43;
-    const Scalar tmp45 = tmp44 - tmp1*tmp5;
-    const Scalar tmp46 = -tmp45;
-    const Scalar tmp47 = tmp18*tmp46;
-    const Scalar tmp48 = tmp2*tmp3;
-    const Scalar tmp49 = tmp48 + tmp6;
-    const Scalar tmp50 = tmp25*tmp49;
-    const Scalar tmp51 = tmp47 + tmp50;
-    const Scalar tmp52 = tmp42 + tmp51;
-    const Scalar tmp54 = tmp25*tmp8;
-    const Scalar tmp55 = tmp18*tmp22;
-    const Scalar tmp56 = tmp54 + tmp55;
-    const Scalar tmp57 = tmp18*tmp27;
-    const Scalar tmp58 = tmp57*tmp6;
-    const Scalar tmp59 = tmp34*tmp5;
-    const Scalar tmp60 = tmp25*tmp27;
-    const Scalar tmp61 = tmp20*tmp60;
-    const Scalar tmp62 = tmp59 + tmp61;
-    const Scalar tmp63 = tmp62 - tmp58;
-    const Scalar tmp64 = -tmp63;
-    const Scalar tmp65 = x_dot + tmp52*heading_dot + tmp56*bank_dot + tmp64*attitude_dot;
-    const Scalar tmp66 = tmp1*tmp18;
-    const Scalar tmp67 = tmp27*tmp66;
-    const Scalar tmp68 = tmp25*tmp4;
-    const Scalar tmp69 = tmp27*tmp68;
-    const Scalar tmp70 = tmp67 + tmp69;
-    const Scalar tmp71 = -tmp70;
-    const Scalar tmp72 = tmp3*tmp35;
-    const Scalar tmp73 = tmp3*tmp37;
-    const Scalar tmp74 = tmp30 + tmp73;
-    const Scalar tmp75 = tmp74 - tmp72;
-    const Scalar tmp76 = y_dot + tmp71*bank_dot + tmp75*attitude_dot;
-    const Scalar tmp77 = tmp25*tmp46;
-    const Scalar tmp78 = -tmp49;
-    const Scalar tmp79 = tmp18*tmp78;
-    const Scalar tmp80 = tmp77 + tmp79;
-    const Scalar tmp81 = tmp43*tmp57;
-    const Scalar tmp82 = tmp0*tmp34;
-    const Scalar tmp83 = tmp2*tmp60;
-    const Scalar tmp84 = tmp82 + tmp83;
-    const Scalar tmp85 = tmp84 - tmp81;
-    const Scalar tmp86 = -tmp31;
-    const Scalar tmp87 = tmp22*tmp25;
-    const Scalar tmp88 = -tmp8;
-    const Scalar tmp89 = tmp18*tmp88;
-    const Scalar tmp90 = tmp87 + tmp89;
-    const Scalar tmp91 = tmp86 + tmp90;
-    const Scalar tmp92 = tmp80*bank_dot + tmp85*attitude_dot + tmp91*heading_dot;
-    const Scalar tmp93 = tmp92 + z_dot;
-    const Scalar tmp100 = tmp41 + tmp51;
-    const Scalar tmp102 = -tmp56;
-    const Scalar tmp103 = tmp58 + tmp59 - tmp61;
-    const Scalar tmp104 = -tmp103;
-    const Scalar tmp105 = -tmp100;
-    const Scalar tmp106 = x_dot + tmp102*bank_dot + tmp104*attitude_dot + tmp105*heading_dot;
-    const Scalar tmp107 = tmp30 + tmp72 - tmp73;
-    const Scalar tmp108 = y_dot + tmp70*bank_dot + tmp107*attitude_dot;
-    const Scalar tmp109 = -tmp80;
-    const Scalar tmp110 = tmp81 + tmp82 - tmp83;
-    const Scalar tmp111 = -tmp31 - tmp90;
-    const Scalar tmp112 = tmp111*heading_dot + tmp109*bank_dot + tmp110*attitude_dot;
-    const Scalar tmp113 = tmp112 + z_dot;
-    const Scalar tmp119 = tmp41 + tmp50 - tmp47;
-    const Scalar tmp121 = tmp54 - tmp55;
-    const Scalar tmp122 = tmp58 + tmp61 - tmp59;
-    const Scalar tmp123 = -tmp122;
-    const Scalar tmp124 = x_dot + tmp119*heading_dot + tmp121*bank_dot + tmp123*attitude_dot;
-    const Scalar tmp125 = tmp67 - tmp69;
-    const Scalar tmp126 = -tmp72 - tmp74;
-    const Scalar tmp127 = y_dot + tmp125*bank_dot + tmp126*attitude_dot;
-    const Scalar tmp128 = tmp77 - tmp79;
-    const Scalar tmp129 = tmp81 + tmp83 - tmp82;
-    const Scalar tmp130 = tmp31 + tmp87 - tmp89;
-    const Scalar tmp131 = tmp128*bank_dot + tmp129*attitude_dot + tmp130*heading_dot;
-    const Scalar tmp132 = tmp131 + z_dot;
-    const Scalar tmp136 = tmp41 + tmp47 - tmp50;
-    const Scalar tmp138 = -tmp121;
-    const Scalar tmp139 = tmp58 + tmp62;
-    const Scalar tmp140 = x_dot + tmp136*heading_dot + tmp138*bank_dot + tmp139*attitude_dot;
-    const Scalar tmp141 = -tmp125;
-    const Scalar tmp142 = tmp72 + tmp73 - tmp30;
-    const Scalar tmp143 = y_dot + tmp141*bank_dot + tmp142*attitude_dot;
-    const Scalar tmp144 = -tmp128;
-    const Scalar tmp145 = -tmp81 - tmp84;
-    const Scalar tmp146 = tmp89 - tmp87;
-    const Scalar tmp147 = tmp146 + tmp31;
-    const Scalar tmp148 = tmp144*bank_dot + tmp145*attitude_dot + tmp147*heading_dot;
-    const Scalar tmp149 = tmp148 + z_dot;
-    const Scalar tmp239 = (Scalar(0.125))*m;
-    const Scalar tmp240 = tmp239*((tmp108*tmp108) + (tmp113*tmp113) + (tmp106*tmp106))
-        + tmp239*((tmp124*tmp124) + (tmp127*tmp127) + (tmp132*tmp132))
-        + tmp239*((tmp140*tmp140) + (tmp143*tmp143) + (tmp149*tmp149))
-        + tmp239*((tmp65*tmp65) + (tmp76*tmp76) + (tmp93*tmp93));
+    const Scalar m_a = Scalar(params.m_a);
+    const Scalar m_b = Scalar(params.m_b);
+    const Scalar m_c = Scalar(params.m_c);
+    const Scalar m_d = Scalar(params.m_d);
+    const Scalar tmp0 = cos(heading);
+    const Scalar tmp1 = cos(attitude);
+    const Scalar tmp2 = Scalar(0.5)*tmp1;
+    const Scalar tmp3 = tmp0*tmp2;
+    const Scalar tmp5 = sin(attitude);
+    const Scalar tmp6 = Scalar(0.5)*tmp5;
+    const Scalar tmp8 = sin(heading);
+    const Scalar tmp9 = tmp2*tmp8;
+    const Scalar tmp12 = tmp0*tmp6;
+    const Scalar tmp13 = tmp9*heading_dot + tmp12*attitude_dot;
+    const Scalar tmp14 = x_dot - tmp13;
+    const Scalar tmp15 = y_dot + tmp2*attitude_dot;
+    const Scalar tmp16 = tmp6*tmp8;
+    const Scalar tmp17 = tmp16*attitude_dot - tmp3*heading_dot;
+    const Scalar tmp18 = tmp17 + z_dot;
+    const Scalar tmp19 = sin(bank);
+    const Scalar tmp20 = Scalar(0.4)*tmp19;
+    const Scalar tmp21 = tmp20*tmp8;
+    const Scalar tmp22 = cos(bank);
+    const Scalar tmp23 = Scalar(0.4)*tmp22;
+    const Scalar tmp24 = tmp0*tmp23*tmp5;
+    const Scalar tmp26 = tmp1*tmp23;
+    const Scalar tmp28 = tmp0*tmp20;
+    const Scalar tmp29 = tmp23*tmp8;
+    const Scalar tmp30 = tmp29*tmp5;
+    const Scalar tmp31 = tmp28 + tmp30;
+    const Scalar tmp33 = tmp26*attitude_dot;
+    const Scalar tmp34 = tmp0*tmp33;
+    const Scalar tmp35 = tmp29 + tmp28*tmp5;
+    const Scalar tmp36 = x_dot - tmp34 + tmp31*heading_dot + tmp35*bank_dot;
+    const Scalar tmp37 = tmp23*tmp5;
+    const Scalar tmp38 = tmp1*tmp20;
+    const Scalar tmp39 = y_dot - tmp37*attitude_dot - tmp38*bank_dot;
+    const Scalar tmp40 = -tmp21*tmp5 + Scalar(0.4)*tmp0*tmp22;
+    const Scalar tmp41 = tmp24 - tmp21;
+    const Scalar tmp42 = tmp33*tmp8 + tmp40*bank_dot + tmp41*heading_dot;
+    const Scalar tmp43 = tmp42 + z_dot;
+    const Scalar tmp44 = Scalar(0.3)*tmp22;
+    const Scalar tmp45 = tmp44*tmp8;
+    const Scalar tmp46 = Scalar(0.3)*tmp19;
+    const Scalar tmp47 = tmp0*tmp46;
+    const Scalar tmp48 = tmp47*tmp5;
+    const Scalar tmp49 = tmp45 + tmp48;
+    const Scalar tmp51 = tmp1*tmp46;
+    const Scalar tmp53 = tmp0*tmp44;
+    const Scalar tmp54 = tmp46*tmp8;
+    const Scalar tmp55 = tmp5*tmp54;
+    const Scalar tmp57 = tmp51*attitude_dot;
+    const Scalar tmp58 = tmp0*tmp57;
+    const Scalar tmp59 = tmp53*tmp5;
+    const Scalar tmp60 = tmp59 - tmp54;
+    const Scalar tmp61 = tmp55 - Scalar(0.3)*tmp0*tmp22;
+    const Scalar tmp62 = -tmp61;
+    const Scalar tmp63 = tmp58 + x_dot + tmp60*bank_dot + tmp62*heading_dot;
+    const Scalar tmp64 = tmp46*tmp5;
+    const Scalar tmp65 = tmp1*tmp44;
+    const Scalar tmp66 = y_dot + tmp64*attitude_dot - tmp65*bank_dot;
+    const Scalar tmp67 = tmp45*tmp5;
+    const Scalar tmp68 = tmp47 + tmp67;
+    const Scalar tmp69 = -tmp68;
+    const Scalar tmp70 = -tmp49;
+    const Scalar tmp71 = tmp69*bank_dot + tmp70*heading_dot - tmp57*tmp8;
+    const Scalar tmp72 = tmp71 + z_dot;
+    const Scalar tmp73 = Scalar(0.2)*tmp1;
+    const Scalar tmp74 = Scalar(0.25)*tmp19;
+    const Scalar tmp75 = tmp5*tmp74;
+    const Scalar tmp76 = -tmp59 + tmp0*tmp75;
+    const Scalar tmp77 = tmp76 + tmp0*tmp73;
+    const Scalar tmp78 = Scalar(0.25)*tmp22;
+    const Scalar tmp79 = tmp8*tmp78;
+    const Scalar tmp80 = tmp54 + tmp79;
+    const Scalar tmp81 = tmp77 + tmp80;
+    const Scalar tmp83 = Scalar(0.2)*tmp5;
+    const Scalar tmp84 = tmp1*tmp74;
+    const Scalar tmp87 = tmp73*tmp8;
+    const Scalar tmp88 = tmp0*tmp78;
+    const Scalar tmp89 = tmp74*tmp8;
+    const Scalar tmp90 = tmp5*tmp89;
+    const Scalar tmp91 = tmp68 + tmp88 - tmp90;
+    const Scalar tmp92 = tmp91 - tmp87;
+    const Scalar tmp94 = tmp1*tmp53;
+    const Scalar tmp95 = tmp94 + tmp0*tmp83 - Scalar(0.25)*tmp0*tmp1*tmp19;
+    const Scalar tmp96 = -tmp95;
+    const Scalar tmp97 = tmp49 - tmp89 + tmp5*tmp88;
+    const Scalar tmp98 = x_dot + tmp92*heading_dot + tmp96*attitude_dot + tmp97*bank_dot;
+    const Scalar tmp99 = -tmp51 - tmp1*tmp78;
+    const Scalar tmp100 = tmp44*tmp5;
+    const Scalar tmp101 = tmp73 + tmp75 - tmp100;
+    const Scalar tmp102 = y_dot + tmp99*bank_dot + tmp101*attitude_dot;
+    const Scalar tmp103 = tmp1*tmp45;
+    const Scalar tmp104 = tmp103 + tmp8*tmp83 - tmp8*tmp84;
+    const Scalar tmp105 = -tmp61 - tmp0*tmp74 - tmp5*tmp79;
+    const Scalar tmp106 = -tmp81;
+    const Scalar tmp107 = tmp104*attitude_dot + tmp105*bank_dot + tmp106*heading_dot;
+    const Scalar tmp108 = tmp107 + z_dot;
+    const Scalar tmp196 = (Scalar(0.5))*m_a*((tmp14*tmp14) + (tmp15*tmp15) + (tmp18*tmp18))
+        + (Scalar(0.5))*m_b*((tmp39*tmp39) + (tmp43*tmp43) + (tmp36*tmp36))
+        + (Scalar(0.5))*m_c*((tmp63*tmp63) + (tmp66*tmp66) + (tmp72*tmp72))
+        + (Scalar(0.5))*m_d*((tmp98*tmp98) + (tmp102*tmp102) + (tmp108*tmp108));
     Scalar result;
-    result = tmp240;
+    result = tmp196;
     return result;
   }
 
@@ -8504,70 +7250,66 @@ struct RigidBodyEulerYzx {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return V
-  /// Ops: 70
+  /// Ops: 53
   template <typename Scalar>
   static Scalar potential_energy(const QVector<Scalar>& q,
                                  const Scalar& /*t*/,
                                  const Params& params) {
     using std::cos;
     using std::sin;
-    using std::sqrt;
     const Scalar z = q(2);
     const Scalar heading = q(3);
     const Scalar attitude = q(4);
     const Scalar bank = q(5);
     const Scalar g = Scalar(params.g);
-    const Scalar m = Scalar(params.m);
-    const Scalar a = Scalar(params.a);
-    const Scalar b = Scalar(params.b);
-    const Scalar c = Scalar(params.c);
-    const Scalar tmp0 = sin(heading);
-    const Scalar tmp1 = cos(bank);
-    const Scalar tmp2 = tmp0*tmp1;
-    const Scalar tmp3 = sin(attitude);
-    const Scalar tmp4 = sin(bank);
-    const Scalar tmp5 = cos(heading);
-    const Scalar tmp6 = tmp4*tmp5;
-    const Scalar tmp9 = (Scalar(1)/sqrt(m));
-    const Scalar tmp10 = (a*a);
-    const Scalar tmp11 = (b*b);
-    const Scalar tmp12 = ((Scalar(1)/Scalar(24)))*m;
-    const Scalar tmp13 = tmp12*(tmp10 + tmp11);
-    const Scalar tmp14 = (c*c);
-    const Scalar tmp15 = tmp12*(tmp10 + tmp14);
-    const Scalar tmp16 = tmp12*(tmp11 + tmp14);
-    const Scalar tmp17 = tmp15 + tmp16 - tmp13;
-    const Scalar tmp18 = tmp9*sqrt(tmp17);
-    const Scalar tmp24 = tmp13 + tmp16 - tmp15;
-    const Scalar tmp25 = tmp9*sqrt(tmp24);
-    const Scalar tmp27 = cos(attitude);
-    const Scalar tmp28 = tmp13 + tmp15 - tmp16;
-    const Scalar tmp29 = tmp9*sqrt(tmp28);
-    const Scalar tmp30 = tmp27*tmp29;
-    const Scalar tmp41 = tmp0*tmp30;
-    const Scalar tmp42 = -tmp41;
-    const Scalar tmp43 = tmp0*tmp4;
-    const Scalar tmp44 = tmp3*tmp43;
-    const Scalar tmp45 = tmp44 - tmp1*tmp5;
-    const Scalar tmp46 = -tmp45;
-    const Scalar tmp47 = tmp18*tmp46;
-    const Scalar tmp48 = tmp2*tmp3;
-    const Scalar tmp49 = tmp48 + tmp6;
-    const Scalar tmp50 = tmp25*tmp49;
-    const Scalar tmp51 = tmp47 + tmp50;
-    const Scalar tmp52 = tmp42 + tmp51;
-    const Scalar tmp53 = tmp52 + z;
-    const Scalar tmp100 = tmp41 + tmp51;
-    const Scalar tmp101 = z - tmp100;
-    const Scalar tmp119 = tmp41 + tmp50 - tmp47;
-    const Scalar tmp120 = tmp119 + z;
-    const Scalar tmp136 = tmp41 + tmp47 - tmp50;
-    const Scalar tmp137 = tmp136 + z;
-    const Scalar tmp150 = (Scalar(0.25))*m;
-    const Scalar tmp151 = tmp150*g;
-    const Scalar tmp241 = tmp151*tmp120 + tmp151*tmp53 + tmp151*tmp137 + tmp151*tmp101;
+    const Scalar m_a = Scalar(params.m_a);
+    const Scalar m_b = Scalar(params.m_b);
+    const Scalar m_c = Scalar(params.m_c);
+    const Scalar m_d = Scalar(params.m_d);
+    const Scalar tmp0 = cos(heading);
+    const Scalar tmp1 = cos(attitude);
+    const Scalar tmp2 = Scalar(0.5)*tmp1;
+    const Scalar tmp5 = sin(attitude);
+    const Scalar tmp8 = sin(heading);
+    const Scalar tmp9 = tmp2*tmp8;
+    const Scalar tmp10 = -tmp9;
+    const Scalar tmp11 = tmp10 + z;
+    const Scalar tmp19 = sin(bank);
+    const Scalar tmp20 = Scalar(0.4)*tmp19;
+    const Scalar tmp22 = cos(bank);
+    const Scalar tmp23 = Scalar(0.4)*tmp22;
+    const Scalar tmp28 = tmp0*tmp20;
+    const Scalar tmp29 = tmp23*tmp8;
+    const Scalar tmp30 = tmp29*tmp5;
+    const Scalar tmp31 = tmp28 + tmp30;
+    const Scalar tmp32 = tmp31 + z;
+    const Scalar tmp44 = Scalar(0.3)*tmp22;
+    const Scalar tmp45 = tmp44*tmp8;
+    const Scalar tmp46 = Scalar(0.3)*tmp19;
+    const Scalar tmp47 = tmp0*tmp46;
+    const Scalar tmp53 = tmp0*tmp44;
+    const Scalar tmp54 = tmp46*tmp8;
+    const Scalar tmp55 = tmp5*tmp54;
+    const Scalar tmp56 = tmp53 + z - tmp55;
+    const Scalar tmp67 = tmp45*tmp5;
+    const Scalar tmp68 = tmp47 + tmp67;
+    const Scalar tmp73 = Scalar(0.2)*tmp1;
+    const Scalar tmp74 = Scalar(0.25)*tmp19;
+    const Scalar tmp78 = Scalar(0.25)*tmp22;
+    const Scalar tmp87 = tmp73*tmp8;
+    const Scalar tmp88 = tmp0*tmp78;
+    const Scalar tmp89 = tmp74*tmp8;
+    const Scalar tmp90 = tmp5*tmp89;
+    const Scalar tmp91 = tmp68 + tmp88 - tmp90;
+    const Scalar tmp92 = tmp91 - tmp87;
+    const Scalar tmp93 = tmp92 + z;
+    const Scalar tmp109 = g*m_a;
+    const Scalar tmp111 = g*m_b;
+    const Scalar tmp113 = g*m_c;
+    const Scalar tmp115 = g*m_d;
+    const Scalar tmp197 = tmp109*tmp11 + tmp111*tmp32 + tmp113*tmp56 + tmp115*tmp93;
     Scalar result;
-    result = tmp241;
+    result = tmp197;
     return result;
   }
 
@@ -8592,7 +7334,7 @@ struct RigidBodyEulerYzx {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return T + V
-  /// Ops: 261
+  /// Ops: 230
   template <typename Scalar>
   static Scalar energy(const QVector<Scalar>& q,
                        const QVector<Scalar>& v,
@@ -8600,7 +7342,6 @@ struct RigidBodyEulerYzx {
                        const Params& params) {
     using std::cos;
     using std::sin;
-    using std::sqrt;
     const Scalar z = q(2);
     const Scalar heading = q(3);
     const Scalar attitude = q(4);
@@ -8612,147 +7353,121 @@ struct RigidBodyEulerYzx {
     const Scalar attitude_dot = v(4);
     const Scalar bank_dot = v(5);
     const Scalar g = Scalar(params.g);
-    const Scalar m = Scalar(params.m);
-    const Scalar a = Scalar(params.a);
-    const Scalar b = Scalar(params.b);
-    const Scalar c = Scalar(params.c);
-    const Scalar tmp0 = sin(heading);
-    const Scalar tmp1 = cos(bank);
-    const Scalar tmp2 = tmp0*tmp1;
-    const Scalar tmp3 = sin(attitude);
-    const Scalar tmp4 = sin(bank);
-    const Scalar tmp5 = cos(heading);
-    const Scalar tmp6 = tmp4*tmp5;
-    const Scalar tmp7 = tmp3*tmp6;
-    const Scalar tmp8 = tmp2 + tmp7;
-    const Scalar tmp9 = (Scalar(1)/sqrt(m));
-    const Scalar tmp10 = (a*a);
-    const Scalar tmp11 = (b*b);
-    const Scalar tmp12 = ((Scalar(1)/Scalar(24)))*m;
-    const Scalar tmp13 = tmp12*(tmp10 + tmp11);
-    const Scalar tmp14 = (c*c);
-    const Scalar tmp15 = tmp12*(tmp10 + tmp14);
-    const Scalar tmp16 = tmp12*(tmp11 + tmp14);
-    const Scalar tmp17 = tmp15 + tmp16 - tmp13;
-    const Scalar tmp18 = tmp9*sqrt(tmp17);
-    const Scalar tmp20 = tmp1*tmp5;
-    const Scalar tmp21 = tmp20*tmp3;
-    const Scalar tmp22 = tmp21 - tmp0*tmp4;
-    const Scalar tmp24 = tmp13 + tmp16 - tmp15;
-    const Scalar tmp25 = tmp9*sqrt(tmp24);
-    const Scalar tmp27 = cos(attitude);
-    const Scalar tmp28 = tmp13 + tmp15 - tmp16;
-    const Scalar tmp29 = tmp9*sqrt(tmp28);
-    const Scalar tmp30 = tmp27*tmp29;
-    const Scalar tmp31 = tmp30*tmp5;
-    const Scalar tmp34 = tmp29*tmp3;
-    const Scalar tmp35 = tmp1*tmp25;
-    const Scalar tmp37 = tmp18*tmp4;
-    const Scalar tmp41 = tmp0*tmp30;
-    const Scalar tmp42 = -tmp41;
-    const Scalar tmp43 = tmp0*tmp4;
-    const Scalar tmp44 = tmp3*tmp43;
-    const Scalar tmp45 = tmp44 - tmp1*tmp5;
-    const Scalar tmp46 = -tmp45;
-    const Scalar tmp47 = tmp18*tmp46;
-    const Scalar tmp48 = tmp2*tmp3;
-    const Scalar tmp49 = tmp48 + tmp6;
-    const Scalar tmp50 = tmp25*tmp49;
-    const Scalar tmp51 = tmp47 + tmp50;
-    const Scalar tmp52 = tmp42 + tmp51;
-    const Scalar tmp53 = tmp52 + z;
-    const Scalar tmp54 = tmp25*tmp8;
-    const Scalar tmp55 = tmp18*tmp22;
-    const Scalar tmp56 = tmp54 + tmp55;
-    const Scalar tmp57 = tmp18*tmp27;
-    const Scalar tmp58 = tmp57*tmp6;
-    const Scalar tmp59 = tmp34*tmp5;
-    const Scalar tmp60 = tmp25*tmp27;
-    const Scalar tmp61 = tmp20*tmp60;
-    const Scalar tmp62 = tmp59 + tmp61;
-    const Scalar tmp63 = tmp62 - tmp58;
-    const Scalar tmp64 = -tmp63;
-    const Scalar tmp65 = x_dot + tmp52*heading_dot + tmp56*bank_dot + tmp64*attitude_dot;
-    const Scalar tmp66 = tmp1*tmp18;
-    const Scalar tmp67 = tmp27*tmp66;
-    const Scalar tmp68 = tmp25*tmp4;
-    const Scalar tmp69 = tmp27*tmp68;
-    const Scalar tmp70 = tmp67 + tmp69;
-    const Scalar tmp71 = -tmp70;
-    const Scalar tmp72 = tmp3*tmp35;
-    const Scalar tmp73 = tmp3*tmp37;
-    const Scalar tmp74 = tmp30 + tmp73;
-    const Scalar tmp75 = tmp74 - tmp72;
-    const Scalar tmp76 = y_dot + tmp71*bank_dot + tmp75*attitude_dot;
-    const Scalar tmp77 = tmp25*tmp46;
-    const Scalar tmp78 = -tmp49;
-    const Scalar tmp79 = tmp18*tmp78;
-    const Scalar tmp80 = tmp77 + tmp79;
-    const Scalar tmp81 = tmp43*tmp57;
-    const Scalar tmp82 = tmp0*tmp34;
-    const Scalar tmp83 = tmp2*tmp60;
-    const Scalar tmp84 = tmp82 + tmp83;
-    const Scalar tmp85 = tmp84 - tmp81;
-    const Scalar tmp86 = -tmp31;
-    const Scalar tmp87 = tmp22*tmp25;
-    const Scalar tmp88 = -tmp8;
-    const Scalar tmp89 = tmp18*tmp88;
-    const Scalar tmp90 = tmp87 + tmp89;
-    const Scalar tmp91 = tmp86 + tmp90;
-    const Scalar tmp92 = tmp80*bank_dot + tmp85*attitude_dot + tmp91*heading_dot;
-    const Scalar tmp93 = tmp92 + z_dot;
-    const Scalar tmp100 = tmp41 + tmp51;
-    const Scalar tmp101 = z - tmp100;
-    const Scalar tmp102 = -tmp56;
-    const Scalar tmp103 = tmp58 + tmp59 - tmp61;
-    const Scalar tmp104 = -tmp103;
-    const Scalar tmp105 = -tmp100;
-    const Scalar tmp106 = x_dot + tmp102*bank_dot + tmp104*attitude_dot + tmp105*heading_dot;
-    const Scalar tmp107 = tmp30 + tmp72 - tmp73;
-    const Scalar tmp108 = y_dot + tmp70*bank_dot + tmp107*attitude_dot;
-    const Scalar tmp109 = -tmp80;
-    const Scalar tmp110 = tmp81 + tmp82 - tmp83;
-    const Scalar tmp111 = -tmp31 - tmp90;
-    const Scalar tmp112 = tmp111*heading_dot + tmp109*bank_dot + tmp110*attitude_dot;
-    const Scalar tmp113 = tmp112 + z_dot;
-    const Scalar tmp119 = tmp41 + tmp50 - tmp47;
-    const Scalar tmp120 = tmp119 + z;
-    const Scalar tmp121 = tmp54 - tmp55;
-    const Scalar tmp122 = tmp58 + tmp61 - tmp59;
-    const Scalar tmp123 = -tmp122;
-    const Scalar tmp124 = x_dot + tmp119*heading_dot + tmp121*bank_dot + tmp123*attitude_dot;
-    const Scalar tmp125 = tmp67 - tmp69;
-    const Scalar tmp126 = -tmp72 - tmp74;
-    const Scalar tmp127 = y_dot + tmp125*bank_dot + tmp126*attitude_dot;
-    const Scalar tmp128 = tmp77 - tmp79;
-    const Scalar tmp129 = tmp81 + tmp83 - tmp82;
-    const Scalar tmp130 = tmp31 + tmp87 - tmp89;
-    const Scalar tmp131 = tmp128*bank_dot + tmp129*attitude_dot + tmp130*heading_dot;
-    const Scalar tmp132 = tmp131 + z_dot;
-    const Scalar tmp136 = tmp41 + tmp47 - tmp50;
-    const Scalar tmp137 = tmp136 + z;
-    const Scalar tmp138 = -tmp121;
-    const Scalar tmp139 = tmp58 + tmp62;
-    const Scalar tmp140 = x_dot + tmp136*heading_dot + tmp138*bank_dot + tmp139*attitude_dot;
-    const Scalar tmp141 = -tmp125;
-    const Scalar tmp142 = tmp72 + tmp73 - tmp30;
-    const Scalar tmp143 = y_dot + tmp141*bank_dot + tmp142*attitude_dot;
-    const Scalar tmp144 = -tmp128;
-    const Scalar tmp145 = -tmp81 - tmp84;
-    const Scalar tmp146 = tmp89 - tmp87;
-    const Scalar tmp147 = tmp146 + tmp31;
-    const Scalar tmp148 = tmp144*bank_dot + tmp145*attitude_dot + tmp147*heading_dot;
-    const Scalar tmp149 = tmp148 + z_dot;
-    const Scalar tmp150 = (Scalar(0.25))*m;
-    const Scalar tmp151 = tmp150*g;
-    const Scalar tmp239 = (Scalar(0.125))*m;
-    const Scalar tmp240 = tmp239*((tmp108*tmp108) + (tmp113*tmp113) + (tmp106*tmp106))
-        + tmp239*((tmp124*tmp124) + (tmp127*tmp127) + (tmp132*tmp132))
-        + tmp239*((tmp140*tmp140) + (tmp143*tmp143) + (tmp149*tmp149))
-        + tmp239*((tmp65*tmp65) + (tmp76*tmp76) + (tmp93*tmp93));
-    const Scalar tmp241 = tmp151*tmp120 + tmp151*tmp53 + tmp151*tmp137 + tmp151*tmp101;
+    const Scalar m_a = Scalar(params.m_a);
+    const Scalar m_b = Scalar(params.m_b);
+    const Scalar m_c = Scalar(params.m_c);
+    const Scalar m_d = Scalar(params.m_d);
+    const Scalar tmp0 = cos(heading);
+    const Scalar tmp1 = cos(attitude);
+    const Scalar tmp2 = Scalar(0.5)*tmp1;
+    const Scalar tmp3 = tmp0*tmp2;
+    const Scalar tmp5 = sin(attitude);
+    const Scalar tmp6 = Scalar(0.5)*tmp5;
+    const Scalar tmp8 = sin(heading);
+    const Scalar tmp9 = tmp2*tmp8;
+    const Scalar tmp10 = -tmp9;
+    const Scalar tmp11 = tmp10 + z;
+    const Scalar tmp12 = tmp0*tmp6;
+    const Scalar tmp13 = tmp9*heading_dot + tmp12*attitude_dot;
+    const Scalar tmp14 = x_dot - tmp13;
+    const Scalar tmp15 = y_dot + tmp2*attitude_dot;
+    const Scalar tmp16 = tmp6*tmp8;
+    const Scalar tmp17 = tmp16*attitude_dot - tmp3*heading_dot;
+    const Scalar tmp18 = tmp17 + z_dot;
+    const Scalar tmp19 = sin(bank);
+    const Scalar tmp20 = Scalar(0.4)*tmp19;
+    const Scalar tmp21 = tmp20*tmp8;
+    const Scalar tmp22 = cos(bank);
+    const Scalar tmp23 = Scalar(0.4)*tmp22;
+    const Scalar tmp24 = tmp0*tmp23*tmp5;
+    const Scalar tmp26 = tmp1*tmp23;
+    const Scalar tmp28 = tmp0*tmp20;
+    const Scalar tmp29 = tmp23*tmp8;
+    const Scalar tmp30 = tmp29*tmp5;
+    const Scalar tmp31 = tmp28 + tmp30;
+    const Scalar tmp32 = tmp31 + z;
+    const Scalar tmp33 = tmp26*attitude_dot;
+    const Scalar tmp34 = tmp0*tmp33;
+    const Scalar tmp35 = tmp29 + tmp28*tmp5;
+    const Scalar tmp36 = x_dot - tmp34 + tmp31*heading_dot + tmp35*bank_dot;
+    const Scalar tmp37 = tmp23*tmp5;
+    const Scalar tmp38 = tmp1*tmp20;
+    const Scalar tmp39 = y_dot - tmp37*attitude_dot - tmp38*bank_dot;
+    const Scalar tmp40 = -tmp21*tmp5 + Scalar(0.4)*tmp0*tmp22;
+    const Scalar tmp41 = tmp24 - tmp21;
+    const Scalar tmp42 = tmp33*tmp8 + tmp40*bank_dot + tmp41*heading_dot;
+    const Scalar tmp43 = tmp42 + z_dot;
+    const Scalar tmp44 = Scalar(0.3)*tmp22;
+    const Scalar tmp45 = tmp44*tmp8;
+    const Scalar tmp46 = Scalar(0.3)*tmp19;
+    const Scalar tmp47 = tmp0*tmp46;
+    const Scalar tmp48 = tmp47*tmp5;
+    const Scalar tmp49 = tmp45 + tmp48;
+    const Scalar tmp51 = tmp1*tmp46;
+    const Scalar tmp53 = tmp0*tmp44;
+    const Scalar tmp54 = tmp46*tmp8;
+    const Scalar tmp55 = tmp5*tmp54;
+    const Scalar tmp56 = tmp53 + z - tmp55;
+    const Scalar tmp57 = tmp51*attitude_dot;
+    const Scalar tmp58 = tmp0*tmp57;
+    const Scalar tmp59 = tmp53*tmp5;
+    const Scalar tmp60 = tmp59 - tmp54;
+    const Scalar tmp61 = tmp55 - Scalar(0.3)*tmp0*tmp22;
+    const Scalar tmp62 = -tmp61;
+    const Scalar tmp63 = tmp58 + x_dot + tmp60*bank_dot + tmp62*heading_dot;
+    const Scalar tmp64 = tmp46*tmp5;
+    const Scalar tmp65 = tmp1*tmp44;
+    const Scalar tmp66 = y_dot + tmp64*attitude_dot - tmp65*bank_dot;
+    const Scalar tmp67 = tmp45*tmp5;
+    const Scalar tmp68 = tmp47 + tmp67;
+    const Scalar tmp69 = -tmp68;
+    const Scalar tmp70 = -tmp49;
+    const Scalar tmp71 = tmp69*bank_dot + tmp70*heading_dot - tmp57*tmp8;
+    const Scalar tmp72 = tmp71 + z_dot;
+    const Scalar tmp73 = Scalar(0.2)*tmp1;
+    const Scalar tmp74 = Scalar(0.25)*tmp19;
+    const Scalar tmp75 = tmp5*tmp74;
+    const Scalar tmp76 = -tmp59 + tmp0*tmp75;
+    const Scalar tmp77 = tmp76 + tmp0*tmp73;
+    const Scalar tmp78 = Scalar(0.25)*tmp22;
+    const Scalar tmp79 = tmp8*tmp78;
+    const Scalar tmp80 = tmp54 + tmp79;
+    const Scalar tmp81 = tmp77 + tmp80;
+    const Scalar tmp83 = Scalar(0.2)*tmp5;
+    const Scalar tmp84 = tmp1*tmp74;
+    const Scalar tmp87 = tmp73*tmp8;
+    const Scalar tmp88 = tmp0*tmp78;
+    const Scalar tmp89 = tmp74*tmp8;
+    const Scalar tmp90 = tmp5*tmp89;
+    const Scalar tmp91 = tmp68 + tmp88 - tmp90;
+    const Scalar tmp92 = tmp91 - tmp87;
+    const Scalar tmp93 = tmp92 + z;
+    const Scalar tmp94 = tmp1*tmp53;
+    const Scalar tmp95 = tmp94 + tmp0*tmp83 - Scalar(0.25)*tmp0*tmp1*tmp19;
+    const Scalar tmp96 = -tmp95;
+    const Scalar tmp97 = tmp49 - tmp89 + tmp5*tmp88;
+    const Scalar tmp98 = x_dot + tmp92*heading_dot + tmp96*attitude_dot + tmp97*bank_dot;
+    const Scalar tmp99 = -tmp51 - tmp1*tmp78;
+    const Scalar tmp100 = tmp44*tmp5;
+    const Scalar tmp101 = tmp73 + tmp75 - tmp100;
+    const Scalar tmp102 = y_dot + tmp99*bank_dot + tmp101*attitude_dot;
+    const Scalar tmp103 = tmp1*tmp45;
+    const Scalar tmp104 = tmp103 + tmp8*tmp83 - tmp8*tmp84;
+    const Scalar tmp105 = -tmp61 - tmp0*tmp74 - tmp5*tmp79;
+    const Scalar tmp106 = -tmp81;
+    const Scalar tmp107 = tmp104*attitude_dot + tmp105*bank_dot + tmp106*heading_dot;
+    const Scalar tmp108 = tmp107 + z_dot;
+    const Scalar tmp109 = g*m_a;
+    const Scalar tmp111 = g*m_b;
+    const Scalar tmp113 = g*m_c;
+    const Scalar tmp115 = g*m_d;
+    const Scalar tmp196 = (Scalar(0.5))*m_a*((tmp14*tmp14) + (tmp15*tmp15) + (tmp18*tmp18))
+        + (Scalar(0.5))*m_b*((tmp39*tmp39) + (tmp43*tmp43) + (tmp36*tmp36))
+        + (Scalar(0.5))*m_c*((tmp63*tmp63) + (tmp66*tmp66) + (tmp72*tmp72))
+        + (Scalar(0.5))*m_d*((tmp98*tmp98) + (tmp102*tmp102) + (tmp108*tmp108));
+    const Scalar tmp197 = tmp109*tmp11 + tmp111*tmp32 + tmp113*tmp56 + tmp115*tmp93;
     Scalar result;
-    result = tmp240 + tmp241;
+    result = tmp196 + tmp197;
     return result;
   }
 
@@ -8761,112 +7476,96 @@ struct RigidBodyEulerYzx {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return x (nx)
-  /// Ops: 105
+  /// Ops: 78
   template <typename Scalar>
   static XVector<Scalar> positions(const QVector<Scalar>& q,
                                    const Scalar& /*t*/,
-                                   const Params& params) {
+                                   const Params& /*params*/) {
     using std::cos;
     using std::sin;
-    using std::sqrt;
     const Scalar x = q(0);
     const Scalar y = q(1);
     const Scalar z = q(2);
     const Scalar heading = q(3);
     const Scalar attitude = q(4);
     const Scalar bank = q(5);
-    const Scalar m = Scalar(params.m);
-    const Scalar a = Scalar(params.a);
-    const Scalar b = Scalar(params.b);
-    const Scalar c = Scalar(params.c);
-    const Scalar tmp0 = sin(heading);
-    const Scalar tmp1 = cos(bank);
-    const Scalar tmp2 = tmp0*tmp1;
-    const Scalar tmp3 = sin(attitude);
-    const Scalar tmp4 = sin(bank);
-    const Scalar tmp5 = cos(heading);
-    const Scalar tmp6 = tmp4*tmp5;
-    const Scalar tmp7 = tmp3*tmp6;
-    const Scalar tmp8 = tmp2 + tmp7;
-    const Scalar tmp9 = (Scalar(1)/sqrt(m));
-    const Scalar tmp10 = (a*a);
-    const Scalar tmp11 = (b*b);
-    const Scalar tmp12 = ((Scalar(1)/Scalar(24)))*m;
-    const Scalar tmp13 = tmp12*(tmp10 + tmp11);
-    const Scalar tmp14 = (c*c);
-    const Scalar tmp15 = tmp12*(tmp10 + tmp14);
-    const Scalar tmp16 = tmp12*(tmp11 + tmp14);
-    const Scalar tmp17 = tmp15 + tmp16 - tmp13;
-    const Scalar tmp18 = tmp9*sqrt(tmp17);
-    const Scalar tmp19 = tmp18*tmp8;
-    const Scalar tmp20 = tmp1*tmp5;
-    const Scalar tmp21 = tmp20*tmp3;
-    const Scalar tmp22 = tmp21 - tmp0*tmp4;
-    const Scalar tmp23 = -tmp22;
-    const Scalar tmp24 = tmp13 + tmp16 - tmp15;
-    const Scalar tmp25 = tmp9*sqrt(tmp24);
-    const Scalar tmp26 = tmp23*tmp25;
-    const Scalar tmp27 = cos(attitude);
-    const Scalar tmp28 = tmp13 + tmp15 - tmp16;
-    const Scalar tmp29 = tmp9*sqrt(tmp28);
-    const Scalar tmp30 = tmp27*tmp29;
-    const Scalar tmp31 = tmp30*tmp5;
-    const Scalar tmp32 = tmp31 + x;
-    const Scalar tmp33 = tmp19 + tmp26 + tmp32;
-    const Scalar tmp34 = tmp29*tmp3;
-    const Scalar tmp35 = tmp1*tmp25;
-    const Scalar tmp36 = tmp27*tmp35;
-    const Scalar tmp37 = tmp18*tmp4;
-    const Scalar tmp38 = tmp27*tmp37;
-    const Scalar tmp39 = tmp34 + tmp36 - tmp38;
-    const Scalar tmp40 = tmp39 + y;
-    const Scalar tmp41 = tmp0*tmp30;
-    const Scalar tmp42 = -tmp41;
-    const Scalar tmp43 = tmp0*tmp4;
-    const Scalar tmp44 = tmp3*tmp43;
-    const Scalar tmp45 = tmp44 - tmp1*tmp5;
-    const Scalar tmp46 = -tmp45;
-    const Scalar tmp47 = tmp18*tmp46;
-    const Scalar tmp48 = tmp2*tmp3;
-    const Scalar tmp49 = tmp48 + tmp6;
-    const Scalar tmp50 = tmp25*tmp49;
-    const Scalar tmp51 = tmp47 + tmp50;
-    const Scalar tmp52 = tmp42 + tmp51;
-    const Scalar tmp53 = tmp52 + z;
-    const Scalar tmp86 = -tmp31;
-    const Scalar tmp94 = -tmp19;
-    const Scalar tmp95 = -tmp26;
-    const Scalar tmp96 = tmp32 + tmp94 + tmp95;
-    const Scalar tmp97 = tmp38 - tmp36;
-    const Scalar tmp98 = tmp34 + tmp97;
-    const Scalar tmp99 = tmp98 + y;
-    const Scalar tmp100 = tmp41 + tmp51;
-    const Scalar tmp101 = z - tmp100;
-    const Scalar tmp114 = tmp86 + x;
-    const Scalar tmp115 = tmp114 + tmp26 + tmp94;
-    const Scalar tmp116 = tmp36 + tmp38;
-    const Scalar tmp117 = tmp116 - tmp34;
-    const Scalar tmp118 = tmp117 + y;
-    const Scalar tmp119 = tmp41 + tmp50 - tmp47;
-    const Scalar tmp120 = tmp119 + z;
-    const Scalar tmp133 = tmp114 + tmp19 + tmp95;
-    const Scalar tmp134 = tmp116 + tmp34;
-    const Scalar tmp135 = y - tmp134;
-    const Scalar tmp136 = tmp41 + tmp47 - tmp50;
-    const Scalar tmp137 = tmp136 + z;
+    const Scalar tmp0 = cos(heading);
+    const Scalar tmp1 = cos(attitude);
+    const Scalar tmp2 = Scalar(0.5)*tmp1;
+    const Scalar tmp3 = tmp0*tmp2;
+    const Scalar tmp4 = tmp3 + x;
+    const Scalar tmp5 = sin(attitude);
+    const Scalar tmp6 = Scalar(0.5)*tmp5;
+    const Scalar tmp7 = tmp6 + y;
+    const Scalar tmp8 = sin(heading);
+    const Scalar tmp9 = tmp2*tmp8;
+    const Scalar tmp10 = -tmp9;
+    const Scalar tmp11 = tmp10 + z;
+    const Scalar tmp19 = sin(bank);
+    const Scalar tmp20 = Scalar(0.4)*tmp19;
+    const Scalar tmp21 = tmp20*tmp8;
+    const Scalar tmp22 = cos(bank);
+    const Scalar tmp23 = Scalar(0.4)*tmp22;
+    const Scalar tmp24 = tmp0*tmp23*tmp5;
+    const Scalar tmp25 = tmp21 + x - tmp24;
+    const Scalar tmp26 = tmp1*tmp23;
+    const Scalar tmp27 = tmp26 + y;
+    const Scalar tmp28 = tmp0*tmp20;
+    const Scalar tmp29 = tmp23*tmp8;
+    const Scalar tmp30 = tmp29*tmp5;
+    const Scalar tmp31 = tmp28 + tmp30;
+    const Scalar tmp32 = tmp31 + z;
+    const Scalar tmp44 = Scalar(0.3)*tmp22;
+    const Scalar tmp45 = tmp44*tmp8;
+    const Scalar tmp46 = Scalar(0.3)*tmp19;
+    const Scalar tmp47 = tmp0*tmp46;
+    const Scalar tmp48 = tmp47*tmp5;
+    const Scalar tmp49 = tmp45 + tmp48;
+    const Scalar tmp50 = tmp49 + x;
+    const Scalar tmp51 = tmp1*tmp46;
+    const Scalar tmp52 = y - tmp51;
+    const Scalar tmp53 = tmp0*tmp44;
+    const Scalar tmp54 = tmp46*tmp8;
+    const Scalar tmp55 = tmp5*tmp54;
+    const Scalar tmp56 = tmp53 + z - tmp55;
+    const Scalar tmp59 = tmp53*tmp5;
+    const Scalar tmp65 = tmp1*tmp44;
+    const Scalar tmp67 = tmp45*tmp5;
+    const Scalar tmp68 = tmp47 + tmp67;
+    const Scalar tmp73 = Scalar(0.2)*tmp1;
+    const Scalar tmp74 = Scalar(0.25)*tmp19;
+    const Scalar tmp75 = tmp5*tmp74;
+    const Scalar tmp76 = -tmp59 + tmp0*tmp75;
+    const Scalar tmp77 = tmp76 + tmp0*tmp73;
+    const Scalar tmp78 = Scalar(0.25)*tmp22;
+    const Scalar tmp79 = tmp8*tmp78;
+    const Scalar tmp80 = tmp54 + tmp79;
+    const Scalar tmp81 = tmp77 + tmp80;
+    const Scalar tmp82 = tmp81 + x;
+    const Scalar tmp83 = Scalar(0.2)*tmp5;
+    const Scalar tmp84 = tmp1*tmp74;
+    const Scalar tmp85 = tmp65 + tmp83 - tmp84;
+    const Scalar tmp86 = tmp85 + y;
+    const Scalar tmp87 = tmp73*tmp8;
+    const Scalar tmp88 = tmp0*tmp78;
+    const Scalar tmp89 = tmp74*tmp8;
+    const Scalar tmp90 = tmp5*tmp89;
+    const Scalar tmp91 = tmp68 + tmp88 - tmp90;
+    const Scalar tmp92 = tmp91 - tmp87;
+    const Scalar tmp93 = tmp92 + z;
     XVector<Scalar> result;
-    result(0) = tmp33;
-    result(1) = tmp40;
-    result(2) = tmp53;
-    result(3) = tmp96;
-    result(4) = tmp99;
-    result(5) = tmp101;
-    result(6) = tmp115;
-    result(7) = tmp118;
-    result(8) = tmp120;
-    result(9) = tmp133;
-    result(10) = tmp135;
-    result(11) = tmp137;
+    result(0) = tmp4;
+    result(1) = tmp7;
+    result(2) = tmp11;
+    result(3) = tmp25;
+    result(4) = tmp27;
+    result(5) = tmp32;
+    result(6) = tmp50;
+    result(7) = tmp52;
+    result(8) = tmp56;
+    result(9) = tmp82;
+    result(10) = tmp86;
+    result(11) = tmp93;
     return result;
   }
 
@@ -8876,15 +7575,14 @@ struct RigidBodyEulerYzx {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return xdot (nx)
-  /// Ops: 218
+  /// Ops: 180
   template <typename Scalar>
   static XVector<Scalar> velocities(const QVector<Scalar>& q,
                                     const QVector<Scalar>& v,
                                     const Scalar& /*t*/,
-                                    const Params& params) {
+                                    const Params& /*params*/) {
     using std::cos;
     using std::sin;
-    using std::sqrt;
     const Scalar heading = q(3);
     const Scalar attitude = q(4);
     const Scalar bank = q(5);
@@ -8894,146 +7592,114 @@ struct RigidBodyEulerYzx {
     const Scalar heading_dot = v(3);
     const Scalar attitude_dot = v(4);
     const Scalar bank_dot = v(5);
-    const Scalar m = Scalar(params.m);
-    const Scalar a = Scalar(params.a);
-    const Scalar b = Scalar(params.b);
-    const Scalar c = Scalar(params.c);
-    const Scalar tmp0 = sin(heading);
-    const Scalar tmp1 = cos(bank);
-    const Scalar tmp2 = tmp0*tmp1;
-    const Scalar tmp3 = sin(attitude);
-    const Scalar tmp4 = sin(bank);
-    const Scalar tmp5 = cos(heading);
-    const Scalar tmp6 = tmp4*tmp5;
-    const Scalar tmp7 = tmp3*tmp6;
-    const Scalar tmp8 = tmp2 + tmp7;
-    const Scalar tmp9 = (Scalar(1)/sqrt(m));
-    const Scalar tmp10 = (a*a);
-    const Scalar tmp11 = (b*b);
-    const Scalar tmp12 = ((Scalar(1)/Scalar(24)))*m;
-    const Scalar tmp13 = tmp12*(tmp10 + tmp11);
-    const Scalar tmp14 = (c*c);
-    const Scalar tmp15 = tmp12*(tmp10 + tmp14);
-    const Scalar tmp16 = tmp12*(tmp11 + tmp14);
-    const Scalar tmp17 = tmp15 + tmp16 - tmp13;
-    const Scalar tmp18 = tmp9*sqrt(tmp17);
-    const Scalar tmp20 = tmp1*tmp5;
-    const Scalar tmp21 = tmp20*tmp3;
-    const Scalar tmp22 = tmp21 - tmp0*tmp4;
-    const Scalar tmp24 = tmp13 + tmp16 - tmp15;
-    const Scalar tmp25 = tmp9*sqrt(tmp24);
-    const Scalar tmp27 = cos(attitude);
-    const Scalar tmp28 = tmp13 + tmp15 - tmp16;
-    const Scalar tmp29 = tmp9*sqrt(tmp28);
-    const Scalar tmp30 = tmp27*tmp29;
-    const Scalar tmp31 = tmp30*tmp5;
-    const Scalar tmp34 = tmp29*tmp3;
-    const Scalar tmp35 = tmp1*tmp25;
-    const Scalar tmp37 = tmp18*tmp4;
-    const Scalar tmp41 = tmp0*tmp30;
-    const Scalar tmp42 = -tmp41;
-    const Scalar tmp43 = tmp0*tmp4;
-    const Scalar tmp44 = tmp3*tmp43;
-    const Scalar tmp45 = tmp44 - tmp1*tmp5;
-    const Scalar tmp46 = -tmp45;
-    const Scalar tmp47 = tmp18*tmp46;
-    const Scalar tmp48 = tmp2*tmp3;
-    const Scalar tmp49 = tmp48 + tmp6;
-    const Scalar tmp50 = tmp25*tmp49;
-    const Scalar tmp51 = tmp47 + tmp50;
-    const Scalar tmp52 = tmp42 + tmp51;
-    const Scalar tmp54 = tmp25*tmp8;
-    const Scalar tmp55 = tmp18*tmp22;
-    const Scalar tmp56 = tmp54 + tmp55;
-    const Scalar tmp57 = tmp18*tmp27;
-    const Scalar tmp58 = tmp57*tmp6;
-    const Scalar tmp59 = tmp34*tmp5;
-    const Scalar tmp60 = tmp25*tmp27;
-    const Scalar tmp61 = tmp20*tmp60;
-    const Scalar tmp62 = tmp59 + tmp61;
-    const Scalar tmp63 = tmp62 - tmp58;
-    const Scalar tmp64 = -tmp63;
-    const Scalar tmp65 = x_dot + tmp52*heading_dot + tmp56*bank_dot + tmp64*attitude_dot;
-    const Scalar tmp66 = tmp1*tmp18;
-    const Scalar tmp67 = tmp27*tmp66;
-    const Scalar tmp68 = tmp25*tmp4;
-    const Scalar tmp69 = tmp27*tmp68;
-    const Scalar tmp70 = tmp67 + tmp69;
-    const Scalar tmp71 = -tmp70;
-    const Scalar tmp72 = tmp3*tmp35;
-    const Scalar tmp73 = tmp3*tmp37;
-    const Scalar tmp74 = tmp30 + tmp73;
-    const Scalar tmp75 = tmp74 - tmp72;
-    const Scalar tmp76 = y_dot + tmp71*bank_dot + tmp75*attitude_dot;
-    const Scalar tmp77 = tmp25*tmp46;
-    const Scalar tmp78 = -tmp49;
-    const Scalar tmp79 = tmp18*tmp78;
-    const Scalar tmp80 = tmp77 + tmp79;
-    const Scalar tmp81 = tmp43*tmp57;
-    const Scalar tmp82 = tmp0*tmp34;
-    const Scalar tmp83 = tmp2*tmp60;
-    const Scalar tmp84 = tmp82 + tmp83;
-    const Scalar tmp85 = tmp84 - tmp81;
-    const Scalar tmp86 = -tmp31;
-    const Scalar tmp87 = tmp22*tmp25;
-    const Scalar tmp88 = -tmp8;
-    const Scalar tmp89 = tmp18*tmp88;
-    const Scalar tmp90 = tmp87 + tmp89;
-    const Scalar tmp91 = tmp86 + tmp90;
-    const Scalar tmp92 = tmp80*bank_dot + tmp85*attitude_dot + tmp91*heading_dot;
-    const Scalar tmp93 = tmp92 + z_dot;
-    const Scalar tmp100 = tmp41 + tmp51;
-    const Scalar tmp102 = -tmp56;
-    const Scalar tmp103 = tmp58 + tmp59 - tmp61;
-    const Scalar tmp104 = -tmp103;
-    const Scalar tmp105 = -tmp100;
-    const Scalar tmp106 = x_dot + tmp102*bank_dot + tmp104*attitude_dot + tmp105*heading_dot;
-    const Scalar tmp107 = tmp30 + tmp72 - tmp73;
-    const Scalar tmp108 = y_dot + tmp70*bank_dot + tmp107*attitude_dot;
-    const Scalar tmp109 = -tmp80;
-    const Scalar tmp110 = tmp81 + tmp82 - tmp83;
-    const Scalar tmp111 = -tmp31 - tmp90;
-    const Scalar tmp112 = tmp111*heading_dot + tmp109*bank_dot + tmp110*attitude_dot;
-    const Scalar tmp113 = tmp112 + z_dot;
-    const Scalar tmp119 = tmp41 + tmp50 - tmp47;
-    const Scalar tmp121 = tmp54 - tmp55;
-    const Scalar tmp122 = tmp58 + tmp61 - tmp59;
-    const Scalar tmp123 = -tmp122;
-    const Scalar tmp124 = x_dot + tmp119*heading_dot + tmp121*bank_dot + tmp123*attitude_dot;
-    const Scalar tmp125 = tmp67 - tmp69;
-    const Scalar tmp126 = -tmp72 - tmp74;
-    const Scalar tmp127 = y_dot + tmp125*bank_dot + tmp126*attitude_dot;
-    const Scalar tmp128 = tmp77 - tmp79;
-    const Scalar tmp129 = tmp81 + tmp83 - tmp82;
-    const Scalar tmp130 = tmp31 + tmp87 - tmp89;
-    const Scalar tmp131 = tmp128*bank_dot + tmp129*attitude_dot + tmp130*heading_dot;
-    const Scalar tmp132 = tmp131 + z_dot;
-    const Scalar tmp136 = tmp41 + tmp47 - tmp50;
-    const Scalar tmp138 = -tmp121;
-    const Scalar tmp139 = tmp58 + tmp62;
-    const Scalar tmp140 = x_dot + tmp136*heading_dot + tmp138*bank_dot + tmp139*attitude_dot;
-    const Scalar tmp141 = -tmp125;
-    const Scalar tmp142 = tmp72 + tmp73 - tmp30;
-    const Scalar tmp143 = y_dot + tmp141*bank_dot + tmp142*attitude_dot;
-    const Scalar tmp144 = -tmp128;
-    const Scalar tmp145 = -tmp81 - tmp84;
-    const Scalar tmp146 = tmp89 - tmp87;
-    const Scalar tmp147 = tmp146 + tmp31;
-    const Scalar tmp148 = tmp144*bank_dot + tmp145*attitude_dot + tmp147*heading_dot;
-    const Scalar tmp149 = tmp148 + z_dot;
+    const Scalar tmp0 = cos(heading);
+    const Scalar tmp1 = cos(attitude);
+    const Scalar tmp2 = Scalar(0.5)*tmp1;
+    const Scalar tmp3 = tmp0*tmp2;
+    const Scalar tmp5 = sin(attitude);
+    const Scalar tmp6 = Scalar(0.5)*tmp5;
+    const Scalar tmp8 = sin(heading);
+    const Scalar tmp9 = tmp2*tmp8;
+    const Scalar tmp12 = tmp0*tmp6;
+    const Scalar tmp13 = tmp9*heading_dot + tmp12*attitude_dot;
+    const Scalar tmp14 = x_dot - tmp13;
+    const Scalar tmp15 = y_dot + tmp2*attitude_dot;
+    const Scalar tmp16 = tmp6*tmp8;
+    const Scalar tmp17 = tmp16*attitude_dot - tmp3*heading_dot;
+    const Scalar tmp18 = tmp17 + z_dot;
+    const Scalar tmp19 = sin(bank);
+    const Scalar tmp20 = Scalar(0.4)*tmp19;
+    const Scalar tmp21 = tmp20*tmp8;
+    const Scalar tmp22 = cos(bank);
+    const Scalar tmp23 = Scalar(0.4)*tmp22;
+    const Scalar tmp24 = tmp0*tmp23*tmp5;
+    const Scalar tmp26 = tmp1*tmp23;
+    const Scalar tmp28 = tmp0*tmp20;
+    const Scalar tmp29 = tmp23*tmp8;
+    const Scalar tmp30 = tmp29*tmp5;
+    const Scalar tmp31 = tmp28 + tmp30;
+    const Scalar tmp33 = tmp26*attitude_dot;
+    const Scalar tmp34 = tmp0*tmp33;
+    const Scalar tmp35 = tmp29 + tmp28*tmp5;
+    const Scalar tmp36 = x_dot - tmp34 + tmp31*heading_dot + tmp35*bank_dot;
+    const Scalar tmp37 = tmp23*tmp5;
+    const Scalar tmp38 = tmp1*tmp20;
+    const Scalar tmp39 = y_dot - tmp37*attitude_dot - tmp38*bank_dot;
+    const Scalar tmp40 = -tmp21*tmp5 + Scalar(0.4)*tmp0*tmp22;
+    const Scalar tmp41 = tmp24 - tmp21;
+    const Scalar tmp42 = tmp33*tmp8 + tmp40*bank_dot + tmp41*heading_dot;
+    const Scalar tmp43 = tmp42 + z_dot;
+    const Scalar tmp44 = Scalar(0.3)*tmp22;
+    const Scalar tmp45 = tmp44*tmp8;
+    const Scalar tmp46 = Scalar(0.3)*tmp19;
+    const Scalar tmp47 = tmp0*tmp46;
+    const Scalar tmp48 = tmp47*tmp5;
+    const Scalar tmp49 = tmp45 + tmp48;
+    const Scalar tmp51 = tmp1*tmp46;
+    const Scalar tmp53 = tmp0*tmp44;
+    const Scalar tmp54 = tmp46*tmp8;
+    const Scalar tmp55 = tmp5*tmp54;
+    const Scalar tmp57 = tmp51*attitude_dot;
+    const Scalar tmp58 = tmp0*tmp57;
+    const Scalar tmp59 = tmp53*tmp5;
+    const Scalar tmp60 = tmp59 - tmp54;
+    const Scalar tmp61 = tmp55 - Scalar(0.3)*tmp0*tmp22;
+    const Scalar tmp62 = -tmp61;
+    const Scalar tmp63 = tmp58 + x_dot + tmp60*bank_dot + tmp62*heading_dot;
+    const Scalar tmp64 = tmp46*tmp5;
+    const Scalar tmp65 = tmp1*tmp44;
+    const Scalar tmp66 = y_dot + tmp64*attitude_dot - tmp65*bank_dot;
+    const Scalar tmp67 = tmp45*tmp5;
+    const Scalar tmp68 = tmp47 + tmp67;
+    const Scalar tmp69 = -tmp68;
+    const Scalar tmp70 = -tmp49;
+    const Scalar tmp71 = tmp69*bank_dot + tmp70*heading_dot - tmp57*tmp8;
+    const Scalar tmp72 = tmp71 + z_dot;
+    const Scalar tmp73 = Scalar(0.2)*tmp1;
+    const Scalar tmp74 = Scalar(0.25)*tmp19;
+    const Scalar tmp75 = tmp5*tmp74;
+    const Scalar tmp76 = -tmp59 + tmp0*tmp75;
+    const Scalar tmp77 = tmp76 + tmp0*tmp73;
+    const Scalar tmp78 = Scalar(0.25)*tmp22;
+    const Scalar tmp79 = tmp8*tmp78;
+    const Scalar tmp80 = tmp54 + tmp79;
+    const Scalar tmp81 = tmp77 + tmp80;
+    const Scalar tmp83 = Scalar(0.2)*tmp5;
+    const Scalar tmp84 = tmp1*tmp74;
+    const Scalar tmp87 = tmp73*tmp8;
+    const Scalar tmp88 = tmp0*tmp78;
+    const Scalar tmp89 = tmp74*tmp8;
+    const Scalar tmp90 = tmp5*tmp89;
+    const Scalar tmp91 = tmp68 + tmp88 - tmp90;
+    const Scalar tmp92 = tmp91 - tmp87;
+    const Scalar tmp94 = tmp1*tmp53;
+    const Scalar tmp95 = tmp94 + tmp0*tmp83 - Scalar(0.25)*tmp0*tmp1*tmp19;
+    const Scalar tmp96 = -tmp95;
+    const Scalar tmp97 = tmp49 - tmp89 + tmp5*tmp88;
+    const Scalar tmp98 = x_dot + tmp92*heading_dot + tmp96*attitude_dot + tmp97*bank_dot;
+    const Scalar tmp99 = -tmp51 - tmp1*tmp78;
+    const Scalar tmp100 = tmp44*tmp5;
+    const Scalar tmp101 = tmp73 + tmp75 - tmp100;
+    const Scalar tmp102 = y_dot + tmp99*bank_dot + tmp101*attitude_dot;
+    const Scalar tmp103 = tmp1*tmp45;
+    const Scalar tmp104 = tmp103 + tmp8*tmp83 - tmp8*tmp84;
+    const Scalar tmp105 = -tmp61 - tmp0*tmp74 - tmp5*tmp79;
+    const Scalar tmp106 = -tmp81;
+    const Scalar tmp107 = tmp104*attitude_dot + tmp105*bank_dot + tmp106*heading_dot;
+    const Scalar tmp108 = tmp107 + z_dot;
     XVector<Scalar> result;
-    result(0) = tmp65;
-    result(1) = tmp76;
-    result(2) = tmp93;
-    result(3) = tmp106;
-    result(4) = tmp108;
-    result(5) = tmp113;
-    result(6) = tmp124;
-    result(7) = tmp127;
-    result(8) = tmp132;
-    result(9) = tmp140;
-    result(10) = tmp143;
-    result(11) = tmp149;
+    result(0) = tmp14;
+    result(1) = tmp15;
+    result(2) = tmp18;
+    result(3) = tmp36;
+    result(4) = tmp39;
+    result(5) = tmp43;
+    result(6) = tmp63;
+    result(7) = tmp66;
+    result(8) = tmp72;
+    result(9) = tmp98;
+    result(10) = tmp102;
+    result(11) = tmp108;
     return result;
   }
 
@@ -9042,201 +7708,169 @@ struct RigidBodyEulerYzx {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return J (nx x nq)
-  /// Ops: 154
+  /// Ops: 125
   template <typename Scalar>
   static XJacobian<Scalar> jacobian(const QVector<Scalar>& q,
                                     const Scalar& /*t*/,
-                                    const Params& params) {
+                                    const Params& /*params*/) {
     using std::cos;
     using std::sin;
-    using std::sqrt;
     const Scalar heading = q(3);
     const Scalar attitude = q(4);
     const Scalar bank = q(5);
-    const Scalar m = Scalar(params.m);
-    const Scalar a = Scalar(params.a);
-    const Scalar b = Scalar(params.b);
-    const Scalar c = Scalar(params.c);
-    const Scalar tmp0 = sin(heading);
-    const Scalar tmp1 = cos(bank);
-    const Scalar tmp2 = tmp0*tmp1;
-    const Scalar tmp3 = sin(attitude);
-    const Scalar tmp4 = sin(bank);
-    const Scalar tmp5 = cos(heading);
-    const Scalar tmp6 = tmp4*tmp5;
-    const Scalar tmp7 = tmp3*tmp6;
-    const Scalar tmp8 = tmp2 + tmp7;
-    const Scalar tmp9 = (Scalar(1)/sqrt(m));
-    const Scalar tmp10 = (a*a);
-    const Scalar tmp11 = (b*b);
-    const Scalar tmp12 = ((Scalar(1)/Scalar(24)))*m;
-    const Scalar tmp13 = tmp12*(tmp10 + tmp11);
-    const Scalar tmp14 = (c*c);
-    const Scalar tmp15 = tmp12*(tmp10 + tmp14);
-    const Scalar tmp16 = tmp12*(tmp11 + tmp14);
-    const Scalar tmp17 = tmp15 + tmp16 - tmp13;
-    const Scalar tmp18 = tmp9*sqrt(tmp17);
-    const Scalar tmp20 = tmp1*tmp5;
-    const Scalar tmp21 = tmp20*tmp3;
-    const Scalar tmp22 = tmp21 - tmp0*tmp4;
-    const Scalar tmp24 = tmp13 + tmp16 - tmp15;
-    const Scalar tmp25 = tmp9*sqrt(tmp24);
-    const Scalar tmp27 = cos(attitude);
-    const Scalar tmp28 = tmp13 + tmp15 - tmp16;
-    const Scalar tmp29 = tmp9*sqrt(tmp28);
-    const Scalar tmp30 = tmp27*tmp29;
-    const Scalar tmp31 = tmp30*tmp5;
-    const Scalar tmp34 = tmp29*tmp3;
-    const Scalar tmp35 = tmp1*tmp25;
-    const Scalar tmp37 = tmp18*tmp4;
-    const Scalar tmp41 = tmp0*tmp30;
-    const Scalar tmp42 = -tmp41;
-    const Scalar tmp43 = tmp0*tmp4;
-    const Scalar tmp44 = tmp3*tmp43;
-    const Scalar tmp45 = tmp44 - tmp1*tmp5;
-    const Scalar tmp46 = -tmp45;
-    const Scalar tmp47 = tmp18*tmp46;
-    const Scalar tmp48 = tmp2*tmp3;
-    const Scalar tmp49 = tmp48 + tmp6;
-    const Scalar tmp50 = tmp25*tmp49;
-    const Scalar tmp51 = tmp47 + tmp50;
-    const Scalar tmp52 = tmp42 + tmp51;
-    const Scalar tmp54 = tmp25*tmp8;
-    const Scalar tmp55 = tmp18*tmp22;
-    const Scalar tmp56 = tmp54 + tmp55;
-    const Scalar tmp57 = tmp18*tmp27;
-    const Scalar tmp58 = tmp57*tmp6;
-    const Scalar tmp59 = tmp34*tmp5;
-    const Scalar tmp60 = tmp25*tmp27;
-    const Scalar tmp61 = tmp20*tmp60;
-    const Scalar tmp62 = tmp59 + tmp61;
-    const Scalar tmp63 = tmp62 - tmp58;
-    const Scalar tmp64 = -tmp63;
-    const Scalar tmp66 = tmp1*tmp18;
-    const Scalar tmp67 = tmp27*tmp66;
-    const Scalar tmp68 = tmp25*tmp4;
-    const Scalar tmp69 = tmp27*tmp68;
-    const Scalar tmp70 = tmp67 + tmp69;
-    const Scalar tmp71 = -tmp70;
-    const Scalar tmp72 = tmp3*tmp35;
-    const Scalar tmp73 = tmp3*tmp37;
-    const Scalar tmp74 = tmp30 + tmp73;
-    const Scalar tmp75 = tmp74 - tmp72;
-    const Scalar tmp77 = tmp25*tmp46;
-    const Scalar tmp78 = -tmp49;
-    const Scalar tmp79 = tmp18*tmp78;
-    const Scalar tmp80 = tmp77 + tmp79;
-    const Scalar tmp81 = tmp43*tmp57;
-    const Scalar tmp82 = tmp0*tmp34;
-    const Scalar tmp83 = tmp2*tmp60;
-    const Scalar tmp84 = tmp82 + tmp83;
-    const Scalar tmp85 = tmp84 - tmp81;
-    const Scalar tmp86 = -tmp31;
-    const Scalar tmp87 = tmp22*tmp25;
-    const Scalar tmp88 = -tmp8;
-    const Scalar tmp89 = tmp18*tmp88;
-    const Scalar tmp90 = tmp87 + tmp89;
-    const Scalar tmp91 = tmp86 + tmp90;
-    const Scalar tmp100 = tmp41 + tmp51;
-    const Scalar tmp102 = -tmp56;
-    const Scalar tmp103 = tmp58 + tmp59 - tmp61;
-    const Scalar tmp104 = -tmp103;
-    const Scalar tmp105 = -tmp100;
-    const Scalar tmp107 = tmp30 + tmp72 - tmp73;
-    const Scalar tmp109 = -tmp80;
-    const Scalar tmp110 = tmp81 + tmp82 - tmp83;
-    const Scalar tmp111 = -tmp31 - tmp90;
-    const Scalar tmp119 = tmp41 + tmp50 - tmp47;
-    const Scalar tmp121 = tmp54 - tmp55;
-    const Scalar tmp122 = tmp58 + tmp61 - tmp59;
-    const Scalar tmp123 = -tmp122;
-    const Scalar tmp125 = tmp67 - tmp69;
-    const Scalar tmp126 = -tmp72 - tmp74;
-    const Scalar tmp128 = tmp77 - tmp79;
-    const Scalar tmp129 = tmp81 + tmp83 - tmp82;
-    const Scalar tmp130 = tmp31 + tmp87 - tmp89;
-    const Scalar tmp136 = tmp41 + tmp47 - tmp50;
-    const Scalar tmp138 = -tmp121;
-    const Scalar tmp139 = tmp58 + tmp62;
-    const Scalar tmp141 = -tmp125;
-    const Scalar tmp142 = tmp72 + tmp73 - tmp30;
-    const Scalar tmp144 = -tmp128;
-    const Scalar tmp145 = -tmp81 - tmp84;
-    const Scalar tmp146 = tmp89 - tmp87;
-    const Scalar tmp147 = tmp146 + tmp31;
+    const Scalar tmp0 = cos(heading);
+    const Scalar tmp1 = cos(attitude);
+    const Scalar tmp2 = Scalar(0.5)*tmp1;
+    const Scalar tmp3 = tmp0*tmp2;
+    const Scalar tmp5 = sin(attitude);
+    const Scalar tmp6 = Scalar(0.5)*tmp5;
+    const Scalar tmp8 = sin(heading);
+    const Scalar tmp9 = tmp2*tmp8;
+    const Scalar tmp10 = -tmp9;
+    const Scalar tmp12 = tmp0*tmp6;
+    const Scalar tmp16 = tmp6*tmp8;
+    const Scalar tmp19 = sin(bank);
+    const Scalar tmp20 = Scalar(0.4)*tmp19;
+    const Scalar tmp21 = tmp20*tmp8;
+    const Scalar tmp22 = cos(bank);
+    const Scalar tmp23 = Scalar(0.4)*tmp22;
+    const Scalar tmp24 = tmp0*tmp23*tmp5;
+    const Scalar tmp26 = tmp1*tmp23;
+    const Scalar tmp28 = tmp0*tmp20;
+    const Scalar tmp29 = tmp23*tmp8;
+    const Scalar tmp30 = tmp29*tmp5;
+    const Scalar tmp31 = tmp28 + tmp30;
+    const Scalar tmp35 = tmp29 + tmp28*tmp5;
+    const Scalar tmp37 = tmp23*tmp5;
+    const Scalar tmp38 = tmp1*tmp20;
+    const Scalar tmp40 = -tmp21*tmp5 + Scalar(0.4)*tmp0*tmp22;
+    const Scalar tmp41 = tmp24 - tmp21;
+    const Scalar tmp44 = Scalar(0.3)*tmp22;
+    const Scalar tmp45 = tmp44*tmp8;
+    const Scalar tmp46 = Scalar(0.3)*tmp19;
+    const Scalar tmp47 = tmp0*tmp46;
+    const Scalar tmp48 = tmp47*tmp5;
+    const Scalar tmp49 = tmp45 + tmp48;
+    const Scalar tmp51 = tmp1*tmp46;
+    const Scalar tmp53 = tmp0*tmp44;
+    const Scalar tmp54 = tmp46*tmp8;
+    const Scalar tmp55 = tmp5*tmp54;
+    const Scalar tmp59 = tmp53*tmp5;
+    const Scalar tmp60 = tmp59 - tmp54;
+    const Scalar tmp61 = tmp55 - Scalar(0.3)*tmp0*tmp22;
+    const Scalar tmp62 = -tmp61;
+    const Scalar tmp64 = tmp46*tmp5;
+    const Scalar tmp65 = tmp1*tmp44;
+    const Scalar tmp67 = tmp45*tmp5;
+    const Scalar tmp68 = tmp47 + tmp67;
+    const Scalar tmp69 = -tmp68;
+    const Scalar tmp70 = -tmp49;
+    const Scalar tmp73 = Scalar(0.2)*tmp1;
+    const Scalar tmp74 = Scalar(0.25)*tmp19;
+    const Scalar tmp75 = tmp5*tmp74;
+    const Scalar tmp76 = -tmp59 + tmp0*tmp75;
+    const Scalar tmp77 = tmp76 + tmp0*tmp73;
+    const Scalar tmp78 = Scalar(0.25)*tmp22;
+    const Scalar tmp79 = tmp8*tmp78;
+    const Scalar tmp80 = tmp54 + tmp79;
+    const Scalar tmp81 = tmp77 + tmp80;
+    const Scalar tmp83 = Scalar(0.2)*tmp5;
+    const Scalar tmp84 = tmp1*tmp74;
+    const Scalar tmp87 = tmp73*tmp8;
+    const Scalar tmp88 = tmp0*tmp78;
+    const Scalar tmp89 = tmp74*tmp8;
+    const Scalar tmp90 = tmp5*tmp89;
+    const Scalar tmp91 = tmp68 + tmp88 - tmp90;
+    const Scalar tmp92 = tmp91 - tmp87;
+    const Scalar tmp94 = tmp1*tmp53;
+    const Scalar tmp95 = tmp94 + tmp0*tmp83 - Scalar(0.25)*tmp0*tmp1*tmp19;
+    const Scalar tmp96 = -tmp95;
+    const Scalar tmp97 = tmp49 - tmp89 + tmp5*tmp88;
+    const Scalar tmp99 = -tmp51 - tmp1*tmp78;
+    const Scalar tmp100 = tmp44*tmp5;
+    const Scalar tmp101 = tmp73 + tmp75 - tmp100;
+    const Scalar tmp103 = tmp1*tmp45;
+    const Scalar tmp104 = tmp103 + tmp8*tmp83 - tmp8*tmp84;
+    const Scalar tmp105 = -tmp61 - tmp0*tmp74 - tmp5*tmp79;
+    const Scalar tmp106 = -tmp81;
+    const Scalar tmp121 = tmp26*tmp8;
+    const Scalar tmp128 = tmp51*tmp8;
+    const Scalar tmp131 = tmp0*tmp51;
+    const Scalar tmp137 = -tmp65;
+    const Scalar tmp150 = tmp0*tmp26;
     XJacobian<Scalar> result;
     result(0, 0) = Scalar(1);
     result(0, 1) = Scalar(0);
     result(0, 2) = Scalar(0);
-    result(0, 3) = tmp52;
-    result(0, 4) = tmp64;
-    result(0, 5) = tmp56;
+    result(0, 3) = tmp10;
+    result(0, 4) = -tmp12;
+    result(0, 5) = Scalar(0);
     result(1, 0) = Scalar(0);
     result(1, 1) = Scalar(1);
     result(1, 2) = Scalar(0);
     result(1, 3) = Scalar(0);
-    result(1, 4) = tmp75;
-    result(1, 5) = tmp71;
+    result(1, 4) = tmp2;
+    result(1, 5) = Scalar(0);
     result(2, 0) = Scalar(0);
     result(2, 1) = Scalar(0);
     result(2, 2) = Scalar(1);
-    result(2, 3) = tmp91;
-    result(2, 4) = tmp85;
-    result(2, 5) = tmp80;
+    result(2, 3) = -tmp3;
+    result(2, 4) = tmp16;
+    result(2, 5) = Scalar(0);
     result(3, 0) = Scalar(1);
     result(3, 1) = Scalar(0);
     result(3, 2) = Scalar(0);
-    result(3, 3) = tmp105;
-    result(3, 4) = tmp104;
-    result(3, 5) = tmp102;
+    result(3, 3) = tmp31;
+    result(3, 4) = -tmp150;
+    result(3, 5) = tmp35;
     result(4, 0) = Scalar(0);
     result(4, 1) = Scalar(1);
     result(4, 2) = Scalar(0);
     result(4, 3) = Scalar(0);
-    result(4, 4) = tmp107;
-    result(4, 5) = tmp70;
+    result(4, 4) = -tmp37;
+    result(4, 5) = -tmp38;
     result(5, 0) = Scalar(0);
     result(5, 1) = Scalar(0);
     result(5, 2) = Scalar(1);
-    result(5, 3) = tmp111;
-    result(5, 4) = tmp110;
-    result(5, 5) = tmp109;
+    result(5, 3) = tmp41;
+    result(5, 4) = tmp121;
+    result(5, 5) = tmp40;
     result(6, 0) = Scalar(1);
     result(6, 1) = Scalar(0);
     result(6, 2) = Scalar(0);
-    result(6, 3) = tmp119;
-    result(6, 4) = tmp123;
-    result(6, 5) = tmp121;
+    result(6, 3) = tmp62;
+    result(6, 4) = tmp131;
+    result(6, 5) = tmp60;
     result(7, 0) = Scalar(0);
     result(7, 1) = Scalar(1);
     result(7, 2) = Scalar(0);
     result(7, 3) = Scalar(0);
-    result(7, 4) = tmp126;
-    result(7, 5) = tmp125;
+    result(7, 4) = tmp64;
+    result(7, 5) = tmp137;
     result(8, 0) = Scalar(0);
     result(8, 1) = Scalar(0);
     result(8, 2) = Scalar(1);
-    result(8, 3) = tmp130;
-    result(8, 4) = tmp129;
-    result(8, 5) = tmp128;
+    result(8, 3) = tmp70;
+    result(8, 4) = -tmp128;
+    result(8, 5) = tmp69;
     result(9, 0) = Scalar(1);
     result(9, 1) = Scalar(0);
     result(9, 2) = Scalar(0);
-    result(9, 3) = tmp136;
-    result(9, 4) = tmp139;
-    result(9, 5) = tmp138;
+    result(9, 3) = tmp92;
+    result(9, 4) = tmp96;
+    result(9, 5) = tmp97;
     result(10, 0) = Scalar(0);
     result(10, 1) = Scalar(1);
     result(10, 2) = Scalar(0);
     result(10, 3) = Scalar(0);
-    result(10, 4) = tmp142;
-    result(10, 5) = tmp141;
+    result(10, 4) = tmp101;
+    result(10, 5) = tmp99;
     result(11, 0) = Scalar(0);
     result(11, 1) = Scalar(0);
     result(11, 2) = Scalar(1);
-    result(11, 3) = tmp147;
-    result(11, 4) = tmp145;
-    result(11, 5) = tmp144;
+    result(11, 3) = tmp106;
+    result(11, 4) = tmp104;
+    result(11, 5) = tmp105;
     return result;
   }
 
@@ -9246,202 +7880,156 @@ struct RigidBodyEulerYzx {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return gamma (nx)
-  /// Ops: 402
+  /// Ops: 330
   template <typename Scalar>
   static XVector<Scalar> bias_acceleration(const QVector<Scalar>& q,
                                            const QVector<Scalar>& v,
                                            const Scalar& /*t*/,
-                                           const Params& params) {
+                                           const Params& /*params*/) {
     using std::cos;
     using std::sin;
-    using std::sqrt;
     const Scalar heading = q(3);
     const Scalar attitude = q(4);
     const Scalar bank = q(5);
     const Scalar heading_dot = v(3);
     const Scalar attitude_dot = v(4);
     const Scalar bank_dot = v(5);
-    const Scalar m = Scalar(params.m);
-    const Scalar a = Scalar(params.a);
-    const Scalar b = Scalar(params.b);
-    const Scalar c = Scalar(params.c);
-    const Scalar tmp0 = sin(heading);
-    const Scalar tmp1 = cos(bank);
-    const Scalar tmp2 = tmp0*tmp1;
-    const Scalar tmp3 = sin(attitude);
-    const Scalar tmp4 = sin(bank);
-    const Scalar tmp5 = cos(heading);
-    const Scalar tmp6 = tmp4*tmp5;
-    const Scalar tmp7 = tmp3*tmp6;
-    const Scalar tmp8 = tmp2 + tmp7;
-    const Scalar tmp9 = (Scalar(1)/sqrt(m));
-    const Scalar tmp10 = (a*a);
-    const Scalar tmp11 = (b*b);
-    const Scalar tmp12 = ((Scalar(1)/Scalar(24)))*m;
-    const Scalar tmp13 = tmp12*(tmp10 + tmp11);
-    const Scalar tmp14 = (c*c);
-    const Scalar tmp15 = tmp12*(tmp10 + tmp14);
-    const Scalar tmp16 = tmp12*(tmp11 + tmp14);
-    const Scalar tmp17 = tmp15 + tmp16 - tmp13;
-    const Scalar tmp18 = tmp9*sqrt(tmp17);
-    const Scalar tmp20 = tmp1*tmp5;
-    const Scalar tmp21 = tmp20*tmp3;
-    const Scalar tmp22 = tmp21 - tmp0*tmp4;
-    const Scalar tmp23 = -tmp22;
-    const Scalar tmp24 = tmp13 + tmp16 - tmp15;
-    const Scalar tmp25 = tmp9*sqrt(tmp24);
-    const Scalar tmp27 = cos(attitude);
-    const Scalar tmp28 = tmp13 + tmp15 - tmp16;
-    const Scalar tmp29 = tmp9*sqrt(tmp28);
-    const Scalar tmp30 = tmp27*tmp29;
-    const Scalar tmp31 = tmp30*tmp5;
-    const Scalar tmp34 = tmp29*tmp3;
-    const Scalar tmp35 = tmp1*tmp25;
-    const Scalar tmp36 = tmp27*tmp35;
-    const Scalar tmp37 = tmp18*tmp4;
-    const Scalar tmp38 = tmp27*tmp37;
-    const Scalar tmp39 = tmp34 + tmp36 - tmp38;
-    const Scalar tmp41 = tmp0*tmp30;
-    const Scalar tmp42 = -tmp41;
-    const Scalar tmp43 = tmp0*tmp4;
-    const Scalar tmp44 = tmp3*tmp43;
-    const Scalar tmp45 = tmp44 - tmp1*tmp5;
-    const Scalar tmp46 = -tmp45;
-    const Scalar tmp48 = tmp2*tmp3;
-    const Scalar tmp49 = tmp48 + tmp6;
-    const Scalar tmp57 = tmp18*tmp27;
-    const Scalar tmp58 = tmp57*tmp6;
-    const Scalar tmp59 = tmp34*tmp5;
-    const Scalar tmp60 = tmp25*tmp27;
-    const Scalar tmp61 = tmp20*tmp60;
-    const Scalar tmp62 = tmp59 + tmp61;
-    const Scalar tmp63 = tmp62 - tmp58;
-    const Scalar tmp66 = tmp1*tmp18;
-    const Scalar tmp68 = tmp25*tmp4;
-    const Scalar tmp77 = tmp25*tmp46;
-    const Scalar tmp78 = -tmp49;
-    const Scalar tmp79 = tmp18*tmp78;
-    const Scalar tmp80 = tmp77 + tmp79;
-    const Scalar tmp81 = tmp43*tmp57;
-    const Scalar tmp82 = tmp0*tmp34;
-    const Scalar tmp83 = tmp2*tmp60;
-    const Scalar tmp84 = tmp82 + tmp83;
-    const Scalar tmp85 = tmp84 - tmp81;
-    const Scalar tmp86 = -tmp31;
-    const Scalar tmp87 = tmp22*tmp25;
-    const Scalar tmp88 = -tmp8;
-    const Scalar tmp89 = tmp18*tmp88;
-    const Scalar tmp90 = tmp87 + tmp89;
-    const Scalar tmp91 = tmp86 + tmp90;
-    const Scalar tmp92 = tmp80*bank_dot + tmp85*attitude_dot + tmp91*heading_dot;
-    const Scalar tmp97 = tmp38 - tmp36;
-    const Scalar tmp98 = tmp34 + tmp97;
-    const Scalar tmp103 = tmp58 + tmp59 - tmp61;
-    const Scalar tmp109 = -tmp80;
-    const Scalar tmp110 = tmp81 + tmp82 - tmp83;
-    const Scalar tmp111 = -tmp31 - tmp90;
-    const Scalar tmp112 = tmp111*heading_dot + tmp109*bank_dot + tmp110*attitude_dot;
-    const Scalar tmp116 = tmp36 + tmp38;
-    const Scalar tmp117 = tmp116 - tmp34;
-    const Scalar tmp122 = tmp58 + tmp61 - tmp59;
-    const Scalar tmp128 = tmp77 - tmp79;
-    const Scalar tmp129 = tmp81 + tmp83 - tmp82;
-    const Scalar tmp130 = tmp31 + tmp87 - tmp89;
-    const Scalar tmp131 = tmp128*bank_dot + tmp129*attitude_dot + tmp130*heading_dot;
-    const Scalar tmp134 = tmp116 + tmp34;
-    const Scalar tmp139 = tmp58 + tmp62;
-    const Scalar tmp144 = -tmp128;
-    const Scalar tmp145 = -tmp81 - tmp84;
-    const Scalar tmp146 = tmp89 - tmp87;
-    const Scalar tmp147 = tmp146 + tmp31;
-    const Scalar tmp148 = tmp144*bank_dot + tmp145*attitude_dot + tmp147*heading_dot;
-    const Scalar tmp153 = tmp20*tmp57;
-    const Scalar tmp154 = tmp60*tmp6;
-    const Scalar tmp155 = tmp153 + tmp154;
-    const Scalar tmp156 = tmp21*tmp25;
-    const Scalar tmp157 = tmp18*tmp7;
-    const Scalar tmp158 = tmp157 + tmp31;
-    const Scalar tmp159 = tmp92*heading_dot
-        + attitude_dot*(tmp155*bank_dot + tmp85*heading_dot + attitude_dot*(tmp156 - tmp158))
-        + bank_dot*(tmp155*attitude_dot + tmp80*heading_dot + tmp90*bank_dot);
-    const Scalar tmp160 = tmp3*tmp66;
-    const Scalar tmp161 = tmp3*tmp68;
-    const Scalar tmp162 = tmp160 + tmp161;
-    const Scalar tmp163 = attitude_dot*(tmp162*bank_dot - tmp39*attitude_dot)
-        + bank_dot*(tmp162*attitude_dot + tmp97*bank_dot);
-    const Scalar tmp164 = tmp2*tmp57;
-    const Scalar tmp165 = tmp43*tmp60;
-    const Scalar tmp166 = tmp164 + tmp165;
-    const Scalar tmp167 = -tmp166;
-    const Scalar tmp168 = tmp18*tmp45;
-    const Scalar tmp169 = tmp25*tmp78;
-    const Scalar tmp170 = tmp168 + tmp169;
-    const Scalar tmp171 = tmp18*tmp23;
-    const Scalar tmp172 = tmp25*tmp88;
-    const Scalar tmp173 = tmp171 + tmp172;
-    const Scalar tmp174 = tmp25*tmp48;
-    const Scalar tmp175 = tmp18*tmp44;
-    const Scalar tmp176 = tmp175 + tmp41;
-    const Scalar tmp177 = attitude_dot*(tmp167*bank_dot + tmp63*heading_dot
-            + attitude_dot*(tmp176 - tmp174))
-        + bank_dot*(tmp167*attitude_dot + tmp170*bank_dot + tmp173*heading_dot)
-        + heading_dot*(tmp173*bank_dot + tmp63*attitude_dot + heading_dot*(tmp170 + tmp41));
-    const Scalar tmp178 = -tmp155;
-    const Scalar tmp179 = tmp112*heading_dot
-        + attitude_dot*(tmp178*bank_dot + tmp110*heading_dot
-            + attitude_dot*(tmp157 - tmp156 - tmp31))
-        + bank_dot*(tmp178*attitude_dot + tmp109*heading_dot - tmp90*bank_dot);
-    const Scalar tmp180 = -tmp162;
-    const Scalar tmp181 = attitude_dot*(tmp180*bank_dot - tmp98*attitude_dot)
-        + bank_dot*(tmp180*attitude_dot - tmp97*bank_dot);
-    const Scalar tmp182 = -tmp173;
-    const Scalar tmp183 = attitude_dot*(tmp166*bank_dot + tmp103*heading_dot
-            + attitude_dot*(tmp174 + tmp41 - tmp175))
-        + bank_dot*(tmp166*attitude_dot + tmp182*heading_dot - tmp170*bank_dot)
-        + heading_dot*(tmp182*bank_dot + tmp103*attitude_dot + heading_dot*(-tmp170 - tmp42));
-    const Scalar tmp184 = tmp153 - tmp154;
-    const Scalar tmp185 = -tmp184;
-    const Scalar tmp186 = tmp131*heading_dot
-        + attitude_dot*(tmp129*heading_dot + tmp185*bank_dot + attitude_dot*(tmp156 + tmp158))
-        + bank_dot*(tmp128*heading_dot + tmp185*attitude_dot - tmp146*bank_dot);
-    const Scalar tmp187 = tmp160 - tmp161;
-    const Scalar tmp188 = -tmp187;
-    const Scalar tmp189 = attitude_dot*(tmp188*bank_dot - tmp117*attitude_dot)
-        + bank_dot*(tmp188*attitude_dot - tmp116*bank_dot);
-    const Scalar tmp190 = tmp164 - tmp165;
-    const Scalar tmp191 = tmp168 - tmp169;
-    const Scalar tmp192 = tmp172 - tmp171;
-    const Scalar tmp193 = attitude_dot*(tmp122*heading_dot + tmp190*bank_dot
-            + attitude_dot*(-tmp174 - tmp176))
-        + bank_dot*(tmp190*attitude_dot + tmp192*heading_dot - tmp191*bank_dot)
-        + heading_dot*(tmp122*attitude_dot + tmp192*bank_dot + heading_dot*(-tmp191 - tmp41));
-    const Scalar tmp194 = tmp148*heading_dot
-        + attitude_dot*(tmp145*heading_dot + tmp184*bank_dot
-            + attitude_dot*(-tmp156 - tmp157 - tmp86))
-        + bank_dot*(tmp144*heading_dot + tmp146*bank_dot + tmp184*attitude_dot);
-    const Scalar tmp195 = attitude_dot*(tmp134*attitude_dot + tmp187*bank_dot)
-        + bank_dot*(tmp116*bank_dot + tmp187*attitude_dot);
-    const Scalar tmp196 = -tmp190;
-    const Scalar tmp197 = -tmp192;
-    const Scalar tmp198 = -tmp139;
-    const Scalar tmp199 = attitude_dot*(tmp196*bank_dot + tmp198*heading_dot
-            + attitude_dot*(tmp174 + tmp175 + tmp42))
-        + bank_dot*(tmp191*bank_dot + tmp196*attitude_dot + tmp197*heading_dot)
-        + heading_dot*(tmp197*bank_dot + tmp198*attitude_dot
-            + heading_dot*(tmp168 - tmp169 - tmp41));
+    const Scalar tmp0 = cos(heading);
+    const Scalar tmp1 = cos(attitude);
+    const Scalar tmp2 = Scalar(0.5)*tmp1;
+    const Scalar tmp3 = tmp0*tmp2;
+    const Scalar tmp5 = sin(attitude);
+    const Scalar tmp6 = Scalar(0.5)*tmp5;
+    const Scalar tmp8 = sin(heading);
+    const Scalar tmp9 = tmp2*tmp8;
+    const Scalar tmp12 = tmp0*tmp6;
+    const Scalar tmp13 = tmp9*heading_dot + tmp12*attitude_dot;
+    const Scalar tmp16 = tmp6*tmp8;
+    const Scalar tmp17 = tmp16*attitude_dot - tmp3*heading_dot;
+    const Scalar tmp19 = sin(bank);
+    const Scalar tmp20 = Scalar(0.4)*tmp19;
+    const Scalar tmp21 = tmp20*tmp8;
+    const Scalar tmp22 = cos(bank);
+    const Scalar tmp23 = Scalar(0.4)*tmp22;
+    const Scalar tmp24 = tmp0*tmp23*tmp5;
+    const Scalar tmp26 = tmp1*tmp23;
+    const Scalar tmp28 = tmp0*tmp20;
+    const Scalar tmp29 = tmp23*tmp8;
+    const Scalar tmp30 = tmp29*tmp5;
+    const Scalar tmp31 = tmp28 + tmp30;
+    const Scalar tmp33 = tmp26*attitude_dot;
+    const Scalar tmp34 = tmp0*tmp33;
+    const Scalar tmp35 = tmp29 + tmp28*tmp5;
+    const Scalar tmp40 = -tmp21*tmp5 + Scalar(0.4)*tmp0*tmp22;
+    const Scalar tmp41 = tmp24 - tmp21;
+    const Scalar tmp42 = tmp33*tmp8 + tmp40*bank_dot + tmp41*heading_dot;
+    const Scalar tmp44 = Scalar(0.3)*tmp22;
+    const Scalar tmp45 = tmp44*tmp8;
+    const Scalar tmp46 = Scalar(0.3)*tmp19;
+    const Scalar tmp47 = tmp0*tmp46;
+    const Scalar tmp48 = tmp47*tmp5;
+    const Scalar tmp49 = tmp45 + tmp48;
+    const Scalar tmp51 = tmp1*tmp46;
+    const Scalar tmp53 = tmp0*tmp44;
+    const Scalar tmp54 = tmp46*tmp8;
+    const Scalar tmp55 = tmp5*tmp54;
+    const Scalar tmp57 = tmp51*attitude_dot;
+    const Scalar tmp58 = tmp0*tmp57;
+    const Scalar tmp59 = tmp53*tmp5;
+    const Scalar tmp60 = tmp59 - tmp54;
+    const Scalar tmp61 = tmp55 - Scalar(0.3)*tmp0*tmp22;
+    const Scalar tmp64 = tmp46*tmp5;
+    const Scalar tmp65 = tmp1*tmp44;
+    const Scalar tmp67 = tmp45*tmp5;
+    const Scalar tmp68 = tmp47 + tmp67;
+    const Scalar tmp69 = -tmp68;
+    const Scalar tmp70 = -tmp49;
+    const Scalar tmp71 = tmp69*bank_dot + tmp70*heading_dot - tmp57*tmp8;
+    const Scalar tmp73 = Scalar(0.2)*tmp1;
+    const Scalar tmp74 = Scalar(0.25)*tmp19;
+    const Scalar tmp75 = tmp5*tmp74;
+    const Scalar tmp76 = -tmp59 + tmp0*tmp75;
+    const Scalar tmp77 = tmp76 + tmp0*tmp73;
+    const Scalar tmp78 = Scalar(0.25)*tmp22;
+    const Scalar tmp79 = tmp8*tmp78;
+    const Scalar tmp80 = tmp54 + tmp79;
+    const Scalar tmp81 = tmp77 + tmp80;
+    const Scalar tmp83 = Scalar(0.2)*tmp5;
+    const Scalar tmp84 = tmp1*tmp74;
+    const Scalar tmp85 = tmp65 + tmp83 - tmp84;
+    const Scalar tmp87 = tmp73*tmp8;
+    const Scalar tmp88 = tmp0*tmp78;
+    const Scalar tmp89 = tmp74*tmp8;
+    const Scalar tmp90 = tmp5*tmp89;
+    const Scalar tmp91 = tmp68 + tmp88 - tmp90;
+    const Scalar tmp92 = tmp91 - tmp87;
+    const Scalar tmp94 = tmp1*tmp53;
+    const Scalar tmp95 = tmp94 + tmp0*tmp83 - Scalar(0.25)*tmp0*tmp1*tmp19;
+    const Scalar tmp97 = tmp49 - tmp89 + tmp5*tmp88;
+    const Scalar tmp100 = tmp44*tmp5;
+    const Scalar tmp103 = tmp1*tmp45;
+    const Scalar tmp104 = tmp103 + tmp8*tmp83 - tmp8*tmp84;
+    const Scalar tmp105 = -tmp61 - tmp0*tmp74 - tmp5*tmp79;
+    const Scalar tmp106 = -tmp81;
+    const Scalar tmp107 = tmp104*attitude_dot + tmp105*bank_dot + tmp106*heading_dot;
+    const Scalar tmp117 = tmp17*heading_dot
+        + attitude_dot*(-tmp3*attitude_dot + Scalar(0.5)*tmp5*tmp8*heading_dot);
+    const Scalar tmp118 = -tmp6*(attitude_dot*attitude_dot);
+    const Scalar tmp119 = tmp13*heading_dot + attitude_dot*(tmp9*attitude_dot + tmp12*heading_dot);
+    const Scalar tmp120 = tmp1*tmp28;
+    const Scalar tmp121 = tmp26*tmp8;
+    const Scalar tmp122 = tmp42*heading_dot
+        + attitude_dot*(tmp24*attitude_dot + tmp120*bank_dot + tmp121*heading_dot)
+        + bank_dot*(tmp40*heading_dot + tmp41*bank_dot + tmp120*attitude_dot);
+    const Scalar tmp123 = attitude_dot*(-tmp33 + Scalar(0.4)*tmp19*tmp5*bank_dot)
+        + bank_dot*(-tmp26*bank_dot + tmp20*tmp5*attitude_dot);
+    const Scalar tmp124 = tmp1*tmp21;
+    const Scalar tmp125 = -tmp31;
+    const Scalar tmp126 = -tmp35;
+    const Scalar tmp127 = attitude_dot*(-tmp30*attitude_dot - tmp124*bank_dot
+            + Scalar(0.4)*tmp0*tmp1*tmp22*heading_dot)
+        + bank_dot*(tmp125*bank_dot + tmp126*heading_dot - tmp124*attitude_dot)
+        + heading_dot*(tmp34 + tmp125*heading_dot + tmp126*bank_dot);
+    const Scalar tmp128 = tmp51*tmp8;
+    const Scalar tmp129 = tmp71*heading_dot
+        + attitude_dot*(-tmp48*attitude_dot - tmp128*heading_dot
+            + Scalar(0.3)*tmp0*tmp1*tmp22*bank_dot)
+        + bank_dot*(tmp69*heading_dot + tmp70*bank_dot + tmp94*attitude_dot);
+    const Scalar tmp130 = attitude_dot*(tmp57 + tmp100*bank_dot)
+        + bank_dot*(tmp51*bank_dot + tmp100*attitude_dot);
+    const Scalar tmp131 = tmp0*tmp51;
+    const Scalar tmp132 = -tmp60;
+    const Scalar tmp133 = attitude_dot*(-tmp103*bank_dot - tmp131*heading_dot
+            + Scalar(0.3)*tmp19*tmp5*tmp8*attitude_dot)
+        + bank_dot*(tmp132*heading_dot + tmp61*bank_dot - tmp103*attitude_dot)
+        + heading_dot*(-tmp58 + tmp132*bank_dot + tmp61*heading_dot);
+    const Scalar tmp134 = tmp131 + tmp1*tmp88;
+    const Scalar tmp135 = tmp107*heading_dot
+        + attitude_dot*(tmp134*bank_dot + tmp104*heading_dot - tmp77*attitude_dot)
+        + bank_dot*(tmp134*attitude_dot + tmp105*heading_dot + bank_dot*(-tmp76 - tmp80));
+    const Scalar tmp136 = tmp64 + tmp5*tmp78;
+    const Scalar tmp137 = -tmp65;
+    const Scalar tmp138 = attitude_dot*(tmp136*bank_dot - tmp85*attitude_dot)
+        + bank_dot*(tmp136*attitude_dot + bank_dot*(tmp137 + tmp84));
+    const Scalar tmp139 = -tmp128 - tmp1*tmp79;
+    const Scalar tmp140 = -tmp97;
+    const Scalar tmp141 = attitude_dot*(tmp139*bank_dot + tmp95*heading_dot
+            + attitude_dot*(tmp87 + tmp90 - tmp67))
+        + bank_dot*(tmp139*attitude_dot + tmp140*heading_dot - tmp91*bank_dot)
+        + heading_dot*(tmp140*bank_dot + tmp95*attitude_dot - tmp92*heading_dot);
     XVector<Scalar> result;
-    result(0) = tmp159;
-    result(1) = tmp163;
-    result(2) = tmp177;
-    result(3) = tmp179;
-    result(4) = tmp181;
-    result(5) = tmp183;
-    result(6) = tmp186;
-    result(7) = tmp189;
-    result(8) = tmp193;
-    result(9) = tmp194;
-    result(10) = tmp195;
-    result(11) = tmp199;
+    result(0) = tmp117;
+    result(1) = tmp118;
+    result(2) = tmp119;
+    result(3) = tmp122;
+    result(4) = tmp123;
+    result(5) = tmp127;
+    result(6) = tmp129;
+    result(7) = tmp130;
+    result(8) = tmp133;
+    result(9) = tmp135;
+    result(10) = tmp138;
+    result(11) = tmp141;
     return result;
   }
 
@@ -9451,7 +8039,7 @@ struct RigidBodyEulerYzx {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return p (dim)
-  /// Ops: 240
+  /// Ops: 201
   template <typename Scalar>
   static SpaceVector<Scalar> linear_momentum(const QVector<Scalar>& q,
                                              const QVector<Scalar>& v,
@@ -9459,7 +8047,6 @@ struct RigidBodyEulerYzx {
                                              const Params& params) {
     using std::cos;
     using std::sin;
-    using std::sqrt;
     const Scalar heading = q(3);
     const Scalar attitude = q(4);
     const Scalar bank = q(5);
@@ -9469,138 +8056,109 @@ struct RigidBodyEulerYzx {
     const Scalar heading_dot = v(3);
     const Scalar attitude_dot = v(4);
     const Scalar bank_dot = v(5);
-    const Scalar m = Scalar(params.m);
-    const Scalar a = Scalar(params.a);
-    const Scalar b = Scalar(params.b);
-    const Scalar c = Scalar(params.c);
-    const Scalar tmp0 = sin(heading);
-    const Scalar tmp1 = cos(bank);
-    const Scalar tmp2 = tmp0*tmp1;
-    const Scalar tmp3 = sin(attitude);
-    const Scalar tmp4 = sin(bank);
-    const Scalar tmp5 = cos(heading);
-    const Scalar tmp6 = tmp4*tmp5;
-    const Scalar tmp7 = tmp3*tmp6;
-    const Scalar tmp8 = tmp2 + tmp7;
-    const Scalar tmp9 = (Scalar(1)/sqrt(m));
-    const Scalar tmp10 = (a*a);
-    const Scalar tmp11 = (b*b);
-    const Scalar tmp12 = ((Scalar(1)/Scalar(24)))*m;
-    const Scalar tmp13 = tmp12*(tmp10 + tmp11);
-    const Scalar tmp14 = (c*c);
-    const Scalar tmp15 = tmp12*(tmp10 + tmp14);
-    const Scalar tmp16 = tmp12*(tmp11 + tmp14);
-    const Scalar tmp17 = tmp15 + tmp16 - tmp13;
-    const Scalar tmp18 = tmp9*sqrt(tmp17);
-    const Scalar tmp20 = tmp1*tmp5;
-    const Scalar tmp21 = tmp20*tmp3;
-    const Scalar tmp22 = tmp21 - tmp0*tmp4;
-    const Scalar tmp24 = tmp13 + tmp16 - tmp15;
-    const Scalar tmp25 = tmp9*sqrt(tmp24);
-    const Scalar tmp27 = cos(attitude);
-    const Scalar tmp28 = tmp13 + tmp15 - tmp16;
-    const Scalar tmp29 = tmp9*sqrt(tmp28);
-    const Scalar tmp30 = tmp27*tmp29;
-    const Scalar tmp31 = tmp30*tmp5;
-    const Scalar tmp34 = tmp29*tmp3;
-    const Scalar tmp35 = tmp1*tmp25;
-    const Scalar tmp37 = tmp18*tmp4;
-    const Scalar tmp41 = tmp0*tmp30;
-    const Scalar tmp42 = -tmp41;
-    const Scalar tmp43 = tmp0*tmp4;
-    const Scalar tmp44 = tmp3*tmp43;
-    const Scalar tmp45 = tmp44 - tmp1*tmp5;
-    const Scalar tmp46 = -tmp45;
-    const Scalar tmp47 = tmp18*tmp46;
-    const Scalar tmp48 = tmp2*tmp3;
-    const Scalar tmp49 = tmp48 + tmp6;
-    const Scalar tmp50 = tmp25*tmp49;
-    const Scalar tmp51 = tmp47 + tmp50;
-    const Scalar tmp52 = tmp42 + tmp51;
-    const Scalar tmp54 = tmp25*tmp8;
-    const Scalar tmp55 = tmp18*tmp22;
-    const Scalar tmp56 = tmp54 + tmp55;
-    const Scalar tmp57 = tmp18*tmp27;
-    const Scalar tmp58 = tmp57*tmp6;
-    const Scalar tmp59 = tmp34*tmp5;
-    const Scalar tmp60 = tmp25*tmp27;
-    const Scalar tmp61 = tmp20*tmp60;
-    const Scalar tmp62 = tmp59 + tmp61;
-    const Scalar tmp63 = tmp62 - tmp58;
-    const Scalar tmp64 = -tmp63;
-    const Scalar tmp65 = x_dot + tmp52*heading_dot + tmp56*bank_dot + tmp64*attitude_dot;
-    const Scalar tmp66 = tmp1*tmp18;
-    const Scalar tmp67 = tmp27*tmp66;
-    const Scalar tmp68 = tmp25*tmp4;
-    const Scalar tmp69 = tmp27*tmp68;
-    const Scalar tmp70 = tmp67 + tmp69;
-    const Scalar tmp71 = -tmp70;
-    const Scalar tmp72 = tmp3*tmp35;
-    const Scalar tmp73 = tmp3*tmp37;
-    const Scalar tmp74 = tmp30 + tmp73;
-    const Scalar tmp75 = tmp74 - tmp72;
-    const Scalar tmp76 = y_dot + tmp71*bank_dot + tmp75*attitude_dot;
-    const Scalar tmp77 = tmp25*tmp46;
-    const Scalar tmp78 = -tmp49;
-    const Scalar tmp79 = tmp18*tmp78;
-    const Scalar tmp80 = tmp77 + tmp79;
-    const Scalar tmp81 = tmp43*tmp57;
-    const Scalar tmp82 = tmp0*tmp34;
-    const Scalar tmp83 = tmp2*tmp60;
-    const Scalar tmp84 = tmp82 + tmp83;
-    const Scalar tmp85 = tmp84 - tmp81;
-    const Scalar tmp86 = -tmp31;
-    const Scalar tmp87 = tmp22*tmp25;
-    const Scalar tmp88 = -tmp8;
-    const Scalar tmp89 = tmp18*tmp88;
-    const Scalar tmp90 = tmp87 + tmp89;
-    const Scalar tmp91 = tmp86 + tmp90;
-    const Scalar tmp92 = tmp80*bank_dot + tmp85*attitude_dot + tmp91*heading_dot;
-    const Scalar tmp93 = tmp92 + z_dot;
-    const Scalar tmp100 = tmp41 + tmp51;
-    const Scalar tmp102 = -tmp56;
-    const Scalar tmp103 = tmp58 + tmp59 - tmp61;
-    const Scalar tmp104 = -tmp103;
-    const Scalar tmp105 = -tmp100;
-    const Scalar tmp106 = x_dot + tmp102*bank_dot + tmp104*attitude_dot + tmp105*heading_dot;
-    const Scalar tmp107 = tmp30 + tmp72 - tmp73;
-    const Scalar tmp108 = y_dot + tmp70*bank_dot + tmp107*attitude_dot;
-    const Scalar tmp109 = -tmp80;
-    const Scalar tmp110 = tmp81 + tmp82 - tmp83;
-    const Scalar tmp111 = -tmp31 - tmp90;
-    const Scalar tmp112 = tmp111*heading_dot + tmp109*bank_dot + tmp110*attitude_dot;
-    const Scalar tmp113 = tmp112 + z_dot;
-    const Scalar tmp119 = tmp41 + tmp50 - tmp47;
-    const Scalar tmp121 = tmp54 - tmp55;
-    const Scalar tmp122 = tmp58 + tmp61 - tmp59;
-    const Scalar tmp123 = -tmp122;
-    const Scalar tmp124 = x_dot + tmp119*heading_dot + tmp121*bank_dot + tmp123*attitude_dot;
-    const Scalar tmp125 = tmp67 - tmp69;
-    const Scalar tmp126 = -tmp72 - tmp74;
-    const Scalar tmp127 = y_dot + tmp125*bank_dot + tmp126*attitude_dot;
-    const Scalar tmp128 = tmp77 - tmp79;
-    const Scalar tmp129 = tmp81 + tmp83 - tmp82;
-    const Scalar tmp130 = tmp31 + tmp87 - tmp89;
-    const Scalar tmp131 = tmp128*bank_dot + tmp129*attitude_dot + tmp130*heading_dot;
-    const Scalar tmp132 = tmp131 + z_dot;
-    const Scalar tmp136 = tmp41 + tmp47 - tmp50;
-    const Scalar tmp138 = -tmp121;
-    const Scalar tmp139 = tmp58 + tmp62;
-    const Scalar tmp140 = x_dot + tmp136*heading_dot + tmp138*bank_dot + tmp139*attitude_dot;
-    const Scalar tmp141 = -tmp125;
-    const Scalar tmp142 = tmp72 + tmp73 - tmp30;
-    const Scalar tmp143 = y_dot + tmp141*bank_dot + tmp142*attitude_dot;
-    const Scalar tmp144 = -tmp128;
-    const Scalar tmp145 = -tmp81 - tmp84;
-    const Scalar tmp146 = tmp89 - tmp87;
-    const Scalar tmp147 = tmp146 + tmp31;
-    const Scalar tmp148 = tmp144*bank_dot + tmp145*attitude_dot + tmp147*heading_dot;
-    const Scalar tmp149 = tmp148 + z_dot;
-    const Scalar tmp150 = (Scalar(0.25))*m;
+    const Scalar m_a = Scalar(params.m_a);
+    const Scalar m_b = Scalar(params.m_b);
+    const Scalar m_c = Scalar(params.m_c);
+    const Scalar m_d = Scalar(params.m_d);
+    const Scalar tmp0 = cos(heading);
+    const Scalar tmp1 = cos(attitude);
+    const Scalar tmp2 = Scalar(0.5)*tmp1;
+    const Scalar tmp3 = tmp0*tmp2;
+    const Scalar tmp5 = sin(attitude);
+    const Scalar tmp6 = Scalar(0.5)*tmp5;
+    const Scalar tmp8 = sin(heading);
+    const Scalar tmp9 = tmp2*tmp8;
+    const Scalar tmp12 = tmp0*tmp6;
+    const Scalar tmp13 = tmp9*heading_dot + tmp12*attitude_dot;
+    const Scalar tmp14 = x_dot - tmp13;
+    const Scalar tmp15 = y_dot + tmp2*attitude_dot;
+    const Scalar tmp16 = tmp6*tmp8;
+    const Scalar tmp17 = tmp16*attitude_dot - tmp3*heading_dot;
+    const Scalar tmp18 = tmp17 + z_dot;
+    const Scalar tmp19 = sin(bank);
+    const Scalar tmp20 = Scalar(0.4)*tmp19;
+    const Scalar tmp21 = tmp20*tmp8;
+    const Scalar tmp22 = cos(bank);
+    const Scalar tmp23 = Scalar(0.4)*tmp22;
+    const Scalar tmp24 = tmp0*tmp23*tmp5;
+    const Scalar tmp26 = tmp1*tmp23;
+    const Scalar tmp28 = tmp0*tmp20;
+    const Scalar tmp29 = tmp23*tmp8;
+    const Scalar tmp30 = tmp29*tmp5;
+    const Scalar tmp31 = tmp28 + tmp30;
+    const Scalar tmp33 = tmp26*attitude_dot;
+    const Scalar tmp34 = tmp0*tmp33;
+    const Scalar tmp35 = tmp29 + tmp28*tmp5;
+    const Scalar tmp36 = x_dot - tmp34 + tmp31*heading_dot + tmp35*bank_dot;
+    const Scalar tmp37 = tmp23*tmp5;
+    const Scalar tmp38 = tmp1*tmp20;
+    const Scalar tmp39 = y_dot - tmp37*attitude_dot - tmp38*bank_dot;
+    const Scalar tmp40 = -tmp21*tmp5 + Scalar(0.4)*tmp0*tmp22;
+    const Scalar tmp41 = tmp24 - tmp21;
+    const Scalar tmp42 = tmp33*tmp8 + tmp40*bank_dot + tmp41*heading_dot;
+    const Scalar tmp43 = tmp42 + z_dot;
+    const Scalar tmp44 = Scalar(0.3)*tmp22;
+    const Scalar tmp45 = tmp44*tmp8;
+    const Scalar tmp46 = Scalar(0.3)*tmp19;
+    const Scalar tmp47 = tmp0*tmp46;
+    const Scalar tmp48 = tmp47*tmp5;
+    const Scalar tmp49 = tmp45 + tmp48;
+    const Scalar tmp51 = tmp1*tmp46;
+    const Scalar tmp53 = tmp0*tmp44;
+    const Scalar tmp54 = tmp46*tmp8;
+    const Scalar tmp55 = tmp5*tmp54;
+    const Scalar tmp57 = tmp51*attitude_dot;
+    const Scalar tmp58 = tmp0*tmp57;
+    const Scalar tmp59 = tmp53*tmp5;
+    const Scalar tmp60 = tmp59 - tmp54;
+    const Scalar tmp61 = tmp55 - Scalar(0.3)*tmp0*tmp22;
+    const Scalar tmp62 = -tmp61;
+    const Scalar tmp63 = tmp58 + x_dot + tmp60*bank_dot + tmp62*heading_dot;
+    const Scalar tmp64 = tmp46*tmp5;
+    const Scalar tmp65 = tmp1*tmp44;
+    const Scalar tmp66 = y_dot + tmp64*attitude_dot - tmp65*bank_dot;
+    const Scalar tmp67 = tmp45*tmp5;
+    const Scalar tmp68 = tmp47 + tmp67;
+    const Scalar tmp69 = -tmp68;
+    const Scalar tmp70 = -tmp49;
+    const Scalar tmp71 = tmp69*bank_dot + tmp70*heading_dot - tmp57*tmp8;
+    const Scalar tmp72 = tmp71 + z_dot;
+    const Scalar tmp73 = Scalar(0.2)*tmp1;
+    const Scalar tmp74 = Scalar(0.25)*tmp19;
+    const Scalar tmp75 = tmp5*tmp74;
+    const Scalar tmp76 = -tmp59 + tmp0*tmp75;
+    const Scalar tmp77 = tmp76 + tmp0*tmp73;
+    const Scalar tmp78 = Scalar(0.25)*tmp22;
+    const Scalar tmp79 = tmp8*tmp78;
+    const Scalar tmp80 = tmp54 + tmp79;
+    const Scalar tmp81 = tmp77 + tmp80;
+    const Scalar tmp83 = Scalar(0.2)*tmp5;
+    const Scalar tmp84 = tmp1*tmp74;
+    const Scalar tmp87 = tmp73*tmp8;
+    const Scalar tmp88 = tmp0*tmp78;
+    const Scalar tmp89 = tmp74*tmp8;
+    const Scalar tmp90 = tmp5*tmp89;
+    const Scalar tmp91 = tmp68 + tmp88 - tmp90;
+    const Scalar tmp92 = tmp91 - tmp87;
+    const Scalar tmp94 = tmp1*tmp53;
+    const Scalar tmp95 = tmp94 + tmp0*tmp83 - Scalar(0.25)*tmp0*tmp1*tmp19;
+    const Scalar tmp96 = -tmp95;
+    const Scalar tmp97 = tmp49 - tmp89 + tmp5*tmp88;
+    const Scalar tmp98 = x_dot + tmp92*heading_dot + tmp96*attitude_dot + tmp97*bank_dot;
+    const Scalar tmp99 = -tmp51 - tmp1*tmp78;
+    const Scalar tmp100 = tmp44*tmp5;
+    const Scalar tmp101 = tmp73 + tmp75 - tmp100;
+    const Scalar tmp102 = y_dot + tmp99*bank_dot + tmp101*attitude_dot;
+    const Scalar tmp103 = tmp1*tmp45;
+    const Scalar tmp104 = tmp103 + tmp8*tmp83 - tmp8*tmp84;
+    const Scalar tmp105 = -tmp61 - tmp0*tmp74 - tmp5*tmp79;
+    const Scalar tmp106 = -tmp81;
+    const Scalar tmp107 = tmp104*attitude_dot + tmp105*bank_dot + tmp106*heading_dot;
+    const Scalar tmp108 = tmp107 + z_dot;
     SpaceVector<Scalar> result;
-    result(0) = tmp150*tmp124 + tmp150*tmp140 + tmp150*tmp65 + tmp150*tmp106;
-    result(1) = tmp150*tmp108 + tmp150*tmp127 + tmp150*tmp143 + tmp150*tmp76;
-    result(2) = tmp150*tmp113 + tmp150*tmp132 + tmp150*tmp149 + tmp150*tmp93;
+    result(0) = tmp63*m_c + tmp98*m_d + tmp14*m_a + tmp36*m_b;
+    result(1) = tmp39*m_b + tmp66*m_c + tmp102*m_d + tmp15*m_a;
+    result(2) = tmp43*m_b + tmp72*m_c + tmp108*m_d + tmp18*m_a;
     return result;
   }
 
@@ -9610,7 +8168,7 @@ struct RigidBodyEulerYzx {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return L (angular_dim)
-  /// Ops: 325
+  /// Ops: 270
   template <typename Scalar>
   static AngularVector<Scalar> angular_momentum(const QVector<Scalar>& q,
                                                 const QVector<Scalar>& v,
@@ -9618,7 +8176,6 @@ struct RigidBodyEulerYzx {
                                                 const Params& params) {
     using std::cos;
     using std::sin;
-    using std::sqrt;
     const Scalar x = q(0);
     const Scalar y = q(1);
     const Scalar z = q(2);
@@ -9631,184 +8188,144 @@ struct RigidBodyEulerYzx {
     const Scalar heading_dot = v(3);
     const Scalar attitude_dot = v(4);
     const Scalar bank_dot = v(5);
-    const Scalar m = Scalar(params.m);
-    const Scalar a = Scalar(params.a);
-    const Scalar b = Scalar(params.b);
-    const Scalar c = Scalar(params.c);
-    const Scalar tmp0 = sin(heading);
-    const Scalar tmp1 = cos(bank);
-    const Scalar tmp2 = tmp0*tmp1;
-    const Scalar tmp3 = sin(attitude);
-    const Scalar tmp4 = sin(bank);
-    const Scalar tmp5 = cos(heading);
-    const Scalar tmp6 = tmp4*tmp5;
-    const Scalar tmp7 = tmp3*tmp6;
-    const Scalar tmp8 = tmp2 + tmp7;
-    const Scalar tmp9 = (Scalar(1)/sqrt(m));
-    const Scalar tmp10 = (a*a);
-    const Scalar tmp11 = (b*b);
-    const Scalar tmp12 = ((Scalar(1)/Scalar(24)))*m;
-    const Scalar tmp13 = tmp12*(tmp10 + tmp11);
-    const Scalar tmp14 = (c*c);
-    const Scalar tmp15 = tmp12*(tmp10 + tmp14);
-    const Scalar tmp16 = tmp12*(tmp11 + tmp14);
-    const Scalar tmp17 = tmp15 + tmp16 - tmp13;
-    const Scalar tmp18 = tmp9*sqrt(tmp17);
-    const Scalar tmp19 = tmp18*tmp8;
-    const Scalar tmp20 = tmp1*tmp5;
-    const Scalar tmp21 = tmp20*tmp3;
-    const Scalar tmp22 = tmp21 - tmp0*tmp4;
-    const Scalar tmp23 = -tmp22;
-    const Scalar tmp24 = tmp13 + tmp16 - tmp15;
-    const Scalar tmp25 = tmp9*sqrt(tmp24);
-    const Scalar tmp26 = tmp23*tmp25;
-    const Scalar tmp27 = cos(attitude);
-    const Scalar tmp28 = tmp13 + tmp15 - tmp16;
-    const Scalar tmp29 = tmp9*sqrt(tmp28);
-    const Scalar tmp30 = tmp27*tmp29;
-    const Scalar tmp31 = tmp30*tmp5;
-    const Scalar tmp32 = tmp31 + x;
-    const Scalar tmp33 = tmp19 + tmp26 + tmp32;
-    const Scalar tmp34 = tmp29*tmp3;
-    const Scalar tmp35 = tmp1*tmp25;
-    const Scalar tmp36 = tmp27*tmp35;
-    const Scalar tmp37 = tmp18*tmp4;
-    const Scalar tmp38 = tmp27*tmp37;
-    const Scalar tmp39 = tmp34 + tmp36 - tmp38;
-    const Scalar tmp40 = tmp39 + y;
-    const Scalar tmp41 = tmp0*tmp30;
-    const Scalar tmp42 = -tmp41;
-    const Scalar tmp43 = tmp0*tmp4;
-    const Scalar tmp44 = tmp3*tmp43;
-    const Scalar tmp45 = tmp44 - tmp1*tmp5;
-    const Scalar tmp46 = -tmp45;
-    const Scalar tmp47 = tmp18*tmp46;
-    const Scalar tmp48 = tmp2*tmp3;
-    const Scalar tmp49 = tmp48 + tmp6;
-    const Scalar tmp50 = tmp25*tmp49;
-    const Scalar tmp51 = tmp47 + tmp50;
-    const Scalar tmp52 = tmp42 + tmp51;
-    const Scalar tmp53 = tmp52 + z;
-    const Scalar tmp54 = tmp25*tmp8;
-    const Scalar tmp55 = tmp18*tmp22;
-    const Scalar tmp56 = tmp54 + tmp55;
-    const Scalar tmp57 = tmp18*tmp27;
-    const Scalar tmp58 = tmp57*tmp6;
-    const Scalar tmp59 = tmp34*tmp5;
-    const Scalar tmp60 = tmp25*tmp27;
-    const Scalar tmp61 = tmp20*tmp60;
-    const Scalar tmp62 = tmp59 + tmp61;
-    const Scalar tmp63 = tmp62 - tmp58;
-    const Scalar tmp64 = -tmp63;
-    const Scalar tmp65 = x_dot + tmp52*heading_dot + tmp56*bank_dot + tmp64*attitude_dot;
-    const Scalar tmp66 = tmp1*tmp18;
-    const Scalar tmp67 = tmp27*tmp66;
-    const Scalar tmp68 = tmp25*tmp4;
-    const Scalar tmp69 = tmp27*tmp68;
-    const Scalar tmp70 = tmp67 + tmp69;
-    const Scalar tmp71 = -tmp70;
-    const Scalar tmp72 = tmp3*tmp35;
-    const Scalar tmp73 = tmp3*tmp37;
-    const Scalar tmp74 = tmp30 + tmp73;
-    const Scalar tmp75 = tmp74 - tmp72;
-    const Scalar tmp76 = y_dot + tmp71*bank_dot + tmp75*attitude_dot;
-    const Scalar tmp77 = tmp25*tmp46;
-    const Scalar tmp78 = -tmp49;
-    const Scalar tmp79 = tmp18*tmp78;
-    const Scalar tmp80 = tmp77 + tmp79;
-    const Scalar tmp81 = tmp43*tmp57;
-    const Scalar tmp82 = tmp0*tmp34;
-    const Scalar tmp83 = tmp2*tmp60;
-    const Scalar tmp84 = tmp82 + tmp83;
-    const Scalar tmp85 = tmp84 - tmp81;
-    const Scalar tmp86 = -tmp31;
-    const Scalar tmp87 = tmp22*tmp25;
-    const Scalar tmp88 = -tmp8;
-    const Scalar tmp89 = tmp18*tmp88;
-    const Scalar tmp90 = tmp87 + tmp89;
-    const Scalar tmp91 = tmp86 + tmp90;
-    const Scalar tmp92 = tmp80*bank_dot + tmp85*attitude_dot + tmp91*heading_dot;
-    const Scalar tmp93 = tmp92 + z_dot;
-    const Scalar tmp94 = -tmp19;
-    const Scalar tmp95 = -tmp26;
-    const Scalar tmp96 = tmp32 + tmp94 + tmp95;
-    const Scalar tmp97 = tmp38 - tmp36;
-    const Scalar tmp98 = tmp34 + tmp97;
-    const Scalar tmp99 = tmp98 + y;
-    const Scalar tmp100 = tmp41 + tmp51;
-    const Scalar tmp101 = z - tmp100;
-    const Scalar tmp102 = -tmp56;
-    const Scalar tmp103 = tmp58 + tmp59 - tmp61;
-    const Scalar tmp104 = -tmp103;
-    const Scalar tmp105 = -tmp100;
-    const Scalar tmp106 = x_dot + tmp102*bank_dot + tmp104*attitude_dot + tmp105*heading_dot;
-    const Scalar tmp107 = tmp30 + tmp72 - tmp73;
-    const Scalar tmp108 = y_dot + tmp70*bank_dot + tmp107*attitude_dot;
-    const Scalar tmp109 = -tmp80;
-    const Scalar tmp110 = tmp81 + tmp82 - tmp83;
-    const Scalar tmp111 = -tmp31 - tmp90;
-    const Scalar tmp112 = tmp111*heading_dot + tmp109*bank_dot + tmp110*attitude_dot;
-    const Scalar tmp113 = tmp112 + z_dot;
-    const Scalar tmp114 = tmp86 + x;
-    const Scalar tmp115 = tmp114 + tmp26 + tmp94;
-    const Scalar tmp116 = tmp36 + tmp38;
-    const Scalar tmp117 = tmp116 - tmp34;
-    const Scalar tmp118 = tmp117 + y;
-    const Scalar tmp119 = tmp41 + tmp50 - tmp47;
-    const Scalar tmp120 = tmp119 + z;
-    const Scalar tmp121 = tmp54 - tmp55;
-    const Scalar tmp122 = tmp58 + tmp61 - tmp59;
-    const Scalar tmp123 = -tmp122;
-    const Scalar tmp124 = x_dot + tmp119*heading_dot + tmp121*bank_dot + tmp123*attitude_dot;
-    const Scalar tmp125 = tmp67 - tmp69;
-    const Scalar tmp126 = -tmp72 - tmp74;
-    const Scalar tmp127 = y_dot + tmp125*bank_dot + tmp126*attitude_dot;
-    const Scalar tmp128 = tmp77 - tmp79;
-    const Scalar tmp129 = tmp81 + tmp83 - tmp82;
-    const Scalar tmp130 = tmp31 + tmp87 - tmp89;
-    const Scalar tmp131 = tmp128*bank_dot + tmp129*attitude_dot + tmp130*heading_dot;
-    const Scalar tmp132 = tmp131 + z_dot;
-    const Scalar tmp133 = tmp114 + tmp19 + tmp95;
-    const Scalar tmp134 = tmp116 + tmp34;
-    const Scalar tmp135 = y - tmp134;
-    const Scalar tmp136 = tmp41 + tmp47 - tmp50;
-    const Scalar tmp137 = tmp136 + z;
-    const Scalar tmp138 = -tmp121;
-    const Scalar tmp139 = tmp58 + tmp62;
-    const Scalar tmp140 = x_dot + tmp136*heading_dot + tmp138*bank_dot + tmp139*attitude_dot;
-    const Scalar tmp141 = -tmp125;
-    const Scalar tmp142 = tmp72 + tmp73 - tmp30;
-    const Scalar tmp143 = y_dot + tmp141*bank_dot + tmp142*attitude_dot;
-    const Scalar tmp144 = -tmp128;
-    const Scalar tmp145 = -tmp81 - tmp84;
-    const Scalar tmp146 = tmp89 - tmp87;
-    const Scalar tmp147 = tmp146 + tmp31;
-    const Scalar tmp148 = tmp144*bank_dot + tmp145*attitude_dot + tmp147*heading_dot;
-    const Scalar tmp149 = tmp148 + z_dot;
-    const Scalar tmp150 = (Scalar(0.25))*m;
+    const Scalar m_a = Scalar(params.m_a);
+    const Scalar m_b = Scalar(params.m_b);
+    const Scalar m_c = Scalar(params.m_c);
+    const Scalar m_d = Scalar(params.m_d);
+    const Scalar tmp0 = cos(heading);
+    const Scalar tmp1 = cos(attitude);
+    const Scalar tmp2 = Scalar(0.5)*tmp1;
+    const Scalar tmp3 = tmp0*tmp2;
+    const Scalar tmp4 = tmp3 + x;
+    const Scalar tmp5 = sin(attitude);
+    const Scalar tmp6 = Scalar(0.5)*tmp5;
+    const Scalar tmp7 = tmp6 + y;
+    const Scalar tmp8 = sin(heading);
+    const Scalar tmp9 = tmp2*tmp8;
+    const Scalar tmp10 = -tmp9;
+    const Scalar tmp11 = tmp10 + z;
+    const Scalar tmp12 = tmp0*tmp6;
+    const Scalar tmp13 = tmp9*heading_dot + tmp12*attitude_dot;
+    const Scalar tmp14 = x_dot - tmp13;
+    const Scalar tmp15 = y_dot + tmp2*attitude_dot;
+    const Scalar tmp16 = tmp6*tmp8;
+    const Scalar tmp17 = tmp16*attitude_dot - tmp3*heading_dot;
+    const Scalar tmp18 = tmp17 + z_dot;
+    const Scalar tmp19 = sin(bank);
+    const Scalar tmp20 = Scalar(0.4)*tmp19;
+    const Scalar tmp21 = tmp20*tmp8;
+    const Scalar tmp22 = cos(bank);
+    const Scalar tmp23 = Scalar(0.4)*tmp22;
+    const Scalar tmp24 = tmp0*tmp23*tmp5;
+    const Scalar tmp25 = tmp21 + x - tmp24;
+    const Scalar tmp26 = tmp1*tmp23;
+    const Scalar tmp27 = tmp26 + y;
+    const Scalar tmp28 = tmp0*tmp20;
+    const Scalar tmp29 = tmp23*tmp8;
+    const Scalar tmp30 = tmp29*tmp5;
+    const Scalar tmp31 = tmp28 + tmp30;
+    const Scalar tmp32 = tmp31 + z;
+    const Scalar tmp33 = tmp26*attitude_dot;
+    const Scalar tmp34 = tmp0*tmp33;
+    const Scalar tmp35 = tmp29 + tmp28*tmp5;
+    const Scalar tmp36 = x_dot - tmp34 + tmp31*heading_dot + tmp35*bank_dot;
+    const Scalar tmp37 = tmp23*tmp5;
+    const Scalar tmp38 = tmp1*tmp20;
+    const Scalar tmp39 = y_dot - tmp37*attitude_dot - tmp38*bank_dot;
+    const Scalar tmp40 = -tmp21*tmp5 + Scalar(0.4)*tmp0*tmp22;
+    const Scalar tmp41 = tmp24 - tmp21;
+    const Scalar tmp42 = tmp33*tmp8 + tmp40*bank_dot + tmp41*heading_dot;
+    const Scalar tmp43 = tmp42 + z_dot;
+    const Scalar tmp44 = Scalar(0.3)*tmp22;
+    const Scalar tmp45 = tmp44*tmp8;
+    const Scalar tmp46 = Scalar(0.3)*tmp19;
+    const Scalar tmp47 = tmp0*tmp46;
+    const Scalar tmp48 = tmp47*tmp5;
+    const Scalar tmp49 = tmp45 + tmp48;
+    const Scalar tmp50 = tmp49 + x;
+    const Scalar tmp51 = tmp1*tmp46;
+    const Scalar tmp52 = y - tmp51;
+    const Scalar tmp53 = tmp0*tmp44;
+    const Scalar tmp54 = tmp46*tmp8;
+    const Scalar tmp55 = tmp5*tmp54;
+    const Scalar tmp56 = tmp53 + z - tmp55;
+    const Scalar tmp57 = tmp51*attitude_dot;
+    const Scalar tmp58 = tmp0*tmp57;
+    const Scalar tmp59 = tmp53*tmp5;
+    const Scalar tmp60 = tmp59 - tmp54;
+    const Scalar tmp61 = tmp55 - Scalar(0.3)*tmp0*tmp22;
+    const Scalar tmp62 = -tmp61;
+    const Scalar tmp63 = tmp58 + x_dot + tmp60*bank_dot + tmp62*heading_dot;
+    const Scalar tmp64 = tmp46*tmp5;
+    const Scalar tmp65 = tmp1*tmp44;
+    const Scalar tmp66 = y_dot + tmp64*attitude_dot - tmp65*bank_dot;
+    const Scalar tmp67 = tmp45*tmp5;
+    const Scalar tmp68 = tmp47 + tmp67;
+    const Scalar tmp69 = -tmp68;
+    const Scalar tmp70 = -tmp49;
+    const Scalar tmp71 = tmp69*bank_dot + tmp70*heading_dot - tmp57*tmp8;
+    const Scalar tmp72 = tmp71 + z_dot;
+    const Scalar tmp73 = Scalar(0.2)*tmp1;
+    const Scalar tmp74 = Scalar(0.25)*tmp19;
+    const Scalar tmp75 = tmp5*tmp74;
+    const Scalar tmp76 = -tmp59 + tmp0*tmp75;
+    const Scalar tmp77 = tmp76 + tmp0*tmp73;
+    const Scalar tmp78 = Scalar(0.25)*tmp22;
+    const Scalar tmp79 = tmp8*tmp78;
+    const Scalar tmp80 = tmp54 + tmp79;
+    const Scalar tmp81 = tmp77 + tmp80;
+    const Scalar tmp82 = tmp81 + x;
+    const Scalar tmp83 = Scalar(0.2)*tmp5;
+    const Scalar tmp84 = tmp1*tmp74;
+    const Scalar tmp85 = tmp65 + tmp83 - tmp84;
+    const Scalar tmp86 = tmp85 + y;
+    const Scalar tmp87 = tmp73*tmp8;
+    const Scalar tmp88 = tmp0*tmp78;
+    const Scalar tmp89 = tmp74*tmp8;
+    const Scalar tmp90 = tmp5*tmp89;
+    const Scalar tmp91 = tmp68 + tmp88 - tmp90;
+    const Scalar tmp92 = tmp91 - tmp87;
+    const Scalar tmp93 = tmp92 + z;
+    const Scalar tmp94 = tmp1*tmp53;
+    const Scalar tmp95 = tmp94 + tmp0*tmp83 - Scalar(0.25)*tmp0*tmp1*tmp19;
+    const Scalar tmp96 = -tmp95;
+    const Scalar tmp97 = tmp49 - tmp89 + tmp5*tmp88;
+    const Scalar tmp98 = x_dot + tmp92*heading_dot + tmp96*attitude_dot + tmp97*bank_dot;
+    const Scalar tmp99 = -tmp51 - tmp1*tmp78;
+    const Scalar tmp100 = tmp44*tmp5;
+    const Scalar tmp101 = tmp73 + tmp75 - tmp100;
+    const Scalar tmp102 = y_dot + tmp99*bank_dot + tmp101*attitude_dot;
+    const Scalar tmp103 = tmp1*tmp45;
+    const Scalar tmp104 = tmp103 + tmp8*tmp83 - tmp8*tmp84;
+    const Scalar tmp105 = -tmp61 - tmp0*tmp74 - tmp5*tmp79;
+    const Scalar tmp106 = -tmp81;
+    const Scalar tmp107 = tmp104*attitude_dot + tmp105*bank_dot + tmp106*heading_dot;
+    const Scalar tmp108 = tmp107 + z_dot;
     AngularVector<Scalar> result;
-    result(0) = tmp150*(tmp40*tmp93 - tmp53*tmp76) + tmp150*(tmp113*tmp99 - tmp108*tmp101)
-        + tmp150*(tmp118*tmp132 - tmp120*tmp127) + tmp150*(tmp135*tmp149 - tmp137*tmp143);
-    result(1) = tmp150*(tmp120*tmp124 - tmp115*tmp132) + tmp150*(tmp53*tmp65 - tmp33*tmp93)
-        + tmp150*(tmp137*tmp140 - tmp133*tmp149) + tmp150*(tmp101*tmp106 - tmp113*tmp96);
-    result(2) = tmp150*(tmp33*tmp76 - tmp40*tmp65) + tmp150*(tmp108*tmp96 - tmp99*tmp106)
-        + tmp150*(tmp115*tmp127 - tmp118*tmp124) + tmp150*(tmp133*tmp143 - tmp135*tmp140);
+    result(0) = m_a*(tmp7*tmp18 - tmp11*tmp15) + m_b*(tmp43*tmp27 - tmp39*tmp32)
+        + m_c*(tmp52*tmp72 - tmp56*tmp66) + m_d*(tmp86*tmp108 - tmp93*tmp102);
+    result(1) = m_a*(tmp11*tmp14 - tmp4*tmp18) + m_b*(tmp32*tmp36 - tmp43*tmp25)
+        + m_c*(tmp56*tmp63 - tmp50*tmp72) + m_d*(tmp93*tmp98 - tmp82*tmp108);
+    result(2) = m_a*(tmp4*tmp15 - tmp7*tmp14) + m_b*(tmp39*tmp25 - tmp27*tmp36)
+        + m_c*(tmp50*tmp66 - tmp52*tmp63) + m_d*(tmp82*tmp102 - tmp86*tmp98);
     return result;
   }
 
   /// Particle masses, in particle order.
   /// \param[in] params  model parameters
   /// \return masses (num_particles)
-  /// Ops: 1
+  /// Ops: 0
   template <typename Scalar>
   static ParticleVector<Scalar> particle_masses(const Params& params) {
-    const Scalar m = Scalar(params.m);
-    const Scalar tmp150 = (Scalar(0.25))*m;
+    const Scalar m_a = Scalar(params.m_a);
+    const Scalar m_b = Scalar(params.m_b);
+    const Scalar m_c = Scalar(params.m_c);
+    const Scalar m_d = Scalar(params.m_d);
     ParticleVector<Scalar> result;
-    result(0) = tmp150;
-    result(1) = tmp150;
-    result(2) = tmp150;
-    result(3) = tmp150;
+    result(0) = m_a;
+    result(1) = m_b;
+    result(2) = m_c;
+    result(3) = m_d;
     return result;
   }
 
@@ -9931,9 +8448,8 @@ struct RigidBodyEulerYzx {
     /// Whether the reduced model has forces acting directly on q (see generalized_forces).
     static constexpr bool has_generalized_forces = false;
     static constexpr int num_constraints = 6;
-    static constexpr std::array<const char*, num_constraints> constraint_names{{
-        "rod 'body_0-body_1'", "rod 'body_0-body_2'", "rod 'body_0-body_3'", "rod 'body_1-body_2'",
-        "rod 'body_1-body_3'", "rod 'body_2-body_3'"}};
+    static constexpr std::array<const char*, num_constraints> constraint_names{{"rod 'a-b'",
+        "rod 'a-c'", "rod 'a-d'", "rod 'b-c'", "rod 'b-d'", "rod 'c-d'"}};
     /// Sparsity of force_jacobian_x and force_jacobian_xdot (row, column of each value).
     static constexpr int jacobian_x_nonzeros = 144;
     static constexpr std::array<int, jacobian_x_nonzeros> jacobian_x_rows{{0, 0, 0, 0, 0, 0, 0, 0,
@@ -9971,30 +8487,38 @@ struct RigidBodyEulerYzx {
     /// \param[in] t  time
     /// \param[in] params  model parameters
     /// \return F (nx)
-    /// Ops: 3
+    /// Ops: 8
     template <typename Scalar>
     static XVector<Scalar> external_forces(const XVector<Scalar>& /*pos*/,
                                            const XVector<Scalar>& /*vel*/,
                                            const Scalar& /*t*/,
                                            const Params& params) {
       const Scalar g = Scalar(params.g);
-      const Scalar m = Scalar(params.m);
-      const Scalar tmp150 = (Scalar(0.25))*m;
-      const Scalar tmp151 = tmp150*g;
-      const Scalar tmp152 = -tmp151;
+      const Scalar m_a = Scalar(params.m_a);
+      const Scalar m_b = Scalar(params.m_b);
+      const Scalar m_c = Scalar(params.m_c);
+      const Scalar m_d = Scalar(params.m_d);
+      const Scalar tmp109 = g*m_a;
+      const Scalar tmp110 = -tmp109;
+      const Scalar tmp111 = g*m_b;
+      const Scalar tmp112 = -tmp111;
+      const Scalar tmp113 = g*m_c;
+      const Scalar tmp114 = -tmp113;
+      const Scalar tmp115 = g*m_d;
+      const Scalar tmp116 = -tmp115;
       XVector<Scalar> result;
       result(0) = Scalar(0);
       result(1) = Scalar(0);
-      result(2) = tmp152;
+      result(2) = tmp110;
       result(3) = Scalar(0);
       result(4) = Scalar(0);
-      result(5) = tmp152;
+      result(5) = tmp112;
       result(6) = Scalar(0);
       result(7) = Scalar(0);
-      result(8) = tmp152;
+      result(8) = tmp114;
       result(9) = Scalar(0);
       result(10) = Scalar(0);
-      result(11) = tmp152;
+      result(11) = tmp116;
       return result;
     }
 
@@ -10006,151 +8530,122 @@ struct RigidBodyEulerYzx {
     /// \param[in] penalty_damping  penalty damping coefficient
     /// \param[in] params  model parameters
     /// \return F_penalty (nx)
-    /// Ops: 339
+    /// Ops: 306
     template <typename Scalar>
     static XVector<Scalar> penalty_forces(const XVector<Scalar>& pos,
                                           const XVector<Scalar>& vel,
                                           const Scalar& /*t*/,
                                           const Scalar& kappa,
                                           const Scalar& penalty_damping,
-                                          const Params& params) {
+                                          const Params& /*params*/) {
       using std::sqrt;
-      const Scalar m = Scalar(params.m);
-      const Scalar a = Scalar(params.a);
-      const Scalar b = Scalar(params.b);
-      const Scalar c = Scalar(params.c);
-      const Scalar tmp10 = (a*a);
-      const Scalar tmp11 = (b*b);
-      const Scalar tmp12 = ((Scalar(1)/Scalar(24)))*m;
-      const Scalar tmp13 = tmp12*(tmp10 + tmp11);
-      const Scalar tmp14 = (c*c);
-      const Scalar tmp15 = tmp12*(tmp10 + tmp14);
-      const Scalar tmp16 = tmp12*(tmp11 + tmp14);
-      const Scalar tmp17 = tmp15 + tmp16 - tmp13;
-      const Scalar tmp24 = tmp13 + tmp16 - tmp15;
-      const Scalar tmp28 = tmp13 + tmp15 - tmp16;
-      const Scalar tmp242 = pos(3) - pos(0);
-      const Scalar tmp243 = pos(4) - pos(1);
-      const Scalar tmp244 = pos(5) - pos(2);
+      const Scalar tmp198 = pos(3) - pos(0);
+      const Scalar tmp199 = pos(4) - pos(1);
+      const Scalar tmp200 = pos(5) - pos(2);
+      const Scalar tmp201 = sqrt((tmp198*tmp198) + (tmp199*tmp199) + (tmp200*tmp200));
+      const Scalar tmp202 = Scalar(-0.6403124237432849) + tmp201;
+      const Scalar tmp203 = (Scalar(1)/tmp201);
+      const Scalar tmp204 = tmp198*tmp203;
+      const Scalar tmp205 = tmp199*tmp203;
+      const Scalar tmp206 = tmp200*tmp203;
+      const Scalar tmp207 = Scalar(1.5617376188860606)*tmp202*kappa
+          + Scalar(1.5617376188860606)*penalty_damping*(tmp204*(vel(3) - vel(0))
+              + tmp205*(vel(4) - vel(1)) + tmp206*(vel(5) - vel(2)));
+      const Scalar tmp208 = -pos(6);
+      const Scalar tmp209 = -tmp208 - pos(0);
+      const Scalar tmp210 = -pos(7);
+      const Scalar tmp211 = -tmp210 - pos(1);
+      const Scalar tmp212 = -pos(8);
+      const Scalar tmp213 = -tmp212 - pos(2);
+      const Scalar tmp214 = sqrt((tmp209*tmp209) + (tmp211*tmp211) + (tmp213*tmp213));
+      const Scalar tmp215 = Scalar(-0.58309518948453) + tmp214;
+      const Scalar tmp216 = -vel(6);
+      const Scalar tmp217 = (Scalar(1)/tmp214);
+      const Scalar tmp218 = tmp209*tmp217;
+      const Scalar tmp219 = -vel(7);
+      const Scalar tmp220 = tmp211*tmp217;
+      const Scalar tmp221 = -vel(8);
+      const Scalar tmp222 = tmp213*tmp217;
+      const Scalar tmp223 = Scalar(1.7149858514250886)*tmp215*kappa
+          + Scalar(1.7149858514250886)*penalty_damping*(tmp218*(-tmp216 - vel(0))
+              + tmp220*(-tmp219 - vel(1)) + tmp222*(-tmp221 - vel(2)));
+      const Scalar tmp224 = -pos(9);
+      const Scalar tmp225 = -tmp224 - pos(0);
+      const Scalar tmp226 = -pos(10);
+      const Scalar tmp227 = -tmp226 - pos(1);
+      const Scalar tmp228 = -pos(11);
+      const Scalar tmp229 = -tmp228 - pos(2);
+      const Scalar tmp230 = sqrt((tmp225*tmp225) + (tmp227*tmp227) + (tmp229*tmp229));
+      const Scalar tmp231 = Scalar(-0.49244289008980524) + tmp230;
+      const Scalar tmp232 = -vel(9);
+      const Scalar tmp233 = (Scalar(1)/tmp230);
+      const Scalar tmp234 = tmp225*tmp233;
+      const Scalar tmp235 = -vel(10);
+      const Scalar tmp236 = tmp227*tmp233;
+      const Scalar tmp237 = -vel(11);
+      const Scalar tmp238 = tmp229*tmp233;
+      const Scalar tmp239 = Scalar(2.030692330267238)*tmp231*kappa
+          + Scalar(2.030692330267238)*penalty_damping*(tmp234*(-tmp232 - vel(0))
+              + tmp236*(-tmp235 - vel(1)) + tmp238*(-tmp237 - vel(2)));
+      const Scalar tmp240 = tmp206*tmp207 + tmp222*tmp223 + tmp238*tmp239;
+      const Scalar tmp241 = -tmp207;
+      const Scalar tmp242 = -tmp208 - pos(3);
+      const Scalar tmp243 = -tmp210 - pos(4);
+      const Scalar tmp244 = -tmp212 - pos(5);
       const Scalar tmp245 = sqrt((tmp242*tmp242) + (tmp243*tmp243) + (tmp244*tmp244));
-      const Scalar tmp246 = Scalar(4)/m;
-      const Scalar tmp247 = tmp17*tmp246;
-      const Scalar tmp248 = tmp246*tmp24;
-      const Scalar tmp249 = sqrt(tmp247 + tmp248);
-      const Scalar tmp250 = tmp245 - tmp249;
-      const Scalar tmp251 = (Scalar(1)/tmp249);
-      const Scalar tmp252 = tmp251*kappa;
-      const Scalar tmp253 = (Scalar(1)/tmp245);
-      const Scalar tmp254 = tmp242*tmp253;
-      const Scalar tmp255 = tmp243*tmp253;
-      const Scalar tmp256 = tmp244*tmp253;
-      const Scalar tmp257 = tmp251*penalty_damping;
-      const Scalar tmp258 = tmp250*tmp252
-          + tmp257*(tmp254*(vel(3) - vel(0)) + tmp255*(vel(4) - vel(1)) + tmp256*(vel(5) - vel(2)));
-      const Scalar tmp259 = -pos(6);
-      const Scalar tmp260 = -tmp259 - pos(0);
-      const Scalar tmp261 = -pos(7);
-      const Scalar tmp262 = -tmp261 - pos(1);
-      const Scalar tmp263 = -pos(8);
-      const Scalar tmp264 = -tmp263 - pos(2);
-      const Scalar tmp265 = sqrt((tmp260*tmp260) + (tmp262*tmp262) + (tmp264*tmp264));
-      const Scalar tmp266 = tmp246*tmp28;
-      const Scalar tmp267 = sqrt(tmp247 + tmp266);
-      const Scalar tmp268 = tmp265 - tmp267;
-      const Scalar tmp269 = (Scalar(1)/tmp267);
-      const Scalar tmp270 = tmp269*kappa;
-      const Scalar tmp271 = -vel(6);
-      const Scalar tmp272 = (Scalar(1)/tmp265);
-      const Scalar tmp273 = tmp260*tmp272;
-      const Scalar tmp274 = -vel(7);
-      const Scalar tmp275 = tmp262*tmp272;
-      const Scalar tmp276 = -vel(8);
-      const Scalar tmp277 = tmp264*tmp272;
-      const Scalar tmp278 = tmp269*penalty_damping;
-      const Scalar tmp279 = tmp268*tmp270
-          + tmp278*(tmp273*(-tmp271 - vel(0)) + tmp275*(-tmp274 - vel(1))
-              + tmp277*(-tmp276 - vel(2)));
-      const Scalar tmp280 = -pos(9);
-      const Scalar tmp281 = -tmp280 - pos(0);
-      const Scalar tmp282 = -pos(10);
-      const Scalar tmp283 = -tmp282 - pos(1);
-      const Scalar tmp284 = -pos(11);
-      const Scalar tmp285 = -tmp284 - pos(2);
-      const Scalar tmp286 = sqrt((tmp281*tmp281) + (tmp283*tmp283) + (tmp285*tmp285));
-      const Scalar tmp287 = sqrt(tmp248 + tmp266);
-      const Scalar tmp288 = tmp286 - tmp287;
-      const Scalar tmp289 = (Scalar(1)/tmp287);
-      const Scalar tmp290 = tmp289*kappa;
-      const Scalar tmp291 = -vel(9);
-      const Scalar tmp292 = (Scalar(1)/tmp286);
-      const Scalar tmp293 = tmp281*tmp292;
-      const Scalar tmp294 = -vel(10);
-      const Scalar tmp295 = tmp283*tmp292;
-      const Scalar tmp296 = -vel(11);
-      const Scalar tmp297 = tmp285*tmp292;
-      const Scalar tmp298 = tmp289*penalty_damping;
-      const Scalar tmp299 = tmp288*tmp290
-          + tmp298*(tmp293*(-tmp291 - vel(0)) + tmp295*(-tmp294 - vel(1))
-              + tmp297*(-tmp296 - vel(2)));
-      const Scalar tmp300 = tmp256*tmp258 + tmp277*tmp279 + tmp297*tmp299;
-      const Scalar tmp301 = -tmp259 - pos(3);
-      const Scalar tmp302 = -tmp261 - pos(4);
-      const Scalar tmp303 = -tmp263 - pos(5);
-      const Scalar tmp304 = sqrt((tmp301*tmp301) + (tmp302*tmp302) + (tmp303*tmp303));
-      const Scalar tmp305 = tmp304 - tmp287;
-      const Scalar tmp306 = (Scalar(1)/tmp304);
-      const Scalar tmp307 = tmp301*tmp306;
-      const Scalar tmp308 = tmp302*tmp306;
-      const Scalar tmp309 = tmp303*tmp306;
-      const Scalar tmp310 = tmp290*tmp305
-          + tmp298*(tmp307*(-tmp271 - vel(3)) + tmp308*(-tmp274 - vel(4))
-              + tmp309*(-tmp276 - vel(5)));
-      const Scalar tmp311 = -tmp280 - pos(3);
-      const Scalar tmp312 = -tmp282 - pos(4);
-      const Scalar tmp313 = -tmp284 - pos(5);
-      const Scalar tmp314 = sqrt((tmp311*tmp311) + (tmp312*tmp312) + (tmp313*tmp313));
-      const Scalar tmp315 = tmp314 - tmp267;
-      const Scalar tmp316 = (Scalar(1)/tmp314);
-      const Scalar tmp317 = tmp311*tmp316;
-      const Scalar tmp318 = tmp312*tmp316;
-      const Scalar tmp319 = tmp313*tmp316;
-      const Scalar tmp320 = tmp270*tmp315
-          + tmp278*(tmp317*(-tmp291 - vel(3)) + tmp318*(-tmp294 - vel(4))
-              + tmp319*(-tmp296 - vel(5)));
-      const Scalar tmp321 = -tmp258;
-      const Scalar tmp322 = tmp256*tmp321 + tmp309*tmp310 + tmp319*tmp320;
-      const Scalar tmp323 = -tmp280 - pos(6);
-      const Scalar tmp324 = -tmp282 - pos(7);
-      const Scalar tmp325 = -tmp284 - pos(8);
-      const Scalar tmp326 = sqrt((tmp323*tmp323) + (tmp324*tmp324) + (tmp325*tmp325));
-      const Scalar tmp327 = tmp326 - tmp249;
-      const Scalar tmp328 = (Scalar(1)/tmp326);
-      const Scalar tmp329 = tmp323*tmp328;
-      const Scalar tmp330 = tmp324*tmp328;
-      const Scalar tmp331 = tmp325*tmp328;
-      const Scalar tmp332 = tmp252*tmp327
-          + tmp257*(tmp329*(-tmp291 - vel(6)) + tmp330*(-tmp294 - vel(7))
-              + tmp331*(-tmp296 - vel(8)));
-      const Scalar tmp333 = -tmp279;
-      const Scalar tmp334 = -tmp310;
-      const Scalar tmp335 = tmp277*tmp333 + tmp309*tmp334 + tmp331*tmp332;
-      const Scalar tmp336 = -tmp299;
-      const Scalar tmp337 = -tmp320;
-      const Scalar tmp338 = -tmp332;
-      const Scalar tmp339 = tmp297*tmp336 + tmp319*tmp337 + tmp331*tmp338;
+      const Scalar tmp246 = Scalar(-0.5) + tmp245;
+      const Scalar tmp247 = (Scalar(1)/tmp245);
+      const Scalar tmp248 = tmp242*tmp247;
+      const Scalar tmp249 = tmp243*tmp247;
+      const Scalar tmp250 = tmp244*tmp247;
+      const Scalar tmp251 = Scalar(2.0)*tmp246*kappa
+          + Scalar(2.0)*penalty_damping*(tmp248*(-tmp216 - vel(3)) + tmp249*(-tmp219 - vel(4))
+              + tmp250*(-tmp221 - vel(5)));
+      const Scalar tmp252 = -tmp224 - pos(3);
+      const Scalar tmp253 = -tmp226 - pos(4);
+      const Scalar tmp254 = -tmp228 - pos(5);
+      const Scalar tmp255 = sqrt((tmp252*tmp252) + (tmp253*tmp253) + (tmp254*tmp254));
+      const Scalar tmp256 = Scalar(-0.33541019662496846) + tmp255;
+      const Scalar tmp257 = (Scalar(1)/tmp255);
+      const Scalar tmp258 = tmp252*tmp257;
+      const Scalar tmp259 = tmp253*tmp257;
+      const Scalar tmp260 = tmp254*tmp257;
+      const Scalar tmp261 = Scalar(2.9814239699997196)*tmp256*kappa
+          + Scalar(2.9814239699997196)*penalty_damping*(tmp258*(-tmp232 - vel(3))
+              + tmp259*(-tmp235 - vel(4)) + tmp260*(-tmp237 - vel(5)));
+      const Scalar tmp262 = tmp206*tmp241 + tmp250*tmp251 + tmp260*tmp261;
+      const Scalar tmp263 = -tmp223;
+      const Scalar tmp264 = -tmp251;
+      const Scalar tmp265 = -tmp224 - pos(6);
+      const Scalar tmp266 = -tmp226 - pos(7);
+      const Scalar tmp267 = -tmp228 - pos(8);
+      const Scalar tmp268 = sqrt((tmp265*tmp265) + (tmp266*tmp266) + (tmp267*tmp267));
+      const Scalar tmp269 = Scalar(-0.3640054944640259) + tmp268;
+      const Scalar tmp270 = (Scalar(1)/tmp268);
+      const Scalar tmp271 = tmp265*tmp270;
+      const Scalar tmp272 = tmp266*tmp270;
+      const Scalar tmp273 = tmp267*tmp270;
+      const Scalar tmp274 = Scalar(2.7472112789737806)*tmp269*kappa
+          + Scalar(2.7472112789737806)*penalty_damping*(tmp271*(-tmp232 - vel(6))
+              + tmp272*(-tmp235 - vel(7)) + tmp273*(-tmp237 - vel(8)));
+      const Scalar tmp275 = tmp222*tmp263 + tmp250*tmp264 + tmp273*tmp274;
+      const Scalar tmp276 = -tmp239;
+      const Scalar tmp277 = -tmp261;
+      const Scalar tmp278 = -tmp274;
+      const Scalar tmp279 = tmp238*tmp276 + tmp260*tmp277 + tmp273*tmp278;
       XVector<Scalar> result;
-      result(0) = tmp254*tmp258 + tmp273*tmp279 + tmp293*tmp299;
-      result(1) = tmp255*tmp258 + tmp275*tmp279 + tmp295*tmp299;
-      result(2) = tmp300;
-      result(3) = tmp254*tmp321 + tmp307*tmp310 + tmp317*tmp320;
-      result(4) = tmp255*tmp321 + tmp308*tmp310 + tmp318*tmp320;
-      result(5) = tmp322;
-      result(6) = tmp273*tmp333 + tmp307*tmp334 + tmp329*tmp332;
-      result(7) = tmp275*tmp333 + tmp308*tmp334 + tmp330*tmp332;
-      result(8) = tmp335;
-      result(9) = tmp293*tmp336 + tmp317*tmp337 + tmp329*tmp338;
-      result(10) = tmp295*tmp336 + tmp318*tmp337 + tmp330*tmp338;
-      result(11) = tmp339;
+      result(0) = tmp204*tmp207 + tmp218*tmp223 + tmp234*tmp239;
+      result(1) = tmp205*tmp207 + tmp220*tmp223 + tmp236*tmp239;
+      result(2) = tmp240;
+      result(3) = tmp204*tmp241 + tmp248*tmp251 + tmp258*tmp261;
+      result(4) = tmp205*tmp241 + tmp249*tmp251 + tmp259*tmp261;
+      result(5) = tmp262;
+      result(6) = tmp218*tmp263 + tmp248*tmp264 + tmp271*tmp274;
+      result(7) = tmp220*tmp263 + tmp249*tmp264 + tmp272*tmp274;
+      result(8) = tmp275;
+      result(9) = tmp234*tmp276 + tmp258*tmp277 + tmp271*tmp278;
+      result(10) = tmp236*tmp276 + tmp259*tmp277 + tmp272*tmp278;
+      result(11) = tmp279;
       return result;
     }
 
@@ -10162,651 +8657,694 @@ struct RigidBodyEulerYzx {
     /// \param[in] penalty_damping  penalty damping coefficient
     /// \param[in] params  model parameters
     /// \return values (jacobian_x_nonzeros)
-    /// Ops: 2241
+    /// Ops: 2352
     template <typename Scalar>
     static std::array<Scalar, 144> force_jacobian_x(const XVector<Scalar>& pos,
                                                     const XVector<Scalar>& vel,
                                                     const Scalar& /*t*/,
                                                     const Scalar& kappa,
                                                     const Scalar& penalty_damping,
-                                                    const Params& params) {
+                                                    const Params& /*params*/) {
       using std::sqrt;
-      const Scalar m = Scalar(params.m);
-      const Scalar a = Scalar(params.a);
-      const Scalar b = Scalar(params.b);
-      const Scalar c = Scalar(params.c);
-      const Scalar tmp10 = (a*a);
-      const Scalar tmp11 = (b*b);
-      const Scalar tmp12 = ((Scalar(1)/Scalar(24)))*m;
-      const Scalar tmp13 = tmp12*(tmp10 + tmp11);
-      const Scalar tmp14 = (c*c);
-      const Scalar tmp15 = tmp12*(tmp10 + tmp14);
-      const Scalar tmp16 = tmp12*(tmp11 + tmp14);
-      const Scalar tmp17 = tmp15 + tmp16 - tmp13;
-      const Scalar tmp24 = tmp13 + tmp16 - tmp15;
-      const Scalar tmp28 = tmp13 + tmp15 - tmp16;
-      const Scalar tmp242 = pos(3) - pos(0);
-      const Scalar tmp243 = pos(4) - pos(1);
-      const Scalar tmp244 = pos(5) - pos(2);
+      const Scalar tmp198 = pos(3) - pos(0);
+      const Scalar tmp199 = pos(4) - pos(1);
+      const Scalar tmp200 = pos(5) - pos(2);
+      const Scalar tmp201 = sqrt((tmp198*tmp198) + (tmp199*tmp199) + (tmp200*tmp200));
+      const Scalar tmp202 = Scalar(-0.6403124237432849) + tmp201;
+      const Scalar tmp203 = (Scalar(1)/tmp201);
+      const Scalar tmp204 = tmp198*tmp203;
+      const Scalar tmp205 = tmp199*tmp203;
+      const Scalar tmp206 = tmp200*tmp203;
+      const Scalar tmp207 = Scalar(1.5617376188860606)*tmp202*kappa
+          + Scalar(1.5617376188860606)*penalty_damping*(tmp204*(vel(3) - vel(0))
+              + tmp205*(vel(4) - vel(1)) + tmp206*(vel(5) - vel(2)));
+      const Scalar tmp208 = -pos(6);
+      const Scalar tmp209 = -tmp208 - pos(0);
+      const Scalar tmp210 = -pos(7);
+      const Scalar tmp211 = -tmp210 - pos(1);
+      const Scalar tmp212 = -pos(8);
+      const Scalar tmp213 = -tmp212 - pos(2);
+      const Scalar tmp214 = sqrt((tmp209*tmp209) + (tmp211*tmp211) + (tmp213*tmp213));
+      const Scalar tmp215 = Scalar(-0.58309518948453) + tmp214;
+      const Scalar tmp216 = -vel(6);
+      const Scalar tmp217 = (Scalar(1)/tmp214);
+      const Scalar tmp218 = tmp209*tmp217;
+      const Scalar tmp219 = -vel(7);
+      const Scalar tmp220 = tmp211*tmp217;
+      const Scalar tmp221 = -vel(8);
+      const Scalar tmp222 = tmp213*tmp217;
+      const Scalar tmp223 = Scalar(1.7149858514250886)*tmp215*kappa
+          + Scalar(1.7149858514250886)*penalty_damping*(tmp218*(-tmp216 - vel(0))
+              + tmp220*(-tmp219 - vel(1)) + tmp222*(-tmp221 - vel(2)));
+      const Scalar tmp224 = -pos(9);
+      const Scalar tmp225 = -tmp224 - pos(0);
+      const Scalar tmp226 = -pos(10);
+      const Scalar tmp227 = -tmp226 - pos(1);
+      const Scalar tmp228 = -pos(11);
+      const Scalar tmp229 = -tmp228 - pos(2);
+      const Scalar tmp230 = sqrt((tmp225*tmp225) + (tmp227*tmp227) + (tmp229*tmp229));
+      const Scalar tmp231 = Scalar(-0.49244289008980524) + tmp230;
+      const Scalar tmp232 = -vel(9);
+      const Scalar tmp233 = (Scalar(1)/tmp230);
+      const Scalar tmp234 = tmp225*tmp233;
+      const Scalar tmp235 = -vel(10);
+      const Scalar tmp236 = tmp227*tmp233;
+      const Scalar tmp237 = -vel(11);
+      const Scalar tmp238 = tmp229*tmp233;
+      const Scalar tmp239 = Scalar(2.030692330267238)*tmp231*kappa
+          + Scalar(2.030692330267238)*penalty_damping*(tmp234*(-tmp232 - vel(0))
+              + tmp236*(-tmp235 - vel(1)) + tmp238*(-tmp237 - vel(2)));
+      const Scalar tmp241 = -tmp207;
+      const Scalar tmp242 = -tmp208 - pos(3);
+      const Scalar tmp243 = -tmp210 - pos(4);
+      const Scalar tmp244 = -tmp212 - pos(5);
       const Scalar tmp245 = sqrt((tmp242*tmp242) + (tmp243*tmp243) + (tmp244*tmp244));
-      const Scalar tmp246 = Scalar(4)/m;
-      const Scalar tmp247 = tmp17*tmp246;
-      const Scalar tmp248 = tmp246*tmp24;
-      const Scalar tmp249 = sqrt(tmp247 + tmp248);
-      const Scalar tmp250 = tmp245 - tmp249;
-      const Scalar tmp251 = (Scalar(1)/tmp249);
-      const Scalar tmp252 = tmp251*kappa;
-      const Scalar tmp253 = (Scalar(1)/tmp245);
-      const Scalar tmp254 = tmp242*tmp253;
-      const Scalar tmp255 = tmp243*tmp253;
-      const Scalar tmp256 = tmp244*tmp253;
-      const Scalar tmp257 = tmp251*penalty_damping;
-      const Scalar tmp258 = tmp250*tmp252
-          + tmp257*(tmp254*(vel(3) - vel(0)) + tmp255*(vel(4) - vel(1)) + tmp256*(vel(5) - vel(2)));
-      const Scalar tmp259 = -pos(6);
-      const Scalar tmp260 = -tmp259 - pos(0);
-      const Scalar tmp261 = -pos(7);
-      const Scalar tmp262 = -tmp261 - pos(1);
-      const Scalar tmp263 = -pos(8);
-      const Scalar tmp264 = -tmp263 - pos(2);
-      const Scalar tmp265 = sqrt((tmp260*tmp260) + (tmp262*tmp262) + (tmp264*tmp264));
-      const Scalar tmp266 = tmp246*tmp28;
-      const Scalar tmp267 = sqrt(tmp247 + tmp266);
-      const Scalar tmp268 = tmp265 - tmp267;
-      const Scalar tmp269 = (Scalar(1)/tmp267);
-      const Scalar tmp270 = tmp269*kappa;
-      const Scalar tmp271 = -vel(6);
-      const Scalar tmp272 = (Scalar(1)/tmp265);
-      const Scalar tmp273 = tmp260*tmp272;
-      const Scalar tmp274 = -vel(7);
-      const Scalar tmp275 = tmp262*tmp272;
-      const Scalar tmp276 = -vel(8);
-      const Scalar tmp277 = tmp264*tmp272;
-      const Scalar tmp278 = tmp269*penalty_damping;
-      const Scalar tmp279 = tmp268*tmp270
-          + tmp278*(tmp273*(-tmp271 - vel(0)) + tmp275*(-tmp274 - vel(1))
-              + tmp277*(-tmp276 - vel(2)));
-      const Scalar tmp280 = -pos(9);
-      const Scalar tmp281 = -tmp280 - pos(0);
-      const Scalar tmp282 = -pos(10);
-      const Scalar tmp283 = -tmp282 - pos(1);
-      const Scalar tmp284 = -pos(11);
-      const Scalar tmp285 = -tmp284 - pos(2);
-      const Scalar tmp286 = sqrt((tmp281*tmp281) + (tmp283*tmp283) + (tmp285*tmp285));
-      const Scalar tmp287 = sqrt(tmp248 + tmp266);
-      const Scalar tmp288 = tmp286 - tmp287;
-      const Scalar tmp289 = (Scalar(1)/tmp287);
-      const Scalar tmp290 = tmp289*kappa;
-      const Scalar tmp291 = -vel(9);
-      const Scalar tmp292 = (Scalar(1)/tmp286);
-      const Scalar tmp293 = tmp281*tmp292;
-      const Scalar tmp294 = -vel(10);
-      const Scalar tmp295 = tmp283*tmp292;
-      const Scalar tmp296 = -vel(11);
-      const Scalar tmp297 = tmp285*tmp292;
-      const Scalar tmp298 = tmp289*penalty_damping;
-      const Scalar tmp299 = tmp288*tmp290
-          + tmp298*(tmp293*(-tmp291 - vel(0)) + tmp295*(-tmp294 - vel(1))
-              + tmp297*(-tmp296 - vel(2)));
-      const Scalar tmp301 = -tmp259 - pos(3);
-      const Scalar tmp302 = -tmp261 - pos(4);
-      const Scalar tmp303 = -tmp263 - pos(5);
-      const Scalar tmp304 = sqrt((tmp301*tmp301) + (tmp302*tmp302) + (tmp303*tmp303));
-      const Scalar tmp305 = tmp304 - tmp287;
-      const Scalar tmp306 = (Scalar(1)/tmp304);
-      const Scalar tmp307 = tmp301*tmp306;
-      const Scalar tmp308 = tmp302*tmp306;
-      const Scalar tmp309 = tmp303*tmp306;
-      const Scalar tmp310 = tmp290*tmp305
-          + tmp298*(tmp307*(-tmp271 - vel(3)) + tmp308*(-tmp274 - vel(4))
-              + tmp309*(-tmp276 - vel(5)));
-      const Scalar tmp311 = -tmp280 - pos(3);
-      const Scalar tmp312 = -tmp282 - pos(4);
-      const Scalar tmp313 = -tmp284 - pos(5);
-      const Scalar tmp314 = sqrt((tmp311*tmp311) + (tmp312*tmp312) + (tmp313*tmp313));
-      const Scalar tmp315 = tmp314 - tmp267;
-      const Scalar tmp316 = (Scalar(1)/tmp314);
-      const Scalar tmp317 = tmp311*tmp316;
-      const Scalar tmp318 = tmp312*tmp316;
-      const Scalar tmp319 = tmp313*tmp316;
-      const Scalar tmp320 = tmp270*tmp315
-          + tmp278*(tmp317*(-tmp291 - vel(3)) + tmp318*(-tmp294 - vel(4))
-              + tmp319*(-tmp296 - vel(5)));
-      const Scalar tmp321 = -tmp258;
-      const Scalar tmp323 = -tmp280 - pos(6);
-      const Scalar tmp324 = -tmp282 - pos(7);
-      const Scalar tmp325 = -tmp284 - pos(8);
-      const Scalar tmp326 = sqrt((tmp323*tmp323) + (tmp324*tmp324) + (tmp325*tmp325));
-      const Scalar tmp327 = tmp326 - tmp249;
-      const Scalar tmp328 = (Scalar(1)/tmp326);
-      const Scalar tmp329 = tmp323*tmp328;
-      const Scalar tmp330 = tmp324*tmp328;
-      const Scalar tmp331 = tmp325*tmp328;
-      const Scalar tmp332 = tmp252*tmp327
-          + tmp257*(tmp329*(-tmp291 - vel(6)) + tmp330*(-tmp294 - vel(7))
-              + tmp331*(-tmp296 - vel(8)));
-      const Scalar tmp333 = -tmp279;
-      const Scalar tmp334 = -tmp310;
-      const Scalar tmp336 = -tmp299;
-      const Scalar tmp337 = -tmp320;
-      const Scalar tmp338 = -tmp332;
-      const Scalar tmp909 = -tmp242/sqrt((tmp242*tmp242) + (tmp243*tmp243) + (tmp244*tmp244));
-      const Scalar tmp910 = -(Scalar(1)/(tmp245*tmp245))*tmp909;
-      const Scalar tmp911 = -tmp253 + tmp242*tmp910;
-      const Scalar tmp912 = tmp243*tmp910;
-      const Scalar tmp913 = tmp244*tmp910;
-      const Scalar tmp914 = tmp252*tmp909 + tmp257*(vel(3) - vel(0))*tmp911
-          + tmp257*(vel(4) - vel(1))*tmp912 + tmp257*(vel(5) - vel(2))*tmp913;
-      const Scalar tmp915 = -tmp260/sqrt((tmp260*tmp260) + (tmp262*tmp262) + (tmp264*tmp264));
-      const Scalar tmp916 = -(Scalar(1)/(tmp265*tmp265))*tmp915;
-      const Scalar tmp917 = -tmp272 + tmp260*tmp916;
-      const Scalar tmp918 = tmp262*tmp916;
-      const Scalar tmp919 = tmp264*tmp916;
-      const Scalar tmp920 = tmp270*tmp915 + tmp278*(-tmp271 - vel(0))*tmp917
-          + tmp278*(-tmp274 - vel(1))*tmp918 + tmp278*(-tmp276 - vel(2))*tmp919;
-      const Scalar tmp921 = -tmp281/sqrt((tmp281*tmp281) + (tmp283*tmp283) + (tmp285*tmp285));
-      const Scalar tmp922 = -(Scalar(1)/(tmp286*tmp286))*tmp921;
-      const Scalar tmp923 = -tmp292 + tmp281*tmp922;
-      const Scalar tmp924 = tmp283*tmp922;
-      const Scalar tmp925 = tmp285*tmp922;
-      const Scalar tmp926 = tmp290*tmp921 + tmp298*(-tmp291 - vel(0))*tmp923
-          + tmp298*(-tmp294 - vel(1))*tmp924 + tmp298*(-tmp296 - vel(2))*tmp925;
-      const Scalar tmp927 = tmp258*tmp913 + tmp256*tmp914 + tmp279*tmp919 + tmp277*tmp920
-          + tmp299*tmp925 + tmp297*tmp926;
-      const Scalar tmp928 = -tmp914;
-      const Scalar tmp929 = tmp321*tmp913 + tmp256*tmp928;
-      const Scalar tmp930 = -tmp920;
-      const Scalar tmp931 = tmp333*tmp919 + tmp277*tmp930;
-      const Scalar tmp932 = -tmp926;
-      const Scalar tmp933 = tmp336*tmp925 + tmp297*tmp932;
-      const Scalar tmp934 = -tmp243/sqrt((tmp242*tmp242) + (tmp243*tmp243) + (tmp244*tmp244));
-      const Scalar tmp935 = -(Scalar(1)/(tmp245*tmp245))*tmp934;
-      const Scalar tmp936 = tmp242*tmp935;
-      const Scalar tmp937 = -tmp253 + tmp243*tmp935;
-      const Scalar tmp938 = tmp244*tmp935;
-      const Scalar tmp939 = tmp252*tmp934 + tmp257*(vel(3) - vel(0))*tmp936
-          + tmp257*(vel(4) - vel(1))*tmp937 + tmp257*(vel(5) - vel(2))*tmp938;
-      const Scalar tmp940 = -tmp262/sqrt((tmp260*tmp260) + (tmp262*tmp262) + (tmp264*tmp264));
-      const Scalar tmp941 = -(Scalar(1)/(tmp265*tmp265))*tmp940;
-      const Scalar tmp942 = tmp260*tmp941;
-      const Scalar tmp943 = -tmp272 + tmp262*tmp941;
-      const Scalar tmp944 = tmp264*tmp941;
-      const Scalar tmp945 = tmp270*tmp940 + tmp278*(-tmp271 - vel(0))*tmp942
-          + tmp278*(-tmp274 - vel(1))*tmp943 + tmp278*(-tmp276 - vel(2))*tmp944;
-      const Scalar tmp946 = -tmp283/sqrt((tmp281*tmp281) + (tmp283*tmp283) + (tmp285*tmp285));
-      const Scalar tmp947 = -(Scalar(1)/(tmp286*tmp286))*tmp946;
-      const Scalar tmp948 = tmp281*tmp947;
-      const Scalar tmp949 = -tmp292 + tmp283*tmp947;
-      const Scalar tmp950 = tmp285*tmp947;
-      const Scalar tmp951 = tmp290*tmp946 + tmp298*(-tmp291 - vel(0))*tmp948
-          + tmp298*(-tmp294 - vel(1))*tmp949 + tmp298*(-tmp296 - vel(2))*tmp950;
-      const Scalar tmp952 = tmp258*tmp938 + tmp256*tmp939 + tmp279*tmp944 + tmp277*tmp945
-          + tmp299*tmp950 + tmp297*tmp951;
-      const Scalar tmp953 = -tmp939;
-      const Scalar tmp954 = tmp321*tmp938 + tmp256*tmp953;
-      const Scalar tmp955 = -tmp945;
-      const Scalar tmp956 = tmp333*tmp944 + tmp277*tmp955;
-      const Scalar tmp957 = -tmp951;
-      const Scalar tmp958 = tmp336*tmp950 + tmp297*tmp957;
-      const Scalar tmp959 = -tmp244/sqrt((tmp242*tmp242) + (tmp243*tmp243) + (tmp244*tmp244));
-      const Scalar tmp960 = -(Scalar(1)/(tmp245*tmp245))*tmp959;
-      const Scalar tmp961 = tmp242*tmp960;
-      const Scalar tmp962 = tmp243*tmp960;
-      const Scalar tmp963 = -tmp253 + tmp244*tmp960;
-      const Scalar tmp964 = tmp252*tmp959 + tmp257*(vel(3) - vel(0))*tmp961
-          + tmp257*(vel(4) - vel(1))*tmp962 + tmp257*(vel(5) - vel(2))*tmp963;
-      const Scalar tmp965 = -tmp264/sqrt((tmp260*tmp260) + (tmp262*tmp262) + (tmp264*tmp264));
-      const Scalar tmp966 = -(Scalar(1)/(tmp265*tmp265))*tmp965;
-      const Scalar tmp967 = tmp260*tmp966;
-      const Scalar tmp968 = tmp262*tmp966;
-      const Scalar tmp969 = -tmp272 + tmp264*tmp966;
-      const Scalar tmp970 = tmp270*tmp965 + tmp278*(-tmp271 - vel(0))*tmp967
-          + tmp278*(-tmp274 - vel(1))*tmp968 + tmp278*(-tmp276 - vel(2))*tmp969;
-      const Scalar tmp971 = -tmp285/sqrt((tmp281*tmp281) + (tmp283*tmp283) + (tmp285*tmp285));
-      const Scalar tmp972 = -(Scalar(1)/(tmp286*tmp286))*tmp971;
-      const Scalar tmp973 = tmp281*tmp972;
-      const Scalar tmp974 = tmp283*tmp972;
-      const Scalar tmp975 = -tmp292 + tmp285*tmp972;
-      const Scalar tmp976 = tmp290*tmp971 + tmp298*(-tmp291 - vel(0))*tmp973
-          + tmp298*(-tmp294 - vel(1))*tmp974 + tmp298*(-tmp296 - vel(2))*tmp975;
-      const Scalar tmp977 = tmp258*tmp963 + tmp256*tmp964 + tmp279*tmp969 + tmp277*tmp970
-          + tmp299*tmp975 + tmp297*tmp976;
-      const Scalar tmp978 = -tmp964;
-      const Scalar tmp979 = tmp321*tmp963 + tmp256*tmp978;
-      const Scalar tmp980 = -tmp970;
-      const Scalar tmp981 = tmp333*tmp969 + tmp277*tmp980;
-      const Scalar tmp982 = -tmp976;
-      const Scalar tmp983 = tmp336*tmp975 + tmp297*tmp982;
-      const Scalar tmp984 = tmp242/sqrt((tmp242*tmp242) + (tmp243*tmp243) + (tmp244*tmp244));
-      const Scalar tmp985 = -(Scalar(1)/(tmp245*tmp245))*tmp984;
-      const Scalar tmp986 = tmp253 + tmp242*tmp985;
-      const Scalar tmp987 = tmp243*tmp985;
-      const Scalar tmp988 = tmp244*tmp985;
-      const Scalar tmp989 = tmp252*tmp984 + tmp257*(vel(3) - vel(0))*tmp986
-          + tmp257*(vel(4) - vel(1))*tmp987 + tmp257*(vel(5) - vel(2))*tmp988;
-      const Scalar tmp990 = tmp258*tmp988 + tmp256*tmp989;
-      const Scalar tmp991 = -tmp301/sqrt((tmp301*tmp301) + (tmp302*tmp302) + (tmp303*tmp303));
-      const Scalar tmp992 = -(Scalar(1)/(tmp304*tmp304))*tmp991;
-      const Scalar tmp993 = -tmp306 + tmp301*tmp992;
-      const Scalar tmp994 = tmp302*tmp992;
-      const Scalar tmp995 = tmp303*tmp992;
-      const Scalar tmp996 = tmp290*tmp991 + tmp298*(-tmp271 - vel(3))*tmp993
-          + tmp298*(-tmp274 - vel(4))*tmp994 + tmp298*(-tmp276 - vel(5))*tmp995;
-      const Scalar tmp997 = -tmp311/sqrt((tmp311*tmp311) + (tmp312*tmp312) + (tmp313*tmp313));
-      const Scalar tmp998 = -(Scalar(1)/(tmp314*tmp314))*tmp997;
-      const Scalar tmp999 = -tmp316 + tmp311*tmp998;
-      const Scalar tmp1000 = tmp312*tmp998;
-      const Scalar tmp1001 = tmp313*tmp998;
-      const Scalar tmp1002 = tmp270*tmp997 + tmp278*(-tmp291 - vel(3))*tmp999
-          + tmp278*(-tmp294 - vel(4))*tmp1000 + tmp278*(-tmp296 - vel(5))*tmp1001;
-      const Scalar tmp1003 = -tmp989;
-      const Scalar tmp1004 = tmp321*tmp988 + tmp310*tmp995 + tmp309*tmp996 + tmp320*tmp1001
-          + tmp319*tmp1002 + tmp256*tmp1003;
-      const Scalar tmp1005 = -tmp996;
-      const Scalar tmp1006 = tmp334*tmp995 + tmp309*tmp1005;
-      const Scalar tmp1007 = -tmp1002;
-      const Scalar tmp1008 = tmp337*tmp1001 + tmp319*tmp1007;
-      const Scalar tmp1009 = tmp243/sqrt((tmp242*tmp242) + (tmp243*tmp243) + (tmp244*tmp244));
-      const Scalar tmp1010 = -(Scalar(1)/(tmp245*tmp245))*tmp1009;
-      const Scalar tmp1011 = tmp242*tmp1010;
-      const Scalar tmp1012 = tmp253 + tmp243*tmp1010;
-      const Scalar tmp1013 = tmp244*tmp1010;
-      const Scalar tmp1014 = tmp252*tmp1009 + tmp257*(vel(3) - vel(0))*tmp1011
-          + tmp257*(vel(4) - vel(1))*tmp1012 + tmp257*(vel(5) - vel(2))*tmp1013;
-      const Scalar tmp1015 = tmp258*tmp1013 + tmp256*tmp1014;
-      const Scalar tmp1016 = -tmp302/sqrt((tmp301*tmp301) + (tmp302*tmp302) + (tmp303*tmp303));
-      const Scalar tmp1017 = -(Scalar(1)/(tmp304*tmp304))*tmp1016;
-      const Scalar tmp1018 = tmp301*tmp1017;
-      const Scalar tmp1019 = -tmp306 + tmp302*tmp1017;
-      const Scalar tmp1020 = tmp303*tmp1017;
-      const Scalar tmp1021 = tmp290*tmp1016 + tmp298*(-tmp271 - vel(3))*tmp1018
-          + tmp298*(-tmp274 - vel(4))*tmp1019 + tmp298*(-tmp276 - vel(5))*tmp1020;
-      const Scalar tmp1022 = -tmp312/sqrt((tmp311*tmp311) + (tmp312*tmp312) + (tmp313*tmp313));
-      const Scalar tmp1023 = -(Scalar(1)/(tmp314*tmp314))*tmp1022;
-      const Scalar tmp1024 = tmp311*tmp1023;
-      const Scalar tmp1025 = -tmp316 + tmp312*tmp1023;
-      const Scalar tmp1026 = tmp313*tmp1023;
-      const Scalar tmp1027 = tmp270*tmp1022 + tmp278*(-tmp291 - vel(3))*tmp1024
-          + tmp278*(-tmp294 - vel(4))*tmp1025 + tmp278*(-tmp296 - vel(5))*tmp1026;
-      const Scalar tmp1028 = -tmp1014;
-      const Scalar tmp1029 = tmp321*tmp1013 + tmp310*tmp1020 + tmp309*tmp1021 + tmp320*tmp1026
-          + tmp319*tmp1027 + tmp256*tmp1028;
-      const Scalar tmp1030 = -tmp1021;
-      const Scalar tmp1031 = tmp334*tmp1020 + tmp309*tmp1030;
-      const Scalar tmp1032 = -tmp1027;
-      const Scalar tmp1033 = tmp337*tmp1026 + tmp319*tmp1032;
-      const Scalar tmp1034 = tmp244/sqrt((tmp242*tmp242) + (tmp243*tmp243) + (tmp244*tmp244));
-      const Scalar tmp1035 = -(Scalar(1)/(tmp245*tmp245))*tmp1034;
-      const Scalar tmp1036 = tmp242*tmp1035;
-      const Scalar tmp1037 = tmp243*tmp1035;
-      const Scalar tmp1038 = tmp253 + tmp244*tmp1035;
-      const Scalar tmp1039 = tmp252*tmp1034 + tmp257*(vel(3) - vel(0))*tmp1036
-          + tmp257*(vel(4) - vel(1))*tmp1037 + tmp257*(vel(5) - vel(2))*tmp1038;
-      const Scalar tmp1040 = tmp258*tmp1038 + tmp256*tmp1039;
-      const Scalar tmp1041 = -tmp303/sqrt((tmp301*tmp301) + (tmp302*tmp302) + (tmp303*tmp303));
-      const Scalar tmp1042 = -(Scalar(1)/(tmp304*tmp304))*tmp1041;
-      const Scalar tmp1043 = tmp301*tmp1042;
-      const Scalar tmp1044 = tmp302*tmp1042;
-      const Scalar tmp1045 = -tmp306 + tmp303*tmp1042;
-      const Scalar tmp1046 = tmp290*tmp1041 + tmp298*(-tmp271 - vel(3))*tmp1043
-          + tmp298*(-tmp274 - vel(4))*tmp1044 + tmp298*(-tmp276 - vel(5))*tmp1045;
-      const Scalar tmp1047 = -tmp313/sqrt((tmp311*tmp311) + (tmp312*tmp312) + (tmp313*tmp313));
-      const Scalar tmp1048 = -(Scalar(1)/(tmp314*tmp314))*tmp1047;
-      const Scalar tmp1049 = tmp311*tmp1048;
-      const Scalar tmp1050 = tmp312*tmp1048;
-      const Scalar tmp1051 = -tmp316 + tmp313*tmp1048;
-      const Scalar tmp1052 = tmp270*tmp1047 + tmp278*(-tmp291 - vel(3))*tmp1049
-          + tmp278*(-tmp294 - vel(4))*tmp1050 + tmp278*(-tmp296 - vel(5))*tmp1051;
-      const Scalar tmp1053 = -tmp1039;
-      const Scalar tmp1054 = tmp321*tmp1038 + tmp310*tmp1045 + tmp309*tmp1046 + tmp320*tmp1051
-          + tmp319*tmp1052 + tmp256*tmp1053;
-      const Scalar tmp1055 = -tmp1046;
-      const Scalar tmp1056 = tmp334*tmp1045 + tmp309*tmp1055;
-      const Scalar tmp1057 = -tmp1052;
-      const Scalar tmp1058 = tmp337*tmp1051 + tmp319*tmp1057;
-      const Scalar tmp1059 = tmp260/sqrt((tmp260*tmp260) + (tmp262*tmp262) + (tmp264*tmp264));
-      const Scalar tmp1060 = -(Scalar(1)/(tmp265*tmp265))*tmp1059;
-      const Scalar tmp1061 = tmp272 + tmp260*tmp1060;
-      const Scalar tmp1062 = tmp262*tmp1060;
-      const Scalar tmp1063 = tmp264*tmp1060;
-      const Scalar tmp1064 = tmp270*tmp1059 + tmp278*(-tmp271 - vel(0))*tmp1061
-          + tmp278*(-tmp274 - vel(1))*tmp1062 + tmp278*(-tmp276 - vel(2))*tmp1063;
-      const Scalar tmp1065 = tmp279*tmp1063 + tmp277*tmp1064;
-      const Scalar tmp1066 = tmp301/sqrt((tmp301*tmp301) + (tmp302*tmp302) + (tmp303*tmp303));
-      const Scalar tmp1067 = -(Scalar(1)/(tmp304*tmp304))*tmp1066;
-      const Scalar tmp1068 = tmp306 + tmp301*tmp1067;
-      const Scalar tmp1069 = tmp302*tmp1067;
-      const Scalar tmp1070 = tmp303*tmp1067;
-      const Scalar tmp1071 = tmp290*tmp1066 + tmp298*(-tmp271 - vel(3))*tmp1068
-          + tmp298*(-tmp274 - vel(4))*tmp1069 + tmp298*(-tmp276 - vel(5))*tmp1070;
-      const Scalar tmp1072 = tmp310*tmp1070 + tmp309*tmp1071;
-      const Scalar tmp1073 = -tmp323/sqrt((tmp323*tmp323) + (tmp324*tmp324) + (tmp325*tmp325));
-      const Scalar tmp1074 = -(Scalar(1)/(tmp326*tmp326))*tmp1073;
-      const Scalar tmp1075 = -tmp328 + tmp323*tmp1074;
-      const Scalar tmp1076 = tmp324*tmp1074;
-      const Scalar tmp1077 = tmp325*tmp1074;
-      const Scalar tmp1078 = tmp252*tmp1073 + tmp257*(-tmp291 - vel(6))*tmp1075
-          + tmp257*(-tmp294 - vel(7))*tmp1076 + tmp257*(-tmp296 - vel(8))*tmp1077;
-      const Scalar tmp1079 = -tmp1064;
-      const Scalar tmp1080 = -tmp1071;
-      const Scalar tmp1081 = tmp333*tmp1063 + tmp334*tmp1070 + tmp332*tmp1077 + tmp331*tmp1078
-          + tmp277*tmp1079 + tmp309*tmp1080;
-      const Scalar tmp1082 = -tmp1078;
-      const Scalar tmp1083 = tmp338*tmp1077 + tmp331*tmp1082;
-      const Scalar tmp1084 = tmp262/sqrt((tmp260*tmp260) + (tmp262*tmp262) + (tmp264*tmp264));
-      const Scalar tmp1085 = -(Scalar(1)/(tmp265*tmp265))*tmp1084;
-      const Scalar tmp1086 = tmp260*tmp1085;
-      const Scalar tmp1087 = tmp272 + tmp262*tmp1085;
-      const Scalar tmp1088 = tmp264*tmp1085;
-      const Scalar tmp1089 = tmp270*tmp1084 + tmp278*(-tmp271 - vel(0))*tmp1086
-          + tmp278*(-tmp274 - vel(1))*tmp1087 + tmp278*(-tmp276 - vel(2))*tmp1088;
-      const Scalar tmp1090 = tmp279*tmp1088 + tmp277*tmp1089;
-      const Scalar tmp1091 = tmp302/sqrt((tmp301*tmp301) + (tmp302*tmp302) + (tmp303*tmp303));
-      const Scalar tmp1092 = -(Scalar(1)/(tmp304*tmp304))*tmp1091;
-      const Scalar tmp1093 = tmp301*tmp1092;
-      const Scalar tmp1094 = tmp306 + tmp302*tmp1092;
-      const Scalar tmp1095 = tmp303*tmp1092;
-      const Scalar tmp1096 = tmp290*tmp1091 + tmp298*(-tmp271 - vel(3))*tmp1093
-          + tmp298*(-tmp274 - vel(4))*tmp1094 + tmp298*(-tmp276 - vel(5))*tmp1095;
-      const Scalar tmp1097 = tmp310*tmp1095 + tmp309*tmp1096;
-      const Scalar tmp1098 = -tmp324/sqrt((tmp323*tmp323) + (tmp324*tmp324) + (tmp325*tmp325));
-      const Scalar tmp1099 = -(Scalar(1)/(tmp326*tmp326))*tmp1098;
-      const Scalar tmp1100 = tmp323*tmp1099;
-      const Scalar tmp1101 = -tmp328 + tmp324*tmp1099;
-      const Scalar tmp1102 = tmp325*tmp1099;
-      const Scalar tmp1103 = tmp252*tmp1098 + tmp257*(-tmp291 - vel(6))*tmp1100
-          + tmp257*(-tmp294 - vel(7))*tmp1101 + tmp257*(-tmp296 - vel(8))*tmp1102;
-      const Scalar tmp1104 = -tmp1089;
-      const Scalar tmp1105 = -tmp1096;
-      const Scalar tmp1106 = tmp333*tmp1088 + tmp334*tmp1095 + tmp332*tmp1102 + tmp331*tmp1103
-          + tmp277*tmp1104 + tmp309*tmp1105;
-      const Scalar tmp1107 = -tmp1103;
-      const Scalar tmp1108 = tmp338*tmp1102 + tmp331*tmp1107;
-      const Scalar tmp1109 = tmp264/sqrt((tmp260*tmp260) + (tmp262*tmp262) + (tmp264*tmp264));
-      const Scalar tmp1110 = -(Scalar(1)/(tmp265*tmp265))*tmp1109;
-      const Scalar tmp1111 = tmp260*tmp1110;
-      const Scalar tmp1112 = tmp262*tmp1110;
-      const Scalar tmp1113 = tmp272 + tmp264*tmp1110;
-      const Scalar tmp1114 = tmp270*tmp1109 + tmp278*(-tmp271 - vel(0))*tmp1111
-          + tmp278*(-tmp274 - vel(1))*tmp1112 + tmp278*(-tmp276 - vel(2))*tmp1113;
-      const Scalar tmp1115 = tmp279*tmp1113 + tmp277*tmp1114;
-      const Scalar tmp1116 = tmp303/sqrt((tmp301*tmp301) + (tmp302*tmp302) + (tmp303*tmp303));
-      const Scalar tmp1117 = -(Scalar(1)/(tmp304*tmp304))*tmp1116;
-      const Scalar tmp1118 = tmp301*tmp1117;
-      const Scalar tmp1119 = tmp302*tmp1117;
-      const Scalar tmp1120 = tmp306 + tmp303*tmp1117;
-      const Scalar tmp1121 = tmp290*tmp1116 + tmp298*(-tmp271 - vel(3))*tmp1118
-          + tmp298*(-tmp274 - vel(4))*tmp1119 + tmp298*(-tmp276 - vel(5))*tmp1120;
-      const Scalar tmp1122 = tmp310*tmp1120 + tmp309*tmp1121;
-      const Scalar tmp1123 = -tmp325/sqrt((tmp323*tmp323) + (tmp324*tmp324) + (tmp325*tmp325));
-      const Scalar tmp1124 = -(Scalar(1)/(tmp326*tmp326))*tmp1123;
-      const Scalar tmp1125 = tmp323*tmp1124;
-      const Scalar tmp1126 = tmp324*tmp1124;
-      const Scalar tmp1127 = -tmp328 + tmp325*tmp1124;
-      const Scalar tmp1128 = tmp252*tmp1123 + tmp257*(-tmp291 - vel(6))*tmp1125
-          + tmp257*(-tmp294 - vel(7))*tmp1126 + tmp257*(-tmp296 - vel(8))*tmp1127;
-      const Scalar tmp1129 = -tmp1114;
-      const Scalar tmp1130 = -tmp1121;
-      const Scalar tmp1131 = tmp333*tmp1113 + tmp334*tmp1120 + tmp332*tmp1127 + tmp331*tmp1128
-          + tmp277*tmp1129 + tmp309*tmp1130;
-      const Scalar tmp1132 = -tmp1128;
-      const Scalar tmp1133 = tmp338*tmp1127 + tmp331*tmp1132;
-      const Scalar tmp1134 = tmp281/sqrt((tmp281*tmp281) + (tmp283*tmp283) + (tmp285*tmp285));
-      const Scalar tmp1135 = -(Scalar(1)/(tmp286*tmp286))*tmp1134;
-      const Scalar tmp1136 = tmp292 + tmp281*tmp1135;
-      const Scalar tmp1137 = tmp283*tmp1135;
-      const Scalar tmp1138 = tmp285*tmp1135;
-      const Scalar tmp1139 = tmp290*tmp1134 + tmp298*(-tmp291 - vel(0))*tmp1136
-          + tmp298*(-tmp294 - vel(1))*tmp1137 + tmp298*(-tmp296 - vel(2))*tmp1138;
-      const Scalar tmp1140 = tmp299*tmp1138 + tmp297*tmp1139;
-      const Scalar tmp1141 = tmp311/sqrt((tmp311*tmp311) + (tmp312*tmp312) + (tmp313*tmp313));
-      const Scalar tmp1142 = -(Scalar(1)/(tmp314*tmp314))*tmp1141;
-      const Scalar tmp1143 = tmp316 + tmp311*tmp1142;
-      const Scalar tmp1144 = tmp312*tmp1142;
-      const Scalar tmp1145 = tmp313*tmp1142;
-      const Scalar tmp1146 = tmp270*tmp1141 + tmp278*(-tmp291 - vel(3))*tmp1143
-          + tmp278*(-tmp294 - vel(4))*tmp1144 + tmp278*(-tmp296 - vel(5))*tmp1145;
-      const Scalar tmp1147 = tmp320*tmp1145 + tmp319*tmp1146;
-      const Scalar tmp1148 = tmp323/sqrt((tmp323*tmp323) + (tmp324*tmp324) + (tmp325*tmp325));
-      const Scalar tmp1149 = -(Scalar(1)/(tmp326*tmp326))*tmp1148;
-      const Scalar tmp1150 = tmp328 + tmp323*tmp1149;
-      const Scalar tmp1151 = tmp324*tmp1149;
-      const Scalar tmp1152 = tmp325*tmp1149;
-      const Scalar tmp1153 = tmp252*tmp1148 + tmp257*(-tmp291 - vel(6))*tmp1150
-          + tmp257*(-tmp294 - vel(7))*tmp1151 + tmp257*(-tmp296 - vel(8))*tmp1152;
-      const Scalar tmp1154 = tmp332*tmp1152 + tmp331*tmp1153;
-      const Scalar tmp1155 = -tmp1139;
-      const Scalar tmp1156 = -tmp1146;
-      const Scalar tmp1157 = -tmp1153;
-      const Scalar tmp1158 = tmp336*tmp1138 + tmp337*tmp1145 + tmp338*tmp1152 + tmp297*tmp1155
-          + tmp319*tmp1156 + tmp331*tmp1157;
-      const Scalar tmp1159 = tmp283/sqrt((tmp281*tmp281) + (tmp283*tmp283) + (tmp285*tmp285));
-      const Scalar tmp1160 = -(Scalar(1)/(tmp286*tmp286))*tmp1159;
-      const Scalar tmp1161 = tmp281*tmp1160;
-      const Scalar tmp1162 = tmp292 + tmp283*tmp1160;
-      const Scalar tmp1163 = tmp285*tmp1160;
-      const Scalar tmp1164 = tmp290*tmp1159 + tmp298*(-tmp291 - vel(0))*tmp1161
-          + tmp298*(-tmp294 - vel(1))*tmp1162 + tmp298*(-tmp296 - vel(2))*tmp1163;
-      const Scalar tmp1165 = tmp299*tmp1163 + tmp297*tmp1164;
-      const Scalar tmp1166 = tmp312/sqrt((tmp311*tmp311) + (tmp312*tmp312) + (tmp313*tmp313));
-      const Scalar tmp1167 = -(Scalar(1)/(tmp314*tmp314))*tmp1166;
-      const Scalar tmp1168 = tmp311*tmp1167;
-      const Scalar tmp1169 = tmp316 + tmp312*tmp1167;
-      const Scalar tmp1170 = tmp313*tmp1167;
-      const Scalar tmp1171 = tmp270*tmp1166 + tmp278*(-tmp291 - vel(3))*tmp1168
-          + tmp278*(-tmp294 - vel(4))*tmp1169 + tmp278*(-tmp296 - vel(5))*tmp1170;
-      const Scalar tmp1172 = tmp320*tmp1170 + tmp319*tmp1171;
-      const Scalar tmp1173 = tmp324/sqrt((tmp323*tmp323) + (tmp324*tmp324) + (tmp325*tmp325));
-      const Scalar tmp1174 = -(Scalar(1)/(tmp326*tmp326))*tmp1173;
-      const Scalar tmp1175 = tmp323*tmp1174;
-      const Scalar tmp1176 = tmp328 + tmp324*tmp1174;
-      const Scalar tmp1177 = tmp325*tmp1174;
-      const Scalar tmp1178 = tmp252*tmp1173 + tmp257*(-tmp291 - vel(6))*tmp1175
-          + tmp257*(-tmp294 - vel(7))*tmp1176 + tmp257*(-tmp296 - vel(8))*tmp1177;
-      const Scalar tmp1179 = tmp332*tmp1177 + tmp331*tmp1178;
-      const Scalar tmp1180 = -tmp1164;
-      const Scalar tmp1181 = -tmp1171;
-      const Scalar tmp1182 = -tmp1178;
-      const Scalar tmp1183 = tmp336*tmp1163 + tmp337*tmp1170 + tmp338*tmp1177 + tmp297*tmp1180
-          + tmp319*tmp1181 + tmp331*tmp1182;
-      const Scalar tmp1184 = tmp285/sqrt((tmp281*tmp281) + (tmp283*tmp283) + (tmp285*tmp285));
-      const Scalar tmp1185 = -(Scalar(1)/(tmp286*tmp286))*tmp1184;
-      const Scalar tmp1186 = tmp281*tmp1185;
-      const Scalar tmp1187 = tmp283*tmp1185;
-      const Scalar tmp1188 = tmp292 + tmp285*tmp1185;
-      const Scalar tmp1189 = tmp290*tmp1184 + tmp298*(-tmp291 - vel(0))*tmp1186
-          + tmp298*(-tmp294 - vel(1))*tmp1187 + tmp298*(-tmp296 - vel(2))*tmp1188;
-      const Scalar tmp1190 = tmp299*tmp1188 + tmp297*tmp1189;
-      const Scalar tmp1191 = tmp313/sqrt((tmp311*tmp311) + (tmp312*tmp312) + (tmp313*tmp313));
-      const Scalar tmp1192 = -(Scalar(1)/(tmp314*tmp314))*tmp1191;
-      const Scalar tmp1193 = tmp311*tmp1192;
-      const Scalar tmp1194 = tmp312*tmp1192;
-      const Scalar tmp1195 = tmp316 + tmp313*tmp1192;
-      const Scalar tmp1196 = tmp270*tmp1191 + tmp278*(-tmp291 - vel(3))*tmp1193
-          + tmp278*(-tmp294 - vel(4))*tmp1194 + tmp278*(-tmp296 - vel(5))*tmp1195;
-      const Scalar tmp1197 = tmp320*tmp1195 + tmp319*tmp1196;
-      const Scalar tmp1198 = tmp325/sqrt((tmp323*tmp323) + (tmp324*tmp324) + (tmp325*tmp325));
-      const Scalar tmp1199 = -(Scalar(1)/(tmp326*tmp326))*tmp1198;
-      const Scalar tmp1200 = tmp323*tmp1199;
-      const Scalar tmp1201 = tmp324*tmp1199;
-      const Scalar tmp1202 = tmp328 + tmp325*tmp1199;
-      const Scalar tmp1203 = tmp252*tmp1198 + tmp257*(-tmp291 - vel(6))*tmp1200
-          + tmp257*(-tmp294 - vel(7))*tmp1201 + tmp257*(-tmp296 - vel(8))*tmp1202;
-      const Scalar tmp1204 = tmp332*tmp1202 + tmp331*tmp1203;
-      const Scalar tmp1205 = -tmp1189;
-      const Scalar tmp1206 = -tmp1196;
-      const Scalar tmp1207 = -tmp1203;
-      const Scalar tmp1208 = tmp336*tmp1188 + tmp337*tmp1195 + tmp338*tmp1202 + tmp297*tmp1205
-          + tmp319*tmp1206 + tmp331*tmp1207;
+      const Scalar tmp246 = Scalar(-0.5) + tmp245;
+      const Scalar tmp247 = (Scalar(1)/tmp245);
+      const Scalar tmp248 = tmp242*tmp247;
+      const Scalar tmp249 = tmp243*tmp247;
+      const Scalar tmp250 = tmp244*tmp247;
+      const Scalar tmp251 = Scalar(2.0)*tmp246*kappa
+          + Scalar(2.0)*penalty_damping*(tmp248*(-tmp216 - vel(3)) + tmp249*(-tmp219 - vel(4))
+              + tmp250*(-tmp221 - vel(5)));
+      const Scalar tmp252 = -tmp224 - pos(3);
+      const Scalar tmp253 = -tmp226 - pos(4);
+      const Scalar tmp254 = -tmp228 - pos(5);
+      const Scalar tmp255 = sqrt((tmp252*tmp252) + (tmp253*tmp253) + (tmp254*tmp254));
+      const Scalar tmp256 = Scalar(-0.33541019662496846) + tmp255;
+      const Scalar tmp257 = (Scalar(1)/tmp255);
+      const Scalar tmp258 = tmp252*tmp257;
+      const Scalar tmp259 = tmp253*tmp257;
+      const Scalar tmp260 = tmp254*tmp257;
+      const Scalar tmp261 = Scalar(2.9814239699997196)*tmp256*kappa
+          + Scalar(2.9814239699997196)*penalty_damping*(tmp258*(-tmp232 - vel(3))
+              + tmp259*(-tmp235 - vel(4)) + tmp260*(-tmp237 - vel(5)));
+      const Scalar tmp263 = -tmp223;
+      const Scalar tmp264 = -tmp251;
+      const Scalar tmp265 = -tmp224 - pos(6);
+      const Scalar tmp266 = -tmp226 - pos(7);
+      const Scalar tmp267 = -tmp228 - pos(8);
+      const Scalar tmp268 = sqrt((tmp265*tmp265) + (tmp266*tmp266) + (tmp267*tmp267));
+      const Scalar tmp269 = Scalar(-0.3640054944640259) + tmp268;
+      const Scalar tmp270 = (Scalar(1)/tmp268);
+      const Scalar tmp271 = tmp265*tmp270;
+      const Scalar tmp272 = tmp266*tmp270;
+      const Scalar tmp273 = tmp267*tmp270;
+      const Scalar tmp274 = Scalar(2.7472112789737806)*tmp269*kappa
+          + Scalar(2.7472112789737806)*penalty_damping*(tmp271*(-tmp232 - vel(6))
+              + tmp272*(-tmp235 - vel(7)) + tmp273*(-tmp237 - vel(8)));
+      const Scalar tmp276 = -tmp239;
+      const Scalar tmp277 = -tmp261;
+      const Scalar tmp278 = -tmp274;
+      const Scalar tmp732 = -tmp198/sqrt((tmp198*tmp198) + (tmp199*tmp199) + (tmp200*tmp200));
+      const Scalar tmp733 = -(Scalar(1)/(tmp201*tmp201))*tmp732;
+      const Scalar tmp734 = -tmp203 + tmp198*tmp733;
+      const Scalar tmp735 = tmp199*tmp733;
+      const Scalar tmp736 = tmp200*tmp733;
+      const Scalar tmp737 = Scalar(1.5617376188860606)*kappa*tmp732
+          + Scalar(1.5617376188860606)*penalty_damping*(vel(3) - vel(0))*tmp734
+          + Scalar(1.5617376188860606)*penalty_damping*(vel(4) - vel(1))*tmp735
+          + Scalar(1.5617376188860606)*penalty_damping*(vel(5) - vel(2))*tmp736;
+      const Scalar tmp738 = -tmp209/sqrt((tmp209*tmp209) + (tmp211*tmp211) + (tmp213*tmp213));
+      const Scalar tmp739 = -(Scalar(1)/(tmp214*tmp214))*tmp738;
+      const Scalar tmp740 = -tmp217 + tmp209*tmp739;
+      const Scalar tmp741 = tmp211*tmp739;
+      const Scalar tmp742 = tmp213*tmp739;
+      const Scalar tmp743 = Scalar(1.7149858514250886)*kappa*tmp738
+          + Scalar(1.7149858514250886)*penalty_damping*(-tmp216 - vel(0))*tmp740
+          + Scalar(1.7149858514250886)*penalty_damping*(-tmp219 - vel(1))*tmp741
+          + Scalar(1.7149858514250886)*penalty_damping*(-tmp221 - vel(2))*tmp742;
+      const Scalar tmp744 = -tmp225/sqrt((tmp225*tmp225) + (tmp227*tmp227) + (tmp229*tmp229));
+      const Scalar tmp745 = -(Scalar(1)/(tmp230*tmp230))*tmp744;
+      const Scalar tmp746 = -tmp233 + tmp225*tmp745;
+      const Scalar tmp747 = tmp227*tmp745;
+      const Scalar tmp748 = tmp229*tmp745;
+      const Scalar tmp749 = Scalar(2.030692330267238)*kappa*tmp744
+          + Scalar(2.030692330267238)*penalty_damping*(-tmp232 - vel(0))*tmp746
+          + Scalar(2.030692330267238)*penalty_damping*(-tmp235 - vel(1))*tmp747
+          + Scalar(2.030692330267238)*penalty_damping*(-tmp237 - vel(2))*tmp748;
+      const Scalar tmp750 = tmp207*tmp736 + tmp206*tmp737 + tmp223*tmp742 + tmp222*tmp743
+          + tmp239*tmp748 + tmp238*tmp749;
+      const Scalar tmp751 = -tmp737;
+      const Scalar tmp752 = tmp241*tmp736 + tmp206*tmp751;
+      const Scalar tmp753 = -tmp743;
+      const Scalar tmp754 = tmp263*tmp742 + tmp222*tmp753;
+      const Scalar tmp755 = -tmp749;
+      const Scalar tmp756 = tmp276*tmp748 + tmp238*tmp755;
+      const Scalar tmp757 = -tmp199/sqrt((tmp198*tmp198) + (tmp199*tmp199) + (tmp200*tmp200));
+      const Scalar tmp758 = -(Scalar(1)/(tmp201*tmp201))*tmp757;
+      const Scalar tmp759 = tmp198*tmp758;
+      const Scalar tmp760 = -tmp203 + tmp199*tmp758;
+      const Scalar tmp761 = tmp200*tmp758;
+      const Scalar tmp762 = Scalar(1.5617376188860606)*kappa*tmp757
+          + Scalar(1.5617376188860606)*penalty_damping*(vel(3) - vel(0))*tmp759
+          + Scalar(1.5617376188860606)*penalty_damping*(vel(4) - vel(1))*tmp760
+          + Scalar(1.5617376188860606)*penalty_damping*(vel(5) - vel(2))*tmp761;
+      const Scalar tmp763 = -tmp211/sqrt((tmp209*tmp209) + (tmp211*tmp211) + (tmp213*tmp213));
+      const Scalar tmp764 = -(Scalar(1)/(tmp214*tmp214))*tmp763;
+      const Scalar tmp765 = tmp209*tmp764;
+      const Scalar tmp766 = -tmp217 + tmp211*tmp764;
+      const Scalar tmp767 = tmp213*tmp764;
+      const Scalar tmp768 = Scalar(1.7149858514250886)*kappa*tmp763
+          + Scalar(1.7149858514250886)*penalty_damping*(-tmp216 - vel(0))*tmp765
+          + Scalar(1.7149858514250886)*penalty_damping*(-tmp219 - vel(1))*tmp766
+          + Scalar(1.7149858514250886)*penalty_damping*(-tmp221 - vel(2))*tmp767;
+      const Scalar tmp769 = -tmp227/sqrt((tmp225*tmp225) + (tmp227*tmp227) + (tmp229*tmp229));
+      const Scalar tmp770 = -(Scalar(1)/(tmp230*tmp230))*tmp769;
+      const Scalar tmp771 = tmp225*tmp770;
+      const Scalar tmp772 = -tmp233 + tmp227*tmp770;
+      const Scalar tmp773 = tmp229*tmp770;
+      const Scalar tmp774 = Scalar(2.030692330267238)*kappa*tmp769
+          + Scalar(2.030692330267238)*penalty_damping*(-tmp232 - vel(0))*tmp771
+          + Scalar(2.030692330267238)*penalty_damping*(-tmp235 - vel(1))*tmp772
+          + Scalar(2.030692330267238)*penalty_damping*(-tmp237 - vel(2))*tmp773;
+      const Scalar tmp775 = tmp207*tmp761 + tmp206*tmp762 + tmp223*tmp767 + tmp222*tmp768
+          + tmp239*tmp773 + tmp238*tmp774;
+      const Scalar tmp776 = -tmp762;
+      const Scalar tmp777 = tmp241*tmp761 + tmp206*tmp776;
+      const Scalar tmp778 = -tmp768;
+      const Scalar tmp779 = tmp263*tmp767 + tmp222*tmp778;
+      const Scalar tmp780 = -tmp774;
+      const Scalar tmp781 = tmp276*tmp773 + tmp238*tmp780;
+      const Scalar tmp782 = -tmp200/sqrt((tmp198*tmp198) + (tmp199*tmp199) + (tmp200*tmp200));
+      const Scalar tmp783 = -(Scalar(1)/(tmp201*tmp201))*tmp782;
+      const Scalar tmp784 = tmp198*tmp783;
+      const Scalar tmp785 = tmp199*tmp783;
+      const Scalar tmp786 = -tmp203 + tmp200*tmp783;
+      const Scalar tmp787 = Scalar(1.5617376188860606)*kappa*tmp782
+          + Scalar(1.5617376188860606)*penalty_damping*(vel(3) - vel(0))*tmp784
+          + Scalar(1.5617376188860606)*penalty_damping*(vel(4) - vel(1))*tmp785
+          + Scalar(1.5617376188860606)*penalty_damping*(vel(5) - vel(2))*tmp786;
+      const Scalar tmp788 = -tmp213/sqrt((tmp209*tmp209) + (tmp211*tmp211) + (tmp213*tmp213));
+      const Scalar tmp789 = -(Scalar(1)/(tmp214*tmp214))*tmp788;
+      const Scalar tmp790 = tmp209*tmp789;
+      const Scalar tmp791 = tmp211*tmp789;
+      const Scalar tmp792 = -tmp217 + tmp213*tmp789;
+      const Scalar tmp793 = Scalar(1.7149858514250886)*kappa*tmp788
+          + Scalar(1.7149858514250886)*penalty_damping*(-tmp216 - vel(0))*tmp790
+          + Scalar(1.7149858514250886)*penalty_damping*(-tmp219 - vel(1))*tmp791
+          + Scalar(1.7149858514250886)*penalty_damping*(-tmp221 - vel(2))*tmp792;
+      const Scalar tmp794 = -tmp229/sqrt((tmp225*tmp225) + (tmp227*tmp227) + (tmp229*tmp229));
+      const Scalar tmp795 = -(Scalar(1)/(tmp230*tmp230))*tmp794;
+      const Scalar tmp796 = tmp225*tmp795;
+      const Scalar tmp797 = tmp227*tmp795;
+      const Scalar tmp798 = -tmp233 + tmp229*tmp795;
+      const Scalar tmp799 = Scalar(2.030692330267238)*kappa*tmp794
+          + Scalar(2.030692330267238)*penalty_damping*(-tmp232 - vel(0))*tmp796
+          + Scalar(2.030692330267238)*penalty_damping*(-tmp235 - vel(1))*tmp797
+          + Scalar(2.030692330267238)*penalty_damping*(-tmp237 - vel(2))*tmp798;
+      const Scalar tmp800 = tmp207*tmp786 + tmp206*tmp787 + tmp223*tmp792 + tmp222*tmp793
+          + tmp239*tmp798 + tmp238*tmp799;
+      const Scalar tmp801 = -tmp787;
+      const Scalar tmp802 = tmp241*tmp786 + tmp206*tmp801;
+      const Scalar tmp803 = -tmp793;
+      const Scalar tmp804 = tmp263*tmp792 + tmp222*tmp803;
+      const Scalar tmp805 = -tmp799;
+      const Scalar tmp806 = tmp276*tmp798 + tmp238*tmp805;
+      const Scalar tmp807 = tmp198/sqrt((tmp198*tmp198) + (tmp199*tmp199) + (tmp200*tmp200));
+      const Scalar tmp808 = -(Scalar(1)/(tmp201*tmp201))*tmp807;
+      const Scalar tmp809 = tmp203 + tmp198*tmp808;
+      const Scalar tmp810 = tmp199*tmp808;
+      const Scalar tmp811 = tmp200*tmp808;
+      const Scalar tmp812 = Scalar(1.5617376188860606)*kappa*tmp807
+          + Scalar(1.5617376188860606)*penalty_damping*(vel(3) - vel(0))*tmp809
+          + Scalar(1.5617376188860606)*penalty_damping*(vel(4) - vel(1))*tmp810
+          + Scalar(1.5617376188860606)*penalty_damping*(vel(5) - vel(2))*tmp811;
+      const Scalar tmp813 = tmp207*tmp811 + tmp206*tmp812;
+      const Scalar tmp814 = -tmp812;
+      const Scalar tmp815 = -tmp242/sqrt((tmp242*tmp242) + (tmp243*tmp243) + (tmp244*tmp244));
+      const Scalar tmp816 = -(Scalar(1)/(tmp245*tmp245))*tmp815;
+      const Scalar tmp817 = -tmp247 + tmp242*tmp816;
+      const Scalar tmp818 = tmp243*tmp816;
+      const Scalar tmp819 = tmp244*tmp816;
+      const Scalar tmp820 = Scalar(2.0)*kappa*tmp815
+          + Scalar(2.0)*penalty_damping*(-tmp216 - vel(3))*tmp817
+          + Scalar(2.0)*penalty_damping*(-tmp219 - vel(4))*tmp818
+          + Scalar(2.0)*penalty_damping*(-tmp221 - vel(5))*tmp819;
+      const Scalar tmp821 = -tmp252/sqrt((tmp252*tmp252) + (tmp253*tmp253) + (tmp254*tmp254));
+      const Scalar tmp822 = -(Scalar(1)/(tmp255*tmp255))*tmp821;
+      const Scalar tmp823 = -tmp257 + tmp252*tmp822;
+      const Scalar tmp824 = tmp253*tmp822;
+      const Scalar tmp825 = tmp254*tmp822;
+      const Scalar tmp826 = Scalar(2.9814239699997196)*kappa*tmp821
+          + Scalar(2.9814239699997196)*penalty_damping*(-tmp232 - vel(3))*tmp823
+          + Scalar(2.9814239699997196)*penalty_damping*(-tmp235 - vel(4))*tmp824
+          + Scalar(2.9814239699997196)*penalty_damping*(-tmp237 - vel(5))*tmp825;
+      const Scalar tmp827 = tmp241*tmp811 + tmp206*tmp814 + tmp251*tmp819 + tmp250*tmp820
+          + tmp261*tmp825 + tmp260*tmp826;
+      const Scalar tmp828 = -tmp820;
+      const Scalar tmp829 = tmp264*tmp819 + tmp250*tmp828;
+      const Scalar tmp830 = -tmp826;
+      const Scalar tmp831 = tmp277*tmp825 + tmp260*tmp830;
+      const Scalar tmp832 = tmp199/sqrt((tmp198*tmp198) + (tmp199*tmp199) + (tmp200*tmp200));
+      const Scalar tmp833 = -(Scalar(1)/(tmp201*tmp201))*tmp832;
+      const Scalar tmp834 = tmp198*tmp833;
+      const Scalar tmp835 = tmp203 + tmp199*tmp833;
+      const Scalar tmp836 = tmp200*tmp833;
+      const Scalar tmp837 = Scalar(1.5617376188860606)*kappa*tmp832
+          + Scalar(1.5617376188860606)*penalty_damping*(vel(3) - vel(0))*tmp834
+          + Scalar(1.5617376188860606)*penalty_damping*(vel(4) - vel(1))*tmp835
+          + Scalar(1.5617376188860606)*penalty_damping*(vel(5) - vel(2))*tmp836;
+      const Scalar tmp838 = tmp207*tmp836 + tmp206*tmp837;
+      const Scalar tmp839 = -tmp837;
+      const Scalar tmp840 = -tmp243/sqrt((tmp242*tmp242) + (tmp243*tmp243) + (tmp244*tmp244));
+      const Scalar tmp841 = -(Scalar(1)/(tmp245*tmp245))*tmp840;
+      const Scalar tmp842 = tmp242*tmp841;
+      const Scalar tmp843 = -tmp247 + tmp243*tmp841;
+      const Scalar tmp844 = tmp244*tmp841;
+      const Scalar tmp845 = Scalar(2.0)*kappa*tmp840
+          + Scalar(2.0)*penalty_damping*(-tmp216 - vel(3))*tmp842
+          + Scalar(2.0)*penalty_damping*(-tmp219 - vel(4))*tmp843
+          + Scalar(2.0)*penalty_damping*(-tmp221 - vel(5))*tmp844;
+      const Scalar tmp846 = -tmp253/sqrt((tmp252*tmp252) + (tmp253*tmp253) + (tmp254*tmp254));
+      const Scalar tmp847 = -(Scalar(1)/(tmp255*tmp255))*tmp846;
+      const Scalar tmp848 = tmp252*tmp847;
+      const Scalar tmp849 = -tmp257 + tmp253*tmp847;
+      const Scalar tmp850 = tmp254*tmp847;
+      const Scalar tmp851 = Scalar(2.9814239699997196)*kappa*tmp846
+          + Scalar(2.9814239699997196)*penalty_damping*(-tmp232 - vel(3))*tmp848
+          + Scalar(2.9814239699997196)*penalty_damping*(-tmp235 - vel(4))*tmp849
+          + Scalar(2.9814239699997196)*penalty_damping*(-tmp237 - vel(5))*tmp850;
+      const Scalar tmp852 = tmp241*tmp836 + tmp206*tmp839 + tmp251*tmp844 + tmp250*tmp845
+          + tmp261*tmp850 + tmp260*tmp851;
+      const Scalar tmp853 = -tmp845;
+      const Scalar tmp854 = tmp264*tmp844 + tmp250*tmp853;
+      const Scalar tmp855 = -tmp851;
+      const Scalar tmp856 = tmp277*tmp850 + tmp260*tmp855;
+      const Scalar tmp857 = tmp200/sqrt((tmp198*tmp198) + (tmp199*tmp199) + (tmp200*tmp200));
+      const Scalar tmp858 = -(Scalar(1)/(tmp201*tmp201))*tmp857;
+      const Scalar tmp859 = tmp198*tmp858;
+      const Scalar tmp860 = tmp199*tmp858;
+      const Scalar tmp861 = tmp203 + tmp200*tmp858;
+      const Scalar tmp862 = Scalar(1.5617376188860606)*kappa*tmp857
+          + Scalar(1.5617376188860606)*penalty_damping*(vel(3) - vel(0))*tmp859
+          + Scalar(1.5617376188860606)*penalty_damping*(vel(4) - vel(1))*tmp860
+          + Scalar(1.5617376188860606)*penalty_damping*(vel(5) - vel(2))*tmp861;
+      const Scalar tmp863 = tmp207*tmp861 + tmp206*tmp862;
+      const Scalar tmp864 = -tmp862;
+      const Scalar tmp865 = -tmp244/sqrt((tmp242*tmp242) + (tmp243*tmp243) + (tmp244*tmp244));
+      const Scalar tmp866 = -(Scalar(1)/(tmp245*tmp245))*tmp865;
+      const Scalar tmp867 = tmp242*tmp866;
+      const Scalar tmp868 = tmp243*tmp866;
+      const Scalar tmp869 = -tmp247 + tmp244*tmp866;
+      const Scalar tmp870 = Scalar(2.0)*kappa*tmp865
+          + Scalar(2.0)*penalty_damping*(-tmp216 - vel(3))*tmp867
+          + Scalar(2.0)*penalty_damping*(-tmp219 - vel(4))*tmp868
+          + Scalar(2.0)*penalty_damping*(-tmp221 - vel(5))*tmp869;
+      const Scalar tmp871 = -tmp254/sqrt((tmp252*tmp252) + (tmp253*tmp253) + (tmp254*tmp254));
+      const Scalar tmp872 = -(Scalar(1)/(tmp255*tmp255))*tmp871;
+      const Scalar tmp873 = tmp252*tmp872;
+      const Scalar tmp874 = tmp253*tmp872;
+      const Scalar tmp875 = -tmp257 + tmp254*tmp872;
+      const Scalar tmp876 = Scalar(2.9814239699997196)*kappa*tmp871
+          + Scalar(2.9814239699997196)*penalty_damping*(-tmp232 - vel(3))*tmp873
+          + Scalar(2.9814239699997196)*penalty_damping*(-tmp235 - vel(4))*tmp874
+          + Scalar(2.9814239699997196)*penalty_damping*(-tmp237 - vel(5))*tmp875;
+      const Scalar tmp877 = tmp241*tmp861 + tmp206*tmp864 + tmp251*tmp869 + tmp250*tmp870
+          + tmp261*tmp875 + tmp260*tmp876;
+      const Scalar tmp878 = -tmp870;
+      const Scalar tmp879 = tmp264*tmp869 + tmp250*tmp878;
+      const Scalar tmp880 = -tmp876;
+      const Scalar tmp881 = tmp277*tmp875 + tmp260*tmp880;
+      const Scalar tmp882 = tmp209/sqrt((tmp209*tmp209) + (tmp211*tmp211) + (tmp213*tmp213));
+      const Scalar tmp883 = -(Scalar(1)/(tmp214*tmp214))*tmp882;
+      const Scalar tmp884 = tmp217 + tmp209*tmp883;
+      const Scalar tmp885 = tmp211*tmp883;
+      const Scalar tmp886 = tmp213*tmp883;
+      const Scalar tmp887 = Scalar(1.7149858514250886)*kappa*tmp882
+          + Scalar(1.7149858514250886)*penalty_damping*(-tmp216 - vel(0))*tmp884
+          + Scalar(1.7149858514250886)*penalty_damping*(-tmp219 - vel(1))*tmp885
+          + Scalar(1.7149858514250886)*penalty_damping*(-tmp221 - vel(2))*tmp886;
+      const Scalar tmp888 = tmp223*tmp886 + tmp222*tmp887;
+      const Scalar tmp889 = tmp242/sqrt((tmp242*tmp242) + (tmp243*tmp243) + (tmp244*tmp244));
+      const Scalar tmp890 = -(Scalar(1)/(tmp245*tmp245))*tmp889;
+      const Scalar tmp891 = tmp247 + tmp242*tmp890;
+      const Scalar tmp892 = tmp243*tmp890;
+      const Scalar tmp893 = tmp244*tmp890;
+      const Scalar tmp894 = Scalar(2.0)*kappa*tmp889
+          + Scalar(2.0)*penalty_damping*(-tmp216 - vel(3))*tmp891
+          + Scalar(2.0)*penalty_damping*(-tmp219 - vel(4))*tmp892
+          + Scalar(2.0)*penalty_damping*(-tmp221 - vel(5))*tmp893;
+      const Scalar tmp895 = tmp251*tmp893 + tmp250*tmp894;
+      const Scalar tmp896 = -tmp887;
+      const Scalar tmp897 = -tmp894;
+      const Scalar tmp898 = -tmp265/sqrt((tmp265*tmp265) + (tmp266*tmp266) + (tmp267*tmp267));
+      const Scalar tmp899 = -(Scalar(1)/(tmp268*tmp268))*tmp898;
+      const Scalar tmp900 = -tmp270 + tmp265*tmp899;
+      const Scalar tmp901 = tmp266*tmp899;
+      const Scalar tmp902 = tmp267*tmp899;
+      const Scalar tmp903 = Scalar(2.7472112789737806)*kappa*tmp898
+          + Scalar(2.7472112789737806)*penalty_damping*(-tmp232 - vel(6))*tmp900
+          + Scalar(2.7472112789737806)*penalty_damping*(-tmp235 - vel(7))*tmp901
+          + Scalar(2.7472112789737806)*penalty_damping*(-tmp237 - vel(8))*tmp902;
+      const Scalar tmp904 = tmp263*tmp886 + tmp264*tmp893 + tmp222*tmp896 + tmp250*tmp897
+          + tmp274*tmp902 + tmp273*tmp903;
+      const Scalar tmp905 = -tmp903;
+      const Scalar tmp906 = tmp278*tmp902 + tmp273*tmp905;
+      const Scalar tmp907 = tmp211/sqrt((tmp209*tmp209) + (tmp211*tmp211) + (tmp213*tmp213));
+      const Scalar tmp908 = -(Scalar(1)/(tmp214*tmp214))*tmp907;
+      const Scalar tmp909 = tmp209*tmp908;
+      const Scalar tmp910 = tmp217 + tmp211*tmp908;
+      const Scalar tmp911 = tmp213*tmp908;
+      const Scalar tmp912 = Scalar(1.7149858514250886)*kappa*tmp907
+          + Scalar(1.7149858514250886)*penalty_damping*(-tmp216 - vel(0))*tmp909
+          + Scalar(1.7149858514250886)*penalty_damping*(-tmp219 - vel(1))*tmp910
+          + Scalar(1.7149858514250886)*penalty_damping*(-tmp221 - vel(2))*tmp911;
+      const Scalar tmp913 = tmp223*tmp911 + tmp222*tmp912;
+      const Scalar tmp914 = tmp243/sqrt((tmp242*tmp242) + (tmp243*tmp243) + (tmp244*tmp244));
+      const Scalar tmp915 = -(Scalar(1)/(tmp245*tmp245))*tmp914;
+      const Scalar tmp916 = tmp242*tmp915;
+      const Scalar tmp917 = tmp247 + tmp243*tmp915;
+      const Scalar tmp918 = tmp244*tmp915;
+      const Scalar tmp919 = Scalar(2.0)*kappa*tmp914
+          + Scalar(2.0)*penalty_damping*(-tmp216 - vel(3))*tmp916
+          + Scalar(2.0)*penalty_damping*(-tmp219 - vel(4))*tmp917
+          + Scalar(2.0)*penalty_damping*(-tmp221 - vel(5))*tmp918;
+      const Scalar tmp920 = tmp251*tmp918 + tmp250*tmp919;
+      const Scalar tmp921 = -tmp912;
+      const Scalar tmp922 = -tmp919;
+      const Scalar tmp923 = -tmp266/sqrt((tmp265*tmp265) + (tmp266*tmp266) + (tmp267*tmp267));
+      const Scalar tmp924 = -(Scalar(1)/(tmp268*tmp268))*tmp923;
+      const Scalar tmp925 = tmp265*tmp924;
+      const Scalar tmp926 = -tmp270 + tmp266*tmp924;
+      const Scalar tmp927 = tmp267*tmp924;
+      const Scalar tmp928 = Scalar(2.7472112789737806)*kappa*tmp923
+          + Scalar(2.7472112789737806)*penalty_damping*(-tmp232 - vel(6))*tmp925
+          + Scalar(2.7472112789737806)*penalty_damping*(-tmp235 - vel(7))*tmp926
+          + Scalar(2.7472112789737806)*penalty_damping*(-tmp237 - vel(8))*tmp927;
+      const Scalar tmp929 = tmp263*tmp911 + tmp264*tmp918 + tmp222*tmp921 + tmp250*tmp922
+          + tmp274*tmp927 + tmp273*tmp928;
+      const Scalar tmp930 = -tmp928;
+      const Scalar tmp931 = tmp278*tmp927 + tmp273*tmp930;
+      const Scalar tmp932 = tmp213/sqrt((tmp209*tmp209) + (tmp211*tmp211) + (tmp213*tmp213));
+      const Scalar tmp933 = -(Scalar(1)/(tmp214*tmp214))*tmp932;
+      const Scalar tmp934 = tmp209*tmp933;
+      const Scalar tmp935 = tmp211*tmp933;
+      const Scalar tmp936 = tmp217 + tmp213*tmp933;
+      const Scalar tmp937 = Scalar(1.7149858514250886)*kappa*tmp932
+          + Scalar(1.7149858514250886)*penalty_damping*(-tmp216 - vel(0))*tmp934
+          + Scalar(1.7149858514250886)*penalty_damping*(-tmp219 - vel(1))*tmp935
+          + Scalar(1.7149858514250886)*penalty_damping*(-tmp221 - vel(2))*tmp936;
+      const Scalar tmp938 = tmp223*tmp936 + tmp222*tmp937;
+      const Scalar tmp939 = tmp244/sqrt((tmp242*tmp242) + (tmp243*tmp243) + (tmp244*tmp244));
+      const Scalar tmp940 = -(Scalar(1)/(tmp245*tmp245))*tmp939;
+      const Scalar tmp941 = tmp242*tmp940;
+      const Scalar tmp942 = tmp243*tmp940;
+      const Scalar tmp943 = tmp247 + tmp244*tmp940;
+      const Scalar tmp944 = Scalar(2.0)*kappa*tmp939
+          + Scalar(2.0)*penalty_damping*(-tmp216 - vel(3))*tmp941
+          + Scalar(2.0)*penalty_damping*(-tmp219 - vel(4))*tmp942
+          + Scalar(2.0)*penalty_damping*(-tmp221 - vel(5))*tmp943;
+      const Scalar tmp945 = tmp251*tmp943 + tmp250*tmp944;
+      const Scalar tmp946 = -tmp937;
+      const Scalar tmp947 = -tmp944;
+      const Scalar tmp948 = -tmp267/sqrt((tmp265*tmp265) + (tmp266*tmp266) + (tmp267*tmp267));
+      const Scalar tmp949 = -(Scalar(1)/(tmp268*tmp268))*tmp948;
+      const Scalar tmp950 = tmp265*tmp949;
+      const Scalar tmp951 = tmp266*tmp949;
+      const Scalar tmp952 = -tmp270 + tmp267*tmp949;
+      const Scalar tmp953 = Scalar(2.7472112789737806)*kappa*tmp948
+          + Scalar(2.7472112789737806)*penalty_damping*(-tmp232 - vel(6))*tmp950
+          + Scalar(2.7472112789737806)*penalty_damping*(-tmp235 - vel(7))*tmp951
+          + Scalar(2.7472112789737806)*penalty_damping*(-tmp237 - vel(8))*tmp952;
+      const Scalar tmp954 = tmp263*tmp936 + tmp264*tmp943 + tmp222*tmp946 + tmp250*tmp947
+          + tmp274*tmp952 + tmp273*tmp953;
+      const Scalar tmp955 = -tmp953;
+      const Scalar tmp956 = tmp278*tmp952 + tmp273*tmp955;
+      const Scalar tmp957 = tmp225/sqrt((tmp225*tmp225) + (tmp227*tmp227) + (tmp229*tmp229));
+      const Scalar tmp958 = -(Scalar(1)/(tmp230*tmp230))*tmp957;
+      const Scalar tmp959 = tmp233 + tmp225*tmp958;
+      const Scalar tmp960 = tmp227*tmp958;
+      const Scalar tmp961 = tmp229*tmp958;
+      const Scalar tmp962 = Scalar(2.030692330267238)*kappa*tmp957
+          + Scalar(2.030692330267238)*penalty_damping*(-tmp232 - vel(0))*tmp959
+          + Scalar(2.030692330267238)*penalty_damping*(-tmp235 - vel(1))*tmp960
+          + Scalar(2.030692330267238)*penalty_damping*(-tmp237 - vel(2))*tmp961;
+      const Scalar tmp963 = tmp239*tmp961 + tmp238*tmp962;
+      const Scalar tmp964 = tmp252/sqrt((tmp252*tmp252) + (tmp253*tmp253) + (tmp254*tmp254));
+      const Scalar tmp965 = -(Scalar(1)/(tmp255*tmp255))*tmp964;
+      const Scalar tmp966 = tmp257 + tmp252*tmp965;
+      const Scalar tmp967 = tmp253*tmp965;
+      const Scalar tmp968 = tmp254*tmp965;
+      const Scalar tmp969 = Scalar(2.9814239699997196)*kappa*tmp964
+          + Scalar(2.9814239699997196)*penalty_damping*(-tmp232 - vel(3))*tmp966
+          + Scalar(2.9814239699997196)*penalty_damping*(-tmp235 - vel(4))*tmp967
+          + Scalar(2.9814239699997196)*penalty_damping*(-tmp237 - vel(5))*tmp968;
+      const Scalar tmp970 = tmp261*tmp968 + tmp260*tmp969;
+      const Scalar tmp971 = tmp265/sqrt((tmp265*tmp265) + (tmp266*tmp266) + (tmp267*tmp267));
+      const Scalar tmp972 = -(Scalar(1)/(tmp268*tmp268))*tmp971;
+      const Scalar tmp973 = tmp270 + tmp265*tmp972;
+      const Scalar tmp974 = tmp266*tmp972;
+      const Scalar tmp975 = tmp267*tmp972;
+      const Scalar tmp976 = Scalar(2.7472112789737806)*kappa*tmp971
+          + Scalar(2.7472112789737806)*penalty_damping*(-tmp232 - vel(6))*tmp973
+          + Scalar(2.7472112789737806)*penalty_damping*(-tmp235 - vel(7))*tmp974
+          + Scalar(2.7472112789737806)*penalty_damping*(-tmp237 - vel(8))*tmp975;
+      const Scalar tmp977 = tmp274*tmp975 + tmp273*tmp976;
+      const Scalar tmp978 = -tmp962;
+      const Scalar tmp979 = -tmp969;
+      const Scalar tmp980 = -tmp976;
+      const Scalar tmp981 = tmp276*tmp961 + tmp277*tmp968 + tmp278*tmp975 + tmp238*tmp978
+          + tmp260*tmp979 + tmp273*tmp980;
+      const Scalar tmp982 = tmp227/sqrt((tmp225*tmp225) + (tmp227*tmp227) + (tmp229*tmp229));
+      const Scalar tmp983 = -(Scalar(1)/(tmp230*tmp230))*tmp982;
+      const Scalar tmp984 = tmp225*tmp983;
+      const Scalar tmp985 = tmp233 + tmp227*tmp983;
+      const Scalar tmp986 = tmp229*tmp983;
+      const Scalar tmp987 = Scalar(2.030692330267238)*kappa*tmp982
+          + Scalar(2.030692330267238)*penalty_damping*(-tmp232 - vel(0))*tmp984
+          + Scalar(2.030692330267238)*penalty_damping*(-tmp235 - vel(1))*tmp985
+          + Scalar(2.030692330267238)*penalty_damping*(-tmp237 - vel(2))*tmp986;
+      const Scalar tmp988 = tmp239*tmp986 + tmp238*tmp987;
+      const Scalar tmp989 = tmp253/sqrt((tmp252*tmp252) + (tmp253*tmp253) + (tmp254*tmp254));
+      const Scalar tmp990 = -(Scalar(1)/(tmp255*tmp255))*tmp989;
+      const Scalar tmp991 = tmp252*tmp990;
+      const Scalar tmp992 = tmp257 + tmp253*tmp990;
+      const Scalar tmp993 = tmp254*tmp990;
+      const Scalar tmp994 = Scalar(2.9814239699997196)*kappa*tmp989
+          + Scalar(2.9814239699997196)*penalty_damping*(-tmp232 - vel(3))*tmp991
+          + Scalar(2.9814239699997196)*penalty_damping*(-tmp235 - vel(4))*tmp992
+          + Scalar(2.9814239699997196)*penalty_damping*(-tmp237 - vel(5))*tmp993;
+      const Scalar tmp995 = tmp261*tmp993 + tmp260*tmp994;
+      const Scalar tmp996 = tmp266/sqrt((tmp265*tmp265) + (tmp266*tmp266) + (tmp267*tmp267));
+      const Scalar tmp997 = -(Scalar(1)/(tmp268*tmp268))*tmp996;
+      const Scalar tmp998 = tmp265*tmp997;
+      const Scalar tmp999 = tmp270 + tmp266*tmp997;
+      const Scalar tmp1000 = tmp267*tmp997;
+      const Scalar tmp1001 = Scalar(2.7472112789737806)*kappa*tmp996
+          + Scalar(2.7472112789737806)*penalty_damping*(-tmp232 - vel(6))*tmp998
+          + Scalar(2.7472112789737806)*penalty_damping*(-tmp235 - vel(7))*tmp999
+          + Scalar(2.7472112789737806)*penalty_damping*(-tmp237 - vel(8))*tmp1000;
+      const Scalar tmp1002 = tmp274*tmp1000 + tmp273*tmp1001;
+      const Scalar tmp1003 = -tmp987;
+      const Scalar tmp1004 = -tmp994;
+      const Scalar tmp1005 = -tmp1001;
+      const Scalar tmp1006 = tmp276*tmp986 + tmp277*tmp993 + tmp278*tmp1000 + tmp238*tmp1003
+          + tmp260*tmp1004 + tmp273*tmp1005;
+      const Scalar tmp1007 = tmp229/sqrt((tmp225*tmp225) + (tmp227*tmp227) + (tmp229*tmp229));
+      const Scalar tmp1008 = -(Scalar(1)/(tmp230*tmp230))*tmp1007;
+      const Scalar tmp1009 = tmp225*tmp1008;
+      const Scalar tmp1010 = tmp227*tmp1008;
+      const Scalar tmp1011 = tmp233 + tmp229*tmp1008;
+      const Scalar tmp1012 = Scalar(2.030692330267238)*kappa*tmp1007
+          + Scalar(2.030692330267238)*penalty_damping*(-tmp232 - vel(0))*tmp1009
+          + Scalar(2.030692330267238)*penalty_damping*(-tmp235 - vel(1))*tmp1010
+          + Scalar(2.030692330267238)*penalty_damping*(-tmp237 - vel(2))*tmp1011;
+      const Scalar tmp1013 = tmp239*tmp1011 + tmp238*tmp1012;
+      const Scalar tmp1014 = tmp254/sqrt((tmp252*tmp252) + (tmp253*tmp253) + (tmp254*tmp254));
+      const Scalar tmp1015 = -(Scalar(1)/(tmp255*tmp255))*tmp1014;
+      const Scalar tmp1016 = tmp252*tmp1015;
+      const Scalar tmp1017 = tmp253*tmp1015;
+      const Scalar tmp1018 = tmp257 + tmp254*tmp1015;
+      const Scalar tmp1019 = Scalar(2.9814239699997196)*kappa*tmp1014
+          + Scalar(2.9814239699997196)*penalty_damping*(-tmp232 - vel(3))*tmp1016
+          + Scalar(2.9814239699997196)*penalty_damping*(-tmp235 - vel(4))*tmp1017
+          + Scalar(2.9814239699997196)*penalty_damping*(-tmp237 - vel(5))*tmp1018;
+      const Scalar tmp1020 = tmp261*tmp1018 + tmp260*tmp1019;
+      const Scalar tmp1021 = tmp267/sqrt((tmp265*tmp265) + (tmp266*tmp266) + (tmp267*tmp267));
+      const Scalar tmp1022 = -(Scalar(1)/(tmp268*tmp268))*tmp1021;
+      const Scalar tmp1023 = tmp265*tmp1022;
+      const Scalar tmp1024 = tmp266*tmp1022;
+      const Scalar tmp1025 = tmp270 + tmp267*tmp1022;
+      const Scalar tmp1026 = Scalar(2.7472112789737806)*kappa*tmp1021
+          + Scalar(2.7472112789737806)*penalty_damping*(-tmp232 - vel(6))*tmp1023
+          + Scalar(2.7472112789737806)*penalty_damping*(-tmp235 - vel(7))*tmp1024
+          + Scalar(2.7472112789737806)*penalty_damping*(-tmp237 - vel(8))*tmp1025;
+      const Scalar tmp1027 = tmp274*tmp1025 + tmp273*tmp1026;
+      const Scalar tmp1028 = -tmp1012;
+      const Scalar tmp1029 = -tmp1019;
+      const Scalar tmp1030 = -tmp1026;
+      const Scalar tmp1031 = tmp276*tmp1011 + tmp277*tmp1018 + tmp278*tmp1025 + tmp238*tmp1028
+          + tmp260*tmp1029 + tmp273*tmp1030;
       std::array<Scalar, 144> result;
-      result[0] = tmp258*tmp911 + tmp254*tmp914 + tmp279*tmp917 + tmp273*tmp920 + tmp299*tmp923
-          + tmp293*tmp926;
-      result[1] = tmp258*tmp936 + tmp254*tmp939 + tmp279*tmp942 + tmp273*tmp945 + tmp299*tmp948
-          + tmp293*tmp951;
-      result[2] = tmp258*tmp961 + tmp254*tmp964 + tmp279*tmp967 + tmp273*tmp970 + tmp299*tmp973
-          + tmp293*tmp976;
-      result[3] = tmp258*tmp986 + tmp254*tmp989;
-      result[4] = tmp258*tmp1011 + tmp254*tmp1014;
-      result[5] = tmp258*tmp1036 + tmp254*tmp1039;
-      result[6] = tmp279*tmp1061 + tmp273*tmp1064;
-      result[7] = tmp279*tmp1086 + tmp273*tmp1089;
-      result[8] = tmp279*tmp1111 + tmp273*tmp1114;
-      result[9] = tmp299*tmp1136 + tmp293*tmp1139;
-      result[10] = tmp299*tmp1161 + tmp293*tmp1164;
-      result[11] = tmp299*tmp1186 + tmp293*tmp1189;
-      result[12] = tmp258*tmp912 + tmp255*tmp914 + tmp279*tmp918 + tmp275*tmp920 + tmp299*tmp924
-          + tmp295*tmp926;
-      result[13] = tmp258*tmp937 + tmp255*tmp939 + tmp279*tmp943 + tmp275*tmp945 + tmp299*tmp949
-          + tmp295*tmp951;
-      result[14] = tmp258*tmp962 + tmp255*tmp964 + tmp279*tmp968 + tmp275*tmp970 + tmp299*tmp974
-          + tmp295*tmp976;
-      result[15] = tmp258*tmp987 + tmp255*tmp989;
-      result[16] = tmp258*tmp1012 + tmp255*tmp1014;
-      result[17] = tmp258*tmp1037 + tmp255*tmp1039;
-      result[18] = tmp279*tmp1062 + tmp275*tmp1064;
-      result[19] = tmp279*tmp1087 + tmp275*tmp1089;
-      result[20] = tmp279*tmp1112 + tmp275*tmp1114;
-      result[21] = tmp299*tmp1137 + tmp295*tmp1139;
-      result[22] = tmp299*tmp1162 + tmp295*tmp1164;
-      result[23] = tmp299*tmp1187 + tmp295*tmp1189;
-      result[24] = tmp927;
-      result[25] = tmp952;
-      result[26] = tmp977;
-      result[27] = tmp990;
-      result[28] = tmp1015;
-      result[29] = tmp1040;
-      result[30] = tmp1065;
-      result[31] = tmp1090;
-      result[32] = tmp1115;
-      result[33] = tmp1140;
-      result[34] = tmp1165;
-      result[35] = tmp1190;
-      result[36] = tmp321*tmp911 + tmp254*tmp928;
-      result[37] = tmp321*tmp936 + tmp254*tmp953;
-      result[38] = tmp321*tmp961 + tmp254*tmp978;
-      result[39] = tmp321*tmp986 + tmp310*tmp993 + tmp307*tmp996 + tmp320*tmp999 + tmp317*tmp1002
-          + tmp254*tmp1003;
-      result[40] = tmp321*tmp1011 + tmp310*tmp1018 + tmp307*tmp1021 + tmp320*tmp1024
-          + tmp317*tmp1027 + tmp254*tmp1028;
-      result[41] = tmp321*tmp1036 + tmp310*tmp1043 + tmp307*tmp1046 + tmp320*tmp1049
-          + tmp317*tmp1052 + tmp254*tmp1053;
-      result[42] = tmp310*tmp1068 + tmp307*tmp1071;
-      result[43] = tmp310*tmp1093 + tmp307*tmp1096;
-      result[44] = tmp310*tmp1118 + tmp307*tmp1121;
-      result[45] = tmp320*tmp1143 + tmp317*tmp1146;
-      result[46] = tmp320*tmp1168 + tmp317*tmp1171;
-      result[47] = tmp320*tmp1193 + tmp317*tmp1196;
-      result[48] = tmp321*tmp912 + tmp255*tmp928;
-      result[49] = tmp321*tmp937 + tmp255*tmp953;
-      result[50] = tmp321*tmp962 + tmp255*tmp978;
-      result[51] = tmp321*tmp987 + tmp310*tmp994 + tmp308*tmp996 + tmp320*tmp1000 + tmp318*tmp1002
-          + tmp255*tmp1003;
-      result[52] = tmp321*tmp1012 + tmp310*tmp1019 + tmp308*tmp1021 + tmp320*tmp1025
-          + tmp318*tmp1027 + tmp255*tmp1028;
-      result[53] = tmp321*tmp1037 + tmp310*tmp1044 + tmp308*tmp1046 + tmp320*tmp1050
-          + tmp318*tmp1052 + tmp255*tmp1053;
-      result[54] = tmp310*tmp1069 + tmp308*tmp1071;
-      result[55] = tmp310*tmp1094 + tmp308*tmp1096;
-      result[56] = tmp310*tmp1119 + tmp308*tmp1121;
-      result[57] = tmp320*tmp1144 + tmp318*tmp1146;
-      result[58] = tmp320*tmp1169 + tmp318*tmp1171;
-      result[59] = tmp320*tmp1194 + tmp318*tmp1196;
-      result[60] = tmp929;
-      result[61] = tmp954;
-      result[62] = tmp979;
-      result[63] = tmp1004;
-      result[64] = tmp1029;
-      result[65] = tmp1054;
-      result[66] = tmp1072;
-      result[67] = tmp1097;
-      result[68] = tmp1122;
-      result[69] = tmp1147;
-      result[70] = tmp1172;
-      result[71] = tmp1197;
-      result[72] = tmp333*tmp917 + tmp273*tmp930;
-      result[73] = tmp333*tmp942 + tmp273*tmp955;
-      result[74] = tmp333*tmp967 + tmp273*tmp980;
-      result[75] = tmp334*tmp993 + tmp307*tmp1005;
-      result[76] = tmp334*tmp1018 + tmp307*tmp1030;
-      result[77] = tmp334*tmp1043 + tmp307*tmp1055;
-      result[78] = tmp333*tmp1061 + tmp334*tmp1068 + tmp332*tmp1075 + tmp329*tmp1078
-          + tmp273*tmp1079 + tmp307*tmp1080;
-      result[79] = tmp333*tmp1086 + tmp334*tmp1093 + tmp332*tmp1100 + tmp329*tmp1103
-          + tmp273*tmp1104 + tmp307*tmp1105;
-      result[80] = tmp333*tmp1111 + tmp334*tmp1118 + tmp332*tmp1125 + tmp329*tmp1128
-          + tmp273*tmp1129 + tmp307*tmp1130;
-      result[81] = tmp332*tmp1150 + tmp329*tmp1153;
-      result[82] = tmp332*tmp1175 + tmp329*tmp1178;
-      result[83] = tmp332*tmp1200 + tmp329*tmp1203;
-      result[84] = tmp333*tmp918 + tmp275*tmp930;
-      result[85] = tmp333*tmp943 + tmp275*tmp955;
-      result[86] = tmp333*tmp968 + tmp275*tmp980;
-      result[87] = tmp334*tmp994 + tmp308*tmp1005;
-      result[88] = tmp334*tmp1019 + tmp308*tmp1030;
-      result[89] = tmp334*tmp1044 + tmp308*tmp1055;
-      result[90] = tmp333*tmp1062 + tmp334*tmp1069 + tmp332*tmp1076 + tmp330*tmp1078
-          + tmp275*tmp1079 + tmp308*tmp1080;
-      result[91] = tmp333*tmp1087 + tmp334*tmp1094 + tmp332*tmp1101 + tmp330*tmp1103
-          + tmp275*tmp1104 + tmp308*tmp1105;
-      result[92] = tmp333*tmp1112 + tmp334*tmp1119 + tmp332*tmp1126 + tmp330*tmp1128
-          + tmp275*tmp1129 + tmp308*tmp1130;
-      result[93] = tmp332*tmp1151 + tmp330*tmp1153;
-      result[94] = tmp332*tmp1176 + tmp330*tmp1178;
-      result[95] = tmp332*tmp1201 + tmp330*tmp1203;
-      result[96] = tmp931;
-      result[97] = tmp956;
-      result[98] = tmp981;
-      result[99] = tmp1006;
-      result[100] = tmp1031;
-      result[101] = tmp1056;
-      result[102] = tmp1081;
-      result[103] = tmp1106;
-      result[104] = tmp1131;
-      result[105] = tmp1154;
-      result[106] = tmp1179;
-      result[107] = tmp1204;
-      result[108] = tmp336*tmp923 + tmp293*tmp932;
-      result[109] = tmp336*tmp948 + tmp293*tmp957;
-      result[110] = tmp336*tmp973 + tmp293*tmp982;
-      result[111] = tmp337*tmp999 + tmp317*tmp1007;
-      result[112] = tmp337*tmp1024 + tmp317*tmp1032;
-      result[113] = tmp337*tmp1049 + tmp317*tmp1057;
-      result[114] = tmp338*tmp1075 + tmp329*tmp1082;
-      result[115] = tmp338*tmp1100 + tmp329*tmp1107;
-      result[116] = tmp338*tmp1125 + tmp329*tmp1132;
-      result[117] = tmp336*tmp1136 + tmp337*tmp1143 + tmp338*tmp1150 + tmp293*tmp1155
-          + tmp317*tmp1156 + tmp329*tmp1157;
-      result[118] = tmp336*tmp1161 + tmp337*tmp1168 + tmp338*tmp1175 + tmp293*tmp1180
-          + tmp317*tmp1181 + tmp329*tmp1182;
-      result[119] = tmp336*tmp1186 + tmp337*tmp1193 + tmp338*tmp1200 + tmp293*tmp1205
-          + tmp317*tmp1206 + tmp329*tmp1207;
-      result[120] = tmp336*tmp924 + tmp295*tmp932;
-      result[121] = tmp336*tmp949 + tmp295*tmp957;
-      result[122] = tmp336*tmp974 + tmp295*tmp982;
-      result[123] = tmp337*tmp1000 + tmp318*tmp1007;
-      result[124] = tmp337*tmp1025 + tmp318*tmp1032;
-      result[125] = tmp337*tmp1050 + tmp318*tmp1057;
-      result[126] = tmp338*tmp1076 + tmp330*tmp1082;
-      result[127] = tmp338*tmp1101 + tmp330*tmp1107;
-      result[128] = tmp338*tmp1126 + tmp330*tmp1132;
-      result[129] = tmp336*tmp1137 + tmp337*tmp1144 + tmp338*tmp1151 + tmp295*tmp1155
-          + tmp318*tmp1156 + tmp330*tmp1157;
-      result[130] = tmp336*tmp1162 + tmp337*tmp1169 + tmp338*tmp1176 + tmp295*tmp1180
-          + tmp318*tmp1181 + tmp330*tmp1182;
-      result[131] = tmp336*tmp1187 + tmp337*tmp1194 + tmp338*tmp1201 + tmp295*tmp1205
-          + tmp318*tmp1206 + tmp330*tmp1207;
-      result[132] = tmp933;
-      result[133] = tmp958;
-      result[134] = tmp983;
-      result[135] = tmp1008;
-      result[136] = tmp1033;
-      result[137] = tmp1058;
-      result[138] = tmp1083;
-      result[139] = tmp1108;
-      result[140] = tmp1133;
-      result[141] = tmp1158;
-      result[142] = tmp1183;
-      result[143] = tmp1208;
+      result[0] = tmp207*tmp734 + tmp204*tmp737 + tmp223*tmp740 + tmp218*tmp743 + tmp239*tmp746
+          + tmp234*tmp749;
+      result[1] = tmp207*tmp759 + tmp204*tmp762 + tmp223*tmp765 + tmp218*tmp768 + tmp239*tmp771
+          + tmp234*tmp774;
+      result[2] = tmp207*tmp784 + tmp204*tmp787 + tmp223*tmp790 + tmp218*tmp793 + tmp239*tmp796
+          + tmp234*tmp799;
+      result[3] = tmp207*tmp809 + tmp204*tmp812;
+      result[4] = tmp207*tmp834 + tmp204*tmp837;
+      result[5] = tmp207*tmp859 + tmp204*tmp862;
+      result[6] = tmp223*tmp884 + tmp218*tmp887;
+      result[7] = tmp223*tmp909 + tmp218*tmp912;
+      result[8] = tmp223*tmp934 + tmp218*tmp937;
+      result[9] = tmp239*tmp959 + tmp234*tmp962;
+      result[10] = tmp239*tmp984 + tmp234*tmp987;
+      result[11] = tmp239*tmp1009 + tmp234*tmp1012;
+      result[12] = tmp207*tmp735 + tmp205*tmp737 + tmp223*tmp741 + tmp220*tmp743 + tmp239*tmp747
+          + tmp236*tmp749;
+      result[13] = tmp207*tmp760 + tmp205*tmp762 + tmp223*tmp766 + tmp220*tmp768 + tmp239*tmp772
+          + tmp236*tmp774;
+      result[14] = tmp207*tmp785 + tmp205*tmp787 + tmp223*tmp791 + tmp220*tmp793 + tmp239*tmp797
+          + tmp236*tmp799;
+      result[15] = tmp207*tmp810 + tmp205*tmp812;
+      result[16] = tmp207*tmp835 + tmp205*tmp837;
+      result[17] = tmp207*tmp860 + tmp205*tmp862;
+      result[18] = tmp223*tmp885 + tmp220*tmp887;
+      result[19] = tmp223*tmp910 + tmp220*tmp912;
+      result[20] = tmp223*tmp935 + tmp220*tmp937;
+      result[21] = tmp239*tmp960 + tmp236*tmp962;
+      result[22] = tmp239*tmp985 + tmp236*tmp987;
+      result[23] = tmp239*tmp1010 + tmp236*tmp1012;
+      result[24] = tmp750;
+      result[25] = tmp775;
+      result[26] = tmp800;
+      result[27] = tmp813;
+      result[28] = tmp838;
+      result[29] = tmp863;
+      result[30] = tmp888;
+      result[31] = tmp913;
+      result[32] = tmp938;
+      result[33] = tmp963;
+      result[34] = tmp988;
+      result[35] = tmp1013;
+      result[36] = tmp241*tmp734 + tmp204*tmp751;
+      result[37] = tmp241*tmp759 + tmp204*tmp776;
+      result[38] = tmp241*tmp784 + tmp204*tmp801;
+      result[39] = tmp241*tmp809 + tmp204*tmp814 + tmp251*tmp817 + tmp248*tmp820 + tmp261*tmp823
+          + tmp258*tmp826;
+      result[40] = tmp241*tmp834 + tmp204*tmp839 + tmp251*tmp842 + tmp248*tmp845 + tmp261*tmp848
+          + tmp258*tmp851;
+      result[41] = tmp241*tmp859 + tmp204*tmp864 + tmp251*tmp867 + tmp248*tmp870 + tmp261*tmp873
+          + tmp258*tmp876;
+      result[42] = tmp251*tmp891 + tmp248*tmp894;
+      result[43] = tmp251*tmp916 + tmp248*tmp919;
+      result[44] = tmp251*tmp941 + tmp248*tmp944;
+      result[45] = tmp261*tmp966 + tmp258*tmp969;
+      result[46] = tmp261*tmp991 + tmp258*tmp994;
+      result[47] = tmp261*tmp1016 + tmp258*tmp1019;
+      result[48] = tmp241*tmp735 + tmp205*tmp751;
+      result[49] = tmp241*tmp760 + tmp205*tmp776;
+      result[50] = tmp241*tmp785 + tmp205*tmp801;
+      result[51] = tmp241*tmp810 + tmp205*tmp814 + tmp251*tmp818 + tmp249*tmp820 + tmp261*tmp824
+          + tmp259*tmp826;
+      result[52] = tmp241*tmp835 + tmp205*tmp839 + tmp251*tmp843 + tmp249*tmp845 + tmp261*tmp849
+          + tmp259*tmp851;
+      result[53] = tmp241*tmp860 + tmp205*tmp864 + tmp251*tmp868 + tmp249*tmp870 + tmp261*tmp874
+          + tmp259*tmp876;
+      result[54] = tmp251*tmp892 + tmp249*tmp894;
+      result[55] = tmp251*tmp917 + tmp249*tmp919;
+      result[56] = tmp251*tmp942 + tmp249*tmp944;
+      result[57] = tmp261*tmp967 + tmp259*tmp969;
+      result[58] = tmp261*tmp992 + tmp259*tmp994;
+      result[59] = tmp261*tmp1017 + tmp259*tmp1019;
+      result[60] = tmp752;
+      result[61] = tmp777;
+      result[62] = tmp802;
+      result[63] = tmp827;
+      result[64] = tmp852;
+      result[65] = tmp877;
+      result[66] = tmp895;
+      result[67] = tmp920;
+      result[68] = tmp945;
+      result[69] = tmp970;
+      result[70] = tmp995;
+      result[71] = tmp1020;
+      result[72] = tmp263*tmp740 + tmp218*tmp753;
+      result[73] = tmp263*tmp765 + tmp218*tmp778;
+      result[74] = tmp263*tmp790 + tmp218*tmp803;
+      result[75] = tmp264*tmp817 + tmp248*tmp828;
+      result[76] = tmp264*tmp842 + tmp248*tmp853;
+      result[77] = tmp264*tmp867 + tmp248*tmp878;
+      result[78] = tmp263*tmp884 + tmp264*tmp891 + tmp218*tmp896 + tmp248*tmp897 + tmp274*tmp900
+          + tmp271*tmp903;
+      result[79] = tmp263*tmp909 + tmp264*tmp916 + tmp218*tmp921 + tmp248*tmp922 + tmp274*tmp925
+          + tmp271*tmp928;
+      result[80] = tmp263*tmp934 + tmp264*tmp941 + tmp218*tmp946 + tmp248*tmp947 + tmp274*tmp950
+          + tmp271*tmp953;
+      result[81] = tmp274*tmp973 + tmp271*tmp976;
+      result[82] = tmp274*tmp998 + tmp271*tmp1001;
+      result[83] = tmp274*tmp1023 + tmp271*tmp1026;
+      result[84] = tmp263*tmp741 + tmp220*tmp753;
+      result[85] = tmp263*tmp766 + tmp220*tmp778;
+      result[86] = tmp263*tmp791 + tmp220*tmp803;
+      result[87] = tmp264*tmp818 + tmp249*tmp828;
+      result[88] = tmp264*tmp843 + tmp249*tmp853;
+      result[89] = tmp264*tmp868 + tmp249*tmp878;
+      result[90] = tmp263*tmp885 + tmp264*tmp892 + tmp220*tmp896 + tmp249*tmp897 + tmp274*tmp901
+          + tmp272*tmp903;
+      result[91] = tmp263*tmp910 + tmp264*tmp917 + tmp220*tmp921 + tmp249*tmp922 + tmp274*tmp926
+          + tmp272*tmp928;
+      result[92] = tmp263*tmp935 + tmp264*tmp942 + tmp220*tmp946 + tmp249*tmp947 + tmp274*tmp951
+          + tmp272*tmp953;
+      result[93] = tmp274*tmp974 + tmp272*tmp976;
+      result[94] = tmp274*tmp999 + tmp272*tmp1001;
+      result[95] = tmp274*tmp1024 + tmp272*tmp1026;
+      result[96] = tmp754;
+      result[97] = tmp779;
+      result[98] = tmp804;
+      result[99] = tmp829;
+      result[100] = tmp854;
+      result[101] = tmp879;
+      result[102] = tmp904;
+      result[103] = tmp929;
+      result[104] = tmp954;
+      result[105] = tmp977;
+      result[106] = tmp1002;
+      result[107] = tmp1027;
+      result[108] = tmp276*tmp746 + tmp234*tmp755;
+      result[109] = tmp276*tmp771 + tmp234*tmp780;
+      result[110] = tmp276*tmp796 + tmp234*tmp805;
+      result[111] = tmp277*tmp823 + tmp258*tmp830;
+      result[112] = tmp277*tmp848 + tmp258*tmp855;
+      result[113] = tmp277*tmp873 + tmp258*tmp880;
+      result[114] = tmp278*tmp900 + tmp271*tmp905;
+      result[115] = tmp278*tmp925 + tmp271*tmp930;
+      result[116] = tmp278*tmp950 + tmp271*tmp955;
+      result[117] = tmp276*tmp959 + tmp277*tmp966 + tmp278*tmp973 + tmp234*tmp978 + tmp258*tmp979
+          + tmp271*tmp980;
+      result[118] = tmp276*tmp984 + tmp277*tmp991 + tmp278*tmp998 + tmp234*tmp1003 + tmp258*tmp1004
+          + tmp271*tmp1005;
+      result[119] = tmp276*tmp1009 + tmp277*tmp1016 + tmp278*tmp1023 + tmp234*tmp1028
+          + tmp258*tmp1029 + tmp271*tmp1030;
+      result[120] = tmp276*tmp747 + tmp236*tmp755;
+      result[121] = tmp276*tmp772 + tmp236*tmp780;
+      result[122] = tmp276*tmp797 + tmp236*tmp805;
+      result[123] = tmp277*tmp824 + tmp259*tmp830;
+      result[124] = tmp277*tmp849 + tmp259*tmp855;
+      result[125] = tmp277*tmp874 + tmp259*tmp880;
+      result[126] = tmp278*tmp901 + tmp272*tmp905;
+      result[127] = tmp278*tmp926 + tmp272*tmp930;
+      result[128] = tmp278*tmp951 + tmp272*tmp955;
+      result[129] = tmp276*tmp960 + tmp277*tmp967 + tmp278*tmp974 + tmp236*tmp978 + tmp259*tmp979
+          + tmp272*tmp980;
+      result[130] = tmp276*tmp985 + tmp277*tmp992 + tmp278*tmp999 + tmp236*tmp1003 + tmp259*tmp1004
+          + tmp272*tmp1005;
+      result[131] = tmp276*tmp1010 + tmp277*tmp1017 + tmp278*tmp1024 + tmp236*tmp1028
+          + tmp259*tmp1029 + tmp272*tmp1030;
+      result[132] = tmp756;
+      result[133] = tmp781;
+      result[134] = tmp806;
+      result[135] = tmp831;
+      result[136] = tmp856;
+      result[137] = tmp881;
+      result[138] = tmp906;
+      result[139] = tmp931;
+      result[140] = tmp956;
+      result[141] = tmp981;
+      result[142] = tmp1006;
+      result[143] = tmp1031;
       return result;
     }
 
@@ -10818,361 +9356,334 @@ struct RigidBodyEulerYzx {
     /// \param[in] penalty_damping  penalty damping coefficient
     /// \param[in] params  model parameters
     /// \return values (jacobian_xdot_nonzeros)
-    /// Ops: 531
+    /// Ops: 513
     template <typename Scalar>
     static std::array<Scalar, 144> force_jacobian_xdot(const XVector<Scalar>& pos,
                                                        const XVector<Scalar>& /*vel*/,
                                                        const Scalar& /*t*/,
                                                        const Scalar& /*kappa*/,
                                                        const Scalar& penalty_damping,
-                                                       const Params& params) {
+                                                       const Params& /*params*/) {
       using std::sqrt;
-      const Scalar m = Scalar(params.m);
-      const Scalar a = Scalar(params.a);
-      const Scalar b = Scalar(params.b);
-      const Scalar c = Scalar(params.c);
-      const Scalar tmp10 = (a*a);
-      const Scalar tmp11 = (b*b);
-      const Scalar tmp12 = ((Scalar(1)/Scalar(24)))*m;
-      const Scalar tmp13 = tmp12*(tmp10 + tmp11);
-      const Scalar tmp14 = (c*c);
-      const Scalar tmp15 = tmp12*(tmp10 + tmp14);
-      const Scalar tmp16 = tmp12*(tmp11 + tmp14);
-      const Scalar tmp17 = tmp15 + tmp16 - tmp13;
-      const Scalar tmp24 = tmp13 + tmp16 - tmp15;
-      const Scalar tmp28 = tmp13 + tmp15 - tmp16;
-      const Scalar tmp242 = pos(3) - pos(0);
-      const Scalar tmp243 = pos(4) - pos(1);
-      const Scalar tmp244 = pos(5) - pos(2);
+      const Scalar tmp198 = pos(3) - pos(0);
+      const Scalar tmp199 = pos(4) - pos(1);
+      const Scalar tmp200 = pos(5) - pos(2);
+      const Scalar tmp201 = sqrt((tmp198*tmp198) + (tmp199*tmp199) + (tmp200*tmp200));
+      const Scalar tmp203 = (Scalar(1)/tmp201);
+      const Scalar tmp204 = tmp198*tmp203;
+      const Scalar tmp205 = tmp199*tmp203;
+      const Scalar tmp206 = tmp200*tmp203;
+      const Scalar tmp208 = -pos(6);
+      const Scalar tmp209 = -tmp208 - pos(0);
+      const Scalar tmp210 = -pos(7);
+      const Scalar tmp211 = -tmp210 - pos(1);
+      const Scalar tmp212 = -pos(8);
+      const Scalar tmp213 = -tmp212 - pos(2);
+      const Scalar tmp214 = sqrt((tmp209*tmp209) + (tmp211*tmp211) + (tmp213*tmp213));
+      const Scalar tmp217 = (Scalar(1)/tmp214);
+      const Scalar tmp218 = tmp209*tmp217;
+      const Scalar tmp220 = tmp211*tmp217;
+      const Scalar tmp222 = tmp213*tmp217;
+      const Scalar tmp224 = -pos(9);
+      const Scalar tmp225 = -tmp224 - pos(0);
+      const Scalar tmp226 = -pos(10);
+      const Scalar tmp227 = -tmp226 - pos(1);
+      const Scalar tmp228 = -pos(11);
+      const Scalar tmp229 = -tmp228 - pos(2);
+      const Scalar tmp230 = sqrt((tmp225*tmp225) + (tmp227*tmp227) + (tmp229*tmp229));
+      const Scalar tmp233 = (Scalar(1)/tmp230);
+      const Scalar tmp234 = tmp225*tmp233;
+      const Scalar tmp236 = tmp227*tmp233;
+      const Scalar tmp238 = tmp229*tmp233;
+      const Scalar tmp242 = -tmp208 - pos(3);
+      const Scalar tmp243 = -tmp210 - pos(4);
+      const Scalar tmp244 = -tmp212 - pos(5);
       const Scalar tmp245 = sqrt((tmp242*tmp242) + (tmp243*tmp243) + (tmp244*tmp244));
-      const Scalar tmp246 = Scalar(4)/m;
-      const Scalar tmp247 = tmp17*tmp246;
-      const Scalar tmp248 = tmp246*tmp24;
-      const Scalar tmp249 = sqrt(tmp247 + tmp248);
-      const Scalar tmp251 = (Scalar(1)/tmp249);
-      const Scalar tmp253 = (Scalar(1)/tmp245);
-      const Scalar tmp254 = tmp242*tmp253;
-      const Scalar tmp255 = tmp243*tmp253;
-      const Scalar tmp256 = tmp244*tmp253;
-      const Scalar tmp257 = tmp251*penalty_damping;
-      const Scalar tmp259 = -pos(6);
-      const Scalar tmp260 = -tmp259 - pos(0);
-      const Scalar tmp261 = -pos(7);
-      const Scalar tmp262 = -tmp261 - pos(1);
-      const Scalar tmp263 = -pos(8);
-      const Scalar tmp264 = -tmp263 - pos(2);
-      const Scalar tmp265 = sqrt((tmp260*tmp260) + (tmp262*tmp262) + (tmp264*tmp264));
-      const Scalar tmp266 = tmp246*tmp28;
-      const Scalar tmp267 = sqrt(tmp247 + tmp266);
-      const Scalar tmp269 = (Scalar(1)/tmp267);
-      const Scalar tmp272 = (Scalar(1)/tmp265);
-      const Scalar tmp273 = tmp260*tmp272;
-      const Scalar tmp275 = tmp262*tmp272;
-      const Scalar tmp277 = tmp264*tmp272;
-      const Scalar tmp278 = tmp269*penalty_damping;
-      const Scalar tmp280 = -pos(9);
-      const Scalar tmp281 = -tmp280 - pos(0);
-      const Scalar tmp282 = -pos(10);
-      const Scalar tmp283 = -tmp282 - pos(1);
-      const Scalar tmp284 = -pos(11);
-      const Scalar tmp285 = -tmp284 - pos(2);
-      const Scalar tmp286 = sqrt((tmp281*tmp281) + (tmp283*tmp283) + (tmp285*tmp285));
-      const Scalar tmp287 = sqrt(tmp248 + tmp266);
-      const Scalar tmp289 = (Scalar(1)/tmp287);
-      const Scalar tmp292 = (Scalar(1)/tmp286);
-      const Scalar tmp293 = tmp281*tmp292;
-      const Scalar tmp295 = tmp283*tmp292;
-      const Scalar tmp297 = tmp285*tmp292;
-      const Scalar tmp298 = tmp289*penalty_damping;
-      const Scalar tmp301 = -tmp259 - pos(3);
-      const Scalar tmp302 = -tmp261 - pos(4);
-      const Scalar tmp303 = -tmp263 - pos(5);
-      const Scalar tmp304 = sqrt((tmp301*tmp301) + (tmp302*tmp302) + (tmp303*tmp303));
-      const Scalar tmp306 = (Scalar(1)/tmp304);
-      const Scalar tmp307 = tmp301*tmp306;
-      const Scalar tmp308 = tmp302*tmp306;
-      const Scalar tmp309 = tmp303*tmp306;
-      const Scalar tmp311 = -tmp280 - pos(3);
-      const Scalar tmp312 = -tmp282 - pos(4);
-      const Scalar tmp313 = -tmp284 - pos(5);
-      const Scalar tmp314 = sqrt((tmp311*tmp311) + (tmp312*tmp312) + (tmp313*tmp313));
-      const Scalar tmp316 = (Scalar(1)/tmp314);
-      const Scalar tmp317 = tmp311*tmp316;
-      const Scalar tmp318 = tmp312*tmp316;
-      const Scalar tmp319 = tmp313*tmp316;
-      const Scalar tmp323 = -tmp280 - pos(6);
-      const Scalar tmp324 = -tmp282 - pos(7);
-      const Scalar tmp325 = -tmp284 - pos(8);
-      const Scalar tmp326 = sqrt((tmp323*tmp323) + (tmp324*tmp324) + (tmp325*tmp325));
-      const Scalar tmp328 = (Scalar(1)/tmp326);
-      const Scalar tmp329 = tmp323*tmp328;
-      const Scalar tmp330 = tmp324*tmp328;
-      const Scalar tmp331 = tmp325*tmp328;
-      const Scalar tmp1209 = -tmp254*tmp257;
-      const Scalar tmp1210 = -tmp273*tmp278;
-      const Scalar tmp1211 = -tmp293*tmp298;
-      const Scalar tmp1212 = tmp256*tmp1209 + tmp277*tmp1210 + tmp297*tmp1211;
-      const Scalar tmp1213 = -tmp1209;
-      const Scalar tmp1214 = tmp256*tmp1213;
-      const Scalar tmp1215 = -tmp1210;
-      const Scalar tmp1216 = tmp277*tmp1215;
-      const Scalar tmp1217 = -tmp1211;
-      const Scalar tmp1218 = tmp297*tmp1217;
-      const Scalar tmp1219 = -tmp255*tmp257;
-      const Scalar tmp1220 = -tmp275*tmp278;
-      const Scalar tmp1221 = -tmp295*tmp298;
-      const Scalar tmp1222 = tmp256*tmp1219 + tmp277*tmp1220 + tmp297*tmp1221;
-      const Scalar tmp1223 = -tmp1219;
-      const Scalar tmp1224 = tmp256*tmp1223;
-      const Scalar tmp1225 = -tmp1220;
-      const Scalar tmp1226 = tmp277*tmp1225;
-      const Scalar tmp1227 = -tmp1221;
-      const Scalar tmp1228 = tmp297*tmp1227;
-      const Scalar tmp1229 = -tmp256*tmp257;
-      const Scalar tmp1230 = -tmp277*tmp278;
-      const Scalar tmp1231 = -tmp297*tmp298;
-      const Scalar tmp1232 = tmp256*tmp1229 + tmp277*tmp1230 + tmp297*tmp1231;
-      const Scalar tmp1233 = -tmp1229;
-      const Scalar tmp1234 = tmp256*tmp1233;
-      const Scalar tmp1235 = -tmp1230;
-      const Scalar tmp1236 = tmp277*tmp1235;
-      const Scalar tmp1237 = -tmp1231;
-      const Scalar tmp1238 = tmp297*tmp1237;
-      const Scalar tmp1239 = tmp254*tmp257;
-      const Scalar tmp1240 = tmp256*tmp1239;
-      const Scalar tmp1241 = -tmp298*tmp307;
-      const Scalar tmp1242 = -tmp278*tmp317;
-      const Scalar tmp1243 = -tmp1239;
-      const Scalar tmp1244 = tmp309*tmp1241 + tmp319*tmp1242 + tmp256*tmp1243;
-      const Scalar tmp1245 = -tmp1241;
-      const Scalar tmp1246 = tmp309*tmp1245;
-      const Scalar tmp1247 = -tmp1242;
-      const Scalar tmp1248 = tmp319*tmp1247;
-      const Scalar tmp1249 = tmp255*tmp257;
-      const Scalar tmp1250 = tmp256*tmp1249;
-      const Scalar tmp1251 = -tmp298*tmp308;
-      const Scalar tmp1252 = -tmp278*tmp318;
-      const Scalar tmp1253 = -tmp1249;
-      const Scalar tmp1254 = tmp309*tmp1251 + tmp319*tmp1252 + tmp256*tmp1253;
-      const Scalar tmp1255 = -tmp1251;
-      const Scalar tmp1256 = tmp309*tmp1255;
-      const Scalar tmp1257 = -tmp1252;
-      const Scalar tmp1258 = tmp319*tmp1257;
-      const Scalar tmp1259 = tmp256*tmp257;
-      const Scalar tmp1260 = tmp256*tmp1259;
-      const Scalar tmp1261 = -tmp298*tmp309;
-      const Scalar tmp1262 = -tmp278*tmp319;
-      const Scalar tmp1263 = -tmp1259;
-      const Scalar tmp1264 = tmp309*tmp1261 + tmp319*tmp1262 + tmp256*tmp1263;
-      const Scalar tmp1265 = -tmp1261;
-      const Scalar tmp1266 = tmp309*tmp1265;
-      const Scalar tmp1267 = -tmp1262;
-      const Scalar tmp1268 = tmp319*tmp1267;
-      const Scalar tmp1269 = tmp273*tmp278;
-      const Scalar tmp1270 = tmp277*tmp1269;
-      const Scalar tmp1271 = tmp298*tmp307;
-      const Scalar tmp1272 = tmp309*tmp1271;
-      const Scalar tmp1273 = -tmp257*tmp329;
-      const Scalar tmp1274 = -tmp1269;
-      const Scalar tmp1275 = -tmp1271;
-      const Scalar tmp1276 = tmp331*tmp1273 + tmp277*tmp1274 + tmp309*tmp1275;
-      const Scalar tmp1277 = -tmp1273;
-      const Scalar tmp1278 = tmp331*tmp1277;
-      const Scalar tmp1279 = tmp275*tmp278;
-      const Scalar tmp1280 = tmp277*tmp1279;
-      const Scalar tmp1281 = tmp298*tmp308;
-      const Scalar tmp1282 = tmp309*tmp1281;
-      const Scalar tmp1283 = -tmp257*tmp330;
-      const Scalar tmp1284 = -tmp1279;
-      const Scalar tmp1285 = -tmp1281;
-      const Scalar tmp1286 = tmp331*tmp1283 + tmp277*tmp1284 + tmp309*tmp1285;
-      const Scalar tmp1287 = -tmp1283;
-      const Scalar tmp1288 = tmp331*tmp1287;
-      const Scalar tmp1289 = tmp277*tmp278;
-      const Scalar tmp1290 = tmp277*tmp1289;
-      const Scalar tmp1291 = tmp298*tmp309;
-      const Scalar tmp1292 = tmp309*tmp1291;
-      const Scalar tmp1293 = -tmp257*tmp331;
-      const Scalar tmp1294 = -tmp1289;
-      const Scalar tmp1295 = -tmp1291;
-      const Scalar tmp1296 = tmp331*tmp1293 + tmp277*tmp1294 + tmp309*tmp1295;
-      const Scalar tmp1297 = -tmp1293;
-      const Scalar tmp1298 = tmp331*tmp1297;
-      const Scalar tmp1299 = tmp293*tmp298;
-      const Scalar tmp1300 = tmp297*tmp1299;
-      const Scalar tmp1301 = tmp278*tmp317;
-      const Scalar tmp1302 = tmp319*tmp1301;
-      const Scalar tmp1303 = tmp257*tmp329;
-      const Scalar tmp1304 = tmp331*tmp1303;
-      const Scalar tmp1305 = -tmp1299;
-      const Scalar tmp1306 = -tmp1301;
-      const Scalar tmp1307 = -tmp1303;
-      const Scalar tmp1308 = tmp297*tmp1305 + tmp319*tmp1306 + tmp331*tmp1307;
-      const Scalar tmp1309 = tmp295*tmp298;
-      const Scalar tmp1310 = tmp297*tmp1309;
-      const Scalar tmp1311 = tmp278*tmp318;
-      const Scalar tmp1312 = tmp319*tmp1311;
-      const Scalar tmp1313 = tmp257*tmp330;
-      const Scalar tmp1314 = tmp331*tmp1313;
-      const Scalar tmp1315 = -tmp1309;
-      const Scalar tmp1316 = -tmp1311;
-      const Scalar tmp1317 = -tmp1313;
-      const Scalar tmp1318 = tmp297*tmp1315 + tmp319*tmp1316 + tmp331*tmp1317;
-      const Scalar tmp1319 = tmp297*tmp298;
-      const Scalar tmp1320 = tmp297*tmp1319;
-      const Scalar tmp1321 = tmp278*tmp319;
-      const Scalar tmp1322 = tmp319*tmp1321;
-      const Scalar tmp1323 = tmp257*tmp331;
-      const Scalar tmp1324 = tmp331*tmp1323;
-      const Scalar tmp1325 = -tmp1319;
-      const Scalar tmp1326 = -tmp1321;
-      const Scalar tmp1327 = -tmp1323;
-      const Scalar tmp1328 = tmp297*tmp1325 + tmp319*tmp1326 + tmp331*tmp1327;
+      const Scalar tmp247 = (Scalar(1)/tmp245);
+      const Scalar tmp248 = tmp242*tmp247;
+      const Scalar tmp249 = tmp243*tmp247;
+      const Scalar tmp250 = tmp244*tmp247;
+      const Scalar tmp252 = -tmp224 - pos(3);
+      const Scalar tmp253 = -tmp226 - pos(4);
+      const Scalar tmp254 = -tmp228 - pos(5);
+      const Scalar tmp255 = sqrt((tmp252*tmp252) + (tmp253*tmp253) + (tmp254*tmp254));
+      const Scalar tmp257 = (Scalar(1)/tmp255);
+      const Scalar tmp258 = tmp252*tmp257;
+      const Scalar tmp259 = tmp253*tmp257;
+      const Scalar tmp260 = tmp254*tmp257;
+      const Scalar tmp265 = -tmp224 - pos(6);
+      const Scalar tmp266 = -tmp226 - pos(7);
+      const Scalar tmp267 = -tmp228 - pos(8);
+      const Scalar tmp268 = sqrt((tmp265*tmp265) + (tmp266*tmp266) + (tmp267*tmp267));
+      const Scalar tmp270 = (Scalar(1)/tmp268);
+      const Scalar tmp271 = tmp265*tmp270;
+      const Scalar tmp272 = tmp266*tmp270;
+      const Scalar tmp273 = tmp267*tmp270;
+      const Scalar tmp1032 = -Scalar(1.5617376188860606)*tmp204*penalty_damping;
+      const Scalar tmp1033 = -Scalar(1.7149858514250886)*tmp218*penalty_damping;
+      const Scalar tmp1034 = -Scalar(2.030692330267238)*tmp234*penalty_damping;
+      const Scalar tmp1035 = tmp206*tmp1032 + tmp222*tmp1033 + tmp238*tmp1034;
+      const Scalar tmp1036 = -tmp1032;
+      const Scalar tmp1037 = tmp206*tmp1036;
+      const Scalar tmp1038 = -tmp1033;
+      const Scalar tmp1039 = tmp222*tmp1038;
+      const Scalar tmp1040 = -tmp1034;
+      const Scalar tmp1041 = tmp238*tmp1040;
+      const Scalar tmp1042 = -Scalar(1.5617376188860606)*tmp205*penalty_damping;
+      const Scalar tmp1043 = -Scalar(1.7149858514250886)*tmp220*penalty_damping;
+      const Scalar tmp1044 = -Scalar(2.030692330267238)*tmp236*penalty_damping;
+      const Scalar tmp1045 = tmp206*tmp1042 + tmp222*tmp1043 + tmp238*tmp1044;
+      const Scalar tmp1046 = -tmp1042;
+      const Scalar tmp1047 = tmp206*tmp1046;
+      const Scalar tmp1048 = -tmp1043;
+      const Scalar tmp1049 = tmp222*tmp1048;
+      const Scalar tmp1050 = -tmp1044;
+      const Scalar tmp1051 = tmp238*tmp1050;
+      const Scalar tmp1052 = -Scalar(1.5617376188860606)*tmp206*penalty_damping;
+      const Scalar tmp1053 = -Scalar(1.7149858514250886)*tmp222*penalty_damping;
+      const Scalar tmp1054 = -Scalar(2.030692330267238)*tmp238*penalty_damping;
+      const Scalar tmp1055 = tmp206*tmp1052 + tmp222*tmp1053 + tmp238*tmp1054;
+      const Scalar tmp1056 = -tmp1052;
+      const Scalar tmp1057 = tmp206*tmp1056;
+      const Scalar tmp1058 = -tmp1053;
+      const Scalar tmp1059 = tmp222*tmp1058;
+      const Scalar tmp1060 = -tmp1054;
+      const Scalar tmp1061 = tmp238*tmp1060;
+      const Scalar tmp1062 = Scalar(1.5617376188860606)*tmp204*penalty_damping;
+      const Scalar tmp1063 = tmp206*tmp1062;
+      const Scalar tmp1064 = -tmp1062;
+      const Scalar tmp1065 = -Scalar(2.0)*tmp248*penalty_damping;
+      const Scalar tmp1066 = -Scalar(2.9814239699997196)*tmp258*penalty_damping;
+      const Scalar tmp1067 = tmp206*tmp1064 + tmp250*tmp1065 + tmp260*tmp1066;
+      const Scalar tmp1068 = -tmp1065;
+      const Scalar tmp1069 = tmp250*tmp1068;
+      const Scalar tmp1070 = -tmp1066;
+      const Scalar tmp1071 = tmp260*tmp1070;
+      const Scalar tmp1072 = Scalar(1.5617376188860606)*tmp205*penalty_damping;
+      const Scalar tmp1073 = tmp206*tmp1072;
+      const Scalar tmp1074 = -tmp1072;
+      const Scalar tmp1075 = -Scalar(2.0)*tmp249*penalty_damping;
+      const Scalar tmp1076 = -Scalar(2.9814239699997196)*tmp259*penalty_damping;
+      const Scalar tmp1077 = tmp206*tmp1074 + tmp250*tmp1075 + tmp260*tmp1076;
+      const Scalar tmp1078 = -tmp1075;
+      const Scalar tmp1079 = tmp250*tmp1078;
+      const Scalar tmp1080 = -tmp1076;
+      const Scalar tmp1081 = tmp260*tmp1080;
+      const Scalar tmp1082 = Scalar(1.5617376188860606)*tmp206*penalty_damping;
+      const Scalar tmp1083 = tmp206*tmp1082;
+      const Scalar tmp1084 = -tmp1082;
+      const Scalar tmp1085 = -Scalar(2.0)*tmp250*penalty_damping;
+      const Scalar tmp1086 = -Scalar(2.9814239699997196)*tmp260*penalty_damping;
+      const Scalar tmp1087 = tmp206*tmp1084 + tmp250*tmp1085 + tmp260*tmp1086;
+      const Scalar tmp1088 = -tmp1085;
+      const Scalar tmp1089 = tmp250*tmp1088;
+      const Scalar tmp1090 = -tmp1086;
+      const Scalar tmp1091 = tmp260*tmp1090;
+      const Scalar tmp1092 = Scalar(1.7149858514250886)*tmp218*penalty_damping;
+      const Scalar tmp1093 = tmp222*tmp1092;
+      const Scalar tmp1094 = Scalar(2.0)*tmp248*penalty_damping;
+      const Scalar tmp1095 = tmp250*tmp1094;
+      const Scalar tmp1096 = -tmp1092;
+      const Scalar tmp1097 = -tmp1094;
+      const Scalar tmp1098 = -Scalar(2.7472112789737806)*tmp271*penalty_damping;
+      const Scalar tmp1099 = tmp222*tmp1096 + tmp250*tmp1097 + tmp273*tmp1098;
+      const Scalar tmp1100 = -tmp1098;
+      const Scalar tmp1101 = tmp273*tmp1100;
+      const Scalar tmp1102 = Scalar(1.7149858514250886)*tmp220*penalty_damping;
+      const Scalar tmp1103 = tmp222*tmp1102;
+      const Scalar tmp1104 = Scalar(2.0)*tmp249*penalty_damping;
+      const Scalar tmp1105 = tmp250*tmp1104;
+      const Scalar tmp1106 = -tmp1102;
+      const Scalar tmp1107 = -tmp1104;
+      const Scalar tmp1108 = -Scalar(2.7472112789737806)*tmp272*penalty_damping;
+      const Scalar tmp1109 = tmp222*tmp1106 + tmp250*tmp1107 + tmp273*tmp1108;
+      const Scalar tmp1110 = -tmp1108;
+      const Scalar tmp1111 = tmp273*tmp1110;
+      const Scalar tmp1112 = Scalar(1.7149858514250886)*tmp222*penalty_damping;
+      const Scalar tmp1113 = tmp222*tmp1112;
+      const Scalar tmp1114 = Scalar(2.0)*tmp250*penalty_damping;
+      const Scalar tmp1115 = tmp250*tmp1114;
+      const Scalar tmp1116 = -tmp1112;
+      const Scalar tmp1117 = -tmp1114;
+      const Scalar tmp1118 = -Scalar(2.7472112789737806)*tmp273*penalty_damping;
+      const Scalar tmp1119 = tmp222*tmp1116 + tmp250*tmp1117 + tmp273*tmp1118;
+      const Scalar tmp1120 = -tmp1118;
+      const Scalar tmp1121 = tmp273*tmp1120;
+      const Scalar tmp1122 = Scalar(2.030692330267238)*tmp234*penalty_damping;
+      const Scalar tmp1123 = tmp238*tmp1122;
+      const Scalar tmp1124 = Scalar(2.9814239699997196)*tmp258*penalty_damping;
+      const Scalar tmp1125 = tmp260*tmp1124;
+      const Scalar tmp1126 = Scalar(2.7472112789737806)*tmp271*penalty_damping;
+      const Scalar tmp1127 = tmp273*tmp1126;
+      const Scalar tmp1128 = -tmp1122;
+      const Scalar tmp1129 = -tmp1124;
+      const Scalar tmp1130 = -tmp1126;
+      const Scalar tmp1131 = tmp238*tmp1128 + tmp260*tmp1129 + tmp273*tmp1130;
+      const Scalar tmp1132 = Scalar(2.030692330267238)*tmp236*penalty_damping;
+      const Scalar tmp1133 = tmp238*tmp1132;
+      const Scalar tmp1134 = Scalar(2.9814239699997196)*tmp259*penalty_damping;
+      const Scalar tmp1135 = tmp260*tmp1134;
+      const Scalar tmp1136 = Scalar(2.7472112789737806)*tmp272*penalty_damping;
+      const Scalar tmp1137 = tmp273*tmp1136;
+      const Scalar tmp1138 = -tmp1132;
+      const Scalar tmp1139 = -tmp1134;
+      const Scalar tmp1140 = -tmp1136;
+      const Scalar tmp1141 = tmp238*tmp1138 + tmp260*tmp1139 + tmp273*tmp1140;
+      const Scalar tmp1142 = Scalar(2.030692330267238)*tmp238*penalty_damping;
+      const Scalar tmp1143 = tmp238*tmp1142;
+      const Scalar tmp1144 = Scalar(2.9814239699997196)*tmp260*penalty_damping;
+      const Scalar tmp1145 = tmp260*tmp1144;
+      const Scalar tmp1146 = Scalar(2.7472112789737806)*tmp273*penalty_damping;
+      const Scalar tmp1147 = tmp273*tmp1146;
+      const Scalar tmp1148 = -tmp1142;
+      const Scalar tmp1149 = -tmp1144;
+      const Scalar tmp1150 = -tmp1146;
+      const Scalar tmp1151 = tmp238*tmp1148 + tmp260*tmp1149 + tmp273*tmp1150;
       std::array<Scalar, 144> result;
-      result[0] = tmp254*tmp1209 + tmp273*tmp1210 + tmp293*tmp1211;
-      result[1] = tmp254*tmp1219 + tmp273*tmp1220 + tmp293*tmp1221;
-      result[2] = tmp254*tmp1229 + tmp273*tmp1230 + tmp293*tmp1231;
-      result[3] = tmp254*tmp1239;
-      result[4] = tmp254*tmp1249;
-      result[5] = tmp254*tmp1259;
-      result[6] = tmp273*tmp1269;
-      result[7] = tmp273*tmp1279;
-      result[8] = tmp273*tmp1289;
-      result[9] = tmp293*tmp1299;
-      result[10] = tmp293*tmp1309;
-      result[11] = tmp293*tmp1319;
-      result[12] = tmp255*tmp1209 + tmp275*tmp1210 + tmp295*tmp1211;
-      result[13] = tmp255*tmp1219 + tmp275*tmp1220 + tmp295*tmp1221;
-      result[14] = tmp255*tmp1229 + tmp275*tmp1230 + tmp295*tmp1231;
-      result[15] = tmp255*tmp1239;
-      result[16] = tmp255*tmp1249;
-      result[17] = tmp255*tmp1259;
-      result[18] = tmp275*tmp1269;
-      result[19] = tmp275*tmp1279;
-      result[20] = tmp275*tmp1289;
-      result[21] = tmp295*tmp1299;
-      result[22] = tmp295*tmp1309;
-      result[23] = tmp295*tmp1319;
-      result[24] = tmp1212;
-      result[25] = tmp1222;
-      result[26] = tmp1232;
-      result[27] = tmp1240;
-      result[28] = tmp1250;
-      result[29] = tmp1260;
-      result[30] = tmp1270;
-      result[31] = tmp1280;
-      result[32] = tmp1290;
-      result[33] = tmp1300;
-      result[34] = tmp1310;
-      result[35] = tmp1320;
-      result[36] = tmp254*tmp1213;
-      result[37] = tmp254*tmp1223;
-      result[38] = tmp254*tmp1233;
-      result[39] = tmp307*tmp1241 + tmp317*tmp1242 + tmp254*tmp1243;
-      result[40] = tmp307*tmp1251 + tmp317*tmp1252 + tmp254*tmp1253;
-      result[41] = tmp307*tmp1261 + tmp317*tmp1262 + tmp254*tmp1263;
-      result[42] = tmp307*tmp1271;
-      result[43] = tmp307*tmp1281;
-      result[44] = tmp307*tmp1291;
-      result[45] = tmp317*tmp1301;
-      result[46] = tmp317*tmp1311;
-      result[47] = tmp317*tmp1321;
-      result[48] = tmp255*tmp1213;
-      result[49] = tmp255*tmp1223;
-      result[50] = tmp255*tmp1233;
-      result[51] = tmp308*tmp1241 + tmp318*tmp1242 + tmp255*tmp1243;
-      result[52] = tmp308*tmp1251 + tmp318*tmp1252 + tmp255*tmp1253;
-      result[53] = tmp308*tmp1261 + tmp318*tmp1262 + tmp255*tmp1263;
-      result[54] = tmp308*tmp1271;
-      result[55] = tmp308*tmp1281;
-      result[56] = tmp308*tmp1291;
-      result[57] = tmp318*tmp1301;
-      result[58] = tmp318*tmp1311;
-      result[59] = tmp318*tmp1321;
-      result[60] = tmp1214;
-      result[61] = tmp1224;
-      result[62] = tmp1234;
-      result[63] = tmp1244;
-      result[64] = tmp1254;
-      result[65] = tmp1264;
-      result[66] = tmp1272;
-      result[67] = tmp1282;
-      result[68] = tmp1292;
-      result[69] = tmp1302;
-      result[70] = tmp1312;
-      result[71] = tmp1322;
-      result[72] = tmp273*tmp1215;
-      result[73] = tmp273*tmp1225;
-      result[74] = tmp273*tmp1235;
-      result[75] = tmp307*tmp1245;
-      result[76] = tmp307*tmp1255;
-      result[77] = tmp307*tmp1265;
-      result[78] = tmp329*tmp1273 + tmp273*tmp1274 + tmp307*tmp1275;
-      result[79] = tmp329*tmp1283 + tmp273*tmp1284 + tmp307*tmp1285;
-      result[80] = tmp329*tmp1293 + tmp273*tmp1294 + tmp307*tmp1295;
-      result[81] = tmp329*tmp1303;
-      result[82] = tmp329*tmp1313;
-      result[83] = tmp329*tmp1323;
-      result[84] = tmp275*tmp1215;
-      result[85] = tmp275*tmp1225;
-      result[86] = tmp275*tmp1235;
-      result[87] = tmp308*tmp1245;
-      result[88] = tmp308*tmp1255;
-      result[89] = tmp308*tmp1265;
-      result[90] = tmp330*tmp1273 + tmp275*tmp1274 + tmp308*tmp1275;
-      result[91] = tmp330*tmp1283 + tmp275*tmp1284 + tmp308*tmp1285;
-      result[92] = tmp330*tmp1293 + tmp275*tmp1294 + tmp308*tmp1295;
-      result[93] = tmp330*tmp1303;
-      result[94] = tmp330*tmp1313;
-      result[95] = tmp330*tmp1323;
-      result[96] = tmp1216;
-      result[97] = tmp1226;
-      result[98] = tmp1236;
-      result[99] = tmp1246;
-      result[100] = tmp1256;
-      result[101] = tmp1266;
-      result[102] = tmp1276;
-      result[103] = tmp1286;
-      result[104] = tmp1296;
-      result[105] = tmp1304;
-      result[106] = tmp1314;
-      result[107] = tmp1324;
-      result[108] = tmp293*tmp1217;
-      result[109] = tmp293*tmp1227;
-      result[110] = tmp293*tmp1237;
-      result[111] = tmp317*tmp1247;
-      result[112] = tmp317*tmp1257;
-      result[113] = tmp317*tmp1267;
-      result[114] = tmp329*tmp1277;
-      result[115] = tmp329*tmp1287;
-      result[116] = tmp329*tmp1297;
-      result[117] = tmp293*tmp1305 + tmp317*tmp1306 + tmp329*tmp1307;
-      result[118] = tmp293*tmp1315 + tmp317*tmp1316 + tmp329*tmp1317;
-      result[119] = tmp293*tmp1325 + tmp317*tmp1326 + tmp329*tmp1327;
-      result[120] = tmp295*tmp1217;
-      result[121] = tmp295*tmp1227;
-      result[122] = tmp295*tmp1237;
-      result[123] = tmp318*tmp1247;
-      result[124] = tmp318*tmp1257;
-      result[125] = tmp318*tmp1267;
-      result[126] = tmp330*tmp1277;
-      result[127] = tmp330*tmp1287;
-      result[128] = tmp330*tmp1297;
-      result[129] = tmp295*tmp1305 + tmp318*tmp1306 + tmp330*tmp1307;
-      result[130] = tmp295*tmp1315 + tmp318*tmp1316 + tmp330*tmp1317;
-      result[131] = tmp295*tmp1325 + tmp318*tmp1326 + tmp330*tmp1327;
-      result[132] = tmp1218;
-      result[133] = tmp1228;
-      result[134] = tmp1238;
-      result[135] = tmp1248;
-      result[136] = tmp1258;
-      result[137] = tmp1268;
-      result[138] = tmp1278;
-      result[139] = tmp1288;
-      result[140] = tmp1298;
-      result[141] = tmp1308;
-      result[142] = tmp1318;
-      result[143] = tmp1328;
+      result[0] = tmp204*tmp1032 + tmp218*tmp1033 + tmp234*tmp1034;
+      result[1] = tmp204*tmp1042 + tmp218*tmp1043 + tmp234*tmp1044;
+      result[2] = tmp204*tmp1052 + tmp218*tmp1053 + tmp234*tmp1054;
+      result[3] = tmp204*tmp1062;
+      result[4] = tmp204*tmp1072;
+      result[5] = tmp204*tmp1082;
+      result[6] = tmp218*tmp1092;
+      result[7] = tmp218*tmp1102;
+      result[8] = tmp218*tmp1112;
+      result[9] = tmp234*tmp1122;
+      result[10] = tmp234*tmp1132;
+      result[11] = tmp234*tmp1142;
+      result[12] = tmp205*tmp1032 + tmp220*tmp1033 + tmp236*tmp1034;
+      result[13] = tmp205*tmp1042 + tmp220*tmp1043 + tmp236*tmp1044;
+      result[14] = tmp205*tmp1052 + tmp220*tmp1053 + tmp236*tmp1054;
+      result[15] = tmp205*tmp1062;
+      result[16] = tmp205*tmp1072;
+      result[17] = tmp205*tmp1082;
+      result[18] = tmp220*tmp1092;
+      result[19] = tmp220*tmp1102;
+      result[20] = tmp220*tmp1112;
+      result[21] = tmp236*tmp1122;
+      result[22] = tmp236*tmp1132;
+      result[23] = tmp236*tmp1142;
+      result[24] = tmp1035;
+      result[25] = tmp1045;
+      result[26] = tmp1055;
+      result[27] = tmp1063;
+      result[28] = tmp1073;
+      result[29] = tmp1083;
+      result[30] = tmp1093;
+      result[31] = tmp1103;
+      result[32] = tmp1113;
+      result[33] = tmp1123;
+      result[34] = tmp1133;
+      result[35] = tmp1143;
+      result[36] = tmp204*tmp1036;
+      result[37] = tmp204*tmp1046;
+      result[38] = tmp204*tmp1056;
+      result[39] = tmp204*tmp1064 + tmp248*tmp1065 + tmp258*tmp1066;
+      result[40] = tmp204*tmp1074 + tmp248*tmp1075 + tmp258*tmp1076;
+      result[41] = tmp204*tmp1084 + tmp248*tmp1085 + tmp258*tmp1086;
+      result[42] = tmp248*tmp1094;
+      result[43] = tmp248*tmp1104;
+      result[44] = tmp248*tmp1114;
+      result[45] = tmp258*tmp1124;
+      result[46] = tmp258*tmp1134;
+      result[47] = tmp258*tmp1144;
+      result[48] = tmp205*tmp1036;
+      result[49] = tmp205*tmp1046;
+      result[50] = tmp205*tmp1056;
+      result[51] = tmp205*tmp1064 + tmp249*tmp1065 + tmp259*tmp1066;
+      result[52] = tmp205*tmp1074 + tmp249*tmp1075 + tmp259*tmp1076;
+      result[53] = tmp205*tmp1084 + tmp249*tmp1085 + tmp259*tmp1086;
+      result[54] = tmp249*tmp1094;
+      result[55] = tmp249*tmp1104;
+      result[56] = tmp249*tmp1114;
+      result[57] = tmp259*tmp1124;
+      result[58] = tmp259*tmp1134;
+      result[59] = tmp259*tmp1144;
+      result[60] = tmp1037;
+      result[61] = tmp1047;
+      result[62] = tmp1057;
+      result[63] = tmp1067;
+      result[64] = tmp1077;
+      result[65] = tmp1087;
+      result[66] = tmp1095;
+      result[67] = tmp1105;
+      result[68] = tmp1115;
+      result[69] = tmp1125;
+      result[70] = tmp1135;
+      result[71] = tmp1145;
+      result[72] = tmp218*tmp1038;
+      result[73] = tmp218*tmp1048;
+      result[74] = tmp218*tmp1058;
+      result[75] = tmp248*tmp1068;
+      result[76] = tmp248*tmp1078;
+      result[77] = tmp248*tmp1088;
+      result[78] = tmp218*tmp1096 + tmp248*tmp1097 + tmp271*tmp1098;
+      result[79] = tmp218*tmp1106 + tmp248*tmp1107 + tmp271*tmp1108;
+      result[80] = tmp218*tmp1116 + tmp248*tmp1117 + tmp271*tmp1118;
+      result[81] = tmp271*tmp1126;
+      result[82] = tmp271*tmp1136;
+      result[83] = tmp271*tmp1146;
+      result[84] = tmp220*tmp1038;
+      result[85] = tmp220*tmp1048;
+      result[86] = tmp220*tmp1058;
+      result[87] = tmp249*tmp1068;
+      result[88] = tmp249*tmp1078;
+      result[89] = tmp249*tmp1088;
+      result[90] = tmp220*tmp1096 + tmp249*tmp1097 + tmp272*tmp1098;
+      result[91] = tmp220*tmp1106 + tmp249*tmp1107 + tmp272*tmp1108;
+      result[92] = tmp220*tmp1116 + tmp249*tmp1117 + tmp272*tmp1118;
+      result[93] = tmp272*tmp1126;
+      result[94] = tmp272*tmp1136;
+      result[95] = tmp272*tmp1146;
+      result[96] = tmp1039;
+      result[97] = tmp1049;
+      result[98] = tmp1059;
+      result[99] = tmp1069;
+      result[100] = tmp1079;
+      result[101] = tmp1089;
+      result[102] = tmp1099;
+      result[103] = tmp1109;
+      result[104] = tmp1119;
+      result[105] = tmp1127;
+      result[106] = tmp1137;
+      result[107] = tmp1147;
+      result[108] = tmp234*tmp1040;
+      result[109] = tmp234*tmp1050;
+      result[110] = tmp234*tmp1060;
+      result[111] = tmp258*tmp1070;
+      result[112] = tmp258*tmp1080;
+      result[113] = tmp258*tmp1090;
+      result[114] = tmp271*tmp1100;
+      result[115] = tmp271*tmp1110;
+      result[116] = tmp271*tmp1120;
+      result[117] = tmp234*tmp1128 + tmp258*tmp1129 + tmp271*tmp1130;
+      result[118] = tmp234*tmp1138 + tmp258*tmp1139 + tmp271*tmp1140;
+      result[119] = tmp234*tmp1148 + tmp258*tmp1149 + tmp271*tmp1150;
+      result[120] = tmp236*tmp1040;
+      result[121] = tmp236*tmp1050;
+      result[122] = tmp236*tmp1060;
+      result[123] = tmp259*tmp1070;
+      result[124] = tmp259*tmp1080;
+      result[125] = tmp259*tmp1090;
+      result[126] = tmp272*tmp1100;
+      result[127] = tmp272*tmp1110;
+      result[128] = tmp272*tmp1120;
+      result[129] = tmp236*tmp1128 + tmp259*tmp1129 + tmp272*tmp1130;
+      result[130] = tmp236*tmp1138 + tmp259*tmp1139 + tmp272*tmp1140;
+      result[131] = tmp236*tmp1148 + tmp259*tmp1149 + tmp272*tmp1150;
+      result[132] = tmp1041;
+      result[133] = tmp1051;
+      result[134] = tmp1061;
+      result[135] = tmp1071;
+      result[136] = tmp1081;
+      result[137] = tmp1091;
+      result[138] = tmp1101;
+      result[139] = tmp1111;
+      result[140] = tmp1121;
+      result[141] = tmp1131;
+      result[142] = tmp1141;
+      result[143] = tmp1151;
       return result;
     }
 
@@ -11181,17 +9692,22 @@ struct RigidBodyEulerYzx {
     /// \param[in] t  time
     /// \param[in] params  model parameters
     /// \return V
-    /// Ops: 9
+    /// Ops: 11
     template <typename Scalar>
     static Scalar potential_energy(const XVector<Scalar>& pos,
                                    const Scalar& /*t*/,
                                    const Params& params) {
       const Scalar g = Scalar(params.g);
-      const Scalar m = Scalar(params.m);
-      const Scalar tmp150 = (Scalar(0.25))*m;
-      const Scalar tmp151 = tmp150*g;
+      const Scalar m_a = Scalar(params.m_a);
+      const Scalar m_b = Scalar(params.m_b);
+      const Scalar m_c = Scalar(params.m_c);
+      const Scalar m_d = Scalar(params.m_d);
+      const Scalar tmp109 = g*m_a;
+      const Scalar tmp111 = g*m_b;
+      const Scalar tmp113 = g*m_c;
+      const Scalar tmp115 = g*m_d;
       Scalar result;
-      result = tmp151*pos(2) + tmp151*pos(5) + tmp151*pos(8) + tmp151*pos(11);
+      result = tmp109*pos(2) + tmp111*pos(5) + tmp113*pos(8) + tmp115*pos(11);
       return result;
     }
 
@@ -11201,82 +9717,55 @@ struct RigidBodyEulerYzx {
     /// \param[in] kappa  penalty stiffness (rods: force per strain; pins, planes: N/m)
     /// \param[in] params  model parameters
     /// \return V_penalty
-    /// Ops: 161
+    /// Ops: 122
     template <typename Scalar>
     static Scalar penalty_energy(const XVector<Scalar>& pos,
                                  const Scalar& /*t*/,
                                  const Scalar& kappa,
-                                 const Params& params) {
+                                 const Params& /*params*/) {
       using std::sqrt;
-      const Scalar m = Scalar(params.m);
-      const Scalar a = Scalar(params.a);
-      const Scalar b = Scalar(params.b);
-      const Scalar c = Scalar(params.c);
-      const Scalar tmp10 = (a*a);
-      const Scalar tmp11 = (b*b);
-      const Scalar tmp12 = ((Scalar(1)/Scalar(24)))*m;
-      const Scalar tmp13 = tmp12*(tmp10 + tmp11);
-      const Scalar tmp14 = (c*c);
-      const Scalar tmp15 = tmp12*(tmp10 + tmp14);
-      const Scalar tmp16 = tmp12*(tmp11 + tmp14);
-      const Scalar tmp17 = tmp15 + tmp16 - tmp13;
-      const Scalar tmp24 = tmp13 + tmp16 - tmp15;
-      const Scalar tmp28 = tmp13 + tmp15 - tmp16;
-      const Scalar tmp242 = pos(3) - pos(0);
-      const Scalar tmp243 = pos(4) - pos(1);
-      const Scalar tmp244 = pos(5) - pos(2);
+      const Scalar tmp198 = pos(3) - pos(0);
+      const Scalar tmp199 = pos(4) - pos(1);
+      const Scalar tmp200 = pos(5) - pos(2);
+      const Scalar tmp201 = sqrt((tmp198*tmp198) + (tmp199*tmp199) + (tmp200*tmp200));
+      const Scalar tmp202 = Scalar(-0.6403124237432849) + tmp201;
+      const Scalar tmp208 = -pos(6);
+      const Scalar tmp209 = -tmp208 - pos(0);
+      const Scalar tmp210 = -pos(7);
+      const Scalar tmp211 = -tmp210 - pos(1);
+      const Scalar tmp212 = -pos(8);
+      const Scalar tmp213 = -tmp212 - pos(2);
+      const Scalar tmp214 = sqrt((tmp209*tmp209) + (tmp211*tmp211) + (tmp213*tmp213));
+      const Scalar tmp215 = Scalar(-0.58309518948453) + tmp214;
+      const Scalar tmp224 = -pos(9);
+      const Scalar tmp225 = -tmp224 - pos(0);
+      const Scalar tmp226 = -pos(10);
+      const Scalar tmp227 = -tmp226 - pos(1);
+      const Scalar tmp228 = -pos(11);
+      const Scalar tmp229 = -tmp228 - pos(2);
+      const Scalar tmp230 = sqrt((tmp225*tmp225) + (tmp227*tmp227) + (tmp229*tmp229));
+      const Scalar tmp231 = Scalar(-0.49244289008980524) + tmp230;
+      const Scalar tmp242 = -tmp208 - pos(3);
+      const Scalar tmp243 = -tmp210 - pos(4);
+      const Scalar tmp244 = -tmp212 - pos(5);
       const Scalar tmp245 = sqrt((tmp242*tmp242) + (tmp243*tmp243) + (tmp244*tmp244));
-      const Scalar tmp246 = Scalar(4)/m;
-      const Scalar tmp247 = tmp17*tmp246;
-      const Scalar tmp248 = tmp246*tmp24;
-      const Scalar tmp249 = sqrt(tmp247 + tmp248);
-      const Scalar tmp250 = tmp245 - tmp249;
-      const Scalar tmp251 = (Scalar(1)/tmp249);
-      const Scalar tmp252 = tmp251*kappa;
-      const Scalar tmp259 = -pos(6);
-      const Scalar tmp260 = -tmp259 - pos(0);
-      const Scalar tmp261 = -pos(7);
-      const Scalar tmp262 = -tmp261 - pos(1);
-      const Scalar tmp263 = -pos(8);
-      const Scalar tmp264 = -tmp263 - pos(2);
-      const Scalar tmp265 = sqrt((tmp260*tmp260) + (tmp262*tmp262) + (tmp264*tmp264));
-      const Scalar tmp266 = tmp246*tmp28;
-      const Scalar tmp267 = sqrt(tmp247 + tmp266);
-      const Scalar tmp268 = tmp265 - tmp267;
-      const Scalar tmp269 = (Scalar(1)/tmp267);
-      const Scalar tmp270 = tmp269*kappa;
-      const Scalar tmp280 = -pos(9);
-      const Scalar tmp281 = -tmp280 - pos(0);
-      const Scalar tmp282 = -pos(10);
-      const Scalar tmp283 = -tmp282 - pos(1);
-      const Scalar tmp284 = -pos(11);
-      const Scalar tmp285 = -tmp284 - pos(2);
-      const Scalar tmp286 = sqrt((tmp281*tmp281) + (tmp283*tmp283) + (tmp285*tmp285));
-      const Scalar tmp287 = sqrt(tmp248 + tmp266);
-      const Scalar tmp288 = tmp286 - tmp287;
-      const Scalar tmp289 = (Scalar(1)/tmp287);
-      const Scalar tmp290 = tmp289*kappa;
-      const Scalar tmp301 = -tmp259 - pos(3);
-      const Scalar tmp302 = -tmp261 - pos(4);
-      const Scalar tmp303 = -tmp263 - pos(5);
-      const Scalar tmp304 = sqrt((tmp301*tmp301) + (tmp302*tmp302) + (tmp303*tmp303));
-      const Scalar tmp305 = tmp304 - tmp287;
-      const Scalar tmp311 = -tmp280 - pos(3);
-      const Scalar tmp312 = -tmp282 - pos(4);
-      const Scalar tmp313 = -tmp284 - pos(5);
-      const Scalar tmp314 = sqrt((tmp311*tmp311) + (tmp312*tmp312) + (tmp313*tmp313));
-      const Scalar tmp315 = tmp314 - tmp267;
-      const Scalar tmp323 = -tmp280 - pos(6);
-      const Scalar tmp324 = -tmp282 - pos(7);
-      const Scalar tmp325 = -tmp284 - pos(8);
-      const Scalar tmp326 = sqrt((tmp323*tmp323) + (tmp324*tmp324) + (tmp325*tmp325));
-      const Scalar tmp327 = tmp326 - tmp249;
-      const Scalar tmp340 = (Scalar(0.5))*tmp252;
-      const Scalar tmp341 = (Scalar(0.5))*tmp270;
-      const Scalar tmp342 = (Scalar(0.5))*tmp290;
+      const Scalar tmp246 = Scalar(-0.5) + tmp245;
+      const Scalar tmp252 = -tmp224 - pos(3);
+      const Scalar tmp253 = -tmp226 - pos(4);
+      const Scalar tmp254 = -tmp228 - pos(5);
+      const Scalar tmp255 = sqrt((tmp252*tmp252) + (tmp253*tmp253) + (tmp254*tmp254));
+      const Scalar tmp256 = Scalar(-0.33541019662496846) + tmp255;
+      const Scalar tmp265 = -tmp224 - pos(6);
+      const Scalar tmp266 = -tmp226 - pos(7);
+      const Scalar tmp267 = -tmp228 - pos(8);
+      const Scalar tmp268 = sqrt((tmp265*tmp265) + (tmp266*tmp266) + (tmp267*tmp267));
+      const Scalar tmp269 = Scalar(-0.3640054944640259) + tmp268;
       Scalar result;
-      result = tmp340*(tmp250*tmp250) + tmp340*(tmp327*tmp327) + tmp341*(tmp268*tmp268)
-          + tmp341*(tmp315*tmp315) + tmp342*(tmp288*tmp288) + tmp342*(tmp305*tmp305);
+      result = Scalar(1.0)*kappa*(tmp246*tmp246) + Scalar(0.7808688094430303)*kappa*(tmp202*tmp202)
+          + Scalar(0.8574929257125443)*kappa*(tmp215*tmp215)
+          + Scalar(1.015346165133619)*kappa*(tmp231*tmp231)
+          + Scalar(1.3736056394868903)*kappa*(tmp269*tmp269)
+          + Scalar(1.4907119849998598)*kappa*(tmp256*tmp256);
       return result;
     }
 
@@ -11285,76 +9774,55 @@ struct RigidBodyEulerYzx {
     /// \param[in] t  time
     /// \param[in] params  model parameters
     /// \return C (num_constraints)
-    /// Ops: 135
+    /// Ops: 99
     template <typename Scalar>
     static ConstraintVector<Scalar> constraint_violations(const XVector<Scalar>& pos,
                                                           const Scalar& /*t*/,
-                                                          const Params& params) {
+                                                          const Params& /*params*/) {
       using std::sqrt;
-      const Scalar m = Scalar(params.m);
-      const Scalar a = Scalar(params.a);
-      const Scalar b = Scalar(params.b);
-      const Scalar c = Scalar(params.c);
-      const Scalar tmp10 = (a*a);
-      const Scalar tmp11 = (b*b);
-      const Scalar tmp12 = ((Scalar(1)/Scalar(24)))*m;
-      const Scalar tmp13 = tmp12*(tmp10 + tmp11);
-      const Scalar tmp14 = (c*c);
-      const Scalar tmp15 = tmp12*(tmp10 + tmp14);
-      const Scalar tmp16 = tmp12*(tmp11 + tmp14);
-      const Scalar tmp17 = tmp15 + tmp16 - tmp13;
-      const Scalar tmp24 = tmp13 + tmp16 - tmp15;
-      const Scalar tmp28 = tmp13 + tmp15 - tmp16;
-      const Scalar tmp242 = pos(3) - pos(0);
-      const Scalar tmp243 = pos(4) - pos(1);
-      const Scalar tmp244 = pos(5) - pos(2);
+      const Scalar tmp198 = pos(3) - pos(0);
+      const Scalar tmp199 = pos(4) - pos(1);
+      const Scalar tmp200 = pos(5) - pos(2);
+      const Scalar tmp201 = sqrt((tmp198*tmp198) + (tmp199*tmp199) + (tmp200*tmp200));
+      const Scalar tmp202 = Scalar(-0.6403124237432849) + tmp201;
+      const Scalar tmp208 = -pos(6);
+      const Scalar tmp209 = -tmp208 - pos(0);
+      const Scalar tmp210 = -pos(7);
+      const Scalar tmp211 = -tmp210 - pos(1);
+      const Scalar tmp212 = -pos(8);
+      const Scalar tmp213 = -tmp212 - pos(2);
+      const Scalar tmp214 = sqrt((tmp209*tmp209) + (tmp211*tmp211) + (tmp213*tmp213));
+      const Scalar tmp215 = Scalar(-0.58309518948453) + tmp214;
+      const Scalar tmp224 = -pos(9);
+      const Scalar tmp225 = -tmp224 - pos(0);
+      const Scalar tmp226 = -pos(10);
+      const Scalar tmp227 = -tmp226 - pos(1);
+      const Scalar tmp228 = -pos(11);
+      const Scalar tmp229 = -tmp228 - pos(2);
+      const Scalar tmp230 = sqrt((tmp225*tmp225) + (tmp227*tmp227) + (tmp229*tmp229));
+      const Scalar tmp231 = Scalar(-0.49244289008980524) + tmp230;
+      const Scalar tmp242 = -tmp208 - pos(3);
+      const Scalar tmp243 = -tmp210 - pos(4);
+      const Scalar tmp244 = -tmp212 - pos(5);
       const Scalar tmp245 = sqrt((tmp242*tmp242) + (tmp243*tmp243) + (tmp244*tmp244));
-      const Scalar tmp246 = Scalar(4)/m;
-      const Scalar tmp247 = tmp17*tmp246;
-      const Scalar tmp248 = tmp246*tmp24;
-      const Scalar tmp249 = sqrt(tmp247 + tmp248);
-      const Scalar tmp250 = tmp245 - tmp249;
-      const Scalar tmp259 = -pos(6);
-      const Scalar tmp260 = -tmp259 - pos(0);
-      const Scalar tmp261 = -pos(7);
-      const Scalar tmp262 = -tmp261 - pos(1);
-      const Scalar tmp263 = -pos(8);
-      const Scalar tmp264 = -tmp263 - pos(2);
-      const Scalar tmp265 = sqrt((tmp260*tmp260) + (tmp262*tmp262) + (tmp264*tmp264));
-      const Scalar tmp266 = tmp246*tmp28;
-      const Scalar tmp267 = sqrt(tmp247 + tmp266);
-      const Scalar tmp268 = tmp265 - tmp267;
-      const Scalar tmp280 = -pos(9);
-      const Scalar tmp281 = -tmp280 - pos(0);
-      const Scalar tmp282 = -pos(10);
-      const Scalar tmp283 = -tmp282 - pos(1);
-      const Scalar tmp284 = -pos(11);
-      const Scalar tmp285 = -tmp284 - pos(2);
-      const Scalar tmp286 = sqrt((tmp281*tmp281) + (tmp283*tmp283) + (tmp285*tmp285));
-      const Scalar tmp287 = sqrt(tmp248 + tmp266);
-      const Scalar tmp288 = tmp286 - tmp287;
-      const Scalar tmp301 = -tmp259 - pos(3);
-      const Scalar tmp302 = -tmp261 - pos(4);
-      const Scalar tmp303 = -tmp263 - pos(5);
-      const Scalar tmp304 = sqrt((tmp301*tmp301) + (tmp302*tmp302) + (tmp303*tmp303));
-      const Scalar tmp305 = tmp304 - tmp287;
-      const Scalar tmp311 = -tmp280 - pos(3);
-      const Scalar tmp312 = -tmp282 - pos(4);
-      const Scalar tmp313 = -tmp284 - pos(5);
-      const Scalar tmp314 = sqrt((tmp311*tmp311) + (tmp312*tmp312) + (tmp313*tmp313));
-      const Scalar tmp315 = tmp314 - tmp267;
-      const Scalar tmp323 = -tmp280 - pos(6);
-      const Scalar tmp324 = -tmp282 - pos(7);
-      const Scalar tmp325 = -tmp284 - pos(8);
-      const Scalar tmp326 = sqrt((tmp323*tmp323) + (tmp324*tmp324) + (tmp325*tmp325));
-      const Scalar tmp327 = tmp326 - tmp249;
+      const Scalar tmp246 = Scalar(-0.5) + tmp245;
+      const Scalar tmp252 = -tmp224 - pos(3);
+      const Scalar tmp253 = -tmp226 - pos(4);
+      const Scalar tmp254 = -tmp228 - pos(5);
+      const Scalar tmp255 = sqrt((tmp252*tmp252) + (tmp253*tmp253) + (tmp254*tmp254));
+      const Scalar tmp256 = Scalar(-0.33541019662496846) + tmp255;
+      const Scalar tmp265 = -tmp224 - pos(6);
+      const Scalar tmp266 = -tmp226 - pos(7);
+      const Scalar tmp267 = -tmp228 - pos(8);
+      const Scalar tmp268 = sqrt((tmp265*tmp265) + (tmp266*tmp266) + (tmp267*tmp267));
+      const Scalar tmp269 = Scalar(-0.3640054944640259) + tmp268;
       ConstraintVector<Scalar> result;
-      result(0) = tmp250;
-      result(1) = tmp268;
-      result(2) = tmp288;
-      result(3) = tmp305;
-      result(4) = tmp315;
-      result(5) = tmp327;
+      result(0) = tmp202;
+      result(1) = tmp215;
+      result(2) = tmp231;
+      result(3) = tmp246;
+      result(4) = tmp256;
+      result(5) = tmp269;
       return result;
     }
   };

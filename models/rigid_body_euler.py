@@ -1,19 +1,23 @@
-r"""A free 3D rigid body in Z-Y-X Euler angles.
+r"""A free 3D rigid body built from four point masses, in Z-Y-X Euler angles.
 
-q = (x, y, z, yaw, pitch, roll): the centre of mass and R = Rz(yaw) Ry(pitch) Rx(roll), the
-orientation of the body axes. The body is a uniform box of mass m with sides a > b > c along
-its x, y and z axes, its principal axes, so its principal moments m (b^2 + c^2) / 12 <
-m (a^2 + c^2) / 12 < m (a^2 + b^2) / 12 grow from x to z.
-The parameterization is singular at pitch = +-pi/2 (gimbal lock: yaw and roll turn about the
-same axis), that is wherever the body's x axis points along the world's z axis.
+              z ^    d (m_d)
+                |   /|
+                |  / |        body frame: a, b, c on the axes, d off them, so the
+                | /  |        inertia tensor has three different principal moments
+         c (m_c)o----o b (m_b)
+               /
+              o a (m_a)
+
+q = (x, y, z, yaw, pitch, roll): the centre of the body frame and R = Rz(yaw) Ry(pitch)
+Rx(roll). The parameterization is singular at pitch = +-pi/2 (gimbal lock: yaw and roll turn
+about the same axis), that is wherever the body's x axis points along the world's z axis.
 
 A second chart, 'yzx', uses R = Ry(heading) Rz(attitude) Rx(bank), singular at
 attitude = +-pi/2, where the body's x axis points along the world's y axis. The two singular
 sets are disjoint, so the atlas (gencoord/atlas.hpp) can tumble through either. No gravity
-by default, so energy and angular momentum are conserved; spun about the intermediate axis
-the body flips over and over (the Dzhanibekov effect).
+by default, so energy and angular momentum are conserved.
 """
-from generator import Frame, Matrix, Model, rotation_x, rotation_y, rotation_z
+from generator import Matrix, Model, cos, sin
 
 # The order of the three elementary rotations in each chart, with the angles' names and
 # descriptions, outermost (world) first.
@@ -25,26 +29,37 @@ CHARTS = {
             ("attitude", "z", "rotation about the new z (rad)"),
             ("bank", "x", "rotation about the new x (rad)")],
 }
-ROTATIONS = {"x": rotation_x, "y": rotation_y, "z": rotation_z}
 # The zyx chart's suggested initial state: a tumble that stays clear of gimbal lock.
 INITIAL = {"yaw": (0.0, 0.3), "pitch": (0.2, 1.0), "roll": (0.0, 2.0)}
+BODY_POINTS = {"a": [0.5, 0, 0], "b": [0, 0.4, 0], "c": [0, 0, 0.3], "d": [0.2, 0.3, 0.25]}
+
+
+def rotation(axis, angle):
+    c, s = cos(angle), sin(angle)
+    return {"x": Matrix([[1, 0, 0], [0, c, -s], [0, s, c]]),
+            "y": Matrix([[c, 0, s], [0, 1, 0], [-s, 0, c]]),
+            "z": Matrix([[c, -s, 0], [s, c, 0], [0, 0, 1]])}[axis]
 
 
 def euler_chart(chart):
     model = Model(dim=3, chart=chart)
-    centre = Matrix([model.coordinate(name, f"centre of mass, {name} (m)") for name in "xyz"])
+    origin = Matrix([model.coordinate(name, f"body origin, {name} (m)") for name in "xyz"])
     R = Matrix.eye(3)
     for name, axis, description in CHARTS[chart]:
         initial, rate = INITIAL.get(name, (0.0, 0.0))
-        R = R * ROTATIONS[axis](model.coordinate(name, description, initial=initial,
-                                                 initial_rate=rate))
+        R = R * rotation(axis, model.coordinate(name, description, initial=initial,
+                                                initial_rate=rate))
     g = model.parameter("g", 0.0, "gravitational acceleration (m/s^2)")
-    m = model.parameter("m", 7.5, "mass (kg)")
-    a, b, c = [model.parameter(side, value, f"side of the box along body axis {axis} (m)")
-               for side, value, axis in (("a", 0.6, "x"), ("b", 0.45, "y"), ("c", 0.3, "z"))]
-    box = Matrix.diag(b**2 + c**2, a**2 + c**2, a**2 + b**2) * m / 12
-    model.body("body", mass=m, inertia=box, frame=Frame(R, centre))
+    masses = [model.parameter(f"m_{name}", value, f"mass of point {name} (kg)")
+              for name, value in (("a", 1.0), ("b", 2.0), ("c", 3.0), ("d", 1.5))]
+    points = {}
+    for (name, offset), mass in zip(BODY_POINTS.items(), masses):
+        points[name] = model.particle(name, mass=mass, position=origin + R * Matrix(offset))
     model.gravity([0, 0, -g])
+    for first, second in (("a", "b"), ("a", "c"), ("a", "d"), ("b", "c"), ("b", "d"),
+                          ("c", "d")):
+        offset = Matrix(BODY_POINTS[first]) - Matrix(BODY_POINTS[second])
+        model.rod(points[first], points[second], offset.norm())
     return model
 
 
