@@ -55,14 +55,14 @@ def inertia_problem(mass, inertia: sp.Matrix) -> str | None:
     moments = [float(value) for value in sp.Matrix(inertia).evalf().eigenvals(multiple=True)]
     scale = max(abs(value) for value in moments) or 1.0
     if min(moments) <= 1e-12 * scale:
-        return (f"inertia has principal moments {_listed(moments)}, not all positive; give the "
-                "tensor about the centre of mass, positive definite")
-    for k, moment in enumerate(moments):
+        return (f"inertia has principal moments {_listed(moments)}, not all positive: it is not "
+                "positive definite; give the tensor about the centre of mass of a real body")
+    for moment in moments:
         others = sum(moments) - moment
         if moment >= others * (1 - 1e-12):
             return (f"inertia has principal moments {_listed(moments)}: {moment:.6g} is not "
-                    "less than the sum of the other two, which no mass distribution allows "
-                    "(a flat body or a thin rod needs some thickness)")
+                    "less than the sum of the other two (the triangle inequality), which no "
+                    "mass distribution allows (a flat body or a thin rod needs some thickness)")
     return None
 
 

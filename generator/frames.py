@@ -34,6 +34,11 @@ def rotation_z(angle) -> sp.Matrix:
     return sp.Matrix([[c, -s, 0], [s, c, 0], [0, 0, 1]])
 
 
+def rotation_about(axis: str, angle) -> sp.Matrix:
+    """Rotation by `angle` about the axis named "x", "y" or "z"."""
+    return {"x": rotation_x, "y": rotation_y, "z": rotation_z}[axis](angle)
+
+
 def rotation_2d(angle) -> sp.Matrix:
     """The 2x2 rotation by `angle` (counter-clockwise)."""
     c, s = sp.cos(angle), sp.sin(angle)
@@ -114,6 +119,11 @@ class Frame:
         if self.dim == 2 and self.angle is not None and child.angle is not None:
             return Frame(self.angle + child.angle, origin)
         return Frame(self.rotation * child.rotation, origin)
+
+    def inverse(self) -> "Frame":
+        """The pose of the world in this frame: R^T and -R^T p."""
+        transpose = self.rotation.T
+        return Frame(transpose, list(-transpose * self.origin))
 
     def point(self, r: Sequence) -> sp.Matrix:
         """The world position of the point with body coordinates r: p + R r."""

@@ -25,7 +25,7 @@ from typing import Sequence
 import sympy as sp
 
 from .errors import ModelError
-from .frames import Frame, axis_angle, rpy
+from .frames import Frame, axis_angle, rotation_about, rpy
 from .model import Body
 
 # Euler-angle charts of a free-floating base: each angle's name, axis and description,
@@ -38,7 +38,6 @@ EULER_CHARTS = {
             ("attitude", "z", "rotation about the new z (rad)"),
             ("bank", "x", "rotation about the new x (rad)")],
 }
-_UNIT_AXES = {"x": [1, 0, 0], "y": [0, 1, 0], "z": [0, 0, 1]}
 # an angle this close to a multiple of pi/2 (relative) is that multiple: below double
 # precision, and the exact rotation keeps zeros out of every expression built on it
 _RIGHT_ANGLE_TOLERANCE = 1e-12
@@ -205,11 +204,6 @@ def _grounded(frame: Frame, model) -> bool:
     return not (symbols & coordinates)
 
 
-def _inverse(frame: Frame) -> Frame:
-    transpose = frame.rotation.T
-    return Frame(transpose, list(-transpose * frame.origin))
-
-
 def _unused(model, name: str, suffix: str) -> str:
     """`name`, with `suffix` appended while the model already uses it: URDF names links and
     joints apart, so a link and its joint may share a name."""
@@ -227,7 +221,7 @@ def _declare_body(model, name: str, frame: Frame, mass, inertia, com: Origin, la
     inertial = com.frame()
     body = model.body(_unused(model, identifier(name), "_body"), number(mass),
                       sp.Matrix(inertia), frame * inertial)
-    return body, _inverse(inertial)
+    return body, inertial.inverse()
 
 
 def _check_axis(joint: Joint, label: str) -> None:
@@ -364,7 +358,7 @@ def add_free_base(model, name: str, mass, inertia, com: Origin | None = None,
     angles = []
     for angle_name, axis, description in EULER_CHARTS[chart]:
         angles.append(model.coordinate(angle_name, f"'{name}': {description}"))
-        rotation = rotation * axis_angle(_UNIT_AXES[axis], angles[-1])
+        rotation = rotation * rotation_about(axis, angles[-1])
     frame = Frame(rotation, position)
     link = Link(name, frame, None, None, coordinates=[*position, *angles])
     link.body, offset = _declare_body(model, name, frame, mass, inertia,

@@ -40,8 +40,9 @@ class MaximalKinematics:
                 self.position[point.name] = sum((w * p.x for w, p in pairs), zero)
                 self.velocity[point.name] = sum((w * p.xdot for w, p in pairs), zero)
         self.point_substitution = {}
+        particles = {p.name for p in model.particles}
         for point in model.points:
-            if point.name not in {p.name for p in model.particles}:
+            if point.name not in particles:
                 self.point_substitution.update(zip(point.x, self.position[point.name]))
                 self.point_substitution.update(zip(point.xdot, self.velocity[point.name]))
 

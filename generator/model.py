@@ -35,16 +35,22 @@ REQUESTED_OPTIONS: ContextVar[Mapping[str, str]] = ContextVar(
 _GENERATOR_DIR = os.path.dirname(os.path.abspath(__file__))
 
 
-def _caller_line() -> int | None:
-    """The line of the first stack frame outside this package: the model file's line."""
+def model_file_frame():
+    """The first stack frame outside this package: the model file's (None if there is none)."""
     # walks frames directly: inspect.stack() reads every frame's source lines, which cost
     # a tenth of the 20-link chain's generation time
     frame = sys._getframe(1)
     while frame is not None:
         if not os.path.abspath(frame.f_code.co_filename).startswith(_GENERATOR_DIR):
-            return frame.f_lineno
+            return frame
         frame = frame.f_back
     return None
+
+
+def _caller_line() -> int | None:
+    """The model file's line that made the current call."""
+    frame = model_file_frame()
+    return frame.f_lineno if frame is not None else None
 
 
 @dataclass

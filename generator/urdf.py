@@ -16,14 +16,11 @@ from __future__ import annotations
 
 import contextlib
 import os
-import sys
 
 from .errors import ModelError
 from .joints import EULER_CHARTS, Fixed, Link, Origin, add_free_base, add_link
-from .model import Model
+from .model import Model, model_file_frame
 from .urdf_description import FLOATING, RobotDescription, read_urdf
-
-_GENERATOR_DIR = os.path.dirname(os.path.abspath(__file__))
 
 
 class UrdfTree(dict):
@@ -38,13 +35,9 @@ class UrdfTree(dict):
 
 def _calling_file_directory() -> str:
     """The directory of the model file that called in (its __file__), else the working one."""
-    frame = sys._getframe(1)
-    while frame is not None:
-        if not os.path.abspath(frame.f_code.co_filename).startswith(_GENERATOR_DIR):
-            caller = frame.f_globals.get("__file__")
-            return os.path.dirname(os.path.abspath(caller)) if caller else os.getcwd()
-        frame = frame.f_back
-    return os.getcwd()
+    frame = model_file_frame()
+    caller = frame.f_globals.get("__file__") if frame is not None else None
+    return os.path.dirname(os.path.abspath(caller)) if caller else os.getcwd()
 
 
 @contextlib.contextmanager

@@ -11,9 +11,9 @@ import textwrap
 import xml.etree.ElementTree as ET
 from dataclasses import dataclass, field
 
-import mpmath
 import sympy as sp
 
+from .bodies import inertia_problem
 from .errors import ModelError
 from .joints import Continuous, Fixed, Limits, Origin, Prismatic, Revolute
 from .urdf_xml import XmlFile
@@ -91,21 +91,12 @@ def _origin(xml: XmlFile, parent: ET.Element, item: str) -> Origin:
                   xml.numbers(element, "rpy", 3, (0, 0, 0), item))
 
 
-def _check_inertia(xml: XmlFile, element: ET.Element, matrix: sp.Matrix, item: str) -> None:
-    """Positive definite, and the principal moments obey the strict triangle inequality
-    (each less than the sum of the others), as a body's mass distribution makes them."""
-    trace = sum(matrix[k, k] for k in range(3))
-    second_moments = sp.eye(3) * trace / 2 - matrix  # sum of m r r^T: positive definite
-    for tensor, problem in ((matrix, "is not positive definite"),
-                            (second_moments, "breaks the triangle inequality (each principal "
-                                             "moment must be less than the sum of the other "
-                                             "two)")):
-        if not all(tensor[:k, :k].det() > 0 for k in (1, 2, 3)):
-            moments = mpmath.eigsy(mpmath.matrix(matrix.tolist()), eigvals_only=True)
-            text = ", ".join(f"{float(m):.6g}" for m in moments)
-            raise xml.error(f"the inertia tensor {problem}: its principal moments are {text}; "
-                            "give the inertia about the centre of mass of a real body", element,
-                            item)
+def _check_inertia(xml: XmlFile, element: ET.Element, mass: float, matrix: sp.Matrix,
+                   item: str) -> None:
+    """Refuses an inertia tensor no rigid body has (bodies.inertia_problem)."""
+    problem = inertia_problem(sp.Float(mass), matrix)
+    if problem:
+        raise xml.error(problem, element, item)
 
 
 def _inertial(xml: XmlFile, link: ET.Element, item: str) -> Inertial | None:
@@ -125,7 +116,7 @@ def _inertial(xml: XmlFile, link: ET.Element, item: str) -> Inertial | None:
          for key in ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")}
     matrix = sp.Matrix([[m["ixx"], m["ixy"], m["ixz"]], [m["ixy"], m["iyy"], m["iyz"]],
                         [m["ixz"], m["iyz"], m["izz"]]])
-    _check_inertia(xml, inertia, matrix, item)
+    _check_inertia(xml, inertia, value, matrix, item)
     return Inertial(value, matrix, _origin(xml, inertial, item))
 
 

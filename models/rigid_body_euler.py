@@ -17,38 +17,21 @@ attitude = +-pi/2, where the body's x axis points along the world's y axis. The 
 sets are disjoint, so the atlas (gencoord/atlas.hpp) can tumble through either. No gravity
 by default, so energy and angular momentum are conserved.
 """
-from generator import Matrix, Model, cos, sin
+from generator import EULER_CHARTS, Matrix, Model, rotation_about
 
-# The order of the three elementary rotations in each chart, with the angles' names and
-# descriptions, outermost (world) first.
-CHARTS = {
-    "zyx": [("yaw", "z", "rotation about z (rad)"),
-            ("pitch", "y", "rotation about the new y (rad)"),
-            ("roll", "x", "rotation about the new x (rad)")],
-    "yzx": [("heading", "y", "rotation about y (rad)"),
-            ("attitude", "z", "rotation about the new z (rad)"),
-            ("bank", "x", "rotation about the new x (rad)")],
-}
 # The zyx chart's suggested initial state: a tumble that stays clear of gimbal lock.
 INITIAL = {"yaw": (0.0, 0.3), "pitch": (0.2, 1.0), "roll": (0.0, 2.0)}
 BODY_POINTS = {"a": [0.5, 0, 0], "b": [0, 0.4, 0], "c": [0, 0, 0.3], "d": [0.2, 0.3, 0.25]}
-
-
-def rotation(axis, angle):
-    c, s = cos(angle), sin(angle)
-    return {"x": Matrix([[1, 0, 0], [0, c, -s], [0, s, c]]),
-            "y": Matrix([[c, 0, s], [0, 1, 0], [-s, 0, c]]),
-            "z": Matrix([[c, -s, 0], [s, c, 0], [0, 0, 1]])}[axis]
 
 
 def euler_chart(chart):
     model = Model(dim=3, chart=chart)
     origin = Matrix([model.coordinate(name, f"body origin, {name} (m)") for name in "xyz"])
     R = Matrix.eye(3)
-    for name, axis, description in CHARTS[chart]:
+    for name, axis, description in EULER_CHARTS[chart]:
         initial, rate = INITIAL.get(name, (0.0, 0.0))
-        R = R * rotation(axis, model.coordinate(name, description, initial=initial,
-                                                initial_rate=rate))
+        angle = model.coordinate(name, description, initial=initial, initial_rate=rate)
+        R = R * rotation_about(axis, angle)
     g = model.parameter("g", 0.0, "gravitational acceleration (m/s^2)")
     masses = [model.parameter(f"m_{name}", value, f"mass of point {name} (kg)")
               for name, value in (("a", 1.0), ("b", 2.0), ("c", 3.0), ("d", 1.5))]

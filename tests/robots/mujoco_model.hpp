@@ -60,7 +60,6 @@ class MujocoReference {
       data_->qpos[qpos_[i]] = q[i];
       data_->qvel[dof_[i]] = v[i];
     }
-    mju_zero(data_->qacc_warmstart, model_->nv);
     data_->time = 0.0;
   }
 
