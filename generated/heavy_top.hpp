@@ -12,9 +12,9 @@
 //   theta = 1.519, psi = 1.855 and phi = -2.369, theta = -1.519, psi = 4.996; mapping
 //   positions back to q (the inverse map, an atlas) depends on the first guess
 //
-// Total ops: 7005
-// Intermediate terms (1274)
-// Output terms (423)
+// Total ops: 5640
+// Intermediate terms (1078)
+// Output terms (421)
 #pragma once
 
 #include <array>
@@ -118,15 +118,13 @@ struct HeavyTop {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return Mt (nq x nq)
-  /// Ops: 298
+  /// Ops: 140
   template <typename Scalar>
   static QMatrix<Scalar> mass_matrix(const QVector<Scalar>& q,
                                      const Scalar& /*t*/,
                                      const Params& params) {
-    using std::abs;
     using std::cos;
     using std::sin;
-    using std::sqrt;
     const Scalar phi = q(0);
     const Scalar theta = q(1);
     const Scalar psi = q(2);
@@ -134,150 +132,72 @@ struct HeavyTop {
     const Scalar d = Scalar(params.d);
     const Scalar r = Scalar(params.r);
     const Scalar h = Scalar(params.h);
-    const Scalar tmp0 = sin(psi);
-    const Scalar tmp1 = cos(phi);
-    const Scalar tmp2 = tmp0*tmp1;
-    const Scalar tmp3 = cos(theta);
-    const Scalar tmp4 = sin(phi);
-    const Scalar tmp5 = cos(psi);
-    const Scalar tmp6 = tmp4*tmp5;
-    const Scalar tmp7 = tmp3*tmp6;
-    const Scalar tmp8 = tmp2 + tmp7;
-    const Scalar tmp9 = abs(r);
-    const Scalar tmp10 = (Scalar(0.5))*tmp9;
-    const Scalar tmp11 = -tmp10*tmp8;
-    const Scalar tmp12 = -tmp11;
-    const Scalar tmp13 = sin(theta);
-    const Scalar tmp14 = (r*r);
-    const Scalar tmp15 = (Scalar(0.25))*m;
-    const Scalar tmp16 = (h*h);
-    const Scalar tmp17 = -tmp14*tmp15 + ((Scalar(1)/Scalar(12)))*m*(tmp16 + Scalar(3)*tmp14);
-    const Scalar tmp18 = sqrt(tmp17)/sqrt(m);
-    const Scalar tmp19 = tmp13*tmp18;
-    const Scalar tmp20 = tmp19*tmp4;
-    const Scalar tmp21 = tmp13*d;
-    const Scalar tmp22 = tmp21*tmp4;
-    const Scalar tmp23 = tmp0*tmp4;
-    const Scalar tmp24 = tmp23*tmp3;
-    const Scalar tmp25 = tmp24 - tmp1*tmp5;
-    const Scalar tmp26 = -tmp10*tmp25;
-    const Scalar tmp27 = tmp22 - tmp26;
-    const Scalar tmp28 = tmp12 + tmp20 + tmp27;
-    const Scalar tmp29 = tmp2*tmp3;
-    const Scalar tmp30 = tmp29 + tmp6;
-    const Scalar tmp31 = -tmp10*tmp30;
+    const Scalar tmp0 = (d*d);
+    const Scalar tmp1 = sin(phi);
+    const Scalar tmp2 = (tmp1*tmp1);
+    const Scalar tmp3 = sin(theta);
+    const Scalar tmp4 = (tmp3*tmp3);
+    const Scalar tmp5 = tmp2*tmp4;
+    const Scalar tmp6 = cos(phi);
+    const Scalar tmp7 = (tmp6*tmp6);
+    const Scalar tmp8 = tmp4*tmp7;
+    const Scalar tmp9 = (r*r);
+    const Scalar tmp10 = (Scalar(0.25))*m;
+    const Scalar tmp11 = tmp10*tmp9;
+    const Scalar tmp12 = (h*h);
+    const Scalar tmp13 = -tmp11 + ((Scalar(1)/Scalar(12)))*m*(tmp12 + Scalar(3)*tmp9);
+    const Scalar tmp14 = sin(psi);
+    const Scalar tmp15 = tmp1*tmp14;
+    const Scalar tmp16 = cos(theta);
+    const Scalar tmp17 = cos(psi);
+    const Scalar tmp18 = tmp17*tmp6;
+    const Scalar tmp19 = tmp16*tmp18;
+    const Scalar tmp20 = tmp15 - tmp19;
+    const Scalar tmp21 = tmp14*tmp6;
+    const Scalar tmp22 = tmp1*tmp17;
+    const Scalar tmp23 = tmp16*tmp22;
+    const Scalar tmp24 = tmp21 + tmp23;
+    const Scalar tmp25 = -tmp24;
+    const Scalar tmp26 = (tmp25*tmp25);
+    const Scalar tmp27 = tmp15*tmp16;
+    const Scalar tmp28 = tmp27 - tmp17*tmp6;
+    const Scalar tmp29 = -tmp28;
+    const Scalar tmp30 = tmp16*tmp21;
+    const Scalar tmp31 = tmp22 + tmp30;
     const Scalar tmp32 = -tmp31;
-    const Scalar tmp33 = tmp1*tmp5;
-    const Scalar tmp34 = tmp3*tmp33;
-    const Scalar tmp35 = tmp23 - tmp34;
-    const Scalar tmp36 = tmp10*tmp35;
-    const Scalar tmp37 = -tmp36;
-    const Scalar tmp38 = tmp1*tmp21;
-    const Scalar tmp39 = tmp1*tmp19;
-    const Scalar tmp40 = tmp38 + tmp39;
-    const Scalar tmp41 = tmp32 + tmp37 + tmp40;
-    const Scalar tmp42 = tmp22 + tmp26;
-    const Scalar tmp43 = tmp11 + tmp20 + tmp42;
-    const Scalar tmp44 = tmp31 + tmp36;
-    const Scalar tmp45 = tmp40 + tmp44;
-    const Scalar tmp46 = -tmp20;
-    const Scalar tmp47 = tmp11 + tmp27 + tmp46;
-    const Scalar tmp48 = tmp32 + tmp36;
-    const Scalar tmp49 = tmp38 - tmp39;
-    const Scalar tmp50 = tmp48 + tmp49;
-    const Scalar tmp51 = tmp12 + tmp42 + tmp46;
-    const Scalar tmp52 = tmp31 + tmp37 + tmp49;
-    const Scalar tmp53 = tmp15*((tmp28*tmp28) + (tmp41*tmp41))
-        + tmp15*((tmp43*tmp43) + (tmp45*tmp45)) + tmp15*((tmp47*tmp47) + (tmp50*tmp50))
-        + tmp15*((tmp51*tmp51) + (tmp52*tmp52));
-    const Scalar tmp54 = tmp10*tmp13;
-    const Scalar tmp55 = tmp54*tmp6;
-    const Scalar tmp56 = -tmp55;
-    const Scalar tmp57 = tmp23*tmp54;
-    const Scalar tmp58 = -tmp57;
-    const Scalar tmp59 = tmp3*d;
-    const Scalar tmp60 = tmp4*tmp59;
-    const Scalar tmp61 = tmp18*tmp3;
-    const Scalar tmp62 = tmp4*tmp61;
-    const Scalar tmp63 = tmp60 + tmp62;
-    const Scalar tmp64 = tmp56 + tmp58 + tmp63;
-    const Scalar tmp65 = tmp33*tmp54;
-    const Scalar tmp66 = -tmp65;
-    const Scalar tmp67 = tmp2*tmp54;
-    const Scalar tmp68 = -tmp67;
-    const Scalar tmp69 = tmp1*tmp59;
-    const Scalar tmp70 = tmp1*tmp61;
-    const Scalar tmp71 = tmp69 + tmp70;
-    const Scalar tmp72 = tmp66 + tmp68 + tmp71;
-    const Scalar tmp73 = -tmp72;
-    const Scalar tmp74 = tmp55 + tmp57;
-    const Scalar tmp75 = tmp63 + tmp74;
-    const Scalar tmp76 = tmp65 + tmp67;
-    const Scalar tmp77 = tmp71 + tmp76;
-    const Scalar tmp78 = -tmp77;
-    const Scalar tmp79 = tmp69 - tmp70;
-    const Scalar tmp80 = tmp65 + tmp68 + tmp79;
-    const Scalar tmp81 = -tmp80;
-    const Scalar tmp82 = tmp60 - tmp62;
-    const Scalar tmp83 = tmp55 + tmp58 + tmp82;
-    const Scalar tmp84 = tmp66 + tmp67;
-    const Scalar tmp85 = tmp79 + tmp84;
-    const Scalar tmp86 = -tmp85;
-    const Scalar tmp87 = tmp56 + tmp57;
-    const Scalar tmp88 = tmp82 + tmp87;
-    const Scalar tmp89 = tmp15*(tmp28*tmp73 + tmp41*tmp64) + tmp15*(tmp43*tmp78 + tmp45*tmp75)
-        + tmp15*(tmp47*tmp81 + tmp50*tmp83) + tmp15*(tmp51*tmp86 + tmp52*tmp88);
-    const Scalar tmp90 = tmp10*tmp3;
-    const Scalar tmp91 = tmp0*tmp90;
-    const Scalar tmp92 = tmp5*tmp90;
-    const Scalar tmp93 = -tmp92;
-    const Scalar tmp94 = tmp91 + tmp93;
-    const Scalar tmp95 = tmp21 - tmp19;
-    const Scalar tmp96 = -tmp94 - tmp95;
-    const Scalar tmp97 = -tmp91;
-    const Scalar tmp98 = -tmp92 - tmp95 - tmp97;
-    const Scalar tmp99 = tmp91 + tmp92;
-    const Scalar tmp100 = tmp19 + tmp21;
-    const Scalar tmp101 = -tmp100 - tmp99;
-    const Scalar tmp102 = -tmp100 - tmp93 - tmp97;
-    const Scalar tmp103 = tmp15*((tmp101*tmp101) + (tmp64*tmp64) + (tmp73*tmp73))
-        + tmp15*((tmp102*tmp102) + (tmp75*tmp75) + (tmp78*tmp78))
-        + tmp15*((tmp81*tmp81) + (tmp83*tmp83) + (tmp96*tmp96))
-        + tmp15*((tmp86*tmp86) + (tmp88*tmp88) + (tmp98*tmp98));
-    const Scalar tmp104 = -tmp10*tmp35;
-    const Scalar tmp105 = tmp104 + tmp31;
-    const Scalar tmp106 = -tmp105;
-    const Scalar tmp107 = tmp10*tmp25;
-    const Scalar tmp108 = tmp107 + tmp11;
-    const Scalar tmp109 = -tmp108;
-    const Scalar tmp110 = tmp104 + tmp32;
-    const Scalar tmp111 = -tmp110;
-    const Scalar tmp112 = tmp107 + tmp12;
-    const Scalar tmp113 = -tmp112;
-    const Scalar tmp114 = tmp15*(tmp105*tmp43 + tmp108*tmp45) + tmp15*(tmp106*tmp28 + tmp109*tmp41)
-        + tmp15*(tmp110*tmp51 + tmp113*tmp52) + tmp15*(tmp111*tmp47 + tmp112*tmp50);
-    const Scalar tmp115 = tmp0*tmp54;
-    const Scalar tmp116 = tmp5*tmp54;
-    const Scalar tmp117 = tmp115 + tmp116;
-    const Scalar tmp118 = -tmp117;
-    const Scalar tmp119 = -tmp116;
-    const Scalar tmp120 = tmp115 + tmp119;
-    const Scalar tmp121 = -tmp120;
-    const Scalar tmp122 = tmp15*(tmp101*tmp120 + tmp106*tmp73 + tmp109*tmp64)
-        + tmp15*(tmp102*tmp121 + tmp105*tmp78 + tmp108*tmp75)
-        + tmp15*(tmp110*tmp86 + tmp113*tmp88 + tmp117*tmp98)
-        + tmp15*(tmp111*tmp81 + tmp112*tmp83 + tmp118*tmp96);
-    const Scalar tmp123 = tmp15*((tmp105*tmp105) + (tmp108*tmp108) + (tmp121*tmp121))
-        + tmp15*((tmp106*tmp106) + (tmp109*tmp109) + (tmp120*tmp120))
-        + tmp15*((tmp110*tmp110) + (tmp113*tmp113) + (tmp117*tmp117))
-        + tmp15*((tmp111*tmp111) + (tmp112*tmp112) + (tmp118*tmp118));
+    const Scalar tmp33 = (tmp32*tmp32);
+    const Scalar tmp34 = tmp11*(tmp26 + (tmp20*tmp20)) + tmp11*(tmp33 + (tmp29*tmp29))
+        + tmp13*(tmp5 + tmp8) + m*(tmp0*tmp5 + tmp0*tmp8);
+    const Scalar tmp35 = tmp22*tmp3;
+    const Scalar tmp36 = tmp18*tmp3;
+    const Scalar tmp37 = tmp15*tmp3;
+    const Scalar tmp38 = tmp21*tmp3;
+    const Scalar tmp39 = tmp11*(tmp20*tmp35 - tmp25*tmp36) + tmp11*(tmp32*tmp37 - tmp29*tmp38);
+    const Scalar tmp40 = tmp0*tmp4;
+    const Scalar tmp41 = (tmp16*tmp16);
+    const Scalar tmp42 = tmp2*tmp41;
+    const Scalar tmp43 = tmp41*tmp7;
+    const Scalar tmp44 = (tmp14*tmp14);
+    const Scalar tmp45 = (tmp17*tmp17);
+    const Scalar tmp46 = tmp11*(tmp41*tmp44 + tmp44*tmp5 + tmp44*tmp8)
+        + tmp11*(tmp41*tmp45 + tmp45*tmp5 + tmp45*tmp8) + tmp13*(tmp4 + tmp42 + tmp43)
+        + m*(tmp40 + tmp0*tmp42 + tmp0*tmp43);
+    const Scalar tmp47 = -tmp20;
+    const Scalar tmp48 = tmp25*tmp32;
+    const Scalar tmp49 = tmp11*(tmp48 + tmp20*tmp28) + tmp11*(tmp48 + tmp29*tmp47);
+    const Scalar tmp50 = tmp16*tmp3;
+    const Scalar tmp51 = tmp14*tmp17*tmp50;
+    const Scalar tmp52 = tmp11*(tmp51 + tmp25*tmp37 - tmp38*tmp47)
+        + tmp11*(-tmp51 - tmp32*tmp36 + tmp1*tmp17*tmp28*tmp3);
+    const Scalar tmp53 = tmp11*(tmp26 + (tmp47*tmp47) + tmp4*tmp45)
+        + tmp11*(tmp33 + (tmp28*tmp28) + tmp4*tmp44);
     QMatrix<Scalar> result;
-    result(0, 0) = tmp53;
-    result(1, 0) = tmp89;
-    result(1, 1) = tmp103;
-    result(2, 0) = tmp114;
-    result(2, 1) = tmp122;
-    result(2, 2) = tmp123;
+    result(0, 0) = tmp34;
+    result(1, 0) = tmp39;
+    result(1, 1) = tmp46;
+    result(2, 0) = tmp49;
+    result(2, 1) = tmp52;
+    result(2, 2) = tmp53;
     result(0, 1) = result(1, 0);
     result(0, 2) = result(2, 0);
     result(1, 2) = result(2, 1);
@@ -290,64 +210,25 @@ struct HeavyTop {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return Ft (nq)
-  /// Ops: 72
+  /// Ops: 4
   template <typename Scalar>
   static QVector<Scalar> applied_forces(const QVector<Scalar>& q,
                                         const QVector<Scalar>& /*v*/,
                                         const Scalar& /*t*/,
                                         const Params& params) {
-    using std::abs;
-    using std::cos;
     using std::sin;
-    using std::sqrt;
     const Scalar theta = q(1);
-    const Scalar psi = q(2);
     const Scalar m = Scalar(params.m);
     const Scalar d = Scalar(params.d);
-    const Scalar r = Scalar(params.r);
-    const Scalar h = Scalar(params.h);
     const Scalar g = Scalar(params.g);
-    const Scalar tmp0 = sin(psi);
-    const Scalar tmp3 = cos(theta);
-    const Scalar tmp5 = cos(psi);
-    const Scalar tmp9 = abs(r);
-    const Scalar tmp10 = (Scalar(0.5))*tmp9;
-    const Scalar tmp13 = sin(theta);
-    const Scalar tmp14 = (r*r);
-    const Scalar tmp15 = (Scalar(0.25))*m;
-    const Scalar tmp16 = (h*h);
-    const Scalar tmp17 = -tmp14*tmp15 + ((Scalar(1)/Scalar(12)))*m*(tmp16 + Scalar(3)*tmp14);
-    const Scalar tmp18 = sqrt(tmp17)/sqrt(m);
-    const Scalar tmp19 = tmp13*tmp18;
-    const Scalar tmp21 = tmp13*d;
-    const Scalar tmp54 = tmp10*tmp13;
-    const Scalar tmp90 = tmp10*tmp3;
-    const Scalar tmp91 = tmp0*tmp90;
-    const Scalar tmp92 = tmp5*tmp90;
-    const Scalar tmp93 = -tmp92;
-    const Scalar tmp94 = tmp91 + tmp93;
-    const Scalar tmp95 = tmp21 - tmp19;
-    const Scalar tmp96 = -tmp94 - tmp95;
-    const Scalar tmp97 = -tmp91;
-    const Scalar tmp98 = -tmp92 - tmp95 - tmp97;
-    const Scalar tmp99 = tmp91 + tmp92;
-    const Scalar tmp100 = tmp19 + tmp21;
-    const Scalar tmp101 = -tmp100 - tmp99;
-    const Scalar tmp102 = -tmp100 - tmp93 - tmp97;
-    const Scalar tmp115 = tmp0*tmp54;
-    const Scalar tmp116 = tmp5*tmp54;
-    const Scalar tmp117 = tmp115 + tmp116;
-    const Scalar tmp118 = -tmp117;
-    const Scalar tmp119 = -tmp116;
-    const Scalar tmp120 = tmp115 + tmp119;
-    const Scalar tmp121 = -tmp120;
-    const Scalar tmp124 = tmp15*g;
-    const Scalar tmp125 = tmp101*tmp124 + tmp102*tmp124 + tmp124*tmp96 + tmp124*tmp98;
-    const Scalar tmp126 = tmp117*tmp124 + tmp118*tmp124 + tmp120*tmp124 + tmp121*tmp124;
+    const Scalar tmp3 = sin(theta);
+    const Scalar tmp54 = tmp3*d;
+    const Scalar tmp55 = g*m;
+    const Scalar tmp56 = tmp54*tmp55;
     QVector<Scalar> result;
     result(0) = Scalar(0);
-    result(1) = -tmp125;
-    result(2) = -tmp126;
+    result(1) = tmp56;
+    result(2) = Scalar(0);
     return result;
   }
 
@@ -376,16 +257,14 @@ struct HeavyTop {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return Fi (nq)
-  /// Ops: 522
+  /// Ops: 268
   template <typename Scalar>
   static QVector<Scalar> inertial_forces(const QVector<Scalar>& q,
                                          const QVector<Scalar>& v,
                                          const Scalar& /*t*/,
                                          const Params& params) {
-    using std::abs;
     using std::cos;
     using std::sin;
-    using std::sqrt;
     const Scalar phi = q(0);
     const Scalar theta = q(1);
     const Scalar psi = q(2);
@@ -396,213 +275,94 @@ struct HeavyTop {
     const Scalar d = Scalar(params.d);
     const Scalar r = Scalar(params.r);
     const Scalar h = Scalar(params.h);
-    const Scalar tmp0 = sin(psi);
-    const Scalar tmp1 = cos(phi);
-    const Scalar tmp2 = tmp0*tmp1;
-    const Scalar tmp3 = cos(theta);
-    const Scalar tmp4 = sin(phi);
-    const Scalar tmp5 = cos(psi);
-    const Scalar tmp6 = tmp4*tmp5;
-    const Scalar tmp7 = tmp3*tmp6;
-    const Scalar tmp8 = tmp2 + tmp7;
-    const Scalar tmp9 = abs(r);
-    const Scalar tmp10 = (Scalar(0.5))*tmp9;
-    const Scalar tmp11 = -tmp10*tmp8;
-    const Scalar tmp12 = -tmp11;
-    const Scalar tmp13 = sin(theta);
-    const Scalar tmp14 = (r*r);
-    const Scalar tmp15 = (Scalar(0.25))*m;
-    const Scalar tmp16 = (h*h);
-    const Scalar tmp17 = -tmp14*tmp15 + ((Scalar(1)/Scalar(12)))*m*(tmp16 + Scalar(3)*tmp14);
-    const Scalar tmp18 = sqrt(tmp17)/sqrt(m);
-    const Scalar tmp19 = tmp13*tmp18;
-    const Scalar tmp20 = tmp19*tmp4;
-    const Scalar tmp21 = tmp13*d;
-    const Scalar tmp22 = tmp21*tmp4;
-    const Scalar tmp23 = tmp0*tmp4;
-    const Scalar tmp24 = tmp23*tmp3;
-    const Scalar tmp25 = tmp24 - tmp1*tmp5;
-    const Scalar tmp26 = -tmp10*tmp25;
-    const Scalar tmp27 = tmp22 - tmp26;
-    const Scalar tmp28 = tmp12 + tmp20 + tmp27;
-    const Scalar tmp29 = tmp2*tmp3;
-    const Scalar tmp30 = tmp29 + tmp6;
-    const Scalar tmp31 = -tmp10*tmp30;
+    const Scalar tmp0 = (d*d);
+    const Scalar tmp1 = sin(phi);
+    const Scalar tmp3 = sin(theta);
+    const Scalar tmp6 = cos(phi);
+    const Scalar tmp9 = (r*r);
+    const Scalar tmp10 = (Scalar(0.25))*m;
+    const Scalar tmp11 = tmp10*tmp9;
+    const Scalar tmp12 = (h*h);
+    const Scalar tmp13 = -tmp11 + ((Scalar(1)/Scalar(12)))*m*(tmp12 + Scalar(3)*tmp9);
+    const Scalar tmp14 = sin(psi);
+    const Scalar tmp15 = tmp1*tmp14;
+    const Scalar tmp16 = cos(theta);
+    const Scalar tmp17 = cos(psi);
+    const Scalar tmp18 = tmp17*tmp6;
+    const Scalar tmp19 = tmp16*tmp18;
+    const Scalar tmp20 = tmp15 - tmp19;
+    const Scalar tmp21 = tmp14*tmp6;
+    const Scalar tmp22 = tmp1*tmp17;
+    const Scalar tmp23 = tmp16*tmp22;
+    const Scalar tmp24 = tmp21 + tmp23;
+    const Scalar tmp25 = -tmp24;
+    const Scalar tmp27 = tmp15*tmp16;
+    const Scalar tmp28 = tmp27 - tmp17*tmp6;
+    const Scalar tmp29 = -tmp28;
+    const Scalar tmp30 = tmp16*tmp21;
+    const Scalar tmp31 = tmp22 + tmp30;
     const Scalar tmp32 = -tmp31;
-    const Scalar tmp33 = tmp1*tmp5;
-    const Scalar tmp34 = tmp3*tmp33;
-    const Scalar tmp35 = tmp23 - tmp34;
-    const Scalar tmp36 = tmp10*tmp35;
-    const Scalar tmp37 = -tmp36;
-    const Scalar tmp38 = tmp1*tmp21;
-    const Scalar tmp39 = tmp1*tmp19;
-    const Scalar tmp40 = tmp38 + tmp39;
-    const Scalar tmp41 = tmp32 + tmp37 + tmp40;
-    const Scalar tmp42 = tmp22 + tmp26;
-    const Scalar tmp43 = tmp11 + tmp20 + tmp42;
-    const Scalar tmp44 = tmp31 + tmp36;
-    const Scalar tmp45 = tmp40 + tmp44;
-    const Scalar tmp46 = -tmp20;
-    const Scalar tmp47 = tmp11 + tmp27 + tmp46;
-    const Scalar tmp48 = tmp32 + tmp36;
-    const Scalar tmp49 = tmp38 - tmp39;
-    const Scalar tmp50 = tmp48 + tmp49;
-    const Scalar tmp51 = tmp12 + tmp42 + tmp46;
-    const Scalar tmp52 = tmp31 + tmp37 + tmp49;
-    const Scalar tmp54 = tmp10*tmp13;
-    const Scalar tmp55 = tmp54*tmp6;
-    const Scalar tmp56 = -tmp55;
-    const Scalar tmp57 = tmp23*tmp54;
-    const Scalar tmp58 = -tmp57;
-    const Scalar tmp59 = tmp3*d;
-    const Scalar tmp60 = tmp4*tmp59;
-    const Scalar tmp61 = tmp18*tmp3;
-    const Scalar tmp62 = tmp4*tmp61;
-    const Scalar tmp63 = tmp60 + tmp62;
-    const Scalar tmp64 = tmp56 + tmp58 + tmp63;
-    const Scalar tmp65 = tmp33*tmp54;
-    const Scalar tmp66 = -tmp65;
-    const Scalar tmp67 = tmp2*tmp54;
-    const Scalar tmp68 = -tmp67;
-    const Scalar tmp69 = tmp1*tmp59;
-    const Scalar tmp70 = tmp1*tmp61;
-    const Scalar tmp71 = tmp69 + tmp70;
-    const Scalar tmp72 = tmp66 + tmp68 + tmp71;
-    const Scalar tmp73 = -tmp72;
-    const Scalar tmp74 = tmp55 + tmp57;
-    const Scalar tmp75 = tmp63 + tmp74;
-    const Scalar tmp76 = tmp65 + tmp67;
-    const Scalar tmp77 = tmp71 + tmp76;
-    const Scalar tmp78 = -tmp77;
-    const Scalar tmp79 = tmp69 - tmp70;
-    const Scalar tmp80 = tmp65 + tmp68 + tmp79;
-    const Scalar tmp81 = -tmp80;
-    const Scalar tmp82 = tmp60 - tmp62;
-    const Scalar tmp83 = tmp55 + tmp58 + tmp82;
-    const Scalar tmp84 = tmp66 + tmp67;
-    const Scalar tmp85 = tmp79 + tmp84;
-    const Scalar tmp86 = -tmp85;
-    const Scalar tmp87 = tmp56 + tmp57;
-    const Scalar tmp88 = tmp82 + tmp87;
-    const Scalar tmp90 = tmp10*tmp3;
-    const Scalar tmp91 = tmp0*tmp90;
-    const Scalar tmp92 = tmp5*tmp90;
-    const Scalar tmp93 = -tmp92;
-    const Scalar tmp94 = tmp91 + tmp93;
-    const Scalar tmp95 = tmp21 - tmp19;
-    const Scalar tmp96 = -tmp94 - tmp95;
-    const Scalar tmp97 = -tmp91;
-    const Scalar tmp98 = -tmp92 - tmp95 - tmp97;
-    const Scalar tmp99 = tmp91 + tmp92;
-    const Scalar tmp100 = tmp19 + tmp21;
-    const Scalar tmp101 = -tmp100 - tmp99;
-    const Scalar tmp102 = -tmp100 - tmp93 - tmp97;
-    const Scalar tmp104 = -tmp10*tmp35;
-    const Scalar tmp105 = tmp104 + tmp31;
-    const Scalar tmp106 = -tmp105;
-    const Scalar tmp107 = tmp10*tmp25;
-    const Scalar tmp108 = tmp107 + tmp11;
-    const Scalar tmp109 = -tmp108;
-    const Scalar tmp110 = tmp104 + tmp32;
-    const Scalar tmp111 = -tmp110;
-    const Scalar tmp112 = tmp107 + tmp12;
-    const Scalar tmp113 = -tmp112;
-    const Scalar tmp115 = tmp0*tmp54;
-    const Scalar tmp116 = tmp5*tmp54;
-    const Scalar tmp117 = tmp115 + tmp116;
-    const Scalar tmp118 = -tmp117;
-    const Scalar tmp119 = -tmp116;
-    const Scalar tmp120 = tmp115 + tmp119;
-    const Scalar tmp121 = -tmp120;
-    const Scalar tmp127 = tmp10*tmp30;
-    const Scalar tmp128 = tmp127 + tmp36;
-    const Scalar tmp129 = -tmp128;
-    const Scalar tmp130 = tmp10*tmp8;
-    const Scalar tmp131 = tmp107 + tmp130;
-    const Scalar tmp132 = tmp10*tmp24;
-    const Scalar tmp133 = tmp10*tmp7;
-    const Scalar tmp134 = tmp20 + tmp22;
-    const Scalar tmp135 = phi_dot*(tmp129*psi_dot + tmp72*theta_dot + phi_dot*(-tmp131 - tmp134))
-        + psi_dot*(tmp129*phi_dot + tmp87*theta_dot - tmp131*psi_dot)
-        + theta_dot*(tmp72*phi_dot + tmp87*psi_dot + theta_dot*(-tmp132 - tmp133 - tmp134));
-    const Scalar tmp136 = -tmp84;
-    const Scalar tmp137 = tmp10*tmp29;
-    const Scalar tmp138 = tmp10*tmp34;
-    const Scalar tmp139 = tmp109*psi_dot + tmp41*phi_dot + tmp64*theta_dot;
-    const Scalar tmp140 = tmp139*phi_dot
-        + psi_dot*(tmp109*phi_dot + tmp136*theta_dot - tmp44*psi_dot)
-        + theta_dot*(tmp136*psi_dot + tmp64*phi_dot + theta_dot*(tmp137 + tmp138 + tmp40));
-    const Scalar tmp141 = -tmp87;
-    const Scalar tmp142 = -tmp133;
-    const Scalar tmp143 = -tmp132;
-    const Scalar tmp144 = -tmp130;
-    const Scalar tmp145 = -tmp107;
-    const Scalar tmp146 = phi_dot*(tmp128*psi_dot + tmp77*theta_dot
-            + phi_dot*(-tmp134 - tmp144 - tmp145))
-        + psi_dot*(tmp128*phi_dot + tmp131*psi_dot + tmp141*theta_dot)
-        + theta_dot*(tmp141*psi_dot + tmp77*phi_dot + theta_dot*(-tmp134 - tmp142 - tmp143));
-    const Scalar tmp147 = -tmp138;
-    const Scalar tmp148 = -tmp137;
-    const Scalar tmp149 = tmp108*psi_dot + tmp45*phi_dot + tmp75*theta_dot;
-    const Scalar tmp150 = tmp149*phi_dot
-        + psi_dot*(tmp108*phi_dot + tmp44*psi_dot + tmp84*theta_dot)
-        + theta_dot*(tmp75*phi_dot + tmp84*psi_dot + theta_dot*(tmp147 + tmp148 + tmp40));
-    const Scalar tmp151 = -tmp74;
-    const Scalar tmp152 = -tmp127;
-    const Scalar tmp153 = tmp152 + tmp36;
-    const Scalar tmp154 = -tmp153;
-    const Scalar tmp155 = tmp107 + tmp144;
-    const Scalar tmp156 = tmp22 + tmp46;
-    const Scalar tmp157 = phi_dot*(tmp154*psi_dot + tmp80*theta_dot + phi_dot*(-tmp155 - tmp156))
-        + psi_dot*(tmp151*theta_dot + tmp154*phi_dot - tmp155*psi_dot)
-        + theta_dot*(tmp151*psi_dot + tmp80*phi_dot + theta_dot*(-tmp132 - tmp142 - tmp156));
-    const Scalar tmp158 = tmp112*psi_dot + tmp50*phi_dot + tmp83*theta_dot;
-    const Scalar tmp159 = tmp158*phi_dot
-        + psi_dot*(tmp112*phi_dot + tmp48*psi_dot + tmp76*theta_dot)
-        + theta_dot*(tmp76*psi_dot + tmp83*phi_dot + theta_dot*(tmp137 + tmp147 + tmp49));
-    const Scalar tmp160 = phi_dot*(tmp153*psi_dot + tmp85*theta_dot
-            + phi_dot*(-tmp130 - tmp145 - tmp156))
-        + psi_dot*(tmp153*phi_dot + tmp155*psi_dot + tmp74*theta_dot)
-        + theta_dot*(tmp74*psi_dot + tmp85*phi_dot + theta_dot*(-tmp133 - tmp143 - tmp156));
-    const Scalar tmp161 = -tmp76;
-    const Scalar tmp162 = tmp113*psi_dot + tmp52*phi_dot + tmp88*theta_dot;
-    const Scalar tmp163 = tmp162*phi_dot
-        + psi_dot*(tmp113*phi_dot + tmp161*theta_dot - tmp48*psi_dot)
-        + theta_dot*(tmp161*psi_dot + tmp88*phi_dot + theta_dot*(tmp138 + tmp148 + tmp49));
-    const Scalar tmp164 = tmp15*(tmp135*tmp41 + tmp140*tmp28) + tmp15*(tmp146*tmp45 + tmp150*tmp43)
-        + tmp15*(tmp157*tmp50 + tmp159*tmp47) + tmp15*(tmp160*tmp52 + tmp163*tmp51);
-    const Scalar tmp165 = tmp118*psi_dot;
-    const Scalar tmp166 = -tmp94;
-    const Scalar tmp167 = tmp117 + tmp59 + tmp61;
-    const Scalar tmp168 = psi_dot*(tmp165 + tmp166*theta_dot)
-        + theta_dot*(tmp166*psi_dot - tmp167*theta_dot);
-    const Scalar tmp169 = tmp117*psi_dot;
-    const Scalar tmp170 = tmp59 - tmp115;
-    const Scalar tmp171 = tmp119 + tmp170 + tmp61;
-    const Scalar tmp172 = psi_dot*(tmp169 + tmp94*theta_dot)
-        + theta_dot*(tmp94*psi_dot - tmp171*theta_dot);
-    const Scalar tmp173 = tmp121*psi_dot;
-    const Scalar tmp174 = -tmp61;
-    const Scalar tmp175 = tmp120 + tmp174 + tmp59;
-    const Scalar tmp176 = psi_dot*(tmp173 + tmp99*theta_dot)
-        + theta_dot*(tmp99*psi_dot - tmp175*theta_dot);
-    const Scalar tmp177 = tmp120*psi_dot;
-    const Scalar tmp178 = -tmp99;
-    const Scalar tmp179 = tmp116 + tmp170 + tmp174;
-    const Scalar tmp180 = psi_dot*(tmp177 + tmp178*theta_dot)
-        + theta_dot*(tmp178*psi_dot - tmp179*theta_dot);
-    const Scalar tmp181 = tmp15*(tmp101*tmp172 + tmp135*tmp64 + tmp140*tmp73)
-        + tmp15*(tmp102*tmp168 + tmp146*tmp75 + tmp150*tmp78)
-        + tmp15*(tmp157*tmp83 + tmp159*tmp81 + tmp180*tmp96)
-        + tmp15*(tmp160*tmp88 + tmp163*tmp86 + tmp176*tmp98);
-    const Scalar tmp182 = tmp15*(tmp105*tmp150 + tmp108*tmp146 + tmp121*tmp168)
-        + tmp15*(tmp106*tmp140 + tmp109*tmp135 + tmp120*tmp172)
-        + tmp15*(tmp110*tmp163 + tmp113*tmp160 + tmp117*tmp176)
-        + tmp15*(tmp111*tmp159 + tmp112*tmp157 + tmp118*tmp180);
+    const Scalar tmp35 = tmp22*tmp3;
+    const Scalar tmp36 = tmp18*tmp3;
+    const Scalar tmp37 = tmp15*tmp3;
+    const Scalar tmp38 = tmp21*tmp3;
+    const Scalar tmp47 = -tmp20;
+    const Scalar tmp50 = tmp16*tmp3;
+    const Scalar tmp54 = tmp3*d;
+    const Scalar tmp57 = tmp54*tmp6;
+    const Scalar tmp58 = tmp16*d;
+    const Scalar tmp59 = tmp1*tmp58;
+    const Scalar tmp60 = tmp57*phi_dot + tmp59*theta_dot;
+    const Scalar tmp61 = tmp60*phi_dot + theta_dot*(tmp57*theta_dot + tmp59*phi_dot);
+    const Scalar tmp62 = tmp1*tmp54;
+    const Scalar tmp63 = tmp62*phi_dot - tmp16*tmp6*d*theta_dot;
+    const Scalar tmp64 = tmp58*tmp6;
+    const Scalar tmp65 = theta_dot*(tmp64*phi_dot - tmp62*theta_dot) - tmp63*phi_dot;
+    const Scalar tmp66 = tmp3*tmp6;
+    const Scalar tmp67 = tmp1*tmp16;
+    const Scalar tmp68 = tmp66*phi_dot + tmp67*theta_dot;
+    const Scalar tmp69 = tmp68*phi_dot + theta_dot*(tmp66*theta_dot + tmp67*phi_dot);
+    const Scalar tmp70 = tmp1*tmp3;
+    const Scalar tmp71 = tmp70*phi_dot - tmp16*tmp6*theta_dot;
+    const Scalar tmp72 = tmp16*tmp6;
+    const Scalar tmp73 = theta_dot*(tmp72*phi_dot - tmp70*theta_dot) - tmp71*phi_dot;
+    const Scalar tmp74 = tmp36*theta_dot;
+    const Scalar tmp75 = tmp37*theta_dot;
+    const Scalar tmp76 = phi_dot*(tmp74 + tmp24*phi_dot + tmp31*psi_dot)
+        + psi_dot*(-tmp75 + tmp24*psi_dot + tmp31*phi_dot)
+        + theta_dot*(tmp23*theta_dot + tmp36*phi_dot - tmp37*psi_dot);
+    const Scalar tmp77 = tmp20*phi_dot + tmp28*psi_dot + tmp35*theta_dot;
+    const Scalar tmp78 = tmp38*theta_dot;
+    const Scalar tmp79 = tmp78 + tmp20*psi_dot + tmp28*phi_dot;
+    const Scalar tmp80 = tmp77*phi_dot + tmp79*psi_dot
+        + theta_dot*(tmp35*phi_dot + tmp38*psi_dot - tmp19*theta_dot);
+    const Scalar tmp81 = tmp77*psi_dot + tmp79*phi_dot
+        + theta_dot*(tmp27*theta_dot + tmp35*psi_dot + tmp38*phi_dot);
+    const Scalar tmp82 = tmp75 + tmp25*psi_dot + tmp32*phi_dot;
+    const Scalar tmp83 = -tmp74 + tmp25*phi_dot + tmp32*psi_dot;
+    const Scalar tmp84 = tmp82*phi_dot + tmp83*psi_dot
+        + theta_dot*(-tmp30*theta_dot - tmp36*psi_dot + tmp1*tmp14*tmp3*phi_dot);
+    const Scalar tmp85 = tmp11*(tmp20*tmp76 + tmp25*tmp80) + tmp11*(tmp29*tmp84 + tmp32*tmp81)
+        + tmp13*(tmp66*tmp73 + tmp69*tmp70) + m*(tmp57*tmp65 + tmp61*tmp62);
+    const Scalar tmp86 = (theta_dot*theta_dot);
+    const Scalar tmp87 = tmp50*tmp86;
+    const Scalar tmp88 = tmp17*tmp3;
+    const Scalar tmp89 = tmp14*tmp16;
+    const Scalar tmp90 = tmp88*psi_dot + tmp89*theta_dot;
+    const Scalar tmp91 = theta_dot*(-tmp88*theta_dot - tmp89*psi_dot) - tmp90*psi_dot;
+    const Scalar tmp92 = tmp16*tmp17;
+    const Scalar tmp93 = tmp14*tmp3;
+    const Scalar tmp94 = -tmp93*psi_dot + tmp16*tmp17*theta_dot;
+    const Scalar tmp95 = tmp94*psi_dot + theta_dot*(tmp92*psi_dot - tmp93*theta_dot);
+    const Scalar tmp96 = tmp11*(tmp35*tmp76 + tmp91*tmp92 - tmp36*tmp80)
+        + tmp11*(tmp37*tmp81 + tmp89*tmp95 - tmp38*tmp84)
+        + tmp13*(tmp87 + tmp67*tmp73 - tmp69*tmp72) + m*(tmp0*tmp87 + tmp59*tmp65 - tmp61*tmp64);
+    const Scalar tmp97 = tmp11*(tmp25*tmp81 + tmp47*tmp84 + tmp88*tmp95)
+        + tmp11*(tmp28*tmp76 + tmp32*tmp80 - tmp91*tmp93);
     QVector<Scalar> result;
-    result(0) = -tmp164;
-    result(1) = -tmp181;
-    result(2) = -tmp182;
+    result(0) = -tmp85;
+    result(1) = -tmp96;
+    result(2) = -tmp97;
     return result;
   }
 
@@ -612,16 +372,14 @@ struct HeavyTop {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return Ft + Fi (nq)
-  /// Ops: 539
+  /// Ops: 272
   template <typename Scalar>
   static QVector<Scalar> forces(const QVector<Scalar>& q,
                                 const QVector<Scalar>& v,
                                 const Scalar& /*t*/,
                                 const Params& params) {
-    using std::abs;
     using std::cos;
     using std::sin;
-    using std::sqrt;
     const Scalar phi = q(0);
     const Scalar theta = q(1);
     const Scalar psi = q(2);
@@ -633,218 +391,97 @@ struct HeavyTop {
     const Scalar r = Scalar(params.r);
     const Scalar h = Scalar(params.h);
     const Scalar g = Scalar(params.g);
-    const Scalar tmp0 = sin(psi);
-    const Scalar tmp1 = cos(phi);
-    const Scalar tmp2 = tmp0*tmp1;
-    const Scalar tmp3 = cos(theta);
-    const Scalar tmp4 = sin(phi);
-    const Scalar tmp5 = cos(psi);
-    const Scalar tmp6 = tmp4*tmp5;
-    const Scalar tmp7 = tmp3*tmp6;
-    const Scalar tmp8 = tmp2 + tmp7;
-    const Scalar tmp9 = abs(r);
-    const Scalar tmp10 = (Scalar(0.5))*tmp9;
-    const Scalar tmp11 = -tmp10*tmp8;
-    const Scalar tmp12 = -tmp11;
-    const Scalar tmp13 = sin(theta);
-    const Scalar tmp14 = (r*r);
-    const Scalar tmp15 = (Scalar(0.25))*m;
-    const Scalar tmp16 = (h*h);
-    const Scalar tmp17 = -tmp14*tmp15 + ((Scalar(1)/Scalar(12)))*m*(tmp16 + Scalar(3)*tmp14);
-    const Scalar tmp18 = sqrt(tmp17)/sqrt(m);
-    const Scalar tmp19 = tmp13*tmp18;
-    const Scalar tmp20 = tmp19*tmp4;
-    const Scalar tmp21 = tmp13*d;
-    const Scalar tmp22 = tmp21*tmp4;
-    const Scalar tmp23 = tmp0*tmp4;
-    const Scalar tmp24 = tmp23*tmp3;
-    const Scalar tmp25 = tmp24 - tmp1*tmp5;
-    const Scalar tmp26 = -tmp10*tmp25;
-    const Scalar tmp27 = tmp22 - tmp26;
-    const Scalar tmp28 = tmp12 + tmp20 + tmp27;
-    const Scalar tmp29 = tmp2*tmp3;
-    const Scalar tmp30 = tmp29 + tmp6;
-    const Scalar tmp31 = -tmp10*tmp30;
+    const Scalar tmp0 = (d*d);
+    const Scalar tmp1 = sin(phi);
+    const Scalar tmp3 = sin(theta);
+    const Scalar tmp6 = cos(phi);
+    const Scalar tmp9 = (r*r);
+    const Scalar tmp10 = (Scalar(0.25))*m;
+    const Scalar tmp11 = tmp10*tmp9;
+    const Scalar tmp12 = (h*h);
+    const Scalar tmp13 = -tmp11 + ((Scalar(1)/Scalar(12)))*m*(tmp12 + Scalar(3)*tmp9);
+    const Scalar tmp14 = sin(psi);
+    const Scalar tmp15 = tmp1*tmp14;
+    const Scalar tmp16 = cos(theta);
+    const Scalar tmp17 = cos(psi);
+    const Scalar tmp18 = tmp17*tmp6;
+    const Scalar tmp19 = tmp16*tmp18;
+    const Scalar tmp20 = tmp15 - tmp19;
+    const Scalar tmp21 = tmp14*tmp6;
+    const Scalar tmp22 = tmp1*tmp17;
+    const Scalar tmp23 = tmp16*tmp22;
+    const Scalar tmp24 = tmp21 + tmp23;
+    const Scalar tmp25 = -tmp24;
+    const Scalar tmp27 = tmp15*tmp16;
+    const Scalar tmp28 = tmp27 - tmp17*tmp6;
+    const Scalar tmp29 = -tmp28;
+    const Scalar tmp30 = tmp16*tmp21;
+    const Scalar tmp31 = tmp22 + tmp30;
     const Scalar tmp32 = -tmp31;
-    const Scalar tmp33 = tmp1*tmp5;
-    const Scalar tmp34 = tmp3*tmp33;
-    const Scalar tmp35 = tmp23 - tmp34;
-    const Scalar tmp36 = tmp10*tmp35;
-    const Scalar tmp37 = -tmp36;
-    const Scalar tmp38 = tmp1*tmp21;
-    const Scalar tmp39 = tmp1*tmp19;
-    const Scalar tmp40 = tmp38 + tmp39;
-    const Scalar tmp41 = tmp32 + tmp37 + tmp40;
-    const Scalar tmp42 = tmp22 + tmp26;
-    const Scalar tmp43 = tmp11 + tmp20 + tmp42;
-    const Scalar tmp44 = tmp31 + tmp36;
-    const Scalar tmp45 = tmp40 + tmp44;
-    const Scalar tmp46 = -tmp20;
-    const Scalar tmp47 = tmp11 + tmp27 + tmp46;
-    const Scalar tmp48 = tmp32 + tmp36;
-    const Scalar tmp49 = tmp38 - tmp39;
-    const Scalar tmp50 = tmp48 + tmp49;
-    const Scalar tmp51 = tmp12 + tmp42 + tmp46;
-    const Scalar tmp52 = tmp31 + tmp37 + tmp49;
-    const Scalar tmp54 = tmp10*tmp13;
-    const Scalar tmp55 = tmp54*tmp6;
-    const Scalar tmp56 = -tmp55;
-    const Scalar tmp57 = tmp23*tmp54;
-    const Scalar tmp58 = -tmp57;
-    const Scalar tmp59 = tmp3*d;
-    const Scalar tmp60 = tmp4*tmp59;
-    const Scalar tmp61 = tmp18*tmp3;
-    const Scalar tmp62 = tmp4*tmp61;
-    const Scalar tmp63 = tmp60 + tmp62;
-    const Scalar tmp64 = tmp56 + tmp58 + tmp63;
-    const Scalar tmp65 = tmp33*tmp54;
-    const Scalar tmp66 = -tmp65;
-    const Scalar tmp67 = tmp2*tmp54;
-    const Scalar tmp68 = -tmp67;
-    const Scalar tmp69 = tmp1*tmp59;
-    const Scalar tmp70 = tmp1*tmp61;
-    const Scalar tmp71 = tmp69 + tmp70;
-    const Scalar tmp72 = tmp66 + tmp68 + tmp71;
-    const Scalar tmp73 = -tmp72;
-    const Scalar tmp74 = tmp55 + tmp57;
-    const Scalar tmp75 = tmp63 + tmp74;
-    const Scalar tmp76 = tmp65 + tmp67;
-    const Scalar tmp77 = tmp71 + tmp76;
-    const Scalar tmp78 = -tmp77;
-    const Scalar tmp79 = tmp69 - tmp70;
-    const Scalar tmp80 = tmp65 + tmp68 + tmp79;
-    const Scalar tmp81 = -tmp80;
-    const Scalar tmp82 = tmp60 - tmp62;
-    const Scalar tmp83 = tmp55 + tmp58 + tmp82;
-    const Scalar tmp84 = tmp66 + tmp67;
-    const Scalar tmp85 = tmp79 + tmp84;
-    const Scalar tmp86 = -tmp85;
-    const Scalar tmp87 = tmp56 + tmp57;
-    const Scalar tmp88 = tmp82 + tmp87;
-    const Scalar tmp90 = tmp10*tmp3;
-    const Scalar tmp91 = tmp0*tmp90;
-    const Scalar tmp92 = tmp5*tmp90;
-    const Scalar tmp93 = -tmp92;
-    const Scalar tmp94 = tmp91 + tmp93;
-    const Scalar tmp95 = tmp21 - tmp19;
-    const Scalar tmp96 = -tmp94 - tmp95;
-    const Scalar tmp97 = -tmp91;
-    const Scalar tmp98 = -tmp92 - tmp95 - tmp97;
-    const Scalar tmp99 = tmp91 + tmp92;
-    const Scalar tmp100 = tmp19 + tmp21;
-    const Scalar tmp101 = -tmp100 - tmp99;
-    const Scalar tmp102 = -tmp100 - tmp93 - tmp97;
-    const Scalar tmp104 = -tmp10*tmp35;
-    const Scalar tmp105 = tmp104 + tmp31;
-    const Scalar tmp106 = -tmp105;
-    const Scalar tmp107 = tmp10*tmp25;
-    const Scalar tmp108 = tmp107 + tmp11;
-    const Scalar tmp109 = -tmp108;
-    const Scalar tmp110 = tmp104 + tmp32;
-    const Scalar tmp111 = -tmp110;
-    const Scalar tmp112 = tmp107 + tmp12;
-    const Scalar tmp113 = -tmp112;
-    const Scalar tmp115 = tmp0*tmp54;
-    const Scalar tmp116 = tmp5*tmp54;
-    const Scalar tmp117 = tmp115 + tmp116;
-    const Scalar tmp118 = -tmp117;
-    const Scalar tmp119 = -tmp116;
-    const Scalar tmp120 = tmp115 + tmp119;
-    const Scalar tmp121 = -tmp120;
-    const Scalar tmp124 = tmp15*g;
-    const Scalar tmp125 = tmp101*tmp124 + tmp102*tmp124 + tmp124*tmp96 + tmp124*tmp98;
-    const Scalar tmp126 = tmp117*tmp124 + tmp118*tmp124 + tmp120*tmp124 + tmp121*tmp124;
-    const Scalar tmp127 = tmp10*tmp30;
-    const Scalar tmp128 = tmp127 + tmp36;
-    const Scalar tmp129 = -tmp128;
-    const Scalar tmp130 = tmp10*tmp8;
-    const Scalar tmp131 = tmp107 + tmp130;
-    const Scalar tmp132 = tmp10*tmp24;
-    const Scalar tmp133 = tmp10*tmp7;
-    const Scalar tmp134 = tmp20 + tmp22;
-    const Scalar tmp135 = phi_dot*(tmp129*psi_dot + tmp72*theta_dot + phi_dot*(-tmp131 - tmp134))
-        + psi_dot*(tmp129*phi_dot + tmp87*theta_dot - tmp131*psi_dot)
-        + theta_dot*(tmp72*phi_dot + tmp87*psi_dot + theta_dot*(-tmp132 - tmp133 - tmp134));
-    const Scalar tmp136 = -tmp84;
-    const Scalar tmp137 = tmp10*tmp29;
-    const Scalar tmp138 = tmp10*tmp34;
-    const Scalar tmp139 = tmp109*psi_dot + tmp41*phi_dot + tmp64*theta_dot;
-    const Scalar tmp140 = tmp139*phi_dot
-        + psi_dot*(tmp109*phi_dot + tmp136*theta_dot - tmp44*psi_dot)
-        + theta_dot*(tmp136*psi_dot + tmp64*phi_dot + theta_dot*(tmp137 + tmp138 + tmp40));
-    const Scalar tmp141 = -tmp87;
-    const Scalar tmp142 = -tmp133;
-    const Scalar tmp143 = -tmp132;
-    const Scalar tmp144 = -tmp130;
-    const Scalar tmp145 = -tmp107;
-    const Scalar tmp146 = phi_dot*(tmp128*psi_dot + tmp77*theta_dot
-            + phi_dot*(-tmp134 - tmp144 - tmp145))
-        + psi_dot*(tmp128*phi_dot + tmp131*psi_dot + tmp141*theta_dot)
-        + theta_dot*(tmp141*psi_dot + tmp77*phi_dot + theta_dot*(-tmp134 - tmp142 - tmp143));
-    const Scalar tmp147 = -tmp138;
-    const Scalar tmp148 = -tmp137;
-    const Scalar tmp149 = tmp108*psi_dot + tmp45*phi_dot + tmp75*theta_dot;
-    const Scalar tmp150 = tmp149*phi_dot
-        + psi_dot*(tmp108*phi_dot + tmp44*psi_dot + tmp84*theta_dot)
-        + theta_dot*(tmp75*phi_dot + tmp84*psi_dot + theta_dot*(tmp147 + tmp148 + tmp40));
-    const Scalar tmp151 = -tmp74;
-    const Scalar tmp152 = -tmp127;
-    const Scalar tmp153 = tmp152 + tmp36;
-    const Scalar tmp154 = -tmp153;
-    const Scalar tmp155 = tmp107 + tmp144;
-    const Scalar tmp156 = tmp22 + tmp46;
-    const Scalar tmp157 = phi_dot*(tmp154*psi_dot + tmp80*theta_dot + phi_dot*(-tmp155 - tmp156))
-        + psi_dot*(tmp151*theta_dot + tmp154*phi_dot - tmp155*psi_dot)
-        + theta_dot*(tmp151*psi_dot + tmp80*phi_dot + theta_dot*(-tmp132 - tmp142 - tmp156));
-    const Scalar tmp158 = tmp112*psi_dot + tmp50*phi_dot + tmp83*theta_dot;
-    const Scalar tmp159 = tmp158*phi_dot
-        + psi_dot*(tmp112*phi_dot + tmp48*psi_dot + tmp76*theta_dot)
-        + theta_dot*(tmp76*psi_dot + tmp83*phi_dot + theta_dot*(tmp137 + tmp147 + tmp49));
-    const Scalar tmp160 = phi_dot*(tmp153*psi_dot + tmp85*theta_dot
-            + phi_dot*(-tmp130 - tmp145 - tmp156))
-        + psi_dot*(tmp153*phi_dot + tmp155*psi_dot + tmp74*theta_dot)
-        + theta_dot*(tmp74*psi_dot + tmp85*phi_dot + theta_dot*(-tmp133 - tmp143 - tmp156));
-    const Scalar tmp161 = -tmp76;
-    const Scalar tmp162 = tmp113*psi_dot + tmp52*phi_dot + tmp88*theta_dot;
-    const Scalar tmp163 = tmp162*phi_dot
-        + psi_dot*(tmp113*phi_dot + tmp161*theta_dot - tmp48*psi_dot)
-        + theta_dot*(tmp161*psi_dot + tmp88*phi_dot + theta_dot*(tmp138 + tmp148 + tmp49));
-    const Scalar tmp164 = tmp15*(tmp135*tmp41 + tmp140*tmp28) + tmp15*(tmp146*tmp45 + tmp150*tmp43)
-        + tmp15*(tmp157*tmp50 + tmp159*tmp47) + tmp15*(tmp160*tmp52 + tmp163*tmp51);
-    const Scalar tmp165 = tmp118*psi_dot;
-    const Scalar tmp166 = -tmp94;
-    const Scalar tmp167 = tmp117 + tmp59 + tmp61;
-    const Scalar tmp168 = psi_dot*(tmp165 + tmp166*theta_dot)
-        + theta_dot*(tmp166*psi_dot - tmp167*theta_dot);
-    const Scalar tmp169 = tmp117*psi_dot;
-    const Scalar tmp170 = tmp59 - tmp115;
-    const Scalar tmp171 = tmp119 + tmp170 + tmp61;
-    const Scalar tmp172 = psi_dot*(tmp169 + tmp94*theta_dot)
-        + theta_dot*(tmp94*psi_dot - tmp171*theta_dot);
-    const Scalar tmp173 = tmp121*psi_dot;
-    const Scalar tmp174 = -tmp61;
-    const Scalar tmp175 = tmp120 + tmp174 + tmp59;
-    const Scalar tmp176 = psi_dot*(tmp173 + tmp99*theta_dot)
-        + theta_dot*(tmp99*psi_dot - tmp175*theta_dot);
-    const Scalar tmp177 = tmp120*psi_dot;
-    const Scalar tmp178 = -tmp99;
-    const Scalar tmp179 = tmp116 + tmp170 + tmp174;
-    const Scalar tmp180 = psi_dot*(tmp177 + tmp178*theta_dot)
-        + theta_dot*(tmp178*psi_dot - tmp179*theta_dot);
-    const Scalar tmp181 = tmp15*(tmp101*tmp172 + tmp135*tmp64 + tmp140*tmp73)
-        + tmp15*(tmp102*tmp168 + tmp146*tmp75 + tmp150*tmp78)
-        + tmp15*(tmp157*tmp83 + tmp159*tmp81 + tmp180*tmp96)
-        + tmp15*(tmp160*tmp88 + tmp163*tmp86 + tmp176*tmp98);
-    const Scalar tmp182 = tmp15*(tmp105*tmp150 + tmp108*tmp146 + tmp121*tmp168)
-        + tmp15*(tmp106*tmp140 + tmp109*tmp135 + tmp120*tmp172)
-        + tmp15*(tmp110*tmp163 + tmp113*tmp160 + tmp117*tmp176)
-        + tmp15*(tmp111*tmp159 + tmp112*tmp157 + tmp118*tmp180);
-    const Scalar tmp183 = tmp125 + tmp181;
-    const Scalar tmp184 = tmp126 + tmp182;
+    const Scalar tmp35 = tmp22*tmp3;
+    const Scalar tmp36 = tmp18*tmp3;
+    const Scalar tmp37 = tmp15*tmp3;
+    const Scalar tmp38 = tmp21*tmp3;
+    const Scalar tmp47 = -tmp20;
+    const Scalar tmp50 = tmp16*tmp3;
+    const Scalar tmp54 = tmp3*d;
+    const Scalar tmp55 = g*m;
+    const Scalar tmp56 = tmp54*tmp55;
+    const Scalar tmp57 = tmp54*tmp6;
+    const Scalar tmp58 = tmp16*d;
+    const Scalar tmp59 = tmp1*tmp58;
+    const Scalar tmp60 = tmp57*phi_dot + tmp59*theta_dot;
+    const Scalar tmp61 = tmp60*phi_dot + theta_dot*(tmp57*theta_dot + tmp59*phi_dot);
+    const Scalar tmp62 = tmp1*tmp54;
+    const Scalar tmp63 = tmp62*phi_dot - tmp16*tmp6*d*theta_dot;
+    const Scalar tmp64 = tmp58*tmp6;
+    const Scalar tmp65 = theta_dot*(tmp64*phi_dot - tmp62*theta_dot) - tmp63*phi_dot;
+    const Scalar tmp66 = tmp3*tmp6;
+    const Scalar tmp67 = tmp1*tmp16;
+    const Scalar tmp68 = tmp66*phi_dot + tmp67*theta_dot;
+    const Scalar tmp69 = tmp68*phi_dot + theta_dot*(tmp66*theta_dot + tmp67*phi_dot);
+    const Scalar tmp70 = tmp1*tmp3;
+    const Scalar tmp71 = tmp70*phi_dot - tmp16*tmp6*theta_dot;
+    const Scalar tmp72 = tmp16*tmp6;
+    const Scalar tmp73 = theta_dot*(tmp72*phi_dot - tmp70*theta_dot) - tmp71*phi_dot;
+    const Scalar tmp74 = tmp36*theta_dot;
+    const Scalar tmp75 = tmp37*theta_dot;
+    const Scalar tmp76 = phi_dot*(tmp74 + tmp24*phi_dot + tmp31*psi_dot)
+        + psi_dot*(-tmp75 + tmp24*psi_dot + tmp31*phi_dot)
+        + theta_dot*(tmp23*theta_dot + tmp36*phi_dot - tmp37*psi_dot);
+    const Scalar tmp77 = tmp20*phi_dot + tmp28*psi_dot + tmp35*theta_dot;
+    const Scalar tmp78 = tmp38*theta_dot;
+    const Scalar tmp79 = tmp78 + tmp20*psi_dot + tmp28*phi_dot;
+    const Scalar tmp80 = tmp77*phi_dot + tmp79*psi_dot
+        + theta_dot*(tmp35*phi_dot + tmp38*psi_dot - tmp19*theta_dot);
+    const Scalar tmp81 = tmp77*psi_dot + tmp79*phi_dot
+        + theta_dot*(tmp27*theta_dot + tmp35*psi_dot + tmp38*phi_dot);
+    const Scalar tmp82 = tmp75 + tmp25*psi_dot + tmp32*phi_dot;
+    const Scalar tmp83 = -tmp74 + tmp25*phi_dot + tmp32*psi_dot;
+    const Scalar tmp84 = tmp82*phi_dot + tmp83*psi_dot
+        + theta_dot*(-tmp30*theta_dot - tmp36*psi_dot + tmp1*tmp14*tmp3*phi_dot);
+    const Scalar tmp85 = tmp11*(tmp20*tmp76 + tmp25*tmp80) + tmp11*(tmp29*tmp84 + tmp32*tmp81)
+        + tmp13*(tmp66*tmp73 + tmp69*tmp70) + m*(tmp57*tmp65 + tmp61*tmp62);
+    const Scalar tmp86 = (theta_dot*theta_dot);
+    const Scalar tmp87 = tmp50*tmp86;
+    const Scalar tmp88 = tmp17*tmp3;
+    const Scalar tmp89 = tmp14*tmp16;
+    const Scalar tmp90 = tmp88*psi_dot + tmp89*theta_dot;
+    const Scalar tmp91 = theta_dot*(-tmp88*theta_dot - tmp89*psi_dot) - tmp90*psi_dot;
+    const Scalar tmp92 = tmp16*tmp17;
+    const Scalar tmp93 = tmp14*tmp3;
+    const Scalar tmp94 = -tmp93*psi_dot + tmp16*tmp17*theta_dot;
+    const Scalar tmp95 = tmp94*psi_dot + theta_dot*(tmp92*psi_dot - tmp93*theta_dot);
+    const Scalar tmp96 = tmp11*(tmp35*tmp76 + tmp91*tmp92 - tmp36*tmp80)
+        + tmp11*(tmp37*tmp81 + tmp89*tmp95 - tmp38*tmp84)
+        + tmp13*(tmp87 + tmp67*tmp73 - tmp69*tmp72) + m*(tmp0*tmp87 + tmp59*tmp65 - tmp61*tmp64);
+    const Scalar tmp97 = tmp11*(tmp25*tmp81 + tmp47*tmp84 + tmp88*tmp95)
+        + tmp11*(tmp28*tmp76 + tmp32*tmp80 - tmp91*tmp93);
+    const Scalar tmp98 = tmp96 - tmp56;
     QVector<Scalar> result;
-    result(0) = -tmp164;
-    result(1) = -tmp183;
-    result(2) = -tmp184;
+    result(0) = -tmp85;
+    result(1) = -tmp98;
+    result(2) = -tmp97;
     return result;
   }
 
@@ -854,7 +491,7 @@ struct HeavyTop {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// Mt and f must not be null.
-  /// Ops: 677
+  /// Ops: 371
   template <typename Scalar>
   static void dynamics(const QVector<Scalar>& q,
                        const QVector<Scalar>& v,
@@ -862,10 +499,8 @@ struct HeavyTop {
                        const Params& params,
                        QMatrix<Scalar>* Mt,
                        QVector<Scalar>* f) {
-    using std::abs;
     using std::cos;
     using std::sin;
-    using std::sqrt;
     const Scalar phi = q(0);
     const Scalar theta = q(1);
     const Scalar psi = q(2);
@@ -877,242 +512,128 @@ struct HeavyTop {
     const Scalar r = Scalar(params.r);
     const Scalar h = Scalar(params.h);
     const Scalar g = Scalar(params.g);
-    const Scalar tmp0 = sin(psi);
-    const Scalar tmp1 = cos(phi);
-    const Scalar tmp2 = tmp0*tmp1;
-    const Scalar tmp3 = cos(theta);
-    const Scalar tmp4 = sin(phi);
-    const Scalar tmp5 = cos(psi);
-    const Scalar tmp6 = tmp4*tmp5;
-    const Scalar tmp7 = tmp3*tmp6;
-    const Scalar tmp8 = tmp2 + tmp7;
-    const Scalar tmp9 = abs(r);
-    const Scalar tmp10 = (Scalar(0.5))*tmp9;
-    const Scalar tmp11 = -tmp10*tmp8;
-    const Scalar tmp12 = -tmp11;
-    const Scalar tmp13 = sin(theta);
-    const Scalar tmp14 = (r*r);
-    const Scalar tmp15 = (Scalar(0.25))*m;
-    const Scalar tmp16 = (h*h);
-    const Scalar tmp17 = -tmp14*tmp15 + ((Scalar(1)/Scalar(12)))*m*(tmp16 + Scalar(3)*tmp14);
-    const Scalar tmp18 = sqrt(tmp17)/sqrt(m);
-    const Scalar tmp19 = tmp13*tmp18;
-    const Scalar tmp20 = tmp19*tmp4;
-    const Scalar tmp21 = tmp13*d;
-    const Scalar tmp22 = tmp21*tmp4;
-    const Scalar tmp23 = tmp0*tmp4;
-    const Scalar tmp24 = tmp23*tmp3;
-    const Scalar tmp25 = tmp24 - tmp1*tmp5;
-    const Scalar tmp26 = -tmp10*tmp25;
-    const Scalar tmp27 = tmp22 - tmp26;
-    const Scalar tmp28 = tmp12 + tmp20 + tmp27;
-    const Scalar tmp29 = tmp2*tmp3;
-    const Scalar tmp30 = tmp29 + tmp6;
-    const Scalar tmp31 = -tmp10*tmp30;
+    const Scalar tmp0 = (d*d);
+    const Scalar tmp1 = sin(phi);
+    const Scalar tmp2 = (tmp1*tmp1);
+    const Scalar tmp3 = sin(theta);
+    const Scalar tmp4 = (tmp3*tmp3);
+    const Scalar tmp5 = tmp2*tmp4;
+    const Scalar tmp6 = cos(phi);
+    const Scalar tmp7 = (tmp6*tmp6);
+    const Scalar tmp8 = tmp4*tmp7;
+    const Scalar tmp9 = (r*r);
+    const Scalar tmp10 = (Scalar(0.25))*m;
+    const Scalar tmp11 = tmp10*tmp9;
+    const Scalar tmp12 = (h*h);
+    const Scalar tmp13 = -tmp11 + ((Scalar(1)/Scalar(12)))*m*(tmp12 + Scalar(3)*tmp9);
+    const Scalar tmp14 = sin(psi);
+    const Scalar tmp15 = tmp1*tmp14;
+    const Scalar tmp16 = cos(theta);
+    const Scalar tmp17 = cos(psi);
+    const Scalar tmp18 = tmp17*tmp6;
+    const Scalar tmp19 = tmp16*tmp18;
+    const Scalar tmp20 = tmp15 - tmp19;
+    const Scalar tmp21 = tmp14*tmp6;
+    const Scalar tmp22 = tmp1*tmp17;
+    const Scalar tmp23 = tmp16*tmp22;
+    const Scalar tmp24 = tmp21 + tmp23;
+    const Scalar tmp25 = -tmp24;
+    const Scalar tmp26 = (tmp25*tmp25);
+    const Scalar tmp27 = tmp15*tmp16;
+    const Scalar tmp28 = tmp27 - tmp17*tmp6;
+    const Scalar tmp29 = -tmp28;
+    const Scalar tmp30 = tmp16*tmp21;
+    const Scalar tmp31 = tmp22 + tmp30;
     const Scalar tmp32 = -tmp31;
-    const Scalar tmp33 = tmp1*tmp5;
-    const Scalar tmp34 = tmp3*tmp33;
-    const Scalar tmp35 = tmp23 - tmp34;
-    const Scalar tmp36 = tmp10*tmp35;
-    const Scalar tmp37 = -tmp36;
-    const Scalar tmp38 = tmp1*tmp21;
-    const Scalar tmp39 = tmp1*tmp19;
-    const Scalar tmp40 = tmp38 + tmp39;
-    const Scalar tmp41 = tmp32 + tmp37 + tmp40;
-    const Scalar tmp42 = tmp22 + tmp26;
-    const Scalar tmp43 = tmp11 + tmp20 + tmp42;
-    const Scalar tmp44 = tmp31 + tmp36;
-    const Scalar tmp45 = tmp40 + tmp44;
-    const Scalar tmp46 = -tmp20;
-    const Scalar tmp47 = tmp11 + tmp27 + tmp46;
-    const Scalar tmp48 = tmp32 + tmp36;
-    const Scalar tmp49 = tmp38 - tmp39;
-    const Scalar tmp50 = tmp48 + tmp49;
-    const Scalar tmp51 = tmp12 + tmp42 + tmp46;
-    const Scalar tmp52 = tmp31 + tmp37 + tmp49;
-    const Scalar tmp53 = tmp15*((tmp28*tmp28) + (tmp41*tmp41))
-        + tmp15*((tmp43*tmp43) + (tmp45*tmp45)) + tmp15*((tmp47*tmp47) + (tmp50*tmp50))
-        + tmp15*((tmp51*tmp51) + (tmp52*tmp52));
-    const Scalar tmp54 = tmp10*tmp13;
-    const Scalar tmp55 = tmp54*tmp6;
-    const Scalar tmp56 = -tmp55;
-    const Scalar tmp57 = tmp23*tmp54;
-    const Scalar tmp58 = -tmp57;
-    const Scalar tmp59 = tmp3*d;
-    const Scalar tmp60 = tmp4*tmp59;
-    const Scalar tmp61 = tmp18*tmp3;
-    const Scalar tmp62 = tmp4*tmp61;
-    const Scalar tmp63 = tmp60 + tmp62;
-    const Scalar tmp64 = tmp56 + tmp58 + tmp63;
-    const Scalar tmp65 = tmp33*tmp54;
-    const Scalar tmp66 = -tmp65;
-    const Scalar tmp67 = tmp2*tmp54;
-    const Scalar tmp68 = -tmp67;
-    const Scalar tmp69 = tmp1*tmp59;
-    const Scalar tmp70 = tmp1*tmp61;
-    const Scalar tmp71 = tmp69 + tmp70;
-    const Scalar tmp72 = tmp66 + tmp68 + tmp71;
-    const Scalar tmp73 = -tmp72;
-    const Scalar tmp74 = tmp55 + tmp57;
-    const Scalar tmp75 = tmp63 + tmp74;
-    const Scalar tmp76 = tmp65 + tmp67;
-    const Scalar tmp77 = tmp71 + tmp76;
-    const Scalar tmp78 = -tmp77;
-    const Scalar tmp79 = tmp69 - tmp70;
-    const Scalar tmp80 = tmp65 + tmp68 + tmp79;
-    const Scalar tmp81 = -tmp80;
-    const Scalar tmp82 = tmp60 - tmp62;
-    const Scalar tmp83 = tmp55 + tmp58 + tmp82;
-    const Scalar tmp84 = tmp66 + tmp67;
-    const Scalar tmp85 = tmp79 + tmp84;
-    const Scalar tmp86 = -tmp85;
-    const Scalar tmp87 = tmp56 + tmp57;
-    const Scalar tmp88 = tmp82 + tmp87;
-    const Scalar tmp89 = tmp15*(tmp28*tmp73 + tmp41*tmp64) + tmp15*(tmp43*tmp78 + tmp45*tmp75)
-        + tmp15*(tmp47*tmp81 + tmp50*tmp83) + tmp15*(tmp51*tmp86 + tmp52*tmp88);
-    const Scalar tmp90 = tmp10*tmp3;
-    const Scalar tmp91 = tmp0*tmp90;
-    const Scalar tmp92 = tmp5*tmp90;
-    const Scalar tmp93 = -tmp92;
-    const Scalar tmp94 = tmp91 + tmp93;
-    const Scalar tmp95 = tmp21 - tmp19;
-    const Scalar tmp96 = -tmp94 - tmp95;
-    const Scalar tmp97 = -tmp91;
-    const Scalar tmp98 = -tmp92 - tmp95 - tmp97;
-    const Scalar tmp99 = tmp91 + tmp92;
-    const Scalar tmp100 = tmp19 + tmp21;
-    const Scalar tmp101 = -tmp100 - tmp99;
-    const Scalar tmp102 = -tmp100 - tmp93 - tmp97;
-    const Scalar tmp103 = tmp15*((tmp101*tmp101) + (tmp64*tmp64) + (tmp73*tmp73))
-        + tmp15*((tmp102*tmp102) + (tmp75*tmp75) + (tmp78*tmp78))
-        + tmp15*((tmp81*tmp81) + (tmp83*tmp83) + (tmp96*tmp96))
-        + tmp15*((tmp86*tmp86) + (tmp88*tmp88) + (tmp98*tmp98));
-    const Scalar tmp104 = -tmp10*tmp35;
-    const Scalar tmp105 = tmp104 + tmp31;
-    const Scalar tmp106 = -tmp105;
-    const Scalar tmp107 = tmp10*tmp25;
-    const Scalar tmp108 = tmp107 + tmp11;
-    const Scalar tmp109 = -tmp108;
-    const Scalar tmp110 = tmp104 + tmp32;
-    const Scalar tmp111 = -tmp110;
-    const Scalar tmp112 = tmp107 + tmp12;
-    const Scalar tmp113 = -tmp112;
-    const Scalar tmp114 = tmp15*(tmp105*tmp43 + tmp108*tmp45) + tmp15*(tmp106*tmp28 + tmp109*tmp41)
-        + tmp15*(tmp110*tmp51 + tmp113*tmp52) + tmp15*(tmp111*tmp47 + tmp112*tmp50);
-    const Scalar tmp115 = tmp0*tmp54;
-    const Scalar tmp116 = tmp5*tmp54;
-    const Scalar tmp117 = tmp115 + tmp116;
-    const Scalar tmp118 = -tmp117;
-    const Scalar tmp119 = -tmp116;
-    const Scalar tmp120 = tmp115 + tmp119;
-    const Scalar tmp121 = -tmp120;
-    const Scalar tmp122 = tmp15*(tmp101*tmp120 + tmp106*tmp73 + tmp109*tmp64)
-        + tmp15*(tmp102*tmp121 + tmp105*tmp78 + tmp108*tmp75)
-        + tmp15*(tmp110*tmp86 + tmp113*tmp88 + tmp117*tmp98)
-        + tmp15*(tmp111*tmp81 + tmp112*tmp83 + tmp118*tmp96);
-    const Scalar tmp123 = tmp15*((tmp105*tmp105) + (tmp108*tmp108) + (tmp121*tmp121))
-        + tmp15*((tmp106*tmp106) + (tmp109*tmp109) + (tmp120*tmp120))
-        + tmp15*((tmp110*tmp110) + (tmp113*tmp113) + (tmp117*tmp117))
-        + tmp15*((tmp111*tmp111) + (tmp112*tmp112) + (tmp118*tmp118));
-    const Scalar tmp124 = tmp15*g;
-    const Scalar tmp125 = tmp101*tmp124 + tmp102*tmp124 + tmp124*tmp96 + tmp124*tmp98;
-    const Scalar tmp126 = tmp117*tmp124 + tmp118*tmp124 + tmp120*tmp124 + tmp121*tmp124;
-    const Scalar tmp127 = tmp10*tmp30;
-    const Scalar tmp128 = tmp127 + tmp36;
-    const Scalar tmp129 = -tmp128;
-    const Scalar tmp130 = tmp10*tmp8;
-    const Scalar tmp131 = tmp107 + tmp130;
-    const Scalar tmp132 = tmp10*tmp24;
-    const Scalar tmp133 = tmp10*tmp7;
-    const Scalar tmp134 = tmp20 + tmp22;
-    const Scalar tmp135 = phi_dot*(tmp129*psi_dot + tmp72*theta_dot + phi_dot*(-tmp131 - tmp134))
-        + psi_dot*(tmp129*phi_dot + tmp87*theta_dot - tmp131*psi_dot)
-        + theta_dot*(tmp72*phi_dot + tmp87*psi_dot + theta_dot*(-tmp132 - tmp133 - tmp134));
-    const Scalar tmp136 = -tmp84;
-    const Scalar tmp137 = tmp10*tmp29;
-    const Scalar tmp138 = tmp10*tmp34;
-    const Scalar tmp139 = tmp109*psi_dot + tmp41*phi_dot + tmp64*theta_dot;
-    const Scalar tmp140 = tmp139*phi_dot
-        + psi_dot*(tmp109*phi_dot + tmp136*theta_dot - tmp44*psi_dot)
-        + theta_dot*(tmp136*psi_dot + tmp64*phi_dot + theta_dot*(tmp137 + tmp138 + tmp40));
-    const Scalar tmp141 = -tmp87;
-    const Scalar tmp142 = -tmp133;
-    const Scalar tmp143 = -tmp132;
-    const Scalar tmp144 = -tmp130;
-    const Scalar tmp145 = -tmp107;
-    const Scalar tmp146 = phi_dot*(tmp128*psi_dot + tmp77*theta_dot
-            + phi_dot*(-tmp134 - tmp144 - tmp145))
-        + psi_dot*(tmp128*phi_dot + tmp131*psi_dot + tmp141*theta_dot)
-        + theta_dot*(tmp141*psi_dot + tmp77*phi_dot + theta_dot*(-tmp134 - tmp142 - tmp143));
-    const Scalar tmp147 = -tmp138;
-    const Scalar tmp148 = -tmp137;
-    const Scalar tmp149 = tmp108*psi_dot + tmp45*phi_dot + tmp75*theta_dot;
-    const Scalar tmp150 = tmp149*phi_dot
-        + psi_dot*(tmp108*phi_dot + tmp44*psi_dot + tmp84*theta_dot)
-        + theta_dot*(tmp75*phi_dot + tmp84*psi_dot + theta_dot*(tmp147 + tmp148 + tmp40));
-    const Scalar tmp151 = -tmp74;
-    const Scalar tmp152 = -tmp127;
-    const Scalar tmp153 = tmp152 + tmp36;
-    const Scalar tmp154 = -tmp153;
-    const Scalar tmp155 = tmp107 + tmp144;
-    const Scalar tmp156 = tmp22 + tmp46;
-    const Scalar tmp157 = phi_dot*(tmp154*psi_dot + tmp80*theta_dot + phi_dot*(-tmp155 - tmp156))
-        + psi_dot*(tmp151*theta_dot + tmp154*phi_dot - tmp155*psi_dot)
-        + theta_dot*(tmp151*psi_dot + tmp80*phi_dot + theta_dot*(-tmp132 - tmp142 - tmp156));
-    const Scalar tmp158 = tmp112*psi_dot + tmp50*phi_dot + tmp83*theta_dot;
-    const Scalar tmp159 = tmp158*phi_dot
-        + psi_dot*(tmp112*phi_dot + tmp48*psi_dot + tmp76*theta_dot)
-        + theta_dot*(tmp76*psi_dot + tmp83*phi_dot + theta_dot*(tmp137 + tmp147 + tmp49));
-    const Scalar tmp160 = phi_dot*(tmp153*psi_dot + tmp85*theta_dot
-            + phi_dot*(-tmp130 - tmp145 - tmp156))
-        + psi_dot*(tmp153*phi_dot + tmp155*psi_dot + tmp74*theta_dot)
-        + theta_dot*(tmp74*psi_dot + tmp85*phi_dot + theta_dot*(-tmp133 - tmp143 - tmp156));
-    const Scalar tmp161 = -tmp76;
-    const Scalar tmp162 = tmp113*psi_dot + tmp52*phi_dot + tmp88*theta_dot;
-    const Scalar tmp163 = tmp162*phi_dot
-        + psi_dot*(tmp113*phi_dot + tmp161*theta_dot - tmp48*psi_dot)
-        + theta_dot*(tmp161*psi_dot + tmp88*phi_dot + theta_dot*(tmp138 + tmp148 + tmp49));
-    const Scalar tmp164 = tmp15*(tmp135*tmp41 + tmp140*tmp28) + tmp15*(tmp146*tmp45 + tmp150*tmp43)
-        + tmp15*(tmp157*tmp50 + tmp159*tmp47) + tmp15*(tmp160*tmp52 + tmp163*tmp51);
-    const Scalar tmp165 = tmp118*psi_dot;
-    const Scalar tmp166 = -tmp94;
-    const Scalar tmp167 = tmp117 + tmp59 + tmp61;
-    const Scalar tmp168 = psi_dot*(tmp165 + tmp166*theta_dot)
-        + theta_dot*(tmp166*psi_dot - tmp167*theta_dot);
-    const Scalar tmp169 = tmp117*psi_dot;
-    const Scalar tmp170 = tmp59 - tmp115;
-    const Scalar tmp171 = tmp119 + tmp170 + tmp61;
-    const Scalar tmp172 = psi_dot*(tmp169 + tmp94*theta_dot)
-        + theta_dot*(tmp94*psi_dot - tmp171*theta_dot);
-    const Scalar tmp173 = tmp121*psi_dot;
-    const Scalar tmp174 = -tmp61;
-    const Scalar tmp175 = tmp120 + tmp174 + tmp59;
-    const Scalar tmp176 = psi_dot*(tmp173 + tmp99*theta_dot)
-        + theta_dot*(tmp99*psi_dot - tmp175*theta_dot);
-    const Scalar tmp177 = tmp120*psi_dot;
-    const Scalar tmp178 = -tmp99;
-    const Scalar tmp179 = tmp116 + tmp170 + tmp174;
-    const Scalar tmp180 = psi_dot*(tmp177 + tmp178*theta_dot)
-        + theta_dot*(tmp178*psi_dot - tmp179*theta_dot);
-    const Scalar tmp181 = tmp15*(tmp101*tmp172 + tmp135*tmp64 + tmp140*tmp73)
-        + tmp15*(tmp102*tmp168 + tmp146*tmp75 + tmp150*tmp78)
-        + tmp15*(tmp157*tmp83 + tmp159*tmp81 + tmp180*tmp96)
-        + tmp15*(tmp160*tmp88 + tmp163*tmp86 + tmp176*tmp98);
-    const Scalar tmp182 = tmp15*(tmp105*tmp150 + tmp108*tmp146 + tmp121*tmp168)
-        + tmp15*(tmp106*tmp140 + tmp109*tmp135 + tmp120*tmp172)
-        + tmp15*(tmp110*tmp163 + tmp113*tmp160 + tmp117*tmp176)
-        + tmp15*(tmp111*tmp159 + tmp112*tmp157 + tmp118*tmp180);
-    const Scalar tmp183 = tmp125 + tmp181;
-    const Scalar tmp184 = tmp126 + tmp182;
-    (*Mt)(0, 0) = tmp53;
-    (*Mt)(1, 0) = tmp89;
-    (*Mt)(1, 1) = tmp103;
-    (*Mt)(2, 0) = tmp114;
-    (*Mt)(2, 1) = tmp122;
-    (*Mt)(2, 2) = tmp123;
-    (*f)(0) = -tmp164;
-    (*f)(1) = -tmp183;
-    (*f)(2) = -tmp184;
+    const Scalar tmp33 = (tmp32*tmp32);
+    const Scalar tmp34 = tmp11*(tmp26 + (tmp20*tmp20)) + tmp11*(tmp33 + (tmp29*tmp29))
+        + tmp13*(tmp5 + tmp8) + m*(tmp0*tmp5 + tmp0*tmp8);
+    const Scalar tmp35 = tmp22*tmp3;
+    const Scalar tmp36 = tmp18*tmp3;
+    const Scalar tmp37 = tmp15*tmp3;
+    const Scalar tmp38 = tmp21*tmp3;
+    const Scalar tmp39 = tmp11*(tmp20*tmp35 - tmp25*tmp36) + tmp11*(tmp32*tmp37 - tmp29*tmp38);
+    const Scalar tmp40 = tmp0*tmp4;
+    const Scalar tmp41 = (tmp16*tmp16);
+    const Scalar tmp42 = tmp2*tmp41;
+    const Scalar tmp43 = tmp41*tmp7;
+    const Scalar tmp44 = (tmp14*tmp14);
+    const Scalar tmp45 = (tmp17*tmp17);
+    const Scalar tmp46 = tmp11*(tmp41*tmp44 + tmp44*tmp5 + tmp44*tmp8)
+        + tmp11*(tmp41*tmp45 + tmp45*tmp5 + tmp45*tmp8) + tmp13*(tmp4 + tmp42 + tmp43)
+        + m*(tmp40 + tmp0*tmp42 + tmp0*tmp43);
+    const Scalar tmp47 = -tmp20;
+    const Scalar tmp48 = tmp25*tmp32;
+    const Scalar tmp49 = tmp11*(tmp48 + tmp20*tmp28) + tmp11*(tmp48 + tmp29*tmp47);
+    const Scalar tmp50 = tmp16*tmp3;
+    const Scalar tmp51 = tmp14*tmp17*tmp50;
+    const Scalar tmp52 = tmp11*(tmp51 + tmp25*tmp37 - tmp38*tmp47)
+        + tmp11*(-tmp51 - tmp32*tmp36 + tmp1*tmp17*tmp28*tmp3);
+    const Scalar tmp53 = tmp11*(tmp26 + (tmp47*tmp47) + tmp4*tmp45)
+        + tmp11*(tmp33 + (tmp28*tmp28) + tmp4*tmp44);
+    const Scalar tmp54 = tmp3*d;
+    const Scalar tmp55 = g*m;
+    const Scalar tmp56 = tmp54*tmp55;
+    const Scalar tmp57 = tmp54*tmp6;
+    const Scalar tmp58 = tmp16*d;
+    const Scalar tmp59 = tmp1*tmp58;
+    const Scalar tmp60 = tmp57*phi_dot + tmp59*theta_dot;
+    const Scalar tmp61 = tmp60*phi_dot + theta_dot*(tmp57*theta_dot + tmp59*phi_dot);
+    const Scalar tmp62 = tmp1*tmp54;
+    const Scalar tmp63 = tmp62*phi_dot - tmp16*tmp6*d*theta_dot;
+    const Scalar tmp64 = tmp58*tmp6;
+    const Scalar tmp65 = theta_dot*(tmp64*phi_dot - tmp62*theta_dot) - tmp63*phi_dot;
+    const Scalar tmp66 = tmp3*tmp6;
+    const Scalar tmp67 = tmp1*tmp16;
+    const Scalar tmp68 = tmp66*phi_dot + tmp67*theta_dot;
+    const Scalar tmp69 = tmp68*phi_dot + theta_dot*(tmp66*theta_dot + tmp67*phi_dot);
+    const Scalar tmp70 = tmp1*tmp3;
+    const Scalar tmp71 = tmp70*phi_dot - tmp16*tmp6*theta_dot;
+    const Scalar tmp72 = tmp16*tmp6;
+    const Scalar tmp73 = theta_dot*(tmp72*phi_dot - tmp70*theta_dot) - tmp71*phi_dot;
+    const Scalar tmp74 = tmp36*theta_dot;
+    const Scalar tmp75 = tmp37*theta_dot;
+    const Scalar tmp76 = phi_dot*(tmp74 + tmp24*phi_dot + tmp31*psi_dot)
+        + psi_dot*(-tmp75 + tmp24*psi_dot + tmp31*phi_dot)
+        + theta_dot*(tmp23*theta_dot + tmp36*phi_dot - tmp37*psi_dot);
+    const Scalar tmp77 = tmp20*phi_dot + tmp28*psi_dot + tmp35*theta_dot;
+    const Scalar tmp78 = tmp38*theta_dot;
+    const Scalar tmp79 = tmp78 + tmp20*psi_dot + tmp28*phi_dot;
+    const Scalar tmp80 = tmp77*phi_dot + tmp79*psi_dot
+        + theta_dot*(tmp35*phi_dot + tmp38*psi_dot - tmp19*theta_dot);
+    const Scalar tmp81 = tmp77*psi_dot + tmp79*phi_dot
+        + theta_dot*(tmp27*theta_dot + tmp35*psi_dot + tmp38*phi_dot);
+    const Scalar tmp82 = tmp75 + tmp25*psi_dot + tmp32*phi_dot;
+    const Scalar tmp83 = -tmp74 + tmp25*phi_dot + tmp32*psi_dot;
+    const Scalar tmp84 = tmp82*phi_dot + tmp83*psi_dot
+        + theta_dot*(-tmp30*theta_dot - tmp36*psi_dot + tmp1*tmp14*tmp3*phi_dot);
+    const Scalar tmp85 = tmp11*(tmp20*tmp76 + tmp25*tmp80) + tmp11*(tmp29*tmp84 + tmp32*tmp81)
+        + tmp13*(tmp66*tmp73 + tmp69*tmp70) + m*(tmp57*tmp65 + tmp61*tmp62);
+    const Scalar tmp86 = (theta_dot*theta_dot);
+    const Scalar tmp87 = tmp50*tmp86;
+    const Scalar tmp88 = tmp17*tmp3;
+    const Scalar tmp89 = tmp14*tmp16;
+    const Scalar tmp90 = tmp88*psi_dot + tmp89*theta_dot;
+    const Scalar tmp91 = theta_dot*(-tmp88*theta_dot - tmp89*psi_dot) - tmp90*psi_dot;
+    const Scalar tmp92 = tmp16*tmp17;
+    const Scalar tmp93 = tmp14*tmp3;
+    const Scalar tmp94 = -tmp93*psi_dot + tmp16*tmp17*theta_dot;
+    const Scalar tmp95 = tmp94*psi_dot + theta_dot*(tmp92*psi_dot - tmp93*theta_dot);
+    const Scalar tmp96 = tmp11*(tmp35*tmp76 + tmp91*tmp92 - tmp36*tmp80)
+        + tmp11*(tmp37*tmp81 + tmp89*tmp95 - tmp38*tmp84)
+        + tmp13*(tmp87 + tmp67*tmp73 - tmp69*tmp72) + m*(tmp0*tmp87 + tmp59*tmp65 - tmp61*tmp64);
+    const Scalar tmp97 = tmp11*(tmp25*tmp81 + tmp47*tmp84 + tmp88*tmp95)
+        + tmp11*(tmp28*tmp76 + tmp32*tmp80 - tmp91*tmp93);
+    const Scalar tmp98 = tmp96 - tmp56;
+    (*Mt)(0, 0) = tmp34;
+    (*Mt)(1, 0) = tmp39;
+    (*Mt)(1, 1) = tmp46;
+    (*Mt)(2, 0) = tmp49;
+    (*Mt)(2, 1) = tmp52;
+    (*Mt)(2, 2) = tmp53;
+    (*f)(0) = -tmp85;
+    (*f)(1) = -tmp98;
+    (*f)(2) = -tmp97;
     (*Mt)(0, 1) = (*Mt)(1, 0);
     (*Mt)(0, 2) = (*Mt)(2, 0);
     (*Mt)(1, 2) = (*Mt)(2, 1);
@@ -1126,17 +647,15 @@ struct HeavyTop {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return r = tau (nq)
-  /// Ops: 692
+  /// Ops: 386
   template <typename Scalar>
   static QVector<Scalar> inverse_dynamics(const QVector<Scalar>& q,
                                           const QVector<Scalar>& v,
                                           const QVector<Scalar>& qdd,
                                           const Scalar& /*t*/,
                                           const Params& params) {
-    using std::abs;
     using std::cos;
     using std::sin;
-    using std::sqrt;
     const Scalar phi = q(0);
     const Scalar theta = q(1);
     const Scalar psi = q(2);
@@ -1151,237 +670,123 @@ struct HeavyTop {
     const Scalar r = Scalar(params.r);
     const Scalar h = Scalar(params.h);
     const Scalar g = Scalar(params.g);
-    const Scalar tmp0 = sin(psi);
-    const Scalar tmp1 = cos(phi);
-    const Scalar tmp2 = tmp0*tmp1;
-    const Scalar tmp3 = cos(theta);
-    const Scalar tmp4 = sin(phi);
-    const Scalar tmp5 = cos(psi);
-    const Scalar tmp6 = tmp4*tmp5;
-    const Scalar tmp7 = tmp3*tmp6;
-    const Scalar tmp8 = tmp2 + tmp7;
-    const Scalar tmp9 = abs(r);
-    const Scalar tmp10 = (Scalar(0.5))*tmp9;
-    const Scalar tmp11 = -tmp10*tmp8;
-    const Scalar tmp12 = -tmp11;
-    const Scalar tmp13 = sin(theta);
-    const Scalar tmp14 = (r*r);
-    const Scalar tmp15 = (Scalar(0.25))*m;
-    const Scalar tmp16 = (h*h);
-    const Scalar tmp17 = -tmp14*tmp15 + ((Scalar(1)/Scalar(12)))*m*(tmp16 + Scalar(3)*tmp14);
-    const Scalar tmp18 = sqrt(tmp17)/sqrt(m);
-    const Scalar tmp19 = tmp13*tmp18;
-    const Scalar tmp20 = tmp19*tmp4;
-    const Scalar tmp21 = tmp13*d;
-    const Scalar tmp22 = tmp21*tmp4;
-    const Scalar tmp23 = tmp0*tmp4;
-    const Scalar tmp24 = tmp23*tmp3;
-    const Scalar tmp25 = tmp24 - tmp1*tmp5;
-    const Scalar tmp26 = -tmp10*tmp25;
-    const Scalar tmp27 = tmp22 - tmp26;
-    const Scalar tmp28 = tmp12 + tmp20 + tmp27;
-    const Scalar tmp29 = tmp2*tmp3;
-    const Scalar tmp30 = tmp29 + tmp6;
-    const Scalar tmp31 = -tmp10*tmp30;
+    const Scalar tmp0 = (d*d);
+    const Scalar tmp1 = sin(phi);
+    const Scalar tmp2 = (tmp1*tmp1);
+    const Scalar tmp3 = sin(theta);
+    const Scalar tmp4 = (tmp3*tmp3);
+    const Scalar tmp5 = tmp2*tmp4;
+    const Scalar tmp6 = cos(phi);
+    const Scalar tmp7 = (tmp6*tmp6);
+    const Scalar tmp8 = tmp4*tmp7;
+    const Scalar tmp9 = (r*r);
+    const Scalar tmp10 = (Scalar(0.25))*m;
+    const Scalar tmp11 = tmp10*tmp9;
+    const Scalar tmp12 = (h*h);
+    const Scalar tmp13 = -tmp11 + ((Scalar(1)/Scalar(12)))*m*(tmp12 + Scalar(3)*tmp9);
+    const Scalar tmp14 = sin(psi);
+    const Scalar tmp15 = tmp1*tmp14;
+    const Scalar tmp16 = cos(theta);
+    const Scalar tmp17 = cos(psi);
+    const Scalar tmp18 = tmp17*tmp6;
+    const Scalar tmp19 = tmp16*tmp18;
+    const Scalar tmp20 = tmp15 - tmp19;
+    const Scalar tmp21 = tmp14*tmp6;
+    const Scalar tmp22 = tmp1*tmp17;
+    const Scalar tmp23 = tmp16*tmp22;
+    const Scalar tmp24 = tmp21 + tmp23;
+    const Scalar tmp25 = -tmp24;
+    const Scalar tmp26 = (tmp25*tmp25);
+    const Scalar tmp27 = tmp15*tmp16;
+    const Scalar tmp28 = tmp27 - tmp17*tmp6;
+    const Scalar tmp29 = -tmp28;
+    const Scalar tmp30 = tmp16*tmp21;
+    const Scalar tmp31 = tmp22 + tmp30;
     const Scalar tmp32 = -tmp31;
-    const Scalar tmp33 = tmp1*tmp5;
-    const Scalar tmp34 = tmp3*tmp33;
-    const Scalar tmp35 = tmp23 - tmp34;
-    const Scalar tmp36 = tmp10*tmp35;
-    const Scalar tmp37 = -tmp36;
-    const Scalar tmp38 = tmp1*tmp21;
-    const Scalar tmp39 = tmp1*tmp19;
-    const Scalar tmp40 = tmp38 + tmp39;
-    const Scalar tmp41 = tmp32 + tmp37 + tmp40;
-    const Scalar tmp42 = tmp22 + tmp26;
-    const Scalar tmp43 = tmp11 + tmp20 + tmp42;
-    const Scalar tmp44 = tmp31 + tmp36;
-    const Scalar tmp45 = tmp40 + tmp44;
-    const Scalar tmp46 = -tmp20;
-    const Scalar tmp47 = tmp11 + tmp27 + tmp46;
-    const Scalar tmp48 = tmp32 + tmp36;
-    const Scalar tmp49 = tmp38 - tmp39;
-    const Scalar tmp50 = tmp48 + tmp49;
-    const Scalar tmp51 = tmp12 + tmp42 + tmp46;
-    const Scalar tmp52 = tmp31 + tmp37 + tmp49;
-    const Scalar tmp53 = tmp15*((tmp28*tmp28) + (tmp41*tmp41))
-        + tmp15*((tmp43*tmp43) + (tmp45*tmp45)) + tmp15*((tmp47*tmp47) + (tmp50*tmp50))
-        + tmp15*((tmp51*tmp51) + (tmp52*tmp52));
-    const Scalar tmp54 = tmp10*tmp13;
-    const Scalar tmp55 = tmp54*tmp6;
-    const Scalar tmp56 = -tmp55;
-    const Scalar tmp57 = tmp23*tmp54;
-    const Scalar tmp58 = -tmp57;
-    const Scalar tmp59 = tmp3*d;
-    const Scalar tmp60 = tmp4*tmp59;
-    const Scalar tmp61 = tmp18*tmp3;
-    const Scalar tmp62 = tmp4*tmp61;
-    const Scalar tmp63 = tmp60 + tmp62;
-    const Scalar tmp64 = tmp56 + tmp58 + tmp63;
-    const Scalar tmp65 = tmp33*tmp54;
-    const Scalar tmp66 = -tmp65;
-    const Scalar tmp67 = tmp2*tmp54;
-    const Scalar tmp68 = -tmp67;
-    const Scalar tmp69 = tmp1*tmp59;
-    const Scalar tmp70 = tmp1*tmp61;
-    const Scalar tmp71 = tmp69 + tmp70;
-    const Scalar tmp72 = tmp66 + tmp68 + tmp71;
-    const Scalar tmp73 = -tmp72;
-    const Scalar tmp74 = tmp55 + tmp57;
-    const Scalar tmp75 = tmp63 + tmp74;
-    const Scalar tmp76 = tmp65 + tmp67;
-    const Scalar tmp77 = tmp71 + tmp76;
-    const Scalar tmp78 = -tmp77;
-    const Scalar tmp79 = tmp69 - tmp70;
-    const Scalar tmp80 = tmp65 + tmp68 + tmp79;
-    const Scalar tmp81 = -tmp80;
-    const Scalar tmp82 = tmp60 - tmp62;
-    const Scalar tmp83 = tmp55 + tmp58 + tmp82;
-    const Scalar tmp84 = tmp66 + tmp67;
-    const Scalar tmp85 = tmp79 + tmp84;
-    const Scalar tmp86 = -tmp85;
-    const Scalar tmp87 = tmp56 + tmp57;
-    const Scalar tmp88 = tmp82 + tmp87;
-    const Scalar tmp89 = tmp15*(tmp28*tmp73 + tmp41*tmp64) + tmp15*(tmp43*tmp78 + tmp45*tmp75)
-        + tmp15*(tmp47*tmp81 + tmp50*tmp83) + tmp15*(tmp51*tmp86 + tmp52*tmp88);
-    const Scalar tmp90 = tmp10*tmp3;
-    const Scalar tmp91 = tmp0*tmp90;
-    const Scalar tmp92 = tmp5*tmp90;
-    const Scalar tmp93 = -tmp92;
-    const Scalar tmp94 = tmp91 + tmp93;
-    const Scalar tmp95 = tmp21 - tmp19;
-    const Scalar tmp96 = -tmp94 - tmp95;
-    const Scalar tmp97 = -tmp91;
-    const Scalar tmp98 = -tmp92 - tmp95 - tmp97;
-    const Scalar tmp99 = tmp91 + tmp92;
-    const Scalar tmp100 = tmp19 + tmp21;
-    const Scalar tmp101 = -tmp100 - tmp99;
-    const Scalar tmp102 = -tmp100 - tmp93 - tmp97;
-    const Scalar tmp103 = tmp15*((tmp101*tmp101) + (tmp64*tmp64) + (tmp73*tmp73))
-        + tmp15*((tmp102*tmp102) + (tmp75*tmp75) + (tmp78*tmp78))
-        + tmp15*((tmp81*tmp81) + (tmp83*tmp83) + (tmp96*tmp96))
-        + tmp15*((tmp86*tmp86) + (tmp88*tmp88) + (tmp98*tmp98));
-    const Scalar tmp104 = -tmp10*tmp35;
-    const Scalar tmp105 = tmp104 + tmp31;
-    const Scalar tmp106 = -tmp105;
-    const Scalar tmp107 = tmp10*tmp25;
-    const Scalar tmp108 = tmp107 + tmp11;
-    const Scalar tmp109 = -tmp108;
-    const Scalar tmp110 = tmp104 + tmp32;
-    const Scalar tmp111 = -tmp110;
-    const Scalar tmp112 = tmp107 + tmp12;
-    const Scalar tmp113 = -tmp112;
-    const Scalar tmp114 = tmp15*(tmp105*tmp43 + tmp108*tmp45) + tmp15*(tmp106*tmp28 + tmp109*tmp41)
-        + tmp15*(tmp110*tmp51 + tmp113*tmp52) + tmp15*(tmp111*tmp47 + tmp112*tmp50);
-    const Scalar tmp115 = tmp0*tmp54;
-    const Scalar tmp116 = tmp5*tmp54;
-    const Scalar tmp117 = tmp115 + tmp116;
-    const Scalar tmp118 = -tmp117;
-    const Scalar tmp119 = -tmp116;
-    const Scalar tmp120 = tmp115 + tmp119;
-    const Scalar tmp121 = -tmp120;
-    const Scalar tmp122 = tmp15*(tmp101*tmp120 + tmp106*tmp73 + tmp109*tmp64)
-        + tmp15*(tmp102*tmp121 + tmp105*tmp78 + tmp108*tmp75)
-        + tmp15*(tmp110*tmp86 + tmp113*tmp88 + tmp117*tmp98)
-        + tmp15*(tmp111*tmp81 + tmp112*tmp83 + tmp118*tmp96);
-    const Scalar tmp123 = tmp15*((tmp105*tmp105) + (tmp108*tmp108) + (tmp121*tmp121))
-        + tmp15*((tmp106*tmp106) + (tmp109*tmp109) + (tmp120*tmp120))
-        + tmp15*((tmp110*tmp110) + (tmp113*tmp113) + (tmp117*tmp117))
-        + tmp15*((tmp111*tmp111) + (tmp112*tmp112) + (tmp118*tmp118));
-    const Scalar tmp124 = tmp15*g;
-    const Scalar tmp125 = tmp101*tmp124 + tmp102*tmp124 + tmp124*tmp96 + tmp124*tmp98;
-    const Scalar tmp126 = tmp117*tmp124 + tmp118*tmp124 + tmp120*tmp124 + tmp121*tmp124;
-    const Scalar tmp127 = tmp10*tmp30;
-    const Scalar tmp128 = tmp127 + tmp36;
-    const Scalar tmp129 = -tmp128;
-    const Scalar tmp130 = tmp10*tmp8;
-    const Scalar tmp131 = tmp107 + tmp130;
-    const Scalar tmp132 = tmp10*tmp24;
-    const Scalar tmp133 = tmp10*tmp7;
-    const Scalar tmp134 = tmp20 + tmp22;
-    const Scalar tmp135 = phi_dot*(tmp129*psi_dot + tmp72*theta_dot + phi_dot*(-tmp131 - tmp134))
-        + psi_dot*(tmp129*phi_dot + tmp87*theta_dot - tmp131*psi_dot)
-        + theta_dot*(tmp72*phi_dot + tmp87*psi_dot + theta_dot*(-tmp132 - tmp133 - tmp134));
-    const Scalar tmp136 = -tmp84;
-    const Scalar tmp137 = tmp10*tmp29;
-    const Scalar tmp138 = tmp10*tmp34;
-    const Scalar tmp139 = tmp109*psi_dot + tmp41*phi_dot + tmp64*theta_dot;
-    const Scalar tmp140 = tmp139*phi_dot
-        + psi_dot*(tmp109*phi_dot + tmp136*theta_dot - tmp44*psi_dot)
-        + theta_dot*(tmp136*psi_dot + tmp64*phi_dot + theta_dot*(tmp137 + tmp138 + tmp40));
-    const Scalar tmp141 = -tmp87;
-    const Scalar tmp142 = -tmp133;
-    const Scalar tmp143 = -tmp132;
-    const Scalar tmp144 = -tmp130;
-    const Scalar tmp145 = -tmp107;
-    const Scalar tmp146 = phi_dot*(tmp128*psi_dot + tmp77*theta_dot
-            + phi_dot*(-tmp134 - tmp144 - tmp145))
-        + psi_dot*(tmp128*phi_dot + tmp131*psi_dot + tmp141*theta_dot)
-        + theta_dot*(tmp141*psi_dot + tmp77*phi_dot + theta_dot*(-tmp134 - tmp142 - tmp143));
-    const Scalar tmp147 = -tmp138;
-    const Scalar tmp148 = -tmp137;
-    const Scalar tmp149 = tmp108*psi_dot + tmp45*phi_dot + tmp75*theta_dot;
-    const Scalar tmp150 = tmp149*phi_dot
-        + psi_dot*(tmp108*phi_dot + tmp44*psi_dot + tmp84*theta_dot)
-        + theta_dot*(tmp75*phi_dot + tmp84*psi_dot + theta_dot*(tmp147 + tmp148 + tmp40));
-    const Scalar tmp151 = -tmp74;
-    const Scalar tmp152 = -tmp127;
-    const Scalar tmp153 = tmp152 + tmp36;
-    const Scalar tmp154 = -tmp153;
-    const Scalar tmp155 = tmp107 + tmp144;
-    const Scalar tmp156 = tmp22 + tmp46;
-    const Scalar tmp157 = phi_dot*(tmp154*psi_dot + tmp80*theta_dot + phi_dot*(-tmp155 - tmp156))
-        + psi_dot*(tmp151*theta_dot + tmp154*phi_dot - tmp155*psi_dot)
-        + theta_dot*(tmp151*psi_dot + tmp80*phi_dot + theta_dot*(-tmp132 - tmp142 - tmp156));
-    const Scalar tmp158 = tmp112*psi_dot + tmp50*phi_dot + tmp83*theta_dot;
-    const Scalar tmp159 = tmp158*phi_dot
-        + psi_dot*(tmp112*phi_dot + tmp48*psi_dot + tmp76*theta_dot)
-        + theta_dot*(tmp76*psi_dot + tmp83*phi_dot + theta_dot*(tmp137 + tmp147 + tmp49));
-    const Scalar tmp160 = phi_dot*(tmp153*psi_dot + tmp85*theta_dot
-            + phi_dot*(-tmp130 - tmp145 - tmp156))
-        + psi_dot*(tmp153*phi_dot + tmp155*psi_dot + tmp74*theta_dot)
-        + theta_dot*(tmp74*psi_dot + tmp85*phi_dot + theta_dot*(-tmp133 - tmp143 - tmp156));
-    const Scalar tmp161 = -tmp76;
-    const Scalar tmp162 = tmp113*psi_dot + tmp52*phi_dot + tmp88*theta_dot;
-    const Scalar tmp163 = tmp162*phi_dot
-        + psi_dot*(tmp113*phi_dot + tmp161*theta_dot - tmp48*psi_dot)
-        + theta_dot*(tmp161*psi_dot + tmp88*phi_dot + theta_dot*(tmp138 + tmp148 + tmp49));
-    const Scalar tmp164 = tmp15*(tmp135*tmp41 + tmp140*tmp28) + tmp15*(tmp146*tmp45 + tmp150*tmp43)
-        + tmp15*(tmp157*tmp50 + tmp159*tmp47) + tmp15*(tmp160*tmp52 + tmp163*tmp51);
-    const Scalar tmp165 = tmp118*psi_dot;
-    const Scalar tmp166 = -tmp94;
-    const Scalar tmp167 = tmp117 + tmp59 + tmp61;
-    const Scalar tmp168 = psi_dot*(tmp165 + tmp166*theta_dot)
-        + theta_dot*(tmp166*psi_dot - tmp167*theta_dot);
-    const Scalar tmp169 = tmp117*psi_dot;
-    const Scalar tmp170 = tmp59 - tmp115;
-    const Scalar tmp171 = tmp119 + tmp170 + tmp61;
-    const Scalar tmp172 = psi_dot*(tmp169 + tmp94*theta_dot)
-        + theta_dot*(tmp94*psi_dot - tmp171*theta_dot);
-    const Scalar tmp173 = tmp121*psi_dot;
-    const Scalar tmp174 = -tmp61;
-    const Scalar tmp175 = tmp120 + tmp174 + tmp59;
-    const Scalar tmp176 = psi_dot*(tmp173 + tmp99*theta_dot)
-        + theta_dot*(tmp99*psi_dot - tmp175*theta_dot);
-    const Scalar tmp177 = tmp120*psi_dot;
-    const Scalar tmp178 = -tmp99;
-    const Scalar tmp179 = tmp116 + tmp170 + tmp174;
-    const Scalar tmp180 = psi_dot*(tmp177 + tmp178*theta_dot)
-        + theta_dot*(tmp178*psi_dot - tmp179*theta_dot);
-    const Scalar tmp181 = tmp15*(tmp101*tmp172 + tmp135*tmp64 + tmp140*tmp73)
-        + tmp15*(tmp102*tmp168 + tmp146*tmp75 + tmp150*tmp78)
-        + tmp15*(tmp157*tmp83 + tmp159*tmp81 + tmp180*tmp96)
-        + tmp15*(tmp160*tmp88 + tmp163*tmp86 + tmp176*tmp98);
-    const Scalar tmp182 = tmp15*(tmp105*tmp150 + tmp108*tmp146 + tmp121*tmp168)
-        + tmp15*(tmp106*tmp140 + tmp109*tmp135 + tmp120*tmp172)
-        + tmp15*(tmp110*tmp163 + tmp113*tmp160 + tmp117*tmp176)
-        + tmp15*(tmp111*tmp159 + tmp112*tmp157 + tmp118*tmp180);
-    const Scalar tmp183 = tmp125 + tmp181;
-    const Scalar tmp184 = tmp126 + tmp182;
+    const Scalar tmp33 = (tmp32*tmp32);
+    const Scalar tmp34 = tmp11*(tmp26 + (tmp20*tmp20)) + tmp11*(tmp33 + (tmp29*tmp29))
+        + tmp13*(tmp5 + tmp8) + m*(tmp0*tmp5 + tmp0*tmp8);
+    const Scalar tmp35 = tmp22*tmp3;
+    const Scalar tmp36 = tmp18*tmp3;
+    const Scalar tmp37 = tmp15*tmp3;
+    const Scalar tmp38 = tmp21*tmp3;
+    const Scalar tmp39 = tmp11*(tmp20*tmp35 - tmp25*tmp36) + tmp11*(tmp32*tmp37 - tmp29*tmp38);
+    const Scalar tmp40 = tmp0*tmp4;
+    const Scalar tmp41 = (tmp16*tmp16);
+    const Scalar tmp42 = tmp2*tmp41;
+    const Scalar tmp43 = tmp41*tmp7;
+    const Scalar tmp44 = (tmp14*tmp14);
+    const Scalar tmp45 = (tmp17*tmp17);
+    const Scalar tmp46 = tmp11*(tmp41*tmp44 + tmp44*tmp5 + tmp44*tmp8)
+        + tmp11*(tmp41*tmp45 + tmp45*tmp5 + tmp45*tmp8) + tmp13*(tmp4 + tmp42 + tmp43)
+        + m*(tmp40 + tmp0*tmp42 + tmp0*tmp43);
+    const Scalar tmp47 = -tmp20;
+    const Scalar tmp48 = tmp25*tmp32;
+    const Scalar tmp49 = tmp11*(tmp48 + tmp20*tmp28) + tmp11*(tmp48 + tmp29*tmp47);
+    const Scalar tmp50 = tmp16*tmp3;
+    const Scalar tmp51 = tmp14*tmp17*tmp50;
+    const Scalar tmp52 = tmp11*(tmp51 + tmp25*tmp37 - tmp38*tmp47)
+        + tmp11*(-tmp51 - tmp32*tmp36 + tmp1*tmp17*tmp28*tmp3);
+    const Scalar tmp53 = tmp11*(tmp26 + (tmp47*tmp47) + tmp4*tmp45)
+        + tmp11*(tmp33 + (tmp28*tmp28) + tmp4*tmp44);
+    const Scalar tmp54 = tmp3*d;
+    const Scalar tmp55 = g*m;
+    const Scalar tmp56 = tmp54*tmp55;
+    const Scalar tmp57 = tmp54*tmp6;
+    const Scalar tmp58 = tmp16*d;
+    const Scalar tmp59 = tmp1*tmp58;
+    const Scalar tmp60 = tmp57*phi_dot + tmp59*theta_dot;
+    const Scalar tmp61 = tmp60*phi_dot + theta_dot*(tmp57*theta_dot + tmp59*phi_dot);
+    const Scalar tmp62 = tmp1*tmp54;
+    const Scalar tmp63 = tmp62*phi_dot - tmp16*tmp6*d*theta_dot;
+    const Scalar tmp64 = tmp58*tmp6;
+    const Scalar tmp65 = theta_dot*(tmp64*phi_dot - tmp62*theta_dot) - tmp63*phi_dot;
+    const Scalar tmp66 = tmp3*tmp6;
+    const Scalar tmp67 = tmp1*tmp16;
+    const Scalar tmp68 = tmp66*phi_dot + tmp67*theta_dot;
+    const Scalar tmp69 = tmp68*phi_dot + theta_dot*(tmp66*theta_dot + tmp67*phi_dot);
+    const Scalar tmp70 = tmp1*tmp3;
+    const Scalar tmp71 = tmp70*phi_dot - tmp16*tmp6*theta_dot;
+    const Scalar tmp72 = tmp16*tmp6;
+    const Scalar tmp73 = theta_dot*(tmp72*phi_dot - tmp70*theta_dot) - tmp71*phi_dot;
+    const Scalar tmp74 = tmp36*theta_dot;
+    const Scalar tmp75 = tmp37*theta_dot;
+    const Scalar tmp76 = phi_dot*(tmp74 + tmp24*phi_dot + tmp31*psi_dot)
+        + psi_dot*(-tmp75 + tmp24*psi_dot + tmp31*phi_dot)
+        + theta_dot*(tmp23*theta_dot + tmp36*phi_dot - tmp37*psi_dot);
+    const Scalar tmp77 = tmp20*phi_dot + tmp28*psi_dot + tmp35*theta_dot;
+    const Scalar tmp78 = tmp38*theta_dot;
+    const Scalar tmp79 = tmp78 + tmp20*psi_dot + tmp28*phi_dot;
+    const Scalar tmp80 = tmp77*phi_dot + tmp79*psi_dot
+        + theta_dot*(tmp35*phi_dot + tmp38*psi_dot - tmp19*theta_dot);
+    const Scalar tmp81 = tmp77*psi_dot + tmp79*phi_dot
+        + theta_dot*(tmp27*theta_dot + tmp35*psi_dot + tmp38*phi_dot);
+    const Scalar tmp82 = tmp75 + tmp25*psi_dot + tmp32*phi_dot;
+    const Scalar tmp83 = -tmp74 + tmp25*phi_dot + tmp32*psi_dot;
+    const Scalar tmp84 = tmp82*phi_dot + tmp83*psi_dot
+        + theta_dot*(-tmp30*theta_dot - tmp36*psi_dot + tmp1*tmp14*tmp3*phi_dot);
+    const Scalar tmp85 = tmp11*(tmp20*tmp76 + tmp25*tmp80) + tmp11*(tmp29*tmp84 + tmp32*tmp81)
+        + tmp13*(tmp66*tmp73 + tmp69*tmp70) + m*(tmp57*tmp65 + tmp61*tmp62);
+    const Scalar tmp86 = (theta_dot*theta_dot);
+    const Scalar tmp87 = tmp50*tmp86;
+    const Scalar tmp88 = tmp17*tmp3;
+    const Scalar tmp89 = tmp14*tmp16;
+    const Scalar tmp90 = tmp88*psi_dot + tmp89*theta_dot;
+    const Scalar tmp91 = theta_dot*(-tmp88*theta_dot - tmp89*psi_dot) - tmp90*psi_dot;
+    const Scalar tmp92 = tmp16*tmp17;
+    const Scalar tmp93 = tmp14*tmp3;
+    const Scalar tmp94 = -tmp93*psi_dot + tmp16*tmp17*theta_dot;
+    const Scalar tmp95 = tmp94*psi_dot + theta_dot*(tmp92*psi_dot - tmp93*theta_dot);
+    const Scalar tmp96 = tmp11*(tmp35*tmp76 + tmp91*tmp92 - tmp36*tmp80)
+        + tmp11*(tmp37*tmp81 + tmp89*tmp95 - tmp38*tmp84)
+        + tmp13*(tmp87 + tmp67*tmp73 - tmp69*tmp72) + m*(tmp0*tmp87 + tmp59*tmp65 - tmp61*tmp64);
+    const Scalar tmp97 = tmp11*(tmp25*tmp81 + tmp47*tmp84 + tmp88*tmp95)
+        + tmp11*(tmp28*tmp76 + tmp32*tmp80 - tmp91*tmp93);
+    const Scalar tmp98 = tmp96 - tmp56;
     QVector<Scalar> result;
-    result(0) = tmp164 + tmp114*psi_ddot + tmp53*phi_ddot + tmp89*theta_ddot;
-    result(1) = tmp183 + tmp103*theta_ddot + tmp122*psi_ddot + tmp89*phi_ddot;
-    result(2) = tmp184 + tmp114*phi_ddot + tmp122*theta_ddot + tmp123*psi_ddot;
+    result(0) = tmp85 + tmp34*phi_ddot + tmp39*theta_ddot + tmp49*psi_ddot;
+    result(1) = tmp98 + tmp39*phi_ddot + tmp46*theta_ddot + tmp52*psi_ddot;
+    result(2) = tmp97 + tmp49*phi_ddot + tmp52*theta_ddot + tmp53*psi_ddot;
     return result;
   }
 
@@ -1392,7 +797,7 @@ struct HeavyTop {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// dr_dq and dr_dv must not be null.
-  /// Ops: 3609
+  /// Ops: 1915
   template <typename Scalar>
   static void residual_jacobians(const QVector<Scalar>& q,
                                  const QVector<Scalar>& v,
@@ -1401,10 +806,8 @@ struct HeavyTop {
                                  const Params& params,
                                  QMatrix<Scalar>* dr_dq,
                                  QMatrix<Scalar>* dr_dv) {
-    using std::abs;
     using std::cos;
     using std::sin;
-    using std::sqrt;
     const Scalar phi = q(0);
     const Scalar theta = q(1);
     const Scalar psi = q(2);
@@ -1419,916 +822,425 @@ struct HeavyTop {
     const Scalar r = Scalar(params.r);
     const Scalar h = Scalar(params.h);
     const Scalar g = Scalar(params.g);
-    const Scalar tmp0 = sin(psi);
-    const Scalar tmp1 = cos(phi);
-    const Scalar tmp2 = tmp0*tmp1;
-    const Scalar tmp3 = cos(theta);
-    const Scalar tmp4 = sin(phi);
-    const Scalar tmp5 = cos(psi);
-    const Scalar tmp6 = tmp4*tmp5;
-    const Scalar tmp7 = tmp3*tmp6;
-    const Scalar tmp8 = tmp2 + tmp7;
-    const Scalar tmp9 = abs(r);
-    const Scalar tmp10 = (Scalar(0.5))*tmp9;
-    const Scalar tmp11 = -tmp10*tmp8;
-    const Scalar tmp12 = -tmp11;
-    const Scalar tmp13 = sin(theta);
-    const Scalar tmp14 = (r*r);
-    const Scalar tmp15 = (Scalar(0.25))*m;
-    const Scalar tmp16 = (h*h);
-    const Scalar tmp17 = -tmp14*tmp15 + ((Scalar(1)/Scalar(12)))*m*(tmp16 + Scalar(3)*tmp14);
-    const Scalar tmp18 = sqrt(tmp17)/sqrt(m);
-    const Scalar tmp19 = tmp13*tmp18;
-    const Scalar tmp20 = tmp19*tmp4;
-    const Scalar tmp21 = tmp13*d;
-    const Scalar tmp22 = tmp21*tmp4;
-    const Scalar tmp23 = tmp0*tmp4;
-    const Scalar tmp24 = tmp23*tmp3;
-    const Scalar tmp25 = tmp24 - tmp1*tmp5;
-    const Scalar tmp26 = -tmp10*tmp25;
-    const Scalar tmp27 = tmp22 - tmp26;
-    const Scalar tmp28 = tmp12 + tmp20 + tmp27;
-    const Scalar tmp29 = tmp2*tmp3;
-    const Scalar tmp30 = tmp29 + tmp6;
-    const Scalar tmp31 = -tmp10*tmp30;
+    const Scalar tmp0 = (d*d);
+    const Scalar tmp1 = sin(phi);
+    const Scalar tmp2 = (tmp1*tmp1);
+    const Scalar tmp3 = sin(theta);
+    const Scalar tmp4 = (tmp3*tmp3);
+    const Scalar tmp5 = tmp2*tmp4;
+    const Scalar tmp6 = cos(phi);
+    const Scalar tmp7 = (tmp6*tmp6);
+    const Scalar tmp8 = tmp4*tmp7;
+    const Scalar tmp9 = (r*r);
+    const Scalar tmp10 = (Scalar(0.25))*m;
+    const Scalar tmp11 = tmp10*tmp9;
+    const Scalar tmp12 = (h*h);
+    const Scalar tmp13 = -tmp11 + ((Scalar(1)/Scalar(12)))*m*(tmp12 + Scalar(3)*tmp9);
+    const Scalar tmp14 = sin(psi);
+    const Scalar tmp15 = tmp1*tmp14;
+    const Scalar tmp16 = cos(theta);
+    const Scalar tmp17 = cos(psi);
+    const Scalar tmp18 = tmp17*tmp6;
+    const Scalar tmp19 = tmp16*tmp18;
+    const Scalar tmp20 = tmp15 - tmp19;
+    const Scalar tmp21 = tmp14*tmp6;
+    const Scalar tmp22 = tmp1*tmp17;
+    const Scalar tmp23 = tmp16*tmp22;
+    const Scalar tmp24 = tmp21 + tmp23;
+    const Scalar tmp25 = -tmp24;
+    const Scalar tmp27 = tmp15*tmp16;
+    const Scalar tmp28 = tmp27 - tmp17*tmp6;
+    const Scalar tmp29 = -tmp28;
+    const Scalar tmp30 = tmp16*tmp21;
+    const Scalar tmp31 = tmp22 + tmp30;
     const Scalar tmp32 = -tmp31;
-    const Scalar tmp33 = tmp1*tmp5;
-    const Scalar tmp34 = tmp3*tmp33;
-    const Scalar tmp35 = tmp23 - tmp34;
-    const Scalar tmp36 = tmp10*tmp35;
-    const Scalar tmp37 = -tmp36;
-    const Scalar tmp38 = tmp1*tmp21;
-    const Scalar tmp39 = tmp1*tmp19;
-    const Scalar tmp40 = tmp38 + tmp39;
-    const Scalar tmp41 = tmp32 + tmp37 + tmp40;
-    const Scalar tmp42 = tmp22 + tmp26;
-    const Scalar tmp43 = tmp11 + tmp20 + tmp42;
-    const Scalar tmp44 = tmp31 + tmp36;
-    const Scalar tmp45 = tmp40 + tmp44;
-    const Scalar tmp46 = -tmp20;
-    const Scalar tmp47 = tmp11 + tmp27 + tmp46;
-    const Scalar tmp48 = tmp32 + tmp36;
-    const Scalar tmp49 = tmp38 - tmp39;
-    const Scalar tmp50 = tmp48 + tmp49;
-    const Scalar tmp51 = tmp12 + tmp42 + tmp46;
-    const Scalar tmp52 = tmp31 + tmp37 + tmp49;
-    const Scalar tmp54 = tmp10*tmp13;
-    const Scalar tmp55 = tmp54*tmp6;
-    const Scalar tmp56 = -tmp55;
-    const Scalar tmp57 = tmp23*tmp54;
-    const Scalar tmp58 = -tmp57;
-    const Scalar tmp59 = tmp3*d;
-    const Scalar tmp60 = tmp4*tmp59;
-    const Scalar tmp61 = tmp18*tmp3;
-    const Scalar tmp62 = tmp4*tmp61;
-    const Scalar tmp63 = tmp60 + tmp62;
-    const Scalar tmp64 = tmp56 + tmp58 + tmp63;
-    const Scalar tmp65 = tmp33*tmp54;
-    const Scalar tmp66 = -tmp65;
-    const Scalar tmp67 = tmp2*tmp54;
-    const Scalar tmp68 = -tmp67;
-    const Scalar tmp69 = tmp1*tmp59;
-    const Scalar tmp70 = tmp1*tmp61;
-    const Scalar tmp71 = tmp69 + tmp70;
-    const Scalar tmp72 = tmp66 + tmp68 + tmp71;
-    const Scalar tmp73 = -tmp72;
-    const Scalar tmp74 = tmp55 + tmp57;
-    const Scalar tmp75 = tmp63 + tmp74;
-    const Scalar tmp76 = tmp65 + tmp67;
-    const Scalar tmp77 = tmp71 + tmp76;
-    const Scalar tmp78 = -tmp77;
-    const Scalar tmp79 = tmp69 - tmp70;
-    const Scalar tmp80 = tmp65 + tmp68 + tmp79;
-    const Scalar tmp81 = -tmp80;
-    const Scalar tmp82 = tmp60 - tmp62;
-    const Scalar tmp83 = tmp55 + tmp58 + tmp82;
-    const Scalar tmp84 = tmp66 + tmp67;
-    const Scalar tmp85 = tmp79 + tmp84;
-    const Scalar tmp86 = -tmp85;
-    const Scalar tmp87 = tmp56 + tmp57;
-    const Scalar tmp88 = tmp82 + tmp87;
-    const Scalar tmp90 = tmp10*tmp3;
-    const Scalar tmp91 = tmp0*tmp90;
-    const Scalar tmp92 = tmp5*tmp90;
-    const Scalar tmp93 = -tmp92;
-    const Scalar tmp94 = tmp91 + tmp93;
-    const Scalar tmp95 = tmp21 - tmp19;
-    const Scalar tmp96 = -tmp94 - tmp95;
-    const Scalar tmp97 = -tmp91;
-    const Scalar tmp98 = -tmp92 - tmp95 - tmp97;
-    const Scalar tmp99 = tmp91 + tmp92;
-    const Scalar tmp100 = tmp19 + tmp21;
-    const Scalar tmp101 = -tmp100 - tmp99;
-    const Scalar tmp102 = -tmp100 - tmp93 - tmp97;
-    const Scalar tmp104 = -tmp10*tmp35;
-    const Scalar tmp105 = tmp104 + tmp31;
-    const Scalar tmp106 = -tmp105;
-    const Scalar tmp107 = tmp10*tmp25;
-    const Scalar tmp108 = tmp107 + tmp11;
-    const Scalar tmp109 = -tmp108;
-    const Scalar tmp110 = tmp104 + tmp32;
-    const Scalar tmp111 = -tmp110;
-    const Scalar tmp112 = tmp107 + tmp12;
-    const Scalar tmp113 = -tmp112;
-    const Scalar tmp115 = tmp0*tmp54;
-    const Scalar tmp116 = tmp5*tmp54;
-    const Scalar tmp117 = tmp115 + tmp116;
-    const Scalar tmp118 = -tmp117;
-    const Scalar tmp119 = -tmp116;
-    const Scalar tmp120 = tmp115 + tmp119;
-    const Scalar tmp121 = -tmp120;
-    const Scalar tmp124 = tmp15*g;
-    const Scalar tmp127 = tmp10*tmp30;
-    const Scalar tmp128 = tmp127 + tmp36;
-    const Scalar tmp129 = -tmp128;
-    const Scalar tmp130 = tmp10*tmp8;
-    const Scalar tmp131 = tmp107 + tmp130;
-    const Scalar tmp132 = tmp10*tmp24;
-    const Scalar tmp133 = tmp10*tmp7;
-    const Scalar tmp134 = tmp20 + tmp22;
-    const Scalar tmp135 = phi_dot*(tmp129*psi_dot + tmp72*theta_dot + phi_dot*(-tmp131 - tmp134))
-        + psi_dot*(tmp129*phi_dot + tmp87*theta_dot - tmp131*psi_dot)
-        + theta_dot*(tmp72*phi_dot + tmp87*psi_dot + theta_dot*(-tmp132 - tmp133 - tmp134));
-    const Scalar tmp136 = -tmp84;
-    const Scalar tmp137 = tmp10*tmp29;
-    const Scalar tmp138 = tmp10*tmp34;
-    const Scalar tmp139 = tmp109*psi_dot + tmp41*phi_dot + tmp64*theta_dot;
-    const Scalar tmp140 = tmp139*phi_dot
-        + psi_dot*(tmp109*phi_dot + tmp136*theta_dot - tmp44*psi_dot)
-        + theta_dot*(tmp136*psi_dot + tmp64*phi_dot + theta_dot*(tmp137 + tmp138 + tmp40));
-    const Scalar tmp141 = -tmp87;
-    const Scalar tmp142 = -tmp133;
-    const Scalar tmp143 = -tmp132;
-    const Scalar tmp144 = -tmp130;
-    const Scalar tmp145 = -tmp107;
-    const Scalar tmp146 = phi_dot*(tmp128*psi_dot + tmp77*theta_dot
-            + phi_dot*(-tmp134 - tmp144 - tmp145))
-        + psi_dot*(tmp128*phi_dot + tmp131*psi_dot + tmp141*theta_dot)
-        + theta_dot*(tmp141*psi_dot + tmp77*phi_dot + theta_dot*(-tmp134 - tmp142 - tmp143));
-    const Scalar tmp147 = -tmp138;
-    const Scalar tmp148 = -tmp137;
-    const Scalar tmp149 = tmp108*psi_dot + tmp45*phi_dot + tmp75*theta_dot;
-    const Scalar tmp150 = tmp149*phi_dot
-        + psi_dot*(tmp108*phi_dot + tmp44*psi_dot + tmp84*theta_dot)
-        + theta_dot*(tmp75*phi_dot + tmp84*psi_dot + theta_dot*(tmp147 + tmp148 + tmp40));
-    const Scalar tmp151 = -tmp74;
-    const Scalar tmp152 = -tmp127;
-    const Scalar tmp153 = tmp152 + tmp36;
-    const Scalar tmp154 = -tmp153;
-    const Scalar tmp155 = tmp107 + tmp144;
-    const Scalar tmp156 = tmp22 + tmp46;
-    const Scalar tmp157 = phi_dot*(tmp154*psi_dot + tmp80*theta_dot + phi_dot*(-tmp155 - tmp156))
-        + psi_dot*(tmp151*theta_dot + tmp154*phi_dot - tmp155*psi_dot)
-        + theta_dot*(tmp151*psi_dot + tmp80*phi_dot + theta_dot*(-tmp132 - tmp142 - tmp156));
-    const Scalar tmp158 = tmp112*psi_dot + tmp50*phi_dot + tmp83*theta_dot;
-    const Scalar tmp159 = tmp158*phi_dot
-        + psi_dot*(tmp112*phi_dot + tmp48*psi_dot + tmp76*theta_dot)
-        + theta_dot*(tmp76*psi_dot + tmp83*phi_dot + theta_dot*(tmp137 + tmp147 + tmp49));
-    const Scalar tmp160 = phi_dot*(tmp153*psi_dot + tmp85*theta_dot
-            + phi_dot*(-tmp130 - tmp145 - tmp156))
-        + psi_dot*(tmp153*phi_dot + tmp155*psi_dot + tmp74*theta_dot)
-        + theta_dot*(tmp74*psi_dot + tmp85*phi_dot + theta_dot*(-tmp133 - tmp143 - tmp156));
-    const Scalar tmp161 = -tmp76;
-    const Scalar tmp162 = tmp113*psi_dot + tmp52*phi_dot + tmp88*theta_dot;
-    const Scalar tmp163 = tmp162*phi_dot
-        + psi_dot*(tmp113*phi_dot + tmp161*theta_dot - tmp48*psi_dot)
-        + theta_dot*(tmp161*psi_dot + tmp88*phi_dot + theta_dot*(tmp138 + tmp148 + tmp49));
-    const Scalar tmp165 = tmp118*psi_dot;
-    const Scalar tmp166 = -tmp94;
-    const Scalar tmp167 = tmp117 + tmp59 + tmp61;
-    const Scalar tmp168 = psi_dot*(tmp165 + tmp166*theta_dot)
-        + theta_dot*(tmp166*psi_dot - tmp167*theta_dot);
-    const Scalar tmp169 = tmp117*psi_dot;
-    const Scalar tmp170 = tmp59 - tmp115;
-    const Scalar tmp171 = tmp119 + tmp170 + tmp61;
-    const Scalar tmp172 = psi_dot*(tmp169 + tmp94*theta_dot)
-        + theta_dot*(tmp94*psi_dot - tmp171*theta_dot);
-    const Scalar tmp173 = tmp121*psi_dot;
-    const Scalar tmp174 = -tmp61;
-    const Scalar tmp175 = tmp120 + tmp174 + tmp59;
-    const Scalar tmp176 = psi_dot*(tmp173 + tmp99*theta_dot)
-        + theta_dot*(tmp99*psi_dot - tmp175*theta_dot);
-    const Scalar tmp177 = tmp120*psi_dot;
-    const Scalar tmp178 = -tmp99;
-    const Scalar tmp179 = tmp116 + tmp170 + tmp174;
-    const Scalar tmp180 = psi_dot*(tmp177 + tmp178*theta_dot)
-        + theta_dot*(tmp178*psi_dot - tmp179*theta_dot);
-    const Scalar tmp312 = -tmp4;
-    const Scalar tmp313 = tmp0*tmp312;
-    const Scalar tmp314 = tmp5*tmp1;
-    const Scalar tmp315 = tmp3*tmp314;
-    const Scalar tmp316 = tmp313 + tmp315;
-    const Scalar tmp317 = -tmp10*tmp316;
-    const Scalar tmp318 = -tmp317;
-    const Scalar tmp319 = tmp19*tmp1;
-    const Scalar tmp320 = tmp21*tmp1;
-    const Scalar tmp321 = tmp0*tmp1;
-    const Scalar tmp322 = tmp3*tmp321;
-    const Scalar tmp323 = -tmp5*tmp312 + tmp322;
-    const Scalar tmp324 = -tmp10*tmp323;
-    const Scalar tmp325 = tmp320 - tmp324;
-    const Scalar tmp326 = tmp318 + tmp319 + tmp325;
-    const Scalar tmp327 = tmp3*tmp313;
-    const Scalar tmp328 = tmp327 + tmp314;
-    const Scalar tmp329 = -tmp10*tmp328;
-    const Scalar tmp330 = -tmp329;
-    const Scalar tmp331 = tmp5*tmp312;
-    const Scalar tmp332 = tmp3*tmp331;
-    const Scalar tmp333 = tmp321 - tmp332;
-    const Scalar tmp334 = tmp10*tmp333;
-    const Scalar tmp335 = -tmp334;
-    const Scalar tmp336 = tmp21*tmp312;
-    const Scalar tmp337 = tmp19*tmp312;
-    const Scalar tmp338 = tmp336 + tmp337;
-    const Scalar tmp339 = tmp330 + tmp335 + tmp338;
-    const Scalar tmp340 = tmp320 + tmp324;
-    const Scalar tmp341 = tmp317 + tmp319 + tmp340;
-    const Scalar tmp342 = tmp329 + tmp334;
-    const Scalar tmp343 = tmp338 + tmp342;
-    const Scalar tmp344 = -tmp319;
-    const Scalar tmp345 = tmp317 + tmp325 + tmp344;
-    const Scalar tmp346 = tmp330 + tmp334;
-    const Scalar tmp347 = tmp336 - tmp337;
-    const Scalar tmp348 = tmp346 + tmp347;
-    const Scalar tmp349 = tmp318 + tmp340 + tmp344;
-    const Scalar tmp350 = tmp329 + tmp335 + tmp347;
-    const Scalar tmp351 = Scalar(2)*tmp15*tmp28*tmp326 + Scalar(2)*tmp15*tmp41*tmp339
-        + Scalar(2)*tmp15*tmp43*tmp341 + Scalar(2)*tmp15*tmp45*tmp343 + Scalar(2)*tmp15*tmp47*tmp345
-        + Scalar(2)*tmp15*tmp50*tmp348 + Scalar(2)*tmp15*tmp51*tmp349
-        + Scalar(2)*tmp15*tmp52*tmp350;
-    const Scalar tmp352 = tmp54*tmp314;
-    const Scalar tmp353 = -tmp352;
-    const Scalar tmp354 = tmp54*tmp321;
-    const Scalar tmp355 = -tmp354;
-    const Scalar tmp356 = tmp59*tmp1;
-    const Scalar tmp357 = tmp61*tmp1;
-    const Scalar tmp358 = tmp356 + tmp357;
-    const Scalar tmp359 = tmp353 + tmp355 + tmp358;
-    const Scalar tmp360 = tmp54*tmp331;
-    const Scalar tmp361 = -tmp360;
-    const Scalar tmp362 = tmp54*tmp313;
+    const Scalar tmp35 = tmp22*tmp3;
+    const Scalar tmp36 = tmp18*tmp3;
+    const Scalar tmp37 = tmp15*tmp3;
+    const Scalar tmp38 = tmp21*tmp3;
+    const Scalar tmp41 = (tmp16*tmp16);
+    const Scalar tmp44 = (tmp14*tmp14);
+    const Scalar tmp45 = (tmp17*tmp17);
+    const Scalar tmp47 = -tmp20;
+    const Scalar tmp50 = tmp16*tmp3;
+    const Scalar tmp54 = tmp3*d;
+    const Scalar tmp55 = g*m;
+    const Scalar tmp57 = tmp54*tmp6;
+    const Scalar tmp58 = tmp16*d;
+    const Scalar tmp59 = tmp1*tmp58;
+    const Scalar tmp60 = tmp57*phi_dot + tmp59*theta_dot;
+    const Scalar tmp61 = tmp60*phi_dot + theta_dot*(tmp57*theta_dot + tmp59*phi_dot);
+    const Scalar tmp62 = tmp1*tmp54;
+    const Scalar tmp63 = tmp62*phi_dot - tmp16*tmp6*d*theta_dot;
+    const Scalar tmp64 = tmp58*tmp6;
+    const Scalar tmp65 = theta_dot*(tmp64*phi_dot - tmp62*theta_dot) - tmp63*phi_dot;
+    const Scalar tmp66 = tmp3*tmp6;
+    const Scalar tmp67 = tmp1*tmp16;
+    const Scalar tmp68 = tmp66*phi_dot + tmp67*theta_dot;
+    const Scalar tmp69 = tmp68*phi_dot + theta_dot*(tmp66*theta_dot + tmp67*phi_dot);
+    const Scalar tmp70 = tmp1*tmp3;
+    const Scalar tmp71 = tmp70*phi_dot - tmp16*tmp6*theta_dot;
+    const Scalar tmp72 = tmp16*tmp6;
+    const Scalar tmp73 = theta_dot*(tmp72*phi_dot - tmp70*theta_dot) - tmp71*phi_dot;
+    const Scalar tmp74 = tmp36*theta_dot;
+    const Scalar tmp75 = tmp37*theta_dot;
+    const Scalar tmp76 = phi_dot*(tmp74 + tmp24*phi_dot + tmp31*psi_dot)
+        + psi_dot*(-tmp75 + tmp24*psi_dot + tmp31*phi_dot)
+        + theta_dot*(tmp23*theta_dot + tmp36*phi_dot - tmp37*psi_dot);
+    const Scalar tmp77 = tmp20*phi_dot + tmp28*psi_dot + tmp35*theta_dot;
+    const Scalar tmp78 = tmp38*theta_dot;
+    const Scalar tmp79 = tmp78 + tmp20*psi_dot + tmp28*phi_dot;
+    const Scalar tmp80 = tmp77*phi_dot + tmp79*psi_dot
+        + theta_dot*(tmp35*phi_dot + tmp38*psi_dot - tmp19*theta_dot);
+    const Scalar tmp81 = tmp77*psi_dot + tmp79*phi_dot
+        + theta_dot*(tmp27*theta_dot + tmp35*psi_dot + tmp38*phi_dot);
+    const Scalar tmp82 = tmp75 + tmp25*psi_dot + tmp32*phi_dot;
+    const Scalar tmp83 = -tmp74 + tmp25*phi_dot + tmp32*psi_dot;
+    const Scalar tmp84 = tmp82*phi_dot + tmp83*psi_dot
+        + theta_dot*(-tmp30*theta_dot - tmp36*psi_dot + tmp1*tmp14*tmp3*phi_dot);
+    const Scalar tmp86 = (theta_dot*theta_dot);
+    const Scalar tmp88 = tmp17*tmp3;
+    const Scalar tmp89 = tmp14*tmp16;
+    const Scalar tmp90 = tmp88*psi_dot + tmp89*theta_dot;
+    const Scalar tmp91 = theta_dot*(-tmp88*theta_dot - tmp89*psi_dot) - tmp90*psi_dot;
+    const Scalar tmp92 = tmp16*tmp17;
+    const Scalar tmp93 = tmp14*tmp3;
+    const Scalar tmp94 = -tmp93*psi_dot + tmp16*tmp17*theta_dot;
+    const Scalar tmp95 = tmp94*psi_dot + theta_dot*(tmp92*psi_dot - tmp93*theta_dot);
+    const Scalar tmp350 = Scalar(2)*tmp1*tmp6;
+    const Scalar tmp351 = tmp4*tmp350;
+    const Scalar tmp352 = -tmp1;
+    const Scalar tmp353 = Scalar(2)*tmp6*tmp352;
+    const Scalar tmp354 = tmp4*tmp353;
+    const Scalar tmp355 = tmp14*tmp6;
+    const Scalar tmp356 = tmp17*tmp352;
+    const Scalar tmp357 = tmp16*tmp356;
+    const Scalar tmp358 = tmp355 - tmp357;
+    const Scalar tmp359 = tmp14*tmp352;
+    const Scalar tmp360 = tmp17*tmp6;
+    const Scalar tmp361 = tmp16*tmp360;
+    const Scalar tmp362 = tmp359 + tmp361;
     const Scalar tmp363 = -tmp362;
-    const Scalar tmp364 = tmp59*tmp312;
-    const Scalar tmp365 = tmp61*tmp312;
-    const Scalar tmp366 = tmp364 + tmp365;
-    const Scalar tmp367 = tmp361 + tmp363 + tmp366;
-    const Scalar tmp368 = -tmp367;
-    const Scalar tmp369 = tmp352 + tmp354;
-    const Scalar tmp370 = tmp358 + tmp369;
-    const Scalar tmp371 = tmp360 + tmp362;
-    const Scalar tmp372 = tmp366 + tmp371;
-    const Scalar tmp373 = -tmp372;
-    const Scalar tmp374 = tmp364 - tmp365;
-    const Scalar tmp375 = tmp360 + tmp363 + tmp374;
-    const Scalar tmp376 = -tmp375;
-    const Scalar tmp377 = tmp356 - tmp357;
-    const Scalar tmp378 = tmp352 + tmp355 + tmp377;
-    const Scalar tmp379 = tmp361 + tmp362;
-    const Scalar tmp380 = tmp374 + tmp379;
-    const Scalar tmp381 = -tmp380;
-    const Scalar tmp382 = tmp353 + tmp354;
-    const Scalar tmp383 = tmp377 + tmp382;
-    const Scalar tmp384 = tmp15*tmp73*tmp326 + tmp15*tmp64*tmp339 + tmp15*tmp78*tmp341
-        + tmp15*tmp75*tmp343 + tmp15*tmp81*tmp345 + tmp15*tmp83*tmp348 + tmp15*tmp86*tmp349
-        + tmp15*tmp88*tmp350 + tmp15*tmp41*tmp359 + tmp15*tmp28*tmp368 + tmp15*tmp45*tmp370
-        + tmp15*tmp43*tmp373 + tmp15*tmp47*tmp376 + tmp15*tmp50*tmp378 + tmp15*tmp51*tmp381
-        + tmp15*tmp52*tmp383;
-    const Scalar tmp385 = Scalar(2)*tmp15*tmp64*tmp359 + Scalar(2)*tmp15*tmp73*tmp368
-        + Scalar(2)*tmp15*tmp75*tmp370 + Scalar(2)*tmp15*tmp78*tmp373 + Scalar(2)*tmp15*tmp81*tmp376
-        + Scalar(2)*tmp15*tmp83*tmp378 + Scalar(2)*tmp15*tmp86*tmp381
-        + Scalar(2)*tmp15*tmp88*tmp383;
-    const Scalar tmp386 = -tmp10*tmp333;
-    const Scalar tmp387 = tmp386 + tmp329;
-    const Scalar tmp388 = -tmp387;
-    const Scalar tmp389 = tmp10*tmp323;
-    const Scalar tmp390 = tmp389 + tmp317;
-    const Scalar tmp391 = -tmp390;
-    const Scalar tmp392 = tmp386 + tmp330;
-    const Scalar tmp393 = -tmp392;
-    const Scalar tmp394 = tmp389 + tmp318;
-    const Scalar tmp395 = -tmp394;
-    const Scalar tmp396 = tmp15*tmp43*tmp387 + tmp15*tmp28*tmp388 + tmp15*tmp45*tmp390
-        + tmp15*tmp41*tmp391 + tmp15*tmp51*tmp392 + tmp15*tmp47*tmp393 + tmp15*tmp50*tmp394
-        + tmp15*tmp52*tmp395 + tmp106*tmp15*tmp326 + tmp109*tmp15*tmp339 + tmp105*tmp15*tmp341
-        + tmp108*tmp15*tmp343 + tmp111*tmp15*tmp345 + tmp112*tmp15*tmp348 + tmp110*tmp15*tmp349
-        + tmp113*tmp15*tmp350;
-    const Scalar tmp397 = tmp15*tmp78*tmp387 + tmp15*tmp73*tmp388 + tmp15*tmp75*tmp390
-        + tmp15*tmp64*tmp391 + tmp15*tmp86*tmp392 + tmp15*tmp81*tmp393 + tmp15*tmp83*tmp394
-        + tmp15*tmp88*tmp395 + tmp109*tmp15*tmp359 + tmp106*tmp15*tmp368 + tmp108*tmp15*tmp370
-        + tmp105*tmp15*tmp373 + tmp111*tmp15*tmp376 + tmp112*tmp15*tmp378 + tmp110*tmp15*tmp381
-        + tmp113*tmp15*tmp383;
-    const Scalar tmp398 = Scalar(2)*tmp105*tmp15*tmp387 + Scalar(2)*tmp106*tmp15*tmp388
-        + Scalar(2)*tmp108*tmp15*tmp390 + Scalar(2)*tmp109*tmp15*tmp391
-        + Scalar(2)*tmp110*tmp15*tmp392 + Scalar(2)*tmp111*tmp15*tmp393
-        + Scalar(2)*tmp112*tmp15*tmp394 + Scalar(2)*tmp113*tmp15*tmp395;
-    const Scalar tmp399 = tmp10*tmp328;
-    const Scalar tmp400 = tmp399 + tmp334;
-    const Scalar tmp401 = -tmp400;
-    const Scalar tmp402 = tmp10*tmp316;
-    const Scalar tmp403 = tmp389 + tmp402;
-    const Scalar tmp404 = tmp10*tmp322;
-    const Scalar tmp405 = tmp10*tmp315;
-    const Scalar tmp406 = tmp319 + tmp320;
-    const Scalar tmp407 = Scalar(2)*phi_dot*psi_dot*tmp401
-        + (-(phi_dot*phi_dot) - (psi_dot*psi_dot))*tmp403 - (theta_dot*theta_dot)*tmp404
-        - (theta_dot*theta_dot)*tmp405 + (-(phi_dot*phi_dot) - (theta_dot*theta_dot))*tmp406
-        + Scalar(2)*phi_dot*theta_dot*tmp367 + Scalar(2)*psi_dot*theta_dot*tmp382;
-    const Scalar tmp408 = -tmp379;
-    const Scalar tmp409 = tmp10*tmp327;
-    const Scalar tmp410 = tmp10*tmp332;
-    const Scalar tmp411 = psi_dot*tmp391 + phi_dot*tmp339 + theta_dot*tmp359;
-    const Scalar tmp412 = phi_dot*psi_dot*tmp391 + Scalar(2)*psi_dot*theta_dot*tmp408
-        + (theta_dot*theta_dot)*tmp409 + (theta_dot*theta_dot)*tmp410 + phi_dot*tmp411
-        + (theta_dot*theta_dot)*tmp338 - (psi_dot*psi_dot)*tmp342 + phi_dot*theta_dot*tmp359;
-    const Scalar tmp413 = -tmp382;
-    const Scalar tmp414 = -tmp405;
-    const Scalar tmp415 = -tmp404;
-    const Scalar tmp416 = -tmp402;
-    const Scalar tmp417 = -tmp389;
-    const Scalar tmp418 = Scalar(2)*phi_dot*psi_dot*tmp400 + (psi_dot*psi_dot)*tmp403
-        + (-(phi_dot*phi_dot) - (theta_dot*theta_dot))*tmp406 + Scalar(2)*psi_dot*theta_dot*tmp413
-        - (theta_dot*theta_dot)*tmp414 - (theta_dot*theta_dot)*tmp415 - (phi_dot*phi_dot)*tmp416
-        - (phi_dot*phi_dot)*tmp417 + Scalar(2)*phi_dot*theta_dot*tmp372;
-    const Scalar tmp419 = -tmp410;
-    const Scalar tmp420 = -tmp409;
-    const Scalar tmp421 = psi_dot*tmp390 + phi_dot*tmp343 + theta_dot*tmp370;
-    const Scalar tmp422 = phi_dot*psi_dot*tmp390 + (theta_dot*theta_dot)*tmp419
-        + (theta_dot*theta_dot)*tmp420 + phi_dot*tmp421 + (theta_dot*theta_dot)*tmp338
-        + (psi_dot*psi_dot)*tmp342 + phi_dot*theta_dot*tmp370 + Scalar(2)*psi_dot*theta_dot*tmp379;
-    const Scalar tmp423 = -tmp369;
-    const Scalar tmp424 = -tmp399;
-    const Scalar tmp425 = tmp424 + tmp334;
+    const Scalar tmp364 = Scalar(2)*tmp25*tmp363;
+    const Scalar tmp365 = tmp16*tmp355;
+    const Scalar tmp366 = tmp365 - tmp17*tmp352;
+    const Scalar tmp367 = -tmp366;
+    const Scalar tmp368 = tmp16*tmp359;
+    const Scalar tmp369 = tmp360 + tmp368;
+    const Scalar tmp370 = -tmp369;
+    const Scalar tmp371 = Scalar(2)*tmp32*tmp370;
+    const Scalar tmp372 = Scalar(2)*tmp11*tmp20*tmp358 + tmp11*tmp364 + Scalar(2)*tmp11*tmp29*tmp367
+        + tmp11*tmp371 + (tmp13 + tmp0*m)*tmp351 + (tmp13 + tmp0*m)*tmp354;
+    const Scalar tmp373 = tmp3*tmp360;
+    const Scalar tmp374 = tmp3*tmp356;
+    const Scalar tmp375 = tmp3*tmp355;
+    const Scalar tmp376 = tmp3*tmp359;
+    const Scalar tmp377 = tmp11*tmp35*tmp358 - tmp11*tmp36*tmp363 - tmp11*tmp38*tmp367
+        + tmp11*tmp37*tmp370 + tmp11*tmp20*tmp373 - tmp11*tmp25*tmp374 + tmp11*tmp32*tmp375
+        - tmp11*tmp29*tmp376;
+    const Scalar tmp378 = tmp41*tmp350;
+    const Scalar tmp379 = tmp41*tmp353;
+    const Scalar tmp380 = (tmp13 + tmp0*m)*tmp378 + (tmp13 + tmp0*m)*tmp379
+        + (tmp11*tmp44 + tmp11*tmp45)*tmp351 + (tmp11*tmp44 + tmp11*tmp45)*tmp354;
+    const Scalar tmp381 = -tmp358;
+    const Scalar tmp382 = tmp32*tmp363 + tmp25*tmp370;
+    const Scalar tmp383 = tmp11*tmp28*tmp358 + tmp11*tmp20*tmp366 + tmp11*tmp47*tmp367
+        + tmp11*tmp29*tmp381 + Scalar(2)*tmp11*tmp382;
+    const Scalar tmp384 = tmp11*tmp17*tmp28*tmp3*tmp6 + tmp11*tmp37*tmp363
+        + tmp1*tmp11*tmp17*tmp3*tmp366 - tmp11*tmp36*tmp370 - tmp11*tmp32*tmp374
+        + tmp11*tmp25*tmp375 - tmp11*tmp47*tmp376 - tmp11*tmp38*tmp381;
+    const Scalar tmp385 = tmp11*tmp364 + Scalar(2)*tmp11*tmp28*tmp366 + tmp11*tmp371
+        + Scalar(2)*tmp11*tmp47*tmp381;
+    const Scalar tmp386 = tmp54*tmp352;
+    const Scalar tmp387 = tmp58*tmp6;
+    const Scalar tmp388 = phi_dot*tmp386 + theta_dot*tmp387;
+    const Scalar tmp389 = (theta_dot*theta_dot)*tmp386 + phi_dot*theta_dot*tmp387 + phi_dot*tmp388;
+    const Scalar tmp390 = tmp54*tmp6;
+    const Scalar tmp391 = -tmp16*d*theta_dot*tmp352 + phi_dot*tmp390;
+    const Scalar tmp392 = tmp58*tmp352;
+    const Scalar tmp393 = -(theta_dot*theta_dot)*tmp390 - phi_dot*tmp391 + phi_dot*theta_dot*tmp392;
+    const Scalar tmp394 = tmp3*tmp352;
+    const Scalar tmp395 = tmp16*tmp6;
+    const Scalar tmp396 = phi_dot*tmp394 + theta_dot*tmp395;
+    const Scalar tmp397 = (theta_dot*theta_dot)*tmp394 + phi_dot*theta_dot*tmp395 + phi_dot*tmp396;
+    const Scalar tmp398 = tmp3*tmp6;
+    const Scalar tmp399 = -tmp16*theta_dot*tmp352 + phi_dot*tmp398;
+    const Scalar tmp400 = tmp16*tmp352;
+    const Scalar tmp401 = -(theta_dot*theta_dot)*tmp398 - phi_dot*tmp399 + phi_dot*theta_dot*tmp400;
+    const Scalar tmp402 = theta_dot*tmp374;
+    const Scalar tmp403 = theta_dot*tmp375;
+    const Scalar tmp404 = (theta_dot*theta_dot)*tmp361
+        + ((phi_dot*phi_dot) + (psi_dot*psi_dot))*tmp362 + Scalar(2)*phi_dot*psi_dot*tmp369
+        + phi_dot*theta_dot*tmp374 - psi_dot*theta_dot*tmp375 + phi_dot*tmp402 - psi_dot*tmp403;
+    const Scalar tmp405 = phi_dot*tmp358 + psi_dot*tmp366 + theta_dot*tmp373;
+    const Scalar tmp406 = theta_dot*tmp376;
+    const Scalar tmp407 = psi_dot*tmp358 + phi_dot*tmp366 + tmp406;
+    const Scalar tmp408 = -(theta_dot*theta_dot)*tmp357 + phi_dot*theta_dot*tmp373
+        + psi_dot*theta_dot*tmp376 + phi_dot*tmp405 + psi_dot*tmp407;
+    const Scalar tmp409 = (theta_dot*theta_dot)*tmp365 + psi_dot*theta_dot*tmp373
+        + phi_dot*theta_dot*tmp376 + psi_dot*tmp405 + phi_dot*tmp407;
+    const Scalar tmp410 = psi_dot*tmp363 + phi_dot*tmp370 + tmp403;
+    const Scalar tmp411 = phi_dot*tmp363 + psi_dot*tmp370 - tmp402;
+    const Scalar tmp412 = tmp14*tmp3*phi_dot*theta_dot*tmp6 - (theta_dot*theta_dot)*tmp368
+        - psi_dot*theta_dot*tmp374 + phi_dot*tmp410 + psi_dot*tmp411;
+    const Scalar tmp413 = tmp11*tmp76*tmp358 + tmp11*tmp80*tmp363 + tmp11*tmp84*tmp367
+        + tmp11*tmp81*tmp370 + tmp65*m*tmp386 + tmp62*m*tmp389 + tmp61*m*tmp390 + tmp57*m*tmp393
+        + tmp13*tmp73*tmp394 + tmp13*tmp70*tmp397 + tmp13*tmp69*tmp398 + tmp13*tmp66*tmp401
+        + tmp11*tmp20*tmp404 + tmp11*tmp25*tmp408 + tmp11*tmp32*tmp409 + tmp11*tmp29*tmp412;
+    const Scalar tmp414 = tmp11*tmp76*tmp373 - tmp11*tmp80*tmp374 + tmp11*tmp81*tmp375
+        - tmp11*tmp84*tmp376 + tmp65*m*tmp387 - tmp64*m*tmp389 - tmp61*m*tmp392 + tmp59*m*tmp393
+        + tmp13*tmp73*tmp395 - tmp13*tmp72*tmp397 - tmp13*tmp69*tmp400 + tmp13*tmp67*tmp401
+        + tmp11*tmp35*tmp404 - tmp11*tmp36*tmp408 + tmp11*tmp37*tmp409 - tmp11*tmp38*tmp412;
+    const Scalar tmp415 = tmp11*tmp81*tmp363 + tmp11*tmp76*tmp366 + tmp11*tmp80*tmp370
+        + tmp11*tmp84*tmp381 + tmp11*tmp28*tmp404 + tmp11*tmp32*tmp408 + tmp11*tmp25*tmp409
+        + tmp11*tmp47*tmp412;
+    const Scalar tmp416 = Scalar(2)*tmp3*tmp16;
+    const Scalar tmp417 = tmp2*tmp416;
+    const Scalar tmp418 = tmp7*tmp416;
+    const Scalar tmp419 = -tmp3;
+    const Scalar tmp420 = tmp18*tmp419;
+    const Scalar tmp421 = -tmp420;
+    const Scalar tmp422 = tmp22*tmp419;
+    const Scalar tmp423 = -tmp422;
+    const Scalar tmp424 = Scalar(2)*tmp25*tmp423;
+    const Scalar tmp425 = tmp15*tmp419;
     const Scalar tmp426 = -tmp425;
-    const Scalar tmp427 = tmp389 + tmp416;
-    const Scalar tmp428 = tmp320 + tmp344;
-    const Scalar tmp429 = -(theta_dot*theta_dot)*tmp404 - (theta_dot*theta_dot)*tmp414
-        + Scalar(2)*psi_dot*theta_dot*tmp423 + Scalar(2)*phi_dot*psi_dot*tmp426
-        + (-(phi_dot*phi_dot) - (psi_dot*psi_dot))*tmp427
-        + (-(phi_dot*phi_dot) - (theta_dot*theta_dot))*tmp428 + Scalar(2)*phi_dot*theta_dot*tmp375;
-    const Scalar tmp430 = psi_dot*tmp394 + phi_dot*tmp348 + theta_dot*tmp378;
-    const Scalar tmp431 = phi_dot*psi_dot*tmp394 + (theta_dot*theta_dot)*tmp409
-        + (theta_dot*theta_dot)*tmp419 + phi_dot*tmp430 + (psi_dot*psi_dot)*tmp346
-        + (theta_dot*theta_dot)*tmp347 + Scalar(2)*psi_dot*theta_dot*tmp371
-        + phi_dot*theta_dot*tmp378;
-    const Scalar tmp432 = -(phi_dot*phi_dot)*tmp402 - (theta_dot*theta_dot)*tmp405
-        - (theta_dot*theta_dot)*tmp415 - (phi_dot*phi_dot)*tmp417 + Scalar(2)*phi_dot*psi_dot*tmp425
-        + (psi_dot*psi_dot)*tmp427 + (-(phi_dot*phi_dot) - (theta_dot*theta_dot))*tmp428
-        + Scalar(2)*psi_dot*theta_dot*tmp369 + Scalar(2)*phi_dot*theta_dot*tmp380;
-    const Scalar tmp433 = -tmp371;
-    const Scalar tmp434 = psi_dot*tmp395 + phi_dot*tmp350 + theta_dot*tmp383;
-    const Scalar tmp435 = phi_dot*psi_dot*tmp395 + (theta_dot*theta_dot)*tmp410
-        + (theta_dot*theta_dot)*tmp420 + Scalar(2)*psi_dot*theta_dot*tmp433 + phi_dot*tmp434
-        - (psi_dot*psi_dot)*tmp346 + (theta_dot*theta_dot)*tmp347 + phi_dot*theta_dot*tmp383;
-    const Scalar tmp436 = tmp15*tmp41*tmp407 + tmp15*tmp28*tmp412 + tmp15*tmp45*tmp418
-        + tmp15*tmp43*tmp422 + tmp15*tmp50*tmp429 + tmp15*tmp47*tmp431 + tmp15*tmp52*tmp432
-        + tmp15*tmp51*tmp435 + tmp140*tmp15*tmp326 + tmp135*tmp15*tmp339 + tmp15*tmp150*tmp341
-        + tmp146*tmp15*tmp343 + tmp15*tmp159*tmp345 + tmp15*tmp157*tmp348 + tmp15*tmp163*tmp349
-        + tmp15*tmp160*tmp350;
-    const Scalar tmp437 = tmp15*tmp64*tmp407 + tmp15*tmp73*tmp412 + tmp15*tmp75*tmp418
-        + tmp15*tmp78*tmp422 + tmp15*tmp83*tmp429 + tmp15*tmp81*tmp431 + tmp15*tmp88*tmp432
-        + tmp15*tmp86*tmp435 + tmp135*tmp15*tmp359 + tmp140*tmp15*tmp368 + tmp146*tmp15*tmp370
-        + tmp15*tmp150*tmp373 + tmp15*tmp159*tmp376 + tmp15*tmp157*tmp378 + tmp15*tmp163*tmp381
-        + tmp15*tmp160*tmp383;
-    const Scalar tmp438 = tmp15*tmp150*tmp387 + tmp140*tmp15*tmp388 + tmp146*tmp15*tmp390
-        + tmp135*tmp15*tmp391 + tmp15*tmp163*tmp392 + tmp15*tmp159*tmp393 + tmp15*tmp157*tmp394
-        + tmp15*tmp160*tmp395 + tmp109*tmp15*tmp407 + tmp106*tmp15*tmp412 + tmp108*tmp15*tmp418
-        + tmp105*tmp15*tmp422 + tmp112*tmp15*tmp429 + tmp111*tmp15*tmp431 + tmp113*tmp15*tmp432
-        + tmp110*tmp15*tmp435;
-    const Scalar tmp439 = -tmp13;
-    const Scalar tmp440 = tmp6*tmp439;
-    const Scalar tmp441 = -tmp10*tmp440;
-    const Scalar tmp442 = -tmp441;
-    const Scalar tmp443 = tmp18*tmp3;
-    const Scalar tmp444 = tmp4*tmp443;
-    const Scalar tmp445 = d*tmp3;
-    const Scalar tmp446 = tmp4*tmp445;
-    const Scalar tmp447 = tmp23*tmp439;
-    const Scalar tmp448 = -tmp10*tmp447;
-    const Scalar tmp449 = tmp446 - tmp448;
-    const Scalar tmp450 = tmp442 + tmp444 + tmp449;
-    const Scalar tmp451 = tmp2*tmp439;
-    const Scalar tmp452 = -tmp10*tmp451;
-    const Scalar tmp453 = -tmp452;
-    const Scalar tmp454 = tmp33*tmp439;
-    const Scalar tmp455 = -tmp454;
-    const Scalar tmp456 = tmp10*tmp455;
-    const Scalar tmp457 = -tmp456;
-    const Scalar tmp458 = tmp1*tmp445;
-    const Scalar tmp459 = tmp1*tmp443;
-    const Scalar tmp460 = tmp458 + tmp459;
-    const Scalar tmp461 = tmp453 + tmp457 + tmp460;
-    const Scalar tmp462 = tmp446 + tmp448;
-    const Scalar tmp463 = tmp441 + tmp444 + tmp462;
-    const Scalar tmp464 = tmp452 + tmp456;
-    const Scalar tmp465 = tmp460 + tmp464;
-    const Scalar tmp466 = -tmp444;
-    const Scalar tmp467 = tmp441 + tmp449 + tmp466;
-    const Scalar tmp468 = tmp453 + tmp456;
-    const Scalar tmp469 = tmp458 - tmp459;
-    const Scalar tmp470 = tmp468 + tmp469;
-    const Scalar tmp471 = tmp442 + tmp462 + tmp466;
-    const Scalar tmp472 = tmp452 + tmp457 + tmp469;
-    const Scalar tmp473 = Scalar(2)*tmp15*tmp28*tmp450 + Scalar(2)*tmp15*tmp41*tmp461
-        + Scalar(2)*tmp15*tmp43*tmp463 + Scalar(2)*tmp15*tmp45*tmp465 + Scalar(2)*tmp15*tmp47*tmp467
-        + Scalar(2)*tmp15*tmp50*tmp470 + Scalar(2)*tmp15*tmp51*tmp471
-        + Scalar(2)*tmp15*tmp52*tmp472;
-    const Scalar tmp474 = tmp10*tmp3;
-    const Scalar tmp475 = tmp6*tmp474;
-    const Scalar tmp476 = -tmp475;
-    const Scalar tmp477 = tmp23*tmp474;
-    const Scalar tmp478 = -tmp477;
-    const Scalar tmp479 = d*tmp439;
-    const Scalar tmp480 = tmp4*tmp479;
-    const Scalar tmp481 = tmp18*tmp439;
-    const Scalar tmp482 = tmp4*tmp481;
-    const Scalar tmp483 = tmp480 + tmp482;
-    const Scalar tmp484 = tmp476 + tmp478 + tmp483;
-    const Scalar tmp485 = tmp33*tmp474;
-    const Scalar tmp486 = -tmp485;
-    const Scalar tmp487 = tmp2*tmp474;
-    const Scalar tmp488 = -tmp487;
-    const Scalar tmp489 = tmp1*tmp479;
-    const Scalar tmp490 = tmp1*tmp481;
-    const Scalar tmp491 = tmp489 + tmp490;
-    const Scalar tmp492 = tmp486 + tmp488 + tmp491;
-    const Scalar tmp493 = -tmp492;
-    const Scalar tmp494 = tmp475 + tmp477;
-    const Scalar tmp495 = tmp483 + tmp494;
-    const Scalar tmp496 = tmp485 + tmp487;
-    const Scalar tmp497 = tmp491 + tmp496;
-    const Scalar tmp498 = -tmp497;
-    const Scalar tmp499 = tmp489 - tmp490;
-    const Scalar tmp500 = tmp485 + tmp488 + tmp499;
-    const Scalar tmp501 = -tmp500;
-    const Scalar tmp502 = tmp480 - tmp482;
-    const Scalar tmp503 = tmp475 + tmp478 + tmp502;
-    const Scalar tmp504 = tmp486 + tmp487;
-    const Scalar tmp505 = tmp499 + tmp504;
-    const Scalar tmp506 = -tmp505;
-    const Scalar tmp507 = tmp476 + tmp477;
-    const Scalar tmp508 = tmp502 + tmp507;
-    const Scalar tmp509 = tmp15*tmp73*tmp450 + tmp15*tmp64*tmp461 + tmp15*tmp78*tmp463
-        + tmp15*tmp75*tmp465 + tmp15*tmp81*tmp467 + tmp15*tmp83*tmp470 + tmp15*tmp86*tmp471
-        + tmp15*tmp88*tmp472 + tmp15*tmp41*tmp484 + tmp15*tmp28*tmp493 + tmp15*tmp45*tmp495
-        + tmp15*tmp43*tmp498 + tmp15*tmp47*tmp501 + tmp15*tmp50*tmp503 + tmp15*tmp51*tmp506
-        + tmp15*tmp52*tmp508;
-    const Scalar tmp510 = tmp10*tmp439;
-    const Scalar tmp511 = tmp0*tmp510;
-    const Scalar tmp512 = tmp5*tmp510;
-    const Scalar tmp513 = -tmp512;
-    const Scalar tmp514 = tmp511 + tmp513;
-    const Scalar tmp515 = -tmp443 + tmp445;
-    const Scalar tmp516 = -tmp514 - tmp515;
-    const Scalar tmp517 = -tmp511;
-    const Scalar tmp518 = -tmp512 - tmp515 - tmp517;
-    const Scalar tmp519 = tmp511 + tmp512;
-    const Scalar tmp520 = tmp443 + tmp445;
-    const Scalar tmp521 = -tmp520 - tmp519;
-    const Scalar tmp522 = -tmp520 - tmp513 - tmp517;
-    const Scalar tmp523 = Scalar(2)*tmp101*tmp15*tmp521 + Scalar(2)*tmp102*tmp15*tmp522
-        + Scalar(2)*tmp15*tmp64*tmp484 + Scalar(2)*tmp15*tmp73*tmp493 + Scalar(2)*tmp15*tmp75*tmp495
-        + Scalar(2)*tmp15*tmp78*tmp498 + Scalar(2)*tmp15*tmp81*tmp501 + Scalar(2)*tmp15*tmp83*tmp503
-        + Scalar(2)*tmp15*tmp86*tmp506 + Scalar(2)*tmp15*tmp88*tmp508 + Scalar(2)*tmp15*tmp96*tmp516
-        + Scalar(2)*tmp15*tmp98*tmp518;
-    const Scalar tmp524 = -tmp10*tmp455;
-    const Scalar tmp525 = tmp524 + tmp452;
-    const Scalar tmp526 = -tmp525;
-    const Scalar tmp527 = tmp10*tmp447;
-    const Scalar tmp528 = tmp527 + tmp441;
-    const Scalar tmp529 = -tmp528;
-    const Scalar tmp530 = tmp524 + tmp453;
-    const Scalar tmp531 = -tmp530;
-    const Scalar tmp532 = tmp527 + tmp442;
-    const Scalar tmp533 = -tmp532;
-    const Scalar tmp534 = tmp15*tmp43*tmp525 + tmp15*tmp28*tmp526 + tmp15*tmp45*tmp528
-        + tmp15*tmp41*tmp529 + tmp15*tmp51*tmp530 + tmp15*tmp47*tmp531 + tmp15*tmp50*tmp532
-        + tmp15*tmp52*tmp533 + tmp106*tmp15*tmp450 + tmp109*tmp15*tmp461 + tmp105*tmp15*tmp463
-        + tmp108*tmp15*tmp465 + tmp111*tmp15*tmp467 + tmp112*tmp15*tmp470 + tmp110*tmp15*tmp471
-        + tmp113*tmp15*tmp472;
-    const Scalar tmp535 = tmp0*tmp474;
-    const Scalar tmp536 = tmp5*tmp474;
-    const Scalar tmp537 = tmp535 + tmp536;
-    const Scalar tmp538 = -tmp537;
-    const Scalar tmp539 = -tmp536;
-    const Scalar tmp540 = tmp535 + tmp539;
-    const Scalar tmp541 = -tmp540;
-    const Scalar tmp542 = tmp120*tmp15*tmp521 + tmp121*tmp15*tmp522 + tmp15*tmp78*tmp525
-        + tmp15*tmp73*tmp526 + tmp15*tmp75*tmp528 + tmp15*tmp64*tmp529 + tmp15*tmp86*tmp530
-        + tmp15*tmp81*tmp531 + tmp15*tmp83*tmp532 + tmp15*tmp88*tmp533 + tmp15*tmp98*tmp537
-        + tmp15*tmp96*tmp538 + tmp101*tmp15*tmp540 + tmp102*tmp15*tmp541 + tmp109*tmp15*tmp484
-        + tmp106*tmp15*tmp493 + tmp108*tmp15*tmp495 + tmp105*tmp15*tmp498 + tmp111*tmp15*tmp501
-        + tmp112*tmp15*tmp503 + tmp110*tmp15*tmp506 + tmp113*tmp15*tmp508 + tmp118*tmp15*tmp516
-        + tmp117*tmp15*tmp518;
-    const Scalar tmp543 = Scalar(2)*tmp105*tmp15*tmp525 + Scalar(2)*tmp106*tmp15*tmp526
-        + Scalar(2)*tmp108*tmp15*tmp528 + Scalar(2)*tmp109*tmp15*tmp529
-        + Scalar(2)*tmp110*tmp15*tmp530 + Scalar(2)*tmp111*tmp15*tmp531
-        + Scalar(2)*tmp112*tmp15*tmp532 + Scalar(2)*tmp113*tmp15*tmp533
-        + Scalar(2)*tmp117*tmp15*tmp537 + Scalar(2)*tmp118*tmp15*tmp538
-        + Scalar(2)*tmp120*tmp15*tmp540 + Scalar(2)*tmp121*tmp15*tmp541;
-    const Scalar tmp544 = tmp124*tmp521 + tmp124*tmp522 + tmp124*tmp516 + tmp124*tmp518;
-    const Scalar tmp545 = tmp124*tmp537 + tmp124*tmp538 + tmp124*tmp540 + tmp124*tmp541;
-    const Scalar tmp546 = tmp10*tmp451;
-    const Scalar tmp547 = tmp546 + tmp456;
-    const Scalar tmp548 = -tmp547;
-    const Scalar tmp549 = tmp10*tmp440;
-    const Scalar tmp550 = tmp527 + tmp549;
-    const Scalar tmp551 = tmp10*tmp447;
-    const Scalar tmp552 = tmp10*tmp440;
-    const Scalar tmp553 = tmp444 + tmp446;
-    const Scalar tmp554 = Scalar(2)*phi_dot*psi_dot*tmp548
-        + (-(phi_dot*phi_dot) - (psi_dot*psi_dot))*tmp550 - (theta_dot*theta_dot)*tmp551
-        - (theta_dot*theta_dot)*tmp552 + (-(phi_dot*phi_dot) - (theta_dot*theta_dot))*tmp553
-        + Scalar(2)*phi_dot*theta_dot*tmp492 + Scalar(2)*psi_dot*theta_dot*tmp507;
-    const Scalar tmp555 = -tmp504;
-    const Scalar tmp556 = tmp10*tmp451;
-    const Scalar tmp557 = tmp10*tmp454;
-    const Scalar tmp558 = psi_dot*tmp529 + phi_dot*tmp461 + theta_dot*tmp484;
-    const Scalar tmp559 = phi_dot*psi_dot*tmp529 + Scalar(2)*psi_dot*theta_dot*tmp555
-        + (theta_dot*theta_dot)*tmp556 + (theta_dot*theta_dot)*tmp557 + phi_dot*tmp558
-        + (theta_dot*theta_dot)*tmp460 - (psi_dot*psi_dot)*tmp464 + phi_dot*theta_dot*tmp484;
-    const Scalar tmp560 = -tmp507;
-    const Scalar tmp561 = -tmp552;
-    const Scalar tmp562 = -tmp551;
-    const Scalar tmp563 = -tmp549;
-    const Scalar tmp564 = -tmp527;
-    const Scalar tmp565 = Scalar(2)*phi_dot*psi_dot*tmp547 + (psi_dot*psi_dot)*tmp550
-        + (-(phi_dot*phi_dot) - (theta_dot*theta_dot))*tmp553 + Scalar(2)*psi_dot*theta_dot*tmp560
-        - (theta_dot*theta_dot)*tmp561 - (theta_dot*theta_dot)*tmp562 - (phi_dot*phi_dot)*tmp563
-        - (phi_dot*phi_dot)*tmp564 + Scalar(2)*phi_dot*theta_dot*tmp497;
-    const Scalar tmp566 = -tmp557;
-    const Scalar tmp567 = -tmp556;
-    const Scalar tmp568 = psi_dot*tmp528 + phi_dot*tmp465 + theta_dot*tmp495;
-    const Scalar tmp569 = phi_dot*psi_dot*tmp528 + (theta_dot*theta_dot)*tmp566
-        + (theta_dot*theta_dot)*tmp567 + phi_dot*tmp568 + (theta_dot*theta_dot)*tmp460
-        + (psi_dot*psi_dot)*tmp464 + phi_dot*theta_dot*tmp495 + Scalar(2)*psi_dot*theta_dot*tmp504;
-    const Scalar tmp570 = -tmp494;
-    const Scalar tmp571 = -tmp546;
-    const Scalar tmp572 = tmp571 + tmp456;
-    const Scalar tmp573 = -tmp572;
-    const Scalar tmp574 = tmp527 + tmp563;
-    const Scalar tmp575 = tmp446 + tmp466;
-    const Scalar tmp576 = -(theta_dot*theta_dot)*tmp551 - (theta_dot*theta_dot)*tmp561
-        + Scalar(2)*psi_dot*theta_dot*tmp570 + Scalar(2)*phi_dot*psi_dot*tmp573
-        + (-(phi_dot*phi_dot) - (psi_dot*psi_dot))*tmp574
-        + (-(phi_dot*phi_dot) - (theta_dot*theta_dot))*tmp575 + Scalar(2)*phi_dot*theta_dot*tmp500;
-    const Scalar tmp577 = psi_dot*tmp532 + phi_dot*tmp470 + theta_dot*tmp503;
-    const Scalar tmp578 = phi_dot*psi_dot*tmp532 + (theta_dot*theta_dot)*tmp556
-        + (theta_dot*theta_dot)*tmp566 + phi_dot*tmp577 + (psi_dot*psi_dot)*tmp468
-        + (theta_dot*theta_dot)*tmp469 + Scalar(2)*psi_dot*theta_dot*tmp496
-        + phi_dot*theta_dot*tmp503;
-    const Scalar tmp579 = -(phi_dot*phi_dot)*tmp549 - (theta_dot*theta_dot)*tmp552
-        - (theta_dot*theta_dot)*tmp562 - (phi_dot*phi_dot)*tmp564 + Scalar(2)*phi_dot*psi_dot*tmp572
-        + (psi_dot*psi_dot)*tmp574 + (-(phi_dot*phi_dot) - (theta_dot*theta_dot))*tmp575
-        + Scalar(2)*psi_dot*theta_dot*tmp494 + Scalar(2)*phi_dot*theta_dot*tmp505;
-    const Scalar tmp580 = -tmp496;
-    const Scalar tmp581 = psi_dot*tmp533 + phi_dot*tmp472 + theta_dot*tmp508;
-    const Scalar tmp582 = phi_dot*psi_dot*tmp533 + (theta_dot*theta_dot)*tmp557
-        + (theta_dot*theta_dot)*tmp567 + Scalar(2)*psi_dot*theta_dot*tmp580 + phi_dot*tmp581
-        - (psi_dot*psi_dot)*tmp468 + (theta_dot*theta_dot)*tmp469 + phi_dot*theta_dot*tmp508;
-    const Scalar tmp583 = tmp15*tmp41*tmp554 + tmp15*tmp28*tmp559 + tmp15*tmp45*tmp565
-        + tmp15*tmp43*tmp569 + tmp15*tmp50*tmp576 + tmp15*tmp47*tmp578 + tmp15*tmp52*tmp579
-        + tmp15*tmp51*tmp582 + tmp140*tmp15*tmp450 + tmp135*tmp15*tmp461 + tmp15*tmp150*tmp463
-        + tmp146*tmp15*tmp465 + tmp15*tmp159*tmp467 + tmp15*tmp157*tmp470 + tmp15*tmp163*tmp471
-        + tmp15*tmp160*tmp472;
-    const Scalar tmp584 = psi_dot*tmp538;
-    const Scalar tmp585 = -tmp514;
-    const Scalar tmp586 = tmp537 + tmp479 + tmp481;
-    const Scalar tmp587 = psi_dot*tmp584 + Scalar(2)*psi_dot*theta_dot*tmp585
-        - (theta_dot*theta_dot)*tmp586;
-    const Scalar tmp588 = psi_dot*tmp537;
-    const Scalar tmp589 = -tmp535 + tmp479;
-    const Scalar tmp590 = tmp539 + tmp589 + tmp481;
-    const Scalar tmp591 = psi_dot*tmp588 - (theta_dot*theta_dot)*tmp590
-        + Scalar(2)*psi_dot*theta_dot*tmp514;
-    const Scalar tmp592 = psi_dot*tmp541;
-    const Scalar tmp593 = -tmp481;
-    const Scalar tmp594 = tmp540 + tmp593 + tmp479;
-    const Scalar tmp595 = psi_dot*tmp592 - (theta_dot*theta_dot)*tmp594
-        + Scalar(2)*psi_dot*theta_dot*tmp519;
-    const Scalar tmp596 = psi_dot*tmp540;
-    const Scalar tmp597 = -tmp519;
-    const Scalar tmp598 = tmp536 + tmp589 + tmp593;
-    const Scalar tmp599 = psi_dot*tmp596 + Scalar(2)*psi_dot*theta_dot*tmp597
-        - (theta_dot*theta_dot)*tmp598;
-    const Scalar tmp600 = tmp15*tmp172*tmp521 + tmp15*tmp168*tmp522 + tmp15*tmp64*tmp554
-        + tmp15*tmp73*tmp559 + tmp15*tmp75*tmp565 + tmp15*tmp78*tmp569 + tmp15*tmp83*tmp576
-        + tmp15*tmp81*tmp578 + tmp15*tmp88*tmp579 + tmp15*tmp86*tmp582 + tmp102*tmp15*tmp587
-        + tmp101*tmp15*tmp591 + tmp15*tmp98*tmp595 + tmp15*tmp96*tmp599 + tmp135*tmp15*tmp484
-        + tmp140*tmp15*tmp493 + tmp146*tmp15*tmp495 + tmp15*tmp150*tmp498 + tmp15*tmp159*tmp501
-        + tmp15*tmp157*tmp503 + tmp15*tmp163*tmp506 + tmp15*tmp160*tmp508 + tmp15*tmp180*tmp516
-        + tmp15*tmp176*tmp518;
-    const Scalar tmp601 = tmp15*tmp150*tmp525 + tmp140*tmp15*tmp526 + tmp146*tmp15*tmp528
-        + tmp135*tmp15*tmp529 + tmp15*tmp163*tmp530 + tmp15*tmp159*tmp531 + tmp15*tmp157*tmp532
-        + tmp15*tmp160*tmp533 + tmp15*tmp176*tmp537 + tmp15*tmp180*tmp538 + tmp15*tmp172*tmp540
-        + tmp15*tmp168*tmp541 + tmp109*tmp15*tmp554 + tmp106*tmp15*tmp559 + tmp108*tmp15*tmp565
-        + tmp105*tmp15*tmp569 + tmp112*tmp15*tmp576 + tmp111*tmp15*tmp578 + tmp113*tmp15*tmp579
-        + tmp110*tmp15*tmp582 + tmp121*tmp15*tmp587 + tmp120*tmp15*tmp591 + tmp117*tmp15*tmp595
-        + tmp118*tmp15*tmp599;
-    const Scalar tmp602 = tmp544 + tmp600;
-    const Scalar tmp603 = tmp545 + tmp601;
-    const Scalar tmp604 = tmp1*tmp5;
-    const Scalar tmp605 = -tmp0;
-    const Scalar tmp606 = tmp4*tmp605;
-    const Scalar tmp607 = tmp3*tmp606;
-    const Scalar tmp608 = tmp604 + tmp607;
-    const Scalar tmp609 = -tmp10*tmp608;
-    const Scalar tmp610 = -tmp609;
-    const Scalar tmp611 = tmp4*tmp5;
-    const Scalar tmp612 = tmp3*tmp611;
-    const Scalar tmp613 = tmp612 - tmp1*tmp605;
-    const Scalar tmp614 = -tmp10*tmp613;
-    const Scalar tmp615 = -tmp614;
-    const Scalar tmp616 = tmp610 + tmp615;
-    const Scalar tmp617 = tmp3*tmp604;
-    const Scalar tmp618 = tmp617 + tmp606;
-    const Scalar tmp619 = -tmp10*tmp618;
-    const Scalar tmp620 = -tmp619;
-    const Scalar tmp621 = tmp1*tmp605;
-    const Scalar tmp622 = tmp3*tmp621;
-    const Scalar tmp623 = tmp611 - tmp622;
-    const Scalar tmp624 = tmp10*tmp623;
-    const Scalar tmp625 = -tmp624;
-    const Scalar tmp626 = tmp620 + tmp625;
-    const Scalar tmp627 = tmp609 + tmp614;
-    const Scalar tmp628 = tmp619 + tmp624;
-    const Scalar tmp629 = tmp609 + tmp615;
-    const Scalar tmp630 = tmp620 + tmp624;
-    const Scalar tmp631 = tmp610 + tmp614;
-    const Scalar tmp632 = tmp619 + tmp625;
-    const Scalar tmp633 = Scalar(2)*tmp15*tmp28*tmp616 + Scalar(2)*tmp15*tmp41*tmp626
-        + Scalar(2)*tmp15*tmp43*tmp627 + Scalar(2)*tmp15*tmp45*tmp628 + Scalar(2)*tmp15*tmp47*tmp629
-        + Scalar(2)*tmp15*tmp50*tmp630 + Scalar(2)*tmp15*tmp51*tmp631
-        + Scalar(2)*tmp15*tmp52*tmp632;
-    const Scalar tmp634 = tmp54*tmp606;
-    const Scalar tmp635 = -tmp634;
-    const Scalar tmp636 = tmp54*tmp611;
-    const Scalar tmp637 = -tmp636;
-    const Scalar tmp638 = tmp635 + tmp637;
-    const Scalar tmp639 = tmp54*tmp621;
-    const Scalar tmp640 = -tmp639;
-    const Scalar tmp641 = tmp54*tmp604;
-    const Scalar tmp642 = -tmp641;
-    const Scalar tmp643 = tmp640 + tmp642;
-    const Scalar tmp644 = -tmp643;
-    const Scalar tmp645 = tmp634 + tmp636;
-    const Scalar tmp646 = tmp639 + tmp641;
-    const Scalar tmp647 = -tmp646;
-    const Scalar tmp648 = tmp639 + tmp642;
-    const Scalar tmp649 = -tmp648;
-    const Scalar tmp650 = tmp634 + tmp637;
-    const Scalar tmp651 = tmp640 + tmp641;
-    const Scalar tmp652 = -tmp651;
-    const Scalar tmp653 = tmp635 + tmp636;
-    const Scalar tmp654 = tmp15*tmp73*tmp616 + tmp15*tmp64*tmp626 + tmp15*tmp78*tmp627
-        + tmp15*tmp75*tmp628 + tmp15*tmp81*tmp629 + tmp15*tmp83*tmp630 + tmp15*tmp86*tmp631
-        + tmp15*tmp88*tmp632 + tmp15*tmp41*tmp638 + tmp15*tmp28*tmp644 + tmp15*tmp45*tmp645
-        + tmp15*tmp43*tmp647 + tmp15*tmp47*tmp649 + tmp15*tmp50*tmp650 + tmp15*tmp51*tmp652
-        + tmp15*tmp52*tmp653;
-    const Scalar tmp655 = tmp90*tmp5;
-    const Scalar tmp656 = tmp90*tmp605;
-    const Scalar tmp657 = -tmp656;
-    const Scalar tmp658 = tmp655 + tmp657;
-    const Scalar tmp659 = -tmp658;
-    const Scalar tmp660 = -tmp655;
-    const Scalar tmp661 = -tmp656 - tmp660;
-    const Scalar tmp662 = tmp655 + tmp656;
-    const Scalar tmp663 = -tmp662;
-    const Scalar tmp664 = -tmp657 - tmp660;
-    const Scalar tmp665 = Scalar(2)*tmp101*tmp15*tmp663 + Scalar(2)*tmp102*tmp15*tmp664
-        + Scalar(2)*tmp15*tmp64*tmp638 + Scalar(2)*tmp15*tmp73*tmp644 + Scalar(2)*tmp15*tmp75*tmp645
-        + Scalar(2)*tmp15*tmp78*tmp647 + Scalar(2)*tmp15*tmp81*tmp649 + Scalar(2)*tmp15*tmp83*tmp650
-        + Scalar(2)*tmp15*tmp86*tmp652 + Scalar(2)*tmp15*tmp88*tmp653 + Scalar(2)*tmp15*tmp96*tmp659
-        + Scalar(2)*tmp15*tmp98*tmp661;
-    const Scalar tmp666 = -tmp10*tmp623;
-    const Scalar tmp667 = tmp666 + tmp619;
-    const Scalar tmp668 = -tmp667;
-    const Scalar tmp669 = tmp10*tmp613;
-    const Scalar tmp670 = tmp669 + tmp609;
-    const Scalar tmp671 = -tmp670;
-    const Scalar tmp672 = tmp666 + tmp620;
-    const Scalar tmp673 = -tmp672;
-    const Scalar tmp674 = tmp669 + tmp610;
-    const Scalar tmp675 = -tmp674;
-    const Scalar tmp676 = tmp15*tmp43*tmp667 + tmp15*tmp28*tmp668 + tmp15*tmp45*tmp670
-        + tmp15*tmp41*tmp671 + tmp15*tmp51*tmp672 + tmp15*tmp47*tmp673 + tmp15*tmp50*tmp674
-        + tmp15*tmp52*tmp675 + tmp106*tmp15*tmp616 + tmp109*tmp15*tmp626 + tmp105*tmp15*tmp627
-        + tmp108*tmp15*tmp628 + tmp111*tmp15*tmp629 + tmp112*tmp15*tmp630 + tmp110*tmp15*tmp631
-        + tmp113*tmp15*tmp632;
-    const Scalar tmp677 = tmp54*tmp5;
-    const Scalar tmp678 = tmp54*tmp605;
-    const Scalar tmp679 = tmp677 + tmp678;
-    const Scalar tmp680 = -tmp679;
-    const Scalar tmp681 = -tmp678;
-    const Scalar tmp682 = tmp677 + tmp681;
-    const Scalar tmp683 = -tmp682;
-    const Scalar tmp684 = tmp120*tmp15*tmp663 + tmp121*tmp15*tmp664 + tmp15*tmp78*tmp667
-        + tmp15*tmp73*tmp668 + tmp15*tmp75*tmp670 + tmp15*tmp64*tmp671 + tmp15*tmp86*tmp672
-        + tmp15*tmp81*tmp673 + tmp15*tmp83*tmp674 + tmp15*tmp88*tmp675 + tmp15*tmp98*tmp679
-        + tmp15*tmp96*tmp680 + tmp101*tmp15*tmp682 + tmp102*tmp15*tmp683 + tmp109*tmp15*tmp638
-        + tmp106*tmp15*tmp644 + tmp108*tmp15*tmp645 + tmp105*tmp15*tmp647 + tmp111*tmp15*tmp649
-        + tmp112*tmp15*tmp650 + tmp110*tmp15*tmp652 + tmp113*tmp15*tmp653 + tmp118*tmp15*tmp659
-        + tmp117*tmp15*tmp661;
-    const Scalar tmp685 = Scalar(2)*tmp105*tmp15*tmp667 + Scalar(2)*tmp106*tmp15*tmp668
-        + Scalar(2)*tmp108*tmp15*tmp670 + Scalar(2)*tmp109*tmp15*tmp671
-        + Scalar(2)*tmp110*tmp15*tmp672 + Scalar(2)*tmp111*tmp15*tmp673
-        + Scalar(2)*tmp112*tmp15*tmp674 + Scalar(2)*tmp113*tmp15*tmp675
-        + Scalar(2)*tmp117*tmp15*tmp679 + Scalar(2)*tmp118*tmp15*tmp680
-        + Scalar(2)*tmp120*tmp15*tmp682 + Scalar(2)*tmp121*tmp15*tmp683;
-    const Scalar tmp686 = tmp124*tmp663 + tmp124*tmp664 + tmp124*tmp659 + tmp124*tmp661;
-    const Scalar tmp687 = tmp124*tmp679 + tmp124*tmp680 + tmp124*tmp682 + tmp124*tmp683;
-    const Scalar tmp688 = tmp10*tmp618;
-    const Scalar tmp689 = tmp688 + tmp624;
-    const Scalar tmp690 = -tmp689;
-    const Scalar tmp691 = tmp10*tmp608;
-    const Scalar tmp692 = tmp669 + tmp691;
-    const Scalar tmp693 = tmp10*tmp612;
-    const Scalar tmp694 = tmp10*tmp607;
-    const Scalar tmp695 = Scalar(2)*phi_dot*psi_dot*tmp690
-        + (-(phi_dot*phi_dot) - (psi_dot*psi_dot))*tmp692 - (theta_dot*theta_dot)*tmp693
-        - (theta_dot*theta_dot)*tmp694 + Scalar(2)*phi_dot*theta_dot*tmp643
-        + Scalar(2)*psi_dot*theta_dot*tmp653;
-    const Scalar tmp696 = -tmp651;
-    const Scalar tmp697 = tmp10*tmp617;
-    const Scalar tmp698 = tmp10*tmp622;
-    const Scalar tmp699 = psi_dot*tmp671 + phi_dot*tmp626 + theta_dot*tmp638;
-    const Scalar tmp700 = phi_dot*psi_dot*tmp671 + Scalar(2)*psi_dot*theta_dot*tmp696
-        + (theta_dot*theta_dot)*tmp697 + (theta_dot*theta_dot)*tmp698 + phi_dot*tmp699
-        - (psi_dot*psi_dot)*tmp628 + phi_dot*theta_dot*tmp638;
-    const Scalar tmp701 = -tmp653;
-    const Scalar tmp702 = -tmp694;
-    const Scalar tmp703 = -tmp693;
-    const Scalar tmp704 = -tmp691;
-    const Scalar tmp705 = -tmp669;
-    const Scalar tmp706 = Scalar(2)*phi_dot*psi_dot*tmp689 + (psi_dot*psi_dot)*tmp692
-        + Scalar(2)*psi_dot*theta_dot*tmp701 - (theta_dot*theta_dot)*tmp702
-        - (theta_dot*theta_dot)*tmp703 - (phi_dot*phi_dot)*tmp704 - (phi_dot*phi_dot)*tmp705
-        + Scalar(2)*phi_dot*theta_dot*tmp646;
-    const Scalar tmp707 = -tmp698;
-    const Scalar tmp708 = -tmp697;
-    const Scalar tmp709 = psi_dot*tmp670 + phi_dot*tmp628 + theta_dot*tmp645;
-    const Scalar tmp710 = phi_dot*psi_dot*tmp670 + (theta_dot*theta_dot)*tmp707
-        + (theta_dot*theta_dot)*tmp708 + phi_dot*tmp709 + (psi_dot*psi_dot)*tmp628
-        + phi_dot*theta_dot*tmp645 + Scalar(2)*psi_dot*theta_dot*tmp651;
-    const Scalar tmp711 = -tmp645;
-    const Scalar tmp712 = -tmp688;
-    const Scalar tmp713 = tmp712 + tmp624;
-    const Scalar tmp714 = -tmp713;
-    const Scalar tmp715 = tmp669 + tmp704;
-    const Scalar tmp716 = -(theta_dot*theta_dot)*tmp693 - (theta_dot*theta_dot)*tmp702
-        + Scalar(2)*psi_dot*theta_dot*tmp711 + Scalar(2)*phi_dot*psi_dot*tmp714
-        + (-(phi_dot*phi_dot) - (psi_dot*psi_dot))*tmp715 + Scalar(2)*phi_dot*theta_dot*tmp648;
-    const Scalar tmp717 = psi_dot*tmp674 + phi_dot*tmp630 + theta_dot*tmp650;
-    const Scalar tmp718 = phi_dot*psi_dot*tmp674 + (theta_dot*theta_dot)*tmp697
-        + (theta_dot*theta_dot)*tmp707 + phi_dot*tmp717 + (psi_dot*psi_dot)*tmp630
-        + Scalar(2)*psi_dot*theta_dot*tmp646 + phi_dot*theta_dot*tmp650;
-    const Scalar tmp719 = -(phi_dot*phi_dot)*tmp691 - (theta_dot*theta_dot)*tmp694
-        - (theta_dot*theta_dot)*tmp703 - (phi_dot*phi_dot)*tmp705 + Scalar(2)*phi_dot*psi_dot*tmp713
-        + (psi_dot*psi_dot)*tmp715 + Scalar(2)*psi_dot*theta_dot*tmp645
-        + Scalar(2)*phi_dot*theta_dot*tmp651;
-    const Scalar tmp720 = -tmp646;
-    const Scalar tmp721 = psi_dot*tmp675 + phi_dot*tmp632 + theta_dot*tmp653;
-    const Scalar tmp722 = phi_dot*psi_dot*tmp675 + (theta_dot*theta_dot)*tmp698
-        + (theta_dot*theta_dot)*tmp708 + Scalar(2)*psi_dot*theta_dot*tmp720 + phi_dot*tmp721
-        - (psi_dot*psi_dot)*tmp630 + phi_dot*theta_dot*tmp653;
-    const Scalar tmp723 = tmp15*tmp41*tmp695 + tmp15*tmp28*tmp700 + tmp15*tmp45*tmp706
-        + tmp15*tmp43*tmp710 + tmp15*tmp50*tmp716 + tmp15*tmp47*tmp718 + tmp15*tmp52*tmp719
-        + tmp15*tmp51*tmp722 + tmp140*tmp15*tmp616 + tmp135*tmp15*tmp626 + tmp15*tmp150*tmp627
-        + tmp146*tmp15*tmp628 + tmp15*tmp159*tmp629 + tmp15*tmp157*tmp630 + tmp15*tmp163*tmp631
-        + tmp15*tmp160*tmp632;
-    const Scalar tmp724 = psi_dot*tmp680;
-    const Scalar tmp725 = -tmp658;
-    const Scalar tmp726 = psi_dot*tmp724 + Scalar(2)*psi_dot*theta_dot*tmp725
-        - (theta_dot*theta_dot)*tmp679;
-    const Scalar tmp727 = psi_dot*tmp679;
-    const Scalar tmp728 = -tmp677;
-    const Scalar tmp729 = tmp681 + tmp728;
-    const Scalar tmp730 = psi_dot*tmp727 - (theta_dot*theta_dot)*tmp729
-        + Scalar(2)*psi_dot*theta_dot*tmp658;
-    const Scalar tmp731 = psi_dot*tmp683;
-    const Scalar tmp732 = psi_dot*tmp731 - (theta_dot*theta_dot)*tmp682
-        + Scalar(2)*psi_dot*theta_dot*tmp662;
-    const Scalar tmp733 = psi_dot*tmp682;
-    const Scalar tmp734 = -tmp662;
-    const Scalar tmp735 = tmp678 + tmp728;
-    const Scalar tmp736 = psi_dot*tmp733 + Scalar(2)*psi_dot*theta_dot*tmp734
-        - (theta_dot*theta_dot)*tmp735;
-    const Scalar tmp737 = tmp15*tmp172*tmp663 + tmp15*tmp168*tmp664 + tmp15*tmp64*tmp695
-        + tmp15*tmp73*tmp700 + tmp15*tmp75*tmp706 + tmp15*tmp78*tmp710 + tmp15*tmp83*tmp716
-        + tmp15*tmp81*tmp718 + tmp15*tmp88*tmp719 + tmp15*tmp86*tmp722 + tmp102*tmp15*tmp726
-        + tmp101*tmp15*tmp730 + tmp15*tmp98*tmp732 + tmp15*tmp96*tmp736 + tmp135*tmp15*tmp638
-        + tmp140*tmp15*tmp644 + tmp146*tmp15*tmp645 + tmp15*tmp150*tmp647 + tmp15*tmp159*tmp649
-        + tmp15*tmp157*tmp650 + tmp15*tmp163*tmp652 + tmp15*tmp160*tmp653 + tmp15*tmp180*tmp659
-        + tmp15*tmp176*tmp661;
-    const Scalar tmp738 = tmp15*tmp150*tmp667 + tmp140*tmp15*tmp668 + tmp146*tmp15*tmp670
-        + tmp135*tmp15*tmp671 + tmp15*tmp163*tmp672 + tmp15*tmp159*tmp673 + tmp15*tmp157*tmp674
-        + tmp15*tmp160*tmp675 + tmp15*tmp176*tmp679 + tmp15*tmp180*tmp680 + tmp15*tmp172*tmp682
-        + tmp15*tmp168*tmp683 + tmp109*tmp15*tmp695 + tmp106*tmp15*tmp700 + tmp108*tmp15*tmp706
-        + tmp105*tmp15*tmp710 + tmp112*tmp15*tmp716 + tmp111*tmp15*tmp718 + tmp113*tmp15*tmp719
-        + tmp110*tmp15*tmp722 + tmp121*tmp15*tmp726 + tmp120*tmp15*tmp730 + tmp117*tmp15*tmp732
-        + tmp118*tmp15*tmp736;
-    const Scalar tmp739 = tmp686 + tmp737;
-    const Scalar tmp740 = tmp687 + tmp738;
-    const Scalar tmp741 = Scalar(2)*tmp129*psi_dot + Scalar(2)*tmp72*theta_dot
-        + Scalar(2)*phi_dot*(-tmp131 - tmp134);
-    const Scalar tmp742 = tmp139 + tmp109*psi_dot + tmp64*theta_dot + phi_dot*tmp41;
-    const Scalar tmp743 = Scalar(2)*tmp128*psi_dot + Scalar(2)*tmp77*theta_dot
-        + Scalar(2)*phi_dot*(-tmp134 - tmp144 - tmp145);
-    const Scalar tmp744 = tmp149 + tmp108*psi_dot + tmp75*theta_dot + phi_dot*tmp45;
-    const Scalar tmp745 = Scalar(2)*tmp154*psi_dot + Scalar(2)*tmp80*theta_dot
-        + Scalar(2)*phi_dot*(-tmp155 - tmp156);
-    const Scalar tmp746 = tmp158 + tmp112*psi_dot + tmp83*theta_dot + phi_dot*tmp50;
-    const Scalar tmp747 = Scalar(2)*tmp153*psi_dot + Scalar(2)*tmp85*theta_dot
-        + Scalar(2)*phi_dot*(-tmp130 - tmp145 - tmp156);
-    const Scalar tmp748 = tmp162 + tmp113*psi_dot + tmp88*theta_dot + phi_dot*tmp52;
-    const Scalar tmp749 = tmp15*tmp41*tmp741 + tmp15*tmp28*tmp742 + tmp15*tmp45*tmp743
-        + tmp15*tmp43*tmp744 + tmp15*tmp50*tmp745 + tmp15*tmp47*tmp746 + tmp15*tmp52*tmp747
-        + tmp15*tmp51*tmp748;
-    const Scalar tmp750 = tmp15*tmp64*tmp741 + tmp15*tmp73*tmp742 + tmp15*tmp75*tmp743
-        + tmp15*tmp78*tmp744 + tmp15*tmp83*tmp745 + tmp15*tmp81*tmp746 + tmp15*tmp88*tmp747
-        + tmp15*tmp86*tmp748;
-    const Scalar tmp751 = tmp109*tmp15*tmp741 + tmp106*tmp15*tmp742 + tmp108*tmp15*tmp743
-        + tmp105*tmp15*tmp744 + tmp112*tmp15*tmp745 + tmp111*tmp15*tmp746 + tmp113*tmp15*tmp747
-        + tmp110*tmp15*tmp748;
-    const Scalar tmp752 = Scalar(2)*tmp72*phi_dot + Scalar(2)*tmp87*psi_dot
-        + Scalar(2)*theta_dot*(-tmp132 - tmp133 - tmp134);
-    const Scalar tmp753 = tmp64*phi_dot + Scalar(2)*tmp136*psi_dot
-        + Scalar(2)*theta_dot*(tmp137 + tmp138 + tmp40) + phi_dot*tmp64;
-    const Scalar tmp754 = Scalar(2)*tmp141*psi_dot + Scalar(2)*tmp77*phi_dot
-        + Scalar(2)*theta_dot*(-tmp134 - tmp142 - tmp143);
-    const Scalar tmp755 = tmp75*phi_dot + Scalar(2)*tmp84*psi_dot
-        + Scalar(2)*theta_dot*(tmp147 + tmp148 + tmp40) + phi_dot*tmp75;
-    const Scalar tmp756 = Scalar(2)*tmp151*psi_dot + Scalar(2)*tmp80*phi_dot
-        + Scalar(2)*theta_dot*(-tmp132 - tmp142 - tmp156);
-    const Scalar tmp757 = tmp83*phi_dot + Scalar(2)*tmp76*psi_dot
-        + Scalar(2)*theta_dot*(tmp137 + tmp147 + tmp49) + phi_dot*tmp83;
-    const Scalar tmp758 = Scalar(2)*tmp74*psi_dot + Scalar(2)*tmp85*phi_dot
-        + Scalar(2)*theta_dot*(-tmp133 - tmp143 - tmp156);
-    const Scalar tmp759 = tmp88*phi_dot + Scalar(2)*tmp161*psi_dot
-        + Scalar(2)*theta_dot*(tmp138 + tmp148 + tmp49) + phi_dot*tmp88;
-    const Scalar tmp760 = tmp15*tmp41*tmp752 + tmp15*tmp28*tmp753 + tmp15*tmp45*tmp754
-        + tmp15*tmp43*tmp755 + tmp15*tmp50*tmp756 + tmp15*tmp47*tmp757 + tmp15*tmp52*tmp758
-        + tmp15*tmp51*tmp759;
-    const Scalar tmp761 = -Scalar(2)*tmp167*theta_dot + Scalar(2)*tmp166*psi_dot;
-    const Scalar tmp762 = -Scalar(2)*tmp171*theta_dot + Scalar(2)*tmp94*psi_dot;
-    const Scalar tmp763 = -Scalar(2)*tmp175*theta_dot + Scalar(2)*tmp99*psi_dot;
-    const Scalar tmp764 = -Scalar(2)*tmp179*theta_dot + Scalar(2)*tmp178*psi_dot;
-    const Scalar tmp765 = tmp15*tmp64*tmp752 + tmp15*tmp73*tmp753 + tmp15*tmp75*tmp754
-        + tmp15*tmp78*tmp755 + tmp15*tmp83*tmp756 + tmp15*tmp81*tmp757 + tmp15*tmp88*tmp758
-        + tmp15*tmp86*tmp759 + tmp102*tmp15*tmp761 + tmp101*tmp15*tmp762 + tmp15*tmp98*tmp763
-        + tmp15*tmp96*tmp764;
-    const Scalar tmp766 = tmp109*tmp15*tmp752 + tmp106*tmp15*tmp753 + tmp108*tmp15*tmp754
-        + tmp105*tmp15*tmp755 + tmp112*tmp15*tmp756 + tmp111*tmp15*tmp757 + tmp113*tmp15*tmp758
-        + tmp110*tmp15*tmp759 + tmp121*tmp15*tmp761 + tmp120*tmp15*tmp762 + tmp117*tmp15*tmp763
-        + tmp118*tmp15*tmp764;
-    const Scalar tmp767 = -Scalar(2)*tmp131*psi_dot + Scalar(2)*tmp129*phi_dot
-        + Scalar(2)*tmp87*theta_dot;
-    const Scalar tmp768 = tmp109*phi_dot - Scalar(2)*tmp44*psi_dot + Scalar(2)*tmp136*theta_dot
-        + phi_dot*tmp109;
-    const Scalar tmp769 = Scalar(2)*tmp128*phi_dot + Scalar(2)*tmp131*psi_dot
-        + Scalar(2)*tmp141*theta_dot;
-    const Scalar tmp770 = tmp108*phi_dot + Scalar(2)*tmp44*psi_dot + Scalar(2)*tmp84*theta_dot
-        + phi_dot*tmp108;
-    const Scalar tmp771 = -Scalar(2)*tmp155*psi_dot + Scalar(2)*tmp151*theta_dot
-        + Scalar(2)*tmp154*phi_dot;
-    const Scalar tmp772 = tmp112*phi_dot + Scalar(2)*tmp48*psi_dot + Scalar(2)*tmp76*theta_dot
-        + phi_dot*tmp112;
-    const Scalar tmp773 = Scalar(2)*tmp153*phi_dot + Scalar(2)*tmp155*psi_dot
-        + Scalar(2)*tmp74*theta_dot;
-    const Scalar tmp774 = tmp113*phi_dot - Scalar(2)*tmp48*psi_dot + Scalar(2)*tmp161*theta_dot
-        + phi_dot*tmp113;
-    const Scalar tmp775 = tmp15*tmp41*tmp767 + tmp15*tmp28*tmp768 + tmp15*tmp45*tmp769
-        + tmp15*tmp43*tmp770 + tmp15*tmp50*tmp771 + tmp15*tmp47*tmp772 + tmp15*tmp52*tmp773
-        + tmp15*tmp51*tmp774;
-    const Scalar tmp776 = tmp165 + Scalar(2)*tmp166*theta_dot + psi_dot*tmp118;
-    const Scalar tmp777 = tmp169 + Scalar(2)*tmp94*theta_dot + psi_dot*tmp117;
-    const Scalar tmp778 = tmp173 + Scalar(2)*tmp99*theta_dot + psi_dot*tmp121;
-    const Scalar tmp779 = tmp177 + Scalar(2)*tmp178*theta_dot + psi_dot*tmp120;
-    const Scalar tmp780 = tmp15*tmp64*tmp767 + tmp15*tmp73*tmp768 + tmp15*tmp75*tmp769
-        + tmp15*tmp78*tmp770 + tmp15*tmp83*tmp771 + tmp15*tmp81*tmp772 + tmp15*tmp88*tmp773
-        + tmp15*tmp86*tmp774 + tmp102*tmp15*tmp776 + tmp101*tmp15*tmp777 + tmp15*tmp98*tmp778
-        + tmp15*tmp96*tmp779;
-    const Scalar tmp781 = tmp109*tmp15*tmp767 + tmp106*tmp15*tmp768 + tmp108*tmp15*tmp769
-        + tmp105*tmp15*tmp770 + tmp112*tmp15*tmp771 + tmp111*tmp15*tmp772 + tmp113*tmp15*tmp773
-        + tmp110*tmp15*tmp774 + tmp121*tmp15*tmp776 + tmp120*tmp15*tmp777 + tmp117*tmp15*tmp778
-        + tmp118*tmp15*tmp779;
-    (*dr_dq)(0, 0) = psi_ddot*tmp396 + tmp436 + phi_ddot*tmp351 + theta_ddot*tmp384;
-    (*dr_dq)(0, 1) = psi_ddot*tmp534 + tmp583 + phi_ddot*tmp473 + theta_ddot*tmp509;
-    (*dr_dq)(0, 2) = psi_ddot*tmp676 + tmp723 + phi_ddot*tmp633 + theta_ddot*tmp654;
-    (*dr_dq)(1, 0) = theta_ddot*tmp385 + psi_ddot*tmp397 + tmp437 + phi_ddot*tmp384;
-    (*dr_dq)(1, 1) = theta_ddot*tmp523 + psi_ddot*tmp542 + tmp602 + phi_ddot*tmp509;
-    (*dr_dq)(1, 2) = theta_ddot*tmp665 + psi_ddot*tmp684 + tmp739 + phi_ddot*tmp654;
-    (*dr_dq)(2, 0) = phi_ddot*tmp396 + theta_ddot*tmp397 + psi_ddot*tmp398 + tmp438;
-    (*dr_dq)(2, 1) = phi_ddot*tmp534 + theta_ddot*tmp542 + psi_ddot*tmp543 + tmp603;
-    (*dr_dq)(2, 2) = phi_ddot*tmp676 + theta_ddot*tmp684 + psi_ddot*tmp685 + tmp740;
-    (*dr_dv)(0, 0) = tmp749;
-    (*dr_dv)(0, 1) = tmp760;
-    (*dr_dv)(0, 2) = tmp775;
-    (*dr_dv)(1, 0) = tmp750;
-    (*dr_dv)(1, 1) = tmp765;
-    (*dr_dv)(1, 2) = tmp780;
-    (*dr_dv)(2, 0) = tmp751;
-    (*dr_dv)(2, 1) = tmp766;
-    (*dr_dv)(2, 2) = tmp781;
+    const Scalar tmp427 = tmp21*tmp419;
+    const Scalar tmp428 = -tmp427;
+    const Scalar tmp429 = Scalar(2)*tmp32*tmp428;
+    const Scalar tmp430 = Scalar(2)*tmp11*tmp20*tmp421 + tmp11*tmp424 + Scalar(2)*tmp11*tmp29*tmp426
+        + tmp11*tmp429 + (tmp13 + tmp0*m)*tmp417 + (tmp13 + tmp0*m)*tmp418;
+    const Scalar tmp431 = tmp22*tmp16;
+    const Scalar tmp432 = tmp18*tmp16;
+    const Scalar tmp433 = tmp15*tmp16;
+    const Scalar tmp434 = tmp21*tmp16;
+    const Scalar tmp435 = tmp11*tmp35*tmp421 - tmp11*tmp36*tmp423 - tmp11*tmp38*tmp426
+        + tmp11*tmp37*tmp428 + tmp11*tmp20*tmp431 - tmp11*tmp25*tmp432 + tmp11*tmp32*tmp433
+        - tmp11*tmp29*tmp434;
+    const Scalar tmp436 = tmp0*tmp416;
+    const Scalar tmp437 = Scalar(2)*tmp16*tmp419;
+    const Scalar tmp438 = tmp2*tmp437;
+    const Scalar tmp439 = tmp7*tmp437;
+    const Scalar tmp440 = tmp13*tmp416 + m*tmp436 + (tmp11*tmp44 + tmp11*tmp45)*tmp437
+        + (tmp13 + tmp0*m)*tmp438 + (tmp13 + tmp0*m)*tmp439 + (tmp11*tmp44 + tmp11*tmp45)*tmp417
+        + (tmp11*tmp44 + tmp11*tmp45)*tmp418;
+    const Scalar tmp441 = -tmp421;
+    const Scalar tmp442 = tmp32*tmp423 + tmp25*tmp428;
+    const Scalar tmp443 = tmp11*tmp28*tmp421 + tmp11*tmp20*tmp425 + tmp11*tmp47*tmp426
+        + tmp11*tmp29*tmp441 + Scalar(2)*tmp11*tmp442;
+    const Scalar tmp444 = tmp3*tmp419 + tmp16*tmp16;
+    const Scalar tmp446 = tmp11*tmp37*tmp423 + tmp1*tmp11*tmp17*tmp3*tmp425
+        + tmp1*tmp11*tmp17*tmp28*tmp16 - tmp11*tmp36*tmp428 - tmp11*tmp32*tmp432
+        + tmp11*tmp25*tmp433 - tmp11*tmp47*tmp434 - tmp11*tmp38*tmp441;
+    const Scalar tmp447 = tmp11*tmp424 + Scalar(2)*tmp11*tmp28*tmp425 + tmp11*tmp429
+        + (tmp11*tmp44 + tmp11*tmp45)*tmp416 + Scalar(2)*tmp11*tmp47*tmp441;
+    const Scalar tmp448 = d*tmp16;
+    const Scalar tmp449 = tmp55*tmp448;
+    const Scalar tmp450 = tmp6*tmp448;
+    const Scalar tmp451 = d*tmp419;
+    const Scalar tmp452 = tmp1*tmp451;
+    const Scalar tmp453 = phi_dot*tmp450 + theta_dot*tmp452;
+    const Scalar tmp454 = (theta_dot*theta_dot)*tmp450 + phi_dot*theta_dot*tmp452 + phi_dot*tmp453;
+    const Scalar tmp455 = tmp1*tmp448;
+    const Scalar tmp456 = -tmp6*d*theta_dot*tmp419 + phi_dot*tmp455;
+    const Scalar tmp457 = tmp6*tmp451;
+    const Scalar tmp458 = -(theta_dot*theta_dot)*tmp455 - phi_dot*tmp456 + phi_dot*theta_dot*tmp457;
+    const Scalar tmp459 = tmp6*tmp16;
+    const Scalar tmp460 = tmp1*tmp419;
+    const Scalar tmp461 = phi_dot*tmp459 + theta_dot*tmp460;
+    const Scalar tmp462 = (theta_dot*theta_dot)*tmp459 + phi_dot*theta_dot*tmp460 + phi_dot*tmp461;
+    const Scalar tmp463 = tmp1*tmp16;
+    const Scalar tmp464 = -tmp6*theta_dot*tmp419 + phi_dot*tmp463;
+    const Scalar tmp465 = tmp6*tmp419;
+    const Scalar tmp466 = -(theta_dot*theta_dot)*tmp463 - phi_dot*tmp464 + phi_dot*theta_dot*tmp465;
+    const Scalar tmp467 = theta_dot*tmp432;
+    const Scalar tmp468 = theta_dot*tmp433;
+    const Scalar tmp469 = ((phi_dot*phi_dot) + (psi_dot*psi_dot) + (theta_dot*theta_dot))*tmp422
+        + Scalar(2)*phi_dot*psi_dot*tmp427 + phi_dot*theta_dot*tmp432 - psi_dot*theta_dot*tmp433
+        + phi_dot*tmp467 - psi_dot*tmp468;
+    const Scalar tmp470 = phi_dot*tmp421 + psi_dot*tmp425 + theta_dot*tmp431;
+    const Scalar tmp471 = theta_dot*tmp434;
+    const Scalar tmp472 = psi_dot*tmp421 + phi_dot*tmp425 + tmp471;
+    const Scalar tmp473 = -(theta_dot*theta_dot)*tmp420 + phi_dot*theta_dot*tmp431
+        + psi_dot*theta_dot*tmp434 + phi_dot*tmp470 + psi_dot*tmp472;
+    const Scalar tmp474 = (theta_dot*theta_dot)*tmp425 + psi_dot*theta_dot*tmp431
+        + phi_dot*theta_dot*tmp434 + psi_dot*tmp470 + phi_dot*tmp472;
+    const Scalar tmp475 = psi_dot*tmp423 + phi_dot*tmp428 + tmp468;
+    const Scalar tmp476 = phi_dot*tmp423 + psi_dot*tmp428 - tmp467;
+    const Scalar tmp477 = tmp1*tmp14*phi_dot*theta_dot*tmp16 - (theta_dot*theta_dot)*tmp427
+        - psi_dot*theta_dot*tmp432 + phi_dot*tmp475 + psi_dot*tmp476;
+    const Scalar tmp478 = tmp11*tmp76*tmp421 + tmp11*tmp80*tmp423 + tmp11*tmp84*tmp426
+        + tmp11*tmp81*tmp428 + tmp65*m*tmp450 + tmp62*m*tmp454 + tmp61*m*tmp455 + tmp57*m*tmp458
+        + tmp13*tmp73*tmp459 + tmp13*tmp70*tmp462 + tmp13*tmp69*tmp463 + tmp13*tmp66*tmp466
+        + tmp11*tmp20*tmp469 + tmp11*tmp25*tmp473 + tmp11*tmp32*tmp474 + tmp11*tmp29*tmp477;
+    const Scalar tmp479 = tmp86*tmp444;
+    const Scalar tmp480 = tmp17*tmp16;
+    const Scalar tmp481 = tmp14*tmp419;
+    const Scalar tmp482 = psi_dot*tmp480 + theta_dot*tmp481;
+    const Scalar tmp483 = -(theta_dot*theta_dot)*tmp480 - psi_dot*theta_dot*tmp481 - psi_dot*tmp482;
+    const Scalar tmp484 = tmp17*tmp419;
+    const Scalar tmp485 = tmp14*tmp16;
+    const Scalar tmp486 = tmp17*theta_dot*tmp419 - psi_dot*tmp485;
+    const Scalar tmp487 = psi_dot*theta_dot*tmp484 - (theta_dot*theta_dot)*tmp485 + psi_dot*tmp486;
+    const Scalar tmp488 = tmp11*tmp76*tmp431 - tmp11*tmp80*tmp432 + tmp11*tmp81*tmp433
+        - tmp11*tmp84*tmp434 + tmp65*m*tmp452 - tmp64*m*tmp454 - tmp61*m*tmp457 + tmp59*m*tmp458
+        + tmp13*tmp73*tmp460 - tmp13*tmp72*tmp462 - tmp13*tmp69*tmp465 + tmp13*tmp67*tmp466
+        + tmp11*tmp35*tmp469 - tmp11*tmp36*tmp473 + tmp11*tmp37*tmp474 - tmp11*tmp38*tmp477
+        + (tmp13 + tmp0*m)*tmp479 + tmp11*tmp95*tmp481 + tmp11*tmp92*tmp483 + tmp11*tmp91*tmp484
+        + tmp11*tmp89*tmp487;
+    const Scalar tmp489 = tmp11*tmp81*tmp423 + tmp11*tmp76*tmp425 + tmp11*tmp80*tmp428
+        + tmp11*tmp84*tmp441 + tmp11*tmp28*tmp469 + tmp11*tmp32*tmp473 + tmp11*tmp25*tmp474
+        + tmp11*tmp47*tmp477 + tmp11*tmp95*tmp480 - tmp11*tmp93*tmp483 - tmp11*tmp91*tmp485
+        + tmp11*tmp88*tmp487;
+    const Scalar tmp490 = -tmp449 + tmp488;
+    const Scalar tmp491 = tmp1*tmp17;
+    const Scalar tmp492 = -tmp14;
+    const Scalar tmp493 = tmp6*tmp492;
+    const Scalar tmp494 = tmp16*tmp493;
+    const Scalar tmp495 = tmp491 - tmp494;
+    const Scalar tmp496 = tmp6*tmp17;
+    const Scalar tmp497 = tmp1*tmp492;
+    const Scalar tmp498 = tmp16*tmp497;
+    const Scalar tmp499 = tmp496 + tmp498;
+    const Scalar tmp500 = -tmp499;
+    const Scalar tmp501 = Scalar(2)*tmp25*tmp500;
+    const Scalar tmp502 = tmp16*tmp491;
+    const Scalar tmp503 = -tmp6*tmp492 + tmp502;
+    const Scalar tmp504 = -tmp503;
+    const Scalar tmp505 = tmp16*tmp496;
+    const Scalar tmp506 = tmp497 + tmp505;
+    const Scalar tmp507 = -tmp506;
+    const Scalar tmp508 = Scalar(2)*tmp32*tmp507;
+    const Scalar tmp509 = Scalar(2)*tmp11*tmp20*tmp495 + tmp11*tmp501 + Scalar(2)*tmp11*tmp29*tmp504
+        + tmp11*tmp508;
+    const Scalar tmp510 = tmp3*tmp497;
+    const Scalar tmp511 = tmp3*tmp493;
+    const Scalar tmp512 = tmp3*tmp491;
+    const Scalar tmp513 = tmp3*tmp496;
+    const Scalar tmp514 = tmp11*tmp35*tmp495 - tmp11*tmp36*tmp500 - tmp11*tmp38*tmp504
+        + tmp11*tmp37*tmp507 + tmp11*tmp20*tmp510 - tmp11*tmp25*tmp511 + tmp11*tmp32*tmp512
+        - tmp11*tmp29*tmp513;
+    const Scalar tmp515 = Scalar(2)*tmp14*tmp17;
+    const Scalar tmp516 = Scalar(2)*tmp17*tmp492;
+    const Scalar tmp517 = tmp11*(tmp41 + tmp5 + tmp8)*tmp515 + tmp11*(tmp41 + tmp5 + tmp8)*tmp516;
+    const Scalar tmp518 = -tmp495;
+    const Scalar tmp519 = tmp32*tmp500 + tmp25*tmp507;
+    const Scalar tmp520 = tmp11*tmp28*tmp495 + tmp11*tmp20*tmp503 + tmp11*tmp47*tmp504
+        + tmp11*tmp29*tmp518 + Scalar(2)*tmp11*tmp519;
+    const Scalar tmp522 = tmp1*tmp11*tmp28*tmp3*tmp492 + tmp11*tmp37*tmp500
+        + tmp1*tmp11*tmp17*tmp3*tmp503 - tmp11*tmp36*tmp507 - tmp11*tmp32*tmp511
+        + tmp11*tmp25*tmp512 - tmp11*tmp47*tmp513 - tmp11*tmp38*tmp518;
+    const Scalar tmp523 = tmp11*tmp501 + Scalar(2)*tmp11*tmp28*tmp503 + tmp11*tmp508
+        + tmp11*tmp4*tmp515 + tmp11*tmp4*tmp516 + Scalar(2)*tmp11*tmp47*tmp518;
+    const Scalar tmp524 = theta_dot*tmp511;
+    const Scalar tmp525 = theta_dot*tmp512;
+    const Scalar tmp526 = (theta_dot*theta_dot)*tmp498
+        + ((phi_dot*phi_dot) + (psi_dot*psi_dot))*tmp499 + Scalar(2)*phi_dot*psi_dot*tmp506
+        + phi_dot*theta_dot*tmp511 - psi_dot*theta_dot*tmp512 + phi_dot*tmp524 - psi_dot*tmp525;
+    const Scalar tmp527 = phi_dot*tmp495 + psi_dot*tmp503 + theta_dot*tmp510;
+    const Scalar tmp528 = theta_dot*tmp513;
+    const Scalar tmp529 = psi_dot*tmp495 + phi_dot*tmp503 + tmp528;
+    const Scalar tmp530 = -(theta_dot*theta_dot)*tmp494 + phi_dot*theta_dot*tmp510
+        + psi_dot*theta_dot*tmp513 + phi_dot*tmp527 + psi_dot*tmp529;
+    const Scalar tmp531 = (theta_dot*theta_dot)*tmp502 + psi_dot*theta_dot*tmp510
+        + phi_dot*theta_dot*tmp513 + psi_dot*tmp527 + phi_dot*tmp529;
+    const Scalar tmp532 = psi_dot*tmp500 + phi_dot*tmp507 + tmp525;
+    const Scalar tmp533 = phi_dot*tmp500 + psi_dot*tmp507 - tmp524;
+    const Scalar tmp534 = tmp1*tmp3*phi_dot*theta_dot*tmp17 - (theta_dot*theta_dot)*tmp505
+        - psi_dot*theta_dot*tmp511 + phi_dot*tmp532 + psi_dot*tmp533;
+    const Scalar tmp535 = tmp11*tmp76*tmp495 + tmp11*tmp80*tmp500 + tmp11*tmp84*tmp504
+        + tmp11*tmp81*tmp507 + tmp11*tmp20*tmp526 + tmp11*tmp25*tmp530 + tmp11*tmp32*tmp531
+        + tmp11*tmp29*tmp534;
+    const Scalar tmp536 = tmp3*tmp492;
+    const Scalar tmp537 = tmp16*tmp17;
+    const Scalar tmp538 = psi_dot*tmp536 + theta_dot*tmp537;
+    const Scalar tmp539 = -(theta_dot*theta_dot)*tmp536 - psi_dot*theta_dot*tmp537 - psi_dot*tmp538;
+    const Scalar tmp540 = tmp16*tmp492;
+    const Scalar tmp541 = tmp3*tmp17;
+    const Scalar tmp542 = tmp16*theta_dot*tmp492 - psi_dot*tmp541;
+    const Scalar tmp543 = psi_dot*theta_dot*tmp540 - (theta_dot*theta_dot)*tmp541 + psi_dot*tmp542;
+    const Scalar tmp544 = tmp11*tmp76*tmp510 - tmp11*tmp80*tmp511 + tmp11*tmp81*tmp512
+        - tmp11*tmp84*tmp513 + tmp11*tmp35*tmp526 - tmp11*tmp36*tmp530 + tmp11*tmp37*tmp531
+        - tmp11*tmp38*tmp534 + tmp11*tmp95*tmp537 + tmp11*tmp92*tmp539 + tmp11*tmp91*tmp540
+        + tmp11*tmp89*tmp543;
+    const Scalar tmp545 = tmp11*tmp81*tmp500 + tmp11*tmp76*tmp503 + tmp11*tmp80*tmp507
+        + tmp11*tmp84*tmp518 + tmp11*tmp28*tmp526 + tmp11*tmp32*tmp530 + tmp11*tmp25*tmp531
+        + tmp11*tmp47*tmp534 + tmp11*tmp95*tmp536 - tmp11*tmp93*tmp539 - tmp11*tmp91*tmp541
+        + tmp11*tmp88*tmp543;
+    const Scalar tmp546 = tmp60 + tmp59*theta_dot + phi_dot*tmp57;
+    const Scalar tmp547 = -tmp63 + tmp64*theta_dot - phi_dot*tmp62;
+    const Scalar tmp548 = tmp68 + tmp67*theta_dot + phi_dot*tmp66;
+    const Scalar tmp549 = -tmp71 + tmp72*theta_dot - phi_dot*tmp70;
+    const Scalar tmp550 = tmp74 + tmp36*theta_dot + Scalar(2)*tmp24*phi_dot
+        + Scalar(2)*tmp31*psi_dot;
+    const Scalar tmp551 = tmp77 + tmp35*theta_dot + phi_dot*tmp20 + psi_dot*tmp28;
+    const Scalar tmp552 = tmp79 + tmp38*theta_dot + psi_dot*tmp20 + phi_dot*tmp28;
+    const Scalar tmp553 = tmp82 + tmp1*tmp14*tmp3*theta_dot + phi_dot*tmp32 + psi_dot*tmp25;
+    const Scalar tmp554 = tmp62*m*tmp546 + tmp57*m*tmp547 + tmp13*tmp70*tmp548 + tmp13*tmp66*tmp549
+        + tmp11*tmp20*tmp550 + tmp11*tmp25*tmp551 + tmp11*tmp32*tmp552 + tmp11*tmp29*tmp553;
+    const Scalar tmp555 = -tmp64*m*tmp546 + tmp59*m*tmp547 - tmp13*tmp72*tmp548 + tmp13*tmp67*tmp549
+        + tmp11*tmp35*tmp550 - tmp11*tmp36*tmp551 + tmp11*tmp37*tmp552 - tmp11*tmp38*tmp553;
+    const Scalar tmp556 = tmp11*tmp28*tmp550 + tmp11*tmp32*tmp551 + tmp11*tmp25*tmp552
+        + tmp11*tmp47*tmp553;
+    const Scalar tmp557 = tmp59*phi_dot + Scalar(2)*tmp57*theta_dot + phi_dot*tmp59;
+    const Scalar tmp558 = -tmp16*tmp6*d;
+    const Scalar tmp559 = tmp64*phi_dot - Scalar(2)*tmp62*theta_dot - phi_dot*tmp558;
+    const Scalar tmp560 = tmp67*phi_dot + Scalar(2)*tmp66*theta_dot + phi_dot*tmp67;
+    const Scalar tmp561 = -tmp16*tmp6;
+    const Scalar tmp562 = tmp72*phi_dot - Scalar(2)*tmp70*theta_dot - phi_dot*tmp561;
+    const Scalar tmp563 = tmp36*phi_dot - tmp37*psi_dot + Scalar(2)*tmp23*theta_dot + phi_dot*tmp36
+        - psi_dot*tmp37;
+    const Scalar tmp564 = tmp35*phi_dot + tmp38*psi_dot - Scalar(2)*tmp19*theta_dot + phi_dot*tmp35
+        + psi_dot*tmp38;
+    const Scalar tmp565 = tmp35*psi_dot + tmp38*phi_dot + Scalar(2)*tmp27*theta_dot + psi_dot*tmp35
+        + phi_dot*tmp38;
+    const Scalar tmp566 = -tmp36;
+    const Scalar tmp567 = -tmp36*psi_dot - Scalar(2)*tmp30*theta_dot + tmp1*tmp14*tmp3*phi_dot
+        + phi_dot*tmp37 + psi_dot*tmp566;
+    const Scalar tmp568 = tmp62*m*tmp557 + tmp57*m*tmp559 + tmp13*tmp70*tmp560 + tmp13*tmp66*tmp562
+        + tmp11*tmp20*tmp563 + tmp11*tmp25*tmp564 + tmp11*tmp32*tmp565 + tmp11*tmp29*tmp567;
+    const Scalar tmp569 = Scalar(2)*theta_dot;
+    const Scalar tmp570 = tmp50*tmp569;
+    const Scalar tmp571 = -tmp89*psi_dot - Scalar(2)*tmp88*theta_dot - psi_dot*tmp89;
+    const Scalar tmp572 = tmp16*tmp17;
+    const Scalar tmp573 = tmp92*psi_dot - Scalar(2)*tmp93*theta_dot + psi_dot*tmp572;
+    const Scalar tmp574 = -tmp64*m*tmp557 + tmp59*m*tmp559 - tmp13*tmp72*tmp560 + tmp13*tmp67*tmp562
+        + tmp11*tmp35*tmp563 - tmp11*tmp36*tmp564 + tmp11*tmp37*tmp565 - tmp11*tmp38*tmp567
+        + (tmp13 + tmp0*m)*tmp570 + tmp11*tmp92*tmp571 + tmp11*tmp89*tmp573;
+    const Scalar tmp575 = tmp11*tmp28*tmp563 + tmp11*tmp32*tmp564 + tmp11*tmp25*tmp565
+        + tmp11*tmp47*tmp567 - tmp11*tmp93*tmp571 + tmp11*tmp88*tmp573;
+    const Scalar tmp576 = -tmp75 - tmp37*theta_dot + Scalar(2)*tmp24*psi_dot
+        + Scalar(2)*tmp31*phi_dot;
+    const Scalar tmp577 = tmp79 + tmp38*theta_dot + phi_dot*tmp28 + psi_dot*tmp20;
+    const Scalar tmp578 = tmp77 + tmp35*theta_dot + psi_dot*tmp28 + phi_dot*tmp20;
+    const Scalar tmp579 = tmp83 - tmp36*theta_dot + phi_dot*tmp25 + psi_dot*tmp32;
+    const Scalar tmp580 = tmp11*tmp20*tmp576 + tmp11*tmp25*tmp577 + tmp11*tmp32*tmp578
+        + tmp11*tmp29*tmp579;
+    const Scalar tmp581 = -tmp90 - tmp89*theta_dot - psi_dot*tmp88;
+    const Scalar tmp582 = -tmp93;
+    const Scalar tmp583 = tmp94 + tmp92*theta_dot + psi_dot*tmp582;
+    const Scalar tmp584 = tmp11*tmp35*tmp576 - tmp11*tmp36*tmp577 + tmp11*tmp37*tmp578
+        - tmp11*tmp38*tmp579 + tmp11*tmp92*tmp581 + tmp11*tmp89*tmp583;
+    const Scalar tmp585 = tmp11*tmp28*tmp576 + tmp11*tmp32*tmp577 + tmp11*tmp25*tmp578
+        + tmp11*tmp47*tmp579 - tmp11*tmp93*tmp581 + tmp11*tmp88*tmp583;
+    (*dr_dq)(0, 0) = phi_ddot*tmp372 + theta_ddot*tmp377 + psi_ddot*tmp383 + tmp413;
+    (*dr_dq)(0, 1) = phi_ddot*tmp430 + theta_ddot*tmp435 + psi_ddot*tmp443 + tmp478;
+    (*dr_dq)(0, 2) = phi_ddot*tmp509 + theta_ddot*tmp514 + psi_ddot*tmp520 + tmp535;
+    (*dr_dq)(1, 0) = phi_ddot*tmp377 + theta_ddot*tmp380 + psi_ddot*tmp384 + tmp414;
+    (*dr_dq)(1, 1) = phi_ddot*tmp435 + theta_ddot*tmp440 + psi_ddot*tmp446 + tmp490;
+    (*dr_dq)(1, 2) = phi_ddot*tmp514 + theta_ddot*tmp517 + psi_ddot*tmp522 + tmp544;
+    (*dr_dq)(2, 0) = phi_ddot*tmp383 + theta_ddot*tmp384 + psi_ddot*tmp385 + tmp415;
+    (*dr_dq)(2, 1) = phi_ddot*tmp443 + theta_ddot*tmp446 + psi_ddot*tmp447 + tmp489;
+    (*dr_dq)(2, 2) = phi_ddot*tmp520 + theta_ddot*tmp522 + psi_ddot*tmp523 + tmp545;
+    (*dr_dv)(0, 0) = tmp554;
+    (*dr_dv)(0, 1) = tmp568;
+    (*dr_dv)(0, 2) = tmp580;
+    (*dr_dv)(1, 0) = tmp555;
+    (*dr_dv)(1, 1) = tmp574;
+    (*dr_dv)(1, 2) = tmp584;
+    (*dr_dv)(2, 0) = tmp556;
+    (*dr_dv)(2, 1) = tmp575;
+    (*dr_dv)(2, 2) = tmp585;
   }
 
   /// Kinetic energy T = 1/2 xdot^T M xdot.
@@ -2337,16 +1249,14 @@ struct HeavyTop {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return T
-  /// Ops: 240
+  /// Ops: 132
   template <typename Scalar>
   static Scalar kinetic_energy(const QVector<Scalar>& q,
                                const QVector<Scalar>& v,
                                const Scalar& /*t*/,
                                const Params& params) {
-    using std::abs;
     using std::cos;
     using std::sin;
-    using std::sqrt;
     const Scalar phi = q(0);
     const Scalar theta = q(1);
     const Scalar psi = q(2);
@@ -2357,147 +1267,72 @@ struct HeavyTop {
     const Scalar d = Scalar(params.d);
     const Scalar r = Scalar(params.r);
     const Scalar h = Scalar(params.h);
-    const Scalar tmp0 = sin(psi);
-    const Scalar tmp1 = cos(phi);
-    const Scalar tmp2 = tmp0*tmp1;
-    const Scalar tmp3 = cos(theta);
-    const Scalar tmp4 = sin(phi);
-    const Scalar tmp5 = cos(psi);
-    const Scalar tmp6 = tmp4*tmp5;
-    const Scalar tmp7 = tmp3*tmp6;
-    const Scalar tmp8 = tmp2 + tmp7;
-    const Scalar tmp9 = abs(r);
-    const Scalar tmp10 = (Scalar(0.5))*tmp9;
-    const Scalar tmp11 = -tmp10*tmp8;
-    const Scalar tmp12 = -tmp11;
-    const Scalar tmp13 = sin(theta);
-    const Scalar tmp14 = (r*r);
-    const Scalar tmp15 = (Scalar(0.25))*m;
-    const Scalar tmp16 = (h*h);
-    const Scalar tmp17 = -tmp14*tmp15 + ((Scalar(1)/Scalar(12)))*m*(tmp16 + Scalar(3)*tmp14);
-    const Scalar tmp18 = sqrt(tmp17)/sqrt(m);
-    const Scalar tmp19 = tmp13*tmp18;
-    const Scalar tmp20 = tmp19*tmp4;
-    const Scalar tmp21 = tmp13*d;
-    const Scalar tmp22 = tmp21*tmp4;
-    const Scalar tmp23 = tmp0*tmp4;
-    const Scalar tmp24 = tmp23*tmp3;
-    const Scalar tmp25 = tmp24 - tmp1*tmp5;
-    const Scalar tmp26 = -tmp10*tmp25;
-    const Scalar tmp27 = tmp22 - tmp26;
-    const Scalar tmp28 = tmp12 + tmp20 + tmp27;
-    const Scalar tmp29 = tmp2*tmp3;
-    const Scalar tmp30 = tmp29 + tmp6;
-    const Scalar tmp31 = -tmp10*tmp30;
+    const Scalar tmp0 = (d*d);
+    const Scalar tmp1 = sin(phi);
+    const Scalar tmp3 = sin(theta);
+    const Scalar tmp4 = (tmp3*tmp3);
+    const Scalar tmp6 = cos(phi);
+    const Scalar tmp9 = (r*r);
+    const Scalar tmp10 = (Scalar(0.25))*m;
+    const Scalar tmp11 = tmp10*tmp9;
+    const Scalar tmp12 = (h*h);
+    const Scalar tmp13 = -tmp11 + ((Scalar(1)/Scalar(12)))*m*(tmp12 + Scalar(3)*tmp9);
+    const Scalar tmp14 = sin(psi);
+    const Scalar tmp15 = tmp1*tmp14;
+    const Scalar tmp16 = cos(theta);
+    const Scalar tmp17 = cos(psi);
+    const Scalar tmp18 = tmp17*tmp6;
+    const Scalar tmp19 = tmp16*tmp18;
+    const Scalar tmp20 = tmp15 - tmp19;
+    const Scalar tmp21 = tmp14*tmp6;
+    const Scalar tmp22 = tmp1*tmp17;
+    const Scalar tmp23 = tmp16*tmp22;
+    const Scalar tmp24 = tmp21 + tmp23;
+    const Scalar tmp25 = -tmp24;
+    const Scalar tmp27 = tmp15*tmp16;
+    const Scalar tmp28 = tmp27 - tmp17*tmp6;
+    const Scalar tmp29 = -tmp28;
+    const Scalar tmp30 = tmp16*tmp21;
+    const Scalar tmp31 = tmp22 + tmp30;
     const Scalar tmp32 = -tmp31;
-    const Scalar tmp33 = tmp1*tmp5;
-    const Scalar tmp34 = tmp3*tmp33;
-    const Scalar tmp35 = tmp23 - tmp34;
-    const Scalar tmp36 = tmp10*tmp35;
-    const Scalar tmp37 = -tmp36;
-    const Scalar tmp38 = tmp1*tmp21;
-    const Scalar tmp39 = tmp1*tmp19;
-    const Scalar tmp40 = tmp38 + tmp39;
-    const Scalar tmp41 = tmp32 + tmp37 + tmp40;
-    const Scalar tmp42 = tmp22 + tmp26;
-    const Scalar tmp43 = tmp11 + tmp20 + tmp42;
-    const Scalar tmp44 = tmp31 + tmp36;
-    const Scalar tmp45 = tmp40 + tmp44;
-    const Scalar tmp46 = -tmp20;
-    const Scalar tmp47 = tmp11 + tmp27 + tmp46;
-    const Scalar tmp48 = tmp32 + tmp36;
-    const Scalar tmp49 = tmp38 - tmp39;
-    const Scalar tmp50 = tmp48 + tmp49;
-    const Scalar tmp51 = tmp12 + tmp42 + tmp46;
-    const Scalar tmp52 = tmp31 + tmp37 + tmp49;
-    const Scalar tmp54 = tmp10*tmp13;
-    const Scalar tmp55 = tmp54*tmp6;
-    const Scalar tmp56 = -tmp55;
-    const Scalar tmp57 = tmp23*tmp54;
-    const Scalar tmp58 = -tmp57;
-    const Scalar tmp59 = tmp3*d;
-    const Scalar tmp60 = tmp4*tmp59;
-    const Scalar tmp61 = tmp18*tmp3;
-    const Scalar tmp62 = tmp4*tmp61;
-    const Scalar tmp63 = tmp60 + tmp62;
-    const Scalar tmp64 = tmp56 + tmp58 + tmp63;
-    const Scalar tmp65 = tmp33*tmp54;
-    const Scalar tmp66 = -tmp65;
-    const Scalar tmp67 = tmp2*tmp54;
-    const Scalar tmp68 = -tmp67;
-    const Scalar tmp69 = tmp1*tmp59;
-    const Scalar tmp70 = tmp1*tmp61;
-    const Scalar tmp71 = tmp69 + tmp70;
-    const Scalar tmp72 = tmp66 + tmp68 + tmp71;
-    const Scalar tmp73 = -tmp72;
-    const Scalar tmp74 = tmp55 + tmp57;
-    const Scalar tmp75 = tmp63 + tmp74;
-    const Scalar tmp76 = tmp65 + tmp67;
-    const Scalar tmp77 = tmp71 + tmp76;
-    const Scalar tmp78 = -tmp77;
-    const Scalar tmp79 = tmp69 - tmp70;
-    const Scalar tmp80 = tmp65 + tmp68 + tmp79;
-    const Scalar tmp81 = -tmp80;
-    const Scalar tmp82 = tmp60 - tmp62;
-    const Scalar tmp83 = tmp55 + tmp58 + tmp82;
-    const Scalar tmp84 = tmp66 + tmp67;
-    const Scalar tmp85 = tmp79 + tmp84;
-    const Scalar tmp86 = -tmp85;
-    const Scalar tmp87 = tmp56 + tmp57;
-    const Scalar tmp88 = tmp82 + tmp87;
-    const Scalar tmp90 = tmp10*tmp3;
-    const Scalar tmp91 = tmp0*tmp90;
-    const Scalar tmp92 = tmp5*tmp90;
-    const Scalar tmp93 = -tmp92;
-    const Scalar tmp94 = tmp91 + tmp93;
-    const Scalar tmp95 = tmp21 - tmp19;
-    const Scalar tmp96 = -tmp94 - tmp95;
-    const Scalar tmp97 = -tmp91;
-    const Scalar tmp98 = -tmp92 - tmp95 - tmp97;
-    const Scalar tmp99 = tmp91 + tmp92;
-    const Scalar tmp100 = tmp19 + tmp21;
-    const Scalar tmp101 = -tmp100 - tmp99;
-    const Scalar tmp102 = -tmp100 - tmp93 - tmp97;
-    const Scalar tmp104 = -tmp10*tmp35;
-    const Scalar tmp105 = tmp104 + tmp31;
-    const Scalar tmp106 = -tmp105;
-    const Scalar tmp107 = tmp10*tmp25;
-    const Scalar tmp108 = tmp107 + tmp11;
-    const Scalar tmp109 = -tmp108;
-    const Scalar tmp110 = tmp104 + tmp32;
-    const Scalar tmp111 = -tmp110;
-    const Scalar tmp112 = tmp107 + tmp12;
-    const Scalar tmp113 = -tmp112;
-    const Scalar tmp115 = tmp0*tmp54;
-    const Scalar tmp116 = tmp5*tmp54;
-    const Scalar tmp117 = tmp115 + tmp116;
-    const Scalar tmp118 = -tmp117;
-    const Scalar tmp119 = -tmp116;
-    const Scalar tmp120 = tmp115 + tmp119;
-    const Scalar tmp121 = -tmp120;
-    const Scalar tmp139 = tmp109*psi_dot + tmp41*phi_dot + tmp64*theta_dot;
-    const Scalar tmp149 = tmp108*psi_dot + tmp45*phi_dot + tmp75*theta_dot;
-    const Scalar tmp158 = tmp112*psi_dot + tmp50*phi_dot + tmp83*theta_dot;
-    const Scalar tmp162 = tmp113*psi_dot + tmp52*phi_dot + tmp88*theta_dot;
-    const Scalar tmp165 = tmp118*psi_dot;
-    const Scalar tmp169 = tmp117*psi_dot;
-    const Scalar tmp173 = tmp121*psi_dot;
-    const Scalar tmp177 = tmp120*psi_dot;
-    const Scalar tmp185 = tmp173 + tmp102*theta_dot;
-    const Scalar tmp186 = tmp105*psi_dot + tmp43*phi_dot + tmp78*theta_dot;
-    const Scalar tmp187 = (Scalar(0.125))*m;
-    const Scalar tmp188 = tmp177 + tmp101*theta_dot;
-    const Scalar tmp189 = tmp106*psi_dot + tmp28*phi_dot + tmp73*theta_dot;
-    const Scalar tmp190 = tmp165 + tmp96*theta_dot;
-    const Scalar tmp191 = tmp111*psi_dot + tmp47*phi_dot + tmp81*theta_dot;
-    const Scalar tmp192 = tmp169 + tmp98*theta_dot;
-    const Scalar tmp193 = tmp110*psi_dot + tmp51*phi_dot + tmp86*theta_dot;
-    const Scalar tmp194 = tmp187*((tmp139*tmp139) + (tmp188*tmp188) + (tmp189*tmp189))
-        + tmp187*((tmp149*tmp149) + (tmp185*tmp185) + (tmp186*tmp186))
-        + tmp187*((tmp158*tmp158) + (tmp190*tmp190) + (tmp191*tmp191))
-        + tmp187*((tmp162*tmp162) + (tmp192*tmp192) + (tmp193*tmp193));
+    const Scalar tmp35 = tmp22*tmp3;
+    const Scalar tmp36 = tmp18*tmp3;
+    const Scalar tmp37 = tmp15*tmp3;
+    const Scalar tmp38 = tmp21*tmp3;
+    const Scalar tmp40 = tmp0*tmp4;
+    const Scalar tmp47 = -tmp20;
+    const Scalar tmp54 = tmp3*d;
+    const Scalar tmp57 = tmp54*tmp6;
+    const Scalar tmp58 = tmp16*d;
+    const Scalar tmp59 = tmp1*tmp58;
+    const Scalar tmp60 = tmp57*phi_dot + tmp59*theta_dot;
+    const Scalar tmp62 = tmp1*tmp54;
+    const Scalar tmp63 = tmp62*phi_dot - tmp16*tmp6*d*theta_dot;
+    const Scalar tmp66 = tmp3*tmp6;
+    const Scalar tmp67 = tmp1*tmp16;
+    const Scalar tmp68 = tmp66*phi_dot + tmp67*theta_dot;
+    const Scalar tmp70 = tmp1*tmp3;
+    const Scalar tmp71 = tmp70*phi_dot - tmp16*tmp6*theta_dot;
+    const Scalar tmp74 = tmp36*theta_dot;
+    const Scalar tmp75 = tmp37*theta_dot;
+    const Scalar tmp77 = tmp20*phi_dot + tmp28*psi_dot + tmp35*theta_dot;
+    const Scalar tmp78 = tmp38*theta_dot;
+    const Scalar tmp82 = tmp75 + tmp25*psi_dot + tmp32*phi_dot;
+    const Scalar tmp83 = -tmp74 + tmp25*phi_dot + tmp32*psi_dot;
+    const Scalar tmp86 = (theta_dot*theta_dot);
+    const Scalar tmp88 = tmp17*tmp3;
+    const Scalar tmp89 = tmp14*tmp16;
+    const Scalar tmp90 = tmp88*psi_dot + tmp89*theta_dot;
+    const Scalar tmp93 = tmp14*tmp3;
+    const Scalar tmp94 = -tmp93*psi_dot + tmp16*tmp17*theta_dot;
+    const Scalar tmp99 = -tmp78 + tmp29*phi_dot + tmp47*psi_dot;
+    const Scalar tmp100 = (Scalar(0.125))*tmp9*m;
+    const Scalar tmp101 = tmp100*((tmp77*tmp77) + (tmp83*tmp83) + (tmp94*tmp94))
+        + tmp100*((tmp82*tmp82) + (tmp90*tmp90) + (tmp99*tmp99))
+        + (Scalar(0.5))*tmp13*((tmp68*tmp68) + (tmp71*tmp71) + tmp4*tmp86)
+        + (Scalar(0.5))*m*((tmp60*tmp60) + (tmp63*tmp63) + tmp40*tmp86);
     Scalar result;
-    result = tmp194;
+    result = tmp101;
     return result;
   }
 
@@ -2506,51 +1341,22 @@ struct HeavyTop {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return V
-  /// Ops: 46
+  /// Ops: 4
   template <typename Scalar>
   static Scalar potential_energy(const QVector<Scalar>& q,
                                  const Scalar& /*t*/,
                                  const Params& params) {
-    using std::abs;
     using std::cos;
-    using std::sin;
-    using std::sqrt;
     const Scalar theta = q(1);
-    const Scalar psi = q(2);
     const Scalar m = Scalar(params.m);
     const Scalar d = Scalar(params.d);
-    const Scalar r = Scalar(params.r);
-    const Scalar h = Scalar(params.h);
     const Scalar g = Scalar(params.g);
-    const Scalar tmp0 = sin(psi);
-    const Scalar tmp3 = cos(theta);
-    const Scalar tmp5 = cos(psi);
-    const Scalar tmp9 = abs(r);
-    const Scalar tmp10 = (Scalar(0.5))*tmp9;
-    const Scalar tmp13 = sin(theta);
-    const Scalar tmp14 = (r*r);
-    const Scalar tmp15 = (Scalar(0.25))*m;
-    const Scalar tmp16 = (h*h);
-    const Scalar tmp17 = -tmp14*tmp15 + ((Scalar(1)/Scalar(12)))*m*(tmp16 + Scalar(3)*tmp14);
-    const Scalar tmp18 = sqrt(tmp17)/sqrt(m);
-    const Scalar tmp54 = tmp10*tmp13;
-    const Scalar tmp59 = tmp3*d;
-    const Scalar tmp61 = tmp18*tmp3;
-    const Scalar tmp115 = tmp0*tmp54;
-    const Scalar tmp116 = tmp5*tmp54;
-    const Scalar tmp117 = tmp115 + tmp116;
-    const Scalar tmp119 = -tmp116;
-    const Scalar tmp120 = tmp115 + tmp119;
-    const Scalar tmp124 = tmp15*g;
-    const Scalar tmp167 = tmp117 + tmp59 + tmp61;
-    const Scalar tmp170 = tmp59 - tmp115;
-    const Scalar tmp171 = tmp119 + tmp170 + tmp61;
-    const Scalar tmp174 = -tmp61;
-    const Scalar tmp175 = tmp120 + tmp174 + tmp59;
-    const Scalar tmp179 = tmp116 + tmp170 + tmp174;
-    const Scalar tmp195 = tmp124*tmp167 + tmp124*tmp171 + tmp124*tmp175 + tmp124*tmp179;
+    const Scalar tmp16 = cos(theta);
+    const Scalar tmp55 = g*m;
+    const Scalar tmp58 = tmp16*d;
+    const Scalar tmp102 = tmp55*tmp58;
     Scalar result;
-    result = tmp195;
+    result = tmp102;
     return result;
   }
 
@@ -2575,16 +1381,14 @@ struct HeavyTop {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return T + V
-  /// Ops: 260
+  /// Ops: 135
   template <typename Scalar>
   static Scalar energy(const QVector<Scalar>& q,
                        const QVector<Scalar>& v,
                        const Scalar& /*t*/,
                        const Params& params) {
-    using std::abs;
     using std::cos;
     using std::sin;
-    using std::sqrt;
     const Scalar phi = q(0);
     const Scalar theta = q(1);
     const Scalar psi = q(2);
@@ -2596,155 +1400,74 @@ struct HeavyTop {
     const Scalar r = Scalar(params.r);
     const Scalar h = Scalar(params.h);
     const Scalar g = Scalar(params.g);
-    const Scalar tmp0 = sin(psi);
-    const Scalar tmp1 = cos(phi);
-    const Scalar tmp2 = tmp0*tmp1;
-    const Scalar tmp3 = cos(theta);
-    const Scalar tmp4 = sin(phi);
-    const Scalar tmp5 = cos(psi);
-    const Scalar tmp6 = tmp4*tmp5;
-    const Scalar tmp7 = tmp3*tmp6;
-    const Scalar tmp8 = tmp2 + tmp7;
-    const Scalar tmp9 = abs(r);
-    const Scalar tmp10 = (Scalar(0.5))*tmp9;
-    const Scalar tmp11 = -tmp10*tmp8;
-    const Scalar tmp12 = -tmp11;
-    const Scalar tmp13 = sin(theta);
-    const Scalar tmp14 = (r*r);
-    const Scalar tmp15 = (Scalar(0.25))*m;
-    const Scalar tmp16 = (h*h);
-    const Scalar tmp17 = -tmp14*tmp15 + ((Scalar(1)/Scalar(12)))*m*(tmp16 + Scalar(3)*tmp14);
-    const Scalar tmp18 = sqrt(tmp17)/sqrt(m);
-    const Scalar tmp19 = tmp13*tmp18;
-    const Scalar tmp20 = tmp19*tmp4;
-    const Scalar tmp21 = tmp13*d;
-    const Scalar tmp22 = tmp21*tmp4;
-    const Scalar tmp23 = tmp0*tmp4;
-    const Scalar tmp24 = tmp23*tmp3;
-    const Scalar tmp25 = tmp24 - tmp1*tmp5;
-    const Scalar tmp26 = -tmp10*tmp25;
-    const Scalar tmp27 = tmp22 - tmp26;
-    const Scalar tmp28 = tmp12 + tmp20 + tmp27;
-    const Scalar tmp29 = tmp2*tmp3;
-    const Scalar tmp30 = tmp29 + tmp6;
-    const Scalar tmp31 = -tmp10*tmp30;
+    const Scalar tmp0 = (d*d);
+    const Scalar tmp1 = sin(phi);
+    const Scalar tmp3 = sin(theta);
+    const Scalar tmp4 = (tmp3*tmp3);
+    const Scalar tmp6 = cos(phi);
+    const Scalar tmp9 = (r*r);
+    const Scalar tmp10 = (Scalar(0.25))*m;
+    const Scalar tmp11 = tmp10*tmp9;
+    const Scalar tmp12 = (h*h);
+    const Scalar tmp13 = -tmp11 + ((Scalar(1)/Scalar(12)))*m*(tmp12 + Scalar(3)*tmp9);
+    const Scalar tmp14 = sin(psi);
+    const Scalar tmp15 = tmp1*tmp14;
+    const Scalar tmp16 = cos(theta);
+    const Scalar tmp17 = cos(psi);
+    const Scalar tmp18 = tmp17*tmp6;
+    const Scalar tmp19 = tmp16*tmp18;
+    const Scalar tmp20 = tmp15 - tmp19;
+    const Scalar tmp21 = tmp14*tmp6;
+    const Scalar tmp22 = tmp1*tmp17;
+    const Scalar tmp23 = tmp16*tmp22;
+    const Scalar tmp24 = tmp21 + tmp23;
+    const Scalar tmp25 = -tmp24;
+    const Scalar tmp27 = tmp15*tmp16;
+    const Scalar tmp28 = tmp27 - tmp17*tmp6;
+    const Scalar tmp29 = -tmp28;
+    const Scalar tmp30 = tmp16*tmp21;
+    const Scalar tmp31 = tmp22 + tmp30;
     const Scalar tmp32 = -tmp31;
-    const Scalar tmp33 = tmp1*tmp5;
-    const Scalar tmp34 = tmp3*tmp33;
-    const Scalar tmp35 = tmp23 - tmp34;
-    const Scalar tmp36 = tmp10*tmp35;
-    const Scalar tmp37 = -tmp36;
-    const Scalar tmp38 = tmp1*tmp21;
-    const Scalar tmp39 = tmp1*tmp19;
-    const Scalar tmp40 = tmp38 + tmp39;
-    const Scalar tmp41 = tmp32 + tmp37 + tmp40;
-    const Scalar tmp42 = tmp22 + tmp26;
-    const Scalar tmp43 = tmp11 + tmp20 + tmp42;
-    const Scalar tmp44 = tmp31 + tmp36;
-    const Scalar tmp45 = tmp40 + tmp44;
-    const Scalar tmp46 = -tmp20;
-    const Scalar tmp47 = tmp11 + tmp27 + tmp46;
-    const Scalar tmp48 = tmp32 + tmp36;
-    const Scalar tmp49 = tmp38 - tmp39;
-    const Scalar tmp50 = tmp48 + tmp49;
-    const Scalar tmp51 = tmp12 + tmp42 + tmp46;
-    const Scalar tmp52 = tmp31 + tmp37 + tmp49;
-    const Scalar tmp54 = tmp10*tmp13;
-    const Scalar tmp55 = tmp54*tmp6;
-    const Scalar tmp56 = -tmp55;
-    const Scalar tmp57 = tmp23*tmp54;
-    const Scalar tmp58 = -tmp57;
-    const Scalar tmp59 = tmp3*d;
-    const Scalar tmp60 = tmp4*tmp59;
-    const Scalar tmp61 = tmp18*tmp3;
-    const Scalar tmp62 = tmp4*tmp61;
-    const Scalar tmp63 = tmp60 + tmp62;
-    const Scalar tmp64 = tmp56 + tmp58 + tmp63;
-    const Scalar tmp65 = tmp33*tmp54;
-    const Scalar tmp66 = -tmp65;
-    const Scalar tmp67 = tmp2*tmp54;
-    const Scalar tmp68 = -tmp67;
-    const Scalar tmp69 = tmp1*tmp59;
-    const Scalar tmp70 = tmp1*tmp61;
-    const Scalar tmp71 = tmp69 + tmp70;
-    const Scalar tmp72 = tmp66 + tmp68 + tmp71;
-    const Scalar tmp73 = -tmp72;
-    const Scalar tmp74 = tmp55 + tmp57;
-    const Scalar tmp75 = tmp63 + tmp74;
-    const Scalar tmp76 = tmp65 + tmp67;
-    const Scalar tmp77 = tmp71 + tmp76;
-    const Scalar tmp78 = -tmp77;
-    const Scalar tmp79 = tmp69 - tmp70;
-    const Scalar tmp80 = tmp65 + tmp68 + tmp79;
-    const Scalar tmp81 = -tmp80;
-    const Scalar tmp82 = tmp60 - tmp62;
-    const Scalar tmp83 = tmp55 + tmp58 + tmp82;
-    const Scalar tmp84 = tmp66 + tmp67;
-    const Scalar tmp85 = tmp79 + tmp84;
-    const Scalar tmp86 = -tmp85;
-    const Scalar tmp87 = tmp56 + tmp57;
-    const Scalar tmp88 = tmp82 + tmp87;
-    const Scalar tmp90 = tmp10*tmp3;
-    const Scalar tmp91 = tmp0*tmp90;
-    const Scalar tmp92 = tmp5*tmp90;
-    const Scalar tmp93 = -tmp92;
-    const Scalar tmp94 = tmp91 + tmp93;
-    const Scalar tmp95 = tmp21 - tmp19;
-    const Scalar tmp96 = -tmp94 - tmp95;
-    const Scalar tmp97 = -tmp91;
-    const Scalar tmp98 = -tmp92 - tmp95 - tmp97;
-    const Scalar tmp99 = tmp91 + tmp92;
-    const Scalar tmp100 = tmp19 + tmp21;
-    const Scalar tmp101 = -tmp100 - tmp99;
-    const Scalar tmp102 = -tmp100 - tmp93 - tmp97;
-    const Scalar tmp104 = -tmp10*tmp35;
-    const Scalar tmp105 = tmp104 + tmp31;
-    const Scalar tmp106 = -tmp105;
-    const Scalar tmp107 = tmp10*tmp25;
-    const Scalar tmp108 = tmp107 + tmp11;
-    const Scalar tmp109 = -tmp108;
-    const Scalar tmp110 = tmp104 + tmp32;
-    const Scalar tmp111 = -tmp110;
-    const Scalar tmp112 = tmp107 + tmp12;
-    const Scalar tmp113 = -tmp112;
-    const Scalar tmp115 = tmp0*tmp54;
-    const Scalar tmp116 = tmp5*tmp54;
-    const Scalar tmp117 = tmp115 + tmp116;
-    const Scalar tmp118 = -tmp117;
-    const Scalar tmp119 = -tmp116;
-    const Scalar tmp120 = tmp115 + tmp119;
-    const Scalar tmp121 = -tmp120;
-    const Scalar tmp124 = tmp15*g;
-    const Scalar tmp139 = tmp109*psi_dot + tmp41*phi_dot + tmp64*theta_dot;
-    const Scalar tmp149 = tmp108*psi_dot + tmp45*phi_dot + tmp75*theta_dot;
-    const Scalar tmp158 = tmp112*psi_dot + tmp50*phi_dot + tmp83*theta_dot;
-    const Scalar tmp162 = tmp113*psi_dot + tmp52*phi_dot + tmp88*theta_dot;
-    const Scalar tmp165 = tmp118*psi_dot;
-    const Scalar tmp167 = tmp117 + tmp59 + tmp61;
-    const Scalar tmp169 = tmp117*psi_dot;
-    const Scalar tmp170 = tmp59 - tmp115;
-    const Scalar tmp171 = tmp119 + tmp170 + tmp61;
-    const Scalar tmp173 = tmp121*psi_dot;
-    const Scalar tmp174 = -tmp61;
-    const Scalar tmp175 = tmp120 + tmp174 + tmp59;
-    const Scalar tmp177 = tmp120*psi_dot;
-    const Scalar tmp179 = tmp116 + tmp170 + tmp174;
-    const Scalar tmp185 = tmp173 + tmp102*theta_dot;
-    const Scalar tmp186 = tmp105*psi_dot + tmp43*phi_dot + tmp78*theta_dot;
-    const Scalar tmp187 = (Scalar(0.125))*m;
-    const Scalar tmp188 = tmp177 + tmp101*theta_dot;
-    const Scalar tmp189 = tmp106*psi_dot + tmp28*phi_dot + tmp73*theta_dot;
-    const Scalar tmp190 = tmp165 + tmp96*theta_dot;
-    const Scalar tmp191 = tmp111*psi_dot + tmp47*phi_dot + tmp81*theta_dot;
-    const Scalar tmp192 = tmp169 + tmp98*theta_dot;
-    const Scalar tmp193 = tmp110*psi_dot + tmp51*phi_dot + tmp86*theta_dot;
-    const Scalar tmp194 = tmp187*((tmp139*tmp139) + (tmp188*tmp188) + (tmp189*tmp189))
-        + tmp187*((tmp149*tmp149) + (tmp185*tmp185) + (tmp186*tmp186))
-        + tmp187*((tmp158*tmp158) + (tmp190*tmp190) + (tmp191*tmp191))
-        + tmp187*((tmp162*tmp162) + (tmp192*tmp192) + (tmp193*tmp193));
-    const Scalar tmp195 = tmp124*tmp167 + tmp124*tmp171 + tmp124*tmp175 + tmp124*tmp179;
+    const Scalar tmp35 = tmp22*tmp3;
+    const Scalar tmp36 = tmp18*tmp3;
+    const Scalar tmp37 = tmp15*tmp3;
+    const Scalar tmp38 = tmp21*tmp3;
+    const Scalar tmp40 = tmp0*tmp4;
+    const Scalar tmp47 = -tmp20;
+    const Scalar tmp54 = tmp3*d;
+    const Scalar tmp55 = g*m;
+    const Scalar tmp57 = tmp54*tmp6;
+    const Scalar tmp58 = tmp16*d;
+    const Scalar tmp59 = tmp1*tmp58;
+    const Scalar tmp60 = tmp57*phi_dot + tmp59*theta_dot;
+    const Scalar tmp62 = tmp1*tmp54;
+    const Scalar tmp63 = tmp62*phi_dot - tmp16*tmp6*d*theta_dot;
+    const Scalar tmp66 = tmp3*tmp6;
+    const Scalar tmp67 = tmp1*tmp16;
+    const Scalar tmp68 = tmp66*phi_dot + tmp67*theta_dot;
+    const Scalar tmp70 = tmp1*tmp3;
+    const Scalar tmp71 = tmp70*phi_dot - tmp16*tmp6*theta_dot;
+    const Scalar tmp74 = tmp36*theta_dot;
+    const Scalar tmp75 = tmp37*theta_dot;
+    const Scalar tmp77 = tmp20*phi_dot + tmp28*psi_dot + tmp35*theta_dot;
+    const Scalar tmp78 = tmp38*theta_dot;
+    const Scalar tmp82 = tmp75 + tmp25*psi_dot + tmp32*phi_dot;
+    const Scalar tmp83 = -tmp74 + tmp25*phi_dot + tmp32*psi_dot;
+    const Scalar tmp86 = (theta_dot*theta_dot);
+    const Scalar tmp88 = tmp17*tmp3;
+    const Scalar tmp89 = tmp14*tmp16;
+    const Scalar tmp90 = tmp88*psi_dot + tmp89*theta_dot;
+    const Scalar tmp93 = tmp14*tmp3;
+    const Scalar tmp94 = -tmp93*psi_dot + tmp16*tmp17*theta_dot;
+    const Scalar tmp99 = -tmp78 + tmp29*phi_dot + tmp47*psi_dot;
+    const Scalar tmp100 = (Scalar(0.125))*tmp9*m;
+    const Scalar tmp101 = tmp100*((tmp77*tmp77) + (tmp83*tmp83) + (tmp94*tmp94))
+        + tmp100*((tmp82*tmp82) + (tmp90*tmp90) + (tmp99*tmp99))
+        + (Scalar(0.5))*tmp13*((tmp68*tmp68) + (tmp71*tmp71) + tmp4*tmp86)
+        + (Scalar(0.5))*m*((tmp60*tmp60) + (tmp63*tmp63) + tmp40*tmp86);
+    const Scalar tmp102 = tmp55*tmp58;
     Scalar result;
-    result = tmp194 + tmp195;
+    result = tmp101 + tmp102;
     return result;
   }
 
@@ -2753,7 +1476,7 @@ struct HeavyTop {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return x (nx)
-  /// Ops: 106
+  /// Ops: 107
   template <typename Scalar>
   static XVector<Scalar> positions(const QVector<Scalar>& q,
                                    const Scalar& /*t*/,
@@ -2769,84 +1492,88 @@ struct HeavyTop {
     const Scalar d = Scalar(params.d);
     const Scalar r = Scalar(params.r);
     const Scalar h = Scalar(params.h);
-    const Scalar tmp0 = sin(psi);
-    const Scalar tmp1 = cos(phi);
-    const Scalar tmp2 = tmp0*tmp1;
-    const Scalar tmp3 = cos(theta);
-    const Scalar tmp4 = sin(phi);
-    const Scalar tmp5 = cos(psi);
-    const Scalar tmp6 = tmp4*tmp5;
-    const Scalar tmp7 = tmp3*tmp6;
-    const Scalar tmp8 = tmp2 + tmp7;
-    const Scalar tmp9 = abs(r);
-    const Scalar tmp10 = (Scalar(0.5))*tmp9;
-    const Scalar tmp11 = -tmp10*tmp8;
-    const Scalar tmp12 = -tmp11;
-    const Scalar tmp13 = sin(theta);
-    const Scalar tmp14 = (r*r);
-    const Scalar tmp15 = (Scalar(0.25))*m;
-    const Scalar tmp16 = (h*h);
-    const Scalar tmp17 = -tmp14*tmp15 + ((Scalar(1)/Scalar(12)))*m*(tmp16 + Scalar(3)*tmp14);
-    const Scalar tmp18 = sqrt(tmp17)/sqrt(m);
-    const Scalar tmp19 = tmp13*tmp18;
-    const Scalar tmp20 = tmp19*tmp4;
-    const Scalar tmp21 = tmp13*d;
-    const Scalar tmp22 = tmp21*tmp4;
-    const Scalar tmp23 = tmp0*tmp4;
-    const Scalar tmp24 = tmp23*tmp3;
-    const Scalar tmp25 = tmp24 - tmp1*tmp5;
-    const Scalar tmp26 = -tmp10*tmp25;
-    const Scalar tmp27 = tmp22 - tmp26;
-    const Scalar tmp28 = tmp12 + tmp20 + tmp27;
-    const Scalar tmp29 = tmp2*tmp3;
-    const Scalar tmp30 = tmp29 + tmp6;
-    const Scalar tmp33 = tmp1*tmp5;
-    const Scalar tmp34 = tmp3*tmp33;
-    const Scalar tmp35 = tmp23 - tmp34;
-    const Scalar tmp38 = tmp1*tmp21;
-    const Scalar tmp39 = tmp1*tmp19;
-    const Scalar tmp40 = tmp38 + tmp39;
-    const Scalar tmp42 = tmp22 + tmp26;
-    const Scalar tmp43 = tmp11 + tmp20 + tmp42;
-    const Scalar tmp46 = -tmp20;
-    const Scalar tmp47 = tmp11 + tmp27 + tmp46;
-    const Scalar tmp49 = tmp38 - tmp39;
-    const Scalar tmp51 = tmp12 + tmp42 + tmp46;
-    const Scalar tmp54 = tmp10*tmp13;
-    const Scalar tmp59 = tmp3*d;
-    const Scalar tmp61 = tmp18*tmp3;
-    const Scalar tmp104 = -tmp10*tmp35;
-    const Scalar tmp115 = tmp0*tmp54;
-    const Scalar tmp116 = tmp5*tmp54;
-    const Scalar tmp117 = tmp115 + tmp116;
-    const Scalar tmp119 = -tmp116;
-    const Scalar tmp120 = tmp115 + tmp119;
-    const Scalar tmp127 = tmp10*tmp30;
-    const Scalar tmp152 = -tmp127;
-    const Scalar tmp167 = tmp117 + tmp59 + tmp61;
-    const Scalar tmp170 = tmp59 - tmp115;
-    const Scalar tmp171 = tmp119 + tmp170 + tmp61;
-    const Scalar tmp174 = -tmp61;
-    const Scalar tmp175 = tmp120 + tmp174 + tmp59;
-    const Scalar tmp179 = tmp116 + tmp170 + tmp174;
-    const Scalar tmp196 = -tmp104;
-    const Scalar tmp197 = -tmp152 - tmp196 - tmp40;
-    const Scalar tmp198 = -tmp104 - tmp152 - tmp49;
-    const Scalar tmp199 = -tmp127 - tmp196 - tmp49;
-    const Scalar tmp200 = -tmp104 - tmp127 - tmp40;
+    const Scalar tmp1 = sin(phi);
+    const Scalar tmp3 = sin(theta);
+    const Scalar tmp6 = cos(phi);
+    const Scalar tmp9 = (r*r);
+    const Scalar tmp10 = (Scalar(0.25))*m;
+    const Scalar tmp11 = tmp10*tmp9;
+    const Scalar tmp12 = (h*h);
+    const Scalar tmp13 = -tmp11 + ((Scalar(1)/Scalar(12)))*m*(tmp12 + Scalar(3)*tmp9);
+    const Scalar tmp14 = sin(psi);
+    const Scalar tmp15 = tmp1*tmp14;
+    const Scalar tmp16 = cos(theta);
+    const Scalar tmp17 = cos(psi);
+    const Scalar tmp18 = tmp17*tmp6;
+    const Scalar tmp19 = tmp16*tmp18;
+    const Scalar tmp20 = tmp15 - tmp19;
+    const Scalar tmp21 = tmp14*tmp6;
+    const Scalar tmp22 = tmp1*tmp17;
+    const Scalar tmp23 = tmp16*tmp22;
+    const Scalar tmp24 = tmp21 + tmp23;
+    const Scalar tmp25 = -tmp24;
+    const Scalar tmp27 = tmp15*tmp16;
+    const Scalar tmp28 = tmp27 - tmp17*tmp6;
+    const Scalar tmp29 = -tmp28;
+    const Scalar tmp30 = tmp16*tmp21;
+    const Scalar tmp31 = tmp22 + tmp30;
+    const Scalar tmp47 = -tmp20;
+    const Scalar tmp54 = tmp3*d;
+    const Scalar tmp57 = tmp54*tmp6;
+    const Scalar tmp58 = tmp16*d;
+    const Scalar tmp62 = tmp1*tmp54;
+    const Scalar tmp66 = tmp3*tmp6;
+    const Scalar tmp70 = tmp1*tmp3;
+    const Scalar tmp88 = tmp17*tmp3;
+    const Scalar tmp93 = tmp14*tmp3;
+    const Scalar tmp103 = abs(r);
+    const Scalar tmp104 = (Scalar(0.5))*tmp103;
+    const Scalar tmp105 = tmp104*tmp25;
+    const Scalar tmp106 = sqrt(tmp13)/sqrt(m);
+    const Scalar tmp107 = tmp106*tmp70;
+    const Scalar tmp108 = tmp104*tmp29;
+    const Scalar tmp109 = tmp108 + tmp62;
+    const Scalar tmp110 = tmp105 + tmp107 + tmp109;
+    const Scalar tmp111 = tmp104*tmp47;
+    const Scalar tmp112 = -tmp111;
+    const Scalar tmp113 = tmp106*tmp66;
+    const Scalar tmp114 = tmp104*tmp31;
+    const Scalar tmp115 = -tmp114;
+    const Scalar tmp116 = tmp115 + tmp57;
+    const Scalar tmp117 = tmp104*tmp93;
+    const Scalar tmp118 = tmp104*tmp88;
+    const Scalar tmp119 = tmp117 + tmp118;
+    const Scalar tmp120 = tmp106*tmp16;
+    const Scalar tmp121 = tmp120 + tmp58;
+    const Scalar tmp122 = tmp119 + tmp121;
+    const Scalar tmp123 = -tmp105;
+    const Scalar tmp124 = -tmp107;
+    const Scalar tmp125 = tmp109 + tmp123 + tmp124;
+    const Scalar tmp126 = -tmp113;
+    const Scalar tmp127 = -tmp118;
+    const Scalar tmp128 = tmp117 + tmp127;
+    const Scalar tmp129 = tmp58 - tmp120;
+    const Scalar tmp130 = tmp128 + tmp129;
+    const Scalar tmp131 = tmp62 - tmp108;
+    const Scalar tmp132 = tmp105 + tmp124 + tmp131;
+    const Scalar tmp133 = tmp114 + tmp57;
+    const Scalar tmp134 = -tmp117;
+    const Scalar tmp135 = tmp118 + tmp129 + tmp134;
+    const Scalar tmp136 = tmp107 + tmp123 + tmp131;
+    const Scalar tmp137 = tmp121 + tmp127 + tmp134;
     XVector<Scalar> result;
-    result(0) = tmp43;
-    result(1) = tmp197;
-    result(2) = tmp167;
-    result(3) = tmp51;
-    result(4) = tmp198;
-    result(5) = tmp175;
-    result(6) = tmp47;
-    result(7) = tmp199;
-    result(8) = tmp179;
-    result(9) = tmp28;
-    result(10) = tmp200;
-    result(11) = tmp171;
+    result(0) = tmp110;
+    result(1) = -tmp112 - tmp113 - tmp116;
+    result(2) = tmp122;
+    result(3) = tmp125;
+    result(4) = -tmp111 - tmp116 - tmp126;
+    result(5) = tmp130;
+    result(6) = tmp132;
+    result(7) = -tmp112 - tmp126 - tmp133;
+    result(8) = tmp135;
+    result(9) = tmp136;
+    result(10) = -tmp111 - tmp113 - tmp133;
+    result(11) = tmp137;
     return result;
   }
 
@@ -2856,7 +1583,7 @@ struct HeavyTop {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return xdot (nx)
-  /// Ops: 212
+  /// Ops: 224
   template <typename Scalar>
   static XVector<Scalar> velocities(const QVector<Scalar>& q,
                                     const QVector<Scalar>& v,
@@ -2876,153 +1603,159 @@ struct HeavyTop {
     const Scalar d = Scalar(params.d);
     const Scalar r = Scalar(params.r);
     const Scalar h = Scalar(params.h);
-    const Scalar tmp0 = sin(psi);
-    const Scalar tmp1 = cos(phi);
-    const Scalar tmp2 = tmp0*tmp1;
-    const Scalar tmp3 = cos(theta);
-    const Scalar tmp4 = sin(phi);
-    const Scalar tmp5 = cos(psi);
-    const Scalar tmp6 = tmp4*tmp5;
-    const Scalar tmp7 = tmp3*tmp6;
-    const Scalar tmp8 = tmp2 + tmp7;
-    const Scalar tmp9 = abs(r);
-    const Scalar tmp10 = (Scalar(0.5))*tmp9;
-    const Scalar tmp11 = -tmp10*tmp8;
-    const Scalar tmp12 = -tmp11;
-    const Scalar tmp13 = sin(theta);
-    const Scalar tmp14 = (r*r);
-    const Scalar tmp15 = (Scalar(0.25))*m;
-    const Scalar tmp16 = (h*h);
-    const Scalar tmp17 = -tmp14*tmp15 + ((Scalar(1)/Scalar(12)))*m*(tmp16 + Scalar(3)*tmp14);
-    const Scalar tmp18 = sqrt(tmp17)/sqrt(m);
-    const Scalar tmp19 = tmp13*tmp18;
-    const Scalar tmp20 = tmp19*tmp4;
-    const Scalar tmp21 = tmp13*d;
-    const Scalar tmp22 = tmp21*tmp4;
-    const Scalar tmp23 = tmp0*tmp4;
-    const Scalar tmp24 = tmp23*tmp3;
-    const Scalar tmp25 = tmp24 - tmp1*tmp5;
-    const Scalar tmp26 = -tmp10*tmp25;
-    const Scalar tmp27 = tmp22 - tmp26;
-    const Scalar tmp28 = tmp12 + tmp20 + tmp27;
-    const Scalar tmp29 = tmp2*tmp3;
-    const Scalar tmp30 = tmp29 + tmp6;
-    const Scalar tmp31 = -tmp10*tmp30;
+    const Scalar tmp1 = sin(phi);
+    const Scalar tmp3 = sin(theta);
+    const Scalar tmp6 = cos(phi);
+    const Scalar tmp9 = (r*r);
+    const Scalar tmp10 = (Scalar(0.25))*m;
+    const Scalar tmp11 = tmp10*tmp9;
+    const Scalar tmp12 = (h*h);
+    const Scalar tmp13 = -tmp11 + ((Scalar(1)/Scalar(12)))*m*(tmp12 + Scalar(3)*tmp9);
+    const Scalar tmp14 = sin(psi);
+    const Scalar tmp15 = tmp1*tmp14;
+    const Scalar tmp16 = cos(theta);
+    const Scalar tmp17 = cos(psi);
+    const Scalar tmp18 = tmp17*tmp6;
+    const Scalar tmp19 = tmp16*tmp18;
+    const Scalar tmp20 = tmp15 - tmp19;
+    const Scalar tmp21 = tmp14*tmp6;
+    const Scalar tmp22 = tmp1*tmp17;
+    const Scalar tmp23 = tmp16*tmp22;
+    const Scalar tmp24 = tmp21 + tmp23;
+    const Scalar tmp25 = -tmp24;
+    const Scalar tmp27 = tmp15*tmp16;
+    const Scalar tmp28 = tmp27 - tmp17*tmp6;
+    const Scalar tmp29 = -tmp28;
+    const Scalar tmp30 = tmp16*tmp21;
+    const Scalar tmp31 = tmp22 + tmp30;
     const Scalar tmp32 = -tmp31;
-    const Scalar tmp33 = tmp1*tmp5;
-    const Scalar tmp34 = tmp3*tmp33;
-    const Scalar tmp35 = tmp23 - tmp34;
-    const Scalar tmp36 = tmp10*tmp35;
-    const Scalar tmp37 = -tmp36;
-    const Scalar tmp38 = tmp1*tmp21;
-    const Scalar tmp39 = tmp1*tmp19;
-    const Scalar tmp40 = tmp38 + tmp39;
-    const Scalar tmp41 = tmp32 + tmp37 + tmp40;
-    const Scalar tmp42 = tmp22 + tmp26;
-    const Scalar tmp43 = tmp11 + tmp20 + tmp42;
-    const Scalar tmp44 = tmp31 + tmp36;
-    const Scalar tmp45 = tmp40 + tmp44;
-    const Scalar tmp46 = -tmp20;
-    const Scalar tmp47 = tmp11 + tmp27 + tmp46;
-    const Scalar tmp48 = tmp32 + tmp36;
-    const Scalar tmp49 = tmp38 - tmp39;
-    const Scalar tmp50 = tmp48 + tmp49;
-    const Scalar tmp51 = tmp12 + tmp42 + tmp46;
-    const Scalar tmp52 = tmp31 + tmp37 + tmp49;
-    const Scalar tmp54 = tmp10*tmp13;
-    const Scalar tmp55 = tmp54*tmp6;
-    const Scalar tmp56 = -tmp55;
-    const Scalar tmp57 = tmp23*tmp54;
-    const Scalar tmp58 = -tmp57;
-    const Scalar tmp59 = tmp3*d;
-    const Scalar tmp60 = tmp4*tmp59;
-    const Scalar tmp61 = tmp18*tmp3;
-    const Scalar tmp62 = tmp4*tmp61;
-    const Scalar tmp63 = tmp60 + tmp62;
-    const Scalar tmp64 = tmp56 + tmp58 + tmp63;
-    const Scalar tmp65 = tmp33*tmp54;
-    const Scalar tmp66 = -tmp65;
-    const Scalar tmp67 = tmp2*tmp54;
-    const Scalar tmp68 = -tmp67;
-    const Scalar tmp69 = tmp1*tmp59;
-    const Scalar tmp70 = tmp1*tmp61;
-    const Scalar tmp71 = tmp69 + tmp70;
-    const Scalar tmp72 = tmp66 + tmp68 + tmp71;
-    const Scalar tmp73 = -tmp72;
-    const Scalar tmp74 = tmp55 + tmp57;
-    const Scalar tmp75 = tmp63 + tmp74;
-    const Scalar tmp76 = tmp65 + tmp67;
-    const Scalar tmp77 = tmp71 + tmp76;
-    const Scalar tmp78 = -tmp77;
-    const Scalar tmp79 = tmp69 - tmp70;
-    const Scalar tmp80 = tmp65 + tmp68 + tmp79;
-    const Scalar tmp81 = -tmp80;
-    const Scalar tmp82 = tmp60 - tmp62;
-    const Scalar tmp83 = tmp55 + tmp58 + tmp82;
-    const Scalar tmp84 = tmp66 + tmp67;
-    const Scalar tmp85 = tmp79 + tmp84;
-    const Scalar tmp86 = -tmp85;
-    const Scalar tmp87 = tmp56 + tmp57;
-    const Scalar tmp88 = tmp82 + tmp87;
-    const Scalar tmp90 = tmp10*tmp3;
-    const Scalar tmp91 = tmp0*tmp90;
-    const Scalar tmp92 = tmp5*tmp90;
-    const Scalar tmp93 = -tmp92;
-    const Scalar tmp94 = tmp91 + tmp93;
-    const Scalar tmp95 = tmp21 - tmp19;
-    const Scalar tmp96 = -tmp94 - tmp95;
-    const Scalar tmp97 = -tmp91;
-    const Scalar tmp98 = -tmp92 - tmp95 - tmp97;
-    const Scalar tmp99 = tmp91 + tmp92;
-    const Scalar tmp100 = tmp19 + tmp21;
-    const Scalar tmp101 = -tmp100 - tmp99;
-    const Scalar tmp102 = -tmp100 - tmp93 - tmp97;
-    const Scalar tmp104 = -tmp10*tmp35;
-    const Scalar tmp105 = tmp104 + tmp31;
-    const Scalar tmp106 = -tmp105;
-    const Scalar tmp107 = tmp10*tmp25;
-    const Scalar tmp108 = tmp107 + tmp11;
-    const Scalar tmp109 = -tmp108;
-    const Scalar tmp110 = tmp104 + tmp32;
-    const Scalar tmp111 = -tmp110;
-    const Scalar tmp112 = tmp107 + tmp12;
-    const Scalar tmp113 = -tmp112;
-    const Scalar tmp115 = tmp0*tmp54;
-    const Scalar tmp116 = tmp5*tmp54;
-    const Scalar tmp117 = tmp115 + tmp116;
-    const Scalar tmp118 = -tmp117;
-    const Scalar tmp119 = -tmp116;
-    const Scalar tmp120 = tmp115 + tmp119;
-    const Scalar tmp121 = -tmp120;
-    const Scalar tmp139 = tmp109*psi_dot + tmp41*phi_dot + tmp64*theta_dot;
-    const Scalar tmp149 = tmp108*psi_dot + tmp45*phi_dot + tmp75*theta_dot;
-    const Scalar tmp158 = tmp112*psi_dot + tmp50*phi_dot + tmp83*theta_dot;
-    const Scalar tmp162 = tmp113*psi_dot + tmp52*phi_dot + tmp88*theta_dot;
-    const Scalar tmp165 = tmp118*psi_dot;
-    const Scalar tmp169 = tmp117*psi_dot;
-    const Scalar tmp173 = tmp121*psi_dot;
-    const Scalar tmp177 = tmp120*psi_dot;
-    const Scalar tmp185 = tmp173 + tmp102*theta_dot;
-    const Scalar tmp186 = tmp105*psi_dot + tmp43*phi_dot + tmp78*theta_dot;
-    const Scalar tmp188 = tmp177 + tmp101*theta_dot;
-    const Scalar tmp189 = tmp106*psi_dot + tmp28*phi_dot + tmp73*theta_dot;
-    const Scalar tmp190 = tmp165 + tmp96*theta_dot;
-    const Scalar tmp191 = tmp111*psi_dot + tmp47*phi_dot + tmp81*theta_dot;
-    const Scalar tmp192 = tmp169 + tmp98*theta_dot;
-    const Scalar tmp193 = tmp110*psi_dot + tmp51*phi_dot + tmp86*theta_dot;
+    const Scalar tmp35 = tmp22*tmp3;
+    const Scalar tmp36 = tmp18*tmp3;
+    const Scalar tmp37 = tmp15*tmp3;
+    const Scalar tmp38 = tmp21*tmp3;
+    const Scalar tmp47 = -tmp20;
+    const Scalar tmp54 = tmp3*d;
+    const Scalar tmp57 = tmp54*tmp6;
+    const Scalar tmp58 = tmp16*d;
+    const Scalar tmp59 = tmp1*tmp58;
+    const Scalar tmp62 = tmp1*tmp54;
+    const Scalar tmp64 = tmp58*tmp6;
+    const Scalar tmp66 = tmp3*tmp6;
+    const Scalar tmp67 = tmp1*tmp16;
+    const Scalar tmp70 = tmp1*tmp3;
+    const Scalar tmp72 = tmp16*tmp6;
+    const Scalar tmp88 = tmp17*tmp3;
+    const Scalar tmp89 = tmp14*tmp16;
+    const Scalar tmp92 = tmp16*tmp17;
+    const Scalar tmp93 = tmp14*tmp3;
+    const Scalar tmp103 = abs(r);
+    const Scalar tmp104 = (Scalar(0.5))*tmp103;
+    const Scalar tmp105 = tmp104*tmp25;
+    const Scalar tmp106 = sqrt(tmp13)/sqrt(m);
+    const Scalar tmp107 = tmp106*tmp70;
+    const Scalar tmp108 = tmp104*tmp29;
+    const Scalar tmp109 = tmp108 + tmp62;
+    const Scalar tmp110 = tmp105 + tmp107 + tmp109;
+    const Scalar tmp111 = tmp104*tmp47;
+    const Scalar tmp113 = tmp106*tmp66;
+    const Scalar tmp117 = tmp104*tmp93;
+    const Scalar tmp118 = tmp104*tmp88;
+    const Scalar tmp119 = tmp117 + tmp118;
+    const Scalar tmp123 = -tmp105;
+    const Scalar tmp124 = -tmp107;
+    const Scalar tmp125 = tmp109 + tmp123 + tmp124;
+    const Scalar tmp126 = -tmp113;
+    const Scalar tmp127 = -tmp118;
+    const Scalar tmp128 = tmp117 + tmp127;
+    const Scalar tmp131 = tmp62 - tmp108;
+    const Scalar tmp132 = tmp105 + tmp124 + tmp131;
+    const Scalar tmp136 = tmp107 + tmp123 + tmp131;
+    const Scalar tmp138 = tmp104*tmp28;
+    const Scalar tmp139 = tmp105 + tmp138;
+    const Scalar tmp140 = tmp104*tmp37;
+    const Scalar tmp141 = tmp104*tmp35;
+    const Scalar tmp142 = tmp140 + tmp141;
+    const Scalar tmp143 = tmp106*tmp67;
+    const Scalar tmp144 = tmp143 + tmp59;
+    const Scalar tmp145 = tmp142 + tmp144;
+    const Scalar tmp146 = tmp104*tmp20;
+    const Scalar tmp147 = tmp104*tmp32;
+    const Scalar tmp148 = tmp146 + tmp147;
+    const Scalar tmp149 = tmp113 + tmp57;
+    const Scalar tmp150 = tmp148 + tmp149;
+    const Scalar tmp151 = tmp139*psi_dot + tmp145*theta_dot + tmp150*phi_dot;
+    const Scalar tmp152 = tmp111 + tmp147;
+    const Scalar tmp153 = tmp104*tmp38;
+    const Scalar tmp154 = tmp104*tmp36;
+    const Scalar tmp155 = tmp153 + tmp154;
+    const Scalar tmp156 = tmp106*tmp72;
+    const Scalar tmp157 = tmp156 + tmp64;
+    const Scalar tmp158 = tmp155 + tmp157;
+    const Scalar tmp159 = -tmp158;
+    const Scalar tmp160 = -tmp128;
+    const Scalar tmp161 = tmp160*psi_dot;
+    const Scalar tmp162 = tmp104*tmp92;
+    const Scalar tmp163 = -tmp162;
+    const Scalar tmp164 = tmp106*tmp3;
+    const Scalar tmp165 = tmp104*tmp89;
+    const Scalar tmp166 = tmp54 - tmp165;
+    const Scalar tmp167 = -tmp163 - tmp164 - tmp166;
+    const Scalar tmp168 = tmp123 + tmp138;
+    const Scalar tmp169 = -tmp168;
+    const Scalar tmp170 = -tmp141;
+    const Scalar tmp171 = tmp140 + tmp170;
+    const Scalar tmp172 = tmp59 - tmp143;
+    const Scalar tmp173 = tmp171 + tmp172;
+    const Scalar tmp174 = -tmp146;
+    const Scalar tmp175 = tmp126 + tmp57;
+    const Scalar tmp176 = tmp147 + tmp174 + tmp175;
+    const Scalar tmp177 = tmp169*psi_dot + tmp173*theta_dot + tmp176*phi_dot;
+    const Scalar tmp178 = -tmp147;
+    const Scalar tmp179 = tmp111 + tmp178;
+    const Scalar tmp180 = -tmp154;
+    const Scalar tmp181 = tmp153 + tmp180;
+    const Scalar tmp182 = tmp64 - tmp156;
+    const Scalar tmp183 = tmp181 + tmp182;
+    const Scalar tmp184 = -tmp183;
+    const Scalar tmp185 = tmp119*psi_dot;
+    const Scalar tmp186 = -tmp164;
+    const Scalar tmp187 = -tmp162 - tmp166 - tmp186;
+    const Scalar tmp188 = -tmp140;
+    const Scalar tmp189 = tmp141 + tmp172 + tmp188;
+    const Scalar tmp190 = tmp146 + tmp178;
+    const Scalar tmp191 = tmp175 + tmp190;
+    const Scalar tmp192 = tmp168*psi_dot + tmp189*theta_dot + tmp191*phi_dot;
+    const Scalar tmp193 = -tmp179;
+    const Scalar tmp194 = -tmp153;
+    const Scalar tmp195 = tmp154 + tmp182 + tmp194;
+    const Scalar tmp196 = -tmp195;
+    const Scalar tmp197 = -tmp119;
+    const Scalar tmp198 = tmp197*psi_dot;
+    const Scalar tmp199 = tmp163 + tmp165;
+    const Scalar tmp200 = -tmp186 - tmp199 - tmp54;
+    const Scalar tmp201 = -tmp139;
+    const Scalar tmp202 = tmp144 + tmp170 + tmp188;
+    const Scalar tmp203 = tmp149 + tmp174 + tmp178;
+    const Scalar tmp204 = tmp201*psi_dot + tmp202*theta_dot + tmp203*phi_dot;
+    const Scalar tmp205 = -tmp152;
+    const Scalar tmp206 = tmp157 + tmp180 + tmp194;
+    const Scalar tmp207 = -tmp206;
+    const Scalar tmp208 = tmp128*psi_dot;
+    const Scalar tmp209 = tmp162 + tmp165;
+    const Scalar tmp210 = -tmp164 - tmp209 - tmp54;
     XVector<Scalar> result;
-    result(0) = tmp149;
-    result(1) = tmp186;
-    result(2) = tmp185;
-    result(3) = tmp162;
-    result(4) = tmp193;
-    result(5) = tmp192;
-    result(6) = tmp158;
-    result(7) = tmp191;
-    result(8) = tmp190;
-    result(9) = tmp139;
-    result(10) = tmp189;
-    result(11) = tmp188;
+    result(0) = tmp151;
+    result(1) = tmp110*phi_dot + tmp152*psi_dot + tmp159*theta_dot;
+    result(2) = tmp161 + tmp167*theta_dot;
+    result(3) = tmp177;
+    result(4) = tmp125*phi_dot + tmp179*psi_dot + tmp184*theta_dot;
+    result(5) = tmp185 + tmp187*theta_dot;
+    result(6) = tmp192;
+    result(7) = tmp132*phi_dot + tmp193*psi_dot + tmp196*theta_dot;
+    result(8) = tmp198 + tmp200*theta_dot;
+    result(9) = tmp204;
+    result(10) = tmp136*phi_dot + tmp205*psi_dot + tmp207*theta_dot;
+    result(11) = tmp208 + tmp210*theta_dot;
     return result;
   }
 
@@ -3031,7 +1764,7 @@ struct HeavyTop {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return J (nx x nq)
-  /// Ops: 160
+  /// Ops: 172
   template <typename Scalar>
   static XJacobian<Scalar> jacobian(const QVector<Scalar>& q,
                                     const Scalar& /*t*/,
@@ -3047,161 +1780,175 @@ struct HeavyTop {
     const Scalar d = Scalar(params.d);
     const Scalar r = Scalar(params.r);
     const Scalar h = Scalar(params.h);
-    const Scalar tmp0 = sin(psi);
-    const Scalar tmp1 = cos(phi);
-    const Scalar tmp2 = tmp0*tmp1;
-    const Scalar tmp3 = cos(theta);
-    const Scalar tmp4 = sin(phi);
-    const Scalar tmp5 = cos(psi);
-    const Scalar tmp6 = tmp4*tmp5;
-    const Scalar tmp7 = tmp3*tmp6;
-    const Scalar tmp8 = tmp2 + tmp7;
-    const Scalar tmp9 = abs(r);
-    const Scalar tmp10 = (Scalar(0.5))*tmp9;
-    const Scalar tmp11 = -tmp10*tmp8;
-    const Scalar tmp12 = -tmp11;
-    const Scalar tmp13 = sin(theta);
-    const Scalar tmp14 = (r*r);
-    const Scalar tmp15 = (Scalar(0.25))*m;
-    const Scalar tmp16 = (h*h);
-    const Scalar tmp17 = -tmp14*tmp15 + ((Scalar(1)/Scalar(12)))*m*(tmp16 + Scalar(3)*tmp14);
-    const Scalar tmp18 = sqrt(tmp17)/sqrt(m);
-    const Scalar tmp19 = tmp13*tmp18;
-    const Scalar tmp20 = tmp19*tmp4;
-    const Scalar tmp21 = tmp13*d;
-    const Scalar tmp22 = tmp21*tmp4;
-    const Scalar tmp23 = tmp0*tmp4;
-    const Scalar tmp24 = tmp23*tmp3;
-    const Scalar tmp25 = tmp24 - tmp1*tmp5;
-    const Scalar tmp26 = -tmp10*tmp25;
-    const Scalar tmp27 = tmp22 - tmp26;
-    const Scalar tmp28 = tmp12 + tmp20 + tmp27;
-    const Scalar tmp29 = tmp2*tmp3;
-    const Scalar tmp30 = tmp29 + tmp6;
-    const Scalar tmp31 = -tmp10*tmp30;
+    const Scalar tmp1 = sin(phi);
+    const Scalar tmp3 = sin(theta);
+    const Scalar tmp6 = cos(phi);
+    const Scalar tmp9 = (r*r);
+    const Scalar tmp10 = (Scalar(0.25))*m;
+    const Scalar tmp11 = tmp10*tmp9;
+    const Scalar tmp12 = (h*h);
+    const Scalar tmp13 = -tmp11 + ((Scalar(1)/Scalar(12)))*m*(tmp12 + Scalar(3)*tmp9);
+    const Scalar tmp14 = sin(psi);
+    const Scalar tmp15 = tmp1*tmp14;
+    const Scalar tmp16 = cos(theta);
+    const Scalar tmp17 = cos(psi);
+    const Scalar tmp18 = tmp17*tmp6;
+    const Scalar tmp19 = tmp16*tmp18;
+    const Scalar tmp20 = tmp15 - tmp19;
+    const Scalar tmp21 = tmp14*tmp6;
+    const Scalar tmp22 = tmp1*tmp17;
+    const Scalar tmp23 = tmp16*tmp22;
+    const Scalar tmp24 = tmp21 + tmp23;
+    const Scalar tmp25 = -tmp24;
+    const Scalar tmp27 = tmp15*tmp16;
+    const Scalar tmp28 = tmp27 - tmp17*tmp6;
+    const Scalar tmp29 = -tmp28;
+    const Scalar tmp30 = tmp16*tmp21;
+    const Scalar tmp31 = tmp22 + tmp30;
     const Scalar tmp32 = -tmp31;
-    const Scalar tmp33 = tmp1*tmp5;
-    const Scalar tmp34 = tmp3*tmp33;
-    const Scalar tmp35 = tmp23 - tmp34;
-    const Scalar tmp36 = tmp10*tmp35;
-    const Scalar tmp37 = -tmp36;
-    const Scalar tmp38 = tmp1*tmp21;
-    const Scalar tmp39 = tmp1*tmp19;
-    const Scalar tmp40 = tmp38 + tmp39;
-    const Scalar tmp41 = tmp32 + tmp37 + tmp40;
-    const Scalar tmp42 = tmp22 + tmp26;
-    const Scalar tmp43 = tmp11 + tmp20 + tmp42;
-    const Scalar tmp44 = tmp31 + tmp36;
-    const Scalar tmp45 = tmp40 + tmp44;
-    const Scalar tmp46 = -tmp20;
-    const Scalar tmp47 = tmp11 + tmp27 + tmp46;
-    const Scalar tmp48 = tmp32 + tmp36;
-    const Scalar tmp49 = tmp38 - tmp39;
-    const Scalar tmp50 = tmp48 + tmp49;
-    const Scalar tmp51 = tmp12 + tmp42 + tmp46;
-    const Scalar tmp52 = tmp31 + tmp37 + tmp49;
-    const Scalar tmp54 = tmp10*tmp13;
-    const Scalar tmp55 = tmp54*tmp6;
-    const Scalar tmp56 = -tmp55;
-    const Scalar tmp57 = tmp23*tmp54;
-    const Scalar tmp58 = -tmp57;
-    const Scalar tmp59 = tmp3*d;
-    const Scalar tmp60 = tmp4*tmp59;
-    const Scalar tmp61 = tmp18*tmp3;
-    const Scalar tmp62 = tmp4*tmp61;
-    const Scalar tmp63 = tmp60 + tmp62;
-    const Scalar tmp64 = tmp56 + tmp58 + tmp63;
-    const Scalar tmp65 = tmp33*tmp54;
-    const Scalar tmp66 = -tmp65;
-    const Scalar tmp67 = tmp2*tmp54;
-    const Scalar tmp68 = -tmp67;
-    const Scalar tmp69 = tmp1*tmp59;
-    const Scalar tmp70 = tmp1*tmp61;
-    const Scalar tmp71 = tmp69 + tmp70;
-    const Scalar tmp72 = tmp66 + tmp68 + tmp71;
-    const Scalar tmp73 = -tmp72;
-    const Scalar tmp74 = tmp55 + tmp57;
-    const Scalar tmp75 = tmp63 + tmp74;
-    const Scalar tmp76 = tmp65 + tmp67;
-    const Scalar tmp77 = tmp71 + tmp76;
-    const Scalar tmp78 = -tmp77;
-    const Scalar tmp79 = tmp69 - tmp70;
-    const Scalar tmp80 = tmp65 + tmp68 + tmp79;
-    const Scalar tmp81 = -tmp80;
-    const Scalar tmp82 = tmp60 - tmp62;
-    const Scalar tmp83 = tmp55 + tmp58 + tmp82;
-    const Scalar tmp84 = tmp66 + tmp67;
-    const Scalar tmp85 = tmp79 + tmp84;
-    const Scalar tmp86 = -tmp85;
-    const Scalar tmp87 = tmp56 + tmp57;
-    const Scalar tmp88 = tmp82 + tmp87;
-    const Scalar tmp90 = tmp10*tmp3;
-    const Scalar tmp91 = tmp0*tmp90;
-    const Scalar tmp92 = tmp5*tmp90;
-    const Scalar tmp93 = -tmp92;
-    const Scalar tmp94 = tmp91 + tmp93;
-    const Scalar tmp95 = tmp21 - tmp19;
-    const Scalar tmp96 = -tmp94 - tmp95;
-    const Scalar tmp97 = -tmp91;
-    const Scalar tmp98 = -tmp92 - tmp95 - tmp97;
-    const Scalar tmp99 = tmp91 + tmp92;
-    const Scalar tmp100 = tmp19 + tmp21;
-    const Scalar tmp101 = -tmp100 - tmp99;
-    const Scalar tmp102 = -tmp100 - tmp93 - tmp97;
-    const Scalar tmp104 = -tmp10*tmp35;
-    const Scalar tmp105 = tmp104 + tmp31;
-    const Scalar tmp106 = -tmp105;
-    const Scalar tmp107 = tmp10*tmp25;
-    const Scalar tmp108 = tmp107 + tmp11;
-    const Scalar tmp109 = -tmp108;
-    const Scalar tmp110 = tmp104 + tmp32;
-    const Scalar tmp111 = -tmp110;
-    const Scalar tmp112 = tmp107 + tmp12;
-    const Scalar tmp113 = -tmp112;
-    const Scalar tmp115 = tmp0*tmp54;
-    const Scalar tmp116 = tmp5*tmp54;
-    const Scalar tmp117 = tmp115 + tmp116;
-    const Scalar tmp118 = -tmp117;
-    const Scalar tmp119 = -tmp116;
-    const Scalar tmp120 = tmp115 + tmp119;
-    const Scalar tmp121 = -tmp120;
+    const Scalar tmp35 = tmp22*tmp3;
+    const Scalar tmp36 = tmp18*tmp3;
+    const Scalar tmp37 = tmp15*tmp3;
+    const Scalar tmp38 = tmp21*tmp3;
+    const Scalar tmp47 = -tmp20;
+    const Scalar tmp54 = tmp3*d;
+    const Scalar tmp57 = tmp54*tmp6;
+    const Scalar tmp58 = tmp16*d;
+    const Scalar tmp59 = tmp1*tmp58;
+    const Scalar tmp62 = tmp1*tmp54;
+    const Scalar tmp64 = tmp58*tmp6;
+    const Scalar tmp66 = tmp3*tmp6;
+    const Scalar tmp67 = tmp1*tmp16;
+    const Scalar tmp70 = tmp1*tmp3;
+    const Scalar tmp72 = tmp16*tmp6;
+    const Scalar tmp88 = tmp17*tmp3;
+    const Scalar tmp89 = tmp14*tmp16;
+    const Scalar tmp92 = tmp16*tmp17;
+    const Scalar tmp93 = tmp14*tmp3;
+    const Scalar tmp103 = abs(r);
+    const Scalar tmp104 = (Scalar(0.5))*tmp103;
+    const Scalar tmp105 = tmp104*tmp25;
+    const Scalar tmp106 = sqrt(tmp13)/sqrt(m);
+    const Scalar tmp107 = tmp106*tmp70;
+    const Scalar tmp108 = tmp104*tmp29;
+    const Scalar tmp109 = tmp108 + tmp62;
+    const Scalar tmp110 = tmp105 + tmp107 + tmp109;
+    const Scalar tmp111 = tmp104*tmp47;
+    const Scalar tmp113 = tmp106*tmp66;
+    const Scalar tmp117 = tmp104*tmp93;
+    const Scalar tmp118 = tmp104*tmp88;
+    const Scalar tmp119 = tmp117 + tmp118;
+    const Scalar tmp123 = -tmp105;
+    const Scalar tmp124 = -tmp107;
+    const Scalar tmp125 = tmp109 + tmp123 + tmp124;
+    const Scalar tmp126 = -tmp113;
+    const Scalar tmp127 = -tmp118;
+    const Scalar tmp128 = tmp117 + tmp127;
+    const Scalar tmp131 = tmp62 - tmp108;
+    const Scalar tmp132 = tmp105 + tmp124 + tmp131;
+    const Scalar tmp136 = tmp107 + tmp123 + tmp131;
+    const Scalar tmp138 = tmp104*tmp28;
+    const Scalar tmp139 = tmp105 + tmp138;
+    const Scalar tmp140 = tmp104*tmp37;
+    const Scalar tmp141 = tmp104*tmp35;
+    const Scalar tmp142 = tmp140 + tmp141;
+    const Scalar tmp143 = tmp106*tmp67;
+    const Scalar tmp144 = tmp143 + tmp59;
+    const Scalar tmp145 = tmp142 + tmp144;
+    const Scalar tmp146 = tmp104*tmp20;
+    const Scalar tmp147 = tmp104*tmp32;
+    const Scalar tmp148 = tmp146 + tmp147;
+    const Scalar tmp149 = tmp113 + tmp57;
+    const Scalar tmp150 = tmp148 + tmp149;
+    const Scalar tmp152 = tmp111 + tmp147;
+    const Scalar tmp153 = tmp104*tmp38;
+    const Scalar tmp154 = tmp104*tmp36;
+    const Scalar tmp155 = tmp153 + tmp154;
+    const Scalar tmp156 = tmp106*tmp72;
+    const Scalar tmp157 = tmp156 + tmp64;
+    const Scalar tmp158 = tmp155 + tmp157;
+    const Scalar tmp159 = -tmp158;
+    const Scalar tmp160 = -tmp128;
+    const Scalar tmp162 = tmp104*tmp92;
+    const Scalar tmp163 = -tmp162;
+    const Scalar tmp164 = tmp106*tmp3;
+    const Scalar tmp165 = tmp104*tmp89;
+    const Scalar tmp166 = tmp54 - tmp165;
+    const Scalar tmp167 = -tmp163 - tmp164 - tmp166;
+    const Scalar tmp168 = tmp123 + tmp138;
+    const Scalar tmp169 = -tmp168;
+    const Scalar tmp170 = -tmp141;
+    const Scalar tmp171 = tmp140 + tmp170;
+    const Scalar tmp172 = tmp59 - tmp143;
+    const Scalar tmp173 = tmp171 + tmp172;
+    const Scalar tmp174 = -tmp146;
+    const Scalar tmp175 = tmp126 + tmp57;
+    const Scalar tmp176 = tmp147 + tmp174 + tmp175;
+    const Scalar tmp178 = -tmp147;
+    const Scalar tmp179 = tmp111 + tmp178;
+    const Scalar tmp180 = -tmp154;
+    const Scalar tmp181 = tmp153 + tmp180;
+    const Scalar tmp182 = tmp64 - tmp156;
+    const Scalar tmp183 = tmp181 + tmp182;
+    const Scalar tmp184 = -tmp183;
+    const Scalar tmp186 = -tmp164;
+    const Scalar tmp187 = -tmp162 - tmp166 - tmp186;
+    const Scalar tmp188 = -tmp140;
+    const Scalar tmp189 = tmp141 + tmp172 + tmp188;
+    const Scalar tmp190 = tmp146 + tmp178;
+    const Scalar tmp191 = tmp175 + tmp190;
+    const Scalar tmp193 = -tmp179;
+    const Scalar tmp194 = -tmp153;
+    const Scalar tmp195 = tmp154 + tmp182 + tmp194;
+    const Scalar tmp196 = -tmp195;
+    const Scalar tmp197 = -tmp119;
+    const Scalar tmp199 = tmp163 + tmp165;
+    const Scalar tmp200 = -tmp186 - tmp199 - tmp54;
+    const Scalar tmp201 = -tmp139;
+    const Scalar tmp202 = tmp144 + tmp170 + tmp188;
+    const Scalar tmp203 = tmp149 + tmp174 + tmp178;
+    const Scalar tmp205 = -tmp152;
+    const Scalar tmp206 = tmp157 + tmp180 + tmp194;
+    const Scalar tmp207 = -tmp206;
+    const Scalar tmp209 = tmp162 + tmp165;
+    const Scalar tmp210 = -tmp164 - tmp209 - tmp54;
     XJacobian<Scalar> result;
-    result(0, 0) = tmp45;
-    result(0, 1) = tmp75;
-    result(0, 2) = tmp108;
-    result(1, 0) = tmp43;
-    result(1, 1) = tmp78;
-    result(1, 2) = tmp105;
+    result(0, 0) = tmp150;
+    result(0, 1) = tmp145;
+    result(0, 2) = tmp139;
+    result(1, 0) = tmp110;
+    result(1, 1) = tmp159;
+    result(1, 2) = tmp152;
     result(2, 0) = Scalar(0);
-    result(2, 1) = tmp102;
-    result(2, 2) = tmp121;
-    result(3, 0) = tmp52;
-    result(3, 1) = tmp88;
-    result(3, 2) = tmp113;
-    result(4, 0) = tmp51;
-    result(4, 1) = tmp86;
-    result(4, 2) = tmp110;
+    result(2, 1) = tmp167;
+    result(2, 2) = tmp160;
+    result(3, 0) = tmp176;
+    result(3, 1) = tmp173;
+    result(3, 2) = tmp169;
+    result(4, 0) = tmp125;
+    result(4, 1) = tmp184;
+    result(4, 2) = tmp179;
     result(5, 0) = Scalar(0);
-    result(5, 1) = tmp98;
-    result(5, 2) = tmp117;
-    result(6, 0) = tmp50;
-    result(6, 1) = tmp83;
-    result(6, 2) = tmp112;
-    result(7, 0) = tmp47;
-    result(7, 1) = tmp81;
-    result(7, 2) = tmp111;
+    result(5, 1) = tmp187;
+    result(5, 2) = tmp119;
+    result(6, 0) = tmp191;
+    result(6, 1) = tmp189;
+    result(6, 2) = tmp168;
+    result(7, 0) = tmp132;
+    result(7, 1) = tmp196;
+    result(7, 2) = tmp193;
     result(8, 0) = Scalar(0);
-    result(8, 1) = tmp96;
-    result(8, 2) = tmp118;
-    result(9, 0) = tmp41;
-    result(9, 1) = tmp64;
-    result(9, 2) = tmp109;
-    result(10, 0) = tmp28;
-    result(10, 1) = tmp73;
-    result(10, 2) = tmp106;
+    result(8, 1) = tmp200;
+    result(8, 2) = tmp197;
+    result(9, 0) = tmp203;
+    result(9, 1) = tmp202;
+    result(9, 2) = tmp201;
+    result(10, 0) = tmp136;
+    result(10, 1) = tmp207;
+    result(10, 2) = tmp205;
     result(11, 0) = Scalar(0);
-    result(11, 1) = tmp101;
-    result(11, 2) = tmp120;
+    result(11, 1) = tmp210;
+    result(11, 2) = tmp128;
     return result;
   }
 
@@ -3211,7 +1958,7 @@ struct HeavyTop {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return gamma (nx)
-  /// Ops: 403
+  /// Ops: 411
   template <typename Scalar>
   static XVector<Scalar> bias_acceleration(const QVector<Scalar>& q,
                                            const QVector<Scalar>& v,
@@ -3231,189 +1978,182 @@ struct HeavyTop {
     const Scalar d = Scalar(params.d);
     const Scalar r = Scalar(params.r);
     const Scalar h = Scalar(params.h);
-    const Scalar tmp0 = sin(psi);
-    const Scalar tmp1 = cos(phi);
-    const Scalar tmp2 = tmp0*tmp1;
-    const Scalar tmp3 = cos(theta);
-    const Scalar tmp4 = sin(phi);
-    const Scalar tmp5 = cos(psi);
-    const Scalar tmp6 = tmp4*tmp5;
-    const Scalar tmp7 = tmp3*tmp6;
-    const Scalar tmp8 = tmp2 + tmp7;
-    const Scalar tmp9 = abs(r);
-    const Scalar tmp10 = (Scalar(0.5))*tmp9;
-    const Scalar tmp11 = -tmp10*tmp8;
-    const Scalar tmp12 = -tmp11;
-    const Scalar tmp13 = sin(theta);
-    const Scalar tmp14 = (r*r);
-    const Scalar tmp15 = (Scalar(0.25))*m;
-    const Scalar tmp16 = (h*h);
-    const Scalar tmp17 = -tmp14*tmp15 + ((Scalar(1)/Scalar(12)))*m*(tmp16 + Scalar(3)*tmp14);
-    const Scalar tmp18 = sqrt(tmp17)/sqrt(m);
-    const Scalar tmp19 = tmp13*tmp18;
-    const Scalar tmp20 = tmp19*tmp4;
-    const Scalar tmp21 = tmp13*d;
-    const Scalar tmp22 = tmp21*tmp4;
-    const Scalar tmp23 = tmp0*tmp4;
-    const Scalar tmp24 = tmp23*tmp3;
-    const Scalar tmp25 = tmp24 - tmp1*tmp5;
-    const Scalar tmp29 = tmp2*tmp3;
-    const Scalar tmp30 = tmp29 + tmp6;
-    const Scalar tmp31 = -tmp10*tmp30;
+    const Scalar tmp1 = sin(phi);
+    const Scalar tmp3 = sin(theta);
+    const Scalar tmp6 = cos(phi);
+    const Scalar tmp9 = (r*r);
+    const Scalar tmp10 = (Scalar(0.25))*m;
+    const Scalar tmp11 = tmp10*tmp9;
+    const Scalar tmp12 = (h*h);
+    const Scalar tmp13 = -tmp11 + ((Scalar(1)/Scalar(12)))*m*(tmp12 + Scalar(3)*tmp9);
+    const Scalar tmp14 = sin(psi);
+    const Scalar tmp15 = tmp1*tmp14;
+    const Scalar tmp16 = cos(theta);
+    const Scalar tmp17 = cos(psi);
+    const Scalar tmp18 = tmp17*tmp6;
+    const Scalar tmp19 = tmp16*tmp18;
+    const Scalar tmp20 = tmp15 - tmp19;
+    const Scalar tmp21 = tmp14*tmp6;
+    const Scalar tmp22 = tmp1*tmp17;
+    const Scalar tmp23 = tmp16*tmp22;
+    const Scalar tmp24 = tmp21 + tmp23;
+    const Scalar tmp25 = -tmp24;
+    const Scalar tmp27 = tmp15*tmp16;
+    const Scalar tmp28 = tmp27 - tmp17*tmp6;
+    const Scalar tmp30 = tmp16*tmp21;
+    const Scalar tmp31 = tmp22 + tmp30;
     const Scalar tmp32 = -tmp31;
-    const Scalar tmp33 = tmp1*tmp5;
-    const Scalar tmp34 = tmp3*tmp33;
-    const Scalar tmp35 = tmp23 - tmp34;
-    const Scalar tmp36 = tmp10*tmp35;
-    const Scalar tmp37 = -tmp36;
-    const Scalar tmp38 = tmp1*tmp21;
-    const Scalar tmp39 = tmp1*tmp19;
-    const Scalar tmp40 = tmp38 + tmp39;
-    const Scalar tmp41 = tmp32 + tmp37 + tmp40;
-    const Scalar tmp44 = tmp31 + tmp36;
-    const Scalar tmp45 = tmp40 + tmp44;
-    const Scalar tmp46 = -tmp20;
-    const Scalar tmp48 = tmp32 + tmp36;
-    const Scalar tmp49 = tmp38 - tmp39;
-    const Scalar tmp50 = tmp48 + tmp49;
-    const Scalar tmp52 = tmp31 + tmp37 + tmp49;
-    const Scalar tmp54 = tmp10*tmp13;
-    const Scalar tmp55 = tmp54*tmp6;
-    const Scalar tmp56 = -tmp55;
-    const Scalar tmp57 = tmp23*tmp54;
-    const Scalar tmp58 = -tmp57;
-    const Scalar tmp59 = tmp3*d;
-    const Scalar tmp60 = tmp4*tmp59;
-    const Scalar tmp61 = tmp18*tmp3;
-    const Scalar tmp62 = tmp4*tmp61;
-    const Scalar tmp63 = tmp60 + tmp62;
-    const Scalar tmp64 = tmp56 + tmp58 + tmp63;
-    const Scalar tmp65 = tmp33*tmp54;
-    const Scalar tmp66 = -tmp65;
-    const Scalar tmp67 = tmp2*tmp54;
-    const Scalar tmp68 = -tmp67;
-    const Scalar tmp69 = tmp1*tmp59;
-    const Scalar tmp70 = tmp1*tmp61;
-    const Scalar tmp71 = tmp69 + tmp70;
-    const Scalar tmp72 = tmp66 + tmp68 + tmp71;
-    const Scalar tmp74 = tmp55 + tmp57;
-    const Scalar tmp75 = tmp63 + tmp74;
-    const Scalar tmp76 = tmp65 + tmp67;
-    const Scalar tmp77 = tmp71 + tmp76;
-    const Scalar tmp79 = tmp69 - tmp70;
-    const Scalar tmp80 = tmp65 + tmp68 + tmp79;
-    const Scalar tmp82 = tmp60 - tmp62;
-    const Scalar tmp83 = tmp55 + tmp58 + tmp82;
-    const Scalar tmp84 = tmp66 + tmp67;
-    const Scalar tmp85 = tmp79 + tmp84;
-    const Scalar tmp87 = tmp56 + tmp57;
-    const Scalar tmp88 = tmp82 + tmp87;
-    const Scalar tmp90 = tmp10*tmp3;
-    const Scalar tmp91 = tmp0*tmp90;
-    const Scalar tmp92 = tmp5*tmp90;
-    const Scalar tmp93 = -tmp92;
-    const Scalar tmp94 = tmp91 + tmp93;
-    const Scalar tmp99 = tmp91 + tmp92;
-    const Scalar tmp107 = tmp10*tmp25;
-    const Scalar tmp108 = tmp107 + tmp11;
-    const Scalar tmp109 = -tmp108;
-    const Scalar tmp112 = tmp107 + tmp12;
-    const Scalar tmp113 = -tmp112;
-    const Scalar tmp115 = tmp0*tmp54;
-    const Scalar tmp116 = tmp5*tmp54;
-    const Scalar tmp117 = tmp115 + tmp116;
-    const Scalar tmp118 = -tmp117;
-    const Scalar tmp119 = -tmp116;
-    const Scalar tmp120 = tmp115 + tmp119;
-    const Scalar tmp121 = -tmp120;
-    const Scalar tmp127 = tmp10*tmp30;
-    const Scalar tmp128 = tmp127 + tmp36;
-    const Scalar tmp129 = -tmp128;
-    const Scalar tmp130 = tmp10*tmp8;
-    const Scalar tmp131 = tmp107 + tmp130;
-    const Scalar tmp132 = tmp10*tmp24;
-    const Scalar tmp133 = tmp10*tmp7;
-    const Scalar tmp134 = tmp20 + tmp22;
-    const Scalar tmp135 = phi_dot*(tmp129*psi_dot + tmp72*theta_dot + phi_dot*(-tmp131 - tmp134))
-        + psi_dot*(tmp129*phi_dot + tmp87*theta_dot - tmp131*psi_dot)
-        + theta_dot*(tmp72*phi_dot + tmp87*psi_dot + theta_dot*(-tmp132 - tmp133 - tmp134));
-    const Scalar tmp136 = -tmp84;
-    const Scalar tmp137 = tmp10*tmp29;
-    const Scalar tmp138 = tmp10*tmp34;
-    const Scalar tmp139 = tmp109*psi_dot + tmp41*phi_dot + tmp64*theta_dot;
-    const Scalar tmp140 = tmp139*phi_dot
-        + psi_dot*(tmp109*phi_dot + tmp136*theta_dot - tmp44*psi_dot)
-        + theta_dot*(tmp136*psi_dot + tmp64*phi_dot + theta_dot*(tmp137 + tmp138 + tmp40));
-    const Scalar tmp141 = -tmp87;
-    const Scalar tmp142 = -tmp133;
-    const Scalar tmp143 = -tmp132;
-    const Scalar tmp144 = -tmp130;
-    const Scalar tmp145 = -tmp107;
-    const Scalar tmp146 = phi_dot*(tmp128*psi_dot + tmp77*theta_dot
-            + phi_dot*(-tmp134 - tmp144 - tmp145))
-        + psi_dot*(tmp128*phi_dot + tmp131*psi_dot + tmp141*theta_dot)
-        + theta_dot*(tmp141*psi_dot + tmp77*phi_dot + theta_dot*(-tmp134 - tmp142 - tmp143));
-    const Scalar tmp147 = -tmp138;
-    const Scalar tmp148 = -tmp137;
-    const Scalar tmp149 = tmp108*psi_dot + tmp45*phi_dot + tmp75*theta_dot;
-    const Scalar tmp150 = tmp149*phi_dot
-        + psi_dot*(tmp108*phi_dot + tmp44*psi_dot + tmp84*theta_dot)
-        + theta_dot*(tmp75*phi_dot + tmp84*psi_dot + theta_dot*(tmp147 + tmp148 + tmp40));
-    const Scalar tmp151 = -tmp74;
-    const Scalar tmp152 = -tmp127;
-    const Scalar tmp153 = tmp152 + tmp36;
-    const Scalar tmp154 = -tmp153;
-    const Scalar tmp155 = tmp107 + tmp144;
-    const Scalar tmp156 = tmp22 + tmp46;
-    const Scalar tmp157 = phi_dot*(tmp154*psi_dot + tmp80*theta_dot + phi_dot*(-tmp155 - tmp156))
-        + psi_dot*(tmp151*theta_dot + tmp154*phi_dot - tmp155*psi_dot)
-        + theta_dot*(tmp151*psi_dot + tmp80*phi_dot + theta_dot*(-tmp132 - tmp142 - tmp156));
-    const Scalar tmp158 = tmp112*psi_dot + tmp50*phi_dot + tmp83*theta_dot;
-    const Scalar tmp159 = tmp158*phi_dot
-        + psi_dot*(tmp112*phi_dot + tmp48*psi_dot + tmp76*theta_dot)
-        + theta_dot*(tmp76*psi_dot + tmp83*phi_dot + theta_dot*(tmp137 + tmp147 + tmp49));
-    const Scalar tmp160 = phi_dot*(tmp153*psi_dot + tmp85*theta_dot
-            + phi_dot*(-tmp130 - tmp145 - tmp156))
-        + psi_dot*(tmp153*phi_dot + tmp155*psi_dot + tmp74*theta_dot)
-        + theta_dot*(tmp74*psi_dot + tmp85*phi_dot + theta_dot*(-tmp133 - tmp143 - tmp156));
-    const Scalar tmp161 = -tmp76;
-    const Scalar tmp162 = tmp113*psi_dot + tmp52*phi_dot + tmp88*theta_dot;
-    const Scalar tmp163 = tmp162*phi_dot
-        + psi_dot*(tmp113*phi_dot + tmp161*theta_dot - tmp48*psi_dot)
-        + theta_dot*(tmp161*psi_dot + tmp88*phi_dot + theta_dot*(tmp138 + tmp148 + tmp49));
-    const Scalar tmp165 = tmp118*psi_dot;
-    const Scalar tmp166 = -tmp94;
-    const Scalar tmp167 = tmp117 + tmp59 + tmp61;
-    const Scalar tmp168 = psi_dot*(tmp165 + tmp166*theta_dot)
-        + theta_dot*(tmp166*psi_dot - tmp167*theta_dot);
-    const Scalar tmp169 = tmp117*psi_dot;
-    const Scalar tmp170 = tmp59 - tmp115;
-    const Scalar tmp171 = tmp119 + tmp170 + tmp61;
-    const Scalar tmp172 = psi_dot*(tmp169 + tmp94*theta_dot)
-        + theta_dot*(tmp94*psi_dot - tmp171*theta_dot);
-    const Scalar tmp173 = tmp121*psi_dot;
-    const Scalar tmp174 = -tmp61;
-    const Scalar tmp175 = tmp120 + tmp174 + tmp59;
-    const Scalar tmp176 = psi_dot*(tmp173 + tmp99*theta_dot)
-        + theta_dot*(tmp99*psi_dot - tmp175*theta_dot);
-    const Scalar tmp177 = tmp120*psi_dot;
-    const Scalar tmp178 = -tmp99;
-    const Scalar tmp179 = tmp116 + tmp170 + tmp174;
-    const Scalar tmp180 = psi_dot*(tmp177 + tmp178*theta_dot)
-        + theta_dot*(tmp178*psi_dot - tmp179*theta_dot);
+    const Scalar tmp35 = tmp22*tmp3;
+    const Scalar tmp36 = tmp18*tmp3;
+    const Scalar tmp37 = tmp15*tmp3;
+    const Scalar tmp38 = tmp21*tmp3;
+    const Scalar tmp54 = tmp3*d;
+    const Scalar tmp57 = tmp54*tmp6;
+    const Scalar tmp58 = tmp16*d;
+    const Scalar tmp59 = tmp1*tmp58;
+    const Scalar tmp62 = tmp1*tmp54;
+    const Scalar tmp64 = tmp58*tmp6;
+    const Scalar tmp66 = tmp3*tmp6;
+    const Scalar tmp67 = tmp1*tmp16;
+    const Scalar tmp70 = tmp1*tmp3;
+    const Scalar tmp72 = tmp16*tmp6;
+    const Scalar tmp88 = tmp17*tmp3;
+    const Scalar tmp89 = tmp14*tmp16;
+    const Scalar tmp92 = tmp16*tmp17;
+    const Scalar tmp93 = tmp14*tmp3;
+    const Scalar tmp103 = abs(r);
+    const Scalar tmp104 = (Scalar(0.5))*tmp103;
+    const Scalar tmp105 = tmp104*tmp25;
+    const Scalar tmp106 = sqrt(tmp13)/sqrt(m);
+    const Scalar tmp107 = tmp106*tmp70;
+    const Scalar tmp113 = tmp106*tmp66;
+    const Scalar tmp114 = tmp104*tmp31;
+    const Scalar tmp115 = -tmp114;
+    const Scalar tmp117 = tmp104*tmp93;
+    const Scalar tmp118 = tmp104*tmp88;
+    const Scalar tmp119 = tmp117 + tmp118;
+    const Scalar tmp120 = tmp106*tmp16;
+    const Scalar tmp121 = tmp120 + tmp58;
+    const Scalar tmp122 = tmp119 + tmp121;
+    const Scalar tmp123 = -tmp105;
+    const Scalar tmp124 = -tmp107;
+    const Scalar tmp126 = -tmp113;
+    const Scalar tmp127 = -tmp118;
+    const Scalar tmp128 = tmp117 + tmp127;
+    const Scalar tmp129 = tmp58 - tmp120;
+    const Scalar tmp130 = tmp128 + tmp129;
+    const Scalar tmp134 = -tmp117;
+    const Scalar tmp135 = tmp118 + tmp129 + tmp134;
+    const Scalar tmp137 = tmp121 + tmp127 + tmp134;
+    const Scalar tmp138 = tmp104*tmp28;
+    const Scalar tmp139 = tmp105 + tmp138;
+    const Scalar tmp140 = tmp104*tmp37;
+    const Scalar tmp141 = tmp104*tmp35;
+    const Scalar tmp142 = tmp140 + tmp141;
+    const Scalar tmp143 = tmp106*tmp67;
+    const Scalar tmp144 = tmp143 + tmp59;
+    const Scalar tmp145 = tmp142 + tmp144;
+    const Scalar tmp146 = tmp104*tmp20;
+    const Scalar tmp147 = tmp104*tmp32;
+    const Scalar tmp148 = tmp146 + tmp147;
+    const Scalar tmp149 = tmp113 + tmp57;
+    const Scalar tmp150 = tmp148 + tmp149;
+    const Scalar tmp151 = tmp139*psi_dot + tmp145*theta_dot + tmp150*phi_dot;
+    const Scalar tmp153 = tmp104*tmp38;
+    const Scalar tmp154 = tmp104*tmp36;
+    const Scalar tmp155 = tmp153 + tmp154;
+    const Scalar tmp156 = tmp106*tmp72;
+    const Scalar tmp157 = tmp156 + tmp64;
+    const Scalar tmp158 = tmp155 + tmp157;
+    const Scalar tmp160 = -tmp128;
+    const Scalar tmp161 = tmp160*psi_dot;
+    const Scalar tmp162 = tmp104*tmp92;
+    const Scalar tmp163 = -tmp162;
+    const Scalar tmp165 = tmp104*tmp89;
+    const Scalar tmp168 = tmp123 + tmp138;
+    const Scalar tmp169 = -tmp168;
+    const Scalar tmp170 = -tmp141;
+    const Scalar tmp171 = tmp140 + tmp170;
+    const Scalar tmp172 = tmp59 - tmp143;
+    const Scalar tmp173 = tmp171 + tmp172;
+    const Scalar tmp174 = -tmp146;
+    const Scalar tmp175 = tmp126 + tmp57;
+    const Scalar tmp176 = tmp147 + tmp174 + tmp175;
+    const Scalar tmp177 = tmp169*psi_dot + tmp173*theta_dot + tmp176*phi_dot;
+    const Scalar tmp178 = -tmp147;
+    const Scalar tmp180 = -tmp154;
+    const Scalar tmp181 = tmp153 + tmp180;
+    const Scalar tmp182 = tmp64 - tmp156;
+    const Scalar tmp183 = tmp181 + tmp182;
+    const Scalar tmp185 = tmp119*psi_dot;
+    const Scalar tmp188 = -tmp140;
+    const Scalar tmp189 = tmp141 + tmp172 + tmp188;
+    const Scalar tmp190 = tmp146 + tmp178;
+    const Scalar tmp191 = tmp175 + tmp190;
+    const Scalar tmp192 = tmp168*psi_dot + tmp189*theta_dot + tmp191*phi_dot;
+    const Scalar tmp194 = -tmp153;
+    const Scalar tmp195 = tmp154 + tmp182 + tmp194;
+    const Scalar tmp197 = -tmp119;
+    const Scalar tmp198 = tmp197*psi_dot;
+    const Scalar tmp199 = tmp163 + tmp165;
+    const Scalar tmp201 = -tmp139;
+    const Scalar tmp202 = tmp144 + tmp170 + tmp188;
+    const Scalar tmp203 = tmp149 + tmp174 + tmp178;
+    const Scalar tmp204 = tmp201*psi_dot + tmp202*theta_dot + tmp203*phi_dot;
+    const Scalar tmp206 = tmp157 + tmp180 + tmp194;
+    const Scalar tmp208 = tmp128*psi_dot;
+    const Scalar tmp209 = tmp162 + tmp165;
+    const Scalar tmp211 = -tmp171;
+    const Scalar tmp212 = tmp114 + tmp146;
+    const Scalar tmp213 = tmp104*tmp24;
+    const Scalar tmp214 = tmp138 + tmp213;
+    const Scalar tmp215 = tmp104*tmp23;
+    const Scalar tmp216 = -tmp215;
+    const Scalar tmp217 = tmp104*tmp27;
+    const Scalar tmp218 = -tmp217;
+    const Scalar tmp219 = tmp107 + tmp62;
+    const Scalar tmp220 = -tmp213;
+    const Scalar tmp221 = -tmp138;
+    const Scalar tmp222 = tmp104*tmp19;
+    const Scalar tmp223 = -tmp222;
+    const Scalar tmp224 = tmp104*tmp30;
+    const Scalar tmp225 = -tmp224;
+    const Scalar tmp226 = -tmp199;
+    const Scalar tmp227 = tmp115 + tmp146;
+    const Scalar tmp228 = tmp138 + tmp220;
+    const Scalar tmp229 = tmp124 + tmp62;
+    const Scalar tmp230 = -tmp155;
+    const Scalar tmp231 = -tmp142;
+    const Scalar tmp232 = -tmp227;
+    const Scalar tmp233 = -tmp209;
+    const Scalar tmp234 = -tmp212;
+    const Scalar tmp235 = -tmp181;
     XVector<Scalar> result;
-    result(0) = tmp146;
-    result(1) = tmp150;
-    result(2) = tmp168;
-    result(3) = tmp160;
-    result(4) = tmp163;
-    result(5) = tmp176;
-    result(6) = tmp157;
-    result(7) = tmp159;
-    result(8) = tmp180;
-    result(9) = tmp135;
-    result(10) = tmp140;
-    result(11) = tmp172;
+    result(0) = phi_dot*(tmp158*theta_dot + tmp212*psi_dot + phi_dot*(-tmp219 - tmp220 - tmp221))
+        + psi_dot*(tmp211*theta_dot + tmp212*phi_dot + tmp214*psi_dot)
+        + theta_dot*(tmp158*phi_dot + tmp211*psi_dot + theta_dot*(-tmp216 - tmp218 - tmp219));
+    result(1) = tmp151*phi_dot + psi_dot*(tmp139*phi_dot + tmp148*psi_dot + tmp181*theta_dot)
+        + theta_dot*(tmp145*phi_dot + tmp181*psi_dot + theta_dot*(tmp149 + tmp223 + tmp225));
+    result(2) = psi_dot*(tmp198 + tmp226*theta_dot) + theta_dot*(tmp226*psi_dot - tmp122*theta_dot);
+    result(3) = phi_dot*(tmp183*theta_dot + tmp227*psi_dot + phi_dot*(-tmp213 - tmp221 - tmp229))
+        + psi_dot*(tmp142*theta_dot + tmp227*phi_dot + tmp228*psi_dot)
+        + theta_dot*(tmp142*psi_dot + tmp183*phi_dot + theta_dot*(-tmp215 - tmp218 - tmp229));
+    result(4) = tmp177*phi_dot + psi_dot*(tmp169*phi_dot + tmp230*theta_dot - tmp190*psi_dot)
+        + theta_dot*(tmp173*phi_dot + tmp230*psi_dot + theta_dot*(tmp175 + tmp222 + tmp225));
+    result(5) = psi_dot*(tmp161 + tmp209*theta_dot) + theta_dot*(tmp209*psi_dot - tmp130*theta_dot);
+    result(6) = phi_dot*(tmp195*theta_dot + tmp232*psi_dot + phi_dot*(-tmp228 - tmp229))
+        + psi_dot*(tmp231*theta_dot + tmp232*phi_dot - tmp228*psi_dot)
+        + theta_dot*(tmp195*phi_dot + tmp231*psi_dot + theta_dot*(-tmp216 - tmp217 - tmp229));
+    result(7) = tmp192*phi_dot + psi_dot*(tmp155*theta_dot + tmp168*phi_dot + tmp190*psi_dot)
+        + theta_dot*(tmp155*psi_dot + tmp189*phi_dot + theta_dot*(tmp175 + tmp223 + tmp224));
+    result(8) = psi_dot*(tmp208 + tmp233*theta_dot) + theta_dot*(tmp233*psi_dot - tmp135*theta_dot);
+    result(9) = phi_dot*(tmp206*theta_dot + tmp234*psi_dot + phi_dot*(-tmp214 - tmp219))
+        + psi_dot*(tmp171*theta_dot + tmp234*phi_dot - tmp214*psi_dot)
+        + theta_dot*(tmp171*psi_dot + tmp206*phi_dot + theta_dot*(-tmp215 - tmp217 - tmp219));
+    result(10) = tmp204*phi_dot + psi_dot*(tmp201*phi_dot + tmp235*theta_dot - tmp148*psi_dot)
+        + theta_dot*(tmp202*phi_dot + tmp235*psi_dot + theta_dot*(tmp149 + tmp222 + tmp224));
+    result(11) = psi_dot*(tmp185 + tmp199*theta_dot)
+        + theta_dot*(tmp199*psi_dot - tmp137*theta_dot);
     return result;
   }
 
@@ -3423,164 +2163,35 @@ struct HeavyTop {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return p (dim)
-  /// Ops: 233
+  /// Ops: 23
   template <typename Scalar>
   static SpaceVector<Scalar> linear_momentum(const QVector<Scalar>& q,
                                              const QVector<Scalar>& v,
                                              const Scalar& /*t*/,
                                              const Params& params) {
-    using std::abs;
     using std::cos;
     using std::sin;
-    using std::sqrt;
     const Scalar phi = q(0);
     const Scalar theta = q(1);
-    const Scalar psi = q(2);
     const Scalar phi_dot = v(0);
     const Scalar theta_dot = v(1);
-    const Scalar psi_dot = v(2);
     const Scalar m = Scalar(params.m);
     const Scalar d = Scalar(params.d);
-    const Scalar r = Scalar(params.r);
-    const Scalar h = Scalar(params.h);
-    const Scalar tmp0 = sin(psi);
-    const Scalar tmp1 = cos(phi);
-    const Scalar tmp2 = tmp0*tmp1;
-    const Scalar tmp3 = cos(theta);
-    const Scalar tmp4 = sin(phi);
-    const Scalar tmp5 = cos(psi);
-    const Scalar tmp6 = tmp4*tmp5;
-    const Scalar tmp7 = tmp3*tmp6;
-    const Scalar tmp8 = tmp2 + tmp7;
-    const Scalar tmp9 = abs(r);
-    const Scalar tmp10 = (Scalar(0.5))*tmp9;
-    const Scalar tmp11 = -tmp10*tmp8;
-    const Scalar tmp12 = -tmp11;
-    const Scalar tmp13 = sin(theta);
-    const Scalar tmp14 = (r*r);
-    const Scalar tmp15 = (Scalar(0.25))*m;
-    const Scalar tmp16 = (h*h);
-    const Scalar tmp17 = -tmp14*tmp15 + ((Scalar(1)/Scalar(12)))*m*(tmp16 + Scalar(3)*tmp14);
-    const Scalar tmp18 = sqrt(tmp17)/sqrt(m);
-    const Scalar tmp19 = tmp13*tmp18;
-    const Scalar tmp20 = tmp19*tmp4;
-    const Scalar tmp21 = tmp13*d;
-    const Scalar tmp22 = tmp21*tmp4;
-    const Scalar tmp23 = tmp0*tmp4;
-    const Scalar tmp24 = tmp23*tmp3;
-    const Scalar tmp25 = tmp24 - tmp1*tmp5;
-    const Scalar tmp26 = -tmp10*tmp25;
-    const Scalar tmp27 = tmp22 - tmp26;
-    const Scalar tmp28 = tmp12 + tmp20 + tmp27;
-    const Scalar tmp29 = tmp2*tmp3;
-    const Scalar tmp30 = tmp29 + tmp6;
-    const Scalar tmp31 = -tmp10*tmp30;
-    const Scalar tmp32 = -tmp31;
-    const Scalar tmp33 = tmp1*tmp5;
-    const Scalar tmp34 = tmp3*tmp33;
-    const Scalar tmp35 = tmp23 - tmp34;
-    const Scalar tmp36 = tmp10*tmp35;
-    const Scalar tmp37 = -tmp36;
-    const Scalar tmp38 = tmp1*tmp21;
-    const Scalar tmp39 = tmp1*tmp19;
-    const Scalar tmp40 = tmp38 + tmp39;
-    const Scalar tmp41 = tmp32 + tmp37 + tmp40;
-    const Scalar tmp42 = tmp22 + tmp26;
-    const Scalar tmp43 = tmp11 + tmp20 + tmp42;
-    const Scalar tmp44 = tmp31 + tmp36;
-    const Scalar tmp45 = tmp40 + tmp44;
-    const Scalar tmp46 = -tmp20;
-    const Scalar tmp47 = tmp11 + tmp27 + tmp46;
-    const Scalar tmp48 = tmp32 + tmp36;
-    const Scalar tmp49 = tmp38 - tmp39;
-    const Scalar tmp50 = tmp48 + tmp49;
-    const Scalar tmp51 = tmp12 + tmp42 + tmp46;
-    const Scalar tmp52 = tmp31 + tmp37 + tmp49;
-    const Scalar tmp54 = tmp10*tmp13;
-    const Scalar tmp55 = tmp54*tmp6;
-    const Scalar tmp56 = -tmp55;
-    const Scalar tmp57 = tmp23*tmp54;
-    const Scalar tmp58 = -tmp57;
-    const Scalar tmp59 = tmp3*d;
-    const Scalar tmp60 = tmp4*tmp59;
-    const Scalar tmp61 = tmp18*tmp3;
-    const Scalar tmp62 = tmp4*tmp61;
-    const Scalar tmp63 = tmp60 + tmp62;
-    const Scalar tmp64 = tmp56 + tmp58 + tmp63;
-    const Scalar tmp65 = tmp33*tmp54;
-    const Scalar tmp66 = -tmp65;
-    const Scalar tmp67 = tmp2*tmp54;
-    const Scalar tmp68 = -tmp67;
-    const Scalar tmp69 = tmp1*tmp59;
-    const Scalar tmp70 = tmp1*tmp61;
-    const Scalar tmp71 = tmp69 + tmp70;
-    const Scalar tmp72 = tmp66 + tmp68 + tmp71;
-    const Scalar tmp73 = -tmp72;
-    const Scalar tmp74 = tmp55 + tmp57;
-    const Scalar tmp75 = tmp63 + tmp74;
-    const Scalar tmp76 = tmp65 + tmp67;
-    const Scalar tmp77 = tmp71 + tmp76;
-    const Scalar tmp78 = -tmp77;
-    const Scalar tmp79 = tmp69 - tmp70;
-    const Scalar tmp80 = tmp65 + tmp68 + tmp79;
-    const Scalar tmp81 = -tmp80;
-    const Scalar tmp82 = tmp60 - tmp62;
-    const Scalar tmp83 = tmp55 + tmp58 + tmp82;
-    const Scalar tmp84 = tmp66 + tmp67;
-    const Scalar tmp85 = tmp79 + tmp84;
-    const Scalar tmp86 = -tmp85;
-    const Scalar tmp87 = tmp56 + tmp57;
-    const Scalar tmp88 = tmp82 + tmp87;
-    const Scalar tmp90 = tmp10*tmp3;
-    const Scalar tmp91 = tmp0*tmp90;
-    const Scalar tmp92 = tmp5*tmp90;
-    const Scalar tmp93 = -tmp92;
-    const Scalar tmp94 = tmp91 + tmp93;
-    const Scalar tmp95 = tmp21 - tmp19;
-    const Scalar tmp96 = -tmp94 - tmp95;
-    const Scalar tmp97 = -tmp91;
-    const Scalar tmp98 = -tmp92 - tmp95 - tmp97;
-    const Scalar tmp99 = tmp91 + tmp92;
-    const Scalar tmp100 = tmp19 + tmp21;
-    const Scalar tmp101 = -tmp100 - tmp99;
-    const Scalar tmp102 = -tmp100 - tmp93 - tmp97;
-    const Scalar tmp104 = -tmp10*tmp35;
-    const Scalar tmp105 = tmp104 + tmp31;
-    const Scalar tmp106 = -tmp105;
-    const Scalar tmp107 = tmp10*tmp25;
-    const Scalar tmp108 = tmp107 + tmp11;
-    const Scalar tmp109 = -tmp108;
-    const Scalar tmp110 = tmp104 + tmp32;
-    const Scalar tmp111 = -tmp110;
-    const Scalar tmp112 = tmp107 + tmp12;
-    const Scalar tmp113 = -tmp112;
-    const Scalar tmp115 = tmp0*tmp54;
-    const Scalar tmp116 = tmp5*tmp54;
-    const Scalar tmp117 = tmp115 + tmp116;
-    const Scalar tmp118 = -tmp117;
-    const Scalar tmp119 = -tmp116;
-    const Scalar tmp120 = tmp115 + tmp119;
-    const Scalar tmp121 = -tmp120;
-    const Scalar tmp139 = tmp109*psi_dot + tmp41*phi_dot + tmp64*theta_dot;
-    const Scalar tmp149 = tmp108*psi_dot + tmp45*phi_dot + tmp75*theta_dot;
-    const Scalar tmp158 = tmp112*psi_dot + tmp50*phi_dot + tmp83*theta_dot;
-    const Scalar tmp162 = tmp113*psi_dot + tmp52*phi_dot + tmp88*theta_dot;
-    const Scalar tmp165 = tmp118*psi_dot;
-    const Scalar tmp169 = tmp117*psi_dot;
-    const Scalar tmp173 = tmp121*psi_dot;
-    const Scalar tmp177 = tmp120*psi_dot;
-    const Scalar tmp185 = tmp173 + tmp102*theta_dot;
-    const Scalar tmp186 = tmp105*psi_dot + tmp43*phi_dot + tmp78*theta_dot;
-    const Scalar tmp188 = tmp177 + tmp101*theta_dot;
-    const Scalar tmp189 = tmp106*psi_dot + tmp28*phi_dot + tmp73*theta_dot;
-    const Scalar tmp190 = tmp165 + tmp96*theta_dot;
-    const Scalar tmp191 = tmp111*psi_dot + tmp47*phi_dot + tmp81*theta_dot;
-    const Scalar tmp192 = tmp169 + tmp98*theta_dot;
-    const Scalar tmp193 = tmp110*psi_dot + tmp51*phi_dot + tmp86*theta_dot;
+    const Scalar tmp1 = sin(phi);
+    const Scalar tmp3 = sin(theta);
+    const Scalar tmp6 = cos(phi);
+    const Scalar tmp16 = cos(theta);
+    const Scalar tmp54 = tmp3*d;
+    const Scalar tmp57 = tmp54*tmp6;
+    const Scalar tmp58 = tmp16*d;
+    const Scalar tmp59 = tmp1*tmp58;
+    const Scalar tmp60 = tmp57*phi_dot + tmp59*theta_dot;
+    const Scalar tmp62 = tmp1*tmp54;
+    const Scalar tmp63 = tmp62*phi_dot - tmp16*tmp6*d*theta_dot;
     SpaceVector<Scalar> result;
-    result(0) = tmp139*tmp15 + tmp149*tmp15 + tmp15*tmp158 + tmp15*tmp162;
-    result(1) = tmp15*tmp186 + tmp15*tmp189 + tmp15*tmp191 + tmp15*tmp193;
-    result(2) = tmp15*tmp185 + tmp15*tmp188 + tmp15*tmp190 + tmp15*tmp192;
+    result(0) = tmp60*m;
+    result(1) = tmp63*m;
+    result(2) = -tmp54*m*theta_dot;
     return result;
   }
 
@@ -3590,16 +2201,14 @@ struct HeavyTop {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return L (angular_dim)
-  /// Ops: 315
+  /// Ops: 169
   template <typename Scalar>
   static AngularVector<Scalar> angular_momentum(const QVector<Scalar>& q,
                                                 const QVector<Scalar>& v,
                                                 const Scalar& /*t*/,
                                                 const Params& params) {
-    using std::abs;
     using std::cos;
     using std::sin;
-    using std::sqrt;
     const Scalar phi = q(0);
     const Scalar theta = q(1);
     const Scalar psi = q(2);
@@ -3610,160 +2219,73 @@ struct HeavyTop {
     const Scalar d = Scalar(params.d);
     const Scalar r = Scalar(params.r);
     const Scalar h = Scalar(params.h);
-    const Scalar tmp0 = sin(psi);
-    const Scalar tmp1 = cos(phi);
-    const Scalar tmp2 = tmp0*tmp1;
-    const Scalar tmp3 = cos(theta);
-    const Scalar tmp4 = sin(phi);
-    const Scalar tmp5 = cos(psi);
-    const Scalar tmp6 = tmp4*tmp5;
-    const Scalar tmp7 = tmp3*tmp6;
-    const Scalar tmp8 = tmp2 + tmp7;
-    const Scalar tmp9 = abs(r);
-    const Scalar tmp10 = (Scalar(0.5))*tmp9;
-    const Scalar tmp11 = -tmp10*tmp8;
-    const Scalar tmp12 = -tmp11;
-    const Scalar tmp13 = sin(theta);
-    const Scalar tmp14 = (r*r);
-    const Scalar tmp15 = (Scalar(0.25))*m;
-    const Scalar tmp16 = (h*h);
-    const Scalar tmp17 = -tmp14*tmp15 + ((Scalar(1)/Scalar(12)))*m*(tmp16 + Scalar(3)*tmp14);
-    const Scalar tmp18 = sqrt(tmp17)/sqrt(m);
-    const Scalar tmp19 = tmp13*tmp18;
-    const Scalar tmp20 = tmp19*tmp4;
-    const Scalar tmp21 = tmp13*d;
-    const Scalar tmp22 = tmp21*tmp4;
-    const Scalar tmp23 = tmp0*tmp4;
-    const Scalar tmp24 = tmp23*tmp3;
-    const Scalar tmp25 = tmp24 - tmp1*tmp5;
-    const Scalar tmp26 = -tmp10*tmp25;
-    const Scalar tmp27 = tmp22 - tmp26;
-    const Scalar tmp28 = tmp12 + tmp20 + tmp27;
-    const Scalar tmp29 = tmp2*tmp3;
-    const Scalar tmp30 = tmp29 + tmp6;
-    const Scalar tmp31 = -tmp10*tmp30;
+    const Scalar tmp0 = (d*d);
+    const Scalar tmp1 = sin(phi);
+    const Scalar tmp3 = sin(theta);
+    const Scalar tmp4 = (tmp3*tmp3);
+    const Scalar tmp6 = cos(phi);
+    const Scalar tmp9 = (r*r);
+    const Scalar tmp10 = (Scalar(0.25))*m;
+    const Scalar tmp11 = tmp10*tmp9;
+    const Scalar tmp12 = (h*h);
+    const Scalar tmp13 = -tmp11 + ((Scalar(1)/Scalar(12)))*m*(tmp12 + Scalar(3)*tmp9);
+    const Scalar tmp14 = sin(psi);
+    const Scalar tmp15 = tmp1*tmp14;
+    const Scalar tmp16 = cos(theta);
+    const Scalar tmp17 = cos(psi);
+    const Scalar tmp18 = tmp17*tmp6;
+    const Scalar tmp19 = tmp16*tmp18;
+    const Scalar tmp20 = tmp15 - tmp19;
+    const Scalar tmp21 = tmp14*tmp6;
+    const Scalar tmp22 = tmp1*tmp17;
+    const Scalar tmp23 = tmp16*tmp22;
+    const Scalar tmp24 = tmp21 + tmp23;
+    const Scalar tmp25 = -tmp24;
+    const Scalar tmp27 = tmp15*tmp16;
+    const Scalar tmp28 = tmp27 - tmp17*tmp6;
+    const Scalar tmp29 = -tmp28;
+    const Scalar tmp30 = tmp16*tmp21;
+    const Scalar tmp31 = tmp22 + tmp30;
     const Scalar tmp32 = -tmp31;
-    const Scalar tmp33 = tmp1*tmp5;
-    const Scalar tmp34 = tmp3*tmp33;
-    const Scalar tmp35 = tmp23 - tmp34;
-    const Scalar tmp36 = tmp10*tmp35;
-    const Scalar tmp37 = -tmp36;
-    const Scalar tmp38 = tmp1*tmp21;
-    const Scalar tmp39 = tmp1*tmp19;
-    const Scalar tmp40 = tmp38 + tmp39;
-    const Scalar tmp41 = tmp32 + tmp37 + tmp40;
-    const Scalar tmp42 = tmp22 + tmp26;
-    const Scalar tmp43 = tmp11 + tmp20 + tmp42;
-    const Scalar tmp44 = tmp31 + tmp36;
-    const Scalar tmp45 = tmp40 + tmp44;
-    const Scalar tmp46 = -tmp20;
-    const Scalar tmp47 = tmp11 + tmp27 + tmp46;
-    const Scalar tmp48 = tmp32 + tmp36;
-    const Scalar tmp49 = tmp38 - tmp39;
-    const Scalar tmp50 = tmp48 + tmp49;
-    const Scalar tmp51 = tmp12 + tmp42 + tmp46;
-    const Scalar tmp52 = tmp31 + tmp37 + tmp49;
-    const Scalar tmp54 = tmp10*tmp13;
-    const Scalar tmp55 = tmp54*tmp6;
-    const Scalar tmp56 = -tmp55;
-    const Scalar tmp57 = tmp23*tmp54;
-    const Scalar tmp58 = -tmp57;
-    const Scalar tmp59 = tmp3*d;
-    const Scalar tmp60 = tmp4*tmp59;
-    const Scalar tmp61 = tmp18*tmp3;
-    const Scalar tmp62 = tmp4*tmp61;
-    const Scalar tmp63 = tmp60 + tmp62;
-    const Scalar tmp64 = tmp56 + tmp58 + tmp63;
-    const Scalar tmp65 = tmp33*tmp54;
-    const Scalar tmp66 = -tmp65;
-    const Scalar tmp67 = tmp2*tmp54;
-    const Scalar tmp68 = -tmp67;
-    const Scalar tmp69 = tmp1*tmp59;
-    const Scalar tmp70 = tmp1*tmp61;
-    const Scalar tmp71 = tmp69 + tmp70;
-    const Scalar tmp72 = tmp66 + tmp68 + tmp71;
-    const Scalar tmp73 = -tmp72;
-    const Scalar tmp74 = tmp55 + tmp57;
-    const Scalar tmp75 = tmp63 + tmp74;
-    const Scalar tmp76 = tmp65 + tmp67;
-    const Scalar tmp77 = tmp71 + tmp76;
-    const Scalar tmp78 = -tmp77;
-    const Scalar tmp79 = tmp69 - tmp70;
-    const Scalar tmp80 = tmp65 + tmp68 + tmp79;
-    const Scalar tmp81 = -tmp80;
-    const Scalar tmp82 = tmp60 - tmp62;
-    const Scalar tmp83 = tmp55 + tmp58 + tmp82;
-    const Scalar tmp84 = tmp66 + tmp67;
-    const Scalar tmp85 = tmp79 + tmp84;
-    const Scalar tmp86 = -tmp85;
-    const Scalar tmp87 = tmp56 + tmp57;
-    const Scalar tmp88 = tmp82 + tmp87;
-    const Scalar tmp90 = tmp10*tmp3;
-    const Scalar tmp91 = tmp0*tmp90;
-    const Scalar tmp92 = tmp5*tmp90;
-    const Scalar tmp93 = -tmp92;
-    const Scalar tmp94 = tmp91 + tmp93;
-    const Scalar tmp95 = tmp21 - tmp19;
-    const Scalar tmp96 = -tmp94 - tmp95;
-    const Scalar tmp97 = -tmp91;
-    const Scalar tmp98 = -tmp92 - tmp95 - tmp97;
-    const Scalar tmp99 = tmp91 + tmp92;
-    const Scalar tmp100 = tmp19 + tmp21;
-    const Scalar tmp101 = -tmp100 - tmp99;
-    const Scalar tmp102 = -tmp100 - tmp93 - tmp97;
-    const Scalar tmp104 = -tmp10*tmp35;
-    const Scalar tmp105 = tmp104 + tmp31;
-    const Scalar tmp106 = -tmp105;
-    const Scalar tmp107 = tmp10*tmp25;
-    const Scalar tmp108 = tmp107 + tmp11;
-    const Scalar tmp109 = -tmp108;
-    const Scalar tmp110 = tmp104 + tmp32;
-    const Scalar tmp111 = -tmp110;
-    const Scalar tmp112 = tmp107 + tmp12;
-    const Scalar tmp113 = -tmp112;
-    const Scalar tmp115 = tmp0*tmp54;
-    const Scalar tmp116 = tmp5*tmp54;
-    const Scalar tmp117 = tmp115 + tmp116;
-    const Scalar tmp118 = -tmp117;
-    const Scalar tmp119 = -tmp116;
-    const Scalar tmp120 = tmp115 + tmp119;
-    const Scalar tmp121 = -tmp120;
-    const Scalar tmp127 = tmp10*tmp30;
-    const Scalar tmp139 = tmp109*psi_dot + tmp41*phi_dot + tmp64*theta_dot;
-    const Scalar tmp149 = tmp108*psi_dot + tmp45*phi_dot + tmp75*theta_dot;
-    const Scalar tmp152 = -tmp127;
-    const Scalar tmp158 = tmp112*psi_dot + tmp50*phi_dot + tmp83*theta_dot;
-    const Scalar tmp162 = tmp113*psi_dot + tmp52*phi_dot + tmp88*theta_dot;
-    const Scalar tmp165 = tmp118*psi_dot;
-    const Scalar tmp167 = tmp117 + tmp59 + tmp61;
-    const Scalar tmp169 = tmp117*psi_dot;
-    const Scalar tmp170 = tmp59 - tmp115;
-    const Scalar tmp171 = tmp119 + tmp170 + tmp61;
-    const Scalar tmp173 = tmp121*psi_dot;
-    const Scalar tmp174 = -tmp61;
-    const Scalar tmp175 = tmp120 + tmp174 + tmp59;
-    const Scalar tmp177 = tmp120*psi_dot;
-    const Scalar tmp179 = tmp116 + tmp170 + tmp174;
-    const Scalar tmp185 = tmp173 + tmp102*theta_dot;
-    const Scalar tmp186 = tmp105*psi_dot + tmp43*phi_dot + tmp78*theta_dot;
-    const Scalar tmp188 = tmp177 + tmp101*theta_dot;
-    const Scalar tmp189 = tmp106*psi_dot + tmp28*phi_dot + tmp73*theta_dot;
-    const Scalar tmp190 = tmp165 + tmp96*theta_dot;
-    const Scalar tmp191 = tmp111*psi_dot + tmp47*phi_dot + tmp81*theta_dot;
-    const Scalar tmp192 = tmp169 + tmp98*theta_dot;
-    const Scalar tmp193 = tmp110*psi_dot + tmp51*phi_dot + tmp86*theta_dot;
-    const Scalar tmp196 = -tmp104;
-    const Scalar tmp197 = -tmp152 - tmp196 - tmp40;
-    const Scalar tmp198 = -tmp104 - tmp152 - tmp49;
-    const Scalar tmp199 = -tmp127 - tmp196 - tmp49;
-    const Scalar tmp200 = -tmp104 - tmp127 - tmp40;
+    const Scalar tmp35 = tmp22*tmp3;
+    const Scalar tmp36 = tmp18*tmp3;
+    const Scalar tmp37 = tmp15*tmp3;
+    const Scalar tmp38 = tmp21*tmp3;
+    const Scalar tmp40 = tmp0*tmp4;
+    const Scalar tmp47 = -tmp20;
+    const Scalar tmp54 = tmp3*d;
+    const Scalar tmp57 = tmp54*tmp6;
+    const Scalar tmp58 = tmp16*d;
+    const Scalar tmp59 = tmp1*tmp58;
+    const Scalar tmp60 = tmp57*phi_dot + tmp59*theta_dot;
+    const Scalar tmp62 = tmp1*tmp54;
+    const Scalar tmp63 = tmp62*phi_dot - tmp16*tmp6*d*theta_dot;
+    const Scalar tmp66 = tmp3*tmp6;
+    const Scalar tmp67 = tmp1*tmp16;
+    const Scalar tmp68 = tmp66*phi_dot + tmp67*theta_dot;
+    const Scalar tmp70 = tmp1*tmp3;
+    const Scalar tmp71 = tmp70*phi_dot - tmp16*tmp6*theta_dot;
+    const Scalar tmp74 = tmp36*theta_dot;
+    const Scalar tmp75 = tmp37*theta_dot;
+    const Scalar tmp77 = tmp20*phi_dot + tmp28*psi_dot + tmp35*theta_dot;
+    const Scalar tmp78 = tmp38*theta_dot;
+    const Scalar tmp82 = tmp75 + tmp25*psi_dot + tmp32*phi_dot;
+    const Scalar tmp83 = -tmp74 + tmp25*phi_dot + tmp32*psi_dot;
+    const Scalar tmp88 = tmp17*tmp3;
+    const Scalar tmp89 = tmp14*tmp16;
+    const Scalar tmp90 = tmp88*psi_dot + tmp89*theta_dot;
+    const Scalar tmp93 = tmp14*tmp3;
+    const Scalar tmp94 = -tmp93*psi_dot + tmp16*tmp17*theta_dot;
+    const Scalar tmp99 = -tmp78 + tmp29*phi_dot + tmp47*psi_dot;
+    const Scalar tmp236 = tmp40*theta_dot;
+    const Scalar tmp237 = tmp4*theta_dot;
     AngularVector<Scalar> result;
-    result(0) = tmp15*(tmp185*tmp197 - tmp167*tmp186) + tmp15*(tmp188*tmp200 - tmp171*tmp189)
-        + tmp15*(tmp190*tmp199 - tmp179*tmp191) + tmp15*(tmp192*tmp198 - tmp175*tmp193);
-    result(1) = tmp15*(tmp139*tmp171 - tmp188*tmp28) + tmp15*(tmp149*tmp167 - tmp185*tmp43)
-        + tmp15*(tmp158*tmp179 - tmp190*tmp47) + tmp15*(tmp162*tmp175 - tmp192*tmp51);
-    result(2) = tmp15*(tmp186*tmp43 - tmp149*tmp197) + tmp15*(tmp189*tmp28 - tmp139*tmp200)
-        + tmp15*(tmp191*tmp47 - tmp158*tmp199) + tmp15*(tmp193*tmp51 - tmp162*tmp198);
+    result(0) = tmp11*(tmp31*tmp90 - tmp93*tmp99) + tmp11*(tmp47*tmp94 - tmp83*tmp88)
+        + tmp13*(tmp237*tmp6 - tmp16*tmp71) + m*(tmp236*tmp6 - tmp58*tmp63);
+    result(1) = tmp11*(-tmp25*tmp94 + tmp17*tmp3*tmp77) + tmp11*(-tmp29*tmp90 + tmp14*tmp3*tmp82)
+        + tmp13*(tmp1*tmp237 + tmp16*tmp68) + m*(tmp1*tmp236 + tmp58*tmp60);
+    result(2) = tmp11*(tmp25*tmp83 - tmp47*tmp77) + tmp11*(tmp29*tmp99 - tmp31*tmp82)
+        + tmp13*(tmp66*tmp68 + tmp70*tmp71) + m*(tmp57*tmp60 + tmp62*tmp63);
     return result;
   }
 
@@ -3774,12 +2296,12 @@ struct HeavyTop {
   template <typename Scalar>
   static ParticleVector<Scalar> particle_masses(const Params& params) {
     const Scalar m = Scalar(params.m);
-    const Scalar tmp15 = (Scalar(0.25))*m;
+    const Scalar tmp10 = (Scalar(0.25))*m;
     ParticleVector<Scalar> result;
-    result(0) = tmp15;
-    result(1) = tmp15;
-    result(2) = tmp15;
-    result(3) = tmp15;
+    result(0) = tmp10;
+    result(1) = tmp10;
+    result(2) = tmp10;
+    result(3) = tmp10;
     return result;
   }
 
@@ -3907,22 +2429,22 @@ struct HeavyTop {
                                            const Params& params) {
       const Scalar m = Scalar(params.m);
       const Scalar g = Scalar(params.g);
-      const Scalar tmp15 = (Scalar(0.25))*m;
-      const Scalar tmp124 = tmp15*g;
-      const Scalar tmp201 = -tmp124;
+      const Scalar tmp10 = (Scalar(0.25))*m;
+      const Scalar tmp238 = tmp10*g;
+      const Scalar tmp239 = -tmp238;
       XVector<Scalar> result;
       result(0) = Scalar(0);
       result(1) = Scalar(0);
-      result(2) = tmp201;
+      result(2) = tmp239;
       result(3) = Scalar(0);
       result(4) = Scalar(0);
-      result(5) = tmp201;
+      result(5) = tmp239;
       result(6) = Scalar(0);
       result(7) = Scalar(0);
-      result(8) = tmp201;
+      result(8) = tmp239;
       result(9) = Scalar(0);
       result(10) = Scalar(0);
-      result(11) = tmp201;
+      result(11) = tmp239;
       return result;
     }
 
@@ -3948,146 +2470,147 @@ struct HeavyTop {
       const Scalar d = Scalar(params.d);
       const Scalar r = Scalar(params.r);
       const Scalar h = Scalar(params.h);
-      const Scalar tmp9 = abs(r);
-      const Scalar tmp14 = (r*r);
-      const Scalar tmp15 = (Scalar(0.25))*m;
-      const Scalar tmp16 = (h*h);
-      const Scalar tmp17 = -tmp14*tmp15 + ((Scalar(1)/Scalar(12)))*m*(tmp16 + Scalar(3)*tmp14);
-      const Scalar tmp18 = sqrt(tmp17)/sqrt(m);
-      const Scalar tmp202 = sqrt(Scalar(2));
-      const Scalar tmp203 = -tmp202*tmp9;
-      const Scalar tmp204 = -pos(9);
-      const Scalar tmp205 = -tmp204 - pos(0);
-      const Scalar tmp206 = -pos(10);
-      const Scalar tmp207 = -tmp206 - pos(1);
-      const Scalar tmp208 = -pos(11);
-      const Scalar tmp209 = -tmp208 - pos(2);
-      const Scalar tmp210 = sqrt((tmp205*tmp205) + (tmp207*tmp207) + (tmp209*tmp209));
-      const Scalar tmp211 = tmp203 + tmp210;
-      const Scalar tmp212 = (Scalar(0.5))*kappa;
-      const Scalar tmp213 = tmp202/tmp9;
-      const Scalar tmp214 = tmp212*tmp213;
-      const Scalar tmp215 = -vel(9);
-      const Scalar tmp216 = (Scalar(1)/tmp210);
-      const Scalar tmp217 = tmp205*tmp216;
-      const Scalar tmp218 = -vel(10);
-      const Scalar tmp219 = tmp207*tmp216;
-      const Scalar tmp220 = -vel(11);
-      const Scalar tmp221 = tmp209*tmp216;
-      const Scalar tmp222 = (Scalar(0.5))*tmp213*penalty_damping;
-      const Scalar tmp223 = tmp211*tmp214
-          + tmp222*(tmp217*(-tmp215 - vel(0)) + tmp219*(-tmp218 - vel(1))
-              + tmp221*(-tmp220 - vel(2)));
-      const Scalar tmp224 = pos(3) - pos(0);
-      const Scalar tmp225 = pos(4) - pos(1);
-      const Scalar tmp226 = pos(5) - pos(2);
-      const Scalar tmp227 = sqrt((tmp224*tmp224) + (tmp225*tmp225) + (tmp226*tmp226));
-      const Scalar tmp228 = sqrt(tmp14 + Scalar(4)*tmp17/m);
-      const Scalar tmp229 = tmp227 - tmp228;
-      const Scalar tmp230 = (Scalar(1)/tmp228);
-      const Scalar tmp231 = tmp230*kappa;
-      const Scalar tmp232 = (Scalar(1)/tmp227);
-      const Scalar tmp233 = tmp224*tmp232;
-      const Scalar tmp234 = tmp225*tmp232;
-      const Scalar tmp235 = tmp226*tmp232;
-      const Scalar tmp236 = tmp230*penalty_damping;
-      const Scalar tmp237 = tmp229*tmp231
-          + tmp236*(tmp233*(vel(3) - vel(0)) + tmp234*(vel(4) - vel(1)) + tmp235*(vel(5) - vel(2)));
-      const Scalar tmp238 = -pos(6);
-      const Scalar tmp239 = -tmp238 - pos(0);
-      const Scalar tmp240 = -pos(7);
-      const Scalar tmp241 = -tmp240 - pos(1);
-      const Scalar tmp242 = -pos(8);
-      const Scalar tmp243 = -tmp242 - pos(2);
-      const Scalar tmp244 = sqrt((tmp239*tmp239) + (tmp241*tmp241) + (tmp243*tmp243));
-      const Scalar tmp245 = tmp244 - tmp228;
-      const Scalar tmp246 = -vel(6);
-      const Scalar tmp247 = (Scalar(1)/tmp244);
-      const Scalar tmp248 = tmp239*tmp247;
-      const Scalar tmp249 = -vel(7);
-      const Scalar tmp250 = tmp241*tmp247;
-      const Scalar tmp251 = -vel(8);
-      const Scalar tmp252 = tmp243*tmp247;
-      const Scalar tmp253 = tmp231*tmp245
-          + tmp236*(tmp248*(-tmp246 - vel(0)) + tmp250*(-tmp249 - vel(1))
-              + tmp252*(-tmp251 - vel(2)));
-      const Scalar tmp254 = Scalar(3)*tmp18*d/tmp16;
-      const Scalar tmp255 = Scalar(0.25) - tmp254;
-      const Scalar tmp256 = Scalar(0.25) + tmp254;
-      const Scalar tmp257 = tmp255*pos(0) + tmp255*pos(9) + tmp256*pos(3) + tmp256*pos(6);
-      const Scalar tmp258 = -tmp257*kappa
-          - penalty_damping*(tmp255*vel(0) + tmp255*vel(9) + tmp256*vel(3) + tmp256*vel(6));
-      const Scalar tmp259 = tmp255*tmp258;
-      const Scalar tmp260 = tmp255*pos(1) + tmp255*pos(10) + tmp256*pos(4) + tmp256*pos(7);
-      const Scalar tmp261 = -tmp260*kappa
-          - penalty_damping*(tmp255*vel(1) + tmp255*vel(10) + tmp256*vel(4) + tmp256*vel(7));
-      const Scalar tmp262 = tmp255*tmp261;
-      const Scalar tmp263 = tmp255*pos(2) + tmp255*pos(11) + tmp256*pos(5) + tmp256*pos(8);
-      const Scalar tmp264 = -tmp263*kappa
-          - penalty_damping*(tmp255*vel(2) + tmp255*vel(11) + tmp256*vel(5) + tmp256*vel(8));
-      const Scalar tmp265 = tmp255*tmp264;
-      const Scalar tmp266 = tmp265 + tmp221*tmp223 + tmp235*tmp237 + tmp252*tmp253;
-      const Scalar tmp267 = -tmp238 - pos(3);
-      const Scalar tmp268 = -tmp240 - pos(4);
-      const Scalar tmp269 = -tmp242 - pos(5);
-      const Scalar tmp270 = sqrt((tmp267*tmp267) + (tmp268*tmp268) + (tmp269*tmp269));
-      const Scalar tmp271 = tmp203 + tmp270;
-      const Scalar tmp272 = (Scalar(1)/tmp270);
-      const Scalar tmp273 = tmp267*tmp272;
-      const Scalar tmp274 = tmp268*tmp272;
-      const Scalar tmp275 = tmp269*tmp272;
-      const Scalar tmp276 = tmp214*tmp271
-          + tmp222*(tmp273*(-tmp246 - vel(3)) + tmp274*(-tmp249 - vel(4))
-              + tmp275*(-tmp251 - vel(5)));
-      const Scalar tmp277 = -tmp204 - pos(3);
-      const Scalar tmp278 = -tmp206 - pos(4);
-      const Scalar tmp279 = -tmp208 - pos(5);
-      const Scalar tmp280 = sqrt((tmp277*tmp277) + (tmp278*tmp278) + (tmp279*tmp279));
-      const Scalar tmp281 = tmp280 - tmp228;
-      const Scalar tmp282 = (Scalar(1)/tmp280);
-      const Scalar tmp283 = tmp277*tmp282;
-      const Scalar tmp284 = tmp278*tmp282;
-      const Scalar tmp285 = tmp279*tmp282;
-      const Scalar tmp286 = tmp231*tmp281
-          + tmp236*(tmp283*(-tmp215 - vel(3)) + tmp284*(-tmp218 - vel(4))
-              + tmp285*(-tmp220 - vel(5)));
-      const Scalar tmp287 = -tmp237;
-      const Scalar tmp288 = tmp256*tmp258;
-      const Scalar tmp289 = tmp256*tmp261;
-      const Scalar tmp290 = tmp256*tmp264;
-      const Scalar tmp291 = tmp290 + tmp235*tmp287 + tmp275*tmp276 + tmp285*tmp286;
-      const Scalar tmp292 = -tmp276;
-      const Scalar tmp293 = -tmp204 - pos(6);
-      const Scalar tmp294 = -tmp206 - pos(7);
-      const Scalar tmp295 = -tmp208 - pos(8);
-      const Scalar tmp296 = sqrt((tmp293*tmp293) + (tmp294*tmp294) + (tmp295*tmp295));
-      const Scalar tmp297 = tmp296 - tmp228;
-      const Scalar tmp298 = (Scalar(1)/tmp296);
-      const Scalar tmp299 = tmp293*tmp298;
-      const Scalar tmp300 = tmp294*tmp298;
-      const Scalar tmp301 = tmp295*tmp298;
-      const Scalar tmp302 = tmp231*tmp297
-          + tmp236*(tmp299*(-tmp215 - vel(6)) + tmp300*(-tmp218 - vel(7))
-              + tmp301*(-tmp220 - vel(8)));
-      const Scalar tmp303 = -tmp253;
-      const Scalar tmp304 = tmp290 + tmp252*tmp303 + tmp275*tmp292 + tmp301*tmp302;
-      const Scalar tmp305 = -tmp223;
-      const Scalar tmp306 = -tmp286;
-      const Scalar tmp307 = -tmp302;
-      const Scalar tmp308 = tmp265 + tmp221*tmp305 + tmp285*tmp306 + tmp301*tmp307;
+      const Scalar tmp9 = (r*r);
+      const Scalar tmp10 = (Scalar(0.25))*m;
+      const Scalar tmp11 = tmp10*tmp9;
+      const Scalar tmp12 = (h*h);
+      const Scalar tmp13 = -tmp11 + ((Scalar(1)/Scalar(12)))*m*(tmp12 + Scalar(3)*tmp9);
+      const Scalar tmp103 = abs(r);
+      const Scalar tmp106 = sqrt(tmp13)/sqrt(m);
+      const Scalar tmp240 = sqrt(Scalar(2));
+      const Scalar tmp241 = -tmp103*tmp240;
+      const Scalar tmp242 = -pos(9);
+      const Scalar tmp243 = -tmp242 - pos(0);
+      const Scalar tmp244 = -pos(10);
+      const Scalar tmp245 = -tmp244 - pos(1);
+      const Scalar tmp246 = -pos(11);
+      const Scalar tmp247 = -tmp246 - pos(2);
+      const Scalar tmp248 = sqrt((tmp243*tmp243) + (tmp245*tmp245) + (tmp247*tmp247));
+      const Scalar tmp249 = tmp241 + tmp248;
+      const Scalar tmp250 = (Scalar(0.5))*kappa;
+      const Scalar tmp251 = tmp240/tmp103;
+      const Scalar tmp252 = tmp250*tmp251;
+      const Scalar tmp253 = -vel(9);
+      const Scalar tmp254 = (Scalar(1)/tmp248);
+      const Scalar tmp255 = tmp243*tmp254;
+      const Scalar tmp256 = -vel(10);
+      const Scalar tmp257 = tmp245*tmp254;
+      const Scalar tmp258 = -vel(11);
+      const Scalar tmp259 = tmp247*tmp254;
+      const Scalar tmp260 = (Scalar(0.5))*tmp251*penalty_damping;
+      const Scalar tmp261 = tmp249*tmp252
+          + tmp260*(tmp255*(-tmp253 - vel(0)) + tmp257*(-tmp256 - vel(1))
+              + tmp259*(-tmp258 - vel(2)));
+      const Scalar tmp262 = pos(3) - pos(0);
+      const Scalar tmp263 = pos(4) - pos(1);
+      const Scalar tmp264 = pos(5) - pos(2);
+      const Scalar tmp265 = sqrt((tmp262*tmp262) + (tmp263*tmp263) + (tmp264*tmp264));
+      const Scalar tmp266 = sqrt(tmp9 + Scalar(4)*tmp13/m);
+      const Scalar tmp267 = tmp265 - tmp266;
+      const Scalar tmp268 = (Scalar(1)/tmp266);
+      const Scalar tmp269 = tmp268*kappa;
+      const Scalar tmp270 = (Scalar(1)/tmp265);
+      const Scalar tmp271 = tmp262*tmp270;
+      const Scalar tmp272 = tmp263*tmp270;
+      const Scalar tmp273 = tmp264*tmp270;
+      const Scalar tmp274 = tmp268*penalty_damping;
+      const Scalar tmp275 = tmp267*tmp269
+          + tmp274*(tmp271*(vel(3) - vel(0)) + tmp272*(vel(4) - vel(1)) + tmp273*(vel(5) - vel(2)));
+      const Scalar tmp276 = -pos(6);
+      const Scalar tmp277 = -tmp276 - pos(0);
+      const Scalar tmp278 = -pos(7);
+      const Scalar tmp279 = -tmp278 - pos(1);
+      const Scalar tmp280 = -pos(8);
+      const Scalar tmp281 = -tmp280 - pos(2);
+      const Scalar tmp282 = sqrt((tmp277*tmp277) + (tmp279*tmp279) + (tmp281*tmp281));
+      const Scalar tmp283 = tmp282 - tmp266;
+      const Scalar tmp284 = -vel(6);
+      const Scalar tmp285 = (Scalar(1)/tmp282);
+      const Scalar tmp286 = tmp277*tmp285;
+      const Scalar tmp287 = -vel(7);
+      const Scalar tmp288 = tmp279*tmp285;
+      const Scalar tmp289 = -vel(8);
+      const Scalar tmp290 = tmp281*tmp285;
+      const Scalar tmp291 = tmp269*tmp283
+          + tmp274*(tmp286*(-tmp284 - vel(0)) + tmp288*(-tmp287 - vel(1))
+              + tmp290*(-tmp289 - vel(2)));
+      const Scalar tmp292 = Scalar(3)*tmp106*d/tmp12;
+      const Scalar tmp293 = Scalar(0.25) - tmp292;
+      const Scalar tmp294 = Scalar(0.25) + tmp292;
+      const Scalar tmp295 = tmp293*pos(0) + tmp293*pos(9) + tmp294*pos(3) + tmp294*pos(6);
+      const Scalar tmp296 = -tmp295*kappa
+          - penalty_damping*(tmp293*vel(0) + tmp293*vel(9) + tmp294*vel(3) + tmp294*vel(6));
+      const Scalar tmp297 = tmp293*tmp296;
+      const Scalar tmp298 = tmp293*pos(1) + tmp293*pos(10) + tmp294*pos(4) + tmp294*pos(7);
+      const Scalar tmp299 = -tmp298*kappa
+          - penalty_damping*(tmp293*vel(1) + tmp293*vel(10) + tmp294*vel(4) + tmp294*vel(7));
+      const Scalar tmp300 = tmp293*tmp299;
+      const Scalar tmp301 = tmp293*pos(2) + tmp293*pos(11) + tmp294*pos(5) + tmp294*pos(8);
+      const Scalar tmp302 = -tmp301*kappa
+          - penalty_damping*(tmp293*vel(2) + tmp293*vel(11) + tmp294*vel(5) + tmp294*vel(8));
+      const Scalar tmp303 = tmp293*tmp302;
+      const Scalar tmp304 = tmp303 + tmp259*tmp261 + tmp273*tmp275 + tmp290*tmp291;
+      const Scalar tmp305 = -tmp276 - pos(3);
+      const Scalar tmp306 = -tmp278 - pos(4);
+      const Scalar tmp307 = -tmp280 - pos(5);
+      const Scalar tmp308 = sqrt((tmp305*tmp305) + (tmp306*tmp306) + (tmp307*tmp307));
+      const Scalar tmp309 = tmp241 + tmp308;
+      const Scalar tmp310 = (Scalar(1)/tmp308);
+      const Scalar tmp311 = tmp305*tmp310;
+      const Scalar tmp312 = tmp306*tmp310;
+      const Scalar tmp313 = tmp307*tmp310;
+      const Scalar tmp314 = tmp252*tmp309
+          + tmp260*(tmp311*(-tmp284 - vel(3)) + tmp312*(-tmp287 - vel(4))
+              + tmp313*(-tmp289 - vel(5)));
+      const Scalar tmp315 = -tmp242 - pos(3);
+      const Scalar tmp316 = -tmp244 - pos(4);
+      const Scalar tmp317 = -tmp246 - pos(5);
+      const Scalar tmp318 = sqrt((tmp315*tmp315) + (tmp316*tmp316) + (tmp317*tmp317));
+      const Scalar tmp319 = tmp318 - tmp266;
+      const Scalar tmp320 = (Scalar(1)/tmp318);
+      const Scalar tmp321 = tmp315*tmp320;
+      const Scalar tmp322 = tmp316*tmp320;
+      const Scalar tmp323 = tmp317*tmp320;
+      const Scalar tmp324 = tmp269*tmp319
+          + tmp274*(tmp321*(-tmp253 - vel(3)) + tmp322*(-tmp256 - vel(4))
+              + tmp323*(-tmp258 - vel(5)));
+      const Scalar tmp325 = -tmp275;
+      const Scalar tmp326 = tmp294*tmp296;
+      const Scalar tmp327 = tmp294*tmp299;
+      const Scalar tmp328 = tmp294*tmp302;
+      const Scalar tmp329 = tmp328 + tmp273*tmp325 + tmp313*tmp314 + tmp323*tmp324;
+      const Scalar tmp330 = -tmp314;
+      const Scalar tmp331 = -tmp242 - pos(6);
+      const Scalar tmp332 = -tmp244 - pos(7);
+      const Scalar tmp333 = -tmp246 - pos(8);
+      const Scalar tmp334 = sqrt((tmp331*tmp331) + (tmp332*tmp332) + (tmp333*tmp333));
+      const Scalar tmp335 = tmp334 - tmp266;
+      const Scalar tmp336 = (Scalar(1)/tmp334);
+      const Scalar tmp337 = tmp331*tmp336;
+      const Scalar tmp338 = tmp332*tmp336;
+      const Scalar tmp339 = tmp333*tmp336;
+      const Scalar tmp340 = tmp269*tmp335
+          + tmp274*(tmp337*(-tmp253 - vel(6)) + tmp338*(-tmp256 - vel(7))
+              + tmp339*(-tmp258 - vel(8)));
+      const Scalar tmp341 = -tmp291;
+      const Scalar tmp342 = tmp328 + tmp290*tmp341 + tmp313*tmp330 + tmp339*tmp340;
+      const Scalar tmp343 = -tmp261;
+      const Scalar tmp344 = -tmp324;
+      const Scalar tmp345 = -tmp340;
+      const Scalar tmp346 = tmp303 + tmp259*tmp343 + tmp323*tmp344 + tmp339*tmp345;
       XVector<Scalar> result;
-      result(0) = tmp259 + tmp217*tmp223 + tmp233*tmp237 + tmp248*tmp253;
-      result(1) = tmp262 + tmp219*tmp223 + tmp234*tmp237 + tmp250*tmp253;
-      result(2) = tmp266;
-      result(3) = tmp288 + tmp233*tmp287 + tmp273*tmp276 + tmp283*tmp286;
-      result(4) = tmp289 + tmp234*tmp287 + tmp274*tmp276 + tmp284*tmp286;
-      result(5) = tmp291;
-      result(6) = tmp288 + tmp248*tmp303 + tmp273*tmp292 + tmp299*tmp302;
-      result(7) = tmp289 + tmp250*tmp303 + tmp274*tmp292 + tmp300*tmp302;
-      result(8) = tmp304;
-      result(9) = tmp259 + tmp217*tmp305 + tmp283*tmp306 + tmp299*tmp307;
-      result(10) = tmp262 + tmp219*tmp305 + tmp284*tmp306 + tmp300*tmp307;
-      result(11) = tmp308;
+      result(0) = tmp297 + tmp255*tmp261 + tmp271*tmp275 + tmp286*tmp291;
+      result(1) = tmp300 + tmp257*tmp261 + tmp272*tmp275 + tmp288*tmp291;
+      result(2) = tmp304;
+      result(3) = tmp326 + tmp271*tmp325 + tmp311*tmp314 + tmp321*tmp324;
+      result(4) = tmp327 + tmp272*tmp325 + tmp312*tmp314 + tmp322*tmp324;
+      result(5) = tmp329;
+      result(6) = tmp326 + tmp286*tmp341 + tmp311*tmp330 + tmp337*tmp340;
+      result(7) = tmp327 + tmp288*tmp341 + tmp312*tmp330 + tmp338*tmp340;
+      result(8) = tmp342;
+      result(9) = tmp297 + tmp255*tmp343 + tmp321*tmp344 + tmp337*tmp345;
+      result(10) = tmp300 + tmp257*tmp343 + tmp322*tmp344 + tmp338*tmp345;
+      result(11) = tmp346;
       return result;
     }
 
@@ -4113,667 +2636,668 @@ struct HeavyTop {
       const Scalar d = Scalar(params.d);
       const Scalar r = Scalar(params.r);
       const Scalar h = Scalar(params.h);
-      const Scalar tmp9 = abs(r);
-      const Scalar tmp14 = (r*r);
-      const Scalar tmp15 = (Scalar(0.25))*m;
-      const Scalar tmp16 = (h*h);
-      const Scalar tmp17 = -tmp14*tmp15 + ((Scalar(1)/Scalar(12)))*m*(tmp16 + Scalar(3)*tmp14);
-      const Scalar tmp18 = sqrt(tmp17)/sqrt(m);
-      const Scalar tmp202 = sqrt(Scalar(2));
-      const Scalar tmp203 = -tmp202*tmp9;
-      const Scalar tmp204 = -pos(9);
-      const Scalar tmp205 = -tmp204 - pos(0);
-      const Scalar tmp206 = -pos(10);
-      const Scalar tmp207 = -tmp206 - pos(1);
-      const Scalar tmp208 = -pos(11);
-      const Scalar tmp209 = -tmp208 - pos(2);
-      const Scalar tmp210 = sqrt((tmp205*tmp205) + (tmp207*tmp207) + (tmp209*tmp209));
-      const Scalar tmp211 = tmp203 + tmp210;
-      const Scalar tmp212 = (Scalar(0.5))*kappa;
-      const Scalar tmp213 = tmp202/tmp9;
-      const Scalar tmp214 = tmp212*tmp213;
-      const Scalar tmp215 = -vel(9);
-      const Scalar tmp216 = (Scalar(1)/tmp210);
-      const Scalar tmp217 = tmp205*tmp216;
-      const Scalar tmp218 = -vel(10);
-      const Scalar tmp219 = tmp207*tmp216;
-      const Scalar tmp220 = -vel(11);
-      const Scalar tmp221 = tmp209*tmp216;
-      const Scalar tmp222 = (Scalar(0.5))*tmp213*penalty_damping;
-      const Scalar tmp223 = tmp211*tmp214
-          + tmp222*(tmp217*(-tmp215 - vel(0)) + tmp219*(-tmp218 - vel(1))
-              + tmp221*(-tmp220 - vel(2)));
-      const Scalar tmp224 = pos(3) - pos(0);
-      const Scalar tmp225 = pos(4) - pos(1);
-      const Scalar tmp226 = pos(5) - pos(2);
-      const Scalar tmp227 = sqrt((tmp224*tmp224) + (tmp225*tmp225) + (tmp226*tmp226));
-      const Scalar tmp228 = sqrt(tmp14 + Scalar(4)*tmp17/m);
-      const Scalar tmp229 = tmp227 - tmp228;
-      const Scalar tmp230 = (Scalar(1)/tmp228);
-      const Scalar tmp231 = tmp230*kappa;
-      const Scalar tmp232 = (Scalar(1)/tmp227);
-      const Scalar tmp233 = tmp224*tmp232;
-      const Scalar tmp234 = tmp225*tmp232;
-      const Scalar tmp235 = tmp226*tmp232;
-      const Scalar tmp236 = tmp230*penalty_damping;
-      const Scalar tmp237 = tmp229*tmp231
-          + tmp236*(tmp233*(vel(3) - vel(0)) + tmp234*(vel(4) - vel(1)) + tmp235*(vel(5) - vel(2)));
-      const Scalar tmp238 = -pos(6);
-      const Scalar tmp239 = -tmp238 - pos(0);
-      const Scalar tmp240 = -pos(7);
-      const Scalar tmp241 = -tmp240 - pos(1);
-      const Scalar tmp242 = -pos(8);
-      const Scalar tmp243 = -tmp242 - pos(2);
-      const Scalar tmp244 = sqrt((tmp239*tmp239) + (tmp241*tmp241) + (tmp243*tmp243));
-      const Scalar tmp245 = tmp244 - tmp228;
-      const Scalar tmp246 = -vel(6);
-      const Scalar tmp247 = (Scalar(1)/tmp244);
-      const Scalar tmp248 = tmp239*tmp247;
-      const Scalar tmp249 = -vel(7);
-      const Scalar tmp250 = tmp241*tmp247;
-      const Scalar tmp251 = -vel(8);
-      const Scalar tmp252 = tmp243*tmp247;
-      const Scalar tmp253 = tmp231*tmp245
-          + tmp236*(tmp248*(-tmp246 - vel(0)) + tmp250*(-tmp249 - vel(1))
-              + tmp252*(-tmp251 - vel(2)));
-      const Scalar tmp254 = Scalar(3)*tmp18*d/tmp16;
-      const Scalar tmp255 = Scalar(0.25) - tmp254;
-      const Scalar tmp256 = Scalar(0.25) + tmp254;
-      const Scalar tmp267 = -tmp238 - pos(3);
-      const Scalar tmp268 = -tmp240 - pos(4);
-      const Scalar tmp269 = -tmp242 - pos(5);
-      const Scalar tmp270 = sqrt((tmp267*tmp267) + (tmp268*tmp268) + (tmp269*tmp269));
-      const Scalar tmp271 = tmp203 + tmp270;
-      const Scalar tmp272 = (Scalar(1)/tmp270);
-      const Scalar tmp273 = tmp267*tmp272;
-      const Scalar tmp274 = tmp268*tmp272;
-      const Scalar tmp275 = tmp269*tmp272;
-      const Scalar tmp276 = tmp214*tmp271
-          + tmp222*(tmp273*(-tmp246 - vel(3)) + tmp274*(-tmp249 - vel(4))
-              + tmp275*(-tmp251 - vel(5)));
-      const Scalar tmp277 = -tmp204 - pos(3);
-      const Scalar tmp278 = -tmp206 - pos(4);
-      const Scalar tmp279 = -tmp208 - pos(5);
-      const Scalar tmp280 = sqrt((tmp277*tmp277) + (tmp278*tmp278) + (tmp279*tmp279));
-      const Scalar tmp281 = tmp280 - tmp228;
-      const Scalar tmp282 = (Scalar(1)/tmp280);
-      const Scalar tmp283 = tmp277*tmp282;
-      const Scalar tmp284 = tmp278*tmp282;
-      const Scalar tmp285 = tmp279*tmp282;
-      const Scalar tmp286 = tmp231*tmp281
-          + tmp236*(tmp283*(-tmp215 - vel(3)) + tmp284*(-tmp218 - vel(4))
-              + tmp285*(-tmp220 - vel(5)));
-      const Scalar tmp287 = -tmp237;
-      const Scalar tmp292 = -tmp276;
-      const Scalar tmp293 = -tmp204 - pos(6);
-      const Scalar tmp294 = -tmp206 - pos(7);
-      const Scalar tmp295 = -tmp208 - pos(8);
-      const Scalar tmp296 = sqrt((tmp293*tmp293) + (tmp294*tmp294) + (tmp295*tmp295));
-      const Scalar tmp297 = tmp296 - tmp228;
-      const Scalar tmp298 = (Scalar(1)/tmp296);
-      const Scalar tmp299 = tmp293*tmp298;
-      const Scalar tmp300 = tmp294*tmp298;
-      const Scalar tmp301 = tmp295*tmp298;
-      const Scalar tmp302 = tmp231*tmp297
-          + tmp236*(tmp299*(-tmp215 - vel(6)) + tmp300*(-tmp218 - vel(7))
-              + tmp301*(-tmp220 - vel(8)));
-      const Scalar tmp303 = -tmp253;
-      const Scalar tmp305 = -tmp223;
-      const Scalar tmp306 = -tmp286;
-      const Scalar tmp307 = -tmp302;
-      const Scalar tmp782 = -tmp205/sqrt((tmp205*tmp205) + (tmp207*tmp207) + (tmp209*tmp209));
-      const Scalar tmp783 = -(Scalar(1)/(tmp210*tmp210))*tmp782;
-      const Scalar tmp784 = -tmp216 + tmp205*tmp783;
-      const Scalar tmp785 = tmp207*tmp783;
-      const Scalar tmp786 = tmp209*tmp783;
-      const Scalar tmp787 = tmp214*tmp782 + tmp222*(-tmp215 - vel(0))*tmp784
-          + tmp222*(-tmp218 - vel(1))*tmp785 + tmp222*(-tmp220 - vel(2))*tmp786;
-      const Scalar tmp788 = -tmp224/sqrt((tmp224*tmp224) + (tmp225*tmp225) + (tmp226*tmp226));
-      const Scalar tmp789 = -(Scalar(1)/(tmp227*tmp227))*tmp788;
-      const Scalar tmp790 = -tmp232 + tmp224*tmp789;
-      const Scalar tmp791 = tmp225*tmp789;
-      const Scalar tmp792 = tmp226*tmp789;
-      const Scalar tmp793 = tmp231*tmp788 + tmp236*(vel(3) - vel(0))*tmp790
-          + tmp236*(vel(4) - vel(1))*tmp791 + tmp236*(vel(5) - vel(2))*tmp792;
-      const Scalar tmp794 = -tmp239/sqrt((tmp239*tmp239) + (tmp241*tmp241) + (tmp243*tmp243));
-      const Scalar tmp795 = -(Scalar(1)/(tmp244*tmp244))*tmp794;
-      const Scalar tmp796 = -tmp247 + tmp239*tmp795;
-      const Scalar tmp797 = tmp241*tmp795;
-      const Scalar tmp798 = tmp243*tmp795;
-      const Scalar tmp799 = tmp231*tmp794 + tmp236*(-tmp246 - vel(0))*tmp796
-          + tmp236*(-tmp249 - vel(1))*tmp797 + tmp236*(-tmp251 - vel(2))*tmp798;
-      const Scalar tmp800 = -kappa*tmp255;
-      const Scalar tmp801 = tmp255*tmp800;
-      const Scalar tmp802 = tmp223*tmp786 + tmp221*tmp787 + tmp237*tmp792 + tmp235*tmp793
-          + tmp253*tmp798 + tmp252*tmp799;
-      const Scalar tmp803 = -tmp793;
-      const Scalar tmp804 = tmp256*tmp800;
-      const Scalar tmp805 = tmp287*tmp792 + tmp235*tmp803;
-      const Scalar tmp806 = -tmp799;
-      const Scalar tmp807 = tmp303*tmp798 + tmp252*tmp806;
-      const Scalar tmp808 = -tmp787;
-      const Scalar tmp809 = tmp305*tmp786 + tmp221*tmp808;
-      const Scalar tmp810 = -tmp207/sqrt((tmp205*tmp205) + (tmp207*tmp207) + (tmp209*tmp209));
-      const Scalar tmp811 = -(Scalar(1)/(tmp210*tmp210))*tmp810;
-      const Scalar tmp812 = tmp205*tmp811;
-      const Scalar tmp813 = -tmp216 + tmp207*tmp811;
-      const Scalar tmp814 = tmp209*tmp811;
-      const Scalar tmp815 = tmp214*tmp810 + tmp222*(-tmp215 - vel(0))*tmp812
-          + tmp222*(-tmp218 - vel(1))*tmp813 + tmp222*(-tmp220 - vel(2))*tmp814;
-      const Scalar tmp816 = -tmp225/sqrt((tmp224*tmp224) + (tmp225*tmp225) + (tmp226*tmp226));
-      const Scalar tmp817 = -(Scalar(1)/(tmp227*tmp227))*tmp816;
-      const Scalar tmp818 = tmp224*tmp817;
-      const Scalar tmp819 = -tmp232 + tmp225*tmp817;
-      const Scalar tmp820 = tmp226*tmp817;
-      const Scalar tmp821 = tmp231*tmp816 + tmp236*(vel(3) - vel(0))*tmp818
-          + tmp236*(vel(4) - vel(1))*tmp819 + tmp236*(vel(5) - vel(2))*tmp820;
-      const Scalar tmp822 = -tmp241/sqrt((tmp239*tmp239) + (tmp241*tmp241) + (tmp243*tmp243));
-      const Scalar tmp823 = -(Scalar(1)/(tmp244*tmp244))*tmp822;
-      const Scalar tmp824 = tmp239*tmp823;
-      const Scalar tmp825 = -tmp247 + tmp241*tmp823;
-      const Scalar tmp826 = tmp243*tmp823;
-      const Scalar tmp827 = tmp231*tmp822 + tmp236*(-tmp246 - vel(0))*tmp824
-          + tmp236*(-tmp249 - vel(1))*tmp825 + tmp236*(-tmp251 - vel(2))*tmp826;
-      const Scalar tmp828 = -kappa*tmp255;
-      const Scalar tmp829 = tmp255*tmp828;
-      const Scalar tmp830 = tmp223*tmp814 + tmp221*tmp815 + tmp237*tmp820 + tmp235*tmp821
-          + tmp253*tmp826 + tmp252*tmp827;
-      const Scalar tmp831 = -tmp821;
-      const Scalar tmp832 = tmp256*tmp828;
-      const Scalar tmp833 = tmp287*tmp820 + tmp235*tmp831;
-      const Scalar tmp834 = -tmp827;
-      const Scalar tmp835 = tmp303*tmp826 + tmp252*tmp834;
-      const Scalar tmp836 = -tmp815;
-      const Scalar tmp837 = tmp305*tmp814 + tmp221*tmp836;
-      const Scalar tmp838 = -tmp209/sqrt((tmp205*tmp205) + (tmp207*tmp207) + (tmp209*tmp209));
-      const Scalar tmp839 = -(Scalar(1)/(tmp210*tmp210))*tmp838;
-      const Scalar tmp840 = tmp205*tmp839;
-      const Scalar tmp841 = tmp207*tmp839;
-      const Scalar tmp842 = -tmp216 + tmp209*tmp839;
-      const Scalar tmp843 = tmp214*tmp838 + tmp222*(-tmp215 - vel(0))*tmp840
-          + tmp222*(-tmp218 - vel(1))*tmp841 + tmp222*(-tmp220 - vel(2))*tmp842;
-      const Scalar tmp844 = -tmp226/sqrt((tmp224*tmp224) + (tmp225*tmp225) + (tmp226*tmp226));
-      const Scalar tmp845 = -(Scalar(1)/(tmp227*tmp227))*tmp844;
-      const Scalar tmp846 = tmp224*tmp845;
-      const Scalar tmp847 = tmp225*tmp845;
-      const Scalar tmp848 = -tmp232 + tmp226*tmp845;
-      const Scalar tmp849 = tmp231*tmp844 + tmp236*(vel(3) - vel(0))*tmp846
-          + tmp236*(vel(4) - vel(1))*tmp847 + tmp236*(vel(5) - vel(2))*tmp848;
-      const Scalar tmp850 = -tmp243/sqrt((tmp239*tmp239) + (tmp241*tmp241) + (tmp243*tmp243));
-      const Scalar tmp851 = -(Scalar(1)/(tmp244*tmp244))*tmp850;
-      const Scalar tmp852 = tmp239*tmp851;
-      const Scalar tmp853 = tmp241*tmp851;
-      const Scalar tmp854 = -tmp247 + tmp243*tmp851;
-      const Scalar tmp855 = tmp231*tmp850 + tmp236*(-tmp246 - vel(0))*tmp852
-          + tmp236*(-tmp249 - vel(1))*tmp853 + tmp236*(-tmp251 - vel(2))*tmp854;
-      const Scalar tmp856 = -kappa*tmp255;
-      const Scalar tmp857 = tmp255*tmp856;
-      const Scalar tmp858 = tmp223*tmp842 + tmp221*tmp843 + tmp237*tmp848 + tmp235*tmp849
-          + tmp253*tmp854 + tmp252*tmp855 + tmp857;
-      const Scalar tmp859 = -tmp849;
-      const Scalar tmp860 = tmp256*tmp856;
-      const Scalar tmp861 = tmp287*tmp848 + tmp235*tmp859 + tmp860;
-      const Scalar tmp862 = -tmp855;
-      const Scalar tmp863 = tmp303*tmp854 + tmp860 + tmp252*tmp862;
-      const Scalar tmp864 = -tmp843;
-      const Scalar tmp865 = tmp305*tmp842 + tmp857 + tmp221*tmp864;
-      const Scalar tmp866 = tmp224/sqrt((tmp224*tmp224) + (tmp225*tmp225) + (tmp226*tmp226));
-      const Scalar tmp867 = -(Scalar(1)/(tmp227*tmp227))*tmp866;
-      const Scalar tmp868 = tmp232 + tmp224*tmp867;
-      const Scalar tmp869 = tmp225*tmp867;
-      const Scalar tmp870 = tmp226*tmp867;
-      const Scalar tmp871 = tmp231*tmp866 + tmp236*(vel(3) - vel(0))*tmp868
-          + tmp236*(vel(4) - vel(1))*tmp869 + tmp236*(vel(5) - vel(2))*tmp870;
-      const Scalar tmp872 = -kappa*tmp256;
-      const Scalar tmp873 = tmp255*tmp872;
-      const Scalar tmp874 = tmp237*tmp870 + tmp235*tmp871;
-      const Scalar tmp875 = -tmp267/sqrt((tmp267*tmp267) + (tmp268*tmp268) + (tmp269*tmp269));
-      const Scalar tmp876 = -(Scalar(1)/(tmp270*tmp270))*tmp875;
-      const Scalar tmp877 = -tmp272 + tmp267*tmp876;
-      const Scalar tmp878 = tmp268*tmp876;
-      const Scalar tmp879 = tmp269*tmp876;
-      const Scalar tmp880 = tmp214*tmp875 + tmp222*(-tmp246 - vel(3))*tmp877
-          + tmp222*(-tmp249 - vel(4))*tmp878 + tmp222*(-tmp251 - vel(5))*tmp879;
-      const Scalar tmp881 = -tmp277/sqrt((tmp277*tmp277) + (tmp278*tmp278) + (tmp279*tmp279));
-      const Scalar tmp882 = -(Scalar(1)/(tmp280*tmp280))*tmp881;
-      const Scalar tmp883 = -tmp282 + tmp277*tmp882;
-      const Scalar tmp884 = tmp278*tmp882;
-      const Scalar tmp885 = tmp279*tmp882;
-      const Scalar tmp886 = tmp231*tmp881 + tmp236*(-tmp215 - vel(3))*tmp883
-          + tmp236*(-tmp218 - vel(4))*tmp884 + tmp236*(-tmp220 - vel(5))*tmp885;
-      const Scalar tmp887 = -tmp871;
-      const Scalar tmp888 = tmp256*tmp872;
-      const Scalar tmp889 = tmp287*tmp870 + tmp276*tmp879 + tmp275*tmp880 + tmp286*tmp885
-          + tmp285*tmp886 + tmp235*tmp887;
-      const Scalar tmp890 = -tmp880;
-      const Scalar tmp891 = tmp292*tmp879 + tmp275*tmp890;
-      const Scalar tmp892 = -tmp886;
-      const Scalar tmp893 = tmp306*tmp885 + tmp285*tmp892;
-      const Scalar tmp894 = tmp225/sqrt((tmp224*tmp224) + (tmp225*tmp225) + (tmp226*tmp226));
-      const Scalar tmp895 = -(Scalar(1)/(tmp227*tmp227))*tmp894;
-      const Scalar tmp896 = tmp224*tmp895;
-      const Scalar tmp897 = tmp232 + tmp225*tmp895;
-      const Scalar tmp898 = tmp226*tmp895;
-      const Scalar tmp899 = tmp231*tmp894 + tmp236*(vel(3) - vel(0))*tmp896
-          + tmp236*(vel(4) - vel(1))*tmp897 + tmp236*(vel(5) - vel(2))*tmp898;
-      const Scalar tmp900 = -kappa*tmp256;
-      const Scalar tmp901 = tmp255*tmp900;
-      const Scalar tmp902 = tmp237*tmp898 + tmp235*tmp899;
-      const Scalar tmp903 = -tmp268/sqrt((tmp267*tmp267) + (tmp268*tmp268) + (tmp269*tmp269));
-      const Scalar tmp904 = -(Scalar(1)/(tmp270*tmp270))*tmp903;
-      const Scalar tmp905 = tmp267*tmp904;
-      const Scalar tmp906 = -tmp272 + tmp268*tmp904;
-      const Scalar tmp907 = tmp269*tmp904;
-      const Scalar tmp908 = tmp214*tmp903 + tmp222*(-tmp246 - vel(3))*tmp905
-          + tmp222*(-tmp249 - vel(4))*tmp906 + tmp222*(-tmp251 - vel(5))*tmp907;
-      const Scalar tmp909 = -tmp278/sqrt((tmp277*tmp277) + (tmp278*tmp278) + (tmp279*tmp279));
-      const Scalar tmp910 = -(Scalar(1)/(tmp280*tmp280))*tmp909;
-      const Scalar tmp911 = tmp277*tmp910;
-      const Scalar tmp912 = -tmp282 + tmp278*tmp910;
-      const Scalar tmp913 = tmp279*tmp910;
-      const Scalar tmp914 = tmp231*tmp909 + tmp236*(-tmp215 - vel(3))*tmp911
-          + tmp236*(-tmp218 - vel(4))*tmp912 + tmp236*(-tmp220 - vel(5))*tmp913;
-      const Scalar tmp915 = -tmp899;
-      const Scalar tmp916 = tmp256*tmp900;
-      const Scalar tmp917 = tmp287*tmp898 + tmp276*tmp907 + tmp275*tmp908 + tmp286*tmp913
-          + tmp285*tmp914 + tmp235*tmp915;
-      const Scalar tmp918 = -tmp908;
-      const Scalar tmp919 = tmp292*tmp907 + tmp275*tmp918;
-      const Scalar tmp920 = -tmp914;
-      const Scalar tmp921 = tmp306*tmp913 + tmp285*tmp920;
-      const Scalar tmp922 = tmp226/sqrt((tmp224*tmp224) + (tmp225*tmp225) + (tmp226*tmp226));
-      const Scalar tmp923 = -(Scalar(1)/(tmp227*tmp227))*tmp922;
-      const Scalar tmp924 = tmp224*tmp923;
-      const Scalar tmp925 = tmp225*tmp923;
-      const Scalar tmp926 = tmp232 + tmp226*tmp923;
-      const Scalar tmp927 = tmp231*tmp922 + tmp236*(vel(3) - vel(0))*tmp924
-          + tmp236*(vel(4) - vel(1))*tmp925 + tmp236*(vel(5) - vel(2))*tmp926;
-      const Scalar tmp928 = -kappa*tmp256;
-      const Scalar tmp929 = tmp255*tmp928;
-      const Scalar tmp930 = tmp237*tmp926 + tmp235*tmp927 + tmp929;
-      const Scalar tmp931 = -tmp269/sqrt((tmp267*tmp267) + (tmp268*tmp268) + (tmp269*tmp269));
-      const Scalar tmp932 = -(Scalar(1)/(tmp270*tmp270))*tmp931;
-      const Scalar tmp933 = tmp267*tmp932;
-      const Scalar tmp934 = tmp268*tmp932;
-      const Scalar tmp935 = -tmp272 + tmp269*tmp932;
-      const Scalar tmp936 = tmp214*tmp931 + tmp222*(-tmp246 - vel(3))*tmp933
-          + tmp222*(-tmp249 - vel(4))*tmp934 + tmp222*(-tmp251 - vel(5))*tmp935;
-      const Scalar tmp937 = -tmp279/sqrt((tmp277*tmp277) + (tmp278*tmp278) + (tmp279*tmp279));
-      const Scalar tmp938 = -(Scalar(1)/(tmp280*tmp280))*tmp937;
-      const Scalar tmp939 = tmp277*tmp938;
-      const Scalar tmp940 = tmp278*tmp938;
-      const Scalar tmp941 = -tmp282 + tmp279*tmp938;
-      const Scalar tmp942 = tmp231*tmp937 + tmp236*(-tmp215 - vel(3))*tmp939
-          + tmp236*(-tmp218 - vel(4))*tmp940 + tmp236*(-tmp220 - vel(5))*tmp941;
-      const Scalar tmp943 = -tmp927;
-      const Scalar tmp944 = tmp256*tmp928;
-      const Scalar tmp945 = tmp287*tmp926 + tmp276*tmp935 + tmp275*tmp936 + tmp286*tmp941
-          + tmp285*tmp942 + tmp235*tmp943 + tmp944;
-      const Scalar tmp946 = -tmp936;
-      const Scalar tmp947 = tmp292*tmp935 + tmp944 + tmp275*tmp946;
-      const Scalar tmp948 = -tmp942;
-      const Scalar tmp949 = tmp929 + tmp306*tmp941 + tmp285*tmp948;
-      const Scalar tmp950 = tmp239/sqrt((tmp239*tmp239) + (tmp241*tmp241) + (tmp243*tmp243));
-      const Scalar tmp951 = -(Scalar(1)/(tmp244*tmp244))*tmp950;
-      const Scalar tmp952 = tmp247 + tmp239*tmp951;
-      const Scalar tmp953 = tmp241*tmp951;
-      const Scalar tmp954 = tmp243*tmp951;
-      const Scalar tmp955 = tmp231*tmp950 + tmp236*(-tmp246 - vel(0))*tmp952
-          + tmp236*(-tmp249 - vel(1))*tmp953 + tmp236*(-tmp251 - vel(2))*tmp954;
-      const Scalar tmp956 = -kappa*tmp256;
-      const Scalar tmp957 = tmp255*tmp956;
-      const Scalar tmp958 = tmp253*tmp954 + tmp252*tmp955;
-      const Scalar tmp959 = tmp267/sqrt((tmp267*tmp267) + (tmp268*tmp268) + (tmp269*tmp269));
-      const Scalar tmp960 = -(Scalar(1)/(tmp270*tmp270))*tmp959;
-      const Scalar tmp961 = tmp272 + tmp267*tmp960;
-      const Scalar tmp962 = tmp268*tmp960;
-      const Scalar tmp963 = tmp269*tmp960;
-      const Scalar tmp964 = tmp214*tmp959 + tmp222*(-tmp246 - vel(3))*tmp961
-          + tmp222*(-tmp249 - vel(4))*tmp962 + tmp222*(-tmp251 - vel(5))*tmp963;
-      const Scalar tmp965 = tmp256*tmp956;
-      const Scalar tmp966 = tmp276*tmp963 + tmp275*tmp964;
-      const Scalar tmp967 = -tmp964;
-      const Scalar tmp968 = -tmp293/sqrt((tmp293*tmp293) + (tmp294*tmp294) + (tmp295*tmp295));
-      const Scalar tmp969 = -(Scalar(1)/(tmp296*tmp296))*tmp968;
-      const Scalar tmp970 = -tmp298 + tmp293*tmp969;
-      const Scalar tmp971 = tmp294*tmp969;
-      const Scalar tmp972 = tmp295*tmp969;
-      const Scalar tmp973 = tmp231*tmp968 + tmp236*(-tmp215 - vel(6))*tmp970
-          + tmp236*(-tmp218 - vel(7))*tmp971 + tmp236*(-tmp220 - vel(8))*tmp972;
-      const Scalar tmp974 = -tmp955;
-      const Scalar tmp975 = tmp303*tmp954 + tmp292*tmp963 + tmp275*tmp967 + tmp302*tmp972
-          + tmp301*tmp973 + tmp252*tmp974;
-      const Scalar tmp976 = -tmp973;
-      const Scalar tmp977 = tmp307*tmp972 + tmp301*tmp976;
-      const Scalar tmp978 = tmp241/sqrt((tmp239*tmp239) + (tmp241*tmp241) + (tmp243*tmp243));
-      const Scalar tmp979 = -(Scalar(1)/(tmp244*tmp244))*tmp978;
-      const Scalar tmp980 = tmp239*tmp979;
-      const Scalar tmp981 = tmp247 + tmp241*tmp979;
-      const Scalar tmp982 = tmp243*tmp979;
-      const Scalar tmp983 = tmp231*tmp978 + tmp236*(-tmp246 - vel(0))*tmp980
-          + tmp236*(-tmp249 - vel(1))*tmp981 + tmp236*(-tmp251 - vel(2))*tmp982;
-      const Scalar tmp984 = -kappa*tmp256;
-      const Scalar tmp985 = tmp255*tmp984;
-      const Scalar tmp986 = tmp253*tmp982 + tmp252*tmp983;
-      const Scalar tmp987 = tmp268/sqrt((tmp267*tmp267) + (tmp268*tmp268) + (tmp269*tmp269));
-      const Scalar tmp988 = -(Scalar(1)/(tmp270*tmp270))*tmp987;
-      const Scalar tmp989 = tmp267*tmp988;
-      const Scalar tmp990 = tmp272 + tmp268*tmp988;
-      const Scalar tmp991 = tmp269*tmp988;
-      const Scalar tmp992 = tmp214*tmp987 + tmp222*(-tmp246 - vel(3))*tmp989
-          + tmp222*(-tmp249 - vel(4))*tmp990 + tmp222*(-tmp251 - vel(5))*tmp991;
-      const Scalar tmp993 = tmp256*tmp984;
-      const Scalar tmp994 = tmp276*tmp991 + tmp275*tmp992;
-      const Scalar tmp995 = -tmp992;
-      const Scalar tmp996 = -tmp294/sqrt((tmp293*tmp293) + (tmp294*tmp294) + (tmp295*tmp295));
-      const Scalar tmp997 = -(Scalar(1)/(tmp296*tmp296))*tmp996;
-      const Scalar tmp998 = tmp293*tmp997;
-      const Scalar tmp999 = -tmp298 + tmp294*tmp997;
-      const Scalar tmp1000 = tmp295*tmp997;
-      const Scalar tmp1001 = tmp231*tmp996 + tmp236*(-tmp215 - vel(6))*tmp998
-          + tmp236*(-tmp218 - vel(7))*tmp999 + tmp236*(-tmp220 - vel(8))*tmp1000;
-      const Scalar tmp1002 = -tmp983;
-      const Scalar tmp1003 = tmp303*tmp982 + tmp292*tmp991 + tmp275*tmp995 + tmp302*tmp1000
-          + tmp301*tmp1001 + tmp252*tmp1002;
-      const Scalar tmp1004 = -tmp1001;
-      const Scalar tmp1005 = tmp307*tmp1000 + tmp301*tmp1004;
-      const Scalar tmp1006 = tmp243/sqrt((tmp239*tmp239) + (tmp241*tmp241) + (tmp243*tmp243));
-      const Scalar tmp1007 = -(Scalar(1)/(tmp244*tmp244))*tmp1006;
-      const Scalar tmp1008 = tmp239*tmp1007;
-      const Scalar tmp1009 = tmp241*tmp1007;
-      const Scalar tmp1010 = tmp247 + tmp243*tmp1007;
-      const Scalar tmp1011 = tmp231*tmp1006 + tmp236*(-tmp246 - vel(0))*tmp1008
-          + tmp236*(-tmp249 - vel(1))*tmp1009 + tmp236*(-tmp251 - vel(2))*tmp1010;
-      const Scalar tmp1012 = -kappa*tmp256;
-      const Scalar tmp1013 = tmp255*tmp1012;
-      const Scalar tmp1014 = tmp253*tmp1010 + tmp252*tmp1011 + tmp1013;
-      const Scalar tmp1015 = tmp269/sqrt((tmp267*tmp267) + (tmp268*tmp268) + (tmp269*tmp269));
-      const Scalar tmp1016 = -(Scalar(1)/(tmp270*tmp270))*tmp1015;
-      const Scalar tmp1017 = tmp267*tmp1016;
-      const Scalar tmp1018 = tmp268*tmp1016;
-      const Scalar tmp1019 = tmp272 + tmp269*tmp1016;
-      const Scalar tmp1020 = tmp214*tmp1015 + tmp222*(-tmp246 - vel(3))*tmp1017
-          + tmp222*(-tmp249 - vel(4))*tmp1018 + tmp222*(-tmp251 - vel(5))*tmp1019;
-      const Scalar tmp1021 = tmp256*tmp1012;
-      const Scalar tmp1022 = tmp276*tmp1019 + tmp275*tmp1020 + tmp1021;
-      const Scalar tmp1023 = -tmp1020;
-      const Scalar tmp1024 = -tmp295/sqrt((tmp293*tmp293) + (tmp294*tmp294) + (tmp295*tmp295));
-      const Scalar tmp1025 = -(Scalar(1)/(tmp296*tmp296))*tmp1024;
-      const Scalar tmp1026 = tmp293*tmp1025;
-      const Scalar tmp1027 = tmp294*tmp1025;
-      const Scalar tmp1028 = -tmp298 + tmp295*tmp1025;
-      const Scalar tmp1029 = tmp231*tmp1024 + tmp236*(-tmp215 - vel(6))*tmp1026
-          + tmp236*(-tmp218 - vel(7))*tmp1027 + tmp236*(-tmp220 - vel(8))*tmp1028;
-      const Scalar tmp1030 = -tmp1011;
-      const Scalar tmp1031 = tmp303*tmp1010 + tmp292*tmp1019 + tmp1021 + tmp275*tmp1023
-          + tmp302*tmp1028 + tmp301*tmp1029 + tmp252*tmp1030;
-      const Scalar tmp1032 = -tmp1029;
-      const Scalar tmp1033 = tmp1013 + tmp307*tmp1028 + tmp301*tmp1032;
-      const Scalar tmp1034 = tmp205/sqrt((tmp205*tmp205) + (tmp207*tmp207) + (tmp209*tmp209));
-      const Scalar tmp1035 = -(Scalar(1)/(tmp210*tmp210))*tmp1034;
-      const Scalar tmp1036 = tmp216 + tmp205*tmp1035;
-      const Scalar tmp1037 = tmp207*tmp1035;
-      const Scalar tmp1038 = tmp209*tmp1035;
-      const Scalar tmp1039 = tmp214*tmp1034 + tmp222*(-tmp215 - vel(0))*tmp1036
-          + tmp222*(-tmp218 - vel(1))*tmp1037 + tmp222*(-tmp220 - vel(2))*tmp1038;
-      const Scalar tmp1040 = -kappa*tmp255;
-      const Scalar tmp1041 = tmp255*tmp1040;
-      const Scalar tmp1042 = tmp223*tmp1038 + tmp221*tmp1039;
-      const Scalar tmp1043 = tmp277/sqrt((tmp277*tmp277) + (tmp278*tmp278) + (tmp279*tmp279));
-      const Scalar tmp1044 = -(Scalar(1)/(tmp280*tmp280))*tmp1043;
-      const Scalar tmp1045 = tmp282 + tmp277*tmp1044;
-      const Scalar tmp1046 = tmp278*tmp1044;
-      const Scalar tmp1047 = tmp279*tmp1044;
-      const Scalar tmp1048 = tmp231*tmp1043 + tmp236*(-tmp215 - vel(3))*tmp1045
-          + tmp236*(-tmp218 - vel(4))*tmp1046 + tmp236*(-tmp220 - vel(5))*tmp1047;
-      const Scalar tmp1049 = tmp256*tmp1040;
-      const Scalar tmp1050 = tmp286*tmp1047 + tmp285*tmp1048;
-      const Scalar tmp1051 = tmp293/sqrt((tmp293*tmp293) + (tmp294*tmp294) + (tmp295*tmp295));
-      const Scalar tmp1052 = -(Scalar(1)/(tmp296*tmp296))*tmp1051;
-      const Scalar tmp1053 = tmp298 + tmp293*tmp1052;
-      const Scalar tmp1054 = tmp294*tmp1052;
-      const Scalar tmp1055 = tmp295*tmp1052;
-      const Scalar tmp1056 = tmp231*tmp1051 + tmp236*(-tmp215 - vel(6))*tmp1053
-          + tmp236*(-tmp218 - vel(7))*tmp1054 + tmp236*(-tmp220 - vel(8))*tmp1055;
-      const Scalar tmp1057 = tmp302*tmp1055 + tmp301*tmp1056;
-      const Scalar tmp1058 = -tmp1039;
-      const Scalar tmp1059 = -tmp1048;
-      const Scalar tmp1060 = -tmp1056;
-      const Scalar tmp1061 = tmp305*tmp1038 + tmp306*tmp1047 + tmp307*tmp1055 + tmp221*tmp1058
-          + tmp285*tmp1059 + tmp301*tmp1060;
-      const Scalar tmp1062 = tmp207/sqrt((tmp205*tmp205) + (tmp207*tmp207) + (tmp209*tmp209));
-      const Scalar tmp1063 = -(Scalar(1)/(tmp210*tmp210))*tmp1062;
-      const Scalar tmp1064 = tmp205*tmp1063;
-      const Scalar tmp1065 = tmp216 + tmp207*tmp1063;
-      const Scalar tmp1066 = tmp209*tmp1063;
-      const Scalar tmp1067 = tmp214*tmp1062 + tmp222*(-tmp215 - vel(0))*tmp1064
-          + tmp222*(-tmp218 - vel(1))*tmp1065 + tmp222*(-tmp220 - vel(2))*tmp1066;
-      const Scalar tmp1068 = -kappa*tmp255;
-      const Scalar tmp1069 = tmp255*tmp1068;
-      const Scalar tmp1070 = tmp223*tmp1066 + tmp221*tmp1067;
-      const Scalar tmp1071 = tmp278/sqrt((tmp277*tmp277) + (tmp278*tmp278) + (tmp279*tmp279));
-      const Scalar tmp1072 = -(Scalar(1)/(tmp280*tmp280))*tmp1071;
-      const Scalar tmp1073 = tmp277*tmp1072;
-      const Scalar tmp1074 = tmp282 + tmp278*tmp1072;
-      const Scalar tmp1075 = tmp279*tmp1072;
-      const Scalar tmp1076 = tmp231*tmp1071 + tmp236*(-tmp215 - vel(3))*tmp1073
-          + tmp236*(-tmp218 - vel(4))*tmp1074 + tmp236*(-tmp220 - vel(5))*tmp1075;
-      const Scalar tmp1077 = tmp256*tmp1068;
-      const Scalar tmp1078 = tmp286*tmp1075 + tmp285*tmp1076;
-      const Scalar tmp1079 = tmp294/sqrt((tmp293*tmp293) + (tmp294*tmp294) + (tmp295*tmp295));
-      const Scalar tmp1080 = -(Scalar(1)/(tmp296*tmp296))*tmp1079;
-      const Scalar tmp1081 = tmp293*tmp1080;
-      const Scalar tmp1082 = tmp298 + tmp294*tmp1080;
-      const Scalar tmp1083 = tmp295*tmp1080;
-      const Scalar tmp1084 = tmp231*tmp1079 + tmp236*(-tmp215 - vel(6))*tmp1081
-          + tmp236*(-tmp218 - vel(7))*tmp1082 + tmp236*(-tmp220 - vel(8))*tmp1083;
-      const Scalar tmp1085 = tmp302*tmp1083 + tmp301*tmp1084;
-      const Scalar tmp1086 = -tmp1067;
-      const Scalar tmp1087 = -tmp1076;
-      const Scalar tmp1088 = -tmp1084;
-      const Scalar tmp1089 = tmp305*tmp1066 + tmp306*tmp1075 + tmp307*tmp1083 + tmp221*tmp1086
-          + tmp285*tmp1087 + tmp301*tmp1088;
-      const Scalar tmp1090 = tmp209/sqrt((tmp205*tmp205) + (tmp207*tmp207) + (tmp209*tmp209));
-      const Scalar tmp1091 = -(Scalar(1)/(tmp210*tmp210))*tmp1090;
-      const Scalar tmp1092 = tmp205*tmp1091;
-      const Scalar tmp1093 = tmp207*tmp1091;
-      const Scalar tmp1094 = tmp216 + tmp209*tmp1091;
-      const Scalar tmp1095 = tmp214*tmp1090 + tmp222*(-tmp215 - vel(0))*tmp1092
-          + tmp222*(-tmp218 - vel(1))*tmp1093 + tmp222*(-tmp220 - vel(2))*tmp1094;
-      const Scalar tmp1096 = -kappa*tmp255;
-      const Scalar tmp1097 = tmp255*tmp1096;
-      const Scalar tmp1098 = tmp223*tmp1094 + tmp221*tmp1095 + tmp1097;
-      const Scalar tmp1099 = tmp279/sqrt((tmp277*tmp277) + (tmp278*tmp278) + (tmp279*tmp279));
-      const Scalar tmp1100 = -(Scalar(1)/(tmp280*tmp280))*tmp1099;
-      const Scalar tmp1101 = tmp277*tmp1100;
-      const Scalar tmp1102 = tmp278*tmp1100;
-      const Scalar tmp1103 = tmp282 + tmp279*tmp1100;
-      const Scalar tmp1104 = tmp231*tmp1099 + tmp236*(-tmp215 - vel(3))*tmp1101
-          + tmp236*(-tmp218 - vel(4))*tmp1102 + tmp236*(-tmp220 - vel(5))*tmp1103;
-      const Scalar tmp1105 = tmp256*tmp1096;
-      const Scalar tmp1106 = tmp286*tmp1103 + tmp285*tmp1104 + tmp1105;
-      const Scalar tmp1107 = tmp295/sqrt((tmp293*tmp293) + (tmp294*tmp294) + (tmp295*tmp295));
-      const Scalar tmp1108 = -(Scalar(1)/(tmp296*tmp296))*tmp1107;
-      const Scalar tmp1109 = tmp293*tmp1108;
-      const Scalar tmp1110 = tmp294*tmp1108;
-      const Scalar tmp1111 = tmp298 + tmp295*tmp1108;
-      const Scalar tmp1112 = tmp231*tmp1107 + tmp236*(-tmp215 - vel(6))*tmp1109
-          + tmp236*(-tmp218 - vel(7))*tmp1110 + tmp236*(-tmp220 - vel(8))*tmp1111;
-      const Scalar tmp1113 = tmp1105 + tmp302*tmp1111 + tmp301*tmp1112;
-      const Scalar tmp1114 = -tmp1095;
-      const Scalar tmp1115 = -tmp1104;
-      const Scalar tmp1116 = -tmp1112;
-      const Scalar tmp1117 = tmp305*tmp1094 + tmp1097 + tmp306*tmp1103 + tmp307*tmp1111
-          + tmp221*tmp1114 + tmp285*tmp1115 + tmp301*tmp1116;
+      const Scalar tmp9 = (r*r);
+      const Scalar tmp10 = (Scalar(0.25))*m;
+      const Scalar tmp11 = tmp10*tmp9;
+      const Scalar tmp12 = (h*h);
+      const Scalar tmp13 = -tmp11 + ((Scalar(1)/Scalar(12)))*m*(tmp12 + Scalar(3)*tmp9);
+      const Scalar tmp103 = abs(r);
+      const Scalar tmp106 = sqrt(tmp13)/sqrt(m);
+      const Scalar tmp240 = sqrt(Scalar(2));
+      const Scalar tmp241 = -tmp103*tmp240;
+      const Scalar tmp242 = -pos(9);
+      const Scalar tmp243 = -tmp242 - pos(0);
+      const Scalar tmp244 = -pos(10);
+      const Scalar tmp245 = -tmp244 - pos(1);
+      const Scalar tmp246 = -pos(11);
+      const Scalar tmp247 = -tmp246 - pos(2);
+      const Scalar tmp248 = sqrt((tmp243*tmp243) + (tmp245*tmp245) + (tmp247*tmp247));
+      const Scalar tmp249 = tmp241 + tmp248;
+      const Scalar tmp250 = (Scalar(0.5))*kappa;
+      const Scalar tmp251 = tmp240/tmp103;
+      const Scalar tmp252 = tmp250*tmp251;
+      const Scalar tmp253 = -vel(9);
+      const Scalar tmp254 = (Scalar(1)/tmp248);
+      const Scalar tmp255 = tmp243*tmp254;
+      const Scalar tmp256 = -vel(10);
+      const Scalar tmp257 = tmp245*tmp254;
+      const Scalar tmp258 = -vel(11);
+      const Scalar tmp259 = tmp247*tmp254;
+      const Scalar tmp260 = (Scalar(0.5))*tmp251*penalty_damping;
+      const Scalar tmp261 = tmp249*tmp252
+          + tmp260*(tmp255*(-tmp253 - vel(0)) + tmp257*(-tmp256 - vel(1))
+              + tmp259*(-tmp258 - vel(2)));
+      const Scalar tmp262 = pos(3) - pos(0);
+      const Scalar tmp263 = pos(4) - pos(1);
+      const Scalar tmp264 = pos(5) - pos(2);
+      const Scalar tmp265 = sqrt((tmp262*tmp262) + (tmp263*tmp263) + (tmp264*tmp264));
+      const Scalar tmp266 = sqrt(tmp9 + Scalar(4)*tmp13/m);
+      const Scalar tmp267 = tmp265 - tmp266;
+      const Scalar tmp268 = (Scalar(1)/tmp266);
+      const Scalar tmp269 = tmp268*kappa;
+      const Scalar tmp270 = (Scalar(1)/tmp265);
+      const Scalar tmp271 = tmp262*tmp270;
+      const Scalar tmp272 = tmp263*tmp270;
+      const Scalar tmp273 = tmp264*tmp270;
+      const Scalar tmp274 = tmp268*penalty_damping;
+      const Scalar tmp275 = tmp267*tmp269
+          + tmp274*(tmp271*(vel(3) - vel(0)) + tmp272*(vel(4) - vel(1)) + tmp273*(vel(5) - vel(2)));
+      const Scalar tmp276 = -pos(6);
+      const Scalar tmp277 = -tmp276 - pos(0);
+      const Scalar tmp278 = -pos(7);
+      const Scalar tmp279 = -tmp278 - pos(1);
+      const Scalar tmp280 = -pos(8);
+      const Scalar tmp281 = -tmp280 - pos(2);
+      const Scalar tmp282 = sqrt((tmp277*tmp277) + (tmp279*tmp279) + (tmp281*tmp281));
+      const Scalar tmp283 = tmp282 - tmp266;
+      const Scalar tmp284 = -vel(6);
+      const Scalar tmp285 = (Scalar(1)/tmp282);
+      const Scalar tmp286 = tmp277*tmp285;
+      const Scalar tmp287 = -vel(7);
+      const Scalar tmp288 = tmp279*tmp285;
+      const Scalar tmp289 = -vel(8);
+      const Scalar tmp290 = tmp281*tmp285;
+      const Scalar tmp291 = tmp269*tmp283
+          + tmp274*(tmp286*(-tmp284 - vel(0)) + tmp288*(-tmp287 - vel(1))
+              + tmp290*(-tmp289 - vel(2)));
+      const Scalar tmp292 = Scalar(3)*tmp106*d/tmp12;
+      const Scalar tmp293 = Scalar(0.25) - tmp292;
+      const Scalar tmp294 = Scalar(0.25) + tmp292;
+      const Scalar tmp305 = -tmp276 - pos(3);
+      const Scalar tmp306 = -tmp278 - pos(4);
+      const Scalar tmp307 = -tmp280 - pos(5);
+      const Scalar tmp308 = sqrt((tmp305*tmp305) + (tmp306*tmp306) + (tmp307*tmp307));
+      const Scalar tmp309 = tmp241 + tmp308;
+      const Scalar tmp310 = (Scalar(1)/tmp308);
+      const Scalar tmp311 = tmp305*tmp310;
+      const Scalar tmp312 = tmp306*tmp310;
+      const Scalar tmp313 = tmp307*tmp310;
+      const Scalar tmp314 = tmp252*tmp309
+          + tmp260*(tmp311*(-tmp284 - vel(3)) + tmp312*(-tmp287 - vel(4))
+              + tmp313*(-tmp289 - vel(5)));
+      const Scalar tmp315 = -tmp242 - pos(3);
+      const Scalar tmp316 = -tmp244 - pos(4);
+      const Scalar tmp317 = -tmp246 - pos(5);
+      const Scalar tmp318 = sqrt((tmp315*tmp315) + (tmp316*tmp316) + (tmp317*tmp317));
+      const Scalar tmp319 = tmp318 - tmp266;
+      const Scalar tmp320 = (Scalar(1)/tmp318);
+      const Scalar tmp321 = tmp315*tmp320;
+      const Scalar tmp322 = tmp316*tmp320;
+      const Scalar tmp323 = tmp317*tmp320;
+      const Scalar tmp324 = tmp269*tmp319
+          + tmp274*(tmp321*(-tmp253 - vel(3)) + tmp322*(-tmp256 - vel(4))
+              + tmp323*(-tmp258 - vel(5)));
+      const Scalar tmp325 = -tmp275;
+      const Scalar tmp330 = -tmp314;
+      const Scalar tmp331 = -tmp242 - pos(6);
+      const Scalar tmp332 = -tmp244 - pos(7);
+      const Scalar tmp333 = -tmp246 - pos(8);
+      const Scalar tmp334 = sqrt((tmp331*tmp331) + (tmp332*tmp332) + (tmp333*tmp333));
+      const Scalar tmp335 = tmp334 - tmp266;
+      const Scalar tmp336 = (Scalar(1)/tmp334);
+      const Scalar tmp337 = tmp331*tmp336;
+      const Scalar tmp338 = tmp332*tmp336;
+      const Scalar tmp339 = tmp333*tmp336;
+      const Scalar tmp340 = tmp269*tmp335
+          + tmp274*(tmp337*(-tmp253 - vel(6)) + tmp338*(-tmp256 - vel(7))
+              + tmp339*(-tmp258 - vel(8)));
+      const Scalar tmp341 = -tmp291;
+      const Scalar tmp343 = -tmp261;
+      const Scalar tmp344 = -tmp324;
+      const Scalar tmp345 = -tmp340;
+      const Scalar tmp586 = -tmp243/sqrt((tmp243*tmp243) + (tmp245*tmp245) + (tmp247*tmp247));
+      const Scalar tmp587 = -(Scalar(1)/(tmp248*tmp248))*tmp586;
+      const Scalar tmp588 = -tmp254 + tmp243*tmp587;
+      const Scalar tmp589 = tmp245*tmp587;
+      const Scalar tmp590 = tmp247*tmp587;
+      const Scalar tmp591 = tmp252*tmp586 + tmp260*(-tmp253 - vel(0))*tmp588
+          + tmp260*(-tmp256 - vel(1))*tmp589 + tmp260*(-tmp258 - vel(2))*tmp590;
+      const Scalar tmp592 = -tmp262/sqrt((tmp262*tmp262) + (tmp263*tmp263) + (tmp264*tmp264));
+      const Scalar tmp593 = -(Scalar(1)/(tmp265*tmp265))*tmp592;
+      const Scalar tmp594 = -tmp270 + tmp262*tmp593;
+      const Scalar tmp595 = tmp263*tmp593;
+      const Scalar tmp596 = tmp264*tmp593;
+      const Scalar tmp597 = tmp269*tmp592 + tmp274*(vel(3) - vel(0))*tmp594
+          + tmp274*(vel(4) - vel(1))*tmp595 + tmp274*(vel(5) - vel(2))*tmp596;
+      const Scalar tmp598 = -tmp277/sqrt((tmp277*tmp277) + (tmp279*tmp279) + (tmp281*tmp281));
+      const Scalar tmp599 = -(Scalar(1)/(tmp282*tmp282))*tmp598;
+      const Scalar tmp600 = -tmp285 + tmp277*tmp599;
+      const Scalar tmp601 = tmp279*tmp599;
+      const Scalar tmp602 = tmp281*tmp599;
+      const Scalar tmp603 = tmp269*tmp598 + tmp274*(-tmp284 - vel(0))*tmp600
+          + tmp274*(-tmp287 - vel(1))*tmp601 + tmp274*(-tmp289 - vel(2))*tmp602;
+      const Scalar tmp604 = -kappa*tmp293;
+      const Scalar tmp605 = tmp293*tmp604;
+      const Scalar tmp606 = tmp261*tmp590 + tmp259*tmp591 + tmp275*tmp596 + tmp273*tmp597
+          + tmp291*tmp602 + tmp290*tmp603;
+      const Scalar tmp607 = -tmp597;
+      const Scalar tmp608 = tmp294*tmp604;
+      const Scalar tmp609 = tmp325*tmp596 + tmp273*tmp607;
+      const Scalar tmp610 = -tmp603;
+      const Scalar tmp611 = tmp341*tmp602 + tmp290*tmp610;
+      const Scalar tmp612 = -tmp591;
+      const Scalar tmp613 = tmp343*tmp590 + tmp259*tmp612;
+      const Scalar tmp614 = -tmp245/sqrt((tmp243*tmp243) + (tmp245*tmp245) + (tmp247*tmp247));
+      const Scalar tmp615 = -(Scalar(1)/(tmp248*tmp248))*tmp614;
+      const Scalar tmp616 = tmp243*tmp615;
+      const Scalar tmp617 = -tmp254 + tmp245*tmp615;
+      const Scalar tmp618 = tmp247*tmp615;
+      const Scalar tmp619 = tmp252*tmp614 + tmp260*(-tmp253 - vel(0))*tmp616
+          + tmp260*(-tmp256 - vel(1))*tmp617 + tmp260*(-tmp258 - vel(2))*tmp618;
+      const Scalar tmp620 = -tmp263/sqrt((tmp262*tmp262) + (tmp263*tmp263) + (tmp264*tmp264));
+      const Scalar tmp621 = -(Scalar(1)/(tmp265*tmp265))*tmp620;
+      const Scalar tmp622 = tmp262*tmp621;
+      const Scalar tmp623 = -tmp270 + tmp263*tmp621;
+      const Scalar tmp624 = tmp264*tmp621;
+      const Scalar tmp625 = tmp269*tmp620 + tmp274*(vel(3) - vel(0))*tmp622
+          + tmp274*(vel(4) - vel(1))*tmp623 + tmp274*(vel(5) - vel(2))*tmp624;
+      const Scalar tmp626 = -tmp279/sqrt((tmp277*tmp277) + (tmp279*tmp279) + (tmp281*tmp281));
+      const Scalar tmp627 = -(Scalar(1)/(tmp282*tmp282))*tmp626;
+      const Scalar tmp628 = tmp277*tmp627;
+      const Scalar tmp629 = -tmp285 + tmp279*tmp627;
+      const Scalar tmp630 = tmp281*tmp627;
+      const Scalar tmp631 = tmp269*tmp626 + tmp274*(-tmp284 - vel(0))*tmp628
+          + tmp274*(-tmp287 - vel(1))*tmp629 + tmp274*(-tmp289 - vel(2))*tmp630;
+      const Scalar tmp632 = -kappa*tmp293;
+      const Scalar tmp633 = tmp293*tmp632;
+      const Scalar tmp634 = tmp261*tmp618 + tmp259*tmp619 + tmp275*tmp624 + tmp273*tmp625
+          + tmp291*tmp630 + tmp290*tmp631;
+      const Scalar tmp635 = -tmp625;
+      const Scalar tmp636 = tmp294*tmp632;
+      const Scalar tmp637 = tmp325*tmp624 + tmp273*tmp635;
+      const Scalar tmp638 = -tmp631;
+      const Scalar tmp639 = tmp341*tmp630 + tmp290*tmp638;
+      const Scalar tmp640 = -tmp619;
+      const Scalar tmp641 = tmp343*tmp618 + tmp259*tmp640;
+      const Scalar tmp642 = -tmp247/sqrt((tmp243*tmp243) + (tmp245*tmp245) + (tmp247*tmp247));
+      const Scalar tmp643 = -(Scalar(1)/(tmp248*tmp248))*tmp642;
+      const Scalar tmp644 = tmp243*tmp643;
+      const Scalar tmp645 = tmp245*tmp643;
+      const Scalar tmp646 = -tmp254 + tmp247*tmp643;
+      const Scalar tmp647 = tmp252*tmp642 + tmp260*(-tmp253 - vel(0))*tmp644
+          + tmp260*(-tmp256 - vel(1))*tmp645 + tmp260*(-tmp258 - vel(2))*tmp646;
+      const Scalar tmp648 = -tmp264/sqrt((tmp262*tmp262) + (tmp263*tmp263) + (tmp264*tmp264));
+      const Scalar tmp649 = -(Scalar(1)/(tmp265*tmp265))*tmp648;
+      const Scalar tmp650 = tmp262*tmp649;
+      const Scalar tmp651 = tmp263*tmp649;
+      const Scalar tmp652 = -tmp270 + tmp264*tmp649;
+      const Scalar tmp653 = tmp269*tmp648 + tmp274*(vel(3) - vel(0))*tmp650
+          + tmp274*(vel(4) - vel(1))*tmp651 + tmp274*(vel(5) - vel(2))*tmp652;
+      const Scalar tmp654 = -tmp281/sqrt((tmp277*tmp277) + (tmp279*tmp279) + (tmp281*tmp281));
+      const Scalar tmp655 = -(Scalar(1)/(tmp282*tmp282))*tmp654;
+      const Scalar tmp656 = tmp277*tmp655;
+      const Scalar tmp657 = tmp279*tmp655;
+      const Scalar tmp658 = -tmp285 + tmp281*tmp655;
+      const Scalar tmp659 = tmp269*tmp654 + tmp274*(-tmp284 - vel(0))*tmp656
+          + tmp274*(-tmp287 - vel(1))*tmp657 + tmp274*(-tmp289 - vel(2))*tmp658;
+      const Scalar tmp660 = -kappa*tmp293;
+      const Scalar tmp661 = tmp293*tmp660;
+      const Scalar tmp662 = tmp261*tmp646 + tmp259*tmp647 + tmp275*tmp652 + tmp273*tmp653
+          + tmp291*tmp658 + tmp290*tmp659 + tmp661;
+      const Scalar tmp663 = -tmp653;
+      const Scalar tmp664 = tmp294*tmp660;
+      const Scalar tmp665 = tmp325*tmp652 + tmp273*tmp663 + tmp664;
+      const Scalar tmp666 = -tmp659;
+      const Scalar tmp667 = tmp341*tmp658 + tmp664 + tmp290*tmp666;
+      const Scalar tmp668 = -tmp647;
+      const Scalar tmp669 = tmp343*tmp646 + tmp661 + tmp259*tmp668;
+      const Scalar tmp670 = tmp262/sqrt((tmp262*tmp262) + (tmp263*tmp263) + (tmp264*tmp264));
+      const Scalar tmp671 = -(Scalar(1)/(tmp265*tmp265))*tmp670;
+      const Scalar tmp672 = tmp270 + tmp262*tmp671;
+      const Scalar tmp673 = tmp263*tmp671;
+      const Scalar tmp674 = tmp264*tmp671;
+      const Scalar tmp675 = tmp269*tmp670 + tmp274*(vel(3) - vel(0))*tmp672
+          + tmp274*(vel(4) - vel(1))*tmp673 + tmp274*(vel(5) - vel(2))*tmp674;
+      const Scalar tmp676 = -kappa*tmp294;
+      const Scalar tmp677 = tmp293*tmp676;
+      const Scalar tmp678 = tmp275*tmp674 + tmp273*tmp675;
+      const Scalar tmp679 = -tmp305/sqrt((tmp305*tmp305) + (tmp306*tmp306) + (tmp307*tmp307));
+      const Scalar tmp680 = -(Scalar(1)/(tmp308*tmp308))*tmp679;
+      const Scalar tmp681 = -tmp310 + tmp305*tmp680;
+      const Scalar tmp682 = tmp306*tmp680;
+      const Scalar tmp683 = tmp307*tmp680;
+      const Scalar tmp684 = tmp252*tmp679 + tmp260*(-tmp284 - vel(3))*tmp681
+          + tmp260*(-tmp287 - vel(4))*tmp682 + tmp260*(-tmp289 - vel(5))*tmp683;
+      const Scalar tmp685 = -tmp315/sqrt((tmp315*tmp315) + (tmp316*tmp316) + (tmp317*tmp317));
+      const Scalar tmp686 = -(Scalar(1)/(tmp318*tmp318))*tmp685;
+      const Scalar tmp687 = -tmp320 + tmp315*tmp686;
+      const Scalar tmp688 = tmp316*tmp686;
+      const Scalar tmp689 = tmp317*tmp686;
+      const Scalar tmp690 = tmp269*tmp685 + tmp274*(-tmp253 - vel(3))*tmp687
+          + tmp274*(-tmp256 - vel(4))*tmp688 + tmp274*(-tmp258 - vel(5))*tmp689;
+      const Scalar tmp691 = -tmp675;
+      const Scalar tmp692 = tmp294*tmp676;
+      const Scalar tmp693 = tmp325*tmp674 + tmp314*tmp683 + tmp313*tmp684 + tmp324*tmp689
+          + tmp323*tmp690 + tmp273*tmp691;
+      const Scalar tmp694 = -tmp684;
+      const Scalar tmp695 = tmp330*tmp683 + tmp313*tmp694;
+      const Scalar tmp696 = -tmp690;
+      const Scalar tmp697 = tmp344*tmp689 + tmp323*tmp696;
+      const Scalar tmp698 = tmp263/sqrt((tmp262*tmp262) + (tmp263*tmp263) + (tmp264*tmp264));
+      const Scalar tmp699 = -(Scalar(1)/(tmp265*tmp265))*tmp698;
+      const Scalar tmp700 = tmp262*tmp699;
+      const Scalar tmp701 = tmp270 + tmp263*tmp699;
+      const Scalar tmp702 = tmp264*tmp699;
+      const Scalar tmp703 = tmp269*tmp698 + tmp274*(vel(3) - vel(0))*tmp700
+          + tmp274*(vel(4) - vel(1))*tmp701 + tmp274*(vel(5) - vel(2))*tmp702;
+      const Scalar tmp704 = -kappa*tmp294;
+      const Scalar tmp705 = tmp293*tmp704;
+      const Scalar tmp706 = tmp275*tmp702 + tmp273*tmp703;
+      const Scalar tmp707 = -tmp306/sqrt((tmp305*tmp305) + (tmp306*tmp306) + (tmp307*tmp307));
+      const Scalar tmp708 = -(Scalar(1)/(tmp308*tmp308))*tmp707;
+      const Scalar tmp709 = tmp305*tmp708;
+      const Scalar tmp710 = -tmp310 + tmp306*tmp708;
+      const Scalar tmp711 = tmp307*tmp708;
+      const Scalar tmp712 = tmp252*tmp707 + tmp260*(-tmp284 - vel(3))*tmp709
+          + tmp260*(-tmp287 - vel(4))*tmp710 + tmp260*(-tmp289 - vel(5))*tmp711;
+      const Scalar tmp713 = -tmp316/sqrt((tmp315*tmp315) + (tmp316*tmp316) + (tmp317*tmp317));
+      const Scalar tmp714 = -(Scalar(1)/(tmp318*tmp318))*tmp713;
+      const Scalar tmp715 = tmp315*tmp714;
+      const Scalar tmp716 = -tmp320 + tmp316*tmp714;
+      const Scalar tmp717 = tmp317*tmp714;
+      const Scalar tmp718 = tmp269*tmp713 + tmp274*(-tmp253 - vel(3))*tmp715
+          + tmp274*(-tmp256 - vel(4))*tmp716 + tmp274*(-tmp258 - vel(5))*tmp717;
+      const Scalar tmp719 = -tmp703;
+      const Scalar tmp720 = tmp294*tmp704;
+      const Scalar tmp721 = tmp325*tmp702 + tmp314*tmp711 + tmp313*tmp712 + tmp324*tmp717
+          + tmp323*tmp718 + tmp273*tmp719;
+      const Scalar tmp722 = -tmp712;
+      const Scalar tmp723 = tmp330*tmp711 + tmp313*tmp722;
+      const Scalar tmp724 = -tmp718;
+      const Scalar tmp725 = tmp344*tmp717 + tmp323*tmp724;
+      const Scalar tmp726 = tmp264/sqrt((tmp262*tmp262) + (tmp263*tmp263) + (tmp264*tmp264));
+      const Scalar tmp727 = -(Scalar(1)/(tmp265*tmp265))*tmp726;
+      const Scalar tmp728 = tmp262*tmp727;
+      const Scalar tmp729 = tmp263*tmp727;
+      const Scalar tmp730 = tmp270 + tmp264*tmp727;
+      const Scalar tmp731 = tmp269*tmp726 + tmp274*(vel(3) - vel(0))*tmp728
+          + tmp274*(vel(4) - vel(1))*tmp729 + tmp274*(vel(5) - vel(2))*tmp730;
+      const Scalar tmp732 = -kappa*tmp294;
+      const Scalar tmp733 = tmp293*tmp732;
+      const Scalar tmp734 = tmp275*tmp730 + tmp273*tmp731 + tmp733;
+      const Scalar tmp735 = -tmp307/sqrt((tmp305*tmp305) + (tmp306*tmp306) + (tmp307*tmp307));
+      const Scalar tmp736 = -(Scalar(1)/(tmp308*tmp308))*tmp735;
+      const Scalar tmp737 = tmp305*tmp736;
+      const Scalar tmp738 = tmp306*tmp736;
+      const Scalar tmp739 = -tmp310 + tmp307*tmp736;
+      const Scalar tmp740 = tmp252*tmp735 + tmp260*(-tmp284 - vel(3))*tmp737
+          + tmp260*(-tmp287 - vel(4))*tmp738 + tmp260*(-tmp289 - vel(5))*tmp739;
+      const Scalar tmp741 = -tmp317/sqrt((tmp315*tmp315) + (tmp316*tmp316) + (tmp317*tmp317));
+      const Scalar tmp742 = -(Scalar(1)/(tmp318*tmp318))*tmp741;
+      const Scalar tmp743 = tmp315*tmp742;
+      const Scalar tmp744 = tmp316*tmp742;
+      const Scalar tmp745 = -tmp320 + tmp317*tmp742;
+      const Scalar tmp746 = tmp269*tmp741 + tmp274*(-tmp253 - vel(3))*tmp743
+          + tmp274*(-tmp256 - vel(4))*tmp744 + tmp274*(-tmp258 - vel(5))*tmp745;
+      const Scalar tmp747 = -tmp731;
+      const Scalar tmp748 = tmp294*tmp732;
+      const Scalar tmp749 = tmp325*tmp730 + tmp314*tmp739 + tmp313*tmp740 + tmp324*tmp745
+          + tmp323*tmp746 + tmp273*tmp747 + tmp748;
+      const Scalar tmp750 = -tmp740;
+      const Scalar tmp751 = tmp330*tmp739 + tmp748 + tmp313*tmp750;
+      const Scalar tmp752 = -tmp746;
+      const Scalar tmp753 = tmp733 + tmp344*tmp745 + tmp323*tmp752;
+      const Scalar tmp754 = tmp277/sqrt((tmp277*tmp277) + (tmp279*tmp279) + (tmp281*tmp281));
+      const Scalar tmp755 = -(Scalar(1)/(tmp282*tmp282))*tmp754;
+      const Scalar tmp756 = tmp285 + tmp277*tmp755;
+      const Scalar tmp757 = tmp279*tmp755;
+      const Scalar tmp758 = tmp281*tmp755;
+      const Scalar tmp759 = tmp269*tmp754 + tmp274*(-tmp284 - vel(0))*tmp756
+          + tmp274*(-tmp287 - vel(1))*tmp757 + tmp274*(-tmp289 - vel(2))*tmp758;
+      const Scalar tmp760 = -kappa*tmp294;
+      const Scalar tmp761 = tmp293*tmp760;
+      const Scalar tmp762 = tmp291*tmp758 + tmp290*tmp759;
+      const Scalar tmp763 = tmp305/sqrt((tmp305*tmp305) + (tmp306*tmp306) + (tmp307*tmp307));
+      const Scalar tmp764 = -(Scalar(1)/(tmp308*tmp308))*tmp763;
+      const Scalar tmp765 = tmp310 + tmp305*tmp764;
+      const Scalar tmp766 = tmp306*tmp764;
+      const Scalar tmp767 = tmp307*tmp764;
+      const Scalar tmp768 = tmp252*tmp763 + tmp260*(-tmp284 - vel(3))*tmp765
+          + tmp260*(-tmp287 - vel(4))*tmp766 + tmp260*(-tmp289 - vel(5))*tmp767;
+      const Scalar tmp769 = tmp294*tmp760;
+      const Scalar tmp770 = tmp314*tmp767 + tmp313*tmp768;
+      const Scalar tmp771 = -tmp768;
+      const Scalar tmp772 = -tmp331/sqrt((tmp331*tmp331) + (tmp332*tmp332) + (tmp333*tmp333));
+      const Scalar tmp773 = -(Scalar(1)/(tmp334*tmp334))*tmp772;
+      const Scalar tmp774 = -tmp336 + tmp331*tmp773;
+      const Scalar tmp775 = tmp332*tmp773;
+      const Scalar tmp776 = tmp333*tmp773;
+      const Scalar tmp777 = tmp269*tmp772 + tmp274*(-tmp253 - vel(6))*tmp774
+          + tmp274*(-tmp256 - vel(7))*tmp775 + tmp274*(-tmp258 - vel(8))*tmp776;
+      const Scalar tmp778 = -tmp759;
+      const Scalar tmp779 = tmp341*tmp758 + tmp330*tmp767 + tmp313*tmp771 + tmp340*tmp776
+          + tmp339*tmp777 + tmp290*tmp778;
+      const Scalar tmp780 = -tmp777;
+      const Scalar tmp781 = tmp345*tmp776 + tmp339*tmp780;
+      const Scalar tmp782 = tmp279/sqrt((tmp277*tmp277) + (tmp279*tmp279) + (tmp281*tmp281));
+      const Scalar tmp783 = -(Scalar(1)/(tmp282*tmp282))*tmp782;
+      const Scalar tmp784 = tmp277*tmp783;
+      const Scalar tmp785 = tmp285 + tmp279*tmp783;
+      const Scalar tmp786 = tmp281*tmp783;
+      const Scalar tmp787 = tmp269*tmp782 + tmp274*(-tmp284 - vel(0))*tmp784
+          + tmp274*(-tmp287 - vel(1))*tmp785 + tmp274*(-tmp289 - vel(2))*tmp786;
+      const Scalar tmp788 = -kappa*tmp294;
+      const Scalar tmp789 = tmp293*tmp788;
+      const Scalar tmp790 = tmp291*tmp786 + tmp290*tmp787;
+      const Scalar tmp791 = tmp306/sqrt((tmp305*tmp305) + (tmp306*tmp306) + (tmp307*tmp307));
+      const Scalar tmp792 = -(Scalar(1)/(tmp308*tmp308))*tmp791;
+      const Scalar tmp793 = tmp305*tmp792;
+      const Scalar tmp794 = tmp310 + tmp306*tmp792;
+      const Scalar tmp795 = tmp307*tmp792;
+      const Scalar tmp796 = tmp252*tmp791 + tmp260*(-tmp284 - vel(3))*tmp793
+          + tmp260*(-tmp287 - vel(4))*tmp794 + tmp260*(-tmp289 - vel(5))*tmp795;
+      const Scalar tmp797 = tmp294*tmp788;
+      const Scalar tmp798 = tmp314*tmp795 + tmp313*tmp796;
+      const Scalar tmp799 = -tmp796;
+      const Scalar tmp800 = -tmp332/sqrt((tmp331*tmp331) + (tmp332*tmp332) + (tmp333*tmp333));
+      const Scalar tmp801 = -(Scalar(1)/(tmp334*tmp334))*tmp800;
+      const Scalar tmp802 = tmp331*tmp801;
+      const Scalar tmp803 = -tmp336 + tmp332*tmp801;
+      const Scalar tmp804 = tmp333*tmp801;
+      const Scalar tmp805 = tmp269*tmp800 + tmp274*(-tmp253 - vel(6))*tmp802
+          + tmp274*(-tmp256 - vel(7))*tmp803 + tmp274*(-tmp258 - vel(8))*tmp804;
+      const Scalar tmp806 = -tmp787;
+      const Scalar tmp807 = tmp341*tmp786 + tmp330*tmp795 + tmp313*tmp799 + tmp340*tmp804
+          + tmp339*tmp805 + tmp290*tmp806;
+      const Scalar tmp808 = -tmp805;
+      const Scalar tmp809 = tmp345*tmp804 + tmp339*tmp808;
+      const Scalar tmp810 = tmp281/sqrt((tmp277*tmp277) + (tmp279*tmp279) + (tmp281*tmp281));
+      const Scalar tmp811 = -(Scalar(1)/(tmp282*tmp282))*tmp810;
+      const Scalar tmp812 = tmp277*tmp811;
+      const Scalar tmp813 = tmp279*tmp811;
+      const Scalar tmp814 = tmp285 + tmp281*tmp811;
+      const Scalar tmp815 = tmp269*tmp810 + tmp274*(-tmp284 - vel(0))*tmp812
+          + tmp274*(-tmp287 - vel(1))*tmp813 + tmp274*(-tmp289 - vel(2))*tmp814;
+      const Scalar tmp816 = -kappa*tmp294;
+      const Scalar tmp817 = tmp293*tmp816;
+      const Scalar tmp818 = tmp291*tmp814 + tmp290*tmp815 + tmp817;
+      const Scalar tmp819 = tmp307/sqrt((tmp305*tmp305) + (tmp306*tmp306) + (tmp307*tmp307));
+      const Scalar tmp820 = -(Scalar(1)/(tmp308*tmp308))*tmp819;
+      const Scalar tmp821 = tmp305*tmp820;
+      const Scalar tmp822 = tmp306*tmp820;
+      const Scalar tmp823 = tmp310 + tmp307*tmp820;
+      const Scalar tmp824 = tmp252*tmp819 + tmp260*(-tmp284 - vel(3))*tmp821
+          + tmp260*(-tmp287 - vel(4))*tmp822 + tmp260*(-tmp289 - vel(5))*tmp823;
+      const Scalar tmp825 = tmp294*tmp816;
+      const Scalar tmp826 = tmp314*tmp823 + tmp313*tmp824 + tmp825;
+      const Scalar tmp827 = -tmp824;
+      const Scalar tmp828 = -tmp333/sqrt((tmp331*tmp331) + (tmp332*tmp332) + (tmp333*tmp333));
+      const Scalar tmp829 = -(Scalar(1)/(tmp334*tmp334))*tmp828;
+      const Scalar tmp830 = tmp331*tmp829;
+      const Scalar tmp831 = tmp332*tmp829;
+      const Scalar tmp832 = -tmp336 + tmp333*tmp829;
+      const Scalar tmp833 = tmp269*tmp828 + tmp274*(-tmp253 - vel(6))*tmp830
+          + tmp274*(-tmp256 - vel(7))*tmp831 + tmp274*(-tmp258 - vel(8))*tmp832;
+      const Scalar tmp834 = -tmp815;
+      const Scalar tmp835 = tmp341*tmp814 + tmp330*tmp823 + tmp825 + tmp313*tmp827 + tmp340*tmp832
+          + tmp339*tmp833 + tmp290*tmp834;
+      const Scalar tmp836 = -tmp833;
+      const Scalar tmp837 = tmp817 + tmp345*tmp832 + tmp339*tmp836;
+      const Scalar tmp838 = tmp243/sqrt((tmp243*tmp243) + (tmp245*tmp245) + (tmp247*tmp247));
+      const Scalar tmp839 = -(Scalar(1)/(tmp248*tmp248))*tmp838;
+      const Scalar tmp840 = tmp254 + tmp243*tmp839;
+      const Scalar tmp841 = tmp245*tmp839;
+      const Scalar tmp842 = tmp247*tmp839;
+      const Scalar tmp843 = tmp252*tmp838 + tmp260*(-tmp253 - vel(0))*tmp840
+          + tmp260*(-tmp256 - vel(1))*tmp841 + tmp260*(-tmp258 - vel(2))*tmp842;
+      const Scalar tmp844 = -kappa*tmp293;
+      const Scalar tmp845 = tmp293*tmp844;
+      const Scalar tmp846 = tmp261*tmp842 + tmp259*tmp843;
+      const Scalar tmp847 = tmp315/sqrt((tmp315*tmp315) + (tmp316*tmp316) + (tmp317*tmp317));
+      const Scalar tmp848 = -(Scalar(1)/(tmp318*tmp318))*tmp847;
+      const Scalar tmp849 = tmp320 + tmp315*tmp848;
+      const Scalar tmp850 = tmp316*tmp848;
+      const Scalar tmp851 = tmp317*tmp848;
+      const Scalar tmp852 = tmp269*tmp847 + tmp274*(-tmp253 - vel(3))*tmp849
+          + tmp274*(-tmp256 - vel(4))*tmp850 + tmp274*(-tmp258 - vel(5))*tmp851;
+      const Scalar tmp853 = tmp294*tmp844;
+      const Scalar tmp854 = tmp324*tmp851 + tmp323*tmp852;
+      const Scalar tmp855 = tmp331/sqrt((tmp331*tmp331) + (tmp332*tmp332) + (tmp333*tmp333));
+      const Scalar tmp856 = -(Scalar(1)/(tmp334*tmp334))*tmp855;
+      const Scalar tmp857 = tmp336 + tmp331*tmp856;
+      const Scalar tmp858 = tmp332*tmp856;
+      const Scalar tmp859 = tmp333*tmp856;
+      const Scalar tmp860 = tmp269*tmp855 + tmp274*(-tmp253 - vel(6))*tmp857
+          + tmp274*(-tmp256 - vel(7))*tmp858 + tmp274*(-tmp258 - vel(8))*tmp859;
+      const Scalar tmp861 = tmp340*tmp859 + tmp339*tmp860;
+      const Scalar tmp862 = -tmp843;
+      const Scalar tmp863 = -tmp852;
+      const Scalar tmp864 = -tmp860;
+      const Scalar tmp865 = tmp343*tmp842 + tmp344*tmp851 + tmp345*tmp859 + tmp259*tmp862
+          + tmp323*tmp863 + tmp339*tmp864;
+      const Scalar tmp866 = tmp245/sqrt((tmp243*tmp243) + (tmp245*tmp245) + (tmp247*tmp247));
+      const Scalar tmp867 = -(Scalar(1)/(tmp248*tmp248))*tmp866;
+      const Scalar tmp868 = tmp243*tmp867;
+      const Scalar tmp869 = tmp254 + tmp245*tmp867;
+      const Scalar tmp870 = tmp247*tmp867;
+      const Scalar tmp871 = tmp252*tmp866 + tmp260*(-tmp253 - vel(0))*tmp868
+          + tmp260*(-tmp256 - vel(1))*tmp869 + tmp260*(-tmp258 - vel(2))*tmp870;
+      const Scalar tmp872 = -kappa*tmp293;
+      const Scalar tmp873 = tmp293*tmp872;
+      const Scalar tmp874 = tmp261*tmp870 + tmp259*tmp871;
+      const Scalar tmp875 = tmp316/sqrt((tmp315*tmp315) + (tmp316*tmp316) + (tmp317*tmp317));
+      const Scalar tmp876 = -(Scalar(1)/(tmp318*tmp318))*tmp875;
+      const Scalar tmp877 = tmp315*tmp876;
+      const Scalar tmp878 = tmp320 + tmp316*tmp876;
+      const Scalar tmp879 = tmp317*tmp876;
+      const Scalar tmp880 = tmp269*tmp875 + tmp274*(-tmp253 - vel(3))*tmp877
+          + tmp274*(-tmp256 - vel(4))*tmp878 + tmp274*(-tmp258 - vel(5))*tmp879;
+      const Scalar tmp881 = tmp294*tmp872;
+      const Scalar tmp882 = tmp324*tmp879 + tmp323*tmp880;
+      const Scalar tmp883 = tmp332/sqrt((tmp331*tmp331) + (tmp332*tmp332) + (tmp333*tmp333));
+      const Scalar tmp884 = -(Scalar(1)/(tmp334*tmp334))*tmp883;
+      const Scalar tmp885 = tmp331*tmp884;
+      const Scalar tmp886 = tmp336 + tmp332*tmp884;
+      const Scalar tmp887 = tmp333*tmp884;
+      const Scalar tmp888 = tmp269*tmp883 + tmp274*(-tmp253 - vel(6))*tmp885
+          + tmp274*(-tmp256 - vel(7))*tmp886 + tmp274*(-tmp258 - vel(8))*tmp887;
+      const Scalar tmp889 = tmp340*tmp887 + tmp339*tmp888;
+      const Scalar tmp890 = -tmp871;
+      const Scalar tmp891 = -tmp880;
+      const Scalar tmp892 = -tmp888;
+      const Scalar tmp893 = tmp343*tmp870 + tmp344*tmp879 + tmp345*tmp887 + tmp259*tmp890
+          + tmp323*tmp891 + tmp339*tmp892;
+      const Scalar tmp894 = tmp247/sqrt((tmp243*tmp243) + (tmp245*tmp245) + (tmp247*tmp247));
+      const Scalar tmp895 = -(Scalar(1)/(tmp248*tmp248))*tmp894;
+      const Scalar tmp896 = tmp243*tmp895;
+      const Scalar tmp897 = tmp245*tmp895;
+      const Scalar tmp898 = tmp254 + tmp247*tmp895;
+      const Scalar tmp899 = tmp252*tmp894 + tmp260*(-tmp253 - vel(0))*tmp896
+          + tmp260*(-tmp256 - vel(1))*tmp897 + tmp260*(-tmp258 - vel(2))*tmp898;
+      const Scalar tmp900 = -kappa*tmp293;
+      const Scalar tmp901 = tmp293*tmp900;
+      const Scalar tmp902 = tmp261*tmp898 + tmp259*tmp899 + tmp901;
+      const Scalar tmp903 = tmp317/sqrt((tmp315*tmp315) + (tmp316*tmp316) + (tmp317*tmp317));
+      const Scalar tmp904 = -(Scalar(1)/(tmp318*tmp318))*tmp903;
+      const Scalar tmp905 = tmp315*tmp904;
+      const Scalar tmp906 = tmp316*tmp904;
+      const Scalar tmp907 = tmp320 + tmp317*tmp904;
+      const Scalar tmp908 = tmp269*tmp903 + tmp274*(-tmp253 - vel(3))*tmp905
+          + tmp274*(-tmp256 - vel(4))*tmp906 + tmp274*(-tmp258 - vel(5))*tmp907;
+      const Scalar tmp909 = tmp294*tmp900;
+      const Scalar tmp910 = tmp324*tmp907 + tmp323*tmp908 + tmp909;
+      const Scalar tmp911 = tmp333/sqrt((tmp331*tmp331) + (tmp332*tmp332) + (tmp333*tmp333));
+      const Scalar tmp912 = -(Scalar(1)/(tmp334*tmp334))*tmp911;
+      const Scalar tmp913 = tmp331*tmp912;
+      const Scalar tmp914 = tmp332*tmp912;
+      const Scalar tmp915 = tmp336 + tmp333*tmp912;
+      const Scalar tmp916 = tmp269*tmp911 + tmp274*(-tmp253 - vel(6))*tmp913
+          + tmp274*(-tmp256 - vel(7))*tmp914 + tmp274*(-tmp258 - vel(8))*tmp915;
+      const Scalar tmp917 = tmp909 + tmp340*tmp915 + tmp339*tmp916;
+      const Scalar tmp918 = -tmp899;
+      const Scalar tmp919 = -tmp908;
+      const Scalar tmp920 = -tmp916;
+      const Scalar tmp921 = tmp343*tmp898 + tmp901 + tmp344*tmp907 + tmp345*tmp915 + tmp259*tmp918
+          + tmp323*tmp919 + tmp339*tmp920;
       std::array<Scalar, 144> result;
-      result[0] = tmp223*tmp784 + tmp217*tmp787 + tmp237*tmp790 + tmp233*tmp793 + tmp253*tmp796
-          + tmp248*tmp799 + tmp801;
-      result[1] = tmp223*tmp812 + tmp217*tmp815 + tmp237*tmp818 + tmp233*tmp821 + tmp253*tmp824
-          + tmp248*tmp827;
-      result[2] = tmp223*tmp840 + tmp217*tmp843 + tmp237*tmp846 + tmp233*tmp849 + tmp253*tmp852
-          + tmp248*tmp855;
-      result[3] = tmp237*tmp868 + tmp233*tmp871 + tmp873;
-      result[4] = tmp237*tmp896 + tmp233*tmp899;
-      result[5] = tmp237*tmp924 + tmp233*tmp927;
-      result[6] = tmp253*tmp952 + tmp248*tmp955 + tmp957;
-      result[7] = tmp253*tmp980 + tmp248*tmp983;
-      result[8] = tmp253*tmp1008 + tmp248*tmp1011;
-      result[9] = tmp223*tmp1036 + tmp217*tmp1039 + tmp1041;
-      result[10] = tmp223*tmp1064 + tmp217*tmp1067;
-      result[11] = tmp223*tmp1092 + tmp217*tmp1095;
-      result[12] = tmp223*tmp785 + tmp219*tmp787 + tmp237*tmp791 + tmp234*tmp793 + tmp253*tmp797
-          + tmp250*tmp799;
-      result[13] = tmp223*tmp813 + tmp219*tmp815 + tmp237*tmp819 + tmp234*tmp821 + tmp253*tmp825
-          + tmp250*tmp827 + tmp829;
-      result[14] = tmp223*tmp841 + tmp219*tmp843 + tmp237*tmp847 + tmp234*tmp849 + tmp253*tmp853
-          + tmp250*tmp855;
-      result[15] = tmp237*tmp869 + tmp234*tmp871;
-      result[16] = tmp237*tmp897 + tmp234*tmp899 + tmp901;
-      result[17] = tmp237*tmp925 + tmp234*tmp927;
-      result[18] = tmp253*tmp953 + tmp250*tmp955;
-      result[19] = tmp253*tmp981 + tmp250*tmp983 + tmp985;
-      result[20] = tmp253*tmp1009 + tmp250*tmp1011;
-      result[21] = tmp223*tmp1037 + tmp219*tmp1039;
-      result[22] = tmp223*tmp1065 + tmp219*tmp1067 + tmp1069;
-      result[23] = tmp223*tmp1093 + tmp219*tmp1095;
-      result[24] = tmp802;
-      result[25] = tmp830;
-      result[26] = tmp858;
-      result[27] = tmp874;
-      result[28] = tmp902;
-      result[29] = tmp930;
-      result[30] = tmp958;
-      result[31] = tmp986;
-      result[32] = tmp1014;
-      result[33] = tmp1042;
-      result[34] = tmp1070;
-      result[35] = tmp1098;
-      result[36] = tmp287*tmp790 + tmp233*tmp803 + tmp804;
-      result[37] = tmp287*tmp818 + tmp233*tmp831;
-      result[38] = tmp287*tmp846 + tmp233*tmp859;
-      result[39] = tmp287*tmp868 + tmp276*tmp877 + tmp273*tmp880 + tmp286*tmp883 + tmp283*tmp886
-          + tmp233*tmp887 + tmp888;
-      result[40] = tmp287*tmp896 + tmp276*tmp905 + tmp273*tmp908 + tmp286*tmp911 + tmp283*tmp914
-          + tmp233*tmp915;
-      result[41] = tmp287*tmp924 + tmp276*tmp933 + tmp273*tmp936 + tmp286*tmp939 + tmp283*tmp942
-          + tmp233*tmp943;
-      result[42] = tmp276*tmp961 + tmp273*tmp964 + tmp965;
-      result[43] = tmp276*tmp989 + tmp273*tmp992;
-      result[44] = tmp276*tmp1017 + tmp273*tmp1020;
-      result[45] = tmp286*tmp1045 + tmp283*tmp1048 + tmp1049;
-      result[46] = tmp286*tmp1073 + tmp283*tmp1076;
-      result[47] = tmp286*tmp1101 + tmp283*tmp1104;
-      result[48] = tmp287*tmp791 + tmp234*tmp803;
-      result[49] = tmp287*tmp819 + tmp234*tmp831 + tmp832;
-      result[50] = tmp287*tmp847 + tmp234*tmp859;
-      result[51] = tmp287*tmp869 + tmp276*tmp878 + tmp274*tmp880 + tmp286*tmp884 + tmp284*tmp886
-          + tmp234*tmp887;
-      result[52] = tmp287*tmp897 + tmp276*tmp906 + tmp274*tmp908 + tmp286*tmp912 + tmp284*tmp914
-          + tmp234*tmp915 + tmp916;
-      result[53] = tmp287*tmp925 + tmp276*tmp934 + tmp274*tmp936 + tmp286*tmp940 + tmp284*tmp942
-          + tmp234*tmp943;
-      result[54] = tmp276*tmp962 + tmp274*tmp964;
-      result[55] = tmp276*tmp990 + tmp274*tmp992 + tmp993;
-      result[56] = tmp276*tmp1018 + tmp274*tmp1020;
-      result[57] = tmp286*tmp1046 + tmp284*tmp1048;
-      result[58] = tmp286*tmp1074 + tmp284*tmp1076 + tmp1077;
-      result[59] = tmp286*tmp1102 + tmp284*tmp1104;
-      result[60] = tmp805;
-      result[61] = tmp833;
-      result[62] = tmp861;
-      result[63] = tmp889;
-      result[64] = tmp917;
-      result[65] = tmp945;
-      result[66] = tmp966;
-      result[67] = tmp994;
-      result[68] = tmp1022;
-      result[69] = tmp1050;
-      result[70] = tmp1078;
-      result[71] = tmp1106;
-      result[72] = tmp303*tmp796 + tmp804 + tmp248*tmp806;
-      result[73] = tmp303*tmp824 + tmp248*tmp834;
-      result[74] = tmp303*tmp852 + tmp248*tmp862;
-      result[75] = tmp292*tmp877 + tmp888 + tmp273*tmp890;
-      result[76] = tmp292*tmp905 + tmp273*tmp918;
-      result[77] = tmp292*tmp933 + tmp273*tmp946;
-      result[78] = tmp303*tmp952 + tmp292*tmp961 + tmp965 + tmp273*tmp967 + tmp302*tmp970
-          + tmp299*tmp973 + tmp248*tmp974;
-      result[79] = tmp303*tmp980 + tmp292*tmp989 + tmp273*tmp995 + tmp302*tmp998 + tmp299*tmp1001
-          + tmp248*tmp1002;
-      result[80] = tmp303*tmp1008 + tmp292*tmp1017 + tmp273*tmp1023 + tmp302*tmp1026
-          + tmp299*tmp1029 + tmp248*tmp1030;
-      result[81] = tmp1049 + tmp302*tmp1053 + tmp299*tmp1056;
-      result[82] = tmp302*tmp1081 + tmp299*tmp1084;
-      result[83] = tmp302*tmp1109 + tmp299*tmp1112;
-      result[84] = tmp303*tmp797 + tmp250*tmp806;
-      result[85] = tmp303*tmp825 + tmp832 + tmp250*tmp834;
-      result[86] = tmp303*tmp853 + tmp250*tmp862;
-      result[87] = tmp292*tmp878 + tmp274*tmp890;
-      result[88] = tmp292*tmp906 + tmp916 + tmp274*tmp918;
-      result[89] = tmp292*tmp934 + tmp274*tmp946;
-      result[90] = tmp303*tmp953 + tmp292*tmp962 + tmp274*tmp967 + tmp302*tmp971 + tmp300*tmp973
-          + tmp250*tmp974;
-      result[91] = tmp303*tmp981 + tmp292*tmp990 + tmp993 + tmp274*tmp995 + tmp302*tmp999
-          + tmp300*tmp1001 + tmp250*tmp1002;
-      result[92] = tmp303*tmp1009 + tmp292*tmp1018 + tmp274*tmp1023 + tmp302*tmp1027
-          + tmp300*tmp1029 + tmp250*tmp1030;
-      result[93] = tmp302*tmp1054 + tmp300*tmp1056;
-      result[94] = tmp1077 + tmp302*tmp1082 + tmp300*tmp1084;
-      result[95] = tmp302*tmp1110 + tmp300*tmp1112;
-      result[96] = tmp807;
-      result[97] = tmp835;
-      result[98] = tmp863;
-      result[99] = tmp891;
-      result[100] = tmp919;
-      result[101] = tmp947;
-      result[102] = tmp975;
-      result[103] = tmp1003;
-      result[104] = tmp1031;
-      result[105] = tmp1057;
-      result[106] = tmp1085;
-      result[107] = tmp1113;
-      result[108] = tmp305*tmp784 + tmp801 + tmp217*tmp808;
-      result[109] = tmp305*tmp812 + tmp217*tmp836;
-      result[110] = tmp305*tmp840 + tmp217*tmp864;
-      result[111] = tmp873 + tmp306*tmp883 + tmp283*tmp892;
-      result[112] = tmp306*tmp911 + tmp283*tmp920;
-      result[113] = tmp306*tmp939 + tmp283*tmp948;
-      result[114] = tmp957 + tmp307*tmp970 + tmp299*tmp976;
-      result[115] = tmp307*tmp998 + tmp299*tmp1004;
-      result[116] = tmp307*tmp1026 + tmp299*tmp1032;
-      result[117] = tmp305*tmp1036 + tmp1041 + tmp306*tmp1045 + tmp307*tmp1053 + tmp217*tmp1058
-          + tmp283*tmp1059 + tmp299*tmp1060;
-      result[118] = tmp305*tmp1064 + tmp306*tmp1073 + tmp307*tmp1081 + tmp217*tmp1086
-          + tmp283*tmp1087 + tmp299*tmp1088;
-      result[119] = tmp305*tmp1092 + tmp306*tmp1101 + tmp307*tmp1109 + tmp217*tmp1114
-          + tmp283*tmp1115 + tmp299*tmp1116;
-      result[120] = tmp305*tmp785 + tmp219*tmp808;
-      result[121] = tmp305*tmp813 + tmp829 + tmp219*tmp836;
-      result[122] = tmp305*tmp841 + tmp219*tmp864;
-      result[123] = tmp306*tmp884 + tmp284*tmp892;
-      result[124] = tmp901 + tmp306*tmp912 + tmp284*tmp920;
-      result[125] = tmp306*tmp940 + tmp284*tmp948;
-      result[126] = tmp307*tmp971 + tmp300*tmp976;
-      result[127] = tmp985 + tmp307*tmp999 + tmp300*tmp1004;
-      result[128] = tmp307*tmp1027 + tmp300*tmp1032;
-      result[129] = tmp305*tmp1037 + tmp306*tmp1046 + tmp307*tmp1054 + tmp219*tmp1058
-          + tmp284*tmp1059 + tmp300*tmp1060;
-      result[130] = tmp305*tmp1065 + tmp1069 + tmp306*tmp1074 + tmp307*tmp1082 + tmp219*tmp1086
-          + tmp284*tmp1087 + tmp300*tmp1088;
-      result[131] = tmp305*tmp1093 + tmp306*tmp1102 + tmp307*tmp1110 + tmp219*tmp1114
-          + tmp284*tmp1115 + tmp300*tmp1116;
-      result[132] = tmp809;
-      result[133] = tmp837;
-      result[134] = tmp865;
-      result[135] = tmp893;
-      result[136] = tmp921;
-      result[137] = tmp949;
-      result[138] = tmp977;
-      result[139] = tmp1005;
-      result[140] = tmp1033;
-      result[141] = tmp1061;
-      result[142] = tmp1089;
-      result[143] = tmp1117;
+      result[0] = tmp261*tmp588 + tmp255*tmp591 + tmp275*tmp594 + tmp271*tmp597 + tmp291*tmp600
+          + tmp286*tmp603 + tmp605;
+      result[1] = tmp261*tmp616 + tmp255*tmp619 + tmp275*tmp622 + tmp271*tmp625 + tmp291*tmp628
+          + tmp286*tmp631;
+      result[2] = tmp261*tmp644 + tmp255*tmp647 + tmp275*tmp650 + tmp271*tmp653 + tmp291*tmp656
+          + tmp286*tmp659;
+      result[3] = tmp275*tmp672 + tmp271*tmp675 + tmp677;
+      result[4] = tmp275*tmp700 + tmp271*tmp703;
+      result[5] = tmp275*tmp728 + tmp271*tmp731;
+      result[6] = tmp291*tmp756 + tmp286*tmp759 + tmp761;
+      result[7] = tmp291*tmp784 + tmp286*tmp787;
+      result[8] = tmp291*tmp812 + tmp286*tmp815;
+      result[9] = tmp261*tmp840 + tmp255*tmp843 + tmp845;
+      result[10] = tmp261*tmp868 + tmp255*tmp871;
+      result[11] = tmp261*tmp896 + tmp255*tmp899;
+      result[12] = tmp261*tmp589 + tmp257*tmp591 + tmp275*tmp595 + tmp272*tmp597 + tmp291*tmp601
+          + tmp288*tmp603;
+      result[13] = tmp261*tmp617 + tmp257*tmp619 + tmp275*tmp623 + tmp272*tmp625 + tmp291*tmp629
+          + tmp288*tmp631 + tmp633;
+      result[14] = tmp261*tmp645 + tmp257*tmp647 + tmp275*tmp651 + tmp272*tmp653 + tmp291*tmp657
+          + tmp288*tmp659;
+      result[15] = tmp275*tmp673 + tmp272*tmp675;
+      result[16] = tmp275*tmp701 + tmp272*tmp703 + tmp705;
+      result[17] = tmp275*tmp729 + tmp272*tmp731;
+      result[18] = tmp291*tmp757 + tmp288*tmp759;
+      result[19] = tmp291*tmp785 + tmp288*tmp787 + tmp789;
+      result[20] = tmp291*tmp813 + tmp288*tmp815;
+      result[21] = tmp261*tmp841 + tmp257*tmp843;
+      result[22] = tmp261*tmp869 + tmp257*tmp871 + tmp873;
+      result[23] = tmp261*tmp897 + tmp257*tmp899;
+      result[24] = tmp606;
+      result[25] = tmp634;
+      result[26] = tmp662;
+      result[27] = tmp678;
+      result[28] = tmp706;
+      result[29] = tmp734;
+      result[30] = tmp762;
+      result[31] = tmp790;
+      result[32] = tmp818;
+      result[33] = tmp846;
+      result[34] = tmp874;
+      result[35] = tmp902;
+      result[36] = tmp325*tmp594 + tmp271*tmp607 + tmp608;
+      result[37] = tmp325*tmp622 + tmp271*tmp635;
+      result[38] = tmp325*tmp650 + tmp271*tmp663;
+      result[39] = tmp325*tmp672 + tmp314*tmp681 + tmp311*tmp684 + tmp324*tmp687 + tmp321*tmp690
+          + tmp271*tmp691 + tmp692;
+      result[40] = tmp325*tmp700 + tmp314*tmp709 + tmp311*tmp712 + tmp324*tmp715 + tmp321*tmp718
+          + tmp271*tmp719;
+      result[41] = tmp325*tmp728 + tmp314*tmp737 + tmp311*tmp740 + tmp324*tmp743 + tmp321*tmp746
+          + tmp271*tmp747;
+      result[42] = tmp314*tmp765 + tmp311*tmp768 + tmp769;
+      result[43] = tmp314*tmp793 + tmp311*tmp796;
+      result[44] = tmp314*tmp821 + tmp311*tmp824;
+      result[45] = tmp324*tmp849 + tmp321*tmp852 + tmp853;
+      result[46] = tmp324*tmp877 + tmp321*tmp880;
+      result[47] = tmp324*tmp905 + tmp321*tmp908;
+      result[48] = tmp325*tmp595 + tmp272*tmp607;
+      result[49] = tmp325*tmp623 + tmp272*tmp635 + tmp636;
+      result[50] = tmp325*tmp651 + tmp272*tmp663;
+      result[51] = tmp325*tmp673 + tmp314*tmp682 + tmp312*tmp684 + tmp324*tmp688 + tmp322*tmp690
+          + tmp272*tmp691;
+      result[52] = tmp325*tmp701 + tmp314*tmp710 + tmp312*tmp712 + tmp324*tmp716 + tmp322*tmp718
+          + tmp272*tmp719 + tmp720;
+      result[53] = tmp325*tmp729 + tmp314*tmp738 + tmp312*tmp740 + tmp324*tmp744 + tmp322*tmp746
+          + tmp272*tmp747;
+      result[54] = tmp314*tmp766 + tmp312*tmp768;
+      result[55] = tmp314*tmp794 + tmp312*tmp796 + tmp797;
+      result[56] = tmp314*tmp822 + tmp312*tmp824;
+      result[57] = tmp324*tmp850 + tmp322*tmp852;
+      result[58] = tmp324*tmp878 + tmp322*tmp880 + tmp881;
+      result[59] = tmp324*tmp906 + tmp322*tmp908;
+      result[60] = tmp609;
+      result[61] = tmp637;
+      result[62] = tmp665;
+      result[63] = tmp693;
+      result[64] = tmp721;
+      result[65] = tmp749;
+      result[66] = tmp770;
+      result[67] = tmp798;
+      result[68] = tmp826;
+      result[69] = tmp854;
+      result[70] = tmp882;
+      result[71] = tmp910;
+      result[72] = tmp341*tmp600 + tmp608 + tmp286*tmp610;
+      result[73] = tmp341*tmp628 + tmp286*tmp638;
+      result[74] = tmp341*tmp656 + tmp286*tmp666;
+      result[75] = tmp330*tmp681 + tmp692 + tmp311*tmp694;
+      result[76] = tmp330*tmp709 + tmp311*tmp722;
+      result[77] = tmp330*tmp737 + tmp311*tmp750;
+      result[78] = tmp341*tmp756 + tmp330*tmp765 + tmp769 + tmp311*tmp771 + tmp340*tmp774
+          + tmp337*tmp777 + tmp286*tmp778;
+      result[79] = tmp341*tmp784 + tmp330*tmp793 + tmp311*tmp799 + tmp340*tmp802 + tmp337*tmp805
+          + tmp286*tmp806;
+      result[80] = tmp341*tmp812 + tmp330*tmp821 + tmp311*tmp827 + tmp340*tmp830 + tmp337*tmp833
+          + tmp286*tmp834;
+      result[81] = tmp853 + tmp340*tmp857 + tmp337*tmp860;
+      result[82] = tmp340*tmp885 + tmp337*tmp888;
+      result[83] = tmp340*tmp913 + tmp337*tmp916;
+      result[84] = tmp341*tmp601 + tmp288*tmp610;
+      result[85] = tmp341*tmp629 + tmp636 + tmp288*tmp638;
+      result[86] = tmp341*tmp657 + tmp288*tmp666;
+      result[87] = tmp330*tmp682 + tmp312*tmp694;
+      result[88] = tmp330*tmp710 + tmp720 + tmp312*tmp722;
+      result[89] = tmp330*tmp738 + tmp312*tmp750;
+      result[90] = tmp341*tmp757 + tmp330*tmp766 + tmp312*tmp771 + tmp340*tmp775 + tmp338*tmp777
+          + tmp288*tmp778;
+      result[91] = tmp341*tmp785 + tmp330*tmp794 + tmp797 + tmp312*tmp799 + tmp340*tmp803
+          + tmp338*tmp805 + tmp288*tmp806;
+      result[92] = tmp341*tmp813 + tmp330*tmp822 + tmp312*tmp827 + tmp340*tmp831 + tmp338*tmp833
+          + tmp288*tmp834;
+      result[93] = tmp340*tmp858 + tmp338*tmp860;
+      result[94] = tmp881 + tmp340*tmp886 + tmp338*tmp888;
+      result[95] = tmp340*tmp914 + tmp338*tmp916;
+      result[96] = tmp611;
+      result[97] = tmp639;
+      result[98] = tmp667;
+      result[99] = tmp695;
+      result[100] = tmp723;
+      result[101] = tmp751;
+      result[102] = tmp779;
+      result[103] = tmp807;
+      result[104] = tmp835;
+      result[105] = tmp861;
+      result[106] = tmp889;
+      result[107] = tmp917;
+      result[108] = tmp343*tmp588 + tmp605 + tmp255*tmp612;
+      result[109] = tmp343*tmp616 + tmp255*tmp640;
+      result[110] = tmp343*tmp644 + tmp255*tmp668;
+      result[111] = tmp677 + tmp344*tmp687 + tmp321*tmp696;
+      result[112] = tmp344*tmp715 + tmp321*tmp724;
+      result[113] = tmp344*tmp743 + tmp321*tmp752;
+      result[114] = tmp761 + tmp345*tmp774 + tmp337*tmp780;
+      result[115] = tmp345*tmp802 + tmp337*tmp808;
+      result[116] = tmp345*tmp830 + tmp337*tmp836;
+      result[117] = tmp343*tmp840 + tmp845 + tmp344*tmp849 + tmp345*tmp857 + tmp255*tmp862
+          + tmp321*tmp863 + tmp337*tmp864;
+      result[118] = tmp343*tmp868 + tmp344*tmp877 + tmp345*tmp885 + tmp255*tmp890 + tmp321*tmp891
+          + tmp337*tmp892;
+      result[119] = tmp343*tmp896 + tmp344*tmp905 + tmp345*tmp913 + tmp255*tmp918 + tmp321*tmp919
+          + tmp337*tmp920;
+      result[120] = tmp343*tmp589 + tmp257*tmp612;
+      result[121] = tmp343*tmp617 + tmp633 + tmp257*tmp640;
+      result[122] = tmp343*tmp645 + tmp257*tmp668;
+      result[123] = tmp344*tmp688 + tmp322*tmp696;
+      result[124] = tmp705 + tmp344*tmp716 + tmp322*tmp724;
+      result[125] = tmp344*tmp744 + tmp322*tmp752;
+      result[126] = tmp345*tmp775 + tmp338*tmp780;
+      result[127] = tmp789 + tmp345*tmp803 + tmp338*tmp808;
+      result[128] = tmp345*tmp831 + tmp338*tmp836;
+      result[129] = tmp343*tmp841 + tmp344*tmp850 + tmp345*tmp858 + tmp257*tmp862 + tmp322*tmp863
+          + tmp338*tmp864;
+      result[130] = tmp343*tmp869 + tmp873 + tmp344*tmp878 + tmp345*tmp886 + tmp257*tmp890
+          + tmp322*tmp891 + tmp338*tmp892;
+      result[131] = tmp343*tmp897 + tmp344*tmp906 + tmp345*tmp914 + tmp257*tmp918 + tmp322*tmp919
+          + tmp338*tmp920;
+      result[132] = tmp613;
+      result[133] = tmp641;
+      result[134] = tmp669;
+      result[135] = tmp697;
+      result[136] = tmp725;
+      result[137] = tmp753;
+      result[138] = tmp781;
+      result[139] = tmp809;
+      result[140] = tmp837;
+      result[141] = tmp865;
+      result[142] = tmp893;
+      result[143] = tmp921;
       return result;
     }
 
@@ -4799,376 +3323,377 @@ struct HeavyTop {
       const Scalar d = Scalar(params.d);
       const Scalar r = Scalar(params.r);
       const Scalar h = Scalar(params.h);
-      const Scalar tmp9 = abs(r);
-      const Scalar tmp14 = (r*r);
-      const Scalar tmp15 = (Scalar(0.25))*m;
-      const Scalar tmp16 = (h*h);
-      const Scalar tmp17 = -tmp14*tmp15 + ((Scalar(1)/Scalar(12)))*m*(tmp16 + Scalar(3)*tmp14);
-      const Scalar tmp18 = sqrt(tmp17)/sqrt(m);
-      const Scalar tmp202 = sqrt(Scalar(2));
-      const Scalar tmp204 = -pos(9);
-      const Scalar tmp205 = -tmp204 - pos(0);
-      const Scalar tmp206 = -pos(10);
-      const Scalar tmp207 = -tmp206 - pos(1);
-      const Scalar tmp208 = -pos(11);
-      const Scalar tmp209 = -tmp208 - pos(2);
-      const Scalar tmp210 = sqrt((tmp205*tmp205) + (tmp207*tmp207) + (tmp209*tmp209));
-      const Scalar tmp213 = tmp202/tmp9;
-      const Scalar tmp216 = (Scalar(1)/tmp210);
-      const Scalar tmp217 = tmp205*tmp216;
-      const Scalar tmp219 = tmp207*tmp216;
-      const Scalar tmp221 = tmp209*tmp216;
-      const Scalar tmp222 = (Scalar(0.5))*tmp213*penalty_damping;
-      const Scalar tmp224 = pos(3) - pos(0);
-      const Scalar tmp225 = pos(4) - pos(1);
-      const Scalar tmp226 = pos(5) - pos(2);
-      const Scalar tmp227 = sqrt((tmp224*tmp224) + (tmp225*tmp225) + (tmp226*tmp226));
-      const Scalar tmp228 = sqrt(tmp14 + Scalar(4)*tmp17/m);
-      const Scalar tmp230 = (Scalar(1)/tmp228);
-      const Scalar tmp232 = (Scalar(1)/tmp227);
-      const Scalar tmp233 = tmp224*tmp232;
-      const Scalar tmp234 = tmp225*tmp232;
-      const Scalar tmp235 = tmp226*tmp232;
-      const Scalar tmp236 = tmp230*penalty_damping;
-      const Scalar tmp238 = -pos(6);
-      const Scalar tmp239 = -tmp238 - pos(0);
-      const Scalar tmp240 = -pos(7);
-      const Scalar tmp241 = -tmp240 - pos(1);
-      const Scalar tmp242 = -pos(8);
-      const Scalar tmp243 = -tmp242 - pos(2);
-      const Scalar tmp244 = sqrt((tmp239*tmp239) + (tmp241*tmp241) + (tmp243*tmp243));
-      const Scalar tmp247 = (Scalar(1)/tmp244);
-      const Scalar tmp248 = tmp239*tmp247;
-      const Scalar tmp250 = tmp241*tmp247;
-      const Scalar tmp252 = tmp243*tmp247;
-      const Scalar tmp254 = Scalar(3)*tmp18*d/tmp16;
-      const Scalar tmp255 = Scalar(0.25) - tmp254;
-      const Scalar tmp256 = Scalar(0.25) + tmp254;
-      const Scalar tmp267 = -tmp238 - pos(3);
-      const Scalar tmp268 = -tmp240 - pos(4);
-      const Scalar tmp269 = -tmp242 - pos(5);
-      const Scalar tmp270 = sqrt((tmp267*tmp267) + (tmp268*tmp268) + (tmp269*tmp269));
-      const Scalar tmp272 = (Scalar(1)/tmp270);
-      const Scalar tmp273 = tmp267*tmp272;
-      const Scalar tmp274 = tmp268*tmp272;
-      const Scalar tmp275 = tmp269*tmp272;
-      const Scalar tmp277 = -tmp204 - pos(3);
-      const Scalar tmp278 = -tmp206 - pos(4);
-      const Scalar tmp279 = -tmp208 - pos(5);
-      const Scalar tmp280 = sqrt((tmp277*tmp277) + (tmp278*tmp278) + (tmp279*tmp279));
-      const Scalar tmp282 = (Scalar(1)/tmp280);
-      const Scalar tmp283 = tmp277*tmp282;
-      const Scalar tmp284 = tmp278*tmp282;
-      const Scalar tmp285 = tmp279*tmp282;
-      const Scalar tmp293 = -tmp204 - pos(6);
-      const Scalar tmp294 = -tmp206 - pos(7);
-      const Scalar tmp295 = -tmp208 - pos(8);
-      const Scalar tmp296 = sqrt((tmp293*tmp293) + (tmp294*tmp294) + (tmp295*tmp295));
-      const Scalar tmp298 = (Scalar(1)/tmp296);
-      const Scalar tmp299 = tmp293*tmp298;
-      const Scalar tmp300 = tmp294*tmp298;
-      const Scalar tmp301 = tmp295*tmp298;
-      const Scalar tmp1118 = -tmp217*tmp222;
-      const Scalar tmp1119 = -tmp233*tmp236;
-      const Scalar tmp1120 = -tmp236*tmp248;
-      const Scalar tmp1121 = -tmp255*penalty_damping;
-      const Scalar tmp1122 = tmp255*tmp1121;
-      const Scalar tmp1123 = tmp221*tmp1118 + tmp235*tmp1119 + tmp252*tmp1120;
-      const Scalar tmp1124 = -tmp1119;
-      const Scalar tmp1125 = tmp256*tmp1121;
-      const Scalar tmp1126 = tmp235*tmp1124;
-      const Scalar tmp1127 = -tmp1120;
-      const Scalar tmp1128 = tmp252*tmp1127;
-      const Scalar tmp1129 = -tmp1118;
-      const Scalar tmp1130 = tmp221*tmp1129;
-      const Scalar tmp1131 = -tmp219*tmp222;
-      const Scalar tmp1132 = -tmp234*tmp236;
-      const Scalar tmp1133 = -tmp236*tmp250;
-      const Scalar tmp1134 = -tmp255*penalty_damping;
-      const Scalar tmp1135 = tmp255*tmp1134;
-      const Scalar tmp1136 = tmp221*tmp1131 + tmp235*tmp1132 + tmp252*tmp1133;
-      const Scalar tmp1137 = -tmp1132;
-      const Scalar tmp1138 = tmp256*tmp1134;
-      const Scalar tmp1139 = tmp235*tmp1137;
-      const Scalar tmp1140 = -tmp1133;
-      const Scalar tmp1141 = tmp252*tmp1140;
-      const Scalar tmp1142 = -tmp1131;
-      const Scalar tmp1143 = tmp221*tmp1142;
-      const Scalar tmp1144 = -tmp221*tmp222;
-      const Scalar tmp1145 = -tmp235*tmp236;
-      const Scalar tmp1146 = -tmp236*tmp252;
-      const Scalar tmp1147 = -tmp255*penalty_damping;
-      const Scalar tmp1148 = tmp255*tmp1147;
-      const Scalar tmp1149 = tmp221*tmp1144 + tmp235*tmp1145 + tmp252*tmp1146 + tmp1148;
-      const Scalar tmp1150 = -tmp1145;
-      const Scalar tmp1151 = tmp256*tmp1147;
-      const Scalar tmp1152 = tmp235*tmp1150 + tmp1151;
-      const Scalar tmp1153 = -tmp1146;
-      const Scalar tmp1154 = tmp1151 + tmp252*tmp1153;
-      const Scalar tmp1155 = -tmp1144;
-      const Scalar tmp1156 = tmp1148 + tmp221*tmp1155;
-      const Scalar tmp1157 = tmp233*tmp236;
-      const Scalar tmp1158 = -tmp256*penalty_damping;
-      const Scalar tmp1159 = tmp255*tmp1158;
-      const Scalar tmp1160 = tmp235*tmp1157;
-      const Scalar tmp1161 = -tmp222*tmp273;
-      const Scalar tmp1162 = -tmp236*tmp283;
-      const Scalar tmp1163 = -tmp1157;
-      const Scalar tmp1164 = tmp256*tmp1158;
-      const Scalar tmp1165 = tmp275*tmp1161 + tmp285*tmp1162 + tmp235*tmp1163;
-      const Scalar tmp1166 = -tmp1161;
-      const Scalar tmp1167 = tmp275*tmp1166;
-      const Scalar tmp1168 = -tmp1162;
-      const Scalar tmp1169 = tmp285*tmp1168;
-      const Scalar tmp1170 = tmp234*tmp236;
-      const Scalar tmp1171 = -tmp256*penalty_damping;
-      const Scalar tmp1172 = tmp255*tmp1171;
-      const Scalar tmp1173 = tmp235*tmp1170;
-      const Scalar tmp1174 = -tmp222*tmp274;
-      const Scalar tmp1175 = -tmp236*tmp284;
-      const Scalar tmp1176 = -tmp1170;
-      const Scalar tmp1177 = tmp256*tmp1171;
-      const Scalar tmp1178 = tmp275*tmp1174 + tmp285*tmp1175 + tmp235*tmp1176;
-      const Scalar tmp1179 = -tmp1174;
-      const Scalar tmp1180 = tmp275*tmp1179;
-      const Scalar tmp1181 = -tmp1175;
-      const Scalar tmp1182 = tmp285*tmp1181;
-      const Scalar tmp1183 = tmp235*tmp236;
-      const Scalar tmp1184 = -tmp256*penalty_damping;
-      const Scalar tmp1185 = tmp255*tmp1184;
-      const Scalar tmp1186 = tmp235*tmp1183 + tmp1185;
-      const Scalar tmp1187 = -tmp222*tmp275;
-      const Scalar tmp1188 = -tmp236*tmp285;
-      const Scalar tmp1189 = -tmp1183;
-      const Scalar tmp1190 = tmp256*tmp1184;
-      const Scalar tmp1191 = tmp275*tmp1187 + tmp285*tmp1188 + tmp235*tmp1189 + tmp1190;
-      const Scalar tmp1192 = -tmp1187;
-      const Scalar tmp1193 = tmp1190 + tmp275*tmp1192;
-      const Scalar tmp1194 = -tmp1188;
-      const Scalar tmp1195 = tmp1185 + tmp285*tmp1194;
-      const Scalar tmp1196 = tmp236*tmp248;
-      const Scalar tmp1197 = -tmp256*penalty_damping;
-      const Scalar tmp1198 = tmp255*tmp1197;
-      const Scalar tmp1199 = tmp252*tmp1196;
-      const Scalar tmp1200 = tmp222*tmp273;
-      const Scalar tmp1201 = tmp256*tmp1197;
-      const Scalar tmp1202 = tmp275*tmp1200;
-      const Scalar tmp1203 = -tmp1200;
-      const Scalar tmp1204 = -tmp236*tmp299;
-      const Scalar tmp1205 = -tmp1196;
-      const Scalar tmp1206 = tmp275*tmp1203 + tmp301*tmp1204 + tmp252*tmp1205;
-      const Scalar tmp1207 = -tmp1204;
-      const Scalar tmp1208 = tmp301*tmp1207;
-      const Scalar tmp1209 = tmp236*tmp250;
-      const Scalar tmp1210 = -tmp256*penalty_damping;
-      const Scalar tmp1211 = tmp255*tmp1210;
-      const Scalar tmp1212 = tmp252*tmp1209;
-      const Scalar tmp1213 = tmp222*tmp274;
-      const Scalar tmp1214 = tmp256*tmp1210;
-      const Scalar tmp1215 = tmp275*tmp1213;
-      const Scalar tmp1216 = -tmp1213;
-      const Scalar tmp1217 = -tmp236*tmp300;
-      const Scalar tmp1218 = -tmp1209;
-      const Scalar tmp1219 = tmp275*tmp1216 + tmp301*tmp1217 + tmp252*tmp1218;
-      const Scalar tmp1220 = -tmp1217;
-      const Scalar tmp1221 = tmp301*tmp1220;
-      const Scalar tmp1222 = tmp236*tmp252;
-      const Scalar tmp1223 = -tmp256*penalty_damping;
-      const Scalar tmp1224 = tmp255*tmp1223;
-      const Scalar tmp1225 = tmp252*tmp1222 + tmp1224;
-      const Scalar tmp1226 = tmp222*tmp275;
-      const Scalar tmp1227 = tmp256*tmp1223;
-      const Scalar tmp1228 = tmp275*tmp1226 + tmp1227;
-      const Scalar tmp1229 = -tmp1226;
-      const Scalar tmp1230 = -tmp236*tmp301;
-      const Scalar tmp1231 = -tmp1222;
-      const Scalar tmp1232 = tmp1227 + tmp275*tmp1229 + tmp301*tmp1230 + tmp252*tmp1231;
-      const Scalar tmp1233 = -tmp1230;
-      const Scalar tmp1234 = tmp1224 + tmp301*tmp1233;
-      const Scalar tmp1235 = tmp217*tmp222;
-      const Scalar tmp1236 = -tmp255*penalty_damping;
-      const Scalar tmp1237 = tmp255*tmp1236;
-      const Scalar tmp1238 = tmp221*tmp1235;
-      const Scalar tmp1239 = tmp236*tmp283;
-      const Scalar tmp1240 = tmp256*tmp1236;
-      const Scalar tmp1241 = tmp285*tmp1239;
-      const Scalar tmp1242 = tmp236*tmp299;
-      const Scalar tmp1243 = tmp301*tmp1242;
-      const Scalar tmp1244 = -tmp1235;
-      const Scalar tmp1245 = -tmp1239;
-      const Scalar tmp1246 = -tmp1242;
-      const Scalar tmp1247 = tmp221*tmp1244 + tmp285*tmp1245 + tmp301*tmp1246;
-      const Scalar tmp1248 = tmp219*tmp222;
-      const Scalar tmp1249 = -tmp255*penalty_damping;
-      const Scalar tmp1250 = tmp255*tmp1249;
-      const Scalar tmp1251 = tmp221*tmp1248;
-      const Scalar tmp1252 = tmp236*tmp284;
-      const Scalar tmp1253 = tmp256*tmp1249;
-      const Scalar tmp1254 = tmp285*tmp1252;
-      const Scalar tmp1255 = tmp236*tmp300;
-      const Scalar tmp1256 = tmp301*tmp1255;
-      const Scalar tmp1257 = -tmp1248;
-      const Scalar tmp1258 = -tmp1252;
-      const Scalar tmp1259 = -tmp1255;
-      const Scalar tmp1260 = tmp221*tmp1257 + tmp285*tmp1258 + tmp301*tmp1259;
-      const Scalar tmp1261 = tmp221*tmp222;
-      const Scalar tmp1262 = -tmp255*penalty_damping;
-      const Scalar tmp1263 = tmp255*tmp1262;
-      const Scalar tmp1264 = tmp221*tmp1261 + tmp1263;
-      const Scalar tmp1265 = tmp236*tmp285;
-      const Scalar tmp1266 = tmp256*tmp1262;
-      const Scalar tmp1267 = tmp285*tmp1265 + tmp1266;
-      const Scalar tmp1268 = tmp236*tmp301;
-      const Scalar tmp1269 = tmp1266 + tmp301*tmp1268;
-      const Scalar tmp1270 = -tmp1261;
-      const Scalar tmp1271 = -tmp1265;
-      const Scalar tmp1272 = -tmp1268;
-      const Scalar tmp1273 = tmp1263 + tmp221*tmp1270 + tmp285*tmp1271 + tmp301*tmp1272;
+      const Scalar tmp9 = (r*r);
+      const Scalar tmp10 = (Scalar(0.25))*m;
+      const Scalar tmp11 = tmp10*tmp9;
+      const Scalar tmp12 = (h*h);
+      const Scalar tmp13 = -tmp11 + ((Scalar(1)/Scalar(12)))*m*(tmp12 + Scalar(3)*tmp9);
+      const Scalar tmp103 = abs(r);
+      const Scalar tmp106 = sqrt(tmp13)/sqrt(m);
+      const Scalar tmp240 = sqrt(Scalar(2));
+      const Scalar tmp242 = -pos(9);
+      const Scalar tmp243 = -tmp242 - pos(0);
+      const Scalar tmp244 = -pos(10);
+      const Scalar tmp245 = -tmp244 - pos(1);
+      const Scalar tmp246 = -pos(11);
+      const Scalar tmp247 = -tmp246 - pos(2);
+      const Scalar tmp248 = sqrt((tmp243*tmp243) + (tmp245*tmp245) + (tmp247*tmp247));
+      const Scalar tmp251 = tmp240/tmp103;
+      const Scalar tmp254 = (Scalar(1)/tmp248);
+      const Scalar tmp255 = tmp243*tmp254;
+      const Scalar tmp257 = tmp245*tmp254;
+      const Scalar tmp259 = tmp247*tmp254;
+      const Scalar tmp260 = (Scalar(0.5))*tmp251*penalty_damping;
+      const Scalar tmp262 = pos(3) - pos(0);
+      const Scalar tmp263 = pos(4) - pos(1);
+      const Scalar tmp264 = pos(5) - pos(2);
+      const Scalar tmp265 = sqrt((tmp262*tmp262) + (tmp263*tmp263) + (tmp264*tmp264));
+      const Scalar tmp266 = sqrt(tmp9 + Scalar(4)*tmp13/m);
+      const Scalar tmp268 = (Scalar(1)/tmp266);
+      const Scalar tmp270 = (Scalar(1)/tmp265);
+      const Scalar tmp271 = tmp262*tmp270;
+      const Scalar tmp272 = tmp263*tmp270;
+      const Scalar tmp273 = tmp264*tmp270;
+      const Scalar tmp274 = tmp268*penalty_damping;
+      const Scalar tmp276 = -pos(6);
+      const Scalar tmp277 = -tmp276 - pos(0);
+      const Scalar tmp278 = -pos(7);
+      const Scalar tmp279 = -tmp278 - pos(1);
+      const Scalar tmp280 = -pos(8);
+      const Scalar tmp281 = -tmp280 - pos(2);
+      const Scalar tmp282 = sqrt((tmp277*tmp277) + (tmp279*tmp279) + (tmp281*tmp281));
+      const Scalar tmp285 = (Scalar(1)/tmp282);
+      const Scalar tmp286 = tmp277*tmp285;
+      const Scalar tmp288 = tmp279*tmp285;
+      const Scalar tmp290 = tmp281*tmp285;
+      const Scalar tmp292 = Scalar(3)*tmp106*d/tmp12;
+      const Scalar tmp293 = Scalar(0.25) - tmp292;
+      const Scalar tmp294 = Scalar(0.25) + tmp292;
+      const Scalar tmp305 = -tmp276 - pos(3);
+      const Scalar tmp306 = -tmp278 - pos(4);
+      const Scalar tmp307 = -tmp280 - pos(5);
+      const Scalar tmp308 = sqrt((tmp305*tmp305) + (tmp306*tmp306) + (tmp307*tmp307));
+      const Scalar tmp310 = (Scalar(1)/tmp308);
+      const Scalar tmp311 = tmp305*tmp310;
+      const Scalar tmp312 = tmp306*tmp310;
+      const Scalar tmp313 = tmp307*tmp310;
+      const Scalar tmp315 = -tmp242 - pos(3);
+      const Scalar tmp316 = -tmp244 - pos(4);
+      const Scalar tmp317 = -tmp246 - pos(5);
+      const Scalar tmp318 = sqrt((tmp315*tmp315) + (tmp316*tmp316) + (tmp317*tmp317));
+      const Scalar tmp320 = (Scalar(1)/tmp318);
+      const Scalar tmp321 = tmp315*tmp320;
+      const Scalar tmp322 = tmp316*tmp320;
+      const Scalar tmp323 = tmp317*tmp320;
+      const Scalar tmp331 = -tmp242 - pos(6);
+      const Scalar tmp332 = -tmp244 - pos(7);
+      const Scalar tmp333 = -tmp246 - pos(8);
+      const Scalar tmp334 = sqrt((tmp331*tmp331) + (tmp332*tmp332) + (tmp333*tmp333));
+      const Scalar tmp336 = (Scalar(1)/tmp334);
+      const Scalar tmp337 = tmp331*tmp336;
+      const Scalar tmp338 = tmp332*tmp336;
+      const Scalar tmp339 = tmp333*tmp336;
+      const Scalar tmp922 = -tmp255*tmp260;
+      const Scalar tmp923 = -tmp271*tmp274;
+      const Scalar tmp924 = -tmp274*tmp286;
+      const Scalar tmp925 = -tmp293*penalty_damping;
+      const Scalar tmp926 = tmp293*tmp925;
+      const Scalar tmp927 = tmp259*tmp922 + tmp273*tmp923 + tmp290*tmp924;
+      const Scalar tmp928 = -tmp923;
+      const Scalar tmp929 = tmp294*tmp925;
+      const Scalar tmp930 = tmp273*tmp928;
+      const Scalar tmp931 = -tmp924;
+      const Scalar tmp932 = tmp290*tmp931;
+      const Scalar tmp933 = -tmp922;
+      const Scalar tmp934 = tmp259*tmp933;
+      const Scalar tmp935 = -tmp257*tmp260;
+      const Scalar tmp936 = -tmp272*tmp274;
+      const Scalar tmp937 = -tmp274*tmp288;
+      const Scalar tmp938 = -tmp293*penalty_damping;
+      const Scalar tmp939 = tmp293*tmp938;
+      const Scalar tmp940 = tmp259*tmp935 + tmp273*tmp936 + tmp290*tmp937;
+      const Scalar tmp941 = -tmp936;
+      const Scalar tmp942 = tmp294*tmp938;
+      const Scalar tmp943 = tmp273*tmp941;
+      const Scalar tmp944 = -tmp937;
+      const Scalar tmp945 = tmp290*tmp944;
+      const Scalar tmp946 = -tmp935;
+      const Scalar tmp947 = tmp259*tmp946;
+      const Scalar tmp948 = -tmp259*tmp260;
+      const Scalar tmp949 = -tmp273*tmp274;
+      const Scalar tmp950 = -tmp274*tmp290;
+      const Scalar tmp951 = -tmp293*penalty_damping;
+      const Scalar tmp952 = tmp293*tmp951;
+      const Scalar tmp953 = tmp259*tmp948 + tmp273*tmp949 + tmp290*tmp950 + tmp952;
+      const Scalar tmp954 = -tmp949;
+      const Scalar tmp955 = tmp294*tmp951;
+      const Scalar tmp956 = tmp273*tmp954 + tmp955;
+      const Scalar tmp957 = -tmp950;
+      const Scalar tmp958 = tmp955 + tmp290*tmp957;
+      const Scalar tmp959 = -tmp948;
+      const Scalar tmp960 = tmp952 + tmp259*tmp959;
+      const Scalar tmp961 = tmp271*tmp274;
+      const Scalar tmp962 = -tmp294*penalty_damping;
+      const Scalar tmp963 = tmp293*tmp962;
+      const Scalar tmp964 = tmp273*tmp961;
+      const Scalar tmp965 = -tmp260*tmp311;
+      const Scalar tmp966 = -tmp274*tmp321;
+      const Scalar tmp967 = -tmp961;
+      const Scalar tmp968 = tmp294*tmp962;
+      const Scalar tmp969 = tmp313*tmp965 + tmp323*tmp966 + tmp273*tmp967;
+      const Scalar tmp970 = -tmp965;
+      const Scalar tmp971 = tmp313*tmp970;
+      const Scalar tmp972 = -tmp966;
+      const Scalar tmp973 = tmp323*tmp972;
+      const Scalar tmp974 = tmp272*tmp274;
+      const Scalar tmp975 = -tmp294*penalty_damping;
+      const Scalar tmp976 = tmp293*tmp975;
+      const Scalar tmp977 = tmp273*tmp974;
+      const Scalar tmp978 = -tmp260*tmp312;
+      const Scalar tmp979 = -tmp274*tmp322;
+      const Scalar tmp980 = -tmp974;
+      const Scalar tmp981 = tmp294*tmp975;
+      const Scalar tmp982 = tmp313*tmp978 + tmp323*tmp979 + tmp273*tmp980;
+      const Scalar tmp983 = -tmp978;
+      const Scalar tmp984 = tmp313*tmp983;
+      const Scalar tmp985 = -tmp979;
+      const Scalar tmp986 = tmp323*tmp985;
+      const Scalar tmp987 = tmp273*tmp274;
+      const Scalar tmp988 = -tmp294*penalty_damping;
+      const Scalar tmp989 = tmp293*tmp988;
+      const Scalar tmp990 = tmp273*tmp987 + tmp989;
+      const Scalar tmp991 = -tmp260*tmp313;
+      const Scalar tmp992 = -tmp274*tmp323;
+      const Scalar tmp993 = -tmp987;
+      const Scalar tmp994 = tmp294*tmp988;
+      const Scalar tmp995 = tmp313*tmp991 + tmp323*tmp992 + tmp273*tmp993 + tmp994;
+      const Scalar tmp996 = -tmp991;
+      const Scalar tmp997 = tmp994 + tmp313*tmp996;
+      const Scalar tmp998 = -tmp992;
+      const Scalar tmp999 = tmp989 + tmp323*tmp998;
+      const Scalar tmp1000 = tmp274*tmp286;
+      const Scalar tmp1001 = -tmp294*penalty_damping;
+      const Scalar tmp1002 = tmp293*tmp1001;
+      const Scalar tmp1003 = tmp290*tmp1000;
+      const Scalar tmp1004 = tmp260*tmp311;
+      const Scalar tmp1005 = tmp294*tmp1001;
+      const Scalar tmp1006 = tmp313*tmp1004;
+      const Scalar tmp1007 = -tmp1004;
+      const Scalar tmp1008 = -tmp274*tmp337;
+      const Scalar tmp1009 = -tmp1000;
+      const Scalar tmp1010 = tmp313*tmp1007 + tmp339*tmp1008 + tmp290*tmp1009;
+      const Scalar tmp1011 = -tmp1008;
+      const Scalar tmp1012 = tmp339*tmp1011;
+      const Scalar tmp1013 = tmp274*tmp288;
+      const Scalar tmp1014 = -tmp294*penalty_damping;
+      const Scalar tmp1015 = tmp293*tmp1014;
+      const Scalar tmp1016 = tmp290*tmp1013;
+      const Scalar tmp1017 = tmp260*tmp312;
+      const Scalar tmp1018 = tmp294*tmp1014;
+      const Scalar tmp1019 = tmp313*tmp1017;
+      const Scalar tmp1020 = -tmp1017;
+      const Scalar tmp1021 = -tmp274*tmp338;
+      const Scalar tmp1022 = -tmp1013;
+      const Scalar tmp1023 = tmp313*tmp1020 + tmp339*tmp1021 + tmp290*tmp1022;
+      const Scalar tmp1024 = -tmp1021;
+      const Scalar tmp1025 = tmp339*tmp1024;
+      const Scalar tmp1026 = tmp274*tmp290;
+      const Scalar tmp1027 = -tmp294*penalty_damping;
+      const Scalar tmp1028 = tmp293*tmp1027;
+      const Scalar tmp1029 = tmp290*tmp1026 + tmp1028;
+      const Scalar tmp1030 = tmp260*tmp313;
+      const Scalar tmp1031 = tmp294*tmp1027;
+      const Scalar tmp1032 = tmp313*tmp1030 + tmp1031;
+      const Scalar tmp1033 = -tmp1030;
+      const Scalar tmp1034 = -tmp274*tmp339;
+      const Scalar tmp1035 = -tmp1026;
+      const Scalar tmp1036 = tmp1031 + tmp313*tmp1033 + tmp339*tmp1034 + tmp290*tmp1035;
+      const Scalar tmp1037 = -tmp1034;
+      const Scalar tmp1038 = tmp1028 + tmp339*tmp1037;
+      const Scalar tmp1039 = tmp255*tmp260;
+      const Scalar tmp1040 = -tmp293*penalty_damping;
+      const Scalar tmp1041 = tmp293*tmp1040;
+      const Scalar tmp1042 = tmp259*tmp1039;
+      const Scalar tmp1043 = tmp274*tmp321;
+      const Scalar tmp1044 = tmp294*tmp1040;
+      const Scalar tmp1045 = tmp323*tmp1043;
+      const Scalar tmp1046 = tmp274*tmp337;
+      const Scalar tmp1047 = tmp339*tmp1046;
+      const Scalar tmp1048 = -tmp1039;
+      const Scalar tmp1049 = -tmp1043;
+      const Scalar tmp1050 = -tmp1046;
+      const Scalar tmp1051 = tmp259*tmp1048 + tmp323*tmp1049 + tmp339*tmp1050;
+      const Scalar tmp1052 = tmp257*tmp260;
+      const Scalar tmp1053 = -tmp293*penalty_damping;
+      const Scalar tmp1054 = tmp293*tmp1053;
+      const Scalar tmp1055 = tmp259*tmp1052;
+      const Scalar tmp1056 = tmp274*tmp322;
+      const Scalar tmp1057 = tmp294*tmp1053;
+      const Scalar tmp1058 = tmp323*tmp1056;
+      const Scalar tmp1059 = tmp274*tmp338;
+      const Scalar tmp1060 = tmp339*tmp1059;
+      const Scalar tmp1061 = -tmp1052;
+      const Scalar tmp1062 = -tmp1056;
+      const Scalar tmp1063 = -tmp1059;
+      const Scalar tmp1064 = tmp259*tmp1061 + tmp323*tmp1062 + tmp339*tmp1063;
+      const Scalar tmp1065 = tmp259*tmp260;
+      const Scalar tmp1066 = -tmp293*penalty_damping;
+      const Scalar tmp1067 = tmp293*tmp1066;
+      const Scalar tmp1068 = tmp259*tmp1065 + tmp1067;
+      const Scalar tmp1069 = tmp274*tmp323;
+      const Scalar tmp1070 = tmp294*tmp1066;
+      const Scalar tmp1071 = tmp323*tmp1069 + tmp1070;
+      const Scalar tmp1072 = tmp274*tmp339;
+      const Scalar tmp1073 = tmp1070 + tmp339*tmp1072;
+      const Scalar tmp1074 = -tmp1065;
+      const Scalar tmp1075 = -tmp1069;
+      const Scalar tmp1076 = -tmp1072;
+      const Scalar tmp1077 = tmp1067 + tmp259*tmp1074 + tmp323*tmp1075 + tmp339*tmp1076;
       std::array<Scalar, 144> result;
-      result[0] = tmp217*tmp1118 + tmp233*tmp1119 + tmp248*tmp1120 + tmp1122;
-      result[1] = tmp217*tmp1131 + tmp233*tmp1132 + tmp248*tmp1133;
-      result[2] = tmp217*tmp1144 + tmp233*tmp1145 + tmp248*tmp1146;
-      result[3] = tmp233*tmp1157 + tmp1159;
-      result[4] = tmp233*tmp1170;
-      result[5] = tmp233*tmp1183;
-      result[6] = tmp248*tmp1196 + tmp1198;
-      result[7] = tmp248*tmp1209;
-      result[8] = tmp248*tmp1222;
-      result[9] = tmp217*tmp1235 + tmp1237;
-      result[10] = tmp217*tmp1248;
-      result[11] = tmp217*tmp1261;
-      result[12] = tmp219*tmp1118 + tmp234*tmp1119 + tmp250*tmp1120;
-      result[13] = tmp219*tmp1131 + tmp234*tmp1132 + tmp250*tmp1133 + tmp1135;
-      result[14] = tmp219*tmp1144 + tmp234*tmp1145 + tmp250*tmp1146;
-      result[15] = tmp234*tmp1157;
-      result[16] = tmp234*tmp1170 + tmp1172;
-      result[17] = tmp234*tmp1183;
-      result[18] = tmp250*tmp1196;
-      result[19] = tmp250*tmp1209 + tmp1211;
-      result[20] = tmp250*tmp1222;
-      result[21] = tmp219*tmp1235;
-      result[22] = tmp219*tmp1248 + tmp1250;
-      result[23] = tmp219*tmp1261;
-      result[24] = tmp1123;
-      result[25] = tmp1136;
-      result[26] = tmp1149;
-      result[27] = tmp1160;
-      result[28] = tmp1173;
-      result[29] = tmp1186;
-      result[30] = tmp1199;
-      result[31] = tmp1212;
-      result[32] = tmp1225;
-      result[33] = tmp1238;
-      result[34] = tmp1251;
-      result[35] = tmp1264;
-      result[36] = tmp233*tmp1124 + tmp1125;
-      result[37] = tmp233*tmp1137;
-      result[38] = tmp233*tmp1150;
-      result[39] = tmp273*tmp1161 + tmp283*tmp1162 + tmp233*tmp1163 + tmp1164;
-      result[40] = tmp273*tmp1174 + tmp283*tmp1175 + tmp233*tmp1176;
-      result[41] = tmp273*tmp1187 + tmp283*tmp1188 + tmp233*tmp1189;
-      result[42] = tmp273*tmp1200 + tmp1201;
-      result[43] = tmp273*tmp1213;
-      result[44] = tmp273*tmp1226;
-      result[45] = tmp283*tmp1239 + tmp1240;
-      result[46] = tmp283*tmp1252;
-      result[47] = tmp283*tmp1265;
-      result[48] = tmp234*tmp1124;
-      result[49] = tmp234*tmp1137 + tmp1138;
-      result[50] = tmp234*tmp1150;
-      result[51] = tmp274*tmp1161 + tmp284*tmp1162 + tmp234*tmp1163;
-      result[52] = tmp274*tmp1174 + tmp284*tmp1175 + tmp234*tmp1176 + tmp1177;
-      result[53] = tmp274*tmp1187 + tmp284*tmp1188 + tmp234*tmp1189;
-      result[54] = tmp274*tmp1200;
-      result[55] = tmp274*tmp1213 + tmp1214;
-      result[56] = tmp274*tmp1226;
-      result[57] = tmp284*tmp1239;
-      result[58] = tmp284*tmp1252 + tmp1253;
-      result[59] = tmp284*tmp1265;
-      result[60] = tmp1126;
-      result[61] = tmp1139;
-      result[62] = tmp1152;
-      result[63] = tmp1165;
-      result[64] = tmp1178;
-      result[65] = tmp1191;
-      result[66] = tmp1202;
-      result[67] = tmp1215;
-      result[68] = tmp1228;
-      result[69] = tmp1241;
-      result[70] = tmp1254;
-      result[71] = tmp1267;
-      result[72] = tmp1125 + tmp248*tmp1127;
-      result[73] = tmp248*tmp1140;
-      result[74] = tmp248*tmp1153;
-      result[75] = tmp1164 + tmp273*tmp1166;
-      result[76] = tmp273*tmp1179;
-      result[77] = tmp273*tmp1192;
-      result[78] = tmp1201 + tmp273*tmp1203 + tmp299*tmp1204 + tmp248*tmp1205;
-      result[79] = tmp273*tmp1216 + tmp299*tmp1217 + tmp248*tmp1218;
-      result[80] = tmp273*tmp1229 + tmp299*tmp1230 + tmp248*tmp1231;
-      result[81] = tmp1240 + tmp299*tmp1242;
-      result[82] = tmp299*tmp1255;
-      result[83] = tmp299*tmp1268;
-      result[84] = tmp250*tmp1127;
-      result[85] = tmp1138 + tmp250*tmp1140;
-      result[86] = tmp250*tmp1153;
-      result[87] = tmp274*tmp1166;
-      result[88] = tmp1177 + tmp274*tmp1179;
-      result[89] = tmp274*tmp1192;
-      result[90] = tmp274*tmp1203 + tmp300*tmp1204 + tmp250*tmp1205;
-      result[91] = tmp1214 + tmp274*tmp1216 + tmp300*tmp1217 + tmp250*tmp1218;
-      result[92] = tmp274*tmp1229 + tmp300*tmp1230 + tmp250*tmp1231;
-      result[93] = tmp300*tmp1242;
-      result[94] = tmp1253 + tmp300*tmp1255;
-      result[95] = tmp300*tmp1268;
-      result[96] = tmp1128;
-      result[97] = tmp1141;
-      result[98] = tmp1154;
-      result[99] = tmp1167;
-      result[100] = tmp1180;
-      result[101] = tmp1193;
-      result[102] = tmp1206;
-      result[103] = tmp1219;
-      result[104] = tmp1232;
-      result[105] = tmp1243;
-      result[106] = tmp1256;
-      result[107] = tmp1269;
-      result[108] = tmp1122 + tmp217*tmp1129;
-      result[109] = tmp217*tmp1142;
-      result[110] = tmp217*tmp1155;
-      result[111] = tmp1159 + tmp283*tmp1168;
-      result[112] = tmp283*tmp1181;
-      result[113] = tmp283*tmp1194;
-      result[114] = tmp1198 + tmp299*tmp1207;
-      result[115] = tmp299*tmp1220;
-      result[116] = tmp299*tmp1233;
-      result[117] = tmp1237 + tmp217*tmp1244 + tmp283*tmp1245 + tmp299*tmp1246;
-      result[118] = tmp217*tmp1257 + tmp283*tmp1258 + tmp299*tmp1259;
-      result[119] = tmp217*tmp1270 + tmp283*tmp1271 + tmp299*tmp1272;
-      result[120] = tmp219*tmp1129;
-      result[121] = tmp1135 + tmp219*tmp1142;
-      result[122] = tmp219*tmp1155;
-      result[123] = tmp284*tmp1168;
-      result[124] = tmp1172 + tmp284*tmp1181;
-      result[125] = tmp284*tmp1194;
-      result[126] = tmp300*tmp1207;
-      result[127] = tmp1211 + tmp300*tmp1220;
-      result[128] = tmp300*tmp1233;
-      result[129] = tmp219*tmp1244 + tmp284*tmp1245 + tmp300*tmp1246;
-      result[130] = tmp1250 + tmp219*tmp1257 + tmp284*tmp1258 + tmp300*tmp1259;
-      result[131] = tmp219*tmp1270 + tmp284*tmp1271 + tmp300*tmp1272;
-      result[132] = tmp1130;
-      result[133] = tmp1143;
-      result[134] = tmp1156;
-      result[135] = tmp1169;
-      result[136] = tmp1182;
-      result[137] = tmp1195;
-      result[138] = tmp1208;
-      result[139] = tmp1221;
-      result[140] = tmp1234;
-      result[141] = tmp1247;
-      result[142] = tmp1260;
-      result[143] = tmp1273;
+      result[0] = tmp255*tmp922 + tmp271*tmp923 + tmp286*tmp924 + tmp926;
+      result[1] = tmp255*tmp935 + tmp271*tmp936 + tmp286*tmp937;
+      result[2] = tmp255*tmp948 + tmp271*tmp949 + tmp286*tmp950;
+      result[3] = tmp271*tmp961 + tmp963;
+      result[4] = tmp271*tmp974;
+      result[5] = tmp271*tmp987;
+      result[6] = tmp286*tmp1000 + tmp1002;
+      result[7] = tmp286*tmp1013;
+      result[8] = tmp286*tmp1026;
+      result[9] = tmp255*tmp1039 + tmp1041;
+      result[10] = tmp255*tmp1052;
+      result[11] = tmp255*tmp1065;
+      result[12] = tmp257*tmp922 + tmp272*tmp923 + tmp288*tmp924;
+      result[13] = tmp257*tmp935 + tmp272*tmp936 + tmp288*tmp937 + tmp939;
+      result[14] = tmp257*tmp948 + tmp272*tmp949 + tmp288*tmp950;
+      result[15] = tmp272*tmp961;
+      result[16] = tmp272*tmp974 + tmp976;
+      result[17] = tmp272*tmp987;
+      result[18] = tmp288*tmp1000;
+      result[19] = tmp288*tmp1013 + tmp1015;
+      result[20] = tmp288*tmp1026;
+      result[21] = tmp257*tmp1039;
+      result[22] = tmp257*tmp1052 + tmp1054;
+      result[23] = tmp257*tmp1065;
+      result[24] = tmp927;
+      result[25] = tmp940;
+      result[26] = tmp953;
+      result[27] = tmp964;
+      result[28] = tmp977;
+      result[29] = tmp990;
+      result[30] = tmp1003;
+      result[31] = tmp1016;
+      result[32] = tmp1029;
+      result[33] = tmp1042;
+      result[34] = tmp1055;
+      result[35] = tmp1068;
+      result[36] = tmp271*tmp928 + tmp929;
+      result[37] = tmp271*tmp941;
+      result[38] = tmp271*tmp954;
+      result[39] = tmp311*tmp965 + tmp321*tmp966 + tmp271*tmp967 + tmp968;
+      result[40] = tmp311*tmp978 + tmp321*tmp979 + tmp271*tmp980;
+      result[41] = tmp311*tmp991 + tmp321*tmp992 + tmp271*tmp993;
+      result[42] = tmp311*tmp1004 + tmp1005;
+      result[43] = tmp311*tmp1017;
+      result[44] = tmp311*tmp1030;
+      result[45] = tmp321*tmp1043 + tmp1044;
+      result[46] = tmp321*tmp1056;
+      result[47] = tmp321*tmp1069;
+      result[48] = tmp272*tmp928;
+      result[49] = tmp272*tmp941 + tmp942;
+      result[50] = tmp272*tmp954;
+      result[51] = tmp312*tmp965 + tmp322*tmp966 + tmp272*tmp967;
+      result[52] = tmp312*tmp978 + tmp322*tmp979 + tmp272*tmp980 + tmp981;
+      result[53] = tmp312*tmp991 + tmp322*tmp992 + tmp272*tmp993;
+      result[54] = tmp312*tmp1004;
+      result[55] = tmp312*tmp1017 + tmp1018;
+      result[56] = tmp312*tmp1030;
+      result[57] = tmp322*tmp1043;
+      result[58] = tmp322*tmp1056 + tmp1057;
+      result[59] = tmp322*tmp1069;
+      result[60] = tmp930;
+      result[61] = tmp943;
+      result[62] = tmp956;
+      result[63] = tmp969;
+      result[64] = tmp982;
+      result[65] = tmp995;
+      result[66] = tmp1006;
+      result[67] = tmp1019;
+      result[68] = tmp1032;
+      result[69] = tmp1045;
+      result[70] = tmp1058;
+      result[71] = tmp1071;
+      result[72] = tmp929 + tmp286*tmp931;
+      result[73] = tmp286*tmp944;
+      result[74] = tmp286*tmp957;
+      result[75] = tmp968 + tmp311*tmp970;
+      result[76] = tmp311*tmp983;
+      result[77] = tmp311*tmp996;
+      result[78] = tmp1005 + tmp311*tmp1007 + tmp337*tmp1008 + tmp286*tmp1009;
+      result[79] = tmp311*tmp1020 + tmp337*tmp1021 + tmp286*tmp1022;
+      result[80] = tmp311*tmp1033 + tmp337*tmp1034 + tmp286*tmp1035;
+      result[81] = tmp1044 + tmp337*tmp1046;
+      result[82] = tmp337*tmp1059;
+      result[83] = tmp337*tmp1072;
+      result[84] = tmp288*tmp931;
+      result[85] = tmp942 + tmp288*tmp944;
+      result[86] = tmp288*tmp957;
+      result[87] = tmp312*tmp970;
+      result[88] = tmp981 + tmp312*tmp983;
+      result[89] = tmp312*tmp996;
+      result[90] = tmp312*tmp1007 + tmp338*tmp1008 + tmp288*tmp1009;
+      result[91] = tmp1018 + tmp312*tmp1020 + tmp338*tmp1021 + tmp288*tmp1022;
+      result[92] = tmp312*tmp1033 + tmp338*tmp1034 + tmp288*tmp1035;
+      result[93] = tmp338*tmp1046;
+      result[94] = tmp1057 + tmp338*tmp1059;
+      result[95] = tmp338*tmp1072;
+      result[96] = tmp932;
+      result[97] = tmp945;
+      result[98] = tmp958;
+      result[99] = tmp971;
+      result[100] = tmp984;
+      result[101] = tmp997;
+      result[102] = tmp1010;
+      result[103] = tmp1023;
+      result[104] = tmp1036;
+      result[105] = tmp1047;
+      result[106] = tmp1060;
+      result[107] = tmp1073;
+      result[108] = tmp926 + tmp255*tmp933;
+      result[109] = tmp255*tmp946;
+      result[110] = tmp255*tmp959;
+      result[111] = tmp963 + tmp321*tmp972;
+      result[112] = tmp321*tmp985;
+      result[113] = tmp321*tmp998;
+      result[114] = tmp1002 + tmp337*tmp1011;
+      result[115] = tmp337*tmp1024;
+      result[116] = tmp337*tmp1037;
+      result[117] = tmp1041 + tmp255*tmp1048 + tmp321*tmp1049 + tmp337*tmp1050;
+      result[118] = tmp255*tmp1061 + tmp321*tmp1062 + tmp337*tmp1063;
+      result[119] = tmp255*tmp1074 + tmp321*tmp1075 + tmp337*tmp1076;
+      result[120] = tmp257*tmp933;
+      result[121] = tmp939 + tmp257*tmp946;
+      result[122] = tmp257*tmp959;
+      result[123] = tmp322*tmp972;
+      result[124] = tmp976 + tmp322*tmp985;
+      result[125] = tmp322*tmp998;
+      result[126] = tmp338*tmp1011;
+      result[127] = tmp1015 + tmp338*tmp1024;
+      result[128] = tmp338*tmp1037;
+      result[129] = tmp257*tmp1048 + tmp322*tmp1049 + tmp338*tmp1050;
+      result[130] = tmp1054 + tmp257*tmp1061 + tmp322*tmp1062 + tmp338*tmp1063;
+      result[131] = tmp257*tmp1074 + tmp322*tmp1075 + tmp338*tmp1076;
+      result[132] = tmp934;
+      result[133] = tmp947;
+      result[134] = tmp960;
+      result[135] = tmp973;
+      result[136] = tmp986;
+      result[137] = tmp999;
+      result[138] = tmp1012;
+      result[139] = tmp1025;
+      result[140] = tmp1038;
+      result[141] = tmp1051;
+      result[142] = tmp1064;
+      result[143] = tmp1077;
       return result;
     }
 
@@ -5184,10 +3709,10 @@ struct HeavyTop {
                                    const Params& params) {
       const Scalar m = Scalar(params.m);
       const Scalar g = Scalar(params.g);
-      const Scalar tmp15 = (Scalar(0.25))*m;
-      const Scalar tmp124 = tmp15*g;
+      const Scalar tmp10 = (Scalar(0.25))*m;
+      const Scalar tmp238 = tmp10*g;
       Scalar result;
-      result = tmp124*pos(2) + tmp124*pos(5) + tmp124*pos(8) + tmp124*pos(11);
+      result = tmp238*pos(2) + tmp238*pos(5) + tmp238*pos(8) + tmp238*pos(11);
       return result;
     }
 
@@ -5209,68 +3734,69 @@ struct HeavyTop {
       const Scalar d = Scalar(params.d);
       const Scalar r = Scalar(params.r);
       const Scalar h = Scalar(params.h);
-      const Scalar tmp9 = abs(r);
-      const Scalar tmp14 = (r*r);
-      const Scalar tmp15 = (Scalar(0.25))*m;
-      const Scalar tmp16 = (h*h);
-      const Scalar tmp17 = -tmp14*tmp15 + ((Scalar(1)/Scalar(12)))*m*(tmp16 + Scalar(3)*tmp14);
-      const Scalar tmp18 = sqrt(tmp17)/sqrt(m);
-      const Scalar tmp202 = sqrt(Scalar(2));
-      const Scalar tmp203 = -tmp202*tmp9;
-      const Scalar tmp204 = -pos(9);
-      const Scalar tmp205 = -tmp204 - pos(0);
-      const Scalar tmp206 = -pos(10);
-      const Scalar tmp207 = -tmp206 - pos(1);
-      const Scalar tmp208 = -pos(11);
-      const Scalar tmp209 = -tmp208 - pos(2);
-      const Scalar tmp210 = sqrt((tmp205*tmp205) + (tmp207*tmp207) + (tmp209*tmp209));
-      const Scalar tmp211 = tmp203 + tmp210;
-      const Scalar tmp212 = (Scalar(0.5))*kappa;
-      const Scalar tmp213 = tmp202/tmp9;
-      const Scalar tmp224 = pos(3) - pos(0);
-      const Scalar tmp225 = pos(4) - pos(1);
-      const Scalar tmp226 = pos(5) - pos(2);
-      const Scalar tmp227 = sqrt((tmp224*tmp224) + (tmp225*tmp225) + (tmp226*tmp226));
-      const Scalar tmp228 = sqrt(tmp14 + Scalar(4)*tmp17/m);
-      const Scalar tmp229 = tmp227 - tmp228;
-      const Scalar tmp230 = (Scalar(1)/tmp228);
-      const Scalar tmp231 = tmp230*kappa;
-      const Scalar tmp238 = -pos(6);
-      const Scalar tmp239 = -tmp238 - pos(0);
-      const Scalar tmp240 = -pos(7);
-      const Scalar tmp241 = -tmp240 - pos(1);
-      const Scalar tmp242 = -pos(8);
-      const Scalar tmp243 = -tmp242 - pos(2);
-      const Scalar tmp244 = sqrt((tmp239*tmp239) + (tmp241*tmp241) + (tmp243*tmp243));
-      const Scalar tmp245 = tmp244 - tmp228;
-      const Scalar tmp254 = Scalar(3)*tmp18*d/tmp16;
-      const Scalar tmp255 = Scalar(0.25) - tmp254;
-      const Scalar tmp256 = Scalar(0.25) + tmp254;
-      const Scalar tmp257 = tmp255*pos(0) + tmp255*pos(9) + tmp256*pos(3) + tmp256*pos(6);
-      const Scalar tmp260 = tmp255*pos(1) + tmp255*pos(10) + tmp256*pos(4) + tmp256*pos(7);
-      const Scalar tmp263 = tmp255*pos(2) + tmp255*pos(11) + tmp256*pos(5) + tmp256*pos(8);
-      const Scalar tmp267 = -tmp238 - pos(3);
-      const Scalar tmp268 = -tmp240 - pos(4);
-      const Scalar tmp269 = -tmp242 - pos(5);
-      const Scalar tmp270 = sqrt((tmp267*tmp267) + (tmp268*tmp268) + (tmp269*tmp269));
-      const Scalar tmp271 = tmp203 + tmp270;
-      const Scalar tmp277 = -tmp204 - pos(3);
-      const Scalar tmp278 = -tmp206 - pos(4);
-      const Scalar tmp279 = -tmp208 - pos(5);
-      const Scalar tmp280 = sqrt((tmp277*tmp277) + (tmp278*tmp278) + (tmp279*tmp279));
-      const Scalar tmp281 = tmp280 - tmp228;
-      const Scalar tmp293 = -tmp204 - pos(6);
-      const Scalar tmp294 = -tmp206 - pos(7);
-      const Scalar tmp295 = -tmp208 - pos(8);
-      const Scalar tmp296 = sqrt((tmp293*tmp293) + (tmp294*tmp294) + (tmp295*tmp295));
-      const Scalar tmp297 = tmp296 - tmp228;
-      const Scalar tmp309 = (Scalar(0.25))*tmp213*kappa;
-      const Scalar tmp310 = (Scalar(0.5))*tmp231;
-      const Scalar tmp311 = (tmp257*tmp257) + (tmp260*tmp260) + (tmp263*tmp263);
+      const Scalar tmp9 = (r*r);
+      const Scalar tmp10 = (Scalar(0.25))*m;
+      const Scalar tmp11 = tmp10*tmp9;
+      const Scalar tmp12 = (h*h);
+      const Scalar tmp13 = -tmp11 + ((Scalar(1)/Scalar(12)))*m*(tmp12 + Scalar(3)*tmp9);
+      const Scalar tmp103 = abs(r);
+      const Scalar tmp106 = sqrt(tmp13)/sqrt(m);
+      const Scalar tmp240 = sqrt(Scalar(2));
+      const Scalar tmp241 = -tmp103*tmp240;
+      const Scalar tmp242 = -pos(9);
+      const Scalar tmp243 = -tmp242 - pos(0);
+      const Scalar tmp244 = -pos(10);
+      const Scalar tmp245 = -tmp244 - pos(1);
+      const Scalar tmp246 = -pos(11);
+      const Scalar tmp247 = -tmp246 - pos(2);
+      const Scalar tmp248 = sqrt((tmp243*tmp243) + (tmp245*tmp245) + (tmp247*tmp247));
+      const Scalar tmp249 = tmp241 + tmp248;
+      const Scalar tmp250 = (Scalar(0.5))*kappa;
+      const Scalar tmp251 = tmp240/tmp103;
+      const Scalar tmp262 = pos(3) - pos(0);
+      const Scalar tmp263 = pos(4) - pos(1);
+      const Scalar tmp264 = pos(5) - pos(2);
+      const Scalar tmp265 = sqrt((tmp262*tmp262) + (tmp263*tmp263) + (tmp264*tmp264));
+      const Scalar tmp266 = sqrt(tmp9 + Scalar(4)*tmp13/m);
+      const Scalar tmp267 = tmp265 - tmp266;
+      const Scalar tmp268 = (Scalar(1)/tmp266);
+      const Scalar tmp269 = tmp268*kappa;
+      const Scalar tmp276 = -pos(6);
+      const Scalar tmp277 = -tmp276 - pos(0);
+      const Scalar tmp278 = -pos(7);
+      const Scalar tmp279 = -tmp278 - pos(1);
+      const Scalar tmp280 = -pos(8);
+      const Scalar tmp281 = -tmp280 - pos(2);
+      const Scalar tmp282 = sqrt((tmp277*tmp277) + (tmp279*tmp279) + (tmp281*tmp281));
+      const Scalar tmp283 = tmp282 - tmp266;
+      const Scalar tmp292 = Scalar(3)*tmp106*d/tmp12;
+      const Scalar tmp293 = Scalar(0.25) - tmp292;
+      const Scalar tmp294 = Scalar(0.25) + tmp292;
+      const Scalar tmp295 = tmp293*pos(0) + tmp293*pos(9) + tmp294*pos(3) + tmp294*pos(6);
+      const Scalar tmp298 = tmp293*pos(1) + tmp293*pos(10) + tmp294*pos(4) + tmp294*pos(7);
+      const Scalar tmp301 = tmp293*pos(2) + tmp293*pos(11) + tmp294*pos(5) + tmp294*pos(8);
+      const Scalar tmp305 = -tmp276 - pos(3);
+      const Scalar tmp306 = -tmp278 - pos(4);
+      const Scalar tmp307 = -tmp280 - pos(5);
+      const Scalar tmp308 = sqrt((tmp305*tmp305) + (tmp306*tmp306) + (tmp307*tmp307));
+      const Scalar tmp309 = tmp241 + tmp308;
+      const Scalar tmp315 = -tmp242 - pos(3);
+      const Scalar tmp316 = -tmp244 - pos(4);
+      const Scalar tmp317 = -tmp246 - pos(5);
+      const Scalar tmp318 = sqrt((tmp315*tmp315) + (tmp316*tmp316) + (tmp317*tmp317));
+      const Scalar tmp319 = tmp318 - tmp266;
+      const Scalar tmp331 = -tmp242 - pos(6);
+      const Scalar tmp332 = -tmp244 - pos(7);
+      const Scalar tmp333 = -tmp246 - pos(8);
+      const Scalar tmp334 = sqrt((tmp331*tmp331) + (tmp332*tmp332) + (tmp333*tmp333));
+      const Scalar tmp335 = tmp334 - tmp266;
+      const Scalar tmp347 = (Scalar(0.25))*tmp251*kappa;
+      const Scalar tmp348 = (Scalar(0.5))*tmp269;
+      const Scalar tmp349 = (tmp295*tmp295) + (tmp298*tmp298) + (tmp301*tmp301);
       Scalar result;
-      result = tmp212*tmp311 + tmp309*(tmp211*tmp211) + tmp309*(tmp271*tmp271)
-          + tmp310*(tmp229*tmp229) + tmp310*(tmp245*tmp245) + tmp310*(tmp281*tmp281)
-          + tmp310*(tmp297*tmp297);
+      result = tmp250*tmp349 + tmp347*(tmp249*tmp249) + tmp347*(tmp309*tmp309)
+          + tmp348*(tmp267*tmp267) + tmp348*(tmp283*tmp283) + tmp348*(tmp319*tmp319)
+          + tmp348*(tmp335*tmp335);
       return result;
     }
 
@@ -5290,66 +3816,67 @@ struct HeavyTop {
       const Scalar d = Scalar(params.d);
       const Scalar r = Scalar(params.r);
       const Scalar h = Scalar(params.h);
-      const Scalar tmp9 = abs(r);
-      const Scalar tmp14 = (r*r);
-      const Scalar tmp15 = (Scalar(0.25))*m;
-      const Scalar tmp16 = (h*h);
-      const Scalar tmp17 = -tmp14*tmp15 + ((Scalar(1)/Scalar(12)))*m*(tmp16 + Scalar(3)*tmp14);
-      const Scalar tmp18 = sqrt(tmp17)/sqrt(m);
-      const Scalar tmp202 = sqrt(Scalar(2));
-      const Scalar tmp203 = -tmp202*tmp9;
-      const Scalar tmp204 = -pos(9);
-      const Scalar tmp205 = -tmp204 - pos(0);
-      const Scalar tmp206 = -pos(10);
-      const Scalar tmp207 = -tmp206 - pos(1);
-      const Scalar tmp208 = -pos(11);
-      const Scalar tmp209 = -tmp208 - pos(2);
-      const Scalar tmp210 = sqrt((tmp205*tmp205) + (tmp207*tmp207) + (tmp209*tmp209));
-      const Scalar tmp211 = tmp203 + tmp210;
-      const Scalar tmp224 = pos(3) - pos(0);
-      const Scalar tmp225 = pos(4) - pos(1);
-      const Scalar tmp226 = pos(5) - pos(2);
-      const Scalar tmp227 = sqrt((tmp224*tmp224) + (tmp225*tmp225) + (tmp226*tmp226));
-      const Scalar tmp228 = sqrt(tmp14 + Scalar(4)*tmp17/m);
-      const Scalar tmp229 = tmp227 - tmp228;
-      const Scalar tmp238 = -pos(6);
-      const Scalar tmp239 = -tmp238 - pos(0);
-      const Scalar tmp240 = -pos(7);
-      const Scalar tmp241 = -tmp240 - pos(1);
-      const Scalar tmp242 = -pos(8);
-      const Scalar tmp243 = -tmp242 - pos(2);
-      const Scalar tmp244 = sqrt((tmp239*tmp239) + (tmp241*tmp241) + (tmp243*tmp243));
-      const Scalar tmp245 = tmp244 - tmp228;
-      const Scalar tmp254 = Scalar(3)*tmp18*d/tmp16;
-      const Scalar tmp255 = Scalar(0.25) - tmp254;
-      const Scalar tmp256 = Scalar(0.25) + tmp254;
-      const Scalar tmp257 = tmp255*pos(0) + tmp255*pos(9) + tmp256*pos(3) + tmp256*pos(6);
-      const Scalar tmp260 = tmp255*pos(1) + tmp255*pos(10) + tmp256*pos(4) + tmp256*pos(7);
-      const Scalar tmp263 = tmp255*pos(2) + tmp255*pos(11) + tmp256*pos(5) + tmp256*pos(8);
-      const Scalar tmp267 = -tmp238 - pos(3);
-      const Scalar tmp268 = -tmp240 - pos(4);
-      const Scalar tmp269 = -tmp242 - pos(5);
-      const Scalar tmp270 = sqrt((tmp267*tmp267) + (tmp268*tmp268) + (tmp269*tmp269));
-      const Scalar tmp271 = tmp203 + tmp270;
-      const Scalar tmp277 = -tmp204 - pos(3);
-      const Scalar tmp278 = -tmp206 - pos(4);
-      const Scalar tmp279 = -tmp208 - pos(5);
-      const Scalar tmp280 = sqrt((tmp277*tmp277) + (tmp278*tmp278) + (tmp279*tmp279));
-      const Scalar tmp281 = tmp280 - tmp228;
-      const Scalar tmp293 = -tmp204 - pos(6);
-      const Scalar tmp294 = -tmp206 - pos(7);
-      const Scalar tmp295 = -tmp208 - pos(8);
-      const Scalar tmp296 = sqrt((tmp293*tmp293) + (tmp294*tmp294) + (tmp295*tmp295));
-      const Scalar tmp297 = tmp296 - tmp228;
-      const Scalar tmp311 = (tmp257*tmp257) + (tmp260*tmp260) + (tmp263*tmp263);
+      const Scalar tmp9 = (r*r);
+      const Scalar tmp10 = (Scalar(0.25))*m;
+      const Scalar tmp11 = tmp10*tmp9;
+      const Scalar tmp12 = (h*h);
+      const Scalar tmp13 = -tmp11 + ((Scalar(1)/Scalar(12)))*m*(tmp12 + Scalar(3)*tmp9);
+      const Scalar tmp103 = abs(r);
+      const Scalar tmp106 = sqrt(tmp13)/sqrt(m);
+      const Scalar tmp240 = sqrt(Scalar(2));
+      const Scalar tmp241 = -tmp103*tmp240;
+      const Scalar tmp242 = -pos(9);
+      const Scalar tmp243 = -tmp242 - pos(0);
+      const Scalar tmp244 = -pos(10);
+      const Scalar tmp245 = -tmp244 - pos(1);
+      const Scalar tmp246 = -pos(11);
+      const Scalar tmp247 = -tmp246 - pos(2);
+      const Scalar tmp248 = sqrt((tmp243*tmp243) + (tmp245*tmp245) + (tmp247*tmp247));
+      const Scalar tmp249 = tmp241 + tmp248;
+      const Scalar tmp262 = pos(3) - pos(0);
+      const Scalar tmp263 = pos(4) - pos(1);
+      const Scalar tmp264 = pos(5) - pos(2);
+      const Scalar tmp265 = sqrt((tmp262*tmp262) + (tmp263*tmp263) + (tmp264*tmp264));
+      const Scalar tmp266 = sqrt(tmp9 + Scalar(4)*tmp13/m);
+      const Scalar tmp267 = tmp265 - tmp266;
+      const Scalar tmp276 = -pos(6);
+      const Scalar tmp277 = -tmp276 - pos(0);
+      const Scalar tmp278 = -pos(7);
+      const Scalar tmp279 = -tmp278 - pos(1);
+      const Scalar tmp280 = -pos(8);
+      const Scalar tmp281 = -tmp280 - pos(2);
+      const Scalar tmp282 = sqrt((tmp277*tmp277) + (tmp279*tmp279) + (tmp281*tmp281));
+      const Scalar tmp283 = tmp282 - tmp266;
+      const Scalar tmp292 = Scalar(3)*tmp106*d/tmp12;
+      const Scalar tmp293 = Scalar(0.25) - tmp292;
+      const Scalar tmp294 = Scalar(0.25) + tmp292;
+      const Scalar tmp295 = tmp293*pos(0) + tmp293*pos(9) + tmp294*pos(3) + tmp294*pos(6);
+      const Scalar tmp298 = tmp293*pos(1) + tmp293*pos(10) + tmp294*pos(4) + tmp294*pos(7);
+      const Scalar tmp301 = tmp293*pos(2) + tmp293*pos(11) + tmp294*pos(5) + tmp294*pos(8);
+      const Scalar tmp305 = -tmp276 - pos(3);
+      const Scalar tmp306 = -tmp278 - pos(4);
+      const Scalar tmp307 = -tmp280 - pos(5);
+      const Scalar tmp308 = sqrt((tmp305*tmp305) + (tmp306*tmp306) + (tmp307*tmp307));
+      const Scalar tmp309 = tmp241 + tmp308;
+      const Scalar tmp315 = -tmp242 - pos(3);
+      const Scalar tmp316 = -tmp244 - pos(4);
+      const Scalar tmp317 = -tmp246 - pos(5);
+      const Scalar tmp318 = sqrt((tmp315*tmp315) + (tmp316*tmp316) + (tmp317*tmp317));
+      const Scalar tmp319 = tmp318 - tmp266;
+      const Scalar tmp331 = -tmp242 - pos(6);
+      const Scalar tmp332 = -tmp244 - pos(7);
+      const Scalar tmp333 = -tmp246 - pos(8);
+      const Scalar tmp334 = sqrt((tmp331*tmp331) + (tmp332*tmp332) + (tmp333*tmp333));
+      const Scalar tmp335 = tmp334 - tmp266;
+      const Scalar tmp349 = (tmp295*tmp295) + (tmp298*tmp298) + (tmp301*tmp301);
       ConstraintVector<Scalar> result;
-      result(0) = tmp229;
-      result(1) = tmp245;
-      result(2) = tmp211;
-      result(3) = tmp271;
-      result(4) = tmp281;
-      result(5) = tmp297;
-      result(6) = sqrt(tmp311);
+      result(0) = tmp267;
+      result(1) = tmp283;
+      result(2) = tmp249;
+      result(3) = tmp309;
+      result(4) = tmp319;
+      result(5) = tmp335;
+      result(6) = sqrt(tmp349);
       return result;
     }
   };

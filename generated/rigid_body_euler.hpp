@@ -7,7 +7,7 @@
 // Chart 'zyx' (rigid_body_euler):
 //   Singular configurations (J loses rank): cos(pitch) = 0
 //     found from the rank of J at the zeros of sin and cos of each angle
-//   Worst conditioning of J in 200 random configurations: sigma_min / sigma_max = 0.000934 at
+//   Worst conditioning of J in 200 random configurations: sigma_min / sigma_max = 0.000779 at
 //     x = -2.825, y = -1.914, z = -0.7811, yaw = -2.523, pitch = -1.565, roll = 2.549
 //   Redundancy (warning): distinct coordinates give the same positions, e.g. x = 0.7722, y =
 //     1.519, z = 1.855, yaw = 2.78, pitch = 1.507, roll = 2.654 and x = 0.7722, y = 1.519, z =
@@ -16,16 +16,16 @@
 // Chart 'yzx' (rigid_body_euler_yzx):
 //   Singular configurations (J loses rank): cos(attitude) = 0
 //     found from the rank of J at the zeros of sin and cos of each angle
-//   Worst conditioning of J in 200 random configurations: sigma_min / sigma_max = 0.000929 at
+//   Worst conditioning of J in 200 random configurations: sigma_min / sigma_max = 0.000925 at
 //     x = -2.825, y = -1.914, z = -0.7811, heading = -2.523, attitude = -1.565, bank = 2.549
 //   Redundancy (warning): distinct coordinates give the same positions, e.g. x = 0.7722, y =
 //     1.519, z = 1.855, heading = 2.78, attitude = 1.507, bank = 2.654 and x = 0.7722, y =
 //     1.519, z = 1.855, heading = -0.3616, attitude = 1.634, bank = -0.488; mapping positions
 //     back to q (the inverse map, an atlas) depends on the first guess
 //
-// Total ops: 13620
-// Intermediate terms (2309)
-// Output terms (996)
+// Total ops: 16149
+// Intermediate terms (2659)
+// Output terms (998)
 #pragma once
 
 #include <array>
@@ -38,19 +38,26 @@
 #include <Eigen/Core>
 
 /*
- * A free 3D rigid body built from four point masses, in Z-Y-X Euler angles.
+ * A free 3D rigid body in Z-Y-X Euler angles: one body, whose centre of mass is off its
+ * reference point and whose inertia tensor is not diagonal in its axes.
  *
- *               z ^    d (m_d)
- *                 |   /|
- *                 |  / |        body frame: a, b, c on the axes, d off them, so the
- *                 | /  |        inertia tensor has three different principal moments
- *          c (m_c)o----o b (m_b)
+ *               z ^
+ *                 |   * centre of mass, at c in body axes
+ *                 |  /
+ *                 | /          body axes x, y, z at the reference point o; the principal
+ *                 |/           axes of the inertia tensor are none of them
+ *                 o-------> y
  *                /
- *               o a (m_a)
+ *               x
  *
- * q = (x, y, z, yaw, pitch, roll): the centre of the body frame and R = Rz(yaw) Ry(pitch)
- * Rx(roll). The parameterization is singular at pitch = +-pi/2 (gimbal lock: yaw and roll turn
- * about the same axis), that is wherever the body's x axis points along the world's z axis.
+ * q = (x, y, z, yaw, pitch, roll): the reference point and R = Rz(yaw) Ry(pitch) Rx(roll). The
+ * centre of mass sits at o + R c, so q's translation and rotation are coupled in Mt. The body
+ * is a uniform box of sides a, b, c whose edges are turned against the body axes (by fixed
+ * roll, pitch and yaw angles), so its inertia tensor in body axes is full; any positive sides
+ * make a real body. The defaults give nearly the mass distribution of four point masses (1, 2,
+ * 3, 1.5 kg at (0.5, 0, 0), (0, 0.4, 0), (0, 0, 0.3), (0.2, 0.3, 0.25)). The parameterization
+ * is singular at pitch = +-pi/2 (gimbal lock: yaw and roll turn about the same axis), wherever
+ * the body's x axis points along the world's z axis.
  *
  * A second chart, 'yzx', uses R = Ry(heading) Rz(attitude) Rx(bank), singular at
  * attitude = +-pi/2, where the body's x axis points along the world's y axis. The two singular
@@ -64,17 +71,17 @@ namespace models {
 /// RigidBodyEuler: reduced (generalized-coordinate) dynamics of model 'rigid_body_euler'.
 ///
 /// Coordinates q (nq = 6), velocities v = dq/dt:
-///   q(0) = x: body origin, x (m)
-///   q(1) = y: body origin, y (m)
-///   q(2) = z: body origin, z (m)
+///   q(0) = x: reference point, x (m)
+///   q(1) = y: reference point, y (m)
+///   q(2) = z: reference point, z (m)
 ///   q(3) = yaw: rotation about z (rad)
 ///   q(4) = pitch: rotation about the new y (rad)
 ///   q(5) = roll: rotation about the new x (rad)
 /// Particles (4, 3D; positions stacked in x, nx = 12):
-///   x(0..2) = a, mass m_a
-///   x(3..5) = b, mass m_b
-///   x(6..8) = c, mass m_c
-///   x(9..11) = d, mass m_d
+///   x(0..2) = body_0, mass m/4
+///   x(3..5) = body_1, mass m/4
+///   x(6..8) = body_2, mass m/4
+///   x(9..11) = body_3, mass m/4
 /// Kernels are static functions templated on Scalar; every one takes the parameters last.
 /// Equations of motion: mass_matrix(q, t) * qddot = forces(q, v, t).
 struct RigidBodyEuler {
@@ -87,11 +94,12 @@ struct RigidBodyEuler {
   static constexpr int num_fixed_points = 0;
   static constexpr std::array<const char*, nq> coordinate_names{{"x", "y", "z", "yaw", "pitch",
       "roll"}};
-  static constexpr int num_parameters = 5;
+  static constexpr int num_parameters = 8;
   /// A suggested initial state, from the model file.
   static constexpr std::array<double, nq> initial_q{{0.0, 0.0, 0.0, 0.0, 0.2, 0.0}};
   static constexpr std::array<double, nq> initial_v{{0.0, 0.0, 0.0, 0.3, 1.0, 2.0}};
-  static constexpr std::array<const char*, num_particles> particle_names{{"a", "b", "c", "d"}};
+  static constexpr std::array<const char*, num_particles> particle_names{{"body_0", "body_1",
+      "body_2", "body_3"}};
   static constexpr std::array<const char*, num_fixed_points> fixed_point_names{{}};
   /// Whether applied_forces at rest (v = 0) is -d(potential_energy)/dq: every force without
   /// a declared potential vanishes at rest (generator/conservative.py).
@@ -117,30 +125,36 @@ struct RigidBodyEuler {
   /// Model parameters; the defaults are the model file's.
   struct Params {
     double g = 0.0;  ///< gravitational acceleration (m/s^2)
-    double m_a = 1.0;  ///< mass of point a (kg)
-    double m_b = 2.0;  ///< mass of point b (kg)
-    double m_c = 3.0;  ///< mass of point c (kg)
-    double m_d = 1.5;  ///< mass of point d (kg)
+    double m = 7.5;  ///< mass of the body (kg)
+    double com_x = 0.1067;  ///< centre of mass, body axis x (m)
+    double com_y = 0.1667;  ///< centre of mass, body axis y (m)
+    double com_z = 0.17;  ///< centre of mass, body axis z (m)
+    double a = 0.703;  ///< side a of the box (m)
+    double b = 0.641;  ///< side b of the box (m)
+    double c = 0.29;  ///< side c of the box (m)
 
     /// The parameter called `key`, or nullptr: lets tools set parameters by name.
     double* find(std::string_view key) {
       if (key == "g") return &g;
-      if (key == "m_a") return &m_a;
-      if (key == "m_b") return &m_b;
-      if (key == "m_c") return &m_c;
-      if (key == "m_d") return &m_d;
+      if (key == "m") return &m;
+      if (key == "com_x") return &com_x;
+      if (key == "com_y") return &com_y;
+      if (key == "com_z") return &com_z;
+      if (key == "a") return &a;
+      if (key == "b") return &b;
+      if (key == "c") return &c;
       return nullptr;
     }
   };
-  static constexpr std::array<const char*, num_parameters> parameter_names{{"g", "m_a", "m_b",
-      "m_c", "m_d"}};
+  static constexpr std::array<const char*, num_parameters> parameter_names{{"g", "m", "com_x",
+      "com_y", "com_z", "a", "b", "c"}};
 
   /// Reduced mass matrix Mt = J^T M J (symmetric).
   /// \param[in] q  generalized coordinates (nq = 6)
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return Mt (nq x nq)
-  /// Ops: 303
+  /// Ops: 351
   template <typename Scalar>
   static QMatrix<Scalar> mass_matrix(const QVector<Scalar>& q,
                                      const Scalar& /*t*/,
@@ -150,151 +164,157 @@ struct RigidBodyEuler {
     const Scalar yaw = q(3);
     const Scalar pitch = q(4);
     const Scalar roll = q(5);
-    const Scalar m_a = Scalar(params.m_a);
-    const Scalar m_b = Scalar(params.m_b);
-    const Scalar m_c = Scalar(params.m_c);
-    const Scalar m_d = Scalar(params.m_d);
-    const Scalar tmp0 = cos(yaw);
-    const Scalar tmp1 = cos(pitch);
-    const Scalar tmp2 = Scalar(0.5)*tmp1;
-    const Scalar tmp3 = tmp0*tmp2;
-    const Scalar tmp5 = sin(yaw);
-    const Scalar tmp6 = tmp2*tmp5;
-    const Scalar tmp8 = sin(pitch);
-    const Scalar tmp9 = Scalar(0.5)*tmp8;
-    const Scalar tmp11 = tmp0*tmp9;
-    const Scalar tmp14 = tmp5*tmp9;
-    const Scalar tmp20 = cos(roll);
-    const Scalar tmp21 = Scalar(0.4)*tmp20;
-    const Scalar tmp22 = tmp21*tmp5;
-    const Scalar tmp23 = sin(roll);
-    const Scalar tmp24 = Scalar(0.4)*tmp23;
-    const Scalar tmp25 = tmp0*tmp24;
-    const Scalar tmp26 = tmp25*tmp8;
-    const Scalar tmp27 = tmp26 - tmp22;
-    const Scalar tmp29 = tmp0*tmp21;
-    const Scalar tmp30 = tmp24*tmp5;
-    const Scalar tmp31 = tmp30*tmp8;
-    const Scalar tmp32 = tmp29 + tmp31;
-    const Scalar tmp34 = tmp1*tmp24;
-    const Scalar tmp37 = tmp30 + tmp29*tmp8;
-    const Scalar tmp38 = -tmp32;
-    const Scalar tmp42 = -tmp25 + tmp22*tmp8;
-    const Scalar tmp44 = tmp24*tmp8;
-    const Scalar tmp45 = tmp1*tmp21;
-    const Scalar tmp47 = Scalar(0.3)*tmp23;
-    const Scalar tmp48 = tmp47*tmp5;
-    const Scalar tmp49 = Scalar(0.3)*tmp20;
-    const Scalar tmp50 = tmp0*tmp49;
-    const Scalar tmp51 = tmp50*tmp8;
-    const Scalar tmp52 = tmp48 + tmp51;
-    const Scalar tmp54 = tmp0*tmp47;
-    const Scalar tmp55 = tmp49*tmp5;
-    const Scalar tmp56 = tmp55*tmp8;
-    const Scalar tmp57 = tmp56 - tmp54;
-    const Scalar tmp59 = tmp1*tmp49;
-    const Scalar tmp62 = tmp54*tmp8;
-    const Scalar tmp63 = tmp62 - tmp55;
-    const Scalar tmp64 = -tmp63;
-    const Scalar tmp65 = -tmp57;
-    const Scalar tmp69 = tmp48*tmp8;
-    const Scalar tmp70 = tmp50 + tmp69;
-    const Scalar tmp71 = -tmp70;
-    const Scalar tmp73 = tmp49*tmp8;
-    const Scalar tmp74 = tmp1*tmp47;
-    const Scalar tmp76 = Scalar(0.2)*tmp1;
-    const Scalar tmp77 = Scalar(0.25)*tmp20;
-    const Scalar tmp78 = tmp0*tmp77;
-    const Scalar tmp79 = tmp8*tmp78;
-    const Scalar tmp80 = tmp79 + tmp0*tmp76;
-    const Scalar tmp81 = Scalar(0.25)*tmp23;
-    const Scalar tmp82 = tmp5*tmp81;
-    const Scalar tmp83 = tmp63 + tmp82;
-    const Scalar tmp84 = tmp80 + tmp83;
-    const Scalar tmp86 = tmp5*tmp77;
-    const Scalar tmp87 = tmp8*tmp86;
-    const Scalar tmp88 = tmp87 + tmp5*tmp76;
-    const Scalar tmp89 = tmp0*tmp81;
-    const Scalar tmp90 = tmp70 - tmp89;
-    const Scalar tmp91 = tmp88 + tmp90;
-    const Scalar tmp93 = Scalar(0.2)*tmp8;
-    const Scalar tmp94 = tmp1*tmp77;
-    const Scalar tmp98 = tmp1*tmp54;
-    const Scalar tmp99 = tmp98 + tmp0*tmp94 - tmp0*tmp93;
-    const Scalar tmp100 = tmp52 + tmp86 - tmp8*tmp89;
-    const Scalar tmp101 = -tmp91;
-    const Scalar tmp104 = tmp1*tmp48;
-    const Scalar tmp105 = tmp104 + tmp5*tmp94 - tmp5*tmp93;
-    const Scalar tmp106 = tmp54 + tmp78 - tmp56 + tmp8*tmp82;
-    const Scalar tmp107 = -tmp106;
-    const Scalar tmp109 = -tmp1*tmp81 + Scalar(0.3)*tmp1*tmp20;
-    const Scalar tmp110 = tmp47*tmp8;
-    const Scalar tmp111 = -tmp76 - tmp110 - tmp77*tmp8;
-    const Scalar tmp124 = tmp34*tmp5;
-    const Scalar tmp129 = tmp0*tmp34;
-    const Scalar tmp133 = tmp5*tmp59;
-    const Scalar tmp146 = m_a + m_b + m_c + m_d;
-    const Scalar tmp147 = tmp38*m_b + tmp65*m_c + tmp101*m_d - tmp6*m_a;
-    const Scalar tmp148 = tmp27*m_b + tmp3*m_a + tmp52*m_c + tmp84*m_d;
-    const Scalar tmp149 = (tmp5*tmp5);
-    const Scalar tmp150 = (tmp1*tmp1);
-    const Scalar tmp151 = Scalar(0.25)*tmp150;
-    const Scalar tmp152 = (tmp0*tmp0);
-    const Scalar tmp153 = m_a*(tmp149*tmp151 + tmp151*tmp152) + m_b*((tmp27*tmp27) + (tmp38*tmp38))
-        + m_c*((tmp52*tmp52) + (tmp65*tmp65)) + m_d*((tmp84*tmp84) + (tmp101*tmp101));
-    const Scalar tmp154 = tmp0*tmp59;
-    const Scalar tmp155 = tmp129*m_b + tmp154*m_c + tmp99*m_d - tmp11*m_a;
-    const Scalar tmp156 = tmp133*m_c + tmp105*m_d + tmp124*m_b - tmp14*m_a;
-    const Scalar tmp157 = tmp111*m_d - tmp2*m_a - tmp44*m_b - tmp73*m_c;
-    const Scalar tmp158 = m_b*(tmp129*tmp38 + tmp27*tmp124) + m_c*(tmp133*tmp52 + tmp154*tmp65)
-        + m_d*(tmp84*tmp105 + tmp99*tmp101);
-    const Scalar tmp159 = (tmp8*tmp8);
-    const Scalar tmp160 = Scalar(0.25)*tmp159;
-    const Scalar tmp161 = (tmp23*tmp23);
-    const Scalar tmp162 = Scalar(0.16000000000000003)*tmp161;
-    const Scalar tmp163 = tmp150*tmp162;
-    const Scalar tmp164 = (tmp20*tmp20);
-    const Scalar tmp165 = Scalar(0.09)*tmp164;
-    const Scalar tmp166 = tmp150*tmp165;
-    const Scalar tmp167 = m_a*(tmp151 + tmp149*tmp160 + tmp152*tmp160)
-        + m_b*(tmp149*tmp163 + tmp152*tmp163 + tmp159*tmp162)
-        + m_c*(tmp149*tmp166 + tmp152*tmp166 + tmp159*tmp165)
-        + m_d*((tmp99*tmp99) + (tmp105*tmp105) + (tmp111*tmp111));
-    const Scalar tmp168 = tmp37*m_b + tmp64*m_c + tmp100*m_d;
-    const Scalar tmp169 = tmp42*m_b + tmp71*m_c + tmp107*m_d;
-    const Scalar tmp170 = tmp45*m_b + tmp109*m_d - tmp74*m_c;
-    const Scalar tmp171 = m_b*(tmp27*tmp42 + tmp37*tmp38) + m_c*(tmp52*tmp71 + tmp64*tmp65)
-        + m_d*(tmp84*tmp107 + tmp100*tmp101);
-    const Scalar tmp172 = tmp1*tmp20*tmp23*tmp8;
-    const Scalar tmp173 = m_b*(-Scalar(0.16000000000000003)*tmp172 + tmp129*tmp37 + tmp42*tmp124)
-        + m_c*(Scalar(0.09)*tmp172 + tmp133*tmp71 + tmp154*tmp64)
-        + m_d*(tmp99*tmp100 + tmp105*tmp107 + tmp109*tmp111);
-    const Scalar tmp174 = m_b*((tmp37*tmp37) + (tmp42*tmp42)
-            + Scalar(0.16000000000000003)*tmp150*tmp164)
-        + m_c*((tmp64*tmp64) + (tmp71*tmp71) + Scalar(0.09)*tmp150*tmp161)
-        + m_d*((tmp100*tmp100) + (tmp107*tmp107) + (tmp109*tmp109));
+    const Scalar m = Scalar(params.m);
+    const Scalar com_x = Scalar(params.com_x);
+    const Scalar com_y = Scalar(params.com_y);
+    const Scalar com_z = Scalar(params.com_z);
+    const Scalar a = Scalar(params.a);
+    const Scalar b = Scalar(params.b);
+    const Scalar c = Scalar(params.c);
+    const Scalar tmp0 = sin(yaw);
+    const Scalar tmp1 = cos(roll);
+    const Scalar tmp2 = tmp0*tmp1;
+    const Scalar tmp3 = sin(pitch);
+    const Scalar tmp4 = sin(roll);
+    const Scalar tmp5 = cos(yaw);
+    const Scalar tmp6 = tmp4*tmp5;
+    const Scalar tmp7 = tmp3*tmp6;
+    const Scalar tmp8 = tmp7 - tmp2;
+    const Scalar tmp10 = (a*a);
+    const Scalar tmp11 = (b*b);
+    const Scalar tmp12 = m*(tmp10 + tmp11);
+    const Scalar tmp13 = (c*c);
+    const Scalar tmp14 = tmp10 + tmp13;
+    const Scalar tmp15 = tmp14*m;
+    const Scalar tmp16 = tmp11 + tmp13;
+    const Scalar tmp17 = tmp16*m;
+    const Scalar tmp18 = Scalar(0.005689254019167049)*tmp17 + Scalar(0.010556171822976032)*tmp15
+        - Scalar(0.01624542584214308)*tmp12;
+    const Scalar tmp19 = Scalar(0.041142942152109445)*tmp17 + Scalar(0.028423816083747767)*tmp12
+        - Scalar(0.027900091569190537)*tmp15;
+    const Scalar tmp23 = (Scalar(1)/tmp19);
+    const Scalar tmp24 = Scalar(0.021737886292675604)*tmp12 + Scalar(0.04006485617007295)*tmp15
+        - Scalar(0.020136075796081898)*tmp17 - tmp23*(tmp18*tmp18);
+    const Scalar tmp28 = tmp0*tmp4;
+    const Scalar tmp29 = tmp1*tmp5;
+    const Scalar tmp30 = tmp29*tmp3;
+    const Scalar tmp31 = tmp28 + tmp30;
+    const Scalar tmp32 = -Scalar(0.0257737061664756)*tmp12 - Scalar(0.003316897780257798)*tmp17
+        + Scalar(0.0290906039467334)*tmp14*m;
+    const Scalar tmp34 = (Scalar(1)/tmp24);
+    const Scalar tmp35 = tmp23*tmp32;
+    const Scalar tmp36 = -Scalar(0.03161742478199714)*tmp12 - Scalar(0.004414255047715874)*tmp15
+        - tmp18*tmp35 + Scalar(0.03603167982971302)*tmp16*m;
+    const Scalar tmp37 = -Scalar(0.008495035709756703)*tmp12 - tmp23*(tmp32*tmp32)
+        - tmp34*(tmp36*tmp36) + Scalar(0.02950190206578425)*tmp14*m
+        + Scalar(0.020659800310639128)*tmp16*m;
+    const Scalar tmp44 = cos(pitch);
+    const Scalar tmp45 = tmp44*tmp5;
+    const Scalar tmp48 = tmp44*com_x;
+    const Scalar tmp49 = tmp48*tmp5;
+    const Scalar tmp50 = tmp49 + tmp31*com_z + tmp8*com_y;
+    const Scalar tmp54 = tmp28*tmp3;
+    const Scalar tmp55 = tmp29 + tmp54;
+    const Scalar tmp56 = tmp2*tmp3;
+    const Scalar tmp57 = tmp56 - tmp6;
+    const Scalar tmp58 = tmp0*tmp44;
+    const Scalar tmp60 = tmp0*tmp48;
+    const Scalar tmp64 = tmp4*tmp44;
+    const Scalar tmp65 = tmp1*tmp44;
+    const Scalar tmp69 = tmp3*com_x;
+    const Scalar tmp75 = -tmp8;
+    const Scalar tmp76 = tmp31*com_y + tmp75*com_z;
+    const Scalar tmp78 = tmp44*tmp6;
+    const Scalar tmp79 = tmp29*tmp44;
+    const Scalar tmp80 = tmp3*tmp5;
+    const Scalar tmp82 = tmp78*com_y + tmp79*com_z - tmp5*tmp69;
+    const Scalar tmp85 = -tmp55;
+    const Scalar tmp86 = -tmp57;
+    const Scalar tmp89 = tmp85*com_y + tmp86*com_z;
+    const Scalar tmp90 = tmp89 - tmp60;
+    const Scalar tmp95 = tmp57*com_y + tmp85*com_z;
+    const Scalar tmp97 = tmp28*tmp44;
+    const Scalar tmp98 = tmp2*tmp44;
+    const Scalar tmp99 = tmp0*tmp3;
+    const Scalar tmp101 = tmp97*com_y + tmp98*com_z - tmp0*tmp69;
+    const Scalar tmp107 = tmp65*com_y - tmp64*com_z;
+    const Scalar tmp109 = tmp3*tmp4;
+    const Scalar tmp110 = tmp1*tmp3;
+    const Scalar tmp112 = tmp48 + tmp109*com_y + tmp110*com_z;
+    const Scalar tmp192 = -tmp112;
+    const Scalar tmp208 = tmp18*tmp23;
+    const Scalar tmp209 = tmp45 + tmp208*tmp8 + tmp31*tmp35;
+    const Scalar tmp213 = -tmp80 + tmp208*tmp78 + tmp35*tmp79;
+    const Scalar tmp214 = tmp208*tmp31 + tmp35*tmp75;
+    const Scalar tmp215 = tmp208*tmp85 + tmp35*tmp86;
+    const Scalar tmp216 = tmp215 - tmp58;
+    const Scalar tmp218 = -tmp99 + tmp208*tmp97 + tmp35*tmp98;
+    const Scalar tmp219 = tmp208*tmp57 + tmp35*tmp85;
+    const Scalar tmp221 = -tmp35*tmp64 + tmp1*tmp18*tmp23*tmp44;
+    const Scalar tmp222 = -tmp44 - tmp109*tmp208 - tmp110*tmp35;
+    const Scalar tmp233 = tmp34*tmp36;
+    const Scalar tmp234 = tmp8 + tmp233*tmp31;
+    const Scalar tmp237 = tmp78 + tmp233*tmp79;
+    const Scalar tmp238 = tmp31 + tmp233*tmp75;
+    const Scalar tmp239 = -tmp55 + tmp34*tmp36*tmp86;
+    const Scalar tmp241 = tmp97 + tmp233*tmp98;
+    const Scalar tmp242 = tmp57 + tmp233*tmp85;
+    const Scalar tmp244 = tmp1*tmp44 - tmp233*tmp64;
+    const Scalar tmp245 = -tmp109 - tmp110*tmp233;
+    const Scalar tmp264 = tmp90*m;
+    const Scalar tmp265 = tmp50*m;
+    const Scalar tmp266 = tmp19*((tmp209*tmp209) + (tmp216*tmp216))
+        + tmp24*((tmp234*tmp234) + (tmp239*tmp239)) + tmp37*((tmp31*tmp31) + (tmp86*tmp86))
+        + m*((tmp50*tmp50) + (tmp90*tmp90));
+    const Scalar tmp267 = tmp82*m;
+    const Scalar tmp268 = tmp101*m;
+    const Scalar tmp269 = tmp192*m;
+    const Scalar tmp270 = tmp19*(tmp209*tmp218 + tmp213*tmp216)
+        + tmp24*(tmp234*tmp241 + tmp237*tmp239) + tmp37*(tmp31*tmp98 + tmp79*tmp86)
+        + m*(tmp50*tmp101 + tmp82*tmp90);
+    const Scalar tmp271 = (tmp1*tmp1);
+    const Scalar tmp272 = (tmp44*tmp44);
+    const Scalar tmp273 = tmp271*tmp272;
+    const Scalar tmp274 = tmp19*((tmp213*tmp213) + (tmp218*tmp218) + (tmp222*tmp222))
+        + tmp24*((tmp237*tmp237) + (tmp241*tmp241) + (tmp245*tmp245))
+        + tmp37*(tmp271*(tmp3*tmp3) + tmp273*(tmp0*tmp0) + tmp273*(tmp5*tmp5))
+        + m*((tmp192*tmp192) + (tmp82*tmp82) + (tmp101*tmp101));
+    const Scalar tmp275 = tmp76*m;
+    const Scalar tmp276 = tmp95*m;
+    const Scalar tmp277 = tmp107*m;
+    const Scalar tmp278 = tmp19*(tmp209*tmp219 + tmp214*tmp216)
+        + tmp24*(tmp234*tmp242 + tmp238*tmp239) + tmp37*(tmp31*tmp85 + tmp75*tmp86)
+        + m*(tmp50*tmp95 + tmp76*tmp90);
+    const Scalar tmp279 = tmp19*(tmp213*tmp214 + tmp218*tmp219 + tmp221*tmp222)
+        + tmp24*(tmp237*tmp238 + tmp241*tmp242 + tmp244*tmp245)
+        + tmp37*(tmp110*tmp64 + tmp75*tmp79 + tmp85*tmp98)
+        + m*(tmp107*tmp192 + tmp76*tmp82 + tmp95*tmp101);
+    const Scalar tmp280 = tmp19*((tmp214*tmp214) + (tmp219*tmp219) + (tmp221*tmp221))
+        + tmp24*((tmp238*tmp238) + (tmp242*tmp242) + (tmp244*tmp244))
+        + tmp37*((tmp75*tmp75) + (tmp85*tmp85) + tmp272*(tmp4*tmp4))
+        + m*((tmp107*tmp107) + (tmp76*tmp76) + (tmp95*tmp95));
     QMatrix<Scalar> result;
-    result(0, 0) = tmp146;
+    result(0, 0) = m;
     result(1, 0) = Scalar(0);
-    result(1, 1) = tmp146;
+    result(1, 1) = m;
     result(2, 0) = Scalar(0);
     result(2, 1) = Scalar(0);
-    result(2, 2) = tmp146;
-    result(3, 0) = tmp147;
-    result(3, 1) = tmp148;
+    result(2, 2) = m;
+    result(3, 0) = tmp264;
+    result(3, 1) = tmp265;
     result(3, 2) = Scalar(0);
-    result(3, 3) = tmp153;
-    result(4, 0) = tmp155;
-    result(4, 1) = tmp156;
-    result(4, 2) = tmp157;
-    result(4, 3) = tmp158;
-    result(4, 4) = tmp167;
-    result(5, 0) = tmp168;
-    result(5, 1) = tmp169;
-    result(5, 2) = tmp170;
-    result(5, 3) = tmp171;
-    result(5, 4) = tmp173;
-    result(5, 5) = tmp174;
+    result(3, 3) = tmp266;
+    result(4, 0) = tmp267;
+    result(4, 1) = tmp268;
+    result(4, 2) = tmp269;
+    result(4, 3) = tmp270;
+    result(4, 4) = tmp274;
+    result(5, 0) = tmp275;
+    result(5, 1) = tmp276;
+    result(5, 2) = tmp277;
+    result(5, 3) = tmp278;
+    result(5, 4) = tmp279;
+    result(5, 5) = tmp280;
     result(0, 1) = result(1, 0);
     result(0, 2) = result(2, 0);
     result(1, 2) = result(2, 1);
@@ -319,7 +339,7 @@ struct RigidBodyEuler {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return Ft (nq)
-  /// Ops: 55
+  /// Ops: 22
   template <typename Scalar>
   static QVector<Scalar> applied_forces(const QVector<Scalar>& q,
                                         const QVector<Scalar>& /*v*/,
@@ -330,47 +350,33 @@ struct RigidBodyEuler {
     const Scalar pitch = q(4);
     const Scalar roll = q(5);
     const Scalar g = Scalar(params.g);
-    const Scalar m_a = Scalar(params.m_a);
-    const Scalar m_b = Scalar(params.m_b);
-    const Scalar m_c = Scalar(params.m_c);
-    const Scalar m_d = Scalar(params.m_d);
-    const Scalar tmp1 = cos(pitch);
-    const Scalar tmp2 = Scalar(0.5)*tmp1;
-    const Scalar tmp8 = sin(pitch);
-    const Scalar tmp20 = cos(roll);
-    const Scalar tmp21 = Scalar(0.4)*tmp20;
-    const Scalar tmp23 = sin(roll);
-    const Scalar tmp24 = Scalar(0.4)*tmp23;
-    const Scalar tmp44 = tmp24*tmp8;
-    const Scalar tmp45 = tmp1*tmp21;
-    const Scalar tmp47 = Scalar(0.3)*tmp23;
-    const Scalar tmp49 = Scalar(0.3)*tmp20;
-    const Scalar tmp73 = tmp49*tmp8;
-    const Scalar tmp74 = tmp1*tmp47;
-    const Scalar tmp76 = Scalar(0.2)*tmp1;
-    const Scalar tmp77 = Scalar(0.25)*tmp20;
-    const Scalar tmp81 = Scalar(0.25)*tmp23;
-    const Scalar tmp109 = -tmp1*tmp81 + Scalar(0.3)*tmp1*tmp20;
-    const Scalar tmp110 = tmp47*tmp8;
-    const Scalar tmp111 = -tmp76 - tmp110 - tmp77*tmp8;
-    const Scalar tmp113 = g*m_a;
-    const Scalar tmp114 = -tmp113;
-    const Scalar tmp115 = g*m_b;
-    const Scalar tmp116 = -tmp115;
-    const Scalar tmp117 = g*m_c;
-    const Scalar tmp118 = -tmp117;
-    const Scalar tmp119 = g*m_d;
-    const Scalar tmp120 = -tmp119;
-    const Scalar tmp175 = tmp114 + tmp116 + tmp118 + tmp120;
-    const Scalar tmp191 = tmp111*tmp120 - tmp2*tmp114 - tmp44*tmp116 - tmp73*tmp118;
-    const Scalar tmp192 = tmp45*tmp116 + tmp109*tmp120 - tmp74*tmp118;
+    const Scalar m = Scalar(params.m);
+    const Scalar com_x = Scalar(params.com_x);
+    const Scalar com_y = Scalar(params.com_y);
+    const Scalar com_z = Scalar(params.com_z);
+    const Scalar tmp1 = cos(roll);
+    const Scalar tmp3 = sin(pitch);
+    const Scalar tmp4 = sin(roll);
+    const Scalar tmp44 = cos(pitch);
+    const Scalar tmp48 = tmp44*com_x;
+    const Scalar tmp64 = tmp4*tmp44;
+    const Scalar tmp65 = tmp1*tmp44;
+    const Scalar tmp107 = tmp65*com_y - tmp64*com_z;
+    const Scalar tmp109 = tmp3*tmp4;
+    const Scalar tmp110 = tmp1*tmp3;
+    const Scalar tmp112 = tmp48 + tmp109*com_y + tmp110*com_z;
+    const Scalar tmp192 = -tmp112;
+    const Scalar tmp281 = g*m;
+    const Scalar tmp282 = -tmp281;
+    const Scalar tmp295 = tmp192*tmp282;
+    const Scalar tmp296 = tmp107*tmp282;
     QVector<Scalar> result;
     result(0) = Scalar(0);
     result(1) = Scalar(0);
-    result(2) = tmp175;
+    result(2) = tmp282;
     result(3) = Scalar(0);
-    result(4) = tmp191;
-    result(5) = tmp192;
+    result(4) = tmp295;
+    result(5) = tmp296;
     return result;
   }
 
@@ -402,7 +408,7 @@ struct RigidBodyEuler {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return Fi (nq)
-  /// Ops: 466
+  /// Ops: 637
   template <typename Scalar>
   static QVector<Scalar> inertial_forces(const QVector<Scalar>& q,
                                          const QVector<Scalar>& v,
@@ -416,173 +422,202 @@ struct RigidBodyEuler {
     const Scalar yaw_dot = v(3);
     const Scalar pitch_dot = v(4);
     const Scalar roll_dot = v(5);
-    const Scalar m_a = Scalar(params.m_a);
-    const Scalar m_b = Scalar(params.m_b);
-    const Scalar m_c = Scalar(params.m_c);
-    const Scalar m_d = Scalar(params.m_d);
-    const Scalar tmp0 = cos(yaw);
-    const Scalar tmp1 = cos(pitch);
-    const Scalar tmp2 = Scalar(0.5)*tmp1;
-    const Scalar tmp3 = tmp0*tmp2;
-    const Scalar tmp5 = sin(yaw);
-    const Scalar tmp6 = tmp2*tmp5;
-    const Scalar tmp8 = sin(pitch);
-    const Scalar tmp9 = Scalar(0.5)*tmp8;
-    const Scalar tmp11 = tmp0*tmp9;
-    const Scalar tmp12 = tmp6*yaw_dot + tmp11*pitch_dot;
-    const Scalar tmp14 = tmp5*tmp9;
-    const Scalar tmp15 = tmp14*pitch_dot;
-    const Scalar tmp16 = tmp3*yaw_dot;
-    const Scalar tmp20 = cos(roll);
-    const Scalar tmp21 = Scalar(0.4)*tmp20;
-    const Scalar tmp22 = tmp21*tmp5;
-    const Scalar tmp23 = sin(roll);
-    const Scalar tmp24 = Scalar(0.4)*tmp23;
-    const Scalar tmp25 = tmp0*tmp24;
-    const Scalar tmp26 = tmp25*tmp8;
-    const Scalar tmp27 = tmp26 - tmp22;
-    const Scalar tmp29 = tmp0*tmp21;
-    const Scalar tmp30 = tmp24*tmp5;
-    const Scalar tmp31 = tmp30*tmp8;
-    const Scalar tmp32 = tmp29 + tmp31;
-    const Scalar tmp34 = tmp1*tmp24;
-    const Scalar tmp36 = tmp34*pitch_dot;
-    const Scalar tmp37 = tmp30 + tmp29*tmp8;
-    const Scalar tmp38 = -tmp32;
-    const Scalar tmp39 = tmp0*tmp36 + tmp37*roll_dot + tmp38*yaw_dot;
-    const Scalar tmp41 = tmp36*tmp5;
-    const Scalar tmp42 = -tmp25 + tmp22*tmp8;
-    const Scalar tmp45 = tmp1*tmp21;
-    const Scalar tmp47 = Scalar(0.3)*tmp23;
-    const Scalar tmp48 = tmp47*tmp5;
-    const Scalar tmp49 = Scalar(0.3)*tmp20;
-    const Scalar tmp50 = tmp0*tmp49;
-    const Scalar tmp51 = tmp50*tmp8;
-    const Scalar tmp52 = tmp48 + tmp51;
-    const Scalar tmp54 = tmp0*tmp47;
-    const Scalar tmp55 = tmp49*tmp5;
-    const Scalar tmp56 = tmp55*tmp8;
-    const Scalar tmp57 = tmp56 - tmp54;
-    const Scalar tmp59 = tmp1*tmp49;
-    const Scalar tmp61 = tmp59*pitch_dot;
-    const Scalar tmp62 = tmp54*tmp8;
-    const Scalar tmp63 = tmp62 - tmp55;
-    const Scalar tmp64 = -tmp63;
-    const Scalar tmp65 = -tmp57;
-    const Scalar tmp66 = tmp0*tmp61 + tmp64*roll_dot + tmp65*yaw_dot;
-    const Scalar tmp68 = tmp5*tmp61;
-    const Scalar tmp69 = tmp48*tmp8;
-    const Scalar tmp70 = tmp50 + tmp69;
-    const Scalar tmp71 = -tmp70;
-    const Scalar tmp73 = tmp49*tmp8;
-    const Scalar tmp74 = tmp1*tmp47;
-    const Scalar tmp76 = Scalar(0.2)*tmp1;
-    const Scalar tmp77 = Scalar(0.25)*tmp20;
-    const Scalar tmp78 = tmp0*tmp77;
-    const Scalar tmp79 = tmp8*tmp78;
-    const Scalar tmp80 = tmp79 + tmp0*tmp76;
-    const Scalar tmp81 = Scalar(0.25)*tmp23;
-    const Scalar tmp82 = tmp5*tmp81;
-    const Scalar tmp83 = tmp63 + tmp82;
-    const Scalar tmp84 = tmp80 + tmp83;
-    const Scalar tmp86 = tmp5*tmp77;
-    const Scalar tmp87 = tmp8*tmp86;
-    const Scalar tmp88 = tmp87 + tmp5*tmp76;
-    const Scalar tmp89 = tmp0*tmp81;
-    const Scalar tmp90 = tmp70 - tmp89;
-    const Scalar tmp91 = tmp88 + tmp90;
-    const Scalar tmp93 = Scalar(0.2)*tmp8;
-    const Scalar tmp94 = tmp1*tmp77;
-    const Scalar tmp95 = tmp74 + tmp94;
-    const Scalar tmp96 = tmp95 - tmp93;
-    const Scalar tmp98 = tmp1*tmp54;
-    const Scalar tmp99 = tmp98 + tmp0*tmp94 - tmp0*tmp93;
-    const Scalar tmp100 = tmp52 + tmp86 - tmp8*tmp89;
-    const Scalar tmp101 = -tmp91;
-    const Scalar tmp102 = tmp99*pitch_dot + tmp100*roll_dot + tmp101*yaw_dot;
-    const Scalar tmp104 = tmp1*tmp48;
-    const Scalar tmp105 = tmp104 + tmp5*tmp94 - tmp5*tmp93;
-    const Scalar tmp106 = tmp54 + tmp78 - tmp56 + tmp8*tmp82;
-    const Scalar tmp107 = -tmp106;
-    const Scalar tmp109 = -tmp1*tmp81 + Scalar(0.3)*tmp1*tmp20;
-    const Scalar tmp110 = tmp47*tmp8;
-    const Scalar tmp111 = -tmp76 - tmp110 - tmp77*tmp8;
-    const Scalar tmp121 = pitch_dot*(-tmp3*pitch_dot + Scalar(0.5)*tmp5*tmp8*yaw_dot)
-        + yaw_dot*(tmp15 - tmp16);
-    const Scalar tmp122 = pitch_dot*(-tmp6*pitch_dot - tmp11*yaw_dot) - tmp12*yaw_dot;
-    const Scalar tmp123 = tmp9*(pitch_dot*pitch_dot);
-    const Scalar tmp124 = tmp34*tmp5;
-    const Scalar tmp125 = -tmp27;
-    const Scalar tmp126 = -tmp42;
-    const Scalar tmp127 = pitch_dot*(-tmp26*pitch_dot - tmp124*yaw_dot
-            + Scalar(0.4)*tmp0*tmp1*tmp20*roll_dot)
-        + roll_dot*(tmp125*roll_dot + tmp126*yaw_dot + tmp1*tmp29*pitch_dot)
-        + yaw_dot*(-tmp41 + tmp125*yaw_dot + tmp126*roll_dot);
-    const Scalar tmp128 = tmp1*tmp22;
-    const Scalar tmp129 = tmp0*tmp34;
-    const Scalar tmp130 = tmp39*yaw_dot
-        + pitch_dot*(tmp128*roll_dot + tmp129*yaw_dot - tmp31*pitch_dot)
-        + roll_dot*(tmp128*pitch_dot + tmp37*yaw_dot + tmp38*roll_dot);
-    const Scalar tmp131 = tmp21*tmp8;
-    const Scalar tmp132 = pitch_dot*(-tmp36 - tmp131*roll_dot)
-        + roll_dot*(-tmp131*pitch_dot - tmp34*roll_dot);
-    const Scalar tmp133 = tmp5*tmp59;
-    const Scalar tmp134 = -tmp52;
-    const Scalar tmp135 = pitch_dot*(-tmp133*yaw_dot - tmp51*pitch_dot - tmp98*roll_dot)
-        + roll_dot*(tmp134*roll_dot + tmp70*yaw_dot - tmp98*pitch_dot)
-        + yaw_dot*(-tmp68 + tmp134*yaw_dot + tmp70*roll_dot);
-    const Scalar tmp136 = tmp66*yaw_dot
-        + pitch_dot*(-tmp56*pitch_dot - tmp104*roll_dot + Scalar(0.3)*tmp0*tmp1*tmp20*yaw_dot)
-        + roll_dot*(tmp64*yaw_dot + tmp65*roll_dot - tmp104*pitch_dot);
-    const Scalar tmp137 = pitch_dot*(-tmp61 + Scalar(0.3)*tmp23*tmp8*roll_dot)
-        + roll_dot*(tmp110*pitch_dot - tmp59*roll_dot);
-    const Scalar tmp138 = -tmp1*tmp89 + Scalar(0.3)*tmp0*tmp1*tmp20;
-    const Scalar tmp139 = -tmp105;
-    const Scalar tmp140 = pitch_dot*(tmp138*roll_dot + tmp139*yaw_dot + pitch_dot*(-tmp62 - tmp80))
-        + roll_dot*(tmp138*pitch_dot + tmp106*yaw_dot + roll_dot*(-tmp79 - tmp83))
-        + yaw_dot*(tmp139*pitch_dot + tmp106*roll_dot - tmp84*yaw_dot);
-    const Scalar tmp141 = -tmp1*tmp82 + Scalar(0.3)*tmp1*tmp20*tmp5;
-    const Scalar tmp142 = tmp102*yaw_dot
-        + pitch_dot*(tmp141*roll_dot + tmp99*yaw_dot + pitch_dot*(-tmp69 - tmp88))
-        + roll_dot*(tmp141*pitch_dot + tmp100*yaw_dot + roll_dot*(-tmp87 - tmp90));
-    const Scalar tmp143 = -tmp73;
-    const Scalar tmp144 = tmp143 + tmp8*tmp81;
-    const Scalar tmp145 = pitch_dot*(tmp144*roll_dot - tmp96*pitch_dot)
-        + roll_dot*(tmp144*pitch_dot - tmp95*roll_dot);
-    const Scalar tmp154 = tmp0*tmp59;
-    const Scalar tmp176 = tmp121*m_a;
-    const Scalar tmp177 = tmp122*m_a;
-    const Scalar tmp178 = tmp127*m_b;
-    const Scalar tmp179 = tmp130*m_b;
-    const Scalar tmp180 = tmp135*m_c;
-    const Scalar tmp181 = tmp136*m_c;
-    const Scalar tmp182 = tmp140*m_d;
-    const Scalar tmp183 = tmp142*m_d;
-    const Scalar tmp184 = tmp123*m_a;
-    const Scalar tmp185 = tmp132*m_b;
-    const Scalar tmp186 = tmp137*m_c;
-    const Scalar tmp187 = tmp145*m_d;
-    const Scalar tmp188 = tmp178 + tmp180 + tmp182 + tmp176;
-    const Scalar tmp189 = tmp179 + tmp181 + tmp183 + tmp177;
-    const Scalar tmp190 = tmp185 + tmp186 + tmp187 + tmp184;
-    const Scalar tmp193 = -tmp188;
-    const Scalar tmp194 = -tmp189;
-    const Scalar tmp195 = -tmp190;
-    const Scalar tmp196 = -tmp178*tmp38 - tmp179*tmp27 - tmp180*tmp65 - tmp181*tmp52 - tmp182*tmp101
-        - tmp183*tmp84 - tmp3*tmp177 + Scalar(0.5)*tmp1*tmp5*tmp176;
-    const Scalar tmp197 = -tmp129*tmp178 - tmp133*tmp181 - tmp154*tmp180 - tmp179*tmp124
-        - tmp182*tmp99 - tmp183*tmp105 - tmp187*tmp111 + Scalar(0.5)*tmp1*tmp184
-        + Scalar(0.5)*tmp0*tmp8*tmp176 + Scalar(0.5)*tmp5*tmp8*tmp177
-        + Scalar(0.4)*tmp185*tmp23*tmp8 + Scalar(0.3)*tmp186*tmp20*tmp8;
-    const Scalar tmp198 = -tmp178*tmp37 - tmp179*tmp42 - tmp180*tmp64 - tmp181*tmp71 - tmp182*tmp100
-        - tmp183*tmp107 - tmp185*tmp45 - tmp187*tmp109 + Scalar(0.3)*tmp1*tmp186*tmp23;
+    const Scalar m = Scalar(params.m);
+    const Scalar com_x = Scalar(params.com_x);
+    const Scalar com_y = Scalar(params.com_y);
+    const Scalar com_z = Scalar(params.com_z);
+    const Scalar a = Scalar(params.a);
+    const Scalar b = Scalar(params.b);
+    const Scalar c = Scalar(params.c);
+    const Scalar tmp0 = sin(yaw);
+    const Scalar tmp1 = cos(roll);
+    const Scalar tmp2 = tmp0*tmp1;
+    const Scalar tmp3 = sin(pitch);
+    const Scalar tmp4 = sin(roll);
+    const Scalar tmp5 = cos(yaw);
+    const Scalar tmp6 = tmp4*tmp5;
+    const Scalar tmp7 = tmp3*tmp6;
+    const Scalar tmp8 = tmp7 - tmp2;
+    const Scalar tmp10 = (a*a);
+    const Scalar tmp11 = (b*b);
+    const Scalar tmp12 = m*(tmp10 + tmp11);
+    const Scalar tmp13 = (c*c);
+    const Scalar tmp14 = tmp10 + tmp13;
+    const Scalar tmp15 = tmp14*m;
+    const Scalar tmp16 = tmp11 + tmp13;
+    const Scalar tmp17 = tmp16*m;
+    const Scalar tmp18 = Scalar(0.005689254019167049)*tmp17 + Scalar(0.010556171822976032)*tmp15
+        - Scalar(0.01624542584214308)*tmp12;
+    const Scalar tmp19 = Scalar(0.041142942152109445)*tmp17 + Scalar(0.028423816083747767)*tmp12
+        - Scalar(0.027900091569190537)*tmp15;
+    const Scalar tmp23 = (Scalar(1)/tmp19);
+    const Scalar tmp24 = Scalar(0.021737886292675604)*tmp12 + Scalar(0.04006485617007295)*tmp15
+        - Scalar(0.020136075796081898)*tmp17 - tmp23*(tmp18*tmp18);
+    const Scalar tmp28 = tmp0*tmp4;
+    const Scalar tmp29 = tmp1*tmp5;
+    const Scalar tmp30 = tmp29*tmp3;
+    const Scalar tmp31 = tmp28 + tmp30;
+    const Scalar tmp32 = -Scalar(0.0257737061664756)*tmp12 - Scalar(0.003316897780257798)*tmp17
+        + Scalar(0.0290906039467334)*tmp14*m;
+    const Scalar tmp34 = (Scalar(1)/tmp24);
+    const Scalar tmp35 = tmp23*tmp32;
+    const Scalar tmp36 = -Scalar(0.03161742478199714)*tmp12 - Scalar(0.004414255047715874)*tmp15
+        - tmp18*tmp35 + Scalar(0.03603167982971302)*tmp16*m;
+    const Scalar tmp37 = -Scalar(0.008495035709756703)*tmp12 - tmp23*(tmp32*tmp32)
+        - tmp34*(tmp36*tmp36) + Scalar(0.02950190206578425)*tmp14*m
+        + Scalar(0.020659800310639128)*tmp16*m;
+    const Scalar tmp44 = cos(pitch);
+    const Scalar tmp45 = tmp44*tmp5;
+    const Scalar tmp48 = tmp44*com_x;
+    const Scalar tmp49 = tmp48*tmp5;
+    const Scalar tmp50 = tmp49 + tmp31*com_z + tmp8*com_y;
+    const Scalar tmp54 = tmp28*tmp3;
+    const Scalar tmp55 = tmp29 + tmp54;
+    const Scalar tmp56 = tmp2*tmp3;
+    const Scalar tmp57 = tmp56 - tmp6;
+    const Scalar tmp58 = tmp0*tmp44;
+    const Scalar tmp60 = tmp0*tmp48;
+    const Scalar tmp64 = tmp4*tmp44;
+    const Scalar tmp65 = tmp1*tmp44;
+    const Scalar tmp69 = tmp3*com_x;
+    const Scalar tmp70 = tmp64*com_y + tmp65*com_z;
+    const Scalar tmp71 = tmp70 - tmp69;
+    const Scalar tmp75 = -tmp8;
+    const Scalar tmp76 = tmp31*com_y + tmp75*com_z;
+    const Scalar tmp78 = tmp44*tmp6;
+    const Scalar tmp79 = tmp29*tmp44;
+    const Scalar tmp80 = tmp3*tmp5;
+    const Scalar tmp82 = tmp78*com_y + tmp79*com_z - tmp5*tmp69;
+    const Scalar tmp85 = -tmp55;
+    const Scalar tmp86 = -tmp57;
+    const Scalar tmp89 = tmp85*com_y + tmp86*com_z;
+    const Scalar tmp90 = tmp89 - tmp60;
+    const Scalar tmp95 = tmp57*com_y + tmp85*com_z;
+    const Scalar tmp97 = tmp28*tmp44;
+    const Scalar tmp98 = tmp2*tmp44;
+    const Scalar tmp99 = tmp0*tmp3;
+    const Scalar tmp101 = tmp97*com_y + tmp98*com_z - tmp0*tmp69;
+    const Scalar tmp107 = tmp65*com_y - tmp64*com_z;
+    const Scalar tmp109 = tmp3*tmp4;
+    const Scalar tmp110 = tmp1*tmp3;
+    const Scalar tmp112 = tmp48 + tmp109*com_y + tmp110*com_z;
+    const Scalar tmp189 = tmp76*roll_dot + tmp82*pitch_dot + tmp90*yaw_dot;
+    const Scalar tmp192 = -tmp112;
+    const Scalar tmp194 = tmp79*com_y - tmp78*com_z;
+    const Scalar tmp195 = -tmp101;
+    const Scalar tmp196 = tmp49 + tmp30*com_z + tmp7*com_y;
+    const Scalar tmp197 = tmp55*com_z + tmp86*com_y;
+    const Scalar tmp198 = -tmp31;
+    const Scalar tmp199 = tmp198*com_z + tmp75*com_y;
+    const Scalar tmp200 = tmp199 - tmp49;
+    const Scalar tmp201 = pitch_dot*(tmp194*roll_dot + tmp195*yaw_dot - tmp196*pitch_dot)
+        + roll_dot*(tmp194*pitch_dot + tmp197*yaw_dot + tmp199*roll_dot)
+        + yaw_dot*(tmp195*pitch_dot + tmp197*roll_dot + tmp200*yaw_dot);
+    const Scalar tmp202 = tmp98*com_y - tmp97*com_z;
+    const Scalar tmp203 = tmp60 + tmp54*com_y + tmp56*com_z;
+    const Scalar tmp204 = tmp189*yaw_dot
+        + pitch_dot*(tmp202*roll_dot + tmp82*yaw_dot - tmp203*pitch_dot)
+        + roll_dot*(tmp202*pitch_dot + tmp76*yaw_dot + tmp89*roll_dot);
+    const Scalar tmp205 = tmp110*com_y - tmp3*tmp4*com_z;
+    const Scalar tmp206 = -tmp205;
+    const Scalar tmp207 = pitch_dot*(tmp206*roll_dot - tmp71*pitch_dot)
+        + roll_dot*(tmp206*pitch_dot - tmp70*roll_dot);
+    const Scalar tmp208 = tmp18*tmp23;
+    const Scalar tmp209 = tmp45 + tmp208*tmp8 + tmp31*tmp35;
+    const Scalar tmp211 = tmp208*tmp64 + tmp35*tmp65;
+    const Scalar tmp212 = tmp211 - tmp3;
+    const Scalar tmp213 = -tmp80 + tmp208*tmp78 + tmp35*tmp79;
+    const Scalar tmp214 = tmp208*tmp31 + tmp35*tmp75;
+    const Scalar tmp215 = tmp208*tmp85 + tmp35*tmp86;
+    const Scalar tmp216 = tmp215 - tmp58;
+    const Scalar tmp217 = tmp213*pitch_dot + tmp214*roll_dot + tmp216*yaw_dot;
+    const Scalar tmp218 = -tmp99 + tmp208*tmp97 + tmp35*tmp98;
+    const Scalar tmp219 = tmp208*tmp57 + tmp35*tmp85;
+    const Scalar tmp221 = -tmp35*tmp64 + tmp1*tmp18*tmp23*tmp44;
+    const Scalar tmp222 = -tmp44 - tmp109*tmp208 - tmp110*tmp35;
+    const Scalar tmp224 = -tmp35*tmp78 + tmp1*tmp18*tmp23*tmp44*tmp5;
+    const Scalar tmp225 = -tmp218;
+    const Scalar tmp226 = tmp208*tmp86 + tmp35*tmp55;
+    const Scalar tmp227 = tmp198*tmp35 + tmp208*tmp75;
+    const Scalar tmp228 = pitch_dot*(tmp224*roll_dot + tmp225*yaw_dot
+            + pitch_dot*(-tmp45 - tmp208*tmp7 - tmp30*tmp35))
+        + roll_dot*(tmp224*pitch_dot + tmp226*yaw_dot + tmp227*roll_dot)
+        + yaw_dot*(tmp225*pitch_dot + tmp226*roll_dot + yaw_dot*(tmp227 - tmp45));
+    const Scalar tmp229 = -tmp35*tmp97 + tmp0*tmp1*tmp18*tmp23*tmp44;
+    const Scalar tmp230 = tmp217*yaw_dot
+        + pitch_dot*(tmp213*yaw_dot + tmp229*roll_dot
+            + pitch_dot*(-tmp58 - tmp208*tmp54 - tmp35*tmp56))
+        + roll_dot*(tmp214*yaw_dot + tmp215*roll_dot + tmp229*pitch_dot);
+    const Scalar tmp231 = tmp109*tmp35 - tmp110*tmp208;
+    const Scalar tmp232 = pitch_dot*(tmp231*roll_dot - tmp212*pitch_dot)
+        + roll_dot*(tmp231*pitch_dot - tmp211*roll_dot);
+    const Scalar tmp233 = tmp34*tmp36;
+    const Scalar tmp234 = tmp8 + tmp233*tmp31;
+    const Scalar tmp236 = tmp64 + tmp233*tmp65;
+    const Scalar tmp237 = tmp78 + tmp233*tmp79;
+    const Scalar tmp238 = tmp31 + tmp233*tmp75;
+    const Scalar tmp239 = -tmp55 + tmp34*tmp36*tmp86;
+    const Scalar tmp240 = tmp237*pitch_dot + tmp238*roll_dot + tmp239*yaw_dot;
+    const Scalar tmp241 = tmp97 + tmp233*tmp98;
+    const Scalar tmp242 = tmp57 + tmp233*tmp85;
+    const Scalar tmp244 = tmp1*tmp44 - tmp233*tmp64;
+    const Scalar tmp245 = -tmp109 - tmp110*tmp233;
+    const Scalar tmp247 = -tmp233*tmp78 + tmp1*tmp44*tmp5;
+    const Scalar tmp248 = -tmp241;
+    const Scalar tmp249 = tmp6 - tmp56 + tmp233*tmp55;
+    const Scalar tmp250 = tmp2 - tmp7 + tmp198*tmp233;
+    const Scalar tmp251 = pitch_dot*(tmp247*roll_dot + tmp248*yaw_dot
+            + pitch_dot*(-tmp7 - tmp233*tmp30))
+        + roll_dot*(tmp247*pitch_dot + tmp249*yaw_dot + tmp250*roll_dot)
+        + yaw_dot*(tmp248*pitch_dot + tmp249*roll_dot + tmp250*yaw_dot);
+    const Scalar tmp252 = -tmp233*tmp97 + tmp0*tmp1*tmp44;
+    const Scalar tmp253 = tmp240*yaw_dot
+        + pitch_dot*(tmp237*yaw_dot + tmp252*roll_dot + pitch_dot*(-tmp54 - tmp233*tmp56))
+        + roll_dot*(tmp238*yaw_dot + tmp239*roll_dot + tmp252*pitch_dot);
+    const Scalar tmp254 = -tmp110 + tmp109*tmp233;
+    const Scalar tmp255 = -tmp236;
+    const Scalar tmp256 = pitch_dot*(tmp254*roll_dot + tmp255*pitch_dot)
+        + roll_dot*(tmp254*pitch_dot + tmp255*roll_dot);
+    const Scalar tmp257 = tmp75*roll_dot + tmp79*pitch_dot + tmp86*yaw_dot;
+    const Scalar tmp258 = tmp98*pitch_dot;
+    const Scalar tmp261 = pitch_dot*(-tmp30*pitch_dot - tmp78*roll_dot - tmp98*yaw_dot)
+        + roll_dot*(tmp198*roll_dot + tmp55*yaw_dot - tmp78*pitch_dot)
+        + yaw_dot*(-tmp258 + tmp198*yaw_dot + tmp55*roll_dot);
+    const Scalar tmp262 = tmp257*yaw_dot
+        + pitch_dot*(-tmp56*pitch_dot - tmp97*roll_dot + tmp1*tmp44*tmp5*yaw_dot)
+        + roll_dot*(tmp75*yaw_dot + tmp86*roll_dot - tmp97*pitch_dot);
+    const Scalar tmp263 = pitch_dot*(-tmp65*pitch_dot + tmp3*tmp4*roll_dot)
+        + roll_dot*(tmp109*pitch_dot - tmp65*roll_dot);
+    const Scalar tmp283 = tmp201*m;
+    const Scalar tmp284 = tmp204*m;
+    const Scalar tmp285 = tmp207*m;
+    const Scalar tmp286 = tmp19*tmp228;
+    const Scalar tmp287 = tmp19*tmp230;
+    const Scalar tmp288 = tmp24*tmp251;
+    const Scalar tmp289 = tmp24*tmp253;
+    const Scalar tmp290 = tmp37*tmp261;
+    const Scalar tmp291 = tmp37*tmp262;
+    const Scalar tmp292 = tmp19*tmp232;
+    const Scalar tmp293 = tmp24*tmp256;
+    const Scalar tmp294 = tmp37*tmp263;
+    const Scalar tmp297 = -tmp283;
+    const Scalar tmp298 = -tmp284;
+    const Scalar tmp299 = -tmp285;
+    const Scalar tmp300 = -tmp209*tmp287 - tmp216*tmp286 - tmp234*tmp289 - tmp239*tmp288
+        - tmp31*tmp291 - tmp50*tmp284 - tmp86*tmp290 - tmp90*tmp283;
+    const Scalar tmp301 = -tmp192*tmp285 - tmp213*tmp286 - tmp218*tmp287 - tmp222*tmp292
+        - tmp237*tmp288 - tmp241*tmp289 - tmp245*tmp293 - tmp79*tmp290 - tmp82*tmp283 - tmp98*tmp291
+        - tmp101*tmp284 + tmp1*tmp3*tmp294;
+    const Scalar tmp302 = -tmp107*tmp285 - tmp214*tmp286 - tmp219*tmp287 - tmp221*tmp292
+        - tmp238*tmp288 - tmp242*tmp289 - tmp244*tmp293 - tmp75*tmp290 - tmp76*tmp283 - tmp85*tmp291
+        - tmp95*tmp284 + tmp4*tmp44*tmp294;
     QVector<Scalar> result;
-    result(0) = tmp193;
-    result(1) = tmp194;
-    result(2) = tmp195;
-    result(3) = tmp196;
-    result(4) = tmp197;
-    result(5) = tmp198;
+    result(0) = tmp297;
+    result(1) = tmp298;
+    result(2) = tmp299;
+    result(3) = tmp300;
+    result(4) = tmp301;
+    result(5) = tmp302;
     return result;
   }
 
@@ -592,7 +627,7 @@ struct RigidBodyEuler {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return Ft + Fi (nq)
-  /// Ops: 497
+  /// Ops: 644
   template <typename Scalar>
   static QVector<Scalar> forces(const QVector<Scalar>& q,
                                 const QVector<Scalar>& v,
@@ -607,185 +642,206 @@ struct RigidBodyEuler {
     const Scalar pitch_dot = v(4);
     const Scalar roll_dot = v(5);
     const Scalar g = Scalar(params.g);
-    const Scalar m_a = Scalar(params.m_a);
-    const Scalar m_b = Scalar(params.m_b);
-    const Scalar m_c = Scalar(params.m_c);
-    const Scalar m_d = Scalar(params.m_d);
-    const Scalar tmp0 = cos(yaw);
-    const Scalar tmp1 = cos(pitch);
-    const Scalar tmp2 = Scalar(0.5)*tmp1;
-    const Scalar tmp3 = tmp0*tmp2;
-    const Scalar tmp5 = sin(yaw);
-    const Scalar tmp6 = tmp2*tmp5;
-    const Scalar tmp8 = sin(pitch);
-    const Scalar tmp9 = Scalar(0.5)*tmp8;
-    const Scalar tmp11 = tmp0*tmp9;
-    const Scalar tmp12 = tmp6*yaw_dot + tmp11*pitch_dot;
-    const Scalar tmp14 = tmp5*tmp9;
-    const Scalar tmp15 = tmp14*pitch_dot;
-    const Scalar tmp16 = tmp3*yaw_dot;
-    const Scalar tmp20 = cos(roll);
-    const Scalar tmp21 = Scalar(0.4)*tmp20;
-    const Scalar tmp22 = tmp21*tmp5;
-    const Scalar tmp23 = sin(roll);
-    const Scalar tmp24 = Scalar(0.4)*tmp23;
-    const Scalar tmp25 = tmp0*tmp24;
-    const Scalar tmp26 = tmp25*tmp8;
-    const Scalar tmp27 = tmp26 - tmp22;
-    const Scalar tmp29 = tmp0*tmp21;
-    const Scalar tmp30 = tmp24*tmp5;
-    const Scalar tmp31 = tmp30*tmp8;
-    const Scalar tmp32 = tmp29 + tmp31;
-    const Scalar tmp34 = tmp1*tmp24;
-    const Scalar tmp36 = tmp34*pitch_dot;
-    const Scalar tmp37 = tmp30 + tmp29*tmp8;
-    const Scalar tmp38 = -tmp32;
-    const Scalar tmp39 = tmp0*tmp36 + tmp37*roll_dot + tmp38*yaw_dot;
-    const Scalar tmp41 = tmp36*tmp5;
-    const Scalar tmp42 = -tmp25 + tmp22*tmp8;
-    const Scalar tmp44 = tmp24*tmp8;
-    const Scalar tmp45 = tmp1*tmp21;
-    const Scalar tmp47 = Scalar(0.3)*tmp23;
-    const Scalar tmp48 = tmp47*tmp5;
-    const Scalar tmp49 = Scalar(0.3)*tmp20;
-    const Scalar tmp50 = tmp0*tmp49;
-    const Scalar tmp51 = tmp50*tmp8;
-    const Scalar tmp52 = tmp48 + tmp51;
-    const Scalar tmp54 = tmp0*tmp47;
-    const Scalar tmp55 = tmp49*tmp5;
-    const Scalar tmp56 = tmp55*tmp8;
-    const Scalar tmp57 = tmp56 - tmp54;
-    const Scalar tmp59 = tmp1*tmp49;
-    const Scalar tmp61 = tmp59*pitch_dot;
-    const Scalar tmp62 = tmp54*tmp8;
-    const Scalar tmp63 = tmp62 - tmp55;
-    const Scalar tmp64 = -tmp63;
-    const Scalar tmp65 = -tmp57;
-    const Scalar tmp66 = tmp0*tmp61 + tmp64*roll_dot + tmp65*yaw_dot;
-    const Scalar tmp68 = tmp5*tmp61;
-    const Scalar tmp69 = tmp48*tmp8;
-    const Scalar tmp70 = tmp50 + tmp69;
-    const Scalar tmp71 = -tmp70;
-    const Scalar tmp73 = tmp49*tmp8;
-    const Scalar tmp74 = tmp1*tmp47;
-    const Scalar tmp76 = Scalar(0.2)*tmp1;
-    const Scalar tmp77 = Scalar(0.25)*tmp20;
-    const Scalar tmp78 = tmp0*tmp77;
-    const Scalar tmp79 = tmp8*tmp78;
-    const Scalar tmp80 = tmp79 + tmp0*tmp76;
-    const Scalar tmp81 = Scalar(0.25)*tmp23;
-    const Scalar tmp82 = tmp5*tmp81;
-    const Scalar tmp83 = tmp63 + tmp82;
-    const Scalar tmp84 = tmp80 + tmp83;
-    const Scalar tmp86 = tmp5*tmp77;
-    const Scalar tmp87 = tmp8*tmp86;
-    const Scalar tmp88 = tmp87 + tmp5*tmp76;
-    const Scalar tmp89 = tmp0*tmp81;
-    const Scalar tmp90 = tmp70 - tmp89;
-    const Scalar tmp91 = tmp88 + tmp90;
-    const Scalar tmp93 = Scalar(0.2)*tmp8;
-    const Scalar tmp94 = tmp1*tmp77;
-    const Scalar tmp95 = tmp74 + tmp94;
-    const Scalar tmp96 = tmp95 - tmp93;
-    const Scalar tmp98 = tmp1*tmp54;
-    const Scalar tmp99 = tmp98 + tmp0*tmp94 - tmp0*tmp93;
-    const Scalar tmp100 = tmp52 + tmp86 - tmp8*tmp89;
-    const Scalar tmp101 = -tmp91;
-    const Scalar tmp102 = tmp99*pitch_dot + tmp100*roll_dot + tmp101*yaw_dot;
-    const Scalar tmp104 = tmp1*tmp48;
-    const Scalar tmp105 = tmp104 + tmp5*tmp94 - tmp5*tmp93;
-    const Scalar tmp106 = tmp54 + tmp78 - tmp56 + tmp8*tmp82;
-    const Scalar tmp107 = -tmp106;
-    const Scalar tmp109 = -tmp1*tmp81 + Scalar(0.3)*tmp1*tmp20;
-    const Scalar tmp110 = tmp47*tmp8;
-    const Scalar tmp111 = -tmp76 - tmp110 - tmp77*tmp8;
-    const Scalar tmp113 = g*m_a;
-    const Scalar tmp114 = -tmp113;
-    const Scalar tmp115 = g*m_b;
-    const Scalar tmp116 = -tmp115;
-    const Scalar tmp117 = g*m_c;
-    const Scalar tmp118 = -tmp117;
-    const Scalar tmp119 = g*m_d;
-    const Scalar tmp120 = -tmp119;
-    const Scalar tmp121 = pitch_dot*(-tmp3*pitch_dot + Scalar(0.5)*tmp5*tmp8*yaw_dot)
-        + yaw_dot*(tmp15 - tmp16);
-    const Scalar tmp122 = pitch_dot*(-tmp6*pitch_dot - tmp11*yaw_dot) - tmp12*yaw_dot;
-    const Scalar tmp123 = tmp9*(pitch_dot*pitch_dot);
-    const Scalar tmp124 = tmp34*tmp5;
-    const Scalar tmp125 = -tmp27;
-    const Scalar tmp126 = -tmp42;
-    const Scalar tmp127 = pitch_dot*(-tmp26*pitch_dot - tmp124*yaw_dot
-            + Scalar(0.4)*tmp0*tmp1*tmp20*roll_dot)
-        + roll_dot*(tmp125*roll_dot + tmp126*yaw_dot + tmp1*tmp29*pitch_dot)
-        + yaw_dot*(-tmp41 + tmp125*yaw_dot + tmp126*roll_dot);
-    const Scalar tmp128 = tmp1*tmp22;
-    const Scalar tmp129 = tmp0*tmp34;
-    const Scalar tmp130 = tmp39*yaw_dot
-        + pitch_dot*(tmp128*roll_dot + tmp129*yaw_dot - tmp31*pitch_dot)
-        + roll_dot*(tmp128*pitch_dot + tmp37*yaw_dot + tmp38*roll_dot);
-    const Scalar tmp131 = tmp21*tmp8;
-    const Scalar tmp132 = pitch_dot*(-tmp36 - tmp131*roll_dot)
-        + roll_dot*(-tmp131*pitch_dot - tmp34*roll_dot);
-    const Scalar tmp133 = tmp5*tmp59;
-    const Scalar tmp134 = -tmp52;
-    const Scalar tmp135 = pitch_dot*(-tmp133*yaw_dot - tmp51*pitch_dot - tmp98*roll_dot)
-        + roll_dot*(tmp134*roll_dot + tmp70*yaw_dot - tmp98*pitch_dot)
-        + yaw_dot*(-tmp68 + tmp134*yaw_dot + tmp70*roll_dot);
-    const Scalar tmp136 = tmp66*yaw_dot
-        + pitch_dot*(-tmp56*pitch_dot - tmp104*roll_dot + Scalar(0.3)*tmp0*tmp1*tmp20*yaw_dot)
-        + roll_dot*(tmp64*yaw_dot + tmp65*roll_dot - tmp104*pitch_dot);
-    const Scalar tmp137 = pitch_dot*(-tmp61 + Scalar(0.3)*tmp23*tmp8*roll_dot)
-        + roll_dot*(tmp110*pitch_dot - tmp59*roll_dot);
-    const Scalar tmp138 = -tmp1*tmp89 + Scalar(0.3)*tmp0*tmp1*tmp20;
-    const Scalar tmp139 = -tmp105;
-    const Scalar tmp140 = pitch_dot*(tmp138*roll_dot + tmp139*yaw_dot + pitch_dot*(-tmp62 - tmp80))
-        + roll_dot*(tmp138*pitch_dot + tmp106*yaw_dot + roll_dot*(-tmp79 - tmp83))
-        + yaw_dot*(tmp139*pitch_dot + tmp106*roll_dot - tmp84*yaw_dot);
-    const Scalar tmp141 = -tmp1*tmp82 + Scalar(0.3)*tmp1*tmp20*tmp5;
-    const Scalar tmp142 = tmp102*yaw_dot
-        + pitch_dot*(tmp141*roll_dot + tmp99*yaw_dot + pitch_dot*(-tmp69 - tmp88))
-        + roll_dot*(tmp141*pitch_dot + tmp100*yaw_dot + roll_dot*(-tmp87 - tmp90));
-    const Scalar tmp143 = -tmp73;
-    const Scalar tmp144 = tmp143 + tmp8*tmp81;
-    const Scalar tmp145 = pitch_dot*(tmp144*roll_dot - tmp96*pitch_dot)
-        + roll_dot*(tmp144*pitch_dot - tmp95*roll_dot);
-    const Scalar tmp154 = tmp0*tmp59;
-    const Scalar tmp175 = tmp114 + tmp116 + tmp118 + tmp120;
-    const Scalar tmp176 = tmp121*m_a;
-    const Scalar tmp177 = tmp122*m_a;
-    const Scalar tmp178 = tmp127*m_b;
-    const Scalar tmp179 = tmp130*m_b;
-    const Scalar tmp180 = tmp135*m_c;
-    const Scalar tmp181 = tmp136*m_c;
-    const Scalar tmp182 = tmp140*m_d;
-    const Scalar tmp183 = tmp142*m_d;
-    const Scalar tmp184 = tmp123*m_a;
-    const Scalar tmp185 = tmp132*m_b;
-    const Scalar tmp186 = tmp137*m_c;
-    const Scalar tmp187 = tmp145*m_d;
-    const Scalar tmp188 = tmp178 + tmp180 + tmp182 + tmp176;
-    const Scalar tmp189 = tmp179 + tmp181 + tmp183 + tmp177;
-    const Scalar tmp190 = tmp185 + tmp186 + tmp187 + tmp184;
-    const Scalar tmp191 = tmp111*tmp120 - tmp2*tmp114 - tmp44*tmp116 - tmp73*tmp118;
-    const Scalar tmp192 = tmp45*tmp116 + tmp109*tmp120 - tmp74*tmp118;
-    const Scalar tmp193 = -tmp188;
-    const Scalar tmp194 = -tmp189;
-    const Scalar tmp195 = -tmp190;
-    const Scalar tmp196 = -tmp178*tmp38 - tmp179*tmp27 - tmp180*tmp65 - tmp181*tmp52 - tmp182*tmp101
-        - tmp183*tmp84 - tmp3*tmp177 + Scalar(0.5)*tmp1*tmp5*tmp176;
-    const Scalar tmp197 = -tmp129*tmp178 - tmp133*tmp181 - tmp154*tmp180 - tmp179*tmp124
-        - tmp182*tmp99 - tmp183*tmp105 - tmp187*tmp111 + Scalar(0.5)*tmp1*tmp184
-        + Scalar(0.5)*tmp0*tmp8*tmp176 + Scalar(0.5)*tmp5*tmp8*tmp177
-        + Scalar(0.4)*tmp185*tmp23*tmp8 + Scalar(0.3)*tmp186*tmp20*tmp8;
-    const Scalar tmp198 = -tmp178*tmp37 - tmp179*tmp42 - tmp180*tmp64 - tmp181*tmp71 - tmp182*tmp100
-        - tmp183*tmp107 - tmp185*tmp45 - tmp187*tmp109 + Scalar(0.3)*tmp1*tmp186*tmp23;
+    const Scalar m = Scalar(params.m);
+    const Scalar com_x = Scalar(params.com_x);
+    const Scalar com_y = Scalar(params.com_y);
+    const Scalar com_z = Scalar(params.com_z);
+    const Scalar a = Scalar(params.a);
+    const Scalar b = Scalar(params.b);
+    const Scalar c = Scalar(params.c);
+    const Scalar tmp0 = sin(yaw);
+    const Scalar tmp1 = cos(roll);
+    const Scalar tmp2 = tmp0*tmp1;
+    const Scalar tmp3 = sin(pitch);
+    const Scalar tmp4 = sin(roll);
+    const Scalar tmp5 = cos(yaw);
+    const Scalar tmp6 = tmp4*tmp5;
+    const Scalar tmp7 = tmp3*tmp6;
+    const Scalar tmp8 = tmp7 - tmp2;
+    const Scalar tmp10 = (a*a);
+    const Scalar tmp11 = (b*b);
+    const Scalar tmp12 = m*(tmp10 + tmp11);
+    const Scalar tmp13 = (c*c);
+    const Scalar tmp14 = tmp10 + tmp13;
+    const Scalar tmp15 = tmp14*m;
+    const Scalar tmp16 = tmp11 + tmp13;
+    const Scalar tmp17 = tmp16*m;
+    const Scalar tmp18 = Scalar(0.005689254019167049)*tmp17 + Scalar(0.010556171822976032)*tmp15
+        - Scalar(0.01624542584214308)*tmp12;
+    const Scalar tmp19 = Scalar(0.041142942152109445)*tmp17 + Scalar(0.028423816083747767)*tmp12
+        - Scalar(0.027900091569190537)*tmp15;
+    const Scalar tmp23 = (Scalar(1)/tmp19);
+    const Scalar tmp24 = Scalar(0.021737886292675604)*tmp12 + Scalar(0.04006485617007295)*tmp15
+        - Scalar(0.020136075796081898)*tmp17 - tmp23*(tmp18*tmp18);
+    const Scalar tmp28 = tmp0*tmp4;
+    const Scalar tmp29 = tmp1*tmp5;
+    const Scalar tmp30 = tmp29*tmp3;
+    const Scalar tmp31 = tmp28 + tmp30;
+    const Scalar tmp32 = -Scalar(0.0257737061664756)*tmp12 - Scalar(0.003316897780257798)*tmp17
+        + Scalar(0.0290906039467334)*tmp14*m;
+    const Scalar tmp34 = (Scalar(1)/tmp24);
+    const Scalar tmp35 = tmp23*tmp32;
+    const Scalar tmp36 = -Scalar(0.03161742478199714)*tmp12 - Scalar(0.004414255047715874)*tmp15
+        - tmp18*tmp35 + Scalar(0.03603167982971302)*tmp16*m;
+    const Scalar tmp37 = -Scalar(0.008495035709756703)*tmp12 - tmp23*(tmp32*tmp32)
+        - tmp34*(tmp36*tmp36) + Scalar(0.02950190206578425)*tmp14*m
+        + Scalar(0.020659800310639128)*tmp16*m;
+    const Scalar tmp44 = cos(pitch);
+    const Scalar tmp45 = tmp44*tmp5;
+    const Scalar tmp48 = tmp44*com_x;
+    const Scalar tmp49 = tmp48*tmp5;
+    const Scalar tmp50 = tmp49 + tmp31*com_z + tmp8*com_y;
+    const Scalar tmp54 = tmp28*tmp3;
+    const Scalar tmp55 = tmp29 + tmp54;
+    const Scalar tmp56 = tmp2*tmp3;
+    const Scalar tmp57 = tmp56 - tmp6;
+    const Scalar tmp58 = tmp0*tmp44;
+    const Scalar tmp60 = tmp0*tmp48;
+    const Scalar tmp64 = tmp4*tmp44;
+    const Scalar tmp65 = tmp1*tmp44;
+    const Scalar tmp69 = tmp3*com_x;
+    const Scalar tmp70 = tmp64*com_y + tmp65*com_z;
+    const Scalar tmp71 = tmp70 - tmp69;
+    const Scalar tmp75 = -tmp8;
+    const Scalar tmp76 = tmp31*com_y + tmp75*com_z;
+    const Scalar tmp78 = tmp44*tmp6;
+    const Scalar tmp79 = tmp29*tmp44;
+    const Scalar tmp80 = tmp3*tmp5;
+    const Scalar tmp82 = tmp78*com_y + tmp79*com_z - tmp5*tmp69;
+    const Scalar tmp85 = -tmp55;
+    const Scalar tmp86 = -tmp57;
+    const Scalar tmp89 = tmp85*com_y + tmp86*com_z;
+    const Scalar tmp90 = tmp89 - tmp60;
+    const Scalar tmp95 = tmp57*com_y + tmp85*com_z;
+    const Scalar tmp97 = tmp28*tmp44;
+    const Scalar tmp98 = tmp2*tmp44;
+    const Scalar tmp99 = tmp0*tmp3;
+    const Scalar tmp101 = tmp97*com_y + tmp98*com_z - tmp0*tmp69;
+    const Scalar tmp107 = tmp65*com_y - tmp64*com_z;
+    const Scalar tmp109 = tmp3*tmp4;
+    const Scalar tmp110 = tmp1*tmp3;
+    const Scalar tmp112 = tmp48 + tmp109*com_y + tmp110*com_z;
+    const Scalar tmp189 = tmp76*roll_dot + tmp82*pitch_dot + tmp90*yaw_dot;
+    const Scalar tmp192 = -tmp112;
+    const Scalar tmp194 = tmp79*com_y - tmp78*com_z;
+    const Scalar tmp195 = -tmp101;
+    const Scalar tmp196 = tmp49 + tmp30*com_z + tmp7*com_y;
+    const Scalar tmp197 = tmp55*com_z + tmp86*com_y;
+    const Scalar tmp198 = -tmp31;
+    const Scalar tmp199 = tmp198*com_z + tmp75*com_y;
+    const Scalar tmp200 = tmp199 - tmp49;
+    const Scalar tmp201 = pitch_dot*(tmp194*roll_dot + tmp195*yaw_dot - tmp196*pitch_dot)
+        + roll_dot*(tmp194*pitch_dot + tmp197*yaw_dot + tmp199*roll_dot)
+        + yaw_dot*(tmp195*pitch_dot + tmp197*roll_dot + tmp200*yaw_dot);
+    const Scalar tmp202 = tmp98*com_y - tmp97*com_z;
+    const Scalar tmp203 = tmp60 + tmp54*com_y + tmp56*com_z;
+    const Scalar tmp204 = tmp189*yaw_dot
+        + pitch_dot*(tmp202*roll_dot + tmp82*yaw_dot - tmp203*pitch_dot)
+        + roll_dot*(tmp202*pitch_dot + tmp76*yaw_dot + tmp89*roll_dot);
+    const Scalar tmp205 = tmp110*com_y - tmp3*tmp4*com_z;
+    const Scalar tmp206 = -tmp205;
+    const Scalar tmp207 = pitch_dot*(tmp206*roll_dot - tmp71*pitch_dot)
+        + roll_dot*(tmp206*pitch_dot - tmp70*roll_dot);
+    const Scalar tmp208 = tmp18*tmp23;
+    const Scalar tmp209 = tmp45 + tmp208*tmp8 + tmp31*tmp35;
+    const Scalar tmp211 = tmp208*tmp64 + tmp35*tmp65;
+    const Scalar tmp212 = tmp211 - tmp3;
+    const Scalar tmp213 = -tmp80 + tmp208*tmp78 + tmp35*tmp79;
+    const Scalar tmp214 = tmp208*tmp31 + tmp35*tmp75;
+    const Scalar tmp215 = tmp208*tmp85 + tmp35*tmp86;
+    const Scalar tmp216 = tmp215 - tmp58;
+    const Scalar tmp217 = tmp213*pitch_dot + tmp214*roll_dot + tmp216*yaw_dot;
+    const Scalar tmp218 = -tmp99 + tmp208*tmp97 + tmp35*tmp98;
+    const Scalar tmp219 = tmp208*tmp57 + tmp35*tmp85;
+    const Scalar tmp221 = -tmp35*tmp64 + tmp1*tmp18*tmp23*tmp44;
+    const Scalar tmp222 = -tmp44 - tmp109*tmp208 - tmp110*tmp35;
+    const Scalar tmp224 = -tmp35*tmp78 + tmp1*tmp18*tmp23*tmp44*tmp5;
+    const Scalar tmp225 = -tmp218;
+    const Scalar tmp226 = tmp208*tmp86 + tmp35*tmp55;
+    const Scalar tmp227 = tmp198*tmp35 + tmp208*tmp75;
+    const Scalar tmp228 = pitch_dot*(tmp224*roll_dot + tmp225*yaw_dot
+            + pitch_dot*(-tmp45 - tmp208*tmp7 - tmp30*tmp35))
+        + roll_dot*(tmp224*pitch_dot + tmp226*yaw_dot + tmp227*roll_dot)
+        + yaw_dot*(tmp225*pitch_dot + tmp226*roll_dot + yaw_dot*(tmp227 - tmp45));
+    const Scalar tmp229 = -tmp35*tmp97 + tmp0*tmp1*tmp18*tmp23*tmp44;
+    const Scalar tmp230 = tmp217*yaw_dot
+        + pitch_dot*(tmp213*yaw_dot + tmp229*roll_dot
+            + pitch_dot*(-tmp58 - tmp208*tmp54 - tmp35*tmp56))
+        + roll_dot*(tmp214*yaw_dot + tmp215*roll_dot + tmp229*pitch_dot);
+    const Scalar tmp231 = tmp109*tmp35 - tmp110*tmp208;
+    const Scalar tmp232 = pitch_dot*(tmp231*roll_dot - tmp212*pitch_dot)
+        + roll_dot*(tmp231*pitch_dot - tmp211*roll_dot);
+    const Scalar tmp233 = tmp34*tmp36;
+    const Scalar tmp234 = tmp8 + tmp233*tmp31;
+    const Scalar tmp236 = tmp64 + tmp233*tmp65;
+    const Scalar tmp237 = tmp78 + tmp233*tmp79;
+    const Scalar tmp238 = tmp31 + tmp233*tmp75;
+    const Scalar tmp239 = -tmp55 + tmp34*tmp36*tmp86;
+    const Scalar tmp240 = tmp237*pitch_dot + tmp238*roll_dot + tmp239*yaw_dot;
+    const Scalar tmp241 = tmp97 + tmp233*tmp98;
+    const Scalar tmp242 = tmp57 + tmp233*tmp85;
+    const Scalar tmp244 = tmp1*tmp44 - tmp233*tmp64;
+    const Scalar tmp245 = -tmp109 - tmp110*tmp233;
+    const Scalar tmp247 = -tmp233*tmp78 + tmp1*tmp44*tmp5;
+    const Scalar tmp248 = -tmp241;
+    const Scalar tmp249 = tmp6 - tmp56 + tmp233*tmp55;
+    const Scalar tmp250 = tmp2 - tmp7 + tmp198*tmp233;
+    const Scalar tmp251 = pitch_dot*(tmp247*roll_dot + tmp248*yaw_dot
+            + pitch_dot*(-tmp7 - tmp233*tmp30))
+        + roll_dot*(tmp247*pitch_dot + tmp249*yaw_dot + tmp250*roll_dot)
+        + yaw_dot*(tmp248*pitch_dot + tmp249*roll_dot + tmp250*yaw_dot);
+    const Scalar tmp252 = -tmp233*tmp97 + tmp0*tmp1*tmp44;
+    const Scalar tmp253 = tmp240*yaw_dot
+        + pitch_dot*(tmp237*yaw_dot + tmp252*roll_dot + pitch_dot*(-tmp54 - tmp233*tmp56))
+        + roll_dot*(tmp238*yaw_dot + tmp239*roll_dot + tmp252*pitch_dot);
+    const Scalar tmp254 = -tmp110 + tmp109*tmp233;
+    const Scalar tmp255 = -tmp236;
+    const Scalar tmp256 = pitch_dot*(tmp254*roll_dot + tmp255*pitch_dot)
+        + roll_dot*(tmp254*pitch_dot + tmp255*roll_dot);
+    const Scalar tmp257 = tmp75*roll_dot + tmp79*pitch_dot + tmp86*yaw_dot;
+    const Scalar tmp258 = tmp98*pitch_dot;
+    const Scalar tmp261 = pitch_dot*(-tmp30*pitch_dot - tmp78*roll_dot - tmp98*yaw_dot)
+        + roll_dot*(tmp198*roll_dot + tmp55*yaw_dot - tmp78*pitch_dot)
+        + yaw_dot*(-tmp258 + tmp198*yaw_dot + tmp55*roll_dot);
+    const Scalar tmp262 = tmp257*yaw_dot
+        + pitch_dot*(-tmp56*pitch_dot - tmp97*roll_dot + tmp1*tmp44*tmp5*yaw_dot)
+        + roll_dot*(tmp75*yaw_dot + tmp86*roll_dot - tmp97*pitch_dot);
+    const Scalar tmp263 = pitch_dot*(-tmp65*pitch_dot + tmp3*tmp4*roll_dot)
+        + roll_dot*(tmp109*pitch_dot - tmp65*roll_dot);
+    const Scalar tmp281 = g*m;
+    const Scalar tmp282 = -tmp281;
+    const Scalar tmp283 = tmp201*m;
+    const Scalar tmp284 = tmp204*m;
+    const Scalar tmp285 = tmp207*m;
+    const Scalar tmp286 = tmp19*tmp228;
+    const Scalar tmp287 = tmp19*tmp230;
+    const Scalar tmp288 = tmp24*tmp251;
+    const Scalar tmp289 = tmp24*tmp253;
+    const Scalar tmp290 = tmp37*tmp261;
+    const Scalar tmp291 = tmp37*tmp262;
+    const Scalar tmp292 = tmp19*tmp232;
+    const Scalar tmp293 = tmp24*tmp256;
+    const Scalar tmp294 = tmp37*tmp263;
+    const Scalar tmp295 = tmp192*tmp282;
+    const Scalar tmp296 = tmp107*tmp282;
+    const Scalar tmp297 = -tmp283;
+    const Scalar tmp298 = -tmp284;
+    const Scalar tmp299 = -tmp285;
+    const Scalar tmp300 = -tmp209*tmp287 - tmp216*tmp286 - tmp234*tmp289 - tmp239*tmp288
+        - tmp31*tmp291 - tmp50*tmp284 - tmp86*tmp290 - tmp90*tmp283;
+    const Scalar tmp301 = -tmp192*tmp285 - tmp213*tmp286 - tmp218*tmp287 - tmp222*tmp292
+        - tmp237*tmp288 - tmp241*tmp289 - tmp245*tmp293 - tmp79*tmp290 - tmp82*tmp283 - tmp98*tmp291
+        - tmp101*tmp284 + tmp1*tmp3*tmp294;
+    const Scalar tmp302 = -tmp107*tmp285 - tmp214*tmp286 - tmp219*tmp287 - tmp221*tmp292
+        - tmp238*tmp288 - tmp242*tmp289 - tmp244*tmp293 - tmp75*tmp290 - tmp76*tmp283 - tmp85*tmp291
+        - tmp95*tmp284 + tmp4*tmp44*tmp294;
     QVector<Scalar> result;
-    result(0) = tmp193;
-    result(1) = tmp194;
-    result(2) = tmp175 + tmp195;
-    result(3) = tmp196;
-    result(4) = tmp191 + tmp197;
-    result(5) = tmp192 + tmp198;
+    result(0) = tmp297;
+    result(1) = tmp298;
+    result(2) = tmp282 + tmp299;
+    result(3) = tmp300;
+    result(4) = tmp295 + tmp301;
+    result(5) = tmp296 + tmp302;
     return result;
   }
 
@@ -795,7 +851,7 @@ struct RigidBodyEuler {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// Mt and f must not be null.
-  /// Ops: 687
+  /// Ops: 797
   template <typename Scalar>
   static void dynamics(const QVector<Scalar>& q,
                        const QVector<Scalar>& v,
@@ -812,244 +868,258 @@ struct RigidBodyEuler {
     const Scalar pitch_dot = v(4);
     const Scalar roll_dot = v(5);
     const Scalar g = Scalar(params.g);
-    const Scalar m_a = Scalar(params.m_a);
-    const Scalar m_b = Scalar(params.m_b);
-    const Scalar m_c = Scalar(params.m_c);
-    const Scalar m_d = Scalar(params.m_d);
-    const Scalar tmp0 = cos(yaw);
-    const Scalar tmp1 = cos(pitch);
-    const Scalar tmp2 = Scalar(0.5)*tmp1;
-    const Scalar tmp3 = tmp0*tmp2;
-    const Scalar tmp5 = sin(yaw);
-    const Scalar tmp6 = tmp2*tmp5;
-    const Scalar tmp8 = sin(pitch);
-    const Scalar tmp9 = Scalar(0.5)*tmp8;
-    const Scalar tmp11 = tmp0*tmp9;
-    const Scalar tmp12 = tmp6*yaw_dot + tmp11*pitch_dot;
-    const Scalar tmp14 = tmp5*tmp9;
-    const Scalar tmp15 = tmp14*pitch_dot;
-    const Scalar tmp16 = tmp3*yaw_dot;
-    const Scalar tmp20 = cos(roll);
-    const Scalar tmp21 = Scalar(0.4)*tmp20;
-    const Scalar tmp22 = tmp21*tmp5;
-    const Scalar tmp23 = sin(roll);
-    const Scalar tmp24 = Scalar(0.4)*tmp23;
-    const Scalar tmp25 = tmp0*tmp24;
-    const Scalar tmp26 = tmp25*tmp8;
-    const Scalar tmp27 = tmp26 - tmp22;
-    const Scalar tmp29 = tmp0*tmp21;
-    const Scalar tmp30 = tmp24*tmp5;
-    const Scalar tmp31 = tmp30*tmp8;
-    const Scalar tmp32 = tmp29 + tmp31;
-    const Scalar tmp34 = tmp1*tmp24;
-    const Scalar tmp36 = tmp34*pitch_dot;
-    const Scalar tmp37 = tmp30 + tmp29*tmp8;
-    const Scalar tmp38 = -tmp32;
-    const Scalar tmp39 = tmp0*tmp36 + tmp37*roll_dot + tmp38*yaw_dot;
-    const Scalar tmp41 = tmp36*tmp5;
-    const Scalar tmp42 = -tmp25 + tmp22*tmp8;
-    const Scalar tmp44 = tmp24*tmp8;
-    const Scalar tmp45 = tmp1*tmp21;
-    const Scalar tmp47 = Scalar(0.3)*tmp23;
-    const Scalar tmp48 = tmp47*tmp5;
-    const Scalar tmp49 = Scalar(0.3)*tmp20;
-    const Scalar tmp50 = tmp0*tmp49;
-    const Scalar tmp51 = tmp50*tmp8;
-    const Scalar tmp52 = tmp48 + tmp51;
-    const Scalar tmp54 = tmp0*tmp47;
-    const Scalar tmp55 = tmp49*tmp5;
-    const Scalar tmp56 = tmp55*tmp8;
-    const Scalar tmp57 = tmp56 - tmp54;
-    const Scalar tmp59 = tmp1*tmp49;
-    const Scalar tmp61 = tmp59*pitch_dot;
-    const Scalar tmp62 = tmp54*tmp8;
-    const Scalar tmp63 = tmp62 - tmp55;
-    const Scalar tmp64 = -tmp63;
-    const Scalar tmp65 = -tmp57;
-    const Scalar tmp66 = tmp0*tmp61 + tmp64*roll_dot + tmp65*yaw_dot;
-    const Scalar tmp68 = tmp5*tmp61;
-    const Scalar tmp69 = tmp48*tmp8;
-    const Scalar tmp70 = tmp50 + tmp69;
-    const Scalar tmp71 = -tmp70;
-    const Scalar tmp73 = tmp49*tmp8;
-    const Scalar tmp74 = tmp1*tmp47;
-    const Scalar tmp76 = Scalar(0.2)*tmp1;
-    const Scalar tmp77 = Scalar(0.25)*tmp20;
-    const Scalar tmp78 = tmp0*tmp77;
-    const Scalar tmp79 = tmp8*tmp78;
-    const Scalar tmp80 = tmp79 + tmp0*tmp76;
-    const Scalar tmp81 = Scalar(0.25)*tmp23;
-    const Scalar tmp82 = tmp5*tmp81;
-    const Scalar tmp83 = tmp63 + tmp82;
-    const Scalar tmp84 = tmp80 + tmp83;
-    const Scalar tmp86 = tmp5*tmp77;
-    const Scalar tmp87 = tmp8*tmp86;
-    const Scalar tmp88 = tmp87 + tmp5*tmp76;
-    const Scalar tmp89 = tmp0*tmp81;
-    const Scalar tmp90 = tmp70 - tmp89;
-    const Scalar tmp91 = tmp88 + tmp90;
-    const Scalar tmp93 = Scalar(0.2)*tmp8;
-    const Scalar tmp94 = tmp1*tmp77;
-    const Scalar tmp95 = tmp74 + tmp94;
-    const Scalar tmp96 = tmp95 - tmp93;
-    const Scalar tmp98 = tmp1*tmp54;
-    const Scalar tmp99 = tmp98 + tmp0*tmp94 - tmp0*tmp93;
-    const Scalar tmp100 = tmp52 + tmp86 - tmp8*tmp89;
-    const Scalar tmp101 = -tmp91;
-    const Scalar tmp102 = tmp99*pitch_dot + tmp100*roll_dot + tmp101*yaw_dot;
-    const Scalar tmp104 = tmp1*tmp48;
-    const Scalar tmp105 = tmp104 + tmp5*tmp94 - tmp5*tmp93;
-    const Scalar tmp106 = tmp54 + tmp78 - tmp56 + tmp8*tmp82;
-    const Scalar tmp107 = -tmp106;
-    const Scalar tmp109 = -tmp1*tmp81 + Scalar(0.3)*tmp1*tmp20;
-    const Scalar tmp110 = tmp47*tmp8;
-    const Scalar tmp111 = -tmp76 - tmp110 - tmp77*tmp8;
-    const Scalar tmp113 = g*m_a;
-    const Scalar tmp114 = -tmp113;
-    const Scalar tmp115 = g*m_b;
-    const Scalar tmp116 = -tmp115;
-    const Scalar tmp117 = g*m_c;
-    const Scalar tmp118 = -tmp117;
-    const Scalar tmp119 = g*m_d;
-    const Scalar tmp120 = -tmp119;
-    const Scalar tmp121 = pitch_dot*(-tmp3*pitch_dot + Scalar(0.5)*tmp5*tmp8*yaw_dot)
-        + yaw_dot*(tmp15 - tmp16);
-    const Scalar tmp122 = pitch_dot*(-tmp6*pitch_dot - tmp11*yaw_dot) - tmp12*yaw_dot;
-    const Scalar tmp123 = tmp9*(pitch_dot*pitch_dot);
-    const Scalar tmp124 = tmp34*tmp5;
-    const Scalar tmp125 = -tmp27;
-    const Scalar tmp126 = -tmp42;
-    const Scalar tmp127 = pitch_dot*(-tmp26*pitch_dot - tmp124*yaw_dot
-            + Scalar(0.4)*tmp0*tmp1*tmp20*roll_dot)
-        + roll_dot*(tmp125*roll_dot + tmp126*yaw_dot + tmp1*tmp29*pitch_dot)
-        + yaw_dot*(-tmp41 + tmp125*yaw_dot + tmp126*roll_dot);
-    const Scalar tmp128 = tmp1*tmp22;
-    const Scalar tmp129 = tmp0*tmp34;
-    const Scalar tmp130 = tmp39*yaw_dot
-        + pitch_dot*(tmp128*roll_dot + tmp129*yaw_dot - tmp31*pitch_dot)
-        + roll_dot*(tmp128*pitch_dot + tmp37*yaw_dot + tmp38*roll_dot);
-    const Scalar tmp131 = tmp21*tmp8;
-    const Scalar tmp132 = pitch_dot*(-tmp36 - tmp131*roll_dot)
-        + roll_dot*(-tmp131*pitch_dot - tmp34*roll_dot);
-    const Scalar tmp133 = tmp5*tmp59;
-    const Scalar tmp134 = -tmp52;
-    const Scalar tmp135 = pitch_dot*(-tmp133*yaw_dot - tmp51*pitch_dot - tmp98*roll_dot)
-        + roll_dot*(tmp134*roll_dot + tmp70*yaw_dot - tmp98*pitch_dot)
-        + yaw_dot*(-tmp68 + tmp134*yaw_dot + tmp70*roll_dot);
-    const Scalar tmp136 = tmp66*yaw_dot
-        + pitch_dot*(-tmp56*pitch_dot - tmp104*roll_dot + Scalar(0.3)*tmp0*tmp1*tmp20*yaw_dot)
-        + roll_dot*(tmp64*yaw_dot + tmp65*roll_dot - tmp104*pitch_dot);
-    const Scalar tmp137 = pitch_dot*(-tmp61 + Scalar(0.3)*tmp23*tmp8*roll_dot)
-        + roll_dot*(tmp110*pitch_dot - tmp59*roll_dot);
-    const Scalar tmp138 = -tmp1*tmp89 + Scalar(0.3)*tmp0*tmp1*tmp20;
-    const Scalar tmp139 = -tmp105;
-    const Scalar tmp140 = pitch_dot*(tmp138*roll_dot + tmp139*yaw_dot + pitch_dot*(-tmp62 - tmp80))
-        + roll_dot*(tmp138*pitch_dot + tmp106*yaw_dot + roll_dot*(-tmp79 - tmp83))
-        + yaw_dot*(tmp139*pitch_dot + tmp106*roll_dot - tmp84*yaw_dot);
-    const Scalar tmp141 = -tmp1*tmp82 + Scalar(0.3)*tmp1*tmp20*tmp5;
-    const Scalar tmp142 = tmp102*yaw_dot
-        + pitch_dot*(tmp141*roll_dot + tmp99*yaw_dot + pitch_dot*(-tmp69 - tmp88))
-        + roll_dot*(tmp141*pitch_dot + tmp100*yaw_dot + roll_dot*(-tmp87 - tmp90));
-    const Scalar tmp143 = -tmp73;
-    const Scalar tmp144 = tmp143 + tmp8*tmp81;
-    const Scalar tmp145 = pitch_dot*(tmp144*roll_dot - tmp96*pitch_dot)
-        + roll_dot*(tmp144*pitch_dot - tmp95*roll_dot);
-    const Scalar tmp146 = m_a + m_b + m_c + m_d;
-    const Scalar tmp147 = tmp38*m_b + tmp65*m_c + tmp101*m_d - tmp6*m_a;
-    const Scalar tmp148 = tmp27*m_b + tmp3*m_a + tmp52*m_c + tmp84*m_d;
-    const Scalar tmp149 = (tmp5*tmp5);
-    const Scalar tmp150 = (tmp1*tmp1);
-    const Scalar tmp151 = Scalar(0.25)*tmp150;
-    const Scalar tmp152 = (tmp0*tmp0);
-    const Scalar tmp153 = m_a*(tmp149*tmp151 + tmp151*tmp152) + m_b*((tmp27*tmp27) + (tmp38*tmp38))
-        + m_c*((tmp52*tmp52) + (tmp65*tmp65)) + m_d*((tmp84*tmp84) + (tmp101*tmp101));
-    const Scalar tmp154 = tmp0*tmp59;
-    const Scalar tmp155 = tmp129*m_b + tmp154*m_c + tmp99*m_d - tmp11*m_a;
-    const Scalar tmp156 = tmp133*m_c + tmp105*m_d + tmp124*m_b - tmp14*m_a;
-    const Scalar tmp157 = tmp111*m_d - tmp2*m_a - tmp44*m_b - tmp73*m_c;
-    const Scalar tmp158 = m_b*(tmp129*tmp38 + tmp27*tmp124) + m_c*(tmp133*tmp52 + tmp154*tmp65)
-        + m_d*(tmp84*tmp105 + tmp99*tmp101);
-    const Scalar tmp159 = (tmp8*tmp8);
-    const Scalar tmp160 = Scalar(0.25)*tmp159;
-    const Scalar tmp161 = (tmp23*tmp23);
-    const Scalar tmp162 = Scalar(0.16000000000000003)*tmp161;
-    const Scalar tmp163 = tmp150*tmp162;
-    const Scalar tmp164 = (tmp20*tmp20);
-    const Scalar tmp165 = Scalar(0.09)*tmp164;
-    const Scalar tmp166 = tmp150*tmp165;
-    const Scalar tmp167 = m_a*(tmp151 + tmp149*tmp160 + tmp152*tmp160)
-        + m_b*(tmp149*tmp163 + tmp152*tmp163 + tmp159*tmp162)
-        + m_c*(tmp149*tmp166 + tmp152*tmp166 + tmp159*tmp165)
-        + m_d*((tmp99*tmp99) + (tmp105*tmp105) + (tmp111*tmp111));
-    const Scalar tmp168 = tmp37*m_b + tmp64*m_c + tmp100*m_d;
-    const Scalar tmp169 = tmp42*m_b + tmp71*m_c + tmp107*m_d;
-    const Scalar tmp170 = tmp45*m_b + tmp109*m_d - tmp74*m_c;
-    const Scalar tmp171 = m_b*(tmp27*tmp42 + tmp37*tmp38) + m_c*(tmp52*tmp71 + tmp64*tmp65)
-        + m_d*(tmp84*tmp107 + tmp100*tmp101);
-    const Scalar tmp172 = tmp1*tmp20*tmp23*tmp8;
-    const Scalar tmp173 = m_b*(-Scalar(0.16000000000000003)*tmp172 + tmp129*tmp37 + tmp42*tmp124)
-        + m_c*(Scalar(0.09)*tmp172 + tmp133*tmp71 + tmp154*tmp64)
-        + m_d*(tmp99*tmp100 + tmp105*tmp107 + tmp109*tmp111);
-    const Scalar tmp174 = m_b*((tmp37*tmp37) + (tmp42*tmp42)
-            + Scalar(0.16000000000000003)*tmp150*tmp164)
-        + m_c*((tmp64*tmp64) + (tmp71*tmp71) + Scalar(0.09)*tmp150*tmp161)
-        + m_d*((tmp100*tmp100) + (tmp107*tmp107) + (tmp109*tmp109));
-    const Scalar tmp175 = tmp114 + tmp116 + tmp118 + tmp120;
-    const Scalar tmp176 = tmp121*m_a;
-    const Scalar tmp177 = tmp122*m_a;
-    const Scalar tmp178 = tmp127*m_b;
-    const Scalar tmp179 = tmp130*m_b;
-    const Scalar tmp180 = tmp135*m_c;
-    const Scalar tmp181 = tmp136*m_c;
-    const Scalar tmp182 = tmp140*m_d;
-    const Scalar tmp183 = tmp142*m_d;
-    const Scalar tmp184 = tmp123*m_a;
-    const Scalar tmp185 = tmp132*m_b;
-    const Scalar tmp186 = tmp137*m_c;
-    const Scalar tmp187 = tmp145*m_d;
-    const Scalar tmp188 = tmp178 + tmp180 + tmp182 + tmp176;
-    const Scalar tmp189 = tmp179 + tmp181 + tmp183 + tmp177;
-    const Scalar tmp190 = tmp185 + tmp186 + tmp187 + tmp184;
-    const Scalar tmp191 = tmp111*tmp120 - tmp2*tmp114 - tmp44*tmp116 - tmp73*tmp118;
-    const Scalar tmp192 = tmp45*tmp116 + tmp109*tmp120 - tmp74*tmp118;
-    const Scalar tmp193 = -tmp188;
-    const Scalar tmp194 = -tmp189;
-    const Scalar tmp195 = -tmp190;
-    const Scalar tmp196 = -tmp178*tmp38 - tmp179*tmp27 - tmp180*tmp65 - tmp181*tmp52 - tmp182*tmp101
-        - tmp183*tmp84 - tmp3*tmp177 + Scalar(0.5)*tmp1*tmp5*tmp176;
-    const Scalar tmp197 = -tmp129*tmp178 - tmp133*tmp181 - tmp154*tmp180 - tmp179*tmp124
-        - tmp182*tmp99 - tmp183*tmp105 - tmp187*tmp111 + Scalar(0.5)*tmp1*tmp184
-        + Scalar(0.5)*tmp0*tmp8*tmp176 + Scalar(0.5)*tmp5*tmp8*tmp177
-        + Scalar(0.4)*tmp185*tmp23*tmp8 + Scalar(0.3)*tmp186*tmp20*tmp8;
-    const Scalar tmp198 = -tmp178*tmp37 - tmp179*tmp42 - tmp180*tmp64 - tmp181*tmp71 - tmp182*tmp100
-        - tmp183*tmp107 - tmp185*tmp45 - tmp187*tmp109 + Scalar(0.3)*tmp1*tmp186*tmp23;
-    (*Mt)(0, 0) = tmp146;
+    const Scalar m = Scalar(params.m);
+    const Scalar com_x = Scalar(params.com_x);
+    const Scalar com_y = Scalar(params.com_y);
+    const Scalar com_z = Scalar(params.com_z);
+    const Scalar a = Scalar(params.a);
+    const Scalar b = Scalar(params.b);
+    const Scalar c = Scalar(params.c);
+    const Scalar tmp0 = sin(yaw);
+    const Scalar tmp1 = cos(roll);
+    const Scalar tmp2 = tmp0*tmp1;
+    const Scalar tmp3 = sin(pitch);
+    const Scalar tmp4 = sin(roll);
+    const Scalar tmp5 = cos(yaw);
+    const Scalar tmp6 = tmp4*tmp5;
+    const Scalar tmp7 = tmp3*tmp6;
+    const Scalar tmp8 = tmp7 - tmp2;
+    const Scalar tmp10 = (a*a);
+    const Scalar tmp11 = (b*b);
+    const Scalar tmp12 = m*(tmp10 + tmp11);
+    const Scalar tmp13 = (c*c);
+    const Scalar tmp14 = tmp10 + tmp13;
+    const Scalar tmp15 = tmp14*m;
+    const Scalar tmp16 = tmp11 + tmp13;
+    const Scalar tmp17 = tmp16*m;
+    const Scalar tmp18 = Scalar(0.005689254019167049)*tmp17 + Scalar(0.010556171822976032)*tmp15
+        - Scalar(0.01624542584214308)*tmp12;
+    const Scalar tmp19 = Scalar(0.041142942152109445)*tmp17 + Scalar(0.028423816083747767)*tmp12
+        - Scalar(0.027900091569190537)*tmp15;
+    const Scalar tmp23 = (Scalar(1)/tmp19);
+    const Scalar tmp24 = Scalar(0.021737886292675604)*tmp12 + Scalar(0.04006485617007295)*tmp15
+        - Scalar(0.020136075796081898)*tmp17 - tmp23*(tmp18*tmp18);
+    const Scalar tmp28 = tmp0*tmp4;
+    const Scalar tmp29 = tmp1*tmp5;
+    const Scalar tmp30 = tmp29*tmp3;
+    const Scalar tmp31 = tmp28 + tmp30;
+    const Scalar tmp32 = -Scalar(0.0257737061664756)*tmp12 - Scalar(0.003316897780257798)*tmp17
+        + Scalar(0.0290906039467334)*tmp14*m;
+    const Scalar tmp34 = (Scalar(1)/tmp24);
+    const Scalar tmp35 = tmp23*tmp32;
+    const Scalar tmp36 = -Scalar(0.03161742478199714)*tmp12 - Scalar(0.004414255047715874)*tmp15
+        - tmp18*tmp35 + Scalar(0.03603167982971302)*tmp16*m;
+    const Scalar tmp37 = -Scalar(0.008495035709756703)*tmp12 - tmp23*(tmp32*tmp32)
+        - tmp34*(tmp36*tmp36) + Scalar(0.02950190206578425)*tmp14*m
+        + Scalar(0.020659800310639128)*tmp16*m;
+    const Scalar tmp44 = cos(pitch);
+    const Scalar tmp45 = tmp44*tmp5;
+    const Scalar tmp48 = tmp44*com_x;
+    const Scalar tmp49 = tmp48*tmp5;
+    const Scalar tmp50 = tmp49 + tmp31*com_z + tmp8*com_y;
+    const Scalar tmp54 = tmp28*tmp3;
+    const Scalar tmp55 = tmp29 + tmp54;
+    const Scalar tmp56 = tmp2*tmp3;
+    const Scalar tmp57 = tmp56 - tmp6;
+    const Scalar tmp58 = tmp0*tmp44;
+    const Scalar tmp60 = tmp0*tmp48;
+    const Scalar tmp64 = tmp4*tmp44;
+    const Scalar tmp65 = tmp1*tmp44;
+    const Scalar tmp69 = tmp3*com_x;
+    const Scalar tmp70 = tmp64*com_y + tmp65*com_z;
+    const Scalar tmp71 = tmp70 - tmp69;
+    const Scalar tmp75 = -tmp8;
+    const Scalar tmp76 = tmp31*com_y + tmp75*com_z;
+    const Scalar tmp78 = tmp44*tmp6;
+    const Scalar tmp79 = tmp29*tmp44;
+    const Scalar tmp80 = tmp3*tmp5;
+    const Scalar tmp82 = tmp78*com_y + tmp79*com_z - tmp5*tmp69;
+    const Scalar tmp85 = -tmp55;
+    const Scalar tmp86 = -tmp57;
+    const Scalar tmp89 = tmp85*com_y + tmp86*com_z;
+    const Scalar tmp90 = tmp89 - tmp60;
+    const Scalar tmp95 = tmp57*com_y + tmp85*com_z;
+    const Scalar tmp97 = tmp28*tmp44;
+    const Scalar tmp98 = tmp2*tmp44;
+    const Scalar tmp99 = tmp0*tmp3;
+    const Scalar tmp101 = tmp97*com_y + tmp98*com_z - tmp0*tmp69;
+    const Scalar tmp107 = tmp65*com_y - tmp64*com_z;
+    const Scalar tmp109 = tmp3*tmp4;
+    const Scalar tmp110 = tmp1*tmp3;
+    const Scalar tmp112 = tmp48 + tmp109*com_y + tmp110*com_z;
+    const Scalar tmp189 = tmp76*roll_dot + tmp82*pitch_dot + tmp90*yaw_dot;
+    const Scalar tmp192 = -tmp112;
+    const Scalar tmp194 = tmp79*com_y - tmp78*com_z;
+    const Scalar tmp195 = -tmp101;
+    const Scalar tmp196 = tmp49 + tmp30*com_z + tmp7*com_y;
+    const Scalar tmp197 = tmp55*com_z + tmp86*com_y;
+    const Scalar tmp198 = -tmp31;
+    const Scalar tmp199 = tmp198*com_z + tmp75*com_y;
+    const Scalar tmp200 = tmp199 - tmp49;
+    const Scalar tmp201 = pitch_dot*(tmp194*roll_dot + tmp195*yaw_dot - tmp196*pitch_dot)
+        + roll_dot*(tmp194*pitch_dot + tmp197*yaw_dot + tmp199*roll_dot)
+        + yaw_dot*(tmp195*pitch_dot + tmp197*roll_dot + tmp200*yaw_dot);
+    const Scalar tmp202 = tmp98*com_y - tmp97*com_z;
+    const Scalar tmp203 = tmp60 + tmp54*com_y + tmp56*com_z;
+    const Scalar tmp204 = tmp189*yaw_dot
+        + pitch_dot*(tmp202*roll_dot + tmp82*yaw_dot - tmp203*pitch_dot)
+        + roll_dot*(tmp202*pitch_dot + tmp76*yaw_dot + tmp89*roll_dot);
+    const Scalar tmp205 = tmp110*com_y - tmp3*tmp4*com_z;
+    const Scalar tmp206 = -tmp205;
+    const Scalar tmp207 = pitch_dot*(tmp206*roll_dot - tmp71*pitch_dot)
+        + roll_dot*(tmp206*pitch_dot - tmp70*roll_dot);
+    const Scalar tmp208 = tmp18*tmp23;
+    const Scalar tmp209 = tmp45 + tmp208*tmp8 + tmp31*tmp35;
+    const Scalar tmp211 = tmp208*tmp64 + tmp35*tmp65;
+    const Scalar tmp212 = tmp211 - tmp3;
+    const Scalar tmp213 = -tmp80 + tmp208*tmp78 + tmp35*tmp79;
+    const Scalar tmp214 = tmp208*tmp31 + tmp35*tmp75;
+    const Scalar tmp215 = tmp208*tmp85 + tmp35*tmp86;
+    const Scalar tmp216 = tmp215 - tmp58;
+    const Scalar tmp217 = tmp213*pitch_dot + tmp214*roll_dot + tmp216*yaw_dot;
+    const Scalar tmp218 = -tmp99 + tmp208*tmp97 + tmp35*tmp98;
+    const Scalar tmp219 = tmp208*tmp57 + tmp35*tmp85;
+    const Scalar tmp221 = -tmp35*tmp64 + tmp1*tmp18*tmp23*tmp44;
+    const Scalar tmp222 = -tmp44 - tmp109*tmp208 - tmp110*tmp35;
+    const Scalar tmp224 = -tmp35*tmp78 + tmp1*tmp18*tmp23*tmp44*tmp5;
+    const Scalar tmp225 = -tmp218;
+    const Scalar tmp226 = tmp208*tmp86 + tmp35*tmp55;
+    const Scalar tmp227 = tmp198*tmp35 + tmp208*tmp75;
+    const Scalar tmp228 = pitch_dot*(tmp224*roll_dot + tmp225*yaw_dot
+            + pitch_dot*(-tmp45 - tmp208*tmp7 - tmp30*tmp35))
+        + roll_dot*(tmp224*pitch_dot + tmp226*yaw_dot + tmp227*roll_dot)
+        + yaw_dot*(tmp225*pitch_dot + tmp226*roll_dot + yaw_dot*(tmp227 - tmp45));
+    const Scalar tmp229 = -tmp35*tmp97 + tmp0*tmp1*tmp18*tmp23*tmp44;
+    const Scalar tmp230 = tmp217*yaw_dot
+        + pitch_dot*(tmp213*yaw_dot + tmp229*roll_dot
+            + pitch_dot*(-tmp58 - tmp208*tmp54 - tmp35*tmp56))
+        + roll_dot*(tmp214*yaw_dot + tmp215*roll_dot + tmp229*pitch_dot);
+    const Scalar tmp231 = tmp109*tmp35 - tmp110*tmp208;
+    const Scalar tmp232 = pitch_dot*(tmp231*roll_dot - tmp212*pitch_dot)
+        + roll_dot*(tmp231*pitch_dot - tmp211*roll_dot);
+    const Scalar tmp233 = tmp34*tmp36;
+    const Scalar tmp234 = tmp8 + tmp233*tmp31;
+    const Scalar tmp236 = tmp64 + tmp233*tmp65;
+    const Scalar tmp237 = tmp78 + tmp233*tmp79;
+    const Scalar tmp238 = tmp31 + tmp233*tmp75;
+    const Scalar tmp239 = -tmp55 + tmp34*tmp36*tmp86;
+    const Scalar tmp240 = tmp237*pitch_dot + tmp238*roll_dot + tmp239*yaw_dot;
+    const Scalar tmp241 = tmp97 + tmp233*tmp98;
+    const Scalar tmp242 = tmp57 + tmp233*tmp85;
+    const Scalar tmp244 = tmp1*tmp44 - tmp233*tmp64;
+    const Scalar tmp245 = -tmp109 - tmp110*tmp233;
+    const Scalar tmp247 = -tmp233*tmp78 + tmp1*tmp44*tmp5;
+    const Scalar tmp248 = -tmp241;
+    const Scalar tmp249 = tmp6 - tmp56 + tmp233*tmp55;
+    const Scalar tmp250 = tmp2 - tmp7 + tmp198*tmp233;
+    const Scalar tmp251 = pitch_dot*(tmp247*roll_dot + tmp248*yaw_dot
+            + pitch_dot*(-tmp7 - tmp233*tmp30))
+        + roll_dot*(tmp247*pitch_dot + tmp249*yaw_dot + tmp250*roll_dot)
+        + yaw_dot*(tmp248*pitch_dot + tmp249*roll_dot + tmp250*yaw_dot);
+    const Scalar tmp252 = -tmp233*tmp97 + tmp0*tmp1*tmp44;
+    const Scalar tmp253 = tmp240*yaw_dot
+        + pitch_dot*(tmp237*yaw_dot + tmp252*roll_dot + pitch_dot*(-tmp54 - tmp233*tmp56))
+        + roll_dot*(tmp238*yaw_dot + tmp239*roll_dot + tmp252*pitch_dot);
+    const Scalar tmp254 = -tmp110 + tmp109*tmp233;
+    const Scalar tmp255 = -tmp236;
+    const Scalar tmp256 = pitch_dot*(tmp254*roll_dot + tmp255*pitch_dot)
+        + roll_dot*(tmp254*pitch_dot + tmp255*roll_dot);
+    const Scalar tmp257 = tmp75*roll_dot + tmp79*pitch_dot + tmp86*yaw_dot;
+    const Scalar tmp258 = tmp98*pitch_dot;
+    const Scalar tmp261 = pitch_dot*(-tmp30*pitch_dot - tmp78*roll_dot - tmp98*yaw_dot)
+        + roll_dot*(tmp198*roll_dot + tmp55*yaw_dot - tmp78*pitch_dot)
+        + yaw_dot*(-tmp258 + tmp198*yaw_dot + tmp55*roll_dot);
+    const Scalar tmp262 = tmp257*yaw_dot
+        + pitch_dot*(-tmp56*pitch_dot - tmp97*roll_dot + tmp1*tmp44*tmp5*yaw_dot)
+        + roll_dot*(tmp75*yaw_dot + tmp86*roll_dot - tmp97*pitch_dot);
+    const Scalar tmp263 = pitch_dot*(-tmp65*pitch_dot + tmp3*tmp4*roll_dot)
+        + roll_dot*(tmp109*pitch_dot - tmp65*roll_dot);
+    const Scalar tmp264 = tmp90*m;
+    const Scalar tmp265 = tmp50*m;
+    const Scalar tmp266 = tmp19*((tmp209*tmp209) + (tmp216*tmp216))
+        + tmp24*((tmp234*tmp234) + (tmp239*tmp239)) + tmp37*((tmp31*tmp31) + (tmp86*tmp86))
+        + m*((tmp50*tmp50) + (tmp90*tmp90));
+    const Scalar tmp267 = tmp82*m;
+    const Scalar tmp268 = tmp101*m;
+    const Scalar tmp269 = tmp192*m;
+    const Scalar tmp270 = tmp19*(tmp209*tmp218 + tmp213*tmp216)
+        + tmp24*(tmp234*tmp241 + tmp237*tmp239) + tmp37*(tmp31*tmp98 + tmp79*tmp86)
+        + m*(tmp50*tmp101 + tmp82*tmp90);
+    const Scalar tmp271 = (tmp1*tmp1);
+    const Scalar tmp272 = (tmp44*tmp44);
+    const Scalar tmp273 = tmp271*tmp272;
+    const Scalar tmp274 = tmp19*((tmp213*tmp213) + (tmp218*tmp218) + (tmp222*tmp222))
+        + tmp24*((tmp237*tmp237) + (tmp241*tmp241) + (tmp245*tmp245))
+        + tmp37*(tmp271*(tmp3*tmp3) + tmp273*(tmp0*tmp0) + tmp273*(tmp5*tmp5))
+        + m*((tmp192*tmp192) + (tmp82*tmp82) + (tmp101*tmp101));
+    const Scalar tmp275 = tmp76*m;
+    const Scalar tmp276 = tmp95*m;
+    const Scalar tmp277 = tmp107*m;
+    const Scalar tmp278 = tmp19*(tmp209*tmp219 + tmp214*tmp216)
+        + tmp24*(tmp234*tmp242 + tmp238*tmp239) + tmp37*(tmp31*tmp85 + tmp75*tmp86)
+        + m*(tmp50*tmp95 + tmp76*tmp90);
+    const Scalar tmp279 = tmp19*(tmp213*tmp214 + tmp218*tmp219 + tmp221*tmp222)
+        + tmp24*(tmp237*tmp238 + tmp241*tmp242 + tmp244*tmp245)
+        + tmp37*(tmp110*tmp64 + tmp75*tmp79 + tmp85*tmp98)
+        + m*(tmp107*tmp192 + tmp76*tmp82 + tmp95*tmp101);
+    const Scalar tmp280 = tmp19*((tmp214*tmp214) + (tmp219*tmp219) + (tmp221*tmp221))
+        + tmp24*((tmp238*tmp238) + (tmp242*tmp242) + (tmp244*tmp244))
+        + tmp37*((tmp75*tmp75) + (tmp85*tmp85) + tmp272*(tmp4*tmp4))
+        + m*((tmp107*tmp107) + (tmp76*tmp76) + (tmp95*tmp95));
+    const Scalar tmp281 = g*m;
+    const Scalar tmp282 = -tmp281;
+    const Scalar tmp283 = tmp201*m;
+    const Scalar tmp284 = tmp204*m;
+    const Scalar tmp285 = tmp207*m;
+    const Scalar tmp286 = tmp19*tmp228;
+    const Scalar tmp287 = tmp19*tmp230;
+    const Scalar tmp288 = tmp24*tmp251;
+    const Scalar tmp289 = tmp24*tmp253;
+    const Scalar tmp290 = tmp37*tmp261;
+    const Scalar tmp291 = tmp37*tmp262;
+    const Scalar tmp292 = tmp19*tmp232;
+    const Scalar tmp293 = tmp24*tmp256;
+    const Scalar tmp294 = tmp37*tmp263;
+    const Scalar tmp295 = tmp192*tmp282;
+    const Scalar tmp296 = tmp107*tmp282;
+    const Scalar tmp297 = -tmp283;
+    const Scalar tmp298 = -tmp284;
+    const Scalar tmp299 = -tmp285;
+    const Scalar tmp300 = -tmp209*tmp287 - tmp216*tmp286 - tmp234*tmp289 - tmp239*tmp288
+        - tmp31*tmp291 - tmp50*tmp284 - tmp86*tmp290 - tmp90*tmp283;
+    const Scalar tmp301 = -tmp192*tmp285 - tmp213*tmp286 - tmp218*tmp287 - tmp222*tmp292
+        - tmp237*tmp288 - tmp241*tmp289 - tmp245*tmp293 - tmp79*tmp290 - tmp82*tmp283 - tmp98*tmp291
+        - tmp101*tmp284 + tmp1*tmp3*tmp294;
+    const Scalar tmp302 = -tmp107*tmp285 - tmp214*tmp286 - tmp219*tmp287 - tmp221*tmp292
+        - tmp238*tmp288 - tmp242*tmp289 - tmp244*tmp293 - tmp75*tmp290 - tmp76*tmp283 - tmp85*tmp291
+        - tmp95*tmp284 + tmp4*tmp44*tmp294;
+    (*Mt)(0, 0) = m;
     (*Mt)(1, 0) = Scalar(0);
-    (*Mt)(1, 1) = tmp146;
+    (*Mt)(1, 1) = m;
     (*Mt)(2, 0) = Scalar(0);
     (*Mt)(2, 1) = Scalar(0);
-    (*Mt)(2, 2) = tmp146;
-    (*Mt)(3, 0) = tmp147;
-    (*Mt)(3, 1) = tmp148;
+    (*Mt)(2, 2) = m;
+    (*Mt)(3, 0) = tmp264;
+    (*Mt)(3, 1) = tmp265;
     (*Mt)(3, 2) = Scalar(0);
-    (*Mt)(3, 3) = tmp153;
-    (*Mt)(4, 0) = tmp155;
-    (*Mt)(4, 1) = tmp156;
-    (*Mt)(4, 2) = tmp157;
-    (*Mt)(4, 3) = tmp158;
-    (*Mt)(4, 4) = tmp167;
-    (*Mt)(5, 0) = tmp168;
-    (*Mt)(5, 1) = tmp169;
-    (*Mt)(5, 2) = tmp170;
-    (*Mt)(5, 3) = tmp171;
-    (*Mt)(5, 4) = tmp173;
-    (*Mt)(5, 5) = tmp174;
-    (*f)(0) = tmp193;
-    (*f)(1) = tmp194;
-    (*f)(2) = tmp175 + tmp195;
-    (*f)(3) = tmp196;
-    (*f)(4) = tmp191 + tmp197;
-    (*f)(5) = tmp192 + tmp198;
+    (*Mt)(3, 3) = tmp266;
+    (*Mt)(4, 0) = tmp267;
+    (*Mt)(4, 1) = tmp268;
+    (*Mt)(4, 2) = tmp269;
+    (*Mt)(4, 3) = tmp270;
+    (*Mt)(4, 4) = tmp274;
+    (*Mt)(5, 0) = tmp275;
+    (*Mt)(5, 1) = tmp276;
+    (*Mt)(5, 2) = tmp277;
+    (*Mt)(5, 3) = tmp278;
+    (*Mt)(5, 4) = tmp279;
+    (*Mt)(5, 5) = tmp280;
+    (*f)(0) = tmp297;
+    (*f)(1) = tmp298;
+    (*f)(2) = tmp282 + tmp299;
+    (*f)(3) = tmp300;
+    (*f)(4) = tmp295 + tmp301;
+    (*f)(5) = tmp296 + tmp302;
     (*Mt)(0, 1) = (*Mt)(1, 0);
     (*Mt)(0, 2) = (*Mt)(2, 0);
     (*Mt)(1, 2) = (*Mt)(2, 1);
@@ -1075,7 +1145,7 @@ struct RigidBodyEuler {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return r = tau (nq)
-  /// Ops: 752
+  /// Ops: 862
   template <typename Scalar>
   static QVector<Scalar> inverse_dynamics(const QVector<Scalar>& q,
                                           const QVector<Scalar>& v,
@@ -1097,227 +1167,241 @@ struct RigidBodyEuler {
     const Scalar pitch_ddot = qdd(4);
     const Scalar roll_ddot = qdd(5);
     const Scalar g = Scalar(params.g);
-    const Scalar m_a = Scalar(params.m_a);
-    const Scalar m_b = Scalar(params.m_b);
-    const Scalar m_c = Scalar(params.m_c);
-    const Scalar m_d = Scalar(params.m_d);
-    const Scalar tmp0 = cos(yaw);
-    const Scalar tmp1 = cos(pitch);
-    const Scalar tmp2 = Scalar(0.5)*tmp1;
-    const Scalar tmp3 = tmp0*tmp2;
-    const Scalar tmp5 = sin(yaw);
-    const Scalar tmp6 = tmp2*tmp5;
-    const Scalar tmp8 = sin(pitch);
-    const Scalar tmp9 = Scalar(0.5)*tmp8;
-    const Scalar tmp11 = tmp0*tmp9;
-    const Scalar tmp12 = tmp6*yaw_dot + tmp11*pitch_dot;
-    const Scalar tmp14 = tmp5*tmp9;
-    const Scalar tmp15 = tmp14*pitch_dot;
-    const Scalar tmp16 = tmp3*yaw_dot;
-    const Scalar tmp20 = cos(roll);
-    const Scalar tmp21 = Scalar(0.4)*tmp20;
-    const Scalar tmp22 = tmp21*tmp5;
-    const Scalar tmp23 = sin(roll);
-    const Scalar tmp24 = Scalar(0.4)*tmp23;
-    const Scalar tmp25 = tmp0*tmp24;
-    const Scalar tmp26 = tmp25*tmp8;
-    const Scalar tmp27 = tmp26 - tmp22;
-    const Scalar tmp29 = tmp0*tmp21;
-    const Scalar tmp30 = tmp24*tmp5;
-    const Scalar tmp31 = tmp30*tmp8;
-    const Scalar tmp32 = tmp29 + tmp31;
-    const Scalar tmp34 = tmp1*tmp24;
-    const Scalar tmp36 = tmp34*pitch_dot;
-    const Scalar tmp37 = tmp30 + tmp29*tmp8;
-    const Scalar tmp38 = -tmp32;
-    const Scalar tmp39 = tmp0*tmp36 + tmp37*roll_dot + tmp38*yaw_dot;
-    const Scalar tmp41 = tmp36*tmp5;
-    const Scalar tmp42 = -tmp25 + tmp22*tmp8;
-    const Scalar tmp44 = tmp24*tmp8;
-    const Scalar tmp45 = tmp1*tmp21;
-    const Scalar tmp47 = Scalar(0.3)*tmp23;
-    const Scalar tmp48 = tmp47*tmp5;
-    const Scalar tmp49 = Scalar(0.3)*tmp20;
-    const Scalar tmp50 = tmp0*tmp49;
-    const Scalar tmp51 = tmp50*tmp8;
-    const Scalar tmp52 = tmp48 + tmp51;
-    const Scalar tmp54 = tmp0*tmp47;
-    const Scalar tmp55 = tmp49*tmp5;
-    const Scalar tmp56 = tmp55*tmp8;
-    const Scalar tmp57 = tmp56 - tmp54;
-    const Scalar tmp59 = tmp1*tmp49;
-    const Scalar tmp61 = tmp59*pitch_dot;
-    const Scalar tmp62 = tmp54*tmp8;
-    const Scalar tmp63 = tmp62 - tmp55;
-    const Scalar tmp64 = -tmp63;
-    const Scalar tmp65 = -tmp57;
-    const Scalar tmp66 = tmp0*tmp61 + tmp64*roll_dot + tmp65*yaw_dot;
-    const Scalar tmp68 = tmp5*tmp61;
-    const Scalar tmp69 = tmp48*tmp8;
-    const Scalar tmp70 = tmp50 + tmp69;
-    const Scalar tmp71 = -tmp70;
-    const Scalar tmp73 = tmp49*tmp8;
-    const Scalar tmp74 = tmp1*tmp47;
-    const Scalar tmp76 = Scalar(0.2)*tmp1;
-    const Scalar tmp77 = Scalar(0.25)*tmp20;
-    const Scalar tmp78 = tmp0*tmp77;
-    const Scalar tmp79 = tmp8*tmp78;
-    const Scalar tmp80 = tmp79 + tmp0*tmp76;
-    const Scalar tmp81 = Scalar(0.25)*tmp23;
-    const Scalar tmp82 = tmp5*tmp81;
-    const Scalar tmp83 = tmp63 + tmp82;
-    const Scalar tmp84 = tmp80 + tmp83;
-    const Scalar tmp86 = tmp5*tmp77;
-    const Scalar tmp87 = tmp8*tmp86;
-    const Scalar tmp88 = tmp87 + tmp5*tmp76;
-    const Scalar tmp89 = tmp0*tmp81;
-    const Scalar tmp90 = tmp70 - tmp89;
-    const Scalar tmp91 = tmp88 + tmp90;
-    const Scalar tmp93 = Scalar(0.2)*tmp8;
-    const Scalar tmp94 = tmp1*tmp77;
-    const Scalar tmp95 = tmp74 + tmp94;
-    const Scalar tmp96 = tmp95 - tmp93;
-    const Scalar tmp98 = tmp1*tmp54;
-    const Scalar tmp99 = tmp98 + tmp0*tmp94 - tmp0*tmp93;
-    const Scalar tmp100 = tmp52 + tmp86 - tmp8*tmp89;
-    const Scalar tmp101 = -tmp91;
-    const Scalar tmp102 = tmp99*pitch_dot + tmp100*roll_dot + tmp101*yaw_dot;
-    const Scalar tmp104 = tmp1*tmp48;
-    const Scalar tmp105 = tmp104 + tmp5*tmp94 - tmp5*tmp93;
-    const Scalar tmp106 = tmp54 + tmp78 - tmp56 + tmp8*tmp82;
-    const Scalar tmp107 = -tmp106;
-    const Scalar tmp109 = -tmp1*tmp81 + Scalar(0.3)*tmp1*tmp20;
-    const Scalar tmp110 = tmp47*tmp8;
-    const Scalar tmp111 = -tmp76 - tmp110 - tmp77*tmp8;
-    const Scalar tmp113 = g*m_a;
-    const Scalar tmp114 = -tmp113;
-    const Scalar tmp115 = g*m_b;
-    const Scalar tmp116 = -tmp115;
-    const Scalar tmp117 = g*m_c;
-    const Scalar tmp118 = -tmp117;
-    const Scalar tmp119 = g*m_d;
-    const Scalar tmp120 = -tmp119;
-    const Scalar tmp121 = pitch_dot*(-tmp3*pitch_dot + Scalar(0.5)*tmp5*tmp8*yaw_dot)
-        + yaw_dot*(tmp15 - tmp16);
-    const Scalar tmp122 = pitch_dot*(-tmp6*pitch_dot - tmp11*yaw_dot) - tmp12*yaw_dot;
-    const Scalar tmp123 = tmp9*(pitch_dot*pitch_dot);
-    const Scalar tmp124 = tmp34*tmp5;
-    const Scalar tmp125 = -tmp27;
-    const Scalar tmp126 = -tmp42;
-    const Scalar tmp127 = pitch_dot*(-tmp26*pitch_dot - tmp124*yaw_dot
-            + Scalar(0.4)*tmp0*tmp1*tmp20*roll_dot)
-        + roll_dot*(tmp125*roll_dot + tmp126*yaw_dot + tmp1*tmp29*pitch_dot)
-        + yaw_dot*(-tmp41 + tmp125*yaw_dot + tmp126*roll_dot);
-    const Scalar tmp128 = tmp1*tmp22;
-    const Scalar tmp129 = tmp0*tmp34;
-    const Scalar tmp130 = tmp39*yaw_dot
-        + pitch_dot*(tmp128*roll_dot + tmp129*yaw_dot - tmp31*pitch_dot)
-        + roll_dot*(tmp128*pitch_dot + tmp37*yaw_dot + tmp38*roll_dot);
-    const Scalar tmp131 = tmp21*tmp8;
-    const Scalar tmp132 = pitch_dot*(-tmp36 - tmp131*roll_dot)
-        + roll_dot*(-tmp131*pitch_dot - tmp34*roll_dot);
-    const Scalar tmp133 = tmp5*tmp59;
-    const Scalar tmp134 = -tmp52;
-    const Scalar tmp135 = pitch_dot*(-tmp133*yaw_dot - tmp51*pitch_dot - tmp98*roll_dot)
-        + roll_dot*(tmp134*roll_dot + tmp70*yaw_dot - tmp98*pitch_dot)
-        + yaw_dot*(-tmp68 + tmp134*yaw_dot + tmp70*roll_dot);
-    const Scalar tmp136 = tmp66*yaw_dot
-        + pitch_dot*(-tmp56*pitch_dot - tmp104*roll_dot + Scalar(0.3)*tmp0*tmp1*tmp20*yaw_dot)
-        + roll_dot*(tmp64*yaw_dot + tmp65*roll_dot - tmp104*pitch_dot);
-    const Scalar tmp137 = pitch_dot*(-tmp61 + Scalar(0.3)*tmp23*tmp8*roll_dot)
-        + roll_dot*(tmp110*pitch_dot - tmp59*roll_dot);
-    const Scalar tmp138 = -tmp1*tmp89 + Scalar(0.3)*tmp0*tmp1*tmp20;
-    const Scalar tmp139 = -tmp105;
-    const Scalar tmp140 = pitch_dot*(tmp138*roll_dot + tmp139*yaw_dot + pitch_dot*(-tmp62 - tmp80))
-        + roll_dot*(tmp138*pitch_dot + tmp106*yaw_dot + roll_dot*(-tmp79 - tmp83))
-        + yaw_dot*(tmp139*pitch_dot + tmp106*roll_dot - tmp84*yaw_dot);
-    const Scalar tmp141 = -tmp1*tmp82 + Scalar(0.3)*tmp1*tmp20*tmp5;
-    const Scalar tmp142 = tmp102*yaw_dot
-        + pitch_dot*(tmp141*roll_dot + tmp99*yaw_dot + pitch_dot*(-tmp69 - tmp88))
-        + roll_dot*(tmp141*pitch_dot + tmp100*yaw_dot + roll_dot*(-tmp87 - tmp90));
-    const Scalar tmp143 = -tmp73;
-    const Scalar tmp144 = tmp143 + tmp8*tmp81;
-    const Scalar tmp145 = pitch_dot*(tmp144*roll_dot - tmp96*pitch_dot)
-        + roll_dot*(tmp144*pitch_dot - tmp95*roll_dot);
-    const Scalar tmp146 = m_a + m_b + m_c + m_d;
-    const Scalar tmp147 = tmp38*m_b + tmp65*m_c + tmp101*m_d - tmp6*m_a;
-    const Scalar tmp148 = tmp27*m_b + tmp3*m_a + tmp52*m_c + tmp84*m_d;
-    const Scalar tmp149 = (tmp5*tmp5);
-    const Scalar tmp150 = (tmp1*tmp1);
-    const Scalar tmp151 = Scalar(0.25)*tmp150;
-    const Scalar tmp152 = (tmp0*tmp0);
-    const Scalar tmp153 = m_a*(tmp149*tmp151 + tmp151*tmp152) + m_b*((tmp27*tmp27) + (tmp38*tmp38))
-        + m_c*((tmp52*tmp52) + (tmp65*tmp65)) + m_d*((tmp84*tmp84) + (tmp101*tmp101));
-    const Scalar tmp154 = tmp0*tmp59;
-    const Scalar tmp155 = tmp129*m_b + tmp154*m_c + tmp99*m_d - tmp11*m_a;
-    const Scalar tmp156 = tmp133*m_c + tmp105*m_d + tmp124*m_b - tmp14*m_a;
-    const Scalar tmp157 = tmp111*m_d - tmp2*m_a - tmp44*m_b - tmp73*m_c;
-    const Scalar tmp158 = m_b*(tmp129*tmp38 + tmp27*tmp124) + m_c*(tmp133*tmp52 + tmp154*tmp65)
-        + m_d*(tmp84*tmp105 + tmp99*tmp101);
-    const Scalar tmp159 = (tmp8*tmp8);
-    const Scalar tmp160 = Scalar(0.25)*tmp159;
-    const Scalar tmp161 = (tmp23*tmp23);
-    const Scalar tmp162 = Scalar(0.16000000000000003)*tmp161;
-    const Scalar tmp163 = tmp150*tmp162;
-    const Scalar tmp164 = (tmp20*tmp20);
-    const Scalar tmp165 = Scalar(0.09)*tmp164;
-    const Scalar tmp166 = tmp150*tmp165;
-    const Scalar tmp167 = m_a*(tmp151 + tmp149*tmp160 + tmp152*tmp160)
-        + m_b*(tmp149*tmp163 + tmp152*tmp163 + tmp159*tmp162)
-        + m_c*(tmp149*tmp166 + tmp152*tmp166 + tmp159*tmp165)
-        + m_d*((tmp99*tmp99) + (tmp105*tmp105) + (tmp111*tmp111));
-    const Scalar tmp168 = tmp37*m_b + tmp64*m_c + tmp100*m_d;
-    const Scalar tmp169 = tmp42*m_b + tmp71*m_c + tmp107*m_d;
-    const Scalar tmp170 = tmp45*m_b + tmp109*m_d - tmp74*m_c;
-    const Scalar tmp171 = m_b*(tmp27*tmp42 + tmp37*tmp38) + m_c*(tmp52*tmp71 + tmp64*tmp65)
-        + m_d*(tmp84*tmp107 + tmp100*tmp101);
-    const Scalar tmp172 = tmp1*tmp20*tmp23*tmp8;
-    const Scalar tmp173 = m_b*(-Scalar(0.16000000000000003)*tmp172 + tmp129*tmp37 + tmp42*tmp124)
-        + m_c*(Scalar(0.09)*tmp172 + tmp133*tmp71 + tmp154*tmp64)
-        + m_d*(tmp99*tmp100 + tmp105*tmp107 + tmp109*tmp111);
-    const Scalar tmp174 = m_b*((tmp37*tmp37) + (tmp42*tmp42)
-            + Scalar(0.16000000000000003)*tmp150*tmp164)
-        + m_c*((tmp64*tmp64) + (tmp71*tmp71) + Scalar(0.09)*tmp150*tmp161)
-        + m_d*((tmp100*tmp100) + (tmp107*tmp107) + (tmp109*tmp109));
-    const Scalar tmp175 = tmp114 + tmp116 + tmp118 + tmp120;
-    const Scalar tmp176 = tmp121*m_a;
-    const Scalar tmp177 = tmp122*m_a;
-    const Scalar tmp178 = tmp127*m_b;
-    const Scalar tmp179 = tmp130*m_b;
-    const Scalar tmp180 = tmp135*m_c;
-    const Scalar tmp181 = tmp136*m_c;
-    const Scalar tmp182 = tmp140*m_d;
-    const Scalar tmp183 = tmp142*m_d;
-    const Scalar tmp184 = tmp123*m_a;
-    const Scalar tmp185 = tmp132*m_b;
-    const Scalar tmp186 = tmp137*m_c;
-    const Scalar tmp187 = tmp145*m_d;
-    const Scalar tmp188 = tmp178 + tmp180 + tmp182 + tmp176;
-    const Scalar tmp189 = tmp179 + tmp181 + tmp183 + tmp177;
-    const Scalar tmp190 = tmp185 + tmp186 + tmp187 + tmp184;
-    const Scalar tmp191 = tmp111*tmp120 - tmp2*tmp114 - tmp44*tmp116 - tmp73*tmp118;
-    const Scalar tmp192 = tmp45*tmp116 + tmp109*tmp120 - tmp74*tmp118;
-    const Scalar tmp193 = -tmp188;
-    const Scalar tmp194 = -tmp189;
-    const Scalar tmp195 = -tmp190;
-    const Scalar tmp196 = -tmp178*tmp38 - tmp179*tmp27 - tmp180*tmp65 - tmp181*tmp52 - tmp182*tmp101
-        - tmp183*tmp84 - tmp3*tmp177 + Scalar(0.5)*tmp1*tmp5*tmp176;
-    const Scalar tmp197 = -tmp129*tmp178 - tmp133*tmp181 - tmp154*tmp180 - tmp179*tmp124
-        - tmp182*tmp99 - tmp183*tmp105 - tmp187*tmp111 + Scalar(0.5)*tmp1*tmp184
-        + Scalar(0.5)*tmp0*tmp8*tmp176 + Scalar(0.5)*tmp5*tmp8*tmp177
-        + Scalar(0.4)*tmp185*tmp23*tmp8 + Scalar(0.3)*tmp186*tmp20*tmp8;
-    const Scalar tmp198 = -tmp178*tmp37 - tmp179*tmp42 - tmp180*tmp64 - tmp181*tmp71 - tmp182*tmp100
-        - tmp183*tmp107 - tmp185*tmp45 - tmp187*tmp109 + Scalar(0.3)*tmp1*tmp186*tmp23;
+    const Scalar m = Scalar(params.m);
+    const Scalar com_x = Scalar(params.com_x);
+    const Scalar com_y = Scalar(params.com_y);
+    const Scalar com_z = Scalar(params.com_z);
+    const Scalar a = Scalar(params.a);
+    const Scalar b = Scalar(params.b);
+    const Scalar c = Scalar(params.c);
+    const Scalar tmp0 = sin(yaw);
+    const Scalar tmp1 = cos(roll);
+    const Scalar tmp2 = tmp0*tmp1;
+    const Scalar tmp3 = sin(pitch);
+    const Scalar tmp4 = sin(roll);
+    const Scalar tmp5 = cos(yaw);
+    const Scalar tmp6 = tmp4*tmp5;
+    const Scalar tmp7 = tmp3*tmp6;
+    const Scalar tmp8 = tmp7 - tmp2;
+    const Scalar tmp10 = (a*a);
+    const Scalar tmp11 = (b*b);
+    const Scalar tmp12 = m*(tmp10 + tmp11);
+    const Scalar tmp13 = (c*c);
+    const Scalar tmp14 = tmp10 + tmp13;
+    const Scalar tmp15 = tmp14*m;
+    const Scalar tmp16 = tmp11 + tmp13;
+    const Scalar tmp17 = tmp16*m;
+    const Scalar tmp18 = Scalar(0.005689254019167049)*tmp17 + Scalar(0.010556171822976032)*tmp15
+        - Scalar(0.01624542584214308)*tmp12;
+    const Scalar tmp19 = Scalar(0.041142942152109445)*tmp17 + Scalar(0.028423816083747767)*tmp12
+        - Scalar(0.027900091569190537)*tmp15;
+    const Scalar tmp23 = (Scalar(1)/tmp19);
+    const Scalar tmp24 = Scalar(0.021737886292675604)*tmp12 + Scalar(0.04006485617007295)*tmp15
+        - Scalar(0.020136075796081898)*tmp17 - tmp23*(tmp18*tmp18);
+    const Scalar tmp28 = tmp0*tmp4;
+    const Scalar tmp29 = tmp1*tmp5;
+    const Scalar tmp30 = tmp29*tmp3;
+    const Scalar tmp31 = tmp28 + tmp30;
+    const Scalar tmp32 = -Scalar(0.0257737061664756)*tmp12 - Scalar(0.003316897780257798)*tmp17
+        + Scalar(0.0290906039467334)*tmp14*m;
+    const Scalar tmp34 = (Scalar(1)/tmp24);
+    const Scalar tmp35 = tmp23*tmp32;
+    const Scalar tmp36 = -Scalar(0.03161742478199714)*tmp12 - Scalar(0.004414255047715874)*tmp15
+        - tmp18*tmp35 + Scalar(0.03603167982971302)*tmp16*m;
+    const Scalar tmp37 = -Scalar(0.008495035709756703)*tmp12 - tmp23*(tmp32*tmp32)
+        - tmp34*(tmp36*tmp36) + Scalar(0.02950190206578425)*tmp14*m
+        + Scalar(0.020659800310639128)*tmp16*m;
+    const Scalar tmp44 = cos(pitch);
+    const Scalar tmp45 = tmp44*tmp5;
+    const Scalar tmp48 = tmp44*com_x;
+    const Scalar tmp49 = tmp48*tmp5;
+    const Scalar tmp50 = tmp49 + tmp31*com_z + tmp8*com_y;
+    const Scalar tmp54 = tmp28*tmp3;
+    const Scalar tmp55 = tmp29 + tmp54;
+    const Scalar tmp56 = tmp2*tmp3;
+    const Scalar tmp57 = tmp56 - tmp6;
+    const Scalar tmp58 = tmp0*tmp44;
+    const Scalar tmp60 = tmp0*tmp48;
+    const Scalar tmp64 = tmp4*tmp44;
+    const Scalar tmp65 = tmp1*tmp44;
+    const Scalar tmp69 = tmp3*com_x;
+    const Scalar tmp70 = tmp64*com_y + tmp65*com_z;
+    const Scalar tmp71 = tmp70 - tmp69;
+    const Scalar tmp75 = -tmp8;
+    const Scalar tmp76 = tmp31*com_y + tmp75*com_z;
+    const Scalar tmp78 = tmp44*tmp6;
+    const Scalar tmp79 = tmp29*tmp44;
+    const Scalar tmp80 = tmp3*tmp5;
+    const Scalar tmp82 = tmp78*com_y + tmp79*com_z - tmp5*tmp69;
+    const Scalar tmp85 = -tmp55;
+    const Scalar tmp86 = -tmp57;
+    const Scalar tmp89 = tmp85*com_y + tmp86*com_z;
+    const Scalar tmp90 = tmp89 - tmp60;
+    const Scalar tmp95 = tmp57*com_y + tmp85*com_z;
+    const Scalar tmp97 = tmp28*tmp44;
+    const Scalar tmp98 = tmp2*tmp44;
+    const Scalar tmp99 = tmp0*tmp3;
+    const Scalar tmp101 = tmp97*com_y + tmp98*com_z - tmp0*tmp69;
+    const Scalar tmp107 = tmp65*com_y - tmp64*com_z;
+    const Scalar tmp109 = tmp3*tmp4;
+    const Scalar tmp110 = tmp1*tmp3;
+    const Scalar tmp112 = tmp48 + tmp109*com_y + tmp110*com_z;
+    const Scalar tmp189 = tmp76*roll_dot + tmp82*pitch_dot + tmp90*yaw_dot;
+    const Scalar tmp192 = -tmp112;
+    const Scalar tmp194 = tmp79*com_y - tmp78*com_z;
+    const Scalar tmp195 = -tmp101;
+    const Scalar tmp196 = tmp49 + tmp30*com_z + tmp7*com_y;
+    const Scalar tmp197 = tmp55*com_z + tmp86*com_y;
+    const Scalar tmp198 = -tmp31;
+    const Scalar tmp199 = tmp198*com_z + tmp75*com_y;
+    const Scalar tmp200 = tmp199 - tmp49;
+    const Scalar tmp201 = pitch_dot*(tmp194*roll_dot + tmp195*yaw_dot - tmp196*pitch_dot)
+        + roll_dot*(tmp194*pitch_dot + tmp197*yaw_dot + tmp199*roll_dot)
+        + yaw_dot*(tmp195*pitch_dot + tmp197*roll_dot + tmp200*yaw_dot);
+    const Scalar tmp202 = tmp98*com_y - tmp97*com_z;
+    const Scalar tmp203 = tmp60 + tmp54*com_y + tmp56*com_z;
+    const Scalar tmp204 = tmp189*yaw_dot
+        + pitch_dot*(tmp202*roll_dot + tmp82*yaw_dot - tmp203*pitch_dot)
+        + roll_dot*(tmp202*pitch_dot + tmp76*yaw_dot + tmp89*roll_dot);
+    const Scalar tmp205 = tmp110*com_y - tmp3*tmp4*com_z;
+    const Scalar tmp206 = -tmp205;
+    const Scalar tmp207 = pitch_dot*(tmp206*roll_dot - tmp71*pitch_dot)
+        + roll_dot*(tmp206*pitch_dot - tmp70*roll_dot);
+    const Scalar tmp208 = tmp18*tmp23;
+    const Scalar tmp209 = tmp45 + tmp208*tmp8 + tmp31*tmp35;
+    const Scalar tmp211 = tmp208*tmp64 + tmp35*tmp65;
+    const Scalar tmp212 = tmp211 - tmp3;
+    const Scalar tmp213 = -tmp80 + tmp208*tmp78 + tmp35*tmp79;
+    const Scalar tmp214 = tmp208*tmp31 + tmp35*tmp75;
+    const Scalar tmp215 = tmp208*tmp85 + tmp35*tmp86;
+    const Scalar tmp216 = tmp215 - tmp58;
+    const Scalar tmp217 = tmp213*pitch_dot + tmp214*roll_dot + tmp216*yaw_dot;
+    const Scalar tmp218 = -tmp99 + tmp208*tmp97 + tmp35*tmp98;
+    const Scalar tmp219 = tmp208*tmp57 + tmp35*tmp85;
+    const Scalar tmp221 = -tmp35*tmp64 + tmp1*tmp18*tmp23*tmp44;
+    const Scalar tmp222 = -tmp44 - tmp109*tmp208 - tmp110*tmp35;
+    const Scalar tmp224 = -tmp35*tmp78 + tmp1*tmp18*tmp23*tmp44*tmp5;
+    const Scalar tmp225 = -tmp218;
+    const Scalar tmp226 = tmp208*tmp86 + tmp35*tmp55;
+    const Scalar tmp227 = tmp198*tmp35 + tmp208*tmp75;
+    const Scalar tmp228 = pitch_dot*(tmp224*roll_dot + tmp225*yaw_dot
+            + pitch_dot*(-tmp45 - tmp208*tmp7 - tmp30*tmp35))
+        + roll_dot*(tmp224*pitch_dot + tmp226*yaw_dot + tmp227*roll_dot)
+        + yaw_dot*(tmp225*pitch_dot + tmp226*roll_dot + yaw_dot*(tmp227 - tmp45));
+    const Scalar tmp229 = -tmp35*tmp97 + tmp0*tmp1*tmp18*tmp23*tmp44;
+    const Scalar tmp230 = tmp217*yaw_dot
+        + pitch_dot*(tmp213*yaw_dot + tmp229*roll_dot
+            + pitch_dot*(-tmp58 - tmp208*tmp54 - tmp35*tmp56))
+        + roll_dot*(tmp214*yaw_dot + tmp215*roll_dot + tmp229*pitch_dot);
+    const Scalar tmp231 = tmp109*tmp35 - tmp110*tmp208;
+    const Scalar tmp232 = pitch_dot*(tmp231*roll_dot - tmp212*pitch_dot)
+        + roll_dot*(tmp231*pitch_dot - tmp211*roll_dot);
+    const Scalar tmp233 = tmp34*tmp36;
+    const Scalar tmp234 = tmp8 + tmp233*tmp31;
+    const Scalar tmp236 = tmp64 + tmp233*tmp65;
+    const Scalar tmp237 = tmp78 + tmp233*tmp79;
+    const Scalar tmp238 = tmp31 + tmp233*tmp75;
+    const Scalar tmp239 = -tmp55 + tmp34*tmp36*tmp86;
+    const Scalar tmp240 = tmp237*pitch_dot + tmp238*roll_dot + tmp239*yaw_dot;
+    const Scalar tmp241 = tmp97 + tmp233*tmp98;
+    const Scalar tmp242 = tmp57 + tmp233*tmp85;
+    const Scalar tmp244 = tmp1*tmp44 - tmp233*tmp64;
+    const Scalar tmp245 = -tmp109 - tmp110*tmp233;
+    const Scalar tmp247 = -tmp233*tmp78 + tmp1*tmp44*tmp5;
+    const Scalar tmp248 = -tmp241;
+    const Scalar tmp249 = tmp6 - tmp56 + tmp233*tmp55;
+    const Scalar tmp250 = tmp2 - tmp7 + tmp198*tmp233;
+    const Scalar tmp251 = pitch_dot*(tmp247*roll_dot + tmp248*yaw_dot
+            + pitch_dot*(-tmp7 - tmp233*tmp30))
+        + roll_dot*(tmp247*pitch_dot + tmp249*yaw_dot + tmp250*roll_dot)
+        + yaw_dot*(tmp248*pitch_dot + tmp249*roll_dot + tmp250*yaw_dot);
+    const Scalar tmp252 = -tmp233*tmp97 + tmp0*tmp1*tmp44;
+    const Scalar tmp253 = tmp240*yaw_dot
+        + pitch_dot*(tmp237*yaw_dot + tmp252*roll_dot + pitch_dot*(-tmp54 - tmp233*tmp56))
+        + roll_dot*(tmp238*yaw_dot + tmp239*roll_dot + tmp252*pitch_dot);
+    const Scalar tmp254 = -tmp110 + tmp109*tmp233;
+    const Scalar tmp255 = -tmp236;
+    const Scalar tmp256 = pitch_dot*(tmp254*roll_dot + tmp255*pitch_dot)
+        + roll_dot*(tmp254*pitch_dot + tmp255*roll_dot);
+    const Scalar tmp257 = tmp75*roll_dot + tmp79*pitch_dot + tmp86*yaw_dot;
+    const Scalar tmp258 = tmp98*pitch_dot;
+    const Scalar tmp261 = pitch_dot*(-tmp30*pitch_dot - tmp78*roll_dot - tmp98*yaw_dot)
+        + roll_dot*(tmp198*roll_dot + tmp55*yaw_dot - tmp78*pitch_dot)
+        + yaw_dot*(-tmp258 + tmp198*yaw_dot + tmp55*roll_dot);
+    const Scalar tmp262 = tmp257*yaw_dot
+        + pitch_dot*(-tmp56*pitch_dot - tmp97*roll_dot + tmp1*tmp44*tmp5*yaw_dot)
+        + roll_dot*(tmp75*yaw_dot + tmp86*roll_dot - tmp97*pitch_dot);
+    const Scalar tmp263 = pitch_dot*(-tmp65*pitch_dot + tmp3*tmp4*roll_dot)
+        + roll_dot*(tmp109*pitch_dot - tmp65*roll_dot);
+    const Scalar tmp264 = tmp90*m;
+    const Scalar tmp265 = tmp50*m;
+    const Scalar tmp266 = tmp19*((tmp209*tmp209) + (tmp216*tmp216))
+        + tmp24*((tmp234*tmp234) + (tmp239*tmp239)) + tmp37*((tmp31*tmp31) + (tmp86*tmp86))
+        + m*((tmp50*tmp50) + (tmp90*tmp90));
+    const Scalar tmp267 = tmp82*m;
+    const Scalar tmp268 = tmp101*m;
+    const Scalar tmp269 = tmp192*m;
+    const Scalar tmp270 = tmp19*(tmp209*tmp218 + tmp213*tmp216)
+        + tmp24*(tmp234*tmp241 + tmp237*tmp239) + tmp37*(tmp31*tmp98 + tmp79*tmp86)
+        + m*(tmp50*tmp101 + tmp82*tmp90);
+    const Scalar tmp271 = (tmp1*tmp1);
+    const Scalar tmp272 = (tmp44*tmp44);
+    const Scalar tmp273 = tmp271*tmp272;
+    const Scalar tmp274 = tmp19*((tmp213*tmp213) + (tmp218*tmp218) + (tmp222*tmp222))
+        + tmp24*((tmp237*tmp237) + (tmp241*tmp241) + (tmp245*tmp245))
+        + tmp37*(tmp271*(tmp3*tmp3) + tmp273*(tmp0*tmp0) + tmp273*(tmp5*tmp5))
+        + m*((tmp192*tmp192) + (tmp82*tmp82) + (tmp101*tmp101));
+    const Scalar tmp275 = tmp76*m;
+    const Scalar tmp276 = tmp95*m;
+    const Scalar tmp277 = tmp107*m;
+    const Scalar tmp278 = tmp19*(tmp209*tmp219 + tmp214*tmp216)
+        + tmp24*(tmp234*tmp242 + tmp238*tmp239) + tmp37*(tmp31*tmp85 + tmp75*tmp86)
+        + m*(tmp50*tmp95 + tmp76*tmp90);
+    const Scalar tmp279 = tmp19*(tmp213*tmp214 + tmp218*tmp219 + tmp221*tmp222)
+        + tmp24*(tmp237*tmp238 + tmp241*tmp242 + tmp244*tmp245)
+        + tmp37*(tmp110*tmp64 + tmp75*tmp79 + tmp85*tmp98)
+        + m*(tmp107*tmp192 + tmp76*tmp82 + tmp95*tmp101);
+    const Scalar tmp280 = tmp19*((tmp214*tmp214) + (tmp219*tmp219) + (tmp221*tmp221))
+        + tmp24*((tmp238*tmp238) + (tmp242*tmp242) + (tmp244*tmp244))
+        + tmp37*((tmp75*tmp75) + (tmp85*tmp85) + tmp272*(tmp4*tmp4))
+        + m*((tmp107*tmp107) + (tmp76*tmp76) + (tmp95*tmp95));
+    const Scalar tmp281 = g*m;
+    const Scalar tmp282 = -tmp281;
+    const Scalar tmp283 = tmp201*m;
+    const Scalar tmp284 = tmp204*m;
+    const Scalar tmp285 = tmp207*m;
+    const Scalar tmp286 = tmp19*tmp228;
+    const Scalar tmp287 = tmp19*tmp230;
+    const Scalar tmp288 = tmp24*tmp251;
+    const Scalar tmp289 = tmp24*tmp253;
+    const Scalar tmp290 = tmp37*tmp261;
+    const Scalar tmp291 = tmp37*tmp262;
+    const Scalar tmp292 = tmp19*tmp232;
+    const Scalar tmp293 = tmp24*tmp256;
+    const Scalar tmp294 = tmp37*tmp263;
+    const Scalar tmp295 = tmp192*tmp282;
+    const Scalar tmp296 = tmp107*tmp282;
+    const Scalar tmp297 = -tmp283;
+    const Scalar tmp298 = -tmp284;
+    const Scalar tmp299 = -tmp285;
+    const Scalar tmp300 = -tmp209*tmp287 - tmp216*tmp286 - tmp234*tmp289 - tmp239*tmp288
+        - tmp31*tmp291 - tmp50*tmp284 - tmp86*tmp290 - tmp90*tmp283;
+    const Scalar tmp301 = -tmp192*tmp285 - tmp213*tmp286 - tmp218*tmp287 - tmp222*tmp292
+        - tmp237*tmp288 - tmp241*tmp289 - tmp245*tmp293 - tmp79*tmp290 - tmp82*tmp283 - tmp98*tmp291
+        - tmp101*tmp284 + tmp1*tmp3*tmp294;
+    const Scalar tmp302 = -tmp107*tmp285 - tmp214*tmp286 - tmp219*tmp287 - tmp221*tmp292
+        - tmp238*tmp288 - tmp242*tmp289 - tmp244*tmp293 - tmp75*tmp290 - tmp76*tmp283 - tmp85*tmp291
+        - tmp95*tmp284 + tmp4*tmp44*tmp294;
     QVector<Scalar> result;
-    result(0) = -tmp193 + tmp146*x_ddot + tmp147*yaw_ddot + tmp155*pitch_ddot + tmp168*roll_ddot;
-    result(1) = -tmp194 + tmp146*y_ddot + tmp148*yaw_ddot + tmp156*pitch_ddot + tmp169*roll_ddot;
-    result(2) = -tmp175 - tmp195 + tmp146*z_ddot + tmp157*pitch_ddot + tmp170*roll_ddot;
-    result(3) = -tmp196 + tmp147*x_ddot + tmp148*y_ddot + tmp153*yaw_ddot + tmp158*pitch_ddot
-        + tmp171*roll_ddot;
-    result(4) = -tmp191 - tmp197 + tmp155*x_ddot + tmp156*y_ddot + tmp157*z_ddot + tmp158*yaw_ddot
-        + tmp167*pitch_ddot + tmp173*roll_ddot;
-    result(5) = -tmp192 - tmp198 + tmp168*x_ddot + tmp169*y_ddot + tmp170*z_ddot + tmp171*yaw_ddot
-        + tmp173*pitch_ddot + tmp174*roll_ddot;
+    result(0) = -tmp297 + tmp264*yaw_ddot + tmp267*pitch_ddot + tmp275*roll_ddot + m*x_ddot;
+    result(1) = -tmp298 + tmp265*yaw_ddot + tmp268*pitch_ddot + tmp276*roll_ddot + m*y_ddot;
+    result(2) = -tmp282 - tmp299 + tmp269*pitch_ddot + tmp277*roll_ddot + m*z_ddot;
+    result(3) = -tmp300 + tmp264*x_ddot + tmp265*y_ddot + tmp266*yaw_ddot + tmp270*pitch_ddot
+        + tmp278*roll_ddot;
+    result(4) = -tmp295 - tmp301 + tmp267*x_ddot + tmp268*y_ddot + tmp269*z_ddot + tmp270*yaw_ddot
+        + tmp274*pitch_ddot + tmp279*roll_ddot;
+    result(5) = -tmp296 - tmp302 + tmp275*x_ddot + tmp276*y_ddot + tmp277*z_ddot + tmp278*yaw_ddot
+        + tmp279*pitch_ddot + tmp280*roll_ddot;
     return result;
   }
 
@@ -1328,7 +1412,7 @@ struct RigidBodyEuler {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// dr_dq and dr_dv must not be null.
-  /// Ops: 3343
+  /// Ops: 3964
   template <typename Scalar>
   static void residual_jacobians(const QVector<Scalar>& q,
                                  const QVector<Scalar>& v,
@@ -1352,861 +1436,912 @@ struct RigidBodyEuler {
     const Scalar pitch_ddot = qdd(4);
     const Scalar roll_ddot = qdd(5);
     const Scalar g = Scalar(params.g);
-    const Scalar m_a = Scalar(params.m_a);
-    const Scalar m_b = Scalar(params.m_b);
-    const Scalar m_c = Scalar(params.m_c);
-    const Scalar m_d = Scalar(params.m_d);
-    const Scalar tmp0 = cos(yaw);
-    const Scalar tmp1 = cos(pitch);
-    const Scalar tmp2 = Scalar(0.5)*tmp1;
-    const Scalar tmp3 = tmp0*tmp2;
-    const Scalar tmp5 = sin(yaw);
-    const Scalar tmp6 = tmp2*tmp5;
-    const Scalar tmp8 = sin(pitch);
-    const Scalar tmp9 = Scalar(0.5)*tmp8;
-    const Scalar tmp11 = tmp0*tmp9;
-    const Scalar tmp12 = tmp6*yaw_dot + tmp11*pitch_dot;
-    const Scalar tmp14 = tmp5*tmp9;
-    const Scalar tmp15 = tmp14*pitch_dot;
-    const Scalar tmp16 = tmp3*yaw_dot;
-    const Scalar tmp20 = cos(roll);
-    const Scalar tmp21 = Scalar(0.4)*tmp20;
-    const Scalar tmp22 = tmp21*tmp5;
-    const Scalar tmp23 = sin(roll);
-    const Scalar tmp24 = Scalar(0.4)*tmp23;
-    const Scalar tmp25 = tmp0*tmp24;
-    const Scalar tmp26 = tmp25*tmp8;
-    const Scalar tmp27 = tmp26 - tmp22;
-    const Scalar tmp29 = tmp0*tmp21;
-    const Scalar tmp30 = tmp24*tmp5;
-    const Scalar tmp31 = tmp30*tmp8;
-    const Scalar tmp32 = tmp29 + tmp31;
-    const Scalar tmp34 = tmp1*tmp24;
-    const Scalar tmp36 = tmp34*pitch_dot;
-    const Scalar tmp37 = tmp30 + tmp29*tmp8;
-    const Scalar tmp38 = -tmp32;
-    const Scalar tmp39 = tmp0*tmp36 + tmp37*roll_dot + tmp38*yaw_dot;
-    const Scalar tmp41 = tmp36*tmp5;
-    const Scalar tmp42 = -tmp25 + tmp22*tmp8;
-    const Scalar tmp45 = tmp1*tmp21;
-    const Scalar tmp47 = Scalar(0.3)*tmp23;
-    const Scalar tmp48 = tmp47*tmp5;
-    const Scalar tmp49 = Scalar(0.3)*tmp20;
-    const Scalar tmp50 = tmp0*tmp49;
-    const Scalar tmp51 = tmp50*tmp8;
-    const Scalar tmp52 = tmp48 + tmp51;
-    const Scalar tmp54 = tmp0*tmp47;
-    const Scalar tmp55 = tmp49*tmp5;
-    const Scalar tmp56 = tmp55*tmp8;
-    const Scalar tmp57 = tmp56 - tmp54;
-    const Scalar tmp59 = tmp1*tmp49;
-    const Scalar tmp61 = tmp59*pitch_dot;
-    const Scalar tmp62 = tmp54*tmp8;
-    const Scalar tmp63 = tmp62 - tmp55;
-    const Scalar tmp64 = -tmp63;
-    const Scalar tmp65 = -tmp57;
-    const Scalar tmp66 = tmp0*tmp61 + tmp64*roll_dot + tmp65*yaw_dot;
-    const Scalar tmp68 = tmp5*tmp61;
-    const Scalar tmp69 = tmp48*tmp8;
-    const Scalar tmp70 = tmp50 + tmp69;
-    const Scalar tmp71 = -tmp70;
-    const Scalar tmp73 = tmp49*tmp8;
-    const Scalar tmp74 = tmp1*tmp47;
-    const Scalar tmp76 = Scalar(0.2)*tmp1;
-    const Scalar tmp77 = Scalar(0.25)*tmp20;
-    const Scalar tmp78 = tmp0*tmp77;
-    const Scalar tmp79 = tmp8*tmp78;
-    const Scalar tmp80 = tmp79 + tmp0*tmp76;
-    const Scalar tmp81 = Scalar(0.25)*tmp23;
-    const Scalar tmp82 = tmp5*tmp81;
-    const Scalar tmp83 = tmp63 + tmp82;
-    const Scalar tmp84 = tmp80 + tmp83;
-    const Scalar tmp86 = tmp5*tmp77;
-    const Scalar tmp87 = tmp8*tmp86;
-    const Scalar tmp88 = tmp87 + tmp5*tmp76;
-    const Scalar tmp89 = tmp0*tmp81;
-    const Scalar tmp90 = tmp70 - tmp89;
-    const Scalar tmp91 = tmp88 + tmp90;
-    const Scalar tmp93 = Scalar(0.2)*tmp8;
-    const Scalar tmp94 = tmp1*tmp77;
-    const Scalar tmp95 = tmp74 + tmp94;
-    const Scalar tmp96 = tmp95 - tmp93;
-    const Scalar tmp98 = tmp1*tmp54;
-    const Scalar tmp99 = tmp98 + tmp0*tmp94 - tmp0*tmp93;
-    const Scalar tmp100 = tmp52 + tmp86 - tmp8*tmp89;
-    const Scalar tmp101 = -tmp91;
-    const Scalar tmp102 = tmp99*pitch_dot + tmp100*roll_dot + tmp101*yaw_dot;
-    const Scalar tmp104 = tmp1*tmp48;
-    const Scalar tmp105 = tmp104 + tmp5*tmp94 - tmp5*tmp93;
-    const Scalar tmp106 = tmp54 + tmp78 - tmp56 + tmp8*tmp82;
-    const Scalar tmp107 = -tmp106;
-    const Scalar tmp109 = -tmp1*tmp81 + Scalar(0.3)*tmp1*tmp20;
-    const Scalar tmp110 = tmp47*tmp8;
-    const Scalar tmp111 = -tmp76 - tmp110 - tmp77*tmp8;
-    const Scalar tmp113 = g*m_a;
-    const Scalar tmp114 = -tmp113;
-    const Scalar tmp115 = g*m_b;
-    const Scalar tmp116 = -tmp115;
-    const Scalar tmp117 = g*m_c;
-    const Scalar tmp118 = -tmp117;
-    const Scalar tmp119 = g*m_d;
-    const Scalar tmp120 = -tmp119;
-    const Scalar tmp121 = pitch_dot*(-tmp3*pitch_dot + Scalar(0.5)*tmp5*tmp8*yaw_dot)
-        + yaw_dot*(tmp15 - tmp16);
-    const Scalar tmp122 = pitch_dot*(-tmp6*pitch_dot - tmp11*yaw_dot) - tmp12*yaw_dot;
-    const Scalar tmp123 = tmp9*(pitch_dot*pitch_dot);
-    const Scalar tmp124 = tmp34*tmp5;
-    const Scalar tmp125 = -tmp27;
-    const Scalar tmp126 = -tmp42;
-    const Scalar tmp127 = pitch_dot*(-tmp26*pitch_dot - tmp124*yaw_dot
-            + Scalar(0.4)*tmp0*tmp1*tmp20*roll_dot)
-        + roll_dot*(tmp125*roll_dot + tmp126*yaw_dot + tmp1*tmp29*pitch_dot)
-        + yaw_dot*(-tmp41 + tmp125*yaw_dot + tmp126*roll_dot);
-    const Scalar tmp128 = tmp1*tmp22;
-    const Scalar tmp129 = tmp0*tmp34;
-    const Scalar tmp130 = tmp39*yaw_dot
-        + pitch_dot*(tmp128*roll_dot + tmp129*yaw_dot - tmp31*pitch_dot)
-        + roll_dot*(tmp128*pitch_dot + tmp37*yaw_dot + tmp38*roll_dot);
-    const Scalar tmp131 = tmp21*tmp8;
-    const Scalar tmp132 = pitch_dot*(-tmp36 - tmp131*roll_dot)
-        + roll_dot*(-tmp131*pitch_dot - tmp34*roll_dot);
-    const Scalar tmp133 = tmp5*tmp59;
-    const Scalar tmp134 = -tmp52;
-    const Scalar tmp135 = pitch_dot*(-tmp133*yaw_dot - tmp51*pitch_dot - tmp98*roll_dot)
-        + roll_dot*(tmp134*roll_dot + tmp70*yaw_dot - tmp98*pitch_dot)
-        + yaw_dot*(-tmp68 + tmp134*yaw_dot + tmp70*roll_dot);
-    const Scalar tmp136 = tmp66*yaw_dot
-        + pitch_dot*(-tmp56*pitch_dot - tmp104*roll_dot + Scalar(0.3)*tmp0*tmp1*tmp20*yaw_dot)
-        + roll_dot*(tmp64*yaw_dot + tmp65*roll_dot - tmp104*pitch_dot);
-    const Scalar tmp137 = pitch_dot*(-tmp61 + Scalar(0.3)*tmp23*tmp8*roll_dot)
-        + roll_dot*(tmp110*pitch_dot - tmp59*roll_dot);
-    const Scalar tmp138 = -tmp1*tmp89 + Scalar(0.3)*tmp0*tmp1*tmp20;
-    const Scalar tmp139 = -tmp105;
-    const Scalar tmp140 = pitch_dot*(tmp138*roll_dot + tmp139*yaw_dot + pitch_dot*(-tmp62 - tmp80))
-        + roll_dot*(tmp138*pitch_dot + tmp106*yaw_dot + roll_dot*(-tmp79 - tmp83))
-        + yaw_dot*(tmp139*pitch_dot + tmp106*roll_dot - tmp84*yaw_dot);
-    const Scalar tmp141 = -tmp1*tmp82 + Scalar(0.3)*tmp1*tmp20*tmp5;
-    const Scalar tmp142 = tmp102*yaw_dot
-        + pitch_dot*(tmp141*roll_dot + tmp99*yaw_dot + pitch_dot*(-tmp69 - tmp88))
-        + roll_dot*(tmp141*pitch_dot + tmp100*yaw_dot + roll_dot*(-tmp87 - tmp90));
-    const Scalar tmp143 = -tmp73;
-    const Scalar tmp144 = tmp143 + tmp8*tmp81;
-    const Scalar tmp145 = pitch_dot*(tmp144*roll_dot - tmp96*pitch_dot)
-        + roll_dot*(tmp144*pitch_dot - tmp95*roll_dot);
-    const Scalar tmp149 = (tmp5*tmp5);
-    const Scalar tmp150 = (tmp1*tmp1);
-    const Scalar tmp151 = Scalar(0.25)*tmp150;
-    const Scalar tmp152 = (tmp0*tmp0);
-    const Scalar tmp154 = tmp0*tmp59;
-    const Scalar tmp159 = (tmp8*tmp8);
-    const Scalar tmp160 = Scalar(0.25)*tmp159;
-    const Scalar tmp161 = (tmp23*tmp23);
-    const Scalar tmp162 = Scalar(0.16000000000000003)*tmp161;
-    const Scalar tmp163 = tmp150*tmp162;
-    const Scalar tmp164 = (tmp20*tmp20);
-    const Scalar tmp165 = Scalar(0.09)*tmp164;
-    const Scalar tmp166 = tmp150*tmp165;
-    const Scalar tmp176 = tmp121*m_a;
-    const Scalar tmp177 = tmp122*m_a;
-    const Scalar tmp178 = tmp127*m_b;
-    const Scalar tmp179 = tmp130*m_b;
-    const Scalar tmp180 = tmp135*m_c;
-    const Scalar tmp181 = tmp136*m_c;
-    const Scalar tmp182 = tmp140*m_d;
-    const Scalar tmp183 = tmp142*m_d;
-    const Scalar tmp184 = tmp123*m_a;
-    const Scalar tmp185 = tmp132*m_b;
-    const Scalar tmp186 = tmp137*m_c;
-    const Scalar tmp187 = tmp145*m_d;
-    const Scalar tmp283 = -tmp5;
-    const Scalar tmp284 = tmp2*tmp283;
-    const Scalar tmp285 = tmp2*tmp0;
-    const Scalar tmp286 = tmp9*tmp283;
-    const Scalar tmp287 = yaw_dot*tmp285 + pitch_dot*tmp286;
-    const Scalar tmp288 = tmp9*tmp0;
-    const Scalar tmp289 = pitch_dot*tmp288;
-    const Scalar tmp290 = yaw_dot*tmp284;
-    const Scalar tmp291 = tmp21*tmp0;
-    const Scalar tmp292 = tmp24*tmp283;
-    const Scalar tmp293 = tmp8*tmp292;
-    const Scalar tmp294 = -tmp291 + tmp293;
-    const Scalar tmp295 = tmp21*tmp283;
-    const Scalar tmp296 = tmp24*tmp0;
-    const Scalar tmp297 = tmp8*tmp296;
-    const Scalar tmp298 = tmp295 + tmp297;
-    const Scalar tmp299 = tmp8*tmp295 + tmp296;
-    const Scalar tmp300 = -tmp298;
-    const Scalar tmp301 = tmp36*tmp283 + roll_dot*tmp299 + yaw_dot*tmp300;
-    const Scalar tmp302 = tmp36*tmp0;
-    const Scalar tmp303 = tmp8*tmp291 - tmp292;
-    const Scalar tmp304 = tmp47*tmp0;
-    const Scalar tmp305 = tmp49*tmp283;
-    const Scalar tmp306 = tmp8*tmp305;
-    const Scalar tmp307 = tmp304 + tmp306;
-    const Scalar tmp308 = tmp47*tmp283;
-    const Scalar tmp309 = tmp49*tmp0;
-    const Scalar tmp310 = tmp8*tmp309;
-    const Scalar tmp311 = -tmp308 + tmp310;
-    const Scalar tmp312 = tmp8*tmp308;
-    const Scalar tmp313 = -tmp309 + tmp312;
-    const Scalar tmp314 = -tmp313;
-    const Scalar tmp315 = -tmp311;
-    const Scalar tmp316 = tmp61*tmp283 + roll_dot*tmp314 + yaw_dot*tmp315;
-    const Scalar tmp317 = tmp61*tmp0;
-    const Scalar tmp318 = tmp8*tmp304;
-    const Scalar tmp319 = tmp305 + tmp318;
-    const Scalar tmp320 = -tmp319;
-    const Scalar tmp321 = tmp77*tmp283;
-    const Scalar tmp322 = tmp8*tmp321;
-    const Scalar tmp323 = tmp76*tmp283 + tmp322;
-    const Scalar tmp324 = tmp81*tmp0;
-    const Scalar tmp325 = tmp313 + tmp324;
-    const Scalar tmp326 = tmp323 + tmp325;
-    const Scalar tmp327 = tmp77*tmp0;
-    const Scalar tmp328 = tmp8*tmp327;
-    const Scalar tmp329 = tmp76*tmp0 + tmp328;
-    const Scalar tmp330 = tmp81*tmp283;
-    const Scalar tmp331 = tmp319 - tmp330;
-    const Scalar tmp332 = tmp329 + tmp331;
-    const Scalar tmp333 = tmp1*tmp308;
-    const Scalar tmp334 = (tmp94 - tmp93)*tmp283 + tmp333;
-    const Scalar tmp335 = tmp307 + tmp327 - tmp8*tmp330;
-    const Scalar tmp336 = -tmp332;
-    const Scalar tmp337 = pitch_dot*tmp334 + roll_dot*tmp335 + yaw_dot*tmp336;
-    const Scalar tmp338 = tmp1*tmp304;
-    const Scalar tmp339 = (tmp94 - tmp93)*tmp0 + tmp338;
-    const Scalar tmp340 = tmp308 - tmp310 + tmp321 + tmp8*tmp324;
-    const Scalar tmp341 = -tmp340;
-    const Scalar tmp342 = yaw_dot*tmp289 - yaw_dot*tmp290 - (pitch_dot*pitch_dot)*tmp284
-        + Scalar(0.5)*tmp8*pitch_dot*yaw_dot*tmp0;
-    const Scalar tmp343 = -(pitch_dot*pitch_dot)*tmp285 - pitch_dot*yaw_dot*tmp286 - yaw_dot*tmp287;
-    const Scalar tmp344 = tmp34*tmp0;
-    const Scalar tmp345 = -tmp294;
-    const Scalar tmp346 = -tmp303;
-    const Scalar tmp347 = Scalar(0.4)*tmp1*tmp20*pitch_dot*roll_dot*tmp283
-        - (pitch_dot*pitch_dot)*tmp293 + tmp1*pitch_dot*roll_dot*tmp295 - yaw_dot*tmp302
-        - pitch_dot*yaw_dot*tmp344 + ((roll_dot*roll_dot) + (yaw_dot*yaw_dot))*tmp345
-        + Scalar(2)*roll_dot*yaw_dot*tmp346;
-    const Scalar tmp348 = tmp1*tmp291;
-    const Scalar tmp349 = tmp34*tmp283;
-    const Scalar tmp350 = Scalar(2)*pitch_dot*roll_dot*tmp348 + pitch_dot*yaw_dot*tmp349
-        - (pitch_dot*pitch_dot)*tmp297 + roll_dot*yaw_dot*tmp299 + (roll_dot*roll_dot)*tmp300
-        + yaw_dot*tmp301;
-    const Scalar tmp351 = tmp59*tmp0;
-    const Scalar tmp352 = -tmp307;
-    const Scalar tmp353 = -pitch_dot*yaw_dot*tmp351
-        + ((roll_dot*roll_dot) + (yaw_dot*yaw_dot))*tmp352 - (pitch_dot*pitch_dot)*tmp306
-        - yaw_dot*tmp317 + Scalar(2)*roll_dot*yaw_dot*tmp319 - Scalar(2)*pitch_dot*roll_dot*tmp333;
-    const Scalar tmp354 = Scalar(0.3)*tmp1*tmp20*pitch_dot*yaw_dot*tmp283
-        - (pitch_dot*pitch_dot)*tmp310 + roll_dot*yaw_dot*tmp314 + (roll_dot*roll_dot)*tmp315
-        + yaw_dot*tmp316 - Scalar(2)*pitch_dot*roll_dot*tmp338;
-    const Scalar tmp355 = Scalar(0.3)*tmp1*tmp20*tmp283 - tmp1*tmp330;
-    const Scalar tmp356 = -tmp339;
-    const Scalar tmp357 = Scalar(2)*pitch_dot*roll_dot*tmp355 + Scalar(2)*pitch_dot*yaw_dot*tmp356
-        - (pitch_dot*pitch_dot)*tmp312 - (roll_dot*roll_dot)*tmp322 - (pitch_dot*pitch_dot)*tmp323
-        - (roll_dot*roll_dot)*tmp325 - (yaw_dot*yaw_dot)*tmp326 + Scalar(2)*roll_dot*yaw_dot*tmp340;
-    const Scalar tmp358 = Scalar(0.3)*tmp1*tmp20*tmp0 - tmp1*tmp324;
-    const Scalar tmp359 = Scalar(2)*pitch_dot*roll_dot*tmp358 - (pitch_dot*pitch_dot)*tmp318
-        - (roll_dot*roll_dot)*tmp328 - (pitch_dot*pitch_dot)*tmp329 - (roll_dot*roll_dot)*tmp331
-        + pitch_dot*yaw_dot*tmp334 + roll_dot*yaw_dot*tmp335 + yaw_dot*tmp337;
-    const Scalar tmp360 = m_b*tmp300 - m_a*tmp285 + m_c*tmp315 + m_d*tmp336;
-    const Scalar tmp361 = m_b*tmp294 + m_a*tmp284 + m_c*tmp307 + m_d*tmp326;
-    const Scalar tmp362 = Scalar(2)*tmp5*tmp0;
-    const Scalar tmp363 = Scalar(2)*tmp0*tmp283;
-    const Scalar tmp364 = tmp151*m_a*tmp362 + tmp151*m_a*tmp363 + Scalar(2)*tmp27*m_b*tmp294
-        + Scalar(2)*tmp38*m_b*tmp300 + Scalar(2)*tmp52*m_c*tmp307 + Scalar(2)*tmp65*m_c*tmp315
-        + Scalar(2)*tmp84*m_d*tmp326 + Scalar(2)*tmp101*m_d*tmp336;
-    const Scalar tmp365 = tmp59*tmp283;
-    const Scalar tmp366 = m_b*tmp349 + m_c*tmp365 + m_d*tmp334 - m_a*tmp286;
-    const Scalar tmp367 = -m_a*tmp288 + m_c*tmp351 + m_d*tmp339 + m_b*tmp344;
-    const Scalar tmp368 = tmp38*m_b*tmp349 + tmp52*m_c*tmp351 + tmp65*m_c*tmp365 + tmp124*m_b*tmp294
-        + tmp129*m_b*tmp300 + tmp133*m_c*tmp307 + tmp154*m_c*tmp315 + tmp105*m_d*tmp326
-        + tmp101*m_d*tmp334 + tmp99*m_d*tmp336 + tmp84*m_d*tmp339 + tmp27*m_b*tmp344;
-    const Scalar tmp369 = (tmp160*m_a + tmp163*m_b + tmp166*m_c)*tmp362
-        + (tmp160*m_a + tmp163*m_b + tmp166*m_c)*tmp363 + Scalar(2)*tmp99*m_d*tmp334
-        + Scalar(2)*tmp105*m_d*tmp339;
-    const Scalar tmp370 = m_b*tmp299 + m_c*tmp314 + m_d*tmp335;
-    const Scalar tmp371 = m_b*tmp303 + m_c*tmp320 + m_d*tmp341;
-    const Scalar tmp372 = tmp42*m_b*tmp294 + tmp38*m_b*tmp299 + tmp37*m_b*tmp300 + tmp27*m_b*tmp303
-        + tmp71*m_c*tmp307 + tmp65*m_c*tmp314 + tmp64*m_c*tmp315 + tmp52*m_c*tmp320
-        + tmp107*m_d*tmp326 + tmp101*m_d*tmp335 + tmp100*m_d*tmp336 + tmp84*m_d*tmp341;
-    const Scalar tmp373 = tmp37*m_b*tmp349 + tmp71*m_c*tmp351 + tmp64*m_c*tmp365 + tmp129*m_b*tmp299
-        + tmp124*m_b*tmp303 + tmp154*m_c*tmp314 + tmp133*m_c*tmp320 + tmp100*m_d*tmp334
-        + tmp99*m_d*tmp335 + tmp107*m_d*tmp339 + tmp105*m_d*tmp341 + tmp42*m_b*tmp344;
-    const Scalar tmp374 = Scalar(2)*tmp37*m_b*tmp299 + Scalar(2)*tmp42*m_b*tmp303
-        + Scalar(2)*tmp64*m_c*tmp314 + Scalar(2)*tmp71*m_c*tmp320 + Scalar(2)*tmp100*m_d*tmp335
-        + Scalar(2)*tmp107*m_d*tmp341;
-    const Scalar tmp375 = m_a*tmp342;
-    const Scalar tmp376 = m_a*tmp343;
-    const Scalar tmp377 = m_b*tmp347;
-    const Scalar tmp378 = m_b*tmp350;
-    const Scalar tmp379 = m_c*tmp353;
-    const Scalar tmp380 = m_c*tmp354;
-    const Scalar tmp381 = m_d*tmp357;
-    const Scalar tmp382 = m_d*tmp359;
-    const Scalar tmp383 = tmp377 + tmp379 + tmp381 + tmp375;
-    const Scalar tmp384 = tmp378 + tmp380 + tmp382 + tmp376;
-    const Scalar tmp385 = -tmp383;
-    const Scalar tmp386 = -tmp384;
-    const Scalar tmp387 = -tmp38*tmp377 - tmp27*tmp378 - tmp65*tmp379 - tmp52*tmp380 - tmp101*tmp381
-        - tmp84*tmp382 - tmp179*tmp294 - tmp178*tmp300 - tmp177*tmp284
-        + Scalar(0.5)*tmp1*tmp176*tmp0 - tmp181*tmp307 - tmp180*tmp315 - tmp183*tmp326
-        - tmp182*tmp336 + Scalar(0.5)*tmp1*tmp5*tmp375 - tmp3*tmp376;
-    const Scalar tmp388 = Scalar(0.5)*tmp8*tmp176*tmp283 - tmp178*tmp349 - tmp181*tmp351
-        - tmp180*tmp365 - tmp129*tmp377 - tmp124*tmp378 - tmp154*tmp379 - tmp133*tmp380
-        - tmp99*tmp381 - tmp105*tmp382 + Scalar(0.5)*tmp8*tmp177*tmp0 - tmp182*tmp334
-        - tmp183*tmp339 - tmp179*tmp344 + Scalar(0.5)*tmp0*tmp8*tmp375
-        + Scalar(0.5)*tmp5*tmp8*tmp376;
-    const Scalar tmp389 = -tmp37*tmp377 - tmp42*tmp378 - tmp64*tmp379 - tmp71*tmp380 - tmp100*tmp381
-        - tmp107*tmp382 - tmp178*tmp299 - tmp179*tmp303 - tmp180*tmp314 - tmp181*tmp320
-        - tmp182*tmp335 - tmp183*tmp341;
-    const Scalar tmp390 = -tmp8;
-    const Scalar tmp391 = Scalar(0.5)*tmp390;
-    const Scalar tmp392 = tmp0*tmp391;
-    const Scalar tmp393 = tmp5*tmp391;
-    const Scalar tmp394 = Scalar(0.5)*tmp1;
-    const Scalar tmp395 = tmp0*tmp394;
-    const Scalar tmp396 = yaw_dot*tmp393 + pitch_dot*tmp395;
-    const Scalar tmp397 = tmp5*tmp394;
-    const Scalar tmp398 = pitch_dot*tmp397;
-    const Scalar tmp399 = yaw_dot*tmp392;
-    const Scalar tmp400 = tmp25*tmp1;
-    const Scalar tmp401 = tmp30*tmp1;
-    const Scalar tmp402 = tmp24*tmp390;
-    const Scalar tmp403 = pitch_dot*tmp402;
-    const Scalar tmp404 = tmp29*tmp1;
-    const Scalar tmp405 = -tmp401;
-    const Scalar tmp406 = tmp0*tmp403 + roll_dot*tmp404 + yaw_dot*tmp405;
-    const Scalar tmp407 = tmp5*tmp403;
-    const Scalar tmp408 = tmp22*tmp1;
-    const Scalar tmp409 = tmp24*tmp1;
-    const Scalar tmp410 = tmp21*tmp390;
-    const Scalar tmp411 = tmp50*tmp1;
-    const Scalar tmp412 = tmp55*tmp1;
-    const Scalar tmp413 = tmp49*tmp390;
-    const Scalar tmp414 = pitch_dot*tmp413;
-    const Scalar tmp415 = tmp54*tmp1;
-    const Scalar tmp416 = -tmp415;
-    const Scalar tmp417 = -tmp412;
-    const Scalar tmp418 = tmp0*tmp414 + roll_dot*tmp416 + yaw_dot*tmp417;
-    const Scalar tmp419 = tmp5*tmp414;
-    const Scalar tmp420 = tmp48*tmp1;
-    const Scalar tmp421 = -tmp420;
-    const Scalar tmp422 = tmp49*tmp1;
-    const Scalar tmp423 = tmp47*tmp390;
-    const Scalar tmp424 = Scalar(0.2)*tmp390;
-    const Scalar tmp425 = tmp78*tmp1;
-    const Scalar tmp426 = tmp0*tmp424 + tmp425;
-    const Scalar tmp427 = tmp426 + tmp415;
-    const Scalar tmp428 = tmp86*tmp1;
-    const Scalar tmp429 = tmp5*tmp424 + tmp428;
-    const Scalar tmp430 = tmp429 + tmp420;
-    const Scalar tmp431 = Scalar(0.2)*tmp1;
-    const Scalar tmp432 = tmp77*tmp390;
-    const Scalar tmp433 = tmp423 + tmp432;
-    const Scalar tmp434 = -tmp431 + tmp433;
-    const Scalar tmp435 = tmp54*tmp390;
-    const Scalar tmp436 = -tmp0*tmp431 + tmp0*tmp432 + tmp435;
-    const Scalar tmp437 = tmp411 - tmp89*tmp1;
-    const Scalar tmp438 = -tmp430;
-    const Scalar tmp439 = pitch_dot*tmp436 + roll_dot*tmp437 + yaw_dot*tmp438;
-    const Scalar tmp440 = tmp48*tmp390;
-    const Scalar tmp441 = -tmp5*tmp431 + tmp5*tmp432 + tmp440;
-    const Scalar tmp442 = -tmp412 + tmp82*tmp1;
-    const Scalar tmp443 = -tmp442;
-    const Scalar tmp444 = (-tmp81 + Scalar(0.3)*tmp20)*tmp390;
-    const Scalar tmp445 = tmp47*tmp1;
-    const Scalar tmp446 = -tmp424 - tmp77*tmp1 - tmp445;
-    const Scalar tmp447 = yaw_dot*tmp398 - yaw_dot*tmp399 - (pitch_dot*pitch_dot)*tmp392
-        + Scalar(0.5)*tmp5*pitch_dot*yaw_dot*tmp1;
-    const Scalar tmp448 = -(pitch_dot*pitch_dot)*tmp393 - pitch_dot*yaw_dot*tmp395 - yaw_dot*tmp396;
-    const Scalar tmp449 = (pitch_dot*pitch_dot)*tmp394;
-    const Scalar tmp450 = tmp5*tmp402;
-    const Scalar tmp451 = -tmp400;
-    const Scalar tmp452 = -tmp408;
-    const Scalar tmp453 = (tmp29*pitch_dot*roll_dot
-            + Scalar(0.4)*tmp0*tmp20*pitch_dot*roll_dot)*tmp390
-        - (pitch_dot*pitch_dot)*tmp400 - yaw_dot*tmp407 - pitch_dot*yaw_dot*tmp450
-        + ((roll_dot*roll_dot) + (yaw_dot*yaw_dot))*tmp451 + Scalar(2)*roll_dot*yaw_dot*tmp452;
-    const Scalar tmp454 = tmp22*tmp390;
-    const Scalar tmp455 = tmp0*tmp402;
-    const Scalar tmp456 = Scalar(2)*pitch_dot*roll_dot*tmp454 + pitch_dot*yaw_dot*tmp455
-        - (pitch_dot*pitch_dot)*tmp401 + roll_dot*yaw_dot*tmp404 + (roll_dot*roll_dot)*tmp405
-        + yaw_dot*tmp406;
-    const Scalar tmp457 = tmp21*tmp1;
-    const Scalar tmp458 = -Scalar(2)*pitch_dot*roll_dot*tmp457 - (roll_dot*roll_dot)*tmp402
-        - pitch_dot*tmp403;
-    const Scalar tmp459 = tmp5*tmp413;
-    const Scalar tmp460 = -tmp411;
-    const Scalar tmp461 = -pitch_dot*yaw_dot*tmp459
-        + ((roll_dot*roll_dot) + (yaw_dot*yaw_dot))*tmp460 - (pitch_dot*pitch_dot)*tmp411
-        - yaw_dot*tmp419 + Scalar(2)*roll_dot*yaw_dot*tmp420 - Scalar(2)*pitch_dot*roll_dot*tmp435;
-    const Scalar tmp462 = Scalar(0.3)*tmp0*tmp20*pitch_dot*yaw_dot*tmp390
-        - (pitch_dot*pitch_dot)*tmp412 + roll_dot*yaw_dot*tmp416 + (roll_dot*roll_dot)*tmp417
-        + yaw_dot*tmp418 - Scalar(2)*pitch_dot*roll_dot*tmp440;
-    const Scalar tmp463 = -(roll_dot*roll_dot)*tmp413 - pitch_dot*tmp414
-        + Scalar(0.3)*tmp23*pitch_dot*roll_dot*tmp1 + pitch_dot*roll_dot*tmp445;
-    const Scalar tmp464 = (-tmp89 + Scalar(0.3)*tmp0*tmp20)*tmp390;
-    const Scalar tmp465 = -tmp441;
-    const Scalar tmp466 = Scalar(2)*pitch_dot*roll_dot*tmp464 + Scalar(2)*pitch_dot*yaw_dot*tmp465
-        + (-(pitch_dot*pitch_dot) - (roll_dot*roll_dot))*tmp415 - (roll_dot*roll_dot)*tmp425
-        - (pitch_dot*pitch_dot)*tmp426 - (yaw_dot*yaw_dot)*tmp427
-        + Scalar(2)*roll_dot*yaw_dot*tmp442;
-    const Scalar tmp467 = (-tmp82 + Scalar(0.3)*tmp20*tmp5)*tmp390;
-    const Scalar tmp468 = Scalar(2)*pitch_dot*roll_dot*tmp467
-        + (-(pitch_dot*pitch_dot) - (roll_dot*roll_dot))*tmp420 - (roll_dot*roll_dot)*tmp428
-        - (pitch_dot*pitch_dot)*tmp429 + pitch_dot*yaw_dot*tmp436 + roll_dot*yaw_dot*tmp437
-        + yaw_dot*tmp439;
-    const Scalar tmp469 = -tmp422;
-    const Scalar tmp470 = tmp469 + tmp81*tmp1;
-    const Scalar tmp471 = Scalar(2)*pitch_dot*roll_dot*tmp470 - (roll_dot*roll_dot)*tmp433
-        - (pitch_dot*pitch_dot)*tmp434;
-    const Scalar tmp472 = m_b*tmp405 - m_a*tmp393 + m_c*tmp417 + m_d*tmp438;
-    const Scalar tmp473 = m_b*tmp400 + m_a*tmp392 + m_c*tmp411 + m_d*tmp427;
-    const Scalar tmp474 = Scalar(2)*tmp1*tmp390;
-    const Scalar tmp475 = Scalar(0.25)*tmp474;
-    const Scalar tmp476 = m_a*(tmp149 + tmp152)*tmp475 + Scalar(2)*tmp27*m_b*tmp400
-        + Scalar(2)*tmp38*m_b*tmp405 + Scalar(2)*tmp52*m_c*tmp411 + Scalar(2)*tmp65*m_c*tmp417
-        + Scalar(2)*tmp84*m_d*tmp427 + Scalar(2)*tmp101*m_d*tmp438;
-    const Scalar tmp477 = tmp0*tmp413;
-    const Scalar tmp478 = m_b*tmp455 + m_c*tmp477 + m_d*tmp436 - m_a*tmp395;
-    const Scalar tmp479 = -m_a*tmp397 + m_c*tmp459 + m_d*tmp441 + m_b*tmp450;
-    const Scalar tmp480 = -m_a*tmp391 - m_b*tmp409 - m_c*tmp422 + m_d*tmp446;
-    const Scalar tmp481 = tmp38*m_b*tmp455 + tmp52*m_c*tmp459 + tmp65*m_c*tmp477 + tmp124*m_b*tmp400
-        + tmp129*m_b*tmp405 + tmp133*m_c*tmp411 + tmp154*m_c*tmp417 + tmp105*m_d*tmp427
-        + tmp101*m_d*tmp436 + tmp99*m_d*tmp438 + tmp84*m_d*tmp441 + tmp27*m_b*tmp450;
-    const Scalar tmp482 = Scalar(2)*tmp8*tmp1;
-    const Scalar tmp483 = Scalar(0.25)*tmp482;
-    const Scalar tmp484 = tmp162*tmp474;
-    const Scalar tmp485 = tmp165*tmp474;
-    const Scalar tmp486 = m_a*tmp475 + (tmp162*m_b + tmp165*m_c)*tmp482
-        + m_a*(tmp149 + tmp152)*tmp483 + m_b*(tmp149 + tmp152)*tmp484 + m_c*(tmp149 + tmp152)*tmp485
-        + Scalar(2)*tmp99*m_d*tmp436 + Scalar(2)*tmp105*m_d*tmp441 + Scalar(2)*tmp111*m_d*tmp446;
-    const Scalar tmp487 = m_b*tmp404 + m_c*tmp416 + m_d*tmp437;
-    const Scalar tmp488 = m_b*tmp408 + m_c*tmp421 + m_d*tmp443;
-    const Scalar tmp489 = m_b*tmp410 - m_c*tmp423 + m_d*tmp444;
-    const Scalar tmp490 = tmp42*m_b*tmp400 + tmp38*m_b*tmp404 + tmp37*m_b*tmp405 + tmp27*m_b*tmp408
-        + tmp71*m_c*tmp411 + tmp65*m_c*tmp416 + tmp64*m_c*tmp417 + tmp52*m_c*tmp421
-        + tmp107*m_d*tmp427 + tmp101*m_d*tmp437 + tmp100*m_d*tmp438 + tmp84*m_d*tmp443;
-    const Scalar tmp491 = tmp20*tmp23*tmp8*tmp390 + tmp1*tmp20*tmp23*tmp1;
-    const Scalar tmp492 = tmp37*m_b*tmp455 + tmp71*m_c*tmp459 + tmp64*m_c*tmp477
-        + (Scalar(0.09)*m_c - Scalar(0.16000000000000003)*m_b)*tmp491 + tmp129*m_b*tmp404
-        + tmp124*m_b*tmp408 + tmp154*m_c*tmp416 + tmp133*m_c*tmp421 + tmp100*m_d*tmp436
-        + tmp99*m_d*tmp437 + tmp107*m_d*tmp441 + tmp105*m_d*tmp443 + tmp111*m_d*tmp444
-        + tmp109*m_d*tmp446 + tmp42*m_b*tmp450;
-    const Scalar tmp493 = (Scalar(0.16000000000000003)*tmp164*m_b + Scalar(0.09)*tmp161*m_c)*tmp474
-        + Scalar(2)*tmp37*m_b*tmp404 + Scalar(2)*tmp42*m_b*tmp408 + Scalar(2)*tmp64*m_c*tmp416
-        + Scalar(2)*tmp71*m_c*tmp421 + Scalar(2)*tmp100*m_d*tmp437 + Scalar(2)*tmp107*m_d*tmp443
-        + Scalar(2)*tmp109*m_d*tmp444;
-    const Scalar tmp494 = m_a*tmp447;
-    const Scalar tmp495 = m_a*tmp448;
-    const Scalar tmp496 = m_b*tmp453;
-    const Scalar tmp497 = m_b*tmp456;
-    const Scalar tmp498 = m_c*tmp461;
-    const Scalar tmp499 = m_c*tmp462;
-    const Scalar tmp500 = m_d*tmp466;
-    const Scalar tmp501 = m_d*tmp468;
-    const Scalar tmp502 = m_a*tmp449;
-    const Scalar tmp503 = m_b*tmp458;
-    const Scalar tmp504 = m_c*tmp463;
-    const Scalar tmp505 = m_d*tmp471;
-    const Scalar tmp506 = tmp496 + tmp498 + tmp500 + tmp494;
-    const Scalar tmp507 = tmp497 + tmp499 + tmp501 + tmp495;
-    const Scalar tmp508 = tmp503 + tmp504 + tmp505 + tmp502;
-    const Scalar tmp509 = -tmp114*tmp391 - tmp116*tmp409 - tmp118*tmp422 + tmp120*tmp446;
-    const Scalar tmp510 = tmp116*tmp410 - tmp118*tmp423 + tmp120*tmp444;
-    const Scalar tmp511 = -tmp506;
-    const Scalar tmp512 = -tmp507;
-    const Scalar tmp513 = -tmp508;
-    const Scalar tmp514 = Scalar(0.5)*tmp5*tmp176*tmp390 - tmp38*tmp496 - tmp27*tmp497
-        - tmp65*tmp498 - tmp52*tmp499 - tmp101*tmp500 - tmp84*tmp501 - tmp179*tmp400 - tmp178*tmp405
-        - tmp177*tmp392 - tmp181*tmp411 - tmp180*tmp417 - tmp183*tmp427 - tmp182*tmp438
-        + Scalar(0.5)*tmp1*tmp5*tmp494 - tmp3*tmp495;
-    const Scalar tmp515 = Scalar(0.5)*tmp184*tmp390 - tmp178*tmp455 - tmp181*tmp459 - tmp180*tmp477
-        - tmp129*tmp496 - tmp124*tmp497 - tmp154*tmp498 - tmp133*tmp499 - tmp99*tmp500
-        - tmp105*tmp501 + Scalar(0.4)*tmp23*tmp8*tmp503 + Scalar(0.3)*tmp20*tmp8*tmp504
-        - tmp111*tmp505
-        + (Scalar(0.5)*tmp0*tmp176 + Scalar(0.5)*tmp5*tmp177 + Scalar(0.4)*tmp185*tmp23
-            + Scalar(0.3)*tmp186*tmp20)*tmp1
-        - tmp182*tmp436 - tmp183*tmp441 - tmp187*tmp446 - tmp179*tmp450
-        + Scalar(0.5)*tmp0*tmp8*tmp494 + Scalar(0.5)*tmp5*tmp8*tmp495 + Scalar(0.5)*tmp1*tmp502;
-    const Scalar tmp516 = Scalar(0.3)*tmp186*tmp23*tmp390 - tmp37*tmp496 - tmp42*tmp497
-        - tmp64*tmp498 - tmp71*tmp499 - tmp100*tmp500 - tmp107*tmp501 - tmp45*tmp503
-        + Scalar(0.3)*tmp1*tmp23*tmp504 - tmp109*tmp505 - tmp178*tmp404 - tmp179*tmp408
-        - tmp185*tmp410 - tmp180*tmp416 - tmp181*tmp421 - tmp182*tmp437 - tmp183*tmp443
-        - tmp187*tmp444;
-    const Scalar tmp517 = -tmp23;
-    const Scalar tmp518 = Scalar(0.4)*tmp517;
-    const Scalar tmp519 = tmp5*tmp518;
-    const Scalar tmp520 = Scalar(0.4)*tmp20;
-    const Scalar tmp521 = tmp0*tmp520;
-    const Scalar tmp522 = tmp8*tmp521;
-    const Scalar tmp523 = -tmp519 + tmp522;
-    const Scalar tmp524 = tmp0*tmp518;
-    const Scalar tmp525 = tmp5*tmp520;
-    const Scalar tmp526 = tmp8*tmp525;
-    const Scalar tmp527 = tmp524 + tmp526;
-    const Scalar tmp528 = tmp1*tmp520;
-    const Scalar tmp529 = pitch_dot*tmp528;
-    const Scalar tmp530 = tmp8*tmp524 + tmp525;
-    const Scalar tmp531 = -tmp527;
-    const Scalar tmp532 = tmp0*tmp529 + roll_dot*tmp530 + yaw_dot*tmp531;
-    const Scalar tmp533 = tmp5*tmp529;
-    const Scalar tmp534 = tmp8*tmp519 - tmp521;
-    const Scalar tmp535 = tmp8*tmp520;
-    const Scalar tmp536 = tmp1*tmp518;
-    const Scalar tmp537 = Scalar(0.3)*tmp20;
-    const Scalar tmp538 = tmp5*tmp537;
-    const Scalar tmp539 = Scalar(0.3)*tmp517;
-    const Scalar tmp540 = tmp0*tmp539;
-    const Scalar tmp541 = tmp8*tmp540;
-    const Scalar tmp542 = tmp538 + tmp541;
-    const Scalar tmp543 = tmp0*tmp537;
-    const Scalar tmp544 = tmp5*tmp539;
-    const Scalar tmp545 = tmp8*tmp544;
-    const Scalar tmp546 = -tmp543 + tmp545;
-    const Scalar tmp547 = tmp1*tmp539;
-    const Scalar tmp548 = pitch_dot*tmp547;
-    const Scalar tmp549 = tmp8*tmp543;
-    const Scalar tmp550 = -tmp544 + tmp549;
-    const Scalar tmp551 = -tmp550;
-    const Scalar tmp552 = -tmp546;
-    const Scalar tmp553 = tmp0*tmp548 + roll_dot*tmp551 + yaw_dot*tmp552;
-    const Scalar tmp554 = tmp5*tmp548;
-    const Scalar tmp555 = tmp8*tmp538;
-    const Scalar tmp556 = tmp540 + tmp555;
-    const Scalar tmp557 = -tmp556;
-    const Scalar tmp558 = tmp8*tmp539;
-    const Scalar tmp559 = tmp1*tmp537;
-    const Scalar tmp560 = Scalar(0.25)*tmp517;
-    const Scalar tmp561 = tmp0*tmp560;
-    const Scalar tmp562 = tmp8*tmp561;
-    const Scalar tmp563 = Scalar(0.25)*tmp20;
+    const Scalar m = Scalar(params.m);
+    const Scalar com_x = Scalar(params.com_x);
+    const Scalar com_y = Scalar(params.com_y);
+    const Scalar com_z = Scalar(params.com_z);
+    const Scalar a = Scalar(params.a);
+    const Scalar b = Scalar(params.b);
+    const Scalar c = Scalar(params.c);
+    const Scalar tmp0 = sin(yaw);
+    const Scalar tmp1 = cos(roll);
+    const Scalar tmp2 = tmp0*tmp1;
+    const Scalar tmp3 = sin(pitch);
+    const Scalar tmp4 = sin(roll);
+    const Scalar tmp5 = cos(yaw);
+    const Scalar tmp6 = tmp4*tmp5;
+    const Scalar tmp7 = tmp3*tmp6;
+    const Scalar tmp8 = tmp7 - tmp2;
+    const Scalar tmp10 = (a*a);
+    const Scalar tmp11 = (b*b);
+    const Scalar tmp12 = m*(tmp10 + tmp11);
+    const Scalar tmp13 = (c*c);
+    const Scalar tmp14 = tmp10 + tmp13;
+    const Scalar tmp15 = tmp14*m;
+    const Scalar tmp16 = tmp11 + tmp13;
+    const Scalar tmp17 = tmp16*m;
+    const Scalar tmp18 = Scalar(0.005689254019167049)*tmp17 + Scalar(0.010556171822976032)*tmp15
+        - Scalar(0.01624542584214308)*tmp12;
+    const Scalar tmp19 = Scalar(0.041142942152109445)*tmp17 + Scalar(0.028423816083747767)*tmp12
+        - Scalar(0.027900091569190537)*tmp15;
+    const Scalar tmp23 = (Scalar(1)/tmp19);
+    const Scalar tmp24 = Scalar(0.021737886292675604)*tmp12 + Scalar(0.04006485617007295)*tmp15
+        - Scalar(0.020136075796081898)*tmp17 - tmp23*(tmp18*tmp18);
+    const Scalar tmp28 = tmp0*tmp4;
+    const Scalar tmp29 = tmp1*tmp5;
+    const Scalar tmp30 = tmp29*tmp3;
+    const Scalar tmp31 = tmp28 + tmp30;
+    const Scalar tmp32 = -Scalar(0.0257737061664756)*tmp12 - Scalar(0.003316897780257798)*tmp17
+        + Scalar(0.0290906039467334)*tmp14*m;
+    const Scalar tmp34 = (Scalar(1)/tmp24);
+    const Scalar tmp35 = tmp23*tmp32;
+    const Scalar tmp36 = -Scalar(0.03161742478199714)*tmp12 - Scalar(0.004414255047715874)*tmp15
+        - tmp18*tmp35 + Scalar(0.03603167982971302)*tmp16*m;
+    const Scalar tmp37 = -Scalar(0.008495035709756703)*tmp12 - tmp23*(tmp32*tmp32)
+        - tmp34*(tmp36*tmp36) + Scalar(0.02950190206578425)*tmp14*m
+        + Scalar(0.020659800310639128)*tmp16*m;
+    const Scalar tmp44 = cos(pitch);
+    const Scalar tmp45 = tmp44*tmp5;
+    const Scalar tmp48 = tmp44*com_x;
+    const Scalar tmp49 = tmp48*tmp5;
+    const Scalar tmp50 = tmp49 + tmp31*com_z + tmp8*com_y;
+    const Scalar tmp54 = tmp28*tmp3;
+    const Scalar tmp55 = tmp29 + tmp54;
+    const Scalar tmp56 = tmp2*tmp3;
+    const Scalar tmp57 = tmp56 - tmp6;
+    const Scalar tmp58 = tmp0*tmp44;
+    const Scalar tmp60 = tmp0*tmp48;
+    const Scalar tmp64 = tmp4*tmp44;
+    const Scalar tmp65 = tmp1*tmp44;
+    const Scalar tmp69 = tmp3*com_x;
+    const Scalar tmp70 = tmp64*com_y + tmp65*com_z;
+    const Scalar tmp71 = tmp70 - tmp69;
+    const Scalar tmp75 = -tmp8;
+    const Scalar tmp76 = tmp31*com_y + tmp75*com_z;
+    const Scalar tmp78 = tmp44*tmp6;
+    const Scalar tmp79 = tmp29*tmp44;
+    const Scalar tmp80 = tmp3*tmp5;
+    const Scalar tmp82 = tmp78*com_y + tmp79*com_z - tmp5*tmp69;
+    const Scalar tmp85 = -tmp55;
+    const Scalar tmp86 = -tmp57;
+    const Scalar tmp89 = tmp85*com_y + tmp86*com_z;
+    const Scalar tmp90 = tmp89 - tmp60;
+    const Scalar tmp95 = tmp57*com_y + tmp85*com_z;
+    const Scalar tmp97 = tmp28*tmp44;
+    const Scalar tmp98 = tmp2*tmp44;
+    const Scalar tmp99 = tmp0*tmp3;
+    const Scalar tmp101 = tmp97*com_y + tmp98*com_z - tmp0*tmp69;
+    const Scalar tmp107 = tmp65*com_y - tmp64*com_z;
+    const Scalar tmp109 = tmp3*tmp4;
+    const Scalar tmp110 = tmp1*tmp3;
+    const Scalar tmp112 = tmp48 + tmp109*com_y + tmp110*com_z;
+    const Scalar tmp189 = tmp76*roll_dot + tmp82*pitch_dot + tmp90*yaw_dot;
+    const Scalar tmp192 = -tmp112;
+    const Scalar tmp194 = tmp79*com_y - tmp78*com_z;
+    const Scalar tmp195 = -tmp101;
+    const Scalar tmp196 = tmp49 + tmp30*com_z + tmp7*com_y;
+    const Scalar tmp197 = tmp55*com_z + tmp86*com_y;
+    const Scalar tmp198 = -tmp31;
+    const Scalar tmp199 = tmp198*com_z + tmp75*com_y;
+    const Scalar tmp200 = tmp199 - tmp49;
+    const Scalar tmp201 = pitch_dot*(tmp194*roll_dot + tmp195*yaw_dot - tmp196*pitch_dot)
+        + roll_dot*(tmp194*pitch_dot + tmp197*yaw_dot + tmp199*roll_dot)
+        + yaw_dot*(tmp195*pitch_dot + tmp197*roll_dot + tmp200*yaw_dot);
+    const Scalar tmp202 = tmp98*com_y - tmp97*com_z;
+    const Scalar tmp203 = tmp60 + tmp54*com_y + tmp56*com_z;
+    const Scalar tmp204 = tmp189*yaw_dot
+        + pitch_dot*(tmp202*roll_dot + tmp82*yaw_dot - tmp203*pitch_dot)
+        + roll_dot*(tmp202*pitch_dot + tmp76*yaw_dot + tmp89*roll_dot);
+    const Scalar tmp205 = tmp110*com_y - tmp3*tmp4*com_z;
+    const Scalar tmp206 = -tmp205;
+    const Scalar tmp207 = pitch_dot*(tmp206*roll_dot - tmp71*pitch_dot)
+        + roll_dot*(tmp206*pitch_dot - tmp70*roll_dot);
+    const Scalar tmp208 = tmp18*tmp23;
+    const Scalar tmp209 = tmp45 + tmp208*tmp8 + tmp31*tmp35;
+    const Scalar tmp211 = tmp208*tmp64 + tmp35*tmp65;
+    const Scalar tmp212 = tmp211 - tmp3;
+    const Scalar tmp213 = -tmp80 + tmp208*tmp78 + tmp35*tmp79;
+    const Scalar tmp214 = tmp208*tmp31 + tmp35*tmp75;
+    const Scalar tmp215 = tmp208*tmp85 + tmp35*tmp86;
+    const Scalar tmp216 = tmp215 - tmp58;
+    const Scalar tmp217 = tmp213*pitch_dot + tmp214*roll_dot + tmp216*yaw_dot;
+    const Scalar tmp218 = -tmp99 + tmp208*tmp97 + tmp35*tmp98;
+    const Scalar tmp219 = tmp208*tmp57 + tmp35*tmp85;
+    const Scalar tmp221 = -tmp35*tmp64 + tmp1*tmp18*tmp23*tmp44;
+    const Scalar tmp222 = -tmp44 - tmp109*tmp208 - tmp110*tmp35;
+    const Scalar tmp224 = -tmp35*tmp78 + tmp1*tmp18*tmp23*tmp44*tmp5;
+    const Scalar tmp225 = -tmp218;
+    const Scalar tmp226 = tmp208*tmp86 + tmp35*tmp55;
+    const Scalar tmp227 = tmp198*tmp35 + tmp208*tmp75;
+    const Scalar tmp228 = pitch_dot*(tmp224*roll_dot + tmp225*yaw_dot
+            + pitch_dot*(-tmp45 - tmp208*tmp7 - tmp30*tmp35))
+        + roll_dot*(tmp224*pitch_dot + tmp226*yaw_dot + tmp227*roll_dot)
+        + yaw_dot*(tmp225*pitch_dot + tmp226*roll_dot + yaw_dot*(tmp227 - tmp45));
+    const Scalar tmp229 = -tmp35*tmp97 + tmp0*tmp1*tmp18*tmp23*tmp44;
+    const Scalar tmp230 = tmp217*yaw_dot
+        + pitch_dot*(tmp213*yaw_dot + tmp229*roll_dot
+            + pitch_dot*(-tmp58 - tmp208*tmp54 - tmp35*tmp56))
+        + roll_dot*(tmp214*yaw_dot + tmp215*roll_dot + tmp229*pitch_dot);
+    const Scalar tmp231 = tmp109*tmp35 - tmp110*tmp208;
+    const Scalar tmp232 = pitch_dot*(tmp231*roll_dot - tmp212*pitch_dot)
+        + roll_dot*(tmp231*pitch_dot - tmp211*roll_dot);
+    const Scalar tmp233 = tmp34*tmp36;
+    const Scalar tmp234 = tmp8 + tmp233*tmp31;
+    const Scalar tmp236 = tmp64 + tmp233*tmp65;
+    const Scalar tmp237 = tmp78 + tmp233*tmp79;
+    const Scalar tmp238 = tmp31 + tmp233*tmp75;
+    const Scalar tmp239 = -tmp55 + tmp34*tmp36*tmp86;
+    const Scalar tmp240 = tmp237*pitch_dot + tmp238*roll_dot + tmp239*yaw_dot;
+    const Scalar tmp241 = tmp97 + tmp233*tmp98;
+    const Scalar tmp242 = tmp57 + tmp233*tmp85;
+    const Scalar tmp244 = tmp1*tmp44 - tmp233*tmp64;
+    const Scalar tmp245 = -tmp109 - tmp110*tmp233;
+    const Scalar tmp247 = -tmp233*tmp78 + tmp1*tmp44*tmp5;
+    const Scalar tmp248 = -tmp241;
+    const Scalar tmp249 = tmp6 - tmp56 + tmp233*tmp55;
+    const Scalar tmp250 = tmp2 - tmp7 + tmp198*tmp233;
+    const Scalar tmp251 = pitch_dot*(tmp247*roll_dot + tmp248*yaw_dot
+            + pitch_dot*(-tmp7 - tmp233*tmp30))
+        + roll_dot*(tmp247*pitch_dot + tmp249*yaw_dot + tmp250*roll_dot)
+        + yaw_dot*(tmp248*pitch_dot + tmp249*roll_dot + tmp250*yaw_dot);
+    const Scalar tmp252 = -tmp233*tmp97 + tmp0*tmp1*tmp44;
+    const Scalar tmp253 = tmp240*yaw_dot
+        + pitch_dot*(tmp237*yaw_dot + tmp252*roll_dot + pitch_dot*(-tmp54 - tmp233*tmp56))
+        + roll_dot*(tmp238*yaw_dot + tmp239*roll_dot + tmp252*pitch_dot);
+    const Scalar tmp254 = -tmp110 + tmp109*tmp233;
+    const Scalar tmp255 = -tmp236;
+    const Scalar tmp256 = pitch_dot*(tmp254*roll_dot + tmp255*pitch_dot)
+        + roll_dot*(tmp254*pitch_dot + tmp255*roll_dot);
+    const Scalar tmp257 = tmp75*roll_dot + tmp79*pitch_dot + tmp86*yaw_dot;
+    const Scalar tmp258 = tmp98*pitch_dot;
+    const Scalar tmp261 = pitch_dot*(-tmp30*pitch_dot - tmp78*roll_dot - tmp98*yaw_dot)
+        + roll_dot*(tmp198*roll_dot + tmp55*yaw_dot - tmp78*pitch_dot)
+        + yaw_dot*(-tmp258 + tmp198*yaw_dot + tmp55*roll_dot);
+    const Scalar tmp262 = tmp257*yaw_dot
+        + pitch_dot*(-tmp56*pitch_dot - tmp97*roll_dot + tmp1*tmp44*tmp5*yaw_dot)
+        + roll_dot*(tmp75*yaw_dot + tmp86*roll_dot - tmp97*pitch_dot);
+    const Scalar tmp263 = pitch_dot*(-tmp65*pitch_dot + tmp3*tmp4*roll_dot)
+        + roll_dot*(tmp109*pitch_dot - tmp65*roll_dot);
+    const Scalar tmp271 = (tmp1*tmp1);
+    const Scalar tmp272 = (tmp44*tmp44);
+    const Scalar tmp273 = tmp271*tmp272;
+    const Scalar tmp281 = g*m;
+    const Scalar tmp282 = -tmp281;
+    const Scalar tmp283 = tmp201*m;
+    const Scalar tmp284 = tmp204*m;
+    const Scalar tmp285 = tmp207*m;
+    const Scalar tmp286 = tmp19*tmp228;
+    const Scalar tmp287 = tmp19*tmp230;
+    const Scalar tmp288 = tmp24*tmp251;
+    const Scalar tmp289 = tmp24*tmp253;
+    const Scalar tmp290 = tmp37*tmp261;
+    const Scalar tmp291 = tmp37*tmp262;
+    const Scalar tmp292 = tmp19*tmp232;
+    const Scalar tmp293 = tmp24*tmp256;
+    const Scalar tmp294 = tmp37*tmp263;
+    const Scalar tmp456 = tmp1*tmp5;
+    const Scalar tmp457 = -tmp0;
+    const Scalar tmp458 = tmp4*tmp457;
+    const Scalar tmp459 = tmp3*tmp458;
+    const Scalar tmp460 = -tmp456 + tmp459;
+    const Scalar tmp461 = tmp4*tmp5;
+    const Scalar tmp462 = tmp1*tmp457;
+    const Scalar tmp463 = tmp3*tmp462;
+    const Scalar tmp464 = tmp461 + tmp463;
+    const Scalar tmp465 = tmp44*tmp457;
+    const Scalar tmp466 = tmp48*tmp457;
+    const Scalar tmp467 = com_z*tmp464 + tmp466 + com_y*tmp460;
+    const Scalar tmp468 = tmp3*tmp461;
+    const Scalar tmp469 = tmp462 + tmp468;
+    const Scalar tmp470 = tmp3*tmp456;
+    const Scalar tmp471 = tmp470 - tmp458;
+    const Scalar tmp472 = tmp44*tmp5;
+    const Scalar tmp473 = tmp48*tmp5;
+    const Scalar tmp474 = -tmp460;
+    const Scalar tmp475 = com_y*tmp464 + com_z*tmp474;
+    const Scalar tmp476 = tmp44*tmp458;
+    const Scalar tmp477 = tmp44*tmp462;
+    const Scalar tmp478 = tmp3*tmp457;
+    const Scalar tmp479 = -tmp69*tmp457 + com_y*tmp476 + com_z*tmp477;
+    const Scalar tmp480 = -tmp469;
+    const Scalar tmp481 = -tmp471;
+    const Scalar tmp482 = com_y*tmp480 + com_z*tmp481;
+    const Scalar tmp483 = -tmp473 + tmp482;
+    const Scalar tmp484 = com_y*tmp471 + com_z*tmp480;
+    const Scalar tmp485 = tmp44*tmp461;
+    const Scalar tmp486 = tmp44*tmp456;
+    const Scalar tmp487 = tmp3*tmp5;
+    const Scalar tmp488 = -tmp69*tmp5 + com_y*tmp485 + com_z*tmp486;
+    const Scalar tmp489 = roll_dot*tmp475 + pitch_dot*tmp479 + yaw_dot*tmp483;
+    const Scalar tmp490 = -com_z*tmp476 + com_y*tmp477;
+    const Scalar tmp491 = -tmp488;
+    const Scalar tmp492 = com_z*tmp463 + tmp466 + com_y*tmp459;
+    const Scalar tmp493 = com_z*tmp469 + com_y*tmp481;
+    const Scalar tmp494 = -tmp464;
+    const Scalar tmp495 = com_z*tmp494 + com_y*tmp474;
+    const Scalar tmp496 = tmp495 - tmp466;
+    const Scalar tmp497 = Scalar(2)*pitch_dot*roll_dot*tmp490 + Scalar(2)*pitch_dot*yaw_dot*tmp491
+        - (pitch_dot*pitch_dot)*tmp492 + Scalar(2)*roll_dot*yaw_dot*tmp493
+        + (roll_dot*roll_dot)*tmp495 + (yaw_dot*yaw_dot)*tmp496;
+    const Scalar tmp498 = -com_z*tmp485 + com_y*tmp486;
+    const Scalar tmp499 = com_y*tmp468 + com_z*tmp470 + tmp473;
+    const Scalar tmp500 = yaw_dot*tmp489 + Scalar(2)*pitch_dot*roll_dot*tmp498
+        - (pitch_dot*pitch_dot)*tmp499 + roll_dot*yaw_dot*tmp475 + pitch_dot*yaw_dot*tmp479
+        + (roll_dot*roll_dot)*tmp482;
+    const Scalar tmp501 = tmp35*tmp464 + tmp465 + tmp208*tmp460;
+    const Scalar tmp502 = tmp208*tmp476 + tmp35*tmp477 - tmp478;
+    const Scalar tmp503 = tmp208*tmp464 + tmp35*tmp474;
+    const Scalar tmp504 = tmp208*tmp480 + tmp35*tmp481;
+    const Scalar tmp505 = tmp504 - tmp472;
+    const Scalar tmp506 = pitch_dot*tmp502 + roll_dot*tmp503 + yaw_dot*tmp505;
+    const Scalar tmp507 = tmp208*tmp485 + tmp35*tmp486 - tmp487;
+    const Scalar tmp508 = tmp208*tmp471 + tmp35*tmp480;
+    const Scalar tmp509 = tmp1*tmp18*tmp23*tmp44*tmp457 - tmp35*tmp476;
+    const Scalar tmp510 = -tmp507;
+    const Scalar tmp511 = tmp35*tmp469 + tmp208*tmp481;
+    const Scalar tmp512 = tmp35*tmp494 + tmp208*tmp474;
+    const Scalar tmp513 = Scalar(2)*pitch_dot*roll_dot*tmp509 + Scalar(2)*pitch_dot*yaw_dot*tmp510
+        + Scalar(2)*roll_dot*yaw_dot*tmp511 + ((roll_dot*roll_dot) + (yaw_dot*yaw_dot))*tmp512
+        - tmp35*(pitch_dot*pitch_dot)*tmp463 + (-(pitch_dot*pitch_dot) - (yaw_dot*yaw_dot))*tmp465
+        - tmp208*(pitch_dot*pitch_dot)*tmp459;
+    const Scalar tmp514 = tmp1*tmp18*tmp23*tmp44*tmp5 - tmp35*tmp485;
+    const Scalar tmp515 = pitch_dot*yaw_dot*tmp502 + roll_dot*yaw_dot*tmp503
+        + (roll_dot*roll_dot)*tmp504 + yaw_dot*tmp506 + Scalar(2)*pitch_dot*roll_dot*tmp514
+        - tmp208*(pitch_dot*pitch_dot)*tmp468 - tmp35*(pitch_dot*pitch_dot)*tmp470
+        - (pitch_dot*pitch_dot)*tmp472;
+    const Scalar tmp516 = tmp233*tmp464 + tmp460;
+    const Scalar tmp517 = tmp476 + tmp233*tmp477;
+    const Scalar tmp518 = tmp464 + tmp233*tmp474;
+    const Scalar tmp519 = -tmp469 + tmp34*tmp36*tmp481;
+    const Scalar tmp520 = pitch_dot*tmp517 + roll_dot*tmp518 + yaw_dot*tmp519;
+    const Scalar tmp521 = tmp485 + tmp233*tmp486;
+    const Scalar tmp522 = tmp471 + tmp233*tmp480;
+    const Scalar tmp523 = tmp1*tmp44*tmp457 - tmp233*tmp476;
+    const Scalar tmp524 = -tmp521;
+    const Scalar tmp525 = tmp233*tmp469 - tmp470 + tmp458;
+    const Scalar tmp526 = tmp233*tmp494 + tmp456 - tmp459;
+    const Scalar tmp527 = Scalar(2)*pitch_dot*roll_dot*tmp523 + Scalar(2)*pitch_dot*yaw_dot*tmp524
+        + Scalar(2)*roll_dot*yaw_dot*tmp525 + ((roll_dot*roll_dot) + (yaw_dot*yaw_dot))*tmp526
+        - tmp233*(pitch_dot*pitch_dot)*tmp463 - (pitch_dot*pitch_dot)*tmp459;
+    const Scalar tmp528 = tmp1*tmp44*tmp5 - tmp233*tmp485;
+    const Scalar tmp529 = pitch_dot*yaw_dot*tmp517 + roll_dot*yaw_dot*tmp518
+        + (roll_dot*roll_dot)*tmp519 + yaw_dot*tmp520 + Scalar(2)*pitch_dot*roll_dot*tmp528
+        - (pitch_dot*pitch_dot)*tmp468 - tmp233*(pitch_dot*pitch_dot)*tmp470;
+    const Scalar tmp530 = roll_dot*tmp474 + pitch_dot*tmp477 + yaw_dot*tmp481;
+    const Scalar tmp531 = pitch_dot*tmp486;
+    const Scalar tmp532 = ((roll_dot*roll_dot) + (yaw_dot*yaw_dot))*tmp494 - yaw_dot*tmp531
+        - (pitch_dot*pitch_dot)*tmp463 + Scalar(2)*roll_dot*yaw_dot*tmp469
+        - Scalar(2)*pitch_dot*roll_dot*tmp476 - pitch_dot*yaw_dot*tmp486;
+    const Scalar tmp533 = yaw_dot*tmp530 + tmp1*tmp44*pitch_dot*yaw_dot*tmp457
+        - (pitch_dot*pitch_dot)*tmp470 + roll_dot*yaw_dot*tmp474 + (roll_dot*roll_dot)*tmp481
+        - Scalar(2)*pitch_dot*roll_dot*tmp485;
+    const Scalar tmp534 = m*tmp483;
+    const Scalar tmp535 = m*tmp467;
+    const Scalar tmp536 = Scalar(2)*tmp209*tmp19*tmp501 + Scalar(2)*tmp216*tmp19*tmp505
+        + Scalar(2)*tmp234*tmp24*tmp516 + Scalar(2)*tmp239*tmp24*tmp519
+        + Scalar(2)*tmp31*tmp37*tmp464 + Scalar(2)*tmp50*m*tmp467 + Scalar(2)*tmp37*tmp86*tmp481
+        + Scalar(2)*tmp90*m*tmp483;
+    const Scalar tmp537 = m*tmp479;
+    const Scalar tmp538 = m*tmp488;
+    const Scalar tmp539 = tmp218*tmp19*tmp501 + tmp216*tmp19*tmp502 + tmp213*tmp19*tmp505
+        + tmp209*tmp19*tmp507 + tmp241*tmp24*tmp516 + tmp239*tmp24*tmp517 + tmp237*tmp24*tmp519
+        + tmp234*tmp24*tmp521 + tmp37*tmp98*tmp464 + tmp101*m*tmp467 + tmp37*tmp86*tmp477
+        + tmp90*m*tmp479 + tmp37*tmp79*tmp481 + tmp82*m*tmp483 + tmp31*tmp37*tmp486
+        + tmp50*m*tmp488;
+    const Scalar tmp540 = Scalar(2)*tmp0*tmp273*tmp37*tmp5 + Scalar(2)*tmp213*tmp19*tmp502
+        + Scalar(2)*tmp218*tmp19*tmp507 + Scalar(2)*tmp237*tmp24*tmp517
+        + Scalar(2)*tmp241*tmp24*tmp521 + Scalar(2)*tmp273*tmp37*tmp5*tmp457
+        + Scalar(2)*tmp82*m*tmp479 + Scalar(2)*tmp101*m*tmp488;
+    const Scalar tmp541 = m*tmp475;
+    const Scalar tmp542 = m*tmp484;
+    const Scalar tmp543 = tmp219*tmp19*tmp501 + tmp216*tmp19*tmp503 + tmp214*tmp19*tmp505
+        + tmp209*tmp19*tmp508 + tmp242*tmp24*tmp516 + tmp239*tmp24*tmp518 + tmp238*tmp24*tmp519
+        + tmp234*tmp24*tmp522 + tmp37*tmp85*tmp464 + tmp95*m*tmp467 + tmp37*tmp86*tmp474
+        + tmp90*m*tmp475 + tmp31*tmp37*tmp480 + tmp37*tmp75*tmp481 + tmp76*m*tmp483
+        + tmp50*m*tmp484;
+    const Scalar tmp544 = tmp214*tmp19*tmp502 + tmp213*tmp19*tmp503 + tmp219*tmp19*tmp507
+        + tmp218*tmp19*tmp508 + tmp238*tmp24*tmp517 + tmp237*tmp24*tmp518 + tmp242*tmp24*tmp521
+        + tmp241*tmp24*tmp522 + tmp37*tmp79*tmp474 + tmp82*m*tmp475 + tmp37*tmp75*tmp477
+        + tmp76*m*tmp479 + tmp37*tmp98*tmp480 + tmp101*m*tmp484 + tmp37*tmp85*tmp486
+        + tmp95*m*tmp488;
+    const Scalar tmp545 = Scalar(2)*tmp214*tmp19*tmp503 + Scalar(2)*tmp219*tmp19*tmp508
+        + Scalar(2)*tmp238*tmp24*tmp518 + Scalar(2)*tmp242*tmp24*tmp522
+        + Scalar(2)*tmp37*tmp75*tmp474 + Scalar(2)*tmp76*m*tmp475 + Scalar(2)*tmp37*tmp85*tmp480
+        + Scalar(2)*tmp95*m*tmp484;
+    const Scalar tmp546 = m*tmp497;
+    const Scalar tmp547 = m*tmp500;
+    const Scalar tmp548 = tmp19*tmp513;
+    const Scalar tmp549 = tmp19*tmp515;
+    const Scalar tmp550 = tmp24*tmp527;
+    const Scalar tmp551 = tmp24*tmp529;
+    const Scalar tmp552 = tmp37*tmp532;
+    const Scalar tmp553 = tmp37*tmp533;
+    const Scalar tmp554 = -tmp546;
+    const Scalar tmp555 = -tmp547;
+    const Scalar tmp556 = -tmp287*tmp501 - tmp286*tmp505 - tmp289*tmp516 - tmp288*tmp519
+        - tmp291*tmp464 - tmp284*tmp467 - tmp290*tmp481 - tmp283*tmp483 - tmp90*tmp546
+        - tmp50*tmp547 - tmp216*tmp548 - tmp209*tmp549 - tmp239*tmp550 - tmp234*tmp551
+        - tmp86*tmp552 - tmp31*tmp553;
+    const Scalar tmp557 = -tmp286*tmp502 - tmp287*tmp507 - tmp288*tmp517 - tmp289*tmp521
+        - tmp290*tmp477 - tmp283*tmp479 - tmp291*tmp486 - tmp284*tmp488 - tmp82*tmp546
+        - tmp101*tmp547 - tmp213*tmp548 - tmp218*tmp549 - tmp237*tmp550 - tmp241*tmp551
+        - tmp79*tmp552 - tmp98*tmp553;
+    const Scalar tmp558 = -tmp286*tmp503 - tmp287*tmp508 - tmp288*tmp518 - tmp289*tmp522
+        - tmp290*tmp474 - tmp283*tmp475 - tmp291*tmp480 - tmp284*tmp484 - tmp76*tmp546
+        - tmp95*tmp547 - tmp214*tmp548 - tmp219*tmp549 - tmp238*tmp550 - tmp242*tmp551
+        - tmp75*tmp552 - tmp85*tmp553;
+    const Scalar tmp559 = tmp6*tmp44;
+    const Scalar tmp560 = tmp29*tmp44;
+    const Scalar tmp561 = -tmp3;
+    const Scalar tmp562 = tmp5*tmp561;
+    const Scalar tmp563 = com_x*tmp561;
     const Scalar tmp564 = tmp5*tmp563;
-    const Scalar tmp565 = tmp550 + tmp564;
-    const Scalar tmp566 = tmp562 + tmp565;
-    const Scalar tmp567 = tmp5*tmp560;
-    const Scalar tmp568 = tmp8*tmp567;
+    const Scalar tmp565 = com_z*tmp560 + tmp564 + com_y*tmp559;
+    const Scalar tmp566 = tmp28*tmp44;
+    const Scalar tmp567 = tmp2*tmp44;
+    const Scalar tmp568 = tmp0*tmp561;
     const Scalar tmp569 = tmp0*tmp563;
-    const Scalar tmp570 = tmp556 - tmp569;
-    const Scalar tmp571 = tmp568 + tmp570;
-    const Scalar tmp572 = tmp1*tmp560;
-    const Scalar tmp573 = tmp559 + tmp572;
-    const Scalar tmp574 = tmp1*tmp543;
-    const Scalar tmp575 = tmp0*tmp572 + tmp574;
-    const Scalar tmp576 = tmp542 + tmp567 - tmp8*tmp569;
-    const Scalar tmp577 = -tmp571;
-    const Scalar tmp578 = pitch_dot*tmp575 + roll_dot*tmp576 + yaw_dot*tmp577;
-    const Scalar tmp579 = tmp1*tmp538;
-    const Scalar tmp580 = tmp5*tmp572 + tmp579;
-    const Scalar tmp581 = tmp543 - tmp545 + tmp561 + tmp8*tmp564;
-    const Scalar tmp582 = -tmp581;
-    const Scalar tmp583 = Scalar(0.3)*tmp1*tmp517 - tmp1*tmp563;
-    const Scalar tmp584 = tmp8*tmp537;
-    const Scalar tmp585 = -tmp8*tmp560 - tmp584;
-    const Scalar tmp586 = tmp5*tmp528;
-    const Scalar tmp587 = -tmp523;
-    const Scalar tmp588 = -tmp534;
-    const Scalar tmp589 = Scalar(0.4)*tmp0*tmp1*pitch_dot*roll_dot*tmp517
-        - (pitch_dot*pitch_dot)*tmp522 + tmp1*pitch_dot*roll_dot*tmp524 - yaw_dot*tmp533
-        - pitch_dot*yaw_dot*tmp586 + ((roll_dot*roll_dot) + (yaw_dot*yaw_dot))*tmp587
-        + Scalar(2)*roll_dot*yaw_dot*tmp588;
-    const Scalar tmp590 = tmp1*tmp519;
-    const Scalar tmp591 = tmp0*tmp528;
-    const Scalar tmp592 = Scalar(2)*pitch_dot*roll_dot*tmp590 + pitch_dot*yaw_dot*tmp591
-        - (pitch_dot*pitch_dot)*tmp526 + roll_dot*yaw_dot*tmp530 + (roll_dot*roll_dot)*tmp531
-        + yaw_dot*tmp532;
-    const Scalar tmp593 = tmp8*tmp518;
-    const Scalar tmp594 = -Scalar(2)*pitch_dot*roll_dot*tmp593 - (roll_dot*roll_dot)*tmp528
-        - pitch_dot*tmp529;
-    const Scalar tmp595 = tmp5*tmp547;
-    const Scalar tmp596 = -tmp542;
-    const Scalar tmp597 = -pitch_dot*yaw_dot*tmp595
-        + ((roll_dot*roll_dot) + (yaw_dot*yaw_dot))*tmp596 - (pitch_dot*pitch_dot)*tmp541
-        - yaw_dot*tmp554 + Scalar(2)*roll_dot*yaw_dot*tmp556 - Scalar(2)*pitch_dot*roll_dot*tmp574;
-    const Scalar tmp598 = Scalar(0.3)*tmp0*tmp1*pitch_dot*yaw_dot*tmp517
-        - (pitch_dot*pitch_dot)*tmp545 + roll_dot*yaw_dot*tmp551 + (roll_dot*roll_dot)*tmp552
-        + yaw_dot*tmp553 - Scalar(2)*pitch_dot*roll_dot*tmp579;
-    const Scalar tmp599 = Scalar(0.3)*tmp8*pitch_dot*roll_dot*tmp20 - (roll_dot*roll_dot)*tmp547
-        - pitch_dot*tmp548 + pitch_dot*roll_dot*tmp584;
-    const Scalar tmp600 = Scalar(0.3)*tmp0*tmp1*tmp517 - tmp1*tmp569;
-    const Scalar tmp601 = -tmp580;
-    const Scalar tmp602 = Scalar(2)*pitch_dot*roll_dot*tmp600 + Scalar(2)*pitch_dot*yaw_dot*tmp601
-        - (pitch_dot*pitch_dot)*tmp549 + (-(pitch_dot*pitch_dot) - (roll_dot*roll_dot))*tmp562
-        - (roll_dot*roll_dot)*tmp565 - (yaw_dot*yaw_dot)*tmp566 + Scalar(2)*roll_dot*yaw_dot*tmp581;
-    const Scalar tmp603 = Scalar(0.3)*tmp1*tmp5*tmp517 - tmp1*tmp564;
-    const Scalar tmp604 = Scalar(2)*pitch_dot*roll_dot*tmp603 - (pitch_dot*pitch_dot)*tmp555
-        + (-(pitch_dot*pitch_dot) - (roll_dot*roll_dot))*tmp568 - (roll_dot*roll_dot)*tmp570
-        + pitch_dot*yaw_dot*tmp575 + roll_dot*yaw_dot*tmp576 + yaw_dot*tmp578;
-    const Scalar tmp605 = -tmp558;
-    const Scalar tmp606 = tmp605 + tmp8*tmp563;
-    const Scalar tmp607 = Scalar(2)*pitch_dot*roll_dot*tmp606
-        + (-(pitch_dot*pitch_dot) - (roll_dot*roll_dot))*tmp573;
-    const Scalar tmp608 = m_b*tmp531 + m_c*tmp552 + m_d*tmp577;
-    const Scalar tmp609 = m_b*tmp523 + m_c*tmp542 + m_d*tmp566;
-    const Scalar tmp610 = Scalar(2)*tmp27*m_b*tmp523 + Scalar(2)*tmp38*m_b*tmp531
-        + Scalar(2)*tmp52*m_c*tmp542 + Scalar(2)*tmp65*m_c*tmp552 + Scalar(2)*tmp84*m_d*tmp566
-        + Scalar(2)*tmp101*m_d*tmp577;
-    const Scalar tmp611 = tmp0*tmp547;
-    const Scalar tmp612 = m_b*tmp591 + m_c*tmp611 + m_d*tmp575;
-    const Scalar tmp613 = m_c*tmp595 + m_d*tmp580 + m_b*tmp586;
-    const Scalar tmp614 = -m_b*tmp535 - m_c*tmp558 + m_d*tmp585;
-    const Scalar tmp615 = tmp38*m_b*tmp591 + tmp52*m_c*tmp595 + tmp65*m_c*tmp611 + tmp124*m_b*tmp523
-        + tmp129*m_b*tmp531 + tmp133*m_c*tmp542 + tmp154*m_c*tmp552 + tmp105*m_d*tmp566
-        + tmp101*m_d*tmp575 + tmp99*m_d*tmp577 + tmp84*m_d*tmp580 + tmp27*m_b*tmp586;
-    const Scalar tmp616 = Scalar(2)*tmp23*tmp20;
-    const Scalar tmp617 = Scalar(0.16000000000000003)*tmp616;
-    const Scalar tmp618 = tmp150*tmp617;
-    const Scalar tmp619 = Scalar(2)*tmp20*tmp517;
-    const Scalar tmp620 = Scalar(0.09)*tmp619;
-    const Scalar tmp621 = tmp150*tmp620;
-    const Scalar tmp622 = tmp159*m_b*tmp617 + m_b*(tmp149 + tmp152)*tmp618 + tmp159*m_c*tmp620
-        + m_c*(tmp149 + tmp152)*tmp621 + Scalar(2)*tmp99*m_d*tmp575 + Scalar(2)*tmp105*m_d*tmp580
-        + Scalar(2)*tmp111*m_d*tmp585;
-    const Scalar tmp623 = m_b*tmp530 + m_c*tmp551 + m_d*tmp576;
-    const Scalar tmp624 = m_b*tmp534 + m_c*tmp557 + m_d*tmp582;
-    const Scalar tmp625 = m_b*tmp536 - m_c*tmp559 + m_d*tmp583;
-    const Scalar tmp626 = tmp42*m_b*tmp523 + tmp38*m_b*tmp530 + tmp37*m_b*tmp531 + tmp27*m_b*tmp534
-        + tmp71*m_c*tmp542 + tmp65*m_c*tmp551 + tmp64*m_c*tmp552 + tmp52*m_c*tmp557
-        + tmp107*m_d*tmp566 + tmp101*m_d*tmp576 + tmp100*m_d*tmp577 + tmp84*m_d*tmp582;
-    const Scalar tmp627 = tmp1*tmp23*tmp8*tmp517 + tmp1*tmp20*tmp8*tmp20;
-    const Scalar tmp628 = tmp37*m_b*tmp591 + tmp71*m_c*tmp595 + tmp64*m_c*tmp611
-        + (Scalar(0.09)*m_c - Scalar(0.16000000000000003)*m_b)*tmp627 + tmp129*m_b*tmp530
-        + tmp124*m_b*tmp534 + tmp154*m_c*tmp551 + tmp133*m_c*tmp557 + tmp100*m_d*tmp575
-        + tmp99*m_d*tmp576 + tmp107*m_d*tmp580 + tmp105*m_d*tmp582 + tmp111*m_d*tmp583
-        + tmp109*m_d*tmp585 + tmp42*m_b*tmp586;
-    const Scalar tmp629 = Scalar(0.09)*tmp150*m_c*tmp616
-        + Scalar(0.16000000000000003)*tmp150*m_b*tmp619 + Scalar(2)*tmp37*m_b*tmp530
-        + Scalar(2)*tmp42*m_b*tmp534 + Scalar(2)*tmp64*m_c*tmp551 + Scalar(2)*tmp71*m_c*tmp557
-        + Scalar(2)*tmp100*m_d*tmp576 + Scalar(2)*tmp107*m_d*tmp582 + Scalar(2)*tmp109*m_d*tmp583;
-    const Scalar tmp630 = m_b*tmp589;
-    const Scalar tmp631 = m_b*tmp592;
-    const Scalar tmp632 = m_c*tmp597;
-    const Scalar tmp633 = m_c*tmp598;
-    const Scalar tmp634 = m_d*tmp602;
-    const Scalar tmp635 = m_d*tmp604;
-    const Scalar tmp636 = m_b*tmp594;
-    const Scalar tmp637 = m_c*tmp599;
-    const Scalar tmp638 = m_d*tmp607;
-    const Scalar tmp639 = tmp630 + tmp632 + tmp634;
-    const Scalar tmp640 = tmp631 + tmp633 + tmp635;
-    const Scalar tmp641 = tmp636 + tmp637 + tmp638;
-    const Scalar tmp642 = -tmp116*tmp535 - tmp118*tmp558 + tmp120*tmp585;
-    const Scalar tmp643 = tmp116*tmp536 - tmp118*tmp559 + tmp120*tmp583;
-    const Scalar tmp644 = -tmp639;
-    const Scalar tmp645 = -tmp640;
-    const Scalar tmp646 = -tmp641;
-    const Scalar tmp647 = -tmp38*tmp630 - tmp27*tmp631 - tmp65*tmp632 - tmp52*tmp633 - tmp101*tmp634
-        - tmp84*tmp635 - tmp179*tmp523 - tmp178*tmp531 - tmp181*tmp542 - tmp180*tmp552
-        - tmp183*tmp566 - tmp182*tmp577;
-    const Scalar tmp648 = -tmp178*tmp591 - tmp181*tmp595 - tmp180*tmp611 - tmp129*tmp630
-        - tmp124*tmp631 - tmp154*tmp632 - tmp133*tmp633 - tmp99*tmp634 - tmp105*tmp635
-        + Scalar(0.4)*tmp23*tmp8*tmp636 + Scalar(0.3)*tmp20*tmp8*tmp637 - tmp111*tmp638
-        + Scalar(0.3)*tmp186*tmp8*tmp517 + Scalar(0.4)*tmp185*tmp8*tmp20 - tmp182*tmp575
-        - tmp183*tmp580 - tmp187*tmp585 - tmp179*tmp586;
-    const Scalar tmp649 = -tmp37*tmp630 - tmp42*tmp631 - tmp64*tmp632 - tmp71*tmp633 - tmp100*tmp634
-        - tmp107*tmp635 - tmp45*tmp636 + Scalar(0.3)*tmp1*tmp23*tmp637 - tmp109*tmp638
-        + Scalar(0.3)*tmp1*tmp186*tmp20 - tmp178*tmp530 - tmp179*tmp534 - tmp185*tmp536
-        - tmp180*tmp551 - tmp181*tmp557 - tmp182*tmp576 - tmp183*tmp582 - tmp187*tmp583;
-    const Scalar tmp650 = tmp15 - tmp16 + Scalar(0.5)*tmp5*tmp8*pitch_dot - yaw_dot*tmp3;
-    const Scalar tmp651 = -tmp12 - tmp11*pitch_dot - yaw_dot*tmp6;
-    const Scalar tmp652 = -tmp41 - tmp124*pitch_dot + Scalar(2)*tmp125*yaw_dot
-        + Scalar(2)*tmp126*roll_dot;
-    const Scalar tmp653 = tmp39 + tmp129*pitch_dot + tmp37*roll_dot + yaw_dot*tmp38;
-    const Scalar tmp654 = -tmp68 - tmp133*pitch_dot + Scalar(2)*tmp134*yaw_dot
-        + Scalar(2)*tmp70*roll_dot;
-    const Scalar tmp655 = tmp66 + tmp64*roll_dot + Scalar(0.3)*tmp0*tmp1*tmp20*pitch_dot
-        + yaw_dot*tmp65;
-    const Scalar tmp656 = -Scalar(2)*tmp84*yaw_dot + Scalar(2)*tmp139*pitch_dot
-        + Scalar(2)*tmp106*roll_dot;
-    const Scalar tmp657 = tmp102 + tmp99*pitch_dot + tmp100*roll_dot + yaw_dot*tmp101;
-    const Scalar tmp658 = m_a*tmp650;
-    const Scalar tmp659 = m_a*tmp651;
-    const Scalar tmp660 = m_b*tmp652;
-    const Scalar tmp661 = m_b*tmp653;
-    const Scalar tmp662 = m_c*tmp654;
-    const Scalar tmp663 = m_c*tmp655;
-    const Scalar tmp664 = m_d*tmp656;
-    const Scalar tmp665 = m_d*tmp657;
-    const Scalar tmp666 = tmp660 + tmp662 + tmp664 + tmp658;
-    const Scalar tmp667 = tmp661 + tmp663 + tmp665 + tmp659;
-    const Scalar tmp668 = -tmp666;
-    const Scalar tmp669 = -tmp667;
-    const Scalar tmp670 = -tmp38*tmp660 - tmp27*tmp661 - tmp65*tmp662 - tmp52*tmp663 - tmp101*tmp664
-        - tmp84*tmp665 + Scalar(0.5)*tmp1*tmp5*tmp658 - tmp3*tmp659;
-    const Scalar tmp671 = -tmp129*tmp660 - tmp124*tmp661 - tmp154*tmp662 - tmp133*tmp663
-        - tmp99*tmp664 - tmp105*tmp665 + Scalar(0.5)*tmp0*tmp8*tmp658
-        + Scalar(0.5)*tmp5*tmp8*tmp659;
-    const Scalar tmp672 = -tmp37*tmp660 - tmp42*tmp661 - tmp64*tmp662 - tmp71*tmp663 - tmp100*tmp664
-        - tmp107*tmp665;
-    const Scalar tmp673 = tmp0*tmp34;
-    const Scalar tmp674 = tmp5*tmp34;
-    const Scalar tmp675 = tmp0*tmp59;
-    const Scalar tmp676 = tmp5*tmp59;
-    const Scalar tmp677 = -Scalar(2)*tmp3*pitch_dot + Scalar(0.5)*tmp5*tmp8*yaw_dot + yaw_dot*tmp14;
-    const Scalar tmp678 = -tmp11*yaw_dot - Scalar(2)*tmp6*pitch_dot - yaw_dot*tmp11;
-    const Scalar tmp679 = Scalar(2)*tmp9*pitch_dot;
-    const Scalar tmp680 = -tmp124*yaw_dot - Scalar(2)*tmp26*pitch_dot + tmp1*tmp29*roll_dot
-        + Scalar(0.4)*tmp0*tmp1*tmp20*roll_dot - yaw_dot*tmp674;
-    const Scalar tmp681 = tmp129*yaw_dot - Scalar(2)*tmp31*pitch_dot + Scalar(2)*tmp128*roll_dot
-        + yaw_dot*tmp673;
-    const Scalar tmp682 = -tmp36 - Scalar(2)*tmp131*roll_dot - pitch_dot*tmp34;
-    const Scalar tmp683 = -tmp133*yaw_dot - Scalar(2)*tmp51*pitch_dot - Scalar(2)*tmp98*roll_dot
-        - yaw_dot*tmp676;
-    const Scalar tmp684 = -Scalar(2)*tmp56*pitch_dot - Scalar(2)*tmp104*roll_dot
-        + Scalar(0.3)*tmp0*tmp1*tmp20*yaw_dot + yaw_dot*tmp675;
-    const Scalar tmp685 = -tmp61 + tmp110*roll_dot + Scalar(0.3)*tmp23*tmp8*roll_dot
-        - pitch_dot*tmp59;
-    const Scalar tmp686 = Scalar(2)*tmp138*roll_dot + Scalar(2)*tmp139*yaw_dot
-        + Scalar(2)*pitch_dot*(-tmp62 - tmp80);
-    const Scalar tmp687 = tmp99*yaw_dot + Scalar(2)*tmp141*roll_dot
-        + Scalar(2)*pitch_dot*(-tmp69 - tmp88) + yaw_dot*tmp99;
-    const Scalar tmp688 = -Scalar(2)*tmp96*pitch_dot + Scalar(2)*tmp144*roll_dot;
-    const Scalar tmp689 = m_a*tmp677;
-    const Scalar tmp690 = m_a*tmp678;
-    const Scalar tmp691 = m_b*tmp680;
-    const Scalar tmp692 = m_b*tmp681;
-    const Scalar tmp693 = m_c*tmp683;
-    const Scalar tmp694 = m_c*tmp684;
-    const Scalar tmp695 = m_d*tmp686;
-    const Scalar tmp696 = m_d*tmp687;
-    const Scalar tmp697 = m_a*tmp679;
-    const Scalar tmp698 = m_b*tmp682;
-    const Scalar tmp699 = m_c*tmp685;
-    const Scalar tmp700 = m_d*tmp688;
-    const Scalar tmp701 = tmp691 + tmp693 + tmp695 + tmp689;
-    const Scalar tmp702 = tmp692 + tmp694 + tmp696 + tmp690;
-    const Scalar tmp703 = tmp698 + tmp699 + tmp700 + tmp697;
-    const Scalar tmp704 = -tmp701;
-    const Scalar tmp705 = -tmp702;
-    const Scalar tmp706 = -tmp703;
-    const Scalar tmp707 = -tmp38*tmp691 - tmp27*tmp692 - tmp65*tmp693 - tmp52*tmp694 - tmp101*tmp695
-        - tmp84*tmp696 + Scalar(0.5)*tmp1*tmp5*tmp689 - tmp3*tmp690;
-    const Scalar tmp708 = -tmp129*tmp691 - tmp124*tmp692 - tmp154*tmp693 - tmp133*tmp694
-        - tmp99*tmp695 - tmp105*tmp696 + Scalar(0.4)*tmp23*tmp8*tmp698
-        + Scalar(0.3)*tmp20*tmp8*tmp699 - tmp111*tmp700 + Scalar(0.5)*tmp0*tmp8*tmp689
-        + Scalar(0.5)*tmp5*tmp8*tmp690 + Scalar(0.5)*tmp1*tmp697;
-    const Scalar tmp709 = -tmp37*tmp691 - tmp42*tmp692 - tmp64*tmp693 - tmp71*tmp694 - tmp100*tmp695
-        - tmp107*tmp696 - tmp45*tmp698 + Scalar(0.3)*tmp1*tmp23*tmp699 - tmp109*tmp700;
-    const Scalar tmp710 = Scalar(2)*tmp125*roll_dot + Scalar(2)*tmp126*yaw_dot
-        + tmp1*tmp29*pitch_dot + Scalar(0.4)*tmp0*tmp1*tmp20*pitch_dot;
-    const Scalar tmp711 = tmp37*yaw_dot + Scalar(2)*tmp128*pitch_dot + Scalar(2)*tmp38*roll_dot
-        + yaw_dot*tmp37;
-    const Scalar tmp712 = -Scalar(2)*tmp131*pitch_dot - Scalar(2)*tmp34*roll_dot;
-    const Scalar tmp713 = -Scalar(2)*tmp98*pitch_dot + Scalar(2)*tmp134*roll_dot
-        + Scalar(2)*tmp70*yaw_dot;
-    const Scalar tmp714 = tmp64*yaw_dot - Scalar(2)*tmp104*pitch_dot + Scalar(2)*tmp65*roll_dot
-        + yaw_dot*tmp64;
-    const Scalar tmp715 = tmp110*pitch_dot - Scalar(2)*tmp59*roll_dot
-        + Scalar(0.3)*tmp23*tmp8*pitch_dot;
-    const Scalar tmp716 = Scalar(2)*tmp138*pitch_dot + Scalar(2)*tmp106*yaw_dot
-        + Scalar(2)*roll_dot*(-tmp79 - tmp83);
-    const Scalar tmp717 = tmp100*yaw_dot + Scalar(2)*tmp141*pitch_dot
-        + Scalar(2)*roll_dot*(-tmp87 - tmp90) + yaw_dot*tmp100;
-    const Scalar tmp718 = -Scalar(2)*tmp95*roll_dot + Scalar(2)*tmp144*pitch_dot;
-    const Scalar tmp719 = m_b*tmp710;
-    const Scalar tmp720 = m_b*tmp711;
-    const Scalar tmp721 = m_c*tmp713;
-    const Scalar tmp722 = m_c*tmp714;
-    const Scalar tmp723 = m_d*tmp716;
-    const Scalar tmp724 = m_d*tmp717;
-    const Scalar tmp725 = m_b*tmp712;
-    const Scalar tmp726 = m_c*tmp715;
-    const Scalar tmp727 = m_d*tmp718;
-    const Scalar tmp728 = tmp719 + tmp721 + tmp723;
-    const Scalar tmp729 = tmp720 + tmp722 + tmp724;
-    const Scalar tmp730 = tmp725 + tmp726 + tmp727;
-    const Scalar tmp731 = -tmp728;
-    const Scalar tmp732 = -tmp729;
-    const Scalar tmp733 = -tmp730;
-    const Scalar tmp734 = -tmp38*tmp719 - tmp27*tmp720 - tmp65*tmp721 - tmp52*tmp722 - tmp101*tmp723
-        - tmp84*tmp724;
-    const Scalar tmp735 = -tmp129*tmp719 - tmp124*tmp720 - tmp154*tmp721 - tmp133*tmp722
-        - tmp99*tmp723 - tmp105*tmp724 + Scalar(0.4)*tmp23*tmp8*tmp725
-        + Scalar(0.3)*tmp20*tmp8*tmp726 - tmp111*tmp727;
-    const Scalar tmp736 = -tmp37*tmp719 - tmp42*tmp720 - tmp64*tmp721 - tmp71*tmp722 - tmp100*tmp723
-        - tmp107*tmp724 - tmp45*tmp725 + Scalar(0.3)*tmp1*tmp23*tmp726 - tmp109*tmp727;
+    const Scalar tmp570 = tmp4*tmp561;
+    const Scalar tmp571 = tmp1*tmp561;
+    const Scalar tmp572 = com_x*tmp44;
+    const Scalar tmp573 = com_y*tmp570 + com_z*tmp571;
+    const Scalar tmp574 = -tmp572 + tmp573;
+    const Scalar tmp575 = -tmp559;
+    const Scalar tmp576 = com_y*tmp560 + com_z*tmp575;
+    const Scalar tmp577 = tmp6*tmp561;
+    const Scalar tmp578 = tmp29*tmp561;
+    const Scalar tmp579 = tmp5*tmp44;
+    const Scalar tmp580 = -tmp5*tmp572 + com_y*tmp577 + com_z*tmp578;
+    const Scalar tmp581 = -tmp566;
+    const Scalar tmp582 = -tmp567;
+    const Scalar tmp583 = com_y*tmp581 + com_z*tmp582;
+    const Scalar tmp584 = -tmp569 + tmp583;
+    const Scalar tmp585 = com_y*tmp567 + com_z*tmp581;
+    const Scalar tmp586 = tmp28*tmp561;
+    const Scalar tmp587 = tmp2*tmp561;
+    const Scalar tmp588 = tmp0*tmp44;
+    const Scalar tmp589 = -tmp0*tmp572 + com_y*tmp586 + com_z*tmp587;
+    const Scalar tmp590 = -com_z*tmp570 + com_y*tmp571;
+    const Scalar tmp591 = tmp4*tmp44;
+    const Scalar tmp592 = tmp1*tmp44;
+    const Scalar tmp593 = com_y*tmp591 + com_z*tmp592 + tmp563;
+    const Scalar tmp594 = roll_dot*tmp576 + pitch_dot*tmp580 + yaw_dot*tmp584;
+    const Scalar tmp595 = -tmp593;
+    const Scalar tmp596 = -com_z*tmp577 + com_y*tmp578;
+    const Scalar tmp597 = -tmp589;
+    const Scalar tmp598 = com_z*tmp560 + tmp564 + com_y*tmp559;
+    const Scalar tmp599 = com_z*tmp566 + com_y*tmp582;
+    const Scalar tmp600 = -tmp560;
+    const Scalar tmp601 = com_z*tmp600 + com_y*tmp575;
+    const Scalar tmp602 = tmp601 - tmp564;
+    const Scalar tmp603 = Scalar(2)*pitch_dot*roll_dot*tmp596 + Scalar(2)*pitch_dot*yaw_dot*tmp597
+        - (pitch_dot*pitch_dot)*tmp598 + Scalar(2)*roll_dot*yaw_dot*tmp599
+        + (roll_dot*roll_dot)*tmp601 + (yaw_dot*yaw_dot)*tmp602;
+    const Scalar tmp604 = -com_z*tmp586 + com_y*tmp587;
+    const Scalar tmp605 = com_y*tmp566 + com_z*tmp567 + tmp569;
+    const Scalar tmp606 = yaw_dot*tmp594 + Scalar(2)*pitch_dot*roll_dot*tmp604
+        - (pitch_dot*pitch_dot)*tmp605 + roll_dot*yaw_dot*tmp576 + pitch_dot*yaw_dot*tmp580
+        + (roll_dot*roll_dot)*tmp583;
+    const Scalar tmp607 = com_y*tmp592 - tmp4*com_z*tmp44;
+    const Scalar tmp608 = -tmp607;
+    const Scalar tmp609 = Scalar(2)*pitch_dot*roll_dot*tmp608 - (roll_dot*roll_dot)*tmp573
+        - (pitch_dot*pitch_dot)*tmp574;
+    const Scalar tmp610 = tmp35*tmp560 + tmp562 + tmp208*tmp559;
+    const Scalar tmp611 = tmp208*tmp570 + tmp35*tmp571;
+    const Scalar tmp612 = tmp611 - tmp44;
+    const Scalar tmp613 = tmp208*tmp577 + tmp35*tmp578 - tmp579;
+    const Scalar tmp614 = tmp208*tmp560 + tmp35*tmp575;
+    const Scalar tmp615 = tmp208*tmp581 + tmp35*tmp582;
+    const Scalar tmp616 = tmp615 - tmp568;
+    const Scalar tmp617 = pitch_dot*tmp613 + roll_dot*tmp614 + yaw_dot*tmp616;
+    const Scalar tmp618 = tmp208*tmp586 + tmp35*tmp587 - tmp588;
+    const Scalar tmp619 = tmp208*tmp567 + tmp35*tmp581;
+    const Scalar tmp620 = tmp1*tmp18*tmp23*tmp561 - tmp35*tmp570;
+    const Scalar tmp621 = -tmp208*tmp591 - tmp35*tmp592 - tmp561;
+    const Scalar tmp622 = tmp1*tmp18*tmp23*tmp5*tmp561 - tmp35*tmp577;
+    const Scalar tmp623 = -tmp618;
+    const Scalar tmp624 = tmp35*tmp566 + tmp208*tmp582;
+    const Scalar tmp625 = tmp35*tmp600 + tmp208*tmp575;
+    const Scalar tmp626 = Scalar(2)*pitch_dot*roll_dot*tmp622 + Scalar(2)*pitch_dot*yaw_dot*tmp623
+        + Scalar(2)*roll_dot*yaw_dot*tmp624 + ((roll_dot*roll_dot) + (yaw_dot*yaw_dot))*tmp625
+        - tmp35*(pitch_dot*pitch_dot)*tmp560 + (-(pitch_dot*pitch_dot) - (yaw_dot*yaw_dot))*tmp562
+        - tmp208*(pitch_dot*pitch_dot)*tmp559;
+    const Scalar tmp627 = tmp0*tmp1*tmp18*tmp23*tmp561 - tmp35*tmp586;
+    const Scalar tmp628 = pitch_dot*yaw_dot*tmp613 + roll_dot*yaw_dot*tmp614
+        + (roll_dot*roll_dot)*tmp615 + yaw_dot*tmp617 + Scalar(2)*pitch_dot*roll_dot*tmp627
+        - tmp208*(pitch_dot*pitch_dot)*tmp566 - tmp35*(pitch_dot*pitch_dot)*tmp567
+        - (pitch_dot*pitch_dot)*tmp568;
+    const Scalar tmp629 = tmp35*tmp591 - tmp208*tmp592;
+    const Scalar tmp630 = -(roll_dot*roll_dot)*tmp611 - (pitch_dot*pitch_dot)*tmp612
+        + Scalar(2)*pitch_dot*roll_dot*tmp629;
+    const Scalar tmp631 = tmp233*tmp560 + tmp559;
+    const Scalar tmp632 = tmp570 + tmp233*tmp571;
+    const Scalar tmp633 = tmp577 + tmp233*tmp578;
+    const Scalar tmp634 = tmp560 + tmp233*tmp575;
+    const Scalar tmp635 = -tmp566 + tmp34*tmp36*tmp582;
+    const Scalar tmp636 = pitch_dot*tmp633 + roll_dot*tmp634 + yaw_dot*tmp635;
+    const Scalar tmp637 = tmp586 + tmp233*tmp587;
+    const Scalar tmp638 = tmp567 + tmp233*tmp581;
+    const Scalar tmp639 = tmp1*tmp561 - tmp233*tmp570;
+    const Scalar tmp640 = -tmp591 - tmp233*tmp592;
+    const Scalar tmp641 = tmp1*tmp5*tmp561 - tmp233*tmp577;
+    const Scalar tmp642 = -tmp637;
+    const Scalar tmp643 = tmp233*tmp566 - tmp567;
+    const Scalar tmp644 = tmp233*tmp600 - tmp559;
+    const Scalar tmp645 = Scalar(2)*pitch_dot*roll_dot*tmp641 + Scalar(2)*pitch_dot*yaw_dot*tmp642
+        + Scalar(2)*roll_dot*yaw_dot*tmp643 + ((roll_dot*roll_dot) + (yaw_dot*yaw_dot))*tmp644
+        - tmp233*(pitch_dot*pitch_dot)*tmp560 - (pitch_dot*pitch_dot)*tmp559;
+    const Scalar tmp646 = tmp0*tmp1*tmp561 - tmp233*tmp586;
+    const Scalar tmp647 = pitch_dot*yaw_dot*tmp633 + roll_dot*yaw_dot*tmp634
+        + (roll_dot*roll_dot)*tmp635 + yaw_dot*tmp636 + Scalar(2)*pitch_dot*roll_dot*tmp646
+        - (pitch_dot*pitch_dot)*tmp566 - tmp233*(pitch_dot*pitch_dot)*tmp567;
+    const Scalar tmp648 = tmp233*tmp591 - tmp592;
+    const Scalar tmp649 = -tmp632;
+    const Scalar tmp650 = Scalar(2)*pitch_dot*roll_dot*tmp648
+        + ((pitch_dot*pitch_dot) + (roll_dot*roll_dot))*tmp649;
+    const Scalar tmp651 = roll_dot*tmp575 + pitch_dot*tmp578 + yaw_dot*tmp582;
+    const Scalar tmp652 = pitch_dot*tmp587;
+    const Scalar tmp653 = ((roll_dot*roll_dot) + (yaw_dot*yaw_dot))*tmp600 - yaw_dot*tmp652
+        - (pitch_dot*pitch_dot)*tmp560 + Scalar(2)*roll_dot*yaw_dot*tmp566
+        - Scalar(2)*pitch_dot*roll_dot*tmp577 - pitch_dot*yaw_dot*tmp587;
+    const Scalar tmp654 = yaw_dot*tmp651 + tmp1*tmp5*pitch_dot*yaw_dot*tmp561
+        - (pitch_dot*pitch_dot)*tmp567 + roll_dot*yaw_dot*tmp575 + (roll_dot*roll_dot)*tmp582
+        - Scalar(2)*pitch_dot*roll_dot*tmp586;
+    const Scalar tmp655 = pitch_dot*roll_dot*tmp591 + tmp4*pitch_dot*roll_dot*tmp44
+        + (-(pitch_dot*pitch_dot) - (roll_dot*roll_dot))*tmp571;
+    const Scalar tmp656 = m*tmp584;
+    const Scalar tmp657 = m*tmp565;
+    const Scalar tmp658 = Scalar(2)*tmp209*tmp19*tmp610 + Scalar(2)*tmp216*tmp19*tmp616
+        + Scalar(2)*tmp234*tmp24*tmp631 + Scalar(2)*tmp239*tmp24*tmp635
+        + Scalar(2)*tmp31*tmp37*tmp560 + Scalar(2)*tmp50*m*tmp565 + Scalar(2)*tmp37*tmp86*tmp582
+        + Scalar(2)*tmp90*m*tmp584;
+    const Scalar tmp659 = m*tmp580;
+    const Scalar tmp660 = m*tmp589;
+    const Scalar tmp661 = m*tmp595;
+    const Scalar tmp662 = tmp218*tmp19*tmp610 + tmp216*tmp19*tmp613 + tmp213*tmp19*tmp616
+        + tmp209*tmp19*tmp618 + tmp241*tmp24*tmp631 + tmp239*tmp24*tmp633 + tmp237*tmp24*tmp635
+        + tmp234*tmp24*tmp637 + tmp37*tmp98*tmp560 + tmp101*m*tmp565 + tmp37*tmp86*tmp578
+        + tmp90*m*tmp580 + tmp37*tmp79*tmp582 + tmp82*m*tmp584 + tmp31*tmp37*tmp587
+        + tmp50*m*tmp589;
+    const Scalar tmp663 = Scalar(2)*tmp44*tmp561;
+    const Scalar tmp664 = tmp271*tmp663;
+    const Scalar tmp665 = Scalar(2)*tmp192*m*tmp595 + Scalar(2)*tmp213*tmp19*tmp613
+        + Scalar(2)*tmp218*tmp19*tmp618 + Scalar(2)*tmp19*tmp222*tmp621
+        + Scalar(2)*tmp237*tmp24*tmp633 + Scalar(2)*tmp241*tmp24*tmp637
+        + Scalar(2)*tmp245*tmp24*tmp640 + tmp37*((tmp0*tmp0) + (tmp5*tmp5))*tmp664
+        + Scalar(2)*tmp271*tmp3*tmp37*tmp44 + Scalar(2)*tmp82*m*tmp580 + Scalar(2)*tmp101*m*tmp589;
+    const Scalar tmp666 = m*tmp576;
+    const Scalar tmp667 = m*tmp585;
+    const Scalar tmp668 = m*tmp590;
+    const Scalar tmp669 = tmp219*tmp19*tmp610 + tmp216*tmp19*tmp614 + tmp214*tmp19*tmp616
+        + tmp209*tmp19*tmp619 + tmp242*tmp24*tmp631 + tmp239*tmp24*tmp634 + tmp238*tmp24*tmp635
+        + tmp234*tmp24*tmp638 + tmp37*tmp85*tmp560 + tmp95*m*tmp565 + tmp37*tmp86*tmp575
+        + tmp90*m*tmp576 + tmp31*tmp37*tmp581 + tmp37*tmp75*tmp582 + tmp76*m*tmp584
+        + tmp50*m*tmp585;
+    const Scalar tmp670 = tmp192*m*tmp590 + tmp37*tmp64*tmp592 + tmp107*m*tmp595
+        + tmp214*tmp19*tmp613 + tmp213*tmp19*tmp614 + tmp219*tmp19*tmp618 + tmp218*tmp19*tmp619
+        + tmp19*tmp222*tmp620 + tmp221*tmp19*tmp621 + tmp238*tmp24*tmp633 + tmp237*tmp24*tmp634
+        + tmp242*tmp24*tmp637 + tmp241*tmp24*tmp638 + tmp245*tmp24*tmp639 + tmp244*tmp24*tmp640
+        + tmp110*tmp37*tmp570 + tmp37*tmp79*tmp575 + tmp82*m*tmp576 + tmp37*tmp75*tmp578
+        + tmp76*m*tmp580 + tmp37*tmp98*tmp581 + tmp101*m*tmp585 + tmp37*tmp85*tmp587
+        + tmp95*m*tmp589;
+    const Scalar tmp671 = Scalar(2)*tmp107*m*tmp590 + Scalar(2)*tmp214*tmp19*tmp614
+        + Scalar(2)*tmp219*tmp19*tmp619 + Scalar(2)*tmp221*tmp19*tmp620
+        + Scalar(2)*tmp238*tmp24*tmp634 + Scalar(2)*tmp242*tmp24*tmp638
+        + Scalar(2)*tmp244*tmp24*tmp639 + tmp37*(tmp4*tmp4)*tmp663 + Scalar(2)*tmp37*tmp75*tmp575
+        + Scalar(2)*tmp76*m*tmp576 + Scalar(2)*tmp37*tmp85*tmp581 + Scalar(2)*tmp95*m*tmp585;
+    const Scalar tmp672 = m*tmp603;
+    const Scalar tmp673 = m*tmp606;
+    const Scalar tmp674 = m*tmp609;
+    const Scalar tmp675 = tmp19*tmp626;
+    const Scalar tmp676 = tmp19*tmp628;
+    const Scalar tmp677 = tmp24*tmp645;
+    const Scalar tmp678 = tmp24*tmp647;
+    const Scalar tmp679 = tmp37*tmp653;
+    const Scalar tmp680 = tmp37*tmp654;
+    const Scalar tmp681 = tmp19*tmp630;
+    const Scalar tmp682 = tmp24*tmp650;
+    const Scalar tmp683 = tmp37*tmp655;
+    const Scalar tmp684 = tmp282*tmp595;
+    const Scalar tmp685 = tmp282*tmp590;
+    const Scalar tmp686 = -tmp672;
+    const Scalar tmp687 = -tmp673;
+    const Scalar tmp688 = -tmp674;
+    const Scalar tmp689 = -tmp287*tmp610 - tmp286*tmp616 - tmp289*tmp631 - tmp288*tmp635
+        - tmp291*tmp560 - tmp284*tmp565 - tmp290*tmp582 - tmp283*tmp584 - tmp90*tmp672
+        - tmp50*tmp673 - tmp216*tmp675 - tmp209*tmp676 - tmp239*tmp677 - tmp234*tmp678
+        - tmp86*tmp679 - tmp31*tmp680;
+    const Scalar tmp690 = -tmp285*tmp595 - tmp286*tmp613 - tmp287*tmp618 - tmp292*tmp621
+        - tmp288*tmp633 - tmp289*tmp637 - tmp293*tmp640 + tmp1*tmp294*tmp44 - tmp290*tmp578
+        - tmp283*tmp580 - tmp291*tmp587 - tmp284*tmp589 - tmp82*tmp672 - tmp101*tmp673
+        - tmp192*tmp674 - tmp213*tmp675 - tmp218*tmp676 - tmp237*tmp677 - tmp241*tmp678
+        - tmp79*tmp679 - tmp98*tmp680 - tmp222*tmp681 - tmp245*tmp682 + tmp1*tmp3*tmp683;
+    const Scalar tmp691 = -tmp285*tmp590 - tmp286*tmp614 - tmp287*tmp619 - tmp292*tmp620
+        - tmp288*tmp634 - tmp289*tmp638 - tmp293*tmp639 + tmp4*tmp294*tmp561 - tmp290*tmp575
+        - tmp283*tmp576 - tmp291*tmp581 - tmp284*tmp585 - tmp76*tmp672 - tmp95*tmp673
+        - tmp107*tmp674 - tmp214*tmp675 - tmp219*tmp676 - tmp238*tmp677 - tmp242*tmp678
+        - tmp75*tmp679 - tmp85*tmp680 - tmp221*tmp681 - tmp244*tmp682 + tmp4*tmp44*tmp683;
+    const Scalar tmp692 = -tmp4;
+    const Scalar tmp693 = tmp0*tmp692;
+    const Scalar tmp694 = tmp5*tmp1;
+    const Scalar tmp695 = tmp3*tmp694;
+    const Scalar tmp696 = -tmp693 + tmp695;
+    const Scalar tmp697 = tmp0*tmp1;
+    const Scalar tmp698 = tmp5*tmp692;
+    const Scalar tmp699 = tmp3*tmp698;
+    const Scalar tmp700 = tmp697 + tmp699;
+    const Scalar tmp701 = com_z*tmp700 + com_y*tmp696;
+    const Scalar tmp702 = tmp3*tmp697;
+    const Scalar tmp703 = tmp698 + tmp702;
+    const Scalar tmp704 = tmp3*tmp693;
+    const Scalar tmp705 = tmp704 - tmp694;
+    const Scalar tmp706 = tmp44*tmp1;
+    const Scalar tmp707 = tmp44*tmp692;
+    const Scalar tmp708 = com_y*tmp706 + com_z*tmp707;
+    const Scalar tmp709 = -tmp696;
+    const Scalar tmp710 = com_y*tmp700 + com_z*tmp709;
+    const Scalar tmp711 = tmp44*tmp694;
+    const Scalar tmp712 = tmp44*tmp698;
+    const Scalar tmp713 = com_y*tmp711 + com_z*tmp712;
+    const Scalar tmp714 = -tmp703;
+    const Scalar tmp715 = -tmp705;
+    const Scalar tmp716 = com_y*tmp714 + com_z*tmp715;
+    const Scalar tmp717 = com_y*tmp705 + com_z*tmp714;
+    const Scalar tmp718 = tmp44*tmp697;
+    const Scalar tmp719 = tmp44*tmp693;
+    const Scalar tmp720 = com_y*tmp718 + com_z*tmp719;
+    const Scalar tmp721 = -com_z*tmp706 + com_y*tmp707;
+    const Scalar tmp722 = tmp3*tmp1;
+    const Scalar tmp723 = tmp3*tmp692;
+    const Scalar tmp724 = com_y*tmp722 + com_z*tmp723;
+    const Scalar tmp725 = roll_dot*tmp710 + pitch_dot*tmp713 + yaw_dot*tmp716;
+    const Scalar tmp726 = -tmp724;
+    const Scalar tmp727 = -com_z*tmp711 + com_y*tmp712;
+    const Scalar tmp728 = -tmp720;
+    const Scalar tmp729 = com_z*tmp699 + com_y*tmp695;
+    const Scalar tmp730 = com_z*tmp703 + com_y*tmp715;
+    const Scalar tmp731 = -tmp700;
+    const Scalar tmp732 = com_z*tmp731 + com_y*tmp709;
+    const Scalar tmp733 = Scalar(2)*pitch_dot*roll_dot*tmp727 + Scalar(2)*pitch_dot*yaw_dot*tmp728
+        - (pitch_dot*pitch_dot)*tmp729 + Scalar(2)*roll_dot*yaw_dot*tmp730
+        + ((roll_dot*roll_dot) + (yaw_dot*yaw_dot))*tmp732;
+    const Scalar tmp734 = -com_z*tmp718 + com_y*tmp719;
+    const Scalar tmp735 = com_y*tmp702 + com_z*tmp704;
+    const Scalar tmp736 = yaw_dot*tmp725 + Scalar(2)*pitch_dot*roll_dot*tmp734
+        - (pitch_dot*pitch_dot)*tmp735 + roll_dot*yaw_dot*tmp710 + pitch_dot*yaw_dot*tmp713
+        + (roll_dot*roll_dot)*tmp716;
+    const Scalar tmp737 = com_y*tmp723 - tmp3*com_z*tmp1;
+    const Scalar tmp738 = -tmp737;
+    const Scalar tmp739 = Scalar(2)*pitch_dot*roll_dot*tmp738
+        + (-(pitch_dot*pitch_dot) - (roll_dot*roll_dot))*tmp708;
+    const Scalar tmp740 = tmp35*tmp700 + tmp208*tmp696;
+    const Scalar tmp741 = tmp208*tmp706 + tmp35*tmp707;
+    const Scalar tmp742 = tmp208*tmp711 + tmp35*tmp712;
+    const Scalar tmp743 = tmp208*tmp700 + tmp35*tmp709;
+    const Scalar tmp744 = tmp208*tmp714 + tmp35*tmp715;
+    const Scalar tmp745 = pitch_dot*tmp742 + roll_dot*tmp743 + yaw_dot*tmp744;
+    const Scalar tmp746 = tmp208*tmp718 + tmp35*tmp719;
+    const Scalar tmp747 = tmp208*tmp705 + tmp35*tmp714;
+    const Scalar tmp748 = tmp18*tmp23*tmp44*tmp692 - tmp35*tmp706;
+    const Scalar tmp749 = -tmp208*tmp722 - tmp35*tmp723;
+    const Scalar tmp750 = tmp18*tmp23*tmp44*tmp5*tmp692 - tmp35*tmp711;
+    const Scalar tmp751 = -tmp746;
+    const Scalar tmp752 = tmp35*tmp703 + tmp208*tmp715;
+    const Scalar tmp753 = tmp35*tmp731 + tmp208*tmp709;
+    const Scalar tmp754 = Scalar(2)*pitch_dot*roll_dot*tmp750 + Scalar(2)*pitch_dot*yaw_dot*tmp751
+        + Scalar(2)*roll_dot*yaw_dot*tmp752 + ((roll_dot*roll_dot) + (yaw_dot*yaw_dot))*tmp753
+        - tmp35*(pitch_dot*pitch_dot)*tmp699 - tmp208*(pitch_dot*pitch_dot)*tmp695;
+    const Scalar tmp755 = tmp0*tmp18*tmp23*tmp44*tmp692 - tmp35*tmp718;
+    const Scalar tmp756 = pitch_dot*yaw_dot*tmp742 + roll_dot*yaw_dot*tmp743
+        + (roll_dot*roll_dot)*tmp744 + yaw_dot*tmp745 + Scalar(2)*pitch_dot*roll_dot*tmp755
+        - tmp208*(pitch_dot*pitch_dot)*tmp702 - tmp35*(pitch_dot*pitch_dot)*tmp704;
+    const Scalar tmp757 = tmp35*tmp722 - tmp208*tmp723;
+    const Scalar tmp758 = (-(pitch_dot*pitch_dot) - (roll_dot*roll_dot))*tmp741
+        + Scalar(2)*pitch_dot*roll_dot*tmp757;
+    const Scalar tmp759 = tmp233*tmp700 + tmp696;
+    const Scalar tmp760 = tmp706 + tmp233*tmp707;
+    const Scalar tmp761 = tmp711 + tmp233*tmp712;
+    const Scalar tmp762 = tmp700 + tmp233*tmp709;
+    const Scalar tmp763 = -tmp703 + tmp34*tmp36*tmp715;
+    const Scalar tmp764 = pitch_dot*tmp761 + roll_dot*tmp762 + yaw_dot*tmp763;
+    const Scalar tmp765 = tmp718 + tmp233*tmp719;
+    const Scalar tmp766 = tmp705 + tmp233*tmp714;
+    const Scalar tmp767 = tmp44*tmp692 - tmp233*tmp706;
+    const Scalar tmp768 = -tmp722 - tmp233*tmp723;
+    const Scalar tmp769 = tmp44*tmp5*tmp692 - tmp233*tmp711;
+    const Scalar tmp770 = -tmp765;
+    const Scalar tmp771 = tmp233*tmp703 - tmp704 + tmp694;
+    const Scalar tmp772 = tmp233*tmp731 + tmp693 - tmp695;
+    const Scalar tmp773 = Scalar(2)*pitch_dot*roll_dot*tmp769 + Scalar(2)*pitch_dot*yaw_dot*tmp770
+        + Scalar(2)*roll_dot*yaw_dot*tmp771 + ((roll_dot*roll_dot) + (yaw_dot*yaw_dot))*tmp772
+        - tmp233*(pitch_dot*pitch_dot)*tmp699 - (pitch_dot*pitch_dot)*tmp695;
+    const Scalar tmp774 = tmp0*tmp44*tmp692 - tmp233*tmp718;
+    const Scalar tmp775 = pitch_dot*yaw_dot*tmp761 + roll_dot*yaw_dot*tmp762
+        + (roll_dot*roll_dot)*tmp763 + yaw_dot*tmp764 + Scalar(2)*pitch_dot*roll_dot*tmp774
+        - (pitch_dot*pitch_dot)*tmp702 - tmp233*(pitch_dot*pitch_dot)*tmp704;
+    const Scalar tmp776 = tmp233*tmp722 - tmp723;
+    const Scalar tmp777 = -tmp760;
+    const Scalar tmp778 = Scalar(2)*pitch_dot*roll_dot*tmp776
+        + ((pitch_dot*pitch_dot) + (roll_dot*roll_dot))*tmp777;
+    const Scalar tmp779 = roll_dot*tmp709 + pitch_dot*tmp712 + yaw_dot*tmp715;
+    const Scalar tmp780 = pitch_dot*tmp719;
+    const Scalar tmp781 = ((roll_dot*roll_dot) + (yaw_dot*yaw_dot))*tmp731 - yaw_dot*tmp780
+        - (pitch_dot*pitch_dot)*tmp699 + Scalar(2)*roll_dot*yaw_dot*tmp703
+        - Scalar(2)*pitch_dot*roll_dot*tmp711 - pitch_dot*yaw_dot*tmp719;
+    const Scalar tmp782 = tmp44*tmp5*pitch_dot*yaw_dot*tmp692 + yaw_dot*tmp779
+        - (pitch_dot*pitch_dot)*tmp704 + roll_dot*yaw_dot*tmp709 + (roll_dot*roll_dot)*tmp715
+        - Scalar(2)*pitch_dot*roll_dot*tmp718;
+    const Scalar tmp783 = pitch_dot*roll_dot*tmp722 + tmp3*pitch_dot*roll_dot*tmp1
+        + (-(pitch_dot*pitch_dot) - (roll_dot*roll_dot))*tmp707;
+    const Scalar tmp784 = m*tmp716;
+    const Scalar tmp785 = m*tmp701;
+    const Scalar tmp786 = Scalar(2)*tmp209*tmp19*tmp740 + Scalar(2)*tmp216*tmp19*tmp744
+        + Scalar(2)*tmp234*tmp24*tmp759 + Scalar(2)*tmp239*tmp24*tmp763
+        + Scalar(2)*tmp31*tmp37*tmp700 + Scalar(2)*tmp50*m*tmp701 + Scalar(2)*tmp37*tmp86*tmp715
+        + Scalar(2)*tmp90*m*tmp716;
+    const Scalar tmp787 = m*tmp713;
+    const Scalar tmp788 = m*tmp720;
+    const Scalar tmp789 = m*tmp726;
+    const Scalar tmp790 = tmp218*tmp19*tmp740 + tmp216*tmp19*tmp742 + tmp213*tmp19*tmp744
+        + tmp209*tmp19*tmp746 + tmp241*tmp24*tmp759 + tmp239*tmp24*tmp761 + tmp237*tmp24*tmp763
+        + tmp234*tmp24*tmp765 + tmp37*tmp98*tmp700 + tmp101*m*tmp701 + tmp37*tmp86*tmp712
+        + tmp90*m*tmp713 + tmp37*tmp79*tmp715 + tmp82*m*tmp716 + tmp31*tmp37*tmp719
+        + tmp50*m*tmp720;
+    const Scalar tmp791 = Scalar(2)*tmp1*tmp692;
+    const Scalar tmp792 = tmp272*tmp791;
+    const Scalar tmp793 = Scalar(2)*tmp192*m*tmp726 + Scalar(2)*tmp213*tmp19*tmp742
+        + Scalar(2)*tmp218*tmp19*tmp746 + Scalar(2)*tmp19*tmp222*tmp749
+        + Scalar(2)*tmp237*tmp24*tmp761 + Scalar(2)*tmp241*tmp24*tmp765
+        + Scalar(2)*tmp245*tmp24*tmp768 + tmp37*(tmp3*tmp3)*tmp791
+        + tmp37*((tmp0*tmp0) + (tmp5*tmp5))*tmp792 + Scalar(2)*tmp82*m*tmp713
+        + Scalar(2)*tmp101*m*tmp720;
+    const Scalar tmp794 = m*tmp710;
+    const Scalar tmp795 = m*tmp717;
+    const Scalar tmp796 = m*tmp721;
+    const Scalar tmp797 = tmp219*tmp19*tmp740 + tmp216*tmp19*tmp743 + tmp214*tmp19*tmp744
+        + tmp209*tmp19*tmp747 + tmp242*tmp24*tmp759 + tmp239*tmp24*tmp762 + tmp238*tmp24*tmp763
+        + tmp234*tmp24*tmp766 + tmp37*tmp85*tmp700 + tmp95*m*tmp701 + tmp37*tmp86*tmp709
+        + tmp90*m*tmp710 + tmp31*tmp37*tmp714 + tmp37*tmp75*tmp715 + tmp76*m*tmp716
+        + tmp50*m*tmp717;
+    const Scalar tmp798 = tmp192*m*tmp721 + tmp37*tmp64*tmp723 + tmp107*m*tmp726
+        + tmp214*tmp19*tmp742 + tmp213*tmp19*tmp743 + tmp219*tmp19*tmp746 + tmp218*tmp19*tmp747
+        + tmp19*tmp222*tmp748 + tmp221*tmp19*tmp749 + tmp238*tmp24*tmp761 + tmp237*tmp24*tmp762
+        + tmp242*tmp24*tmp765 + tmp241*tmp24*tmp766 + tmp245*tmp24*tmp767 + tmp244*tmp24*tmp768
+        + tmp110*tmp37*tmp706 + tmp37*tmp79*tmp709 + tmp82*m*tmp710 + tmp37*tmp75*tmp712
+        + tmp76*m*tmp713 + tmp37*tmp98*tmp714 + tmp101*m*tmp717 + tmp37*tmp85*tmp719
+        + tmp95*m*tmp720;
+    const Scalar tmp799 = Scalar(2)*tmp107*m*tmp721 + Scalar(2)*tmp214*tmp19*tmp743
+        + Scalar(2)*tmp219*tmp19*tmp747 + Scalar(2)*tmp221*tmp19*tmp748
+        + Scalar(2)*tmp238*tmp24*tmp762 + Scalar(2)*tmp242*tmp24*tmp766
+        + Scalar(2)*tmp244*tmp24*tmp767 + Scalar(2)*tmp272*tmp37*tmp4*tmp1
+        + Scalar(2)*tmp37*tmp75*tmp709 + Scalar(2)*tmp76*m*tmp710 + Scalar(2)*tmp37*tmp85*tmp714
+        + Scalar(2)*tmp95*m*tmp717;
+    const Scalar tmp800 = m*tmp733;
+    const Scalar tmp801 = m*tmp736;
+    const Scalar tmp802 = m*tmp739;
+    const Scalar tmp803 = tmp19*tmp754;
+    const Scalar tmp804 = tmp19*tmp756;
+    const Scalar tmp805 = tmp24*tmp773;
+    const Scalar tmp806 = tmp24*tmp775;
+    const Scalar tmp807 = tmp37*tmp781;
+    const Scalar tmp808 = tmp37*tmp782;
+    const Scalar tmp809 = tmp19*tmp758;
+    const Scalar tmp810 = tmp24*tmp778;
+    const Scalar tmp811 = tmp37*tmp783;
+    const Scalar tmp812 = tmp282*tmp726;
+    const Scalar tmp813 = tmp282*tmp721;
+    const Scalar tmp814 = -tmp800;
+    const Scalar tmp815 = -tmp801;
+    const Scalar tmp816 = -tmp802;
+    const Scalar tmp817 = -tmp287*tmp740 - tmp286*tmp744 - tmp289*tmp759 - tmp288*tmp763
+        - tmp291*tmp700 - tmp284*tmp701 - tmp290*tmp715 - tmp283*tmp716 - tmp90*tmp800
+        - tmp50*tmp801 - tmp216*tmp803 - tmp209*tmp804 - tmp239*tmp805 - tmp234*tmp806
+        - tmp86*tmp807 - tmp31*tmp808;
+    const Scalar tmp818 = tmp3*tmp294*tmp692 - tmp285*tmp726 - tmp286*tmp742 - tmp287*tmp746
+        - tmp292*tmp749 - tmp288*tmp761 - tmp289*tmp765 - tmp293*tmp768 - tmp290*tmp712
+        - tmp283*tmp713 - tmp291*tmp719 - tmp284*tmp720 - tmp82*tmp800 - tmp101*tmp801
+        - tmp192*tmp802 - tmp213*tmp803 - tmp218*tmp804 - tmp237*tmp805 - tmp241*tmp806
+        - tmp79*tmp807 - tmp98*tmp808 - tmp222*tmp809 - tmp245*tmp810 + tmp1*tmp3*tmp811;
+    const Scalar tmp819 = -tmp285*tmp721 - tmp286*tmp743 - tmp287*tmp747 - tmp292*tmp748
+        - tmp288*tmp762 - tmp289*tmp766 - tmp293*tmp767 + tmp44*tmp294*tmp1 - tmp290*tmp709
+        - tmp283*tmp710 - tmp291*tmp714 - tmp284*tmp717 - tmp76*tmp800 - tmp95*tmp801
+        - tmp107*tmp802 - tmp214*tmp803 - tmp219*tmp804 - tmp238*tmp805 - tmp242*tmp806
+        - tmp75*tmp807 - tmp85*tmp808 - tmp221*tmp809 - tmp244*tmp810 + tmp4*tmp44*tmp811;
+    const Scalar tmp820 = Scalar(2)*tmp195*pitch_dot + Scalar(2)*tmp197*roll_dot
+        + Scalar(2)*tmp200*yaw_dot;
+    const Scalar tmp821 = tmp189 + tmp76*roll_dot + tmp82*pitch_dot + yaw_dot*tmp90;
+    const Scalar tmp822 = Scalar(2)*tmp225*pitch_dot + Scalar(2)*tmp226*roll_dot
+        + Scalar(2)*yaw_dot*(tmp227 - tmp45);
+    const Scalar tmp823 = tmp217 + tmp213*pitch_dot + tmp214*roll_dot + yaw_dot*tmp216;
+    const Scalar tmp824 = Scalar(2)*tmp248*pitch_dot + Scalar(2)*tmp249*roll_dot
+        + Scalar(2)*tmp250*yaw_dot;
+    const Scalar tmp825 = tmp240 + tmp237*pitch_dot + tmp238*roll_dot + yaw_dot*tmp239;
+    const Scalar tmp826 = -tmp258 - tmp98*pitch_dot + Scalar(2)*tmp198*yaw_dot
+        + Scalar(2)*tmp55*roll_dot;
+    const Scalar tmp827 = tmp257 + tmp75*roll_dot + tmp1*tmp44*tmp5*pitch_dot + yaw_dot*tmp86;
+    const Scalar tmp828 = m*tmp820;
+    const Scalar tmp829 = m*tmp821;
+    const Scalar tmp830 = tmp19*tmp822;
+    const Scalar tmp831 = tmp19*tmp823;
+    const Scalar tmp832 = tmp24*tmp824;
+    const Scalar tmp833 = tmp24*tmp825;
+    const Scalar tmp834 = tmp37*tmp826;
+    const Scalar tmp835 = tmp37*tmp827;
+    const Scalar tmp836 = -tmp828;
+    const Scalar tmp837 = -tmp829;
+    const Scalar tmp838 = -tmp90*tmp828 - tmp50*tmp829 - tmp216*tmp830 - tmp209*tmp831
+        - tmp239*tmp832 - tmp234*tmp833 - tmp86*tmp834 - tmp31*tmp835;
+    const Scalar tmp839 = -tmp82*tmp828 - tmp101*tmp829 - tmp213*tmp830 - tmp218*tmp831
+        - tmp237*tmp832 - tmp241*tmp833 - tmp79*tmp834 - tmp98*tmp835;
+    const Scalar tmp840 = -tmp76*tmp828 - tmp95*tmp829 - tmp214*tmp830 - tmp219*tmp831
+        - tmp238*tmp832 - tmp242*tmp833 - tmp75*tmp834 - tmp85*tmp835;
+    const Scalar tmp841 = -Scalar(2)*tmp196*pitch_dot + Scalar(2)*tmp194*roll_dot
+        + Scalar(2)*tmp195*yaw_dot;
+    const Scalar tmp842 = tmp82*yaw_dot - Scalar(2)*tmp203*pitch_dot + Scalar(2)*tmp202*roll_dot
+        + yaw_dot*tmp82;
+    const Scalar tmp843 = -Scalar(2)*tmp71*pitch_dot + Scalar(2)*tmp206*roll_dot;
+    const Scalar tmp844 = Scalar(2)*tmp224*roll_dot + Scalar(2)*tmp225*yaw_dot
+        + Scalar(2)*pitch_dot*(-tmp45 - tmp208*tmp7 - tmp30*tmp35);
+    const Scalar tmp845 = tmp213*yaw_dot + Scalar(2)*tmp229*roll_dot
+        + Scalar(2)*pitch_dot*(-tmp58 - tmp208*tmp54 - tmp35*tmp56) + yaw_dot*tmp213;
+    const Scalar tmp846 = -Scalar(2)*tmp212*pitch_dot + Scalar(2)*tmp231*roll_dot;
+    const Scalar tmp847 = Scalar(2)*tmp247*roll_dot + Scalar(2)*tmp248*yaw_dot
+        + Scalar(2)*pitch_dot*(-tmp7 - tmp233*tmp30);
+    const Scalar tmp848 = tmp237*yaw_dot + Scalar(2)*tmp252*roll_dot
+        + Scalar(2)*pitch_dot*(-tmp54 - tmp233*tmp56) + yaw_dot*tmp237;
+    const Scalar tmp849 = Scalar(2)*tmp254*roll_dot + Scalar(2)*tmp255*pitch_dot;
+    const Scalar tmp850 = -tmp98*yaw_dot - Scalar(2)*tmp30*pitch_dot - Scalar(2)*tmp78*roll_dot
+        - yaw_dot*tmp98;
+    const Scalar tmp851 = -Scalar(2)*tmp56*pitch_dot - Scalar(2)*tmp97*roll_dot
+        + tmp1*tmp44*tmp5*yaw_dot + yaw_dot*tmp79;
+    const Scalar tmp852 = tmp109*roll_dot - Scalar(2)*tmp65*pitch_dot + tmp3*tmp4*roll_dot;
+    const Scalar tmp853 = m*tmp841;
+    const Scalar tmp854 = m*tmp842;
+    const Scalar tmp855 = m*tmp843;
+    const Scalar tmp856 = tmp19*tmp844;
+    const Scalar tmp857 = tmp19*tmp845;
+    const Scalar tmp858 = tmp24*tmp847;
+    const Scalar tmp859 = tmp24*tmp848;
+    const Scalar tmp860 = tmp37*tmp850;
+    const Scalar tmp861 = tmp37*tmp851;
+    const Scalar tmp862 = tmp19*tmp846;
+    const Scalar tmp863 = tmp24*tmp849;
+    const Scalar tmp864 = tmp37*tmp852;
+    const Scalar tmp865 = -tmp853;
+    const Scalar tmp866 = -tmp854;
+    const Scalar tmp867 = -tmp855;
+    const Scalar tmp868 = -tmp90*tmp853 - tmp50*tmp854 - tmp216*tmp856 - tmp209*tmp857
+        - tmp239*tmp858 - tmp234*tmp859 - tmp86*tmp860 - tmp31*tmp861;
+    const Scalar tmp869 = -tmp82*tmp853 - tmp101*tmp854 - tmp192*tmp855 - tmp213*tmp856
+        - tmp218*tmp857 - tmp237*tmp858 - tmp241*tmp859 - tmp79*tmp860 - tmp98*tmp861
+        - tmp222*tmp862 - tmp245*tmp863 + tmp1*tmp3*tmp864;
+    const Scalar tmp870 = -tmp76*tmp853 - tmp95*tmp854 - tmp107*tmp855 - tmp214*tmp856
+        - tmp219*tmp857 - tmp238*tmp858 - tmp242*tmp859 - tmp75*tmp860 - tmp85*tmp861
+        - tmp221*tmp862 - tmp244*tmp863 + tmp4*tmp44*tmp864;
+    const Scalar tmp871 = Scalar(2)*tmp194*pitch_dot + Scalar(2)*tmp197*yaw_dot
+        + Scalar(2)*tmp199*roll_dot;
+    const Scalar tmp872 = tmp76*yaw_dot + Scalar(2)*tmp202*pitch_dot + Scalar(2)*tmp89*roll_dot
+        + yaw_dot*tmp76;
+    const Scalar tmp873 = -Scalar(2)*tmp70*roll_dot + Scalar(2)*tmp206*pitch_dot;
+    const Scalar tmp874 = Scalar(2)*tmp224*pitch_dot + Scalar(2)*tmp226*yaw_dot
+        + Scalar(2)*tmp227*roll_dot;
+    const Scalar tmp875 = tmp214*yaw_dot + Scalar(2)*tmp215*roll_dot + Scalar(2)*tmp229*pitch_dot
+        + yaw_dot*tmp214;
+    const Scalar tmp876 = -Scalar(2)*tmp211*roll_dot + Scalar(2)*tmp231*pitch_dot;
+    const Scalar tmp877 = Scalar(2)*tmp247*pitch_dot + Scalar(2)*tmp249*yaw_dot
+        + Scalar(2)*tmp250*roll_dot;
+    const Scalar tmp878 = tmp238*yaw_dot + Scalar(2)*tmp239*roll_dot + Scalar(2)*tmp252*pitch_dot
+        + yaw_dot*tmp238;
+    const Scalar tmp879 = Scalar(2)*tmp254*pitch_dot + Scalar(2)*tmp255*roll_dot;
+    const Scalar tmp880 = -Scalar(2)*tmp78*pitch_dot + Scalar(2)*tmp198*roll_dot
+        + Scalar(2)*tmp55*yaw_dot;
+    const Scalar tmp881 = tmp75*yaw_dot - Scalar(2)*tmp97*pitch_dot + Scalar(2)*tmp86*roll_dot
+        + yaw_dot*tmp75;
+    const Scalar tmp882 = tmp109*pitch_dot - Scalar(2)*tmp65*roll_dot + tmp3*tmp4*pitch_dot;
+    const Scalar tmp883 = m*tmp871;
+    const Scalar tmp884 = m*tmp872;
+    const Scalar tmp885 = m*tmp873;
+    const Scalar tmp886 = tmp19*tmp874;
+    const Scalar tmp887 = tmp19*tmp875;
+    const Scalar tmp888 = tmp24*tmp877;
+    const Scalar tmp889 = tmp24*tmp878;
+    const Scalar tmp890 = tmp37*tmp880;
+    const Scalar tmp891 = tmp37*tmp881;
+    const Scalar tmp892 = tmp19*tmp876;
+    const Scalar tmp893 = tmp24*tmp879;
+    const Scalar tmp894 = tmp37*tmp882;
+    const Scalar tmp895 = -tmp883;
+    const Scalar tmp896 = -tmp884;
+    const Scalar tmp897 = -tmp885;
+    const Scalar tmp898 = -tmp90*tmp883 - tmp50*tmp884 - tmp216*tmp886 - tmp209*tmp887
+        - tmp239*tmp888 - tmp234*tmp889 - tmp86*tmp890 - tmp31*tmp891;
+    const Scalar tmp899 = -tmp82*tmp883 - tmp101*tmp884 - tmp192*tmp885 - tmp213*tmp886
+        - tmp218*tmp887 - tmp237*tmp888 - tmp241*tmp889 - tmp79*tmp890 - tmp98*tmp891
+        - tmp222*tmp892 - tmp245*tmp893 + tmp1*tmp3*tmp894;
+    const Scalar tmp900 = -tmp76*tmp883 - tmp95*tmp884 - tmp107*tmp885 - tmp214*tmp886
+        - tmp219*tmp887 - tmp238*tmp888 - tmp242*tmp889 - tmp75*tmp890 - tmp85*tmp891
+        - tmp221*tmp892 - tmp244*tmp893 + tmp4*tmp44*tmp894;
     (*dr_dq)(0, 0) = Scalar(0);
     (*dr_dq)(0, 1) = Scalar(0);
     (*dr_dq)(0, 2) = Scalar(0);
-    (*dr_dq)(0, 3) = yaw_ddot*tmp360 + pitch_ddot*tmp366 + roll_ddot*tmp370 - tmp385;
-    (*dr_dq)(0, 4) = yaw_ddot*tmp472 + pitch_ddot*tmp478 + roll_ddot*tmp487 - tmp511;
-    (*dr_dq)(0, 5) = yaw_ddot*tmp608 + pitch_ddot*tmp612 + roll_ddot*tmp623 - tmp644;
+    (*dr_dq)(0, 3) = yaw_ddot*tmp534 + pitch_ddot*tmp537 + roll_ddot*tmp541 - tmp554;
+    (*dr_dq)(0, 4) = yaw_ddot*tmp656 + pitch_ddot*tmp659 + roll_ddot*tmp666 - tmp686;
+    (*dr_dq)(0, 5) = yaw_ddot*tmp784 + pitch_ddot*tmp787 + roll_ddot*tmp794 - tmp814;
     (*dr_dq)(1, 0) = Scalar(0);
     (*dr_dq)(1, 1) = Scalar(0);
     (*dr_dq)(1, 2) = Scalar(0);
-    (*dr_dq)(1, 3) = yaw_ddot*tmp361 + pitch_ddot*tmp367 + roll_ddot*tmp371 - tmp386;
-    (*dr_dq)(1, 4) = yaw_ddot*tmp473 + pitch_ddot*tmp479 + roll_ddot*tmp488 - tmp512;
-    (*dr_dq)(1, 5) = yaw_ddot*tmp609 + pitch_ddot*tmp613 + roll_ddot*tmp624 - tmp645;
+    (*dr_dq)(1, 3) = yaw_ddot*tmp535 + pitch_ddot*tmp538 + roll_ddot*tmp542 - tmp555;
+    (*dr_dq)(1, 4) = yaw_ddot*tmp657 + pitch_ddot*tmp660 + roll_ddot*tmp667 - tmp687;
+    (*dr_dq)(1, 5) = yaw_ddot*tmp785 + pitch_ddot*tmp788 + roll_ddot*tmp795 - tmp815;
     (*dr_dq)(2, 0) = Scalar(0);
     (*dr_dq)(2, 1) = Scalar(0);
     (*dr_dq)(2, 2) = Scalar(0);
     (*dr_dq)(2, 3) = Scalar(0);
-    (*dr_dq)(2, 4) = pitch_ddot*tmp480 + roll_ddot*tmp489 - tmp513;
-    (*dr_dq)(2, 5) = pitch_ddot*tmp614 + roll_ddot*tmp625 - tmp646;
+    (*dr_dq)(2, 4) = pitch_ddot*tmp661 + roll_ddot*tmp668 - tmp688;
+    (*dr_dq)(2, 5) = pitch_ddot*tmp789 + roll_ddot*tmp796 - tmp816;
     (*dr_dq)(3, 0) = Scalar(0);
     (*dr_dq)(3, 1) = Scalar(0);
     (*dr_dq)(3, 2) = Scalar(0);
-    (*dr_dq)(3, 3) = x_ddot*tmp360 + y_ddot*tmp361 + yaw_ddot*tmp364 + pitch_ddot*tmp368
-        + roll_ddot*tmp372 - tmp387;
-    (*dr_dq)(3, 4) = x_ddot*tmp472 + y_ddot*tmp473 + yaw_ddot*tmp476 + pitch_ddot*tmp481
-        + roll_ddot*tmp490 - tmp514;
-    (*dr_dq)(3, 5) = x_ddot*tmp608 + y_ddot*tmp609 + yaw_ddot*tmp610 + pitch_ddot*tmp615
-        + roll_ddot*tmp626 - tmp647;
+    (*dr_dq)(3, 3) = x_ddot*tmp534 + y_ddot*tmp535 + yaw_ddot*tmp536 + pitch_ddot*tmp539
+        + roll_ddot*tmp543 - tmp556;
+    (*dr_dq)(3, 4) = x_ddot*tmp656 + y_ddot*tmp657 + yaw_ddot*tmp658 + pitch_ddot*tmp662
+        + roll_ddot*tmp669 - tmp689;
+    (*dr_dq)(3, 5) = x_ddot*tmp784 + y_ddot*tmp785 + yaw_ddot*tmp786 + pitch_ddot*tmp790
+        + roll_ddot*tmp797 - tmp817;
     (*dr_dq)(4, 0) = Scalar(0);
     (*dr_dq)(4, 1) = Scalar(0);
     (*dr_dq)(4, 2) = Scalar(0);
-    (*dr_dq)(4, 3) = x_ddot*tmp366 + y_ddot*tmp367 + yaw_ddot*tmp368 + pitch_ddot*tmp369
-        + roll_ddot*tmp373 - tmp388;
-    (*dr_dq)(4, 4) = x_ddot*tmp478 + y_ddot*tmp479 + z_ddot*tmp480 + yaw_ddot*tmp481
-        + pitch_ddot*tmp486 + roll_ddot*tmp492 - tmp509 - tmp515;
-    (*dr_dq)(4, 5) = x_ddot*tmp612 + y_ddot*tmp613 + z_ddot*tmp614 + yaw_ddot*tmp615
-        + pitch_ddot*tmp622 + roll_ddot*tmp628 - tmp642 - tmp648;
+    (*dr_dq)(4, 3) = x_ddot*tmp537 + y_ddot*tmp538 + yaw_ddot*tmp539 + pitch_ddot*tmp540
+        + roll_ddot*tmp544 - tmp557;
+    (*dr_dq)(4, 4) = x_ddot*tmp659 + y_ddot*tmp660 + z_ddot*tmp661 + yaw_ddot*tmp662
+        + pitch_ddot*tmp665 + roll_ddot*tmp670 - tmp684 - tmp690;
+    (*dr_dq)(4, 5) = x_ddot*tmp787 + y_ddot*tmp788 + z_ddot*tmp789 + yaw_ddot*tmp790
+        + pitch_ddot*tmp793 + roll_ddot*tmp798 - tmp812 - tmp818;
     (*dr_dq)(5, 0) = Scalar(0);
     (*dr_dq)(5, 1) = Scalar(0);
     (*dr_dq)(5, 2) = Scalar(0);
-    (*dr_dq)(5, 3) = x_ddot*tmp370 + y_ddot*tmp371 + yaw_ddot*tmp372 + pitch_ddot*tmp373
-        + roll_ddot*tmp374 - tmp389;
-    (*dr_dq)(5, 4) = x_ddot*tmp487 + y_ddot*tmp488 + z_ddot*tmp489 + yaw_ddot*tmp490
-        + pitch_ddot*tmp492 + roll_ddot*tmp493 - tmp510 - tmp516;
-    (*dr_dq)(5, 5) = x_ddot*tmp623 + y_ddot*tmp624 + z_ddot*tmp625 + yaw_ddot*tmp626
-        + pitch_ddot*tmp628 + roll_ddot*tmp629 - tmp643 - tmp649;
+    (*dr_dq)(5, 3) = x_ddot*tmp541 + y_ddot*tmp542 + yaw_ddot*tmp543 + pitch_ddot*tmp544
+        + roll_ddot*tmp545 - tmp558;
+    (*dr_dq)(5, 4) = x_ddot*tmp666 + y_ddot*tmp667 + z_ddot*tmp668 + yaw_ddot*tmp669
+        + pitch_ddot*tmp670 + roll_ddot*tmp671 - tmp685 - tmp691;
+    (*dr_dq)(5, 5) = x_ddot*tmp794 + y_ddot*tmp795 + z_ddot*tmp796 + yaw_ddot*tmp797
+        + pitch_ddot*tmp798 + roll_ddot*tmp799 - tmp813 - tmp819;
     (*dr_dv)(0, 0) = Scalar(0);
     (*dr_dv)(0, 1) = Scalar(0);
     (*dr_dv)(0, 2) = Scalar(0);
-    (*dr_dv)(0, 3) = -tmp668;
-    (*dr_dv)(0, 4) = -tmp704;
-    (*dr_dv)(0, 5) = -tmp731;
+    (*dr_dv)(0, 3) = -tmp836;
+    (*dr_dv)(0, 4) = -tmp865;
+    (*dr_dv)(0, 5) = -tmp895;
     (*dr_dv)(1, 0) = Scalar(0);
     (*dr_dv)(1, 1) = Scalar(0);
     (*dr_dv)(1, 2) = Scalar(0);
-    (*dr_dv)(1, 3) = -tmp669;
-    (*dr_dv)(1, 4) = -tmp705;
-    (*dr_dv)(1, 5) = -tmp732;
+    (*dr_dv)(1, 3) = -tmp837;
+    (*dr_dv)(1, 4) = -tmp866;
+    (*dr_dv)(1, 5) = -tmp896;
     (*dr_dv)(2, 0) = Scalar(0);
     (*dr_dv)(2, 1) = Scalar(0);
     (*dr_dv)(2, 2) = Scalar(0);
     (*dr_dv)(2, 3) = Scalar(0);
-    (*dr_dv)(2, 4) = -tmp706;
-    (*dr_dv)(2, 5) = -tmp733;
+    (*dr_dv)(2, 4) = -tmp867;
+    (*dr_dv)(2, 5) = -tmp897;
     (*dr_dv)(3, 0) = Scalar(0);
     (*dr_dv)(3, 1) = Scalar(0);
     (*dr_dv)(3, 2) = Scalar(0);
-    (*dr_dv)(3, 3) = -tmp670;
-    (*dr_dv)(3, 4) = -tmp707;
-    (*dr_dv)(3, 5) = -tmp734;
+    (*dr_dv)(3, 3) = -tmp838;
+    (*dr_dv)(3, 4) = -tmp868;
+    (*dr_dv)(3, 5) = -tmp898;
     (*dr_dv)(4, 0) = Scalar(0);
     (*dr_dv)(4, 1) = Scalar(0);
     (*dr_dv)(4, 2) = Scalar(0);
-    (*dr_dv)(4, 3) = -tmp671;
-    (*dr_dv)(4, 4) = -tmp708;
-    (*dr_dv)(4, 5) = -tmp735;
+    (*dr_dv)(4, 3) = -tmp839;
+    (*dr_dv)(4, 4) = -tmp869;
+    (*dr_dv)(4, 5) = -tmp899;
     (*dr_dv)(5, 0) = Scalar(0);
     (*dr_dv)(5, 1) = Scalar(0);
     (*dr_dv)(5, 2) = Scalar(0);
-    (*dr_dv)(5, 3) = -tmp672;
-    (*dr_dv)(5, 4) = -tmp709;
-    (*dr_dv)(5, 5) = -tmp736;
+    (*dr_dv)(5, 3) = -tmp840;
+    (*dr_dv)(5, 4) = -tmp870;
+    (*dr_dv)(5, 5) = -tmp900;
   }
 
   /// Kinetic energy T = 1/2 xdot^T M xdot.
@@ -2215,7 +2350,7 @@ struct RigidBodyEuler {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return T
-  /// Ops: 209
+  /// Ops: 286
   template <typename Scalar>
   static Scalar kinetic_energy(const QVector<Scalar>& q,
                                const QVector<Scalar>& v,
@@ -2232,115 +2367,123 @@ struct RigidBodyEuler {
     const Scalar yaw_dot = v(3);
     const Scalar pitch_dot = v(4);
     const Scalar roll_dot = v(5);
-    const Scalar m_a = Scalar(params.m_a);
-    const Scalar m_b = Scalar(params.m_b);
-    const Scalar m_c = Scalar(params.m_c);
-    const Scalar m_d = Scalar(params.m_d);
-    const Scalar tmp0 = cos(yaw);
-    const Scalar tmp1 = cos(pitch);
-    const Scalar tmp2 = Scalar(0.5)*tmp1;
-    const Scalar tmp3 = tmp0*tmp2;
-    const Scalar tmp5 = sin(yaw);
-    const Scalar tmp6 = tmp2*tmp5;
-    const Scalar tmp8 = sin(pitch);
-    const Scalar tmp9 = Scalar(0.5)*tmp8;
-    const Scalar tmp11 = tmp0*tmp9;
-    const Scalar tmp12 = tmp6*yaw_dot + tmp11*pitch_dot;
-    const Scalar tmp13 = x_dot - tmp12;
-    const Scalar tmp14 = tmp5*tmp9;
-    const Scalar tmp15 = tmp14*pitch_dot;
-    const Scalar tmp16 = tmp3*yaw_dot;
-    const Scalar tmp17 = tmp16 + y_dot - tmp15;
-    const Scalar tmp18 = -z_dot;
-    const Scalar tmp19 = -tmp18 - tmp2*pitch_dot;
-    const Scalar tmp20 = cos(roll);
-    const Scalar tmp21 = Scalar(0.4)*tmp20;
-    const Scalar tmp22 = tmp21*tmp5;
-    const Scalar tmp23 = sin(roll);
-    const Scalar tmp24 = Scalar(0.4)*tmp23;
-    const Scalar tmp25 = tmp0*tmp24;
-    const Scalar tmp26 = tmp25*tmp8;
-    const Scalar tmp27 = tmp26 - tmp22;
-    const Scalar tmp29 = tmp0*tmp21;
-    const Scalar tmp30 = tmp24*tmp5;
-    const Scalar tmp31 = tmp30*tmp8;
-    const Scalar tmp32 = tmp29 + tmp31;
-    const Scalar tmp34 = tmp1*tmp24;
-    const Scalar tmp36 = tmp34*pitch_dot;
-    const Scalar tmp37 = tmp30 + tmp29*tmp8;
-    const Scalar tmp38 = -tmp32;
-    const Scalar tmp39 = tmp0*tmp36 + tmp37*roll_dot + tmp38*yaw_dot;
-    const Scalar tmp40 = tmp39 + x_dot;
-    const Scalar tmp41 = tmp36*tmp5;
-    const Scalar tmp42 = -tmp25 + tmp22*tmp8;
-    const Scalar tmp43 = tmp41 + y_dot + tmp27*yaw_dot + tmp42*roll_dot;
-    const Scalar tmp44 = tmp24*tmp8;
-    const Scalar tmp45 = tmp1*tmp21;
-    const Scalar tmp46 = z_dot + tmp45*roll_dot - tmp44*pitch_dot;
-    const Scalar tmp47 = Scalar(0.3)*tmp23;
-    const Scalar tmp48 = tmp47*tmp5;
-    const Scalar tmp49 = Scalar(0.3)*tmp20;
-    const Scalar tmp50 = tmp0*tmp49;
-    const Scalar tmp51 = tmp50*tmp8;
-    const Scalar tmp52 = tmp48 + tmp51;
-    const Scalar tmp54 = tmp0*tmp47;
-    const Scalar tmp55 = tmp49*tmp5;
-    const Scalar tmp56 = tmp55*tmp8;
-    const Scalar tmp57 = tmp56 - tmp54;
-    const Scalar tmp59 = tmp1*tmp49;
-    const Scalar tmp61 = tmp59*pitch_dot;
-    const Scalar tmp62 = tmp54*tmp8;
-    const Scalar tmp63 = tmp62 - tmp55;
-    const Scalar tmp64 = -tmp63;
-    const Scalar tmp65 = -tmp57;
-    const Scalar tmp66 = tmp0*tmp61 + tmp64*roll_dot + tmp65*yaw_dot;
-    const Scalar tmp67 = tmp66 + x_dot;
-    const Scalar tmp68 = tmp5*tmp61;
-    const Scalar tmp69 = tmp48*tmp8;
-    const Scalar tmp70 = tmp50 + tmp69;
-    const Scalar tmp71 = -tmp70;
-    const Scalar tmp72 = tmp68 + y_dot + tmp52*yaw_dot + tmp71*roll_dot;
-    const Scalar tmp73 = tmp49*tmp8;
-    const Scalar tmp74 = tmp1*tmp47;
-    const Scalar tmp75 = -tmp18 - tmp73*pitch_dot - tmp74*roll_dot;
-    const Scalar tmp76 = Scalar(0.2)*tmp1;
-    const Scalar tmp77 = Scalar(0.25)*tmp20;
-    const Scalar tmp78 = tmp0*tmp77;
-    const Scalar tmp79 = tmp8*tmp78;
-    const Scalar tmp80 = tmp79 + tmp0*tmp76;
-    const Scalar tmp81 = Scalar(0.25)*tmp23;
-    const Scalar tmp82 = tmp5*tmp81;
-    const Scalar tmp83 = tmp63 + tmp82;
-    const Scalar tmp84 = tmp80 + tmp83;
-    const Scalar tmp86 = tmp5*tmp77;
-    const Scalar tmp87 = tmp8*tmp86;
-    const Scalar tmp88 = tmp87 + tmp5*tmp76;
-    const Scalar tmp89 = tmp0*tmp81;
-    const Scalar tmp90 = tmp70 - tmp89;
-    const Scalar tmp91 = tmp88 + tmp90;
-    const Scalar tmp93 = Scalar(0.2)*tmp8;
-    const Scalar tmp94 = tmp1*tmp77;
-    const Scalar tmp98 = tmp1*tmp54;
-    const Scalar tmp99 = tmp98 + tmp0*tmp94 - tmp0*tmp93;
-    const Scalar tmp100 = tmp52 + tmp86 - tmp8*tmp89;
-    const Scalar tmp101 = -tmp91;
-    const Scalar tmp102 = tmp99*pitch_dot + tmp100*roll_dot + tmp101*yaw_dot;
-    const Scalar tmp103 = tmp102 + x_dot;
-    const Scalar tmp104 = tmp1*tmp48;
-    const Scalar tmp105 = tmp104 + tmp5*tmp94 - tmp5*tmp93;
-    const Scalar tmp106 = tmp54 + tmp78 - tmp56 + tmp8*tmp82;
-    const Scalar tmp107 = -tmp106;
-    const Scalar tmp108 = y_dot + tmp84*yaw_dot + tmp105*pitch_dot + tmp107*roll_dot;
-    const Scalar tmp109 = -tmp1*tmp81 + Scalar(0.3)*tmp1*tmp20;
-    const Scalar tmp110 = tmp47*tmp8;
-    const Scalar tmp111 = -tmp76 - tmp110 - tmp77*tmp8;
-    const Scalar tmp112 = z_dot + tmp109*roll_dot + tmp111*pitch_dot;
-    const Scalar tmp199 = (Scalar(0.5))*m_a*((tmp13*tmp13) + (tmp17*tmp17) + (tmp19*tmp19))
-        + (Scalar(0.5))*m_b*((tmp43*tmp43) + (tmp46*tmp46) + (tmp40*tmp40))
-        + (Scalar(0.5))*m_c*((tmp67*tmp67) + (tmp72*tmp72) + (tmp75*tmp75))
-        + (Scalar(0.5))*m_d*((tmp103*tmp103) + (tmp108*tmp108) + (tmp112*tmp112));
+    const Scalar m = Scalar(params.m);
+    const Scalar com_x = Scalar(params.com_x);
+    const Scalar com_y = Scalar(params.com_y);
+    const Scalar com_z = Scalar(params.com_z);
+    const Scalar a = Scalar(params.a);
+    const Scalar b = Scalar(params.b);
+    const Scalar c = Scalar(params.c);
+    const Scalar tmp0 = sin(yaw);
+    const Scalar tmp1 = cos(roll);
+    const Scalar tmp2 = tmp0*tmp1;
+    const Scalar tmp3 = sin(pitch);
+    const Scalar tmp4 = sin(roll);
+    const Scalar tmp5 = cos(yaw);
+    const Scalar tmp6 = tmp4*tmp5;
+    const Scalar tmp7 = tmp3*tmp6;
+    const Scalar tmp8 = tmp7 - tmp2;
+    const Scalar tmp10 = (a*a);
+    const Scalar tmp11 = (b*b);
+    const Scalar tmp12 = m*(tmp10 + tmp11);
+    const Scalar tmp13 = (c*c);
+    const Scalar tmp14 = tmp10 + tmp13;
+    const Scalar tmp15 = tmp14*m;
+    const Scalar tmp16 = tmp11 + tmp13;
+    const Scalar tmp17 = tmp16*m;
+    const Scalar tmp18 = Scalar(0.005689254019167049)*tmp17 + Scalar(0.010556171822976032)*tmp15
+        - Scalar(0.01624542584214308)*tmp12;
+    const Scalar tmp19 = Scalar(0.041142942152109445)*tmp17 + Scalar(0.028423816083747767)*tmp12
+        - Scalar(0.027900091569190537)*tmp15;
+    const Scalar tmp23 = (Scalar(1)/tmp19);
+    const Scalar tmp24 = Scalar(0.021737886292675604)*tmp12 + Scalar(0.04006485617007295)*tmp15
+        - Scalar(0.020136075796081898)*tmp17 - tmp23*(tmp18*tmp18);
+    const Scalar tmp28 = tmp0*tmp4;
+    const Scalar tmp29 = tmp1*tmp5;
+    const Scalar tmp30 = tmp29*tmp3;
+    const Scalar tmp31 = tmp28 + tmp30;
+    const Scalar tmp32 = -Scalar(0.0257737061664756)*tmp12 - Scalar(0.003316897780257798)*tmp17
+        + Scalar(0.0290906039467334)*tmp14*m;
+    const Scalar tmp34 = (Scalar(1)/tmp24);
+    const Scalar tmp35 = tmp23*tmp32;
+    const Scalar tmp36 = -Scalar(0.03161742478199714)*tmp12 - Scalar(0.004414255047715874)*tmp15
+        - tmp18*tmp35 + Scalar(0.03603167982971302)*tmp16*m;
+    const Scalar tmp37 = -Scalar(0.008495035709756703)*tmp12 - tmp23*(tmp32*tmp32)
+        - tmp34*(tmp36*tmp36) + Scalar(0.02950190206578425)*tmp14*m
+        + Scalar(0.020659800310639128)*tmp16*m;
+    const Scalar tmp44 = cos(pitch);
+    const Scalar tmp45 = tmp44*tmp5;
+    const Scalar tmp48 = tmp44*com_x;
+    const Scalar tmp49 = tmp48*tmp5;
+    const Scalar tmp50 = tmp49 + tmp31*com_z + tmp8*com_y;
+    const Scalar tmp54 = tmp28*tmp3;
+    const Scalar tmp55 = tmp29 + tmp54;
+    const Scalar tmp56 = tmp2*tmp3;
+    const Scalar tmp57 = tmp56 - tmp6;
+    const Scalar tmp58 = tmp0*tmp44;
+    const Scalar tmp60 = tmp0*tmp48;
+    const Scalar tmp64 = tmp4*tmp44;
+    const Scalar tmp65 = tmp1*tmp44;
+    const Scalar tmp69 = tmp3*com_x;
+    const Scalar tmp75 = -tmp8;
+    const Scalar tmp76 = tmp31*com_y + tmp75*com_z;
+    const Scalar tmp78 = tmp44*tmp6;
+    const Scalar tmp79 = tmp29*tmp44;
+    const Scalar tmp80 = tmp3*tmp5;
+    const Scalar tmp82 = tmp78*com_y + tmp79*com_z - tmp5*tmp69;
+    const Scalar tmp85 = -tmp55;
+    const Scalar tmp86 = -tmp57;
+    const Scalar tmp89 = tmp85*com_y + tmp86*com_z;
+    const Scalar tmp90 = tmp89 - tmp60;
+    const Scalar tmp95 = tmp57*com_y + tmp85*com_z;
+    const Scalar tmp97 = tmp28*tmp44;
+    const Scalar tmp98 = tmp2*tmp44;
+    const Scalar tmp99 = tmp0*tmp3;
+    const Scalar tmp101 = tmp97*com_y + tmp98*com_z - tmp0*tmp69;
+    const Scalar tmp107 = tmp65*com_y - tmp64*com_z;
+    const Scalar tmp109 = tmp3*tmp4;
+    const Scalar tmp110 = tmp1*tmp3;
+    const Scalar tmp112 = tmp48 + tmp109*com_y + tmp110*com_z;
+    const Scalar tmp189 = tmp76*roll_dot + tmp82*pitch_dot + tmp90*yaw_dot;
+    const Scalar tmp190 = tmp189 + x_dot;
+    const Scalar tmp191 = y_dot + tmp50*yaw_dot + tmp95*roll_dot + tmp101*pitch_dot;
+    const Scalar tmp192 = -tmp112;
+    const Scalar tmp193 = z_dot + tmp107*roll_dot + tmp192*pitch_dot;
+    const Scalar tmp208 = tmp18*tmp23;
+    const Scalar tmp209 = tmp45 + tmp208*tmp8 + tmp31*tmp35;
+    const Scalar tmp213 = -tmp80 + tmp208*tmp78 + tmp35*tmp79;
+    const Scalar tmp214 = tmp208*tmp31 + tmp35*tmp75;
+    const Scalar tmp215 = tmp208*tmp85 + tmp35*tmp86;
+    const Scalar tmp216 = tmp215 - tmp58;
+    const Scalar tmp217 = tmp213*pitch_dot + tmp214*roll_dot + tmp216*yaw_dot;
+    const Scalar tmp218 = -tmp99 + tmp208*tmp97 + tmp35*tmp98;
+    const Scalar tmp219 = tmp208*tmp57 + tmp35*tmp85;
+    const Scalar tmp220 = tmp209*yaw_dot + tmp218*pitch_dot + tmp219*roll_dot;
+    const Scalar tmp221 = -tmp35*tmp64 + tmp1*tmp18*tmp23*tmp44;
+    const Scalar tmp222 = -tmp44 - tmp109*tmp208 - tmp110*tmp35;
+    const Scalar tmp223 = tmp221*roll_dot + tmp222*pitch_dot;
+    const Scalar tmp233 = tmp34*tmp36;
+    const Scalar tmp234 = tmp8 + tmp233*tmp31;
+    const Scalar tmp237 = tmp78 + tmp233*tmp79;
+    const Scalar tmp238 = tmp31 + tmp233*tmp75;
+    const Scalar tmp239 = -tmp55 + tmp34*tmp36*tmp86;
+    const Scalar tmp240 = tmp237*pitch_dot + tmp238*roll_dot + tmp239*yaw_dot;
+    const Scalar tmp241 = tmp97 + tmp233*tmp98;
+    const Scalar tmp242 = tmp57 + tmp233*tmp85;
+    const Scalar tmp243 = tmp234*yaw_dot + tmp241*pitch_dot + tmp242*roll_dot;
+    const Scalar tmp244 = tmp1*tmp44 - tmp233*tmp64;
+    const Scalar tmp245 = -tmp109 - tmp110*tmp233;
+    const Scalar tmp246 = tmp244*roll_dot + tmp245*pitch_dot;
+    const Scalar tmp257 = tmp75*roll_dot + tmp79*pitch_dot + tmp86*yaw_dot;
+    const Scalar tmp258 = tmp98*pitch_dot;
+    const Scalar tmp259 = tmp258 + tmp31*yaw_dot + tmp85*roll_dot;
+    const Scalar tmp260 = -tmp110*pitch_dot - tmp64*roll_dot;
+    const Scalar tmp347 = (Scalar(0.5))*tmp19*((tmp217*tmp217) + (tmp220*tmp220) + (tmp223*tmp223))
+        + (Scalar(0.5))*tmp24*((tmp240*tmp240) + (tmp243*tmp243) + (tmp246*tmp246))
+        + (Scalar(0.5))*tmp37*((tmp257*tmp257) + (tmp259*tmp259) + (tmp260*tmp260))
+        + (Scalar(0.5))*m*((tmp190*tmp190) + (tmp191*tmp191) + (tmp193*tmp193));
     Scalar result;
-    result = tmp199;
+    result = tmp347;
     return result;
   }
 
@@ -2349,7 +2492,7 @@ struct RigidBodyEuler {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return V
-  /// Ops: 33
+  /// Ops: 15
   template <typename Scalar>
   static Scalar potential_energy(const QVector<Scalar>& q,
                                  const Scalar& /*t*/,
@@ -2360,37 +2503,24 @@ struct RigidBodyEuler {
     const Scalar pitch = q(4);
     const Scalar roll = q(5);
     const Scalar g = Scalar(params.g);
-    const Scalar m_a = Scalar(params.m_a);
-    const Scalar m_b = Scalar(params.m_b);
-    const Scalar m_c = Scalar(params.m_c);
-    const Scalar m_d = Scalar(params.m_d);
-    const Scalar tmp1 = cos(pitch);
-    const Scalar tmp8 = sin(pitch);
-    const Scalar tmp9 = Scalar(0.5)*tmp8;
-    const Scalar tmp10 = z - tmp9;
-    const Scalar tmp20 = cos(roll);
-    const Scalar tmp23 = sin(roll);
-    const Scalar tmp24 = Scalar(0.4)*tmp23;
-    const Scalar tmp34 = tmp1*tmp24;
-    const Scalar tmp35 = tmp34 + z;
-    const Scalar tmp47 = Scalar(0.3)*tmp23;
-    const Scalar tmp49 = Scalar(0.3)*tmp20;
-    const Scalar tmp59 = tmp1*tmp49;
-    const Scalar tmp60 = tmp59 + z;
-    const Scalar tmp74 = tmp1*tmp47;
-    const Scalar tmp77 = Scalar(0.25)*tmp20;
-    const Scalar tmp93 = Scalar(0.2)*tmp8;
-    const Scalar tmp94 = tmp1*tmp77;
-    const Scalar tmp95 = tmp74 + tmp94;
-    const Scalar tmp96 = tmp95 - tmp93;
-    const Scalar tmp97 = tmp96 + z;
-    const Scalar tmp113 = g*m_a;
-    const Scalar tmp115 = g*m_b;
-    const Scalar tmp117 = g*m_c;
-    const Scalar tmp119 = g*m_d;
-    const Scalar tmp200 = tmp113*tmp10 + tmp115*tmp35 + tmp117*tmp60 + tmp119*tmp97;
+    const Scalar m = Scalar(params.m);
+    const Scalar com_x = Scalar(params.com_x);
+    const Scalar com_y = Scalar(params.com_y);
+    const Scalar com_z = Scalar(params.com_z);
+    const Scalar tmp1 = cos(roll);
+    const Scalar tmp3 = sin(pitch);
+    const Scalar tmp4 = sin(roll);
+    const Scalar tmp44 = cos(pitch);
+    const Scalar tmp64 = tmp4*tmp44;
+    const Scalar tmp65 = tmp1*tmp44;
+    const Scalar tmp69 = tmp3*com_x;
+    const Scalar tmp70 = tmp64*com_y + tmp65*com_z;
+    const Scalar tmp71 = tmp70 - tmp69;
+    const Scalar tmp72 = tmp71 + z;
+    const Scalar tmp281 = g*m;
+    const Scalar tmp348 = tmp281*tmp72;
     Scalar result;
-    result = tmp200;
+    result = tmp348;
     return result;
   }
 
@@ -2415,7 +2545,7 @@ struct RigidBodyEuler {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return T + V
-  /// Ops: 229
+  /// Ops: 295
   template <typename Scalar>
   static Scalar energy(const QVector<Scalar>& q,
                        const QVector<Scalar>& v,
@@ -2434,126 +2564,128 @@ struct RigidBodyEuler {
     const Scalar pitch_dot = v(4);
     const Scalar roll_dot = v(5);
     const Scalar g = Scalar(params.g);
-    const Scalar m_a = Scalar(params.m_a);
-    const Scalar m_b = Scalar(params.m_b);
-    const Scalar m_c = Scalar(params.m_c);
-    const Scalar m_d = Scalar(params.m_d);
-    const Scalar tmp0 = cos(yaw);
-    const Scalar tmp1 = cos(pitch);
-    const Scalar tmp2 = Scalar(0.5)*tmp1;
-    const Scalar tmp3 = tmp0*tmp2;
-    const Scalar tmp5 = sin(yaw);
-    const Scalar tmp6 = tmp2*tmp5;
-    const Scalar tmp8 = sin(pitch);
-    const Scalar tmp9 = Scalar(0.5)*tmp8;
-    const Scalar tmp10 = z - tmp9;
-    const Scalar tmp11 = tmp0*tmp9;
-    const Scalar tmp12 = tmp6*yaw_dot + tmp11*pitch_dot;
-    const Scalar tmp13 = x_dot - tmp12;
-    const Scalar tmp14 = tmp5*tmp9;
-    const Scalar tmp15 = tmp14*pitch_dot;
-    const Scalar tmp16 = tmp3*yaw_dot;
-    const Scalar tmp17 = tmp16 + y_dot - tmp15;
-    const Scalar tmp18 = -z_dot;
-    const Scalar tmp19 = -tmp18 - tmp2*pitch_dot;
-    const Scalar tmp20 = cos(roll);
-    const Scalar tmp21 = Scalar(0.4)*tmp20;
-    const Scalar tmp22 = tmp21*tmp5;
-    const Scalar tmp23 = sin(roll);
-    const Scalar tmp24 = Scalar(0.4)*tmp23;
-    const Scalar tmp25 = tmp0*tmp24;
-    const Scalar tmp26 = tmp25*tmp8;
-    const Scalar tmp27 = tmp26 - tmp22;
-    const Scalar tmp29 = tmp0*tmp21;
-    const Scalar tmp30 = tmp24*tmp5;
-    const Scalar tmp31 = tmp30*tmp8;
-    const Scalar tmp32 = tmp29 + tmp31;
-    const Scalar tmp34 = tmp1*tmp24;
-    const Scalar tmp35 = tmp34 + z;
-    const Scalar tmp36 = tmp34*pitch_dot;
-    const Scalar tmp37 = tmp30 + tmp29*tmp8;
-    const Scalar tmp38 = -tmp32;
-    const Scalar tmp39 = tmp0*tmp36 + tmp37*roll_dot + tmp38*yaw_dot;
-    const Scalar tmp40 = tmp39 + x_dot;
-    const Scalar tmp41 = tmp36*tmp5;
-    const Scalar tmp42 = -tmp25 + tmp22*tmp8;
-    const Scalar tmp43 = tmp41 + y_dot + tmp27*yaw_dot + tmp42*roll_dot;
-    const Scalar tmp44 = tmp24*tmp8;
-    const Scalar tmp45 = tmp1*tmp21;
-    const Scalar tmp46 = z_dot + tmp45*roll_dot - tmp44*pitch_dot;
-    const Scalar tmp47 = Scalar(0.3)*tmp23;
-    const Scalar tmp48 = tmp47*tmp5;
-    const Scalar tmp49 = Scalar(0.3)*tmp20;
-    const Scalar tmp50 = tmp0*tmp49;
-    const Scalar tmp51 = tmp50*tmp8;
-    const Scalar tmp52 = tmp48 + tmp51;
-    const Scalar tmp54 = tmp0*tmp47;
-    const Scalar tmp55 = tmp49*tmp5;
-    const Scalar tmp56 = tmp55*tmp8;
-    const Scalar tmp57 = tmp56 - tmp54;
-    const Scalar tmp59 = tmp1*tmp49;
-    const Scalar tmp60 = tmp59 + z;
-    const Scalar tmp61 = tmp59*pitch_dot;
-    const Scalar tmp62 = tmp54*tmp8;
-    const Scalar tmp63 = tmp62 - tmp55;
-    const Scalar tmp64 = -tmp63;
-    const Scalar tmp65 = -tmp57;
-    const Scalar tmp66 = tmp0*tmp61 + tmp64*roll_dot + tmp65*yaw_dot;
-    const Scalar tmp67 = tmp66 + x_dot;
-    const Scalar tmp68 = tmp5*tmp61;
-    const Scalar tmp69 = tmp48*tmp8;
-    const Scalar tmp70 = tmp50 + tmp69;
-    const Scalar tmp71 = -tmp70;
-    const Scalar tmp72 = tmp68 + y_dot + tmp52*yaw_dot + tmp71*roll_dot;
-    const Scalar tmp73 = tmp49*tmp8;
-    const Scalar tmp74 = tmp1*tmp47;
-    const Scalar tmp75 = -tmp18 - tmp73*pitch_dot - tmp74*roll_dot;
-    const Scalar tmp76 = Scalar(0.2)*tmp1;
-    const Scalar tmp77 = Scalar(0.25)*tmp20;
-    const Scalar tmp78 = tmp0*tmp77;
-    const Scalar tmp79 = tmp8*tmp78;
-    const Scalar tmp80 = tmp79 + tmp0*tmp76;
-    const Scalar tmp81 = Scalar(0.25)*tmp23;
-    const Scalar tmp82 = tmp5*tmp81;
-    const Scalar tmp83 = tmp63 + tmp82;
-    const Scalar tmp84 = tmp80 + tmp83;
-    const Scalar tmp86 = tmp5*tmp77;
-    const Scalar tmp87 = tmp8*tmp86;
-    const Scalar tmp88 = tmp87 + tmp5*tmp76;
-    const Scalar tmp89 = tmp0*tmp81;
-    const Scalar tmp90 = tmp70 - tmp89;
-    const Scalar tmp91 = tmp88 + tmp90;
-    const Scalar tmp93 = Scalar(0.2)*tmp8;
-    const Scalar tmp94 = tmp1*tmp77;
-    const Scalar tmp95 = tmp74 + tmp94;
-    const Scalar tmp96 = tmp95 - tmp93;
-    const Scalar tmp97 = tmp96 + z;
-    const Scalar tmp98 = tmp1*tmp54;
-    const Scalar tmp99 = tmp98 + tmp0*tmp94 - tmp0*tmp93;
-    const Scalar tmp100 = tmp52 + tmp86 - tmp8*tmp89;
-    const Scalar tmp101 = -tmp91;
-    const Scalar tmp102 = tmp99*pitch_dot + tmp100*roll_dot + tmp101*yaw_dot;
-    const Scalar tmp103 = tmp102 + x_dot;
-    const Scalar tmp104 = tmp1*tmp48;
-    const Scalar tmp105 = tmp104 + tmp5*tmp94 - tmp5*tmp93;
-    const Scalar tmp106 = tmp54 + tmp78 - tmp56 + tmp8*tmp82;
-    const Scalar tmp107 = -tmp106;
-    const Scalar tmp108 = y_dot + tmp84*yaw_dot + tmp105*pitch_dot + tmp107*roll_dot;
-    const Scalar tmp109 = -tmp1*tmp81 + Scalar(0.3)*tmp1*tmp20;
-    const Scalar tmp110 = tmp47*tmp8;
-    const Scalar tmp111 = -tmp76 - tmp110 - tmp77*tmp8;
-    const Scalar tmp112 = z_dot + tmp109*roll_dot + tmp111*pitch_dot;
-    const Scalar tmp113 = g*m_a;
-    const Scalar tmp115 = g*m_b;
-    const Scalar tmp117 = g*m_c;
-    const Scalar tmp119 = g*m_d;
-    const Scalar tmp199 = (Scalar(0.5))*m_a*((tmp13*tmp13) + (tmp17*tmp17) + (tmp19*tmp19))
-        + (Scalar(0.5))*m_b*((tmp43*tmp43) + (tmp46*tmp46) + (tmp40*tmp40))
-        + (Scalar(0.5))*m_c*((tmp67*tmp67) + (tmp72*tmp72) + (tmp75*tmp75))
-        + (Scalar(0.5))*m_d*((tmp103*tmp103) + (tmp108*tmp108) + (tmp112*tmp112));
-    const Scalar tmp200 = tmp113*tmp10 + tmp115*tmp35 + tmp117*tmp60 + tmp119*tmp97;
+    const Scalar m = Scalar(params.m);
+    const Scalar com_x = Scalar(params.com_x);
+    const Scalar com_y = Scalar(params.com_y);
+    const Scalar com_z = Scalar(params.com_z);
+    const Scalar a = Scalar(params.a);
+    const Scalar b = Scalar(params.b);
+    const Scalar c = Scalar(params.c);
+    const Scalar tmp0 = sin(yaw);
+    const Scalar tmp1 = cos(roll);
+    const Scalar tmp2 = tmp0*tmp1;
+    const Scalar tmp3 = sin(pitch);
+    const Scalar tmp4 = sin(roll);
+    const Scalar tmp5 = cos(yaw);
+    const Scalar tmp6 = tmp4*tmp5;
+    const Scalar tmp7 = tmp3*tmp6;
+    const Scalar tmp8 = tmp7 - tmp2;
+    const Scalar tmp10 = (a*a);
+    const Scalar tmp11 = (b*b);
+    const Scalar tmp12 = m*(tmp10 + tmp11);
+    const Scalar tmp13 = (c*c);
+    const Scalar tmp14 = tmp10 + tmp13;
+    const Scalar tmp15 = tmp14*m;
+    const Scalar tmp16 = tmp11 + tmp13;
+    const Scalar tmp17 = tmp16*m;
+    const Scalar tmp18 = Scalar(0.005689254019167049)*tmp17 + Scalar(0.010556171822976032)*tmp15
+        - Scalar(0.01624542584214308)*tmp12;
+    const Scalar tmp19 = Scalar(0.041142942152109445)*tmp17 + Scalar(0.028423816083747767)*tmp12
+        - Scalar(0.027900091569190537)*tmp15;
+    const Scalar tmp23 = (Scalar(1)/tmp19);
+    const Scalar tmp24 = Scalar(0.021737886292675604)*tmp12 + Scalar(0.04006485617007295)*tmp15
+        - Scalar(0.020136075796081898)*tmp17 - tmp23*(tmp18*tmp18);
+    const Scalar tmp28 = tmp0*tmp4;
+    const Scalar tmp29 = tmp1*tmp5;
+    const Scalar tmp30 = tmp29*tmp3;
+    const Scalar tmp31 = tmp28 + tmp30;
+    const Scalar tmp32 = -Scalar(0.0257737061664756)*tmp12 - Scalar(0.003316897780257798)*tmp17
+        + Scalar(0.0290906039467334)*tmp14*m;
+    const Scalar tmp34 = (Scalar(1)/tmp24);
+    const Scalar tmp35 = tmp23*tmp32;
+    const Scalar tmp36 = -Scalar(0.03161742478199714)*tmp12 - Scalar(0.004414255047715874)*tmp15
+        - tmp18*tmp35 + Scalar(0.03603167982971302)*tmp16*m;
+    const Scalar tmp37 = -Scalar(0.008495035709756703)*tmp12 - tmp23*(tmp32*tmp32)
+        - tmp34*(tmp36*tmp36) + Scalar(0.02950190206578425)*tmp14*m
+        + Scalar(0.020659800310639128)*tmp16*m;
+    const Scalar tmp44 = cos(pitch);
+    const Scalar tmp45 = tmp44*tmp5;
+    const Scalar tmp48 = tmp44*com_x;
+    const Scalar tmp49 = tmp48*tmp5;
+    const Scalar tmp50 = tmp49 + tmp31*com_z + tmp8*com_y;
+    const Scalar tmp54 = tmp28*tmp3;
+    const Scalar tmp55 = tmp29 + tmp54;
+    const Scalar tmp56 = tmp2*tmp3;
+    const Scalar tmp57 = tmp56 - tmp6;
+    const Scalar tmp58 = tmp0*tmp44;
+    const Scalar tmp60 = tmp0*tmp48;
+    const Scalar tmp64 = tmp4*tmp44;
+    const Scalar tmp65 = tmp1*tmp44;
+    const Scalar tmp69 = tmp3*com_x;
+    const Scalar tmp70 = tmp64*com_y + tmp65*com_z;
+    const Scalar tmp71 = tmp70 - tmp69;
+    const Scalar tmp72 = tmp71 + z;
+    const Scalar tmp75 = -tmp8;
+    const Scalar tmp76 = tmp31*com_y + tmp75*com_z;
+    const Scalar tmp78 = tmp44*tmp6;
+    const Scalar tmp79 = tmp29*tmp44;
+    const Scalar tmp80 = tmp3*tmp5;
+    const Scalar tmp82 = tmp78*com_y + tmp79*com_z - tmp5*tmp69;
+    const Scalar tmp85 = -tmp55;
+    const Scalar tmp86 = -tmp57;
+    const Scalar tmp89 = tmp85*com_y + tmp86*com_z;
+    const Scalar tmp90 = tmp89 - tmp60;
+    const Scalar tmp95 = tmp57*com_y + tmp85*com_z;
+    const Scalar tmp97 = tmp28*tmp44;
+    const Scalar tmp98 = tmp2*tmp44;
+    const Scalar tmp99 = tmp0*tmp3;
+    const Scalar tmp101 = tmp97*com_y + tmp98*com_z - tmp0*tmp69;
+    const Scalar tmp107 = tmp65*com_y - tmp64*com_z;
+    const Scalar tmp109 = tmp3*tmp4;
+    const Scalar tmp110 = tmp1*tmp3;
+    const Scalar tmp112 = tmp48 + tmp109*com_y + tmp110*com_z;
+    const Scalar tmp189 = tmp76*roll_dot + tmp82*pitch_dot + tmp90*yaw_dot;
+    const Scalar tmp190 = tmp189 + x_dot;
+    const Scalar tmp191 = y_dot + tmp50*yaw_dot + tmp95*roll_dot + tmp101*pitch_dot;
+    const Scalar tmp192 = -tmp112;
+    const Scalar tmp193 = z_dot + tmp107*roll_dot + tmp192*pitch_dot;
+    const Scalar tmp208 = tmp18*tmp23;
+    const Scalar tmp209 = tmp45 + tmp208*tmp8 + tmp31*tmp35;
+    const Scalar tmp213 = -tmp80 + tmp208*tmp78 + tmp35*tmp79;
+    const Scalar tmp214 = tmp208*tmp31 + tmp35*tmp75;
+    const Scalar tmp215 = tmp208*tmp85 + tmp35*tmp86;
+    const Scalar tmp216 = tmp215 - tmp58;
+    const Scalar tmp217 = tmp213*pitch_dot + tmp214*roll_dot + tmp216*yaw_dot;
+    const Scalar tmp218 = -tmp99 + tmp208*tmp97 + tmp35*tmp98;
+    const Scalar tmp219 = tmp208*tmp57 + tmp35*tmp85;
+    const Scalar tmp220 = tmp209*yaw_dot + tmp218*pitch_dot + tmp219*roll_dot;
+    const Scalar tmp221 = -tmp35*tmp64 + tmp1*tmp18*tmp23*tmp44;
+    const Scalar tmp222 = -tmp44 - tmp109*tmp208 - tmp110*tmp35;
+    const Scalar tmp223 = tmp221*roll_dot + tmp222*pitch_dot;
+    const Scalar tmp233 = tmp34*tmp36;
+    const Scalar tmp234 = tmp8 + tmp233*tmp31;
+    const Scalar tmp237 = tmp78 + tmp233*tmp79;
+    const Scalar tmp238 = tmp31 + tmp233*tmp75;
+    const Scalar tmp239 = -tmp55 + tmp34*tmp36*tmp86;
+    const Scalar tmp240 = tmp237*pitch_dot + tmp238*roll_dot + tmp239*yaw_dot;
+    const Scalar tmp241 = tmp97 + tmp233*tmp98;
+    const Scalar tmp242 = tmp57 + tmp233*tmp85;
+    const Scalar tmp243 = tmp234*yaw_dot + tmp241*pitch_dot + tmp242*roll_dot;
+    const Scalar tmp244 = tmp1*tmp44 - tmp233*tmp64;
+    const Scalar tmp245 = -tmp109 - tmp110*tmp233;
+    const Scalar tmp246 = tmp244*roll_dot + tmp245*pitch_dot;
+    const Scalar tmp257 = tmp75*roll_dot + tmp79*pitch_dot + tmp86*yaw_dot;
+    const Scalar tmp258 = tmp98*pitch_dot;
+    const Scalar tmp259 = tmp258 + tmp31*yaw_dot + tmp85*roll_dot;
+    const Scalar tmp260 = -tmp110*pitch_dot - tmp64*roll_dot;
+    const Scalar tmp281 = g*m;
+    const Scalar tmp347 = (Scalar(0.5))*tmp19*((tmp217*tmp217) + (tmp220*tmp220) + (tmp223*tmp223))
+        + (Scalar(0.5))*tmp24*((tmp240*tmp240) + (tmp243*tmp243) + (tmp246*tmp246))
+        + (Scalar(0.5))*tmp37*((tmp257*tmp257) + (tmp259*tmp259) + (tmp260*tmp260))
+        + (Scalar(0.5))*m*((tmp190*tmp190) + (tmp191*tmp191) + (tmp193*tmp193));
+    const Scalar tmp348 = tmp281*tmp72;
     Scalar result;
-    result = tmp199 + tmp200;
+    result = tmp347 + tmp348;
     return result;
   }
 
@@ -2562,100 +2694,152 @@ struct RigidBodyEuler {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return x (nx)
-  /// Ops: 76
+  /// Ops: 200
   template <typename Scalar>
   static XVector<Scalar> positions(const QVector<Scalar>& q,
                                    const Scalar& /*t*/,
-                                   const Params& /*params*/) {
+                                   const Params& params) {
     using std::cos;
     using std::sin;
+    using std::sqrt;
     const Scalar x = q(0);
     const Scalar y = q(1);
     const Scalar z = q(2);
     const Scalar yaw = q(3);
     const Scalar pitch = q(4);
     const Scalar roll = q(5);
-    const Scalar tmp0 = cos(yaw);
-    const Scalar tmp1 = cos(pitch);
-    const Scalar tmp2 = Scalar(0.5)*tmp1;
-    const Scalar tmp3 = tmp0*tmp2;
-    const Scalar tmp4 = tmp3 + x;
-    const Scalar tmp5 = sin(yaw);
-    const Scalar tmp6 = tmp2*tmp5;
-    const Scalar tmp7 = tmp6 + y;
-    const Scalar tmp8 = sin(pitch);
-    const Scalar tmp9 = Scalar(0.5)*tmp8;
-    const Scalar tmp10 = z - tmp9;
-    const Scalar tmp20 = cos(roll);
-    const Scalar tmp21 = Scalar(0.4)*tmp20;
-    const Scalar tmp22 = tmp21*tmp5;
-    const Scalar tmp23 = sin(roll);
-    const Scalar tmp24 = Scalar(0.4)*tmp23;
-    const Scalar tmp25 = tmp0*tmp24;
-    const Scalar tmp26 = tmp25*tmp8;
-    const Scalar tmp27 = tmp26 - tmp22;
-    const Scalar tmp28 = tmp27 + x;
-    const Scalar tmp29 = tmp0*tmp21;
-    const Scalar tmp30 = tmp24*tmp5;
-    const Scalar tmp31 = tmp30*tmp8;
-    const Scalar tmp32 = tmp29 + tmp31;
-    const Scalar tmp33 = tmp32 + y;
-    const Scalar tmp34 = tmp1*tmp24;
-    const Scalar tmp35 = tmp34 + z;
-    const Scalar tmp47 = Scalar(0.3)*tmp23;
-    const Scalar tmp48 = tmp47*tmp5;
-    const Scalar tmp49 = Scalar(0.3)*tmp20;
-    const Scalar tmp50 = tmp0*tmp49;
-    const Scalar tmp51 = tmp50*tmp8;
-    const Scalar tmp52 = tmp48 + tmp51;
-    const Scalar tmp53 = tmp52 + x;
-    const Scalar tmp54 = tmp0*tmp47;
-    const Scalar tmp55 = tmp49*tmp5;
-    const Scalar tmp56 = tmp55*tmp8;
-    const Scalar tmp57 = tmp56 - tmp54;
-    const Scalar tmp58 = tmp57 + y;
-    const Scalar tmp59 = tmp1*tmp49;
-    const Scalar tmp60 = tmp59 + z;
-    const Scalar tmp62 = tmp54*tmp8;
-    const Scalar tmp63 = tmp62 - tmp55;
-    const Scalar tmp69 = tmp48*tmp8;
-    const Scalar tmp70 = tmp50 + tmp69;
-    const Scalar tmp74 = tmp1*tmp47;
-    const Scalar tmp76 = Scalar(0.2)*tmp1;
-    const Scalar tmp77 = Scalar(0.25)*tmp20;
-    const Scalar tmp78 = tmp0*tmp77;
-    const Scalar tmp79 = tmp8*tmp78;
-    const Scalar tmp80 = tmp79 + tmp0*tmp76;
-    const Scalar tmp81 = Scalar(0.25)*tmp23;
-    const Scalar tmp82 = tmp5*tmp81;
-    const Scalar tmp83 = tmp63 + tmp82;
-    const Scalar tmp84 = tmp80 + tmp83;
-    const Scalar tmp85 = tmp84 + x;
-    const Scalar tmp86 = tmp5*tmp77;
-    const Scalar tmp87 = tmp8*tmp86;
-    const Scalar tmp88 = tmp87 + tmp5*tmp76;
-    const Scalar tmp89 = tmp0*tmp81;
-    const Scalar tmp90 = tmp70 - tmp89;
-    const Scalar tmp91 = tmp88 + tmp90;
-    const Scalar tmp92 = tmp91 + y;
-    const Scalar tmp93 = Scalar(0.2)*tmp8;
-    const Scalar tmp94 = tmp1*tmp77;
-    const Scalar tmp95 = tmp74 + tmp94;
-    const Scalar tmp96 = tmp95 - tmp93;
-    const Scalar tmp97 = tmp96 + z;
+    const Scalar m = Scalar(params.m);
+    const Scalar com_x = Scalar(params.com_x);
+    const Scalar com_y = Scalar(params.com_y);
+    const Scalar com_z = Scalar(params.com_z);
+    const Scalar a = Scalar(params.a);
+    const Scalar b = Scalar(params.b);
+    const Scalar c = Scalar(params.c);
+    const Scalar tmp0 = sin(yaw);
+    const Scalar tmp1 = cos(roll);
+    const Scalar tmp2 = tmp0*tmp1;
+    const Scalar tmp3 = sin(pitch);
+    const Scalar tmp4 = sin(roll);
+    const Scalar tmp5 = cos(yaw);
+    const Scalar tmp6 = tmp4*tmp5;
+    const Scalar tmp7 = tmp3*tmp6;
+    const Scalar tmp8 = tmp7 - tmp2;
+    const Scalar tmp9 = (Scalar(1)/sqrt(m));
+    const Scalar tmp10 = (a*a);
+    const Scalar tmp11 = (b*b);
+    const Scalar tmp12 = m*(tmp10 + tmp11);
+    const Scalar tmp13 = (c*c);
+    const Scalar tmp14 = tmp10 + tmp13;
+    const Scalar tmp15 = tmp14*m;
+    const Scalar tmp16 = tmp11 + tmp13;
+    const Scalar tmp17 = tmp16*m;
+    const Scalar tmp18 = Scalar(0.005689254019167049)*tmp17 + Scalar(0.010556171822976032)*tmp15
+        - Scalar(0.01624542584214308)*tmp12;
+    const Scalar tmp19 = Scalar(0.041142942152109445)*tmp17 + Scalar(0.028423816083747767)*tmp12
+        - Scalar(0.027900091569190537)*tmp15;
+    const Scalar tmp20 = sqrt(tmp19);
+    const Scalar tmp21 = (Scalar(1)/tmp20);
+    const Scalar tmp22 = tmp18*tmp21;
+    const Scalar tmp23 = (Scalar(1)/tmp19);
+    const Scalar tmp24 = Scalar(0.021737886292675604)*tmp12 + Scalar(0.04006485617007295)*tmp15
+        - Scalar(0.020136075796081898)*tmp17 - tmp23*(tmp18*tmp18);
+    const Scalar tmp25 = sqrt(tmp24);
+    const Scalar tmp26 = tmp22 + tmp25;
+    const Scalar tmp27 = tmp26*tmp9;
+    const Scalar tmp28 = tmp0*tmp4;
+    const Scalar tmp29 = tmp1*tmp5;
+    const Scalar tmp30 = tmp29*tmp3;
+    const Scalar tmp31 = tmp28 + tmp30;
+    const Scalar tmp32 = -Scalar(0.0257737061664756)*tmp12 - Scalar(0.003316897780257798)*tmp17
+        + Scalar(0.0290906039467334)*tmp14*m;
+    const Scalar tmp33 = tmp21*tmp32;
+    const Scalar tmp34 = (Scalar(1)/tmp24);
+    const Scalar tmp35 = tmp23*tmp32;
+    const Scalar tmp36 = -Scalar(0.03161742478199714)*tmp12 - Scalar(0.004414255047715874)*tmp15
+        - tmp18*tmp35 + Scalar(0.03603167982971302)*tmp16*m;
+    const Scalar tmp37 = -Scalar(0.008495035709756703)*tmp12 - tmp23*(tmp32*tmp32)
+        - tmp34*(tmp36*tmp36) + Scalar(0.02950190206578425)*tmp14*m
+        + Scalar(0.020659800310639128)*tmp16*m;
+    const Scalar tmp38 = sqrt(tmp37);
+    const Scalar tmp39 = tmp36/tmp25;
+    const Scalar tmp40 = tmp38 + tmp39;
+    const Scalar tmp41 = tmp33 + tmp40;
+    const Scalar tmp42 = tmp41*tmp9;
+    const Scalar tmp43 = tmp27*tmp8 + tmp31*tmp42;
+    const Scalar tmp44 = cos(pitch);
+    const Scalar tmp45 = tmp44*tmp5;
+    const Scalar tmp46 = tmp20*tmp9;
+    const Scalar tmp47 = tmp45*tmp46;
+    const Scalar tmp48 = tmp44*com_x;
+    const Scalar tmp49 = tmp48*tmp5;
+    const Scalar tmp50 = tmp49 + tmp31*com_z + tmp8*com_y;
+    const Scalar tmp51 = tmp50 + x;
+    const Scalar tmp52 = tmp47 + tmp51;
+    const Scalar tmp53 = tmp43 + tmp52;
+    const Scalar tmp54 = tmp28*tmp3;
+    const Scalar tmp55 = tmp29 + tmp54;
+    const Scalar tmp56 = tmp2*tmp3;
+    const Scalar tmp57 = tmp56 - tmp6;
+    const Scalar tmp58 = tmp0*tmp44;
+    const Scalar tmp59 = tmp46*tmp58;
+    const Scalar tmp60 = tmp0*tmp48;
+    const Scalar tmp61 = tmp60 + y + tmp55*com_y + tmp57*com_z;
+    const Scalar tmp62 = tmp59 + tmp61;
+    const Scalar tmp63 = tmp62 + tmp27*tmp55 + tmp42*tmp57;
+    const Scalar tmp64 = tmp4*tmp44;
+    const Scalar tmp65 = tmp1*tmp44;
+    const Scalar tmp66 = tmp27*tmp64 + tmp42*tmp65;
+    const Scalar tmp67 = tmp3*tmp46;
+    const Scalar tmp68 = -tmp67;
+    const Scalar tmp69 = tmp3*com_x;
+    const Scalar tmp70 = tmp64*com_y + tmp65*com_z;
+    const Scalar tmp71 = tmp70 - tmp69;
+    const Scalar tmp72 = tmp71 + z;
+    const Scalar tmp73 = tmp68 + tmp72;
+    const Scalar tmp74 = tmp66 + tmp73;
+    const Scalar tmp88 = -tmp59;
+    const Scalar tmp116 = tmp22 - tmp25;
+    const Scalar tmp117 = tmp116*tmp9;
+    const Scalar tmp118 = tmp33 - tmp40;
+    const Scalar tmp119 = tmp118*tmp9;
+    const Scalar tmp120 = tmp117*tmp8 + tmp119*tmp31;
+    const Scalar tmp121 = tmp120 + tmp52;
+    const Scalar tmp122 = tmp62 + tmp117*tmp55 + tmp119*tmp57;
+    const Scalar tmp123 = tmp117*tmp64 + tmp119*tmp65;
+    const Scalar tmp124 = tmp123 + tmp73;
+    const Scalar tmp138 = -tmp116*tmp9;
+    const Scalar tmp139 = tmp39 - tmp33 - tmp38;
+    const Scalar tmp140 = tmp139*tmp9;
+    const Scalar tmp141 = tmp138*tmp8 + tmp140*tmp31;
+    const Scalar tmp142 = -tmp47;
+    const Scalar tmp143 = tmp142 + tmp51;
+    const Scalar tmp144 = tmp141 + tmp143;
+    const Scalar tmp145 = tmp61 + tmp88;
+    const Scalar tmp146 = tmp145 + tmp138*tmp55 + tmp140*tmp57;
+    const Scalar tmp147 = tmp138*tmp64 + tmp140*tmp65;
+    const Scalar tmp148 = tmp67 + tmp72;
+    const Scalar tmp149 = tmp147 + tmp148;
+    const Scalar tmp168 = -tmp26*tmp9;
+    const Scalar tmp169 = tmp38 - tmp33 - tmp39;
+    const Scalar tmp170 = tmp169*tmp9;
+    const Scalar tmp171 = tmp168*tmp8 + tmp170*tmp31;
+    const Scalar tmp172 = tmp143 + tmp171;
+    const Scalar tmp173 = tmp145 + tmp168*tmp55 + tmp170*tmp57;
+    const Scalar tmp174 = tmp168*tmp64 + tmp170*tmp65;
+    const Scalar tmp175 = tmp148 + tmp174;
     XVector<Scalar> result;
-    result(0) = tmp4;
-    result(1) = tmp7;
-    result(2) = tmp10;
-    result(3) = tmp28;
-    result(4) = tmp33;
-    result(5) = tmp35;
-    result(6) = tmp53;
-    result(7) = tmp58;
-    result(8) = tmp60;
-    result(9) = tmp85;
-    result(10) = tmp92;
-    result(11) = tmp97;
+    result(0) = tmp53;
+    result(1) = tmp63;
+    result(2) = tmp74;
+    result(3) = tmp121;
+    result(4) = tmp122;
+    result(5) = tmp124;
+    result(6) = tmp144;
+    result(7) = tmp146;
+    result(8) = tmp149;
+    result(9) = tmp172;
+    result(10) = tmp173;
+    result(11) = tmp175;
     return result;
   }
 
@@ -2665,14 +2849,15 @@ struct RigidBodyEuler {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return xdot (nx)
-  /// Ops: 178
+  /// Ops: 398
   template <typename Scalar>
   static XVector<Scalar> velocities(const QVector<Scalar>& q,
                                     const QVector<Scalar>& v,
                                     const Scalar& /*t*/,
-                                    const Params& /*params*/) {
+                                    const Params& params) {
     using std::cos;
     using std::sin;
+    using std::sqrt;
     const Scalar yaw = q(3);
     const Scalar pitch = q(4);
     const Scalar roll = q(5);
@@ -2682,118 +2867,193 @@ struct RigidBodyEuler {
     const Scalar yaw_dot = v(3);
     const Scalar pitch_dot = v(4);
     const Scalar roll_dot = v(5);
-    const Scalar tmp0 = cos(yaw);
-    const Scalar tmp1 = cos(pitch);
-    const Scalar tmp2 = Scalar(0.5)*tmp1;
-    const Scalar tmp3 = tmp0*tmp2;
-    const Scalar tmp5 = sin(yaw);
-    const Scalar tmp6 = tmp2*tmp5;
-    const Scalar tmp8 = sin(pitch);
-    const Scalar tmp9 = Scalar(0.5)*tmp8;
-    const Scalar tmp11 = tmp0*tmp9;
-    const Scalar tmp12 = tmp6*yaw_dot + tmp11*pitch_dot;
-    const Scalar tmp13 = x_dot - tmp12;
-    const Scalar tmp14 = tmp5*tmp9;
-    const Scalar tmp15 = tmp14*pitch_dot;
-    const Scalar tmp16 = tmp3*yaw_dot;
-    const Scalar tmp17 = tmp16 + y_dot - tmp15;
-    const Scalar tmp18 = -z_dot;
-    const Scalar tmp19 = -tmp18 - tmp2*pitch_dot;
-    const Scalar tmp20 = cos(roll);
-    const Scalar tmp21 = Scalar(0.4)*tmp20;
-    const Scalar tmp22 = tmp21*tmp5;
-    const Scalar tmp23 = sin(roll);
-    const Scalar tmp24 = Scalar(0.4)*tmp23;
-    const Scalar tmp25 = tmp0*tmp24;
-    const Scalar tmp26 = tmp25*tmp8;
-    const Scalar tmp27 = tmp26 - tmp22;
-    const Scalar tmp29 = tmp0*tmp21;
-    const Scalar tmp30 = tmp24*tmp5;
-    const Scalar tmp31 = tmp30*tmp8;
-    const Scalar tmp32 = tmp29 + tmp31;
-    const Scalar tmp34 = tmp1*tmp24;
-    const Scalar tmp36 = tmp34*pitch_dot;
-    const Scalar tmp37 = tmp30 + tmp29*tmp8;
-    const Scalar tmp38 = -tmp32;
-    const Scalar tmp39 = tmp0*tmp36 + tmp37*roll_dot + tmp38*yaw_dot;
-    const Scalar tmp40 = tmp39 + x_dot;
-    const Scalar tmp41 = tmp36*tmp5;
-    const Scalar tmp42 = -tmp25 + tmp22*tmp8;
-    const Scalar tmp43 = tmp41 + y_dot + tmp27*yaw_dot + tmp42*roll_dot;
-    const Scalar tmp44 = tmp24*tmp8;
-    const Scalar tmp45 = tmp1*tmp21;
-    const Scalar tmp46 = z_dot + tmp45*roll_dot - tmp44*pitch_dot;
-    const Scalar tmp47 = Scalar(0.3)*tmp23;
-    const Scalar tmp48 = tmp47*tmp5;
-    const Scalar tmp49 = Scalar(0.3)*tmp20;
-    const Scalar tmp50 = tmp0*tmp49;
-    const Scalar tmp51 = tmp50*tmp8;
-    const Scalar tmp52 = tmp48 + tmp51;
-    const Scalar tmp54 = tmp0*tmp47;
-    const Scalar tmp55 = tmp49*tmp5;
-    const Scalar tmp56 = tmp55*tmp8;
-    const Scalar tmp57 = tmp56 - tmp54;
-    const Scalar tmp59 = tmp1*tmp49;
-    const Scalar tmp61 = tmp59*pitch_dot;
-    const Scalar tmp62 = tmp54*tmp8;
-    const Scalar tmp63 = tmp62 - tmp55;
-    const Scalar tmp64 = -tmp63;
-    const Scalar tmp65 = -tmp57;
-    const Scalar tmp66 = tmp0*tmp61 + tmp64*roll_dot + tmp65*yaw_dot;
-    const Scalar tmp67 = tmp66 + x_dot;
-    const Scalar tmp68 = tmp5*tmp61;
-    const Scalar tmp69 = tmp48*tmp8;
-    const Scalar tmp70 = tmp50 + tmp69;
-    const Scalar tmp71 = -tmp70;
-    const Scalar tmp72 = tmp68 + y_dot + tmp52*yaw_dot + tmp71*roll_dot;
-    const Scalar tmp73 = tmp49*tmp8;
-    const Scalar tmp74 = tmp1*tmp47;
-    const Scalar tmp75 = -tmp18 - tmp73*pitch_dot - tmp74*roll_dot;
-    const Scalar tmp76 = Scalar(0.2)*tmp1;
-    const Scalar tmp77 = Scalar(0.25)*tmp20;
-    const Scalar tmp78 = tmp0*tmp77;
-    const Scalar tmp79 = tmp8*tmp78;
-    const Scalar tmp80 = tmp79 + tmp0*tmp76;
-    const Scalar tmp81 = Scalar(0.25)*tmp23;
-    const Scalar tmp82 = tmp5*tmp81;
-    const Scalar tmp83 = tmp63 + tmp82;
-    const Scalar tmp84 = tmp80 + tmp83;
-    const Scalar tmp86 = tmp5*tmp77;
-    const Scalar tmp87 = tmp8*tmp86;
-    const Scalar tmp88 = tmp87 + tmp5*tmp76;
-    const Scalar tmp89 = tmp0*tmp81;
-    const Scalar tmp90 = tmp70 - tmp89;
+    const Scalar m = Scalar(params.m);
+    const Scalar com_x = Scalar(params.com_x);
+    const Scalar com_y = Scalar(params.com_y);
+    const Scalar com_z = Scalar(params.com_z);
+    const Scalar a = Scalar(params.a);
+    const Scalar b = Scalar(params.b);
+    const Scalar c = Scalar(params.c);
+    const Scalar tmp0 = sin(yaw);
+    const Scalar tmp1 = cos(roll);
+    const Scalar tmp2 = tmp0*tmp1;
+    const Scalar tmp3 = sin(pitch);
+    const Scalar tmp4 = sin(roll);
+    const Scalar tmp5 = cos(yaw);
+    const Scalar tmp6 = tmp4*tmp5;
+    const Scalar tmp7 = tmp3*tmp6;
+    const Scalar tmp8 = tmp7 - tmp2;
+    const Scalar tmp9 = (Scalar(1)/sqrt(m));
+    const Scalar tmp10 = (a*a);
+    const Scalar tmp11 = (b*b);
+    const Scalar tmp12 = m*(tmp10 + tmp11);
+    const Scalar tmp13 = (c*c);
+    const Scalar tmp14 = tmp10 + tmp13;
+    const Scalar tmp15 = tmp14*m;
+    const Scalar tmp16 = tmp11 + tmp13;
+    const Scalar tmp17 = tmp16*m;
+    const Scalar tmp18 = Scalar(0.005689254019167049)*tmp17 + Scalar(0.010556171822976032)*tmp15
+        - Scalar(0.01624542584214308)*tmp12;
+    const Scalar tmp19 = Scalar(0.041142942152109445)*tmp17 + Scalar(0.028423816083747767)*tmp12
+        - Scalar(0.027900091569190537)*tmp15;
+    const Scalar tmp20 = sqrt(tmp19);
+    const Scalar tmp21 = (Scalar(1)/tmp20);
+    const Scalar tmp22 = tmp18*tmp21;
+    const Scalar tmp23 = (Scalar(1)/tmp19);
+    const Scalar tmp24 = Scalar(0.021737886292675604)*tmp12 + Scalar(0.04006485617007295)*tmp15
+        - Scalar(0.020136075796081898)*tmp17 - tmp23*(tmp18*tmp18);
+    const Scalar tmp25 = sqrt(tmp24);
+    const Scalar tmp26 = tmp22 + tmp25;
+    const Scalar tmp27 = tmp26*tmp9;
+    const Scalar tmp28 = tmp0*tmp4;
+    const Scalar tmp29 = tmp1*tmp5;
+    const Scalar tmp30 = tmp29*tmp3;
+    const Scalar tmp31 = tmp28 + tmp30;
+    const Scalar tmp32 = -Scalar(0.0257737061664756)*tmp12 - Scalar(0.003316897780257798)*tmp17
+        + Scalar(0.0290906039467334)*tmp14*m;
+    const Scalar tmp33 = tmp21*tmp32;
+    const Scalar tmp34 = (Scalar(1)/tmp24);
+    const Scalar tmp35 = tmp23*tmp32;
+    const Scalar tmp36 = -Scalar(0.03161742478199714)*tmp12 - Scalar(0.004414255047715874)*tmp15
+        - tmp18*tmp35 + Scalar(0.03603167982971302)*tmp16*m;
+    const Scalar tmp37 = -Scalar(0.008495035709756703)*tmp12 - tmp23*(tmp32*tmp32)
+        - tmp34*(tmp36*tmp36) + Scalar(0.02950190206578425)*tmp14*m
+        + Scalar(0.020659800310639128)*tmp16*m;
+    const Scalar tmp38 = sqrt(tmp37);
+    const Scalar tmp39 = tmp36/tmp25;
+    const Scalar tmp40 = tmp38 + tmp39;
+    const Scalar tmp41 = tmp33 + tmp40;
+    const Scalar tmp42 = tmp41*tmp9;
+    const Scalar tmp43 = tmp27*tmp8 + tmp31*tmp42;
+    const Scalar tmp44 = cos(pitch);
+    const Scalar tmp45 = tmp44*tmp5;
+    const Scalar tmp46 = tmp20*tmp9;
+    const Scalar tmp47 = tmp45*tmp46;
+    const Scalar tmp48 = tmp44*com_x;
+    const Scalar tmp49 = tmp48*tmp5;
+    const Scalar tmp50 = tmp49 + tmp31*com_z + tmp8*com_y;
+    const Scalar tmp54 = tmp28*tmp3;
+    const Scalar tmp55 = tmp29 + tmp54;
+    const Scalar tmp56 = tmp2*tmp3;
+    const Scalar tmp57 = tmp56 - tmp6;
+    const Scalar tmp58 = tmp0*tmp44;
+    const Scalar tmp59 = tmp46*tmp58;
+    const Scalar tmp60 = tmp0*tmp48;
+    const Scalar tmp64 = tmp4*tmp44;
+    const Scalar tmp65 = tmp1*tmp44;
+    const Scalar tmp69 = tmp3*com_x;
+    const Scalar tmp75 = -tmp8;
+    const Scalar tmp76 = tmp31*com_y + tmp75*com_z;
+    const Scalar tmp77 = tmp76 + tmp27*tmp31 + tmp42*tmp75;
+    const Scalar tmp78 = tmp44*tmp6;
+    const Scalar tmp79 = tmp29*tmp44;
+    const Scalar tmp80 = tmp3*tmp5;
+    const Scalar tmp81 = tmp46*tmp80;
+    const Scalar tmp82 = tmp78*com_y + tmp79*com_z - tmp5*tmp69;
+    const Scalar tmp83 = tmp82 - tmp81;
+    const Scalar tmp84 = tmp83 + tmp27*tmp78 + tmp42*tmp79;
+    const Scalar tmp85 = -tmp55;
+    const Scalar tmp86 = -tmp57;
+    const Scalar tmp87 = tmp27*tmp85 + tmp42*tmp86;
+    const Scalar tmp88 = -tmp59;
+    const Scalar tmp89 = tmp85*com_y + tmp86*com_z;
+    const Scalar tmp90 = tmp89 - tmp60;
     const Scalar tmp91 = tmp88 + tmp90;
-    const Scalar tmp93 = Scalar(0.2)*tmp8;
-    const Scalar tmp94 = tmp1*tmp77;
-    const Scalar tmp98 = tmp1*tmp54;
-    const Scalar tmp99 = tmp98 + tmp0*tmp94 - tmp0*tmp93;
-    const Scalar tmp100 = tmp52 + tmp86 - tmp8*tmp89;
-    const Scalar tmp101 = -tmp91;
-    const Scalar tmp102 = tmp99*pitch_dot + tmp100*roll_dot + tmp101*yaw_dot;
-    const Scalar tmp103 = tmp102 + x_dot;
-    const Scalar tmp104 = tmp1*tmp48;
-    const Scalar tmp105 = tmp104 + tmp5*tmp94 - tmp5*tmp93;
-    const Scalar tmp106 = tmp54 + tmp78 - tmp56 + tmp8*tmp82;
-    const Scalar tmp107 = -tmp106;
-    const Scalar tmp108 = y_dot + tmp84*yaw_dot + tmp105*pitch_dot + tmp107*roll_dot;
-    const Scalar tmp109 = -tmp1*tmp81 + Scalar(0.3)*tmp1*tmp20;
-    const Scalar tmp110 = tmp47*tmp8;
-    const Scalar tmp111 = -tmp76 - tmp110 - tmp77*tmp8;
-    const Scalar tmp112 = z_dot + tmp109*roll_dot + tmp111*pitch_dot;
+    const Scalar tmp92 = tmp87 + tmp91;
+    const Scalar tmp93 = tmp77*roll_dot + tmp84*pitch_dot + tmp92*yaw_dot;
+    const Scalar tmp94 = tmp93 + x_dot;
+    const Scalar tmp95 = tmp57*com_y + tmp85*com_z;
+    const Scalar tmp96 = tmp95 + tmp27*tmp57 + tmp42*tmp85;
+    const Scalar tmp97 = tmp28*tmp44;
+    const Scalar tmp98 = tmp2*tmp44;
+    const Scalar tmp99 = tmp0*tmp3;
+    const Scalar tmp100 = tmp46*tmp99;
+    const Scalar tmp101 = tmp97*com_y + tmp98*com_z - tmp0*tmp69;
+    const Scalar tmp102 = tmp101 - tmp100;
+    const Scalar tmp103 = tmp102 + tmp27*tmp97 + tmp42*tmp98;
+    const Scalar tmp104 = tmp47 + tmp50;
+    const Scalar tmp105 = tmp104 + tmp43;
+    const Scalar tmp106 = y_dot + tmp105*yaw_dot + tmp96*roll_dot + tmp103*pitch_dot;
+    const Scalar tmp107 = tmp65*com_y - tmp64*com_z;
+    const Scalar tmp108 = tmp107 + tmp27*tmp65 - tmp42*tmp64;
+    const Scalar tmp109 = tmp3*tmp4;
+    const Scalar tmp110 = tmp1*tmp3;
+    const Scalar tmp111 = tmp44*tmp46;
+    const Scalar tmp112 = tmp48 + tmp109*com_y + tmp110*com_z;
+    const Scalar tmp113 = tmp111 + tmp112;
+    const Scalar tmp114 = -tmp113 - tmp109*tmp27 - tmp110*tmp42;
+    const Scalar tmp115 = z_dot + tmp108*roll_dot + tmp114*pitch_dot;
+    const Scalar tmp116 = tmp22 - tmp25;
+    const Scalar tmp117 = tmp116*tmp9;
+    const Scalar tmp118 = tmp33 - tmp40;
+    const Scalar tmp119 = tmp118*tmp9;
+    const Scalar tmp120 = tmp117*tmp8 + tmp119*tmp31;
+    const Scalar tmp125 = tmp76 + tmp117*tmp31 + tmp119*tmp75;
+    const Scalar tmp126 = tmp83 + tmp117*tmp78 + tmp119*tmp79;
+    const Scalar tmp127 = tmp117*tmp85 + tmp119*tmp86;
+    const Scalar tmp128 = tmp127 + tmp91;
+    const Scalar tmp129 = tmp125*roll_dot + tmp126*pitch_dot + tmp128*yaw_dot;
+    const Scalar tmp130 = tmp129 + x_dot;
+    const Scalar tmp131 = tmp95 + tmp117*tmp57 + tmp119*tmp85;
+    const Scalar tmp132 = tmp102 + tmp117*tmp97 + tmp119*tmp98;
+    const Scalar tmp133 = tmp104 + tmp120;
+    const Scalar tmp134 = y_dot + tmp131*roll_dot + tmp132*pitch_dot + tmp133*yaw_dot;
+    const Scalar tmp135 = tmp107 + tmp117*tmp65 - tmp119*tmp64;
+    const Scalar tmp136 = -tmp113 - tmp109*tmp117 - tmp110*tmp119;
+    const Scalar tmp137 = z_dot + tmp135*roll_dot + tmp136*pitch_dot;
+    const Scalar tmp138 = -tmp116*tmp9;
+    const Scalar tmp139 = tmp39 - tmp33 - tmp38;
+    const Scalar tmp140 = tmp139*tmp9;
+    const Scalar tmp141 = tmp138*tmp8 + tmp140*tmp31;
+    const Scalar tmp142 = -tmp47;
+    const Scalar tmp150 = tmp76 + tmp138*tmp31 + tmp140*tmp75;
+    const Scalar tmp151 = tmp81 + tmp82;
+    const Scalar tmp152 = tmp151 + tmp138*tmp78 + tmp140*tmp79;
+    const Scalar tmp153 = tmp138*tmp85 + tmp140*tmp86;
+    const Scalar tmp154 = tmp59 + tmp90;
+    const Scalar tmp155 = tmp153 + tmp154;
+    const Scalar tmp156 = tmp150*roll_dot + tmp152*pitch_dot + tmp155*yaw_dot;
+    const Scalar tmp157 = tmp156 + x_dot;
+    const Scalar tmp158 = tmp95 + tmp138*tmp57 + tmp140*tmp85;
+    const Scalar tmp159 = tmp100 + tmp101;
+    const Scalar tmp160 = tmp159 + tmp138*tmp97 + tmp140*tmp98;
+    const Scalar tmp161 = tmp142 + tmp50;
+    const Scalar tmp162 = tmp141 + tmp161;
+    const Scalar tmp163 = y_dot + tmp158*roll_dot + tmp160*pitch_dot + tmp162*yaw_dot;
+    const Scalar tmp164 = tmp107 + tmp138*tmp65 - tmp140*tmp64;
+    const Scalar tmp165 = tmp112 - tmp111;
+    const Scalar tmp166 = -tmp165 - tmp109*tmp138 - tmp110*tmp140;
+    const Scalar tmp167 = z_dot + tmp164*roll_dot + tmp166*pitch_dot;
+    const Scalar tmp168 = -tmp26*tmp9;
+    const Scalar tmp169 = tmp38 - tmp33 - tmp39;
+    const Scalar tmp170 = tmp169*tmp9;
+    const Scalar tmp171 = tmp168*tmp8 + tmp170*tmp31;
+    const Scalar tmp176 = tmp76 + tmp168*tmp31 + tmp170*tmp75;
+    const Scalar tmp177 = tmp151 + tmp168*tmp78 + tmp170*tmp79;
+    const Scalar tmp178 = tmp168*tmp85 + tmp170*tmp86;
+    const Scalar tmp179 = tmp154 + tmp178;
+    const Scalar tmp180 = tmp176*roll_dot + tmp177*pitch_dot + tmp179*yaw_dot;
+    const Scalar tmp181 = tmp180 + x_dot;
+    const Scalar tmp182 = tmp95 + tmp168*tmp57 + tmp170*tmp85;
+    const Scalar tmp183 = tmp159 + tmp168*tmp97 + tmp170*tmp98;
+    const Scalar tmp184 = tmp161 + tmp171;
+    const Scalar tmp185 = y_dot + tmp182*roll_dot + tmp183*pitch_dot + tmp184*yaw_dot;
+    const Scalar tmp186 = tmp107 + tmp168*tmp65 - tmp170*tmp64;
+    const Scalar tmp187 = -tmp165 - tmp109*tmp168 - tmp110*tmp170;
+    const Scalar tmp188 = z_dot + tmp186*roll_dot + tmp187*pitch_dot;
     XVector<Scalar> result;
-    result(0) = tmp13;
-    result(1) = tmp17;
-    result(2) = tmp19;
-    result(3) = tmp40;
-    result(4) = tmp43;
-    result(5) = tmp46;
-    result(6) = tmp67;
-    result(7) = tmp72;
-    result(8) = tmp75;
-    result(9) = tmp103;
-    result(10) = tmp108;
-    result(11) = tmp112;
+    result(0) = tmp94;
+    result(1) = tmp106;
+    result(2) = tmp115;
+    result(3) = tmp130;
+    result(4) = tmp134;
+    result(5) = tmp137;
+    result(6) = tmp157;
+    result(7) = tmp163;
+    result(8) = tmp167;
+    result(9) = tmp181;
+    result(10) = tmp185;
+    result(11) = tmp188;
     return result;
   }
 
@@ -2802,170 +3062,248 @@ struct RigidBodyEuler {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return J (nx x nq)
-  /// Ops: 120
+  /// Ops: 334
   template <typename Scalar>
   static XJacobian<Scalar> jacobian(const QVector<Scalar>& q,
                                     const Scalar& /*t*/,
-                                    const Params& /*params*/) {
+                                    const Params& params) {
     using std::cos;
     using std::sin;
+    using std::sqrt;
     const Scalar yaw = q(3);
     const Scalar pitch = q(4);
     const Scalar roll = q(5);
-    const Scalar tmp0 = cos(yaw);
-    const Scalar tmp1 = cos(pitch);
-    const Scalar tmp2 = Scalar(0.5)*tmp1;
-    const Scalar tmp3 = tmp0*tmp2;
-    const Scalar tmp5 = sin(yaw);
-    const Scalar tmp6 = tmp2*tmp5;
-    const Scalar tmp8 = sin(pitch);
-    const Scalar tmp9 = Scalar(0.5)*tmp8;
-    const Scalar tmp11 = tmp0*tmp9;
-    const Scalar tmp14 = tmp5*tmp9;
-    const Scalar tmp20 = cos(roll);
-    const Scalar tmp21 = Scalar(0.4)*tmp20;
-    const Scalar tmp22 = tmp21*tmp5;
-    const Scalar tmp23 = sin(roll);
-    const Scalar tmp24 = Scalar(0.4)*tmp23;
-    const Scalar tmp25 = tmp0*tmp24;
-    const Scalar tmp26 = tmp25*tmp8;
-    const Scalar tmp27 = tmp26 - tmp22;
-    const Scalar tmp29 = tmp0*tmp21;
-    const Scalar tmp30 = tmp24*tmp5;
-    const Scalar tmp31 = tmp30*tmp8;
-    const Scalar tmp32 = tmp29 + tmp31;
-    const Scalar tmp34 = tmp1*tmp24;
-    const Scalar tmp37 = tmp30 + tmp29*tmp8;
-    const Scalar tmp38 = -tmp32;
-    const Scalar tmp42 = -tmp25 + tmp22*tmp8;
-    const Scalar tmp44 = tmp24*tmp8;
-    const Scalar tmp45 = tmp1*tmp21;
-    const Scalar tmp47 = Scalar(0.3)*tmp23;
-    const Scalar tmp48 = tmp47*tmp5;
-    const Scalar tmp49 = Scalar(0.3)*tmp20;
-    const Scalar tmp50 = tmp0*tmp49;
-    const Scalar tmp51 = tmp50*tmp8;
-    const Scalar tmp52 = tmp48 + tmp51;
-    const Scalar tmp54 = tmp0*tmp47;
-    const Scalar tmp55 = tmp49*tmp5;
-    const Scalar tmp56 = tmp55*tmp8;
-    const Scalar tmp57 = tmp56 - tmp54;
-    const Scalar tmp59 = tmp1*tmp49;
-    const Scalar tmp62 = tmp54*tmp8;
-    const Scalar tmp63 = tmp62 - tmp55;
-    const Scalar tmp64 = -tmp63;
-    const Scalar tmp65 = -tmp57;
-    const Scalar tmp69 = tmp48*tmp8;
-    const Scalar tmp70 = tmp50 + tmp69;
-    const Scalar tmp71 = -tmp70;
-    const Scalar tmp73 = tmp49*tmp8;
-    const Scalar tmp74 = tmp1*tmp47;
-    const Scalar tmp76 = Scalar(0.2)*tmp1;
-    const Scalar tmp77 = Scalar(0.25)*tmp20;
-    const Scalar tmp78 = tmp0*tmp77;
-    const Scalar tmp79 = tmp8*tmp78;
-    const Scalar tmp80 = tmp79 + tmp0*tmp76;
-    const Scalar tmp81 = Scalar(0.25)*tmp23;
-    const Scalar tmp82 = tmp5*tmp81;
-    const Scalar tmp83 = tmp63 + tmp82;
-    const Scalar tmp84 = tmp80 + tmp83;
-    const Scalar tmp86 = tmp5*tmp77;
-    const Scalar tmp87 = tmp8*tmp86;
-    const Scalar tmp88 = tmp87 + tmp5*tmp76;
-    const Scalar tmp89 = tmp0*tmp81;
-    const Scalar tmp90 = tmp70 - tmp89;
+    const Scalar m = Scalar(params.m);
+    const Scalar com_x = Scalar(params.com_x);
+    const Scalar com_y = Scalar(params.com_y);
+    const Scalar com_z = Scalar(params.com_z);
+    const Scalar a = Scalar(params.a);
+    const Scalar b = Scalar(params.b);
+    const Scalar c = Scalar(params.c);
+    const Scalar tmp0 = sin(yaw);
+    const Scalar tmp1 = cos(roll);
+    const Scalar tmp2 = tmp0*tmp1;
+    const Scalar tmp3 = sin(pitch);
+    const Scalar tmp4 = sin(roll);
+    const Scalar tmp5 = cos(yaw);
+    const Scalar tmp6 = tmp4*tmp5;
+    const Scalar tmp7 = tmp3*tmp6;
+    const Scalar tmp8 = tmp7 - tmp2;
+    const Scalar tmp9 = (Scalar(1)/sqrt(m));
+    const Scalar tmp10 = (a*a);
+    const Scalar tmp11 = (b*b);
+    const Scalar tmp12 = m*(tmp10 + tmp11);
+    const Scalar tmp13 = (c*c);
+    const Scalar tmp14 = tmp10 + tmp13;
+    const Scalar tmp15 = tmp14*m;
+    const Scalar tmp16 = tmp11 + tmp13;
+    const Scalar tmp17 = tmp16*m;
+    const Scalar tmp18 = Scalar(0.005689254019167049)*tmp17 + Scalar(0.010556171822976032)*tmp15
+        - Scalar(0.01624542584214308)*tmp12;
+    const Scalar tmp19 = Scalar(0.041142942152109445)*tmp17 + Scalar(0.028423816083747767)*tmp12
+        - Scalar(0.027900091569190537)*tmp15;
+    const Scalar tmp20 = sqrt(tmp19);
+    const Scalar tmp21 = (Scalar(1)/tmp20);
+    const Scalar tmp22 = tmp18*tmp21;
+    const Scalar tmp23 = (Scalar(1)/tmp19);
+    const Scalar tmp24 = Scalar(0.021737886292675604)*tmp12 + Scalar(0.04006485617007295)*tmp15
+        - Scalar(0.020136075796081898)*tmp17 - tmp23*(tmp18*tmp18);
+    const Scalar tmp25 = sqrt(tmp24);
+    const Scalar tmp26 = tmp22 + tmp25;
+    const Scalar tmp27 = tmp26*tmp9;
+    const Scalar tmp28 = tmp0*tmp4;
+    const Scalar tmp29 = tmp1*tmp5;
+    const Scalar tmp30 = tmp29*tmp3;
+    const Scalar tmp31 = tmp28 + tmp30;
+    const Scalar tmp32 = -Scalar(0.0257737061664756)*tmp12 - Scalar(0.003316897780257798)*tmp17
+        + Scalar(0.0290906039467334)*tmp14*m;
+    const Scalar tmp33 = tmp21*tmp32;
+    const Scalar tmp34 = (Scalar(1)/tmp24);
+    const Scalar tmp35 = tmp23*tmp32;
+    const Scalar tmp36 = -Scalar(0.03161742478199714)*tmp12 - Scalar(0.004414255047715874)*tmp15
+        - tmp18*tmp35 + Scalar(0.03603167982971302)*tmp16*m;
+    const Scalar tmp37 = -Scalar(0.008495035709756703)*tmp12 - tmp23*(tmp32*tmp32)
+        - tmp34*(tmp36*tmp36) + Scalar(0.02950190206578425)*tmp14*m
+        + Scalar(0.020659800310639128)*tmp16*m;
+    const Scalar tmp38 = sqrt(tmp37);
+    const Scalar tmp39 = tmp36/tmp25;
+    const Scalar tmp40 = tmp38 + tmp39;
+    const Scalar tmp41 = tmp33 + tmp40;
+    const Scalar tmp42 = tmp41*tmp9;
+    const Scalar tmp43 = tmp27*tmp8 + tmp31*tmp42;
+    const Scalar tmp44 = cos(pitch);
+    const Scalar tmp45 = tmp44*tmp5;
+    const Scalar tmp46 = tmp20*tmp9;
+    const Scalar tmp47 = tmp45*tmp46;
+    const Scalar tmp48 = tmp44*com_x;
+    const Scalar tmp49 = tmp48*tmp5;
+    const Scalar tmp50 = tmp49 + tmp31*com_z + tmp8*com_y;
+    const Scalar tmp54 = tmp28*tmp3;
+    const Scalar tmp55 = tmp29 + tmp54;
+    const Scalar tmp56 = tmp2*tmp3;
+    const Scalar tmp57 = tmp56 - tmp6;
+    const Scalar tmp58 = tmp0*tmp44;
+    const Scalar tmp59 = tmp46*tmp58;
+    const Scalar tmp60 = tmp0*tmp48;
+    const Scalar tmp64 = tmp4*tmp44;
+    const Scalar tmp65 = tmp1*tmp44;
+    const Scalar tmp69 = tmp3*com_x;
+    const Scalar tmp75 = -tmp8;
+    const Scalar tmp76 = tmp31*com_y + tmp75*com_z;
+    const Scalar tmp77 = tmp76 + tmp27*tmp31 + tmp42*tmp75;
+    const Scalar tmp78 = tmp44*tmp6;
+    const Scalar tmp79 = tmp29*tmp44;
+    const Scalar tmp80 = tmp3*tmp5;
+    const Scalar tmp81 = tmp46*tmp80;
+    const Scalar tmp82 = tmp78*com_y + tmp79*com_z - tmp5*tmp69;
+    const Scalar tmp83 = tmp82 - tmp81;
+    const Scalar tmp84 = tmp83 + tmp27*tmp78 + tmp42*tmp79;
+    const Scalar tmp85 = -tmp55;
+    const Scalar tmp86 = -tmp57;
+    const Scalar tmp87 = tmp27*tmp85 + tmp42*tmp86;
+    const Scalar tmp88 = -tmp59;
+    const Scalar tmp89 = tmp85*com_y + tmp86*com_z;
+    const Scalar tmp90 = tmp89 - tmp60;
     const Scalar tmp91 = tmp88 + tmp90;
-    const Scalar tmp93 = Scalar(0.2)*tmp8;
-    const Scalar tmp94 = tmp1*tmp77;
-    const Scalar tmp98 = tmp1*tmp54;
-    const Scalar tmp99 = tmp98 + tmp0*tmp94 - tmp0*tmp93;
-    const Scalar tmp100 = tmp52 + tmp86 - tmp8*tmp89;
-    const Scalar tmp101 = -tmp91;
-    const Scalar tmp104 = tmp1*tmp48;
-    const Scalar tmp105 = tmp104 + tmp5*tmp94 - tmp5*tmp93;
-    const Scalar tmp106 = tmp54 + tmp78 - tmp56 + tmp8*tmp82;
-    const Scalar tmp107 = -tmp106;
-    const Scalar tmp109 = -tmp1*tmp81 + Scalar(0.3)*tmp1*tmp20;
-    const Scalar tmp110 = tmp47*tmp8;
-    const Scalar tmp111 = -tmp76 - tmp110 - tmp77*tmp8;
-    const Scalar tmp124 = tmp34*tmp5;
-    const Scalar tmp129 = tmp0*tmp34;
-    const Scalar tmp133 = tmp5*tmp59;
-    const Scalar tmp143 = -tmp73;
-    const Scalar tmp154 = tmp0*tmp59;
+    const Scalar tmp92 = tmp87 + tmp91;
+    const Scalar tmp95 = tmp57*com_y + tmp85*com_z;
+    const Scalar tmp96 = tmp95 + tmp27*tmp57 + tmp42*tmp85;
+    const Scalar tmp97 = tmp28*tmp44;
+    const Scalar tmp98 = tmp2*tmp44;
+    const Scalar tmp99 = tmp0*tmp3;
+    const Scalar tmp100 = tmp46*tmp99;
+    const Scalar tmp101 = tmp97*com_y + tmp98*com_z - tmp0*tmp69;
+    const Scalar tmp102 = tmp101 - tmp100;
+    const Scalar tmp103 = tmp102 + tmp27*tmp97 + tmp42*tmp98;
+    const Scalar tmp104 = tmp47 + tmp50;
+    const Scalar tmp105 = tmp104 + tmp43;
+    const Scalar tmp107 = tmp65*com_y - tmp64*com_z;
+    const Scalar tmp108 = tmp107 + tmp27*tmp65 - tmp42*tmp64;
+    const Scalar tmp109 = tmp3*tmp4;
+    const Scalar tmp110 = tmp1*tmp3;
+    const Scalar tmp111 = tmp44*tmp46;
+    const Scalar tmp112 = tmp48 + tmp109*com_y + tmp110*com_z;
+    const Scalar tmp113 = tmp111 + tmp112;
+    const Scalar tmp114 = -tmp113 - tmp109*tmp27 - tmp110*tmp42;
+    const Scalar tmp116 = tmp22 - tmp25;
+    const Scalar tmp117 = tmp116*tmp9;
+    const Scalar tmp118 = tmp33 - tmp40;
+    const Scalar tmp119 = tmp118*tmp9;
+    const Scalar tmp120 = tmp117*tmp8 + tmp119*tmp31;
+    const Scalar tmp125 = tmp76 + tmp117*tmp31 + tmp119*tmp75;
+    const Scalar tmp126 = tmp83 + tmp117*tmp78 + tmp119*tmp79;
+    const Scalar tmp127 = tmp117*tmp85 + tmp119*tmp86;
+    const Scalar tmp128 = tmp127 + tmp91;
+    const Scalar tmp131 = tmp95 + tmp117*tmp57 + tmp119*tmp85;
+    const Scalar tmp132 = tmp102 + tmp117*tmp97 + tmp119*tmp98;
+    const Scalar tmp133 = tmp104 + tmp120;
+    const Scalar tmp135 = tmp107 + tmp117*tmp65 - tmp119*tmp64;
+    const Scalar tmp136 = -tmp113 - tmp109*tmp117 - tmp110*tmp119;
+    const Scalar tmp138 = -tmp116*tmp9;
+    const Scalar tmp139 = tmp39 - tmp33 - tmp38;
+    const Scalar tmp140 = tmp139*tmp9;
+    const Scalar tmp141 = tmp138*tmp8 + tmp140*tmp31;
+    const Scalar tmp142 = -tmp47;
+    const Scalar tmp150 = tmp76 + tmp138*tmp31 + tmp140*tmp75;
+    const Scalar tmp151 = tmp81 + tmp82;
+    const Scalar tmp152 = tmp151 + tmp138*tmp78 + tmp140*tmp79;
+    const Scalar tmp153 = tmp138*tmp85 + tmp140*tmp86;
+    const Scalar tmp154 = tmp59 + tmp90;
+    const Scalar tmp155 = tmp153 + tmp154;
+    const Scalar tmp158 = tmp95 + tmp138*tmp57 + tmp140*tmp85;
+    const Scalar tmp159 = tmp100 + tmp101;
+    const Scalar tmp160 = tmp159 + tmp138*tmp97 + tmp140*tmp98;
+    const Scalar tmp161 = tmp142 + tmp50;
+    const Scalar tmp162 = tmp141 + tmp161;
+    const Scalar tmp164 = tmp107 + tmp138*tmp65 - tmp140*tmp64;
+    const Scalar tmp165 = tmp112 - tmp111;
+    const Scalar tmp166 = -tmp165 - tmp109*tmp138 - tmp110*tmp140;
+    const Scalar tmp168 = -tmp26*tmp9;
+    const Scalar tmp169 = tmp38 - tmp33 - tmp39;
+    const Scalar tmp170 = tmp169*tmp9;
+    const Scalar tmp171 = tmp168*tmp8 + tmp170*tmp31;
+    const Scalar tmp176 = tmp76 + tmp168*tmp31 + tmp170*tmp75;
+    const Scalar tmp177 = tmp151 + tmp168*tmp78 + tmp170*tmp79;
+    const Scalar tmp178 = tmp168*tmp85 + tmp170*tmp86;
+    const Scalar tmp179 = tmp154 + tmp178;
+    const Scalar tmp182 = tmp95 + tmp168*tmp57 + tmp170*tmp85;
+    const Scalar tmp183 = tmp159 + tmp168*tmp97 + tmp170*tmp98;
+    const Scalar tmp184 = tmp161 + tmp171;
+    const Scalar tmp186 = tmp107 + tmp168*tmp65 - tmp170*tmp64;
+    const Scalar tmp187 = -tmp165 - tmp109*tmp168 - tmp110*tmp170;
     XJacobian<Scalar> result;
     result(0, 0) = Scalar(1);
     result(0, 1) = Scalar(0);
     result(0, 2) = Scalar(0);
-    result(0, 3) = -tmp6;
-    result(0, 4) = -tmp11;
-    result(0, 5) = Scalar(0);
+    result(0, 3) = tmp92;
+    result(0, 4) = tmp84;
+    result(0, 5) = tmp77;
     result(1, 0) = Scalar(0);
     result(1, 1) = Scalar(1);
     result(1, 2) = Scalar(0);
-    result(1, 3) = tmp3;
-    result(1, 4) = -tmp14;
-    result(1, 5) = Scalar(0);
+    result(1, 3) = tmp105;
+    result(1, 4) = tmp103;
+    result(1, 5) = tmp96;
     result(2, 0) = Scalar(0);
     result(2, 1) = Scalar(0);
     result(2, 2) = Scalar(1);
     result(2, 3) = Scalar(0);
-    result(2, 4) = -tmp2;
-    result(2, 5) = Scalar(0);
+    result(2, 4) = tmp114;
+    result(2, 5) = tmp108;
     result(3, 0) = Scalar(1);
     result(3, 1) = Scalar(0);
     result(3, 2) = Scalar(0);
-    result(3, 3) = tmp38;
-    result(3, 4) = tmp129;
-    result(3, 5) = tmp37;
+    result(3, 3) = tmp128;
+    result(3, 4) = tmp126;
+    result(3, 5) = tmp125;
     result(4, 0) = Scalar(0);
     result(4, 1) = Scalar(1);
     result(4, 2) = Scalar(0);
-    result(4, 3) = tmp27;
-    result(4, 4) = tmp124;
-    result(4, 5) = tmp42;
+    result(4, 3) = tmp133;
+    result(4, 4) = tmp132;
+    result(4, 5) = tmp131;
     result(5, 0) = Scalar(0);
     result(5, 1) = Scalar(0);
     result(5, 2) = Scalar(1);
     result(5, 3) = Scalar(0);
-    result(5, 4) = -tmp44;
-    result(5, 5) = tmp45;
+    result(5, 4) = tmp136;
+    result(5, 5) = tmp135;
     result(6, 0) = Scalar(1);
     result(6, 1) = Scalar(0);
     result(6, 2) = Scalar(0);
-    result(6, 3) = tmp65;
-    result(6, 4) = tmp154;
-    result(6, 5) = tmp64;
+    result(6, 3) = tmp155;
+    result(6, 4) = tmp152;
+    result(6, 5) = tmp150;
     result(7, 0) = Scalar(0);
     result(7, 1) = Scalar(1);
     result(7, 2) = Scalar(0);
-    result(7, 3) = tmp52;
-    result(7, 4) = tmp133;
-    result(7, 5) = tmp71;
+    result(7, 3) = tmp162;
+    result(7, 4) = tmp160;
+    result(7, 5) = tmp158;
     result(8, 0) = Scalar(0);
     result(8, 1) = Scalar(0);
     result(8, 2) = Scalar(1);
     result(8, 3) = Scalar(0);
-    result(8, 4) = tmp143;
-    result(8, 5) = -tmp74;
+    result(8, 4) = tmp166;
+    result(8, 5) = tmp164;
     result(9, 0) = Scalar(1);
     result(9, 1) = Scalar(0);
     result(9, 2) = Scalar(0);
-    result(9, 3) = tmp101;
-    result(9, 4) = tmp99;
-    result(9, 5) = tmp100;
+    result(9, 3) = tmp179;
+    result(9, 4) = tmp177;
+    result(9, 5) = tmp176;
     result(10, 0) = Scalar(0);
     result(10, 1) = Scalar(1);
     result(10, 2) = Scalar(0);
-    result(10, 3) = tmp84;
-    result(10, 4) = tmp105;
-    result(10, 5) = tmp107;
+    result(10, 3) = tmp184;
+    result(10, 4) = tmp183;
+    result(10, 5) = tmp182;
     result(11, 0) = Scalar(0);
     result(11, 1) = Scalar(0);
     result(11, 2) = Scalar(1);
     result(11, 3) = Scalar(0);
-    result(11, 4) = tmp111;
-    result(11, 5) = tmp109;
+    result(11, 4) = tmp187;
+    result(11, 5) = tmp186;
     return result;
   }
 
@@ -2975,157 +3313,255 @@ struct RigidBodyEuler {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return gamma (nx)
-  /// Ops: 337
+  /// Ops: 681
   template <typename Scalar>
   static XVector<Scalar> bias_acceleration(const QVector<Scalar>& q,
                                            const QVector<Scalar>& v,
                                            const Scalar& /*t*/,
-                                           const Params& /*params*/) {
+                                           const Params& params) {
     using std::cos;
     using std::sin;
+    using std::sqrt;
     const Scalar yaw = q(3);
     const Scalar pitch = q(4);
     const Scalar roll = q(5);
     const Scalar yaw_dot = v(3);
     const Scalar pitch_dot = v(4);
     const Scalar roll_dot = v(5);
-    const Scalar tmp0 = cos(yaw);
-    const Scalar tmp1 = cos(pitch);
-    const Scalar tmp2 = Scalar(0.5)*tmp1;
-    const Scalar tmp3 = tmp0*tmp2;
-    const Scalar tmp5 = sin(yaw);
-    const Scalar tmp6 = tmp2*tmp5;
-    const Scalar tmp8 = sin(pitch);
-    const Scalar tmp9 = Scalar(0.5)*tmp8;
-    const Scalar tmp11 = tmp0*tmp9;
-    const Scalar tmp12 = tmp6*yaw_dot + tmp11*pitch_dot;
-    const Scalar tmp14 = tmp5*tmp9;
-    const Scalar tmp15 = tmp14*pitch_dot;
-    const Scalar tmp16 = tmp3*yaw_dot;
-    const Scalar tmp20 = cos(roll);
-    const Scalar tmp21 = Scalar(0.4)*tmp20;
-    const Scalar tmp22 = tmp21*tmp5;
-    const Scalar tmp23 = sin(roll);
-    const Scalar tmp24 = Scalar(0.4)*tmp23;
-    const Scalar tmp25 = tmp0*tmp24;
-    const Scalar tmp26 = tmp25*tmp8;
-    const Scalar tmp27 = tmp26 - tmp22;
-    const Scalar tmp29 = tmp0*tmp21;
-    const Scalar tmp30 = tmp24*tmp5;
-    const Scalar tmp31 = tmp30*tmp8;
-    const Scalar tmp32 = tmp29 + tmp31;
-    const Scalar tmp34 = tmp1*tmp24;
-    const Scalar tmp36 = tmp34*pitch_dot;
-    const Scalar tmp37 = tmp30 + tmp29*tmp8;
-    const Scalar tmp38 = -tmp32;
-    const Scalar tmp39 = tmp0*tmp36 + tmp37*roll_dot + tmp38*yaw_dot;
-    const Scalar tmp41 = tmp36*tmp5;
-    const Scalar tmp42 = -tmp25 + tmp22*tmp8;
-    const Scalar tmp47 = Scalar(0.3)*tmp23;
-    const Scalar tmp48 = tmp47*tmp5;
-    const Scalar tmp49 = Scalar(0.3)*tmp20;
-    const Scalar tmp50 = tmp0*tmp49;
-    const Scalar tmp51 = tmp50*tmp8;
-    const Scalar tmp52 = tmp48 + tmp51;
-    const Scalar tmp54 = tmp0*tmp47;
-    const Scalar tmp55 = tmp49*tmp5;
-    const Scalar tmp56 = tmp55*tmp8;
-    const Scalar tmp57 = tmp56 - tmp54;
-    const Scalar tmp59 = tmp1*tmp49;
-    const Scalar tmp61 = tmp59*pitch_dot;
-    const Scalar tmp62 = tmp54*tmp8;
-    const Scalar tmp63 = tmp62 - tmp55;
-    const Scalar tmp64 = -tmp63;
-    const Scalar tmp65 = -tmp57;
-    const Scalar tmp66 = tmp0*tmp61 + tmp64*roll_dot + tmp65*yaw_dot;
-    const Scalar tmp68 = tmp5*tmp61;
-    const Scalar tmp69 = tmp48*tmp8;
-    const Scalar tmp70 = tmp50 + tmp69;
-    const Scalar tmp73 = tmp49*tmp8;
-    const Scalar tmp74 = tmp1*tmp47;
-    const Scalar tmp76 = Scalar(0.2)*tmp1;
-    const Scalar tmp77 = Scalar(0.25)*tmp20;
-    const Scalar tmp78 = tmp0*tmp77;
-    const Scalar tmp79 = tmp8*tmp78;
-    const Scalar tmp80 = tmp79 + tmp0*tmp76;
-    const Scalar tmp81 = Scalar(0.25)*tmp23;
-    const Scalar tmp82 = tmp5*tmp81;
-    const Scalar tmp83 = tmp63 + tmp82;
-    const Scalar tmp84 = tmp80 + tmp83;
-    const Scalar tmp86 = tmp5*tmp77;
-    const Scalar tmp87 = tmp8*tmp86;
-    const Scalar tmp88 = tmp87 + tmp5*tmp76;
-    const Scalar tmp89 = tmp0*tmp81;
-    const Scalar tmp90 = tmp70 - tmp89;
+    const Scalar m = Scalar(params.m);
+    const Scalar com_x = Scalar(params.com_x);
+    const Scalar com_y = Scalar(params.com_y);
+    const Scalar com_z = Scalar(params.com_z);
+    const Scalar a = Scalar(params.a);
+    const Scalar b = Scalar(params.b);
+    const Scalar c = Scalar(params.c);
+    const Scalar tmp0 = sin(yaw);
+    const Scalar tmp1 = cos(roll);
+    const Scalar tmp2 = tmp0*tmp1;
+    const Scalar tmp3 = sin(pitch);
+    const Scalar tmp4 = sin(roll);
+    const Scalar tmp5 = cos(yaw);
+    const Scalar tmp6 = tmp4*tmp5;
+    const Scalar tmp7 = tmp3*tmp6;
+    const Scalar tmp8 = tmp7 - tmp2;
+    const Scalar tmp9 = (Scalar(1)/sqrt(m));
+    const Scalar tmp10 = (a*a);
+    const Scalar tmp11 = (b*b);
+    const Scalar tmp12 = m*(tmp10 + tmp11);
+    const Scalar tmp13 = (c*c);
+    const Scalar tmp14 = tmp10 + tmp13;
+    const Scalar tmp15 = tmp14*m;
+    const Scalar tmp16 = tmp11 + tmp13;
+    const Scalar tmp17 = tmp16*m;
+    const Scalar tmp18 = Scalar(0.005689254019167049)*tmp17 + Scalar(0.010556171822976032)*tmp15
+        - Scalar(0.01624542584214308)*tmp12;
+    const Scalar tmp19 = Scalar(0.041142942152109445)*tmp17 + Scalar(0.028423816083747767)*tmp12
+        - Scalar(0.027900091569190537)*tmp15;
+    const Scalar tmp20 = sqrt(tmp19);
+    const Scalar tmp21 = (Scalar(1)/tmp20);
+    const Scalar tmp22 = tmp18*tmp21;
+    const Scalar tmp23 = (Scalar(1)/tmp19);
+    const Scalar tmp24 = Scalar(0.021737886292675604)*tmp12 + Scalar(0.04006485617007295)*tmp15
+        - Scalar(0.020136075796081898)*tmp17 - tmp23*(tmp18*tmp18);
+    const Scalar tmp25 = sqrt(tmp24);
+    const Scalar tmp26 = tmp22 + tmp25;
+    const Scalar tmp27 = tmp26*tmp9;
+    const Scalar tmp28 = tmp0*tmp4;
+    const Scalar tmp29 = tmp1*tmp5;
+    const Scalar tmp30 = tmp29*tmp3;
+    const Scalar tmp31 = tmp28 + tmp30;
+    const Scalar tmp32 = -Scalar(0.0257737061664756)*tmp12 - Scalar(0.003316897780257798)*tmp17
+        + Scalar(0.0290906039467334)*tmp14*m;
+    const Scalar tmp33 = tmp21*tmp32;
+    const Scalar tmp34 = (Scalar(1)/tmp24);
+    const Scalar tmp35 = tmp23*tmp32;
+    const Scalar tmp36 = -Scalar(0.03161742478199714)*tmp12 - Scalar(0.004414255047715874)*tmp15
+        - tmp18*tmp35 + Scalar(0.03603167982971302)*tmp16*m;
+    const Scalar tmp37 = -Scalar(0.008495035709756703)*tmp12 - tmp23*(tmp32*tmp32)
+        - tmp34*(tmp36*tmp36) + Scalar(0.02950190206578425)*tmp14*m
+        + Scalar(0.020659800310639128)*tmp16*m;
+    const Scalar tmp38 = sqrt(tmp37);
+    const Scalar tmp39 = tmp36/tmp25;
+    const Scalar tmp40 = tmp38 + tmp39;
+    const Scalar tmp41 = tmp33 + tmp40;
+    const Scalar tmp42 = tmp41*tmp9;
+    const Scalar tmp44 = cos(pitch);
+    const Scalar tmp45 = tmp44*tmp5;
+    const Scalar tmp46 = tmp20*tmp9;
+    const Scalar tmp47 = tmp45*tmp46;
+    const Scalar tmp48 = tmp44*com_x;
+    const Scalar tmp49 = tmp48*tmp5;
+    const Scalar tmp54 = tmp28*tmp3;
+    const Scalar tmp55 = tmp29 + tmp54;
+    const Scalar tmp56 = tmp2*tmp3;
+    const Scalar tmp57 = tmp56 - tmp6;
+    const Scalar tmp58 = tmp0*tmp44;
+    const Scalar tmp59 = tmp46*tmp58;
+    const Scalar tmp60 = tmp0*tmp48;
+    const Scalar tmp64 = tmp4*tmp44;
+    const Scalar tmp65 = tmp1*tmp44;
+    const Scalar tmp66 = tmp27*tmp64 + tmp42*tmp65;
+    const Scalar tmp67 = tmp3*tmp46;
+    const Scalar tmp68 = -tmp67;
+    const Scalar tmp69 = tmp3*com_x;
+    const Scalar tmp70 = tmp64*com_y + tmp65*com_z;
+    const Scalar tmp71 = tmp70 - tmp69;
+    const Scalar tmp75 = -tmp8;
+    const Scalar tmp76 = tmp31*com_y + tmp75*com_z;
+    const Scalar tmp77 = tmp76 + tmp27*tmp31 + tmp42*tmp75;
+    const Scalar tmp78 = tmp44*tmp6;
+    const Scalar tmp79 = tmp29*tmp44;
+    const Scalar tmp80 = tmp3*tmp5;
+    const Scalar tmp81 = tmp46*tmp80;
+    const Scalar tmp82 = tmp78*com_y + tmp79*com_z - tmp5*tmp69;
+    const Scalar tmp83 = tmp82 - tmp81;
+    const Scalar tmp84 = tmp83 + tmp27*tmp78 + tmp42*tmp79;
+    const Scalar tmp85 = -tmp55;
+    const Scalar tmp86 = -tmp57;
+    const Scalar tmp87 = tmp27*tmp85 + tmp42*tmp86;
+    const Scalar tmp88 = -tmp59;
+    const Scalar tmp89 = tmp85*com_y + tmp86*com_z;
+    const Scalar tmp90 = tmp89 - tmp60;
     const Scalar tmp91 = tmp88 + tmp90;
-    const Scalar tmp93 = Scalar(0.2)*tmp8;
-    const Scalar tmp94 = tmp1*tmp77;
-    const Scalar tmp95 = tmp74 + tmp94;
-    const Scalar tmp96 = tmp95 - tmp93;
-    const Scalar tmp98 = tmp1*tmp54;
-    const Scalar tmp99 = tmp98 + tmp0*tmp94 - tmp0*tmp93;
-    const Scalar tmp100 = tmp52 + tmp86 - tmp8*tmp89;
-    const Scalar tmp101 = -tmp91;
-    const Scalar tmp102 = tmp99*pitch_dot + tmp100*roll_dot + tmp101*yaw_dot;
-    const Scalar tmp104 = tmp1*tmp48;
-    const Scalar tmp105 = tmp104 + tmp5*tmp94 - tmp5*tmp93;
-    const Scalar tmp106 = tmp54 + tmp78 - tmp56 + tmp8*tmp82;
-    const Scalar tmp110 = tmp47*tmp8;
-    const Scalar tmp121 = pitch_dot*(-tmp3*pitch_dot + Scalar(0.5)*tmp5*tmp8*yaw_dot)
-        + yaw_dot*(tmp15 - tmp16);
-    const Scalar tmp122 = pitch_dot*(-tmp6*pitch_dot - tmp11*yaw_dot) - tmp12*yaw_dot;
-    const Scalar tmp123 = tmp9*(pitch_dot*pitch_dot);
-    const Scalar tmp124 = tmp34*tmp5;
-    const Scalar tmp125 = -tmp27;
-    const Scalar tmp126 = -tmp42;
-    const Scalar tmp127 = pitch_dot*(-tmp26*pitch_dot - tmp124*yaw_dot
-            + Scalar(0.4)*tmp0*tmp1*tmp20*roll_dot)
-        + roll_dot*(tmp125*roll_dot + tmp126*yaw_dot + tmp1*tmp29*pitch_dot)
-        + yaw_dot*(-tmp41 + tmp125*yaw_dot + tmp126*roll_dot);
-    const Scalar tmp128 = tmp1*tmp22;
-    const Scalar tmp129 = tmp0*tmp34;
-    const Scalar tmp130 = tmp39*yaw_dot
-        + pitch_dot*(tmp128*roll_dot + tmp129*yaw_dot - tmp31*pitch_dot)
-        + roll_dot*(tmp128*pitch_dot + tmp37*yaw_dot + tmp38*roll_dot);
-    const Scalar tmp131 = tmp21*tmp8;
-    const Scalar tmp132 = pitch_dot*(-tmp36 - tmp131*roll_dot)
-        + roll_dot*(-tmp131*pitch_dot - tmp34*roll_dot);
-    const Scalar tmp133 = tmp5*tmp59;
-    const Scalar tmp134 = -tmp52;
-    const Scalar tmp135 = pitch_dot*(-tmp133*yaw_dot - tmp51*pitch_dot - tmp98*roll_dot)
-        + roll_dot*(tmp134*roll_dot + tmp70*yaw_dot - tmp98*pitch_dot)
-        + yaw_dot*(-tmp68 + tmp134*yaw_dot + tmp70*roll_dot);
-    const Scalar tmp136 = tmp66*yaw_dot
-        + pitch_dot*(-tmp56*pitch_dot - tmp104*roll_dot + Scalar(0.3)*tmp0*tmp1*tmp20*yaw_dot)
-        + roll_dot*(tmp64*yaw_dot + tmp65*roll_dot - tmp104*pitch_dot);
-    const Scalar tmp137 = pitch_dot*(-tmp61 + Scalar(0.3)*tmp23*tmp8*roll_dot)
-        + roll_dot*(tmp110*pitch_dot - tmp59*roll_dot);
-    const Scalar tmp138 = -tmp1*tmp89 + Scalar(0.3)*tmp0*tmp1*tmp20;
-    const Scalar tmp139 = -tmp105;
-    const Scalar tmp140 = pitch_dot*(tmp138*roll_dot + tmp139*yaw_dot + pitch_dot*(-tmp62 - tmp80))
-        + roll_dot*(tmp138*pitch_dot + tmp106*yaw_dot + roll_dot*(-tmp79 - tmp83))
-        + yaw_dot*(tmp139*pitch_dot + tmp106*roll_dot - tmp84*yaw_dot);
-    const Scalar tmp141 = -tmp1*tmp82 + Scalar(0.3)*tmp1*tmp20*tmp5;
-    const Scalar tmp142 = tmp102*yaw_dot
-        + pitch_dot*(tmp141*roll_dot + tmp99*yaw_dot + pitch_dot*(-tmp69 - tmp88))
-        + roll_dot*(tmp141*pitch_dot + tmp100*yaw_dot + roll_dot*(-tmp87 - tmp90));
-    const Scalar tmp143 = -tmp73;
-    const Scalar tmp144 = tmp143 + tmp8*tmp81;
-    const Scalar tmp145 = pitch_dot*(tmp144*roll_dot - tmp96*pitch_dot)
-        + roll_dot*(tmp144*pitch_dot - tmp95*roll_dot);
+    const Scalar tmp92 = tmp87 + tmp91;
+    const Scalar tmp93 = tmp77*roll_dot + tmp84*pitch_dot + tmp92*yaw_dot;
+    const Scalar tmp97 = tmp28*tmp44;
+    const Scalar tmp98 = tmp2*tmp44;
+    const Scalar tmp99 = tmp0*tmp3;
+    const Scalar tmp100 = tmp46*tmp99;
+    const Scalar tmp101 = tmp97*com_y + tmp98*com_z - tmp0*tmp69;
+    const Scalar tmp102 = tmp101 - tmp100;
+    const Scalar tmp103 = tmp102 + tmp27*tmp97 + tmp42*tmp98;
+    const Scalar tmp110 = tmp1*tmp3;
+    const Scalar tmp116 = tmp22 - tmp25;
+    const Scalar tmp117 = tmp116*tmp9;
+    const Scalar tmp118 = tmp33 - tmp40;
+    const Scalar tmp119 = tmp118*tmp9;
+    const Scalar tmp123 = tmp117*tmp64 + tmp119*tmp65;
+    const Scalar tmp125 = tmp76 + tmp117*tmp31 + tmp119*tmp75;
+    const Scalar tmp126 = tmp83 + tmp117*tmp78 + tmp119*tmp79;
+    const Scalar tmp127 = tmp117*tmp85 + tmp119*tmp86;
+    const Scalar tmp128 = tmp127 + tmp91;
+    const Scalar tmp129 = tmp125*roll_dot + tmp126*pitch_dot + tmp128*yaw_dot;
+    const Scalar tmp132 = tmp102 + tmp117*tmp97 + tmp119*tmp98;
+    const Scalar tmp138 = -tmp116*tmp9;
+    const Scalar tmp139 = tmp39 - tmp33 - tmp38;
+    const Scalar tmp140 = tmp139*tmp9;
+    const Scalar tmp142 = -tmp47;
+    const Scalar tmp147 = tmp138*tmp64 + tmp140*tmp65;
+    const Scalar tmp150 = tmp76 + tmp138*tmp31 + tmp140*tmp75;
+    const Scalar tmp151 = tmp81 + tmp82;
+    const Scalar tmp152 = tmp151 + tmp138*tmp78 + tmp140*tmp79;
+    const Scalar tmp153 = tmp138*tmp85 + tmp140*tmp86;
+    const Scalar tmp154 = tmp59 + tmp90;
+    const Scalar tmp155 = tmp153 + tmp154;
+    const Scalar tmp156 = tmp150*roll_dot + tmp152*pitch_dot + tmp155*yaw_dot;
+    const Scalar tmp159 = tmp100 + tmp101;
+    const Scalar tmp160 = tmp159 + tmp138*tmp97 + tmp140*tmp98;
+    const Scalar tmp168 = -tmp26*tmp9;
+    const Scalar tmp169 = tmp38 - tmp33 - tmp39;
+    const Scalar tmp170 = tmp169*tmp9;
+    const Scalar tmp174 = tmp168*tmp64 + tmp170*tmp65;
+    const Scalar tmp176 = tmp76 + tmp168*tmp31 + tmp170*tmp75;
+    const Scalar tmp177 = tmp151 + tmp168*tmp78 + tmp170*tmp79;
+    const Scalar tmp178 = tmp168*tmp85 + tmp170*tmp86;
+    const Scalar tmp179 = tmp154 + tmp178;
+    const Scalar tmp180 = tmp176*roll_dot + tmp177*pitch_dot + tmp179*yaw_dot;
+    const Scalar tmp183 = tmp159 + tmp168*tmp97 + tmp170*tmp98;
+    const Scalar tmp194 = tmp79*com_y - tmp78*com_z;
+    const Scalar tmp196 = tmp49 + tmp30*com_z + tmp7*com_y;
+    const Scalar tmp197 = tmp55*com_z + tmp86*com_y;
+    const Scalar tmp198 = -tmp31;
+    const Scalar tmp199 = tmp198*com_z + tmp75*com_y;
+    const Scalar tmp200 = tmp199 - tmp49;
+    const Scalar tmp202 = tmp98*com_y - tmp97*com_z;
+    const Scalar tmp203 = tmp60 + tmp54*com_y + tmp56*com_z;
+    const Scalar tmp205 = tmp110*com_y - tmp3*tmp4*com_z;
+    const Scalar tmp303 = tmp194 + tmp27*tmp79 - tmp42*tmp78;
+    const Scalar tmp304 = tmp197 + tmp27*tmp86 + tmp42*tmp55;
+    const Scalar tmp305 = tmp198*tmp42 + tmp27*tmp75;
+    const Scalar tmp306 = -tmp103;
+    const Scalar tmp307 = tmp196 + tmp47;
+    const Scalar tmp308 = tmp142 + tmp200;
+    const Scalar tmp309 = pitch_dot*(tmp303*roll_dot + tmp306*yaw_dot
+            + pitch_dot*(-tmp307 - tmp27*tmp7 - tmp30*tmp42))
+        + roll_dot*(tmp303*pitch_dot + tmp304*yaw_dot + roll_dot*(tmp199 + tmp305))
+        + yaw_dot*(tmp304*roll_dot + tmp306*pitch_dot + yaw_dot*(tmp305 + tmp308));
+    const Scalar tmp310 = tmp202 + tmp27*tmp98 - tmp42*tmp97;
+    const Scalar tmp311 = tmp203 + tmp59;
+    const Scalar tmp312 = tmp93*yaw_dot
+        + pitch_dot*(tmp310*roll_dot + tmp84*yaw_dot
+            + pitch_dot*(-tmp311 - tmp27*tmp54 - tmp42*tmp56))
+        + roll_dot*(tmp310*pitch_dot + tmp77*yaw_dot + roll_dot*(tmp87 + tmp89));
+    const Scalar tmp313 = -tmp205 - tmp110*tmp27 + tmp3*tmp4*tmp41*tmp9;
+    const Scalar tmp314 = tmp68 + tmp71;
+    const Scalar tmp315 = pitch_dot*(tmp313*roll_dot + pitch_dot*(-tmp314 - tmp66))
+        + roll_dot*(tmp313*pitch_dot + roll_dot*(-tmp66 - tmp70));
+    const Scalar tmp316 = tmp194 + tmp117*tmp79 - tmp119*tmp78;
+    const Scalar tmp317 = tmp197 + tmp117*tmp86 + tmp119*tmp55;
+    const Scalar tmp318 = tmp117*tmp75 + tmp119*tmp198;
+    const Scalar tmp319 = -tmp132;
+    const Scalar tmp320 = pitch_dot*(tmp316*roll_dot + tmp319*yaw_dot
+            + pitch_dot*(-tmp307 - tmp117*tmp7 - tmp119*tmp30))
+        + roll_dot*(tmp316*pitch_dot + tmp317*yaw_dot + roll_dot*(tmp199 + tmp318))
+        + yaw_dot*(tmp317*roll_dot + tmp319*pitch_dot + yaw_dot*(tmp308 + tmp318));
+    const Scalar tmp321 = tmp202 + tmp117*tmp98 - tmp119*tmp97;
+    const Scalar tmp322 = tmp129*yaw_dot
+        + pitch_dot*(tmp126*yaw_dot + tmp321*roll_dot
+            + pitch_dot*(-tmp311 - tmp117*tmp54 - tmp119*tmp56))
+        + roll_dot*(tmp125*yaw_dot + tmp321*pitch_dot + roll_dot*(tmp127 + tmp89));
+    const Scalar tmp323 = -tmp205 - tmp110*tmp117 + tmp118*tmp3*tmp4*tmp9;
+    const Scalar tmp324 = pitch_dot*(tmp323*roll_dot + pitch_dot*(-tmp123 - tmp314))
+        + roll_dot*(tmp323*pitch_dot + roll_dot*(-tmp123 - tmp70));
+    const Scalar tmp325 = tmp194 + tmp138*tmp79 - tmp140*tmp78;
+    const Scalar tmp326 = tmp197 + tmp138*tmp86 + tmp140*tmp55;
+    const Scalar tmp327 = tmp138*tmp75 + tmp140*tmp198;
+    const Scalar tmp328 = tmp142 + tmp196;
+    const Scalar tmp329 = -tmp160;
+    const Scalar tmp330 = tmp200 + tmp47;
+    const Scalar tmp331 = pitch_dot*(tmp325*roll_dot + tmp329*yaw_dot
+            + pitch_dot*(-tmp328 - tmp138*tmp7 - tmp140*tmp30))
+        + roll_dot*(tmp325*pitch_dot + tmp326*yaw_dot + roll_dot*(tmp199 + tmp327))
+        + yaw_dot*(tmp326*roll_dot + tmp329*pitch_dot + yaw_dot*(tmp327 + tmp330));
+    const Scalar tmp332 = tmp202 + tmp138*tmp98 - tmp140*tmp97;
+    const Scalar tmp333 = tmp203 + tmp88;
+    const Scalar tmp334 = tmp156*yaw_dot
+        + pitch_dot*(tmp152*yaw_dot + tmp332*roll_dot
+            + pitch_dot*(-tmp333 - tmp138*tmp54 - tmp140*tmp56))
+        + roll_dot*(tmp150*yaw_dot + tmp332*pitch_dot + roll_dot*(tmp153 + tmp89));
+    const Scalar tmp335 = -tmp205 - tmp110*tmp138 + tmp139*tmp3*tmp4*tmp9;
+    const Scalar tmp336 = tmp67 + tmp71;
+    const Scalar tmp337 = pitch_dot*(tmp335*roll_dot + pitch_dot*(-tmp147 - tmp336))
+        + roll_dot*(tmp335*pitch_dot + roll_dot*(-tmp147 - tmp70));
+    const Scalar tmp338 = tmp194 + tmp168*tmp79 - tmp170*tmp78;
+    const Scalar tmp339 = tmp197 + tmp168*tmp86 + tmp170*tmp55;
+    const Scalar tmp340 = tmp168*tmp75 + tmp170*tmp198;
+    const Scalar tmp341 = -tmp183;
+    const Scalar tmp342 = pitch_dot*(tmp338*roll_dot + tmp341*yaw_dot
+            + pitch_dot*(-tmp328 - tmp168*tmp7 - tmp170*tmp30))
+        + roll_dot*(tmp338*pitch_dot + tmp339*yaw_dot + roll_dot*(tmp199 + tmp340))
+        + yaw_dot*(tmp339*roll_dot + tmp341*pitch_dot + yaw_dot*(tmp330 + tmp340));
+    const Scalar tmp343 = tmp202 + tmp168*tmp98 - tmp170*tmp97;
+    const Scalar tmp344 = tmp180*yaw_dot
+        + pitch_dot*(tmp177*yaw_dot + tmp343*roll_dot
+            + pitch_dot*(-tmp333 - tmp168*tmp54 - tmp170*tmp56))
+        + roll_dot*(tmp176*yaw_dot + tmp343*pitch_dot + roll_dot*(tmp178 + tmp89));
+    const Scalar tmp345 = -tmp205 - tmp110*tmp168 + tmp169*tmp3*tmp4*tmp9;
+    const Scalar tmp346 = pitch_dot*(tmp345*roll_dot + pitch_dot*(-tmp174 - tmp336))
+        + roll_dot*(tmp345*pitch_dot + roll_dot*(-tmp174 - tmp70));
     XVector<Scalar> result;
-    result(0) = tmp121;
-    result(1) = tmp122;
-    result(2) = tmp123;
-    result(3) = tmp127;
-    result(4) = tmp130;
-    result(5) = tmp132;
-    result(6) = tmp135;
-    result(7) = tmp136;
-    result(8) = tmp137;
-    result(9) = tmp140;
-    result(10) = tmp142;
-    result(11) = tmp145;
+    result(0) = tmp309;
+    result(1) = tmp312;
+    result(2) = tmp315;
+    result(3) = tmp320;
+    result(4) = tmp322;
+    result(5) = tmp324;
+    result(6) = tmp331;
+    result(7) = tmp334;
+    result(8) = tmp337;
+    result(9) = tmp342;
+    result(10) = tmp344;
+    result(11) = tmp346;
     return result;
   }
 
@@ -3135,7 +3571,7 @@ struct RigidBodyEuler {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return p (dim)
-  /// Ops: 199
+  /// Ops: 90
   template <typename Scalar>
   static SpaceVector<Scalar> linear_momentum(const QVector<Scalar>& q,
                                              const QVector<Scalar>& v,
@@ -3152,113 +3588,61 @@ struct RigidBodyEuler {
     const Scalar yaw_dot = v(3);
     const Scalar pitch_dot = v(4);
     const Scalar roll_dot = v(5);
-    const Scalar m_a = Scalar(params.m_a);
-    const Scalar m_b = Scalar(params.m_b);
-    const Scalar m_c = Scalar(params.m_c);
-    const Scalar m_d = Scalar(params.m_d);
-    const Scalar tmp0 = cos(yaw);
-    const Scalar tmp1 = cos(pitch);
-    const Scalar tmp2 = Scalar(0.5)*tmp1;
-    const Scalar tmp3 = tmp0*tmp2;
-    const Scalar tmp5 = sin(yaw);
-    const Scalar tmp6 = tmp2*tmp5;
-    const Scalar tmp8 = sin(pitch);
-    const Scalar tmp9 = Scalar(0.5)*tmp8;
-    const Scalar tmp11 = tmp0*tmp9;
-    const Scalar tmp12 = tmp6*yaw_dot + tmp11*pitch_dot;
-    const Scalar tmp13 = x_dot - tmp12;
-    const Scalar tmp14 = tmp5*tmp9;
-    const Scalar tmp15 = tmp14*pitch_dot;
-    const Scalar tmp16 = tmp3*yaw_dot;
-    const Scalar tmp17 = tmp16 + y_dot - tmp15;
-    const Scalar tmp18 = -z_dot;
-    const Scalar tmp19 = -tmp18 - tmp2*pitch_dot;
-    const Scalar tmp20 = cos(roll);
-    const Scalar tmp21 = Scalar(0.4)*tmp20;
-    const Scalar tmp22 = tmp21*tmp5;
-    const Scalar tmp23 = sin(roll);
-    const Scalar tmp24 = Scalar(0.4)*tmp23;
-    const Scalar tmp25 = tmp0*tmp24;
-    const Scalar tmp26 = tmp25*tmp8;
-    const Scalar tmp27 = tmp26 - tmp22;
-    const Scalar tmp29 = tmp0*tmp21;
-    const Scalar tmp30 = tmp24*tmp5;
-    const Scalar tmp31 = tmp30*tmp8;
-    const Scalar tmp32 = tmp29 + tmp31;
-    const Scalar tmp34 = tmp1*tmp24;
-    const Scalar tmp36 = tmp34*pitch_dot;
-    const Scalar tmp37 = tmp30 + tmp29*tmp8;
-    const Scalar tmp38 = -tmp32;
-    const Scalar tmp39 = tmp0*tmp36 + tmp37*roll_dot + tmp38*yaw_dot;
-    const Scalar tmp40 = tmp39 + x_dot;
-    const Scalar tmp41 = tmp36*tmp5;
-    const Scalar tmp42 = -tmp25 + tmp22*tmp8;
-    const Scalar tmp43 = tmp41 + y_dot + tmp27*yaw_dot + tmp42*roll_dot;
-    const Scalar tmp44 = tmp24*tmp8;
-    const Scalar tmp45 = tmp1*tmp21;
-    const Scalar tmp46 = z_dot + tmp45*roll_dot - tmp44*pitch_dot;
-    const Scalar tmp47 = Scalar(0.3)*tmp23;
-    const Scalar tmp48 = tmp47*tmp5;
-    const Scalar tmp49 = Scalar(0.3)*tmp20;
-    const Scalar tmp50 = tmp0*tmp49;
-    const Scalar tmp51 = tmp50*tmp8;
-    const Scalar tmp52 = tmp48 + tmp51;
-    const Scalar tmp54 = tmp0*tmp47;
-    const Scalar tmp55 = tmp49*tmp5;
-    const Scalar tmp56 = tmp55*tmp8;
-    const Scalar tmp57 = tmp56 - tmp54;
-    const Scalar tmp59 = tmp1*tmp49;
-    const Scalar tmp61 = tmp59*pitch_dot;
-    const Scalar tmp62 = tmp54*tmp8;
-    const Scalar tmp63 = tmp62 - tmp55;
-    const Scalar tmp64 = -tmp63;
-    const Scalar tmp65 = -tmp57;
-    const Scalar tmp66 = tmp0*tmp61 + tmp64*roll_dot + tmp65*yaw_dot;
-    const Scalar tmp67 = tmp66 + x_dot;
-    const Scalar tmp68 = tmp5*tmp61;
-    const Scalar tmp69 = tmp48*tmp8;
-    const Scalar tmp70 = tmp50 + tmp69;
-    const Scalar tmp71 = -tmp70;
-    const Scalar tmp72 = tmp68 + y_dot + tmp52*yaw_dot + tmp71*roll_dot;
-    const Scalar tmp73 = tmp49*tmp8;
-    const Scalar tmp74 = tmp1*tmp47;
-    const Scalar tmp75 = -tmp18 - tmp73*pitch_dot - tmp74*roll_dot;
-    const Scalar tmp76 = Scalar(0.2)*tmp1;
-    const Scalar tmp77 = Scalar(0.25)*tmp20;
-    const Scalar tmp78 = tmp0*tmp77;
-    const Scalar tmp79 = tmp8*tmp78;
-    const Scalar tmp80 = tmp79 + tmp0*tmp76;
-    const Scalar tmp81 = Scalar(0.25)*tmp23;
-    const Scalar tmp82 = tmp5*tmp81;
-    const Scalar tmp83 = tmp63 + tmp82;
-    const Scalar tmp84 = tmp80 + tmp83;
-    const Scalar tmp86 = tmp5*tmp77;
-    const Scalar tmp87 = tmp8*tmp86;
-    const Scalar tmp88 = tmp87 + tmp5*tmp76;
-    const Scalar tmp89 = tmp0*tmp81;
-    const Scalar tmp90 = tmp70 - tmp89;
-    const Scalar tmp91 = tmp88 + tmp90;
-    const Scalar tmp93 = Scalar(0.2)*tmp8;
-    const Scalar tmp94 = tmp1*tmp77;
-    const Scalar tmp98 = tmp1*tmp54;
-    const Scalar tmp99 = tmp98 + tmp0*tmp94 - tmp0*tmp93;
-    const Scalar tmp100 = tmp52 + tmp86 - tmp8*tmp89;
-    const Scalar tmp101 = -tmp91;
-    const Scalar tmp102 = tmp99*pitch_dot + tmp100*roll_dot + tmp101*yaw_dot;
-    const Scalar tmp103 = tmp102 + x_dot;
-    const Scalar tmp104 = tmp1*tmp48;
-    const Scalar tmp105 = tmp104 + tmp5*tmp94 - tmp5*tmp93;
-    const Scalar tmp106 = tmp54 + tmp78 - tmp56 + tmp8*tmp82;
-    const Scalar tmp107 = -tmp106;
-    const Scalar tmp108 = y_dot + tmp84*yaw_dot + tmp105*pitch_dot + tmp107*roll_dot;
-    const Scalar tmp109 = -tmp1*tmp81 + Scalar(0.3)*tmp1*tmp20;
-    const Scalar tmp110 = tmp47*tmp8;
-    const Scalar tmp111 = -tmp76 - tmp110 - tmp77*tmp8;
-    const Scalar tmp112 = z_dot + tmp109*roll_dot + tmp111*pitch_dot;
+    const Scalar m = Scalar(params.m);
+    const Scalar com_x = Scalar(params.com_x);
+    const Scalar com_y = Scalar(params.com_y);
+    const Scalar com_z = Scalar(params.com_z);
+    const Scalar tmp0 = sin(yaw);
+    const Scalar tmp1 = cos(roll);
+    const Scalar tmp2 = tmp0*tmp1;
+    const Scalar tmp3 = sin(pitch);
+    const Scalar tmp4 = sin(roll);
+    const Scalar tmp5 = cos(yaw);
+    const Scalar tmp6 = tmp4*tmp5;
+    const Scalar tmp7 = tmp3*tmp6;
+    const Scalar tmp8 = tmp7 - tmp2;
+    const Scalar tmp28 = tmp0*tmp4;
+    const Scalar tmp29 = tmp1*tmp5;
+    const Scalar tmp30 = tmp29*tmp3;
+    const Scalar tmp31 = tmp28 + tmp30;
+    const Scalar tmp44 = cos(pitch);
+    const Scalar tmp48 = tmp44*com_x;
+    const Scalar tmp49 = tmp48*tmp5;
+    const Scalar tmp50 = tmp49 + tmp31*com_z + tmp8*com_y;
+    const Scalar tmp54 = tmp28*tmp3;
+    const Scalar tmp55 = tmp29 + tmp54;
+    const Scalar tmp56 = tmp2*tmp3;
+    const Scalar tmp57 = tmp56 - tmp6;
+    const Scalar tmp60 = tmp0*tmp48;
+    const Scalar tmp64 = tmp4*tmp44;
+    const Scalar tmp65 = tmp1*tmp44;
+    const Scalar tmp69 = tmp3*com_x;
+    const Scalar tmp75 = -tmp8;
+    const Scalar tmp76 = tmp31*com_y + tmp75*com_z;
+    const Scalar tmp78 = tmp44*tmp6;
+    const Scalar tmp79 = tmp29*tmp44;
+    const Scalar tmp82 = tmp78*com_y + tmp79*com_z - tmp5*tmp69;
+    const Scalar tmp85 = -tmp55;
+    const Scalar tmp86 = -tmp57;
+    const Scalar tmp89 = tmp85*com_y + tmp86*com_z;
+    const Scalar tmp90 = tmp89 - tmp60;
+    const Scalar tmp95 = tmp57*com_y + tmp85*com_z;
+    const Scalar tmp97 = tmp28*tmp44;
+    const Scalar tmp98 = tmp2*tmp44;
+    const Scalar tmp101 = tmp97*com_y + tmp98*com_z - tmp0*tmp69;
+    const Scalar tmp107 = tmp65*com_y - tmp64*com_z;
+    const Scalar tmp109 = tmp3*tmp4;
+    const Scalar tmp110 = tmp1*tmp3;
+    const Scalar tmp112 = tmp48 + tmp109*com_y + tmp110*com_z;
+    const Scalar tmp189 = tmp76*roll_dot + tmp82*pitch_dot + tmp90*yaw_dot;
+    const Scalar tmp190 = tmp189 + x_dot;
+    const Scalar tmp191 = y_dot + tmp50*yaw_dot + tmp95*roll_dot + tmp101*pitch_dot;
+    const Scalar tmp192 = -tmp112;
+    const Scalar tmp193 = z_dot + tmp107*roll_dot + tmp192*pitch_dot;
     SpaceVector<Scalar> result;
-    result(0) = tmp67*m_c + tmp103*m_d + tmp13*m_a + tmp40*m_b;
-    result(1) = tmp43*m_b + tmp72*m_c + tmp108*m_d + tmp17*m_a;
-    result(2) = tmp46*m_b + tmp75*m_c + tmp112*m_d + tmp19*m_a;
+    result(0) = tmp190*m;
+    result(1) = tmp191*m;
+    result(2) = tmp193*m;
     return result;
   }
 
@@ -3268,7 +3652,7 @@ struct RigidBodyEuler {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return L (angular_dim)
-  /// Ops: 263
+  /// Ops: 349
   template <typename Scalar>
   static AngularVector<Scalar> angular_momentum(const QVector<Scalar>& q,
                                                 const QVector<Scalar>& v,
@@ -3288,148 +3672,149 @@ struct RigidBodyEuler {
     const Scalar yaw_dot = v(3);
     const Scalar pitch_dot = v(4);
     const Scalar roll_dot = v(5);
-    const Scalar m_a = Scalar(params.m_a);
-    const Scalar m_b = Scalar(params.m_b);
-    const Scalar m_c = Scalar(params.m_c);
-    const Scalar m_d = Scalar(params.m_d);
-    const Scalar tmp0 = cos(yaw);
-    const Scalar tmp1 = cos(pitch);
-    const Scalar tmp2 = Scalar(0.5)*tmp1;
-    const Scalar tmp3 = tmp0*tmp2;
-    const Scalar tmp4 = tmp3 + x;
-    const Scalar tmp5 = sin(yaw);
-    const Scalar tmp6 = tmp2*tmp5;
-    const Scalar tmp7 = tmp6 + y;
-    const Scalar tmp8 = sin(pitch);
-    const Scalar tmp9 = Scalar(0.5)*tmp8;
-    const Scalar tmp10 = z - tmp9;
-    const Scalar tmp11 = tmp0*tmp9;
-    const Scalar tmp12 = tmp6*yaw_dot + tmp11*pitch_dot;
-    const Scalar tmp13 = x_dot - tmp12;
-    const Scalar tmp14 = tmp5*tmp9;
-    const Scalar tmp15 = tmp14*pitch_dot;
-    const Scalar tmp16 = tmp3*yaw_dot;
-    const Scalar tmp17 = tmp16 + y_dot - tmp15;
-    const Scalar tmp18 = -z_dot;
-    const Scalar tmp19 = -tmp18 - tmp2*pitch_dot;
-    const Scalar tmp20 = cos(roll);
-    const Scalar tmp21 = Scalar(0.4)*tmp20;
-    const Scalar tmp22 = tmp21*tmp5;
-    const Scalar tmp23 = sin(roll);
-    const Scalar tmp24 = Scalar(0.4)*tmp23;
-    const Scalar tmp25 = tmp0*tmp24;
-    const Scalar tmp26 = tmp25*tmp8;
-    const Scalar tmp27 = tmp26 - tmp22;
-    const Scalar tmp28 = tmp27 + x;
-    const Scalar tmp29 = tmp0*tmp21;
-    const Scalar tmp30 = tmp24*tmp5;
-    const Scalar tmp31 = tmp30*tmp8;
-    const Scalar tmp32 = tmp29 + tmp31;
-    const Scalar tmp33 = tmp32 + y;
-    const Scalar tmp34 = tmp1*tmp24;
-    const Scalar tmp35 = tmp34 + z;
-    const Scalar tmp36 = tmp34*pitch_dot;
-    const Scalar tmp37 = tmp30 + tmp29*tmp8;
-    const Scalar tmp38 = -tmp32;
-    const Scalar tmp39 = tmp0*tmp36 + tmp37*roll_dot + tmp38*yaw_dot;
-    const Scalar tmp40 = tmp39 + x_dot;
-    const Scalar tmp41 = tmp36*tmp5;
-    const Scalar tmp42 = -tmp25 + tmp22*tmp8;
-    const Scalar tmp43 = tmp41 + y_dot + tmp27*yaw_dot + tmp42*roll_dot;
-    const Scalar tmp44 = tmp24*tmp8;
-    const Scalar tmp45 = tmp1*tmp21;
-    const Scalar tmp46 = z_dot + tmp45*roll_dot - tmp44*pitch_dot;
-    const Scalar tmp47 = Scalar(0.3)*tmp23;
-    const Scalar tmp48 = tmp47*tmp5;
-    const Scalar tmp49 = Scalar(0.3)*tmp20;
-    const Scalar tmp50 = tmp0*tmp49;
-    const Scalar tmp51 = tmp50*tmp8;
-    const Scalar tmp52 = tmp48 + tmp51;
-    const Scalar tmp53 = tmp52 + x;
-    const Scalar tmp54 = tmp0*tmp47;
-    const Scalar tmp55 = tmp49*tmp5;
-    const Scalar tmp56 = tmp55*tmp8;
-    const Scalar tmp57 = tmp56 - tmp54;
-    const Scalar tmp58 = tmp57 + y;
-    const Scalar tmp59 = tmp1*tmp49;
-    const Scalar tmp60 = tmp59 + z;
-    const Scalar tmp61 = tmp59*pitch_dot;
-    const Scalar tmp62 = tmp54*tmp8;
-    const Scalar tmp63 = tmp62 - tmp55;
-    const Scalar tmp64 = -tmp63;
-    const Scalar tmp65 = -tmp57;
-    const Scalar tmp66 = tmp0*tmp61 + tmp64*roll_dot + tmp65*yaw_dot;
-    const Scalar tmp67 = tmp66 + x_dot;
-    const Scalar tmp68 = tmp5*tmp61;
-    const Scalar tmp69 = tmp48*tmp8;
-    const Scalar tmp70 = tmp50 + tmp69;
-    const Scalar tmp71 = -tmp70;
-    const Scalar tmp72 = tmp68 + y_dot + tmp52*yaw_dot + tmp71*roll_dot;
-    const Scalar tmp73 = tmp49*tmp8;
-    const Scalar tmp74 = tmp1*tmp47;
-    const Scalar tmp75 = -tmp18 - tmp73*pitch_dot - tmp74*roll_dot;
-    const Scalar tmp76 = Scalar(0.2)*tmp1;
-    const Scalar tmp77 = Scalar(0.25)*tmp20;
-    const Scalar tmp78 = tmp0*tmp77;
-    const Scalar tmp79 = tmp8*tmp78;
-    const Scalar tmp80 = tmp79 + tmp0*tmp76;
-    const Scalar tmp81 = Scalar(0.25)*tmp23;
-    const Scalar tmp82 = tmp5*tmp81;
-    const Scalar tmp83 = tmp63 + tmp82;
-    const Scalar tmp84 = tmp80 + tmp83;
-    const Scalar tmp85 = tmp84 + x;
-    const Scalar tmp86 = tmp5*tmp77;
-    const Scalar tmp87 = tmp8*tmp86;
-    const Scalar tmp88 = tmp87 + tmp5*tmp76;
-    const Scalar tmp89 = tmp0*tmp81;
-    const Scalar tmp90 = tmp70 - tmp89;
-    const Scalar tmp91 = tmp88 + tmp90;
-    const Scalar tmp92 = tmp91 + y;
-    const Scalar tmp93 = Scalar(0.2)*tmp8;
-    const Scalar tmp94 = tmp1*tmp77;
-    const Scalar tmp95 = tmp74 + tmp94;
-    const Scalar tmp96 = tmp95 - tmp93;
-    const Scalar tmp97 = tmp96 + z;
-    const Scalar tmp98 = tmp1*tmp54;
-    const Scalar tmp99 = tmp98 + tmp0*tmp94 - tmp0*tmp93;
-    const Scalar tmp100 = tmp52 + tmp86 - tmp8*tmp89;
-    const Scalar tmp101 = -tmp91;
-    const Scalar tmp102 = tmp99*pitch_dot + tmp100*roll_dot + tmp101*yaw_dot;
-    const Scalar tmp103 = tmp102 + x_dot;
-    const Scalar tmp104 = tmp1*tmp48;
-    const Scalar tmp105 = tmp104 + tmp5*tmp94 - tmp5*tmp93;
-    const Scalar tmp106 = tmp54 + tmp78 - tmp56 + tmp8*tmp82;
-    const Scalar tmp107 = -tmp106;
-    const Scalar tmp108 = y_dot + tmp84*yaw_dot + tmp105*pitch_dot + tmp107*roll_dot;
-    const Scalar tmp109 = -tmp1*tmp81 + Scalar(0.3)*tmp1*tmp20;
-    const Scalar tmp110 = tmp47*tmp8;
-    const Scalar tmp111 = -tmp76 - tmp110 - tmp77*tmp8;
-    const Scalar tmp112 = z_dot + tmp109*roll_dot + tmp111*pitch_dot;
+    const Scalar m = Scalar(params.m);
+    const Scalar com_x = Scalar(params.com_x);
+    const Scalar com_y = Scalar(params.com_y);
+    const Scalar com_z = Scalar(params.com_z);
+    const Scalar a = Scalar(params.a);
+    const Scalar b = Scalar(params.b);
+    const Scalar c = Scalar(params.c);
+    const Scalar tmp0 = sin(yaw);
+    const Scalar tmp1 = cos(roll);
+    const Scalar tmp2 = tmp0*tmp1;
+    const Scalar tmp3 = sin(pitch);
+    const Scalar tmp4 = sin(roll);
+    const Scalar tmp5 = cos(yaw);
+    const Scalar tmp6 = tmp4*tmp5;
+    const Scalar tmp7 = tmp3*tmp6;
+    const Scalar tmp8 = tmp7 - tmp2;
+    const Scalar tmp10 = (a*a);
+    const Scalar tmp11 = (b*b);
+    const Scalar tmp12 = m*(tmp10 + tmp11);
+    const Scalar tmp13 = (c*c);
+    const Scalar tmp14 = tmp10 + tmp13;
+    const Scalar tmp15 = tmp14*m;
+    const Scalar tmp16 = tmp11 + tmp13;
+    const Scalar tmp17 = tmp16*m;
+    const Scalar tmp18 = Scalar(0.005689254019167049)*tmp17 + Scalar(0.010556171822976032)*tmp15
+        - Scalar(0.01624542584214308)*tmp12;
+    const Scalar tmp19 = Scalar(0.041142942152109445)*tmp17 + Scalar(0.028423816083747767)*tmp12
+        - Scalar(0.027900091569190537)*tmp15;
+    const Scalar tmp23 = (Scalar(1)/tmp19);
+    const Scalar tmp24 = Scalar(0.021737886292675604)*tmp12 + Scalar(0.04006485617007295)*tmp15
+        - Scalar(0.020136075796081898)*tmp17 - tmp23*(tmp18*tmp18);
+    const Scalar tmp28 = tmp0*tmp4;
+    const Scalar tmp29 = tmp1*tmp5;
+    const Scalar tmp30 = tmp29*tmp3;
+    const Scalar tmp31 = tmp28 + tmp30;
+    const Scalar tmp32 = -Scalar(0.0257737061664756)*tmp12 - Scalar(0.003316897780257798)*tmp17
+        + Scalar(0.0290906039467334)*tmp14*m;
+    const Scalar tmp34 = (Scalar(1)/tmp24);
+    const Scalar tmp35 = tmp23*tmp32;
+    const Scalar tmp36 = -Scalar(0.03161742478199714)*tmp12 - Scalar(0.004414255047715874)*tmp15
+        - tmp18*tmp35 + Scalar(0.03603167982971302)*tmp16*m;
+    const Scalar tmp37 = -Scalar(0.008495035709756703)*tmp12 - tmp23*(tmp32*tmp32)
+        - tmp34*(tmp36*tmp36) + Scalar(0.02950190206578425)*tmp14*m
+        + Scalar(0.020659800310639128)*tmp16*m;
+    const Scalar tmp44 = cos(pitch);
+    const Scalar tmp45 = tmp44*tmp5;
+    const Scalar tmp48 = tmp44*com_x;
+    const Scalar tmp49 = tmp48*tmp5;
+    const Scalar tmp50 = tmp49 + tmp31*com_z + tmp8*com_y;
+    const Scalar tmp51 = tmp50 + x;
+    const Scalar tmp54 = tmp28*tmp3;
+    const Scalar tmp55 = tmp29 + tmp54;
+    const Scalar tmp56 = tmp2*tmp3;
+    const Scalar tmp57 = tmp56 - tmp6;
+    const Scalar tmp58 = tmp0*tmp44;
+    const Scalar tmp60 = tmp0*tmp48;
+    const Scalar tmp61 = tmp60 + y + tmp55*com_y + tmp57*com_z;
+    const Scalar tmp64 = tmp4*tmp44;
+    const Scalar tmp65 = tmp1*tmp44;
+    const Scalar tmp69 = tmp3*com_x;
+    const Scalar tmp70 = tmp64*com_y + tmp65*com_z;
+    const Scalar tmp71 = tmp70 - tmp69;
+    const Scalar tmp72 = tmp71 + z;
+    const Scalar tmp75 = -tmp8;
+    const Scalar tmp76 = tmp31*com_y + tmp75*com_z;
+    const Scalar tmp78 = tmp44*tmp6;
+    const Scalar tmp79 = tmp29*tmp44;
+    const Scalar tmp80 = tmp3*tmp5;
+    const Scalar tmp82 = tmp78*com_y + tmp79*com_z - tmp5*tmp69;
+    const Scalar tmp85 = -tmp55;
+    const Scalar tmp86 = -tmp57;
+    const Scalar tmp89 = tmp85*com_y + tmp86*com_z;
+    const Scalar tmp90 = tmp89 - tmp60;
+    const Scalar tmp95 = tmp57*com_y + tmp85*com_z;
+    const Scalar tmp97 = tmp28*tmp44;
+    const Scalar tmp98 = tmp2*tmp44;
+    const Scalar tmp99 = tmp0*tmp3;
+    const Scalar tmp101 = tmp97*com_y + tmp98*com_z - tmp0*tmp69;
+    const Scalar tmp107 = tmp65*com_y - tmp64*com_z;
+    const Scalar tmp109 = tmp3*tmp4;
+    const Scalar tmp110 = tmp1*tmp3;
+    const Scalar tmp112 = tmp48 + tmp109*com_y + tmp110*com_z;
+    const Scalar tmp189 = tmp76*roll_dot + tmp82*pitch_dot + tmp90*yaw_dot;
+    const Scalar tmp190 = tmp189 + x_dot;
+    const Scalar tmp191 = y_dot + tmp50*yaw_dot + tmp95*roll_dot + tmp101*pitch_dot;
+    const Scalar tmp192 = -tmp112;
+    const Scalar tmp193 = z_dot + tmp107*roll_dot + tmp192*pitch_dot;
+    const Scalar tmp208 = tmp18*tmp23;
+    const Scalar tmp209 = tmp45 + tmp208*tmp8 + tmp31*tmp35;
+    const Scalar tmp210 = tmp58 + tmp208*tmp55 + tmp35*tmp57;
+    const Scalar tmp211 = tmp208*tmp64 + tmp35*tmp65;
+    const Scalar tmp212 = tmp211 - tmp3;
+    const Scalar tmp213 = -tmp80 + tmp208*tmp78 + tmp35*tmp79;
+    const Scalar tmp214 = tmp208*tmp31 + tmp35*tmp75;
+    const Scalar tmp215 = tmp208*tmp85 + tmp35*tmp86;
+    const Scalar tmp216 = tmp215 - tmp58;
+    const Scalar tmp217 = tmp213*pitch_dot + tmp214*roll_dot + tmp216*yaw_dot;
+    const Scalar tmp218 = -tmp99 + tmp208*tmp97 + tmp35*tmp98;
+    const Scalar tmp219 = tmp208*tmp57 + tmp35*tmp85;
+    const Scalar tmp220 = tmp209*yaw_dot + tmp218*pitch_dot + tmp219*roll_dot;
+    const Scalar tmp221 = -tmp35*tmp64 + tmp1*tmp18*tmp23*tmp44;
+    const Scalar tmp222 = -tmp44 - tmp109*tmp208 - tmp110*tmp35;
+    const Scalar tmp223 = tmp221*roll_dot + tmp222*pitch_dot;
+    const Scalar tmp233 = tmp34*tmp36;
+    const Scalar tmp234 = tmp8 + tmp233*tmp31;
+    const Scalar tmp235 = tmp55 + tmp233*tmp57;
+    const Scalar tmp236 = tmp64 + tmp233*tmp65;
+    const Scalar tmp237 = tmp78 + tmp233*tmp79;
+    const Scalar tmp238 = tmp31 + tmp233*tmp75;
+    const Scalar tmp239 = -tmp55 + tmp34*tmp36*tmp86;
+    const Scalar tmp240 = tmp237*pitch_dot + tmp238*roll_dot + tmp239*yaw_dot;
+    const Scalar tmp241 = tmp97 + tmp233*tmp98;
+    const Scalar tmp242 = tmp57 + tmp233*tmp85;
+    const Scalar tmp243 = tmp234*yaw_dot + tmp241*pitch_dot + tmp242*roll_dot;
+    const Scalar tmp244 = tmp1*tmp44 - tmp233*tmp64;
+    const Scalar tmp245 = -tmp109 - tmp110*tmp233;
+    const Scalar tmp246 = tmp244*roll_dot + tmp245*pitch_dot;
+    const Scalar tmp257 = tmp75*roll_dot + tmp79*pitch_dot + tmp86*yaw_dot;
+    const Scalar tmp258 = tmp98*pitch_dot;
+    const Scalar tmp259 = tmp258 + tmp31*yaw_dot + tmp85*roll_dot;
+    const Scalar tmp260 = -tmp110*pitch_dot - tmp64*roll_dot;
     AngularVector<Scalar> result;
-    result(0) = m_a*(tmp7*tmp19 - tmp10*tmp17) + m_b*(tmp46*tmp33 - tmp43*tmp35)
-        + m_c*(tmp58*tmp75 - tmp60*tmp72) + m_d*(tmp92*tmp112 - tmp97*tmp108);
-    result(1) = m_a*(tmp10*tmp13 - tmp4*tmp19) + m_b*(tmp35*tmp40 - tmp46*tmp28)
-        + m_c*(tmp60*tmp67 - tmp53*tmp75) + m_d*(tmp97*tmp103 - tmp85*tmp112);
-    result(2) = m_a*(tmp4*tmp17 - tmp7*tmp13) + m_b*(tmp43*tmp28 - tmp33*tmp40)
-        + m_c*(tmp53*tmp72 - tmp58*tmp67) + m_d*(tmp85*tmp108 - tmp92*tmp103);
+    result(0) = tmp19*(tmp210*tmp223 - tmp212*tmp220) + tmp24*(tmp235*tmp246 - tmp236*tmp243)
+        + tmp37*(tmp57*tmp260 - tmp65*tmp259) + m*(tmp61*tmp193 - tmp72*tmp191);
+    result(1) = tmp19*(tmp212*tmp217 - tmp209*tmp223) + tmp24*(tmp236*tmp240 - tmp234*tmp246)
+        + tmp37*(tmp257*tmp65 - tmp31*tmp260) + m*(tmp72*tmp190 - tmp51*tmp193);
+    result(2) = tmp19*(tmp209*tmp220 - tmp217*tmp210) + tmp24*(tmp234*tmp243 - tmp240*tmp235)
+        + tmp37*(tmp31*tmp259 - tmp257*tmp57) + m*(tmp51*tmp191 - tmp61*tmp190);
     return result;
   }
 
   /// Particle masses, in particle order.
   /// \param[in] params  model parameters
   /// \return masses (num_particles)
-  /// Ops: 0
+  /// Ops: 4
   template <typename Scalar>
   static ParticleVector<Scalar> particle_masses(const Params& params) {
-    const Scalar m_a = Scalar(params.m_a);
-    const Scalar m_b = Scalar(params.m_b);
-    const Scalar m_c = Scalar(params.m_c);
-    const Scalar m_d = Scalar(params.m_d);
+    const Scalar m = Scalar(params.m);
     ParticleVector<Scalar> result;
-    result(0) = m_a;
-    result(1) = m_b;
-    result(2) = m_c;
-    result(3) = m_d;
+    result(0) = (Scalar(0.25))*m;
+    result(1) = (Scalar(0.25))*m;
+    result(2) = (Scalar(0.25))*m;
+    result(3) = (Scalar(0.25))*m;
     return result;
   }
 
@@ -3552,8 +3937,9 @@ struct RigidBodyEuler {
     /// Whether the reduced model has forces acting directly on q (see generalized_forces).
     static constexpr bool has_generalized_forces = false;
     static constexpr int num_constraints = 6;
-    static constexpr std::array<const char*, num_constraints> constraint_names{{"rod 'a-b'",
-        "rod 'a-c'", "rod 'a-d'", "rod 'b-c'", "rod 'b-d'", "rod 'c-d'"}};
+    static constexpr std::array<const char*, num_constraints> constraint_names{{
+        "rod 'body_0-body_1'", "rod 'body_0-body_2'", "rod 'body_0-body_3'", "rod 'body_1-body_2'",
+        "rod 'body_1-body_3'", "rod 'body_2-body_3'"}};
     /// Sparsity of force_jacobian_x and force_jacobian_xdot (row, column of each value).
     static constexpr int jacobian_x_nonzeros = 144;
     static constexpr std::array<int, jacobian_x_nonzeros> jacobian_x_rows{{0, 0, 0, 0, 0, 0, 0, 0,
@@ -3591,38 +3977,30 @@ struct RigidBodyEuler {
     /// \param[in] t  time
     /// \param[in] params  model parameters
     /// \return F (nx)
-    /// Ops: 8
+    /// Ops: 3
     template <typename Scalar>
     static XVector<Scalar> external_forces(const XVector<Scalar>& /*pos*/,
                                            const XVector<Scalar>& /*vel*/,
                                            const Scalar& /*t*/,
                                            const Params& params) {
       const Scalar g = Scalar(params.g);
-      const Scalar m_a = Scalar(params.m_a);
-      const Scalar m_b = Scalar(params.m_b);
-      const Scalar m_c = Scalar(params.m_c);
-      const Scalar m_d = Scalar(params.m_d);
-      const Scalar tmp113 = g*m_a;
-      const Scalar tmp114 = -tmp113;
-      const Scalar tmp115 = g*m_b;
-      const Scalar tmp116 = -tmp115;
-      const Scalar tmp117 = g*m_c;
-      const Scalar tmp118 = -tmp117;
-      const Scalar tmp119 = g*m_d;
-      const Scalar tmp120 = -tmp119;
+      const Scalar m = Scalar(params.m);
+      const Scalar tmp281 = g*m;
+      const Scalar tmp349 = (Scalar(0.25))*tmp281;
+      const Scalar tmp350 = -tmp349;
       XVector<Scalar> result;
       result(0) = Scalar(0);
       result(1) = Scalar(0);
-      result(2) = tmp114;
+      result(2) = tmp350;
       result(3) = Scalar(0);
       result(4) = Scalar(0);
-      result(5) = tmp116;
+      result(5) = tmp350;
       result(6) = Scalar(0);
       result(7) = Scalar(0);
-      result(8) = tmp118;
+      result(8) = tmp350;
       result(9) = Scalar(0);
       result(10) = Scalar(0);
-      result(11) = tmp120;
+      result(11) = tmp350;
       return result;
     }
 
@@ -3634,122 +4012,200 @@ struct RigidBodyEuler {
     /// \param[in] penalty_damping  penalty damping coefficient
     /// \param[in] params  model parameters
     /// \return F_penalty (nx)
-    /// Ops: 306
+    /// Ops: 482
     template <typename Scalar>
     static XVector<Scalar> penalty_forces(const XVector<Scalar>& pos,
                                           const XVector<Scalar>& vel,
                                           const Scalar& /*t*/,
                                           const Scalar& kappa,
                                           const Scalar& penalty_damping,
-                                          const Params& /*params*/) {
+                                          const Params& params) {
       using std::sqrt;
-      const Scalar tmp201 = pos(3) - pos(0);
-      const Scalar tmp202 = pos(4) - pos(1);
-      const Scalar tmp203 = pos(5) - pos(2);
-      const Scalar tmp204 = sqrt((tmp201*tmp201) + (tmp202*tmp202) + (tmp203*tmp203));
-      const Scalar tmp205 = Scalar(-0.6403124237432849) + tmp204;
-      const Scalar tmp206 = (Scalar(1)/tmp204);
-      const Scalar tmp207 = tmp201*tmp206;
-      const Scalar tmp208 = tmp202*tmp206;
-      const Scalar tmp209 = tmp203*tmp206;
-      const Scalar tmp210 = Scalar(1.5617376188860606)*tmp205*kappa
-          + Scalar(1.5617376188860606)*penalty_damping*(tmp207*(vel(3) - vel(0))
-              + tmp208*(vel(4) - vel(1)) + tmp209*(vel(5) - vel(2)));
-      const Scalar tmp211 = -pos(6);
-      const Scalar tmp212 = -tmp211 - pos(0);
-      const Scalar tmp213 = -pos(7);
-      const Scalar tmp214 = -tmp213 - pos(1);
-      const Scalar tmp215 = -pos(8);
-      const Scalar tmp216 = -tmp215 - pos(2);
-      const Scalar tmp217 = sqrt((tmp212*tmp212) + (tmp214*tmp214) + (tmp216*tmp216));
-      const Scalar tmp218 = Scalar(-0.58309518948453) + tmp217;
-      const Scalar tmp219 = -vel(6);
-      const Scalar tmp220 = (Scalar(1)/tmp217);
-      const Scalar tmp221 = tmp212*tmp220;
-      const Scalar tmp222 = -vel(7);
-      const Scalar tmp223 = tmp214*tmp220;
-      const Scalar tmp224 = -vel(8);
-      const Scalar tmp225 = tmp216*tmp220;
-      const Scalar tmp226 = Scalar(1.7149858514250886)*tmp218*kappa
-          + Scalar(1.7149858514250886)*penalty_damping*(tmp221*(-tmp219 - vel(0))
-              + tmp223*(-tmp222 - vel(1)) + tmp225*(-tmp224 - vel(2)));
-      const Scalar tmp227 = -pos(9);
-      const Scalar tmp228 = -tmp227 - pos(0);
-      const Scalar tmp229 = -pos(10);
-      const Scalar tmp230 = -tmp229 - pos(1);
-      const Scalar tmp231 = -pos(11);
-      const Scalar tmp232 = -tmp231 - pos(2);
-      const Scalar tmp233 = sqrt((tmp228*tmp228) + (tmp230*tmp230) + (tmp232*tmp232));
-      const Scalar tmp234 = Scalar(-0.49244289008980524) + tmp233;
-      const Scalar tmp235 = -vel(9);
-      const Scalar tmp236 = (Scalar(1)/tmp233);
-      const Scalar tmp237 = tmp228*tmp236;
-      const Scalar tmp238 = -vel(10);
-      const Scalar tmp239 = tmp230*tmp236;
-      const Scalar tmp240 = -vel(11);
-      const Scalar tmp241 = tmp232*tmp236;
-      const Scalar tmp242 = Scalar(2.030692330267238)*tmp234*kappa
-          + Scalar(2.030692330267238)*penalty_damping*(tmp237*(-tmp235 - vel(0))
-              + tmp239*(-tmp238 - vel(1)) + tmp241*(-tmp240 - vel(2)));
-      const Scalar tmp243 = tmp209*tmp210 + tmp225*tmp226 + tmp241*tmp242;
-      const Scalar tmp244 = -tmp210;
-      const Scalar tmp245 = -tmp211 - pos(3);
-      const Scalar tmp246 = -tmp213 - pos(4);
-      const Scalar tmp247 = -tmp215 - pos(5);
-      const Scalar tmp248 = sqrt((tmp245*tmp245) + (tmp246*tmp246) + (tmp247*tmp247));
-      const Scalar tmp249 = Scalar(-0.5) + tmp248;
-      const Scalar tmp250 = (Scalar(1)/tmp248);
-      const Scalar tmp251 = tmp245*tmp250;
-      const Scalar tmp252 = tmp246*tmp250;
-      const Scalar tmp253 = tmp247*tmp250;
-      const Scalar tmp254 = Scalar(2.0)*tmp249*kappa
-          + Scalar(2.0)*penalty_damping*(tmp251*(-tmp219 - vel(3)) + tmp252*(-tmp222 - vel(4))
-              + tmp253*(-tmp224 - vel(5)));
-      const Scalar tmp255 = -tmp227 - pos(3);
-      const Scalar tmp256 = -tmp229 - pos(4);
-      const Scalar tmp257 = -tmp231 - pos(5);
-      const Scalar tmp258 = sqrt((tmp255*tmp255) + (tmp256*tmp256) + (tmp257*tmp257));
-      const Scalar tmp259 = Scalar(-0.33541019662496846) + tmp258;
-      const Scalar tmp260 = (Scalar(1)/tmp258);
-      const Scalar tmp261 = tmp255*tmp260;
-      const Scalar tmp262 = tmp256*tmp260;
-      const Scalar tmp263 = tmp257*tmp260;
-      const Scalar tmp264 = Scalar(2.9814239699997196)*tmp259*kappa
-          + Scalar(2.9814239699997196)*penalty_damping*(tmp261*(-tmp235 - vel(3))
-              + tmp262*(-tmp238 - vel(4)) + tmp263*(-tmp240 - vel(5)));
-      const Scalar tmp265 = tmp209*tmp244 + tmp253*tmp254 + tmp263*tmp264;
-      const Scalar tmp266 = -tmp226;
-      const Scalar tmp267 = -tmp254;
-      const Scalar tmp268 = -tmp227 - pos(6);
-      const Scalar tmp269 = -tmp229 - pos(7);
-      const Scalar tmp270 = -tmp231 - pos(8);
-      const Scalar tmp271 = sqrt((tmp268*tmp268) + (tmp269*tmp269) + (tmp270*tmp270));
-      const Scalar tmp272 = Scalar(-0.3640054944640259) + tmp271;
-      const Scalar tmp273 = (Scalar(1)/tmp271);
-      const Scalar tmp274 = tmp268*tmp273;
-      const Scalar tmp275 = tmp269*tmp273;
-      const Scalar tmp276 = tmp270*tmp273;
-      const Scalar tmp277 = Scalar(2.7472112789737806)*tmp272*kappa
-          + Scalar(2.7472112789737806)*penalty_damping*(tmp274*(-tmp235 - vel(6))
-              + tmp275*(-tmp238 - vel(7)) + tmp276*(-tmp240 - vel(8)));
-      const Scalar tmp278 = tmp225*tmp266 + tmp253*tmp267 + tmp276*tmp277;
-      const Scalar tmp279 = -tmp242;
-      const Scalar tmp280 = -tmp264;
-      const Scalar tmp281 = -tmp277;
-      const Scalar tmp282 = tmp241*tmp279 + tmp263*tmp280 + tmp276*tmp281;
+      const Scalar m = Scalar(params.m);
+      const Scalar a = Scalar(params.a);
+      const Scalar b = Scalar(params.b);
+      const Scalar c = Scalar(params.c);
+      const Scalar tmp9 = (Scalar(1)/sqrt(m));
+      const Scalar tmp10 = (a*a);
+      const Scalar tmp11 = (b*b);
+      const Scalar tmp12 = m*(tmp10 + tmp11);
+      const Scalar tmp13 = (c*c);
+      const Scalar tmp14 = tmp10 + tmp13;
+      const Scalar tmp15 = tmp14*m;
+      const Scalar tmp16 = tmp11 + tmp13;
+      const Scalar tmp17 = tmp16*m;
+      const Scalar tmp18 = Scalar(0.005689254019167049)*tmp17 + Scalar(0.010556171822976032)*tmp15
+          - Scalar(0.01624542584214308)*tmp12;
+      const Scalar tmp19 = Scalar(0.041142942152109445)*tmp17 + Scalar(0.028423816083747767)*tmp12
+          - Scalar(0.027900091569190537)*tmp15;
+      const Scalar tmp20 = sqrt(tmp19);
+      const Scalar tmp21 = (Scalar(1)/tmp20);
+      const Scalar tmp22 = tmp18*tmp21;
+      const Scalar tmp23 = (Scalar(1)/tmp19);
+      const Scalar tmp24 = Scalar(0.021737886292675604)*tmp12 + Scalar(0.04006485617007295)*tmp15
+          - Scalar(0.020136075796081898)*tmp17 - tmp23*(tmp18*tmp18);
+      const Scalar tmp25 = sqrt(tmp24);
+      const Scalar tmp26 = tmp22 + tmp25;
+      const Scalar tmp32 = -Scalar(0.0257737061664756)*tmp12 - Scalar(0.003316897780257798)*tmp17
+          + Scalar(0.0290906039467334)*tmp14*m;
+      const Scalar tmp33 = tmp21*tmp32;
+      const Scalar tmp34 = (Scalar(1)/tmp24);
+      const Scalar tmp35 = tmp23*tmp32;
+      const Scalar tmp36 = -Scalar(0.03161742478199714)*tmp12 - Scalar(0.004414255047715874)*tmp15
+          - tmp18*tmp35 + Scalar(0.03603167982971302)*tmp16*m;
+      const Scalar tmp37 = -Scalar(0.008495035709756703)*tmp12 - tmp23*(tmp32*tmp32)
+          - tmp34*(tmp36*tmp36) + Scalar(0.02950190206578425)*tmp14*m
+          + Scalar(0.020659800310639128)*tmp16*m;
+      const Scalar tmp38 = sqrt(tmp37);
+      const Scalar tmp39 = tmp36/tmp25;
+      const Scalar tmp40 = tmp38 + tmp39;
+      const Scalar tmp41 = tmp33 + tmp40;
+      const Scalar tmp116 = tmp22 - tmp25;
+      const Scalar tmp117 = tmp116*tmp9;
+      const Scalar tmp118 = tmp33 - tmp40;
+      const Scalar tmp119 = tmp118*tmp9;
+      const Scalar tmp138 = -tmp116*tmp9;
+      const Scalar tmp139 = tmp39 - tmp33 - tmp38;
+      const Scalar tmp140 = tmp139*tmp9;
+      const Scalar tmp168 = -tmp26*tmp9;
+      const Scalar tmp169 = tmp38 - tmp33 - tmp39;
+      const Scalar tmp170 = tmp169*tmp9;
+      const Scalar tmp351 = pos(3) - pos(0);
+      const Scalar tmp352 = pos(4) - pos(1);
+      const Scalar tmp353 = pos(5) - pos(2);
+      const Scalar tmp354 = sqrt((tmp351*tmp351) + (tmp352*tmp352) + (tmp353*tmp353));
+      const Scalar tmp355 = (Scalar(1)/tmp354);
+      const Scalar tmp356 = tmp351*tmp355;
+      const Scalar tmp357 = tmp352*tmp355;
+      const Scalar tmp358 = tmp353*tmp355;
+      const Scalar tmp359 = -tmp26*tmp9;
+      const Scalar tmp360 = -tmp41*tmp9;
+      const Scalar tmp361 = sqrt(((-tmp117 - tmp359)*(-tmp117 - tmp359))
+          + ((-tmp119 - tmp360)*(-tmp119 - tmp360)));
+      const Scalar tmp362 = (Scalar(1)/tmp361);
+      const Scalar tmp363 = tmp354 - tmp361;
+      const Scalar tmp364 = tmp362*kappa;
+      const Scalar tmp365 = tmp363*tmp364
+          + tmp362*penalty_damping*(tmp356*(vel(3) - vel(0)) + tmp357*(vel(4) - vel(1))
+              + tmp358*(vel(5) - vel(2)));
+      const Scalar tmp366 = -vel(6);
+      const Scalar tmp367 = -pos(6);
+      const Scalar tmp368 = -tmp367 - pos(0);
+      const Scalar tmp369 = -pos(7);
+      const Scalar tmp370 = -tmp369 - pos(1);
+      const Scalar tmp371 = -pos(8);
+      const Scalar tmp372 = -tmp371 - pos(2);
+      const Scalar tmp373 = sqrt((tmp368*tmp368) + (tmp370*tmp370) + (tmp372*tmp372));
+      const Scalar tmp374 = (Scalar(1)/tmp373);
+      const Scalar tmp375 = tmp368*tmp374;
+      const Scalar tmp376 = -vel(7);
+      const Scalar tmp377 = tmp370*tmp374;
+      const Scalar tmp378 = -vel(8);
+      const Scalar tmp379 = tmp372*tmp374;
+      const Scalar tmp380 = Scalar(4)*tmp19/m;
+      const Scalar tmp381 = sqrt(tmp380 + ((-tmp138 - tmp359)*(-tmp138 - tmp359))
+          + ((-tmp140 - tmp360)*(-tmp140 - tmp360)));
+      const Scalar tmp382 = (Scalar(1)/tmp381);
+      const Scalar tmp383 = tmp373 - tmp381;
+      const Scalar tmp384 = tmp382*kappa;
+      const Scalar tmp385 = tmp383*tmp384
+          + tmp382*penalty_damping*(tmp375*(-tmp366 - vel(0)) + tmp377*(-tmp376 - vel(1))
+              + tmp379*(-tmp378 - vel(2)));
+      const Scalar tmp386 = -vel(9);
+      const Scalar tmp387 = -pos(9);
+      const Scalar tmp388 = -tmp387 - pos(0);
+      const Scalar tmp389 = -pos(10);
+      const Scalar tmp390 = -tmp389 - pos(1);
+      const Scalar tmp391 = -pos(11);
+      const Scalar tmp392 = -tmp391 - pos(2);
+      const Scalar tmp393 = sqrt((tmp388*tmp388) + (tmp390*tmp390) + (tmp392*tmp392));
+      const Scalar tmp394 = (Scalar(1)/tmp393);
+      const Scalar tmp395 = tmp388*tmp394;
+      const Scalar tmp396 = -vel(10);
+      const Scalar tmp397 = tmp390*tmp394;
+      const Scalar tmp398 = -vel(11);
+      const Scalar tmp399 = tmp392*tmp394;
+      const Scalar tmp400 = sqrt(tmp380 + ((-tmp168 - tmp359)*(-tmp168 - tmp359))
+          + ((-tmp170 - tmp360)*(-tmp170 - tmp360)));
+      const Scalar tmp401 = (Scalar(1)/tmp400);
+      const Scalar tmp402 = tmp393 - tmp400;
+      const Scalar tmp403 = tmp401*kappa;
+      const Scalar tmp404 = tmp402*tmp403
+          + tmp401*penalty_damping*(tmp395*(-tmp386 - vel(0)) + tmp397*(-tmp396 - vel(1))
+              + tmp399*(-tmp398 - vel(2)));
+      const Scalar tmp405 = tmp358*tmp365 + tmp379*tmp385 + tmp399*tmp404;
+      const Scalar tmp406 = -tmp365;
+      const Scalar tmp407 = -tmp367 - pos(3);
+      const Scalar tmp408 = -tmp369 - pos(4);
+      const Scalar tmp409 = -tmp371 - pos(5);
+      const Scalar tmp410 = sqrt((tmp407*tmp407) + (tmp408*tmp408) + (tmp409*tmp409));
+      const Scalar tmp411 = (Scalar(1)/tmp410);
+      const Scalar tmp412 = tmp407*tmp411;
+      const Scalar tmp413 = tmp408*tmp411;
+      const Scalar tmp414 = tmp409*tmp411;
+      const Scalar tmp415 = -tmp117;
+      const Scalar tmp416 = -tmp119;
+      const Scalar tmp417 = sqrt(tmp380 + ((-tmp138 - tmp415)*(-tmp138 - tmp415))
+          + ((-tmp140 - tmp416)*(-tmp140 - tmp416)));
+      const Scalar tmp418 = (Scalar(1)/tmp417);
+      const Scalar tmp419 = tmp410 - tmp417;
+      const Scalar tmp420 = tmp418*kappa;
+      const Scalar tmp421 = tmp419*tmp420
+          + tmp418*penalty_damping*(tmp412*(-tmp366 - vel(3)) + tmp413*(-tmp376 - vel(4))
+              + tmp414*(-tmp378 - vel(5)));
+      const Scalar tmp422 = -tmp387 - pos(3);
+      const Scalar tmp423 = -tmp389 - pos(4);
+      const Scalar tmp424 = -tmp391 - pos(5);
+      const Scalar tmp425 = sqrt((tmp422*tmp422) + (tmp423*tmp423) + (tmp424*tmp424));
+      const Scalar tmp426 = (Scalar(1)/tmp425);
+      const Scalar tmp427 = tmp422*tmp426;
+      const Scalar tmp428 = tmp423*tmp426;
+      const Scalar tmp429 = tmp424*tmp426;
+      const Scalar tmp430 = sqrt(tmp380 + ((-tmp168 - tmp415)*(-tmp168 - tmp415))
+          + ((-tmp170 - tmp416)*(-tmp170 - tmp416)));
+      const Scalar tmp431 = (Scalar(1)/tmp430);
+      const Scalar tmp432 = tmp425 - tmp430;
+      const Scalar tmp433 = tmp431*kappa;
+      const Scalar tmp434 = tmp432*tmp433
+          + tmp431*penalty_damping*(tmp427*(-tmp386 - vel(3)) + tmp428*(-tmp396 - vel(4))
+              + tmp429*(-tmp398 - vel(5)));
+      const Scalar tmp435 = tmp358*tmp406 + tmp414*tmp421 + tmp429*tmp434;
+      const Scalar tmp436 = -tmp387 - pos(6);
+      const Scalar tmp437 = -tmp389 - pos(7);
+      const Scalar tmp438 = -tmp391 - pos(8);
+      const Scalar tmp439 = sqrt((tmp436*tmp436) + (tmp437*tmp437) + (tmp438*tmp438));
+      const Scalar tmp440 = (Scalar(1)/tmp439);
+      const Scalar tmp441 = tmp436*tmp440;
+      const Scalar tmp442 = tmp437*tmp440;
+      const Scalar tmp443 = tmp438*tmp440;
+      const Scalar tmp444 = sqrt(((tmp138 - tmp168)*(tmp138 - tmp168))
+          + ((tmp140 - tmp170)*(tmp140 - tmp170)));
+      const Scalar tmp445 = (Scalar(1)/tmp444);
+      const Scalar tmp446 = tmp439 - tmp444;
+      const Scalar tmp447 = tmp445*kappa;
+      const Scalar tmp448 = tmp446*tmp447
+          + tmp445*penalty_damping*(tmp441*(-tmp386 - vel(6)) + tmp442*(-tmp396 - vel(7))
+              + tmp443*(-tmp398 - vel(8)));
+      const Scalar tmp449 = -tmp385;
+      const Scalar tmp450 = -tmp421;
+      const Scalar tmp451 = tmp379*tmp449 + tmp414*tmp450 + tmp443*tmp448;
+      const Scalar tmp452 = -tmp448;
+      const Scalar tmp453 = -tmp404;
+      const Scalar tmp454 = -tmp434;
+      const Scalar tmp455 = tmp399*tmp453 + tmp429*tmp454 + tmp443*tmp452;
       XVector<Scalar> result;
-      result(0) = tmp207*tmp210 + tmp221*tmp226 + tmp237*tmp242;
-      result(1) = tmp208*tmp210 + tmp223*tmp226 + tmp239*tmp242;
-      result(2) = tmp243;
-      result(3) = tmp207*tmp244 + tmp251*tmp254 + tmp261*tmp264;
-      result(4) = tmp208*tmp244 + tmp252*tmp254 + tmp262*tmp264;
-      result(5) = tmp265;
-      result(6) = tmp221*tmp266 + tmp251*tmp267 + tmp274*tmp277;
-      result(7) = tmp223*tmp266 + tmp252*tmp267 + tmp275*tmp277;
-      result(8) = tmp278;
-      result(9) = tmp237*tmp279 + tmp261*tmp280 + tmp274*tmp281;
-      result(10) = tmp239*tmp279 + tmp262*tmp280 + tmp275*tmp281;
-      result(11) = tmp282;
+      result(0) = tmp356*tmp365 + tmp375*tmp385 + tmp395*tmp404;
+      result(1) = tmp357*tmp365 + tmp377*tmp385 + tmp397*tmp404;
+      result(2) = tmp405;
+      result(3) = tmp356*tmp406 + tmp412*tmp421 + tmp427*tmp434;
+      result(4) = tmp357*tmp406 + tmp413*tmp421 + tmp428*tmp434;
+      result(5) = tmp435;
+      result(6) = tmp375*tmp449 + tmp412*tmp450 + tmp441*tmp448;
+      result(7) = tmp377*tmp449 + tmp413*tmp450 + tmp442*tmp448;
+      result(8) = tmp451;
+      result(9) = tmp395*tmp453 + tmp427*tmp454 + tmp441*tmp452;
+      result(10) = tmp397*tmp453 + tmp428*tmp454 + tmp442*tmp452;
+      result(11) = tmp455;
       return result;
     }
 
@@ -3761,694 +4217,736 @@ struct RigidBodyEuler {
     /// \param[in] penalty_damping  penalty damping coefficient
     /// \param[in] params  model parameters
     /// \return values (jacobian_x_nonzeros)
-    /// Ops: 2352
+    /// Ops: 2492
     template <typename Scalar>
     static std::array<Scalar, 144> force_jacobian_x(const XVector<Scalar>& pos,
                                                     const XVector<Scalar>& vel,
                                                     const Scalar& /*t*/,
                                                     const Scalar& kappa,
                                                     const Scalar& penalty_damping,
-                                                    const Params& /*params*/) {
+                                                    const Params& params) {
       using std::sqrt;
-      const Scalar tmp201 = pos(3) - pos(0);
-      const Scalar tmp202 = pos(4) - pos(1);
-      const Scalar tmp203 = pos(5) - pos(2);
-      const Scalar tmp204 = sqrt((tmp201*tmp201) + (tmp202*tmp202) + (tmp203*tmp203));
-      const Scalar tmp205 = Scalar(-0.6403124237432849) + tmp204;
-      const Scalar tmp206 = (Scalar(1)/tmp204);
-      const Scalar tmp207 = tmp201*tmp206;
-      const Scalar tmp208 = tmp202*tmp206;
-      const Scalar tmp209 = tmp203*tmp206;
-      const Scalar tmp210 = Scalar(1.5617376188860606)*tmp205*kappa
-          + Scalar(1.5617376188860606)*penalty_damping*(tmp207*(vel(3) - vel(0))
-              + tmp208*(vel(4) - vel(1)) + tmp209*(vel(5) - vel(2)));
-      const Scalar tmp211 = -pos(6);
-      const Scalar tmp212 = -tmp211 - pos(0);
-      const Scalar tmp213 = -pos(7);
-      const Scalar tmp214 = -tmp213 - pos(1);
-      const Scalar tmp215 = -pos(8);
-      const Scalar tmp216 = -tmp215 - pos(2);
-      const Scalar tmp217 = sqrt((tmp212*tmp212) + (tmp214*tmp214) + (tmp216*tmp216));
-      const Scalar tmp218 = Scalar(-0.58309518948453) + tmp217;
-      const Scalar tmp219 = -vel(6);
-      const Scalar tmp220 = (Scalar(1)/tmp217);
-      const Scalar tmp221 = tmp212*tmp220;
-      const Scalar tmp222 = -vel(7);
-      const Scalar tmp223 = tmp214*tmp220;
-      const Scalar tmp224 = -vel(8);
-      const Scalar tmp225 = tmp216*tmp220;
-      const Scalar tmp226 = Scalar(1.7149858514250886)*tmp218*kappa
-          + Scalar(1.7149858514250886)*penalty_damping*(tmp221*(-tmp219 - vel(0))
-              + tmp223*(-tmp222 - vel(1)) + tmp225*(-tmp224 - vel(2)));
-      const Scalar tmp227 = -pos(9);
-      const Scalar tmp228 = -tmp227 - pos(0);
-      const Scalar tmp229 = -pos(10);
-      const Scalar tmp230 = -tmp229 - pos(1);
-      const Scalar tmp231 = -pos(11);
-      const Scalar tmp232 = -tmp231 - pos(2);
-      const Scalar tmp233 = sqrt((tmp228*tmp228) + (tmp230*tmp230) + (tmp232*tmp232));
-      const Scalar tmp234 = Scalar(-0.49244289008980524) + tmp233;
-      const Scalar tmp235 = -vel(9);
-      const Scalar tmp236 = (Scalar(1)/tmp233);
-      const Scalar tmp237 = tmp228*tmp236;
-      const Scalar tmp238 = -vel(10);
-      const Scalar tmp239 = tmp230*tmp236;
-      const Scalar tmp240 = -vel(11);
-      const Scalar tmp241 = tmp232*tmp236;
-      const Scalar tmp242 = Scalar(2.030692330267238)*tmp234*kappa
-          + Scalar(2.030692330267238)*penalty_damping*(tmp237*(-tmp235 - vel(0))
-              + tmp239*(-tmp238 - vel(1)) + tmp241*(-tmp240 - vel(2)));
-      const Scalar tmp244 = -tmp210;
-      const Scalar tmp245 = -tmp211 - pos(3);
-      const Scalar tmp246 = -tmp213 - pos(4);
-      const Scalar tmp247 = -tmp215 - pos(5);
-      const Scalar tmp248 = sqrt((tmp245*tmp245) + (tmp246*tmp246) + (tmp247*tmp247));
-      const Scalar tmp249 = Scalar(-0.5) + tmp248;
-      const Scalar tmp250 = (Scalar(1)/tmp248);
-      const Scalar tmp251 = tmp245*tmp250;
-      const Scalar tmp252 = tmp246*tmp250;
-      const Scalar tmp253 = tmp247*tmp250;
-      const Scalar tmp254 = Scalar(2.0)*tmp249*kappa
-          + Scalar(2.0)*penalty_damping*(tmp251*(-tmp219 - vel(3)) + tmp252*(-tmp222 - vel(4))
-              + tmp253*(-tmp224 - vel(5)));
-      const Scalar tmp255 = -tmp227 - pos(3);
-      const Scalar tmp256 = -tmp229 - pos(4);
-      const Scalar tmp257 = -tmp231 - pos(5);
-      const Scalar tmp258 = sqrt((tmp255*tmp255) + (tmp256*tmp256) + (tmp257*tmp257));
-      const Scalar tmp259 = Scalar(-0.33541019662496846) + tmp258;
-      const Scalar tmp260 = (Scalar(1)/tmp258);
-      const Scalar tmp261 = tmp255*tmp260;
-      const Scalar tmp262 = tmp256*tmp260;
-      const Scalar tmp263 = tmp257*tmp260;
-      const Scalar tmp264 = Scalar(2.9814239699997196)*tmp259*kappa
-          + Scalar(2.9814239699997196)*penalty_damping*(tmp261*(-tmp235 - vel(3))
-              + tmp262*(-tmp238 - vel(4)) + tmp263*(-tmp240 - vel(5)));
-      const Scalar tmp266 = -tmp226;
-      const Scalar tmp267 = -tmp254;
-      const Scalar tmp268 = -tmp227 - pos(6);
-      const Scalar tmp269 = -tmp229 - pos(7);
-      const Scalar tmp270 = -tmp231 - pos(8);
-      const Scalar tmp271 = sqrt((tmp268*tmp268) + (tmp269*tmp269) + (tmp270*tmp270));
-      const Scalar tmp272 = Scalar(-0.3640054944640259) + tmp271;
-      const Scalar tmp273 = (Scalar(1)/tmp271);
-      const Scalar tmp274 = tmp268*tmp273;
-      const Scalar tmp275 = tmp269*tmp273;
-      const Scalar tmp276 = tmp270*tmp273;
-      const Scalar tmp277 = Scalar(2.7472112789737806)*tmp272*kappa
-          + Scalar(2.7472112789737806)*penalty_damping*(tmp274*(-tmp235 - vel(6))
-              + tmp275*(-tmp238 - vel(7)) + tmp276*(-tmp240 - vel(8)));
-      const Scalar tmp279 = -tmp242;
-      const Scalar tmp280 = -tmp264;
-      const Scalar tmp281 = -tmp277;
-      const Scalar tmp737 = -tmp201/sqrt((tmp201*tmp201) + (tmp202*tmp202) + (tmp203*tmp203));
-      const Scalar tmp738 = -(Scalar(1)/(tmp204*tmp204))*tmp737;
-      const Scalar tmp739 = -tmp206 + tmp201*tmp738;
-      const Scalar tmp740 = tmp202*tmp738;
-      const Scalar tmp741 = tmp203*tmp738;
-      const Scalar tmp742 = Scalar(1.5617376188860606)*kappa*tmp737
-          + Scalar(1.5617376188860606)*penalty_damping*(vel(3) - vel(0))*tmp739
-          + Scalar(1.5617376188860606)*penalty_damping*(vel(4) - vel(1))*tmp740
-          + Scalar(1.5617376188860606)*penalty_damping*(vel(5) - vel(2))*tmp741;
-      const Scalar tmp743 = -tmp212/sqrt((tmp212*tmp212) + (tmp214*tmp214) + (tmp216*tmp216));
-      const Scalar tmp744 = -(Scalar(1)/(tmp217*tmp217))*tmp743;
-      const Scalar tmp745 = -tmp220 + tmp212*tmp744;
-      const Scalar tmp746 = tmp214*tmp744;
-      const Scalar tmp747 = tmp216*tmp744;
-      const Scalar tmp748 = Scalar(1.7149858514250886)*kappa*tmp743
-          + Scalar(1.7149858514250886)*penalty_damping*(-tmp219 - vel(0))*tmp745
-          + Scalar(1.7149858514250886)*penalty_damping*(-tmp222 - vel(1))*tmp746
-          + Scalar(1.7149858514250886)*penalty_damping*(-tmp224 - vel(2))*tmp747;
-      const Scalar tmp749 = -tmp228/sqrt((tmp228*tmp228) + (tmp230*tmp230) + (tmp232*tmp232));
-      const Scalar tmp750 = -(Scalar(1)/(tmp233*tmp233))*tmp749;
-      const Scalar tmp751 = -tmp236 + tmp228*tmp750;
-      const Scalar tmp752 = tmp230*tmp750;
-      const Scalar tmp753 = tmp232*tmp750;
-      const Scalar tmp754 = Scalar(2.030692330267238)*kappa*tmp749
-          + Scalar(2.030692330267238)*penalty_damping*(-tmp235 - vel(0))*tmp751
-          + Scalar(2.030692330267238)*penalty_damping*(-tmp238 - vel(1))*tmp752
-          + Scalar(2.030692330267238)*penalty_damping*(-tmp240 - vel(2))*tmp753;
-      const Scalar tmp755 = tmp210*tmp741 + tmp209*tmp742 + tmp226*tmp747 + tmp225*tmp748
-          + tmp242*tmp753 + tmp241*tmp754;
-      const Scalar tmp756 = -tmp742;
-      const Scalar tmp757 = tmp244*tmp741 + tmp209*tmp756;
-      const Scalar tmp758 = -tmp748;
-      const Scalar tmp759 = tmp266*tmp747 + tmp225*tmp758;
-      const Scalar tmp760 = -tmp754;
-      const Scalar tmp761 = tmp279*tmp753 + tmp241*tmp760;
-      const Scalar tmp762 = -tmp202/sqrt((tmp201*tmp201) + (tmp202*tmp202) + (tmp203*tmp203));
-      const Scalar tmp763 = -(Scalar(1)/(tmp204*tmp204))*tmp762;
-      const Scalar tmp764 = tmp201*tmp763;
-      const Scalar tmp765 = -tmp206 + tmp202*tmp763;
-      const Scalar tmp766 = tmp203*tmp763;
-      const Scalar tmp767 = Scalar(1.5617376188860606)*kappa*tmp762
-          + Scalar(1.5617376188860606)*penalty_damping*(vel(3) - vel(0))*tmp764
-          + Scalar(1.5617376188860606)*penalty_damping*(vel(4) - vel(1))*tmp765
-          + Scalar(1.5617376188860606)*penalty_damping*(vel(5) - vel(2))*tmp766;
-      const Scalar tmp768 = -tmp214/sqrt((tmp212*tmp212) + (tmp214*tmp214) + (tmp216*tmp216));
-      const Scalar tmp769 = -(Scalar(1)/(tmp217*tmp217))*tmp768;
-      const Scalar tmp770 = tmp212*tmp769;
-      const Scalar tmp771 = -tmp220 + tmp214*tmp769;
-      const Scalar tmp772 = tmp216*tmp769;
-      const Scalar tmp773 = Scalar(1.7149858514250886)*kappa*tmp768
-          + Scalar(1.7149858514250886)*penalty_damping*(-tmp219 - vel(0))*tmp770
-          + Scalar(1.7149858514250886)*penalty_damping*(-tmp222 - vel(1))*tmp771
-          + Scalar(1.7149858514250886)*penalty_damping*(-tmp224 - vel(2))*tmp772;
-      const Scalar tmp774 = -tmp230/sqrt((tmp228*tmp228) + (tmp230*tmp230) + (tmp232*tmp232));
-      const Scalar tmp775 = -(Scalar(1)/(tmp233*tmp233))*tmp774;
-      const Scalar tmp776 = tmp228*tmp775;
-      const Scalar tmp777 = -tmp236 + tmp230*tmp775;
-      const Scalar tmp778 = tmp232*tmp775;
-      const Scalar tmp779 = Scalar(2.030692330267238)*kappa*tmp774
-          + Scalar(2.030692330267238)*penalty_damping*(-tmp235 - vel(0))*tmp776
-          + Scalar(2.030692330267238)*penalty_damping*(-tmp238 - vel(1))*tmp777
-          + Scalar(2.030692330267238)*penalty_damping*(-tmp240 - vel(2))*tmp778;
-      const Scalar tmp780 = tmp210*tmp766 + tmp209*tmp767 + tmp226*tmp772 + tmp225*tmp773
-          + tmp242*tmp778 + tmp241*tmp779;
-      const Scalar tmp781 = -tmp767;
-      const Scalar tmp782 = tmp244*tmp766 + tmp209*tmp781;
-      const Scalar tmp783 = -tmp773;
-      const Scalar tmp784 = tmp266*tmp772 + tmp225*tmp783;
-      const Scalar tmp785 = -tmp779;
-      const Scalar tmp786 = tmp279*tmp778 + tmp241*tmp785;
-      const Scalar tmp787 = -tmp203/sqrt((tmp201*tmp201) + (tmp202*tmp202) + (tmp203*tmp203));
-      const Scalar tmp788 = -(Scalar(1)/(tmp204*tmp204))*tmp787;
-      const Scalar tmp789 = tmp201*tmp788;
-      const Scalar tmp790 = tmp202*tmp788;
-      const Scalar tmp791 = -tmp206 + tmp203*tmp788;
-      const Scalar tmp792 = Scalar(1.5617376188860606)*kappa*tmp787
-          + Scalar(1.5617376188860606)*penalty_damping*(vel(3) - vel(0))*tmp789
-          + Scalar(1.5617376188860606)*penalty_damping*(vel(4) - vel(1))*tmp790
-          + Scalar(1.5617376188860606)*penalty_damping*(vel(5) - vel(2))*tmp791;
-      const Scalar tmp793 = -tmp216/sqrt((tmp212*tmp212) + (tmp214*tmp214) + (tmp216*tmp216));
-      const Scalar tmp794 = -(Scalar(1)/(tmp217*tmp217))*tmp793;
-      const Scalar tmp795 = tmp212*tmp794;
-      const Scalar tmp796 = tmp214*tmp794;
-      const Scalar tmp797 = -tmp220 + tmp216*tmp794;
-      const Scalar tmp798 = Scalar(1.7149858514250886)*kappa*tmp793
-          + Scalar(1.7149858514250886)*penalty_damping*(-tmp219 - vel(0))*tmp795
-          + Scalar(1.7149858514250886)*penalty_damping*(-tmp222 - vel(1))*tmp796
-          + Scalar(1.7149858514250886)*penalty_damping*(-tmp224 - vel(2))*tmp797;
-      const Scalar tmp799 = -tmp232/sqrt((tmp228*tmp228) + (tmp230*tmp230) + (tmp232*tmp232));
-      const Scalar tmp800 = -(Scalar(1)/(tmp233*tmp233))*tmp799;
-      const Scalar tmp801 = tmp228*tmp800;
-      const Scalar tmp802 = tmp230*tmp800;
-      const Scalar tmp803 = -tmp236 + tmp232*tmp800;
-      const Scalar tmp804 = Scalar(2.030692330267238)*kappa*tmp799
-          + Scalar(2.030692330267238)*penalty_damping*(-tmp235 - vel(0))*tmp801
-          + Scalar(2.030692330267238)*penalty_damping*(-tmp238 - vel(1))*tmp802
-          + Scalar(2.030692330267238)*penalty_damping*(-tmp240 - vel(2))*tmp803;
-      const Scalar tmp805 = tmp210*tmp791 + tmp209*tmp792 + tmp226*tmp797 + tmp225*tmp798
-          + tmp242*tmp803 + tmp241*tmp804;
-      const Scalar tmp806 = -tmp792;
-      const Scalar tmp807 = tmp244*tmp791 + tmp209*tmp806;
-      const Scalar tmp808 = -tmp798;
-      const Scalar tmp809 = tmp266*tmp797 + tmp225*tmp808;
-      const Scalar tmp810 = -tmp804;
-      const Scalar tmp811 = tmp279*tmp803 + tmp241*tmp810;
-      const Scalar tmp812 = tmp201/sqrt((tmp201*tmp201) + (tmp202*tmp202) + (tmp203*tmp203));
-      const Scalar tmp813 = -(Scalar(1)/(tmp204*tmp204))*tmp812;
-      const Scalar tmp814 = tmp206 + tmp201*tmp813;
-      const Scalar tmp815 = tmp202*tmp813;
-      const Scalar tmp816 = tmp203*tmp813;
-      const Scalar tmp817 = Scalar(1.5617376188860606)*kappa*tmp812
-          + Scalar(1.5617376188860606)*penalty_damping*(vel(3) - vel(0))*tmp814
-          + Scalar(1.5617376188860606)*penalty_damping*(vel(4) - vel(1))*tmp815
-          + Scalar(1.5617376188860606)*penalty_damping*(vel(5) - vel(2))*tmp816;
-      const Scalar tmp818 = tmp210*tmp816 + tmp209*tmp817;
-      const Scalar tmp819 = -tmp817;
-      const Scalar tmp820 = -tmp245/sqrt((tmp245*tmp245) + (tmp246*tmp246) + (tmp247*tmp247));
-      const Scalar tmp821 = -(Scalar(1)/(tmp248*tmp248))*tmp820;
-      const Scalar tmp822 = -tmp250 + tmp245*tmp821;
-      const Scalar tmp823 = tmp246*tmp821;
-      const Scalar tmp824 = tmp247*tmp821;
-      const Scalar tmp825 = Scalar(2.0)*kappa*tmp820
-          + Scalar(2.0)*penalty_damping*(-tmp219 - vel(3))*tmp822
-          + Scalar(2.0)*penalty_damping*(-tmp222 - vel(4))*tmp823
-          + Scalar(2.0)*penalty_damping*(-tmp224 - vel(5))*tmp824;
-      const Scalar tmp826 = -tmp255/sqrt((tmp255*tmp255) + (tmp256*tmp256) + (tmp257*tmp257));
-      const Scalar tmp827 = -(Scalar(1)/(tmp258*tmp258))*tmp826;
-      const Scalar tmp828 = -tmp260 + tmp255*tmp827;
-      const Scalar tmp829 = tmp256*tmp827;
-      const Scalar tmp830 = tmp257*tmp827;
-      const Scalar tmp831 = Scalar(2.9814239699997196)*kappa*tmp826
-          + Scalar(2.9814239699997196)*penalty_damping*(-tmp235 - vel(3))*tmp828
-          + Scalar(2.9814239699997196)*penalty_damping*(-tmp238 - vel(4))*tmp829
-          + Scalar(2.9814239699997196)*penalty_damping*(-tmp240 - vel(5))*tmp830;
-      const Scalar tmp832 = tmp244*tmp816 + tmp209*tmp819 + tmp254*tmp824 + tmp253*tmp825
-          + tmp264*tmp830 + tmp263*tmp831;
-      const Scalar tmp833 = -tmp825;
-      const Scalar tmp834 = tmp267*tmp824 + tmp253*tmp833;
-      const Scalar tmp835 = -tmp831;
-      const Scalar tmp836 = tmp280*tmp830 + tmp263*tmp835;
-      const Scalar tmp837 = tmp202/sqrt((tmp201*tmp201) + (tmp202*tmp202) + (tmp203*tmp203));
-      const Scalar tmp838 = -(Scalar(1)/(tmp204*tmp204))*tmp837;
-      const Scalar tmp839 = tmp201*tmp838;
-      const Scalar tmp840 = tmp206 + tmp202*tmp838;
-      const Scalar tmp841 = tmp203*tmp838;
-      const Scalar tmp842 = Scalar(1.5617376188860606)*kappa*tmp837
-          + Scalar(1.5617376188860606)*penalty_damping*(vel(3) - vel(0))*tmp839
-          + Scalar(1.5617376188860606)*penalty_damping*(vel(4) - vel(1))*tmp840
-          + Scalar(1.5617376188860606)*penalty_damping*(vel(5) - vel(2))*tmp841;
-      const Scalar tmp843 = tmp210*tmp841 + tmp209*tmp842;
-      const Scalar tmp844 = -tmp842;
-      const Scalar tmp845 = -tmp246/sqrt((tmp245*tmp245) + (tmp246*tmp246) + (tmp247*tmp247));
-      const Scalar tmp846 = -(Scalar(1)/(tmp248*tmp248))*tmp845;
-      const Scalar tmp847 = tmp245*tmp846;
-      const Scalar tmp848 = -tmp250 + tmp246*tmp846;
-      const Scalar tmp849 = tmp247*tmp846;
-      const Scalar tmp850 = Scalar(2.0)*kappa*tmp845
-          + Scalar(2.0)*penalty_damping*(-tmp219 - vel(3))*tmp847
-          + Scalar(2.0)*penalty_damping*(-tmp222 - vel(4))*tmp848
-          + Scalar(2.0)*penalty_damping*(-tmp224 - vel(5))*tmp849;
-      const Scalar tmp851 = -tmp256/sqrt((tmp255*tmp255) + (tmp256*tmp256) + (tmp257*tmp257));
-      const Scalar tmp852 = -(Scalar(1)/(tmp258*tmp258))*tmp851;
-      const Scalar tmp853 = tmp255*tmp852;
-      const Scalar tmp854 = -tmp260 + tmp256*tmp852;
-      const Scalar tmp855 = tmp257*tmp852;
-      const Scalar tmp856 = Scalar(2.9814239699997196)*kappa*tmp851
-          + Scalar(2.9814239699997196)*penalty_damping*(-tmp235 - vel(3))*tmp853
-          + Scalar(2.9814239699997196)*penalty_damping*(-tmp238 - vel(4))*tmp854
-          + Scalar(2.9814239699997196)*penalty_damping*(-tmp240 - vel(5))*tmp855;
-      const Scalar tmp857 = tmp244*tmp841 + tmp209*tmp844 + tmp254*tmp849 + tmp253*tmp850
-          + tmp264*tmp855 + tmp263*tmp856;
-      const Scalar tmp858 = -tmp850;
-      const Scalar tmp859 = tmp267*tmp849 + tmp253*tmp858;
-      const Scalar tmp860 = -tmp856;
-      const Scalar tmp861 = tmp280*tmp855 + tmp263*tmp860;
-      const Scalar tmp862 = tmp203/sqrt((tmp201*tmp201) + (tmp202*tmp202) + (tmp203*tmp203));
-      const Scalar tmp863 = -(Scalar(1)/(tmp204*tmp204))*tmp862;
-      const Scalar tmp864 = tmp201*tmp863;
-      const Scalar tmp865 = tmp202*tmp863;
-      const Scalar tmp866 = tmp206 + tmp203*tmp863;
-      const Scalar tmp867 = Scalar(1.5617376188860606)*kappa*tmp862
-          + Scalar(1.5617376188860606)*penalty_damping*(vel(3) - vel(0))*tmp864
-          + Scalar(1.5617376188860606)*penalty_damping*(vel(4) - vel(1))*tmp865
-          + Scalar(1.5617376188860606)*penalty_damping*(vel(5) - vel(2))*tmp866;
-      const Scalar tmp868 = tmp210*tmp866 + tmp209*tmp867;
-      const Scalar tmp869 = -tmp867;
-      const Scalar tmp870 = -tmp247/sqrt((tmp245*tmp245) + (tmp246*tmp246) + (tmp247*tmp247));
-      const Scalar tmp871 = -(Scalar(1)/(tmp248*tmp248))*tmp870;
-      const Scalar tmp872 = tmp245*tmp871;
-      const Scalar tmp873 = tmp246*tmp871;
-      const Scalar tmp874 = -tmp250 + tmp247*tmp871;
-      const Scalar tmp875 = Scalar(2.0)*kappa*tmp870
-          + Scalar(2.0)*penalty_damping*(-tmp219 - vel(3))*tmp872
-          + Scalar(2.0)*penalty_damping*(-tmp222 - vel(4))*tmp873
-          + Scalar(2.0)*penalty_damping*(-tmp224 - vel(5))*tmp874;
-      const Scalar tmp876 = -tmp257/sqrt((tmp255*tmp255) + (tmp256*tmp256) + (tmp257*tmp257));
-      const Scalar tmp877 = -(Scalar(1)/(tmp258*tmp258))*tmp876;
-      const Scalar tmp878 = tmp255*tmp877;
-      const Scalar tmp879 = tmp256*tmp877;
-      const Scalar tmp880 = -tmp260 + tmp257*tmp877;
-      const Scalar tmp881 = Scalar(2.9814239699997196)*kappa*tmp876
-          + Scalar(2.9814239699997196)*penalty_damping*(-tmp235 - vel(3))*tmp878
-          + Scalar(2.9814239699997196)*penalty_damping*(-tmp238 - vel(4))*tmp879
-          + Scalar(2.9814239699997196)*penalty_damping*(-tmp240 - vel(5))*tmp880;
-      const Scalar tmp882 = tmp244*tmp866 + tmp209*tmp869 + tmp254*tmp874 + tmp253*tmp875
-          + tmp264*tmp880 + tmp263*tmp881;
-      const Scalar tmp883 = -tmp875;
-      const Scalar tmp884 = tmp267*tmp874 + tmp253*tmp883;
-      const Scalar tmp885 = -tmp881;
-      const Scalar tmp886 = tmp280*tmp880 + tmp263*tmp885;
-      const Scalar tmp887 = tmp212/sqrt((tmp212*tmp212) + (tmp214*tmp214) + (tmp216*tmp216));
-      const Scalar tmp888 = -(Scalar(1)/(tmp217*tmp217))*tmp887;
-      const Scalar tmp889 = tmp220 + tmp212*tmp888;
-      const Scalar tmp890 = tmp214*tmp888;
-      const Scalar tmp891 = tmp216*tmp888;
-      const Scalar tmp892 = Scalar(1.7149858514250886)*kappa*tmp887
-          + Scalar(1.7149858514250886)*penalty_damping*(-tmp219 - vel(0))*tmp889
-          + Scalar(1.7149858514250886)*penalty_damping*(-tmp222 - vel(1))*tmp890
-          + Scalar(1.7149858514250886)*penalty_damping*(-tmp224 - vel(2))*tmp891;
-      const Scalar tmp893 = tmp226*tmp891 + tmp225*tmp892;
-      const Scalar tmp894 = tmp245/sqrt((tmp245*tmp245) + (tmp246*tmp246) + (tmp247*tmp247));
-      const Scalar tmp895 = -(Scalar(1)/(tmp248*tmp248))*tmp894;
-      const Scalar tmp896 = tmp250 + tmp245*tmp895;
-      const Scalar tmp897 = tmp246*tmp895;
-      const Scalar tmp898 = tmp247*tmp895;
-      const Scalar tmp899 = Scalar(2.0)*kappa*tmp894
-          + Scalar(2.0)*penalty_damping*(-tmp219 - vel(3))*tmp896
-          + Scalar(2.0)*penalty_damping*(-tmp222 - vel(4))*tmp897
-          + Scalar(2.0)*penalty_damping*(-tmp224 - vel(5))*tmp898;
-      const Scalar tmp900 = tmp254*tmp898 + tmp253*tmp899;
-      const Scalar tmp901 = -tmp892;
-      const Scalar tmp902 = -tmp899;
-      const Scalar tmp903 = -tmp268/sqrt((tmp268*tmp268) + (tmp269*tmp269) + (tmp270*tmp270));
-      const Scalar tmp904 = -(Scalar(1)/(tmp271*tmp271))*tmp903;
-      const Scalar tmp905 = -tmp273 + tmp268*tmp904;
-      const Scalar tmp906 = tmp269*tmp904;
-      const Scalar tmp907 = tmp270*tmp904;
-      const Scalar tmp908 = Scalar(2.7472112789737806)*kappa*tmp903
-          + Scalar(2.7472112789737806)*penalty_damping*(-tmp235 - vel(6))*tmp905
-          + Scalar(2.7472112789737806)*penalty_damping*(-tmp238 - vel(7))*tmp906
-          + Scalar(2.7472112789737806)*penalty_damping*(-tmp240 - vel(8))*tmp907;
-      const Scalar tmp909 = tmp266*tmp891 + tmp267*tmp898 + tmp225*tmp901 + tmp253*tmp902
-          + tmp277*tmp907 + tmp276*tmp908;
-      const Scalar tmp910 = -tmp908;
-      const Scalar tmp911 = tmp281*tmp907 + tmp276*tmp910;
-      const Scalar tmp912 = tmp214/sqrt((tmp212*tmp212) + (tmp214*tmp214) + (tmp216*tmp216));
-      const Scalar tmp913 = -(Scalar(1)/(tmp217*tmp217))*tmp912;
-      const Scalar tmp914 = tmp212*tmp913;
-      const Scalar tmp915 = tmp220 + tmp214*tmp913;
-      const Scalar tmp916 = tmp216*tmp913;
-      const Scalar tmp917 = Scalar(1.7149858514250886)*kappa*tmp912
-          + Scalar(1.7149858514250886)*penalty_damping*(-tmp219 - vel(0))*tmp914
-          + Scalar(1.7149858514250886)*penalty_damping*(-tmp222 - vel(1))*tmp915
-          + Scalar(1.7149858514250886)*penalty_damping*(-tmp224 - vel(2))*tmp916;
-      const Scalar tmp918 = tmp226*tmp916 + tmp225*tmp917;
-      const Scalar tmp919 = tmp246/sqrt((tmp245*tmp245) + (tmp246*tmp246) + (tmp247*tmp247));
-      const Scalar tmp920 = -(Scalar(1)/(tmp248*tmp248))*tmp919;
-      const Scalar tmp921 = tmp245*tmp920;
-      const Scalar tmp922 = tmp250 + tmp246*tmp920;
-      const Scalar tmp923 = tmp247*tmp920;
-      const Scalar tmp924 = Scalar(2.0)*kappa*tmp919
-          + Scalar(2.0)*penalty_damping*(-tmp219 - vel(3))*tmp921
-          + Scalar(2.0)*penalty_damping*(-tmp222 - vel(4))*tmp922
-          + Scalar(2.0)*penalty_damping*(-tmp224 - vel(5))*tmp923;
-      const Scalar tmp925 = tmp254*tmp923 + tmp253*tmp924;
-      const Scalar tmp926 = -tmp917;
-      const Scalar tmp927 = -tmp924;
-      const Scalar tmp928 = -tmp269/sqrt((tmp268*tmp268) + (tmp269*tmp269) + (tmp270*tmp270));
-      const Scalar tmp929 = -(Scalar(1)/(tmp271*tmp271))*tmp928;
-      const Scalar tmp930 = tmp268*tmp929;
-      const Scalar tmp931 = -tmp273 + tmp269*tmp929;
-      const Scalar tmp932 = tmp270*tmp929;
-      const Scalar tmp933 = Scalar(2.7472112789737806)*kappa*tmp928
-          + Scalar(2.7472112789737806)*penalty_damping*(-tmp235 - vel(6))*tmp930
-          + Scalar(2.7472112789737806)*penalty_damping*(-tmp238 - vel(7))*tmp931
-          + Scalar(2.7472112789737806)*penalty_damping*(-tmp240 - vel(8))*tmp932;
-      const Scalar tmp934 = tmp266*tmp916 + tmp267*tmp923 + tmp225*tmp926 + tmp253*tmp927
-          + tmp277*tmp932 + tmp276*tmp933;
-      const Scalar tmp935 = -tmp933;
-      const Scalar tmp936 = tmp281*tmp932 + tmp276*tmp935;
-      const Scalar tmp937 = tmp216/sqrt((tmp212*tmp212) + (tmp214*tmp214) + (tmp216*tmp216));
-      const Scalar tmp938 = -(Scalar(1)/(tmp217*tmp217))*tmp937;
-      const Scalar tmp939 = tmp212*tmp938;
-      const Scalar tmp940 = tmp214*tmp938;
-      const Scalar tmp941 = tmp220 + tmp216*tmp938;
-      const Scalar tmp942 = Scalar(1.7149858514250886)*kappa*tmp937
-          + Scalar(1.7149858514250886)*penalty_damping*(-tmp219 - vel(0))*tmp939
-          + Scalar(1.7149858514250886)*penalty_damping*(-tmp222 - vel(1))*tmp940
-          + Scalar(1.7149858514250886)*penalty_damping*(-tmp224 - vel(2))*tmp941;
-      const Scalar tmp943 = tmp226*tmp941 + tmp225*tmp942;
-      const Scalar tmp944 = tmp247/sqrt((tmp245*tmp245) + (tmp246*tmp246) + (tmp247*tmp247));
-      const Scalar tmp945 = -(Scalar(1)/(tmp248*tmp248))*tmp944;
-      const Scalar tmp946 = tmp245*tmp945;
-      const Scalar tmp947 = tmp246*tmp945;
-      const Scalar tmp948 = tmp250 + tmp247*tmp945;
-      const Scalar tmp949 = Scalar(2.0)*kappa*tmp944
-          + Scalar(2.0)*penalty_damping*(-tmp219 - vel(3))*tmp946
-          + Scalar(2.0)*penalty_damping*(-tmp222 - vel(4))*tmp947
-          + Scalar(2.0)*penalty_damping*(-tmp224 - vel(5))*tmp948;
-      const Scalar tmp950 = tmp254*tmp948 + tmp253*tmp949;
-      const Scalar tmp951 = -tmp942;
-      const Scalar tmp952 = -tmp949;
-      const Scalar tmp953 = -tmp270/sqrt((tmp268*tmp268) + (tmp269*tmp269) + (tmp270*tmp270));
-      const Scalar tmp954 = -(Scalar(1)/(tmp271*tmp271))*tmp953;
-      const Scalar tmp955 = tmp268*tmp954;
-      const Scalar tmp956 = tmp269*tmp954;
-      const Scalar tmp957 = -tmp273 + tmp270*tmp954;
-      const Scalar tmp958 = Scalar(2.7472112789737806)*kappa*tmp953
-          + Scalar(2.7472112789737806)*penalty_damping*(-tmp235 - vel(6))*tmp955
-          + Scalar(2.7472112789737806)*penalty_damping*(-tmp238 - vel(7))*tmp956
-          + Scalar(2.7472112789737806)*penalty_damping*(-tmp240 - vel(8))*tmp957;
-      const Scalar tmp959 = tmp266*tmp941 + tmp267*tmp948 + tmp225*tmp951 + tmp253*tmp952
-          + tmp277*tmp957 + tmp276*tmp958;
-      const Scalar tmp960 = -tmp958;
-      const Scalar tmp961 = tmp281*tmp957 + tmp276*tmp960;
-      const Scalar tmp962 = tmp228/sqrt((tmp228*tmp228) + (tmp230*tmp230) + (tmp232*tmp232));
-      const Scalar tmp963 = -(Scalar(1)/(tmp233*tmp233))*tmp962;
-      const Scalar tmp964 = tmp236 + tmp228*tmp963;
-      const Scalar tmp965 = tmp230*tmp963;
-      const Scalar tmp966 = tmp232*tmp963;
-      const Scalar tmp967 = Scalar(2.030692330267238)*kappa*tmp962
-          + Scalar(2.030692330267238)*penalty_damping*(-tmp235 - vel(0))*tmp964
-          + Scalar(2.030692330267238)*penalty_damping*(-tmp238 - vel(1))*tmp965
-          + Scalar(2.030692330267238)*penalty_damping*(-tmp240 - vel(2))*tmp966;
-      const Scalar tmp968 = tmp242*tmp966 + tmp241*tmp967;
-      const Scalar tmp969 = tmp255/sqrt((tmp255*tmp255) + (tmp256*tmp256) + (tmp257*tmp257));
-      const Scalar tmp970 = -(Scalar(1)/(tmp258*tmp258))*tmp969;
-      const Scalar tmp971 = tmp260 + tmp255*tmp970;
-      const Scalar tmp972 = tmp256*tmp970;
-      const Scalar tmp973 = tmp257*tmp970;
-      const Scalar tmp974 = Scalar(2.9814239699997196)*kappa*tmp969
-          + Scalar(2.9814239699997196)*penalty_damping*(-tmp235 - vel(3))*tmp971
-          + Scalar(2.9814239699997196)*penalty_damping*(-tmp238 - vel(4))*tmp972
-          + Scalar(2.9814239699997196)*penalty_damping*(-tmp240 - vel(5))*tmp973;
-      const Scalar tmp975 = tmp264*tmp973 + tmp263*tmp974;
-      const Scalar tmp976 = tmp268/sqrt((tmp268*tmp268) + (tmp269*tmp269) + (tmp270*tmp270));
-      const Scalar tmp977 = -(Scalar(1)/(tmp271*tmp271))*tmp976;
-      const Scalar tmp978 = tmp273 + tmp268*tmp977;
-      const Scalar tmp979 = tmp269*tmp977;
-      const Scalar tmp980 = tmp270*tmp977;
-      const Scalar tmp981 = Scalar(2.7472112789737806)*kappa*tmp976
-          + Scalar(2.7472112789737806)*penalty_damping*(-tmp235 - vel(6))*tmp978
-          + Scalar(2.7472112789737806)*penalty_damping*(-tmp238 - vel(7))*tmp979
-          + Scalar(2.7472112789737806)*penalty_damping*(-tmp240 - vel(8))*tmp980;
-      const Scalar tmp982 = tmp277*tmp980 + tmp276*tmp981;
-      const Scalar tmp983 = -tmp967;
-      const Scalar tmp984 = -tmp974;
-      const Scalar tmp985 = -tmp981;
-      const Scalar tmp986 = tmp279*tmp966 + tmp280*tmp973 + tmp281*tmp980 + tmp241*tmp983
-          + tmp263*tmp984 + tmp276*tmp985;
-      const Scalar tmp987 = tmp230/sqrt((tmp228*tmp228) + (tmp230*tmp230) + (tmp232*tmp232));
-      const Scalar tmp988 = -(Scalar(1)/(tmp233*tmp233))*tmp987;
-      const Scalar tmp989 = tmp228*tmp988;
-      const Scalar tmp990 = tmp236 + tmp230*tmp988;
-      const Scalar tmp991 = tmp232*tmp988;
-      const Scalar tmp992 = Scalar(2.030692330267238)*kappa*tmp987
-          + Scalar(2.030692330267238)*penalty_damping*(-tmp235 - vel(0))*tmp989
-          + Scalar(2.030692330267238)*penalty_damping*(-tmp238 - vel(1))*tmp990
-          + Scalar(2.030692330267238)*penalty_damping*(-tmp240 - vel(2))*tmp991;
-      const Scalar tmp993 = tmp242*tmp991 + tmp241*tmp992;
-      const Scalar tmp994 = tmp256/sqrt((tmp255*tmp255) + (tmp256*tmp256) + (tmp257*tmp257));
-      const Scalar tmp995 = -(Scalar(1)/(tmp258*tmp258))*tmp994;
-      const Scalar tmp996 = tmp255*tmp995;
-      const Scalar tmp997 = tmp260 + tmp256*tmp995;
-      const Scalar tmp998 = tmp257*tmp995;
-      const Scalar tmp999 = Scalar(2.9814239699997196)*kappa*tmp994
-          + Scalar(2.9814239699997196)*penalty_damping*(-tmp235 - vel(3))*tmp996
-          + Scalar(2.9814239699997196)*penalty_damping*(-tmp238 - vel(4))*tmp997
-          + Scalar(2.9814239699997196)*penalty_damping*(-tmp240 - vel(5))*tmp998;
-      const Scalar tmp1000 = tmp264*tmp998 + tmp263*tmp999;
-      const Scalar tmp1001 = tmp269/sqrt((tmp268*tmp268) + (tmp269*tmp269) + (tmp270*tmp270));
-      const Scalar tmp1002 = -(Scalar(1)/(tmp271*tmp271))*tmp1001;
-      const Scalar tmp1003 = tmp268*tmp1002;
-      const Scalar tmp1004 = tmp273 + tmp269*tmp1002;
-      const Scalar tmp1005 = tmp270*tmp1002;
-      const Scalar tmp1006 = Scalar(2.7472112789737806)*kappa*tmp1001
-          + Scalar(2.7472112789737806)*penalty_damping*(-tmp235 - vel(6))*tmp1003
-          + Scalar(2.7472112789737806)*penalty_damping*(-tmp238 - vel(7))*tmp1004
-          + Scalar(2.7472112789737806)*penalty_damping*(-tmp240 - vel(8))*tmp1005;
-      const Scalar tmp1007 = tmp277*tmp1005 + tmp276*tmp1006;
-      const Scalar tmp1008 = -tmp992;
-      const Scalar tmp1009 = -tmp999;
-      const Scalar tmp1010 = -tmp1006;
-      const Scalar tmp1011 = tmp279*tmp991 + tmp280*tmp998 + tmp281*tmp1005 + tmp241*tmp1008
-          + tmp263*tmp1009 + tmp276*tmp1010;
-      const Scalar tmp1012 = tmp232/sqrt((tmp228*tmp228) + (tmp230*tmp230) + (tmp232*tmp232));
-      const Scalar tmp1013 = -(Scalar(1)/(tmp233*tmp233))*tmp1012;
-      const Scalar tmp1014 = tmp228*tmp1013;
-      const Scalar tmp1015 = tmp230*tmp1013;
-      const Scalar tmp1016 = tmp236 + tmp232*tmp1013;
-      const Scalar tmp1017 = Scalar(2.030692330267238)*kappa*tmp1012
-          + Scalar(2.030692330267238)*penalty_damping*(-tmp235 - vel(0))*tmp1014
-          + Scalar(2.030692330267238)*penalty_damping*(-tmp238 - vel(1))*tmp1015
-          + Scalar(2.030692330267238)*penalty_damping*(-tmp240 - vel(2))*tmp1016;
-      const Scalar tmp1018 = tmp242*tmp1016 + tmp241*tmp1017;
-      const Scalar tmp1019 = tmp257/sqrt((tmp255*tmp255) + (tmp256*tmp256) + (tmp257*tmp257));
-      const Scalar tmp1020 = -(Scalar(1)/(tmp258*tmp258))*tmp1019;
-      const Scalar tmp1021 = tmp255*tmp1020;
-      const Scalar tmp1022 = tmp256*tmp1020;
-      const Scalar tmp1023 = tmp260 + tmp257*tmp1020;
-      const Scalar tmp1024 = Scalar(2.9814239699997196)*kappa*tmp1019
-          + Scalar(2.9814239699997196)*penalty_damping*(-tmp235 - vel(3))*tmp1021
-          + Scalar(2.9814239699997196)*penalty_damping*(-tmp238 - vel(4))*tmp1022
-          + Scalar(2.9814239699997196)*penalty_damping*(-tmp240 - vel(5))*tmp1023;
-      const Scalar tmp1025 = tmp264*tmp1023 + tmp263*tmp1024;
-      const Scalar tmp1026 = tmp270/sqrt((tmp268*tmp268) + (tmp269*tmp269) + (tmp270*tmp270));
-      const Scalar tmp1027 = -(Scalar(1)/(tmp271*tmp271))*tmp1026;
-      const Scalar tmp1028 = tmp268*tmp1027;
-      const Scalar tmp1029 = tmp269*tmp1027;
-      const Scalar tmp1030 = tmp273 + tmp270*tmp1027;
-      const Scalar tmp1031 = Scalar(2.7472112789737806)*kappa*tmp1026
-          + Scalar(2.7472112789737806)*penalty_damping*(-tmp235 - vel(6))*tmp1028
-          + Scalar(2.7472112789737806)*penalty_damping*(-tmp238 - vel(7))*tmp1029
-          + Scalar(2.7472112789737806)*penalty_damping*(-tmp240 - vel(8))*tmp1030;
-      const Scalar tmp1032 = tmp277*tmp1030 + tmp276*tmp1031;
-      const Scalar tmp1033 = -tmp1017;
-      const Scalar tmp1034 = -tmp1024;
-      const Scalar tmp1035 = -tmp1031;
-      const Scalar tmp1036 = tmp279*tmp1016 + tmp280*tmp1023 + tmp281*tmp1030 + tmp241*tmp1033
-          + tmp263*tmp1034 + tmp276*tmp1035;
+      const Scalar m = Scalar(params.m);
+      const Scalar a = Scalar(params.a);
+      const Scalar b = Scalar(params.b);
+      const Scalar c = Scalar(params.c);
+      const Scalar tmp9 = (Scalar(1)/sqrt(m));
+      const Scalar tmp10 = (a*a);
+      const Scalar tmp11 = (b*b);
+      const Scalar tmp12 = m*(tmp10 + tmp11);
+      const Scalar tmp13 = (c*c);
+      const Scalar tmp14 = tmp10 + tmp13;
+      const Scalar tmp15 = tmp14*m;
+      const Scalar tmp16 = tmp11 + tmp13;
+      const Scalar tmp17 = tmp16*m;
+      const Scalar tmp18 = Scalar(0.005689254019167049)*tmp17 + Scalar(0.010556171822976032)*tmp15
+          - Scalar(0.01624542584214308)*tmp12;
+      const Scalar tmp19 = Scalar(0.041142942152109445)*tmp17 + Scalar(0.028423816083747767)*tmp12
+          - Scalar(0.027900091569190537)*tmp15;
+      const Scalar tmp20 = sqrt(tmp19);
+      const Scalar tmp21 = (Scalar(1)/tmp20);
+      const Scalar tmp22 = tmp18*tmp21;
+      const Scalar tmp23 = (Scalar(1)/tmp19);
+      const Scalar tmp24 = Scalar(0.021737886292675604)*tmp12 + Scalar(0.04006485617007295)*tmp15
+          - Scalar(0.020136075796081898)*tmp17 - tmp23*(tmp18*tmp18);
+      const Scalar tmp25 = sqrt(tmp24);
+      const Scalar tmp26 = tmp22 + tmp25;
+      const Scalar tmp32 = -Scalar(0.0257737061664756)*tmp12 - Scalar(0.003316897780257798)*tmp17
+          + Scalar(0.0290906039467334)*tmp14*m;
+      const Scalar tmp33 = tmp21*tmp32;
+      const Scalar tmp34 = (Scalar(1)/tmp24);
+      const Scalar tmp35 = tmp23*tmp32;
+      const Scalar tmp36 = -Scalar(0.03161742478199714)*tmp12 - Scalar(0.004414255047715874)*tmp15
+          - tmp18*tmp35 + Scalar(0.03603167982971302)*tmp16*m;
+      const Scalar tmp37 = -Scalar(0.008495035709756703)*tmp12 - tmp23*(tmp32*tmp32)
+          - tmp34*(tmp36*tmp36) + Scalar(0.02950190206578425)*tmp14*m
+          + Scalar(0.020659800310639128)*tmp16*m;
+      const Scalar tmp38 = sqrt(tmp37);
+      const Scalar tmp39 = tmp36/tmp25;
+      const Scalar tmp40 = tmp38 + tmp39;
+      const Scalar tmp41 = tmp33 + tmp40;
+      const Scalar tmp116 = tmp22 - tmp25;
+      const Scalar tmp117 = tmp116*tmp9;
+      const Scalar tmp118 = tmp33 - tmp40;
+      const Scalar tmp119 = tmp118*tmp9;
+      const Scalar tmp138 = -tmp116*tmp9;
+      const Scalar tmp139 = tmp39 - tmp33 - tmp38;
+      const Scalar tmp140 = tmp139*tmp9;
+      const Scalar tmp168 = -tmp26*tmp9;
+      const Scalar tmp169 = tmp38 - tmp33 - tmp39;
+      const Scalar tmp170 = tmp169*tmp9;
+      const Scalar tmp351 = pos(3) - pos(0);
+      const Scalar tmp352 = pos(4) - pos(1);
+      const Scalar tmp353 = pos(5) - pos(2);
+      const Scalar tmp354 = sqrt((tmp351*tmp351) + (tmp352*tmp352) + (tmp353*tmp353));
+      const Scalar tmp355 = (Scalar(1)/tmp354);
+      const Scalar tmp356 = tmp351*tmp355;
+      const Scalar tmp357 = tmp352*tmp355;
+      const Scalar tmp358 = tmp353*tmp355;
+      const Scalar tmp359 = -tmp26*tmp9;
+      const Scalar tmp360 = -tmp41*tmp9;
+      const Scalar tmp361 = sqrt(((-tmp117 - tmp359)*(-tmp117 - tmp359))
+          + ((-tmp119 - tmp360)*(-tmp119 - tmp360)));
+      const Scalar tmp362 = (Scalar(1)/tmp361);
+      const Scalar tmp363 = tmp354 - tmp361;
+      const Scalar tmp364 = tmp362*kappa;
+      const Scalar tmp365 = tmp363*tmp364
+          + tmp362*penalty_damping*(tmp356*(vel(3) - vel(0)) + tmp357*(vel(4) - vel(1))
+              + tmp358*(vel(5) - vel(2)));
+      const Scalar tmp366 = -vel(6);
+      const Scalar tmp367 = -pos(6);
+      const Scalar tmp368 = -tmp367 - pos(0);
+      const Scalar tmp369 = -pos(7);
+      const Scalar tmp370 = -tmp369 - pos(1);
+      const Scalar tmp371 = -pos(8);
+      const Scalar tmp372 = -tmp371 - pos(2);
+      const Scalar tmp373 = sqrt((tmp368*tmp368) + (tmp370*tmp370) + (tmp372*tmp372));
+      const Scalar tmp374 = (Scalar(1)/tmp373);
+      const Scalar tmp375 = tmp368*tmp374;
+      const Scalar tmp376 = -vel(7);
+      const Scalar tmp377 = tmp370*tmp374;
+      const Scalar tmp378 = -vel(8);
+      const Scalar tmp379 = tmp372*tmp374;
+      const Scalar tmp380 = Scalar(4)*tmp19/m;
+      const Scalar tmp381 = sqrt(tmp380 + ((-tmp138 - tmp359)*(-tmp138 - tmp359))
+          + ((-tmp140 - tmp360)*(-tmp140 - tmp360)));
+      const Scalar tmp382 = (Scalar(1)/tmp381);
+      const Scalar tmp383 = tmp373 - tmp381;
+      const Scalar tmp384 = tmp382*kappa;
+      const Scalar tmp385 = tmp383*tmp384
+          + tmp382*penalty_damping*(tmp375*(-tmp366 - vel(0)) + tmp377*(-tmp376 - vel(1))
+              + tmp379*(-tmp378 - vel(2)));
+      const Scalar tmp386 = -vel(9);
+      const Scalar tmp387 = -pos(9);
+      const Scalar tmp388 = -tmp387 - pos(0);
+      const Scalar tmp389 = -pos(10);
+      const Scalar tmp390 = -tmp389 - pos(1);
+      const Scalar tmp391 = -pos(11);
+      const Scalar tmp392 = -tmp391 - pos(2);
+      const Scalar tmp393 = sqrt((tmp388*tmp388) + (tmp390*tmp390) + (tmp392*tmp392));
+      const Scalar tmp394 = (Scalar(1)/tmp393);
+      const Scalar tmp395 = tmp388*tmp394;
+      const Scalar tmp396 = -vel(10);
+      const Scalar tmp397 = tmp390*tmp394;
+      const Scalar tmp398 = -vel(11);
+      const Scalar tmp399 = tmp392*tmp394;
+      const Scalar tmp400 = sqrt(tmp380 + ((-tmp168 - tmp359)*(-tmp168 - tmp359))
+          + ((-tmp170 - tmp360)*(-tmp170 - tmp360)));
+      const Scalar tmp401 = (Scalar(1)/tmp400);
+      const Scalar tmp402 = tmp393 - tmp400;
+      const Scalar tmp403 = tmp401*kappa;
+      const Scalar tmp404 = tmp402*tmp403
+          + tmp401*penalty_damping*(tmp395*(-tmp386 - vel(0)) + tmp397*(-tmp396 - vel(1))
+              + tmp399*(-tmp398 - vel(2)));
+      const Scalar tmp406 = -tmp365;
+      const Scalar tmp407 = -tmp367 - pos(3);
+      const Scalar tmp408 = -tmp369 - pos(4);
+      const Scalar tmp409 = -tmp371 - pos(5);
+      const Scalar tmp410 = sqrt((tmp407*tmp407) + (tmp408*tmp408) + (tmp409*tmp409));
+      const Scalar tmp411 = (Scalar(1)/tmp410);
+      const Scalar tmp412 = tmp407*tmp411;
+      const Scalar tmp413 = tmp408*tmp411;
+      const Scalar tmp414 = tmp409*tmp411;
+      const Scalar tmp415 = -tmp117;
+      const Scalar tmp416 = -tmp119;
+      const Scalar tmp417 = sqrt(tmp380 + ((-tmp138 - tmp415)*(-tmp138 - tmp415))
+          + ((-tmp140 - tmp416)*(-tmp140 - tmp416)));
+      const Scalar tmp418 = (Scalar(1)/tmp417);
+      const Scalar tmp419 = tmp410 - tmp417;
+      const Scalar tmp420 = tmp418*kappa;
+      const Scalar tmp421 = tmp419*tmp420
+          + tmp418*penalty_damping*(tmp412*(-tmp366 - vel(3)) + tmp413*(-tmp376 - vel(4))
+              + tmp414*(-tmp378 - vel(5)));
+      const Scalar tmp422 = -tmp387 - pos(3);
+      const Scalar tmp423 = -tmp389 - pos(4);
+      const Scalar tmp424 = -tmp391 - pos(5);
+      const Scalar tmp425 = sqrt((tmp422*tmp422) + (tmp423*tmp423) + (tmp424*tmp424));
+      const Scalar tmp426 = (Scalar(1)/tmp425);
+      const Scalar tmp427 = tmp422*tmp426;
+      const Scalar tmp428 = tmp423*tmp426;
+      const Scalar tmp429 = tmp424*tmp426;
+      const Scalar tmp430 = sqrt(tmp380 + ((-tmp168 - tmp415)*(-tmp168 - tmp415))
+          + ((-tmp170 - tmp416)*(-tmp170 - tmp416)));
+      const Scalar tmp431 = (Scalar(1)/tmp430);
+      const Scalar tmp432 = tmp425 - tmp430;
+      const Scalar tmp433 = tmp431*kappa;
+      const Scalar tmp434 = tmp432*tmp433
+          + tmp431*penalty_damping*(tmp427*(-tmp386 - vel(3)) + tmp428*(-tmp396 - vel(4))
+              + tmp429*(-tmp398 - vel(5)));
+      const Scalar tmp436 = -tmp387 - pos(6);
+      const Scalar tmp437 = -tmp389 - pos(7);
+      const Scalar tmp438 = -tmp391 - pos(8);
+      const Scalar tmp439 = sqrt((tmp436*tmp436) + (tmp437*tmp437) + (tmp438*tmp438));
+      const Scalar tmp440 = (Scalar(1)/tmp439);
+      const Scalar tmp441 = tmp436*tmp440;
+      const Scalar tmp442 = tmp437*tmp440;
+      const Scalar tmp443 = tmp438*tmp440;
+      const Scalar tmp444 = sqrt(((tmp138 - tmp168)*(tmp138 - tmp168))
+          + ((tmp140 - tmp170)*(tmp140 - tmp170)));
+      const Scalar tmp445 = (Scalar(1)/tmp444);
+      const Scalar tmp446 = tmp439 - tmp444;
+      const Scalar tmp447 = tmp445*kappa;
+      const Scalar tmp448 = tmp446*tmp447
+          + tmp445*penalty_damping*(tmp441*(-tmp386 - vel(6)) + tmp442*(-tmp396 - vel(7))
+              + tmp443*(-tmp398 - vel(8)));
+      const Scalar tmp449 = -tmp385;
+      const Scalar tmp450 = -tmp421;
+      const Scalar tmp452 = -tmp448;
+      const Scalar tmp453 = -tmp404;
+      const Scalar tmp454 = -tmp434;
+      const Scalar tmp901 = -tmp351/sqrt((tmp351*tmp351) + (tmp352*tmp352) + (tmp353*tmp353));
+      const Scalar tmp902 = -(Scalar(1)/(tmp354*tmp354))*tmp901;
+      const Scalar tmp903 = -tmp355 + tmp351*tmp902;
+      const Scalar tmp904 = tmp352*tmp902;
+      const Scalar tmp905 = tmp353*tmp902;
+      const Scalar tmp906 = tmp362*penalty_damping*(vel(3) - vel(0))*tmp903
+          + tmp362*penalty_damping*(vel(4) - vel(1))*tmp904
+          + tmp362*penalty_damping*(vel(5) - vel(2))*tmp905 + tmp364*tmp901;
+      const Scalar tmp907 = -tmp368/sqrt((tmp368*tmp368) + (tmp370*tmp370) + (tmp372*tmp372));
+      const Scalar tmp908 = -(Scalar(1)/(tmp373*tmp373))*tmp907;
+      const Scalar tmp909 = -tmp374 + tmp368*tmp908;
+      const Scalar tmp910 = tmp370*tmp908;
+      const Scalar tmp911 = tmp372*tmp908;
+      const Scalar tmp912 = tmp382*penalty_damping*(-tmp366 - vel(0))*tmp909
+          + tmp382*penalty_damping*(-tmp376 - vel(1))*tmp910
+          + tmp382*penalty_damping*(-tmp378 - vel(2))*tmp911 + tmp384*tmp907;
+      const Scalar tmp913 = -tmp388/sqrt((tmp388*tmp388) + (tmp390*tmp390) + (tmp392*tmp392));
+      const Scalar tmp914 = -(Scalar(1)/(tmp393*tmp393))*tmp913;
+      const Scalar tmp915 = -tmp394 + tmp388*tmp914;
+      const Scalar tmp916 = tmp390*tmp914;
+      const Scalar tmp917 = tmp392*tmp914;
+      const Scalar tmp918 = tmp401*penalty_damping*(-tmp386 - vel(0))*tmp915
+          + tmp401*penalty_damping*(-tmp396 - vel(1))*tmp916
+          + tmp401*penalty_damping*(-tmp398 - vel(2))*tmp917 + tmp403*tmp913;
+      const Scalar tmp919 = tmp365*tmp905 + tmp358*tmp906 + tmp385*tmp911 + tmp379*tmp912
+          + tmp404*tmp917 + tmp399*tmp918;
+      const Scalar tmp920 = -tmp906;
+      const Scalar tmp921 = tmp406*tmp905 + tmp358*tmp920;
+      const Scalar tmp922 = -tmp912;
+      const Scalar tmp923 = tmp449*tmp911 + tmp379*tmp922;
+      const Scalar tmp924 = -tmp918;
+      const Scalar tmp925 = tmp453*tmp917 + tmp399*tmp924;
+      const Scalar tmp926 = -tmp352/sqrt((tmp351*tmp351) + (tmp352*tmp352) + (tmp353*tmp353));
+      const Scalar tmp927 = -(Scalar(1)/(tmp354*tmp354))*tmp926;
+      const Scalar tmp928 = tmp351*tmp927;
+      const Scalar tmp929 = -tmp355 + tmp352*tmp927;
+      const Scalar tmp930 = tmp353*tmp927;
+      const Scalar tmp931 = tmp362*penalty_damping*(vel(3) - vel(0))*tmp928
+          + tmp362*penalty_damping*(vel(4) - vel(1))*tmp929
+          + tmp362*penalty_damping*(vel(5) - vel(2))*tmp930 + tmp364*tmp926;
+      const Scalar tmp932 = -tmp370/sqrt((tmp368*tmp368) + (tmp370*tmp370) + (tmp372*tmp372));
+      const Scalar tmp933 = -(Scalar(1)/(tmp373*tmp373))*tmp932;
+      const Scalar tmp934 = tmp368*tmp933;
+      const Scalar tmp935 = -tmp374 + tmp370*tmp933;
+      const Scalar tmp936 = tmp372*tmp933;
+      const Scalar tmp937 = tmp382*penalty_damping*(-tmp366 - vel(0))*tmp934
+          + tmp382*penalty_damping*(-tmp376 - vel(1))*tmp935
+          + tmp382*penalty_damping*(-tmp378 - vel(2))*tmp936 + tmp384*tmp932;
+      const Scalar tmp938 = -tmp390/sqrt((tmp388*tmp388) + (tmp390*tmp390) + (tmp392*tmp392));
+      const Scalar tmp939 = -(Scalar(1)/(tmp393*tmp393))*tmp938;
+      const Scalar tmp940 = tmp388*tmp939;
+      const Scalar tmp941 = -tmp394 + tmp390*tmp939;
+      const Scalar tmp942 = tmp392*tmp939;
+      const Scalar tmp943 = tmp401*penalty_damping*(-tmp386 - vel(0))*tmp940
+          + tmp401*penalty_damping*(-tmp396 - vel(1))*tmp941
+          + tmp401*penalty_damping*(-tmp398 - vel(2))*tmp942 + tmp403*tmp938;
+      const Scalar tmp944 = tmp365*tmp930 + tmp358*tmp931 + tmp385*tmp936 + tmp379*tmp937
+          + tmp404*tmp942 + tmp399*tmp943;
+      const Scalar tmp945 = -tmp931;
+      const Scalar tmp946 = tmp406*tmp930 + tmp358*tmp945;
+      const Scalar tmp947 = -tmp937;
+      const Scalar tmp948 = tmp449*tmp936 + tmp379*tmp947;
+      const Scalar tmp949 = -tmp943;
+      const Scalar tmp950 = tmp453*tmp942 + tmp399*tmp949;
+      const Scalar tmp951 = -tmp353/sqrt((tmp351*tmp351) + (tmp352*tmp352) + (tmp353*tmp353));
+      const Scalar tmp952 = -(Scalar(1)/(tmp354*tmp354))*tmp951;
+      const Scalar tmp953 = tmp351*tmp952;
+      const Scalar tmp954 = tmp352*tmp952;
+      const Scalar tmp955 = -tmp355 + tmp353*tmp952;
+      const Scalar tmp956 = tmp362*penalty_damping*(vel(3) - vel(0))*tmp953
+          + tmp362*penalty_damping*(vel(4) - vel(1))*tmp954
+          + tmp362*penalty_damping*(vel(5) - vel(2))*tmp955 + tmp364*tmp951;
+      const Scalar tmp957 = -tmp372/sqrt((tmp368*tmp368) + (tmp370*tmp370) + (tmp372*tmp372));
+      const Scalar tmp958 = -(Scalar(1)/(tmp373*tmp373))*tmp957;
+      const Scalar tmp959 = tmp368*tmp958;
+      const Scalar tmp960 = tmp370*tmp958;
+      const Scalar tmp961 = -tmp374 + tmp372*tmp958;
+      const Scalar tmp962 = tmp382*penalty_damping*(-tmp366 - vel(0))*tmp959
+          + tmp382*penalty_damping*(-tmp376 - vel(1))*tmp960
+          + tmp382*penalty_damping*(-tmp378 - vel(2))*tmp961 + tmp384*tmp957;
+      const Scalar tmp963 = -tmp392/sqrt((tmp388*tmp388) + (tmp390*tmp390) + (tmp392*tmp392));
+      const Scalar tmp964 = -(Scalar(1)/(tmp393*tmp393))*tmp963;
+      const Scalar tmp965 = tmp388*tmp964;
+      const Scalar tmp966 = tmp390*tmp964;
+      const Scalar tmp967 = -tmp394 + tmp392*tmp964;
+      const Scalar tmp968 = tmp401*penalty_damping*(-tmp386 - vel(0))*tmp965
+          + tmp401*penalty_damping*(-tmp396 - vel(1))*tmp966
+          + tmp401*penalty_damping*(-tmp398 - vel(2))*tmp967 + tmp403*tmp963;
+      const Scalar tmp969 = tmp365*tmp955 + tmp358*tmp956 + tmp385*tmp961 + tmp379*tmp962
+          + tmp404*tmp967 + tmp399*tmp968;
+      const Scalar tmp970 = -tmp956;
+      const Scalar tmp971 = tmp406*tmp955 + tmp358*tmp970;
+      const Scalar tmp972 = -tmp962;
+      const Scalar tmp973 = tmp449*tmp961 + tmp379*tmp972;
+      const Scalar tmp974 = -tmp968;
+      const Scalar tmp975 = tmp453*tmp967 + tmp399*tmp974;
+      const Scalar tmp976 = tmp351/sqrt((tmp351*tmp351) + (tmp352*tmp352) + (tmp353*tmp353));
+      const Scalar tmp977 = -(Scalar(1)/(tmp354*tmp354))*tmp976;
+      const Scalar tmp978 = tmp355 + tmp351*tmp977;
+      const Scalar tmp979 = tmp352*tmp977;
+      const Scalar tmp980 = tmp353*tmp977;
+      const Scalar tmp981 = tmp362*penalty_damping*(vel(3) - vel(0))*tmp978
+          + tmp362*penalty_damping*(vel(4) - vel(1))*tmp979
+          + tmp362*penalty_damping*(vel(5) - vel(2))*tmp980 + tmp364*tmp976;
+      const Scalar tmp982 = tmp365*tmp980 + tmp358*tmp981;
+      const Scalar tmp983 = -tmp981;
+      const Scalar tmp984 = -tmp407/sqrt((tmp407*tmp407) + (tmp408*tmp408) + (tmp409*tmp409));
+      const Scalar tmp985 = -(Scalar(1)/(tmp410*tmp410))*tmp984;
+      const Scalar tmp986 = -tmp411 + tmp407*tmp985;
+      const Scalar tmp987 = tmp408*tmp985;
+      const Scalar tmp988 = tmp409*tmp985;
+      const Scalar tmp989 = tmp418*penalty_damping*(-tmp366 - vel(3))*tmp986
+          + tmp418*penalty_damping*(-tmp376 - vel(4))*tmp987
+          + tmp418*penalty_damping*(-tmp378 - vel(5))*tmp988 + tmp420*tmp984;
+      const Scalar tmp990 = -tmp422/sqrt((tmp422*tmp422) + (tmp423*tmp423) + (tmp424*tmp424));
+      const Scalar tmp991 = -(Scalar(1)/(tmp425*tmp425))*tmp990;
+      const Scalar tmp992 = -tmp426 + tmp422*tmp991;
+      const Scalar tmp993 = tmp423*tmp991;
+      const Scalar tmp994 = tmp424*tmp991;
+      const Scalar tmp995 = tmp431*penalty_damping*(-tmp386 - vel(3))*tmp992
+          + tmp431*penalty_damping*(-tmp396 - vel(4))*tmp993
+          + tmp431*penalty_damping*(-tmp398 - vel(5))*tmp994 + tmp433*tmp990;
+      const Scalar tmp996 = tmp406*tmp980 + tmp358*tmp983 + tmp421*tmp988 + tmp414*tmp989
+          + tmp434*tmp994 + tmp429*tmp995;
+      const Scalar tmp997 = -tmp989;
+      const Scalar tmp998 = tmp450*tmp988 + tmp414*tmp997;
+      const Scalar tmp999 = -tmp995;
+      const Scalar tmp1000 = tmp454*tmp994 + tmp429*tmp999;
+      const Scalar tmp1001 = tmp352/sqrt((tmp351*tmp351) + (tmp352*tmp352) + (tmp353*tmp353));
+      const Scalar tmp1002 = -(Scalar(1)/(tmp354*tmp354))*tmp1001;
+      const Scalar tmp1003 = tmp351*tmp1002;
+      const Scalar tmp1004 = tmp355 + tmp352*tmp1002;
+      const Scalar tmp1005 = tmp353*tmp1002;
+      const Scalar tmp1006 = tmp362*penalty_damping*(vel(3) - vel(0))*tmp1003
+          + tmp362*penalty_damping*(vel(4) - vel(1))*tmp1004
+          + tmp362*penalty_damping*(vel(5) - vel(2))*tmp1005 + tmp364*tmp1001;
+      const Scalar tmp1007 = tmp365*tmp1005 + tmp358*tmp1006;
+      const Scalar tmp1008 = -tmp1006;
+      const Scalar tmp1009 = -tmp408/sqrt((tmp407*tmp407) + (tmp408*tmp408) + (tmp409*tmp409));
+      const Scalar tmp1010 = -(Scalar(1)/(tmp410*tmp410))*tmp1009;
+      const Scalar tmp1011 = tmp407*tmp1010;
+      const Scalar tmp1012 = -tmp411 + tmp408*tmp1010;
+      const Scalar tmp1013 = tmp409*tmp1010;
+      const Scalar tmp1014 = tmp418*penalty_damping*(-tmp366 - vel(3))*tmp1011
+          + tmp418*penalty_damping*(-tmp376 - vel(4))*tmp1012
+          + tmp418*penalty_damping*(-tmp378 - vel(5))*tmp1013 + tmp420*tmp1009;
+      const Scalar tmp1015 = -tmp423/sqrt((tmp422*tmp422) + (tmp423*tmp423) + (tmp424*tmp424));
+      const Scalar tmp1016 = -(Scalar(1)/(tmp425*tmp425))*tmp1015;
+      const Scalar tmp1017 = tmp422*tmp1016;
+      const Scalar tmp1018 = -tmp426 + tmp423*tmp1016;
+      const Scalar tmp1019 = tmp424*tmp1016;
+      const Scalar tmp1020 = tmp431*penalty_damping*(-tmp386 - vel(3))*tmp1017
+          + tmp431*penalty_damping*(-tmp396 - vel(4))*tmp1018
+          + tmp431*penalty_damping*(-tmp398 - vel(5))*tmp1019 + tmp433*tmp1015;
+      const Scalar tmp1021 = tmp406*tmp1005 + tmp358*tmp1008 + tmp421*tmp1013 + tmp414*tmp1014
+          + tmp434*tmp1019 + tmp429*tmp1020;
+      const Scalar tmp1022 = -tmp1014;
+      const Scalar tmp1023 = tmp450*tmp1013 + tmp414*tmp1022;
+      const Scalar tmp1024 = -tmp1020;
+      const Scalar tmp1025 = tmp454*tmp1019 + tmp429*tmp1024;
+      const Scalar tmp1026 = tmp353/sqrt((tmp351*tmp351) + (tmp352*tmp352) + (tmp353*tmp353));
+      const Scalar tmp1027 = -(Scalar(1)/(tmp354*tmp354))*tmp1026;
+      const Scalar tmp1028 = tmp351*tmp1027;
+      const Scalar tmp1029 = tmp352*tmp1027;
+      const Scalar tmp1030 = tmp355 + tmp353*tmp1027;
+      const Scalar tmp1031 = tmp362*penalty_damping*(vel(3) - vel(0))*tmp1028
+          + tmp362*penalty_damping*(vel(4) - vel(1))*tmp1029
+          + tmp362*penalty_damping*(vel(5) - vel(2))*tmp1030 + tmp364*tmp1026;
+      const Scalar tmp1032 = tmp365*tmp1030 + tmp358*tmp1031;
+      const Scalar tmp1033 = -tmp1031;
+      const Scalar tmp1034 = -tmp409/sqrt((tmp407*tmp407) + (tmp408*tmp408) + (tmp409*tmp409));
+      const Scalar tmp1035 = -(Scalar(1)/(tmp410*tmp410))*tmp1034;
+      const Scalar tmp1036 = tmp407*tmp1035;
+      const Scalar tmp1037 = tmp408*tmp1035;
+      const Scalar tmp1038 = -tmp411 + tmp409*tmp1035;
+      const Scalar tmp1039 = tmp418*penalty_damping*(-tmp366 - vel(3))*tmp1036
+          + tmp418*penalty_damping*(-tmp376 - vel(4))*tmp1037
+          + tmp418*penalty_damping*(-tmp378 - vel(5))*tmp1038 + tmp420*tmp1034;
+      const Scalar tmp1040 = -tmp424/sqrt((tmp422*tmp422) + (tmp423*tmp423) + (tmp424*tmp424));
+      const Scalar tmp1041 = -(Scalar(1)/(tmp425*tmp425))*tmp1040;
+      const Scalar tmp1042 = tmp422*tmp1041;
+      const Scalar tmp1043 = tmp423*tmp1041;
+      const Scalar tmp1044 = -tmp426 + tmp424*tmp1041;
+      const Scalar tmp1045 = tmp431*penalty_damping*(-tmp386 - vel(3))*tmp1042
+          + tmp431*penalty_damping*(-tmp396 - vel(4))*tmp1043
+          + tmp431*penalty_damping*(-tmp398 - vel(5))*tmp1044 + tmp433*tmp1040;
+      const Scalar tmp1046 = tmp406*tmp1030 + tmp358*tmp1033 + tmp421*tmp1038 + tmp414*tmp1039
+          + tmp434*tmp1044 + tmp429*tmp1045;
+      const Scalar tmp1047 = -tmp1039;
+      const Scalar tmp1048 = tmp450*tmp1038 + tmp414*tmp1047;
+      const Scalar tmp1049 = -tmp1045;
+      const Scalar tmp1050 = tmp454*tmp1044 + tmp429*tmp1049;
+      const Scalar tmp1051 = tmp368/sqrt((tmp368*tmp368) + (tmp370*tmp370) + (tmp372*tmp372));
+      const Scalar tmp1052 = -(Scalar(1)/(tmp373*tmp373))*tmp1051;
+      const Scalar tmp1053 = tmp374 + tmp368*tmp1052;
+      const Scalar tmp1054 = tmp370*tmp1052;
+      const Scalar tmp1055 = tmp372*tmp1052;
+      const Scalar tmp1056 = tmp382*penalty_damping*(-tmp366 - vel(0))*tmp1053
+          + tmp382*penalty_damping*(-tmp376 - vel(1))*tmp1054
+          + tmp382*penalty_damping*(-tmp378 - vel(2))*tmp1055 + tmp384*tmp1051;
+      const Scalar tmp1057 = tmp385*tmp1055 + tmp379*tmp1056;
+      const Scalar tmp1058 = tmp407/sqrt((tmp407*tmp407) + (tmp408*tmp408) + (tmp409*tmp409));
+      const Scalar tmp1059 = -(Scalar(1)/(tmp410*tmp410))*tmp1058;
+      const Scalar tmp1060 = tmp411 + tmp407*tmp1059;
+      const Scalar tmp1061 = tmp408*tmp1059;
+      const Scalar tmp1062 = tmp409*tmp1059;
+      const Scalar tmp1063 = tmp418*penalty_damping*(-tmp366 - vel(3))*tmp1060
+          + tmp418*penalty_damping*(-tmp376 - vel(4))*tmp1061
+          + tmp418*penalty_damping*(-tmp378 - vel(5))*tmp1062 + tmp420*tmp1058;
+      const Scalar tmp1064 = tmp421*tmp1062 + tmp414*tmp1063;
+      const Scalar tmp1065 = -tmp436/sqrt((tmp436*tmp436) + (tmp437*tmp437) + (tmp438*tmp438));
+      const Scalar tmp1066 = -(Scalar(1)/(tmp439*tmp439))*tmp1065;
+      const Scalar tmp1067 = -tmp440 + tmp436*tmp1066;
+      const Scalar tmp1068 = tmp437*tmp1066;
+      const Scalar tmp1069 = tmp438*tmp1066;
+      const Scalar tmp1070 = tmp445*penalty_damping*(-tmp386 - vel(6))*tmp1067
+          + tmp445*penalty_damping*(-tmp396 - vel(7))*tmp1068
+          + tmp445*penalty_damping*(-tmp398 - vel(8))*tmp1069 + tmp447*tmp1065;
+      const Scalar tmp1071 = -tmp1056;
+      const Scalar tmp1072 = -tmp1063;
+      const Scalar tmp1073 = tmp449*tmp1055 + tmp450*tmp1062 + tmp448*tmp1069 + tmp443*tmp1070
+          + tmp379*tmp1071 + tmp414*tmp1072;
+      const Scalar tmp1074 = -tmp1070;
+      const Scalar tmp1075 = tmp452*tmp1069 + tmp443*tmp1074;
+      const Scalar tmp1076 = tmp370/sqrt((tmp368*tmp368) + (tmp370*tmp370) + (tmp372*tmp372));
+      const Scalar tmp1077 = -(Scalar(1)/(tmp373*tmp373))*tmp1076;
+      const Scalar tmp1078 = tmp368*tmp1077;
+      const Scalar tmp1079 = tmp374 + tmp370*tmp1077;
+      const Scalar tmp1080 = tmp372*tmp1077;
+      const Scalar tmp1081 = tmp382*penalty_damping*(-tmp366 - vel(0))*tmp1078
+          + tmp382*penalty_damping*(-tmp376 - vel(1))*tmp1079
+          + tmp382*penalty_damping*(-tmp378 - vel(2))*tmp1080 + tmp384*tmp1076;
+      const Scalar tmp1082 = tmp385*tmp1080 + tmp379*tmp1081;
+      const Scalar tmp1083 = tmp408/sqrt((tmp407*tmp407) + (tmp408*tmp408) + (tmp409*tmp409));
+      const Scalar tmp1084 = -(Scalar(1)/(tmp410*tmp410))*tmp1083;
+      const Scalar tmp1085 = tmp407*tmp1084;
+      const Scalar tmp1086 = tmp411 + tmp408*tmp1084;
+      const Scalar tmp1087 = tmp409*tmp1084;
+      const Scalar tmp1088 = tmp418*penalty_damping*(-tmp366 - vel(3))*tmp1085
+          + tmp418*penalty_damping*(-tmp376 - vel(4))*tmp1086
+          + tmp418*penalty_damping*(-tmp378 - vel(5))*tmp1087 + tmp420*tmp1083;
+      const Scalar tmp1089 = tmp421*tmp1087 + tmp414*tmp1088;
+      const Scalar tmp1090 = -tmp437/sqrt((tmp436*tmp436) + (tmp437*tmp437) + (tmp438*tmp438));
+      const Scalar tmp1091 = -(Scalar(1)/(tmp439*tmp439))*tmp1090;
+      const Scalar tmp1092 = tmp436*tmp1091;
+      const Scalar tmp1093 = -tmp440 + tmp437*tmp1091;
+      const Scalar tmp1094 = tmp438*tmp1091;
+      const Scalar tmp1095 = tmp445*penalty_damping*(-tmp386 - vel(6))*tmp1092
+          + tmp445*penalty_damping*(-tmp396 - vel(7))*tmp1093
+          + tmp445*penalty_damping*(-tmp398 - vel(8))*tmp1094 + tmp447*tmp1090;
+      const Scalar tmp1096 = -tmp1081;
+      const Scalar tmp1097 = -tmp1088;
+      const Scalar tmp1098 = tmp449*tmp1080 + tmp450*tmp1087 + tmp448*tmp1094 + tmp443*tmp1095
+          + tmp379*tmp1096 + tmp414*tmp1097;
+      const Scalar tmp1099 = -tmp1095;
+      const Scalar tmp1100 = tmp452*tmp1094 + tmp443*tmp1099;
+      const Scalar tmp1101 = tmp372/sqrt((tmp368*tmp368) + (tmp370*tmp370) + (tmp372*tmp372));
+      const Scalar tmp1102 = -(Scalar(1)/(tmp373*tmp373))*tmp1101;
+      const Scalar tmp1103 = tmp368*tmp1102;
+      const Scalar tmp1104 = tmp370*tmp1102;
+      const Scalar tmp1105 = tmp374 + tmp372*tmp1102;
+      const Scalar tmp1106 = tmp382*penalty_damping*(-tmp366 - vel(0))*tmp1103
+          + tmp382*penalty_damping*(-tmp376 - vel(1))*tmp1104
+          + tmp382*penalty_damping*(-tmp378 - vel(2))*tmp1105 + tmp384*tmp1101;
+      const Scalar tmp1107 = tmp385*tmp1105 + tmp379*tmp1106;
+      const Scalar tmp1108 = tmp409/sqrt((tmp407*tmp407) + (tmp408*tmp408) + (tmp409*tmp409));
+      const Scalar tmp1109 = -(Scalar(1)/(tmp410*tmp410))*tmp1108;
+      const Scalar tmp1110 = tmp407*tmp1109;
+      const Scalar tmp1111 = tmp408*tmp1109;
+      const Scalar tmp1112 = tmp411 + tmp409*tmp1109;
+      const Scalar tmp1113 = tmp418*penalty_damping*(-tmp366 - vel(3))*tmp1110
+          + tmp418*penalty_damping*(-tmp376 - vel(4))*tmp1111
+          + tmp418*penalty_damping*(-tmp378 - vel(5))*tmp1112 + tmp420*tmp1108;
+      const Scalar tmp1114 = tmp421*tmp1112 + tmp414*tmp1113;
+      const Scalar tmp1115 = -tmp438/sqrt((tmp436*tmp436) + (tmp437*tmp437) + (tmp438*tmp438));
+      const Scalar tmp1116 = -(Scalar(1)/(tmp439*tmp439))*tmp1115;
+      const Scalar tmp1117 = tmp436*tmp1116;
+      const Scalar tmp1118 = tmp437*tmp1116;
+      const Scalar tmp1119 = -tmp440 + tmp438*tmp1116;
+      const Scalar tmp1120 = tmp445*penalty_damping*(-tmp386 - vel(6))*tmp1117
+          + tmp445*penalty_damping*(-tmp396 - vel(7))*tmp1118
+          + tmp445*penalty_damping*(-tmp398 - vel(8))*tmp1119 + tmp447*tmp1115;
+      const Scalar tmp1121 = -tmp1106;
+      const Scalar tmp1122 = -tmp1113;
+      const Scalar tmp1123 = tmp449*tmp1105 + tmp450*tmp1112 + tmp448*tmp1119 + tmp443*tmp1120
+          + tmp379*tmp1121 + tmp414*tmp1122;
+      const Scalar tmp1124 = -tmp1120;
+      const Scalar tmp1125 = tmp452*tmp1119 + tmp443*tmp1124;
+      const Scalar tmp1126 = tmp388/sqrt((tmp388*tmp388) + (tmp390*tmp390) + (tmp392*tmp392));
+      const Scalar tmp1127 = -(Scalar(1)/(tmp393*tmp393))*tmp1126;
+      const Scalar tmp1128 = tmp394 + tmp388*tmp1127;
+      const Scalar tmp1129 = tmp390*tmp1127;
+      const Scalar tmp1130 = tmp392*tmp1127;
+      const Scalar tmp1131 = tmp401*penalty_damping*(-tmp386 - vel(0))*tmp1128
+          + tmp401*penalty_damping*(-tmp396 - vel(1))*tmp1129
+          + tmp401*penalty_damping*(-tmp398 - vel(2))*tmp1130 + tmp403*tmp1126;
+      const Scalar tmp1132 = tmp404*tmp1130 + tmp399*tmp1131;
+      const Scalar tmp1133 = tmp422/sqrt((tmp422*tmp422) + (tmp423*tmp423) + (tmp424*tmp424));
+      const Scalar tmp1134 = -(Scalar(1)/(tmp425*tmp425))*tmp1133;
+      const Scalar tmp1135 = tmp426 + tmp422*tmp1134;
+      const Scalar tmp1136 = tmp423*tmp1134;
+      const Scalar tmp1137 = tmp424*tmp1134;
+      const Scalar tmp1138 = tmp431*penalty_damping*(-tmp386 - vel(3))*tmp1135
+          + tmp431*penalty_damping*(-tmp396 - vel(4))*tmp1136
+          + tmp431*penalty_damping*(-tmp398 - vel(5))*tmp1137 + tmp433*tmp1133;
+      const Scalar tmp1139 = tmp434*tmp1137 + tmp429*tmp1138;
+      const Scalar tmp1140 = tmp436/sqrt((tmp436*tmp436) + (tmp437*tmp437) + (tmp438*tmp438));
+      const Scalar tmp1141 = -(Scalar(1)/(tmp439*tmp439))*tmp1140;
+      const Scalar tmp1142 = tmp440 + tmp436*tmp1141;
+      const Scalar tmp1143 = tmp437*tmp1141;
+      const Scalar tmp1144 = tmp438*tmp1141;
+      const Scalar tmp1145 = tmp445*penalty_damping*(-tmp386 - vel(6))*tmp1142
+          + tmp445*penalty_damping*(-tmp396 - vel(7))*tmp1143
+          + tmp445*penalty_damping*(-tmp398 - vel(8))*tmp1144 + tmp447*tmp1140;
+      const Scalar tmp1146 = tmp448*tmp1144 + tmp443*tmp1145;
+      const Scalar tmp1147 = -tmp1145;
+      const Scalar tmp1148 = -tmp1131;
+      const Scalar tmp1149 = -tmp1138;
+      const Scalar tmp1150 = tmp453*tmp1130 + tmp454*tmp1137 + tmp452*tmp1144 + tmp443*tmp1147
+          + tmp399*tmp1148 + tmp429*tmp1149;
+      const Scalar tmp1151 = tmp390/sqrt((tmp388*tmp388) + (tmp390*tmp390) + (tmp392*tmp392));
+      const Scalar tmp1152 = -(Scalar(1)/(tmp393*tmp393))*tmp1151;
+      const Scalar tmp1153 = tmp388*tmp1152;
+      const Scalar tmp1154 = tmp394 + tmp390*tmp1152;
+      const Scalar tmp1155 = tmp392*tmp1152;
+      const Scalar tmp1156 = tmp401*penalty_damping*(-tmp386 - vel(0))*tmp1153
+          + tmp401*penalty_damping*(-tmp396 - vel(1))*tmp1154
+          + tmp401*penalty_damping*(-tmp398 - vel(2))*tmp1155 + tmp403*tmp1151;
+      const Scalar tmp1157 = tmp404*tmp1155 + tmp399*tmp1156;
+      const Scalar tmp1158 = tmp423/sqrt((tmp422*tmp422) + (tmp423*tmp423) + (tmp424*tmp424));
+      const Scalar tmp1159 = -(Scalar(1)/(tmp425*tmp425))*tmp1158;
+      const Scalar tmp1160 = tmp422*tmp1159;
+      const Scalar tmp1161 = tmp426 + tmp423*tmp1159;
+      const Scalar tmp1162 = tmp424*tmp1159;
+      const Scalar tmp1163 = tmp431*penalty_damping*(-tmp386 - vel(3))*tmp1160
+          + tmp431*penalty_damping*(-tmp396 - vel(4))*tmp1161
+          + tmp431*penalty_damping*(-tmp398 - vel(5))*tmp1162 + tmp433*tmp1158;
+      const Scalar tmp1164 = tmp434*tmp1162 + tmp429*tmp1163;
+      const Scalar tmp1165 = tmp437/sqrt((tmp436*tmp436) + (tmp437*tmp437) + (tmp438*tmp438));
+      const Scalar tmp1166 = -(Scalar(1)/(tmp439*tmp439))*tmp1165;
+      const Scalar tmp1167 = tmp436*tmp1166;
+      const Scalar tmp1168 = tmp440 + tmp437*tmp1166;
+      const Scalar tmp1169 = tmp438*tmp1166;
+      const Scalar tmp1170 = tmp445*penalty_damping*(-tmp386 - vel(6))*tmp1167
+          + tmp445*penalty_damping*(-tmp396 - vel(7))*tmp1168
+          + tmp445*penalty_damping*(-tmp398 - vel(8))*tmp1169 + tmp447*tmp1165;
+      const Scalar tmp1171 = tmp448*tmp1169 + tmp443*tmp1170;
+      const Scalar tmp1172 = -tmp1170;
+      const Scalar tmp1173 = -tmp1156;
+      const Scalar tmp1174 = -tmp1163;
+      const Scalar tmp1175 = tmp453*tmp1155 + tmp454*tmp1162 + tmp452*tmp1169 + tmp443*tmp1172
+          + tmp399*tmp1173 + tmp429*tmp1174;
+      const Scalar tmp1176 = tmp392/sqrt((tmp388*tmp388) + (tmp390*tmp390) + (tmp392*tmp392));
+      const Scalar tmp1177 = -(Scalar(1)/(tmp393*tmp393))*tmp1176;
+      const Scalar tmp1178 = tmp388*tmp1177;
+      const Scalar tmp1179 = tmp390*tmp1177;
+      const Scalar tmp1180 = tmp394 + tmp392*tmp1177;
+      const Scalar tmp1181 = tmp401*penalty_damping*(-tmp386 - vel(0))*tmp1178
+          + tmp401*penalty_damping*(-tmp396 - vel(1))*tmp1179
+          + tmp401*penalty_damping*(-tmp398 - vel(2))*tmp1180 + tmp403*tmp1176;
+      const Scalar tmp1182 = tmp404*tmp1180 + tmp399*tmp1181;
+      const Scalar tmp1183 = tmp424/sqrt((tmp422*tmp422) + (tmp423*tmp423) + (tmp424*tmp424));
+      const Scalar tmp1184 = -(Scalar(1)/(tmp425*tmp425))*tmp1183;
+      const Scalar tmp1185 = tmp422*tmp1184;
+      const Scalar tmp1186 = tmp423*tmp1184;
+      const Scalar tmp1187 = tmp426 + tmp424*tmp1184;
+      const Scalar tmp1188 = tmp431*penalty_damping*(-tmp386 - vel(3))*tmp1185
+          + tmp431*penalty_damping*(-tmp396 - vel(4))*tmp1186
+          + tmp431*penalty_damping*(-tmp398 - vel(5))*tmp1187 + tmp433*tmp1183;
+      const Scalar tmp1189 = tmp434*tmp1187 + tmp429*tmp1188;
+      const Scalar tmp1190 = tmp438/sqrt((tmp436*tmp436) + (tmp437*tmp437) + (tmp438*tmp438));
+      const Scalar tmp1191 = -(Scalar(1)/(tmp439*tmp439))*tmp1190;
+      const Scalar tmp1192 = tmp436*tmp1191;
+      const Scalar tmp1193 = tmp437*tmp1191;
+      const Scalar tmp1194 = tmp440 + tmp438*tmp1191;
+      const Scalar tmp1195 = tmp445*penalty_damping*(-tmp386 - vel(6))*tmp1192
+          + tmp445*penalty_damping*(-tmp396 - vel(7))*tmp1193
+          + tmp445*penalty_damping*(-tmp398 - vel(8))*tmp1194 + tmp447*tmp1190;
+      const Scalar tmp1196 = tmp448*tmp1194 + tmp443*tmp1195;
+      const Scalar tmp1197 = -tmp1195;
+      const Scalar tmp1198 = -tmp1181;
+      const Scalar tmp1199 = -tmp1188;
+      const Scalar tmp1200 = tmp453*tmp1180 + tmp454*tmp1187 + tmp452*tmp1194 + tmp443*tmp1197
+          + tmp399*tmp1198 + tmp429*tmp1199;
       std::array<Scalar, 144> result;
-      result[0] = tmp210*tmp739 + tmp207*tmp742 + tmp226*tmp745 + tmp221*tmp748 + tmp242*tmp751
-          + tmp237*tmp754;
-      result[1] = tmp210*tmp764 + tmp207*tmp767 + tmp226*tmp770 + tmp221*tmp773 + tmp242*tmp776
-          + tmp237*tmp779;
-      result[2] = tmp210*tmp789 + tmp207*tmp792 + tmp226*tmp795 + tmp221*tmp798 + tmp242*tmp801
-          + tmp237*tmp804;
-      result[3] = tmp210*tmp814 + tmp207*tmp817;
-      result[4] = tmp210*tmp839 + tmp207*tmp842;
-      result[5] = tmp210*tmp864 + tmp207*tmp867;
-      result[6] = tmp226*tmp889 + tmp221*tmp892;
-      result[7] = tmp226*tmp914 + tmp221*tmp917;
-      result[8] = tmp226*tmp939 + tmp221*tmp942;
-      result[9] = tmp242*tmp964 + tmp237*tmp967;
-      result[10] = tmp242*tmp989 + tmp237*tmp992;
-      result[11] = tmp242*tmp1014 + tmp237*tmp1017;
-      result[12] = tmp210*tmp740 + tmp208*tmp742 + tmp226*tmp746 + tmp223*tmp748 + tmp242*tmp752
-          + tmp239*tmp754;
-      result[13] = tmp210*tmp765 + tmp208*tmp767 + tmp226*tmp771 + tmp223*tmp773 + tmp242*tmp777
-          + tmp239*tmp779;
-      result[14] = tmp210*tmp790 + tmp208*tmp792 + tmp226*tmp796 + tmp223*tmp798 + tmp242*tmp802
-          + tmp239*tmp804;
-      result[15] = tmp210*tmp815 + tmp208*tmp817;
-      result[16] = tmp210*tmp840 + tmp208*tmp842;
-      result[17] = tmp210*tmp865 + tmp208*tmp867;
-      result[18] = tmp226*tmp890 + tmp223*tmp892;
-      result[19] = tmp226*tmp915 + tmp223*tmp917;
-      result[20] = tmp226*tmp940 + tmp223*tmp942;
-      result[21] = tmp242*tmp965 + tmp239*tmp967;
-      result[22] = tmp242*tmp990 + tmp239*tmp992;
-      result[23] = tmp242*tmp1015 + tmp239*tmp1017;
-      result[24] = tmp755;
-      result[25] = tmp780;
-      result[26] = tmp805;
-      result[27] = tmp818;
-      result[28] = tmp843;
-      result[29] = tmp868;
-      result[30] = tmp893;
-      result[31] = tmp918;
-      result[32] = tmp943;
-      result[33] = tmp968;
-      result[34] = tmp993;
-      result[35] = tmp1018;
-      result[36] = tmp244*tmp739 + tmp207*tmp756;
-      result[37] = tmp244*tmp764 + tmp207*tmp781;
-      result[38] = tmp244*tmp789 + tmp207*tmp806;
-      result[39] = tmp244*tmp814 + tmp207*tmp819 + tmp254*tmp822 + tmp251*tmp825 + tmp264*tmp828
-          + tmp261*tmp831;
-      result[40] = tmp244*tmp839 + tmp207*tmp844 + tmp254*tmp847 + tmp251*tmp850 + tmp264*tmp853
-          + tmp261*tmp856;
-      result[41] = tmp244*tmp864 + tmp207*tmp869 + tmp254*tmp872 + tmp251*tmp875 + tmp264*tmp878
-          + tmp261*tmp881;
-      result[42] = tmp254*tmp896 + tmp251*tmp899;
-      result[43] = tmp254*tmp921 + tmp251*tmp924;
-      result[44] = tmp254*tmp946 + tmp251*tmp949;
-      result[45] = tmp264*tmp971 + tmp261*tmp974;
-      result[46] = tmp264*tmp996 + tmp261*tmp999;
-      result[47] = tmp264*tmp1021 + tmp261*tmp1024;
-      result[48] = tmp244*tmp740 + tmp208*tmp756;
-      result[49] = tmp244*tmp765 + tmp208*tmp781;
-      result[50] = tmp244*tmp790 + tmp208*tmp806;
-      result[51] = tmp244*tmp815 + tmp208*tmp819 + tmp254*tmp823 + tmp252*tmp825 + tmp264*tmp829
-          + tmp262*tmp831;
-      result[52] = tmp244*tmp840 + tmp208*tmp844 + tmp254*tmp848 + tmp252*tmp850 + tmp264*tmp854
-          + tmp262*tmp856;
-      result[53] = tmp244*tmp865 + tmp208*tmp869 + tmp254*tmp873 + tmp252*tmp875 + tmp264*tmp879
-          + tmp262*tmp881;
-      result[54] = tmp254*tmp897 + tmp252*tmp899;
-      result[55] = tmp254*tmp922 + tmp252*tmp924;
-      result[56] = tmp254*tmp947 + tmp252*tmp949;
-      result[57] = tmp264*tmp972 + tmp262*tmp974;
-      result[58] = tmp264*tmp997 + tmp262*tmp999;
-      result[59] = tmp264*tmp1022 + tmp262*tmp1024;
-      result[60] = tmp757;
-      result[61] = tmp782;
-      result[62] = tmp807;
-      result[63] = tmp832;
-      result[64] = tmp857;
-      result[65] = tmp882;
-      result[66] = tmp900;
-      result[67] = tmp925;
-      result[68] = tmp950;
-      result[69] = tmp975;
-      result[70] = tmp1000;
-      result[71] = tmp1025;
-      result[72] = tmp266*tmp745 + tmp221*tmp758;
-      result[73] = tmp266*tmp770 + tmp221*tmp783;
-      result[74] = tmp266*tmp795 + tmp221*tmp808;
-      result[75] = tmp267*tmp822 + tmp251*tmp833;
-      result[76] = tmp267*tmp847 + tmp251*tmp858;
-      result[77] = tmp267*tmp872 + tmp251*tmp883;
-      result[78] = tmp266*tmp889 + tmp267*tmp896 + tmp221*tmp901 + tmp251*tmp902 + tmp277*tmp905
-          + tmp274*tmp908;
-      result[79] = tmp266*tmp914 + tmp267*tmp921 + tmp221*tmp926 + tmp251*tmp927 + tmp277*tmp930
-          + tmp274*tmp933;
-      result[80] = tmp266*tmp939 + tmp267*tmp946 + tmp221*tmp951 + tmp251*tmp952 + tmp277*tmp955
-          + tmp274*tmp958;
-      result[81] = tmp277*tmp978 + tmp274*tmp981;
-      result[82] = tmp277*tmp1003 + tmp274*tmp1006;
-      result[83] = tmp277*tmp1028 + tmp274*tmp1031;
-      result[84] = tmp266*tmp746 + tmp223*tmp758;
-      result[85] = tmp266*tmp771 + tmp223*tmp783;
-      result[86] = tmp266*tmp796 + tmp223*tmp808;
-      result[87] = tmp267*tmp823 + tmp252*tmp833;
-      result[88] = tmp267*tmp848 + tmp252*tmp858;
-      result[89] = tmp267*tmp873 + tmp252*tmp883;
-      result[90] = tmp266*tmp890 + tmp267*tmp897 + tmp223*tmp901 + tmp252*tmp902 + tmp277*tmp906
-          + tmp275*tmp908;
-      result[91] = tmp266*tmp915 + tmp267*tmp922 + tmp223*tmp926 + tmp252*tmp927 + tmp277*tmp931
-          + tmp275*tmp933;
-      result[92] = tmp266*tmp940 + tmp267*tmp947 + tmp223*tmp951 + tmp252*tmp952 + tmp277*tmp956
-          + tmp275*tmp958;
-      result[93] = tmp277*tmp979 + tmp275*tmp981;
-      result[94] = tmp277*tmp1004 + tmp275*tmp1006;
-      result[95] = tmp277*tmp1029 + tmp275*tmp1031;
-      result[96] = tmp759;
-      result[97] = tmp784;
-      result[98] = tmp809;
-      result[99] = tmp834;
-      result[100] = tmp859;
-      result[101] = tmp884;
-      result[102] = tmp909;
-      result[103] = tmp934;
-      result[104] = tmp959;
-      result[105] = tmp982;
-      result[106] = tmp1007;
-      result[107] = tmp1032;
-      result[108] = tmp279*tmp751 + tmp237*tmp760;
-      result[109] = tmp279*tmp776 + tmp237*tmp785;
-      result[110] = tmp279*tmp801 + tmp237*tmp810;
-      result[111] = tmp280*tmp828 + tmp261*tmp835;
-      result[112] = tmp280*tmp853 + tmp261*tmp860;
-      result[113] = tmp280*tmp878 + tmp261*tmp885;
-      result[114] = tmp281*tmp905 + tmp274*tmp910;
-      result[115] = tmp281*tmp930 + tmp274*tmp935;
-      result[116] = tmp281*tmp955 + tmp274*tmp960;
-      result[117] = tmp279*tmp964 + tmp280*tmp971 + tmp281*tmp978 + tmp237*tmp983 + tmp261*tmp984
-          + tmp274*tmp985;
-      result[118] = tmp279*tmp989 + tmp280*tmp996 + tmp281*tmp1003 + tmp237*tmp1008 + tmp261*tmp1009
-          + tmp274*tmp1010;
-      result[119] = tmp279*tmp1014 + tmp280*tmp1021 + tmp281*tmp1028 + tmp237*tmp1033
-          + tmp261*tmp1034 + tmp274*tmp1035;
-      result[120] = tmp279*tmp752 + tmp239*tmp760;
-      result[121] = tmp279*tmp777 + tmp239*tmp785;
-      result[122] = tmp279*tmp802 + tmp239*tmp810;
-      result[123] = tmp280*tmp829 + tmp262*tmp835;
-      result[124] = tmp280*tmp854 + tmp262*tmp860;
-      result[125] = tmp280*tmp879 + tmp262*tmp885;
-      result[126] = tmp281*tmp906 + tmp275*tmp910;
-      result[127] = tmp281*tmp931 + tmp275*tmp935;
-      result[128] = tmp281*tmp956 + tmp275*tmp960;
-      result[129] = tmp279*tmp965 + tmp280*tmp972 + tmp281*tmp979 + tmp239*tmp983 + tmp262*tmp984
-          + tmp275*tmp985;
-      result[130] = tmp279*tmp990 + tmp280*tmp997 + tmp281*tmp1004 + tmp239*tmp1008 + tmp262*tmp1009
-          + tmp275*tmp1010;
-      result[131] = tmp279*tmp1015 + tmp280*tmp1022 + tmp281*tmp1029 + tmp239*tmp1033
-          + tmp262*tmp1034 + tmp275*tmp1035;
-      result[132] = tmp761;
-      result[133] = tmp786;
-      result[134] = tmp811;
-      result[135] = tmp836;
-      result[136] = tmp861;
-      result[137] = tmp886;
-      result[138] = tmp911;
-      result[139] = tmp936;
-      result[140] = tmp961;
-      result[141] = tmp986;
-      result[142] = tmp1011;
-      result[143] = tmp1036;
+      result[0] = tmp365*tmp903 + tmp356*tmp906 + tmp385*tmp909 + tmp375*tmp912 + tmp404*tmp915
+          + tmp395*tmp918;
+      result[1] = tmp365*tmp928 + tmp356*tmp931 + tmp385*tmp934 + tmp375*tmp937 + tmp404*tmp940
+          + tmp395*tmp943;
+      result[2] = tmp365*tmp953 + tmp356*tmp956 + tmp385*tmp959 + tmp375*tmp962 + tmp404*tmp965
+          + tmp395*tmp968;
+      result[3] = tmp365*tmp978 + tmp356*tmp981;
+      result[4] = tmp365*tmp1003 + tmp356*tmp1006;
+      result[5] = tmp365*tmp1028 + tmp356*tmp1031;
+      result[6] = tmp385*tmp1053 + tmp375*tmp1056;
+      result[7] = tmp385*tmp1078 + tmp375*tmp1081;
+      result[8] = tmp385*tmp1103 + tmp375*tmp1106;
+      result[9] = tmp404*tmp1128 + tmp395*tmp1131;
+      result[10] = tmp404*tmp1153 + tmp395*tmp1156;
+      result[11] = tmp404*tmp1178 + tmp395*tmp1181;
+      result[12] = tmp365*tmp904 + tmp357*tmp906 + tmp385*tmp910 + tmp377*tmp912 + tmp404*tmp916
+          + tmp397*tmp918;
+      result[13] = tmp365*tmp929 + tmp357*tmp931 + tmp385*tmp935 + tmp377*tmp937 + tmp404*tmp941
+          + tmp397*tmp943;
+      result[14] = tmp365*tmp954 + tmp357*tmp956 + tmp385*tmp960 + tmp377*tmp962 + tmp404*tmp966
+          + tmp397*tmp968;
+      result[15] = tmp365*tmp979 + tmp357*tmp981;
+      result[16] = tmp365*tmp1004 + tmp357*tmp1006;
+      result[17] = tmp365*tmp1029 + tmp357*tmp1031;
+      result[18] = tmp385*tmp1054 + tmp377*tmp1056;
+      result[19] = tmp385*tmp1079 + tmp377*tmp1081;
+      result[20] = tmp385*tmp1104 + tmp377*tmp1106;
+      result[21] = tmp404*tmp1129 + tmp397*tmp1131;
+      result[22] = tmp404*tmp1154 + tmp397*tmp1156;
+      result[23] = tmp404*tmp1179 + tmp397*tmp1181;
+      result[24] = tmp919;
+      result[25] = tmp944;
+      result[26] = tmp969;
+      result[27] = tmp982;
+      result[28] = tmp1007;
+      result[29] = tmp1032;
+      result[30] = tmp1057;
+      result[31] = tmp1082;
+      result[32] = tmp1107;
+      result[33] = tmp1132;
+      result[34] = tmp1157;
+      result[35] = tmp1182;
+      result[36] = tmp406*tmp903 + tmp356*tmp920;
+      result[37] = tmp406*tmp928 + tmp356*tmp945;
+      result[38] = tmp406*tmp953 + tmp356*tmp970;
+      result[39] = tmp406*tmp978 + tmp356*tmp983 + tmp421*tmp986 + tmp412*tmp989 + tmp434*tmp992
+          + tmp427*tmp995;
+      result[40] = tmp406*tmp1003 + tmp356*tmp1008 + tmp421*tmp1011 + tmp412*tmp1014
+          + tmp434*tmp1017 + tmp427*tmp1020;
+      result[41] = tmp406*tmp1028 + tmp356*tmp1033 + tmp421*tmp1036 + tmp412*tmp1039
+          + tmp434*tmp1042 + tmp427*tmp1045;
+      result[42] = tmp421*tmp1060 + tmp412*tmp1063;
+      result[43] = tmp421*tmp1085 + tmp412*tmp1088;
+      result[44] = tmp421*tmp1110 + tmp412*tmp1113;
+      result[45] = tmp434*tmp1135 + tmp427*tmp1138;
+      result[46] = tmp434*tmp1160 + tmp427*tmp1163;
+      result[47] = tmp434*tmp1185 + tmp427*tmp1188;
+      result[48] = tmp406*tmp904 + tmp357*tmp920;
+      result[49] = tmp406*tmp929 + tmp357*tmp945;
+      result[50] = tmp406*tmp954 + tmp357*tmp970;
+      result[51] = tmp406*tmp979 + tmp357*tmp983 + tmp421*tmp987 + tmp413*tmp989 + tmp434*tmp993
+          + tmp428*tmp995;
+      result[52] = tmp406*tmp1004 + tmp357*tmp1008 + tmp421*tmp1012 + tmp413*tmp1014
+          + tmp434*tmp1018 + tmp428*tmp1020;
+      result[53] = tmp406*tmp1029 + tmp357*tmp1033 + tmp421*tmp1037 + tmp413*tmp1039
+          + tmp434*tmp1043 + tmp428*tmp1045;
+      result[54] = tmp421*tmp1061 + tmp413*tmp1063;
+      result[55] = tmp421*tmp1086 + tmp413*tmp1088;
+      result[56] = tmp421*tmp1111 + tmp413*tmp1113;
+      result[57] = tmp434*tmp1136 + tmp428*tmp1138;
+      result[58] = tmp434*tmp1161 + tmp428*tmp1163;
+      result[59] = tmp434*tmp1186 + tmp428*tmp1188;
+      result[60] = tmp921;
+      result[61] = tmp946;
+      result[62] = tmp971;
+      result[63] = tmp996;
+      result[64] = tmp1021;
+      result[65] = tmp1046;
+      result[66] = tmp1064;
+      result[67] = tmp1089;
+      result[68] = tmp1114;
+      result[69] = tmp1139;
+      result[70] = tmp1164;
+      result[71] = tmp1189;
+      result[72] = tmp449*tmp909 + tmp375*tmp922;
+      result[73] = tmp449*tmp934 + tmp375*tmp947;
+      result[74] = tmp449*tmp959 + tmp375*tmp972;
+      result[75] = tmp450*tmp986 + tmp412*tmp997;
+      result[76] = tmp450*tmp1011 + tmp412*tmp1022;
+      result[77] = tmp450*tmp1036 + tmp412*tmp1047;
+      result[78] = tmp449*tmp1053 + tmp450*tmp1060 + tmp448*tmp1067 + tmp441*tmp1070
+          + tmp375*tmp1071 + tmp412*tmp1072;
+      result[79] = tmp449*tmp1078 + tmp450*tmp1085 + tmp448*tmp1092 + tmp441*tmp1095
+          + tmp375*tmp1096 + tmp412*tmp1097;
+      result[80] = tmp449*tmp1103 + tmp450*tmp1110 + tmp448*tmp1117 + tmp441*tmp1120
+          + tmp375*tmp1121 + tmp412*tmp1122;
+      result[81] = tmp448*tmp1142 + tmp441*tmp1145;
+      result[82] = tmp448*tmp1167 + tmp441*tmp1170;
+      result[83] = tmp448*tmp1192 + tmp441*tmp1195;
+      result[84] = tmp449*tmp910 + tmp377*tmp922;
+      result[85] = tmp449*tmp935 + tmp377*tmp947;
+      result[86] = tmp449*tmp960 + tmp377*tmp972;
+      result[87] = tmp450*tmp987 + tmp413*tmp997;
+      result[88] = tmp450*tmp1012 + tmp413*tmp1022;
+      result[89] = tmp450*tmp1037 + tmp413*tmp1047;
+      result[90] = tmp449*tmp1054 + tmp450*tmp1061 + tmp448*tmp1068 + tmp442*tmp1070
+          + tmp377*tmp1071 + tmp413*tmp1072;
+      result[91] = tmp449*tmp1079 + tmp450*tmp1086 + tmp448*tmp1093 + tmp442*tmp1095
+          + tmp377*tmp1096 + tmp413*tmp1097;
+      result[92] = tmp449*tmp1104 + tmp450*tmp1111 + tmp448*tmp1118 + tmp442*tmp1120
+          + tmp377*tmp1121 + tmp413*tmp1122;
+      result[93] = tmp448*tmp1143 + tmp442*tmp1145;
+      result[94] = tmp448*tmp1168 + tmp442*tmp1170;
+      result[95] = tmp448*tmp1193 + tmp442*tmp1195;
+      result[96] = tmp923;
+      result[97] = tmp948;
+      result[98] = tmp973;
+      result[99] = tmp998;
+      result[100] = tmp1023;
+      result[101] = tmp1048;
+      result[102] = tmp1073;
+      result[103] = tmp1098;
+      result[104] = tmp1123;
+      result[105] = tmp1146;
+      result[106] = tmp1171;
+      result[107] = tmp1196;
+      result[108] = tmp453*tmp915 + tmp395*tmp924;
+      result[109] = tmp453*tmp940 + tmp395*tmp949;
+      result[110] = tmp453*tmp965 + tmp395*tmp974;
+      result[111] = tmp454*tmp992 + tmp427*tmp999;
+      result[112] = tmp454*tmp1017 + tmp427*tmp1024;
+      result[113] = tmp454*tmp1042 + tmp427*tmp1049;
+      result[114] = tmp452*tmp1067 + tmp441*tmp1074;
+      result[115] = tmp452*tmp1092 + tmp441*tmp1099;
+      result[116] = tmp452*tmp1117 + tmp441*tmp1124;
+      result[117] = tmp453*tmp1128 + tmp454*tmp1135 + tmp452*tmp1142 + tmp441*tmp1147
+          + tmp395*tmp1148 + tmp427*tmp1149;
+      result[118] = tmp453*tmp1153 + tmp454*tmp1160 + tmp452*tmp1167 + tmp441*tmp1172
+          + tmp395*tmp1173 + tmp427*tmp1174;
+      result[119] = tmp453*tmp1178 + tmp454*tmp1185 + tmp452*tmp1192 + tmp441*tmp1197
+          + tmp395*tmp1198 + tmp427*tmp1199;
+      result[120] = tmp453*tmp916 + tmp397*tmp924;
+      result[121] = tmp453*tmp941 + tmp397*tmp949;
+      result[122] = tmp453*tmp966 + tmp397*tmp974;
+      result[123] = tmp454*tmp993 + tmp428*tmp999;
+      result[124] = tmp454*tmp1018 + tmp428*tmp1024;
+      result[125] = tmp454*tmp1043 + tmp428*tmp1049;
+      result[126] = tmp452*tmp1068 + tmp442*tmp1074;
+      result[127] = tmp452*tmp1093 + tmp442*tmp1099;
+      result[128] = tmp452*tmp1118 + tmp442*tmp1124;
+      result[129] = tmp453*tmp1129 + tmp454*tmp1136 + tmp452*tmp1143 + tmp442*tmp1147
+          + tmp397*tmp1148 + tmp428*tmp1149;
+      result[130] = tmp453*tmp1154 + tmp454*tmp1161 + tmp452*tmp1168 + tmp442*tmp1172
+          + tmp397*tmp1173 + tmp428*tmp1174;
+      result[131] = tmp453*tmp1179 + tmp454*tmp1186 + tmp452*tmp1193 + tmp442*tmp1197
+          + tmp397*tmp1198 + tmp428*tmp1199;
+      result[132] = tmp925;
+      result[133] = tmp950;
+      result[134] = tmp975;
+      result[135] = tmp1000;
+      result[136] = tmp1025;
+      result[137] = tmp1050;
+      result[138] = tmp1075;
+      result[139] = tmp1100;
+      result[140] = tmp1125;
+      result[141] = tmp1150;
+      result[142] = tmp1175;
+      result[143] = tmp1200;
       return result;
     }
 
@@ -4460,334 +4958,406 @@ struct RigidBodyEuler {
     /// \param[in] penalty_damping  penalty damping coefficient
     /// \param[in] params  model parameters
     /// \return values (jacobian_xdot_nonzeros)
-    /// Ops: 513
+    /// Ops: 701
     template <typename Scalar>
     static std::array<Scalar, 144> force_jacobian_xdot(const XVector<Scalar>& pos,
                                                        const XVector<Scalar>& /*vel*/,
                                                        const Scalar& /*t*/,
                                                        const Scalar& /*kappa*/,
                                                        const Scalar& penalty_damping,
-                                                       const Params& /*params*/) {
+                                                       const Params& params) {
       using std::sqrt;
-      const Scalar tmp201 = pos(3) - pos(0);
-      const Scalar tmp202 = pos(4) - pos(1);
-      const Scalar tmp203 = pos(5) - pos(2);
-      const Scalar tmp204 = sqrt((tmp201*tmp201) + (tmp202*tmp202) + (tmp203*tmp203));
-      const Scalar tmp206 = (Scalar(1)/tmp204);
-      const Scalar tmp207 = tmp201*tmp206;
-      const Scalar tmp208 = tmp202*tmp206;
-      const Scalar tmp209 = tmp203*tmp206;
-      const Scalar tmp211 = -pos(6);
-      const Scalar tmp212 = -tmp211 - pos(0);
-      const Scalar tmp213 = -pos(7);
-      const Scalar tmp214 = -tmp213 - pos(1);
-      const Scalar tmp215 = -pos(8);
-      const Scalar tmp216 = -tmp215 - pos(2);
-      const Scalar tmp217 = sqrt((tmp212*tmp212) + (tmp214*tmp214) + (tmp216*tmp216));
-      const Scalar tmp220 = (Scalar(1)/tmp217);
-      const Scalar tmp221 = tmp212*tmp220;
-      const Scalar tmp223 = tmp214*tmp220;
-      const Scalar tmp225 = tmp216*tmp220;
-      const Scalar tmp227 = -pos(9);
-      const Scalar tmp228 = -tmp227 - pos(0);
-      const Scalar tmp229 = -pos(10);
-      const Scalar tmp230 = -tmp229 - pos(1);
-      const Scalar tmp231 = -pos(11);
-      const Scalar tmp232 = -tmp231 - pos(2);
-      const Scalar tmp233 = sqrt((tmp228*tmp228) + (tmp230*tmp230) + (tmp232*tmp232));
-      const Scalar tmp236 = (Scalar(1)/tmp233);
-      const Scalar tmp237 = tmp228*tmp236;
-      const Scalar tmp239 = tmp230*tmp236;
-      const Scalar tmp241 = tmp232*tmp236;
-      const Scalar tmp245 = -tmp211 - pos(3);
-      const Scalar tmp246 = -tmp213 - pos(4);
-      const Scalar tmp247 = -tmp215 - pos(5);
-      const Scalar tmp248 = sqrt((tmp245*tmp245) + (tmp246*tmp246) + (tmp247*tmp247));
-      const Scalar tmp250 = (Scalar(1)/tmp248);
-      const Scalar tmp251 = tmp245*tmp250;
-      const Scalar tmp252 = tmp246*tmp250;
-      const Scalar tmp253 = tmp247*tmp250;
-      const Scalar tmp255 = -tmp227 - pos(3);
-      const Scalar tmp256 = -tmp229 - pos(4);
-      const Scalar tmp257 = -tmp231 - pos(5);
-      const Scalar tmp258 = sqrt((tmp255*tmp255) + (tmp256*tmp256) + (tmp257*tmp257));
-      const Scalar tmp260 = (Scalar(1)/tmp258);
-      const Scalar tmp261 = tmp255*tmp260;
-      const Scalar tmp262 = tmp256*tmp260;
-      const Scalar tmp263 = tmp257*tmp260;
-      const Scalar tmp268 = -tmp227 - pos(6);
-      const Scalar tmp269 = -tmp229 - pos(7);
-      const Scalar tmp270 = -tmp231 - pos(8);
-      const Scalar tmp271 = sqrt((tmp268*tmp268) + (tmp269*tmp269) + (tmp270*tmp270));
-      const Scalar tmp273 = (Scalar(1)/tmp271);
-      const Scalar tmp274 = tmp268*tmp273;
-      const Scalar tmp275 = tmp269*tmp273;
-      const Scalar tmp276 = tmp270*tmp273;
-      const Scalar tmp1037 = -Scalar(1.5617376188860606)*tmp207*penalty_damping;
-      const Scalar tmp1038 = -Scalar(1.7149858514250886)*tmp221*penalty_damping;
-      const Scalar tmp1039 = -Scalar(2.030692330267238)*tmp237*penalty_damping;
-      const Scalar tmp1040 = tmp209*tmp1037 + tmp225*tmp1038 + tmp241*tmp1039;
-      const Scalar tmp1041 = -tmp1037;
-      const Scalar tmp1042 = tmp209*tmp1041;
-      const Scalar tmp1043 = -tmp1038;
-      const Scalar tmp1044 = tmp225*tmp1043;
-      const Scalar tmp1045 = -tmp1039;
-      const Scalar tmp1046 = tmp241*tmp1045;
-      const Scalar tmp1047 = -Scalar(1.5617376188860606)*tmp208*penalty_damping;
-      const Scalar tmp1048 = -Scalar(1.7149858514250886)*tmp223*penalty_damping;
-      const Scalar tmp1049 = -Scalar(2.030692330267238)*tmp239*penalty_damping;
-      const Scalar tmp1050 = tmp209*tmp1047 + tmp225*tmp1048 + tmp241*tmp1049;
-      const Scalar tmp1051 = -tmp1047;
-      const Scalar tmp1052 = tmp209*tmp1051;
-      const Scalar tmp1053 = -tmp1048;
-      const Scalar tmp1054 = tmp225*tmp1053;
-      const Scalar tmp1055 = -tmp1049;
-      const Scalar tmp1056 = tmp241*tmp1055;
-      const Scalar tmp1057 = -Scalar(1.5617376188860606)*tmp209*penalty_damping;
-      const Scalar tmp1058 = -Scalar(1.7149858514250886)*tmp225*penalty_damping;
-      const Scalar tmp1059 = -Scalar(2.030692330267238)*tmp241*penalty_damping;
-      const Scalar tmp1060 = tmp209*tmp1057 + tmp225*tmp1058 + tmp241*tmp1059;
-      const Scalar tmp1061 = -tmp1057;
-      const Scalar tmp1062 = tmp209*tmp1061;
-      const Scalar tmp1063 = -tmp1058;
-      const Scalar tmp1064 = tmp225*tmp1063;
-      const Scalar tmp1065 = -tmp1059;
-      const Scalar tmp1066 = tmp241*tmp1065;
-      const Scalar tmp1067 = Scalar(1.5617376188860606)*tmp207*penalty_damping;
-      const Scalar tmp1068 = tmp209*tmp1067;
-      const Scalar tmp1069 = -tmp1067;
-      const Scalar tmp1070 = -Scalar(2.0)*tmp251*penalty_damping;
-      const Scalar tmp1071 = -Scalar(2.9814239699997196)*tmp261*penalty_damping;
-      const Scalar tmp1072 = tmp209*tmp1069 + tmp253*tmp1070 + tmp263*tmp1071;
-      const Scalar tmp1073 = -tmp1070;
-      const Scalar tmp1074 = tmp253*tmp1073;
-      const Scalar tmp1075 = -tmp1071;
-      const Scalar tmp1076 = tmp263*tmp1075;
-      const Scalar tmp1077 = Scalar(1.5617376188860606)*tmp208*penalty_damping;
-      const Scalar tmp1078 = tmp209*tmp1077;
-      const Scalar tmp1079 = -tmp1077;
-      const Scalar tmp1080 = -Scalar(2.0)*tmp252*penalty_damping;
-      const Scalar tmp1081 = -Scalar(2.9814239699997196)*tmp262*penalty_damping;
-      const Scalar tmp1082 = tmp209*tmp1079 + tmp253*tmp1080 + tmp263*tmp1081;
-      const Scalar tmp1083 = -tmp1080;
-      const Scalar tmp1084 = tmp253*tmp1083;
-      const Scalar tmp1085 = -tmp1081;
-      const Scalar tmp1086 = tmp263*tmp1085;
-      const Scalar tmp1087 = Scalar(1.5617376188860606)*tmp209*penalty_damping;
-      const Scalar tmp1088 = tmp209*tmp1087;
-      const Scalar tmp1089 = -tmp1087;
-      const Scalar tmp1090 = -Scalar(2.0)*tmp253*penalty_damping;
-      const Scalar tmp1091 = -Scalar(2.9814239699997196)*tmp263*penalty_damping;
-      const Scalar tmp1092 = tmp209*tmp1089 + tmp253*tmp1090 + tmp263*tmp1091;
-      const Scalar tmp1093 = -tmp1090;
-      const Scalar tmp1094 = tmp253*tmp1093;
-      const Scalar tmp1095 = -tmp1091;
-      const Scalar tmp1096 = tmp263*tmp1095;
-      const Scalar tmp1097 = Scalar(1.7149858514250886)*tmp221*penalty_damping;
-      const Scalar tmp1098 = tmp225*tmp1097;
-      const Scalar tmp1099 = Scalar(2.0)*tmp251*penalty_damping;
-      const Scalar tmp1100 = tmp253*tmp1099;
-      const Scalar tmp1101 = -tmp1097;
-      const Scalar tmp1102 = -tmp1099;
-      const Scalar tmp1103 = -Scalar(2.7472112789737806)*tmp274*penalty_damping;
-      const Scalar tmp1104 = tmp225*tmp1101 + tmp253*tmp1102 + tmp276*tmp1103;
-      const Scalar tmp1105 = -tmp1103;
-      const Scalar tmp1106 = tmp276*tmp1105;
-      const Scalar tmp1107 = Scalar(1.7149858514250886)*tmp223*penalty_damping;
-      const Scalar tmp1108 = tmp225*tmp1107;
-      const Scalar tmp1109 = Scalar(2.0)*tmp252*penalty_damping;
-      const Scalar tmp1110 = tmp253*tmp1109;
-      const Scalar tmp1111 = -tmp1107;
-      const Scalar tmp1112 = -tmp1109;
-      const Scalar tmp1113 = -Scalar(2.7472112789737806)*tmp275*penalty_damping;
-      const Scalar tmp1114 = tmp225*tmp1111 + tmp253*tmp1112 + tmp276*tmp1113;
-      const Scalar tmp1115 = -tmp1113;
-      const Scalar tmp1116 = tmp276*tmp1115;
-      const Scalar tmp1117 = Scalar(1.7149858514250886)*tmp225*penalty_damping;
-      const Scalar tmp1118 = tmp225*tmp1117;
-      const Scalar tmp1119 = Scalar(2.0)*tmp253*penalty_damping;
-      const Scalar tmp1120 = tmp253*tmp1119;
-      const Scalar tmp1121 = -tmp1117;
-      const Scalar tmp1122 = -tmp1119;
-      const Scalar tmp1123 = -Scalar(2.7472112789737806)*tmp276*penalty_damping;
-      const Scalar tmp1124 = tmp225*tmp1121 + tmp253*tmp1122 + tmp276*tmp1123;
-      const Scalar tmp1125 = -tmp1123;
-      const Scalar tmp1126 = tmp276*tmp1125;
-      const Scalar tmp1127 = Scalar(2.030692330267238)*tmp237*penalty_damping;
-      const Scalar tmp1128 = tmp241*tmp1127;
-      const Scalar tmp1129 = Scalar(2.9814239699997196)*tmp261*penalty_damping;
-      const Scalar tmp1130 = tmp263*tmp1129;
-      const Scalar tmp1131 = Scalar(2.7472112789737806)*tmp274*penalty_damping;
-      const Scalar tmp1132 = tmp276*tmp1131;
-      const Scalar tmp1133 = -tmp1127;
-      const Scalar tmp1134 = -tmp1129;
-      const Scalar tmp1135 = -tmp1131;
-      const Scalar tmp1136 = tmp241*tmp1133 + tmp263*tmp1134 + tmp276*tmp1135;
-      const Scalar tmp1137 = Scalar(2.030692330267238)*tmp239*penalty_damping;
-      const Scalar tmp1138 = tmp241*tmp1137;
-      const Scalar tmp1139 = Scalar(2.9814239699997196)*tmp262*penalty_damping;
-      const Scalar tmp1140 = tmp263*tmp1139;
-      const Scalar tmp1141 = Scalar(2.7472112789737806)*tmp275*penalty_damping;
-      const Scalar tmp1142 = tmp276*tmp1141;
-      const Scalar tmp1143 = -tmp1137;
-      const Scalar tmp1144 = -tmp1139;
-      const Scalar tmp1145 = -tmp1141;
-      const Scalar tmp1146 = tmp241*tmp1143 + tmp263*tmp1144 + tmp276*tmp1145;
-      const Scalar tmp1147 = Scalar(2.030692330267238)*tmp241*penalty_damping;
-      const Scalar tmp1148 = tmp241*tmp1147;
-      const Scalar tmp1149 = Scalar(2.9814239699997196)*tmp263*penalty_damping;
-      const Scalar tmp1150 = tmp263*tmp1149;
-      const Scalar tmp1151 = Scalar(2.7472112789737806)*tmp276*penalty_damping;
-      const Scalar tmp1152 = tmp276*tmp1151;
-      const Scalar tmp1153 = -tmp1147;
-      const Scalar tmp1154 = -tmp1149;
-      const Scalar tmp1155 = -tmp1151;
-      const Scalar tmp1156 = tmp241*tmp1153 + tmp263*tmp1154 + tmp276*tmp1155;
+      const Scalar m = Scalar(params.m);
+      const Scalar a = Scalar(params.a);
+      const Scalar b = Scalar(params.b);
+      const Scalar c = Scalar(params.c);
+      const Scalar tmp9 = (Scalar(1)/sqrt(m));
+      const Scalar tmp10 = (a*a);
+      const Scalar tmp11 = (b*b);
+      const Scalar tmp12 = m*(tmp10 + tmp11);
+      const Scalar tmp13 = (c*c);
+      const Scalar tmp14 = tmp10 + tmp13;
+      const Scalar tmp15 = tmp14*m;
+      const Scalar tmp16 = tmp11 + tmp13;
+      const Scalar tmp17 = tmp16*m;
+      const Scalar tmp18 = Scalar(0.005689254019167049)*tmp17 + Scalar(0.010556171822976032)*tmp15
+          - Scalar(0.01624542584214308)*tmp12;
+      const Scalar tmp19 = Scalar(0.041142942152109445)*tmp17 + Scalar(0.028423816083747767)*tmp12
+          - Scalar(0.027900091569190537)*tmp15;
+      const Scalar tmp20 = sqrt(tmp19);
+      const Scalar tmp21 = (Scalar(1)/tmp20);
+      const Scalar tmp22 = tmp18*tmp21;
+      const Scalar tmp23 = (Scalar(1)/tmp19);
+      const Scalar tmp24 = Scalar(0.021737886292675604)*tmp12 + Scalar(0.04006485617007295)*tmp15
+          - Scalar(0.020136075796081898)*tmp17 - tmp23*(tmp18*tmp18);
+      const Scalar tmp25 = sqrt(tmp24);
+      const Scalar tmp26 = tmp22 + tmp25;
+      const Scalar tmp32 = -Scalar(0.0257737061664756)*tmp12 - Scalar(0.003316897780257798)*tmp17
+          + Scalar(0.0290906039467334)*tmp14*m;
+      const Scalar tmp33 = tmp21*tmp32;
+      const Scalar tmp34 = (Scalar(1)/tmp24);
+      const Scalar tmp35 = tmp23*tmp32;
+      const Scalar tmp36 = -Scalar(0.03161742478199714)*tmp12 - Scalar(0.004414255047715874)*tmp15
+          - tmp18*tmp35 + Scalar(0.03603167982971302)*tmp16*m;
+      const Scalar tmp37 = -Scalar(0.008495035709756703)*tmp12 - tmp23*(tmp32*tmp32)
+          - tmp34*(tmp36*tmp36) + Scalar(0.02950190206578425)*tmp14*m
+          + Scalar(0.020659800310639128)*tmp16*m;
+      const Scalar tmp38 = sqrt(tmp37);
+      const Scalar tmp39 = tmp36/tmp25;
+      const Scalar tmp40 = tmp38 + tmp39;
+      const Scalar tmp41 = tmp33 + tmp40;
+      const Scalar tmp116 = tmp22 - tmp25;
+      const Scalar tmp117 = tmp116*tmp9;
+      const Scalar tmp118 = tmp33 - tmp40;
+      const Scalar tmp119 = tmp118*tmp9;
+      const Scalar tmp138 = -tmp116*tmp9;
+      const Scalar tmp139 = tmp39 - tmp33 - tmp38;
+      const Scalar tmp140 = tmp139*tmp9;
+      const Scalar tmp168 = -tmp26*tmp9;
+      const Scalar tmp169 = tmp38 - tmp33 - tmp39;
+      const Scalar tmp170 = tmp169*tmp9;
+      const Scalar tmp351 = pos(3) - pos(0);
+      const Scalar tmp352 = pos(4) - pos(1);
+      const Scalar tmp353 = pos(5) - pos(2);
+      const Scalar tmp354 = sqrt((tmp351*tmp351) + (tmp352*tmp352) + (tmp353*tmp353));
+      const Scalar tmp355 = (Scalar(1)/tmp354);
+      const Scalar tmp356 = tmp351*tmp355;
+      const Scalar tmp357 = tmp352*tmp355;
+      const Scalar tmp358 = tmp353*tmp355;
+      const Scalar tmp359 = -tmp26*tmp9;
+      const Scalar tmp360 = -tmp41*tmp9;
+      const Scalar tmp361 = sqrt(((-tmp117 - tmp359)*(-tmp117 - tmp359))
+          + ((-tmp119 - tmp360)*(-tmp119 - tmp360)));
+      const Scalar tmp362 = (Scalar(1)/tmp361);
+      const Scalar tmp367 = -pos(6);
+      const Scalar tmp368 = -tmp367 - pos(0);
+      const Scalar tmp369 = -pos(7);
+      const Scalar tmp370 = -tmp369 - pos(1);
+      const Scalar tmp371 = -pos(8);
+      const Scalar tmp372 = -tmp371 - pos(2);
+      const Scalar tmp373 = sqrt((tmp368*tmp368) + (tmp370*tmp370) + (tmp372*tmp372));
+      const Scalar tmp374 = (Scalar(1)/tmp373);
+      const Scalar tmp375 = tmp368*tmp374;
+      const Scalar tmp377 = tmp370*tmp374;
+      const Scalar tmp379 = tmp372*tmp374;
+      const Scalar tmp380 = Scalar(4)*tmp19/m;
+      const Scalar tmp381 = sqrt(tmp380 + ((-tmp138 - tmp359)*(-tmp138 - tmp359))
+          + ((-tmp140 - tmp360)*(-tmp140 - tmp360)));
+      const Scalar tmp382 = (Scalar(1)/tmp381);
+      const Scalar tmp387 = -pos(9);
+      const Scalar tmp388 = -tmp387 - pos(0);
+      const Scalar tmp389 = -pos(10);
+      const Scalar tmp390 = -tmp389 - pos(1);
+      const Scalar tmp391 = -pos(11);
+      const Scalar tmp392 = -tmp391 - pos(2);
+      const Scalar tmp393 = sqrt((tmp388*tmp388) + (tmp390*tmp390) + (tmp392*tmp392));
+      const Scalar tmp394 = (Scalar(1)/tmp393);
+      const Scalar tmp395 = tmp388*tmp394;
+      const Scalar tmp397 = tmp390*tmp394;
+      const Scalar tmp399 = tmp392*tmp394;
+      const Scalar tmp400 = sqrt(tmp380 + ((-tmp168 - tmp359)*(-tmp168 - tmp359))
+          + ((-tmp170 - tmp360)*(-tmp170 - tmp360)));
+      const Scalar tmp401 = (Scalar(1)/tmp400);
+      const Scalar tmp407 = -tmp367 - pos(3);
+      const Scalar tmp408 = -tmp369 - pos(4);
+      const Scalar tmp409 = -tmp371 - pos(5);
+      const Scalar tmp410 = sqrt((tmp407*tmp407) + (tmp408*tmp408) + (tmp409*tmp409));
+      const Scalar tmp411 = (Scalar(1)/tmp410);
+      const Scalar tmp412 = tmp407*tmp411;
+      const Scalar tmp413 = tmp408*tmp411;
+      const Scalar tmp414 = tmp409*tmp411;
+      const Scalar tmp415 = -tmp117;
+      const Scalar tmp416 = -tmp119;
+      const Scalar tmp417 = sqrt(tmp380 + ((-tmp138 - tmp415)*(-tmp138 - tmp415))
+          + ((-tmp140 - tmp416)*(-tmp140 - tmp416)));
+      const Scalar tmp418 = (Scalar(1)/tmp417);
+      const Scalar tmp422 = -tmp387 - pos(3);
+      const Scalar tmp423 = -tmp389 - pos(4);
+      const Scalar tmp424 = -tmp391 - pos(5);
+      const Scalar tmp425 = sqrt((tmp422*tmp422) + (tmp423*tmp423) + (tmp424*tmp424));
+      const Scalar tmp426 = (Scalar(1)/tmp425);
+      const Scalar tmp427 = tmp422*tmp426;
+      const Scalar tmp428 = tmp423*tmp426;
+      const Scalar tmp429 = tmp424*tmp426;
+      const Scalar tmp430 = sqrt(tmp380 + ((-tmp168 - tmp415)*(-tmp168 - tmp415))
+          + ((-tmp170 - tmp416)*(-tmp170 - tmp416)));
+      const Scalar tmp431 = (Scalar(1)/tmp430);
+      const Scalar tmp436 = -tmp387 - pos(6);
+      const Scalar tmp437 = -tmp389 - pos(7);
+      const Scalar tmp438 = -tmp391 - pos(8);
+      const Scalar tmp439 = sqrt((tmp436*tmp436) + (tmp437*tmp437) + (tmp438*tmp438));
+      const Scalar tmp440 = (Scalar(1)/tmp439);
+      const Scalar tmp441 = tmp436*tmp440;
+      const Scalar tmp442 = tmp437*tmp440;
+      const Scalar tmp443 = tmp438*tmp440;
+      const Scalar tmp444 = sqrt(((tmp138 - tmp168)*(tmp138 - tmp168))
+          + ((tmp140 - tmp170)*(tmp140 - tmp170)));
+      const Scalar tmp445 = (Scalar(1)/tmp444);
+      const Scalar tmp1201 = -tmp356*tmp362*penalty_damping;
+      const Scalar tmp1202 = -tmp375*tmp382*penalty_damping;
+      const Scalar tmp1203 = -tmp395*tmp401*penalty_damping;
+      const Scalar tmp1204 = tmp358*tmp1201 + tmp379*tmp1202 + tmp399*tmp1203;
+      const Scalar tmp1205 = -tmp1201;
+      const Scalar tmp1206 = tmp358*tmp1205;
+      const Scalar tmp1207 = -tmp1202;
+      const Scalar tmp1208 = tmp379*tmp1207;
+      const Scalar tmp1209 = -tmp1203;
+      const Scalar tmp1210 = tmp399*tmp1209;
+      const Scalar tmp1211 = -tmp357*tmp362*penalty_damping;
+      const Scalar tmp1212 = -tmp377*tmp382*penalty_damping;
+      const Scalar tmp1213 = -tmp397*tmp401*penalty_damping;
+      const Scalar tmp1214 = tmp358*tmp1211 + tmp379*tmp1212 + tmp399*tmp1213;
+      const Scalar tmp1215 = -tmp1211;
+      const Scalar tmp1216 = tmp358*tmp1215;
+      const Scalar tmp1217 = -tmp1212;
+      const Scalar tmp1218 = tmp379*tmp1217;
+      const Scalar tmp1219 = -tmp1213;
+      const Scalar tmp1220 = tmp399*tmp1219;
+      const Scalar tmp1221 = -tmp358*tmp362*penalty_damping;
+      const Scalar tmp1222 = -tmp379*tmp382*penalty_damping;
+      const Scalar tmp1223 = -tmp399*tmp401*penalty_damping;
+      const Scalar tmp1224 = tmp358*tmp1221 + tmp379*tmp1222 + tmp399*tmp1223;
+      const Scalar tmp1225 = -tmp1221;
+      const Scalar tmp1226 = tmp358*tmp1225;
+      const Scalar tmp1227 = -tmp1222;
+      const Scalar tmp1228 = tmp379*tmp1227;
+      const Scalar tmp1229 = -tmp1223;
+      const Scalar tmp1230 = tmp399*tmp1229;
+      const Scalar tmp1231 = tmp356*tmp362*penalty_damping;
+      const Scalar tmp1232 = tmp358*tmp1231;
+      const Scalar tmp1233 = -tmp1231;
+      const Scalar tmp1234 = -tmp412*tmp418*penalty_damping;
+      const Scalar tmp1235 = -tmp427*tmp431*penalty_damping;
+      const Scalar tmp1236 = tmp358*tmp1233 + tmp414*tmp1234 + tmp429*tmp1235;
+      const Scalar tmp1237 = -tmp1234;
+      const Scalar tmp1238 = tmp414*tmp1237;
+      const Scalar tmp1239 = -tmp1235;
+      const Scalar tmp1240 = tmp429*tmp1239;
+      const Scalar tmp1241 = tmp357*tmp362*penalty_damping;
+      const Scalar tmp1242 = tmp358*tmp1241;
+      const Scalar tmp1243 = -tmp1241;
+      const Scalar tmp1244 = -tmp413*tmp418*penalty_damping;
+      const Scalar tmp1245 = -tmp428*tmp431*penalty_damping;
+      const Scalar tmp1246 = tmp358*tmp1243 + tmp414*tmp1244 + tmp429*tmp1245;
+      const Scalar tmp1247 = -tmp1244;
+      const Scalar tmp1248 = tmp414*tmp1247;
+      const Scalar tmp1249 = -tmp1245;
+      const Scalar tmp1250 = tmp429*tmp1249;
+      const Scalar tmp1251 = tmp358*tmp362*penalty_damping;
+      const Scalar tmp1252 = tmp358*tmp1251;
+      const Scalar tmp1253 = -tmp1251;
+      const Scalar tmp1254 = -tmp414*tmp418*penalty_damping;
+      const Scalar tmp1255 = -tmp429*tmp431*penalty_damping;
+      const Scalar tmp1256 = tmp358*tmp1253 + tmp414*tmp1254 + tmp429*tmp1255;
+      const Scalar tmp1257 = -tmp1254;
+      const Scalar tmp1258 = tmp414*tmp1257;
+      const Scalar tmp1259 = -tmp1255;
+      const Scalar tmp1260 = tmp429*tmp1259;
+      const Scalar tmp1261 = tmp375*tmp382*penalty_damping;
+      const Scalar tmp1262 = tmp379*tmp1261;
+      const Scalar tmp1263 = tmp412*tmp418*penalty_damping;
+      const Scalar tmp1264 = tmp414*tmp1263;
+      const Scalar tmp1265 = -tmp441*tmp445*penalty_damping;
+      const Scalar tmp1266 = -tmp1261;
+      const Scalar tmp1267 = -tmp1263;
+      const Scalar tmp1268 = tmp443*tmp1265 + tmp379*tmp1266 + tmp414*tmp1267;
+      const Scalar tmp1269 = -tmp1265;
+      const Scalar tmp1270 = tmp443*tmp1269;
+      const Scalar tmp1271 = tmp377*tmp382*penalty_damping;
+      const Scalar tmp1272 = tmp379*tmp1271;
+      const Scalar tmp1273 = tmp413*tmp418*penalty_damping;
+      const Scalar tmp1274 = tmp414*tmp1273;
+      const Scalar tmp1275 = -tmp442*tmp445*penalty_damping;
+      const Scalar tmp1276 = -tmp1271;
+      const Scalar tmp1277 = -tmp1273;
+      const Scalar tmp1278 = tmp443*tmp1275 + tmp379*tmp1276 + tmp414*tmp1277;
+      const Scalar tmp1279 = -tmp1275;
+      const Scalar tmp1280 = tmp443*tmp1279;
+      const Scalar tmp1281 = tmp379*tmp382*penalty_damping;
+      const Scalar tmp1282 = tmp379*tmp1281;
+      const Scalar tmp1283 = tmp414*tmp418*penalty_damping;
+      const Scalar tmp1284 = tmp414*tmp1283;
+      const Scalar tmp1285 = -tmp443*tmp445*penalty_damping;
+      const Scalar tmp1286 = -tmp1281;
+      const Scalar tmp1287 = -tmp1283;
+      const Scalar tmp1288 = tmp443*tmp1285 + tmp379*tmp1286 + tmp414*tmp1287;
+      const Scalar tmp1289 = -tmp1285;
+      const Scalar tmp1290 = tmp443*tmp1289;
+      const Scalar tmp1291 = tmp395*tmp401*penalty_damping;
+      const Scalar tmp1292 = tmp399*tmp1291;
+      const Scalar tmp1293 = tmp427*tmp431*penalty_damping;
+      const Scalar tmp1294 = tmp429*tmp1293;
+      const Scalar tmp1295 = tmp441*tmp445*penalty_damping;
+      const Scalar tmp1296 = tmp443*tmp1295;
+      const Scalar tmp1297 = -tmp1295;
+      const Scalar tmp1298 = -tmp1291;
+      const Scalar tmp1299 = -tmp1293;
+      const Scalar tmp1300 = tmp443*tmp1297 + tmp399*tmp1298 + tmp429*tmp1299;
+      const Scalar tmp1301 = tmp397*tmp401*penalty_damping;
+      const Scalar tmp1302 = tmp399*tmp1301;
+      const Scalar tmp1303 = tmp428*tmp431*penalty_damping;
+      const Scalar tmp1304 = tmp429*tmp1303;
+      const Scalar tmp1305 = tmp442*tmp445*penalty_damping;
+      const Scalar tmp1306 = tmp443*tmp1305;
+      const Scalar tmp1307 = -tmp1305;
+      const Scalar tmp1308 = -tmp1301;
+      const Scalar tmp1309 = -tmp1303;
+      const Scalar tmp1310 = tmp443*tmp1307 + tmp399*tmp1308 + tmp429*tmp1309;
+      const Scalar tmp1311 = tmp399*tmp401*penalty_damping;
+      const Scalar tmp1312 = tmp399*tmp1311;
+      const Scalar tmp1313 = tmp429*tmp431*penalty_damping;
+      const Scalar tmp1314 = tmp429*tmp1313;
+      const Scalar tmp1315 = tmp443*tmp445*penalty_damping;
+      const Scalar tmp1316 = tmp443*tmp1315;
+      const Scalar tmp1317 = -tmp1315;
+      const Scalar tmp1318 = -tmp1311;
+      const Scalar tmp1319 = -tmp1313;
+      const Scalar tmp1320 = tmp443*tmp1317 + tmp399*tmp1318 + tmp429*tmp1319;
       std::array<Scalar, 144> result;
-      result[0] = tmp207*tmp1037 + tmp221*tmp1038 + tmp237*tmp1039;
-      result[1] = tmp207*tmp1047 + tmp221*tmp1048 + tmp237*tmp1049;
-      result[2] = tmp207*tmp1057 + tmp221*tmp1058 + tmp237*tmp1059;
-      result[3] = tmp207*tmp1067;
-      result[4] = tmp207*tmp1077;
-      result[5] = tmp207*tmp1087;
-      result[6] = tmp221*tmp1097;
-      result[7] = tmp221*tmp1107;
-      result[8] = tmp221*tmp1117;
-      result[9] = tmp237*tmp1127;
-      result[10] = tmp237*tmp1137;
-      result[11] = tmp237*tmp1147;
-      result[12] = tmp208*tmp1037 + tmp223*tmp1038 + tmp239*tmp1039;
-      result[13] = tmp208*tmp1047 + tmp223*tmp1048 + tmp239*tmp1049;
-      result[14] = tmp208*tmp1057 + tmp223*tmp1058 + tmp239*tmp1059;
-      result[15] = tmp208*tmp1067;
-      result[16] = tmp208*tmp1077;
-      result[17] = tmp208*tmp1087;
-      result[18] = tmp223*tmp1097;
-      result[19] = tmp223*tmp1107;
-      result[20] = tmp223*tmp1117;
-      result[21] = tmp239*tmp1127;
-      result[22] = tmp239*tmp1137;
-      result[23] = tmp239*tmp1147;
-      result[24] = tmp1040;
-      result[25] = tmp1050;
-      result[26] = tmp1060;
-      result[27] = tmp1068;
-      result[28] = tmp1078;
-      result[29] = tmp1088;
-      result[30] = tmp1098;
-      result[31] = tmp1108;
-      result[32] = tmp1118;
-      result[33] = tmp1128;
-      result[34] = tmp1138;
-      result[35] = tmp1148;
-      result[36] = tmp207*tmp1041;
-      result[37] = tmp207*tmp1051;
-      result[38] = tmp207*tmp1061;
-      result[39] = tmp207*tmp1069 + tmp251*tmp1070 + tmp261*tmp1071;
-      result[40] = tmp207*tmp1079 + tmp251*tmp1080 + tmp261*tmp1081;
-      result[41] = tmp207*tmp1089 + tmp251*tmp1090 + tmp261*tmp1091;
-      result[42] = tmp251*tmp1099;
-      result[43] = tmp251*tmp1109;
-      result[44] = tmp251*tmp1119;
-      result[45] = tmp261*tmp1129;
-      result[46] = tmp261*tmp1139;
-      result[47] = tmp261*tmp1149;
-      result[48] = tmp208*tmp1041;
-      result[49] = tmp208*tmp1051;
-      result[50] = tmp208*tmp1061;
-      result[51] = tmp208*tmp1069 + tmp252*tmp1070 + tmp262*tmp1071;
-      result[52] = tmp208*tmp1079 + tmp252*tmp1080 + tmp262*tmp1081;
-      result[53] = tmp208*tmp1089 + tmp252*tmp1090 + tmp262*tmp1091;
-      result[54] = tmp252*tmp1099;
-      result[55] = tmp252*tmp1109;
-      result[56] = tmp252*tmp1119;
-      result[57] = tmp262*tmp1129;
-      result[58] = tmp262*tmp1139;
-      result[59] = tmp262*tmp1149;
-      result[60] = tmp1042;
-      result[61] = tmp1052;
-      result[62] = tmp1062;
-      result[63] = tmp1072;
-      result[64] = tmp1082;
-      result[65] = tmp1092;
-      result[66] = tmp1100;
-      result[67] = tmp1110;
-      result[68] = tmp1120;
-      result[69] = tmp1130;
-      result[70] = tmp1140;
-      result[71] = tmp1150;
-      result[72] = tmp221*tmp1043;
-      result[73] = tmp221*tmp1053;
-      result[74] = tmp221*tmp1063;
-      result[75] = tmp251*tmp1073;
-      result[76] = tmp251*tmp1083;
-      result[77] = tmp251*tmp1093;
-      result[78] = tmp221*tmp1101 + tmp251*tmp1102 + tmp274*tmp1103;
-      result[79] = tmp221*tmp1111 + tmp251*tmp1112 + tmp274*tmp1113;
-      result[80] = tmp221*tmp1121 + tmp251*tmp1122 + tmp274*tmp1123;
-      result[81] = tmp274*tmp1131;
-      result[82] = tmp274*tmp1141;
-      result[83] = tmp274*tmp1151;
-      result[84] = tmp223*tmp1043;
-      result[85] = tmp223*tmp1053;
-      result[86] = tmp223*tmp1063;
-      result[87] = tmp252*tmp1073;
-      result[88] = tmp252*tmp1083;
-      result[89] = tmp252*tmp1093;
-      result[90] = tmp223*tmp1101 + tmp252*tmp1102 + tmp275*tmp1103;
-      result[91] = tmp223*tmp1111 + tmp252*tmp1112 + tmp275*tmp1113;
-      result[92] = tmp223*tmp1121 + tmp252*tmp1122 + tmp275*tmp1123;
-      result[93] = tmp275*tmp1131;
-      result[94] = tmp275*tmp1141;
-      result[95] = tmp275*tmp1151;
-      result[96] = tmp1044;
-      result[97] = tmp1054;
-      result[98] = tmp1064;
-      result[99] = tmp1074;
-      result[100] = tmp1084;
-      result[101] = tmp1094;
-      result[102] = tmp1104;
-      result[103] = tmp1114;
-      result[104] = tmp1124;
-      result[105] = tmp1132;
-      result[106] = tmp1142;
-      result[107] = tmp1152;
-      result[108] = tmp237*tmp1045;
-      result[109] = tmp237*tmp1055;
-      result[110] = tmp237*tmp1065;
-      result[111] = tmp261*tmp1075;
-      result[112] = tmp261*tmp1085;
-      result[113] = tmp261*tmp1095;
-      result[114] = tmp274*tmp1105;
-      result[115] = tmp274*tmp1115;
-      result[116] = tmp274*tmp1125;
-      result[117] = tmp237*tmp1133 + tmp261*tmp1134 + tmp274*tmp1135;
-      result[118] = tmp237*tmp1143 + tmp261*tmp1144 + tmp274*tmp1145;
-      result[119] = tmp237*tmp1153 + tmp261*tmp1154 + tmp274*tmp1155;
-      result[120] = tmp239*tmp1045;
-      result[121] = tmp239*tmp1055;
-      result[122] = tmp239*tmp1065;
-      result[123] = tmp262*tmp1075;
-      result[124] = tmp262*tmp1085;
-      result[125] = tmp262*tmp1095;
-      result[126] = tmp275*tmp1105;
-      result[127] = tmp275*tmp1115;
-      result[128] = tmp275*tmp1125;
-      result[129] = tmp239*tmp1133 + tmp262*tmp1134 + tmp275*tmp1135;
-      result[130] = tmp239*tmp1143 + tmp262*tmp1144 + tmp275*tmp1145;
-      result[131] = tmp239*tmp1153 + tmp262*tmp1154 + tmp275*tmp1155;
-      result[132] = tmp1046;
-      result[133] = tmp1056;
-      result[134] = tmp1066;
-      result[135] = tmp1076;
-      result[136] = tmp1086;
-      result[137] = tmp1096;
-      result[138] = tmp1106;
-      result[139] = tmp1116;
-      result[140] = tmp1126;
-      result[141] = tmp1136;
-      result[142] = tmp1146;
-      result[143] = tmp1156;
+      result[0] = tmp356*tmp1201 + tmp375*tmp1202 + tmp395*tmp1203;
+      result[1] = tmp356*tmp1211 + tmp375*tmp1212 + tmp395*tmp1213;
+      result[2] = tmp356*tmp1221 + tmp375*tmp1222 + tmp395*tmp1223;
+      result[3] = tmp356*tmp1231;
+      result[4] = tmp356*tmp1241;
+      result[5] = tmp356*tmp1251;
+      result[6] = tmp375*tmp1261;
+      result[7] = tmp375*tmp1271;
+      result[8] = tmp375*tmp1281;
+      result[9] = tmp395*tmp1291;
+      result[10] = tmp395*tmp1301;
+      result[11] = tmp395*tmp1311;
+      result[12] = tmp357*tmp1201 + tmp377*tmp1202 + tmp397*tmp1203;
+      result[13] = tmp357*tmp1211 + tmp377*tmp1212 + tmp397*tmp1213;
+      result[14] = tmp357*tmp1221 + tmp377*tmp1222 + tmp397*tmp1223;
+      result[15] = tmp357*tmp1231;
+      result[16] = tmp357*tmp1241;
+      result[17] = tmp357*tmp1251;
+      result[18] = tmp377*tmp1261;
+      result[19] = tmp377*tmp1271;
+      result[20] = tmp377*tmp1281;
+      result[21] = tmp397*tmp1291;
+      result[22] = tmp397*tmp1301;
+      result[23] = tmp397*tmp1311;
+      result[24] = tmp1204;
+      result[25] = tmp1214;
+      result[26] = tmp1224;
+      result[27] = tmp1232;
+      result[28] = tmp1242;
+      result[29] = tmp1252;
+      result[30] = tmp1262;
+      result[31] = tmp1272;
+      result[32] = tmp1282;
+      result[33] = tmp1292;
+      result[34] = tmp1302;
+      result[35] = tmp1312;
+      result[36] = tmp356*tmp1205;
+      result[37] = tmp356*tmp1215;
+      result[38] = tmp356*tmp1225;
+      result[39] = tmp356*tmp1233 + tmp412*tmp1234 + tmp427*tmp1235;
+      result[40] = tmp356*tmp1243 + tmp412*tmp1244 + tmp427*tmp1245;
+      result[41] = tmp356*tmp1253 + tmp412*tmp1254 + tmp427*tmp1255;
+      result[42] = tmp412*tmp1263;
+      result[43] = tmp412*tmp1273;
+      result[44] = tmp412*tmp1283;
+      result[45] = tmp427*tmp1293;
+      result[46] = tmp427*tmp1303;
+      result[47] = tmp427*tmp1313;
+      result[48] = tmp357*tmp1205;
+      result[49] = tmp357*tmp1215;
+      result[50] = tmp357*tmp1225;
+      result[51] = tmp357*tmp1233 + tmp413*tmp1234 + tmp428*tmp1235;
+      result[52] = tmp357*tmp1243 + tmp413*tmp1244 + tmp428*tmp1245;
+      result[53] = tmp357*tmp1253 + tmp413*tmp1254 + tmp428*tmp1255;
+      result[54] = tmp413*tmp1263;
+      result[55] = tmp413*tmp1273;
+      result[56] = tmp413*tmp1283;
+      result[57] = tmp428*tmp1293;
+      result[58] = tmp428*tmp1303;
+      result[59] = tmp428*tmp1313;
+      result[60] = tmp1206;
+      result[61] = tmp1216;
+      result[62] = tmp1226;
+      result[63] = tmp1236;
+      result[64] = tmp1246;
+      result[65] = tmp1256;
+      result[66] = tmp1264;
+      result[67] = tmp1274;
+      result[68] = tmp1284;
+      result[69] = tmp1294;
+      result[70] = tmp1304;
+      result[71] = tmp1314;
+      result[72] = tmp375*tmp1207;
+      result[73] = tmp375*tmp1217;
+      result[74] = tmp375*tmp1227;
+      result[75] = tmp412*tmp1237;
+      result[76] = tmp412*tmp1247;
+      result[77] = tmp412*tmp1257;
+      result[78] = tmp441*tmp1265 + tmp375*tmp1266 + tmp412*tmp1267;
+      result[79] = tmp441*tmp1275 + tmp375*tmp1276 + tmp412*tmp1277;
+      result[80] = tmp441*tmp1285 + tmp375*tmp1286 + tmp412*tmp1287;
+      result[81] = tmp441*tmp1295;
+      result[82] = tmp441*tmp1305;
+      result[83] = tmp441*tmp1315;
+      result[84] = tmp377*tmp1207;
+      result[85] = tmp377*tmp1217;
+      result[86] = tmp377*tmp1227;
+      result[87] = tmp413*tmp1237;
+      result[88] = tmp413*tmp1247;
+      result[89] = tmp413*tmp1257;
+      result[90] = tmp442*tmp1265 + tmp377*tmp1266 + tmp413*tmp1267;
+      result[91] = tmp442*tmp1275 + tmp377*tmp1276 + tmp413*tmp1277;
+      result[92] = tmp442*tmp1285 + tmp377*tmp1286 + tmp413*tmp1287;
+      result[93] = tmp442*tmp1295;
+      result[94] = tmp442*tmp1305;
+      result[95] = tmp442*tmp1315;
+      result[96] = tmp1208;
+      result[97] = tmp1218;
+      result[98] = tmp1228;
+      result[99] = tmp1238;
+      result[100] = tmp1248;
+      result[101] = tmp1258;
+      result[102] = tmp1268;
+      result[103] = tmp1278;
+      result[104] = tmp1288;
+      result[105] = tmp1296;
+      result[106] = tmp1306;
+      result[107] = tmp1316;
+      result[108] = tmp395*tmp1209;
+      result[109] = tmp395*tmp1219;
+      result[110] = tmp395*tmp1229;
+      result[111] = tmp427*tmp1239;
+      result[112] = tmp427*tmp1249;
+      result[113] = tmp427*tmp1259;
+      result[114] = tmp441*tmp1269;
+      result[115] = tmp441*tmp1279;
+      result[116] = tmp441*tmp1289;
+      result[117] = tmp441*tmp1297 + tmp395*tmp1298 + tmp427*tmp1299;
+      result[118] = tmp441*tmp1307 + tmp395*tmp1308 + tmp427*tmp1309;
+      result[119] = tmp441*tmp1317 + tmp395*tmp1318 + tmp427*tmp1319;
+      result[120] = tmp397*tmp1209;
+      result[121] = tmp397*tmp1219;
+      result[122] = tmp397*tmp1229;
+      result[123] = tmp428*tmp1239;
+      result[124] = tmp428*tmp1249;
+      result[125] = tmp428*tmp1259;
+      result[126] = tmp442*tmp1269;
+      result[127] = tmp442*tmp1279;
+      result[128] = tmp442*tmp1289;
+      result[129] = tmp442*tmp1297 + tmp397*tmp1298 + tmp428*tmp1299;
+      result[130] = tmp442*tmp1307 + tmp397*tmp1308 + tmp428*tmp1309;
+      result[131] = tmp442*tmp1317 + tmp397*tmp1318 + tmp428*tmp1319;
+      result[132] = tmp1210;
+      result[133] = tmp1220;
+      result[134] = tmp1230;
+      result[135] = tmp1240;
+      result[136] = tmp1250;
+      result[137] = tmp1260;
+      result[138] = tmp1270;
+      result[139] = tmp1280;
+      result[140] = tmp1290;
+      result[141] = tmp1300;
+      result[142] = tmp1310;
+      result[143] = tmp1320;
       return result;
     }
 
@@ -4796,22 +5366,17 @@ struct RigidBodyEuler {
     /// \param[in] t  time
     /// \param[in] params  model parameters
     /// \return V
-    /// Ops: 11
+    /// Ops: 9
     template <typename Scalar>
     static Scalar potential_energy(const XVector<Scalar>& pos,
                                    const Scalar& /*t*/,
                                    const Params& params) {
       const Scalar g = Scalar(params.g);
-      const Scalar m_a = Scalar(params.m_a);
-      const Scalar m_b = Scalar(params.m_b);
-      const Scalar m_c = Scalar(params.m_c);
-      const Scalar m_d = Scalar(params.m_d);
-      const Scalar tmp113 = g*m_a;
-      const Scalar tmp115 = g*m_b;
-      const Scalar tmp117 = g*m_c;
-      const Scalar tmp119 = g*m_d;
+      const Scalar m = Scalar(params.m);
+      const Scalar tmp281 = g*m;
+      const Scalar tmp349 = (Scalar(0.25))*tmp281;
       Scalar result;
-      result = tmp113*pos(2) + tmp115*pos(5) + tmp117*pos(8) + tmp119*pos(11);
+      result = tmp349*pos(2) + tmp349*pos(5) + tmp349*pos(8) + tmp349*pos(11);
       return result;
     }
 
@@ -4821,55 +5386,131 @@ struct RigidBodyEuler {
     /// \param[in] kappa  penalty stiffness (rods: force per strain; pins, planes: N/m)
     /// \param[in] params  model parameters
     /// \return V_penalty
-    /// Ops: 122
+    /// Ops: 304
     template <typename Scalar>
     static Scalar penalty_energy(const XVector<Scalar>& pos,
                                  const Scalar& /*t*/,
                                  const Scalar& kappa,
-                                 const Params& /*params*/) {
+                                 const Params& params) {
       using std::sqrt;
-      const Scalar tmp201 = pos(3) - pos(0);
-      const Scalar tmp202 = pos(4) - pos(1);
-      const Scalar tmp203 = pos(5) - pos(2);
-      const Scalar tmp204 = sqrt((tmp201*tmp201) + (tmp202*tmp202) + (tmp203*tmp203));
-      const Scalar tmp205 = Scalar(-0.6403124237432849) + tmp204;
-      const Scalar tmp211 = -pos(6);
-      const Scalar tmp212 = -tmp211 - pos(0);
-      const Scalar tmp213 = -pos(7);
-      const Scalar tmp214 = -tmp213 - pos(1);
-      const Scalar tmp215 = -pos(8);
-      const Scalar tmp216 = -tmp215 - pos(2);
-      const Scalar tmp217 = sqrt((tmp212*tmp212) + (tmp214*tmp214) + (tmp216*tmp216));
-      const Scalar tmp218 = Scalar(-0.58309518948453) + tmp217;
-      const Scalar tmp227 = -pos(9);
-      const Scalar tmp228 = -tmp227 - pos(0);
-      const Scalar tmp229 = -pos(10);
-      const Scalar tmp230 = -tmp229 - pos(1);
-      const Scalar tmp231 = -pos(11);
-      const Scalar tmp232 = -tmp231 - pos(2);
-      const Scalar tmp233 = sqrt((tmp228*tmp228) + (tmp230*tmp230) + (tmp232*tmp232));
-      const Scalar tmp234 = Scalar(-0.49244289008980524) + tmp233;
-      const Scalar tmp245 = -tmp211 - pos(3);
-      const Scalar tmp246 = -tmp213 - pos(4);
-      const Scalar tmp247 = -tmp215 - pos(5);
-      const Scalar tmp248 = sqrt((tmp245*tmp245) + (tmp246*tmp246) + (tmp247*tmp247));
-      const Scalar tmp249 = Scalar(-0.5) + tmp248;
-      const Scalar tmp255 = -tmp227 - pos(3);
-      const Scalar tmp256 = -tmp229 - pos(4);
-      const Scalar tmp257 = -tmp231 - pos(5);
-      const Scalar tmp258 = sqrt((tmp255*tmp255) + (tmp256*tmp256) + (tmp257*tmp257));
-      const Scalar tmp259 = Scalar(-0.33541019662496846) + tmp258;
-      const Scalar tmp268 = -tmp227 - pos(6);
-      const Scalar tmp269 = -tmp229 - pos(7);
-      const Scalar tmp270 = -tmp231 - pos(8);
-      const Scalar tmp271 = sqrt((tmp268*tmp268) + (tmp269*tmp269) + (tmp270*tmp270));
-      const Scalar tmp272 = Scalar(-0.3640054944640259) + tmp271;
+      const Scalar m = Scalar(params.m);
+      const Scalar a = Scalar(params.a);
+      const Scalar b = Scalar(params.b);
+      const Scalar c = Scalar(params.c);
+      const Scalar tmp9 = (Scalar(1)/sqrt(m));
+      const Scalar tmp10 = (a*a);
+      const Scalar tmp11 = (b*b);
+      const Scalar tmp12 = m*(tmp10 + tmp11);
+      const Scalar tmp13 = (c*c);
+      const Scalar tmp14 = tmp10 + tmp13;
+      const Scalar tmp15 = tmp14*m;
+      const Scalar tmp16 = tmp11 + tmp13;
+      const Scalar tmp17 = tmp16*m;
+      const Scalar tmp18 = Scalar(0.005689254019167049)*tmp17 + Scalar(0.010556171822976032)*tmp15
+          - Scalar(0.01624542584214308)*tmp12;
+      const Scalar tmp19 = Scalar(0.041142942152109445)*tmp17 + Scalar(0.028423816083747767)*tmp12
+          - Scalar(0.027900091569190537)*tmp15;
+      const Scalar tmp20 = sqrt(tmp19);
+      const Scalar tmp21 = (Scalar(1)/tmp20);
+      const Scalar tmp22 = tmp18*tmp21;
+      const Scalar tmp23 = (Scalar(1)/tmp19);
+      const Scalar tmp24 = Scalar(0.021737886292675604)*tmp12 + Scalar(0.04006485617007295)*tmp15
+          - Scalar(0.020136075796081898)*tmp17 - tmp23*(tmp18*tmp18);
+      const Scalar tmp25 = sqrt(tmp24);
+      const Scalar tmp26 = tmp22 + tmp25;
+      const Scalar tmp32 = -Scalar(0.0257737061664756)*tmp12 - Scalar(0.003316897780257798)*tmp17
+          + Scalar(0.0290906039467334)*tmp14*m;
+      const Scalar tmp33 = tmp21*tmp32;
+      const Scalar tmp34 = (Scalar(1)/tmp24);
+      const Scalar tmp35 = tmp23*tmp32;
+      const Scalar tmp36 = -Scalar(0.03161742478199714)*tmp12 - Scalar(0.004414255047715874)*tmp15
+          - tmp18*tmp35 + Scalar(0.03603167982971302)*tmp16*m;
+      const Scalar tmp37 = -Scalar(0.008495035709756703)*tmp12 - tmp23*(tmp32*tmp32)
+          - tmp34*(tmp36*tmp36) + Scalar(0.02950190206578425)*tmp14*m
+          + Scalar(0.020659800310639128)*tmp16*m;
+      const Scalar tmp38 = sqrt(tmp37);
+      const Scalar tmp39 = tmp36/tmp25;
+      const Scalar tmp40 = tmp38 + tmp39;
+      const Scalar tmp41 = tmp33 + tmp40;
+      const Scalar tmp116 = tmp22 - tmp25;
+      const Scalar tmp117 = tmp116*tmp9;
+      const Scalar tmp118 = tmp33 - tmp40;
+      const Scalar tmp119 = tmp118*tmp9;
+      const Scalar tmp138 = -tmp116*tmp9;
+      const Scalar tmp139 = tmp39 - tmp33 - tmp38;
+      const Scalar tmp140 = tmp139*tmp9;
+      const Scalar tmp168 = -tmp26*tmp9;
+      const Scalar tmp169 = tmp38 - tmp33 - tmp39;
+      const Scalar tmp170 = tmp169*tmp9;
+      const Scalar tmp351 = pos(3) - pos(0);
+      const Scalar tmp352 = pos(4) - pos(1);
+      const Scalar tmp353 = pos(5) - pos(2);
+      const Scalar tmp354 = sqrt((tmp351*tmp351) + (tmp352*tmp352) + (tmp353*tmp353));
+      const Scalar tmp359 = -tmp26*tmp9;
+      const Scalar tmp360 = -tmp41*tmp9;
+      const Scalar tmp361 = sqrt(((-tmp117 - tmp359)*(-tmp117 - tmp359))
+          + ((-tmp119 - tmp360)*(-tmp119 - tmp360)));
+      const Scalar tmp362 = (Scalar(1)/tmp361);
+      const Scalar tmp363 = tmp354 - tmp361;
+      const Scalar tmp364 = tmp362*kappa;
+      const Scalar tmp367 = -pos(6);
+      const Scalar tmp368 = -tmp367 - pos(0);
+      const Scalar tmp369 = -pos(7);
+      const Scalar tmp370 = -tmp369 - pos(1);
+      const Scalar tmp371 = -pos(8);
+      const Scalar tmp372 = -tmp371 - pos(2);
+      const Scalar tmp373 = sqrt((tmp368*tmp368) + (tmp370*tmp370) + (tmp372*tmp372));
+      const Scalar tmp380 = Scalar(4)*tmp19/m;
+      const Scalar tmp381 = sqrt(tmp380 + ((-tmp138 - tmp359)*(-tmp138 - tmp359))
+          + ((-tmp140 - tmp360)*(-tmp140 - tmp360)));
+      const Scalar tmp382 = (Scalar(1)/tmp381);
+      const Scalar tmp383 = tmp373 - tmp381;
+      const Scalar tmp384 = tmp382*kappa;
+      const Scalar tmp387 = -pos(9);
+      const Scalar tmp388 = -tmp387 - pos(0);
+      const Scalar tmp389 = -pos(10);
+      const Scalar tmp390 = -tmp389 - pos(1);
+      const Scalar tmp391 = -pos(11);
+      const Scalar tmp392 = -tmp391 - pos(2);
+      const Scalar tmp393 = sqrt((tmp388*tmp388) + (tmp390*tmp390) + (tmp392*tmp392));
+      const Scalar tmp400 = sqrt(tmp380 + ((-tmp168 - tmp359)*(-tmp168 - tmp359))
+          + ((-tmp170 - tmp360)*(-tmp170 - tmp360)));
+      const Scalar tmp401 = (Scalar(1)/tmp400);
+      const Scalar tmp402 = tmp393 - tmp400;
+      const Scalar tmp403 = tmp401*kappa;
+      const Scalar tmp407 = -tmp367 - pos(3);
+      const Scalar tmp408 = -tmp369 - pos(4);
+      const Scalar tmp409 = -tmp371 - pos(5);
+      const Scalar tmp410 = sqrt((tmp407*tmp407) + (tmp408*tmp408) + (tmp409*tmp409));
+      const Scalar tmp415 = -tmp117;
+      const Scalar tmp416 = -tmp119;
+      const Scalar tmp417 = sqrt(tmp380 + ((-tmp138 - tmp415)*(-tmp138 - tmp415))
+          + ((-tmp140 - tmp416)*(-tmp140 - tmp416)));
+      const Scalar tmp418 = (Scalar(1)/tmp417);
+      const Scalar tmp419 = tmp410 - tmp417;
+      const Scalar tmp420 = tmp418*kappa;
+      const Scalar tmp422 = -tmp387 - pos(3);
+      const Scalar tmp423 = -tmp389 - pos(4);
+      const Scalar tmp424 = -tmp391 - pos(5);
+      const Scalar tmp425 = sqrt((tmp422*tmp422) + (tmp423*tmp423) + (tmp424*tmp424));
+      const Scalar tmp430 = sqrt(tmp380 + ((-tmp168 - tmp415)*(-tmp168 - tmp415))
+          + ((-tmp170 - tmp416)*(-tmp170 - tmp416)));
+      const Scalar tmp431 = (Scalar(1)/tmp430);
+      const Scalar tmp432 = tmp425 - tmp430;
+      const Scalar tmp433 = tmp431*kappa;
+      const Scalar tmp436 = -tmp387 - pos(6);
+      const Scalar tmp437 = -tmp389 - pos(7);
+      const Scalar tmp438 = -tmp391 - pos(8);
+      const Scalar tmp439 = sqrt((tmp436*tmp436) + (tmp437*tmp437) + (tmp438*tmp438));
+      const Scalar tmp444 = sqrt(((tmp138 - tmp168)*(tmp138 - tmp168))
+          + ((tmp140 - tmp170)*(tmp140 - tmp170)));
+      const Scalar tmp445 = (Scalar(1)/tmp444);
+      const Scalar tmp446 = tmp439 - tmp444;
+      const Scalar tmp447 = tmp445*kappa;
       Scalar result;
-      result = Scalar(1.0)*kappa*(tmp249*tmp249) + Scalar(0.7808688094430303)*kappa*(tmp205*tmp205)
-          + Scalar(0.8574929257125443)*kappa*(tmp218*tmp218)
-          + Scalar(1.015346165133619)*kappa*(tmp234*tmp234)
-          + Scalar(1.3736056394868903)*kappa*(tmp272*tmp272)
-          + Scalar(1.4907119849998598)*kappa*(tmp259*tmp259);
+      result = (Scalar(0.5))*tmp364*(tmp363*tmp363) + (Scalar(0.5))*tmp384*(tmp383*tmp383)
+          + (Scalar(0.5))*tmp403*(tmp402*tmp402) + (Scalar(0.5))*tmp420*(tmp419*tmp419)
+          + (Scalar(0.5))*tmp433*(tmp432*tmp432) + (Scalar(0.5))*tmp447*(tmp446*tmp446);
       return result;
     }
 
@@ -4878,55 +5519,121 @@ struct RigidBodyEuler {
     /// \param[in] t  time
     /// \param[in] params  model parameters
     /// \return C (num_constraints)
-    /// Ops: 99
+    /// Ops: 269
     template <typename Scalar>
     static ConstraintVector<Scalar> constraint_violations(const XVector<Scalar>& pos,
                                                           const Scalar& /*t*/,
-                                                          const Params& /*params*/) {
+                                                          const Params& params) {
       using std::sqrt;
-      const Scalar tmp201 = pos(3) - pos(0);
-      const Scalar tmp202 = pos(4) - pos(1);
-      const Scalar tmp203 = pos(5) - pos(2);
-      const Scalar tmp204 = sqrt((tmp201*tmp201) + (tmp202*tmp202) + (tmp203*tmp203));
-      const Scalar tmp205 = Scalar(-0.6403124237432849) + tmp204;
-      const Scalar tmp211 = -pos(6);
-      const Scalar tmp212 = -tmp211 - pos(0);
-      const Scalar tmp213 = -pos(7);
-      const Scalar tmp214 = -tmp213 - pos(1);
-      const Scalar tmp215 = -pos(8);
-      const Scalar tmp216 = -tmp215 - pos(2);
-      const Scalar tmp217 = sqrt((tmp212*tmp212) + (tmp214*tmp214) + (tmp216*tmp216));
-      const Scalar tmp218 = Scalar(-0.58309518948453) + tmp217;
-      const Scalar tmp227 = -pos(9);
-      const Scalar tmp228 = -tmp227 - pos(0);
-      const Scalar tmp229 = -pos(10);
-      const Scalar tmp230 = -tmp229 - pos(1);
-      const Scalar tmp231 = -pos(11);
-      const Scalar tmp232 = -tmp231 - pos(2);
-      const Scalar tmp233 = sqrt((tmp228*tmp228) + (tmp230*tmp230) + (tmp232*tmp232));
-      const Scalar tmp234 = Scalar(-0.49244289008980524) + tmp233;
-      const Scalar tmp245 = -tmp211 - pos(3);
-      const Scalar tmp246 = -tmp213 - pos(4);
-      const Scalar tmp247 = -tmp215 - pos(5);
-      const Scalar tmp248 = sqrt((tmp245*tmp245) + (tmp246*tmp246) + (tmp247*tmp247));
-      const Scalar tmp249 = Scalar(-0.5) + tmp248;
-      const Scalar tmp255 = -tmp227 - pos(3);
-      const Scalar tmp256 = -tmp229 - pos(4);
-      const Scalar tmp257 = -tmp231 - pos(5);
-      const Scalar tmp258 = sqrt((tmp255*tmp255) + (tmp256*tmp256) + (tmp257*tmp257));
-      const Scalar tmp259 = Scalar(-0.33541019662496846) + tmp258;
-      const Scalar tmp268 = -tmp227 - pos(6);
-      const Scalar tmp269 = -tmp229 - pos(7);
-      const Scalar tmp270 = -tmp231 - pos(8);
-      const Scalar tmp271 = sqrt((tmp268*tmp268) + (tmp269*tmp269) + (tmp270*tmp270));
-      const Scalar tmp272 = Scalar(-0.3640054944640259) + tmp271;
+      const Scalar m = Scalar(params.m);
+      const Scalar a = Scalar(params.a);
+      const Scalar b = Scalar(params.b);
+      const Scalar c = Scalar(params.c);
+      const Scalar tmp9 = (Scalar(1)/sqrt(m));
+      const Scalar tmp10 = (a*a);
+      const Scalar tmp11 = (b*b);
+      const Scalar tmp12 = m*(tmp10 + tmp11);
+      const Scalar tmp13 = (c*c);
+      const Scalar tmp14 = tmp10 + tmp13;
+      const Scalar tmp15 = tmp14*m;
+      const Scalar tmp16 = tmp11 + tmp13;
+      const Scalar tmp17 = tmp16*m;
+      const Scalar tmp18 = Scalar(0.005689254019167049)*tmp17 + Scalar(0.010556171822976032)*tmp15
+          - Scalar(0.01624542584214308)*tmp12;
+      const Scalar tmp19 = Scalar(0.041142942152109445)*tmp17 + Scalar(0.028423816083747767)*tmp12
+          - Scalar(0.027900091569190537)*tmp15;
+      const Scalar tmp20 = sqrt(tmp19);
+      const Scalar tmp21 = (Scalar(1)/tmp20);
+      const Scalar tmp22 = tmp18*tmp21;
+      const Scalar tmp23 = (Scalar(1)/tmp19);
+      const Scalar tmp24 = Scalar(0.021737886292675604)*tmp12 + Scalar(0.04006485617007295)*tmp15
+          - Scalar(0.020136075796081898)*tmp17 - tmp23*(tmp18*tmp18);
+      const Scalar tmp25 = sqrt(tmp24);
+      const Scalar tmp26 = tmp22 + tmp25;
+      const Scalar tmp32 = -Scalar(0.0257737061664756)*tmp12 - Scalar(0.003316897780257798)*tmp17
+          + Scalar(0.0290906039467334)*tmp14*m;
+      const Scalar tmp33 = tmp21*tmp32;
+      const Scalar tmp34 = (Scalar(1)/tmp24);
+      const Scalar tmp35 = tmp23*tmp32;
+      const Scalar tmp36 = -Scalar(0.03161742478199714)*tmp12 - Scalar(0.004414255047715874)*tmp15
+          - tmp18*tmp35 + Scalar(0.03603167982971302)*tmp16*m;
+      const Scalar tmp37 = -Scalar(0.008495035709756703)*tmp12 - tmp23*(tmp32*tmp32)
+          - tmp34*(tmp36*tmp36) + Scalar(0.02950190206578425)*tmp14*m
+          + Scalar(0.020659800310639128)*tmp16*m;
+      const Scalar tmp38 = sqrt(tmp37);
+      const Scalar tmp39 = tmp36/tmp25;
+      const Scalar tmp40 = tmp38 + tmp39;
+      const Scalar tmp41 = tmp33 + tmp40;
+      const Scalar tmp116 = tmp22 - tmp25;
+      const Scalar tmp117 = tmp116*tmp9;
+      const Scalar tmp118 = tmp33 - tmp40;
+      const Scalar tmp119 = tmp118*tmp9;
+      const Scalar tmp138 = -tmp116*tmp9;
+      const Scalar tmp139 = tmp39 - tmp33 - tmp38;
+      const Scalar tmp140 = tmp139*tmp9;
+      const Scalar tmp168 = -tmp26*tmp9;
+      const Scalar tmp169 = tmp38 - tmp33 - tmp39;
+      const Scalar tmp170 = tmp169*tmp9;
+      const Scalar tmp351 = pos(3) - pos(0);
+      const Scalar tmp352 = pos(4) - pos(1);
+      const Scalar tmp353 = pos(5) - pos(2);
+      const Scalar tmp354 = sqrt((tmp351*tmp351) + (tmp352*tmp352) + (tmp353*tmp353));
+      const Scalar tmp359 = -tmp26*tmp9;
+      const Scalar tmp360 = -tmp41*tmp9;
+      const Scalar tmp361 = sqrt(((-tmp117 - tmp359)*(-tmp117 - tmp359))
+          + ((-tmp119 - tmp360)*(-tmp119 - tmp360)));
+      const Scalar tmp363 = tmp354 - tmp361;
+      const Scalar tmp367 = -pos(6);
+      const Scalar tmp368 = -tmp367 - pos(0);
+      const Scalar tmp369 = -pos(7);
+      const Scalar tmp370 = -tmp369 - pos(1);
+      const Scalar tmp371 = -pos(8);
+      const Scalar tmp372 = -tmp371 - pos(2);
+      const Scalar tmp373 = sqrt((tmp368*tmp368) + (tmp370*tmp370) + (tmp372*tmp372));
+      const Scalar tmp380 = Scalar(4)*tmp19/m;
+      const Scalar tmp381 = sqrt(tmp380 + ((-tmp138 - tmp359)*(-tmp138 - tmp359))
+          + ((-tmp140 - tmp360)*(-tmp140 - tmp360)));
+      const Scalar tmp383 = tmp373 - tmp381;
+      const Scalar tmp387 = -pos(9);
+      const Scalar tmp388 = -tmp387 - pos(0);
+      const Scalar tmp389 = -pos(10);
+      const Scalar tmp390 = -tmp389 - pos(1);
+      const Scalar tmp391 = -pos(11);
+      const Scalar tmp392 = -tmp391 - pos(2);
+      const Scalar tmp393 = sqrt((tmp388*tmp388) + (tmp390*tmp390) + (tmp392*tmp392));
+      const Scalar tmp400 = sqrt(tmp380 + ((-tmp168 - tmp359)*(-tmp168 - tmp359))
+          + ((-tmp170 - tmp360)*(-tmp170 - tmp360)));
+      const Scalar tmp402 = tmp393 - tmp400;
+      const Scalar tmp407 = -tmp367 - pos(3);
+      const Scalar tmp408 = -tmp369 - pos(4);
+      const Scalar tmp409 = -tmp371 - pos(5);
+      const Scalar tmp410 = sqrt((tmp407*tmp407) + (tmp408*tmp408) + (tmp409*tmp409));
+      const Scalar tmp415 = -tmp117;
+      const Scalar tmp416 = -tmp119;
+      const Scalar tmp417 = sqrt(tmp380 + ((-tmp138 - tmp415)*(-tmp138 - tmp415))
+          + ((-tmp140 - tmp416)*(-tmp140 - tmp416)));
+      const Scalar tmp419 = tmp410 - tmp417;
+      const Scalar tmp422 = -tmp387 - pos(3);
+      const Scalar tmp423 = -tmp389 - pos(4);
+      const Scalar tmp424 = -tmp391 - pos(5);
+      const Scalar tmp425 = sqrt((tmp422*tmp422) + (tmp423*tmp423) + (tmp424*tmp424));
+      const Scalar tmp430 = sqrt(tmp380 + ((-tmp168 - tmp415)*(-tmp168 - tmp415))
+          + ((-tmp170 - tmp416)*(-tmp170 - tmp416)));
+      const Scalar tmp432 = tmp425 - tmp430;
+      const Scalar tmp436 = -tmp387 - pos(6);
+      const Scalar tmp437 = -tmp389 - pos(7);
+      const Scalar tmp438 = -tmp391 - pos(8);
+      const Scalar tmp439 = sqrt((tmp436*tmp436) + (tmp437*tmp437) + (tmp438*tmp438));
+      const Scalar tmp444 = sqrt(((tmp138 - tmp168)*(tmp138 - tmp168))
+          + ((tmp140 - tmp170)*(tmp140 - tmp170)));
+      const Scalar tmp446 = tmp439 - tmp444;
       ConstraintVector<Scalar> result;
-      result(0) = tmp205;
-      result(1) = tmp218;
-      result(2) = tmp234;
-      result(3) = tmp249;
-      result(4) = tmp259;
-      result(5) = tmp272;
+      result(0) = tmp363;
+      result(1) = tmp383;
+      result(2) = tmp402;
+      result(3) = tmp419;
+      result(4) = tmp432;
+      result(5) = tmp446;
       return result;
     }
   };
@@ -4935,17 +5642,17 @@ struct RigidBodyEuler {
 /// RigidBodyEulerYzx: reduced (generalized-coordinate) dynamics of model 'rigid_body_euler_yzx'.
 ///
 /// Coordinates q (nq = 6), velocities v = dq/dt:
-///   q(0) = x: body origin, x (m)
-///   q(1) = y: body origin, y (m)
-///   q(2) = z: body origin, z (m)
+///   q(0) = x: reference point, x (m)
+///   q(1) = y: reference point, y (m)
+///   q(2) = z: reference point, z (m)
 ///   q(3) = heading: rotation about y (rad)
 ///   q(4) = attitude: rotation about the new z (rad)
 ///   q(5) = bank: rotation about the new x (rad)
 /// Particles (4, 3D; positions stacked in x, nx = 12):
-///   x(0..2) = a, mass m_a
-///   x(3..5) = b, mass m_b
-///   x(6..8) = c, mass m_c
-///   x(9..11) = d, mass m_d
+///   x(0..2) = body_0, mass m/4
+///   x(3..5) = body_1, mass m/4
+///   x(6..8) = body_2, mass m/4
+///   x(9..11) = body_3, mass m/4
 /// Kernels are static functions templated on Scalar; every one takes the parameters last.
 /// Equations of motion: mass_matrix(q, t) * qddot = forces(q, v, t).
 struct RigidBodyEulerYzx {
@@ -4958,11 +5665,12 @@ struct RigidBodyEulerYzx {
   static constexpr int num_fixed_points = 0;
   static constexpr std::array<const char*, nq> coordinate_names{{"x", "y", "z", "heading",
       "attitude", "bank"}};
-  static constexpr int num_parameters = 5;
+  static constexpr int num_parameters = 8;
   /// A suggested initial state, from the model file.
   static constexpr std::array<double, nq> initial_q{{0.0, 0.0, 0.0, 0.0, 0.0, 0.0}};
   static constexpr std::array<double, nq> initial_v{{0.0, 0.0, 0.0, 0.0, 0.0, 0.0}};
-  static constexpr std::array<const char*, num_particles> particle_names{{"a", "b", "c", "d"}};
+  static constexpr std::array<const char*, num_particles> particle_names{{"body_0", "body_1",
+      "body_2", "body_3"}};
   static constexpr std::array<const char*, num_fixed_points> fixed_point_names{{}};
   /// Whether applied_forces at rest (v = 0) is -d(potential_energy)/dq: every force without
   /// a declared potential vanishes at rest (generator/conservative.py).
@@ -4987,15 +5695,15 @@ struct RigidBodyEulerYzx {
 
   /// Model parameters: one type for every chart of the atlas (RigidBodyEuler's).
   using Params = RigidBodyEuler::Params;
-  static constexpr std::array<const char*, num_parameters> parameter_names{{"g", "m_a", "m_b",
-      "m_c", "m_d"}};
+  static constexpr std::array<const char*, num_parameters> parameter_names{{"g", "m", "com_x",
+      "com_y", "com_z", "a", "b", "c"}};
 
   /// Reduced mass matrix Mt = J^T M J (symmetric).
   /// \param[in] q  generalized coordinates (nq = 6)
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return Mt (nq x nq)
-  /// Ops: 321
+  /// Ops: 366
   template <typename Scalar>
   static QMatrix<Scalar> mass_matrix(const QVector<Scalar>& q,
                                      const Scalar& /*t*/,
@@ -5005,149 +5713,159 @@ struct RigidBodyEulerYzx {
     const Scalar heading = q(3);
     const Scalar attitude = q(4);
     const Scalar bank = q(5);
-    const Scalar m_a = Scalar(params.m_a);
-    const Scalar m_b = Scalar(params.m_b);
-    const Scalar m_c = Scalar(params.m_c);
-    const Scalar m_d = Scalar(params.m_d);
-    const Scalar tmp0 = cos(heading);
-    const Scalar tmp1 = cos(attitude);
-    const Scalar tmp2 = Scalar(0.5)*tmp1;
-    const Scalar tmp3 = tmp0*tmp2;
-    const Scalar tmp5 = sin(attitude);
-    const Scalar tmp6 = Scalar(0.5)*tmp5;
-    const Scalar tmp8 = sin(heading);
-    const Scalar tmp9 = tmp2*tmp8;
-    const Scalar tmp12 = tmp0*tmp6;
-    const Scalar tmp16 = tmp6*tmp8;
-    const Scalar tmp19 = sin(bank);
-    const Scalar tmp20 = Scalar(0.4)*tmp19;
-    const Scalar tmp21 = tmp20*tmp8;
-    const Scalar tmp22 = cos(bank);
-    const Scalar tmp23 = Scalar(0.4)*tmp22;
-    const Scalar tmp24 = tmp0*tmp23*tmp5;
-    const Scalar tmp26 = tmp1*tmp23;
-    const Scalar tmp28 = tmp0*tmp20;
-    const Scalar tmp29 = tmp23*tmp8;
-    const Scalar tmp30 = tmp29*tmp5;
-    const Scalar tmp31 = tmp28 + tmp30;
-    const Scalar tmp35 = tmp29 + tmp28*tmp5;
-    const Scalar tmp37 = tmp23*tmp5;
-    const Scalar tmp38 = tmp1*tmp20;
-    const Scalar tmp40 = -tmp21*tmp5 + Scalar(0.4)*tmp0*tmp22;
-    const Scalar tmp41 = tmp24 - tmp21;
-    const Scalar tmp44 = Scalar(0.3)*tmp22;
-    const Scalar tmp45 = tmp44*tmp8;
-    const Scalar tmp46 = Scalar(0.3)*tmp19;
-    const Scalar tmp47 = tmp0*tmp46;
-    const Scalar tmp48 = tmp47*tmp5;
-    const Scalar tmp49 = tmp45 + tmp48;
-    const Scalar tmp51 = tmp1*tmp46;
-    const Scalar tmp53 = tmp0*tmp44;
-    const Scalar tmp54 = tmp46*tmp8;
-    const Scalar tmp55 = tmp5*tmp54;
-    const Scalar tmp59 = tmp53*tmp5;
-    const Scalar tmp60 = tmp59 - tmp54;
-    const Scalar tmp61 = tmp55 - Scalar(0.3)*tmp0*tmp22;
-    const Scalar tmp62 = -tmp61;
-    const Scalar tmp64 = tmp46*tmp5;
-    const Scalar tmp65 = tmp1*tmp44;
-    const Scalar tmp67 = tmp45*tmp5;
-    const Scalar tmp68 = tmp47 + tmp67;
-    const Scalar tmp69 = -tmp68;
-    const Scalar tmp70 = -tmp49;
-    const Scalar tmp73 = Scalar(0.2)*tmp1;
-    const Scalar tmp74 = Scalar(0.25)*tmp19;
-    const Scalar tmp75 = tmp5*tmp74;
-    const Scalar tmp76 = -tmp59 + tmp0*tmp75;
-    const Scalar tmp77 = tmp76 + tmp0*tmp73;
-    const Scalar tmp78 = Scalar(0.25)*tmp22;
-    const Scalar tmp79 = tmp8*tmp78;
-    const Scalar tmp80 = tmp54 + tmp79;
-    const Scalar tmp81 = tmp77 + tmp80;
-    const Scalar tmp83 = Scalar(0.2)*tmp5;
-    const Scalar tmp84 = tmp1*tmp74;
-    const Scalar tmp87 = tmp73*tmp8;
-    const Scalar tmp88 = tmp0*tmp78;
-    const Scalar tmp89 = tmp74*tmp8;
-    const Scalar tmp90 = tmp5*tmp89;
-    const Scalar tmp91 = tmp68 + tmp88 - tmp90;
-    const Scalar tmp92 = tmp91 - tmp87;
-    const Scalar tmp94 = tmp1*tmp53;
-    const Scalar tmp95 = tmp94 + tmp0*tmp83 - Scalar(0.25)*tmp0*tmp1*tmp19;
-    const Scalar tmp96 = -tmp95;
-    const Scalar tmp97 = tmp49 - tmp89 + tmp5*tmp88;
-    const Scalar tmp99 = -tmp51 - tmp1*tmp78;
-    const Scalar tmp100 = tmp44*tmp5;
-    const Scalar tmp101 = tmp73 + tmp75 - tmp100;
-    const Scalar tmp103 = tmp1*tmp45;
-    const Scalar tmp104 = tmp103 + tmp8*tmp83 - tmp8*tmp84;
-    const Scalar tmp105 = -tmp61 - tmp0*tmp74 - tmp5*tmp79;
-    const Scalar tmp106 = -tmp81;
-    const Scalar tmp121 = tmp26*tmp8;
-    const Scalar tmp128 = tmp51*tmp8;
-    const Scalar tmp131 = tmp0*tmp51;
-    const Scalar tmp142 = m_a + m_b + m_c + m_d;
-    const Scalar tmp143 = tmp31*m_b + tmp62*m_c + tmp92*m_d - tmp9*m_a;
-    const Scalar tmp144 = tmp41*m_b + tmp70*m_c + tmp106*m_d - tmp3*m_a;
-    const Scalar tmp145 = (tmp8*tmp8);
-    const Scalar tmp146 = (tmp1*tmp1);
-    const Scalar tmp147 = Scalar(0.25)*tmp146;
-    const Scalar tmp148 = (tmp0*tmp0);
-    const Scalar tmp149 = m_a*(tmp145*tmp147 + tmp147*tmp148) + m_b*((tmp31*tmp31) + (tmp41*tmp41))
-        + m_c*((tmp62*tmp62) + (tmp70*tmp70)) + m_d*((tmp92*tmp92) + (tmp106*tmp106));
-    const Scalar tmp150 = tmp0*tmp26;
-    const Scalar tmp151 = tmp96*m_d - tmp150*m_b - tmp12*m_a + Scalar(0.3)*tmp0*tmp1*tmp19*m_c;
-    const Scalar tmp152 = tmp2*m_a + tmp64*m_c + tmp101*m_d - tmp37*m_b;
-    const Scalar tmp153 = tmp16*m_a + tmp104*m_d + tmp121*m_b - tmp128*m_c;
-    const Scalar tmp154 = m_b*(-tmp150*tmp31 + Scalar(0.4)*tmp1*tmp22*tmp41*tmp8)
-        + m_c*(tmp62*tmp131 - tmp70*tmp128) + m_d*(tmp92*tmp96 + tmp104*tmp106);
-    const Scalar tmp155 = (tmp5*tmp5);
-    const Scalar tmp156 = Scalar(0.25)*tmp155;
-    const Scalar tmp157 = (tmp22*tmp22);
-    const Scalar tmp158 = Scalar(0.16000000000000003)*tmp157;
-    const Scalar tmp159 = tmp146*tmp158;
-    const Scalar tmp160 = (tmp19*tmp19);
-    const Scalar tmp161 = Scalar(0.09)*tmp160;
-    const Scalar tmp162 = tmp146*tmp161;
-    const Scalar tmp163 = m_a*(tmp147 + tmp145*tmp156 + tmp148*tmp156)
-        + m_b*(tmp145*tmp159 + tmp148*tmp159 + tmp155*tmp158)
-        + m_c*(tmp145*tmp162 + tmp148*tmp162 + tmp155*tmp161)
-        + m_d*((tmp96*tmp96) + (tmp101*tmp101) + (tmp104*tmp104));
-    const Scalar tmp164 = tmp35*m_b + tmp60*m_c + tmp97*m_d;
-    const Scalar tmp165 = tmp99*m_d - tmp38*m_b - tmp65*m_c;
-    const Scalar tmp166 = tmp40*m_b + tmp69*m_c + tmp105*m_d;
-    const Scalar tmp167 = m_b*(tmp31*tmp35 + tmp40*tmp41) + m_c*(tmp60*tmp62 + tmp69*tmp70)
-        + m_d*(tmp92*tmp97 + tmp105*tmp106);
-    const Scalar tmp168 = tmp1*tmp19*tmp22*tmp5;
-    const Scalar tmp169 = m_b*(Scalar(0.16000000000000003)*tmp168 + tmp40*tmp121 - tmp150*tmp35)
-        + m_c*(-Scalar(0.09)*tmp168 - tmp69*tmp128 + Scalar(0.3)*tmp0*tmp1*tmp19*tmp60)
-        + m_d*(tmp96*tmp97 + tmp99*tmp101 + tmp104*tmp105);
-    const Scalar tmp170 = m_b*((tmp35*tmp35) + (tmp40*tmp40)
-            + Scalar(0.16000000000000003)*tmp146*tmp160)
-        + m_c*((tmp60*tmp60) + (tmp69*tmp69) + Scalar(0.09)*tmp146*tmp157)
-        + m_d*((tmp97*tmp97) + (tmp99*tmp99) + (tmp105*tmp105));
+    const Scalar m = Scalar(params.m);
+    const Scalar com_x = Scalar(params.com_x);
+    const Scalar com_y = Scalar(params.com_y);
+    const Scalar com_z = Scalar(params.com_z);
+    const Scalar a = Scalar(params.a);
+    const Scalar b = Scalar(params.b);
+    const Scalar c = Scalar(params.c);
+    const Scalar tmp0 = sin(bank);
+    const Scalar tmp1 = sin(heading);
+    const Scalar tmp2 = tmp0*tmp1;
+    const Scalar tmp3 = sin(attitude);
+    const Scalar tmp4 = cos(bank);
+    const Scalar tmp5 = cos(heading);
+    const Scalar tmp6 = tmp4*tmp5;
+    const Scalar tmp7 = tmp3*tmp6;
+    const Scalar tmp8 = tmp7 - tmp2;
+    const Scalar tmp11 = (a*a);
+    const Scalar tmp12 = (b*b);
+    const Scalar tmp13 = m*(tmp11 + tmp12);
+    const Scalar tmp14 = (c*c);
+    const Scalar tmp15 = tmp11 + tmp14;
+    const Scalar tmp16 = tmp15*m;
+    const Scalar tmp17 = tmp12 + tmp14;
+    const Scalar tmp18 = tmp17*m;
+    const Scalar tmp19 = Scalar(0.005689254019167049)*tmp18 + Scalar(0.010556171822976032)*tmp16
+        - Scalar(0.01624542584214308)*tmp13;
+    const Scalar tmp20 = Scalar(0.041142942152109445)*tmp18 + Scalar(0.028423816083747767)*tmp13
+        - Scalar(0.027900091569190537)*tmp16;
+    const Scalar tmp24 = (Scalar(1)/tmp20);
+    const Scalar tmp25 = Scalar(0.021737886292675604)*tmp13 + Scalar(0.04006485617007295)*tmp16
+        - Scalar(0.020136075796081898)*tmp18 - tmp24*(tmp19*tmp19);
+    const Scalar tmp29 = tmp1*tmp4;
+    const Scalar tmp30 = tmp0*tmp5;
+    const Scalar tmp31 = tmp3*tmp30;
+    const Scalar tmp32 = tmp29 + tmp31;
+    const Scalar tmp33 = -Scalar(0.0257737061664756)*tmp13 - Scalar(0.003316897780257798)*tmp18
+        + Scalar(0.0290906039467334)*tmp15*m;
+    const Scalar tmp35 = (Scalar(1)/tmp25);
+    const Scalar tmp36 = tmp24*tmp33;
+    const Scalar tmp37 = -Scalar(0.03161742478199714)*tmp13 - Scalar(0.004414255047715874)*tmp16
+        - tmp19*tmp36 + Scalar(0.03603167982971302)*tmp17*m;
+    const Scalar tmp38 = -Scalar(0.008495035709756703)*tmp13 - tmp24*(tmp33*tmp33)
+        - tmp35*(tmp37*tmp37) + Scalar(0.02950190206578425)*tmp15*m
+        + Scalar(0.020659800310639128)*tmp17*m;
+    const Scalar tmp44 = cos(attitude);
+    const Scalar tmp45 = tmp44*tmp5;
+    const Scalar tmp48 = tmp44*com_x;
+    const Scalar tmp49 = tmp48*tmp5;
+    const Scalar tmp53 = tmp4*tmp44;
+    const Scalar tmp54 = tmp0*tmp44;
+    const Scalar tmp57 = tmp3*com_x;
+    const Scalar tmp63 = tmp29*tmp3;
+    const Scalar tmp64 = tmp30 + tmp63;
+    const Scalar tmp65 = tmp2*tmp3;
+    const Scalar tmp66 = tmp65 - tmp4*tmp5;
+    const Scalar tmp67 = -tmp66;
+    const Scalar tmp69 = tmp1*tmp44;
+    const Scalar tmp72 = tmp1*tmp48;
+    const Scalar tmp73 = -tmp72 + tmp64*com_y + tmp67*com_z;
+    const Scalar tmp77 = tmp32*com_y + tmp8*com_z;
+    const Scalar tmp79 = tmp44*tmp6;
+    const Scalar tmp80 = tmp3*tmp5;
+    const Scalar tmp82 = tmp5*tmp57 + tmp79*com_y - tmp0*tmp44*tmp5*com_z;
+    const Scalar tmp89 = tmp53*com_z + tmp54*com_y;
+    const Scalar tmp91 = tmp0*tmp3;
+    const Scalar tmp92 = tmp3*tmp4;
+    const Scalar tmp94 = tmp48 + tmp91*com_z - tmp92*com_y;
+    const Scalar tmp98 = -tmp64;
+    const Scalar tmp99 = tmp67*com_y + tmp98*com_z;
+    const Scalar tmp101 = tmp29*tmp44;
+    const Scalar tmp102 = tmp2*tmp44;
+    const Scalar tmp103 = tmp1*tmp3;
+    const Scalar tmp105 = tmp1*tmp57 + tmp101*com_y - tmp102*com_z;
+    const Scalar tmp108 = -tmp32;
+    const Scalar tmp111 = tmp108*com_z + tmp8*com_y;
+    const Scalar tmp112 = tmp111 - tmp49;
+    const Scalar tmp195 = -tmp82;
+    const Scalar tmp197 = -tmp89;
+    const Scalar tmp201 = tmp30*tmp44;
+    const Scalar tmp214 = tmp19*tmp24;
+    const Scalar tmp219 = -tmp69 + tmp214*tmp64 + tmp36*tmp67;
+    const Scalar tmp220 = tmp80 + tmp214*tmp79 - tmp0*tmp24*tmp33*tmp44*tmp5;
+    const Scalar tmp221 = -tmp220;
+    const Scalar tmp222 = tmp214*tmp32 + tmp36*tmp8;
+    const Scalar tmp224 = -tmp214*tmp54 - tmp36*tmp53;
+    const Scalar tmp225 = tmp44 + tmp36*tmp91 - tmp214*tmp92;
+    const Scalar tmp227 = tmp103 + tmp214*tmp101 - tmp36*tmp102;
+    const Scalar tmp228 = tmp214*tmp67 + tmp36*tmp98;
+    const Scalar tmp229 = tmp108*tmp36 + tmp214*tmp8;
+    const Scalar tmp230 = tmp229 - tmp45;
+    const Scalar tmp241 = tmp35*tmp37;
+    const Scalar tmp245 = tmp64 + tmp241*tmp67;
+    const Scalar tmp246 = -tmp79 + tmp201*tmp241;
+    const Scalar tmp247 = tmp32 + tmp241*tmp8;
+    const Scalar tmp249 = -tmp92 + tmp241*tmp91;
+    const Scalar tmp250 = -tmp54 - tmp241*tmp53;
+    const Scalar tmp252 = -tmp241*tmp102 + tmp1*tmp4*tmp44;
+    const Scalar tmp253 = tmp6 - tmp65 + tmp241*tmp98;
+    const Scalar tmp254 = tmp8 + tmp108*tmp241;
+    const Scalar tmp273 = tmp73*m;
+    const Scalar tmp274 = tmp112*m;
+    const Scalar tmp275 = tmp20*((tmp219*tmp219) + (tmp230*tmp230))
+        + tmp25*((tmp245*tmp245) + (tmp254*tmp254)) + tmp38*((tmp108*tmp108) + (tmp67*tmp67))
+        + m*((tmp112*tmp112) + (tmp73*tmp73));
+    const Scalar tmp276 = tmp195*m;
+    const Scalar tmp277 = tmp94*m;
+    const Scalar tmp278 = tmp105*m;
+    const Scalar tmp279 = tmp20*(tmp219*tmp221 + tmp227*tmp230)
+        + tmp25*(tmp245*tmp246 + tmp252*tmp254) + tmp38*(tmp201*tmp67 - tmp108*tmp102)
+        + m*(tmp105*tmp112 + tmp195*tmp73);
+    const Scalar tmp280 = (tmp0*tmp0);
+    const Scalar tmp281 = (tmp44*tmp44);
+    const Scalar tmp282 = tmp280*tmp281;
+    const Scalar tmp283 = tmp20*((tmp221*tmp221) + (tmp225*tmp225) + (tmp227*tmp227))
+        + tmp25*((tmp246*tmp246) + (tmp249*tmp249) + (tmp252*tmp252))
+        + tmp38*(tmp280*(tmp3*tmp3) + tmp282*(tmp1*tmp1) + tmp282*(tmp5*tmp5))
+        + m*((tmp105*tmp105) + (tmp195*tmp195) + (tmp94*tmp94));
+    const Scalar tmp284 = tmp77*m;
+    const Scalar tmp285 = tmp197*m;
+    const Scalar tmp286 = tmp99*m;
+    const Scalar tmp287 = tmp20*(tmp219*tmp222 + tmp228*tmp230)
+        + tmp25*(tmp245*tmp247 + tmp253*tmp254) + tmp38*(tmp108*tmp98 + tmp67*tmp8)
+        + m*(tmp112*tmp99 + tmp73*tmp77);
+    const Scalar tmp288 = tmp20*(tmp221*tmp222 + tmp224*tmp225 + tmp227*tmp228)
+        + tmp25*(tmp246*tmp247 + tmp249*tmp250 + tmp252*tmp253)
+        + tmp38*(-tmp53*tmp91 - tmp98*tmp102 + tmp0*tmp44*tmp5*tmp8)
+        + m*(tmp105*tmp99 + tmp195*tmp77 + tmp197*tmp94);
+    const Scalar tmp289 = tmp20*((tmp222*tmp222) + (tmp224*tmp224) + (tmp228*tmp228))
+        + tmp25*((tmp247*tmp247) + (tmp250*tmp250) + (tmp253*tmp253))
+        + tmp38*((tmp8*tmp8) + (tmp98*tmp98) + tmp281*(tmp4*tmp4))
+        + m*((tmp197*tmp197) + (tmp77*tmp77) + (tmp99*tmp99));
     QMatrix<Scalar> result;
-    result(0, 0) = tmp142;
+    result(0, 0) = m;
     result(1, 0) = Scalar(0);
-    result(1, 1) = tmp142;
+    result(1, 1) = m;
     result(2, 0) = Scalar(0);
     result(2, 1) = Scalar(0);
-    result(2, 2) = tmp142;
-    result(3, 0) = tmp143;
+    result(2, 2) = m;
+    result(3, 0) = tmp273;
     result(3, 1) = Scalar(0);
-    result(3, 2) = tmp144;
-    result(3, 3) = tmp149;
-    result(4, 0) = tmp151;
-    result(4, 1) = tmp152;
-    result(4, 2) = tmp153;
-    result(4, 3) = tmp154;
-    result(4, 4) = tmp163;
-    result(5, 0) = tmp164;
-    result(5, 1) = tmp165;
-    result(5, 2) = tmp166;
-    result(5, 3) = tmp167;
-    result(5, 4) = tmp169;
-    result(5, 5) = tmp170;
+    result(3, 2) = tmp274;
+    result(3, 3) = tmp275;
+    result(4, 0) = tmp276;
+    result(4, 1) = tmp277;
+    result(4, 2) = tmp278;
+    result(4, 3) = tmp279;
+    result(4, 4) = tmp283;
+    result(5, 0) = tmp284;
+    result(5, 1) = tmp285;
+    result(5, 2) = tmp286;
+    result(5, 3) = tmp287;
+    result(5, 4) = tmp288;
+    result(5, 5) = tmp289;
     result(0, 1) = result(1, 0);
     result(0, 2) = result(2, 0);
     result(1, 2) = result(2, 1);
@@ -5172,7 +5890,7 @@ struct RigidBodyEulerYzx {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return Ft (nq)
-  /// Ops: 103
+  /// Ops: 48
   template <typename Scalar>
   static QVector<Scalar> applied_forces(const QVector<Scalar>& q,
                                         const QVector<Scalar>& /*v*/,
@@ -5184,79 +5902,52 @@ struct RigidBodyEulerYzx {
     const Scalar attitude = q(4);
     const Scalar bank = q(5);
     const Scalar g = Scalar(params.g);
-    const Scalar m_a = Scalar(params.m_a);
-    const Scalar m_b = Scalar(params.m_b);
-    const Scalar m_c = Scalar(params.m_c);
-    const Scalar m_d = Scalar(params.m_d);
-    const Scalar tmp0 = cos(heading);
-    const Scalar tmp1 = cos(attitude);
-    const Scalar tmp2 = Scalar(0.5)*tmp1;
-    const Scalar tmp3 = tmp0*tmp2;
-    const Scalar tmp5 = sin(attitude);
-    const Scalar tmp6 = Scalar(0.5)*tmp5;
-    const Scalar tmp8 = sin(heading);
-    const Scalar tmp16 = tmp6*tmp8;
-    const Scalar tmp19 = sin(bank);
-    const Scalar tmp20 = Scalar(0.4)*tmp19;
-    const Scalar tmp21 = tmp20*tmp8;
-    const Scalar tmp22 = cos(bank);
-    const Scalar tmp23 = Scalar(0.4)*tmp22;
-    const Scalar tmp24 = tmp0*tmp23*tmp5;
-    const Scalar tmp26 = tmp1*tmp23;
-    const Scalar tmp40 = -tmp21*tmp5 + Scalar(0.4)*tmp0*tmp22;
-    const Scalar tmp41 = tmp24 - tmp21;
-    const Scalar tmp44 = Scalar(0.3)*tmp22;
-    const Scalar tmp45 = tmp44*tmp8;
-    const Scalar tmp46 = Scalar(0.3)*tmp19;
-    const Scalar tmp47 = tmp0*tmp46;
-    const Scalar tmp48 = tmp47*tmp5;
-    const Scalar tmp49 = tmp45 + tmp48;
-    const Scalar tmp51 = tmp1*tmp46;
-    const Scalar tmp53 = tmp0*tmp44;
-    const Scalar tmp54 = tmp46*tmp8;
-    const Scalar tmp55 = tmp5*tmp54;
-    const Scalar tmp59 = tmp53*tmp5;
-    const Scalar tmp61 = tmp55 - Scalar(0.3)*tmp0*tmp22;
-    const Scalar tmp67 = tmp45*tmp5;
-    const Scalar tmp68 = tmp47 + tmp67;
-    const Scalar tmp69 = -tmp68;
-    const Scalar tmp70 = -tmp49;
-    const Scalar tmp73 = Scalar(0.2)*tmp1;
-    const Scalar tmp74 = Scalar(0.25)*tmp19;
-    const Scalar tmp75 = tmp5*tmp74;
-    const Scalar tmp76 = -tmp59 + tmp0*tmp75;
-    const Scalar tmp77 = tmp76 + tmp0*tmp73;
-    const Scalar tmp78 = Scalar(0.25)*tmp22;
-    const Scalar tmp79 = tmp8*tmp78;
-    const Scalar tmp80 = tmp54 + tmp79;
-    const Scalar tmp81 = tmp77 + tmp80;
-    const Scalar tmp83 = Scalar(0.2)*tmp5;
-    const Scalar tmp84 = tmp1*tmp74;
-    const Scalar tmp103 = tmp1*tmp45;
-    const Scalar tmp104 = tmp103 + tmp8*tmp83 - tmp8*tmp84;
-    const Scalar tmp105 = -tmp61 - tmp0*tmp74 - tmp5*tmp79;
-    const Scalar tmp106 = -tmp81;
-    const Scalar tmp109 = g*m_a;
-    const Scalar tmp110 = -tmp109;
-    const Scalar tmp111 = g*m_b;
-    const Scalar tmp112 = -tmp111;
-    const Scalar tmp113 = g*m_c;
-    const Scalar tmp114 = -tmp113;
-    const Scalar tmp115 = g*m_d;
-    const Scalar tmp116 = -tmp115;
-    const Scalar tmp121 = tmp26*tmp8;
-    const Scalar tmp128 = tmp51*tmp8;
-    const Scalar tmp171 = tmp110 + tmp112 + tmp114 + tmp116;
-    const Scalar tmp187 = tmp41*tmp112 + tmp70*tmp114 + tmp106*tmp116 - tmp3*tmp110;
-    const Scalar tmp188 = tmp16*tmp110 + tmp104*tmp116 + tmp112*tmp121 - tmp114*tmp128;
-    const Scalar tmp189 = tmp40*tmp112 + tmp69*tmp114 + tmp105*tmp116;
+    const Scalar m = Scalar(params.m);
+    const Scalar com_x = Scalar(params.com_x);
+    const Scalar com_y = Scalar(params.com_y);
+    const Scalar com_z = Scalar(params.com_z);
+    const Scalar tmp0 = sin(bank);
+    const Scalar tmp1 = sin(heading);
+    const Scalar tmp2 = tmp0*tmp1;
+    const Scalar tmp3 = sin(attitude);
+    const Scalar tmp4 = cos(bank);
+    const Scalar tmp5 = cos(heading);
+    const Scalar tmp6 = tmp4*tmp5;
+    const Scalar tmp7 = tmp3*tmp6;
+    const Scalar tmp8 = tmp7 - tmp2;
+    const Scalar tmp29 = tmp1*tmp4;
+    const Scalar tmp30 = tmp0*tmp5;
+    const Scalar tmp31 = tmp3*tmp30;
+    const Scalar tmp32 = tmp29 + tmp31;
+    const Scalar tmp44 = cos(attitude);
+    const Scalar tmp48 = tmp44*com_x;
+    const Scalar tmp49 = tmp48*tmp5;
+    const Scalar tmp57 = tmp3*com_x;
+    const Scalar tmp63 = tmp29*tmp3;
+    const Scalar tmp64 = tmp30 + tmp63;
+    const Scalar tmp65 = tmp2*tmp3;
+    const Scalar tmp66 = tmp65 - tmp4*tmp5;
+    const Scalar tmp67 = -tmp66;
+    const Scalar tmp98 = -tmp64;
+    const Scalar tmp99 = tmp67*com_y + tmp98*com_z;
+    const Scalar tmp101 = tmp29*tmp44;
+    const Scalar tmp102 = tmp2*tmp44;
+    const Scalar tmp105 = tmp1*tmp57 + tmp101*com_y - tmp102*com_z;
+    const Scalar tmp108 = -tmp32;
+    const Scalar tmp111 = tmp108*com_z + tmp8*com_y;
+    const Scalar tmp112 = tmp111 - tmp49;
+    const Scalar tmp290 = g*m;
+    const Scalar tmp291 = -tmp290;
+    const Scalar tmp304 = tmp112*tmp291;
+    const Scalar tmp305 = tmp105*tmp291;
+    const Scalar tmp306 = tmp99*tmp291;
     QVector<Scalar> result;
     result(0) = Scalar(0);
     result(1) = Scalar(0);
-    result(2) = tmp171;
-    result(3) = tmp187;
-    result(4) = tmp188;
-    result(5) = tmp189;
+    result(2) = tmp291;
+    result(3) = tmp304;
+    result(4) = tmp305;
+    result(5) = tmp306;
     return result;
   }
 
@@ -5288,7 +5979,7 @@ struct RigidBodyEulerYzx {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return Fi (nq)
-  /// Ops: 457
+  /// Ops: 631
   template <typename Scalar>
   static QVector<Scalar> inertial_forces(const QVector<Scalar>& q,
                                          const QVector<Scalar>& v,
@@ -5302,171 +5993,205 @@ struct RigidBodyEulerYzx {
     const Scalar heading_dot = v(3);
     const Scalar attitude_dot = v(4);
     const Scalar bank_dot = v(5);
-    const Scalar m_a = Scalar(params.m_a);
-    const Scalar m_b = Scalar(params.m_b);
-    const Scalar m_c = Scalar(params.m_c);
-    const Scalar m_d = Scalar(params.m_d);
-    const Scalar tmp0 = cos(heading);
-    const Scalar tmp1 = cos(attitude);
-    const Scalar tmp2 = Scalar(0.5)*tmp1;
-    const Scalar tmp3 = tmp0*tmp2;
-    const Scalar tmp5 = sin(attitude);
-    const Scalar tmp6 = Scalar(0.5)*tmp5;
-    const Scalar tmp8 = sin(heading);
-    const Scalar tmp9 = tmp2*tmp8;
-    const Scalar tmp12 = tmp0*tmp6;
-    const Scalar tmp13 = tmp9*heading_dot + tmp12*attitude_dot;
-    const Scalar tmp16 = tmp6*tmp8;
-    const Scalar tmp17 = tmp16*attitude_dot - tmp3*heading_dot;
-    const Scalar tmp19 = sin(bank);
-    const Scalar tmp20 = Scalar(0.4)*tmp19;
-    const Scalar tmp21 = tmp20*tmp8;
-    const Scalar tmp22 = cos(bank);
-    const Scalar tmp23 = Scalar(0.4)*tmp22;
-    const Scalar tmp24 = tmp0*tmp23*tmp5;
-    const Scalar tmp26 = tmp1*tmp23;
-    const Scalar tmp28 = tmp0*tmp20;
-    const Scalar tmp29 = tmp23*tmp8;
-    const Scalar tmp30 = tmp29*tmp5;
-    const Scalar tmp31 = tmp28 + tmp30;
-    const Scalar tmp33 = tmp26*attitude_dot;
-    const Scalar tmp34 = tmp0*tmp33;
-    const Scalar tmp35 = tmp29 + tmp28*tmp5;
-    const Scalar tmp40 = -tmp21*tmp5 + Scalar(0.4)*tmp0*tmp22;
-    const Scalar tmp41 = tmp24 - tmp21;
-    const Scalar tmp42 = tmp33*tmp8 + tmp40*bank_dot + tmp41*heading_dot;
-    const Scalar tmp44 = Scalar(0.3)*tmp22;
-    const Scalar tmp45 = tmp44*tmp8;
-    const Scalar tmp46 = Scalar(0.3)*tmp19;
-    const Scalar tmp47 = tmp0*tmp46;
-    const Scalar tmp48 = tmp47*tmp5;
-    const Scalar tmp49 = tmp45 + tmp48;
-    const Scalar tmp51 = tmp1*tmp46;
-    const Scalar tmp53 = tmp0*tmp44;
-    const Scalar tmp54 = tmp46*tmp8;
-    const Scalar tmp55 = tmp5*tmp54;
-    const Scalar tmp57 = tmp51*attitude_dot;
-    const Scalar tmp58 = tmp0*tmp57;
-    const Scalar tmp59 = tmp53*tmp5;
-    const Scalar tmp60 = tmp59 - tmp54;
-    const Scalar tmp61 = tmp55 - Scalar(0.3)*tmp0*tmp22;
-    const Scalar tmp62 = -tmp61;
-    const Scalar tmp64 = tmp46*tmp5;
-    const Scalar tmp65 = tmp1*tmp44;
-    const Scalar tmp67 = tmp45*tmp5;
-    const Scalar tmp68 = tmp47 + tmp67;
-    const Scalar tmp69 = -tmp68;
-    const Scalar tmp70 = -tmp49;
-    const Scalar tmp71 = tmp69*bank_dot + tmp70*heading_dot - tmp57*tmp8;
-    const Scalar tmp73 = Scalar(0.2)*tmp1;
-    const Scalar tmp74 = Scalar(0.25)*tmp19;
-    const Scalar tmp75 = tmp5*tmp74;
-    const Scalar tmp76 = -tmp59 + tmp0*tmp75;
-    const Scalar tmp77 = tmp76 + tmp0*tmp73;
-    const Scalar tmp78 = Scalar(0.25)*tmp22;
-    const Scalar tmp79 = tmp8*tmp78;
-    const Scalar tmp80 = tmp54 + tmp79;
-    const Scalar tmp81 = tmp77 + tmp80;
-    const Scalar tmp83 = Scalar(0.2)*tmp5;
-    const Scalar tmp84 = tmp1*tmp74;
-    const Scalar tmp85 = tmp65 + tmp83 - tmp84;
-    const Scalar tmp87 = tmp73*tmp8;
-    const Scalar tmp88 = tmp0*tmp78;
-    const Scalar tmp89 = tmp74*tmp8;
-    const Scalar tmp90 = tmp5*tmp89;
-    const Scalar tmp91 = tmp68 + tmp88 - tmp90;
-    const Scalar tmp92 = tmp91 - tmp87;
-    const Scalar tmp94 = tmp1*tmp53;
-    const Scalar tmp95 = tmp94 + tmp0*tmp83 - Scalar(0.25)*tmp0*tmp1*tmp19;
-    const Scalar tmp96 = -tmp95;
-    const Scalar tmp97 = tmp49 - tmp89 + tmp5*tmp88;
-    const Scalar tmp99 = -tmp51 - tmp1*tmp78;
-    const Scalar tmp100 = tmp44*tmp5;
-    const Scalar tmp101 = tmp73 + tmp75 - tmp100;
-    const Scalar tmp103 = tmp1*tmp45;
-    const Scalar tmp104 = tmp103 + tmp8*tmp83 - tmp8*tmp84;
-    const Scalar tmp105 = -tmp61 - tmp0*tmp74 - tmp5*tmp79;
-    const Scalar tmp106 = -tmp81;
-    const Scalar tmp107 = tmp104*attitude_dot + tmp105*bank_dot + tmp106*heading_dot;
-    const Scalar tmp117 = tmp17*heading_dot
-        + attitude_dot*(-tmp3*attitude_dot + Scalar(0.5)*tmp5*tmp8*heading_dot);
-    const Scalar tmp118 = -tmp6*(attitude_dot*attitude_dot);
-    const Scalar tmp119 = tmp13*heading_dot + attitude_dot*(tmp9*attitude_dot + tmp12*heading_dot);
-    const Scalar tmp120 = tmp1*tmp28;
-    const Scalar tmp121 = tmp26*tmp8;
-    const Scalar tmp122 = tmp42*heading_dot
-        + attitude_dot*(tmp24*attitude_dot + tmp120*bank_dot + tmp121*heading_dot)
-        + bank_dot*(tmp40*heading_dot + tmp41*bank_dot + tmp120*attitude_dot);
-    const Scalar tmp123 = attitude_dot*(-tmp33 + Scalar(0.4)*tmp19*tmp5*bank_dot)
-        + bank_dot*(-tmp26*bank_dot + tmp20*tmp5*attitude_dot);
-    const Scalar tmp124 = tmp1*tmp21;
-    const Scalar tmp125 = -tmp31;
-    const Scalar tmp126 = -tmp35;
-    const Scalar tmp127 = attitude_dot*(-tmp30*attitude_dot - tmp124*bank_dot
-            + Scalar(0.4)*tmp0*tmp1*tmp22*heading_dot)
-        + bank_dot*(tmp125*bank_dot + tmp126*heading_dot - tmp124*attitude_dot)
-        + heading_dot*(tmp34 + tmp125*heading_dot + tmp126*bank_dot);
-    const Scalar tmp128 = tmp51*tmp8;
-    const Scalar tmp129 = tmp71*heading_dot
-        + attitude_dot*(-tmp48*attitude_dot - tmp128*heading_dot
-            + Scalar(0.3)*tmp0*tmp1*tmp22*bank_dot)
-        + bank_dot*(tmp69*heading_dot + tmp70*bank_dot + tmp94*attitude_dot);
-    const Scalar tmp130 = attitude_dot*(tmp57 + tmp100*bank_dot)
-        + bank_dot*(tmp51*bank_dot + tmp100*attitude_dot);
-    const Scalar tmp131 = tmp0*tmp51;
-    const Scalar tmp132 = -tmp60;
-    const Scalar tmp133 = attitude_dot*(-tmp103*bank_dot - tmp131*heading_dot
-            + Scalar(0.3)*tmp19*tmp5*tmp8*attitude_dot)
-        + bank_dot*(tmp132*heading_dot + tmp61*bank_dot - tmp103*attitude_dot)
-        + heading_dot*(-tmp58 + tmp132*bank_dot + tmp61*heading_dot);
-    const Scalar tmp134 = tmp131 + tmp1*tmp88;
-    const Scalar tmp135 = tmp107*heading_dot
-        + attitude_dot*(tmp134*bank_dot + tmp104*heading_dot - tmp77*attitude_dot)
-        + bank_dot*(tmp134*attitude_dot + tmp105*heading_dot + bank_dot*(-tmp76 - tmp80));
-    const Scalar tmp136 = tmp64 + tmp5*tmp78;
-    const Scalar tmp137 = -tmp65;
-    const Scalar tmp138 = attitude_dot*(tmp136*bank_dot - tmp85*attitude_dot)
-        + bank_dot*(tmp136*attitude_dot + bank_dot*(tmp137 + tmp84));
-    const Scalar tmp139 = -tmp128 - tmp1*tmp79;
-    const Scalar tmp140 = -tmp97;
-    const Scalar tmp141 = attitude_dot*(tmp139*bank_dot + tmp95*heading_dot
-            + attitude_dot*(tmp87 + tmp90 - tmp67))
-        + bank_dot*(tmp139*attitude_dot + tmp140*heading_dot - tmp91*bank_dot)
-        + heading_dot*(tmp140*bank_dot + tmp95*attitude_dot - tmp92*heading_dot);
-    const Scalar tmp172 = tmp117*m_a;
-    const Scalar tmp173 = tmp119*m_a;
-    const Scalar tmp174 = tmp122*m_b;
-    const Scalar tmp175 = tmp127*m_b;
-    const Scalar tmp176 = tmp129*m_c;
-    const Scalar tmp177 = tmp133*m_c;
-    const Scalar tmp178 = tmp135*m_d;
-    const Scalar tmp179 = tmp141*m_d;
-    const Scalar tmp180 = tmp118*m_a;
-    const Scalar tmp181 = tmp123*m_b;
-    const Scalar tmp182 = tmp130*m_c;
-    const Scalar tmp183 = tmp138*m_d;
-    const Scalar tmp184 = tmp174 + tmp176 + tmp178 + tmp172;
-    const Scalar tmp185 = tmp181 + tmp182 + tmp183 + tmp180;
-    const Scalar tmp186 = tmp175 + tmp177 + tmp179 + tmp173;
-    const Scalar tmp190 = -tmp184;
-    const Scalar tmp191 = -tmp185;
-    const Scalar tmp192 = -tmp186;
-    const Scalar tmp193 = -tmp174*tmp31 - tmp175*tmp41 - tmp176*tmp62 - tmp177*tmp70 - tmp178*tmp92
-        - tmp179*tmp106 + Scalar(0.5)*tmp0*tmp1*tmp173 + Scalar(0.5)*tmp1*tmp8*tmp172;
-    const Scalar tmp194 = -tmp16*tmp173 - tmp175*tmp121 - tmp176*tmp131 - tmp178*tmp96
-        - tmp179*tmp104 - tmp182*tmp64 - tmp183*tmp101 - tmp2*tmp180 + Scalar(0.5)*tmp0*tmp5*tmp172
-        + Scalar(0.4)*tmp181*tmp22*tmp5 + Scalar(0.4)*tmp0*tmp1*tmp174*tmp22
-        + Scalar(0.3)*tmp1*tmp177*tmp19*tmp8;
-    const Scalar tmp195 = -tmp174*tmp35 - tmp175*tmp40 - tmp176*tmp60 - tmp177*tmp69 - tmp178*tmp97
-        - tmp179*tmp105 - tmp183*tmp99 + Scalar(0.4)*tmp1*tmp181*tmp19
-        + Scalar(0.3)*tmp1*tmp182*tmp22;
+    const Scalar m = Scalar(params.m);
+    const Scalar com_x = Scalar(params.com_x);
+    const Scalar com_y = Scalar(params.com_y);
+    const Scalar com_z = Scalar(params.com_z);
+    const Scalar a = Scalar(params.a);
+    const Scalar b = Scalar(params.b);
+    const Scalar c = Scalar(params.c);
+    const Scalar tmp0 = sin(bank);
+    const Scalar tmp1 = sin(heading);
+    const Scalar tmp2 = tmp0*tmp1;
+    const Scalar tmp3 = sin(attitude);
+    const Scalar tmp4 = cos(bank);
+    const Scalar tmp5 = cos(heading);
+    const Scalar tmp6 = tmp4*tmp5;
+    const Scalar tmp7 = tmp3*tmp6;
+    const Scalar tmp8 = tmp7 - tmp2;
+    const Scalar tmp9 = -tmp8;
+    const Scalar tmp11 = (a*a);
+    const Scalar tmp12 = (b*b);
+    const Scalar tmp13 = m*(tmp11 + tmp12);
+    const Scalar tmp14 = (c*c);
+    const Scalar tmp15 = tmp11 + tmp14;
+    const Scalar tmp16 = tmp15*m;
+    const Scalar tmp17 = tmp12 + tmp14;
+    const Scalar tmp18 = tmp17*m;
+    const Scalar tmp19 = Scalar(0.005689254019167049)*tmp18 + Scalar(0.010556171822976032)*tmp16
+        - Scalar(0.01624542584214308)*tmp13;
+    const Scalar tmp20 = Scalar(0.041142942152109445)*tmp18 + Scalar(0.028423816083747767)*tmp13
+        - Scalar(0.027900091569190537)*tmp16;
+    const Scalar tmp24 = (Scalar(1)/tmp20);
+    const Scalar tmp25 = Scalar(0.021737886292675604)*tmp13 + Scalar(0.04006485617007295)*tmp16
+        - Scalar(0.020136075796081898)*tmp18 - tmp24*(tmp19*tmp19);
+    const Scalar tmp29 = tmp1*tmp4;
+    const Scalar tmp30 = tmp0*tmp5;
+    const Scalar tmp31 = tmp3*tmp30;
+    const Scalar tmp32 = tmp29 + tmp31;
+    const Scalar tmp33 = -Scalar(0.0257737061664756)*tmp13 - Scalar(0.003316897780257798)*tmp18
+        + Scalar(0.0290906039467334)*tmp15*m;
+    const Scalar tmp35 = (Scalar(1)/tmp25);
+    const Scalar tmp36 = tmp24*tmp33;
+    const Scalar tmp37 = -Scalar(0.03161742478199714)*tmp13 - Scalar(0.004414255047715874)*tmp16
+        - tmp19*tmp36 + Scalar(0.03603167982971302)*tmp17*m;
+    const Scalar tmp38 = -Scalar(0.008495035709756703)*tmp13 - tmp24*(tmp33*tmp33)
+        - tmp35*(tmp37*tmp37) + Scalar(0.02950190206578425)*tmp15*m
+        + Scalar(0.020659800310639128)*tmp17*m;
+    const Scalar tmp44 = cos(attitude);
+    const Scalar tmp45 = tmp44*tmp5;
+    const Scalar tmp48 = tmp44*com_x;
+    const Scalar tmp49 = tmp48*tmp5;
+    const Scalar tmp53 = tmp4*tmp44;
+    const Scalar tmp54 = tmp0*tmp44;
+    const Scalar tmp57 = tmp3*com_x;
+    const Scalar tmp58 = tmp53*com_y - tmp54*com_z;
+    const Scalar tmp59 = tmp57 + tmp58;
+    const Scalar tmp63 = tmp29*tmp3;
+    const Scalar tmp64 = tmp30 + tmp63;
+    const Scalar tmp65 = tmp2*tmp3;
+    const Scalar tmp66 = tmp65 - tmp4*tmp5;
+    const Scalar tmp67 = -tmp66;
+    const Scalar tmp69 = tmp1*tmp44;
+    const Scalar tmp72 = tmp1*tmp48;
+    const Scalar tmp73 = -tmp72 + tmp64*com_y + tmp67*com_z;
+    const Scalar tmp77 = tmp32*com_y + tmp8*com_z;
+    const Scalar tmp79 = tmp44*tmp6;
+    const Scalar tmp80 = tmp3*tmp5;
+    const Scalar tmp82 = tmp5*tmp57 + tmp79*com_y - tmp0*tmp44*tmp5*com_z;
+    const Scalar tmp89 = tmp53*com_z + tmp54*com_y;
+    const Scalar tmp91 = tmp0*tmp3;
+    const Scalar tmp92 = tmp3*tmp4;
+    const Scalar tmp94 = tmp48 + tmp91*com_z - tmp92*com_y;
+    const Scalar tmp98 = -tmp64;
+    const Scalar tmp99 = tmp67*com_y + tmp98*com_z;
+    const Scalar tmp101 = tmp29*tmp44;
+    const Scalar tmp102 = tmp2*tmp44;
+    const Scalar tmp103 = tmp1*tmp3;
+    const Scalar tmp105 = tmp1*tmp57 + tmp101*com_y - tmp102*com_z;
+    const Scalar tmp108 = -tmp32;
+    const Scalar tmp111 = tmp108*com_z + tmp8*com_y;
+    const Scalar tmp112 = tmp111 - tmp49;
+    const Scalar tmp195 = -tmp82;
+    const Scalar tmp197 = -tmp89;
+    const Scalar tmp199 = tmp105*attitude_dot + tmp112*heading_dot + tmp99*bank_dot;
+    const Scalar tmp201 = tmp30*tmp44;
+    const Scalar tmp202 = tmp201*com_y + tmp79*com_z;
+    const Scalar tmp203 = tmp49 + tmp31*com_z - tmp3*tmp4*tmp5*com_y;
+    const Scalar tmp204 = tmp199*heading_dot
+        + attitude_dot*(tmp105*heading_dot + tmp202*bank_dot - tmp203*attitude_dot)
+        + bank_dot*(tmp111*bank_dot + tmp202*attitude_dot + tmp99*heading_dot);
+    const Scalar tmp205 = tmp91*com_y + tmp92*com_z;
+    const Scalar tmp206 = attitude_dot*(tmp205*bank_dot - tmp59*attitude_dot)
+        + bank_dot*(tmp205*attitude_dot - tmp58*bank_dot);
+    const Scalar tmp207 = tmp101*com_z + tmp102*com_y;
+    const Scalar tmp208 = -tmp207;
+    const Scalar tmp209 = tmp72 + tmp65*com_z - tmp63*com_y;
+    const Scalar tmp210 = tmp66*com_z + tmp98*com_y;
+    const Scalar tmp211 = tmp108*com_y + tmp9*com_z;
+    const Scalar tmp212 = tmp210 + tmp72;
+    const Scalar tmp213 = attitude_dot*(tmp208*bank_dot + tmp209*attitude_dot + tmp82*heading_dot)
+        + bank_dot*(tmp208*attitude_dot + tmp210*bank_dot + tmp211*heading_dot)
+        + heading_dot*(tmp211*bank_dot + tmp212*heading_dot + tmp82*attitude_dot);
+    const Scalar tmp214 = tmp19*tmp24;
+    const Scalar tmp216 = tmp214*tmp53;
+    const Scalar tmp217 = tmp36*tmp54;
+    const Scalar tmp218 = tmp216 + tmp3 - tmp217;
+    const Scalar tmp219 = -tmp69 + tmp214*tmp64 + tmp36*tmp67;
+    const Scalar tmp220 = tmp80 + tmp214*tmp79 - tmp0*tmp24*tmp33*tmp44*tmp5;
+    const Scalar tmp221 = -tmp220;
+    const Scalar tmp222 = tmp214*tmp32 + tmp36*tmp8;
+    const Scalar tmp224 = -tmp214*tmp54 - tmp36*tmp53;
+    const Scalar tmp225 = tmp44 + tmp36*tmp91 - tmp214*tmp92;
+    const Scalar tmp227 = tmp103 + tmp214*tmp101 - tmp36*tmp102;
+    const Scalar tmp228 = tmp214*tmp67 + tmp36*tmp98;
+    const Scalar tmp229 = tmp108*tmp36 + tmp214*tmp8;
+    const Scalar tmp230 = tmp229 - tmp45;
+    const Scalar tmp231 = tmp227*attitude_dot + tmp228*bank_dot + tmp230*heading_dot;
+    const Scalar tmp232 = tmp201*tmp214 + tmp36*tmp79;
+    const Scalar tmp233 = tmp231*heading_dot
+        + attitude_dot*(tmp227*heading_dot + tmp232*bank_dot
+            + attitude_dot*(-tmp45 - tmp31*tmp36 + tmp19*tmp24*tmp3*tmp4*tmp5))
+        + bank_dot*(tmp228*heading_dot + tmp229*bank_dot + tmp232*attitude_dot);
+    const Scalar tmp234 = tmp214*tmp91 + tmp36*tmp92;
+    const Scalar tmp235 = attitude_dot*(tmp234*bank_dot - tmp218*attitude_dot)
+        + bank_dot*(tmp234*attitude_dot + bank_dot*(tmp217 - tmp216));
+    const Scalar tmp236 = -tmp214*tmp102 - tmp36*tmp101;
+    const Scalar tmp237 = tmp214*tmp98 + tmp36*tmp66;
+    const Scalar tmp238 = tmp108*tmp214 + tmp36*tmp9;
+    const Scalar tmp239 = attitude_dot*(tmp220*heading_dot + tmp236*bank_dot
+            + attitude_dot*(tmp69 + tmp36*tmp65 - tmp214*tmp63))
+        + bank_dot*(tmp236*attitude_dot + tmp237*bank_dot + tmp238*heading_dot)
+        + heading_dot*(tmp220*attitude_dot + tmp238*bank_dot + heading_dot*(tmp237 + tmp69));
+    const Scalar tmp240 = -tmp7;
+    const Scalar tmp241 = tmp35*tmp37;
+    const Scalar tmp243 = tmp241*tmp54 - tmp4*tmp44;
+    const Scalar tmp245 = tmp64 + tmp241*tmp67;
+    const Scalar tmp246 = -tmp79 + tmp201*tmp241;
+    const Scalar tmp247 = tmp32 + tmp241*tmp8;
+    const Scalar tmp249 = -tmp92 + tmp241*tmp91;
+    const Scalar tmp250 = -tmp54 - tmp241*tmp53;
+    const Scalar tmp252 = -tmp241*tmp102 + tmp1*tmp4*tmp44;
+    const Scalar tmp253 = tmp6 - tmp65 + tmp241*tmp98;
+    const Scalar tmp254 = tmp8 + tmp108*tmp241;
+    const Scalar tmp255 = tmp252*attitude_dot + tmp253*bank_dot + tmp254*heading_dot;
+    const Scalar tmp256 = tmp201 + tmp241*tmp79;
+    const Scalar tmp257 = tmp255*heading_dot
+        + attitude_dot*(tmp252*heading_dot + tmp256*bank_dot
+            + attitude_dot*(-tmp240 - tmp241*tmp31))
+        + bank_dot*(tmp253*heading_dot + tmp254*bank_dot + tmp256*attitude_dot);
+    const Scalar tmp258 = tmp91 + tmp241*tmp92;
+    const Scalar tmp259 = attitude_dot*(tmp243*attitude_dot + tmp258*bank_dot)
+        + bank_dot*(tmp243*bank_dot + tmp258*attitude_dot);
+    const Scalar tmp260 = -tmp246;
+    const Scalar tmp261 = -tmp102 - tmp241*tmp101;
+    const Scalar tmp262 = -tmp32 + tmp35*tmp37*tmp9;
+    const Scalar tmp263 = -tmp64 + tmp35*tmp37*tmp66;
+    const Scalar tmp264 = attitude_dot*(tmp260*heading_dot + tmp261*bank_dot
+            + attitude_dot*(-tmp63 + tmp241*tmp65))
+        + bank_dot*(tmp261*attitude_dot + tmp262*heading_dot + tmp263*bank_dot)
+        + heading_dot*(tmp260*attitude_dot + tmp262*bank_dot + tmp263*heading_dot);
+    const Scalar tmp266 = tmp201*attitude_dot;
+    const Scalar tmp269 = tmp108*heading_dot + tmp98*bank_dot - tmp102*attitude_dot;
+    const Scalar tmp270 = tmp269*heading_dot
+        + attitude_dot*(-tmp31*attitude_dot - tmp102*heading_dot + tmp4*tmp44*tmp5*bank_dot)
+        + bank_dot*(tmp108*bank_dot + tmp79*attitude_dot + tmp98*heading_dot);
+    const Scalar tmp271 = attitude_dot*(tmp54*attitude_dot + tmp92*bank_dot)
+        + bank_dot*(tmp54*bank_dot + tmp92*attitude_dot);
+    const Scalar tmp272 = attitude_dot*(-tmp201*heading_dot - tmp101*bank_dot
+            + tmp0*tmp1*tmp3*attitude_dot)
+        + bank_dot*(tmp66*bank_dot + tmp9*heading_dot - tmp101*attitude_dot)
+        + heading_dot*(-tmp266 + tmp66*heading_dot + tmp9*bank_dot);
+    const Scalar tmp292 = tmp204*m;
+    const Scalar tmp293 = tmp206*m;
+    const Scalar tmp294 = tmp213*m;
+    const Scalar tmp295 = tmp20*tmp233;
+    const Scalar tmp296 = tmp20*tmp239;
+    const Scalar tmp297 = tmp25*tmp257;
+    const Scalar tmp298 = tmp25*tmp264;
+    const Scalar tmp299 = tmp38*tmp270;
+    const Scalar tmp300 = tmp38*tmp272;
+    const Scalar tmp301 = tmp20*tmp235;
+    const Scalar tmp302 = tmp25*tmp259;
+    const Scalar tmp303 = tmp38*tmp271;
+    const Scalar tmp307 = -tmp292;
+    const Scalar tmp308 = -tmp293;
+    const Scalar tmp309 = -tmp294;
+    const Scalar tmp310 = -tmp108*tmp300 - tmp112*tmp294 - tmp219*tmp295 - tmp230*tmp296
+        - tmp245*tmp297 - tmp254*tmp298 - tmp67*tmp299 - tmp73*tmp292;
+    const Scalar tmp311 = -tmp105*tmp294 - tmp195*tmp292 - tmp201*tmp299 - tmp221*tmp295
+        - tmp225*tmp301 - tmp227*tmp296 - tmp246*tmp297 - tmp249*tmp302 - tmp252*tmp298
+        - tmp91*tmp303 - tmp94*tmp293 + tmp0*tmp1*tmp44*tmp300;
+    const Scalar tmp312 = -tmp197*tmp293 - tmp222*tmp295 - tmp224*tmp301 - tmp228*tmp296
+        - tmp247*tmp297 - tmp250*tmp302 - tmp253*tmp298 - tmp77*tmp292 - tmp8*tmp299 - tmp98*tmp300
+        - tmp99*tmp294 + tmp4*tmp44*tmp303;
     QVector<Scalar> result;
-    result(0) = tmp190;
-    result(1) = tmp191;
-    result(2) = tmp192;
-    result(3) = tmp193;
-    result(4) = tmp194;
-    result(5) = tmp195;
+    result(0) = tmp307;
+    result(1) = tmp308;
+    result(2) = tmp309;
+    result(3) = tmp310;
+    result(4) = tmp311;
+    result(5) = tmp312;
     return result;
   }
 
@@ -5476,7 +6201,7 @@ struct RigidBodyEulerYzx {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return Ft + Fi (nq)
-  /// Ops: 493
+  /// Ops: 640
   template <typename Scalar>
   static QVector<Scalar> forces(const QVector<Scalar>& q,
                                 const QVector<Scalar>& v,
@@ -5491,183 +6216,210 @@ struct RigidBodyEulerYzx {
     const Scalar attitude_dot = v(4);
     const Scalar bank_dot = v(5);
     const Scalar g = Scalar(params.g);
-    const Scalar m_a = Scalar(params.m_a);
-    const Scalar m_b = Scalar(params.m_b);
-    const Scalar m_c = Scalar(params.m_c);
-    const Scalar m_d = Scalar(params.m_d);
-    const Scalar tmp0 = cos(heading);
-    const Scalar tmp1 = cos(attitude);
-    const Scalar tmp2 = Scalar(0.5)*tmp1;
-    const Scalar tmp3 = tmp0*tmp2;
-    const Scalar tmp5 = sin(attitude);
-    const Scalar tmp6 = Scalar(0.5)*tmp5;
-    const Scalar tmp8 = sin(heading);
-    const Scalar tmp9 = tmp2*tmp8;
-    const Scalar tmp12 = tmp0*tmp6;
-    const Scalar tmp13 = tmp9*heading_dot + tmp12*attitude_dot;
-    const Scalar tmp16 = tmp6*tmp8;
-    const Scalar tmp17 = tmp16*attitude_dot - tmp3*heading_dot;
-    const Scalar tmp19 = sin(bank);
-    const Scalar tmp20 = Scalar(0.4)*tmp19;
-    const Scalar tmp21 = tmp20*tmp8;
-    const Scalar tmp22 = cos(bank);
-    const Scalar tmp23 = Scalar(0.4)*tmp22;
-    const Scalar tmp24 = tmp0*tmp23*tmp5;
-    const Scalar tmp26 = tmp1*tmp23;
-    const Scalar tmp28 = tmp0*tmp20;
-    const Scalar tmp29 = tmp23*tmp8;
-    const Scalar tmp30 = tmp29*tmp5;
-    const Scalar tmp31 = tmp28 + tmp30;
-    const Scalar tmp33 = tmp26*attitude_dot;
-    const Scalar tmp34 = tmp0*tmp33;
-    const Scalar tmp35 = tmp29 + tmp28*tmp5;
-    const Scalar tmp40 = -tmp21*tmp5 + Scalar(0.4)*tmp0*tmp22;
-    const Scalar tmp41 = tmp24 - tmp21;
-    const Scalar tmp42 = tmp33*tmp8 + tmp40*bank_dot + tmp41*heading_dot;
-    const Scalar tmp44 = Scalar(0.3)*tmp22;
-    const Scalar tmp45 = tmp44*tmp8;
-    const Scalar tmp46 = Scalar(0.3)*tmp19;
-    const Scalar tmp47 = tmp0*tmp46;
-    const Scalar tmp48 = tmp47*tmp5;
-    const Scalar tmp49 = tmp45 + tmp48;
-    const Scalar tmp51 = tmp1*tmp46;
-    const Scalar tmp53 = tmp0*tmp44;
-    const Scalar tmp54 = tmp46*tmp8;
-    const Scalar tmp55 = tmp5*tmp54;
-    const Scalar tmp57 = tmp51*attitude_dot;
-    const Scalar tmp58 = tmp0*tmp57;
-    const Scalar tmp59 = tmp53*tmp5;
-    const Scalar tmp60 = tmp59 - tmp54;
-    const Scalar tmp61 = tmp55 - Scalar(0.3)*tmp0*tmp22;
-    const Scalar tmp62 = -tmp61;
-    const Scalar tmp64 = tmp46*tmp5;
-    const Scalar tmp65 = tmp1*tmp44;
-    const Scalar tmp67 = tmp45*tmp5;
-    const Scalar tmp68 = tmp47 + tmp67;
-    const Scalar tmp69 = -tmp68;
-    const Scalar tmp70 = -tmp49;
-    const Scalar tmp71 = tmp69*bank_dot + tmp70*heading_dot - tmp57*tmp8;
-    const Scalar tmp73 = Scalar(0.2)*tmp1;
-    const Scalar tmp74 = Scalar(0.25)*tmp19;
-    const Scalar tmp75 = tmp5*tmp74;
-    const Scalar tmp76 = -tmp59 + tmp0*tmp75;
-    const Scalar tmp77 = tmp76 + tmp0*tmp73;
-    const Scalar tmp78 = Scalar(0.25)*tmp22;
-    const Scalar tmp79 = tmp8*tmp78;
-    const Scalar tmp80 = tmp54 + tmp79;
-    const Scalar tmp81 = tmp77 + tmp80;
-    const Scalar tmp83 = Scalar(0.2)*tmp5;
-    const Scalar tmp84 = tmp1*tmp74;
-    const Scalar tmp85 = tmp65 + tmp83 - tmp84;
-    const Scalar tmp87 = tmp73*tmp8;
-    const Scalar tmp88 = tmp0*tmp78;
-    const Scalar tmp89 = tmp74*tmp8;
-    const Scalar tmp90 = tmp5*tmp89;
-    const Scalar tmp91 = tmp68 + tmp88 - tmp90;
-    const Scalar tmp92 = tmp91 - tmp87;
-    const Scalar tmp94 = tmp1*tmp53;
-    const Scalar tmp95 = tmp94 + tmp0*tmp83 - Scalar(0.25)*tmp0*tmp1*tmp19;
-    const Scalar tmp96 = -tmp95;
-    const Scalar tmp97 = tmp49 - tmp89 + tmp5*tmp88;
-    const Scalar tmp99 = -tmp51 - tmp1*tmp78;
-    const Scalar tmp100 = tmp44*tmp5;
-    const Scalar tmp101 = tmp73 + tmp75 - tmp100;
-    const Scalar tmp103 = tmp1*tmp45;
-    const Scalar tmp104 = tmp103 + tmp8*tmp83 - tmp8*tmp84;
-    const Scalar tmp105 = -tmp61 - tmp0*tmp74 - tmp5*tmp79;
-    const Scalar tmp106 = -tmp81;
-    const Scalar tmp107 = tmp104*attitude_dot + tmp105*bank_dot + tmp106*heading_dot;
-    const Scalar tmp109 = g*m_a;
-    const Scalar tmp110 = -tmp109;
-    const Scalar tmp111 = g*m_b;
-    const Scalar tmp112 = -tmp111;
-    const Scalar tmp113 = g*m_c;
-    const Scalar tmp114 = -tmp113;
-    const Scalar tmp115 = g*m_d;
-    const Scalar tmp116 = -tmp115;
-    const Scalar tmp117 = tmp17*heading_dot
-        + attitude_dot*(-tmp3*attitude_dot + Scalar(0.5)*tmp5*tmp8*heading_dot);
-    const Scalar tmp118 = -tmp6*(attitude_dot*attitude_dot);
-    const Scalar tmp119 = tmp13*heading_dot + attitude_dot*(tmp9*attitude_dot + tmp12*heading_dot);
-    const Scalar tmp120 = tmp1*tmp28;
-    const Scalar tmp121 = tmp26*tmp8;
-    const Scalar tmp122 = tmp42*heading_dot
-        + attitude_dot*(tmp24*attitude_dot + tmp120*bank_dot + tmp121*heading_dot)
-        + bank_dot*(tmp40*heading_dot + tmp41*bank_dot + tmp120*attitude_dot);
-    const Scalar tmp123 = attitude_dot*(-tmp33 + Scalar(0.4)*tmp19*tmp5*bank_dot)
-        + bank_dot*(-tmp26*bank_dot + tmp20*tmp5*attitude_dot);
-    const Scalar tmp124 = tmp1*tmp21;
-    const Scalar tmp125 = -tmp31;
-    const Scalar tmp126 = -tmp35;
-    const Scalar tmp127 = attitude_dot*(-tmp30*attitude_dot - tmp124*bank_dot
-            + Scalar(0.4)*tmp0*tmp1*tmp22*heading_dot)
-        + bank_dot*(tmp125*bank_dot + tmp126*heading_dot - tmp124*attitude_dot)
-        + heading_dot*(tmp34 + tmp125*heading_dot + tmp126*bank_dot);
-    const Scalar tmp128 = tmp51*tmp8;
-    const Scalar tmp129 = tmp71*heading_dot
-        + attitude_dot*(-tmp48*attitude_dot - tmp128*heading_dot
-            + Scalar(0.3)*tmp0*tmp1*tmp22*bank_dot)
-        + bank_dot*(tmp69*heading_dot + tmp70*bank_dot + tmp94*attitude_dot);
-    const Scalar tmp130 = attitude_dot*(tmp57 + tmp100*bank_dot)
-        + bank_dot*(tmp51*bank_dot + tmp100*attitude_dot);
-    const Scalar tmp131 = tmp0*tmp51;
-    const Scalar tmp132 = -tmp60;
-    const Scalar tmp133 = attitude_dot*(-tmp103*bank_dot - tmp131*heading_dot
-            + Scalar(0.3)*tmp19*tmp5*tmp8*attitude_dot)
-        + bank_dot*(tmp132*heading_dot + tmp61*bank_dot - tmp103*attitude_dot)
-        + heading_dot*(-tmp58 + tmp132*bank_dot + tmp61*heading_dot);
-    const Scalar tmp134 = tmp131 + tmp1*tmp88;
-    const Scalar tmp135 = tmp107*heading_dot
-        + attitude_dot*(tmp134*bank_dot + tmp104*heading_dot - tmp77*attitude_dot)
-        + bank_dot*(tmp134*attitude_dot + tmp105*heading_dot + bank_dot*(-tmp76 - tmp80));
-    const Scalar tmp136 = tmp64 + tmp5*tmp78;
-    const Scalar tmp137 = -tmp65;
-    const Scalar tmp138 = attitude_dot*(tmp136*bank_dot - tmp85*attitude_dot)
-        + bank_dot*(tmp136*attitude_dot + bank_dot*(tmp137 + tmp84));
-    const Scalar tmp139 = -tmp128 - tmp1*tmp79;
-    const Scalar tmp140 = -tmp97;
-    const Scalar tmp141 = attitude_dot*(tmp139*bank_dot + tmp95*heading_dot
-            + attitude_dot*(tmp87 + tmp90 - tmp67))
-        + bank_dot*(tmp139*attitude_dot + tmp140*heading_dot - tmp91*bank_dot)
-        + heading_dot*(tmp140*bank_dot + tmp95*attitude_dot - tmp92*heading_dot);
-    const Scalar tmp171 = tmp110 + tmp112 + tmp114 + tmp116;
-    const Scalar tmp172 = tmp117*m_a;
-    const Scalar tmp173 = tmp119*m_a;
-    const Scalar tmp174 = tmp122*m_b;
-    const Scalar tmp175 = tmp127*m_b;
-    const Scalar tmp176 = tmp129*m_c;
-    const Scalar tmp177 = tmp133*m_c;
-    const Scalar tmp178 = tmp135*m_d;
-    const Scalar tmp179 = tmp141*m_d;
-    const Scalar tmp180 = tmp118*m_a;
-    const Scalar tmp181 = tmp123*m_b;
-    const Scalar tmp182 = tmp130*m_c;
-    const Scalar tmp183 = tmp138*m_d;
-    const Scalar tmp184 = tmp174 + tmp176 + tmp178 + tmp172;
-    const Scalar tmp185 = tmp181 + tmp182 + tmp183 + tmp180;
-    const Scalar tmp186 = tmp175 + tmp177 + tmp179 + tmp173;
-    const Scalar tmp187 = tmp41*tmp112 + tmp70*tmp114 + tmp106*tmp116 - tmp3*tmp110;
-    const Scalar tmp188 = tmp16*tmp110 + tmp104*tmp116 + tmp112*tmp121 - tmp114*tmp128;
-    const Scalar tmp189 = tmp40*tmp112 + tmp69*tmp114 + tmp105*tmp116;
-    const Scalar tmp190 = -tmp184;
-    const Scalar tmp191 = -tmp185;
-    const Scalar tmp192 = -tmp186;
-    const Scalar tmp193 = -tmp174*tmp31 - tmp175*tmp41 - tmp176*tmp62 - tmp177*tmp70 - tmp178*tmp92
-        - tmp179*tmp106 + Scalar(0.5)*tmp0*tmp1*tmp173 + Scalar(0.5)*tmp1*tmp8*tmp172;
-    const Scalar tmp194 = -tmp16*tmp173 - tmp175*tmp121 - tmp176*tmp131 - tmp178*tmp96
-        - tmp179*tmp104 - tmp182*tmp64 - tmp183*tmp101 - tmp2*tmp180 + Scalar(0.5)*tmp0*tmp5*tmp172
-        + Scalar(0.4)*tmp181*tmp22*tmp5 + Scalar(0.4)*tmp0*tmp1*tmp174*tmp22
-        + Scalar(0.3)*tmp1*tmp177*tmp19*tmp8;
-    const Scalar tmp195 = -tmp174*tmp35 - tmp175*tmp40 - tmp176*tmp60 - tmp177*tmp69 - tmp178*tmp97
-        - tmp179*tmp105 - tmp183*tmp99 + Scalar(0.4)*tmp1*tmp181*tmp19
-        + Scalar(0.3)*tmp1*tmp182*tmp22;
+    const Scalar m = Scalar(params.m);
+    const Scalar com_x = Scalar(params.com_x);
+    const Scalar com_y = Scalar(params.com_y);
+    const Scalar com_z = Scalar(params.com_z);
+    const Scalar a = Scalar(params.a);
+    const Scalar b = Scalar(params.b);
+    const Scalar c = Scalar(params.c);
+    const Scalar tmp0 = sin(bank);
+    const Scalar tmp1 = sin(heading);
+    const Scalar tmp2 = tmp0*tmp1;
+    const Scalar tmp3 = sin(attitude);
+    const Scalar tmp4 = cos(bank);
+    const Scalar tmp5 = cos(heading);
+    const Scalar tmp6 = tmp4*tmp5;
+    const Scalar tmp7 = tmp3*tmp6;
+    const Scalar tmp8 = tmp7 - tmp2;
+    const Scalar tmp9 = -tmp8;
+    const Scalar tmp11 = (a*a);
+    const Scalar tmp12 = (b*b);
+    const Scalar tmp13 = m*(tmp11 + tmp12);
+    const Scalar tmp14 = (c*c);
+    const Scalar tmp15 = tmp11 + tmp14;
+    const Scalar tmp16 = tmp15*m;
+    const Scalar tmp17 = tmp12 + tmp14;
+    const Scalar tmp18 = tmp17*m;
+    const Scalar tmp19 = Scalar(0.005689254019167049)*tmp18 + Scalar(0.010556171822976032)*tmp16
+        - Scalar(0.01624542584214308)*tmp13;
+    const Scalar tmp20 = Scalar(0.041142942152109445)*tmp18 + Scalar(0.028423816083747767)*tmp13
+        - Scalar(0.027900091569190537)*tmp16;
+    const Scalar tmp24 = (Scalar(1)/tmp20);
+    const Scalar tmp25 = Scalar(0.021737886292675604)*tmp13 + Scalar(0.04006485617007295)*tmp16
+        - Scalar(0.020136075796081898)*tmp18 - tmp24*(tmp19*tmp19);
+    const Scalar tmp29 = tmp1*tmp4;
+    const Scalar tmp30 = tmp0*tmp5;
+    const Scalar tmp31 = tmp3*tmp30;
+    const Scalar tmp32 = tmp29 + tmp31;
+    const Scalar tmp33 = -Scalar(0.0257737061664756)*tmp13 - Scalar(0.003316897780257798)*tmp18
+        + Scalar(0.0290906039467334)*tmp15*m;
+    const Scalar tmp35 = (Scalar(1)/tmp25);
+    const Scalar tmp36 = tmp24*tmp33;
+    const Scalar tmp37 = -Scalar(0.03161742478199714)*tmp13 - Scalar(0.004414255047715874)*tmp16
+        - tmp19*tmp36 + Scalar(0.03603167982971302)*tmp17*m;
+    const Scalar tmp38 = -Scalar(0.008495035709756703)*tmp13 - tmp24*(tmp33*tmp33)
+        - tmp35*(tmp37*tmp37) + Scalar(0.02950190206578425)*tmp15*m
+        + Scalar(0.020659800310639128)*tmp17*m;
+    const Scalar tmp44 = cos(attitude);
+    const Scalar tmp45 = tmp44*tmp5;
+    const Scalar tmp48 = tmp44*com_x;
+    const Scalar tmp49 = tmp48*tmp5;
+    const Scalar tmp53 = tmp4*tmp44;
+    const Scalar tmp54 = tmp0*tmp44;
+    const Scalar tmp57 = tmp3*com_x;
+    const Scalar tmp58 = tmp53*com_y - tmp54*com_z;
+    const Scalar tmp59 = tmp57 + tmp58;
+    const Scalar tmp63 = tmp29*tmp3;
+    const Scalar tmp64 = tmp30 + tmp63;
+    const Scalar tmp65 = tmp2*tmp3;
+    const Scalar tmp66 = tmp65 - tmp4*tmp5;
+    const Scalar tmp67 = -tmp66;
+    const Scalar tmp69 = tmp1*tmp44;
+    const Scalar tmp72 = tmp1*tmp48;
+    const Scalar tmp73 = -tmp72 + tmp64*com_y + tmp67*com_z;
+    const Scalar tmp77 = tmp32*com_y + tmp8*com_z;
+    const Scalar tmp79 = tmp44*tmp6;
+    const Scalar tmp80 = tmp3*tmp5;
+    const Scalar tmp82 = tmp5*tmp57 + tmp79*com_y - tmp0*tmp44*tmp5*com_z;
+    const Scalar tmp89 = tmp53*com_z + tmp54*com_y;
+    const Scalar tmp91 = tmp0*tmp3;
+    const Scalar tmp92 = tmp3*tmp4;
+    const Scalar tmp94 = tmp48 + tmp91*com_z - tmp92*com_y;
+    const Scalar tmp98 = -tmp64;
+    const Scalar tmp99 = tmp67*com_y + tmp98*com_z;
+    const Scalar tmp101 = tmp29*tmp44;
+    const Scalar tmp102 = tmp2*tmp44;
+    const Scalar tmp103 = tmp1*tmp3;
+    const Scalar tmp105 = tmp1*tmp57 + tmp101*com_y - tmp102*com_z;
+    const Scalar tmp108 = -tmp32;
+    const Scalar tmp111 = tmp108*com_z + tmp8*com_y;
+    const Scalar tmp112 = tmp111 - tmp49;
+    const Scalar tmp195 = -tmp82;
+    const Scalar tmp197 = -tmp89;
+    const Scalar tmp199 = tmp105*attitude_dot + tmp112*heading_dot + tmp99*bank_dot;
+    const Scalar tmp201 = tmp30*tmp44;
+    const Scalar tmp202 = tmp201*com_y + tmp79*com_z;
+    const Scalar tmp203 = tmp49 + tmp31*com_z - tmp3*tmp4*tmp5*com_y;
+    const Scalar tmp204 = tmp199*heading_dot
+        + attitude_dot*(tmp105*heading_dot + tmp202*bank_dot - tmp203*attitude_dot)
+        + bank_dot*(tmp111*bank_dot + tmp202*attitude_dot + tmp99*heading_dot);
+    const Scalar tmp205 = tmp91*com_y + tmp92*com_z;
+    const Scalar tmp206 = attitude_dot*(tmp205*bank_dot - tmp59*attitude_dot)
+        + bank_dot*(tmp205*attitude_dot - tmp58*bank_dot);
+    const Scalar tmp207 = tmp101*com_z + tmp102*com_y;
+    const Scalar tmp208 = -tmp207;
+    const Scalar tmp209 = tmp72 + tmp65*com_z - tmp63*com_y;
+    const Scalar tmp210 = tmp66*com_z + tmp98*com_y;
+    const Scalar tmp211 = tmp108*com_y + tmp9*com_z;
+    const Scalar tmp212 = tmp210 + tmp72;
+    const Scalar tmp213 = attitude_dot*(tmp208*bank_dot + tmp209*attitude_dot + tmp82*heading_dot)
+        + bank_dot*(tmp208*attitude_dot + tmp210*bank_dot + tmp211*heading_dot)
+        + heading_dot*(tmp211*bank_dot + tmp212*heading_dot + tmp82*attitude_dot);
+    const Scalar tmp214 = tmp19*tmp24;
+    const Scalar tmp216 = tmp214*tmp53;
+    const Scalar tmp217 = tmp36*tmp54;
+    const Scalar tmp218 = tmp216 + tmp3 - tmp217;
+    const Scalar tmp219 = -tmp69 + tmp214*tmp64 + tmp36*tmp67;
+    const Scalar tmp220 = tmp80 + tmp214*tmp79 - tmp0*tmp24*tmp33*tmp44*tmp5;
+    const Scalar tmp221 = -tmp220;
+    const Scalar tmp222 = tmp214*tmp32 + tmp36*tmp8;
+    const Scalar tmp224 = -tmp214*tmp54 - tmp36*tmp53;
+    const Scalar tmp225 = tmp44 + tmp36*tmp91 - tmp214*tmp92;
+    const Scalar tmp227 = tmp103 + tmp214*tmp101 - tmp36*tmp102;
+    const Scalar tmp228 = tmp214*tmp67 + tmp36*tmp98;
+    const Scalar tmp229 = tmp108*tmp36 + tmp214*tmp8;
+    const Scalar tmp230 = tmp229 - tmp45;
+    const Scalar tmp231 = tmp227*attitude_dot + tmp228*bank_dot + tmp230*heading_dot;
+    const Scalar tmp232 = tmp201*tmp214 + tmp36*tmp79;
+    const Scalar tmp233 = tmp231*heading_dot
+        + attitude_dot*(tmp227*heading_dot + tmp232*bank_dot
+            + attitude_dot*(-tmp45 - tmp31*tmp36 + tmp19*tmp24*tmp3*tmp4*tmp5))
+        + bank_dot*(tmp228*heading_dot + tmp229*bank_dot + tmp232*attitude_dot);
+    const Scalar tmp234 = tmp214*tmp91 + tmp36*tmp92;
+    const Scalar tmp235 = attitude_dot*(tmp234*bank_dot - tmp218*attitude_dot)
+        + bank_dot*(tmp234*attitude_dot + bank_dot*(tmp217 - tmp216));
+    const Scalar tmp236 = -tmp214*tmp102 - tmp36*tmp101;
+    const Scalar tmp237 = tmp214*tmp98 + tmp36*tmp66;
+    const Scalar tmp238 = tmp108*tmp214 + tmp36*tmp9;
+    const Scalar tmp239 = attitude_dot*(tmp220*heading_dot + tmp236*bank_dot
+            + attitude_dot*(tmp69 + tmp36*tmp65 - tmp214*tmp63))
+        + bank_dot*(tmp236*attitude_dot + tmp237*bank_dot + tmp238*heading_dot)
+        + heading_dot*(tmp220*attitude_dot + tmp238*bank_dot + heading_dot*(tmp237 + tmp69));
+    const Scalar tmp240 = -tmp7;
+    const Scalar tmp241 = tmp35*tmp37;
+    const Scalar tmp243 = tmp241*tmp54 - tmp4*tmp44;
+    const Scalar tmp245 = tmp64 + tmp241*tmp67;
+    const Scalar tmp246 = -tmp79 + tmp201*tmp241;
+    const Scalar tmp247 = tmp32 + tmp241*tmp8;
+    const Scalar tmp249 = -tmp92 + tmp241*tmp91;
+    const Scalar tmp250 = -tmp54 - tmp241*tmp53;
+    const Scalar tmp252 = -tmp241*tmp102 + tmp1*tmp4*tmp44;
+    const Scalar tmp253 = tmp6 - tmp65 + tmp241*tmp98;
+    const Scalar tmp254 = tmp8 + tmp108*tmp241;
+    const Scalar tmp255 = tmp252*attitude_dot + tmp253*bank_dot + tmp254*heading_dot;
+    const Scalar tmp256 = tmp201 + tmp241*tmp79;
+    const Scalar tmp257 = tmp255*heading_dot
+        + attitude_dot*(tmp252*heading_dot + tmp256*bank_dot
+            + attitude_dot*(-tmp240 - tmp241*tmp31))
+        + bank_dot*(tmp253*heading_dot + tmp254*bank_dot + tmp256*attitude_dot);
+    const Scalar tmp258 = tmp91 + tmp241*tmp92;
+    const Scalar tmp259 = attitude_dot*(tmp243*attitude_dot + tmp258*bank_dot)
+        + bank_dot*(tmp243*bank_dot + tmp258*attitude_dot);
+    const Scalar tmp260 = -tmp246;
+    const Scalar tmp261 = -tmp102 - tmp241*tmp101;
+    const Scalar tmp262 = -tmp32 + tmp35*tmp37*tmp9;
+    const Scalar tmp263 = -tmp64 + tmp35*tmp37*tmp66;
+    const Scalar tmp264 = attitude_dot*(tmp260*heading_dot + tmp261*bank_dot
+            + attitude_dot*(-tmp63 + tmp241*tmp65))
+        + bank_dot*(tmp261*attitude_dot + tmp262*heading_dot + tmp263*bank_dot)
+        + heading_dot*(tmp260*attitude_dot + tmp262*bank_dot + tmp263*heading_dot);
+    const Scalar tmp266 = tmp201*attitude_dot;
+    const Scalar tmp269 = tmp108*heading_dot + tmp98*bank_dot - tmp102*attitude_dot;
+    const Scalar tmp270 = tmp269*heading_dot
+        + attitude_dot*(-tmp31*attitude_dot - tmp102*heading_dot + tmp4*tmp44*tmp5*bank_dot)
+        + bank_dot*(tmp108*bank_dot + tmp79*attitude_dot + tmp98*heading_dot);
+    const Scalar tmp271 = attitude_dot*(tmp54*attitude_dot + tmp92*bank_dot)
+        + bank_dot*(tmp54*bank_dot + tmp92*attitude_dot);
+    const Scalar tmp272 = attitude_dot*(-tmp201*heading_dot - tmp101*bank_dot
+            + tmp0*tmp1*tmp3*attitude_dot)
+        + bank_dot*(tmp66*bank_dot + tmp9*heading_dot - tmp101*attitude_dot)
+        + heading_dot*(-tmp266 + tmp66*heading_dot + tmp9*bank_dot);
+    const Scalar tmp290 = g*m;
+    const Scalar tmp291 = -tmp290;
+    const Scalar tmp292 = tmp204*m;
+    const Scalar tmp293 = tmp206*m;
+    const Scalar tmp294 = tmp213*m;
+    const Scalar tmp295 = tmp20*tmp233;
+    const Scalar tmp296 = tmp20*tmp239;
+    const Scalar tmp297 = tmp25*tmp257;
+    const Scalar tmp298 = tmp25*tmp264;
+    const Scalar tmp299 = tmp38*tmp270;
+    const Scalar tmp300 = tmp38*tmp272;
+    const Scalar tmp301 = tmp20*tmp235;
+    const Scalar tmp302 = tmp25*tmp259;
+    const Scalar tmp303 = tmp38*tmp271;
+    const Scalar tmp304 = tmp112*tmp291;
+    const Scalar tmp305 = tmp105*tmp291;
+    const Scalar tmp306 = tmp99*tmp291;
+    const Scalar tmp307 = -tmp292;
+    const Scalar tmp308 = -tmp293;
+    const Scalar tmp309 = -tmp294;
+    const Scalar tmp310 = -tmp108*tmp300 - tmp112*tmp294 - tmp219*tmp295 - tmp230*tmp296
+        - tmp245*tmp297 - tmp254*tmp298 - tmp67*tmp299 - tmp73*tmp292;
+    const Scalar tmp311 = -tmp105*tmp294 - tmp195*tmp292 - tmp201*tmp299 - tmp221*tmp295
+        - tmp225*tmp301 - tmp227*tmp296 - tmp246*tmp297 - tmp249*tmp302 - tmp252*tmp298
+        - tmp91*tmp303 - tmp94*tmp293 + tmp0*tmp1*tmp44*tmp300;
+    const Scalar tmp312 = -tmp197*tmp293 - tmp222*tmp295 - tmp224*tmp301 - tmp228*tmp296
+        - tmp247*tmp297 - tmp250*tmp302 - tmp253*tmp298 - tmp77*tmp292 - tmp8*tmp299 - tmp98*tmp300
+        - tmp99*tmp294 + tmp4*tmp44*tmp303;
     QVector<Scalar> result;
-    result(0) = tmp190;
-    result(1) = tmp191;
-    result(2) = tmp171 + tmp192;
-    result(3) = tmp187 + tmp193;
-    result(4) = tmp188 + tmp194;
-    result(5) = tmp189 + tmp195;
+    result(0) = tmp307;
+    result(1) = tmp308;
+    result(2) = tmp291 + tmp309;
+    result(3) = tmp304 + tmp310;
+    result(4) = tmp305 + tmp311;
+    result(5) = tmp306 + tmp312;
     return result;
   }
 
@@ -5677,7 +6429,7 @@ struct RigidBodyEulerYzx {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// Mt and f must not be null.
-  /// Ops: 700
+  /// Ops: 798
   template <typename Scalar>
   static void dynamics(const QVector<Scalar>& q,
                        const QVector<Scalar>& v,
@@ -5694,245 +6446,262 @@ struct RigidBodyEulerYzx {
     const Scalar attitude_dot = v(4);
     const Scalar bank_dot = v(5);
     const Scalar g = Scalar(params.g);
-    const Scalar m_a = Scalar(params.m_a);
-    const Scalar m_b = Scalar(params.m_b);
-    const Scalar m_c = Scalar(params.m_c);
-    const Scalar m_d = Scalar(params.m_d);
-    const Scalar tmp0 = cos(heading);
-    const Scalar tmp1 = cos(attitude);
-    const Scalar tmp2 = Scalar(0.5)*tmp1;
-    const Scalar tmp3 = tmp0*tmp2;
-    const Scalar tmp5 = sin(attitude);
-    const Scalar tmp6 = Scalar(0.5)*tmp5;
-    const Scalar tmp8 = sin(heading);
-    const Scalar tmp9 = tmp2*tmp8;
-    const Scalar tmp12 = tmp0*tmp6;
-    const Scalar tmp13 = tmp9*heading_dot + tmp12*attitude_dot;
-    const Scalar tmp16 = tmp6*tmp8;
-    const Scalar tmp17 = tmp16*attitude_dot - tmp3*heading_dot;
-    const Scalar tmp19 = sin(bank);
-    const Scalar tmp20 = Scalar(0.4)*tmp19;
-    const Scalar tmp21 = tmp20*tmp8;
-    const Scalar tmp22 = cos(bank);
-    const Scalar tmp23 = Scalar(0.4)*tmp22;
-    const Scalar tmp24 = tmp0*tmp23*tmp5;
-    const Scalar tmp26 = tmp1*tmp23;
-    const Scalar tmp28 = tmp0*tmp20;
-    const Scalar tmp29 = tmp23*tmp8;
-    const Scalar tmp30 = tmp29*tmp5;
-    const Scalar tmp31 = tmp28 + tmp30;
-    const Scalar tmp33 = tmp26*attitude_dot;
-    const Scalar tmp34 = tmp0*tmp33;
-    const Scalar tmp35 = tmp29 + tmp28*tmp5;
-    const Scalar tmp37 = tmp23*tmp5;
-    const Scalar tmp38 = tmp1*tmp20;
-    const Scalar tmp40 = -tmp21*tmp5 + Scalar(0.4)*tmp0*tmp22;
-    const Scalar tmp41 = tmp24 - tmp21;
-    const Scalar tmp42 = tmp33*tmp8 + tmp40*bank_dot + tmp41*heading_dot;
-    const Scalar tmp44 = Scalar(0.3)*tmp22;
-    const Scalar tmp45 = tmp44*tmp8;
-    const Scalar tmp46 = Scalar(0.3)*tmp19;
-    const Scalar tmp47 = tmp0*tmp46;
-    const Scalar tmp48 = tmp47*tmp5;
-    const Scalar tmp49 = tmp45 + tmp48;
-    const Scalar tmp51 = tmp1*tmp46;
-    const Scalar tmp53 = tmp0*tmp44;
-    const Scalar tmp54 = tmp46*tmp8;
-    const Scalar tmp55 = tmp5*tmp54;
-    const Scalar tmp57 = tmp51*attitude_dot;
-    const Scalar tmp58 = tmp0*tmp57;
-    const Scalar tmp59 = tmp53*tmp5;
-    const Scalar tmp60 = tmp59 - tmp54;
-    const Scalar tmp61 = tmp55 - Scalar(0.3)*tmp0*tmp22;
-    const Scalar tmp62 = -tmp61;
-    const Scalar tmp64 = tmp46*tmp5;
-    const Scalar tmp65 = tmp1*tmp44;
-    const Scalar tmp67 = tmp45*tmp5;
-    const Scalar tmp68 = tmp47 + tmp67;
-    const Scalar tmp69 = -tmp68;
-    const Scalar tmp70 = -tmp49;
-    const Scalar tmp71 = tmp69*bank_dot + tmp70*heading_dot - tmp57*tmp8;
-    const Scalar tmp73 = Scalar(0.2)*tmp1;
-    const Scalar tmp74 = Scalar(0.25)*tmp19;
-    const Scalar tmp75 = tmp5*tmp74;
-    const Scalar tmp76 = -tmp59 + tmp0*tmp75;
-    const Scalar tmp77 = tmp76 + tmp0*tmp73;
-    const Scalar tmp78 = Scalar(0.25)*tmp22;
-    const Scalar tmp79 = tmp8*tmp78;
-    const Scalar tmp80 = tmp54 + tmp79;
-    const Scalar tmp81 = tmp77 + tmp80;
-    const Scalar tmp83 = Scalar(0.2)*tmp5;
-    const Scalar tmp84 = tmp1*tmp74;
-    const Scalar tmp85 = tmp65 + tmp83 - tmp84;
-    const Scalar tmp87 = tmp73*tmp8;
-    const Scalar tmp88 = tmp0*tmp78;
-    const Scalar tmp89 = tmp74*tmp8;
-    const Scalar tmp90 = tmp5*tmp89;
-    const Scalar tmp91 = tmp68 + tmp88 - tmp90;
-    const Scalar tmp92 = tmp91 - tmp87;
-    const Scalar tmp94 = tmp1*tmp53;
-    const Scalar tmp95 = tmp94 + tmp0*tmp83 - Scalar(0.25)*tmp0*tmp1*tmp19;
-    const Scalar tmp96 = -tmp95;
-    const Scalar tmp97 = tmp49 - tmp89 + tmp5*tmp88;
-    const Scalar tmp99 = -tmp51 - tmp1*tmp78;
-    const Scalar tmp100 = tmp44*tmp5;
-    const Scalar tmp101 = tmp73 + tmp75 - tmp100;
-    const Scalar tmp103 = tmp1*tmp45;
-    const Scalar tmp104 = tmp103 + tmp8*tmp83 - tmp8*tmp84;
-    const Scalar tmp105 = -tmp61 - tmp0*tmp74 - tmp5*tmp79;
-    const Scalar tmp106 = -tmp81;
-    const Scalar tmp107 = tmp104*attitude_dot + tmp105*bank_dot + tmp106*heading_dot;
-    const Scalar tmp109 = g*m_a;
-    const Scalar tmp110 = -tmp109;
-    const Scalar tmp111 = g*m_b;
-    const Scalar tmp112 = -tmp111;
-    const Scalar tmp113 = g*m_c;
-    const Scalar tmp114 = -tmp113;
-    const Scalar tmp115 = g*m_d;
-    const Scalar tmp116 = -tmp115;
-    const Scalar tmp117 = tmp17*heading_dot
-        + attitude_dot*(-tmp3*attitude_dot + Scalar(0.5)*tmp5*tmp8*heading_dot);
-    const Scalar tmp118 = -tmp6*(attitude_dot*attitude_dot);
-    const Scalar tmp119 = tmp13*heading_dot + attitude_dot*(tmp9*attitude_dot + tmp12*heading_dot);
-    const Scalar tmp120 = tmp1*tmp28;
-    const Scalar tmp121 = tmp26*tmp8;
-    const Scalar tmp122 = tmp42*heading_dot
-        + attitude_dot*(tmp24*attitude_dot + tmp120*bank_dot + tmp121*heading_dot)
-        + bank_dot*(tmp40*heading_dot + tmp41*bank_dot + tmp120*attitude_dot);
-    const Scalar tmp123 = attitude_dot*(-tmp33 + Scalar(0.4)*tmp19*tmp5*bank_dot)
-        + bank_dot*(-tmp26*bank_dot + tmp20*tmp5*attitude_dot);
-    const Scalar tmp124 = tmp1*tmp21;
-    const Scalar tmp125 = -tmp31;
-    const Scalar tmp126 = -tmp35;
-    const Scalar tmp127 = attitude_dot*(-tmp30*attitude_dot - tmp124*bank_dot
-            + Scalar(0.4)*tmp0*tmp1*tmp22*heading_dot)
-        + bank_dot*(tmp125*bank_dot + tmp126*heading_dot - tmp124*attitude_dot)
-        + heading_dot*(tmp34 + tmp125*heading_dot + tmp126*bank_dot);
-    const Scalar tmp128 = tmp51*tmp8;
-    const Scalar tmp129 = tmp71*heading_dot
-        + attitude_dot*(-tmp48*attitude_dot - tmp128*heading_dot
-            + Scalar(0.3)*tmp0*tmp1*tmp22*bank_dot)
-        + bank_dot*(tmp69*heading_dot + tmp70*bank_dot + tmp94*attitude_dot);
-    const Scalar tmp130 = attitude_dot*(tmp57 + tmp100*bank_dot)
-        + bank_dot*(tmp51*bank_dot + tmp100*attitude_dot);
-    const Scalar tmp131 = tmp0*tmp51;
-    const Scalar tmp132 = -tmp60;
-    const Scalar tmp133 = attitude_dot*(-tmp103*bank_dot - tmp131*heading_dot
-            + Scalar(0.3)*tmp19*tmp5*tmp8*attitude_dot)
-        + bank_dot*(tmp132*heading_dot + tmp61*bank_dot - tmp103*attitude_dot)
-        + heading_dot*(-tmp58 + tmp132*bank_dot + tmp61*heading_dot);
-    const Scalar tmp134 = tmp131 + tmp1*tmp88;
-    const Scalar tmp135 = tmp107*heading_dot
-        + attitude_dot*(tmp134*bank_dot + tmp104*heading_dot - tmp77*attitude_dot)
-        + bank_dot*(tmp134*attitude_dot + tmp105*heading_dot + bank_dot*(-tmp76 - tmp80));
-    const Scalar tmp136 = tmp64 + tmp5*tmp78;
-    const Scalar tmp137 = -tmp65;
-    const Scalar tmp138 = attitude_dot*(tmp136*bank_dot - tmp85*attitude_dot)
-        + bank_dot*(tmp136*attitude_dot + bank_dot*(tmp137 + tmp84));
-    const Scalar tmp139 = -tmp128 - tmp1*tmp79;
-    const Scalar tmp140 = -tmp97;
-    const Scalar tmp141 = attitude_dot*(tmp139*bank_dot + tmp95*heading_dot
-            + attitude_dot*(tmp87 + tmp90 - tmp67))
-        + bank_dot*(tmp139*attitude_dot + tmp140*heading_dot - tmp91*bank_dot)
-        + heading_dot*(tmp140*bank_dot + tmp95*attitude_dot - tmp92*heading_dot);
-    const Scalar tmp142 = m_a + m_b + m_c + m_d;
-    const Scalar tmp143 = tmp31*m_b + tmp62*m_c + tmp92*m_d - tmp9*m_a;
-    const Scalar tmp144 = tmp41*m_b + tmp70*m_c + tmp106*m_d - tmp3*m_a;
-    const Scalar tmp145 = (tmp8*tmp8);
-    const Scalar tmp146 = (tmp1*tmp1);
-    const Scalar tmp147 = Scalar(0.25)*tmp146;
-    const Scalar tmp148 = (tmp0*tmp0);
-    const Scalar tmp149 = m_a*(tmp145*tmp147 + tmp147*tmp148) + m_b*((tmp31*tmp31) + (tmp41*tmp41))
-        + m_c*((tmp62*tmp62) + (tmp70*tmp70)) + m_d*((tmp92*tmp92) + (tmp106*tmp106));
-    const Scalar tmp150 = tmp0*tmp26;
-    const Scalar tmp151 = tmp96*m_d - tmp150*m_b - tmp12*m_a + Scalar(0.3)*tmp0*tmp1*tmp19*m_c;
-    const Scalar tmp152 = tmp2*m_a + tmp64*m_c + tmp101*m_d - tmp37*m_b;
-    const Scalar tmp153 = tmp16*m_a + tmp104*m_d + tmp121*m_b - tmp128*m_c;
-    const Scalar tmp154 = m_b*(-tmp150*tmp31 + Scalar(0.4)*tmp1*tmp22*tmp41*tmp8)
-        + m_c*(tmp62*tmp131 - tmp70*tmp128) + m_d*(tmp92*tmp96 + tmp104*tmp106);
-    const Scalar tmp155 = (tmp5*tmp5);
-    const Scalar tmp156 = Scalar(0.25)*tmp155;
-    const Scalar tmp157 = (tmp22*tmp22);
-    const Scalar tmp158 = Scalar(0.16000000000000003)*tmp157;
-    const Scalar tmp159 = tmp146*tmp158;
-    const Scalar tmp160 = (tmp19*tmp19);
-    const Scalar tmp161 = Scalar(0.09)*tmp160;
-    const Scalar tmp162 = tmp146*tmp161;
-    const Scalar tmp163 = m_a*(tmp147 + tmp145*tmp156 + tmp148*tmp156)
-        + m_b*(tmp145*tmp159 + tmp148*tmp159 + tmp155*tmp158)
-        + m_c*(tmp145*tmp162 + tmp148*tmp162 + tmp155*tmp161)
-        + m_d*((tmp96*tmp96) + (tmp101*tmp101) + (tmp104*tmp104));
-    const Scalar tmp164 = tmp35*m_b + tmp60*m_c + tmp97*m_d;
-    const Scalar tmp165 = tmp99*m_d - tmp38*m_b - tmp65*m_c;
-    const Scalar tmp166 = tmp40*m_b + tmp69*m_c + tmp105*m_d;
-    const Scalar tmp167 = m_b*(tmp31*tmp35 + tmp40*tmp41) + m_c*(tmp60*tmp62 + tmp69*tmp70)
-        + m_d*(tmp92*tmp97 + tmp105*tmp106);
-    const Scalar tmp168 = tmp1*tmp19*tmp22*tmp5;
-    const Scalar tmp169 = m_b*(Scalar(0.16000000000000003)*tmp168 + tmp40*tmp121 - tmp150*tmp35)
-        + m_c*(-Scalar(0.09)*tmp168 - tmp69*tmp128 + Scalar(0.3)*tmp0*tmp1*tmp19*tmp60)
-        + m_d*(tmp96*tmp97 + tmp99*tmp101 + tmp104*tmp105);
-    const Scalar tmp170 = m_b*((tmp35*tmp35) + (tmp40*tmp40)
-            + Scalar(0.16000000000000003)*tmp146*tmp160)
-        + m_c*((tmp60*tmp60) + (tmp69*tmp69) + Scalar(0.09)*tmp146*tmp157)
-        + m_d*((tmp97*tmp97) + (tmp99*tmp99) + (tmp105*tmp105));
-    const Scalar tmp171 = tmp110 + tmp112 + tmp114 + tmp116;
-    const Scalar tmp172 = tmp117*m_a;
-    const Scalar tmp173 = tmp119*m_a;
-    const Scalar tmp174 = tmp122*m_b;
-    const Scalar tmp175 = tmp127*m_b;
-    const Scalar tmp176 = tmp129*m_c;
-    const Scalar tmp177 = tmp133*m_c;
-    const Scalar tmp178 = tmp135*m_d;
-    const Scalar tmp179 = tmp141*m_d;
-    const Scalar tmp180 = tmp118*m_a;
-    const Scalar tmp181 = tmp123*m_b;
-    const Scalar tmp182 = tmp130*m_c;
-    const Scalar tmp183 = tmp138*m_d;
-    const Scalar tmp184 = tmp174 + tmp176 + tmp178 + tmp172;
-    const Scalar tmp185 = tmp181 + tmp182 + tmp183 + tmp180;
-    const Scalar tmp186 = tmp175 + tmp177 + tmp179 + tmp173;
-    const Scalar tmp187 = tmp41*tmp112 + tmp70*tmp114 + tmp106*tmp116 - tmp3*tmp110;
-    const Scalar tmp188 = tmp16*tmp110 + tmp104*tmp116 + tmp112*tmp121 - tmp114*tmp128;
-    const Scalar tmp189 = tmp40*tmp112 + tmp69*tmp114 + tmp105*tmp116;
-    const Scalar tmp190 = -tmp184;
-    const Scalar tmp191 = -tmp185;
-    const Scalar tmp192 = -tmp186;
-    const Scalar tmp193 = -tmp174*tmp31 - tmp175*tmp41 - tmp176*tmp62 - tmp177*tmp70 - tmp178*tmp92
-        - tmp179*tmp106 + Scalar(0.5)*tmp0*tmp1*tmp173 + Scalar(0.5)*tmp1*tmp8*tmp172;
-    const Scalar tmp194 = -tmp16*tmp173 - tmp175*tmp121 - tmp176*tmp131 - tmp178*tmp96
-        - tmp179*tmp104 - tmp182*tmp64 - tmp183*tmp101 - tmp2*tmp180 + Scalar(0.5)*tmp0*tmp5*tmp172
-        + Scalar(0.4)*tmp181*tmp22*tmp5 + Scalar(0.4)*tmp0*tmp1*tmp174*tmp22
-        + Scalar(0.3)*tmp1*tmp177*tmp19*tmp8;
-    const Scalar tmp195 = -tmp174*tmp35 - tmp175*tmp40 - tmp176*tmp60 - tmp177*tmp69 - tmp178*tmp97
-        - tmp179*tmp105 - tmp183*tmp99 + Scalar(0.4)*tmp1*tmp181*tmp19
-        + Scalar(0.3)*tmp1*tmp182*tmp22;
-    (*Mt)(0, 0) = tmp142;
+    const Scalar m = Scalar(params.m);
+    const Scalar com_x = Scalar(params.com_x);
+    const Scalar com_y = Scalar(params.com_y);
+    const Scalar com_z = Scalar(params.com_z);
+    const Scalar a = Scalar(params.a);
+    const Scalar b = Scalar(params.b);
+    const Scalar c = Scalar(params.c);
+    const Scalar tmp0 = sin(bank);
+    const Scalar tmp1 = sin(heading);
+    const Scalar tmp2 = tmp0*tmp1;
+    const Scalar tmp3 = sin(attitude);
+    const Scalar tmp4 = cos(bank);
+    const Scalar tmp5 = cos(heading);
+    const Scalar tmp6 = tmp4*tmp5;
+    const Scalar tmp7 = tmp3*tmp6;
+    const Scalar tmp8 = tmp7 - tmp2;
+    const Scalar tmp9 = -tmp8;
+    const Scalar tmp11 = (a*a);
+    const Scalar tmp12 = (b*b);
+    const Scalar tmp13 = m*(tmp11 + tmp12);
+    const Scalar tmp14 = (c*c);
+    const Scalar tmp15 = tmp11 + tmp14;
+    const Scalar tmp16 = tmp15*m;
+    const Scalar tmp17 = tmp12 + tmp14;
+    const Scalar tmp18 = tmp17*m;
+    const Scalar tmp19 = Scalar(0.005689254019167049)*tmp18 + Scalar(0.010556171822976032)*tmp16
+        - Scalar(0.01624542584214308)*tmp13;
+    const Scalar tmp20 = Scalar(0.041142942152109445)*tmp18 + Scalar(0.028423816083747767)*tmp13
+        - Scalar(0.027900091569190537)*tmp16;
+    const Scalar tmp24 = (Scalar(1)/tmp20);
+    const Scalar tmp25 = Scalar(0.021737886292675604)*tmp13 + Scalar(0.04006485617007295)*tmp16
+        - Scalar(0.020136075796081898)*tmp18 - tmp24*(tmp19*tmp19);
+    const Scalar tmp29 = tmp1*tmp4;
+    const Scalar tmp30 = tmp0*tmp5;
+    const Scalar tmp31 = tmp3*tmp30;
+    const Scalar tmp32 = tmp29 + tmp31;
+    const Scalar tmp33 = -Scalar(0.0257737061664756)*tmp13 - Scalar(0.003316897780257798)*tmp18
+        + Scalar(0.0290906039467334)*tmp15*m;
+    const Scalar tmp35 = (Scalar(1)/tmp25);
+    const Scalar tmp36 = tmp24*tmp33;
+    const Scalar tmp37 = -Scalar(0.03161742478199714)*tmp13 - Scalar(0.004414255047715874)*tmp16
+        - tmp19*tmp36 + Scalar(0.03603167982971302)*tmp17*m;
+    const Scalar tmp38 = -Scalar(0.008495035709756703)*tmp13 - tmp24*(tmp33*tmp33)
+        - tmp35*(tmp37*tmp37) + Scalar(0.02950190206578425)*tmp15*m
+        + Scalar(0.020659800310639128)*tmp17*m;
+    const Scalar tmp44 = cos(attitude);
+    const Scalar tmp45 = tmp44*tmp5;
+    const Scalar tmp48 = tmp44*com_x;
+    const Scalar tmp49 = tmp48*tmp5;
+    const Scalar tmp53 = tmp4*tmp44;
+    const Scalar tmp54 = tmp0*tmp44;
+    const Scalar tmp57 = tmp3*com_x;
+    const Scalar tmp58 = tmp53*com_y - tmp54*com_z;
+    const Scalar tmp59 = tmp57 + tmp58;
+    const Scalar tmp63 = tmp29*tmp3;
+    const Scalar tmp64 = tmp30 + tmp63;
+    const Scalar tmp65 = tmp2*tmp3;
+    const Scalar tmp66 = tmp65 - tmp4*tmp5;
+    const Scalar tmp67 = -tmp66;
+    const Scalar tmp69 = tmp1*tmp44;
+    const Scalar tmp72 = tmp1*tmp48;
+    const Scalar tmp73 = -tmp72 + tmp64*com_y + tmp67*com_z;
+    const Scalar tmp77 = tmp32*com_y + tmp8*com_z;
+    const Scalar tmp79 = tmp44*tmp6;
+    const Scalar tmp80 = tmp3*tmp5;
+    const Scalar tmp82 = tmp5*tmp57 + tmp79*com_y - tmp0*tmp44*tmp5*com_z;
+    const Scalar tmp89 = tmp53*com_z + tmp54*com_y;
+    const Scalar tmp91 = tmp0*tmp3;
+    const Scalar tmp92 = tmp3*tmp4;
+    const Scalar tmp94 = tmp48 + tmp91*com_z - tmp92*com_y;
+    const Scalar tmp98 = -tmp64;
+    const Scalar tmp99 = tmp67*com_y + tmp98*com_z;
+    const Scalar tmp101 = tmp29*tmp44;
+    const Scalar tmp102 = tmp2*tmp44;
+    const Scalar tmp103 = tmp1*tmp3;
+    const Scalar tmp105 = tmp1*tmp57 + tmp101*com_y - tmp102*com_z;
+    const Scalar tmp108 = -tmp32;
+    const Scalar tmp111 = tmp108*com_z + tmp8*com_y;
+    const Scalar tmp112 = tmp111 - tmp49;
+    const Scalar tmp195 = -tmp82;
+    const Scalar tmp197 = -tmp89;
+    const Scalar tmp199 = tmp105*attitude_dot + tmp112*heading_dot + tmp99*bank_dot;
+    const Scalar tmp201 = tmp30*tmp44;
+    const Scalar tmp202 = tmp201*com_y + tmp79*com_z;
+    const Scalar tmp203 = tmp49 + tmp31*com_z - tmp3*tmp4*tmp5*com_y;
+    const Scalar tmp204 = tmp199*heading_dot
+        + attitude_dot*(tmp105*heading_dot + tmp202*bank_dot - tmp203*attitude_dot)
+        + bank_dot*(tmp111*bank_dot + tmp202*attitude_dot + tmp99*heading_dot);
+    const Scalar tmp205 = tmp91*com_y + tmp92*com_z;
+    const Scalar tmp206 = attitude_dot*(tmp205*bank_dot - tmp59*attitude_dot)
+        + bank_dot*(tmp205*attitude_dot - tmp58*bank_dot);
+    const Scalar tmp207 = tmp101*com_z + tmp102*com_y;
+    const Scalar tmp208 = -tmp207;
+    const Scalar tmp209 = tmp72 + tmp65*com_z - tmp63*com_y;
+    const Scalar tmp210 = tmp66*com_z + tmp98*com_y;
+    const Scalar tmp211 = tmp108*com_y + tmp9*com_z;
+    const Scalar tmp212 = tmp210 + tmp72;
+    const Scalar tmp213 = attitude_dot*(tmp208*bank_dot + tmp209*attitude_dot + tmp82*heading_dot)
+        + bank_dot*(tmp208*attitude_dot + tmp210*bank_dot + tmp211*heading_dot)
+        + heading_dot*(tmp211*bank_dot + tmp212*heading_dot + tmp82*attitude_dot);
+    const Scalar tmp214 = tmp19*tmp24;
+    const Scalar tmp216 = tmp214*tmp53;
+    const Scalar tmp217 = tmp36*tmp54;
+    const Scalar tmp218 = tmp216 + tmp3 - tmp217;
+    const Scalar tmp219 = -tmp69 + tmp214*tmp64 + tmp36*tmp67;
+    const Scalar tmp220 = tmp80 + tmp214*tmp79 - tmp0*tmp24*tmp33*tmp44*tmp5;
+    const Scalar tmp221 = -tmp220;
+    const Scalar tmp222 = tmp214*tmp32 + tmp36*tmp8;
+    const Scalar tmp224 = -tmp214*tmp54 - tmp36*tmp53;
+    const Scalar tmp225 = tmp44 + tmp36*tmp91 - tmp214*tmp92;
+    const Scalar tmp227 = tmp103 + tmp214*tmp101 - tmp36*tmp102;
+    const Scalar tmp228 = tmp214*tmp67 + tmp36*tmp98;
+    const Scalar tmp229 = tmp108*tmp36 + tmp214*tmp8;
+    const Scalar tmp230 = tmp229 - tmp45;
+    const Scalar tmp231 = tmp227*attitude_dot + tmp228*bank_dot + tmp230*heading_dot;
+    const Scalar tmp232 = tmp201*tmp214 + tmp36*tmp79;
+    const Scalar tmp233 = tmp231*heading_dot
+        + attitude_dot*(tmp227*heading_dot + tmp232*bank_dot
+            + attitude_dot*(-tmp45 - tmp31*tmp36 + tmp19*tmp24*tmp3*tmp4*tmp5))
+        + bank_dot*(tmp228*heading_dot + tmp229*bank_dot + tmp232*attitude_dot);
+    const Scalar tmp234 = tmp214*tmp91 + tmp36*tmp92;
+    const Scalar tmp235 = attitude_dot*(tmp234*bank_dot - tmp218*attitude_dot)
+        + bank_dot*(tmp234*attitude_dot + bank_dot*(tmp217 - tmp216));
+    const Scalar tmp236 = -tmp214*tmp102 - tmp36*tmp101;
+    const Scalar tmp237 = tmp214*tmp98 + tmp36*tmp66;
+    const Scalar tmp238 = tmp108*tmp214 + tmp36*tmp9;
+    const Scalar tmp239 = attitude_dot*(tmp220*heading_dot + tmp236*bank_dot
+            + attitude_dot*(tmp69 + tmp36*tmp65 - tmp214*tmp63))
+        + bank_dot*(tmp236*attitude_dot + tmp237*bank_dot + tmp238*heading_dot)
+        + heading_dot*(tmp220*attitude_dot + tmp238*bank_dot + heading_dot*(tmp237 + tmp69));
+    const Scalar tmp240 = -tmp7;
+    const Scalar tmp241 = tmp35*tmp37;
+    const Scalar tmp243 = tmp241*tmp54 - tmp4*tmp44;
+    const Scalar tmp245 = tmp64 + tmp241*tmp67;
+    const Scalar tmp246 = -tmp79 + tmp201*tmp241;
+    const Scalar tmp247 = tmp32 + tmp241*tmp8;
+    const Scalar tmp249 = -tmp92 + tmp241*tmp91;
+    const Scalar tmp250 = -tmp54 - tmp241*tmp53;
+    const Scalar tmp252 = -tmp241*tmp102 + tmp1*tmp4*tmp44;
+    const Scalar tmp253 = tmp6 - tmp65 + tmp241*tmp98;
+    const Scalar tmp254 = tmp8 + tmp108*tmp241;
+    const Scalar tmp255 = tmp252*attitude_dot + tmp253*bank_dot + tmp254*heading_dot;
+    const Scalar tmp256 = tmp201 + tmp241*tmp79;
+    const Scalar tmp257 = tmp255*heading_dot
+        + attitude_dot*(tmp252*heading_dot + tmp256*bank_dot
+            + attitude_dot*(-tmp240 - tmp241*tmp31))
+        + bank_dot*(tmp253*heading_dot + tmp254*bank_dot + tmp256*attitude_dot);
+    const Scalar tmp258 = tmp91 + tmp241*tmp92;
+    const Scalar tmp259 = attitude_dot*(tmp243*attitude_dot + tmp258*bank_dot)
+        + bank_dot*(tmp243*bank_dot + tmp258*attitude_dot);
+    const Scalar tmp260 = -tmp246;
+    const Scalar tmp261 = -tmp102 - tmp241*tmp101;
+    const Scalar tmp262 = -tmp32 + tmp35*tmp37*tmp9;
+    const Scalar tmp263 = -tmp64 + tmp35*tmp37*tmp66;
+    const Scalar tmp264 = attitude_dot*(tmp260*heading_dot + tmp261*bank_dot
+            + attitude_dot*(-tmp63 + tmp241*tmp65))
+        + bank_dot*(tmp261*attitude_dot + tmp262*heading_dot + tmp263*bank_dot)
+        + heading_dot*(tmp260*attitude_dot + tmp262*bank_dot + tmp263*heading_dot);
+    const Scalar tmp266 = tmp201*attitude_dot;
+    const Scalar tmp269 = tmp108*heading_dot + tmp98*bank_dot - tmp102*attitude_dot;
+    const Scalar tmp270 = tmp269*heading_dot
+        + attitude_dot*(-tmp31*attitude_dot - tmp102*heading_dot + tmp4*tmp44*tmp5*bank_dot)
+        + bank_dot*(tmp108*bank_dot + tmp79*attitude_dot + tmp98*heading_dot);
+    const Scalar tmp271 = attitude_dot*(tmp54*attitude_dot + tmp92*bank_dot)
+        + bank_dot*(tmp54*bank_dot + tmp92*attitude_dot);
+    const Scalar tmp272 = attitude_dot*(-tmp201*heading_dot - tmp101*bank_dot
+            + tmp0*tmp1*tmp3*attitude_dot)
+        + bank_dot*(tmp66*bank_dot + tmp9*heading_dot - tmp101*attitude_dot)
+        + heading_dot*(-tmp266 + tmp66*heading_dot + tmp9*bank_dot);
+    const Scalar tmp273 = tmp73*m;
+    const Scalar tmp274 = tmp112*m;
+    const Scalar tmp275 = tmp20*((tmp219*tmp219) + (tmp230*tmp230))
+        + tmp25*((tmp245*tmp245) + (tmp254*tmp254)) + tmp38*((tmp108*tmp108) + (tmp67*tmp67))
+        + m*((tmp112*tmp112) + (tmp73*tmp73));
+    const Scalar tmp276 = tmp195*m;
+    const Scalar tmp277 = tmp94*m;
+    const Scalar tmp278 = tmp105*m;
+    const Scalar tmp279 = tmp20*(tmp219*tmp221 + tmp227*tmp230)
+        + tmp25*(tmp245*tmp246 + tmp252*tmp254) + tmp38*(tmp201*tmp67 - tmp108*tmp102)
+        + m*(tmp105*tmp112 + tmp195*tmp73);
+    const Scalar tmp280 = (tmp0*tmp0);
+    const Scalar tmp281 = (tmp44*tmp44);
+    const Scalar tmp282 = tmp280*tmp281;
+    const Scalar tmp283 = tmp20*((tmp221*tmp221) + (tmp225*tmp225) + (tmp227*tmp227))
+        + tmp25*((tmp246*tmp246) + (tmp249*tmp249) + (tmp252*tmp252))
+        + tmp38*(tmp280*(tmp3*tmp3) + tmp282*(tmp1*tmp1) + tmp282*(tmp5*tmp5))
+        + m*((tmp105*tmp105) + (tmp195*tmp195) + (tmp94*tmp94));
+    const Scalar tmp284 = tmp77*m;
+    const Scalar tmp285 = tmp197*m;
+    const Scalar tmp286 = tmp99*m;
+    const Scalar tmp287 = tmp20*(tmp219*tmp222 + tmp228*tmp230)
+        + tmp25*(tmp245*tmp247 + tmp253*tmp254) + tmp38*(tmp108*tmp98 + tmp67*tmp8)
+        + m*(tmp112*tmp99 + tmp73*tmp77);
+    const Scalar tmp288 = tmp20*(tmp221*tmp222 + tmp224*tmp225 + tmp227*tmp228)
+        + tmp25*(tmp246*tmp247 + tmp249*tmp250 + tmp252*tmp253)
+        + tmp38*(-tmp53*tmp91 - tmp98*tmp102 + tmp0*tmp44*tmp5*tmp8)
+        + m*(tmp105*tmp99 + tmp195*tmp77 + tmp197*tmp94);
+    const Scalar tmp289 = tmp20*((tmp222*tmp222) + (tmp224*tmp224) + (tmp228*tmp228))
+        + tmp25*((tmp247*tmp247) + (tmp250*tmp250) + (tmp253*tmp253))
+        + tmp38*((tmp8*tmp8) + (tmp98*tmp98) + tmp281*(tmp4*tmp4))
+        + m*((tmp197*tmp197) + (tmp77*tmp77) + (tmp99*tmp99));
+    const Scalar tmp290 = g*m;
+    const Scalar tmp291 = -tmp290;
+    const Scalar tmp292 = tmp204*m;
+    const Scalar tmp293 = tmp206*m;
+    const Scalar tmp294 = tmp213*m;
+    const Scalar tmp295 = tmp20*tmp233;
+    const Scalar tmp296 = tmp20*tmp239;
+    const Scalar tmp297 = tmp25*tmp257;
+    const Scalar tmp298 = tmp25*tmp264;
+    const Scalar tmp299 = tmp38*tmp270;
+    const Scalar tmp300 = tmp38*tmp272;
+    const Scalar tmp301 = tmp20*tmp235;
+    const Scalar tmp302 = tmp25*tmp259;
+    const Scalar tmp303 = tmp38*tmp271;
+    const Scalar tmp304 = tmp112*tmp291;
+    const Scalar tmp305 = tmp105*tmp291;
+    const Scalar tmp306 = tmp99*tmp291;
+    const Scalar tmp307 = -tmp292;
+    const Scalar tmp308 = -tmp293;
+    const Scalar tmp309 = -tmp294;
+    const Scalar tmp310 = -tmp108*tmp300 - tmp112*tmp294 - tmp219*tmp295 - tmp230*tmp296
+        - tmp245*tmp297 - tmp254*tmp298 - tmp67*tmp299 - tmp73*tmp292;
+    const Scalar tmp311 = -tmp105*tmp294 - tmp195*tmp292 - tmp201*tmp299 - tmp221*tmp295
+        - tmp225*tmp301 - tmp227*tmp296 - tmp246*tmp297 - tmp249*tmp302 - tmp252*tmp298
+        - tmp91*tmp303 - tmp94*tmp293 + tmp0*tmp1*tmp44*tmp300;
+    const Scalar tmp312 = -tmp197*tmp293 - tmp222*tmp295 - tmp224*tmp301 - tmp228*tmp296
+        - tmp247*tmp297 - tmp250*tmp302 - tmp253*tmp298 - tmp77*tmp292 - tmp8*tmp299 - tmp98*tmp300
+        - tmp99*tmp294 + tmp4*tmp44*tmp303;
+    (*Mt)(0, 0) = m;
     (*Mt)(1, 0) = Scalar(0);
-    (*Mt)(1, 1) = tmp142;
+    (*Mt)(1, 1) = m;
     (*Mt)(2, 0) = Scalar(0);
     (*Mt)(2, 1) = Scalar(0);
-    (*Mt)(2, 2) = tmp142;
-    (*Mt)(3, 0) = tmp143;
+    (*Mt)(2, 2) = m;
+    (*Mt)(3, 0) = tmp273;
     (*Mt)(3, 1) = Scalar(0);
-    (*Mt)(3, 2) = tmp144;
-    (*Mt)(3, 3) = tmp149;
-    (*Mt)(4, 0) = tmp151;
-    (*Mt)(4, 1) = tmp152;
-    (*Mt)(4, 2) = tmp153;
-    (*Mt)(4, 3) = tmp154;
-    (*Mt)(4, 4) = tmp163;
-    (*Mt)(5, 0) = tmp164;
-    (*Mt)(5, 1) = tmp165;
-    (*Mt)(5, 2) = tmp166;
-    (*Mt)(5, 3) = tmp167;
-    (*Mt)(5, 4) = tmp169;
-    (*Mt)(5, 5) = tmp170;
-    (*f)(0) = tmp190;
-    (*f)(1) = tmp191;
-    (*f)(2) = tmp171 + tmp192;
-    (*f)(3) = tmp187 + tmp193;
-    (*f)(4) = tmp188 + tmp194;
-    (*f)(5) = tmp189 + tmp195;
+    (*Mt)(3, 2) = tmp274;
+    (*Mt)(3, 3) = tmp275;
+    (*Mt)(4, 0) = tmp276;
+    (*Mt)(4, 1) = tmp277;
+    (*Mt)(4, 2) = tmp278;
+    (*Mt)(4, 3) = tmp279;
+    (*Mt)(4, 4) = tmp283;
+    (*Mt)(5, 0) = tmp284;
+    (*Mt)(5, 1) = tmp285;
+    (*Mt)(5, 2) = tmp286;
+    (*Mt)(5, 3) = tmp287;
+    (*Mt)(5, 4) = tmp288;
+    (*Mt)(5, 5) = tmp289;
+    (*f)(0) = tmp307;
+    (*f)(1) = tmp308;
+    (*f)(2) = tmp291 + tmp309;
+    (*f)(3) = tmp304 + tmp310;
+    (*f)(4) = tmp305 + tmp311;
+    (*f)(5) = tmp306 + tmp312;
     (*Mt)(0, 1) = (*Mt)(1, 0);
     (*Mt)(0, 2) = (*Mt)(2, 0);
     (*Mt)(1, 2) = (*Mt)(2, 1);
@@ -5958,7 +6727,7 @@ struct RigidBodyEulerYzx {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return r = tau (nq)
-  /// Ops: 766
+  /// Ops: 864
   template <typename Scalar>
   static QVector<Scalar> inverse_dynamics(const QVector<Scalar>& q,
                                           const QVector<Scalar>& v,
@@ -5980,230 +6749,246 @@ struct RigidBodyEulerYzx {
     const Scalar attitude_ddot = qdd(4);
     const Scalar bank_ddot = qdd(5);
     const Scalar g = Scalar(params.g);
-    const Scalar m_a = Scalar(params.m_a);
-    const Scalar m_b = Scalar(params.m_b);
-    const Scalar m_c = Scalar(params.m_c);
-    const Scalar m_d = Scalar(params.m_d);
-    const Scalar tmp0 = cos(heading);
-    const Scalar tmp1 = cos(attitude);
-    const Scalar tmp2 = Scalar(0.5)*tmp1;
-    const Scalar tmp3 = tmp0*tmp2;
-    const Scalar tmp5 = sin(attitude);
-    const Scalar tmp6 = Scalar(0.5)*tmp5;
-    const Scalar tmp8 = sin(heading);
-    const Scalar tmp9 = tmp2*tmp8;
-    const Scalar tmp12 = tmp0*tmp6;
-    const Scalar tmp13 = tmp9*heading_dot + tmp12*attitude_dot;
-    const Scalar tmp16 = tmp6*tmp8;
-    const Scalar tmp17 = tmp16*attitude_dot - tmp3*heading_dot;
-    const Scalar tmp19 = sin(bank);
-    const Scalar tmp20 = Scalar(0.4)*tmp19;
-    const Scalar tmp21 = tmp20*tmp8;
-    const Scalar tmp22 = cos(bank);
-    const Scalar tmp23 = Scalar(0.4)*tmp22;
-    const Scalar tmp24 = tmp0*tmp23*tmp5;
-    const Scalar tmp26 = tmp1*tmp23;
-    const Scalar tmp28 = tmp0*tmp20;
-    const Scalar tmp29 = tmp23*tmp8;
-    const Scalar tmp30 = tmp29*tmp5;
-    const Scalar tmp31 = tmp28 + tmp30;
-    const Scalar tmp33 = tmp26*attitude_dot;
-    const Scalar tmp34 = tmp0*tmp33;
-    const Scalar tmp35 = tmp29 + tmp28*tmp5;
-    const Scalar tmp37 = tmp23*tmp5;
-    const Scalar tmp38 = tmp1*tmp20;
-    const Scalar tmp40 = -tmp21*tmp5 + Scalar(0.4)*tmp0*tmp22;
-    const Scalar tmp41 = tmp24 - tmp21;
-    const Scalar tmp42 = tmp33*tmp8 + tmp40*bank_dot + tmp41*heading_dot;
-    const Scalar tmp44 = Scalar(0.3)*tmp22;
-    const Scalar tmp45 = tmp44*tmp8;
-    const Scalar tmp46 = Scalar(0.3)*tmp19;
-    const Scalar tmp47 = tmp0*tmp46;
-    const Scalar tmp48 = tmp47*tmp5;
-    const Scalar tmp49 = tmp45 + tmp48;
-    const Scalar tmp51 = tmp1*tmp46;
-    const Scalar tmp53 = tmp0*tmp44;
-    const Scalar tmp54 = tmp46*tmp8;
-    const Scalar tmp55 = tmp5*tmp54;
-    const Scalar tmp57 = tmp51*attitude_dot;
-    const Scalar tmp58 = tmp0*tmp57;
-    const Scalar tmp59 = tmp53*tmp5;
-    const Scalar tmp60 = tmp59 - tmp54;
-    const Scalar tmp61 = tmp55 - Scalar(0.3)*tmp0*tmp22;
-    const Scalar tmp62 = -tmp61;
-    const Scalar tmp64 = tmp46*tmp5;
-    const Scalar tmp65 = tmp1*tmp44;
-    const Scalar tmp67 = tmp45*tmp5;
-    const Scalar tmp68 = tmp47 + tmp67;
-    const Scalar tmp69 = -tmp68;
-    const Scalar tmp70 = -tmp49;
-    const Scalar tmp71 = tmp69*bank_dot + tmp70*heading_dot - tmp57*tmp8;
-    const Scalar tmp73 = Scalar(0.2)*tmp1;
-    const Scalar tmp74 = Scalar(0.25)*tmp19;
-    const Scalar tmp75 = tmp5*tmp74;
-    const Scalar tmp76 = -tmp59 + tmp0*tmp75;
-    const Scalar tmp77 = tmp76 + tmp0*tmp73;
-    const Scalar tmp78 = Scalar(0.25)*tmp22;
-    const Scalar tmp79 = tmp8*tmp78;
-    const Scalar tmp80 = tmp54 + tmp79;
-    const Scalar tmp81 = tmp77 + tmp80;
-    const Scalar tmp83 = Scalar(0.2)*tmp5;
-    const Scalar tmp84 = tmp1*tmp74;
-    const Scalar tmp85 = tmp65 + tmp83 - tmp84;
-    const Scalar tmp87 = tmp73*tmp8;
-    const Scalar tmp88 = tmp0*tmp78;
-    const Scalar tmp89 = tmp74*tmp8;
-    const Scalar tmp90 = tmp5*tmp89;
-    const Scalar tmp91 = tmp68 + tmp88 - tmp90;
-    const Scalar tmp92 = tmp91 - tmp87;
-    const Scalar tmp94 = tmp1*tmp53;
-    const Scalar tmp95 = tmp94 + tmp0*tmp83 - Scalar(0.25)*tmp0*tmp1*tmp19;
-    const Scalar tmp96 = -tmp95;
-    const Scalar tmp97 = tmp49 - tmp89 + tmp5*tmp88;
-    const Scalar tmp99 = -tmp51 - tmp1*tmp78;
-    const Scalar tmp100 = tmp44*tmp5;
-    const Scalar tmp101 = tmp73 + tmp75 - tmp100;
-    const Scalar tmp103 = tmp1*tmp45;
-    const Scalar tmp104 = tmp103 + tmp8*tmp83 - tmp8*tmp84;
-    const Scalar tmp105 = -tmp61 - tmp0*tmp74 - tmp5*tmp79;
-    const Scalar tmp106 = -tmp81;
-    const Scalar tmp107 = tmp104*attitude_dot + tmp105*bank_dot + tmp106*heading_dot;
-    const Scalar tmp109 = g*m_a;
-    const Scalar tmp110 = -tmp109;
-    const Scalar tmp111 = g*m_b;
-    const Scalar tmp112 = -tmp111;
-    const Scalar tmp113 = g*m_c;
-    const Scalar tmp114 = -tmp113;
-    const Scalar tmp115 = g*m_d;
-    const Scalar tmp116 = -tmp115;
-    const Scalar tmp117 = tmp17*heading_dot
-        + attitude_dot*(-tmp3*attitude_dot + Scalar(0.5)*tmp5*tmp8*heading_dot);
-    const Scalar tmp118 = -tmp6*(attitude_dot*attitude_dot);
-    const Scalar tmp119 = tmp13*heading_dot + attitude_dot*(tmp9*attitude_dot + tmp12*heading_dot);
-    const Scalar tmp120 = tmp1*tmp28;
-    const Scalar tmp121 = tmp26*tmp8;
-    const Scalar tmp122 = tmp42*heading_dot
-        + attitude_dot*(tmp24*attitude_dot + tmp120*bank_dot + tmp121*heading_dot)
-        + bank_dot*(tmp40*heading_dot + tmp41*bank_dot + tmp120*attitude_dot);
-    const Scalar tmp123 = attitude_dot*(-tmp33 + Scalar(0.4)*tmp19*tmp5*bank_dot)
-        + bank_dot*(-tmp26*bank_dot + tmp20*tmp5*attitude_dot);
-    const Scalar tmp124 = tmp1*tmp21;
-    const Scalar tmp125 = -tmp31;
-    const Scalar tmp126 = -tmp35;
-    const Scalar tmp127 = attitude_dot*(-tmp30*attitude_dot - tmp124*bank_dot
-            + Scalar(0.4)*tmp0*tmp1*tmp22*heading_dot)
-        + bank_dot*(tmp125*bank_dot + tmp126*heading_dot - tmp124*attitude_dot)
-        + heading_dot*(tmp34 + tmp125*heading_dot + tmp126*bank_dot);
-    const Scalar tmp128 = tmp51*tmp8;
-    const Scalar tmp129 = tmp71*heading_dot
-        + attitude_dot*(-tmp48*attitude_dot - tmp128*heading_dot
-            + Scalar(0.3)*tmp0*tmp1*tmp22*bank_dot)
-        + bank_dot*(tmp69*heading_dot + tmp70*bank_dot + tmp94*attitude_dot);
-    const Scalar tmp130 = attitude_dot*(tmp57 + tmp100*bank_dot)
-        + bank_dot*(tmp51*bank_dot + tmp100*attitude_dot);
-    const Scalar tmp131 = tmp0*tmp51;
-    const Scalar tmp132 = -tmp60;
-    const Scalar tmp133 = attitude_dot*(-tmp103*bank_dot - tmp131*heading_dot
-            + Scalar(0.3)*tmp19*tmp5*tmp8*attitude_dot)
-        + bank_dot*(tmp132*heading_dot + tmp61*bank_dot - tmp103*attitude_dot)
-        + heading_dot*(-tmp58 + tmp132*bank_dot + tmp61*heading_dot);
-    const Scalar tmp134 = tmp131 + tmp1*tmp88;
-    const Scalar tmp135 = tmp107*heading_dot
-        + attitude_dot*(tmp134*bank_dot + tmp104*heading_dot - tmp77*attitude_dot)
-        + bank_dot*(tmp134*attitude_dot + tmp105*heading_dot + bank_dot*(-tmp76 - tmp80));
-    const Scalar tmp136 = tmp64 + tmp5*tmp78;
-    const Scalar tmp137 = -tmp65;
-    const Scalar tmp138 = attitude_dot*(tmp136*bank_dot - tmp85*attitude_dot)
-        + bank_dot*(tmp136*attitude_dot + bank_dot*(tmp137 + tmp84));
-    const Scalar tmp139 = -tmp128 - tmp1*tmp79;
-    const Scalar tmp140 = -tmp97;
-    const Scalar tmp141 = attitude_dot*(tmp139*bank_dot + tmp95*heading_dot
-            + attitude_dot*(tmp87 + tmp90 - tmp67))
-        + bank_dot*(tmp139*attitude_dot + tmp140*heading_dot - tmp91*bank_dot)
-        + heading_dot*(tmp140*bank_dot + tmp95*attitude_dot - tmp92*heading_dot);
-    const Scalar tmp142 = m_a + m_b + m_c + m_d;
-    const Scalar tmp143 = tmp31*m_b + tmp62*m_c + tmp92*m_d - tmp9*m_a;
-    const Scalar tmp144 = tmp41*m_b + tmp70*m_c + tmp106*m_d - tmp3*m_a;
-    const Scalar tmp145 = (tmp8*tmp8);
-    const Scalar tmp146 = (tmp1*tmp1);
-    const Scalar tmp147 = Scalar(0.25)*tmp146;
-    const Scalar tmp148 = (tmp0*tmp0);
-    const Scalar tmp149 = m_a*(tmp145*tmp147 + tmp147*tmp148) + m_b*((tmp31*tmp31) + (tmp41*tmp41))
-        + m_c*((tmp62*tmp62) + (tmp70*tmp70)) + m_d*((tmp92*tmp92) + (tmp106*tmp106));
-    const Scalar tmp150 = tmp0*tmp26;
-    const Scalar tmp151 = tmp96*m_d - tmp150*m_b - tmp12*m_a + Scalar(0.3)*tmp0*tmp1*tmp19*m_c;
-    const Scalar tmp152 = tmp2*m_a + tmp64*m_c + tmp101*m_d - tmp37*m_b;
-    const Scalar tmp153 = tmp16*m_a + tmp104*m_d + tmp121*m_b - tmp128*m_c;
-    const Scalar tmp154 = m_b*(-tmp150*tmp31 + Scalar(0.4)*tmp1*tmp22*tmp41*tmp8)
-        + m_c*(tmp62*tmp131 - tmp70*tmp128) + m_d*(tmp92*tmp96 + tmp104*tmp106);
-    const Scalar tmp155 = (tmp5*tmp5);
-    const Scalar tmp156 = Scalar(0.25)*tmp155;
-    const Scalar tmp157 = (tmp22*tmp22);
-    const Scalar tmp158 = Scalar(0.16000000000000003)*tmp157;
-    const Scalar tmp159 = tmp146*tmp158;
-    const Scalar tmp160 = (tmp19*tmp19);
-    const Scalar tmp161 = Scalar(0.09)*tmp160;
-    const Scalar tmp162 = tmp146*tmp161;
-    const Scalar tmp163 = m_a*(tmp147 + tmp145*tmp156 + tmp148*tmp156)
-        + m_b*(tmp145*tmp159 + tmp148*tmp159 + tmp155*tmp158)
-        + m_c*(tmp145*tmp162 + tmp148*tmp162 + tmp155*tmp161)
-        + m_d*((tmp96*tmp96) + (tmp101*tmp101) + (tmp104*tmp104));
-    const Scalar tmp164 = tmp35*m_b + tmp60*m_c + tmp97*m_d;
-    const Scalar tmp165 = tmp99*m_d - tmp38*m_b - tmp65*m_c;
-    const Scalar tmp166 = tmp40*m_b + tmp69*m_c + tmp105*m_d;
-    const Scalar tmp167 = m_b*(tmp31*tmp35 + tmp40*tmp41) + m_c*(tmp60*tmp62 + tmp69*tmp70)
-        + m_d*(tmp92*tmp97 + tmp105*tmp106);
-    const Scalar tmp168 = tmp1*tmp19*tmp22*tmp5;
-    const Scalar tmp169 = m_b*(Scalar(0.16000000000000003)*tmp168 + tmp40*tmp121 - tmp150*tmp35)
-        + m_c*(-Scalar(0.09)*tmp168 - tmp69*tmp128 + Scalar(0.3)*tmp0*tmp1*tmp19*tmp60)
-        + m_d*(tmp96*tmp97 + tmp99*tmp101 + tmp104*tmp105);
-    const Scalar tmp170 = m_b*((tmp35*tmp35) + (tmp40*tmp40)
-            + Scalar(0.16000000000000003)*tmp146*tmp160)
-        + m_c*((tmp60*tmp60) + (tmp69*tmp69) + Scalar(0.09)*tmp146*tmp157)
-        + m_d*((tmp97*tmp97) + (tmp99*tmp99) + (tmp105*tmp105));
-    const Scalar tmp171 = tmp110 + tmp112 + tmp114 + tmp116;
-    const Scalar tmp172 = tmp117*m_a;
-    const Scalar tmp173 = tmp119*m_a;
-    const Scalar tmp174 = tmp122*m_b;
-    const Scalar tmp175 = tmp127*m_b;
-    const Scalar tmp176 = tmp129*m_c;
-    const Scalar tmp177 = tmp133*m_c;
-    const Scalar tmp178 = tmp135*m_d;
-    const Scalar tmp179 = tmp141*m_d;
-    const Scalar tmp180 = tmp118*m_a;
-    const Scalar tmp181 = tmp123*m_b;
-    const Scalar tmp182 = tmp130*m_c;
-    const Scalar tmp183 = tmp138*m_d;
-    const Scalar tmp184 = tmp174 + tmp176 + tmp178 + tmp172;
-    const Scalar tmp185 = tmp181 + tmp182 + tmp183 + tmp180;
-    const Scalar tmp186 = tmp175 + tmp177 + tmp179 + tmp173;
-    const Scalar tmp187 = tmp41*tmp112 + tmp70*tmp114 + tmp106*tmp116 - tmp3*tmp110;
-    const Scalar tmp188 = tmp16*tmp110 + tmp104*tmp116 + tmp112*tmp121 - tmp114*tmp128;
-    const Scalar tmp189 = tmp40*tmp112 + tmp69*tmp114 + tmp105*tmp116;
-    const Scalar tmp190 = -tmp184;
-    const Scalar tmp191 = -tmp185;
-    const Scalar tmp192 = -tmp186;
-    const Scalar tmp193 = -tmp174*tmp31 - tmp175*tmp41 - tmp176*tmp62 - tmp177*tmp70 - tmp178*tmp92
-        - tmp179*tmp106 + Scalar(0.5)*tmp0*tmp1*tmp173 + Scalar(0.5)*tmp1*tmp8*tmp172;
-    const Scalar tmp194 = -tmp16*tmp173 - tmp175*tmp121 - tmp176*tmp131 - tmp178*tmp96
-        - tmp179*tmp104 - tmp182*tmp64 - tmp183*tmp101 - tmp2*tmp180 + Scalar(0.5)*tmp0*tmp5*tmp172
-        + Scalar(0.4)*tmp181*tmp22*tmp5 + Scalar(0.4)*tmp0*tmp1*tmp174*tmp22
-        + Scalar(0.3)*tmp1*tmp177*tmp19*tmp8;
-    const Scalar tmp195 = -tmp174*tmp35 - tmp175*tmp40 - tmp176*tmp60 - tmp177*tmp69 - tmp178*tmp97
-        - tmp179*tmp105 - tmp183*tmp99 + Scalar(0.4)*tmp1*tmp181*tmp19
-        + Scalar(0.3)*tmp1*tmp182*tmp22;
+    const Scalar m = Scalar(params.m);
+    const Scalar com_x = Scalar(params.com_x);
+    const Scalar com_y = Scalar(params.com_y);
+    const Scalar com_z = Scalar(params.com_z);
+    const Scalar a = Scalar(params.a);
+    const Scalar b = Scalar(params.b);
+    const Scalar c = Scalar(params.c);
+    const Scalar tmp0 = sin(bank);
+    const Scalar tmp1 = sin(heading);
+    const Scalar tmp2 = tmp0*tmp1;
+    const Scalar tmp3 = sin(attitude);
+    const Scalar tmp4 = cos(bank);
+    const Scalar tmp5 = cos(heading);
+    const Scalar tmp6 = tmp4*tmp5;
+    const Scalar tmp7 = tmp3*tmp6;
+    const Scalar tmp8 = tmp7 - tmp2;
+    const Scalar tmp9 = -tmp8;
+    const Scalar tmp11 = (a*a);
+    const Scalar tmp12 = (b*b);
+    const Scalar tmp13 = m*(tmp11 + tmp12);
+    const Scalar tmp14 = (c*c);
+    const Scalar tmp15 = tmp11 + tmp14;
+    const Scalar tmp16 = tmp15*m;
+    const Scalar tmp17 = tmp12 + tmp14;
+    const Scalar tmp18 = tmp17*m;
+    const Scalar tmp19 = Scalar(0.005689254019167049)*tmp18 + Scalar(0.010556171822976032)*tmp16
+        - Scalar(0.01624542584214308)*tmp13;
+    const Scalar tmp20 = Scalar(0.041142942152109445)*tmp18 + Scalar(0.028423816083747767)*tmp13
+        - Scalar(0.027900091569190537)*tmp16;
+    const Scalar tmp24 = (Scalar(1)/tmp20);
+    const Scalar tmp25 = Scalar(0.021737886292675604)*tmp13 + Scalar(0.04006485617007295)*tmp16
+        - Scalar(0.020136075796081898)*tmp18 - tmp24*(tmp19*tmp19);
+    const Scalar tmp29 = tmp1*tmp4;
+    const Scalar tmp30 = tmp0*tmp5;
+    const Scalar tmp31 = tmp3*tmp30;
+    const Scalar tmp32 = tmp29 + tmp31;
+    const Scalar tmp33 = -Scalar(0.0257737061664756)*tmp13 - Scalar(0.003316897780257798)*tmp18
+        + Scalar(0.0290906039467334)*tmp15*m;
+    const Scalar tmp35 = (Scalar(1)/tmp25);
+    const Scalar tmp36 = tmp24*tmp33;
+    const Scalar tmp37 = -Scalar(0.03161742478199714)*tmp13 - Scalar(0.004414255047715874)*tmp16
+        - tmp19*tmp36 + Scalar(0.03603167982971302)*tmp17*m;
+    const Scalar tmp38 = -Scalar(0.008495035709756703)*tmp13 - tmp24*(tmp33*tmp33)
+        - tmp35*(tmp37*tmp37) + Scalar(0.02950190206578425)*tmp15*m
+        + Scalar(0.020659800310639128)*tmp17*m;
+    const Scalar tmp44 = cos(attitude);
+    const Scalar tmp45 = tmp44*tmp5;
+    const Scalar tmp48 = tmp44*com_x;
+    const Scalar tmp49 = tmp48*tmp5;
+    const Scalar tmp53 = tmp4*tmp44;
+    const Scalar tmp54 = tmp0*tmp44;
+    const Scalar tmp57 = tmp3*com_x;
+    const Scalar tmp58 = tmp53*com_y - tmp54*com_z;
+    const Scalar tmp59 = tmp57 + tmp58;
+    const Scalar tmp63 = tmp29*tmp3;
+    const Scalar tmp64 = tmp30 + tmp63;
+    const Scalar tmp65 = tmp2*tmp3;
+    const Scalar tmp66 = tmp65 - tmp4*tmp5;
+    const Scalar tmp67 = -tmp66;
+    const Scalar tmp69 = tmp1*tmp44;
+    const Scalar tmp72 = tmp1*tmp48;
+    const Scalar tmp73 = -tmp72 + tmp64*com_y + tmp67*com_z;
+    const Scalar tmp77 = tmp32*com_y + tmp8*com_z;
+    const Scalar tmp79 = tmp44*tmp6;
+    const Scalar tmp80 = tmp3*tmp5;
+    const Scalar tmp82 = tmp5*tmp57 + tmp79*com_y - tmp0*tmp44*tmp5*com_z;
+    const Scalar tmp89 = tmp53*com_z + tmp54*com_y;
+    const Scalar tmp91 = tmp0*tmp3;
+    const Scalar tmp92 = tmp3*tmp4;
+    const Scalar tmp94 = tmp48 + tmp91*com_z - tmp92*com_y;
+    const Scalar tmp98 = -tmp64;
+    const Scalar tmp99 = tmp67*com_y + tmp98*com_z;
+    const Scalar tmp101 = tmp29*tmp44;
+    const Scalar tmp102 = tmp2*tmp44;
+    const Scalar tmp103 = tmp1*tmp3;
+    const Scalar tmp105 = tmp1*tmp57 + tmp101*com_y - tmp102*com_z;
+    const Scalar tmp108 = -tmp32;
+    const Scalar tmp111 = tmp108*com_z + tmp8*com_y;
+    const Scalar tmp112 = tmp111 - tmp49;
+    const Scalar tmp195 = -tmp82;
+    const Scalar tmp197 = -tmp89;
+    const Scalar tmp199 = tmp105*attitude_dot + tmp112*heading_dot + tmp99*bank_dot;
+    const Scalar tmp201 = tmp30*tmp44;
+    const Scalar tmp202 = tmp201*com_y + tmp79*com_z;
+    const Scalar tmp203 = tmp49 + tmp31*com_z - tmp3*tmp4*tmp5*com_y;
+    const Scalar tmp204 = tmp199*heading_dot
+        + attitude_dot*(tmp105*heading_dot + tmp202*bank_dot - tmp203*attitude_dot)
+        + bank_dot*(tmp111*bank_dot + tmp202*attitude_dot + tmp99*heading_dot);
+    const Scalar tmp205 = tmp91*com_y + tmp92*com_z;
+    const Scalar tmp206 = attitude_dot*(tmp205*bank_dot - tmp59*attitude_dot)
+        + bank_dot*(tmp205*attitude_dot - tmp58*bank_dot);
+    const Scalar tmp207 = tmp101*com_z + tmp102*com_y;
+    const Scalar tmp208 = -tmp207;
+    const Scalar tmp209 = tmp72 + tmp65*com_z - tmp63*com_y;
+    const Scalar tmp210 = tmp66*com_z + tmp98*com_y;
+    const Scalar tmp211 = tmp108*com_y + tmp9*com_z;
+    const Scalar tmp212 = tmp210 + tmp72;
+    const Scalar tmp213 = attitude_dot*(tmp208*bank_dot + tmp209*attitude_dot + tmp82*heading_dot)
+        + bank_dot*(tmp208*attitude_dot + tmp210*bank_dot + tmp211*heading_dot)
+        + heading_dot*(tmp211*bank_dot + tmp212*heading_dot + tmp82*attitude_dot);
+    const Scalar tmp214 = tmp19*tmp24;
+    const Scalar tmp216 = tmp214*tmp53;
+    const Scalar tmp217 = tmp36*tmp54;
+    const Scalar tmp218 = tmp216 + tmp3 - tmp217;
+    const Scalar tmp219 = -tmp69 + tmp214*tmp64 + tmp36*tmp67;
+    const Scalar tmp220 = tmp80 + tmp214*tmp79 - tmp0*tmp24*tmp33*tmp44*tmp5;
+    const Scalar tmp221 = -tmp220;
+    const Scalar tmp222 = tmp214*tmp32 + tmp36*tmp8;
+    const Scalar tmp224 = -tmp214*tmp54 - tmp36*tmp53;
+    const Scalar tmp225 = tmp44 + tmp36*tmp91 - tmp214*tmp92;
+    const Scalar tmp227 = tmp103 + tmp214*tmp101 - tmp36*tmp102;
+    const Scalar tmp228 = tmp214*tmp67 + tmp36*tmp98;
+    const Scalar tmp229 = tmp108*tmp36 + tmp214*tmp8;
+    const Scalar tmp230 = tmp229 - tmp45;
+    const Scalar tmp231 = tmp227*attitude_dot + tmp228*bank_dot + tmp230*heading_dot;
+    const Scalar tmp232 = tmp201*tmp214 + tmp36*tmp79;
+    const Scalar tmp233 = tmp231*heading_dot
+        + attitude_dot*(tmp227*heading_dot + tmp232*bank_dot
+            + attitude_dot*(-tmp45 - tmp31*tmp36 + tmp19*tmp24*tmp3*tmp4*tmp5))
+        + bank_dot*(tmp228*heading_dot + tmp229*bank_dot + tmp232*attitude_dot);
+    const Scalar tmp234 = tmp214*tmp91 + tmp36*tmp92;
+    const Scalar tmp235 = attitude_dot*(tmp234*bank_dot - tmp218*attitude_dot)
+        + bank_dot*(tmp234*attitude_dot + bank_dot*(tmp217 - tmp216));
+    const Scalar tmp236 = -tmp214*tmp102 - tmp36*tmp101;
+    const Scalar tmp237 = tmp214*tmp98 + tmp36*tmp66;
+    const Scalar tmp238 = tmp108*tmp214 + tmp36*tmp9;
+    const Scalar tmp239 = attitude_dot*(tmp220*heading_dot + tmp236*bank_dot
+            + attitude_dot*(tmp69 + tmp36*tmp65 - tmp214*tmp63))
+        + bank_dot*(tmp236*attitude_dot + tmp237*bank_dot + tmp238*heading_dot)
+        + heading_dot*(tmp220*attitude_dot + tmp238*bank_dot + heading_dot*(tmp237 + tmp69));
+    const Scalar tmp240 = -tmp7;
+    const Scalar tmp241 = tmp35*tmp37;
+    const Scalar tmp243 = tmp241*tmp54 - tmp4*tmp44;
+    const Scalar tmp245 = tmp64 + tmp241*tmp67;
+    const Scalar tmp246 = -tmp79 + tmp201*tmp241;
+    const Scalar tmp247 = tmp32 + tmp241*tmp8;
+    const Scalar tmp249 = -tmp92 + tmp241*tmp91;
+    const Scalar tmp250 = -tmp54 - tmp241*tmp53;
+    const Scalar tmp252 = -tmp241*tmp102 + tmp1*tmp4*tmp44;
+    const Scalar tmp253 = tmp6 - tmp65 + tmp241*tmp98;
+    const Scalar tmp254 = tmp8 + tmp108*tmp241;
+    const Scalar tmp255 = tmp252*attitude_dot + tmp253*bank_dot + tmp254*heading_dot;
+    const Scalar tmp256 = tmp201 + tmp241*tmp79;
+    const Scalar tmp257 = tmp255*heading_dot
+        + attitude_dot*(tmp252*heading_dot + tmp256*bank_dot
+            + attitude_dot*(-tmp240 - tmp241*tmp31))
+        + bank_dot*(tmp253*heading_dot + tmp254*bank_dot + tmp256*attitude_dot);
+    const Scalar tmp258 = tmp91 + tmp241*tmp92;
+    const Scalar tmp259 = attitude_dot*(tmp243*attitude_dot + tmp258*bank_dot)
+        + bank_dot*(tmp243*bank_dot + tmp258*attitude_dot);
+    const Scalar tmp260 = -tmp246;
+    const Scalar tmp261 = -tmp102 - tmp241*tmp101;
+    const Scalar tmp262 = -tmp32 + tmp35*tmp37*tmp9;
+    const Scalar tmp263 = -tmp64 + tmp35*tmp37*tmp66;
+    const Scalar tmp264 = attitude_dot*(tmp260*heading_dot + tmp261*bank_dot
+            + attitude_dot*(-tmp63 + tmp241*tmp65))
+        + bank_dot*(tmp261*attitude_dot + tmp262*heading_dot + tmp263*bank_dot)
+        + heading_dot*(tmp260*attitude_dot + tmp262*bank_dot + tmp263*heading_dot);
+    const Scalar tmp266 = tmp201*attitude_dot;
+    const Scalar tmp269 = tmp108*heading_dot + tmp98*bank_dot - tmp102*attitude_dot;
+    const Scalar tmp270 = tmp269*heading_dot
+        + attitude_dot*(-tmp31*attitude_dot - tmp102*heading_dot + tmp4*tmp44*tmp5*bank_dot)
+        + bank_dot*(tmp108*bank_dot + tmp79*attitude_dot + tmp98*heading_dot);
+    const Scalar tmp271 = attitude_dot*(tmp54*attitude_dot + tmp92*bank_dot)
+        + bank_dot*(tmp54*bank_dot + tmp92*attitude_dot);
+    const Scalar tmp272 = attitude_dot*(-tmp201*heading_dot - tmp101*bank_dot
+            + tmp0*tmp1*tmp3*attitude_dot)
+        + bank_dot*(tmp66*bank_dot + tmp9*heading_dot - tmp101*attitude_dot)
+        + heading_dot*(-tmp266 + tmp66*heading_dot + tmp9*bank_dot);
+    const Scalar tmp273 = tmp73*m;
+    const Scalar tmp274 = tmp112*m;
+    const Scalar tmp275 = tmp20*((tmp219*tmp219) + (tmp230*tmp230))
+        + tmp25*((tmp245*tmp245) + (tmp254*tmp254)) + tmp38*((tmp108*tmp108) + (tmp67*tmp67))
+        + m*((tmp112*tmp112) + (tmp73*tmp73));
+    const Scalar tmp276 = tmp195*m;
+    const Scalar tmp277 = tmp94*m;
+    const Scalar tmp278 = tmp105*m;
+    const Scalar tmp279 = tmp20*(tmp219*tmp221 + tmp227*tmp230)
+        + tmp25*(tmp245*tmp246 + tmp252*tmp254) + tmp38*(tmp201*tmp67 - tmp108*tmp102)
+        + m*(tmp105*tmp112 + tmp195*tmp73);
+    const Scalar tmp280 = (tmp0*tmp0);
+    const Scalar tmp281 = (tmp44*tmp44);
+    const Scalar tmp282 = tmp280*tmp281;
+    const Scalar tmp283 = tmp20*((tmp221*tmp221) + (tmp225*tmp225) + (tmp227*tmp227))
+        + tmp25*((tmp246*tmp246) + (tmp249*tmp249) + (tmp252*tmp252))
+        + tmp38*(tmp280*(tmp3*tmp3) + tmp282*(tmp1*tmp1) + tmp282*(tmp5*tmp5))
+        + m*((tmp105*tmp105) + (tmp195*tmp195) + (tmp94*tmp94));
+    const Scalar tmp284 = tmp77*m;
+    const Scalar tmp285 = tmp197*m;
+    const Scalar tmp286 = tmp99*m;
+    const Scalar tmp287 = tmp20*(tmp219*tmp222 + tmp228*tmp230)
+        + tmp25*(tmp245*tmp247 + tmp253*tmp254) + tmp38*(tmp108*tmp98 + tmp67*tmp8)
+        + m*(tmp112*tmp99 + tmp73*tmp77);
+    const Scalar tmp288 = tmp20*(tmp221*tmp222 + tmp224*tmp225 + tmp227*tmp228)
+        + tmp25*(tmp246*tmp247 + tmp249*tmp250 + tmp252*tmp253)
+        + tmp38*(-tmp53*tmp91 - tmp98*tmp102 + tmp0*tmp44*tmp5*tmp8)
+        + m*(tmp105*tmp99 + tmp195*tmp77 + tmp197*tmp94);
+    const Scalar tmp289 = tmp20*((tmp222*tmp222) + (tmp224*tmp224) + (tmp228*tmp228))
+        + tmp25*((tmp247*tmp247) + (tmp250*tmp250) + (tmp253*tmp253))
+        + tmp38*((tmp8*tmp8) + (tmp98*tmp98) + tmp281*(tmp4*tmp4))
+        + m*((tmp197*tmp197) + (tmp77*tmp77) + (tmp99*tmp99));
+    const Scalar tmp290 = g*m;
+    const Scalar tmp291 = -tmp290;
+    const Scalar tmp292 = tmp204*m;
+    const Scalar tmp293 = tmp206*m;
+    const Scalar tmp294 = tmp213*m;
+    const Scalar tmp295 = tmp20*tmp233;
+    const Scalar tmp296 = tmp20*tmp239;
+    const Scalar tmp297 = tmp25*tmp257;
+    const Scalar tmp298 = tmp25*tmp264;
+    const Scalar tmp299 = tmp38*tmp270;
+    const Scalar tmp300 = tmp38*tmp272;
+    const Scalar tmp301 = tmp20*tmp235;
+    const Scalar tmp302 = tmp25*tmp259;
+    const Scalar tmp303 = tmp38*tmp271;
+    const Scalar tmp304 = tmp112*tmp291;
+    const Scalar tmp305 = tmp105*tmp291;
+    const Scalar tmp306 = tmp99*tmp291;
+    const Scalar tmp307 = -tmp292;
+    const Scalar tmp308 = -tmp293;
+    const Scalar tmp309 = -tmp294;
+    const Scalar tmp310 = -tmp108*tmp300 - tmp112*tmp294 - tmp219*tmp295 - tmp230*tmp296
+        - tmp245*tmp297 - tmp254*tmp298 - tmp67*tmp299 - tmp73*tmp292;
+    const Scalar tmp311 = -tmp105*tmp294 - tmp195*tmp292 - tmp201*tmp299 - tmp221*tmp295
+        - tmp225*tmp301 - tmp227*tmp296 - tmp246*tmp297 - tmp249*tmp302 - tmp252*tmp298
+        - tmp91*tmp303 - tmp94*tmp293 + tmp0*tmp1*tmp44*tmp300;
+    const Scalar tmp312 = -tmp197*tmp293 - tmp222*tmp295 - tmp224*tmp301 - tmp228*tmp296
+        - tmp247*tmp297 - tmp250*tmp302 - tmp253*tmp298 - tmp77*tmp292 - tmp8*tmp299 - tmp98*tmp300
+        - tmp99*tmp294 + tmp4*tmp44*tmp303;
     QVector<Scalar> result;
-    result(0) = -tmp190 + tmp142*x_ddot + tmp143*heading_ddot + tmp151*attitude_ddot
-        + tmp164*bank_ddot;
-    result(1) = -tmp191 + tmp142*y_ddot + tmp152*attitude_ddot + tmp165*bank_ddot;
-    result(2) = -tmp171 - tmp192 + tmp142*z_ddot + tmp144*heading_ddot + tmp153*attitude_ddot
-        + tmp166*bank_ddot;
-    result(3) = -tmp187 - tmp193 + tmp143*x_ddot + tmp144*z_ddot + tmp149*heading_ddot
-        + tmp154*attitude_ddot + tmp167*bank_ddot;
-    result(4) = -tmp188 - tmp194 + tmp151*x_ddot + tmp152*y_ddot + tmp153*z_ddot
-        + tmp154*heading_ddot + tmp163*attitude_ddot + tmp169*bank_ddot;
-    result(5) = -tmp189 - tmp195 + tmp164*x_ddot + tmp165*y_ddot + tmp166*z_ddot
-        + tmp167*heading_ddot + tmp169*attitude_ddot + tmp170*bank_ddot;
+    result(0) = -tmp307 + tmp273*heading_ddot + tmp276*attitude_ddot + tmp284*bank_ddot + m*x_ddot;
+    result(1) = -tmp308 + tmp277*attitude_ddot + tmp285*bank_ddot + m*y_ddot;
+    result(2) = -tmp291 - tmp309 + tmp274*heading_ddot + tmp278*attitude_ddot + tmp286*bank_ddot
+        + m*z_ddot;
+    result(3) = -tmp304 - tmp310 + tmp273*x_ddot + tmp274*z_ddot + tmp275*heading_ddot
+        + tmp279*attitude_ddot + tmp287*bank_ddot;
+    result(4) = -tmp305 - tmp311 + tmp276*x_ddot + tmp277*y_ddot + tmp278*z_ddot
+        + tmp279*heading_ddot + tmp283*attitude_ddot + tmp288*bank_ddot;
+    result(5) = -tmp306 - tmp312 + tmp284*x_ddot + tmp285*y_ddot + tmp286*z_ddot
+        + tmp287*heading_ddot + tmp288*attitude_ddot + tmp289*bank_ddot;
     return result;
   }
 
@@ -6214,7 +6999,7 @@ struct RigidBodyEulerYzx {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// dr_dq and dr_dv must not be null.
-  /// Ops: 3438
+  /// Ops: 4021
   template <typename Scalar>
   static void residual_jacobians(const QVector<Scalar>& q,
                                  const QVector<Scalar>& v,
@@ -6238,880 +7023,942 @@ struct RigidBodyEulerYzx {
     const Scalar attitude_ddot = qdd(4);
     const Scalar bank_ddot = qdd(5);
     const Scalar g = Scalar(params.g);
-    const Scalar m_a = Scalar(params.m_a);
-    const Scalar m_b = Scalar(params.m_b);
-    const Scalar m_c = Scalar(params.m_c);
-    const Scalar m_d = Scalar(params.m_d);
-    const Scalar tmp0 = cos(heading);
-    const Scalar tmp1 = cos(attitude);
-    const Scalar tmp2 = Scalar(0.5)*tmp1;
-    const Scalar tmp3 = tmp0*tmp2;
-    const Scalar tmp5 = sin(attitude);
-    const Scalar tmp6 = Scalar(0.5)*tmp5;
-    const Scalar tmp8 = sin(heading);
-    const Scalar tmp9 = tmp2*tmp8;
-    const Scalar tmp12 = tmp0*tmp6;
-    const Scalar tmp13 = tmp9*heading_dot + tmp12*attitude_dot;
-    const Scalar tmp16 = tmp6*tmp8;
-    const Scalar tmp17 = tmp16*attitude_dot - tmp3*heading_dot;
-    const Scalar tmp19 = sin(bank);
-    const Scalar tmp20 = Scalar(0.4)*tmp19;
-    const Scalar tmp21 = tmp20*tmp8;
-    const Scalar tmp22 = cos(bank);
-    const Scalar tmp23 = Scalar(0.4)*tmp22;
-    const Scalar tmp24 = tmp0*tmp23*tmp5;
-    const Scalar tmp26 = tmp1*tmp23;
-    const Scalar tmp28 = tmp0*tmp20;
-    const Scalar tmp29 = tmp23*tmp8;
-    const Scalar tmp30 = tmp29*tmp5;
-    const Scalar tmp31 = tmp28 + tmp30;
-    const Scalar tmp33 = tmp26*attitude_dot;
-    const Scalar tmp34 = tmp0*tmp33;
-    const Scalar tmp35 = tmp29 + tmp28*tmp5;
-    const Scalar tmp40 = -tmp21*tmp5 + Scalar(0.4)*tmp0*tmp22;
-    const Scalar tmp41 = tmp24 - tmp21;
-    const Scalar tmp42 = tmp33*tmp8 + tmp40*bank_dot + tmp41*heading_dot;
-    const Scalar tmp44 = Scalar(0.3)*tmp22;
-    const Scalar tmp45 = tmp44*tmp8;
-    const Scalar tmp46 = Scalar(0.3)*tmp19;
-    const Scalar tmp47 = tmp0*tmp46;
-    const Scalar tmp48 = tmp47*tmp5;
-    const Scalar tmp49 = tmp45 + tmp48;
-    const Scalar tmp51 = tmp1*tmp46;
-    const Scalar tmp53 = tmp0*tmp44;
-    const Scalar tmp54 = tmp46*tmp8;
-    const Scalar tmp55 = tmp5*tmp54;
-    const Scalar tmp57 = tmp51*attitude_dot;
-    const Scalar tmp58 = tmp0*tmp57;
-    const Scalar tmp59 = tmp53*tmp5;
-    const Scalar tmp60 = tmp59 - tmp54;
-    const Scalar tmp61 = tmp55 - Scalar(0.3)*tmp0*tmp22;
-    const Scalar tmp62 = -tmp61;
-    const Scalar tmp64 = tmp46*tmp5;
-    const Scalar tmp65 = tmp1*tmp44;
-    const Scalar tmp67 = tmp45*tmp5;
-    const Scalar tmp68 = tmp47 + tmp67;
-    const Scalar tmp69 = -tmp68;
-    const Scalar tmp70 = -tmp49;
-    const Scalar tmp71 = tmp69*bank_dot + tmp70*heading_dot - tmp57*tmp8;
-    const Scalar tmp73 = Scalar(0.2)*tmp1;
-    const Scalar tmp74 = Scalar(0.25)*tmp19;
-    const Scalar tmp75 = tmp5*tmp74;
-    const Scalar tmp76 = -tmp59 + tmp0*tmp75;
-    const Scalar tmp77 = tmp76 + tmp0*tmp73;
-    const Scalar tmp78 = Scalar(0.25)*tmp22;
-    const Scalar tmp79 = tmp8*tmp78;
-    const Scalar tmp80 = tmp54 + tmp79;
-    const Scalar tmp81 = tmp77 + tmp80;
-    const Scalar tmp83 = Scalar(0.2)*tmp5;
-    const Scalar tmp84 = tmp1*tmp74;
-    const Scalar tmp85 = tmp65 + tmp83 - tmp84;
-    const Scalar tmp87 = tmp73*tmp8;
-    const Scalar tmp88 = tmp0*tmp78;
-    const Scalar tmp89 = tmp74*tmp8;
-    const Scalar tmp90 = tmp5*tmp89;
-    const Scalar tmp91 = tmp68 + tmp88 - tmp90;
-    const Scalar tmp92 = tmp91 - tmp87;
-    const Scalar tmp94 = tmp1*tmp53;
-    const Scalar tmp95 = tmp94 + tmp0*tmp83 - Scalar(0.25)*tmp0*tmp1*tmp19;
-    const Scalar tmp96 = -tmp95;
-    const Scalar tmp97 = tmp49 - tmp89 + tmp5*tmp88;
-    const Scalar tmp99 = -tmp51 - tmp1*tmp78;
-    const Scalar tmp100 = tmp44*tmp5;
-    const Scalar tmp101 = tmp73 + tmp75 - tmp100;
-    const Scalar tmp103 = tmp1*tmp45;
-    const Scalar tmp104 = tmp103 + tmp8*tmp83 - tmp8*tmp84;
-    const Scalar tmp105 = -tmp61 - tmp0*tmp74 - tmp5*tmp79;
-    const Scalar tmp106 = -tmp81;
-    const Scalar tmp107 = tmp104*attitude_dot + tmp105*bank_dot + tmp106*heading_dot;
-    const Scalar tmp109 = g*m_a;
-    const Scalar tmp110 = -tmp109;
-    const Scalar tmp111 = g*m_b;
-    const Scalar tmp112 = -tmp111;
-    const Scalar tmp113 = g*m_c;
-    const Scalar tmp114 = -tmp113;
-    const Scalar tmp115 = g*m_d;
-    const Scalar tmp116 = -tmp115;
-    const Scalar tmp117 = tmp17*heading_dot
-        + attitude_dot*(-tmp3*attitude_dot + Scalar(0.5)*tmp5*tmp8*heading_dot);
-    const Scalar tmp118 = -tmp6*(attitude_dot*attitude_dot);
-    const Scalar tmp119 = tmp13*heading_dot + attitude_dot*(tmp9*attitude_dot + tmp12*heading_dot);
-    const Scalar tmp120 = tmp1*tmp28;
-    const Scalar tmp121 = tmp26*tmp8;
-    const Scalar tmp122 = tmp42*heading_dot
-        + attitude_dot*(tmp24*attitude_dot + tmp120*bank_dot + tmp121*heading_dot)
-        + bank_dot*(tmp40*heading_dot + tmp41*bank_dot + tmp120*attitude_dot);
-    const Scalar tmp123 = attitude_dot*(-tmp33 + Scalar(0.4)*tmp19*tmp5*bank_dot)
-        + bank_dot*(-tmp26*bank_dot + tmp20*tmp5*attitude_dot);
-    const Scalar tmp124 = tmp1*tmp21;
-    const Scalar tmp125 = -tmp31;
-    const Scalar tmp126 = -tmp35;
-    const Scalar tmp127 = attitude_dot*(-tmp30*attitude_dot - tmp124*bank_dot
-            + Scalar(0.4)*tmp0*tmp1*tmp22*heading_dot)
-        + bank_dot*(tmp125*bank_dot + tmp126*heading_dot - tmp124*attitude_dot)
-        + heading_dot*(tmp34 + tmp125*heading_dot + tmp126*bank_dot);
-    const Scalar tmp128 = tmp51*tmp8;
-    const Scalar tmp129 = tmp71*heading_dot
-        + attitude_dot*(-tmp48*attitude_dot - tmp128*heading_dot
-            + Scalar(0.3)*tmp0*tmp1*tmp22*bank_dot)
-        + bank_dot*(tmp69*heading_dot + tmp70*bank_dot + tmp94*attitude_dot);
-    const Scalar tmp130 = attitude_dot*(tmp57 + tmp100*bank_dot)
-        + bank_dot*(tmp51*bank_dot + tmp100*attitude_dot);
-    const Scalar tmp131 = tmp0*tmp51;
-    const Scalar tmp132 = -tmp60;
-    const Scalar tmp133 = attitude_dot*(-tmp103*bank_dot - tmp131*heading_dot
-            + Scalar(0.3)*tmp19*tmp5*tmp8*attitude_dot)
-        + bank_dot*(tmp132*heading_dot + tmp61*bank_dot - tmp103*attitude_dot)
-        + heading_dot*(-tmp58 + tmp132*bank_dot + tmp61*heading_dot);
-    const Scalar tmp134 = tmp131 + tmp1*tmp88;
-    const Scalar tmp135 = tmp107*heading_dot
-        + attitude_dot*(tmp134*bank_dot + tmp104*heading_dot - tmp77*attitude_dot)
-        + bank_dot*(tmp134*attitude_dot + tmp105*heading_dot + bank_dot*(-tmp76 - tmp80));
-    const Scalar tmp136 = tmp64 + tmp5*tmp78;
-    const Scalar tmp137 = -tmp65;
-    const Scalar tmp138 = attitude_dot*(tmp136*bank_dot - tmp85*attitude_dot)
-        + bank_dot*(tmp136*attitude_dot + bank_dot*(tmp137 + tmp84));
-    const Scalar tmp139 = -tmp128 - tmp1*tmp79;
-    const Scalar tmp140 = -tmp97;
-    const Scalar tmp141 = attitude_dot*(tmp139*bank_dot + tmp95*heading_dot
-            + attitude_dot*(tmp87 + tmp90 - tmp67))
-        + bank_dot*(tmp139*attitude_dot + tmp140*heading_dot - tmp91*bank_dot)
-        + heading_dot*(tmp140*bank_dot + tmp95*attitude_dot - tmp92*heading_dot);
-    const Scalar tmp145 = (tmp8*tmp8);
-    const Scalar tmp146 = (tmp1*tmp1);
-    const Scalar tmp147 = Scalar(0.25)*tmp146;
-    const Scalar tmp148 = (tmp0*tmp0);
-    const Scalar tmp150 = tmp0*tmp26;
-    const Scalar tmp155 = (tmp5*tmp5);
-    const Scalar tmp156 = Scalar(0.25)*tmp155;
-    const Scalar tmp157 = (tmp22*tmp22);
-    const Scalar tmp158 = Scalar(0.16000000000000003)*tmp157;
-    const Scalar tmp159 = tmp146*tmp158;
-    const Scalar tmp160 = (tmp19*tmp19);
-    const Scalar tmp161 = Scalar(0.09)*tmp160;
-    const Scalar tmp162 = tmp146*tmp161;
-    const Scalar tmp172 = tmp117*m_a;
-    const Scalar tmp173 = tmp119*m_a;
-    const Scalar tmp174 = tmp122*m_b;
-    const Scalar tmp175 = tmp127*m_b;
-    const Scalar tmp176 = tmp129*m_c;
-    const Scalar tmp177 = tmp133*m_c;
-    const Scalar tmp178 = tmp135*m_d;
-    const Scalar tmp179 = tmp141*m_d;
-    const Scalar tmp180 = tmp118*m_a;
-    const Scalar tmp181 = tmp123*m_b;
-    const Scalar tmp182 = tmp130*m_c;
-    const Scalar tmp183 = tmp138*m_d;
-    const Scalar tmp280 = -tmp8;
-    const Scalar tmp281 = tmp2*tmp280;
-    const Scalar tmp282 = tmp2*tmp0;
-    const Scalar tmp283 = tmp6*tmp280;
-    const Scalar tmp284 = heading_dot*tmp282 + attitude_dot*tmp283;
-    const Scalar tmp285 = tmp6*tmp0;
-    const Scalar tmp286 = attitude_dot*tmp285 - heading_dot*tmp281;
-    const Scalar tmp287 = tmp20*tmp0;
-    const Scalar tmp288 = tmp23*tmp5*tmp280;
-    const Scalar tmp289 = tmp20*tmp280;
-    const Scalar tmp290 = tmp23*tmp0;
-    const Scalar tmp291 = tmp5*tmp290;
-    const Scalar tmp292 = tmp289 + tmp291;
-    const Scalar tmp293 = tmp33*tmp280;
-    const Scalar tmp294 = tmp5*tmp289 + tmp290;
-    const Scalar tmp295 = Scalar(0.4)*tmp22*tmp280 - tmp5*tmp287;
-    const Scalar tmp296 = -tmp287 + tmp288;
-    const Scalar tmp297 = bank_dot*tmp295 + heading_dot*tmp296 + tmp33*tmp0;
-    const Scalar tmp298 = tmp44*tmp0;
-    const Scalar tmp299 = tmp46*tmp280;
-    const Scalar tmp300 = tmp5*tmp299;
-    const Scalar tmp301 = tmp298 + tmp300;
-    const Scalar tmp302 = tmp44*tmp280;
-    const Scalar tmp303 = tmp46*tmp0;
-    const Scalar tmp304 = tmp5*tmp303;
-    const Scalar tmp305 = tmp57*tmp280;
-    const Scalar tmp306 = tmp5*tmp302;
-    const Scalar tmp307 = -tmp303 + tmp306;
-    const Scalar tmp308 = -Scalar(0.3)*tmp22*tmp280 + tmp304;
-    const Scalar tmp309 = -tmp308;
-    const Scalar tmp310 = tmp5*tmp298;
-    const Scalar tmp311 = tmp299 + tmp310;
-    const Scalar tmp312 = -tmp311;
-    const Scalar tmp313 = -tmp301;
-    const Scalar tmp314 = bank_dot*tmp312 + heading_dot*tmp313 - tmp57*tmp0;
-    const Scalar tmp315 = tmp75*tmp280 - tmp306;
-    const Scalar tmp316 = tmp73*tmp280 + tmp315;
-    const Scalar tmp317 = tmp78*tmp0;
-    const Scalar tmp318 = tmp303 + tmp317;
-    const Scalar tmp319 = tmp316 + tmp318;
-    const Scalar tmp320 = tmp73*tmp0;
-    const Scalar tmp321 = tmp78*tmp280;
-    const Scalar tmp322 = tmp74*tmp0;
-    const Scalar tmp323 = tmp5*tmp322;
-    const Scalar tmp324 = tmp311 + tmp321 - tmp323;
-    const Scalar tmp325 = -tmp320 + tmp324;
-    const Scalar tmp326 = tmp1*tmp302;
-    const Scalar tmp327 = (tmp83 - Scalar(0.25)*tmp1*tmp19)*tmp280 + tmp326;
-    const Scalar tmp328 = -tmp327;
-    const Scalar tmp329 = tmp301 + tmp5*tmp321 - tmp322;
-    const Scalar tmp330 = tmp1*tmp298;
-    const Scalar tmp331 = (tmp83 - tmp84)*tmp0 + tmp330;
-    const Scalar tmp332 = -tmp74*tmp280 - tmp308 - tmp5*tmp317;
-    const Scalar tmp333 = -tmp319;
-    const Scalar tmp334 = attitude_dot*tmp331 + bank_dot*tmp332 + heading_dot*tmp333;
-    const Scalar tmp335 = heading_dot*tmp286 - (attitude_dot*attitude_dot)*tmp281
-        + Scalar(0.5)*tmp5*attitude_dot*heading_dot*tmp0;
-    const Scalar tmp336 = heading_dot*tmp284 + (attitude_dot*attitude_dot)*tmp282
-        + attitude_dot*heading_dot*tmp283;
-    const Scalar tmp337 = tmp1*tmp289;
-    const Scalar tmp338 = tmp26*tmp0;
-    const Scalar tmp339 = (attitude_dot*attitude_dot)*tmp288 + bank_dot*heading_dot*tmp295
-        + (bank_dot*bank_dot)*tmp296 + heading_dot*tmp297 + Scalar(2)*attitude_dot*bank_dot*tmp337
-        + attitude_dot*heading_dot*tmp338;
-    const Scalar tmp340 = tmp1*tmp287;
-    const Scalar tmp341 = -tmp292;
-    const Scalar tmp342 = -tmp294;
-    const Scalar tmp343 = Scalar(0.4)*tmp1*tmp22*attitude_dot*heading_dot*tmp280
-        - (attitude_dot*attitude_dot)*tmp291 + heading_dot*tmp293
-        - Scalar(2)*attitude_dot*bank_dot*tmp340
-        + ((bank_dot*bank_dot) + (heading_dot*heading_dot))*tmp341
-        + Scalar(2)*bank_dot*heading_dot*tmp342;
-    const Scalar tmp344 = tmp51*tmp0;
-    const Scalar tmp345 = Scalar(0.3)*tmp1*tmp22*attitude_dot*bank_dot*tmp280
-        - (attitude_dot*attitude_dot)*tmp300 + bank_dot*heading_dot*tmp312
-        + (bank_dot*bank_dot)*tmp313 + heading_dot*tmp314 + attitude_dot*bank_dot*tmp326
-        - attitude_dot*heading_dot*tmp344;
-    const Scalar tmp346 = tmp51*tmp280;
-    const Scalar tmp347 = -tmp307;
-    const Scalar tmp348 = Scalar(2)*bank_dot*heading_dot*tmp347 - heading_dot*tmp305
-        + ((bank_dot*bank_dot) + (heading_dot*heading_dot))*tmp308
-        + Scalar(0.3)*tmp19*tmp5*(attitude_dot*attitude_dot)*tmp0
-        - Scalar(2)*attitude_dot*bank_dot*tmp330 - attitude_dot*heading_dot*tmp346;
-    const Scalar tmp349 = tmp1*tmp321 + tmp346;
-    const Scalar tmp350 = Scalar(2)*attitude_dot*bank_dot*tmp349 - (bank_dot*bank_dot)*tmp315
-        - (attitude_dot*attitude_dot)*tmp316 - (bank_dot*bank_dot)*tmp318
-        + attitude_dot*heading_dot*tmp331 + bank_dot*heading_dot*tmp332 + heading_dot*tmp334;
-    const Scalar tmp351 = -tmp1*tmp317 - tmp344;
-    const Scalar tmp352 = -tmp329;
-    const Scalar tmp353 = Scalar(2)*attitude_dot*bank_dot*tmp351
-        + Scalar(2)*bank_dot*heading_dot*tmp352 - (attitude_dot*attitude_dot)*tmp310
-        + (attitude_dot*attitude_dot)*tmp320 + (attitude_dot*attitude_dot)*tmp323
-        - (bank_dot*bank_dot)*tmp324 - (heading_dot*heading_dot)*tmp325
-        + Scalar(2)*attitude_dot*heading_dot*tmp327;
-    const Scalar tmp354 = m_b*tmp292 + m_c*tmp309 - m_a*tmp282 + m_d*tmp325;
-    const Scalar tmp355 = -m_a*tmp281 + m_b*tmp296 + m_c*tmp313 + m_d*tmp333;
-    const Scalar tmp356 = Scalar(2)*tmp8*tmp0;
-    const Scalar tmp357 = Scalar(2)*tmp0*tmp280;
-    const Scalar tmp358 = tmp147*m_a*tmp356 + tmp147*m_a*tmp357 + Scalar(2)*tmp31*m_b*tmp292
-        + Scalar(2)*tmp41*m_b*tmp296 + Scalar(2)*tmp62*m_c*tmp309 + Scalar(2)*tmp70*m_c*tmp313
-        + Scalar(2)*tmp92*m_d*tmp325 + Scalar(2)*tmp106*m_d*tmp333;
-    const Scalar tmp359 = tmp26*tmp280;
-    const Scalar tmp360 = Scalar(0.3)*tmp1*tmp19*m_c*tmp280 - m_b*tmp359 + m_d*tmp328 - m_a*tmp283;
-    const Scalar tmp361 = m_a*tmp285 + m_d*tmp331 + m_b*tmp338 - m_c*tmp344;
-    const Scalar tmp362 = -tmp31*m_b*tmp359 - tmp150*m_b*tmp292
-        + Scalar(0.4)*tmp1*tmp22*tmp8*m_b*tmp296 + tmp131*m_c*tmp309 - tmp128*m_c*tmp313
-        + Scalar(0.4)*tmp1*tmp22*tmp41*m_b*tmp0 + tmp96*m_d*tmp325 + tmp92*m_d*tmp328
-        + tmp106*m_d*tmp331 + tmp104*m_d*tmp333 - tmp70*m_c*tmp344 + tmp62*m_c*tmp346;
-    const Scalar tmp363 = (tmp156*m_a + tmp159*m_b + tmp162*m_c)*tmp356
-        + (tmp156*m_a + tmp159*m_b + tmp162*m_c)*tmp357 + Scalar(2)*tmp96*m_d*tmp328
-        + Scalar(2)*tmp104*m_d*tmp331;
-    const Scalar tmp364 = m_b*tmp294 + m_c*tmp307 + m_d*tmp329;
-    const Scalar tmp365 = m_b*tmp295 + m_c*tmp312 + m_d*tmp332;
-    const Scalar tmp366 = tmp35*m_b*tmp292 + tmp31*m_b*tmp294 + tmp41*m_b*tmp295 + tmp40*m_b*tmp296
-        + tmp62*m_c*tmp307 + tmp60*m_c*tmp309 + tmp70*m_c*tmp312 + tmp69*m_c*tmp313
-        + tmp97*m_d*tmp325 + tmp92*m_d*tmp329 + tmp106*m_d*tmp332 + tmp105*m_d*tmp333;
-    const Scalar tmp367 = Scalar(0.3)*tmp1*tmp19*tmp60*m_c*tmp280 - tmp35*m_b*tmp359
-        - tmp150*m_b*tmp294 + tmp121*m_b*tmp295 + Scalar(0.3)*tmp0*tmp1*tmp19*m_c*tmp307
-        - tmp128*m_c*tmp312 + tmp97*m_d*tmp328 + tmp96*m_d*tmp329 + tmp105*m_d*tmp331
-        + tmp104*m_d*tmp332 + tmp40*m_b*tmp338 - tmp69*m_c*tmp344;
-    const Scalar tmp368 = Scalar(2)*tmp35*m_b*tmp294 + Scalar(2)*tmp40*m_b*tmp295
-        + Scalar(2)*tmp60*m_c*tmp307 + Scalar(2)*tmp69*m_c*tmp312 + Scalar(2)*tmp97*m_d*tmp329
-        + Scalar(2)*tmp105*m_d*tmp332;
-    const Scalar tmp369 = m_a*tmp335;
-    const Scalar tmp370 = m_a*tmp336;
-    const Scalar tmp371 = m_b*tmp339;
-    const Scalar tmp372 = m_b*tmp343;
-    const Scalar tmp373 = m_c*tmp345;
-    const Scalar tmp374 = m_c*tmp348;
-    const Scalar tmp375 = m_d*tmp350;
-    const Scalar tmp376 = m_d*tmp353;
-    const Scalar tmp377 = tmp371 + tmp373 + tmp375 + tmp369;
-    const Scalar tmp378 = tmp372 + tmp374 + tmp376 + tmp370;
-    const Scalar tmp379 = -tmp110*tmp281 + tmp112*tmp296 + tmp114*tmp313 + tmp116*tmp333;
-    const Scalar tmp380 = tmp110*tmp285 + tmp116*tmp331 + tmp112*tmp338 - tmp114*tmp344;
-    const Scalar tmp381 = tmp112*tmp295 + tmp114*tmp312 + tmp116*tmp332;
-    const Scalar tmp382 = -tmp377;
-    const Scalar tmp383 = -tmp378;
-    const Scalar tmp384 = Scalar(0.5)*tmp1*tmp173*tmp280 - tmp31*tmp371 - tmp41*tmp372
-        - tmp62*tmp373 - tmp70*tmp374 - tmp92*tmp375 - tmp106*tmp376 - tmp174*tmp292 - tmp175*tmp296
-        - tmp176*tmp309 - tmp177*tmp313 + Scalar(0.5)*tmp1*tmp172*tmp0 - tmp178*tmp325
-        - tmp179*tmp333 + Scalar(0.5)*tmp1*tmp8*tmp369 + Scalar(0.5)*tmp0*tmp1*tmp370;
-    const Scalar tmp385 = (Scalar(0.5)*tmp5*tmp172 + Scalar(0.4)*tmp1*tmp174*tmp22)*tmp280
-        - tmp173*tmp285 + Scalar(0.4)*tmp0*tmp1*tmp22*tmp371 - tmp121*tmp372 - tmp131*tmp373
-        + Scalar(0.3)*tmp1*tmp19*tmp8*tmp374 - tmp96*tmp375 - tmp104*tmp376
-        + Scalar(0.3)*tmp1*tmp177*tmp19*tmp0 - tmp178*tmp328 - tmp179*tmp331 - tmp175*tmp338
-        - tmp176*tmp346 + Scalar(0.5)*tmp0*tmp5*tmp369 - tmp16*tmp370;
-    const Scalar tmp386 = -tmp35*tmp371 - tmp40*tmp372 - tmp60*tmp373 - tmp69*tmp374 - tmp97*tmp375
-        - tmp105*tmp376 - tmp174*tmp294 - tmp175*tmp295 - tmp176*tmp307 - tmp177*tmp312
-        - tmp178*tmp329 - tmp179*tmp332;
-    const Scalar tmp387 = -tmp5;
-    const Scalar tmp388 = Scalar(0.5)*tmp387;
-    const Scalar tmp389 = tmp0*tmp388;
-    const Scalar tmp390 = Scalar(0.5)*tmp1;
-    const Scalar tmp391 = tmp8*tmp388;
-    const Scalar tmp392 = tmp0*tmp390;
-    const Scalar tmp393 = heading_dot*tmp391 + attitude_dot*tmp392;
-    const Scalar tmp394 = tmp8*tmp390;
-    const Scalar tmp395 = attitude_dot*tmp394 - heading_dot*tmp389;
-    const Scalar tmp396 = tmp0*tmp23*tmp1;
-    const Scalar tmp397 = tmp23*tmp387;
-    const Scalar tmp398 = tmp29*tmp1;
-    const Scalar tmp399 = attitude_dot*tmp397;
-    const Scalar tmp400 = tmp0*tmp399;
-    const Scalar tmp401 = tmp28*tmp1;
-    const Scalar tmp402 = tmp23*tmp1;
-    const Scalar tmp403 = tmp20*tmp387;
-    const Scalar tmp404 = -tmp21*tmp1;
-    const Scalar tmp405 = tmp8*tmp399 + bank_dot*tmp404 + heading_dot*tmp396;
-    const Scalar tmp406 = tmp47*tmp1;
-    const Scalar tmp407 = tmp46*tmp387;
-    const Scalar tmp408 = tmp54*tmp1;
-    const Scalar tmp409 = attitude_dot*tmp407;
-    const Scalar tmp410 = tmp0*tmp409;
-    const Scalar tmp411 = tmp53*tmp1;
-    const Scalar tmp412 = -tmp408;
-    const Scalar tmp413 = tmp46*tmp1;
-    const Scalar tmp414 = tmp44*tmp387;
-    const Scalar tmp415 = tmp45*tmp1;
-    const Scalar tmp416 = -tmp415;
-    const Scalar tmp417 = -tmp406;
-    const Scalar tmp418 = -tmp8*tmp409 + bank_dot*tmp416 + heading_dot*tmp417;
-    const Scalar tmp419 = Scalar(0.2)*tmp387;
-    const Scalar tmp420 = tmp74*tmp1;
-    const Scalar tmp421 = -tmp411 + tmp0*tmp420;
-    const Scalar tmp422 = tmp0*tmp419 + tmp421;
-    const Scalar tmp423 = Scalar(0.2)*tmp1;
-    const Scalar tmp424 = tmp74*tmp387;
-    const Scalar tmp425 = tmp414 + tmp423 - tmp424;
-    const Scalar tmp426 = tmp8*tmp419;
-    const Scalar tmp427 = tmp89*tmp1;
-    const Scalar tmp428 = tmp415 - tmp427;
-    const Scalar tmp429 = -tmp426 + tmp428;
-    const Scalar tmp430 = tmp53*tmp387;
-    const Scalar tmp431 = -Scalar(0.25)*tmp0*tmp19*tmp387 + tmp0*tmp423 + tmp430;
-    const Scalar tmp432 = -tmp431;
-    const Scalar tmp433 = tmp406 + tmp88*tmp1;
-    const Scalar tmp434 = -tmp78*tmp387 - tmp407;
-    const Scalar tmp435 = tmp44*tmp1;
-    const Scalar tmp436 = tmp419 + tmp420 - tmp435;
-    const Scalar tmp437 = tmp45*tmp387;
-    const Scalar tmp438 = tmp8*tmp423 - tmp8*tmp424 + tmp437;
-    const Scalar tmp439 = -tmp79*tmp1 - tmp408;
-    const Scalar tmp440 = -tmp422;
-    const Scalar tmp441 = attitude_dot*tmp438 + bank_dot*tmp439 + heading_dot*tmp440;
-    const Scalar tmp442 = heading_dot*tmp395 - (attitude_dot*attitude_dot)*tmp389
-        + Scalar(0.5)*tmp8*attitude_dot*heading_dot*tmp1;
-    const Scalar tmp443 = -(attitude_dot*attitude_dot)*tmp390;
-    const Scalar tmp444 = heading_dot*tmp393 + (attitude_dot*attitude_dot)*tmp391
-        + attitude_dot*heading_dot*tmp392;
-    const Scalar tmp445 = tmp28*tmp387;
-    const Scalar tmp446 = tmp8*tmp397;
-    const Scalar tmp447 = ((attitude_dot*attitude_dot) + (bank_dot*bank_dot))*tmp396
-        + bank_dot*heading_dot*tmp404 + heading_dot*tmp405 + Scalar(2)*attitude_dot*bank_dot*tmp445
-        + attitude_dot*heading_dot*tmp446;
-    const Scalar tmp448 = -(bank_dot*bank_dot)*tmp397 - attitude_dot*tmp399
-        + (tmp20*attitude_dot*bank_dot + Scalar(0.4)*tmp19*attitude_dot*bank_dot)*tmp1;
-    const Scalar tmp449 = tmp21*tmp387;
-    const Scalar tmp450 = -tmp398;
-    const Scalar tmp451 = -tmp401;
-    const Scalar tmp452 = Scalar(0.4)*tmp0*tmp22*attitude_dot*heading_dot*tmp387
-        - (attitude_dot*attitude_dot)*tmp398 + heading_dot*tmp400
-        - Scalar(2)*attitude_dot*bank_dot*tmp449
-        + ((bank_dot*bank_dot) + (heading_dot*heading_dot))*tmp450
-        + Scalar(2)*bank_dot*heading_dot*tmp451;
-    const Scalar tmp453 = tmp8*tmp407;
-    const Scalar tmp454 = Scalar(0.3)*tmp0*tmp22*attitude_dot*bank_dot*tmp387
-        - (attitude_dot*attitude_dot)*tmp406 + bank_dot*heading_dot*tmp416
-        + (bank_dot*bank_dot)*tmp417 + heading_dot*tmp418 + attitude_dot*bank_dot*tmp430
-        - attitude_dot*heading_dot*tmp453;
-    const Scalar tmp455 = (bank_dot*bank_dot)*tmp407 + attitude_dot*tmp409
-        + Scalar(2)*attitude_dot*bank_dot*tmp435;
-    const Scalar tmp456 = tmp0*tmp407;
-    const Scalar tmp457 = -tmp411;
-    const Scalar tmp458 = Scalar(2)*bank_dot*heading_dot*tmp457
-        + Scalar(0.3)*tmp19*tmp8*(attitude_dot*attitude_dot)*tmp1 - heading_dot*tmp410
-        + ((bank_dot*bank_dot) + (heading_dot*heading_dot))*tmp408
-        - Scalar(2)*attitude_dot*bank_dot*tmp437 - attitude_dot*heading_dot*tmp456;
-    const Scalar tmp459 = tmp88*tmp387 + tmp456;
-    const Scalar tmp460 = Scalar(2)*attitude_dot*bank_dot*tmp459 - (bank_dot*bank_dot)*tmp421
-        - (attitude_dot*attitude_dot)*tmp422 + attitude_dot*heading_dot*tmp438
-        + bank_dot*heading_dot*tmp439 + heading_dot*tmp441;
-    const Scalar tmp461 = tmp78*tmp1 + tmp413;
-    const Scalar tmp462 = -tmp414;
-    const Scalar tmp463 = Scalar(2)*attitude_dot*bank_dot*tmp461 + (bank_dot*bank_dot)*tmp462
-        + (bank_dot*bank_dot)*tmp424 - (attitude_dot*attitude_dot)*tmp425;
-    const Scalar tmp464 = -tmp79*tmp387 - tmp453;
-    const Scalar tmp465 = -tmp433;
-    const Scalar tmp466 = Scalar(2)*attitude_dot*bank_dot*tmp464
-        + Scalar(2)*bank_dot*heading_dot*tmp465 - (attitude_dot*attitude_dot)*tmp415
-        + (attitude_dot*attitude_dot)*tmp426 + (attitude_dot*attitude_dot)*tmp427
-        - (bank_dot*bank_dot)*tmp428 - (heading_dot*heading_dot)*tmp429
-        + Scalar(2)*attitude_dot*heading_dot*tmp431;
-    const Scalar tmp467 = m_b*tmp398 + m_c*tmp412 - m_a*tmp391 + m_d*tmp429;
-    const Scalar tmp468 = -m_a*tmp389 + m_b*tmp396 + m_c*tmp417 + m_d*tmp440;
-    const Scalar tmp469 = Scalar(2)*tmp1*tmp387;
-    const Scalar tmp470 = Scalar(0.25)*tmp469;
-    const Scalar tmp471 = m_a*(tmp145 + tmp148)*tmp470 + Scalar(2)*tmp31*m_b*tmp398
-        + Scalar(2)*tmp41*m_b*tmp396 + Scalar(2)*tmp62*m_c*tmp412 + Scalar(2)*tmp70*m_c*tmp417
-        + Scalar(2)*tmp92*m_d*tmp429 + Scalar(2)*tmp106*m_d*tmp440;
-    const Scalar tmp472 = tmp0*tmp397;
-    const Scalar tmp473 = Scalar(0.3)*tmp0*tmp19*m_c*tmp387 - m_b*tmp472 + m_d*tmp432 - m_a*tmp392;
-    const Scalar tmp474 = m_a*tmp388 - m_b*tmp402 + m_c*tmp413 + m_d*tmp436;
-    const Scalar tmp475 = m_a*tmp394 + m_d*tmp438 + m_b*tmp446 - m_c*tmp453;
-    const Scalar tmp476 = Scalar(0.4)*tmp22*tmp41*tmp8*m_b*tmp387 - tmp31*m_b*tmp472
-        - tmp150*m_b*tmp398 + Scalar(0.4)*tmp1*tmp22*tmp8*m_b*tmp396 + tmp131*m_c*tmp412
-        - tmp128*m_c*tmp417 + tmp96*m_d*tmp429 + tmp92*m_d*tmp432 + tmp106*m_d*tmp438
-        + tmp104*m_d*tmp440 - tmp70*m_c*tmp453 + tmp62*m_c*tmp456;
-    const Scalar tmp477 = Scalar(2)*tmp5*tmp1;
-    const Scalar tmp478 = Scalar(0.25)*tmp477;
-    const Scalar tmp479 = tmp158*tmp469;
-    const Scalar tmp480 = tmp161*tmp469;
-    const Scalar tmp481 = m_a*tmp470 + (tmp158*m_b + tmp161*m_c)*tmp477
-        + m_a*(tmp145 + tmp148)*tmp478 + m_b*(tmp145 + tmp148)*tmp479 + m_c*(tmp145 + tmp148)*tmp480
-        + Scalar(2)*tmp96*m_d*tmp432 + Scalar(2)*tmp101*m_d*tmp436 + Scalar(2)*tmp104*m_d*tmp438;
-    const Scalar tmp482 = m_b*tmp401 + m_c*tmp411 + m_d*tmp433;
-    const Scalar tmp483 = -m_b*tmp403 - m_c*tmp414 + m_d*tmp434;
-    const Scalar tmp484 = m_b*tmp404 + m_c*tmp416 + m_d*tmp439;
-    const Scalar tmp485 = tmp35*m_b*tmp398 + tmp31*m_b*tmp401 + tmp41*m_b*tmp404 + tmp40*m_b*tmp396
-        + tmp62*m_c*tmp411 + tmp60*m_c*tmp412 + tmp70*m_c*tmp416 + tmp69*m_c*tmp417
-        + tmp97*m_d*tmp429 + tmp92*m_d*tmp433 + tmp106*m_d*tmp439 + tmp105*m_d*tmp440;
-    const Scalar tmp486 = tmp19*tmp22*tmp5*tmp387 + tmp1*tmp19*tmp22*tmp1;
-    const Scalar tmp487 = Scalar(0.3)*tmp0*tmp19*tmp60*m_c*tmp387 - tmp35*m_b*tmp472
-        + (Scalar(0.16000000000000003)*m_b - Scalar(0.09)*m_c)*tmp486 - tmp150*m_b*tmp401
-        + tmp121*m_b*tmp404 + Scalar(0.3)*tmp0*tmp1*tmp19*m_c*tmp411 - tmp128*m_c*tmp416
-        + tmp97*m_d*tmp432 + tmp96*m_d*tmp433 + tmp101*m_d*tmp434 + tmp99*m_d*tmp436
-        + tmp105*m_d*tmp438 + tmp104*m_d*tmp439 + tmp40*m_b*tmp446 - tmp69*m_c*tmp453;
-    const Scalar tmp488 = (Scalar(0.16000000000000003)*tmp160*m_b + Scalar(0.09)*tmp157*m_c)*tmp469
-        + Scalar(2)*tmp35*m_b*tmp401 + Scalar(2)*tmp40*m_b*tmp404 + Scalar(2)*tmp60*m_c*tmp411
-        + Scalar(2)*tmp69*m_c*tmp416 + Scalar(2)*tmp97*m_d*tmp433 + Scalar(2)*tmp99*m_d*tmp434
-        + Scalar(2)*tmp105*m_d*tmp439;
-    const Scalar tmp489 = m_a*tmp442;
-    const Scalar tmp490 = m_a*tmp444;
-    const Scalar tmp491 = m_b*tmp447;
-    const Scalar tmp492 = m_b*tmp452;
-    const Scalar tmp493 = m_c*tmp454;
-    const Scalar tmp494 = m_c*tmp458;
-    const Scalar tmp495 = m_d*tmp460;
-    const Scalar tmp496 = m_d*tmp466;
-    const Scalar tmp497 = m_a*tmp443;
-    const Scalar tmp498 = m_b*tmp448;
-    const Scalar tmp499 = m_c*tmp455;
-    const Scalar tmp500 = m_d*tmp463;
-    const Scalar tmp501 = tmp491 + tmp493 + tmp495 + tmp489;
-    const Scalar tmp502 = tmp498 + tmp499 + tmp500 + tmp497;
-    const Scalar tmp503 = tmp492 + tmp494 + tmp496 + tmp490;
-    const Scalar tmp504 = -tmp110*tmp389 + tmp112*tmp396 + tmp114*tmp417 + tmp116*tmp440;
-    const Scalar tmp505 = tmp110*tmp394 + tmp116*tmp438 + tmp112*tmp446 - tmp114*tmp453;
-    const Scalar tmp506 = tmp112*tmp404 + tmp114*tmp416 + tmp116*tmp439;
-    const Scalar tmp507 = -tmp501;
-    const Scalar tmp508 = -tmp502;
-    const Scalar tmp509 = -tmp503;
-    const Scalar tmp510 = (Scalar(0.5)*tmp0*tmp173 + Scalar(0.5)*tmp8*tmp172)*tmp387 - tmp31*tmp491
-        - tmp41*tmp492 - tmp62*tmp493 - tmp70*tmp494 - tmp92*tmp495 - tmp106*tmp496 - tmp174*tmp398
-        - tmp175*tmp396 - tmp176*tmp412 - tmp177*tmp417 - tmp178*tmp429 - tmp179*tmp440
-        + Scalar(0.5)*tmp1*tmp8*tmp489 + Scalar(0.5)*tmp0*tmp1*tmp490;
-    const Scalar tmp511 = (Scalar(0.4)*tmp0*tmp174*tmp22 + Scalar(0.3)*tmp177*tmp19*tmp8)*tmp387
-        - tmp173*tmp394 + Scalar(0.4)*tmp0*tmp1*tmp22*tmp491 - tmp121*tmp492 - tmp131*tmp493
-        + Scalar(0.3)*tmp1*tmp19*tmp8*tmp494 - tmp96*tmp495 - tmp104*tmp496
-        + Scalar(0.4)*tmp22*tmp5*tmp498 - tmp64*tmp499 - tmp101*tmp500 - tmp180*tmp388
-        + (Scalar(0.5)*tmp0*tmp172 + Scalar(0.4)*tmp181*tmp22)*tmp1 - tmp182*tmp413 - tmp178*tmp432
-        - tmp183*tmp436 - tmp179*tmp438 - tmp175*tmp446 - tmp176*tmp456
-        + Scalar(0.5)*tmp0*tmp5*tmp489 - tmp16*tmp490 - tmp2*tmp497;
-    const Scalar tmp512 = (Scalar(0.4)*tmp181*tmp19 + Scalar(0.3)*tmp182*tmp22)*tmp387
-        - tmp35*tmp491 - tmp40*tmp492 - tmp60*tmp493 - tmp69*tmp494 - tmp97*tmp495 - tmp105*tmp496
-        + Scalar(0.4)*tmp1*tmp19*tmp498 + Scalar(0.3)*tmp1*tmp22*tmp499 - tmp99*tmp500
-        - tmp174*tmp401 - tmp175*tmp404 - tmp176*tmp411 - tmp177*tmp416 - tmp178*tmp433
-        - tmp183*tmp434 - tmp179*tmp439;
-    const Scalar tmp513 = Scalar(0.4)*tmp22;
-    const Scalar tmp514 = tmp8*tmp513;
-    const Scalar tmp515 = -tmp19;
-    const Scalar tmp516 = Scalar(0.4)*tmp515;
-    const Scalar tmp517 = tmp0*tmp5*tmp516;
-    const Scalar tmp518 = tmp1*tmp516;
-    const Scalar tmp519 = tmp0*tmp513;
-    const Scalar tmp520 = tmp8*tmp516;
-    const Scalar tmp521 = tmp5*tmp520;
-    const Scalar tmp522 = tmp519 + tmp521;
-    const Scalar tmp523 = attitude_dot*tmp518;
-    const Scalar tmp524 = tmp0*tmp523;
-    const Scalar tmp525 = tmp5*tmp519 + tmp520;
-    const Scalar tmp526 = tmp5*tmp516;
-    const Scalar tmp527 = tmp1*tmp513;
-    const Scalar tmp528 = -tmp5*tmp514 + Scalar(0.4)*tmp0*tmp515;
-    const Scalar tmp529 = -tmp514 + tmp517;
-    const Scalar tmp530 = tmp8*tmp523 + bank_dot*tmp528 + heading_dot*tmp529;
-    const Scalar tmp531 = Scalar(0.3)*tmp515;
-    const Scalar tmp532 = tmp8*tmp531;
-    const Scalar tmp533 = Scalar(0.3)*tmp22;
-    const Scalar tmp534 = tmp0*tmp533;
-    const Scalar tmp535 = tmp5*tmp534;
-    const Scalar tmp536 = tmp532 + tmp535;
-    const Scalar tmp537 = tmp1*tmp533;
-    const Scalar tmp538 = tmp0*tmp531;
-    const Scalar tmp539 = tmp8*tmp533;
-    const Scalar tmp540 = tmp5*tmp539;
-    const Scalar tmp541 = attitude_dot*tmp537;
-    const Scalar tmp542 = tmp0*tmp541;
-    const Scalar tmp543 = tmp5*tmp538;
-    const Scalar tmp544 = -tmp539 + tmp543;
-    const Scalar tmp545 = -Scalar(0.3)*tmp0*tmp515 + tmp540;
-    const Scalar tmp546 = -tmp545;
-    const Scalar tmp547 = tmp5*tmp533;
-    const Scalar tmp548 = tmp1*tmp531;
-    const Scalar tmp549 = tmp5*tmp532;
-    const Scalar tmp550 = tmp534 + tmp549;
-    const Scalar tmp551 = -tmp550;
-    const Scalar tmp552 = -tmp536;
-    const Scalar tmp553 = -tmp8*tmp541 + bank_dot*tmp551 + heading_dot*tmp552;
-    const Scalar tmp554 = Scalar(0.25)*tmp22;
-    const Scalar tmp555 = tmp5*tmp554;
-    const Scalar tmp556 = -tmp543 + tmp0*tmp555;
-    const Scalar tmp557 = Scalar(0.25)*tmp515;
-    const Scalar tmp558 = tmp8*tmp557;
-    const Scalar tmp559 = tmp539 + tmp558;
-    const Scalar tmp560 = tmp556 + tmp559;
-    const Scalar tmp561 = tmp1*tmp554;
-    const Scalar tmp562 = tmp548 - tmp561;
-    const Scalar tmp563 = tmp0*tmp557;
-    const Scalar tmp564 = tmp8*tmp554;
-    const Scalar tmp565 = tmp5*tmp564;
-    const Scalar tmp566 = tmp550 + tmp563 - tmp565;
-    const Scalar tmp567 = tmp1*tmp538;
-    const Scalar tmp568 = -Scalar(0.25)*tmp0*tmp1*tmp22 + tmp567;
-    const Scalar tmp569 = -tmp568;
-    const Scalar tmp570 = tmp536 + tmp5*tmp563 - tmp564;
-    const Scalar tmp571 = -tmp537 - tmp1*tmp557;
-    const Scalar tmp572 = tmp5*tmp531;
-    const Scalar tmp573 = tmp555 - tmp572;
-    const Scalar tmp574 = tmp1*tmp532;
-    const Scalar tmp575 = -tmp8*tmp561 + tmp574;
-    const Scalar tmp576 = -tmp545 - tmp0*tmp554 - tmp5*tmp558;
-    const Scalar tmp577 = -tmp560;
-    const Scalar tmp578 = attitude_dot*tmp575 + bank_dot*tmp576 + heading_dot*tmp577;
-    const Scalar tmp579 = tmp1*tmp519;
-    const Scalar tmp580 = tmp8*tmp518;
-    const Scalar tmp581 = (attitude_dot*attitude_dot)*tmp517 + bank_dot*heading_dot*tmp528
-        + (bank_dot*bank_dot)*tmp529 + heading_dot*tmp530 + Scalar(2)*attitude_dot*bank_dot*tmp579
-        + attitude_dot*heading_dot*tmp580;
-    const Scalar tmp582 = Scalar(0.4)*tmp5*attitude_dot*bank_dot*tmp22
-        + tmp5*attitude_dot*bank_dot*tmp513 - (bank_dot*bank_dot)*tmp518 - attitude_dot*tmp523;
-    const Scalar tmp583 = tmp1*tmp514;
-    const Scalar tmp584 = -tmp522;
-    const Scalar tmp585 = -tmp525;
-    const Scalar tmp586 = Scalar(0.4)*tmp0*tmp1*attitude_dot*heading_dot*tmp515
-        - (attitude_dot*attitude_dot)*tmp521 + heading_dot*tmp524
-        - Scalar(2)*attitude_dot*bank_dot*tmp583
-        + ((bank_dot*bank_dot) + (heading_dot*heading_dot))*tmp584
-        + Scalar(2)*bank_dot*heading_dot*tmp585;
-    const Scalar tmp587 = tmp8*tmp537;
-    const Scalar tmp588 = Scalar(0.3)*tmp0*tmp1*attitude_dot*bank_dot*tmp515
-        - (attitude_dot*attitude_dot)*tmp535 + bank_dot*heading_dot*tmp551
-        + (bank_dot*bank_dot)*tmp552 + heading_dot*tmp553 + attitude_dot*bank_dot*tmp567
-        - attitude_dot*heading_dot*tmp587;
-    const Scalar tmp589 = (bank_dot*bank_dot)*tmp537 + attitude_dot*tmp541
-        + Scalar(2)*attitude_dot*bank_dot*tmp572;
-    const Scalar tmp590 = tmp0*tmp537;
-    const Scalar tmp591 = -tmp544;
-    const Scalar tmp592 = Scalar(2)*bank_dot*heading_dot*tmp591
-        + Scalar(0.3)*tmp5*tmp8*(attitude_dot*attitude_dot)*tmp22 - heading_dot*tmp542
-        + ((bank_dot*bank_dot) + (heading_dot*heading_dot))*tmp545
-        - Scalar(2)*attitude_dot*bank_dot*tmp574 - attitude_dot*heading_dot*tmp590;
-    const Scalar tmp593 = tmp1*tmp563 + tmp590;
-    const Scalar tmp594 = Scalar(2)*attitude_dot*bank_dot*tmp593
-        + (-(attitude_dot*attitude_dot) - (bank_dot*bank_dot))*tmp556 - (bank_dot*bank_dot)*tmp559
-        + attitude_dot*heading_dot*tmp575 + bank_dot*heading_dot*tmp576 + heading_dot*tmp578;
-    const Scalar tmp595 = tmp547 + tmp5*tmp557;
-    const Scalar tmp596 = -tmp548;
-    const Scalar tmp597 = Scalar(2)*attitude_dot*bank_dot*tmp595 + (bank_dot*bank_dot)*tmp596
-        + (bank_dot*bank_dot)*tmp561 - (attitude_dot*attitude_dot)*tmp562;
-    const Scalar tmp598 = -tmp1*tmp558 - tmp587;
-    const Scalar tmp599 = -tmp570;
-    const Scalar tmp600 = Scalar(2)*attitude_dot*bank_dot*tmp598
-        + Scalar(2)*bank_dot*heading_dot*tmp599 - (attitude_dot*attitude_dot)*tmp549
-        + (attitude_dot*attitude_dot)*tmp565
-        + (-(bank_dot*bank_dot) - (heading_dot*heading_dot))*tmp566
-        + Scalar(2)*attitude_dot*heading_dot*tmp568;
-    const Scalar tmp601 = m_b*tmp522 + m_c*tmp546 + m_d*tmp566;
-    const Scalar tmp602 = m_b*tmp529 + m_c*tmp552 + m_d*tmp577;
-    const Scalar tmp603 = Scalar(2)*tmp31*m_b*tmp522 + Scalar(2)*tmp41*m_b*tmp529
-        + Scalar(2)*tmp62*m_c*tmp546 + Scalar(2)*tmp70*m_c*tmp552 + Scalar(2)*tmp92*m_d*tmp566
-        + Scalar(2)*tmp106*m_d*tmp577;
-    const Scalar tmp604 = tmp0*tmp518;
-    const Scalar tmp605 = -m_b*tmp604 + Scalar(0.3)*tmp0*tmp1*m_c*tmp22 + m_d*tmp569;
-    const Scalar tmp606 = -m_b*tmp526 + m_c*tmp547 + m_d*tmp573;
-    const Scalar tmp607 = m_d*tmp575 + m_b*tmp580 - m_c*tmp587;
-    const Scalar tmp608 = -tmp31*m_b*tmp604 + Scalar(0.4)*tmp1*tmp41*tmp8*m_b*tmp515
-        - tmp150*m_b*tmp522 + Scalar(0.4)*tmp1*tmp22*tmp8*m_b*tmp529 + tmp131*m_c*tmp546
-        - tmp128*m_c*tmp552 + tmp96*m_d*tmp566 + tmp92*m_d*tmp569 + tmp106*m_d*tmp575
-        + tmp104*m_d*tmp577 - tmp70*m_c*tmp587 + tmp62*m_c*tmp590;
-    const Scalar tmp609 = Scalar(2)*tmp22*tmp515;
-    const Scalar tmp610 = Scalar(0.16000000000000003)*tmp609;
-    const Scalar tmp611 = tmp146*tmp610;
-    const Scalar tmp612 = Scalar(2)*tmp19*tmp22;
-    const Scalar tmp613 = Scalar(0.09)*tmp612;
-    const Scalar tmp614 = tmp146*tmp613;
-    const Scalar tmp615 = tmp155*m_b*tmp610 + m_b*(tmp145 + tmp148)*tmp611 + tmp155*m_c*tmp613
-        + m_c*(tmp145 + tmp148)*tmp614 + Scalar(2)*tmp96*m_d*tmp569 + Scalar(2)*tmp101*m_d*tmp573
-        + Scalar(2)*tmp104*m_d*tmp575;
-    const Scalar tmp616 = m_b*tmp525 + m_c*tmp544 + m_d*tmp570;
-    const Scalar tmp617 = -m_b*tmp527 - m_c*tmp548 + m_d*tmp571;
-    const Scalar tmp618 = m_b*tmp528 + m_c*tmp551 + m_d*tmp576;
-    const Scalar tmp619 = tmp35*m_b*tmp522 + tmp31*m_b*tmp525 + tmp41*m_b*tmp528 + tmp40*m_b*tmp529
-        + tmp62*m_c*tmp544 + tmp60*m_c*tmp546 + tmp70*m_c*tmp551 + tmp69*m_c*tmp552
-        + tmp97*m_d*tmp566 + tmp92*m_d*tmp570 + tmp106*m_d*tmp576 + tmp105*m_d*tmp577;
-    const Scalar tmp620 = tmp1*tmp22*tmp5*tmp22 + tmp1*tmp19*tmp5*tmp515;
-    const Scalar tmp621 = -tmp35*m_b*tmp604
-        + (Scalar(0.16000000000000003)*m_b - Scalar(0.09)*m_c)*tmp620
-        + Scalar(0.3)*tmp0*tmp1*tmp60*m_c*tmp22 - tmp150*m_b*tmp525 + tmp121*m_b*tmp528
-        + Scalar(0.3)*tmp0*tmp1*tmp19*m_c*tmp544 - tmp128*m_c*tmp551 + tmp97*m_d*tmp569
-        + tmp96*m_d*tmp570 + tmp101*m_d*tmp571 + tmp99*m_d*tmp573 + tmp105*m_d*tmp575
-        + tmp104*m_d*tmp576 + tmp40*m_b*tmp580 - tmp69*m_c*tmp587;
-    const Scalar tmp622 = Scalar(0.09)*tmp146*m_c*tmp609
-        + Scalar(0.16000000000000003)*tmp146*m_b*tmp612 + Scalar(2)*tmp35*m_b*tmp525
-        + Scalar(2)*tmp40*m_b*tmp528 + Scalar(2)*tmp60*m_c*tmp544 + Scalar(2)*tmp69*m_c*tmp551
-        + Scalar(2)*tmp97*m_d*tmp570 + Scalar(2)*tmp99*m_d*tmp571 + Scalar(2)*tmp105*m_d*tmp576;
-    const Scalar tmp623 = m_b*tmp581;
-    const Scalar tmp624 = m_b*tmp586;
-    const Scalar tmp625 = m_c*tmp588;
-    const Scalar tmp626 = m_c*tmp592;
-    const Scalar tmp627 = m_d*tmp594;
-    const Scalar tmp628 = m_d*tmp600;
-    const Scalar tmp629 = m_b*tmp582;
-    const Scalar tmp630 = m_c*tmp589;
-    const Scalar tmp631 = m_d*tmp597;
-    const Scalar tmp632 = tmp623 + tmp625 + tmp627;
-    const Scalar tmp633 = tmp629 + tmp630 + tmp631;
-    const Scalar tmp634 = tmp624 + tmp626 + tmp628;
-    const Scalar tmp635 = tmp112*tmp529 + tmp114*tmp552 + tmp116*tmp577;
-    const Scalar tmp636 = tmp116*tmp575 + tmp112*tmp580 - tmp114*tmp587;
-    const Scalar tmp637 = tmp112*tmp528 + tmp114*tmp551 + tmp116*tmp576;
-    const Scalar tmp638 = -tmp632;
-    const Scalar tmp639 = -tmp633;
-    const Scalar tmp640 = -tmp634;
-    const Scalar tmp641 = -tmp31*tmp623 - tmp41*tmp624 - tmp62*tmp625 - tmp70*tmp626 - tmp92*tmp627
-        - tmp106*tmp628 - tmp174*tmp522 - tmp175*tmp529 - tmp176*tmp546 - tmp177*tmp552
-        - tmp178*tmp566 - tmp179*tmp577;
-    const Scalar tmp642 = Scalar(0.4)*tmp0*tmp1*tmp22*tmp623 - tmp121*tmp624 - tmp131*tmp625
-        + Scalar(0.3)*tmp1*tmp19*tmp8*tmp626 - tmp96*tmp627 - tmp104*tmp628
-        + Scalar(0.4)*tmp22*tmp5*tmp629 - tmp64*tmp630 - tmp101*tmp631
-        + Scalar(0.3)*tmp1*tmp177*tmp8*tmp22
-        + (Scalar(0.4)*tmp181*tmp5 + Scalar(0.4)*tmp0*tmp1*tmp174)*tmp515 - tmp182*tmp547
-        - tmp178*tmp569 - tmp183*tmp573 - tmp179*tmp575 - tmp175*tmp580 - tmp176*tmp590;
-    const Scalar tmp643 = -tmp35*tmp623 - tmp40*tmp624 - tmp60*tmp625 - tmp69*tmp626 - tmp97*tmp627
-        - tmp105*tmp628 + Scalar(0.4)*tmp1*tmp19*tmp629 + Scalar(0.3)*tmp1*tmp22*tmp630
-        - tmp99*tmp631 + Scalar(0.4)*tmp1*tmp181*tmp22 + Scalar(0.3)*tmp1*tmp182*tmp515
-        - tmp174*tmp525 - tmp175*tmp528 - tmp176*tmp544 - tmp177*tmp551 - tmp178*tmp570
-        - tmp183*tmp571 - tmp179*tmp576;
-    const Scalar tmp644 = -tmp3;
-    const Scalar tmp645 = tmp17 + Scalar(0.5)*tmp5*tmp8*attitude_dot + heading_dot*tmp644;
-    const Scalar tmp646 = tmp13 + tmp12*attitude_dot + heading_dot*tmp9;
-    const Scalar tmp647 = tmp42 + tmp40*bank_dot + tmp121*attitude_dot + heading_dot*tmp41;
-    const Scalar tmp648 = tmp34 + Scalar(2)*tmp125*heading_dot + Scalar(2)*tmp126*bank_dot
-        + Scalar(0.4)*tmp0*tmp1*tmp22*attitude_dot;
-    const Scalar tmp649 = tmp71 + tmp69*bank_dot - tmp128*attitude_dot + heading_dot*tmp70;
-    const Scalar tmp650 = -tmp58 - tmp131*attitude_dot + Scalar(2)*tmp132*bank_dot
-        + Scalar(2)*tmp61*heading_dot;
-    const Scalar tmp651 = tmp107 + tmp104*attitude_dot + tmp105*bank_dot + heading_dot*tmp106;
-    const Scalar tmp652 = -Scalar(2)*tmp92*heading_dot + Scalar(2)*tmp140*bank_dot
-        + Scalar(2)*tmp95*attitude_dot;
-    const Scalar tmp653 = m_a*tmp645;
-    const Scalar tmp654 = m_a*tmp646;
-    const Scalar tmp655 = m_b*tmp647;
-    const Scalar tmp656 = m_b*tmp648;
-    const Scalar tmp657 = m_c*tmp649;
-    const Scalar tmp658 = m_c*tmp650;
-    const Scalar tmp659 = m_d*tmp651;
-    const Scalar tmp660 = m_d*tmp652;
-    const Scalar tmp661 = tmp655 + tmp657 + tmp659 + tmp653;
-    const Scalar tmp662 = tmp656 + tmp658 + tmp660 + tmp654;
-    const Scalar tmp663 = -tmp661;
-    const Scalar tmp664 = -tmp662;
-    const Scalar tmp665 = -tmp31*tmp655 - tmp41*tmp656 - tmp62*tmp657 - tmp70*tmp658 - tmp92*tmp659
-        - tmp106*tmp660 + Scalar(0.5)*tmp1*tmp8*tmp653 + Scalar(0.5)*tmp0*tmp1*tmp654;
-    const Scalar tmp666 = Scalar(0.4)*tmp0*tmp1*tmp22*tmp655 - tmp121*tmp656 - tmp131*tmp657
-        + Scalar(0.3)*tmp1*tmp19*tmp8*tmp658 - tmp96*tmp659 - tmp104*tmp660
-        + Scalar(0.5)*tmp0*tmp5*tmp653 - tmp16*tmp654;
-    const Scalar tmp667 = -tmp35*tmp655 - tmp40*tmp656 - tmp60*tmp657 - tmp69*tmp658 - tmp97*tmp659
-        - tmp105*tmp660;
-    const Scalar tmp668 = tmp0*tmp26;
-    const Scalar tmp669 = tmp8*tmp26;
-    const Scalar tmp670 = tmp0*tmp51;
-    const Scalar tmp671 = -tmp8*tmp51;
-    const Scalar tmp672 = -Scalar(2)*tmp3*attitude_dot + Scalar(0.5)*tmp5*tmp8*heading_dot
-        + heading_dot*tmp16;
-    const Scalar tmp673 = -Scalar(2)*tmp6*attitude_dot;
-    const Scalar tmp674 = tmp12*heading_dot + Scalar(2)*tmp9*attitude_dot + heading_dot*tmp12;
-    const Scalar tmp675 = tmp121*heading_dot + Scalar(2)*tmp24*attitude_dot
-        + Scalar(2)*tmp120*bank_dot + heading_dot*tmp669;
-    const Scalar tmp676 = -tmp33 + tmp20*tmp5*bank_dot + Scalar(0.4)*tmp19*tmp5*bank_dot
-        - attitude_dot*tmp26;
-    const Scalar tmp677 = -Scalar(2)*tmp30*attitude_dot - Scalar(2)*tmp124*bank_dot
-        + Scalar(0.4)*tmp0*tmp1*tmp22*heading_dot + heading_dot*tmp668;
-    const Scalar tmp678 = tmp94*bank_dot - tmp128*heading_dot - Scalar(2)*tmp48*attitude_dot
-        + Scalar(0.3)*tmp0*tmp1*tmp22*bank_dot + heading_dot*tmp671;
-    const Scalar tmp679 = tmp57 + Scalar(2)*tmp100*bank_dot + attitude_dot*tmp51;
-    const Scalar tmp680 = -tmp131*heading_dot - Scalar(2)*tmp103*bank_dot
-        + Scalar(0.6)*tmp19*tmp5*tmp8*attitude_dot - heading_dot*tmp670;
-    const Scalar tmp681 = tmp104*heading_dot - Scalar(2)*tmp77*attitude_dot
-        + Scalar(2)*tmp134*bank_dot + heading_dot*tmp104;
-    const Scalar tmp682 = -Scalar(2)*tmp85*attitude_dot + Scalar(2)*tmp136*bank_dot;
-    const Scalar tmp683 = Scalar(2)*tmp139*bank_dot + Scalar(2)*tmp95*heading_dot
-        + Scalar(2)*attitude_dot*(tmp87 + tmp90 - tmp67);
-    const Scalar tmp684 = m_a*tmp672;
-    const Scalar tmp685 = m_a*tmp674;
-    const Scalar tmp686 = m_b*tmp675;
-    const Scalar tmp687 = m_b*tmp677;
-    const Scalar tmp688 = m_c*tmp678;
-    const Scalar tmp689 = m_c*tmp680;
-    const Scalar tmp690 = m_d*tmp681;
-    const Scalar tmp691 = m_d*tmp683;
-    const Scalar tmp692 = m_a*tmp673;
-    const Scalar tmp693 = m_b*tmp676;
-    const Scalar tmp694 = m_c*tmp679;
-    const Scalar tmp695 = m_d*tmp682;
-    const Scalar tmp696 = tmp686 + tmp688 + tmp690 + tmp684;
-    const Scalar tmp697 = tmp693 + tmp694 + tmp695 + tmp692;
-    const Scalar tmp698 = tmp687 + tmp689 + tmp691 + tmp685;
-    const Scalar tmp699 = -tmp696;
-    const Scalar tmp700 = -tmp697;
-    const Scalar tmp701 = -tmp698;
-    const Scalar tmp702 = -tmp31*tmp686 - tmp41*tmp687 - tmp62*tmp688 - tmp70*tmp689 - tmp92*tmp690
-        - tmp106*tmp691 + Scalar(0.5)*tmp1*tmp8*tmp684 + Scalar(0.5)*tmp0*tmp1*tmp685;
-    const Scalar tmp703 = Scalar(0.4)*tmp0*tmp1*tmp22*tmp686 - tmp121*tmp687 - tmp131*tmp688
-        + Scalar(0.3)*tmp1*tmp19*tmp8*tmp689 - tmp96*tmp690 - tmp104*tmp691
-        + Scalar(0.4)*tmp22*tmp5*tmp693 - tmp64*tmp694 - tmp101*tmp695
-        + Scalar(0.5)*tmp0*tmp5*tmp684 - tmp16*tmp685 - tmp2*tmp692;
-    const Scalar tmp704 = -tmp35*tmp686 - tmp40*tmp687 - tmp60*tmp688 - tmp69*tmp689 - tmp97*tmp690
-        - tmp105*tmp691 + Scalar(0.4)*tmp1*tmp19*tmp693 + Scalar(0.3)*tmp1*tmp22*tmp694
-        - tmp99*tmp695;
-    const Scalar tmp705 = tmp40*heading_dot + Scalar(2)*tmp41*bank_dot
-        + Scalar(2)*tmp120*attitude_dot + heading_dot*tmp40;
-    const Scalar tmp706 = -Scalar(2)*tmp26*bank_dot + tmp20*tmp5*attitude_dot
-        + Scalar(0.4)*tmp19*tmp5*attitude_dot;
-    const Scalar tmp707 = -Scalar(2)*tmp124*attitude_dot + Scalar(2)*tmp125*bank_dot
-        + Scalar(2)*tmp126*heading_dot;
-    const Scalar tmp708 = tmp69*heading_dot + tmp94*attitude_dot + Scalar(2)*tmp70*bank_dot
-        + Scalar(0.3)*tmp0*tmp1*tmp22*attitude_dot + heading_dot*tmp69;
-    const Scalar tmp709 = Scalar(2)*tmp51*bank_dot + Scalar(2)*tmp100*attitude_dot;
-    const Scalar tmp710 = -Scalar(2)*tmp103*attitude_dot + Scalar(2)*tmp132*heading_dot
-        + Scalar(2)*tmp61*bank_dot;
-    const Scalar tmp711 = tmp105*heading_dot + Scalar(2)*tmp134*attitude_dot
-        + Scalar(2)*bank_dot*(-tmp76 - tmp80) + heading_dot*tmp105;
-    const Scalar tmp712 = Scalar(2)*tmp136*attitude_dot + Scalar(2)*bank_dot*(tmp137 + tmp84);
-    const Scalar tmp713 = -Scalar(2)*tmp91*bank_dot + Scalar(2)*tmp139*attitude_dot
-        + Scalar(2)*tmp140*heading_dot;
-    const Scalar tmp714 = m_b*tmp705;
-    const Scalar tmp715 = m_b*tmp707;
-    const Scalar tmp716 = m_c*tmp708;
-    const Scalar tmp717 = m_c*tmp710;
-    const Scalar tmp718 = m_d*tmp711;
-    const Scalar tmp719 = m_d*tmp713;
-    const Scalar tmp720 = m_b*tmp706;
-    const Scalar tmp721 = m_c*tmp709;
-    const Scalar tmp722 = m_d*tmp712;
-    const Scalar tmp723 = tmp714 + tmp716 + tmp718;
-    const Scalar tmp724 = tmp720 + tmp721 + tmp722;
-    const Scalar tmp725 = tmp715 + tmp717 + tmp719;
-    const Scalar tmp726 = -tmp723;
-    const Scalar tmp727 = -tmp724;
-    const Scalar tmp728 = -tmp725;
-    const Scalar tmp729 = -tmp31*tmp714 - tmp41*tmp715 - tmp62*tmp716 - tmp70*tmp717 - tmp92*tmp718
-        - tmp106*tmp719;
-    const Scalar tmp730 = Scalar(0.4)*tmp0*tmp1*tmp22*tmp714 - tmp121*tmp715 - tmp131*tmp716
-        + Scalar(0.3)*tmp1*tmp19*tmp8*tmp717 - tmp96*tmp718 - tmp104*tmp719
-        + Scalar(0.4)*tmp22*tmp5*tmp720 - tmp64*tmp721 - tmp101*tmp722;
-    const Scalar tmp731 = -tmp35*tmp714 - tmp40*tmp715 - tmp60*tmp716 - tmp69*tmp717 - tmp97*tmp718
-        - tmp105*tmp719 + Scalar(0.4)*tmp1*tmp19*tmp720 + Scalar(0.3)*tmp1*tmp22*tmp721
-        - tmp99*tmp722;
+    const Scalar m = Scalar(params.m);
+    const Scalar com_x = Scalar(params.com_x);
+    const Scalar com_y = Scalar(params.com_y);
+    const Scalar com_z = Scalar(params.com_z);
+    const Scalar a = Scalar(params.a);
+    const Scalar b = Scalar(params.b);
+    const Scalar c = Scalar(params.c);
+    const Scalar tmp0 = sin(bank);
+    const Scalar tmp1 = sin(heading);
+    const Scalar tmp2 = tmp0*tmp1;
+    const Scalar tmp3 = sin(attitude);
+    const Scalar tmp4 = cos(bank);
+    const Scalar tmp5 = cos(heading);
+    const Scalar tmp6 = tmp4*tmp5;
+    const Scalar tmp7 = tmp3*tmp6;
+    const Scalar tmp8 = tmp7 - tmp2;
+    const Scalar tmp9 = -tmp8;
+    const Scalar tmp11 = (a*a);
+    const Scalar tmp12 = (b*b);
+    const Scalar tmp13 = m*(tmp11 + tmp12);
+    const Scalar tmp14 = (c*c);
+    const Scalar tmp15 = tmp11 + tmp14;
+    const Scalar tmp16 = tmp15*m;
+    const Scalar tmp17 = tmp12 + tmp14;
+    const Scalar tmp18 = tmp17*m;
+    const Scalar tmp19 = Scalar(0.005689254019167049)*tmp18 + Scalar(0.010556171822976032)*tmp16
+        - Scalar(0.01624542584214308)*tmp13;
+    const Scalar tmp20 = Scalar(0.041142942152109445)*tmp18 + Scalar(0.028423816083747767)*tmp13
+        - Scalar(0.027900091569190537)*tmp16;
+    const Scalar tmp24 = (Scalar(1)/tmp20);
+    const Scalar tmp25 = Scalar(0.021737886292675604)*tmp13 + Scalar(0.04006485617007295)*tmp16
+        - Scalar(0.020136075796081898)*tmp18 - tmp24*(tmp19*tmp19);
+    const Scalar tmp29 = tmp1*tmp4;
+    const Scalar tmp30 = tmp0*tmp5;
+    const Scalar tmp31 = tmp3*tmp30;
+    const Scalar tmp32 = tmp29 + tmp31;
+    const Scalar tmp33 = -Scalar(0.0257737061664756)*tmp13 - Scalar(0.003316897780257798)*tmp18
+        + Scalar(0.0290906039467334)*tmp15*m;
+    const Scalar tmp35 = (Scalar(1)/tmp25);
+    const Scalar tmp36 = tmp24*tmp33;
+    const Scalar tmp37 = -Scalar(0.03161742478199714)*tmp13 - Scalar(0.004414255047715874)*tmp16
+        - tmp19*tmp36 + Scalar(0.03603167982971302)*tmp17*m;
+    const Scalar tmp38 = -Scalar(0.008495035709756703)*tmp13 - tmp24*(tmp33*tmp33)
+        - tmp35*(tmp37*tmp37) + Scalar(0.02950190206578425)*tmp15*m
+        + Scalar(0.020659800310639128)*tmp17*m;
+    const Scalar tmp44 = cos(attitude);
+    const Scalar tmp45 = tmp44*tmp5;
+    const Scalar tmp48 = tmp44*com_x;
+    const Scalar tmp49 = tmp48*tmp5;
+    const Scalar tmp53 = tmp4*tmp44;
+    const Scalar tmp54 = tmp0*tmp44;
+    const Scalar tmp57 = tmp3*com_x;
+    const Scalar tmp58 = tmp53*com_y - tmp54*com_z;
+    const Scalar tmp59 = tmp57 + tmp58;
+    const Scalar tmp63 = tmp29*tmp3;
+    const Scalar tmp64 = tmp30 + tmp63;
+    const Scalar tmp65 = tmp2*tmp3;
+    const Scalar tmp66 = tmp65 - tmp4*tmp5;
+    const Scalar tmp67 = -tmp66;
+    const Scalar tmp69 = tmp1*tmp44;
+    const Scalar tmp72 = tmp1*tmp48;
+    const Scalar tmp73 = -tmp72 + tmp64*com_y + tmp67*com_z;
+    const Scalar tmp77 = tmp32*com_y + tmp8*com_z;
+    const Scalar tmp79 = tmp44*tmp6;
+    const Scalar tmp80 = tmp3*tmp5;
+    const Scalar tmp82 = tmp5*tmp57 + tmp79*com_y - tmp0*tmp44*tmp5*com_z;
+    const Scalar tmp89 = tmp53*com_z + tmp54*com_y;
+    const Scalar tmp91 = tmp0*tmp3;
+    const Scalar tmp92 = tmp3*tmp4;
+    const Scalar tmp94 = tmp48 + tmp91*com_z - tmp92*com_y;
+    const Scalar tmp98 = -tmp64;
+    const Scalar tmp99 = tmp67*com_y + tmp98*com_z;
+    const Scalar tmp101 = tmp29*tmp44;
+    const Scalar tmp102 = tmp2*tmp44;
+    const Scalar tmp103 = tmp1*tmp3;
+    const Scalar tmp105 = tmp1*tmp57 + tmp101*com_y - tmp102*com_z;
+    const Scalar tmp108 = -tmp32;
+    const Scalar tmp111 = tmp108*com_z + tmp8*com_y;
+    const Scalar tmp112 = tmp111 - tmp49;
+    const Scalar tmp195 = -tmp82;
+    const Scalar tmp197 = -tmp89;
+    const Scalar tmp199 = tmp105*attitude_dot + tmp112*heading_dot + tmp99*bank_dot;
+    const Scalar tmp201 = tmp30*tmp44;
+    const Scalar tmp202 = tmp201*com_y + tmp79*com_z;
+    const Scalar tmp203 = tmp49 + tmp31*com_z - tmp3*tmp4*tmp5*com_y;
+    const Scalar tmp204 = tmp199*heading_dot
+        + attitude_dot*(tmp105*heading_dot + tmp202*bank_dot - tmp203*attitude_dot)
+        + bank_dot*(tmp111*bank_dot + tmp202*attitude_dot + tmp99*heading_dot);
+    const Scalar tmp205 = tmp91*com_y + tmp92*com_z;
+    const Scalar tmp206 = attitude_dot*(tmp205*bank_dot - tmp59*attitude_dot)
+        + bank_dot*(tmp205*attitude_dot - tmp58*bank_dot);
+    const Scalar tmp207 = tmp101*com_z + tmp102*com_y;
+    const Scalar tmp208 = -tmp207;
+    const Scalar tmp209 = tmp72 + tmp65*com_z - tmp63*com_y;
+    const Scalar tmp210 = tmp66*com_z + tmp98*com_y;
+    const Scalar tmp211 = tmp108*com_y + tmp9*com_z;
+    const Scalar tmp212 = tmp210 + tmp72;
+    const Scalar tmp213 = attitude_dot*(tmp208*bank_dot + tmp209*attitude_dot + tmp82*heading_dot)
+        + bank_dot*(tmp208*attitude_dot + tmp210*bank_dot + tmp211*heading_dot)
+        + heading_dot*(tmp211*bank_dot + tmp212*heading_dot + tmp82*attitude_dot);
+    const Scalar tmp214 = tmp19*tmp24;
+    const Scalar tmp216 = tmp214*tmp53;
+    const Scalar tmp217 = tmp36*tmp54;
+    const Scalar tmp218 = tmp216 + tmp3 - tmp217;
+    const Scalar tmp219 = -tmp69 + tmp214*tmp64 + tmp36*tmp67;
+    const Scalar tmp220 = tmp80 + tmp214*tmp79 - tmp0*tmp24*tmp33*tmp44*tmp5;
+    const Scalar tmp221 = -tmp220;
+    const Scalar tmp222 = tmp214*tmp32 + tmp36*tmp8;
+    const Scalar tmp224 = -tmp214*tmp54 - tmp36*tmp53;
+    const Scalar tmp225 = tmp44 + tmp36*tmp91 - tmp214*tmp92;
+    const Scalar tmp227 = tmp103 + tmp214*tmp101 - tmp36*tmp102;
+    const Scalar tmp228 = tmp214*tmp67 + tmp36*tmp98;
+    const Scalar tmp229 = tmp108*tmp36 + tmp214*tmp8;
+    const Scalar tmp230 = tmp229 - tmp45;
+    const Scalar tmp231 = tmp227*attitude_dot + tmp228*bank_dot + tmp230*heading_dot;
+    const Scalar tmp232 = tmp201*tmp214 + tmp36*tmp79;
+    const Scalar tmp233 = tmp231*heading_dot
+        + attitude_dot*(tmp227*heading_dot + tmp232*bank_dot
+            + attitude_dot*(-tmp45 - tmp31*tmp36 + tmp19*tmp24*tmp3*tmp4*tmp5))
+        + bank_dot*(tmp228*heading_dot + tmp229*bank_dot + tmp232*attitude_dot);
+    const Scalar tmp234 = tmp214*tmp91 + tmp36*tmp92;
+    const Scalar tmp235 = attitude_dot*(tmp234*bank_dot - tmp218*attitude_dot)
+        + bank_dot*(tmp234*attitude_dot + bank_dot*(tmp217 - tmp216));
+    const Scalar tmp236 = -tmp214*tmp102 - tmp36*tmp101;
+    const Scalar tmp237 = tmp214*tmp98 + tmp36*tmp66;
+    const Scalar tmp238 = tmp108*tmp214 + tmp36*tmp9;
+    const Scalar tmp239 = attitude_dot*(tmp220*heading_dot + tmp236*bank_dot
+            + attitude_dot*(tmp69 + tmp36*tmp65 - tmp214*tmp63))
+        + bank_dot*(tmp236*attitude_dot + tmp237*bank_dot + tmp238*heading_dot)
+        + heading_dot*(tmp220*attitude_dot + tmp238*bank_dot + heading_dot*(tmp237 + tmp69));
+    const Scalar tmp240 = -tmp7;
+    const Scalar tmp241 = tmp35*tmp37;
+    const Scalar tmp243 = tmp241*tmp54 - tmp4*tmp44;
+    const Scalar tmp245 = tmp64 + tmp241*tmp67;
+    const Scalar tmp246 = -tmp79 + tmp201*tmp241;
+    const Scalar tmp247 = tmp32 + tmp241*tmp8;
+    const Scalar tmp249 = -tmp92 + tmp241*tmp91;
+    const Scalar tmp250 = -tmp54 - tmp241*tmp53;
+    const Scalar tmp252 = -tmp241*tmp102 + tmp1*tmp4*tmp44;
+    const Scalar tmp253 = tmp6 - tmp65 + tmp241*tmp98;
+    const Scalar tmp254 = tmp8 + tmp108*tmp241;
+    const Scalar tmp255 = tmp252*attitude_dot + tmp253*bank_dot + tmp254*heading_dot;
+    const Scalar tmp256 = tmp201 + tmp241*tmp79;
+    const Scalar tmp257 = tmp255*heading_dot
+        + attitude_dot*(tmp252*heading_dot + tmp256*bank_dot
+            + attitude_dot*(-tmp240 - tmp241*tmp31))
+        + bank_dot*(tmp253*heading_dot + tmp254*bank_dot + tmp256*attitude_dot);
+    const Scalar tmp258 = tmp91 + tmp241*tmp92;
+    const Scalar tmp259 = attitude_dot*(tmp243*attitude_dot + tmp258*bank_dot)
+        + bank_dot*(tmp243*bank_dot + tmp258*attitude_dot);
+    const Scalar tmp260 = -tmp246;
+    const Scalar tmp261 = -tmp102 - tmp241*tmp101;
+    const Scalar tmp262 = -tmp32 + tmp35*tmp37*tmp9;
+    const Scalar tmp263 = -tmp64 + tmp35*tmp37*tmp66;
+    const Scalar tmp264 = attitude_dot*(tmp260*heading_dot + tmp261*bank_dot
+            + attitude_dot*(-tmp63 + tmp241*tmp65))
+        + bank_dot*(tmp261*attitude_dot + tmp262*heading_dot + tmp263*bank_dot)
+        + heading_dot*(tmp260*attitude_dot + tmp262*bank_dot + tmp263*heading_dot);
+    const Scalar tmp266 = tmp201*attitude_dot;
+    const Scalar tmp269 = tmp108*heading_dot + tmp98*bank_dot - tmp102*attitude_dot;
+    const Scalar tmp270 = tmp269*heading_dot
+        + attitude_dot*(-tmp31*attitude_dot - tmp102*heading_dot + tmp4*tmp44*tmp5*bank_dot)
+        + bank_dot*(tmp108*bank_dot + tmp79*attitude_dot + tmp98*heading_dot);
+    const Scalar tmp271 = attitude_dot*(tmp54*attitude_dot + tmp92*bank_dot)
+        + bank_dot*(tmp54*bank_dot + tmp92*attitude_dot);
+    const Scalar tmp272 = attitude_dot*(-tmp201*heading_dot - tmp101*bank_dot
+            + tmp0*tmp1*tmp3*attitude_dot)
+        + bank_dot*(tmp66*bank_dot + tmp9*heading_dot - tmp101*attitude_dot)
+        + heading_dot*(-tmp266 + tmp66*heading_dot + tmp9*bank_dot);
+    const Scalar tmp280 = (tmp0*tmp0);
+    const Scalar tmp281 = (tmp44*tmp44);
+    const Scalar tmp282 = tmp280*tmp281;
+    const Scalar tmp290 = g*m;
+    const Scalar tmp291 = -tmp290;
+    const Scalar tmp292 = tmp204*m;
+    const Scalar tmp293 = tmp206*m;
+    const Scalar tmp294 = tmp213*m;
+    const Scalar tmp295 = tmp20*tmp233;
+    const Scalar tmp296 = tmp20*tmp239;
+    const Scalar tmp297 = tmp25*tmp257;
+    const Scalar tmp298 = tmp25*tmp264;
+    const Scalar tmp299 = tmp38*tmp270;
+    const Scalar tmp300 = tmp38*tmp272;
+    const Scalar tmp301 = tmp20*tmp235;
+    const Scalar tmp302 = tmp25*tmp259;
+    const Scalar tmp303 = tmp38*tmp271;
+    const Scalar tmp462 = tmp0*tmp5;
+    const Scalar tmp463 = -tmp1;
+    const Scalar tmp464 = tmp4*tmp463;
+    const Scalar tmp465 = tmp3*tmp464;
+    const Scalar tmp466 = -tmp462 + tmp465;
+    const Scalar tmp467 = -tmp466;
+    const Scalar tmp468 = tmp4*tmp5;
+    const Scalar tmp469 = tmp0*tmp463;
+    const Scalar tmp470 = tmp3*tmp469;
+    const Scalar tmp471 = tmp468 + tmp470;
+    const Scalar tmp472 = tmp44*tmp463;
+    const Scalar tmp473 = tmp48*tmp463;
+    const Scalar tmp474 = tmp3*tmp468;
+    const Scalar tmp475 = tmp469 + tmp474;
+    const Scalar tmp476 = tmp3*tmp462;
+    const Scalar tmp477 = -tmp4*tmp463 + tmp476;
+    const Scalar tmp478 = -tmp477;
+    const Scalar tmp479 = tmp44*tmp5;
+    const Scalar tmp480 = tmp48*tmp5;
+    const Scalar tmp481 = com_y*tmp475 + com_z*tmp478 - tmp480;
+    const Scalar tmp482 = com_y*tmp471 + com_z*tmp466;
+    const Scalar tmp483 = tmp44*tmp464;
+    const Scalar tmp484 = tmp3*tmp463;
+    const Scalar tmp485 = (tmp57 - tmp0*tmp44*com_z)*tmp463 + com_y*tmp483;
+    const Scalar tmp486 = -tmp475;
+    const Scalar tmp487 = com_y*tmp478 + com_z*tmp486;
+    const Scalar tmp488 = tmp44*tmp468;
+    const Scalar tmp489 = tmp44*tmp462;
+    const Scalar tmp490 = tmp3*tmp5;
+    const Scalar tmp491 = tmp57*tmp5 + com_y*tmp488 - com_z*tmp489;
+    const Scalar tmp492 = -tmp471;
+    const Scalar tmp493 = com_z*tmp492 + com_y*tmp466;
+    const Scalar tmp494 = tmp493 - tmp473;
+    const Scalar tmp495 = -tmp485;
+    const Scalar tmp496 = attitude_dot*tmp491 + heading_dot*tmp494 + bank_dot*tmp487;
+    const Scalar tmp497 = tmp44*tmp469;
+    const Scalar tmp498 = com_y*tmp497 + com_z*tmp483;
+    const Scalar tmp499 = com_z*tmp470 + tmp473 - tmp3*tmp4*com_y*tmp463;
+    const Scalar tmp500 = attitude_dot*heading_dot*tmp491 + (bank_dot*bank_dot)*tmp493
+        + heading_dot*tmp496 + Scalar(2)*attitude_dot*bank_dot*tmp498
+        - (attitude_dot*attitude_dot)*tmp499 + bank_dot*heading_dot*tmp487;
+    const Scalar tmp501 = com_z*tmp488 + com_y*tmp489;
+    const Scalar tmp502 = -tmp501;
+    const Scalar tmp503 = -com_y*tmp474 + com_z*tmp476 + tmp480;
+    const Scalar tmp504 = com_z*tmp477 + com_y*tmp486;
+    const Scalar tmp505 = com_y*tmp492 + com_z*tmp467;
+    const Scalar tmp506 = tmp504 + tmp480;
+    const Scalar tmp507 = Scalar(2)*attitude_dot*bank_dot*tmp502
+        + (attitude_dot*attitude_dot)*tmp503 + (bank_dot*bank_dot)*tmp504
+        + Scalar(2)*bank_dot*heading_dot*tmp505 + (heading_dot*heading_dot)*tmp506
+        + Scalar(2)*attitude_dot*heading_dot*tmp485;
+    const Scalar tmp508 = tmp214*tmp475 + tmp36*tmp478 - tmp479;
+    const Scalar tmp509 = -tmp0*tmp24*tmp33*tmp44*tmp463 + tmp214*tmp483 + tmp484;
+    const Scalar tmp510 = -tmp509;
+    const Scalar tmp511 = tmp214*tmp471 + tmp36*tmp466;
+    const Scalar tmp512 = tmp214*tmp488 - tmp36*tmp489 + tmp490;
+    const Scalar tmp513 = tmp214*tmp478 + tmp36*tmp486;
+    const Scalar tmp514 = tmp36*tmp492 + tmp214*tmp466;
+    const Scalar tmp515 = tmp514 - tmp472;
+    const Scalar tmp516 = attitude_dot*tmp512 + bank_dot*tmp513 + heading_dot*tmp515;
+    const Scalar tmp517 = tmp214*tmp497 + tmp36*tmp483;
+    const Scalar tmp518 = attitude_dot*heading_dot*tmp512 + bank_dot*heading_dot*tmp513
+        + (bank_dot*bank_dot)*tmp514 + heading_dot*tmp516 + Scalar(2)*attitude_dot*bank_dot*tmp517
+        - tmp36*(attitude_dot*attitude_dot)*tmp470 - (attitude_dot*attitude_dot)*tmp472
+        + tmp19*tmp24*tmp3*tmp4*(attitude_dot*attitude_dot)*tmp463;
+    const Scalar tmp519 = -tmp36*tmp488 - tmp214*tmp489;
+    const Scalar tmp520 = tmp36*tmp477 + tmp214*tmp486;
+    const Scalar tmp521 = tmp214*tmp492 + tmp36*tmp467;
+    const Scalar tmp522 = Scalar(2)*attitude_dot*heading_dot*tmp509
+        + Scalar(2)*attitude_dot*bank_dot*tmp519
+        + ((bank_dot*bank_dot) + (heading_dot*heading_dot))*tmp520
+        + Scalar(2)*bank_dot*heading_dot*tmp521 - tmp214*(attitude_dot*attitude_dot)*tmp474
+        + tmp36*(attitude_dot*attitude_dot)*tmp476
+        + ((attitude_dot*attitude_dot) + (heading_dot*heading_dot))*tmp479;
+    const Scalar tmp523 = -tmp465;
+    const Scalar tmp524 = tmp475 + tmp241*tmp478;
+    const Scalar tmp525 = tmp241*tmp497 - tmp483;
+    const Scalar tmp526 = tmp471 + tmp241*tmp466;
+    const Scalar tmp527 = tmp4*tmp44*tmp5 - tmp241*tmp489;
+    const Scalar tmp528 = tmp464 - tmp476 + tmp241*tmp486;
+    const Scalar tmp529 = tmp241*tmp492 + tmp466;
+    const Scalar tmp530 = attitude_dot*tmp527 + bank_dot*tmp528 + heading_dot*tmp529;
+    const Scalar tmp531 = tmp497 + tmp241*tmp483;
+    const Scalar tmp532 = -(attitude_dot*attitude_dot)*tmp523 + attitude_dot*heading_dot*tmp527
+        + bank_dot*heading_dot*tmp528 + (bank_dot*bank_dot)*tmp529 + heading_dot*tmp530
+        + Scalar(2)*attitude_dot*bank_dot*tmp531 - tmp241*(attitude_dot*attitude_dot)*tmp470;
+    const Scalar tmp533 = -tmp525;
+    const Scalar tmp534 = -tmp241*tmp488 - tmp489;
+    const Scalar tmp535 = -tmp471 + tmp35*tmp37*tmp467;
+    const Scalar tmp536 = -tmp475 + tmp35*tmp37*tmp477;
+    const Scalar tmp537 = Scalar(2)*attitude_dot*heading_dot*tmp533
+        + Scalar(2)*attitude_dot*bank_dot*tmp534 + Scalar(2)*bank_dot*heading_dot*tmp535
+        + ((bank_dot*bank_dot) + (heading_dot*heading_dot))*tmp536
+        - (attitude_dot*attitude_dot)*tmp474 + tmp241*(attitude_dot*attitude_dot)*tmp476;
+    const Scalar tmp538 = attitude_dot*tmp497;
+    const Scalar tmp539 = heading_dot*tmp492 + bank_dot*tmp486 - attitude_dot*tmp489;
+    const Scalar tmp540 = (bank_dot*bank_dot)*tmp492 + heading_dot*tmp539
+        - (attitude_dot*attitude_dot)*tmp470 + tmp4*tmp44*attitude_dot*bank_dot*tmp463
+        + attitude_dot*bank_dot*tmp483 + bank_dot*heading_dot*tmp486
+        - attitude_dot*heading_dot*tmp489;
+    const Scalar tmp541 = tmp0*tmp3*(attitude_dot*attitude_dot)*tmp5
+        - attitude_dot*heading_dot*tmp497 - heading_dot*tmp538
+        + ((bank_dot*bank_dot) + (heading_dot*heading_dot))*tmp477
+        + Scalar(2)*bank_dot*heading_dot*tmp467 - Scalar(2)*attitude_dot*bank_dot*tmp488;
+    const Scalar tmp542 = m*tmp481;
+    const Scalar tmp543 = m*tmp494;
+    const Scalar tmp544 = Scalar(2)*tmp108*tmp38*tmp492 + Scalar(2)*tmp112*m*tmp494
+        + Scalar(2)*tmp219*tmp20*tmp508 + Scalar(2)*tmp230*tmp20*tmp515
+        + Scalar(2)*tmp245*tmp25*tmp524 + Scalar(2)*tmp254*tmp25*tmp529
+        + Scalar(2)*tmp38*tmp67*tmp478 + Scalar(2)*tmp73*m*tmp481;
+    const Scalar tmp545 = m*tmp495;
+    const Scalar tmp546 = m*tmp491;
+    const Scalar tmp547 = tmp112*m*tmp491 - tmp38*tmp102*tmp492 + tmp105*m*tmp494 + tmp73*m*tmp495
+        + tmp38*tmp67*tmp497 + tmp221*tmp20*tmp508 + tmp219*tmp20*tmp510 + tmp230*tmp20*tmp512
+        + tmp227*tmp20*tmp515 + tmp246*tmp25*tmp524 + tmp245*tmp25*tmp525 + tmp254*tmp25*tmp527
+        + tmp252*tmp25*tmp529 + tmp201*tmp38*tmp478 + tmp195*m*tmp481 - tmp108*tmp38*tmp489;
+    const Scalar tmp548 = Scalar(2)*tmp1*tmp282*tmp38*tmp5 + Scalar(2)*tmp105*m*tmp491
+        + Scalar(2)*tmp195*m*tmp495 + Scalar(2)*tmp221*tmp20*tmp510 + Scalar(2)*tmp227*tmp20*tmp512
+        + Scalar(2)*tmp246*tmp25*tmp525 + Scalar(2)*tmp252*tmp25*tmp527
+        + Scalar(2)*tmp282*tmp38*tmp5*tmp463;
+    const Scalar tmp549 = m*tmp482;
+    const Scalar tmp550 = m*tmp487;
+    const Scalar tmp551 = tmp38*tmp98*tmp492 + tmp99*m*tmp494 + tmp222*tmp20*tmp508
+        + tmp219*tmp20*tmp511 + tmp230*tmp20*tmp513 + tmp228*tmp20*tmp515 + tmp247*tmp25*tmp524
+        + tmp245*tmp25*tmp526 + tmp254*tmp25*tmp528 + tmp253*tmp25*tmp529 + tmp38*tmp8*tmp478
+        + tmp77*m*tmp481 + tmp73*m*tmp482 + tmp38*tmp67*tmp466 + tmp108*tmp38*tmp486
+        + tmp112*m*tmp487;
+    const Scalar tmp552 = tmp99*m*tmp491 + tmp77*m*tmp495 + tmp222*tmp20*tmp510
+        + tmp221*tmp20*tmp511 + tmp228*tmp20*tmp512 + tmp227*tmp20*tmp513 + tmp247*tmp25*tmp525
+        + tmp246*tmp25*tmp526 + tmp253*tmp25*tmp527 + tmp252*tmp25*tmp528
+        + tmp0*tmp38*tmp44*tmp8*tmp463 + tmp195*m*tmp482 + tmp0*tmp38*tmp44*tmp5*tmp466
+        - tmp38*tmp102*tmp486 + tmp105*m*tmp487 - tmp38*tmp98*tmp489;
+    const Scalar tmp553 = Scalar(2)*tmp222*tmp20*tmp511 + Scalar(2)*tmp228*tmp20*tmp513
+        + Scalar(2)*tmp247*tmp25*tmp526 + Scalar(2)*tmp253*tmp25*tmp528 + Scalar(2)*tmp77*m*tmp482
+        + Scalar(2)*tmp38*tmp8*tmp466 + Scalar(2)*tmp38*tmp98*tmp486 + Scalar(2)*tmp99*m*tmp487;
+    const Scalar tmp554 = m*tmp500;
+    const Scalar tmp555 = m*tmp507;
+    const Scalar tmp556 = tmp20*tmp518;
+    const Scalar tmp557 = tmp20*tmp522;
+    const Scalar tmp558 = tmp25*tmp532;
+    const Scalar tmp559 = tmp25*tmp537;
+    const Scalar tmp560 = tmp38*tmp540;
+    const Scalar tmp561 = tmp38*tmp541;
+    const Scalar tmp562 = tmp291*tmp494;
+    const Scalar tmp563 = tmp291*tmp491;
+    const Scalar tmp564 = tmp291*tmp487;
+    const Scalar tmp565 = -tmp554;
+    const Scalar tmp566 = -tmp555;
+    const Scalar tmp567 = -tmp300*tmp492 - tmp294*tmp494 - tmp295*tmp508 - tmp296*tmp515
+        - tmp297*tmp524 - tmp298*tmp529 - tmp299*tmp478 - tmp292*tmp481 - tmp73*tmp554
+        - tmp112*tmp555 - tmp219*tmp556 - tmp230*tmp557 - tmp245*tmp558 - tmp254*tmp559
+        - tmp67*tmp560 - tmp108*tmp561;
+    const Scalar tmp568 = tmp0*tmp44*tmp300*tmp5 - tmp294*tmp491 - tmp292*tmp495 - tmp299*tmp497
+        - tmp295*tmp510 - tmp296*tmp512 - tmp297*tmp525 - tmp298*tmp527 - tmp195*tmp554
+        - tmp105*tmp555 - tmp221*tmp556 - tmp227*tmp557 - tmp246*tmp558 - tmp252*tmp559
+        - tmp201*tmp560 + tmp0*tmp1*tmp44*tmp561;
+    const Scalar tmp569 = -tmp295*tmp511 - tmp296*tmp513 - tmp297*tmp526 - tmp298*tmp528
+        - tmp292*tmp482 - tmp299*tmp466 - tmp300*tmp486 - tmp294*tmp487 - tmp77*tmp554
+        - tmp99*tmp555 - tmp222*tmp556 - tmp228*tmp557 - tmp247*tmp558 - tmp253*tmp559 - tmp8*tmp560
+        - tmp98*tmp561;
+    const Scalar tmp570 = tmp6*tmp44;
+    const Scalar tmp571 = -tmp570;
+    const Scalar tmp572 = tmp30*tmp44;
+    const Scalar tmp573 = -tmp3;
+    const Scalar tmp574 = tmp5*tmp573;
+    const Scalar tmp575 = com_x*tmp573;
+    const Scalar tmp576 = tmp5*tmp575;
+    const Scalar tmp577 = tmp4*tmp573;
+    const Scalar tmp578 = tmp0*tmp573;
+    const Scalar tmp579 = com_x*tmp44;
+    const Scalar tmp580 = com_y*tmp577 - com_z*tmp578;
+    const Scalar tmp581 = tmp579 + tmp580;
+    const Scalar tmp582 = tmp29*tmp44;
+    const Scalar tmp583 = tmp2*tmp44;
+    const Scalar tmp584 = -tmp583;
+    const Scalar tmp585 = tmp1*tmp573;
+    const Scalar tmp586 = tmp1*tmp575;
+    const Scalar tmp587 = com_y*tmp582 + com_z*tmp584 - tmp586;
+    const Scalar tmp588 = com_y*tmp572 + com_z*tmp570;
+    const Scalar tmp589 = tmp6*tmp573;
+    const Scalar tmp590 = tmp5*tmp44;
+    const Scalar tmp591 = -tmp0*tmp5*com_z*tmp573 + tmp5*tmp579 + com_y*tmp589;
+    const Scalar tmp592 = com_z*tmp577 + com_y*tmp578;
+    const Scalar tmp593 = tmp0*tmp44;
+    const Scalar tmp594 = tmp4*tmp44;
+    const Scalar tmp595 = tmp575 + com_z*tmp593 - com_y*tmp594;
+    const Scalar tmp596 = -tmp582;
+    const Scalar tmp597 = com_y*tmp584 + com_z*tmp596;
+    const Scalar tmp598 = tmp29*tmp573;
+    const Scalar tmp599 = tmp2*tmp573;
+    const Scalar tmp600 = tmp1*tmp44;
+    const Scalar tmp601 = tmp1*tmp579 + com_y*tmp598 - com_z*tmp599;
+    const Scalar tmp602 = -tmp572;
+    const Scalar tmp603 = com_z*tmp602 + com_y*tmp570;
+    const Scalar tmp604 = tmp603 - tmp576;
+    const Scalar tmp605 = -tmp591;
+    const Scalar tmp606 = -tmp592;
+    const Scalar tmp607 = attitude_dot*tmp601 + heading_dot*tmp604 + bank_dot*tmp597;
+    const Scalar tmp608 = tmp30*tmp573;
+    const Scalar tmp609 = com_y*tmp608 + com_z*tmp589;
+    const Scalar tmp610 = -tmp4*tmp5*com_y*tmp44 + com_z*tmp572 + tmp576;
+    const Scalar tmp611 = attitude_dot*heading_dot*tmp601 + (bank_dot*bank_dot)*tmp603
+        + heading_dot*tmp607 + Scalar(2)*attitude_dot*bank_dot*tmp609
+        - (attitude_dot*attitude_dot)*tmp610 + bank_dot*heading_dot*tmp597;
+    const Scalar tmp612 = com_y*tmp593 + com_z*tmp594;
+    const Scalar tmp613 = Scalar(2)*attitude_dot*bank_dot*tmp612 - (bank_dot*bank_dot)*tmp580
+        - (attitude_dot*attitude_dot)*tmp581;
+    const Scalar tmp614 = com_z*tmp598 + com_y*tmp599;
+    const Scalar tmp615 = -tmp614;
+    const Scalar tmp616 = -com_y*tmp582 + com_z*tmp583 + tmp586;
+    const Scalar tmp617 = com_z*tmp583 + com_y*tmp596;
+    const Scalar tmp618 = com_y*tmp602 + com_z*tmp571;
+    const Scalar tmp619 = tmp617 + tmp586;
+    const Scalar tmp620 = Scalar(2)*attitude_dot*bank_dot*tmp615
+        + (attitude_dot*attitude_dot)*tmp616 + (bank_dot*bank_dot)*tmp617
+        + Scalar(2)*bank_dot*heading_dot*tmp618 + (heading_dot*heading_dot)*tmp619
+        + Scalar(2)*attitude_dot*heading_dot*tmp591;
+    const Scalar tmp621 = tmp214*tmp577;
+    const Scalar tmp622 = tmp36*tmp578;
+    const Scalar tmp623 = tmp621 - tmp622 + tmp44;
+    const Scalar tmp624 = tmp214*tmp582 + tmp36*tmp584 - tmp585;
+    const Scalar tmp625 = -tmp0*tmp24*tmp33*tmp5*tmp573 + tmp214*tmp589 + tmp590;
+    const Scalar tmp626 = -tmp625;
+    const Scalar tmp627 = tmp214*tmp572 + tmp36*tmp570;
+    const Scalar tmp628 = -tmp36*tmp577 - tmp214*tmp578;
+    const Scalar tmp629 = tmp573 + tmp36*tmp593 - tmp214*tmp594;
+    const Scalar tmp630 = tmp214*tmp598 - tmp36*tmp599 + tmp600;
+    const Scalar tmp631 = tmp214*tmp584 + tmp36*tmp596;
+    const Scalar tmp632 = tmp36*tmp602 + tmp214*tmp570;
+    const Scalar tmp633 = tmp632 - tmp574;
+    const Scalar tmp634 = attitude_dot*tmp630 + bank_dot*tmp631 + heading_dot*tmp633;
+    const Scalar tmp635 = tmp214*tmp608 + tmp36*tmp589;
+    const Scalar tmp636 = attitude_dot*heading_dot*tmp630 + bank_dot*heading_dot*tmp631
+        + (bank_dot*bank_dot)*tmp632 + heading_dot*tmp634 + Scalar(2)*attitude_dot*bank_dot*tmp635
+        + tmp19*tmp24*tmp4*tmp5*(attitude_dot*attitude_dot)*tmp44
+        - tmp36*(attitude_dot*attitude_dot)*tmp572 - (attitude_dot*attitude_dot)*tmp574;
+    const Scalar tmp637 = tmp214*tmp593 + tmp36*tmp594;
+    const Scalar tmp638 = -(bank_dot*bank_dot)*tmp621 + (bank_dot*bank_dot)*tmp622
+        - (attitude_dot*attitude_dot)*tmp623 + Scalar(2)*attitude_dot*bank_dot*tmp637;
+    const Scalar tmp639 = -tmp36*tmp598 - tmp214*tmp599;
+    const Scalar tmp640 = tmp36*tmp583 + tmp214*tmp596;
+    const Scalar tmp641 = tmp214*tmp602 + tmp36*tmp571;
+    const Scalar tmp642 = Scalar(2)*attitude_dot*heading_dot*tmp625
+        + Scalar(2)*attitude_dot*bank_dot*tmp639
+        + ((bank_dot*bank_dot) + (heading_dot*heading_dot))*tmp640
+        + Scalar(2)*bank_dot*heading_dot*tmp641 - tmp214*(attitude_dot*attitude_dot)*tmp582
+        + tmp36*(attitude_dot*attitude_dot)*tmp583
+        + ((attitude_dot*attitude_dot) + (heading_dot*heading_dot))*tmp585;
+    const Scalar tmp643 = -tmp570;
+    const Scalar tmp644 = -tmp4*tmp573 + tmp241*tmp578;
+    const Scalar tmp645 = tmp582 + tmp241*tmp584;
+    const Scalar tmp646 = tmp241*tmp608 - tmp589;
+    const Scalar tmp647 = tmp572 + tmp241*tmp570;
+    const Scalar tmp648 = tmp241*tmp593 - tmp594;
+    const Scalar tmp649 = -tmp241*tmp577 - tmp578;
+    const Scalar tmp650 = tmp1*tmp4*tmp573 - tmp241*tmp599;
+    const Scalar tmp651 = -tmp583 + tmp241*tmp596;
+    const Scalar tmp652 = tmp241*tmp602 + tmp570;
+    const Scalar tmp653 = attitude_dot*tmp650 + bank_dot*tmp651 + heading_dot*tmp652;
+    const Scalar tmp654 = tmp608 + tmp241*tmp589;
+    const Scalar tmp655 = -(attitude_dot*attitude_dot)*tmp643 + attitude_dot*heading_dot*tmp650
+        + bank_dot*heading_dot*tmp651 + (bank_dot*bank_dot)*tmp652 + heading_dot*tmp653
+        + Scalar(2)*attitude_dot*bank_dot*tmp654 - tmp241*(attitude_dot*attitude_dot)*tmp572;
+    const Scalar tmp656 = tmp593 + tmp241*tmp594;
+    const Scalar tmp657 = ((attitude_dot*attitude_dot) + (bank_dot*bank_dot))*tmp644
+        + Scalar(2)*attitude_dot*bank_dot*tmp656;
+    const Scalar tmp658 = -tmp646;
+    const Scalar tmp659 = -tmp241*tmp598 - tmp599;
+    const Scalar tmp660 = -tmp572 + tmp35*tmp37*tmp571;
+    const Scalar tmp661 = -tmp582 + tmp35*tmp37*tmp583;
+    const Scalar tmp662 = Scalar(2)*attitude_dot*heading_dot*tmp658
+        + Scalar(2)*attitude_dot*bank_dot*tmp659 + Scalar(2)*bank_dot*heading_dot*tmp660
+        + ((bank_dot*bank_dot) + (heading_dot*heading_dot))*tmp661
+        - (attitude_dot*attitude_dot)*tmp582 + tmp241*(attitude_dot*attitude_dot)*tmp583;
+    const Scalar tmp663 = attitude_dot*tmp608;
+    const Scalar tmp664 = heading_dot*tmp602 + bank_dot*tmp596 - attitude_dot*tmp599;
+    const Scalar tmp665 = (bank_dot*bank_dot)*tmp602 + heading_dot*tmp664
+        - (attitude_dot*attitude_dot)*tmp572 + tmp4*tmp5*attitude_dot*bank_dot*tmp573
+        + attitude_dot*bank_dot*tmp589 + bank_dot*heading_dot*tmp596
+        - attitude_dot*heading_dot*tmp599;
+    const Scalar tmp666 = ((attitude_dot*attitude_dot) + (bank_dot*bank_dot))*tmp578
+        + Scalar(2)*attitude_dot*bank_dot*tmp594;
+    const Scalar tmp667 = -attitude_dot*heading_dot*tmp608 - heading_dot*tmp663
+        + tmp0*tmp1*(attitude_dot*attitude_dot)*tmp44
+        + ((bank_dot*bank_dot) + (heading_dot*heading_dot))*tmp583
+        + Scalar(2)*bank_dot*heading_dot*tmp571 - Scalar(2)*attitude_dot*bank_dot*tmp598;
+    const Scalar tmp668 = m*tmp587;
+    const Scalar tmp669 = m*tmp604;
+    const Scalar tmp670 = Scalar(2)*tmp108*tmp38*tmp602 + Scalar(2)*tmp112*m*tmp604
+        + Scalar(2)*tmp219*tmp20*tmp624 + Scalar(2)*tmp230*tmp20*tmp633
+        + Scalar(2)*tmp245*tmp25*tmp645 + Scalar(2)*tmp254*tmp25*tmp652
+        + Scalar(2)*tmp38*tmp67*tmp584 + Scalar(2)*tmp73*m*tmp587;
+    const Scalar tmp671 = m*tmp605;
+    const Scalar tmp672 = m*tmp595;
+    const Scalar tmp673 = m*tmp601;
+    const Scalar tmp674 = tmp112*m*tmp601 - tmp38*tmp102*tmp602 + tmp105*m*tmp604 + tmp73*m*tmp605
+        + tmp38*tmp67*tmp608 + tmp221*tmp20*tmp624 + tmp219*tmp20*tmp626 + tmp230*tmp20*tmp630
+        + tmp227*tmp20*tmp633 + tmp246*tmp25*tmp645 + tmp245*tmp25*tmp646 + tmp254*tmp25*tmp650
+        + tmp252*tmp25*tmp652 + tmp201*tmp38*tmp584 + tmp195*m*tmp587 - tmp108*tmp38*tmp599;
+    const Scalar tmp675 = Scalar(2)*tmp44*tmp573;
+    const Scalar tmp676 = tmp280*tmp675;
+    const Scalar tmp677 = Scalar(2)*tmp105*m*tmp601 + Scalar(2)*tmp195*m*tmp605
+        + Scalar(2)*tmp221*tmp20*tmp626 + Scalar(2)*tmp225*tmp20*tmp629
+        + Scalar(2)*tmp227*tmp20*tmp630 + Scalar(2)*tmp246*tmp25*tmp646
+        + Scalar(2)*tmp249*tmp25*tmp648 + Scalar(2)*tmp252*tmp25*tmp650
+        + tmp38*((tmp1*tmp1) + (tmp5*tmp5))*tmp676 + Scalar(2)*tmp280*tmp3*tmp38*tmp44
+        + Scalar(2)*tmp94*m*tmp595;
+    const Scalar tmp678 = m*tmp588;
+    const Scalar tmp679 = m*tmp606;
+    const Scalar tmp680 = m*tmp597;
+    const Scalar tmp681 = tmp38*tmp98*tmp602 + tmp99*m*tmp604 + tmp222*tmp20*tmp624
+        + tmp219*tmp20*tmp627 + tmp230*tmp20*tmp631 + tmp228*tmp20*tmp633 + tmp247*tmp25*tmp645
+        + tmp245*tmp25*tmp647 + tmp254*tmp25*tmp651 + tmp253*tmp25*tmp652 + tmp38*tmp8*tmp584
+        + tmp77*m*tmp587 + tmp73*m*tmp588 + tmp38*tmp67*tmp570 + tmp108*tmp38*tmp596
+        + tmp112*m*tmp597;
+    const Scalar tmp682 = tmp99*m*tmp601 + tmp77*m*tmp605 + tmp94*m*tmp606 + tmp222*tmp20*tmp626
+        + tmp221*tmp20*tmp627 + tmp225*tmp20*tmp628 + tmp224*tmp20*tmp629 + tmp228*tmp20*tmp630
+        + tmp227*tmp20*tmp631 + tmp247*tmp25*tmp646 + tmp246*tmp25*tmp647 + tmp250*tmp25*tmp648
+        + tmp249*tmp25*tmp649 + tmp253*tmp25*tmp650 + tmp252*tmp25*tmp651
+        + tmp0*tmp38*tmp5*tmp8*tmp573 - tmp38*tmp91*tmp577 + tmp195*m*tmp588
+        + tmp0*tmp38*tmp44*tmp5*tmp570 - tmp38*tmp53*tmp593 + tmp197*m*tmp595 - tmp38*tmp102*tmp596
+        + tmp105*m*tmp597 - tmp38*tmp98*tmp599;
+    const Scalar tmp683 = Scalar(2)*tmp197*m*tmp606 + Scalar(2)*tmp222*tmp20*tmp627
+        + Scalar(2)*tmp224*tmp20*tmp628 + Scalar(2)*tmp228*tmp20*tmp631
+        + Scalar(2)*tmp247*tmp25*tmp647 + Scalar(2)*tmp250*tmp25*tmp649
+        + Scalar(2)*tmp253*tmp25*tmp651 + tmp38*(tmp4*tmp4)*tmp675 + Scalar(2)*tmp77*m*tmp588
+        + Scalar(2)*tmp38*tmp8*tmp570 + Scalar(2)*tmp38*tmp98*tmp596 + Scalar(2)*tmp99*m*tmp597;
+    const Scalar tmp684 = m*tmp611;
+    const Scalar tmp685 = m*tmp613;
+    const Scalar tmp686 = m*tmp620;
+    const Scalar tmp687 = tmp20*tmp636;
+    const Scalar tmp688 = tmp20*tmp642;
+    const Scalar tmp689 = tmp25*tmp655;
+    const Scalar tmp690 = tmp25*tmp662;
+    const Scalar tmp691 = tmp38*tmp665;
+    const Scalar tmp692 = tmp38*tmp667;
+    const Scalar tmp693 = tmp20*tmp638;
+    const Scalar tmp694 = tmp25*tmp657;
+    const Scalar tmp695 = tmp38*tmp666;
+    const Scalar tmp696 = tmp291*tmp604;
+    const Scalar tmp697 = tmp291*tmp601;
+    const Scalar tmp698 = tmp291*tmp597;
+    const Scalar tmp699 = -tmp684;
+    const Scalar tmp700 = -tmp685;
+    const Scalar tmp701 = -tmp686;
+    const Scalar tmp702 = -tmp300*tmp602 - tmp294*tmp604 - tmp295*tmp624 - tmp296*tmp633
+        - tmp297*tmp645 - tmp298*tmp652 - tmp299*tmp584 - tmp292*tmp587 - tmp73*tmp684
+        - tmp112*tmp686 - tmp219*tmp687 - tmp230*tmp688 - tmp245*tmp689 - tmp254*tmp690
+        - tmp67*tmp691 - tmp108*tmp692;
+    const Scalar tmp703 = -tmp294*tmp601 - tmp292*tmp605 - tmp299*tmp608 - tmp295*tmp626
+        - tmp301*tmp629 - tmp296*tmp630 - tmp297*tmp646 - tmp302*tmp648 - tmp298*tmp650
+        + tmp0*tmp1*tmp300*tmp573 - tmp303*tmp593 - tmp293*tmp595 - tmp195*tmp684 - tmp94*tmp685
+        - tmp105*tmp686 - tmp221*tmp687 - tmp227*tmp688 - tmp246*tmp689 - tmp252*tmp690
+        - tmp201*tmp691 + tmp0*tmp1*tmp44*tmp692 - tmp225*tmp693 - tmp249*tmp694 - tmp91*tmp695;
+    const Scalar tmp704 = -tmp293*tmp606 - tmp295*tmp627 - tmp301*tmp628 - tmp296*tmp631
+        - tmp297*tmp647 - tmp302*tmp649 - tmp298*tmp651 + tmp4*tmp303*tmp573 - tmp292*tmp588
+        - tmp299*tmp570 - tmp300*tmp596 - tmp294*tmp597 - tmp77*tmp684 - tmp197*tmp685
+        - tmp99*tmp686 - tmp222*tmp687 - tmp228*tmp688 - tmp247*tmp689 - tmp253*tmp690 - tmp8*tmp691
+        - tmp98*tmp692 - tmp224*tmp693 - tmp250*tmp694 + tmp4*tmp44*tmp695;
+    const Scalar tmp705 = tmp1*tmp4;
+    const Scalar tmp706 = -tmp0;
+    const Scalar tmp707 = tmp5*tmp706;
+    const Scalar tmp708 = tmp3*tmp707;
+    const Scalar tmp709 = -tmp705 + tmp708;
+    const Scalar tmp710 = -tmp709;
+    const Scalar tmp711 = tmp1*tmp706;
+    const Scalar tmp712 = tmp5*tmp4;
+    const Scalar tmp713 = tmp3*tmp712;
+    const Scalar tmp714 = tmp711 + tmp713;
+    const Scalar tmp715 = tmp44*tmp706;
+    const Scalar tmp716 = tmp44*tmp4;
+    const Scalar tmp717 = com_y*tmp715 - com_z*tmp716;
+    const Scalar tmp718 = tmp3*tmp711;
+    const Scalar tmp719 = tmp712 + tmp718;
+    const Scalar tmp720 = tmp3*tmp705;
+    const Scalar tmp721 = -tmp5*tmp706 + tmp720;
+    const Scalar tmp722 = -tmp721;
+    const Scalar tmp723 = com_y*tmp719 + com_z*tmp722;
+    const Scalar tmp724 = com_y*tmp714 + com_z*tmp709;
+    const Scalar tmp725 = tmp44*tmp707;
+    const Scalar tmp726 = -tmp44*tmp5*com_z*tmp4 + com_y*tmp725;
+    const Scalar tmp727 = com_z*tmp715 + com_y*tmp716;
+    const Scalar tmp728 = tmp3*tmp4;
+    const Scalar tmp729 = tmp3*tmp706;
+    const Scalar tmp730 = com_z*tmp728 - com_y*tmp729;
+    const Scalar tmp731 = -tmp719;
+    const Scalar tmp732 = com_y*tmp722 + com_z*tmp731;
+    const Scalar tmp733 = tmp44*tmp711;
+    const Scalar tmp734 = tmp44*tmp705;
+    const Scalar tmp735 = com_y*tmp733 - com_z*tmp734;
+    const Scalar tmp736 = -tmp714;
+    const Scalar tmp737 = com_z*tmp736 + com_y*tmp709;
+    const Scalar tmp738 = -tmp726;
+    const Scalar tmp739 = -tmp727;
+    const Scalar tmp740 = attitude_dot*tmp735 + heading_dot*tmp737 + bank_dot*tmp732;
+    const Scalar tmp741 = tmp44*tmp712;
+    const Scalar tmp742 = com_y*tmp741 + com_z*tmp725;
+    const Scalar tmp743 = com_z*tmp713 - tmp3*tmp5*com_y*tmp706;
+    const Scalar tmp744 = attitude_dot*heading_dot*tmp735 + (bank_dot*bank_dot)*tmp737
+        + heading_dot*tmp740 + Scalar(2)*attitude_dot*bank_dot*tmp742
+        - (attitude_dot*attitude_dot)*tmp743 + bank_dot*heading_dot*tmp732;
+    const Scalar tmp745 = com_y*tmp728 + com_z*tmp729;
+    const Scalar tmp746 = Scalar(2)*attitude_dot*bank_dot*tmp745
+        + (-(attitude_dot*attitude_dot) - (bank_dot*bank_dot))*tmp717;
+    const Scalar tmp747 = com_z*tmp733 + com_y*tmp734;
+    const Scalar tmp748 = -tmp747;
+    const Scalar tmp749 = -com_y*tmp718 + com_z*tmp720;
+    const Scalar tmp750 = com_z*tmp721 + com_y*tmp731;
+    const Scalar tmp751 = com_y*tmp736 + com_z*tmp710;
+    const Scalar tmp752 = Scalar(2)*attitude_dot*bank_dot*tmp748
+        + (attitude_dot*attitude_dot)*tmp749
+        + ((bank_dot*bank_dot) + (heading_dot*heading_dot))*tmp750
+        + Scalar(2)*bank_dot*heading_dot*tmp751 + Scalar(2)*attitude_dot*heading_dot*tmp726;
+    const Scalar tmp753 = tmp214*tmp715;
+    const Scalar tmp754 = tmp36*tmp716;
+    const Scalar tmp755 = tmp753 - tmp754;
+    const Scalar tmp756 = tmp214*tmp719 + tmp36*tmp722;
+    const Scalar tmp757 = -tmp24*tmp33*tmp44*tmp5*tmp4 + tmp214*tmp725;
+    const Scalar tmp758 = -tmp757;
+    const Scalar tmp759 = tmp214*tmp714 + tmp36*tmp709;
+    const Scalar tmp760 = -tmp36*tmp715 - tmp214*tmp716;
+    const Scalar tmp761 = tmp36*tmp728 - tmp214*tmp729;
+    const Scalar tmp762 = tmp214*tmp733 - tmp36*tmp734;
+    const Scalar tmp763 = tmp214*tmp722 + tmp36*tmp731;
+    const Scalar tmp764 = tmp36*tmp736 + tmp214*tmp709;
+    const Scalar tmp765 = attitude_dot*tmp762 + bank_dot*tmp763 + heading_dot*tmp764;
+    const Scalar tmp766 = tmp214*tmp741 + tmp36*tmp725;
+    const Scalar tmp767 = attitude_dot*heading_dot*tmp762 + bank_dot*heading_dot*tmp763
+        + (bank_dot*bank_dot)*tmp764 + heading_dot*tmp765 + Scalar(2)*attitude_dot*bank_dot*tmp766
+        - tmp36*(attitude_dot*attitude_dot)*tmp713
+        + tmp19*tmp24*tmp3*tmp5*(attitude_dot*attitude_dot)*tmp706;
+    const Scalar tmp768 = tmp214*tmp728 + tmp36*tmp729;
+    const Scalar tmp769 = -(bank_dot*bank_dot)*tmp753 + (bank_dot*bank_dot)*tmp754
+        - (attitude_dot*attitude_dot)*tmp755 + Scalar(2)*attitude_dot*bank_dot*tmp768;
+    const Scalar tmp770 = -tmp36*tmp733 - tmp214*tmp734;
+    const Scalar tmp771 = tmp36*tmp721 + tmp214*tmp731;
+    const Scalar tmp772 = tmp214*tmp736 + tmp36*tmp710;
+    const Scalar tmp773 = Scalar(2)*attitude_dot*heading_dot*tmp757
+        + Scalar(2)*attitude_dot*bank_dot*tmp770
+        + ((bank_dot*bank_dot) + (heading_dot*heading_dot))*tmp771
+        + Scalar(2)*bank_dot*heading_dot*tmp772 - tmp214*(attitude_dot*attitude_dot)*tmp718
+        + tmp36*(attitude_dot*attitude_dot)*tmp720;
+    const Scalar tmp774 = -tmp708;
+    const Scalar tmp775 = -tmp44*tmp706 + tmp241*tmp716;
+    const Scalar tmp776 = tmp719 + tmp241*tmp722;
+    const Scalar tmp777 = tmp241*tmp741 - tmp725;
+    const Scalar tmp778 = tmp714 + tmp241*tmp709;
+    const Scalar tmp779 = tmp241*tmp728 - tmp729;
+    const Scalar tmp780 = -tmp241*tmp715 - tmp716;
+    const Scalar tmp781 = tmp1*tmp44*tmp706 - tmp241*tmp734;
+    const Scalar tmp782 = tmp707 - tmp720 + tmp241*tmp731;
+    const Scalar tmp783 = tmp241*tmp736 + tmp709;
+    const Scalar tmp784 = attitude_dot*tmp781 + bank_dot*tmp782 + heading_dot*tmp783;
+    const Scalar tmp785 = tmp741 + tmp241*tmp725;
+    const Scalar tmp786 = -(attitude_dot*attitude_dot)*tmp774 + attitude_dot*heading_dot*tmp781
+        + bank_dot*heading_dot*tmp782 + (bank_dot*bank_dot)*tmp783 + heading_dot*tmp784
+        + Scalar(2)*attitude_dot*bank_dot*tmp785 - tmp241*(attitude_dot*attitude_dot)*tmp713;
+    const Scalar tmp787 = tmp728 + tmp241*tmp729;
+    const Scalar tmp788 = ((attitude_dot*attitude_dot) + (bank_dot*bank_dot))*tmp775
+        + Scalar(2)*attitude_dot*bank_dot*tmp787;
+    const Scalar tmp789 = -tmp777;
+    const Scalar tmp790 = -tmp241*tmp733 - tmp734;
+    const Scalar tmp791 = -tmp714 + tmp35*tmp37*tmp710;
+    const Scalar tmp792 = -tmp719 + tmp35*tmp37*tmp721;
+    const Scalar tmp793 = Scalar(2)*attitude_dot*heading_dot*tmp789
+        + Scalar(2)*attitude_dot*bank_dot*tmp790 + Scalar(2)*bank_dot*heading_dot*tmp791
+        + ((bank_dot*bank_dot) + (heading_dot*heading_dot))*tmp792
+        - (attitude_dot*attitude_dot)*tmp718 + tmp241*(attitude_dot*attitude_dot)*tmp720;
+    const Scalar tmp794 = attitude_dot*tmp741;
+    const Scalar tmp795 = heading_dot*tmp736 + bank_dot*tmp731 - attitude_dot*tmp734;
+    const Scalar tmp796 = (bank_dot*bank_dot)*tmp736 + heading_dot*tmp795
+        - (attitude_dot*attitude_dot)*tmp713 + tmp44*tmp5*attitude_dot*bank_dot*tmp706
+        + attitude_dot*bank_dot*tmp725 + bank_dot*heading_dot*tmp731
+        - attitude_dot*heading_dot*tmp734;
+    const Scalar tmp797 = ((attitude_dot*attitude_dot) + (bank_dot*bank_dot))*tmp716
+        + Scalar(2)*attitude_dot*bank_dot*tmp729;
+    const Scalar tmp798 = tmp1*tmp3*(attitude_dot*attitude_dot)*tmp4
+        - attitude_dot*heading_dot*tmp741 - heading_dot*tmp794
+        + ((bank_dot*bank_dot) + (heading_dot*heading_dot))*tmp721
+        + Scalar(2)*bank_dot*heading_dot*tmp710 - Scalar(2)*attitude_dot*bank_dot*tmp733;
+    const Scalar tmp799 = m*tmp723;
+    const Scalar tmp800 = m*tmp737;
+    const Scalar tmp801 = Scalar(2)*tmp108*tmp38*tmp736 + Scalar(2)*tmp112*m*tmp737
+        + Scalar(2)*tmp219*tmp20*tmp756 + Scalar(2)*tmp230*tmp20*tmp764
+        + Scalar(2)*tmp245*tmp25*tmp776 + Scalar(2)*tmp254*tmp25*tmp783
+        + Scalar(2)*tmp38*tmp67*tmp722 + Scalar(2)*tmp73*m*tmp723;
+    const Scalar tmp802 = m*tmp738;
+    const Scalar tmp803 = m*tmp730;
+    const Scalar tmp804 = m*tmp735;
+    const Scalar tmp805 = tmp112*m*tmp735 - tmp38*tmp102*tmp736 + tmp105*m*tmp737 + tmp73*m*tmp738
+        + tmp38*tmp67*tmp741 + tmp221*tmp20*tmp756 + tmp219*tmp20*tmp758 + tmp230*tmp20*tmp762
+        + tmp227*tmp20*tmp764 + tmp246*tmp25*tmp776 + tmp245*tmp25*tmp777 + tmp254*tmp25*tmp781
+        + tmp252*tmp25*tmp783 + tmp201*tmp38*tmp722 + tmp195*m*tmp723 - tmp108*tmp38*tmp734;
+    const Scalar tmp806 = Scalar(2)*tmp0*tmp4;
+    const Scalar tmp807 = tmp281*tmp806;
+    const Scalar tmp808 = Scalar(2)*tmp105*m*tmp735 + Scalar(2)*tmp195*m*tmp738
+        + Scalar(2)*tmp221*tmp20*tmp758 + Scalar(2)*tmp225*tmp20*tmp761
+        + Scalar(2)*tmp227*tmp20*tmp762 + Scalar(2)*tmp246*tmp25*tmp777
+        + Scalar(2)*tmp249*tmp25*tmp779 + Scalar(2)*tmp252*tmp25*tmp781 + tmp38*(tmp3*tmp3)*tmp806
+        + tmp38*((tmp1*tmp1) + (tmp5*tmp5))*tmp807 + Scalar(2)*tmp94*m*tmp730;
+    const Scalar tmp809 = m*tmp724;
+    const Scalar tmp810 = m*tmp739;
+    const Scalar tmp811 = m*tmp732;
+    const Scalar tmp812 = tmp38*tmp98*tmp736 + tmp99*m*tmp737 + tmp222*tmp20*tmp756
+        + tmp219*tmp20*tmp759 + tmp230*tmp20*tmp763 + tmp228*tmp20*tmp764 + tmp247*tmp25*tmp776
+        + tmp245*tmp25*tmp778 + tmp254*tmp25*tmp782 + tmp253*tmp25*tmp783 + tmp38*tmp8*tmp722
+        + tmp77*m*tmp723 + tmp73*m*tmp724 + tmp38*tmp67*tmp709 + tmp108*tmp38*tmp731
+        + tmp112*m*tmp732;
+    const Scalar tmp813 = tmp38*tmp44*tmp5*tmp8*tmp4 + tmp99*m*tmp735 + tmp77*m*tmp738
+        + tmp94*m*tmp739 + tmp222*tmp20*tmp758 + tmp221*tmp20*tmp759 + tmp225*tmp20*tmp760
+        + tmp224*tmp20*tmp761 + tmp228*tmp20*tmp762 + tmp227*tmp20*tmp763 + tmp247*tmp25*tmp777
+        + tmp246*tmp25*tmp778 + tmp250*tmp25*tmp779 + tmp249*tmp25*tmp780 + tmp253*tmp25*tmp781
+        + tmp252*tmp25*tmp782 - tmp38*tmp91*tmp715 + tmp195*m*tmp724 + tmp0*tmp38*tmp44*tmp5*tmp709
+        - tmp38*tmp53*tmp728 + tmp197*m*tmp730 - tmp38*tmp102*tmp731 + tmp105*m*tmp732
+        - tmp38*tmp98*tmp734;
+    const Scalar tmp814 = Scalar(2)*tmp197*m*tmp739 + Scalar(2)*tmp222*tmp20*tmp759
+        + Scalar(2)*tmp224*tmp20*tmp760 + Scalar(2)*tmp228*tmp20*tmp763
+        + Scalar(2)*tmp247*tmp25*tmp778 + Scalar(2)*tmp250*tmp25*tmp780
+        + Scalar(2)*tmp253*tmp25*tmp782 + Scalar(2)*tmp281*tmp38*tmp4*tmp706
+        + Scalar(2)*tmp77*m*tmp724 + Scalar(2)*tmp38*tmp8*tmp709 + Scalar(2)*tmp38*tmp98*tmp731
+        + Scalar(2)*tmp99*m*tmp732;
+    const Scalar tmp815 = m*tmp744;
+    const Scalar tmp816 = m*tmp746;
+    const Scalar tmp817 = m*tmp752;
+    const Scalar tmp818 = tmp20*tmp767;
+    const Scalar tmp819 = tmp20*tmp773;
+    const Scalar tmp820 = tmp25*tmp786;
+    const Scalar tmp821 = tmp25*tmp793;
+    const Scalar tmp822 = tmp38*tmp796;
+    const Scalar tmp823 = tmp38*tmp798;
+    const Scalar tmp824 = tmp20*tmp769;
+    const Scalar tmp825 = tmp25*tmp788;
+    const Scalar tmp826 = tmp38*tmp797;
+    const Scalar tmp827 = tmp291*tmp737;
+    const Scalar tmp828 = tmp291*tmp735;
+    const Scalar tmp829 = tmp291*tmp732;
+    const Scalar tmp830 = -tmp815;
+    const Scalar tmp831 = -tmp816;
+    const Scalar tmp832 = -tmp817;
+    const Scalar tmp833 = -tmp300*tmp736 - tmp294*tmp737 - tmp295*tmp756 - tmp296*tmp764
+        - tmp297*tmp776 - tmp298*tmp783 - tmp299*tmp722 - tmp292*tmp723 - tmp73*tmp815
+        - tmp112*tmp817 - tmp219*tmp818 - tmp230*tmp819 - tmp245*tmp820 - tmp254*tmp821
+        - tmp67*tmp822 - tmp108*tmp823;
+    const Scalar tmp834 = tmp1*tmp44*tmp300*tmp4 - tmp294*tmp735 - tmp292*tmp738 - tmp299*tmp741
+        - tmp295*tmp758 - tmp301*tmp761 - tmp296*tmp762 - tmp297*tmp777 - tmp302*tmp779
+        - tmp298*tmp781 - tmp303*tmp728 - tmp293*tmp730 - tmp195*tmp815 - tmp94*tmp816
+        - tmp105*tmp817 - tmp221*tmp818 - tmp227*tmp819 - tmp246*tmp820 - tmp252*tmp821
+        - tmp201*tmp822 + tmp0*tmp1*tmp44*tmp823 - tmp225*tmp824 - tmp249*tmp825 - tmp91*tmp826;
+    const Scalar tmp835 = -tmp293*tmp739 - tmp295*tmp759 - tmp301*tmp760 - tmp296*tmp763
+        - tmp297*tmp778 - tmp302*tmp780 - tmp298*tmp782 + tmp44*tmp303*tmp706 - tmp292*tmp724
+        - tmp299*tmp709 - tmp300*tmp731 - tmp294*tmp732 - tmp77*tmp815 - tmp197*tmp816
+        - tmp99*tmp817 - tmp222*tmp818 - tmp228*tmp819 - tmp247*tmp820 - tmp253*tmp821 - tmp8*tmp822
+        - tmp98*tmp823 - tmp224*tmp824 - tmp250*tmp825 + tmp4*tmp44*tmp826;
+    const Scalar tmp836 = tmp199 + tmp105*attitude_dot + tmp99*bank_dot + heading_dot*tmp112;
+    const Scalar tmp837 = Scalar(2)*tmp211*bank_dot + Scalar(2)*tmp212*heading_dot
+        + Scalar(2)*tmp82*attitude_dot;
+    const Scalar tmp838 = tmp231 + tmp227*attitude_dot + tmp228*bank_dot + heading_dot*tmp230;
+    const Scalar tmp839 = Scalar(2)*tmp220*attitude_dot + Scalar(2)*tmp238*bank_dot
+        + Scalar(2)*heading_dot*(tmp237 + tmp69);
+    const Scalar tmp840 = tmp255 + tmp252*attitude_dot + tmp253*bank_dot + heading_dot*tmp254;
+    const Scalar tmp841 = Scalar(2)*tmp260*attitude_dot + Scalar(2)*tmp262*bank_dot
+        + Scalar(2)*tmp263*heading_dot;
+    const Scalar tmp842 = tmp269 + tmp98*bank_dot - tmp102*attitude_dot + heading_dot*tmp108;
+    const Scalar tmp843 = -tmp266 - tmp201*attitude_dot + Scalar(2)*tmp66*heading_dot
+        + Scalar(2)*tmp9*bank_dot;
+    const Scalar tmp844 = m*tmp836;
+    const Scalar tmp845 = m*tmp837;
+    const Scalar tmp846 = tmp20*tmp838;
+    const Scalar tmp847 = tmp20*tmp839;
+    const Scalar tmp848 = tmp25*tmp840;
+    const Scalar tmp849 = tmp25*tmp841;
+    const Scalar tmp850 = tmp38*tmp842;
+    const Scalar tmp851 = tmp38*tmp843;
+    const Scalar tmp852 = -tmp844;
+    const Scalar tmp853 = -tmp845;
+    const Scalar tmp854 = -tmp73*tmp844 - tmp112*tmp845 - tmp219*tmp846 - tmp230*tmp847
+        - tmp245*tmp848 - tmp254*tmp849 - tmp67*tmp850 - tmp108*tmp851;
+    const Scalar tmp855 = -tmp195*tmp844 - tmp105*tmp845 - tmp221*tmp846 - tmp227*tmp847
+        - tmp246*tmp848 - tmp252*tmp849 - tmp201*tmp850 + tmp0*tmp1*tmp44*tmp851;
+    const Scalar tmp856 = -tmp77*tmp844 - tmp99*tmp845 - tmp222*tmp846 - tmp228*tmp847
+        - tmp247*tmp848 - tmp253*tmp849 - tmp8*tmp850 - tmp98*tmp851;
+    const Scalar tmp857 = tmp105*heading_dot - Scalar(2)*tmp203*attitude_dot
+        + Scalar(2)*tmp202*bank_dot + heading_dot*tmp105;
+    const Scalar tmp858 = -Scalar(2)*tmp59*attitude_dot + Scalar(2)*tmp205*bank_dot;
+    const Scalar tmp859 = Scalar(2)*tmp208*bank_dot + Scalar(2)*tmp209*attitude_dot
+        + Scalar(2)*tmp82*heading_dot;
+    const Scalar tmp860 = tmp227*heading_dot + Scalar(2)*tmp232*bank_dot
+        + Scalar(2)*attitude_dot*(-tmp45 - tmp31*tmp36 + tmp19*tmp24*tmp3*tmp4*tmp5)
+        + heading_dot*tmp227;
+    const Scalar tmp861 = -Scalar(2)*tmp218*attitude_dot + Scalar(2)*tmp234*bank_dot;
+    const Scalar tmp862 = Scalar(2)*tmp220*heading_dot + Scalar(2)*tmp236*bank_dot
+        + Scalar(2)*attitude_dot*(tmp69 + tmp36*tmp65 - tmp214*tmp63);
+    const Scalar tmp863 = tmp252*heading_dot + Scalar(2)*tmp256*bank_dot
+        + Scalar(2)*attitude_dot*(-tmp240 - tmp241*tmp31) + heading_dot*tmp252;
+    const Scalar tmp864 = Scalar(2)*tmp243*attitude_dot + Scalar(2)*tmp258*bank_dot;
+    const Scalar tmp865 = Scalar(2)*tmp260*heading_dot + Scalar(2)*tmp261*bank_dot
+        + Scalar(2)*attitude_dot*(-tmp63 + tmp241*tmp65);
+    const Scalar tmp866 = -tmp102;
+    const Scalar tmp867 = tmp79*bank_dot - tmp102*heading_dot - Scalar(2)*tmp31*attitude_dot
+        + tmp4*tmp44*tmp5*bank_dot + heading_dot*tmp866;
+    const Scalar tmp868 = Scalar(2)*tmp54*attitude_dot + Scalar(2)*tmp92*bank_dot;
+    const Scalar tmp869 = -tmp201*heading_dot - Scalar(2)*tmp101*bank_dot
+        + Scalar(2)*tmp0*tmp1*tmp3*attitude_dot - heading_dot*tmp201;
+    const Scalar tmp870 = m*tmp857;
+    const Scalar tmp871 = m*tmp858;
+    const Scalar tmp872 = m*tmp859;
+    const Scalar tmp873 = tmp20*tmp860;
+    const Scalar tmp874 = tmp20*tmp862;
+    const Scalar tmp875 = tmp25*tmp863;
+    const Scalar tmp876 = tmp25*tmp865;
+    const Scalar tmp877 = tmp38*tmp867;
+    const Scalar tmp878 = tmp38*tmp869;
+    const Scalar tmp879 = tmp20*tmp861;
+    const Scalar tmp880 = tmp25*tmp864;
+    const Scalar tmp881 = tmp38*tmp868;
+    const Scalar tmp882 = -tmp870;
+    const Scalar tmp883 = -tmp871;
+    const Scalar tmp884 = -tmp872;
+    const Scalar tmp885 = -tmp73*tmp870 - tmp112*tmp872 - tmp219*tmp873 - tmp230*tmp874
+        - tmp245*tmp875 - tmp254*tmp876 - tmp67*tmp877 - tmp108*tmp878;
+    const Scalar tmp886 = -tmp195*tmp870 - tmp94*tmp871 - tmp105*tmp872 - tmp221*tmp873
+        - tmp227*tmp874 - tmp246*tmp875 - tmp252*tmp876 - tmp201*tmp877 + tmp0*tmp1*tmp44*tmp878
+        - tmp225*tmp879 - tmp249*tmp880 - tmp91*tmp881;
+    const Scalar tmp887 = -tmp77*tmp870 - tmp197*tmp871 - tmp99*tmp872 - tmp222*tmp873
+        - tmp228*tmp874 - tmp247*tmp875 - tmp253*tmp876 - tmp8*tmp877 - tmp98*tmp878 - tmp224*tmp879
+        - tmp250*tmp880 + tmp4*tmp44*tmp881;
+    const Scalar tmp888 = tmp99*heading_dot + Scalar(2)*tmp111*bank_dot
+        + Scalar(2)*tmp202*attitude_dot + heading_dot*tmp99;
+    const Scalar tmp889 = -Scalar(2)*tmp58*bank_dot + Scalar(2)*tmp205*attitude_dot;
+    const Scalar tmp890 = Scalar(2)*tmp208*attitude_dot + Scalar(2)*tmp210*bank_dot
+        + Scalar(2)*tmp211*heading_dot;
+    const Scalar tmp891 = tmp228*heading_dot + Scalar(2)*tmp229*bank_dot
+        + Scalar(2)*tmp232*attitude_dot + heading_dot*tmp228;
+    const Scalar tmp892 = Scalar(2)*tmp234*attitude_dot + Scalar(2)*bank_dot*(tmp217 - tmp216);
+    const Scalar tmp893 = Scalar(2)*tmp236*attitude_dot + Scalar(2)*tmp237*bank_dot
+        + Scalar(2)*tmp238*heading_dot;
+    const Scalar tmp894 = tmp253*heading_dot + Scalar(2)*tmp254*bank_dot
+        + Scalar(2)*tmp256*attitude_dot + heading_dot*tmp253;
+    const Scalar tmp895 = Scalar(2)*tmp243*bank_dot + Scalar(2)*tmp258*attitude_dot;
+    const Scalar tmp896 = Scalar(2)*tmp261*attitude_dot + Scalar(2)*tmp262*heading_dot
+        + Scalar(2)*tmp263*bank_dot;
+    const Scalar tmp897 = tmp79*attitude_dot + tmp98*heading_dot + Scalar(2)*tmp108*bank_dot
+        + tmp4*tmp44*tmp5*attitude_dot + heading_dot*tmp98;
+    const Scalar tmp898 = Scalar(2)*tmp54*bank_dot + Scalar(2)*tmp92*attitude_dot;
+    const Scalar tmp899 = -Scalar(2)*tmp101*attitude_dot + Scalar(2)*tmp66*bank_dot
+        + Scalar(2)*tmp9*heading_dot;
+    const Scalar tmp900 = m*tmp888;
+    const Scalar tmp901 = m*tmp889;
+    const Scalar tmp902 = m*tmp890;
+    const Scalar tmp903 = tmp20*tmp891;
+    const Scalar tmp904 = tmp20*tmp893;
+    const Scalar tmp905 = tmp25*tmp894;
+    const Scalar tmp906 = tmp25*tmp896;
+    const Scalar tmp907 = tmp38*tmp897;
+    const Scalar tmp908 = tmp38*tmp899;
+    const Scalar tmp909 = tmp20*tmp892;
+    const Scalar tmp910 = tmp25*tmp895;
+    const Scalar tmp911 = tmp38*tmp898;
+    const Scalar tmp912 = -tmp900;
+    const Scalar tmp913 = -tmp901;
+    const Scalar tmp914 = -tmp902;
+    const Scalar tmp915 = -tmp73*tmp900 - tmp112*tmp902 - tmp219*tmp903 - tmp230*tmp904
+        - tmp245*tmp905 - tmp254*tmp906 - tmp67*tmp907 - tmp108*tmp908;
+    const Scalar tmp916 = -tmp195*tmp900 - tmp94*tmp901 - tmp105*tmp902 - tmp221*tmp903
+        - tmp227*tmp904 - tmp246*tmp905 - tmp252*tmp906 - tmp201*tmp907 + tmp0*tmp1*tmp44*tmp908
+        - tmp225*tmp909 - tmp249*tmp910 - tmp91*tmp911;
+    const Scalar tmp917 = -tmp77*tmp900 - tmp197*tmp901 - tmp99*tmp902 - tmp222*tmp903
+        - tmp228*tmp904 - tmp247*tmp905 - tmp253*tmp906 - tmp8*tmp907 - tmp98*tmp908 - tmp224*tmp909
+        - tmp250*tmp910 + tmp4*tmp44*tmp911;
     (*dr_dq)(0, 0) = Scalar(0);
     (*dr_dq)(0, 1) = Scalar(0);
     (*dr_dq)(0, 2) = Scalar(0);
-    (*dr_dq)(0, 3) = heading_ddot*tmp354 + attitude_ddot*tmp360 + bank_ddot*tmp364 - tmp382;
-    (*dr_dq)(0, 4) = heading_ddot*tmp467 + attitude_ddot*tmp473 + bank_ddot*tmp482 - tmp507;
-    (*dr_dq)(0, 5) = heading_ddot*tmp601 + attitude_ddot*tmp605 + bank_ddot*tmp616 - tmp638;
+    (*dr_dq)(0, 3) = heading_ddot*tmp542 + attitude_ddot*tmp545 + bank_ddot*tmp549 - tmp565;
+    (*dr_dq)(0, 4) = heading_ddot*tmp668 + attitude_ddot*tmp671 + bank_ddot*tmp678 - tmp699;
+    (*dr_dq)(0, 5) = heading_ddot*tmp799 + attitude_ddot*tmp802 + bank_ddot*tmp809 - tmp830;
     (*dr_dq)(1, 0) = Scalar(0);
     (*dr_dq)(1, 1) = Scalar(0);
     (*dr_dq)(1, 2) = Scalar(0);
     (*dr_dq)(1, 3) = Scalar(0);
-    (*dr_dq)(1, 4) = attitude_ddot*tmp474 + bank_ddot*tmp483 - tmp508;
-    (*dr_dq)(1, 5) = attitude_ddot*tmp606 + bank_ddot*tmp617 - tmp639;
+    (*dr_dq)(1, 4) = attitude_ddot*tmp672 + bank_ddot*tmp679 - tmp700;
+    (*dr_dq)(1, 5) = attitude_ddot*tmp803 + bank_ddot*tmp810 - tmp831;
     (*dr_dq)(2, 0) = Scalar(0);
     (*dr_dq)(2, 1) = Scalar(0);
     (*dr_dq)(2, 2) = Scalar(0);
-    (*dr_dq)(2, 3) = heading_ddot*tmp355 + attitude_ddot*tmp361 + bank_ddot*tmp365 - tmp383;
-    (*dr_dq)(2, 4) = heading_ddot*tmp468 + attitude_ddot*tmp475 + bank_ddot*tmp484 - tmp509;
-    (*dr_dq)(2, 5) = heading_ddot*tmp602 + attitude_ddot*tmp607 + bank_ddot*tmp618 - tmp640;
+    (*dr_dq)(2, 3) = heading_ddot*tmp543 + attitude_ddot*tmp546 + bank_ddot*tmp550 - tmp566;
+    (*dr_dq)(2, 4) = heading_ddot*tmp669 + attitude_ddot*tmp673 + bank_ddot*tmp680 - tmp701;
+    (*dr_dq)(2, 5) = heading_ddot*tmp800 + attitude_ddot*tmp804 + bank_ddot*tmp811 - tmp832;
     (*dr_dq)(3, 0) = Scalar(0);
     (*dr_dq)(3, 1) = Scalar(0);
     (*dr_dq)(3, 2) = Scalar(0);
-    (*dr_dq)(3, 3) = x_ddot*tmp354 + z_ddot*tmp355 + heading_ddot*tmp358 + attitude_ddot*tmp362
-        + bank_ddot*tmp366 - tmp379 - tmp384;
-    (*dr_dq)(3, 4) = x_ddot*tmp467 + z_ddot*tmp468 + heading_ddot*tmp471 + attitude_ddot*tmp476
-        + bank_ddot*tmp485 - tmp504 - tmp510;
-    (*dr_dq)(3, 5) = x_ddot*tmp601 + z_ddot*tmp602 + heading_ddot*tmp603 + attitude_ddot*tmp608
-        + bank_ddot*tmp619 - tmp635 - tmp641;
+    (*dr_dq)(3, 3) = x_ddot*tmp542 + z_ddot*tmp543 + heading_ddot*tmp544 + attitude_ddot*tmp547
+        + bank_ddot*tmp551 - tmp562 - tmp567;
+    (*dr_dq)(3, 4) = x_ddot*tmp668 + z_ddot*tmp669 + heading_ddot*tmp670 + attitude_ddot*tmp674
+        + bank_ddot*tmp681 - tmp696 - tmp702;
+    (*dr_dq)(3, 5) = x_ddot*tmp799 + z_ddot*tmp800 + heading_ddot*tmp801 + attitude_ddot*tmp805
+        + bank_ddot*tmp812 - tmp827 - tmp833;
     (*dr_dq)(4, 0) = Scalar(0);
     (*dr_dq)(4, 1) = Scalar(0);
     (*dr_dq)(4, 2) = Scalar(0);
-    (*dr_dq)(4, 3) = x_ddot*tmp360 + z_ddot*tmp361 + heading_ddot*tmp362 + attitude_ddot*tmp363
-        + bank_ddot*tmp367 - tmp380 - tmp385;
-    (*dr_dq)(4, 4) = x_ddot*tmp473 + y_ddot*tmp474 + z_ddot*tmp475 + heading_ddot*tmp476
-        + attitude_ddot*tmp481 + bank_ddot*tmp487 - tmp505 - tmp511;
-    (*dr_dq)(4, 5) = x_ddot*tmp605 + y_ddot*tmp606 + z_ddot*tmp607 + heading_ddot*tmp608
-        + attitude_ddot*tmp615 + bank_ddot*tmp621 - tmp636 - tmp642;
+    (*dr_dq)(4, 3) = x_ddot*tmp545 + z_ddot*tmp546 + heading_ddot*tmp547 + attitude_ddot*tmp548
+        + bank_ddot*tmp552 - tmp563 - tmp568;
+    (*dr_dq)(4, 4) = x_ddot*tmp671 + y_ddot*tmp672 + z_ddot*tmp673 + heading_ddot*tmp674
+        + attitude_ddot*tmp677 + bank_ddot*tmp682 - tmp697 - tmp703;
+    (*dr_dq)(4, 5) = x_ddot*tmp802 + y_ddot*tmp803 + z_ddot*tmp804 + heading_ddot*tmp805
+        + attitude_ddot*tmp808 + bank_ddot*tmp813 - tmp828 - tmp834;
     (*dr_dq)(5, 0) = Scalar(0);
     (*dr_dq)(5, 1) = Scalar(0);
     (*dr_dq)(5, 2) = Scalar(0);
-    (*dr_dq)(5, 3) = x_ddot*tmp364 + z_ddot*tmp365 + heading_ddot*tmp366 + attitude_ddot*tmp367
-        + bank_ddot*tmp368 - tmp381 - tmp386;
-    (*dr_dq)(5, 4) = x_ddot*tmp482 + y_ddot*tmp483 + z_ddot*tmp484 + heading_ddot*tmp485
-        + attitude_ddot*tmp487 + bank_ddot*tmp488 - tmp506 - tmp512;
-    (*dr_dq)(5, 5) = x_ddot*tmp616 + y_ddot*tmp617 + z_ddot*tmp618 + heading_ddot*tmp619
-        + attitude_ddot*tmp621 + bank_ddot*tmp622 - tmp637 - tmp643;
+    (*dr_dq)(5, 3) = x_ddot*tmp549 + z_ddot*tmp550 + heading_ddot*tmp551 + attitude_ddot*tmp552
+        + bank_ddot*tmp553 - tmp564 - tmp569;
+    (*dr_dq)(5, 4) = x_ddot*tmp678 + y_ddot*tmp679 + z_ddot*tmp680 + heading_ddot*tmp681
+        + attitude_ddot*tmp682 + bank_ddot*tmp683 - tmp698 - tmp704;
+    (*dr_dq)(5, 5) = x_ddot*tmp809 + y_ddot*tmp810 + z_ddot*tmp811 + heading_ddot*tmp812
+        + attitude_ddot*tmp813 + bank_ddot*tmp814 - tmp829 - tmp835;
     (*dr_dv)(0, 0) = Scalar(0);
     (*dr_dv)(0, 1) = Scalar(0);
     (*dr_dv)(0, 2) = Scalar(0);
-    (*dr_dv)(0, 3) = -tmp663;
-    (*dr_dv)(0, 4) = -tmp699;
-    (*dr_dv)(0, 5) = -tmp726;
+    (*dr_dv)(0, 3) = -tmp852;
+    (*dr_dv)(0, 4) = -tmp882;
+    (*dr_dv)(0, 5) = -tmp912;
     (*dr_dv)(1, 0) = Scalar(0);
     (*dr_dv)(1, 1) = Scalar(0);
     (*dr_dv)(1, 2) = Scalar(0);
     (*dr_dv)(1, 3) = Scalar(0);
-    (*dr_dv)(1, 4) = -tmp700;
-    (*dr_dv)(1, 5) = -tmp727;
+    (*dr_dv)(1, 4) = -tmp883;
+    (*dr_dv)(1, 5) = -tmp913;
     (*dr_dv)(2, 0) = Scalar(0);
     (*dr_dv)(2, 1) = Scalar(0);
     (*dr_dv)(2, 2) = Scalar(0);
-    (*dr_dv)(2, 3) = -tmp664;
-    (*dr_dv)(2, 4) = -tmp701;
-    (*dr_dv)(2, 5) = -tmp728;
+    (*dr_dv)(2, 3) = -tmp853;
+    (*dr_dv)(2, 4) = -tmp884;
+    (*dr_dv)(2, 5) = -tmp914;
     (*dr_dv)(3, 0) = Scalar(0);
     (*dr_dv)(3, 1) = Scalar(0);
     (*dr_dv)(3, 2) = Scalar(0);
-    (*dr_dv)(3, 3) = -tmp665;
-    (*dr_dv)(3, 4) = -tmp702;
-    (*dr_dv)(3, 5) = -tmp729;
+    (*dr_dv)(3, 3) = -tmp854;
+    (*dr_dv)(3, 4) = -tmp885;
+    (*dr_dv)(3, 5) = -tmp915;
     (*dr_dv)(4, 0) = Scalar(0);
     (*dr_dv)(4, 1) = Scalar(0);
     (*dr_dv)(4, 2) = Scalar(0);
-    (*dr_dv)(4, 3) = -tmp666;
-    (*dr_dv)(4, 4) = -tmp703;
-    (*dr_dv)(4, 5) = -tmp730;
+    (*dr_dv)(4, 3) = -tmp855;
+    (*dr_dv)(4, 4) = -tmp886;
+    (*dr_dv)(4, 5) = -tmp916;
     (*dr_dv)(5, 0) = Scalar(0);
     (*dr_dv)(5, 1) = Scalar(0);
     (*dr_dv)(5, 2) = Scalar(0);
-    (*dr_dv)(5, 3) = -tmp667;
-    (*dr_dv)(5, 4) = -tmp704;
-    (*dr_dv)(5, 5) = -tmp731;
+    (*dr_dv)(5, 3) = -tmp856;
+    (*dr_dv)(5, 4) = -tmp887;
+    (*dr_dv)(5, 5) = -tmp917;
   }
 
   /// Kinetic energy T = 1/2 xdot^T M xdot.
@@ -7120,7 +7967,7 @@ struct RigidBodyEulerYzx {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return T
-  /// Ops: 211
+  /// Ops: 296
   template <typename Scalar>
   static Scalar kinetic_energy(const QVector<Scalar>& q,
                                const QVector<Scalar>& v,
@@ -7137,111 +7984,125 @@ struct RigidBodyEulerYzx {
     const Scalar heading_dot = v(3);
     const Scalar attitude_dot = v(4);
     const Scalar bank_dot = v(5);
-    const Scalar m_a = Scalar(params.m_a);
-    const Scalar m_b = Scalar(params.m_b);
-    const Scalar m_c = Scalar(params.m_c);
-    const Scalar m_d = Scalar(params.m_d);
-    const Scalar tmp0 = cos(heading);
-    const Scalar tmp1 = cos(attitude);
-    const Scalar tmp2 = Scalar(0.5)*tmp1;
-    const Scalar tmp3 = tmp0*tmp2;
-    const Scalar tmp5 = sin(attitude);
-    const Scalar tmp6 = Scalar(0.5)*tmp5;
-    const Scalar tmp8 = sin(heading);
-    const Scalar tmp9 = tmp2*tmp8;
-    const Scalar tmp12 = tmp0*tmp6;
-    const Scalar tmp13 = tmp9*heading_dot + tmp12*attitude_dot;
-    const Scalar tmp14 = x_dot - tmp13;
-    const Scalar tmp15 = y_dot + tmp2*attitude_dot;
-    const Scalar tmp16 = tmp6*tmp8;
-    const Scalar tmp17 = tmp16*attitude_dot - tmp3*heading_dot;
-    const Scalar tmp18 = tmp17 + z_dot;
-    const Scalar tmp19 = sin(bank);
-    const Scalar tmp20 = Scalar(0.4)*tmp19;
-    const Scalar tmp21 = tmp20*tmp8;
-    const Scalar tmp22 = cos(bank);
-    const Scalar tmp23 = Scalar(0.4)*tmp22;
-    const Scalar tmp24 = tmp0*tmp23*tmp5;
-    const Scalar tmp26 = tmp1*tmp23;
-    const Scalar tmp28 = tmp0*tmp20;
-    const Scalar tmp29 = tmp23*tmp8;
-    const Scalar tmp30 = tmp29*tmp5;
-    const Scalar tmp31 = tmp28 + tmp30;
-    const Scalar tmp33 = tmp26*attitude_dot;
-    const Scalar tmp34 = tmp0*tmp33;
-    const Scalar tmp35 = tmp29 + tmp28*tmp5;
-    const Scalar tmp36 = x_dot - tmp34 + tmp31*heading_dot + tmp35*bank_dot;
-    const Scalar tmp37 = tmp23*tmp5;
-    const Scalar tmp38 = tmp1*tmp20;
-    const Scalar tmp39 = y_dot - tmp37*attitude_dot - tmp38*bank_dot;
-    const Scalar tmp40 = -tmp21*tmp5 + Scalar(0.4)*tmp0*tmp22;
-    const Scalar tmp41 = tmp24 - tmp21;
-    const Scalar tmp42 = tmp33*tmp8 + tmp40*bank_dot + tmp41*heading_dot;
-    const Scalar tmp43 = tmp42 + z_dot;
-    const Scalar tmp44 = Scalar(0.3)*tmp22;
-    const Scalar tmp45 = tmp44*tmp8;
-    const Scalar tmp46 = Scalar(0.3)*tmp19;
-    const Scalar tmp47 = tmp0*tmp46;
-    const Scalar tmp48 = tmp47*tmp5;
-    const Scalar tmp49 = tmp45 + tmp48;
-    const Scalar tmp51 = tmp1*tmp46;
-    const Scalar tmp53 = tmp0*tmp44;
-    const Scalar tmp54 = tmp46*tmp8;
-    const Scalar tmp55 = tmp5*tmp54;
-    const Scalar tmp57 = tmp51*attitude_dot;
-    const Scalar tmp58 = tmp0*tmp57;
-    const Scalar tmp59 = tmp53*tmp5;
-    const Scalar tmp60 = tmp59 - tmp54;
-    const Scalar tmp61 = tmp55 - Scalar(0.3)*tmp0*tmp22;
-    const Scalar tmp62 = -tmp61;
-    const Scalar tmp63 = tmp58 + x_dot + tmp60*bank_dot + tmp62*heading_dot;
-    const Scalar tmp64 = tmp46*tmp5;
-    const Scalar tmp65 = tmp1*tmp44;
-    const Scalar tmp66 = y_dot + tmp64*attitude_dot - tmp65*bank_dot;
-    const Scalar tmp67 = tmp45*tmp5;
-    const Scalar tmp68 = tmp47 + tmp67;
-    const Scalar tmp69 = -tmp68;
-    const Scalar tmp70 = -tmp49;
-    const Scalar tmp71 = tmp69*bank_dot + tmp70*heading_dot - tmp57*tmp8;
-    const Scalar tmp72 = tmp71 + z_dot;
-    const Scalar tmp73 = Scalar(0.2)*tmp1;
-    const Scalar tmp74 = Scalar(0.25)*tmp19;
-    const Scalar tmp75 = tmp5*tmp74;
-    const Scalar tmp76 = -tmp59 + tmp0*tmp75;
-    const Scalar tmp77 = tmp76 + tmp0*tmp73;
-    const Scalar tmp78 = Scalar(0.25)*tmp22;
-    const Scalar tmp79 = tmp8*tmp78;
-    const Scalar tmp80 = tmp54 + tmp79;
-    const Scalar tmp81 = tmp77 + tmp80;
-    const Scalar tmp83 = Scalar(0.2)*tmp5;
-    const Scalar tmp84 = tmp1*tmp74;
-    const Scalar tmp87 = tmp73*tmp8;
-    const Scalar tmp88 = tmp0*tmp78;
-    const Scalar tmp89 = tmp74*tmp8;
-    const Scalar tmp90 = tmp5*tmp89;
-    const Scalar tmp91 = tmp68 + tmp88 - tmp90;
-    const Scalar tmp92 = tmp91 - tmp87;
-    const Scalar tmp94 = tmp1*tmp53;
-    const Scalar tmp95 = tmp94 + tmp0*tmp83 - Scalar(0.25)*tmp0*tmp1*tmp19;
-    const Scalar tmp96 = -tmp95;
-    const Scalar tmp97 = tmp49 - tmp89 + tmp5*tmp88;
-    const Scalar tmp98 = x_dot + tmp92*heading_dot + tmp96*attitude_dot + tmp97*bank_dot;
-    const Scalar tmp99 = -tmp51 - tmp1*tmp78;
-    const Scalar tmp100 = tmp44*tmp5;
-    const Scalar tmp101 = tmp73 + tmp75 - tmp100;
-    const Scalar tmp102 = y_dot + tmp99*bank_dot + tmp101*attitude_dot;
-    const Scalar tmp103 = tmp1*tmp45;
-    const Scalar tmp104 = tmp103 + tmp8*tmp83 - tmp8*tmp84;
-    const Scalar tmp105 = -tmp61 - tmp0*tmp74 - tmp5*tmp79;
-    const Scalar tmp106 = -tmp81;
-    const Scalar tmp107 = tmp104*attitude_dot + tmp105*bank_dot + tmp106*heading_dot;
-    const Scalar tmp108 = tmp107 + z_dot;
-    const Scalar tmp196 = (Scalar(0.5))*m_a*((tmp14*tmp14) + (tmp15*tmp15) + (tmp18*tmp18))
-        + (Scalar(0.5))*m_b*((tmp39*tmp39) + (tmp43*tmp43) + (tmp36*tmp36))
-        + (Scalar(0.5))*m_c*((tmp63*tmp63) + (tmp66*tmp66) + (tmp72*tmp72))
-        + (Scalar(0.5))*m_d*((tmp98*tmp98) + (tmp102*tmp102) + (tmp108*tmp108));
+    const Scalar m = Scalar(params.m);
+    const Scalar com_x = Scalar(params.com_x);
+    const Scalar com_y = Scalar(params.com_y);
+    const Scalar com_z = Scalar(params.com_z);
+    const Scalar a = Scalar(params.a);
+    const Scalar b = Scalar(params.b);
+    const Scalar c = Scalar(params.c);
+    const Scalar tmp0 = sin(bank);
+    const Scalar tmp1 = sin(heading);
+    const Scalar tmp2 = tmp0*tmp1;
+    const Scalar tmp3 = sin(attitude);
+    const Scalar tmp4 = cos(bank);
+    const Scalar tmp5 = cos(heading);
+    const Scalar tmp6 = tmp4*tmp5;
+    const Scalar tmp7 = tmp3*tmp6;
+    const Scalar tmp8 = tmp7 - tmp2;
+    const Scalar tmp11 = (a*a);
+    const Scalar tmp12 = (b*b);
+    const Scalar tmp13 = m*(tmp11 + tmp12);
+    const Scalar tmp14 = (c*c);
+    const Scalar tmp15 = tmp11 + tmp14;
+    const Scalar tmp16 = tmp15*m;
+    const Scalar tmp17 = tmp12 + tmp14;
+    const Scalar tmp18 = tmp17*m;
+    const Scalar tmp19 = Scalar(0.005689254019167049)*tmp18 + Scalar(0.010556171822976032)*tmp16
+        - Scalar(0.01624542584214308)*tmp13;
+    const Scalar tmp20 = Scalar(0.041142942152109445)*tmp18 + Scalar(0.028423816083747767)*tmp13
+        - Scalar(0.027900091569190537)*tmp16;
+    const Scalar tmp24 = (Scalar(1)/tmp20);
+    const Scalar tmp25 = Scalar(0.021737886292675604)*tmp13 + Scalar(0.04006485617007295)*tmp16
+        - Scalar(0.020136075796081898)*tmp18 - tmp24*(tmp19*tmp19);
+    const Scalar tmp29 = tmp1*tmp4;
+    const Scalar tmp30 = tmp0*tmp5;
+    const Scalar tmp31 = tmp3*tmp30;
+    const Scalar tmp32 = tmp29 + tmp31;
+    const Scalar tmp33 = -Scalar(0.0257737061664756)*tmp13 - Scalar(0.003316897780257798)*tmp18
+        + Scalar(0.0290906039467334)*tmp15*m;
+    const Scalar tmp35 = (Scalar(1)/tmp25);
+    const Scalar tmp36 = tmp24*tmp33;
+    const Scalar tmp37 = -Scalar(0.03161742478199714)*tmp13 - Scalar(0.004414255047715874)*tmp16
+        - tmp19*tmp36 + Scalar(0.03603167982971302)*tmp17*m;
+    const Scalar tmp38 = -Scalar(0.008495035709756703)*tmp13 - tmp24*(tmp33*tmp33)
+        - tmp35*(tmp37*tmp37) + Scalar(0.02950190206578425)*tmp15*m
+        + Scalar(0.020659800310639128)*tmp17*m;
+    const Scalar tmp44 = cos(attitude);
+    const Scalar tmp45 = tmp44*tmp5;
+    const Scalar tmp48 = tmp44*com_x;
+    const Scalar tmp49 = tmp48*tmp5;
+    const Scalar tmp53 = tmp4*tmp44;
+    const Scalar tmp54 = tmp0*tmp44;
+    const Scalar tmp57 = tmp3*com_x;
+    const Scalar tmp63 = tmp29*tmp3;
+    const Scalar tmp64 = tmp30 + tmp63;
+    const Scalar tmp65 = tmp2*tmp3;
+    const Scalar tmp66 = tmp65 - tmp4*tmp5;
+    const Scalar tmp67 = -tmp66;
+    const Scalar tmp69 = tmp1*tmp44;
+    const Scalar tmp72 = tmp1*tmp48;
+    const Scalar tmp73 = -tmp72 + tmp64*com_y + tmp67*com_z;
+    const Scalar tmp77 = tmp32*com_y + tmp8*com_z;
+    const Scalar tmp79 = tmp44*tmp6;
+    const Scalar tmp80 = tmp3*tmp5;
+    const Scalar tmp82 = tmp5*tmp57 + tmp79*com_y - tmp0*tmp44*tmp5*com_z;
+    const Scalar tmp89 = tmp53*com_z + tmp54*com_y;
+    const Scalar tmp91 = tmp0*tmp3;
+    const Scalar tmp92 = tmp3*tmp4;
+    const Scalar tmp94 = tmp48 + tmp91*com_z - tmp92*com_y;
+    const Scalar tmp98 = -tmp64;
+    const Scalar tmp99 = tmp67*com_y + tmp98*com_z;
+    const Scalar tmp101 = tmp29*tmp44;
+    const Scalar tmp102 = tmp2*tmp44;
+    const Scalar tmp103 = tmp1*tmp3;
+    const Scalar tmp105 = tmp1*tmp57 + tmp101*com_y - tmp102*com_z;
+    const Scalar tmp108 = -tmp32;
+    const Scalar tmp111 = tmp108*com_z + tmp8*com_y;
+    const Scalar tmp112 = tmp111 - tmp49;
+    const Scalar tmp195 = -tmp82;
+    const Scalar tmp196 = x_dot + tmp195*attitude_dot + tmp73*heading_dot + tmp77*bank_dot;
+    const Scalar tmp197 = -tmp89;
+    const Scalar tmp198 = y_dot + tmp197*bank_dot + tmp94*attitude_dot;
+    const Scalar tmp199 = tmp105*attitude_dot + tmp112*heading_dot + tmp99*bank_dot;
+    const Scalar tmp200 = tmp199 + z_dot;
+    const Scalar tmp201 = tmp30*tmp44;
+    const Scalar tmp214 = tmp19*tmp24;
+    const Scalar tmp219 = -tmp69 + tmp214*tmp64 + tmp36*tmp67;
+    const Scalar tmp220 = tmp80 + tmp214*tmp79 - tmp0*tmp24*tmp33*tmp44*tmp5;
+    const Scalar tmp221 = -tmp220;
+    const Scalar tmp222 = tmp214*tmp32 + tmp36*tmp8;
+    const Scalar tmp223 = tmp219*heading_dot + tmp221*attitude_dot + tmp222*bank_dot;
+    const Scalar tmp224 = -tmp214*tmp54 - tmp36*tmp53;
+    const Scalar tmp225 = tmp44 + tmp36*tmp91 - tmp214*tmp92;
+    const Scalar tmp226 = tmp224*bank_dot + tmp225*attitude_dot;
+    const Scalar tmp227 = tmp103 + tmp214*tmp101 - tmp36*tmp102;
+    const Scalar tmp228 = tmp214*tmp67 + tmp36*tmp98;
+    const Scalar tmp229 = tmp108*tmp36 + tmp214*tmp8;
+    const Scalar tmp230 = tmp229 - tmp45;
+    const Scalar tmp231 = tmp227*attitude_dot + tmp228*bank_dot + tmp230*heading_dot;
+    const Scalar tmp241 = tmp35*tmp37;
+    const Scalar tmp245 = tmp64 + tmp241*tmp67;
+    const Scalar tmp246 = -tmp79 + tmp201*tmp241;
+    const Scalar tmp247 = tmp32 + tmp241*tmp8;
+    const Scalar tmp248 = tmp245*heading_dot + tmp246*attitude_dot + tmp247*bank_dot;
+    const Scalar tmp249 = -tmp92 + tmp241*tmp91;
+    const Scalar tmp250 = -tmp54 - tmp241*tmp53;
+    const Scalar tmp251 = tmp249*attitude_dot + tmp250*bank_dot;
+    const Scalar tmp252 = -tmp241*tmp102 + tmp1*tmp4*tmp44;
+    const Scalar tmp253 = tmp6 - tmp65 + tmp241*tmp98;
+    const Scalar tmp254 = tmp8 + tmp108*tmp241;
+    const Scalar tmp255 = tmp252*attitude_dot + tmp253*bank_dot + tmp254*heading_dot;
+    const Scalar tmp266 = tmp201*attitude_dot;
+    const Scalar tmp267 = tmp266 + tmp67*heading_dot + tmp8*bank_dot;
+    const Scalar tmp268 = tmp91*attitude_dot - tmp53*bank_dot;
+    const Scalar tmp269 = tmp108*heading_dot + tmp98*bank_dot - tmp102*attitude_dot;
+    const Scalar tmp353 = (Scalar(0.5))*tmp20*((tmp231*tmp231) + (tmp223*tmp223) + (tmp226*tmp226))
+        + (Scalar(0.5))*tmp25*((tmp255*tmp255) + (tmp248*tmp248) + (tmp251*tmp251))
+        + (Scalar(0.5))*tmp38*((tmp269*tmp269) + (tmp267*tmp267) + (tmp268*tmp268))
+        + (Scalar(0.5))*m*((tmp196*tmp196) + (tmp198*tmp198) + (tmp200*tmp200));
     Scalar result;
-    result = tmp196;
+    result = tmp353;
     return result;
   }
 
@@ -7250,7 +8111,7 @@ struct RigidBodyEulerYzx {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return V
-  /// Ops: 53
+  /// Ops: 26
   template <typename Scalar>
   static Scalar potential_energy(const QVector<Scalar>& q,
                                  const Scalar& /*t*/,
@@ -7262,54 +8123,32 @@ struct RigidBodyEulerYzx {
     const Scalar attitude = q(4);
     const Scalar bank = q(5);
     const Scalar g = Scalar(params.g);
-    const Scalar m_a = Scalar(params.m_a);
-    const Scalar m_b = Scalar(params.m_b);
-    const Scalar m_c = Scalar(params.m_c);
-    const Scalar m_d = Scalar(params.m_d);
-    const Scalar tmp0 = cos(heading);
-    const Scalar tmp1 = cos(attitude);
-    const Scalar tmp2 = Scalar(0.5)*tmp1;
-    const Scalar tmp5 = sin(attitude);
-    const Scalar tmp8 = sin(heading);
-    const Scalar tmp9 = tmp2*tmp8;
-    const Scalar tmp10 = -tmp9;
-    const Scalar tmp11 = tmp10 + z;
-    const Scalar tmp19 = sin(bank);
-    const Scalar tmp20 = Scalar(0.4)*tmp19;
-    const Scalar tmp22 = cos(bank);
-    const Scalar tmp23 = Scalar(0.4)*tmp22;
-    const Scalar tmp28 = tmp0*tmp20;
-    const Scalar tmp29 = tmp23*tmp8;
-    const Scalar tmp30 = tmp29*tmp5;
-    const Scalar tmp31 = tmp28 + tmp30;
-    const Scalar tmp32 = tmp31 + z;
-    const Scalar tmp44 = Scalar(0.3)*tmp22;
-    const Scalar tmp45 = tmp44*tmp8;
-    const Scalar tmp46 = Scalar(0.3)*tmp19;
-    const Scalar tmp47 = tmp0*tmp46;
-    const Scalar tmp53 = tmp0*tmp44;
-    const Scalar tmp54 = tmp46*tmp8;
-    const Scalar tmp55 = tmp5*tmp54;
-    const Scalar tmp56 = tmp53 + z - tmp55;
-    const Scalar tmp67 = tmp45*tmp5;
-    const Scalar tmp68 = tmp47 + tmp67;
-    const Scalar tmp73 = Scalar(0.2)*tmp1;
-    const Scalar tmp74 = Scalar(0.25)*tmp19;
-    const Scalar tmp78 = Scalar(0.25)*tmp22;
-    const Scalar tmp87 = tmp73*tmp8;
-    const Scalar tmp88 = tmp0*tmp78;
-    const Scalar tmp89 = tmp74*tmp8;
-    const Scalar tmp90 = tmp5*tmp89;
-    const Scalar tmp91 = tmp68 + tmp88 - tmp90;
-    const Scalar tmp92 = tmp91 - tmp87;
-    const Scalar tmp93 = tmp92 + z;
-    const Scalar tmp109 = g*m_a;
-    const Scalar tmp111 = g*m_b;
-    const Scalar tmp113 = g*m_c;
-    const Scalar tmp115 = g*m_d;
-    const Scalar tmp197 = tmp109*tmp11 + tmp111*tmp32 + tmp113*tmp56 + tmp115*tmp93;
+    const Scalar m = Scalar(params.m);
+    const Scalar com_x = Scalar(params.com_x);
+    const Scalar com_y = Scalar(params.com_y);
+    const Scalar com_z = Scalar(params.com_z);
+    const Scalar tmp0 = sin(bank);
+    const Scalar tmp1 = sin(heading);
+    const Scalar tmp2 = tmp0*tmp1;
+    const Scalar tmp3 = sin(attitude);
+    const Scalar tmp4 = cos(bank);
+    const Scalar tmp5 = cos(heading);
+    const Scalar tmp29 = tmp1*tmp4;
+    const Scalar tmp30 = tmp0*tmp5;
+    const Scalar tmp44 = cos(attitude);
+    const Scalar tmp48 = tmp44*com_x;
+    const Scalar tmp63 = tmp29*tmp3;
+    const Scalar tmp64 = tmp30 + tmp63;
+    const Scalar tmp65 = tmp2*tmp3;
+    const Scalar tmp66 = tmp65 - tmp4*tmp5;
+    const Scalar tmp67 = -tmp66;
+    const Scalar tmp72 = tmp1*tmp48;
+    const Scalar tmp73 = -tmp72 + tmp64*com_y + tmp67*com_z;
+    const Scalar tmp74 = tmp73 + z;
+    const Scalar tmp290 = g*m;
+    const Scalar tmp354 = tmp290*tmp74;
     Scalar result;
-    result = tmp197;
+    result = tmp354;
     return result;
   }
 
@@ -7334,7 +8173,7 @@ struct RigidBodyEulerYzx {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return T + V
-  /// Ops: 230
+  /// Ops: 300
   template <typename Scalar>
   static Scalar energy(const QVector<Scalar>& q,
                        const QVector<Scalar>& v,
@@ -7353,121 +8192,128 @@ struct RigidBodyEulerYzx {
     const Scalar attitude_dot = v(4);
     const Scalar bank_dot = v(5);
     const Scalar g = Scalar(params.g);
-    const Scalar m_a = Scalar(params.m_a);
-    const Scalar m_b = Scalar(params.m_b);
-    const Scalar m_c = Scalar(params.m_c);
-    const Scalar m_d = Scalar(params.m_d);
-    const Scalar tmp0 = cos(heading);
-    const Scalar tmp1 = cos(attitude);
-    const Scalar tmp2 = Scalar(0.5)*tmp1;
-    const Scalar tmp3 = tmp0*tmp2;
-    const Scalar tmp5 = sin(attitude);
-    const Scalar tmp6 = Scalar(0.5)*tmp5;
-    const Scalar tmp8 = sin(heading);
-    const Scalar tmp9 = tmp2*tmp8;
-    const Scalar tmp10 = -tmp9;
-    const Scalar tmp11 = tmp10 + z;
-    const Scalar tmp12 = tmp0*tmp6;
-    const Scalar tmp13 = tmp9*heading_dot + tmp12*attitude_dot;
-    const Scalar tmp14 = x_dot - tmp13;
-    const Scalar tmp15 = y_dot + tmp2*attitude_dot;
-    const Scalar tmp16 = tmp6*tmp8;
-    const Scalar tmp17 = tmp16*attitude_dot - tmp3*heading_dot;
-    const Scalar tmp18 = tmp17 + z_dot;
-    const Scalar tmp19 = sin(bank);
-    const Scalar tmp20 = Scalar(0.4)*tmp19;
-    const Scalar tmp21 = tmp20*tmp8;
-    const Scalar tmp22 = cos(bank);
-    const Scalar tmp23 = Scalar(0.4)*tmp22;
-    const Scalar tmp24 = tmp0*tmp23*tmp5;
-    const Scalar tmp26 = tmp1*tmp23;
-    const Scalar tmp28 = tmp0*tmp20;
-    const Scalar tmp29 = tmp23*tmp8;
-    const Scalar tmp30 = tmp29*tmp5;
-    const Scalar tmp31 = tmp28 + tmp30;
-    const Scalar tmp32 = tmp31 + z;
-    const Scalar tmp33 = tmp26*attitude_dot;
-    const Scalar tmp34 = tmp0*tmp33;
-    const Scalar tmp35 = tmp29 + tmp28*tmp5;
-    const Scalar tmp36 = x_dot - tmp34 + tmp31*heading_dot + tmp35*bank_dot;
-    const Scalar tmp37 = tmp23*tmp5;
-    const Scalar tmp38 = tmp1*tmp20;
-    const Scalar tmp39 = y_dot - tmp37*attitude_dot - tmp38*bank_dot;
-    const Scalar tmp40 = -tmp21*tmp5 + Scalar(0.4)*tmp0*tmp22;
-    const Scalar tmp41 = tmp24 - tmp21;
-    const Scalar tmp42 = tmp33*tmp8 + tmp40*bank_dot + tmp41*heading_dot;
-    const Scalar tmp43 = tmp42 + z_dot;
-    const Scalar tmp44 = Scalar(0.3)*tmp22;
-    const Scalar tmp45 = tmp44*tmp8;
-    const Scalar tmp46 = Scalar(0.3)*tmp19;
-    const Scalar tmp47 = tmp0*tmp46;
-    const Scalar tmp48 = tmp47*tmp5;
-    const Scalar tmp49 = tmp45 + tmp48;
-    const Scalar tmp51 = tmp1*tmp46;
-    const Scalar tmp53 = tmp0*tmp44;
-    const Scalar tmp54 = tmp46*tmp8;
-    const Scalar tmp55 = tmp5*tmp54;
-    const Scalar tmp56 = tmp53 + z - tmp55;
-    const Scalar tmp57 = tmp51*attitude_dot;
-    const Scalar tmp58 = tmp0*tmp57;
-    const Scalar tmp59 = tmp53*tmp5;
-    const Scalar tmp60 = tmp59 - tmp54;
-    const Scalar tmp61 = tmp55 - Scalar(0.3)*tmp0*tmp22;
-    const Scalar tmp62 = -tmp61;
-    const Scalar tmp63 = tmp58 + x_dot + tmp60*bank_dot + tmp62*heading_dot;
-    const Scalar tmp64 = tmp46*tmp5;
-    const Scalar tmp65 = tmp1*tmp44;
-    const Scalar tmp66 = y_dot + tmp64*attitude_dot - tmp65*bank_dot;
-    const Scalar tmp67 = tmp45*tmp5;
-    const Scalar tmp68 = tmp47 + tmp67;
-    const Scalar tmp69 = -tmp68;
-    const Scalar tmp70 = -tmp49;
-    const Scalar tmp71 = tmp69*bank_dot + tmp70*heading_dot - tmp57*tmp8;
-    const Scalar tmp72 = tmp71 + z_dot;
-    const Scalar tmp73 = Scalar(0.2)*tmp1;
-    const Scalar tmp74 = Scalar(0.25)*tmp19;
-    const Scalar tmp75 = tmp5*tmp74;
-    const Scalar tmp76 = -tmp59 + tmp0*tmp75;
-    const Scalar tmp77 = tmp76 + tmp0*tmp73;
-    const Scalar tmp78 = Scalar(0.25)*tmp22;
-    const Scalar tmp79 = tmp8*tmp78;
-    const Scalar tmp80 = tmp54 + tmp79;
-    const Scalar tmp81 = tmp77 + tmp80;
-    const Scalar tmp83 = Scalar(0.2)*tmp5;
-    const Scalar tmp84 = tmp1*tmp74;
-    const Scalar tmp87 = tmp73*tmp8;
-    const Scalar tmp88 = tmp0*tmp78;
-    const Scalar tmp89 = tmp74*tmp8;
-    const Scalar tmp90 = tmp5*tmp89;
-    const Scalar tmp91 = tmp68 + tmp88 - tmp90;
-    const Scalar tmp92 = tmp91 - tmp87;
-    const Scalar tmp93 = tmp92 + z;
-    const Scalar tmp94 = tmp1*tmp53;
-    const Scalar tmp95 = tmp94 + tmp0*tmp83 - Scalar(0.25)*tmp0*tmp1*tmp19;
-    const Scalar tmp96 = -tmp95;
-    const Scalar tmp97 = tmp49 - tmp89 + tmp5*tmp88;
-    const Scalar tmp98 = x_dot + tmp92*heading_dot + tmp96*attitude_dot + tmp97*bank_dot;
-    const Scalar tmp99 = -tmp51 - tmp1*tmp78;
-    const Scalar tmp100 = tmp44*tmp5;
-    const Scalar tmp101 = tmp73 + tmp75 - tmp100;
-    const Scalar tmp102 = y_dot + tmp99*bank_dot + tmp101*attitude_dot;
-    const Scalar tmp103 = tmp1*tmp45;
-    const Scalar tmp104 = tmp103 + tmp8*tmp83 - tmp8*tmp84;
-    const Scalar tmp105 = -tmp61 - tmp0*tmp74 - tmp5*tmp79;
-    const Scalar tmp106 = -tmp81;
-    const Scalar tmp107 = tmp104*attitude_dot + tmp105*bank_dot + tmp106*heading_dot;
-    const Scalar tmp108 = tmp107 + z_dot;
-    const Scalar tmp109 = g*m_a;
-    const Scalar tmp111 = g*m_b;
-    const Scalar tmp113 = g*m_c;
-    const Scalar tmp115 = g*m_d;
-    const Scalar tmp196 = (Scalar(0.5))*m_a*((tmp14*tmp14) + (tmp15*tmp15) + (tmp18*tmp18))
-        + (Scalar(0.5))*m_b*((tmp39*tmp39) + (tmp43*tmp43) + (tmp36*tmp36))
-        + (Scalar(0.5))*m_c*((tmp63*tmp63) + (tmp66*tmp66) + (tmp72*tmp72))
-        + (Scalar(0.5))*m_d*((tmp98*tmp98) + (tmp102*tmp102) + (tmp108*tmp108));
-    const Scalar tmp197 = tmp109*tmp11 + tmp111*tmp32 + tmp113*tmp56 + tmp115*tmp93;
+    const Scalar m = Scalar(params.m);
+    const Scalar com_x = Scalar(params.com_x);
+    const Scalar com_y = Scalar(params.com_y);
+    const Scalar com_z = Scalar(params.com_z);
+    const Scalar a = Scalar(params.a);
+    const Scalar b = Scalar(params.b);
+    const Scalar c = Scalar(params.c);
+    const Scalar tmp0 = sin(bank);
+    const Scalar tmp1 = sin(heading);
+    const Scalar tmp2 = tmp0*tmp1;
+    const Scalar tmp3 = sin(attitude);
+    const Scalar tmp4 = cos(bank);
+    const Scalar tmp5 = cos(heading);
+    const Scalar tmp6 = tmp4*tmp5;
+    const Scalar tmp7 = tmp3*tmp6;
+    const Scalar tmp8 = tmp7 - tmp2;
+    const Scalar tmp11 = (a*a);
+    const Scalar tmp12 = (b*b);
+    const Scalar tmp13 = m*(tmp11 + tmp12);
+    const Scalar tmp14 = (c*c);
+    const Scalar tmp15 = tmp11 + tmp14;
+    const Scalar tmp16 = tmp15*m;
+    const Scalar tmp17 = tmp12 + tmp14;
+    const Scalar tmp18 = tmp17*m;
+    const Scalar tmp19 = Scalar(0.005689254019167049)*tmp18 + Scalar(0.010556171822976032)*tmp16
+        - Scalar(0.01624542584214308)*tmp13;
+    const Scalar tmp20 = Scalar(0.041142942152109445)*tmp18 + Scalar(0.028423816083747767)*tmp13
+        - Scalar(0.027900091569190537)*tmp16;
+    const Scalar tmp24 = (Scalar(1)/tmp20);
+    const Scalar tmp25 = Scalar(0.021737886292675604)*tmp13 + Scalar(0.04006485617007295)*tmp16
+        - Scalar(0.020136075796081898)*tmp18 - tmp24*(tmp19*tmp19);
+    const Scalar tmp29 = tmp1*tmp4;
+    const Scalar tmp30 = tmp0*tmp5;
+    const Scalar tmp31 = tmp3*tmp30;
+    const Scalar tmp32 = tmp29 + tmp31;
+    const Scalar tmp33 = -Scalar(0.0257737061664756)*tmp13 - Scalar(0.003316897780257798)*tmp18
+        + Scalar(0.0290906039467334)*tmp15*m;
+    const Scalar tmp35 = (Scalar(1)/tmp25);
+    const Scalar tmp36 = tmp24*tmp33;
+    const Scalar tmp37 = -Scalar(0.03161742478199714)*tmp13 - Scalar(0.004414255047715874)*tmp16
+        - tmp19*tmp36 + Scalar(0.03603167982971302)*tmp17*m;
+    const Scalar tmp38 = -Scalar(0.008495035709756703)*tmp13 - tmp24*(tmp33*tmp33)
+        - tmp35*(tmp37*tmp37) + Scalar(0.02950190206578425)*tmp15*m
+        + Scalar(0.020659800310639128)*tmp17*m;
+    const Scalar tmp44 = cos(attitude);
+    const Scalar tmp45 = tmp44*tmp5;
+    const Scalar tmp48 = tmp44*com_x;
+    const Scalar tmp49 = tmp48*tmp5;
+    const Scalar tmp53 = tmp4*tmp44;
+    const Scalar tmp54 = tmp0*tmp44;
+    const Scalar tmp57 = tmp3*com_x;
+    const Scalar tmp63 = tmp29*tmp3;
+    const Scalar tmp64 = tmp30 + tmp63;
+    const Scalar tmp65 = tmp2*tmp3;
+    const Scalar tmp66 = tmp65 - tmp4*tmp5;
+    const Scalar tmp67 = -tmp66;
+    const Scalar tmp69 = tmp1*tmp44;
+    const Scalar tmp72 = tmp1*tmp48;
+    const Scalar tmp73 = -tmp72 + tmp64*com_y + tmp67*com_z;
+    const Scalar tmp74 = tmp73 + z;
+    const Scalar tmp77 = tmp32*com_y + tmp8*com_z;
+    const Scalar tmp79 = tmp44*tmp6;
+    const Scalar tmp80 = tmp3*tmp5;
+    const Scalar tmp82 = tmp5*tmp57 + tmp79*com_y - tmp0*tmp44*tmp5*com_z;
+    const Scalar tmp89 = tmp53*com_z + tmp54*com_y;
+    const Scalar tmp91 = tmp0*tmp3;
+    const Scalar tmp92 = tmp3*tmp4;
+    const Scalar tmp94 = tmp48 + tmp91*com_z - tmp92*com_y;
+    const Scalar tmp98 = -tmp64;
+    const Scalar tmp99 = tmp67*com_y + tmp98*com_z;
+    const Scalar tmp101 = tmp29*tmp44;
+    const Scalar tmp102 = tmp2*tmp44;
+    const Scalar tmp103 = tmp1*tmp3;
+    const Scalar tmp105 = tmp1*tmp57 + tmp101*com_y - tmp102*com_z;
+    const Scalar tmp108 = -tmp32;
+    const Scalar tmp111 = tmp108*com_z + tmp8*com_y;
+    const Scalar tmp112 = tmp111 - tmp49;
+    const Scalar tmp195 = -tmp82;
+    const Scalar tmp196 = x_dot + tmp195*attitude_dot + tmp73*heading_dot + tmp77*bank_dot;
+    const Scalar tmp197 = -tmp89;
+    const Scalar tmp198 = y_dot + tmp197*bank_dot + tmp94*attitude_dot;
+    const Scalar tmp199 = tmp105*attitude_dot + tmp112*heading_dot + tmp99*bank_dot;
+    const Scalar tmp200 = tmp199 + z_dot;
+    const Scalar tmp201 = tmp30*tmp44;
+    const Scalar tmp214 = tmp19*tmp24;
+    const Scalar tmp219 = -tmp69 + tmp214*tmp64 + tmp36*tmp67;
+    const Scalar tmp220 = tmp80 + tmp214*tmp79 - tmp0*tmp24*tmp33*tmp44*tmp5;
+    const Scalar tmp221 = -tmp220;
+    const Scalar tmp222 = tmp214*tmp32 + tmp36*tmp8;
+    const Scalar tmp223 = tmp219*heading_dot + tmp221*attitude_dot + tmp222*bank_dot;
+    const Scalar tmp224 = -tmp214*tmp54 - tmp36*tmp53;
+    const Scalar tmp225 = tmp44 + tmp36*tmp91 - tmp214*tmp92;
+    const Scalar tmp226 = tmp224*bank_dot + tmp225*attitude_dot;
+    const Scalar tmp227 = tmp103 + tmp214*tmp101 - tmp36*tmp102;
+    const Scalar tmp228 = tmp214*tmp67 + tmp36*tmp98;
+    const Scalar tmp229 = tmp108*tmp36 + tmp214*tmp8;
+    const Scalar tmp230 = tmp229 - tmp45;
+    const Scalar tmp231 = tmp227*attitude_dot + tmp228*bank_dot + tmp230*heading_dot;
+    const Scalar tmp241 = tmp35*tmp37;
+    const Scalar tmp245 = tmp64 + tmp241*tmp67;
+    const Scalar tmp246 = -tmp79 + tmp201*tmp241;
+    const Scalar tmp247 = tmp32 + tmp241*tmp8;
+    const Scalar tmp248 = tmp245*heading_dot + tmp246*attitude_dot + tmp247*bank_dot;
+    const Scalar tmp249 = -tmp92 + tmp241*tmp91;
+    const Scalar tmp250 = -tmp54 - tmp241*tmp53;
+    const Scalar tmp251 = tmp249*attitude_dot + tmp250*bank_dot;
+    const Scalar tmp252 = -tmp241*tmp102 + tmp1*tmp4*tmp44;
+    const Scalar tmp253 = tmp6 - tmp65 + tmp241*tmp98;
+    const Scalar tmp254 = tmp8 + tmp108*tmp241;
+    const Scalar tmp255 = tmp252*attitude_dot + tmp253*bank_dot + tmp254*heading_dot;
+    const Scalar tmp266 = tmp201*attitude_dot;
+    const Scalar tmp267 = tmp266 + tmp67*heading_dot + tmp8*bank_dot;
+    const Scalar tmp268 = tmp91*attitude_dot - tmp53*bank_dot;
+    const Scalar tmp269 = tmp108*heading_dot + tmp98*bank_dot - tmp102*attitude_dot;
+    const Scalar tmp290 = g*m;
+    const Scalar tmp353 = (Scalar(0.5))*tmp20*((tmp231*tmp231) + (tmp223*tmp223) + (tmp226*tmp226))
+        + (Scalar(0.5))*tmp25*((tmp255*tmp255) + (tmp248*tmp248) + (tmp251*tmp251))
+        + (Scalar(0.5))*tmp38*((tmp269*tmp269) + (tmp267*tmp267) + (tmp268*tmp268))
+        + (Scalar(0.5))*m*((tmp196*tmp196) + (tmp198*tmp198) + (tmp200*tmp200));
+    const Scalar tmp354 = tmp290*tmp74;
     Scalar result;
-    result = tmp196 + tmp197;
+    result = tmp353 + tmp354;
     return result;
   }
 
@@ -7476,96 +8322,156 @@ struct RigidBodyEulerYzx {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return x (nx)
-  /// Ops: 78
+  /// Ops: 208
   template <typename Scalar>
   static XVector<Scalar> positions(const QVector<Scalar>& q,
                                    const Scalar& /*t*/,
-                                   const Params& /*params*/) {
+                                   const Params& params) {
     using std::cos;
     using std::sin;
+    using std::sqrt;
     const Scalar x = q(0);
     const Scalar y = q(1);
     const Scalar z = q(2);
     const Scalar heading = q(3);
     const Scalar attitude = q(4);
     const Scalar bank = q(5);
-    const Scalar tmp0 = cos(heading);
-    const Scalar tmp1 = cos(attitude);
-    const Scalar tmp2 = Scalar(0.5)*tmp1;
-    const Scalar tmp3 = tmp0*tmp2;
-    const Scalar tmp4 = tmp3 + x;
-    const Scalar tmp5 = sin(attitude);
-    const Scalar tmp6 = Scalar(0.5)*tmp5;
-    const Scalar tmp7 = tmp6 + y;
-    const Scalar tmp8 = sin(heading);
-    const Scalar tmp9 = tmp2*tmp8;
-    const Scalar tmp10 = -tmp9;
-    const Scalar tmp11 = tmp10 + z;
-    const Scalar tmp19 = sin(bank);
-    const Scalar tmp20 = Scalar(0.4)*tmp19;
-    const Scalar tmp21 = tmp20*tmp8;
-    const Scalar tmp22 = cos(bank);
-    const Scalar tmp23 = Scalar(0.4)*tmp22;
-    const Scalar tmp24 = tmp0*tmp23*tmp5;
-    const Scalar tmp25 = tmp21 + x - tmp24;
-    const Scalar tmp26 = tmp1*tmp23;
-    const Scalar tmp27 = tmp26 + y;
-    const Scalar tmp28 = tmp0*tmp20;
-    const Scalar tmp29 = tmp23*tmp8;
-    const Scalar tmp30 = tmp29*tmp5;
-    const Scalar tmp31 = tmp28 + tmp30;
-    const Scalar tmp32 = tmp31 + z;
-    const Scalar tmp44 = Scalar(0.3)*tmp22;
-    const Scalar tmp45 = tmp44*tmp8;
-    const Scalar tmp46 = Scalar(0.3)*tmp19;
-    const Scalar tmp47 = tmp0*tmp46;
-    const Scalar tmp48 = tmp47*tmp5;
-    const Scalar tmp49 = tmp45 + tmp48;
-    const Scalar tmp50 = tmp49 + x;
-    const Scalar tmp51 = tmp1*tmp46;
-    const Scalar tmp52 = y - tmp51;
-    const Scalar tmp53 = tmp0*tmp44;
-    const Scalar tmp54 = tmp46*tmp8;
-    const Scalar tmp55 = tmp5*tmp54;
-    const Scalar tmp56 = tmp53 + z - tmp55;
-    const Scalar tmp59 = tmp53*tmp5;
-    const Scalar tmp65 = tmp1*tmp44;
-    const Scalar tmp67 = tmp45*tmp5;
-    const Scalar tmp68 = tmp47 + tmp67;
-    const Scalar tmp73 = Scalar(0.2)*tmp1;
-    const Scalar tmp74 = Scalar(0.25)*tmp19;
-    const Scalar tmp75 = tmp5*tmp74;
-    const Scalar tmp76 = -tmp59 + tmp0*tmp75;
-    const Scalar tmp77 = tmp76 + tmp0*tmp73;
-    const Scalar tmp78 = Scalar(0.25)*tmp22;
-    const Scalar tmp79 = tmp8*tmp78;
-    const Scalar tmp80 = tmp54 + tmp79;
-    const Scalar tmp81 = tmp77 + tmp80;
-    const Scalar tmp82 = tmp81 + x;
-    const Scalar tmp83 = Scalar(0.2)*tmp5;
-    const Scalar tmp84 = tmp1*tmp74;
-    const Scalar tmp85 = tmp65 + tmp83 - tmp84;
-    const Scalar tmp86 = tmp85 + y;
-    const Scalar tmp87 = tmp73*tmp8;
-    const Scalar tmp88 = tmp0*tmp78;
-    const Scalar tmp89 = tmp74*tmp8;
-    const Scalar tmp90 = tmp5*tmp89;
-    const Scalar tmp91 = tmp68 + tmp88 - tmp90;
-    const Scalar tmp92 = tmp91 - tmp87;
-    const Scalar tmp93 = tmp92 + z;
+    const Scalar m = Scalar(params.m);
+    const Scalar com_x = Scalar(params.com_x);
+    const Scalar com_y = Scalar(params.com_y);
+    const Scalar com_z = Scalar(params.com_z);
+    const Scalar a = Scalar(params.a);
+    const Scalar b = Scalar(params.b);
+    const Scalar c = Scalar(params.c);
+    const Scalar tmp0 = sin(bank);
+    const Scalar tmp1 = sin(heading);
+    const Scalar tmp2 = tmp0*tmp1;
+    const Scalar tmp3 = sin(attitude);
+    const Scalar tmp4 = cos(bank);
+    const Scalar tmp5 = cos(heading);
+    const Scalar tmp6 = tmp4*tmp5;
+    const Scalar tmp7 = tmp3*tmp6;
+    const Scalar tmp8 = tmp7 - tmp2;
+    const Scalar tmp9 = -tmp8;
+    const Scalar tmp10 = (Scalar(1)/sqrt(m));
+    const Scalar tmp11 = (a*a);
+    const Scalar tmp12 = (b*b);
+    const Scalar tmp13 = m*(tmp11 + tmp12);
+    const Scalar tmp14 = (c*c);
+    const Scalar tmp15 = tmp11 + tmp14;
+    const Scalar tmp16 = tmp15*m;
+    const Scalar tmp17 = tmp12 + tmp14;
+    const Scalar tmp18 = tmp17*m;
+    const Scalar tmp19 = Scalar(0.005689254019167049)*tmp18 + Scalar(0.010556171822976032)*tmp16
+        - Scalar(0.01624542584214308)*tmp13;
+    const Scalar tmp20 = Scalar(0.041142942152109445)*tmp18 + Scalar(0.028423816083747767)*tmp13
+        - Scalar(0.027900091569190537)*tmp16;
+    const Scalar tmp21 = sqrt(tmp20);
+    const Scalar tmp22 = (Scalar(1)/tmp21);
+    const Scalar tmp23 = tmp19*tmp22;
+    const Scalar tmp24 = (Scalar(1)/tmp20);
+    const Scalar tmp25 = Scalar(0.021737886292675604)*tmp13 + Scalar(0.04006485617007295)*tmp16
+        - Scalar(0.020136075796081898)*tmp18 - tmp24*(tmp19*tmp19);
+    const Scalar tmp26 = sqrt(tmp25);
+    const Scalar tmp27 = tmp23 + tmp26;
+    const Scalar tmp28 = tmp10*tmp27;
+    const Scalar tmp29 = tmp1*tmp4;
+    const Scalar tmp30 = tmp0*tmp5;
+    const Scalar tmp31 = tmp3*tmp30;
+    const Scalar tmp32 = tmp29 + tmp31;
+    const Scalar tmp33 = -Scalar(0.0257737061664756)*tmp13 - Scalar(0.003316897780257798)*tmp18
+        + Scalar(0.0290906039467334)*tmp15*m;
+    const Scalar tmp34 = tmp22*tmp33;
+    const Scalar tmp35 = (Scalar(1)/tmp25);
+    const Scalar tmp36 = tmp24*tmp33;
+    const Scalar tmp37 = -Scalar(0.03161742478199714)*tmp13 - Scalar(0.004414255047715874)*tmp16
+        - tmp19*tmp36 + Scalar(0.03603167982971302)*tmp17*m;
+    const Scalar tmp38 = -Scalar(0.008495035709756703)*tmp13 - tmp24*(tmp33*tmp33)
+        - tmp35*(tmp37*tmp37) + Scalar(0.02950190206578425)*tmp15*m
+        + Scalar(0.020659800310639128)*tmp17*m;
+    const Scalar tmp39 = sqrt(tmp38);
+    const Scalar tmp40 = tmp37/tmp26;
+    const Scalar tmp41 = tmp39 + tmp40;
+    const Scalar tmp42 = tmp34 + tmp41;
+    const Scalar tmp43 = tmp10*tmp42;
+    const Scalar tmp44 = cos(attitude);
+    const Scalar tmp45 = tmp44*tmp5;
+    const Scalar tmp46 = tmp10*tmp21;
+    const Scalar tmp47 = tmp45*tmp46;
+    const Scalar tmp48 = tmp44*com_x;
+    const Scalar tmp49 = tmp48*tmp5;
+    const Scalar tmp50 = tmp49 + x + tmp32*com_z + tmp9*com_y;
+    const Scalar tmp51 = tmp47 + tmp50;
+    const Scalar tmp52 = tmp51 + tmp28*tmp9 + tmp32*tmp43;
+    const Scalar tmp53 = tmp4*tmp44;
+    const Scalar tmp54 = tmp0*tmp44;
+    const Scalar tmp55 = tmp28*tmp53 - tmp43*tmp54;
+    const Scalar tmp56 = tmp3*tmp46;
+    const Scalar tmp57 = tmp3*com_x;
+    const Scalar tmp58 = tmp53*com_y - tmp54*com_z;
+    const Scalar tmp59 = tmp57 + tmp58;
+    const Scalar tmp60 = tmp59 + y;
+    const Scalar tmp61 = tmp56 + tmp60;
+    const Scalar tmp62 = tmp55 + tmp61;
+    const Scalar tmp63 = tmp29*tmp3;
+    const Scalar tmp64 = tmp30 + tmp63;
+    const Scalar tmp65 = tmp2*tmp3;
+    const Scalar tmp66 = tmp65 - tmp4*tmp5;
+    const Scalar tmp67 = -tmp66;
+    const Scalar tmp68 = tmp28*tmp64 + tmp43*tmp67;
+    const Scalar tmp69 = tmp1*tmp44;
+    const Scalar tmp70 = tmp46*tmp69;
+    const Scalar tmp71 = -tmp70;
+    const Scalar tmp72 = tmp1*tmp48;
+    const Scalar tmp73 = -tmp72 + tmp64*com_y + tmp67*com_z;
+    const Scalar tmp74 = tmp73 + z;
+    const Scalar tmp75 = tmp71 + tmp74;
+    const Scalar tmp76 = tmp68 + tmp75;
+    const Scalar tmp110 = -tmp47;
+    const Scalar tmp117 = tmp23 - tmp26;
+    const Scalar tmp118 = tmp10*tmp117;
+    const Scalar tmp119 = tmp34 - tmp41;
+    const Scalar tmp120 = tmp10*tmp119;
+    const Scalar tmp121 = tmp51 + tmp118*tmp9 + tmp120*tmp32;
+    const Scalar tmp122 = tmp118*tmp53 - tmp120*tmp54;
+    const Scalar tmp123 = tmp122 + tmp61;
+    const Scalar tmp124 = tmp118*tmp64 + tmp120*tmp67;
+    const Scalar tmp125 = tmp124 + tmp75;
+    const Scalar tmp140 = -tmp117;
+    const Scalar tmp141 = tmp10*tmp140;
+    const Scalar tmp142 = tmp40 - tmp34 - tmp39;
+    const Scalar tmp143 = tmp10*tmp142;
+    const Scalar tmp144 = tmp110 + tmp50;
+    const Scalar tmp145 = tmp144 + tmp141*tmp9 + tmp143*tmp32;
+    const Scalar tmp146 = tmp141*tmp53 - tmp143*tmp54;
+    const Scalar tmp147 = -tmp56;
+    const Scalar tmp148 = tmp147 + tmp60;
+    const Scalar tmp149 = tmp146 + tmp148;
+    const Scalar tmp150 = tmp141*tmp64 + tmp143*tmp67;
+    const Scalar tmp151 = tmp70 + tmp74;
+    const Scalar tmp152 = tmp150 + tmp151;
+    const Scalar tmp172 = -tmp27;
+    const Scalar tmp173 = tmp10*tmp172;
+    const Scalar tmp174 = tmp39 - tmp34 - tmp40;
+    const Scalar tmp175 = tmp10*tmp174;
+    const Scalar tmp176 = tmp144 + tmp173*tmp9 + tmp175*tmp32;
+    const Scalar tmp177 = tmp173*tmp53 - tmp175*tmp54;
+    const Scalar tmp178 = tmp148 + tmp177;
+    const Scalar tmp179 = tmp173*tmp64 + tmp175*tmp67;
+    const Scalar tmp180 = tmp151 + tmp179;
     XVector<Scalar> result;
-    result(0) = tmp4;
-    result(1) = tmp7;
-    result(2) = tmp11;
-    result(3) = tmp25;
-    result(4) = tmp27;
-    result(5) = tmp32;
-    result(6) = tmp50;
-    result(7) = tmp52;
-    result(8) = tmp56;
-    result(9) = tmp82;
-    result(10) = tmp86;
-    result(11) = tmp93;
+    result(0) = tmp52;
+    result(1) = tmp62;
+    result(2) = tmp76;
+    result(3) = tmp121;
+    result(4) = tmp123;
+    result(5) = tmp125;
+    result(6) = tmp145;
+    result(7) = tmp149;
+    result(8) = tmp152;
+    result(9) = tmp176;
+    result(10) = tmp178;
+    result(11) = tmp180;
     return result;
   }
 
@@ -7575,14 +8481,15 @@ struct RigidBodyEulerYzx {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return xdot (nx)
-  /// Ops: 180
+  /// Ops: 425
   template <typename Scalar>
   static XVector<Scalar> velocities(const QVector<Scalar>& q,
                                     const QVector<Scalar>& v,
                                     const Scalar& /*t*/,
-                                    const Params& /*params*/) {
+                                    const Params& params) {
     using std::cos;
     using std::sin;
+    using std::sqrt;
     const Scalar heading = q(3);
     const Scalar attitude = q(4);
     const Scalar bank = q(5);
@@ -7592,114 +8499,198 @@ struct RigidBodyEulerYzx {
     const Scalar heading_dot = v(3);
     const Scalar attitude_dot = v(4);
     const Scalar bank_dot = v(5);
-    const Scalar tmp0 = cos(heading);
-    const Scalar tmp1 = cos(attitude);
-    const Scalar tmp2 = Scalar(0.5)*tmp1;
-    const Scalar tmp3 = tmp0*tmp2;
-    const Scalar tmp5 = sin(attitude);
-    const Scalar tmp6 = Scalar(0.5)*tmp5;
-    const Scalar tmp8 = sin(heading);
-    const Scalar tmp9 = tmp2*tmp8;
-    const Scalar tmp12 = tmp0*tmp6;
-    const Scalar tmp13 = tmp9*heading_dot + tmp12*attitude_dot;
-    const Scalar tmp14 = x_dot - tmp13;
-    const Scalar tmp15 = y_dot + tmp2*attitude_dot;
-    const Scalar tmp16 = tmp6*tmp8;
-    const Scalar tmp17 = tmp16*attitude_dot - tmp3*heading_dot;
-    const Scalar tmp18 = tmp17 + z_dot;
-    const Scalar tmp19 = sin(bank);
-    const Scalar tmp20 = Scalar(0.4)*tmp19;
-    const Scalar tmp21 = tmp20*tmp8;
-    const Scalar tmp22 = cos(bank);
-    const Scalar tmp23 = Scalar(0.4)*tmp22;
-    const Scalar tmp24 = tmp0*tmp23*tmp5;
-    const Scalar tmp26 = tmp1*tmp23;
-    const Scalar tmp28 = tmp0*tmp20;
-    const Scalar tmp29 = tmp23*tmp8;
-    const Scalar tmp30 = tmp29*tmp5;
-    const Scalar tmp31 = tmp28 + tmp30;
-    const Scalar tmp33 = tmp26*attitude_dot;
-    const Scalar tmp34 = tmp0*tmp33;
-    const Scalar tmp35 = tmp29 + tmp28*tmp5;
-    const Scalar tmp36 = x_dot - tmp34 + tmp31*heading_dot + tmp35*bank_dot;
-    const Scalar tmp37 = tmp23*tmp5;
-    const Scalar tmp38 = tmp1*tmp20;
-    const Scalar tmp39 = y_dot - tmp37*attitude_dot - tmp38*bank_dot;
-    const Scalar tmp40 = -tmp21*tmp5 + Scalar(0.4)*tmp0*tmp22;
-    const Scalar tmp41 = tmp24 - tmp21;
-    const Scalar tmp42 = tmp33*tmp8 + tmp40*bank_dot + tmp41*heading_dot;
-    const Scalar tmp43 = tmp42 + z_dot;
-    const Scalar tmp44 = Scalar(0.3)*tmp22;
-    const Scalar tmp45 = tmp44*tmp8;
-    const Scalar tmp46 = Scalar(0.3)*tmp19;
-    const Scalar tmp47 = tmp0*tmp46;
-    const Scalar tmp48 = tmp47*tmp5;
-    const Scalar tmp49 = tmp45 + tmp48;
-    const Scalar tmp51 = tmp1*tmp46;
-    const Scalar tmp53 = tmp0*tmp44;
-    const Scalar tmp54 = tmp46*tmp8;
-    const Scalar tmp55 = tmp5*tmp54;
-    const Scalar tmp57 = tmp51*attitude_dot;
-    const Scalar tmp58 = tmp0*tmp57;
-    const Scalar tmp59 = tmp53*tmp5;
-    const Scalar tmp60 = tmp59 - tmp54;
-    const Scalar tmp61 = tmp55 - Scalar(0.3)*tmp0*tmp22;
-    const Scalar tmp62 = -tmp61;
-    const Scalar tmp63 = tmp58 + x_dot + tmp60*bank_dot + tmp62*heading_dot;
-    const Scalar tmp64 = tmp46*tmp5;
-    const Scalar tmp65 = tmp1*tmp44;
-    const Scalar tmp66 = y_dot + tmp64*attitude_dot - tmp65*bank_dot;
-    const Scalar tmp67 = tmp45*tmp5;
-    const Scalar tmp68 = tmp47 + tmp67;
-    const Scalar tmp69 = -tmp68;
-    const Scalar tmp70 = -tmp49;
-    const Scalar tmp71 = tmp69*bank_dot + tmp70*heading_dot - tmp57*tmp8;
-    const Scalar tmp72 = tmp71 + z_dot;
-    const Scalar tmp73 = Scalar(0.2)*tmp1;
-    const Scalar tmp74 = Scalar(0.25)*tmp19;
-    const Scalar tmp75 = tmp5*tmp74;
-    const Scalar tmp76 = -tmp59 + tmp0*tmp75;
-    const Scalar tmp77 = tmp76 + tmp0*tmp73;
-    const Scalar tmp78 = Scalar(0.25)*tmp22;
-    const Scalar tmp79 = tmp8*tmp78;
-    const Scalar tmp80 = tmp54 + tmp79;
-    const Scalar tmp81 = tmp77 + tmp80;
-    const Scalar tmp83 = Scalar(0.2)*tmp5;
-    const Scalar tmp84 = tmp1*tmp74;
-    const Scalar tmp87 = tmp73*tmp8;
-    const Scalar tmp88 = tmp0*tmp78;
-    const Scalar tmp89 = tmp74*tmp8;
-    const Scalar tmp90 = tmp5*tmp89;
-    const Scalar tmp91 = tmp68 + tmp88 - tmp90;
-    const Scalar tmp92 = tmp91 - tmp87;
-    const Scalar tmp94 = tmp1*tmp53;
-    const Scalar tmp95 = tmp94 + tmp0*tmp83 - Scalar(0.25)*tmp0*tmp1*tmp19;
-    const Scalar tmp96 = -tmp95;
-    const Scalar tmp97 = tmp49 - tmp89 + tmp5*tmp88;
-    const Scalar tmp98 = x_dot + tmp92*heading_dot + tmp96*attitude_dot + tmp97*bank_dot;
-    const Scalar tmp99 = -tmp51 - tmp1*tmp78;
-    const Scalar tmp100 = tmp44*tmp5;
-    const Scalar tmp101 = tmp73 + tmp75 - tmp100;
-    const Scalar tmp102 = y_dot + tmp99*bank_dot + tmp101*attitude_dot;
-    const Scalar tmp103 = tmp1*tmp45;
-    const Scalar tmp104 = tmp103 + tmp8*tmp83 - tmp8*tmp84;
-    const Scalar tmp105 = -tmp61 - tmp0*tmp74 - tmp5*tmp79;
-    const Scalar tmp106 = -tmp81;
-    const Scalar tmp107 = tmp104*attitude_dot + tmp105*bank_dot + tmp106*heading_dot;
-    const Scalar tmp108 = tmp107 + z_dot;
+    const Scalar m = Scalar(params.m);
+    const Scalar com_x = Scalar(params.com_x);
+    const Scalar com_y = Scalar(params.com_y);
+    const Scalar com_z = Scalar(params.com_z);
+    const Scalar a = Scalar(params.a);
+    const Scalar b = Scalar(params.b);
+    const Scalar c = Scalar(params.c);
+    const Scalar tmp0 = sin(bank);
+    const Scalar tmp1 = sin(heading);
+    const Scalar tmp2 = tmp0*tmp1;
+    const Scalar tmp3 = sin(attitude);
+    const Scalar tmp4 = cos(bank);
+    const Scalar tmp5 = cos(heading);
+    const Scalar tmp6 = tmp4*tmp5;
+    const Scalar tmp7 = tmp3*tmp6;
+    const Scalar tmp8 = tmp7 - tmp2;
+    const Scalar tmp10 = (Scalar(1)/sqrt(m));
+    const Scalar tmp11 = (a*a);
+    const Scalar tmp12 = (b*b);
+    const Scalar tmp13 = m*(tmp11 + tmp12);
+    const Scalar tmp14 = (c*c);
+    const Scalar tmp15 = tmp11 + tmp14;
+    const Scalar tmp16 = tmp15*m;
+    const Scalar tmp17 = tmp12 + tmp14;
+    const Scalar tmp18 = tmp17*m;
+    const Scalar tmp19 = Scalar(0.005689254019167049)*tmp18 + Scalar(0.010556171822976032)*tmp16
+        - Scalar(0.01624542584214308)*tmp13;
+    const Scalar tmp20 = Scalar(0.041142942152109445)*tmp18 + Scalar(0.028423816083747767)*tmp13
+        - Scalar(0.027900091569190537)*tmp16;
+    const Scalar tmp21 = sqrt(tmp20);
+    const Scalar tmp22 = (Scalar(1)/tmp21);
+    const Scalar tmp23 = tmp19*tmp22;
+    const Scalar tmp24 = (Scalar(1)/tmp20);
+    const Scalar tmp25 = Scalar(0.021737886292675604)*tmp13 + Scalar(0.04006485617007295)*tmp16
+        - Scalar(0.020136075796081898)*tmp18 - tmp24*(tmp19*tmp19);
+    const Scalar tmp26 = sqrt(tmp25);
+    const Scalar tmp27 = tmp23 + tmp26;
+    const Scalar tmp28 = tmp10*tmp27;
+    const Scalar tmp29 = tmp1*tmp4;
+    const Scalar tmp30 = tmp0*tmp5;
+    const Scalar tmp31 = tmp3*tmp30;
+    const Scalar tmp32 = tmp29 + tmp31;
+    const Scalar tmp33 = -Scalar(0.0257737061664756)*tmp13 - Scalar(0.003316897780257798)*tmp18
+        + Scalar(0.0290906039467334)*tmp15*m;
+    const Scalar tmp34 = tmp22*tmp33;
+    const Scalar tmp35 = (Scalar(1)/tmp25);
+    const Scalar tmp36 = tmp24*tmp33;
+    const Scalar tmp37 = -Scalar(0.03161742478199714)*tmp13 - Scalar(0.004414255047715874)*tmp16
+        - tmp19*tmp36 + Scalar(0.03603167982971302)*tmp17*m;
+    const Scalar tmp38 = -Scalar(0.008495035709756703)*tmp13 - tmp24*(tmp33*tmp33)
+        - tmp35*(tmp37*tmp37) + Scalar(0.02950190206578425)*tmp15*m
+        + Scalar(0.020659800310639128)*tmp17*m;
+    const Scalar tmp39 = sqrt(tmp38);
+    const Scalar tmp40 = tmp37/tmp26;
+    const Scalar tmp41 = tmp39 + tmp40;
+    const Scalar tmp42 = tmp34 + tmp41;
+    const Scalar tmp43 = tmp10*tmp42;
+    const Scalar tmp44 = cos(attitude);
+    const Scalar tmp45 = tmp44*tmp5;
+    const Scalar tmp46 = tmp10*tmp21;
+    const Scalar tmp47 = tmp45*tmp46;
+    const Scalar tmp48 = tmp44*com_x;
+    const Scalar tmp49 = tmp48*tmp5;
+    const Scalar tmp53 = tmp4*tmp44;
+    const Scalar tmp54 = tmp0*tmp44;
+    const Scalar tmp57 = tmp3*com_x;
+    const Scalar tmp63 = tmp29*tmp3;
+    const Scalar tmp64 = tmp30 + tmp63;
+    const Scalar tmp65 = tmp2*tmp3;
+    const Scalar tmp66 = tmp65 - tmp4*tmp5;
+    const Scalar tmp67 = -tmp66;
+    const Scalar tmp68 = tmp28*tmp64 + tmp43*tmp67;
+    const Scalar tmp69 = tmp1*tmp44;
+    const Scalar tmp70 = tmp46*tmp69;
+    const Scalar tmp71 = -tmp70;
+    const Scalar tmp72 = tmp1*tmp48;
+    const Scalar tmp73 = -tmp72 + tmp64*com_y + tmp67*com_z;
+    const Scalar tmp77 = tmp32*com_y + tmp8*com_z;
+    const Scalar tmp78 = tmp77 + tmp28*tmp32 + tmp43*tmp8;
+    const Scalar tmp79 = tmp44*tmp6;
+    const Scalar tmp80 = tmp3*tmp5;
+    const Scalar tmp81 = tmp46*tmp80;
+    const Scalar tmp82 = tmp5*tmp57 + tmp79*com_y - tmp0*tmp44*tmp5*com_z;
+    const Scalar tmp83 = tmp81 + tmp82;
+    const Scalar tmp84 = tmp83 + tmp28*tmp79 - tmp0*tmp10*tmp42*tmp44*tmp5;
+    const Scalar tmp85 = -tmp84;
+    const Scalar tmp86 = tmp71 + tmp73;
+    const Scalar tmp87 = tmp68 + tmp86;
+    const Scalar tmp88 = x_dot + tmp78*bank_dot + tmp85*attitude_dot + tmp87*heading_dot;
+    const Scalar tmp89 = tmp53*com_z + tmp54*com_y;
+    const Scalar tmp90 = -tmp89 - tmp28*tmp54 - tmp43*tmp53;
+    const Scalar tmp91 = tmp0*tmp3;
+    const Scalar tmp92 = tmp3*tmp4;
+    const Scalar tmp93 = tmp44*tmp46;
+    const Scalar tmp94 = tmp48 + tmp91*com_z - tmp92*com_y;
+    const Scalar tmp95 = tmp93 + tmp94;
+    const Scalar tmp96 = tmp95 + tmp43*tmp91 - tmp28*tmp92;
+    const Scalar tmp97 = y_dot + tmp90*bank_dot + tmp96*attitude_dot;
+    const Scalar tmp98 = -tmp64;
+    const Scalar tmp99 = tmp67*com_y + tmp98*com_z;
+    const Scalar tmp100 = tmp99 + tmp28*tmp67 + tmp43*tmp98;
+    const Scalar tmp101 = tmp29*tmp44;
+    const Scalar tmp102 = tmp2*tmp44;
+    const Scalar tmp103 = tmp1*tmp3;
+    const Scalar tmp104 = tmp46*tmp103;
+    const Scalar tmp105 = tmp1*tmp57 + tmp101*com_y - tmp102*com_z;
+    const Scalar tmp106 = tmp105 + tmp104;
+    const Scalar tmp107 = tmp106 + tmp28*tmp101 - tmp43*tmp102;
+    const Scalar tmp108 = -tmp32;
+    const Scalar tmp109 = tmp108*tmp43 + tmp28*tmp8;
+    const Scalar tmp110 = -tmp47;
+    const Scalar tmp111 = tmp108*com_z + tmp8*com_y;
+    const Scalar tmp112 = tmp111 - tmp49;
+    const Scalar tmp113 = tmp110 + tmp112;
+    const Scalar tmp114 = tmp109 + tmp113;
+    const Scalar tmp115 = tmp107*attitude_dot + tmp114*heading_dot + tmp100*bank_dot;
+    const Scalar tmp116 = tmp115 + z_dot;
+    const Scalar tmp117 = tmp23 - tmp26;
+    const Scalar tmp118 = tmp10*tmp117;
+    const Scalar tmp119 = tmp34 - tmp41;
+    const Scalar tmp120 = tmp10*tmp119;
+    const Scalar tmp124 = tmp118*tmp64 + tmp120*tmp67;
+    const Scalar tmp126 = tmp77 + tmp118*tmp32 + tmp120*tmp8;
+    const Scalar tmp127 = tmp83 + tmp118*tmp79 - tmp0*tmp10*tmp119*tmp44*tmp5;
+    const Scalar tmp128 = -tmp127;
+    const Scalar tmp129 = tmp124 + tmp86;
+    const Scalar tmp130 = x_dot + tmp126*bank_dot + tmp128*attitude_dot + tmp129*heading_dot;
+    const Scalar tmp131 = -tmp89 - tmp118*tmp54 - tmp120*tmp53;
+    const Scalar tmp132 = tmp95 + tmp120*tmp91 - tmp118*tmp92;
+    const Scalar tmp133 = y_dot + tmp131*bank_dot + tmp132*attitude_dot;
+    const Scalar tmp134 = tmp99 + tmp118*tmp67 + tmp120*tmp98;
+    const Scalar tmp135 = tmp106 + tmp118*tmp101 - tmp120*tmp102;
+    const Scalar tmp136 = tmp108*tmp120 + tmp118*tmp8;
+    const Scalar tmp137 = tmp113 + tmp136;
+    const Scalar tmp138 = tmp134*bank_dot + tmp135*attitude_dot + tmp137*heading_dot;
+    const Scalar tmp139 = tmp138 + z_dot;
+    const Scalar tmp140 = -tmp117;
+    const Scalar tmp141 = tmp10*tmp140;
+    const Scalar tmp142 = tmp40 - tmp34 - tmp39;
+    const Scalar tmp143 = tmp10*tmp142;
+    const Scalar tmp150 = tmp141*tmp64 + tmp143*tmp67;
+    const Scalar tmp153 = tmp77 + tmp141*tmp32 + tmp143*tmp8;
+    const Scalar tmp154 = tmp82 - tmp81;
+    const Scalar tmp155 = tmp154 + tmp141*tmp79 - tmp0*tmp10*tmp142*tmp44*tmp5;
+    const Scalar tmp156 = -tmp155;
+    const Scalar tmp157 = tmp70 + tmp73;
+    const Scalar tmp158 = tmp150 + tmp157;
+    const Scalar tmp159 = x_dot + tmp153*bank_dot + tmp156*attitude_dot + tmp158*heading_dot;
+    const Scalar tmp160 = -tmp89 - tmp141*tmp54 - tmp143*tmp53;
+    const Scalar tmp161 = tmp94 - tmp93;
+    const Scalar tmp162 = tmp161 + tmp143*tmp91 - tmp141*tmp92;
+    const Scalar tmp163 = y_dot + tmp160*bank_dot + tmp162*attitude_dot;
+    const Scalar tmp164 = tmp99 + tmp141*tmp67 + tmp143*tmp98;
+    const Scalar tmp165 = tmp105 - tmp104;
+    const Scalar tmp166 = tmp165 + tmp141*tmp101 - tmp143*tmp102;
+    const Scalar tmp167 = tmp108*tmp143 + tmp141*tmp8;
+    const Scalar tmp168 = tmp112 + tmp47;
+    const Scalar tmp169 = tmp167 + tmp168;
+    const Scalar tmp170 = tmp164*bank_dot + tmp166*attitude_dot + tmp169*heading_dot;
+    const Scalar tmp171 = tmp170 + z_dot;
+    const Scalar tmp172 = -tmp27;
+    const Scalar tmp173 = tmp10*tmp172;
+    const Scalar tmp174 = tmp39 - tmp34 - tmp40;
+    const Scalar tmp175 = tmp10*tmp174;
+    const Scalar tmp179 = tmp173*tmp64 + tmp175*tmp67;
+    const Scalar tmp181 = tmp77 + tmp173*tmp32 + tmp175*tmp8;
+    const Scalar tmp182 = tmp154 + tmp173*tmp79 - tmp0*tmp10*tmp174*tmp44*tmp5;
+    const Scalar tmp183 = -tmp182;
+    const Scalar tmp184 = tmp157 + tmp179;
+    const Scalar tmp185 = x_dot + tmp181*bank_dot + tmp183*attitude_dot + tmp184*heading_dot;
+    const Scalar tmp186 = -tmp89 - tmp173*tmp54 - tmp175*tmp53;
+    const Scalar tmp187 = tmp161 + tmp175*tmp91 - tmp173*tmp92;
+    const Scalar tmp188 = y_dot + tmp186*bank_dot + tmp187*attitude_dot;
+    const Scalar tmp189 = tmp99 + tmp173*tmp67 + tmp175*tmp98;
+    const Scalar tmp190 = tmp165 + tmp173*tmp101 - tmp175*tmp102;
+    const Scalar tmp191 = tmp108*tmp175 + tmp173*tmp8;
+    const Scalar tmp192 = tmp168 + tmp191;
+    const Scalar tmp193 = tmp189*bank_dot + tmp190*attitude_dot + tmp192*heading_dot;
+    const Scalar tmp194 = tmp193 + z_dot;
     XVector<Scalar> result;
-    result(0) = tmp14;
-    result(1) = tmp15;
-    result(2) = tmp18;
-    result(3) = tmp36;
-    result(4) = tmp39;
-    result(5) = tmp43;
-    result(6) = tmp63;
-    result(7) = tmp66;
-    result(8) = tmp72;
-    result(9) = tmp98;
-    result(10) = tmp102;
-    result(11) = tmp108;
+    result(0) = tmp88;
+    result(1) = tmp97;
+    result(2) = tmp116;
+    result(3) = tmp130;
+    result(4) = tmp133;
+    result(5) = tmp139;
+    result(6) = tmp159;
+    result(7) = tmp163;
+    result(8) = tmp171;
+    result(9) = tmp185;
+    result(10) = tmp188;
+    result(11) = tmp194;
     return result;
   }
 
@@ -7708,169 +8699,253 @@ struct RigidBodyEulerYzx {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return J (nx x nq)
-  /// Ops: 125
+  /// Ops: 361
   template <typename Scalar>
   static XJacobian<Scalar> jacobian(const QVector<Scalar>& q,
                                     const Scalar& /*t*/,
-                                    const Params& /*params*/) {
+                                    const Params& params) {
     using std::cos;
     using std::sin;
+    using std::sqrt;
     const Scalar heading = q(3);
     const Scalar attitude = q(4);
     const Scalar bank = q(5);
-    const Scalar tmp0 = cos(heading);
-    const Scalar tmp1 = cos(attitude);
-    const Scalar tmp2 = Scalar(0.5)*tmp1;
-    const Scalar tmp3 = tmp0*tmp2;
-    const Scalar tmp5 = sin(attitude);
-    const Scalar tmp6 = Scalar(0.5)*tmp5;
-    const Scalar tmp8 = sin(heading);
-    const Scalar tmp9 = tmp2*tmp8;
-    const Scalar tmp10 = -tmp9;
-    const Scalar tmp12 = tmp0*tmp6;
-    const Scalar tmp16 = tmp6*tmp8;
-    const Scalar tmp19 = sin(bank);
-    const Scalar tmp20 = Scalar(0.4)*tmp19;
-    const Scalar tmp21 = tmp20*tmp8;
-    const Scalar tmp22 = cos(bank);
-    const Scalar tmp23 = Scalar(0.4)*tmp22;
-    const Scalar tmp24 = tmp0*tmp23*tmp5;
-    const Scalar tmp26 = tmp1*tmp23;
-    const Scalar tmp28 = tmp0*tmp20;
-    const Scalar tmp29 = tmp23*tmp8;
-    const Scalar tmp30 = tmp29*tmp5;
-    const Scalar tmp31 = tmp28 + tmp30;
-    const Scalar tmp35 = tmp29 + tmp28*tmp5;
-    const Scalar tmp37 = tmp23*tmp5;
-    const Scalar tmp38 = tmp1*tmp20;
-    const Scalar tmp40 = -tmp21*tmp5 + Scalar(0.4)*tmp0*tmp22;
-    const Scalar tmp41 = tmp24 - tmp21;
-    const Scalar tmp44 = Scalar(0.3)*tmp22;
-    const Scalar tmp45 = tmp44*tmp8;
-    const Scalar tmp46 = Scalar(0.3)*tmp19;
-    const Scalar tmp47 = tmp0*tmp46;
-    const Scalar tmp48 = tmp47*tmp5;
-    const Scalar tmp49 = tmp45 + tmp48;
-    const Scalar tmp51 = tmp1*tmp46;
-    const Scalar tmp53 = tmp0*tmp44;
-    const Scalar tmp54 = tmp46*tmp8;
-    const Scalar tmp55 = tmp5*tmp54;
-    const Scalar tmp59 = tmp53*tmp5;
-    const Scalar tmp60 = tmp59 - tmp54;
-    const Scalar tmp61 = tmp55 - Scalar(0.3)*tmp0*tmp22;
-    const Scalar tmp62 = -tmp61;
-    const Scalar tmp64 = tmp46*tmp5;
-    const Scalar tmp65 = tmp1*tmp44;
-    const Scalar tmp67 = tmp45*tmp5;
-    const Scalar tmp68 = tmp47 + tmp67;
-    const Scalar tmp69 = -tmp68;
-    const Scalar tmp70 = -tmp49;
-    const Scalar tmp73 = Scalar(0.2)*tmp1;
-    const Scalar tmp74 = Scalar(0.25)*tmp19;
-    const Scalar tmp75 = tmp5*tmp74;
-    const Scalar tmp76 = -tmp59 + tmp0*tmp75;
-    const Scalar tmp77 = tmp76 + tmp0*tmp73;
-    const Scalar tmp78 = Scalar(0.25)*tmp22;
-    const Scalar tmp79 = tmp8*tmp78;
-    const Scalar tmp80 = tmp54 + tmp79;
-    const Scalar tmp81 = tmp77 + tmp80;
-    const Scalar tmp83 = Scalar(0.2)*tmp5;
-    const Scalar tmp84 = tmp1*tmp74;
-    const Scalar tmp87 = tmp73*tmp8;
-    const Scalar tmp88 = tmp0*tmp78;
-    const Scalar tmp89 = tmp74*tmp8;
-    const Scalar tmp90 = tmp5*tmp89;
-    const Scalar tmp91 = tmp68 + tmp88 - tmp90;
-    const Scalar tmp92 = tmp91 - tmp87;
-    const Scalar tmp94 = tmp1*tmp53;
-    const Scalar tmp95 = tmp94 + tmp0*tmp83 - Scalar(0.25)*tmp0*tmp1*tmp19;
-    const Scalar tmp96 = -tmp95;
-    const Scalar tmp97 = tmp49 - tmp89 + tmp5*tmp88;
-    const Scalar tmp99 = -tmp51 - tmp1*tmp78;
-    const Scalar tmp100 = tmp44*tmp5;
-    const Scalar tmp101 = tmp73 + tmp75 - tmp100;
-    const Scalar tmp103 = tmp1*tmp45;
-    const Scalar tmp104 = tmp103 + tmp8*tmp83 - tmp8*tmp84;
-    const Scalar tmp105 = -tmp61 - tmp0*tmp74 - tmp5*tmp79;
-    const Scalar tmp106 = -tmp81;
-    const Scalar tmp121 = tmp26*tmp8;
-    const Scalar tmp128 = tmp51*tmp8;
-    const Scalar tmp131 = tmp0*tmp51;
-    const Scalar tmp137 = -tmp65;
-    const Scalar tmp150 = tmp0*tmp26;
+    const Scalar m = Scalar(params.m);
+    const Scalar com_x = Scalar(params.com_x);
+    const Scalar com_y = Scalar(params.com_y);
+    const Scalar com_z = Scalar(params.com_z);
+    const Scalar a = Scalar(params.a);
+    const Scalar b = Scalar(params.b);
+    const Scalar c = Scalar(params.c);
+    const Scalar tmp0 = sin(bank);
+    const Scalar tmp1 = sin(heading);
+    const Scalar tmp2 = tmp0*tmp1;
+    const Scalar tmp3 = sin(attitude);
+    const Scalar tmp4 = cos(bank);
+    const Scalar tmp5 = cos(heading);
+    const Scalar tmp6 = tmp4*tmp5;
+    const Scalar tmp7 = tmp3*tmp6;
+    const Scalar tmp8 = tmp7 - tmp2;
+    const Scalar tmp10 = (Scalar(1)/sqrt(m));
+    const Scalar tmp11 = (a*a);
+    const Scalar tmp12 = (b*b);
+    const Scalar tmp13 = m*(tmp11 + tmp12);
+    const Scalar tmp14 = (c*c);
+    const Scalar tmp15 = tmp11 + tmp14;
+    const Scalar tmp16 = tmp15*m;
+    const Scalar tmp17 = tmp12 + tmp14;
+    const Scalar tmp18 = tmp17*m;
+    const Scalar tmp19 = Scalar(0.005689254019167049)*tmp18 + Scalar(0.010556171822976032)*tmp16
+        - Scalar(0.01624542584214308)*tmp13;
+    const Scalar tmp20 = Scalar(0.041142942152109445)*tmp18 + Scalar(0.028423816083747767)*tmp13
+        - Scalar(0.027900091569190537)*tmp16;
+    const Scalar tmp21 = sqrt(tmp20);
+    const Scalar tmp22 = (Scalar(1)/tmp21);
+    const Scalar tmp23 = tmp19*tmp22;
+    const Scalar tmp24 = (Scalar(1)/tmp20);
+    const Scalar tmp25 = Scalar(0.021737886292675604)*tmp13 + Scalar(0.04006485617007295)*tmp16
+        - Scalar(0.020136075796081898)*tmp18 - tmp24*(tmp19*tmp19);
+    const Scalar tmp26 = sqrt(tmp25);
+    const Scalar tmp27 = tmp23 + tmp26;
+    const Scalar tmp28 = tmp10*tmp27;
+    const Scalar tmp29 = tmp1*tmp4;
+    const Scalar tmp30 = tmp0*tmp5;
+    const Scalar tmp31 = tmp3*tmp30;
+    const Scalar tmp32 = tmp29 + tmp31;
+    const Scalar tmp33 = -Scalar(0.0257737061664756)*tmp13 - Scalar(0.003316897780257798)*tmp18
+        + Scalar(0.0290906039467334)*tmp15*m;
+    const Scalar tmp34 = tmp22*tmp33;
+    const Scalar tmp35 = (Scalar(1)/tmp25);
+    const Scalar tmp36 = tmp24*tmp33;
+    const Scalar tmp37 = -Scalar(0.03161742478199714)*tmp13 - Scalar(0.004414255047715874)*tmp16
+        - tmp19*tmp36 + Scalar(0.03603167982971302)*tmp17*m;
+    const Scalar tmp38 = -Scalar(0.008495035709756703)*tmp13 - tmp24*(tmp33*tmp33)
+        - tmp35*(tmp37*tmp37) + Scalar(0.02950190206578425)*tmp15*m
+        + Scalar(0.020659800310639128)*tmp17*m;
+    const Scalar tmp39 = sqrt(tmp38);
+    const Scalar tmp40 = tmp37/tmp26;
+    const Scalar tmp41 = tmp39 + tmp40;
+    const Scalar tmp42 = tmp34 + tmp41;
+    const Scalar tmp43 = tmp10*tmp42;
+    const Scalar tmp44 = cos(attitude);
+    const Scalar tmp45 = tmp44*tmp5;
+    const Scalar tmp46 = tmp10*tmp21;
+    const Scalar tmp47 = tmp45*tmp46;
+    const Scalar tmp48 = tmp44*com_x;
+    const Scalar tmp49 = tmp48*tmp5;
+    const Scalar tmp53 = tmp4*tmp44;
+    const Scalar tmp54 = tmp0*tmp44;
+    const Scalar tmp57 = tmp3*com_x;
+    const Scalar tmp63 = tmp29*tmp3;
+    const Scalar tmp64 = tmp30 + tmp63;
+    const Scalar tmp65 = tmp2*tmp3;
+    const Scalar tmp66 = tmp65 - tmp4*tmp5;
+    const Scalar tmp67 = -tmp66;
+    const Scalar tmp68 = tmp28*tmp64 + tmp43*tmp67;
+    const Scalar tmp69 = tmp1*tmp44;
+    const Scalar tmp70 = tmp46*tmp69;
+    const Scalar tmp71 = -tmp70;
+    const Scalar tmp72 = tmp1*tmp48;
+    const Scalar tmp73 = -tmp72 + tmp64*com_y + tmp67*com_z;
+    const Scalar tmp77 = tmp32*com_y + tmp8*com_z;
+    const Scalar tmp78 = tmp77 + tmp28*tmp32 + tmp43*tmp8;
+    const Scalar tmp79 = tmp44*tmp6;
+    const Scalar tmp80 = tmp3*tmp5;
+    const Scalar tmp81 = tmp46*tmp80;
+    const Scalar tmp82 = tmp5*tmp57 + tmp79*com_y - tmp0*tmp44*tmp5*com_z;
+    const Scalar tmp83 = tmp81 + tmp82;
+    const Scalar tmp84 = tmp83 + tmp28*tmp79 - tmp0*tmp10*tmp42*tmp44*tmp5;
+    const Scalar tmp85 = -tmp84;
+    const Scalar tmp86 = tmp71 + tmp73;
+    const Scalar tmp87 = tmp68 + tmp86;
+    const Scalar tmp89 = tmp53*com_z + tmp54*com_y;
+    const Scalar tmp90 = -tmp89 - tmp28*tmp54 - tmp43*tmp53;
+    const Scalar tmp91 = tmp0*tmp3;
+    const Scalar tmp92 = tmp3*tmp4;
+    const Scalar tmp93 = tmp44*tmp46;
+    const Scalar tmp94 = tmp48 + tmp91*com_z - tmp92*com_y;
+    const Scalar tmp95 = tmp93 + tmp94;
+    const Scalar tmp96 = tmp95 + tmp43*tmp91 - tmp28*tmp92;
+    const Scalar tmp98 = -tmp64;
+    const Scalar tmp99 = tmp67*com_y + tmp98*com_z;
+    const Scalar tmp100 = tmp99 + tmp28*tmp67 + tmp43*tmp98;
+    const Scalar tmp101 = tmp29*tmp44;
+    const Scalar tmp102 = tmp2*tmp44;
+    const Scalar tmp103 = tmp1*tmp3;
+    const Scalar tmp104 = tmp46*tmp103;
+    const Scalar tmp105 = tmp1*tmp57 + tmp101*com_y - tmp102*com_z;
+    const Scalar tmp106 = tmp105 + tmp104;
+    const Scalar tmp107 = tmp106 + tmp28*tmp101 - tmp43*tmp102;
+    const Scalar tmp108 = -tmp32;
+    const Scalar tmp109 = tmp108*tmp43 + tmp28*tmp8;
+    const Scalar tmp110 = -tmp47;
+    const Scalar tmp111 = tmp108*com_z + tmp8*com_y;
+    const Scalar tmp112 = tmp111 - tmp49;
+    const Scalar tmp113 = tmp110 + tmp112;
+    const Scalar tmp114 = tmp109 + tmp113;
+    const Scalar tmp117 = tmp23 - tmp26;
+    const Scalar tmp118 = tmp10*tmp117;
+    const Scalar tmp119 = tmp34 - tmp41;
+    const Scalar tmp120 = tmp10*tmp119;
+    const Scalar tmp124 = tmp118*tmp64 + tmp120*tmp67;
+    const Scalar tmp126 = tmp77 + tmp118*tmp32 + tmp120*tmp8;
+    const Scalar tmp127 = tmp83 + tmp118*tmp79 - tmp0*tmp10*tmp119*tmp44*tmp5;
+    const Scalar tmp128 = -tmp127;
+    const Scalar tmp129 = tmp124 + tmp86;
+    const Scalar tmp131 = -tmp89 - tmp118*tmp54 - tmp120*tmp53;
+    const Scalar tmp132 = tmp95 + tmp120*tmp91 - tmp118*tmp92;
+    const Scalar tmp134 = tmp99 + tmp118*tmp67 + tmp120*tmp98;
+    const Scalar tmp135 = tmp106 + tmp118*tmp101 - tmp120*tmp102;
+    const Scalar tmp136 = tmp108*tmp120 + tmp118*tmp8;
+    const Scalar tmp137 = tmp113 + tmp136;
+    const Scalar tmp140 = -tmp117;
+    const Scalar tmp141 = tmp10*tmp140;
+    const Scalar tmp142 = tmp40 - tmp34 - tmp39;
+    const Scalar tmp143 = tmp10*tmp142;
+    const Scalar tmp150 = tmp141*tmp64 + tmp143*tmp67;
+    const Scalar tmp153 = tmp77 + tmp141*tmp32 + tmp143*tmp8;
+    const Scalar tmp154 = tmp82 - tmp81;
+    const Scalar tmp155 = tmp154 + tmp141*tmp79 - tmp0*tmp10*tmp142*tmp44*tmp5;
+    const Scalar tmp156 = -tmp155;
+    const Scalar tmp157 = tmp70 + tmp73;
+    const Scalar tmp158 = tmp150 + tmp157;
+    const Scalar tmp160 = -tmp89 - tmp141*tmp54 - tmp143*tmp53;
+    const Scalar tmp161 = tmp94 - tmp93;
+    const Scalar tmp162 = tmp161 + tmp143*tmp91 - tmp141*tmp92;
+    const Scalar tmp164 = tmp99 + tmp141*tmp67 + tmp143*tmp98;
+    const Scalar tmp165 = tmp105 - tmp104;
+    const Scalar tmp166 = tmp165 + tmp141*tmp101 - tmp143*tmp102;
+    const Scalar tmp167 = tmp108*tmp143 + tmp141*tmp8;
+    const Scalar tmp168 = tmp112 + tmp47;
+    const Scalar tmp169 = tmp167 + tmp168;
+    const Scalar tmp172 = -tmp27;
+    const Scalar tmp173 = tmp10*tmp172;
+    const Scalar tmp174 = tmp39 - tmp34 - tmp40;
+    const Scalar tmp175 = tmp10*tmp174;
+    const Scalar tmp179 = tmp173*tmp64 + tmp175*tmp67;
+    const Scalar tmp181 = tmp77 + tmp173*tmp32 + tmp175*tmp8;
+    const Scalar tmp182 = tmp154 + tmp173*tmp79 - tmp0*tmp10*tmp174*tmp44*tmp5;
+    const Scalar tmp183 = -tmp182;
+    const Scalar tmp184 = tmp157 + tmp179;
+    const Scalar tmp186 = -tmp89 - tmp173*tmp54 - tmp175*tmp53;
+    const Scalar tmp187 = tmp161 + tmp175*tmp91 - tmp173*tmp92;
+    const Scalar tmp189 = tmp99 + tmp173*tmp67 + tmp175*tmp98;
+    const Scalar tmp190 = tmp165 + tmp173*tmp101 - tmp175*tmp102;
+    const Scalar tmp191 = tmp108*tmp175 + tmp173*tmp8;
+    const Scalar tmp192 = tmp168 + tmp191;
     XJacobian<Scalar> result;
     result(0, 0) = Scalar(1);
     result(0, 1) = Scalar(0);
     result(0, 2) = Scalar(0);
-    result(0, 3) = tmp10;
-    result(0, 4) = -tmp12;
-    result(0, 5) = Scalar(0);
+    result(0, 3) = tmp87;
+    result(0, 4) = tmp85;
+    result(0, 5) = tmp78;
     result(1, 0) = Scalar(0);
     result(1, 1) = Scalar(1);
     result(1, 2) = Scalar(0);
     result(1, 3) = Scalar(0);
-    result(1, 4) = tmp2;
-    result(1, 5) = Scalar(0);
+    result(1, 4) = tmp96;
+    result(1, 5) = tmp90;
     result(2, 0) = Scalar(0);
     result(2, 1) = Scalar(0);
     result(2, 2) = Scalar(1);
-    result(2, 3) = -tmp3;
-    result(2, 4) = tmp16;
-    result(2, 5) = Scalar(0);
+    result(2, 3) = tmp114;
+    result(2, 4) = tmp107;
+    result(2, 5) = tmp100;
     result(3, 0) = Scalar(1);
     result(3, 1) = Scalar(0);
     result(3, 2) = Scalar(0);
-    result(3, 3) = tmp31;
-    result(3, 4) = -tmp150;
-    result(3, 5) = tmp35;
+    result(3, 3) = tmp129;
+    result(3, 4) = tmp128;
+    result(3, 5) = tmp126;
     result(4, 0) = Scalar(0);
     result(4, 1) = Scalar(1);
     result(4, 2) = Scalar(0);
     result(4, 3) = Scalar(0);
-    result(4, 4) = -tmp37;
-    result(4, 5) = -tmp38;
+    result(4, 4) = tmp132;
+    result(4, 5) = tmp131;
     result(5, 0) = Scalar(0);
     result(5, 1) = Scalar(0);
     result(5, 2) = Scalar(1);
-    result(5, 3) = tmp41;
-    result(5, 4) = tmp121;
-    result(5, 5) = tmp40;
+    result(5, 3) = tmp137;
+    result(5, 4) = tmp135;
+    result(5, 5) = tmp134;
     result(6, 0) = Scalar(1);
     result(6, 1) = Scalar(0);
     result(6, 2) = Scalar(0);
-    result(6, 3) = tmp62;
-    result(6, 4) = tmp131;
-    result(6, 5) = tmp60;
+    result(6, 3) = tmp158;
+    result(6, 4) = tmp156;
+    result(6, 5) = tmp153;
     result(7, 0) = Scalar(0);
     result(7, 1) = Scalar(1);
     result(7, 2) = Scalar(0);
     result(7, 3) = Scalar(0);
-    result(7, 4) = tmp64;
-    result(7, 5) = tmp137;
+    result(7, 4) = tmp162;
+    result(7, 5) = tmp160;
     result(8, 0) = Scalar(0);
     result(8, 1) = Scalar(0);
     result(8, 2) = Scalar(1);
-    result(8, 3) = tmp70;
-    result(8, 4) = -tmp128;
-    result(8, 5) = tmp69;
+    result(8, 3) = tmp169;
+    result(8, 4) = tmp166;
+    result(8, 5) = tmp164;
     result(9, 0) = Scalar(1);
     result(9, 1) = Scalar(0);
     result(9, 2) = Scalar(0);
-    result(9, 3) = tmp92;
-    result(9, 4) = tmp96;
-    result(9, 5) = tmp97;
+    result(9, 3) = tmp184;
+    result(9, 4) = tmp183;
+    result(9, 5) = tmp181;
     result(10, 0) = Scalar(0);
     result(10, 1) = Scalar(1);
     result(10, 2) = Scalar(0);
     result(10, 3) = Scalar(0);
-    result(10, 4) = tmp101;
-    result(10, 5) = tmp99;
+    result(10, 4) = tmp187;
+    result(10, 5) = tmp186;
     result(11, 0) = Scalar(0);
     result(11, 1) = Scalar(0);
     result(11, 2) = Scalar(1);
-    result(11, 3) = tmp106;
-    result(11, 4) = tmp104;
-    result(11, 5) = tmp105;
+    result(11, 3) = tmp192;
+    result(11, 4) = tmp190;
+    result(11, 5) = tmp189;
     return result;
   }
 
@@ -7880,156 +8955,254 @@ struct RigidBodyEulerYzx {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return gamma (nx)
-  /// Ops: 330
+  /// Ops: 692
   template <typename Scalar>
   static XVector<Scalar> bias_acceleration(const QVector<Scalar>& q,
                                            const QVector<Scalar>& v,
                                            const Scalar& /*t*/,
-                                           const Params& /*params*/) {
+                                           const Params& params) {
     using std::cos;
     using std::sin;
+    using std::sqrt;
     const Scalar heading = q(3);
     const Scalar attitude = q(4);
     const Scalar bank = q(5);
     const Scalar heading_dot = v(3);
     const Scalar attitude_dot = v(4);
     const Scalar bank_dot = v(5);
-    const Scalar tmp0 = cos(heading);
-    const Scalar tmp1 = cos(attitude);
-    const Scalar tmp2 = Scalar(0.5)*tmp1;
-    const Scalar tmp3 = tmp0*tmp2;
-    const Scalar tmp5 = sin(attitude);
-    const Scalar tmp6 = Scalar(0.5)*tmp5;
-    const Scalar tmp8 = sin(heading);
-    const Scalar tmp9 = tmp2*tmp8;
-    const Scalar tmp12 = tmp0*tmp6;
-    const Scalar tmp13 = tmp9*heading_dot + tmp12*attitude_dot;
-    const Scalar tmp16 = tmp6*tmp8;
-    const Scalar tmp17 = tmp16*attitude_dot - tmp3*heading_dot;
-    const Scalar tmp19 = sin(bank);
-    const Scalar tmp20 = Scalar(0.4)*tmp19;
-    const Scalar tmp21 = tmp20*tmp8;
-    const Scalar tmp22 = cos(bank);
-    const Scalar tmp23 = Scalar(0.4)*tmp22;
-    const Scalar tmp24 = tmp0*tmp23*tmp5;
-    const Scalar tmp26 = tmp1*tmp23;
-    const Scalar tmp28 = tmp0*tmp20;
-    const Scalar tmp29 = tmp23*tmp8;
-    const Scalar tmp30 = tmp29*tmp5;
-    const Scalar tmp31 = tmp28 + tmp30;
-    const Scalar tmp33 = tmp26*attitude_dot;
-    const Scalar tmp34 = tmp0*tmp33;
-    const Scalar tmp35 = tmp29 + tmp28*tmp5;
-    const Scalar tmp40 = -tmp21*tmp5 + Scalar(0.4)*tmp0*tmp22;
-    const Scalar tmp41 = tmp24 - tmp21;
-    const Scalar tmp42 = tmp33*tmp8 + tmp40*bank_dot + tmp41*heading_dot;
-    const Scalar tmp44 = Scalar(0.3)*tmp22;
-    const Scalar tmp45 = tmp44*tmp8;
-    const Scalar tmp46 = Scalar(0.3)*tmp19;
-    const Scalar tmp47 = tmp0*tmp46;
-    const Scalar tmp48 = tmp47*tmp5;
-    const Scalar tmp49 = tmp45 + tmp48;
-    const Scalar tmp51 = tmp1*tmp46;
-    const Scalar tmp53 = tmp0*tmp44;
-    const Scalar tmp54 = tmp46*tmp8;
-    const Scalar tmp55 = tmp5*tmp54;
-    const Scalar tmp57 = tmp51*attitude_dot;
-    const Scalar tmp58 = tmp0*tmp57;
-    const Scalar tmp59 = tmp53*tmp5;
-    const Scalar tmp60 = tmp59 - tmp54;
-    const Scalar tmp61 = tmp55 - Scalar(0.3)*tmp0*tmp22;
-    const Scalar tmp64 = tmp46*tmp5;
-    const Scalar tmp65 = tmp1*tmp44;
-    const Scalar tmp67 = tmp45*tmp5;
-    const Scalar tmp68 = tmp47 + tmp67;
-    const Scalar tmp69 = -tmp68;
-    const Scalar tmp70 = -tmp49;
-    const Scalar tmp71 = tmp69*bank_dot + tmp70*heading_dot - tmp57*tmp8;
-    const Scalar tmp73 = Scalar(0.2)*tmp1;
-    const Scalar tmp74 = Scalar(0.25)*tmp19;
-    const Scalar tmp75 = tmp5*tmp74;
-    const Scalar tmp76 = -tmp59 + tmp0*tmp75;
-    const Scalar tmp77 = tmp76 + tmp0*tmp73;
-    const Scalar tmp78 = Scalar(0.25)*tmp22;
-    const Scalar tmp79 = tmp8*tmp78;
-    const Scalar tmp80 = tmp54 + tmp79;
-    const Scalar tmp81 = tmp77 + tmp80;
-    const Scalar tmp83 = Scalar(0.2)*tmp5;
-    const Scalar tmp84 = tmp1*tmp74;
-    const Scalar tmp85 = tmp65 + tmp83 - tmp84;
-    const Scalar tmp87 = tmp73*tmp8;
-    const Scalar tmp88 = tmp0*tmp78;
-    const Scalar tmp89 = tmp74*tmp8;
-    const Scalar tmp90 = tmp5*tmp89;
-    const Scalar tmp91 = tmp68 + tmp88 - tmp90;
-    const Scalar tmp92 = tmp91 - tmp87;
-    const Scalar tmp94 = tmp1*tmp53;
-    const Scalar tmp95 = tmp94 + tmp0*tmp83 - Scalar(0.25)*tmp0*tmp1*tmp19;
-    const Scalar tmp97 = tmp49 - tmp89 + tmp5*tmp88;
-    const Scalar tmp100 = tmp44*tmp5;
-    const Scalar tmp103 = tmp1*tmp45;
-    const Scalar tmp104 = tmp103 + tmp8*tmp83 - tmp8*tmp84;
-    const Scalar tmp105 = -tmp61 - tmp0*tmp74 - tmp5*tmp79;
-    const Scalar tmp106 = -tmp81;
-    const Scalar tmp107 = tmp104*attitude_dot + tmp105*bank_dot + tmp106*heading_dot;
-    const Scalar tmp117 = tmp17*heading_dot
-        + attitude_dot*(-tmp3*attitude_dot + Scalar(0.5)*tmp5*tmp8*heading_dot);
-    const Scalar tmp118 = -tmp6*(attitude_dot*attitude_dot);
-    const Scalar tmp119 = tmp13*heading_dot + attitude_dot*(tmp9*attitude_dot + tmp12*heading_dot);
-    const Scalar tmp120 = tmp1*tmp28;
-    const Scalar tmp121 = tmp26*tmp8;
-    const Scalar tmp122 = tmp42*heading_dot
-        + attitude_dot*(tmp24*attitude_dot + tmp120*bank_dot + tmp121*heading_dot)
-        + bank_dot*(tmp40*heading_dot + tmp41*bank_dot + tmp120*attitude_dot);
-    const Scalar tmp123 = attitude_dot*(-tmp33 + Scalar(0.4)*tmp19*tmp5*bank_dot)
-        + bank_dot*(-tmp26*bank_dot + tmp20*tmp5*attitude_dot);
-    const Scalar tmp124 = tmp1*tmp21;
-    const Scalar tmp125 = -tmp31;
-    const Scalar tmp126 = -tmp35;
-    const Scalar tmp127 = attitude_dot*(-tmp30*attitude_dot - tmp124*bank_dot
-            + Scalar(0.4)*tmp0*tmp1*tmp22*heading_dot)
-        + bank_dot*(tmp125*bank_dot + tmp126*heading_dot - tmp124*attitude_dot)
-        + heading_dot*(tmp34 + tmp125*heading_dot + tmp126*bank_dot);
-    const Scalar tmp128 = tmp51*tmp8;
-    const Scalar tmp129 = tmp71*heading_dot
-        + attitude_dot*(-tmp48*attitude_dot - tmp128*heading_dot
-            + Scalar(0.3)*tmp0*tmp1*tmp22*bank_dot)
-        + bank_dot*(tmp69*heading_dot + tmp70*bank_dot + tmp94*attitude_dot);
-    const Scalar tmp130 = attitude_dot*(tmp57 + tmp100*bank_dot)
-        + bank_dot*(tmp51*bank_dot + tmp100*attitude_dot);
-    const Scalar tmp131 = tmp0*tmp51;
-    const Scalar tmp132 = -tmp60;
-    const Scalar tmp133 = attitude_dot*(-tmp103*bank_dot - tmp131*heading_dot
-            + Scalar(0.3)*tmp19*tmp5*tmp8*attitude_dot)
-        + bank_dot*(tmp132*heading_dot + tmp61*bank_dot - tmp103*attitude_dot)
-        + heading_dot*(-tmp58 + tmp132*bank_dot + tmp61*heading_dot);
-    const Scalar tmp134 = tmp131 + tmp1*tmp88;
-    const Scalar tmp135 = tmp107*heading_dot
-        + attitude_dot*(tmp134*bank_dot + tmp104*heading_dot - tmp77*attitude_dot)
-        + bank_dot*(tmp134*attitude_dot + tmp105*heading_dot + bank_dot*(-tmp76 - tmp80));
-    const Scalar tmp136 = tmp64 + tmp5*tmp78;
-    const Scalar tmp137 = -tmp65;
-    const Scalar tmp138 = attitude_dot*(tmp136*bank_dot - tmp85*attitude_dot)
-        + bank_dot*(tmp136*attitude_dot + bank_dot*(tmp137 + tmp84));
-    const Scalar tmp139 = -tmp128 - tmp1*tmp79;
-    const Scalar tmp140 = -tmp97;
-    const Scalar tmp141 = attitude_dot*(tmp139*bank_dot + tmp95*heading_dot
-            + attitude_dot*(tmp87 + tmp90 - tmp67))
-        + bank_dot*(tmp139*attitude_dot + tmp140*heading_dot - tmp91*bank_dot)
-        + heading_dot*(tmp140*bank_dot + tmp95*attitude_dot - tmp92*heading_dot);
+    const Scalar m = Scalar(params.m);
+    const Scalar com_x = Scalar(params.com_x);
+    const Scalar com_y = Scalar(params.com_y);
+    const Scalar com_z = Scalar(params.com_z);
+    const Scalar a = Scalar(params.a);
+    const Scalar b = Scalar(params.b);
+    const Scalar c = Scalar(params.c);
+    const Scalar tmp0 = sin(bank);
+    const Scalar tmp1 = sin(heading);
+    const Scalar tmp2 = tmp0*tmp1;
+    const Scalar tmp3 = sin(attitude);
+    const Scalar tmp4 = cos(bank);
+    const Scalar tmp5 = cos(heading);
+    const Scalar tmp6 = tmp4*tmp5;
+    const Scalar tmp7 = tmp3*tmp6;
+    const Scalar tmp8 = tmp7 - tmp2;
+    const Scalar tmp9 = -tmp8;
+    const Scalar tmp10 = (Scalar(1)/sqrt(m));
+    const Scalar tmp11 = (a*a);
+    const Scalar tmp12 = (b*b);
+    const Scalar tmp13 = m*(tmp11 + tmp12);
+    const Scalar tmp14 = (c*c);
+    const Scalar tmp15 = tmp11 + tmp14;
+    const Scalar tmp16 = tmp15*m;
+    const Scalar tmp17 = tmp12 + tmp14;
+    const Scalar tmp18 = tmp17*m;
+    const Scalar tmp19 = Scalar(0.005689254019167049)*tmp18 + Scalar(0.010556171822976032)*tmp16
+        - Scalar(0.01624542584214308)*tmp13;
+    const Scalar tmp20 = Scalar(0.041142942152109445)*tmp18 + Scalar(0.028423816083747767)*tmp13
+        - Scalar(0.027900091569190537)*tmp16;
+    const Scalar tmp21 = sqrt(tmp20);
+    const Scalar tmp22 = (Scalar(1)/tmp21);
+    const Scalar tmp23 = tmp19*tmp22;
+    const Scalar tmp24 = (Scalar(1)/tmp20);
+    const Scalar tmp25 = Scalar(0.021737886292675604)*tmp13 + Scalar(0.04006485617007295)*tmp16
+        - Scalar(0.020136075796081898)*tmp18 - tmp24*(tmp19*tmp19);
+    const Scalar tmp26 = sqrt(tmp25);
+    const Scalar tmp27 = tmp23 + tmp26;
+    const Scalar tmp28 = tmp10*tmp27;
+    const Scalar tmp29 = tmp1*tmp4;
+    const Scalar tmp30 = tmp0*tmp5;
+    const Scalar tmp31 = tmp3*tmp30;
+    const Scalar tmp32 = tmp29 + tmp31;
+    const Scalar tmp33 = -Scalar(0.0257737061664756)*tmp13 - Scalar(0.003316897780257798)*tmp18
+        + Scalar(0.0290906039467334)*tmp15*m;
+    const Scalar tmp34 = tmp22*tmp33;
+    const Scalar tmp35 = (Scalar(1)/tmp25);
+    const Scalar tmp36 = tmp24*tmp33;
+    const Scalar tmp37 = -Scalar(0.03161742478199714)*tmp13 - Scalar(0.004414255047715874)*tmp16
+        - tmp19*tmp36 + Scalar(0.03603167982971302)*tmp17*m;
+    const Scalar tmp38 = -Scalar(0.008495035709756703)*tmp13 - tmp24*(tmp33*tmp33)
+        - tmp35*(tmp37*tmp37) + Scalar(0.02950190206578425)*tmp15*m
+        + Scalar(0.020659800310639128)*tmp17*m;
+    const Scalar tmp39 = sqrt(tmp38);
+    const Scalar tmp40 = tmp37/tmp26;
+    const Scalar tmp41 = tmp39 + tmp40;
+    const Scalar tmp42 = tmp34 + tmp41;
+    const Scalar tmp43 = tmp10*tmp42;
+    const Scalar tmp44 = cos(attitude);
+    const Scalar tmp45 = tmp44*tmp5;
+    const Scalar tmp46 = tmp10*tmp21;
+    const Scalar tmp47 = tmp45*tmp46;
+    const Scalar tmp48 = tmp44*com_x;
+    const Scalar tmp49 = tmp48*tmp5;
+    const Scalar tmp53 = tmp4*tmp44;
+    const Scalar tmp54 = tmp0*tmp44;
+    const Scalar tmp55 = tmp28*tmp53 - tmp43*tmp54;
+    const Scalar tmp56 = tmp3*tmp46;
+    const Scalar tmp57 = tmp3*com_x;
+    const Scalar tmp58 = tmp53*com_y - tmp54*com_z;
+    const Scalar tmp59 = tmp57 + tmp58;
+    const Scalar tmp63 = tmp29*tmp3;
+    const Scalar tmp64 = tmp30 + tmp63;
+    const Scalar tmp65 = tmp2*tmp3;
+    const Scalar tmp66 = tmp65 - tmp4*tmp5;
+    const Scalar tmp67 = -tmp66;
+    const Scalar tmp69 = tmp1*tmp44;
+    const Scalar tmp70 = tmp46*tmp69;
+    const Scalar tmp71 = -tmp70;
+    const Scalar tmp72 = tmp1*tmp48;
+    const Scalar tmp79 = tmp44*tmp6;
+    const Scalar tmp80 = tmp3*tmp5;
+    const Scalar tmp81 = tmp46*tmp80;
+    const Scalar tmp82 = tmp5*tmp57 + tmp79*com_y - tmp0*tmp44*tmp5*com_z;
+    const Scalar tmp83 = tmp81 + tmp82;
+    const Scalar tmp84 = tmp83 + tmp28*tmp79 - tmp0*tmp10*tmp42*tmp44*tmp5;
+    const Scalar tmp91 = tmp0*tmp3;
+    const Scalar tmp92 = tmp3*tmp4;
+    const Scalar tmp98 = -tmp64;
+    const Scalar tmp99 = tmp67*com_y + tmp98*com_z;
+    const Scalar tmp100 = tmp99 + tmp28*tmp67 + tmp43*tmp98;
+    const Scalar tmp101 = tmp29*tmp44;
+    const Scalar tmp102 = tmp2*tmp44;
+    const Scalar tmp103 = tmp1*tmp3;
+    const Scalar tmp104 = tmp46*tmp103;
+    const Scalar tmp105 = tmp1*tmp57 + tmp101*com_y - tmp102*com_z;
+    const Scalar tmp106 = tmp105 + tmp104;
+    const Scalar tmp107 = tmp106 + tmp28*tmp101 - tmp43*tmp102;
+    const Scalar tmp108 = -tmp32;
+    const Scalar tmp109 = tmp108*tmp43 + tmp28*tmp8;
+    const Scalar tmp110 = -tmp47;
+    const Scalar tmp111 = tmp108*com_z + tmp8*com_y;
+    const Scalar tmp112 = tmp111 - tmp49;
+    const Scalar tmp113 = tmp110 + tmp112;
+    const Scalar tmp114 = tmp109 + tmp113;
+    const Scalar tmp115 = tmp107*attitude_dot + tmp114*heading_dot + tmp100*bank_dot;
+    const Scalar tmp117 = tmp23 - tmp26;
+    const Scalar tmp118 = tmp10*tmp117;
+    const Scalar tmp119 = tmp34 - tmp41;
+    const Scalar tmp120 = tmp10*tmp119;
+    const Scalar tmp122 = tmp118*tmp53 - tmp120*tmp54;
+    const Scalar tmp127 = tmp83 + tmp118*tmp79 - tmp0*tmp10*tmp119*tmp44*tmp5;
+    const Scalar tmp134 = tmp99 + tmp118*tmp67 + tmp120*tmp98;
+    const Scalar tmp135 = tmp106 + tmp118*tmp101 - tmp120*tmp102;
+    const Scalar tmp136 = tmp108*tmp120 + tmp118*tmp8;
+    const Scalar tmp137 = tmp113 + tmp136;
+    const Scalar tmp138 = tmp134*bank_dot + tmp135*attitude_dot + tmp137*heading_dot;
+    const Scalar tmp140 = -tmp117;
+    const Scalar tmp141 = tmp10*tmp140;
+    const Scalar tmp142 = tmp40 - tmp34 - tmp39;
+    const Scalar tmp143 = tmp10*tmp142;
+    const Scalar tmp146 = tmp141*tmp53 - tmp143*tmp54;
+    const Scalar tmp147 = -tmp56;
+    const Scalar tmp154 = tmp82 - tmp81;
+    const Scalar tmp155 = tmp154 + tmp141*tmp79 - tmp0*tmp10*tmp142*tmp44*tmp5;
+    const Scalar tmp164 = tmp99 + tmp141*tmp67 + tmp143*tmp98;
+    const Scalar tmp165 = tmp105 - tmp104;
+    const Scalar tmp166 = tmp165 + tmp141*tmp101 - tmp143*tmp102;
+    const Scalar tmp167 = tmp108*tmp143 + tmp141*tmp8;
+    const Scalar tmp168 = tmp112 + tmp47;
+    const Scalar tmp169 = tmp167 + tmp168;
+    const Scalar tmp170 = tmp164*bank_dot + tmp166*attitude_dot + tmp169*heading_dot;
+    const Scalar tmp172 = -tmp27;
+    const Scalar tmp173 = tmp10*tmp172;
+    const Scalar tmp174 = tmp39 - tmp34 - tmp40;
+    const Scalar tmp175 = tmp10*tmp174;
+    const Scalar tmp177 = tmp173*tmp53 - tmp175*tmp54;
+    const Scalar tmp182 = tmp154 + tmp173*tmp79 - tmp0*tmp10*tmp174*tmp44*tmp5;
+    const Scalar tmp189 = tmp99 + tmp173*tmp67 + tmp175*tmp98;
+    const Scalar tmp190 = tmp165 + tmp173*tmp101 - tmp175*tmp102;
+    const Scalar tmp191 = tmp108*tmp175 + tmp173*tmp8;
+    const Scalar tmp192 = tmp168 + tmp191;
+    const Scalar tmp193 = tmp189*bank_dot + tmp190*attitude_dot + tmp192*heading_dot;
+    const Scalar tmp201 = tmp30*tmp44;
+    const Scalar tmp202 = tmp201*com_y + tmp79*com_z;
+    const Scalar tmp203 = tmp49 + tmp31*com_z - tmp3*tmp4*tmp5*com_y;
+    const Scalar tmp205 = tmp91*com_y + tmp92*com_z;
+    const Scalar tmp207 = tmp101*com_z + tmp102*com_y;
+    const Scalar tmp209 = tmp72 + tmp65*com_z - tmp63*com_y;
+    const Scalar tmp210 = tmp66*com_z + tmp98*com_y;
+    const Scalar tmp211 = tmp108*com_y + tmp9*com_z;
+    const Scalar tmp212 = tmp210 + tmp72;
+    const Scalar tmp313 = tmp202 + tmp201*tmp28 + tmp43*tmp79;
+    const Scalar tmp314 = tmp203 + tmp47;
+    const Scalar tmp315 = tmp115*heading_dot
+        + attitude_dot*(tmp107*heading_dot + tmp313*bank_dot
+            + attitude_dot*(-tmp314 - tmp31*tmp43 + tmp10*tmp27*tmp3*tmp4*tmp5))
+        + bank_dot*(tmp313*attitude_dot + tmp100*heading_dot + bank_dot*(tmp109 + tmp111));
+    const Scalar tmp316 = tmp205 + tmp28*tmp91 + tmp43*tmp92;
+    const Scalar tmp317 = tmp56 + tmp59;
+    const Scalar tmp318 = attitude_dot*(tmp316*bank_dot + attitude_dot*(-tmp317 - tmp55))
+        + bank_dot*(tmp316*attitude_dot + bank_dot*(-tmp55 - tmp58));
+    const Scalar tmp319 = -tmp207 - tmp28*tmp102 - tmp43*tmp101;
+    const Scalar tmp320 = tmp28*tmp98 + tmp43*tmp66;
+    const Scalar tmp321 = tmp211 + tmp108*tmp28 + tmp43*tmp9;
+    const Scalar tmp322 = tmp209 + tmp70;
+    const Scalar tmp323 = tmp212 + tmp70;
+    const Scalar tmp324 = attitude_dot*(tmp319*bank_dot + tmp84*heading_dot
+            + attitude_dot*(tmp322 + tmp43*tmp65 - tmp28*tmp63))
+        + bank_dot*(tmp319*attitude_dot + tmp321*heading_dot + bank_dot*(tmp210 + tmp320))
+        + heading_dot*(tmp321*bank_dot + tmp84*attitude_dot + heading_dot*(tmp320 + tmp323));
+    const Scalar tmp325 = tmp202 + tmp118*tmp201 + tmp120*tmp79;
+    const Scalar tmp326 = tmp138*heading_dot
+        + attitude_dot*(tmp135*heading_dot + tmp325*bank_dot
+            + attitude_dot*(-tmp314 - tmp120*tmp31 + tmp10*tmp117*tmp3*tmp4*tmp5))
+        + bank_dot*(tmp134*heading_dot + tmp325*attitude_dot + bank_dot*(tmp111 + tmp136));
+    const Scalar tmp327 = tmp205 + tmp118*tmp91 + tmp120*tmp92;
+    const Scalar tmp328 = attitude_dot*(tmp327*bank_dot + attitude_dot*(-tmp122 - tmp317))
+        + bank_dot*(tmp327*attitude_dot + bank_dot*(-tmp122 - tmp58));
+    const Scalar tmp329 = -tmp207 - tmp118*tmp102 - tmp120*tmp101;
+    const Scalar tmp330 = tmp118*tmp98 + tmp120*tmp66;
+    const Scalar tmp331 = tmp211 + tmp108*tmp118 + tmp120*tmp9;
+    const Scalar tmp332 = attitude_dot*(tmp127*heading_dot + tmp329*bank_dot
+            + attitude_dot*(tmp322 + tmp120*tmp65 - tmp118*tmp63))
+        + bank_dot*(tmp329*attitude_dot + tmp331*heading_dot + bank_dot*(tmp210 + tmp330))
+        + heading_dot*(tmp127*attitude_dot + tmp331*bank_dot + heading_dot*(tmp323 + tmp330));
+    const Scalar tmp333 = tmp202 + tmp141*tmp201 + tmp143*tmp79;
+    const Scalar tmp334 = tmp110 + tmp203;
+    const Scalar tmp335 = tmp170*heading_dot
+        + attitude_dot*(tmp166*heading_dot + tmp333*bank_dot
+            + attitude_dot*(-tmp334 - tmp143*tmp31 + tmp10*tmp140*tmp3*tmp4*tmp5))
+        + bank_dot*(tmp164*heading_dot + tmp333*attitude_dot + bank_dot*(tmp111 + tmp167));
+    const Scalar tmp336 = tmp205 + tmp141*tmp91 + tmp143*tmp92;
+    const Scalar tmp337 = tmp147 + tmp59;
+    const Scalar tmp338 = attitude_dot*(tmp336*bank_dot + attitude_dot*(-tmp146 - tmp337))
+        + bank_dot*(tmp336*attitude_dot + bank_dot*(-tmp146 - tmp58));
+    const Scalar tmp339 = -tmp207 - tmp141*tmp102 - tmp143*tmp101;
+    const Scalar tmp340 = tmp141*tmp98 + tmp143*tmp66;
+    const Scalar tmp341 = tmp211 + tmp108*tmp141 + tmp143*tmp9;
+    const Scalar tmp342 = tmp209 + tmp71;
+    const Scalar tmp343 = tmp212 + tmp71;
+    const Scalar tmp344 = attitude_dot*(tmp155*heading_dot + tmp339*bank_dot
+            + attitude_dot*(tmp342 + tmp143*tmp65 - tmp141*tmp63))
+        + bank_dot*(tmp339*attitude_dot + tmp341*heading_dot + bank_dot*(tmp210 + tmp340))
+        + heading_dot*(tmp155*attitude_dot + tmp341*bank_dot + heading_dot*(tmp340 + tmp343));
+    const Scalar tmp345 = tmp202 + tmp173*tmp201 + tmp175*tmp79;
+    const Scalar tmp346 = tmp193*heading_dot
+        + attitude_dot*(tmp190*heading_dot + tmp345*bank_dot
+            + attitude_dot*(-tmp334 - tmp175*tmp31 + tmp10*tmp172*tmp3*tmp4*tmp5))
+        + bank_dot*(tmp189*heading_dot + tmp345*attitude_dot + bank_dot*(tmp111 + tmp191));
+    const Scalar tmp347 = tmp205 + tmp173*tmp91 + tmp175*tmp92;
+    const Scalar tmp348 = attitude_dot*(tmp347*bank_dot + attitude_dot*(-tmp177 - tmp337))
+        + bank_dot*(tmp347*attitude_dot + bank_dot*(-tmp177 - tmp58));
+    const Scalar tmp349 = -tmp207 - tmp173*tmp102 - tmp175*tmp101;
+    const Scalar tmp350 = tmp173*tmp98 + tmp175*tmp66;
+    const Scalar tmp351 = tmp211 + tmp108*tmp173 + tmp175*tmp9;
+    const Scalar tmp352 = attitude_dot*(tmp182*heading_dot + tmp349*bank_dot
+            + attitude_dot*(tmp342 + tmp175*tmp65 - tmp173*tmp63))
+        + bank_dot*(tmp349*attitude_dot + tmp351*heading_dot + bank_dot*(tmp210 + tmp350))
+        + heading_dot*(tmp182*attitude_dot + tmp351*bank_dot + heading_dot*(tmp343 + tmp350));
     XVector<Scalar> result;
-    result(0) = tmp117;
-    result(1) = tmp118;
-    result(2) = tmp119;
-    result(3) = tmp122;
-    result(4) = tmp123;
-    result(5) = tmp127;
-    result(6) = tmp129;
-    result(7) = tmp130;
-    result(8) = tmp133;
-    result(9) = tmp135;
-    result(10) = tmp138;
-    result(11) = tmp141;
+    result(0) = tmp315;
+    result(1) = tmp318;
+    result(2) = tmp324;
+    result(3) = tmp326;
+    result(4) = tmp328;
+    result(5) = tmp332;
+    result(6) = tmp335;
+    result(7) = tmp338;
+    result(8) = tmp344;
+    result(9) = tmp346;
+    result(10) = tmp348;
+    result(11) = tmp352;
     return result;
   }
 
@@ -8039,7 +9212,7 @@ struct RigidBodyEulerYzx {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return p (dim)
-  /// Ops: 201
+  /// Ops: 94
   template <typename Scalar>
   static SpaceVector<Scalar> linear_momentum(const QVector<Scalar>& q,
                                              const QVector<Scalar>& v,
@@ -8056,109 +9229,61 @@ struct RigidBodyEulerYzx {
     const Scalar heading_dot = v(3);
     const Scalar attitude_dot = v(4);
     const Scalar bank_dot = v(5);
-    const Scalar m_a = Scalar(params.m_a);
-    const Scalar m_b = Scalar(params.m_b);
-    const Scalar m_c = Scalar(params.m_c);
-    const Scalar m_d = Scalar(params.m_d);
-    const Scalar tmp0 = cos(heading);
-    const Scalar tmp1 = cos(attitude);
-    const Scalar tmp2 = Scalar(0.5)*tmp1;
-    const Scalar tmp3 = tmp0*tmp2;
-    const Scalar tmp5 = sin(attitude);
-    const Scalar tmp6 = Scalar(0.5)*tmp5;
-    const Scalar tmp8 = sin(heading);
-    const Scalar tmp9 = tmp2*tmp8;
-    const Scalar tmp12 = tmp0*tmp6;
-    const Scalar tmp13 = tmp9*heading_dot + tmp12*attitude_dot;
-    const Scalar tmp14 = x_dot - tmp13;
-    const Scalar tmp15 = y_dot + tmp2*attitude_dot;
-    const Scalar tmp16 = tmp6*tmp8;
-    const Scalar tmp17 = tmp16*attitude_dot - tmp3*heading_dot;
-    const Scalar tmp18 = tmp17 + z_dot;
-    const Scalar tmp19 = sin(bank);
-    const Scalar tmp20 = Scalar(0.4)*tmp19;
-    const Scalar tmp21 = tmp20*tmp8;
-    const Scalar tmp22 = cos(bank);
-    const Scalar tmp23 = Scalar(0.4)*tmp22;
-    const Scalar tmp24 = tmp0*tmp23*tmp5;
-    const Scalar tmp26 = tmp1*tmp23;
-    const Scalar tmp28 = tmp0*tmp20;
-    const Scalar tmp29 = tmp23*tmp8;
-    const Scalar tmp30 = tmp29*tmp5;
-    const Scalar tmp31 = tmp28 + tmp30;
-    const Scalar tmp33 = tmp26*attitude_dot;
-    const Scalar tmp34 = tmp0*tmp33;
-    const Scalar tmp35 = tmp29 + tmp28*tmp5;
-    const Scalar tmp36 = x_dot - tmp34 + tmp31*heading_dot + tmp35*bank_dot;
-    const Scalar tmp37 = tmp23*tmp5;
-    const Scalar tmp38 = tmp1*tmp20;
-    const Scalar tmp39 = y_dot - tmp37*attitude_dot - tmp38*bank_dot;
-    const Scalar tmp40 = -tmp21*tmp5 + Scalar(0.4)*tmp0*tmp22;
-    const Scalar tmp41 = tmp24 - tmp21;
-    const Scalar tmp42 = tmp33*tmp8 + tmp40*bank_dot + tmp41*heading_dot;
-    const Scalar tmp43 = tmp42 + z_dot;
-    const Scalar tmp44 = Scalar(0.3)*tmp22;
-    const Scalar tmp45 = tmp44*tmp8;
-    const Scalar tmp46 = Scalar(0.3)*tmp19;
-    const Scalar tmp47 = tmp0*tmp46;
-    const Scalar tmp48 = tmp47*tmp5;
-    const Scalar tmp49 = tmp45 + tmp48;
-    const Scalar tmp51 = tmp1*tmp46;
-    const Scalar tmp53 = tmp0*tmp44;
-    const Scalar tmp54 = tmp46*tmp8;
-    const Scalar tmp55 = tmp5*tmp54;
-    const Scalar tmp57 = tmp51*attitude_dot;
-    const Scalar tmp58 = tmp0*tmp57;
-    const Scalar tmp59 = tmp53*tmp5;
-    const Scalar tmp60 = tmp59 - tmp54;
-    const Scalar tmp61 = tmp55 - Scalar(0.3)*tmp0*tmp22;
-    const Scalar tmp62 = -tmp61;
-    const Scalar tmp63 = tmp58 + x_dot + tmp60*bank_dot + tmp62*heading_dot;
-    const Scalar tmp64 = tmp46*tmp5;
-    const Scalar tmp65 = tmp1*tmp44;
-    const Scalar tmp66 = y_dot + tmp64*attitude_dot - tmp65*bank_dot;
-    const Scalar tmp67 = tmp45*tmp5;
-    const Scalar tmp68 = tmp47 + tmp67;
-    const Scalar tmp69 = -tmp68;
-    const Scalar tmp70 = -tmp49;
-    const Scalar tmp71 = tmp69*bank_dot + tmp70*heading_dot - tmp57*tmp8;
-    const Scalar tmp72 = tmp71 + z_dot;
-    const Scalar tmp73 = Scalar(0.2)*tmp1;
-    const Scalar tmp74 = Scalar(0.25)*tmp19;
-    const Scalar tmp75 = tmp5*tmp74;
-    const Scalar tmp76 = -tmp59 + tmp0*tmp75;
-    const Scalar tmp77 = tmp76 + tmp0*tmp73;
-    const Scalar tmp78 = Scalar(0.25)*tmp22;
-    const Scalar tmp79 = tmp8*tmp78;
-    const Scalar tmp80 = tmp54 + tmp79;
-    const Scalar tmp81 = tmp77 + tmp80;
-    const Scalar tmp83 = Scalar(0.2)*tmp5;
-    const Scalar tmp84 = tmp1*tmp74;
-    const Scalar tmp87 = tmp73*tmp8;
-    const Scalar tmp88 = tmp0*tmp78;
-    const Scalar tmp89 = tmp74*tmp8;
-    const Scalar tmp90 = tmp5*tmp89;
-    const Scalar tmp91 = tmp68 + tmp88 - tmp90;
-    const Scalar tmp92 = tmp91 - tmp87;
-    const Scalar tmp94 = tmp1*tmp53;
-    const Scalar tmp95 = tmp94 + tmp0*tmp83 - Scalar(0.25)*tmp0*tmp1*tmp19;
-    const Scalar tmp96 = -tmp95;
-    const Scalar tmp97 = tmp49 - tmp89 + tmp5*tmp88;
-    const Scalar tmp98 = x_dot + tmp92*heading_dot + tmp96*attitude_dot + tmp97*bank_dot;
-    const Scalar tmp99 = -tmp51 - tmp1*tmp78;
-    const Scalar tmp100 = tmp44*tmp5;
-    const Scalar tmp101 = tmp73 + tmp75 - tmp100;
-    const Scalar tmp102 = y_dot + tmp99*bank_dot + tmp101*attitude_dot;
-    const Scalar tmp103 = tmp1*tmp45;
-    const Scalar tmp104 = tmp103 + tmp8*tmp83 - tmp8*tmp84;
-    const Scalar tmp105 = -tmp61 - tmp0*tmp74 - tmp5*tmp79;
-    const Scalar tmp106 = -tmp81;
-    const Scalar tmp107 = tmp104*attitude_dot + tmp105*bank_dot + tmp106*heading_dot;
-    const Scalar tmp108 = tmp107 + z_dot;
+    const Scalar m = Scalar(params.m);
+    const Scalar com_x = Scalar(params.com_x);
+    const Scalar com_y = Scalar(params.com_y);
+    const Scalar com_z = Scalar(params.com_z);
+    const Scalar tmp0 = sin(bank);
+    const Scalar tmp1 = sin(heading);
+    const Scalar tmp2 = tmp0*tmp1;
+    const Scalar tmp3 = sin(attitude);
+    const Scalar tmp4 = cos(bank);
+    const Scalar tmp5 = cos(heading);
+    const Scalar tmp6 = tmp4*tmp5;
+    const Scalar tmp7 = tmp3*tmp6;
+    const Scalar tmp8 = tmp7 - tmp2;
+    const Scalar tmp29 = tmp1*tmp4;
+    const Scalar tmp30 = tmp0*tmp5;
+    const Scalar tmp31 = tmp3*tmp30;
+    const Scalar tmp32 = tmp29 + tmp31;
+    const Scalar tmp44 = cos(attitude);
+    const Scalar tmp48 = tmp44*com_x;
+    const Scalar tmp49 = tmp48*tmp5;
+    const Scalar tmp53 = tmp4*tmp44;
+    const Scalar tmp54 = tmp0*tmp44;
+    const Scalar tmp57 = tmp3*com_x;
+    const Scalar tmp63 = tmp29*tmp3;
+    const Scalar tmp64 = tmp30 + tmp63;
+    const Scalar tmp65 = tmp2*tmp3;
+    const Scalar tmp66 = tmp65 - tmp4*tmp5;
+    const Scalar tmp67 = -tmp66;
+    const Scalar tmp72 = tmp1*tmp48;
+    const Scalar tmp73 = -tmp72 + tmp64*com_y + tmp67*com_z;
+    const Scalar tmp77 = tmp32*com_y + tmp8*com_z;
+    const Scalar tmp79 = tmp44*tmp6;
+    const Scalar tmp82 = tmp5*tmp57 + tmp79*com_y - tmp0*tmp44*tmp5*com_z;
+    const Scalar tmp89 = tmp53*com_z + tmp54*com_y;
+    const Scalar tmp91 = tmp0*tmp3;
+    const Scalar tmp92 = tmp3*tmp4;
+    const Scalar tmp94 = tmp48 + tmp91*com_z - tmp92*com_y;
+    const Scalar tmp98 = -tmp64;
+    const Scalar tmp99 = tmp67*com_y + tmp98*com_z;
+    const Scalar tmp101 = tmp29*tmp44;
+    const Scalar tmp102 = tmp2*tmp44;
+    const Scalar tmp105 = tmp1*tmp57 + tmp101*com_y - tmp102*com_z;
+    const Scalar tmp108 = -tmp32;
+    const Scalar tmp111 = tmp108*com_z + tmp8*com_y;
+    const Scalar tmp112 = tmp111 - tmp49;
+    const Scalar tmp195 = -tmp82;
+    const Scalar tmp196 = x_dot + tmp195*attitude_dot + tmp73*heading_dot + tmp77*bank_dot;
+    const Scalar tmp197 = -tmp89;
+    const Scalar tmp198 = y_dot + tmp197*bank_dot + tmp94*attitude_dot;
+    const Scalar tmp199 = tmp105*attitude_dot + tmp112*heading_dot + tmp99*bank_dot;
+    const Scalar tmp200 = tmp199 + z_dot;
     SpaceVector<Scalar> result;
-    result(0) = tmp63*m_c + tmp98*m_d + tmp14*m_a + tmp36*m_b;
-    result(1) = tmp39*m_b + tmp66*m_c + tmp102*m_d + tmp15*m_a;
-    result(2) = tmp43*m_b + tmp72*m_c + tmp108*m_d + tmp18*m_a;
+    result(0) = tmp196*m;
+    result(1) = tmp198*m;
+    result(2) = tmp200*m;
     return result;
   }
 
@@ -8168,7 +9293,7 @@ struct RigidBodyEulerYzx {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return L (angular_dim)
-  /// Ops: 270
+  /// Ops: 366
   template <typename Scalar>
   static AngularVector<Scalar> angular_momentum(const QVector<Scalar>& q,
                                                 const QVector<Scalar>& v,
@@ -8188,144 +9313,156 @@ struct RigidBodyEulerYzx {
     const Scalar heading_dot = v(3);
     const Scalar attitude_dot = v(4);
     const Scalar bank_dot = v(5);
-    const Scalar m_a = Scalar(params.m_a);
-    const Scalar m_b = Scalar(params.m_b);
-    const Scalar m_c = Scalar(params.m_c);
-    const Scalar m_d = Scalar(params.m_d);
-    const Scalar tmp0 = cos(heading);
-    const Scalar tmp1 = cos(attitude);
-    const Scalar tmp2 = Scalar(0.5)*tmp1;
-    const Scalar tmp3 = tmp0*tmp2;
-    const Scalar tmp4 = tmp3 + x;
-    const Scalar tmp5 = sin(attitude);
-    const Scalar tmp6 = Scalar(0.5)*tmp5;
-    const Scalar tmp7 = tmp6 + y;
-    const Scalar tmp8 = sin(heading);
-    const Scalar tmp9 = tmp2*tmp8;
-    const Scalar tmp10 = -tmp9;
-    const Scalar tmp11 = tmp10 + z;
-    const Scalar tmp12 = tmp0*tmp6;
-    const Scalar tmp13 = tmp9*heading_dot + tmp12*attitude_dot;
-    const Scalar tmp14 = x_dot - tmp13;
-    const Scalar tmp15 = y_dot + tmp2*attitude_dot;
-    const Scalar tmp16 = tmp6*tmp8;
-    const Scalar tmp17 = tmp16*attitude_dot - tmp3*heading_dot;
-    const Scalar tmp18 = tmp17 + z_dot;
-    const Scalar tmp19 = sin(bank);
-    const Scalar tmp20 = Scalar(0.4)*tmp19;
-    const Scalar tmp21 = tmp20*tmp8;
-    const Scalar tmp22 = cos(bank);
-    const Scalar tmp23 = Scalar(0.4)*tmp22;
-    const Scalar tmp24 = tmp0*tmp23*tmp5;
-    const Scalar tmp25 = tmp21 + x - tmp24;
-    const Scalar tmp26 = tmp1*tmp23;
-    const Scalar tmp27 = tmp26 + y;
-    const Scalar tmp28 = tmp0*tmp20;
-    const Scalar tmp29 = tmp23*tmp8;
-    const Scalar tmp30 = tmp29*tmp5;
-    const Scalar tmp31 = tmp28 + tmp30;
-    const Scalar tmp32 = tmp31 + z;
-    const Scalar tmp33 = tmp26*attitude_dot;
-    const Scalar tmp34 = tmp0*tmp33;
-    const Scalar tmp35 = tmp29 + tmp28*tmp5;
-    const Scalar tmp36 = x_dot - tmp34 + tmp31*heading_dot + tmp35*bank_dot;
-    const Scalar tmp37 = tmp23*tmp5;
-    const Scalar tmp38 = tmp1*tmp20;
-    const Scalar tmp39 = y_dot - tmp37*attitude_dot - tmp38*bank_dot;
-    const Scalar tmp40 = -tmp21*tmp5 + Scalar(0.4)*tmp0*tmp22;
-    const Scalar tmp41 = tmp24 - tmp21;
-    const Scalar tmp42 = tmp33*tmp8 + tmp40*bank_dot + tmp41*heading_dot;
-    const Scalar tmp43 = tmp42 + z_dot;
-    const Scalar tmp44 = Scalar(0.3)*tmp22;
-    const Scalar tmp45 = tmp44*tmp8;
-    const Scalar tmp46 = Scalar(0.3)*tmp19;
-    const Scalar tmp47 = tmp0*tmp46;
-    const Scalar tmp48 = tmp47*tmp5;
-    const Scalar tmp49 = tmp45 + tmp48;
-    const Scalar tmp50 = tmp49 + x;
-    const Scalar tmp51 = tmp1*tmp46;
-    const Scalar tmp52 = y - tmp51;
-    const Scalar tmp53 = tmp0*tmp44;
-    const Scalar tmp54 = tmp46*tmp8;
-    const Scalar tmp55 = tmp5*tmp54;
-    const Scalar tmp56 = tmp53 + z - tmp55;
-    const Scalar tmp57 = tmp51*attitude_dot;
-    const Scalar tmp58 = tmp0*tmp57;
-    const Scalar tmp59 = tmp53*tmp5;
-    const Scalar tmp60 = tmp59 - tmp54;
-    const Scalar tmp61 = tmp55 - Scalar(0.3)*tmp0*tmp22;
-    const Scalar tmp62 = -tmp61;
-    const Scalar tmp63 = tmp58 + x_dot + tmp60*bank_dot + tmp62*heading_dot;
-    const Scalar tmp64 = tmp46*tmp5;
-    const Scalar tmp65 = tmp1*tmp44;
-    const Scalar tmp66 = y_dot + tmp64*attitude_dot - tmp65*bank_dot;
-    const Scalar tmp67 = tmp45*tmp5;
-    const Scalar tmp68 = tmp47 + tmp67;
-    const Scalar tmp69 = -tmp68;
-    const Scalar tmp70 = -tmp49;
-    const Scalar tmp71 = tmp69*bank_dot + tmp70*heading_dot - tmp57*tmp8;
-    const Scalar tmp72 = tmp71 + z_dot;
-    const Scalar tmp73 = Scalar(0.2)*tmp1;
-    const Scalar tmp74 = Scalar(0.25)*tmp19;
-    const Scalar tmp75 = tmp5*tmp74;
-    const Scalar tmp76 = -tmp59 + tmp0*tmp75;
-    const Scalar tmp77 = tmp76 + tmp0*tmp73;
-    const Scalar tmp78 = Scalar(0.25)*tmp22;
-    const Scalar tmp79 = tmp8*tmp78;
-    const Scalar tmp80 = tmp54 + tmp79;
-    const Scalar tmp81 = tmp77 + tmp80;
-    const Scalar tmp82 = tmp81 + x;
-    const Scalar tmp83 = Scalar(0.2)*tmp5;
-    const Scalar tmp84 = tmp1*tmp74;
-    const Scalar tmp85 = tmp65 + tmp83 - tmp84;
-    const Scalar tmp86 = tmp85 + y;
-    const Scalar tmp87 = tmp73*tmp8;
-    const Scalar tmp88 = tmp0*tmp78;
-    const Scalar tmp89 = tmp74*tmp8;
-    const Scalar tmp90 = tmp5*tmp89;
-    const Scalar tmp91 = tmp68 + tmp88 - tmp90;
-    const Scalar tmp92 = tmp91 - tmp87;
-    const Scalar tmp93 = tmp92 + z;
-    const Scalar tmp94 = tmp1*tmp53;
-    const Scalar tmp95 = tmp94 + tmp0*tmp83 - Scalar(0.25)*tmp0*tmp1*tmp19;
-    const Scalar tmp96 = -tmp95;
-    const Scalar tmp97 = tmp49 - tmp89 + tmp5*tmp88;
-    const Scalar tmp98 = x_dot + tmp92*heading_dot + tmp96*attitude_dot + tmp97*bank_dot;
-    const Scalar tmp99 = -tmp51 - tmp1*tmp78;
-    const Scalar tmp100 = tmp44*tmp5;
-    const Scalar tmp101 = tmp73 + tmp75 - tmp100;
-    const Scalar tmp102 = y_dot + tmp99*bank_dot + tmp101*attitude_dot;
-    const Scalar tmp103 = tmp1*tmp45;
-    const Scalar tmp104 = tmp103 + tmp8*tmp83 - tmp8*tmp84;
-    const Scalar tmp105 = -tmp61 - tmp0*tmp74 - tmp5*tmp79;
-    const Scalar tmp106 = -tmp81;
-    const Scalar tmp107 = tmp104*attitude_dot + tmp105*bank_dot + tmp106*heading_dot;
-    const Scalar tmp108 = tmp107 + z_dot;
+    const Scalar m = Scalar(params.m);
+    const Scalar com_x = Scalar(params.com_x);
+    const Scalar com_y = Scalar(params.com_y);
+    const Scalar com_z = Scalar(params.com_z);
+    const Scalar a = Scalar(params.a);
+    const Scalar b = Scalar(params.b);
+    const Scalar c = Scalar(params.c);
+    const Scalar tmp0 = sin(bank);
+    const Scalar tmp1 = sin(heading);
+    const Scalar tmp2 = tmp0*tmp1;
+    const Scalar tmp3 = sin(attitude);
+    const Scalar tmp4 = cos(bank);
+    const Scalar tmp5 = cos(heading);
+    const Scalar tmp6 = tmp4*tmp5;
+    const Scalar tmp7 = tmp3*tmp6;
+    const Scalar tmp8 = tmp7 - tmp2;
+    const Scalar tmp9 = -tmp8;
+    const Scalar tmp11 = (a*a);
+    const Scalar tmp12 = (b*b);
+    const Scalar tmp13 = m*(tmp11 + tmp12);
+    const Scalar tmp14 = (c*c);
+    const Scalar tmp15 = tmp11 + tmp14;
+    const Scalar tmp16 = tmp15*m;
+    const Scalar tmp17 = tmp12 + tmp14;
+    const Scalar tmp18 = tmp17*m;
+    const Scalar tmp19 = Scalar(0.005689254019167049)*tmp18 + Scalar(0.010556171822976032)*tmp16
+        - Scalar(0.01624542584214308)*tmp13;
+    const Scalar tmp20 = Scalar(0.041142942152109445)*tmp18 + Scalar(0.028423816083747767)*tmp13
+        - Scalar(0.027900091569190537)*tmp16;
+    const Scalar tmp24 = (Scalar(1)/tmp20);
+    const Scalar tmp25 = Scalar(0.021737886292675604)*tmp13 + Scalar(0.04006485617007295)*tmp16
+        - Scalar(0.020136075796081898)*tmp18 - tmp24*(tmp19*tmp19);
+    const Scalar tmp29 = tmp1*tmp4;
+    const Scalar tmp30 = tmp0*tmp5;
+    const Scalar tmp31 = tmp3*tmp30;
+    const Scalar tmp32 = tmp29 + tmp31;
+    const Scalar tmp33 = -Scalar(0.0257737061664756)*tmp13 - Scalar(0.003316897780257798)*tmp18
+        + Scalar(0.0290906039467334)*tmp15*m;
+    const Scalar tmp35 = (Scalar(1)/tmp25);
+    const Scalar tmp36 = tmp24*tmp33;
+    const Scalar tmp37 = -Scalar(0.03161742478199714)*tmp13 - Scalar(0.004414255047715874)*tmp16
+        - tmp19*tmp36 + Scalar(0.03603167982971302)*tmp17*m;
+    const Scalar tmp38 = -Scalar(0.008495035709756703)*tmp13 - tmp24*(tmp33*tmp33)
+        - tmp35*(tmp37*tmp37) + Scalar(0.02950190206578425)*tmp15*m
+        + Scalar(0.020659800310639128)*tmp17*m;
+    const Scalar tmp44 = cos(attitude);
+    const Scalar tmp45 = tmp44*tmp5;
+    const Scalar tmp48 = tmp44*com_x;
+    const Scalar tmp49 = tmp48*tmp5;
+    const Scalar tmp50 = tmp49 + x + tmp32*com_z + tmp9*com_y;
+    const Scalar tmp53 = tmp4*tmp44;
+    const Scalar tmp54 = tmp0*tmp44;
+    const Scalar tmp57 = tmp3*com_x;
+    const Scalar tmp58 = tmp53*com_y - tmp54*com_z;
+    const Scalar tmp59 = tmp57 + tmp58;
+    const Scalar tmp60 = tmp59 + y;
+    const Scalar tmp63 = tmp29*tmp3;
+    const Scalar tmp64 = tmp30 + tmp63;
+    const Scalar tmp65 = tmp2*tmp3;
+    const Scalar tmp66 = tmp65 - tmp4*tmp5;
+    const Scalar tmp67 = -tmp66;
+    const Scalar tmp69 = tmp1*tmp44;
+    const Scalar tmp72 = tmp1*tmp48;
+    const Scalar tmp73 = -tmp72 + tmp64*com_y + tmp67*com_z;
+    const Scalar tmp74 = tmp73 + z;
+    const Scalar tmp77 = tmp32*com_y + tmp8*com_z;
+    const Scalar tmp79 = tmp44*tmp6;
+    const Scalar tmp80 = tmp3*tmp5;
+    const Scalar tmp82 = tmp5*tmp57 + tmp79*com_y - tmp0*tmp44*tmp5*com_z;
+    const Scalar tmp89 = tmp53*com_z + tmp54*com_y;
+    const Scalar tmp91 = tmp0*tmp3;
+    const Scalar tmp92 = tmp3*tmp4;
+    const Scalar tmp94 = tmp48 + tmp91*com_z - tmp92*com_y;
+    const Scalar tmp98 = -tmp64;
+    const Scalar tmp99 = tmp67*com_y + tmp98*com_z;
+    const Scalar tmp101 = tmp29*tmp44;
+    const Scalar tmp102 = tmp2*tmp44;
+    const Scalar tmp103 = tmp1*tmp3;
+    const Scalar tmp105 = tmp1*tmp57 + tmp101*com_y - tmp102*com_z;
+    const Scalar tmp108 = -tmp32;
+    const Scalar tmp111 = tmp108*com_z + tmp8*com_y;
+    const Scalar tmp112 = tmp111 - tmp49;
+    const Scalar tmp195 = -tmp82;
+    const Scalar tmp196 = x_dot + tmp195*attitude_dot + tmp73*heading_dot + tmp77*bank_dot;
+    const Scalar tmp197 = -tmp89;
+    const Scalar tmp198 = y_dot + tmp197*bank_dot + tmp94*attitude_dot;
+    const Scalar tmp199 = tmp105*attitude_dot + tmp112*heading_dot + tmp99*bank_dot;
+    const Scalar tmp200 = tmp199 + z_dot;
+    const Scalar tmp201 = tmp30*tmp44;
+    const Scalar tmp214 = tmp19*tmp24;
+    const Scalar tmp215 = tmp45 + tmp214*tmp9 + tmp32*tmp36;
+    const Scalar tmp216 = tmp214*tmp53;
+    const Scalar tmp217 = tmp36*tmp54;
+    const Scalar tmp218 = tmp216 + tmp3 - tmp217;
+    const Scalar tmp219 = -tmp69 + tmp214*tmp64 + tmp36*tmp67;
+    const Scalar tmp220 = tmp80 + tmp214*tmp79 - tmp0*tmp24*tmp33*tmp44*tmp5;
+    const Scalar tmp221 = -tmp220;
+    const Scalar tmp222 = tmp214*tmp32 + tmp36*tmp8;
+    const Scalar tmp223 = tmp219*heading_dot + tmp221*attitude_dot + tmp222*bank_dot;
+    const Scalar tmp224 = -tmp214*tmp54 - tmp36*tmp53;
+    const Scalar tmp225 = tmp44 + tmp36*tmp91 - tmp214*tmp92;
+    const Scalar tmp226 = tmp224*bank_dot + tmp225*attitude_dot;
+    const Scalar tmp227 = tmp103 + tmp214*tmp101 - tmp36*tmp102;
+    const Scalar tmp228 = tmp214*tmp67 + tmp36*tmp98;
+    const Scalar tmp229 = tmp108*tmp36 + tmp214*tmp8;
+    const Scalar tmp230 = tmp229 - tmp45;
+    const Scalar tmp231 = tmp227*attitude_dot + tmp228*bank_dot + tmp230*heading_dot;
+    const Scalar tmp240 = -tmp7;
+    const Scalar tmp241 = tmp35*tmp37;
+    const Scalar tmp242 = tmp2 + tmp240 + tmp241*tmp32;
+    const Scalar tmp243 = tmp241*tmp54 - tmp4*tmp44;
+    const Scalar tmp244 = -tmp243;
+    const Scalar tmp245 = tmp64 + tmp241*tmp67;
+    const Scalar tmp246 = -tmp79 + tmp201*tmp241;
+    const Scalar tmp247 = tmp32 + tmp241*tmp8;
+    const Scalar tmp248 = tmp245*heading_dot + tmp246*attitude_dot + tmp247*bank_dot;
+    const Scalar tmp249 = -tmp92 + tmp241*tmp91;
+    const Scalar tmp250 = -tmp54 - tmp241*tmp53;
+    const Scalar tmp251 = tmp249*attitude_dot + tmp250*bank_dot;
+    const Scalar tmp252 = -tmp241*tmp102 + tmp1*tmp4*tmp44;
+    const Scalar tmp253 = tmp6 - tmp65 + tmp241*tmp98;
+    const Scalar tmp254 = tmp8 + tmp108*tmp241;
+    const Scalar tmp255 = tmp252*attitude_dot + tmp253*bank_dot + tmp254*heading_dot;
+    const Scalar tmp265 = -tmp54;
+    const Scalar tmp266 = tmp201*attitude_dot;
+    const Scalar tmp267 = tmp266 + tmp67*heading_dot + tmp8*bank_dot;
+    const Scalar tmp268 = tmp91*attitude_dot - tmp53*bank_dot;
+    const Scalar tmp269 = tmp108*heading_dot + tmp98*bank_dot - tmp102*attitude_dot;
     AngularVector<Scalar> result;
-    result(0) = m_a*(tmp7*tmp18 - tmp11*tmp15) + m_b*(tmp43*tmp27 - tmp39*tmp32)
-        + m_c*(tmp52*tmp72 - tmp56*tmp66) + m_d*(tmp86*tmp108 - tmp93*tmp102);
-    result(1) = m_a*(tmp11*tmp14 - tmp4*tmp18) + m_b*(tmp32*tmp36 - tmp43*tmp25)
-        + m_c*(tmp56*tmp63 - tmp50*tmp72) + m_d*(tmp93*tmp98 - tmp82*tmp108);
-    result(2) = m_a*(tmp4*tmp15 - tmp7*tmp14) + m_b*(tmp39*tmp25 - tmp27*tmp36)
-        + m_c*(tmp50*tmp66 - tmp52*tmp63) + m_d*(tmp82*tmp102 - tmp86*tmp98);
+    result(0) = tmp20*(tmp218*tmp231 - tmp219*tmp226) + tmp25*(tmp255*tmp244 - tmp245*tmp251)
+        + tmp38*(tmp269*tmp265 - tmp67*tmp268) + m*(tmp60*tmp200 - tmp74*tmp198);
+    result(1) = tmp20*(tmp219*tmp223 - tmp231*tmp215) + tmp25*(tmp245*tmp248 - tmp255*tmp242)
+        + tmp38*(tmp67*tmp267 - tmp269*tmp32) + m*(tmp74*tmp196 - tmp50*tmp200);
+    result(2) = tmp20*(tmp215*tmp226 - tmp218*tmp223) + tmp25*(tmp242*tmp251 - tmp244*tmp248)
+        + tmp38*(tmp32*tmp268 - tmp265*tmp267) + m*(tmp50*tmp198 - tmp60*tmp196);
     return result;
   }
 
   /// Particle masses, in particle order.
   /// \param[in] params  model parameters
   /// \return masses (num_particles)
-  /// Ops: 0
+  /// Ops: 4
   template <typename Scalar>
   static ParticleVector<Scalar> particle_masses(const Params& params) {
-    const Scalar m_a = Scalar(params.m_a);
-    const Scalar m_b = Scalar(params.m_b);
-    const Scalar m_c = Scalar(params.m_c);
-    const Scalar m_d = Scalar(params.m_d);
+    const Scalar m = Scalar(params.m);
     ParticleVector<Scalar> result;
-    result(0) = m_a;
-    result(1) = m_b;
-    result(2) = m_c;
-    result(3) = m_d;
+    result(0) = (Scalar(0.25))*m;
+    result(1) = (Scalar(0.25))*m;
+    result(2) = (Scalar(0.25))*m;
+    result(3) = (Scalar(0.25))*m;
     return result;
   }
 
@@ -8448,8 +9585,9 @@ struct RigidBodyEulerYzx {
     /// Whether the reduced model has forces acting directly on q (see generalized_forces).
     static constexpr bool has_generalized_forces = false;
     static constexpr int num_constraints = 6;
-    static constexpr std::array<const char*, num_constraints> constraint_names{{"rod 'a-b'",
-        "rod 'a-c'", "rod 'a-d'", "rod 'b-c'", "rod 'b-d'", "rod 'c-d'"}};
+    static constexpr std::array<const char*, num_constraints> constraint_names{{
+        "rod 'body_0-body_1'", "rod 'body_0-body_2'", "rod 'body_0-body_3'", "rod 'body_1-body_2'",
+        "rod 'body_1-body_3'", "rod 'body_2-body_3'"}};
     /// Sparsity of force_jacobian_x and force_jacobian_xdot (row, column of each value).
     static constexpr int jacobian_x_nonzeros = 144;
     static constexpr std::array<int, jacobian_x_nonzeros> jacobian_x_rows{{0, 0, 0, 0, 0, 0, 0, 0,
@@ -8487,38 +9625,30 @@ struct RigidBodyEulerYzx {
     /// \param[in] t  time
     /// \param[in] params  model parameters
     /// \return F (nx)
-    /// Ops: 8
+    /// Ops: 3
     template <typename Scalar>
     static XVector<Scalar> external_forces(const XVector<Scalar>& /*pos*/,
                                            const XVector<Scalar>& /*vel*/,
                                            const Scalar& /*t*/,
                                            const Params& params) {
       const Scalar g = Scalar(params.g);
-      const Scalar m_a = Scalar(params.m_a);
-      const Scalar m_b = Scalar(params.m_b);
-      const Scalar m_c = Scalar(params.m_c);
-      const Scalar m_d = Scalar(params.m_d);
-      const Scalar tmp109 = g*m_a;
-      const Scalar tmp110 = -tmp109;
-      const Scalar tmp111 = g*m_b;
-      const Scalar tmp112 = -tmp111;
-      const Scalar tmp113 = g*m_c;
-      const Scalar tmp114 = -tmp113;
-      const Scalar tmp115 = g*m_d;
-      const Scalar tmp116 = -tmp115;
+      const Scalar m = Scalar(params.m);
+      const Scalar tmp290 = g*m;
+      const Scalar tmp355 = (Scalar(0.25))*tmp290;
+      const Scalar tmp356 = -tmp355;
       XVector<Scalar> result;
       result(0) = Scalar(0);
       result(1) = Scalar(0);
-      result(2) = tmp110;
+      result(2) = tmp356;
       result(3) = Scalar(0);
       result(4) = Scalar(0);
-      result(5) = tmp112;
+      result(5) = tmp356;
       result(6) = Scalar(0);
       result(7) = Scalar(0);
-      result(8) = tmp114;
+      result(8) = tmp356;
       result(9) = Scalar(0);
       result(10) = Scalar(0);
-      result(11) = tmp116;
+      result(11) = tmp356;
       return result;
     }
 
@@ -8530,122 +9660,202 @@ struct RigidBodyEulerYzx {
     /// \param[in] penalty_damping  penalty damping coefficient
     /// \param[in] params  model parameters
     /// \return F_penalty (nx)
-    /// Ops: 306
+    /// Ops: 482
     template <typename Scalar>
     static XVector<Scalar> penalty_forces(const XVector<Scalar>& pos,
                                           const XVector<Scalar>& vel,
                                           const Scalar& /*t*/,
                                           const Scalar& kappa,
                                           const Scalar& penalty_damping,
-                                          const Params& /*params*/) {
+                                          const Params& params) {
       using std::sqrt;
-      const Scalar tmp198 = pos(3) - pos(0);
-      const Scalar tmp199 = pos(4) - pos(1);
-      const Scalar tmp200 = pos(5) - pos(2);
-      const Scalar tmp201 = sqrt((tmp198*tmp198) + (tmp199*tmp199) + (tmp200*tmp200));
-      const Scalar tmp202 = Scalar(-0.6403124237432849) + tmp201;
-      const Scalar tmp203 = (Scalar(1)/tmp201);
-      const Scalar tmp204 = tmp198*tmp203;
-      const Scalar tmp205 = tmp199*tmp203;
-      const Scalar tmp206 = tmp200*tmp203;
-      const Scalar tmp207 = Scalar(1.5617376188860606)*tmp202*kappa
-          + Scalar(1.5617376188860606)*penalty_damping*(tmp204*(vel(3) - vel(0))
-              + tmp205*(vel(4) - vel(1)) + tmp206*(vel(5) - vel(2)));
-      const Scalar tmp208 = -pos(6);
-      const Scalar tmp209 = -tmp208 - pos(0);
-      const Scalar tmp210 = -pos(7);
-      const Scalar tmp211 = -tmp210 - pos(1);
-      const Scalar tmp212 = -pos(8);
-      const Scalar tmp213 = -tmp212 - pos(2);
-      const Scalar tmp214 = sqrt((tmp209*tmp209) + (tmp211*tmp211) + (tmp213*tmp213));
-      const Scalar tmp215 = Scalar(-0.58309518948453) + tmp214;
-      const Scalar tmp216 = -vel(6);
-      const Scalar tmp217 = (Scalar(1)/tmp214);
-      const Scalar tmp218 = tmp209*tmp217;
-      const Scalar tmp219 = -vel(7);
-      const Scalar tmp220 = tmp211*tmp217;
-      const Scalar tmp221 = -vel(8);
-      const Scalar tmp222 = tmp213*tmp217;
-      const Scalar tmp223 = Scalar(1.7149858514250886)*tmp215*kappa
-          + Scalar(1.7149858514250886)*penalty_damping*(tmp218*(-tmp216 - vel(0))
-              + tmp220*(-tmp219 - vel(1)) + tmp222*(-tmp221 - vel(2)));
-      const Scalar tmp224 = -pos(9);
-      const Scalar tmp225 = -tmp224 - pos(0);
-      const Scalar tmp226 = -pos(10);
-      const Scalar tmp227 = -tmp226 - pos(1);
-      const Scalar tmp228 = -pos(11);
-      const Scalar tmp229 = -tmp228 - pos(2);
-      const Scalar tmp230 = sqrt((tmp225*tmp225) + (tmp227*tmp227) + (tmp229*tmp229));
-      const Scalar tmp231 = Scalar(-0.49244289008980524) + tmp230;
-      const Scalar tmp232 = -vel(9);
-      const Scalar tmp233 = (Scalar(1)/tmp230);
-      const Scalar tmp234 = tmp225*tmp233;
-      const Scalar tmp235 = -vel(10);
-      const Scalar tmp236 = tmp227*tmp233;
-      const Scalar tmp237 = -vel(11);
-      const Scalar tmp238 = tmp229*tmp233;
-      const Scalar tmp239 = Scalar(2.030692330267238)*tmp231*kappa
-          + Scalar(2.030692330267238)*penalty_damping*(tmp234*(-tmp232 - vel(0))
-              + tmp236*(-tmp235 - vel(1)) + tmp238*(-tmp237 - vel(2)));
-      const Scalar tmp240 = tmp206*tmp207 + tmp222*tmp223 + tmp238*tmp239;
-      const Scalar tmp241 = -tmp207;
-      const Scalar tmp242 = -tmp208 - pos(3);
-      const Scalar tmp243 = -tmp210 - pos(4);
-      const Scalar tmp244 = -tmp212 - pos(5);
-      const Scalar tmp245 = sqrt((tmp242*tmp242) + (tmp243*tmp243) + (tmp244*tmp244));
-      const Scalar tmp246 = Scalar(-0.5) + tmp245;
-      const Scalar tmp247 = (Scalar(1)/tmp245);
-      const Scalar tmp248 = tmp242*tmp247;
-      const Scalar tmp249 = tmp243*tmp247;
-      const Scalar tmp250 = tmp244*tmp247;
-      const Scalar tmp251 = Scalar(2.0)*tmp246*kappa
-          + Scalar(2.0)*penalty_damping*(tmp248*(-tmp216 - vel(3)) + tmp249*(-tmp219 - vel(4))
-              + tmp250*(-tmp221 - vel(5)));
-      const Scalar tmp252 = -tmp224 - pos(3);
-      const Scalar tmp253 = -tmp226 - pos(4);
-      const Scalar tmp254 = -tmp228 - pos(5);
-      const Scalar tmp255 = sqrt((tmp252*tmp252) + (tmp253*tmp253) + (tmp254*tmp254));
-      const Scalar tmp256 = Scalar(-0.33541019662496846) + tmp255;
-      const Scalar tmp257 = (Scalar(1)/tmp255);
-      const Scalar tmp258 = tmp252*tmp257;
-      const Scalar tmp259 = tmp253*tmp257;
-      const Scalar tmp260 = tmp254*tmp257;
-      const Scalar tmp261 = Scalar(2.9814239699997196)*tmp256*kappa
-          + Scalar(2.9814239699997196)*penalty_damping*(tmp258*(-tmp232 - vel(3))
-              + tmp259*(-tmp235 - vel(4)) + tmp260*(-tmp237 - vel(5)));
-      const Scalar tmp262 = tmp206*tmp241 + tmp250*tmp251 + tmp260*tmp261;
-      const Scalar tmp263 = -tmp223;
-      const Scalar tmp264 = -tmp251;
-      const Scalar tmp265 = -tmp224 - pos(6);
-      const Scalar tmp266 = -tmp226 - pos(7);
-      const Scalar tmp267 = -tmp228 - pos(8);
-      const Scalar tmp268 = sqrt((tmp265*tmp265) + (tmp266*tmp266) + (tmp267*tmp267));
-      const Scalar tmp269 = Scalar(-0.3640054944640259) + tmp268;
-      const Scalar tmp270 = (Scalar(1)/tmp268);
-      const Scalar tmp271 = tmp265*tmp270;
-      const Scalar tmp272 = tmp266*tmp270;
-      const Scalar tmp273 = tmp267*tmp270;
-      const Scalar tmp274 = Scalar(2.7472112789737806)*tmp269*kappa
-          + Scalar(2.7472112789737806)*penalty_damping*(tmp271*(-tmp232 - vel(6))
-              + tmp272*(-tmp235 - vel(7)) + tmp273*(-tmp237 - vel(8)));
-      const Scalar tmp275 = tmp222*tmp263 + tmp250*tmp264 + tmp273*tmp274;
-      const Scalar tmp276 = -tmp239;
-      const Scalar tmp277 = -tmp261;
-      const Scalar tmp278 = -tmp274;
-      const Scalar tmp279 = tmp238*tmp276 + tmp260*tmp277 + tmp273*tmp278;
+      const Scalar m = Scalar(params.m);
+      const Scalar a = Scalar(params.a);
+      const Scalar b = Scalar(params.b);
+      const Scalar c = Scalar(params.c);
+      const Scalar tmp10 = (Scalar(1)/sqrt(m));
+      const Scalar tmp11 = (a*a);
+      const Scalar tmp12 = (b*b);
+      const Scalar tmp13 = m*(tmp11 + tmp12);
+      const Scalar tmp14 = (c*c);
+      const Scalar tmp15 = tmp11 + tmp14;
+      const Scalar tmp16 = tmp15*m;
+      const Scalar tmp17 = tmp12 + tmp14;
+      const Scalar tmp18 = tmp17*m;
+      const Scalar tmp19 = Scalar(0.005689254019167049)*tmp18 + Scalar(0.010556171822976032)*tmp16
+          - Scalar(0.01624542584214308)*tmp13;
+      const Scalar tmp20 = Scalar(0.041142942152109445)*tmp18 + Scalar(0.028423816083747767)*tmp13
+          - Scalar(0.027900091569190537)*tmp16;
+      const Scalar tmp21 = sqrt(tmp20);
+      const Scalar tmp22 = (Scalar(1)/tmp21);
+      const Scalar tmp23 = tmp19*tmp22;
+      const Scalar tmp24 = (Scalar(1)/tmp20);
+      const Scalar tmp25 = Scalar(0.021737886292675604)*tmp13 + Scalar(0.04006485617007295)*tmp16
+          - Scalar(0.020136075796081898)*tmp18 - tmp24*(tmp19*tmp19);
+      const Scalar tmp26 = sqrt(tmp25);
+      const Scalar tmp27 = tmp23 + tmp26;
+      const Scalar tmp33 = -Scalar(0.0257737061664756)*tmp13 - Scalar(0.003316897780257798)*tmp18
+          + Scalar(0.0290906039467334)*tmp15*m;
+      const Scalar tmp34 = tmp22*tmp33;
+      const Scalar tmp35 = (Scalar(1)/tmp25);
+      const Scalar tmp36 = tmp24*tmp33;
+      const Scalar tmp37 = -Scalar(0.03161742478199714)*tmp13 - Scalar(0.004414255047715874)*tmp16
+          - tmp19*tmp36 + Scalar(0.03603167982971302)*tmp17*m;
+      const Scalar tmp38 = -Scalar(0.008495035709756703)*tmp13 - tmp24*(tmp33*tmp33)
+          - tmp35*(tmp37*tmp37) + Scalar(0.02950190206578425)*tmp15*m
+          + Scalar(0.020659800310639128)*tmp17*m;
+      const Scalar tmp39 = sqrt(tmp38);
+      const Scalar tmp40 = tmp37/tmp26;
+      const Scalar tmp41 = tmp39 + tmp40;
+      const Scalar tmp42 = tmp34 + tmp41;
+      const Scalar tmp117 = tmp23 - tmp26;
+      const Scalar tmp118 = tmp10*tmp117;
+      const Scalar tmp119 = tmp34 - tmp41;
+      const Scalar tmp120 = tmp10*tmp119;
+      const Scalar tmp140 = -tmp117;
+      const Scalar tmp141 = tmp10*tmp140;
+      const Scalar tmp142 = tmp40 - tmp34 - tmp39;
+      const Scalar tmp143 = tmp10*tmp142;
+      const Scalar tmp172 = -tmp27;
+      const Scalar tmp173 = tmp10*tmp172;
+      const Scalar tmp174 = tmp39 - tmp34 - tmp40;
+      const Scalar tmp175 = tmp10*tmp174;
+      const Scalar tmp357 = pos(3) - pos(0);
+      const Scalar tmp358 = pos(4) - pos(1);
+      const Scalar tmp359 = pos(5) - pos(2);
+      const Scalar tmp360 = sqrt((tmp357*tmp357) + (tmp358*tmp358) + (tmp359*tmp359));
+      const Scalar tmp361 = (Scalar(1)/tmp360);
+      const Scalar tmp362 = tmp357*tmp361;
+      const Scalar tmp363 = tmp358*tmp361;
+      const Scalar tmp364 = tmp359*tmp361;
+      const Scalar tmp365 = -tmp10*tmp27;
+      const Scalar tmp366 = -tmp10*tmp42;
+      const Scalar tmp367 = sqrt(((-tmp118 - tmp365)*(-tmp118 - tmp365))
+          + ((-tmp120 - tmp366)*(-tmp120 - tmp366)));
+      const Scalar tmp368 = (Scalar(1)/tmp367);
+      const Scalar tmp369 = tmp360 - tmp367;
+      const Scalar tmp370 = tmp368*kappa;
+      const Scalar tmp371 = tmp369*tmp370
+          + tmp368*penalty_damping*(tmp362*(vel(3) - vel(0)) + tmp363*(vel(4) - vel(1))
+              + tmp364*(vel(5) - vel(2)));
+      const Scalar tmp372 = -vel(6);
+      const Scalar tmp373 = -pos(6);
+      const Scalar tmp374 = -tmp373 - pos(0);
+      const Scalar tmp375 = -pos(7);
+      const Scalar tmp376 = -tmp375 - pos(1);
+      const Scalar tmp377 = -pos(8);
+      const Scalar tmp378 = -tmp377 - pos(2);
+      const Scalar tmp379 = sqrt((tmp374*tmp374) + (tmp376*tmp376) + (tmp378*tmp378));
+      const Scalar tmp380 = (Scalar(1)/tmp379);
+      const Scalar tmp381 = tmp374*tmp380;
+      const Scalar tmp382 = -vel(7);
+      const Scalar tmp383 = tmp376*tmp380;
+      const Scalar tmp384 = -vel(8);
+      const Scalar tmp385 = tmp378*tmp380;
+      const Scalar tmp386 = Scalar(4)*tmp20/m;
+      const Scalar tmp387 = sqrt(tmp386 + ((-tmp141 - tmp365)*(-tmp141 - tmp365))
+          + ((-tmp143 - tmp366)*(-tmp143 - tmp366)));
+      const Scalar tmp388 = (Scalar(1)/tmp387);
+      const Scalar tmp389 = tmp379 - tmp387;
+      const Scalar tmp390 = tmp388*kappa;
+      const Scalar tmp391 = tmp389*tmp390
+          + tmp388*penalty_damping*(tmp381*(-tmp372 - vel(0)) + tmp383*(-tmp382 - vel(1))
+              + tmp385*(-tmp384 - vel(2)));
+      const Scalar tmp392 = -vel(9);
+      const Scalar tmp393 = -pos(9);
+      const Scalar tmp394 = -tmp393 - pos(0);
+      const Scalar tmp395 = -pos(10);
+      const Scalar tmp396 = -tmp395 - pos(1);
+      const Scalar tmp397 = -pos(11);
+      const Scalar tmp398 = -tmp397 - pos(2);
+      const Scalar tmp399 = sqrt((tmp394*tmp394) + (tmp396*tmp396) + (tmp398*tmp398));
+      const Scalar tmp400 = (Scalar(1)/tmp399);
+      const Scalar tmp401 = tmp394*tmp400;
+      const Scalar tmp402 = -vel(10);
+      const Scalar tmp403 = tmp396*tmp400;
+      const Scalar tmp404 = -vel(11);
+      const Scalar tmp405 = tmp398*tmp400;
+      const Scalar tmp406 = sqrt(tmp386 + ((-tmp173 - tmp365)*(-tmp173 - tmp365))
+          + ((-tmp175 - tmp366)*(-tmp175 - tmp366)));
+      const Scalar tmp407 = (Scalar(1)/tmp406);
+      const Scalar tmp408 = tmp399 - tmp406;
+      const Scalar tmp409 = tmp407*kappa;
+      const Scalar tmp410 = tmp408*tmp409
+          + tmp407*penalty_damping*(tmp401*(-tmp392 - vel(0)) + tmp403*(-tmp402 - vel(1))
+              + tmp405*(-tmp404 - vel(2)));
+      const Scalar tmp411 = tmp364*tmp371 + tmp385*tmp391 + tmp405*tmp410;
+      const Scalar tmp412 = -tmp371;
+      const Scalar tmp413 = -tmp373 - pos(3);
+      const Scalar tmp414 = -tmp375 - pos(4);
+      const Scalar tmp415 = -tmp377 - pos(5);
+      const Scalar tmp416 = sqrt((tmp413*tmp413) + (tmp414*tmp414) + (tmp415*tmp415));
+      const Scalar tmp417 = (Scalar(1)/tmp416);
+      const Scalar tmp418 = tmp413*tmp417;
+      const Scalar tmp419 = tmp414*tmp417;
+      const Scalar tmp420 = tmp415*tmp417;
+      const Scalar tmp421 = -tmp118;
+      const Scalar tmp422 = -tmp120;
+      const Scalar tmp423 = sqrt(tmp386 + ((-tmp141 - tmp421)*(-tmp141 - tmp421))
+          + ((-tmp143 - tmp422)*(-tmp143 - tmp422)));
+      const Scalar tmp424 = (Scalar(1)/tmp423);
+      const Scalar tmp425 = tmp416 - tmp423;
+      const Scalar tmp426 = tmp424*kappa;
+      const Scalar tmp427 = tmp425*tmp426
+          + tmp424*penalty_damping*(tmp418*(-tmp372 - vel(3)) + tmp419*(-tmp382 - vel(4))
+              + tmp420*(-tmp384 - vel(5)));
+      const Scalar tmp428 = -tmp393 - pos(3);
+      const Scalar tmp429 = -tmp395 - pos(4);
+      const Scalar tmp430 = -tmp397 - pos(5);
+      const Scalar tmp431 = sqrt((tmp428*tmp428) + (tmp429*tmp429) + (tmp430*tmp430));
+      const Scalar tmp432 = (Scalar(1)/tmp431);
+      const Scalar tmp433 = tmp428*tmp432;
+      const Scalar tmp434 = tmp429*tmp432;
+      const Scalar tmp435 = tmp430*tmp432;
+      const Scalar tmp436 = sqrt(tmp386 + ((-tmp173 - tmp421)*(-tmp173 - tmp421))
+          + ((-tmp175 - tmp422)*(-tmp175 - tmp422)));
+      const Scalar tmp437 = (Scalar(1)/tmp436);
+      const Scalar tmp438 = tmp431 - tmp436;
+      const Scalar tmp439 = tmp437*kappa;
+      const Scalar tmp440 = tmp438*tmp439
+          + tmp437*penalty_damping*(tmp433*(-tmp392 - vel(3)) + tmp434*(-tmp402 - vel(4))
+              + tmp435*(-tmp404 - vel(5)));
+      const Scalar tmp441 = tmp364*tmp412 + tmp420*tmp427 + tmp435*tmp440;
+      const Scalar tmp442 = -tmp393 - pos(6);
+      const Scalar tmp443 = -tmp395 - pos(7);
+      const Scalar tmp444 = -tmp397 - pos(8);
+      const Scalar tmp445 = sqrt((tmp442*tmp442) + (tmp443*tmp443) + (tmp444*tmp444));
+      const Scalar tmp446 = (Scalar(1)/tmp445);
+      const Scalar tmp447 = tmp442*tmp446;
+      const Scalar tmp448 = tmp443*tmp446;
+      const Scalar tmp449 = tmp444*tmp446;
+      const Scalar tmp450 = sqrt(((tmp141 - tmp173)*(tmp141 - tmp173))
+          + ((tmp143 - tmp175)*(tmp143 - tmp175)));
+      const Scalar tmp451 = (Scalar(1)/tmp450);
+      const Scalar tmp452 = tmp445 - tmp450;
+      const Scalar tmp453 = tmp451*kappa;
+      const Scalar tmp454 = tmp452*tmp453
+          + tmp451*penalty_damping*(tmp447*(-tmp392 - vel(6)) + tmp448*(-tmp402 - vel(7))
+              + tmp449*(-tmp404 - vel(8)));
+      const Scalar tmp455 = -tmp391;
+      const Scalar tmp456 = -tmp427;
+      const Scalar tmp457 = tmp385*tmp455 + tmp420*tmp456 + tmp449*tmp454;
+      const Scalar tmp458 = -tmp454;
+      const Scalar tmp459 = -tmp410;
+      const Scalar tmp460 = -tmp440;
+      const Scalar tmp461 = tmp405*tmp459 + tmp435*tmp460 + tmp449*tmp458;
       XVector<Scalar> result;
-      result(0) = tmp204*tmp207 + tmp218*tmp223 + tmp234*tmp239;
-      result(1) = tmp205*tmp207 + tmp220*tmp223 + tmp236*tmp239;
-      result(2) = tmp240;
-      result(3) = tmp204*tmp241 + tmp248*tmp251 + tmp258*tmp261;
-      result(4) = tmp205*tmp241 + tmp249*tmp251 + tmp259*tmp261;
-      result(5) = tmp262;
-      result(6) = tmp218*tmp263 + tmp248*tmp264 + tmp271*tmp274;
-      result(7) = tmp220*tmp263 + tmp249*tmp264 + tmp272*tmp274;
-      result(8) = tmp275;
-      result(9) = tmp234*tmp276 + tmp258*tmp277 + tmp271*tmp278;
-      result(10) = tmp236*tmp276 + tmp259*tmp277 + tmp272*tmp278;
-      result(11) = tmp279;
+      result(0) = tmp362*tmp371 + tmp381*tmp391 + tmp401*tmp410;
+      result(1) = tmp363*tmp371 + tmp383*tmp391 + tmp403*tmp410;
+      result(2) = tmp411;
+      result(3) = tmp362*tmp412 + tmp418*tmp427 + tmp433*tmp440;
+      result(4) = tmp363*tmp412 + tmp419*tmp427 + tmp434*tmp440;
+      result(5) = tmp441;
+      result(6) = tmp381*tmp455 + tmp418*tmp456 + tmp447*tmp454;
+      result(7) = tmp383*tmp455 + tmp419*tmp456 + tmp448*tmp454;
+      result(8) = tmp457;
+      result(9) = tmp401*tmp459 + tmp433*tmp460 + tmp447*tmp458;
+      result(10) = tmp403*tmp459 + tmp434*tmp460 + tmp448*tmp458;
+      result(11) = tmp461;
       return result;
     }
 
@@ -8657,694 +9867,738 @@ struct RigidBodyEulerYzx {
     /// \param[in] penalty_damping  penalty damping coefficient
     /// \param[in] params  model parameters
     /// \return values (jacobian_x_nonzeros)
-    /// Ops: 2352
+    /// Ops: 2492
     template <typename Scalar>
     static std::array<Scalar, 144> force_jacobian_x(const XVector<Scalar>& pos,
                                                     const XVector<Scalar>& vel,
                                                     const Scalar& /*t*/,
                                                     const Scalar& kappa,
                                                     const Scalar& penalty_damping,
-                                                    const Params& /*params*/) {
+                                                    const Params& params) {
       using std::sqrt;
-      const Scalar tmp198 = pos(3) - pos(0);
-      const Scalar tmp199 = pos(4) - pos(1);
-      const Scalar tmp200 = pos(5) - pos(2);
-      const Scalar tmp201 = sqrt((tmp198*tmp198) + (tmp199*tmp199) + (tmp200*tmp200));
-      const Scalar tmp202 = Scalar(-0.6403124237432849) + tmp201;
-      const Scalar tmp203 = (Scalar(1)/tmp201);
-      const Scalar tmp204 = tmp198*tmp203;
-      const Scalar tmp205 = tmp199*tmp203;
-      const Scalar tmp206 = tmp200*tmp203;
-      const Scalar tmp207 = Scalar(1.5617376188860606)*tmp202*kappa
-          + Scalar(1.5617376188860606)*penalty_damping*(tmp204*(vel(3) - vel(0))
-              + tmp205*(vel(4) - vel(1)) + tmp206*(vel(5) - vel(2)));
-      const Scalar tmp208 = -pos(6);
-      const Scalar tmp209 = -tmp208 - pos(0);
-      const Scalar tmp210 = -pos(7);
-      const Scalar tmp211 = -tmp210 - pos(1);
-      const Scalar tmp212 = -pos(8);
-      const Scalar tmp213 = -tmp212 - pos(2);
-      const Scalar tmp214 = sqrt((tmp209*tmp209) + (tmp211*tmp211) + (tmp213*tmp213));
-      const Scalar tmp215 = Scalar(-0.58309518948453) + tmp214;
-      const Scalar tmp216 = -vel(6);
-      const Scalar tmp217 = (Scalar(1)/tmp214);
-      const Scalar tmp218 = tmp209*tmp217;
-      const Scalar tmp219 = -vel(7);
-      const Scalar tmp220 = tmp211*tmp217;
-      const Scalar tmp221 = -vel(8);
-      const Scalar tmp222 = tmp213*tmp217;
-      const Scalar tmp223 = Scalar(1.7149858514250886)*tmp215*kappa
-          + Scalar(1.7149858514250886)*penalty_damping*(tmp218*(-tmp216 - vel(0))
-              + tmp220*(-tmp219 - vel(1)) + tmp222*(-tmp221 - vel(2)));
-      const Scalar tmp224 = -pos(9);
-      const Scalar tmp225 = -tmp224 - pos(0);
-      const Scalar tmp226 = -pos(10);
-      const Scalar tmp227 = -tmp226 - pos(1);
-      const Scalar tmp228 = -pos(11);
-      const Scalar tmp229 = -tmp228 - pos(2);
-      const Scalar tmp230 = sqrt((tmp225*tmp225) + (tmp227*tmp227) + (tmp229*tmp229));
-      const Scalar tmp231 = Scalar(-0.49244289008980524) + tmp230;
-      const Scalar tmp232 = -vel(9);
-      const Scalar tmp233 = (Scalar(1)/tmp230);
-      const Scalar tmp234 = tmp225*tmp233;
-      const Scalar tmp235 = -vel(10);
-      const Scalar tmp236 = tmp227*tmp233;
-      const Scalar tmp237 = -vel(11);
-      const Scalar tmp238 = tmp229*tmp233;
-      const Scalar tmp239 = Scalar(2.030692330267238)*tmp231*kappa
-          + Scalar(2.030692330267238)*penalty_damping*(tmp234*(-tmp232 - vel(0))
-              + tmp236*(-tmp235 - vel(1)) + tmp238*(-tmp237 - vel(2)));
-      const Scalar tmp241 = -tmp207;
-      const Scalar tmp242 = -tmp208 - pos(3);
-      const Scalar tmp243 = -tmp210 - pos(4);
-      const Scalar tmp244 = -tmp212 - pos(5);
-      const Scalar tmp245 = sqrt((tmp242*tmp242) + (tmp243*tmp243) + (tmp244*tmp244));
-      const Scalar tmp246 = Scalar(-0.5) + tmp245;
-      const Scalar tmp247 = (Scalar(1)/tmp245);
-      const Scalar tmp248 = tmp242*tmp247;
-      const Scalar tmp249 = tmp243*tmp247;
-      const Scalar tmp250 = tmp244*tmp247;
-      const Scalar tmp251 = Scalar(2.0)*tmp246*kappa
-          + Scalar(2.0)*penalty_damping*(tmp248*(-tmp216 - vel(3)) + tmp249*(-tmp219 - vel(4))
-              + tmp250*(-tmp221 - vel(5)));
-      const Scalar tmp252 = -tmp224 - pos(3);
-      const Scalar tmp253 = -tmp226 - pos(4);
-      const Scalar tmp254 = -tmp228 - pos(5);
-      const Scalar tmp255 = sqrt((tmp252*tmp252) + (tmp253*tmp253) + (tmp254*tmp254));
-      const Scalar tmp256 = Scalar(-0.33541019662496846) + tmp255;
-      const Scalar tmp257 = (Scalar(1)/tmp255);
-      const Scalar tmp258 = tmp252*tmp257;
-      const Scalar tmp259 = tmp253*tmp257;
-      const Scalar tmp260 = tmp254*tmp257;
-      const Scalar tmp261 = Scalar(2.9814239699997196)*tmp256*kappa
-          + Scalar(2.9814239699997196)*penalty_damping*(tmp258*(-tmp232 - vel(3))
-              + tmp259*(-tmp235 - vel(4)) + tmp260*(-tmp237 - vel(5)));
-      const Scalar tmp263 = -tmp223;
-      const Scalar tmp264 = -tmp251;
-      const Scalar tmp265 = -tmp224 - pos(6);
-      const Scalar tmp266 = -tmp226 - pos(7);
-      const Scalar tmp267 = -tmp228 - pos(8);
-      const Scalar tmp268 = sqrt((tmp265*tmp265) + (tmp266*tmp266) + (tmp267*tmp267));
-      const Scalar tmp269 = Scalar(-0.3640054944640259) + tmp268;
-      const Scalar tmp270 = (Scalar(1)/tmp268);
-      const Scalar tmp271 = tmp265*tmp270;
-      const Scalar tmp272 = tmp266*tmp270;
-      const Scalar tmp273 = tmp267*tmp270;
-      const Scalar tmp274 = Scalar(2.7472112789737806)*tmp269*kappa
-          + Scalar(2.7472112789737806)*penalty_damping*(tmp271*(-tmp232 - vel(6))
-              + tmp272*(-tmp235 - vel(7)) + tmp273*(-tmp237 - vel(8)));
-      const Scalar tmp276 = -tmp239;
-      const Scalar tmp277 = -tmp261;
-      const Scalar tmp278 = -tmp274;
-      const Scalar tmp732 = -tmp198/sqrt((tmp198*tmp198) + (tmp199*tmp199) + (tmp200*tmp200));
-      const Scalar tmp733 = -(Scalar(1)/(tmp201*tmp201))*tmp732;
-      const Scalar tmp734 = -tmp203 + tmp198*tmp733;
-      const Scalar tmp735 = tmp199*tmp733;
-      const Scalar tmp736 = tmp200*tmp733;
-      const Scalar tmp737 = Scalar(1.5617376188860606)*kappa*tmp732
-          + Scalar(1.5617376188860606)*penalty_damping*(vel(3) - vel(0))*tmp734
-          + Scalar(1.5617376188860606)*penalty_damping*(vel(4) - vel(1))*tmp735
-          + Scalar(1.5617376188860606)*penalty_damping*(vel(5) - vel(2))*tmp736;
-      const Scalar tmp738 = -tmp209/sqrt((tmp209*tmp209) + (tmp211*tmp211) + (tmp213*tmp213));
-      const Scalar tmp739 = -(Scalar(1)/(tmp214*tmp214))*tmp738;
-      const Scalar tmp740 = -tmp217 + tmp209*tmp739;
-      const Scalar tmp741 = tmp211*tmp739;
-      const Scalar tmp742 = tmp213*tmp739;
-      const Scalar tmp743 = Scalar(1.7149858514250886)*kappa*tmp738
-          + Scalar(1.7149858514250886)*penalty_damping*(-tmp216 - vel(0))*tmp740
-          + Scalar(1.7149858514250886)*penalty_damping*(-tmp219 - vel(1))*tmp741
-          + Scalar(1.7149858514250886)*penalty_damping*(-tmp221 - vel(2))*tmp742;
-      const Scalar tmp744 = -tmp225/sqrt((tmp225*tmp225) + (tmp227*tmp227) + (tmp229*tmp229));
-      const Scalar tmp745 = -(Scalar(1)/(tmp230*tmp230))*tmp744;
-      const Scalar tmp746 = -tmp233 + tmp225*tmp745;
-      const Scalar tmp747 = tmp227*tmp745;
-      const Scalar tmp748 = tmp229*tmp745;
-      const Scalar tmp749 = Scalar(2.030692330267238)*kappa*tmp744
-          + Scalar(2.030692330267238)*penalty_damping*(-tmp232 - vel(0))*tmp746
-          + Scalar(2.030692330267238)*penalty_damping*(-tmp235 - vel(1))*tmp747
-          + Scalar(2.030692330267238)*penalty_damping*(-tmp237 - vel(2))*tmp748;
-      const Scalar tmp750 = tmp207*tmp736 + tmp206*tmp737 + tmp223*tmp742 + tmp222*tmp743
-          + tmp239*tmp748 + tmp238*tmp749;
-      const Scalar tmp751 = -tmp737;
-      const Scalar tmp752 = tmp241*tmp736 + tmp206*tmp751;
-      const Scalar tmp753 = -tmp743;
-      const Scalar tmp754 = tmp263*tmp742 + tmp222*tmp753;
-      const Scalar tmp755 = -tmp749;
-      const Scalar tmp756 = tmp276*tmp748 + tmp238*tmp755;
-      const Scalar tmp757 = -tmp199/sqrt((tmp198*tmp198) + (tmp199*tmp199) + (tmp200*tmp200));
-      const Scalar tmp758 = -(Scalar(1)/(tmp201*tmp201))*tmp757;
-      const Scalar tmp759 = tmp198*tmp758;
-      const Scalar tmp760 = -tmp203 + tmp199*tmp758;
-      const Scalar tmp761 = tmp200*tmp758;
-      const Scalar tmp762 = Scalar(1.5617376188860606)*kappa*tmp757
-          + Scalar(1.5617376188860606)*penalty_damping*(vel(3) - vel(0))*tmp759
-          + Scalar(1.5617376188860606)*penalty_damping*(vel(4) - vel(1))*tmp760
-          + Scalar(1.5617376188860606)*penalty_damping*(vel(5) - vel(2))*tmp761;
-      const Scalar tmp763 = -tmp211/sqrt((tmp209*tmp209) + (tmp211*tmp211) + (tmp213*tmp213));
-      const Scalar tmp764 = -(Scalar(1)/(tmp214*tmp214))*tmp763;
-      const Scalar tmp765 = tmp209*tmp764;
-      const Scalar tmp766 = -tmp217 + tmp211*tmp764;
-      const Scalar tmp767 = tmp213*tmp764;
-      const Scalar tmp768 = Scalar(1.7149858514250886)*kappa*tmp763
-          + Scalar(1.7149858514250886)*penalty_damping*(-tmp216 - vel(0))*tmp765
-          + Scalar(1.7149858514250886)*penalty_damping*(-tmp219 - vel(1))*tmp766
-          + Scalar(1.7149858514250886)*penalty_damping*(-tmp221 - vel(2))*tmp767;
-      const Scalar tmp769 = -tmp227/sqrt((tmp225*tmp225) + (tmp227*tmp227) + (tmp229*tmp229));
-      const Scalar tmp770 = -(Scalar(1)/(tmp230*tmp230))*tmp769;
-      const Scalar tmp771 = tmp225*tmp770;
-      const Scalar tmp772 = -tmp233 + tmp227*tmp770;
-      const Scalar tmp773 = tmp229*tmp770;
-      const Scalar tmp774 = Scalar(2.030692330267238)*kappa*tmp769
-          + Scalar(2.030692330267238)*penalty_damping*(-tmp232 - vel(0))*tmp771
-          + Scalar(2.030692330267238)*penalty_damping*(-tmp235 - vel(1))*tmp772
-          + Scalar(2.030692330267238)*penalty_damping*(-tmp237 - vel(2))*tmp773;
-      const Scalar tmp775 = tmp207*tmp761 + tmp206*tmp762 + tmp223*tmp767 + tmp222*tmp768
-          + tmp239*tmp773 + tmp238*tmp774;
-      const Scalar tmp776 = -tmp762;
-      const Scalar tmp777 = tmp241*tmp761 + tmp206*tmp776;
-      const Scalar tmp778 = -tmp768;
-      const Scalar tmp779 = tmp263*tmp767 + tmp222*tmp778;
-      const Scalar tmp780 = -tmp774;
-      const Scalar tmp781 = tmp276*tmp773 + tmp238*tmp780;
-      const Scalar tmp782 = -tmp200/sqrt((tmp198*tmp198) + (tmp199*tmp199) + (tmp200*tmp200));
-      const Scalar tmp783 = -(Scalar(1)/(tmp201*tmp201))*tmp782;
-      const Scalar tmp784 = tmp198*tmp783;
-      const Scalar tmp785 = tmp199*tmp783;
-      const Scalar tmp786 = -tmp203 + tmp200*tmp783;
-      const Scalar tmp787 = Scalar(1.5617376188860606)*kappa*tmp782
-          + Scalar(1.5617376188860606)*penalty_damping*(vel(3) - vel(0))*tmp784
-          + Scalar(1.5617376188860606)*penalty_damping*(vel(4) - vel(1))*tmp785
-          + Scalar(1.5617376188860606)*penalty_damping*(vel(5) - vel(2))*tmp786;
-      const Scalar tmp788 = -tmp213/sqrt((tmp209*tmp209) + (tmp211*tmp211) + (tmp213*tmp213));
-      const Scalar tmp789 = -(Scalar(1)/(tmp214*tmp214))*tmp788;
-      const Scalar tmp790 = tmp209*tmp789;
-      const Scalar tmp791 = tmp211*tmp789;
-      const Scalar tmp792 = -tmp217 + tmp213*tmp789;
-      const Scalar tmp793 = Scalar(1.7149858514250886)*kappa*tmp788
-          + Scalar(1.7149858514250886)*penalty_damping*(-tmp216 - vel(0))*tmp790
-          + Scalar(1.7149858514250886)*penalty_damping*(-tmp219 - vel(1))*tmp791
-          + Scalar(1.7149858514250886)*penalty_damping*(-tmp221 - vel(2))*tmp792;
-      const Scalar tmp794 = -tmp229/sqrt((tmp225*tmp225) + (tmp227*tmp227) + (tmp229*tmp229));
-      const Scalar tmp795 = -(Scalar(1)/(tmp230*tmp230))*tmp794;
-      const Scalar tmp796 = tmp225*tmp795;
-      const Scalar tmp797 = tmp227*tmp795;
-      const Scalar tmp798 = -tmp233 + tmp229*tmp795;
-      const Scalar tmp799 = Scalar(2.030692330267238)*kappa*tmp794
-          + Scalar(2.030692330267238)*penalty_damping*(-tmp232 - vel(0))*tmp796
-          + Scalar(2.030692330267238)*penalty_damping*(-tmp235 - vel(1))*tmp797
-          + Scalar(2.030692330267238)*penalty_damping*(-tmp237 - vel(2))*tmp798;
-      const Scalar tmp800 = tmp207*tmp786 + tmp206*tmp787 + tmp223*tmp792 + tmp222*tmp793
-          + tmp239*tmp798 + tmp238*tmp799;
-      const Scalar tmp801 = -tmp787;
-      const Scalar tmp802 = tmp241*tmp786 + tmp206*tmp801;
-      const Scalar tmp803 = -tmp793;
-      const Scalar tmp804 = tmp263*tmp792 + tmp222*tmp803;
-      const Scalar tmp805 = -tmp799;
-      const Scalar tmp806 = tmp276*tmp798 + tmp238*tmp805;
-      const Scalar tmp807 = tmp198/sqrt((tmp198*tmp198) + (tmp199*tmp199) + (tmp200*tmp200));
-      const Scalar tmp808 = -(Scalar(1)/(tmp201*tmp201))*tmp807;
-      const Scalar tmp809 = tmp203 + tmp198*tmp808;
-      const Scalar tmp810 = tmp199*tmp808;
-      const Scalar tmp811 = tmp200*tmp808;
-      const Scalar tmp812 = Scalar(1.5617376188860606)*kappa*tmp807
-          + Scalar(1.5617376188860606)*penalty_damping*(vel(3) - vel(0))*tmp809
-          + Scalar(1.5617376188860606)*penalty_damping*(vel(4) - vel(1))*tmp810
-          + Scalar(1.5617376188860606)*penalty_damping*(vel(5) - vel(2))*tmp811;
-      const Scalar tmp813 = tmp207*tmp811 + tmp206*tmp812;
-      const Scalar tmp814 = -tmp812;
-      const Scalar tmp815 = -tmp242/sqrt((tmp242*tmp242) + (tmp243*tmp243) + (tmp244*tmp244));
-      const Scalar tmp816 = -(Scalar(1)/(tmp245*tmp245))*tmp815;
-      const Scalar tmp817 = -tmp247 + tmp242*tmp816;
-      const Scalar tmp818 = tmp243*tmp816;
-      const Scalar tmp819 = tmp244*tmp816;
-      const Scalar tmp820 = Scalar(2.0)*kappa*tmp815
-          + Scalar(2.0)*penalty_damping*(-tmp216 - vel(3))*tmp817
-          + Scalar(2.0)*penalty_damping*(-tmp219 - vel(4))*tmp818
-          + Scalar(2.0)*penalty_damping*(-tmp221 - vel(5))*tmp819;
-      const Scalar tmp821 = -tmp252/sqrt((tmp252*tmp252) + (tmp253*tmp253) + (tmp254*tmp254));
-      const Scalar tmp822 = -(Scalar(1)/(tmp255*tmp255))*tmp821;
-      const Scalar tmp823 = -tmp257 + tmp252*tmp822;
-      const Scalar tmp824 = tmp253*tmp822;
-      const Scalar tmp825 = tmp254*tmp822;
-      const Scalar tmp826 = Scalar(2.9814239699997196)*kappa*tmp821
-          + Scalar(2.9814239699997196)*penalty_damping*(-tmp232 - vel(3))*tmp823
-          + Scalar(2.9814239699997196)*penalty_damping*(-tmp235 - vel(4))*tmp824
-          + Scalar(2.9814239699997196)*penalty_damping*(-tmp237 - vel(5))*tmp825;
-      const Scalar tmp827 = tmp241*tmp811 + tmp206*tmp814 + tmp251*tmp819 + tmp250*tmp820
-          + tmp261*tmp825 + tmp260*tmp826;
-      const Scalar tmp828 = -tmp820;
-      const Scalar tmp829 = tmp264*tmp819 + tmp250*tmp828;
-      const Scalar tmp830 = -tmp826;
-      const Scalar tmp831 = tmp277*tmp825 + tmp260*tmp830;
-      const Scalar tmp832 = tmp199/sqrt((tmp198*tmp198) + (tmp199*tmp199) + (tmp200*tmp200));
-      const Scalar tmp833 = -(Scalar(1)/(tmp201*tmp201))*tmp832;
-      const Scalar tmp834 = tmp198*tmp833;
-      const Scalar tmp835 = tmp203 + tmp199*tmp833;
-      const Scalar tmp836 = tmp200*tmp833;
-      const Scalar tmp837 = Scalar(1.5617376188860606)*kappa*tmp832
-          + Scalar(1.5617376188860606)*penalty_damping*(vel(3) - vel(0))*tmp834
-          + Scalar(1.5617376188860606)*penalty_damping*(vel(4) - vel(1))*tmp835
-          + Scalar(1.5617376188860606)*penalty_damping*(vel(5) - vel(2))*tmp836;
-      const Scalar tmp838 = tmp207*tmp836 + tmp206*tmp837;
-      const Scalar tmp839 = -tmp837;
-      const Scalar tmp840 = -tmp243/sqrt((tmp242*tmp242) + (tmp243*tmp243) + (tmp244*tmp244));
-      const Scalar tmp841 = -(Scalar(1)/(tmp245*tmp245))*tmp840;
-      const Scalar tmp842 = tmp242*tmp841;
-      const Scalar tmp843 = -tmp247 + tmp243*tmp841;
-      const Scalar tmp844 = tmp244*tmp841;
-      const Scalar tmp845 = Scalar(2.0)*kappa*tmp840
-          + Scalar(2.0)*penalty_damping*(-tmp216 - vel(3))*tmp842
-          + Scalar(2.0)*penalty_damping*(-tmp219 - vel(4))*tmp843
-          + Scalar(2.0)*penalty_damping*(-tmp221 - vel(5))*tmp844;
-      const Scalar tmp846 = -tmp253/sqrt((tmp252*tmp252) + (tmp253*tmp253) + (tmp254*tmp254));
-      const Scalar tmp847 = -(Scalar(1)/(tmp255*tmp255))*tmp846;
-      const Scalar tmp848 = tmp252*tmp847;
-      const Scalar tmp849 = -tmp257 + tmp253*tmp847;
-      const Scalar tmp850 = tmp254*tmp847;
-      const Scalar tmp851 = Scalar(2.9814239699997196)*kappa*tmp846
-          + Scalar(2.9814239699997196)*penalty_damping*(-tmp232 - vel(3))*tmp848
-          + Scalar(2.9814239699997196)*penalty_damping*(-tmp235 - vel(4))*tmp849
-          + Scalar(2.9814239699997196)*penalty_damping*(-tmp237 - vel(5))*tmp850;
-      const Scalar tmp852 = tmp241*tmp836 + tmp206*tmp839 + tmp251*tmp844 + tmp250*tmp845
-          + tmp261*tmp850 + tmp260*tmp851;
-      const Scalar tmp853 = -tmp845;
-      const Scalar tmp854 = tmp264*tmp844 + tmp250*tmp853;
-      const Scalar tmp855 = -tmp851;
-      const Scalar tmp856 = tmp277*tmp850 + tmp260*tmp855;
-      const Scalar tmp857 = tmp200/sqrt((tmp198*tmp198) + (tmp199*tmp199) + (tmp200*tmp200));
-      const Scalar tmp858 = -(Scalar(1)/(tmp201*tmp201))*tmp857;
-      const Scalar tmp859 = tmp198*tmp858;
-      const Scalar tmp860 = tmp199*tmp858;
-      const Scalar tmp861 = tmp203 + tmp200*tmp858;
-      const Scalar tmp862 = Scalar(1.5617376188860606)*kappa*tmp857
-          + Scalar(1.5617376188860606)*penalty_damping*(vel(3) - vel(0))*tmp859
-          + Scalar(1.5617376188860606)*penalty_damping*(vel(4) - vel(1))*tmp860
-          + Scalar(1.5617376188860606)*penalty_damping*(vel(5) - vel(2))*tmp861;
-      const Scalar tmp863 = tmp207*tmp861 + tmp206*tmp862;
-      const Scalar tmp864 = -tmp862;
-      const Scalar tmp865 = -tmp244/sqrt((tmp242*tmp242) + (tmp243*tmp243) + (tmp244*tmp244));
-      const Scalar tmp866 = -(Scalar(1)/(tmp245*tmp245))*tmp865;
-      const Scalar tmp867 = tmp242*tmp866;
-      const Scalar tmp868 = tmp243*tmp866;
-      const Scalar tmp869 = -tmp247 + tmp244*tmp866;
-      const Scalar tmp870 = Scalar(2.0)*kappa*tmp865
-          + Scalar(2.0)*penalty_damping*(-tmp216 - vel(3))*tmp867
-          + Scalar(2.0)*penalty_damping*(-tmp219 - vel(4))*tmp868
-          + Scalar(2.0)*penalty_damping*(-tmp221 - vel(5))*tmp869;
-      const Scalar tmp871 = -tmp254/sqrt((tmp252*tmp252) + (tmp253*tmp253) + (tmp254*tmp254));
-      const Scalar tmp872 = -(Scalar(1)/(tmp255*tmp255))*tmp871;
-      const Scalar tmp873 = tmp252*tmp872;
-      const Scalar tmp874 = tmp253*tmp872;
-      const Scalar tmp875 = -tmp257 + tmp254*tmp872;
-      const Scalar tmp876 = Scalar(2.9814239699997196)*kappa*tmp871
-          + Scalar(2.9814239699997196)*penalty_damping*(-tmp232 - vel(3))*tmp873
-          + Scalar(2.9814239699997196)*penalty_damping*(-tmp235 - vel(4))*tmp874
-          + Scalar(2.9814239699997196)*penalty_damping*(-tmp237 - vel(5))*tmp875;
-      const Scalar tmp877 = tmp241*tmp861 + tmp206*tmp864 + tmp251*tmp869 + tmp250*tmp870
-          + tmp261*tmp875 + tmp260*tmp876;
-      const Scalar tmp878 = -tmp870;
-      const Scalar tmp879 = tmp264*tmp869 + tmp250*tmp878;
-      const Scalar tmp880 = -tmp876;
-      const Scalar tmp881 = tmp277*tmp875 + tmp260*tmp880;
-      const Scalar tmp882 = tmp209/sqrt((tmp209*tmp209) + (tmp211*tmp211) + (tmp213*tmp213));
-      const Scalar tmp883 = -(Scalar(1)/(tmp214*tmp214))*tmp882;
-      const Scalar tmp884 = tmp217 + tmp209*tmp883;
-      const Scalar tmp885 = tmp211*tmp883;
-      const Scalar tmp886 = tmp213*tmp883;
-      const Scalar tmp887 = Scalar(1.7149858514250886)*kappa*tmp882
-          + Scalar(1.7149858514250886)*penalty_damping*(-tmp216 - vel(0))*tmp884
-          + Scalar(1.7149858514250886)*penalty_damping*(-tmp219 - vel(1))*tmp885
-          + Scalar(1.7149858514250886)*penalty_damping*(-tmp221 - vel(2))*tmp886;
-      const Scalar tmp888 = tmp223*tmp886 + tmp222*tmp887;
-      const Scalar tmp889 = tmp242/sqrt((tmp242*tmp242) + (tmp243*tmp243) + (tmp244*tmp244));
-      const Scalar tmp890 = -(Scalar(1)/(tmp245*tmp245))*tmp889;
-      const Scalar tmp891 = tmp247 + tmp242*tmp890;
-      const Scalar tmp892 = tmp243*tmp890;
-      const Scalar tmp893 = tmp244*tmp890;
-      const Scalar tmp894 = Scalar(2.0)*kappa*tmp889
-          + Scalar(2.0)*penalty_damping*(-tmp216 - vel(3))*tmp891
-          + Scalar(2.0)*penalty_damping*(-tmp219 - vel(4))*tmp892
-          + Scalar(2.0)*penalty_damping*(-tmp221 - vel(5))*tmp893;
-      const Scalar tmp895 = tmp251*tmp893 + tmp250*tmp894;
-      const Scalar tmp896 = -tmp887;
-      const Scalar tmp897 = -tmp894;
-      const Scalar tmp898 = -tmp265/sqrt((tmp265*tmp265) + (tmp266*tmp266) + (tmp267*tmp267));
-      const Scalar tmp899 = -(Scalar(1)/(tmp268*tmp268))*tmp898;
-      const Scalar tmp900 = -tmp270 + tmp265*tmp899;
-      const Scalar tmp901 = tmp266*tmp899;
-      const Scalar tmp902 = tmp267*tmp899;
-      const Scalar tmp903 = Scalar(2.7472112789737806)*kappa*tmp898
-          + Scalar(2.7472112789737806)*penalty_damping*(-tmp232 - vel(6))*tmp900
-          + Scalar(2.7472112789737806)*penalty_damping*(-tmp235 - vel(7))*tmp901
-          + Scalar(2.7472112789737806)*penalty_damping*(-tmp237 - vel(8))*tmp902;
-      const Scalar tmp904 = tmp263*tmp886 + tmp264*tmp893 + tmp222*tmp896 + tmp250*tmp897
-          + tmp274*tmp902 + tmp273*tmp903;
-      const Scalar tmp905 = -tmp903;
-      const Scalar tmp906 = tmp278*tmp902 + tmp273*tmp905;
-      const Scalar tmp907 = tmp211/sqrt((tmp209*tmp209) + (tmp211*tmp211) + (tmp213*tmp213));
-      const Scalar tmp908 = -(Scalar(1)/(tmp214*tmp214))*tmp907;
-      const Scalar tmp909 = tmp209*tmp908;
-      const Scalar tmp910 = tmp217 + tmp211*tmp908;
-      const Scalar tmp911 = tmp213*tmp908;
-      const Scalar tmp912 = Scalar(1.7149858514250886)*kappa*tmp907
-          + Scalar(1.7149858514250886)*penalty_damping*(-tmp216 - vel(0))*tmp909
-          + Scalar(1.7149858514250886)*penalty_damping*(-tmp219 - vel(1))*tmp910
-          + Scalar(1.7149858514250886)*penalty_damping*(-tmp221 - vel(2))*tmp911;
-      const Scalar tmp913 = tmp223*tmp911 + tmp222*tmp912;
-      const Scalar tmp914 = tmp243/sqrt((tmp242*tmp242) + (tmp243*tmp243) + (tmp244*tmp244));
-      const Scalar tmp915 = -(Scalar(1)/(tmp245*tmp245))*tmp914;
-      const Scalar tmp916 = tmp242*tmp915;
-      const Scalar tmp917 = tmp247 + tmp243*tmp915;
-      const Scalar tmp918 = tmp244*tmp915;
-      const Scalar tmp919 = Scalar(2.0)*kappa*tmp914
-          + Scalar(2.0)*penalty_damping*(-tmp216 - vel(3))*tmp916
-          + Scalar(2.0)*penalty_damping*(-tmp219 - vel(4))*tmp917
-          + Scalar(2.0)*penalty_damping*(-tmp221 - vel(5))*tmp918;
-      const Scalar tmp920 = tmp251*tmp918 + tmp250*tmp919;
-      const Scalar tmp921 = -tmp912;
-      const Scalar tmp922 = -tmp919;
-      const Scalar tmp923 = -tmp266/sqrt((tmp265*tmp265) + (tmp266*tmp266) + (tmp267*tmp267));
-      const Scalar tmp924 = -(Scalar(1)/(tmp268*tmp268))*tmp923;
-      const Scalar tmp925 = tmp265*tmp924;
-      const Scalar tmp926 = -tmp270 + tmp266*tmp924;
-      const Scalar tmp927 = tmp267*tmp924;
-      const Scalar tmp928 = Scalar(2.7472112789737806)*kappa*tmp923
-          + Scalar(2.7472112789737806)*penalty_damping*(-tmp232 - vel(6))*tmp925
-          + Scalar(2.7472112789737806)*penalty_damping*(-tmp235 - vel(7))*tmp926
-          + Scalar(2.7472112789737806)*penalty_damping*(-tmp237 - vel(8))*tmp927;
-      const Scalar tmp929 = tmp263*tmp911 + tmp264*tmp918 + tmp222*tmp921 + tmp250*tmp922
-          + tmp274*tmp927 + tmp273*tmp928;
-      const Scalar tmp930 = -tmp928;
-      const Scalar tmp931 = tmp278*tmp927 + tmp273*tmp930;
-      const Scalar tmp932 = tmp213/sqrt((tmp209*tmp209) + (tmp211*tmp211) + (tmp213*tmp213));
-      const Scalar tmp933 = -(Scalar(1)/(tmp214*tmp214))*tmp932;
-      const Scalar tmp934 = tmp209*tmp933;
-      const Scalar tmp935 = tmp211*tmp933;
-      const Scalar tmp936 = tmp217 + tmp213*tmp933;
-      const Scalar tmp937 = Scalar(1.7149858514250886)*kappa*tmp932
-          + Scalar(1.7149858514250886)*penalty_damping*(-tmp216 - vel(0))*tmp934
-          + Scalar(1.7149858514250886)*penalty_damping*(-tmp219 - vel(1))*tmp935
-          + Scalar(1.7149858514250886)*penalty_damping*(-tmp221 - vel(2))*tmp936;
-      const Scalar tmp938 = tmp223*tmp936 + tmp222*tmp937;
-      const Scalar tmp939 = tmp244/sqrt((tmp242*tmp242) + (tmp243*tmp243) + (tmp244*tmp244));
-      const Scalar tmp940 = -(Scalar(1)/(tmp245*tmp245))*tmp939;
-      const Scalar tmp941 = tmp242*tmp940;
-      const Scalar tmp942 = tmp243*tmp940;
-      const Scalar tmp943 = tmp247 + tmp244*tmp940;
-      const Scalar tmp944 = Scalar(2.0)*kappa*tmp939
-          + Scalar(2.0)*penalty_damping*(-tmp216 - vel(3))*tmp941
-          + Scalar(2.0)*penalty_damping*(-tmp219 - vel(4))*tmp942
-          + Scalar(2.0)*penalty_damping*(-tmp221 - vel(5))*tmp943;
-      const Scalar tmp945 = tmp251*tmp943 + tmp250*tmp944;
-      const Scalar tmp946 = -tmp937;
-      const Scalar tmp947 = -tmp944;
-      const Scalar tmp948 = -tmp267/sqrt((tmp265*tmp265) + (tmp266*tmp266) + (tmp267*tmp267));
-      const Scalar tmp949 = -(Scalar(1)/(tmp268*tmp268))*tmp948;
-      const Scalar tmp950 = tmp265*tmp949;
-      const Scalar tmp951 = tmp266*tmp949;
-      const Scalar tmp952 = -tmp270 + tmp267*tmp949;
-      const Scalar tmp953 = Scalar(2.7472112789737806)*kappa*tmp948
-          + Scalar(2.7472112789737806)*penalty_damping*(-tmp232 - vel(6))*tmp950
-          + Scalar(2.7472112789737806)*penalty_damping*(-tmp235 - vel(7))*tmp951
-          + Scalar(2.7472112789737806)*penalty_damping*(-tmp237 - vel(8))*tmp952;
-      const Scalar tmp954 = tmp263*tmp936 + tmp264*tmp943 + tmp222*tmp946 + tmp250*tmp947
-          + tmp274*tmp952 + tmp273*tmp953;
-      const Scalar tmp955 = -tmp953;
-      const Scalar tmp956 = tmp278*tmp952 + tmp273*tmp955;
-      const Scalar tmp957 = tmp225/sqrt((tmp225*tmp225) + (tmp227*tmp227) + (tmp229*tmp229));
-      const Scalar tmp958 = -(Scalar(1)/(tmp230*tmp230))*tmp957;
-      const Scalar tmp959 = tmp233 + tmp225*tmp958;
-      const Scalar tmp960 = tmp227*tmp958;
-      const Scalar tmp961 = tmp229*tmp958;
-      const Scalar tmp962 = Scalar(2.030692330267238)*kappa*tmp957
-          + Scalar(2.030692330267238)*penalty_damping*(-tmp232 - vel(0))*tmp959
-          + Scalar(2.030692330267238)*penalty_damping*(-tmp235 - vel(1))*tmp960
-          + Scalar(2.030692330267238)*penalty_damping*(-tmp237 - vel(2))*tmp961;
-      const Scalar tmp963 = tmp239*tmp961 + tmp238*tmp962;
-      const Scalar tmp964 = tmp252/sqrt((tmp252*tmp252) + (tmp253*tmp253) + (tmp254*tmp254));
-      const Scalar tmp965 = -(Scalar(1)/(tmp255*tmp255))*tmp964;
-      const Scalar tmp966 = tmp257 + tmp252*tmp965;
-      const Scalar tmp967 = tmp253*tmp965;
-      const Scalar tmp968 = tmp254*tmp965;
-      const Scalar tmp969 = Scalar(2.9814239699997196)*kappa*tmp964
-          + Scalar(2.9814239699997196)*penalty_damping*(-tmp232 - vel(3))*tmp966
-          + Scalar(2.9814239699997196)*penalty_damping*(-tmp235 - vel(4))*tmp967
-          + Scalar(2.9814239699997196)*penalty_damping*(-tmp237 - vel(5))*tmp968;
-      const Scalar tmp970 = tmp261*tmp968 + tmp260*tmp969;
-      const Scalar tmp971 = tmp265/sqrt((tmp265*tmp265) + (tmp266*tmp266) + (tmp267*tmp267));
-      const Scalar tmp972 = -(Scalar(1)/(tmp268*tmp268))*tmp971;
-      const Scalar tmp973 = tmp270 + tmp265*tmp972;
-      const Scalar tmp974 = tmp266*tmp972;
-      const Scalar tmp975 = tmp267*tmp972;
-      const Scalar tmp976 = Scalar(2.7472112789737806)*kappa*tmp971
-          + Scalar(2.7472112789737806)*penalty_damping*(-tmp232 - vel(6))*tmp973
-          + Scalar(2.7472112789737806)*penalty_damping*(-tmp235 - vel(7))*tmp974
-          + Scalar(2.7472112789737806)*penalty_damping*(-tmp237 - vel(8))*tmp975;
-      const Scalar tmp977 = tmp274*tmp975 + tmp273*tmp976;
-      const Scalar tmp978 = -tmp962;
-      const Scalar tmp979 = -tmp969;
-      const Scalar tmp980 = -tmp976;
-      const Scalar tmp981 = tmp276*tmp961 + tmp277*tmp968 + tmp278*tmp975 + tmp238*tmp978
-          + tmp260*tmp979 + tmp273*tmp980;
-      const Scalar tmp982 = tmp227/sqrt((tmp225*tmp225) + (tmp227*tmp227) + (tmp229*tmp229));
-      const Scalar tmp983 = -(Scalar(1)/(tmp230*tmp230))*tmp982;
-      const Scalar tmp984 = tmp225*tmp983;
-      const Scalar tmp985 = tmp233 + tmp227*tmp983;
-      const Scalar tmp986 = tmp229*tmp983;
-      const Scalar tmp987 = Scalar(2.030692330267238)*kappa*tmp982
-          + Scalar(2.030692330267238)*penalty_damping*(-tmp232 - vel(0))*tmp984
-          + Scalar(2.030692330267238)*penalty_damping*(-tmp235 - vel(1))*tmp985
-          + Scalar(2.030692330267238)*penalty_damping*(-tmp237 - vel(2))*tmp986;
-      const Scalar tmp988 = tmp239*tmp986 + tmp238*tmp987;
-      const Scalar tmp989 = tmp253/sqrt((tmp252*tmp252) + (tmp253*tmp253) + (tmp254*tmp254));
-      const Scalar tmp990 = -(Scalar(1)/(tmp255*tmp255))*tmp989;
-      const Scalar tmp991 = tmp252*tmp990;
-      const Scalar tmp992 = tmp257 + tmp253*tmp990;
-      const Scalar tmp993 = tmp254*tmp990;
-      const Scalar tmp994 = Scalar(2.9814239699997196)*kappa*tmp989
-          + Scalar(2.9814239699997196)*penalty_damping*(-tmp232 - vel(3))*tmp991
-          + Scalar(2.9814239699997196)*penalty_damping*(-tmp235 - vel(4))*tmp992
-          + Scalar(2.9814239699997196)*penalty_damping*(-tmp237 - vel(5))*tmp993;
-      const Scalar tmp995 = tmp261*tmp993 + tmp260*tmp994;
-      const Scalar tmp996 = tmp266/sqrt((tmp265*tmp265) + (tmp266*tmp266) + (tmp267*tmp267));
-      const Scalar tmp997 = -(Scalar(1)/(tmp268*tmp268))*tmp996;
-      const Scalar tmp998 = tmp265*tmp997;
-      const Scalar tmp999 = tmp270 + tmp266*tmp997;
-      const Scalar tmp1000 = tmp267*tmp997;
-      const Scalar tmp1001 = Scalar(2.7472112789737806)*kappa*tmp996
-          + Scalar(2.7472112789737806)*penalty_damping*(-tmp232 - vel(6))*tmp998
-          + Scalar(2.7472112789737806)*penalty_damping*(-tmp235 - vel(7))*tmp999
-          + Scalar(2.7472112789737806)*penalty_damping*(-tmp237 - vel(8))*tmp1000;
-      const Scalar tmp1002 = tmp274*tmp1000 + tmp273*tmp1001;
-      const Scalar tmp1003 = -tmp987;
-      const Scalar tmp1004 = -tmp994;
-      const Scalar tmp1005 = -tmp1001;
-      const Scalar tmp1006 = tmp276*tmp986 + tmp277*tmp993 + tmp278*tmp1000 + tmp238*tmp1003
-          + tmp260*tmp1004 + tmp273*tmp1005;
-      const Scalar tmp1007 = tmp229/sqrt((tmp225*tmp225) + (tmp227*tmp227) + (tmp229*tmp229));
-      const Scalar tmp1008 = -(Scalar(1)/(tmp230*tmp230))*tmp1007;
-      const Scalar tmp1009 = tmp225*tmp1008;
-      const Scalar tmp1010 = tmp227*tmp1008;
-      const Scalar tmp1011 = tmp233 + tmp229*tmp1008;
-      const Scalar tmp1012 = Scalar(2.030692330267238)*kappa*tmp1007
-          + Scalar(2.030692330267238)*penalty_damping*(-tmp232 - vel(0))*tmp1009
-          + Scalar(2.030692330267238)*penalty_damping*(-tmp235 - vel(1))*tmp1010
-          + Scalar(2.030692330267238)*penalty_damping*(-tmp237 - vel(2))*tmp1011;
-      const Scalar tmp1013 = tmp239*tmp1011 + tmp238*tmp1012;
-      const Scalar tmp1014 = tmp254/sqrt((tmp252*tmp252) + (tmp253*tmp253) + (tmp254*tmp254));
-      const Scalar tmp1015 = -(Scalar(1)/(tmp255*tmp255))*tmp1014;
-      const Scalar tmp1016 = tmp252*tmp1015;
-      const Scalar tmp1017 = tmp253*tmp1015;
-      const Scalar tmp1018 = tmp257 + tmp254*tmp1015;
-      const Scalar tmp1019 = Scalar(2.9814239699997196)*kappa*tmp1014
-          + Scalar(2.9814239699997196)*penalty_damping*(-tmp232 - vel(3))*tmp1016
-          + Scalar(2.9814239699997196)*penalty_damping*(-tmp235 - vel(4))*tmp1017
-          + Scalar(2.9814239699997196)*penalty_damping*(-tmp237 - vel(5))*tmp1018;
-      const Scalar tmp1020 = tmp261*tmp1018 + tmp260*tmp1019;
-      const Scalar tmp1021 = tmp267/sqrt((tmp265*tmp265) + (tmp266*tmp266) + (tmp267*tmp267));
-      const Scalar tmp1022 = -(Scalar(1)/(tmp268*tmp268))*tmp1021;
-      const Scalar tmp1023 = tmp265*tmp1022;
-      const Scalar tmp1024 = tmp266*tmp1022;
-      const Scalar tmp1025 = tmp270 + tmp267*tmp1022;
-      const Scalar tmp1026 = Scalar(2.7472112789737806)*kappa*tmp1021
-          + Scalar(2.7472112789737806)*penalty_damping*(-tmp232 - vel(6))*tmp1023
-          + Scalar(2.7472112789737806)*penalty_damping*(-tmp235 - vel(7))*tmp1024
-          + Scalar(2.7472112789737806)*penalty_damping*(-tmp237 - vel(8))*tmp1025;
-      const Scalar tmp1027 = tmp274*tmp1025 + tmp273*tmp1026;
-      const Scalar tmp1028 = -tmp1012;
-      const Scalar tmp1029 = -tmp1019;
-      const Scalar tmp1030 = -tmp1026;
-      const Scalar tmp1031 = tmp276*tmp1011 + tmp277*tmp1018 + tmp278*tmp1025 + tmp238*tmp1028
-          + tmp260*tmp1029 + tmp273*tmp1030;
+      const Scalar m = Scalar(params.m);
+      const Scalar a = Scalar(params.a);
+      const Scalar b = Scalar(params.b);
+      const Scalar c = Scalar(params.c);
+      const Scalar tmp10 = (Scalar(1)/sqrt(m));
+      const Scalar tmp11 = (a*a);
+      const Scalar tmp12 = (b*b);
+      const Scalar tmp13 = m*(tmp11 + tmp12);
+      const Scalar tmp14 = (c*c);
+      const Scalar tmp15 = tmp11 + tmp14;
+      const Scalar tmp16 = tmp15*m;
+      const Scalar tmp17 = tmp12 + tmp14;
+      const Scalar tmp18 = tmp17*m;
+      const Scalar tmp19 = Scalar(0.005689254019167049)*tmp18 + Scalar(0.010556171822976032)*tmp16
+          - Scalar(0.01624542584214308)*tmp13;
+      const Scalar tmp20 = Scalar(0.041142942152109445)*tmp18 + Scalar(0.028423816083747767)*tmp13
+          - Scalar(0.027900091569190537)*tmp16;
+      const Scalar tmp21 = sqrt(tmp20);
+      const Scalar tmp22 = (Scalar(1)/tmp21);
+      const Scalar tmp23 = tmp19*tmp22;
+      const Scalar tmp24 = (Scalar(1)/tmp20);
+      const Scalar tmp25 = Scalar(0.021737886292675604)*tmp13 + Scalar(0.04006485617007295)*tmp16
+          - Scalar(0.020136075796081898)*tmp18 - tmp24*(tmp19*tmp19);
+      const Scalar tmp26 = sqrt(tmp25);
+      const Scalar tmp27 = tmp23 + tmp26;
+      const Scalar tmp33 = -Scalar(0.0257737061664756)*tmp13 - Scalar(0.003316897780257798)*tmp18
+          + Scalar(0.0290906039467334)*tmp15*m;
+      const Scalar tmp34 = tmp22*tmp33;
+      const Scalar tmp35 = (Scalar(1)/tmp25);
+      const Scalar tmp36 = tmp24*tmp33;
+      const Scalar tmp37 = -Scalar(0.03161742478199714)*tmp13 - Scalar(0.004414255047715874)*tmp16
+          - tmp19*tmp36 + Scalar(0.03603167982971302)*tmp17*m;
+      const Scalar tmp38 = -Scalar(0.008495035709756703)*tmp13 - tmp24*(tmp33*tmp33)
+          - tmp35*(tmp37*tmp37) + Scalar(0.02950190206578425)*tmp15*m
+          + Scalar(0.020659800310639128)*tmp17*m;
+      const Scalar tmp39 = sqrt(tmp38);
+      const Scalar tmp40 = tmp37/tmp26;
+      const Scalar tmp41 = tmp39 + tmp40;
+      const Scalar tmp42 = tmp34 + tmp41;
+      const Scalar tmp117 = tmp23 - tmp26;
+      const Scalar tmp118 = tmp10*tmp117;
+      const Scalar tmp119 = tmp34 - tmp41;
+      const Scalar tmp120 = tmp10*tmp119;
+      const Scalar tmp140 = -tmp117;
+      const Scalar tmp141 = tmp10*tmp140;
+      const Scalar tmp142 = tmp40 - tmp34 - tmp39;
+      const Scalar tmp143 = tmp10*tmp142;
+      const Scalar tmp172 = -tmp27;
+      const Scalar tmp173 = tmp10*tmp172;
+      const Scalar tmp174 = tmp39 - tmp34 - tmp40;
+      const Scalar tmp175 = tmp10*tmp174;
+      const Scalar tmp357 = pos(3) - pos(0);
+      const Scalar tmp358 = pos(4) - pos(1);
+      const Scalar tmp359 = pos(5) - pos(2);
+      const Scalar tmp360 = sqrt((tmp357*tmp357) + (tmp358*tmp358) + (tmp359*tmp359));
+      const Scalar tmp361 = (Scalar(1)/tmp360);
+      const Scalar tmp362 = tmp357*tmp361;
+      const Scalar tmp363 = tmp358*tmp361;
+      const Scalar tmp364 = tmp359*tmp361;
+      const Scalar tmp365 = -tmp10*tmp27;
+      const Scalar tmp366 = -tmp10*tmp42;
+      const Scalar tmp367 = sqrt(((-tmp118 - tmp365)*(-tmp118 - tmp365))
+          + ((-tmp120 - tmp366)*(-tmp120 - tmp366)));
+      const Scalar tmp368 = (Scalar(1)/tmp367);
+      const Scalar tmp369 = tmp360 - tmp367;
+      const Scalar tmp370 = tmp368*kappa;
+      const Scalar tmp371 = tmp369*tmp370
+          + tmp368*penalty_damping*(tmp362*(vel(3) - vel(0)) + tmp363*(vel(4) - vel(1))
+              + tmp364*(vel(5) - vel(2)));
+      const Scalar tmp372 = -vel(6);
+      const Scalar tmp373 = -pos(6);
+      const Scalar tmp374 = -tmp373 - pos(0);
+      const Scalar tmp375 = -pos(7);
+      const Scalar tmp376 = -tmp375 - pos(1);
+      const Scalar tmp377 = -pos(8);
+      const Scalar tmp378 = -tmp377 - pos(2);
+      const Scalar tmp379 = sqrt((tmp374*tmp374) + (tmp376*tmp376) + (tmp378*tmp378));
+      const Scalar tmp380 = (Scalar(1)/tmp379);
+      const Scalar tmp381 = tmp374*tmp380;
+      const Scalar tmp382 = -vel(7);
+      const Scalar tmp383 = tmp376*tmp380;
+      const Scalar tmp384 = -vel(8);
+      const Scalar tmp385 = tmp378*tmp380;
+      const Scalar tmp386 = Scalar(4)*tmp20/m;
+      const Scalar tmp387 = sqrt(tmp386 + ((-tmp141 - tmp365)*(-tmp141 - tmp365))
+          + ((-tmp143 - tmp366)*(-tmp143 - tmp366)));
+      const Scalar tmp388 = (Scalar(1)/tmp387);
+      const Scalar tmp389 = tmp379 - tmp387;
+      const Scalar tmp390 = tmp388*kappa;
+      const Scalar tmp391 = tmp389*tmp390
+          + tmp388*penalty_damping*(tmp381*(-tmp372 - vel(0)) + tmp383*(-tmp382 - vel(1))
+              + tmp385*(-tmp384 - vel(2)));
+      const Scalar tmp392 = -vel(9);
+      const Scalar tmp393 = -pos(9);
+      const Scalar tmp394 = -tmp393 - pos(0);
+      const Scalar tmp395 = -pos(10);
+      const Scalar tmp396 = -tmp395 - pos(1);
+      const Scalar tmp397 = -pos(11);
+      const Scalar tmp398 = -tmp397 - pos(2);
+      const Scalar tmp399 = sqrt((tmp394*tmp394) + (tmp396*tmp396) + (tmp398*tmp398));
+      const Scalar tmp400 = (Scalar(1)/tmp399);
+      const Scalar tmp401 = tmp394*tmp400;
+      const Scalar tmp402 = -vel(10);
+      const Scalar tmp403 = tmp396*tmp400;
+      const Scalar tmp404 = -vel(11);
+      const Scalar tmp405 = tmp398*tmp400;
+      const Scalar tmp406 = sqrt(tmp386 + ((-tmp173 - tmp365)*(-tmp173 - tmp365))
+          + ((-tmp175 - tmp366)*(-tmp175 - tmp366)));
+      const Scalar tmp407 = (Scalar(1)/tmp406);
+      const Scalar tmp408 = tmp399 - tmp406;
+      const Scalar tmp409 = tmp407*kappa;
+      const Scalar tmp410 = tmp408*tmp409
+          + tmp407*penalty_damping*(tmp401*(-tmp392 - vel(0)) + tmp403*(-tmp402 - vel(1))
+              + tmp405*(-tmp404 - vel(2)));
+      const Scalar tmp412 = -tmp371;
+      const Scalar tmp413 = -tmp373 - pos(3);
+      const Scalar tmp414 = -tmp375 - pos(4);
+      const Scalar tmp415 = -tmp377 - pos(5);
+      const Scalar tmp416 = sqrt((tmp413*tmp413) + (tmp414*tmp414) + (tmp415*tmp415));
+      const Scalar tmp417 = (Scalar(1)/tmp416);
+      const Scalar tmp418 = tmp413*tmp417;
+      const Scalar tmp419 = tmp414*tmp417;
+      const Scalar tmp420 = tmp415*tmp417;
+      const Scalar tmp421 = -tmp118;
+      const Scalar tmp422 = -tmp120;
+      const Scalar tmp423 = sqrt(tmp386 + ((-tmp141 - tmp421)*(-tmp141 - tmp421))
+          + ((-tmp143 - tmp422)*(-tmp143 - tmp422)));
+      const Scalar tmp424 = (Scalar(1)/tmp423);
+      const Scalar tmp425 = tmp416 - tmp423;
+      const Scalar tmp426 = tmp424*kappa;
+      const Scalar tmp427 = tmp425*tmp426
+          + tmp424*penalty_damping*(tmp418*(-tmp372 - vel(3)) + tmp419*(-tmp382 - vel(4))
+              + tmp420*(-tmp384 - vel(5)));
+      const Scalar tmp428 = -tmp393 - pos(3);
+      const Scalar tmp429 = -tmp395 - pos(4);
+      const Scalar tmp430 = -tmp397 - pos(5);
+      const Scalar tmp431 = sqrt((tmp428*tmp428) + (tmp429*tmp429) + (tmp430*tmp430));
+      const Scalar tmp432 = (Scalar(1)/tmp431);
+      const Scalar tmp433 = tmp428*tmp432;
+      const Scalar tmp434 = tmp429*tmp432;
+      const Scalar tmp435 = tmp430*tmp432;
+      const Scalar tmp436 = sqrt(tmp386 + ((-tmp173 - tmp421)*(-tmp173 - tmp421))
+          + ((-tmp175 - tmp422)*(-tmp175 - tmp422)));
+      const Scalar tmp437 = (Scalar(1)/tmp436);
+      const Scalar tmp438 = tmp431 - tmp436;
+      const Scalar tmp439 = tmp437*kappa;
+      const Scalar tmp440 = tmp438*tmp439
+          + tmp437*penalty_damping*(tmp433*(-tmp392 - vel(3)) + tmp434*(-tmp402 - vel(4))
+              + tmp435*(-tmp404 - vel(5)));
+      const Scalar tmp442 = -tmp393 - pos(6);
+      const Scalar tmp443 = -tmp395 - pos(7);
+      const Scalar tmp444 = -tmp397 - pos(8);
+      const Scalar tmp445 = sqrt((tmp442*tmp442) + (tmp443*tmp443) + (tmp444*tmp444));
+      const Scalar tmp446 = (Scalar(1)/tmp445);
+      const Scalar tmp447 = tmp442*tmp446;
+      const Scalar tmp448 = tmp443*tmp446;
+      const Scalar tmp449 = tmp444*tmp446;
+      const Scalar tmp450 = sqrt(((tmp141 - tmp173)*(tmp141 - tmp173))
+          + ((tmp143 - tmp175)*(tmp143 - tmp175)));
+      const Scalar tmp451 = (Scalar(1)/tmp450);
+      const Scalar tmp452 = tmp445 - tmp450;
+      const Scalar tmp453 = tmp451*kappa;
+      const Scalar tmp454 = tmp452*tmp453
+          + tmp451*penalty_damping*(tmp447*(-tmp392 - vel(6)) + tmp448*(-tmp402 - vel(7))
+              + tmp449*(-tmp404 - vel(8)));
+      const Scalar tmp455 = -tmp391;
+      const Scalar tmp456 = -tmp427;
+      const Scalar tmp458 = -tmp454;
+      const Scalar tmp459 = -tmp410;
+      const Scalar tmp460 = -tmp440;
+      const Scalar tmp918 = -tmp357/sqrt((tmp357*tmp357) + (tmp358*tmp358) + (tmp359*tmp359));
+      const Scalar tmp919 = -(Scalar(1)/(tmp360*tmp360))*tmp918;
+      const Scalar tmp920 = -tmp361 + tmp357*tmp919;
+      const Scalar tmp921 = tmp358*tmp919;
+      const Scalar tmp922 = tmp359*tmp919;
+      const Scalar tmp923 = tmp368*penalty_damping*(vel(3) - vel(0))*tmp920
+          + tmp368*penalty_damping*(vel(4) - vel(1))*tmp921
+          + tmp368*penalty_damping*(vel(5) - vel(2))*tmp922 + tmp370*tmp918;
+      const Scalar tmp924 = -tmp374/sqrt((tmp374*tmp374) + (tmp376*tmp376) + (tmp378*tmp378));
+      const Scalar tmp925 = -(Scalar(1)/(tmp379*tmp379))*tmp924;
+      const Scalar tmp926 = -tmp380 + tmp374*tmp925;
+      const Scalar tmp927 = tmp376*tmp925;
+      const Scalar tmp928 = tmp378*tmp925;
+      const Scalar tmp929 = tmp388*penalty_damping*(-tmp372 - vel(0))*tmp926
+          + tmp388*penalty_damping*(-tmp382 - vel(1))*tmp927
+          + tmp388*penalty_damping*(-tmp384 - vel(2))*tmp928 + tmp390*tmp924;
+      const Scalar tmp930 = -tmp394/sqrt((tmp394*tmp394) + (tmp396*tmp396) + (tmp398*tmp398));
+      const Scalar tmp931 = -(Scalar(1)/(tmp399*tmp399))*tmp930;
+      const Scalar tmp932 = -tmp400 + tmp394*tmp931;
+      const Scalar tmp933 = tmp396*tmp931;
+      const Scalar tmp934 = tmp398*tmp931;
+      const Scalar tmp935 = tmp407*penalty_damping*(-tmp392 - vel(0))*tmp932
+          + tmp407*penalty_damping*(-tmp402 - vel(1))*tmp933
+          + tmp407*penalty_damping*(-tmp404 - vel(2))*tmp934 + tmp409*tmp930;
+      const Scalar tmp936 = tmp371*tmp922 + tmp364*tmp923 + tmp391*tmp928 + tmp385*tmp929
+          + tmp410*tmp934 + tmp405*tmp935;
+      const Scalar tmp937 = -tmp923;
+      const Scalar tmp938 = tmp412*tmp922 + tmp364*tmp937;
+      const Scalar tmp939 = -tmp929;
+      const Scalar tmp940 = tmp455*tmp928 + tmp385*tmp939;
+      const Scalar tmp941 = -tmp935;
+      const Scalar tmp942 = tmp459*tmp934 + tmp405*tmp941;
+      const Scalar tmp943 = -tmp358/sqrt((tmp357*tmp357) + (tmp358*tmp358) + (tmp359*tmp359));
+      const Scalar tmp944 = -(Scalar(1)/(tmp360*tmp360))*tmp943;
+      const Scalar tmp945 = tmp357*tmp944;
+      const Scalar tmp946 = -tmp361 + tmp358*tmp944;
+      const Scalar tmp947 = tmp359*tmp944;
+      const Scalar tmp948 = tmp368*penalty_damping*(vel(3) - vel(0))*tmp945
+          + tmp368*penalty_damping*(vel(4) - vel(1))*tmp946
+          + tmp368*penalty_damping*(vel(5) - vel(2))*tmp947 + tmp370*tmp943;
+      const Scalar tmp949 = -tmp376/sqrt((tmp374*tmp374) + (tmp376*tmp376) + (tmp378*tmp378));
+      const Scalar tmp950 = -(Scalar(1)/(tmp379*tmp379))*tmp949;
+      const Scalar tmp951 = tmp374*tmp950;
+      const Scalar tmp952 = -tmp380 + tmp376*tmp950;
+      const Scalar tmp953 = tmp378*tmp950;
+      const Scalar tmp954 = tmp388*penalty_damping*(-tmp372 - vel(0))*tmp951
+          + tmp388*penalty_damping*(-tmp382 - vel(1))*tmp952
+          + tmp388*penalty_damping*(-tmp384 - vel(2))*tmp953 + tmp390*tmp949;
+      const Scalar tmp955 = -tmp396/sqrt((tmp394*tmp394) + (tmp396*tmp396) + (tmp398*tmp398));
+      const Scalar tmp956 = -(Scalar(1)/(tmp399*tmp399))*tmp955;
+      const Scalar tmp957 = tmp394*tmp956;
+      const Scalar tmp958 = -tmp400 + tmp396*tmp956;
+      const Scalar tmp959 = tmp398*tmp956;
+      const Scalar tmp960 = tmp407*penalty_damping*(-tmp392 - vel(0))*tmp957
+          + tmp407*penalty_damping*(-tmp402 - vel(1))*tmp958
+          + tmp407*penalty_damping*(-tmp404 - vel(2))*tmp959 + tmp409*tmp955;
+      const Scalar tmp961 = tmp371*tmp947 + tmp364*tmp948 + tmp391*tmp953 + tmp385*tmp954
+          + tmp410*tmp959 + tmp405*tmp960;
+      const Scalar tmp962 = -tmp948;
+      const Scalar tmp963 = tmp412*tmp947 + tmp364*tmp962;
+      const Scalar tmp964 = -tmp954;
+      const Scalar tmp965 = tmp455*tmp953 + tmp385*tmp964;
+      const Scalar tmp966 = -tmp960;
+      const Scalar tmp967 = tmp459*tmp959 + tmp405*tmp966;
+      const Scalar tmp968 = -tmp359/sqrt((tmp357*tmp357) + (tmp358*tmp358) + (tmp359*tmp359));
+      const Scalar tmp969 = -(Scalar(1)/(tmp360*tmp360))*tmp968;
+      const Scalar tmp970 = tmp357*tmp969;
+      const Scalar tmp971 = tmp358*tmp969;
+      const Scalar tmp972 = -tmp361 + tmp359*tmp969;
+      const Scalar tmp973 = tmp368*penalty_damping*(vel(3) - vel(0))*tmp970
+          + tmp368*penalty_damping*(vel(4) - vel(1))*tmp971
+          + tmp368*penalty_damping*(vel(5) - vel(2))*tmp972 + tmp370*tmp968;
+      const Scalar tmp974 = -tmp378/sqrt((tmp374*tmp374) + (tmp376*tmp376) + (tmp378*tmp378));
+      const Scalar tmp975 = -(Scalar(1)/(tmp379*tmp379))*tmp974;
+      const Scalar tmp976 = tmp374*tmp975;
+      const Scalar tmp977 = tmp376*tmp975;
+      const Scalar tmp978 = -tmp380 + tmp378*tmp975;
+      const Scalar tmp979 = tmp388*penalty_damping*(-tmp372 - vel(0))*tmp976
+          + tmp388*penalty_damping*(-tmp382 - vel(1))*tmp977
+          + tmp388*penalty_damping*(-tmp384 - vel(2))*tmp978 + tmp390*tmp974;
+      const Scalar tmp980 = -tmp398/sqrt((tmp394*tmp394) + (tmp396*tmp396) + (tmp398*tmp398));
+      const Scalar tmp981 = -(Scalar(1)/(tmp399*tmp399))*tmp980;
+      const Scalar tmp982 = tmp394*tmp981;
+      const Scalar tmp983 = tmp396*tmp981;
+      const Scalar tmp984 = -tmp400 + tmp398*tmp981;
+      const Scalar tmp985 = tmp407*penalty_damping*(-tmp392 - vel(0))*tmp982
+          + tmp407*penalty_damping*(-tmp402 - vel(1))*tmp983
+          + tmp407*penalty_damping*(-tmp404 - vel(2))*tmp984 + tmp409*tmp980;
+      const Scalar tmp986 = tmp371*tmp972 + tmp364*tmp973 + tmp391*tmp978 + tmp385*tmp979
+          + tmp410*tmp984 + tmp405*tmp985;
+      const Scalar tmp987 = -tmp973;
+      const Scalar tmp988 = tmp412*tmp972 + tmp364*tmp987;
+      const Scalar tmp989 = -tmp979;
+      const Scalar tmp990 = tmp455*tmp978 + tmp385*tmp989;
+      const Scalar tmp991 = -tmp985;
+      const Scalar tmp992 = tmp459*tmp984 + tmp405*tmp991;
+      const Scalar tmp993 = tmp357/sqrt((tmp357*tmp357) + (tmp358*tmp358) + (tmp359*tmp359));
+      const Scalar tmp994 = -(Scalar(1)/(tmp360*tmp360))*tmp993;
+      const Scalar tmp995 = tmp361 + tmp357*tmp994;
+      const Scalar tmp996 = tmp358*tmp994;
+      const Scalar tmp997 = tmp359*tmp994;
+      const Scalar tmp998 = tmp368*penalty_damping*(vel(3) - vel(0))*tmp995
+          + tmp368*penalty_damping*(vel(4) - vel(1))*tmp996
+          + tmp368*penalty_damping*(vel(5) - vel(2))*tmp997 + tmp370*tmp993;
+      const Scalar tmp999 = tmp371*tmp997 + tmp364*tmp998;
+      const Scalar tmp1000 = -tmp998;
+      const Scalar tmp1001 = -tmp413/sqrt((tmp413*tmp413) + (tmp414*tmp414) + (tmp415*tmp415));
+      const Scalar tmp1002 = -(Scalar(1)/(tmp416*tmp416))*tmp1001;
+      const Scalar tmp1003 = -tmp417 + tmp413*tmp1002;
+      const Scalar tmp1004 = tmp414*tmp1002;
+      const Scalar tmp1005 = tmp415*tmp1002;
+      const Scalar tmp1006 = tmp424*penalty_damping*(-tmp372 - vel(3))*tmp1003
+          + tmp424*penalty_damping*(-tmp382 - vel(4))*tmp1004
+          + tmp424*penalty_damping*(-tmp384 - vel(5))*tmp1005 + tmp426*tmp1001;
+      const Scalar tmp1007 = -tmp428/sqrt((tmp428*tmp428) + (tmp429*tmp429) + (tmp430*tmp430));
+      const Scalar tmp1008 = -(Scalar(1)/(tmp431*tmp431))*tmp1007;
+      const Scalar tmp1009 = -tmp432 + tmp428*tmp1008;
+      const Scalar tmp1010 = tmp429*tmp1008;
+      const Scalar tmp1011 = tmp430*tmp1008;
+      const Scalar tmp1012 = tmp437*penalty_damping*(-tmp392 - vel(3))*tmp1009
+          + tmp437*penalty_damping*(-tmp402 - vel(4))*tmp1010
+          + tmp437*penalty_damping*(-tmp404 - vel(5))*tmp1011 + tmp439*tmp1007;
+      const Scalar tmp1013 = tmp412*tmp997 + tmp364*tmp1000 + tmp427*tmp1005 + tmp420*tmp1006
+          + tmp440*tmp1011 + tmp435*tmp1012;
+      const Scalar tmp1014 = -tmp1006;
+      const Scalar tmp1015 = tmp456*tmp1005 + tmp420*tmp1014;
+      const Scalar tmp1016 = -tmp1012;
+      const Scalar tmp1017 = tmp460*tmp1011 + tmp435*tmp1016;
+      const Scalar tmp1018 = tmp358/sqrt((tmp357*tmp357) + (tmp358*tmp358) + (tmp359*tmp359));
+      const Scalar tmp1019 = -(Scalar(1)/(tmp360*tmp360))*tmp1018;
+      const Scalar tmp1020 = tmp357*tmp1019;
+      const Scalar tmp1021 = tmp361 + tmp358*tmp1019;
+      const Scalar tmp1022 = tmp359*tmp1019;
+      const Scalar tmp1023 = tmp368*penalty_damping*(vel(3) - vel(0))*tmp1020
+          + tmp368*penalty_damping*(vel(4) - vel(1))*tmp1021
+          + tmp368*penalty_damping*(vel(5) - vel(2))*tmp1022 + tmp370*tmp1018;
+      const Scalar tmp1024 = tmp371*tmp1022 + tmp364*tmp1023;
+      const Scalar tmp1025 = -tmp1023;
+      const Scalar tmp1026 = -tmp414/sqrt((tmp413*tmp413) + (tmp414*tmp414) + (tmp415*tmp415));
+      const Scalar tmp1027 = -(Scalar(1)/(tmp416*tmp416))*tmp1026;
+      const Scalar tmp1028 = tmp413*tmp1027;
+      const Scalar tmp1029 = -tmp417 + tmp414*tmp1027;
+      const Scalar tmp1030 = tmp415*tmp1027;
+      const Scalar tmp1031 = tmp424*penalty_damping*(-tmp372 - vel(3))*tmp1028
+          + tmp424*penalty_damping*(-tmp382 - vel(4))*tmp1029
+          + tmp424*penalty_damping*(-tmp384 - vel(5))*tmp1030 + tmp426*tmp1026;
+      const Scalar tmp1032 = -tmp429/sqrt((tmp428*tmp428) + (tmp429*tmp429) + (tmp430*tmp430));
+      const Scalar tmp1033 = -(Scalar(1)/(tmp431*tmp431))*tmp1032;
+      const Scalar tmp1034 = tmp428*tmp1033;
+      const Scalar tmp1035 = -tmp432 + tmp429*tmp1033;
+      const Scalar tmp1036 = tmp430*tmp1033;
+      const Scalar tmp1037 = tmp437*penalty_damping*(-tmp392 - vel(3))*tmp1034
+          + tmp437*penalty_damping*(-tmp402 - vel(4))*tmp1035
+          + tmp437*penalty_damping*(-tmp404 - vel(5))*tmp1036 + tmp439*tmp1032;
+      const Scalar tmp1038 = tmp412*tmp1022 + tmp364*tmp1025 + tmp427*tmp1030 + tmp420*tmp1031
+          + tmp440*tmp1036 + tmp435*tmp1037;
+      const Scalar tmp1039 = -tmp1031;
+      const Scalar tmp1040 = tmp456*tmp1030 + tmp420*tmp1039;
+      const Scalar tmp1041 = -tmp1037;
+      const Scalar tmp1042 = tmp460*tmp1036 + tmp435*tmp1041;
+      const Scalar tmp1043 = tmp359/sqrt((tmp357*tmp357) + (tmp358*tmp358) + (tmp359*tmp359));
+      const Scalar tmp1044 = -(Scalar(1)/(tmp360*tmp360))*tmp1043;
+      const Scalar tmp1045 = tmp357*tmp1044;
+      const Scalar tmp1046 = tmp358*tmp1044;
+      const Scalar tmp1047 = tmp361 + tmp359*tmp1044;
+      const Scalar tmp1048 = tmp368*penalty_damping*(vel(3) - vel(0))*tmp1045
+          + tmp368*penalty_damping*(vel(4) - vel(1))*tmp1046
+          + tmp368*penalty_damping*(vel(5) - vel(2))*tmp1047 + tmp370*tmp1043;
+      const Scalar tmp1049 = tmp371*tmp1047 + tmp364*tmp1048;
+      const Scalar tmp1050 = -tmp1048;
+      const Scalar tmp1051 = -tmp415/sqrt((tmp413*tmp413) + (tmp414*tmp414) + (tmp415*tmp415));
+      const Scalar tmp1052 = -(Scalar(1)/(tmp416*tmp416))*tmp1051;
+      const Scalar tmp1053 = tmp413*tmp1052;
+      const Scalar tmp1054 = tmp414*tmp1052;
+      const Scalar tmp1055 = -tmp417 + tmp415*tmp1052;
+      const Scalar tmp1056 = tmp424*penalty_damping*(-tmp372 - vel(3))*tmp1053
+          + tmp424*penalty_damping*(-tmp382 - vel(4))*tmp1054
+          + tmp424*penalty_damping*(-tmp384 - vel(5))*tmp1055 + tmp426*tmp1051;
+      const Scalar tmp1057 = -tmp430/sqrt((tmp428*tmp428) + (tmp429*tmp429) + (tmp430*tmp430));
+      const Scalar tmp1058 = -(Scalar(1)/(tmp431*tmp431))*tmp1057;
+      const Scalar tmp1059 = tmp428*tmp1058;
+      const Scalar tmp1060 = tmp429*tmp1058;
+      const Scalar tmp1061 = -tmp432 + tmp430*tmp1058;
+      const Scalar tmp1062 = tmp437*penalty_damping*(-tmp392 - vel(3))*tmp1059
+          + tmp437*penalty_damping*(-tmp402 - vel(4))*tmp1060
+          + tmp437*penalty_damping*(-tmp404 - vel(5))*tmp1061 + tmp439*tmp1057;
+      const Scalar tmp1063 = tmp412*tmp1047 + tmp364*tmp1050 + tmp427*tmp1055 + tmp420*tmp1056
+          + tmp440*tmp1061 + tmp435*tmp1062;
+      const Scalar tmp1064 = -tmp1056;
+      const Scalar tmp1065 = tmp456*tmp1055 + tmp420*tmp1064;
+      const Scalar tmp1066 = -tmp1062;
+      const Scalar tmp1067 = tmp460*tmp1061 + tmp435*tmp1066;
+      const Scalar tmp1068 = tmp374/sqrt((tmp374*tmp374) + (tmp376*tmp376) + (tmp378*tmp378));
+      const Scalar tmp1069 = -(Scalar(1)/(tmp379*tmp379))*tmp1068;
+      const Scalar tmp1070 = tmp380 + tmp374*tmp1069;
+      const Scalar tmp1071 = tmp376*tmp1069;
+      const Scalar tmp1072 = tmp378*tmp1069;
+      const Scalar tmp1073 = tmp388*penalty_damping*(-tmp372 - vel(0))*tmp1070
+          + tmp388*penalty_damping*(-tmp382 - vel(1))*tmp1071
+          + tmp388*penalty_damping*(-tmp384 - vel(2))*tmp1072 + tmp390*tmp1068;
+      const Scalar tmp1074 = tmp391*tmp1072 + tmp385*tmp1073;
+      const Scalar tmp1075 = tmp413/sqrt((tmp413*tmp413) + (tmp414*tmp414) + (tmp415*tmp415));
+      const Scalar tmp1076 = -(Scalar(1)/(tmp416*tmp416))*tmp1075;
+      const Scalar tmp1077 = tmp417 + tmp413*tmp1076;
+      const Scalar tmp1078 = tmp414*tmp1076;
+      const Scalar tmp1079 = tmp415*tmp1076;
+      const Scalar tmp1080 = tmp424*penalty_damping*(-tmp372 - vel(3))*tmp1077
+          + tmp424*penalty_damping*(-tmp382 - vel(4))*tmp1078
+          + tmp424*penalty_damping*(-tmp384 - vel(5))*tmp1079 + tmp426*tmp1075;
+      const Scalar tmp1081 = tmp427*tmp1079 + tmp420*tmp1080;
+      const Scalar tmp1082 = -tmp442/sqrt((tmp442*tmp442) + (tmp443*tmp443) + (tmp444*tmp444));
+      const Scalar tmp1083 = -(Scalar(1)/(tmp445*tmp445))*tmp1082;
+      const Scalar tmp1084 = -tmp446 + tmp442*tmp1083;
+      const Scalar tmp1085 = tmp443*tmp1083;
+      const Scalar tmp1086 = tmp444*tmp1083;
+      const Scalar tmp1087 = tmp451*penalty_damping*(-tmp392 - vel(6))*tmp1084
+          + tmp451*penalty_damping*(-tmp402 - vel(7))*tmp1085
+          + tmp451*penalty_damping*(-tmp404 - vel(8))*tmp1086 + tmp453*tmp1082;
+      const Scalar tmp1088 = -tmp1073;
+      const Scalar tmp1089 = -tmp1080;
+      const Scalar tmp1090 = tmp455*tmp1072 + tmp456*tmp1079 + tmp454*tmp1086 + tmp449*tmp1087
+          + tmp385*tmp1088 + tmp420*tmp1089;
+      const Scalar tmp1091 = -tmp1087;
+      const Scalar tmp1092 = tmp458*tmp1086 + tmp449*tmp1091;
+      const Scalar tmp1093 = tmp376/sqrt((tmp374*tmp374) + (tmp376*tmp376) + (tmp378*tmp378));
+      const Scalar tmp1094 = -(Scalar(1)/(tmp379*tmp379))*tmp1093;
+      const Scalar tmp1095 = tmp374*tmp1094;
+      const Scalar tmp1096 = tmp380 + tmp376*tmp1094;
+      const Scalar tmp1097 = tmp378*tmp1094;
+      const Scalar tmp1098 = tmp388*penalty_damping*(-tmp372 - vel(0))*tmp1095
+          + tmp388*penalty_damping*(-tmp382 - vel(1))*tmp1096
+          + tmp388*penalty_damping*(-tmp384 - vel(2))*tmp1097 + tmp390*tmp1093;
+      const Scalar tmp1099 = tmp391*tmp1097 + tmp385*tmp1098;
+      const Scalar tmp1100 = tmp414/sqrt((tmp413*tmp413) + (tmp414*tmp414) + (tmp415*tmp415));
+      const Scalar tmp1101 = -(Scalar(1)/(tmp416*tmp416))*tmp1100;
+      const Scalar tmp1102 = tmp413*tmp1101;
+      const Scalar tmp1103 = tmp417 + tmp414*tmp1101;
+      const Scalar tmp1104 = tmp415*tmp1101;
+      const Scalar tmp1105 = tmp424*penalty_damping*(-tmp372 - vel(3))*tmp1102
+          + tmp424*penalty_damping*(-tmp382 - vel(4))*tmp1103
+          + tmp424*penalty_damping*(-tmp384 - vel(5))*tmp1104 + tmp426*tmp1100;
+      const Scalar tmp1106 = tmp427*tmp1104 + tmp420*tmp1105;
+      const Scalar tmp1107 = -tmp443/sqrt((tmp442*tmp442) + (tmp443*tmp443) + (tmp444*tmp444));
+      const Scalar tmp1108 = -(Scalar(1)/(tmp445*tmp445))*tmp1107;
+      const Scalar tmp1109 = tmp442*tmp1108;
+      const Scalar tmp1110 = -tmp446 + tmp443*tmp1108;
+      const Scalar tmp1111 = tmp444*tmp1108;
+      const Scalar tmp1112 = tmp451*penalty_damping*(-tmp392 - vel(6))*tmp1109
+          + tmp451*penalty_damping*(-tmp402 - vel(7))*tmp1110
+          + tmp451*penalty_damping*(-tmp404 - vel(8))*tmp1111 + tmp453*tmp1107;
+      const Scalar tmp1113 = -tmp1098;
+      const Scalar tmp1114 = -tmp1105;
+      const Scalar tmp1115 = tmp455*tmp1097 + tmp456*tmp1104 + tmp454*tmp1111 + tmp449*tmp1112
+          + tmp385*tmp1113 + tmp420*tmp1114;
+      const Scalar tmp1116 = -tmp1112;
+      const Scalar tmp1117 = tmp458*tmp1111 + tmp449*tmp1116;
+      const Scalar tmp1118 = tmp378/sqrt((tmp374*tmp374) + (tmp376*tmp376) + (tmp378*tmp378));
+      const Scalar tmp1119 = -(Scalar(1)/(tmp379*tmp379))*tmp1118;
+      const Scalar tmp1120 = tmp374*tmp1119;
+      const Scalar tmp1121 = tmp376*tmp1119;
+      const Scalar tmp1122 = tmp380 + tmp378*tmp1119;
+      const Scalar tmp1123 = tmp388*penalty_damping*(-tmp372 - vel(0))*tmp1120
+          + tmp388*penalty_damping*(-tmp382 - vel(1))*tmp1121
+          + tmp388*penalty_damping*(-tmp384 - vel(2))*tmp1122 + tmp390*tmp1118;
+      const Scalar tmp1124 = tmp391*tmp1122 + tmp385*tmp1123;
+      const Scalar tmp1125 = tmp415/sqrt((tmp413*tmp413) + (tmp414*tmp414) + (tmp415*tmp415));
+      const Scalar tmp1126 = -(Scalar(1)/(tmp416*tmp416))*tmp1125;
+      const Scalar tmp1127 = tmp413*tmp1126;
+      const Scalar tmp1128 = tmp414*tmp1126;
+      const Scalar tmp1129 = tmp417 + tmp415*tmp1126;
+      const Scalar tmp1130 = tmp424*penalty_damping*(-tmp372 - vel(3))*tmp1127
+          + tmp424*penalty_damping*(-tmp382 - vel(4))*tmp1128
+          + tmp424*penalty_damping*(-tmp384 - vel(5))*tmp1129 + tmp426*tmp1125;
+      const Scalar tmp1131 = tmp427*tmp1129 + tmp420*tmp1130;
+      const Scalar tmp1132 = -tmp444/sqrt((tmp442*tmp442) + (tmp443*tmp443) + (tmp444*tmp444));
+      const Scalar tmp1133 = -(Scalar(1)/(tmp445*tmp445))*tmp1132;
+      const Scalar tmp1134 = tmp442*tmp1133;
+      const Scalar tmp1135 = tmp443*tmp1133;
+      const Scalar tmp1136 = -tmp446 + tmp444*tmp1133;
+      const Scalar tmp1137 = tmp451*penalty_damping*(-tmp392 - vel(6))*tmp1134
+          + tmp451*penalty_damping*(-tmp402 - vel(7))*tmp1135
+          + tmp451*penalty_damping*(-tmp404 - vel(8))*tmp1136 + tmp453*tmp1132;
+      const Scalar tmp1138 = -tmp1123;
+      const Scalar tmp1139 = -tmp1130;
+      const Scalar tmp1140 = tmp455*tmp1122 + tmp456*tmp1129 + tmp454*tmp1136 + tmp449*tmp1137
+          + tmp385*tmp1138 + tmp420*tmp1139;
+      const Scalar tmp1141 = -tmp1137;
+      const Scalar tmp1142 = tmp458*tmp1136 + tmp449*tmp1141;
+      const Scalar tmp1143 = tmp394/sqrt((tmp394*tmp394) + (tmp396*tmp396) + (tmp398*tmp398));
+      const Scalar tmp1144 = -(Scalar(1)/(tmp399*tmp399))*tmp1143;
+      const Scalar tmp1145 = tmp400 + tmp394*tmp1144;
+      const Scalar tmp1146 = tmp396*tmp1144;
+      const Scalar tmp1147 = tmp398*tmp1144;
+      const Scalar tmp1148 = tmp407*penalty_damping*(-tmp392 - vel(0))*tmp1145
+          + tmp407*penalty_damping*(-tmp402 - vel(1))*tmp1146
+          + tmp407*penalty_damping*(-tmp404 - vel(2))*tmp1147 + tmp409*tmp1143;
+      const Scalar tmp1149 = tmp410*tmp1147 + tmp405*tmp1148;
+      const Scalar tmp1150 = tmp428/sqrt((tmp428*tmp428) + (tmp429*tmp429) + (tmp430*tmp430));
+      const Scalar tmp1151 = -(Scalar(1)/(tmp431*tmp431))*tmp1150;
+      const Scalar tmp1152 = tmp432 + tmp428*tmp1151;
+      const Scalar tmp1153 = tmp429*tmp1151;
+      const Scalar tmp1154 = tmp430*tmp1151;
+      const Scalar tmp1155 = tmp437*penalty_damping*(-tmp392 - vel(3))*tmp1152
+          + tmp437*penalty_damping*(-tmp402 - vel(4))*tmp1153
+          + tmp437*penalty_damping*(-tmp404 - vel(5))*tmp1154 + tmp439*tmp1150;
+      const Scalar tmp1156 = tmp440*tmp1154 + tmp435*tmp1155;
+      const Scalar tmp1157 = tmp442/sqrt((tmp442*tmp442) + (tmp443*tmp443) + (tmp444*tmp444));
+      const Scalar tmp1158 = -(Scalar(1)/(tmp445*tmp445))*tmp1157;
+      const Scalar tmp1159 = tmp446 + tmp442*tmp1158;
+      const Scalar tmp1160 = tmp443*tmp1158;
+      const Scalar tmp1161 = tmp444*tmp1158;
+      const Scalar tmp1162 = tmp451*penalty_damping*(-tmp392 - vel(6))*tmp1159
+          + tmp451*penalty_damping*(-tmp402 - vel(7))*tmp1160
+          + tmp451*penalty_damping*(-tmp404 - vel(8))*tmp1161 + tmp453*tmp1157;
+      const Scalar tmp1163 = tmp454*tmp1161 + tmp449*tmp1162;
+      const Scalar tmp1164 = -tmp1162;
+      const Scalar tmp1165 = -tmp1148;
+      const Scalar tmp1166 = -tmp1155;
+      const Scalar tmp1167 = tmp459*tmp1147 + tmp460*tmp1154 + tmp458*tmp1161 + tmp449*tmp1164
+          + tmp405*tmp1165 + tmp435*tmp1166;
+      const Scalar tmp1168 = tmp396/sqrt((tmp394*tmp394) + (tmp396*tmp396) + (tmp398*tmp398));
+      const Scalar tmp1169 = -(Scalar(1)/(tmp399*tmp399))*tmp1168;
+      const Scalar tmp1170 = tmp394*tmp1169;
+      const Scalar tmp1171 = tmp400 + tmp396*tmp1169;
+      const Scalar tmp1172 = tmp398*tmp1169;
+      const Scalar tmp1173 = tmp407*penalty_damping*(-tmp392 - vel(0))*tmp1170
+          + tmp407*penalty_damping*(-tmp402 - vel(1))*tmp1171
+          + tmp407*penalty_damping*(-tmp404 - vel(2))*tmp1172 + tmp409*tmp1168;
+      const Scalar tmp1174 = tmp410*tmp1172 + tmp405*tmp1173;
+      const Scalar tmp1175 = tmp429/sqrt((tmp428*tmp428) + (tmp429*tmp429) + (tmp430*tmp430));
+      const Scalar tmp1176 = -(Scalar(1)/(tmp431*tmp431))*tmp1175;
+      const Scalar tmp1177 = tmp428*tmp1176;
+      const Scalar tmp1178 = tmp432 + tmp429*tmp1176;
+      const Scalar tmp1179 = tmp430*tmp1176;
+      const Scalar tmp1180 = tmp437*penalty_damping*(-tmp392 - vel(3))*tmp1177
+          + tmp437*penalty_damping*(-tmp402 - vel(4))*tmp1178
+          + tmp437*penalty_damping*(-tmp404 - vel(5))*tmp1179 + tmp439*tmp1175;
+      const Scalar tmp1181 = tmp440*tmp1179 + tmp435*tmp1180;
+      const Scalar tmp1182 = tmp443/sqrt((tmp442*tmp442) + (tmp443*tmp443) + (tmp444*tmp444));
+      const Scalar tmp1183 = -(Scalar(1)/(tmp445*tmp445))*tmp1182;
+      const Scalar tmp1184 = tmp442*tmp1183;
+      const Scalar tmp1185 = tmp446 + tmp443*tmp1183;
+      const Scalar tmp1186 = tmp444*tmp1183;
+      const Scalar tmp1187 = tmp451*penalty_damping*(-tmp392 - vel(6))*tmp1184
+          + tmp451*penalty_damping*(-tmp402 - vel(7))*tmp1185
+          + tmp451*penalty_damping*(-tmp404 - vel(8))*tmp1186 + tmp453*tmp1182;
+      const Scalar tmp1188 = tmp454*tmp1186 + tmp449*tmp1187;
+      const Scalar tmp1189 = -tmp1187;
+      const Scalar tmp1190 = -tmp1173;
+      const Scalar tmp1191 = -tmp1180;
+      const Scalar tmp1192 = tmp459*tmp1172 + tmp460*tmp1179 + tmp458*tmp1186 + tmp449*tmp1189
+          + tmp405*tmp1190 + tmp435*tmp1191;
+      const Scalar tmp1193 = tmp398/sqrt((tmp394*tmp394) + (tmp396*tmp396) + (tmp398*tmp398));
+      const Scalar tmp1194 = -(Scalar(1)/(tmp399*tmp399))*tmp1193;
+      const Scalar tmp1195 = tmp394*tmp1194;
+      const Scalar tmp1196 = tmp396*tmp1194;
+      const Scalar tmp1197 = tmp400 + tmp398*tmp1194;
+      const Scalar tmp1198 = tmp407*penalty_damping*(-tmp392 - vel(0))*tmp1195
+          + tmp407*penalty_damping*(-tmp402 - vel(1))*tmp1196
+          + tmp407*penalty_damping*(-tmp404 - vel(2))*tmp1197 + tmp409*tmp1193;
+      const Scalar tmp1199 = tmp410*tmp1197 + tmp405*tmp1198;
+      const Scalar tmp1200 = tmp430/sqrt((tmp428*tmp428) + (tmp429*tmp429) + (tmp430*tmp430));
+      const Scalar tmp1201 = -(Scalar(1)/(tmp431*tmp431))*tmp1200;
+      const Scalar tmp1202 = tmp428*tmp1201;
+      const Scalar tmp1203 = tmp429*tmp1201;
+      const Scalar tmp1204 = tmp432 + tmp430*tmp1201;
+      const Scalar tmp1205 = tmp437*penalty_damping*(-tmp392 - vel(3))*tmp1202
+          + tmp437*penalty_damping*(-tmp402 - vel(4))*tmp1203
+          + tmp437*penalty_damping*(-tmp404 - vel(5))*tmp1204 + tmp439*tmp1200;
+      const Scalar tmp1206 = tmp440*tmp1204 + tmp435*tmp1205;
+      const Scalar tmp1207 = tmp444/sqrt((tmp442*tmp442) + (tmp443*tmp443) + (tmp444*tmp444));
+      const Scalar tmp1208 = -(Scalar(1)/(tmp445*tmp445))*tmp1207;
+      const Scalar tmp1209 = tmp442*tmp1208;
+      const Scalar tmp1210 = tmp443*tmp1208;
+      const Scalar tmp1211 = tmp446 + tmp444*tmp1208;
+      const Scalar tmp1212 = tmp451*penalty_damping*(-tmp392 - vel(6))*tmp1209
+          + tmp451*penalty_damping*(-tmp402 - vel(7))*tmp1210
+          + tmp451*penalty_damping*(-tmp404 - vel(8))*tmp1211 + tmp453*tmp1207;
+      const Scalar tmp1213 = tmp454*tmp1211 + tmp449*tmp1212;
+      const Scalar tmp1214 = -tmp1212;
+      const Scalar tmp1215 = -tmp1198;
+      const Scalar tmp1216 = -tmp1205;
+      const Scalar tmp1217 = tmp459*tmp1197 + tmp460*tmp1204 + tmp458*tmp1211 + tmp449*tmp1214
+          + tmp405*tmp1215 + tmp435*tmp1216;
       std::array<Scalar, 144> result;
-      result[0] = tmp207*tmp734 + tmp204*tmp737 + tmp223*tmp740 + tmp218*tmp743 + tmp239*tmp746
-          + tmp234*tmp749;
-      result[1] = tmp207*tmp759 + tmp204*tmp762 + tmp223*tmp765 + tmp218*tmp768 + tmp239*tmp771
-          + tmp234*tmp774;
-      result[2] = tmp207*tmp784 + tmp204*tmp787 + tmp223*tmp790 + tmp218*tmp793 + tmp239*tmp796
-          + tmp234*tmp799;
-      result[3] = tmp207*tmp809 + tmp204*tmp812;
-      result[4] = tmp207*tmp834 + tmp204*tmp837;
-      result[5] = tmp207*tmp859 + tmp204*tmp862;
-      result[6] = tmp223*tmp884 + tmp218*tmp887;
-      result[7] = tmp223*tmp909 + tmp218*tmp912;
-      result[8] = tmp223*tmp934 + tmp218*tmp937;
-      result[9] = tmp239*tmp959 + tmp234*tmp962;
-      result[10] = tmp239*tmp984 + tmp234*tmp987;
-      result[11] = tmp239*tmp1009 + tmp234*tmp1012;
-      result[12] = tmp207*tmp735 + tmp205*tmp737 + tmp223*tmp741 + tmp220*tmp743 + tmp239*tmp747
-          + tmp236*tmp749;
-      result[13] = tmp207*tmp760 + tmp205*tmp762 + tmp223*tmp766 + tmp220*tmp768 + tmp239*tmp772
-          + tmp236*tmp774;
-      result[14] = tmp207*tmp785 + tmp205*tmp787 + tmp223*tmp791 + tmp220*tmp793 + tmp239*tmp797
-          + tmp236*tmp799;
-      result[15] = tmp207*tmp810 + tmp205*tmp812;
-      result[16] = tmp207*tmp835 + tmp205*tmp837;
-      result[17] = tmp207*tmp860 + tmp205*tmp862;
-      result[18] = tmp223*tmp885 + tmp220*tmp887;
-      result[19] = tmp223*tmp910 + tmp220*tmp912;
-      result[20] = tmp223*tmp935 + tmp220*tmp937;
-      result[21] = tmp239*tmp960 + tmp236*tmp962;
-      result[22] = tmp239*tmp985 + tmp236*tmp987;
-      result[23] = tmp239*tmp1010 + tmp236*tmp1012;
-      result[24] = tmp750;
-      result[25] = tmp775;
-      result[26] = tmp800;
-      result[27] = tmp813;
-      result[28] = tmp838;
-      result[29] = tmp863;
-      result[30] = tmp888;
-      result[31] = tmp913;
-      result[32] = tmp938;
-      result[33] = tmp963;
-      result[34] = tmp988;
-      result[35] = tmp1013;
-      result[36] = tmp241*tmp734 + tmp204*tmp751;
-      result[37] = tmp241*tmp759 + tmp204*tmp776;
-      result[38] = tmp241*tmp784 + tmp204*tmp801;
-      result[39] = tmp241*tmp809 + tmp204*tmp814 + tmp251*tmp817 + tmp248*tmp820 + tmp261*tmp823
-          + tmp258*tmp826;
-      result[40] = tmp241*tmp834 + tmp204*tmp839 + tmp251*tmp842 + tmp248*tmp845 + tmp261*tmp848
-          + tmp258*tmp851;
-      result[41] = tmp241*tmp859 + tmp204*tmp864 + tmp251*tmp867 + tmp248*tmp870 + tmp261*tmp873
-          + tmp258*tmp876;
-      result[42] = tmp251*tmp891 + tmp248*tmp894;
-      result[43] = tmp251*tmp916 + tmp248*tmp919;
-      result[44] = tmp251*tmp941 + tmp248*tmp944;
-      result[45] = tmp261*tmp966 + tmp258*tmp969;
-      result[46] = tmp261*tmp991 + tmp258*tmp994;
-      result[47] = tmp261*tmp1016 + tmp258*tmp1019;
-      result[48] = tmp241*tmp735 + tmp205*tmp751;
-      result[49] = tmp241*tmp760 + tmp205*tmp776;
-      result[50] = tmp241*tmp785 + tmp205*tmp801;
-      result[51] = tmp241*tmp810 + tmp205*tmp814 + tmp251*tmp818 + tmp249*tmp820 + tmp261*tmp824
-          + tmp259*tmp826;
-      result[52] = tmp241*tmp835 + tmp205*tmp839 + tmp251*tmp843 + tmp249*tmp845 + tmp261*tmp849
-          + tmp259*tmp851;
-      result[53] = tmp241*tmp860 + tmp205*tmp864 + tmp251*tmp868 + tmp249*tmp870 + tmp261*tmp874
-          + tmp259*tmp876;
-      result[54] = tmp251*tmp892 + tmp249*tmp894;
-      result[55] = tmp251*tmp917 + tmp249*tmp919;
-      result[56] = tmp251*tmp942 + tmp249*tmp944;
-      result[57] = tmp261*tmp967 + tmp259*tmp969;
-      result[58] = tmp261*tmp992 + tmp259*tmp994;
-      result[59] = tmp261*tmp1017 + tmp259*tmp1019;
-      result[60] = tmp752;
-      result[61] = tmp777;
-      result[62] = tmp802;
-      result[63] = tmp827;
-      result[64] = tmp852;
-      result[65] = tmp877;
-      result[66] = tmp895;
-      result[67] = tmp920;
-      result[68] = tmp945;
-      result[69] = tmp970;
-      result[70] = tmp995;
-      result[71] = tmp1020;
-      result[72] = tmp263*tmp740 + tmp218*tmp753;
-      result[73] = tmp263*tmp765 + tmp218*tmp778;
-      result[74] = tmp263*tmp790 + tmp218*tmp803;
-      result[75] = tmp264*tmp817 + tmp248*tmp828;
-      result[76] = tmp264*tmp842 + tmp248*tmp853;
-      result[77] = tmp264*tmp867 + tmp248*tmp878;
-      result[78] = tmp263*tmp884 + tmp264*tmp891 + tmp218*tmp896 + tmp248*tmp897 + tmp274*tmp900
-          + tmp271*tmp903;
-      result[79] = tmp263*tmp909 + tmp264*tmp916 + tmp218*tmp921 + tmp248*tmp922 + tmp274*tmp925
-          + tmp271*tmp928;
-      result[80] = tmp263*tmp934 + tmp264*tmp941 + tmp218*tmp946 + tmp248*tmp947 + tmp274*tmp950
-          + tmp271*tmp953;
-      result[81] = tmp274*tmp973 + tmp271*tmp976;
-      result[82] = tmp274*tmp998 + tmp271*tmp1001;
-      result[83] = tmp274*tmp1023 + tmp271*tmp1026;
-      result[84] = tmp263*tmp741 + tmp220*tmp753;
-      result[85] = tmp263*tmp766 + tmp220*tmp778;
-      result[86] = tmp263*tmp791 + tmp220*tmp803;
-      result[87] = tmp264*tmp818 + tmp249*tmp828;
-      result[88] = tmp264*tmp843 + tmp249*tmp853;
-      result[89] = tmp264*tmp868 + tmp249*tmp878;
-      result[90] = tmp263*tmp885 + tmp264*tmp892 + tmp220*tmp896 + tmp249*tmp897 + tmp274*tmp901
-          + tmp272*tmp903;
-      result[91] = tmp263*tmp910 + tmp264*tmp917 + tmp220*tmp921 + tmp249*tmp922 + tmp274*tmp926
-          + tmp272*tmp928;
-      result[92] = tmp263*tmp935 + tmp264*tmp942 + tmp220*tmp946 + tmp249*tmp947 + tmp274*tmp951
-          + tmp272*tmp953;
-      result[93] = tmp274*tmp974 + tmp272*tmp976;
-      result[94] = tmp274*tmp999 + tmp272*tmp1001;
-      result[95] = tmp274*tmp1024 + tmp272*tmp1026;
-      result[96] = tmp754;
-      result[97] = tmp779;
-      result[98] = tmp804;
-      result[99] = tmp829;
-      result[100] = tmp854;
-      result[101] = tmp879;
-      result[102] = tmp904;
-      result[103] = tmp929;
-      result[104] = tmp954;
-      result[105] = tmp977;
-      result[106] = tmp1002;
-      result[107] = tmp1027;
-      result[108] = tmp276*tmp746 + tmp234*tmp755;
-      result[109] = tmp276*tmp771 + tmp234*tmp780;
-      result[110] = tmp276*tmp796 + tmp234*tmp805;
-      result[111] = tmp277*tmp823 + tmp258*tmp830;
-      result[112] = tmp277*tmp848 + tmp258*tmp855;
-      result[113] = tmp277*tmp873 + tmp258*tmp880;
-      result[114] = tmp278*tmp900 + tmp271*tmp905;
-      result[115] = tmp278*tmp925 + tmp271*tmp930;
-      result[116] = tmp278*tmp950 + tmp271*tmp955;
-      result[117] = tmp276*tmp959 + tmp277*tmp966 + tmp278*tmp973 + tmp234*tmp978 + tmp258*tmp979
-          + tmp271*tmp980;
-      result[118] = tmp276*tmp984 + tmp277*tmp991 + tmp278*tmp998 + tmp234*tmp1003 + tmp258*tmp1004
-          + tmp271*tmp1005;
-      result[119] = tmp276*tmp1009 + tmp277*tmp1016 + tmp278*tmp1023 + tmp234*tmp1028
-          + tmp258*tmp1029 + tmp271*tmp1030;
-      result[120] = tmp276*tmp747 + tmp236*tmp755;
-      result[121] = tmp276*tmp772 + tmp236*tmp780;
-      result[122] = tmp276*tmp797 + tmp236*tmp805;
-      result[123] = tmp277*tmp824 + tmp259*tmp830;
-      result[124] = tmp277*tmp849 + tmp259*tmp855;
-      result[125] = tmp277*tmp874 + tmp259*tmp880;
-      result[126] = tmp278*tmp901 + tmp272*tmp905;
-      result[127] = tmp278*tmp926 + tmp272*tmp930;
-      result[128] = tmp278*tmp951 + tmp272*tmp955;
-      result[129] = tmp276*tmp960 + tmp277*tmp967 + tmp278*tmp974 + tmp236*tmp978 + tmp259*tmp979
-          + tmp272*tmp980;
-      result[130] = tmp276*tmp985 + tmp277*tmp992 + tmp278*tmp999 + tmp236*tmp1003 + tmp259*tmp1004
-          + tmp272*tmp1005;
-      result[131] = tmp276*tmp1010 + tmp277*tmp1017 + tmp278*tmp1024 + tmp236*tmp1028
-          + tmp259*tmp1029 + tmp272*tmp1030;
-      result[132] = tmp756;
-      result[133] = tmp781;
-      result[134] = tmp806;
-      result[135] = tmp831;
-      result[136] = tmp856;
-      result[137] = tmp881;
-      result[138] = tmp906;
-      result[139] = tmp931;
-      result[140] = tmp956;
-      result[141] = tmp981;
-      result[142] = tmp1006;
-      result[143] = tmp1031;
+      result[0] = tmp371*tmp920 + tmp362*tmp923 + tmp391*tmp926 + tmp381*tmp929 + tmp410*tmp932
+          + tmp401*tmp935;
+      result[1] = tmp371*tmp945 + tmp362*tmp948 + tmp391*tmp951 + tmp381*tmp954 + tmp410*tmp957
+          + tmp401*tmp960;
+      result[2] = tmp371*tmp970 + tmp362*tmp973 + tmp391*tmp976 + tmp381*tmp979 + tmp410*tmp982
+          + tmp401*tmp985;
+      result[3] = tmp371*tmp995 + tmp362*tmp998;
+      result[4] = tmp371*tmp1020 + tmp362*tmp1023;
+      result[5] = tmp371*tmp1045 + tmp362*tmp1048;
+      result[6] = tmp391*tmp1070 + tmp381*tmp1073;
+      result[7] = tmp391*tmp1095 + tmp381*tmp1098;
+      result[8] = tmp391*tmp1120 + tmp381*tmp1123;
+      result[9] = tmp410*tmp1145 + tmp401*tmp1148;
+      result[10] = tmp410*tmp1170 + tmp401*tmp1173;
+      result[11] = tmp410*tmp1195 + tmp401*tmp1198;
+      result[12] = tmp371*tmp921 + tmp363*tmp923 + tmp391*tmp927 + tmp383*tmp929 + tmp410*tmp933
+          + tmp403*tmp935;
+      result[13] = tmp371*tmp946 + tmp363*tmp948 + tmp391*tmp952 + tmp383*tmp954 + tmp410*tmp958
+          + tmp403*tmp960;
+      result[14] = tmp371*tmp971 + tmp363*tmp973 + tmp391*tmp977 + tmp383*tmp979 + tmp410*tmp983
+          + tmp403*tmp985;
+      result[15] = tmp371*tmp996 + tmp363*tmp998;
+      result[16] = tmp371*tmp1021 + tmp363*tmp1023;
+      result[17] = tmp371*tmp1046 + tmp363*tmp1048;
+      result[18] = tmp391*tmp1071 + tmp383*tmp1073;
+      result[19] = tmp391*tmp1096 + tmp383*tmp1098;
+      result[20] = tmp391*tmp1121 + tmp383*tmp1123;
+      result[21] = tmp410*tmp1146 + tmp403*tmp1148;
+      result[22] = tmp410*tmp1171 + tmp403*tmp1173;
+      result[23] = tmp410*tmp1196 + tmp403*tmp1198;
+      result[24] = tmp936;
+      result[25] = tmp961;
+      result[26] = tmp986;
+      result[27] = tmp999;
+      result[28] = tmp1024;
+      result[29] = tmp1049;
+      result[30] = tmp1074;
+      result[31] = tmp1099;
+      result[32] = tmp1124;
+      result[33] = tmp1149;
+      result[34] = tmp1174;
+      result[35] = tmp1199;
+      result[36] = tmp412*tmp920 + tmp362*tmp937;
+      result[37] = tmp412*tmp945 + tmp362*tmp962;
+      result[38] = tmp412*tmp970 + tmp362*tmp987;
+      result[39] = tmp412*tmp995 + tmp362*tmp1000 + tmp427*tmp1003 + tmp418*tmp1006 + tmp440*tmp1009
+          + tmp433*tmp1012;
+      result[40] = tmp412*tmp1020 + tmp362*tmp1025 + tmp427*tmp1028 + tmp418*tmp1031
+          + tmp440*tmp1034 + tmp433*tmp1037;
+      result[41] = tmp412*tmp1045 + tmp362*tmp1050 + tmp427*tmp1053 + tmp418*tmp1056
+          + tmp440*tmp1059 + tmp433*tmp1062;
+      result[42] = tmp427*tmp1077 + tmp418*tmp1080;
+      result[43] = tmp427*tmp1102 + tmp418*tmp1105;
+      result[44] = tmp427*tmp1127 + tmp418*tmp1130;
+      result[45] = tmp440*tmp1152 + tmp433*tmp1155;
+      result[46] = tmp440*tmp1177 + tmp433*tmp1180;
+      result[47] = tmp440*tmp1202 + tmp433*tmp1205;
+      result[48] = tmp412*tmp921 + tmp363*tmp937;
+      result[49] = tmp412*tmp946 + tmp363*tmp962;
+      result[50] = tmp412*tmp971 + tmp363*tmp987;
+      result[51] = tmp412*tmp996 + tmp363*tmp1000 + tmp427*tmp1004 + tmp419*tmp1006 + tmp440*tmp1010
+          + tmp434*tmp1012;
+      result[52] = tmp412*tmp1021 + tmp363*tmp1025 + tmp427*tmp1029 + tmp419*tmp1031
+          + tmp440*tmp1035 + tmp434*tmp1037;
+      result[53] = tmp412*tmp1046 + tmp363*tmp1050 + tmp427*tmp1054 + tmp419*tmp1056
+          + tmp440*tmp1060 + tmp434*tmp1062;
+      result[54] = tmp427*tmp1078 + tmp419*tmp1080;
+      result[55] = tmp427*tmp1103 + tmp419*tmp1105;
+      result[56] = tmp427*tmp1128 + tmp419*tmp1130;
+      result[57] = tmp440*tmp1153 + tmp434*tmp1155;
+      result[58] = tmp440*tmp1178 + tmp434*tmp1180;
+      result[59] = tmp440*tmp1203 + tmp434*tmp1205;
+      result[60] = tmp938;
+      result[61] = tmp963;
+      result[62] = tmp988;
+      result[63] = tmp1013;
+      result[64] = tmp1038;
+      result[65] = tmp1063;
+      result[66] = tmp1081;
+      result[67] = tmp1106;
+      result[68] = tmp1131;
+      result[69] = tmp1156;
+      result[70] = tmp1181;
+      result[71] = tmp1206;
+      result[72] = tmp455*tmp926 + tmp381*tmp939;
+      result[73] = tmp455*tmp951 + tmp381*tmp964;
+      result[74] = tmp455*tmp976 + tmp381*tmp989;
+      result[75] = tmp456*tmp1003 + tmp418*tmp1014;
+      result[76] = tmp456*tmp1028 + tmp418*tmp1039;
+      result[77] = tmp456*tmp1053 + tmp418*tmp1064;
+      result[78] = tmp455*tmp1070 + tmp456*tmp1077 + tmp454*tmp1084 + tmp447*tmp1087
+          + tmp381*tmp1088 + tmp418*tmp1089;
+      result[79] = tmp455*tmp1095 + tmp456*tmp1102 + tmp454*tmp1109 + tmp447*tmp1112
+          + tmp381*tmp1113 + tmp418*tmp1114;
+      result[80] = tmp455*tmp1120 + tmp456*tmp1127 + tmp454*tmp1134 + tmp447*tmp1137
+          + tmp381*tmp1138 + tmp418*tmp1139;
+      result[81] = tmp454*tmp1159 + tmp447*tmp1162;
+      result[82] = tmp454*tmp1184 + tmp447*tmp1187;
+      result[83] = tmp454*tmp1209 + tmp447*tmp1212;
+      result[84] = tmp455*tmp927 + tmp383*tmp939;
+      result[85] = tmp455*tmp952 + tmp383*tmp964;
+      result[86] = tmp455*tmp977 + tmp383*tmp989;
+      result[87] = tmp456*tmp1004 + tmp419*tmp1014;
+      result[88] = tmp456*tmp1029 + tmp419*tmp1039;
+      result[89] = tmp456*tmp1054 + tmp419*tmp1064;
+      result[90] = tmp455*tmp1071 + tmp456*tmp1078 + tmp454*tmp1085 + tmp448*tmp1087
+          + tmp383*tmp1088 + tmp419*tmp1089;
+      result[91] = tmp455*tmp1096 + tmp456*tmp1103 + tmp454*tmp1110 + tmp448*tmp1112
+          + tmp383*tmp1113 + tmp419*tmp1114;
+      result[92] = tmp455*tmp1121 + tmp456*tmp1128 + tmp454*tmp1135 + tmp448*tmp1137
+          + tmp383*tmp1138 + tmp419*tmp1139;
+      result[93] = tmp454*tmp1160 + tmp448*tmp1162;
+      result[94] = tmp454*tmp1185 + tmp448*tmp1187;
+      result[95] = tmp454*tmp1210 + tmp448*tmp1212;
+      result[96] = tmp940;
+      result[97] = tmp965;
+      result[98] = tmp990;
+      result[99] = tmp1015;
+      result[100] = tmp1040;
+      result[101] = tmp1065;
+      result[102] = tmp1090;
+      result[103] = tmp1115;
+      result[104] = tmp1140;
+      result[105] = tmp1163;
+      result[106] = tmp1188;
+      result[107] = tmp1213;
+      result[108] = tmp459*tmp932 + tmp401*tmp941;
+      result[109] = tmp459*tmp957 + tmp401*tmp966;
+      result[110] = tmp459*tmp982 + tmp401*tmp991;
+      result[111] = tmp460*tmp1009 + tmp433*tmp1016;
+      result[112] = tmp460*tmp1034 + tmp433*tmp1041;
+      result[113] = tmp460*tmp1059 + tmp433*tmp1066;
+      result[114] = tmp458*tmp1084 + tmp447*tmp1091;
+      result[115] = tmp458*tmp1109 + tmp447*tmp1116;
+      result[116] = tmp458*tmp1134 + tmp447*tmp1141;
+      result[117] = tmp459*tmp1145 + tmp460*tmp1152 + tmp458*tmp1159 + tmp447*tmp1164
+          + tmp401*tmp1165 + tmp433*tmp1166;
+      result[118] = tmp459*tmp1170 + tmp460*tmp1177 + tmp458*tmp1184 + tmp447*tmp1189
+          + tmp401*tmp1190 + tmp433*tmp1191;
+      result[119] = tmp459*tmp1195 + tmp460*tmp1202 + tmp458*tmp1209 + tmp447*tmp1214
+          + tmp401*tmp1215 + tmp433*tmp1216;
+      result[120] = tmp459*tmp933 + tmp403*tmp941;
+      result[121] = tmp459*tmp958 + tmp403*tmp966;
+      result[122] = tmp459*tmp983 + tmp403*tmp991;
+      result[123] = tmp460*tmp1010 + tmp434*tmp1016;
+      result[124] = tmp460*tmp1035 + tmp434*tmp1041;
+      result[125] = tmp460*tmp1060 + tmp434*tmp1066;
+      result[126] = tmp458*tmp1085 + tmp448*tmp1091;
+      result[127] = tmp458*tmp1110 + tmp448*tmp1116;
+      result[128] = tmp458*tmp1135 + tmp448*tmp1141;
+      result[129] = tmp459*tmp1146 + tmp460*tmp1153 + tmp458*tmp1160 + tmp448*tmp1164
+          + tmp403*tmp1165 + tmp434*tmp1166;
+      result[130] = tmp459*tmp1171 + tmp460*tmp1178 + tmp458*tmp1185 + tmp448*tmp1189
+          + tmp403*tmp1190 + tmp434*tmp1191;
+      result[131] = tmp459*tmp1196 + tmp460*tmp1203 + tmp458*tmp1210 + tmp448*tmp1214
+          + tmp403*tmp1215 + tmp434*tmp1216;
+      result[132] = tmp942;
+      result[133] = tmp967;
+      result[134] = tmp992;
+      result[135] = tmp1017;
+      result[136] = tmp1042;
+      result[137] = tmp1067;
+      result[138] = tmp1092;
+      result[139] = tmp1117;
+      result[140] = tmp1142;
+      result[141] = tmp1167;
+      result[142] = tmp1192;
+      result[143] = tmp1217;
       return result;
     }
 
@@ -9356,334 +10610,408 @@ struct RigidBodyEulerYzx {
     /// \param[in] penalty_damping  penalty damping coefficient
     /// \param[in] params  model parameters
     /// \return values (jacobian_xdot_nonzeros)
-    /// Ops: 513
+    /// Ops: 701
     template <typename Scalar>
     static std::array<Scalar, 144> force_jacobian_xdot(const XVector<Scalar>& pos,
                                                        const XVector<Scalar>& /*vel*/,
                                                        const Scalar& /*t*/,
                                                        const Scalar& /*kappa*/,
                                                        const Scalar& penalty_damping,
-                                                       const Params& /*params*/) {
+                                                       const Params& params) {
       using std::sqrt;
-      const Scalar tmp198 = pos(3) - pos(0);
-      const Scalar tmp199 = pos(4) - pos(1);
-      const Scalar tmp200 = pos(5) - pos(2);
-      const Scalar tmp201 = sqrt((tmp198*tmp198) + (tmp199*tmp199) + (tmp200*tmp200));
-      const Scalar tmp203 = (Scalar(1)/tmp201);
-      const Scalar tmp204 = tmp198*tmp203;
-      const Scalar tmp205 = tmp199*tmp203;
-      const Scalar tmp206 = tmp200*tmp203;
-      const Scalar tmp208 = -pos(6);
-      const Scalar tmp209 = -tmp208 - pos(0);
-      const Scalar tmp210 = -pos(7);
-      const Scalar tmp211 = -tmp210 - pos(1);
-      const Scalar tmp212 = -pos(8);
-      const Scalar tmp213 = -tmp212 - pos(2);
-      const Scalar tmp214 = sqrt((tmp209*tmp209) + (tmp211*tmp211) + (tmp213*tmp213));
-      const Scalar tmp217 = (Scalar(1)/tmp214);
-      const Scalar tmp218 = tmp209*tmp217;
-      const Scalar tmp220 = tmp211*tmp217;
-      const Scalar tmp222 = tmp213*tmp217;
-      const Scalar tmp224 = -pos(9);
-      const Scalar tmp225 = -tmp224 - pos(0);
-      const Scalar tmp226 = -pos(10);
-      const Scalar tmp227 = -tmp226 - pos(1);
-      const Scalar tmp228 = -pos(11);
-      const Scalar tmp229 = -tmp228 - pos(2);
-      const Scalar tmp230 = sqrt((tmp225*tmp225) + (tmp227*tmp227) + (tmp229*tmp229));
-      const Scalar tmp233 = (Scalar(1)/tmp230);
-      const Scalar tmp234 = tmp225*tmp233;
-      const Scalar tmp236 = tmp227*tmp233;
-      const Scalar tmp238 = tmp229*tmp233;
-      const Scalar tmp242 = -tmp208 - pos(3);
-      const Scalar tmp243 = -tmp210 - pos(4);
-      const Scalar tmp244 = -tmp212 - pos(5);
-      const Scalar tmp245 = sqrt((tmp242*tmp242) + (tmp243*tmp243) + (tmp244*tmp244));
-      const Scalar tmp247 = (Scalar(1)/tmp245);
-      const Scalar tmp248 = tmp242*tmp247;
-      const Scalar tmp249 = tmp243*tmp247;
-      const Scalar tmp250 = tmp244*tmp247;
-      const Scalar tmp252 = -tmp224 - pos(3);
-      const Scalar tmp253 = -tmp226 - pos(4);
-      const Scalar tmp254 = -tmp228 - pos(5);
-      const Scalar tmp255 = sqrt((tmp252*tmp252) + (tmp253*tmp253) + (tmp254*tmp254));
-      const Scalar tmp257 = (Scalar(1)/tmp255);
-      const Scalar tmp258 = tmp252*tmp257;
-      const Scalar tmp259 = tmp253*tmp257;
-      const Scalar tmp260 = tmp254*tmp257;
-      const Scalar tmp265 = -tmp224 - pos(6);
-      const Scalar tmp266 = -tmp226 - pos(7);
-      const Scalar tmp267 = -tmp228 - pos(8);
-      const Scalar tmp268 = sqrt((tmp265*tmp265) + (tmp266*tmp266) + (tmp267*tmp267));
-      const Scalar tmp270 = (Scalar(1)/tmp268);
-      const Scalar tmp271 = tmp265*tmp270;
-      const Scalar tmp272 = tmp266*tmp270;
-      const Scalar tmp273 = tmp267*tmp270;
-      const Scalar tmp1032 = -Scalar(1.5617376188860606)*tmp204*penalty_damping;
-      const Scalar tmp1033 = -Scalar(1.7149858514250886)*tmp218*penalty_damping;
-      const Scalar tmp1034 = -Scalar(2.030692330267238)*tmp234*penalty_damping;
-      const Scalar tmp1035 = tmp206*tmp1032 + tmp222*tmp1033 + tmp238*tmp1034;
-      const Scalar tmp1036 = -tmp1032;
-      const Scalar tmp1037 = tmp206*tmp1036;
-      const Scalar tmp1038 = -tmp1033;
-      const Scalar tmp1039 = tmp222*tmp1038;
-      const Scalar tmp1040 = -tmp1034;
-      const Scalar tmp1041 = tmp238*tmp1040;
-      const Scalar tmp1042 = -Scalar(1.5617376188860606)*tmp205*penalty_damping;
-      const Scalar tmp1043 = -Scalar(1.7149858514250886)*tmp220*penalty_damping;
-      const Scalar tmp1044 = -Scalar(2.030692330267238)*tmp236*penalty_damping;
-      const Scalar tmp1045 = tmp206*tmp1042 + tmp222*tmp1043 + tmp238*tmp1044;
-      const Scalar tmp1046 = -tmp1042;
-      const Scalar tmp1047 = tmp206*tmp1046;
-      const Scalar tmp1048 = -tmp1043;
-      const Scalar tmp1049 = tmp222*tmp1048;
-      const Scalar tmp1050 = -tmp1044;
-      const Scalar tmp1051 = tmp238*tmp1050;
-      const Scalar tmp1052 = -Scalar(1.5617376188860606)*tmp206*penalty_damping;
-      const Scalar tmp1053 = -Scalar(1.7149858514250886)*tmp222*penalty_damping;
-      const Scalar tmp1054 = -Scalar(2.030692330267238)*tmp238*penalty_damping;
-      const Scalar tmp1055 = tmp206*tmp1052 + tmp222*tmp1053 + tmp238*tmp1054;
-      const Scalar tmp1056 = -tmp1052;
-      const Scalar tmp1057 = tmp206*tmp1056;
-      const Scalar tmp1058 = -tmp1053;
-      const Scalar tmp1059 = tmp222*tmp1058;
-      const Scalar tmp1060 = -tmp1054;
-      const Scalar tmp1061 = tmp238*tmp1060;
-      const Scalar tmp1062 = Scalar(1.5617376188860606)*tmp204*penalty_damping;
-      const Scalar tmp1063 = tmp206*tmp1062;
-      const Scalar tmp1064 = -tmp1062;
-      const Scalar tmp1065 = -Scalar(2.0)*tmp248*penalty_damping;
-      const Scalar tmp1066 = -Scalar(2.9814239699997196)*tmp258*penalty_damping;
-      const Scalar tmp1067 = tmp206*tmp1064 + tmp250*tmp1065 + tmp260*tmp1066;
-      const Scalar tmp1068 = -tmp1065;
-      const Scalar tmp1069 = tmp250*tmp1068;
-      const Scalar tmp1070 = -tmp1066;
-      const Scalar tmp1071 = tmp260*tmp1070;
-      const Scalar tmp1072 = Scalar(1.5617376188860606)*tmp205*penalty_damping;
-      const Scalar tmp1073 = tmp206*tmp1072;
-      const Scalar tmp1074 = -tmp1072;
-      const Scalar tmp1075 = -Scalar(2.0)*tmp249*penalty_damping;
-      const Scalar tmp1076 = -Scalar(2.9814239699997196)*tmp259*penalty_damping;
-      const Scalar tmp1077 = tmp206*tmp1074 + tmp250*tmp1075 + tmp260*tmp1076;
-      const Scalar tmp1078 = -tmp1075;
-      const Scalar tmp1079 = tmp250*tmp1078;
-      const Scalar tmp1080 = -tmp1076;
-      const Scalar tmp1081 = tmp260*tmp1080;
-      const Scalar tmp1082 = Scalar(1.5617376188860606)*tmp206*penalty_damping;
-      const Scalar tmp1083 = tmp206*tmp1082;
-      const Scalar tmp1084 = -tmp1082;
-      const Scalar tmp1085 = -Scalar(2.0)*tmp250*penalty_damping;
-      const Scalar tmp1086 = -Scalar(2.9814239699997196)*tmp260*penalty_damping;
-      const Scalar tmp1087 = tmp206*tmp1084 + tmp250*tmp1085 + tmp260*tmp1086;
-      const Scalar tmp1088 = -tmp1085;
-      const Scalar tmp1089 = tmp250*tmp1088;
-      const Scalar tmp1090 = -tmp1086;
-      const Scalar tmp1091 = tmp260*tmp1090;
-      const Scalar tmp1092 = Scalar(1.7149858514250886)*tmp218*penalty_damping;
-      const Scalar tmp1093 = tmp222*tmp1092;
-      const Scalar tmp1094 = Scalar(2.0)*tmp248*penalty_damping;
-      const Scalar tmp1095 = tmp250*tmp1094;
-      const Scalar tmp1096 = -tmp1092;
-      const Scalar tmp1097 = -tmp1094;
-      const Scalar tmp1098 = -Scalar(2.7472112789737806)*tmp271*penalty_damping;
-      const Scalar tmp1099 = tmp222*tmp1096 + tmp250*tmp1097 + tmp273*tmp1098;
-      const Scalar tmp1100 = -tmp1098;
-      const Scalar tmp1101 = tmp273*tmp1100;
-      const Scalar tmp1102 = Scalar(1.7149858514250886)*tmp220*penalty_damping;
-      const Scalar tmp1103 = tmp222*tmp1102;
-      const Scalar tmp1104 = Scalar(2.0)*tmp249*penalty_damping;
-      const Scalar tmp1105 = tmp250*tmp1104;
-      const Scalar tmp1106 = -tmp1102;
-      const Scalar tmp1107 = -tmp1104;
-      const Scalar tmp1108 = -Scalar(2.7472112789737806)*tmp272*penalty_damping;
-      const Scalar tmp1109 = tmp222*tmp1106 + tmp250*tmp1107 + tmp273*tmp1108;
-      const Scalar tmp1110 = -tmp1108;
-      const Scalar tmp1111 = tmp273*tmp1110;
-      const Scalar tmp1112 = Scalar(1.7149858514250886)*tmp222*penalty_damping;
-      const Scalar tmp1113 = tmp222*tmp1112;
-      const Scalar tmp1114 = Scalar(2.0)*tmp250*penalty_damping;
-      const Scalar tmp1115 = tmp250*tmp1114;
-      const Scalar tmp1116 = -tmp1112;
-      const Scalar tmp1117 = -tmp1114;
-      const Scalar tmp1118 = -Scalar(2.7472112789737806)*tmp273*penalty_damping;
-      const Scalar tmp1119 = tmp222*tmp1116 + tmp250*tmp1117 + tmp273*tmp1118;
-      const Scalar tmp1120 = -tmp1118;
-      const Scalar tmp1121 = tmp273*tmp1120;
-      const Scalar tmp1122 = Scalar(2.030692330267238)*tmp234*penalty_damping;
-      const Scalar tmp1123 = tmp238*tmp1122;
-      const Scalar tmp1124 = Scalar(2.9814239699997196)*tmp258*penalty_damping;
-      const Scalar tmp1125 = tmp260*tmp1124;
-      const Scalar tmp1126 = Scalar(2.7472112789737806)*tmp271*penalty_damping;
-      const Scalar tmp1127 = tmp273*tmp1126;
-      const Scalar tmp1128 = -tmp1122;
-      const Scalar tmp1129 = -tmp1124;
-      const Scalar tmp1130 = -tmp1126;
-      const Scalar tmp1131 = tmp238*tmp1128 + tmp260*tmp1129 + tmp273*tmp1130;
-      const Scalar tmp1132 = Scalar(2.030692330267238)*tmp236*penalty_damping;
-      const Scalar tmp1133 = tmp238*tmp1132;
-      const Scalar tmp1134 = Scalar(2.9814239699997196)*tmp259*penalty_damping;
-      const Scalar tmp1135 = tmp260*tmp1134;
-      const Scalar tmp1136 = Scalar(2.7472112789737806)*tmp272*penalty_damping;
-      const Scalar tmp1137 = tmp273*tmp1136;
-      const Scalar tmp1138 = -tmp1132;
-      const Scalar tmp1139 = -tmp1134;
-      const Scalar tmp1140 = -tmp1136;
-      const Scalar tmp1141 = tmp238*tmp1138 + tmp260*tmp1139 + tmp273*tmp1140;
-      const Scalar tmp1142 = Scalar(2.030692330267238)*tmp238*penalty_damping;
-      const Scalar tmp1143 = tmp238*tmp1142;
-      const Scalar tmp1144 = Scalar(2.9814239699997196)*tmp260*penalty_damping;
-      const Scalar tmp1145 = tmp260*tmp1144;
-      const Scalar tmp1146 = Scalar(2.7472112789737806)*tmp273*penalty_damping;
-      const Scalar tmp1147 = tmp273*tmp1146;
-      const Scalar tmp1148 = -tmp1142;
-      const Scalar tmp1149 = -tmp1144;
-      const Scalar tmp1150 = -tmp1146;
-      const Scalar tmp1151 = tmp238*tmp1148 + tmp260*tmp1149 + tmp273*tmp1150;
+      const Scalar m = Scalar(params.m);
+      const Scalar a = Scalar(params.a);
+      const Scalar b = Scalar(params.b);
+      const Scalar c = Scalar(params.c);
+      const Scalar tmp10 = (Scalar(1)/sqrt(m));
+      const Scalar tmp11 = (a*a);
+      const Scalar tmp12 = (b*b);
+      const Scalar tmp13 = m*(tmp11 + tmp12);
+      const Scalar tmp14 = (c*c);
+      const Scalar tmp15 = tmp11 + tmp14;
+      const Scalar tmp16 = tmp15*m;
+      const Scalar tmp17 = tmp12 + tmp14;
+      const Scalar tmp18 = tmp17*m;
+      const Scalar tmp19 = Scalar(0.005689254019167049)*tmp18 + Scalar(0.010556171822976032)*tmp16
+          - Scalar(0.01624542584214308)*tmp13;
+      const Scalar tmp20 = Scalar(0.041142942152109445)*tmp18 + Scalar(0.028423816083747767)*tmp13
+          - Scalar(0.027900091569190537)*tmp16;
+      const Scalar tmp21 = sqrt(tmp20);
+      const Scalar tmp22 = (Scalar(1)/tmp21);
+      const Scalar tmp23 = tmp19*tmp22;
+      const Scalar tmp24 = (Scalar(1)/tmp20);
+      const Scalar tmp25 = Scalar(0.021737886292675604)*tmp13 + Scalar(0.04006485617007295)*tmp16
+          - Scalar(0.020136075796081898)*tmp18 - tmp24*(tmp19*tmp19);
+      const Scalar tmp26 = sqrt(tmp25);
+      const Scalar tmp27 = tmp23 + tmp26;
+      const Scalar tmp33 = -Scalar(0.0257737061664756)*tmp13 - Scalar(0.003316897780257798)*tmp18
+          + Scalar(0.0290906039467334)*tmp15*m;
+      const Scalar tmp34 = tmp22*tmp33;
+      const Scalar tmp35 = (Scalar(1)/tmp25);
+      const Scalar tmp36 = tmp24*tmp33;
+      const Scalar tmp37 = -Scalar(0.03161742478199714)*tmp13 - Scalar(0.004414255047715874)*tmp16
+          - tmp19*tmp36 + Scalar(0.03603167982971302)*tmp17*m;
+      const Scalar tmp38 = -Scalar(0.008495035709756703)*tmp13 - tmp24*(tmp33*tmp33)
+          - tmp35*(tmp37*tmp37) + Scalar(0.02950190206578425)*tmp15*m
+          + Scalar(0.020659800310639128)*tmp17*m;
+      const Scalar tmp39 = sqrt(tmp38);
+      const Scalar tmp40 = tmp37/tmp26;
+      const Scalar tmp41 = tmp39 + tmp40;
+      const Scalar tmp42 = tmp34 + tmp41;
+      const Scalar tmp117 = tmp23 - tmp26;
+      const Scalar tmp118 = tmp10*tmp117;
+      const Scalar tmp119 = tmp34 - tmp41;
+      const Scalar tmp120 = tmp10*tmp119;
+      const Scalar tmp140 = -tmp117;
+      const Scalar tmp141 = tmp10*tmp140;
+      const Scalar tmp142 = tmp40 - tmp34 - tmp39;
+      const Scalar tmp143 = tmp10*tmp142;
+      const Scalar tmp172 = -tmp27;
+      const Scalar tmp173 = tmp10*tmp172;
+      const Scalar tmp174 = tmp39 - tmp34 - tmp40;
+      const Scalar tmp175 = tmp10*tmp174;
+      const Scalar tmp357 = pos(3) - pos(0);
+      const Scalar tmp358 = pos(4) - pos(1);
+      const Scalar tmp359 = pos(5) - pos(2);
+      const Scalar tmp360 = sqrt((tmp357*tmp357) + (tmp358*tmp358) + (tmp359*tmp359));
+      const Scalar tmp361 = (Scalar(1)/tmp360);
+      const Scalar tmp362 = tmp357*tmp361;
+      const Scalar tmp363 = tmp358*tmp361;
+      const Scalar tmp364 = tmp359*tmp361;
+      const Scalar tmp365 = -tmp10*tmp27;
+      const Scalar tmp366 = -tmp10*tmp42;
+      const Scalar tmp367 = sqrt(((-tmp118 - tmp365)*(-tmp118 - tmp365))
+          + ((-tmp120 - tmp366)*(-tmp120 - tmp366)));
+      const Scalar tmp368 = (Scalar(1)/tmp367);
+      const Scalar tmp373 = -pos(6);
+      const Scalar tmp374 = -tmp373 - pos(0);
+      const Scalar tmp375 = -pos(7);
+      const Scalar tmp376 = -tmp375 - pos(1);
+      const Scalar tmp377 = -pos(8);
+      const Scalar tmp378 = -tmp377 - pos(2);
+      const Scalar tmp379 = sqrt((tmp374*tmp374) + (tmp376*tmp376) + (tmp378*tmp378));
+      const Scalar tmp380 = (Scalar(1)/tmp379);
+      const Scalar tmp381 = tmp374*tmp380;
+      const Scalar tmp383 = tmp376*tmp380;
+      const Scalar tmp385 = tmp378*tmp380;
+      const Scalar tmp386 = Scalar(4)*tmp20/m;
+      const Scalar tmp387 = sqrt(tmp386 + ((-tmp141 - tmp365)*(-tmp141 - tmp365))
+          + ((-tmp143 - tmp366)*(-tmp143 - tmp366)));
+      const Scalar tmp388 = (Scalar(1)/tmp387);
+      const Scalar tmp393 = -pos(9);
+      const Scalar tmp394 = -tmp393 - pos(0);
+      const Scalar tmp395 = -pos(10);
+      const Scalar tmp396 = -tmp395 - pos(1);
+      const Scalar tmp397 = -pos(11);
+      const Scalar tmp398 = -tmp397 - pos(2);
+      const Scalar tmp399 = sqrt((tmp394*tmp394) + (tmp396*tmp396) + (tmp398*tmp398));
+      const Scalar tmp400 = (Scalar(1)/tmp399);
+      const Scalar tmp401 = tmp394*tmp400;
+      const Scalar tmp403 = tmp396*tmp400;
+      const Scalar tmp405 = tmp398*tmp400;
+      const Scalar tmp406 = sqrt(tmp386 + ((-tmp173 - tmp365)*(-tmp173 - tmp365))
+          + ((-tmp175 - tmp366)*(-tmp175 - tmp366)));
+      const Scalar tmp407 = (Scalar(1)/tmp406);
+      const Scalar tmp413 = -tmp373 - pos(3);
+      const Scalar tmp414 = -tmp375 - pos(4);
+      const Scalar tmp415 = -tmp377 - pos(5);
+      const Scalar tmp416 = sqrt((tmp413*tmp413) + (tmp414*tmp414) + (tmp415*tmp415));
+      const Scalar tmp417 = (Scalar(1)/tmp416);
+      const Scalar tmp418 = tmp413*tmp417;
+      const Scalar tmp419 = tmp414*tmp417;
+      const Scalar tmp420 = tmp415*tmp417;
+      const Scalar tmp421 = -tmp118;
+      const Scalar tmp422 = -tmp120;
+      const Scalar tmp423 = sqrt(tmp386 + ((-tmp141 - tmp421)*(-tmp141 - tmp421))
+          + ((-tmp143 - tmp422)*(-tmp143 - tmp422)));
+      const Scalar tmp424 = (Scalar(1)/tmp423);
+      const Scalar tmp428 = -tmp393 - pos(3);
+      const Scalar tmp429 = -tmp395 - pos(4);
+      const Scalar tmp430 = -tmp397 - pos(5);
+      const Scalar tmp431 = sqrt((tmp428*tmp428) + (tmp429*tmp429) + (tmp430*tmp430));
+      const Scalar tmp432 = (Scalar(1)/tmp431);
+      const Scalar tmp433 = tmp428*tmp432;
+      const Scalar tmp434 = tmp429*tmp432;
+      const Scalar tmp435 = tmp430*tmp432;
+      const Scalar tmp436 = sqrt(tmp386 + ((-tmp173 - tmp421)*(-tmp173 - tmp421))
+          + ((-tmp175 - tmp422)*(-tmp175 - tmp422)));
+      const Scalar tmp437 = (Scalar(1)/tmp436);
+      const Scalar tmp442 = -tmp393 - pos(6);
+      const Scalar tmp443 = -tmp395 - pos(7);
+      const Scalar tmp444 = -tmp397 - pos(8);
+      const Scalar tmp445 = sqrt((tmp442*tmp442) + (tmp443*tmp443) + (tmp444*tmp444));
+      const Scalar tmp446 = (Scalar(1)/tmp445);
+      const Scalar tmp447 = tmp442*tmp446;
+      const Scalar tmp448 = tmp443*tmp446;
+      const Scalar tmp449 = tmp444*tmp446;
+      const Scalar tmp450 = sqrt(((tmp141 - tmp173)*(tmp141 - tmp173))
+          + ((tmp143 - tmp175)*(tmp143 - tmp175)));
+      const Scalar tmp451 = (Scalar(1)/tmp450);
+      const Scalar tmp1218 = -tmp362*tmp368*penalty_damping;
+      const Scalar tmp1219 = -tmp381*tmp388*penalty_damping;
+      const Scalar tmp1220 = -tmp401*tmp407*penalty_damping;
+      const Scalar tmp1221 = tmp364*tmp1218 + tmp385*tmp1219 + tmp405*tmp1220;
+      const Scalar tmp1222 = -tmp1218;
+      const Scalar tmp1223 = tmp364*tmp1222;
+      const Scalar tmp1224 = -tmp1219;
+      const Scalar tmp1225 = tmp385*tmp1224;
+      const Scalar tmp1226 = -tmp1220;
+      const Scalar tmp1227 = tmp405*tmp1226;
+      const Scalar tmp1228 = -tmp363*tmp368*penalty_damping;
+      const Scalar tmp1229 = -tmp383*tmp388*penalty_damping;
+      const Scalar tmp1230 = -tmp403*tmp407*penalty_damping;
+      const Scalar tmp1231 = tmp364*tmp1228 + tmp385*tmp1229 + tmp405*tmp1230;
+      const Scalar tmp1232 = -tmp1228;
+      const Scalar tmp1233 = tmp364*tmp1232;
+      const Scalar tmp1234 = -tmp1229;
+      const Scalar tmp1235 = tmp385*tmp1234;
+      const Scalar tmp1236 = -tmp1230;
+      const Scalar tmp1237 = tmp405*tmp1236;
+      const Scalar tmp1238 = -tmp364*tmp368*penalty_damping;
+      const Scalar tmp1239 = -tmp385*tmp388*penalty_damping;
+      const Scalar tmp1240 = -tmp405*tmp407*penalty_damping;
+      const Scalar tmp1241 = tmp364*tmp1238 + tmp385*tmp1239 + tmp405*tmp1240;
+      const Scalar tmp1242 = -tmp1238;
+      const Scalar tmp1243 = tmp364*tmp1242;
+      const Scalar tmp1244 = -tmp1239;
+      const Scalar tmp1245 = tmp385*tmp1244;
+      const Scalar tmp1246 = -tmp1240;
+      const Scalar tmp1247 = tmp405*tmp1246;
+      const Scalar tmp1248 = tmp362*tmp368*penalty_damping;
+      const Scalar tmp1249 = tmp364*tmp1248;
+      const Scalar tmp1250 = -tmp1248;
+      const Scalar tmp1251 = -tmp418*tmp424*penalty_damping;
+      const Scalar tmp1252 = -tmp433*tmp437*penalty_damping;
+      const Scalar tmp1253 = tmp364*tmp1250 + tmp420*tmp1251 + tmp435*tmp1252;
+      const Scalar tmp1254 = -tmp1251;
+      const Scalar tmp1255 = tmp420*tmp1254;
+      const Scalar tmp1256 = -tmp1252;
+      const Scalar tmp1257 = tmp435*tmp1256;
+      const Scalar tmp1258 = tmp363*tmp368*penalty_damping;
+      const Scalar tmp1259 = tmp364*tmp1258;
+      const Scalar tmp1260 = -tmp1258;
+      const Scalar tmp1261 = -tmp419*tmp424*penalty_damping;
+      const Scalar tmp1262 = -tmp434*tmp437*penalty_damping;
+      const Scalar tmp1263 = tmp364*tmp1260 + tmp420*tmp1261 + tmp435*tmp1262;
+      const Scalar tmp1264 = -tmp1261;
+      const Scalar tmp1265 = tmp420*tmp1264;
+      const Scalar tmp1266 = -tmp1262;
+      const Scalar tmp1267 = tmp435*tmp1266;
+      const Scalar tmp1268 = tmp364*tmp368*penalty_damping;
+      const Scalar tmp1269 = tmp364*tmp1268;
+      const Scalar tmp1270 = -tmp1268;
+      const Scalar tmp1271 = -tmp420*tmp424*penalty_damping;
+      const Scalar tmp1272 = -tmp435*tmp437*penalty_damping;
+      const Scalar tmp1273 = tmp364*tmp1270 + tmp420*tmp1271 + tmp435*tmp1272;
+      const Scalar tmp1274 = -tmp1271;
+      const Scalar tmp1275 = tmp420*tmp1274;
+      const Scalar tmp1276 = -tmp1272;
+      const Scalar tmp1277 = tmp435*tmp1276;
+      const Scalar tmp1278 = tmp381*tmp388*penalty_damping;
+      const Scalar tmp1279 = tmp385*tmp1278;
+      const Scalar tmp1280 = tmp418*tmp424*penalty_damping;
+      const Scalar tmp1281 = tmp420*tmp1280;
+      const Scalar tmp1282 = -tmp447*tmp451*penalty_damping;
+      const Scalar tmp1283 = -tmp1278;
+      const Scalar tmp1284 = -tmp1280;
+      const Scalar tmp1285 = tmp449*tmp1282 + tmp385*tmp1283 + tmp420*tmp1284;
+      const Scalar tmp1286 = -tmp1282;
+      const Scalar tmp1287 = tmp449*tmp1286;
+      const Scalar tmp1288 = tmp383*tmp388*penalty_damping;
+      const Scalar tmp1289 = tmp385*tmp1288;
+      const Scalar tmp1290 = tmp419*tmp424*penalty_damping;
+      const Scalar tmp1291 = tmp420*tmp1290;
+      const Scalar tmp1292 = -tmp448*tmp451*penalty_damping;
+      const Scalar tmp1293 = -tmp1288;
+      const Scalar tmp1294 = -tmp1290;
+      const Scalar tmp1295 = tmp449*tmp1292 + tmp385*tmp1293 + tmp420*tmp1294;
+      const Scalar tmp1296 = -tmp1292;
+      const Scalar tmp1297 = tmp449*tmp1296;
+      const Scalar tmp1298 = tmp385*tmp388*penalty_damping;
+      const Scalar tmp1299 = tmp385*tmp1298;
+      const Scalar tmp1300 = tmp420*tmp424*penalty_damping;
+      const Scalar tmp1301 = tmp420*tmp1300;
+      const Scalar tmp1302 = -tmp449*tmp451*penalty_damping;
+      const Scalar tmp1303 = -tmp1298;
+      const Scalar tmp1304 = -tmp1300;
+      const Scalar tmp1305 = tmp449*tmp1302 + tmp385*tmp1303 + tmp420*tmp1304;
+      const Scalar tmp1306 = -tmp1302;
+      const Scalar tmp1307 = tmp449*tmp1306;
+      const Scalar tmp1308 = tmp401*tmp407*penalty_damping;
+      const Scalar tmp1309 = tmp405*tmp1308;
+      const Scalar tmp1310 = tmp433*tmp437*penalty_damping;
+      const Scalar tmp1311 = tmp435*tmp1310;
+      const Scalar tmp1312 = tmp447*tmp451*penalty_damping;
+      const Scalar tmp1313 = tmp449*tmp1312;
+      const Scalar tmp1314 = -tmp1312;
+      const Scalar tmp1315 = -tmp1308;
+      const Scalar tmp1316 = -tmp1310;
+      const Scalar tmp1317 = tmp449*tmp1314 + tmp405*tmp1315 + tmp435*tmp1316;
+      const Scalar tmp1318 = tmp403*tmp407*penalty_damping;
+      const Scalar tmp1319 = tmp405*tmp1318;
+      const Scalar tmp1320 = tmp434*tmp437*penalty_damping;
+      const Scalar tmp1321 = tmp435*tmp1320;
+      const Scalar tmp1322 = tmp448*tmp451*penalty_damping;
+      const Scalar tmp1323 = tmp449*tmp1322;
+      const Scalar tmp1324 = -tmp1322;
+      const Scalar tmp1325 = -tmp1318;
+      const Scalar tmp1326 = -tmp1320;
+      const Scalar tmp1327 = tmp449*tmp1324 + tmp405*tmp1325 + tmp435*tmp1326;
+      const Scalar tmp1328 = tmp405*tmp407*penalty_damping;
+      const Scalar tmp1329 = tmp405*tmp1328;
+      const Scalar tmp1330 = tmp435*tmp437*penalty_damping;
+      const Scalar tmp1331 = tmp435*tmp1330;
+      const Scalar tmp1332 = tmp449*tmp451*penalty_damping;
+      const Scalar tmp1333 = tmp449*tmp1332;
+      const Scalar tmp1334 = -tmp1332;
+      const Scalar tmp1335 = -tmp1328;
+      const Scalar tmp1336 = -tmp1330;
+      const Scalar tmp1337 = tmp449*tmp1334 + tmp405*tmp1335 + tmp435*tmp1336;
       std::array<Scalar, 144> result;
-      result[0] = tmp204*tmp1032 + tmp218*tmp1033 + tmp234*tmp1034;
-      result[1] = tmp204*tmp1042 + tmp218*tmp1043 + tmp234*tmp1044;
-      result[2] = tmp204*tmp1052 + tmp218*tmp1053 + tmp234*tmp1054;
-      result[3] = tmp204*tmp1062;
-      result[4] = tmp204*tmp1072;
-      result[5] = tmp204*tmp1082;
-      result[6] = tmp218*tmp1092;
-      result[7] = tmp218*tmp1102;
-      result[8] = tmp218*tmp1112;
-      result[9] = tmp234*tmp1122;
-      result[10] = tmp234*tmp1132;
-      result[11] = tmp234*tmp1142;
-      result[12] = tmp205*tmp1032 + tmp220*tmp1033 + tmp236*tmp1034;
-      result[13] = tmp205*tmp1042 + tmp220*tmp1043 + tmp236*tmp1044;
-      result[14] = tmp205*tmp1052 + tmp220*tmp1053 + tmp236*tmp1054;
-      result[15] = tmp205*tmp1062;
-      result[16] = tmp205*tmp1072;
-      result[17] = tmp205*tmp1082;
-      result[18] = tmp220*tmp1092;
-      result[19] = tmp220*tmp1102;
-      result[20] = tmp220*tmp1112;
-      result[21] = tmp236*tmp1122;
-      result[22] = tmp236*tmp1132;
-      result[23] = tmp236*tmp1142;
-      result[24] = tmp1035;
-      result[25] = tmp1045;
-      result[26] = tmp1055;
-      result[27] = tmp1063;
-      result[28] = tmp1073;
-      result[29] = tmp1083;
-      result[30] = tmp1093;
-      result[31] = tmp1103;
-      result[32] = tmp1113;
-      result[33] = tmp1123;
-      result[34] = tmp1133;
-      result[35] = tmp1143;
-      result[36] = tmp204*tmp1036;
-      result[37] = tmp204*tmp1046;
-      result[38] = tmp204*tmp1056;
-      result[39] = tmp204*tmp1064 + tmp248*tmp1065 + tmp258*tmp1066;
-      result[40] = tmp204*tmp1074 + tmp248*tmp1075 + tmp258*tmp1076;
-      result[41] = tmp204*tmp1084 + tmp248*tmp1085 + tmp258*tmp1086;
-      result[42] = tmp248*tmp1094;
-      result[43] = tmp248*tmp1104;
-      result[44] = tmp248*tmp1114;
-      result[45] = tmp258*tmp1124;
-      result[46] = tmp258*tmp1134;
-      result[47] = tmp258*tmp1144;
-      result[48] = tmp205*tmp1036;
-      result[49] = tmp205*tmp1046;
-      result[50] = tmp205*tmp1056;
-      result[51] = tmp205*tmp1064 + tmp249*tmp1065 + tmp259*tmp1066;
-      result[52] = tmp205*tmp1074 + tmp249*tmp1075 + tmp259*tmp1076;
-      result[53] = tmp205*tmp1084 + tmp249*tmp1085 + tmp259*tmp1086;
-      result[54] = tmp249*tmp1094;
-      result[55] = tmp249*tmp1104;
-      result[56] = tmp249*tmp1114;
-      result[57] = tmp259*tmp1124;
-      result[58] = tmp259*tmp1134;
-      result[59] = tmp259*tmp1144;
-      result[60] = tmp1037;
-      result[61] = tmp1047;
-      result[62] = tmp1057;
-      result[63] = tmp1067;
-      result[64] = tmp1077;
-      result[65] = tmp1087;
-      result[66] = tmp1095;
-      result[67] = tmp1105;
-      result[68] = tmp1115;
-      result[69] = tmp1125;
-      result[70] = tmp1135;
-      result[71] = tmp1145;
-      result[72] = tmp218*tmp1038;
-      result[73] = tmp218*tmp1048;
-      result[74] = tmp218*tmp1058;
-      result[75] = tmp248*tmp1068;
-      result[76] = tmp248*tmp1078;
-      result[77] = tmp248*tmp1088;
-      result[78] = tmp218*tmp1096 + tmp248*tmp1097 + tmp271*tmp1098;
-      result[79] = tmp218*tmp1106 + tmp248*tmp1107 + tmp271*tmp1108;
-      result[80] = tmp218*tmp1116 + tmp248*tmp1117 + tmp271*tmp1118;
-      result[81] = tmp271*tmp1126;
-      result[82] = tmp271*tmp1136;
-      result[83] = tmp271*tmp1146;
-      result[84] = tmp220*tmp1038;
-      result[85] = tmp220*tmp1048;
-      result[86] = tmp220*tmp1058;
-      result[87] = tmp249*tmp1068;
-      result[88] = tmp249*tmp1078;
-      result[89] = tmp249*tmp1088;
-      result[90] = tmp220*tmp1096 + tmp249*tmp1097 + tmp272*tmp1098;
-      result[91] = tmp220*tmp1106 + tmp249*tmp1107 + tmp272*tmp1108;
-      result[92] = tmp220*tmp1116 + tmp249*tmp1117 + tmp272*tmp1118;
-      result[93] = tmp272*tmp1126;
-      result[94] = tmp272*tmp1136;
-      result[95] = tmp272*tmp1146;
-      result[96] = tmp1039;
-      result[97] = tmp1049;
-      result[98] = tmp1059;
-      result[99] = tmp1069;
-      result[100] = tmp1079;
-      result[101] = tmp1089;
-      result[102] = tmp1099;
-      result[103] = tmp1109;
-      result[104] = tmp1119;
-      result[105] = tmp1127;
-      result[106] = tmp1137;
-      result[107] = tmp1147;
-      result[108] = tmp234*tmp1040;
-      result[109] = tmp234*tmp1050;
-      result[110] = tmp234*tmp1060;
-      result[111] = tmp258*tmp1070;
-      result[112] = tmp258*tmp1080;
-      result[113] = tmp258*tmp1090;
-      result[114] = tmp271*tmp1100;
-      result[115] = tmp271*tmp1110;
-      result[116] = tmp271*tmp1120;
-      result[117] = tmp234*tmp1128 + tmp258*tmp1129 + tmp271*tmp1130;
-      result[118] = tmp234*tmp1138 + tmp258*tmp1139 + tmp271*tmp1140;
-      result[119] = tmp234*tmp1148 + tmp258*tmp1149 + tmp271*tmp1150;
-      result[120] = tmp236*tmp1040;
-      result[121] = tmp236*tmp1050;
-      result[122] = tmp236*tmp1060;
-      result[123] = tmp259*tmp1070;
-      result[124] = tmp259*tmp1080;
-      result[125] = tmp259*tmp1090;
-      result[126] = tmp272*tmp1100;
-      result[127] = tmp272*tmp1110;
-      result[128] = tmp272*tmp1120;
-      result[129] = tmp236*tmp1128 + tmp259*tmp1129 + tmp272*tmp1130;
-      result[130] = tmp236*tmp1138 + tmp259*tmp1139 + tmp272*tmp1140;
-      result[131] = tmp236*tmp1148 + tmp259*tmp1149 + tmp272*tmp1150;
-      result[132] = tmp1041;
-      result[133] = tmp1051;
-      result[134] = tmp1061;
-      result[135] = tmp1071;
-      result[136] = tmp1081;
-      result[137] = tmp1091;
-      result[138] = tmp1101;
-      result[139] = tmp1111;
-      result[140] = tmp1121;
-      result[141] = tmp1131;
-      result[142] = tmp1141;
-      result[143] = tmp1151;
+      result[0] = tmp362*tmp1218 + tmp381*tmp1219 + tmp401*tmp1220;
+      result[1] = tmp362*tmp1228 + tmp381*tmp1229 + tmp401*tmp1230;
+      result[2] = tmp362*tmp1238 + tmp381*tmp1239 + tmp401*tmp1240;
+      result[3] = tmp362*tmp1248;
+      result[4] = tmp362*tmp1258;
+      result[5] = tmp362*tmp1268;
+      result[6] = tmp381*tmp1278;
+      result[7] = tmp381*tmp1288;
+      result[8] = tmp381*tmp1298;
+      result[9] = tmp401*tmp1308;
+      result[10] = tmp401*tmp1318;
+      result[11] = tmp401*tmp1328;
+      result[12] = tmp363*tmp1218 + tmp383*tmp1219 + tmp403*tmp1220;
+      result[13] = tmp363*tmp1228 + tmp383*tmp1229 + tmp403*tmp1230;
+      result[14] = tmp363*tmp1238 + tmp383*tmp1239 + tmp403*tmp1240;
+      result[15] = tmp363*tmp1248;
+      result[16] = tmp363*tmp1258;
+      result[17] = tmp363*tmp1268;
+      result[18] = tmp383*tmp1278;
+      result[19] = tmp383*tmp1288;
+      result[20] = tmp383*tmp1298;
+      result[21] = tmp403*tmp1308;
+      result[22] = tmp403*tmp1318;
+      result[23] = tmp403*tmp1328;
+      result[24] = tmp1221;
+      result[25] = tmp1231;
+      result[26] = tmp1241;
+      result[27] = tmp1249;
+      result[28] = tmp1259;
+      result[29] = tmp1269;
+      result[30] = tmp1279;
+      result[31] = tmp1289;
+      result[32] = tmp1299;
+      result[33] = tmp1309;
+      result[34] = tmp1319;
+      result[35] = tmp1329;
+      result[36] = tmp362*tmp1222;
+      result[37] = tmp362*tmp1232;
+      result[38] = tmp362*tmp1242;
+      result[39] = tmp362*tmp1250 + tmp418*tmp1251 + tmp433*tmp1252;
+      result[40] = tmp362*tmp1260 + tmp418*tmp1261 + tmp433*tmp1262;
+      result[41] = tmp362*tmp1270 + tmp418*tmp1271 + tmp433*tmp1272;
+      result[42] = tmp418*tmp1280;
+      result[43] = tmp418*tmp1290;
+      result[44] = tmp418*tmp1300;
+      result[45] = tmp433*tmp1310;
+      result[46] = tmp433*tmp1320;
+      result[47] = tmp433*tmp1330;
+      result[48] = tmp363*tmp1222;
+      result[49] = tmp363*tmp1232;
+      result[50] = tmp363*tmp1242;
+      result[51] = tmp363*tmp1250 + tmp419*tmp1251 + tmp434*tmp1252;
+      result[52] = tmp363*tmp1260 + tmp419*tmp1261 + tmp434*tmp1262;
+      result[53] = tmp363*tmp1270 + tmp419*tmp1271 + tmp434*tmp1272;
+      result[54] = tmp419*tmp1280;
+      result[55] = tmp419*tmp1290;
+      result[56] = tmp419*tmp1300;
+      result[57] = tmp434*tmp1310;
+      result[58] = tmp434*tmp1320;
+      result[59] = tmp434*tmp1330;
+      result[60] = tmp1223;
+      result[61] = tmp1233;
+      result[62] = tmp1243;
+      result[63] = tmp1253;
+      result[64] = tmp1263;
+      result[65] = tmp1273;
+      result[66] = tmp1281;
+      result[67] = tmp1291;
+      result[68] = tmp1301;
+      result[69] = tmp1311;
+      result[70] = tmp1321;
+      result[71] = tmp1331;
+      result[72] = tmp381*tmp1224;
+      result[73] = tmp381*tmp1234;
+      result[74] = tmp381*tmp1244;
+      result[75] = tmp418*tmp1254;
+      result[76] = tmp418*tmp1264;
+      result[77] = tmp418*tmp1274;
+      result[78] = tmp447*tmp1282 + tmp381*tmp1283 + tmp418*tmp1284;
+      result[79] = tmp447*tmp1292 + tmp381*tmp1293 + tmp418*tmp1294;
+      result[80] = tmp447*tmp1302 + tmp381*tmp1303 + tmp418*tmp1304;
+      result[81] = tmp447*tmp1312;
+      result[82] = tmp447*tmp1322;
+      result[83] = tmp447*tmp1332;
+      result[84] = tmp383*tmp1224;
+      result[85] = tmp383*tmp1234;
+      result[86] = tmp383*tmp1244;
+      result[87] = tmp419*tmp1254;
+      result[88] = tmp419*tmp1264;
+      result[89] = tmp419*tmp1274;
+      result[90] = tmp448*tmp1282 + tmp383*tmp1283 + tmp419*tmp1284;
+      result[91] = tmp448*tmp1292 + tmp383*tmp1293 + tmp419*tmp1294;
+      result[92] = tmp448*tmp1302 + tmp383*tmp1303 + tmp419*tmp1304;
+      result[93] = tmp448*tmp1312;
+      result[94] = tmp448*tmp1322;
+      result[95] = tmp448*tmp1332;
+      result[96] = tmp1225;
+      result[97] = tmp1235;
+      result[98] = tmp1245;
+      result[99] = tmp1255;
+      result[100] = tmp1265;
+      result[101] = tmp1275;
+      result[102] = tmp1285;
+      result[103] = tmp1295;
+      result[104] = tmp1305;
+      result[105] = tmp1313;
+      result[106] = tmp1323;
+      result[107] = tmp1333;
+      result[108] = tmp401*tmp1226;
+      result[109] = tmp401*tmp1236;
+      result[110] = tmp401*tmp1246;
+      result[111] = tmp433*tmp1256;
+      result[112] = tmp433*tmp1266;
+      result[113] = tmp433*tmp1276;
+      result[114] = tmp447*tmp1286;
+      result[115] = tmp447*tmp1296;
+      result[116] = tmp447*tmp1306;
+      result[117] = tmp447*tmp1314 + tmp401*tmp1315 + tmp433*tmp1316;
+      result[118] = tmp447*tmp1324 + tmp401*tmp1325 + tmp433*tmp1326;
+      result[119] = tmp447*tmp1334 + tmp401*tmp1335 + tmp433*tmp1336;
+      result[120] = tmp403*tmp1226;
+      result[121] = tmp403*tmp1236;
+      result[122] = tmp403*tmp1246;
+      result[123] = tmp434*tmp1256;
+      result[124] = tmp434*tmp1266;
+      result[125] = tmp434*tmp1276;
+      result[126] = tmp448*tmp1286;
+      result[127] = tmp448*tmp1296;
+      result[128] = tmp448*tmp1306;
+      result[129] = tmp448*tmp1314 + tmp403*tmp1315 + tmp434*tmp1316;
+      result[130] = tmp448*tmp1324 + tmp403*tmp1325 + tmp434*tmp1326;
+      result[131] = tmp448*tmp1334 + tmp403*tmp1335 + tmp434*tmp1336;
+      result[132] = tmp1227;
+      result[133] = tmp1237;
+      result[134] = tmp1247;
+      result[135] = tmp1257;
+      result[136] = tmp1267;
+      result[137] = tmp1277;
+      result[138] = tmp1287;
+      result[139] = tmp1297;
+      result[140] = tmp1307;
+      result[141] = tmp1317;
+      result[142] = tmp1327;
+      result[143] = tmp1337;
       return result;
     }
 
@@ -9692,22 +11020,17 @@ struct RigidBodyEulerYzx {
     /// \param[in] t  time
     /// \param[in] params  model parameters
     /// \return V
-    /// Ops: 11
+    /// Ops: 9
     template <typename Scalar>
     static Scalar potential_energy(const XVector<Scalar>& pos,
                                    const Scalar& /*t*/,
                                    const Params& params) {
       const Scalar g = Scalar(params.g);
-      const Scalar m_a = Scalar(params.m_a);
-      const Scalar m_b = Scalar(params.m_b);
-      const Scalar m_c = Scalar(params.m_c);
-      const Scalar m_d = Scalar(params.m_d);
-      const Scalar tmp109 = g*m_a;
-      const Scalar tmp111 = g*m_b;
-      const Scalar tmp113 = g*m_c;
-      const Scalar tmp115 = g*m_d;
+      const Scalar m = Scalar(params.m);
+      const Scalar tmp290 = g*m;
+      const Scalar tmp355 = (Scalar(0.25))*tmp290;
       Scalar result;
-      result = tmp109*pos(2) + tmp111*pos(5) + tmp113*pos(8) + tmp115*pos(11);
+      result = tmp355*pos(2) + tmp355*pos(5) + tmp355*pos(8) + tmp355*pos(11);
       return result;
     }
 
@@ -9717,55 +11040,133 @@ struct RigidBodyEulerYzx {
     /// \param[in] kappa  penalty stiffness (rods: force per strain; pins, planes: N/m)
     /// \param[in] params  model parameters
     /// \return V_penalty
-    /// Ops: 122
+    /// Ops: 304
     template <typename Scalar>
     static Scalar penalty_energy(const XVector<Scalar>& pos,
                                  const Scalar& /*t*/,
                                  const Scalar& kappa,
-                                 const Params& /*params*/) {
+                                 const Params& params) {
       using std::sqrt;
-      const Scalar tmp198 = pos(3) - pos(0);
-      const Scalar tmp199 = pos(4) - pos(1);
-      const Scalar tmp200 = pos(5) - pos(2);
-      const Scalar tmp201 = sqrt((tmp198*tmp198) + (tmp199*tmp199) + (tmp200*tmp200));
-      const Scalar tmp202 = Scalar(-0.6403124237432849) + tmp201;
-      const Scalar tmp208 = -pos(6);
-      const Scalar tmp209 = -tmp208 - pos(0);
-      const Scalar tmp210 = -pos(7);
-      const Scalar tmp211 = -tmp210 - pos(1);
-      const Scalar tmp212 = -pos(8);
-      const Scalar tmp213 = -tmp212 - pos(2);
-      const Scalar tmp214 = sqrt((tmp209*tmp209) + (tmp211*tmp211) + (tmp213*tmp213));
-      const Scalar tmp215 = Scalar(-0.58309518948453) + tmp214;
-      const Scalar tmp224 = -pos(9);
-      const Scalar tmp225 = -tmp224 - pos(0);
-      const Scalar tmp226 = -pos(10);
-      const Scalar tmp227 = -tmp226 - pos(1);
-      const Scalar tmp228 = -pos(11);
-      const Scalar tmp229 = -tmp228 - pos(2);
-      const Scalar tmp230 = sqrt((tmp225*tmp225) + (tmp227*tmp227) + (tmp229*tmp229));
-      const Scalar tmp231 = Scalar(-0.49244289008980524) + tmp230;
-      const Scalar tmp242 = -tmp208 - pos(3);
-      const Scalar tmp243 = -tmp210 - pos(4);
-      const Scalar tmp244 = -tmp212 - pos(5);
-      const Scalar tmp245 = sqrt((tmp242*tmp242) + (tmp243*tmp243) + (tmp244*tmp244));
-      const Scalar tmp246 = Scalar(-0.5) + tmp245;
-      const Scalar tmp252 = -tmp224 - pos(3);
-      const Scalar tmp253 = -tmp226 - pos(4);
-      const Scalar tmp254 = -tmp228 - pos(5);
-      const Scalar tmp255 = sqrt((tmp252*tmp252) + (tmp253*tmp253) + (tmp254*tmp254));
-      const Scalar tmp256 = Scalar(-0.33541019662496846) + tmp255;
-      const Scalar tmp265 = -tmp224 - pos(6);
-      const Scalar tmp266 = -tmp226 - pos(7);
-      const Scalar tmp267 = -tmp228 - pos(8);
-      const Scalar tmp268 = sqrt((tmp265*tmp265) + (tmp266*tmp266) + (tmp267*tmp267));
-      const Scalar tmp269 = Scalar(-0.3640054944640259) + tmp268;
+      const Scalar m = Scalar(params.m);
+      const Scalar a = Scalar(params.a);
+      const Scalar b = Scalar(params.b);
+      const Scalar c = Scalar(params.c);
+      const Scalar tmp10 = (Scalar(1)/sqrt(m));
+      const Scalar tmp11 = (a*a);
+      const Scalar tmp12 = (b*b);
+      const Scalar tmp13 = m*(tmp11 + tmp12);
+      const Scalar tmp14 = (c*c);
+      const Scalar tmp15 = tmp11 + tmp14;
+      const Scalar tmp16 = tmp15*m;
+      const Scalar tmp17 = tmp12 + tmp14;
+      const Scalar tmp18 = tmp17*m;
+      const Scalar tmp19 = Scalar(0.005689254019167049)*tmp18 + Scalar(0.010556171822976032)*tmp16
+          - Scalar(0.01624542584214308)*tmp13;
+      const Scalar tmp20 = Scalar(0.041142942152109445)*tmp18 + Scalar(0.028423816083747767)*tmp13
+          - Scalar(0.027900091569190537)*tmp16;
+      const Scalar tmp21 = sqrt(tmp20);
+      const Scalar tmp22 = (Scalar(1)/tmp21);
+      const Scalar tmp23 = tmp19*tmp22;
+      const Scalar tmp24 = (Scalar(1)/tmp20);
+      const Scalar tmp25 = Scalar(0.021737886292675604)*tmp13 + Scalar(0.04006485617007295)*tmp16
+          - Scalar(0.020136075796081898)*tmp18 - tmp24*(tmp19*tmp19);
+      const Scalar tmp26 = sqrt(tmp25);
+      const Scalar tmp27 = tmp23 + tmp26;
+      const Scalar tmp33 = -Scalar(0.0257737061664756)*tmp13 - Scalar(0.003316897780257798)*tmp18
+          + Scalar(0.0290906039467334)*tmp15*m;
+      const Scalar tmp34 = tmp22*tmp33;
+      const Scalar tmp35 = (Scalar(1)/tmp25);
+      const Scalar tmp36 = tmp24*tmp33;
+      const Scalar tmp37 = -Scalar(0.03161742478199714)*tmp13 - Scalar(0.004414255047715874)*tmp16
+          - tmp19*tmp36 + Scalar(0.03603167982971302)*tmp17*m;
+      const Scalar tmp38 = -Scalar(0.008495035709756703)*tmp13 - tmp24*(tmp33*tmp33)
+          - tmp35*(tmp37*tmp37) + Scalar(0.02950190206578425)*tmp15*m
+          + Scalar(0.020659800310639128)*tmp17*m;
+      const Scalar tmp39 = sqrt(tmp38);
+      const Scalar tmp40 = tmp37/tmp26;
+      const Scalar tmp41 = tmp39 + tmp40;
+      const Scalar tmp42 = tmp34 + tmp41;
+      const Scalar tmp117 = tmp23 - tmp26;
+      const Scalar tmp118 = tmp10*tmp117;
+      const Scalar tmp119 = tmp34 - tmp41;
+      const Scalar tmp120 = tmp10*tmp119;
+      const Scalar tmp140 = -tmp117;
+      const Scalar tmp141 = tmp10*tmp140;
+      const Scalar tmp142 = tmp40 - tmp34 - tmp39;
+      const Scalar tmp143 = tmp10*tmp142;
+      const Scalar tmp172 = -tmp27;
+      const Scalar tmp173 = tmp10*tmp172;
+      const Scalar tmp174 = tmp39 - tmp34 - tmp40;
+      const Scalar tmp175 = tmp10*tmp174;
+      const Scalar tmp357 = pos(3) - pos(0);
+      const Scalar tmp358 = pos(4) - pos(1);
+      const Scalar tmp359 = pos(5) - pos(2);
+      const Scalar tmp360 = sqrt((tmp357*tmp357) + (tmp358*tmp358) + (tmp359*tmp359));
+      const Scalar tmp365 = -tmp10*tmp27;
+      const Scalar tmp366 = -tmp10*tmp42;
+      const Scalar tmp367 = sqrt(((-tmp118 - tmp365)*(-tmp118 - tmp365))
+          + ((-tmp120 - tmp366)*(-tmp120 - tmp366)));
+      const Scalar tmp368 = (Scalar(1)/tmp367);
+      const Scalar tmp369 = tmp360 - tmp367;
+      const Scalar tmp370 = tmp368*kappa;
+      const Scalar tmp373 = -pos(6);
+      const Scalar tmp374 = -tmp373 - pos(0);
+      const Scalar tmp375 = -pos(7);
+      const Scalar tmp376 = -tmp375 - pos(1);
+      const Scalar tmp377 = -pos(8);
+      const Scalar tmp378 = -tmp377 - pos(2);
+      const Scalar tmp379 = sqrt((tmp374*tmp374) + (tmp376*tmp376) + (tmp378*tmp378));
+      const Scalar tmp386 = Scalar(4)*tmp20/m;
+      const Scalar tmp387 = sqrt(tmp386 + ((-tmp141 - tmp365)*(-tmp141 - tmp365))
+          + ((-tmp143 - tmp366)*(-tmp143 - tmp366)));
+      const Scalar tmp388 = (Scalar(1)/tmp387);
+      const Scalar tmp389 = tmp379 - tmp387;
+      const Scalar tmp390 = tmp388*kappa;
+      const Scalar tmp393 = -pos(9);
+      const Scalar tmp394 = -tmp393 - pos(0);
+      const Scalar tmp395 = -pos(10);
+      const Scalar tmp396 = -tmp395 - pos(1);
+      const Scalar tmp397 = -pos(11);
+      const Scalar tmp398 = -tmp397 - pos(2);
+      const Scalar tmp399 = sqrt((tmp394*tmp394) + (tmp396*tmp396) + (tmp398*tmp398));
+      const Scalar tmp406 = sqrt(tmp386 + ((-tmp173 - tmp365)*(-tmp173 - tmp365))
+          + ((-tmp175 - tmp366)*(-tmp175 - tmp366)));
+      const Scalar tmp407 = (Scalar(1)/tmp406);
+      const Scalar tmp408 = tmp399 - tmp406;
+      const Scalar tmp409 = tmp407*kappa;
+      const Scalar tmp413 = -tmp373 - pos(3);
+      const Scalar tmp414 = -tmp375 - pos(4);
+      const Scalar tmp415 = -tmp377 - pos(5);
+      const Scalar tmp416 = sqrt((tmp413*tmp413) + (tmp414*tmp414) + (tmp415*tmp415));
+      const Scalar tmp421 = -tmp118;
+      const Scalar tmp422 = -tmp120;
+      const Scalar tmp423 = sqrt(tmp386 + ((-tmp141 - tmp421)*(-tmp141 - tmp421))
+          + ((-tmp143 - tmp422)*(-tmp143 - tmp422)));
+      const Scalar tmp424 = (Scalar(1)/tmp423);
+      const Scalar tmp425 = tmp416 - tmp423;
+      const Scalar tmp426 = tmp424*kappa;
+      const Scalar tmp428 = -tmp393 - pos(3);
+      const Scalar tmp429 = -tmp395 - pos(4);
+      const Scalar tmp430 = -tmp397 - pos(5);
+      const Scalar tmp431 = sqrt((tmp428*tmp428) + (tmp429*tmp429) + (tmp430*tmp430));
+      const Scalar tmp436 = sqrt(tmp386 + ((-tmp173 - tmp421)*(-tmp173 - tmp421))
+          + ((-tmp175 - tmp422)*(-tmp175 - tmp422)));
+      const Scalar tmp437 = (Scalar(1)/tmp436);
+      const Scalar tmp438 = tmp431 - tmp436;
+      const Scalar tmp439 = tmp437*kappa;
+      const Scalar tmp442 = -tmp393 - pos(6);
+      const Scalar tmp443 = -tmp395 - pos(7);
+      const Scalar tmp444 = -tmp397 - pos(8);
+      const Scalar tmp445 = sqrt((tmp442*tmp442) + (tmp443*tmp443) + (tmp444*tmp444));
+      const Scalar tmp450 = sqrt(((tmp141 - tmp173)*(tmp141 - tmp173))
+          + ((tmp143 - tmp175)*(tmp143 - tmp175)));
+      const Scalar tmp451 = (Scalar(1)/tmp450);
+      const Scalar tmp452 = tmp445 - tmp450;
+      const Scalar tmp453 = tmp451*kappa;
       Scalar result;
-      result = Scalar(1.0)*kappa*(tmp246*tmp246) + Scalar(0.7808688094430303)*kappa*(tmp202*tmp202)
-          + Scalar(0.8574929257125443)*kappa*(tmp215*tmp215)
-          + Scalar(1.015346165133619)*kappa*(tmp231*tmp231)
-          + Scalar(1.3736056394868903)*kappa*(tmp269*tmp269)
-          + Scalar(1.4907119849998598)*kappa*(tmp256*tmp256);
+      result = (Scalar(0.5))*tmp370*(tmp369*tmp369) + (Scalar(0.5))*tmp390*(tmp389*tmp389)
+          + (Scalar(0.5))*tmp409*(tmp408*tmp408) + (Scalar(0.5))*tmp426*(tmp425*tmp425)
+          + (Scalar(0.5))*tmp439*(tmp438*tmp438) + (Scalar(0.5))*tmp453*(tmp452*tmp452);
       return result;
     }
 
@@ -9774,55 +11175,123 @@ struct RigidBodyEulerYzx {
     /// \param[in] t  time
     /// \param[in] params  model parameters
     /// \return C (num_constraints)
-    /// Ops: 99
+    /// Ops: 269
     template <typename Scalar>
     static ConstraintVector<Scalar> constraint_violations(const XVector<Scalar>& pos,
                                                           const Scalar& /*t*/,
-                                                          const Params& /*params*/) {
+                                                          const Params& params) {
       using std::sqrt;
-      const Scalar tmp198 = pos(3) - pos(0);
-      const Scalar tmp199 = pos(4) - pos(1);
-      const Scalar tmp200 = pos(5) - pos(2);
-      const Scalar tmp201 = sqrt((tmp198*tmp198) + (tmp199*tmp199) + (tmp200*tmp200));
-      const Scalar tmp202 = Scalar(-0.6403124237432849) + tmp201;
-      const Scalar tmp208 = -pos(6);
-      const Scalar tmp209 = -tmp208 - pos(0);
-      const Scalar tmp210 = -pos(7);
-      const Scalar tmp211 = -tmp210 - pos(1);
-      const Scalar tmp212 = -pos(8);
-      const Scalar tmp213 = -tmp212 - pos(2);
-      const Scalar tmp214 = sqrt((tmp209*tmp209) + (tmp211*tmp211) + (tmp213*tmp213));
-      const Scalar tmp215 = Scalar(-0.58309518948453) + tmp214;
-      const Scalar tmp224 = -pos(9);
-      const Scalar tmp225 = -tmp224 - pos(0);
-      const Scalar tmp226 = -pos(10);
-      const Scalar tmp227 = -tmp226 - pos(1);
-      const Scalar tmp228 = -pos(11);
-      const Scalar tmp229 = -tmp228 - pos(2);
-      const Scalar tmp230 = sqrt((tmp225*tmp225) + (tmp227*tmp227) + (tmp229*tmp229));
-      const Scalar tmp231 = Scalar(-0.49244289008980524) + tmp230;
-      const Scalar tmp242 = -tmp208 - pos(3);
-      const Scalar tmp243 = -tmp210 - pos(4);
-      const Scalar tmp244 = -tmp212 - pos(5);
-      const Scalar tmp245 = sqrt((tmp242*tmp242) + (tmp243*tmp243) + (tmp244*tmp244));
-      const Scalar tmp246 = Scalar(-0.5) + tmp245;
-      const Scalar tmp252 = -tmp224 - pos(3);
-      const Scalar tmp253 = -tmp226 - pos(4);
-      const Scalar tmp254 = -tmp228 - pos(5);
-      const Scalar tmp255 = sqrt((tmp252*tmp252) + (tmp253*tmp253) + (tmp254*tmp254));
-      const Scalar tmp256 = Scalar(-0.33541019662496846) + tmp255;
-      const Scalar tmp265 = -tmp224 - pos(6);
-      const Scalar tmp266 = -tmp226 - pos(7);
-      const Scalar tmp267 = -tmp228 - pos(8);
-      const Scalar tmp268 = sqrt((tmp265*tmp265) + (tmp266*tmp266) + (tmp267*tmp267));
-      const Scalar tmp269 = Scalar(-0.3640054944640259) + tmp268;
+      const Scalar m = Scalar(params.m);
+      const Scalar a = Scalar(params.a);
+      const Scalar b = Scalar(params.b);
+      const Scalar c = Scalar(params.c);
+      const Scalar tmp10 = (Scalar(1)/sqrt(m));
+      const Scalar tmp11 = (a*a);
+      const Scalar tmp12 = (b*b);
+      const Scalar tmp13 = m*(tmp11 + tmp12);
+      const Scalar tmp14 = (c*c);
+      const Scalar tmp15 = tmp11 + tmp14;
+      const Scalar tmp16 = tmp15*m;
+      const Scalar tmp17 = tmp12 + tmp14;
+      const Scalar tmp18 = tmp17*m;
+      const Scalar tmp19 = Scalar(0.005689254019167049)*tmp18 + Scalar(0.010556171822976032)*tmp16
+          - Scalar(0.01624542584214308)*tmp13;
+      const Scalar tmp20 = Scalar(0.041142942152109445)*tmp18 + Scalar(0.028423816083747767)*tmp13
+          - Scalar(0.027900091569190537)*tmp16;
+      const Scalar tmp21 = sqrt(tmp20);
+      const Scalar tmp22 = (Scalar(1)/tmp21);
+      const Scalar tmp23 = tmp19*tmp22;
+      const Scalar tmp24 = (Scalar(1)/tmp20);
+      const Scalar tmp25 = Scalar(0.021737886292675604)*tmp13 + Scalar(0.04006485617007295)*tmp16
+          - Scalar(0.020136075796081898)*tmp18 - tmp24*(tmp19*tmp19);
+      const Scalar tmp26 = sqrt(tmp25);
+      const Scalar tmp27 = tmp23 + tmp26;
+      const Scalar tmp33 = -Scalar(0.0257737061664756)*tmp13 - Scalar(0.003316897780257798)*tmp18
+          + Scalar(0.0290906039467334)*tmp15*m;
+      const Scalar tmp34 = tmp22*tmp33;
+      const Scalar tmp35 = (Scalar(1)/tmp25);
+      const Scalar tmp36 = tmp24*tmp33;
+      const Scalar tmp37 = -Scalar(0.03161742478199714)*tmp13 - Scalar(0.004414255047715874)*tmp16
+          - tmp19*tmp36 + Scalar(0.03603167982971302)*tmp17*m;
+      const Scalar tmp38 = -Scalar(0.008495035709756703)*tmp13 - tmp24*(tmp33*tmp33)
+          - tmp35*(tmp37*tmp37) + Scalar(0.02950190206578425)*tmp15*m
+          + Scalar(0.020659800310639128)*tmp17*m;
+      const Scalar tmp39 = sqrt(tmp38);
+      const Scalar tmp40 = tmp37/tmp26;
+      const Scalar tmp41 = tmp39 + tmp40;
+      const Scalar tmp42 = tmp34 + tmp41;
+      const Scalar tmp117 = tmp23 - tmp26;
+      const Scalar tmp118 = tmp10*tmp117;
+      const Scalar tmp119 = tmp34 - tmp41;
+      const Scalar tmp120 = tmp10*tmp119;
+      const Scalar tmp140 = -tmp117;
+      const Scalar tmp141 = tmp10*tmp140;
+      const Scalar tmp142 = tmp40 - tmp34 - tmp39;
+      const Scalar tmp143 = tmp10*tmp142;
+      const Scalar tmp172 = -tmp27;
+      const Scalar tmp173 = tmp10*tmp172;
+      const Scalar tmp174 = tmp39 - tmp34 - tmp40;
+      const Scalar tmp175 = tmp10*tmp174;
+      const Scalar tmp357 = pos(3) - pos(0);
+      const Scalar tmp358 = pos(4) - pos(1);
+      const Scalar tmp359 = pos(5) - pos(2);
+      const Scalar tmp360 = sqrt((tmp357*tmp357) + (tmp358*tmp358) + (tmp359*tmp359));
+      const Scalar tmp365 = -tmp10*tmp27;
+      const Scalar tmp366 = -tmp10*tmp42;
+      const Scalar tmp367 = sqrt(((-tmp118 - tmp365)*(-tmp118 - tmp365))
+          + ((-tmp120 - tmp366)*(-tmp120 - tmp366)));
+      const Scalar tmp369 = tmp360 - tmp367;
+      const Scalar tmp373 = -pos(6);
+      const Scalar tmp374 = -tmp373 - pos(0);
+      const Scalar tmp375 = -pos(7);
+      const Scalar tmp376 = -tmp375 - pos(1);
+      const Scalar tmp377 = -pos(8);
+      const Scalar tmp378 = -tmp377 - pos(2);
+      const Scalar tmp379 = sqrt((tmp374*tmp374) + (tmp376*tmp376) + (tmp378*tmp378));
+      const Scalar tmp386 = Scalar(4)*tmp20/m;
+      const Scalar tmp387 = sqrt(tmp386 + ((-tmp141 - tmp365)*(-tmp141 - tmp365))
+          + ((-tmp143 - tmp366)*(-tmp143 - tmp366)));
+      const Scalar tmp389 = tmp379 - tmp387;
+      const Scalar tmp393 = -pos(9);
+      const Scalar tmp394 = -tmp393 - pos(0);
+      const Scalar tmp395 = -pos(10);
+      const Scalar tmp396 = -tmp395 - pos(1);
+      const Scalar tmp397 = -pos(11);
+      const Scalar tmp398 = -tmp397 - pos(2);
+      const Scalar tmp399 = sqrt((tmp394*tmp394) + (tmp396*tmp396) + (tmp398*tmp398));
+      const Scalar tmp406 = sqrt(tmp386 + ((-tmp173 - tmp365)*(-tmp173 - tmp365))
+          + ((-tmp175 - tmp366)*(-tmp175 - tmp366)));
+      const Scalar tmp408 = tmp399 - tmp406;
+      const Scalar tmp413 = -tmp373 - pos(3);
+      const Scalar tmp414 = -tmp375 - pos(4);
+      const Scalar tmp415 = -tmp377 - pos(5);
+      const Scalar tmp416 = sqrt((tmp413*tmp413) + (tmp414*tmp414) + (tmp415*tmp415));
+      const Scalar tmp421 = -tmp118;
+      const Scalar tmp422 = -tmp120;
+      const Scalar tmp423 = sqrt(tmp386 + ((-tmp141 - tmp421)*(-tmp141 - tmp421))
+          + ((-tmp143 - tmp422)*(-tmp143 - tmp422)));
+      const Scalar tmp425 = tmp416 - tmp423;
+      const Scalar tmp428 = -tmp393 - pos(3);
+      const Scalar tmp429 = -tmp395 - pos(4);
+      const Scalar tmp430 = -tmp397 - pos(5);
+      const Scalar tmp431 = sqrt((tmp428*tmp428) + (tmp429*tmp429) + (tmp430*tmp430));
+      const Scalar tmp436 = sqrt(tmp386 + ((-tmp173 - tmp421)*(-tmp173 - tmp421))
+          + ((-tmp175 - tmp422)*(-tmp175 - tmp422)));
+      const Scalar tmp438 = tmp431 - tmp436;
+      const Scalar tmp442 = -tmp393 - pos(6);
+      const Scalar tmp443 = -tmp395 - pos(7);
+      const Scalar tmp444 = -tmp397 - pos(8);
+      const Scalar tmp445 = sqrt((tmp442*tmp442) + (tmp443*tmp443) + (tmp444*tmp444));
+      const Scalar tmp450 = sqrt(((tmp141 - tmp173)*(tmp141 - tmp173))
+          + ((tmp143 - tmp175)*(tmp143 - tmp175)));
+      const Scalar tmp452 = tmp445 - tmp450;
       ConstraintVector<Scalar> result;
-      result(0) = tmp202;
-      result(1) = tmp215;
-      result(2) = tmp231;
-      result(3) = tmp246;
-      result(4) = tmp256;
-      result(5) = tmp269;
+      result(0) = tmp369;
+      result(1) = tmp389;
+      result(2) = tmp408;
+      result(3) = tmp425;
+      result(4) = tmp438;
+      result(5) = tmp452;
       return result;
     }
   };

@@ -12,8 +12,8 @@
 //   = 1.519 and r = -0.7722, theta = -1.622; mapping positions back to q (the inverse map,
 //   an atlas) depends on the first guess
 //
-// Total ops: 430
-// Intermediate terms (113)
+// Total ops: 443
+// Intermediate terms (118)
 // Output terms (42)
 #pragma once
 
@@ -147,7 +147,7 @@ struct SpringPendulum {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return Ft (nq)
-  /// Ops: 48
+  /// Ops: 51
   template <typename Scalar>
   static QVector<Scalar> applied_forces(const QVector<Scalar>& q,
                                         const QVector<Scalar>& v,
@@ -171,28 +171,30 @@ struct SpringPendulum {
     const Scalar tmp3 = (tmp2*tmp2);
     const Scalar tmp5 = (r*r);
     const Scalar tmp6 = tmp1*tmp5 + tmp3*tmp5;
-    const Scalar tmp8 = tmp0*r_dot;
-    const Scalar tmp9 = tmp2*r;
-    const Scalar tmp10 = tmp8 + tmp9*theta_dot;
-    const Scalar tmp11 = tmp0*r;
-    const Scalar tmp12 = sqrt(tmp6);
-    const Scalar tmp13 = (Scalar(1)/tmp12);
-    const Scalar tmp14 = tmp12 - L;
-    const Scalar tmp15 = (Scalar(1)/L);
-    const Scalar tmp16 = tmp15*k;
-    const Scalar tmp17 = -tmp10*c_air - tmp11*tmp13*tmp14*tmp16;
-    const Scalar tmp18 = tmp0*tmp17;
-    const Scalar tmp19 = g*m;
-    const Scalar tmp20 = tmp2*r_dot;
-    const Scalar tmp21 = -tmp20 + tmp11*theta_dot;
-    const Scalar tmp22 = -tmp19 - tmp21*c_air + tmp13*tmp14*tmp15*tmp2*k*r;
-    const Scalar tmp23 = tmp2*tmp22;
-    const Scalar tmp24 = tmp17*tmp9;
-    const Scalar tmp25 = tmp11*tmp22;
-    const Scalar tmp26 = tmp24 + tmp25;
+    const Scalar tmp8 = g*m;
+    const Scalar tmp9 = tmp2*tmp8;
+    const Scalar tmp10 = tmp0*r_dot;
+    const Scalar tmp11 = tmp2*r;
+    const Scalar tmp12 = tmp10 + tmp11*theta_dot;
+    const Scalar tmp13 = tmp0*r;
+    const Scalar tmp14 = sqrt(tmp6);
+    const Scalar tmp15 = (Scalar(1)/tmp14);
+    const Scalar tmp16 = tmp14 - L;
+    const Scalar tmp17 = (Scalar(1)/L);
+    const Scalar tmp18 = tmp17*k;
+    const Scalar tmp19 = -tmp12*c_air - tmp13*tmp15*tmp16*tmp18;
+    const Scalar tmp20 = tmp0*tmp19;
+    const Scalar tmp21 = tmp2*r_dot;
+    const Scalar tmp22 = -tmp21 + tmp13*theta_dot;
+    const Scalar tmp23 = -tmp22*c_air + tmp15*tmp16*tmp17*tmp2*k*r;
+    const Scalar tmp24 = tmp2*tmp23;
+    const Scalar tmp25 = tmp20 + tmp9 - tmp24;
+    const Scalar tmp26 = tmp13*tmp8;
+    const Scalar tmp27 = tmp13*tmp23;
+    const Scalar tmp28 = tmp11*tmp19;
     QVector<Scalar> result;
-    result(0) = tmp18 - tmp23;
-    result(1) = tmp26;
+    result(0) = tmp25;
+    result(1) = tmp27 + tmp28 - tmp26;
     return result;
   }
 
@@ -235,20 +237,20 @@ struct SpringPendulum {
     const Scalar m = Scalar(params.m);
     const Scalar tmp0 = sin(theta);
     const Scalar tmp2 = cos(theta);
-    const Scalar tmp8 = tmp0*r_dot;
-    const Scalar tmp9 = tmp2*r;
-    const Scalar tmp10 = tmp8 + tmp9*theta_dot;
-    const Scalar tmp11 = tmp0*r;
-    const Scalar tmp20 = tmp2*r_dot;
-    const Scalar tmp21 = -tmp20 + tmp11*theta_dot;
-    const Scalar tmp27 = tmp10*theta_dot + tmp8*theta_dot;
-    const Scalar tmp28 = tmp20*theta_dot - tmp21*theta_dot;
-    const Scalar tmp29 = m*(tmp0*tmp28 - tmp2*tmp27);
-    const Scalar tmp30 = m*(tmp11*tmp27 + tmp28*tmp9);
-    const Scalar tmp31 = -tmp30;
+    const Scalar tmp10 = tmp0*r_dot;
+    const Scalar tmp11 = tmp2*r;
+    const Scalar tmp12 = tmp10 + tmp11*theta_dot;
+    const Scalar tmp13 = tmp0*r;
+    const Scalar tmp21 = tmp2*r_dot;
+    const Scalar tmp22 = -tmp21 + tmp13*theta_dot;
+    const Scalar tmp29 = tmp10*theta_dot + tmp12*theta_dot;
+    const Scalar tmp30 = tmp21*theta_dot - tmp22*theta_dot;
+    const Scalar tmp31 = m*(tmp0*tmp30 - tmp2*tmp29);
+    const Scalar tmp32 = -tmp31;
+    const Scalar tmp33 = m*(tmp11*tmp30 + tmp13*tmp29);
     QVector<Scalar> result;
-    result(0) = -tmp29;
-    result(1) = tmp31;
+    result(0) = tmp32;
+    result(1) = -tmp33;
     return result;
   }
 
@@ -258,7 +260,7 @@ struct SpringPendulum {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return Ft + Fi (nq)
-  /// Ops: 68
+  /// Ops: 72
   template <typename Scalar>
   static QVector<Scalar> forces(const QVector<Scalar>& q,
                                 const QVector<Scalar>& v,
@@ -282,34 +284,36 @@ struct SpringPendulum {
     const Scalar tmp3 = (tmp2*tmp2);
     const Scalar tmp5 = (r*r);
     const Scalar tmp6 = tmp1*tmp5 + tmp3*tmp5;
-    const Scalar tmp8 = tmp0*r_dot;
-    const Scalar tmp9 = tmp2*r;
-    const Scalar tmp10 = tmp8 + tmp9*theta_dot;
-    const Scalar tmp11 = tmp0*r;
-    const Scalar tmp12 = sqrt(tmp6);
-    const Scalar tmp13 = (Scalar(1)/tmp12);
-    const Scalar tmp14 = tmp12 - L;
-    const Scalar tmp15 = (Scalar(1)/L);
-    const Scalar tmp16 = tmp15*k;
-    const Scalar tmp17 = -tmp10*c_air - tmp11*tmp13*tmp14*tmp16;
-    const Scalar tmp18 = tmp0*tmp17;
-    const Scalar tmp19 = g*m;
-    const Scalar tmp20 = tmp2*r_dot;
-    const Scalar tmp21 = -tmp20 + tmp11*theta_dot;
-    const Scalar tmp22 = -tmp19 - tmp21*c_air + tmp13*tmp14*tmp15*tmp2*k*r;
-    const Scalar tmp23 = tmp2*tmp22;
-    const Scalar tmp24 = tmp17*tmp9;
-    const Scalar tmp25 = tmp11*tmp22;
-    const Scalar tmp26 = tmp24 + tmp25;
-    const Scalar tmp27 = tmp10*theta_dot + tmp8*theta_dot;
-    const Scalar tmp28 = tmp20*theta_dot - tmp21*theta_dot;
-    const Scalar tmp29 = m*(tmp0*tmp28 - tmp2*tmp27);
-    const Scalar tmp30 = m*(tmp11*tmp27 + tmp28*tmp9);
-    const Scalar tmp31 = -tmp30;
-    const Scalar tmp32 = tmp23 + tmp29 - tmp18;
+    const Scalar tmp8 = g*m;
+    const Scalar tmp9 = tmp2*tmp8;
+    const Scalar tmp10 = tmp0*r_dot;
+    const Scalar tmp11 = tmp2*r;
+    const Scalar tmp12 = tmp10 + tmp11*theta_dot;
+    const Scalar tmp13 = tmp0*r;
+    const Scalar tmp14 = sqrt(tmp6);
+    const Scalar tmp15 = (Scalar(1)/tmp14);
+    const Scalar tmp16 = tmp14 - L;
+    const Scalar tmp17 = (Scalar(1)/L);
+    const Scalar tmp18 = tmp17*k;
+    const Scalar tmp19 = -tmp12*c_air - tmp13*tmp15*tmp16*tmp18;
+    const Scalar tmp20 = tmp0*tmp19;
+    const Scalar tmp21 = tmp2*r_dot;
+    const Scalar tmp22 = -tmp21 + tmp13*theta_dot;
+    const Scalar tmp23 = -tmp22*c_air + tmp15*tmp16*tmp17*tmp2*k*r;
+    const Scalar tmp24 = tmp2*tmp23;
+    const Scalar tmp25 = tmp20 + tmp9 - tmp24;
+    const Scalar tmp26 = tmp13*tmp8;
+    const Scalar tmp27 = tmp13*tmp23;
+    const Scalar tmp28 = tmp11*tmp19;
+    const Scalar tmp29 = tmp10*theta_dot + tmp12*theta_dot;
+    const Scalar tmp30 = tmp21*theta_dot - tmp22*theta_dot;
+    const Scalar tmp31 = m*(tmp0*tmp30 - tmp2*tmp29);
+    const Scalar tmp32 = -tmp31;
+    const Scalar tmp33 = m*(tmp11*tmp30 + tmp13*tmp29);
+    const Scalar tmp34 = tmp26 + tmp33 - tmp27 - tmp28;
     QVector<Scalar> result;
-    result(0) = -tmp32;
-    result(1) = tmp26 + tmp31;
+    result(0) = tmp25 + tmp32;
+    result(1) = -tmp34;
     return result;
   }
 
@@ -319,7 +323,7 @@ struct SpringPendulum {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// Mt and f must not be null.
-  /// Ops: 71
+  /// Ops: 75
   template <typename Scalar>
   static void dynamics(const QVector<Scalar>& q,
                        const QVector<Scalar>& v,
@@ -347,36 +351,38 @@ struct SpringPendulum {
     const Scalar tmp5 = (r*r);
     const Scalar tmp6 = tmp1*tmp5 + tmp3*tmp5;
     const Scalar tmp7 = tmp6*m;
-    const Scalar tmp8 = tmp0*r_dot;
-    const Scalar tmp9 = tmp2*r;
-    const Scalar tmp10 = tmp8 + tmp9*theta_dot;
-    const Scalar tmp11 = tmp0*r;
-    const Scalar tmp12 = sqrt(tmp6);
-    const Scalar tmp13 = (Scalar(1)/tmp12);
-    const Scalar tmp14 = tmp12 - L;
-    const Scalar tmp15 = (Scalar(1)/L);
-    const Scalar tmp16 = tmp15*k;
-    const Scalar tmp17 = -tmp10*c_air - tmp11*tmp13*tmp14*tmp16;
-    const Scalar tmp18 = tmp0*tmp17;
-    const Scalar tmp19 = g*m;
-    const Scalar tmp20 = tmp2*r_dot;
-    const Scalar tmp21 = -tmp20 + tmp11*theta_dot;
-    const Scalar tmp22 = -tmp19 - tmp21*c_air + tmp13*tmp14*tmp15*tmp2*k*r;
-    const Scalar tmp23 = tmp2*tmp22;
-    const Scalar tmp24 = tmp17*tmp9;
-    const Scalar tmp25 = tmp11*tmp22;
-    const Scalar tmp26 = tmp24 + tmp25;
-    const Scalar tmp27 = tmp10*theta_dot + tmp8*theta_dot;
-    const Scalar tmp28 = tmp20*theta_dot - tmp21*theta_dot;
-    const Scalar tmp29 = m*(tmp0*tmp28 - tmp2*tmp27);
-    const Scalar tmp30 = m*(tmp11*tmp27 + tmp28*tmp9);
-    const Scalar tmp31 = -tmp30;
-    const Scalar tmp32 = tmp23 + tmp29 - tmp18;
+    const Scalar tmp8 = g*m;
+    const Scalar tmp9 = tmp2*tmp8;
+    const Scalar tmp10 = tmp0*r_dot;
+    const Scalar tmp11 = tmp2*r;
+    const Scalar tmp12 = tmp10 + tmp11*theta_dot;
+    const Scalar tmp13 = tmp0*r;
+    const Scalar tmp14 = sqrt(tmp6);
+    const Scalar tmp15 = (Scalar(1)/tmp14);
+    const Scalar tmp16 = tmp14 - L;
+    const Scalar tmp17 = (Scalar(1)/L);
+    const Scalar tmp18 = tmp17*k;
+    const Scalar tmp19 = -tmp12*c_air - tmp13*tmp15*tmp16*tmp18;
+    const Scalar tmp20 = tmp0*tmp19;
+    const Scalar tmp21 = tmp2*r_dot;
+    const Scalar tmp22 = -tmp21 + tmp13*theta_dot;
+    const Scalar tmp23 = -tmp22*c_air + tmp15*tmp16*tmp17*tmp2*k*r;
+    const Scalar tmp24 = tmp2*tmp23;
+    const Scalar tmp25 = tmp20 + tmp9 - tmp24;
+    const Scalar tmp26 = tmp13*tmp8;
+    const Scalar tmp27 = tmp13*tmp23;
+    const Scalar tmp28 = tmp11*tmp19;
+    const Scalar tmp29 = tmp10*theta_dot + tmp12*theta_dot;
+    const Scalar tmp30 = tmp21*theta_dot - tmp22*theta_dot;
+    const Scalar tmp31 = m*(tmp0*tmp30 - tmp2*tmp29);
+    const Scalar tmp32 = -tmp31;
+    const Scalar tmp33 = m*(tmp11*tmp30 + tmp13*tmp29);
+    const Scalar tmp34 = tmp26 + tmp33 - tmp27 - tmp28;
     (*Mt)(0, 0) = tmp4;
     (*Mt)(1, 0) = Scalar(0);
     (*Mt)(1, 1) = tmp7;
-    (*f)(0) = -tmp32;
-    (*f)(1) = tmp26 + tmp31;
+    (*f)(0) = tmp25 + tmp32;
+    (*f)(1) = -tmp34;
     (*Mt)(0, 1) = (*Mt)(1, 0);
   }
 
@@ -388,7 +394,7 @@ struct SpringPendulum {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return r = tau (nq)
-  /// Ops: 75
+  /// Ops: 78
   template <typename Scalar>
   static QVector<Scalar> inverse_dynamics(const QVector<Scalar>& q,
                                           const QVector<Scalar>& v,
@@ -417,32 +423,34 @@ struct SpringPendulum {
     const Scalar tmp5 = (r*r);
     const Scalar tmp6 = tmp1*tmp5 + tmp3*tmp5;
     const Scalar tmp7 = tmp6*m;
-    const Scalar tmp8 = tmp0*r_dot;
-    const Scalar tmp9 = tmp2*r;
-    const Scalar tmp10 = tmp8 + tmp9*theta_dot;
-    const Scalar tmp11 = tmp0*r;
-    const Scalar tmp12 = sqrt(tmp6);
-    const Scalar tmp13 = (Scalar(1)/tmp12);
-    const Scalar tmp14 = tmp12 - L;
-    const Scalar tmp15 = (Scalar(1)/L);
-    const Scalar tmp16 = tmp15*k;
-    const Scalar tmp17 = -tmp10*c_air - tmp11*tmp13*tmp14*tmp16;
-    const Scalar tmp18 = tmp0*tmp17;
-    const Scalar tmp19 = g*m;
-    const Scalar tmp20 = tmp2*r_dot;
-    const Scalar tmp21 = -tmp20 + tmp11*theta_dot;
-    const Scalar tmp22 = -tmp19 - tmp21*c_air + tmp13*tmp14*tmp15*tmp2*k*r;
-    const Scalar tmp23 = tmp2*tmp22;
-    const Scalar tmp24 = tmp17*tmp9;
-    const Scalar tmp25 = tmp11*tmp22;
-    const Scalar tmp27 = tmp10*theta_dot + tmp8*theta_dot;
-    const Scalar tmp28 = tmp20*theta_dot - tmp21*theta_dot;
-    const Scalar tmp29 = m*(tmp0*tmp28 - tmp2*tmp27);
-    const Scalar tmp30 = m*(tmp11*tmp27 + tmp28*tmp9);
-    const Scalar tmp32 = tmp23 + tmp29 - tmp18;
+    const Scalar tmp8 = g*m;
+    const Scalar tmp9 = tmp2*tmp8;
+    const Scalar tmp10 = tmp0*r_dot;
+    const Scalar tmp11 = tmp2*r;
+    const Scalar tmp12 = tmp10 + tmp11*theta_dot;
+    const Scalar tmp13 = tmp0*r;
+    const Scalar tmp14 = sqrt(tmp6);
+    const Scalar tmp15 = (Scalar(1)/tmp14);
+    const Scalar tmp16 = tmp14 - L;
+    const Scalar tmp17 = (Scalar(1)/L);
+    const Scalar tmp18 = tmp17*k;
+    const Scalar tmp19 = -tmp12*c_air - tmp13*tmp15*tmp16*tmp18;
+    const Scalar tmp20 = tmp0*tmp19;
+    const Scalar tmp21 = tmp2*r_dot;
+    const Scalar tmp22 = -tmp21 + tmp13*theta_dot;
+    const Scalar tmp23 = -tmp22*c_air + tmp15*tmp16*tmp17*tmp2*k*r;
+    const Scalar tmp24 = tmp2*tmp23;
+    const Scalar tmp26 = tmp13*tmp8;
+    const Scalar tmp27 = tmp13*tmp23;
+    const Scalar tmp28 = tmp11*tmp19;
+    const Scalar tmp29 = tmp10*theta_dot + tmp12*theta_dot;
+    const Scalar tmp30 = tmp21*theta_dot - tmp22*theta_dot;
+    const Scalar tmp31 = m*(tmp0*tmp30 - tmp2*tmp29);
+    const Scalar tmp33 = m*(tmp11*tmp30 + tmp13*tmp29);
+    const Scalar tmp34 = tmp26 + tmp33 - tmp27 - tmp28;
     QVector<Scalar> result;
-    result(0) = tmp32 + tmp4*r_ddot;
-    result(1) = tmp30 - tmp24 - tmp25 + tmp7*theta_ddot;
+    result(0) = tmp24 + tmp31 - tmp20 - tmp9 + tmp4*r_ddot;
+    result(1) = tmp34 + tmp7*theta_ddot;
     return result;
   }
 
@@ -453,7 +461,7 @@ struct SpringPendulum {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// dr_dq and dr_dv must not be null.
-  /// Ops: 318
+  /// Ops: 323
   template <typename Scalar>
   static void residual_jacobians(const QVector<Scalar>& q,
                                  const QVector<Scalar>& v,
@@ -482,100 +490,103 @@ struct SpringPendulum {
     const Scalar tmp3 = (tmp2*tmp2);
     const Scalar tmp5 = (r*r);
     const Scalar tmp6 = tmp1*tmp5 + tmp3*tmp5;
-    const Scalar tmp8 = tmp0*r_dot;
-    const Scalar tmp9 = tmp2*r;
-    const Scalar tmp10 = tmp8 + tmp9*theta_dot;
-    const Scalar tmp11 = tmp0*r;
-    const Scalar tmp12 = sqrt(tmp6);
-    const Scalar tmp13 = (Scalar(1)/tmp12);
-    const Scalar tmp14 = tmp12 - L;
-    const Scalar tmp15 = (Scalar(1)/L);
-    const Scalar tmp16 = tmp15*k;
-    const Scalar tmp17 = -tmp10*c_air - tmp11*tmp13*tmp14*tmp16;
-    const Scalar tmp19 = g*m;
-    const Scalar tmp20 = tmp2*r_dot;
-    const Scalar tmp21 = -tmp20 + tmp11*theta_dot;
-    const Scalar tmp22 = -tmp19 - tmp21*c_air + tmp13*tmp14*tmp15*tmp2*k*r;
-    const Scalar tmp27 = tmp10*theta_dot + tmp8*theta_dot;
-    const Scalar tmp28 = tmp20*theta_dot - tmp21*theta_dot;
-    const Scalar tmp47 = Scalar(2)*r;
-    const Scalar tmp48 = (tmp1 + tmp3)*tmp47;
-    const Scalar tmp49 = m*tmp48;
-    const Scalar tmp50 = theta_dot*tmp2;
-    const Scalar tmp51 = (Scalar(0.5))/sqrt(tmp6)*tmp48;
-    const Scalar tmp52 = -(Scalar(1)/(tmp12*tmp12))*tmp51;
-    const Scalar tmp53 = -c_air*tmp50 - tmp13*tmp14*tmp16*tmp0 - tmp11*tmp14*tmp16*tmp52
-        - tmp11*tmp13*tmp16*tmp51;
-    const Scalar tmp54 = tmp0*tmp53;
-    const Scalar tmp55 = theta_dot*tmp0;
-    const Scalar tmp56 = tmp13*tmp14*tmp15*tmp2*k + tmp14*tmp15*tmp2*k*r*tmp52
-        + tmp13*tmp15*tmp2*k*r*tmp51 - c_air*tmp55;
-    const Scalar tmp57 = tmp2*tmp56;
-    const Scalar tmp58 = tmp9*tmp53 + tmp17*tmp2;
-    const Scalar tmp59 = tmp22*tmp0 + tmp11*tmp56;
-    const Scalar tmp60 = theta_dot*tmp50;
-    const Scalar tmp61 = -theta_dot*tmp55;
-    const Scalar tmp62 = -tmp2*m*tmp60 + tmp0*m*tmp61;
-    const Scalar tmp63 = tmp27*m*tmp0 + tmp11*m*tmp60 + tmp9*m*tmp61 + tmp28*m*tmp2;
-    const Scalar tmp64 = -tmp54 + tmp57 + tmp62;
-    const Scalar tmp65 = Scalar(2)*tmp0*tmp2;
-    const Scalar tmp66 = -tmp0;
-    const Scalar tmp67 = Scalar(2)*tmp2*tmp66;
-    const Scalar tmp68 = m*tmp65 + m*tmp67;
-    const Scalar tmp69 = tmp5*tmp65 + tmp5*tmp67;
-    const Scalar tmp70 = m*tmp69;
-    const Scalar tmp71 = r_dot*tmp2;
-    const Scalar tmp72 = r*tmp66;
-    const Scalar tmp73 = tmp71 + theta_dot*tmp72;
-    const Scalar tmp74 = r*tmp2;
-    const Scalar tmp75 = (Scalar(0.5))/sqrt(tmp6)*tmp69;
-    const Scalar tmp76 = -(Scalar(1)/(tmp12*tmp12))*tmp75;
-    const Scalar tmp77 = -c_air*tmp73 - tmp13*tmp14*tmp16*tmp74 - tmp11*tmp14*tmp16*tmp76
-        - tmp11*tmp13*tmp16*tmp75;
-    const Scalar tmp78 = tmp17*tmp2 + tmp0*tmp77;
-    const Scalar tmp79 = r_dot*tmp66;
-    const Scalar tmp80 = theta_dot*tmp74 - tmp79;
-    const Scalar tmp81 = tmp14*tmp15*tmp2*k*r*tmp76 + tmp13*tmp15*tmp2*k*r*tmp75
-        + tmp13*tmp14*tmp15*k*r*tmp66 - c_air*tmp80;
-    const Scalar tmp82 = tmp22*tmp66 + tmp2*tmp81;
-    const Scalar tmp83 = tmp9*tmp77 + tmp17*tmp72;
-    const Scalar tmp84 = tmp22*tmp74 + tmp11*tmp81;
-    const Scalar tmp85 = theta_dot*tmp73 + theta_dot*tmp71;
-    const Scalar tmp86 = theta_dot*tmp79 - theta_dot*tmp80;
-    const Scalar tmp87 = tmp28*m*tmp2 - tmp27*m*tmp66 - tmp2*m*tmp85 + tmp0*m*tmp86;
-    const Scalar tmp88 = tmp27*m*tmp74 + tmp11*m*tmp85 + tmp9*m*tmp86 + tmp28*m*tmp72;
-    const Scalar tmp89 = -tmp78 + tmp82 + tmp87;
-    const Scalar tmp90 = -c_air*tmp0;
-    const Scalar tmp91 = tmp0*tmp90;
-    const Scalar tmp92 = -tmp2;
-    const Scalar tmp93 = -c_air*tmp92;
-    const Scalar tmp94 = tmp2*tmp93;
-    const Scalar tmp95 = tmp9*tmp90;
-    const Scalar tmp96 = tmp11*tmp93;
-    const Scalar tmp97 = Scalar(2)*theta_dot*tmp0;
-    const Scalar tmp98 = theta_dot*tmp2 - theta_dot*tmp92;
-    const Scalar tmp99 = -tmp2*m*tmp97 + tmp0*m*tmp98;
-    const Scalar tmp100 = tmp11*m*tmp97 + tmp9*m*tmp98;
-    const Scalar tmp101 = -tmp91 + tmp94 + tmp99;
-    const Scalar tmp102 = -c_air*tmp9;
-    const Scalar tmp103 = tmp0*tmp102;
-    const Scalar tmp104 = -c_air*tmp11;
-    const Scalar tmp105 = tmp2*tmp104;
-    const Scalar tmp106 = tmp9*tmp102;
-    const Scalar tmp107 = tmp11*tmp104;
-    const Scalar tmp108 = tmp10 + tmp8 + theta_dot*tmp9;
-    const Scalar tmp109 = tmp20 - tmp21 - theta_dot*tmp11;
-    const Scalar tmp110 = -tmp2*m*tmp108 + tmp0*m*tmp109;
-    const Scalar tmp111 = tmp11*m*tmp108 + tmp9*m*tmp109;
-    const Scalar tmp112 = -tmp103 + tmp105 + tmp110;
-    (*dr_dq)(0, 0) = tmp64;
-    (*dr_dq)(0, 1) = tmp89 + r_ddot*tmp68;
-    (*dr_dq)(1, 0) = -tmp58 - tmp59 + tmp63 + theta_ddot*tmp49;
-    (*dr_dq)(1, 1) = -tmp83 - tmp84 + tmp88 + theta_ddot*tmp70;
-    (*dr_dv)(0, 0) = tmp101;
-    (*dr_dv)(0, 1) = tmp112;
-    (*dr_dv)(1, 0) = -tmp95 - tmp96 + tmp100;
-    (*dr_dv)(1, 1) = -tmp106 - tmp107 + tmp111;
+    const Scalar tmp8 = g*m;
+    const Scalar tmp10 = tmp0*r_dot;
+    const Scalar tmp11 = tmp2*r;
+    const Scalar tmp12 = tmp10 + tmp11*theta_dot;
+    const Scalar tmp13 = tmp0*r;
+    const Scalar tmp14 = sqrt(tmp6);
+    const Scalar tmp15 = (Scalar(1)/tmp14);
+    const Scalar tmp16 = tmp14 - L;
+    const Scalar tmp17 = (Scalar(1)/L);
+    const Scalar tmp18 = tmp17*k;
+    const Scalar tmp19 = -tmp12*c_air - tmp13*tmp15*tmp16*tmp18;
+    const Scalar tmp21 = tmp2*r_dot;
+    const Scalar tmp22 = -tmp21 + tmp13*theta_dot;
+    const Scalar tmp23 = -tmp22*c_air + tmp15*tmp16*tmp17*tmp2*k*r;
+    const Scalar tmp29 = tmp10*theta_dot + tmp12*theta_dot;
+    const Scalar tmp30 = tmp21*theta_dot - tmp22*theta_dot;
+    const Scalar tmp49 = Scalar(2)*r;
+    const Scalar tmp50 = (tmp1 + tmp3)*tmp49;
+    const Scalar tmp51 = m*tmp50;
+    const Scalar tmp52 = theta_dot*tmp2;
+    const Scalar tmp53 = (Scalar(0.5))/sqrt(tmp6)*tmp50;
+    const Scalar tmp54 = -(Scalar(1)/(tmp14*tmp14))*tmp53;
+    const Scalar tmp55 = -c_air*tmp52 - tmp15*tmp16*tmp18*tmp0 - tmp13*tmp16*tmp18*tmp54
+        - tmp13*tmp15*tmp18*tmp53;
+    const Scalar tmp56 = tmp0*tmp55;
+    const Scalar tmp57 = theta_dot*tmp0;
+    const Scalar tmp58 = tmp15*tmp16*tmp17*tmp2*k + tmp16*tmp17*tmp2*k*r*tmp54
+        + tmp15*tmp17*tmp2*k*r*tmp53 - c_air*tmp57;
+    const Scalar tmp59 = tmp2*tmp58;
+    const Scalar tmp60 = tmp8*tmp0;
+    const Scalar tmp61 = tmp23*tmp0 + tmp13*tmp58;
+    const Scalar tmp62 = tmp19*tmp2 + tmp11*tmp55;
+    const Scalar tmp63 = theta_dot*tmp52;
+    const Scalar tmp64 = -theta_dot*tmp57;
+    const Scalar tmp65 = -tmp2*m*tmp63 + tmp0*m*tmp64;
+    const Scalar tmp66 = tmp30*m*tmp2 + tmp29*m*tmp0 + tmp13*m*tmp63 + tmp11*m*tmp64;
+    const Scalar tmp67 = tmp60 - tmp61 - tmp62 + tmp66;
+    const Scalar tmp68 = Scalar(2)*tmp0*tmp2;
+    const Scalar tmp69 = -tmp0;
+    const Scalar tmp70 = Scalar(2)*tmp2*tmp69;
+    const Scalar tmp71 = m*tmp68 + m*tmp70;
+    const Scalar tmp72 = tmp5*tmp68 + tmp5*tmp70;
+    const Scalar tmp73 = m*tmp72;
+    const Scalar tmp74 = tmp8*tmp69;
+    const Scalar tmp75 = r_dot*tmp2;
+    const Scalar tmp76 = r*tmp69;
+    const Scalar tmp77 = tmp75 + theta_dot*tmp76;
+    const Scalar tmp78 = r*tmp2;
+    const Scalar tmp79 = (Scalar(0.5))/sqrt(tmp6)*tmp72;
+    const Scalar tmp80 = -(Scalar(1)/(tmp14*tmp14))*tmp79;
+    const Scalar tmp81 = -c_air*tmp77 - tmp15*tmp16*tmp18*tmp78 - tmp13*tmp16*tmp18*tmp80
+        - tmp13*tmp15*tmp18*tmp79;
+    const Scalar tmp82 = tmp19*tmp2 + tmp0*tmp81;
+    const Scalar tmp83 = r_dot*tmp69;
+    const Scalar tmp84 = theta_dot*tmp78 - tmp83;
+    const Scalar tmp85 = tmp16*tmp17*tmp2*k*r*tmp80 + tmp15*tmp17*tmp2*k*r*tmp79
+        + tmp15*tmp16*tmp17*k*r*tmp69 - c_air*tmp84;
+    const Scalar tmp86 = tmp23*tmp69 + tmp2*tmp85;
+    const Scalar tmp87 = tmp8*tmp78;
+    const Scalar tmp88 = tmp23*tmp78 + tmp13*tmp85;
+    const Scalar tmp89 = tmp19*tmp76 + tmp11*tmp81;
+    const Scalar tmp90 = theta_dot*tmp75 + theta_dot*tmp77;
+    const Scalar tmp91 = theta_dot*tmp83 - theta_dot*tmp84;
+    const Scalar tmp92 = tmp30*m*tmp2 - tmp29*m*tmp69 - tmp2*m*tmp90 + tmp0*m*tmp91;
+    const Scalar tmp93 = tmp30*m*tmp76 + tmp29*m*tmp78 + tmp13*m*tmp90 + tmp11*m*tmp91;
+    const Scalar tmp94 = tmp87 - tmp88 - tmp89 + tmp93;
+    const Scalar tmp95 = -c_air*tmp0;
+    const Scalar tmp96 = tmp0*tmp95;
+    const Scalar tmp97 = -tmp2;
+    const Scalar tmp98 = -c_air*tmp97;
+    const Scalar tmp99 = tmp2*tmp98;
+    const Scalar tmp100 = tmp13*tmp98;
+    const Scalar tmp101 = tmp11*tmp95;
+    const Scalar tmp102 = Scalar(2)*theta_dot*tmp0;
+    const Scalar tmp103 = theta_dot*tmp2 - theta_dot*tmp97;
+    const Scalar tmp104 = -tmp2*m*tmp102 + tmp0*m*tmp103;
+    const Scalar tmp105 = tmp13*m*tmp102 + tmp11*m*tmp103;
+    const Scalar tmp106 = -tmp100 - tmp101 + tmp105;
+    const Scalar tmp107 = -c_air*tmp11;
+    const Scalar tmp108 = tmp0*tmp107;
+    const Scalar tmp109 = -c_air*tmp13;
+    const Scalar tmp110 = tmp2*tmp109;
+    const Scalar tmp111 = tmp13*tmp109;
+    const Scalar tmp112 = tmp11*tmp107;
+    const Scalar tmp113 = tmp10 + tmp12 + theta_dot*tmp11;
+    const Scalar tmp114 = tmp21 - tmp22 - theta_dot*tmp13;
+    const Scalar tmp115 = -tmp2*m*tmp113 + tmp0*m*tmp114;
+    const Scalar tmp116 = tmp13*m*tmp113 + tmp11*m*tmp114;
+    const Scalar tmp117 = -tmp111 - tmp112 + tmp116;
+    (*dr_dq)(0, 0) = -tmp56 + tmp59 + tmp65;
+    (*dr_dq)(0, 1) = -tmp82 + tmp86 + tmp92 + r_ddot*tmp71 - tmp74;
+    (*dr_dq)(1, 0) = tmp67 + theta_ddot*tmp51;
+    (*dr_dq)(1, 1) = tmp94 + theta_ddot*tmp73;
+    (*dr_dv)(0, 0) = -tmp96 + tmp99 + tmp104;
+    (*dr_dv)(0, 1) = -tmp108 + tmp110 + tmp115;
+    (*dr_dv)(1, 0) = tmp106;
+    (*dr_dv)(1, 1) = tmp117;
   }
 
   /// Kinetic energy T = 1/2 xdot^T M xdot.
@@ -599,15 +610,15 @@ struct SpringPendulum {
     const Scalar m = Scalar(params.m);
     const Scalar tmp0 = sin(theta);
     const Scalar tmp2 = cos(theta);
-    const Scalar tmp8 = tmp0*r_dot;
-    const Scalar tmp9 = tmp2*r;
-    const Scalar tmp10 = tmp8 + tmp9*theta_dot;
-    const Scalar tmp11 = tmp0*r;
-    const Scalar tmp20 = tmp2*r_dot;
-    const Scalar tmp21 = -tmp20 + tmp11*theta_dot;
-    const Scalar tmp33 = (Scalar(0.5))*m*((tmp10*tmp10) + (tmp21*tmp21));
+    const Scalar tmp10 = tmp0*r_dot;
+    const Scalar tmp11 = tmp2*r;
+    const Scalar tmp12 = tmp10 + tmp11*theta_dot;
+    const Scalar tmp13 = tmp0*r;
+    const Scalar tmp21 = tmp2*r_dot;
+    const Scalar tmp22 = -tmp21 + tmp13*theta_dot;
+    const Scalar tmp35 = (Scalar(0.5))*m*((tmp12*tmp12) + (tmp22*tmp22));
     Scalar result;
-    result = tmp33;
+    result = tmp35;
     return result;
   }
 
@@ -636,15 +647,15 @@ struct SpringPendulum {
     const Scalar tmp3 = (tmp2*tmp2);
     const Scalar tmp5 = (r*r);
     const Scalar tmp6 = tmp1*tmp5 + tmp3*tmp5;
-    const Scalar tmp9 = tmp2*r;
-    const Scalar tmp12 = sqrt(tmp6);
-    const Scalar tmp14 = tmp12 - L;
-    const Scalar tmp15 = (Scalar(1)/L);
-    const Scalar tmp19 = g*m;
-    const Scalar tmp34 = tmp19*tmp9;
-    const Scalar tmp35 = (tmp14*tmp14);
+    const Scalar tmp8 = g*m;
+    const Scalar tmp11 = tmp2*r;
+    const Scalar tmp14 = sqrt(tmp6);
+    const Scalar tmp16 = tmp14 - L;
+    const Scalar tmp17 = (Scalar(1)/L);
+    const Scalar tmp36 = tmp11*tmp8;
+    const Scalar tmp37 = (tmp16*tmp16);
     Scalar result;
-    result = -tmp34 + (Scalar(0.5))*tmp15*tmp35*k;
+    result = -tmp36 + (Scalar(0.5))*tmp17*tmp37*k;
     return result;
   }
 
@@ -692,23 +703,23 @@ struct SpringPendulum {
     const Scalar tmp3 = (tmp2*tmp2);
     const Scalar tmp5 = (r*r);
     const Scalar tmp6 = tmp1*tmp5 + tmp3*tmp5;
-    const Scalar tmp8 = tmp0*r_dot;
-    const Scalar tmp9 = tmp2*r;
-    const Scalar tmp10 = tmp8 + tmp9*theta_dot;
-    const Scalar tmp11 = tmp0*r;
-    const Scalar tmp12 = sqrt(tmp6);
-    const Scalar tmp14 = tmp12 - L;
-    const Scalar tmp15 = (Scalar(1)/L);
-    const Scalar tmp16 = tmp15*k;
-    const Scalar tmp19 = g*m;
-    const Scalar tmp20 = tmp2*r_dot;
-    const Scalar tmp21 = -tmp20 + tmp11*theta_dot;
-    const Scalar tmp33 = (Scalar(0.5))*m*((tmp10*tmp10) + (tmp21*tmp21));
-    const Scalar tmp34 = tmp19*tmp9;
-    const Scalar tmp35 = (tmp14*tmp14);
-    const Scalar tmp36 = (Scalar(0.5))*tmp16;
+    const Scalar tmp8 = g*m;
+    const Scalar tmp10 = tmp0*r_dot;
+    const Scalar tmp11 = tmp2*r;
+    const Scalar tmp12 = tmp10 + tmp11*theta_dot;
+    const Scalar tmp13 = tmp0*r;
+    const Scalar tmp14 = sqrt(tmp6);
+    const Scalar tmp16 = tmp14 - L;
+    const Scalar tmp17 = (Scalar(1)/L);
+    const Scalar tmp18 = tmp17*k;
+    const Scalar tmp21 = tmp2*r_dot;
+    const Scalar tmp22 = -tmp21 + tmp13*theta_dot;
+    const Scalar tmp35 = (Scalar(0.5))*m*((tmp12*tmp12) + (tmp22*tmp22));
+    const Scalar tmp36 = tmp11*tmp8;
+    const Scalar tmp37 = (tmp16*tmp16);
+    const Scalar tmp38 = (Scalar(0.5))*tmp18;
     Scalar result;
-    result = tmp33 - tmp34 + tmp35*tmp36;
+    result = tmp35 - tmp36 + tmp37*tmp38;
     return result;
   }
 
@@ -728,11 +739,11 @@ struct SpringPendulum {
     const Scalar theta = q(1);
     const Scalar tmp0 = sin(theta);
     const Scalar tmp2 = cos(theta);
-    const Scalar tmp9 = tmp2*r;
-    const Scalar tmp11 = tmp0*r;
+    const Scalar tmp11 = tmp2*r;
+    const Scalar tmp13 = tmp0*r;
     XVector<Scalar> result;
-    result(0) = tmp11;
-    result(1) = -tmp9;
+    result(0) = tmp13;
+    result(1) = -tmp11;
     return result;
   }
 
@@ -756,15 +767,15 @@ struct SpringPendulum {
     const Scalar theta_dot = v(1);
     const Scalar tmp0 = sin(theta);
     const Scalar tmp2 = cos(theta);
-    const Scalar tmp8 = tmp0*r_dot;
-    const Scalar tmp9 = tmp2*r;
-    const Scalar tmp10 = tmp8 + tmp9*theta_dot;
-    const Scalar tmp11 = tmp0*r;
-    const Scalar tmp20 = tmp2*r_dot;
-    const Scalar tmp21 = -tmp20 + tmp11*theta_dot;
+    const Scalar tmp10 = tmp0*r_dot;
+    const Scalar tmp11 = tmp2*r;
+    const Scalar tmp12 = tmp10 + tmp11*theta_dot;
+    const Scalar tmp13 = tmp0*r;
+    const Scalar tmp21 = tmp2*r_dot;
+    const Scalar tmp22 = -tmp21 + tmp13*theta_dot;
     XVector<Scalar> result;
-    result(0) = tmp10;
-    result(1) = tmp21;
+    result(0) = tmp12;
+    result(1) = tmp22;
     return result;
   }
 
@@ -784,13 +795,13 @@ struct SpringPendulum {
     const Scalar theta = q(1);
     const Scalar tmp0 = sin(theta);
     const Scalar tmp2 = cos(theta);
-    const Scalar tmp9 = tmp2*r;
-    const Scalar tmp11 = tmp0*r;
+    const Scalar tmp11 = tmp2*r;
+    const Scalar tmp13 = tmp0*r;
     XJacobian<Scalar> result;
     result(0, 0) = tmp0;
-    result(0, 1) = tmp9;
+    result(0, 1) = tmp11;
     result(1, 0) = -tmp2;
-    result(1, 1) = tmp11;
+    result(1, 1) = tmp13;
     return result;
   }
 
@@ -814,17 +825,17 @@ struct SpringPendulum {
     const Scalar theta_dot = v(1);
     const Scalar tmp0 = sin(theta);
     const Scalar tmp2 = cos(theta);
-    const Scalar tmp8 = tmp0*r_dot;
-    const Scalar tmp9 = tmp2*r;
-    const Scalar tmp10 = tmp8 + tmp9*theta_dot;
-    const Scalar tmp11 = tmp0*r;
-    const Scalar tmp20 = tmp2*r_dot;
-    const Scalar tmp21 = -tmp20 + tmp11*theta_dot;
-    const Scalar tmp27 = tmp10*theta_dot + tmp8*theta_dot;
-    const Scalar tmp28 = tmp20*theta_dot - tmp21*theta_dot;
+    const Scalar tmp10 = tmp0*r_dot;
+    const Scalar tmp11 = tmp2*r;
+    const Scalar tmp12 = tmp10 + tmp11*theta_dot;
+    const Scalar tmp13 = tmp0*r;
+    const Scalar tmp21 = tmp2*r_dot;
+    const Scalar tmp22 = -tmp21 + tmp13*theta_dot;
+    const Scalar tmp29 = tmp10*theta_dot + tmp12*theta_dot;
+    const Scalar tmp30 = tmp21*theta_dot - tmp22*theta_dot;
     XVector<Scalar> result;
-    result(0) = tmp28;
-    result(1) = tmp27;
+    result(0) = tmp30;
+    result(1) = tmp29;
     return result;
   }
 
@@ -849,15 +860,15 @@ struct SpringPendulum {
     const Scalar m = Scalar(params.m);
     const Scalar tmp0 = sin(theta);
     const Scalar tmp2 = cos(theta);
-    const Scalar tmp8 = tmp0*r_dot;
-    const Scalar tmp9 = tmp2*r;
-    const Scalar tmp10 = tmp8 + tmp9*theta_dot;
-    const Scalar tmp11 = tmp0*r;
-    const Scalar tmp20 = tmp2*r_dot;
-    const Scalar tmp21 = -tmp20 + tmp11*theta_dot;
+    const Scalar tmp10 = tmp0*r_dot;
+    const Scalar tmp11 = tmp2*r;
+    const Scalar tmp12 = tmp10 + tmp11*theta_dot;
+    const Scalar tmp13 = tmp0*r;
+    const Scalar tmp21 = tmp2*r_dot;
+    const Scalar tmp22 = -tmp21 + tmp13*theta_dot;
     SpaceVector<Scalar> result;
-    result(0) = tmp10*m;
-    result(1) = tmp21*m;
+    result(0) = tmp12*m;
+    result(1) = tmp22*m;
     return result;
   }
 
@@ -882,14 +893,14 @@ struct SpringPendulum {
     const Scalar m = Scalar(params.m);
     const Scalar tmp0 = sin(theta);
     const Scalar tmp2 = cos(theta);
-    const Scalar tmp8 = tmp0*r_dot;
-    const Scalar tmp9 = tmp2*r;
-    const Scalar tmp10 = tmp8 + tmp9*theta_dot;
-    const Scalar tmp11 = tmp0*r;
-    const Scalar tmp20 = tmp2*r_dot;
-    const Scalar tmp21 = -tmp20 + tmp11*theta_dot;
+    const Scalar tmp10 = tmp0*r_dot;
+    const Scalar tmp11 = tmp2*r;
+    const Scalar tmp12 = tmp10 + tmp11*theta_dot;
+    const Scalar tmp13 = tmp0*r;
+    const Scalar tmp21 = tmp2*r_dot;
+    const Scalar tmp22 = -tmp21 + tmp13*theta_dot;
     AngularVector<Scalar> result;
-    result(0) = m*(tmp10*tmp9 + tmp11*tmp21);
+    result(0) = m*(tmp11*tmp12 + tmp13*tmp22);
     return result;
   }
 
@@ -1003,19 +1014,19 @@ struct SpringPendulum {
       const Scalar m = Scalar(params.m);
       const Scalar g = Scalar(params.g);
       const Scalar c_air = Scalar(params.c_air);
-      const Scalar tmp15 = (Scalar(1)/L);
-      const Scalar tmp16 = tmp15*k;
-      const Scalar tmp19 = g*m;
-      const Scalar tmp37 = (pos(0)*pos(0));
-      const Scalar tmp38 = (pos(1)*pos(1));
-      const Scalar tmp39 = tmp37 + tmp38;
-      const Scalar tmp40 = sqrt(tmp39);
-      const Scalar tmp41 = tmp40 - L;
-      const Scalar tmp42 = tmp16*tmp41;
-      const Scalar tmp43 = tmp42/tmp40;
+      const Scalar tmp8 = g*m;
+      const Scalar tmp17 = (Scalar(1)/L);
+      const Scalar tmp18 = tmp17*k;
+      const Scalar tmp39 = (pos(0)*pos(0));
+      const Scalar tmp40 = (pos(1)*pos(1));
+      const Scalar tmp41 = tmp39 + tmp40;
+      const Scalar tmp42 = sqrt(tmp41);
+      const Scalar tmp43 = tmp42 - L;
+      const Scalar tmp44 = tmp18*tmp43;
+      const Scalar tmp45 = tmp44/tmp42;
       XVector<Scalar> result;
-      result(0) = -tmp43*pos(0) - vel(0)*c_air;
-      result(1) = -tmp19 - tmp43*pos(1) - vel(1)*c_air;
+      result(0) = -tmp45*pos(0) - vel(0)*c_air;
+      result(1) = -tmp8 - tmp45*pos(1) - vel(1)*c_air;
       return result;
     }
 
@@ -1060,23 +1071,23 @@ struct SpringPendulum {
       using std::sqrt;
       const Scalar k = Scalar(params.k);
       const Scalar L = Scalar(params.L);
-      const Scalar tmp15 = (Scalar(1)/L);
-      const Scalar tmp16 = tmp15*k;
-      const Scalar tmp37 = (pos(0)*pos(0));
-      const Scalar tmp38 = (pos(1)*pos(1));
-      const Scalar tmp39 = tmp37 + tmp38;
-      const Scalar tmp40 = sqrt(tmp39);
-      const Scalar tmp41 = tmp40 - L;
-      const Scalar tmp42 = tmp16*tmp41;
-      const Scalar tmp43 = tmp42/tmp40;
-      const Scalar tmp44 = tmp16/tmp39;
-      const Scalar tmp45 = (Scalar(1)/(tmp39*sqrt(tmp39)));
-      const Scalar tmp46 = pos(0)*pos(1);
+      const Scalar tmp17 = (Scalar(1)/L);
+      const Scalar tmp18 = tmp17*k;
+      const Scalar tmp39 = (pos(0)*pos(0));
+      const Scalar tmp40 = (pos(1)*pos(1));
+      const Scalar tmp41 = tmp39 + tmp40;
+      const Scalar tmp42 = sqrt(tmp41);
+      const Scalar tmp43 = tmp42 - L;
+      const Scalar tmp44 = tmp18*tmp43;
+      const Scalar tmp45 = tmp44/tmp42;
+      const Scalar tmp46 = tmp18/tmp41;
+      const Scalar tmp47 = (Scalar(1)/(tmp41*sqrt(tmp41)));
+      const Scalar tmp48 = pos(0)*pos(1);
       std::array<Scalar, 4> result;
-      result[0] = -tmp43 - tmp37*tmp44 + tmp15*tmp37*tmp41*tmp45*k;
-      result[1] = -tmp44*tmp46 + tmp42*tmp45*tmp46;
-      result[2] = -tmp44*tmp46 + tmp42*tmp45*tmp46;
-      result[3] = -tmp43 - tmp38*tmp44 + tmp15*tmp38*tmp41*tmp45*k;
+      result[0] = -tmp45 - tmp39*tmp46 + tmp17*tmp39*tmp43*tmp47*k;
+      result[1] = -tmp46*tmp48 + tmp44*tmp47*tmp48;
+      result[2] = -tmp46*tmp48 + tmp44*tmp47*tmp48;
+      result[3] = -tmp45 - tmp40*tmp46 + tmp17*tmp40*tmp43*tmp47*k;
       return result;
     }
 
@@ -1118,17 +1129,17 @@ struct SpringPendulum {
       const Scalar L = Scalar(params.L);
       const Scalar m = Scalar(params.m);
       const Scalar g = Scalar(params.g);
-      const Scalar tmp15 = (Scalar(1)/L);
-      const Scalar tmp16 = tmp15*k;
-      const Scalar tmp19 = g*m;
-      const Scalar tmp36 = (Scalar(0.5))*tmp16;
-      const Scalar tmp37 = (pos(0)*pos(0));
-      const Scalar tmp38 = (pos(1)*pos(1));
-      const Scalar tmp39 = tmp37 + tmp38;
-      const Scalar tmp40 = sqrt(tmp39);
-      const Scalar tmp41 = tmp40 - L;
+      const Scalar tmp8 = g*m;
+      const Scalar tmp17 = (Scalar(1)/L);
+      const Scalar tmp18 = tmp17*k;
+      const Scalar tmp38 = (Scalar(0.5))*tmp18;
+      const Scalar tmp39 = (pos(0)*pos(0));
+      const Scalar tmp40 = (pos(1)*pos(1));
+      const Scalar tmp41 = tmp39 + tmp40;
+      const Scalar tmp42 = sqrt(tmp41);
+      const Scalar tmp43 = tmp42 - L;
       Scalar result;
-      result = tmp19*pos(1) + tmp36*(tmp41*tmp41);
+      result = tmp38*(tmp43*tmp43) + tmp8*pos(1);
       return result;
     }
 

@@ -308,193 +308,193 @@ struct StiffChain10 {
     const Scalar tmp228 = tmp224 + tmp98;
     const Scalar tmp229 = tmp225 + tmp74;
     const Scalar tmp230 = tmp226 + tmp53;
-    const Scalar tmp327 = (l*l);
-    const Scalar tmp328 = m*((tmp15*tmp15) + (tmp18*tmp18)) + m*((tmp128*tmp128) + (tmp110*tmp110))
+    const Scalar tmp325 = (l*l);
+    const Scalar tmp326 = m*((tmp15*tmp15) + (tmp18*tmp18)) + m*((tmp128*tmp128) + (tmp110*tmp110))
         + m*((tmp139*tmp139) + (tmp159*tmp159)) + m*((tmp170*tmp170) + (tmp193*tmp193))
         + m*((tmp204*tmp204) + (tmp230*tmp230)) + m*((tmp27*tmp27) + (tmp34*tmp34))
         + m*((tmp44*tmp44) + (tmp53*tmp53)) + m*((tmp63*tmp63) + (tmp75*tmp75))
-        + m*((tmp85*tmp85) + (tmp100*tmp100)) + m*(tmp327*(tmp0*tmp0) + tmp327*(tmp2*tmp2));
-    const Scalar tmp329 = m*(tmp15*tmp12 + tmp18*tmp9) + m*(tmp127*tmp128 + tmp110*tmp112)
+        + m*((tmp85*tmp85) + (tmp100*tmp100)) + m*(tmp325*(tmp0*tmp0) + tmp325*(tmp2*tmp2));
+    const Scalar tmp327 = m*(tmp15*tmp12 + tmp18*tmp9) + m*(tmp127*tmp128 + tmp110*tmp112)
         + m*(tmp139*tmp141 + tmp158*tmp159) + m*(tmp170*tmp173 + tmp192*tmp193)
         + m*(tmp204*tmp207 + tmp229*tmp230) + m*(tmp27*tmp28 + tmp33*tmp34)
         + m*(tmp44*tmp45 + tmp52*tmp53) + m*(tmp63*tmp65 + tmp74*tmp75)
         + m*(tmp85*tmp87 + tmp99*tmp100);
-    const Scalar tmp330 = m*((tmp127*tmp127) + (tmp112*tmp112))
+    const Scalar tmp328 = m*((tmp127*tmp127) + (tmp112*tmp112))
         + m*((tmp141*tmp141) + (tmp158*tmp158)) + m*((tmp173*tmp173) + (tmp192*tmp192))
         + m*((tmp207*tmp207) + (tmp229*tmp229)) + m*((tmp28*tmp28) + (tmp33*tmp33))
         + m*((tmp45*tmp45) + (tmp52*tmp52)) + m*((tmp65*tmp65) + (tmp74*tmp74))
-        + m*((tmp87*tmp87) + (tmp99*tmp99)) + m*(tmp327*(tmp8*tmp8) + tmp327*(tmp11*tmp11));
-    const Scalar tmp331 = m*(tmp126*tmp128 + tmp110*tmp113) + m*(tmp139*tmp142 + tmp157*tmp159)
+        + m*((tmp87*tmp87) + (tmp99*tmp99)) + m*(tmp325*(tmp8*tmp8) + tmp325*(tmp11*tmp11));
+    const Scalar tmp329 = m*(tmp126*tmp128 + tmp110*tmp113) + m*(tmp139*tmp142 + tmp157*tmp159)
         + m*(tmp170*tmp174 + tmp191*tmp193) + m*(tmp22*tmp34 + tmp25*tmp27)
         + m*(tmp204*tmp209 + tmp228*tmp230) + m*(tmp43*tmp44 + tmp51*tmp53)
         + m*(tmp62*tmp63 + tmp73*tmp75) + m*(tmp85*tmp88 + tmp98*tmp100);
-    const Scalar tmp332 = m*(tmp126*tmp127 + tmp112*tmp113) + m*(tmp141*tmp142 + tmp157*tmp158)
+    const Scalar tmp330 = m*(tmp126*tmp127 + tmp112*tmp113) + m*(tmp141*tmp142 + tmp157*tmp158)
         + m*(tmp173*tmp174 + tmp191*tmp192) + m*(tmp22*tmp33 + tmp25*tmp28)
         + m*(tmp207*tmp209 + tmp228*tmp229) + m*(tmp43*tmp45 + tmp51*tmp52)
         + m*(tmp62*tmp65 + tmp73*tmp74) + m*(tmp87*tmp88 + tmp98*tmp99);
-    const Scalar tmp333 = m*((tmp126*tmp126) + (tmp113*tmp113))
+    const Scalar tmp331 = m*((tmp126*tmp126) + (tmp113*tmp113))
         + m*((tmp142*tmp142) + (tmp157*tmp157)) + m*((tmp174*tmp174) + (tmp191*tmp191))
         + m*((tmp209*tmp209) + (tmp228*tmp228)) + m*((tmp43*tmp43) + (tmp51*tmp51))
         + m*((tmp62*tmp62) + (tmp73*tmp73)) + m*((tmp88*tmp88) + (tmp98*tmp98))
-        + m*(tmp327*(tmp21*tmp21) + tmp327*(tmp24*tmp24));
-    const Scalar tmp334 = m*(tmp125*tmp128 + tmp110*tmp114) + m*(tmp139*tmp143 + tmp156*tmp159)
+        + m*(tmp325*(tmp21*tmp21) + tmp325*(tmp24*tmp24));
+    const Scalar tmp332 = m*(tmp125*tmp128 + tmp110*tmp114) + m*(tmp139*tmp143 + tmp156*tmp159)
         + m*(tmp170*tmp175 + tmp190*tmp193) + m*(tmp204*tmp210 + tmp227*tmp230)
         + m*(tmp38*tmp53 + tmp41*tmp44) + m*(tmp63*tmp64 + tmp72*tmp75)
         + m*(tmp85*tmp86 + tmp97*tmp100);
-    const Scalar tmp335 = m*(tmp125*tmp127 + tmp112*tmp114) + m*(tmp141*tmp143 + tmp156*tmp158)
+    const Scalar tmp333 = m*(tmp125*tmp127 + tmp112*tmp114) + m*(tmp141*tmp143 + tmp156*tmp158)
         + m*(tmp173*tmp175 + tmp190*tmp192) + m*(tmp207*tmp210 + tmp227*tmp229)
         + m*(tmp38*tmp52 + tmp41*tmp45) + m*(tmp64*tmp65 + tmp72*tmp74)
         + m*(tmp86*tmp87 + tmp97*tmp99);
-    const Scalar tmp336 = m*(tmp125*tmp126 + tmp113*tmp114) + m*(tmp142*tmp143 + tmp156*tmp157)
+    const Scalar tmp334 = m*(tmp125*tmp126 + tmp113*tmp114) + m*(tmp142*tmp143 + tmp156*tmp157)
         + m*(tmp174*tmp175 + tmp190*tmp191) + m*(tmp209*tmp210 + tmp227*tmp228)
         + m*(tmp38*tmp51 + tmp41*tmp43) + m*(tmp62*tmp64 + tmp72*tmp73)
         + m*(tmp86*tmp88 + tmp97*tmp98);
-    const Scalar tmp337 = m*((tmp125*tmp125) + (tmp114*tmp114))
+    const Scalar tmp335 = m*((tmp125*tmp125) + (tmp114*tmp114))
         + m*((tmp143*tmp143) + (tmp156*tmp156)) + m*((tmp175*tmp175) + (tmp190*tmp190))
         + m*((tmp210*tmp210) + (tmp227*tmp227)) + m*((tmp64*tmp64) + (tmp72*tmp72))
-        + m*((tmp86*tmp86) + (tmp97*tmp97)) + m*(tmp327*(tmp37*tmp37) + tmp327*(tmp40*tmp40));
-    const Scalar tmp338 = m*(tmp124*tmp128 + tmp109*tmp110) + m*(tmp138*tmp139 + tmp155*tmp159)
+        + m*((tmp86*tmp86) + (tmp97*tmp97)) + m*(tmp325*(tmp37*tmp37) + tmp325*(tmp40*tmp40));
+    const Scalar tmp336 = m*(tmp124*tmp128 + tmp109*tmp110) + m*(tmp138*tmp139 + tmp155*tmp159)
         + m*(tmp169*tmp170 + tmp189*tmp193) + m*(tmp203*tmp204 + tmp226*tmp230)
         + m*(tmp57*tmp75 + tmp60*tmp63) + m*(tmp84*tmp85 + tmp96*tmp100);
-    const Scalar tmp339 = m*(tmp124*tmp127 + tmp109*tmp112) + m*(tmp138*tmp141 + tmp155*tmp158)
+    const Scalar tmp337 = m*(tmp124*tmp127 + tmp109*tmp112) + m*(tmp138*tmp141 + tmp155*tmp158)
         + m*(tmp169*tmp173 + tmp189*tmp192) + m*(tmp203*tmp207 + tmp226*tmp229)
         + m*(tmp57*tmp74 + tmp60*tmp65) + m*(tmp84*tmp87 + tmp96*tmp99);
-    const Scalar tmp340 = m*(tmp124*tmp126 + tmp109*tmp113) + m*(tmp138*tmp142 + tmp155*tmp157)
+    const Scalar tmp338 = m*(tmp124*tmp126 + tmp109*tmp113) + m*(tmp138*tmp142 + tmp155*tmp157)
         + m*(tmp169*tmp174 + tmp189*tmp191) + m*(tmp203*tmp209 + tmp226*tmp228)
         + m*(tmp57*tmp73 + tmp60*tmp62) + m*(tmp84*tmp88 + tmp96*tmp98);
-    const Scalar tmp341 = m*(tmp124*tmp125 + tmp109*tmp114) + m*(tmp138*tmp143 + tmp155*tmp156)
+    const Scalar tmp339 = m*(tmp124*tmp125 + tmp109*tmp114) + m*(tmp138*tmp143 + tmp155*tmp156)
         + m*(tmp169*tmp175 + tmp189*tmp190) + m*(tmp203*tmp210 + tmp226*tmp227)
         + m*(tmp57*tmp72 + tmp60*tmp64) + m*(tmp84*tmp86 + tmp96*tmp97);
-    const Scalar tmp342 = m*((tmp124*tmp124) + (tmp109*tmp109))
+    const Scalar tmp340 = m*((tmp124*tmp124) + (tmp109*tmp109))
         + m*((tmp138*tmp138) + (tmp155*tmp155)) + m*((tmp169*tmp169) + (tmp189*tmp189))
         + m*((tmp203*tmp203) + (tmp226*tmp226)) + m*((tmp84*tmp84) + (tmp96*tmp96))
-        + m*(tmp327*(tmp56*tmp56) + tmp327*(tmp59*tmp59));
-    const Scalar tmp343 = m*(tmp123*tmp128 + tmp110*tmp111) + m*(tmp139*tmp140 + tmp154*tmp159)
+        + m*(tmp325*(tmp56*tmp56) + tmp325*(tmp59*tmp59));
+    const Scalar tmp341 = m*(tmp123*tmp128 + tmp110*tmp111) + m*(tmp139*tmp140 + tmp154*tmp159)
         + m*(tmp170*tmp172 + tmp188*tmp193) + m*(tmp204*tmp206 + tmp225*tmp230)
         + m*(tmp79*tmp100 + tmp82*tmp85);
-    const Scalar tmp344 = m*(tmp123*tmp127 + tmp111*tmp112) + m*(tmp140*tmp141 + tmp154*tmp158)
+    const Scalar tmp342 = m*(tmp123*tmp127 + tmp111*tmp112) + m*(tmp140*tmp141 + tmp154*tmp158)
         + m*(tmp172*tmp173 + tmp188*tmp192) + m*(tmp206*tmp207 + tmp225*tmp229)
         + m*(tmp79*tmp99 + tmp82*tmp87);
-    const Scalar tmp345 = m*(tmp123*tmp126 + tmp111*tmp113) + m*(tmp140*tmp142 + tmp154*tmp157)
+    const Scalar tmp343 = m*(tmp123*tmp126 + tmp111*tmp113) + m*(tmp140*tmp142 + tmp154*tmp157)
         + m*(tmp172*tmp174 + tmp188*tmp191) + m*(tmp206*tmp209 + tmp225*tmp228)
         + m*(tmp79*tmp98 + tmp82*tmp88);
-    const Scalar tmp346 = m*(tmp123*tmp125 + tmp111*tmp114) + m*(tmp140*tmp143 + tmp154*tmp156)
+    const Scalar tmp344 = m*(tmp123*tmp125 + tmp111*tmp114) + m*(tmp140*tmp143 + tmp154*tmp156)
         + m*(tmp172*tmp175 + tmp188*tmp190) + m*(tmp206*tmp210 + tmp225*tmp227)
         + m*(tmp79*tmp97 + tmp82*tmp86);
-    const Scalar tmp347 = m*(tmp123*tmp124 + tmp109*tmp111) + m*(tmp138*tmp140 + tmp154*tmp155)
+    const Scalar tmp345 = m*(tmp123*tmp124 + tmp109*tmp111) + m*(tmp138*tmp140 + tmp154*tmp155)
         + m*(tmp169*tmp172 + tmp188*tmp189) + m*(tmp203*tmp206 + tmp225*tmp226)
         + m*(tmp79*tmp96 + tmp82*tmp84);
-    const Scalar tmp348 = m*((tmp123*tmp123) + (tmp111*tmp111))
+    const Scalar tmp346 = m*((tmp123*tmp123) + (tmp111*tmp111))
         + m*((tmp140*tmp140) + (tmp154*tmp154)) + m*((tmp172*tmp172) + (tmp188*tmp188))
-        + m*((tmp206*tmp206) + (tmp225*tmp225)) + m*(tmp327*(tmp78*tmp78) + tmp327*(tmp81*tmp81));
-    const Scalar tmp349 = m*(tmp128*tmp104 + tmp107*tmp110) + m*(tmp137*tmp139 + tmp153*tmp159)
+        + m*((tmp206*tmp206) + (tmp225*tmp225)) + m*(tmp325*(tmp78*tmp78) + tmp325*(tmp81*tmp81));
+    const Scalar tmp347 = m*(tmp128*tmp104 + tmp107*tmp110) + m*(tmp137*tmp139 + tmp153*tmp159)
         + m*(tmp168*tmp170 + tmp187*tmp193) + m*(tmp204*tmp208 + tmp224*tmp230);
-    const Scalar tmp350 = m*(tmp127*tmp104 + tmp107*tmp112) + m*(tmp137*tmp141 + tmp153*tmp158)
+    const Scalar tmp348 = m*(tmp127*tmp104 + tmp107*tmp112) + m*(tmp137*tmp141 + tmp153*tmp158)
         + m*(tmp168*tmp173 + tmp187*tmp192) + m*(tmp207*tmp208 + tmp224*tmp229);
-    const Scalar tmp351 = m*(tmp126*tmp104 + tmp107*tmp113) + m*(tmp137*tmp142 + tmp153*tmp157)
+    const Scalar tmp349 = m*(tmp126*tmp104 + tmp107*tmp113) + m*(tmp137*tmp142 + tmp153*tmp157)
         + m*(tmp168*tmp174 + tmp187*tmp191) + m*(tmp208*tmp209 + tmp224*tmp228);
-    const Scalar tmp352 = m*(tmp125*tmp104 + tmp107*tmp114) + m*(tmp137*tmp143 + tmp153*tmp156)
+    const Scalar tmp350 = m*(tmp125*tmp104 + tmp107*tmp114) + m*(tmp137*tmp143 + tmp153*tmp156)
         + m*(tmp168*tmp175 + tmp187*tmp190) + m*(tmp208*tmp210 + tmp224*tmp227);
-    const Scalar tmp353 = m*(tmp124*tmp104 + tmp107*tmp109) + m*(tmp137*tmp138 + tmp153*tmp155)
+    const Scalar tmp351 = m*(tmp124*tmp104 + tmp107*tmp109) + m*(tmp137*tmp138 + tmp153*tmp155)
         + m*(tmp168*tmp169 + tmp187*tmp189) + m*(tmp203*tmp208 + tmp224*tmp226);
-    const Scalar tmp354 = m*(tmp123*tmp104 + tmp107*tmp111) + m*(tmp137*tmp140 + tmp153*tmp154)
+    const Scalar tmp352 = m*(tmp123*tmp104 + tmp107*tmp111) + m*(tmp137*tmp140 + tmp153*tmp154)
         + m*(tmp168*tmp172 + tmp187*tmp188) + m*(tmp206*tmp208 + tmp224*tmp225);
-    const Scalar tmp355 = m*((tmp137*tmp137) + (tmp153*tmp153))
+    const Scalar tmp353 = m*((tmp137*tmp137) + (tmp153*tmp153))
         + m*((tmp168*tmp168) + (tmp187*tmp187)) + m*((tmp208*tmp208) + (tmp224*tmp224))
-        + m*(tmp327*(tmp103*tmp103) + tmp327*(tmp106*tmp106));
-    const Scalar tmp356 = m*(tmp132*tmp159 + tmp135*tmp139) + m*(tmp170*tmp171 + tmp186*tmp193)
+        + m*(tmp325*(tmp103*tmp103) + tmp325*(tmp106*tmp106));
+    const Scalar tmp354 = m*(tmp132*tmp159 + tmp135*tmp139) + m*(tmp170*tmp171 + tmp186*tmp193)
         + m*(tmp204*tmp205 + tmp223*tmp230);
-    const Scalar tmp357 = m*(tmp132*tmp158 + tmp135*tmp141) + m*(tmp171*tmp173 + tmp186*tmp192)
+    const Scalar tmp355 = m*(tmp132*tmp158 + tmp135*tmp141) + m*(tmp171*tmp173 + tmp186*tmp192)
         + m*(tmp205*tmp207 + tmp223*tmp229);
-    const Scalar tmp358 = m*(tmp132*tmp157 + tmp135*tmp142) + m*(tmp171*tmp174 + tmp186*tmp191)
+    const Scalar tmp356 = m*(tmp132*tmp157 + tmp135*tmp142) + m*(tmp171*tmp174 + tmp186*tmp191)
         + m*(tmp205*tmp209 + tmp223*tmp228);
-    const Scalar tmp359 = m*(tmp132*tmp156 + tmp135*tmp143) + m*(tmp171*tmp175 + tmp186*tmp190)
+    const Scalar tmp357 = m*(tmp132*tmp156 + tmp135*tmp143) + m*(tmp171*tmp175 + tmp186*tmp190)
         + m*(tmp205*tmp210 + tmp223*tmp227);
-    const Scalar tmp360 = m*(tmp132*tmp155 + tmp135*tmp138) + m*(tmp169*tmp171 + tmp186*tmp189)
+    const Scalar tmp358 = m*(tmp132*tmp155 + tmp135*tmp138) + m*(tmp169*tmp171 + tmp186*tmp189)
         + m*(tmp203*tmp205 + tmp223*tmp226);
-    const Scalar tmp361 = m*(tmp132*tmp154 + tmp135*tmp140) + m*(tmp171*tmp172 + tmp186*tmp188)
+    const Scalar tmp359 = m*(tmp132*tmp154 + tmp135*tmp140) + m*(tmp171*tmp172 + tmp186*tmp188)
         + m*(tmp205*tmp206 + tmp223*tmp225);
-    const Scalar tmp362 = m*(tmp132*tmp153 + tmp135*tmp137) + m*(tmp168*tmp171 + tmp186*tmp187)
+    const Scalar tmp360 = m*(tmp132*tmp153 + tmp135*tmp137) + m*(tmp168*tmp171 + tmp186*tmp187)
         + m*(tmp205*tmp208 + tmp223*tmp224);
-    const Scalar tmp363 = m*((tmp171*tmp171) + (tmp186*tmp186))
+    const Scalar tmp361 = m*((tmp171*tmp171) + (tmp186*tmp186))
         + m*((tmp205*tmp205) + (tmp223*tmp223))
-        + m*(tmp327*(tmp131*tmp131) + tmp327*(tmp134*tmp134));
-    const Scalar tmp364 = m*(tmp163*tmp193 + tmp166*tmp170) + m*(tmp202*tmp204 + tmp222*tmp230);
-    const Scalar tmp365 = m*(tmp163*tmp192 + tmp166*tmp173) + m*(tmp202*tmp207 + tmp222*tmp229);
-    const Scalar tmp366 = m*(tmp163*tmp191 + tmp166*tmp174) + m*(tmp202*tmp209 + tmp222*tmp228);
-    const Scalar tmp367 = m*(tmp163*tmp190 + tmp166*tmp175) + m*(tmp202*tmp210 + tmp222*tmp227);
-    const Scalar tmp368 = m*(tmp163*tmp189 + tmp166*tmp169) + m*(tmp202*tmp203 + tmp222*tmp226);
-    const Scalar tmp369 = m*(tmp163*tmp188 + tmp166*tmp172) + m*(tmp202*tmp206 + tmp222*tmp225);
-    const Scalar tmp370 = m*(tmp163*tmp187 + tmp166*tmp168) + m*(tmp202*tmp208 + tmp222*tmp224);
-    const Scalar tmp371 = m*(tmp163*tmp186 + tmp166*tmp171) + m*(tmp202*tmp205 + tmp222*tmp223);
-    const Scalar tmp372 = m*((tmp202*tmp202) + (tmp222*tmp222))
-        + m*(tmp327*(tmp162*tmp162) + tmp327*(tmp165*tmp165));
-    const Scalar tmp373 = m*(tmp197*tmp230 + tmp200*tmp204);
-    const Scalar tmp374 = m*(tmp197*tmp229 + tmp200*tmp207);
-    const Scalar tmp375 = m*(tmp197*tmp228 + tmp200*tmp209);
-    const Scalar tmp376 = m*(tmp197*tmp227 + tmp200*tmp210);
-    const Scalar tmp377 = m*(tmp197*tmp226 + tmp200*tmp203);
-    const Scalar tmp378 = m*(tmp197*tmp225 + tmp200*tmp206);
-    const Scalar tmp379 = m*(tmp197*tmp224 + tmp200*tmp208);
-    const Scalar tmp380 = m*(tmp197*tmp223 + tmp200*tmp205);
-    const Scalar tmp381 = m*(tmp197*tmp222 + tmp200*tmp202);
-    const Scalar tmp382 = m*(tmp327*(tmp196*tmp196) + tmp327*(tmp199*tmp199));
+        + m*(tmp325*(tmp131*tmp131) + tmp325*(tmp134*tmp134));
+    const Scalar tmp362 = m*(tmp163*tmp193 + tmp166*tmp170) + m*(tmp202*tmp204 + tmp222*tmp230);
+    const Scalar tmp363 = m*(tmp163*tmp192 + tmp166*tmp173) + m*(tmp202*tmp207 + tmp222*tmp229);
+    const Scalar tmp364 = m*(tmp163*tmp191 + tmp166*tmp174) + m*(tmp202*tmp209 + tmp222*tmp228);
+    const Scalar tmp365 = m*(tmp163*tmp190 + tmp166*tmp175) + m*(tmp202*tmp210 + tmp222*tmp227);
+    const Scalar tmp366 = m*(tmp163*tmp189 + tmp166*tmp169) + m*(tmp202*tmp203 + tmp222*tmp226);
+    const Scalar tmp367 = m*(tmp163*tmp188 + tmp166*tmp172) + m*(tmp202*tmp206 + tmp222*tmp225);
+    const Scalar tmp368 = m*(tmp163*tmp187 + tmp166*tmp168) + m*(tmp202*tmp208 + tmp222*tmp224);
+    const Scalar tmp369 = m*(tmp163*tmp186 + tmp166*tmp171) + m*(tmp202*tmp205 + tmp222*tmp223);
+    const Scalar tmp370 = m*((tmp202*tmp202) + (tmp222*tmp222))
+        + m*(tmp325*(tmp162*tmp162) + tmp325*(tmp165*tmp165));
+    const Scalar tmp371 = m*(tmp197*tmp230 + tmp200*tmp204);
+    const Scalar tmp372 = m*(tmp197*tmp229 + tmp200*tmp207);
+    const Scalar tmp373 = m*(tmp197*tmp228 + tmp200*tmp209);
+    const Scalar tmp374 = m*(tmp197*tmp227 + tmp200*tmp210);
+    const Scalar tmp375 = m*(tmp197*tmp226 + tmp200*tmp203);
+    const Scalar tmp376 = m*(tmp197*tmp225 + tmp200*tmp206);
+    const Scalar tmp377 = m*(tmp197*tmp224 + tmp200*tmp208);
+    const Scalar tmp378 = m*(tmp197*tmp223 + tmp200*tmp205);
+    const Scalar tmp379 = m*(tmp197*tmp222 + tmp200*tmp202);
+    const Scalar tmp380 = m*(tmp325*(tmp196*tmp196) + tmp325*(tmp199*tmp199));
     QMatrix<Scalar> result;
-    result(0, 0) = tmp328;
-    result(1, 0) = tmp329;
-    result(1, 1) = tmp330;
-    result(2, 0) = tmp331;
-    result(2, 1) = tmp332;
-    result(2, 2) = tmp333;
-    result(3, 0) = tmp334;
-    result(3, 1) = tmp335;
-    result(3, 2) = tmp336;
-    result(3, 3) = tmp337;
-    result(4, 0) = tmp338;
-    result(4, 1) = tmp339;
-    result(4, 2) = tmp340;
-    result(4, 3) = tmp341;
-    result(4, 4) = tmp342;
-    result(5, 0) = tmp343;
-    result(5, 1) = tmp344;
-    result(5, 2) = tmp345;
-    result(5, 3) = tmp346;
-    result(5, 4) = tmp347;
-    result(5, 5) = tmp348;
-    result(6, 0) = tmp349;
-    result(6, 1) = tmp350;
-    result(6, 2) = tmp351;
-    result(6, 3) = tmp352;
-    result(6, 4) = tmp353;
-    result(6, 5) = tmp354;
-    result(6, 6) = tmp355;
-    result(7, 0) = tmp356;
-    result(7, 1) = tmp357;
-    result(7, 2) = tmp358;
-    result(7, 3) = tmp359;
-    result(7, 4) = tmp360;
-    result(7, 5) = tmp361;
-    result(7, 6) = tmp362;
-    result(7, 7) = tmp363;
-    result(8, 0) = tmp364;
-    result(8, 1) = tmp365;
-    result(8, 2) = tmp366;
-    result(8, 3) = tmp367;
-    result(8, 4) = tmp368;
-    result(8, 5) = tmp369;
-    result(8, 6) = tmp370;
-    result(8, 7) = tmp371;
-    result(8, 8) = tmp372;
-    result(9, 0) = tmp373;
-    result(9, 1) = tmp374;
-    result(9, 2) = tmp375;
-    result(9, 3) = tmp376;
-    result(9, 4) = tmp377;
-    result(9, 5) = tmp378;
-    result(9, 6) = tmp379;
-    result(9, 7) = tmp380;
-    result(9, 8) = tmp381;
-    result(9, 9) = tmp382;
+    result(0, 0) = tmp326;
+    result(1, 0) = tmp327;
+    result(1, 1) = tmp328;
+    result(2, 0) = tmp329;
+    result(2, 1) = tmp330;
+    result(2, 2) = tmp331;
+    result(3, 0) = tmp332;
+    result(3, 1) = tmp333;
+    result(3, 2) = tmp334;
+    result(3, 3) = tmp335;
+    result(4, 0) = tmp336;
+    result(4, 1) = tmp337;
+    result(4, 2) = tmp338;
+    result(4, 3) = tmp339;
+    result(4, 4) = tmp340;
+    result(5, 0) = tmp341;
+    result(5, 1) = tmp342;
+    result(5, 2) = tmp343;
+    result(5, 3) = tmp344;
+    result(5, 4) = tmp345;
+    result(5, 5) = tmp346;
+    result(6, 0) = tmp347;
+    result(6, 1) = tmp348;
+    result(6, 2) = tmp349;
+    result(6, 3) = tmp350;
+    result(6, 4) = tmp351;
+    result(6, 5) = tmp352;
+    result(6, 6) = tmp353;
+    result(7, 0) = tmp354;
+    result(7, 1) = tmp355;
+    result(7, 2) = tmp356;
+    result(7, 3) = tmp357;
+    result(7, 4) = tmp358;
+    result(7, 5) = tmp359;
+    result(7, 6) = tmp360;
+    result(7, 7) = tmp361;
+    result(8, 0) = tmp362;
+    result(8, 1) = tmp363;
+    result(8, 2) = tmp364;
+    result(8, 3) = tmp365;
+    result(8, 4) = tmp366;
+    result(8, 5) = tmp367;
+    result(8, 6) = tmp368;
+    result(8, 7) = tmp369;
+    result(8, 8) = tmp370;
+    result(9, 0) = tmp371;
+    result(9, 1) = tmp372;
+    result(9, 2) = tmp373;
+    result(9, 3) = tmp374;
+    result(9, 4) = tmp375;
+    result(9, 5) = tmp376;
+    result(9, 6) = tmp377;
+    result(9, 7) = tmp378;
+    result(9, 8) = tmp379;
+    result(9, 9) = tmp380;
     result(0, 1) = result(1, 0);
     result(0, 2) = result(2, 0);
     result(1, 2) = result(2, 1);
@@ -655,45 +655,45 @@ struct StiffChain10 {
     const Scalar tmp228 = tmp224 + tmp98;
     const Scalar tmp229 = tmp225 + tmp74;
     const Scalar tmp230 = tmp226 + tmp53;
-    const Scalar tmp232 = g*m;
-    const Scalar tmp233 = -tmp232;
+    const Scalar tmp381 = g*m;
+    const Scalar tmp382 = -tmp381;
     const Scalar tmp403 = c*phi1_dot;
     const Scalar tmp404 = k*phi1;
-    const Scalar tmp405 = -tmp403 - tmp404 + tmp1*tmp233 + tmp128*tmp233 + tmp18*tmp233
-        + tmp159*tmp233 + tmp193*tmp233 + tmp230*tmp233 + tmp233*tmp34 + tmp233*tmp53 + tmp233*tmp75
-        + tmp233*tmp100;
+    const Scalar tmp405 = -tmp403 - tmp404 + tmp1*tmp382 + tmp128*tmp382 + tmp18*tmp382
+        + tmp159*tmp382 + tmp193*tmp382 + tmp230*tmp382 + tmp34*tmp382 + tmp382*tmp53 + tmp382*tmp75
+        + tmp382*tmp100;
     const Scalar tmp406 = c*phi2_dot;
     const Scalar tmp407 = k*phi2;
-    const Scalar tmp408 = -tmp406 - tmp407 + tmp127*tmp233 + tmp158*tmp233 + tmp192*tmp233
-        + tmp229*tmp233 + tmp233*tmp33 + tmp233*tmp52 + tmp233*tmp9 + tmp233*tmp74 + tmp233*tmp99;
+    const Scalar tmp408 = -tmp406 - tmp407 + tmp127*tmp382 + tmp158*tmp382 + tmp192*tmp382
+        + tmp229*tmp382 + tmp33*tmp382 + tmp382*tmp52 + tmp382*tmp9 + tmp382*tmp74 + tmp382*tmp99;
     const Scalar tmp409 = c*phi3_dot;
     const Scalar tmp410 = k*phi3;
-    const Scalar tmp411 = -tmp409 - tmp410 + tmp126*tmp233 + tmp157*tmp233 + tmp22*tmp233
-        + tmp191*tmp233 + tmp228*tmp233 + tmp233*tmp51 + tmp233*tmp73 + tmp233*tmp98;
+    const Scalar tmp411 = -tmp409 - tmp410 + tmp126*tmp382 + tmp157*tmp382 + tmp22*tmp382
+        + tmp191*tmp382 + tmp228*tmp382 + tmp382*tmp51 + tmp382*tmp73 + tmp382*tmp98;
     const Scalar tmp412 = c*phi4_dot;
     const Scalar tmp413 = k*phi4;
-    const Scalar tmp414 = -tmp412 - tmp413 + tmp125*tmp233 + tmp156*tmp233 + tmp190*tmp233
-        + tmp227*tmp233 + tmp233*tmp38 + tmp233*tmp72 + tmp233*tmp97;
+    const Scalar tmp414 = -tmp412 - tmp413 + tmp125*tmp382 + tmp156*tmp382 + tmp190*tmp382
+        + tmp227*tmp382 + tmp382*tmp38 + tmp382*tmp72 + tmp382*tmp97;
     const Scalar tmp415 = c*phi5_dot;
     const Scalar tmp416 = k*phi5;
-    const Scalar tmp417 = -tmp415 - tmp416 + tmp124*tmp233 + tmp155*tmp233 + tmp189*tmp233
-        + tmp226*tmp233 + tmp233*tmp57 + tmp233*tmp96;
+    const Scalar tmp417 = -tmp415 - tmp416 + tmp124*tmp382 + tmp155*tmp382 + tmp189*tmp382
+        + tmp226*tmp382 + tmp382*tmp57 + tmp382*tmp96;
     const Scalar tmp418 = c*phi6_dot;
     const Scalar tmp419 = k*phi6;
-    const Scalar tmp420 = -tmp418 - tmp419 + tmp123*tmp233 + tmp154*tmp233 + tmp188*tmp233
-        + tmp225*tmp233 + tmp233*tmp79;
+    const Scalar tmp420 = -tmp418 - tmp419 + tmp123*tmp382 + tmp154*tmp382 + tmp188*tmp382
+        + tmp225*tmp382 + tmp382*tmp79;
     const Scalar tmp421 = c*phi7_dot;
     const Scalar tmp422 = k*phi7;
-    const Scalar tmp423 = -tmp421 - tmp422 + tmp153*tmp233 + tmp187*tmp233 + tmp224*tmp233
-        + tmp233*tmp104;
+    const Scalar tmp423 = -tmp421 - tmp422 + tmp153*tmp382 + tmp187*tmp382 + tmp224*tmp382
+        + tmp382*tmp104;
     const Scalar tmp424 = c*phi8_dot;
     const Scalar tmp425 = k*phi8;
-    const Scalar tmp426 = -tmp424 - tmp425 + tmp132*tmp233 + tmp186*tmp233 + tmp223*tmp233;
+    const Scalar tmp426 = -tmp424 - tmp425 + tmp132*tmp382 + tmp186*tmp382 + tmp223*tmp382;
     const Scalar tmp427 = c*phi9_dot;
     const Scalar tmp428 = k*phi9;
-    const Scalar tmp429 = -tmp427 - tmp428 + tmp163*tmp233 + tmp222*tmp233;
+    const Scalar tmp429 = -tmp427 - tmp428 + tmp163*tmp382 + tmp222*tmp382;
     const Scalar tmp430 = c*phi10_dot + k*phi10;
-    const Scalar tmp431 = -tmp430 + tmp196*tmp233*l;
+    const Scalar tmp431 = -tmp430 + tmp196*tmp382*l;
     QVector<Scalar> result;
     result(0) = tmp405;
     result(1) = tmp408;
@@ -1013,80 +1013,80 @@ struct StiffChain10 {
     const Scalar tmp228 = tmp224 + tmp98;
     const Scalar tmp229 = tmp225 + tmp74;
     const Scalar tmp230 = tmp226 + tmp53;
-    const Scalar tmp234 = (phi1_dot*phi1_dot);
-    const Scalar tmp235 = -tmp1*tmp234;
-    const Scalar tmp236 = tmp234*tmp3;
-    const Scalar tmp237 = phi1_dot*(-tmp17 - tmp18*phi1_dot) + phi2_dot*(-tmp17 - tmp9*phi1_dot);
-    const Scalar tmp238 = tmp16*phi1_dot + phi2_dot*(tmp14 + tmp12*phi1_dot);
-    const Scalar tmp239 = -tmp33;
-    const Scalar tmp240 = -tmp32 + tmp239*phi2_dot;
-    const Scalar tmp241 = phi1_dot*(tmp240 - tmp34*phi1_dot) + phi2_dot*(tmp240 + tmp239*phi1_dot)
+    const Scalar tmp232 = (phi1_dot*phi1_dot);
+    const Scalar tmp233 = -tmp1*tmp232;
+    const Scalar tmp234 = tmp232*tmp3;
+    const Scalar tmp235 = phi1_dot*(-tmp17 - tmp18*phi1_dot) + phi2_dot*(-tmp17 - tmp9*phi1_dot);
+    const Scalar tmp236 = tmp16*phi1_dot + phi2_dot*(tmp14 + tmp12*phi1_dot);
+    const Scalar tmp237 = -tmp33;
+    const Scalar tmp238 = -tmp32 + tmp237*phi2_dot;
+    const Scalar tmp239 = phi1_dot*(tmp238 - tmp34*phi1_dot) + phi2_dot*(tmp238 + tmp237*phi1_dot)
         + phi3_dot*(-tmp32 - tmp22*phi1_dot - tmp22*phi2_dot);
-    const Scalar tmp242 = tmp31*phi1_dot + phi2_dot*(tmp30 + tmp28*phi1_dot)
+    const Scalar tmp240 = tmp31*phi1_dot + phi2_dot*(tmp30 + tmp28*phi1_dot)
         + phi3_dot*(tmp29 + tmp25*phi1_dot + tmp25*phi2_dot);
-    const Scalar tmp243 = -tmp51;
-    const Scalar tmp244 = -tmp50 + tmp243*phi3_dot;
-    const Scalar tmp245 = -tmp52;
-    const Scalar tmp246 = tmp244 + tmp245*phi2_dot;
-    const Scalar tmp247 = phi1_dot*(tmp246 - tmp53*phi1_dot) + phi2_dot*(tmp246 + tmp245*phi1_dot)
-        + phi3_dot*(tmp244 + tmp243*phi1_dot + tmp243*phi2_dot)
+    const Scalar tmp241 = -tmp51;
+    const Scalar tmp242 = -tmp50 + tmp241*phi3_dot;
+    const Scalar tmp243 = -tmp52;
+    const Scalar tmp244 = tmp242 + tmp243*phi2_dot;
+    const Scalar tmp245 = phi1_dot*(tmp244 - tmp53*phi1_dot) + phi2_dot*(tmp244 + tmp243*phi1_dot)
+        + phi3_dot*(tmp242 + tmp241*phi1_dot + tmp241*phi2_dot)
         + phi4_dot*(-tmp50 - tmp38*phi1_dot - tmp38*phi2_dot - tmp38*phi3_dot);
-    const Scalar tmp248 = tmp49*phi1_dot + phi2_dot*(tmp48 + tmp45*phi1_dot)
+    const Scalar tmp246 = tmp49*phi1_dot + phi2_dot*(tmp48 + tmp45*phi1_dot)
         + phi3_dot*(tmp47 + tmp43*phi1_dot + tmp43*phi2_dot)
         + phi4_dot*(tmp46 + tmp41*phi1_dot + tmp41*phi2_dot + tmp41*phi3_dot);
-    const Scalar tmp249 = -tmp72;
-    const Scalar tmp250 = -tmp71 + tmp249*phi4_dot;
-    const Scalar tmp251 = -tmp73;
-    const Scalar tmp252 = tmp250 + tmp251*phi3_dot;
-    const Scalar tmp253 = -tmp74;
-    const Scalar tmp254 = tmp252 + tmp253*phi2_dot;
-    const Scalar tmp255 = phi1_dot*(tmp254 - tmp75*phi1_dot) + phi2_dot*(tmp254 + tmp253*phi1_dot)
-        + phi3_dot*(tmp252 + tmp251*phi1_dot + tmp251*phi2_dot)
-        + phi4_dot*(tmp250 + tmp249*phi1_dot + tmp249*phi2_dot + tmp249*phi3_dot)
+    const Scalar tmp247 = -tmp72;
+    const Scalar tmp248 = -tmp71 + tmp247*phi4_dot;
+    const Scalar tmp249 = -tmp73;
+    const Scalar tmp250 = tmp248 + tmp249*phi3_dot;
+    const Scalar tmp251 = -tmp74;
+    const Scalar tmp252 = tmp250 + tmp251*phi2_dot;
+    const Scalar tmp253 = phi1_dot*(tmp252 - tmp75*phi1_dot) + phi2_dot*(tmp252 + tmp251*phi1_dot)
+        + phi3_dot*(tmp250 + tmp249*phi1_dot + tmp249*phi2_dot)
+        + phi4_dot*(tmp248 + tmp247*phi1_dot + tmp247*phi2_dot + tmp247*phi3_dot)
         + phi5_dot*(-tmp71 - tmp57*phi1_dot - tmp57*phi2_dot - tmp57*phi3_dot - tmp57*phi4_dot);
-    const Scalar tmp256 = tmp70*phi1_dot + phi2_dot*(tmp69 + tmp65*phi1_dot)
+    const Scalar tmp254 = tmp70*phi1_dot + phi2_dot*(tmp69 + tmp65*phi1_dot)
         + phi3_dot*(tmp68 + tmp62*phi1_dot + tmp62*phi2_dot)
         + phi4_dot*(tmp67 + tmp64*phi1_dot + tmp64*phi2_dot + tmp64*phi3_dot)
         + phi5_dot*(tmp66 + tmp60*phi1_dot + tmp60*phi2_dot + tmp60*phi3_dot + tmp60*phi4_dot);
-    const Scalar tmp257 = -tmp96;
-    const Scalar tmp258 = -tmp95 + tmp257*phi5_dot;
-    const Scalar tmp259 = -tmp97;
-    const Scalar tmp260 = tmp258 + tmp259*phi4_dot;
-    const Scalar tmp261 = -tmp98;
-    const Scalar tmp262 = tmp260 + tmp261*phi3_dot;
-    const Scalar tmp263 = -tmp99;
-    const Scalar tmp264 = tmp262 + tmp263*phi2_dot;
-    const Scalar tmp265 = phi1_dot*(tmp264 - tmp100*phi1_dot) + phi2_dot*(tmp264 + tmp263*phi1_dot)
-        + phi3_dot*(tmp262 + tmp261*phi1_dot + tmp261*phi2_dot)
-        + phi4_dot*(tmp260 + tmp259*phi1_dot + tmp259*phi2_dot + tmp259*phi3_dot)
-        + phi5_dot*(tmp258 + tmp257*phi1_dot + tmp257*phi2_dot + tmp257*phi3_dot + tmp257*phi4_dot)
+    const Scalar tmp255 = -tmp96;
+    const Scalar tmp256 = -tmp95 + tmp255*phi5_dot;
+    const Scalar tmp257 = -tmp97;
+    const Scalar tmp258 = tmp256 + tmp257*phi4_dot;
+    const Scalar tmp259 = -tmp98;
+    const Scalar tmp260 = tmp258 + tmp259*phi3_dot;
+    const Scalar tmp261 = -tmp99;
+    const Scalar tmp262 = tmp260 + tmp261*phi2_dot;
+    const Scalar tmp263 = phi1_dot*(tmp262 - tmp100*phi1_dot) + phi2_dot*(tmp262 + tmp261*phi1_dot)
+        + phi3_dot*(tmp260 + tmp259*phi1_dot + tmp259*phi2_dot)
+        + phi4_dot*(tmp258 + tmp257*phi1_dot + tmp257*phi2_dot + tmp257*phi3_dot)
+        + phi5_dot*(tmp256 + tmp255*phi1_dot + tmp255*phi2_dot + tmp255*phi3_dot + tmp255*phi4_dot)
         + phi6_dot*(-tmp95 - tmp79*phi1_dot - tmp79*phi2_dot - tmp79*phi3_dot - tmp79*phi4_dot
             - tmp79*phi5_dot);
-    const Scalar tmp266 = tmp94*phi1_dot + phi2_dot*(tmp93 + tmp87*phi1_dot)
+    const Scalar tmp264 = tmp94*phi1_dot + phi2_dot*(tmp93 + tmp87*phi1_dot)
         + phi3_dot*(tmp92 + tmp88*phi1_dot + tmp88*phi2_dot)
         + phi4_dot*(tmp91 + tmp86*phi1_dot + tmp86*phi2_dot + tmp86*phi3_dot)
         + phi5_dot*(tmp90 + tmp84*phi1_dot + tmp84*phi2_dot + tmp84*phi3_dot + tmp84*phi4_dot)
         + phi6_dot*(tmp89 + tmp82*phi1_dot + tmp82*phi2_dot + tmp82*phi3_dot + tmp82*phi4_dot
             + tmp82*phi5_dot);
-    const Scalar tmp267 = -tmp123;
-    const Scalar tmp268 = -tmp122 + tmp267*phi6_dot;
-    const Scalar tmp269 = -tmp124;
-    const Scalar tmp270 = tmp268 + tmp269*phi5_dot;
-    const Scalar tmp271 = -tmp125;
-    const Scalar tmp272 = tmp270 + tmp271*phi4_dot;
-    const Scalar tmp273 = -tmp126;
-    const Scalar tmp274 = tmp272 + tmp273*phi3_dot;
-    const Scalar tmp275 = -tmp127;
-    const Scalar tmp276 = tmp274 + tmp275*phi2_dot;
-    const Scalar tmp277 = phi1_dot*(tmp276 - tmp128*phi1_dot) + phi2_dot*(tmp276 + tmp275*phi1_dot)
-        + phi3_dot*(tmp274 + tmp273*phi1_dot + tmp273*phi2_dot)
-        + phi4_dot*(tmp272 + tmp271*phi1_dot + tmp271*phi2_dot + tmp271*phi3_dot)
-        + phi5_dot*(tmp270 + tmp269*phi1_dot + tmp269*phi2_dot + tmp269*phi3_dot + tmp269*phi4_dot)
-        + phi6_dot*(tmp268 + tmp267*phi1_dot + tmp267*phi2_dot + tmp267*phi3_dot + tmp267*phi4_dot
-            + tmp267*phi5_dot)
+    const Scalar tmp265 = -tmp123;
+    const Scalar tmp266 = -tmp122 + tmp265*phi6_dot;
+    const Scalar tmp267 = -tmp124;
+    const Scalar tmp268 = tmp266 + tmp267*phi5_dot;
+    const Scalar tmp269 = -tmp125;
+    const Scalar tmp270 = tmp268 + tmp269*phi4_dot;
+    const Scalar tmp271 = -tmp126;
+    const Scalar tmp272 = tmp270 + tmp271*phi3_dot;
+    const Scalar tmp273 = -tmp127;
+    const Scalar tmp274 = tmp272 + tmp273*phi2_dot;
+    const Scalar tmp275 = phi1_dot*(tmp274 - tmp128*phi1_dot) + phi2_dot*(tmp274 + tmp273*phi1_dot)
+        + phi3_dot*(tmp272 + tmp271*phi1_dot + tmp271*phi2_dot)
+        + phi4_dot*(tmp270 + tmp269*phi1_dot + tmp269*phi2_dot + tmp269*phi3_dot)
+        + phi5_dot*(tmp268 + tmp267*phi1_dot + tmp267*phi2_dot + tmp267*phi3_dot + tmp267*phi4_dot)
+        + phi6_dot*(tmp266 + tmp265*phi1_dot + tmp265*phi2_dot + tmp265*phi3_dot + tmp265*phi4_dot
+            + tmp265*phi5_dot)
         + phi7_dot*(-tmp122 - tmp104*phi1_dot - tmp104*phi2_dot - tmp104*phi3_dot - tmp104*phi4_dot
             - tmp104*phi5_dot - tmp104*phi6_dot);
-    const Scalar tmp278 = tmp121*phi1_dot + phi2_dot*(tmp120 + tmp112*phi1_dot)
+    const Scalar tmp276 = tmp121*phi1_dot + phi2_dot*(tmp120 + tmp112*phi1_dot)
         + phi3_dot*(tmp119 + tmp113*phi1_dot + tmp113*phi2_dot)
         + phi4_dot*(tmp118 + tmp114*phi1_dot + tmp114*phi2_dot + tmp114*phi3_dot)
         + phi5_dot*(tmp117 + tmp109*phi1_dot + tmp109*phi2_dot + tmp109*phi3_dot + tmp109*phi4_dot)
@@ -1094,29 +1094,29 @@ struct StiffChain10 {
             + tmp111*phi5_dot)
         + phi7_dot*(tmp115 + tmp107*phi1_dot + tmp107*phi2_dot + tmp107*phi3_dot + tmp107*phi4_dot
             + tmp107*phi5_dot + tmp107*phi6_dot);
-    const Scalar tmp279 = -tmp153;
-    const Scalar tmp280 = -tmp152 + tmp279*phi7_dot;
-    const Scalar tmp281 = -tmp154;
-    const Scalar tmp282 = tmp280 + tmp281*phi6_dot;
-    const Scalar tmp283 = -tmp155;
-    const Scalar tmp284 = tmp282 + tmp283*phi5_dot;
-    const Scalar tmp285 = -tmp156;
-    const Scalar tmp286 = tmp284 + tmp285*phi4_dot;
-    const Scalar tmp287 = -tmp157;
-    const Scalar tmp288 = tmp286 + tmp287*phi3_dot;
-    const Scalar tmp289 = -tmp158;
-    const Scalar tmp290 = tmp288 + tmp289*phi2_dot;
-    const Scalar tmp291 = phi1_dot*(tmp290 - tmp159*phi1_dot) + phi2_dot*(tmp290 + tmp289*phi1_dot)
-        + phi3_dot*(tmp288 + tmp287*phi1_dot + tmp287*phi2_dot)
-        + phi4_dot*(tmp286 + tmp285*phi1_dot + tmp285*phi2_dot + tmp285*phi3_dot)
-        + phi5_dot*(tmp284 + tmp283*phi1_dot + tmp283*phi2_dot + tmp283*phi3_dot + tmp283*phi4_dot)
-        + phi6_dot*(tmp282 + tmp281*phi1_dot + tmp281*phi2_dot + tmp281*phi3_dot + tmp281*phi4_dot
-            + tmp281*phi5_dot)
-        + phi7_dot*(tmp280 + tmp279*phi1_dot + tmp279*phi2_dot + tmp279*phi3_dot + tmp279*phi4_dot
-            + tmp279*phi5_dot + tmp279*phi6_dot)
+    const Scalar tmp277 = -tmp153;
+    const Scalar tmp278 = -tmp152 + tmp277*phi7_dot;
+    const Scalar tmp279 = -tmp154;
+    const Scalar tmp280 = tmp278 + tmp279*phi6_dot;
+    const Scalar tmp281 = -tmp155;
+    const Scalar tmp282 = tmp280 + tmp281*phi5_dot;
+    const Scalar tmp283 = -tmp156;
+    const Scalar tmp284 = tmp282 + tmp283*phi4_dot;
+    const Scalar tmp285 = -tmp157;
+    const Scalar tmp286 = tmp284 + tmp285*phi3_dot;
+    const Scalar tmp287 = -tmp158;
+    const Scalar tmp288 = tmp286 + tmp287*phi2_dot;
+    const Scalar tmp289 = phi1_dot*(tmp288 - tmp159*phi1_dot) + phi2_dot*(tmp288 + tmp287*phi1_dot)
+        + phi3_dot*(tmp286 + tmp285*phi1_dot + tmp285*phi2_dot)
+        + phi4_dot*(tmp284 + tmp283*phi1_dot + tmp283*phi2_dot + tmp283*phi3_dot)
+        + phi5_dot*(tmp282 + tmp281*phi1_dot + tmp281*phi2_dot + tmp281*phi3_dot + tmp281*phi4_dot)
+        + phi6_dot*(tmp280 + tmp279*phi1_dot + tmp279*phi2_dot + tmp279*phi3_dot + tmp279*phi4_dot
+            + tmp279*phi5_dot)
+        + phi7_dot*(tmp278 + tmp277*phi1_dot + tmp277*phi2_dot + tmp277*phi3_dot + tmp277*phi4_dot
+            + tmp277*phi5_dot + tmp277*phi6_dot)
         + phi8_dot*(-tmp152 - tmp132*phi1_dot - tmp132*phi2_dot - tmp132*phi3_dot - tmp132*phi4_dot
             - tmp132*phi5_dot - tmp132*phi6_dot - tmp132*phi7_dot);
-    const Scalar tmp292 = tmp151*phi1_dot + phi2_dot*(tmp150 + tmp141*phi1_dot)
+    const Scalar tmp290 = tmp151*phi1_dot + phi2_dot*(tmp150 + tmp141*phi1_dot)
         + phi3_dot*(tmp149 + tmp142*phi1_dot + tmp142*phi2_dot)
         + phi4_dot*(tmp148 + tmp143*phi1_dot + tmp143*phi2_dot + tmp143*phi3_dot)
         + phi5_dot*(tmp147 + tmp138*phi1_dot + tmp138*phi2_dot + tmp138*phi3_dot + tmp138*phi4_dot)
@@ -1126,33 +1126,33 @@ struct StiffChain10 {
             + tmp137*phi5_dot + tmp137*phi6_dot)
         + phi8_dot*(tmp144 + tmp135*phi1_dot + tmp135*phi2_dot + tmp135*phi3_dot + tmp135*phi4_dot
             + tmp135*phi5_dot + tmp135*phi6_dot + tmp135*phi7_dot);
-    const Scalar tmp293 = -tmp186;
-    const Scalar tmp294 = -tmp185 + tmp293*phi8_dot;
-    const Scalar tmp295 = -tmp187;
-    const Scalar tmp296 = tmp294 + tmp295*phi7_dot;
-    const Scalar tmp297 = -tmp188;
-    const Scalar tmp298 = tmp296 + tmp297*phi6_dot;
-    const Scalar tmp299 = -tmp189;
-    const Scalar tmp300 = tmp298 + tmp299*phi5_dot;
-    const Scalar tmp301 = -tmp190;
-    const Scalar tmp302 = tmp300 + tmp301*phi4_dot;
-    const Scalar tmp303 = -tmp191;
-    const Scalar tmp304 = tmp302 + tmp303*phi3_dot;
-    const Scalar tmp305 = -tmp192;
-    const Scalar tmp306 = tmp304 + tmp305*phi2_dot;
-    const Scalar tmp307 = phi1_dot*(tmp306 - tmp193*phi1_dot) + phi2_dot*(tmp306 + tmp305*phi1_dot)
-        + phi3_dot*(tmp304 + tmp303*phi1_dot + tmp303*phi2_dot)
-        + phi4_dot*(tmp302 + tmp301*phi1_dot + tmp301*phi2_dot + tmp301*phi3_dot)
-        + phi5_dot*(tmp300 + tmp299*phi1_dot + tmp299*phi2_dot + tmp299*phi3_dot + tmp299*phi4_dot)
-        + phi6_dot*(tmp298 + tmp297*phi1_dot + tmp297*phi2_dot + tmp297*phi3_dot + tmp297*phi4_dot
-            + tmp297*phi5_dot)
-        + phi7_dot*(tmp296 + tmp295*phi1_dot + tmp295*phi2_dot + tmp295*phi3_dot + tmp295*phi4_dot
-            + tmp295*phi5_dot + tmp295*phi6_dot)
-        + phi8_dot*(tmp294 + tmp293*phi1_dot + tmp293*phi2_dot + tmp293*phi3_dot + tmp293*phi4_dot
-            + tmp293*phi5_dot + tmp293*phi6_dot + tmp293*phi7_dot)
+    const Scalar tmp291 = -tmp186;
+    const Scalar tmp292 = -tmp185 + tmp291*phi8_dot;
+    const Scalar tmp293 = -tmp187;
+    const Scalar tmp294 = tmp292 + tmp293*phi7_dot;
+    const Scalar tmp295 = -tmp188;
+    const Scalar tmp296 = tmp294 + tmp295*phi6_dot;
+    const Scalar tmp297 = -tmp189;
+    const Scalar tmp298 = tmp296 + tmp297*phi5_dot;
+    const Scalar tmp299 = -tmp190;
+    const Scalar tmp300 = tmp298 + tmp299*phi4_dot;
+    const Scalar tmp301 = -tmp191;
+    const Scalar tmp302 = tmp300 + tmp301*phi3_dot;
+    const Scalar tmp303 = -tmp192;
+    const Scalar tmp304 = tmp302 + tmp303*phi2_dot;
+    const Scalar tmp305 = phi1_dot*(tmp304 - tmp193*phi1_dot) + phi2_dot*(tmp304 + tmp303*phi1_dot)
+        + phi3_dot*(tmp302 + tmp301*phi1_dot + tmp301*phi2_dot)
+        + phi4_dot*(tmp300 + tmp299*phi1_dot + tmp299*phi2_dot + tmp299*phi3_dot)
+        + phi5_dot*(tmp298 + tmp297*phi1_dot + tmp297*phi2_dot + tmp297*phi3_dot + tmp297*phi4_dot)
+        + phi6_dot*(tmp296 + tmp295*phi1_dot + tmp295*phi2_dot + tmp295*phi3_dot + tmp295*phi4_dot
+            + tmp295*phi5_dot)
+        + phi7_dot*(tmp294 + tmp293*phi1_dot + tmp293*phi2_dot + tmp293*phi3_dot + tmp293*phi4_dot
+            + tmp293*phi5_dot + tmp293*phi6_dot)
+        + phi8_dot*(tmp292 + tmp291*phi1_dot + tmp291*phi2_dot + tmp291*phi3_dot + tmp291*phi4_dot
+            + tmp291*phi5_dot + tmp291*phi6_dot + tmp291*phi7_dot)
         + phi9_dot*(-tmp185 - tmp163*phi1_dot - tmp163*phi2_dot - tmp163*phi3_dot - tmp163*phi4_dot
             - tmp163*phi5_dot - tmp163*phi6_dot - tmp163*phi7_dot - tmp163*phi8_dot);
-    const Scalar tmp308 = tmp184*phi1_dot + phi2_dot*(tmp183 + tmp173*phi1_dot)
+    const Scalar tmp306 = tmp184*phi1_dot + phi2_dot*(tmp183 + tmp173*phi1_dot)
         + phi3_dot*(tmp182 + tmp174*phi1_dot + tmp174*phi2_dot)
         + phi4_dot*(tmp181 + tmp175*phi1_dot + tmp175*phi2_dot + tmp175*phi3_dot)
         + phi5_dot*(tmp180 + tmp169*phi1_dot + tmp169*phi2_dot + tmp169*phi3_dot + tmp169*phi4_dot)
@@ -1164,38 +1164,38 @@ struct StiffChain10 {
             + tmp171*phi5_dot + tmp171*phi6_dot + tmp171*phi7_dot)
         + phi9_dot*(tmp176 + tmp166*phi1_dot + tmp166*phi2_dot + tmp166*phi3_dot + tmp166*phi4_dot
             + tmp166*phi5_dot + tmp166*phi6_dot + tmp166*phi7_dot + tmp166*phi8_dot);
-    const Scalar tmp309 = -tmp222;
-    const Scalar tmp310 = -tmp221 + tmp309*phi9_dot;
-    const Scalar tmp311 = -tmp223;
-    const Scalar tmp312 = tmp310 + tmp311*phi8_dot;
-    const Scalar tmp313 = -tmp224;
-    const Scalar tmp314 = tmp312 + tmp313*phi7_dot;
-    const Scalar tmp315 = -tmp225;
-    const Scalar tmp316 = tmp314 + tmp315*phi6_dot;
-    const Scalar tmp317 = -tmp226;
-    const Scalar tmp318 = tmp316 + tmp317*phi5_dot;
-    const Scalar tmp319 = -tmp227;
-    const Scalar tmp320 = tmp318 + tmp319*phi4_dot;
-    const Scalar tmp321 = -tmp228;
-    const Scalar tmp322 = tmp320 + tmp321*phi3_dot;
-    const Scalar tmp323 = -tmp229;
-    const Scalar tmp324 = tmp322 + tmp323*phi2_dot;
-    const Scalar tmp325 = phi10_dot*(-tmp221 - tmp197*phi1_dot - tmp197*phi2_dot - tmp197*phi3_dot
+    const Scalar tmp307 = -tmp222;
+    const Scalar tmp308 = -tmp221 + tmp307*phi9_dot;
+    const Scalar tmp309 = -tmp223;
+    const Scalar tmp310 = tmp308 + tmp309*phi8_dot;
+    const Scalar tmp311 = -tmp224;
+    const Scalar tmp312 = tmp310 + tmp311*phi7_dot;
+    const Scalar tmp313 = -tmp225;
+    const Scalar tmp314 = tmp312 + tmp313*phi6_dot;
+    const Scalar tmp315 = -tmp226;
+    const Scalar tmp316 = tmp314 + tmp315*phi5_dot;
+    const Scalar tmp317 = -tmp227;
+    const Scalar tmp318 = tmp316 + tmp317*phi4_dot;
+    const Scalar tmp319 = -tmp228;
+    const Scalar tmp320 = tmp318 + tmp319*phi3_dot;
+    const Scalar tmp321 = -tmp229;
+    const Scalar tmp322 = tmp320 + tmp321*phi2_dot;
+    const Scalar tmp323 = phi10_dot*(-tmp221 - tmp197*phi1_dot - tmp197*phi2_dot - tmp197*phi3_dot
             - tmp197*phi4_dot - tmp197*phi5_dot - tmp197*phi6_dot - tmp197*phi7_dot
             - tmp197*phi8_dot - tmp197*phi9_dot)
-        + phi1_dot*(tmp324 - tmp230*phi1_dot) + phi2_dot*(tmp324 + tmp323*phi1_dot)
-        + phi3_dot*(tmp322 + tmp321*phi1_dot + tmp321*phi2_dot)
-        + phi4_dot*(tmp320 + tmp319*phi1_dot + tmp319*phi2_dot + tmp319*phi3_dot)
-        + phi5_dot*(tmp318 + tmp317*phi1_dot + tmp317*phi2_dot + tmp317*phi3_dot + tmp317*phi4_dot)
-        + phi6_dot*(tmp316 + tmp315*phi1_dot + tmp315*phi2_dot + tmp315*phi3_dot + tmp315*phi4_dot
-            + tmp315*phi5_dot)
-        + phi7_dot*(tmp314 + tmp313*phi1_dot + tmp313*phi2_dot + tmp313*phi3_dot + tmp313*phi4_dot
-            + tmp313*phi5_dot + tmp313*phi6_dot)
-        + phi8_dot*(tmp312 + tmp311*phi1_dot + tmp311*phi2_dot + tmp311*phi3_dot + tmp311*phi4_dot
-            + tmp311*phi5_dot + tmp311*phi6_dot + tmp311*phi7_dot)
-        + phi9_dot*(tmp310 + tmp309*phi1_dot + tmp309*phi2_dot + tmp309*phi3_dot + tmp309*phi4_dot
-            + tmp309*phi5_dot + tmp309*phi6_dot + tmp309*phi7_dot + tmp309*phi8_dot);
-    const Scalar tmp326 = tmp220*phi1_dot
+        + phi1_dot*(tmp322 - tmp230*phi1_dot) + phi2_dot*(tmp322 + tmp321*phi1_dot)
+        + phi3_dot*(tmp320 + tmp319*phi1_dot + tmp319*phi2_dot)
+        + phi4_dot*(tmp318 + tmp317*phi1_dot + tmp317*phi2_dot + tmp317*phi3_dot)
+        + phi5_dot*(tmp316 + tmp315*phi1_dot + tmp315*phi2_dot + tmp315*phi3_dot + tmp315*phi4_dot)
+        + phi6_dot*(tmp314 + tmp313*phi1_dot + tmp313*phi2_dot + tmp313*phi3_dot + tmp313*phi4_dot
+            + tmp313*phi5_dot)
+        + phi7_dot*(tmp312 + tmp311*phi1_dot + tmp311*phi2_dot + tmp311*phi3_dot + tmp311*phi4_dot
+            + tmp311*phi5_dot + tmp311*phi6_dot)
+        + phi8_dot*(tmp310 + tmp309*phi1_dot + tmp309*phi2_dot + tmp309*phi3_dot + tmp309*phi4_dot
+            + tmp309*phi5_dot + tmp309*phi6_dot + tmp309*phi7_dot)
+        + phi9_dot*(tmp308 + tmp307*phi1_dot + tmp307*phi2_dot + tmp307*phi3_dot + tmp307*phi4_dot
+            + tmp307*phi5_dot + tmp307*phi6_dot + tmp307*phi7_dot + tmp307*phi8_dot);
+    const Scalar tmp324 = tmp220*phi1_dot
         + phi10_dot*(tmp211 + tmp200*phi1_dot + tmp200*phi2_dot + tmp200*phi3_dot + tmp200*phi4_dot
             + tmp200*phi5_dot + tmp200*phi6_dot + tmp200*phi7_dot + tmp200*phi8_dot
             + tmp200*phi9_dot)
@@ -1211,26 +1211,26 @@ struct StiffChain10 {
             + tmp205*phi5_dot + tmp205*phi6_dot + tmp205*phi7_dot)
         + phi9_dot*(tmp212 + tmp202*phi1_dot + tmp202*phi2_dot + tmp202*phi3_dot + tmp202*phi4_dot
             + tmp202*phi5_dot + tmp202*phi6_dot + tmp202*phi7_dot + tmp202*phi8_dot);
-    const Scalar tmp383 = tmp235*m;
-    const Scalar tmp384 = tmp236*m;
-    const Scalar tmp385 = tmp237*m;
-    const Scalar tmp386 = tmp238*m;
-    const Scalar tmp387 = tmp241*m;
-    const Scalar tmp388 = tmp242*m;
-    const Scalar tmp389 = tmp247*m;
-    const Scalar tmp390 = tmp248*m;
-    const Scalar tmp391 = tmp255*m;
-    const Scalar tmp392 = tmp256*m;
-    const Scalar tmp393 = tmp265*m;
-    const Scalar tmp394 = tmp266*m;
-    const Scalar tmp395 = tmp277*m;
-    const Scalar tmp396 = tmp278*m;
-    const Scalar tmp397 = tmp291*m;
-    const Scalar tmp398 = tmp292*m;
-    const Scalar tmp399 = tmp307*m;
-    const Scalar tmp400 = tmp308*m;
-    const Scalar tmp401 = tmp325*m;
-    const Scalar tmp402 = tmp326*m;
+    const Scalar tmp383 = tmp233*m;
+    const Scalar tmp384 = tmp234*m;
+    const Scalar tmp385 = tmp235*m;
+    const Scalar tmp386 = tmp236*m;
+    const Scalar tmp387 = tmp239*m;
+    const Scalar tmp388 = tmp240*m;
+    const Scalar tmp389 = tmp245*m;
+    const Scalar tmp390 = tmp246*m;
+    const Scalar tmp391 = tmp253*m;
+    const Scalar tmp392 = tmp254*m;
+    const Scalar tmp393 = tmp263*m;
+    const Scalar tmp394 = tmp264*m;
+    const Scalar tmp395 = tmp275*m;
+    const Scalar tmp396 = tmp276*m;
+    const Scalar tmp397 = tmp289*m;
+    const Scalar tmp398 = tmp290*m;
+    const Scalar tmp399 = tmp305*m;
+    const Scalar tmp400 = tmp306*m;
+    const Scalar tmp401 = tmp323*m;
+    const Scalar tmp402 = tmp324*m;
     const Scalar tmp432 = -tmp1*tmp384 - tmp15*tmp385 - tmp128*tmp396 - tmp139*tmp397 - tmp18*tmp386
         - tmp159*tmp398 - tmp170*tmp399 - tmp193*tmp400 - tmp204*tmp401 - tmp27*tmp387
         - tmp230*tmp402 - tmp34*tmp388 - tmp3*tmp383 - tmp44*tmp389 - tmp53*tmp390 - tmp63*tmp391
@@ -1512,82 +1512,80 @@ struct StiffChain10 {
     const Scalar tmp228 = tmp224 + tmp98;
     const Scalar tmp229 = tmp225 + tmp74;
     const Scalar tmp230 = tmp226 + tmp53;
-    const Scalar tmp232 = g*m;
-    const Scalar tmp233 = -tmp232;
-    const Scalar tmp234 = (phi1_dot*phi1_dot);
-    const Scalar tmp235 = -tmp1*tmp234;
-    const Scalar tmp236 = tmp234*tmp3;
-    const Scalar tmp237 = phi1_dot*(-tmp17 - tmp18*phi1_dot) + phi2_dot*(-tmp17 - tmp9*phi1_dot);
-    const Scalar tmp238 = tmp16*phi1_dot + phi2_dot*(tmp14 + tmp12*phi1_dot);
-    const Scalar tmp239 = -tmp33;
-    const Scalar tmp240 = -tmp32 + tmp239*phi2_dot;
-    const Scalar tmp241 = phi1_dot*(tmp240 - tmp34*phi1_dot) + phi2_dot*(tmp240 + tmp239*phi1_dot)
+    const Scalar tmp232 = (phi1_dot*phi1_dot);
+    const Scalar tmp233 = -tmp1*tmp232;
+    const Scalar tmp234 = tmp232*tmp3;
+    const Scalar tmp235 = phi1_dot*(-tmp17 - tmp18*phi1_dot) + phi2_dot*(-tmp17 - tmp9*phi1_dot);
+    const Scalar tmp236 = tmp16*phi1_dot + phi2_dot*(tmp14 + tmp12*phi1_dot);
+    const Scalar tmp237 = -tmp33;
+    const Scalar tmp238 = -tmp32 + tmp237*phi2_dot;
+    const Scalar tmp239 = phi1_dot*(tmp238 - tmp34*phi1_dot) + phi2_dot*(tmp238 + tmp237*phi1_dot)
         + phi3_dot*(-tmp32 - tmp22*phi1_dot - tmp22*phi2_dot);
-    const Scalar tmp242 = tmp31*phi1_dot + phi2_dot*(tmp30 + tmp28*phi1_dot)
+    const Scalar tmp240 = tmp31*phi1_dot + phi2_dot*(tmp30 + tmp28*phi1_dot)
         + phi3_dot*(tmp29 + tmp25*phi1_dot + tmp25*phi2_dot);
-    const Scalar tmp243 = -tmp51;
-    const Scalar tmp244 = -tmp50 + tmp243*phi3_dot;
-    const Scalar tmp245 = -tmp52;
-    const Scalar tmp246 = tmp244 + tmp245*phi2_dot;
-    const Scalar tmp247 = phi1_dot*(tmp246 - tmp53*phi1_dot) + phi2_dot*(tmp246 + tmp245*phi1_dot)
-        + phi3_dot*(tmp244 + tmp243*phi1_dot + tmp243*phi2_dot)
+    const Scalar tmp241 = -tmp51;
+    const Scalar tmp242 = -tmp50 + tmp241*phi3_dot;
+    const Scalar tmp243 = -tmp52;
+    const Scalar tmp244 = tmp242 + tmp243*phi2_dot;
+    const Scalar tmp245 = phi1_dot*(tmp244 - tmp53*phi1_dot) + phi2_dot*(tmp244 + tmp243*phi1_dot)
+        + phi3_dot*(tmp242 + tmp241*phi1_dot + tmp241*phi2_dot)
         + phi4_dot*(-tmp50 - tmp38*phi1_dot - tmp38*phi2_dot - tmp38*phi3_dot);
-    const Scalar tmp248 = tmp49*phi1_dot + phi2_dot*(tmp48 + tmp45*phi1_dot)
+    const Scalar tmp246 = tmp49*phi1_dot + phi2_dot*(tmp48 + tmp45*phi1_dot)
         + phi3_dot*(tmp47 + tmp43*phi1_dot + tmp43*phi2_dot)
         + phi4_dot*(tmp46 + tmp41*phi1_dot + tmp41*phi2_dot + tmp41*phi3_dot);
-    const Scalar tmp249 = -tmp72;
-    const Scalar tmp250 = -tmp71 + tmp249*phi4_dot;
-    const Scalar tmp251 = -tmp73;
-    const Scalar tmp252 = tmp250 + tmp251*phi3_dot;
-    const Scalar tmp253 = -tmp74;
-    const Scalar tmp254 = tmp252 + tmp253*phi2_dot;
-    const Scalar tmp255 = phi1_dot*(tmp254 - tmp75*phi1_dot) + phi2_dot*(tmp254 + tmp253*phi1_dot)
-        + phi3_dot*(tmp252 + tmp251*phi1_dot + tmp251*phi2_dot)
-        + phi4_dot*(tmp250 + tmp249*phi1_dot + tmp249*phi2_dot + tmp249*phi3_dot)
+    const Scalar tmp247 = -tmp72;
+    const Scalar tmp248 = -tmp71 + tmp247*phi4_dot;
+    const Scalar tmp249 = -tmp73;
+    const Scalar tmp250 = tmp248 + tmp249*phi3_dot;
+    const Scalar tmp251 = -tmp74;
+    const Scalar tmp252 = tmp250 + tmp251*phi2_dot;
+    const Scalar tmp253 = phi1_dot*(tmp252 - tmp75*phi1_dot) + phi2_dot*(tmp252 + tmp251*phi1_dot)
+        + phi3_dot*(tmp250 + tmp249*phi1_dot + tmp249*phi2_dot)
+        + phi4_dot*(tmp248 + tmp247*phi1_dot + tmp247*phi2_dot + tmp247*phi3_dot)
         + phi5_dot*(-tmp71 - tmp57*phi1_dot - tmp57*phi2_dot - tmp57*phi3_dot - tmp57*phi4_dot);
-    const Scalar tmp256 = tmp70*phi1_dot + phi2_dot*(tmp69 + tmp65*phi1_dot)
+    const Scalar tmp254 = tmp70*phi1_dot + phi2_dot*(tmp69 + tmp65*phi1_dot)
         + phi3_dot*(tmp68 + tmp62*phi1_dot + tmp62*phi2_dot)
         + phi4_dot*(tmp67 + tmp64*phi1_dot + tmp64*phi2_dot + tmp64*phi3_dot)
         + phi5_dot*(tmp66 + tmp60*phi1_dot + tmp60*phi2_dot + tmp60*phi3_dot + tmp60*phi4_dot);
-    const Scalar tmp257 = -tmp96;
-    const Scalar tmp258 = -tmp95 + tmp257*phi5_dot;
-    const Scalar tmp259 = -tmp97;
-    const Scalar tmp260 = tmp258 + tmp259*phi4_dot;
-    const Scalar tmp261 = -tmp98;
-    const Scalar tmp262 = tmp260 + tmp261*phi3_dot;
-    const Scalar tmp263 = -tmp99;
-    const Scalar tmp264 = tmp262 + tmp263*phi2_dot;
-    const Scalar tmp265 = phi1_dot*(tmp264 - tmp100*phi1_dot) + phi2_dot*(tmp264 + tmp263*phi1_dot)
-        + phi3_dot*(tmp262 + tmp261*phi1_dot + tmp261*phi2_dot)
-        + phi4_dot*(tmp260 + tmp259*phi1_dot + tmp259*phi2_dot + tmp259*phi3_dot)
-        + phi5_dot*(tmp258 + tmp257*phi1_dot + tmp257*phi2_dot + tmp257*phi3_dot + tmp257*phi4_dot)
+    const Scalar tmp255 = -tmp96;
+    const Scalar tmp256 = -tmp95 + tmp255*phi5_dot;
+    const Scalar tmp257 = -tmp97;
+    const Scalar tmp258 = tmp256 + tmp257*phi4_dot;
+    const Scalar tmp259 = -tmp98;
+    const Scalar tmp260 = tmp258 + tmp259*phi3_dot;
+    const Scalar tmp261 = -tmp99;
+    const Scalar tmp262 = tmp260 + tmp261*phi2_dot;
+    const Scalar tmp263 = phi1_dot*(tmp262 - tmp100*phi1_dot) + phi2_dot*(tmp262 + tmp261*phi1_dot)
+        + phi3_dot*(tmp260 + tmp259*phi1_dot + tmp259*phi2_dot)
+        + phi4_dot*(tmp258 + tmp257*phi1_dot + tmp257*phi2_dot + tmp257*phi3_dot)
+        + phi5_dot*(tmp256 + tmp255*phi1_dot + tmp255*phi2_dot + tmp255*phi3_dot + tmp255*phi4_dot)
         + phi6_dot*(-tmp95 - tmp79*phi1_dot - tmp79*phi2_dot - tmp79*phi3_dot - tmp79*phi4_dot
             - tmp79*phi5_dot);
-    const Scalar tmp266 = tmp94*phi1_dot + phi2_dot*(tmp93 + tmp87*phi1_dot)
+    const Scalar tmp264 = tmp94*phi1_dot + phi2_dot*(tmp93 + tmp87*phi1_dot)
         + phi3_dot*(tmp92 + tmp88*phi1_dot + tmp88*phi2_dot)
         + phi4_dot*(tmp91 + tmp86*phi1_dot + tmp86*phi2_dot + tmp86*phi3_dot)
         + phi5_dot*(tmp90 + tmp84*phi1_dot + tmp84*phi2_dot + tmp84*phi3_dot + tmp84*phi4_dot)
         + phi6_dot*(tmp89 + tmp82*phi1_dot + tmp82*phi2_dot + tmp82*phi3_dot + tmp82*phi4_dot
             + tmp82*phi5_dot);
-    const Scalar tmp267 = -tmp123;
-    const Scalar tmp268 = -tmp122 + tmp267*phi6_dot;
-    const Scalar tmp269 = -tmp124;
-    const Scalar tmp270 = tmp268 + tmp269*phi5_dot;
-    const Scalar tmp271 = -tmp125;
-    const Scalar tmp272 = tmp270 + tmp271*phi4_dot;
-    const Scalar tmp273 = -tmp126;
-    const Scalar tmp274 = tmp272 + tmp273*phi3_dot;
-    const Scalar tmp275 = -tmp127;
-    const Scalar tmp276 = tmp274 + tmp275*phi2_dot;
-    const Scalar tmp277 = phi1_dot*(tmp276 - tmp128*phi1_dot) + phi2_dot*(tmp276 + tmp275*phi1_dot)
-        + phi3_dot*(tmp274 + tmp273*phi1_dot + tmp273*phi2_dot)
-        + phi4_dot*(tmp272 + tmp271*phi1_dot + tmp271*phi2_dot + tmp271*phi3_dot)
-        + phi5_dot*(tmp270 + tmp269*phi1_dot + tmp269*phi2_dot + tmp269*phi3_dot + tmp269*phi4_dot)
-        + phi6_dot*(tmp268 + tmp267*phi1_dot + tmp267*phi2_dot + tmp267*phi3_dot + tmp267*phi4_dot
-            + tmp267*phi5_dot)
+    const Scalar tmp265 = -tmp123;
+    const Scalar tmp266 = -tmp122 + tmp265*phi6_dot;
+    const Scalar tmp267 = -tmp124;
+    const Scalar tmp268 = tmp266 + tmp267*phi5_dot;
+    const Scalar tmp269 = -tmp125;
+    const Scalar tmp270 = tmp268 + tmp269*phi4_dot;
+    const Scalar tmp271 = -tmp126;
+    const Scalar tmp272 = tmp270 + tmp271*phi3_dot;
+    const Scalar tmp273 = -tmp127;
+    const Scalar tmp274 = tmp272 + tmp273*phi2_dot;
+    const Scalar tmp275 = phi1_dot*(tmp274 - tmp128*phi1_dot) + phi2_dot*(tmp274 + tmp273*phi1_dot)
+        + phi3_dot*(tmp272 + tmp271*phi1_dot + tmp271*phi2_dot)
+        + phi4_dot*(tmp270 + tmp269*phi1_dot + tmp269*phi2_dot + tmp269*phi3_dot)
+        + phi5_dot*(tmp268 + tmp267*phi1_dot + tmp267*phi2_dot + tmp267*phi3_dot + tmp267*phi4_dot)
+        + phi6_dot*(tmp266 + tmp265*phi1_dot + tmp265*phi2_dot + tmp265*phi3_dot + tmp265*phi4_dot
+            + tmp265*phi5_dot)
         + phi7_dot*(-tmp122 - tmp104*phi1_dot - tmp104*phi2_dot - tmp104*phi3_dot - tmp104*phi4_dot
             - tmp104*phi5_dot - tmp104*phi6_dot);
-    const Scalar tmp278 = tmp121*phi1_dot + phi2_dot*(tmp120 + tmp112*phi1_dot)
+    const Scalar tmp276 = tmp121*phi1_dot + phi2_dot*(tmp120 + tmp112*phi1_dot)
         + phi3_dot*(tmp119 + tmp113*phi1_dot + tmp113*phi2_dot)
         + phi4_dot*(tmp118 + tmp114*phi1_dot + tmp114*phi2_dot + tmp114*phi3_dot)
         + phi5_dot*(tmp117 + tmp109*phi1_dot + tmp109*phi2_dot + tmp109*phi3_dot + tmp109*phi4_dot)
@@ -1595,29 +1593,29 @@ struct StiffChain10 {
             + tmp111*phi5_dot)
         + phi7_dot*(tmp115 + tmp107*phi1_dot + tmp107*phi2_dot + tmp107*phi3_dot + tmp107*phi4_dot
             + tmp107*phi5_dot + tmp107*phi6_dot);
-    const Scalar tmp279 = -tmp153;
-    const Scalar tmp280 = -tmp152 + tmp279*phi7_dot;
-    const Scalar tmp281 = -tmp154;
-    const Scalar tmp282 = tmp280 + tmp281*phi6_dot;
-    const Scalar tmp283 = -tmp155;
-    const Scalar tmp284 = tmp282 + tmp283*phi5_dot;
-    const Scalar tmp285 = -tmp156;
-    const Scalar tmp286 = tmp284 + tmp285*phi4_dot;
-    const Scalar tmp287 = -tmp157;
-    const Scalar tmp288 = tmp286 + tmp287*phi3_dot;
-    const Scalar tmp289 = -tmp158;
-    const Scalar tmp290 = tmp288 + tmp289*phi2_dot;
-    const Scalar tmp291 = phi1_dot*(tmp290 - tmp159*phi1_dot) + phi2_dot*(tmp290 + tmp289*phi1_dot)
-        + phi3_dot*(tmp288 + tmp287*phi1_dot + tmp287*phi2_dot)
-        + phi4_dot*(tmp286 + tmp285*phi1_dot + tmp285*phi2_dot + tmp285*phi3_dot)
-        + phi5_dot*(tmp284 + tmp283*phi1_dot + tmp283*phi2_dot + tmp283*phi3_dot + tmp283*phi4_dot)
-        + phi6_dot*(tmp282 + tmp281*phi1_dot + tmp281*phi2_dot + tmp281*phi3_dot + tmp281*phi4_dot
-            + tmp281*phi5_dot)
-        + phi7_dot*(tmp280 + tmp279*phi1_dot + tmp279*phi2_dot + tmp279*phi3_dot + tmp279*phi4_dot
-            + tmp279*phi5_dot + tmp279*phi6_dot)
+    const Scalar tmp277 = -tmp153;
+    const Scalar tmp278 = -tmp152 + tmp277*phi7_dot;
+    const Scalar tmp279 = -tmp154;
+    const Scalar tmp280 = tmp278 + tmp279*phi6_dot;
+    const Scalar tmp281 = -tmp155;
+    const Scalar tmp282 = tmp280 + tmp281*phi5_dot;
+    const Scalar tmp283 = -tmp156;
+    const Scalar tmp284 = tmp282 + tmp283*phi4_dot;
+    const Scalar tmp285 = -tmp157;
+    const Scalar tmp286 = tmp284 + tmp285*phi3_dot;
+    const Scalar tmp287 = -tmp158;
+    const Scalar tmp288 = tmp286 + tmp287*phi2_dot;
+    const Scalar tmp289 = phi1_dot*(tmp288 - tmp159*phi1_dot) + phi2_dot*(tmp288 + tmp287*phi1_dot)
+        + phi3_dot*(tmp286 + tmp285*phi1_dot + tmp285*phi2_dot)
+        + phi4_dot*(tmp284 + tmp283*phi1_dot + tmp283*phi2_dot + tmp283*phi3_dot)
+        + phi5_dot*(tmp282 + tmp281*phi1_dot + tmp281*phi2_dot + tmp281*phi3_dot + tmp281*phi4_dot)
+        + phi6_dot*(tmp280 + tmp279*phi1_dot + tmp279*phi2_dot + tmp279*phi3_dot + tmp279*phi4_dot
+            + tmp279*phi5_dot)
+        + phi7_dot*(tmp278 + tmp277*phi1_dot + tmp277*phi2_dot + tmp277*phi3_dot + tmp277*phi4_dot
+            + tmp277*phi5_dot + tmp277*phi6_dot)
         + phi8_dot*(-tmp152 - tmp132*phi1_dot - tmp132*phi2_dot - tmp132*phi3_dot - tmp132*phi4_dot
             - tmp132*phi5_dot - tmp132*phi6_dot - tmp132*phi7_dot);
-    const Scalar tmp292 = tmp151*phi1_dot + phi2_dot*(tmp150 + tmp141*phi1_dot)
+    const Scalar tmp290 = tmp151*phi1_dot + phi2_dot*(tmp150 + tmp141*phi1_dot)
         + phi3_dot*(tmp149 + tmp142*phi1_dot + tmp142*phi2_dot)
         + phi4_dot*(tmp148 + tmp143*phi1_dot + tmp143*phi2_dot + tmp143*phi3_dot)
         + phi5_dot*(tmp147 + tmp138*phi1_dot + tmp138*phi2_dot + tmp138*phi3_dot + tmp138*phi4_dot)
@@ -1627,33 +1625,33 @@ struct StiffChain10 {
             + tmp137*phi5_dot + tmp137*phi6_dot)
         + phi8_dot*(tmp144 + tmp135*phi1_dot + tmp135*phi2_dot + tmp135*phi3_dot + tmp135*phi4_dot
             + tmp135*phi5_dot + tmp135*phi6_dot + tmp135*phi7_dot);
-    const Scalar tmp293 = -tmp186;
-    const Scalar tmp294 = -tmp185 + tmp293*phi8_dot;
-    const Scalar tmp295 = -tmp187;
-    const Scalar tmp296 = tmp294 + tmp295*phi7_dot;
-    const Scalar tmp297 = -tmp188;
-    const Scalar tmp298 = tmp296 + tmp297*phi6_dot;
-    const Scalar tmp299 = -tmp189;
-    const Scalar tmp300 = tmp298 + tmp299*phi5_dot;
-    const Scalar tmp301 = -tmp190;
-    const Scalar tmp302 = tmp300 + tmp301*phi4_dot;
-    const Scalar tmp303 = -tmp191;
-    const Scalar tmp304 = tmp302 + tmp303*phi3_dot;
-    const Scalar tmp305 = -tmp192;
-    const Scalar tmp306 = tmp304 + tmp305*phi2_dot;
-    const Scalar tmp307 = phi1_dot*(tmp306 - tmp193*phi1_dot) + phi2_dot*(tmp306 + tmp305*phi1_dot)
-        + phi3_dot*(tmp304 + tmp303*phi1_dot + tmp303*phi2_dot)
-        + phi4_dot*(tmp302 + tmp301*phi1_dot + tmp301*phi2_dot + tmp301*phi3_dot)
-        + phi5_dot*(tmp300 + tmp299*phi1_dot + tmp299*phi2_dot + tmp299*phi3_dot + tmp299*phi4_dot)
-        + phi6_dot*(tmp298 + tmp297*phi1_dot + tmp297*phi2_dot + tmp297*phi3_dot + tmp297*phi4_dot
-            + tmp297*phi5_dot)
-        + phi7_dot*(tmp296 + tmp295*phi1_dot + tmp295*phi2_dot + tmp295*phi3_dot + tmp295*phi4_dot
-            + tmp295*phi5_dot + tmp295*phi6_dot)
-        + phi8_dot*(tmp294 + tmp293*phi1_dot + tmp293*phi2_dot + tmp293*phi3_dot + tmp293*phi4_dot
-            + tmp293*phi5_dot + tmp293*phi6_dot + tmp293*phi7_dot)
+    const Scalar tmp291 = -tmp186;
+    const Scalar tmp292 = -tmp185 + tmp291*phi8_dot;
+    const Scalar tmp293 = -tmp187;
+    const Scalar tmp294 = tmp292 + tmp293*phi7_dot;
+    const Scalar tmp295 = -tmp188;
+    const Scalar tmp296 = tmp294 + tmp295*phi6_dot;
+    const Scalar tmp297 = -tmp189;
+    const Scalar tmp298 = tmp296 + tmp297*phi5_dot;
+    const Scalar tmp299 = -tmp190;
+    const Scalar tmp300 = tmp298 + tmp299*phi4_dot;
+    const Scalar tmp301 = -tmp191;
+    const Scalar tmp302 = tmp300 + tmp301*phi3_dot;
+    const Scalar tmp303 = -tmp192;
+    const Scalar tmp304 = tmp302 + tmp303*phi2_dot;
+    const Scalar tmp305 = phi1_dot*(tmp304 - tmp193*phi1_dot) + phi2_dot*(tmp304 + tmp303*phi1_dot)
+        + phi3_dot*(tmp302 + tmp301*phi1_dot + tmp301*phi2_dot)
+        + phi4_dot*(tmp300 + tmp299*phi1_dot + tmp299*phi2_dot + tmp299*phi3_dot)
+        + phi5_dot*(tmp298 + tmp297*phi1_dot + tmp297*phi2_dot + tmp297*phi3_dot + tmp297*phi4_dot)
+        + phi6_dot*(tmp296 + tmp295*phi1_dot + tmp295*phi2_dot + tmp295*phi3_dot + tmp295*phi4_dot
+            + tmp295*phi5_dot)
+        + phi7_dot*(tmp294 + tmp293*phi1_dot + tmp293*phi2_dot + tmp293*phi3_dot + tmp293*phi4_dot
+            + tmp293*phi5_dot + tmp293*phi6_dot)
+        + phi8_dot*(tmp292 + tmp291*phi1_dot + tmp291*phi2_dot + tmp291*phi3_dot + tmp291*phi4_dot
+            + tmp291*phi5_dot + tmp291*phi6_dot + tmp291*phi7_dot)
         + phi9_dot*(-tmp185 - tmp163*phi1_dot - tmp163*phi2_dot - tmp163*phi3_dot - tmp163*phi4_dot
             - tmp163*phi5_dot - tmp163*phi6_dot - tmp163*phi7_dot - tmp163*phi8_dot);
-    const Scalar tmp308 = tmp184*phi1_dot + phi2_dot*(tmp183 + tmp173*phi1_dot)
+    const Scalar tmp306 = tmp184*phi1_dot + phi2_dot*(tmp183 + tmp173*phi1_dot)
         + phi3_dot*(tmp182 + tmp174*phi1_dot + tmp174*phi2_dot)
         + phi4_dot*(tmp181 + tmp175*phi1_dot + tmp175*phi2_dot + tmp175*phi3_dot)
         + phi5_dot*(tmp180 + tmp169*phi1_dot + tmp169*phi2_dot + tmp169*phi3_dot + tmp169*phi4_dot)
@@ -1665,38 +1663,38 @@ struct StiffChain10 {
             + tmp171*phi5_dot + tmp171*phi6_dot + tmp171*phi7_dot)
         + phi9_dot*(tmp176 + tmp166*phi1_dot + tmp166*phi2_dot + tmp166*phi3_dot + tmp166*phi4_dot
             + tmp166*phi5_dot + tmp166*phi6_dot + tmp166*phi7_dot + tmp166*phi8_dot);
-    const Scalar tmp309 = -tmp222;
-    const Scalar tmp310 = -tmp221 + tmp309*phi9_dot;
-    const Scalar tmp311 = -tmp223;
-    const Scalar tmp312 = tmp310 + tmp311*phi8_dot;
-    const Scalar tmp313 = -tmp224;
-    const Scalar tmp314 = tmp312 + tmp313*phi7_dot;
-    const Scalar tmp315 = -tmp225;
-    const Scalar tmp316 = tmp314 + tmp315*phi6_dot;
-    const Scalar tmp317 = -tmp226;
-    const Scalar tmp318 = tmp316 + tmp317*phi5_dot;
-    const Scalar tmp319 = -tmp227;
-    const Scalar tmp320 = tmp318 + tmp319*phi4_dot;
-    const Scalar tmp321 = -tmp228;
-    const Scalar tmp322 = tmp320 + tmp321*phi3_dot;
-    const Scalar tmp323 = -tmp229;
-    const Scalar tmp324 = tmp322 + tmp323*phi2_dot;
-    const Scalar tmp325 = phi10_dot*(-tmp221 - tmp197*phi1_dot - tmp197*phi2_dot - tmp197*phi3_dot
+    const Scalar tmp307 = -tmp222;
+    const Scalar tmp308 = -tmp221 + tmp307*phi9_dot;
+    const Scalar tmp309 = -tmp223;
+    const Scalar tmp310 = tmp308 + tmp309*phi8_dot;
+    const Scalar tmp311 = -tmp224;
+    const Scalar tmp312 = tmp310 + tmp311*phi7_dot;
+    const Scalar tmp313 = -tmp225;
+    const Scalar tmp314 = tmp312 + tmp313*phi6_dot;
+    const Scalar tmp315 = -tmp226;
+    const Scalar tmp316 = tmp314 + tmp315*phi5_dot;
+    const Scalar tmp317 = -tmp227;
+    const Scalar tmp318 = tmp316 + tmp317*phi4_dot;
+    const Scalar tmp319 = -tmp228;
+    const Scalar tmp320 = tmp318 + tmp319*phi3_dot;
+    const Scalar tmp321 = -tmp229;
+    const Scalar tmp322 = tmp320 + tmp321*phi2_dot;
+    const Scalar tmp323 = phi10_dot*(-tmp221 - tmp197*phi1_dot - tmp197*phi2_dot - tmp197*phi3_dot
             - tmp197*phi4_dot - tmp197*phi5_dot - tmp197*phi6_dot - tmp197*phi7_dot
             - tmp197*phi8_dot - tmp197*phi9_dot)
-        + phi1_dot*(tmp324 - tmp230*phi1_dot) + phi2_dot*(tmp324 + tmp323*phi1_dot)
-        + phi3_dot*(tmp322 + tmp321*phi1_dot + tmp321*phi2_dot)
-        + phi4_dot*(tmp320 + tmp319*phi1_dot + tmp319*phi2_dot + tmp319*phi3_dot)
-        + phi5_dot*(tmp318 + tmp317*phi1_dot + tmp317*phi2_dot + tmp317*phi3_dot + tmp317*phi4_dot)
-        + phi6_dot*(tmp316 + tmp315*phi1_dot + tmp315*phi2_dot + tmp315*phi3_dot + tmp315*phi4_dot
-            + tmp315*phi5_dot)
-        + phi7_dot*(tmp314 + tmp313*phi1_dot + tmp313*phi2_dot + tmp313*phi3_dot + tmp313*phi4_dot
-            + tmp313*phi5_dot + tmp313*phi6_dot)
-        + phi8_dot*(tmp312 + tmp311*phi1_dot + tmp311*phi2_dot + tmp311*phi3_dot + tmp311*phi4_dot
-            + tmp311*phi5_dot + tmp311*phi6_dot + tmp311*phi7_dot)
-        + phi9_dot*(tmp310 + tmp309*phi1_dot + tmp309*phi2_dot + tmp309*phi3_dot + tmp309*phi4_dot
-            + tmp309*phi5_dot + tmp309*phi6_dot + tmp309*phi7_dot + tmp309*phi8_dot);
-    const Scalar tmp326 = tmp220*phi1_dot
+        + phi1_dot*(tmp322 - tmp230*phi1_dot) + phi2_dot*(tmp322 + tmp321*phi1_dot)
+        + phi3_dot*(tmp320 + tmp319*phi1_dot + tmp319*phi2_dot)
+        + phi4_dot*(tmp318 + tmp317*phi1_dot + tmp317*phi2_dot + tmp317*phi3_dot)
+        + phi5_dot*(tmp316 + tmp315*phi1_dot + tmp315*phi2_dot + tmp315*phi3_dot + tmp315*phi4_dot)
+        + phi6_dot*(tmp314 + tmp313*phi1_dot + tmp313*phi2_dot + tmp313*phi3_dot + tmp313*phi4_dot
+            + tmp313*phi5_dot)
+        + phi7_dot*(tmp312 + tmp311*phi1_dot + tmp311*phi2_dot + tmp311*phi3_dot + tmp311*phi4_dot
+            + tmp311*phi5_dot + tmp311*phi6_dot)
+        + phi8_dot*(tmp310 + tmp309*phi1_dot + tmp309*phi2_dot + tmp309*phi3_dot + tmp309*phi4_dot
+            + tmp309*phi5_dot + tmp309*phi6_dot + tmp309*phi7_dot)
+        + phi9_dot*(tmp308 + tmp307*phi1_dot + tmp307*phi2_dot + tmp307*phi3_dot + tmp307*phi4_dot
+            + tmp307*phi5_dot + tmp307*phi6_dot + tmp307*phi7_dot + tmp307*phi8_dot);
+    const Scalar tmp324 = tmp220*phi1_dot
         + phi10_dot*(tmp211 + tmp200*phi1_dot + tmp200*phi2_dot + tmp200*phi3_dot + tmp200*phi4_dot
             + tmp200*phi5_dot + tmp200*phi6_dot + tmp200*phi7_dot + tmp200*phi8_dot
             + tmp200*phi9_dot)
@@ -1712,63 +1710,65 @@ struct StiffChain10 {
             + tmp205*phi5_dot + tmp205*phi6_dot + tmp205*phi7_dot)
         + phi9_dot*(tmp212 + tmp202*phi1_dot + tmp202*phi2_dot + tmp202*phi3_dot + tmp202*phi4_dot
             + tmp202*phi5_dot + tmp202*phi6_dot + tmp202*phi7_dot + tmp202*phi8_dot);
-    const Scalar tmp383 = tmp235*m;
-    const Scalar tmp384 = tmp236*m;
-    const Scalar tmp385 = tmp237*m;
-    const Scalar tmp386 = tmp238*m;
-    const Scalar tmp387 = tmp241*m;
-    const Scalar tmp388 = tmp242*m;
-    const Scalar tmp389 = tmp247*m;
-    const Scalar tmp390 = tmp248*m;
-    const Scalar tmp391 = tmp255*m;
-    const Scalar tmp392 = tmp256*m;
-    const Scalar tmp393 = tmp265*m;
-    const Scalar tmp394 = tmp266*m;
-    const Scalar tmp395 = tmp277*m;
-    const Scalar tmp396 = tmp278*m;
-    const Scalar tmp397 = tmp291*m;
-    const Scalar tmp398 = tmp292*m;
-    const Scalar tmp399 = tmp307*m;
-    const Scalar tmp400 = tmp308*m;
-    const Scalar tmp401 = tmp325*m;
-    const Scalar tmp402 = tmp326*m;
+    const Scalar tmp381 = g*m;
+    const Scalar tmp382 = -tmp381;
+    const Scalar tmp383 = tmp233*m;
+    const Scalar tmp384 = tmp234*m;
+    const Scalar tmp385 = tmp235*m;
+    const Scalar tmp386 = tmp236*m;
+    const Scalar tmp387 = tmp239*m;
+    const Scalar tmp388 = tmp240*m;
+    const Scalar tmp389 = tmp245*m;
+    const Scalar tmp390 = tmp246*m;
+    const Scalar tmp391 = tmp253*m;
+    const Scalar tmp392 = tmp254*m;
+    const Scalar tmp393 = tmp263*m;
+    const Scalar tmp394 = tmp264*m;
+    const Scalar tmp395 = tmp275*m;
+    const Scalar tmp396 = tmp276*m;
+    const Scalar tmp397 = tmp289*m;
+    const Scalar tmp398 = tmp290*m;
+    const Scalar tmp399 = tmp305*m;
+    const Scalar tmp400 = tmp306*m;
+    const Scalar tmp401 = tmp323*m;
+    const Scalar tmp402 = tmp324*m;
     const Scalar tmp403 = c*phi1_dot;
     const Scalar tmp404 = k*phi1;
-    const Scalar tmp405 = -tmp403 - tmp404 + tmp1*tmp233 + tmp128*tmp233 + tmp18*tmp233
-        + tmp159*tmp233 + tmp193*tmp233 + tmp230*tmp233 + tmp233*tmp34 + tmp233*tmp53 + tmp233*tmp75
-        + tmp233*tmp100;
+    const Scalar tmp405 = -tmp403 - tmp404 + tmp1*tmp382 + tmp128*tmp382 + tmp18*tmp382
+        + tmp159*tmp382 + tmp193*tmp382 + tmp230*tmp382 + tmp34*tmp382 + tmp382*tmp53 + tmp382*tmp75
+        + tmp382*tmp100;
     const Scalar tmp406 = c*phi2_dot;
     const Scalar tmp407 = k*phi2;
-    const Scalar tmp408 = -tmp406 - tmp407 + tmp127*tmp233 + tmp158*tmp233 + tmp192*tmp233
-        + tmp229*tmp233 + tmp233*tmp33 + tmp233*tmp52 + tmp233*tmp9 + tmp233*tmp74 + tmp233*tmp99;
+    const Scalar tmp408 = -tmp406 - tmp407 + tmp127*tmp382 + tmp158*tmp382 + tmp192*tmp382
+        + tmp229*tmp382 + tmp33*tmp382 + tmp382*tmp52 + tmp382*tmp9 + tmp382*tmp74 + tmp382*tmp99;
     const Scalar tmp409 = c*phi3_dot;
     const Scalar tmp410 = k*phi3;
-    const Scalar tmp411 = -tmp409 - tmp410 + tmp126*tmp233 + tmp157*tmp233 + tmp22*tmp233
-        + tmp191*tmp233 + tmp228*tmp233 + tmp233*tmp51 + tmp233*tmp73 + tmp233*tmp98;
+    const Scalar tmp411 = -tmp409 - tmp410 + tmp126*tmp382 + tmp157*tmp382 + tmp22*tmp382
+        + tmp191*tmp382 + tmp228*tmp382 + tmp382*tmp51 + tmp382*tmp73 + tmp382*tmp98;
     const Scalar tmp412 = c*phi4_dot;
     const Scalar tmp413 = k*phi4;
-    const Scalar tmp414 = -tmp412 - tmp413 + tmp125*tmp233 + tmp156*tmp233 + tmp190*tmp233
-        + tmp227*tmp233 + tmp233*tmp38 + tmp233*tmp72 + tmp233*tmp97;
+    const Scalar tmp414 = -tmp412 - tmp413 + tmp125*tmp382 + tmp156*tmp382 + tmp190*tmp382
+        + tmp227*tmp382 + tmp382*tmp38 + tmp382*tmp72 + tmp382*tmp97;
     const Scalar tmp415 = c*phi5_dot;
     const Scalar tmp416 = k*phi5;
-    const Scalar tmp417 = -tmp415 - tmp416 + tmp124*tmp233 + tmp155*tmp233 + tmp189*tmp233
-        + tmp226*tmp233 + tmp233*tmp57 + tmp233*tmp96;
+    const Scalar tmp417 = -tmp415 - tmp416 + tmp124*tmp382 + tmp155*tmp382 + tmp189*tmp382
+        + tmp226*tmp382 + tmp382*tmp57 + tmp382*tmp96;
     const Scalar tmp418 = c*phi6_dot;
     const Scalar tmp419 = k*phi6;
-    const Scalar tmp420 = -tmp418 - tmp419 + tmp123*tmp233 + tmp154*tmp233 + tmp188*tmp233
-        + tmp225*tmp233 + tmp233*tmp79;
+    const Scalar tmp420 = -tmp418 - tmp419 + tmp123*tmp382 + tmp154*tmp382 + tmp188*tmp382
+        + tmp225*tmp382 + tmp382*tmp79;
     const Scalar tmp421 = c*phi7_dot;
     const Scalar tmp422 = k*phi7;
-    const Scalar tmp423 = -tmp421 - tmp422 + tmp153*tmp233 + tmp187*tmp233 + tmp224*tmp233
-        + tmp233*tmp104;
+    const Scalar tmp423 = -tmp421 - tmp422 + tmp153*tmp382 + tmp187*tmp382 + tmp224*tmp382
+        + tmp382*tmp104;
     const Scalar tmp424 = c*phi8_dot;
     const Scalar tmp425 = k*phi8;
-    const Scalar tmp426 = -tmp424 - tmp425 + tmp132*tmp233 + tmp186*tmp233 + tmp223*tmp233;
+    const Scalar tmp426 = -tmp424 - tmp425 + tmp132*tmp382 + tmp186*tmp382 + tmp223*tmp382;
     const Scalar tmp427 = c*phi9_dot;
     const Scalar tmp428 = k*phi9;
-    const Scalar tmp429 = -tmp427 - tmp428 + tmp163*tmp233 + tmp222*tmp233;
+    const Scalar tmp429 = -tmp427 - tmp428 + tmp163*tmp382 + tmp222*tmp382;
     const Scalar tmp430 = c*phi10_dot + k*phi10;
-    const Scalar tmp431 = -tmp430 + tmp196*tmp233*l;
+    const Scalar tmp431 = -tmp430 + tmp196*tmp382*l;
     const Scalar tmp432 = -tmp1*tmp384 - tmp15*tmp385 - tmp128*tmp396 - tmp139*tmp397 - tmp18*tmp386
         - tmp159*tmp398 - tmp170*tmp399 - tmp193*tmp400 - tmp204*tmp401 - tmp27*tmp387
         - tmp230*tmp402 - tmp34*tmp388 - tmp3*tmp383 - tmp44*tmp389 - tmp53*tmp390 - tmp63*tmp391
@@ -2052,82 +2052,80 @@ struct StiffChain10 {
     const Scalar tmp228 = tmp224 + tmp98;
     const Scalar tmp229 = tmp225 + tmp74;
     const Scalar tmp230 = tmp226 + tmp53;
-    const Scalar tmp232 = g*m;
-    const Scalar tmp233 = -tmp232;
-    const Scalar tmp234 = (phi1_dot*phi1_dot);
-    const Scalar tmp235 = -tmp1*tmp234;
-    const Scalar tmp236 = tmp234*tmp3;
-    const Scalar tmp237 = phi1_dot*(-tmp17 - tmp18*phi1_dot) + phi2_dot*(-tmp17 - tmp9*phi1_dot);
-    const Scalar tmp238 = tmp16*phi1_dot + phi2_dot*(tmp14 + tmp12*phi1_dot);
-    const Scalar tmp239 = -tmp33;
-    const Scalar tmp240 = -tmp32 + tmp239*phi2_dot;
-    const Scalar tmp241 = phi1_dot*(tmp240 - tmp34*phi1_dot) + phi2_dot*(tmp240 + tmp239*phi1_dot)
+    const Scalar tmp232 = (phi1_dot*phi1_dot);
+    const Scalar tmp233 = -tmp1*tmp232;
+    const Scalar tmp234 = tmp232*tmp3;
+    const Scalar tmp235 = phi1_dot*(-tmp17 - tmp18*phi1_dot) + phi2_dot*(-tmp17 - tmp9*phi1_dot);
+    const Scalar tmp236 = tmp16*phi1_dot + phi2_dot*(tmp14 + tmp12*phi1_dot);
+    const Scalar tmp237 = -tmp33;
+    const Scalar tmp238 = -tmp32 + tmp237*phi2_dot;
+    const Scalar tmp239 = phi1_dot*(tmp238 - tmp34*phi1_dot) + phi2_dot*(tmp238 + tmp237*phi1_dot)
         + phi3_dot*(-tmp32 - tmp22*phi1_dot - tmp22*phi2_dot);
-    const Scalar tmp242 = tmp31*phi1_dot + phi2_dot*(tmp30 + tmp28*phi1_dot)
+    const Scalar tmp240 = tmp31*phi1_dot + phi2_dot*(tmp30 + tmp28*phi1_dot)
         + phi3_dot*(tmp29 + tmp25*phi1_dot + tmp25*phi2_dot);
-    const Scalar tmp243 = -tmp51;
-    const Scalar tmp244 = -tmp50 + tmp243*phi3_dot;
-    const Scalar tmp245 = -tmp52;
-    const Scalar tmp246 = tmp244 + tmp245*phi2_dot;
-    const Scalar tmp247 = phi1_dot*(tmp246 - tmp53*phi1_dot) + phi2_dot*(tmp246 + tmp245*phi1_dot)
-        + phi3_dot*(tmp244 + tmp243*phi1_dot + tmp243*phi2_dot)
+    const Scalar tmp241 = -tmp51;
+    const Scalar tmp242 = -tmp50 + tmp241*phi3_dot;
+    const Scalar tmp243 = -tmp52;
+    const Scalar tmp244 = tmp242 + tmp243*phi2_dot;
+    const Scalar tmp245 = phi1_dot*(tmp244 - tmp53*phi1_dot) + phi2_dot*(tmp244 + tmp243*phi1_dot)
+        + phi3_dot*(tmp242 + tmp241*phi1_dot + tmp241*phi2_dot)
         + phi4_dot*(-tmp50 - tmp38*phi1_dot - tmp38*phi2_dot - tmp38*phi3_dot);
-    const Scalar tmp248 = tmp49*phi1_dot + phi2_dot*(tmp48 + tmp45*phi1_dot)
+    const Scalar tmp246 = tmp49*phi1_dot + phi2_dot*(tmp48 + tmp45*phi1_dot)
         + phi3_dot*(tmp47 + tmp43*phi1_dot + tmp43*phi2_dot)
         + phi4_dot*(tmp46 + tmp41*phi1_dot + tmp41*phi2_dot + tmp41*phi3_dot);
-    const Scalar tmp249 = -tmp72;
-    const Scalar tmp250 = -tmp71 + tmp249*phi4_dot;
-    const Scalar tmp251 = -tmp73;
-    const Scalar tmp252 = tmp250 + tmp251*phi3_dot;
-    const Scalar tmp253 = -tmp74;
-    const Scalar tmp254 = tmp252 + tmp253*phi2_dot;
-    const Scalar tmp255 = phi1_dot*(tmp254 - tmp75*phi1_dot) + phi2_dot*(tmp254 + tmp253*phi1_dot)
-        + phi3_dot*(tmp252 + tmp251*phi1_dot + tmp251*phi2_dot)
-        + phi4_dot*(tmp250 + tmp249*phi1_dot + tmp249*phi2_dot + tmp249*phi3_dot)
+    const Scalar tmp247 = -tmp72;
+    const Scalar tmp248 = -tmp71 + tmp247*phi4_dot;
+    const Scalar tmp249 = -tmp73;
+    const Scalar tmp250 = tmp248 + tmp249*phi3_dot;
+    const Scalar tmp251 = -tmp74;
+    const Scalar tmp252 = tmp250 + tmp251*phi2_dot;
+    const Scalar tmp253 = phi1_dot*(tmp252 - tmp75*phi1_dot) + phi2_dot*(tmp252 + tmp251*phi1_dot)
+        + phi3_dot*(tmp250 + tmp249*phi1_dot + tmp249*phi2_dot)
+        + phi4_dot*(tmp248 + tmp247*phi1_dot + tmp247*phi2_dot + tmp247*phi3_dot)
         + phi5_dot*(-tmp71 - tmp57*phi1_dot - tmp57*phi2_dot - tmp57*phi3_dot - tmp57*phi4_dot);
-    const Scalar tmp256 = tmp70*phi1_dot + phi2_dot*(tmp69 + tmp65*phi1_dot)
+    const Scalar tmp254 = tmp70*phi1_dot + phi2_dot*(tmp69 + tmp65*phi1_dot)
         + phi3_dot*(tmp68 + tmp62*phi1_dot + tmp62*phi2_dot)
         + phi4_dot*(tmp67 + tmp64*phi1_dot + tmp64*phi2_dot + tmp64*phi3_dot)
         + phi5_dot*(tmp66 + tmp60*phi1_dot + tmp60*phi2_dot + tmp60*phi3_dot + tmp60*phi4_dot);
-    const Scalar tmp257 = -tmp96;
-    const Scalar tmp258 = -tmp95 + tmp257*phi5_dot;
-    const Scalar tmp259 = -tmp97;
-    const Scalar tmp260 = tmp258 + tmp259*phi4_dot;
-    const Scalar tmp261 = -tmp98;
-    const Scalar tmp262 = tmp260 + tmp261*phi3_dot;
-    const Scalar tmp263 = -tmp99;
-    const Scalar tmp264 = tmp262 + tmp263*phi2_dot;
-    const Scalar tmp265 = phi1_dot*(tmp264 - tmp100*phi1_dot) + phi2_dot*(tmp264 + tmp263*phi1_dot)
-        + phi3_dot*(tmp262 + tmp261*phi1_dot + tmp261*phi2_dot)
-        + phi4_dot*(tmp260 + tmp259*phi1_dot + tmp259*phi2_dot + tmp259*phi3_dot)
-        + phi5_dot*(tmp258 + tmp257*phi1_dot + tmp257*phi2_dot + tmp257*phi3_dot + tmp257*phi4_dot)
+    const Scalar tmp255 = -tmp96;
+    const Scalar tmp256 = -tmp95 + tmp255*phi5_dot;
+    const Scalar tmp257 = -tmp97;
+    const Scalar tmp258 = tmp256 + tmp257*phi4_dot;
+    const Scalar tmp259 = -tmp98;
+    const Scalar tmp260 = tmp258 + tmp259*phi3_dot;
+    const Scalar tmp261 = -tmp99;
+    const Scalar tmp262 = tmp260 + tmp261*phi2_dot;
+    const Scalar tmp263 = phi1_dot*(tmp262 - tmp100*phi1_dot) + phi2_dot*(tmp262 + tmp261*phi1_dot)
+        + phi3_dot*(tmp260 + tmp259*phi1_dot + tmp259*phi2_dot)
+        + phi4_dot*(tmp258 + tmp257*phi1_dot + tmp257*phi2_dot + tmp257*phi3_dot)
+        + phi5_dot*(tmp256 + tmp255*phi1_dot + tmp255*phi2_dot + tmp255*phi3_dot + tmp255*phi4_dot)
         + phi6_dot*(-tmp95 - tmp79*phi1_dot - tmp79*phi2_dot - tmp79*phi3_dot - tmp79*phi4_dot
             - tmp79*phi5_dot);
-    const Scalar tmp266 = tmp94*phi1_dot + phi2_dot*(tmp93 + tmp87*phi1_dot)
+    const Scalar tmp264 = tmp94*phi1_dot + phi2_dot*(tmp93 + tmp87*phi1_dot)
         + phi3_dot*(tmp92 + tmp88*phi1_dot + tmp88*phi2_dot)
         + phi4_dot*(tmp91 + tmp86*phi1_dot + tmp86*phi2_dot + tmp86*phi3_dot)
         + phi5_dot*(tmp90 + tmp84*phi1_dot + tmp84*phi2_dot + tmp84*phi3_dot + tmp84*phi4_dot)
         + phi6_dot*(tmp89 + tmp82*phi1_dot + tmp82*phi2_dot + tmp82*phi3_dot + tmp82*phi4_dot
             + tmp82*phi5_dot);
-    const Scalar tmp267 = -tmp123;
-    const Scalar tmp268 = -tmp122 + tmp267*phi6_dot;
-    const Scalar tmp269 = -tmp124;
-    const Scalar tmp270 = tmp268 + tmp269*phi5_dot;
-    const Scalar tmp271 = -tmp125;
-    const Scalar tmp272 = tmp270 + tmp271*phi4_dot;
-    const Scalar tmp273 = -tmp126;
-    const Scalar tmp274 = tmp272 + tmp273*phi3_dot;
-    const Scalar tmp275 = -tmp127;
-    const Scalar tmp276 = tmp274 + tmp275*phi2_dot;
-    const Scalar tmp277 = phi1_dot*(tmp276 - tmp128*phi1_dot) + phi2_dot*(tmp276 + tmp275*phi1_dot)
-        + phi3_dot*(tmp274 + tmp273*phi1_dot + tmp273*phi2_dot)
-        + phi4_dot*(tmp272 + tmp271*phi1_dot + tmp271*phi2_dot + tmp271*phi3_dot)
-        + phi5_dot*(tmp270 + tmp269*phi1_dot + tmp269*phi2_dot + tmp269*phi3_dot + tmp269*phi4_dot)
-        + phi6_dot*(tmp268 + tmp267*phi1_dot + tmp267*phi2_dot + tmp267*phi3_dot + tmp267*phi4_dot
-            + tmp267*phi5_dot)
+    const Scalar tmp265 = -tmp123;
+    const Scalar tmp266 = -tmp122 + tmp265*phi6_dot;
+    const Scalar tmp267 = -tmp124;
+    const Scalar tmp268 = tmp266 + tmp267*phi5_dot;
+    const Scalar tmp269 = -tmp125;
+    const Scalar tmp270 = tmp268 + tmp269*phi4_dot;
+    const Scalar tmp271 = -tmp126;
+    const Scalar tmp272 = tmp270 + tmp271*phi3_dot;
+    const Scalar tmp273 = -tmp127;
+    const Scalar tmp274 = tmp272 + tmp273*phi2_dot;
+    const Scalar tmp275 = phi1_dot*(tmp274 - tmp128*phi1_dot) + phi2_dot*(tmp274 + tmp273*phi1_dot)
+        + phi3_dot*(tmp272 + tmp271*phi1_dot + tmp271*phi2_dot)
+        + phi4_dot*(tmp270 + tmp269*phi1_dot + tmp269*phi2_dot + tmp269*phi3_dot)
+        + phi5_dot*(tmp268 + tmp267*phi1_dot + tmp267*phi2_dot + tmp267*phi3_dot + tmp267*phi4_dot)
+        + phi6_dot*(tmp266 + tmp265*phi1_dot + tmp265*phi2_dot + tmp265*phi3_dot + tmp265*phi4_dot
+            + tmp265*phi5_dot)
         + phi7_dot*(-tmp122 - tmp104*phi1_dot - tmp104*phi2_dot - tmp104*phi3_dot - tmp104*phi4_dot
             - tmp104*phi5_dot - tmp104*phi6_dot);
-    const Scalar tmp278 = tmp121*phi1_dot + phi2_dot*(tmp120 + tmp112*phi1_dot)
+    const Scalar tmp276 = tmp121*phi1_dot + phi2_dot*(tmp120 + tmp112*phi1_dot)
         + phi3_dot*(tmp119 + tmp113*phi1_dot + tmp113*phi2_dot)
         + phi4_dot*(tmp118 + tmp114*phi1_dot + tmp114*phi2_dot + tmp114*phi3_dot)
         + phi5_dot*(tmp117 + tmp109*phi1_dot + tmp109*phi2_dot + tmp109*phi3_dot + tmp109*phi4_dot)
@@ -2135,29 +2133,29 @@ struct StiffChain10 {
             + tmp111*phi5_dot)
         + phi7_dot*(tmp115 + tmp107*phi1_dot + tmp107*phi2_dot + tmp107*phi3_dot + tmp107*phi4_dot
             + tmp107*phi5_dot + tmp107*phi6_dot);
-    const Scalar tmp279 = -tmp153;
-    const Scalar tmp280 = -tmp152 + tmp279*phi7_dot;
-    const Scalar tmp281 = -tmp154;
-    const Scalar tmp282 = tmp280 + tmp281*phi6_dot;
-    const Scalar tmp283 = -tmp155;
-    const Scalar tmp284 = tmp282 + tmp283*phi5_dot;
-    const Scalar tmp285 = -tmp156;
-    const Scalar tmp286 = tmp284 + tmp285*phi4_dot;
-    const Scalar tmp287 = -tmp157;
-    const Scalar tmp288 = tmp286 + tmp287*phi3_dot;
-    const Scalar tmp289 = -tmp158;
-    const Scalar tmp290 = tmp288 + tmp289*phi2_dot;
-    const Scalar tmp291 = phi1_dot*(tmp290 - tmp159*phi1_dot) + phi2_dot*(tmp290 + tmp289*phi1_dot)
-        + phi3_dot*(tmp288 + tmp287*phi1_dot + tmp287*phi2_dot)
-        + phi4_dot*(tmp286 + tmp285*phi1_dot + tmp285*phi2_dot + tmp285*phi3_dot)
-        + phi5_dot*(tmp284 + tmp283*phi1_dot + tmp283*phi2_dot + tmp283*phi3_dot + tmp283*phi4_dot)
-        + phi6_dot*(tmp282 + tmp281*phi1_dot + tmp281*phi2_dot + tmp281*phi3_dot + tmp281*phi4_dot
-            + tmp281*phi5_dot)
-        + phi7_dot*(tmp280 + tmp279*phi1_dot + tmp279*phi2_dot + tmp279*phi3_dot + tmp279*phi4_dot
-            + tmp279*phi5_dot + tmp279*phi6_dot)
+    const Scalar tmp277 = -tmp153;
+    const Scalar tmp278 = -tmp152 + tmp277*phi7_dot;
+    const Scalar tmp279 = -tmp154;
+    const Scalar tmp280 = tmp278 + tmp279*phi6_dot;
+    const Scalar tmp281 = -tmp155;
+    const Scalar tmp282 = tmp280 + tmp281*phi5_dot;
+    const Scalar tmp283 = -tmp156;
+    const Scalar tmp284 = tmp282 + tmp283*phi4_dot;
+    const Scalar tmp285 = -tmp157;
+    const Scalar tmp286 = tmp284 + tmp285*phi3_dot;
+    const Scalar tmp287 = -tmp158;
+    const Scalar tmp288 = tmp286 + tmp287*phi2_dot;
+    const Scalar tmp289 = phi1_dot*(tmp288 - tmp159*phi1_dot) + phi2_dot*(tmp288 + tmp287*phi1_dot)
+        + phi3_dot*(tmp286 + tmp285*phi1_dot + tmp285*phi2_dot)
+        + phi4_dot*(tmp284 + tmp283*phi1_dot + tmp283*phi2_dot + tmp283*phi3_dot)
+        + phi5_dot*(tmp282 + tmp281*phi1_dot + tmp281*phi2_dot + tmp281*phi3_dot + tmp281*phi4_dot)
+        + phi6_dot*(tmp280 + tmp279*phi1_dot + tmp279*phi2_dot + tmp279*phi3_dot + tmp279*phi4_dot
+            + tmp279*phi5_dot)
+        + phi7_dot*(tmp278 + tmp277*phi1_dot + tmp277*phi2_dot + tmp277*phi3_dot + tmp277*phi4_dot
+            + tmp277*phi5_dot + tmp277*phi6_dot)
         + phi8_dot*(-tmp152 - tmp132*phi1_dot - tmp132*phi2_dot - tmp132*phi3_dot - tmp132*phi4_dot
             - tmp132*phi5_dot - tmp132*phi6_dot - tmp132*phi7_dot);
-    const Scalar tmp292 = tmp151*phi1_dot + phi2_dot*(tmp150 + tmp141*phi1_dot)
+    const Scalar tmp290 = tmp151*phi1_dot + phi2_dot*(tmp150 + tmp141*phi1_dot)
         + phi3_dot*(tmp149 + tmp142*phi1_dot + tmp142*phi2_dot)
         + phi4_dot*(tmp148 + tmp143*phi1_dot + tmp143*phi2_dot + tmp143*phi3_dot)
         + phi5_dot*(tmp147 + tmp138*phi1_dot + tmp138*phi2_dot + tmp138*phi3_dot + tmp138*phi4_dot)
@@ -2167,33 +2165,33 @@ struct StiffChain10 {
             + tmp137*phi5_dot + tmp137*phi6_dot)
         + phi8_dot*(tmp144 + tmp135*phi1_dot + tmp135*phi2_dot + tmp135*phi3_dot + tmp135*phi4_dot
             + tmp135*phi5_dot + tmp135*phi6_dot + tmp135*phi7_dot);
-    const Scalar tmp293 = -tmp186;
-    const Scalar tmp294 = -tmp185 + tmp293*phi8_dot;
-    const Scalar tmp295 = -tmp187;
-    const Scalar tmp296 = tmp294 + tmp295*phi7_dot;
-    const Scalar tmp297 = -tmp188;
-    const Scalar tmp298 = tmp296 + tmp297*phi6_dot;
-    const Scalar tmp299 = -tmp189;
-    const Scalar tmp300 = tmp298 + tmp299*phi5_dot;
-    const Scalar tmp301 = -tmp190;
-    const Scalar tmp302 = tmp300 + tmp301*phi4_dot;
-    const Scalar tmp303 = -tmp191;
-    const Scalar tmp304 = tmp302 + tmp303*phi3_dot;
-    const Scalar tmp305 = -tmp192;
-    const Scalar tmp306 = tmp304 + tmp305*phi2_dot;
-    const Scalar tmp307 = phi1_dot*(tmp306 - tmp193*phi1_dot) + phi2_dot*(tmp306 + tmp305*phi1_dot)
-        + phi3_dot*(tmp304 + tmp303*phi1_dot + tmp303*phi2_dot)
-        + phi4_dot*(tmp302 + tmp301*phi1_dot + tmp301*phi2_dot + tmp301*phi3_dot)
-        + phi5_dot*(tmp300 + tmp299*phi1_dot + tmp299*phi2_dot + tmp299*phi3_dot + tmp299*phi4_dot)
-        + phi6_dot*(tmp298 + tmp297*phi1_dot + tmp297*phi2_dot + tmp297*phi3_dot + tmp297*phi4_dot
-            + tmp297*phi5_dot)
-        + phi7_dot*(tmp296 + tmp295*phi1_dot + tmp295*phi2_dot + tmp295*phi3_dot + tmp295*phi4_dot
-            + tmp295*phi5_dot + tmp295*phi6_dot)
-        + phi8_dot*(tmp294 + tmp293*phi1_dot + tmp293*phi2_dot + tmp293*phi3_dot + tmp293*phi4_dot
-            + tmp293*phi5_dot + tmp293*phi6_dot + tmp293*phi7_dot)
+    const Scalar tmp291 = -tmp186;
+    const Scalar tmp292 = -tmp185 + tmp291*phi8_dot;
+    const Scalar tmp293 = -tmp187;
+    const Scalar tmp294 = tmp292 + tmp293*phi7_dot;
+    const Scalar tmp295 = -tmp188;
+    const Scalar tmp296 = tmp294 + tmp295*phi6_dot;
+    const Scalar tmp297 = -tmp189;
+    const Scalar tmp298 = tmp296 + tmp297*phi5_dot;
+    const Scalar tmp299 = -tmp190;
+    const Scalar tmp300 = tmp298 + tmp299*phi4_dot;
+    const Scalar tmp301 = -tmp191;
+    const Scalar tmp302 = tmp300 + tmp301*phi3_dot;
+    const Scalar tmp303 = -tmp192;
+    const Scalar tmp304 = tmp302 + tmp303*phi2_dot;
+    const Scalar tmp305 = phi1_dot*(tmp304 - tmp193*phi1_dot) + phi2_dot*(tmp304 + tmp303*phi1_dot)
+        + phi3_dot*(tmp302 + tmp301*phi1_dot + tmp301*phi2_dot)
+        + phi4_dot*(tmp300 + tmp299*phi1_dot + tmp299*phi2_dot + tmp299*phi3_dot)
+        + phi5_dot*(tmp298 + tmp297*phi1_dot + tmp297*phi2_dot + tmp297*phi3_dot + tmp297*phi4_dot)
+        + phi6_dot*(tmp296 + tmp295*phi1_dot + tmp295*phi2_dot + tmp295*phi3_dot + tmp295*phi4_dot
+            + tmp295*phi5_dot)
+        + phi7_dot*(tmp294 + tmp293*phi1_dot + tmp293*phi2_dot + tmp293*phi3_dot + tmp293*phi4_dot
+            + tmp293*phi5_dot + tmp293*phi6_dot)
+        + phi8_dot*(tmp292 + tmp291*phi1_dot + tmp291*phi2_dot + tmp291*phi3_dot + tmp291*phi4_dot
+            + tmp291*phi5_dot + tmp291*phi6_dot + tmp291*phi7_dot)
         + phi9_dot*(-tmp185 - tmp163*phi1_dot - tmp163*phi2_dot - tmp163*phi3_dot - tmp163*phi4_dot
             - tmp163*phi5_dot - tmp163*phi6_dot - tmp163*phi7_dot - tmp163*phi8_dot);
-    const Scalar tmp308 = tmp184*phi1_dot + phi2_dot*(tmp183 + tmp173*phi1_dot)
+    const Scalar tmp306 = tmp184*phi1_dot + phi2_dot*(tmp183 + tmp173*phi1_dot)
         + phi3_dot*(tmp182 + tmp174*phi1_dot + tmp174*phi2_dot)
         + phi4_dot*(tmp181 + tmp175*phi1_dot + tmp175*phi2_dot + tmp175*phi3_dot)
         + phi5_dot*(tmp180 + tmp169*phi1_dot + tmp169*phi2_dot + tmp169*phi3_dot + tmp169*phi4_dot)
@@ -2205,38 +2203,38 @@ struct StiffChain10 {
             + tmp171*phi5_dot + tmp171*phi6_dot + tmp171*phi7_dot)
         + phi9_dot*(tmp176 + tmp166*phi1_dot + tmp166*phi2_dot + tmp166*phi3_dot + tmp166*phi4_dot
             + tmp166*phi5_dot + tmp166*phi6_dot + tmp166*phi7_dot + tmp166*phi8_dot);
-    const Scalar tmp309 = -tmp222;
-    const Scalar tmp310 = -tmp221 + tmp309*phi9_dot;
-    const Scalar tmp311 = -tmp223;
-    const Scalar tmp312 = tmp310 + tmp311*phi8_dot;
-    const Scalar tmp313 = -tmp224;
-    const Scalar tmp314 = tmp312 + tmp313*phi7_dot;
-    const Scalar tmp315 = -tmp225;
-    const Scalar tmp316 = tmp314 + tmp315*phi6_dot;
-    const Scalar tmp317 = -tmp226;
-    const Scalar tmp318 = tmp316 + tmp317*phi5_dot;
-    const Scalar tmp319 = -tmp227;
-    const Scalar tmp320 = tmp318 + tmp319*phi4_dot;
-    const Scalar tmp321 = -tmp228;
-    const Scalar tmp322 = tmp320 + tmp321*phi3_dot;
-    const Scalar tmp323 = -tmp229;
-    const Scalar tmp324 = tmp322 + tmp323*phi2_dot;
-    const Scalar tmp325 = phi10_dot*(-tmp221 - tmp197*phi1_dot - tmp197*phi2_dot - tmp197*phi3_dot
+    const Scalar tmp307 = -tmp222;
+    const Scalar tmp308 = -tmp221 + tmp307*phi9_dot;
+    const Scalar tmp309 = -tmp223;
+    const Scalar tmp310 = tmp308 + tmp309*phi8_dot;
+    const Scalar tmp311 = -tmp224;
+    const Scalar tmp312 = tmp310 + tmp311*phi7_dot;
+    const Scalar tmp313 = -tmp225;
+    const Scalar tmp314 = tmp312 + tmp313*phi6_dot;
+    const Scalar tmp315 = -tmp226;
+    const Scalar tmp316 = tmp314 + tmp315*phi5_dot;
+    const Scalar tmp317 = -tmp227;
+    const Scalar tmp318 = tmp316 + tmp317*phi4_dot;
+    const Scalar tmp319 = -tmp228;
+    const Scalar tmp320 = tmp318 + tmp319*phi3_dot;
+    const Scalar tmp321 = -tmp229;
+    const Scalar tmp322 = tmp320 + tmp321*phi2_dot;
+    const Scalar tmp323 = phi10_dot*(-tmp221 - tmp197*phi1_dot - tmp197*phi2_dot - tmp197*phi3_dot
             - tmp197*phi4_dot - tmp197*phi5_dot - tmp197*phi6_dot - tmp197*phi7_dot
             - tmp197*phi8_dot - tmp197*phi9_dot)
-        + phi1_dot*(tmp324 - tmp230*phi1_dot) + phi2_dot*(tmp324 + tmp323*phi1_dot)
-        + phi3_dot*(tmp322 + tmp321*phi1_dot + tmp321*phi2_dot)
-        + phi4_dot*(tmp320 + tmp319*phi1_dot + tmp319*phi2_dot + tmp319*phi3_dot)
-        + phi5_dot*(tmp318 + tmp317*phi1_dot + tmp317*phi2_dot + tmp317*phi3_dot + tmp317*phi4_dot)
-        + phi6_dot*(tmp316 + tmp315*phi1_dot + tmp315*phi2_dot + tmp315*phi3_dot + tmp315*phi4_dot
-            + tmp315*phi5_dot)
-        + phi7_dot*(tmp314 + tmp313*phi1_dot + tmp313*phi2_dot + tmp313*phi3_dot + tmp313*phi4_dot
-            + tmp313*phi5_dot + tmp313*phi6_dot)
-        + phi8_dot*(tmp312 + tmp311*phi1_dot + tmp311*phi2_dot + tmp311*phi3_dot + tmp311*phi4_dot
-            + tmp311*phi5_dot + tmp311*phi6_dot + tmp311*phi7_dot)
-        + phi9_dot*(tmp310 + tmp309*phi1_dot + tmp309*phi2_dot + tmp309*phi3_dot + tmp309*phi4_dot
-            + tmp309*phi5_dot + tmp309*phi6_dot + tmp309*phi7_dot + tmp309*phi8_dot);
-    const Scalar tmp326 = tmp220*phi1_dot
+        + phi1_dot*(tmp322 - tmp230*phi1_dot) + phi2_dot*(tmp322 + tmp321*phi1_dot)
+        + phi3_dot*(tmp320 + tmp319*phi1_dot + tmp319*phi2_dot)
+        + phi4_dot*(tmp318 + tmp317*phi1_dot + tmp317*phi2_dot + tmp317*phi3_dot)
+        + phi5_dot*(tmp316 + tmp315*phi1_dot + tmp315*phi2_dot + tmp315*phi3_dot + tmp315*phi4_dot)
+        + phi6_dot*(tmp314 + tmp313*phi1_dot + tmp313*phi2_dot + tmp313*phi3_dot + tmp313*phi4_dot
+            + tmp313*phi5_dot)
+        + phi7_dot*(tmp312 + tmp311*phi1_dot + tmp311*phi2_dot + tmp311*phi3_dot + tmp311*phi4_dot
+            + tmp311*phi5_dot + tmp311*phi6_dot)
+        + phi8_dot*(tmp310 + tmp309*phi1_dot + tmp309*phi2_dot + tmp309*phi3_dot + tmp309*phi4_dot
+            + tmp309*phi5_dot + tmp309*phi6_dot + tmp309*phi7_dot)
+        + phi9_dot*(tmp308 + tmp307*phi1_dot + tmp307*phi2_dot + tmp307*phi3_dot + tmp307*phi4_dot
+            + tmp307*phi5_dot + tmp307*phi6_dot + tmp307*phi7_dot + tmp307*phi8_dot);
+    const Scalar tmp324 = tmp220*phi1_dot
         + phi10_dot*(tmp211 + tmp200*phi1_dot + tmp200*phi2_dot + tmp200*phi3_dot + tmp200*phi4_dot
             + tmp200*phi5_dot + tmp200*phi6_dot + tmp200*phi7_dot + tmp200*phi8_dot
             + tmp200*phi9_dot)
@@ -2252,194 +2250,196 @@ struct StiffChain10 {
             + tmp205*phi5_dot + tmp205*phi6_dot + tmp205*phi7_dot)
         + phi9_dot*(tmp212 + tmp202*phi1_dot + tmp202*phi2_dot + tmp202*phi3_dot + tmp202*phi4_dot
             + tmp202*phi5_dot + tmp202*phi6_dot + tmp202*phi7_dot + tmp202*phi8_dot);
-    const Scalar tmp327 = (l*l);
-    const Scalar tmp328 = m*((tmp15*tmp15) + (tmp18*tmp18)) + m*((tmp128*tmp128) + (tmp110*tmp110))
+    const Scalar tmp325 = (l*l);
+    const Scalar tmp326 = m*((tmp15*tmp15) + (tmp18*tmp18)) + m*((tmp128*tmp128) + (tmp110*tmp110))
         + m*((tmp139*tmp139) + (tmp159*tmp159)) + m*((tmp170*tmp170) + (tmp193*tmp193))
         + m*((tmp204*tmp204) + (tmp230*tmp230)) + m*((tmp27*tmp27) + (tmp34*tmp34))
         + m*((tmp44*tmp44) + (tmp53*tmp53)) + m*((tmp63*tmp63) + (tmp75*tmp75))
-        + m*((tmp85*tmp85) + (tmp100*tmp100)) + m*(tmp327*(tmp0*tmp0) + tmp327*(tmp2*tmp2));
-    const Scalar tmp329 = m*(tmp15*tmp12 + tmp18*tmp9) + m*(tmp127*tmp128 + tmp110*tmp112)
+        + m*((tmp85*tmp85) + (tmp100*tmp100)) + m*(tmp325*(tmp0*tmp0) + tmp325*(tmp2*tmp2));
+    const Scalar tmp327 = m*(tmp15*tmp12 + tmp18*tmp9) + m*(tmp127*tmp128 + tmp110*tmp112)
         + m*(tmp139*tmp141 + tmp158*tmp159) + m*(tmp170*tmp173 + tmp192*tmp193)
         + m*(tmp204*tmp207 + tmp229*tmp230) + m*(tmp27*tmp28 + tmp33*tmp34)
         + m*(tmp44*tmp45 + tmp52*tmp53) + m*(tmp63*tmp65 + tmp74*tmp75)
         + m*(tmp85*tmp87 + tmp99*tmp100);
-    const Scalar tmp330 = m*((tmp127*tmp127) + (tmp112*tmp112))
+    const Scalar tmp328 = m*((tmp127*tmp127) + (tmp112*tmp112))
         + m*((tmp141*tmp141) + (tmp158*tmp158)) + m*((tmp173*tmp173) + (tmp192*tmp192))
         + m*((tmp207*tmp207) + (tmp229*tmp229)) + m*((tmp28*tmp28) + (tmp33*tmp33))
         + m*((tmp45*tmp45) + (tmp52*tmp52)) + m*((tmp65*tmp65) + (tmp74*tmp74))
-        + m*((tmp87*tmp87) + (tmp99*tmp99)) + m*(tmp327*(tmp8*tmp8) + tmp327*(tmp11*tmp11));
-    const Scalar tmp331 = m*(tmp126*tmp128 + tmp110*tmp113) + m*(tmp139*tmp142 + tmp157*tmp159)
+        + m*((tmp87*tmp87) + (tmp99*tmp99)) + m*(tmp325*(tmp8*tmp8) + tmp325*(tmp11*tmp11));
+    const Scalar tmp329 = m*(tmp126*tmp128 + tmp110*tmp113) + m*(tmp139*tmp142 + tmp157*tmp159)
         + m*(tmp170*tmp174 + tmp191*tmp193) + m*(tmp22*tmp34 + tmp25*tmp27)
         + m*(tmp204*tmp209 + tmp228*tmp230) + m*(tmp43*tmp44 + tmp51*tmp53)
         + m*(tmp62*tmp63 + tmp73*tmp75) + m*(tmp85*tmp88 + tmp98*tmp100);
-    const Scalar tmp332 = m*(tmp126*tmp127 + tmp112*tmp113) + m*(tmp141*tmp142 + tmp157*tmp158)
+    const Scalar tmp330 = m*(tmp126*tmp127 + tmp112*tmp113) + m*(tmp141*tmp142 + tmp157*tmp158)
         + m*(tmp173*tmp174 + tmp191*tmp192) + m*(tmp22*tmp33 + tmp25*tmp28)
         + m*(tmp207*tmp209 + tmp228*tmp229) + m*(tmp43*tmp45 + tmp51*tmp52)
         + m*(tmp62*tmp65 + tmp73*tmp74) + m*(tmp87*tmp88 + tmp98*tmp99);
-    const Scalar tmp333 = m*((tmp126*tmp126) + (tmp113*tmp113))
+    const Scalar tmp331 = m*((tmp126*tmp126) + (tmp113*tmp113))
         + m*((tmp142*tmp142) + (tmp157*tmp157)) + m*((tmp174*tmp174) + (tmp191*tmp191))
         + m*((tmp209*tmp209) + (tmp228*tmp228)) + m*((tmp43*tmp43) + (tmp51*tmp51))
         + m*((tmp62*tmp62) + (tmp73*tmp73)) + m*((tmp88*tmp88) + (tmp98*tmp98))
-        + m*(tmp327*(tmp21*tmp21) + tmp327*(tmp24*tmp24));
-    const Scalar tmp334 = m*(tmp125*tmp128 + tmp110*tmp114) + m*(tmp139*tmp143 + tmp156*tmp159)
+        + m*(tmp325*(tmp21*tmp21) + tmp325*(tmp24*tmp24));
+    const Scalar tmp332 = m*(tmp125*tmp128 + tmp110*tmp114) + m*(tmp139*tmp143 + tmp156*tmp159)
         + m*(tmp170*tmp175 + tmp190*tmp193) + m*(tmp204*tmp210 + tmp227*tmp230)
         + m*(tmp38*tmp53 + tmp41*tmp44) + m*(tmp63*tmp64 + tmp72*tmp75)
         + m*(tmp85*tmp86 + tmp97*tmp100);
-    const Scalar tmp335 = m*(tmp125*tmp127 + tmp112*tmp114) + m*(tmp141*tmp143 + tmp156*tmp158)
+    const Scalar tmp333 = m*(tmp125*tmp127 + tmp112*tmp114) + m*(tmp141*tmp143 + tmp156*tmp158)
         + m*(tmp173*tmp175 + tmp190*tmp192) + m*(tmp207*tmp210 + tmp227*tmp229)
         + m*(tmp38*tmp52 + tmp41*tmp45) + m*(tmp64*tmp65 + tmp72*tmp74)
         + m*(tmp86*tmp87 + tmp97*tmp99);
-    const Scalar tmp336 = m*(tmp125*tmp126 + tmp113*tmp114) + m*(tmp142*tmp143 + tmp156*tmp157)
+    const Scalar tmp334 = m*(tmp125*tmp126 + tmp113*tmp114) + m*(tmp142*tmp143 + tmp156*tmp157)
         + m*(tmp174*tmp175 + tmp190*tmp191) + m*(tmp209*tmp210 + tmp227*tmp228)
         + m*(tmp38*tmp51 + tmp41*tmp43) + m*(tmp62*tmp64 + tmp72*tmp73)
         + m*(tmp86*tmp88 + tmp97*tmp98);
-    const Scalar tmp337 = m*((tmp125*tmp125) + (tmp114*tmp114))
+    const Scalar tmp335 = m*((tmp125*tmp125) + (tmp114*tmp114))
         + m*((tmp143*tmp143) + (tmp156*tmp156)) + m*((tmp175*tmp175) + (tmp190*tmp190))
         + m*((tmp210*tmp210) + (tmp227*tmp227)) + m*((tmp64*tmp64) + (tmp72*tmp72))
-        + m*((tmp86*tmp86) + (tmp97*tmp97)) + m*(tmp327*(tmp37*tmp37) + tmp327*(tmp40*tmp40));
-    const Scalar tmp338 = m*(tmp124*tmp128 + tmp109*tmp110) + m*(tmp138*tmp139 + tmp155*tmp159)
+        + m*((tmp86*tmp86) + (tmp97*tmp97)) + m*(tmp325*(tmp37*tmp37) + tmp325*(tmp40*tmp40));
+    const Scalar tmp336 = m*(tmp124*tmp128 + tmp109*tmp110) + m*(tmp138*tmp139 + tmp155*tmp159)
         + m*(tmp169*tmp170 + tmp189*tmp193) + m*(tmp203*tmp204 + tmp226*tmp230)
         + m*(tmp57*tmp75 + tmp60*tmp63) + m*(tmp84*tmp85 + tmp96*tmp100);
-    const Scalar tmp339 = m*(tmp124*tmp127 + tmp109*tmp112) + m*(tmp138*tmp141 + tmp155*tmp158)
+    const Scalar tmp337 = m*(tmp124*tmp127 + tmp109*tmp112) + m*(tmp138*tmp141 + tmp155*tmp158)
         + m*(tmp169*tmp173 + tmp189*tmp192) + m*(tmp203*tmp207 + tmp226*tmp229)
         + m*(tmp57*tmp74 + tmp60*tmp65) + m*(tmp84*tmp87 + tmp96*tmp99);
-    const Scalar tmp340 = m*(tmp124*tmp126 + tmp109*tmp113) + m*(tmp138*tmp142 + tmp155*tmp157)
+    const Scalar tmp338 = m*(tmp124*tmp126 + tmp109*tmp113) + m*(tmp138*tmp142 + tmp155*tmp157)
         + m*(tmp169*tmp174 + tmp189*tmp191) + m*(tmp203*tmp209 + tmp226*tmp228)
         + m*(tmp57*tmp73 + tmp60*tmp62) + m*(tmp84*tmp88 + tmp96*tmp98);
-    const Scalar tmp341 = m*(tmp124*tmp125 + tmp109*tmp114) + m*(tmp138*tmp143 + tmp155*tmp156)
+    const Scalar tmp339 = m*(tmp124*tmp125 + tmp109*tmp114) + m*(tmp138*tmp143 + tmp155*tmp156)
         + m*(tmp169*tmp175 + tmp189*tmp190) + m*(tmp203*tmp210 + tmp226*tmp227)
         + m*(tmp57*tmp72 + tmp60*tmp64) + m*(tmp84*tmp86 + tmp96*tmp97);
-    const Scalar tmp342 = m*((tmp124*tmp124) + (tmp109*tmp109))
+    const Scalar tmp340 = m*((tmp124*tmp124) + (tmp109*tmp109))
         + m*((tmp138*tmp138) + (tmp155*tmp155)) + m*((tmp169*tmp169) + (tmp189*tmp189))
         + m*((tmp203*tmp203) + (tmp226*tmp226)) + m*((tmp84*tmp84) + (tmp96*tmp96))
-        + m*(tmp327*(tmp56*tmp56) + tmp327*(tmp59*tmp59));
-    const Scalar tmp343 = m*(tmp123*tmp128 + tmp110*tmp111) + m*(tmp139*tmp140 + tmp154*tmp159)
+        + m*(tmp325*(tmp56*tmp56) + tmp325*(tmp59*tmp59));
+    const Scalar tmp341 = m*(tmp123*tmp128 + tmp110*tmp111) + m*(tmp139*tmp140 + tmp154*tmp159)
         + m*(tmp170*tmp172 + tmp188*tmp193) + m*(tmp204*tmp206 + tmp225*tmp230)
         + m*(tmp79*tmp100 + tmp82*tmp85);
-    const Scalar tmp344 = m*(tmp123*tmp127 + tmp111*tmp112) + m*(tmp140*tmp141 + tmp154*tmp158)
+    const Scalar tmp342 = m*(tmp123*tmp127 + tmp111*tmp112) + m*(tmp140*tmp141 + tmp154*tmp158)
         + m*(tmp172*tmp173 + tmp188*tmp192) + m*(tmp206*tmp207 + tmp225*tmp229)
         + m*(tmp79*tmp99 + tmp82*tmp87);
-    const Scalar tmp345 = m*(tmp123*tmp126 + tmp111*tmp113) + m*(tmp140*tmp142 + tmp154*tmp157)
+    const Scalar tmp343 = m*(tmp123*tmp126 + tmp111*tmp113) + m*(tmp140*tmp142 + tmp154*tmp157)
         + m*(tmp172*tmp174 + tmp188*tmp191) + m*(tmp206*tmp209 + tmp225*tmp228)
         + m*(tmp79*tmp98 + tmp82*tmp88);
-    const Scalar tmp346 = m*(tmp123*tmp125 + tmp111*tmp114) + m*(tmp140*tmp143 + tmp154*tmp156)
+    const Scalar tmp344 = m*(tmp123*tmp125 + tmp111*tmp114) + m*(tmp140*tmp143 + tmp154*tmp156)
         + m*(tmp172*tmp175 + tmp188*tmp190) + m*(tmp206*tmp210 + tmp225*tmp227)
         + m*(tmp79*tmp97 + tmp82*tmp86);
-    const Scalar tmp347 = m*(tmp123*tmp124 + tmp109*tmp111) + m*(tmp138*tmp140 + tmp154*tmp155)
+    const Scalar tmp345 = m*(tmp123*tmp124 + tmp109*tmp111) + m*(tmp138*tmp140 + tmp154*tmp155)
         + m*(tmp169*tmp172 + tmp188*tmp189) + m*(tmp203*tmp206 + tmp225*tmp226)
         + m*(tmp79*tmp96 + tmp82*tmp84);
-    const Scalar tmp348 = m*((tmp123*tmp123) + (tmp111*tmp111))
+    const Scalar tmp346 = m*((tmp123*tmp123) + (tmp111*tmp111))
         + m*((tmp140*tmp140) + (tmp154*tmp154)) + m*((tmp172*tmp172) + (tmp188*tmp188))
-        + m*((tmp206*tmp206) + (tmp225*tmp225)) + m*(tmp327*(tmp78*tmp78) + tmp327*(tmp81*tmp81));
-    const Scalar tmp349 = m*(tmp128*tmp104 + tmp107*tmp110) + m*(tmp137*tmp139 + tmp153*tmp159)
+        + m*((tmp206*tmp206) + (tmp225*tmp225)) + m*(tmp325*(tmp78*tmp78) + tmp325*(tmp81*tmp81));
+    const Scalar tmp347 = m*(tmp128*tmp104 + tmp107*tmp110) + m*(tmp137*tmp139 + tmp153*tmp159)
         + m*(tmp168*tmp170 + tmp187*tmp193) + m*(tmp204*tmp208 + tmp224*tmp230);
-    const Scalar tmp350 = m*(tmp127*tmp104 + tmp107*tmp112) + m*(tmp137*tmp141 + tmp153*tmp158)
+    const Scalar tmp348 = m*(tmp127*tmp104 + tmp107*tmp112) + m*(tmp137*tmp141 + tmp153*tmp158)
         + m*(tmp168*tmp173 + tmp187*tmp192) + m*(tmp207*tmp208 + tmp224*tmp229);
-    const Scalar tmp351 = m*(tmp126*tmp104 + tmp107*tmp113) + m*(tmp137*tmp142 + tmp153*tmp157)
+    const Scalar tmp349 = m*(tmp126*tmp104 + tmp107*tmp113) + m*(tmp137*tmp142 + tmp153*tmp157)
         + m*(tmp168*tmp174 + tmp187*tmp191) + m*(tmp208*tmp209 + tmp224*tmp228);
-    const Scalar tmp352 = m*(tmp125*tmp104 + tmp107*tmp114) + m*(tmp137*tmp143 + tmp153*tmp156)
+    const Scalar tmp350 = m*(tmp125*tmp104 + tmp107*tmp114) + m*(tmp137*tmp143 + tmp153*tmp156)
         + m*(tmp168*tmp175 + tmp187*tmp190) + m*(tmp208*tmp210 + tmp224*tmp227);
-    const Scalar tmp353 = m*(tmp124*tmp104 + tmp107*tmp109) + m*(tmp137*tmp138 + tmp153*tmp155)
+    const Scalar tmp351 = m*(tmp124*tmp104 + tmp107*tmp109) + m*(tmp137*tmp138 + tmp153*tmp155)
         + m*(tmp168*tmp169 + tmp187*tmp189) + m*(tmp203*tmp208 + tmp224*tmp226);
-    const Scalar tmp354 = m*(tmp123*tmp104 + tmp107*tmp111) + m*(tmp137*tmp140 + tmp153*tmp154)
+    const Scalar tmp352 = m*(tmp123*tmp104 + tmp107*tmp111) + m*(tmp137*tmp140 + tmp153*tmp154)
         + m*(tmp168*tmp172 + tmp187*tmp188) + m*(tmp206*tmp208 + tmp224*tmp225);
-    const Scalar tmp355 = m*((tmp137*tmp137) + (tmp153*tmp153))
+    const Scalar tmp353 = m*((tmp137*tmp137) + (tmp153*tmp153))
         + m*((tmp168*tmp168) + (tmp187*tmp187)) + m*((tmp208*tmp208) + (tmp224*tmp224))
-        + m*(tmp327*(tmp103*tmp103) + tmp327*(tmp106*tmp106));
-    const Scalar tmp356 = m*(tmp132*tmp159 + tmp135*tmp139) + m*(tmp170*tmp171 + tmp186*tmp193)
+        + m*(tmp325*(tmp103*tmp103) + tmp325*(tmp106*tmp106));
+    const Scalar tmp354 = m*(tmp132*tmp159 + tmp135*tmp139) + m*(tmp170*tmp171 + tmp186*tmp193)
         + m*(tmp204*tmp205 + tmp223*tmp230);
-    const Scalar tmp357 = m*(tmp132*tmp158 + tmp135*tmp141) + m*(tmp171*tmp173 + tmp186*tmp192)
+    const Scalar tmp355 = m*(tmp132*tmp158 + tmp135*tmp141) + m*(tmp171*tmp173 + tmp186*tmp192)
         + m*(tmp205*tmp207 + tmp223*tmp229);
-    const Scalar tmp358 = m*(tmp132*tmp157 + tmp135*tmp142) + m*(tmp171*tmp174 + tmp186*tmp191)
+    const Scalar tmp356 = m*(tmp132*tmp157 + tmp135*tmp142) + m*(tmp171*tmp174 + tmp186*tmp191)
         + m*(tmp205*tmp209 + tmp223*tmp228);
-    const Scalar tmp359 = m*(tmp132*tmp156 + tmp135*tmp143) + m*(tmp171*tmp175 + tmp186*tmp190)
+    const Scalar tmp357 = m*(tmp132*tmp156 + tmp135*tmp143) + m*(tmp171*tmp175 + tmp186*tmp190)
         + m*(tmp205*tmp210 + tmp223*tmp227);
-    const Scalar tmp360 = m*(tmp132*tmp155 + tmp135*tmp138) + m*(tmp169*tmp171 + tmp186*tmp189)
+    const Scalar tmp358 = m*(tmp132*tmp155 + tmp135*tmp138) + m*(tmp169*tmp171 + tmp186*tmp189)
         + m*(tmp203*tmp205 + tmp223*tmp226);
-    const Scalar tmp361 = m*(tmp132*tmp154 + tmp135*tmp140) + m*(tmp171*tmp172 + tmp186*tmp188)
+    const Scalar tmp359 = m*(tmp132*tmp154 + tmp135*tmp140) + m*(tmp171*tmp172 + tmp186*tmp188)
         + m*(tmp205*tmp206 + tmp223*tmp225);
-    const Scalar tmp362 = m*(tmp132*tmp153 + tmp135*tmp137) + m*(tmp168*tmp171 + tmp186*tmp187)
+    const Scalar tmp360 = m*(tmp132*tmp153 + tmp135*tmp137) + m*(tmp168*tmp171 + tmp186*tmp187)
         + m*(tmp205*tmp208 + tmp223*tmp224);
-    const Scalar tmp363 = m*((tmp171*tmp171) + (tmp186*tmp186))
+    const Scalar tmp361 = m*((tmp171*tmp171) + (tmp186*tmp186))
         + m*((tmp205*tmp205) + (tmp223*tmp223))
-        + m*(tmp327*(tmp131*tmp131) + tmp327*(tmp134*tmp134));
-    const Scalar tmp364 = m*(tmp163*tmp193 + tmp166*tmp170) + m*(tmp202*tmp204 + tmp222*tmp230);
-    const Scalar tmp365 = m*(tmp163*tmp192 + tmp166*tmp173) + m*(tmp202*tmp207 + tmp222*tmp229);
-    const Scalar tmp366 = m*(tmp163*tmp191 + tmp166*tmp174) + m*(tmp202*tmp209 + tmp222*tmp228);
-    const Scalar tmp367 = m*(tmp163*tmp190 + tmp166*tmp175) + m*(tmp202*tmp210 + tmp222*tmp227);
-    const Scalar tmp368 = m*(tmp163*tmp189 + tmp166*tmp169) + m*(tmp202*tmp203 + tmp222*tmp226);
-    const Scalar tmp369 = m*(tmp163*tmp188 + tmp166*tmp172) + m*(tmp202*tmp206 + tmp222*tmp225);
-    const Scalar tmp370 = m*(tmp163*tmp187 + tmp166*tmp168) + m*(tmp202*tmp208 + tmp222*tmp224);
-    const Scalar tmp371 = m*(tmp163*tmp186 + tmp166*tmp171) + m*(tmp202*tmp205 + tmp222*tmp223);
-    const Scalar tmp372 = m*((tmp202*tmp202) + (tmp222*tmp222))
-        + m*(tmp327*(tmp162*tmp162) + tmp327*(tmp165*tmp165));
-    const Scalar tmp373 = m*(tmp197*tmp230 + tmp200*tmp204);
-    const Scalar tmp374 = m*(tmp197*tmp229 + tmp200*tmp207);
-    const Scalar tmp375 = m*(tmp197*tmp228 + tmp200*tmp209);
-    const Scalar tmp376 = m*(tmp197*tmp227 + tmp200*tmp210);
-    const Scalar tmp377 = m*(tmp197*tmp226 + tmp200*tmp203);
-    const Scalar tmp378 = m*(tmp197*tmp225 + tmp200*tmp206);
-    const Scalar tmp379 = m*(tmp197*tmp224 + tmp200*tmp208);
-    const Scalar tmp380 = m*(tmp197*tmp223 + tmp200*tmp205);
-    const Scalar tmp381 = m*(tmp197*tmp222 + tmp200*tmp202);
-    const Scalar tmp382 = m*(tmp327*(tmp196*tmp196) + tmp327*(tmp199*tmp199));
-    const Scalar tmp383 = tmp235*m;
-    const Scalar tmp384 = tmp236*m;
-    const Scalar tmp385 = tmp237*m;
-    const Scalar tmp386 = tmp238*m;
-    const Scalar tmp387 = tmp241*m;
-    const Scalar tmp388 = tmp242*m;
-    const Scalar tmp389 = tmp247*m;
-    const Scalar tmp390 = tmp248*m;
-    const Scalar tmp391 = tmp255*m;
-    const Scalar tmp392 = tmp256*m;
-    const Scalar tmp393 = tmp265*m;
-    const Scalar tmp394 = tmp266*m;
-    const Scalar tmp395 = tmp277*m;
-    const Scalar tmp396 = tmp278*m;
-    const Scalar tmp397 = tmp291*m;
-    const Scalar tmp398 = tmp292*m;
-    const Scalar tmp399 = tmp307*m;
-    const Scalar tmp400 = tmp308*m;
-    const Scalar tmp401 = tmp325*m;
-    const Scalar tmp402 = tmp326*m;
+        + m*(tmp325*(tmp131*tmp131) + tmp325*(tmp134*tmp134));
+    const Scalar tmp362 = m*(tmp163*tmp193 + tmp166*tmp170) + m*(tmp202*tmp204 + tmp222*tmp230);
+    const Scalar tmp363 = m*(tmp163*tmp192 + tmp166*tmp173) + m*(tmp202*tmp207 + tmp222*tmp229);
+    const Scalar tmp364 = m*(tmp163*tmp191 + tmp166*tmp174) + m*(tmp202*tmp209 + tmp222*tmp228);
+    const Scalar tmp365 = m*(tmp163*tmp190 + tmp166*tmp175) + m*(tmp202*tmp210 + tmp222*tmp227);
+    const Scalar tmp366 = m*(tmp163*tmp189 + tmp166*tmp169) + m*(tmp202*tmp203 + tmp222*tmp226);
+    const Scalar tmp367 = m*(tmp163*tmp188 + tmp166*tmp172) + m*(tmp202*tmp206 + tmp222*tmp225);
+    const Scalar tmp368 = m*(tmp163*tmp187 + tmp166*tmp168) + m*(tmp202*tmp208 + tmp222*tmp224);
+    const Scalar tmp369 = m*(tmp163*tmp186 + tmp166*tmp171) + m*(tmp202*tmp205 + tmp222*tmp223);
+    const Scalar tmp370 = m*((tmp202*tmp202) + (tmp222*tmp222))
+        + m*(tmp325*(tmp162*tmp162) + tmp325*(tmp165*tmp165));
+    const Scalar tmp371 = m*(tmp197*tmp230 + tmp200*tmp204);
+    const Scalar tmp372 = m*(tmp197*tmp229 + tmp200*tmp207);
+    const Scalar tmp373 = m*(tmp197*tmp228 + tmp200*tmp209);
+    const Scalar tmp374 = m*(tmp197*tmp227 + tmp200*tmp210);
+    const Scalar tmp375 = m*(tmp197*tmp226 + tmp200*tmp203);
+    const Scalar tmp376 = m*(tmp197*tmp225 + tmp200*tmp206);
+    const Scalar tmp377 = m*(tmp197*tmp224 + tmp200*tmp208);
+    const Scalar tmp378 = m*(tmp197*tmp223 + tmp200*tmp205);
+    const Scalar tmp379 = m*(tmp197*tmp222 + tmp200*tmp202);
+    const Scalar tmp380 = m*(tmp325*(tmp196*tmp196) + tmp325*(tmp199*tmp199));
+    const Scalar tmp381 = g*m;
+    const Scalar tmp382 = -tmp381;
+    const Scalar tmp383 = tmp233*m;
+    const Scalar tmp384 = tmp234*m;
+    const Scalar tmp385 = tmp235*m;
+    const Scalar tmp386 = tmp236*m;
+    const Scalar tmp387 = tmp239*m;
+    const Scalar tmp388 = tmp240*m;
+    const Scalar tmp389 = tmp245*m;
+    const Scalar tmp390 = tmp246*m;
+    const Scalar tmp391 = tmp253*m;
+    const Scalar tmp392 = tmp254*m;
+    const Scalar tmp393 = tmp263*m;
+    const Scalar tmp394 = tmp264*m;
+    const Scalar tmp395 = tmp275*m;
+    const Scalar tmp396 = tmp276*m;
+    const Scalar tmp397 = tmp289*m;
+    const Scalar tmp398 = tmp290*m;
+    const Scalar tmp399 = tmp305*m;
+    const Scalar tmp400 = tmp306*m;
+    const Scalar tmp401 = tmp323*m;
+    const Scalar tmp402 = tmp324*m;
     const Scalar tmp403 = c*phi1_dot;
     const Scalar tmp404 = k*phi1;
-    const Scalar tmp405 = -tmp403 - tmp404 + tmp1*tmp233 + tmp128*tmp233 + tmp18*tmp233
-        + tmp159*tmp233 + tmp193*tmp233 + tmp230*tmp233 + tmp233*tmp34 + tmp233*tmp53 + tmp233*tmp75
-        + tmp233*tmp100;
+    const Scalar tmp405 = -tmp403 - tmp404 + tmp1*tmp382 + tmp128*tmp382 + tmp18*tmp382
+        + tmp159*tmp382 + tmp193*tmp382 + tmp230*tmp382 + tmp34*tmp382 + tmp382*tmp53 + tmp382*tmp75
+        + tmp382*tmp100;
     const Scalar tmp406 = c*phi2_dot;
     const Scalar tmp407 = k*phi2;
-    const Scalar tmp408 = -tmp406 - tmp407 + tmp127*tmp233 + tmp158*tmp233 + tmp192*tmp233
-        + tmp229*tmp233 + tmp233*tmp33 + tmp233*tmp52 + tmp233*tmp9 + tmp233*tmp74 + tmp233*tmp99;
+    const Scalar tmp408 = -tmp406 - tmp407 + tmp127*tmp382 + tmp158*tmp382 + tmp192*tmp382
+        + tmp229*tmp382 + tmp33*tmp382 + tmp382*tmp52 + tmp382*tmp9 + tmp382*tmp74 + tmp382*tmp99;
     const Scalar tmp409 = c*phi3_dot;
     const Scalar tmp410 = k*phi3;
-    const Scalar tmp411 = -tmp409 - tmp410 + tmp126*tmp233 + tmp157*tmp233 + tmp22*tmp233
-        + tmp191*tmp233 + tmp228*tmp233 + tmp233*tmp51 + tmp233*tmp73 + tmp233*tmp98;
+    const Scalar tmp411 = -tmp409 - tmp410 + tmp126*tmp382 + tmp157*tmp382 + tmp22*tmp382
+        + tmp191*tmp382 + tmp228*tmp382 + tmp382*tmp51 + tmp382*tmp73 + tmp382*tmp98;
     const Scalar tmp412 = c*phi4_dot;
     const Scalar tmp413 = k*phi4;
-    const Scalar tmp414 = -tmp412 - tmp413 + tmp125*tmp233 + tmp156*tmp233 + tmp190*tmp233
-        + tmp227*tmp233 + tmp233*tmp38 + tmp233*tmp72 + tmp233*tmp97;
+    const Scalar tmp414 = -tmp412 - tmp413 + tmp125*tmp382 + tmp156*tmp382 + tmp190*tmp382
+        + tmp227*tmp382 + tmp382*tmp38 + tmp382*tmp72 + tmp382*tmp97;
     const Scalar tmp415 = c*phi5_dot;
     const Scalar tmp416 = k*phi5;
-    const Scalar tmp417 = -tmp415 - tmp416 + tmp124*tmp233 + tmp155*tmp233 + tmp189*tmp233
-        + tmp226*tmp233 + tmp233*tmp57 + tmp233*tmp96;
+    const Scalar tmp417 = -tmp415 - tmp416 + tmp124*tmp382 + tmp155*tmp382 + tmp189*tmp382
+        + tmp226*tmp382 + tmp382*tmp57 + tmp382*tmp96;
     const Scalar tmp418 = c*phi6_dot;
     const Scalar tmp419 = k*phi6;
-    const Scalar tmp420 = -tmp418 - tmp419 + tmp123*tmp233 + tmp154*tmp233 + tmp188*tmp233
-        + tmp225*tmp233 + tmp233*tmp79;
+    const Scalar tmp420 = -tmp418 - tmp419 + tmp123*tmp382 + tmp154*tmp382 + tmp188*tmp382
+        + tmp225*tmp382 + tmp382*tmp79;
     const Scalar tmp421 = c*phi7_dot;
     const Scalar tmp422 = k*phi7;
-    const Scalar tmp423 = -tmp421 - tmp422 + tmp153*tmp233 + tmp187*tmp233 + tmp224*tmp233
-        + tmp233*tmp104;
+    const Scalar tmp423 = -tmp421 - tmp422 + tmp153*tmp382 + tmp187*tmp382 + tmp224*tmp382
+        + tmp382*tmp104;
     const Scalar tmp424 = c*phi8_dot;
     const Scalar tmp425 = k*phi8;
-    const Scalar tmp426 = -tmp424 - tmp425 + tmp132*tmp233 + tmp186*tmp233 + tmp223*tmp233;
+    const Scalar tmp426 = -tmp424 - tmp425 + tmp132*tmp382 + tmp186*tmp382 + tmp223*tmp382;
     const Scalar tmp427 = c*phi9_dot;
     const Scalar tmp428 = k*phi9;
-    const Scalar tmp429 = -tmp427 - tmp428 + tmp163*tmp233 + tmp222*tmp233;
+    const Scalar tmp429 = -tmp427 - tmp428 + tmp163*tmp382 + tmp222*tmp382;
     const Scalar tmp430 = c*phi10_dot + k*phi10;
-    const Scalar tmp431 = -tmp430 + tmp196*tmp233*l;
+    const Scalar tmp431 = -tmp430 + tmp196*tmp382*l;
     const Scalar tmp432 = -tmp1*tmp384 - tmp15*tmp385 - tmp128*tmp396 - tmp139*tmp397 - tmp18*tmp386
         - tmp159*tmp398 - tmp170*tmp399 - tmp193*tmp400 - tmp204*tmp401 - tmp27*tmp387
         - tmp230*tmp402 - tmp34*tmp388 - tmp3*tmp383 - tmp44*tmp389 - tmp53*tmp390 - tmp63*tmp391
@@ -2466,61 +2466,61 @@ struct StiffChain10 {
         - tmp205*tmp401 - tmp223*tmp402;
     const Scalar tmp440 = -tmp163*tmp400 - tmp166*tmp399 - tmp202*tmp401 - tmp222*tmp402;
     const Scalar tmp441 = -tmp197*tmp402 - tmp200*tmp401;
-    (*Mt)(0, 0) = tmp328;
-    (*Mt)(1, 0) = tmp329;
-    (*Mt)(1, 1) = tmp330;
-    (*Mt)(2, 0) = tmp331;
-    (*Mt)(2, 1) = tmp332;
-    (*Mt)(2, 2) = tmp333;
-    (*Mt)(3, 0) = tmp334;
-    (*Mt)(3, 1) = tmp335;
-    (*Mt)(3, 2) = tmp336;
-    (*Mt)(3, 3) = tmp337;
-    (*Mt)(4, 0) = tmp338;
-    (*Mt)(4, 1) = tmp339;
-    (*Mt)(4, 2) = tmp340;
-    (*Mt)(4, 3) = tmp341;
-    (*Mt)(4, 4) = tmp342;
-    (*Mt)(5, 0) = tmp343;
-    (*Mt)(5, 1) = tmp344;
-    (*Mt)(5, 2) = tmp345;
-    (*Mt)(5, 3) = tmp346;
-    (*Mt)(5, 4) = tmp347;
-    (*Mt)(5, 5) = tmp348;
-    (*Mt)(6, 0) = tmp349;
-    (*Mt)(6, 1) = tmp350;
-    (*Mt)(6, 2) = tmp351;
-    (*Mt)(6, 3) = tmp352;
-    (*Mt)(6, 4) = tmp353;
-    (*Mt)(6, 5) = tmp354;
-    (*Mt)(6, 6) = tmp355;
-    (*Mt)(7, 0) = tmp356;
-    (*Mt)(7, 1) = tmp357;
-    (*Mt)(7, 2) = tmp358;
-    (*Mt)(7, 3) = tmp359;
-    (*Mt)(7, 4) = tmp360;
-    (*Mt)(7, 5) = tmp361;
-    (*Mt)(7, 6) = tmp362;
-    (*Mt)(7, 7) = tmp363;
-    (*Mt)(8, 0) = tmp364;
-    (*Mt)(8, 1) = tmp365;
-    (*Mt)(8, 2) = tmp366;
-    (*Mt)(8, 3) = tmp367;
-    (*Mt)(8, 4) = tmp368;
-    (*Mt)(8, 5) = tmp369;
-    (*Mt)(8, 6) = tmp370;
-    (*Mt)(8, 7) = tmp371;
-    (*Mt)(8, 8) = tmp372;
-    (*Mt)(9, 0) = tmp373;
-    (*Mt)(9, 1) = tmp374;
-    (*Mt)(9, 2) = tmp375;
-    (*Mt)(9, 3) = tmp376;
-    (*Mt)(9, 4) = tmp377;
-    (*Mt)(9, 5) = tmp378;
-    (*Mt)(9, 6) = tmp379;
-    (*Mt)(9, 7) = tmp380;
-    (*Mt)(9, 8) = tmp381;
-    (*Mt)(9, 9) = tmp382;
+    (*Mt)(0, 0) = tmp326;
+    (*Mt)(1, 0) = tmp327;
+    (*Mt)(1, 1) = tmp328;
+    (*Mt)(2, 0) = tmp329;
+    (*Mt)(2, 1) = tmp330;
+    (*Mt)(2, 2) = tmp331;
+    (*Mt)(3, 0) = tmp332;
+    (*Mt)(3, 1) = tmp333;
+    (*Mt)(3, 2) = tmp334;
+    (*Mt)(3, 3) = tmp335;
+    (*Mt)(4, 0) = tmp336;
+    (*Mt)(4, 1) = tmp337;
+    (*Mt)(4, 2) = tmp338;
+    (*Mt)(4, 3) = tmp339;
+    (*Mt)(4, 4) = tmp340;
+    (*Mt)(5, 0) = tmp341;
+    (*Mt)(5, 1) = tmp342;
+    (*Mt)(5, 2) = tmp343;
+    (*Mt)(5, 3) = tmp344;
+    (*Mt)(5, 4) = tmp345;
+    (*Mt)(5, 5) = tmp346;
+    (*Mt)(6, 0) = tmp347;
+    (*Mt)(6, 1) = tmp348;
+    (*Mt)(6, 2) = tmp349;
+    (*Mt)(6, 3) = tmp350;
+    (*Mt)(6, 4) = tmp351;
+    (*Mt)(6, 5) = tmp352;
+    (*Mt)(6, 6) = tmp353;
+    (*Mt)(7, 0) = tmp354;
+    (*Mt)(7, 1) = tmp355;
+    (*Mt)(7, 2) = tmp356;
+    (*Mt)(7, 3) = tmp357;
+    (*Mt)(7, 4) = tmp358;
+    (*Mt)(7, 5) = tmp359;
+    (*Mt)(7, 6) = tmp360;
+    (*Mt)(7, 7) = tmp361;
+    (*Mt)(8, 0) = tmp362;
+    (*Mt)(8, 1) = tmp363;
+    (*Mt)(8, 2) = tmp364;
+    (*Mt)(8, 3) = tmp365;
+    (*Mt)(8, 4) = tmp366;
+    (*Mt)(8, 5) = tmp367;
+    (*Mt)(8, 6) = tmp368;
+    (*Mt)(8, 7) = tmp369;
+    (*Mt)(8, 8) = tmp370;
+    (*Mt)(9, 0) = tmp371;
+    (*Mt)(9, 1) = tmp372;
+    (*Mt)(9, 2) = tmp373;
+    (*Mt)(9, 3) = tmp374;
+    (*Mt)(9, 4) = tmp375;
+    (*Mt)(9, 5) = tmp376;
+    (*Mt)(9, 6) = tmp377;
+    (*Mt)(9, 7) = tmp378;
+    (*Mt)(9, 8) = tmp379;
+    (*Mt)(9, 9) = tmp380;
     (*f)(0) = tmp405 + tmp432;
     (*f)(1) = tmp408 + tmp433;
     (*f)(2) = tmp411 + tmp434;
@@ -2832,82 +2832,80 @@ struct StiffChain10 {
     const Scalar tmp228 = tmp224 + tmp98;
     const Scalar tmp229 = tmp225 + tmp74;
     const Scalar tmp230 = tmp226 + tmp53;
-    const Scalar tmp232 = g*m;
-    const Scalar tmp233 = -tmp232;
-    const Scalar tmp234 = (phi1_dot*phi1_dot);
-    const Scalar tmp235 = -tmp1*tmp234;
-    const Scalar tmp236 = tmp234*tmp3;
-    const Scalar tmp237 = phi1_dot*(-tmp17 - tmp18*phi1_dot) + phi2_dot*(-tmp17 - tmp9*phi1_dot);
-    const Scalar tmp238 = tmp16*phi1_dot + phi2_dot*(tmp14 + tmp12*phi1_dot);
-    const Scalar tmp239 = -tmp33;
-    const Scalar tmp240 = -tmp32 + tmp239*phi2_dot;
-    const Scalar tmp241 = phi1_dot*(tmp240 - tmp34*phi1_dot) + phi2_dot*(tmp240 + tmp239*phi1_dot)
+    const Scalar tmp232 = (phi1_dot*phi1_dot);
+    const Scalar tmp233 = -tmp1*tmp232;
+    const Scalar tmp234 = tmp232*tmp3;
+    const Scalar tmp235 = phi1_dot*(-tmp17 - tmp18*phi1_dot) + phi2_dot*(-tmp17 - tmp9*phi1_dot);
+    const Scalar tmp236 = tmp16*phi1_dot + phi2_dot*(tmp14 + tmp12*phi1_dot);
+    const Scalar tmp237 = -tmp33;
+    const Scalar tmp238 = -tmp32 + tmp237*phi2_dot;
+    const Scalar tmp239 = phi1_dot*(tmp238 - tmp34*phi1_dot) + phi2_dot*(tmp238 + tmp237*phi1_dot)
         + phi3_dot*(-tmp32 - tmp22*phi1_dot - tmp22*phi2_dot);
-    const Scalar tmp242 = tmp31*phi1_dot + phi2_dot*(tmp30 + tmp28*phi1_dot)
+    const Scalar tmp240 = tmp31*phi1_dot + phi2_dot*(tmp30 + tmp28*phi1_dot)
         + phi3_dot*(tmp29 + tmp25*phi1_dot + tmp25*phi2_dot);
-    const Scalar tmp243 = -tmp51;
-    const Scalar tmp244 = -tmp50 + tmp243*phi3_dot;
-    const Scalar tmp245 = -tmp52;
-    const Scalar tmp246 = tmp244 + tmp245*phi2_dot;
-    const Scalar tmp247 = phi1_dot*(tmp246 - tmp53*phi1_dot) + phi2_dot*(tmp246 + tmp245*phi1_dot)
-        + phi3_dot*(tmp244 + tmp243*phi1_dot + tmp243*phi2_dot)
+    const Scalar tmp241 = -tmp51;
+    const Scalar tmp242 = -tmp50 + tmp241*phi3_dot;
+    const Scalar tmp243 = -tmp52;
+    const Scalar tmp244 = tmp242 + tmp243*phi2_dot;
+    const Scalar tmp245 = phi1_dot*(tmp244 - tmp53*phi1_dot) + phi2_dot*(tmp244 + tmp243*phi1_dot)
+        + phi3_dot*(tmp242 + tmp241*phi1_dot + tmp241*phi2_dot)
         + phi4_dot*(-tmp50 - tmp38*phi1_dot - tmp38*phi2_dot - tmp38*phi3_dot);
-    const Scalar tmp248 = tmp49*phi1_dot + phi2_dot*(tmp48 + tmp45*phi1_dot)
+    const Scalar tmp246 = tmp49*phi1_dot + phi2_dot*(tmp48 + tmp45*phi1_dot)
         + phi3_dot*(tmp47 + tmp43*phi1_dot + tmp43*phi2_dot)
         + phi4_dot*(tmp46 + tmp41*phi1_dot + tmp41*phi2_dot + tmp41*phi3_dot);
-    const Scalar tmp249 = -tmp72;
-    const Scalar tmp250 = -tmp71 + tmp249*phi4_dot;
-    const Scalar tmp251 = -tmp73;
-    const Scalar tmp252 = tmp250 + tmp251*phi3_dot;
-    const Scalar tmp253 = -tmp74;
-    const Scalar tmp254 = tmp252 + tmp253*phi2_dot;
-    const Scalar tmp255 = phi1_dot*(tmp254 - tmp75*phi1_dot) + phi2_dot*(tmp254 + tmp253*phi1_dot)
-        + phi3_dot*(tmp252 + tmp251*phi1_dot + tmp251*phi2_dot)
-        + phi4_dot*(tmp250 + tmp249*phi1_dot + tmp249*phi2_dot + tmp249*phi3_dot)
+    const Scalar tmp247 = -tmp72;
+    const Scalar tmp248 = -tmp71 + tmp247*phi4_dot;
+    const Scalar tmp249 = -tmp73;
+    const Scalar tmp250 = tmp248 + tmp249*phi3_dot;
+    const Scalar tmp251 = -tmp74;
+    const Scalar tmp252 = tmp250 + tmp251*phi2_dot;
+    const Scalar tmp253 = phi1_dot*(tmp252 - tmp75*phi1_dot) + phi2_dot*(tmp252 + tmp251*phi1_dot)
+        + phi3_dot*(tmp250 + tmp249*phi1_dot + tmp249*phi2_dot)
+        + phi4_dot*(tmp248 + tmp247*phi1_dot + tmp247*phi2_dot + tmp247*phi3_dot)
         + phi5_dot*(-tmp71 - tmp57*phi1_dot - tmp57*phi2_dot - tmp57*phi3_dot - tmp57*phi4_dot);
-    const Scalar tmp256 = tmp70*phi1_dot + phi2_dot*(tmp69 + tmp65*phi1_dot)
+    const Scalar tmp254 = tmp70*phi1_dot + phi2_dot*(tmp69 + tmp65*phi1_dot)
         + phi3_dot*(tmp68 + tmp62*phi1_dot + tmp62*phi2_dot)
         + phi4_dot*(tmp67 + tmp64*phi1_dot + tmp64*phi2_dot + tmp64*phi3_dot)
         + phi5_dot*(tmp66 + tmp60*phi1_dot + tmp60*phi2_dot + tmp60*phi3_dot + tmp60*phi4_dot);
-    const Scalar tmp257 = -tmp96;
-    const Scalar tmp258 = -tmp95 + tmp257*phi5_dot;
-    const Scalar tmp259 = -tmp97;
-    const Scalar tmp260 = tmp258 + tmp259*phi4_dot;
-    const Scalar tmp261 = -tmp98;
-    const Scalar tmp262 = tmp260 + tmp261*phi3_dot;
-    const Scalar tmp263 = -tmp99;
-    const Scalar tmp264 = tmp262 + tmp263*phi2_dot;
-    const Scalar tmp265 = phi1_dot*(tmp264 - tmp100*phi1_dot) + phi2_dot*(tmp264 + tmp263*phi1_dot)
-        + phi3_dot*(tmp262 + tmp261*phi1_dot + tmp261*phi2_dot)
-        + phi4_dot*(tmp260 + tmp259*phi1_dot + tmp259*phi2_dot + tmp259*phi3_dot)
-        + phi5_dot*(tmp258 + tmp257*phi1_dot + tmp257*phi2_dot + tmp257*phi3_dot + tmp257*phi4_dot)
+    const Scalar tmp255 = -tmp96;
+    const Scalar tmp256 = -tmp95 + tmp255*phi5_dot;
+    const Scalar tmp257 = -tmp97;
+    const Scalar tmp258 = tmp256 + tmp257*phi4_dot;
+    const Scalar tmp259 = -tmp98;
+    const Scalar tmp260 = tmp258 + tmp259*phi3_dot;
+    const Scalar tmp261 = -tmp99;
+    const Scalar tmp262 = tmp260 + tmp261*phi2_dot;
+    const Scalar tmp263 = phi1_dot*(tmp262 - tmp100*phi1_dot) + phi2_dot*(tmp262 + tmp261*phi1_dot)
+        + phi3_dot*(tmp260 + tmp259*phi1_dot + tmp259*phi2_dot)
+        + phi4_dot*(tmp258 + tmp257*phi1_dot + tmp257*phi2_dot + tmp257*phi3_dot)
+        + phi5_dot*(tmp256 + tmp255*phi1_dot + tmp255*phi2_dot + tmp255*phi3_dot + tmp255*phi4_dot)
         + phi6_dot*(-tmp95 - tmp79*phi1_dot - tmp79*phi2_dot - tmp79*phi3_dot - tmp79*phi4_dot
             - tmp79*phi5_dot);
-    const Scalar tmp266 = tmp94*phi1_dot + phi2_dot*(tmp93 + tmp87*phi1_dot)
+    const Scalar tmp264 = tmp94*phi1_dot + phi2_dot*(tmp93 + tmp87*phi1_dot)
         + phi3_dot*(tmp92 + tmp88*phi1_dot + tmp88*phi2_dot)
         + phi4_dot*(tmp91 + tmp86*phi1_dot + tmp86*phi2_dot + tmp86*phi3_dot)
         + phi5_dot*(tmp90 + tmp84*phi1_dot + tmp84*phi2_dot + tmp84*phi3_dot + tmp84*phi4_dot)
         + phi6_dot*(tmp89 + tmp82*phi1_dot + tmp82*phi2_dot + tmp82*phi3_dot + tmp82*phi4_dot
             + tmp82*phi5_dot);
-    const Scalar tmp267 = -tmp123;
-    const Scalar tmp268 = -tmp122 + tmp267*phi6_dot;
-    const Scalar tmp269 = -tmp124;
-    const Scalar tmp270 = tmp268 + tmp269*phi5_dot;
-    const Scalar tmp271 = -tmp125;
-    const Scalar tmp272 = tmp270 + tmp271*phi4_dot;
-    const Scalar tmp273 = -tmp126;
-    const Scalar tmp274 = tmp272 + tmp273*phi3_dot;
-    const Scalar tmp275 = -tmp127;
-    const Scalar tmp276 = tmp274 + tmp275*phi2_dot;
-    const Scalar tmp277 = phi1_dot*(tmp276 - tmp128*phi1_dot) + phi2_dot*(tmp276 + tmp275*phi1_dot)
-        + phi3_dot*(tmp274 + tmp273*phi1_dot + tmp273*phi2_dot)
-        + phi4_dot*(tmp272 + tmp271*phi1_dot + tmp271*phi2_dot + tmp271*phi3_dot)
-        + phi5_dot*(tmp270 + tmp269*phi1_dot + tmp269*phi2_dot + tmp269*phi3_dot + tmp269*phi4_dot)
-        + phi6_dot*(tmp268 + tmp267*phi1_dot + tmp267*phi2_dot + tmp267*phi3_dot + tmp267*phi4_dot
-            + tmp267*phi5_dot)
+    const Scalar tmp265 = -tmp123;
+    const Scalar tmp266 = -tmp122 + tmp265*phi6_dot;
+    const Scalar tmp267 = -tmp124;
+    const Scalar tmp268 = tmp266 + tmp267*phi5_dot;
+    const Scalar tmp269 = -tmp125;
+    const Scalar tmp270 = tmp268 + tmp269*phi4_dot;
+    const Scalar tmp271 = -tmp126;
+    const Scalar tmp272 = tmp270 + tmp271*phi3_dot;
+    const Scalar tmp273 = -tmp127;
+    const Scalar tmp274 = tmp272 + tmp273*phi2_dot;
+    const Scalar tmp275 = phi1_dot*(tmp274 - tmp128*phi1_dot) + phi2_dot*(tmp274 + tmp273*phi1_dot)
+        + phi3_dot*(tmp272 + tmp271*phi1_dot + tmp271*phi2_dot)
+        + phi4_dot*(tmp270 + tmp269*phi1_dot + tmp269*phi2_dot + tmp269*phi3_dot)
+        + phi5_dot*(tmp268 + tmp267*phi1_dot + tmp267*phi2_dot + tmp267*phi3_dot + tmp267*phi4_dot)
+        + phi6_dot*(tmp266 + tmp265*phi1_dot + tmp265*phi2_dot + tmp265*phi3_dot + tmp265*phi4_dot
+            + tmp265*phi5_dot)
         + phi7_dot*(-tmp122 - tmp104*phi1_dot - tmp104*phi2_dot - tmp104*phi3_dot - tmp104*phi4_dot
             - tmp104*phi5_dot - tmp104*phi6_dot);
-    const Scalar tmp278 = tmp121*phi1_dot + phi2_dot*(tmp120 + tmp112*phi1_dot)
+    const Scalar tmp276 = tmp121*phi1_dot + phi2_dot*(tmp120 + tmp112*phi1_dot)
         + phi3_dot*(tmp119 + tmp113*phi1_dot + tmp113*phi2_dot)
         + phi4_dot*(tmp118 + tmp114*phi1_dot + tmp114*phi2_dot + tmp114*phi3_dot)
         + phi5_dot*(tmp117 + tmp109*phi1_dot + tmp109*phi2_dot + tmp109*phi3_dot + tmp109*phi4_dot)
@@ -2915,29 +2913,29 @@ struct StiffChain10 {
             + tmp111*phi5_dot)
         + phi7_dot*(tmp115 + tmp107*phi1_dot + tmp107*phi2_dot + tmp107*phi3_dot + tmp107*phi4_dot
             + tmp107*phi5_dot + tmp107*phi6_dot);
-    const Scalar tmp279 = -tmp153;
-    const Scalar tmp280 = -tmp152 + tmp279*phi7_dot;
-    const Scalar tmp281 = -tmp154;
-    const Scalar tmp282 = tmp280 + tmp281*phi6_dot;
-    const Scalar tmp283 = -tmp155;
-    const Scalar tmp284 = tmp282 + tmp283*phi5_dot;
-    const Scalar tmp285 = -tmp156;
-    const Scalar tmp286 = tmp284 + tmp285*phi4_dot;
-    const Scalar tmp287 = -tmp157;
-    const Scalar tmp288 = tmp286 + tmp287*phi3_dot;
-    const Scalar tmp289 = -tmp158;
-    const Scalar tmp290 = tmp288 + tmp289*phi2_dot;
-    const Scalar tmp291 = phi1_dot*(tmp290 - tmp159*phi1_dot) + phi2_dot*(tmp290 + tmp289*phi1_dot)
-        + phi3_dot*(tmp288 + tmp287*phi1_dot + tmp287*phi2_dot)
-        + phi4_dot*(tmp286 + tmp285*phi1_dot + tmp285*phi2_dot + tmp285*phi3_dot)
-        + phi5_dot*(tmp284 + tmp283*phi1_dot + tmp283*phi2_dot + tmp283*phi3_dot + tmp283*phi4_dot)
-        + phi6_dot*(tmp282 + tmp281*phi1_dot + tmp281*phi2_dot + tmp281*phi3_dot + tmp281*phi4_dot
-            + tmp281*phi5_dot)
-        + phi7_dot*(tmp280 + tmp279*phi1_dot + tmp279*phi2_dot + tmp279*phi3_dot + tmp279*phi4_dot
-            + tmp279*phi5_dot + tmp279*phi6_dot)
+    const Scalar tmp277 = -tmp153;
+    const Scalar tmp278 = -tmp152 + tmp277*phi7_dot;
+    const Scalar tmp279 = -tmp154;
+    const Scalar tmp280 = tmp278 + tmp279*phi6_dot;
+    const Scalar tmp281 = -tmp155;
+    const Scalar tmp282 = tmp280 + tmp281*phi5_dot;
+    const Scalar tmp283 = -tmp156;
+    const Scalar tmp284 = tmp282 + tmp283*phi4_dot;
+    const Scalar tmp285 = -tmp157;
+    const Scalar tmp286 = tmp284 + tmp285*phi3_dot;
+    const Scalar tmp287 = -tmp158;
+    const Scalar tmp288 = tmp286 + tmp287*phi2_dot;
+    const Scalar tmp289 = phi1_dot*(tmp288 - tmp159*phi1_dot) + phi2_dot*(tmp288 + tmp287*phi1_dot)
+        + phi3_dot*(tmp286 + tmp285*phi1_dot + tmp285*phi2_dot)
+        + phi4_dot*(tmp284 + tmp283*phi1_dot + tmp283*phi2_dot + tmp283*phi3_dot)
+        + phi5_dot*(tmp282 + tmp281*phi1_dot + tmp281*phi2_dot + tmp281*phi3_dot + tmp281*phi4_dot)
+        + phi6_dot*(tmp280 + tmp279*phi1_dot + tmp279*phi2_dot + tmp279*phi3_dot + tmp279*phi4_dot
+            + tmp279*phi5_dot)
+        + phi7_dot*(tmp278 + tmp277*phi1_dot + tmp277*phi2_dot + tmp277*phi3_dot + tmp277*phi4_dot
+            + tmp277*phi5_dot + tmp277*phi6_dot)
         + phi8_dot*(-tmp152 - tmp132*phi1_dot - tmp132*phi2_dot - tmp132*phi3_dot - tmp132*phi4_dot
             - tmp132*phi5_dot - tmp132*phi6_dot - tmp132*phi7_dot);
-    const Scalar tmp292 = tmp151*phi1_dot + phi2_dot*(tmp150 + tmp141*phi1_dot)
+    const Scalar tmp290 = tmp151*phi1_dot + phi2_dot*(tmp150 + tmp141*phi1_dot)
         + phi3_dot*(tmp149 + tmp142*phi1_dot + tmp142*phi2_dot)
         + phi4_dot*(tmp148 + tmp143*phi1_dot + tmp143*phi2_dot + tmp143*phi3_dot)
         + phi5_dot*(tmp147 + tmp138*phi1_dot + tmp138*phi2_dot + tmp138*phi3_dot + tmp138*phi4_dot)
@@ -2947,33 +2945,33 @@ struct StiffChain10 {
             + tmp137*phi5_dot + tmp137*phi6_dot)
         + phi8_dot*(tmp144 + tmp135*phi1_dot + tmp135*phi2_dot + tmp135*phi3_dot + tmp135*phi4_dot
             + tmp135*phi5_dot + tmp135*phi6_dot + tmp135*phi7_dot);
-    const Scalar tmp293 = -tmp186;
-    const Scalar tmp294 = -tmp185 + tmp293*phi8_dot;
-    const Scalar tmp295 = -tmp187;
-    const Scalar tmp296 = tmp294 + tmp295*phi7_dot;
-    const Scalar tmp297 = -tmp188;
-    const Scalar tmp298 = tmp296 + tmp297*phi6_dot;
-    const Scalar tmp299 = -tmp189;
-    const Scalar tmp300 = tmp298 + tmp299*phi5_dot;
-    const Scalar tmp301 = -tmp190;
-    const Scalar tmp302 = tmp300 + tmp301*phi4_dot;
-    const Scalar tmp303 = -tmp191;
-    const Scalar tmp304 = tmp302 + tmp303*phi3_dot;
-    const Scalar tmp305 = -tmp192;
-    const Scalar tmp306 = tmp304 + tmp305*phi2_dot;
-    const Scalar tmp307 = phi1_dot*(tmp306 - tmp193*phi1_dot) + phi2_dot*(tmp306 + tmp305*phi1_dot)
-        + phi3_dot*(tmp304 + tmp303*phi1_dot + tmp303*phi2_dot)
-        + phi4_dot*(tmp302 + tmp301*phi1_dot + tmp301*phi2_dot + tmp301*phi3_dot)
-        + phi5_dot*(tmp300 + tmp299*phi1_dot + tmp299*phi2_dot + tmp299*phi3_dot + tmp299*phi4_dot)
-        + phi6_dot*(tmp298 + tmp297*phi1_dot + tmp297*phi2_dot + tmp297*phi3_dot + tmp297*phi4_dot
-            + tmp297*phi5_dot)
-        + phi7_dot*(tmp296 + tmp295*phi1_dot + tmp295*phi2_dot + tmp295*phi3_dot + tmp295*phi4_dot
-            + tmp295*phi5_dot + tmp295*phi6_dot)
-        + phi8_dot*(tmp294 + tmp293*phi1_dot + tmp293*phi2_dot + tmp293*phi3_dot + tmp293*phi4_dot
-            + tmp293*phi5_dot + tmp293*phi6_dot + tmp293*phi7_dot)
+    const Scalar tmp291 = -tmp186;
+    const Scalar tmp292 = -tmp185 + tmp291*phi8_dot;
+    const Scalar tmp293 = -tmp187;
+    const Scalar tmp294 = tmp292 + tmp293*phi7_dot;
+    const Scalar tmp295 = -tmp188;
+    const Scalar tmp296 = tmp294 + tmp295*phi6_dot;
+    const Scalar tmp297 = -tmp189;
+    const Scalar tmp298 = tmp296 + tmp297*phi5_dot;
+    const Scalar tmp299 = -tmp190;
+    const Scalar tmp300 = tmp298 + tmp299*phi4_dot;
+    const Scalar tmp301 = -tmp191;
+    const Scalar tmp302 = tmp300 + tmp301*phi3_dot;
+    const Scalar tmp303 = -tmp192;
+    const Scalar tmp304 = tmp302 + tmp303*phi2_dot;
+    const Scalar tmp305 = phi1_dot*(tmp304 - tmp193*phi1_dot) + phi2_dot*(tmp304 + tmp303*phi1_dot)
+        + phi3_dot*(tmp302 + tmp301*phi1_dot + tmp301*phi2_dot)
+        + phi4_dot*(tmp300 + tmp299*phi1_dot + tmp299*phi2_dot + tmp299*phi3_dot)
+        + phi5_dot*(tmp298 + tmp297*phi1_dot + tmp297*phi2_dot + tmp297*phi3_dot + tmp297*phi4_dot)
+        + phi6_dot*(tmp296 + tmp295*phi1_dot + tmp295*phi2_dot + tmp295*phi3_dot + tmp295*phi4_dot
+            + tmp295*phi5_dot)
+        + phi7_dot*(tmp294 + tmp293*phi1_dot + tmp293*phi2_dot + tmp293*phi3_dot + tmp293*phi4_dot
+            + tmp293*phi5_dot + tmp293*phi6_dot)
+        + phi8_dot*(tmp292 + tmp291*phi1_dot + tmp291*phi2_dot + tmp291*phi3_dot + tmp291*phi4_dot
+            + tmp291*phi5_dot + tmp291*phi6_dot + tmp291*phi7_dot)
         + phi9_dot*(-tmp185 - tmp163*phi1_dot - tmp163*phi2_dot - tmp163*phi3_dot - tmp163*phi4_dot
             - tmp163*phi5_dot - tmp163*phi6_dot - tmp163*phi7_dot - tmp163*phi8_dot);
-    const Scalar tmp308 = tmp184*phi1_dot + phi2_dot*(tmp183 + tmp173*phi1_dot)
+    const Scalar tmp306 = tmp184*phi1_dot + phi2_dot*(tmp183 + tmp173*phi1_dot)
         + phi3_dot*(tmp182 + tmp174*phi1_dot + tmp174*phi2_dot)
         + phi4_dot*(tmp181 + tmp175*phi1_dot + tmp175*phi2_dot + tmp175*phi3_dot)
         + phi5_dot*(tmp180 + tmp169*phi1_dot + tmp169*phi2_dot + tmp169*phi3_dot + tmp169*phi4_dot)
@@ -2985,38 +2983,38 @@ struct StiffChain10 {
             + tmp171*phi5_dot + tmp171*phi6_dot + tmp171*phi7_dot)
         + phi9_dot*(tmp176 + tmp166*phi1_dot + tmp166*phi2_dot + tmp166*phi3_dot + tmp166*phi4_dot
             + tmp166*phi5_dot + tmp166*phi6_dot + tmp166*phi7_dot + tmp166*phi8_dot);
-    const Scalar tmp309 = -tmp222;
-    const Scalar tmp310 = -tmp221 + tmp309*phi9_dot;
-    const Scalar tmp311 = -tmp223;
-    const Scalar tmp312 = tmp310 + tmp311*phi8_dot;
-    const Scalar tmp313 = -tmp224;
-    const Scalar tmp314 = tmp312 + tmp313*phi7_dot;
-    const Scalar tmp315 = -tmp225;
-    const Scalar tmp316 = tmp314 + tmp315*phi6_dot;
-    const Scalar tmp317 = -tmp226;
-    const Scalar tmp318 = tmp316 + tmp317*phi5_dot;
-    const Scalar tmp319 = -tmp227;
-    const Scalar tmp320 = tmp318 + tmp319*phi4_dot;
-    const Scalar tmp321 = -tmp228;
-    const Scalar tmp322 = tmp320 + tmp321*phi3_dot;
-    const Scalar tmp323 = -tmp229;
-    const Scalar tmp324 = tmp322 + tmp323*phi2_dot;
-    const Scalar tmp325 = phi10_dot*(-tmp221 - tmp197*phi1_dot - tmp197*phi2_dot - tmp197*phi3_dot
+    const Scalar tmp307 = -tmp222;
+    const Scalar tmp308 = -tmp221 + tmp307*phi9_dot;
+    const Scalar tmp309 = -tmp223;
+    const Scalar tmp310 = tmp308 + tmp309*phi8_dot;
+    const Scalar tmp311 = -tmp224;
+    const Scalar tmp312 = tmp310 + tmp311*phi7_dot;
+    const Scalar tmp313 = -tmp225;
+    const Scalar tmp314 = tmp312 + tmp313*phi6_dot;
+    const Scalar tmp315 = -tmp226;
+    const Scalar tmp316 = tmp314 + tmp315*phi5_dot;
+    const Scalar tmp317 = -tmp227;
+    const Scalar tmp318 = tmp316 + tmp317*phi4_dot;
+    const Scalar tmp319 = -tmp228;
+    const Scalar tmp320 = tmp318 + tmp319*phi3_dot;
+    const Scalar tmp321 = -tmp229;
+    const Scalar tmp322 = tmp320 + tmp321*phi2_dot;
+    const Scalar tmp323 = phi10_dot*(-tmp221 - tmp197*phi1_dot - tmp197*phi2_dot - tmp197*phi3_dot
             - tmp197*phi4_dot - tmp197*phi5_dot - tmp197*phi6_dot - tmp197*phi7_dot
             - tmp197*phi8_dot - tmp197*phi9_dot)
-        + phi1_dot*(tmp324 - tmp230*phi1_dot) + phi2_dot*(tmp324 + tmp323*phi1_dot)
-        + phi3_dot*(tmp322 + tmp321*phi1_dot + tmp321*phi2_dot)
-        + phi4_dot*(tmp320 + tmp319*phi1_dot + tmp319*phi2_dot + tmp319*phi3_dot)
-        + phi5_dot*(tmp318 + tmp317*phi1_dot + tmp317*phi2_dot + tmp317*phi3_dot + tmp317*phi4_dot)
-        + phi6_dot*(tmp316 + tmp315*phi1_dot + tmp315*phi2_dot + tmp315*phi3_dot + tmp315*phi4_dot
-            + tmp315*phi5_dot)
-        + phi7_dot*(tmp314 + tmp313*phi1_dot + tmp313*phi2_dot + tmp313*phi3_dot + tmp313*phi4_dot
-            + tmp313*phi5_dot + tmp313*phi6_dot)
-        + phi8_dot*(tmp312 + tmp311*phi1_dot + tmp311*phi2_dot + tmp311*phi3_dot + tmp311*phi4_dot
-            + tmp311*phi5_dot + tmp311*phi6_dot + tmp311*phi7_dot)
-        + phi9_dot*(tmp310 + tmp309*phi1_dot + tmp309*phi2_dot + tmp309*phi3_dot + tmp309*phi4_dot
-            + tmp309*phi5_dot + tmp309*phi6_dot + tmp309*phi7_dot + tmp309*phi8_dot);
-    const Scalar tmp326 = tmp220*phi1_dot
+        + phi1_dot*(tmp322 - tmp230*phi1_dot) + phi2_dot*(tmp322 + tmp321*phi1_dot)
+        + phi3_dot*(tmp320 + tmp319*phi1_dot + tmp319*phi2_dot)
+        + phi4_dot*(tmp318 + tmp317*phi1_dot + tmp317*phi2_dot + tmp317*phi3_dot)
+        + phi5_dot*(tmp316 + tmp315*phi1_dot + tmp315*phi2_dot + tmp315*phi3_dot + tmp315*phi4_dot)
+        + phi6_dot*(tmp314 + tmp313*phi1_dot + tmp313*phi2_dot + tmp313*phi3_dot + tmp313*phi4_dot
+            + tmp313*phi5_dot)
+        + phi7_dot*(tmp312 + tmp311*phi1_dot + tmp311*phi2_dot + tmp311*phi3_dot + tmp311*phi4_dot
+            + tmp311*phi5_dot + tmp311*phi6_dot)
+        + phi8_dot*(tmp310 + tmp309*phi1_dot + tmp309*phi2_dot + tmp309*phi3_dot + tmp309*phi4_dot
+            + tmp309*phi5_dot + tmp309*phi6_dot + tmp309*phi7_dot)
+        + phi9_dot*(tmp308 + tmp307*phi1_dot + tmp307*phi2_dot + tmp307*phi3_dot + tmp307*phi4_dot
+            + tmp307*phi5_dot + tmp307*phi6_dot + tmp307*phi7_dot + tmp307*phi8_dot);
+    const Scalar tmp324 = tmp220*phi1_dot
         + phi10_dot*(tmp211 + tmp200*phi1_dot + tmp200*phi2_dot + tmp200*phi3_dot + tmp200*phi4_dot
             + tmp200*phi5_dot + tmp200*phi6_dot + tmp200*phi7_dot + tmp200*phi8_dot
             + tmp200*phi9_dot)
@@ -3032,194 +3030,196 @@ struct StiffChain10 {
             + tmp205*phi5_dot + tmp205*phi6_dot + tmp205*phi7_dot)
         + phi9_dot*(tmp212 + tmp202*phi1_dot + tmp202*phi2_dot + tmp202*phi3_dot + tmp202*phi4_dot
             + tmp202*phi5_dot + tmp202*phi6_dot + tmp202*phi7_dot + tmp202*phi8_dot);
-    const Scalar tmp327 = (l*l);
-    const Scalar tmp328 = m*((tmp15*tmp15) + (tmp18*tmp18)) + m*((tmp128*tmp128) + (tmp110*tmp110))
+    const Scalar tmp325 = (l*l);
+    const Scalar tmp326 = m*((tmp15*tmp15) + (tmp18*tmp18)) + m*((tmp128*tmp128) + (tmp110*tmp110))
         + m*((tmp139*tmp139) + (tmp159*tmp159)) + m*((tmp170*tmp170) + (tmp193*tmp193))
         + m*((tmp204*tmp204) + (tmp230*tmp230)) + m*((tmp27*tmp27) + (tmp34*tmp34))
         + m*((tmp44*tmp44) + (tmp53*tmp53)) + m*((tmp63*tmp63) + (tmp75*tmp75))
-        + m*((tmp85*tmp85) + (tmp100*tmp100)) + m*(tmp327*(tmp0*tmp0) + tmp327*(tmp2*tmp2));
-    const Scalar tmp329 = m*(tmp15*tmp12 + tmp18*tmp9) + m*(tmp127*tmp128 + tmp110*tmp112)
+        + m*((tmp85*tmp85) + (tmp100*tmp100)) + m*(tmp325*(tmp0*tmp0) + tmp325*(tmp2*tmp2));
+    const Scalar tmp327 = m*(tmp15*tmp12 + tmp18*tmp9) + m*(tmp127*tmp128 + tmp110*tmp112)
         + m*(tmp139*tmp141 + tmp158*tmp159) + m*(tmp170*tmp173 + tmp192*tmp193)
         + m*(tmp204*tmp207 + tmp229*tmp230) + m*(tmp27*tmp28 + tmp33*tmp34)
         + m*(tmp44*tmp45 + tmp52*tmp53) + m*(tmp63*tmp65 + tmp74*tmp75)
         + m*(tmp85*tmp87 + tmp99*tmp100);
-    const Scalar tmp330 = m*((tmp127*tmp127) + (tmp112*tmp112))
+    const Scalar tmp328 = m*((tmp127*tmp127) + (tmp112*tmp112))
         + m*((tmp141*tmp141) + (tmp158*tmp158)) + m*((tmp173*tmp173) + (tmp192*tmp192))
         + m*((tmp207*tmp207) + (tmp229*tmp229)) + m*((tmp28*tmp28) + (tmp33*tmp33))
         + m*((tmp45*tmp45) + (tmp52*tmp52)) + m*((tmp65*tmp65) + (tmp74*tmp74))
-        + m*((tmp87*tmp87) + (tmp99*tmp99)) + m*(tmp327*(tmp8*tmp8) + tmp327*(tmp11*tmp11));
-    const Scalar tmp331 = m*(tmp126*tmp128 + tmp110*tmp113) + m*(tmp139*tmp142 + tmp157*tmp159)
+        + m*((tmp87*tmp87) + (tmp99*tmp99)) + m*(tmp325*(tmp8*tmp8) + tmp325*(tmp11*tmp11));
+    const Scalar tmp329 = m*(tmp126*tmp128 + tmp110*tmp113) + m*(tmp139*tmp142 + tmp157*tmp159)
         + m*(tmp170*tmp174 + tmp191*tmp193) + m*(tmp22*tmp34 + tmp25*tmp27)
         + m*(tmp204*tmp209 + tmp228*tmp230) + m*(tmp43*tmp44 + tmp51*tmp53)
         + m*(tmp62*tmp63 + tmp73*tmp75) + m*(tmp85*tmp88 + tmp98*tmp100);
-    const Scalar tmp332 = m*(tmp126*tmp127 + tmp112*tmp113) + m*(tmp141*tmp142 + tmp157*tmp158)
+    const Scalar tmp330 = m*(tmp126*tmp127 + tmp112*tmp113) + m*(tmp141*tmp142 + tmp157*tmp158)
         + m*(tmp173*tmp174 + tmp191*tmp192) + m*(tmp22*tmp33 + tmp25*tmp28)
         + m*(tmp207*tmp209 + tmp228*tmp229) + m*(tmp43*tmp45 + tmp51*tmp52)
         + m*(tmp62*tmp65 + tmp73*tmp74) + m*(tmp87*tmp88 + tmp98*tmp99);
-    const Scalar tmp333 = m*((tmp126*tmp126) + (tmp113*tmp113))
+    const Scalar tmp331 = m*((tmp126*tmp126) + (tmp113*tmp113))
         + m*((tmp142*tmp142) + (tmp157*tmp157)) + m*((tmp174*tmp174) + (tmp191*tmp191))
         + m*((tmp209*tmp209) + (tmp228*tmp228)) + m*((tmp43*tmp43) + (tmp51*tmp51))
         + m*((tmp62*tmp62) + (tmp73*tmp73)) + m*((tmp88*tmp88) + (tmp98*tmp98))
-        + m*(tmp327*(tmp21*tmp21) + tmp327*(tmp24*tmp24));
-    const Scalar tmp334 = m*(tmp125*tmp128 + tmp110*tmp114) + m*(tmp139*tmp143 + tmp156*tmp159)
+        + m*(tmp325*(tmp21*tmp21) + tmp325*(tmp24*tmp24));
+    const Scalar tmp332 = m*(tmp125*tmp128 + tmp110*tmp114) + m*(tmp139*tmp143 + tmp156*tmp159)
         + m*(tmp170*tmp175 + tmp190*tmp193) + m*(tmp204*tmp210 + tmp227*tmp230)
         + m*(tmp38*tmp53 + tmp41*tmp44) + m*(tmp63*tmp64 + tmp72*tmp75)
         + m*(tmp85*tmp86 + tmp97*tmp100);
-    const Scalar tmp335 = m*(tmp125*tmp127 + tmp112*tmp114) + m*(tmp141*tmp143 + tmp156*tmp158)
+    const Scalar tmp333 = m*(tmp125*tmp127 + tmp112*tmp114) + m*(tmp141*tmp143 + tmp156*tmp158)
         + m*(tmp173*tmp175 + tmp190*tmp192) + m*(tmp207*tmp210 + tmp227*tmp229)
         + m*(tmp38*tmp52 + tmp41*tmp45) + m*(tmp64*tmp65 + tmp72*tmp74)
         + m*(tmp86*tmp87 + tmp97*tmp99);
-    const Scalar tmp336 = m*(tmp125*tmp126 + tmp113*tmp114) + m*(tmp142*tmp143 + tmp156*tmp157)
+    const Scalar tmp334 = m*(tmp125*tmp126 + tmp113*tmp114) + m*(tmp142*tmp143 + tmp156*tmp157)
         + m*(tmp174*tmp175 + tmp190*tmp191) + m*(tmp209*tmp210 + tmp227*tmp228)
         + m*(tmp38*tmp51 + tmp41*tmp43) + m*(tmp62*tmp64 + tmp72*tmp73)
         + m*(tmp86*tmp88 + tmp97*tmp98);
-    const Scalar tmp337 = m*((tmp125*tmp125) + (tmp114*tmp114))
+    const Scalar tmp335 = m*((tmp125*tmp125) + (tmp114*tmp114))
         + m*((tmp143*tmp143) + (tmp156*tmp156)) + m*((tmp175*tmp175) + (tmp190*tmp190))
         + m*((tmp210*tmp210) + (tmp227*tmp227)) + m*((tmp64*tmp64) + (tmp72*tmp72))
-        + m*((tmp86*tmp86) + (tmp97*tmp97)) + m*(tmp327*(tmp37*tmp37) + tmp327*(tmp40*tmp40));
-    const Scalar tmp338 = m*(tmp124*tmp128 + tmp109*tmp110) + m*(tmp138*tmp139 + tmp155*tmp159)
+        + m*((tmp86*tmp86) + (tmp97*tmp97)) + m*(tmp325*(tmp37*tmp37) + tmp325*(tmp40*tmp40));
+    const Scalar tmp336 = m*(tmp124*tmp128 + tmp109*tmp110) + m*(tmp138*tmp139 + tmp155*tmp159)
         + m*(tmp169*tmp170 + tmp189*tmp193) + m*(tmp203*tmp204 + tmp226*tmp230)
         + m*(tmp57*tmp75 + tmp60*tmp63) + m*(tmp84*tmp85 + tmp96*tmp100);
-    const Scalar tmp339 = m*(tmp124*tmp127 + tmp109*tmp112) + m*(tmp138*tmp141 + tmp155*tmp158)
+    const Scalar tmp337 = m*(tmp124*tmp127 + tmp109*tmp112) + m*(tmp138*tmp141 + tmp155*tmp158)
         + m*(tmp169*tmp173 + tmp189*tmp192) + m*(tmp203*tmp207 + tmp226*tmp229)
         + m*(tmp57*tmp74 + tmp60*tmp65) + m*(tmp84*tmp87 + tmp96*tmp99);
-    const Scalar tmp340 = m*(tmp124*tmp126 + tmp109*tmp113) + m*(tmp138*tmp142 + tmp155*tmp157)
+    const Scalar tmp338 = m*(tmp124*tmp126 + tmp109*tmp113) + m*(tmp138*tmp142 + tmp155*tmp157)
         + m*(tmp169*tmp174 + tmp189*tmp191) + m*(tmp203*tmp209 + tmp226*tmp228)
         + m*(tmp57*tmp73 + tmp60*tmp62) + m*(tmp84*tmp88 + tmp96*tmp98);
-    const Scalar tmp341 = m*(tmp124*tmp125 + tmp109*tmp114) + m*(tmp138*tmp143 + tmp155*tmp156)
+    const Scalar tmp339 = m*(tmp124*tmp125 + tmp109*tmp114) + m*(tmp138*tmp143 + tmp155*tmp156)
         + m*(tmp169*tmp175 + tmp189*tmp190) + m*(tmp203*tmp210 + tmp226*tmp227)
         + m*(tmp57*tmp72 + tmp60*tmp64) + m*(tmp84*tmp86 + tmp96*tmp97);
-    const Scalar tmp342 = m*((tmp124*tmp124) + (tmp109*tmp109))
+    const Scalar tmp340 = m*((tmp124*tmp124) + (tmp109*tmp109))
         + m*((tmp138*tmp138) + (tmp155*tmp155)) + m*((tmp169*tmp169) + (tmp189*tmp189))
         + m*((tmp203*tmp203) + (tmp226*tmp226)) + m*((tmp84*tmp84) + (tmp96*tmp96))
-        + m*(tmp327*(tmp56*tmp56) + tmp327*(tmp59*tmp59));
-    const Scalar tmp343 = m*(tmp123*tmp128 + tmp110*tmp111) + m*(tmp139*tmp140 + tmp154*tmp159)
+        + m*(tmp325*(tmp56*tmp56) + tmp325*(tmp59*tmp59));
+    const Scalar tmp341 = m*(tmp123*tmp128 + tmp110*tmp111) + m*(tmp139*tmp140 + tmp154*tmp159)
         + m*(tmp170*tmp172 + tmp188*tmp193) + m*(tmp204*tmp206 + tmp225*tmp230)
         + m*(tmp79*tmp100 + tmp82*tmp85);
-    const Scalar tmp344 = m*(tmp123*tmp127 + tmp111*tmp112) + m*(tmp140*tmp141 + tmp154*tmp158)
+    const Scalar tmp342 = m*(tmp123*tmp127 + tmp111*tmp112) + m*(tmp140*tmp141 + tmp154*tmp158)
         + m*(tmp172*tmp173 + tmp188*tmp192) + m*(tmp206*tmp207 + tmp225*tmp229)
         + m*(tmp79*tmp99 + tmp82*tmp87);
-    const Scalar tmp345 = m*(tmp123*tmp126 + tmp111*tmp113) + m*(tmp140*tmp142 + tmp154*tmp157)
+    const Scalar tmp343 = m*(tmp123*tmp126 + tmp111*tmp113) + m*(tmp140*tmp142 + tmp154*tmp157)
         + m*(tmp172*tmp174 + tmp188*tmp191) + m*(tmp206*tmp209 + tmp225*tmp228)
         + m*(tmp79*tmp98 + tmp82*tmp88);
-    const Scalar tmp346 = m*(tmp123*tmp125 + tmp111*tmp114) + m*(tmp140*tmp143 + tmp154*tmp156)
+    const Scalar tmp344 = m*(tmp123*tmp125 + tmp111*tmp114) + m*(tmp140*tmp143 + tmp154*tmp156)
         + m*(tmp172*tmp175 + tmp188*tmp190) + m*(tmp206*tmp210 + tmp225*tmp227)
         + m*(tmp79*tmp97 + tmp82*tmp86);
-    const Scalar tmp347 = m*(tmp123*tmp124 + tmp109*tmp111) + m*(tmp138*tmp140 + tmp154*tmp155)
+    const Scalar tmp345 = m*(tmp123*tmp124 + tmp109*tmp111) + m*(tmp138*tmp140 + tmp154*tmp155)
         + m*(tmp169*tmp172 + tmp188*tmp189) + m*(tmp203*tmp206 + tmp225*tmp226)
         + m*(tmp79*tmp96 + tmp82*tmp84);
-    const Scalar tmp348 = m*((tmp123*tmp123) + (tmp111*tmp111))
+    const Scalar tmp346 = m*((tmp123*tmp123) + (tmp111*tmp111))
         + m*((tmp140*tmp140) + (tmp154*tmp154)) + m*((tmp172*tmp172) + (tmp188*tmp188))
-        + m*((tmp206*tmp206) + (tmp225*tmp225)) + m*(tmp327*(tmp78*tmp78) + tmp327*(tmp81*tmp81));
-    const Scalar tmp349 = m*(tmp128*tmp104 + tmp107*tmp110) + m*(tmp137*tmp139 + tmp153*tmp159)
+        + m*((tmp206*tmp206) + (tmp225*tmp225)) + m*(tmp325*(tmp78*tmp78) + tmp325*(tmp81*tmp81));
+    const Scalar tmp347 = m*(tmp128*tmp104 + tmp107*tmp110) + m*(tmp137*tmp139 + tmp153*tmp159)
         + m*(tmp168*tmp170 + tmp187*tmp193) + m*(tmp204*tmp208 + tmp224*tmp230);
-    const Scalar tmp350 = m*(tmp127*tmp104 + tmp107*tmp112) + m*(tmp137*tmp141 + tmp153*tmp158)
+    const Scalar tmp348 = m*(tmp127*tmp104 + tmp107*tmp112) + m*(tmp137*tmp141 + tmp153*tmp158)
         + m*(tmp168*tmp173 + tmp187*tmp192) + m*(tmp207*tmp208 + tmp224*tmp229);
-    const Scalar tmp351 = m*(tmp126*tmp104 + tmp107*tmp113) + m*(tmp137*tmp142 + tmp153*tmp157)
+    const Scalar tmp349 = m*(tmp126*tmp104 + tmp107*tmp113) + m*(tmp137*tmp142 + tmp153*tmp157)
         + m*(tmp168*tmp174 + tmp187*tmp191) + m*(tmp208*tmp209 + tmp224*tmp228);
-    const Scalar tmp352 = m*(tmp125*tmp104 + tmp107*tmp114) + m*(tmp137*tmp143 + tmp153*tmp156)
+    const Scalar tmp350 = m*(tmp125*tmp104 + tmp107*tmp114) + m*(tmp137*tmp143 + tmp153*tmp156)
         + m*(tmp168*tmp175 + tmp187*tmp190) + m*(tmp208*tmp210 + tmp224*tmp227);
-    const Scalar tmp353 = m*(tmp124*tmp104 + tmp107*tmp109) + m*(tmp137*tmp138 + tmp153*tmp155)
+    const Scalar tmp351 = m*(tmp124*tmp104 + tmp107*tmp109) + m*(tmp137*tmp138 + tmp153*tmp155)
         + m*(tmp168*tmp169 + tmp187*tmp189) + m*(tmp203*tmp208 + tmp224*tmp226);
-    const Scalar tmp354 = m*(tmp123*tmp104 + tmp107*tmp111) + m*(tmp137*tmp140 + tmp153*tmp154)
+    const Scalar tmp352 = m*(tmp123*tmp104 + tmp107*tmp111) + m*(tmp137*tmp140 + tmp153*tmp154)
         + m*(tmp168*tmp172 + tmp187*tmp188) + m*(tmp206*tmp208 + tmp224*tmp225);
-    const Scalar tmp355 = m*((tmp137*tmp137) + (tmp153*tmp153))
+    const Scalar tmp353 = m*((tmp137*tmp137) + (tmp153*tmp153))
         + m*((tmp168*tmp168) + (tmp187*tmp187)) + m*((tmp208*tmp208) + (tmp224*tmp224))
-        + m*(tmp327*(tmp103*tmp103) + tmp327*(tmp106*tmp106));
-    const Scalar tmp356 = m*(tmp132*tmp159 + tmp135*tmp139) + m*(tmp170*tmp171 + tmp186*tmp193)
+        + m*(tmp325*(tmp103*tmp103) + tmp325*(tmp106*tmp106));
+    const Scalar tmp354 = m*(tmp132*tmp159 + tmp135*tmp139) + m*(tmp170*tmp171 + tmp186*tmp193)
         + m*(tmp204*tmp205 + tmp223*tmp230);
-    const Scalar tmp357 = m*(tmp132*tmp158 + tmp135*tmp141) + m*(tmp171*tmp173 + tmp186*tmp192)
+    const Scalar tmp355 = m*(tmp132*tmp158 + tmp135*tmp141) + m*(tmp171*tmp173 + tmp186*tmp192)
         + m*(tmp205*tmp207 + tmp223*tmp229);
-    const Scalar tmp358 = m*(tmp132*tmp157 + tmp135*tmp142) + m*(tmp171*tmp174 + tmp186*tmp191)
+    const Scalar tmp356 = m*(tmp132*tmp157 + tmp135*tmp142) + m*(tmp171*tmp174 + tmp186*tmp191)
         + m*(tmp205*tmp209 + tmp223*tmp228);
-    const Scalar tmp359 = m*(tmp132*tmp156 + tmp135*tmp143) + m*(tmp171*tmp175 + tmp186*tmp190)
+    const Scalar tmp357 = m*(tmp132*tmp156 + tmp135*tmp143) + m*(tmp171*tmp175 + tmp186*tmp190)
         + m*(tmp205*tmp210 + tmp223*tmp227);
-    const Scalar tmp360 = m*(tmp132*tmp155 + tmp135*tmp138) + m*(tmp169*tmp171 + tmp186*tmp189)
+    const Scalar tmp358 = m*(tmp132*tmp155 + tmp135*tmp138) + m*(tmp169*tmp171 + tmp186*tmp189)
         + m*(tmp203*tmp205 + tmp223*tmp226);
-    const Scalar tmp361 = m*(tmp132*tmp154 + tmp135*tmp140) + m*(tmp171*tmp172 + tmp186*tmp188)
+    const Scalar tmp359 = m*(tmp132*tmp154 + tmp135*tmp140) + m*(tmp171*tmp172 + tmp186*tmp188)
         + m*(tmp205*tmp206 + tmp223*tmp225);
-    const Scalar tmp362 = m*(tmp132*tmp153 + tmp135*tmp137) + m*(tmp168*tmp171 + tmp186*tmp187)
+    const Scalar tmp360 = m*(tmp132*tmp153 + tmp135*tmp137) + m*(tmp168*tmp171 + tmp186*tmp187)
         + m*(tmp205*tmp208 + tmp223*tmp224);
-    const Scalar tmp363 = m*((tmp171*tmp171) + (tmp186*tmp186))
+    const Scalar tmp361 = m*((tmp171*tmp171) + (tmp186*tmp186))
         + m*((tmp205*tmp205) + (tmp223*tmp223))
-        + m*(tmp327*(tmp131*tmp131) + tmp327*(tmp134*tmp134));
-    const Scalar tmp364 = m*(tmp163*tmp193 + tmp166*tmp170) + m*(tmp202*tmp204 + tmp222*tmp230);
-    const Scalar tmp365 = m*(tmp163*tmp192 + tmp166*tmp173) + m*(tmp202*tmp207 + tmp222*tmp229);
-    const Scalar tmp366 = m*(tmp163*tmp191 + tmp166*tmp174) + m*(tmp202*tmp209 + tmp222*tmp228);
-    const Scalar tmp367 = m*(tmp163*tmp190 + tmp166*tmp175) + m*(tmp202*tmp210 + tmp222*tmp227);
-    const Scalar tmp368 = m*(tmp163*tmp189 + tmp166*tmp169) + m*(tmp202*tmp203 + tmp222*tmp226);
-    const Scalar tmp369 = m*(tmp163*tmp188 + tmp166*tmp172) + m*(tmp202*tmp206 + tmp222*tmp225);
-    const Scalar tmp370 = m*(tmp163*tmp187 + tmp166*tmp168) + m*(tmp202*tmp208 + tmp222*tmp224);
-    const Scalar tmp371 = m*(tmp163*tmp186 + tmp166*tmp171) + m*(tmp202*tmp205 + tmp222*tmp223);
-    const Scalar tmp372 = m*((tmp202*tmp202) + (tmp222*tmp222))
-        + m*(tmp327*(tmp162*tmp162) + tmp327*(tmp165*tmp165));
-    const Scalar tmp373 = m*(tmp197*tmp230 + tmp200*tmp204);
-    const Scalar tmp374 = m*(tmp197*tmp229 + tmp200*tmp207);
-    const Scalar tmp375 = m*(tmp197*tmp228 + tmp200*tmp209);
-    const Scalar tmp376 = m*(tmp197*tmp227 + tmp200*tmp210);
-    const Scalar tmp377 = m*(tmp197*tmp226 + tmp200*tmp203);
-    const Scalar tmp378 = m*(tmp197*tmp225 + tmp200*tmp206);
-    const Scalar tmp379 = m*(tmp197*tmp224 + tmp200*tmp208);
-    const Scalar tmp380 = m*(tmp197*tmp223 + tmp200*tmp205);
-    const Scalar tmp381 = m*(tmp197*tmp222 + tmp200*tmp202);
-    const Scalar tmp382 = m*(tmp327*(tmp196*tmp196) + tmp327*(tmp199*tmp199));
-    const Scalar tmp383 = tmp235*m;
-    const Scalar tmp384 = tmp236*m;
-    const Scalar tmp385 = tmp237*m;
-    const Scalar tmp386 = tmp238*m;
-    const Scalar tmp387 = tmp241*m;
-    const Scalar tmp388 = tmp242*m;
-    const Scalar tmp389 = tmp247*m;
-    const Scalar tmp390 = tmp248*m;
-    const Scalar tmp391 = tmp255*m;
-    const Scalar tmp392 = tmp256*m;
-    const Scalar tmp393 = tmp265*m;
-    const Scalar tmp394 = tmp266*m;
-    const Scalar tmp395 = tmp277*m;
-    const Scalar tmp396 = tmp278*m;
-    const Scalar tmp397 = tmp291*m;
-    const Scalar tmp398 = tmp292*m;
-    const Scalar tmp399 = tmp307*m;
-    const Scalar tmp400 = tmp308*m;
-    const Scalar tmp401 = tmp325*m;
-    const Scalar tmp402 = tmp326*m;
+        + m*(tmp325*(tmp131*tmp131) + tmp325*(tmp134*tmp134));
+    const Scalar tmp362 = m*(tmp163*tmp193 + tmp166*tmp170) + m*(tmp202*tmp204 + tmp222*tmp230);
+    const Scalar tmp363 = m*(tmp163*tmp192 + tmp166*tmp173) + m*(tmp202*tmp207 + tmp222*tmp229);
+    const Scalar tmp364 = m*(tmp163*tmp191 + tmp166*tmp174) + m*(tmp202*tmp209 + tmp222*tmp228);
+    const Scalar tmp365 = m*(tmp163*tmp190 + tmp166*tmp175) + m*(tmp202*tmp210 + tmp222*tmp227);
+    const Scalar tmp366 = m*(tmp163*tmp189 + tmp166*tmp169) + m*(tmp202*tmp203 + tmp222*tmp226);
+    const Scalar tmp367 = m*(tmp163*tmp188 + tmp166*tmp172) + m*(tmp202*tmp206 + tmp222*tmp225);
+    const Scalar tmp368 = m*(tmp163*tmp187 + tmp166*tmp168) + m*(tmp202*tmp208 + tmp222*tmp224);
+    const Scalar tmp369 = m*(tmp163*tmp186 + tmp166*tmp171) + m*(tmp202*tmp205 + tmp222*tmp223);
+    const Scalar tmp370 = m*((tmp202*tmp202) + (tmp222*tmp222))
+        + m*(tmp325*(tmp162*tmp162) + tmp325*(tmp165*tmp165));
+    const Scalar tmp371 = m*(tmp197*tmp230 + tmp200*tmp204);
+    const Scalar tmp372 = m*(tmp197*tmp229 + tmp200*tmp207);
+    const Scalar tmp373 = m*(tmp197*tmp228 + tmp200*tmp209);
+    const Scalar tmp374 = m*(tmp197*tmp227 + tmp200*tmp210);
+    const Scalar tmp375 = m*(tmp197*tmp226 + tmp200*tmp203);
+    const Scalar tmp376 = m*(tmp197*tmp225 + tmp200*tmp206);
+    const Scalar tmp377 = m*(tmp197*tmp224 + tmp200*tmp208);
+    const Scalar tmp378 = m*(tmp197*tmp223 + tmp200*tmp205);
+    const Scalar tmp379 = m*(tmp197*tmp222 + tmp200*tmp202);
+    const Scalar tmp380 = m*(tmp325*(tmp196*tmp196) + tmp325*(tmp199*tmp199));
+    const Scalar tmp381 = g*m;
+    const Scalar tmp382 = -tmp381;
+    const Scalar tmp383 = tmp233*m;
+    const Scalar tmp384 = tmp234*m;
+    const Scalar tmp385 = tmp235*m;
+    const Scalar tmp386 = tmp236*m;
+    const Scalar tmp387 = tmp239*m;
+    const Scalar tmp388 = tmp240*m;
+    const Scalar tmp389 = tmp245*m;
+    const Scalar tmp390 = tmp246*m;
+    const Scalar tmp391 = tmp253*m;
+    const Scalar tmp392 = tmp254*m;
+    const Scalar tmp393 = tmp263*m;
+    const Scalar tmp394 = tmp264*m;
+    const Scalar tmp395 = tmp275*m;
+    const Scalar tmp396 = tmp276*m;
+    const Scalar tmp397 = tmp289*m;
+    const Scalar tmp398 = tmp290*m;
+    const Scalar tmp399 = tmp305*m;
+    const Scalar tmp400 = tmp306*m;
+    const Scalar tmp401 = tmp323*m;
+    const Scalar tmp402 = tmp324*m;
     const Scalar tmp403 = c*phi1_dot;
     const Scalar tmp404 = k*phi1;
-    const Scalar tmp405 = -tmp403 - tmp404 + tmp1*tmp233 + tmp128*tmp233 + tmp18*tmp233
-        + tmp159*tmp233 + tmp193*tmp233 + tmp230*tmp233 + tmp233*tmp34 + tmp233*tmp53 + tmp233*tmp75
-        + tmp233*tmp100;
+    const Scalar tmp405 = -tmp403 - tmp404 + tmp1*tmp382 + tmp128*tmp382 + tmp18*tmp382
+        + tmp159*tmp382 + tmp193*tmp382 + tmp230*tmp382 + tmp34*tmp382 + tmp382*tmp53 + tmp382*tmp75
+        + tmp382*tmp100;
     const Scalar tmp406 = c*phi2_dot;
     const Scalar tmp407 = k*phi2;
-    const Scalar tmp408 = -tmp406 - tmp407 + tmp127*tmp233 + tmp158*tmp233 + tmp192*tmp233
-        + tmp229*tmp233 + tmp233*tmp33 + tmp233*tmp52 + tmp233*tmp9 + tmp233*tmp74 + tmp233*tmp99;
+    const Scalar tmp408 = -tmp406 - tmp407 + tmp127*tmp382 + tmp158*tmp382 + tmp192*tmp382
+        + tmp229*tmp382 + tmp33*tmp382 + tmp382*tmp52 + tmp382*tmp9 + tmp382*tmp74 + tmp382*tmp99;
     const Scalar tmp409 = c*phi3_dot;
     const Scalar tmp410 = k*phi3;
-    const Scalar tmp411 = -tmp409 - tmp410 + tmp126*tmp233 + tmp157*tmp233 + tmp22*tmp233
-        + tmp191*tmp233 + tmp228*tmp233 + tmp233*tmp51 + tmp233*tmp73 + tmp233*tmp98;
+    const Scalar tmp411 = -tmp409 - tmp410 + tmp126*tmp382 + tmp157*tmp382 + tmp22*tmp382
+        + tmp191*tmp382 + tmp228*tmp382 + tmp382*tmp51 + tmp382*tmp73 + tmp382*tmp98;
     const Scalar tmp412 = c*phi4_dot;
     const Scalar tmp413 = k*phi4;
-    const Scalar tmp414 = -tmp412 - tmp413 + tmp125*tmp233 + tmp156*tmp233 + tmp190*tmp233
-        + tmp227*tmp233 + tmp233*tmp38 + tmp233*tmp72 + tmp233*tmp97;
+    const Scalar tmp414 = -tmp412 - tmp413 + tmp125*tmp382 + tmp156*tmp382 + tmp190*tmp382
+        + tmp227*tmp382 + tmp382*tmp38 + tmp382*tmp72 + tmp382*tmp97;
     const Scalar tmp415 = c*phi5_dot;
     const Scalar tmp416 = k*phi5;
-    const Scalar tmp417 = -tmp415 - tmp416 + tmp124*tmp233 + tmp155*tmp233 + tmp189*tmp233
-        + tmp226*tmp233 + tmp233*tmp57 + tmp233*tmp96;
+    const Scalar tmp417 = -tmp415 - tmp416 + tmp124*tmp382 + tmp155*tmp382 + tmp189*tmp382
+        + tmp226*tmp382 + tmp382*tmp57 + tmp382*tmp96;
     const Scalar tmp418 = c*phi6_dot;
     const Scalar tmp419 = k*phi6;
-    const Scalar tmp420 = -tmp418 - tmp419 + tmp123*tmp233 + tmp154*tmp233 + tmp188*tmp233
-        + tmp225*tmp233 + tmp233*tmp79;
+    const Scalar tmp420 = -tmp418 - tmp419 + tmp123*tmp382 + tmp154*tmp382 + tmp188*tmp382
+        + tmp225*tmp382 + tmp382*tmp79;
     const Scalar tmp421 = c*phi7_dot;
     const Scalar tmp422 = k*phi7;
-    const Scalar tmp423 = -tmp421 - tmp422 + tmp153*tmp233 + tmp187*tmp233 + tmp224*tmp233
-        + tmp233*tmp104;
+    const Scalar tmp423 = -tmp421 - tmp422 + tmp153*tmp382 + tmp187*tmp382 + tmp224*tmp382
+        + tmp382*tmp104;
     const Scalar tmp424 = c*phi8_dot;
     const Scalar tmp425 = k*phi8;
-    const Scalar tmp426 = -tmp424 - tmp425 + tmp132*tmp233 + tmp186*tmp233 + tmp223*tmp233;
+    const Scalar tmp426 = -tmp424 - tmp425 + tmp132*tmp382 + tmp186*tmp382 + tmp223*tmp382;
     const Scalar tmp427 = c*phi9_dot;
     const Scalar tmp428 = k*phi9;
-    const Scalar tmp429 = -tmp427 - tmp428 + tmp163*tmp233 + tmp222*tmp233;
+    const Scalar tmp429 = -tmp427 - tmp428 + tmp163*tmp382 + tmp222*tmp382;
     const Scalar tmp430 = c*phi10_dot + k*phi10;
-    const Scalar tmp431 = -tmp430 + tmp196*tmp233*l;
+    const Scalar tmp431 = -tmp430 + tmp196*tmp382*l;
     const Scalar tmp432 = -tmp1*tmp384 - tmp15*tmp385 - tmp128*tmp396 - tmp139*tmp397 - tmp18*tmp386
         - tmp159*tmp398 - tmp170*tmp399 - tmp193*tmp400 - tmp204*tmp401 - tmp27*tmp387
         - tmp230*tmp402 - tmp34*tmp388 - tmp3*tmp383 - tmp44*tmp389 - tmp53*tmp390 - tmp63*tmp391
@@ -3247,36 +3247,36 @@ struct StiffChain10 {
     const Scalar tmp440 = -tmp163*tmp400 - tmp166*tmp399 - tmp202*tmp401 - tmp222*tmp402;
     const Scalar tmp441 = -tmp197*tmp402 - tmp200*tmp401;
     QVector<Scalar> result;
-    result(0) = -tmp405 - tmp432 + tmp373*phi10_ddot + tmp328*phi1_ddot + tmp329*phi2_ddot
+    result(0) = -tmp405 - tmp432 + tmp371*phi10_ddot + tmp326*phi1_ddot + tmp327*phi2_ddot
+        + tmp329*phi3_ddot + tmp332*phi4_ddot + tmp336*phi5_ddot + tmp341*phi6_ddot
+        + tmp347*phi7_ddot + tmp354*phi8_ddot + tmp362*phi9_ddot;
+    result(1) = -tmp408 - tmp433 + tmp372*phi10_ddot + tmp327*phi1_ddot + tmp328*phi2_ddot
+        + tmp330*phi3_ddot + tmp333*phi4_ddot + tmp337*phi5_ddot + tmp342*phi6_ddot
+        + tmp348*phi7_ddot + tmp355*phi8_ddot + tmp363*phi9_ddot;
+    result(2) = -tmp411 - tmp434 + tmp373*phi10_ddot + tmp329*phi1_ddot + tmp330*phi2_ddot
         + tmp331*phi3_ddot + tmp334*phi4_ddot + tmp338*phi5_ddot + tmp343*phi6_ddot
         + tmp349*phi7_ddot + tmp356*phi8_ddot + tmp364*phi9_ddot;
-    result(1) = -tmp408 - tmp433 + tmp374*phi10_ddot + tmp329*phi1_ddot + tmp330*phi2_ddot
-        + tmp332*phi3_ddot + tmp335*phi4_ddot + tmp339*phi5_ddot + tmp344*phi6_ddot
+    result(3) = -tmp414 - tmp435 + tmp374*phi10_ddot + tmp332*phi1_ddot + tmp333*phi2_ddot
+        + tmp334*phi3_ddot + tmp335*phi4_ddot + tmp339*phi5_ddot + tmp344*phi6_ddot
         + tmp350*phi7_ddot + tmp357*phi8_ddot + tmp365*phi9_ddot;
-    result(2) = -tmp411 - tmp434 + tmp375*phi10_ddot + tmp331*phi1_ddot + tmp332*phi2_ddot
-        + tmp333*phi3_ddot + tmp336*phi4_ddot + tmp340*phi5_ddot + tmp345*phi6_ddot
-        + tmp351*phi7_ddot + tmp358*phi8_ddot + tmp366*phi9_ddot;
-    result(3) = -tmp414 - tmp435 + tmp367*phi9_ddot + tmp376*phi10_ddot + tmp334*phi1_ddot
-        + tmp335*phi2_ddot + tmp336*phi3_ddot + tmp337*phi4_ddot + tmp341*phi5_ddot
+    result(4) = -tmp417 - tmp436 + tmp366*phi9_ddot + tmp375*phi10_ddot + tmp336*phi1_ddot
+        + tmp337*phi2_ddot + tmp338*phi3_ddot + tmp339*phi4_ddot + tmp340*phi5_ddot
+        + tmp345*phi6_ddot + tmp351*phi7_ddot + tmp358*phi8_ddot;
+    result(5) = -tmp420 - tmp437 + tmp367*phi9_ddot + tmp376*phi10_ddot + tmp341*phi1_ddot
+        + tmp342*phi2_ddot + tmp343*phi3_ddot + tmp344*phi4_ddot + tmp345*phi5_ddot
         + tmp346*phi6_ddot + tmp352*phi7_ddot + tmp359*phi8_ddot;
-    result(4) = -tmp417 - tmp436 + tmp368*phi9_ddot + tmp377*phi10_ddot + tmp338*phi1_ddot
-        + tmp339*phi2_ddot + tmp340*phi3_ddot + tmp341*phi4_ddot + tmp342*phi5_ddot
-        + tmp347*phi6_ddot + tmp353*phi7_ddot + tmp360*phi8_ddot;
-    result(5) = -tmp420 - tmp437 + tmp369*phi9_ddot + tmp378*phi10_ddot + tmp343*phi1_ddot
-        + tmp344*phi2_ddot + tmp345*phi3_ddot + tmp346*phi4_ddot + tmp347*phi5_ddot
-        + tmp348*phi6_ddot + tmp354*phi7_ddot + tmp361*phi8_ddot;
-    result(6) = -tmp423 - tmp438 + tmp370*phi9_ddot + tmp379*phi10_ddot + tmp349*phi1_ddot
-        + tmp350*phi2_ddot + tmp351*phi3_ddot + tmp352*phi4_ddot + tmp353*phi5_ddot
-        + tmp354*phi6_ddot + tmp355*phi7_ddot + tmp362*phi8_ddot;
-    result(7) = -tmp426 - tmp439 + tmp371*phi9_ddot + tmp380*phi10_ddot + tmp356*phi1_ddot
-        + tmp357*phi2_ddot + tmp358*phi3_ddot + tmp359*phi4_ddot + tmp360*phi5_ddot
-        + tmp361*phi6_ddot + tmp362*phi7_ddot + tmp363*phi8_ddot;
-    result(8) = -tmp429 - tmp440 + tmp367*phi4_ddot + tmp368*phi5_ddot + tmp369*phi6_ddot
-        + tmp370*phi7_ddot + tmp371*phi8_ddot + tmp372*phi9_ddot + tmp381*phi10_ddot
-        + tmp364*phi1_ddot + tmp365*phi2_ddot + tmp366*phi3_ddot;
-    result(9) = -tmp431 - tmp441 + tmp373*phi1_ddot + tmp374*phi2_ddot + tmp375*phi3_ddot
-        + tmp376*phi4_ddot + tmp377*phi5_ddot + tmp378*phi6_ddot + tmp379*phi7_ddot
-        + tmp380*phi8_ddot + tmp381*phi9_ddot + tmp382*phi10_ddot;
+    result(6) = -tmp423 - tmp438 + tmp368*phi9_ddot + tmp377*phi10_ddot + tmp347*phi1_ddot
+        + tmp348*phi2_ddot + tmp349*phi3_ddot + tmp350*phi4_ddot + tmp351*phi5_ddot
+        + tmp352*phi6_ddot + tmp353*phi7_ddot + tmp360*phi8_ddot;
+    result(7) = -tmp426 - tmp439 + tmp369*phi9_ddot + tmp378*phi10_ddot + tmp354*phi1_ddot
+        + tmp355*phi2_ddot + tmp356*phi3_ddot + tmp357*phi4_ddot + tmp358*phi5_ddot
+        + tmp359*phi6_ddot + tmp360*phi7_ddot + tmp361*phi8_ddot;
+    result(8) = -tmp429 - tmp440 + tmp366*phi5_ddot + tmp367*phi6_ddot + tmp368*phi7_ddot
+        + tmp369*phi8_ddot + tmp370*phi9_ddot + tmp379*phi10_ddot + tmp362*phi1_ddot
+        + tmp363*phi2_ddot + tmp364*phi3_ddot + tmp365*phi4_ddot;
+    result(9) = -tmp431 - tmp441 + tmp371*phi1_ddot + tmp372*phi2_ddot + tmp373*phi3_ddot
+        + tmp374*phi4_ddot + tmp375*phi5_ddot + tmp376*phi6_ddot + tmp377*phi7_ddot
+        + tmp378*phi8_ddot + tmp379*phi9_ddot + tmp380*phi10_ddot;
     return result;
   }
 
@@ -3714,113 +3714,110 @@ struct StiffChain10 {
     carried[183] = tmp229;
     const Scalar tmp230 = tmp226 + tmp53;
     carried[184] = tmp230;
-    const Scalar tmp232 = g*m;
-    const Scalar tmp233 = -tmp232;
-    carried[185] = tmp233;
-    const Scalar tmp234 = (phi1_dot*phi1_dot);
-    const Scalar tmp235 = -tmp1*tmp234;
-    const Scalar tmp236 = tmp234*tmp3;
-    const Scalar tmp237 = phi1_dot*(-tmp17 - tmp18*phi1_dot) + phi2_dot*(-tmp17 - tmp9*phi1_dot);
-    const Scalar tmp238 = tmp16*phi1_dot + phi2_dot*(tmp14 + tmp12*phi1_dot);
-    const Scalar tmp239 = -tmp33;
-    carried[186] = tmp239;
-    const Scalar tmp240 = -tmp32 + tmp239*phi2_dot;
-    carried[187] = tmp240;
-    const Scalar tmp241 = phi1_dot*(tmp240 - tmp34*phi1_dot) + phi2_dot*(tmp240 + tmp239*phi1_dot)
+    const Scalar tmp232 = (phi1_dot*phi1_dot);
+    const Scalar tmp233 = -tmp1*tmp232;
+    const Scalar tmp234 = tmp232*tmp3;
+    const Scalar tmp235 = phi1_dot*(-tmp17 - tmp18*phi1_dot) + phi2_dot*(-tmp17 - tmp9*phi1_dot);
+    const Scalar tmp236 = tmp16*phi1_dot + phi2_dot*(tmp14 + tmp12*phi1_dot);
+    const Scalar tmp237 = -tmp33;
+    carried[185] = tmp237;
+    const Scalar tmp238 = -tmp32 + tmp237*phi2_dot;
+    carried[186] = tmp238;
+    const Scalar tmp239 = phi1_dot*(tmp238 - tmp34*phi1_dot) + phi2_dot*(tmp238 + tmp237*phi1_dot)
         + phi3_dot*(-tmp32 - tmp22*phi1_dot - tmp22*phi2_dot);
-    const Scalar tmp242 = tmp31*phi1_dot + phi2_dot*(tmp30 + tmp28*phi1_dot)
+    const Scalar tmp240 = tmp31*phi1_dot + phi2_dot*(tmp30 + tmp28*phi1_dot)
         + phi3_dot*(tmp29 + tmp25*phi1_dot + tmp25*phi2_dot);
-    const Scalar tmp243 = -tmp51;
-    carried[188] = tmp243;
-    const Scalar tmp244 = -tmp50 + tmp243*phi3_dot;
-    carried[189] = tmp244;
-    const Scalar tmp245 = -tmp52;
-    carried[190] = tmp245;
-    const Scalar tmp246 = tmp244 + tmp245*phi2_dot;
-    carried[191] = tmp246;
-    const Scalar tmp247 = phi1_dot*(tmp246 - tmp53*phi1_dot) + phi2_dot*(tmp246 + tmp245*phi1_dot)
-        + phi3_dot*(tmp244 + tmp243*phi1_dot + tmp243*phi2_dot)
+    const Scalar tmp241 = -tmp51;
+    carried[187] = tmp241;
+    const Scalar tmp242 = -tmp50 + tmp241*phi3_dot;
+    carried[188] = tmp242;
+    const Scalar tmp243 = -tmp52;
+    carried[189] = tmp243;
+    const Scalar tmp244 = tmp242 + tmp243*phi2_dot;
+    carried[190] = tmp244;
+    const Scalar tmp245 = phi1_dot*(tmp244 - tmp53*phi1_dot) + phi2_dot*(tmp244 + tmp243*phi1_dot)
+        + phi3_dot*(tmp242 + tmp241*phi1_dot + tmp241*phi2_dot)
         + phi4_dot*(-tmp50 - tmp38*phi1_dot - tmp38*phi2_dot - tmp38*phi3_dot);
-    const Scalar tmp248 = tmp49*phi1_dot + phi2_dot*(tmp48 + tmp45*phi1_dot)
+    const Scalar tmp246 = tmp49*phi1_dot + phi2_dot*(tmp48 + tmp45*phi1_dot)
         + phi3_dot*(tmp47 + tmp43*phi1_dot + tmp43*phi2_dot)
         + phi4_dot*(tmp46 + tmp41*phi1_dot + tmp41*phi2_dot + tmp41*phi3_dot);
-    const Scalar tmp249 = -tmp72;
-    carried[192] = tmp249;
-    const Scalar tmp250 = -tmp71 + tmp249*phi4_dot;
-    carried[193] = tmp250;
-    const Scalar tmp251 = -tmp73;
-    carried[194] = tmp251;
-    const Scalar tmp252 = tmp250 + tmp251*phi3_dot;
-    carried[195] = tmp252;
-    const Scalar tmp253 = -tmp74;
-    carried[196] = tmp253;
-    const Scalar tmp254 = tmp252 + tmp253*phi2_dot;
-    carried[197] = tmp254;
-    const Scalar tmp255 = phi1_dot*(tmp254 - tmp75*phi1_dot) + phi2_dot*(tmp254 + tmp253*phi1_dot)
-        + phi3_dot*(tmp252 + tmp251*phi1_dot + tmp251*phi2_dot)
-        + phi4_dot*(tmp250 + tmp249*phi1_dot + tmp249*phi2_dot + tmp249*phi3_dot)
+    const Scalar tmp247 = -tmp72;
+    carried[191] = tmp247;
+    const Scalar tmp248 = -tmp71 + tmp247*phi4_dot;
+    carried[192] = tmp248;
+    const Scalar tmp249 = -tmp73;
+    carried[193] = tmp249;
+    const Scalar tmp250 = tmp248 + tmp249*phi3_dot;
+    carried[194] = tmp250;
+    const Scalar tmp251 = -tmp74;
+    carried[195] = tmp251;
+    const Scalar tmp252 = tmp250 + tmp251*phi2_dot;
+    carried[196] = tmp252;
+    const Scalar tmp253 = phi1_dot*(tmp252 - tmp75*phi1_dot) + phi2_dot*(tmp252 + tmp251*phi1_dot)
+        + phi3_dot*(tmp250 + tmp249*phi1_dot + tmp249*phi2_dot)
+        + phi4_dot*(tmp248 + tmp247*phi1_dot + tmp247*phi2_dot + tmp247*phi3_dot)
         + phi5_dot*(-tmp71 - tmp57*phi1_dot - tmp57*phi2_dot - tmp57*phi3_dot - tmp57*phi4_dot);
-    const Scalar tmp256 = tmp70*phi1_dot + phi2_dot*(tmp69 + tmp65*phi1_dot)
+    const Scalar tmp254 = tmp70*phi1_dot + phi2_dot*(tmp69 + tmp65*phi1_dot)
         + phi3_dot*(tmp68 + tmp62*phi1_dot + tmp62*phi2_dot)
         + phi4_dot*(tmp67 + tmp64*phi1_dot + tmp64*phi2_dot + tmp64*phi3_dot)
         + phi5_dot*(tmp66 + tmp60*phi1_dot + tmp60*phi2_dot + tmp60*phi3_dot + tmp60*phi4_dot);
-    const Scalar tmp257 = -tmp96;
-    carried[198] = tmp257;
-    const Scalar tmp258 = -tmp95 + tmp257*phi5_dot;
-    carried[199] = tmp258;
-    const Scalar tmp259 = -tmp97;
-    carried[200] = tmp259;
-    const Scalar tmp260 = tmp258 + tmp259*phi4_dot;
-    carried[201] = tmp260;
-    const Scalar tmp261 = -tmp98;
-    carried[202] = tmp261;
-    const Scalar tmp262 = tmp260 + tmp261*phi3_dot;
-    carried[203] = tmp262;
-    const Scalar tmp263 = -tmp99;
-    carried[204] = tmp263;
-    const Scalar tmp264 = tmp262 + tmp263*phi2_dot;
-    carried[205] = tmp264;
-    const Scalar tmp265 = phi1_dot*(tmp264 - tmp100*phi1_dot) + phi2_dot*(tmp264 + tmp263*phi1_dot)
-        + phi3_dot*(tmp262 + tmp261*phi1_dot + tmp261*phi2_dot)
-        + phi4_dot*(tmp260 + tmp259*phi1_dot + tmp259*phi2_dot + tmp259*phi3_dot)
-        + phi5_dot*(tmp258 + tmp257*phi1_dot + tmp257*phi2_dot + tmp257*phi3_dot + tmp257*phi4_dot)
+    const Scalar tmp255 = -tmp96;
+    carried[197] = tmp255;
+    const Scalar tmp256 = -tmp95 + tmp255*phi5_dot;
+    carried[198] = tmp256;
+    const Scalar tmp257 = -tmp97;
+    carried[199] = tmp257;
+    const Scalar tmp258 = tmp256 + tmp257*phi4_dot;
+    carried[200] = tmp258;
+    const Scalar tmp259 = -tmp98;
+    carried[201] = tmp259;
+    const Scalar tmp260 = tmp258 + tmp259*phi3_dot;
+    carried[202] = tmp260;
+    const Scalar tmp261 = -tmp99;
+    carried[203] = tmp261;
+    const Scalar tmp262 = tmp260 + tmp261*phi2_dot;
+    carried[204] = tmp262;
+    const Scalar tmp263 = phi1_dot*(tmp262 - tmp100*phi1_dot) + phi2_dot*(tmp262 + tmp261*phi1_dot)
+        + phi3_dot*(tmp260 + tmp259*phi1_dot + tmp259*phi2_dot)
+        + phi4_dot*(tmp258 + tmp257*phi1_dot + tmp257*phi2_dot + tmp257*phi3_dot)
+        + phi5_dot*(tmp256 + tmp255*phi1_dot + tmp255*phi2_dot + tmp255*phi3_dot + tmp255*phi4_dot)
         + phi6_dot*(-tmp95 - tmp79*phi1_dot - tmp79*phi2_dot - tmp79*phi3_dot - tmp79*phi4_dot
             - tmp79*phi5_dot);
-    const Scalar tmp266 = tmp94*phi1_dot + phi2_dot*(tmp93 + tmp87*phi1_dot)
+    const Scalar tmp264 = tmp94*phi1_dot + phi2_dot*(tmp93 + tmp87*phi1_dot)
         + phi3_dot*(tmp92 + tmp88*phi1_dot + tmp88*phi2_dot)
         + phi4_dot*(tmp91 + tmp86*phi1_dot + tmp86*phi2_dot + tmp86*phi3_dot)
         + phi5_dot*(tmp90 + tmp84*phi1_dot + tmp84*phi2_dot + tmp84*phi3_dot + tmp84*phi4_dot)
         + phi6_dot*(tmp89 + tmp82*phi1_dot + tmp82*phi2_dot + tmp82*phi3_dot + tmp82*phi4_dot
             + tmp82*phi5_dot);
-    const Scalar tmp267 = -tmp123;
-    carried[206] = tmp267;
-    const Scalar tmp268 = -tmp122 + tmp267*phi6_dot;
-    carried[207] = tmp268;
-    const Scalar tmp269 = -tmp124;
-    carried[208] = tmp269;
-    const Scalar tmp270 = tmp268 + tmp269*phi5_dot;
-    carried[209] = tmp270;
-    const Scalar tmp271 = -tmp125;
-    carried[210] = tmp271;
-    const Scalar tmp272 = tmp270 + tmp271*phi4_dot;
-    carried[211] = tmp272;
-    const Scalar tmp273 = -tmp126;
-    carried[212] = tmp273;
-    const Scalar tmp274 = tmp272 + tmp273*phi3_dot;
-    carried[213] = tmp274;
-    const Scalar tmp275 = -tmp127;
-    carried[214] = tmp275;
-    const Scalar tmp276 = tmp274 + tmp275*phi2_dot;
-    carried[215] = tmp276;
-    const Scalar tmp277 = phi1_dot*(tmp276 - tmp128*phi1_dot) + phi2_dot*(tmp276 + tmp275*phi1_dot)
-        + phi3_dot*(tmp274 + tmp273*phi1_dot + tmp273*phi2_dot)
-        + phi4_dot*(tmp272 + tmp271*phi1_dot + tmp271*phi2_dot + tmp271*phi3_dot)
-        + phi5_dot*(tmp270 + tmp269*phi1_dot + tmp269*phi2_dot + tmp269*phi3_dot + tmp269*phi4_dot)
-        + phi6_dot*(tmp268 + tmp267*phi1_dot + tmp267*phi2_dot + tmp267*phi3_dot + tmp267*phi4_dot
-            + tmp267*phi5_dot)
+    const Scalar tmp265 = -tmp123;
+    carried[205] = tmp265;
+    const Scalar tmp266 = -tmp122 + tmp265*phi6_dot;
+    carried[206] = tmp266;
+    const Scalar tmp267 = -tmp124;
+    carried[207] = tmp267;
+    const Scalar tmp268 = tmp266 + tmp267*phi5_dot;
+    carried[208] = tmp268;
+    const Scalar tmp269 = -tmp125;
+    carried[209] = tmp269;
+    const Scalar tmp270 = tmp268 + tmp269*phi4_dot;
+    carried[210] = tmp270;
+    const Scalar tmp271 = -tmp126;
+    carried[211] = tmp271;
+    const Scalar tmp272 = tmp270 + tmp271*phi3_dot;
+    carried[212] = tmp272;
+    const Scalar tmp273 = -tmp127;
+    carried[213] = tmp273;
+    const Scalar tmp274 = tmp272 + tmp273*phi2_dot;
+    carried[214] = tmp274;
+    const Scalar tmp275 = phi1_dot*(tmp274 - tmp128*phi1_dot) + phi2_dot*(tmp274 + tmp273*phi1_dot)
+        + phi3_dot*(tmp272 + tmp271*phi1_dot + tmp271*phi2_dot)
+        + phi4_dot*(tmp270 + tmp269*phi1_dot + tmp269*phi2_dot + tmp269*phi3_dot)
+        + phi5_dot*(tmp268 + tmp267*phi1_dot + tmp267*phi2_dot + tmp267*phi3_dot + tmp267*phi4_dot)
+        + phi6_dot*(tmp266 + tmp265*phi1_dot + tmp265*phi2_dot + tmp265*phi3_dot + tmp265*phi4_dot
+            + tmp265*phi5_dot)
         + phi7_dot*(-tmp122 - tmp104*phi1_dot - tmp104*phi2_dot - tmp104*phi3_dot - tmp104*phi4_dot
             - tmp104*phi5_dot - tmp104*phi6_dot);
-    const Scalar tmp278 = tmp121*phi1_dot + phi2_dot*(tmp120 + tmp112*phi1_dot)
+    const Scalar tmp276 = tmp121*phi1_dot + phi2_dot*(tmp120 + tmp112*phi1_dot)
         + phi3_dot*(tmp119 + tmp113*phi1_dot + tmp113*phi2_dot)
         + phi4_dot*(tmp118 + tmp114*phi1_dot + tmp114*phi2_dot + tmp114*phi3_dot)
         + phi5_dot*(tmp117 + tmp109*phi1_dot + tmp109*phi2_dot + tmp109*phi3_dot + tmp109*phi4_dot)
@@ -3828,41 +3825,41 @@ struct StiffChain10 {
             + tmp111*phi5_dot)
         + phi7_dot*(tmp115 + tmp107*phi1_dot + tmp107*phi2_dot + tmp107*phi3_dot + tmp107*phi4_dot
             + tmp107*phi5_dot + tmp107*phi6_dot);
-    const Scalar tmp279 = -tmp153;
-    carried[216] = tmp279;
-    const Scalar tmp280 = -tmp152 + tmp279*phi7_dot;
-    carried[217] = tmp280;
-    const Scalar tmp281 = -tmp154;
-    carried[218] = tmp281;
-    const Scalar tmp282 = tmp280 + tmp281*phi6_dot;
-    carried[219] = tmp282;
-    const Scalar tmp283 = -tmp155;
-    carried[220] = tmp283;
-    const Scalar tmp284 = tmp282 + tmp283*phi5_dot;
-    carried[221] = tmp284;
-    const Scalar tmp285 = -tmp156;
-    carried[222] = tmp285;
-    const Scalar tmp286 = tmp284 + tmp285*phi4_dot;
-    carried[223] = tmp286;
-    const Scalar tmp287 = -tmp157;
-    carried[224] = tmp287;
-    const Scalar tmp288 = tmp286 + tmp287*phi3_dot;
-    carried[225] = tmp288;
-    const Scalar tmp289 = -tmp158;
-    carried[226] = tmp289;
-    const Scalar tmp290 = tmp288 + tmp289*phi2_dot;
-    carried[227] = tmp290;
-    const Scalar tmp291 = phi1_dot*(tmp290 - tmp159*phi1_dot) + phi2_dot*(tmp290 + tmp289*phi1_dot)
-        + phi3_dot*(tmp288 + tmp287*phi1_dot + tmp287*phi2_dot)
-        + phi4_dot*(tmp286 + tmp285*phi1_dot + tmp285*phi2_dot + tmp285*phi3_dot)
-        + phi5_dot*(tmp284 + tmp283*phi1_dot + tmp283*phi2_dot + tmp283*phi3_dot + tmp283*phi4_dot)
-        + phi6_dot*(tmp282 + tmp281*phi1_dot + tmp281*phi2_dot + tmp281*phi3_dot + tmp281*phi4_dot
-            + tmp281*phi5_dot)
-        + phi7_dot*(tmp280 + tmp279*phi1_dot + tmp279*phi2_dot + tmp279*phi3_dot + tmp279*phi4_dot
-            + tmp279*phi5_dot + tmp279*phi6_dot)
+    const Scalar tmp277 = -tmp153;
+    carried[215] = tmp277;
+    const Scalar tmp278 = -tmp152 + tmp277*phi7_dot;
+    carried[216] = tmp278;
+    const Scalar tmp279 = -tmp154;
+    carried[217] = tmp279;
+    const Scalar tmp280 = tmp278 + tmp279*phi6_dot;
+    carried[218] = tmp280;
+    const Scalar tmp281 = -tmp155;
+    carried[219] = tmp281;
+    const Scalar tmp282 = tmp280 + tmp281*phi5_dot;
+    carried[220] = tmp282;
+    const Scalar tmp283 = -tmp156;
+    carried[221] = tmp283;
+    const Scalar tmp284 = tmp282 + tmp283*phi4_dot;
+    carried[222] = tmp284;
+    const Scalar tmp285 = -tmp157;
+    carried[223] = tmp285;
+    const Scalar tmp286 = tmp284 + tmp285*phi3_dot;
+    carried[224] = tmp286;
+    const Scalar tmp287 = -tmp158;
+    carried[225] = tmp287;
+    const Scalar tmp288 = tmp286 + tmp287*phi2_dot;
+    carried[226] = tmp288;
+    const Scalar tmp289 = phi1_dot*(tmp288 - tmp159*phi1_dot) + phi2_dot*(tmp288 + tmp287*phi1_dot)
+        + phi3_dot*(tmp286 + tmp285*phi1_dot + tmp285*phi2_dot)
+        + phi4_dot*(tmp284 + tmp283*phi1_dot + tmp283*phi2_dot + tmp283*phi3_dot)
+        + phi5_dot*(tmp282 + tmp281*phi1_dot + tmp281*phi2_dot + tmp281*phi3_dot + tmp281*phi4_dot)
+        + phi6_dot*(tmp280 + tmp279*phi1_dot + tmp279*phi2_dot + tmp279*phi3_dot + tmp279*phi4_dot
+            + tmp279*phi5_dot)
+        + phi7_dot*(tmp278 + tmp277*phi1_dot + tmp277*phi2_dot + tmp277*phi3_dot + tmp277*phi4_dot
+            + tmp277*phi5_dot + tmp277*phi6_dot)
         + phi8_dot*(-tmp152 - tmp132*phi1_dot - tmp132*phi2_dot - tmp132*phi3_dot - tmp132*phi4_dot
             - tmp132*phi5_dot - tmp132*phi6_dot - tmp132*phi7_dot);
-    const Scalar tmp292 = tmp151*phi1_dot + phi2_dot*(tmp150 + tmp141*phi1_dot)
+    const Scalar tmp290 = tmp151*phi1_dot + phi2_dot*(tmp150 + tmp141*phi1_dot)
         + phi3_dot*(tmp149 + tmp142*phi1_dot + tmp142*phi2_dot)
         + phi4_dot*(tmp148 + tmp143*phi1_dot + tmp143*phi2_dot + tmp143*phi3_dot)
         + phi5_dot*(tmp147 + tmp138*phi1_dot + tmp138*phi2_dot + tmp138*phi3_dot + tmp138*phi4_dot)
@@ -3872,47 +3869,47 @@ struct StiffChain10 {
             + tmp137*phi5_dot + tmp137*phi6_dot)
         + phi8_dot*(tmp144 + tmp135*phi1_dot + tmp135*phi2_dot + tmp135*phi3_dot + tmp135*phi4_dot
             + tmp135*phi5_dot + tmp135*phi6_dot + tmp135*phi7_dot);
-    const Scalar tmp293 = -tmp186;
-    carried[228] = tmp293;
-    const Scalar tmp294 = -tmp185 + tmp293*phi8_dot;
-    carried[229] = tmp294;
-    const Scalar tmp295 = -tmp187;
-    carried[230] = tmp295;
-    const Scalar tmp296 = tmp294 + tmp295*phi7_dot;
-    carried[231] = tmp296;
-    const Scalar tmp297 = -tmp188;
-    carried[232] = tmp297;
-    const Scalar tmp298 = tmp296 + tmp297*phi6_dot;
-    carried[233] = tmp298;
-    const Scalar tmp299 = -tmp189;
-    carried[234] = tmp299;
-    const Scalar tmp300 = tmp298 + tmp299*phi5_dot;
-    carried[235] = tmp300;
-    const Scalar tmp301 = -tmp190;
-    carried[236] = tmp301;
-    const Scalar tmp302 = tmp300 + tmp301*phi4_dot;
-    carried[237] = tmp302;
-    const Scalar tmp303 = -tmp191;
-    carried[238] = tmp303;
-    const Scalar tmp304 = tmp302 + tmp303*phi3_dot;
-    carried[239] = tmp304;
-    const Scalar tmp305 = -tmp192;
-    carried[240] = tmp305;
-    const Scalar tmp306 = tmp304 + tmp305*phi2_dot;
-    carried[241] = tmp306;
-    const Scalar tmp307 = phi1_dot*(tmp306 - tmp193*phi1_dot) + phi2_dot*(tmp306 + tmp305*phi1_dot)
-        + phi3_dot*(tmp304 + tmp303*phi1_dot + tmp303*phi2_dot)
-        + phi4_dot*(tmp302 + tmp301*phi1_dot + tmp301*phi2_dot + tmp301*phi3_dot)
-        + phi5_dot*(tmp300 + tmp299*phi1_dot + tmp299*phi2_dot + tmp299*phi3_dot + tmp299*phi4_dot)
-        + phi6_dot*(tmp298 + tmp297*phi1_dot + tmp297*phi2_dot + tmp297*phi3_dot + tmp297*phi4_dot
-            + tmp297*phi5_dot)
-        + phi7_dot*(tmp296 + tmp295*phi1_dot + tmp295*phi2_dot + tmp295*phi3_dot + tmp295*phi4_dot
-            + tmp295*phi5_dot + tmp295*phi6_dot)
-        + phi8_dot*(tmp294 + tmp293*phi1_dot + tmp293*phi2_dot + tmp293*phi3_dot + tmp293*phi4_dot
-            + tmp293*phi5_dot + tmp293*phi6_dot + tmp293*phi7_dot)
+    const Scalar tmp291 = -tmp186;
+    carried[227] = tmp291;
+    const Scalar tmp292 = -tmp185 + tmp291*phi8_dot;
+    carried[228] = tmp292;
+    const Scalar tmp293 = -tmp187;
+    carried[229] = tmp293;
+    const Scalar tmp294 = tmp292 + tmp293*phi7_dot;
+    carried[230] = tmp294;
+    const Scalar tmp295 = -tmp188;
+    carried[231] = tmp295;
+    const Scalar tmp296 = tmp294 + tmp295*phi6_dot;
+    carried[232] = tmp296;
+    const Scalar tmp297 = -tmp189;
+    carried[233] = tmp297;
+    const Scalar tmp298 = tmp296 + tmp297*phi5_dot;
+    carried[234] = tmp298;
+    const Scalar tmp299 = -tmp190;
+    carried[235] = tmp299;
+    const Scalar tmp300 = tmp298 + tmp299*phi4_dot;
+    carried[236] = tmp300;
+    const Scalar tmp301 = -tmp191;
+    carried[237] = tmp301;
+    const Scalar tmp302 = tmp300 + tmp301*phi3_dot;
+    carried[238] = tmp302;
+    const Scalar tmp303 = -tmp192;
+    carried[239] = tmp303;
+    const Scalar tmp304 = tmp302 + tmp303*phi2_dot;
+    carried[240] = tmp304;
+    const Scalar tmp305 = phi1_dot*(tmp304 - tmp193*phi1_dot) + phi2_dot*(tmp304 + tmp303*phi1_dot)
+        + phi3_dot*(tmp302 + tmp301*phi1_dot + tmp301*phi2_dot)
+        + phi4_dot*(tmp300 + tmp299*phi1_dot + tmp299*phi2_dot + tmp299*phi3_dot)
+        + phi5_dot*(tmp298 + tmp297*phi1_dot + tmp297*phi2_dot + tmp297*phi3_dot + tmp297*phi4_dot)
+        + phi6_dot*(tmp296 + tmp295*phi1_dot + tmp295*phi2_dot + tmp295*phi3_dot + tmp295*phi4_dot
+            + tmp295*phi5_dot)
+        + phi7_dot*(tmp294 + tmp293*phi1_dot + tmp293*phi2_dot + tmp293*phi3_dot + tmp293*phi4_dot
+            + tmp293*phi5_dot + tmp293*phi6_dot)
+        + phi8_dot*(tmp292 + tmp291*phi1_dot + tmp291*phi2_dot + tmp291*phi3_dot + tmp291*phi4_dot
+            + tmp291*phi5_dot + tmp291*phi6_dot + tmp291*phi7_dot)
         + phi9_dot*(-tmp185 - tmp163*phi1_dot - tmp163*phi2_dot - tmp163*phi3_dot - tmp163*phi4_dot
             - tmp163*phi5_dot - tmp163*phi6_dot - tmp163*phi7_dot - tmp163*phi8_dot);
-    const Scalar tmp308 = tmp184*phi1_dot + phi2_dot*(tmp183 + tmp173*phi1_dot)
+    const Scalar tmp306 = tmp184*phi1_dot + phi2_dot*(tmp183 + tmp173*phi1_dot)
         + phi3_dot*(tmp182 + tmp174*phi1_dot + tmp174*phi2_dot)
         + phi4_dot*(tmp181 + tmp175*phi1_dot + tmp175*phi2_dot + tmp175*phi3_dot)
         + phi5_dot*(tmp180 + tmp169*phi1_dot + tmp169*phi2_dot + tmp169*phi3_dot + tmp169*phi4_dot)
@@ -3924,54 +3921,54 @@ struct StiffChain10 {
             + tmp171*phi5_dot + tmp171*phi6_dot + tmp171*phi7_dot)
         + phi9_dot*(tmp176 + tmp166*phi1_dot + tmp166*phi2_dot + tmp166*phi3_dot + tmp166*phi4_dot
             + tmp166*phi5_dot + tmp166*phi6_dot + tmp166*phi7_dot + tmp166*phi8_dot);
-    const Scalar tmp309 = -tmp222;
-    carried[242] = tmp309;
-    const Scalar tmp310 = -tmp221 + tmp309*phi9_dot;
-    carried[243] = tmp310;
-    const Scalar tmp311 = -tmp223;
-    carried[244] = tmp311;
-    const Scalar tmp312 = tmp310 + tmp311*phi8_dot;
-    carried[245] = tmp312;
-    const Scalar tmp313 = -tmp224;
-    carried[246] = tmp313;
-    const Scalar tmp314 = tmp312 + tmp313*phi7_dot;
-    carried[247] = tmp314;
-    const Scalar tmp315 = -tmp225;
-    carried[248] = tmp315;
-    const Scalar tmp316 = tmp314 + tmp315*phi6_dot;
-    carried[249] = tmp316;
-    const Scalar tmp317 = -tmp226;
-    carried[250] = tmp317;
-    const Scalar tmp318 = tmp316 + tmp317*phi5_dot;
-    carried[251] = tmp318;
-    const Scalar tmp319 = -tmp227;
-    carried[252] = tmp319;
-    const Scalar tmp320 = tmp318 + tmp319*phi4_dot;
-    carried[253] = tmp320;
-    const Scalar tmp321 = -tmp228;
-    carried[254] = tmp321;
-    const Scalar tmp322 = tmp320 + tmp321*phi3_dot;
-    carried[255] = tmp322;
-    const Scalar tmp323 = -tmp229;
-    carried[256] = tmp323;
-    const Scalar tmp324 = tmp322 + tmp323*phi2_dot;
-    carried[257] = tmp324;
-    const Scalar tmp325 = phi10_dot*(-tmp221 - tmp197*phi1_dot - tmp197*phi2_dot - tmp197*phi3_dot
+    const Scalar tmp307 = -tmp222;
+    carried[241] = tmp307;
+    const Scalar tmp308 = -tmp221 + tmp307*phi9_dot;
+    carried[242] = tmp308;
+    const Scalar tmp309 = -tmp223;
+    carried[243] = tmp309;
+    const Scalar tmp310 = tmp308 + tmp309*phi8_dot;
+    carried[244] = tmp310;
+    const Scalar tmp311 = -tmp224;
+    carried[245] = tmp311;
+    const Scalar tmp312 = tmp310 + tmp311*phi7_dot;
+    carried[246] = tmp312;
+    const Scalar tmp313 = -tmp225;
+    carried[247] = tmp313;
+    const Scalar tmp314 = tmp312 + tmp313*phi6_dot;
+    carried[248] = tmp314;
+    const Scalar tmp315 = -tmp226;
+    carried[249] = tmp315;
+    const Scalar tmp316 = tmp314 + tmp315*phi5_dot;
+    carried[250] = tmp316;
+    const Scalar tmp317 = -tmp227;
+    carried[251] = tmp317;
+    const Scalar tmp318 = tmp316 + tmp317*phi4_dot;
+    carried[252] = tmp318;
+    const Scalar tmp319 = -tmp228;
+    carried[253] = tmp319;
+    const Scalar tmp320 = tmp318 + tmp319*phi3_dot;
+    carried[254] = tmp320;
+    const Scalar tmp321 = -tmp229;
+    carried[255] = tmp321;
+    const Scalar tmp322 = tmp320 + tmp321*phi2_dot;
+    carried[256] = tmp322;
+    const Scalar tmp323 = phi10_dot*(-tmp221 - tmp197*phi1_dot - tmp197*phi2_dot - tmp197*phi3_dot
             - tmp197*phi4_dot - tmp197*phi5_dot - tmp197*phi6_dot - tmp197*phi7_dot
             - tmp197*phi8_dot - tmp197*phi9_dot)
-        + phi1_dot*(tmp324 - tmp230*phi1_dot) + phi2_dot*(tmp324 + tmp323*phi1_dot)
-        + phi3_dot*(tmp322 + tmp321*phi1_dot + tmp321*phi2_dot)
-        + phi4_dot*(tmp320 + tmp319*phi1_dot + tmp319*phi2_dot + tmp319*phi3_dot)
-        + phi5_dot*(tmp318 + tmp317*phi1_dot + tmp317*phi2_dot + tmp317*phi3_dot + tmp317*phi4_dot)
-        + phi6_dot*(tmp316 + tmp315*phi1_dot + tmp315*phi2_dot + tmp315*phi3_dot + tmp315*phi4_dot
-            + tmp315*phi5_dot)
-        + phi7_dot*(tmp314 + tmp313*phi1_dot + tmp313*phi2_dot + tmp313*phi3_dot + tmp313*phi4_dot
-            + tmp313*phi5_dot + tmp313*phi6_dot)
-        + phi8_dot*(tmp312 + tmp311*phi1_dot + tmp311*phi2_dot + tmp311*phi3_dot + tmp311*phi4_dot
-            + tmp311*phi5_dot + tmp311*phi6_dot + tmp311*phi7_dot)
-        + phi9_dot*(tmp310 + tmp309*phi1_dot + tmp309*phi2_dot + tmp309*phi3_dot + tmp309*phi4_dot
-            + tmp309*phi5_dot + tmp309*phi6_dot + tmp309*phi7_dot + tmp309*phi8_dot);
-    const Scalar tmp326 = tmp220*phi1_dot
+        + phi1_dot*(tmp322 - tmp230*phi1_dot) + phi2_dot*(tmp322 + tmp321*phi1_dot)
+        + phi3_dot*(tmp320 + tmp319*phi1_dot + tmp319*phi2_dot)
+        + phi4_dot*(tmp318 + tmp317*phi1_dot + tmp317*phi2_dot + tmp317*phi3_dot)
+        + phi5_dot*(tmp316 + tmp315*phi1_dot + tmp315*phi2_dot + tmp315*phi3_dot + tmp315*phi4_dot)
+        + phi6_dot*(tmp314 + tmp313*phi1_dot + tmp313*phi2_dot + tmp313*phi3_dot + tmp313*phi4_dot
+            + tmp313*phi5_dot)
+        + phi7_dot*(tmp312 + tmp311*phi1_dot + tmp311*phi2_dot + tmp311*phi3_dot + tmp311*phi4_dot
+            + tmp311*phi5_dot + tmp311*phi6_dot)
+        + phi8_dot*(tmp310 + tmp309*phi1_dot + tmp309*phi2_dot + tmp309*phi3_dot + tmp309*phi4_dot
+            + tmp309*phi5_dot + tmp309*phi6_dot + tmp309*phi7_dot)
+        + phi9_dot*(tmp308 + tmp307*phi1_dot + tmp307*phi2_dot + tmp307*phi3_dot + tmp307*phi4_dot
+            + tmp307*phi5_dot + tmp307*phi6_dot + tmp307*phi7_dot + tmp307*phi8_dot);
+    const Scalar tmp324 = tmp220*phi1_dot
         + phi10_dot*(tmp211 + tmp200*phi1_dot + tmp200*phi2_dot + tmp200*phi3_dot + tmp200*phi4_dot
             + tmp200*phi5_dot + tmp200*phi6_dot + tmp200*phi7_dot + tmp200*phi8_dot
             + tmp200*phi9_dot)
@@ -3987,41 +3984,44 @@ struct StiffChain10 {
             + tmp205*phi5_dot + tmp205*phi6_dot + tmp205*phi7_dot)
         + phi9_dot*(tmp212 + tmp202*phi1_dot + tmp202*phi2_dot + tmp202*phi3_dot + tmp202*phi4_dot
             + tmp202*phi5_dot + tmp202*phi6_dot + tmp202*phi7_dot + tmp202*phi8_dot);
-    const Scalar tmp327 = (l*l);
-    carried[258] = tmp327;
-    const Scalar tmp383 = tmp235*m;
-    const Scalar tmp384 = tmp236*m;
-    const Scalar tmp385 = tmp237*m;
-    const Scalar tmp386 = tmp238*m;
-    const Scalar tmp387 = tmp241*m;
-    const Scalar tmp388 = tmp242*m;
-    const Scalar tmp389 = tmp247*m;
+    const Scalar tmp325 = (l*l);
+    carried[257] = tmp325;
+    const Scalar tmp381 = g*m;
+    const Scalar tmp382 = -tmp381;
+    carried[258] = tmp382;
+    const Scalar tmp383 = tmp233*m;
+    const Scalar tmp384 = tmp234*m;
+    const Scalar tmp385 = tmp235*m;
+    const Scalar tmp386 = tmp236*m;
+    const Scalar tmp387 = tmp239*m;
+    const Scalar tmp388 = tmp240*m;
+    const Scalar tmp389 = tmp245*m;
     carried[259] = tmp389;
-    const Scalar tmp390 = tmp248*m;
+    const Scalar tmp390 = tmp246*m;
     carried[260] = tmp390;
-    const Scalar tmp391 = tmp255*m;
+    const Scalar tmp391 = tmp253*m;
     carried[261] = tmp391;
-    const Scalar tmp392 = tmp256*m;
+    const Scalar tmp392 = tmp254*m;
     carried[262] = tmp392;
-    const Scalar tmp393 = tmp265*m;
+    const Scalar tmp393 = tmp263*m;
     carried[263] = tmp393;
-    const Scalar tmp394 = tmp266*m;
+    const Scalar tmp394 = tmp264*m;
     carried[264] = tmp394;
-    const Scalar tmp395 = tmp277*m;
+    const Scalar tmp395 = tmp275*m;
     carried[265] = tmp395;
-    const Scalar tmp396 = tmp278*m;
+    const Scalar tmp396 = tmp276*m;
     carried[266] = tmp396;
-    const Scalar tmp397 = tmp291*m;
+    const Scalar tmp397 = tmp289*m;
     carried[267] = tmp397;
-    const Scalar tmp398 = tmp292*m;
+    const Scalar tmp398 = tmp290*m;
     carried[268] = tmp398;
-    const Scalar tmp399 = tmp307*m;
+    const Scalar tmp399 = tmp305*m;
     carried[269] = tmp399;
-    const Scalar tmp400 = tmp308*m;
+    const Scalar tmp400 = tmp306*m;
     carried[270] = tmp400;
-    const Scalar tmp401 = tmp325*m;
+    const Scalar tmp401 = tmp323*m;
     carried[271] = tmp401;
-    const Scalar tmp402 = tmp326*m;
+    const Scalar tmp402 = tmp324*m;
     carried[272] = tmp402;
     const Scalar tmp551 = l*tmp2;
     const Scalar tmp552 = -tmp0;
@@ -4206,8 +4206,8 @@ struct StiffChain10 {
     const Scalar tmp731 = tmp727 + tmp621;
     const Scalar tmp732 = tmp728 + tmp602;
     const Scalar tmp733 = tmp729 + tmp586;
-    const Scalar tmp734 = -tmp234*tmp551;
-    const Scalar tmp735 = tmp234*tmp553;
+    const Scalar tmp734 = -tmp232*tmp551;
+    const Scalar tmp735 = tmp232*tmp553;
     const Scalar tmp736 = (-phi1_dot - phi2_dot)*tmp560 - (phi1_dot*phi1_dot)*tmp561
         - phi1_dot*phi2_dot*tmp554;
     const Scalar tmp737 = phi1_dot*tmp559 + phi1_dot*phi2_dot*tmp556 + phi2_dot*tmp557;
@@ -4397,10 +4397,10 @@ struct StiffChain10 {
         + phi3_dot*(phi1_dot + phi2_dot)*tmp712 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp713
         + phi10_dot*tmp714 + phi9_dot*tmp715 + phi8_dot*tmp716 + phi7_dot*tmp717 + phi6_dot*tmp718
         + phi5_dot*tmp719 + phi4_dot*tmp720 + phi3_dot*tmp721 + phi2_dot*tmp722 + phi1_dot*tmp723;
-    const Scalar tmp826 = Scalar(2)*tmp0*tmp327*m*tmp2 + Scalar(2)*tmp15*m*tmp558
+    const Scalar tmp826 = Scalar(2)*tmp0*tmp325*m*tmp2 + Scalar(2)*tmp15*m*tmp558
         + Scalar(2)*tmp128*m*tmp646 + Scalar(2)*tmp139*m*tmp652 + Scalar(2)*tmp18*m*tmp561
         + Scalar(2)*tmp159*m*tmp672 + Scalar(2)*tmp170*m*tmp678 + Scalar(2)*tmp193*m*tmp701
-        + Scalar(2)*tmp204*m*tmp707 + Scalar(2)*tmp27*m*tmp565 + Scalar(2)*tmp2*tmp327*m*tmp552
+        + Scalar(2)*tmp204*m*tmp707 + Scalar(2)*tmp27*m*tmp565 + Scalar(2)*tmp2*tmp325*m*tmp552
         + Scalar(2)*tmp230*m*tmp733 + Scalar(2)*tmp34*m*tmp572 + Scalar(2)*tmp44*m*tmp577
         + Scalar(2)*tmp53*m*tmp586 + Scalar(2)*tmp63*m*tmp591 + Scalar(2)*tmp75*m*tmp603
         + Scalar(2)*tmp85*m*tmp608 + Scalar(2)*tmp100*m*tmp623 + Scalar(2)*tmp110*m*tmp628;
@@ -4416,8 +4416,8 @@ struct StiffChain10 {
         + Scalar(2)*tmp158*m*tmp671 + Scalar(2)*tmp173*m*tmp681 + Scalar(2)*tmp192*m*tmp700
         + Scalar(2)*tmp207*m*tmp710 + Scalar(2)*tmp28*m*tmp566 + Scalar(2)*tmp229*m*tmp732
         + Scalar(2)*tmp33*m*tmp571 + Scalar(2)*tmp45*m*tmp578 + Scalar(2)*tmp52*m*tmp585
-        + Scalar(2)*tmp327*tmp8*m*tmp11 + Scalar(2)*tmp65*m*tmp593 + Scalar(2)*tmp74*m*tmp602
-        + Scalar(2)*tmp327*tmp11*m*tmp555 + Scalar(2)*tmp87*m*tmp610 + Scalar(2)*tmp99*m*tmp622
+        + Scalar(2)*tmp325*tmp8*m*tmp11 + Scalar(2)*tmp65*m*tmp593 + Scalar(2)*tmp74*m*tmp602
+        + Scalar(2)*tmp325*tmp11*m*tmp555 + Scalar(2)*tmp87*m*tmp610 + Scalar(2)*tmp99*m*tmp622
         + Scalar(2)*tmp112*m*tmp630;
     const Scalar tmp829 = tmp128*m*tmp644 + tmp126*m*tmp646 + tmp142*m*tmp652 + tmp139*m*tmp655
         + tmp159*m*tmp670 + tmp157*m*tmp672 + tmp174*m*tmp678 + tmp170*m*tmp682 + tmp34*m*tmp562
@@ -4434,8 +4434,8 @@ struct StiffChain10 {
         + tmp74*m*tmp601 + tmp73*m*tmp602 + tmp88*m*tmp610 + tmp87*m*tmp611 + tmp99*m*tmp621
         + tmp98*m*tmp622 + tmp113*m*tmp630 + tmp112*m*tmp631;
     const Scalar tmp831 = Scalar(2)*tmp126*m*tmp644 + Scalar(2)*tmp142*m*tmp655
-        + Scalar(2)*tmp157*m*tmp670 + Scalar(2)*tmp174*m*tmp682 + Scalar(2)*tmp21*tmp327*m*tmp24
-        + Scalar(2)*tmp191*m*tmp699 + Scalar(2)*tmp24*tmp327*m*tmp563 + Scalar(2)*tmp209*m*tmp712
+        + Scalar(2)*tmp157*m*tmp670 + Scalar(2)*tmp174*m*tmp682 + Scalar(2)*tmp21*tmp325*m*tmp24
+        + Scalar(2)*tmp191*m*tmp699 + Scalar(2)*tmp24*tmp325*m*tmp563 + Scalar(2)*tmp209*m*tmp712
         + Scalar(2)*tmp228*m*tmp731 + Scalar(2)*tmp43*m*tmp576 + Scalar(2)*tmp51*m*tmp584
         + Scalar(2)*tmp62*m*tmp590 + Scalar(2)*tmp73*m*tmp601 + Scalar(2)*tmp88*m*tmp611
         + Scalar(2)*tmp98*m*tmp621 + Scalar(2)*tmp113*m*tmp631;
@@ -4459,8 +4459,8 @@ struct StiffChain10 {
         + tmp98*m*tmp620 + tmp97*m*tmp621 + tmp114*m*tmp631 + tmp113*m*tmp632;
     const Scalar tmp835 = Scalar(2)*tmp125*m*tmp643 + Scalar(2)*tmp143*m*tmp656
         + Scalar(2)*tmp156*m*tmp669 + Scalar(2)*tmp175*m*tmp683 + Scalar(2)*tmp190*m*tmp698
-        + Scalar(2)*tmp210*m*tmp713 + Scalar(2)*tmp227*m*tmp730 + Scalar(2)*tmp327*tmp37*m*tmp40
-        + Scalar(2)*tmp327*tmp40*m*tmp574 + Scalar(2)*tmp64*m*tmp592 + Scalar(2)*tmp72*m*tmp600
+        + Scalar(2)*tmp210*m*tmp713 + Scalar(2)*tmp227*m*tmp730 + Scalar(2)*tmp325*tmp37*m*tmp40
+        + Scalar(2)*tmp325*tmp40*m*tmp574 + Scalar(2)*tmp64*m*tmp592 + Scalar(2)*tmp72*m*tmp600
         + Scalar(2)*tmp86*m*tmp609 + Scalar(2)*tmp97*m*tmp620 + Scalar(2)*tmp114*m*tmp632;
     const Scalar tmp836 = tmp128*m*tmp642 + tmp124*m*tmp646 + tmp139*m*tmp651 + tmp138*m*tmp652
         + tmp159*m*tmp668 + tmp155*m*tmp672 + tmp170*m*tmp677 + tmp169*m*tmp678 + tmp193*m*tmp697
@@ -4484,8 +4484,8 @@ struct StiffChain10 {
         + tmp84*m*tmp609 + tmp97*m*tmp619 + tmp96*m*tmp620 + tmp114*m*tmp627 + tmp109*m*tmp632;
     const Scalar tmp840 = Scalar(2)*tmp124*m*tmp642 + Scalar(2)*tmp138*m*tmp651
         + Scalar(2)*tmp155*m*tmp668 + Scalar(2)*tmp169*m*tmp677 + Scalar(2)*tmp189*m*tmp697
-        + Scalar(2)*tmp203*m*tmp706 + Scalar(2)*tmp226*m*tmp729 + Scalar(2)*tmp327*tmp56*m*tmp59
-        + Scalar(2)*tmp327*tmp59*m*tmp588 + Scalar(2)*tmp84*m*tmp607 + Scalar(2)*tmp96*m*tmp619
+        + Scalar(2)*tmp203*m*tmp706 + Scalar(2)*tmp226*m*tmp729 + Scalar(2)*tmp325*tmp56*m*tmp59
+        + Scalar(2)*tmp325*tmp59*m*tmp588 + Scalar(2)*tmp84*m*tmp607 + Scalar(2)*tmp96*m*tmp619
         + Scalar(2)*tmp109*m*tmp627;
     const Scalar tmp841 = tmp128*m*tmp641 + tmp123*m*tmp646 + tmp140*m*tmp652 + tmp139*m*tmp653
         + tmp159*m*tmp667 + tmp154*m*tmp672 + tmp172*m*tmp678 + tmp170*m*tmp680 + tmp193*m*tmp696
@@ -4514,8 +4514,8 @@ struct StiffChain10 {
         + tmp109*m*tmp629;
     const Scalar tmp846 = Scalar(2)*tmp123*m*tmp641 + Scalar(2)*tmp140*m*tmp653
         + Scalar(2)*tmp154*m*tmp667 + Scalar(2)*tmp172*m*tmp680 + Scalar(2)*tmp188*m*tmp696
-        + Scalar(2)*tmp206*m*tmp709 + Scalar(2)*tmp225*m*tmp728 + Scalar(2)*tmp327*tmp78*m*tmp81
-        + Scalar(2)*tmp327*tmp81*m*tmp605 + Scalar(2)*tmp111*m*tmp629;
+        + Scalar(2)*tmp206*m*tmp709 + Scalar(2)*tmp225*m*tmp728 + Scalar(2)*tmp325*tmp78*m*tmp81
+        + Scalar(2)*tmp325*tmp81*m*tmp605 + Scalar(2)*tmp111*m*tmp629;
     const Scalar tmp847 = tmp104*m*tmp646 + tmp139*m*tmp650 + tmp137*m*tmp652 + tmp159*m*tmp666
         + tmp153*m*tmp672 + tmp170*m*tmp676 + tmp168*m*tmp678 + tmp193*m*tmp695 + tmp187*m*tmp701
         + tmp208*m*tmp707 + tmp204*m*tmp711 + tmp230*m*tmp727 + tmp224*m*tmp733 + tmp128*m*tmp624
@@ -4542,8 +4542,8 @@ struct StiffChain10 {
         + tmp111*m*tmp626 + tmp107*m*tmp629;
     const Scalar tmp853 = Scalar(2)*tmp137*m*tmp650 + Scalar(2)*tmp153*m*tmp666
         + Scalar(2)*tmp168*m*tmp676 + Scalar(2)*tmp187*m*tmp695 + Scalar(2)*tmp208*m*tmp711
-        + Scalar(2)*tmp224*m*tmp727 + Scalar(2)*tmp327*tmp103*m*tmp106
-        + Scalar(2)*tmp327*tmp106*m*tmp625;
+        + Scalar(2)*tmp224*m*tmp727 + Scalar(2)*tmp325*tmp103*m*tmp106
+        + Scalar(2)*tmp325*tmp106*m*tmp625;
     const Scalar tmp854 = tmp159*m*tmp647 + tmp139*m*tmp649 + tmp135*m*tmp652 + tmp132*m*tmp672
         + tmp171*m*tmp678 + tmp170*m*tmp679 + tmp193*m*tmp694 + tmp186*m*tmp701 + tmp205*m*tmp707
         + tmp204*m*tmp708 + tmp230*m*tmp726 + tmp223*m*tmp733;
@@ -4565,7 +4565,7 @@ struct StiffChain10 {
     const Scalar tmp860 = tmp153*m*tmp647 + tmp137*m*tmp649 + tmp135*m*tmp650 + tmp132*m*tmp666
         + tmp171*m*tmp676 + tmp168*m*tmp679 + tmp187*m*tmp694 + tmp186*m*tmp695 + tmp208*m*tmp708
         + tmp205*m*tmp711 + tmp224*m*tmp726 + tmp223*m*tmp727;
-    const Scalar tmp861 = Scalar(2)*tmp131*tmp327*m*tmp134 + Scalar(2)*tmp134*tmp327*m*tmp648
+    const Scalar tmp861 = Scalar(2)*tmp131*tmp325*m*tmp134 + Scalar(2)*tmp134*tmp325*m*tmp648
         + Scalar(2)*tmp171*m*tmp679 + Scalar(2)*tmp186*m*tmp694 + Scalar(2)*tmp205*m*tmp708
         + Scalar(2)*tmp223*m*tmp726;
     const Scalar tmp862 = tmp193*m*tmp673 + tmp170*m*tmp675 + tmp166*m*tmp678 + tmp163*m*tmp701
@@ -4584,7 +4584,7 @@ struct StiffChain10 {
         + tmp208*m*tmp705 + tmp202*m*tmp711 + tmp224*m*tmp725 + tmp222*m*tmp727;
     const Scalar tmp869 = tmp186*m*tmp673 + tmp171*m*tmp675 + tmp166*m*tmp679 + tmp163*m*tmp694
         + tmp205*m*tmp705 + tmp202*m*tmp708 + tmp223*m*tmp725 + tmp222*m*tmp726;
-    const Scalar tmp870 = Scalar(2)*tmp162*tmp327*m*tmp165 + Scalar(2)*tmp165*tmp327*m*tmp674
+    const Scalar tmp870 = Scalar(2)*tmp162*tmp325*m*tmp165 + Scalar(2)*tmp165*tmp325*m*tmp674
         + Scalar(2)*tmp202*m*tmp705 + Scalar(2)*tmp222*m*tmp725;
     const Scalar tmp871 = tmp230*m*tmp702 + tmp204*m*tmp704 + tmp200*m*tmp707 + tmp197*m*tmp733;
     const Scalar tmp872 = tmp229*m*tmp702 + tmp207*m*tmp704 + tmp200*m*tmp710 + tmp197*m*tmp732;
@@ -4595,7 +4595,7 @@ struct StiffChain10 {
     const Scalar tmp877 = tmp224*m*tmp702 + tmp208*m*tmp704 + tmp200*m*tmp711 + tmp197*m*tmp727;
     const Scalar tmp878 = tmp223*m*tmp702 + tmp205*m*tmp704 + tmp200*m*tmp708 + tmp197*m*tmp726;
     const Scalar tmp879 = tmp222*m*tmp702 + tmp202*m*tmp704 + tmp200*m*tmp705 + tmp197*m*tmp725;
-    const Scalar tmp880 = Scalar(2)*tmp196*tmp327*m*tmp199 + Scalar(2)*tmp199*tmp327*m*tmp703;
+    const Scalar tmp880 = Scalar(2)*tmp196*tmp325*m*tmp199 + Scalar(2)*tmp199*tmp325*m*tmp703;
     const Scalar tmp881 = m*tmp734;
     const Scalar tmp882 = m*tmp735;
     const Scalar tmp883 = m*tmp736;
@@ -4616,23 +4616,23 @@ struct StiffChain10 {
     const Scalar tmp898 = m*tmp807;
     const Scalar tmp899 = m*tmp824;
     const Scalar tmp900 = m*tmp825;
-    const Scalar tmp901 = tmp233*tmp551 + tmp233*tmp646 + tmp233*tmp561 + tmp233*tmp672
-        + tmp233*tmp701 + tmp233*tmp733 + tmp233*tmp572 - k + tmp233*tmp586 + tmp233*tmp603
-        + tmp233*tmp623;
-    const Scalar tmp902 = tmp233*tmp645 + tmp233*tmp671 + tmp233*tmp700 + tmp233*tmp732
-        + tmp233*tmp571 + tmp233*tmp585 + tmp233*tmp554 + tmp233*tmp602 + tmp233*tmp622;
-    const Scalar tmp903 = tmp233*tmp644 + tmp233*tmp670 + tmp233*tmp562 + tmp233*tmp699
-        + tmp233*tmp731 + tmp233*tmp584 + tmp233*tmp601 + tmp233*tmp621;
-    const Scalar tmp904 = tmp233*tmp643 + tmp233*tmp669 + tmp233*tmp698 + tmp233*tmp730
-        + tmp233*tmp573 + tmp233*tmp600 + tmp233*tmp620;
-    const Scalar tmp905 = tmp233*tmp642 + tmp233*tmp668 + tmp233*tmp697 + tmp233*tmp729
-        + tmp233*tmp587 + tmp233*tmp619;
-    const Scalar tmp906 = tmp233*tmp641 + tmp233*tmp667 + tmp233*tmp696 + tmp233*tmp728
-        + tmp233*tmp604;
-    const Scalar tmp907 = tmp233*tmp666 + tmp233*tmp695 + tmp233*tmp727 + tmp233*tmp624;
-    const Scalar tmp908 = tmp233*tmp647 + tmp233*tmp694 + tmp233*tmp726;
-    const Scalar tmp909 = tmp233*tmp673 + tmp233*tmp725;
-    const Scalar tmp910 = tmp233*l*tmp199;
+    const Scalar tmp901 = tmp382*tmp551 + tmp382*tmp646 + tmp382*tmp561 + tmp382*tmp672
+        + tmp382*tmp701 + tmp382*tmp733 + tmp382*tmp572 - k + tmp382*tmp586 + tmp382*tmp603
+        + tmp382*tmp623;
+    const Scalar tmp902 = tmp382*tmp645 + tmp382*tmp671 + tmp382*tmp700 + tmp382*tmp732
+        + tmp382*tmp571 + tmp382*tmp585 + tmp382*tmp554 + tmp382*tmp602 + tmp382*tmp622;
+    const Scalar tmp903 = tmp382*tmp644 + tmp382*tmp670 + tmp382*tmp562 + tmp382*tmp699
+        + tmp382*tmp731 + tmp382*tmp584 + tmp382*tmp601 + tmp382*tmp621;
+    const Scalar tmp904 = tmp382*tmp643 + tmp382*tmp669 + tmp382*tmp698 + tmp382*tmp730
+        + tmp382*tmp573 + tmp382*tmp600 + tmp382*tmp620;
+    const Scalar tmp905 = tmp382*tmp642 + tmp382*tmp668 + tmp382*tmp697 + tmp382*tmp729
+        + tmp382*tmp587 + tmp382*tmp619;
+    const Scalar tmp906 = tmp382*tmp641 + tmp382*tmp667 + tmp382*tmp696 + tmp382*tmp728
+        + tmp382*tmp604;
+    const Scalar tmp907 = tmp382*tmp666 + tmp382*tmp695 + tmp382*tmp727 + tmp382*tmp624;
+    const Scalar tmp908 = tmp382*tmp647 + tmp382*tmp694 + tmp382*tmp726;
+    const Scalar tmp909 = tmp382*tmp673 + tmp382*tmp725;
+    const Scalar tmp910 = tmp382*l*tmp199;
     const Scalar tmp911 = -tmp384*tmp551 - tmp385*tmp558 - tmp396*tmp646 - tmp397*tmp652
         - tmp386*tmp561 - tmp398*tmp672 - tmp399*tmp678 - tmp400*tmp701 - tmp401*tmp707
         - tmp387*tmp565 - tmp402*tmp733 - tmp388*tmp572 - tmp383*tmp553 - tmp389*tmp577
@@ -4670,9 +4670,9 @@ struct StiffChain10 {
         - tmp41*tmp887 - tmp38*tmp888 - tmp64*tmp889 - tmp72*tmp890 - tmp86*tmp891 - tmp97*tmp892
         - tmp114*tmp893 - tmp125*tmp894 - tmp143*tmp895 - tmp156*tmp896 - tmp175*tmp897
         - tmp190*tmp898 - tmp210*tmp899 - tmp227*tmp900;
-    dr_dq_data[3 + 10 * 0] = phi9_ddot*tmp865 + phi10_ddot*tmp874 - tmp904 - tmp914
-        + phi1_ddot*tmp832 + phi2_ddot*tmp833 + phi3_ddot*tmp834 + phi4_ddot*tmp835
-        + phi5_ddot*tmp839 + phi6_ddot*tmp844 + phi7_ddot*tmp850 + phi8_ddot*tmp857;
+    dr_dq_data[3 + 10 * 0] = phi10_ddot*tmp874 - tmp904 - tmp914 + phi1_ddot*tmp832
+        + phi2_ddot*tmp833 + phi3_ddot*tmp834 + phi4_ddot*tmp835 + phi5_ddot*tmp839
+        + phi6_ddot*tmp844 + phi7_ddot*tmp850 + phi8_ddot*tmp857 + phi9_ddot*tmp865;
     const Scalar tmp915 = -tmp396*tmp642 - tmp397*tmp651 - tmp398*tmp668 - tmp399*tmp677
         - tmp400*tmp697 - tmp401*tmp706 - tmp402*tmp729 - tmp392*tmp587 - tmp391*tmp589
         - tmp393*tmp607 - tmp394*tmp619 - tmp395*tmp627 - tmp60*tmp889 - tmp57*tmp890 - tmp84*tmp891
@@ -4704,9 +4704,9 @@ struct StiffChain10 {
         + phi5_ddot*tmp858 + phi6_ddot*tmp859 + phi7_ddot*tmp860 + phi8_ddot*tmp861;
     const Scalar tmp919 = -tmp400*tmp673 - tmp399*tmp675 - tmp401*tmp705 - tmp402*tmp725
         - tmp166*tmp897 - tmp163*tmp898 - tmp202*tmp899 - tmp222*tmp900;
-    dr_dq_data[8 + 10 * 0] = phi4_ddot*tmp865 + phi5_ddot*tmp866 + phi6_ddot*tmp867
-        + phi7_ddot*tmp868 + phi8_ddot*tmp869 + phi9_ddot*tmp870 + phi10_ddot*tmp879 - tmp909
-        - tmp919 + phi1_ddot*tmp862 + phi2_ddot*tmp863 + phi3_ddot*tmp864;
+    dr_dq_data[8 + 10 * 0] = phi5_ddot*tmp866 + phi6_ddot*tmp867 + phi7_ddot*tmp868
+        + phi8_ddot*tmp869 + phi9_ddot*tmp870 + phi10_ddot*tmp879 - tmp909 - tmp919
+        + phi1_ddot*tmp862 + phi2_ddot*tmp863 + phi3_ddot*tmp864 + phi4_ddot*tmp865;
     const Scalar tmp920 = -tmp402*tmp702 - tmp401*tmp704 - tmp200*tmp899 - tmp197*tmp900;
     dr_dq_data[9 + 10 * 0] = phi1_ddot*tmp871 + phi2_ddot*tmp872 + phi3_ddot*tmp873
         + phi4_ddot*tmp874 + phi5_ddot*tmp875 + phi6_ddot*tmp876 + phi7_ddot*tmp877
@@ -5098,8 +5098,8 @@ struct StiffChain10 {
         + Scalar(2)*tmp158*m*tmp1036 + Scalar(2)*tmp173*m*tmp1046 + Scalar(2)*tmp192*m*tmp1065
         + Scalar(2)*tmp207*m*tmp1075 + Scalar(2)*tmp28*m*tmp931 + Scalar(2)*tmp229*m*tmp1097
         + Scalar(2)*tmp33*m*tmp936 + Scalar(2)*tmp45*m*tmp943 + Scalar(2)*tmp52*m*tmp950
-        + Scalar(2)*tmp327*tmp8*m*tmp11 + Scalar(2)*tmp65*m*tmp958 + Scalar(2)*tmp74*m*tmp967
-        + Scalar(2)*tmp327*tmp11*m*tmp922 + Scalar(2)*tmp87*m*tmp975 + Scalar(2)*tmp99*m*tmp987
+        + Scalar(2)*tmp325*tmp8*m*tmp11 + Scalar(2)*tmp65*m*tmp958 + Scalar(2)*tmp74*m*tmp967
+        + Scalar(2)*tmp325*tmp11*m*tmp922 + Scalar(2)*tmp87*m*tmp975 + Scalar(2)*tmp99*m*tmp987
         + Scalar(2)*tmp112*m*tmp995;
     const Scalar tmp1192 = tmp128*m*tmp1009 + tmp126*m*tmp1011 + tmp142*m*tmp1017 + tmp139*m*tmp1020
         + tmp159*m*tmp1035 + tmp157*m*tmp1037 + tmp174*m*tmp1043 + tmp170*m*tmp1047 + tmp34*m*tmp927
@@ -5116,8 +5116,8 @@ struct StiffChain10 {
         + tmp74*m*tmp966 + tmp73*m*tmp967 + tmp88*m*tmp975 + tmp87*m*tmp976 + tmp99*m*tmp986
         + tmp98*m*tmp987 + tmp113*m*tmp995 + tmp112*m*tmp996;
     const Scalar tmp1194 = Scalar(2)*tmp126*m*tmp1009 + Scalar(2)*tmp142*m*tmp1020
-        + Scalar(2)*tmp157*m*tmp1035 + Scalar(2)*tmp174*m*tmp1047 + Scalar(2)*tmp21*tmp327*m*tmp24
-        + Scalar(2)*tmp191*m*tmp1064 + Scalar(2)*tmp24*tmp327*m*tmp928 + Scalar(2)*tmp209*m*tmp1077
+        + Scalar(2)*tmp157*m*tmp1035 + Scalar(2)*tmp174*m*tmp1047 + Scalar(2)*tmp21*tmp325*m*tmp24
+        + Scalar(2)*tmp191*m*tmp1064 + Scalar(2)*tmp24*tmp325*m*tmp928 + Scalar(2)*tmp209*m*tmp1077
         + Scalar(2)*tmp228*m*tmp1096 + Scalar(2)*tmp43*m*tmp941 + Scalar(2)*tmp51*m*tmp949
         + Scalar(2)*tmp62*m*tmp955 + Scalar(2)*tmp73*m*tmp966 + Scalar(2)*tmp88*m*tmp976
         + Scalar(2)*tmp98*m*tmp986 + Scalar(2)*tmp113*m*tmp996;
@@ -5144,8 +5144,8 @@ struct StiffChain10 {
         + tmp113*m*tmp997;
     const Scalar tmp1198 = Scalar(2)*tmp125*m*tmp1008 + Scalar(2)*tmp143*m*tmp1021
         + Scalar(2)*tmp156*m*tmp1034 + Scalar(2)*tmp175*m*tmp1048 + Scalar(2)*tmp190*m*tmp1063
-        + Scalar(2)*tmp210*m*tmp1078 + Scalar(2)*tmp227*m*tmp1095 + Scalar(2)*tmp327*tmp37*m*tmp40
-        + Scalar(2)*tmp327*tmp40*m*tmp939 + Scalar(2)*tmp64*m*tmp957 + Scalar(2)*tmp72*m*tmp965
+        + Scalar(2)*tmp210*m*tmp1078 + Scalar(2)*tmp227*m*tmp1095 + Scalar(2)*tmp325*tmp37*m*tmp40
+        + Scalar(2)*tmp325*tmp40*m*tmp939 + Scalar(2)*tmp64*m*tmp957 + Scalar(2)*tmp72*m*tmp965
         + Scalar(2)*tmp86*m*tmp974 + Scalar(2)*tmp97*m*tmp985 + Scalar(2)*tmp114*m*tmp997;
     const Scalar tmp1199 = tmp128*m*tmp1007 + tmp124*m*tmp1011 + tmp139*m*tmp1016 + tmp138*m*tmp1017
         + tmp159*m*tmp1033 + tmp155*m*tmp1037 + tmp170*m*tmp1042 + tmp169*m*tmp1043
@@ -5173,8 +5173,8 @@ struct StiffChain10 {
         + tmp114*m*tmp992 + tmp109*m*tmp997;
     const Scalar tmp1203 = Scalar(2)*tmp124*m*tmp1007 + Scalar(2)*tmp138*m*tmp1016
         + Scalar(2)*tmp155*m*tmp1033 + Scalar(2)*tmp169*m*tmp1042 + Scalar(2)*tmp189*m*tmp1062
-        + Scalar(2)*tmp203*m*tmp1071 + Scalar(2)*tmp226*m*tmp1094 + Scalar(2)*tmp327*tmp56*m*tmp59
-        + Scalar(2)*tmp327*tmp59*m*tmp953 + Scalar(2)*tmp84*m*tmp972 + Scalar(2)*tmp96*m*tmp984
+        + Scalar(2)*tmp203*m*tmp1071 + Scalar(2)*tmp226*m*tmp1094 + Scalar(2)*tmp325*tmp56*m*tmp59
+        + Scalar(2)*tmp325*tmp59*m*tmp953 + Scalar(2)*tmp84*m*tmp972 + Scalar(2)*tmp96*m*tmp984
         + Scalar(2)*tmp109*m*tmp992;
     const Scalar tmp1204 = tmp128*m*tmp1006 + tmp123*m*tmp1011 + tmp140*m*tmp1017 + tmp139*m*tmp1018
         + tmp159*m*tmp1032 + tmp154*m*tmp1037 + tmp172*m*tmp1043 + tmp170*m*tmp1045
@@ -5203,8 +5203,8 @@ struct StiffChain10 {
         + tmp79*m*tmp984 + tmp111*m*tmp992 + tmp109*m*tmp994;
     const Scalar tmp1209 = Scalar(2)*tmp123*m*tmp1006 + Scalar(2)*tmp140*m*tmp1018
         + Scalar(2)*tmp154*m*tmp1032 + Scalar(2)*tmp172*m*tmp1045 + Scalar(2)*tmp188*m*tmp1061
-        + Scalar(2)*tmp206*m*tmp1074 + Scalar(2)*tmp225*m*tmp1093 + Scalar(2)*tmp327*tmp78*m*tmp81
-        + Scalar(2)*tmp327*tmp81*m*tmp970 + Scalar(2)*tmp111*m*tmp994;
+        + Scalar(2)*tmp206*m*tmp1074 + Scalar(2)*tmp225*m*tmp1093 + Scalar(2)*tmp325*tmp78*m*tmp81
+        + Scalar(2)*tmp325*tmp81*m*tmp970 + Scalar(2)*tmp111*m*tmp994;
     const Scalar tmp1210 = tmp104*m*tmp1011 + tmp139*m*tmp1015 + tmp137*m*tmp1017 + tmp159*m*tmp1031
         + tmp153*m*tmp1037 + tmp170*m*tmp1041 + tmp168*m*tmp1043 + tmp193*m*tmp1060
         + tmp187*m*tmp1066 + tmp208*m*tmp1072 + tmp204*m*tmp1076 + tmp230*m*tmp1092
@@ -5231,8 +5231,8 @@ struct StiffChain10 {
         + tmp224*m*tmp1093 + tmp123*m*tmp989 + tmp111*m*tmp991 + tmp107*m*tmp994;
     const Scalar tmp1216 = Scalar(2)*tmp137*m*tmp1015 + Scalar(2)*tmp153*m*tmp1031
         + Scalar(2)*tmp168*m*tmp1041 + Scalar(2)*tmp187*m*tmp1060 + Scalar(2)*tmp208*m*tmp1076
-        + Scalar(2)*tmp224*m*tmp1092 + Scalar(2)*tmp327*tmp103*m*tmp106
-        + Scalar(2)*tmp327*tmp106*m*tmp990;
+        + Scalar(2)*tmp224*m*tmp1092 + Scalar(2)*tmp325*tmp103*m*tmp106
+        + Scalar(2)*tmp325*tmp106*m*tmp990;
     const Scalar tmp1217 = tmp159*m*tmp1012 + tmp139*m*tmp1014 + tmp135*m*tmp1017 + tmp132*m*tmp1037
         + tmp171*m*tmp1043 + tmp170*m*tmp1044 + tmp193*m*tmp1059 + tmp186*m*tmp1066
         + tmp205*m*tmp1072 + tmp204*m*tmp1073 + tmp230*m*tmp1091 + tmp223*m*tmp1098;
@@ -5254,7 +5254,7 @@ struct StiffChain10 {
     const Scalar tmp1223 = tmp153*m*tmp1012 + tmp137*m*tmp1014 + tmp135*m*tmp1015 + tmp132*m*tmp1031
         + tmp171*m*tmp1041 + tmp168*m*tmp1044 + tmp187*m*tmp1059 + tmp186*m*tmp1060
         + tmp208*m*tmp1073 + tmp205*m*tmp1076 + tmp224*m*tmp1091 + tmp223*m*tmp1092;
-    const Scalar tmp1224 = Scalar(2)*tmp131*tmp327*m*tmp134 + Scalar(2)*tmp134*tmp327*m*tmp1013
+    const Scalar tmp1224 = Scalar(2)*tmp131*tmp325*m*tmp134 + Scalar(2)*tmp134*tmp325*m*tmp1013
         + Scalar(2)*tmp171*m*tmp1044 + Scalar(2)*tmp186*m*tmp1059 + Scalar(2)*tmp205*m*tmp1073
         + Scalar(2)*tmp223*m*tmp1091;
     const Scalar tmp1225 = tmp193*m*tmp1038 + tmp170*m*tmp1040 + tmp166*m*tmp1043 + tmp163*m*tmp1066
@@ -5273,7 +5273,7 @@ struct StiffChain10 {
         + tmp208*m*tmp1070 + tmp202*m*tmp1076 + tmp224*m*tmp1090 + tmp222*m*tmp1092;
     const Scalar tmp1232 = tmp186*m*tmp1038 + tmp171*m*tmp1040 + tmp166*m*tmp1044 + tmp163*m*tmp1059
         + tmp205*m*tmp1070 + tmp202*m*tmp1073 + tmp223*m*tmp1090 + tmp222*m*tmp1091;
-    const Scalar tmp1233 = Scalar(2)*tmp162*tmp327*m*tmp165 + Scalar(2)*tmp165*tmp327*m*tmp1039
+    const Scalar tmp1233 = Scalar(2)*tmp162*tmp325*m*tmp165 + Scalar(2)*tmp165*tmp325*m*tmp1039
         + Scalar(2)*tmp202*m*tmp1070 + Scalar(2)*tmp222*m*tmp1090;
     const Scalar tmp1234 = tmp230*m*tmp1067 + tmp204*m*tmp1069 + tmp200*m*tmp1072
         + tmp197*m*tmp1098;
@@ -5293,7 +5293,7 @@ struct StiffChain10 {
         + tmp197*m*tmp1091;
     const Scalar tmp1242 = tmp222*m*tmp1067 + tmp202*m*tmp1069 + tmp200*m*tmp1070
         + tmp197*m*tmp1090;
-    const Scalar tmp1243 = Scalar(2)*tmp196*tmp327*m*tmp199 + Scalar(2)*tmp199*tmp327*m*tmp1068;
+    const Scalar tmp1243 = Scalar(2)*tmp196*tmp325*m*tmp199 + Scalar(2)*tmp199*tmp325*m*tmp1068;
     const Scalar tmp1244 = m*tmp1099;
     const Scalar tmp1245 = m*tmp1100;
     const Scalar tmp1246 = m*tmp1103;
@@ -5312,22 +5312,22 @@ struct StiffChain10 {
     const Scalar tmp1259 = m*tmp1170;
     const Scalar tmp1260 = m*tmp1187;
     const Scalar tmp1261 = m*tmp1188;
-    const Scalar tmp1262 = tmp233*tmp1011 + tmp233*tmp921 + tmp233*tmp1037 + tmp233*tmp1066
-        + tmp233*tmp1098 + tmp233*tmp937 + tmp233*tmp951 + tmp233*tmp968 + tmp233*tmp988;
-    const Scalar tmp1263 = tmp233*tmp1010 + tmp233*tmp1036 + tmp233*tmp1065 + tmp233*tmp1097
-        + tmp233*tmp936 - k + tmp233*tmp950 + tmp233*tmp921 + tmp233*tmp967 + tmp233*tmp987;
-    const Scalar tmp1264 = tmp233*tmp1009 + tmp233*tmp1035 + tmp233*tmp927 + tmp233*tmp1064
-        + tmp233*tmp1096 + tmp233*tmp949 + tmp233*tmp966 + tmp233*tmp986;
-    const Scalar tmp1265 = tmp233*tmp1008 + tmp233*tmp1034 + tmp233*tmp1063 + tmp233*tmp1095
-        + tmp233*tmp938 + tmp233*tmp965 + tmp233*tmp985;
-    const Scalar tmp1266 = tmp233*tmp1007 + tmp233*tmp1033 + tmp233*tmp1062 + tmp233*tmp1094
-        + tmp233*tmp952 + tmp233*tmp984;
-    const Scalar tmp1267 = tmp233*tmp1006 + tmp233*tmp1032 + tmp233*tmp1061 + tmp233*tmp1093
-        + tmp233*tmp969;
-    const Scalar tmp1268 = tmp233*tmp1031 + tmp233*tmp1060 + tmp233*tmp1092 + tmp233*tmp989;
-    const Scalar tmp1269 = tmp233*tmp1012 + tmp233*tmp1059 + tmp233*tmp1091;
-    const Scalar tmp1270 = tmp233*tmp1038 + tmp233*tmp1090;
-    const Scalar tmp1271 = tmp233*l*tmp199;
+    const Scalar tmp1262 = tmp382*tmp1011 + tmp382*tmp921 + tmp382*tmp1037 + tmp382*tmp1066
+        + tmp382*tmp1098 + tmp382*tmp937 + tmp382*tmp951 + tmp382*tmp968 + tmp382*tmp988;
+    const Scalar tmp1263 = tmp382*tmp1010 + tmp382*tmp1036 + tmp382*tmp1065 + tmp382*tmp1097
+        + tmp382*tmp936 - k + tmp382*tmp950 + tmp382*tmp921 + tmp382*tmp967 + tmp382*tmp987;
+    const Scalar tmp1264 = tmp382*tmp1009 + tmp382*tmp1035 + tmp382*tmp927 + tmp382*tmp1064
+        + tmp382*tmp1096 + tmp382*tmp949 + tmp382*tmp966 + tmp382*tmp986;
+    const Scalar tmp1265 = tmp382*tmp1008 + tmp382*tmp1034 + tmp382*tmp1063 + tmp382*tmp1095
+        + tmp382*tmp938 + tmp382*tmp965 + tmp382*tmp985;
+    const Scalar tmp1266 = tmp382*tmp1007 + tmp382*tmp1033 + tmp382*tmp1062 + tmp382*tmp1094
+        + tmp382*tmp952 + tmp382*tmp984;
+    const Scalar tmp1267 = tmp382*tmp1006 + tmp382*tmp1032 + tmp382*tmp1061 + tmp382*tmp1093
+        + tmp382*tmp969;
+    const Scalar tmp1268 = tmp382*tmp1031 + tmp382*tmp1060 + tmp382*tmp1092 + tmp382*tmp989;
+    const Scalar tmp1269 = tmp382*tmp1012 + tmp382*tmp1059 + tmp382*tmp1091;
+    const Scalar tmp1270 = tmp382*tmp1038 + tmp382*tmp1090;
+    const Scalar tmp1271 = tmp382*l*tmp199;
     const Scalar tmp1272 = -tmp385*tmp923 - tmp396*tmp1011 - tmp397*tmp1017 - tmp386*tmp921
         - tmp398*tmp1037 - tmp399*tmp1043 - tmp400*tmp1066 - tmp401*tmp1072 - tmp387*tmp930
         - tmp402*tmp1098 - tmp388*tmp937 - tmp389*tmp942 - tmp390*tmp951 - tmp391*tmp956
@@ -5366,9 +5366,9 @@ struct StiffChain10 {
         - tmp41*tmp1248 - tmp38*tmp1249 - tmp64*tmp1250 - tmp72*tmp1251 - tmp86*tmp1252
         - tmp97*tmp1253 - tmp114*tmp1254 - tmp125*tmp1255 - tmp143*tmp1256 - tmp156*tmp1257
         - tmp175*tmp1258 - tmp190*tmp1259 - tmp210*tmp1260 - tmp227*tmp1261;
-    dr_dq_data[3 + 10 * 1] = phi9_ddot*tmp1228 + phi10_ddot*tmp1237 - tmp1265 - tmp1275
-        + phi1_ddot*tmp1195 + phi2_ddot*tmp1196 + phi3_ddot*tmp1197 + phi4_ddot*tmp1198
-        + phi5_ddot*tmp1202 + phi6_ddot*tmp1207 + phi7_ddot*tmp1213 + phi8_ddot*tmp1220;
+    dr_dq_data[3 + 10 * 1] = phi10_ddot*tmp1237 - tmp1265 - tmp1275 + phi1_ddot*tmp1195
+        + phi2_ddot*tmp1196 + phi3_ddot*tmp1197 + phi4_ddot*tmp1198 + phi5_ddot*tmp1202
+        + phi6_ddot*tmp1207 + phi7_ddot*tmp1213 + phi8_ddot*tmp1220 + phi9_ddot*tmp1228;
     const Scalar tmp1276 = -tmp396*tmp1007 - tmp397*tmp1016 - tmp398*tmp1033 - tmp399*tmp1042
         - tmp400*tmp1062 - tmp401*tmp1071 - tmp402*tmp1094 - tmp392*tmp952 - tmp391*tmp954
         - tmp393*tmp972 - tmp394*tmp984 - tmp395*tmp992 - tmp60*tmp1250 - tmp57*tmp1251
@@ -5400,9 +5400,9 @@ struct StiffChain10 {
         + phi5_ddot*tmp1221 + phi6_ddot*tmp1222 + phi7_ddot*tmp1223 + phi8_ddot*tmp1224;
     const Scalar tmp1280 = -tmp400*tmp1038 - tmp399*tmp1040 - tmp401*tmp1070 - tmp402*tmp1090
         - tmp166*tmp1258 - tmp163*tmp1259 - tmp202*tmp1260 - tmp222*tmp1261;
-    dr_dq_data[8 + 10 * 1] = phi4_ddot*tmp1228 + phi5_ddot*tmp1229 + phi6_ddot*tmp1230
-        + phi7_ddot*tmp1231 + phi8_ddot*tmp1232 + phi9_ddot*tmp1233 + phi10_ddot*tmp1242 - tmp1270
-        - tmp1280 + phi1_ddot*tmp1225 + phi2_ddot*tmp1226 + phi3_ddot*tmp1227;
+    dr_dq_data[8 + 10 * 1] = phi5_ddot*tmp1229 + phi6_ddot*tmp1230 + phi7_ddot*tmp1231
+        + phi8_ddot*tmp1232 + phi9_ddot*tmp1233 + phi10_ddot*tmp1242 - tmp1270 - tmp1280
+        + phi1_ddot*tmp1225 + phi2_ddot*tmp1226 + phi3_ddot*tmp1227 + phi4_ddot*tmp1228;
     const Scalar tmp1281 = -tmp402*tmp1067 - tmp401*tmp1069 - tmp200*tmp1260 - tmp197*tmp1261;
     dr_dq_data[9 + 10 * 1] = phi1_ddot*tmp1234 + phi2_ddot*tmp1235 + phi3_ddot*tmp1236
         + phi4_ddot*tmp1237 + phi5_ddot*tmp1238 + phi6_ddot*tmp1239 + phi7_ddot*tmp1240
@@ -5793,8 +5793,8 @@ struct StiffChain10 {
         + tmp62*m*tmp1306 + tmp74*m*tmp1314 + tmp73*m*tmp1315 + tmp88*m*tmp1322 + tmp87*m*tmp1323
         + tmp99*m*tmp1333 + tmp98*m*tmp1334 + tmp113*m*tmp1342 + tmp112*m*tmp1343;
     const Scalar tmp1539 = Scalar(2)*tmp126*m*tmp1356 + Scalar(2)*tmp142*m*tmp1367
-        + Scalar(2)*tmp157*m*tmp1382 + Scalar(2)*tmp174*m*tmp1394 + Scalar(2)*tmp21*tmp327*m*tmp24
-        + Scalar(2)*tmp191*m*tmp1411 + Scalar(2)*tmp24*tmp327*m*tmp1283 + Scalar(2)*tmp209*m*tmp1424
+        + Scalar(2)*tmp157*m*tmp1382 + Scalar(2)*tmp174*m*tmp1394 + Scalar(2)*tmp21*tmp325*m*tmp24
+        + Scalar(2)*tmp191*m*tmp1411 + Scalar(2)*tmp24*tmp325*m*tmp1283 + Scalar(2)*tmp209*m*tmp1424
         + Scalar(2)*tmp228*m*tmp1443 + Scalar(2)*tmp43*m*tmp1292 + Scalar(2)*tmp51*m*tmp1299
         + Scalar(2)*tmp62*m*tmp1304 + Scalar(2)*tmp73*m*tmp1314 + Scalar(2)*tmp88*m*tmp1323
         + Scalar(2)*tmp98*m*tmp1333 + Scalar(2)*tmp113*m*tmp1343;
@@ -5821,8 +5821,8 @@ struct StiffChain10 {
         + tmp113*m*tmp1344;
     const Scalar tmp1543 = Scalar(2)*tmp125*m*tmp1355 + Scalar(2)*tmp143*m*tmp1368
         + Scalar(2)*tmp156*m*tmp1381 + Scalar(2)*tmp175*m*tmp1395 + Scalar(2)*tmp190*m*tmp1410
-        + Scalar(2)*tmp210*m*tmp1425 + Scalar(2)*tmp227*m*tmp1442 + Scalar(2)*tmp327*tmp37*m*tmp40
-        + Scalar(2)*tmp327*tmp40*m*tmp1290 + Scalar(2)*tmp64*m*tmp1305 + Scalar(2)*tmp72*m*tmp1313
+        + Scalar(2)*tmp210*m*tmp1425 + Scalar(2)*tmp227*m*tmp1442 + Scalar(2)*tmp325*tmp37*m*tmp40
+        + Scalar(2)*tmp325*tmp40*m*tmp1290 + Scalar(2)*tmp64*m*tmp1305 + Scalar(2)*tmp72*m*tmp1313
         + Scalar(2)*tmp86*m*tmp1321 + Scalar(2)*tmp97*m*tmp1332 + Scalar(2)*tmp114*m*tmp1344;
     const Scalar tmp1544 = tmp128*m*tmp1354 + tmp124*m*tmp1358 + tmp139*m*tmp1363 + tmp138*m*tmp1364
         + tmp159*m*tmp1380 + tmp155*m*tmp1384 + tmp170*m*tmp1389 + tmp169*m*tmp1390
@@ -5850,8 +5850,8 @@ struct StiffChain10 {
         + tmp114*m*tmp1339 + tmp109*m*tmp1344;
     const Scalar tmp1548 = Scalar(2)*tmp124*m*tmp1354 + Scalar(2)*tmp138*m*tmp1363
         + Scalar(2)*tmp155*m*tmp1380 + Scalar(2)*tmp169*m*tmp1389 + Scalar(2)*tmp189*m*tmp1409
-        + Scalar(2)*tmp203*m*tmp1418 + Scalar(2)*tmp226*m*tmp1441 + Scalar(2)*tmp327*tmp56*m*tmp59
-        + Scalar(2)*tmp327*tmp59*m*tmp1302 + Scalar(2)*tmp84*m*tmp1319 + Scalar(2)*tmp96*m*tmp1331
+        + Scalar(2)*tmp203*m*tmp1418 + Scalar(2)*tmp226*m*tmp1441 + Scalar(2)*tmp325*tmp56*m*tmp59
+        + Scalar(2)*tmp325*tmp59*m*tmp1302 + Scalar(2)*tmp84*m*tmp1319 + Scalar(2)*tmp96*m*tmp1331
         + Scalar(2)*tmp109*m*tmp1339;
     const Scalar tmp1549 = tmp128*m*tmp1353 + tmp123*m*tmp1358 + tmp140*m*tmp1364 + tmp139*m*tmp1365
         + tmp159*m*tmp1379 + tmp154*m*tmp1384 + tmp172*m*tmp1390 + tmp170*m*tmp1392
@@ -5880,8 +5880,8 @@ struct StiffChain10 {
         + tmp79*m*tmp1331 + tmp111*m*tmp1339 + tmp109*m*tmp1341;
     const Scalar tmp1554 = Scalar(2)*tmp123*m*tmp1353 + Scalar(2)*tmp140*m*tmp1365
         + Scalar(2)*tmp154*m*tmp1379 + Scalar(2)*tmp172*m*tmp1392 + Scalar(2)*tmp188*m*tmp1408
-        + Scalar(2)*tmp206*m*tmp1421 + Scalar(2)*tmp225*m*tmp1440 + Scalar(2)*tmp327*tmp78*m*tmp81
-        + Scalar(2)*tmp327*tmp81*m*tmp1317 + Scalar(2)*tmp111*m*tmp1341;
+        + Scalar(2)*tmp206*m*tmp1421 + Scalar(2)*tmp225*m*tmp1440 + Scalar(2)*tmp325*tmp78*m*tmp81
+        + Scalar(2)*tmp325*tmp81*m*tmp1317 + Scalar(2)*tmp111*m*tmp1341;
     const Scalar tmp1555 = tmp104*m*tmp1358 + tmp139*m*tmp1362 + tmp137*m*tmp1364 + tmp159*m*tmp1378
         + tmp153*m*tmp1384 + tmp170*m*tmp1388 + tmp168*m*tmp1390 + tmp193*m*tmp1407
         + tmp187*m*tmp1413 + tmp208*m*tmp1419 + tmp204*m*tmp1423 + tmp230*m*tmp1439
@@ -5908,8 +5908,8 @@ struct StiffChain10 {
         + tmp224*m*tmp1440 + tmp123*m*tmp1336 + tmp111*m*tmp1338 + tmp107*m*tmp1341;
     const Scalar tmp1561 = Scalar(2)*tmp137*m*tmp1362 + Scalar(2)*tmp153*m*tmp1378
         + Scalar(2)*tmp168*m*tmp1388 + Scalar(2)*tmp187*m*tmp1407 + Scalar(2)*tmp208*m*tmp1423
-        + Scalar(2)*tmp224*m*tmp1439 + Scalar(2)*tmp327*tmp103*m*tmp106
-        + Scalar(2)*tmp327*tmp106*m*tmp1337;
+        + Scalar(2)*tmp224*m*tmp1439 + Scalar(2)*tmp325*tmp103*m*tmp106
+        + Scalar(2)*tmp325*tmp106*m*tmp1337;
     const Scalar tmp1562 = tmp159*m*tmp1359 + tmp139*m*tmp1361 + tmp135*m*tmp1364 + tmp132*m*tmp1384
         + tmp171*m*tmp1390 + tmp170*m*tmp1391 + tmp193*m*tmp1406 + tmp186*m*tmp1413
         + tmp205*m*tmp1419 + tmp204*m*tmp1420 + tmp230*m*tmp1438 + tmp223*m*tmp1445;
@@ -5931,7 +5931,7 @@ struct StiffChain10 {
     const Scalar tmp1568 = tmp153*m*tmp1359 + tmp137*m*tmp1361 + tmp135*m*tmp1362 + tmp132*m*tmp1378
         + tmp171*m*tmp1388 + tmp168*m*tmp1391 + tmp187*m*tmp1406 + tmp186*m*tmp1407
         + tmp208*m*tmp1420 + tmp205*m*tmp1423 + tmp224*m*tmp1438 + tmp223*m*tmp1439;
-    const Scalar tmp1569 = Scalar(2)*tmp131*tmp327*m*tmp134 + Scalar(2)*tmp134*tmp327*m*tmp1360
+    const Scalar tmp1569 = Scalar(2)*tmp131*tmp325*m*tmp134 + Scalar(2)*tmp134*tmp325*m*tmp1360
         + Scalar(2)*tmp171*m*tmp1391 + Scalar(2)*tmp186*m*tmp1406 + Scalar(2)*tmp205*m*tmp1420
         + Scalar(2)*tmp223*m*tmp1438;
     const Scalar tmp1570 = tmp193*m*tmp1385 + tmp170*m*tmp1387 + tmp166*m*tmp1390 + tmp163*m*tmp1413
@@ -5950,7 +5950,7 @@ struct StiffChain10 {
         + tmp208*m*tmp1417 + tmp202*m*tmp1423 + tmp224*m*tmp1437 + tmp222*m*tmp1439;
     const Scalar tmp1577 = tmp186*m*tmp1385 + tmp171*m*tmp1387 + tmp166*m*tmp1391 + tmp163*m*tmp1406
         + tmp205*m*tmp1417 + tmp202*m*tmp1420 + tmp223*m*tmp1437 + tmp222*m*tmp1438;
-    const Scalar tmp1578 = Scalar(2)*tmp162*tmp327*m*tmp165 + Scalar(2)*tmp165*tmp327*m*tmp1386
+    const Scalar tmp1578 = Scalar(2)*tmp162*tmp325*m*tmp165 + Scalar(2)*tmp165*tmp325*m*tmp1386
         + Scalar(2)*tmp202*m*tmp1417 + Scalar(2)*tmp222*m*tmp1437;
     const Scalar tmp1579 = tmp230*m*tmp1414 + tmp204*m*tmp1416 + tmp200*m*tmp1419
         + tmp197*m*tmp1445;
@@ -5970,7 +5970,7 @@ struct StiffChain10 {
         + tmp197*m*tmp1438;
     const Scalar tmp1587 = tmp222*m*tmp1414 + tmp202*m*tmp1416 + tmp200*m*tmp1417
         + tmp197*m*tmp1437;
-    const Scalar tmp1588 = Scalar(2)*tmp196*tmp327*m*tmp199 + Scalar(2)*tmp199*tmp327*m*tmp1415;
+    const Scalar tmp1588 = Scalar(2)*tmp196*tmp325*m*tmp199 + Scalar(2)*tmp199*tmp325*m*tmp1415;
     const Scalar tmp1589 = m*tmp1448;
     const Scalar tmp1590 = m*tmp1449;
     const Scalar tmp1591 = m*tmp1454;
@@ -5987,22 +5987,22 @@ struct StiffChain10 {
     const Scalar tmp1602 = m*tmp1515;
     const Scalar tmp1603 = m*tmp1532;
     const Scalar tmp1604 = m*tmp1533;
-    const Scalar tmp1605 = tmp233*tmp1358 + tmp233*tmp1384 + tmp233*tmp1413 + tmp233*tmp1445
-        + tmp233*tmp1282 + tmp233*tmp1299 + tmp233*tmp1314 + tmp233*tmp1335;
-    const Scalar tmp1606 = tmp233*tmp1357 + tmp233*tmp1383 + tmp233*tmp1412 + tmp233*tmp1444
-        + tmp233*tmp1282 + tmp233*tmp1300 + tmp233*tmp1315 + tmp233*tmp1334;
-    const Scalar tmp1607 = tmp233*tmp1356 + tmp233*tmp1382 + tmp233*tmp1282 + tmp233*tmp1411
-        + tmp233*tmp1443 - k + tmp233*tmp1299 + tmp233*tmp1314 + tmp233*tmp1333;
-    const Scalar tmp1608 = tmp233*tmp1355 + tmp233*tmp1381 + tmp233*tmp1410 + tmp233*tmp1442
-        + tmp233*tmp1289 + tmp233*tmp1313 + tmp233*tmp1332;
-    const Scalar tmp1609 = tmp233*tmp1354 + tmp233*tmp1380 + tmp233*tmp1409 + tmp233*tmp1441
-        + tmp233*tmp1301 + tmp233*tmp1331;
-    const Scalar tmp1610 = tmp233*tmp1353 + tmp233*tmp1379 + tmp233*tmp1408 + tmp233*tmp1440
-        + tmp233*tmp1316;
-    const Scalar tmp1611 = tmp233*tmp1378 + tmp233*tmp1407 + tmp233*tmp1439 + tmp233*tmp1336;
-    const Scalar tmp1612 = tmp233*tmp1359 + tmp233*tmp1406 + tmp233*tmp1438;
-    const Scalar tmp1613 = tmp233*tmp1385 + tmp233*tmp1437;
-    const Scalar tmp1614 = tmp233*l*tmp199;
+    const Scalar tmp1605 = tmp382*tmp1358 + tmp382*tmp1384 + tmp382*tmp1413 + tmp382*tmp1445
+        + tmp382*tmp1282 + tmp382*tmp1299 + tmp382*tmp1314 + tmp382*tmp1335;
+    const Scalar tmp1606 = tmp382*tmp1357 + tmp382*tmp1383 + tmp382*tmp1412 + tmp382*tmp1444
+        + tmp382*tmp1282 + tmp382*tmp1300 + tmp382*tmp1315 + tmp382*tmp1334;
+    const Scalar tmp1607 = tmp382*tmp1356 + tmp382*tmp1382 + tmp382*tmp1282 + tmp382*tmp1411
+        + tmp382*tmp1443 - k + tmp382*tmp1299 + tmp382*tmp1314 + tmp382*tmp1333;
+    const Scalar tmp1608 = tmp382*tmp1355 + tmp382*tmp1381 + tmp382*tmp1410 + tmp382*tmp1442
+        + tmp382*tmp1289 + tmp382*tmp1313 + tmp382*tmp1332;
+    const Scalar tmp1609 = tmp382*tmp1354 + tmp382*tmp1380 + tmp382*tmp1409 + tmp382*tmp1441
+        + tmp382*tmp1301 + tmp382*tmp1331;
+    const Scalar tmp1610 = tmp382*tmp1353 + tmp382*tmp1379 + tmp382*tmp1408 + tmp382*tmp1440
+        + tmp382*tmp1316;
+    const Scalar tmp1611 = tmp382*tmp1378 + tmp382*tmp1407 + tmp382*tmp1439 + tmp382*tmp1336;
+    const Scalar tmp1612 = tmp382*tmp1359 + tmp382*tmp1406 + tmp382*tmp1438;
+    const Scalar tmp1613 = tmp382*tmp1385 + tmp382*tmp1437;
+    const Scalar tmp1614 = tmp382*l*tmp199;
     const Scalar tmp1615 = -tmp396*tmp1358 - tmp397*tmp1364 - tmp398*tmp1384 - tmp399*tmp1390
         - tmp400*tmp1413 - tmp401*tmp1419 - tmp387*tmp1284 - tmp402*tmp1445 - tmp388*tmp1282
         - tmp389*tmp1292 - tmp390*tmp1299 - tmp391*tmp1304 - tmp392*tmp1314 - tmp393*tmp1320
@@ -6039,9 +6039,9 @@ struct StiffChain10 {
         - tmp41*tmp1591 - tmp38*tmp1592 - tmp64*tmp1593 - tmp72*tmp1594 - tmp86*tmp1595
         - tmp97*tmp1596 - tmp114*tmp1597 - tmp125*tmp1598 - tmp143*tmp1599 - tmp156*tmp1600
         - tmp175*tmp1601 - tmp190*tmp1602 - tmp210*tmp1603 - tmp227*tmp1604;
-    dr_dq_data[3 + 10 * 2] = phi9_ddot*tmp1573 + phi10_ddot*tmp1582 - tmp1608 - tmp1618
-        + phi1_ddot*tmp1540 + phi2_ddot*tmp1541 + phi3_ddot*tmp1542 + phi4_ddot*tmp1543
-        + phi5_ddot*tmp1547 + phi6_ddot*tmp1552 + phi7_ddot*tmp1558 + phi8_ddot*tmp1565;
+    dr_dq_data[3 + 10 * 2] = phi10_ddot*tmp1582 - tmp1608 - tmp1618 + phi1_ddot*tmp1540
+        + phi2_ddot*tmp1541 + phi3_ddot*tmp1542 + phi4_ddot*tmp1543 + phi5_ddot*tmp1547
+        + phi6_ddot*tmp1552 + phi7_ddot*tmp1558 + phi8_ddot*tmp1565 + phi9_ddot*tmp1573;
     const Scalar tmp1619 = -tmp396*tmp1354 - tmp397*tmp1363 - tmp398*tmp1380 - tmp399*tmp1389
         - tmp400*tmp1409 - tmp401*tmp1418 - tmp402*tmp1441 - tmp392*tmp1301 - tmp391*tmp1303
         - tmp393*tmp1319 - tmp394*tmp1331 - tmp395*tmp1339 - tmp60*tmp1593 - tmp57*tmp1594
@@ -6073,9 +6073,9 @@ struct StiffChain10 {
         + phi5_ddot*tmp1566 + phi6_ddot*tmp1567 + phi7_ddot*tmp1568 + phi8_ddot*tmp1569;
     const Scalar tmp1623 = -tmp400*tmp1385 - tmp399*tmp1387 - tmp401*tmp1417 - tmp402*tmp1437
         - tmp166*tmp1601 - tmp163*tmp1602 - tmp202*tmp1603 - tmp222*tmp1604;
-    dr_dq_data[8 + 10 * 2] = phi4_ddot*tmp1573 + phi5_ddot*tmp1574 + phi6_ddot*tmp1575
-        + phi7_ddot*tmp1576 + phi8_ddot*tmp1577 + phi9_ddot*tmp1578 + phi10_ddot*tmp1587 - tmp1613
-        - tmp1623 + phi1_ddot*tmp1570 + phi2_ddot*tmp1571 + phi3_ddot*tmp1572;
+    dr_dq_data[8 + 10 * 2] = phi5_ddot*tmp1574 + phi6_ddot*tmp1575 + phi7_ddot*tmp1576
+        + phi8_ddot*tmp1577 + phi9_ddot*tmp1578 + phi10_ddot*tmp1587 - tmp1613 - tmp1623
+        + phi1_ddot*tmp1570 + phi2_ddot*tmp1571 + phi3_ddot*tmp1572 + phi4_ddot*tmp1573;
     const Scalar tmp1624 = -tmp402*tmp1414 - tmp401*tmp1416 - tmp200*tmp1603 - tmp197*tmp1604;
     dr_dq_data[9 + 10 * 2] = phi1_ddot*tmp1579 + phi2_ddot*tmp1580 + phi3_ddot*tmp1581
         + phi4_ddot*tmp1582 + phi5_ddot*tmp1583 + phi6_ddot*tmp1584 + phi7_ddot*tmp1585
@@ -6566,8 +6566,8 @@ struct StiffChain10 {
     carried[369] = tmp1866;
     const Scalar tmp1867 = Scalar(2)*tmp125*m*tmp1683 + Scalar(2)*tmp143*m*tmp1696
         + Scalar(2)*tmp156*m*tmp1709 + Scalar(2)*tmp175*m*tmp1723 + Scalar(2)*tmp190*m*tmp1738
-        + Scalar(2)*tmp210*m*tmp1753 + Scalar(2)*tmp227*m*tmp1770 + Scalar(2)*tmp327*tmp37*m*tmp40
-        + Scalar(2)*tmp327*tmp40*m*tmp1626 + Scalar(2)*tmp64*m*tmp1637 + Scalar(2)*tmp72*m*tmp1644
+        + Scalar(2)*tmp210*m*tmp1753 + Scalar(2)*tmp227*m*tmp1770 + Scalar(2)*tmp325*tmp37*m*tmp40
+        + Scalar(2)*tmp325*tmp40*m*tmp1626 + Scalar(2)*tmp64*m*tmp1637 + Scalar(2)*tmp72*m*tmp1644
         + Scalar(2)*tmp86*m*tmp1651 + Scalar(2)*tmp97*m*tmp1661 + Scalar(2)*tmp114*m*tmp1672;
     carried[370] = tmp1867;
     const Scalar tmp1868 = tmp128*m*tmp1682 + tmp124*m*tmp1686 + tmp139*m*tmp1691 + tmp138*m*tmp1692
@@ -6600,8 +6600,8 @@ struct StiffChain10 {
     carried[374] = tmp1871;
     const Scalar tmp1872 = Scalar(2)*tmp124*m*tmp1682 + Scalar(2)*tmp138*m*tmp1691
         + Scalar(2)*tmp155*m*tmp1708 + Scalar(2)*tmp169*m*tmp1717 + Scalar(2)*tmp189*m*tmp1737
-        + Scalar(2)*tmp203*m*tmp1746 + Scalar(2)*tmp226*m*tmp1769 + Scalar(2)*tmp327*tmp56*m*tmp59
-        + Scalar(2)*tmp327*tmp59*m*tmp1634 + Scalar(2)*tmp84*m*tmp1649 + Scalar(2)*tmp96*m*tmp1660
+        + Scalar(2)*tmp203*m*tmp1746 + Scalar(2)*tmp226*m*tmp1769 + Scalar(2)*tmp325*tmp56*m*tmp59
+        + Scalar(2)*tmp325*tmp59*m*tmp1634 + Scalar(2)*tmp84*m*tmp1649 + Scalar(2)*tmp96*m*tmp1660
         + Scalar(2)*tmp109*m*tmp1667;
     carried[375] = tmp1872;
     const Scalar tmp1873 = tmp128*m*tmp1681 + tmp123*m*tmp1686 + tmp140*m*tmp1692 + tmp139*m*tmp1693
@@ -6636,8 +6636,8 @@ struct StiffChain10 {
     carried[380] = tmp1877;
     const Scalar tmp1878 = Scalar(2)*tmp123*m*tmp1681 + Scalar(2)*tmp140*m*tmp1693
         + Scalar(2)*tmp154*m*tmp1707 + Scalar(2)*tmp172*m*tmp1720 + Scalar(2)*tmp188*m*tmp1736
-        + Scalar(2)*tmp206*m*tmp1749 + Scalar(2)*tmp225*m*tmp1768 + Scalar(2)*tmp327*tmp78*m*tmp81
-        + Scalar(2)*tmp327*tmp81*m*tmp1647 + Scalar(2)*tmp111*m*tmp1669;
+        + Scalar(2)*tmp206*m*tmp1749 + Scalar(2)*tmp225*m*tmp1768 + Scalar(2)*tmp325*tmp78*m*tmp81
+        + Scalar(2)*tmp325*tmp81*m*tmp1647 + Scalar(2)*tmp111*m*tmp1669;
     carried[381] = tmp1878;
     const Scalar tmp1879 = tmp104*m*tmp1686 + tmp139*m*tmp1690 + tmp137*m*tmp1692 + tmp159*m*tmp1706
         + tmp153*m*tmp1712 + tmp170*m*tmp1716 + tmp168*m*tmp1718 + tmp193*m*tmp1735
@@ -6671,8 +6671,8 @@ struct StiffChain10 {
     carried[387] = tmp1884;
     const Scalar tmp1885 = Scalar(2)*tmp137*m*tmp1690 + Scalar(2)*tmp153*m*tmp1706
         + Scalar(2)*tmp168*m*tmp1716 + Scalar(2)*tmp187*m*tmp1735 + Scalar(2)*tmp208*m*tmp1751
-        + Scalar(2)*tmp224*m*tmp1767 + Scalar(2)*tmp327*tmp103*m*tmp106
-        + Scalar(2)*tmp327*tmp106*m*tmp1665;
+        + Scalar(2)*tmp224*m*tmp1767 + Scalar(2)*tmp325*tmp103*m*tmp106
+        + Scalar(2)*tmp325*tmp106*m*tmp1665;
     carried[388] = tmp1885;
     const Scalar tmp1886 = tmp159*m*tmp1687 + tmp139*m*tmp1689 + tmp135*m*tmp1692 + tmp132*m*tmp1712
         + tmp171*m*tmp1718 + tmp170*m*tmp1719 + tmp193*m*tmp1734 + tmp186*m*tmp1741
@@ -6702,7 +6702,7 @@ struct StiffChain10 {
         + tmp171*m*tmp1716 + tmp168*m*tmp1719 + tmp187*m*tmp1734 + tmp186*m*tmp1735
         + tmp208*m*tmp1748 + tmp205*m*tmp1751 + tmp224*m*tmp1766 + tmp223*m*tmp1767;
     carried[395] = tmp1892;
-    const Scalar tmp1893 = Scalar(2)*tmp131*tmp327*m*tmp134 + Scalar(2)*tmp134*tmp327*m*tmp1688
+    const Scalar tmp1893 = Scalar(2)*tmp131*tmp325*m*tmp134 + Scalar(2)*tmp134*tmp325*m*tmp1688
         + Scalar(2)*tmp171*m*tmp1719 + Scalar(2)*tmp186*m*tmp1734 + Scalar(2)*tmp205*m*tmp1748
         + Scalar(2)*tmp223*m*tmp1766;
     carried[396] = tmp1893;
@@ -6730,7 +6730,7 @@ struct StiffChain10 {
     const Scalar tmp1901 = tmp186*m*tmp1713 + tmp171*m*tmp1715 + tmp166*m*tmp1719 + tmp163*m*tmp1734
         + tmp205*m*tmp1745 + tmp202*m*tmp1748 + tmp223*m*tmp1765 + tmp222*m*tmp1766;
     carried[404] = tmp1901;
-    const Scalar tmp1902 = Scalar(2)*tmp162*tmp327*m*tmp165 + Scalar(2)*tmp165*tmp327*m*tmp1714
+    const Scalar tmp1902 = Scalar(2)*tmp162*tmp325*m*tmp165 + Scalar(2)*tmp165*tmp325*m*tmp1714
         + Scalar(2)*tmp202*m*tmp1745 + Scalar(2)*tmp222*m*tmp1765;
     carried[405] = tmp1902;
     const Scalar tmp1903 = tmp230*m*tmp1742 + tmp204*m*tmp1744 + tmp200*m*tmp1747
@@ -6760,7 +6760,7 @@ struct StiffChain10 {
     const Scalar tmp1911 = tmp222*m*tmp1742 + tmp202*m*tmp1744 + tmp200*m*tmp1745
         + tmp197*m*tmp1765;
     carried[414] = tmp1911;
-    const Scalar tmp1912 = Scalar(2)*tmp196*tmp327*m*tmp199 + Scalar(2)*tmp199*tmp327*m*tmp1743;
+    const Scalar tmp1912 = Scalar(2)*tmp196*tmp325*m*tmp199 + Scalar(2)*tmp199*tmp325*m*tmp1743;
     carried[415] = tmp1912;
     const Scalar tmp1913 = m*tmp1778;
     carried[416] = tmp1913;
@@ -6828,7 +6828,7 @@ struct StiffChain10 {
     const Scalar tmp1925 = m*tmp1856;
     const Scalar tmp1857 = carried[360];
     const Scalar tmp1926 = m*tmp1857;
-    const Scalar tmp233 = carried[185];
+    const Scalar tmp382 = carried[258];
     const Scalar tmp1625 = carried[273];
     const Scalar tmp1645 = carried[280];
     const Scalar tmp1663 = carried[290];
@@ -6836,58 +6836,58 @@ struct StiffChain10 {
     const Scalar tmp1712 = carried[320];
     const Scalar tmp1741 = carried[338];
     const Scalar tmp1773 = carried[358];
-    const Scalar tmp1927 = tmp233*tmp1686 + tmp233*tmp1712 + tmp233*tmp1741 + tmp233*tmp1773
-        + tmp233*tmp1625 + tmp233*tmp1645 + tmp233*tmp1663;
+    const Scalar tmp1927 = tmp382*tmp1686 + tmp382*tmp1712 + tmp382*tmp1741 + tmp382*tmp1773
+        + tmp382*tmp1625 + tmp382*tmp1645 + tmp382*tmp1663;
     const Scalar tmp1644 = carried[279];
     const Scalar tmp1661 = carried[288];
     const Scalar tmp1685 = carried[303];
     const Scalar tmp1711 = carried[319];
     const Scalar tmp1740 = carried[337];
     const Scalar tmp1772 = carried[357];
-    const Scalar tmp1928 = tmp233*tmp1685 + tmp233*tmp1711 + tmp233*tmp1740 + tmp233*tmp1772
-        + tmp233*tmp1625 + tmp233*tmp1644 + tmp233*tmp1661;
+    const Scalar tmp1928 = tmp382*tmp1685 + tmp382*tmp1711 + tmp382*tmp1740 + tmp382*tmp1772
+        + tmp382*tmp1625 + tmp382*tmp1644 + tmp382*tmp1661;
     const Scalar tmp1662 = carried[289];
     const Scalar tmp1684 = carried[302];
     const Scalar tmp1710 = carried[318];
     const Scalar tmp1739 = carried[336];
     const Scalar tmp1771 = carried[356];
-    const Scalar tmp1929 = tmp233*tmp1684 + tmp233*tmp1710 + tmp233*tmp1739 + tmp233*tmp1771
-        + tmp233*tmp1625 + tmp233*tmp1645 + tmp233*tmp1662;
+    const Scalar tmp1929 = tmp382*tmp1684 + tmp382*tmp1710 + tmp382*tmp1739 + tmp382*tmp1771
+        + tmp382*tmp1625 + tmp382*tmp1645 + tmp382*tmp1662;
     const Scalar tmp1683 = carried[301];
     const Scalar tmp1709 = carried[317];
     const Scalar tmp1738 = carried[335];
     const Scalar tmp1770 = carried[355];
-    const Scalar tmp1930 = tmp233*tmp1683 + tmp233*tmp1709 + tmp233*tmp1738 + tmp233*tmp1770 - k
-        + tmp233*tmp1625 + tmp233*tmp1644 + tmp233*tmp1661;
+    const Scalar tmp1930 = tmp382*tmp1683 + tmp382*tmp1709 + tmp382*tmp1738 + tmp382*tmp1770 - k
+        + tmp382*tmp1625 + tmp382*tmp1644 + tmp382*tmp1661;
     const Scalar tmp1633 = carried[275];
     const Scalar tmp1660 = carried[287];
     const Scalar tmp1682 = carried[300];
     const Scalar tmp1708 = carried[316];
     const Scalar tmp1737 = carried[334];
     const Scalar tmp1769 = carried[354];
-    const Scalar tmp1931 = tmp233*tmp1682 + tmp233*tmp1708 + tmp233*tmp1737 + tmp233*tmp1769
-        + tmp233*tmp1633 + tmp233*tmp1660;
+    const Scalar tmp1931 = tmp382*tmp1682 + tmp382*tmp1708 + tmp382*tmp1737 + tmp382*tmp1769
+        + tmp382*tmp1633 + tmp382*tmp1660;
     const Scalar tmp1646 = carried[281];
     const Scalar tmp1681 = carried[299];
     const Scalar tmp1707 = carried[315];
     const Scalar tmp1736 = carried[333];
     const Scalar tmp1768 = carried[353];
-    const Scalar tmp1932 = tmp233*tmp1681 + tmp233*tmp1707 + tmp233*tmp1736 + tmp233*tmp1768
-        + tmp233*tmp1646;
+    const Scalar tmp1932 = tmp382*tmp1681 + tmp382*tmp1707 + tmp382*tmp1736 + tmp382*tmp1768
+        + tmp382*tmp1646;
     const Scalar tmp1664 = carried[291];
     const Scalar tmp1706 = carried[314];
     const Scalar tmp1735 = carried[332];
     const Scalar tmp1767 = carried[352];
-    const Scalar tmp1933 = tmp233*tmp1706 + tmp233*tmp1735 + tmp233*tmp1767 + tmp233*tmp1664;
+    const Scalar tmp1933 = tmp382*tmp1706 + tmp382*tmp1735 + tmp382*tmp1767 + tmp382*tmp1664;
     const Scalar tmp1687 = carried[305];
     const Scalar tmp1734 = carried[331];
     const Scalar tmp1766 = carried[351];
-    const Scalar tmp1934 = tmp233*tmp1687 + tmp233*tmp1734 + tmp233*tmp1766;
+    const Scalar tmp1934 = tmp382*tmp1687 + tmp382*tmp1734 + tmp382*tmp1766;
     const Scalar tmp1713 = carried[321];
     const Scalar tmp1765 = carried[350];
-    const Scalar tmp1935 = tmp233*tmp1713 + tmp233*tmp1765;
+    const Scalar tmp1935 = tmp382*tmp1713 + tmp382*tmp1765;
     const Scalar tmp199 = carried[154];
-    const Scalar tmp1936 = tmp233*l*tmp199;
+    const Scalar tmp1936 = tmp382*l*tmp199;
     const Scalar tmp44 = carried[22];
     const Scalar tmp53 = carried[31];
     const Scalar tmp63 = carried[37];
@@ -7059,9 +7059,9 @@ struct StiffChain10 {
     const Scalar tmp1889 = carried[392];
     const Scalar tmp1897 = carried[400];
     const Scalar tmp1906 = carried[409];
-    dr_dq_data[3 + 10 * 3] = phi9_ddot*tmp1897 + phi10_ddot*tmp1906 - tmp1930 - tmp1940
-        + phi1_ddot*tmp1864 + phi2_ddot*tmp1865 + phi3_ddot*tmp1866 + phi4_ddot*tmp1867
-        + phi5_ddot*tmp1871 + phi6_ddot*tmp1876 + phi7_ddot*tmp1882 + phi8_ddot*tmp1889;
+    dr_dq_data[3 + 10 * 3] = phi10_ddot*tmp1906 - tmp1930 - tmp1940 + phi1_ddot*tmp1864
+        + phi2_ddot*tmp1865 + phi3_ddot*tmp1866 + phi4_ddot*tmp1867 + phi5_ddot*tmp1871
+        + phi6_ddot*tmp1876 + phi7_ddot*tmp1882 + phi8_ddot*tmp1889 + phi9_ddot*tmp1897;
     const Scalar tmp57 = carried[33];
     const Scalar tmp60 = carried[35];
     const Scalar tmp84 = carried[54];
@@ -7173,9 +7173,9 @@ struct StiffChain10 {
         - tmp166*tmp1923 - tmp163*tmp1924 - tmp202*tmp1925 - tmp222*tmp1926;
     const Scalar tmp1902 = carried[405];
     const Scalar tmp1911 = carried[414];
-    dr_dq_data[8 + 10 * 3] = phi4_ddot*tmp1897 + phi5_ddot*tmp1898 + phi6_ddot*tmp1899
-        + phi7_ddot*tmp1900 + phi8_ddot*tmp1901 + phi9_ddot*tmp1902 + phi10_ddot*tmp1911 - tmp1935
-        - tmp1945 + phi1_ddot*tmp1894 + phi2_ddot*tmp1895 + phi3_ddot*tmp1896;
+    dr_dq_data[8 + 10 * 3] = phi5_ddot*tmp1898 + phi6_ddot*tmp1899 + phi7_ddot*tmp1900
+        + phi8_ddot*tmp1901 + phi9_ddot*tmp1902 + phi10_ddot*tmp1911 - tmp1935 - tmp1945
+        + phi1_ddot*tmp1894 + phi2_ddot*tmp1895 + phi3_ddot*tmp1896 + phi4_ddot*tmp1897;
     const Scalar tmp197 = carried[153];
     const Scalar tmp200 = carried[155];
     const Scalar tmp1742 = carried[339];
@@ -7572,11 +7572,11 @@ struct StiffChain10 {
         + tmp227*m*tmp2066 + tmp226*m*tmp2067 + (tmp57*m + tmp72*m)*tmp1947
         + (tmp60*m + tmp64*m)*tmp1949 + tmp86*m*tmp1959 + tmp84*m*tmp1960 + tmp97*m*tmp1968
         + tmp96*m*tmp1969 + tmp114*m*tmp1973 + tmp109*m*tmp1976;
-    const Scalar tmp327 = carried[258];
+    const Scalar tmp325 = carried[257];
     const Scalar tmp2162 = Scalar(2)*tmp124*m*tmp1986 + Scalar(2)*tmp138*m*tmp1993
         + Scalar(2)*tmp155*m*tmp2009 + Scalar(2)*tmp169*m*tmp2017 + Scalar(2)*tmp189*m*tmp2036
-        + Scalar(2)*tmp203*m*tmp2044 + Scalar(2)*tmp226*m*tmp2066 + Scalar(2)*tmp327*tmp56*m*tmp59
-        + Scalar(2)*tmp327*tmp59*m*tmp1948 + Scalar(2)*tmp84*m*tmp1959 + Scalar(2)*tmp96*m*tmp1968
+        + Scalar(2)*tmp203*m*tmp2044 + Scalar(2)*tmp226*m*tmp2066 + Scalar(2)*tmp325*tmp56*m*tmp59
+        + Scalar(2)*tmp325*tmp59*m*tmp1948 + Scalar(2)*tmp84*m*tmp1959 + Scalar(2)*tmp96*m*tmp1968
         + Scalar(2)*tmp109*m*tmp1973;
     const Scalar tmp2163 = tmp128*m*tmp1985 + tmp123*m*tmp1986 + tmp140*m*tmp1993 + tmp139*m*tmp1994
         + tmp159*m*tmp2008 + tmp154*m*tmp2009 + tmp172*m*tmp2017 + tmp170*m*tmp2019
@@ -7605,8 +7605,8 @@ struct StiffChain10 {
         + tmp79*m*tmp1968 + tmp111*m*tmp1973 + tmp109*m*tmp1974;
     const Scalar tmp2168 = Scalar(2)*tmp123*m*tmp1985 + Scalar(2)*tmp140*m*tmp1994
         + Scalar(2)*tmp154*m*tmp2008 + Scalar(2)*tmp172*m*tmp2019 + Scalar(2)*tmp188*m*tmp2035
-        + Scalar(2)*tmp206*m*tmp2046 + Scalar(2)*tmp225*m*tmp2065 + Scalar(2)*tmp327*tmp78*m*tmp81
-        + Scalar(2)*tmp327*tmp81*m*tmp1957 + Scalar(2)*tmp111*m*tmp1974;
+        + Scalar(2)*tmp206*m*tmp2046 + Scalar(2)*tmp225*m*tmp2065 + Scalar(2)*tmp325*tmp78*m*tmp81
+        + Scalar(2)*tmp325*tmp81*m*tmp1957 + Scalar(2)*tmp111*m*tmp1974;
     const Scalar tmp2169 = tmp104*m*tmp1986 + tmp139*m*tmp1992 + tmp137*m*tmp1993 + tmp159*m*tmp2007
         + tmp153*m*tmp2009 + tmp170*m*tmp2016 + tmp168*m*tmp2017 + tmp193*m*tmp2034
         + tmp187*m*tmp2036 + tmp208*m*tmp2044 + tmp204*m*tmp2048 + tmp230*m*tmp2064
@@ -7633,8 +7633,8 @@ struct StiffChain10 {
         + tmp224*m*tmp2065 + tmp123*m*tmp1970 + tmp111*m*tmp1972 + tmp107*m*tmp1974;
     const Scalar tmp2175 = Scalar(2)*tmp137*m*tmp1992 + Scalar(2)*tmp153*m*tmp2007
         + Scalar(2)*tmp168*m*tmp2016 + Scalar(2)*tmp187*m*tmp2034 + Scalar(2)*tmp208*m*tmp2048
-        + Scalar(2)*tmp224*m*tmp2064 + Scalar(2)*tmp327*tmp103*m*tmp106
-        + Scalar(2)*tmp327*tmp106*m*tmp1971;
+        + Scalar(2)*tmp224*m*tmp2064 + Scalar(2)*tmp325*tmp103*m*tmp106
+        + Scalar(2)*tmp325*tmp106*m*tmp1971;
     const Scalar tmp2176 = tmp159*m*tmp1989 + tmp139*m*tmp1991 + tmp135*m*tmp1993 + tmp132*m*tmp2009
         + tmp171*m*tmp2017 + tmp170*m*tmp2018 + tmp193*m*tmp2033 + tmp186*m*tmp2036
         + tmp205*m*tmp2044 + tmp204*m*tmp2045 + tmp230*m*tmp2063 + tmp223*m*tmp2066;
@@ -7656,7 +7656,7 @@ struct StiffChain10 {
     const Scalar tmp2182 = tmp153*m*tmp1989 + tmp137*m*tmp1991 + tmp135*m*tmp1992 + tmp132*m*tmp2007
         + tmp171*m*tmp2016 + tmp168*m*tmp2018 + tmp187*m*tmp2033 + tmp186*m*tmp2034
         + tmp208*m*tmp2045 + tmp205*m*tmp2048 + tmp224*m*tmp2063 + tmp223*m*tmp2064;
-    const Scalar tmp2183 = Scalar(2)*tmp131*tmp327*m*tmp134 + Scalar(2)*tmp134*tmp327*m*tmp1990
+    const Scalar tmp2183 = Scalar(2)*tmp131*tmp325*m*tmp134 + Scalar(2)*tmp134*tmp325*m*tmp1990
         + Scalar(2)*tmp171*m*tmp2018 + Scalar(2)*tmp186*m*tmp2033 + Scalar(2)*tmp205*m*tmp2045
         + Scalar(2)*tmp223*m*tmp2063;
     const Scalar tmp2184 = tmp193*m*tmp2013 + tmp170*m*tmp2015 + tmp166*m*tmp2017 + tmp163*m*tmp2036
@@ -7675,7 +7675,7 @@ struct StiffChain10 {
         + tmp208*m*tmp2043 + tmp202*m*tmp2048 + tmp224*m*tmp2062 + tmp222*m*tmp2064;
     const Scalar tmp2191 = tmp186*m*tmp2013 + tmp171*m*tmp2015 + tmp166*m*tmp2018 + tmp163*m*tmp2033
         + tmp205*m*tmp2043 + tmp202*m*tmp2045 + tmp223*m*tmp2062 + tmp222*m*tmp2063;
-    const Scalar tmp2192 = Scalar(2)*tmp162*tmp327*m*tmp165 + Scalar(2)*tmp165*tmp327*m*tmp2014
+    const Scalar tmp2192 = Scalar(2)*tmp162*tmp325*m*tmp165 + Scalar(2)*tmp165*tmp325*m*tmp2014
         + Scalar(2)*tmp202*m*tmp2043 + Scalar(2)*tmp222*m*tmp2062;
     const Scalar tmp2193 = tmp230*m*tmp2040 + tmp204*m*tmp2042 + tmp200*m*tmp2044
         + tmp197*m*tmp2066;
@@ -7695,7 +7695,7 @@ struct StiffChain10 {
         + tmp197*m*tmp2063;
     const Scalar tmp2201 = tmp222*m*tmp2040 + tmp202*m*tmp2042 + tmp200*m*tmp2043
         + tmp197*m*tmp2062;
-    const Scalar tmp2202 = Scalar(2)*tmp196*tmp327*m*tmp199 + Scalar(2)*tmp199*tmp327*m*tmp2041;
+    const Scalar tmp2202 = Scalar(2)*tmp196*tmp325*m*tmp199 + Scalar(2)*tmp199*tmp325*m*tmp2041;
     const Scalar tmp2203 = m*tmp2076;
     const Scalar tmp2204 = m*tmp2077;
     const Scalar tmp2205 = m*tmp2086;
@@ -7708,22 +7708,22 @@ struct StiffChain10 {
     const Scalar tmp2212 = m*tmp2129;
     const Scalar tmp2213 = m*tmp2146;
     const Scalar tmp2214 = m*tmp2147;
-    const Scalar tmp2215 = tmp233*tmp1986 + tmp233*tmp2009 + tmp233*tmp2036 + tmp233*tmp2066
-        + tmp233*tmp1947 + tmp233*tmp1968;
-    const Scalar tmp2216 = tmp233*tmp1988 + tmp233*tmp2012 + tmp233*tmp2039 + tmp233*tmp2069
-        + tmp233*tmp1947 + tmp233*tmp1969;
-    const Scalar tmp2217 = tmp233*tmp1986 + tmp233*tmp2011 + tmp233*tmp2038 + tmp233*tmp2068
-        + tmp233*tmp1947 + tmp233*tmp1968;
-    const Scalar tmp2218 = tmp233*tmp1987 + tmp233*tmp2010 + tmp233*tmp2037 + tmp233*tmp2067
-        + tmp233*tmp1947 + tmp233*tmp1969;
-    const Scalar tmp2219 = tmp233*tmp1986 + tmp233*tmp2009 + tmp233*tmp2036 + tmp233*tmp2066 - k
-        + tmp233*tmp1947 + tmp233*tmp1968;
-    const Scalar tmp2220 = tmp233*tmp1985 + tmp233*tmp2008 + tmp233*tmp2035 + tmp233*tmp2065
-        + tmp233*tmp1956;
-    const Scalar tmp2221 = tmp233*tmp2007 + tmp233*tmp2034 + tmp233*tmp2064 + tmp233*tmp1970;
-    const Scalar tmp2222 = tmp233*tmp1989 + tmp233*tmp2033 + tmp233*tmp2063;
-    const Scalar tmp2223 = tmp233*tmp2013 + tmp233*tmp2062;
-    const Scalar tmp2224 = tmp233*l*tmp199;
+    const Scalar tmp2215 = tmp382*tmp1986 + tmp382*tmp2009 + tmp382*tmp2036 + tmp382*tmp2066
+        + tmp382*tmp1947 + tmp382*tmp1968;
+    const Scalar tmp2216 = tmp382*tmp1988 + tmp382*tmp2012 + tmp382*tmp2039 + tmp382*tmp2069
+        + tmp382*tmp1947 + tmp382*tmp1969;
+    const Scalar tmp2217 = tmp382*tmp1986 + tmp382*tmp2011 + tmp382*tmp2038 + tmp382*tmp2068
+        + tmp382*tmp1947 + tmp382*tmp1968;
+    const Scalar tmp2218 = tmp382*tmp1987 + tmp382*tmp2010 + tmp382*tmp2037 + tmp382*tmp2067
+        + tmp382*tmp1947 + tmp382*tmp1969;
+    const Scalar tmp2219 = tmp382*tmp1986 + tmp382*tmp2009 + tmp382*tmp2036 + tmp382*tmp2066 - k
+        + tmp382*tmp1947 + tmp382*tmp1968;
+    const Scalar tmp2220 = tmp382*tmp1985 + tmp382*tmp2008 + tmp382*tmp2035 + tmp382*tmp2065
+        + tmp382*tmp1956;
+    const Scalar tmp2221 = tmp382*tmp2007 + tmp382*tmp2034 + tmp382*tmp2064 + tmp382*tmp1970;
+    const Scalar tmp2222 = tmp382*tmp1989 + tmp382*tmp2033 + tmp382*tmp2063;
+    const Scalar tmp2223 = tmp382*tmp2013 + tmp382*tmp2062;
+    const Scalar tmp2224 = tmp382*l*tmp199;
     const Scalar tmp2225 = -tmp396*tmp1986 - tmp397*tmp1993 - tmp398*tmp2009 - tmp399*tmp2017
         - tmp400*tmp2036 - tmp401*tmp2044 - tmp402*tmp2066 - tmp391*tmp1949 - tmp392*tmp1947
         - tmp393*tmp1959 - tmp394*tmp1968 - tmp395*tmp1973 - tmp63*tmp2203 - tmp75*tmp2204
@@ -7753,9 +7753,9 @@ struct StiffChain10 {
         - tmp393*tmp1960 - tmp394*tmp1969 - tmp395*tmp1976 - tmp64*tmp2203 - tmp72*tmp2204
         - tmp86*tmp2205 - tmp97*tmp2206 - tmp114*tmp2207 - tmp125*tmp2208 - tmp143*tmp2209
         - tmp156*tmp2210 - tmp175*tmp2211 - tmp190*tmp2212 - tmp210*tmp2213 - tmp227*tmp2214;
-    dr_dq_data[3 + 10 * 4] = phi9_ddot*tmp2187 + phi10_ddot*tmp2196 - tmp2218 - tmp2228
-        + phi1_ddot*tmp2154 + phi2_ddot*tmp2155 + phi3_ddot*tmp2156 + phi4_ddot*tmp2157
-        + phi5_ddot*tmp2161 + phi6_ddot*tmp2166 + phi7_ddot*tmp2172 + phi8_ddot*tmp2179;
+    dr_dq_data[3 + 10 * 4] = phi10_ddot*tmp2196 - tmp2218 - tmp2228 + phi1_ddot*tmp2154
+        + phi2_ddot*tmp2155 + phi3_ddot*tmp2156 + phi4_ddot*tmp2157 + phi5_ddot*tmp2161
+        + phi6_ddot*tmp2166 + phi7_ddot*tmp2172 + phi8_ddot*tmp2179 + phi9_ddot*tmp2187;
     const Scalar tmp2229 = -tmp396*tmp1986 - tmp397*tmp1993 - tmp398*tmp2009 - tmp399*tmp2017
         - tmp400*tmp2036 - tmp401*tmp2044 - tmp402*tmp2066 - tmp392*tmp1947 - tmp391*tmp1949
         - tmp393*tmp1959 - tmp394*tmp1968 - tmp395*tmp1973 - tmp60*tmp2203 - tmp57*tmp2204
@@ -7787,9 +7787,9 @@ struct StiffChain10 {
         + phi5_ddot*tmp2180 + phi6_ddot*tmp2181 + phi7_ddot*tmp2182 + phi8_ddot*tmp2183;
     const Scalar tmp2233 = -tmp400*tmp2013 - tmp399*tmp2015 - tmp401*tmp2043 - tmp402*tmp2062
         - tmp166*tmp2211 - tmp163*tmp2212 - tmp202*tmp2213 - tmp222*tmp2214;
-    dr_dq_data[8 + 10 * 4] = phi4_ddot*tmp2187 + phi5_ddot*tmp2188 + phi6_ddot*tmp2189
-        + phi7_ddot*tmp2190 + phi8_ddot*tmp2191 + phi9_ddot*tmp2192 + phi10_ddot*tmp2201 - tmp2223
-        - tmp2233 + phi1_ddot*tmp2184 + phi2_ddot*tmp2185 + phi3_ddot*tmp2186;
+    dr_dq_data[8 + 10 * 4] = phi5_ddot*tmp2188 + phi6_ddot*tmp2189 + phi7_ddot*tmp2190
+        + phi8_ddot*tmp2191 + phi9_ddot*tmp2192 + phi10_ddot*tmp2201 - tmp2223 - tmp2233
+        + phi1_ddot*tmp2184 + phi2_ddot*tmp2185 + phi3_ddot*tmp2186 + phi4_ddot*tmp2187;
     const Scalar tmp2234 = -tmp402*tmp2040 - tmp401*tmp2042 - tmp200*tmp2213 - tmp197*tmp2214;
     dr_dq_data[9 + 10 * 4] = phi1_ddot*tmp2193 + phi2_ddot*tmp2194 + phi3_ddot*tmp2195
         + phi4_ddot*tmp2196 + phi5_ddot*tmp2197 + phi6_ddot*tmp2198 + phi7_ddot*tmp2199
@@ -8148,8 +8148,8 @@ struct StiffChain10 {
         + (tmp82*m + tmp84*m)*tmp2237 + tmp111*m*tmp2248 + tmp109*m*tmp2249;
     const Scalar tmp2423 = Scalar(2)*tmp123*m*tmp2258 + Scalar(2)*tmp140*m*tmp2265
         + Scalar(2)*tmp154*m*tmp2277 + Scalar(2)*tmp172*m*tmp2286 + Scalar(2)*tmp188*m*tmp2301
-        + Scalar(2)*tmp206*m*tmp2311 + Scalar(2)*tmp225*m*tmp2329 + Scalar(2)*tmp327*tmp78*m*tmp81
-        + Scalar(2)*tmp327*tmp81*m*tmp2236 + Scalar(2)*tmp111*m*tmp2249;
+        + Scalar(2)*tmp206*m*tmp2311 + Scalar(2)*tmp225*m*tmp2329 + Scalar(2)*tmp325*tmp78*m*tmp81
+        + Scalar(2)*tmp325*tmp81*m*tmp2236 + Scalar(2)*tmp111*m*tmp2249;
     const Scalar tmp2424 = tmp104*m*tmp2259 + tmp139*m*tmp2263 + tmp137*m*tmp2264 + tmp159*m*tmp2276
         + tmp153*m*tmp2278 + tmp170*m*tmp2283 + tmp168*m*tmp2284 + tmp193*m*tmp2300
         + tmp187*m*tmp2302 + tmp208*m*tmp2309 + tmp204*m*tmp2312 + tmp230*m*tmp2328
@@ -8176,8 +8176,8 @@ struct StiffChain10 {
         + tmp224*m*tmp2329 + tmp123*m*tmp2245 + tmp111*m*tmp2247 + tmp107*m*tmp2249;
     const Scalar tmp2430 = Scalar(2)*tmp137*m*tmp2263 + Scalar(2)*tmp153*m*tmp2276
         + Scalar(2)*tmp168*m*tmp2283 + Scalar(2)*tmp187*m*tmp2300 + Scalar(2)*tmp208*m*tmp2312
-        + Scalar(2)*tmp224*m*tmp2328 + Scalar(2)*tmp327*tmp103*m*tmp106
-        + Scalar(2)*tmp327*tmp106*m*tmp2246;
+        + Scalar(2)*tmp224*m*tmp2328 + Scalar(2)*tmp325*tmp103*m*tmp106
+        + Scalar(2)*tmp325*tmp106*m*tmp2246;
     const Scalar tmp2431 = tmp159*m*tmp2260 + tmp139*m*tmp2262 + tmp135*m*tmp2264 + tmp132*m*tmp2278
         + tmp171*m*tmp2284 + tmp170*m*tmp2285 + tmp193*m*tmp2299 + tmp186*m*tmp2302
         + tmp205*m*tmp2309 + tmp204*m*tmp2310 + tmp230*m*tmp2327 + tmp223*m*tmp2330;
@@ -8199,7 +8199,7 @@ struct StiffChain10 {
     const Scalar tmp2437 = tmp153*m*tmp2260 + tmp137*m*tmp2262 + tmp135*m*tmp2263 + tmp132*m*tmp2276
         + tmp171*m*tmp2283 + tmp168*m*tmp2285 + tmp187*m*tmp2299 + tmp186*m*tmp2300
         + tmp208*m*tmp2310 + tmp205*m*tmp2312 + tmp224*m*tmp2327 + tmp223*m*tmp2328;
-    const Scalar tmp2438 = Scalar(2)*tmp131*tmp327*m*tmp134 + Scalar(2)*tmp134*tmp327*m*tmp2261
+    const Scalar tmp2438 = Scalar(2)*tmp131*tmp325*m*tmp134 + Scalar(2)*tmp134*tmp325*m*tmp2261
         + Scalar(2)*tmp171*m*tmp2285 + Scalar(2)*tmp186*m*tmp2299 + Scalar(2)*tmp205*m*tmp2310
         + Scalar(2)*tmp223*m*tmp2327;
     const Scalar tmp2439 = tmp193*m*tmp2280 + tmp170*m*tmp2282 + tmp166*m*tmp2284 + tmp163*m*tmp2302
@@ -8218,7 +8218,7 @@ struct StiffChain10 {
         + tmp208*m*tmp2308 + tmp202*m*tmp2312 + tmp224*m*tmp2326 + tmp222*m*tmp2328;
     const Scalar tmp2446 = tmp186*m*tmp2280 + tmp171*m*tmp2282 + tmp166*m*tmp2285 + tmp163*m*tmp2299
         + tmp205*m*tmp2308 + tmp202*m*tmp2310 + tmp223*m*tmp2326 + tmp222*m*tmp2327;
-    const Scalar tmp2447 = Scalar(2)*tmp162*tmp327*m*tmp165 + Scalar(2)*tmp165*tmp327*m*tmp2281
+    const Scalar tmp2447 = Scalar(2)*tmp162*tmp325*m*tmp165 + Scalar(2)*tmp165*tmp325*m*tmp2281
         + Scalar(2)*tmp202*m*tmp2308 + Scalar(2)*tmp222*m*tmp2326;
     const Scalar tmp2448 = tmp230*m*tmp2305 + tmp204*m*tmp2307 + tmp200*m*tmp2309
         + tmp197*m*tmp2330;
@@ -8238,7 +8238,7 @@ struct StiffChain10 {
         + tmp197*m*tmp2327;
     const Scalar tmp2456 = tmp222*m*tmp2305 + tmp202*m*tmp2307 + tmp200*m*tmp2308
         + tmp197*m*tmp2326;
-    const Scalar tmp2457 = Scalar(2)*tmp196*tmp327*m*tmp199 + Scalar(2)*tmp199*tmp327*m*tmp2306;
+    const Scalar tmp2457 = Scalar(2)*tmp196*tmp325*m*tmp199 + Scalar(2)*tmp199*tmp325*m*tmp2306;
     const Scalar tmp2458 = m*tmp2341;
     const Scalar tmp2459 = m*tmp2342;
     const Scalar tmp2460 = m*tmp2353;
@@ -8249,22 +8249,22 @@ struct StiffChain10 {
     const Scalar tmp2465 = m*tmp2384;
     const Scalar tmp2466 = m*tmp2401;
     const Scalar tmp2467 = m*tmp2402;
-    const Scalar tmp2468 = tmp233*tmp2259 + tmp233*tmp2278 + tmp233*tmp2302 + tmp233*tmp2330
-        + tmp233*tmp2235;
-    const Scalar tmp2469 = tmp233*tmp2258 + tmp233*tmp2277 + tmp233*tmp2301 + tmp233*tmp2329
-        + tmp233*tmp2235;
-    const Scalar tmp2470 = tmp233*tmp2259 + tmp233*tmp2279 + tmp233*tmp2304 + tmp233*tmp2332
-        + tmp233*tmp2235;
-    const Scalar tmp2471 = tmp233*tmp2258 + tmp233*tmp2277 + tmp233*tmp2303 + tmp233*tmp2331
-        + tmp233*tmp2235;
-    const Scalar tmp2472 = tmp233*tmp2259 + tmp233*tmp2278 + tmp233*tmp2302 + tmp233*tmp2330
-        + tmp233*tmp2235;
-    const Scalar tmp2473 = tmp233*tmp2258 + tmp233*tmp2277 + tmp233*tmp2301 + tmp233*tmp2329 - k
-        + tmp233*tmp2235;
-    const Scalar tmp2474 = tmp233*tmp2276 + tmp233*tmp2300 + tmp233*tmp2328 + tmp233*tmp2245;
-    const Scalar tmp2475 = tmp233*tmp2260 + tmp233*tmp2299 + tmp233*tmp2327;
-    const Scalar tmp2476 = tmp233*tmp2280 + tmp233*tmp2326;
-    const Scalar tmp2477 = tmp233*l*tmp199;
+    const Scalar tmp2468 = tmp382*tmp2259 + tmp382*tmp2278 + tmp382*tmp2302 + tmp382*tmp2330
+        + tmp382*tmp2235;
+    const Scalar tmp2469 = tmp382*tmp2258 + tmp382*tmp2277 + tmp382*tmp2301 + tmp382*tmp2329
+        + tmp382*tmp2235;
+    const Scalar tmp2470 = tmp382*tmp2259 + tmp382*tmp2279 + tmp382*tmp2304 + tmp382*tmp2332
+        + tmp382*tmp2235;
+    const Scalar tmp2471 = tmp382*tmp2258 + tmp382*tmp2277 + tmp382*tmp2303 + tmp382*tmp2331
+        + tmp382*tmp2235;
+    const Scalar tmp2472 = tmp382*tmp2259 + tmp382*tmp2278 + tmp382*tmp2302 + tmp382*tmp2330
+        + tmp382*tmp2235;
+    const Scalar tmp2473 = tmp382*tmp2258 + tmp382*tmp2277 + tmp382*tmp2301 + tmp382*tmp2329 - k
+        + tmp382*tmp2235;
+    const Scalar tmp2474 = tmp382*tmp2276 + tmp382*tmp2300 + tmp382*tmp2328 + tmp382*tmp2245;
+    const Scalar tmp2475 = tmp382*tmp2260 + tmp382*tmp2299 + tmp382*tmp2327;
+    const Scalar tmp2476 = tmp382*tmp2280 + tmp382*tmp2326;
+    const Scalar tmp2477 = tmp382*l*tmp199;
     const Scalar tmp2478 = -tmp396*tmp2259 - tmp397*tmp2264 - tmp398*tmp2278 - tmp399*tmp2284
         - tmp400*tmp2302 - tmp401*tmp2309 - tmp402*tmp2330 - tmp393*tmp2237 - tmp394*tmp2235
         - tmp395*tmp2248 - tmp85*tmp2458 - tmp100*tmp2459 - tmp110*tmp2460 - tmp128*tmp2461
@@ -8294,9 +8294,9 @@ struct StiffChain10 {
         - tmp395*tmp2249 - tmp86*tmp2458 - tmp97*tmp2459 - tmp114*tmp2460 - tmp125*tmp2461
         - tmp143*tmp2462 - tmp156*tmp2463 - tmp175*tmp2464 - tmp190*tmp2465 - tmp210*tmp2466
         - tmp227*tmp2467;
-    dr_dq_data[3 + 10 * 5] = phi9_ddot*tmp2442 + phi10_ddot*tmp2451 - tmp2471 - tmp2481
-        + phi1_ddot*tmp2409 + phi2_ddot*tmp2410 + phi3_ddot*tmp2411 + phi4_ddot*tmp2412
-        + phi5_ddot*tmp2416 + phi6_ddot*tmp2421 + phi7_ddot*tmp2427 + phi8_ddot*tmp2434;
+    dr_dq_data[3 + 10 * 5] = phi10_ddot*tmp2451 - tmp2471 - tmp2481 + phi1_ddot*tmp2409
+        + phi2_ddot*tmp2410 + phi3_ddot*tmp2411 + phi4_ddot*tmp2412 + phi5_ddot*tmp2416
+        + phi6_ddot*tmp2421 + phi7_ddot*tmp2427 + phi8_ddot*tmp2434 + phi9_ddot*tmp2442;
     const Scalar tmp2482 = -tmp396*tmp2259 - tmp397*tmp2264 - tmp398*tmp2278 - tmp399*tmp2284
         - tmp400*tmp2302 - tmp401*tmp2309 - tmp402*tmp2330 - tmp393*tmp2237 - tmp394*tmp2235
         - tmp395*tmp2248 - tmp84*tmp2458 - tmp96*tmp2459 - tmp109*tmp2460 - tmp124*tmp2461
@@ -8328,9 +8328,9 @@ struct StiffChain10 {
         + phi5_ddot*tmp2435 + phi6_ddot*tmp2436 + phi7_ddot*tmp2437 + phi8_ddot*tmp2438;
     const Scalar tmp2486 = -tmp400*tmp2280 - tmp399*tmp2282 - tmp401*tmp2308 - tmp402*tmp2326
         - tmp166*tmp2464 - tmp163*tmp2465 - tmp202*tmp2466 - tmp222*tmp2467;
-    dr_dq_data[8 + 10 * 5] = phi4_ddot*tmp2442 + phi5_ddot*tmp2443 + phi6_ddot*tmp2444
-        + phi7_ddot*tmp2445 + phi8_ddot*tmp2446 + phi9_ddot*tmp2447 + phi10_ddot*tmp2456 - tmp2476
-        - tmp2486 + phi1_ddot*tmp2439 + phi2_ddot*tmp2440 + phi3_ddot*tmp2441;
+    dr_dq_data[8 + 10 * 5] = phi5_ddot*tmp2443 + phi6_ddot*tmp2444 + phi7_ddot*tmp2445
+        + phi8_ddot*tmp2446 + phi9_ddot*tmp2447 + phi10_ddot*tmp2456 - tmp2476 - tmp2486
+        + phi1_ddot*tmp2439 + phi2_ddot*tmp2440 + phi3_ddot*tmp2441 + phi4_ddot*tmp2442;
     const Scalar tmp2487 = -tmp402*tmp2305 - tmp401*tmp2307 - tmp200*tmp2466 - tmp197*tmp2467;
     dr_dq_data[9 + 10 * 5] = phi1_ddot*tmp2448 + phi2_ddot*tmp2449 + phi3_ddot*tmp2450
         + phi4_ddot*tmp2451 + phi5_ddot*tmp2452 + phi6_ddot*tmp2453 + phi7_ddot*tmp2454
@@ -8650,8 +8650,8 @@ struct StiffChain10 {
         + tmp225*m*tmp2558 + tmp224*m*tmp2559 + (tmp107*m + tmp111*m)*tmp2490;
     const Scalar tmp2649 = Scalar(2)*tmp137*m*tmp2502 + Scalar(2)*tmp153*m*tmp2513
         + Scalar(2)*tmp168*m*tmp2518 + Scalar(2)*tmp187*m*tmp2533 + Scalar(2)*tmp208*m*tmp2543
-        + Scalar(2)*tmp224*m*tmp2558 + Scalar(2)*tmp327*tmp103*m*tmp106
-        + Scalar(2)*tmp327*tmp106*m*tmp2489;
+        + Scalar(2)*tmp224*m*tmp2558 + Scalar(2)*tmp325*tmp103*m*tmp106
+        + Scalar(2)*tmp325*tmp106*m*tmp2489;
     const Scalar tmp2650 = tmp159*m*tmp2499 + tmp139*m*tmp2501 + tmp135*m*tmp2502 + tmp132*m*tmp2513
         + tmp171*m*tmp2518 + tmp170*m*tmp2519 + tmp193*m*tmp2532 + tmp186*m*tmp2533
         + tmp205*m*tmp2540 + tmp204*m*tmp2541 + tmp230*m*tmp2557 + tmp223*m*tmp2560;
@@ -8673,7 +8673,7 @@ struct StiffChain10 {
     const Scalar tmp2656 = tmp153*m*tmp2499 + tmp137*m*tmp2501 + tmp135*m*tmp2502 + tmp132*m*tmp2513
         + tmp171*m*tmp2518 + tmp168*m*tmp2519 + tmp187*m*tmp2532 + tmp186*m*tmp2533
         + tmp208*m*tmp2541 + tmp205*m*tmp2543 + tmp224*m*tmp2557 + tmp223*m*tmp2558;
-    const Scalar tmp2657 = Scalar(2)*tmp131*tmp327*m*tmp134 + Scalar(2)*tmp134*tmp327*m*tmp2500
+    const Scalar tmp2657 = Scalar(2)*tmp131*tmp325*m*tmp134 + Scalar(2)*tmp134*tmp325*m*tmp2500
         + Scalar(2)*tmp171*m*tmp2519 + Scalar(2)*tmp186*m*tmp2532 + Scalar(2)*tmp205*m*tmp2541
         + Scalar(2)*tmp223*m*tmp2557;
     const Scalar tmp2658 = tmp193*m*tmp2515 + tmp170*m*tmp2517 + tmp166*m*tmp2518 + tmp163*m*tmp2533
@@ -8692,7 +8692,7 @@ struct StiffChain10 {
         + tmp208*m*tmp2539 + tmp202*m*tmp2543 + tmp224*m*tmp2556 + tmp222*m*tmp2558;
     const Scalar tmp2665 = tmp186*m*tmp2515 + tmp171*m*tmp2517 + tmp166*m*tmp2519 + tmp163*m*tmp2532
         + tmp205*m*tmp2539 + tmp202*m*tmp2541 + tmp223*m*tmp2556 + tmp222*m*tmp2557;
-    const Scalar tmp2666 = Scalar(2)*tmp162*tmp327*m*tmp165 + Scalar(2)*tmp165*tmp327*m*tmp2516
+    const Scalar tmp2666 = Scalar(2)*tmp162*tmp325*m*tmp165 + Scalar(2)*tmp165*tmp325*m*tmp2516
         + Scalar(2)*tmp202*m*tmp2539 + Scalar(2)*tmp222*m*tmp2556;
     const Scalar tmp2667 = tmp230*m*tmp2536 + tmp204*m*tmp2538 + tmp200*m*tmp2540
         + tmp197*m*tmp2560;
@@ -8712,7 +8712,7 @@ struct StiffChain10 {
         + tmp197*m*tmp2557;
     const Scalar tmp2675 = tmp222*m*tmp2536 + tmp202*m*tmp2538 + tmp200*m*tmp2539
         + tmp197*m*tmp2556;
-    const Scalar tmp2676 = Scalar(2)*tmp196*tmp327*m*tmp199 + Scalar(2)*tmp199*tmp327*m*tmp2537;
+    const Scalar tmp2676 = Scalar(2)*tmp196*tmp325*m*tmp199 + Scalar(2)*tmp199*tmp325*m*tmp2537;
     const Scalar tmp2677 = m*tmp2572;
     const Scalar tmp2678 = m*tmp2573;
     const Scalar tmp2679 = m*tmp2586;
@@ -8721,16 +8721,16 @@ struct StiffChain10 {
     const Scalar tmp2682 = m*tmp2603;
     const Scalar tmp2683 = m*tmp2620;
     const Scalar tmp2684 = m*tmp2621;
-    const Scalar tmp2685 = tmp233*tmp2488 + tmp233*tmp2513 + tmp233*tmp2533 + tmp233*tmp2560;
-    const Scalar tmp2686 = tmp233*tmp2488 + tmp233*tmp2514 + tmp233*tmp2534 + tmp233*tmp2559;
-    const Scalar tmp2687 = tmp233*tmp2488 + tmp233*tmp2513 + tmp233*tmp2533 + tmp233*tmp2558;
-    const Scalar tmp2688 = tmp233*tmp2488 + tmp233*tmp2514 + tmp233*tmp2535 + tmp233*tmp2561;
-    const Scalar tmp2689 = tmp233*tmp2488 + tmp233*tmp2513 + tmp233*tmp2533 + tmp233*tmp2560;
-    const Scalar tmp2690 = tmp233*tmp2488 + tmp233*tmp2514 + tmp233*tmp2534 + tmp233*tmp2559;
-    const Scalar tmp2691 = tmp233*tmp2513 + tmp233*tmp2533 + tmp233*tmp2558 - k + tmp233*tmp2488;
-    const Scalar tmp2692 = tmp233*tmp2499 + tmp233*tmp2532 + tmp233*tmp2557;
-    const Scalar tmp2693 = tmp233*tmp2515 + tmp233*tmp2556;
-    const Scalar tmp2694 = tmp233*l*tmp199;
+    const Scalar tmp2685 = tmp382*tmp2488 + tmp382*tmp2513 + tmp382*tmp2533 + tmp382*tmp2560;
+    const Scalar tmp2686 = tmp382*tmp2488 + tmp382*tmp2514 + tmp382*tmp2534 + tmp382*tmp2559;
+    const Scalar tmp2687 = tmp382*tmp2488 + tmp382*tmp2513 + tmp382*tmp2533 + tmp382*tmp2558;
+    const Scalar tmp2688 = tmp382*tmp2488 + tmp382*tmp2514 + tmp382*tmp2535 + tmp382*tmp2561;
+    const Scalar tmp2689 = tmp382*tmp2488 + tmp382*tmp2513 + tmp382*tmp2533 + tmp382*tmp2560;
+    const Scalar tmp2690 = tmp382*tmp2488 + tmp382*tmp2514 + tmp382*tmp2534 + tmp382*tmp2559;
+    const Scalar tmp2691 = tmp382*tmp2513 + tmp382*tmp2533 + tmp382*tmp2558 - k + tmp382*tmp2488;
+    const Scalar tmp2692 = tmp382*tmp2499 + tmp382*tmp2532 + tmp382*tmp2557;
+    const Scalar tmp2693 = tmp382*tmp2515 + tmp382*tmp2556;
+    const Scalar tmp2694 = tmp382*l*tmp199;
     const Scalar tmp2695 = -tmp396*tmp2488 - tmp397*tmp2502 - tmp398*tmp2513 - tmp399*tmp2518
         - tmp400*tmp2533 - tmp401*tmp2540 - tmp402*tmp2560 - tmp395*tmp2490 - tmp110*tmp2677
         - tmp128*tmp2678 - tmp139*tmp2679 - tmp159*tmp2680 - tmp170*tmp2681 - tmp193*tmp2682
@@ -8756,9 +8756,9 @@ struct StiffChain10 {
         - tmp400*tmp2535 - tmp401*tmp2544 - tmp402*tmp2561 - tmp395*tmp2490 - tmp114*tmp2677
         - tmp125*tmp2678 - tmp143*tmp2679 - tmp156*tmp2680 - tmp175*tmp2681 - tmp190*tmp2682
         - tmp210*tmp2683 - tmp227*tmp2684;
-    dr_dq_data[3 + 10 * 6] = phi9_ddot*tmp2661 + phi10_ddot*tmp2670 - tmp2688 - tmp2698
-        + phi1_ddot*tmp2628 + phi2_ddot*tmp2629 + phi3_ddot*tmp2630 + phi4_ddot*tmp2631
-        + phi5_ddot*tmp2635 + phi6_ddot*tmp2640 + phi7_ddot*tmp2646 + phi8_ddot*tmp2653;
+    dr_dq_data[3 + 10 * 6] = phi10_ddot*tmp2670 - tmp2688 - tmp2698 + phi1_ddot*tmp2628
+        + phi2_ddot*tmp2629 + phi3_ddot*tmp2630 + phi4_ddot*tmp2631 + phi5_ddot*tmp2635
+        + phi6_ddot*tmp2640 + phi7_ddot*tmp2646 + phi8_ddot*tmp2653 + phi9_ddot*tmp2661;
     const Scalar tmp2699 = -tmp396*tmp2488 - tmp397*tmp2502 - tmp398*tmp2513 - tmp399*tmp2518
         - tmp400*tmp2533 - tmp401*tmp2540 - tmp402*tmp2560 - tmp395*tmp2490 - tmp109*tmp2677
         - tmp124*tmp2678 - tmp138*tmp2679 - tmp155*tmp2680 - tmp169*tmp2681 - tmp189*tmp2682
@@ -8788,9 +8788,9 @@ struct StiffChain10 {
         + phi5_ddot*tmp2654 + phi6_ddot*tmp2655 + phi7_ddot*tmp2656 + phi8_ddot*tmp2657;
     const Scalar tmp2703 = -tmp400*tmp2515 - tmp399*tmp2517 - tmp401*tmp2539 - tmp402*tmp2556
         - tmp166*tmp2681 - tmp163*tmp2682 - tmp202*tmp2683 - tmp222*tmp2684;
-    dr_dq_data[8 + 10 * 6] = phi4_ddot*tmp2661 + phi5_ddot*tmp2662 + phi6_ddot*tmp2663
-        + phi7_ddot*tmp2664 + phi8_ddot*tmp2665 + phi9_ddot*tmp2666 + phi10_ddot*tmp2675 - tmp2693
-        - tmp2703 + phi1_ddot*tmp2658 + phi2_ddot*tmp2659 + phi3_ddot*tmp2660;
+    dr_dq_data[8 + 10 * 6] = phi5_ddot*tmp2662 + phi6_ddot*tmp2663 + phi7_ddot*tmp2664
+        + phi8_ddot*tmp2665 + phi9_ddot*tmp2666 + phi10_ddot*tmp2675 - tmp2693 - tmp2703
+        + phi1_ddot*tmp2658 + phi2_ddot*tmp2659 + phi3_ddot*tmp2660 + phi4_ddot*tmp2661;
     const Scalar tmp2704 = -tmp402*tmp2536 - tmp401*tmp2538 - tmp200*tmp2683 - tmp197*tmp2684;
     dr_dq_data[9 + 10 * 6] = phi1_ddot*tmp2667 + phi2_ddot*tmp2668 + phi3_ddot*tmp2669
         + phi4_ddot*tmp2670 + phi5_ddot*tmp2671 + phi6_ddot*tmp2672 + phi7_ddot*tmp2673
@@ -9064,7 +9064,7 @@ struct StiffChain10 {
     const Scalar tmp2838 = (tmp132*m + tmp153*m)*tmp2705 + (tmp135*m + tmp137*m)*tmp2707
         + tmp171*m*tmp2720 + tmp168*m*tmp2721 + tmp187*m*tmp2732 + tmp186*m*tmp2733
         + tmp208*m*tmp2739 + tmp205*m*tmp2740 + tmp224*m*tmp2753 + tmp223*m*tmp2754;
-    const Scalar tmp2839 = Scalar(2)*tmp131*tmp327*m*tmp134 + Scalar(2)*tmp134*tmp327*m*tmp2706
+    const Scalar tmp2839 = Scalar(2)*tmp131*tmp325*m*tmp134 + Scalar(2)*tmp134*tmp325*m*tmp2706
         + Scalar(2)*tmp171*m*tmp2721 + Scalar(2)*tmp186*m*tmp2732 + Scalar(2)*tmp205*m*tmp2739
         + Scalar(2)*tmp223*m*tmp2753;
     const Scalar tmp2840 = tmp193*m*tmp2717 + tmp170*m*tmp2719 + tmp166*m*tmp2720 + tmp163*m*tmp2733
@@ -9083,7 +9083,7 @@ struct StiffChain10 {
         + tmp208*m*tmp2737 + tmp202*m*tmp2740 + tmp224*m*tmp2752 + tmp222*m*tmp2754;
     const Scalar tmp2847 = tmp186*m*tmp2717 + tmp171*m*tmp2719 + tmp166*m*tmp2721 + tmp163*m*tmp2732
         + tmp205*m*tmp2737 + tmp202*m*tmp2739 + tmp223*m*tmp2752 + tmp222*m*tmp2753;
-    const Scalar tmp2848 = Scalar(2)*tmp162*tmp327*m*tmp165 + Scalar(2)*tmp165*tmp327*m*tmp2718
+    const Scalar tmp2848 = Scalar(2)*tmp162*tmp325*m*tmp165 + Scalar(2)*tmp165*tmp325*m*tmp2718
         + Scalar(2)*tmp202*m*tmp2737 + Scalar(2)*tmp222*m*tmp2752;
     const Scalar tmp2849 = tmp230*m*tmp2734 + tmp204*m*tmp2736 + tmp200*m*tmp2738
         + tmp197*m*tmp2755;
@@ -9103,23 +9103,23 @@ struct StiffChain10 {
         + tmp197*m*tmp2753;
     const Scalar tmp2857 = tmp222*m*tmp2734 + tmp202*m*tmp2736 + tmp200*m*tmp2737
         + tmp197*m*tmp2752;
-    const Scalar tmp2858 = Scalar(2)*tmp196*tmp327*m*tmp199 + Scalar(2)*tmp199*tmp327*m*tmp2735;
+    const Scalar tmp2858 = Scalar(2)*tmp196*tmp325*m*tmp199 + Scalar(2)*tmp199*tmp325*m*tmp2735;
     const Scalar tmp2859 = m*tmp2768;
     const Scalar tmp2860 = m*tmp2769;
     const Scalar tmp2861 = m*tmp2784;
     const Scalar tmp2862 = m*tmp2785;
     const Scalar tmp2863 = m*tmp2802;
     const Scalar tmp2864 = m*tmp2803;
-    const Scalar tmp2865 = tmp233*tmp2705 + tmp233*tmp2733 + tmp233*tmp2755;
-    const Scalar tmp2866 = tmp233*tmp2705 + tmp233*tmp2732 + tmp233*tmp2753;
-    const Scalar tmp2867 = tmp233*tmp2705 + tmp233*tmp2733 + tmp233*tmp2754;
-    const Scalar tmp2868 = tmp233*tmp2705 + tmp233*tmp2732 + tmp233*tmp2753;
-    const Scalar tmp2869 = tmp233*tmp2705 + tmp233*tmp2733 + tmp233*tmp2755;
-    const Scalar tmp2870 = tmp233*tmp2705 + tmp233*tmp2732 + tmp233*tmp2753;
-    const Scalar tmp2871 = tmp233*tmp2705 + tmp233*tmp2733 + tmp233*tmp2754;
-    const Scalar tmp2872 = tmp233*tmp2705 + tmp233*tmp2732 + tmp233*tmp2753 - k;
-    const Scalar tmp2873 = tmp233*tmp2717 + tmp233*tmp2752;
-    const Scalar tmp2874 = tmp233*l*tmp199;
+    const Scalar tmp2865 = tmp382*tmp2705 + tmp382*tmp2733 + tmp382*tmp2755;
+    const Scalar tmp2866 = tmp382*tmp2705 + tmp382*tmp2732 + tmp382*tmp2753;
+    const Scalar tmp2867 = tmp382*tmp2705 + tmp382*tmp2733 + tmp382*tmp2754;
+    const Scalar tmp2868 = tmp382*tmp2705 + tmp382*tmp2732 + tmp382*tmp2753;
+    const Scalar tmp2869 = tmp382*tmp2705 + tmp382*tmp2733 + tmp382*tmp2755;
+    const Scalar tmp2870 = tmp382*tmp2705 + tmp382*tmp2732 + tmp382*tmp2753;
+    const Scalar tmp2871 = tmp382*tmp2705 + tmp382*tmp2733 + tmp382*tmp2754;
+    const Scalar tmp2872 = tmp382*tmp2705 + tmp382*tmp2732 + tmp382*tmp2753 - k;
+    const Scalar tmp2873 = tmp382*tmp2717 + tmp382*tmp2752;
+    const Scalar tmp2874 = tmp382*l*tmp199;
     const Scalar tmp2875 = -tmp397*tmp2707 - tmp398*tmp2705 - tmp399*tmp2720 - tmp400*tmp2733
         - tmp401*tmp2738 - tmp402*tmp2755 - tmp139*tmp2859 - tmp159*tmp2860 - tmp170*tmp2861
         - tmp193*tmp2862 - tmp204*tmp2863 - tmp230*tmp2864;
@@ -9141,9 +9141,9 @@ struct StiffChain10 {
     const Scalar tmp2878 = -tmp397*tmp2707 - tmp398*tmp2705 - tmp399*tmp2721 - tmp400*tmp2732
         - tmp401*tmp2739 - tmp402*tmp2753 - tmp143*tmp2859 - tmp156*tmp2860 - tmp175*tmp2861
         - tmp190*tmp2862 - tmp210*tmp2863 - tmp227*tmp2864;
-    dr_dq_data[3 + 10 * 7] = phi9_ddot*tmp2843 + phi10_ddot*tmp2852 - tmp2868 - tmp2878
-        + phi1_ddot*tmp2810 + phi2_ddot*tmp2811 + phi3_ddot*tmp2812 + phi4_ddot*tmp2813
-        + phi5_ddot*tmp2817 + phi6_ddot*tmp2822 + phi7_ddot*tmp2828 + phi8_ddot*tmp2835;
+    dr_dq_data[3 + 10 * 7] = phi10_ddot*tmp2852 - tmp2868 - tmp2878 + phi1_ddot*tmp2810
+        + phi2_ddot*tmp2811 + phi3_ddot*tmp2812 + phi4_ddot*tmp2813 + phi5_ddot*tmp2817
+        + phi6_ddot*tmp2822 + phi7_ddot*tmp2828 + phi8_ddot*tmp2835 + phi9_ddot*tmp2843;
     const Scalar tmp2879 = -tmp397*tmp2707 - tmp398*tmp2705 - tmp399*tmp2720 - tmp400*tmp2733
         - tmp401*tmp2738 - tmp402*tmp2755 - tmp138*tmp2859 - tmp155*tmp2860 - tmp169*tmp2861
         - tmp189*tmp2862 - tmp203*tmp2863 - tmp226*tmp2864;
@@ -9170,9 +9170,9 @@ struct StiffChain10 {
         + phi5_ddot*tmp2836 + phi6_ddot*tmp2837 + phi7_ddot*tmp2838 + phi8_ddot*tmp2839;
     const Scalar tmp2883 = -tmp400*tmp2717 - tmp399*tmp2719 - tmp401*tmp2737 - tmp402*tmp2752
         - tmp166*tmp2861 - tmp163*tmp2862 - tmp202*tmp2863 - tmp222*tmp2864;
-    dr_dq_data[8 + 10 * 7] = phi4_ddot*tmp2843 + phi5_ddot*tmp2844 + phi6_ddot*tmp2845
-        + phi7_ddot*tmp2846 + phi8_ddot*tmp2847 + phi9_ddot*tmp2848 + phi10_ddot*tmp2857 - tmp2873
-        - tmp2883 + phi1_ddot*tmp2840 + phi2_ddot*tmp2841 + phi3_ddot*tmp2842;
+    dr_dq_data[8 + 10 * 7] = phi5_ddot*tmp2844 + phi6_ddot*tmp2845 + phi7_ddot*tmp2846
+        + phi8_ddot*tmp2847 + phi9_ddot*tmp2848 + phi10_ddot*tmp2857 - tmp2873 - tmp2883
+        + phi1_ddot*tmp2840 + phi2_ddot*tmp2841 + phi3_ddot*tmp2842 + phi4_ddot*tmp2843;
     const Scalar tmp2884 = -tmp402*tmp2734 - tmp401*tmp2736 - tmp200*tmp2863 - tmp197*tmp2864;
     dr_dq_data[9 + 10 * 7] = phi1_ddot*tmp2849 + phi2_ddot*tmp2850 + phi3_ddot*tmp2851
         + phi4_ddot*tmp2852 + phi5_ddot*tmp2853 + phi6_ddot*tmp2854 + phi7_ddot*tmp2855
@@ -9378,7 +9378,7 @@ struct StiffChain10 {
         + (tmp202*m + tmp208*m)*tmp2901 + (tmp222*m + tmp224*m)*tmp2914;
     const Scalar tmp2993 = (tmp163*m + tmp186*m)*tmp2885 + (tmp166*m + tmp171*m)*tmp2887
         + tmp205*m*tmp2901 + tmp202*m*tmp2902 + tmp223*m*tmp2914 + tmp222*m*tmp2915;
-    const Scalar tmp2994 = Scalar(2)*tmp162*tmp327*m*tmp165 + Scalar(2)*tmp165*tmp327*m*tmp2886
+    const Scalar tmp2994 = Scalar(2)*tmp162*tmp325*m*tmp165 + Scalar(2)*tmp165*tmp325*m*tmp2886
         + Scalar(2)*tmp202*m*tmp2901 + Scalar(2)*tmp222*m*tmp2914;
     const Scalar tmp2995 = tmp230*m*tmp2898 + tmp204*m*tmp2900 + tmp200*m*tmp2901
         + tmp197*m*tmp2914;
@@ -9398,21 +9398,21 @@ struct StiffChain10 {
         + tmp197*m*tmp2915;
     const Scalar tmp3003 = tmp222*m*tmp2898 + tmp202*m*tmp2900 + tmp200*m*tmp2901
         + tmp197*m*tmp2914;
-    const Scalar tmp3004 = Scalar(2)*tmp196*tmp327*m*tmp199 + Scalar(2)*tmp199*tmp327*m*tmp2899;
+    const Scalar tmp3004 = Scalar(2)*tmp196*tmp325*m*tmp199 + Scalar(2)*tmp199*tmp325*m*tmp2899;
     const Scalar tmp3005 = m*tmp2930;
     const Scalar tmp3006 = m*tmp2931;
     const Scalar tmp3007 = m*tmp2948;
     const Scalar tmp3008 = m*tmp2949;
-    const Scalar tmp3009 = tmp233*tmp2885 + tmp233*tmp2914;
-    const Scalar tmp3010 = tmp233*tmp2885 + tmp233*tmp2915;
-    const Scalar tmp3011 = tmp233*tmp2885 + tmp233*tmp2914;
-    const Scalar tmp3012 = tmp233*tmp2885 + tmp233*tmp2915;
-    const Scalar tmp3013 = tmp233*tmp2885 + tmp233*tmp2914;
-    const Scalar tmp3014 = tmp233*tmp2885 + tmp233*tmp2915;
-    const Scalar tmp3015 = tmp233*tmp2885 + tmp233*tmp2914;
-    const Scalar tmp3016 = tmp233*tmp2885 + tmp233*tmp2915;
-    const Scalar tmp3017 = tmp233*tmp2885 + tmp233*tmp2914 - k;
-    const Scalar tmp3018 = tmp233*l*tmp199;
+    const Scalar tmp3009 = tmp382*tmp2885 + tmp382*tmp2914;
+    const Scalar tmp3010 = tmp382*tmp2885 + tmp382*tmp2915;
+    const Scalar tmp3011 = tmp382*tmp2885 + tmp382*tmp2914;
+    const Scalar tmp3012 = tmp382*tmp2885 + tmp382*tmp2915;
+    const Scalar tmp3013 = tmp382*tmp2885 + tmp382*tmp2914;
+    const Scalar tmp3014 = tmp382*tmp2885 + tmp382*tmp2915;
+    const Scalar tmp3015 = tmp382*tmp2885 + tmp382*tmp2914;
+    const Scalar tmp3016 = tmp382*tmp2885 + tmp382*tmp2915;
+    const Scalar tmp3017 = tmp382*tmp2885 + tmp382*tmp2914 - k;
+    const Scalar tmp3018 = tmp382*l*tmp199;
     const Scalar tmp3019 = -tmp399*tmp2887 - tmp400*tmp2885 - tmp401*tmp2901 - tmp402*tmp2914
         - tmp170*tmp3005 - tmp193*tmp3006 - tmp204*tmp3007 - tmp230*tmp3008;
     dr_dq_data[0 + 10 * 8] = phi10_ddot*tmp2995 - tmp3009 - tmp3019 + phi1_ddot*tmp2950
@@ -9430,9 +9430,9 @@ struct StiffChain10 {
         + phi6_ddot*tmp2967 + phi7_ddot*tmp2973 + phi8_ddot*tmp2980 + phi9_ddot*tmp2988;
     const Scalar tmp3022 = -tmp399*tmp2887 - tmp400*tmp2885 - tmp401*tmp2902 - tmp402*tmp2915
         - tmp175*tmp3005 - tmp190*tmp3006 - tmp210*tmp3007 - tmp227*tmp3008;
-    dr_dq_data[3 + 10 * 8] = phi9_ddot*tmp2989 + phi10_ddot*tmp2998 - tmp3012 - tmp3022
-        + phi1_ddot*tmp2956 + phi2_ddot*tmp2957 + phi3_ddot*tmp2958 + phi4_ddot*tmp2959
-        + phi5_ddot*tmp2963 + phi6_ddot*tmp2968 + phi7_ddot*tmp2974 + phi8_ddot*tmp2981;
+    dr_dq_data[3 + 10 * 8] = phi10_ddot*tmp2998 - tmp3012 - tmp3022 + phi1_ddot*tmp2956
+        + phi2_ddot*tmp2957 + phi3_ddot*tmp2958 + phi4_ddot*tmp2959 + phi5_ddot*tmp2963
+        + phi6_ddot*tmp2968 + phi7_ddot*tmp2974 + phi8_ddot*tmp2981 + phi9_ddot*tmp2989;
     const Scalar tmp3023 = -tmp399*tmp2887 - tmp400*tmp2885 - tmp401*tmp2901 - tmp402*tmp2914
         - tmp169*tmp3005 - tmp189*tmp3006 - tmp203*tmp3007 - tmp226*tmp3008;
     dr_dq_data[4 + 10 * 8] = phi9_ddot*tmp2990 + phi10_ddot*tmp2999 - tmp3013 - tmp3023
@@ -9455,9 +9455,9 @@ struct StiffChain10 {
         + phi5_ddot*tmp2982 + phi6_ddot*tmp2983 + phi7_ddot*tmp2984 + phi8_ddot*tmp2985;
     const Scalar tmp3027 = -tmp400*tmp2885 - tmp399*tmp2887 - tmp401*tmp2901 - tmp402*tmp2914
         - tmp166*tmp3005 - tmp163*tmp3006 - tmp202*tmp3007 - tmp222*tmp3008;
-    dr_dq_data[8 + 10 * 8] = phi4_ddot*tmp2989 + phi5_ddot*tmp2990 + phi6_ddot*tmp2991
-        + phi7_ddot*tmp2992 + phi8_ddot*tmp2993 + phi9_ddot*tmp2994 + phi10_ddot*tmp3003 - tmp3017
-        - tmp3027 + phi1_ddot*tmp2986 + phi2_ddot*tmp2987 + phi3_ddot*tmp2988;
+    dr_dq_data[8 + 10 * 8] = phi5_ddot*tmp2990 + phi6_ddot*tmp2991 + phi7_ddot*tmp2992
+        + phi8_ddot*tmp2993 + phi9_ddot*tmp2994 + phi10_ddot*tmp3003 - tmp3017 - tmp3027
+        + phi1_ddot*tmp2986 + phi2_ddot*tmp2987 + phi3_ddot*tmp2988 + phi4_ddot*tmp2989;
     const Scalar tmp3028 = -tmp402*tmp2898 - tmp401*tmp2900 - tmp200*tmp3007 - tmp197*tmp3008;
     dr_dq_data[9 + 10 * 8] = phi1_ddot*tmp2995 + phi2_ddot*tmp2996 + phi3_ddot*tmp2997
         + phi4_ddot*tmp2998 + phi5_ddot*tmp2999 + phi6_ddot*tmp3000 + phi7_ddot*tmp3001
@@ -9575,19 +9575,19 @@ struct StiffChain10 {
     const Scalar tmp3112 = (tmp197*m + tmp224*m)*tmp3029 + (tmp200*m + tmp208*m)*tmp3031;
     const Scalar tmp3113 = (tmp197*m + tmp223*m)*tmp3029 + (tmp200*m + tmp205*m)*tmp3031;
     const Scalar tmp3114 = (tmp197*m + tmp222*m)*tmp3029 + (tmp200*m + tmp202*m)*tmp3031;
-    const Scalar tmp3115 = Scalar(2)*tmp196*tmp327*m*tmp199 + Scalar(2)*tmp199*tmp327*m*tmp3030;
+    const Scalar tmp3115 = Scalar(2)*tmp196*tmp325*m*tmp199 + Scalar(2)*tmp199*tmp325*m*tmp3030;
     const Scalar tmp3116 = m*tmp3059;
     const Scalar tmp3117 = m*tmp3060;
-    const Scalar tmp3118 = tmp233*tmp3029;
-    const Scalar tmp3119 = tmp233*tmp3029;
-    const Scalar tmp3120 = tmp233*tmp3029;
-    const Scalar tmp3121 = tmp233*tmp3029;
-    const Scalar tmp3122 = tmp233*tmp3029;
-    const Scalar tmp3123 = tmp233*tmp3029;
-    const Scalar tmp3124 = tmp233*tmp3029;
-    const Scalar tmp3125 = tmp233*tmp3029;
-    const Scalar tmp3126 = tmp233*tmp3029;
-    const Scalar tmp3127 = tmp233*l*tmp199 - k;
+    const Scalar tmp3118 = tmp382*tmp3029;
+    const Scalar tmp3119 = tmp382*tmp3029;
+    const Scalar tmp3120 = tmp382*tmp3029;
+    const Scalar tmp3121 = tmp382*tmp3029;
+    const Scalar tmp3122 = tmp382*tmp3029;
+    const Scalar tmp3123 = tmp382*tmp3029;
+    const Scalar tmp3124 = tmp382*tmp3029;
+    const Scalar tmp3125 = tmp382*tmp3029;
+    const Scalar tmp3126 = tmp382*tmp3029;
+    const Scalar tmp3127 = tmp382*l*tmp199 - k;
     const Scalar tmp3128 = -tmp401*tmp3031 - tmp402*tmp3029 - tmp204*tmp3116 - tmp230*tmp3117;
     dr_dq_data[0 + 10 * 9] = phi10_ddot*tmp3106 - tmp3118 - tmp3128 + phi1_ddot*tmp3061
         + phi2_ddot*tmp3062 + phi3_ddot*tmp3064 + phi4_ddot*tmp3067 + phi5_ddot*tmp3071
@@ -9601,9 +9601,9 @@ struct StiffChain10 {
         + phi2_ddot*tmp3065 + phi3_ddot*tmp3066 + phi4_ddot*tmp3069 + phi5_ddot*tmp3073
         + phi6_ddot*tmp3078 + phi7_ddot*tmp3084 + phi8_ddot*tmp3091 + phi9_ddot*tmp3099;
     const Scalar tmp3131 = -tmp401*tmp3031 - tmp402*tmp3029 - tmp210*tmp3116 - tmp227*tmp3117;
-    dr_dq_data[3 + 10 * 9] = phi9_ddot*tmp3100 + phi10_ddot*tmp3109 - tmp3121 - tmp3131
-        + phi1_ddot*tmp3067 + phi2_ddot*tmp3068 + phi3_ddot*tmp3069 + phi4_ddot*tmp3070
-        + phi5_ddot*tmp3074 + phi6_ddot*tmp3079 + phi7_ddot*tmp3085 + phi8_ddot*tmp3092;
+    dr_dq_data[3 + 10 * 9] = phi10_ddot*tmp3109 - tmp3121 - tmp3131 + phi1_ddot*tmp3067
+        + phi2_ddot*tmp3068 + phi3_ddot*tmp3069 + phi4_ddot*tmp3070 + phi5_ddot*tmp3074
+        + phi6_ddot*tmp3079 + phi7_ddot*tmp3085 + phi8_ddot*tmp3092 + phi9_ddot*tmp3100;
     const Scalar tmp3132 = -tmp401*tmp3031 - tmp402*tmp3029 - tmp203*tmp3116 - tmp226*tmp3117;
     dr_dq_data[4 + 10 * 9] = phi9_ddot*tmp3101 + phi10_ddot*tmp3110 - tmp3122 - tmp3132
         + phi1_ddot*tmp3071 + phi2_ddot*tmp3072 + phi3_ddot*tmp3073 + phi4_ddot*tmp3074
@@ -9621,9 +9621,9 @@ struct StiffChain10 {
         + phi1_ddot*tmp3089 + phi2_ddot*tmp3090 + phi3_ddot*tmp3091 + phi4_ddot*tmp3092
         + phi5_ddot*tmp3093 + phi6_ddot*tmp3094 + phi7_ddot*tmp3095 + phi8_ddot*tmp3096;
     const Scalar tmp3136 = -tmp401*tmp3031 - tmp402*tmp3029 - tmp202*tmp3116 - tmp222*tmp3117;
-    dr_dq_data[8 + 10 * 9] = phi4_ddot*tmp3100 + phi5_ddot*tmp3101 + phi6_ddot*tmp3102
-        + phi7_ddot*tmp3103 + phi8_ddot*tmp3104 + phi9_ddot*tmp3105 + phi10_ddot*tmp3114 - tmp3126
-        - tmp3136 + phi1_ddot*tmp3097 + phi2_ddot*tmp3098 + phi3_ddot*tmp3099;
+    dr_dq_data[8 + 10 * 9] = phi5_ddot*tmp3101 + phi6_ddot*tmp3102 + phi7_ddot*tmp3103
+        + phi8_ddot*tmp3104 + phi9_ddot*tmp3105 + phi10_ddot*tmp3114 - tmp3126 - tmp3136
+        + phi1_ddot*tmp3097 + phi2_ddot*tmp3098 + phi3_ddot*tmp3099 + phi4_ddot*tmp3100;
     const Scalar tmp3137 = -tmp402*tmp3029 - tmp401*tmp3031 - tmp200*tmp3116 - tmp197*tmp3117;
     dr_dq_data[9 + 10 * 9] = phi1_ddot*tmp3106 + phi2_ddot*tmp3107 + phi3_ddot*tmp3108
         + phi4_ddot*tmp3109 + phi5_ddot*tmp3110 + phi6_ddot*tmp3111 + phi7_ddot*tmp3112
@@ -9643,91 +9643,91 @@ struct StiffChain10 {
     const Scalar tmp3142 = tmp16 + tmp12*phi2_dot + phi1_dot*tmp15;
     const Scalar tmp22 = carried[9];
     const Scalar tmp34 = carried[18];
-    const Scalar tmp239 = carried[186];
-    const Scalar tmp240 = carried[187];
-    const Scalar tmp3143 = tmp240 + tmp239*phi2_dot - tmp22*phi3_dot - Scalar(2)*tmp34*phi1_dot;
+    const Scalar tmp237 = carried[185];
+    const Scalar tmp238 = carried[186];
+    const Scalar tmp3143 = tmp238 + tmp237*phi2_dot - tmp22*phi3_dot - Scalar(2)*tmp34*phi1_dot;
     const Scalar tmp25 = carried[10];
     const Scalar tmp27 = carried[11];
     const Scalar tmp28 = carried[12];
     const Scalar tmp31 = carried[15];
     const Scalar tmp3144 = tmp31 + tmp25*phi3_dot + tmp28*phi2_dot + phi1_dot*tmp27;
-    const Scalar tmp243 = carried[188];
-    const Scalar tmp245 = carried[190];
-    const Scalar tmp246 = carried[191];
-    const Scalar tmp3145 = tmp246 + tmp243*phi3_dot + tmp245*phi2_dot - tmp38*phi4_dot
+    const Scalar tmp241 = carried[187];
+    const Scalar tmp243 = carried[189];
+    const Scalar tmp244 = carried[190];
+    const Scalar tmp3145 = tmp244 + tmp241*phi3_dot + tmp243*phi2_dot - tmp38*phi4_dot
         - Scalar(2)*tmp53*phi1_dot;
     const Scalar tmp49 = carried[27];
     const Scalar tmp3146 = tmp49 + tmp41*phi4_dot + tmp43*phi3_dot + tmp45*phi2_dot
         + phi1_dot*tmp44;
-    const Scalar tmp249 = carried[192];
-    const Scalar tmp251 = carried[194];
-    const Scalar tmp253 = carried[196];
-    const Scalar tmp254 = carried[197];
-    const Scalar tmp3147 = tmp254 + tmp249*phi4_dot + tmp251*phi3_dot + tmp253*phi2_dot
+    const Scalar tmp247 = carried[191];
+    const Scalar tmp249 = carried[193];
+    const Scalar tmp251 = carried[195];
+    const Scalar tmp252 = carried[196];
+    const Scalar tmp3147 = tmp252 + tmp247*phi4_dot + tmp249*phi3_dot + tmp251*phi2_dot
         - tmp57*phi5_dot - Scalar(2)*tmp75*phi1_dot;
     const Scalar tmp70 = carried[44];
     const Scalar tmp3148 = tmp70 + tmp60*phi5_dot + tmp62*phi3_dot + tmp64*phi4_dot + tmp65*phi2_dot
         + phi1_dot*tmp63;
-    const Scalar tmp257 = carried[198];
-    const Scalar tmp259 = carried[200];
-    const Scalar tmp261 = carried[202];
-    const Scalar tmp263 = carried[204];
-    const Scalar tmp264 = carried[205];
-    const Scalar tmp3149 = tmp264 + tmp257*phi5_dot + tmp259*phi4_dot + tmp261*phi3_dot
-        + tmp263*phi2_dot - tmp79*phi6_dot - Scalar(2)*tmp100*phi1_dot;
+    const Scalar tmp255 = carried[197];
+    const Scalar tmp257 = carried[199];
+    const Scalar tmp259 = carried[201];
+    const Scalar tmp261 = carried[203];
+    const Scalar tmp262 = carried[204];
+    const Scalar tmp3149 = tmp262 + tmp255*phi5_dot + tmp257*phi4_dot + tmp259*phi3_dot
+        + tmp261*phi2_dot - tmp79*phi6_dot - Scalar(2)*tmp100*phi1_dot;
     const Scalar tmp94 = carried[64];
     const Scalar tmp3150 = tmp94 + tmp82*phi6_dot + tmp84*phi5_dot + tmp86*phi4_dot + tmp87*phi2_dot
         + tmp88*phi3_dot + phi1_dot*tmp85;
-    const Scalar tmp267 = carried[206];
-    const Scalar tmp269 = carried[208];
-    const Scalar tmp271 = carried[210];
-    const Scalar tmp273 = carried[212];
-    const Scalar tmp275 = carried[214];
-    const Scalar tmp276 = carried[215];
-    const Scalar tmp3151 = tmp276 + tmp267*phi6_dot + tmp269*phi5_dot + tmp271*phi4_dot
-        + tmp273*phi3_dot + tmp275*phi2_dot - tmp104*phi7_dot - Scalar(2)*tmp128*phi1_dot;
+    const Scalar tmp265 = carried[205];
+    const Scalar tmp267 = carried[207];
+    const Scalar tmp269 = carried[209];
+    const Scalar tmp271 = carried[211];
+    const Scalar tmp273 = carried[213];
+    const Scalar tmp274 = carried[214];
+    const Scalar tmp3151 = tmp274 + tmp265*phi6_dot + tmp267*phi5_dot + tmp269*phi4_dot
+        + tmp271*phi3_dot + tmp273*phi2_dot - tmp104*phi7_dot - Scalar(2)*tmp128*phi1_dot;
     const Scalar tmp121 = carried[87];
     const Scalar tmp3152 = tmp121 + tmp107*phi7_dot + tmp109*phi5_dot + tmp111*phi6_dot
         + tmp112*phi2_dot + tmp113*phi3_dot + tmp114*phi4_dot + phi1_dot*tmp110;
-    const Scalar tmp279 = carried[216];
-    const Scalar tmp281 = carried[218];
-    const Scalar tmp283 = carried[220];
-    const Scalar tmp285 = carried[222];
-    const Scalar tmp287 = carried[224];
-    const Scalar tmp289 = carried[226];
-    const Scalar tmp290 = carried[227];
-    const Scalar tmp3153 = tmp290 + tmp279*phi7_dot + tmp281*phi6_dot + tmp283*phi5_dot
-        + tmp285*phi4_dot + tmp287*phi3_dot + tmp289*phi2_dot - tmp132*phi8_dot
+    const Scalar tmp277 = carried[215];
+    const Scalar tmp279 = carried[217];
+    const Scalar tmp281 = carried[219];
+    const Scalar tmp283 = carried[221];
+    const Scalar tmp285 = carried[223];
+    const Scalar tmp287 = carried[225];
+    const Scalar tmp288 = carried[226];
+    const Scalar tmp3153 = tmp288 + tmp277*phi7_dot + tmp279*phi6_dot + tmp281*phi5_dot
+        + tmp283*phi4_dot + tmp285*phi3_dot + tmp287*phi2_dot - tmp132*phi8_dot
         - Scalar(2)*tmp159*phi1_dot;
     const Scalar tmp151 = carried[113];
     const Scalar tmp3154 = tmp151 + tmp135*phi8_dot + tmp137*phi7_dot + tmp138*phi5_dot
         + tmp140*phi6_dot + tmp141*phi2_dot + tmp142*phi3_dot + tmp143*phi4_dot + phi1_dot*tmp139;
-    const Scalar tmp293 = carried[228];
-    const Scalar tmp295 = carried[230];
-    const Scalar tmp297 = carried[232];
-    const Scalar tmp299 = carried[234];
-    const Scalar tmp301 = carried[236];
-    const Scalar tmp303 = carried[238];
-    const Scalar tmp305 = carried[240];
-    const Scalar tmp306 = carried[241];
-    const Scalar tmp3155 = tmp306 + tmp293*phi8_dot + tmp295*phi7_dot + tmp297*phi6_dot
-        + tmp299*phi5_dot + tmp301*phi4_dot + tmp303*phi3_dot + tmp305*phi2_dot - tmp163*phi9_dot
+    const Scalar tmp291 = carried[227];
+    const Scalar tmp293 = carried[229];
+    const Scalar tmp295 = carried[231];
+    const Scalar tmp297 = carried[233];
+    const Scalar tmp299 = carried[235];
+    const Scalar tmp301 = carried[237];
+    const Scalar tmp303 = carried[239];
+    const Scalar tmp304 = carried[240];
+    const Scalar tmp3155 = tmp304 + tmp291*phi8_dot + tmp293*phi7_dot + tmp295*phi6_dot
+        + tmp297*phi5_dot + tmp299*phi4_dot + tmp301*phi3_dot + tmp303*phi2_dot - tmp163*phi9_dot
         - Scalar(2)*tmp193*phi1_dot;
     const Scalar tmp184 = carried[142];
     const Scalar tmp3156 = tmp184 + tmp166*phi9_dot + tmp168*phi7_dot + tmp169*phi5_dot
         + tmp171*phi8_dot + tmp172*phi6_dot + tmp173*phi2_dot + tmp174*phi3_dot + tmp175*phi4_dot
         + phi1_dot*tmp170;
-    const Scalar tmp309 = carried[242];
-    const Scalar tmp311 = carried[244];
-    const Scalar tmp313 = carried[246];
-    const Scalar tmp315 = carried[248];
-    const Scalar tmp317 = carried[250];
-    const Scalar tmp319 = carried[252];
-    const Scalar tmp321 = carried[254];
-    const Scalar tmp323 = carried[256];
-    const Scalar tmp324 = carried[257];
-    const Scalar tmp3157 = tmp324 + tmp309*phi9_dot + tmp311*phi8_dot + tmp313*phi7_dot
-        + tmp315*phi6_dot + tmp317*phi5_dot + tmp319*phi4_dot + tmp321*phi3_dot + tmp323*phi2_dot
+    const Scalar tmp307 = carried[241];
+    const Scalar tmp309 = carried[243];
+    const Scalar tmp311 = carried[245];
+    const Scalar tmp313 = carried[247];
+    const Scalar tmp315 = carried[249];
+    const Scalar tmp317 = carried[251];
+    const Scalar tmp319 = carried[253];
+    const Scalar tmp321 = carried[255];
+    const Scalar tmp322 = carried[256];
+    const Scalar tmp3157 = tmp322 + tmp307*phi9_dot + tmp309*phi8_dot + tmp311*phi7_dot
+        + tmp313*phi6_dot + tmp315*phi5_dot + tmp317*phi4_dot + tmp319*phi3_dot + tmp321*phi2_dot
         - tmp197*phi10_dot - Scalar(2)*tmp230*phi1_dot;
     const Scalar tmp220 = carried[174];
     const Scalar tmp3158 = tmp220 + tmp200*phi10_dot + tmp202*phi9_dot + tmp203*phi5_dot
@@ -9796,46 +9796,46 @@ struct StiffChain10 {
     const Scalar tmp3190 = -tmp17 - tmp9*phi1_dot + (-phi1_dot - phi2_dot)*tmp9;
     const Scalar tmp14 = carried[4];
     const Scalar tmp3191 = tmp14 + tmp12*phi1_dot + (phi1_dot + phi2_dot)*tmp12;
-    const Scalar tmp3192 = tmp240 + tmp239*phi1_dot - tmp22*phi3_dot + (phi1_dot + phi2_dot)*tmp239;
+    const Scalar tmp3192 = tmp238 + tmp237*phi1_dot - tmp22*phi3_dot + (phi1_dot + phi2_dot)*tmp237;
     const Scalar tmp30 = carried[14];
     const Scalar tmp3193 = tmp30 + tmp25*phi3_dot + tmp28*phi1_dot + (phi1_dot + phi2_dot)*tmp28;
-    const Scalar tmp3194 = tmp246 + tmp243*phi3_dot + tmp245*phi1_dot - tmp38*phi4_dot
-        + (phi1_dot + phi2_dot)*tmp245;
+    const Scalar tmp3194 = tmp244 + tmp241*phi3_dot + tmp243*phi1_dot - tmp38*phi4_dot
+        + (phi1_dot + phi2_dot)*tmp243;
     const Scalar tmp48 = carried[26];
     const Scalar tmp3195 = tmp48 + tmp41*phi4_dot + tmp43*phi3_dot + tmp45*phi1_dot
         + (phi1_dot + phi2_dot)*tmp45;
-    const Scalar tmp3196 = tmp254 + tmp249*phi4_dot + tmp251*phi3_dot + tmp253*phi1_dot
-        - tmp57*phi5_dot + (phi1_dot + phi2_dot)*tmp253;
+    const Scalar tmp3196 = tmp252 + tmp247*phi4_dot + tmp249*phi3_dot + tmp251*phi1_dot
+        - tmp57*phi5_dot + (phi1_dot + phi2_dot)*tmp251;
     const Scalar tmp69 = carried[43];
     const Scalar tmp3197 = tmp69 + tmp60*phi5_dot + tmp62*phi3_dot + tmp64*phi4_dot + tmp65*phi1_dot
         + (phi1_dot + phi2_dot)*tmp65;
-    const Scalar tmp3198 = tmp264 + tmp257*phi5_dot + tmp259*phi4_dot + tmp261*phi3_dot
-        + tmp263*phi1_dot - tmp79*phi6_dot + (phi1_dot + phi2_dot)*tmp263;
+    const Scalar tmp3198 = tmp262 + tmp255*phi5_dot + tmp257*phi4_dot + tmp259*phi3_dot
+        + tmp261*phi1_dot - tmp79*phi6_dot + (phi1_dot + phi2_dot)*tmp261;
     const Scalar tmp93 = carried[63];
     const Scalar tmp3199 = tmp93 + tmp82*phi6_dot + tmp84*phi5_dot + tmp86*phi4_dot + tmp87*phi1_dot
         + tmp88*phi3_dot + (phi1_dot + phi2_dot)*tmp87;
-    const Scalar tmp3200 = tmp276 + tmp267*phi6_dot + tmp269*phi5_dot + tmp271*phi4_dot
-        + tmp273*phi3_dot + tmp275*phi1_dot - tmp104*phi7_dot + (phi1_dot + phi2_dot)*tmp275;
+    const Scalar tmp3200 = tmp274 + tmp265*phi6_dot + tmp267*phi5_dot + tmp269*phi4_dot
+        + tmp271*phi3_dot + tmp273*phi1_dot - tmp104*phi7_dot + (phi1_dot + phi2_dot)*tmp273;
     const Scalar tmp120 = carried[86];
     const Scalar tmp3201 = tmp120 + tmp107*phi7_dot + tmp109*phi5_dot + tmp111*phi6_dot
         + tmp112*phi1_dot + tmp113*phi3_dot + tmp114*phi4_dot + (phi1_dot + phi2_dot)*tmp112;
-    const Scalar tmp3202 = tmp290 + tmp279*phi7_dot + tmp281*phi6_dot + tmp283*phi5_dot
-        + tmp285*phi4_dot + tmp287*phi3_dot + tmp289*phi1_dot - tmp132*phi8_dot
-        + (phi1_dot + phi2_dot)*tmp289;
+    const Scalar tmp3202 = tmp288 + tmp277*phi7_dot + tmp279*phi6_dot + tmp281*phi5_dot
+        + tmp283*phi4_dot + tmp285*phi3_dot + tmp287*phi1_dot - tmp132*phi8_dot
+        + (phi1_dot + phi2_dot)*tmp287;
     const Scalar tmp150 = carried[112];
     const Scalar tmp3203 = tmp150 + tmp135*phi8_dot + tmp137*phi7_dot + tmp138*phi5_dot
         + tmp140*phi6_dot + tmp141*phi1_dot + tmp142*phi3_dot + tmp143*phi4_dot
         + (phi1_dot + phi2_dot)*tmp141;
-    const Scalar tmp3204 = tmp306 + tmp293*phi8_dot + tmp295*phi7_dot + tmp297*phi6_dot
-        + tmp299*phi5_dot + tmp301*phi4_dot + tmp303*phi3_dot + tmp305*phi1_dot - tmp163*phi9_dot
-        + (phi1_dot + phi2_dot)*tmp305;
+    const Scalar tmp3204 = tmp304 + tmp291*phi8_dot + tmp293*phi7_dot + tmp295*phi6_dot
+        + tmp297*phi5_dot + tmp299*phi4_dot + tmp301*phi3_dot + tmp303*phi1_dot - tmp163*phi9_dot
+        + (phi1_dot + phi2_dot)*tmp303;
     const Scalar tmp183 = carried[141];
     const Scalar tmp3205 = tmp183 + tmp166*phi9_dot + tmp168*phi7_dot + tmp169*phi5_dot
         + tmp171*phi8_dot + tmp172*phi6_dot + tmp173*phi1_dot + tmp174*phi3_dot + tmp175*phi4_dot
         + (phi1_dot + phi2_dot)*tmp173;
-    const Scalar tmp3206 = tmp324 + tmp309*phi9_dot + tmp311*phi8_dot + tmp313*phi7_dot
-        + tmp315*phi6_dot + tmp317*phi5_dot + tmp319*phi4_dot + tmp321*phi3_dot + tmp323*phi1_dot
-        - tmp197*phi10_dot + (phi1_dot + phi2_dot)*tmp323;
+    const Scalar tmp3206 = tmp322 + tmp307*phi9_dot + tmp309*phi8_dot + tmp311*phi7_dot
+        + tmp313*phi6_dot + tmp315*phi5_dot + tmp317*phi4_dot + tmp319*phi3_dot + tmp321*phi1_dot
+        - tmp197*phi10_dot + (phi1_dot + phi2_dot)*tmp321;
     const Scalar tmp219 = carried[173];
     const Scalar tmp3207 = tmp219 + tmp200*phi10_dot + tmp202*phi9_dot + tmp203*phi5_dot
         + tmp205*phi8_dot + tmp206*phi6_dot + tmp207*phi1_dot + tmp208*phi7_dot + tmp209*phi3_dot
@@ -9903,52 +9903,52 @@ struct StiffChain10 {
     const Scalar tmp29 = carried[13];
     const Scalar tmp3239 = tmp29 + tmp25*phi1_dot + tmp25*phi2_dot
         + (phi1_dot + phi2_dot + phi3_dot)*tmp25;
-    const Scalar tmp244 = carried[189];
-    const Scalar tmp3240 = tmp244 + tmp243*phi1_dot + tmp243*phi2_dot - tmp38*phi4_dot
-        + (phi1_dot + phi2_dot + phi3_dot)*tmp243;
+    const Scalar tmp242 = carried[188];
+    const Scalar tmp3240 = tmp242 + tmp241*phi1_dot + tmp241*phi2_dot - tmp38*phi4_dot
+        + (phi1_dot + phi2_dot + phi3_dot)*tmp241;
     const Scalar tmp47 = carried[25];
     const Scalar tmp3241 = tmp47 + tmp41*phi4_dot + tmp43*phi1_dot + tmp43*phi2_dot
         + (phi1_dot + phi2_dot + phi3_dot)*tmp43;
-    const Scalar tmp252 = carried[195];
-    const Scalar tmp3242 = tmp252 + tmp249*phi4_dot + tmp251*phi1_dot + tmp251*phi2_dot
-        - tmp57*phi5_dot + (phi1_dot + phi2_dot + phi3_dot)*tmp251;
+    const Scalar tmp250 = carried[194];
+    const Scalar tmp3242 = tmp250 + tmp247*phi4_dot + tmp249*phi1_dot + tmp249*phi2_dot
+        - tmp57*phi5_dot + (phi1_dot + phi2_dot + phi3_dot)*tmp249;
     const Scalar tmp68 = carried[42];
     const Scalar tmp3243 = tmp68 + tmp60*phi5_dot + tmp62*phi1_dot + tmp62*phi2_dot + tmp64*phi4_dot
         + (phi1_dot + phi2_dot + phi3_dot)*tmp62;
-    const Scalar tmp262 = carried[203];
-    const Scalar tmp3244 = tmp262 + tmp257*phi5_dot + tmp259*phi4_dot + tmp261*phi1_dot
-        + tmp261*phi2_dot - tmp79*phi6_dot + (phi1_dot + phi2_dot + phi3_dot)*tmp261;
+    const Scalar tmp260 = carried[202];
+    const Scalar tmp3244 = tmp260 + tmp255*phi5_dot + tmp257*phi4_dot + tmp259*phi1_dot
+        + tmp259*phi2_dot - tmp79*phi6_dot + (phi1_dot + phi2_dot + phi3_dot)*tmp259;
     const Scalar tmp92 = carried[62];
     const Scalar tmp3245 = tmp92 + tmp82*phi6_dot + tmp84*phi5_dot + tmp86*phi4_dot + tmp88*phi1_dot
         + tmp88*phi2_dot + (phi1_dot + phi2_dot + phi3_dot)*tmp88;
-    const Scalar tmp274 = carried[213];
-    const Scalar tmp3246 = tmp274 + tmp267*phi6_dot + tmp269*phi5_dot + tmp271*phi4_dot
-        + tmp273*phi1_dot + tmp273*phi2_dot - tmp104*phi7_dot
-        + (phi1_dot + phi2_dot + phi3_dot)*tmp273;
+    const Scalar tmp272 = carried[212];
+    const Scalar tmp3246 = tmp272 + tmp265*phi6_dot + tmp267*phi5_dot + tmp269*phi4_dot
+        + tmp271*phi1_dot + tmp271*phi2_dot - tmp104*phi7_dot
+        + (phi1_dot + phi2_dot + phi3_dot)*tmp271;
     const Scalar tmp119 = carried[85];
     const Scalar tmp3247 = tmp119 + tmp107*phi7_dot + tmp109*phi5_dot + tmp111*phi6_dot
         + tmp113*phi1_dot + tmp113*phi2_dot + tmp114*phi4_dot
         + (phi1_dot + phi2_dot + phi3_dot)*tmp113;
-    const Scalar tmp288 = carried[225];
-    const Scalar tmp3248 = tmp288 + tmp279*phi7_dot + tmp281*phi6_dot + tmp283*phi5_dot
-        + tmp285*phi4_dot + tmp287*phi1_dot + tmp287*phi2_dot - tmp132*phi8_dot
-        + (phi1_dot + phi2_dot + phi3_dot)*tmp287;
+    const Scalar tmp286 = carried[224];
+    const Scalar tmp3248 = tmp286 + tmp277*phi7_dot + tmp279*phi6_dot + tmp281*phi5_dot
+        + tmp283*phi4_dot + tmp285*phi1_dot + tmp285*phi2_dot - tmp132*phi8_dot
+        + (phi1_dot + phi2_dot + phi3_dot)*tmp285;
     const Scalar tmp149 = carried[111];
     const Scalar tmp3249 = tmp149 + tmp135*phi8_dot + tmp137*phi7_dot + tmp138*phi5_dot
         + tmp140*phi6_dot + tmp142*phi1_dot + tmp142*phi2_dot + tmp143*phi4_dot
         + (phi1_dot + phi2_dot + phi3_dot)*tmp142;
-    const Scalar tmp304 = carried[239];
-    const Scalar tmp3250 = tmp304 + tmp293*phi8_dot + tmp295*phi7_dot + tmp297*phi6_dot
-        + tmp299*phi5_dot + tmp301*phi4_dot + tmp303*phi1_dot + tmp303*phi2_dot - tmp163*phi9_dot
-        + (phi1_dot + phi2_dot + phi3_dot)*tmp303;
+    const Scalar tmp302 = carried[238];
+    const Scalar tmp3250 = tmp302 + tmp291*phi8_dot + tmp293*phi7_dot + tmp295*phi6_dot
+        + tmp297*phi5_dot + tmp299*phi4_dot + tmp301*phi1_dot + tmp301*phi2_dot - tmp163*phi9_dot
+        + (phi1_dot + phi2_dot + phi3_dot)*tmp301;
     const Scalar tmp182 = carried[140];
     const Scalar tmp3251 = tmp182 + tmp166*phi9_dot + tmp168*phi7_dot + tmp169*phi5_dot
         + tmp171*phi8_dot + tmp172*phi6_dot + tmp174*phi1_dot + tmp174*phi2_dot + tmp175*phi4_dot
         + (phi1_dot + phi2_dot + phi3_dot)*tmp174;
-    const Scalar tmp322 = carried[255];
-    const Scalar tmp3252 = tmp322 + tmp309*phi9_dot + tmp311*phi8_dot + tmp313*phi7_dot
-        + tmp315*phi6_dot + tmp317*phi5_dot + tmp319*phi4_dot + tmp321*phi1_dot + tmp321*phi2_dot
-        - tmp197*phi10_dot + (phi1_dot + phi2_dot + phi3_dot)*tmp321;
+    const Scalar tmp320 = carried[254];
+    const Scalar tmp3252 = tmp320 + tmp307*phi9_dot + tmp309*phi8_dot + tmp311*phi7_dot
+        + tmp313*phi6_dot + tmp315*phi5_dot + tmp317*phi4_dot + tmp319*phi1_dot + tmp319*phi2_dot
+        - tmp197*phi10_dot + (phi1_dot + phi2_dot + phi3_dot)*tmp319;
     const Scalar tmp218 = carried[172];
     const Scalar tmp3253 = tmp218 + tmp200*phi10_dot + tmp202*phi9_dot + tmp203*phi5_dot
         + tmp205*phi8_dot + tmp206*phi6_dot + tmp208*phi7_dot + tmp209*phi1_dot + tmp209*phi2_dot
@@ -10014,46 +10014,46 @@ struct StiffChain10 {
     const Scalar tmp46 = carried[24];
     const Scalar tmp3283 = tmp46 + tmp41*phi1_dot + tmp41*phi2_dot + tmp41*phi3_dot
         + (phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp41;
-    const Scalar tmp250 = carried[193];
-    const Scalar tmp3284 = tmp250 + tmp249*phi1_dot + tmp249*phi2_dot + tmp249*phi3_dot
-        - tmp57*phi5_dot + (phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp249;
+    const Scalar tmp248 = carried[192];
+    const Scalar tmp3284 = tmp248 + tmp247*phi1_dot + tmp247*phi2_dot + tmp247*phi3_dot
+        - tmp57*phi5_dot + (phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp247;
     const Scalar tmp67 = carried[41];
     const Scalar tmp3285 = tmp67 + tmp60*phi5_dot + tmp64*phi1_dot + tmp64*phi2_dot + tmp64*phi3_dot
         + (phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp64;
-    const Scalar tmp260 = carried[201];
-    const Scalar tmp3286 = tmp260 + tmp257*phi5_dot + tmp259*phi1_dot + tmp259*phi2_dot
-        + tmp259*phi3_dot - tmp79*phi6_dot + (phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp259;
+    const Scalar tmp258 = carried[200];
+    const Scalar tmp3286 = tmp258 + tmp255*phi5_dot + tmp257*phi1_dot + tmp257*phi2_dot
+        + tmp257*phi3_dot - tmp79*phi6_dot + (phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp257;
     const Scalar tmp91 = carried[61];
     const Scalar tmp3287 = tmp91 + tmp82*phi6_dot + tmp84*phi5_dot + tmp86*phi1_dot + tmp86*phi2_dot
         + tmp86*phi3_dot + (phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp86;
-    const Scalar tmp272 = carried[211];
-    const Scalar tmp3288 = tmp272 + tmp267*phi6_dot + tmp269*phi5_dot + tmp271*phi1_dot
-        + tmp271*phi2_dot + tmp271*phi3_dot - tmp104*phi7_dot
-        + (phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp271;
+    const Scalar tmp270 = carried[210];
+    const Scalar tmp3288 = tmp270 + tmp265*phi6_dot + tmp267*phi5_dot + tmp269*phi1_dot
+        + tmp269*phi2_dot + tmp269*phi3_dot - tmp104*phi7_dot
+        + (phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp269;
     const Scalar tmp118 = carried[84];
     const Scalar tmp3289 = tmp118 + tmp107*phi7_dot + tmp109*phi5_dot + tmp111*phi6_dot
         + tmp114*phi1_dot + tmp114*phi2_dot + tmp114*phi3_dot
         + (phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp114;
-    const Scalar tmp286 = carried[223];
-    const Scalar tmp3290 = tmp286 + tmp279*phi7_dot + tmp281*phi6_dot + tmp283*phi5_dot
-        + tmp285*phi1_dot + tmp285*phi2_dot + tmp285*phi3_dot - tmp132*phi8_dot
-        + (phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp285;
+    const Scalar tmp284 = carried[222];
+    const Scalar tmp3290 = tmp284 + tmp277*phi7_dot + tmp279*phi6_dot + tmp281*phi5_dot
+        + tmp283*phi1_dot + tmp283*phi2_dot + tmp283*phi3_dot - tmp132*phi8_dot
+        + (phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp283;
     const Scalar tmp148 = carried[110];
     const Scalar tmp3291 = tmp148 + tmp135*phi8_dot + tmp137*phi7_dot + tmp138*phi5_dot
         + tmp140*phi6_dot + tmp143*phi1_dot + tmp143*phi2_dot + tmp143*phi3_dot
         + (phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp143;
-    const Scalar tmp302 = carried[237];
-    const Scalar tmp3292 = tmp302 + tmp293*phi8_dot + tmp295*phi7_dot + tmp297*phi6_dot
-        + tmp299*phi5_dot + tmp301*phi1_dot + tmp301*phi2_dot + tmp301*phi3_dot - tmp163*phi9_dot
-        + (phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp301;
+    const Scalar tmp300 = carried[236];
+    const Scalar tmp3292 = tmp300 + tmp291*phi8_dot + tmp293*phi7_dot + tmp295*phi6_dot
+        + tmp297*phi5_dot + tmp299*phi1_dot + tmp299*phi2_dot + tmp299*phi3_dot - tmp163*phi9_dot
+        + (phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp299;
     const Scalar tmp181 = carried[139];
     const Scalar tmp3293 = tmp181 + tmp166*phi9_dot + tmp168*phi7_dot + tmp169*phi5_dot
         + tmp171*phi8_dot + tmp172*phi6_dot + tmp175*phi1_dot + tmp175*phi2_dot + tmp175*phi3_dot
         + (phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp175;
-    const Scalar tmp320 = carried[253];
-    const Scalar tmp3294 = tmp320 + tmp309*phi9_dot + tmp311*phi8_dot + tmp313*phi7_dot
-        + tmp315*phi6_dot + tmp317*phi5_dot + tmp319*phi1_dot + tmp319*phi2_dot + tmp319*phi3_dot
-        - tmp197*phi10_dot + (phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp319;
+    const Scalar tmp318 = carried[252];
+    const Scalar tmp3294 = tmp318 + tmp307*phi9_dot + tmp309*phi8_dot + tmp311*phi7_dot
+        + tmp313*phi6_dot + tmp315*phi5_dot + tmp317*phi1_dot + tmp317*phi2_dot + tmp317*phi3_dot
+        - tmp197*phi10_dot + (phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp317;
     const Scalar tmp217 = carried[171];
     const Scalar tmp3295 = tmp217 + tmp200*phi10_dot + tmp202*phi9_dot + tmp203*phi5_dot
         + tmp205*phi8_dot + tmp206*phi6_dot + tmp208*phi7_dot + tmp210*phi1_dot + tmp210*phi2_dot
@@ -10114,41 +10114,41 @@ struct StiffChain10 {
     const Scalar tmp66 = carried[40];
     const Scalar tmp3323 = tmp66 + tmp60*phi1_dot + tmp60*phi2_dot + tmp60*phi3_dot + tmp60*phi4_dot
         + (phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp60;
-    const Scalar tmp258 = carried[199];
-    const Scalar tmp3324 = tmp258 + tmp257*phi1_dot + tmp257*phi2_dot + tmp257*phi3_dot
-        + tmp257*phi4_dot - tmp79*phi6_dot
-        + (phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp257;
+    const Scalar tmp256 = carried[198];
+    const Scalar tmp3324 = tmp256 + tmp255*phi1_dot + tmp255*phi2_dot + tmp255*phi3_dot
+        + tmp255*phi4_dot - tmp79*phi6_dot
+        + (phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp255;
     const Scalar tmp90 = carried[60];
     const Scalar tmp3325 = tmp90 + tmp82*phi6_dot + tmp84*phi1_dot + tmp84*phi2_dot + tmp84*phi3_dot
         + tmp84*phi4_dot + (phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp84;
-    const Scalar tmp270 = carried[209];
-    const Scalar tmp3326 = tmp270 + tmp267*phi6_dot + tmp269*phi1_dot + tmp269*phi2_dot
-        + tmp269*phi3_dot + tmp269*phi4_dot - tmp104*phi7_dot
-        + (phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp269;
+    const Scalar tmp268 = carried[208];
+    const Scalar tmp3326 = tmp268 + tmp265*phi6_dot + tmp267*phi1_dot + tmp267*phi2_dot
+        + tmp267*phi3_dot + tmp267*phi4_dot - tmp104*phi7_dot
+        + (phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp267;
     const Scalar tmp117 = carried[83];
     const Scalar tmp3327 = tmp117 + tmp107*phi7_dot + tmp109*phi1_dot + tmp109*phi2_dot
         + tmp109*phi3_dot + tmp109*phi4_dot + tmp111*phi6_dot
         + (phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp109;
-    const Scalar tmp284 = carried[221];
-    const Scalar tmp3328 = tmp284 + tmp279*phi7_dot + tmp281*phi6_dot + tmp283*phi1_dot
-        + tmp283*phi2_dot + tmp283*phi3_dot + tmp283*phi4_dot - tmp132*phi8_dot
-        + (phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp283;
+    const Scalar tmp282 = carried[220];
+    const Scalar tmp3328 = tmp282 + tmp277*phi7_dot + tmp279*phi6_dot + tmp281*phi1_dot
+        + tmp281*phi2_dot + tmp281*phi3_dot + tmp281*phi4_dot - tmp132*phi8_dot
+        + (phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp281;
     const Scalar tmp147 = carried[109];
     const Scalar tmp3329 = tmp147 + tmp135*phi8_dot + tmp137*phi7_dot + tmp138*phi1_dot
         + tmp138*phi2_dot + tmp138*phi3_dot + tmp138*phi4_dot + tmp140*phi6_dot
         + (phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp138;
-    const Scalar tmp300 = carried[235];
-    const Scalar tmp3330 = tmp300 + tmp293*phi8_dot + tmp295*phi7_dot + tmp297*phi6_dot
-        + tmp299*phi1_dot + tmp299*phi2_dot + tmp299*phi3_dot + tmp299*phi4_dot - tmp163*phi9_dot
-        + (phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp299;
+    const Scalar tmp298 = carried[234];
+    const Scalar tmp3330 = tmp298 + tmp291*phi8_dot + tmp293*phi7_dot + tmp295*phi6_dot
+        + tmp297*phi1_dot + tmp297*phi2_dot + tmp297*phi3_dot + tmp297*phi4_dot - tmp163*phi9_dot
+        + (phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp297;
     const Scalar tmp180 = carried[138];
     const Scalar tmp3331 = tmp180 + tmp166*phi9_dot + tmp168*phi7_dot + tmp169*phi1_dot
         + tmp169*phi2_dot + tmp169*phi3_dot + tmp169*phi4_dot + tmp171*phi8_dot + tmp172*phi6_dot
         + (phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp169;
-    const Scalar tmp318 = carried[251];
-    const Scalar tmp3332 = tmp318 + tmp309*phi9_dot + tmp311*phi8_dot + tmp313*phi7_dot
-        + tmp315*phi6_dot + tmp317*phi1_dot + tmp317*phi2_dot + tmp317*phi3_dot + tmp317*phi4_dot
-        - tmp197*phi10_dot + (phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp317;
+    const Scalar tmp316 = carried[250];
+    const Scalar tmp3332 = tmp316 + tmp307*phi9_dot + tmp309*phi8_dot + tmp311*phi7_dot
+        + tmp313*phi6_dot + tmp315*phi1_dot + tmp315*phi2_dot + tmp315*phi3_dot + tmp315*phi4_dot
+        - tmp197*phi10_dot + (phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp315;
     const Scalar tmp216 = carried[170];
     const Scalar tmp3333 = tmp216 + tmp200*phi10_dot + tmp202*phi9_dot + tmp203*phi1_dot
         + tmp203*phi2_dot + tmp203*phi3_dot + tmp203*phi4_dot + tmp205*phi8_dot + tmp206*phi6_dot
@@ -10208,35 +10208,35 @@ struct StiffChain10 {
     const Scalar tmp89 = carried[59];
     const Scalar tmp3359 = tmp89 + tmp82*phi1_dot + tmp82*phi2_dot + tmp82*phi3_dot + tmp82*phi4_dot
         + tmp82*phi5_dot + (phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp82;
-    const Scalar tmp268 = carried[207];
-    const Scalar tmp3360 = tmp268 + tmp267*phi1_dot + tmp267*phi2_dot + tmp267*phi3_dot
-        + tmp267*phi4_dot + tmp267*phi5_dot - tmp104*phi7_dot
-        + (phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp267;
+    const Scalar tmp266 = carried[206];
+    const Scalar tmp3360 = tmp266 + tmp265*phi1_dot + tmp265*phi2_dot + tmp265*phi3_dot
+        + tmp265*phi4_dot + tmp265*phi5_dot - tmp104*phi7_dot
+        + (phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp265;
     const Scalar tmp116 = carried[82];
     const Scalar tmp3361 = tmp116 + tmp107*phi7_dot + tmp111*phi1_dot + tmp111*phi2_dot
         + tmp111*phi3_dot + tmp111*phi4_dot + tmp111*phi5_dot
         + (phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp111;
-    const Scalar tmp282 = carried[219];
-    const Scalar tmp3362 = tmp282 + tmp279*phi7_dot + tmp281*phi1_dot + tmp281*phi2_dot
-        + tmp281*phi3_dot + tmp281*phi4_dot + tmp281*phi5_dot - tmp132*phi8_dot
-        + (phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp281;
+    const Scalar tmp280 = carried[218];
+    const Scalar tmp3362 = tmp280 + tmp277*phi7_dot + tmp279*phi1_dot + tmp279*phi2_dot
+        + tmp279*phi3_dot + tmp279*phi4_dot + tmp279*phi5_dot - tmp132*phi8_dot
+        + (phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp279;
     const Scalar tmp146 = carried[108];
     const Scalar tmp3363 = tmp146 + tmp135*phi8_dot + tmp137*phi7_dot + tmp140*phi1_dot
         + tmp140*phi2_dot + tmp140*phi3_dot + tmp140*phi4_dot + tmp140*phi5_dot
         + (phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp140;
-    const Scalar tmp298 = carried[233];
-    const Scalar tmp3364 = tmp298 + tmp293*phi8_dot + tmp295*phi7_dot + tmp297*phi1_dot
-        + tmp297*phi2_dot + tmp297*phi3_dot + tmp297*phi4_dot + tmp297*phi5_dot - tmp163*phi9_dot
-        + (phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp297;
+    const Scalar tmp296 = carried[232];
+    const Scalar tmp3364 = tmp296 + tmp291*phi8_dot + tmp293*phi7_dot + tmp295*phi1_dot
+        + tmp295*phi2_dot + tmp295*phi3_dot + tmp295*phi4_dot + tmp295*phi5_dot - tmp163*phi9_dot
+        + (phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp295;
     const Scalar tmp179 = carried[137];
     const Scalar tmp3365 = tmp179 + tmp166*phi9_dot + tmp168*phi7_dot + tmp171*phi8_dot
         + tmp172*phi1_dot + tmp172*phi2_dot + tmp172*phi3_dot + tmp172*phi4_dot + tmp172*phi5_dot
         + (phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp172;
-    const Scalar tmp316 = carried[249];
-    const Scalar tmp3366 = tmp316 + tmp309*phi9_dot + tmp311*phi8_dot + tmp313*phi7_dot
-        + tmp315*phi1_dot + tmp315*phi2_dot + tmp315*phi3_dot + tmp315*phi4_dot + tmp315*phi5_dot
+    const Scalar tmp314 = carried[248];
+    const Scalar tmp3366 = tmp314 + tmp307*phi9_dot + tmp309*phi8_dot + tmp311*phi7_dot
+        + tmp313*phi1_dot + tmp313*phi2_dot + tmp313*phi3_dot + tmp313*phi4_dot + tmp313*phi5_dot
         - tmp197*phi10_dot
-        + (phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp315;
+        + (phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp313;
     const Scalar tmp215 = carried[169];
     const Scalar tmp3367 = tmp215 + tmp200*phi10_dot + tmp202*phi9_dot + tmp205*phi8_dot
         + tmp206*phi1_dot + tmp206*phi2_dot + tmp206*phi3_dot + tmp206*phi4_dot + tmp206*phi5_dot
@@ -10296,27 +10296,27 @@ struct StiffChain10 {
     const Scalar tmp3391 = tmp115 + tmp107*phi1_dot + tmp107*phi2_dot + tmp107*phi3_dot
         + tmp107*phi4_dot + tmp107*phi5_dot + tmp107*phi6_dot
         + (phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot)*tmp107;
-    const Scalar tmp280 = carried[217];
-    const Scalar tmp3392 = tmp280 + tmp279*phi1_dot + tmp279*phi2_dot + tmp279*phi3_dot
-        + tmp279*phi4_dot + tmp279*phi5_dot + tmp279*phi6_dot - tmp132*phi8_dot
-        + (phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot)*tmp279;
+    const Scalar tmp278 = carried[216];
+    const Scalar tmp3392 = tmp278 + tmp277*phi1_dot + tmp277*phi2_dot + tmp277*phi3_dot
+        + tmp277*phi4_dot + tmp277*phi5_dot + tmp277*phi6_dot - tmp132*phi8_dot
+        + (phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot)*tmp277;
     const Scalar tmp145 = carried[107];
     const Scalar tmp3393 = tmp145 + tmp135*phi8_dot + tmp137*phi1_dot + tmp137*phi2_dot
         + tmp137*phi3_dot + tmp137*phi4_dot + tmp137*phi5_dot + tmp137*phi6_dot
         + (phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot)*tmp137;
-    const Scalar tmp296 = carried[231];
-    const Scalar tmp3394 = tmp296 + tmp293*phi8_dot + tmp295*phi1_dot + tmp295*phi2_dot
-        + tmp295*phi3_dot + tmp295*phi4_dot + tmp295*phi5_dot + tmp295*phi6_dot - tmp163*phi9_dot
-        + (phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot)*tmp295;
+    const Scalar tmp294 = carried[230];
+    const Scalar tmp3394 = tmp294 + tmp291*phi8_dot + tmp293*phi1_dot + tmp293*phi2_dot
+        + tmp293*phi3_dot + tmp293*phi4_dot + tmp293*phi5_dot + tmp293*phi6_dot - tmp163*phi9_dot
+        + (phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot)*tmp293;
     const Scalar tmp178 = carried[136];
     const Scalar tmp3395 = tmp178 + tmp166*phi9_dot + tmp168*phi1_dot + tmp168*phi2_dot
         + tmp168*phi3_dot + tmp168*phi4_dot + tmp168*phi5_dot + tmp168*phi6_dot + tmp171*phi8_dot
         + (phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot)*tmp168;
-    const Scalar tmp314 = carried[247];
-    const Scalar tmp3396 = tmp314 + tmp309*phi9_dot + tmp311*phi8_dot + tmp313*phi1_dot
-        + tmp313*phi2_dot + tmp313*phi3_dot + tmp313*phi4_dot + tmp313*phi5_dot + tmp313*phi6_dot
+    const Scalar tmp312 = carried[246];
+    const Scalar tmp3396 = tmp312 + tmp307*phi9_dot + tmp309*phi8_dot + tmp311*phi1_dot
+        + tmp311*phi2_dot + tmp311*phi3_dot + tmp311*phi4_dot + tmp311*phi5_dot + tmp311*phi6_dot
         - tmp197*phi10_dot
-        + (phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot)*tmp313;
+        + (phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot)*tmp311;
     const Scalar tmp214 = carried[168];
     const Scalar tmp3397 = tmp214 + tmp200*phi10_dot + tmp202*phi9_dot + tmp205*phi8_dot
         + tmp208*phi1_dot + tmp208*phi2_dot + tmp208*phi3_dot + tmp208*phi4_dot + tmp208*phi5_dot
@@ -10369,22 +10369,22 @@ struct StiffChain10 {
         + tmp135*phi4_dot + tmp135*phi5_dot + tmp135*phi6_dot + tmp135*phi7_dot
         + (phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot
             + phi8_dot)*tmp135;
-    const Scalar tmp294 = carried[229];
-    const Scalar tmp3420 = tmp294 + tmp293*phi1_dot + tmp293*phi2_dot + tmp293*phi3_dot
-        + tmp293*phi4_dot + tmp293*phi5_dot + tmp293*phi6_dot + tmp293*phi7_dot - tmp163*phi9_dot
+    const Scalar tmp292 = carried[228];
+    const Scalar tmp3420 = tmp292 + tmp291*phi1_dot + tmp291*phi2_dot + tmp291*phi3_dot
+        + tmp291*phi4_dot + tmp291*phi5_dot + tmp291*phi6_dot + tmp291*phi7_dot - tmp163*phi9_dot
         + (phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot
-            + phi8_dot)*tmp293;
+            + phi8_dot)*tmp291;
     const Scalar tmp177 = carried[135];
     const Scalar tmp3421 = tmp177 + tmp166*phi9_dot + tmp171*phi1_dot + tmp171*phi2_dot
         + tmp171*phi3_dot + tmp171*phi4_dot + tmp171*phi5_dot + tmp171*phi6_dot + tmp171*phi7_dot
         + (phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot
             + phi8_dot)*tmp171;
-    const Scalar tmp312 = carried[245];
-    const Scalar tmp3422 = tmp312 + tmp309*phi9_dot + tmp311*phi1_dot + tmp311*phi2_dot
-        + tmp311*phi3_dot + tmp311*phi4_dot + tmp311*phi5_dot + tmp311*phi6_dot + tmp311*phi7_dot
+    const Scalar tmp310 = carried[244];
+    const Scalar tmp3422 = tmp310 + tmp307*phi9_dot + tmp309*phi1_dot + tmp309*phi2_dot
+        + tmp309*phi3_dot + tmp309*phi4_dot + tmp309*phi5_dot + tmp309*phi6_dot + tmp309*phi7_dot
         - tmp197*phi10_dot
         + (phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot
-            + phi8_dot)*tmp311;
+            + phi8_dot)*tmp309;
     const Scalar tmp213 = carried[167];
     const Scalar tmp3423 = tmp213 + tmp200*phi10_dot + tmp202*phi9_dot + tmp205*phi1_dot
         + tmp205*phi2_dot + tmp205*phi3_dot + tmp205*phi4_dot + tmp205*phi5_dot + tmp205*phi6_dot
@@ -10438,12 +10438,12 @@ struct StiffChain10 {
         + tmp166*phi4_dot + tmp166*phi5_dot + tmp166*phi6_dot + tmp166*phi7_dot + tmp166*phi8_dot
         + (phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot + phi8_dot
             + phi9_dot)*tmp166;
-    const Scalar tmp310 = carried[243];
-    const Scalar tmp3444 = tmp310 + tmp309*phi1_dot + tmp309*phi2_dot + tmp309*phi3_dot
-        + tmp309*phi4_dot + tmp309*phi5_dot + tmp309*phi6_dot + tmp309*phi7_dot + tmp309*phi8_dot
+    const Scalar tmp308 = carried[242];
+    const Scalar tmp3444 = tmp308 + tmp307*phi1_dot + tmp307*phi2_dot + tmp307*phi3_dot
+        + tmp307*phi4_dot + tmp307*phi5_dot + tmp307*phi6_dot + tmp307*phi7_dot + tmp307*phi8_dot
         - tmp197*phi10_dot
         + (phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot + phi8_dot
-            + phi9_dot)*tmp309;
+            + phi9_dot)*tmp307;
     const Scalar tmp212 = carried[166];
     const Scalar tmp3445 = tmp212 + tmp200*phi10_dot + tmp202*phi1_dot + tmp202*phi2_dot
         + tmp202*phi3_dot + tmp202*phi4_dot + tmp202*phi5_dot + tmp202*phi6_dot + tmp202*phi7_dot
@@ -10865,14 +10865,14 @@ struct StiffChain10 {
     const Scalar tmp199 = cos(tmp195);
     const Scalar tmp200 = tmp199*l;
     const Scalar tmp201 = tmp167 - tmp200;
-    const Scalar tmp232 = g*m;
+    const Scalar tmp381 = g*m;
     const Scalar tmp444 = (Scalar(0.5))*k;
     const Scalar tmp445 = tmp444*(phi1*phi1) + tmp444*(phi10*phi10) + tmp444*(phi2*phi2)
         + tmp444*(phi3*phi3) + tmp444*(phi4*phi4) + tmp444*(phi5*phi5) + tmp444*(phi6*phi6)
         + tmp444*(phi7*phi7) + tmp444*(phi8*phi8) + tmp444*(phi9*phi9);
-    const Scalar tmp446 = tmp445 + tmp232*tmp4 + tmp232*tmp42 + tmp232*tmp61 + tmp232*tmp83
-        + tmp232*tmp108 + tmp232*tmp136 + tmp232*tmp167 + tmp232*tmp201 + tmp232*tmp13
-        + tmp232*tmp26;
+    const Scalar tmp446 = tmp445 + tmp381*tmp4 + tmp381*tmp42 + tmp381*tmp61 + tmp381*tmp83
+        + tmp381*tmp108 + tmp381*tmp136 + tmp381*tmp167 + tmp381*tmp201 + tmp381*tmp13
+        + tmp381*tmp26;
     Scalar result;
     result = tmp446;
     return result;
@@ -11175,7 +11175,7 @@ struct StiffChain10 {
     const Scalar tmp231 = tmp221 + tmp222*phi9_dot + tmp223*phi8_dot + tmp224*phi7_dot
         + tmp225*phi6_dot + tmp226*phi5_dot + tmp227*phi4_dot + tmp228*phi3_dot + tmp229*phi2_dot
         + tmp230*phi1_dot;
-    const Scalar tmp232 = g*m;
+    const Scalar tmp381 = g*m;
     const Scalar tmp442 = (Scalar(0.5))*m;
     const Scalar tmp443 = tmp442*((tmp121*tmp121) + (tmp129*tmp129))
         + tmp442*((tmp16*tmp16) + (tmp19*tmp19)) + tmp442*((tmp151*tmp151) + (tmp160*tmp160))
@@ -11187,9 +11187,9 @@ struct StiffChain10 {
     const Scalar tmp445 = tmp444*(phi1*phi1) + tmp444*(phi10*phi10) + tmp444*(phi2*phi2)
         + tmp444*(phi3*phi3) + tmp444*(phi4*phi4) + tmp444*(phi5*phi5) + tmp444*(phi6*phi6)
         + tmp444*(phi7*phi7) + tmp444*(phi8*phi8) + tmp444*(phi9*phi9);
-    const Scalar tmp446 = tmp445 + tmp232*tmp4 + tmp232*tmp42 + tmp232*tmp61 + tmp232*tmp83
-        + tmp232*tmp108 + tmp232*tmp136 + tmp232*tmp167 + tmp232*tmp201 + tmp232*tmp13
-        + tmp232*tmp26;
+    const Scalar tmp446 = tmp445 + tmp381*tmp4 + tmp381*tmp42 + tmp381*tmp61 + tmp381*tmp83
+        + tmp381*tmp108 + tmp381*tmp136 + tmp381*tmp167 + tmp381*tmp201 + tmp381*tmp13
+        + tmp381*tmp26;
     Scalar result;
     result = tmp443 + tmp446;
     return result;
@@ -12191,80 +12191,80 @@ struct StiffChain10 {
     const Scalar tmp228 = tmp224 + tmp98;
     const Scalar tmp229 = tmp225 + tmp74;
     const Scalar tmp230 = tmp226 + tmp53;
-    const Scalar tmp234 = (phi1_dot*phi1_dot);
-    const Scalar tmp235 = -tmp1*tmp234;
-    const Scalar tmp236 = tmp234*tmp3;
-    const Scalar tmp237 = phi1_dot*(-tmp17 - tmp18*phi1_dot) + phi2_dot*(-tmp17 - tmp9*phi1_dot);
-    const Scalar tmp238 = tmp16*phi1_dot + phi2_dot*(tmp14 + tmp12*phi1_dot);
-    const Scalar tmp239 = -tmp33;
-    const Scalar tmp240 = -tmp32 + tmp239*phi2_dot;
-    const Scalar tmp241 = phi1_dot*(tmp240 - tmp34*phi1_dot) + phi2_dot*(tmp240 + tmp239*phi1_dot)
+    const Scalar tmp232 = (phi1_dot*phi1_dot);
+    const Scalar tmp233 = -tmp1*tmp232;
+    const Scalar tmp234 = tmp232*tmp3;
+    const Scalar tmp235 = phi1_dot*(-tmp17 - tmp18*phi1_dot) + phi2_dot*(-tmp17 - tmp9*phi1_dot);
+    const Scalar tmp236 = tmp16*phi1_dot + phi2_dot*(tmp14 + tmp12*phi1_dot);
+    const Scalar tmp237 = -tmp33;
+    const Scalar tmp238 = -tmp32 + tmp237*phi2_dot;
+    const Scalar tmp239 = phi1_dot*(tmp238 - tmp34*phi1_dot) + phi2_dot*(tmp238 + tmp237*phi1_dot)
         + phi3_dot*(-tmp32 - tmp22*phi1_dot - tmp22*phi2_dot);
-    const Scalar tmp242 = tmp31*phi1_dot + phi2_dot*(tmp30 + tmp28*phi1_dot)
+    const Scalar tmp240 = tmp31*phi1_dot + phi2_dot*(tmp30 + tmp28*phi1_dot)
         + phi3_dot*(tmp29 + tmp25*phi1_dot + tmp25*phi2_dot);
-    const Scalar tmp243 = -tmp51;
-    const Scalar tmp244 = -tmp50 + tmp243*phi3_dot;
-    const Scalar tmp245 = -tmp52;
-    const Scalar tmp246 = tmp244 + tmp245*phi2_dot;
-    const Scalar tmp247 = phi1_dot*(tmp246 - tmp53*phi1_dot) + phi2_dot*(tmp246 + tmp245*phi1_dot)
-        + phi3_dot*(tmp244 + tmp243*phi1_dot + tmp243*phi2_dot)
+    const Scalar tmp241 = -tmp51;
+    const Scalar tmp242 = -tmp50 + tmp241*phi3_dot;
+    const Scalar tmp243 = -tmp52;
+    const Scalar tmp244 = tmp242 + tmp243*phi2_dot;
+    const Scalar tmp245 = phi1_dot*(tmp244 - tmp53*phi1_dot) + phi2_dot*(tmp244 + tmp243*phi1_dot)
+        + phi3_dot*(tmp242 + tmp241*phi1_dot + tmp241*phi2_dot)
         + phi4_dot*(-tmp50 - tmp38*phi1_dot - tmp38*phi2_dot - tmp38*phi3_dot);
-    const Scalar tmp248 = tmp49*phi1_dot + phi2_dot*(tmp48 + tmp45*phi1_dot)
+    const Scalar tmp246 = tmp49*phi1_dot + phi2_dot*(tmp48 + tmp45*phi1_dot)
         + phi3_dot*(tmp47 + tmp43*phi1_dot + tmp43*phi2_dot)
         + phi4_dot*(tmp46 + tmp41*phi1_dot + tmp41*phi2_dot + tmp41*phi3_dot);
-    const Scalar tmp249 = -tmp72;
-    const Scalar tmp250 = -tmp71 + tmp249*phi4_dot;
-    const Scalar tmp251 = -tmp73;
-    const Scalar tmp252 = tmp250 + tmp251*phi3_dot;
-    const Scalar tmp253 = -tmp74;
-    const Scalar tmp254 = tmp252 + tmp253*phi2_dot;
-    const Scalar tmp255 = phi1_dot*(tmp254 - tmp75*phi1_dot) + phi2_dot*(tmp254 + tmp253*phi1_dot)
-        + phi3_dot*(tmp252 + tmp251*phi1_dot + tmp251*phi2_dot)
-        + phi4_dot*(tmp250 + tmp249*phi1_dot + tmp249*phi2_dot + tmp249*phi3_dot)
+    const Scalar tmp247 = -tmp72;
+    const Scalar tmp248 = -tmp71 + tmp247*phi4_dot;
+    const Scalar tmp249 = -tmp73;
+    const Scalar tmp250 = tmp248 + tmp249*phi3_dot;
+    const Scalar tmp251 = -tmp74;
+    const Scalar tmp252 = tmp250 + tmp251*phi2_dot;
+    const Scalar tmp253 = phi1_dot*(tmp252 - tmp75*phi1_dot) + phi2_dot*(tmp252 + tmp251*phi1_dot)
+        + phi3_dot*(tmp250 + tmp249*phi1_dot + tmp249*phi2_dot)
+        + phi4_dot*(tmp248 + tmp247*phi1_dot + tmp247*phi2_dot + tmp247*phi3_dot)
         + phi5_dot*(-tmp71 - tmp57*phi1_dot - tmp57*phi2_dot - tmp57*phi3_dot - tmp57*phi4_dot);
-    const Scalar tmp256 = tmp70*phi1_dot + phi2_dot*(tmp69 + tmp65*phi1_dot)
+    const Scalar tmp254 = tmp70*phi1_dot + phi2_dot*(tmp69 + tmp65*phi1_dot)
         + phi3_dot*(tmp68 + tmp62*phi1_dot + tmp62*phi2_dot)
         + phi4_dot*(tmp67 + tmp64*phi1_dot + tmp64*phi2_dot + tmp64*phi3_dot)
         + phi5_dot*(tmp66 + tmp60*phi1_dot + tmp60*phi2_dot + tmp60*phi3_dot + tmp60*phi4_dot);
-    const Scalar tmp257 = -tmp96;
-    const Scalar tmp258 = -tmp95 + tmp257*phi5_dot;
-    const Scalar tmp259 = -tmp97;
-    const Scalar tmp260 = tmp258 + tmp259*phi4_dot;
-    const Scalar tmp261 = -tmp98;
-    const Scalar tmp262 = tmp260 + tmp261*phi3_dot;
-    const Scalar tmp263 = -tmp99;
-    const Scalar tmp264 = tmp262 + tmp263*phi2_dot;
-    const Scalar tmp265 = phi1_dot*(tmp264 - tmp100*phi1_dot) + phi2_dot*(tmp264 + tmp263*phi1_dot)
-        + phi3_dot*(tmp262 + tmp261*phi1_dot + tmp261*phi2_dot)
-        + phi4_dot*(tmp260 + tmp259*phi1_dot + tmp259*phi2_dot + tmp259*phi3_dot)
-        + phi5_dot*(tmp258 + tmp257*phi1_dot + tmp257*phi2_dot + tmp257*phi3_dot + tmp257*phi4_dot)
+    const Scalar tmp255 = -tmp96;
+    const Scalar tmp256 = -tmp95 + tmp255*phi5_dot;
+    const Scalar tmp257 = -tmp97;
+    const Scalar tmp258 = tmp256 + tmp257*phi4_dot;
+    const Scalar tmp259 = -tmp98;
+    const Scalar tmp260 = tmp258 + tmp259*phi3_dot;
+    const Scalar tmp261 = -tmp99;
+    const Scalar tmp262 = tmp260 + tmp261*phi2_dot;
+    const Scalar tmp263 = phi1_dot*(tmp262 - tmp100*phi1_dot) + phi2_dot*(tmp262 + tmp261*phi1_dot)
+        + phi3_dot*(tmp260 + tmp259*phi1_dot + tmp259*phi2_dot)
+        + phi4_dot*(tmp258 + tmp257*phi1_dot + tmp257*phi2_dot + tmp257*phi3_dot)
+        + phi5_dot*(tmp256 + tmp255*phi1_dot + tmp255*phi2_dot + tmp255*phi3_dot + tmp255*phi4_dot)
         + phi6_dot*(-tmp95 - tmp79*phi1_dot - tmp79*phi2_dot - tmp79*phi3_dot - tmp79*phi4_dot
             - tmp79*phi5_dot);
-    const Scalar tmp266 = tmp94*phi1_dot + phi2_dot*(tmp93 + tmp87*phi1_dot)
+    const Scalar tmp264 = tmp94*phi1_dot + phi2_dot*(tmp93 + tmp87*phi1_dot)
         + phi3_dot*(tmp92 + tmp88*phi1_dot + tmp88*phi2_dot)
         + phi4_dot*(tmp91 + tmp86*phi1_dot + tmp86*phi2_dot + tmp86*phi3_dot)
         + phi5_dot*(tmp90 + tmp84*phi1_dot + tmp84*phi2_dot + tmp84*phi3_dot + tmp84*phi4_dot)
         + phi6_dot*(tmp89 + tmp82*phi1_dot + tmp82*phi2_dot + tmp82*phi3_dot + tmp82*phi4_dot
             + tmp82*phi5_dot);
-    const Scalar tmp267 = -tmp123;
-    const Scalar tmp268 = -tmp122 + tmp267*phi6_dot;
-    const Scalar tmp269 = -tmp124;
-    const Scalar tmp270 = tmp268 + tmp269*phi5_dot;
-    const Scalar tmp271 = -tmp125;
-    const Scalar tmp272 = tmp270 + tmp271*phi4_dot;
-    const Scalar tmp273 = -tmp126;
-    const Scalar tmp274 = tmp272 + tmp273*phi3_dot;
-    const Scalar tmp275 = -tmp127;
-    const Scalar tmp276 = tmp274 + tmp275*phi2_dot;
-    const Scalar tmp277 = phi1_dot*(tmp276 - tmp128*phi1_dot) + phi2_dot*(tmp276 + tmp275*phi1_dot)
-        + phi3_dot*(tmp274 + tmp273*phi1_dot + tmp273*phi2_dot)
-        + phi4_dot*(tmp272 + tmp271*phi1_dot + tmp271*phi2_dot + tmp271*phi3_dot)
-        + phi5_dot*(tmp270 + tmp269*phi1_dot + tmp269*phi2_dot + tmp269*phi3_dot + tmp269*phi4_dot)
-        + phi6_dot*(tmp268 + tmp267*phi1_dot + tmp267*phi2_dot + tmp267*phi3_dot + tmp267*phi4_dot
-            + tmp267*phi5_dot)
+    const Scalar tmp265 = -tmp123;
+    const Scalar tmp266 = -tmp122 + tmp265*phi6_dot;
+    const Scalar tmp267 = -tmp124;
+    const Scalar tmp268 = tmp266 + tmp267*phi5_dot;
+    const Scalar tmp269 = -tmp125;
+    const Scalar tmp270 = tmp268 + tmp269*phi4_dot;
+    const Scalar tmp271 = -tmp126;
+    const Scalar tmp272 = tmp270 + tmp271*phi3_dot;
+    const Scalar tmp273 = -tmp127;
+    const Scalar tmp274 = tmp272 + tmp273*phi2_dot;
+    const Scalar tmp275 = phi1_dot*(tmp274 - tmp128*phi1_dot) + phi2_dot*(tmp274 + tmp273*phi1_dot)
+        + phi3_dot*(tmp272 + tmp271*phi1_dot + tmp271*phi2_dot)
+        + phi4_dot*(tmp270 + tmp269*phi1_dot + tmp269*phi2_dot + tmp269*phi3_dot)
+        + phi5_dot*(tmp268 + tmp267*phi1_dot + tmp267*phi2_dot + tmp267*phi3_dot + tmp267*phi4_dot)
+        + phi6_dot*(tmp266 + tmp265*phi1_dot + tmp265*phi2_dot + tmp265*phi3_dot + tmp265*phi4_dot
+            + tmp265*phi5_dot)
         + phi7_dot*(-tmp122 - tmp104*phi1_dot - tmp104*phi2_dot - tmp104*phi3_dot - tmp104*phi4_dot
             - tmp104*phi5_dot - tmp104*phi6_dot);
-    const Scalar tmp278 = tmp121*phi1_dot + phi2_dot*(tmp120 + tmp112*phi1_dot)
+    const Scalar tmp276 = tmp121*phi1_dot + phi2_dot*(tmp120 + tmp112*phi1_dot)
         + phi3_dot*(tmp119 + tmp113*phi1_dot + tmp113*phi2_dot)
         + phi4_dot*(tmp118 + tmp114*phi1_dot + tmp114*phi2_dot + tmp114*phi3_dot)
         + phi5_dot*(tmp117 + tmp109*phi1_dot + tmp109*phi2_dot + tmp109*phi3_dot + tmp109*phi4_dot)
@@ -12272,29 +12272,29 @@ struct StiffChain10 {
             + tmp111*phi5_dot)
         + phi7_dot*(tmp115 + tmp107*phi1_dot + tmp107*phi2_dot + tmp107*phi3_dot + tmp107*phi4_dot
             + tmp107*phi5_dot + tmp107*phi6_dot);
-    const Scalar tmp279 = -tmp153;
-    const Scalar tmp280 = -tmp152 + tmp279*phi7_dot;
-    const Scalar tmp281 = -tmp154;
-    const Scalar tmp282 = tmp280 + tmp281*phi6_dot;
-    const Scalar tmp283 = -tmp155;
-    const Scalar tmp284 = tmp282 + tmp283*phi5_dot;
-    const Scalar tmp285 = -tmp156;
-    const Scalar tmp286 = tmp284 + tmp285*phi4_dot;
-    const Scalar tmp287 = -tmp157;
-    const Scalar tmp288 = tmp286 + tmp287*phi3_dot;
-    const Scalar tmp289 = -tmp158;
-    const Scalar tmp290 = tmp288 + tmp289*phi2_dot;
-    const Scalar tmp291 = phi1_dot*(tmp290 - tmp159*phi1_dot) + phi2_dot*(tmp290 + tmp289*phi1_dot)
-        + phi3_dot*(tmp288 + tmp287*phi1_dot + tmp287*phi2_dot)
-        + phi4_dot*(tmp286 + tmp285*phi1_dot + tmp285*phi2_dot + tmp285*phi3_dot)
-        + phi5_dot*(tmp284 + tmp283*phi1_dot + tmp283*phi2_dot + tmp283*phi3_dot + tmp283*phi4_dot)
-        + phi6_dot*(tmp282 + tmp281*phi1_dot + tmp281*phi2_dot + tmp281*phi3_dot + tmp281*phi4_dot
-            + tmp281*phi5_dot)
-        + phi7_dot*(tmp280 + tmp279*phi1_dot + tmp279*phi2_dot + tmp279*phi3_dot + tmp279*phi4_dot
-            + tmp279*phi5_dot + tmp279*phi6_dot)
+    const Scalar tmp277 = -tmp153;
+    const Scalar tmp278 = -tmp152 + tmp277*phi7_dot;
+    const Scalar tmp279 = -tmp154;
+    const Scalar tmp280 = tmp278 + tmp279*phi6_dot;
+    const Scalar tmp281 = -tmp155;
+    const Scalar tmp282 = tmp280 + tmp281*phi5_dot;
+    const Scalar tmp283 = -tmp156;
+    const Scalar tmp284 = tmp282 + tmp283*phi4_dot;
+    const Scalar tmp285 = -tmp157;
+    const Scalar tmp286 = tmp284 + tmp285*phi3_dot;
+    const Scalar tmp287 = -tmp158;
+    const Scalar tmp288 = tmp286 + tmp287*phi2_dot;
+    const Scalar tmp289 = phi1_dot*(tmp288 - tmp159*phi1_dot) + phi2_dot*(tmp288 + tmp287*phi1_dot)
+        + phi3_dot*(tmp286 + tmp285*phi1_dot + tmp285*phi2_dot)
+        + phi4_dot*(tmp284 + tmp283*phi1_dot + tmp283*phi2_dot + tmp283*phi3_dot)
+        + phi5_dot*(tmp282 + tmp281*phi1_dot + tmp281*phi2_dot + tmp281*phi3_dot + tmp281*phi4_dot)
+        + phi6_dot*(tmp280 + tmp279*phi1_dot + tmp279*phi2_dot + tmp279*phi3_dot + tmp279*phi4_dot
+            + tmp279*phi5_dot)
+        + phi7_dot*(tmp278 + tmp277*phi1_dot + tmp277*phi2_dot + tmp277*phi3_dot + tmp277*phi4_dot
+            + tmp277*phi5_dot + tmp277*phi6_dot)
         + phi8_dot*(-tmp152 - tmp132*phi1_dot - tmp132*phi2_dot - tmp132*phi3_dot - tmp132*phi4_dot
             - tmp132*phi5_dot - tmp132*phi6_dot - tmp132*phi7_dot);
-    const Scalar tmp292 = tmp151*phi1_dot + phi2_dot*(tmp150 + tmp141*phi1_dot)
+    const Scalar tmp290 = tmp151*phi1_dot + phi2_dot*(tmp150 + tmp141*phi1_dot)
         + phi3_dot*(tmp149 + tmp142*phi1_dot + tmp142*phi2_dot)
         + phi4_dot*(tmp148 + tmp143*phi1_dot + tmp143*phi2_dot + tmp143*phi3_dot)
         + phi5_dot*(tmp147 + tmp138*phi1_dot + tmp138*phi2_dot + tmp138*phi3_dot + tmp138*phi4_dot)
@@ -12304,33 +12304,33 @@ struct StiffChain10 {
             + tmp137*phi5_dot + tmp137*phi6_dot)
         + phi8_dot*(tmp144 + tmp135*phi1_dot + tmp135*phi2_dot + tmp135*phi3_dot + tmp135*phi4_dot
             + tmp135*phi5_dot + tmp135*phi6_dot + tmp135*phi7_dot);
-    const Scalar tmp293 = -tmp186;
-    const Scalar tmp294 = -tmp185 + tmp293*phi8_dot;
-    const Scalar tmp295 = -tmp187;
-    const Scalar tmp296 = tmp294 + tmp295*phi7_dot;
-    const Scalar tmp297 = -tmp188;
-    const Scalar tmp298 = tmp296 + tmp297*phi6_dot;
-    const Scalar tmp299 = -tmp189;
-    const Scalar tmp300 = tmp298 + tmp299*phi5_dot;
-    const Scalar tmp301 = -tmp190;
-    const Scalar tmp302 = tmp300 + tmp301*phi4_dot;
-    const Scalar tmp303 = -tmp191;
-    const Scalar tmp304 = tmp302 + tmp303*phi3_dot;
-    const Scalar tmp305 = -tmp192;
-    const Scalar tmp306 = tmp304 + tmp305*phi2_dot;
-    const Scalar tmp307 = phi1_dot*(tmp306 - tmp193*phi1_dot) + phi2_dot*(tmp306 + tmp305*phi1_dot)
-        + phi3_dot*(tmp304 + tmp303*phi1_dot + tmp303*phi2_dot)
-        + phi4_dot*(tmp302 + tmp301*phi1_dot + tmp301*phi2_dot + tmp301*phi3_dot)
-        + phi5_dot*(tmp300 + tmp299*phi1_dot + tmp299*phi2_dot + tmp299*phi3_dot + tmp299*phi4_dot)
-        + phi6_dot*(tmp298 + tmp297*phi1_dot + tmp297*phi2_dot + tmp297*phi3_dot + tmp297*phi4_dot
-            + tmp297*phi5_dot)
-        + phi7_dot*(tmp296 + tmp295*phi1_dot + tmp295*phi2_dot + tmp295*phi3_dot + tmp295*phi4_dot
-            + tmp295*phi5_dot + tmp295*phi6_dot)
-        + phi8_dot*(tmp294 + tmp293*phi1_dot + tmp293*phi2_dot + tmp293*phi3_dot + tmp293*phi4_dot
-            + tmp293*phi5_dot + tmp293*phi6_dot + tmp293*phi7_dot)
+    const Scalar tmp291 = -tmp186;
+    const Scalar tmp292 = -tmp185 + tmp291*phi8_dot;
+    const Scalar tmp293 = -tmp187;
+    const Scalar tmp294 = tmp292 + tmp293*phi7_dot;
+    const Scalar tmp295 = -tmp188;
+    const Scalar tmp296 = tmp294 + tmp295*phi6_dot;
+    const Scalar tmp297 = -tmp189;
+    const Scalar tmp298 = tmp296 + tmp297*phi5_dot;
+    const Scalar tmp299 = -tmp190;
+    const Scalar tmp300 = tmp298 + tmp299*phi4_dot;
+    const Scalar tmp301 = -tmp191;
+    const Scalar tmp302 = tmp300 + tmp301*phi3_dot;
+    const Scalar tmp303 = -tmp192;
+    const Scalar tmp304 = tmp302 + tmp303*phi2_dot;
+    const Scalar tmp305 = phi1_dot*(tmp304 - tmp193*phi1_dot) + phi2_dot*(tmp304 + tmp303*phi1_dot)
+        + phi3_dot*(tmp302 + tmp301*phi1_dot + tmp301*phi2_dot)
+        + phi4_dot*(tmp300 + tmp299*phi1_dot + tmp299*phi2_dot + tmp299*phi3_dot)
+        + phi5_dot*(tmp298 + tmp297*phi1_dot + tmp297*phi2_dot + tmp297*phi3_dot + tmp297*phi4_dot)
+        + phi6_dot*(tmp296 + tmp295*phi1_dot + tmp295*phi2_dot + tmp295*phi3_dot + tmp295*phi4_dot
+            + tmp295*phi5_dot)
+        + phi7_dot*(tmp294 + tmp293*phi1_dot + tmp293*phi2_dot + tmp293*phi3_dot + tmp293*phi4_dot
+            + tmp293*phi5_dot + tmp293*phi6_dot)
+        + phi8_dot*(tmp292 + tmp291*phi1_dot + tmp291*phi2_dot + tmp291*phi3_dot + tmp291*phi4_dot
+            + tmp291*phi5_dot + tmp291*phi6_dot + tmp291*phi7_dot)
         + phi9_dot*(-tmp185 - tmp163*phi1_dot - tmp163*phi2_dot - tmp163*phi3_dot - tmp163*phi4_dot
             - tmp163*phi5_dot - tmp163*phi6_dot - tmp163*phi7_dot - tmp163*phi8_dot);
-    const Scalar tmp308 = tmp184*phi1_dot + phi2_dot*(tmp183 + tmp173*phi1_dot)
+    const Scalar tmp306 = tmp184*phi1_dot + phi2_dot*(tmp183 + tmp173*phi1_dot)
         + phi3_dot*(tmp182 + tmp174*phi1_dot + tmp174*phi2_dot)
         + phi4_dot*(tmp181 + tmp175*phi1_dot + tmp175*phi2_dot + tmp175*phi3_dot)
         + phi5_dot*(tmp180 + tmp169*phi1_dot + tmp169*phi2_dot + tmp169*phi3_dot + tmp169*phi4_dot)
@@ -12342,38 +12342,38 @@ struct StiffChain10 {
             + tmp171*phi5_dot + tmp171*phi6_dot + tmp171*phi7_dot)
         + phi9_dot*(tmp176 + tmp166*phi1_dot + tmp166*phi2_dot + tmp166*phi3_dot + tmp166*phi4_dot
             + tmp166*phi5_dot + tmp166*phi6_dot + tmp166*phi7_dot + tmp166*phi8_dot);
-    const Scalar tmp309 = -tmp222;
-    const Scalar tmp310 = -tmp221 + tmp309*phi9_dot;
-    const Scalar tmp311 = -tmp223;
-    const Scalar tmp312 = tmp310 + tmp311*phi8_dot;
-    const Scalar tmp313 = -tmp224;
-    const Scalar tmp314 = tmp312 + tmp313*phi7_dot;
-    const Scalar tmp315 = -tmp225;
-    const Scalar tmp316 = tmp314 + tmp315*phi6_dot;
-    const Scalar tmp317 = -tmp226;
-    const Scalar tmp318 = tmp316 + tmp317*phi5_dot;
-    const Scalar tmp319 = -tmp227;
-    const Scalar tmp320 = tmp318 + tmp319*phi4_dot;
-    const Scalar tmp321 = -tmp228;
-    const Scalar tmp322 = tmp320 + tmp321*phi3_dot;
-    const Scalar tmp323 = -tmp229;
-    const Scalar tmp324 = tmp322 + tmp323*phi2_dot;
-    const Scalar tmp325 = phi10_dot*(-tmp221 - tmp197*phi1_dot - tmp197*phi2_dot - tmp197*phi3_dot
+    const Scalar tmp307 = -tmp222;
+    const Scalar tmp308 = -tmp221 + tmp307*phi9_dot;
+    const Scalar tmp309 = -tmp223;
+    const Scalar tmp310 = tmp308 + tmp309*phi8_dot;
+    const Scalar tmp311 = -tmp224;
+    const Scalar tmp312 = tmp310 + tmp311*phi7_dot;
+    const Scalar tmp313 = -tmp225;
+    const Scalar tmp314 = tmp312 + tmp313*phi6_dot;
+    const Scalar tmp315 = -tmp226;
+    const Scalar tmp316 = tmp314 + tmp315*phi5_dot;
+    const Scalar tmp317 = -tmp227;
+    const Scalar tmp318 = tmp316 + tmp317*phi4_dot;
+    const Scalar tmp319 = -tmp228;
+    const Scalar tmp320 = tmp318 + tmp319*phi3_dot;
+    const Scalar tmp321 = -tmp229;
+    const Scalar tmp322 = tmp320 + tmp321*phi2_dot;
+    const Scalar tmp323 = phi10_dot*(-tmp221 - tmp197*phi1_dot - tmp197*phi2_dot - tmp197*phi3_dot
             - tmp197*phi4_dot - tmp197*phi5_dot - tmp197*phi6_dot - tmp197*phi7_dot
             - tmp197*phi8_dot - tmp197*phi9_dot)
-        + phi1_dot*(tmp324 - tmp230*phi1_dot) + phi2_dot*(tmp324 + tmp323*phi1_dot)
-        + phi3_dot*(tmp322 + tmp321*phi1_dot + tmp321*phi2_dot)
-        + phi4_dot*(tmp320 + tmp319*phi1_dot + tmp319*phi2_dot + tmp319*phi3_dot)
-        + phi5_dot*(tmp318 + tmp317*phi1_dot + tmp317*phi2_dot + tmp317*phi3_dot + tmp317*phi4_dot)
-        + phi6_dot*(tmp316 + tmp315*phi1_dot + tmp315*phi2_dot + tmp315*phi3_dot + tmp315*phi4_dot
-            + tmp315*phi5_dot)
-        + phi7_dot*(tmp314 + tmp313*phi1_dot + tmp313*phi2_dot + tmp313*phi3_dot + tmp313*phi4_dot
-            + tmp313*phi5_dot + tmp313*phi6_dot)
-        + phi8_dot*(tmp312 + tmp311*phi1_dot + tmp311*phi2_dot + tmp311*phi3_dot + tmp311*phi4_dot
-            + tmp311*phi5_dot + tmp311*phi6_dot + tmp311*phi7_dot)
-        + phi9_dot*(tmp310 + tmp309*phi1_dot + tmp309*phi2_dot + tmp309*phi3_dot + tmp309*phi4_dot
-            + tmp309*phi5_dot + tmp309*phi6_dot + tmp309*phi7_dot + tmp309*phi8_dot);
-    const Scalar tmp326 = tmp220*phi1_dot
+        + phi1_dot*(tmp322 - tmp230*phi1_dot) + phi2_dot*(tmp322 + tmp321*phi1_dot)
+        + phi3_dot*(tmp320 + tmp319*phi1_dot + tmp319*phi2_dot)
+        + phi4_dot*(tmp318 + tmp317*phi1_dot + tmp317*phi2_dot + tmp317*phi3_dot)
+        + phi5_dot*(tmp316 + tmp315*phi1_dot + tmp315*phi2_dot + tmp315*phi3_dot + tmp315*phi4_dot)
+        + phi6_dot*(tmp314 + tmp313*phi1_dot + tmp313*phi2_dot + tmp313*phi3_dot + tmp313*phi4_dot
+            + tmp313*phi5_dot)
+        + phi7_dot*(tmp312 + tmp311*phi1_dot + tmp311*phi2_dot + tmp311*phi3_dot + tmp311*phi4_dot
+            + tmp311*phi5_dot + tmp311*phi6_dot)
+        + phi8_dot*(tmp310 + tmp309*phi1_dot + tmp309*phi2_dot + tmp309*phi3_dot + tmp309*phi4_dot
+            + tmp309*phi5_dot + tmp309*phi6_dot + tmp309*phi7_dot)
+        + phi9_dot*(tmp308 + tmp307*phi1_dot + tmp307*phi2_dot + tmp307*phi3_dot + tmp307*phi4_dot
+            + tmp307*phi5_dot + tmp307*phi6_dot + tmp307*phi7_dot + tmp307*phi8_dot);
+    const Scalar tmp324 = tmp220*phi1_dot
         + phi10_dot*(tmp211 + tmp200*phi1_dot + tmp200*phi2_dot + tmp200*phi3_dot + tmp200*phi4_dot
             + tmp200*phi5_dot + tmp200*phi6_dot + tmp200*phi7_dot + tmp200*phi8_dot
             + tmp200*phi9_dot)
@@ -12390,26 +12390,26 @@ struct StiffChain10 {
         + phi9_dot*(tmp212 + tmp202*phi1_dot + tmp202*phi2_dot + tmp202*phi3_dot + tmp202*phi4_dot
             + tmp202*phi5_dot + tmp202*phi6_dot + tmp202*phi7_dot + tmp202*phi8_dot);
     XVector<Scalar> result;
-    result(0) = tmp235;
-    result(1) = tmp236;
-    result(2) = tmp237;
-    result(3) = tmp238;
-    result(4) = tmp241;
-    result(5) = tmp242;
-    result(6) = tmp247;
-    result(7) = tmp248;
-    result(8) = tmp255;
-    result(9) = tmp256;
-    result(10) = tmp265;
-    result(11) = tmp266;
-    result(12) = tmp277;
-    result(13) = tmp278;
-    result(14) = tmp291;
-    result(15) = tmp292;
-    result(16) = tmp307;
-    result(17) = tmp308;
-    result(18) = tmp325;
-    result(19) = tmp326;
+    result(0) = tmp233;
+    result(1) = tmp234;
+    result(2) = tmp235;
+    result(3) = tmp236;
+    result(4) = tmp239;
+    result(5) = tmp240;
+    result(6) = tmp245;
+    result(7) = tmp246;
+    result(8) = tmp253;
+    result(9) = tmp254;
+    result(10) = tmp263;
+    result(11) = tmp264;
+    result(12) = tmp275;
+    result(13) = tmp276;
+    result(14) = tmp289;
+    result(15) = tmp290;
+    result(16) = tmp305;
+    result(17) = tmp306;
+    result(18) = tmp323;
+    result(19) = tmp324;
     return result;
   }
 
@@ -13106,29 +13106,29 @@ struct StiffChain10 {
                                            const Params& params) {
       const Scalar g = Scalar(params.g);
       const Scalar m = Scalar(params.m);
-      const Scalar tmp232 = g*m;
-      const Scalar tmp233 = -tmp232;
+      const Scalar tmp381 = g*m;
+      const Scalar tmp382 = -tmp381;
       XVector<Scalar> result;
       result(0) = Scalar(0);
-      result(1) = tmp233;
+      result(1) = tmp382;
       result(2) = Scalar(0);
-      result(3) = tmp233;
+      result(3) = tmp382;
       result(4) = Scalar(0);
-      result(5) = tmp233;
+      result(5) = tmp382;
       result(6) = Scalar(0);
-      result(7) = tmp233;
+      result(7) = tmp382;
       result(8) = Scalar(0);
-      result(9) = tmp233;
+      result(9) = tmp382;
       result(10) = Scalar(0);
-      result(11) = tmp233;
+      result(11) = tmp382;
       result(12) = Scalar(0);
-      result(13) = tmp233;
+      result(13) = tmp382;
       result(14) = Scalar(0);
-      result(15) = tmp233;
+      result(15) = tmp382;
       result(16) = Scalar(0);
-      result(17) = tmp233;
+      result(17) = tmp382;
       result(18) = Scalar(0);
-      result(19) = tmp233;
+      result(19) = tmp382;
       return result;
     }
 
@@ -14171,10 +14171,10 @@ struct StiffChain10 {
                                    const Params& params) {
       const Scalar g = Scalar(params.g);
       const Scalar m = Scalar(params.m);
-      const Scalar tmp232 = g*m;
+      const Scalar tmp381 = g*m;
       Scalar result;
-      result = tmp232*pos(1) + tmp232*pos(19) + tmp232*pos(3) + tmp232*pos(5) + tmp232*pos(7)
-          + tmp232*pos(9) + tmp232*pos(11) + tmp232*pos(13) + tmp232*pos(15) + tmp232*pos(17);
+      result = tmp381*pos(1) + tmp381*pos(19) + tmp381*pos(3) + tmp381*pos(5) + tmp381*pos(7)
+          + tmp381*pos(9) + tmp381*pos(11) + tmp381*pos(13) + tmp381*pos(15) + tmp381*pos(17);
       return result;
     }
 

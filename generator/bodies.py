@@ -12,11 +12,15 @@ angular-velocity Jacobian.
   vertices (+-1, +-1, +-1) of a regular tetrahedron (sum c_k = 0, sum c_k c_k^T = 4 1).
 - 2D: three masses m/3 at distance sqrt(I/m) from the centre, 120 degrees apart.
 
-The point masses are ordinary particles to the rest of the generator; the body adds rods
-between them so that the maximal-coordinate model, where they move freely, keeps it rigid.
+The point masses are particles to the kinematics, the forces and the maximal-coordinate
+model (the body adds rods between them, which keep it rigid where they move freely). The
+reduced inertia takes the body whole instead (`inertial_terms`): the same values in fewer,
+shorter expressions, in which what vanishes identically cancels structurally.
 """
 
 from __future__ import annotations
+
+from dataclasses import dataclass
 
 import sympy as sp
 
@@ -37,11 +41,23 @@ def as_inertia(inertia, dim: int, label: str, line: int | None) -> sp.Matrix:
     if dim == 3 and matrix.shape != (3, 3):
         raise ModelError(f"inertia is {matrix.shape[0]}x{matrix.shape[1]}; give the 3x3 tensor "
                          "about the centre of mass in body axes", item=label, line=line)
-    if dim == 3 and any(sp.expand(matrix[i, j] - matrix[j, i]) != 0
-                        for i in range(3) for j in range(i)):
+    if dim == 3 and not all(_equal_to_round_off(matrix[i, j], matrix[j, i])
+                            for i in range(3) for j in range(i)):
         raise ModelError("inertia is not symmetric; give the tensor about the centre of mass "
                          "with I[i, j] = I[j, i]", item=label, line=line)
-    return matrix
+    return (matrix + matrix.T) / 2 if dim == 3 else matrix
+
+
+def _equal_to_round_off(a: sp.Expr, b: sp.Expr) -> bool:
+    """a == b, up to the round-off of floating-point coefficients (a tensor turned by a
+    numeric rotation, R I R^T, is symmetric only to round-off)."""
+    difference = sp.expand(a - b)
+    if difference == 0:
+        return True
+    size = max([abs(c) for c in sp.expand(a).as_coefficients_dict().values()]
+               + [abs(c) for c in sp.expand(b).as_coefficients_dict().values()])
+    return all(c.is_Float and abs(c) <= 1e-12 * size
+               for c in difference.as_coefficients_dict().values())
 
 
 def inertia_problem(mass, inertia: sp.Matrix) -> str | None:
@@ -151,3 +167,41 @@ def torque_generalized_forces(model: Model, q: list[sp.Symbol]) -> sp.Matrix:
             axis = sp.Matrix([spin[2, 1], spin[0, 2], spin[1, 0]])
             forces[a] += item.torque.dot(axis)
     return forces
+
+
+@dataclass(frozen=True)
+class InertialTerm:
+    """A point y(q, t) of weight w whose motion carries the kinetic energy w |ydot|^2 / 2.
+
+    The model's kinetic energy is the sum over its terms, so Mt, Fi and the momenta are sums
+    over them as over particles. Translational terms (particles, bodies' centres of mass) carry
+    gravity and linear momentum; every term's w y x ydot adds to the angular momentum.
+    """
+    name: str            # a particle's name, or '<body>.<part>' (no point's name has a dot)
+    weight: sp.Expr
+    position: sp.Matrix
+    translational: bool
+
+
+def rotational_terms(body: Body) -> list[InertialTerm]:
+    """The rotation's energy as terms: integral of |Rdot r|^2 dm / 2 = tr(Rdot S Rdot^T) / 2,
+    and with S = sum_k d_k l_k l_k^T (LDL^T, no square roots) that is sum_k d_k |Rdot l_k|^2 / 2:
+    terms R l_k of weight d_k. A diagonal S gives the columns of R. In 2D only tr S = I
+    enters: one term, the first column of R, of weight I."""
+    rotation = body.frame.rotation
+    if body.frame.dim == 2:
+        return [InertialTerm(f"{body.name}.rotation", body.inertia[0], rotation[:, 0], False)]
+    unit_lower, diagonal = body.second_moment.LDLdecomposition(hermitian=False)
+    return [InertialTerm(f"{body.name}.rotation{k}", diagonal[k, k],
+                         rotation * unit_lower[:, k], False) for k in range(3)]
+
+
+def inertial_terms(model: Model) -> list[InertialTerm]:
+    """Every term of the model's kinetic energy: its particles (a body's point masses
+    excepted), and each body's centre of mass and rotation."""
+    terms = [InertialTerm(p.name, p.mass, p.position, True)
+             for p in model.particles if not isinstance(p, BodyParticle)]
+    for body in model.bodies:
+        terms.append(InertialTerm(f"{body.name}.centre", body.mass, body.frame.origin, True))
+        terms.extend(rotational_terms(body))
+    return terms

@@ -19,7 +19,7 @@ from .budget import Budget, BudgetSpent
 from .derive import Kinematics
 from .errors import ModelError
 from .finite import finite_or_none
-from .model import Model, Pin, Plane, Point, Rod
+from .model import BodyParticle, Model, Pin, Plane, Point, Rod
 from .trig_polynomial import vanishes_identically
 
 SAMPLES = 256
@@ -171,7 +171,8 @@ def verify_constraints(model: Model, seed: int = 20261121,
     for the report: a constraint that could not be evaluated anywhere, or sampling stopped
     by its time budget.
     """
-    if not model.constraints:
+    declared = [c for c in model.constraints if not _rigid_by_construction(c)]
+    if not declared:
         return []
     kin = kin or Kinematics(model)  # the pipeline builds it once for every stage
     q = [c.symbol for c in model.coordinates]
@@ -180,8 +181,8 @@ def verify_constraints(model: Model, seed: int = 20261121,
     samples = [([rng.uniform(-math.pi, math.pi) for _ in q],
                 [_sampled_value(p.default, rng) for p in model.parameters],
                 rng.uniform(0.0, 10.0)) for _ in range(SAMPLES)]
-    proven = _proven(model.constraints, kin) if len(q) <= SYMBOLIC_MAX_NQ else set()
-    sampled = [c for k, c in enumerate(model.constraints) if k not in proven]
+    proven = _proven(declared, kin) if len(q) <= SYMBOLIC_MAX_NQ else set()
+    sampled = [c for k, c in enumerate(declared) if k not in proven]
     if not sampled:
         return []
     found, stopped = _finite_samples(sampled, kin, q, params, samples)
@@ -205,6 +206,13 @@ def verify_constraints(model: Model, seed: int = 20261121,
         notes.append(f"Constraint check stopped at its time budget ({SAMPLING_SECONDS:g} s CPU) "
                      f"before all {SAMPLES} samples; constraints held where evaluated")
     return notes
+
+
+def _rigid_by_construction(constraint) -> bool:
+    """A rod between two point masses of one body: they move with the body's frame."""
+    return (isinstance(constraint, Rod) and isinstance(constraint.a, BodyParticle)
+            and isinstance(constraint.b, BodyParticle)
+            and constraint.a.body_name == constraint.b.body_name)
 
 
 def _describe(constraint) -> str:

@@ -4,8 +4,11 @@
     Mt = J^T M J,  Ft = J^T F + Q (generalized forces),  Fi = -J^T M gamma
     Mt qddot = Ft + Fi
 
-Everything is accumulated particle by particle (M is diagonal), so no dense dN x dN matrix
-is ever formed, and no expression is simplified: one CSE pass over all outputs comes later.
+Everything is accumulated term by term (M is diagonal), so no dense dN x dN matrix is ever
+formed, and no expression is simplified: one CSE pass over all outputs comes later. The
+inertia's terms are the particles and, for rigid bodies, their centres of mass and rotations
+(bodies.inertial_terms); gravity acts at every translational term. The particle-indexed
+outputs (positions, J, gamma) keep a body's point masses, whose moments are the body's.
 Each output is one flat expression: the pipeline uses this for small models and the tests
 use it as the reference; structured.py derives large models as named intermediates.
 """
@@ -17,7 +20,7 @@ from typing import Callable
 
 import sympy as sp
 
-from .bodies import force_shares, torque_generalized_forces
+from .bodies import InertialTerm, force_shares, inertial_terms, torque_generalized_forces
 from .differentiate import termwise_jacobian
 from .model import Model, Point
 
@@ -101,6 +104,13 @@ class Kinematics:
     def of(self, point: Point) -> tuple[sp.Matrix, sp.Matrix]:
         return self.position[point.name], self.velocity[point.name]
 
+    def of_term(self, term: InertialTerm) -> tuple[sp.Matrix, sp.Matrix, sp.Matrix]:
+        """(y, J_y, ydot) of an inertial term: a particle's as derived, a body's computed."""
+        if term.name in self.jacobian:
+            return self.position[term.name], self.jacobian[term.name], self.velocity[term.name]
+        jac = termwise_jacobian(term.position, self.q)
+        return term.position, jac, _times(jac, self.v) + term.position.diff(self.t)
+
     def numeric_jacobian(self) -> Callable[[list[float], float], list[list[float]]]:
         """J(q, t) of the particles as floats, parameters at their defaults.
 
@@ -126,10 +136,12 @@ class Kinematics:
         return self._numeric_jacobian
 
 
-def particle_forces(model: Model, kin: Kinematics) -> dict[str, sp.Matrix]:
+def particle_forces(model: Model, kin: Kinematics, gravity: bool = True
+                    ) -> dict[str, sp.Matrix]:
     """The x-space force on each particle, as expressions of `kin`'s variables.
 
-    Gravity, springs, dampers and user forces; generalized forces act on q, not here.
+    Gravity (unless `gravity` is False: the reduced derivation applies it at the inertial
+    terms), springs, dampers and user forces; generalized forces act on q, not here.
     """
     zero = sp.zeros(model.dim, 1)
     force = {p.name: zero for p in model.particles}
@@ -140,9 +152,9 @@ def particle_forces(model: Model, kin: Kinematics) -> dict[str, sp.Matrix]:
             if target.name in is_particle:  # fixed points' supports absorb their forces
                 force[target.name] = force[target.name] + share
 
-    for gravity in model.gravities:
+    for field in model.gravities if gravity else []:
         for p in model.particles:
-            add(p, p.mass * gravity.acceleration)
+            add(p, p.mass * field.acceleration)
     for s in model.springs:
         (xa, va), (xb, vb) = kin.of(s.a), kin.of(s.b)
         d = xb - xa
@@ -162,12 +174,17 @@ def particle_forces(model: Model, kin: Kinematics) -> dict[str, sp.Matrix]:
     return force
 
 
-def x_space_potential(model: Model, kin: Kinematics) -> sp.Expr:
-    """Gravity, spring and user-force potentials; forces without a potential add nothing."""
+def x_space_potential(model: Model, kin: Kinematics,
+                      gravity_at: list[tuple[sp.Expr, sp.Matrix]] | None = None) -> sp.Expr:
+    """Gravity, spring and user-force potentials; forces without a potential add nothing.
+
+    Gravity acts on the particles, or on the (weight, position) pairs `gravity_at`."""
     potential = sp.Integer(0)
-    for gravity in model.gravities:
-        for p in model.particles:
-            potential -= p.mass * gravity.acceleration.dot(kin.position[p.name])
+    if gravity_at is None:
+        gravity_at = [(p.mass, kin.position[p.name]) for p in model.particles]
+    for field in model.gravities:
+        for weight, position in gravity_at:
+            potential -= weight * field.acceleration.dot(position)
     for s in model.springs:
         stretch = _norm(kin.position[s.b.name] - kin.position[s.a.name]) - s.rest_length
         potential += s.stiffness * stretch**2 / (2 * s.rest_length)
@@ -196,13 +213,21 @@ def fixed_point_positions(model: Model, kin: Kinematics) -> sp.Matrix:
     return sp.Matrix.vstack(sp.zeros(0, 1), *[kin.position[p.name] for p in model.fixed_points])
 
 
+def gravity_force(model: Model, term: InertialTerm) -> sp.Matrix:
+    """The force of every gravity field on a translational inertial term (else zero)."""
+    force = sp.zeros(model.dim, 1)
+    for field in model.gravities if term.translational else []:
+        force += term.weight * field.acceleration
+    return force
+
+
 def derive(model: Model, kin: Kinematics | None = None) -> Derivation:
     """The reduced dynamics of `model`: Mt = J^T M J, Ft = J^T F, Fi = -J^T M gamma, energy,
     momenta and the Jacobians of the residual."""
     kin = kin or Kinematics(model)  # the pipeline builds it once for every stage
     nq = model.nq
     q, v, t = kin.q, kin.v, kin.t
-    force = particle_forces(model, kin)
+    force = particle_forces(model, kin, gravity=False)
 
     mass_matrix = sp.zeros(nq, nq)
     applied = sp.zeros(nq, 1)
@@ -210,23 +235,26 @@ def derive(model: Model, kin: Kinematics | None = None) -> Derivation:
     kinetic = sp.Integer(0)
     momentum = sp.zeros(model.dim, 1)
     angular = sp.zeros(3 if model.dim == 3 else 1, 1)
-    gammas = []
-    for p in model.particles:
-        x, xdot, jac = kin.position[p.name], kin.velocity[p.name], kin.jacobian[p.name]
-        gamma = bias_acceleration(xdot, q, v, t)
-        gammas.append(gamma)
-        jac_t = jac.T
+    gravity_at, gammas = [], {}
+    for term in inertial_terms(model):
+        y, jac, ydot = kin.of_term(term)
+        w = term.weight
+        gamma = gammas[term.name] = bias_acceleration(ydot, q, v, t)
         for a in range(nq):
             for b in range(a + 1):
-                mass_matrix[a, b] += p.mass * jac[:, a].dot(jac[:, b])
-        applied += jac_t * force[p.name]
-        inertial -= p.mass * (jac_t * gamma)
-        kinetic += p.mass * xdot.dot(xdot) / 2
-        momentum += p.mass * xdot
-        angular += p.mass * _cross(x, xdot)
+                mass_matrix[a, b] += w * jac[:, a].dot(jac[:, b])
+        applied += jac.T * gravity_force(model, term)
+        inertial -= w * (jac.T * gamma)
+        kinetic += w * ydot.dot(ydot) / 2
+        angular += w * _cross(y, ydot)
+        if term.translational:
+            momentum += w * ydot
+            gravity_at.append((w, y))
     for a in range(nq):
         for b in range(a):
             mass_matrix[b, a] = mass_matrix[a, b]
+    for p in model.particles:
+        applied += kin.jacobian[p.name].T * force[p.name]
     generalized = generalized_force_vector(model, q)
     applied += generalized
 
@@ -238,10 +266,14 @@ def derive(model: Model, kin: Kinematics | None = None) -> Derivation:
         fixed_point_positions=fixed_point_positions(model, kin),
         velocities=sp.Matrix.vstack(*[kin.velocity[p.name] for p in model.particles]),
         jacobian=sp.Matrix.vstack(*[kin.jacobian[p.name] for p in model.particles]),
-        bias_acceleration=sp.Matrix.vstack(*gammas),
+        bias_acceleration=sp.Matrix.vstack(*[
+            gammas[p.name] if p.name in gammas
+            else bias_acceleration(kin.velocity[p.name], q, v, t)
+            for p in model.particles]),
         mass_matrix=mass_matrix, applied_forces=applied, inertial_forces=inertial,
         generalized_forces=generalized,
         kinetic_energy=kinetic,
-        potential_energy=x_space_potential(model, kin) + generalized_potential(model),
+        potential_energy=(x_space_potential(model, kin, gravity_at)
+                          + generalized_potential(model)),
         generalized_potential=generalized_potential(model),
         linear_momentum=momentum, angular_momentum=angular)

@@ -127,9 +127,9 @@ class Body(Item):
     """A rigid body: mass, inertia tensor about the centre of mass in body axes (1x1 in 2D),
     and the frame (orientation R(q, t), centre of mass p(q, t)).
 
-    Its dynamics come from `particles`, point masses with the body's mass, centre of mass and
-    inertia tensor (bodies.py): the body's kinetic energy, Mt, Fi and momenta depend on its
-    mass distribution through exactly those three moments."""
+    The reduced dynamics take it whole (bodies.inertial_terms); `particles` are point masses
+    with the body's mass, centre of mass and inertia tensor (bodies.py), which stand for it
+    where positions are needed one by one (the particle kernels, the maximal model)."""
     mass: sp.Expr
     inertia: sp.Matrix
     frame: Frame

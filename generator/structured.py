@@ -16,9 +16,10 @@ from __future__ import annotations
 
 import sympy as sp
 
+from .bodies import inertial_terms
 from .derive import (Derivation, Kinematics, _cross, bias_acceleration, fixed_point_positions,
-                     generalized_force_vector, generalized_potential, particle_forces,
-                     x_space_potential)
+                     generalized_force_vector, generalized_potential, gravity_force,
+                     particle_forces, x_space_potential)
 from .model import Model, Point
 
 
@@ -125,19 +126,31 @@ def derive_structured(model: Model, kin: Kinematics
     q, v, t = kin.q, kin.v, kin.t
     names = Intermediates()
     local = NamedKinematics(model, kin, names)
-    force = {name: names.vector(f) for name, f in particle_forces(model, local).items()}
+    force = {name: names.vector(f)
+             for name, f in particle_forces(model, local, gravity=False).items()}
 
-    # (a, b) -> {(column a, column b): masses}; a -> {J entry: (m gamma terms, F terms)}
+    # (a, b) -> {(column a, column b): weights}; a -> {J entry: (w gamma terms, F terms)}
     mass_groups: dict[tuple[int, int], dict[tuple, list[sp.Expr]]] = {}
     projections: dict[int, dict[sp.Expr, tuple[list, list]]] = {a: {} for a in range(nq)}
-    gammas, kinetic = [], sp.Integer(0)
+    gammas, kinetic, gravity_at = {}, sp.Integer(0), []
     momentum = sp.zeros(dim, 1)
     angular = sp.zeros(3 if dim == 3 else 1, 1)
-    for p in model.particles:
-        jac = kin.jacobian[p.name]
-        x, xdot = local.of(p)
-        gamma = names.vector(bias_acceleration(kin.velocity[p.name], q, v, t))
-        gammas.append(gamma)
+
+    def project(jac: sp.Matrix, vector: sp.Matrix, slot: int) -> None:
+        """Adds J^T vector's terms to the projections, grouped by J entry."""
+        for a in range(nq):
+            for k in range(dim):
+                if jac[k, a] != 0 and vector[k] != 0:
+                    projections[a].setdefault(jac[k, a], ([], []))[slot].append(vector[k])
+
+    for term in inertial_terms(model):
+        raw_y, jac, raw_ydot = kin.of_term(term)
+        if term.name in local.position:  # a particle, named already
+            y, ydot = local.position[term.name], local.velocity[term.name]
+        else:
+            y, ydot = names.vector(raw_y), names.vector(raw_ydot)
+        w = term.weight
+        gamma = gammas[term.name] = names.vector(bias_acceleration(raw_ydot, q, v, t))
         columns = {a: tuple(jac[k, a] for k in range(dim)) for a in range(nq)
                    if any(jac[k, a] != 0 for k in range(dim))}
         for a, column_a in columns.items():
@@ -145,15 +158,16 @@ def derive_structured(model: Model, kin: Kinematics
                 if b > a:
                     break
                 mass_groups.setdefault((a, b), {}).setdefault((column_a, column_b),
-                                                              []).append(p.mass)
-            for k, entry in enumerate(column_a):
-                if entry != 0:
-                    inertial, applied = projections[a].setdefault(entry, ([], []))
-                    inertial.append(p.mass * gamma[k])
-                    applied.append(force[p.name][k])
-        kinetic += p.mass * xdot.dot(xdot) / 2
-        momentum += p.mass * xdot
-        angular += p.mass * _cross(x, xdot)
+                                                              []).append(w)
+        project(jac, w * gamma, 0)
+        project(jac, gravity_force(model, term), 1)
+        kinetic += w * ydot.dot(ydot) / 2
+        angular += w * _cross(y, ydot)
+        if term.translational:
+            momentum += w * ydot
+            gravity_at.append((w, y))
+    for p in model.particles:
+        project(kin.jacobian[p.name], force[p.name], 1)
 
     mass_matrix = sp.zeros(nq, nq)
     entries = list(mass_groups)
@@ -178,10 +192,14 @@ def derive_structured(model: Model, kin: Kinematics
         fixed_point_positions=fixed_point_positions(model, kin),
         velocities=sp.Matrix.vstack(*[local.velocity[p.name] for p in particles]),
         jacobian=sp.Matrix.vstack(*[kin.jacobian[p.name] for p in particles]),
-        bias_acceleration=sp.Matrix.vstack(*gammas),
+        bias_acceleration=sp.Matrix.vstack(*[
+            gammas[p.name] if p.name in gammas
+            else names.vector(bias_acceleration(kin.velocity[p.name], q, v, t))
+            for p in particles]),
         mass_matrix=mass_matrix, applied_forces=applied, inertial_forces=inertial,
         generalized_forces=generalized, kinetic_energy=kinetic,
-        potential_energy=x_space_potential(model, local) + generalized_potential(model),
+        potential_energy=(x_space_potential(model, local, gravity_at)
+                          + generalized_potential(model)),
         generalized_potential=generalized_potential(model),
         linear_momentum=momentum, angular_momentum=angular)
     return derivation, names.definitions

@@ -22,6 +22,7 @@ import sympy as sp
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 sys.path.insert(0, ROOT)
 
+from generator.bodies import inertia_problem  # noqa: E402
 from generator.derive import derive  # noqa: E402
 from generator.loader import load_model  # noqa: E402
 from generator.maximal import KAPPA, PENALTY_DAMPING, derive_maximal  # noqa: E402
@@ -119,6 +120,21 @@ def reference_models(variant: Variant, seed: int) -> list[str]:
             for k, chart in enumerate([model, *model.charts])]
 
 
+def sampled_parameters(model, rng: random.Random) -> list[float]:
+    """Parameters around the defaults (zero defaults, such as dampers, drag or an applied
+    force, get a small value), drawn again until every body's mass and inertia are a real
+    body's: scaling the entries of an inertia tensor one by one can break the triangle
+    inequality."""
+    for _ in range(1000):
+        params = [p.default * rng.uniform(0.7, 1.3) if p.default != 0 else rng.uniform(0.1, 0.5)
+                  for p in model.parameters]
+        values = {p.symbol: sp.Float(value) for p, value in zip(model.parameters, params)}
+        if not any(inertia_problem(sp.sympify(body.mass).xreplace(values),
+                                   body.inertia.xreplace(values)) for body in model.bodies):
+            return params
+    raise RuntimeError("no parameters near the defaults make every body physical")
+
+
 def reference_model(name: str, model, seed: int) -> str:
     d = derive(model)
     md = derive_maximal(model, symbolic_jacobians=False)
@@ -149,9 +165,7 @@ def reference_model(name: str, model, seed: int) -> str:
         v = [rng.uniform(-1.0, 1.0) for _ in d.v]
         qdd = [rng.uniform(-1.0, 1.0) for _ in d.q]
         t = rng.uniform(0.0, 2.0)
-        # around the defaults; zero defaults (dampers, drag, applied force) get a small value
-        params = [p.default * rng.uniform(0.7, 1.3) if p.default != 0 else rng.uniform(0.1, 0.5)
-                  for p in model.parameters]
+        params = sampled_parameters(model, rng)
         # the maximal model near the reduced state, off its constraints so penalties act
         kappa, damping = rng.uniform(1e2, 1e4), rng.uniform(0.1, 1.0)
         with mpmath.workdps(DIGITS):

@@ -3,8 +3,8 @@
 // range, nutation period and mean precession from the quadrature of the exact solution) and
 // its steady precession, and the free box's spin about its principal axes (stable about the
 // smallest and largest moments, flipping about the intermediate one, the Dzhanibekov effect)
-// with energy and angular momentum conserved. The pendulum and the box are model files of
-// this folder (body_models/), one model.body() each.
+// with energy and angular momentum conserved. The box is a model file of this folder
+// (body_models/), one model.body().
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -16,25 +16,25 @@
 #include "gencoord/dynamics.hpp"
 #include "gencoord/integrate/simulate.hpp"
 #include "gencoord/reduced_system.hpp"
-#include "generated/compound_bar.hpp"
+#include "generated/compound_pendulum.hpp"
 #include "generated/free_box.hpp"
 #include "generated/heavy_top.hpp"
 
 namespace gencoord::testing {
 namespace {
 
-using models::CompoundBar;
+using models::CompoundPendulum;
 using models::FreeBox;
 using models::HeavyTop;
 
-TEST(CompoundBar, SmallAnglePeriodIsTwoPiSqrtOfPivotInertiaOverMgd) {
+TEST(CompoundPendulum, SmallAnglePeriodIsTwoPiSqrtOfPivotInertiaOverMgd) {
   // the defaults, and a short, stout bar whose own inertia I_c outweighs m d^2 six times
-  CompoundBar::Params stout;
+  CompoundPendulum::Params stout;
   stout.m = 1.5;
   stout.I_c = 0.36;
   stout.d = 0.2;
-  for (const CompoundBar::Params& p : {CompoundBar::Params{}, stout}) {
-    State<CompoundBar> s;
+  for (const CompoundPendulum::Params& p : {CompoundPendulum::Params{}, stout}) {
+    State<CompoundPendulum> s;
     s.q[0] = 1e-3;
     const double expected = 2.0 * M_PI * std::sqrt((p.I_c + p.m * p.d * p.d) / (p.m * p.g * p.d));
     // period from upward zero crossings of theta, located by linear interpolation (theta'' is
@@ -42,8 +42,8 @@ TEST(CompoundBar, SmallAnglePeriodIsTwoPiSqrtOfPivotInertiaOverMgd) {
     std::vector<double> crossings;
     double previous_theta = s.q[0], previous_t = 0.0;
     const double dt = 1e-3, duration = std::ceil(8.0 * expected / dt) * dt;
-    simulate(ReducedSystem<CompoundBar>(p), s, {Integrator::RK4, dt, duration},
-             [&](const State<CompoundBar>& x) {
+    simulate(ReducedSystem<CompoundPendulum>(p), s, {Integrator::RK4, dt, duration},
+             [&](const State<CompoundPendulum>& x) {
                if (previous_theta < 0.0 && x.q[0] >= 0.0) {
                  crossings.push_back(previous_t + (x.t - previous_t) * (-previous_theta) /
                                                       (x.q[0] - previous_theta));

@@ -98,7 +98,7 @@ def lambdify_flat(args, matrix):
 
 
 def max_abs(values) -> mpmath.mpf:
-    return max((abs(mpmath.mpf(x)) for x in values), default=mpmath.mpf(0))
+    return max((abs(mpmath.mpmathify(x)) for x in values), default=mpmath.mpf(0))
 
 
 def relative_error(actual, expected) -> mpmath.mpf:
