@@ -1,0 +1,212 @@
+// MuJoCo's free joint as the reference for a generated model with a free-floating base.
+//
+// The generated model's first chart moves the base link by x, y, z (the link frame's origin
+// in the world) and the Z-Y-X Euler angles yaw, pitch, roll (R = Rz(yaw) Ry(pitch) Rx(roll));
+// its velocities are the coordinates' time derivatives. MuJoCo's free joint has
+// qpos = (x, y, z, qw, qx, qy, qz), the same origin and R as a unit quaternion, and
+// qvel = (the origin's velocity in world axes, the angular velocity in the base's own axes).
+// So qvel = T v with T = diag(I, E(pitch, roll), I), E the map from the angle rates to the
+// body angular velocity and I on the joints (rows in MuJoCo's order), and MuJoCo's
+// qacc = T qdd + Tdot v. Virtual power gives the generated model's forces from MuJoCo's as
+// T^T f; hence
+//   Mt = T^T M T,   Ft + Fi = -T^T (c + M Tdot v),   tau = T^T (M qacc + c).
+// Contacts and joint-limit constraints are switched off, as in MujocoReference.
+#pragma once
+
+#include <array>
+#include <cmath>
+#include <cstring>
+#include <memory>
+#include <stdexcept>
+#include <string>
+
+#include <mujoco/mujoco.h>
+#include <Eigen/Core>
+
+namespace gencoord::robot_testing {
+
+/// Rz(yaw) Ry(pitch) Rx(roll) as a unit quaternion (w, x, y, z): qz qy qx.
+inline Eigen::Vector4d zyx_quaternion(double yaw, double pitch, double roll) {
+  const double cy = std::cos(yaw / 2), sy = std::sin(yaw / 2);
+  const double cp = std::cos(pitch / 2), sp = std::sin(pitch / 2);
+  const double cr = std::cos(roll / 2), sr = std::sin(roll / 2);
+  return {cy * cp * cr + sy * sp * sr, cy * cp * sr - sy * sp * cr, cy * sp * cr + sy * cp * sr,
+          sy * cp * cr - cy * sp * sr};
+}
+
+/// E(pitch, roll): the angular velocity in the body's axes, R^T Rdot, is E (yaw', pitch', roll').
+inline Eigen::Matrix3d zyx_body_rates(double pitch, double roll) {
+  const double cp = std::cos(pitch), sp = std::sin(pitch);
+  const double cr = std::cos(roll), sr = std::sin(roll);
+  Eigen::Matrix3d e;
+  e << -sp, 0, 1,      //
+      sr * cp, cr, 0,  //
+      cr * cp, -sr, 0;
+  return e;
+}
+
+/// Edot (yaw', pitch', roll'): what the body angular acceleration has beyond E times the angle
+/// accelerations.
+inline Eigen::Vector3d zyx_body_rates_bias(double pitch, double roll,
+                                           const Eigen::Vector3d& rates) {
+  const double cp = std::cos(pitch), sp = std::sin(pitch);
+  const double cr = std::cos(roll), sr = std::sin(roll);
+  const double yaw_rate = rates[0], pitch_rate = rates[1], roll_rate = rates[2];
+  return {-cp * pitch_rate * yaw_rate,
+          (cr * cp * roll_rate - sr * sp * pitch_rate) * yaw_rate - sr * roll_rate * pitch_rate,
+          (-sr * cp * roll_rate - cr * sp * pitch_rate) * yaw_rate - cr * roll_rate * pitch_rate};
+}
+
+/// MuJoCo on a URDF whose floating joint frees the base, against a generated model M's
+/// first chart (coordinates x, y, z, yaw, pitch, roll, then the joints, each named after its
+/// joint). Vectors of MuJoCo's degrees of freedom are in MuJoCo's order; the others in M's.
+template <class M>
+class FreeBaseReference {
+ public:
+  static constexpr int nv = M::nq;      // MuJoCo's degrees of freedom: the free joint has 6
+  static constexpr int nq = M::nq + 1;  // its positions: the quaternion has 4
+  using QVec = Eigen::Matrix<double, M::nq, 1>;
+  using QMat = Eigen::Matrix<double, M::nq, M::nq>;
+  using PosVec = Eigen::Matrix<double, nq, 1>;
+
+  explicit FreeBaseReference(const std::string& urdf_path) {
+    char error[1000] = "";
+    model_.reset(mj_loadXML(urdf_path.c_str(), nullptr, error, sizeof error));
+    if (!model_) throw std::runtime_error("MuJoCo cannot load " + urdf_path + ": " + error);
+    if (model_->nq != nq || model_->nv != nv) {
+      throw std::runtime_error(urdf_path + ": MuJoCo has nq = " + std::to_string(model_->nq) +
+                               " and nv = " + std::to_string(model_->nv) +
+                               "; a free base and the generated model's joints make " +
+                               std::to_string(nq) + " and " + std::to_string(nv));
+    }
+    const std::array<const char*, 6> base{{"x", "y", "z", "yaw", "pitch", "roll"}};
+    for (int i = 0; i < 6; ++i) {
+      if (std::strcmp(M::coordinate_names[i], base[i]) != 0) {
+        throw std::runtime_error(std::string("the generated model's coordinate ") +
+                                 std::to_string(i) + " is " + M::coordinate_names[i] +
+                                 ", not the zyx chart's " + base[i]);
+      }
+    }
+    model_->opt.disableflags |= mjDSBL_CONTACT | mjDSBL_CONSTRAINT;
+    model_->opt.integrator = mjINT_RK4;
+    data_.reset(mj_makeData(model_.get()));
+    for (int j = 0; j < model_->njnt; ++j) {
+      if (model_->jnt_type[j] == mjJNT_FREE) free_ = j;
+    }
+    if (free_ < 0) throw std::runtime_error(urdf_path + ": MuJoCo has no free joint");
+    for (int i = 6; i < M::nq; ++i) {
+      const int joint = mj_name2id(model_.get(), mjOBJ_JOINT, M::coordinate_names[i]);
+      if (joint < 0) {
+        throw std::runtime_error(urdf_path + ": MuJoCo has no joint called " +
+                                 std::string(M::coordinate_names[i]));
+      }
+      qpos_[i] = model_->jnt_qposadr[joint];
+      dof_[i] = model_->jnt_dofadr[joint];
+    }
+  }
+
+  mjModel* model() { return model_.get(); }
+  mjData* data() { return data_.get(); }
+
+  /// MuJoCo's qpos for the generated model's q.
+  PosVec qpos(const QVec& q) const {
+    PosVec out = PosVec::Zero();
+    const int base = model_->jnt_qposadr[free_];
+    out.template segment<3>(base) = q.template head<3>();
+    out.template segment<4>(base + 3) = zyx_quaternion(q[3], q[4], q[5]);
+    for (int i = 6; i < M::nq; ++i) out[qpos_[i]] = q[i];
+    return out;
+  }
+
+  /// T = d qvel / d v at q: the origin's velocity as is, the angle rates to the body
+  /// angular velocity, the joints' rates as they are.
+  QMat velocity_map(const QVec& q) const {
+    QMat t = QMat::Zero();
+    const int base = model_->jnt_dofadr[free_];
+    t.template block<3, 3>(base, 0).setIdentity();
+    t.template block<3, 3>(base + 3, 3) = zyx_body_rates(q[4], q[5]);
+    for (int i = 6; i < M::nq; ++i) t(dof_[i], i) = 1.0;
+    return t;
+  }
+
+  /// Tdot v at (q, v): MuJoCo's qacc is T qdd + Tdot v.
+  QVec velocity_map_bias(const QVec& q, const QVec& v) const {
+    QVec out = QVec::Zero();
+    out.template segment<3>(model_->jnt_dofadr[free_] + 3) =
+        zyx_body_rates_bias(q[4], q[5], v.template segment<3>(3));
+    return out;
+  }
+
+  /// Sets MuJoCo's state to the generated model's (q, v).
+  void set(const QVec& q, const QVec& v) {
+    Eigen::Map<PosVec>(data_->qpos) = qpos(q);
+    Eigen::Map<QVec>(data_->qvel) = velocity_map(q) * v;
+    data_->time = 0.0;
+    t_ = velocity_map(q);
+    tdot_v_ = velocity_map_bias(q, v);
+  }
+
+  /// set(q, v) and mj_forward.
+  void forward(const QVec& q, const QVec& v) {
+    set(q, v);
+    mj_forward(model_.get(), data_.get());
+  }
+
+  PosVec qpos() const { return Eigen::Map<const PosVec>(data_->qpos); }
+  /// MuJoCo's qacc from the last forward().
+  QVec qacc() const { return Eigen::Map<const QVec>(data_->qacc); }
+  /// The generated model's accelerations qdd at the last set()'s (q, v) as MuJoCo's qacc.
+  QVec qacc_from(const QVec& qdd) const { return t_ * qdd + tdot_v_; }
+
+  /// MuJoCo's joint-space inertia matrix from the last forward(), in its own coordinates.
+  QMat mujoco_mass_matrix() const {
+    Eigen::Matrix<double, nv, nv, Eigen::RowMajor> full;
+    mj_fullM(model_.get(), full.data(), data_->qM);
+    return full;
+  }
+
+  /// T^T M T: the inertia matrix in the generated model's coordinates.
+  QMat mass_matrix() const { return t_.transpose() * mujoco_mass_matrix() * t_; }
+
+  /// T^T (c + M Tdot v) with c = qfrc_bias - qfrc_passive: the generated model's Ft + Fi is
+  /// its negative.
+  QVec bias() const {
+    const QVec c =
+        Eigen::Map<const QVec>(data_->qfrc_bias) - Eigen::Map<const QVec>(data_->qfrc_passive);
+    return t_.transpose() * (c + mujoco_mass_matrix() * tdot_v_);
+  }
+
+  /// Inverse dynamics at the last forward()'s (q, v) for the generated model's
+  /// accelerations qdd: T^T (M qacc + c) by mj_rne at qacc = T qdd + Tdot v.
+  QVec inverse_dynamics(const QVec& qdd) {
+    Eigen::Map<QVec>(data_->qacc) = qacc_from(qdd);
+    QVec result;
+    mj_rne(model_.get(), data_.get(), 1, result.data());
+    return t_.transpose() * (result - Eigen::Map<const QVec>(data_->qfrc_passive));
+  }
+
+  /// MuJoCo's velocity that takes qpos `from` to `to` in unit time (mj_differentiatePos): the
+  /// origin's displacement, the rotation vector in the body's axes, the joints' differences.
+  QVec difference(const PosVec& from, const PosVec& to) const {
+    QVec out;
+    mj_differentiatePos(model_.get(), out.data(), 1.0, from.data(), to.data());
+    return out;
+  }
+
+ private:
+  struct FreeModel {
+    void operator()(mjModel* m) const { mj_deleteModel(m); }
+  };
+  struct FreeData {
+    void operator()(mjData* d) const { mj_deleteData(d); }
+  };
+  std::unique_ptr<mjModel, FreeModel> model_;
+  std::unique_ptr<mjData, FreeData> data_;
+  int free_ = -1;
+  std::array<int, M::nq> qpos_{};  // the joints' entries (from 6 on) of qpos and qvel
+  std::array<int, M::nq> dof_{};
+  QMat t_ = QMat::Identity();
+  QVec tdot_v_ = QVec::Zero();
+};
+
+}  // namespace gencoord::robot_testing
