@@ -1,4 +1,4 @@
-# gencoord_add_model(<target> MODEL <model.py> [OPTIONS key=value ...]
+# gencoord_add_model(<target> MODEL <model.py> [OPTIONS key=value ...] [DEPENDS <file> ...]
 #                    [TRANSLATION_UNITS <k>] [MAX_FUNCTION_STATEMENTS <n>] [OUTPUT_DIR <dir>])
 #
 # Generates <name>.hpp from a gencoord model file at build time and makes <target> an
@@ -6,6 +6,8 @@
 # `#include "generated/<name>.hpp"`. The header is regenerated whenever the model file, any
 # generator source or any template changes. <name> is the model file's stem followed by
 # "_<value>" for each option, in the order given (list options in the model file's order).
+# DEPENDS names other files the model file reads (a URDF its load_urdf() loads): a change
+# to one regenerates the header too.
 #
 # TRANSLATION_UNITS <k> (./generate --translation-units, for large models) also generates
 # <name>_double_0.cpp ... <name>_double_<k-1>.cpp, which compile every kernel for double once
@@ -47,7 +49,7 @@ set(GENCOORD_GENERATOR_SOURCES ${_gencoord_generator_sources} "${GENCOORD_ROOT}/
 
 function(gencoord_add_model target)
   cmake_parse_arguments(ARG "" "MODEL;TRANSLATION_UNITS;MAX_FUNCTION_STATEMENTS;OUTPUT_DIR"
-                        "OPTIONS" ${ARGN})
+                        "OPTIONS;DEPENDS" ${ARGN})
   if(NOT ARG_MODEL)
     message(FATAL_ERROR "gencoord_add_model(${target}): MODEL <file.py> is required")
   endif()
@@ -84,7 +86,7 @@ function(gencoord_add_model target)
     # generate leaves unchanged files alone; touch them so the build sees them up to date,
     # but never create one: a header generate did not write must stay missing
     COMMAND ${CMAKE_COMMAND} -E touch_nocreate "${header}" ${sources}
-    DEPENDS "${model}" ${GENCOORD_GENERATOR_SOURCES}
+    DEPENDS "${model}" ${ARG_DEPENDS} ${GENCOORD_GENERATOR_SOURCES}
     COMMENT "gencoord: generating ${name}.hpp from ${ARG_MODEL}"
     VERBATIM)
   add_custom_target(${target}_header DEPENDS "${header}" ${sources})

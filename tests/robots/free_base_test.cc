@@ -13,16 +13,16 @@
 
 #include "free_joint.hpp"
 #include "gencoord/gencoord.hpp"
-#include "generated/floating_quadruped.hpp"
+#include "generated/floating_leg.hpp"
 
 namespace gencoord {
 namespace {
 
-using M = models::FloatingQuadruped;
+using M = models::FloatingLeg;
 using robot_testing::FreeBaseReference;
 using QVec = FreeBaseReference<M>::QVec;
 
-const char* const kUrdf = GENCOORD_ROOT "/tests/robots/floating_quadruped.urdf";
+const char* const kUrdf = GENCOORD_ROOT "/tests/robots/floating_leg.urdf";
 // the fixed-base quadruped's bounds (mujoco_reference_test.cc says why they are not 1e-9):
 // `kernels` for the mass matrix and the bias forces, `solved` for qddot, inverse dynamics and
 // the trajectory
