@@ -10,18 +10,19 @@
 // qacc = T qdd + Tdot v. Virtual power gives the generated model's forces from MuJoCo's as
 // T^T f; hence
 //   Mt = T^T M T,   Ft + Fi = -T^T (c + M Tdot v),   tau = T^T (M qacc + c).
-// Contacts and joint-limit constraints are switched off, as in MujocoReference.
+// Contacts and joint-limit constraints are switched off (load_smooth_model).
 #pragma once
 
 #include <array>
 #include <cmath>
 #include <cstring>
-#include <memory>
 #include <stdexcept>
 #include <string>
 
 #include <mujoco/mujoco.h>
 #include <Eigen/Core>
+
+#include "mujoco_model.hpp"
 
 namespace gencoord::robot_testing {
 
@@ -69,10 +70,7 @@ class FreeBaseReference {
   using QMat = Eigen::Matrix<double, M::nq, M::nq>;
   using PosVec = Eigen::Matrix<double, nq, 1>;
 
-  explicit FreeBaseReference(const std::string& urdf_path) {
-    char error[1000] = "";
-    model_.reset(mj_loadXML(urdf_path.c_str(), nullptr, error, sizeof error));
-    if (!model_) throw std::runtime_error("MuJoCo cannot load " + urdf_path + ": " + error);
+  explicit FreeBaseReference(const std::string& urdf_path) : model_(load_smooth_model(urdf_path)) {
     if (model_->nq != nq || model_->nv != nv) {
       throw std::runtime_error(urdf_path + ": MuJoCo has nq = " + std::to_string(model_->nq) +
                                " and nv = " + std::to_string(model_->nv) +
@@ -87,19 +85,13 @@ class FreeBaseReference {
                                  ", not the zyx chart's " + base[i]);
       }
     }
-    model_->opt.disableflags |= mjDSBL_CONTACT | mjDSBL_CONSTRAINT;
-    model_->opt.integrator = mjINT_RK4;
     data_.reset(mj_makeData(model_.get()));
     for (int j = 0; j < model_->njnt; ++j) {
       if (model_->jnt_type[j] == mjJNT_FREE) free_ = j;
     }
     if (free_ < 0) throw std::runtime_error(urdf_path + ": MuJoCo has no free joint");
     for (int i = 6; i < M::nq; ++i) {
-      const int joint = mj_name2id(model_.get(), mjOBJ_JOINT, M::coordinate_names[i]);
-      if (joint < 0) {
-        throw std::runtime_error(urdf_path + ": MuJoCo has no joint called " +
-                                 std::string(M::coordinate_names[i]));
-      }
+      const int joint = joint_called(model_.get(), urdf_path, M::coordinate_names[i]);
       qpos_[i] = model_->jnt_qposadr[joint];
       dof_[i] = model_->jnt_dofadr[joint];
     }
@@ -194,14 +186,8 @@ class FreeBaseReference {
   }
 
  private:
-  struct FreeModel {
-    void operator()(mjModel* m) const { mj_deleteModel(m); }
-  };
-  struct FreeData {
-    void operator()(mjData* d) const { mj_deleteData(d); }
-  };
-  std::unique_ptr<mjModel, FreeModel> model_;
-  std::unique_ptr<mjData, FreeData> data_;
+  ModelPtr model_;
+  DataPtr data_;
   int free_ = -1;
   std::array<int, M::nq> qpos_{};  // the joints' entries (from 6 on) of qpos and qvel
   std::array<int, M::nq> dof_{};

@@ -18,29 +18,49 @@
 
 namespace gencoord::robot_testing {
 
+struct FreeModel {
+  void operator()(mjModel* m) const { mj_deleteModel(m); }
+};
+struct FreeData {
+  void operator()(mjData* d) const { mj_deleteData(d); }
+};
+using ModelPtr = std::unique_ptr<mjModel, FreeModel>;
+using DataPtr = std::unique_ptr<mjData, FreeData>;
+
+/// MuJoCo's model of a URDF for the smooth dynamics: contacts and joint-limit constraints
+/// off, RK4 as its integrator.
+inline ModelPtr load_smooth_model(const std::string& urdf_path) {
+  char error[1000] = "";
+  ModelPtr model(mj_loadXML(urdf_path.c_str(), nullptr, error, sizeof error));
+  if (!model) throw std::runtime_error("MuJoCo cannot load " + urdf_path + ": " + error);
+  model->opt.disableflags |= mjDSBL_CONTACT | mjDSBL_CONSTRAINT;
+  model->opt.integrator = mjINT_RK4;
+  return model;
+}
+
+/// The joint called `name` (a generated coordinate's name), or an error naming the URDF.
+inline int joint_called(const mjModel* model, const std::string& urdf_path, const char* name) {
+  const int joint = mj_name2id(model, mjOBJ_JOINT, name);
+  if (joint < 0) {
+    throw std::runtime_error(urdf_path + ": MuJoCo has no joint called " + std::string(name));
+  }
+  return joint;
+}
+
 template <class M>
 class MujocoReference {
  public:
   using QVec = Eigen::Matrix<double, M::nq, 1>;
   using QMat = Eigen::Matrix<double, M::nq, M::nq>;
 
-  explicit MujocoReference(const std::string& urdf_path) {
-    char error[1000] = "";
-    model_.reset(mj_loadXML(urdf_path.c_str(), nullptr, error, sizeof error));
-    if (!model_) throw std::runtime_error("MuJoCo cannot load " + urdf_path + ": " + error);
+  explicit MujocoReference(const std::string& urdf_path) : model_(load_smooth_model(urdf_path)) {
     if (model_->nq != M::nq || model_->nv != M::nq) {
       throw std::runtime_error(urdf_path + ": MuJoCo has nq = " + std::to_string(model_->nq) +
                                ", the generated model " + std::to_string(M::nq));
     }
-    model_->opt.disableflags |= mjDSBL_CONTACT | mjDSBL_CONSTRAINT;
-    model_->opt.integrator = mjINT_RK4;
     data_.reset(mj_makeData(model_.get()));
     for (int i = 0; i < M::nq; ++i) {
-      const int joint = mj_name2id(model_.get(), mjOBJ_JOINT, M::coordinate_names[i]);
-      if (joint < 0) {
-        throw std::runtime_error(urdf_path + ": MuJoCo has no joint called " +
-                                 std::string(M::coordinate_names[i]));
-      }
+      const int joint = joint_called(model_.get(), urdf_path, M::coordinate_names[i]);
       qpos_[i] = model_->jnt_qposadr[joint];
       dof_[i] = model_->jnt_dofadr[joint];
     }
@@ -106,14 +126,8 @@ class MujocoReference {
     return out;
   }
 
-  struct FreeModel {
-    void operator()(mjModel* m) const { mj_deleteModel(m); }
-  };
-  struct FreeData {
-    void operator()(mjData* d) const { mj_deleteData(d); }
-  };
-  std::unique_ptr<mjModel, FreeModel> model_;
-  std::unique_ptr<mjData, FreeData> data_;
+  ModelPtr model_;
+  DataPtr data_;
   std::array<int, M::nq> qpos_{};
   std::array<int, M::nq> dof_{};
 };
