@@ -7,10 +7,12 @@
 // Singular configurations (J loses rank): none found
 // Worst conditioning of J in 200 random configurations: sigma_min / sigma_max = 1 at theta =
 //   0.04927
+// qddot: Mt, Ft + Fi and an LDL^T solve, 63 operations (articulated-body recursion: 62)
+// inverse_dynamics: Mt qdd - Ft - Fi, 62 operations (recursive Newton-Euler: 55)
 //
-// Total ops: 415
-// Intermediate terms (99)
-// Output terms (54)
+// Total ops: 498
+// Intermediate terms (139)
+// Output terms (46)
 #pragma once
 
 #include <array>
@@ -69,6 +71,10 @@ struct BeadOnRotatingHoop {
   /// Whether applied_forces at rest (v = 0) is -d(potential_energy)/dq: every force without
   /// a declared potential vanishes at rest (generator/conservative.py).
   static constexpr bool forces_have_potential = true;
+  /// Whether qddot is the articulated-body recursion over the model's tree of particles,
+  /// chosen at generation because it takes fewer operations than Mt, Ft + Fi and an LDL^T
+  /// solve (generator/dynamics_paths.py); gencoord::acceleration() then calls it.
+  static constexpr bool recursive_qddot = false;
 
   template <typename Scalar>
   using QVector = Eigen::Matrix<Scalar, nq, 1>;
@@ -124,19 +130,19 @@ struct BeadOnRotatingHoop {
     const Scalar R = Scalar(params.R);
     const Scalar omega = Scalar(params.omega);
     const Scalar m = Scalar(params.m);
-    const Scalar tmp0 = (R*R);
-    const Scalar tmp1 = sin(theta);
-    const Scalar tmp2 = tmp0*(tmp1*tmp1);
-    const Scalar tmp3 = omega*t;
-    const Scalar tmp4 = sin(tmp3);
-    const Scalar tmp5 = (tmp4*tmp4);
-    const Scalar tmp6 = cos(theta);
-    const Scalar tmp7 = tmp0*(tmp6*tmp6);
-    const Scalar tmp8 = cos(tmp3);
-    const Scalar tmp9 = (tmp8*tmp8);
-    const Scalar tmp10 = m*(tmp2 + tmp5*tmp7 + tmp7*tmp9);
+    const Scalar tmp0 = omega*t;
+    const Scalar tmp1 = cos(tmp0);
+    const Scalar tmp2 = cos(theta);
+    const Scalar tmp5 = sin(tmp0);
+    const Scalar tmp7 = sin(theta);
+    const Scalar tmp58 = (R*R);
+    const Scalar tmp59 = tmp58*(tmp7*tmp7);
+    const Scalar tmp60 = (tmp5*tmp5);
+    const Scalar tmp61 = tmp58*(tmp2*tmp2);
+    const Scalar tmp62 = (tmp1*tmp1);
+    const Scalar tmp63 = m*(tmp59 + tmp60*tmp61 + tmp61*tmp62);
     QMatrix<Scalar> result;
-    result(0) = tmp10;
+    result(0) = tmp63;
     return result;
   }
 
@@ -159,13 +165,13 @@ struct BeadOnRotatingHoop {
     const Scalar m = Scalar(params.m);
     const Scalar g = Scalar(params.g);
     const Scalar c = Scalar(params.c);
-    const Scalar tmp1 = sin(theta);
-    const Scalar tmp11 = c*theta_dot;
-    const Scalar tmp12 = tmp1*R;
-    const Scalar tmp13 = g*m;
-    const Scalar tmp14 = tmp11 + tmp12*tmp13;
+    const Scalar tmp7 = sin(theta);
+    const Scalar tmp8 = tmp7*R;
+    const Scalar tmp24 = c*theta_dot;
+    const Scalar tmp64 = g*m;
+    const Scalar tmp65 = tmp24 + tmp64*tmp8;
     QVector<Scalar> result;
-    result(0) = -tmp14;
+    result(0) = -tmp65;
     return result;
   }
 
@@ -183,9 +189,9 @@ struct BeadOnRotatingHoop {
                                             const Params& params) {
     const Scalar theta_dot = v(0);
     const Scalar c = Scalar(params.c);
-    const Scalar tmp11 = c*theta_dot;
+    const Scalar tmp24 = c*theta_dot;
     QVector<Scalar> result;
-    result(0) = -tmp11;
+    result(0) = -tmp24;
     return result;
   }
 
@@ -208,27 +214,27 @@ struct BeadOnRotatingHoop {
     const Scalar R = Scalar(params.R);
     const Scalar omega = Scalar(params.omega);
     const Scalar m = Scalar(params.m);
-    const Scalar tmp0 = (R*R);
-    const Scalar tmp1 = sin(theta);
-    const Scalar tmp3 = omega*t;
-    const Scalar tmp4 = sin(tmp3);
-    const Scalar tmp6 = cos(theta);
-    const Scalar tmp8 = cos(tmp3);
-    const Scalar tmp12 = tmp1*R;
-    const Scalar tmp15 = (theta_dot*theta_dot);
-    const Scalar tmp16 = tmp6*R;
-    const Scalar tmp17 = tmp16*tmp8;
-    const Scalar tmp18 = tmp17*omega;
-    const Scalar tmp19 = (omega*omega);
-    const Scalar tmp20 = tmp12*tmp4;
-    const Scalar tmp21 = tmp18*theta_dot + theta_dot*(tmp18 - tmp20*theta_dot) - tmp19*tmp20;
-    const Scalar tmp22 = tmp16*tmp4;
-    const Scalar tmp23 = tmp22*omega;
-    const Scalar tmp24 = tmp12*tmp8;
-    const Scalar tmp25 = theta_dot*(-tmp23 - tmp24*theta_dot) - tmp19*tmp24 - tmp23*theta_dot;
-    const Scalar tmp26 = m*(tmp17*tmp25 + tmp21*tmp22 + tmp0*tmp1*tmp15*tmp6);
+    const Scalar tmp0 = omega*t;
+    const Scalar tmp1 = cos(tmp0);
+    const Scalar tmp2 = cos(theta);
+    const Scalar tmp3 = tmp2*R;
+    const Scalar tmp4 = tmp1*tmp3;
+    const Scalar tmp5 = sin(tmp0);
+    const Scalar tmp6 = tmp3*tmp5;
+    const Scalar tmp7 = sin(theta);
+    const Scalar tmp8 = tmp7*R;
+    const Scalar tmp9 = tmp6*omega;
+    const Scalar tmp10 = (omega*omega);
+    const Scalar tmp11 = tmp1*tmp8;
+    const Scalar tmp12 = theta_dot*(-tmp9 - tmp11*theta_dot) - tmp10*tmp11 - tmp9*theta_dot;
+    const Scalar tmp13 = tmp4*omega;
+    const Scalar tmp14 = tmp5*tmp8;
+    const Scalar tmp15 = tmp13*theta_dot + theta_dot*(tmp13 - tmp14*theta_dot) - tmp10*tmp14;
+    const Scalar tmp16 = (theta_dot*theta_dot);
+    const Scalar tmp58 = (R*R);
+    const Scalar tmp66 = m*(tmp12*tmp4 + tmp15*tmp6 + tmp16*tmp2*tmp58*tmp7);
     QVector<Scalar> result;
-    result(0) = -tmp26;
+    result(0) = -tmp66;
     return result;
   }
 
@@ -253,31 +259,31 @@ struct BeadOnRotatingHoop {
     const Scalar m = Scalar(params.m);
     const Scalar g = Scalar(params.g);
     const Scalar c = Scalar(params.c);
-    const Scalar tmp0 = (R*R);
-    const Scalar tmp1 = sin(theta);
-    const Scalar tmp3 = omega*t;
-    const Scalar tmp4 = sin(tmp3);
-    const Scalar tmp6 = cos(theta);
-    const Scalar tmp8 = cos(tmp3);
-    const Scalar tmp11 = c*theta_dot;
-    const Scalar tmp12 = tmp1*R;
-    const Scalar tmp13 = g*m;
-    const Scalar tmp14 = tmp11 + tmp12*tmp13;
-    const Scalar tmp15 = (theta_dot*theta_dot);
-    const Scalar tmp16 = tmp6*R;
-    const Scalar tmp17 = tmp16*tmp8;
-    const Scalar tmp18 = tmp17*omega;
-    const Scalar tmp19 = (omega*omega);
-    const Scalar tmp20 = tmp12*tmp4;
-    const Scalar tmp21 = tmp18*theta_dot + theta_dot*(tmp18 - tmp20*theta_dot) - tmp19*tmp20;
-    const Scalar tmp22 = tmp16*tmp4;
-    const Scalar tmp23 = tmp22*omega;
-    const Scalar tmp24 = tmp12*tmp8;
-    const Scalar tmp25 = theta_dot*(-tmp23 - tmp24*theta_dot) - tmp19*tmp24 - tmp23*theta_dot;
-    const Scalar tmp26 = m*(tmp17*tmp25 + tmp21*tmp22 + tmp0*tmp1*tmp15*tmp6);
-    const Scalar tmp27 = tmp14 + tmp26;
+    const Scalar tmp0 = omega*t;
+    const Scalar tmp1 = cos(tmp0);
+    const Scalar tmp2 = cos(theta);
+    const Scalar tmp3 = tmp2*R;
+    const Scalar tmp4 = tmp1*tmp3;
+    const Scalar tmp5 = sin(tmp0);
+    const Scalar tmp6 = tmp3*tmp5;
+    const Scalar tmp7 = sin(theta);
+    const Scalar tmp8 = tmp7*R;
+    const Scalar tmp9 = tmp6*omega;
+    const Scalar tmp10 = (omega*omega);
+    const Scalar tmp11 = tmp1*tmp8;
+    const Scalar tmp12 = theta_dot*(-tmp9 - tmp11*theta_dot) - tmp10*tmp11 - tmp9*theta_dot;
+    const Scalar tmp13 = tmp4*omega;
+    const Scalar tmp14 = tmp5*tmp8;
+    const Scalar tmp15 = tmp13*theta_dot + theta_dot*(tmp13 - tmp14*theta_dot) - tmp10*tmp14;
+    const Scalar tmp16 = (theta_dot*theta_dot);
+    const Scalar tmp24 = c*theta_dot;
+    const Scalar tmp58 = (R*R);
+    const Scalar tmp64 = g*m;
+    const Scalar tmp65 = tmp24 + tmp64*tmp8;
+    const Scalar tmp66 = m*(tmp12*tmp4 + tmp15*tmp6 + tmp16*tmp2*tmp58*tmp7);
+    const Scalar tmp67 = tmp65 + tmp66;
     QVector<Scalar> result;
-    result(0) = -tmp27;
+    result(0) = -tmp67;
     return result;
   }
 
@@ -304,36 +310,36 @@ struct BeadOnRotatingHoop {
     const Scalar m = Scalar(params.m);
     const Scalar g = Scalar(params.g);
     const Scalar c = Scalar(params.c);
-    const Scalar tmp0 = (R*R);
-    const Scalar tmp1 = sin(theta);
-    const Scalar tmp2 = tmp0*(tmp1*tmp1);
-    const Scalar tmp3 = omega*t;
-    const Scalar tmp4 = sin(tmp3);
-    const Scalar tmp5 = (tmp4*tmp4);
-    const Scalar tmp6 = cos(theta);
-    const Scalar tmp7 = tmp0*(tmp6*tmp6);
-    const Scalar tmp8 = cos(tmp3);
-    const Scalar tmp9 = (tmp8*tmp8);
-    const Scalar tmp10 = m*(tmp2 + tmp5*tmp7 + tmp7*tmp9);
-    const Scalar tmp11 = c*theta_dot;
-    const Scalar tmp12 = tmp1*R;
-    const Scalar tmp13 = g*m;
-    const Scalar tmp14 = tmp11 + tmp12*tmp13;
-    const Scalar tmp15 = (theta_dot*theta_dot);
-    const Scalar tmp16 = tmp6*R;
-    const Scalar tmp17 = tmp16*tmp8;
-    const Scalar tmp18 = tmp17*omega;
-    const Scalar tmp19 = (omega*omega);
-    const Scalar tmp20 = tmp12*tmp4;
-    const Scalar tmp21 = tmp18*theta_dot + theta_dot*(tmp18 - tmp20*theta_dot) - tmp19*tmp20;
-    const Scalar tmp22 = tmp16*tmp4;
-    const Scalar tmp23 = tmp22*omega;
-    const Scalar tmp24 = tmp12*tmp8;
-    const Scalar tmp25 = theta_dot*(-tmp23 - tmp24*theta_dot) - tmp19*tmp24 - tmp23*theta_dot;
-    const Scalar tmp26 = m*(tmp17*tmp25 + tmp21*tmp22 + tmp0*tmp1*tmp15*tmp6);
-    const Scalar tmp27 = tmp14 + tmp26;
-    (*Mt)(0) = tmp10;
-    (*f)(0) = -tmp27;
+    const Scalar tmp0 = omega*t;
+    const Scalar tmp1 = cos(tmp0);
+    const Scalar tmp2 = cos(theta);
+    const Scalar tmp3 = tmp2*R;
+    const Scalar tmp4 = tmp1*tmp3;
+    const Scalar tmp5 = sin(tmp0);
+    const Scalar tmp6 = tmp3*tmp5;
+    const Scalar tmp7 = sin(theta);
+    const Scalar tmp8 = tmp7*R;
+    const Scalar tmp9 = tmp6*omega;
+    const Scalar tmp10 = (omega*omega);
+    const Scalar tmp11 = tmp1*tmp8;
+    const Scalar tmp12 = theta_dot*(-tmp9 - tmp11*theta_dot) - tmp10*tmp11 - tmp9*theta_dot;
+    const Scalar tmp13 = tmp4*omega;
+    const Scalar tmp14 = tmp5*tmp8;
+    const Scalar tmp15 = tmp13*theta_dot + theta_dot*(tmp13 - tmp14*theta_dot) - tmp10*tmp14;
+    const Scalar tmp16 = (theta_dot*theta_dot);
+    const Scalar tmp24 = c*theta_dot;
+    const Scalar tmp58 = (R*R);
+    const Scalar tmp59 = tmp58*(tmp7*tmp7);
+    const Scalar tmp60 = (tmp5*tmp5);
+    const Scalar tmp61 = tmp58*(tmp2*tmp2);
+    const Scalar tmp62 = (tmp1*tmp1);
+    const Scalar tmp63 = m*(tmp59 + tmp60*tmp61 + tmp61*tmp62);
+    const Scalar tmp64 = g*m;
+    const Scalar tmp65 = tmp24 + tmp64*tmp8;
+    const Scalar tmp66 = m*(tmp12*tmp4 + tmp15*tmp6 + tmp16*tmp2*tmp58*tmp7);
+    const Scalar tmp67 = tmp65 + tmp66;
+    (*Mt)(0) = tmp63;
+    (*f)(0) = -tmp67;
   }
 
   /// Inverse dynamics: the residual r = Mt qdd - Ft - Fi, i.e. the generalized force that produces
@@ -361,36 +367,36 @@ struct BeadOnRotatingHoop {
     const Scalar m = Scalar(params.m);
     const Scalar g = Scalar(params.g);
     const Scalar c = Scalar(params.c);
-    const Scalar tmp0 = (R*R);
-    const Scalar tmp1 = sin(theta);
-    const Scalar tmp2 = tmp0*(tmp1*tmp1);
-    const Scalar tmp3 = omega*t;
-    const Scalar tmp4 = sin(tmp3);
-    const Scalar tmp5 = (tmp4*tmp4);
-    const Scalar tmp6 = cos(theta);
-    const Scalar tmp7 = tmp0*(tmp6*tmp6);
-    const Scalar tmp8 = cos(tmp3);
-    const Scalar tmp9 = (tmp8*tmp8);
-    const Scalar tmp10 = m*(tmp2 + tmp5*tmp7 + tmp7*tmp9);
-    const Scalar tmp11 = c*theta_dot;
-    const Scalar tmp12 = tmp1*R;
-    const Scalar tmp13 = g*m;
-    const Scalar tmp14 = tmp11 + tmp12*tmp13;
-    const Scalar tmp15 = (theta_dot*theta_dot);
-    const Scalar tmp16 = tmp6*R;
-    const Scalar tmp17 = tmp16*tmp8;
-    const Scalar tmp18 = tmp17*omega;
-    const Scalar tmp19 = (omega*omega);
-    const Scalar tmp20 = tmp12*tmp4;
-    const Scalar tmp21 = tmp18*theta_dot + theta_dot*(tmp18 - tmp20*theta_dot) - tmp19*tmp20;
-    const Scalar tmp22 = tmp16*tmp4;
-    const Scalar tmp23 = tmp22*omega;
-    const Scalar tmp24 = tmp12*tmp8;
-    const Scalar tmp25 = theta_dot*(-tmp23 - tmp24*theta_dot) - tmp19*tmp24 - tmp23*theta_dot;
-    const Scalar tmp26 = m*(tmp17*tmp25 + tmp21*tmp22 + tmp0*tmp1*tmp15*tmp6);
-    const Scalar tmp27 = tmp14 + tmp26;
+    const Scalar tmp0 = omega*t;
+    const Scalar tmp1 = cos(tmp0);
+    const Scalar tmp2 = cos(theta);
+    const Scalar tmp3 = tmp2*R;
+    const Scalar tmp4 = tmp1*tmp3;
+    const Scalar tmp5 = sin(tmp0);
+    const Scalar tmp6 = tmp3*tmp5;
+    const Scalar tmp7 = sin(theta);
+    const Scalar tmp8 = tmp7*R;
+    const Scalar tmp9 = tmp6*omega;
+    const Scalar tmp10 = (omega*omega);
+    const Scalar tmp11 = tmp1*tmp8;
+    const Scalar tmp12 = theta_dot*(-tmp9 - tmp11*theta_dot) - tmp10*tmp11 - tmp9*theta_dot;
+    const Scalar tmp13 = tmp4*omega;
+    const Scalar tmp14 = tmp5*tmp8;
+    const Scalar tmp15 = tmp13*theta_dot + theta_dot*(tmp13 - tmp14*theta_dot) - tmp10*tmp14;
+    const Scalar tmp16 = (theta_dot*theta_dot);
+    const Scalar tmp24 = c*theta_dot;
+    const Scalar tmp58 = (R*R);
+    const Scalar tmp59 = tmp58*(tmp7*tmp7);
+    const Scalar tmp60 = (tmp5*tmp5);
+    const Scalar tmp61 = tmp58*(tmp2*tmp2);
+    const Scalar tmp62 = (tmp1*tmp1);
+    const Scalar tmp63 = m*(tmp59 + tmp60*tmp61 + tmp61*tmp62);
+    const Scalar tmp64 = g*m;
+    const Scalar tmp65 = tmp24 + tmp64*tmp8;
+    const Scalar tmp66 = m*(tmp12*tmp4 + tmp15*tmp6 + tmp16*tmp2*tmp58*tmp7);
+    const Scalar tmp67 = tmp65 + tmp66;
     QVector<Scalar> result;
-    result(0) = tmp27 + tmp10*theta_ddot;
+    result(0) = tmp67 + tmp63*theta_ddot;
     return result;
   }
 
@@ -420,52 +426,52 @@ struct BeadOnRotatingHoop {
     const Scalar m = Scalar(params.m);
     const Scalar g = Scalar(params.g);
     const Scalar c = Scalar(params.c);
-    const Scalar tmp0 = (R*R);
-    const Scalar tmp1 = sin(theta);
-    const Scalar tmp3 = omega*t;
-    const Scalar tmp4 = sin(tmp3);
-    const Scalar tmp5 = (tmp4*tmp4);
-    const Scalar tmp6 = cos(theta);
-    const Scalar tmp8 = cos(tmp3);
-    const Scalar tmp9 = (tmp8*tmp8);
-    const Scalar tmp12 = tmp1*R;
-    const Scalar tmp13 = g*m;
-    const Scalar tmp15 = (theta_dot*theta_dot);
-    const Scalar tmp16 = tmp6*R;
-    const Scalar tmp17 = tmp16*tmp8;
-    const Scalar tmp18 = tmp17*omega;
-    const Scalar tmp19 = (omega*omega);
-    const Scalar tmp20 = tmp12*tmp4;
-    const Scalar tmp21 = tmp18*theta_dot + theta_dot*(tmp18 - tmp20*theta_dot) - tmp19*tmp20;
-    const Scalar tmp22 = tmp16*tmp4;
-    const Scalar tmp23 = tmp22*omega;
-    const Scalar tmp24 = tmp12*tmp8;
-    const Scalar tmp25 = theta_dot*(-tmp23 - tmp24*theta_dot) - tmp19*tmp24 - tmp23*theta_dot;
-    const Scalar tmp77 = Scalar(2)*tmp0*tmp1*tmp6;
-    const Scalar tmp78 = -tmp1;
-    const Scalar tmp79 = Scalar(2)*tmp0*tmp6*tmp78;
-    const Scalar tmp80 = m*tmp77 + m*(tmp5 + tmp9)*tmp79;
-    const Scalar tmp81 = R*tmp6;
-    const Scalar tmp82 = tmp13*tmp81;
-    const Scalar tmp83 = R*tmp78;
-    const Scalar tmp84 = tmp8*tmp83;
-    const Scalar tmp85 = omega*tmp84;
-    const Scalar tmp86 = tmp4*tmp81;
-    const Scalar tmp87 = Scalar(2)*theta_dot*tmp85 + (-tmp19 - (theta_dot*theta_dot))*tmp86;
-    const Scalar tmp88 = tmp4*tmp83;
-    const Scalar tmp89 = omega*tmp88;
-    const Scalar tmp90 = tmp8*tmp81;
-    const Scalar tmp91 = -Scalar(2)*theta_dot*tmp89 + (-tmp19 - (theta_dot*theta_dot))*tmp90;
-    const Scalar tmp92 = tmp0*tmp15*tmp6*m*tmp6 + tmp25*m*tmp84 + tmp22*m*tmp87 + tmp21*m*tmp88
-        + tmp17*m*tmp91 + tmp0*tmp1*tmp15*m*tmp78;
-    const Scalar tmp93 = tmp82 + tmp92;
-    const Scalar tmp94 = Scalar(2)*theta_dot;
-    const Scalar tmp95 = Scalar(2)*tmp18 - Scalar(2)*tmp20*theta_dot;
-    const Scalar tmp96 = -Scalar(2)*tmp23 - Scalar(2)*tmp24*theta_dot;
-    const Scalar tmp97 = tmp0*tmp1*tmp6*m*tmp94 + tmp22*m*tmp95 + tmp17*m*tmp96;
-    const Scalar tmp98 = c + tmp97;
-    (*dr_dq)(0) = theta_ddot*tmp80 + tmp93;
-    (*dr_dv)(0) = tmp98;
+    const Scalar tmp0 = omega*t;
+    const Scalar tmp1 = cos(tmp0);
+    const Scalar tmp2 = cos(theta);
+    const Scalar tmp3 = tmp2*R;
+    const Scalar tmp4 = tmp1*tmp3;
+    const Scalar tmp5 = sin(tmp0);
+    const Scalar tmp6 = tmp3*tmp5;
+    const Scalar tmp7 = sin(theta);
+    const Scalar tmp8 = tmp7*R;
+    const Scalar tmp9 = tmp6*omega;
+    const Scalar tmp10 = (omega*omega);
+    const Scalar tmp11 = tmp1*tmp8;
+    const Scalar tmp12 = theta_dot*(-tmp9 - tmp11*theta_dot) - tmp10*tmp11 - tmp9*theta_dot;
+    const Scalar tmp13 = tmp4*omega;
+    const Scalar tmp14 = tmp5*tmp8;
+    const Scalar tmp15 = tmp13*theta_dot + theta_dot*(tmp13 - tmp14*theta_dot) - tmp10*tmp14;
+    const Scalar tmp16 = (theta_dot*theta_dot);
+    const Scalar tmp58 = (R*R);
+    const Scalar tmp60 = (tmp5*tmp5);
+    const Scalar tmp62 = (tmp1*tmp1);
+    const Scalar tmp64 = g*m;
+    const Scalar tmp117 = -tmp7;
+    const Scalar tmp118 = R*tmp117;
+    const Scalar tmp119 = tmp1*tmp118;
+    const Scalar tmp120 = tmp5*tmp118;
+    const Scalar tmp121 = R*tmp2;
+    const Scalar tmp122 = omega*tmp120;
+    const Scalar tmp123 = tmp1*tmp121;
+    const Scalar tmp124 = (-tmp10 - (theta_dot*theta_dot))*tmp123 - Scalar(2)*theta_dot*tmp122;
+    const Scalar tmp125 = omega*tmp119;
+    const Scalar tmp126 = tmp5*tmp121;
+    const Scalar tmp127 = Scalar(2)*theta_dot*tmp125 + (-tmp10 - (theta_dot*theta_dot))*tmp126;
+    const Scalar tmp128 = Scalar(2)*tmp58*tmp7*tmp2;
+    const Scalar tmp129 = Scalar(2)*tmp2*tmp58*tmp117;
+    const Scalar tmp130 = m*tmp128 + m*(tmp60 + tmp62)*tmp129;
+    const Scalar tmp131 = tmp64*tmp121;
+    const Scalar tmp132 = tmp4*m*tmp124 + tmp6*m*tmp127 + tmp16*tmp58*tmp7*m*tmp117 + tmp12*m*tmp119
+        + tmp15*m*tmp120 + tmp16*tmp2*tmp58*m*tmp2;
+    const Scalar tmp133 = tmp131 + tmp132;
+    const Scalar tmp134 = -Scalar(2)*tmp9 - Scalar(2)*tmp11*theta_dot;
+    const Scalar tmp135 = Scalar(2)*tmp13 - Scalar(2)*tmp14*theta_dot;
+    const Scalar tmp136 = Scalar(2)*theta_dot;
+    const Scalar tmp137 = tmp4*m*tmp134 + tmp6*m*tmp135 + tmp2*tmp58*tmp7*m*tmp136;
+    const Scalar tmp138 = c + tmp137;
+    (*dr_dq)(0) = theta_ddot*tmp130 + tmp133;
+    (*dr_dv)(0) = tmp138;
   }
 
   /// Kinetic energy T = 1/2 xdot^T M xdot.
@@ -487,24 +493,26 @@ struct BeadOnRotatingHoop {
     const Scalar R = Scalar(params.R);
     const Scalar omega = Scalar(params.omega);
     const Scalar m = Scalar(params.m);
-    const Scalar tmp0 = (R*R);
-    const Scalar tmp1 = sin(theta);
-    const Scalar tmp2 = tmp0*(tmp1*tmp1);
-    const Scalar tmp3 = omega*t;
-    const Scalar tmp4 = sin(tmp3);
-    const Scalar tmp6 = cos(theta);
-    const Scalar tmp8 = cos(tmp3);
-    const Scalar tmp12 = tmp1*R;
-    const Scalar tmp15 = (theta_dot*theta_dot);
-    const Scalar tmp16 = tmp6*R;
-    const Scalar tmp20 = tmp12*tmp4;
-    const Scalar tmp22 = tmp16*tmp4;
-    const Scalar tmp24 = tmp12*tmp8;
-    const Scalar tmp28 = tmp22*theta_dot + tmp24*omega;
-    const Scalar tmp29 = -tmp20*omega + tmp6*tmp8*R*theta_dot;
-    const Scalar tmp30 = (tmp28*tmp28) + (tmp29*tmp29) + tmp15*tmp2;
+    const Scalar tmp0 = omega*t;
+    const Scalar tmp1 = cos(tmp0);
+    const Scalar tmp2 = cos(theta);
+    const Scalar tmp3 = tmp2*R;
+    const Scalar tmp5 = sin(tmp0);
+    const Scalar tmp6 = tmp3*tmp5;
+    const Scalar tmp7 = sin(theta);
+    const Scalar tmp8 = tmp7*R;
+    const Scalar tmp11 = tmp1*tmp8;
+    const Scalar tmp14 = tmp5*tmp8;
+    const Scalar tmp16 = (theta_dot*theta_dot);
+    const Scalar tmp19 = tmp14*omega;
+    const Scalar tmp21 = tmp11*omega;
+    const Scalar tmp58 = (R*R);
+    const Scalar tmp59 = tmp58*(tmp7*tmp7);
+    const Scalar tmp68 = tmp21 + tmp6*theta_dot;
+    const Scalar tmp69 = -tmp19 + tmp1*tmp2*R*theta_dot;
+    const Scalar tmp70 = (tmp68*tmp68) + (tmp69*tmp69) + tmp16*tmp59;
     Scalar result;
-    result = (Scalar(0.5))*tmp30*m;
+    result = (Scalar(0.5))*tmp70*m;
     return result;
   }
 
@@ -523,12 +531,12 @@ struct BeadOnRotatingHoop {
     const Scalar R = Scalar(params.R);
     const Scalar m = Scalar(params.m);
     const Scalar g = Scalar(params.g);
-    const Scalar tmp6 = cos(theta);
-    const Scalar tmp13 = g*m;
-    const Scalar tmp16 = tmp6*R;
-    const Scalar tmp31 = tmp13*tmp16;
+    const Scalar tmp2 = cos(theta);
+    const Scalar tmp3 = tmp2*R;
+    const Scalar tmp64 = g*m;
+    const Scalar tmp71 = tmp3*tmp64;
     Scalar result;
-    result = -tmp31;
+    result = -tmp71;
     return result;
   }
 
@@ -567,26 +575,28 @@ struct BeadOnRotatingHoop {
     const Scalar omega = Scalar(params.omega);
     const Scalar m = Scalar(params.m);
     const Scalar g = Scalar(params.g);
-    const Scalar tmp0 = (R*R);
-    const Scalar tmp1 = sin(theta);
-    const Scalar tmp2 = tmp0*(tmp1*tmp1);
-    const Scalar tmp3 = omega*t;
-    const Scalar tmp4 = sin(tmp3);
-    const Scalar tmp6 = cos(theta);
-    const Scalar tmp8 = cos(tmp3);
-    const Scalar tmp12 = tmp1*R;
-    const Scalar tmp13 = g*m;
-    const Scalar tmp15 = (theta_dot*theta_dot);
-    const Scalar tmp16 = tmp6*R;
-    const Scalar tmp20 = tmp12*tmp4;
-    const Scalar tmp22 = tmp16*tmp4;
-    const Scalar tmp24 = tmp12*tmp8;
-    const Scalar tmp28 = tmp22*theta_dot + tmp24*omega;
-    const Scalar tmp29 = -tmp20*omega + tmp6*tmp8*R*theta_dot;
-    const Scalar tmp30 = (tmp28*tmp28) + (tmp29*tmp29) + tmp15*tmp2;
-    const Scalar tmp31 = tmp13*tmp16;
+    const Scalar tmp0 = omega*t;
+    const Scalar tmp1 = cos(tmp0);
+    const Scalar tmp2 = cos(theta);
+    const Scalar tmp3 = tmp2*R;
+    const Scalar tmp5 = sin(tmp0);
+    const Scalar tmp6 = tmp3*tmp5;
+    const Scalar tmp7 = sin(theta);
+    const Scalar tmp8 = tmp7*R;
+    const Scalar tmp11 = tmp1*tmp8;
+    const Scalar tmp14 = tmp5*tmp8;
+    const Scalar tmp16 = (theta_dot*theta_dot);
+    const Scalar tmp19 = tmp14*omega;
+    const Scalar tmp21 = tmp11*omega;
+    const Scalar tmp58 = (R*R);
+    const Scalar tmp59 = tmp58*(tmp7*tmp7);
+    const Scalar tmp64 = g*m;
+    const Scalar tmp68 = tmp21 + tmp6*theta_dot;
+    const Scalar tmp69 = -tmp19 + tmp1*tmp2*R*theta_dot;
+    const Scalar tmp70 = (tmp68*tmp68) + (tmp69*tmp69) + tmp16*tmp59;
+    const Scalar tmp71 = tmp3*tmp64;
     Scalar result;
-    result = -tmp31 + (Scalar(0.5))*tmp30*m;
+    result = -tmp71 + (Scalar(0.5))*tmp70*m;
     return result;
   }
 
@@ -605,19 +615,19 @@ struct BeadOnRotatingHoop {
     const Scalar theta = q(0);
     const Scalar R = Scalar(params.R);
     const Scalar omega = Scalar(params.omega);
-    const Scalar tmp1 = sin(theta);
-    const Scalar tmp3 = omega*t;
-    const Scalar tmp4 = sin(tmp3);
-    const Scalar tmp6 = cos(theta);
-    const Scalar tmp8 = cos(tmp3);
-    const Scalar tmp12 = tmp1*R;
-    const Scalar tmp16 = tmp6*R;
-    const Scalar tmp20 = tmp12*tmp4;
-    const Scalar tmp24 = tmp12*tmp8;
+    const Scalar tmp0 = omega*t;
+    const Scalar tmp1 = cos(tmp0);
+    const Scalar tmp2 = cos(theta);
+    const Scalar tmp3 = tmp2*R;
+    const Scalar tmp5 = sin(tmp0);
+    const Scalar tmp7 = sin(theta);
+    const Scalar tmp8 = tmp7*R;
+    const Scalar tmp11 = tmp1*tmp8;
+    const Scalar tmp14 = tmp5*tmp8;
     XVector<Scalar> result;
-    result(0) = tmp24;
-    result(1) = tmp20;
-    result(2) = -tmp16;
+    result(0) = tmp11;
+    result(1) = tmp14;
+    result(2) = -tmp3;
     return result;
   }
 
@@ -639,23 +649,25 @@ struct BeadOnRotatingHoop {
     const Scalar theta_dot = v(0);
     const Scalar R = Scalar(params.R);
     const Scalar omega = Scalar(params.omega);
-    const Scalar tmp1 = sin(theta);
-    const Scalar tmp3 = omega*t;
-    const Scalar tmp4 = sin(tmp3);
-    const Scalar tmp6 = cos(theta);
-    const Scalar tmp8 = cos(tmp3);
-    const Scalar tmp12 = tmp1*R;
-    const Scalar tmp16 = tmp6*R;
-    const Scalar tmp20 = tmp12*tmp4;
-    const Scalar tmp22 = tmp16*tmp4;
-    const Scalar tmp24 = tmp12*tmp8;
-    const Scalar tmp28 = tmp22*theta_dot + tmp24*omega;
-    const Scalar tmp29 = -tmp20*omega + tmp6*tmp8*R*theta_dot;
-    const Scalar tmp32 = tmp12*theta_dot;
+    const Scalar tmp0 = omega*t;
+    const Scalar tmp1 = cos(tmp0);
+    const Scalar tmp2 = cos(theta);
+    const Scalar tmp3 = tmp2*R;
+    const Scalar tmp5 = sin(tmp0);
+    const Scalar tmp6 = tmp3*tmp5;
+    const Scalar tmp7 = sin(theta);
+    const Scalar tmp8 = tmp7*R;
+    const Scalar tmp11 = tmp1*tmp8;
+    const Scalar tmp14 = tmp5*tmp8;
+    const Scalar tmp19 = tmp14*omega;
+    const Scalar tmp21 = tmp11*omega;
+    const Scalar tmp68 = tmp21 + tmp6*theta_dot;
+    const Scalar tmp69 = -tmp19 + tmp1*tmp2*R*theta_dot;
+    const Scalar tmp72 = tmp8*theta_dot;
     XVector<Scalar> result;
-    result(0) = tmp29;
-    result(1) = tmp28;
-    result(2) = tmp32;
+    result(0) = tmp69;
+    result(1) = tmp68;
+    result(2) = tmp72;
     return result;
   }
 
@@ -674,19 +686,19 @@ struct BeadOnRotatingHoop {
     const Scalar theta = q(0);
     const Scalar R = Scalar(params.R);
     const Scalar omega = Scalar(params.omega);
-    const Scalar tmp1 = sin(theta);
-    const Scalar tmp3 = omega*t;
-    const Scalar tmp4 = sin(tmp3);
-    const Scalar tmp6 = cos(theta);
-    const Scalar tmp8 = cos(tmp3);
-    const Scalar tmp12 = tmp1*R;
-    const Scalar tmp16 = tmp6*R;
-    const Scalar tmp17 = tmp16*tmp8;
-    const Scalar tmp22 = tmp16*tmp4;
+    const Scalar tmp0 = omega*t;
+    const Scalar tmp1 = cos(tmp0);
+    const Scalar tmp2 = cos(theta);
+    const Scalar tmp3 = tmp2*R;
+    const Scalar tmp4 = tmp1*tmp3;
+    const Scalar tmp5 = sin(tmp0);
+    const Scalar tmp6 = tmp3*tmp5;
+    const Scalar tmp7 = sin(theta);
+    const Scalar tmp8 = tmp7*R;
     XJacobian<Scalar> result;
-    result(0) = tmp17;
-    result(1) = tmp22;
-    result(2) = tmp12;
+    result(0) = tmp4;
+    result(1) = tmp6;
+    result(2) = tmp8;
     return result;
   }
 
@@ -708,27 +720,27 @@ struct BeadOnRotatingHoop {
     const Scalar theta_dot = v(0);
     const Scalar R = Scalar(params.R);
     const Scalar omega = Scalar(params.omega);
-    const Scalar tmp1 = sin(theta);
-    const Scalar tmp3 = omega*t;
-    const Scalar tmp4 = sin(tmp3);
-    const Scalar tmp6 = cos(theta);
-    const Scalar tmp8 = cos(tmp3);
-    const Scalar tmp12 = tmp1*R;
-    const Scalar tmp15 = (theta_dot*theta_dot);
-    const Scalar tmp16 = tmp6*R;
-    const Scalar tmp17 = tmp16*tmp8;
-    const Scalar tmp18 = tmp17*omega;
-    const Scalar tmp19 = (omega*omega);
-    const Scalar tmp20 = tmp12*tmp4;
-    const Scalar tmp21 = tmp18*theta_dot + theta_dot*(tmp18 - tmp20*theta_dot) - tmp19*tmp20;
-    const Scalar tmp22 = tmp16*tmp4;
-    const Scalar tmp23 = tmp22*omega;
-    const Scalar tmp24 = tmp12*tmp8;
-    const Scalar tmp25 = theta_dot*(-tmp23 - tmp24*theta_dot) - tmp19*tmp24 - tmp23*theta_dot;
+    const Scalar tmp0 = omega*t;
+    const Scalar tmp1 = cos(tmp0);
+    const Scalar tmp2 = cos(theta);
+    const Scalar tmp3 = tmp2*R;
+    const Scalar tmp4 = tmp1*tmp3;
+    const Scalar tmp5 = sin(tmp0);
+    const Scalar tmp6 = tmp3*tmp5;
+    const Scalar tmp7 = sin(theta);
+    const Scalar tmp8 = tmp7*R;
+    const Scalar tmp9 = tmp6*omega;
+    const Scalar tmp10 = (omega*omega);
+    const Scalar tmp11 = tmp1*tmp8;
+    const Scalar tmp12 = theta_dot*(-tmp9 - tmp11*theta_dot) - tmp10*tmp11 - tmp9*theta_dot;
+    const Scalar tmp13 = tmp4*omega;
+    const Scalar tmp14 = tmp5*tmp8;
+    const Scalar tmp15 = tmp13*theta_dot + theta_dot*(tmp13 - tmp14*theta_dot) - tmp10*tmp14;
+    const Scalar tmp16 = (theta_dot*theta_dot);
     XVector<Scalar> result;
-    result(0) = tmp25;
-    result(1) = tmp21;
-    result(2) = tmp15*tmp16;
+    result(0) = tmp12;
+    result(1) = tmp15;
+    result(2) = tmp16*tmp3;
     return result;
   }
 
@@ -751,23 +763,25 @@ struct BeadOnRotatingHoop {
     const Scalar R = Scalar(params.R);
     const Scalar omega = Scalar(params.omega);
     const Scalar m = Scalar(params.m);
-    const Scalar tmp1 = sin(theta);
-    const Scalar tmp3 = omega*t;
-    const Scalar tmp4 = sin(tmp3);
-    const Scalar tmp6 = cos(theta);
-    const Scalar tmp8 = cos(tmp3);
-    const Scalar tmp12 = tmp1*R;
-    const Scalar tmp16 = tmp6*R;
-    const Scalar tmp20 = tmp12*tmp4;
-    const Scalar tmp22 = tmp16*tmp4;
-    const Scalar tmp24 = tmp12*tmp8;
-    const Scalar tmp28 = tmp22*theta_dot + tmp24*omega;
-    const Scalar tmp29 = -tmp20*omega + tmp6*tmp8*R*theta_dot;
-    const Scalar tmp32 = tmp12*theta_dot;
+    const Scalar tmp0 = omega*t;
+    const Scalar tmp1 = cos(tmp0);
+    const Scalar tmp2 = cos(theta);
+    const Scalar tmp3 = tmp2*R;
+    const Scalar tmp5 = sin(tmp0);
+    const Scalar tmp6 = tmp3*tmp5;
+    const Scalar tmp7 = sin(theta);
+    const Scalar tmp8 = tmp7*R;
+    const Scalar tmp11 = tmp1*tmp8;
+    const Scalar tmp14 = tmp5*tmp8;
+    const Scalar tmp19 = tmp14*omega;
+    const Scalar tmp21 = tmp11*omega;
+    const Scalar tmp68 = tmp21 + tmp6*theta_dot;
+    const Scalar tmp69 = -tmp19 + tmp1*tmp2*R*theta_dot;
+    const Scalar tmp72 = tmp8*theta_dot;
     SpaceVector<Scalar> result;
-    result(0) = tmp29*m;
-    result(1) = tmp28*m;
-    result(2) = tmp32*m;
+    result(0) = tmp69*m;
+    result(1) = tmp68*m;
+    result(2) = tmp72*m;
     return result;
   }
 
@@ -790,25 +804,27 @@ struct BeadOnRotatingHoop {
     const Scalar R = Scalar(params.R);
     const Scalar omega = Scalar(params.omega);
     const Scalar m = Scalar(params.m);
-    const Scalar tmp0 = (R*R);
-    const Scalar tmp1 = sin(theta);
-    const Scalar tmp2 = tmp0*(tmp1*tmp1);
-    const Scalar tmp3 = omega*t;
-    const Scalar tmp4 = sin(tmp3);
-    const Scalar tmp6 = cos(theta);
-    const Scalar tmp8 = cos(tmp3);
-    const Scalar tmp12 = tmp1*R;
-    const Scalar tmp16 = tmp6*R;
-    const Scalar tmp20 = tmp12*tmp4;
-    const Scalar tmp22 = tmp16*tmp4;
-    const Scalar tmp24 = tmp12*tmp8;
-    const Scalar tmp28 = tmp22*theta_dot + tmp24*omega;
-    const Scalar tmp29 = -tmp20*omega + tmp6*tmp8*R*theta_dot;
-    const Scalar tmp33 = tmp2*theta_dot;
+    const Scalar tmp0 = omega*t;
+    const Scalar tmp1 = cos(tmp0);
+    const Scalar tmp2 = cos(theta);
+    const Scalar tmp3 = tmp2*R;
+    const Scalar tmp5 = sin(tmp0);
+    const Scalar tmp6 = tmp3*tmp5;
+    const Scalar tmp7 = sin(theta);
+    const Scalar tmp8 = tmp7*R;
+    const Scalar tmp11 = tmp1*tmp8;
+    const Scalar tmp14 = tmp5*tmp8;
+    const Scalar tmp19 = tmp14*omega;
+    const Scalar tmp21 = tmp11*omega;
+    const Scalar tmp58 = (R*R);
+    const Scalar tmp59 = tmp58*(tmp7*tmp7);
+    const Scalar tmp68 = tmp21 + tmp6*theta_dot;
+    const Scalar tmp69 = -tmp19 + tmp1*tmp2*R*theta_dot;
+    const Scalar tmp73 = tmp59*theta_dot;
     AngularVector<Scalar> result;
-    result(0) = m*(tmp16*tmp28 + tmp33*tmp4);
-    result(1) = m*(-tmp16*tmp29 - tmp33*tmp8);
-    result(2) = m*(-tmp20*tmp29 + tmp1*tmp28*tmp8*R);
+    result(0) = m*(tmp3*tmp68 + tmp73*tmp5);
+    result(1) = m*(-tmp1*tmp73 - tmp3*tmp69);
+    result(2) = m*(-tmp14*tmp69 + tmp1*tmp68*tmp7*R);
     return result;
   }
 
@@ -916,11 +932,11 @@ struct BeadOnRotatingHoop {
                                            const Params& params) {
       const Scalar m = Scalar(params.m);
       const Scalar g = Scalar(params.g);
-      const Scalar tmp13 = g*m;
+      const Scalar tmp64 = g*m;
       XVector<Scalar> result;
       result(0) = Scalar(0);
       result(1) = Scalar(0);
-      result(2) = -tmp13;
+      result(2) = -tmp64;
       return result;
     }
 
@@ -945,37 +961,37 @@ struct BeadOnRotatingHoop {
       using std::sqrt;
       const Scalar R = Scalar(params.R);
       const Scalar omega = Scalar(params.omega);
-      const Scalar tmp3 = omega*t;
-      const Scalar tmp4 = sin(tmp3);
-      const Scalar tmp5 = (tmp4*tmp4);
-      const Scalar tmp8 = cos(tmp3);
-      const Scalar tmp9 = (tmp8*tmp8);
-      const Scalar tmp34 = (pos(0)*pos(0));
-      const Scalar tmp35 = (pos(1)*pos(1));
-      const Scalar tmp36 = (pos(2)*pos(2));
-      const Scalar tmp37 = tmp34 + tmp35 + tmp36;
-      const Scalar tmp38 = sqrt(tmp37);
-      const Scalar tmp39 = (Scalar(1)/tmp38);
-      const Scalar tmp40 = tmp38 - R;
-      const Scalar tmp41 = (Scalar(1)/R);
-      const Scalar tmp42 = tmp41*kappa;
-      const Scalar tmp43 = tmp41*penalty_damping;
-      const Scalar tmp44 = -tmp40*tmp42
-          - tmp43*(tmp39*pos(0)*vel(0) + tmp39*pos(1)*vel(1) + tmp39*pos(2)*vel(2));
-      const Scalar tmp45 = tmp39*tmp44;
-      const Scalar tmp46 = tmp5 + tmp9;
-      const Scalar tmp47 = (Scalar(1)/sqrt(tmp46));
-      const Scalar tmp48 = tmp4*pos(0);
-      const Scalar tmp49 = -tmp47*tmp48 + tmp47*tmp8*pos(1);
-      const Scalar tmp50 = tmp4*tmp47;
-      const Scalar tmp51 = tmp47*tmp8;
-      const Scalar tmp52 = tmp51*omega;
-      const Scalar tmp53 = -tmp49*kappa
-          - penalty_damping*(-tmp50*vel(0) - tmp52*pos(0) + tmp47*tmp8*vel(1) - tmp50*pos(1)*omega);
+      const Scalar tmp0 = omega*t;
+      const Scalar tmp1 = cos(tmp0);
+      const Scalar tmp5 = sin(tmp0);
+      const Scalar tmp60 = (tmp5*tmp5);
+      const Scalar tmp62 = (tmp1*tmp1);
+      const Scalar tmp74 = (pos(0)*pos(0));
+      const Scalar tmp75 = (pos(1)*pos(1));
+      const Scalar tmp76 = (pos(2)*pos(2));
+      const Scalar tmp77 = tmp74 + tmp75 + tmp76;
+      const Scalar tmp78 = sqrt(tmp77);
+      const Scalar tmp79 = (Scalar(1)/tmp78);
+      const Scalar tmp80 = tmp78 - R;
+      const Scalar tmp81 = (Scalar(1)/R);
+      const Scalar tmp82 = tmp81*kappa;
+      const Scalar tmp83 = tmp81*penalty_damping;
+      const Scalar tmp84 = -tmp80*tmp82
+          - tmp83*(tmp79*pos(0)*vel(0) + tmp79*pos(1)*vel(1) + tmp79*pos(2)*vel(2));
+      const Scalar tmp85 = tmp79*tmp84;
+      const Scalar tmp86 = tmp60 + tmp62;
+      const Scalar tmp87 = (Scalar(1)/sqrt(tmp86));
+      const Scalar tmp88 = tmp5*pos(0);
+      const Scalar tmp89 = -tmp87*tmp88 + tmp1*tmp87*pos(1);
+      const Scalar tmp90 = tmp5*tmp87;
+      const Scalar tmp91 = tmp1*tmp87;
+      const Scalar tmp92 = tmp91*omega;
+      const Scalar tmp93 = -tmp89*kappa
+          - penalty_damping*(-tmp90*vel(0) - tmp92*pos(0) + tmp1*tmp87*vel(1) - tmp90*pos(1)*omega);
       XVector<Scalar> result;
-      result(0) = tmp45*pos(0) - tmp50*tmp53;
-      result(1) = tmp45*pos(1) + tmp51*tmp53;
-      result(2) = tmp45*pos(2);
+      result(0) = tmp85*pos(0) - tmp90*tmp93;
+      result(1) = tmp85*pos(1) + tmp91*tmp93;
+      result(2) = tmp85*pos(2);
       return result;
     }
 
@@ -1000,62 +1016,62 @@ struct BeadOnRotatingHoop {
       using std::sqrt;
       const Scalar R = Scalar(params.R);
       const Scalar omega = Scalar(params.omega);
-      const Scalar tmp3 = omega*t;
-      const Scalar tmp4 = sin(tmp3);
-      const Scalar tmp5 = (tmp4*tmp4);
-      const Scalar tmp8 = cos(tmp3);
-      const Scalar tmp9 = (tmp8*tmp8);
-      const Scalar tmp34 = (pos(0)*pos(0));
-      const Scalar tmp35 = (pos(1)*pos(1));
-      const Scalar tmp36 = (pos(2)*pos(2));
-      const Scalar tmp37 = tmp34 + tmp35 + tmp36;
-      const Scalar tmp38 = sqrt(tmp37);
-      const Scalar tmp39 = (Scalar(1)/tmp38);
-      const Scalar tmp40 = tmp38 - R;
-      const Scalar tmp41 = (Scalar(1)/R);
-      const Scalar tmp42 = tmp41*kappa;
-      const Scalar tmp43 = tmp41*penalty_damping;
-      const Scalar tmp44 = -tmp40*tmp42
-          - tmp43*(tmp39*pos(0)*vel(0) + tmp39*pos(1)*vel(1) + tmp39*pos(2)*vel(2));
-      const Scalar tmp45 = tmp39*tmp44;
-      const Scalar tmp46 = tmp5 + tmp9;
-      const Scalar tmp47 = (Scalar(1)/sqrt(tmp46));
-      const Scalar tmp50 = tmp4*tmp47;
-      const Scalar tmp51 = tmp47*tmp8;
-      const Scalar tmp52 = tmp51*omega;
-      const Scalar tmp54 = tmp50*kappa + tmp52*penalty_damping;
-      const Scalar tmp55 = (Scalar(1)/(tmp37*sqrt(tmp37)));
-      const Scalar tmp56 = tmp34*tmp55;
-      const Scalar tmp57 = tmp55*pos(0);
-      const Scalar tmp58 = tmp57*pos(1);
-      const Scalar tmp59 = pos(2)*vel(2);
-      const Scalar tmp60 = -tmp43*(tmp39*vel(0) - tmp56*vel(0) - tmp57*tmp59 - tmp58*vel(1))
-          - tmp39*tmp42*pos(0);
-      const Scalar tmp61 = -tmp51*kappa + tmp4*tmp47*omega*penalty_damping;
-      const Scalar tmp62 = tmp44*tmp58;
-      const Scalar tmp63 = tmp39*pos(1);
-      const Scalar tmp64 = tmp55*pos(1);
-      const Scalar tmp65 = tmp35*tmp55;
-      const Scalar tmp66 = -tmp42*tmp63
-          - tmp43*(tmp39*vel(1) - tmp58*vel(0) - tmp59*tmp64 - tmp65*vel(1));
-      const Scalar tmp67 = tmp57*pos(2);
-      const Scalar tmp68 = tmp44*tmp67;
-      const Scalar tmp69 = tmp39*pos(2);
-      const Scalar tmp70 = tmp64*pos(2);
-      const Scalar tmp71 = tmp36*tmp55;
-      const Scalar tmp72 = -tmp42*tmp69
-          - tmp43*(tmp39*vel(2) - tmp67*vel(0) - tmp70*vel(1) - tmp71*vel(2));
-      const Scalar tmp73 = tmp44*tmp70;
+      const Scalar tmp0 = omega*t;
+      const Scalar tmp1 = cos(tmp0);
+      const Scalar tmp5 = sin(tmp0);
+      const Scalar tmp60 = (tmp5*tmp5);
+      const Scalar tmp62 = (tmp1*tmp1);
+      const Scalar tmp74 = (pos(0)*pos(0));
+      const Scalar tmp75 = (pos(1)*pos(1));
+      const Scalar tmp76 = (pos(2)*pos(2));
+      const Scalar tmp77 = tmp74 + tmp75 + tmp76;
+      const Scalar tmp78 = sqrt(tmp77);
+      const Scalar tmp79 = (Scalar(1)/tmp78);
+      const Scalar tmp80 = tmp78 - R;
+      const Scalar tmp81 = (Scalar(1)/R);
+      const Scalar tmp82 = tmp81*kappa;
+      const Scalar tmp83 = tmp81*penalty_damping;
+      const Scalar tmp84 = -tmp80*tmp82
+          - tmp83*(tmp79*pos(0)*vel(0) + tmp79*pos(1)*vel(1) + tmp79*pos(2)*vel(2));
+      const Scalar tmp85 = tmp79*tmp84;
+      const Scalar tmp86 = tmp60 + tmp62;
+      const Scalar tmp87 = (Scalar(1)/sqrt(tmp86));
+      const Scalar tmp90 = tmp5*tmp87;
+      const Scalar tmp91 = tmp1*tmp87;
+      const Scalar tmp92 = tmp91*omega;
+      const Scalar tmp94 = tmp90*kappa + tmp92*penalty_damping;
+      const Scalar tmp95 = (Scalar(1)/(tmp77*sqrt(tmp77)));
+      const Scalar tmp96 = tmp74*tmp95;
+      const Scalar tmp97 = tmp95*pos(0);
+      const Scalar tmp98 = tmp97*pos(1);
+      const Scalar tmp99 = pos(2)*vel(2);
+      const Scalar tmp100 = -tmp83*(tmp79*vel(0) - tmp96*vel(0) - tmp97*tmp99 - tmp98*vel(1))
+          - tmp79*tmp82*pos(0);
+      const Scalar tmp101 = -tmp91*kappa + tmp5*tmp87*omega*penalty_damping;
+      const Scalar tmp102 = tmp84*tmp98;
+      const Scalar tmp103 = tmp79*pos(1);
+      const Scalar tmp104 = tmp95*pos(1);
+      const Scalar tmp105 = tmp75*tmp95;
+      const Scalar tmp106 = -tmp82*tmp103
+          - tmp83*(tmp79*vel(1) - tmp98*vel(0) - tmp99*tmp104 - tmp105*vel(1));
+      const Scalar tmp107 = tmp97*pos(2);
+      const Scalar tmp108 = tmp84*tmp107;
+      const Scalar tmp109 = tmp79*pos(2);
+      const Scalar tmp110 = tmp104*pos(2);
+      const Scalar tmp111 = tmp76*tmp95;
+      const Scalar tmp112 = -tmp82*tmp109
+          - tmp83*(tmp79*vel(2) - tmp107*vel(0) - tmp110*vel(1) - tmp111*vel(2));
+      const Scalar tmp113 = tmp84*tmp110;
       std::array<Scalar, 9> result;
-      result[0] = tmp39*tmp44 - tmp44*tmp56 - tmp50*tmp54 + tmp39*tmp60*pos(0);
-      result[1] = -tmp62 - tmp50*tmp61 + tmp39*tmp66*pos(0);
-      result[2] = -tmp68 + tmp39*tmp72*pos(0);
-      result[3] = -tmp62 + tmp51*tmp54 + tmp60*tmp63;
-      result[4] = tmp45 + tmp51*tmp61 + tmp63*tmp66 - tmp44*tmp65;
-      result[5] = -tmp73 + tmp39*tmp72*pos(1);
-      result[6] = -tmp68 + tmp39*tmp60*pos(2);
-      result[7] = -tmp73 + tmp39*tmp66*pos(2);
-      result[8] = tmp45 + tmp69*tmp72 - tmp44*tmp71;
+      result[0] = tmp79*tmp84 - tmp84*tmp96 - tmp90*tmp94 + tmp79*tmp100*pos(0);
+      result[1] = -tmp102 - tmp90*tmp101 + tmp79*tmp106*pos(0);
+      result[2] = -tmp108 + tmp79*tmp112*pos(0);
+      result[3] = -tmp102 + tmp91*tmp94 + tmp100*tmp103;
+      result[4] = tmp85 + tmp91*tmp101 + tmp103*tmp106 - tmp84*tmp105;
+      result[5] = -tmp113 + tmp79*tmp112*pos(1);
+      result[6] = -tmp108 + tmp79*tmp100*pos(2);
+      result[7] = -tmp113 + tmp79*tmp106*pos(2);
+      result[8] = tmp85 + tmp109*tmp112 - tmp84*tmp111;
       return result;
     }
 
@@ -1079,31 +1095,31 @@ struct BeadOnRotatingHoop {
       using std::sin;
       const Scalar R = Scalar(params.R);
       const Scalar omega = Scalar(params.omega);
-      const Scalar tmp3 = omega*t;
-      const Scalar tmp4 = sin(tmp3);
-      const Scalar tmp5 = (tmp4*tmp4);
-      const Scalar tmp8 = cos(tmp3);
-      const Scalar tmp9 = (tmp8*tmp8);
-      const Scalar tmp34 = (pos(0)*pos(0));
-      const Scalar tmp35 = (pos(1)*pos(1));
-      const Scalar tmp36 = (pos(2)*pos(2));
-      const Scalar tmp37 = tmp34 + tmp35 + tmp36;
-      const Scalar tmp41 = (Scalar(1)/R);
-      const Scalar tmp43 = tmp41*penalty_damping;
-      const Scalar tmp46 = tmp5 + tmp9;
-      const Scalar tmp74 = tmp43/tmp37;
-      const Scalar tmp75 = penalty_damping/tmp46;
-      const Scalar tmp76 = tmp74*pos(0);
+      const Scalar tmp0 = omega*t;
+      const Scalar tmp1 = cos(tmp0);
+      const Scalar tmp5 = sin(tmp0);
+      const Scalar tmp60 = (tmp5*tmp5);
+      const Scalar tmp62 = (tmp1*tmp1);
+      const Scalar tmp74 = (pos(0)*pos(0));
+      const Scalar tmp75 = (pos(1)*pos(1));
+      const Scalar tmp76 = (pos(2)*pos(2));
+      const Scalar tmp77 = tmp74 + tmp75 + tmp76;
+      const Scalar tmp81 = (Scalar(1)/R);
+      const Scalar tmp83 = tmp81*penalty_damping;
+      const Scalar tmp86 = tmp60 + tmp62;
+      const Scalar tmp114 = tmp83/tmp77;
+      const Scalar tmp115 = penalty_damping/tmp86;
+      const Scalar tmp116 = tmp114*pos(0);
       std::array<Scalar, 9> result;
-      result[0] = -tmp34*tmp74 - tmp5*tmp75;
-      result[1] = -tmp76*pos(1) + tmp4*tmp75*tmp8;
-      result[2] = -tmp76*pos(2);
-      result[3] = -tmp76*pos(1) + tmp4*tmp75*tmp8;
-      result[4] = -tmp35*tmp74 - tmp75*tmp9;
-      result[5] = -tmp74*pos(1)*pos(2);
-      result[6] = -tmp76*pos(2);
-      result[7] = -tmp74*pos(1)*pos(2);
-      result[8] = -tmp36*tmp74;
+      result[0] = -tmp60*tmp115 - tmp74*tmp114;
+      result[1] = -tmp116*pos(1) + tmp1*tmp5*tmp115;
+      result[2] = -tmp116*pos(2);
+      result[3] = -tmp116*pos(1) + tmp1*tmp5*tmp115;
+      result[4] = -tmp62*tmp115 - tmp75*tmp114;
+      result[5] = -tmp114*pos(1)*pos(2);
+      result[6] = -tmp116*pos(2);
+      result[7] = -tmp114*pos(1)*pos(2);
+      result[8] = -tmp76*tmp114;
       return result;
     }
 
@@ -1119,9 +1135,9 @@ struct BeadOnRotatingHoop {
                                    const Params& params) {
       const Scalar m = Scalar(params.m);
       const Scalar g = Scalar(params.g);
-      const Scalar tmp13 = g*m;
+      const Scalar tmp64 = g*m;
       Scalar result;
-      result = tmp13*pos(2);
+      result = tmp64*pos(2);
       return result;
     }
 
@@ -1142,25 +1158,25 @@ struct BeadOnRotatingHoop {
       using std::sqrt;
       const Scalar R = Scalar(params.R);
       const Scalar omega = Scalar(params.omega);
-      const Scalar tmp3 = omega*t;
-      const Scalar tmp4 = sin(tmp3);
-      const Scalar tmp5 = (tmp4*tmp4);
-      const Scalar tmp8 = cos(tmp3);
-      const Scalar tmp9 = (tmp8*tmp8);
-      const Scalar tmp34 = (pos(0)*pos(0));
-      const Scalar tmp35 = (pos(1)*pos(1));
-      const Scalar tmp36 = (pos(2)*pos(2));
-      const Scalar tmp37 = tmp34 + tmp35 + tmp36;
-      const Scalar tmp38 = sqrt(tmp37);
-      const Scalar tmp40 = tmp38 - R;
-      const Scalar tmp41 = (Scalar(1)/R);
-      const Scalar tmp42 = tmp41*kappa;
-      const Scalar tmp46 = tmp5 + tmp9;
-      const Scalar tmp47 = (Scalar(1)/sqrt(tmp46));
-      const Scalar tmp48 = tmp4*pos(0);
-      const Scalar tmp49 = -tmp47*tmp48 + tmp47*tmp8*pos(1);
+      const Scalar tmp0 = omega*t;
+      const Scalar tmp1 = cos(tmp0);
+      const Scalar tmp5 = sin(tmp0);
+      const Scalar tmp60 = (tmp5*tmp5);
+      const Scalar tmp62 = (tmp1*tmp1);
+      const Scalar tmp74 = (pos(0)*pos(0));
+      const Scalar tmp75 = (pos(1)*pos(1));
+      const Scalar tmp76 = (pos(2)*pos(2));
+      const Scalar tmp77 = tmp74 + tmp75 + tmp76;
+      const Scalar tmp78 = sqrt(tmp77);
+      const Scalar tmp80 = tmp78 - R;
+      const Scalar tmp81 = (Scalar(1)/R);
+      const Scalar tmp82 = tmp81*kappa;
+      const Scalar tmp86 = tmp60 + tmp62;
+      const Scalar tmp87 = (Scalar(1)/sqrt(tmp86));
+      const Scalar tmp88 = tmp5*pos(0);
+      const Scalar tmp89 = -tmp87*tmp88 + tmp1*tmp87*pos(1);
       Scalar result;
-      result = (Scalar(0.5))*tmp42*(tmp40*tmp40) + (Scalar(0.5))*kappa*(tmp49*tmp49);
+      result = (Scalar(0.5))*tmp82*(tmp80*tmp80) + (Scalar(0.5))*kappa*(tmp89*tmp89);
       return result;
     }
 
@@ -1179,23 +1195,23 @@ struct BeadOnRotatingHoop {
       using std::sqrt;
       const Scalar R = Scalar(params.R);
       const Scalar omega = Scalar(params.omega);
-      const Scalar tmp3 = omega*t;
-      const Scalar tmp4 = sin(tmp3);
-      const Scalar tmp5 = (tmp4*tmp4);
-      const Scalar tmp8 = cos(tmp3);
-      const Scalar tmp9 = (tmp8*tmp8);
-      const Scalar tmp34 = (pos(0)*pos(0));
-      const Scalar tmp35 = (pos(1)*pos(1));
-      const Scalar tmp36 = (pos(2)*pos(2));
-      const Scalar tmp37 = tmp34 + tmp35 + tmp36;
-      const Scalar tmp38 = sqrt(tmp37);
-      const Scalar tmp40 = tmp38 - R;
-      const Scalar tmp46 = tmp5 + tmp9;
-      const Scalar tmp47 = (Scalar(1)/sqrt(tmp46));
-      const Scalar tmp48 = tmp4*pos(0);
+      const Scalar tmp0 = omega*t;
+      const Scalar tmp1 = cos(tmp0);
+      const Scalar tmp5 = sin(tmp0);
+      const Scalar tmp60 = (tmp5*tmp5);
+      const Scalar tmp62 = (tmp1*tmp1);
+      const Scalar tmp74 = (pos(0)*pos(0));
+      const Scalar tmp75 = (pos(1)*pos(1));
+      const Scalar tmp76 = (pos(2)*pos(2));
+      const Scalar tmp77 = tmp74 + tmp75 + tmp76;
+      const Scalar tmp78 = sqrt(tmp77);
+      const Scalar tmp80 = tmp78 - R;
+      const Scalar tmp86 = tmp60 + tmp62;
+      const Scalar tmp87 = (Scalar(1)/sqrt(tmp86));
+      const Scalar tmp88 = tmp5*pos(0);
       ConstraintVector<Scalar> result;
-      result(0) = tmp40;
-      result(1) = tmp47*(-tmp48 + tmp8*pos(1));
+      result(0) = tmp80;
+      result(1) = tmp87*(-tmp88 + tmp1*pos(1));
       return result;
     }
   };

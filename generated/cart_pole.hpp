@@ -7,10 +7,12 @@
 // Singular configurations (J loses rank): none found
 // Worst conditioning of J in 200 random configurations: sigma_min / sigma_max = 0.234 at s =
 //   -1.771, theta = 3.131
+// qddot: Mt, Ft + Fi and an LDL^T solve, 31 operations (articulated-body recursion: 50)
+// inverse_dynamics: Mt qdd - Ft - Fi, 30 operations (recursive Newton-Euler: 25)
 //
-// Total ops: 266
-// Intermediate terms (82)
-// Output terms (69)
+// Total ops: 351
+// Intermediate terms (125)
+// Output terms (68)
 #pragma once
 
 #include <array>
@@ -68,6 +70,10 @@ struct CartPole {
   /// Whether applied_forces at rest (v = 0) is -d(potential_energy)/dq: every force without
   /// a declared potential vanishes at rest (generator/conservative.py).
   static constexpr bool forces_have_potential = false;
+  /// Whether qddot is the articulated-body recursion over the model's tree of particles,
+  /// chosen at generation because it takes fewer operations than Mt, Ft + Fi and an LDL^T
+  /// solve (generator/dynamics_paths.py); gencoord::acceleration() then calls it.
+  static constexpr bool recursive_qddot = false;
 
   template <typename Scalar>
   using QVector = Eigen::Matrix<Scalar, nq, 1>;
@@ -123,18 +129,18 @@ struct CartPole {
     const Scalar l = Scalar(params.l);
     const Scalar m_cart = Scalar(params.m_cart);
     const Scalar m_pole = Scalar(params.m_pole);
-    const Scalar tmp0 = m_cart + m_pole;
-    const Scalar tmp1 = cos(theta);
-    const Scalar tmp2 = tmp1*l;
-    const Scalar tmp3 = tmp2*m_pole;
-    const Scalar tmp4 = (l*l);
-    const Scalar tmp5 = sin(theta);
-    const Scalar tmp6 = tmp4*(tmp5*tmp5);
-    const Scalar tmp7 = m_pole*(tmp6 + tmp4*(tmp1*tmp1));
+    const Scalar tmp0 = cos(theta);
+    const Scalar tmp1 = tmp0*l;
+    const Scalar tmp2 = sin(theta);
+    const Scalar tmp51 = m_cart + m_pole;
+    const Scalar tmp52 = tmp1*m_pole;
+    const Scalar tmp53 = (l*l);
+    const Scalar tmp54 = tmp53*(tmp2*tmp2);
+    const Scalar tmp55 = m_pole*(tmp54 + tmp53*(tmp0*tmp0));
     QMatrix<Scalar> result;
-    result(0, 0) = tmp0;
-    result(1, 0) = tmp3;
-    result(1, 1) = tmp7;
+    result(0, 0) = tmp51;
+    result(1, 0) = tmp52;
+    result(1, 1) = tmp55;
     result(0, 1) = result(1, 0);
     return result;
   }
@@ -157,13 +163,13 @@ struct CartPole {
     const Scalar m_pole = Scalar(params.m_pole);
     const Scalar g = Scalar(params.g);
     const Scalar u = Scalar(params.u);
-    const Scalar tmp5 = sin(theta);
-    const Scalar tmp8 = tmp5*l;
-    const Scalar tmp9 = g*m_pole;
-    const Scalar tmp10 = tmp8*tmp9;
+    const Scalar tmp2 = sin(theta);
+    const Scalar tmp3 = tmp2*l;
+    const Scalar tmp56 = g*m_pole;
+    const Scalar tmp57 = tmp56*tmp3;
     QVector<Scalar> result;
     result(0) = u;
-    result(1) = tmp10;
+    result(1) = tmp57;
     return result;
   }
 
@@ -203,13 +209,13 @@ struct CartPole {
     const Scalar theta_dot = v(1);
     const Scalar l = Scalar(params.l);
     const Scalar m_pole = Scalar(params.m_pole);
-    const Scalar tmp5 = sin(theta);
-    const Scalar tmp8 = tmp5*l;
-    const Scalar tmp11 = (theta_dot*theta_dot);
-    const Scalar tmp12 = tmp11*tmp8;
-    const Scalar tmp13 = tmp12*m_pole;
+    const Scalar tmp2 = sin(theta);
+    const Scalar tmp3 = tmp2*l;
+    const Scalar tmp5 = (theta_dot*theta_dot);
+    const Scalar tmp6 = tmp3*tmp5;
+    const Scalar tmp58 = tmp6*m_pole;
     QVector<Scalar> result;
-    result(0) = tmp13;
+    result(0) = tmp58;
     result(1) = Scalar(0);
     return result;
   }
@@ -233,16 +239,16 @@ struct CartPole {
     const Scalar m_pole = Scalar(params.m_pole);
     const Scalar g = Scalar(params.g);
     const Scalar u = Scalar(params.u);
-    const Scalar tmp5 = sin(theta);
-    const Scalar tmp8 = tmp5*l;
-    const Scalar tmp9 = g*m_pole;
-    const Scalar tmp10 = tmp8*tmp9;
-    const Scalar tmp11 = (theta_dot*theta_dot);
-    const Scalar tmp12 = tmp11*tmp8;
-    const Scalar tmp13 = tmp12*m_pole;
+    const Scalar tmp2 = sin(theta);
+    const Scalar tmp3 = tmp2*l;
+    const Scalar tmp5 = (theta_dot*theta_dot);
+    const Scalar tmp6 = tmp3*tmp5;
+    const Scalar tmp56 = g*m_pole;
+    const Scalar tmp57 = tmp56*tmp3;
+    const Scalar tmp58 = tmp6*m_pole;
     QVector<Scalar> result;
-    result(0) = tmp13 + u;
-    result(1) = tmp10;
+    result(0) = tmp58 + u;
+    result(1) = tmp57;
     return result;
   }
 
@@ -269,25 +275,25 @@ struct CartPole {
     const Scalar m_pole = Scalar(params.m_pole);
     const Scalar g = Scalar(params.g);
     const Scalar u = Scalar(params.u);
-    const Scalar tmp0 = m_cart + m_pole;
-    const Scalar tmp1 = cos(theta);
-    const Scalar tmp2 = tmp1*l;
-    const Scalar tmp3 = tmp2*m_pole;
-    const Scalar tmp4 = (l*l);
-    const Scalar tmp5 = sin(theta);
-    const Scalar tmp6 = tmp4*(tmp5*tmp5);
-    const Scalar tmp7 = m_pole*(tmp6 + tmp4*(tmp1*tmp1));
-    const Scalar tmp8 = tmp5*l;
-    const Scalar tmp9 = g*m_pole;
-    const Scalar tmp10 = tmp8*tmp9;
-    const Scalar tmp11 = (theta_dot*theta_dot);
-    const Scalar tmp12 = tmp11*tmp8;
-    const Scalar tmp13 = tmp12*m_pole;
-    (*Mt)(0, 0) = tmp0;
-    (*Mt)(1, 0) = tmp3;
-    (*Mt)(1, 1) = tmp7;
-    (*f)(0) = tmp13 + u;
-    (*f)(1) = tmp10;
+    const Scalar tmp0 = cos(theta);
+    const Scalar tmp1 = tmp0*l;
+    const Scalar tmp2 = sin(theta);
+    const Scalar tmp3 = tmp2*l;
+    const Scalar tmp5 = (theta_dot*theta_dot);
+    const Scalar tmp6 = tmp3*tmp5;
+    const Scalar tmp51 = m_cart + m_pole;
+    const Scalar tmp52 = tmp1*m_pole;
+    const Scalar tmp53 = (l*l);
+    const Scalar tmp54 = tmp53*(tmp2*tmp2);
+    const Scalar tmp55 = m_pole*(tmp54 + tmp53*(tmp0*tmp0));
+    const Scalar tmp56 = g*m_pole;
+    const Scalar tmp57 = tmp56*tmp3;
+    const Scalar tmp58 = tmp6*m_pole;
+    (*Mt)(0, 0) = tmp51;
+    (*Mt)(1, 0) = tmp52;
+    (*Mt)(1, 1) = tmp55;
+    (*f)(0) = tmp58 + u;
+    (*f)(1) = tmp57;
     (*Mt)(0, 1) = (*Mt)(1, 0);
   }
 
@@ -317,23 +323,24 @@ struct CartPole {
     const Scalar m_pole = Scalar(params.m_pole);
     const Scalar g = Scalar(params.g);
     const Scalar u = Scalar(params.u);
-    const Scalar tmp0 = m_cart + m_pole;
-    const Scalar tmp1 = cos(theta);
-    const Scalar tmp2 = tmp1*l;
-    const Scalar tmp3 = tmp2*m_pole;
-    const Scalar tmp4 = (l*l);
-    const Scalar tmp5 = sin(theta);
-    const Scalar tmp6 = tmp4*(tmp5*tmp5);
-    const Scalar tmp7 = m_pole*(tmp6 + tmp4*(tmp1*tmp1));
-    const Scalar tmp8 = tmp5*l;
-    const Scalar tmp9 = g*m_pole;
-    const Scalar tmp10 = tmp8*tmp9;
-    const Scalar tmp11 = (theta_dot*theta_dot);
-    const Scalar tmp12 = tmp11*tmp8;
-    const Scalar tmp13 = tmp12*m_pole;
+    const Scalar tmp0 = cos(theta);
+    const Scalar tmp1 = tmp0*l;
+    const Scalar tmp2 = sin(theta);
+    const Scalar tmp3 = tmp2*l;
+    const Scalar tmp5 = (theta_dot*theta_dot);
+    const Scalar tmp6 = tmp3*tmp5;
+    const Scalar tmp28 = -u;
+    const Scalar tmp51 = m_cart + m_pole;
+    const Scalar tmp52 = tmp1*m_pole;
+    const Scalar tmp53 = (l*l);
+    const Scalar tmp54 = tmp53*(tmp2*tmp2);
+    const Scalar tmp55 = m_pole*(tmp54 + tmp53*(tmp0*tmp0));
+    const Scalar tmp56 = g*m_pole;
+    const Scalar tmp57 = tmp56*tmp3;
+    const Scalar tmp58 = tmp6*m_pole;
     QVector<Scalar> result;
-    result(0) = -tmp13 - u + tmp0*s_ddot + tmp3*theta_ddot;
-    result(1) = -tmp10 + tmp3*s_ddot + tmp7*theta_ddot;
+    result(0) = tmp28 - tmp58 + tmp51*s_ddot + tmp52*theta_ddot;
+    result(1) = -tmp57 + tmp52*s_ddot + tmp55*theta_ddot;
     return result;
   }
 
@@ -362,30 +369,30 @@ struct CartPole {
     const Scalar l = Scalar(params.l);
     const Scalar m_pole = Scalar(params.m_pole);
     const Scalar g = Scalar(params.g);
-    const Scalar tmp1 = cos(theta);
-    const Scalar tmp4 = (l*l);
-    const Scalar tmp5 = sin(theta);
-    const Scalar tmp8 = tmp5*l;
-    const Scalar tmp9 = g*m_pole;
-    const Scalar tmp11 = (theta_dot*theta_dot);
-    const Scalar tmp70 = -tmp5;
-    const Scalar tmp71 = l*tmp70;
-    const Scalar tmp72 = m_pole*tmp71;
-    const Scalar tmp73 = Scalar(2)*tmp4*tmp5*tmp1;
-    const Scalar tmp74 = Scalar(2)*tmp1*tmp4*m_pole*tmp70 + m_pole*tmp73;
-    const Scalar tmp75 = l*tmp1;
-    const Scalar tmp76 = tmp9*tmp75;
-    const Scalar tmp77 = tmp11*tmp75;
-    const Scalar tmp78 = m_pole*tmp77;
-    const Scalar tmp79 = Scalar(2)*theta_dot;
-    const Scalar tmp80 = tmp8*tmp79;
-    const Scalar tmp81 = m_pole*tmp80;
+    const Scalar tmp0 = cos(theta);
+    const Scalar tmp2 = sin(theta);
+    const Scalar tmp3 = tmp2*l;
+    const Scalar tmp5 = (theta_dot*theta_dot);
+    const Scalar tmp53 = (l*l);
+    const Scalar tmp56 = g*m_pole;
+    const Scalar tmp113 = -tmp2;
+    const Scalar tmp114 = l*tmp113;
+    const Scalar tmp115 = l*tmp0;
+    const Scalar tmp116 = tmp5*tmp115;
+    const Scalar tmp117 = m_pole*tmp114;
+    const Scalar tmp118 = Scalar(2)*tmp53*tmp2*tmp0;
+    const Scalar tmp119 = Scalar(2)*tmp0*tmp53*m_pole*tmp113 + m_pole*tmp118;
+    const Scalar tmp120 = tmp56*tmp115;
+    const Scalar tmp121 = m_pole*tmp116;
+    const Scalar tmp122 = Scalar(2)*theta_dot;
+    const Scalar tmp123 = tmp3*tmp122;
+    const Scalar tmp124 = m_pole*tmp123;
     (*dr_dq)(0, 0) = Scalar(0);
-    (*dr_dq)(0, 1) = -tmp78 + theta_ddot*tmp72;
+    (*dr_dq)(0, 1) = theta_ddot*tmp117 - tmp121;
     (*dr_dq)(1, 0) = Scalar(0);
-    (*dr_dq)(1, 1) = -tmp76 + s_ddot*tmp72 + theta_ddot*tmp74;
+    (*dr_dq)(1, 1) = s_ddot*tmp117 + theta_ddot*tmp119 - tmp120;
     (*dr_dv)(0, 0) = Scalar(0);
-    (*dr_dv)(0, 1) = -tmp81;
+    (*dr_dv)(0, 1) = -tmp124;
     (*dr_dv)(1, 0) = Scalar(0);
     (*dr_dv)(1, 1) = Scalar(0);
   }
@@ -410,17 +417,17 @@ struct CartPole {
     const Scalar l = Scalar(params.l);
     const Scalar m_cart = Scalar(params.m_cart);
     const Scalar m_pole = Scalar(params.m_pole);
-    const Scalar tmp1 = cos(theta);
-    const Scalar tmp2 = tmp1*l;
-    const Scalar tmp4 = (l*l);
-    const Scalar tmp5 = sin(theta);
-    const Scalar tmp6 = tmp4*(tmp5*tmp5);
-    const Scalar tmp11 = (theta_dot*theta_dot);
-    const Scalar tmp14 = s_dot + tmp2*theta_dot;
-    const Scalar tmp15 = (Scalar(0.5))*m_cart*(s_dot*s_dot)
-        + (Scalar(0.5))*m_pole*((tmp14*tmp14) + tmp11*tmp6);
+    const Scalar tmp0 = cos(theta);
+    const Scalar tmp1 = tmp0*l;
+    const Scalar tmp2 = sin(theta);
+    const Scalar tmp5 = (theta_dot*theta_dot);
+    const Scalar tmp53 = (l*l);
+    const Scalar tmp54 = tmp53*(tmp2*tmp2);
+    const Scalar tmp59 = s_dot + tmp1*theta_dot;
+    const Scalar tmp60 = (Scalar(0.5))*m_cart*(s_dot*s_dot)
+        + (Scalar(0.5))*m_pole*((tmp59*tmp59) + tmp54*tmp5);
     Scalar result;
-    result = tmp15;
+    result = tmp60;
     return result;
   }
 
@@ -439,12 +446,12 @@ struct CartPole {
     const Scalar l = Scalar(params.l);
     const Scalar m_pole = Scalar(params.m_pole);
     const Scalar g = Scalar(params.g);
-    const Scalar tmp1 = cos(theta);
-    const Scalar tmp2 = tmp1*l;
-    const Scalar tmp9 = g*m_pole;
-    const Scalar tmp16 = tmp2*tmp9;
+    const Scalar tmp0 = cos(theta);
+    const Scalar tmp1 = tmp0*l;
+    const Scalar tmp56 = g*m_pole;
+    const Scalar tmp61 = tmp1*tmp56;
     Scalar result;
-    result = tmp16;
+    result = tmp61;
     return result;
   }
 
@@ -484,19 +491,19 @@ struct CartPole {
     const Scalar m_cart = Scalar(params.m_cart);
     const Scalar m_pole = Scalar(params.m_pole);
     const Scalar g = Scalar(params.g);
-    const Scalar tmp1 = cos(theta);
-    const Scalar tmp2 = tmp1*l;
-    const Scalar tmp4 = (l*l);
-    const Scalar tmp5 = sin(theta);
-    const Scalar tmp6 = tmp4*(tmp5*tmp5);
-    const Scalar tmp9 = g*m_pole;
-    const Scalar tmp11 = (theta_dot*theta_dot);
-    const Scalar tmp14 = s_dot + tmp2*theta_dot;
-    const Scalar tmp15 = (Scalar(0.5))*m_cart*(s_dot*s_dot)
-        + (Scalar(0.5))*m_pole*((tmp14*tmp14) + tmp11*tmp6);
-    const Scalar tmp16 = tmp2*tmp9;
+    const Scalar tmp0 = cos(theta);
+    const Scalar tmp1 = tmp0*l;
+    const Scalar tmp2 = sin(theta);
+    const Scalar tmp5 = (theta_dot*theta_dot);
+    const Scalar tmp53 = (l*l);
+    const Scalar tmp54 = tmp53*(tmp2*tmp2);
+    const Scalar tmp56 = g*m_pole;
+    const Scalar tmp59 = s_dot + tmp1*theta_dot;
+    const Scalar tmp60 = (Scalar(0.5))*m_cart*(s_dot*s_dot)
+        + (Scalar(0.5))*m_pole*((tmp59*tmp59) + tmp54*tmp5);
+    const Scalar tmp61 = tmp1*tmp56;
     Scalar result;
-    result = tmp15 + tmp16;
+    result = tmp60 + tmp61;
     return result;
   }
 
@@ -515,16 +522,16 @@ struct CartPole {
     const Scalar s = q(0);
     const Scalar theta = q(1);
     const Scalar l = Scalar(params.l);
-    const Scalar tmp1 = cos(theta);
-    const Scalar tmp2 = tmp1*l;
-    const Scalar tmp5 = sin(theta);
-    const Scalar tmp8 = tmp5*l;
-    const Scalar tmp17 = tmp8 + s;
+    const Scalar tmp0 = cos(theta);
+    const Scalar tmp1 = tmp0*l;
+    const Scalar tmp2 = sin(theta);
+    const Scalar tmp3 = tmp2*l;
+    const Scalar tmp9 = tmp3 + s;
     XVector<Scalar> result;
     result(0) = s;
     result(1) = Scalar(0);
-    result(2) = tmp17;
-    result(3) = tmp2;
+    result(2) = tmp9;
+    result(3) = tmp1;
     return result;
   }
 
@@ -546,17 +553,17 @@ struct CartPole {
     const Scalar s_dot = v(0);
     const Scalar theta_dot = v(1);
     const Scalar l = Scalar(params.l);
-    const Scalar tmp1 = cos(theta);
-    const Scalar tmp2 = tmp1*l;
-    const Scalar tmp5 = sin(theta);
-    const Scalar tmp8 = tmp5*l;
-    const Scalar tmp14 = s_dot + tmp2*theta_dot;
-    const Scalar tmp18 = tmp8*theta_dot;
+    const Scalar tmp0 = cos(theta);
+    const Scalar tmp1 = tmp0*l;
+    const Scalar tmp2 = sin(theta);
+    const Scalar tmp3 = tmp2*l;
+    const Scalar tmp59 = s_dot + tmp1*theta_dot;
+    const Scalar tmp62 = tmp3*theta_dot;
     XVector<Scalar> result;
     result(0) = s_dot;
     result(1) = Scalar(0);
-    result(2) = tmp14;
-    result(3) = -tmp18;
+    result(2) = tmp59;
+    result(3) = -tmp62;
     return result;
   }
 
@@ -574,19 +581,19 @@ struct CartPole {
     using std::sin;
     const Scalar theta = q(1);
     const Scalar l = Scalar(params.l);
-    const Scalar tmp1 = cos(theta);
-    const Scalar tmp2 = tmp1*l;
-    const Scalar tmp5 = sin(theta);
-    const Scalar tmp8 = tmp5*l;
+    const Scalar tmp0 = cos(theta);
+    const Scalar tmp1 = tmp0*l;
+    const Scalar tmp2 = sin(theta);
+    const Scalar tmp3 = tmp2*l;
     XJacobian<Scalar> result;
     result(0, 0) = Scalar(1);
     result(0, 1) = Scalar(0);
     result(1, 0) = Scalar(0);
     result(1, 1) = Scalar(0);
     result(2, 0) = Scalar(1);
-    result(2, 1) = tmp2;
+    result(2, 1) = tmp1;
     result(3, 0) = Scalar(0);
-    result(3, 1) = -tmp8;
+    result(3, 1) = -tmp3;
     return result;
   }
 
@@ -607,17 +614,17 @@ struct CartPole {
     const Scalar theta = q(1);
     const Scalar theta_dot = v(1);
     const Scalar l = Scalar(params.l);
-    const Scalar tmp1 = cos(theta);
-    const Scalar tmp2 = tmp1*l;
-    const Scalar tmp5 = sin(theta);
-    const Scalar tmp8 = tmp5*l;
-    const Scalar tmp11 = (theta_dot*theta_dot);
-    const Scalar tmp12 = tmp11*tmp8;
+    const Scalar tmp0 = cos(theta);
+    const Scalar tmp1 = tmp0*l;
+    const Scalar tmp2 = sin(theta);
+    const Scalar tmp3 = tmp2*l;
+    const Scalar tmp5 = (theta_dot*theta_dot);
+    const Scalar tmp6 = tmp3*tmp5;
     XVector<Scalar> result;
     result(0) = Scalar(0);
     result(1) = Scalar(0);
-    result(2) = -tmp12;
-    result(3) = -tmp11*tmp2;
+    result(2) = -tmp6;
+    result(3) = -tmp1*tmp5;
     return result;
   }
 
@@ -641,15 +648,15 @@ struct CartPole {
     const Scalar l = Scalar(params.l);
     const Scalar m_cart = Scalar(params.m_cart);
     const Scalar m_pole = Scalar(params.m_pole);
-    const Scalar tmp1 = cos(theta);
-    const Scalar tmp2 = tmp1*l;
-    const Scalar tmp5 = sin(theta);
-    const Scalar tmp8 = tmp5*l;
-    const Scalar tmp14 = s_dot + tmp2*theta_dot;
-    const Scalar tmp18 = tmp8*theta_dot;
+    const Scalar tmp0 = cos(theta);
+    const Scalar tmp1 = tmp0*l;
+    const Scalar tmp2 = sin(theta);
+    const Scalar tmp3 = tmp2*l;
+    const Scalar tmp59 = s_dot + tmp1*theta_dot;
+    const Scalar tmp62 = tmp3*theta_dot;
     SpaceVector<Scalar> result;
-    result(0) = tmp14*m_pole + m_cart*s_dot;
-    result(1) = -tmp18*m_pole;
+    result(0) = tmp59*m_pole + m_cart*s_dot;
+    result(1) = -tmp62*m_pole;
     return result;
   }
 
@@ -673,15 +680,15 @@ struct CartPole {
     const Scalar theta_dot = v(1);
     const Scalar l = Scalar(params.l);
     const Scalar m_pole = Scalar(params.m_pole);
-    const Scalar tmp1 = cos(theta);
-    const Scalar tmp2 = tmp1*l;
-    const Scalar tmp5 = sin(theta);
-    const Scalar tmp8 = tmp5*l;
-    const Scalar tmp14 = s_dot + tmp2*theta_dot;
-    const Scalar tmp17 = tmp8 + s;
-    const Scalar tmp18 = tmp8*theta_dot;
+    const Scalar tmp0 = cos(theta);
+    const Scalar tmp1 = tmp0*l;
+    const Scalar tmp2 = sin(theta);
+    const Scalar tmp3 = tmp2*l;
+    const Scalar tmp9 = tmp3 + s;
+    const Scalar tmp59 = s_dot + tmp1*theta_dot;
+    const Scalar tmp62 = tmp3*theta_dot;
     AngularVector<Scalar> result;
-    result(0) = m_pole*(-tmp14*tmp2 - tmp17*tmp18);
+    result(0) = m_pole*(-tmp1*tmp59 - tmp62*tmp9);
     return result;
   }
 
@@ -797,13 +804,13 @@ struct CartPole {
       const Scalar m_cart = Scalar(params.m_cart);
       const Scalar m_pole = Scalar(params.m_pole);
       const Scalar g = Scalar(params.g);
-      const Scalar tmp9 = g*m_pole;
-      const Scalar tmp19 = g*m_cart;
+      const Scalar tmp48 = g*m_cart;
+      const Scalar tmp56 = g*m_pole;
       XVector<Scalar> result;
       result(0) = Scalar(0);
-      result(1) = -tmp19;
+      result(1) = -tmp48;
       result(2) = Scalar(0);
-      result(3) = -tmp9;
+      result(3) = -tmp56;
       return result;
     }
 
@@ -825,32 +832,32 @@ struct CartPole {
                                           const Params& params) {
       using std::sqrt;
       const Scalar l = Scalar(params.l);
-      const Scalar tmp20 = pos(0) - pos(2);
-      const Scalar tmp21 = -tmp20;
-      const Scalar tmp22 = (tmp21*tmp21);
-      const Scalar tmp23 = pos(1) - pos(3);
-      const Scalar tmp24 = -tmp23;
-      const Scalar tmp25 = (tmp24*tmp24);
-      const Scalar tmp26 = tmp22 + tmp25;
-      const Scalar tmp27 = sqrt(tmp26);
-      const Scalar tmp28 = (Scalar(1)/tmp27);
-      const Scalar tmp29 = tmp27 - l;
-      const Scalar tmp30 = (Scalar(1)/l);
-      const Scalar tmp31 = tmp30*kappa;
-      const Scalar tmp32 = vel(2) - vel(0);
-      const Scalar tmp33 = tmp28*tmp32;
-      const Scalar tmp34 = vel(3) - vel(1);
-      const Scalar tmp35 = tmp28*tmp34;
-      const Scalar tmp36 = tmp30*penalty_damping;
-      const Scalar tmp37 = tmp29*tmp31 + tmp36*(tmp21*tmp33 + tmp24*tmp35);
-      const Scalar tmp38 = tmp28*tmp37;
-      const Scalar tmp39 = -tmp37;
-      const Scalar tmp40 = tmp28*tmp39;
+      const Scalar tmp63 = pos(0) - pos(2);
+      const Scalar tmp64 = -tmp63;
+      const Scalar tmp65 = (tmp64*tmp64);
+      const Scalar tmp66 = pos(1) - pos(3);
+      const Scalar tmp67 = -tmp66;
+      const Scalar tmp68 = (tmp67*tmp67);
+      const Scalar tmp69 = tmp65 + tmp68;
+      const Scalar tmp70 = sqrt(tmp69);
+      const Scalar tmp71 = (Scalar(1)/tmp70);
+      const Scalar tmp72 = tmp70 - l;
+      const Scalar tmp73 = (Scalar(1)/l);
+      const Scalar tmp74 = tmp73*kappa;
+      const Scalar tmp75 = vel(2) - vel(0);
+      const Scalar tmp76 = tmp71*tmp75;
+      const Scalar tmp77 = vel(3) - vel(1);
+      const Scalar tmp78 = tmp71*tmp77;
+      const Scalar tmp79 = tmp73*penalty_damping;
+      const Scalar tmp80 = tmp72*tmp74 + tmp79*(tmp64*tmp76 + tmp67*tmp78);
+      const Scalar tmp81 = tmp71*tmp80;
+      const Scalar tmp82 = -tmp80;
+      const Scalar tmp83 = tmp71*tmp82;
       XVector<Scalar> result;
-      result(0) = tmp21*tmp38;
-      result(1) = -pos(1)*kappa - vel(1)*penalty_damping + tmp24*tmp28*tmp37;
-      result(2) = tmp21*tmp40;
-      result(3) = tmp24*tmp40;
+      result(0) = tmp64*tmp81;
+      result(1) = -pos(1)*kappa - vel(1)*penalty_damping + tmp67*tmp71*tmp80;
+      result(2) = tmp64*tmp83;
+      result(3) = tmp67*tmp83;
       return result;
     }
 
@@ -872,69 +879,69 @@ struct CartPole {
                                                    const Params& params) {
       using std::sqrt;
       const Scalar l = Scalar(params.l);
-      const Scalar tmp20 = pos(0) - pos(2);
-      const Scalar tmp21 = -tmp20;
-      const Scalar tmp22 = (tmp21*tmp21);
-      const Scalar tmp23 = pos(1) - pos(3);
-      const Scalar tmp24 = -tmp23;
-      const Scalar tmp25 = (tmp24*tmp24);
-      const Scalar tmp26 = tmp22 + tmp25;
-      const Scalar tmp27 = sqrt(tmp26);
-      const Scalar tmp28 = (Scalar(1)/tmp27);
-      const Scalar tmp29 = tmp27 - l;
-      const Scalar tmp30 = (Scalar(1)/l);
-      const Scalar tmp31 = tmp30*kappa;
-      const Scalar tmp32 = vel(2) - vel(0);
-      const Scalar tmp33 = tmp28*tmp32;
-      const Scalar tmp34 = vel(3) - vel(1);
-      const Scalar tmp35 = tmp28*tmp34;
-      const Scalar tmp36 = tmp30*penalty_damping;
-      const Scalar tmp37 = tmp29*tmp31 + tmp36*(tmp21*tmp33 + tmp24*tmp35);
-      const Scalar tmp38 = tmp28*tmp37;
-      const Scalar tmp39 = -tmp37;
-      const Scalar tmp40 = tmp28*tmp39;
-      const Scalar tmp41 = (Scalar(1)/(tmp26*sqrt(tmp26)));
-      const Scalar tmp42 = tmp22*tmp41;
-      const Scalar tmp43 = tmp28*tmp31;
-      const Scalar tmp44 = tmp21*tmp41;
-      const Scalar tmp45 = tmp24*tmp44;
-      const Scalar tmp46 = tmp20*tmp43 + tmp36*(-tmp33 + tmp32*tmp42 + tmp34*tmp45);
-      const Scalar tmp47 = tmp21*tmp28;
-      const Scalar tmp48 = tmp37*tmp45;
-      const Scalar tmp49 = tmp25*tmp41;
-      const Scalar tmp50 = tmp23*tmp43 + tmp36*(-tmp35 + tmp32*tmp45 + tmp34*tmp49);
-      const Scalar tmp51 = tmp20*tmp44;
-      const Scalar tmp52 = tmp24*tmp41;
-      const Scalar tmp53 = tmp34*tmp52;
-      const Scalar tmp54 = tmp31*tmp47 + tmp36*(tmp33 + tmp20*tmp53 + tmp32*tmp51);
-      const Scalar tmp55 = tmp23*tmp44;
-      const Scalar tmp56 = tmp24*tmp28;
-      const Scalar tmp57 = tmp31*tmp56 + tmp36*(tmp35 + tmp23*tmp53 + tmp32*tmp55);
-      const Scalar tmp58 = tmp37*tmp52;
-      const Scalar tmp59 = -tmp40;
-      const Scalar tmp60 = -tmp46;
-      const Scalar tmp61 = tmp39*tmp45;
-      const Scalar tmp62 = -tmp50;
-      const Scalar tmp63 = -tmp54;
-      const Scalar tmp64 = -tmp57;
-      const Scalar tmp65 = tmp39*tmp52;
+      const Scalar tmp63 = pos(0) - pos(2);
+      const Scalar tmp64 = -tmp63;
+      const Scalar tmp65 = (tmp64*tmp64);
+      const Scalar tmp66 = pos(1) - pos(3);
+      const Scalar tmp67 = -tmp66;
+      const Scalar tmp68 = (tmp67*tmp67);
+      const Scalar tmp69 = tmp65 + tmp68;
+      const Scalar tmp70 = sqrt(tmp69);
+      const Scalar tmp71 = (Scalar(1)/tmp70);
+      const Scalar tmp72 = tmp70 - l;
+      const Scalar tmp73 = (Scalar(1)/l);
+      const Scalar tmp74 = tmp73*kappa;
+      const Scalar tmp75 = vel(2) - vel(0);
+      const Scalar tmp76 = tmp71*tmp75;
+      const Scalar tmp77 = vel(3) - vel(1);
+      const Scalar tmp78 = tmp71*tmp77;
+      const Scalar tmp79 = tmp73*penalty_damping;
+      const Scalar tmp80 = tmp72*tmp74 + tmp79*(tmp64*tmp76 + tmp67*tmp78);
+      const Scalar tmp81 = tmp71*tmp80;
+      const Scalar tmp82 = -tmp80;
+      const Scalar tmp83 = tmp71*tmp82;
+      const Scalar tmp84 = (Scalar(1)/(tmp69*sqrt(tmp69)));
+      const Scalar tmp85 = tmp65*tmp84;
+      const Scalar tmp86 = tmp71*tmp74;
+      const Scalar tmp87 = tmp64*tmp84;
+      const Scalar tmp88 = tmp67*tmp87;
+      const Scalar tmp89 = tmp63*tmp86 + tmp79*(-tmp76 + tmp75*tmp85 + tmp77*tmp88);
+      const Scalar tmp90 = tmp64*tmp71;
+      const Scalar tmp91 = tmp80*tmp88;
+      const Scalar tmp92 = tmp68*tmp84;
+      const Scalar tmp93 = tmp66*tmp86 + tmp79*(-tmp78 + tmp75*tmp88 + tmp77*tmp92);
+      const Scalar tmp94 = tmp63*tmp87;
+      const Scalar tmp95 = tmp67*tmp84;
+      const Scalar tmp96 = tmp77*tmp95;
+      const Scalar tmp97 = tmp74*tmp90 + tmp79*(tmp76 + tmp63*tmp96 + tmp75*tmp94);
+      const Scalar tmp98 = tmp66*tmp87;
+      const Scalar tmp99 = tmp67*tmp71;
+      const Scalar tmp100 = tmp74*tmp99 + tmp79*(tmp78 + tmp66*tmp96 + tmp75*tmp98);
+      const Scalar tmp101 = tmp80*tmp95;
+      const Scalar tmp102 = -tmp83;
+      const Scalar tmp103 = -tmp89;
+      const Scalar tmp104 = tmp82*tmp88;
+      const Scalar tmp105 = -tmp93;
+      const Scalar tmp106 = -tmp97;
+      const Scalar tmp107 = -tmp100;
+      const Scalar tmp108 = tmp82*tmp95;
       std::array<Scalar, 16> result;
-      result[0] = -tmp38 + tmp37*tmp42 + tmp46*tmp47;
-      result[1] = tmp48 + tmp47*tmp50;
-      result[2] = tmp38 + tmp37*tmp51 + tmp47*tmp54;
-      result[3] = tmp37*tmp55 + tmp47*tmp57;
-      result[4] = tmp48 + tmp46*tmp56;
-      result[5] = -tmp38 - kappa + tmp24*tmp28*tmp50 + tmp25*tmp37*tmp41;
-      result[6] = tmp20*tmp58 + tmp54*tmp56;
-      result[7] = tmp38 + tmp23*tmp58 + tmp56*tmp57;
-      result[8] = tmp59 + tmp39*tmp42 + tmp47*tmp60;
-      result[9] = tmp61 + tmp47*tmp62;
-      result[10] = tmp40 + tmp39*tmp51 + tmp47*tmp63;
-      result[11] = tmp39*tmp55 + tmp47*tmp64;
-      result[12] = tmp61 + tmp56*tmp60;
-      result[13] = tmp59 + tmp39*tmp49 + tmp56*tmp62;
-      result[14] = tmp20*tmp65 + tmp56*tmp63;
-      result[15] = tmp40 + tmp23*tmp65 + tmp56*tmp64;
+      result[0] = -tmp81 + tmp80*tmp85 + tmp89*tmp90;
+      result[1] = tmp91 + tmp90*tmp93;
+      result[2] = tmp81 + tmp80*tmp94 + tmp90*tmp97;
+      result[3] = tmp80*tmp98 + tmp90*tmp100;
+      result[4] = tmp91 + tmp89*tmp99;
+      result[5] = -tmp81 - kappa + tmp67*tmp71*tmp93 + tmp68*tmp80*tmp84;
+      result[6] = tmp63*tmp101 + tmp97*tmp99;
+      result[7] = tmp81 + tmp66*tmp101 + tmp99*tmp100;
+      result[8] = tmp102 + tmp82*tmp85 + tmp90*tmp103;
+      result[9] = tmp104 + tmp90*tmp105;
+      result[10] = tmp83 + tmp82*tmp94 + tmp90*tmp106;
+      result[11] = tmp82*tmp98 + tmp90*tmp107;
+      result[12] = tmp104 + tmp99*tmp103;
+      result[13] = tmp102 + tmp82*tmp92 + tmp99*tmp105;
+      result[14] = tmp63*tmp108 + tmp99*tmp106;
+      result[15] = tmp83 + tmp66*tmp108 + tmp99*tmp107;
       return result;
     }
 
@@ -955,36 +962,36 @@ struct CartPole {
                                                       const Scalar& penalty_damping,
                                                       const Params& params) {
       const Scalar l = Scalar(params.l);
-      const Scalar tmp20 = pos(0) - pos(2);
-      const Scalar tmp21 = -tmp20;
-      const Scalar tmp22 = (tmp21*tmp21);
-      const Scalar tmp23 = pos(1) - pos(3);
-      const Scalar tmp24 = -tmp23;
-      const Scalar tmp25 = (tmp24*tmp24);
-      const Scalar tmp26 = tmp22 + tmp25;
-      const Scalar tmp30 = (Scalar(1)/l);
-      const Scalar tmp36 = tmp30*penalty_damping;
-      const Scalar tmp66 = tmp36/tmp26;
-      const Scalar tmp67 = tmp22*tmp66;
-      const Scalar tmp68 = tmp21*tmp24*tmp66;
-      const Scalar tmp69 = tmp25*tmp66;
+      const Scalar tmp63 = pos(0) - pos(2);
+      const Scalar tmp64 = -tmp63;
+      const Scalar tmp65 = (tmp64*tmp64);
+      const Scalar tmp66 = pos(1) - pos(3);
+      const Scalar tmp67 = -tmp66;
+      const Scalar tmp68 = (tmp67*tmp67);
+      const Scalar tmp69 = tmp65 + tmp68;
+      const Scalar tmp73 = (Scalar(1)/l);
+      const Scalar tmp79 = tmp73*penalty_damping;
+      const Scalar tmp109 = tmp79/tmp69;
+      const Scalar tmp110 = tmp65*tmp109;
+      const Scalar tmp111 = tmp64*tmp67*tmp109;
+      const Scalar tmp112 = tmp68*tmp109;
       std::array<Scalar, 16> result;
-      result[0] = -tmp67;
-      result[1] = -tmp68;
-      result[2] = tmp67;
-      result[3] = tmp68;
-      result[4] = -tmp68;
-      result[5] = -tmp69 - penalty_damping;
-      result[6] = tmp68;
-      result[7] = tmp69;
-      result[8] = tmp67;
-      result[9] = tmp68;
-      result[10] = -tmp67;
-      result[11] = -tmp68;
-      result[12] = tmp68;
-      result[13] = tmp69;
-      result[14] = -tmp68;
-      result[15] = -tmp69;
+      result[0] = -tmp110;
+      result[1] = -tmp111;
+      result[2] = tmp110;
+      result[3] = tmp111;
+      result[4] = -tmp111;
+      result[5] = -tmp112 - penalty_damping;
+      result[6] = tmp111;
+      result[7] = tmp112;
+      result[8] = tmp110;
+      result[9] = tmp111;
+      result[10] = -tmp110;
+      result[11] = -tmp111;
+      result[12] = tmp111;
+      result[13] = tmp112;
+      result[14] = -tmp111;
+      result[15] = -tmp112;
       return result;
     }
 
@@ -1001,10 +1008,10 @@ struct CartPole {
       const Scalar m_cart = Scalar(params.m_cart);
       const Scalar m_pole = Scalar(params.m_pole);
       const Scalar g = Scalar(params.g);
-      const Scalar tmp9 = g*m_pole;
-      const Scalar tmp19 = g*m_cart;
+      const Scalar tmp48 = g*m_cart;
+      const Scalar tmp56 = g*m_pole;
       Scalar result;
-      result = tmp19*pos(1) + tmp9*pos(3);
+      result = tmp48*pos(1) + tmp56*pos(3);
       return result;
     }
 
@@ -1022,19 +1029,19 @@ struct CartPole {
                                  const Params& params) {
       using std::sqrt;
       const Scalar l = Scalar(params.l);
-      const Scalar tmp20 = pos(0) - pos(2);
-      const Scalar tmp21 = -tmp20;
-      const Scalar tmp22 = (tmp21*tmp21);
-      const Scalar tmp23 = pos(1) - pos(3);
-      const Scalar tmp24 = -tmp23;
-      const Scalar tmp25 = (tmp24*tmp24);
-      const Scalar tmp26 = tmp22 + tmp25;
-      const Scalar tmp27 = sqrt(tmp26);
-      const Scalar tmp29 = tmp27 - l;
-      const Scalar tmp30 = (Scalar(1)/l);
-      const Scalar tmp31 = tmp30*kappa;
+      const Scalar tmp63 = pos(0) - pos(2);
+      const Scalar tmp64 = -tmp63;
+      const Scalar tmp65 = (tmp64*tmp64);
+      const Scalar tmp66 = pos(1) - pos(3);
+      const Scalar tmp67 = -tmp66;
+      const Scalar tmp68 = (tmp67*tmp67);
+      const Scalar tmp69 = tmp65 + tmp68;
+      const Scalar tmp70 = sqrt(tmp69);
+      const Scalar tmp72 = tmp70 - l;
+      const Scalar tmp73 = (Scalar(1)/l);
+      const Scalar tmp74 = tmp73*kappa;
       Scalar result;
-      result = (Scalar(0.5))*tmp31*(tmp29*tmp29) + (Scalar(0.5))*kappa*(pos(1)*pos(1));
+      result = (Scalar(0.5))*tmp74*(tmp72*tmp72) + (Scalar(0.5))*kappa*(pos(1)*pos(1));
       return result;
     }
 
@@ -1050,18 +1057,18 @@ struct CartPole {
                                                           const Params& params) {
       using std::sqrt;
       const Scalar l = Scalar(params.l);
-      const Scalar tmp20 = pos(0) - pos(2);
-      const Scalar tmp21 = -tmp20;
-      const Scalar tmp22 = (tmp21*tmp21);
-      const Scalar tmp23 = pos(1) - pos(3);
-      const Scalar tmp24 = -tmp23;
-      const Scalar tmp25 = (tmp24*tmp24);
-      const Scalar tmp26 = tmp22 + tmp25;
-      const Scalar tmp27 = sqrt(tmp26);
-      const Scalar tmp29 = tmp27 - l;
+      const Scalar tmp63 = pos(0) - pos(2);
+      const Scalar tmp64 = -tmp63;
+      const Scalar tmp65 = (tmp64*tmp64);
+      const Scalar tmp66 = pos(1) - pos(3);
+      const Scalar tmp67 = -tmp66;
+      const Scalar tmp68 = (tmp67*tmp67);
+      const Scalar tmp69 = tmp65 + tmp68;
+      const Scalar tmp70 = sqrt(tmp69);
+      const Scalar tmp72 = tmp70 - l;
       ConstraintVector<Scalar> result;
       result(0) = pos(1);
-      result(1) = tmp29;
+      result(1) = tmp72;
       return result;
     }
   };

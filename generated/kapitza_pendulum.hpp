@@ -7,10 +7,12 @@
 // Singular configurations (J loses rank): none found
 // Worst conditioning of J in 200 random configurations: sigma_min / sigma_max = 1 at theta =
 //   0.04927
+// qddot: Mt, Ft + Fi and an LDL^T solve, 34 operations (articulated-body recursion: 31)
+// inverse_dynamics: Mt qdd - Ft - Fi, 33 operations (recursive Newton-Euler: 26)
 //
-// Total ops: 198
-// Intermediate terms (59)
-// Output terms (36)
+// Total ops: 250
+// Intermediate terms (84)
+// Output terms (33)
 #pragma once
 
 #include <array>
@@ -67,6 +69,10 @@ struct KapitzaPendulum {
   /// Whether applied_forces at rest (v = 0) is -d(potential_energy)/dq: every force without
   /// a declared potential vanishes at rest (generator/conservative.py).
   static constexpr bool forces_have_potential = true;
+  /// Whether qddot is the articulated-body recursion over the model's tree of particles,
+  /// chosen at generation because it takes fewer operations than Mt, Ft + Fi and an LDL^T
+  /// solve (generator/dynamics_paths.py); gencoord::acceleration() then calls it.
+  static constexpr bool recursive_qddot = false;
 
   template <typename Scalar>
   using QVector = Eigen::Matrix<Scalar, nq, 1>;
@@ -121,13 +127,13 @@ struct KapitzaPendulum {
     const Scalar theta = q(0);
     const Scalar l = Scalar(params.l);
     const Scalar m = Scalar(params.m);
-    const Scalar tmp0 = (l*l);
-    const Scalar tmp1 = sin(theta);
-    const Scalar tmp2 = cos(theta);
-    const Scalar tmp3 = tmp0*(tmp2*tmp2);
-    const Scalar tmp4 = m*(tmp3 + tmp0*(tmp1*tmp1));
+    const Scalar tmp0 = cos(theta);
+    const Scalar tmp2 = sin(theta);
+    const Scalar tmp35 = (l*l);
+    const Scalar tmp36 = tmp35*(tmp0*tmp0);
+    const Scalar tmp37 = m*(tmp36 + tmp35*(tmp2*tmp2));
     QMatrix<Scalar> result;
-    result(0) = tmp4;
+    result(0) = tmp37;
     return result;
   }
 
@@ -148,12 +154,12 @@ struct KapitzaPendulum {
     const Scalar l = Scalar(params.l);
     const Scalar m = Scalar(params.m);
     const Scalar g = Scalar(params.g);
-    const Scalar tmp1 = sin(theta);
-    const Scalar tmp5 = tmp1*l;
-    const Scalar tmp6 = g*m;
-    const Scalar tmp7 = tmp5*tmp6;
+    const Scalar tmp2 = sin(theta);
+    const Scalar tmp3 = tmp2*l;
+    const Scalar tmp38 = g*m;
+    const Scalar tmp39 = tmp38*tmp3;
     QVector<Scalar> result;
-    result(0) = -tmp7;
+    result(0) = -tmp39;
     return result;
   }
 
@@ -194,16 +200,16 @@ struct KapitzaPendulum {
     const Scalar m = Scalar(params.m);
     const Scalar a = Scalar(params.a);
     const Scalar omega = Scalar(params.omega);
-    const Scalar tmp0 = (l*l);
-    const Scalar tmp1 = sin(theta);
-    const Scalar tmp2 = cos(theta);
-    const Scalar tmp8 = (theta_dot*theta_dot);
-    const Scalar tmp9 = omega*t;
-    const Scalar tmp10 = a*cos(tmp9);
-    const Scalar tmp11 = -tmp10*(omega*omega) + tmp2*tmp8*l;
-    const Scalar tmp12 = m*(tmp1*tmp11*l - tmp0*tmp1*tmp2*tmp8);
+    const Scalar tmp0 = cos(theta);
+    const Scalar tmp2 = sin(theta);
+    const Scalar tmp4 = (theta_dot*theta_dot);
+    const Scalar tmp5 = omega*t;
+    const Scalar tmp6 = a*cos(tmp5);
+    const Scalar tmp7 = -tmp6*(omega*omega) + tmp0*tmp4*l;
+    const Scalar tmp35 = (l*l);
+    const Scalar tmp40 = m*(tmp2*tmp7*l - tmp0*tmp35*tmp2*tmp4);
     QVector<Scalar> result;
-    result(0) = -tmp12;
+    result(0) = -tmp40;
     return result;
   }
 
@@ -228,20 +234,20 @@ struct KapitzaPendulum {
     const Scalar g = Scalar(params.g);
     const Scalar a = Scalar(params.a);
     const Scalar omega = Scalar(params.omega);
-    const Scalar tmp0 = (l*l);
-    const Scalar tmp1 = sin(theta);
-    const Scalar tmp2 = cos(theta);
-    const Scalar tmp5 = tmp1*l;
-    const Scalar tmp6 = g*m;
-    const Scalar tmp7 = tmp5*tmp6;
-    const Scalar tmp8 = (theta_dot*theta_dot);
-    const Scalar tmp9 = omega*t;
-    const Scalar tmp10 = a*cos(tmp9);
-    const Scalar tmp11 = -tmp10*(omega*omega) + tmp2*tmp8*l;
-    const Scalar tmp12 = m*(tmp1*tmp11*l - tmp0*tmp1*tmp2*tmp8);
-    const Scalar tmp13 = tmp12 + tmp7;
+    const Scalar tmp0 = cos(theta);
+    const Scalar tmp2 = sin(theta);
+    const Scalar tmp3 = tmp2*l;
+    const Scalar tmp4 = (theta_dot*theta_dot);
+    const Scalar tmp5 = omega*t;
+    const Scalar tmp6 = a*cos(tmp5);
+    const Scalar tmp7 = -tmp6*(omega*omega) + tmp0*tmp4*l;
+    const Scalar tmp35 = (l*l);
+    const Scalar tmp38 = g*m;
+    const Scalar tmp39 = tmp38*tmp3;
+    const Scalar tmp40 = m*(tmp2*tmp7*l - tmp0*tmp35*tmp2*tmp4);
+    const Scalar tmp41 = tmp39 + tmp40;
     QVector<Scalar> result;
-    result(0) = -tmp13;
+    result(0) = -tmp41;
     return result;
   }
 
@@ -268,22 +274,22 @@ struct KapitzaPendulum {
     const Scalar g = Scalar(params.g);
     const Scalar a = Scalar(params.a);
     const Scalar omega = Scalar(params.omega);
-    const Scalar tmp0 = (l*l);
-    const Scalar tmp1 = sin(theta);
-    const Scalar tmp2 = cos(theta);
-    const Scalar tmp3 = tmp0*(tmp2*tmp2);
-    const Scalar tmp4 = m*(tmp3 + tmp0*(tmp1*tmp1));
-    const Scalar tmp5 = tmp1*l;
-    const Scalar tmp6 = g*m;
-    const Scalar tmp7 = tmp5*tmp6;
-    const Scalar tmp8 = (theta_dot*theta_dot);
-    const Scalar tmp9 = omega*t;
-    const Scalar tmp10 = a*cos(tmp9);
-    const Scalar tmp11 = -tmp10*(omega*omega) + tmp2*tmp8*l;
-    const Scalar tmp12 = m*(tmp1*tmp11*l - tmp0*tmp1*tmp2*tmp8);
-    const Scalar tmp13 = tmp12 + tmp7;
-    (*Mt)(0) = tmp4;
-    (*f)(0) = -tmp13;
+    const Scalar tmp0 = cos(theta);
+    const Scalar tmp2 = sin(theta);
+    const Scalar tmp3 = tmp2*l;
+    const Scalar tmp4 = (theta_dot*theta_dot);
+    const Scalar tmp5 = omega*t;
+    const Scalar tmp6 = a*cos(tmp5);
+    const Scalar tmp7 = -tmp6*(omega*omega) + tmp0*tmp4*l;
+    const Scalar tmp35 = (l*l);
+    const Scalar tmp36 = tmp35*(tmp0*tmp0);
+    const Scalar tmp37 = m*(tmp36 + tmp35*(tmp2*tmp2));
+    const Scalar tmp38 = g*m;
+    const Scalar tmp39 = tmp38*tmp3;
+    const Scalar tmp40 = m*(tmp2*tmp7*l - tmp0*tmp35*tmp2*tmp4);
+    const Scalar tmp41 = tmp39 + tmp40;
+    (*Mt)(0) = tmp37;
+    (*f)(0) = -tmp41;
   }
 
   /// Inverse dynamics: the residual r = Mt qdd - Ft - Fi, i.e. the generalized force that produces
@@ -311,22 +317,22 @@ struct KapitzaPendulum {
     const Scalar g = Scalar(params.g);
     const Scalar a = Scalar(params.a);
     const Scalar omega = Scalar(params.omega);
-    const Scalar tmp0 = (l*l);
-    const Scalar tmp1 = sin(theta);
-    const Scalar tmp2 = cos(theta);
-    const Scalar tmp3 = tmp0*(tmp2*tmp2);
-    const Scalar tmp4 = m*(tmp3 + tmp0*(tmp1*tmp1));
-    const Scalar tmp5 = tmp1*l;
-    const Scalar tmp6 = g*m;
-    const Scalar tmp7 = tmp5*tmp6;
-    const Scalar tmp8 = (theta_dot*theta_dot);
-    const Scalar tmp9 = omega*t;
-    const Scalar tmp10 = a*cos(tmp9);
-    const Scalar tmp11 = -tmp10*(omega*omega) + tmp2*tmp8*l;
-    const Scalar tmp12 = m*(tmp1*tmp11*l - tmp0*tmp1*tmp2*tmp8);
-    const Scalar tmp13 = tmp12 + tmp7;
+    const Scalar tmp0 = cos(theta);
+    const Scalar tmp2 = sin(theta);
+    const Scalar tmp3 = tmp2*l;
+    const Scalar tmp4 = (theta_dot*theta_dot);
+    const Scalar tmp5 = omega*t;
+    const Scalar tmp6 = a*cos(tmp5);
+    const Scalar tmp7 = -tmp6*(omega*omega) + tmp0*tmp4*l;
+    const Scalar tmp35 = (l*l);
+    const Scalar tmp36 = tmp35*(tmp0*tmp0);
+    const Scalar tmp37 = m*(tmp36 + tmp35*(tmp2*tmp2));
+    const Scalar tmp38 = g*m;
+    const Scalar tmp39 = tmp38*tmp3;
+    const Scalar tmp40 = m*(tmp2*tmp7*l - tmp0*tmp35*tmp2*tmp4);
+    const Scalar tmp41 = tmp39 + tmp40;
     QVector<Scalar> result;
-    result(0) = tmp13 + tmp4*theta_ddot;
+    result(0) = tmp41 + tmp37*theta_ddot;
     return result;
   }
 
@@ -356,28 +362,28 @@ struct KapitzaPendulum {
     const Scalar g = Scalar(params.g);
     const Scalar a = Scalar(params.a);
     const Scalar omega = Scalar(params.omega);
-    const Scalar tmp0 = (l*l);
-    const Scalar tmp1 = sin(theta);
-    const Scalar tmp2 = cos(theta);
-    const Scalar tmp6 = g*m;
-    const Scalar tmp8 = (theta_dot*theta_dot);
-    const Scalar tmp9 = omega*t;
-    const Scalar tmp10 = a*cos(tmp9);
-    const Scalar tmp11 = -tmp10*(omega*omega) + tmp2*tmp8*l;
-    const Scalar tmp48 = -tmp1;
-    const Scalar tmp49 = Scalar(2)*tmp0*tmp2*tmp48;
-    const Scalar tmp50 = Scalar(2)*tmp0*tmp1*m*tmp2 + m*tmp49;
-    const Scalar tmp51 = l*tmp2;
-    const Scalar tmp52 = tmp6*tmp51;
-    const Scalar tmp53 = tmp8*l*tmp48;
-    const Scalar tmp54 = m*(tmp11*l - tmp0*tmp2*tmp8)*tmp2 + tmp1*l*m*tmp53
-        - tmp0*tmp1*tmp8*m*tmp48;
-    const Scalar tmp55 = tmp54 + tmp52;
-    const Scalar tmp56 = Scalar(2)*theta_dot;
-    const Scalar tmp57 = tmp2*l*tmp56;
-    const Scalar tmp58 = tmp1*l*m*tmp57 - tmp0*tmp1*tmp2*m*tmp56;
-    (*dr_dq)(0) = tmp55 + theta_ddot*tmp50;
-    (*dr_dv)(0) = tmp58;
+    const Scalar tmp0 = cos(theta);
+    const Scalar tmp2 = sin(theta);
+    const Scalar tmp4 = (theta_dot*theta_dot);
+    const Scalar tmp5 = omega*t;
+    const Scalar tmp6 = a*cos(tmp5);
+    const Scalar tmp7 = -tmp6*(omega*omega) + tmp0*tmp4*l;
+    const Scalar tmp35 = (l*l);
+    const Scalar tmp38 = g*m;
+    const Scalar tmp73 = -tmp2;
+    const Scalar tmp74 = l*tmp0;
+    const Scalar tmp75 = tmp4*l*tmp73;
+    const Scalar tmp76 = Scalar(2)*tmp0*tmp35*tmp73;
+    const Scalar tmp77 = m*tmp76 + Scalar(2)*tmp35*tmp2*m*tmp0;
+    const Scalar tmp78 = tmp38*tmp74;
+    const Scalar tmp79 = -tmp35*tmp2*tmp4*m*tmp73 + m*(tmp7*l - tmp0*tmp35*tmp4)*tmp0
+        + tmp2*l*m*tmp75;
+    const Scalar tmp80 = tmp78 + tmp79;
+    const Scalar tmp81 = Scalar(2)*theta_dot;
+    const Scalar tmp82 = tmp0*l*tmp81;
+    const Scalar tmp83 = -tmp0*tmp35*tmp2*m*tmp81 + tmp2*l*m*tmp82;
+    (*dr_dq)(0) = theta_ddot*tmp77 + tmp80;
+    (*dr_dv)(0) = tmp83;
   }
 
   /// Kinetic energy T = 1/2 xdot^T M xdot.
@@ -400,17 +406,17 @@ struct KapitzaPendulum {
     const Scalar m = Scalar(params.m);
     const Scalar a = Scalar(params.a);
     const Scalar omega = Scalar(params.omega);
-    const Scalar tmp0 = (l*l);
-    const Scalar tmp1 = sin(theta);
-    const Scalar tmp2 = cos(theta);
-    const Scalar tmp3 = tmp0*(tmp2*tmp2);
-    const Scalar tmp8 = (theta_dot*theta_dot);
-    const Scalar tmp9 = omega*t;
-    const Scalar tmp14 = a*omega*sin(tmp9);
-    const Scalar tmp15 = -tmp14 + tmp1*l*theta_dot;
-    const Scalar tmp16 = (Scalar(0.5))*m*((tmp15*tmp15) + tmp3*tmp8);
+    const Scalar tmp0 = cos(theta);
+    const Scalar tmp2 = sin(theta);
+    const Scalar tmp4 = (theta_dot*theta_dot);
+    const Scalar tmp5 = omega*t;
+    const Scalar tmp10 = a*omega*sin(tmp5);
+    const Scalar tmp35 = (l*l);
+    const Scalar tmp36 = tmp35*(tmp0*tmp0);
+    const Scalar tmp42 = -tmp10 + tmp2*l*theta_dot;
+    const Scalar tmp43 = (Scalar(0.5))*m*((tmp42*tmp42) + tmp36*tmp4);
     Scalar result;
-    result = tmp16;
+    result = tmp43;
     return result;
   }
 
@@ -431,15 +437,15 @@ struct KapitzaPendulum {
     const Scalar g = Scalar(params.g);
     const Scalar a = Scalar(params.a);
     const Scalar omega = Scalar(params.omega);
-    const Scalar tmp2 = cos(theta);
-    const Scalar tmp6 = g*m;
-    const Scalar tmp9 = omega*t;
-    const Scalar tmp10 = a*cos(tmp9);
-    const Scalar tmp17 = tmp2*l;
-    const Scalar tmp18 = tmp10 - tmp17;
-    const Scalar tmp19 = tmp18*tmp6;
+    const Scalar tmp0 = cos(theta);
+    const Scalar tmp1 = tmp0*l;
+    const Scalar tmp5 = omega*t;
+    const Scalar tmp6 = a*cos(tmp5);
+    const Scalar tmp9 = tmp6 - tmp1;
+    const Scalar tmp38 = g*m;
+    const Scalar tmp44 = tmp38*tmp9;
     Scalar result;
-    result = tmp19;
+    result = tmp44;
     return result;
   }
 
@@ -479,22 +485,22 @@ struct KapitzaPendulum {
     const Scalar g = Scalar(params.g);
     const Scalar a = Scalar(params.a);
     const Scalar omega = Scalar(params.omega);
-    const Scalar tmp0 = (l*l);
-    const Scalar tmp1 = sin(theta);
-    const Scalar tmp2 = cos(theta);
-    const Scalar tmp3 = tmp0*(tmp2*tmp2);
-    const Scalar tmp6 = g*m;
-    const Scalar tmp8 = (theta_dot*theta_dot);
-    const Scalar tmp9 = omega*t;
-    const Scalar tmp10 = a*cos(tmp9);
-    const Scalar tmp14 = a*omega*sin(tmp9);
-    const Scalar tmp15 = -tmp14 + tmp1*l*theta_dot;
-    const Scalar tmp16 = (Scalar(0.5))*m*((tmp15*tmp15) + tmp3*tmp8);
-    const Scalar tmp17 = tmp2*l;
-    const Scalar tmp18 = tmp10 - tmp17;
-    const Scalar tmp19 = tmp18*tmp6;
+    const Scalar tmp0 = cos(theta);
+    const Scalar tmp1 = tmp0*l;
+    const Scalar tmp2 = sin(theta);
+    const Scalar tmp4 = (theta_dot*theta_dot);
+    const Scalar tmp5 = omega*t;
+    const Scalar tmp6 = a*cos(tmp5);
+    const Scalar tmp9 = tmp6 - tmp1;
+    const Scalar tmp10 = a*omega*sin(tmp5);
+    const Scalar tmp35 = (l*l);
+    const Scalar tmp36 = tmp35*(tmp0*tmp0);
+    const Scalar tmp38 = g*m;
+    const Scalar tmp42 = -tmp10 + tmp2*l*theta_dot;
+    const Scalar tmp43 = (Scalar(0.5))*m*((tmp42*tmp42) + tmp36*tmp4);
+    const Scalar tmp44 = tmp38*tmp9;
     Scalar result;
-    result = tmp16 + tmp19;
+    result = tmp43 + tmp44;
     return result;
   }
 
@@ -514,16 +520,16 @@ struct KapitzaPendulum {
     const Scalar l = Scalar(params.l);
     const Scalar a = Scalar(params.a);
     const Scalar omega = Scalar(params.omega);
-    const Scalar tmp1 = sin(theta);
-    const Scalar tmp2 = cos(theta);
-    const Scalar tmp5 = tmp1*l;
-    const Scalar tmp9 = omega*t;
-    const Scalar tmp10 = a*cos(tmp9);
-    const Scalar tmp17 = tmp2*l;
-    const Scalar tmp18 = tmp10 - tmp17;
+    const Scalar tmp0 = cos(theta);
+    const Scalar tmp1 = tmp0*l;
+    const Scalar tmp2 = sin(theta);
+    const Scalar tmp3 = tmp2*l;
+    const Scalar tmp5 = omega*t;
+    const Scalar tmp6 = a*cos(tmp5);
+    const Scalar tmp9 = tmp6 - tmp1;
     XVector<Scalar> result;
-    result(0) = tmp5;
-    result(1) = tmp18;
+    result(0) = tmp3;
+    result(1) = tmp9;
     return result;
   }
 
@@ -546,16 +552,16 @@ struct KapitzaPendulum {
     const Scalar l = Scalar(params.l);
     const Scalar a = Scalar(params.a);
     const Scalar omega = Scalar(params.omega);
-    const Scalar tmp1 = sin(theta);
-    const Scalar tmp2 = cos(theta);
-    const Scalar tmp9 = omega*t;
-    const Scalar tmp14 = a*omega*sin(tmp9);
-    const Scalar tmp15 = -tmp14 + tmp1*l*theta_dot;
-    const Scalar tmp17 = tmp2*l;
-    const Scalar tmp20 = tmp17*theta_dot;
+    const Scalar tmp0 = cos(theta);
+    const Scalar tmp1 = tmp0*l;
+    const Scalar tmp2 = sin(theta);
+    const Scalar tmp5 = omega*t;
+    const Scalar tmp10 = a*omega*sin(tmp5);
+    const Scalar tmp42 = -tmp10 + tmp2*l*theta_dot;
+    const Scalar tmp45 = tmp1*theta_dot;
     XVector<Scalar> result;
-    result(0) = tmp20;
-    result(1) = tmp15;
+    result(0) = tmp45;
+    result(1) = tmp42;
     return result;
   }
 
@@ -573,13 +579,13 @@ struct KapitzaPendulum {
     using std::sin;
     const Scalar theta = q(0);
     const Scalar l = Scalar(params.l);
-    const Scalar tmp1 = sin(theta);
-    const Scalar tmp2 = cos(theta);
-    const Scalar tmp5 = tmp1*l;
-    const Scalar tmp17 = tmp2*l;
+    const Scalar tmp0 = cos(theta);
+    const Scalar tmp1 = tmp0*l;
+    const Scalar tmp2 = sin(theta);
+    const Scalar tmp3 = tmp2*l;
     XJacobian<Scalar> result;
-    result(0) = tmp17;
-    result(1) = tmp5;
+    result(0) = tmp1;
+    result(1) = tmp3;
     return result;
   }
 
@@ -602,16 +608,16 @@ struct KapitzaPendulum {
     const Scalar l = Scalar(params.l);
     const Scalar a = Scalar(params.a);
     const Scalar omega = Scalar(params.omega);
-    const Scalar tmp1 = sin(theta);
-    const Scalar tmp2 = cos(theta);
-    const Scalar tmp5 = tmp1*l;
-    const Scalar tmp8 = (theta_dot*theta_dot);
-    const Scalar tmp9 = omega*t;
-    const Scalar tmp10 = a*cos(tmp9);
-    const Scalar tmp11 = -tmp10*(omega*omega) + tmp2*tmp8*l;
+    const Scalar tmp0 = cos(theta);
+    const Scalar tmp2 = sin(theta);
+    const Scalar tmp3 = tmp2*l;
+    const Scalar tmp4 = (theta_dot*theta_dot);
+    const Scalar tmp5 = omega*t;
+    const Scalar tmp6 = a*cos(tmp5);
+    const Scalar tmp7 = -tmp6*(omega*omega) + tmp0*tmp4*l;
     XVector<Scalar> result;
-    result(0) = -tmp5*tmp8;
-    result(1) = tmp11;
+    result(0) = -tmp3*tmp4;
+    result(1) = tmp7;
     return result;
   }
 
@@ -635,16 +641,16 @@ struct KapitzaPendulum {
     const Scalar m = Scalar(params.m);
     const Scalar a = Scalar(params.a);
     const Scalar omega = Scalar(params.omega);
-    const Scalar tmp1 = sin(theta);
-    const Scalar tmp2 = cos(theta);
-    const Scalar tmp9 = omega*t;
-    const Scalar tmp14 = a*omega*sin(tmp9);
-    const Scalar tmp15 = -tmp14 + tmp1*l*theta_dot;
-    const Scalar tmp17 = tmp2*l;
-    const Scalar tmp20 = tmp17*theta_dot;
+    const Scalar tmp0 = cos(theta);
+    const Scalar tmp1 = tmp0*l;
+    const Scalar tmp2 = sin(theta);
+    const Scalar tmp5 = omega*t;
+    const Scalar tmp10 = a*omega*sin(tmp5);
+    const Scalar tmp42 = -tmp10 + tmp2*l*theta_dot;
+    const Scalar tmp45 = tmp1*theta_dot;
     SpaceVector<Scalar> result;
-    result(0) = tmp20*m;
-    result(1) = tmp15*m;
+    result(0) = tmp45*m;
+    result(1) = tmp42*m;
     return result;
   }
 
@@ -668,17 +674,17 @@ struct KapitzaPendulum {
     const Scalar m = Scalar(params.m);
     const Scalar a = Scalar(params.a);
     const Scalar omega = Scalar(params.omega);
-    const Scalar tmp1 = sin(theta);
-    const Scalar tmp2 = cos(theta);
-    const Scalar tmp9 = omega*t;
-    const Scalar tmp10 = a*cos(tmp9);
-    const Scalar tmp14 = a*omega*sin(tmp9);
-    const Scalar tmp15 = -tmp14 + tmp1*l*theta_dot;
-    const Scalar tmp17 = tmp2*l;
-    const Scalar tmp18 = tmp10 - tmp17;
-    const Scalar tmp20 = tmp17*theta_dot;
+    const Scalar tmp0 = cos(theta);
+    const Scalar tmp1 = tmp0*l;
+    const Scalar tmp2 = sin(theta);
+    const Scalar tmp5 = omega*t;
+    const Scalar tmp6 = a*cos(tmp5);
+    const Scalar tmp9 = tmp6 - tmp1;
+    const Scalar tmp10 = a*omega*sin(tmp5);
+    const Scalar tmp42 = -tmp10 + tmp2*l*theta_dot;
+    const Scalar tmp45 = tmp1*theta_dot;
     AngularVector<Scalar> result;
-    result(0) = m*(-tmp18*tmp20 + tmp1*tmp15*l);
+    result(0) = m*(-tmp45*tmp9 + tmp2*tmp42*l);
     return result;
   }
 
@@ -705,11 +711,11 @@ struct KapitzaPendulum {
     using std::cos;
     const Scalar a = Scalar(params.a);
     const Scalar omega = Scalar(params.omega);
-    const Scalar tmp9 = omega*t;
-    const Scalar tmp10 = a*cos(tmp9);
+    const Scalar tmp5 = omega*t;
+    const Scalar tmp6 = a*cos(tmp5);
     FixedPointVector<Scalar> result;
     result(0) = Scalar(0);
-    result(1) = tmp10;
+    result(1) = tmp6;
     return result;
   }
 
@@ -785,10 +791,10 @@ struct KapitzaPendulum {
                                            const Params& params) {
       const Scalar m = Scalar(params.m);
       const Scalar g = Scalar(params.g);
-      const Scalar tmp6 = g*m;
+      const Scalar tmp38 = g*m;
       XVector<Scalar> result;
       result(0) = Scalar(0);
-      result(1) = -tmp6;
+      result(1) = -tmp38;
       return result;
     }
 
@@ -814,27 +820,27 @@ struct KapitzaPendulum {
       const Scalar l = Scalar(params.l);
       const Scalar a = Scalar(params.a);
       const Scalar omega = Scalar(params.omega);
-      const Scalar tmp9 = omega*t;
-      const Scalar tmp10 = a*cos(tmp9);
-      const Scalar tmp14 = a*omega*sin(tmp9);
-      const Scalar tmp21 = (pos(0)*pos(0));
-      const Scalar tmp22 = tmp10 - pos(1);
-      const Scalar tmp23 = -tmp22;
-      const Scalar tmp24 = (tmp23*tmp23);
-      const Scalar tmp25 = tmp21 + tmp24;
-      const Scalar tmp26 = sqrt(tmp25);
-      const Scalar tmp27 = (Scalar(1)/tmp26);
-      const Scalar tmp28 = tmp26 - l;
-      const Scalar tmp29 = (Scalar(1)/l);
-      const Scalar tmp30 = tmp29*kappa;
-      const Scalar tmp31 = tmp14 + vel(1);
-      const Scalar tmp32 = tmp27*tmp31;
-      const Scalar tmp33 = tmp29*penalty_damping;
-      const Scalar tmp34 = -tmp28*tmp30 - tmp33*(tmp23*tmp32 + tmp27*pos(0)*vel(0));
-      const Scalar tmp35 = tmp27*tmp34;
+      const Scalar tmp5 = omega*t;
+      const Scalar tmp6 = a*cos(tmp5);
+      const Scalar tmp10 = a*omega*sin(tmp5);
+      const Scalar tmp46 = (pos(0)*pos(0));
+      const Scalar tmp47 = tmp6 - pos(1);
+      const Scalar tmp48 = -tmp47;
+      const Scalar tmp49 = (tmp48*tmp48);
+      const Scalar tmp50 = tmp46 + tmp49;
+      const Scalar tmp51 = sqrt(tmp50);
+      const Scalar tmp52 = (Scalar(1)/tmp51);
+      const Scalar tmp53 = tmp51 - l;
+      const Scalar tmp54 = (Scalar(1)/l);
+      const Scalar tmp55 = tmp54*kappa;
+      const Scalar tmp56 = tmp10 + vel(1);
+      const Scalar tmp57 = tmp52*tmp56;
+      const Scalar tmp58 = tmp54*penalty_damping;
+      const Scalar tmp59 = -tmp53*tmp55 - tmp58*(tmp48*tmp57 + tmp52*pos(0)*vel(0));
+      const Scalar tmp60 = tmp52*tmp59;
       XVector<Scalar> result;
-      result(0) = tmp35*pos(0);
-      result(1) = tmp23*tmp35;
+      result(0) = tmp60*pos(0);
+      result(1) = tmp48*tmp60;
       return result;
     }
 
@@ -860,40 +866,40 @@ struct KapitzaPendulum {
       const Scalar l = Scalar(params.l);
       const Scalar a = Scalar(params.a);
       const Scalar omega = Scalar(params.omega);
-      const Scalar tmp9 = omega*t;
-      const Scalar tmp10 = a*cos(tmp9);
-      const Scalar tmp14 = a*omega*sin(tmp9);
-      const Scalar tmp21 = (pos(0)*pos(0));
-      const Scalar tmp22 = tmp10 - pos(1);
-      const Scalar tmp23 = -tmp22;
-      const Scalar tmp24 = (tmp23*tmp23);
-      const Scalar tmp25 = tmp21 + tmp24;
-      const Scalar tmp26 = sqrt(tmp25);
-      const Scalar tmp27 = (Scalar(1)/tmp26);
-      const Scalar tmp28 = tmp26 - l;
-      const Scalar tmp29 = (Scalar(1)/l);
-      const Scalar tmp30 = tmp29*kappa;
-      const Scalar tmp31 = tmp14 + vel(1);
-      const Scalar tmp32 = tmp27*tmp31;
-      const Scalar tmp33 = tmp29*penalty_damping;
-      const Scalar tmp34 = -tmp28*tmp30 - tmp33*(tmp23*tmp32 + tmp27*pos(0)*vel(0));
-      const Scalar tmp35 = tmp27*tmp34;
-      const Scalar tmp36 = (Scalar(1)/(tmp25*sqrt(tmp25)));
-      const Scalar tmp37 = tmp21*tmp36;
-      const Scalar tmp38 = tmp27*pos(0);
-      const Scalar tmp39 = tmp36*pos(0);
-      const Scalar tmp40 = tmp23*tmp31;
-      const Scalar tmp41 = -tmp30*tmp38 - tmp33*(tmp27*vel(0) - tmp37*vel(0) - tmp39*tmp40);
-      const Scalar tmp42 = tmp22*tmp39;
-      const Scalar tmp43 = tmp23*tmp27;
-      const Scalar tmp44 = tmp22*tmp36;
-      const Scalar tmp45 = -tmp30*tmp43 - tmp33*(tmp32 + tmp40*tmp44 + tmp42*vel(0));
-      const Scalar tmp46 = tmp23*tmp34;
+      const Scalar tmp5 = omega*t;
+      const Scalar tmp6 = a*cos(tmp5);
+      const Scalar tmp10 = a*omega*sin(tmp5);
+      const Scalar tmp46 = (pos(0)*pos(0));
+      const Scalar tmp47 = tmp6 - pos(1);
+      const Scalar tmp48 = -tmp47;
+      const Scalar tmp49 = (tmp48*tmp48);
+      const Scalar tmp50 = tmp46 + tmp49;
+      const Scalar tmp51 = sqrt(tmp50);
+      const Scalar tmp52 = (Scalar(1)/tmp51);
+      const Scalar tmp53 = tmp51 - l;
+      const Scalar tmp54 = (Scalar(1)/l);
+      const Scalar tmp55 = tmp54*kappa;
+      const Scalar tmp56 = tmp10 + vel(1);
+      const Scalar tmp57 = tmp52*tmp56;
+      const Scalar tmp58 = tmp54*penalty_damping;
+      const Scalar tmp59 = -tmp53*tmp55 - tmp58*(tmp48*tmp57 + tmp52*pos(0)*vel(0));
+      const Scalar tmp60 = tmp52*tmp59;
+      const Scalar tmp61 = (Scalar(1)/(tmp50*sqrt(tmp50)));
+      const Scalar tmp62 = tmp46*tmp61;
+      const Scalar tmp63 = tmp52*pos(0);
+      const Scalar tmp64 = tmp61*pos(0);
+      const Scalar tmp65 = tmp48*tmp56;
+      const Scalar tmp66 = -tmp55*tmp63 - tmp58*(tmp52*vel(0) - tmp62*vel(0) - tmp64*tmp65);
+      const Scalar tmp67 = tmp47*tmp64;
+      const Scalar tmp68 = tmp48*tmp52;
+      const Scalar tmp69 = tmp47*tmp61;
+      const Scalar tmp70 = -tmp55*tmp68 - tmp58*(tmp57 + tmp65*tmp69 + tmp67*vel(0));
+      const Scalar tmp71 = tmp48*tmp59;
       std::array<Scalar, 4> result;
-      result[0] = tmp35 + tmp38*tmp41 - tmp34*tmp37;
-      result[1] = tmp34*tmp42 + tmp38*tmp45;
-      result[2] = -tmp39*tmp46 + tmp23*tmp27*tmp41;
-      result[3] = tmp35 + tmp43*tmp45 + tmp44*tmp46;
+      result[0] = tmp60 + tmp63*tmp66 - tmp59*tmp62;
+      result[1] = tmp59*tmp67 + tmp63*tmp70;
+      result[2] = -tmp64*tmp71 + tmp48*tmp52*tmp66;
+      result[3] = tmp60 + tmp68*tmp70 + tmp69*tmp71;
       return result;
     }
 
@@ -917,21 +923,21 @@ struct KapitzaPendulum {
       const Scalar l = Scalar(params.l);
       const Scalar a = Scalar(params.a);
       const Scalar omega = Scalar(params.omega);
-      const Scalar tmp9 = omega*t;
-      const Scalar tmp10 = a*cos(tmp9);
-      const Scalar tmp21 = (pos(0)*pos(0));
-      const Scalar tmp22 = tmp10 - pos(1);
-      const Scalar tmp23 = -tmp22;
-      const Scalar tmp24 = (tmp23*tmp23);
-      const Scalar tmp25 = tmp21 + tmp24;
-      const Scalar tmp29 = (Scalar(1)/l);
-      const Scalar tmp33 = tmp29*penalty_damping;
-      const Scalar tmp47 = tmp33/tmp25;
+      const Scalar tmp5 = omega*t;
+      const Scalar tmp6 = a*cos(tmp5);
+      const Scalar tmp46 = (pos(0)*pos(0));
+      const Scalar tmp47 = tmp6 - pos(1);
+      const Scalar tmp48 = -tmp47;
+      const Scalar tmp49 = (tmp48*tmp48);
+      const Scalar tmp50 = tmp46 + tmp49;
+      const Scalar tmp54 = (Scalar(1)/l);
+      const Scalar tmp58 = tmp54*penalty_damping;
+      const Scalar tmp72 = tmp58/tmp50;
       std::array<Scalar, 4> result;
-      result[0] = -tmp21*tmp47;
-      result[1] = -tmp23*tmp47*pos(0);
-      result[2] = -tmp23*tmp47*pos(0);
-      result[3] = -tmp24*tmp47;
+      result[0] = -tmp46*tmp72;
+      result[1] = -tmp48*tmp72*pos(0);
+      result[2] = -tmp48*tmp72*pos(0);
+      result[3] = -tmp49*tmp72;
       return result;
     }
 
@@ -947,9 +953,9 @@ struct KapitzaPendulum {
                                    const Params& params) {
       const Scalar m = Scalar(params.m);
       const Scalar g = Scalar(params.g);
-      const Scalar tmp6 = g*m;
+      const Scalar tmp38 = g*m;
       Scalar result;
-      result = tmp6*pos(1);
+      result = tmp38*pos(1);
       return result;
     }
 
@@ -970,19 +976,19 @@ struct KapitzaPendulum {
       const Scalar l = Scalar(params.l);
       const Scalar a = Scalar(params.a);
       const Scalar omega = Scalar(params.omega);
-      const Scalar tmp9 = omega*t;
-      const Scalar tmp10 = a*cos(tmp9);
-      const Scalar tmp21 = (pos(0)*pos(0));
-      const Scalar tmp22 = tmp10 - pos(1);
-      const Scalar tmp23 = -tmp22;
-      const Scalar tmp24 = (tmp23*tmp23);
-      const Scalar tmp25 = tmp21 + tmp24;
-      const Scalar tmp26 = sqrt(tmp25);
-      const Scalar tmp28 = tmp26 - l;
-      const Scalar tmp29 = (Scalar(1)/l);
-      const Scalar tmp30 = tmp29*kappa;
+      const Scalar tmp5 = omega*t;
+      const Scalar tmp6 = a*cos(tmp5);
+      const Scalar tmp46 = (pos(0)*pos(0));
+      const Scalar tmp47 = tmp6 - pos(1);
+      const Scalar tmp48 = -tmp47;
+      const Scalar tmp49 = (tmp48*tmp48);
+      const Scalar tmp50 = tmp46 + tmp49;
+      const Scalar tmp51 = sqrt(tmp50);
+      const Scalar tmp53 = tmp51 - l;
+      const Scalar tmp54 = (Scalar(1)/l);
+      const Scalar tmp55 = tmp54*kappa;
       Scalar result;
-      result = (Scalar(0.5))*tmp30*(tmp28*tmp28);
+      result = (Scalar(0.5))*tmp55*(tmp53*tmp53);
       return result;
     }
 
@@ -1001,17 +1007,17 @@ struct KapitzaPendulum {
       const Scalar l = Scalar(params.l);
       const Scalar a = Scalar(params.a);
       const Scalar omega = Scalar(params.omega);
-      const Scalar tmp9 = omega*t;
-      const Scalar tmp10 = a*cos(tmp9);
-      const Scalar tmp21 = (pos(0)*pos(0));
-      const Scalar tmp22 = tmp10 - pos(1);
-      const Scalar tmp23 = -tmp22;
-      const Scalar tmp24 = (tmp23*tmp23);
-      const Scalar tmp25 = tmp21 + tmp24;
-      const Scalar tmp26 = sqrt(tmp25);
-      const Scalar tmp28 = tmp26 - l;
+      const Scalar tmp5 = omega*t;
+      const Scalar tmp6 = a*cos(tmp5);
+      const Scalar tmp46 = (pos(0)*pos(0));
+      const Scalar tmp47 = tmp6 - pos(1);
+      const Scalar tmp48 = -tmp47;
+      const Scalar tmp49 = (tmp48*tmp48);
+      const Scalar tmp50 = tmp46 + tmp49;
+      const Scalar tmp51 = sqrt(tmp50);
+      const Scalar tmp53 = tmp51 - l;
       ConstraintVector<Scalar> result;
-      result(0) = tmp28;
+      result(0) = tmp53;
       return result;
     }
   };

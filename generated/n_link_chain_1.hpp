@@ -7,10 +7,12 @@
 // Singular configurations (J loses rank): none found
 // Worst conditioning of J in 200 random configurations: sigma_min / sigma_max = 1 at theta1
 //   = 0.04927
+// qddot: Mt, Ft + Fi and an LDL^T solve, 15 operations (articulated-body recursion: 23)
+// inverse_dynamics: Mt qdd - Ft - Fi, 14 operations (recursive Newton-Euler: 18)
 //
-// Total ops: 140
-// Intermediate terms (43)
-// Output terms (33)
+// Total ops: 190
+// Intermediate terms (70)
+// Output terms (30)
 #pragma once
 
 #include <array>
@@ -68,6 +70,10 @@ struct NLinkChain1 {
   /// Whether applied_forces at rest (v = 0) is -d(potential_energy)/dq: every force without
   /// a declared potential vanishes at rest (generator/conservative.py).
   static constexpr bool forces_have_potential = true;
+  /// Whether qddot is the articulated-body recursion over the model's tree of particles,
+  /// chosen at generation because it takes fewer operations than Mt, Ft + Fi and an LDL^T
+  /// solve (generator/dynamics_paths.py); gencoord::acceleration() then calls it.
+  static constexpr bool recursive_qddot = false;
 
   template <typename Scalar>
   using QVector = Eigen::Matrix<Scalar, nq, 1>;
@@ -117,14 +123,14 @@ struct NLinkChain1 {
     const Scalar theta1 = q(0);
     const Scalar l1 = Scalar(params.l1);
     const Scalar m1 = Scalar(params.m1);
-    const Scalar tmp0 = (l1*l1);
-    const Scalar tmp1 = sin(theta1);
-    const Scalar tmp2 = tmp0*(tmp1*tmp1);
-    const Scalar tmp3 = cos(theta1);
-    const Scalar tmp4 = tmp0*(tmp3*tmp3);
-    const Scalar tmp5 = m1*(tmp2 + tmp4);
+    const Scalar tmp0 = cos(theta1);
+    const Scalar tmp2 = sin(theta1);
+    const Scalar tmp32 = (l1*l1);
+    const Scalar tmp33 = tmp32*(tmp2*tmp2);
+    const Scalar tmp34 = tmp32*(tmp0*tmp0);
+    const Scalar tmp35 = m1*(tmp33 + tmp34);
     QMatrix<Scalar> result;
-    result(0) = tmp5;
+    result(0) = tmp35;
     return result;
   }
 
@@ -145,12 +151,12 @@ struct NLinkChain1 {
     const Scalar g = Scalar(params.g);
     const Scalar l1 = Scalar(params.l1);
     const Scalar m1 = Scalar(params.m1);
-    const Scalar tmp1 = sin(theta1);
-    const Scalar tmp6 = tmp1*l1;
-    const Scalar tmp7 = g*m1;
-    const Scalar tmp8 = tmp6*tmp7;
+    const Scalar tmp2 = sin(theta1);
+    const Scalar tmp3 = tmp2*l1;
+    const Scalar tmp36 = g*m1;
+    const Scalar tmp37 = tmp36*tmp3;
     QVector<Scalar> result;
-    result(0) = -tmp8;
+    result(0) = -tmp37;
     return result;
   }
 
@@ -205,12 +211,12 @@ struct NLinkChain1 {
     const Scalar g = Scalar(params.g);
     const Scalar l1 = Scalar(params.l1);
     const Scalar m1 = Scalar(params.m1);
-    const Scalar tmp1 = sin(theta1);
-    const Scalar tmp6 = tmp1*l1;
-    const Scalar tmp7 = g*m1;
-    const Scalar tmp8 = tmp6*tmp7;
+    const Scalar tmp2 = sin(theta1);
+    const Scalar tmp3 = tmp2*l1;
+    const Scalar tmp36 = g*m1;
+    const Scalar tmp37 = tmp36*tmp3;
     QVector<Scalar> result;
-    result(0) = -tmp8;
+    result(0) = -tmp37;
     return result;
   }
 
@@ -234,17 +240,17 @@ struct NLinkChain1 {
     const Scalar g = Scalar(params.g);
     const Scalar l1 = Scalar(params.l1);
     const Scalar m1 = Scalar(params.m1);
-    const Scalar tmp0 = (l1*l1);
-    const Scalar tmp1 = sin(theta1);
-    const Scalar tmp2 = tmp0*(tmp1*tmp1);
-    const Scalar tmp3 = cos(theta1);
-    const Scalar tmp4 = tmp0*(tmp3*tmp3);
-    const Scalar tmp5 = m1*(tmp2 + tmp4);
-    const Scalar tmp6 = tmp1*l1;
-    const Scalar tmp7 = g*m1;
-    const Scalar tmp8 = tmp6*tmp7;
-    (*Mt)(0) = tmp5;
-    (*f)(0) = -tmp8;
+    const Scalar tmp0 = cos(theta1);
+    const Scalar tmp2 = sin(theta1);
+    const Scalar tmp3 = tmp2*l1;
+    const Scalar tmp32 = (l1*l1);
+    const Scalar tmp33 = tmp32*(tmp2*tmp2);
+    const Scalar tmp34 = tmp32*(tmp0*tmp0);
+    const Scalar tmp35 = m1*(tmp33 + tmp34);
+    const Scalar tmp36 = g*m1;
+    const Scalar tmp37 = tmp36*tmp3;
+    (*Mt)(0) = tmp35;
+    (*f)(0) = -tmp37;
   }
 
   /// Inverse dynamics: the residual r = Mt qdd - Ft - Fi, i.e. the generalized force that produces
@@ -269,17 +275,17 @@ struct NLinkChain1 {
     const Scalar g = Scalar(params.g);
     const Scalar l1 = Scalar(params.l1);
     const Scalar m1 = Scalar(params.m1);
-    const Scalar tmp0 = (l1*l1);
-    const Scalar tmp1 = sin(theta1);
-    const Scalar tmp2 = tmp0*(tmp1*tmp1);
-    const Scalar tmp3 = cos(theta1);
-    const Scalar tmp4 = tmp0*(tmp3*tmp3);
-    const Scalar tmp5 = m1*(tmp2 + tmp4);
-    const Scalar tmp6 = tmp1*l1;
-    const Scalar tmp7 = g*m1;
-    const Scalar tmp8 = tmp6*tmp7;
+    const Scalar tmp0 = cos(theta1);
+    const Scalar tmp2 = sin(theta1);
+    const Scalar tmp3 = tmp2*l1;
+    const Scalar tmp32 = (l1*l1);
+    const Scalar tmp33 = tmp32*(tmp2*tmp2);
+    const Scalar tmp34 = tmp32*(tmp0*tmp0);
+    const Scalar tmp35 = m1*(tmp33 + tmp34);
+    const Scalar tmp36 = g*m1;
+    const Scalar tmp37 = tmp36*tmp3;
     QVector<Scalar> result;
-    result(0) = tmp8 + tmp5*theta1_ddot;
+    result(0) = tmp37 + tmp35*theta1_ddot;
     return result;
   }
 
@@ -306,17 +312,17 @@ struct NLinkChain1 {
     const Scalar g = Scalar(params.g);
     const Scalar l1 = Scalar(params.l1);
     const Scalar m1 = Scalar(params.m1);
-    const Scalar tmp0 = (l1*l1);
-    const Scalar tmp1 = sin(theta1);
-    const Scalar tmp3 = cos(theta1);
-    const Scalar tmp7 = g*m1;
-    const Scalar tmp37 = Scalar(2)*tmp0*tmp1*tmp3;
-    const Scalar tmp38 = -tmp1;
-    const Scalar tmp39 = Scalar(2)*tmp0*tmp3*tmp38;
-    const Scalar tmp40 = m1*tmp37 + m1*tmp39;
-    const Scalar tmp41 = l1*tmp3;
-    const Scalar tmp42 = tmp7*tmp41;
-    (*dr_dq)(0) = theta1_ddot*tmp40 + tmp42;
+    const Scalar tmp0 = cos(theta1);
+    const Scalar tmp2 = sin(theta1);
+    const Scalar tmp32 = (l1*l1);
+    const Scalar tmp36 = g*m1;
+    const Scalar tmp64 = -tmp2;
+    const Scalar tmp65 = l1*tmp0;
+    const Scalar tmp66 = Scalar(2)*tmp2*tmp32*tmp0;
+    const Scalar tmp67 = Scalar(2)*tmp0*tmp32*tmp64;
+    const Scalar tmp68 = m1*tmp66 + m1*tmp67;
+    const Scalar tmp69 = tmp36*tmp65;
+    (*dr_dq)(0) = theta1_ddot*tmp68 + tmp69;
     (*dr_dv)(0) = Scalar(0);
   }
 
@@ -338,15 +344,15 @@ struct NLinkChain1 {
     const Scalar theta1_dot = v(0);
     const Scalar l1 = Scalar(params.l1);
     const Scalar m1 = Scalar(params.m1);
-    const Scalar tmp0 = (l1*l1);
-    const Scalar tmp1 = sin(theta1);
-    const Scalar tmp2 = tmp0*(tmp1*tmp1);
-    const Scalar tmp3 = cos(theta1);
-    const Scalar tmp4 = tmp0*(tmp3*tmp3);
-    const Scalar tmp9 = (theta1_dot*theta1_dot);
-    const Scalar tmp10 = tmp2*tmp9 + tmp4*tmp9;
+    const Scalar tmp0 = cos(theta1);
+    const Scalar tmp2 = sin(theta1);
+    const Scalar tmp4 = (theta1_dot*theta1_dot);
+    const Scalar tmp32 = (l1*l1);
+    const Scalar tmp33 = tmp32*(tmp2*tmp2);
+    const Scalar tmp34 = tmp32*(tmp0*tmp0);
+    const Scalar tmp38 = tmp33*tmp4 + tmp34*tmp4;
     Scalar result;
-    result = (Scalar(0.5))*tmp10*m1;
+    result = (Scalar(0.5))*tmp38*m1;
     return result;
   }
 
@@ -365,12 +371,12 @@ struct NLinkChain1 {
     const Scalar g = Scalar(params.g);
     const Scalar l1 = Scalar(params.l1);
     const Scalar m1 = Scalar(params.m1);
-    const Scalar tmp3 = cos(theta1);
-    const Scalar tmp7 = g*m1;
-    const Scalar tmp11 = tmp3*l1;
-    const Scalar tmp12 = tmp11*tmp7;
+    const Scalar tmp0 = cos(theta1);
+    const Scalar tmp1 = tmp0*l1;
+    const Scalar tmp36 = g*m1;
+    const Scalar tmp39 = tmp1*tmp36;
     Scalar result;
-    result = -tmp12;
+    result = -tmp39;
     return result;
   }
 
@@ -408,18 +414,18 @@ struct NLinkChain1 {
     const Scalar g = Scalar(params.g);
     const Scalar l1 = Scalar(params.l1);
     const Scalar m1 = Scalar(params.m1);
-    const Scalar tmp0 = (l1*l1);
-    const Scalar tmp1 = sin(theta1);
-    const Scalar tmp2 = tmp0*(tmp1*tmp1);
-    const Scalar tmp3 = cos(theta1);
-    const Scalar tmp4 = tmp0*(tmp3*tmp3);
-    const Scalar tmp7 = g*m1;
-    const Scalar tmp9 = (theta1_dot*theta1_dot);
-    const Scalar tmp10 = tmp2*tmp9 + tmp4*tmp9;
-    const Scalar tmp11 = tmp3*l1;
-    const Scalar tmp12 = tmp11*tmp7;
+    const Scalar tmp0 = cos(theta1);
+    const Scalar tmp1 = tmp0*l1;
+    const Scalar tmp2 = sin(theta1);
+    const Scalar tmp4 = (theta1_dot*theta1_dot);
+    const Scalar tmp32 = (l1*l1);
+    const Scalar tmp33 = tmp32*(tmp2*tmp2);
+    const Scalar tmp34 = tmp32*(tmp0*tmp0);
+    const Scalar tmp36 = g*m1;
+    const Scalar tmp38 = tmp33*tmp4 + tmp34*tmp4;
+    const Scalar tmp39 = tmp1*tmp36;
     Scalar result;
-    result = -tmp12 + (Scalar(0.5))*tmp10*m1;
+    result = -tmp39 + (Scalar(0.5))*tmp38*m1;
     return result;
   }
 
@@ -437,13 +443,13 @@ struct NLinkChain1 {
     using std::sin;
     const Scalar theta1 = q(0);
     const Scalar l1 = Scalar(params.l1);
-    const Scalar tmp1 = sin(theta1);
-    const Scalar tmp3 = cos(theta1);
-    const Scalar tmp6 = tmp1*l1;
-    const Scalar tmp11 = tmp3*l1;
+    const Scalar tmp0 = cos(theta1);
+    const Scalar tmp1 = tmp0*l1;
+    const Scalar tmp2 = sin(theta1);
+    const Scalar tmp3 = tmp2*l1;
     XVector<Scalar> result;
-    result(0) = tmp6;
-    result(1) = -tmp11;
+    result(0) = tmp3;
+    result(1) = -tmp1;
     return result;
   }
 
@@ -464,15 +470,15 @@ struct NLinkChain1 {
     const Scalar theta1 = q(0);
     const Scalar theta1_dot = v(0);
     const Scalar l1 = Scalar(params.l1);
-    const Scalar tmp1 = sin(theta1);
-    const Scalar tmp3 = cos(theta1);
-    const Scalar tmp6 = tmp1*l1;
-    const Scalar tmp11 = tmp3*l1;
-    const Scalar tmp13 = tmp11*theta1_dot;
-    const Scalar tmp14 = tmp6*theta1_dot;
+    const Scalar tmp0 = cos(theta1);
+    const Scalar tmp1 = tmp0*l1;
+    const Scalar tmp2 = sin(theta1);
+    const Scalar tmp3 = tmp2*l1;
+    const Scalar tmp40 = tmp1*theta1_dot;
+    const Scalar tmp41 = tmp3*theta1_dot;
     XVector<Scalar> result;
-    result(0) = tmp13;
-    result(1) = tmp14;
+    result(0) = tmp40;
+    result(1) = tmp41;
     return result;
   }
 
@@ -490,13 +496,13 @@ struct NLinkChain1 {
     using std::sin;
     const Scalar theta1 = q(0);
     const Scalar l1 = Scalar(params.l1);
-    const Scalar tmp1 = sin(theta1);
-    const Scalar tmp3 = cos(theta1);
-    const Scalar tmp6 = tmp1*l1;
-    const Scalar tmp11 = tmp3*l1;
+    const Scalar tmp0 = cos(theta1);
+    const Scalar tmp1 = tmp0*l1;
+    const Scalar tmp2 = sin(theta1);
+    const Scalar tmp3 = tmp2*l1;
     XJacobian<Scalar> result;
-    result(0) = tmp11;
-    result(1) = tmp6;
+    result(0) = tmp1;
+    result(1) = tmp3;
     return result;
   }
 
@@ -517,14 +523,14 @@ struct NLinkChain1 {
     const Scalar theta1 = q(0);
     const Scalar theta1_dot = v(0);
     const Scalar l1 = Scalar(params.l1);
-    const Scalar tmp1 = sin(theta1);
-    const Scalar tmp3 = cos(theta1);
-    const Scalar tmp6 = tmp1*l1;
-    const Scalar tmp9 = (theta1_dot*theta1_dot);
-    const Scalar tmp11 = tmp3*l1;
+    const Scalar tmp0 = cos(theta1);
+    const Scalar tmp1 = tmp0*l1;
+    const Scalar tmp2 = sin(theta1);
+    const Scalar tmp3 = tmp2*l1;
+    const Scalar tmp4 = (theta1_dot*theta1_dot);
     XVector<Scalar> result;
-    result(0) = -tmp6*tmp9;
-    result(1) = tmp11*tmp9;
+    result(0) = -tmp3*tmp4;
+    result(1) = tmp1*tmp4;
     return result;
   }
 
@@ -546,15 +552,15 @@ struct NLinkChain1 {
     const Scalar theta1_dot = v(0);
     const Scalar l1 = Scalar(params.l1);
     const Scalar m1 = Scalar(params.m1);
-    const Scalar tmp1 = sin(theta1);
-    const Scalar tmp3 = cos(theta1);
-    const Scalar tmp6 = tmp1*l1;
-    const Scalar tmp11 = tmp3*l1;
-    const Scalar tmp13 = tmp11*theta1_dot;
-    const Scalar tmp14 = tmp6*theta1_dot;
+    const Scalar tmp0 = cos(theta1);
+    const Scalar tmp1 = tmp0*l1;
+    const Scalar tmp2 = sin(theta1);
+    const Scalar tmp3 = tmp2*l1;
+    const Scalar tmp40 = tmp1*theta1_dot;
+    const Scalar tmp41 = tmp3*theta1_dot;
     SpaceVector<Scalar> result;
-    result(0) = tmp13*m1;
-    result(1) = tmp14*m1;
+    result(0) = tmp40*m1;
+    result(1) = tmp41*m1;
     return result;
   }
 
@@ -576,13 +582,13 @@ struct NLinkChain1 {
     const Scalar theta1_dot = v(0);
     const Scalar l1 = Scalar(params.l1);
     const Scalar m1 = Scalar(params.m1);
-    const Scalar tmp0 = (l1*l1);
-    const Scalar tmp1 = sin(theta1);
-    const Scalar tmp2 = tmp0*(tmp1*tmp1);
-    const Scalar tmp3 = cos(theta1);
-    const Scalar tmp4 = tmp0*(tmp3*tmp3);
+    const Scalar tmp0 = cos(theta1);
+    const Scalar tmp2 = sin(theta1);
+    const Scalar tmp32 = (l1*l1);
+    const Scalar tmp33 = tmp32*(tmp2*tmp2);
+    const Scalar tmp34 = tmp32*(tmp0*tmp0);
     AngularVector<Scalar> result;
-    result(0) = m1*(tmp2*theta1_dot + tmp4*theta1_dot);
+    result(0) = m1*(tmp33*theta1_dot + tmp34*theta1_dot);
     return result;
   }
 
@@ -685,10 +691,10 @@ struct NLinkChain1 {
                                            const Params& params) {
       const Scalar g = Scalar(params.g);
       const Scalar m1 = Scalar(params.m1);
-      const Scalar tmp7 = g*m1;
+      const Scalar tmp36 = g*m1;
       XVector<Scalar> result;
       result(0) = Scalar(0);
-      result(1) = -tmp7;
+      result(1) = -tmp36;
       return result;
     }
 
@@ -710,20 +716,20 @@ struct NLinkChain1 {
                                           const Params& params) {
       using std::sqrt;
       const Scalar l1 = Scalar(params.l1);
-      const Scalar tmp15 = (pos(0)*pos(0));
-      const Scalar tmp16 = (pos(1)*pos(1));
-      const Scalar tmp17 = tmp15 + tmp16;
-      const Scalar tmp18 = sqrt(tmp17);
-      const Scalar tmp19 = (Scalar(1)/tmp18);
-      const Scalar tmp20 = tmp18 - l1;
-      const Scalar tmp21 = (Scalar(1)/l1);
-      const Scalar tmp22 = tmp21*kappa;
-      const Scalar tmp23 = tmp21*penalty_damping;
-      const Scalar tmp24 = -tmp20*tmp22 - tmp23*(tmp19*pos(0)*vel(0) + tmp19*pos(1)*vel(1));
-      const Scalar tmp25 = tmp19*tmp24;
+      const Scalar tmp42 = (pos(0)*pos(0));
+      const Scalar tmp43 = (pos(1)*pos(1));
+      const Scalar tmp44 = tmp42 + tmp43;
+      const Scalar tmp45 = sqrt(tmp44);
+      const Scalar tmp46 = (Scalar(1)/tmp45);
+      const Scalar tmp47 = tmp45 - l1;
+      const Scalar tmp48 = (Scalar(1)/l1);
+      const Scalar tmp49 = tmp48*kappa;
+      const Scalar tmp50 = tmp48*penalty_damping;
+      const Scalar tmp51 = -tmp47*tmp49 - tmp50*(tmp46*pos(0)*vel(0) + tmp46*pos(1)*vel(1));
+      const Scalar tmp52 = tmp46*tmp51;
       XVector<Scalar> result;
-      result(0) = tmp25*pos(0);
-      result(1) = tmp25*pos(1);
+      result(0) = tmp52*pos(0);
+      result(1) = tmp52*pos(1);
       return result;
     }
 
@@ -745,32 +751,32 @@ struct NLinkChain1 {
                                                   const Params& params) {
       using std::sqrt;
       const Scalar l1 = Scalar(params.l1);
-      const Scalar tmp15 = (pos(0)*pos(0));
-      const Scalar tmp16 = (pos(1)*pos(1));
-      const Scalar tmp17 = tmp15 + tmp16;
-      const Scalar tmp18 = sqrt(tmp17);
-      const Scalar tmp19 = (Scalar(1)/tmp18);
-      const Scalar tmp20 = tmp18 - l1;
-      const Scalar tmp21 = (Scalar(1)/l1);
-      const Scalar tmp22 = tmp21*kappa;
-      const Scalar tmp23 = tmp21*penalty_damping;
-      const Scalar tmp24 = -tmp20*tmp22 - tmp23*(tmp19*pos(0)*vel(0) + tmp19*pos(1)*vel(1));
-      const Scalar tmp25 = tmp19*tmp24;
-      const Scalar tmp26 = (Scalar(1)/(tmp17*sqrt(tmp17)));
-      const Scalar tmp27 = tmp15*tmp26;
-      const Scalar tmp28 = tmp19*pos(0);
-      const Scalar tmp29 = pos(0)*pos(1);
-      const Scalar tmp30 = tmp26*tmp29;
-      const Scalar tmp31 = -tmp22*tmp28 - tmp23*(tmp19*vel(0) - tmp27*vel(0) - tmp30*vel(1));
-      const Scalar tmp32 = tmp24*tmp30;
-      const Scalar tmp33 = tmp19*pos(1);
-      const Scalar tmp34 = tmp16*tmp26;
-      const Scalar tmp35 = -tmp22*tmp33 - tmp23*(tmp19*vel(1) - tmp30*vel(0) - tmp34*vel(1));
+      const Scalar tmp42 = (pos(0)*pos(0));
+      const Scalar tmp43 = (pos(1)*pos(1));
+      const Scalar tmp44 = tmp42 + tmp43;
+      const Scalar tmp45 = sqrt(tmp44);
+      const Scalar tmp46 = (Scalar(1)/tmp45);
+      const Scalar tmp47 = tmp45 - l1;
+      const Scalar tmp48 = (Scalar(1)/l1);
+      const Scalar tmp49 = tmp48*kappa;
+      const Scalar tmp50 = tmp48*penalty_damping;
+      const Scalar tmp51 = -tmp47*tmp49 - tmp50*(tmp46*pos(0)*vel(0) + tmp46*pos(1)*vel(1));
+      const Scalar tmp52 = tmp46*tmp51;
+      const Scalar tmp53 = (Scalar(1)/(tmp44*sqrt(tmp44)));
+      const Scalar tmp54 = tmp42*tmp53;
+      const Scalar tmp55 = tmp46*pos(0);
+      const Scalar tmp56 = pos(0)*pos(1);
+      const Scalar tmp57 = tmp53*tmp56;
+      const Scalar tmp58 = -tmp49*tmp55 - tmp50*(tmp46*vel(0) - tmp54*vel(0) - tmp57*vel(1));
+      const Scalar tmp59 = tmp51*tmp57;
+      const Scalar tmp60 = tmp46*pos(1);
+      const Scalar tmp61 = tmp43*tmp53;
+      const Scalar tmp62 = -tmp49*tmp60 - tmp50*(tmp46*vel(1) - tmp57*vel(0) - tmp61*vel(1));
       std::array<Scalar, 4> result;
-      result[0] = tmp25 + tmp28*tmp31 - tmp24*tmp27;
-      result[1] = -tmp32 + tmp19*tmp35*pos(0);
-      result[2] = -tmp32 + tmp19*tmp31*pos(1);
-      result[3] = tmp25 + tmp33*tmp35 - tmp24*tmp34;
+      result[0] = tmp52 + tmp55*tmp58 - tmp51*tmp54;
+      result[1] = -tmp59 + tmp46*tmp62*pos(0);
+      result[2] = -tmp59 + tmp46*tmp58*pos(1);
+      result[3] = tmp52 + tmp60*tmp62 - tmp51*tmp61;
       return result;
     }
 
@@ -791,18 +797,18 @@ struct NLinkChain1 {
                                                      const Scalar& penalty_damping,
                                                      const Params& params) {
       const Scalar l1 = Scalar(params.l1);
-      const Scalar tmp15 = (pos(0)*pos(0));
-      const Scalar tmp16 = (pos(1)*pos(1));
-      const Scalar tmp17 = tmp15 + tmp16;
-      const Scalar tmp21 = (Scalar(1)/l1);
-      const Scalar tmp23 = tmp21*penalty_damping;
-      const Scalar tmp29 = pos(0)*pos(1);
-      const Scalar tmp36 = tmp23/tmp17;
+      const Scalar tmp42 = (pos(0)*pos(0));
+      const Scalar tmp43 = (pos(1)*pos(1));
+      const Scalar tmp44 = tmp42 + tmp43;
+      const Scalar tmp48 = (Scalar(1)/l1);
+      const Scalar tmp50 = tmp48*penalty_damping;
+      const Scalar tmp56 = pos(0)*pos(1);
+      const Scalar tmp63 = tmp50/tmp44;
       std::array<Scalar, 4> result;
-      result[0] = -tmp15*tmp36;
-      result[1] = -tmp29*tmp36;
-      result[2] = -tmp29*tmp36;
-      result[3] = -tmp16*tmp36;
+      result[0] = -tmp42*tmp63;
+      result[1] = -tmp56*tmp63;
+      result[2] = -tmp56*tmp63;
+      result[3] = -tmp43*tmp63;
       return result;
     }
 
@@ -818,9 +824,9 @@ struct NLinkChain1 {
                                    const Params& params) {
       const Scalar g = Scalar(params.g);
       const Scalar m1 = Scalar(params.m1);
-      const Scalar tmp7 = g*m1;
+      const Scalar tmp36 = g*m1;
       Scalar result;
-      result = tmp7*pos(1);
+      result = tmp36*pos(1);
       return result;
     }
 
@@ -838,15 +844,15 @@ struct NLinkChain1 {
                                  const Params& params) {
       using std::sqrt;
       const Scalar l1 = Scalar(params.l1);
-      const Scalar tmp15 = (pos(0)*pos(0));
-      const Scalar tmp16 = (pos(1)*pos(1));
-      const Scalar tmp17 = tmp15 + tmp16;
-      const Scalar tmp18 = sqrt(tmp17);
-      const Scalar tmp20 = tmp18 - l1;
-      const Scalar tmp21 = (Scalar(1)/l1);
-      const Scalar tmp22 = tmp21*kappa;
+      const Scalar tmp42 = (pos(0)*pos(0));
+      const Scalar tmp43 = (pos(1)*pos(1));
+      const Scalar tmp44 = tmp42 + tmp43;
+      const Scalar tmp45 = sqrt(tmp44);
+      const Scalar tmp47 = tmp45 - l1;
+      const Scalar tmp48 = (Scalar(1)/l1);
+      const Scalar tmp49 = tmp48*kappa;
       Scalar result;
-      result = (Scalar(0.5))*tmp22*(tmp20*tmp20);
+      result = (Scalar(0.5))*tmp49*(tmp47*tmp47);
       return result;
     }
 
@@ -862,13 +868,13 @@ struct NLinkChain1 {
                                                           const Params& params) {
       using std::sqrt;
       const Scalar l1 = Scalar(params.l1);
-      const Scalar tmp15 = (pos(0)*pos(0));
-      const Scalar tmp16 = (pos(1)*pos(1));
-      const Scalar tmp17 = tmp15 + tmp16;
-      const Scalar tmp18 = sqrt(tmp17);
-      const Scalar tmp20 = tmp18 - l1;
+      const Scalar tmp42 = (pos(0)*pos(0));
+      const Scalar tmp43 = (pos(1)*pos(1));
+      const Scalar tmp44 = tmp42 + tmp43;
+      const Scalar tmp45 = sqrt(tmp44);
+      const Scalar tmp47 = tmp45 - l1;
       ConstraintVector<Scalar> result;
-      result(0) = tmp20;
+      result(0) = tmp47;
       return result;
     }
   };

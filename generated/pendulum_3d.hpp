@@ -7,10 +7,12 @@
 // Singular configurations (J loses rank): none found
 // Worst conditioning of J in 200 random configurations: sigma_min / sigma_max = 1 at theta =
 //   0.04927
+// qddot: Mt, Ft + Fi and an LDL^T solve, 15 operations (articulated-body recursion: 23)
+// inverse_dynamics: Mt qdd - Ft - Fi, 14 operations (recursive Newton-Euler: 18)
 //
-// Total ops: 387
-// Intermediate terms (101)
-// Output terms (84)
+// Total ops: 437
+// Intermediate terms (128)
+// Output terms (81)
 #pragma once
 
 #include <array>
@@ -71,6 +73,10 @@ struct Pendulum3d {
   /// Whether applied_forces at rest (v = 0) is -d(potential_energy)/dq: every force without
   /// a declared potential vanishes at rest (generator/conservative.py).
   static constexpr bool forces_have_potential = true;
+  /// Whether qddot is the articulated-body recursion over the model's tree of particles,
+  /// chosen at generation because it takes fewer operations than Mt, Ft + Fi and an LDL^T
+  /// solve (generator/dynamics_paths.py); gencoord::acceleration() then calls it.
+  static constexpr bool recursive_qddot = false;
 
   template <typename Scalar>
   using QVector = Eigen::Matrix<Scalar, nq, 1>;
@@ -123,14 +129,14 @@ struct Pendulum3d {
     const Scalar theta = q(0);
     const Scalar l = Scalar(params.l);
     const Scalar m = Scalar(params.m);
-    const Scalar tmp0 = (l*l);
-    const Scalar tmp1 = sin(theta);
-    const Scalar tmp2 = tmp0*(tmp1*tmp1);
-    const Scalar tmp3 = cos(theta);
-    const Scalar tmp4 = tmp0*(tmp3*tmp3);
-    const Scalar tmp5 = m*(tmp2 + tmp4);
+    const Scalar tmp0 = cos(theta);
+    const Scalar tmp2 = sin(theta);
+    const Scalar tmp33 = (l*l);
+    const Scalar tmp34 = tmp33*(tmp2*tmp2);
+    const Scalar tmp35 = tmp33*(tmp0*tmp0);
+    const Scalar tmp36 = m*(tmp34 + tmp35);
     QMatrix<Scalar> result;
-    result(0) = tmp5;
+    result(0) = tmp36;
     return result;
   }
 
@@ -151,12 +157,12 @@ struct Pendulum3d {
     const Scalar l = Scalar(params.l);
     const Scalar m = Scalar(params.m);
     const Scalar g = Scalar(params.g);
-    const Scalar tmp1 = sin(theta);
-    const Scalar tmp6 = tmp1*l;
-    const Scalar tmp7 = g*m;
-    const Scalar tmp8 = tmp6*tmp7;
+    const Scalar tmp2 = sin(theta);
+    const Scalar tmp3 = tmp2*l;
+    const Scalar tmp37 = g*m;
+    const Scalar tmp38 = tmp37*tmp3;
     QVector<Scalar> result;
-    result(0) = -tmp8;
+    result(0) = -tmp38;
     return result;
   }
 
@@ -211,12 +217,12 @@ struct Pendulum3d {
     const Scalar l = Scalar(params.l);
     const Scalar m = Scalar(params.m);
     const Scalar g = Scalar(params.g);
-    const Scalar tmp1 = sin(theta);
-    const Scalar tmp6 = tmp1*l;
-    const Scalar tmp7 = g*m;
-    const Scalar tmp8 = tmp6*tmp7;
+    const Scalar tmp2 = sin(theta);
+    const Scalar tmp3 = tmp2*l;
+    const Scalar tmp37 = g*m;
+    const Scalar tmp38 = tmp37*tmp3;
     QVector<Scalar> result;
-    result(0) = -tmp8;
+    result(0) = -tmp38;
     return result;
   }
 
@@ -240,17 +246,17 @@ struct Pendulum3d {
     const Scalar l = Scalar(params.l);
     const Scalar m = Scalar(params.m);
     const Scalar g = Scalar(params.g);
-    const Scalar tmp0 = (l*l);
-    const Scalar tmp1 = sin(theta);
-    const Scalar tmp2 = tmp0*(tmp1*tmp1);
-    const Scalar tmp3 = cos(theta);
-    const Scalar tmp4 = tmp0*(tmp3*tmp3);
-    const Scalar tmp5 = m*(tmp2 + tmp4);
-    const Scalar tmp6 = tmp1*l;
-    const Scalar tmp7 = g*m;
-    const Scalar tmp8 = tmp6*tmp7;
-    (*Mt)(0) = tmp5;
-    (*f)(0) = -tmp8;
+    const Scalar tmp0 = cos(theta);
+    const Scalar tmp2 = sin(theta);
+    const Scalar tmp3 = tmp2*l;
+    const Scalar tmp33 = (l*l);
+    const Scalar tmp34 = tmp33*(tmp2*tmp2);
+    const Scalar tmp35 = tmp33*(tmp0*tmp0);
+    const Scalar tmp36 = m*(tmp34 + tmp35);
+    const Scalar tmp37 = g*m;
+    const Scalar tmp38 = tmp37*tmp3;
+    (*Mt)(0) = tmp36;
+    (*f)(0) = -tmp38;
   }
 
   /// Inverse dynamics: the residual r = Mt qdd - Ft - Fi, i.e. the generalized force that produces
@@ -275,17 +281,17 @@ struct Pendulum3d {
     const Scalar l = Scalar(params.l);
     const Scalar m = Scalar(params.m);
     const Scalar g = Scalar(params.g);
-    const Scalar tmp0 = (l*l);
-    const Scalar tmp1 = sin(theta);
-    const Scalar tmp2 = tmp0*(tmp1*tmp1);
-    const Scalar tmp3 = cos(theta);
-    const Scalar tmp4 = tmp0*(tmp3*tmp3);
-    const Scalar tmp5 = m*(tmp2 + tmp4);
-    const Scalar tmp6 = tmp1*l;
-    const Scalar tmp7 = g*m;
-    const Scalar tmp8 = tmp6*tmp7;
+    const Scalar tmp0 = cos(theta);
+    const Scalar tmp2 = sin(theta);
+    const Scalar tmp3 = tmp2*l;
+    const Scalar tmp33 = (l*l);
+    const Scalar tmp34 = tmp33*(tmp2*tmp2);
+    const Scalar tmp35 = tmp33*(tmp0*tmp0);
+    const Scalar tmp36 = m*(tmp34 + tmp35);
+    const Scalar tmp37 = g*m;
+    const Scalar tmp38 = tmp37*tmp3;
     QVector<Scalar> result;
-    result(0) = tmp8 + tmp5*theta_ddot;
+    result(0) = tmp38 + tmp36*theta_ddot;
     return result;
   }
 
@@ -312,17 +318,17 @@ struct Pendulum3d {
     const Scalar l = Scalar(params.l);
     const Scalar m = Scalar(params.m);
     const Scalar g = Scalar(params.g);
-    const Scalar tmp0 = (l*l);
-    const Scalar tmp1 = sin(theta);
-    const Scalar tmp3 = cos(theta);
-    const Scalar tmp7 = g*m;
-    const Scalar tmp95 = Scalar(2)*tmp0*tmp1*tmp3;
-    const Scalar tmp96 = -tmp1;
-    const Scalar tmp97 = Scalar(2)*tmp0*tmp3*tmp96;
-    const Scalar tmp98 = m*tmp95 + m*tmp97;
-    const Scalar tmp99 = l*tmp3;
-    const Scalar tmp100 = tmp7*tmp99;
-    (*dr_dq)(0) = theta_ddot*tmp98 + tmp100;
+    const Scalar tmp0 = cos(theta);
+    const Scalar tmp2 = sin(theta);
+    const Scalar tmp33 = (l*l);
+    const Scalar tmp37 = g*m;
+    const Scalar tmp122 = -tmp2;
+    const Scalar tmp123 = l*tmp0;
+    const Scalar tmp124 = Scalar(2)*tmp33*tmp2*tmp0;
+    const Scalar tmp125 = Scalar(2)*tmp0*tmp33*tmp122;
+    const Scalar tmp126 = m*tmp124 + m*tmp125;
+    const Scalar tmp127 = tmp37*tmp123;
+    (*dr_dq)(0) = theta_ddot*tmp126 + tmp127;
     (*dr_dv)(0) = Scalar(0);
   }
 
@@ -344,15 +350,15 @@ struct Pendulum3d {
     const Scalar theta_dot = v(0);
     const Scalar l = Scalar(params.l);
     const Scalar m = Scalar(params.m);
-    const Scalar tmp0 = (l*l);
-    const Scalar tmp1 = sin(theta);
-    const Scalar tmp2 = tmp0*(tmp1*tmp1);
-    const Scalar tmp3 = cos(theta);
-    const Scalar tmp4 = tmp0*(tmp3*tmp3);
-    const Scalar tmp9 = (theta_dot*theta_dot);
-    const Scalar tmp10 = tmp2*tmp9 + tmp4*tmp9;
+    const Scalar tmp0 = cos(theta);
+    const Scalar tmp2 = sin(theta);
+    const Scalar tmp4 = (theta_dot*theta_dot);
+    const Scalar tmp33 = (l*l);
+    const Scalar tmp34 = tmp33*(tmp2*tmp2);
+    const Scalar tmp35 = tmp33*(tmp0*tmp0);
+    const Scalar tmp39 = tmp34*tmp4 + tmp35*tmp4;
     Scalar result;
-    result = (Scalar(0.5))*tmp10*m;
+    result = (Scalar(0.5))*tmp39*m;
     return result;
   }
 
@@ -371,12 +377,12 @@ struct Pendulum3d {
     const Scalar l = Scalar(params.l);
     const Scalar m = Scalar(params.m);
     const Scalar g = Scalar(params.g);
-    const Scalar tmp3 = cos(theta);
-    const Scalar tmp7 = g*m;
-    const Scalar tmp11 = tmp3*l;
-    const Scalar tmp12 = tmp11*tmp7;
+    const Scalar tmp0 = cos(theta);
+    const Scalar tmp1 = tmp0*l;
+    const Scalar tmp37 = g*m;
+    const Scalar tmp40 = tmp1*tmp37;
     Scalar result;
-    result = -tmp12;
+    result = -tmp40;
     return result;
   }
 
@@ -414,18 +420,18 @@ struct Pendulum3d {
     const Scalar l = Scalar(params.l);
     const Scalar m = Scalar(params.m);
     const Scalar g = Scalar(params.g);
-    const Scalar tmp0 = (l*l);
-    const Scalar tmp1 = sin(theta);
-    const Scalar tmp2 = tmp0*(tmp1*tmp1);
-    const Scalar tmp3 = cos(theta);
-    const Scalar tmp4 = tmp0*(tmp3*tmp3);
-    const Scalar tmp7 = g*m;
-    const Scalar tmp9 = (theta_dot*theta_dot);
-    const Scalar tmp10 = tmp2*tmp9 + tmp4*tmp9;
-    const Scalar tmp11 = tmp3*l;
-    const Scalar tmp12 = tmp11*tmp7;
+    const Scalar tmp0 = cos(theta);
+    const Scalar tmp1 = tmp0*l;
+    const Scalar tmp2 = sin(theta);
+    const Scalar tmp4 = (theta_dot*theta_dot);
+    const Scalar tmp33 = (l*l);
+    const Scalar tmp34 = tmp33*(tmp2*tmp2);
+    const Scalar tmp35 = tmp33*(tmp0*tmp0);
+    const Scalar tmp37 = g*m;
+    const Scalar tmp39 = tmp34*tmp4 + tmp35*tmp4;
+    const Scalar tmp40 = tmp1*tmp37;
     Scalar result;
-    result = -tmp12 + (Scalar(0.5))*tmp10*m;
+    result = -tmp40 + (Scalar(0.5))*tmp39*m;
     return result;
   }
 
@@ -443,16 +449,16 @@ struct Pendulum3d {
     using std::sin;
     const Scalar theta = q(0);
     const Scalar l = Scalar(params.l);
-    const Scalar tmp1 = sin(theta);
-    const Scalar tmp3 = cos(theta);
-    const Scalar tmp6 = tmp1*l;
-    const Scalar tmp11 = tmp3*l;
+    const Scalar tmp0 = cos(theta);
+    const Scalar tmp1 = tmp0*l;
+    const Scalar tmp2 = sin(theta);
+    const Scalar tmp3 = tmp2*l;
     XVector<Scalar> result;
     result(0) = Scalar(0);
     result(1) = Scalar(0);
     result(2) = Scalar(0);
-    result(3) = tmp6;
-    result(4) = -tmp11;
+    result(3) = tmp3;
+    result(4) = -tmp1;
     result(5) = Scalar(0);
     return result;
   }
@@ -474,18 +480,18 @@ struct Pendulum3d {
     const Scalar theta = q(0);
     const Scalar theta_dot = v(0);
     const Scalar l = Scalar(params.l);
-    const Scalar tmp1 = sin(theta);
-    const Scalar tmp3 = cos(theta);
-    const Scalar tmp6 = tmp1*l;
-    const Scalar tmp11 = tmp3*l;
-    const Scalar tmp13 = tmp11*theta_dot;
-    const Scalar tmp14 = tmp6*theta_dot;
+    const Scalar tmp0 = cos(theta);
+    const Scalar tmp1 = tmp0*l;
+    const Scalar tmp2 = sin(theta);
+    const Scalar tmp3 = tmp2*l;
+    const Scalar tmp41 = tmp1*theta_dot;
+    const Scalar tmp42 = tmp3*theta_dot;
     XVector<Scalar> result;
     result(0) = Scalar(0);
     result(1) = Scalar(0);
     result(2) = Scalar(0);
-    result(3) = tmp13;
-    result(4) = tmp14;
+    result(3) = tmp41;
+    result(4) = tmp42;
     result(5) = Scalar(0);
     return result;
   }
@@ -504,16 +510,16 @@ struct Pendulum3d {
     using std::sin;
     const Scalar theta = q(0);
     const Scalar l = Scalar(params.l);
-    const Scalar tmp1 = sin(theta);
-    const Scalar tmp3 = cos(theta);
-    const Scalar tmp6 = tmp1*l;
-    const Scalar tmp11 = tmp3*l;
+    const Scalar tmp0 = cos(theta);
+    const Scalar tmp1 = tmp0*l;
+    const Scalar tmp2 = sin(theta);
+    const Scalar tmp3 = tmp2*l;
     XJacobian<Scalar> result;
     result(0) = Scalar(0);
     result(1) = Scalar(0);
     result(2) = Scalar(0);
-    result(3) = tmp11;
-    result(4) = tmp6;
+    result(3) = tmp1;
+    result(4) = tmp3;
     result(5) = Scalar(0);
     return result;
   }
@@ -535,17 +541,17 @@ struct Pendulum3d {
     const Scalar theta = q(0);
     const Scalar theta_dot = v(0);
     const Scalar l = Scalar(params.l);
-    const Scalar tmp1 = sin(theta);
-    const Scalar tmp3 = cos(theta);
-    const Scalar tmp6 = tmp1*l;
-    const Scalar tmp9 = (theta_dot*theta_dot);
-    const Scalar tmp11 = tmp3*l;
+    const Scalar tmp0 = cos(theta);
+    const Scalar tmp1 = tmp0*l;
+    const Scalar tmp2 = sin(theta);
+    const Scalar tmp3 = tmp2*l;
+    const Scalar tmp4 = (theta_dot*theta_dot);
     XVector<Scalar> result;
     result(0) = Scalar(0);
     result(1) = Scalar(0);
     result(2) = Scalar(0);
-    result(3) = -tmp6*tmp9;
-    result(4) = tmp11*tmp9;
+    result(3) = -tmp3*tmp4;
+    result(4) = tmp1*tmp4;
     result(5) = Scalar(0);
     return result;
   }
@@ -568,15 +574,15 @@ struct Pendulum3d {
     const Scalar theta_dot = v(0);
     const Scalar l = Scalar(params.l);
     const Scalar m = Scalar(params.m);
-    const Scalar tmp1 = sin(theta);
-    const Scalar tmp3 = cos(theta);
-    const Scalar tmp6 = tmp1*l;
-    const Scalar tmp11 = tmp3*l;
-    const Scalar tmp13 = tmp11*theta_dot;
-    const Scalar tmp14 = tmp6*theta_dot;
+    const Scalar tmp0 = cos(theta);
+    const Scalar tmp1 = tmp0*l;
+    const Scalar tmp2 = sin(theta);
+    const Scalar tmp3 = tmp2*l;
+    const Scalar tmp41 = tmp1*theta_dot;
+    const Scalar tmp42 = tmp3*theta_dot;
     SpaceVector<Scalar> result;
-    result(0) = tmp13*m;
-    result(1) = tmp14*m;
+    result(0) = tmp41*m;
+    result(1) = tmp42*m;
     result(2) = Scalar(0);
     return result;
   }
@@ -599,15 +605,15 @@ struct Pendulum3d {
     const Scalar theta_dot = v(0);
     const Scalar l = Scalar(params.l);
     const Scalar m = Scalar(params.m);
-    const Scalar tmp0 = (l*l);
-    const Scalar tmp1 = sin(theta);
-    const Scalar tmp2 = tmp0*(tmp1*tmp1);
-    const Scalar tmp3 = cos(theta);
-    const Scalar tmp4 = tmp0*(tmp3*tmp3);
+    const Scalar tmp0 = cos(theta);
+    const Scalar tmp2 = sin(theta);
+    const Scalar tmp33 = (l*l);
+    const Scalar tmp34 = tmp33*(tmp2*tmp2);
+    const Scalar tmp35 = tmp33*(tmp0*tmp0);
     AngularVector<Scalar> result;
     result(0) = Scalar(0);
     result(1) = Scalar(0);
-    result(2) = m*(tmp2*theta_dot + tmp4*theta_dot);
+    result(2) = m*(tmp34*theta_dot + tmp35*theta_dot);
     return result;
   }
 
@@ -718,14 +724,14 @@ struct Pendulum3d {
       const Scalar m = Scalar(params.m);
       const Scalar m_pivot = Scalar(params.m_pivot);
       const Scalar g = Scalar(params.g);
-      const Scalar tmp7 = g*m;
-      const Scalar tmp15 = g*m_pivot;
+      const Scalar tmp32 = g*m_pivot;
+      const Scalar tmp37 = g*m;
       XVector<Scalar> result;
       result(0) = Scalar(0);
-      result(1) = -tmp15;
+      result(1) = -tmp32;
       result(2) = Scalar(0);
       result(3) = Scalar(0);
-      result(4) = -tmp7;
+      result(4) = -tmp37;
       result(5) = Scalar(0);
       return result;
     }
@@ -748,35 +754,35 @@ struct Pendulum3d {
                                           const Params& params) {
       using std::sqrt;
       const Scalar l = Scalar(params.l);
-      const Scalar tmp16 = pos(3) - pos(0);
-      const Scalar tmp17 = (tmp16*tmp16);
-      const Scalar tmp18 = pos(4) - pos(1);
-      const Scalar tmp19 = (tmp18*tmp18);
-      const Scalar tmp20 = pos(5) - pos(2);
-      const Scalar tmp21 = (tmp20*tmp20);
-      const Scalar tmp22 = tmp17 + tmp19 + tmp21;
-      const Scalar tmp23 = sqrt(tmp22);
-      const Scalar tmp24 = (Scalar(1)/tmp23);
-      const Scalar tmp25 = tmp23 - l;
-      const Scalar tmp26 = (Scalar(1)/l);
-      const Scalar tmp27 = tmp26*kappa;
-      const Scalar tmp28 = vel(3) - vel(0);
-      const Scalar tmp29 = tmp24*tmp28;
-      const Scalar tmp30 = vel(4) - vel(1);
-      const Scalar tmp31 = tmp24*tmp30;
-      const Scalar tmp32 = vel(5) - vel(2);
-      const Scalar tmp33 = tmp24*tmp32;
-      const Scalar tmp34 = tmp26*penalty_damping;
-      const Scalar tmp35 = tmp25*tmp27 + tmp34*(tmp16*tmp29 + tmp18*tmp31 + tmp20*tmp33);
-      const Scalar tmp36 = -tmp35;
-      const Scalar tmp37 = tmp24*tmp36;
+      const Scalar tmp43 = pos(3) - pos(0);
+      const Scalar tmp44 = (tmp43*tmp43);
+      const Scalar tmp45 = pos(4) - pos(1);
+      const Scalar tmp46 = (tmp45*tmp45);
+      const Scalar tmp47 = pos(5) - pos(2);
+      const Scalar tmp48 = (tmp47*tmp47);
+      const Scalar tmp49 = tmp44 + tmp46 + tmp48;
+      const Scalar tmp50 = sqrt(tmp49);
+      const Scalar tmp51 = (Scalar(1)/tmp50);
+      const Scalar tmp52 = tmp50 - l;
+      const Scalar tmp53 = (Scalar(1)/l);
+      const Scalar tmp54 = tmp53*kappa;
+      const Scalar tmp55 = vel(3) - vel(0);
+      const Scalar tmp56 = tmp51*tmp55;
+      const Scalar tmp57 = vel(4) - vel(1);
+      const Scalar tmp58 = tmp51*tmp57;
+      const Scalar tmp59 = vel(5) - vel(2);
+      const Scalar tmp60 = tmp51*tmp59;
+      const Scalar tmp61 = tmp53*penalty_damping;
+      const Scalar tmp62 = tmp52*tmp54 + tmp61*(tmp43*tmp56 + tmp45*tmp58 + tmp47*tmp60);
+      const Scalar tmp63 = -tmp62;
+      const Scalar tmp64 = tmp51*tmp63;
       XVector<Scalar> result;
-      result(0) = -pos(0)*kappa - vel(0)*penalty_damping + tmp16*tmp24*tmp35;
-      result(1) = -pos(1)*kappa - vel(1)*penalty_damping + tmp18*tmp24*tmp35;
-      result(2) = -pos(2)*kappa - vel(2)*penalty_damping + tmp20*tmp24*tmp35;
-      result(3) = tmp16*tmp37;
-      result(4) = tmp18*tmp37;
-      result(5) = -pos(5)*kappa - vel(5)*penalty_damping + tmp20*tmp24*tmp36;
+      result(0) = -pos(0)*kappa - vel(0)*penalty_damping + tmp43*tmp51*tmp62;
+      result(1) = -pos(1)*kappa - vel(1)*penalty_damping + tmp45*tmp51*tmp62;
+      result(2) = -pos(2)*kappa - vel(2)*penalty_damping + tmp47*tmp51*tmp62;
+      result(3) = tmp43*tmp64;
+      result(4) = tmp45*tmp64;
+      result(5) = -pos(5)*kappa - vel(5)*penalty_damping + tmp47*tmp51*tmp63;
       return result;
     }
 
@@ -798,112 +804,112 @@ struct Pendulum3d {
                                                    const Params& params) {
       using std::sqrt;
       const Scalar l = Scalar(params.l);
-      const Scalar tmp16 = pos(3) - pos(0);
-      const Scalar tmp17 = (tmp16*tmp16);
-      const Scalar tmp18 = pos(4) - pos(1);
-      const Scalar tmp19 = (tmp18*tmp18);
-      const Scalar tmp20 = pos(5) - pos(2);
-      const Scalar tmp21 = (tmp20*tmp20);
-      const Scalar tmp22 = tmp17 + tmp19 + tmp21;
-      const Scalar tmp23 = sqrt(tmp22);
-      const Scalar tmp24 = (Scalar(1)/tmp23);
-      const Scalar tmp25 = tmp23 - l;
-      const Scalar tmp26 = (Scalar(1)/l);
-      const Scalar tmp27 = tmp26*kappa;
-      const Scalar tmp28 = vel(3) - vel(0);
-      const Scalar tmp29 = tmp24*tmp28;
-      const Scalar tmp30 = vel(4) - vel(1);
-      const Scalar tmp31 = tmp24*tmp30;
-      const Scalar tmp32 = vel(5) - vel(2);
-      const Scalar tmp33 = tmp24*tmp32;
-      const Scalar tmp34 = tmp26*penalty_damping;
-      const Scalar tmp35 = tmp25*tmp27 + tmp34*(tmp16*tmp29 + tmp18*tmp31 + tmp20*tmp33);
-      const Scalar tmp36 = -tmp35;
-      const Scalar tmp37 = tmp24*tmp36;
-      const Scalar tmp38 = (Scalar(1)/(tmp22*sqrt(tmp22)));
-      const Scalar tmp39 = -tmp16;
-      const Scalar tmp40 = tmp24*tmp27;
-      const Scalar tmp41 = tmp17*tmp38;
-      const Scalar tmp42 = tmp16*tmp38;
-      const Scalar tmp43 = tmp18*tmp42;
-      const Scalar tmp44 = tmp20*tmp32;
-      const Scalar tmp45 = tmp34*(-tmp29 + tmp28*tmp41 + tmp30*tmp43 + tmp42*tmp44) + tmp39*tmp40;
-      const Scalar tmp46 = tmp24*tmp35;
-      const Scalar tmp47 = tmp46 + kappa;
-      const Scalar tmp48 = tmp35*tmp43;
-      const Scalar tmp49 = -tmp18;
-      const Scalar tmp50 = tmp19*tmp38;
-      const Scalar tmp51 = tmp18*tmp38;
-      const Scalar tmp52 = tmp34*(-tmp31 + tmp28*tmp43 + tmp30*tmp50 + tmp44*tmp51) + tmp40*tmp49;
-      const Scalar tmp53 = tmp16*tmp24;
-      const Scalar tmp54 = tmp20*tmp42;
-      const Scalar tmp55 = tmp35*tmp54;
-      const Scalar tmp56 = -tmp20;
-      const Scalar tmp57 = tmp21*tmp38;
-      const Scalar tmp58 = tmp30*tmp51;
-      const Scalar tmp59 = tmp34*(-tmp33 + tmp20*tmp58 + tmp28*tmp54 + tmp32*tmp57) + tmp40*tmp56;
-      const Scalar tmp60 = tmp39*tmp42;
-      const Scalar tmp61 = tmp38*tmp44;
-      const Scalar tmp62 = tmp27*tmp53 + tmp34*(tmp29 + tmp28*tmp60 + tmp39*tmp58 + tmp39*tmp61);
-      const Scalar tmp63 = tmp42*tmp49;
-      const Scalar tmp64 = tmp18*tmp24;
-      const Scalar tmp65 = tmp27*tmp64 + tmp34*(tmp31 + tmp28*tmp63 + tmp49*tmp58 + tmp49*tmp61);
-      const Scalar tmp66 = tmp42*tmp56;
-      const Scalar tmp67 = tmp20*tmp24;
-      const Scalar tmp68 = tmp27*tmp67 + tmp34*(tmp33 + tmp28*tmp66 + tmp56*tmp58 + tmp56*tmp61);
-      const Scalar tmp69 = tmp35*tmp51;
-      const Scalar tmp70 = tmp20*tmp69;
-      const Scalar tmp71 = tmp20*tmp38;
-      const Scalar tmp72 = tmp35*tmp71;
-      const Scalar tmp73 = -tmp37;
-      const Scalar tmp74 = -tmp45;
-      const Scalar tmp75 = tmp36*tmp43;
-      const Scalar tmp76 = -tmp52;
-      const Scalar tmp77 = tmp36*tmp54;
-      const Scalar tmp78 = -tmp59;
-      const Scalar tmp79 = -tmp62;
-      const Scalar tmp80 = -tmp65;
-      const Scalar tmp81 = -tmp68;
-      const Scalar tmp82 = tmp36*tmp51;
-      const Scalar tmp83 = tmp20*tmp82;
-      const Scalar tmp84 = tmp36*tmp71;
+      const Scalar tmp43 = pos(3) - pos(0);
+      const Scalar tmp44 = (tmp43*tmp43);
+      const Scalar tmp45 = pos(4) - pos(1);
+      const Scalar tmp46 = (tmp45*tmp45);
+      const Scalar tmp47 = pos(5) - pos(2);
+      const Scalar tmp48 = (tmp47*tmp47);
+      const Scalar tmp49 = tmp44 + tmp46 + tmp48;
+      const Scalar tmp50 = sqrt(tmp49);
+      const Scalar tmp51 = (Scalar(1)/tmp50);
+      const Scalar tmp52 = tmp50 - l;
+      const Scalar tmp53 = (Scalar(1)/l);
+      const Scalar tmp54 = tmp53*kappa;
+      const Scalar tmp55 = vel(3) - vel(0);
+      const Scalar tmp56 = tmp51*tmp55;
+      const Scalar tmp57 = vel(4) - vel(1);
+      const Scalar tmp58 = tmp51*tmp57;
+      const Scalar tmp59 = vel(5) - vel(2);
+      const Scalar tmp60 = tmp51*tmp59;
+      const Scalar tmp61 = tmp53*penalty_damping;
+      const Scalar tmp62 = tmp52*tmp54 + tmp61*(tmp43*tmp56 + tmp45*tmp58 + tmp47*tmp60);
+      const Scalar tmp63 = -tmp62;
+      const Scalar tmp64 = tmp51*tmp63;
+      const Scalar tmp65 = (Scalar(1)/(tmp49*sqrt(tmp49)));
+      const Scalar tmp66 = -tmp43;
+      const Scalar tmp67 = tmp51*tmp54;
+      const Scalar tmp68 = tmp44*tmp65;
+      const Scalar tmp69 = tmp43*tmp65;
+      const Scalar tmp70 = tmp45*tmp69;
+      const Scalar tmp71 = tmp47*tmp59;
+      const Scalar tmp72 = tmp61*(-tmp56 + tmp55*tmp68 + tmp57*tmp70 + tmp69*tmp71) + tmp66*tmp67;
+      const Scalar tmp73 = tmp51*tmp62;
+      const Scalar tmp74 = tmp73 + kappa;
+      const Scalar tmp75 = tmp62*tmp70;
+      const Scalar tmp76 = -tmp45;
+      const Scalar tmp77 = tmp46*tmp65;
+      const Scalar tmp78 = tmp45*tmp65;
+      const Scalar tmp79 = tmp61*(-tmp58 + tmp55*tmp70 + tmp57*tmp77 + tmp71*tmp78) + tmp67*tmp76;
+      const Scalar tmp80 = tmp43*tmp51;
+      const Scalar tmp81 = tmp47*tmp69;
+      const Scalar tmp82 = tmp62*tmp81;
+      const Scalar tmp83 = -tmp47;
+      const Scalar tmp84 = tmp48*tmp65;
+      const Scalar tmp85 = tmp57*tmp78;
+      const Scalar tmp86 = tmp61*(-tmp60 + tmp47*tmp85 + tmp55*tmp81 + tmp59*tmp84) + tmp67*tmp83;
+      const Scalar tmp87 = tmp66*tmp69;
+      const Scalar tmp88 = tmp65*tmp71;
+      const Scalar tmp89 = tmp54*tmp80 + tmp61*(tmp56 + tmp55*tmp87 + tmp66*tmp85 + tmp66*tmp88);
+      const Scalar tmp90 = tmp69*tmp76;
+      const Scalar tmp91 = tmp45*tmp51;
+      const Scalar tmp92 = tmp54*tmp91 + tmp61*(tmp58 + tmp55*tmp90 + tmp76*tmp85 + tmp76*tmp88);
+      const Scalar tmp93 = tmp69*tmp83;
+      const Scalar tmp94 = tmp47*tmp51;
+      const Scalar tmp95 = tmp54*tmp94 + tmp61*(tmp60 + tmp55*tmp93 + tmp83*tmp85 + tmp83*tmp88);
+      const Scalar tmp96 = tmp62*tmp78;
+      const Scalar tmp97 = tmp47*tmp96;
+      const Scalar tmp98 = tmp47*tmp65;
+      const Scalar tmp99 = tmp62*tmp98;
+      const Scalar tmp100 = -tmp64;
+      const Scalar tmp101 = -tmp72;
+      const Scalar tmp102 = tmp63*tmp70;
+      const Scalar tmp103 = -tmp79;
+      const Scalar tmp104 = tmp63*tmp81;
+      const Scalar tmp105 = -tmp86;
+      const Scalar tmp106 = -tmp89;
+      const Scalar tmp107 = -tmp92;
+      const Scalar tmp108 = -tmp95;
+      const Scalar tmp109 = tmp63*tmp78;
+      const Scalar tmp110 = tmp47*tmp109;
+      const Scalar tmp111 = tmp63*tmp98;
       std::array<Scalar, 36> result;
-      result[0] = -tmp47 + tmp16*tmp24*tmp45 + tmp17*tmp35*tmp38;
-      result[1] = tmp48 + tmp52*tmp53;
-      result[2] = tmp55 + tmp53*tmp59;
-      result[3] = tmp46 + tmp35*tmp60 + tmp53*tmp62;
-      result[4] = tmp35*tmp63 + tmp53*tmp65;
-      result[5] = tmp35*tmp66 + tmp53*tmp68;
-      result[6] = tmp48 + tmp45*tmp64;
-      result[7] = -tmp47 + tmp18*tmp24*tmp52 + tmp19*tmp35*tmp38;
-      result[8] = tmp70 + tmp59*tmp64;
-      result[9] = tmp39*tmp69 + tmp62*tmp64;
-      result[10] = tmp46 + tmp49*tmp69 + tmp64*tmp65;
-      result[11] = tmp56*tmp69 + tmp64*tmp68;
-      result[12] = tmp55 + tmp45*tmp67;
-      result[13] = tmp70 + tmp52*tmp67;
-      result[14] = -tmp47 + tmp20*tmp24*tmp59 + tmp21*tmp35*tmp38;
-      result[15] = tmp39*tmp72 + tmp62*tmp67;
-      result[16] = tmp49*tmp72 + tmp65*tmp67;
-      result[17] = tmp46 + tmp56*tmp72 + tmp67*tmp68;
-      result[18] = tmp73 + tmp36*tmp41 + tmp53*tmp74;
-      result[19] = tmp75 + tmp53*tmp76;
-      result[20] = tmp77 + tmp53*tmp78;
-      result[21] = tmp37 + tmp36*tmp60 + tmp53*tmp79;
-      result[22] = tmp36*tmp63 + tmp53*tmp80;
-      result[23] = tmp36*tmp66 + tmp53*tmp81;
-      result[24] = tmp75 + tmp64*tmp74;
-      result[25] = tmp73 + tmp36*tmp50 + tmp64*tmp76;
-      result[26] = tmp83 + tmp64*tmp78;
-      result[27] = tmp39*tmp82 + tmp64*tmp79;
-      result[28] = tmp37 + tmp49*tmp82 + tmp64*tmp80;
-      result[29] = tmp56*tmp82 + tmp64*tmp81;
-      result[30] = tmp77 + tmp67*tmp74;
-      result[31] = tmp83 + tmp67*tmp76;
-      result[32] = tmp73 + tmp36*tmp57 + tmp67*tmp78;
-      result[33] = tmp39*tmp84 + tmp67*tmp79;
-      result[34] = tmp49*tmp84 + tmp67*tmp80;
-      result[35] = tmp37 - kappa + tmp56*tmp84 + tmp67*tmp81;
+      result[0] = -tmp74 + tmp43*tmp51*tmp72 + tmp44*tmp62*tmp65;
+      result[1] = tmp75 + tmp79*tmp80;
+      result[2] = tmp82 + tmp80*tmp86;
+      result[3] = tmp73 + tmp62*tmp87 + tmp80*tmp89;
+      result[4] = tmp62*tmp90 + tmp80*tmp92;
+      result[5] = tmp62*tmp93 + tmp80*tmp95;
+      result[6] = tmp75 + tmp72*tmp91;
+      result[7] = -tmp74 + tmp45*tmp51*tmp79 + tmp46*tmp62*tmp65;
+      result[8] = tmp97 + tmp86*tmp91;
+      result[9] = tmp66*tmp96 + tmp89*tmp91;
+      result[10] = tmp73 + tmp76*tmp96 + tmp91*tmp92;
+      result[11] = tmp83*tmp96 + tmp91*tmp95;
+      result[12] = tmp82 + tmp72*tmp94;
+      result[13] = tmp97 + tmp79*tmp94;
+      result[14] = -tmp74 + tmp47*tmp51*tmp86 + tmp48*tmp62*tmp65;
+      result[15] = tmp66*tmp99 + tmp89*tmp94;
+      result[16] = tmp76*tmp99 + tmp92*tmp94;
+      result[17] = tmp73 + tmp83*tmp99 + tmp94*tmp95;
+      result[18] = tmp100 + tmp63*tmp68 + tmp80*tmp101;
+      result[19] = tmp102 + tmp80*tmp103;
+      result[20] = tmp104 + tmp80*tmp105;
+      result[21] = tmp64 + tmp63*tmp87 + tmp80*tmp106;
+      result[22] = tmp63*tmp90 + tmp80*tmp107;
+      result[23] = tmp63*tmp93 + tmp80*tmp108;
+      result[24] = tmp102 + tmp91*tmp101;
+      result[25] = tmp100 + tmp63*tmp77 + tmp91*tmp103;
+      result[26] = tmp110 + tmp91*tmp105;
+      result[27] = tmp66*tmp109 + tmp91*tmp106;
+      result[28] = tmp64 + tmp76*tmp109 + tmp91*tmp107;
+      result[29] = tmp83*tmp109 + tmp91*tmp108;
+      result[30] = tmp104 + tmp94*tmp101;
+      result[31] = tmp110 + tmp94*tmp103;
+      result[32] = tmp100 + tmp63*tmp84 + tmp94*tmp105;
+      result[33] = tmp66*tmp111 + tmp94*tmp106;
+      result[34] = tmp76*tmp111 + tmp94*tmp107;
+      result[35] = tmp64 - kappa + tmp83*tmp111 + tmp94*tmp108;
       return result;
     }
 
@@ -924,60 +930,60 @@ struct Pendulum3d {
                                                       const Scalar& penalty_damping,
                                                       const Params& params) {
       const Scalar l = Scalar(params.l);
-      const Scalar tmp16 = pos(3) - pos(0);
-      const Scalar tmp17 = (tmp16*tmp16);
-      const Scalar tmp18 = pos(4) - pos(1);
-      const Scalar tmp19 = (tmp18*tmp18);
-      const Scalar tmp20 = pos(5) - pos(2);
-      const Scalar tmp21 = (tmp20*tmp20);
-      const Scalar tmp22 = tmp17 + tmp19 + tmp21;
-      const Scalar tmp26 = (Scalar(1)/l);
-      const Scalar tmp34 = tmp26*penalty_damping;
-      const Scalar tmp85 = tmp34/tmp22;
-      const Scalar tmp86 = tmp17*tmp85;
-      const Scalar tmp87 = tmp16*tmp85;
-      const Scalar tmp88 = tmp18*tmp87;
-      const Scalar tmp89 = tmp20*tmp87;
-      const Scalar tmp90 = tmp19*tmp85;
-      const Scalar tmp91 = tmp18*tmp20*tmp85;
-      const Scalar tmp92 = tmp21*tmp85;
+      const Scalar tmp43 = pos(3) - pos(0);
+      const Scalar tmp44 = (tmp43*tmp43);
+      const Scalar tmp45 = pos(4) - pos(1);
+      const Scalar tmp46 = (tmp45*tmp45);
+      const Scalar tmp47 = pos(5) - pos(2);
+      const Scalar tmp48 = (tmp47*tmp47);
+      const Scalar tmp49 = tmp44 + tmp46 + tmp48;
+      const Scalar tmp53 = (Scalar(1)/l);
+      const Scalar tmp61 = tmp53*penalty_damping;
+      const Scalar tmp112 = tmp61/tmp49;
+      const Scalar tmp113 = tmp44*tmp112;
+      const Scalar tmp114 = tmp43*tmp112;
+      const Scalar tmp115 = tmp45*tmp114;
+      const Scalar tmp116 = tmp47*tmp114;
+      const Scalar tmp117 = tmp46*tmp112;
+      const Scalar tmp118 = tmp45*tmp47*tmp112;
+      const Scalar tmp119 = tmp48*tmp112;
       std::array<Scalar, 36> result;
-      result[0] = -tmp86 - penalty_damping;
-      result[1] = -tmp88;
-      result[2] = -tmp89;
-      result[3] = tmp86;
-      result[4] = tmp88;
-      result[5] = tmp89;
-      result[6] = -tmp88;
-      result[7] = -tmp90 - penalty_damping;
-      result[8] = -tmp91;
-      result[9] = tmp88;
-      result[10] = tmp90;
-      result[11] = tmp91;
-      result[12] = -tmp89;
-      result[13] = -tmp91;
-      result[14] = -tmp92 - penalty_damping;
-      result[15] = tmp89;
-      result[16] = tmp91;
-      result[17] = tmp92;
-      result[18] = tmp86;
-      result[19] = tmp88;
-      result[20] = tmp89;
-      result[21] = -tmp86;
-      result[22] = -tmp88;
-      result[23] = -tmp89;
-      result[24] = tmp88;
-      result[25] = tmp90;
-      result[26] = tmp91;
-      result[27] = -tmp88;
-      result[28] = -tmp90;
-      result[29] = -tmp91;
-      result[30] = tmp89;
-      result[31] = tmp91;
-      result[32] = tmp92;
-      result[33] = -tmp89;
-      result[34] = -tmp91;
-      result[35] = -tmp92 - penalty_damping;
+      result[0] = -tmp113 - penalty_damping;
+      result[1] = -tmp115;
+      result[2] = -tmp116;
+      result[3] = tmp113;
+      result[4] = tmp115;
+      result[5] = tmp116;
+      result[6] = -tmp115;
+      result[7] = -tmp117 - penalty_damping;
+      result[8] = -tmp118;
+      result[9] = tmp115;
+      result[10] = tmp117;
+      result[11] = tmp118;
+      result[12] = -tmp116;
+      result[13] = -tmp118;
+      result[14] = -tmp119 - penalty_damping;
+      result[15] = tmp116;
+      result[16] = tmp118;
+      result[17] = tmp119;
+      result[18] = tmp113;
+      result[19] = tmp115;
+      result[20] = tmp116;
+      result[21] = -tmp113;
+      result[22] = -tmp115;
+      result[23] = -tmp116;
+      result[24] = tmp115;
+      result[25] = tmp117;
+      result[26] = tmp118;
+      result[27] = -tmp115;
+      result[28] = -tmp117;
+      result[29] = -tmp118;
+      result[30] = tmp116;
+      result[31] = tmp118;
+      result[32] = tmp119;
+      result[33] = -tmp116;
+      result[34] = -tmp118;
+      result[35] = -tmp119 - penalty_damping;
       return result;
     }
 
@@ -994,10 +1000,10 @@ struct Pendulum3d {
       const Scalar m = Scalar(params.m);
       const Scalar m_pivot = Scalar(params.m_pivot);
       const Scalar g = Scalar(params.g);
-      const Scalar tmp7 = g*m;
-      const Scalar tmp15 = g*m_pivot;
+      const Scalar tmp32 = g*m_pivot;
+      const Scalar tmp37 = g*m;
       Scalar result;
-      result = tmp15*pos(1) + tmp7*pos(4);
+      result = tmp37*pos(4) + tmp32*pos(1);
       return result;
     }
 
@@ -1015,21 +1021,21 @@ struct Pendulum3d {
                                  const Params& params) {
       using std::sqrt;
       const Scalar l = Scalar(params.l);
-      const Scalar tmp16 = pos(3) - pos(0);
-      const Scalar tmp17 = (tmp16*tmp16);
-      const Scalar tmp18 = pos(4) - pos(1);
-      const Scalar tmp19 = (tmp18*tmp18);
-      const Scalar tmp20 = pos(5) - pos(2);
-      const Scalar tmp21 = (tmp20*tmp20);
-      const Scalar tmp22 = tmp17 + tmp19 + tmp21;
-      const Scalar tmp23 = sqrt(tmp22);
-      const Scalar tmp25 = tmp23 - l;
-      const Scalar tmp26 = (Scalar(1)/l);
-      const Scalar tmp27 = tmp26*kappa;
-      const Scalar tmp93 = (Scalar(0.5))*kappa;
-      const Scalar tmp94 = (pos(0)*pos(0)) + (pos(1)*pos(1)) + (pos(2)*pos(2));
+      const Scalar tmp43 = pos(3) - pos(0);
+      const Scalar tmp44 = (tmp43*tmp43);
+      const Scalar tmp45 = pos(4) - pos(1);
+      const Scalar tmp46 = (tmp45*tmp45);
+      const Scalar tmp47 = pos(5) - pos(2);
+      const Scalar tmp48 = (tmp47*tmp47);
+      const Scalar tmp49 = tmp44 + tmp46 + tmp48;
+      const Scalar tmp50 = sqrt(tmp49);
+      const Scalar tmp52 = tmp50 - l;
+      const Scalar tmp53 = (Scalar(1)/l);
+      const Scalar tmp54 = tmp53*kappa;
+      const Scalar tmp120 = (Scalar(0.5))*kappa;
+      const Scalar tmp121 = (pos(0)*pos(0)) + (pos(1)*pos(1)) + (pos(2)*pos(2));
       Scalar result;
-      result = tmp93*tmp94 + tmp93*(pos(5)*pos(5)) + (Scalar(0.5))*tmp27*(tmp25*tmp25);
+      result = tmp120*tmp121 + tmp120*(pos(5)*pos(5)) + (Scalar(0.5))*tmp54*(tmp52*tmp52);
       return result;
     }
 
@@ -1045,19 +1051,19 @@ struct Pendulum3d {
                                                           const Params& params) {
       using std::sqrt;
       const Scalar l = Scalar(params.l);
-      const Scalar tmp16 = pos(3) - pos(0);
-      const Scalar tmp17 = (tmp16*tmp16);
-      const Scalar tmp18 = pos(4) - pos(1);
-      const Scalar tmp19 = (tmp18*tmp18);
-      const Scalar tmp20 = pos(5) - pos(2);
-      const Scalar tmp21 = (tmp20*tmp20);
-      const Scalar tmp22 = tmp17 + tmp19 + tmp21;
-      const Scalar tmp23 = sqrt(tmp22);
-      const Scalar tmp25 = tmp23 - l;
-      const Scalar tmp94 = (pos(0)*pos(0)) + (pos(1)*pos(1)) + (pos(2)*pos(2));
+      const Scalar tmp43 = pos(3) - pos(0);
+      const Scalar tmp44 = (tmp43*tmp43);
+      const Scalar tmp45 = pos(4) - pos(1);
+      const Scalar tmp46 = (tmp45*tmp45);
+      const Scalar tmp47 = pos(5) - pos(2);
+      const Scalar tmp48 = (tmp47*tmp47);
+      const Scalar tmp49 = tmp44 + tmp46 + tmp48;
+      const Scalar tmp50 = sqrt(tmp49);
+      const Scalar tmp52 = tmp50 - l;
+      const Scalar tmp121 = (pos(0)*pos(0)) + (pos(1)*pos(1)) + (pos(2)*pos(2));
       ConstraintVector<Scalar> result;
-      result(0) = sqrt(tmp94);
-      result(1) = tmp25;
+      result(0) = sqrt(tmp121);
+      result(1) = tmp52;
       result(2) = pos(5);
       return result;
     }

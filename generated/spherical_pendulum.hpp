@@ -12,6 +12,8 @@
 //   Redundancy (warning): distinct coordinates give the same positions, e.g. theta = 0.7722,
 //     phi = 1.519 and theta = -0.7722, phi = -1.622; mapping positions back to q (the inverse
 //     map, an atlas) depends on the first guess
+//   qddot: Mt, Ft + Fi and an LDL^T solve, 82 operations (articulated-body recursion: 85)
+//   inverse_dynamics: Mt qdd - Ft - Fi, 72 operations (recursive Newton-Euler: 60)
 // Chart 'pole_x' (spherical_pendulum_pole_x):
 //   Singular configurations (J loses rank): sin(alpha) = 0
 //     found from the factors of det(J^T J)
@@ -20,10 +22,12 @@
 //   Redundancy (warning): distinct coordinates give the same positions, e.g. alpha = 0.7722,
 //     beta = 1.519 and alpha = -0.7722, beta = -1.622; mapping positions back to q (the
 //     inverse map, an atlas) depends on the first guess
+//   qddot: Mt, Ft + Fi and an LDL^T solve, 84 operations (articulated-body recursion: 90)
+//   inverse_dynamics: Mt qdd - Ft - Fi, 74 operations (recursive Newton-Euler: 62)
 //
-// Total ops: 973
-// Intermediate terms (225)
-// Output terms (126)
+// Total ops: 1268
+// Intermediate terms (330)
+// Output terms (114)
 #pragma once
 
 #include <array>
@@ -88,6 +92,10 @@ struct SphericalPendulum {
   /// Whether applied_forces at rest (v = 0) is -d(potential_energy)/dq: every force without
   /// a declared potential vanishes at rest (generator/conservative.py).
   static constexpr bool forces_have_potential = true;
+  /// Whether qddot is the articulated-body recursion over the model's tree of particles,
+  /// chosen at generation because it takes fewer operations than Mt, Ft + Fi and an LDL^T
+  /// solve (generator/dynamics_paths.py); gencoord::acceleration() then calls it.
+  static constexpr bool recursive_qddot = false;
 
   template <typename Scalar>
   using QVector = Eigen::Matrix<Scalar, nq, 1>;
@@ -138,21 +146,21 @@ struct SphericalPendulum {
     const Scalar phi = q(1);
     const Scalar l = Scalar(params.l);
     const Scalar m = Scalar(params.m);
-    const Scalar tmp0 = (l*l);
-    const Scalar tmp1 = sin(theta);
-    const Scalar tmp2 = tmp0*(tmp1*tmp1);
-    const Scalar tmp3 = sin(phi);
-    const Scalar tmp4 = (tmp3*tmp3);
-    const Scalar tmp5 = cos(theta);
-    const Scalar tmp6 = tmp0*(tmp5*tmp5);
-    const Scalar tmp7 = cos(phi);
-    const Scalar tmp8 = (tmp7*tmp7);
-    const Scalar tmp9 = m*(tmp2 + tmp4*tmp6 + tmp6*tmp8);
-    const Scalar tmp10 = m*(tmp2*tmp4 + tmp2*tmp8);
+    const Scalar tmp0 = cos(phi);
+    const Scalar tmp1 = cos(theta);
+    const Scalar tmp4 = sin(phi);
+    const Scalar tmp5 = sin(theta);
+    const Scalar tmp67 = (l*l);
+    const Scalar tmp68 = tmp67*(tmp5*tmp5);
+    const Scalar tmp69 = (tmp4*tmp4);
+    const Scalar tmp70 = tmp67*(tmp1*tmp1);
+    const Scalar tmp71 = (tmp0*tmp0);
+    const Scalar tmp72 = m*(tmp68 + tmp69*tmp70 + tmp70*tmp71);
+    const Scalar tmp73 = m*(tmp68*tmp69 + tmp68*tmp71);
     QMatrix<Scalar> result;
-    result(0, 0) = tmp9;
+    result(0, 0) = tmp72;
     result(1, 0) = Scalar(0);
-    result(1, 1) = tmp10;
+    result(1, 1) = tmp73;
     result(0, 1) = result(1, 0);
     return result;
   }
@@ -174,12 +182,12 @@ struct SphericalPendulum {
     const Scalar l = Scalar(params.l);
     const Scalar m = Scalar(params.m);
     const Scalar g = Scalar(params.g);
-    const Scalar tmp1 = sin(theta);
-    const Scalar tmp11 = tmp1*l;
-    const Scalar tmp12 = g*m;
-    const Scalar tmp13 = tmp11*tmp12;
+    const Scalar tmp5 = sin(theta);
+    const Scalar tmp6 = tmp5*l;
+    const Scalar tmp74 = g*m;
+    const Scalar tmp75 = tmp74*tmp6;
     QVector<Scalar> result;
-    result(0) = -tmp13;
+    result(0) = -tmp75;
     result(1) = Scalar(0);
     return result;
   }
@@ -222,27 +230,27 @@ struct SphericalPendulum {
     const Scalar phi_dot = v(1);
     const Scalar l = Scalar(params.l);
     const Scalar m = Scalar(params.m);
-    const Scalar tmp0 = (l*l);
-    const Scalar tmp1 = sin(theta);
-    const Scalar tmp3 = sin(phi);
-    const Scalar tmp5 = cos(theta);
-    const Scalar tmp7 = cos(phi);
-    const Scalar tmp11 = tmp1*l;
-    const Scalar tmp14 = (theta_dot*theta_dot);
-    const Scalar tmp15 = tmp11*tmp3;
-    const Scalar tmp16 = -tmp15*phi_dot + tmp5*tmp7*l*theta_dot;
-    const Scalar tmp17 = tmp5*l;
-    const Scalar tmp18 = tmp17*tmp7;
-    const Scalar tmp19 = tmp16*phi_dot + theta_dot*(tmp18*phi_dot - tmp15*theta_dot);
-    const Scalar tmp20 = tmp17*tmp3;
-    const Scalar tmp21 = tmp11*tmp7;
-    const Scalar tmp22 = tmp20*theta_dot + tmp21*phi_dot;
-    const Scalar tmp23 = theta_dot*(-tmp20*phi_dot - tmp21*theta_dot) - tmp22*phi_dot;
-    const Scalar tmp24 = m*(tmp18*tmp23 + tmp19*tmp20 + tmp0*tmp1*tmp14*tmp5);
-    const Scalar tmp25 = m*(tmp19*tmp21 - tmp15*tmp23);
+    const Scalar tmp0 = cos(phi);
+    const Scalar tmp1 = cos(theta);
+    const Scalar tmp2 = tmp1*l;
+    const Scalar tmp3 = tmp0*tmp2;
+    const Scalar tmp4 = sin(phi);
+    const Scalar tmp5 = sin(theta);
+    const Scalar tmp6 = tmp5*l;
+    const Scalar tmp7 = tmp4*tmp6;
+    const Scalar tmp9 = tmp2*tmp4;
+    const Scalar tmp10 = tmp0*tmp6;
+    const Scalar tmp11 = tmp9*theta_dot + tmp10*phi_dot;
+    const Scalar tmp12 = theta_dot*(-tmp9*phi_dot - tmp10*theta_dot) - tmp11*phi_dot;
+    const Scalar tmp13 = -tmp7*phi_dot + tmp0*tmp1*l*theta_dot;
+    const Scalar tmp14 = tmp13*phi_dot + theta_dot*(tmp3*phi_dot - tmp7*theta_dot);
+    const Scalar tmp15 = (theta_dot*theta_dot);
+    const Scalar tmp67 = (l*l);
+    const Scalar tmp76 = m*(tmp12*tmp3 + tmp14*tmp9 + tmp1*tmp15*tmp67*tmp5);
+    const Scalar tmp77 = m*(tmp14*tmp10 - tmp12*tmp7);
     QVector<Scalar> result;
-    result(0) = -tmp24;
-    result(1) = -tmp25;
+    result(0) = -tmp76;
+    result(1) = -tmp77;
     return result;
   }
 
@@ -267,30 +275,30 @@ struct SphericalPendulum {
     const Scalar l = Scalar(params.l);
     const Scalar m = Scalar(params.m);
     const Scalar g = Scalar(params.g);
-    const Scalar tmp0 = (l*l);
-    const Scalar tmp1 = sin(theta);
-    const Scalar tmp3 = sin(phi);
-    const Scalar tmp5 = cos(theta);
-    const Scalar tmp7 = cos(phi);
-    const Scalar tmp11 = tmp1*l;
-    const Scalar tmp12 = g*m;
-    const Scalar tmp13 = tmp11*tmp12;
-    const Scalar tmp14 = (theta_dot*theta_dot);
-    const Scalar tmp15 = tmp11*tmp3;
-    const Scalar tmp16 = -tmp15*phi_dot + tmp5*tmp7*l*theta_dot;
-    const Scalar tmp17 = tmp5*l;
-    const Scalar tmp18 = tmp17*tmp7;
-    const Scalar tmp19 = tmp16*phi_dot + theta_dot*(tmp18*phi_dot - tmp15*theta_dot);
-    const Scalar tmp20 = tmp17*tmp3;
-    const Scalar tmp21 = tmp11*tmp7;
-    const Scalar tmp22 = tmp20*theta_dot + tmp21*phi_dot;
-    const Scalar tmp23 = theta_dot*(-tmp20*phi_dot - tmp21*theta_dot) - tmp22*phi_dot;
-    const Scalar tmp24 = m*(tmp18*tmp23 + tmp19*tmp20 + tmp0*tmp1*tmp14*tmp5);
-    const Scalar tmp25 = m*(tmp19*tmp21 - tmp15*tmp23);
-    const Scalar tmp26 = tmp13 + tmp24;
+    const Scalar tmp0 = cos(phi);
+    const Scalar tmp1 = cos(theta);
+    const Scalar tmp2 = tmp1*l;
+    const Scalar tmp3 = tmp0*tmp2;
+    const Scalar tmp4 = sin(phi);
+    const Scalar tmp5 = sin(theta);
+    const Scalar tmp6 = tmp5*l;
+    const Scalar tmp7 = tmp4*tmp6;
+    const Scalar tmp9 = tmp2*tmp4;
+    const Scalar tmp10 = tmp0*tmp6;
+    const Scalar tmp11 = tmp9*theta_dot + tmp10*phi_dot;
+    const Scalar tmp12 = theta_dot*(-tmp9*phi_dot - tmp10*theta_dot) - tmp11*phi_dot;
+    const Scalar tmp13 = -tmp7*phi_dot + tmp0*tmp1*l*theta_dot;
+    const Scalar tmp14 = tmp13*phi_dot + theta_dot*(tmp3*phi_dot - tmp7*theta_dot);
+    const Scalar tmp15 = (theta_dot*theta_dot);
+    const Scalar tmp67 = (l*l);
+    const Scalar tmp74 = g*m;
+    const Scalar tmp75 = tmp74*tmp6;
+    const Scalar tmp76 = m*(tmp12*tmp3 + tmp14*tmp9 + tmp1*tmp15*tmp67*tmp5);
+    const Scalar tmp77 = m*(tmp14*tmp10 - tmp12*tmp7);
+    const Scalar tmp78 = tmp75 + tmp76;
     QVector<Scalar> result;
-    result(0) = -tmp26;
-    result(1) = -tmp25;
+    result(0) = -tmp78;
+    result(1) = -tmp77;
     return result;
   }
 
@@ -317,38 +325,38 @@ struct SphericalPendulum {
     const Scalar l = Scalar(params.l);
     const Scalar m = Scalar(params.m);
     const Scalar g = Scalar(params.g);
-    const Scalar tmp0 = (l*l);
-    const Scalar tmp1 = sin(theta);
-    const Scalar tmp2 = tmp0*(tmp1*tmp1);
-    const Scalar tmp3 = sin(phi);
-    const Scalar tmp4 = (tmp3*tmp3);
-    const Scalar tmp5 = cos(theta);
-    const Scalar tmp6 = tmp0*(tmp5*tmp5);
-    const Scalar tmp7 = cos(phi);
-    const Scalar tmp8 = (tmp7*tmp7);
-    const Scalar tmp9 = m*(tmp2 + tmp4*tmp6 + tmp6*tmp8);
-    const Scalar tmp10 = m*(tmp2*tmp4 + tmp2*tmp8);
-    const Scalar tmp11 = tmp1*l;
-    const Scalar tmp12 = g*m;
-    const Scalar tmp13 = tmp11*tmp12;
-    const Scalar tmp14 = (theta_dot*theta_dot);
-    const Scalar tmp15 = tmp11*tmp3;
-    const Scalar tmp16 = -tmp15*phi_dot + tmp5*tmp7*l*theta_dot;
-    const Scalar tmp17 = tmp5*l;
-    const Scalar tmp18 = tmp17*tmp7;
-    const Scalar tmp19 = tmp16*phi_dot + theta_dot*(tmp18*phi_dot - tmp15*theta_dot);
-    const Scalar tmp20 = tmp17*tmp3;
-    const Scalar tmp21 = tmp11*tmp7;
-    const Scalar tmp22 = tmp20*theta_dot + tmp21*phi_dot;
-    const Scalar tmp23 = theta_dot*(-tmp20*phi_dot - tmp21*theta_dot) - tmp22*phi_dot;
-    const Scalar tmp24 = m*(tmp18*tmp23 + tmp19*tmp20 + tmp0*tmp1*tmp14*tmp5);
-    const Scalar tmp25 = m*(tmp19*tmp21 - tmp15*tmp23);
-    const Scalar tmp26 = tmp13 + tmp24;
-    (*Mt)(0, 0) = tmp9;
+    const Scalar tmp0 = cos(phi);
+    const Scalar tmp1 = cos(theta);
+    const Scalar tmp2 = tmp1*l;
+    const Scalar tmp3 = tmp0*tmp2;
+    const Scalar tmp4 = sin(phi);
+    const Scalar tmp5 = sin(theta);
+    const Scalar tmp6 = tmp5*l;
+    const Scalar tmp7 = tmp4*tmp6;
+    const Scalar tmp9 = tmp2*tmp4;
+    const Scalar tmp10 = tmp0*tmp6;
+    const Scalar tmp11 = tmp9*theta_dot + tmp10*phi_dot;
+    const Scalar tmp12 = theta_dot*(-tmp9*phi_dot - tmp10*theta_dot) - tmp11*phi_dot;
+    const Scalar tmp13 = -tmp7*phi_dot + tmp0*tmp1*l*theta_dot;
+    const Scalar tmp14 = tmp13*phi_dot + theta_dot*(tmp3*phi_dot - tmp7*theta_dot);
+    const Scalar tmp15 = (theta_dot*theta_dot);
+    const Scalar tmp67 = (l*l);
+    const Scalar tmp68 = tmp67*(tmp5*tmp5);
+    const Scalar tmp69 = (tmp4*tmp4);
+    const Scalar tmp70 = tmp67*(tmp1*tmp1);
+    const Scalar tmp71 = (tmp0*tmp0);
+    const Scalar tmp72 = m*(tmp68 + tmp69*tmp70 + tmp70*tmp71);
+    const Scalar tmp73 = m*(tmp68*tmp69 + tmp68*tmp71);
+    const Scalar tmp74 = g*m;
+    const Scalar tmp75 = tmp74*tmp6;
+    const Scalar tmp76 = m*(tmp12*tmp3 + tmp14*tmp9 + tmp1*tmp15*tmp67*tmp5);
+    const Scalar tmp77 = m*(tmp14*tmp10 - tmp12*tmp7);
+    const Scalar tmp78 = tmp75 + tmp76;
+    (*Mt)(0, 0) = tmp72;
     (*Mt)(1, 0) = Scalar(0);
-    (*Mt)(1, 1) = tmp10;
-    (*f)(0) = -tmp26;
-    (*f)(1) = -tmp25;
+    (*Mt)(1, 1) = tmp73;
+    (*f)(0) = -tmp78;
+    (*f)(1) = -tmp77;
     (*Mt)(0, 1) = (*Mt)(1, 0);
   }
 
@@ -378,36 +386,36 @@ struct SphericalPendulum {
     const Scalar l = Scalar(params.l);
     const Scalar m = Scalar(params.m);
     const Scalar g = Scalar(params.g);
-    const Scalar tmp0 = (l*l);
-    const Scalar tmp1 = sin(theta);
-    const Scalar tmp2 = tmp0*(tmp1*tmp1);
-    const Scalar tmp3 = sin(phi);
-    const Scalar tmp4 = (tmp3*tmp3);
-    const Scalar tmp5 = cos(theta);
-    const Scalar tmp6 = tmp0*(tmp5*tmp5);
-    const Scalar tmp7 = cos(phi);
-    const Scalar tmp8 = (tmp7*tmp7);
-    const Scalar tmp9 = m*(tmp2 + tmp4*tmp6 + tmp6*tmp8);
-    const Scalar tmp10 = m*(tmp2*tmp4 + tmp2*tmp8);
-    const Scalar tmp11 = tmp1*l;
-    const Scalar tmp12 = g*m;
-    const Scalar tmp13 = tmp11*tmp12;
-    const Scalar tmp14 = (theta_dot*theta_dot);
-    const Scalar tmp15 = tmp11*tmp3;
-    const Scalar tmp16 = -tmp15*phi_dot + tmp5*tmp7*l*theta_dot;
-    const Scalar tmp17 = tmp5*l;
-    const Scalar tmp18 = tmp17*tmp7;
-    const Scalar tmp19 = tmp16*phi_dot + theta_dot*(tmp18*phi_dot - tmp15*theta_dot);
-    const Scalar tmp20 = tmp17*tmp3;
-    const Scalar tmp21 = tmp11*tmp7;
-    const Scalar tmp22 = tmp20*theta_dot + tmp21*phi_dot;
-    const Scalar tmp23 = theta_dot*(-tmp20*phi_dot - tmp21*theta_dot) - tmp22*phi_dot;
-    const Scalar tmp24 = m*(tmp18*tmp23 + tmp19*tmp20 + tmp0*tmp1*tmp14*tmp5);
-    const Scalar tmp25 = m*(tmp19*tmp21 - tmp15*tmp23);
-    const Scalar tmp26 = tmp13 + tmp24;
+    const Scalar tmp0 = cos(phi);
+    const Scalar tmp1 = cos(theta);
+    const Scalar tmp2 = tmp1*l;
+    const Scalar tmp3 = tmp0*tmp2;
+    const Scalar tmp4 = sin(phi);
+    const Scalar tmp5 = sin(theta);
+    const Scalar tmp6 = tmp5*l;
+    const Scalar tmp7 = tmp4*tmp6;
+    const Scalar tmp9 = tmp2*tmp4;
+    const Scalar tmp10 = tmp0*tmp6;
+    const Scalar tmp11 = tmp9*theta_dot + tmp10*phi_dot;
+    const Scalar tmp12 = theta_dot*(-tmp9*phi_dot - tmp10*theta_dot) - tmp11*phi_dot;
+    const Scalar tmp13 = -tmp7*phi_dot + tmp0*tmp1*l*theta_dot;
+    const Scalar tmp14 = tmp13*phi_dot + theta_dot*(tmp3*phi_dot - tmp7*theta_dot);
+    const Scalar tmp15 = (theta_dot*theta_dot);
+    const Scalar tmp67 = (l*l);
+    const Scalar tmp68 = tmp67*(tmp5*tmp5);
+    const Scalar tmp69 = (tmp4*tmp4);
+    const Scalar tmp70 = tmp67*(tmp1*tmp1);
+    const Scalar tmp71 = (tmp0*tmp0);
+    const Scalar tmp72 = m*(tmp68 + tmp69*tmp70 + tmp70*tmp71);
+    const Scalar tmp73 = m*(tmp68*tmp69 + tmp68*tmp71);
+    const Scalar tmp74 = g*m;
+    const Scalar tmp75 = tmp74*tmp6;
+    const Scalar tmp76 = m*(tmp12*tmp3 + tmp14*tmp9 + tmp1*tmp15*tmp67*tmp5);
+    const Scalar tmp77 = m*(tmp14*tmp10 - tmp12*tmp7);
+    const Scalar tmp78 = tmp75 + tmp76;
     QVector<Scalar> result;
-    result(0) = tmp26 + tmp9*theta_ddot;
-    result(1) = tmp25 + tmp10*phi_ddot;
+    result(0) = tmp78 + tmp72*theta_ddot;
+    result(1) = tmp77 + tmp73*phi_ddot;
     return result;
   }
 
@@ -438,81 +446,81 @@ struct SphericalPendulum {
     const Scalar l = Scalar(params.l);
     const Scalar m = Scalar(params.m);
     const Scalar g = Scalar(params.g);
-    const Scalar tmp0 = (l*l);
-    const Scalar tmp1 = sin(theta);
-    const Scalar tmp2 = tmp0*(tmp1*tmp1);
-    const Scalar tmp3 = sin(phi);
-    const Scalar tmp4 = (tmp3*tmp3);
-    const Scalar tmp5 = cos(theta);
-    const Scalar tmp6 = tmp0*(tmp5*tmp5);
-    const Scalar tmp7 = cos(phi);
-    const Scalar tmp8 = (tmp7*tmp7);
-    const Scalar tmp11 = tmp1*l;
-    const Scalar tmp12 = g*m;
-    const Scalar tmp14 = (theta_dot*theta_dot);
-    const Scalar tmp15 = tmp11*tmp3;
-    const Scalar tmp16 = -tmp15*phi_dot + tmp5*tmp7*l*theta_dot;
-    const Scalar tmp17 = tmp5*l;
-    const Scalar tmp18 = tmp17*tmp7;
-    const Scalar tmp19 = tmp16*phi_dot + theta_dot*(tmp18*phi_dot - tmp15*theta_dot);
-    const Scalar tmp20 = tmp17*tmp3;
-    const Scalar tmp21 = tmp11*tmp7;
-    const Scalar tmp22 = tmp20*theta_dot + tmp21*phi_dot;
-    const Scalar tmp23 = theta_dot*(-tmp20*phi_dot - tmp21*theta_dot) - tmp22*phi_dot;
-    const Scalar tmp64 = Scalar(2)*tmp0*tmp1*tmp5;
-    const Scalar tmp65 = -tmp1;
-    const Scalar tmp66 = Scalar(2)*tmp0*tmp5*tmp65;
-    const Scalar tmp67 = m*tmp64 + m*(tmp4 + tmp8)*tmp66;
-    const Scalar tmp68 = m*(tmp4 + tmp8)*tmp64;
-    const Scalar tmp69 = l*tmp5;
-    const Scalar tmp70 = tmp12*tmp69;
-    const Scalar tmp71 = tmp3*tmp69;
-    const Scalar tmp72 = -phi_dot*tmp71 + tmp7*l*theta_dot*tmp65;
-    const Scalar tmp73 = l*tmp65;
-    const Scalar tmp74 = tmp7*tmp73;
-    const Scalar tmp75 = -(theta_dot*theta_dot)*tmp71 + phi_dot*tmp72 + phi_dot*theta_dot*tmp74;
-    const Scalar tmp76 = tmp3*tmp73;
-    const Scalar tmp77 = tmp7*tmp69;
-    const Scalar tmp78 = theta_dot*tmp76 + phi_dot*tmp77;
-    const Scalar tmp79 = -phi_dot*theta_dot*tmp76 - (theta_dot*theta_dot)*tmp77 - phi_dot*tmp78;
-    const Scalar tmp80 = tmp0*tmp14*tmp5*m*tmp5 + tmp23*m*tmp74 + tmp20*m*tmp75 + tmp19*m*tmp76
-        + tmp18*m*tmp79 + tmp0*tmp1*tmp14*m*tmp65;
-    const Scalar tmp81 = -tmp23*m*tmp71 + tmp21*m*tmp75 + tmp19*m*tmp77 - tmp15*m*tmp79;
-    const Scalar tmp82 = tmp70 + tmp80;
-    const Scalar tmp83 = Scalar(2)*tmp3*tmp7;
-    const Scalar tmp84 = -tmp3;
-    const Scalar tmp85 = Scalar(2)*tmp7*tmp84;
-    const Scalar tmp86 = tmp6*m*tmp83 + tmp6*m*tmp85;
-    const Scalar tmp87 = tmp2*m*tmp83 + tmp2*m*tmp85;
-    const Scalar tmp88 = tmp11*tmp7;
-    const Scalar tmp89 = -phi_dot*tmp88 + tmp5*l*theta_dot*tmp84;
-    const Scalar tmp90 = tmp17*tmp84;
-    const Scalar tmp91 = -(theta_dot*theta_dot)*tmp88 + phi_dot*tmp89 + phi_dot*theta_dot*tmp90;
-    const Scalar tmp92 = tmp17*tmp7;
-    const Scalar tmp93 = tmp11*tmp84;
-    const Scalar tmp94 = theta_dot*tmp92 + phi_dot*tmp93;
-    const Scalar tmp95 = -phi_dot*theta_dot*tmp92 - (theta_dot*theta_dot)*tmp93 - phi_dot*tmp94;
-    const Scalar tmp96 = tmp23*m*tmp90 + tmp20*m*tmp91 + tmp19*m*tmp92 + tmp18*m*tmp95;
-    const Scalar tmp97 = -tmp23*m*tmp88 + tmp21*m*tmp91 + tmp19*m*tmp93 - tmp15*m*tmp95;
-    const Scalar tmp98 = Scalar(2)*theta_dot;
-    const Scalar tmp99 = tmp5*tmp7*l;
-    const Scalar tmp100 = tmp18*phi_dot - Scalar(2)*tmp15*theta_dot + phi_dot*tmp99;
-    const Scalar tmp101 = -tmp20*phi_dot - Scalar(2)*tmp21*theta_dot - phi_dot*tmp20;
-    const Scalar tmp102 = tmp0*tmp1*tmp5*m*tmp98 + tmp20*m*tmp100 + tmp18*m*tmp101;
-    const Scalar tmp103 = tmp21*m*tmp100 - tmp15*m*tmp101;
-    const Scalar tmp104 = -tmp15;
-    const Scalar tmp105 = tmp16 + tmp18*theta_dot + phi_dot*tmp104;
-    const Scalar tmp106 = -tmp22 - tmp20*theta_dot - phi_dot*tmp21;
-    const Scalar tmp107 = tmp20*m*tmp105 + tmp18*m*tmp106;
-    const Scalar tmp108 = tmp21*m*tmp105 - tmp15*m*tmp106;
-    (*dr_dq)(0, 0) = tmp82 + theta_ddot*tmp67;
-    (*dr_dq)(0, 1) = tmp96 + theta_ddot*tmp86;
-    (*dr_dq)(1, 0) = phi_ddot*tmp68 + tmp81;
-    (*dr_dq)(1, 1) = phi_ddot*tmp87 + tmp97;
-    (*dr_dv)(0, 0) = tmp102;
-    (*dr_dv)(0, 1) = tmp107;
-    (*dr_dv)(1, 0) = tmp103;
-    (*dr_dv)(1, 1) = tmp108;
+    const Scalar tmp0 = cos(phi);
+    const Scalar tmp1 = cos(theta);
+    const Scalar tmp2 = tmp1*l;
+    const Scalar tmp3 = tmp0*tmp2;
+    const Scalar tmp4 = sin(phi);
+    const Scalar tmp5 = sin(theta);
+    const Scalar tmp6 = tmp5*l;
+    const Scalar tmp7 = tmp4*tmp6;
+    const Scalar tmp9 = tmp2*tmp4;
+    const Scalar tmp10 = tmp0*tmp6;
+    const Scalar tmp11 = tmp9*theta_dot + tmp10*phi_dot;
+    const Scalar tmp12 = theta_dot*(-tmp9*phi_dot - tmp10*theta_dot) - tmp11*phi_dot;
+    const Scalar tmp13 = -tmp7*phi_dot + tmp0*tmp1*l*theta_dot;
+    const Scalar tmp14 = tmp13*phi_dot + theta_dot*(tmp3*phi_dot - tmp7*theta_dot);
+    const Scalar tmp15 = (theta_dot*theta_dot);
+    const Scalar tmp67 = (l*l);
+    const Scalar tmp68 = tmp67*(tmp5*tmp5);
+    const Scalar tmp69 = (tmp4*tmp4);
+    const Scalar tmp70 = tmp67*(tmp1*tmp1);
+    const Scalar tmp71 = (tmp0*tmp0);
+    const Scalar tmp74 = g*m;
+    const Scalar tmp116 = -tmp5;
+    const Scalar tmp117 = l*tmp116;
+    const Scalar tmp118 = tmp0*tmp117;
+    const Scalar tmp119 = l*tmp1;
+    const Scalar tmp120 = tmp4*tmp119;
+    const Scalar tmp121 = tmp4*tmp117;
+    const Scalar tmp122 = tmp0*tmp119;
+    const Scalar tmp123 = theta_dot*tmp121 + phi_dot*tmp122;
+    const Scalar tmp124 = -phi_dot*tmp123 - phi_dot*theta_dot*tmp121 - (theta_dot*theta_dot)*tmp122;
+    const Scalar tmp125 = tmp0*l*theta_dot*tmp116 - phi_dot*tmp120;
+    const Scalar tmp126 = phi_dot*tmp125 + phi_dot*theta_dot*tmp118 - (theta_dot*theta_dot)*tmp120;
+    const Scalar tmp127 = Scalar(2)*tmp67*tmp5*tmp1;
+    const Scalar tmp128 = Scalar(2)*tmp1*tmp67*tmp116;
+    const Scalar tmp129 = m*tmp127 + m*(tmp69 + tmp71)*tmp128;
+    const Scalar tmp130 = m*(tmp69 + tmp71)*tmp127;
+    const Scalar tmp131 = tmp74*tmp119;
+    const Scalar tmp132 = tmp15*tmp67*tmp5*m*tmp116 + tmp3*m*tmp124 + tmp9*m*tmp126 + tmp12*m*tmp118
+        + tmp1*tmp15*tmp67*m*tmp1 + tmp14*m*tmp121;
+    const Scalar tmp133 = -tmp7*m*tmp124 + tmp10*m*tmp126 - tmp12*m*tmp120 + tmp14*m*tmp122;
+    const Scalar tmp134 = tmp131 + tmp132;
+    const Scalar tmp135 = -tmp4;
+    const Scalar tmp136 = tmp2*tmp135;
+    const Scalar tmp137 = tmp6*tmp0;
+    const Scalar tmp138 = tmp2*tmp0;
+    const Scalar tmp139 = tmp6*tmp135;
+    const Scalar tmp140 = theta_dot*tmp138 + phi_dot*tmp139;
+    const Scalar tmp141 = -phi_dot*tmp140 - phi_dot*theta_dot*tmp138 - (theta_dot*theta_dot)*tmp139;
+    const Scalar tmp142 = tmp1*l*theta_dot*tmp135 - phi_dot*tmp137;
+    const Scalar tmp143 = phi_dot*tmp142 + phi_dot*theta_dot*tmp136 - (theta_dot*theta_dot)*tmp137;
+    const Scalar tmp144 = Scalar(2)*tmp4*tmp0;
+    const Scalar tmp145 = Scalar(2)*tmp0*tmp135;
+    const Scalar tmp146 = tmp70*m*tmp144 + tmp70*m*tmp145;
+    const Scalar tmp147 = tmp68*m*tmp144 + tmp68*m*tmp145;
+    const Scalar tmp148 = tmp3*m*tmp141 + tmp9*m*tmp143 + tmp12*m*tmp136 + tmp14*m*tmp138;
+    const Scalar tmp149 = -tmp7*m*tmp141 + tmp10*m*tmp143 - tmp12*m*tmp137 + tmp14*m*tmp139;
+    const Scalar tmp150 = -tmp9*phi_dot - Scalar(2)*tmp10*theta_dot - phi_dot*tmp9;
+    const Scalar tmp151 = tmp0*tmp1*l;
+    const Scalar tmp152 = tmp3*phi_dot - Scalar(2)*tmp7*theta_dot + phi_dot*tmp151;
+    const Scalar tmp153 = Scalar(2)*theta_dot;
+    const Scalar tmp154 = tmp3*m*tmp150 + tmp9*m*tmp152 + tmp1*tmp67*tmp5*m*tmp153;
+    const Scalar tmp155 = -tmp7*m*tmp150 + tmp10*m*tmp152;
+    const Scalar tmp156 = -tmp11 - tmp9*theta_dot - phi_dot*tmp10;
+    const Scalar tmp157 = -tmp7;
+    const Scalar tmp158 = tmp13 + tmp3*theta_dot + phi_dot*tmp157;
+    const Scalar tmp159 = tmp3*m*tmp156 + tmp9*m*tmp158;
+    const Scalar tmp160 = -tmp7*m*tmp156 + tmp10*m*tmp158;
+    (*dr_dq)(0, 0) = theta_ddot*tmp129 + tmp134;
+    (*dr_dq)(0, 1) = theta_ddot*tmp146 + tmp148;
+    (*dr_dq)(1, 0) = phi_ddot*tmp130 + tmp133;
+    (*dr_dq)(1, 1) = phi_ddot*tmp147 + tmp149;
+    (*dr_dv)(0, 0) = tmp154;
+    (*dr_dv)(0, 1) = tmp159;
+    (*dr_dv)(1, 0) = tmp155;
+    (*dr_dv)(1, 1) = tmp160;
   }
 
   /// Kinetic energy T = 1/2 xdot^T M xdot.
@@ -535,23 +543,23 @@ struct SphericalPendulum {
     const Scalar phi_dot = v(1);
     const Scalar l = Scalar(params.l);
     const Scalar m = Scalar(params.m);
-    const Scalar tmp0 = (l*l);
-    const Scalar tmp1 = sin(theta);
-    const Scalar tmp2 = tmp0*(tmp1*tmp1);
-    const Scalar tmp3 = sin(phi);
-    const Scalar tmp5 = cos(theta);
-    const Scalar tmp7 = cos(phi);
-    const Scalar tmp11 = tmp1*l;
-    const Scalar tmp14 = (theta_dot*theta_dot);
-    const Scalar tmp15 = tmp11*tmp3;
-    const Scalar tmp16 = -tmp15*phi_dot + tmp5*tmp7*l*theta_dot;
-    const Scalar tmp17 = tmp5*l;
-    const Scalar tmp20 = tmp17*tmp3;
-    const Scalar tmp21 = tmp11*tmp7;
-    const Scalar tmp22 = tmp20*theta_dot + tmp21*phi_dot;
-    const Scalar tmp27 = (tmp16*tmp16) + (tmp22*tmp22) + tmp14*tmp2;
+    const Scalar tmp0 = cos(phi);
+    const Scalar tmp1 = cos(theta);
+    const Scalar tmp2 = tmp1*l;
+    const Scalar tmp4 = sin(phi);
+    const Scalar tmp5 = sin(theta);
+    const Scalar tmp6 = tmp5*l;
+    const Scalar tmp7 = tmp4*tmp6;
+    const Scalar tmp9 = tmp2*tmp4;
+    const Scalar tmp10 = tmp0*tmp6;
+    const Scalar tmp11 = tmp9*theta_dot + tmp10*phi_dot;
+    const Scalar tmp13 = -tmp7*phi_dot + tmp0*tmp1*l*theta_dot;
+    const Scalar tmp15 = (theta_dot*theta_dot);
+    const Scalar tmp67 = (l*l);
+    const Scalar tmp68 = tmp67*(tmp5*tmp5);
+    const Scalar tmp79 = (tmp11*tmp11) + (tmp13*tmp13) + tmp15*tmp68;
     Scalar result;
-    result = (Scalar(0.5))*tmp27*m;
+    result = (Scalar(0.5))*tmp79*m;
     return result;
   }
 
@@ -570,12 +578,12 @@ struct SphericalPendulum {
     const Scalar l = Scalar(params.l);
     const Scalar m = Scalar(params.m);
     const Scalar g = Scalar(params.g);
-    const Scalar tmp5 = cos(theta);
-    const Scalar tmp12 = g*m;
-    const Scalar tmp17 = tmp5*l;
-    const Scalar tmp28 = tmp12*tmp17;
+    const Scalar tmp1 = cos(theta);
+    const Scalar tmp2 = tmp1*l;
+    const Scalar tmp74 = g*m;
+    const Scalar tmp80 = tmp2*tmp74;
     Scalar result;
-    result = -tmp28;
+    result = -tmp80;
     return result;
   }
 
@@ -615,25 +623,25 @@ struct SphericalPendulum {
     const Scalar l = Scalar(params.l);
     const Scalar m = Scalar(params.m);
     const Scalar g = Scalar(params.g);
-    const Scalar tmp0 = (l*l);
-    const Scalar tmp1 = sin(theta);
-    const Scalar tmp2 = tmp0*(tmp1*tmp1);
-    const Scalar tmp3 = sin(phi);
-    const Scalar tmp5 = cos(theta);
-    const Scalar tmp7 = cos(phi);
-    const Scalar tmp11 = tmp1*l;
-    const Scalar tmp12 = g*m;
-    const Scalar tmp14 = (theta_dot*theta_dot);
-    const Scalar tmp15 = tmp11*tmp3;
-    const Scalar tmp16 = -tmp15*phi_dot + tmp5*tmp7*l*theta_dot;
-    const Scalar tmp17 = tmp5*l;
-    const Scalar tmp20 = tmp17*tmp3;
-    const Scalar tmp21 = tmp11*tmp7;
-    const Scalar tmp22 = tmp20*theta_dot + tmp21*phi_dot;
-    const Scalar tmp27 = (tmp16*tmp16) + (tmp22*tmp22) + tmp14*tmp2;
-    const Scalar tmp28 = tmp12*tmp17;
+    const Scalar tmp0 = cos(phi);
+    const Scalar tmp1 = cos(theta);
+    const Scalar tmp2 = tmp1*l;
+    const Scalar tmp4 = sin(phi);
+    const Scalar tmp5 = sin(theta);
+    const Scalar tmp6 = tmp5*l;
+    const Scalar tmp7 = tmp4*tmp6;
+    const Scalar tmp9 = tmp2*tmp4;
+    const Scalar tmp10 = tmp0*tmp6;
+    const Scalar tmp11 = tmp9*theta_dot + tmp10*phi_dot;
+    const Scalar tmp13 = -tmp7*phi_dot + tmp0*tmp1*l*theta_dot;
+    const Scalar tmp15 = (theta_dot*theta_dot);
+    const Scalar tmp67 = (l*l);
+    const Scalar tmp68 = tmp67*(tmp5*tmp5);
+    const Scalar tmp74 = g*m;
+    const Scalar tmp79 = (tmp11*tmp11) + (tmp13*tmp13) + tmp15*tmp68;
+    const Scalar tmp80 = tmp2*tmp74;
     Scalar result;
-    result = -tmp28 + (Scalar(0.5))*tmp27*m;
+    result = -tmp80 + (Scalar(0.5))*tmp79*m;
     return result;
   }
 
@@ -652,18 +660,18 @@ struct SphericalPendulum {
     const Scalar theta = q(0);
     const Scalar phi = q(1);
     const Scalar l = Scalar(params.l);
-    const Scalar tmp1 = sin(theta);
-    const Scalar tmp3 = sin(phi);
-    const Scalar tmp5 = cos(theta);
-    const Scalar tmp7 = cos(phi);
-    const Scalar tmp11 = tmp1*l;
-    const Scalar tmp15 = tmp11*tmp3;
-    const Scalar tmp17 = tmp5*l;
-    const Scalar tmp21 = tmp11*tmp7;
+    const Scalar tmp0 = cos(phi);
+    const Scalar tmp1 = cos(theta);
+    const Scalar tmp2 = tmp1*l;
+    const Scalar tmp4 = sin(phi);
+    const Scalar tmp5 = sin(theta);
+    const Scalar tmp6 = tmp5*l;
+    const Scalar tmp7 = tmp4*tmp6;
+    const Scalar tmp10 = tmp0*tmp6;
     XVector<Scalar> result;
-    result(0) = tmp21;
-    result(1) = tmp15;
-    result(2) = -tmp17;
+    result(0) = tmp10;
+    result(1) = tmp7;
+    result(2) = -tmp2;
     return result;
   }
 
@@ -686,22 +694,22 @@ struct SphericalPendulum {
     const Scalar theta_dot = v(0);
     const Scalar phi_dot = v(1);
     const Scalar l = Scalar(params.l);
-    const Scalar tmp1 = sin(theta);
-    const Scalar tmp3 = sin(phi);
-    const Scalar tmp5 = cos(theta);
-    const Scalar tmp7 = cos(phi);
-    const Scalar tmp11 = tmp1*l;
-    const Scalar tmp15 = tmp11*tmp3;
-    const Scalar tmp16 = -tmp15*phi_dot + tmp5*tmp7*l*theta_dot;
-    const Scalar tmp17 = tmp5*l;
-    const Scalar tmp20 = tmp17*tmp3;
-    const Scalar tmp21 = tmp11*tmp7;
-    const Scalar tmp22 = tmp20*theta_dot + tmp21*phi_dot;
-    const Scalar tmp29 = tmp11*theta_dot;
+    const Scalar tmp0 = cos(phi);
+    const Scalar tmp1 = cos(theta);
+    const Scalar tmp2 = tmp1*l;
+    const Scalar tmp4 = sin(phi);
+    const Scalar tmp5 = sin(theta);
+    const Scalar tmp6 = tmp5*l;
+    const Scalar tmp7 = tmp4*tmp6;
+    const Scalar tmp9 = tmp2*tmp4;
+    const Scalar tmp10 = tmp0*tmp6;
+    const Scalar tmp11 = tmp9*theta_dot + tmp10*phi_dot;
+    const Scalar tmp13 = -tmp7*phi_dot + tmp0*tmp1*l*theta_dot;
+    const Scalar tmp81 = tmp6*theta_dot;
     XVector<Scalar> result;
-    result(0) = tmp16;
-    result(1) = tmp22;
-    result(2) = tmp29;
+    result(0) = tmp13;
+    result(1) = tmp11;
+    result(2) = tmp81;
     return result;
   }
 
@@ -720,22 +728,22 @@ struct SphericalPendulum {
     const Scalar theta = q(0);
     const Scalar phi = q(1);
     const Scalar l = Scalar(params.l);
-    const Scalar tmp1 = sin(theta);
-    const Scalar tmp3 = sin(phi);
-    const Scalar tmp5 = cos(theta);
-    const Scalar tmp7 = cos(phi);
-    const Scalar tmp11 = tmp1*l;
-    const Scalar tmp15 = tmp11*tmp3;
-    const Scalar tmp17 = tmp5*l;
-    const Scalar tmp18 = tmp17*tmp7;
-    const Scalar tmp20 = tmp17*tmp3;
-    const Scalar tmp21 = tmp11*tmp7;
+    const Scalar tmp0 = cos(phi);
+    const Scalar tmp1 = cos(theta);
+    const Scalar tmp2 = tmp1*l;
+    const Scalar tmp3 = tmp0*tmp2;
+    const Scalar tmp4 = sin(phi);
+    const Scalar tmp5 = sin(theta);
+    const Scalar tmp6 = tmp5*l;
+    const Scalar tmp7 = tmp4*tmp6;
+    const Scalar tmp9 = tmp2*tmp4;
+    const Scalar tmp10 = tmp0*tmp6;
     XJacobian<Scalar> result;
-    result(0, 0) = tmp18;
-    result(0, 1) = -tmp15;
-    result(1, 0) = tmp20;
-    result(1, 1) = tmp21;
-    result(2, 0) = tmp11;
+    result(0, 0) = tmp3;
+    result(0, 1) = -tmp7;
+    result(1, 0) = tmp9;
+    result(1, 1) = tmp10;
+    result(2, 0) = tmp6;
     result(2, 1) = Scalar(0);
     return result;
   }
@@ -759,25 +767,25 @@ struct SphericalPendulum {
     const Scalar theta_dot = v(0);
     const Scalar phi_dot = v(1);
     const Scalar l = Scalar(params.l);
-    const Scalar tmp1 = sin(theta);
-    const Scalar tmp3 = sin(phi);
-    const Scalar tmp5 = cos(theta);
-    const Scalar tmp7 = cos(phi);
-    const Scalar tmp11 = tmp1*l;
-    const Scalar tmp14 = (theta_dot*theta_dot);
-    const Scalar tmp15 = tmp11*tmp3;
-    const Scalar tmp16 = -tmp15*phi_dot + tmp5*tmp7*l*theta_dot;
-    const Scalar tmp17 = tmp5*l;
-    const Scalar tmp18 = tmp17*tmp7;
-    const Scalar tmp19 = tmp16*phi_dot + theta_dot*(tmp18*phi_dot - tmp15*theta_dot);
-    const Scalar tmp20 = tmp17*tmp3;
-    const Scalar tmp21 = tmp11*tmp7;
-    const Scalar tmp22 = tmp20*theta_dot + tmp21*phi_dot;
-    const Scalar tmp23 = theta_dot*(-tmp20*phi_dot - tmp21*theta_dot) - tmp22*phi_dot;
+    const Scalar tmp0 = cos(phi);
+    const Scalar tmp1 = cos(theta);
+    const Scalar tmp2 = tmp1*l;
+    const Scalar tmp3 = tmp0*tmp2;
+    const Scalar tmp4 = sin(phi);
+    const Scalar tmp5 = sin(theta);
+    const Scalar tmp6 = tmp5*l;
+    const Scalar tmp7 = tmp4*tmp6;
+    const Scalar tmp9 = tmp2*tmp4;
+    const Scalar tmp10 = tmp0*tmp6;
+    const Scalar tmp11 = tmp9*theta_dot + tmp10*phi_dot;
+    const Scalar tmp12 = theta_dot*(-tmp9*phi_dot - tmp10*theta_dot) - tmp11*phi_dot;
+    const Scalar tmp13 = -tmp7*phi_dot + tmp0*tmp1*l*theta_dot;
+    const Scalar tmp14 = tmp13*phi_dot + theta_dot*(tmp3*phi_dot - tmp7*theta_dot);
+    const Scalar tmp15 = (theta_dot*theta_dot);
     XVector<Scalar> result;
-    result(0) = tmp23;
-    result(1) = tmp19;
-    result(2) = tmp14*tmp17;
+    result(0) = tmp12;
+    result(1) = tmp14;
+    result(2) = tmp15*tmp2;
     return result;
   }
 
@@ -801,22 +809,22 @@ struct SphericalPendulum {
     const Scalar phi_dot = v(1);
     const Scalar l = Scalar(params.l);
     const Scalar m = Scalar(params.m);
-    const Scalar tmp1 = sin(theta);
-    const Scalar tmp3 = sin(phi);
-    const Scalar tmp5 = cos(theta);
-    const Scalar tmp7 = cos(phi);
-    const Scalar tmp11 = tmp1*l;
-    const Scalar tmp15 = tmp11*tmp3;
-    const Scalar tmp16 = -tmp15*phi_dot + tmp5*tmp7*l*theta_dot;
-    const Scalar tmp17 = tmp5*l;
-    const Scalar tmp20 = tmp17*tmp3;
-    const Scalar tmp21 = tmp11*tmp7;
-    const Scalar tmp22 = tmp20*theta_dot + tmp21*phi_dot;
-    const Scalar tmp29 = tmp11*theta_dot;
+    const Scalar tmp0 = cos(phi);
+    const Scalar tmp1 = cos(theta);
+    const Scalar tmp2 = tmp1*l;
+    const Scalar tmp4 = sin(phi);
+    const Scalar tmp5 = sin(theta);
+    const Scalar tmp6 = tmp5*l;
+    const Scalar tmp7 = tmp4*tmp6;
+    const Scalar tmp9 = tmp2*tmp4;
+    const Scalar tmp10 = tmp0*tmp6;
+    const Scalar tmp11 = tmp9*theta_dot + tmp10*phi_dot;
+    const Scalar tmp13 = -tmp7*phi_dot + tmp0*tmp1*l*theta_dot;
+    const Scalar tmp81 = tmp6*theta_dot;
     SpaceVector<Scalar> result;
-    result(0) = tmp16*m;
-    result(1) = tmp22*m;
-    result(2) = tmp29*m;
+    result(0) = tmp13*m;
+    result(1) = tmp11*m;
+    result(2) = tmp81*m;
     return result;
   }
 
@@ -840,24 +848,24 @@ struct SphericalPendulum {
     const Scalar phi_dot = v(1);
     const Scalar l = Scalar(params.l);
     const Scalar m = Scalar(params.m);
-    const Scalar tmp0 = (l*l);
-    const Scalar tmp1 = sin(theta);
-    const Scalar tmp2 = tmp0*(tmp1*tmp1);
-    const Scalar tmp3 = sin(phi);
-    const Scalar tmp5 = cos(theta);
-    const Scalar tmp7 = cos(phi);
-    const Scalar tmp11 = tmp1*l;
-    const Scalar tmp15 = tmp11*tmp3;
-    const Scalar tmp16 = -tmp15*phi_dot + tmp5*tmp7*l*theta_dot;
-    const Scalar tmp17 = tmp5*l;
-    const Scalar tmp20 = tmp17*tmp3;
-    const Scalar tmp21 = tmp11*tmp7;
-    const Scalar tmp22 = tmp20*theta_dot + tmp21*phi_dot;
-    const Scalar tmp30 = tmp2*theta_dot;
+    const Scalar tmp0 = cos(phi);
+    const Scalar tmp1 = cos(theta);
+    const Scalar tmp2 = tmp1*l;
+    const Scalar tmp4 = sin(phi);
+    const Scalar tmp5 = sin(theta);
+    const Scalar tmp6 = tmp5*l;
+    const Scalar tmp7 = tmp4*tmp6;
+    const Scalar tmp9 = tmp2*tmp4;
+    const Scalar tmp10 = tmp0*tmp6;
+    const Scalar tmp11 = tmp9*theta_dot + tmp10*phi_dot;
+    const Scalar tmp13 = -tmp7*phi_dot + tmp0*tmp1*l*theta_dot;
+    const Scalar tmp67 = (l*l);
+    const Scalar tmp68 = tmp67*(tmp5*tmp5);
+    const Scalar tmp82 = tmp68*theta_dot;
     AngularVector<Scalar> result;
-    result(0) = m*(tmp17*tmp22 + tmp3*tmp30);
-    result(1) = m*(-tmp16*tmp17 - tmp30*tmp7);
-    result(2) = m*(-tmp15*tmp16 + tmp1*tmp22*tmp7*l);
+    result(0) = m*(tmp11*tmp2 + tmp82*tmp4);
+    result(1) = m*(-tmp0*tmp82 - tmp13*tmp2);
+    result(2) = m*(-tmp13*tmp7 + tmp0*tmp11*tmp5*l);
     return result;
   }
 
@@ -972,11 +980,11 @@ struct SphericalPendulum {
                                            const Params& params) {
       const Scalar m = Scalar(params.m);
       const Scalar g = Scalar(params.g);
-      const Scalar tmp12 = g*m;
+      const Scalar tmp74 = g*m;
       XVector<Scalar> result;
       result(0) = Scalar(0);
       result(1) = Scalar(0);
-      result(2) = -tmp12;
+      result(2) = -tmp74;
       return result;
     }
 
@@ -998,23 +1006,23 @@ struct SphericalPendulum {
                                           const Params& params) {
       using std::sqrt;
       const Scalar l = Scalar(params.l);
-      const Scalar tmp31 = (pos(0)*pos(0));
-      const Scalar tmp32 = (pos(1)*pos(1));
-      const Scalar tmp33 = (pos(2)*pos(2));
-      const Scalar tmp34 = tmp31 + tmp32 + tmp33;
-      const Scalar tmp35 = sqrt(tmp34);
-      const Scalar tmp36 = (Scalar(1)/tmp35);
-      const Scalar tmp37 = tmp35 - l;
-      const Scalar tmp38 = (Scalar(1)/l);
-      const Scalar tmp39 = tmp38*kappa;
-      const Scalar tmp40 = tmp38*penalty_damping;
-      const Scalar tmp41 = -tmp37*tmp39
-          - tmp40*(tmp36*pos(0)*vel(0) + tmp36*pos(1)*vel(1) + tmp36*pos(2)*vel(2));
-      const Scalar tmp42 = tmp36*tmp41;
+      const Scalar tmp83 = (pos(0)*pos(0));
+      const Scalar tmp84 = (pos(1)*pos(1));
+      const Scalar tmp85 = (pos(2)*pos(2));
+      const Scalar tmp86 = tmp83 + tmp84 + tmp85;
+      const Scalar tmp87 = sqrt(tmp86);
+      const Scalar tmp88 = (Scalar(1)/tmp87);
+      const Scalar tmp89 = tmp87 - l;
+      const Scalar tmp90 = (Scalar(1)/l);
+      const Scalar tmp91 = tmp90*kappa;
+      const Scalar tmp92 = tmp90*penalty_damping;
+      const Scalar tmp93 = -tmp89*tmp91
+          - tmp92*(tmp88*pos(0)*vel(0) + tmp88*pos(1)*vel(1) + tmp88*pos(2)*vel(2));
+      const Scalar tmp94 = tmp88*tmp93;
       XVector<Scalar> result;
-      result(0) = tmp42*pos(0);
-      result(1) = tmp42*pos(1);
-      result(2) = tmp42*pos(2);
+      result(0) = tmp94*pos(0);
+      result(1) = tmp94*pos(1);
+      result(2) = tmp94*pos(2);
       return result;
     }
 
@@ -1036,51 +1044,51 @@ struct SphericalPendulum {
                                                   const Params& params) {
       using std::sqrt;
       const Scalar l = Scalar(params.l);
-      const Scalar tmp31 = (pos(0)*pos(0));
-      const Scalar tmp32 = (pos(1)*pos(1));
-      const Scalar tmp33 = (pos(2)*pos(2));
-      const Scalar tmp34 = tmp31 + tmp32 + tmp33;
-      const Scalar tmp35 = sqrt(tmp34);
-      const Scalar tmp36 = (Scalar(1)/tmp35);
-      const Scalar tmp37 = tmp35 - l;
-      const Scalar tmp38 = (Scalar(1)/l);
-      const Scalar tmp39 = tmp38*kappa;
-      const Scalar tmp40 = tmp38*penalty_damping;
-      const Scalar tmp41 = -tmp37*tmp39
-          - tmp40*(tmp36*pos(0)*vel(0) + tmp36*pos(1)*vel(1) + tmp36*pos(2)*vel(2));
-      const Scalar tmp42 = tmp36*tmp41;
-      const Scalar tmp43 = (Scalar(1)/(tmp34*sqrt(tmp34)));
-      const Scalar tmp44 = tmp31*tmp43;
-      const Scalar tmp45 = tmp36*pos(0);
-      const Scalar tmp46 = tmp43*pos(0);
-      const Scalar tmp47 = tmp46*pos(1);
-      const Scalar tmp48 = pos(2)*vel(2);
-      const Scalar tmp49 = -tmp39*tmp45
-          - tmp40*(tmp36*vel(0) - tmp44*vel(0) - tmp46*tmp48 - tmp47*vel(1));
-      const Scalar tmp50 = tmp41*tmp47;
-      const Scalar tmp51 = tmp36*pos(1);
-      const Scalar tmp52 = tmp43*pos(1);
-      const Scalar tmp53 = tmp32*tmp43;
-      const Scalar tmp54 = -tmp39*tmp51
-          - tmp40*(tmp36*vel(1) - tmp47*vel(0) - tmp48*tmp52 - tmp53*vel(1));
-      const Scalar tmp55 = tmp46*pos(2);
-      const Scalar tmp56 = tmp41*tmp55;
-      const Scalar tmp57 = tmp36*pos(2);
-      const Scalar tmp58 = tmp52*pos(2);
-      const Scalar tmp59 = tmp33*tmp43;
-      const Scalar tmp60 = -tmp39*tmp57
-          - tmp40*(tmp36*vel(2) - tmp55*vel(0) - tmp58*vel(1) - tmp59*vel(2));
-      const Scalar tmp61 = tmp41*tmp58;
+      const Scalar tmp83 = (pos(0)*pos(0));
+      const Scalar tmp84 = (pos(1)*pos(1));
+      const Scalar tmp85 = (pos(2)*pos(2));
+      const Scalar tmp86 = tmp83 + tmp84 + tmp85;
+      const Scalar tmp87 = sqrt(tmp86);
+      const Scalar tmp88 = (Scalar(1)/tmp87);
+      const Scalar tmp89 = tmp87 - l;
+      const Scalar tmp90 = (Scalar(1)/l);
+      const Scalar tmp91 = tmp90*kappa;
+      const Scalar tmp92 = tmp90*penalty_damping;
+      const Scalar tmp93 = -tmp89*tmp91
+          - tmp92*(tmp88*pos(0)*vel(0) + tmp88*pos(1)*vel(1) + tmp88*pos(2)*vel(2));
+      const Scalar tmp94 = tmp88*tmp93;
+      const Scalar tmp95 = (Scalar(1)/(tmp86*sqrt(tmp86)));
+      const Scalar tmp96 = tmp83*tmp95;
+      const Scalar tmp97 = tmp88*pos(0);
+      const Scalar tmp98 = tmp95*pos(0);
+      const Scalar tmp99 = tmp98*pos(1);
+      const Scalar tmp100 = pos(2)*vel(2);
+      const Scalar tmp101 = -tmp91*tmp97
+          - tmp92*(tmp88*vel(0) - tmp96*vel(0) - tmp98*tmp100 - tmp99*vel(1));
+      const Scalar tmp102 = tmp93*tmp99;
+      const Scalar tmp103 = tmp88*pos(1);
+      const Scalar tmp104 = tmp95*pos(1);
+      const Scalar tmp105 = tmp84*tmp95;
+      const Scalar tmp106 = -tmp91*tmp103
+          - tmp92*(tmp88*vel(1) - tmp99*vel(0) - tmp100*tmp104 - tmp105*vel(1));
+      const Scalar tmp107 = tmp98*pos(2);
+      const Scalar tmp108 = tmp93*tmp107;
+      const Scalar tmp109 = tmp88*pos(2);
+      const Scalar tmp110 = tmp104*pos(2);
+      const Scalar tmp111 = tmp85*tmp95;
+      const Scalar tmp112 = -tmp91*tmp109
+          - tmp92*(tmp88*vel(2) - tmp107*vel(0) - tmp110*vel(1) - tmp111*vel(2));
+      const Scalar tmp113 = tmp93*tmp110;
       std::array<Scalar, 9> result;
-      result[0] = tmp42 + tmp45*tmp49 - tmp41*tmp44;
-      result[1] = -tmp50 + tmp36*tmp54*pos(0);
-      result[2] = -tmp56 + tmp36*tmp60*pos(0);
-      result[3] = -tmp50 + tmp36*tmp49*pos(1);
-      result[4] = tmp42 + tmp51*tmp54 - tmp41*tmp53;
-      result[5] = -tmp61 + tmp36*tmp60*pos(1);
-      result[6] = -tmp56 + tmp36*tmp49*pos(2);
-      result[7] = -tmp61 + tmp36*tmp54*pos(2);
-      result[8] = tmp42 + tmp57*tmp60 - tmp41*tmp59;
+      result[0] = tmp94 + tmp97*tmp101 - tmp93*tmp96;
+      result[1] = -tmp102 + tmp88*tmp106*pos(0);
+      result[2] = -tmp108 + tmp88*tmp112*pos(0);
+      result[3] = -tmp102 + tmp88*tmp101*pos(1);
+      result[4] = tmp94 + tmp103*tmp106 - tmp93*tmp105;
+      result[5] = -tmp113 + tmp88*tmp112*pos(1);
+      result[6] = -tmp108 + tmp88*tmp101*pos(2);
+      result[7] = -tmp113 + tmp88*tmp106*pos(2);
+      result[8] = tmp94 + tmp109*tmp112 - tmp93*tmp111;
       return result;
     }
 
@@ -1101,24 +1109,24 @@ struct SphericalPendulum {
                                                      const Scalar& penalty_damping,
                                                      const Params& params) {
       const Scalar l = Scalar(params.l);
-      const Scalar tmp31 = (pos(0)*pos(0));
-      const Scalar tmp32 = (pos(1)*pos(1));
-      const Scalar tmp33 = (pos(2)*pos(2));
-      const Scalar tmp34 = tmp31 + tmp32 + tmp33;
-      const Scalar tmp38 = (Scalar(1)/l);
-      const Scalar tmp40 = tmp38*penalty_damping;
-      const Scalar tmp62 = tmp40/tmp34;
-      const Scalar tmp63 = tmp62*pos(0);
+      const Scalar tmp83 = (pos(0)*pos(0));
+      const Scalar tmp84 = (pos(1)*pos(1));
+      const Scalar tmp85 = (pos(2)*pos(2));
+      const Scalar tmp86 = tmp83 + tmp84 + tmp85;
+      const Scalar tmp90 = (Scalar(1)/l);
+      const Scalar tmp92 = tmp90*penalty_damping;
+      const Scalar tmp114 = tmp92/tmp86;
+      const Scalar tmp115 = tmp114*pos(0);
       std::array<Scalar, 9> result;
-      result[0] = -tmp31*tmp62;
-      result[1] = -tmp63*pos(1);
-      result[2] = -tmp63*pos(2);
-      result[3] = -tmp63*pos(1);
-      result[4] = -tmp32*tmp62;
-      result[5] = -tmp62*pos(1)*pos(2);
-      result[6] = -tmp63*pos(2);
-      result[7] = -tmp62*pos(1)*pos(2);
-      result[8] = -tmp33*tmp62;
+      result[0] = -tmp83*tmp114;
+      result[1] = -tmp115*pos(1);
+      result[2] = -tmp115*pos(2);
+      result[3] = -tmp115*pos(1);
+      result[4] = -tmp84*tmp114;
+      result[5] = -tmp114*pos(1)*pos(2);
+      result[6] = -tmp115*pos(2);
+      result[7] = -tmp114*pos(1)*pos(2);
+      result[8] = -tmp85*tmp114;
       return result;
     }
 
@@ -1134,9 +1142,9 @@ struct SphericalPendulum {
                                    const Params& params) {
       const Scalar m = Scalar(params.m);
       const Scalar g = Scalar(params.g);
-      const Scalar tmp12 = g*m;
+      const Scalar tmp74 = g*m;
       Scalar result;
-      result = tmp12*pos(2);
+      result = tmp74*pos(2);
       return result;
     }
 
@@ -1154,16 +1162,16 @@ struct SphericalPendulum {
                                  const Params& params) {
       using std::sqrt;
       const Scalar l = Scalar(params.l);
-      const Scalar tmp31 = (pos(0)*pos(0));
-      const Scalar tmp32 = (pos(1)*pos(1));
-      const Scalar tmp33 = (pos(2)*pos(2));
-      const Scalar tmp34 = tmp31 + tmp32 + tmp33;
-      const Scalar tmp35 = sqrt(tmp34);
-      const Scalar tmp37 = tmp35 - l;
-      const Scalar tmp38 = (Scalar(1)/l);
-      const Scalar tmp39 = tmp38*kappa;
+      const Scalar tmp83 = (pos(0)*pos(0));
+      const Scalar tmp84 = (pos(1)*pos(1));
+      const Scalar tmp85 = (pos(2)*pos(2));
+      const Scalar tmp86 = tmp83 + tmp84 + tmp85;
+      const Scalar tmp87 = sqrt(tmp86);
+      const Scalar tmp89 = tmp87 - l;
+      const Scalar tmp90 = (Scalar(1)/l);
+      const Scalar tmp91 = tmp90*kappa;
       Scalar result;
-      result = (Scalar(0.5))*tmp39*(tmp37*tmp37);
+      result = (Scalar(0.5))*tmp91*(tmp89*tmp89);
       return result;
     }
 
@@ -1179,14 +1187,14 @@ struct SphericalPendulum {
                                                           const Params& params) {
       using std::sqrt;
       const Scalar l = Scalar(params.l);
-      const Scalar tmp31 = (pos(0)*pos(0));
-      const Scalar tmp32 = (pos(1)*pos(1));
-      const Scalar tmp33 = (pos(2)*pos(2));
-      const Scalar tmp34 = tmp31 + tmp32 + tmp33;
-      const Scalar tmp35 = sqrt(tmp34);
-      const Scalar tmp37 = tmp35 - l;
+      const Scalar tmp83 = (pos(0)*pos(0));
+      const Scalar tmp84 = (pos(1)*pos(1));
+      const Scalar tmp85 = (pos(2)*pos(2));
+      const Scalar tmp86 = tmp83 + tmp84 + tmp85;
+      const Scalar tmp87 = sqrt(tmp86);
+      const Scalar tmp89 = tmp87 - l;
       ConstraintVector<Scalar> result;
-      result(0) = tmp37;
+      result(0) = tmp89;
       return result;
     }
   };
@@ -1222,6 +1230,10 @@ struct SphericalPendulumPoleX {
   /// Whether applied_forces at rest (v = 0) is -d(potential_energy)/dq: every force without
   /// a declared potential vanishes at rest (generator/conservative.py).
   static constexpr bool forces_have_potential = true;
+  /// Whether qddot is the articulated-body recursion over the model's tree of particles,
+  /// chosen at generation because it takes fewer operations than Mt, Ft + Fi and an LDL^T
+  /// solve (generator/dynamics_paths.py); gencoord::acceleration() then calls it.
+  static constexpr bool recursive_qddot = false;
 
   template <typename Scalar>
   using QVector = Eigen::Matrix<Scalar, nq, 1>;
@@ -1260,21 +1272,21 @@ struct SphericalPendulumPoleX {
     const Scalar beta = q(1);
     const Scalar l = Scalar(params.l);
     const Scalar m = Scalar(params.m);
-    const Scalar tmp0 = (l*l);
-    const Scalar tmp1 = sin(alpha);
-    const Scalar tmp2 = tmp0*(tmp1*tmp1);
-    const Scalar tmp3 = sin(beta);
-    const Scalar tmp4 = (tmp3*tmp3);
-    const Scalar tmp5 = cos(alpha);
-    const Scalar tmp6 = tmp0*(tmp5*tmp5);
-    const Scalar tmp7 = cos(beta);
-    const Scalar tmp8 = (tmp7*tmp7);
-    const Scalar tmp9 = m*(tmp2 + tmp4*tmp6 + tmp6*tmp8);
-    const Scalar tmp10 = m*(tmp2*tmp4 + tmp2*tmp8);
+    const Scalar tmp0 = sin(alpha);
+    const Scalar tmp3 = cos(beta);
+    const Scalar tmp4 = cos(alpha);
+    const Scalar tmp7 = sin(beta);
+    const Scalar tmp68 = (l*l);
+    const Scalar tmp69 = tmp68*(tmp0*tmp0);
+    const Scalar tmp70 = (tmp7*tmp7);
+    const Scalar tmp71 = tmp68*(tmp4*tmp4);
+    const Scalar tmp72 = (tmp3*tmp3);
+    const Scalar tmp73 = m*(tmp69 + tmp70*tmp71 + tmp71*tmp72);
+    const Scalar tmp74 = m*(tmp69*tmp70 + tmp69*tmp72);
     QMatrix<Scalar> result;
-    result(0, 0) = tmp9;
+    result(0, 0) = tmp73;
     result(1, 0) = Scalar(0);
-    result(1, 1) = tmp10;
+    result(1, 1) = tmp74;
     result(0, 1) = result(1, 0);
     return result;
   }
@@ -1298,20 +1310,20 @@ struct SphericalPendulumPoleX {
     const Scalar l = Scalar(params.l);
     const Scalar m = Scalar(params.m);
     const Scalar g = Scalar(params.g);
-    const Scalar tmp1 = sin(alpha);
-    const Scalar tmp3 = sin(beta);
-    const Scalar tmp5 = cos(alpha);
-    const Scalar tmp7 = cos(beta);
-    const Scalar tmp11 = g*m;
-    const Scalar tmp12 = tmp5*l;
-    const Scalar tmp13 = tmp12*tmp3;
-    const Scalar tmp14 = tmp11*tmp13;
-    const Scalar tmp15 = tmp1*l;
-    const Scalar tmp16 = tmp15*tmp7;
-    const Scalar tmp17 = tmp11*tmp16;
+    const Scalar tmp0 = sin(alpha);
+    const Scalar tmp1 = tmp0*l;
+    const Scalar tmp3 = cos(beta);
+    const Scalar tmp4 = cos(alpha);
+    const Scalar tmp5 = tmp4*l;
+    const Scalar tmp7 = sin(beta);
+    const Scalar tmp10 = tmp5*tmp7;
+    const Scalar tmp11 = tmp1*tmp3;
+    const Scalar tmp75 = g*m;
+    const Scalar tmp76 = tmp75*tmp10;
+    const Scalar tmp77 = tmp75*tmp11;
     QVector<Scalar> result;
-    result(0) = -tmp14;
-    result(1) = -tmp17;
+    result(0) = -tmp76;
+    result(1) = -tmp77;
     return result;
   }
 
@@ -1353,27 +1365,27 @@ struct SphericalPendulumPoleX {
     const Scalar beta_dot = v(1);
     const Scalar l = Scalar(params.l);
     const Scalar m = Scalar(params.m);
-    const Scalar tmp0 = (l*l);
-    const Scalar tmp1 = sin(alpha);
-    const Scalar tmp3 = sin(beta);
-    const Scalar tmp5 = cos(alpha);
-    const Scalar tmp7 = cos(beta);
-    const Scalar tmp12 = tmp5*l;
-    const Scalar tmp13 = tmp12*tmp3;
-    const Scalar tmp15 = tmp1*l;
-    const Scalar tmp16 = tmp15*tmp7;
-    const Scalar tmp18 = (alpha_dot*alpha_dot);
-    const Scalar tmp19 = tmp15*tmp3;
-    const Scalar tmp20 = tmp12*tmp7;
-    const Scalar tmp21 = tmp20*alpha_dot - tmp19*beta_dot;
-    const Scalar tmp22 = tmp21*beta_dot + alpha_dot*(-tmp19*alpha_dot + tmp5*tmp7*beta_dot*l);
-    const Scalar tmp23 = tmp13*alpha_dot + tmp16*beta_dot;
-    const Scalar tmp24 = alpha_dot*(-tmp13*beta_dot - tmp16*alpha_dot) - tmp23*beta_dot;
-    const Scalar tmp25 = m*(tmp13*tmp22 + tmp20*tmp24 + tmp0*tmp1*tmp18*tmp5);
-    const Scalar tmp26 = m*(tmp16*tmp22 - tmp19*tmp24);
+    const Scalar tmp0 = sin(alpha);
+    const Scalar tmp1 = tmp0*l;
+    const Scalar tmp3 = cos(beta);
+    const Scalar tmp4 = cos(alpha);
+    const Scalar tmp5 = tmp4*l;
+    const Scalar tmp6 = tmp3*tmp5;
+    const Scalar tmp7 = sin(beta);
+    const Scalar tmp8 = tmp1*tmp7;
+    const Scalar tmp10 = tmp5*tmp7;
+    const Scalar tmp11 = tmp1*tmp3;
+    const Scalar tmp12 = (alpha_dot*alpha_dot);
+    const Scalar tmp14 = tmp10*alpha_dot + tmp11*beta_dot;
+    const Scalar tmp15 = alpha_dot*(-tmp10*beta_dot - tmp11*alpha_dot) - tmp14*beta_dot;
+    const Scalar tmp16 = tmp6*alpha_dot - tmp8*beta_dot;
+    const Scalar tmp17 = tmp16*beta_dot + alpha_dot*(-tmp8*alpha_dot + tmp3*tmp4*beta_dot*l);
+    const Scalar tmp68 = (l*l);
+    const Scalar tmp78 = m*(tmp15*tmp6 + tmp17*tmp10 + tmp0*tmp12*tmp68*tmp4);
+    const Scalar tmp79 = m*(tmp17*tmp11 - tmp15*tmp8);
     QVector<Scalar> result;
-    result(0) = -tmp25;
-    result(1) = -tmp26;
+    result(0) = -tmp78;
+    result(1) = -tmp79;
     return result;
   }
 
@@ -1398,32 +1410,32 @@ struct SphericalPendulumPoleX {
     const Scalar l = Scalar(params.l);
     const Scalar m = Scalar(params.m);
     const Scalar g = Scalar(params.g);
-    const Scalar tmp0 = (l*l);
-    const Scalar tmp1 = sin(alpha);
-    const Scalar tmp3 = sin(beta);
-    const Scalar tmp5 = cos(alpha);
-    const Scalar tmp7 = cos(beta);
-    const Scalar tmp11 = g*m;
-    const Scalar tmp12 = tmp5*l;
-    const Scalar tmp13 = tmp12*tmp3;
-    const Scalar tmp14 = tmp11*tmp13;
-    const Scalar tmp15 = tmp1*l;
-    const Scalar tmp16 = tmp15*tmp7;
-    const Scalar tmp17 = tmp11*tmp16;
-    const Scalar tmp18 = (alpha_dot*alpha_dot);
-    const Scalar tmp19 = tmp15*tmp3;
-    const Scalar tmp20 = tmp12*tmp7;
-    const Scalar tmp21 = tmp20*alpha_dot - tmp19*beta_dot;
-    const Scalar tmp22 = tmp21*beta_dot + alpha_dot*(-tmp19*alpha_dot + tmp5*tmp7*beta_dot*l);
-    const Scalar tmp23 = tmp13*alpha_dot + tmp16*beta_dot;
-    const Scalar tmp24 = alpha_dot*(-tmp13*beta_dot - tmp16*alpha_dot) - tmp23*beta_dot;
-    const Scalar tmp25 = m*(tmp13*tmp22 + tmp20*tmp24 + tmp0*tmp1*tmp18*tmp5);
-    const Scalar tmp26 = m*(tmp16*tmp22 - tmp19*tmp24);
-    const Scalar tmp27 = tmp14 + tmp25;
-    const Scalar tmp28 = tmp17 + tmp26;
+    const Scalar tmp0 = sin(alpha);
+    const Scalar tmp1 = tmp0*l;
+    const Scalar tmp3 = cos(beta);
+    const Scalar tmp4 = cos(alpha);
+    const Scalar tmp5 = tmp4*l;
+    const Scalar tmp6 = tmp3*tmp5;
+    const Scalar tmp7 = sin(beta);
+    const Scalar tmp8 = tmp1*tmp7;
+    const Scalar tmp10 = tmp5*tmp7;
+    const Scalar tmp11 = tmp1*tmp3;
+    const Scalar tmp12 = (alpha_dot*alpha_dot);
+    const Scalar tmp14 = tmp10*alpha_dot + tmp11*beta_dot;
+    const Scalar tmp15 = alpha_dot*(-tmp10*beta_dot - tmp11*alpha_dot) - tmp14*beta_dot;
+    const Scalar tmp16 = tmp6*alpha_dot - tmp8*beta_dot;
+    const Scalar tmp17 = tmp16*beta_dot + alpha_dot*(-tmp8*alpha_dot + tmp3*tmp4*beta_dot*l);
+    const Scalar tmp68 = (l*l);
+    const Scalar tmp75 = g*m;
+    const Scalar tmp76 = tmp75*tmp10;
+    const Scalar tmp77 = tmp75*tmp11;
+    const Scalar tmp78 = m*(tmp15*tmp6 + tmp17*tmp10 + tmp0*tmp12*tmp68*tmp4);
+    const Scalar tmp79 = m*(tmp17*tmp11 - tmp15*tmp8);
+    const Scalar tmp80 = tmp76 + tmp78;
+    const Scalar tmp81 = tmp77 + tmp79;
     QVector<Scalar> result;
-    result(0) = -tmp27;
-    result(1) = -tmp28;
+    result(0) = -tmp80;
+    result(1) = -tmp81;
     return result;
   }
 
@@ -1450,40 +1462,40 @@ struct SphericalPendulumPoleX {
     const Scalar l = Scalar(params.l);
     const Scalar m = Scalar(params.m);
     const Scalar g = Scalar(params.g);
-    const Scalar tmp0 = (l*l);
-    const Scalar tmp1 = sin(alpha);
-    const Scalar tmp2 = tmp0*(tmp1*tmp1);
-    const Scalar tmp3 = sin(beta);
-    const Scalar tmp4 = (tmp3*tmp3);
-    const Scalar tmp5 = cos(alpha);
-    const Scalar tmp6 = tmp0*(tmp5*tmp5);
-    const Scalar tmp7 = cos(beta);
-    const Scalar tmp8 = (tmp7*tmp7);
-    const Scalar tmp9 = m*(tmp2 + tmp4*tmp6 + tmp6*tmp8);
-    const Scalar tmp10 = m*(tmp2*tmp4 + tmp2*tmp8);
-    const Scalar tmp11 = g*m;
-    const Scalar tmp12 = tmp5*l;
-    const Scalar tmp13 = tmp12*tmp3;
-    const Scalar tmp14 = tmp11*tmp13;
-    const Scalar tmp15 = tmp1*l;
-    const Scalar tmp16 = tmp15*tmp7;
-    const Scalar tmp17 = tmp11*tmp16;
-    const Scalar tmp18 = (alpha_dot*alpha_dot);
-    const Scalar tmp19 = tmp15*tmp3;
-    const Scalar tmp20 = tmp12*tmp7;
-    const Scalar tmp21 = tmp20*alpha_dot - tmp19*beta_dot;
-    const Scalar tmp22 = tmp21*beta_dot + alpha_dot*(-tmp19*alpha_dot + tmp5*tmp7*beta_dot*l);
-    const Scalar tmp23 = tmp13*alpha_dot + tmp16*beta_dot;
-    const Scalar tmp24 = alpha_dot*(-tmp13*beta_dot - tmp16*alpha_dot) - tmp23*beta_dot;
-    const Scalar tmp25 = m*(tmp13*tmp22 + tmp20*tmp24 + tmp0*tmp1*tmp18*tmp5);
-    const Scalar tmp26 = m*(tmp16*tmp22 - tmp19*tmp24);
-    const Scalar tmp27 = tmp14 + tmp25;
-    const Scalar tmp28 = tmp17 + tmp26;
-    (*Mt)(0, 0) = tmp9;
+    const Scalar tmp0 = sin(alpha);
+    const Scalar tmp1 = tmp0*l;
+    const Scalar tmp3 = cos(beta);
+    const Scalar tmp4 = cos(alpha);
+    const Scalar tmp5 = tmp4*l;
+    const Scalar tmp6 = tmp3*tmp5;
+    const Scalar tmp7 = sin(beta);
+    const Scalar tmp8 = tmp1*tmp7;
+    const Scalar tmp10 = tmp5*tmp7;
+    const Scalar tmp11 = tmp1*tmp3;
+    const Scalar tmp12 = (alpha_dot*alpha_dot);
+    const Scalar tmp14 = tmp10*alpha_dot + tmp11*beta_dot;
+    const Scalar tmp15 = alpha_dot*(-tmp10*beta_dot - tmp11*alpha_dot) - tmp14*beta_dot;
+    const Scalar tmp16 = tmp6*alpha_dot - tmp8*beta_dot;
+    const Scalar tmp17 = tmp16*beta_dot + alpha_dot*(-tmp8*alpha_dot + tmp3*tmp4*beta_dot*l);
+    const Scalar tmp68 = (l*l);
+    const Scalar tmp69 = tmp68*(tmp0*tmp0);
+    const Scalar tmp70 = (tmp7*tmp7);
+    const Scalar tmp71 = tmp68*(tmp4*tmp4);
+    const Scalar tmp72 = (tmp3*tmp3);
+    const Scalar tmp73 = m*(tmp69 + tmp70*tmp71 + tmp71*tmp72);
+    const Scalar tmp74 = m*(tmp69*tmp70 + tmp69*tmp72);
+    const Scalar tmp75 = g*m;
+    const Scalar tmp76 = tmp75*tmp10;
+    const Scalar tmp77 = tmp75*tmp11;
+    const Scalar tmp78 = m*(tmp15*tmp6 + tmp17*tmp10 + tmp0*tmp12*tmp68*tmp4);
+    const Scalar tmp79 = m*(tmp17*tmp11 - tmp15*tmp8);
+    const Scalar tmp80 = tmp76 + tmp78;
+    const Scalar tmp81 = tmp77 + tmp79;
+    (*Mt)(0, 0) = tmp73;
     (*Mt)(1, 0) = Scalar(0);
-    (*Mt)(1, 1) = tmp10;
-    (*f)(0) = -tmp27;
-    (*f)(1) = -tmp28;
+    (*Mt)(1, 1) = tmp74;
+    (*f)(0) = -tmp80;
+    (*f)(1) = -tmp81;
     (*Mt)(0, 1) = (*Mt)(1, 0);
   }
 
@@ -1513,38 +1525,38 @@ struct SphericalPendulumPoleX {
     const Scalar l = Scalar(params.l);
     const Scalar m = Scalar(params.m);
     const Scalar g = Scalar(params.g);
-    const Scalar tmp0 = (l*l);
-    const Scalar tmp1 = sin(alpha);
-    const Scalar tmp2 = tmp0*(tmp1*tmp1);
-    const Scalar tmp3 = sin(beta);
-    const Scalar tmp4 = (tmp3*tmp3);
-    const Scalar tmp5 = cos(alpha);
-    const Scalar tmp6 = tmp0*(tmp5*tmp5);
-    const Scalar tmp7 = cos(beta);
-    const Scalar tmp8 = (tmp7*tmp7);
-    const Scalar tmp9 = m*(tmp2 + tmp4*tmp6 + tmp6*tmp8);
-    const Scalar tmp10 = m*(tmp2*tmp4 + tmp2*tmp8);
-    const Scalar tmp11 = g*m;
-    const Scalar tmp12 = tmp5*l;
-    const Scalar tmp13 = tmp12*tmp3;
-    const Scalar tmp14 = tmp11*tmp13;
-    const Scalar tmp15 = tmp1*l;
-    const Scalar tmp16 = tmp15*tmp7;
-    const Scalar tmp17 = tmp11*tmp16;
-    const Scalar tmp18 = (alpha_dot*alpha_dot);
-    const Scalar tmp19 = tmp15*tmp3;
-    const Scalar tmp20 = tmp12*tmp7;
-    const Scalar tmp21 = tmp20*alpha_dot - tmp19*beta_dot;
-    const Scalar tmp22 = tmp21*beta_dot + alpha_dot*(-tmp19*alpha_dot + tmp5*tmp7*beta_dot*l);
-    const Scalar tmp23 = tmp13*alpha_dot + tmp16*beta_dot;
-    const Scalar tmp24 = alpha_dot*(-tmp13*beta_dot - tmp16*alpha_dot) - tmp23*beta_dot;
-    const Scalar tmp25 = m*(tmp13*tmp22 + tmp20*tmp24 + tmp0*tmp1*tmp18*tmp5);
-    const Scalar tmp26 = m*(tmp16*tmp22 - tmp19*tmp24);
-    const Scalar tmp27 = tmp14 + tmp25;
-    const Scalar tmp28 = tmp17 + tmp26;
+    const Scalar tmp0 = sin(alpha);
+    const Scalar tmp1 = tmp0*l;
+    const Scalar tmp3 = cos(beta);
+    const Scalar tmp4 = cos(alpha);
+    const Scalar tmp5 = tmp4*l;
+    const Scalar tmp6 = tmp3*tmp5;
+    const Scalar tmp7 = sin(beta);
+    const Scalar tmp8 = tmp1*tmp7;
+    const Scalar tmp10 = tmp5*tmp7;
+    const Scalar tmp11 = tmp1*tmp3;
+    const Scalar tmp12 = (alpha_dot*alpha_dot);
+    const Scalar tmp14 = tmp10*alpha_dot + tmp11*beta_dot;
+    const Scalar tmp15 = alpha_dot*(-tmp10*beta_dot - tmp11*alpha_dot) - tmp14*beta_dot;
+    const Scalar tmp16 = tmp6*alpha_dot - tmp8*beta_dot;
+    const Scalar tmp17 = tmp16*beta_dot + alpha_dot*(-tmp8*alpha_dot + tmp3*tmp4*beta_dot*l);
+    const Scalar tmp68 = (l*l);
+    const Scalar tmp69 = tmp68*(tmp0*tmp0);
+    const Scalar tmp70 = (tmp7*tmp7);
+    const Scalar tmp71 = tmp68*(tmp4*tmp4);
+    const Scalar tmp72 = (tmp3*tmp3);
+    const Scalar tmp73 = m*(tmp69 + tmp70*tmp71 + tmp71*tmp72);
+    const Scalar tmp74 = m*(tmp69*tmp70 + tmp69*tmp72);
+    const Scalar tmp75 = g*m;
+    const Scalar tmp76 = tmp75*tmp10;
+    const Scalar tmp77 = tmp75*tmp11;
+    const Scalar tmp78 = m*(tmp15*tmp6 + tmp17*tmp10 + tmp0*tmp12*tmp68*tmp4);
+    const Scalar tmp79 = m*(tmp17*tmp11 - tmp15*tmp8);
+    const Scalar tmp80 = tmp76 + tmp78;
+    const Scalar tmp81 = tmp77 + tmp79;
     QVector<Scalar> result;
-    result(0) = tmp27 + tmp9*alpha_ddot;
-    result(1) = tmp28 + tmp10*beta_ddot;
+    result(0) = tmp80 + tmp73*alpha_ddot;
+    result(1) = tmp81 + tmp74*beta_ddot;
     return result;
   }
 
@@ -1575,88 +1587,90 @@ struct SphericalPendulumPoleX {
     const Scalar l = Scalar(params.l);
     const Scalar m = Scalar(params.m);
     const Scalar g = Scalar(params.g);
-    const Scalar tmp0 = (l*l);
-    const Scalar tmp1 = sin(alpha);
-    const Scalar tmp2 = tmp0*(tmp1*tmp1);
-    const Scalar tmp3 = sin(beta);
-    const Scalar tmp4 = (tmp3*tmp3);
-    const Scalar tmp5 = cos(alpha);
-    const Scalar tmp6 = tmp0*(tmp5*tmp5);
-    const Scalar tmp7 = cos(beta);
-    const Scalar tmp8 = (tmp7*tmp7);
-    const Scalar tmp11 = g*m;
-    const Scalar tmp12 = tmp5*l;
-    const Scalar tmp13 = tmp12*tmp3;
-    const Scalar tmp15 = tmp1*l;
-    const Scalar tmp16 = tmp15*tmp7;
-    const Scalar tmp18 = (alpha_dot*alpha_dot);
-    const Scalar tmp19 = tmp15*tmp3;
-    const Scalar tmp20 = tmp12*tmp7;
-    const Scalar tmp21 = tmp20*alpha_dot - tmp19*beta_dot;
-    const Scalar tmp22 = tmp21*beta_dot + alpha_dot*(-tmp19*alpha_dot + tmp5*tmp7*beta_dot*l);
-    const Scalar tmp23 = tmp13*alpha_dot + tmp16*beta_dot;
-    const Scalar tmp24 = alpha_dot*(-tmp13*beta_dot - tmp16*alpha_dot) - tmp23*beta_dot;
-    const Scalar tmp66 = Scalar(2)*tmp0*tmp1*tmp5;
-    const Scalar tmp67 = -tmp1;
-    const Scalar tmp68 = Scalar(2)*tmp0*tmp5*tmp67;
-    const Scalar tmp69 = m*tmp66 + m*(tmp4 + tmp8)*tmp68;
-    const Scalar tmp70 = m*(tmp4 + tmp8)*tmp66;
-    const Scalar tmp71 = l*tmp67;
-    const Scalar tmp72 = tmp3*tmp71;
-    const Scalar tmp73 = tmp11*tmp72;
-    const Scalar tmp74 = l*tmp5;
-    const Scalar tmp75 = tmp7*tmp74;
-    const Scalar tmp76 = tmp11*tmp75;
-    const Scalar tmp77 = tmp3*tmp74;
-    const Scalar tmp78 = tmp7*tmp71;
-    const Scalar tmp79 = -beta_dot*tmp77 + alpha_dot*tmp78;
-    const Scalar tmp80 = -(alpha_dot*alpha_dot)*tmp77 + beta_dot*tmp79
-        + tmp7*alpha_dot*beta_dot*l*tmp67;
-    const Scalar tmp81 = alpha_dot*tmp72 + beta_dot*tmp75;
-    const Scalar tmp82 = -alpha_dot*beta_dot*tmp72 - (alpha_dot*alpha_dot)*tmp75 - beta_dot*tmp81;
-    const Scalar tmp83 = tmp0*tmp18*tmp5*m*tmp5 + tmp22*m*tmp72 + tmp24*m*tmp78 + tmp13*m*tmp80
-        + tmp20*m*tmp82 + tmp0*tmp1*tmp18*m*tmp67;
-    const Scalar tmp84 = tmp22*m*tmp75 - tmp24*m*tmp77 + tmp16*m*tmp80 - tmp19*m*tmp82;
-    const Scalar tmp85 = tmp73 + tmp83;
-    const Scalar tmp86 = tmp76 + tmp84;
-    const Scalar tmp87 = Scalar(2)*tmp3*tmp7;
-    const Scalar tmp88 = -tmp3;
-    const Scalar tmp89 = Scalar(2)*tmp7*tmp88;
-    const Scalar tmp90 = tmp6*m*tmp87 + tmp6*m*tmp89;
-    const Scalar tmp91 = tmp2*m*tmp87 + tmp2*m*tmp89;
-    const Scalar tmp92 = tmp12*tmp7;
-    const Scalar tmp93 = tmp11*tmp92;
-    const Scalar tmp94 = tmp15*tmp88;
-    const Scalar tmp95 = tmp11*tmp94;
-    const Scalar tmp96 = tmp15*tmp7;
-    const Scalar tmp97 = tmp12*tmp88;
-    const Scalar tmp98 = -beta_dot*tmp96 + alpha_dot*tmp97;
-    const Scalar tmp99 = -(alpha_dot*alpha_dot)*tmp96 + beta_dot*tmp98
-        + tmp5*alpha_dot*beta_dot*l*tmp88;
-    const Scalar tmp100 = alpha_dot*tmp92 + beta_dot*tmp94;
-    const Scalar tmp101 = -alpha_dot*beta_dot*tmp92 - (alpha_dot*alpha_dot)*tmp94 - beta_dot*tmp100;
-    const Scalar tmp102 = tmp22*m*tmp92 + tmp24*m*tmp97 + tmp13*m*tmp99 + tmp20*m*tmp101;
-    const Scalar tmp103 = tmp22*m*tmp94 - tmp24*m*tmp96 + tmp16*m*tmp99 - tmp19*m*tmp101;
-    const Scalar tmp104 = tmp93 + tmp102;
-    const Scalar tmp105 = tmp95 + tmp103;
-    const Scalar tmp106 = Scalar(2)*alpha_dot;
-    const Scalar tmp107 = -Scalar(2)*tmp19*alpha_dot + tmp5*tmp7*beta_dot*l + beta_dot*tmp20;
-    const Scalar tmp108 = -tmp13*beta_dot - Scalar(2)*tmp16*alpha_dot - beta_dot*tmp13;
-    const Scalar tmp109 = tmp0*tmp1*tmp5*m*tmp106 + tmp13*m*tmp107 + tmp20*m*tmp108;
-    const Scalar tmp110 = tmp16*m*tmp107 - tmp19*m*tmp108;
-    const Scalar tmp111 = -tmp19;
-    const Scalar tmp112 = tmp21 + tmp5*tmp7*alpha_dot*l + beta_dot*tmp111;
-    const Scalar tmp113 = -tmp23 - tmp13*alpha_dot - beta_dot*tmp16;
-    const Scalar tmp114 = tmp13*m*tmp112 + tmp20*m*tmp113;
-    const Scalar tmp115 = tmp16*m*tmp112 - tmp19*m*tmp113;
-    (*dr_dq)(0, 0) = tmp85 + alpha_ddot*tmp69;
-    (*dr_dq)(0, 1) = tmp104 + alpha_ddot*tmp90;
-    (*dr_dq)(1, 0) = beta_ddot*tmp70 + tmp86;
-    (*dr_dq)(1, 1) = beta_ddot*tmp91 + tmp105;
-    (*dr_dv)(0, 0) = tmp109;
-    (*dr_dv)(0, 1) = tmp114;
-    (*dr_dv)(1, 0) = tmp110;
-    (*dr_dv)(1, 1) = tmp115;
+    const Scalar tmp0 = sin(alpha);
+    const Scalar tmp1 = tmp0*l;
+    const Scalar tmp3 = cos(beta);
+    const Scalar tmp4 = cos(alpha);
+    const Scalar tmp5 = tmp4*l;
+    const Scalar tmp6 = tmp3*tmp5;
+    const Scalar tmp7 = sin(beta);
+    const Scalar tmp8 = tmp1*tmp7;
+    const Scalar tmp10 = tmp5*tmp7;
+    const Scalar tmp11 = tmp1*tmp3;
+    const Scalar tmp12 = (alpha_dot*alpha_dot);
+    const Scalar tmp14 = tmp10*alpha_dot + tmp11*beta_dot;
+    const Scalar tmp15 = alpha_dot*(-tmp10*beta_dot - tmp11*alpha_dot) - tmp14*beta_dot;
+    const Scalar tmp16 = tmp6*alpha_dot - tmp8*beta_dot;
+    const Scalar tmp17 = tmp16*beta_dot + alpha_dot*(-tmp8*alpha_dot + tmp3*tmp4*beta_dot*l);
+    const Scalar tmp68 = (l*l);
+    const Scalar tmp69 = tmp68*(tmp0*tmp0);
+    const Scalar tmp70 = (tmp7*tmp7);
+    const Scalar tmp71 = tmp68*(tmp4*tmp4);
+    const Scalar tmp72 = (tmp3*tmp3);
+    const Scalar tmp75 = g*m;
+    const Scalar tmp119 = l*tmp4;
+    const Scalar tmp120 = -tmp0;
+    const Scalar tmp121 = l*tmp120;
+    const Scalar tmp122 = tmp3*tmp121;
+    const Scalar tmp123 = tmp7*tmp119;
+    const Scalar tmp124 = tmp7*tmp121;
+    const Scalar tmp125 = tmp3*tmp119;
+    const Scalar tmp126 = alpha_dot*tmp124 + beta_dot*tmp125;
+    const Scalar tmp127 = -beta_dot*tmp126 - alpha_dot*beta_dot*tmp124
+        - (alpha_dot*alpha_dot)*tmp125;
+    const Scalar tmp128 = alpha_dot*tmp122 - beta_dot*tmp123;
+    const Scalar tmp129 = beta_dot*tmp128 + tmp3*alpha_dot*beta_dot*l*tmp120
+        - (alpha_dot*alpha_dot)*tmp123;
+    const Scalar tmp130 = Scalar(2)*tmp0*tmp68*tmp4;
+    const Scalar tmp131 = Scalar(2)*tmp68*tmp4*tmp120;
+    const Scalar tmp132 = m*tmp130 + m*(tmp70 + tmp72)*tmp131;
+    const Scalar tmp133 = m*(tmp70 + tmp72)*tmp130;
+    const Scalar tmp134 = tmp75*tmp124;
+    const Scalar tmp135 = tmp75*tmp125;
+    const Scalar tmp136 = tmp12*tmp68*tmp4*m*tmp4 + tmp6*m*tmp127 + tmp10*m*tmp129
+        + tmp0*tmp12*tmp68*m*tmp120 + tmp15*m*tmp122 + tmp17*m*tmp124;
+    const Scalar tmp137 = -tmp8*m*tmp127 + tmp11*m*tmp129 - tmp15*m*tmp123 + tmp17*m*tmp125;
+    const Scalar tmp138 = tmp134 + tmp136;
+    const Scalar tmp139 = tmp135 + tmp137;
+    const Scalar tmp140 = -tmp7;
+    const Scalar tmp141 = tmp5*tmp140;
+    const Scalar tmp142 = tmp1*tmp3;
+    const Scalar tmp143 = tmp5*tmp3;
+    const Scalar tmp144 = tmp1*tmp140;
+    const Scalar tmp145 = alpha_dot*tmp143 + beta_dot*tmp144;
+    const Scalar tmp146 = -beta_dot*tmp145 - alpha_dot*beta_dot*tmp143
+        - (alpha_dot*alpha_dot)*tmp144;
+    const Scalar tmp147 = alpha_dot*tmp141 - beta_dot*tmp142;
+    const Scalar tmp148 = beta_dot*tmp147 + tmp4*alpha_dot*beta_dot*l*tmp140
+        - (alpha_dot*alpha_dot)*tmp142;
+    const Scalar tmp149 = Scalar(2)*tmp7*tmp3;
+    const Scalar tmp150 = Scalar(2)*tmp3*tmp140;
+    const Scalar tmp151 = tmp71*m*tmp149 + tmp71*m*tmp150;
+    const Scalar tmp152 = tmp69*m*tmp149 + tmp69*m*tmp150;
+    const Scalar tmp153 = tmp75*tmp143;
+    const Scalar tmp154 = tmp75*tmp144;
+    const Scalar tmp155 = tmp6*m*tmp146 + tmp10*m*tmp148 + tmp15*m*tmp141 + tmp17*m*tmp143;
+    const Scalar tmp156 = -tmp8*m*tmp146 + tmp11*m*tmp148 - tmp15*m*tmp142 + tmp17*m*tmp144;
+    const Scalar tmp157 = tmp153 + tmp155;
+    const Scalar tmp158 = tmp154 + tmp156;
+    const Scalar tmp159 = Scalar(2)*alpha_dot;
+    const Scalar tmp160 = -tmp10*beta_dot - Scalar(2)*tmp11*alpha_dot - beta_dot*tmp10;
+    const Scalar tmp161 = -Scalar(2)*tmp8*alpha_dot + tmp3*tmp4*beta_dot*l + beta_dot*tmp6;
+    const Scalar tmp162 = tmp0*tmp68*tmp4*m*tmp159 + tmp6*m*tmp160 + tmp10*m*tmp161;
+    const Scalar tmp163 = -tmp8*m*tmp160 + tmp11*m*tmp161;
+    const Scalar tmp164 = -tmp14 - tmp10*alpha_dot - beta_dot*tmp11;
+    const Scalar tmp165 = -tmp8;
+    const Scalar tmp166 = tmp16 + tmp3*tmp4*alpha_dot*l + beta_dot*tmp165;
+    const Scalar tmp167 = tmp6*m*tmp164 + tmp10*m*tmp166;
+    const Scalar tmp168 = -tmp8*m*tmp164 + tmp11*m*tmp166;
+    (*dr_dq)(0, 0) = alpha_ddot*tmp132 + tmp138;
+    (*dr_dq)(0, 1) = alpha_ddot*tmp151 + tmp157;
+    (*dr_dq)(1, 0) = beta_ddot*tmp133 + tmp139;
+    (*dr_dq)(1, 1) = beta_ddot*tmp152 + tmp158;
+    (*dr_dv)(0, 0) = tmp162;
+    (*dr_dv)(0, 1) = tmp167;
+    (*dr_dv)(1, 0) = tmp163;
+    (*dr_dv)(1, 1) = tmp168;
   }
 
   /// Kinetic energy T = 1/2 xdot^T M xdot.
@@ -1679,24 +1693,24 @@ struct SphericalPendulumPoleX {
     const Scalar beta_dot = v(1);
     const Scalar l = Scalar(params.l);
     const Scalar m = Scalar(params.m);
-    const Scalar tmp0 = (l*l);
-    const Scalar tmp1 = sin(alpha);
-    const Scalar tmp2 = tmp0*(tmp1*tmp1);
-    const Scalar tmp3 = sin(beta);
-    const Scalar tmp5 = cos(alpha);
-    const Scalar tmp7 = cos(beta);
-    const Scalar tmp12 = tmp5*l;
-    const Scalar tmp13 = tmp12*tmp3;
-    const Scalar tmp15 = tmp1*l;
-    const Scalar tmp16 = tmp15*tmp7;
-    const Scalar tmp18 = (alpha_dot*alpha_dot);
-    const Scalar tmp19 = tmp15*tmp3;
-    const Scalar tmp20 = tmp12*tmp7;
-    const Scalar tmp21 = tmp20*alpha_dot - tmp19*beta_dot;
-    const Scalar tmp23 = tmp13*alpha_dot + tmp16*beta_dot;
-    const Scalar tmp29 = (Scalar(0.5))*m*((tmp21*tmp21) + (tmp23*tmp23) + tmp18*tmp2);
+    const Scalar tmp0 = sin(alpha);
+    const Scalar tmp1 = tmp0*l;
+    const Scalar tmp3 = cos(beta);
+    const Scalar tmp4 = cos(alpha);
+    const Scalar tmp5 = tmp4*l;
+    const Scalar tmp6 = tmp3*tmp5;
+    const Scalar tmp7 = sin(beta);
+    const Scalar tmp8 = tmp1*tmp7;
+    const Scalar tmp10 = tmp5*tmp7;
+    const Scalar tmp11 = tmp1*tmp3;
+    const Scalar tmp12 = (alpha_dot*alpha_dot);
+    const Scalar tmp14 = tmp10*alpha_dot + tmp11*beta_dot;
+    const Scalar tmp16 = tmp6*alpha_dot - tmp8*beta_dot;
+    const Scalar tmp68 = (l*l);
+    const Scalar tmp69 = tmp68*(tmp0*tmp0);
+    const Scalar tmp82 = (Scalar(0.5))*m*((tmp14*tmp14) + (tmp16*tmp16) + tmp12*tmp69);
     Scalar result;
-    result = tmp29;
+    result = tmp82;
     return result;
   }
 
@@ -1716,14 +1730,14 @@ struct SphericalPendulumPoleX {
     const Scalar l = Scalar(params.l);
     const Scalar m = Scalar(params.m);
     const Scalar g = Scalar(params.g);
-    const Scalar tmp1 = sin(alpha);
-    const Scalar tmp3 = sin(beta);
-    const Scalar tmp11 = g*m;
-    const Scalar tmp15 = tmp1*l;
-    const Scalar tmp19 = tmp15*tmp3;
-    const Scalar tmp30 = tmp11*tmp19;
+    const Scalar tmp0 = sin(alpha);
+    const Scalar tmp1 = tmp0*l;
+    const Scalar tmp7 = sin(beta);
+    const Scalar tmp8 = tmp1*tmp7;
+    const Scalar tmp75 = g*m;
+    const Scalar tmp83 = tmp75*tmp8;
     Scalar result;
-    result = tmp30;
+    result = tmp83;
     return result;
   }
 
@@ -1763,26 +1777,26 @@ struct SphericalPendulumPoleX {
     const Scalar l = Scalar(params.l);
     const Scalar m = Scalar(params.m);
     const Scalar g = Scalar(params.g);
-    const Scalar tmp0 = (l*l);
-    const Scalar tmp1 = sin(alpha);
-    const Scalar tmp2 = tmp0*(tmp1*tmp1);
-    const Scalar tmp3 = sin(beta);
-    const Scalar tmp5 = cos(alpha);
-    const Scalar tmp7 = cos(beta);
-    const Scalar tmp11 = g*m;
-    const Scalar tmp12 = tmp5*l;
-    const Scalar tmp13 = tmp12*tmp3;
-    const Scalar tmp15 = tmp1*l;
-    const Scalar tmp16 = tmp15*tmp7;
-    const Scalar tmp18 = (alpha_dot*alpha_dot);
-    const Scalar tmp19 = tmp15*tmp3;
-    const Scalar tmp20 = tmp12*tmp7;
-    const Scalar tmp21 = tmp20*alpha_dot - tmp19*beta_dot;
-    const Scalar tmp23 = tmp13*alpha_dot + tmp16*beta_dot;
-    const Scalar tmp29 = (Scalar(0.5))*m*((tmp21*tmp21) + (tmp23*tmp23) + tmp18*tmp2);
-    const Scalar tmp30 = tmp11*tmp19;
+    const Scalar tmp0 = sin(alpha);
+    const Scalar tmp1 = tmp0*l;
+    const Scalar tmp3 = cos(beta);
+    const Scalar tmp4 = cos(alpha);
+    const Scalar tmp5 = tmp4*l;
+    const Scalar tmp6 = tmp3*tmp5;
+    const Scalar tmp7 = sin(beta);
+    const Scalar tmp8 = tmp1*tmp7;
+    const Scalar tmp10 = tmp5*tmp7;
+    const Scalar tmp11 = tmp1*tmp3;
+    const Scalar tmp12 = (alpha_dot*alpha_dot);
+    const Scalar tmp14 = tmp10*alpha_dot + tmp11*beta_dot;
+    const Scalar tmp16 = tmp6*alpha_dot - tmp8*beta_dot;
+    const Scalar tmp68 = (l*l);
+    const Scalar tmp69 = tmp68*(tmp0*tmp0);
+    const Scalar tmp75 = g*m;
+    const Scalar tmp82 = (Scalar(0.5))*m*((tmp14*tmp14) + (tmp16*tmp16) + tmp12*tmp69);
+    const Scalar tmp83 = tmp75*tmp8;
     Scalar result;
-    result = tmp29 + tmp30;
+    result = tmp82 + tmp83;
     return result;
   }
 
@@ -1801,18 +1815,18 @@ struct SphericalPendulumPoleX {
     const Scalar alpha = q(0);
     const Scalar beta = q(1);
     const Scalar l = Scalar(params.l);
-    const Scalar tmp1 = sin(alpha);
-    const Scalar tmp3 = sin(beta);
-    const Scalar tmp5 = cos(alpha);
-    const Scalar tmp7 = cos(beta);
-    const Scalar tmp12 = tmp5*l;
-    const Scalar tmp15 = tmp1*l;
-    const Scalar tmp16 = tmp15*tmp7;
-    const Scalar tmp19 = tmp15*tmp3;
+    const Scalar tmp0 = sin(alpha);
+    const Scalar tmp1 = tmp0*l;
+    const Scalar tmp3 = cos(beta);
+    const Scalar tmp4 = cos(alpha);
+    const Scalar tmp5 = tmp4*l;
+    const Scalar tmp7 = sin(beta);
+    const Scalar tmp8 = tmp1*tmp7;
+    const Scalar tmp11 = tmp1*tmp3;
     XVector<Scalar> result;
-    result(0) = tmp12;
-    result(1) = tmp16;
-    result(2) = tmp19;
+    result(0) = tmp5;
+    result(1) = tmp11;
+    result(2) = tmp8;
     return result;
   }
 
@@ -1835,23 +1849,23 @@ struct SphericalPendulumPoleX {
     const Scalar alpha_dot = v(0);
     const Scalar beta_dot = v(1);
     const Scalar l = Scalar(params.l);
-    const Scalar tmp1 = sin(alpha);
-    const Scalar tmp3 = sin(beta);
-    const Scalar tmp5 = cos(alpha);
-    const Scalar tmp7 = cos(beta);
-    const Scalar tmp12 = tmp5*l;
-    const Scalar tmp13 = tmp12*tmp3;
-    const Scalar tmp15 = tmp1*l;
-    const Scalar tmp16 = tmp15*tmp7;
-    const Scalar tmp19 = tmp15*tmp3;
-    const Scalar tmp20 = tmp12*tmp7;
-    const Scalar tmp21 = tmp20*alpha_dot - tmp19*beta_dot;
-    const Scalar tmp23 = tmp13*alpha_dot + tmp16*beta_dot;
-    const Scalar tmp31 = tmp15*alpha_dot;
+    const Scalar tmp0 = sin(alpha);
+    const Scalar tmp1 = tmp0*l;
+    const Scalar tmp3 = cos(beta);
+    const Scalar tmp4 = cos(alpha);
+    const Scalar tmp5 = tmp4*l;
+    const Scalar tmp6 = tmp3*tmp5;
+    const Scalar tmp7 = sin(beta);
+    const Scalar tmp8 = tmp1*tmp7;
+    const Scalar tmp10 = tmp5*tmp7;
+    const Scalar tmp11 = tmp1*tmp3;
+    const Scalar tmp14 = tmp10*alpha_dot + tmp11*beta_dot;
+    const Scalar tmp16 = tmp6*alpha_dot - tmp8*beta_dot;
+    const Scalar tmp84 = tmp1*alpha_dot;
     XVector<Scalar> result;
-    result(0) = -tmp31;
-    result(1) = tmp21;
-    result(2) = tmp23;
+    result(0) = -tmp84;
+    result(1) = tmp16;
+    result(2) = tmp14;
     return result;
   }
 
@@ -1870,23 +1884,23 @@ struct SphericalPendulumPoleX {
     const Scalar alpha = q(0);
     const Scalar beta = q(1);
     const Scalar l = Scalar(params.l);
-    const Scalar tmp1 = sin(alpha);
-    const Scalar tmp3 = sin(beta);
-    const Scalar tmp5 = cos(alpha);
-    const Scalar tmp7 = cos(beta);
-    const Scalar tmp12 = tmp5*l;
-    const Scalar tmp13 = tmp12*tmp3;
-    const Scalar tmp15 = tmp1*l;
-    const Scalar tmp16 = tmp15*tmp7;
-    const Scalar tmp19 = tmp15*tmp3;
-    const Scalar tmp20 = tmp12*tmp7;
+    const Scalar tmp0 = sin(alpha);
+    const Scalar tmp1 = tmp0*l;
+    const Scalar tmp3 = cos(beta);
+    const Scalar tmp4 = cos(alpha);
+    const Scalar tmp5 = tmp4*l;
+    const Scalar tmp6 = tmp3*tmp5;
+    const Scalar tmp7 = sin(beta);
+    const Scalar tmp8 = tmp1*tmp7;
+    const Scalar tmp10 = tmp5*tmp7;
+    const Scalar tmp11 = tmp1*tmp3;
     XJacobian<Scalar> result;
-    result(0, 0) = -tmp15;
+    result(0, 0) = -tmp1;
     result(0, 1) = Scalar(0);
-    result(1, 0) = tmp20;
-    result(1, 1) = -tmp19;
-    result(2, 0) = tmp13;
-    result(2, 1) = tmp16;
+    result(1, 0) = tmp6;
+    result(1, 1) = -tmp8;
+    result(2, 0) = tmp10;
+    result(2, 1) = tmp11;
     return result;
   }
 
@@ -1909,25 +1923,25 @@ struct SphericalPendulumPoleX {
     const Scalar alpha_dot = v(0);
     const Scalar beta_dot = v(1);
     const Scalar l = Scalar(params.l);
-    const Scalar tmp1 = sin(alpha);
-    const Scalar tmp3 = sin(beta);
-    const Scalar tmp5 = cos(alpha);
-    const Scalar tmp7 = cos(beta);
-    const Scalar tmp12 = tmp5*l;
-    const Scalar tmp13 = tmp12*tmp3;
-    const Scalar tmp15 = tmp1*l;
-    const Scalar tmp16 = tmp15*tmp7;
-    const Scalar tmp18 = (alpha_dot*alpha_dot);
-    const Scalar tmp19 = tmp15*tmp3;
-    const Scalar tmp20 = tmp12*tmp7;
-    const Scalar tmp21 = tmp20*alpha_dot - tmp19*beta_dot;
-    const Scalar tmp22 = tmp21*beta_dot + alpha_dot*(-tmp19*alpha_dot + tmp5*tmp7*beta_dot*l);
-    const Scalar tmp23 = tmp13*alpha_dot + tmp16*beta_dot;
-    const Scalar tmp24 = alpha_dot*(-tmp13*beta_dot - tmp16*alpha_dot) - tmp23*beta_dot;
+    const Scalar tmp0 = sin(alpha);
+    const Scalar tmp1 = tmp0*l;
+    const Scalar tmp3 = cos(beta);
+    const Scalar tmp4 = cos(alpha);
+    const Scalar tmp5 = tmp4*l;
+    const Scalar tmp6 = tmp3*tmp5;
+    const Scalar tmp7 = sin(beta);
+    const Scalar tmp8 = tmp1*tmp7;
+    const Scalar tmp10 = tmp5*tmp7;
+    const Scalar tmp11 = tmp1*tmp3;
+    const Scalar tmp12 = (alpha_dot*alpha_dot);
+    const Scalar tmp14 = tmp10*alpha_dot + tmp11*beta_dot;
+    const Scalar tmp15 = alpha_dot*(-tmp10*beta_dot - tmp11*alpha_dot) - tmp14*beta_dot;
+    const Scalar tmp16 = tmp6*alpha_dot - tmp8*beta_dot;
+    const Scalar tmp17 = tmp16*beta_dot + alpha_dot*(-tmp8*alpha_dot + tmp3*tmp4*beta_dot*l);
     XVector<Scalar> result;
-    result(0) = -tmp12*tmp18;
-    result(1) = tmp24;
-    result(2) = tmp22;
+    result(0) = -tmp12*tmp5;
+    result(1) = tmp15;
+    result(2) = tmp17;
     return result;
   }
 
@@ -1951,23 +1965,23 @@ struct SphericalPendulumPoleX {
     const Scalar beta_dot = v(1);
     const Scalar l = Scalar(params.l);
     const Scalar m = Scalar(params.m);
-    const Scalar tmp1 = sin(alpha);
-    const Scalar tmp3 = sin(beta);
-    const Scalar tmp5 = cos(alpha);
-    const Scalar tmp7 = cos(beta);
-    const Scalar tmp12 = tmp5*l;
-    const Scalar tmp13 = tmp12*tmp3;
-    const Scalar tmp15 = tmp1*l;
-    const Scalar tmp16 = tmp15*tmp7;
-    const Scalar tmp19 = tmp15*tmp3;
-    const Scalar tmp20 = tmp12*tmp7;
-    const Scalar tmp21 = tmp20*alpha_dot - tmp19*beta_dot;
-    const Scalar tmp23 = tmp13*alpha_dot + tmp16*beta_dot;
-    const Scalar tmp31 = tmp15*alpha_dot;
+    const Scalar tmp0 = sin(alpha);
+    const Scalar tmp1 = tmp0*l;
+    const Scalar tmp3 = cos(beta);
+    const Scalar tmp4 = cos(alpha);
+    const Scalar tmp5 = tmp4*l;
+    const Scalar tmp6 = tmp3*tmp5;
+    const Scalar tmp7 = sin(beta);
+    const Scalar tmp8 = tmp1*tmp7;
+    const Scalar tmp10 = tmp5*tmp7;
+    const Scalar tmp11 = tmp1*tmp3;
+    const Scalar tmp14 = tmp10*alpha_dot + tmp11*beta_dot;
+    const Scalar tmp16 = tmp6*alpha_dot - tmp8*beta_dot;
+    const Scalar tmp84 = tmp1*alpha_dot;
     SpaceVector<Scalar> result;
-    result(0) = -tmp31*m;
-    result(1) = tmp21*m;
-    result(2) = tmp23*m;
+    result(0) = -tmp84*m;
+    result(1) = tmp16*m;
+    result(2) = tmp14*m;
     return result;
   }
 
@@ -1991,25 +2005,25 @@ struct SphericalPendulumPoleX {
     const Scalar beta_dot = v(1);
     const Scalar l = Scalar(params.l);
     const Scalar m = Scalar(params.m);
-    const Scalar tmp0 = (l*l);
-    const Scalar tmp1 = sin(alpha);
-    const Scalar tmp2 = tmp0*(tmp1*tmp1);
-    const Scalar tmp3 = sin(beta);
-    const Scalar tmp5 = cos(alpha);
-    const Scalar tmp7 = cos(beta);
-    const Scalar tmp12 = tmp5*l;
-    const Scalar tmp13 = tmp12*tmp3;
-    const Scalar tmp15 = tmp1*l;
-    const Scalar tmp16 = tmp15*tmp7;
-    const Scalar tmp19 = tmp15*tmp3;
-    const Scalar tmp20 = tmp12*tmp7;
-    const Scalar tmp21 = tmp20*alpha_dot - tmp19*beta_dot;
-    const Scalar tmp23 = tmp13*alpha_dot + tmp16*beta_dot;
-    const Scalar tmp32 = tmp2*alpha_dot;
+    const Scalar tmp0 = sin(alpha);
+    const Scalar tmp1 = tmp0*l;
+    const Scalar tmp3 = cos(beta);
+    const Scalar tmp4 = cos(alpha);
+    const Scalar tmp5 = tmp4*l;
+    const Scalar tmp6 = tmp3*tmp5;
+    const Scalar tmp7 = sin(beta);
+    const Scalar tmp8 = tmp1*tmp7;
+    const Scalar tmp10 = tmp5*tmp7;
+    const Scalar tmp11 = tmp1*tmp3;
+    const Scalar tmp14 = tmp10*alpha_dot + tmp11*beta_dot;
+    const Scalar tmp16 = tmp6*alpha_dot - tmp8*beta_dot;
+    const Scalar tmp68 = (l*l);
+    const Scalar tmp69 = tmp68*(tmp0*tmp0);
+    const Scalar tmp85 = tmp69*alpha_dot;
     AngularVector<Scalar> result;
-    result(0) = m*(tmp16*tmp23 - tmp19*tmp21);
-    result(1) = m*(-tmp12*tmp23 - tmp3*tmp32);
-    result(2) = m*(tmp12*tmp21 + tmp32*tmp7);
+    result(0) = m*(tmp14*tmp11 - tmp16*tmp8);
+    result(1) = m*(-tmp14*tmp5 - tmp85*tmp7);
+    result(2) = m*(tmp16*tmp5 + tmp3*tmp85);
     return result;
   }
 
@@ -2124,11 +2138,11 @@ struct SphericalPendulumPoleX {
                                            const Params& params) {
       const Scalar m = Scalar(params.m);
       const Scalar g = Scalar(params.g);
-      const Scalar tmp11 = g*m;
+      const Scalar tmp75 = g*m;
       XVector<Scalar> result;
       result(0) = Scalar(0);
       result(1) = Scalar(0);
-      result(2) = -tmp11;
+      result(2) = -tmp75;
       return result;
     }
 
@@ -2150,23 +2164,23 @@ struct SphericalPendulumPoleX {
                                           const Params& params) {
       using std::sqrt;
       const Scalar l = Scalar(params.l);
-      const Scalar tmp33 = (pos(0)*pos(0));
-      const Scalar tmp34 = (pos(1)*pos(1));
-      const Scalar tmp35 = (pos(2)*pos(2));
-      const Scalar tmp36 = tmp33 + tmp34 + tmp35;
-      const Scalar tmp37 = sqrt(tmp36);
-      const Scalar tmp38 = (Scalar(1)/tmp37);
-      const Scalar tmp39 = tmp37 - l;
-      const Scalar tmp40 = (Scalar(1)/l);
-      const Scalar tmp41 = tmp40*kappa;
-      const Scalar tmp42 = tmp40*penalty_damping;
-      const Scalar tmp43 = -tmp39*tmp41
-          - tmp42*(tmp38*pos(0)*vel(0) + tmp38*pos(1)*vel(1) + tmp38*pos(2)*vel(2));
-      const Scalar tmp44 = tmp38*tmp43;
+      const Scalar tmp86 = (pos(0)*pos(0));
+      const Scalar tmp87 = (pos(1)*pos(1));
+      const Scalar tmp88 = (pos(2)*pos(2));
+      const Scalar tmp89 = tmp86 + tmp87 + tmp88;
+      const Scalar tmp90 = sqrt(tmp89);
+      const Scalar tmp91 = (Scalar(1)/tmp90);
+      const Scalar tmp92 = tmp90 - l;
+      const Scalar tmp93 = (Scalar(1)/l);
+      const Scalar tmp94 = tmp93*kappa;
+      const Scalar tmp95 = tmp93*penalty_damping;
+      const Scalar tmp96 = -tmp92*tmp94
+          - tmp95*(tmp91*pos(0)*vel(0) + tmp91*pos(1)*vel(1) + tmp91*pos(2)*vel(2));
+      const Scalar tmp97 = tmp91*tmp96;
       XVector<Scalar> result;
-      result(0) = tmp44*pos(0);
-      result(1) = tmp44*pos(1);
-      result(2) = tmp44*pos(2);
+      result(0) = tmp97*pos(0);
+      result(1) = tmp97*pos(1);
+      result(2) = tmp97*pos(2);
       return result;
     }
 
@@ -2188,51 +2202,51 @@ struct SphericalPendulumPoleX {
                                                   const Params& params) {
       using std::sqrt;
       const Scalar l = Scalar(params.l);
-      const Scalar tmp33 = (pos(0)*pos(0));
-      const Scalar tmp34 = (pos(1)*pos(1));
-      const Scalar tmp35 = (pos(2)*pos(2));
-      const Scalar tmp36 = tmp33 + tmp34 + tmp35;
-      const Scalar tmp37 = sqrt(tmp36);
-      const Scalar tmp38 = (Scalar(1)/tmp37);
-      const Scalar tmp39 = tmp37 - l;
-      const Scalar tmp40 = (Scalar(1)/l);
-      const Scalar tmp41 = tmp40*kappa;
-      const Scalar tmp42 = tmp40*penalty_damping;
-      const Scalar tmp43 = -tmp39*tmp41
-          - tmp42*(tmp38*pos(0)*vel(0) + tmp38*pos(1)*vel(1) + tmp38*pos(2)*vel(2));
-      const Scalar tmp44 = tmp38*tmp43;
-      const Scalar tmp45 = (Scalar(1)/(tmp36*sqrt(tmp36)));
-      const Scalar tmp46 = tmp33*tmp45;
-      const Scalar tmp47 = tmp38*pos(0);
-      const Scalar tmp48 = tmp45*pos(0);
-      const Scalar tmp49 = tmp48*pos(1);
-      const Scalar tmp50 = pos(2)*vel(2);
-      const Scalar tmp51 = -tmp41*tmp47
-          - tmp42*(tmp38*vel(0) - tmp46*vel(0) - tmp48*tmp50 - tmp49*vel(1));
-      const Scalar tmp52 = tmp43*tmp49;
-      const Scalar tmp53 = tmp38*pos(1);
-      const Scalar tmp54 = tmp45*pos(1);
-      const Scalar tmp55 = tmp34*tmp45;
-      const Scalar tmp56 = -tmp41*tmp53
-          - tmp42*(tmp38*vel(1) - tmp49*vel(0) - tmp50*tmp54 - tmp55*vel(1));
-      const Scalar tmp57 = tmp48*pos(2);
-      const Scalar tmp58 = tmp43*tmp57;
-      const Scalar tmp59 = tmp38*pos(2);
-      const Scalar tmp60 = tmp54*pos(2);
-      const Scalar tmp61 = tmp35*tmp45;
-      const Scalar tmp62 = -tmp41*tmp59
-          - tmp42*(tmp38*vel(2) - tmp57*vel(0) - tmp60*vel(1) - tmp61*vel(2));
-      const Scalar tmp63 = tmp43*tmp60;
+      const Scalar tmp86 = (pos(0)*pos(0));
+      const Scalar tmp87 = (pos(1)*pos(1));
+      const Scalar tmp88 = (pos(2)*pos(2));
+      const Scalar tmp89 = tmp86 + tmp87 + tmp88;
+      const Scalar tmp90 = sqrt(tmp89);
+      const Scalar tmp91 = (Scalar(1)/tmp90);
+      const Scalar tmp92 = tmp90 - l;
+      const Scalar tmp93 = (Scalar(1)/l);
+      const Scalar tmp94 = tmp93*kappa;
+      const Scalar tmp95 = tmp93*penalty_damping;
+      const Scalar tmp96 = -tmp92*tmp94
+          - tmp95*(tmp91*pos(0)*vel(0) + tmp91*pos(1)*vel(1) + tmp91*pos(2)*vel(2));
+      const Scalar tmp97 = tmp91*tmp96;
+      const Scalar tmp98 = (Scalar(1)/(tmp89*sqrt(tmp89)));
+      const Scalar tmp99 = tmp86*tmp98;
+      const Scalar tmp100 = tmp91*pos(0);
+      const Scalar tmp101 = tmp98*pos(0);
+      const Scalar tmp102 = tmp101*pos(1);
+      const Scalar tmp103 = pos(2)*vel(2);
+      const Scalar tmp104 = -tmp94*tmp100
+          - tmp95*(tmp91*vel(0) - tmp99*vel(0) - tmp101*tmp103 - tmp102*vel(1));
+      const Scalar tmp105 = tmp96*tmp102;
+      const Scalar tmp106 = tmp91*pos(1);
+      const Scalar tmp107 = tmp98*pos(1);
+      const Scalar tmp108 = tmp87*tmp98;
+      const Scalar tmp109 = -tmp94*tmp106
+          - tmp95*(tmp91*vel(1) - tmp102*vel(0) - tmp103*tmp107 - tmp108*vel(1));
+      const Scalar tmp110 = tmp101*pos(2);
+      const Scalar tmp111 = tmp96*tmp110;
+      const Scalar tmp112 = tmp91*pos(2);
+      const Scalar tmp113 = tmp107*pos(2);
+      const Scalar tmp114 = tmp88*tmp98;
+      const Scalar tmp115 = -tmp94*tmp112
+          - tmp95*(tmp91*vel(2) - tmp110*vel(0) - tmp113*vel(1) - tmp114*vel(2));
+      const Scalar tmp116 = tmp96*tmp113;
       std::array<Scalar, 9> result;
-      result[0] = tmp44 + tmp47*tmp51 - tmp43*tmp46;
-      result[1] = -tmp52 + tmp38*tmp56*pos(0);
-      result[2] = -tmp58 + tmp38*tmp62*pos(0);
-      result[3] = -tmp52 + tmp38*tmp51*pos(1);
-      result[4] = tmp44 + tmp53*tmp56 - tmp43*tmp55;
-      result[5] = -tmp63 + tmp38*tmp62*pos(1);
-      result[6] = -tmp58 + tmp38*tmp51*pos(2);
-      result[7] = -tmp63 + tmp38*tmp56*pos(2);
-      result[8] = tmp44 + tmp59*tmp62 - tmp43*tmp61;
+      result[0] = tmp97 + tmp100*tmp104 - tmp96*tmp99;
+      result[1] = -tmp105 + tmp91*tmp109*pos(0);
+      result[2] = -tmp111 + tmp91*tmp115*pos(0);
+      result[3] = -tmp105 + tmp91*tmp104*pos(1);
+      result[4] = tmp97 + tmp106*tmp109 - tmp96*tmp108;
+      result[5] = -tmp116 + tmp91*tmp115*pos(1);
+      result[6] = -tmp111 + tmp91*tmp104*pos(2);
+      result[7] = -tmp116 + tmp91*tmp109*pos(2);
+      result[8] = tmp97 + tmp112*tmp115 - tmp96*tmp114;
       return result;
     }
 
@@ -2253,24 +2267,24 @@ struct SphericalPendulumPoleX {
                                                      const Scalar& penalty_damping,
                                                      const Params& params) {
       const Scalar l = Scalar(params.l);
-      const Scalar tmp33 = (pos(0)*pos(0));
-      const Scalar tmp34 = (pos(1)*pos(1));
-      const Scalar tmp35 = (pos(2)*pos(2));
-      const Scalar tmp36 = tmp33 + tmp34 + tmp35;
-      const Scalar tmp40 = (Scalar(1)/l);
-      const Scalar tmp42 = tmp40*penalty_damping;
-      const Scalar tmp64 = tmp42/tmp36;
-      const Scalar tmp65 = tmp64*pos(0);
+      const Scalar tmp86 = (pos(0)*pos(0));
+      const Scalar tmp87 = (pos(1)*pos(1));
+      const Scalar tmp88 = (pos(2)*pos(2));
+      const Scalar tmp89 = tmp86 + tmp87 + tmp88;
+      const Scalar tmp93 = (Scalar(1)/l);
+      const Scalar tmp95 = tmp93*penalty_damping;
+      const Scalar tmp117 = tmp95/tmp89;
+      const Scalar tmp118 = tmp117*pos(0);
       std::array<Scalar, 9> result;
-      result[0] = -tmp33*tmp64;
-      result[1] = -tmp65*pos(1);
-      result[2] = -tmp65*pos(2);
-      result[3] = -tmp65*pos(1);
-      result[4] = -tmp34*tmp64;
-      result[5] = -tmp64*pos(1)*pos(2);
-      result[6] = -tmp65*pos(2);
-      result[7] = -tmp64*pos(1)*pos(2);
-      result[8] = -tmp35*tmp64;
+      result[0] = -tmp86*tmp117;
+      result[1] = -tmp118*pos(1);
+      result[2] = -tmp118*pos(2);
+      result[3] = -tmp118*pos(1);
+      result[4] = -tmp87*tmp117;
+      result[5] = -tmp117*pos(1)*pos(2);
+      result[6] = -tmp118*pos(2);
+      result[7] = -tmp117*pos(1)*pos(2);
+      result[8] = -tmp88*tmp117;
       return result;
     }
 
@@ -2286,9 +2300,9 @@ struct SphericalPendulumPoleX {
                                    const Params& params) {
       const Scalar m = Scalar(params.m);
       const Scalar g = Scalar(params.g);
-      const Scalar tmp11 = g*m;
+      const Scalar tmp75 = g*m;
       Scalar result;
-      result = tmp11*pos(2);
+      result = tmp75*pos(2);
       return result;
     }
 
@@ -2306,16 +2320,16 @@ struct SphericalPendulumPoleX {
                                  const Params& params) {
       using std::sqrt;
       const Scalar l = Scalar(params.l);
-      const Scalar tmp33 = (pos(0)*pos(0));
-      const Scalar tmp34 = (pos(1)*pos(1));
-      const Scalar tmp35 = (pos(2)*pos(2));
-      const Scalar tmp36 = tmp33 + tmp34 + tmp35;
-      const Scalar tmp37 = sqrt(tmp36);
-      const Scalar tmp39 = tmp37 - l;
-      const Scalar tmp40 = (Scalar(1)/l);
-      const Scalar tmp41 = tmp40*kappa;
+      const Scalar tmp86 = (pos(0)*pos(0));
+      const Scalar tmp87 = (pos(1)*pos(1));
+      const Scalar tmp88 = (pos(2)*pos(2));
+      const Scalar tmp89 = tmp86 + tmp87 + tmp88;
+      const Scalar tmp90 = sqrt(tmp89);
+      const Scalar tmp92 = tmp90 - l;
+      const Scalar tmp93 = (Scalar(1)/l);
+      const Scalar tmp94 = tmp93*kappa;
       Scalar result;
-      result = (Scalar(0.5))*tmp41*(tmp39*tmp39);
+      result = (Scalar(0.5))*tmp94*(tmp92*tmp92);
       return result;
     }
 
@@ -2331,14 +2345,14 @@ struct SphericalPendulumPoleX {
                                                           const Params& params) {
       using std::sqrt;
       const Scalar l = Scalar(params.l);
-      const Scalar tmp33 = (pos(0)*pos(0));
-      const Scalar tmp34 = (pos(1)*pos(1));
-      const Scalar tmp35 = (pos(2)*pos(2));
-      const Scalar tmp36 = tmp33 + tmp34 + tmp35;
-      const Scalar tmp37 = sqrt(tmp36);
-      const Scalar tmp39 = tmp37 - l;
+      const Scalar tmp86 = (pos(0)*pos(0));
+      const Scalar tmp87 = (pos(1)*pos(1));
+      const Scalar tmp88 = (pos(2)*pos(2));
+      const Scalar tmp89 = tmp86 + tmp87 + tmp88;
+      const Scalar tmp90 = sqrt(tmp89);
+      const Scalar tmp92 = tmp90 - l;
       ConstraintVector<Scalar> result;
-      result(0) = tmp39;
+      result(0) = tmp92;
       return result;
     }
   };

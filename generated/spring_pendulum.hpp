@@ -11,10 +11,12 @@
 // Redundancy (warning): distinct coordinates give the same positions, e.g. r = 0.7722, theta
 //   = 1.519 and r = -0.7722, theta = -1.622; mapping positions back to q (the inverse map,
 //   an atlas) depends on the first guess
+// qddot: Mt, Ft + Fi and an LDL^T solve, 88 operations (articulated-body recursion: 98)
+// inverse_dynamics: Mt qdd - Ft - Fi, 79 operations (recursive Newton-Euler: 69)
 //
-// Total ops: 443
-// Intermediate terms (118)
-// Output terms (42)
+// Total ops: 588
+// Intermediate terms (165)
+// Output terms (39)
 #pragma once
 
 #include <array>
@@ -71,6 +73,10 @@ struct SpringPendulum {
   /// Whether applied_forces at rest (v = 0) is -d(potential_energy)/dq: every force without
   /// a declared potential vanishes at rest (generator/conservative.py).
   static constexpr bool forces_have_potential = true;
+  /// Whether qddot is the articulated-body recursion over the model's tree of particles,
+  /// chosen at generation because it takes fewer operations than Mt, Ft + Fi and an LDL^T
+  /// solve (generator/dynamics_paths.py); gencoord::acceleration() then calls it.
+  static constexpr bool recursive_qddot = false;
 
   template <typename Scalar>
   using QVector = Eigen::Matrix<Scalar, nq, 1>;
@@ -126,17 +132,17 @@ struct SpringPendulum {
     const Scalar theta = q(1);
     const Scalar m = Scalar(params.m);
     const Scalar tmp0 = sin(theta);
-    const Scalar tmp1 = (tmp0*tmp0);
-    const Scalar tmp2 = cos(theta);
-    const Scalar tmp3 = (tmp2*tmp2);
-    const Scalar tmp4 = m*(tmp1 + tmp3);
-    const Scalar tmp5 = (r*r);
-    const Scalar tmp6 = tmp1*tmp5 + tmp3*tmp5;
-    const Scalar tmp7 = tmp6*m;
+    const Scalar tmp1 = cos(theta);
+    const Scalar tmp60 = (tmp0*tmp0);
+    const Scalar tmp61 = (tmp1*tmp1);
+    const Scalar tmp62 = m*(tmp60 + tmp61);
+    const Scalar tmp63 = (r*r);
+    const Scalar tmp64 = tmp60*tmp63 + tmp61*tmp63;
+    const Scalar tmp65 = tmp64*m;
     QMatrix<Scalar> result;
-    result(0, 0) = tmp4;
+    result(0, 0) = tmp62;
     result(1, 0) = Scalar(0);
-    result(1, 1) = tmp7;
+    result(1, 1) = tmp65;
     result(0, 1) = result(1, 0);
     return result;
   }
@@ -166,35 +172,34 @@ struct SpringPendulum {
     const Scalar g = Scalar(params.g);
     const Scalar c_air = Scalar(params.c_air);
     const Scalar tmp0 = sin(theta);
-    const Scalar tmp1 = (tmp0*tmp0);
-    const Scalar tmp2 = cos(theta);
-    const Scalar tmp3 = (tmp2*tmp2);
-    const Scalar tmp5 = (r*r);
-    const Scalar tmp6 = tmp1*tmp5 + tmp3*tmp5;
-    const Scalar tmp8 = g*m;
-    const Scalar tmp9 = tmp2*tmp8;
-    const Scalar tmp10 = tmp0*r_dot;
-    const Scalar tmp11 = tmp2*r;
-    const Scalar tmp12 = tmp10 + tmp11*theta_dot;
-    const Scalar tmp13 = tmp0*r;
-    const Scalar tmp14 = sqrt(tmp6);
-    const Scalar tmp15 = (Scalar(1)/tmp14);
-    const Scalar tmp16 = tmp14 - L;
-    const Scalar tmp17 = (Scalar(1)/L);
-    const Scalar tmp18 = tmp17*k;
-    const Scalar tmp19 = -tmp12*c_air - tmp13*tmp15*tmp16*tmp18;
-    const Scalar tmp20 = tmp0*tmp19;
-    const Scalar tmp21 = tmp2*r_dot;
-    const Scalar tmp22 = -tmp21 + tmp13*theta_dot;
-    const Scalar tmp23 = -tmp22*c_air + tmp15*tmp16*tmp17*tmp2*k*r;
-    const Scalar tmp24 = tmp2*tmp23;
-    const Scalar tmp25 = tmp20 + tmp9 - tmp24;
-    const Scalar tmp26 = tmp13*tmp8;
-    const Scalar tmp27 = tmp13*tmp23;
-    const Scalar tmp28 = tmp11*tmp19;
+    const Scalar tmp1 = cos(theta);
+    const Scalar tmp2 = tmp1*r;
+    const Scalar tmp4 = tmp0*r;
+    const Scalar tmp5 = tmp4*theta_dot - tmp1*r_dot;
+    const Scalar tmp7 = tmp0*r_dot;
+    const Scalar tmp8 = tmp7 + tmp2*theta_dot;
+    const Scalar tmp14 = (Scalar(1)/L);
+    const Scalar tmp15 = tmp14*k;
+    const Scalar tmp60 = (tmp0*tmp0);
+    const Scalar tmp61 = (tmp1*tmp1);
+    const Scalar tmp63 = (r*r);
+    const Scalar tmp64 = tmp60*tmp63 + tmp61*tmp63;
+    const Scalar tmp66 = g*m;
+    const Scalar tmp67 = tmp1*tmp66;
+    const Scalar tmp68 = sqrt(tmp64);
+    const Scalar tmp69 = (Scalar(1)/tmp68);
+    const Scalar tmp70 = tmp68 - L;
+    const Scalar tmp71 = -tmp8*c_air - tmp15*tmp69*tmp70*tmp4;
+    const Scalar tmp72 = tmp0*tmp71;
+    const Scalar tmp73 = -tmp5*c_air + tmp1*tmp14*tmp69*tmp70*k*r;
+    const Scalar tmp74 = tmp1*tmp73;
+    const Scalar tmp75 = tmp67 + tmp72 - tmp74;
+    const Scalar tmp76 = tmp66*tmp4;
+    const Scalar tmp77 = tmp4*tmp73;
+    const Scalar tmp78 = tmp2*tmp71;
     QVector<Scalar> result;
-    result(0) = tmp25;
-    result(1) = tmp27 + tmp28 - tmp26;
+    result(0) = tmp75;
+    result(1) = tmp77 + tmp78 - tmp76;
     return result;
   }
 
@@ -222,7 +227,7 @@ struct SpringPendulum {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return Fi (nq)
-  /// Ops: 29
+  /// Ops: 30
   template <typename Scalar>
   static QVector<Scalar> inertial_forces(const QVector<Scalar>& q,
                                          const QVector<Scalar>& v,
@@ -236,21 +241,20 @@ struct SpringPendulum {
     const Scalar theta_dot = v(1);
     const Scalar m = Scalar(params.m);
     const Scalar tmp0 = sin(theta);
-    const Scalar tmp2 = cos(theta);
-    const Scalar tmp10 = tmp0*r_dot;
-    const Scalar tmp11 = tmp2*r;
-    const Scalar tmp12 = tmp10 + tmp11*theta_dot;
-    const Scalar tmp13 = tmp0*r;
-    const Scalar tmp21 = tmp2*r_dot;
-    const Scalar tmp22 = -tmp21 + tmp13*theta_dot;
-    const Scalar tmp29 = tmp10*theta_dot + tmp12*theta_dot;
-    const Scalar tmp30 = tmp21*theta_dot - tmp22*theta_dot;
-    const Scalar tmp31 = m*(tmp0*tmp30 - tmp2*tmp29);
-    const Scalar tmp32 = -tmp31;
-    const Scalar tmp33 = m*(tmp11*tmp30 + tmp13*tmp29);
+    const Scalar tmp1 = cos(theta);
+    const Scalar tmp2 = tmp1*r;
+    const Scalar tmp4 = tmp0*r;
+    const Scalar tmp5 = tmp4*theta_dot - tmp1*r_dot;
+    const Scalar tmp6 = -tmp5*theta_dot + tmp1*r_dot*theta_dot;
+    const Scalar tmp7 = tmp0*r_dot;
+    const Scalar tmp8 = tmp7 + tmp2*theta_dot;
+    const Scalar tmp9 = tmp7*theta_dot + tmp8*theta_dot;
+    const Scalar tmp79 = m*(tmp0*tmp6 - tmp1*tmp9);
+    const Scalar tmp80 = -tmp79;
+    const Scalar tmp81 = m*(tmp2*tmp6 + tmp4*tmp9);
     QVector<Scalar> result;
-    result(0) = tmp32;
-    result(1) = -tmp33;
+    result(0) = tmp80;
+    result(1) = -tmp81;
     return result;
   }
 
@@ -260,7 +264,7 @@ struct SpringPendulum {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return Ft + Fi (nq)
-  /// Ops: 72
+  /// Ops: 73
   template <typename Scalar>
   static QVector<Scalar> forces(const QVector<Scalar>& q,
                                 const QVector<Scalar>& v,
@@ -279,41 +283,40 @@ struct SpringPendulum {
     const Scalar g = Scalar(params.g);
     const Scalar c_air = Scalar(params.c_air);
     const Scalar tmp0 = sin(theta);
-    const Scalar tmp1 = (tmp0*tmp0);
-    const Scalar tmp2 = cos(theta);
-    const Scalar tmp3 = (tmp2*tmp2);
-    const Scalar tmp5 = (r*r);
-    const Scalar tmp6 = tmp1*tmp5 + tmp3*tmp5;
-    const Scalar tmp8 = g*m;
-    const Scalar tmp9 = tmp2*tmp8;
-    const Scalar tmp10 = tmp0*r_dot;
-    const Scalar tmp11 = tmp2*r;
-    const Scalar tmp12 = tmp10 + tmp11*theta_dot;
-    const Scalar tmp13 = tmp0*r;
-    const Scalar tmp14 = sqrt(tmp6);
-    const Scalar tmp15 = (Scalar(1)/tmp14);
-    const Scalar tmp16 = tmp14 - L;
-    const Scalar tmp17 = (Scalar(1)/L);
-    const Scalar tmp18 = tmp17*k;
-    const Scalar tmp19 = -tmp12*c_air - tmp13*tmp15*tmp16*tmp18;
-    const Scalar tmp20 = tmp0*tmp19;
-    const Scalar tmp21 = tmp2*r_dot;
-    const Scalar tmp22 = -tmp21 + tmp13*theta_dot;
-    const Scalar tmp23 = -tmp22*c_air + tmp15*tmp16*tmp17*tmp2*k*r;
-    const Scalar tmp24 = tmp2*tmp23;
-    const Scalar tmp25 = tmp20 + tmp9 - tmp24;
-    const Scalar tmp26 = tmp13*tmp8;
-    const Scalar tmp27 = tmp13*tmp23;
-    const Scalar tmp28 = tmp11*tmp19;
-    const Scalar tmp29 = tmp10*theta_dot + tmp12*theta_dot;
-    const Scalar tmp30 = tmp21*theta_dot - tmp22*theta_dot;
-    const Scalar tmp31 = m*(tmp0*tmp30 - tmp2*tmp29);
-    const Scalar tmp32 = -tmp31;
-    const Scalar tmp33 = m*(tmp11*tmp30 + tmp13*tmp29);
-    const Scalar tmp34 = tmp26 + tmp33 - tmp27 - tmp28;
+    const Scalar tmp1 = cos(theta);
+    const Scalar tmp2 = tmp1*r;
+    const Scalar tmp4 = tmp0*r;
+    const Scalar tmp5 = tmp4*theta_dot - tmp1*r_dot;
+    const Scalar tmp6 = -tmp5*theta_dot + tmp1*r_dot*theta_dot;
+    const Scalar tmp7 = tmp0*r_dot;
+    const Scalar tmp8 = tmp7 + tmp2*theta_dot;
+    const Scalar tmp9 = tmp7*theta_dot + tmp8*theta_dot;
+    const Scalar tmp14 = (Scalar(1)/L);
+    const Scalar tmp15 = tmp14*k;
+    const Scalar tmp60 = (tmp0*tmp0);
+    const Scalar tmp61 = (tmp1*tmp1);
+    const Scalar tmp63 = (r*r);
+    const Scalar tmp64 = tmp60*tmp63 + tmp61*tmp63;
+    const Scalar tmp66 = g*m;
+    const Scalar tmp67 = tmp1*tmp66;
+    const Scalar tmp68 = sqrt(tmp64);
+    const Scalar tmp69 = (Scalar(1)/tmp68);
+    const Scalar tmp70 = tmp68 - L;
+    const Scalar tmp71 = -tmp8*c_air - tmp15*tmp69*tmp70*tmp4;
+    const Scalar tmp72 = tmp0*tmp71;
+    const Scalar tmp73 = -tmp5*c_air + tmp1*tmp14*tmp69*tmp70*k*r;
+    const Scalar tmp74 = tmp1*tmp73;
+    const Scalar tmp75 = tmp67 + tmp72 - tmp74;
+    const Scalar tmp76 = tmp66*tmp4;
+    const Scalar tmp77 = tmp4*tmp73;
+    const Scalar tmp78 = tmp2*tmp71;
+    const Scalar tmp79 = m*(tmp0*tmp6 - tmp1*tmp9);
+    const Scalar tmp80 = -tmp79;
+    const Scalar tmp81 = m*(tmp2*tmp6 + tmp4*tmp9);
+    const Scalar tmp82 = tmp76 + tmp81 - tmp77 - tmp78;
     QVector<Scalar> result;
-    result(0) = tmp25 + tmp32;
-    result(1) = -tmp34;
+    result(0) = tmp75 + tmp80;
+    result(1) = -tmp82;
     return result;
   }
 
@@ -323,7 +326,7 @@ struct SpringPendulum {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// Mt and f must not be null.
-  /// Ops: 75
+  /// Ops: 76
   template <typename Scalar>
   static void dynamics(const QVector<Scalar>& q,
                        const QVector<Scalar>& v,
@@ -344,45 +347,44 @@ struct SpringPendulum {
     const Scalar g = Scalar(params.g);
     const Scalar c_air = Scalar(params.c_air);
     const Scalar tmp0 = sin(theta);
-    const Scalar tmp1 = (tmp0*tmp0);
-    const Scalar tmp2 = cos(theta);
-    const Scalar tmp3 = (tmp2*tmp2);
-    const Scalar tmp4 = m*(tmp1 + tmp3);
-    const Scalar tmp5 = (r*r);
-    const Scalar tmp6 = tmp1*tmp5 + tmp3*tmp5;
-    const Scalar tmp7 = tmp6*m;
-    const Scalar tmp8 = g*m;
-    const Scalar tmp9 = tmp2*tmp8;
-    const Scalar tmp10 = tmp0*r_dot;
-    const Scalar tmp11 = tmp2*r;
-    const Scalar tmp12 = tmp10 + tmp11*theta_dot;
-    const Scalar tmp13 = tmp0*r;
-    const Scalar tmp14 = sqrt(tmp6);
-    const Scalar tmp15 = (Scalar(1)/tmp14);
-    const Scalar tmp16 = tmp14 - L;
-    const Scalar tmp17 = (Scalar(1)/L);
-    const Scalar tmp18 = tmp17*k;
-    const Scalar tmp19 = -tmp12*c_air - tmp13*tmp15*tmp16*tmp18;
-    const Scalar tmp20 = tmp0*tmp19;
-    const Scalar tmp21 = tmp2*r_dot;
-    const Scalar tmp22 = -tmp21 + tmp13*theta_dot;
-    const Scalar tmp23 = -tmp22*c_air + tmp15*tmp16*tmp17*tmp2*k*r;
-    const Scalar tmp24 = tmp2*tmp23;
-    const Scalar tmp25 = tmp20 + tmp9 - tmp24;
-    const Scalar tmp26 = tmp13*tmp8;
-    const Scalar tmp27 = tmp13*tmp23;
-    const Scalar tmp28 = tmp11*tmp19;
-    const Scalar tmp29 = tmp10*theta_dot + tmp12*theta_dot;
-    const Scalar tmp30 = tmp21*theta_dot - tmp22*theta_dot;
-    const Scalar tmp31 = m*(tmp0*tmp30 - tmp2*tmp29);
-    const Scalar tmp32 = -tmp31;
-    const Scalar tmp33 = m*(tmp11*tmp30 + tmp13*tmp29);
-    const Scalar tmp34 = tmp26 + tmp33 - tmp27 - tmp28;
-    (*Mt)(0, 0) = tmp4;
+    const Scalar tmp1 = cos(theta);
+    const Scalar tmp2 = tmp1*r;
+    const Scalar tmp4 = tmp0*r;
+    const Scalar tmp5 = tmp4*theta_dot - tmp1*r_dot;
+    const Scalar tmp6 = -tmp5*theta_dot + tmp1*r_dot*theta_dot;
+    const Scalar tmp7 = tmp0*r_dot;
+    const Scalar tmp8 = tmp7 + tmp2*theta_dot;
+    const Scalar tmp9 = tmp7*theta_dot + tmp8*theta_dot;
+    const Scalar tmp14 = (Scalar(1)/L);
+    const Scalar tmp15 = tmp14*k;
+    const Scalar tmp60 = (tmp0*tmp0);
+    const Scalar tmp61 = (tmp1*tmp1);
+    const Scalar tmp62 = m*(tmp60 + tmp61);
+    const Scalar tmp63 = (r*r);
+    const Scalar tmp64 = tmp60*tmp63 + tmp61*tmp63;
+    const Scalar tmp65 = tmp64*m;
+    const Scalar tmp66 = g*m;
+    const Scalar tmp67 = tmp1*tmp66;
+    const Scalar tmp68 = sqrt(tmp64);
+    const Scalar tmp69 = (Scalar(1)/tmp68);
+    const Scalar tmp70 = tmp68 - L;
+    const Scalar tmp71 = -tmp8*c_air - tmp15*tmp69*tmp70*tmp4;
+    const Scalar tmp72 = tmp0*tmp71;
+    const Scalar tmp73 = -tmp5*c_air + tmp1*tmp14*tmp69*tmp70*k*r;
+    const Scalar tmp74 = tmp1*tmp73;
+    const Scalar tmp75 = tmp67 + tmp72 - tmp74;
+    const Scalar tmp76 = tmp66*tmp4;
+    const Scalar tmp77 = tmp4*tmp73;
+    const Scalar tmp78 = tmp2*tmp71;
+    const Scalar tmp79 = m*(tmp0*tmp6 - tmp1*tmp9);
+    const Scalar tmp80 = -tmp79;
+    const Scalar tmp81 = m*(tmp2*tmp6 + tmp4*tmp9);
+    const Scalar tmp82 = tmp76 + tmp81 - tmp77 - tmp78;
+    (*Mt)(0, 0) = tmp62;
     (*Mt)(1, 0) = Scalar(0);
-    (*Mt)(1, 1) = tmp7;
-    (*f)(0) = tmp25 + tmp32;
-    (*f)(1) = -tmp34;
+    (*Mt)(1, 1) = tmp65;
+    (*f)(0) = tmp75 + tmp80;
+    (*f)(1) = -tmp82;
     (*Mt)(0, 1) = (*Mt)(1, 0);
   }
 
@@ -394,7 +396,7 @@ struct SpringPendulum {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return r = tau (nq)
-  /// Ops: 78
+  /// Ops: 79
   template <typename Scalar>
   static QVector<Scalar> inverse_dynamics(const QVector<Scalar>& q,
                                           const QVector<Scalar>& v,
@@ -416,41 +418,40 @@ struct SpringPendulum {
     const Scalar g = Scalar(params.g);
     const Scalar c_air = Scalar(params.c_air);
     const Scalar tmp0 = sin(theta);
-    const Scalar tmp1 = (tmp0*tmp0);
-    const Scalar tmp2 = cos(theta);
-    const Scalar tmp3 = (tmp2*tmp2);
-    const Scalar tmp4 = m*(tmp1 + tmp3);
-    const Scalar tmp5 = (r*r);
-    const Scalar tmp6 = tmp1*tmp5 + tmp3*tmp5;
-    const Scalar tmp7 = tmp6*m;
-    const Scalar tmp8 = g*m;
-    const Scalar tmp9 = tmp2*tmp8;
-    const Scalar tmp10 = tmp0*r_dot;
-    const Scalar tmp11 = tmp2*r;
-    const Scalar tmp12 = tmp10 + tmp11*theta_dot;
-    const Scalar tmp13 = tmp0*r;
-    const Scalar tmp14 = sqrt(tmp6);
-    const Scalar tmp15 = (Scalar(1)/tmp14);
-    const Scalar tmp16 = tmp14 - L;
-    const Scalar tmp17 = (Scalar(1)/L);
-    const Scalar tmp18 = tmp17*k;
-    const Scalar tmp19 = -tmp12*c_air - tmp13*tmp15*tmp16*tmp18;
-    const Scalar tmp20 = tmp0*tmp19;
-    const Scalar tmp21 = tmp2*r_dot;
-    const Scalar tmp22 = -tmp21 + tmp13*theta_dot;
-    const Scalar tmp23 = -tmp22*c_air + tmp15*tmp16*tmp17*tmp2*k*r;
-    const Scalar tmp24 = tmp2*tmp23;
-    const Scalar tmp26 = tmp13*tmp8;
-    const Scalar tmp27 = tmp13*tmp23;
-    const Scalar tmp28 = tmp11*tmp19;
-    const Scalar tmp29 = tmp10*theta_dot + tmp12*theta_dot;
-    const Scalar tmp30 = tmp21*theta_dot - tmp22*theta_dot;
-    const Scalar tmp31 = m*(tmp0*tmp30 - tmp2*tmp29);
-    const Scalar tmp33 = m*(tmp11*tmp30 + tmp13*tmp29);
-    const Scalar tmp34 = tmp26 + tmp33 - tmp27 - tmp28;
+    const Scalar tmp1 = cos(theta);
+    const Scalar tmp2 = tmp1*r;
+    const Scalar tmp4 = tmp0*r;
+    const Scalar tmp5 = tmp4*theta_dot - tmp1*r_dot;
+    const Scalar tmp6 = -tmp5*theta_dot + tmp1*r_dot*theta_dot;
+    const Scalar tmp7 = tmp0*r_dot;
+    const Scalar tmp8 = tmp7 + tmp2*theta_dot;
+    const Scalar tmp9 = tmp7*theta_dot + tmp8*theta_dot;
+    const Scalar tmp14 = (Scalar(1)/L);
+    const Scalar tmp15 = tmp14*k;
+    const Scalar tmp60 = (tmp0*tmp0);
+    const Scalar tmp61 = (tmp1*tmp1);
+    const Scalar tmp62 = m*(tmp60 + tmp61);
+    const Scalar tmp63 = (r*r);
+    const Scalar tmp64 = tmp60*tmp63 + tmp61*tmp63;
+    const Scalar tmp65 = tmp64*m;
+    const Scalar tmp66 = g*m;
+    const Scalar tmp67 = tmp1*tmp66;
+    const Scalar tmp68 = sqrt(tmp64);
+    const Scalar tmp69 = (Scalar(1)/tmp68);
+    const Scalar tmp70 = tmp68 - L;
+    const Scalar tmp71 = -tmp8*c_air - tmp15*tmp69*tmp70*tmp4;
+    const Scalar tmp72 = tmp0*tmp71;
+    const Scalar tmp73 = -tmp5*c_air + tmp1*tmp14*tmp69*tmp70*k*r;
+    const Scalar tmp74 = tmp1*tmp73;
+    const Scalar tmp76 = tmp66*tmp4;
+    const Scalar tmp77 = tmp4*tmp73;
+    const Scalar tmp78 = tmp2*tmp71;
+    const Scalar tmp79 = m*(tmp0*tmp6 - tmp1*tmp9);
+    const Scalar tmp81 = m*(tmp2*tmp6 + tmp4*tmp9);
+    const Scalar tmp82 = tmp76 + tmp81 - tmp77 - tmp78;
     QVector<Scalar> result;
-    result(0) = tmp24 + tmp31 - tmp20 - tmp9 + tmp4*r_ddot;
-    result(1) = tmp34 + tmp7*theta_ddot;
+    result(0) = tmp74 + tmp79 - tmp67 - tmp72 + tmp62*r_ddot;
+    result(1) = tmp82 + tmp65*theta_ddot;
     return result;
   }
 
@@ -461,7 +462,7 @@ struct SpringPendulum {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// dr_dq and dr_dv must not be null.
-  /// Ops: 323
+  /// Ops: 326
   template <typename Scalar>
   static void residual_jacobians(const QVector<Scalar>& q,
                                  const QVector<Scalar>& v,
@@ -485,108 +486,106 @@ struct SpringPendulum {
     const Scalar g = Scalar(params.g);
     const Scalar c_air = Scalar(params.c_air);
     const Scalar tmp0 = sin(theta);
-    const Scalar tmp1 = (tmp0*tmp0);
-    const Scalar tmp2 = cos(theta);
-    const Scalar tmp3 = (tmp2*tmp2);
-    const Scalar tmp5 = (r*r);
-    const Scalar tmp6 = tmp1*tmp5 + tmp3*tmp5;
-    const Scalar tmp8 = g*m;
-    const Scalar tmp10 = tmp0*r_dot;
-    const Scalar tmp11 = tmp2*r;
-    const Scalar tmp12 = tmp10 + tmp11*theta_dot;
-    const Scalar tmp13 = tmp0*r;
-    const Scalar tmp14 = sqrt(tmp6);
-    const Scalar tmp15 = (Scalar(1)/tmp14);
-    const Scalar tmp16 = tmp14 - L;
-    const Scalar tmp17 = (Scalar(1)/L);
-    const Scalar tmp18 = tmp17*k;
-    const Scalar tmp19 = -tmp12*c_air - tmp13*tmp15*tmp16*tmp18;
-    const Scalar tmp21 = tmp2*r_dot;
-    const Scalar tmp22 = -tmp21 + tmp13*theta_dot;
-    const Scalar tmp23 = -tmp22*c_air + tmp15*tmp16*tmp17*tmp2*k*r;
-    const Scalar tmp29 = tmp10*theta_dot + tmp12*theta_dot;
-    const Scalar tmp30 = tmp21*theta_dot - tmp22*theta_dot;
-    const Scalar tmp49 = Scalar(2)*r;
-    const Scalar tmp50 = (tmp1 + tmp3)*tmp49;
-    const Scalar tmp51 = m*tmp50;
-    const Scalar tmp52 = theta_dot*tmp2;
-    const Scalar tmp53 = (Scalar(0.5))/sqrt(tmp6)*tmp50;
-    const Scalar tmp54 = -(Scalar(1)/(tmp14*tmp14))*tmp53;
-    const Scalar tmp55 = -c_air*tmp52 - tmp15*tmp16*tmp18*tmp0 - tmp13*tmp16*tmp18*tmp54
-        - tmp13*tmp15*tmp18*tmp53;
-    const Scalar tmp56 = tmp0*tmp55;
-    const Scalar tmp57 = theta_dot*tmp0;
-    const Scalar tmp58 = tmp15*tmp16*tmp17*tmp2*k + tmp16*tmp17*tmp2*k*r*tmp54
-        + tmp15*tmp17*tmp2*k*r*tmp53 - c_air*tmp57;
-    const Scalar tmp59 = tmp2*tmp58;
-    const Scalar tmp60 = tmp8*tmp0;
-    const Scalar tmp61 = tmp23*tmp0 + tmp13*tmp58;
-    const Scalar tmp62 = tmp19*tmp2 + tmp11*tmp55;
-    const Scalar tmp63 = theta_dot*tmp52;
-    const Scalar tmp64 = -theta_dot*tmp57;
-    const Scalar tmp65 = -tmp2*m*tmp63 + tmp0*m*tmp64;
-    const Scalar tmp66 = tmp30*m*tmp2 + tmp29*m*tmp0 + tmp13*m*tmp63 + tmp11*m*tmp64;
-    const Scalar tmp67 = tmp60 - tmp61 - tmp62 + tmp66;
-    const Scalar tmp68 = Scalar(2)*tmp0*tmp2;
-    const Scalar tmp69 = -tmp0;
-    const Scalar tmp70 = Scalar(2)*tmp2*tmp69;
-    const Scalar tmp71 = m*tmp68 + m*tmp70;
-    const Scalar tmp72 = tmp5*tmp68 + tmp5*tmp70;
-    const Scalar tmp73 = m*tmp72;
-    const Scalar tmp74 = tmp8*tmp69;
-    const Scalar tmp75 = r_dot*tmp2;
-    const Scalar tmp76 = r*tmp69;
-    const Scalar tmp77 = tmp75 + theta_dot*tmp76;
-    const Scalar tmp78 = r*tmp2;
-    const Scalar tmp79 = (Scalar(0.5))/sqrt(tmp6)*tmp72;
-    const Scalar tmp80 = -(Scalar(1)/(tmp14*tmp14))*tmp79;
-    const Scalar tmp81 = -c_air*tmp77 - tmp15*tmp16*tmp18*tmp78 - tmp13*tmp16*tmp18*tmp80
-        - tmp13*tmp15*tmp18*tmp79;
-    const Scalar tmp82 = tmp19*tmp2 + tmp0*tmp81;
-    const Scalar tmp83 = r_dot*tmp69;
-    const Scalar tmp84 = theta_dot*tmp78 - tmp83;
-    const Scalar tmp85 = tmp16*tmp17*tmp2*k*r*tmp80 + tmp15*tmp17*tmp2*k*r*tmp79
-        + tmp15*tmp16*tmp17*k*r*tmp69 - c_air*tmp84;
-    const Scalar tmp86 = tmp23*tmp69 + tmp2*tmp85;
-    const Scalar tmp87 = tmp8*tmp78;
-    const Scalar tmp88 = tmp23*tmp78 + tmp13*tmp85;
-    const Scalar tmp89 = tmp19*tmp76 + tmp11*tmp81;
-    const Scalar tmp90 = theta_dot*tmp75 + theta_dot*tmp77;
-    const Scalar tmp91 = theta_dot*tmp83 - theta_dot*tmp84;
-    const Scalar tmp92 = tmp30*m*tmp2 - tmp29*m*tmp69 - tmp2*m*tmp90 + tmp0*m*tmp91;
-    const Scalar tmp93 = tmp30*m*tmp76 + tmp29*m*tmp78 + tmp13*m*tmp90 + tmp11*m*tmp91;
-    const Scalar tmp94 = tmp87 - tmp88 - tmp89 + tmp93;
-    const Scalar tmp95 = -c_air*tmp0;
-    const Scalar tmp96 = tmp0*tmp95;
-    const Scalar tmp97 = -tmp2;
-    const Scalar tmp98 = -c_air*tmp97;
-    const Scalar tmp99 = tmp2*tmp98;
-    const Scalar tmp100 = tmp13*tmp98;
-    const Scalar tmp101 = tmp11*tmp95;
-    const Scalar tmp102 = Scalar(2)*theta_dot*tmp0;
-    const Scalar tmp103 = theta_dot*tmp2 - theta_dot*tmp97;
-    const Scalar tmp104 = -tmp2*m*tmp102 + tmp0*m*tmp103;
-    const Scalar tmp105 = tmp13*m*tmp102 + tmp11*m*tmp103;
-    const Scalar tmp106 = -tmp100 - tmp101 + tmp105;
-    const Scalar tmp107 = -c_air*tmp11;
-    const Scalar tmp108 = tmp0*tmp107;
-    const Scalar tmp109 = -c_air*tmp13;
-    const Scalar tmp110 = tmp2*tmp109;
-    const Scalar tmp111 = tmp13*tmp109;
-    const Scalar tmp112 = tmp11*tmp107;
-    const Scalar tmp113 = tmp10 + tmp12 + theta_dot*tmp11;
-    const Scalar tmp114 = tmp21 - tmp22 - theta_dot*tmp13;
-    const Scalar tmp115 = -tmp2*m*tmp113 + tmp0*m*tmp114;
-    const Scalar tmp116 = tmp13*m*tmp113 + tmp11*m*tmp114;
-    const Scalar tmp117 = -tmp111 - tmp112 + tmp116;
-    (*dr_dq)(0, 0) = -tmp56 + tmp59 + tmp65;
-    (*dr_dq)(0, 1) = -tmp82 + tmp86 + tmp92 + r_ddot*tmp71 - tmp74;
-    (*dr_dq)(1, 0) = tmp67 + theta_ddot*tmp51;
-    (*dr_dq)(1, 1) = tmp94 + theta_ddot*tmp73;
-    (*dr_dv)(0, 0) = -tmp96 + tmp99 + tmp104;
-    (*dr_dv)(0, 1) = -tmp108 + tmp110 + tmp115;
-    (*dr_dv)(1, 0) = tmp106;
-    (*dr_dv)(1, 1) = tmp117;
+    const Scalar tmp1 = cos(theta);
+    const Scalar tmp2 = tmp1*r;
+    const Scalar tmp4 = tmp0*r;
+    const Scalar tmp5 = tmp4*theta_dot - tmp1*r_dot;
+    const Scalar tmp6 = -tmp5*theta_dot + tmp1*r_dot*theta_dot;
+    const Scalar tmp7 = tmp0*r_dot;
+    const Scalar tmp8 = tmp7 + tmp2*theta_dot;
+    const Scalar tmp9 = tmp7*theta_dot + tmp8*theta_dot;
+    const Scalar tmp14 = (Scalar(1)/L);
+    const Scalar tmp15 = tmp14*k;
+    const Scalar tmp60 = (tmp0*tmp0);
+    const Scalar tmp61 = (tmp1*tmp1);
+    const Scalar tmp63 = (r*r);
+    const Scalar tmp64 = tmp60*tmp63 + tmp61*tmp63;
+    const Scalar tmp66 = g*m;
+    const Scalar tmp68 = sqrt(tmp64);
+    const Scalar tmp69 = (Scalar(1)/tmp68);
+    const Scalar tmp70 = tmp68 - L;
+    const Scalar tmp71 = -tmp8*c_air - tmp15*tmp69*tmp70*tmp4;
+    const Scalar tmp73 = -tmp5*c_air + tmp1*tmp14*tmp69*tmp70*k*r;
+    const Scalar tmp97 = theta_dot*tmp0;
+    const Scalar tmp98 = -theta_dot*tmp97;
+    const Scalar tmp99 = theta_dot*tmp1;
+    const Scalar tmp100 = theta_dot*tmp99;
+    const Scalar tmp101 = Scalar(2)*r;
+    const Scalar tmp102 = (tmp60 + tmp61)*tmp101;
+    const Scalar tmp103 = m*tmp102;
+    const Scalar tmp104 = (Scalar(0.5))/sqrt(tmp64)*tmp102;
+    const Scalar tmp105 = -(Scalar(1)/(tmp68*tmp68))*tmp104;
+    const Scalar tmp106 = -tmp15*tmp70*tmp4*tmp105 - tmp15*tmp69*tmp4*tmp104
+        - tmp15*tmp69*tmp70*tmp0 - c_air*tmp99;
+    const Scalar tmp107 = tmp0*tmp106;
+    const Scalar tmp108 = tmp1*tmp14*tmp69*tmp70*k + tmp1*tmp14*tmp70*k*r*tmp105
+        + tmp1*tmp14*tmp69*k*r*tmp104 - c_air*tmp97;
+    const Scalar tmp109 = tmp1*tmp108;
+    const Scalar tmp110 = tmp66*tmp0;
+    const Scalar tmp111 = tmp73*tmp0 + tmp4*tmp108;
+    const Scalar tmp112 = tmp71*tmp1 + tmp2*tmp106;
+    const Scalar tmp113 = tmp0*m*tmp98 - tmp1*m*tmp100;
+    const Scalar tmp114 = tmp6*m*tmp1 + tmp9*m*tmp0 + tmp2*m*tmp98 + tmp4*m*tmp100;
+    const Scalar tmp115 = tmp110 - tmp111 - tmp112 + tmp114;
+    const Scalar tmp116 = -tmp0;
+    const Scalar tmp117 = r*tmp116;
+    const Scalar tmp118 = r*tmp1;
+    const Scalar tmp119 = -r_dot*tmp116 + theta_dot*tmp118;
+    const Scalar tmp120 = r_dot*theta_dot*tmp116 - theta_dot*tmp119;
+    const Scalar tmp121 = r_dot*tmp1;
+    const Scalar tmp122 = theta_dot*tmp117 + tmp121;
+    const Scalar tmp123 = theta_dot*tmp121 + theta_dot*tmp122;
+    const Scalar tmp124 = Scalar(2)*tmp0*tmp1;
+    const Scalar tmp125 = Scalar(2)*tmp1*tmp116;
+    const Scalar tmp126 = m*tmp124 + m*tmp125;
+    const Scalar tmp127 = tmp63*tmp124 + tmp63*tmp125;
+    const Scalar tmp128 = m*tmp127;
+    const Scalar tmp129 = tmp66*tmp116;
+    const Scalar tmp130 = (Scalar(0.5))/sqrt(tmp64)*tmp127;
+    const Scalar tmp131 = -(Scalar(1)/(tmp68*tmp68))*tmp130;
+    const Scalar tmp132 = -tmp15*tmp70*tmp4*tmp131 - tmp15*tmp69*tmp4*tmp130
+        - tmp15*tmp69*tmp70*tmp118 - c_air*tmp122;
+    const Scalar tmp133 = tmp71*tmp1 + tmp0*tmp132;
+    const Scalar tmp134 = tmp14*tmp69*tmp70*k*r*tmp116 + tmp1*tmp14*tmp70*k*r*tmp131
+        + tmp1*tmp14*tmp69*k*r*tmp130 - c_air*tmp119;
+    const Scalar tmp135 = tmp73*tmp116 + tmp1*tmp134;
+    const Scalar tmp136 = tmp66*tmp118;
+    const Scalar tmp137 = tmp73*tmp118 + tmp4*tmp134;
+    const Scalar tmp138 = tmp71*tmp117 + tmp2*tmp132;
+    const Scalar tmp139 = tmp6*m*tmp1 - tmp9*m*tmp116 + tmp0*m*tmp120 - tmp1*m*tmp123;
+    const Scalar tmp140 = tmp6*m*tmp117 + tmp9*m*tmp118 + tmp2*m*tmp120 + tmp4*m*tmp123;
+    const Scalar tmp141 = tmp136 - tmp137 - tmp138 + tmp140;
+    const Scalar tmp142 = -tmp1;
+    const Scalar tmp143 = tmp1*theta_dot - theta_dot*tmp142;
+    const Scalar tmp144 = Scalar(2)*theta_dot*tmp0;
+    const Scalar tmp145 = -c_air*tmp0;
+    const Scalar tmp146 = tmp0*tmp145;
+    const Scalar tmp147 = -c_air*tmp142;
+    const Scalar tmp148 = tmp1*tmp147;
+    const Scalar tmp149 = tmp4*tmp147;
+    const Scalar tmp150 = tmp2*tmp145;
+    const Scalar tmp151 = tmp0*m*tmp143 - tmp1*m*tmp144;
+    const Scalar tmp152 = tmp2*m*tmp143 + tmp4*m*tmp144;
+    const Scalar tmp153 = -tmp149 - tmp150 + tmp152;
+    const Scalar tmp154 = -tmp5 + tmp1*r_dot - theta_dot*tmp4;
+    const Scalar tmp155 = tmp7 + tmp8 + theta_dot*tmp2;
+    const Scalar tmp156 = -c_air*tmp2;
+    const Scalar tmp157 = tmp0*tmp156;
+    const Scalar tmp158 = -c_air*tmp4;
+    const Scalar tmp159 = tmp1*tmp158;
+    const Scalar tmp160 = tmp4*tmp158;
+    const Scalar tmp161 = tmp2*tmp156;
+    const Scalar tmp162 = tmp0*m*tmp154 - tmp1*m*tmp155;
+    const Scalar tmp163 = tmp2*m*tmp154 + tmp4*m*tmp155;
+    const Scalar tmp164 = -tmp160 - tmp161 + tmp163;
+    (*dr_dq)(0, 0) = -tmp107 + tmp109 + tmp113;
+    (*dr_dq)(0, 1) = r_ddot*tmp126 - tmp129 - tmp133 + tmp135 + tmp139;
+    (*dr_dq)(1, 0) = theta_ddot*tmp103 + tmp115;
+    (*dr_dq)(1, 1) = theta_ddot*tmp128 + tmp141;
+    (*dr_dv)(0, 0) = -tmp146 + tmp148 + tmp151;
+    (*dr_dv)(0, 1) = -tmp157 + tmp159 + tmp162;
+    (*dr_dv)(1, 0) = tmp153;
+    (*dr_dv)(1, 1) = tmp164;
   }
 
   /// Kinetic energy T = 1/2 xdot^T M xdot.
@@ -609,16 +608,15 @@ struct SpringPendulum {
     const Scalar theta_dot = v(1);
     const Scalar m = Scalar(params.m);
     const Scalar tmp0 = sin(theta);
-    const Scalar tmp2 = cos(theta);
-    const Scalar tmp10 = tmp0*r_dot;
-    const Scalar tmp11 = tmp2*r;
-    const Scalar tmp12 = tmp10 + tmp11*theta_dot;
-    const Scalar tmp13 = tmp0*r;
-    const Scalar tmp21 = tmp2*r_dot;
-    const Scalar tmp22 = -tmp21 + tmp13*theta_dot;
-    const Scalar tmp35 = (Scalar(0.5))*m*((tmp12*tmp12) + (tmp22*tmp22));
+    const Scalar tmp1 = cos(theta);
+    const Scalar tmp2 = tmp1*r;
+    const Scalar tmp4 = tmp0*r;
+    const Scalar tmp5 = tmp4*theta_dot - tmp1*r_dot;
+    const Scalar tmp7 = tmp0*r_dot;
+    const Scalar tmp8 = tmp7 + tmp2*theta_dot;
+    const Scalar tmp83 = (Scalar(0.5))*m*((tmp5*tmp5) + (tmp8*tmp8));
     Scalar result;
-    result = tmp35;
+    result = tmp83;
     return result;
   }
 
@@ -642,20 +640,20 @@ struct SpringPendulum {
     const Scalar m = Scalar(params.m);
     const Scalar g = Scalar(params.g);
     const Scalar tmp0 = sin(theta);
-    const Scalar tmp1 = (tmp0*tmp0);
-    const Scalar tmp2 = cos(theta);
-    const Scalar tmp3 = (tmp2*tmp2);
-    const Scalar tmp5 = (r*r);
-    const Scalar tmp6 = tmp1*tmp5 + tmp3*tmp5;
-    const Scalar tmp8 = g*m;
-    const Scalar tmp11 = tmp2*r;
-    const Scalar tmp14 = sqrt(tmp6);
-    const Scalar tmp16 = tmp14 - L;
-    const Scalar tmp17 = (Scalar(1)/L);
-    const Scalar tmp36 = tmp11*tmp8;
-    const Scalar tmp37 = (tmp16*tmp16);
+    const Scalar tmp1 = cos(theta);
+    const Scalar tmp2 = tmp1*r;
+    const Scalar tmp14 = (Scalar(1)/L);
+    const Scalar tmp60 = (tmp0*tmp0);
+    const Scalar tmp61 = (tmp1*tmp1);
+    const Scalar tmp63 = (r*r);
+    const Scalar tmp64 = tmp60*tmp63 + tmp61*tmp63;
+    const Scalar tmp66 = g*m;
+    const Scalar tmp68 = sqrt(tmp64);
+    const Scalar tmp70 = tmp68 - L;
+    const Scalar tmp84 = tmp2*tmp66;
+    const Scalar tmp85 = (tmp70*tmp70);
     Scalar result;
-    result = -tmp36 + (Scalar(0.5))*tmp17*tmp37*k;
+    result = -tmp84 + (Scalar(0.5))*tmp14*tmp85*k;
     return result;
   }
 
@@ -698,28 +696,27 @@ struct SpringPendulum {
     const Scalar m = Scalar(params.m);
     const Scalar g = Scalar(params.g);
     const Scalar tmp0 = sin(theta);
-    const Scalar tmp1 = (tmp0*tmp0);
-    const Scalar tmp2 = cos(theta);
-    const Scalar tmp3 = (tmp2*tmp2);
-    const Scalar tmp5 = (r*r);
-    const Scalar tmp6 = tmp1*tmp5 + tmp3*tmp5;
-    const Scalar tmp8 = g*m;
-    const Scalar tmp10 = tmp0*r_dot;
-    const Scalar tmp11 = tmp2*r;
-    const Scalar tmp12 = tmp10 + tmp11*theta_dot;
-    const Scalar tmp13 = tmp0*r;
-    const Scalar tmp14 = sqrt(tmp6);
-    const Scalar tmp16 = tmp14 - L;
-    const Scalar tmp17 = (Scalar(1)/L);
-    const Scalar tmp18 = tmp17*k;
-    const Scalar tmp21 = tmp2*r_dot;
-    const Scalar tmp22 = -tmp21 + tmp13*theta_dot;
-    const Scalar tmp35 = (Scalar(0.5))*m*((tmp12*tmp12) + (tmp22*tmp22));
-    const Scalar tmp36 = tmp11*tmp8;
-    const Scalar tmp37 = (tmp16*tmp16);
-    const Scalar tmp38 = (Scalar(0.5))*tmp18;
+    const Scalar tmp1 = cos(theta);
+    const Scalar tmp2 = tmp1*r;
+    const Scalar tmp4 = tmp0*r;
+    const Scalar tmp5 = tmp4*theta_dot - tmp1*r_dot;
+    const Scalar tmp7 = tmp0*r_dot;
+    const Scalar tmp8 = tmp7 + tmp2*theta_dot;
+    const Scalar tmp14 = (Scalar(1)/L);
+    const Scalar tmp15 = tmp14*k;
+    const Scalar tmp60 = (tmp0*tmp0);
+    const Scalar tmp61 = (tmp1*tmp1);
+    const Scalar tmp63 = (r*r);
+    const Scalar tmp64 = tmp60*tmp63 + tmp61*tmp63;
+    const Scalar tmp66 = g*m;
+    const Scalar tmp68 = sqrt(tmp64);
+    const Scalar tmp70 = tmp68 - L;
+    const Scalar tmp83 = (Scalar(0.5))*m*((tmp5*tmp5) + (tmp8*tmp8));
+    const Scalar tmp84 = tmp2*tmp66;
+    const Scalar tmp85 = (tmp70*tmp70);
+    const Scalar tmp86 = (Scalar(0.5))*tmp15;
     Scalar result;
-    result = tmp35 - tmp36 + tmp37*tmp38;
+    result = tmp83 - tmp84 + tmp85*tmp86;
     return result;
   }
 
@@ -738,12 +735,12 @@ struct SpringPendulum {
     const Scalar r = q(0);
     const Scalar theta = q(1);
     const Scalar tmp0 = sin(theta);
-    const Scalar tmp2 = cos(theta);
-    const Scalar tmp11 = tmp2*r;
-    const Scalar tmp13 = tmp0*r;
+    const Scalar tmp1 = cos(theta);
+    const Scalar tmp2 = tmp1*r;
+    const Scalar tmp4 = tmp0*r;
     XVector<Scalar> result;
-    result(0) = tmp13;
-    result(1) = -tmp11;
+    result(0) = tmp4;
+    result(1) = -tmp2;
     return result;
   }
 
@@ -766,16 +763,15 @@ struct SpringPendulum {
     const Scalar r_dot = v(0);
     const Scalar theta_dot = v(1);
     const Scalar tmp0 = sin(theta);
-    const Scalar tmp2 = cos(theta);
-    const Scalar tmp10 = tmp0*r_dot;
-    const Scalar tmp11 = tmp2*r;
-    const Scalar tmp12 = tmp10 + tmp11*theta_dot;
-    const Scalar tmp13 = tmp0*r;
-    const Scalar tmp21 = tmp2*r_dot;
-    const Scalar tmp22 = -tmp21 + tmp13*theta_dot;
+    const Scalar tmp1 = cos(theta);
+    const Scalar tmp2 = tmp1*r;
+    const Scalar tmp4 = tmp0*r;
+    const Scalar tmp5 = tmp4*theta_dot - tmp1*r_dot;
+    const Scalar tmp7 = tmp0*r_dot;
+    const Scalar tmp8 = tmp7 + tmp2*theta_dot;
     XVector<Scalar> result;
-    result(0) = tmp12;
-    result(1) = tmp22;
+    result(0) = tmp8;
+    result(1) = tmp5;
     return result;
   }
 
@@ -794,14 +790,14 @@ struct SpringPendulum {
     const Scalar r = q(0);
     const Scalar theta = q(1);
     const Scalar tmp0 = sin(theta);
-    const Scalar tmp2 = cos(theta);
-    const Scalar tmp11 = tmp2*r;
-    const Scalar tmp13 = tmp0*r;
+    const Scalar tmp1 = cos(theta);
+    const Scalar tmp2 = tmp1*r;
+    const Scalar tmp4 = tmp0*r;
     XJacobian<Scalar> result;
     result(0, 0) = tmp0;
-    result(0, 1) = tmp11;
-    result(1, 0) = -tmp2;
-    result(1, 1) = tmp13;
+    result(0, 1) = tmp2;
+    result(1, 0) = -tmp1;
+    result(1, 1) = tmp4;
     return result;
   }
 
@@ -811,7 +807,7 @@ struct SpringPendulum {
   /// \param[in] t  time
   /// \param[in] params  model parameters
   /// \return gamma (nx)
-  /// Ops: 18
+  /// Ops: 19
   template <typename Scalar>
   static XVector<Scalar> bias_acceleration(const QVector<Scalar>& q,
                                            const QVector<Scalar>& v,
@@ -824,18 +820,17 @@ struct SpringPendulum {
     const Scalar r_dot = v(0);
     const Scalar theta_dot = v(1);
     const Scalar tmp0 = sin(theta);
-    const Scalar tmp2 = cos(theta);
-    const Scalar tmp10 = tmp0*r_dot;
-    const Scalar tmp11 = tmp2*r;
-    const Scalar tmp12 = tmp10 + tmp11*theta_dot;
-    const Scalar tmp13 = tmp0*r;
-    const Scalar tmp21 = tmp2*r_dot;
-    const Scalar tmp22 = -tmp21 + tmp13*theta_dot;
-    const Scalar tmp29 = tmp10*theta_dot + tmp12*theta_dot;
-    const Scalar tmp30 = tmp21*theta_dot - tmp22*theta_dot;
+    const Scalar tmp1 = cos(theta);
+    const Scalar tmp2 = tmp1*r;
+    const Scalar tmp4 = tmp0*r;
+    const Scalar tmp5 = tmp4*theta_dot - tmp1*r_dot;
+    const Scalar tmp6 = -tmp5*theta_dot + tmp1*r_dot*theta_dot;
+    const Scalar tmp7 = tmp0*r_dot;
+    const Scalar tmp8 = tmp7 + tmp2*theta_dot;
+    const Scalar tmp9 = tmp7*theta_dot + tmp8*theta_dot;
     XVector<Scalar> result;
-    result(0) = tmp30;
-    result(1) = tmp29;
+    result(0) = tmp6;
+    result(1) = tmp9;
     return result;
   }
 
@@ -859,16 +854,15 @@ struct SpringPendulum {
     const Scalar theta_dot = v(1);
     const Scalar m = Scalar(params.m);
     const Scalar tmp0 = sin(theta);
-    const Scalar tmp2 = cos(theta);
-    const Scalar tmp10 = tmp0*r_dot;
-    const Scalar tmp11 = tmp2*r;
-    const Scalar tmp12 = tmp10 + tmp11*theta_dot;
-    const Scalar tmp13 = tmp0*r;
-    const Scalar tmp21 = tmp2*r_dot;
-    const Scalar tmp22 = -tmp21 + tmp13*theta_dot;
+    const Scalar tmp1 = cos(theta);
+    const Scalar tmp2 = tmp1*r;
+    const Scalar tmp4 = tmp0*r;
+    const Scalar tmp5 = tmp4*theta_dot - tmp1*r_dot;
+    const Scalar tmp7 = tmp0*r_dot;
+    const Scalar tmp8 = tmp7 + tmp2*theta_dot;
     SpaceVector<Scalar> result;
-    result(0) = tmp12*m;
-    result(1) = tmp22*m;
+    result(0) = tmp8*m;
+    result(1) = tmp5*m;
     return result;
   }
 
@@ -892,15 +886,14 @@ struct SpringPendulum {
     const Scalar theta_dot = v(1);
     const Scalar m = Scalar(params.m);
     const Scalar tmp0 = sin(theta);
-    const Scalar tmp2 = cos(theta);
-    const Scalar tmp10 = tmp0*r_dot;
-    const Scalar tmp11 = tmp2*r;
-    const Scalar tmp12 = tmp10 + tmp11*theta_dot;
-    const Scalar tmp13 = tmp0*r;
-    const Scalar tmp21 = tmp2*r_dot;
-    const Scalar tmp22 = -tmp21 + tmp13*theta_dot;
+    const Scalar tmp1 = cos(theta);
+    const Scalar tmp2 = tmp1*r;
+    const Scalar tmp4 = tmp0*r;
+    const Scalar tmp5 = tmp4*theta_dot - tmp1*r_dot;
+    const Scalar tmp7 = tmp0*r_dot;
+    const Scalar tmp8 = tmp7 + tmp2*theta_dot;
     AngularVector<Scalar> result;
-    result(0) = m*(tmp11*tmp12 + tmp13*tmp22);
+    result(0) = m*(tmp2*tmp8 + tmp4*tmp5);
     return result;
   }
 
@@ -1014,19 +1007,19 @@ struct SpringPendulum {
       const Scalar m = Scalar(params.m);
       const Scalar g = Scalar(params.g);
       const Scalar c_air = Scalar(params.c_air);
-      const Scalar tmp8 = g*m;
-      const Scalar tmp17 = (Scalar(1)/L);
-      const Scalar tmp18 = tmp17*k;
-      const Scalar tmp39 = (pos(0)*pos(0));
-      const Scalar tmp40 = (pos(1)*pos(1));
-      const Scalar tmp41 = tmp39 + tmp40;
-      const Scalar tmp42 = sqrt(tmp41);
-      const Scalar tmp43 = tmp42 - L;
-      const Scalar tmp44 = tmp18*tmp43;
-      const Scalar tmp45 = tmp44/tmp42;
+      const Scalar tmp14 = (Scalar(1)/L);
+      const Scalar tmp15 = tmp14*k;
+      const Scalar tmp66 = g*m;
+      const Scalar tmp87 = (pos(0)*pos(0));
+      const Scalar tmp88 = (pos(1)*pos(1));
+      const Scalar tmp89 = tmp87 + tmp88;
+      const Scalar tmp90 = sqrt(tmp89);
+      const Scalar tmp91 = tmp90 - L;
+      const Scalar tmp92 = tmp15*tmp91;
+      const Scalar tmp93 = tmp92/tmp90;
       XVector<Scalar> result;
-      result(0) = -tmp45*pos(0) - vel(0)*c_air;
-      result(1) = -tmp8 - tmp45*pos(1) - vel(1)*c_air;
+      result(0) = -tmp93*pos(0) - vel(0)*c_air;
+      result(1) = -tmp66 - tmp93*pos(1) - vel(1)*c_air;
       return result;
     }
 
@@ -1071,23 +1064,23 @@ struct SpringPendulum {
       using std::sqrt;
       const Scalar k = Scalar(params.k);
       const Scalar L = Scalar(params.L);
-      const Scalar tmp17 = (Scalar(1)/L);
-      const Scalar tmp18 = tmp17*k;
-      const Scalar tmp39 = (pos(0)*pos(0));
-      const Scalar tmp40 = (pos(1)*pos(1));
-      const Scalar tmp41 = tmp39 + tmp40;
-      const Scalar tmp42 = sqrt(tmp41);
-      const Scalar tmp43 = tmp42 - L;
-      const Scalar tmp44 = tmp18*tmp43;
-      const Scalar tmp45 = tmp44/tmp42;
-      const Scalar tmp46 = tmp18/tmp41;
-      const Scalar tmp47 = (Scalar(1)/(tmp41*sqrt(tmp41)));
-      const Scalar tmp48 = pos(0)*pos(1);
+      const Scalar tmp14 = (Scalar(1)/L);
+      const Scalar tmp15 = tmp14*k;
+      const Scalar tmp87 = (pos(0)*pos(0));
+      const Scalar tmp88 = (pos(1)*pos(1));
+      const Scalar tmp89 = tmp87 + tmp88;
+      const Scalar tmp90 = sqrt(tmp89);
+      const Scalar tmp91 = tmp90 - L;
+      const Scalar tmp92 = tmp15*tmp91;
+      const Scalar tmp93 = tmp92/tmp90;
+      const Scalar tmp94 = tmp15/tmp89;
+      const Scalar tmp95 = (Scalar(1)/(tmp89*sqrt(tmp89)));
+      const Scalar tmp96 = pos(0)*pos(1);
       std::array<Scalar, 4> result;
-      result[0] = -tmp45 - tmp39*tmp46 + tmp17*tmp39*tmp43*tmp47*k;
-      result[1] = -tmp46*tmp48 + tmp44*tmp47*tmp48;
-      result[2] = -tmp46*tmp48 + tmp44*tmp47*tmp48;
-      result[3] = -tmp45 - tmp40*tmp46 + tmp17*tmp40*tmp43*tmp47*k;
+      result[0] = -tmp93 - tmp87*tmp94 + tmp14*tmp87*tmp91*tmp95*k;
+      result[1] = -tmp94*tmp96 + tmp92*tmp95*tmp96;
+      result[2] = -tmp94*tmp96 + tmp92*tmp95*tmp96;
+      result[3] = -tmp93 - tmp88*tmp94 + tmp14*tmp88*tmp91*tmp95*k;
       return result;
     }
 
@@ -1129,17 +1122,17 @@ struct SpringPendulum {
       const Scalar L = Scalar(params.L);
       const Scalar m = Scalar(params.m);
       const Scalar g = Scalar(params.g);
-      const Scalar tmp8 = g*m;
-      const Scalar tmp17 = (Scalar(1)/L);
-      const Scalar tmp18 = tmp17*k;
-      const Scalar tmp38 = (Scalar(0.5))*tmp18;
-      const Scalar tmp39 = (pos(0)*pos(0));
-      const Scalar tmp40 = (pos(1)*pos(1));
-      const Scalar tmp41 = tmp39 + tmp40;
-      const Scalar tmp42 = sqrt(tmp41);
-      const Scalar tmp43 = tmp42 - L;
+      const Scalar tmp14 = (Scalar(1)/L);
+      const Scalar tmp15 = tmp14*k;
+      const Scalar tmp66 = g*m;
+      const Scalar tmp86 = (Scalar(0.5))*tmp15;
+      const Scalar tmp87 = (pos(0)*pos(0));
+      const Scalar tmp88 = (pos(1)*pos(1));
+      const Scalar tmp89 = tmp87 + tmp88;
+      const Scalar tmp90 = sqrt(tmp89);
+      const Scalar tmp91 = tmp90 - L;
       Scalar result;
-      result = tmp38*(tmp43*tmp43) + tmp8*pos(1);
+      result = tmp66*pos(1) + tmp86*(tmp91*tmp91);
       return result;
     }
 

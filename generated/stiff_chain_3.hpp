@@ -71,6 +71,10 @@ struct StiffChain3 {
   /// Whether applied_forces at rest (v = 0) is -d(potential_energy)/dq: every force without
   /// a declared potential vanishes at rest (generator/conservative.py).
   static constexpr bool forces_have_potential = true;
+  /// Whether qddot is the articulated-body recursion over the model's tree of particles,
+  /// chosen at generation because it takes fewer operations than Mt, Ft + Fi and an LDL^T
+  /// solve (generator/dynamics_paths.py); gencoord::acceleration() then calls it.
+  static constexpr bool recursive_qddot = false;
 
   template <typename Scalar>
   using QVector = Eigen::Matrix<Scalar, nq, 1>;

@@ -12,6 +12,7 @@ import sys
 import tempfile
 import time
 
+from .dynamics_paths import DYNAMICS_CHOICES
 from .errors import ModelError
 from .failures import report_failure
 from .limits import LOAD_TIMEOUT
@@ -39,6 +40,8 @@ def _banner_options(args) -> list[str]:
     """The banner's `--name NAME` and `-o DIR` (relative to the working directory), none for
     the defaults."""
     options = ["--name " + shlex.quote(args.name)] if args.name else []
+    if args.dynamics != "auto":
+        options.append("--dynamics " + args.dynamics)
     if os.path.abspath(args.output_dir) != os.path.abspath(DEFAULT_OUTPUT):
         options.append("-o " + shlex.quote(
             os.path.relpath(os.path.abspath(args.output_dir)).replace(os.sep, "/")))
@@ -90,6 +93,10 @@ def main(argv: list[str] | None = None, prog: str = "generate") -> int:
                         help="compile the kernels for double in N source files of their own "
                              "(DIR/<name>_double_K.cpp), which build in parallel; the header "
                              "declares them extern template (default 0: header only)")
+    parser.add_argument("--dynamics", choices=DYNAMICS_CHOICES, default="auto",
+                        help="qddot and inverse_dynamics of a model that is a tree of "
+                             "particles: by the O(nq) recursions, dense (Mt, Ft + Fi), or auto: "
+                             "whichever takes fewer operations (default %(default)s)")
     parser.add_argument("--load-timeout", type=float, default=LOAD_TIMEOUT, metavar="SECONDS",
                         help="stop with an error when running the model file takes longer "
                              "(default %(default)g; 0: no limit)")
@@ -124,7 +131,7 @@ def _generate_and_write(args, report, started: float) -> int:
 
     generated = generate(args.model, _parse_options(args.options), report,
                          max_part_statements=args.max_function_statements,
-                         translation_units=args.translation_units,
+                         translation_units=args.translation_units, dynamics=args.dynamics,
                          regenerate_options=_banner_options(args), name=args.name,
                          load_timeout=args.load_timeout or None, on_warning=warn)
     if not args.quiet:

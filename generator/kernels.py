@@ -13,6 +13,7 @@ import sympy as sp
 
 from .derive import Derivation
 from .maximal import MaximalDerivation
+from .recursive import RecursiveDynamics
 
 
 @dataclass
@@ -54,6 +55,9 @@ class Kernel:
     inputs: tuple[str, ...]            # of INPUT_SYMBOLS' keys; params come after these
     blocks: list[Block]
     notes: list[str] = field(default_factory=list)
+    # "recursive": the O(n) alternative to the dense kernel of the same name; after the CSE
+    # the cheaper of the two is kept (dynamics_paths.py)
+    variant: str = ""
 
     @property
     def returns(self) -> str | None:
@@ -87,8 +91,35 @@ def _out(block: Block) -> Block:
     return block
 
 
-def build_kernels(d: Derivation) -> list[Kernel]:
-    """The kernels of one model, in the order they appear in the generated header."""
+def _recursive_kernels(r: RecursiveDynamics) -> dict[str, Kernel]:
+    """The tree recursions' kernels, each to follow the dense kernel of its name."""
+    return {
+        "dynamics": Kernel(
+            "qddot", "Generalized accelerations qddot = Mt^-1 (Ft + Fi) by the articulated-body "
+            "recursion (O(nq)); NaN or inf entries where Mt is singular.", ("q", "v", "t"),
+            [_vector("result", "QVector<Scalar>", r.qddot)], variant="recursive"),
+        "inverse_dynamics": Kernel(
+            "inverse_dynamics", "Inverse dynamics by the recursive Newton-Euler algorithm "
+            "(O(nq)): the residual r = Mt qdd - Ft - Fi, i.e. the generalized force that "
+            "produces qdd.", ("q", "v", "qdd", "t"),
+            [_vector("result", "QVector<Scalar>", r.residual)], variant="recursive"),
+    }
+
+
+def build_kernels(d: Derivation, recursive: RecursiveDynamics | None = None) -> list[Kernel]:
+    """The kernels of one model, in the order they appear in the generated header.
+
+    With the tree recursions, their kernels follow the dense ones they may replace."""
+    kernels = _dense_kernels(d)
+    if recursive is None:
+        return kernels
+    alternatives = _recursive_kernels(recursive)
+    return [k for dense in kernels
+            for k in ([dense, alternatives[dense.name]] if dense.name in alternatives
+                      else [dense])]
+
+
+def _dense_kernels(d: Derivation) -> list[Kernel]:
     total_force = d.applied_forces + d.inertial_forces
     residual = d.residual()
     jac = d.jacobian

@@ -12,6 +12,7 @@ from .atlas import check_atlas
 from .conservative import forces_have_potential
 from .constraints import verify_constraints
 from .derive import Kinematics, derive
+from .dynamics_paths import PathChoice, choose_paths
 from .errors import ModelError
 from .emit import instantiation_file_name, render_instantiation, render_model
 from .kernels import build_kernels, build_maximal_kernels
@@ -21,7 +22,9 @@ from .maximal import KAPPA, PENALTY_DAMPING, derive_maximal
 from .model import Model
 from .naming import chart_name
 from .optimize import OptimizeOptions, optimize_model
+from .point_tree import point_tree
 from .rank import check_full_rank
+from .recursive import recursive_dynamics
 from .singularities import analyse_singularities
 from .split import MAX_PART_STATEMENTS, assign_groups
 from .structured import derive_structured
@@ -80,12 +83,13 @@ class GeneratedChart:
     maximal: object
     analysis: list[str]
     forces_have_potential: bool          # conservative.py: the struct's forces_have_potential
+    paths: PathChoice                    # dense or recursive qddot and inverse_dynamics
 
 
 def generate(path: str, options: dict[str, str] | None = None,
              on_stage: Callable[[str, float], None] | None = None,
              max_part_statements: int = MAX_PART_STATEMENTS,
-             translation_units: int = 0,
+             translation_units: int = 0, dynamics: str = "auto",
              regenerate_options: Sequence[str] = (), name: str | None = None,
              load_timeout: float | None = LOAD_TIMEOUT,
              on_warning: Callable[[str], None] | None = None) -> Generated:
@@ -95,7 +99,9 @@ def generate(path: str, options: dict[str, str] | None = None,
     0 never splits. With `translation_units` N > 0 every kernel is parts, spread over N
     groups each compiled for double in a source file of its own, which the header declares
     `extern template`: the files compile in parallel, and code including the header compiles
-    no kernel body for double. `regenerate_options` (such as an -o DIR that is not the
+    no kernel body for double. `dynamics` chooses the forward and inverse dynamics of a
+    tree model (dynamics_paths.py): "auto", "dense" or "recursive" (an error for a model
+    that is not a tree). `regenerate_options` (such as an -o DIR that is not the
     default) end the banner's regenerate command. `name` replaces the file's stem in the
     model's name (the header's and the C++ type's); the model file may run `load_timeout`
     seconds. `on_warning` hears of a generation expected to take minutes or more.
@@ -136,18 +142,30 @@ def generate(path: str, options: dict[str, str] | None = None,
         small = chart.nq <= FLAT_MAX_NQ
         derivation, definitions = ((derive(chart, kin), []) if small
                                    else derive_structured(chart, kin))
+        tree = point_tree(chart) if dynamics != "dense" else None
+        if tree is None and dynamics == "recursive":
+            raise ModelError(
+                "--dynamics recursive: the model is not a tree of particles (each particle "
+                "its parent's position plus an offset in coordinates of its own, no bodies); "
+                "use --dynamics auto or dense").located(path, None)
+        recursive = recursive_dynamics(chart, kin, tree) if tree else None
+        if recursive:
+            definitions = [*definitions, *recursive.definitions]
         # a body's rods and pins make symbolic derivatives of the penalty forces slow (seconds
         # for one top); forward mode after CSE gives the same values
         maximal = derive_maximal(chart, symbolic_jacobians=small and not chart.bodies)
         start = stage(prefix + "derive", start)
-        kernels = build_kernels(derivation)
+        kernels = build_kernels(derivation, recursive)
         maximal_kernels = build_maximal_kernels(maximal)
         names, input_of = _symbol_names(chart)
         optimized = optimize_model(derivation, kernels + maximal_kernels, names, input_of,
                                    definitions, optimize_options)
+        optimized.kernels, paths = choose_paths(optimized.kernels, chart.nq, dynamics)
+        analysis += paths.report
         start = stage(prefix + "optimize (CSE)", start)
+        reduced = len(optimized.kernels) - len(maximal_kernels)
         charts.append(GeneratedChart(chart, chart_name(name, model, chart), optimized,
-                                     len(kernels), maximal, analysis, conservative))
+                                     reduced, maximal, analysis, conservative, paths))
     analysis = [line for chart in charts for line in (
         ([f"Chart '{chart.model.chart}' ({chart.name}):"] if model.charts else [])
         + [("  " if model.charts else "") + text for text in chart.analysis])]

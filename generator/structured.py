@@ -32,9 +32,9 @@ class Intermediates:
     derivatives (forward mode, differentiate.py) stay as short as the sums themselves.
     """
 
-    PREFIX = "__w"  # '__' cannot start a model name (validate.py); optimize renames these
-
-    def __init__(self) -> None:
+    def __init__(self, prefix: str = "__w") -> None:
+        # '__' cannot start a model name (validate.py); optimize renames these
+        self.prefix = prefix
         self.definitions: list[tuple[sp.Symbol, sp.Expr]] = []
         self._named: dict[sp.Expr, sp.Symbol] = {}
         self._sums: list[tuple[frozenset, sp.Symbol]] = []   # named sums by their terms
@@ -45,7 +45,7 @@ class Intermediates:
         if expr.is_Atom:
             return expr
         if expr not in self._named:
-            symbol = sp.Symbol(f"{self.PREFIX}{len(self.definitions)}")
+            symbol = sp.Symbol(f"{self.prefix}{len(self.definitions)}")
             self._named[expr] = symbol
             self.definitions.append((symbol, self._reusing_sums(expr, symbol)))
         return self._named[expr]

@@ -1,6 +1,7 @@
-// Forward dynamics: qddot = Mt^-1 (Ft + Fi) by a fixed-size Cholesky factorization.
-// This is the integrators' hot path: no heap allocation for fixed-size models, and the
-// error diagnosis is out of line (errors.cpp).
+// Forward dynamics: qddot = Mt^-1 (Ft + Fi), by the model's articulated-body recursion when
+// it has a cheaper one, else by a fixed-size factorization of Mt. This is the integrators'
+// hot path: no heap allocation for fixed-size models, and the error diagnosis is out of line
+// (errors.cpp).
 #pragma once
 
 #include <Eigen/Cholesky>
@@ -40,11 +41,18 @@ bool solve_mass_matrix(const QMat<M>& Mt, const QVec<M>& f, QVec<M>* a) {
 /// \param[in] t  The time.
 /// \return The generalized acceleration (dim M::nq).
 /// \throws DynamicsError if Mt is not positive definite, or Mt, the forces or the result
-///         contain NaN or inf.
+///         contain NaN or inf. A model with a recursive qddot reports an indefinite Mt only
+///         where the recursion meets a zero pivot: its pivots are not checked for sign.
 template <class M>
 QVec<M> acceleration(const ParamsOf<M>& p, const QVec<M>& q, const QVec<M>& v, double t) {
   static_assert(assert_model_v<M>);
   using Reason = DynamicsError::Reason;
+  if constexpr (has_recursive_qddot_v<M>) {
+    // the recursion divides by the articulated inertias, so a singular Mt shows as NaN or
+    // inf and goes to the diagnosis below; an indefinite one (a negative mass) does not
+    QVec<M> a = M::qddot(q, v, t, p);
+    if (a.allFinite()) return a;
+  }
   QMat<M> Mt;
   QVec<M> f;
   M::dynamics(q, v, t, p, &Mt, &f);

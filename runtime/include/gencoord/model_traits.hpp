@@ -145,7 +145,16 @@ using fixed_points_op = std::enable_if_t<
     std::is_convertible_v<decltype(M::fixed_point_positions(t_arg(), p_arg<M>())),
                           Eigen::Matrix<double, M::dim * M::num_fixed_points, 1>>>;
 
+// recursive_qddot: optional; generated models declare whether their qddot is O(nq)
+template <class M>
+using recursive_qddot_op = std::enable_if_t<M::recursive_qddot>;
+
 }  // namespace detail
+
+/// True when M::qddot is a recursion that is cheaper than Mt, Ft + Fi and a factorization
+/// (generated tree models that say `recursive_qddot = true`); acceleration() then calls it.
+template <class M>
+inline constexpr bool has_recursive_qddot_v = detail::detected_v<M, detail::recursive_qddot_op>;
 
 /// True when M has the optional fixed-point members of docs/model_interface.md
 /// (num_fixed_points, fixed_point_names, fixed_point_positions(t, p)).

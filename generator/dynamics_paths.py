@@ -1,0 +1,75 @@
+"""Picks, per model, the dense or the recursive forward and inverse dynamics.
+
+A tree model gets both (kernels.py): `qddot` as `dynamics` (Mt and Ft + Fi) followed by the
+template's LDL^T solve, or by the articulated-body recursion; `inverse_dynamics` as
+Mt qdd - Ft - Fi, or by Newton-Euler. Small models favour the dense form (a pendulum's Mt
+is one product), long chains the recursion (n^3 / 6 against n). After the CSE both are
+counted in operations and the recursion is kept when it takes fewer than RECURSION_ADVANTAGE
+times the dense form's: its steps form one long dependency chain, where the dense kernels'
+independent entries keep the processor's units busy, so an operation of it costs more.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from .kernel_code import KernelCode
+
+
+DYNAMICS_CHOICES = ("auto", "dense", "recursive")
+
+# Measured on the planar chain at -O2, pinned to one core (scripts/bench_recursion.sh): the
+# recursion's qddot equals the dense one's time at about 0.8 of its operations (n = 6, 7).
+RECURSION_ADVANTAGE = 0.75
+
+
+def ldlt_solve_ops(n: int) -> int:
+    """Operations of the template's unrolled LDL^T solve of an n x n system (solve.j2)."""
+    factor = sum(3 * j + 1 + (n - 1 - j) * (2 * j + 1) for j in range(n))
+    substitute = 2 * n * n - n
+    return factor + substitute
+
+
+@dataclass
+class PathChoice:
+    recursive_qddot: bool
+    recursive_inverse_dynamics: bool
+    report: list[str]              # one line per choice, for the generation report
+
+
+def choose_paths(codes: list[KernelCode], nq: int, dynamics: str = "auto"
+                 ) -> tuple[list[KernelCode], PathChoice]:
+    """The kernels with each loser of a dense/recursive pair removed, and what was chosen;
+    `dynamics` "dense" or "recursive" overrides the choice."""
+    recursive = {c.kernel.name: c for c in codes if c.kernel.variant == "recursive"}
+    if not recursive:
+        return codes, PathChoice(False, False, [])
+    dense = {c.kernel.name: c for c in codes if not c.kernel.variant}
+    dense_qddot = dense["dynamics"].ops + ldlt_solve_ops(nq)
+    use_qddot = recursive["qddot"].ops < RECURSION_ADVANTAGE * dense_qddot
+    use_inverse = (recursive["inverse_dynamics"].ops
+                   < RECURSION_ADVANTAGE * dense["inverse_dynamics"].ops)
+    if dynamics != "auto":
+        use_qddot = use_inverse = dynamics == "recursive"
+    # the dense qddot is the template's, so only a losing recursion has a kernel to drop
+    dropped = {id(dense["inverse_dynamics"] if use_inverse else recursive["inverse_dynamics"])}
+    if not use_qddot:
+        dropped.add(id(recursive["qddot"]))
+    report = [
+        _line("qddot", use_qddot, "articulated-body recursion", recursive["qddot"].ops,
+              "Mt, Ft + Fi and an LDL^T solve", dense_qddot),
+        _line("inverse_dynamics", use_inverse, "recursive Newton-Euler",
+              recursive["inverse_dynamics"].ops, "Mt qdd - Ft - Fi",
+              dense["inverse_dynamics"].ops)]
+    return ([c for c in codes if id(c) not in dropped],
+            PathChoice(use_qddot, use_inverse, report))
+
+
+def _line(kernel: str, use_recursive: bool, recursive_name: str, recursive_ops: int,
+          dense_name: str, dense_ops: int) -> str:
+    chosen, other = ((recursive_name, dense_name) if use_recursive
+                     else (dense_name, recursive_name))
+    chosen_ops, other_ops = ((recursive_ops, dense_ops) if use_recursive
+                             else (dense_ops, recursive_ops))
+    return (f"{kernel}: {chosen}, {chosen_ops} operations "
+            f"({other}: {other_ops})")

@@ -1,0 +1,134 @@
+"""The O(n) recursions (point_tree.py, recursive.py) against the dense derivation.
+
+A model that is a translational tree of particles gets qddot by the articulated-body
+recursion and the inverse dynamics by Newton-Euler. This checks which models are found to be
+trees and with what structure, that both recursions equal Mt^-1 (Ft + Fi) and Mt qdd - Ft - Fi
+of derive.py at random states in extended precision, and how generation picks between the
+recursive and the dense kernels. The C++ model tests check the same after CSE and printing.
+"""
+
+from __future__ import annotations
+
+import random
+import unittest
+from pathlib import Path
+
+import mpmath
+import sympy as sp
+
+from generator.derive import Kinematics, derive
+from generator.errors import ModelError
+from generator.loader import load_model
+from generator.pipeline import generate
+from generator.point_tree import point_tree
+from generator.recursive import recursive_dynamics
+
+from .support import DIGITS, MODELS, relative_error
+
+BRANCHED = Path(__file__).parent / "tree_models" / "branched_pendulum.py"
+TREES = [(MODELS / "n_link_chain.py", {"n": "6"}), (BRANCHED, None),
+         (MODELS / "spherical_pendulum.py", None), (MODELS / "cart_pole.py", None),
+         (MODELS / "spring_pendulum.py", None), (MODELS / "kapitza_pendulum.py", None),
+         (MODELS / "bead_on_rotating_hoop.py", None), (MODELS / "pendulum_3d.py", None)]
+STATES = 3
+
+
+def _load(path: Path, options=None):
+    model, name, _ = load_model(str(path), options)
+    return model, name
+
+
+def _structure(tree) -> list[tuple[str, str | None, list[int]]]:
+    return [(node.particle.name,
+             None if node.parent is None else tree.nodes[node.parent].particle.name,
+             node.coordinates) for node in tree.nodes]
+
+
+class PointTreeTest(unittest.TestCase):
+
+    def test_a_chain_is_a_path(self):
+        model, _ = _load(MODELS / "n_link_chain.py", {"n": "4"})
+        self.assertEqual(_structure(point_tree(model)),
+                         [("bob1", None, [0]), ("bob2", "bob1", [1]), ("bob3", "bob2", [2]),
+                          ("bob4", "bob3", [3])])
+
+    def test_branches_and_rigid_attachments(self):
+        model, _ = _load(BRANCHED)
+        self.assertEqual(_structure(point_tree(model)),
+                         [("upper", None, [0, 1]), ("lamp", "upper", []),
+                          ("tip_left", "upper", [2]), ("tip_right", "upper", [3])])
+
+    def test_models_that_are_not_trees_of_particles(self):
+        for path, options in [(MODELS / "stiff_chain.py", {"n": "3"}),  # relative angles
+                              (MODELS / "falling_cat.py", None),
+                              (MODELS / "compound_pendulum.py", None)]:  # a body
+            model, name = _load(path, options)
+            self.assertIsNone(point_tree(model), name)
+
+
+class RecursionsTest(unittest.TestCase):
+
+    def test_recursions_equal_the_dense_dynamics(self):
+        for path, options in TREES:
+            model, name = _load(path, options)
+            kin = Kinematics(model)
+            dense = derive(model, kin)
+            recursive = recursive_dynamics(model, kin, point_tree(model))
+            inputs = [*dense.q, *dense.v, *dense.a, *dense.params, dense.t]
+            rng = random.Random(name)
+            with mpmath.workdps(DIGITS):
+                for _ in range(STATES):
+                    point = {s: sp.Float(rng.uniform(-1.5, 1.5), DIGITS) for s in inputs}
+                    point.update({p.symbol: sp.Float(p.default * rng.uniform(0.8, 1.2), DIGITS)
+                                  for p in model.parameters})
+                    for symbol, expr in recursive.definitions:
+                        point[symbol] = expr.xreplace(point).evalf(DIGITS)
+
+                    def values(matrix):
+                        return [mpmath.mpf(e.xreplace(point).evalf(DIGITS)) for e in matrix]
+                    mass = mpmath.matrix([[mpmath.mpf(e.xreplace(point).evalf(DIGITS))
+                                           for e in dense.mass_matrix.row(i)]
+                                          for i in range(model.nq)])
+                    force = mpmath.matrix(values(dense.applied_forces + dense.inertial_forces))
+                    expected = list(mpmath.lu_solve(mass, force))
+                    tolerance = mpmath.mpf(10) ** (8 - DIGITS)
+                    self.assertLess(relative_error(values(recursive.qddot), expected), tolerance,
+                                    f"{name}: qddot")
+                    self.assertLess(relative_error(values(recursive.residual),
+                                                   values(dense.residual())), tolerance,
+                                    f"{name}: inverse dynamics")
+
+
+class PathChoiceTest(unittest.TestCase):
+
+    def _header(self, options, dynamics="auto") -> str:
+        return generate(str(MODELS / "n_link_chain.py"), options, dynamics=dynamics).header
+
+    def test_short_chains_stay_dense_and_long_ones_recurse(self):
+        short, long = self._header({"n": "2"}), self._header({"n": "10"})
+        for text, header in [("recursive_qddot = false", short),
+                             ("// qddot: Mt, Ft + Fi and an LDL^T solve", short),
+                             ("recursive_qddot = true", long),
+                             ("// qddot: articulated-body recursion", long),
+                             ("// inverse_dynamics: recursive Newton-Euler", long)]:
+            self.assertTrue(text in header, text)
+        self.assertEqual(long.count("static QVector<Scalar> qddot("), 1)
+        self.assertEqual(long.count("static QVector<Scalar> inverse_dynamics("), 1)
+
+    def test_the_choice_can_be_forced(self):
+        header = self._header({"n": "2"}, dynamics="recursive")
+        self.assertTrue("recursive_qddot = true" in header)
+        self.assertTrue("recursive_qddot = false"
+                        in self._header({"n": "10"}, dynamics="dense"))
+
+    def test_forcing_the_recursion_on_a_model_that_is_no_tree_is_refused(self):
+        with self.assertRaises(ModelError) as caught:
+            generate(str(MODELS / "falling_cat.py"), dynamics="recursive")
+        message = str(caught.exception)
+        self.assertIn("falling_cat.py", message)
+        self.assertIn("not a tree of particles", message)
+        self.assertIn("--dynamics auto or dense", message)
+
+
+if __name__ == "__main__":
+    unittest.main()
