@@ -48,7 +48,8 @@ set(GENCOORD_GENERATOR_SOURCES ${_gencoord_generator_sources} "${GENCOORD_ROOT}/
     CACHE INTERNAL "files whose change regenerates every model")
 
 function(gencoord_add_model target)
-  cmake_parse_arguments(ARG "" "MODEL;TRANSLATION_UNITS;MAX_FUNCTION_STATEMENTS;OUTPUT_DIR"
+  cmake_parse_arguments(ARG ""
+                        "MODEL;NAME;DYNAMICS;TRANSLATION_UNITS;MAX_FUNCTION_STATEMENTS;OUTPUT_DIR"
                         "OPTIONS;DEPENDS" ${ARGN})
   if(NOT ARG_MODEL)
     message(FATAL_ERROR "gencoord_add_model(${target}): MODEL <file.py> is required")
@@ -56,6 +57,13 @@ function(gencoord_add_model target)
   get_filename_component(model "${ARG_MODEL}" ABSOLUTE)
   get_filename_component(name "${model}" NAME_WE)
   set(set_arguments)
+  if(ARG_NAME)
+    set(name "${ARG_NAME}")
+    list(APPEND set_arguments --name "${ARG_NAME}")
+  endif()
+  if(ARG_DYNAMICS)
+    list(APPEND set_arguments --dynamics ${ARG_DYNAMICS})
+  endif()
   foreach(option IN LISTS ARG_OPTIONS)
     string(REGEX REPLACE "^[^=]*=" "" value "${option}")
     string(APPEND name "_${value}")

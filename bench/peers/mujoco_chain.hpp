@@ -80,6 +80,20 @@ class MujocoChain {
   }
   /// Everything mj_step computes before integrating, qacc included.
   void forward() { mj_forward(model_, data_); }
+  /// One step of MuJoCo's RK4 integrator of size dt.
+  void rk4_step(double dt) {
+    model_->opt.integrator = mjINT_RK4;
+    model_->opt.timestep = dt;
+    mj_step(model_, data_);
+  }
+  /// The joint torques that give the relative accelerations qacc (size n): mj_rne after
+  /// the position and velocity stages it reads, which are counted in its cost.
+  void inverse_dynamics(const double* qacc, double* torque) {
+    mj_fwdPosition(model_, data_);
+    mj_fwdVelocity(model_, data_);
+    for (int k = 0; k < n_; ++k) data_->qacc[k] = qacc[k];
+    mj_rne(model_, data_, 1, torque);
+  }
   /// qacc as absolute angle accelerations (size n): running sums of the relative ones.
   void absolute_qacc(double* out) const {
     double sum = 0.0;
