@@ -19,6 +19,7 @@
 #include <random>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "gencoord/integrate/explicit_rk.hpp"
@@ -41,6 +42,8 @@ double time_per_call(const std::function<void(int)>& call) {
 }
 
 struct Contender {
+  Contender(std::string label, std::function<void(int)> function)
+      : name(std::move(label)), call(std::move(function)) {}
   std::string name;
   std::function<void(int)> call;
   std::vector<double> ns;
