@@ -56,20 +56,18 @@ def choose_paths(codes: list[KernelCode], nq: int, dynamics: str = "auto"
     if not use_qddot:
         dropped.add(id(recursive["qddot"]))
     report = [
-        _line("qddot", use_qddot, "articulated-body recursion", recursive["qddot"].ops,
-              "Mt, Ft + Fi and an LDL^T solve", dense_qddot),
-        _line("inverse_dynamics", use_inverse, "recursive Newton-Euler",
-              recursive["inverse_dynamics"].ops, "Mt qdd - Ft - Fi",
-              dense["inverse_dynamics"].ops)]
+        _line("qddot", use_qddot, ("articulated-body recursion", recursive["qddot"].ops),
+              ("Mt, Ft + Fi and an LDL^T solve", dense_qddot)),
+        _line("inverse_dynamics", use_inverse,
+              ("recursive Newton-Euler", recursive["inverse_dynamics"].ops),
+              ("Mt qdd - Ft - Fi", dense["inverse_dynamics"].ops))]
     return ([c for c in codes if id(c) not in dropped],
             PathChoice(use_qddot, use_inverse, report))
 
 
-def _line(kernel: str, use_recursive: bool, recursive_name: str, recursive_ops: int,
-          dense_name: str, dense_ops: int) -> str:
-    chosen, other = ((recursive_name, dense_name) if use_recursive
-                     else (dense_name, recursive_name))
-    chosen_ops, other_ops = ((recursive_ops, dense_ops) if use_recursive
-                             else (dense_ops, recursive_ops))
-    return (f"{kernel}: {chosen}, {chosen_ops} operations "
-            f"({other}: {other_ops})")
+def _line(kernel: str, use_recursive: bool, recursive: tuple[str, int],
+          dense: tuple[str, int]) -> str:
+    """`kernel: <chosen form>, <ops> operations (<other form>: <ops>)`."""
+    (chosen, chosen_ops), (other, other_ops) = ((recursive, dense) if use_recursive
+                                                else (dense, recursive))
+    return f"{kernel}: {chosen}, {chosen_ops} operations ({other}: {other_ops})"

@@ -33,9 +33,9 @@ from dataclasses import dataclass
 import sympy as sp
 
 from .derive import bias_acceleration, generalized_force_vector, particle_forces
-from .model import Model, Point
+from .model import Model
 from .point_tree import PointTree
-from .structured import Intermediates
+from .structured import Intermediates, NamedKinematics
 
 
 @dataclass
@@ -43,25 +43,6 @@ class RecursiveDynamics:
     qddot: sp.Matrix                          # nq: articulated-body forward dynamics
     residual: sp.Matrix                       # nq: Newton-Euler r = Mt qdd - Ft - Fi
     definitions: list[tuple[sp.Symbol, sp.Expr]]
-
-
-class TreeKinematics:
-    """Positions and velocities for the force expressions: the particles' from the
-    recursion, the fixed points' as derived. The interface particle_forces reads."""
-
-    def __init__(self, model: Model, kin, position: dict, velocity: dict):
-        self.t = kin.t
-        self.position = {p.name: kin.position[p.name] for p in model.fixed_points}
-        self.velocity = {p.name: kin.velocity[p.name] for p in model.fixed_points}
-        self.position.update(position)
-        self.velocity.update(velocity)
-        self.point_substitution = {}
-        for point in model.points:
-            self.point_substitution.update(zip(point.x, self.position[point.name]))
-            self.point_substitution.update(zip(point.xdot, self.velocity[point.name]))
-
-    def of(self, point: Point) -> tuple[sp.Matrix, sp.Matrix]:
-        return self.position[point.name], self.velocity[point.name]
 
 
 def _named(names: Intermediates, matrix: sp.Matrix) -> sp.Matrix:
@@ -104,13 +85,15 @@ def recursive_dynamics(model: Model, kin, tree: PointTree) -> RecursiveDynamics:
     zero = sp.zeros(dim, 1)
 
     joints: list[_Joint] = []
-    position, velocity = {}, {}
+    # the fixed points as derived, the particles from the recursion
+    position = {p.name: kin.position[p.name] for p in model.fixed_points}
+    velocity = {p.name: kin.velocity[p.name] for p in model.fixed_points}
     for node in nodes:
         own_q = [q[j] for j in node.coordinates]
         own_v = sp.Matrix(len(own_q), 1, [v[j] for j in node.coordinates])
         subspace = node.offset.jacobian(own_q) if own_q else sp.zeros(dim, 0)
-        offset_rate = subspace * own_v + node.offset.diff(t)
-        bias = bias_acceleration(offset_rate, own_q, list(own_v), t)
+        moving_frame = node.offset.diff(t)
+        bias = bias_acceleration(subspace * own_v + moving_frame, own_q, list(own_v), t)
         joints.append(_Joint(node.coordinates, _named(names, subspace), _named(names, bias)))
         name = node.particle.name
         if node.parent is None:
@@ -119,10 +102,9 @@ def recursive_dynamics(model: Model, kin, tree: PointTree) -> RecursiveDynamics:
             parent = nodes[node.parent].particle.name
             base_x, base_v = position[parent], velocity[parent]
         position[name] = _named(names, base_x + node.offset)
-        velocity[name] = _named(names, base_v + joints[-1].subspace * own_v
-                                + node.offset.diff(t))
+        velocity[name] = _named(names, base_v + joints[-1].subspace * own_v + moving_frame)
 
-    local = TreeKinematics(model, kin, position, velocity)
+    local = NamedKinematics(model, t, position, velocity)
     force = {name: _named(names, f)
              for name, f in particle_forces(model, local, gravity=False).items()}
     gravity = sum((field.acceleration for field in model.gravities), zero)

@@ -81,25 +81,32 @@ class Intermediates:
 
 
 class NamedKinematics:
-    """Particle positions and velocities as intermediates; fixed points stay expressions.
+    """Every point's position and velocity as given; the interface forces and potentials
+    read (`of`, `position`, `point_substitution`)."""
 
-    Has the interface forces and potentials read (`of`, `position`, `point_substitution`).
-    """
-
-    def __init__(self, model: Model, kin: Kinematics, names: Intermediates):
-        self.t = kin.t
-        particles = {p.name for p in model.particles}
-        self.position: dict[str, sp.Matrix] = {}
-        self.velocity: dict[str, sp.Matrix] = {}
-        for point in model.points:
-            x, xdot = kin.of(point)
-            if point.name in particles:
-                x, xdot = names.vector(x), names.vector(xdot)
-            self.position[point.name], self.velocity[point.name] = x, xdot
+    def __init__(self, model: Model, t: sp.Symbol, position: dict[str, sp.Matrix],
+                 velocity: dict[str, sp.Matrix]):
+        self.t = t
+        self.position, self.velocity = position, velocity
         self.point_substitution = {}
         for point in model.points:
             self.point_substitution.update(zip(point.x, self.position[point.name]))
             self.point_substitution.update(zip(point.xdot, self.velocity[point.name]))
+
+    @classmethod
+    def particles_named(cls, model: Model, kin: Kinematics,
+                        names: Intermediates) -> "NamedKinematics":
+        """The particles' positions and velocities as intermediates; fixed points stay
+        expressions."""
+        particles = {p.name for p in model.particles}
+        position: dict[str, sp.Matrix] = {}
+        velocity: dict[str, sp.Matrix] = {}
+        for point in model.points:
+            x, xdot = kin.of(point)
+            if point.name in particles:
+                x, xdot = names.vector(x), names.vector(xdot)
+            position[point.name], velocity[point.name] = x, xdot
+        return cls(model, kin.t, position, velocity)
 
     def of(self, point: Point) -> tuple[sp.Matrix, sp.Matrix]:
         return self.position[point.name], self.velocity[point.name]
@@ -125,7 +132,7 @@ def derive_structured(model: Model, kin: Kinematics
     nq, dim = model.nq, model.dim
     q, v, t = kin.q, kin.v, kin.t
     names = Intermediates()
-    local = NamedKinematics(model, kin, names)
+    local = NamedKinematics.particles_named(model, kin, names)
     force = {name: names.vector(f)
              for name, f in particle_forces(model, local, gravity=False).items()}
 
