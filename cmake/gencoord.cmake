@@ -1,13 +1,16 @@
-# gencoord_add_model(<target> MODEL <model.py> [OPTIONS key=value ...] [DEPENDS <file> ...]
+# gencoord_add_model(<target> MODEL <model.py> [NAME <name>] [OPTIONS key=value ...]
+#                    [DEPENDS <file> ...] [DYNAMICS auto|dense|recursive]
 #                    [TRANSLATION_UNITS <k>] [MAX_FUNCTION_STATEMENTS <n>] [OUTPUT_DIR <dir>])
 #
 # Generates <name>.hpp from a gencoord model file at build time and makes <target> an
 # INTERFACE library that carries it: `target_link_libraries(app PRIVATE <target>)` and then
 # `#include "generated/<name>.hpp"`. The header is regenerated whenever the model file, any
-# generator source or any template changes. <name> is the model file's stem followed by
-# "_<value>" for each option, in the order given (list options in the model file's order).
+# generator source or any template changes. <name> is the model file's stem (or NAME, which
+# passes --name) followed by "_<value>" for each option, in the order given (list options in
+# the model file's order).
 # DEPENDS names other files the model file reads (a URDF its load_urdf() loads): a change
-# to one regenerates the header too.
+# to one regenerates the header too. DYNAMICS passes --dynamics (how a tree of particles
+# computes qddot and inverse_dynamics).
 #
 # TRANSLATION_UNITS <k> (./generate --translation-units, for large models) also generates
 # <name>_double_0.cpp ... <name>_double_<k-1>.cpp, which compile every kernel for double once
