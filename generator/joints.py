@@ -195,6 +195,10 @@ class Link:
     support: tuple | None = None
     # why the maximal model has no pins for this link's joint ('' when it has)
     unpinned: str = ""
+    # this link's frame in its parent link's (the world's for a root): what the joint moves
+    local: Frame | None = None
+    # the body's frame (centre of mass, inertia axes) in this link's frame
+    inertial: Frame | None = None
 
 
 def _grounded(frame: Frame, model) -> bool:
@@ -215,13 +219,13 @@ def _unused(model, name: str, suffix: str) -> str:
 
 
 def _declare_body(model, name: str, frame: Frame, mass, inertia, com: Origin, label: str):
-    """The link's body at its centre of mass, and the link frame in the body's axes."""
+    """The link's body at its centre of mass, and the body's frame in the link's."""
     if not isinstance(com, Origin):
         raise ModelError("com is an Origin(xyz=..., rpy=...) in the link frame", item=label)
     inertial = com.frame()
     body = model.body(_unused(model, identifier(name), "_body"), number(mass),
                       sp.Matrix(inertia), frame * inertial)
-    return body, inertial.inverse()
+    return body, inertial
 
 
 def _check_axis(joint: Joint, label: str) -> None:
@@ -262,15 +266,17 @@ def add_link(model, name: str, parent: Link | None, joint: Joint, mass=None, ine
         if joint.limits is not None and str(joint.limits):
             description += f", {joint.limits}"
         q = model.coordinate(joint_name, description, initial=_initial(joint.limits))
+    local = joint.origin.frame() * joint.motion(q)
     link = Link(name, joint_frame * joint.motion(q), joint, parent, coordinate=q,
                 coordinates=[q] if q is not None else [],
-                limits=getattr(joint, "limits", None))
+                limits=getattr(joint, "limits", None), local=local)
+    model.links.append(link)
     if _grounded(link.frame, model):
         link.support = (None, link.frame)  # welded to the world: its mass does nothing
     elif mass is not None:
-        link.body, offset = _declare_body(model, name, link.frame, mass, inertia, com,
-                                          f"link '{name}'")
-        link.support = (link.body, offset)
+        link.body, link.inertial = _declare_body(model, name, link.frame, mass, inertia, com,
+                                                 f"link '{name}'")
+        link.support = (link.body, link.inertial.inverse())
     elif not joint.moves() and parent is not None and parent.support is not None:
         body, offset = parent.support
         link.support = (body, offset * joint.origin.frame())
@@ -360,8 +366,10 @@ def add_free_base(model, name: str, mass, inertia, com: Origin | None = None,
         angles.append(model.coordinate(angle_name, f"'{name}': {description}"))
         rotation = rotation * rotation_about(axis, angles[-1])
     frame = Frame(rotation, position)
-    link = Link(name, frame, None, None, coordinates=[*position, *angles])
-    link.body, offset = _declare_body(model, name, frame, mass, inertia,
-                                      com if com is not None else Origin(), f"link '{name}'")
-    link.support = (link.body, offset)
+    link = Link(name, frame, None, None, coordinates=[*position, *angles], local=frame)
+    model.links.append(link)
+    link.body, link.inertial = _declare_body(model, name, frame, mass, inertia,
+                                             com if com is not None else Origin(),
+                                             f"link '{name}'")
+    link.support = (link.body, link.inertial.inverse())
     return link

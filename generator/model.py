@@ -306,6 +306,8 @@ class Model:
         self.constraints: list[Rod | Pin | Plane] = []
         self.bodies: list[Body] = []
         self.torques: list[BodyTorque] = []
+        # a joint tree's links (joints.py), parents first: the rigid-body recursions walk it
+        self.links: list = []
         self.options: dict[str, int | float | str] = {}
         self.requested_options = dict(REQUESTED_OPTIONS.get() if options is None else options)
         # an atlas: this model is the first chart; add_chart() appends the others

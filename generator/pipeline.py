@@ -22,12 +22,11 @@ from .maximal import KAPPA, PENALTY_DAMPING, derive_maximal
 from .model import Model
 from .naming import chart_name
 from .optimize import OptimizeOptions, optimize_model
-from .point_tree import point_tree
 from .rank import check_full_rank
-from .recursive import recursive_dynamics
 from .singularities import analyse_singularities
 from .split import MAX_PART_STATEMENTS, assign_groups
 from .structured import derive_structured
+from .tree_dynamics import tree_dynamics
 from .validate import validate
 
 
@@ -142,13 +141,13 @@ def generate(path: str, options: dict[str, str] | None = None,
         small = chart.nq <= FLAT_MAX_NQ
         derivation, definitions = ((derive(chart, kin), []) if small
                                    else derive_structured(chart, kin))
-        tree = point_tree(chart) if dynamics != "dense" else None
-        if tree is None and dynamics == "recursive":
+        recursive = tree_dynamics(chart, kin) if dynamics != "dense" else None
+        if recursive is None and dynamics == "recursive":
             raise ModelError(
-                "--dynamics recursive: the model is not a tree of particles (each particle "
-                "its parent's position plus an offset in coordinates of its own, no bodies); "
-                "use --dynamics auto or dense").located(path, None)
-        recursive = recursive_dynamics(chart, kin, tree) if tree else None
+                "--dynamics recursive: the model is neither a tree of particles (each particle "
+                "its parent's position plus an offset in coordinates of its own) nor a joint "
+                "tree of bodies (links, URDF); use --dynamics auto or dense"
+            ).located(path, None)
         if recursive:
             definitions = [*definitions, *recursive.definitions]
         # a body's rods and pins make symbolic derivatives of the penalty forces slow (seconds

@@ -1,10 +1,12 @@
-"""The O(n) recursions (point_tree.py, recursive.py) against the dense derivation.
+"""The O(n) recursions against the dense derivation.
 
-A model that is a translational tree of particles gets qddot by the articulated-body
-recursion and the inverse dynamics by Newton-Euler. This checks which models are found to be
+A model that is a translational tree of particles (point_tree.py, recursive.py) or a joint
+tree of rigid bodies (body_tree.py, body_recursion.py) gets qddot by the articulated-body
+algorithm and the inverse dynamics by Newton-Euler. This checks which models are found to be
 trees and with what structure, that both recursions equal Mt^-1 (Ft + Fi) and Mt qdd - Ft - Fi
 of derive.py at random states in extended precision, and how generation picks between the
-recursive and the dense kernels. The C++ model tests check the same after CSE and printing.
+recursive and the dense kernels. The C++ model tests check the same after CSE and printing,
+and the robot tests against MuJoCo.
 """
 
 from __future__ import annotations
@@ -16,6 +18,8 @@ from pathlib import Path
 import mpmath
 import sympy as sp
 
+from generator.body_recursion import body_recursive_dynamics
+from generator.body_tree import body_tree
 from generator.derive import Kinematics, derive
 from generator.errors import ModelError
 from generator.loader import load_model
@@ -26,6 +30,8 @@ from generator.recursive import recursive_dynamics
 from .support import DIGITS, MODELS, relative_error
 
 BRANCHED = Path(__file__).parent / "tree_models" / "branched_pendulum.py"
+FORCED_ARM = Path(__file__).parent / "tree_models" / "forced_arm.py"
+FLOATING_LEG = Path(__file__).parents[1] / "robots" / "floating_leg.py"
 TREES = [(MODELS / "n_link_chain.py", {"n": "6"}), (BRANCHED, None),
          (MODELS / "spherical_pendulum.py", None), (MODELS / "cart_pole.py", None),
          (MODELS / "spring_pendulum.py", None), (MODELS / "kapitza_pendulum.py", None),
@@ -66,37 +72,101 @@ class PointTreeTest(unittest.TestCase):
             self.assertIsNone(point_tree(model), name)
 
 
+def _assert_equal_to_dense(test: unittest.TestCase, model, name: str, recursive,
+                           tolerance=None) -> None:
+    """Both recursions against the dense derivation at random states, in DIGITS digits, to
+    `tolerance` relative (default: 1e8 units of the last digit)."""
+    kin = Kinematics(model)
+    dense = derive(model, kin)
+    inputs = [*dense.q, *dense.v, *dense.a, *dense.params, dense.t]
+    # compiled once, through a CSE: a robot's dense expression trees take minutes to
+    # evaluate by substitution, and as long to print whole
+    dense_values = sp.lambdify(inputs, [dense.mass_matrix,
+                                        dense.applied_forces + dense.inertial_forces],
+                               modules="mpmath", cse=True)
+    rng = random.Random(name)
+    with mpmath.workdps(DIGITS):
+        tolerance = tolerance or mpmath.mpf(10) ** (8 - DIGITS)
+        for _ in range(STATES):
+            point = {s: sp.Float(rng.uniform(-1.5, 1.5), DIGITS) for s in inputs}
+            point.update({p.symbol: sp.Float(p.default * rng.uniform(0.8, 1.2), DIGITS)
+                          for p in model.parameters})
+            arguments = [mpmath.mpf(point[s]) for s in inputs]
+            for symbol, expr in recursive.definitions:
+                point[symbol] = expr.xreplace(point).evalf(DIGITS)
+
+            def values(matrix):
+                return [_real(e.xreplace(point).evalf(DIGITS)) for e in matrix]
+
+            mass, force = (mpmath.matrix(value).apply(_real)
+                           for value in dense_values(*arguments))
+            acceleration = mpmath.matrix([point[a] for a in dense.a])
+            expected = list(mpmath.lu_solve(mass, force))
+            test.assertLess(relative_error(values(recursive.qddot), expected), tolerance,
+                            f"{name}: qddot")
+            test.assertLess(relative_error(values(recursive.residual),
+                                           list(mass * acceleration - force)),
+                            tolerance, f"{name}: inverse dynamics")
+
+
+def _real(value) -> mpmath.mpf:
+    """A value that is real up to the evaluation's round-off (a body's point masses sit at
+    square roots, whose products may leave an imaginary part of 1e-40)."""
+    if isinstance(value, sp.Basic):
+        real, imaginary = (mpmath.mpf(part) for part in value.as_real_imag())
+    else:
+        real, imaginary = mpmath.re(value), mpmath.im(value)
+    assert abs(imaginary) <= mpmath.mpf(10) ** (10 - DIGITS) * (1 + abs(real)), value
+    return real
+
+
 class RecursionsTest(unittest.TestCase):
 
     def test_recursions_equal_the_dense_dynamics(self):
         for path, options in TREES:
             model, name = _load(path, options)
-            kin = Kinematics(model)
-            dense = derive(model, kin)
-            recursive = recursive_dynamics(model, kin, point_tree(model))
-            inputs = [*dense.q, *dense.v, *dense.a, *dense.params, dense.t]
-            rng = random.Random(name)
-            with mpmath.workdps(DIGITS):
-                for _ in range(STATES):
-                    point = {s: sp.Float(rng.uniform(-1.5, 1.5), DIGITS) for s in inputs}
-                    point.update({p.symbol: sp.Float(p.default * rng.uniform(0.8, 1.2), DIGITS)
-                                  for p in model.parameters})
-                    for symbol, expr in recursive.definitions:
-                        point[symbol] = expr.xreplace(point).evalf(DIGITS)
+            recursive = recursive_dynamics(model, Kinematics(model), point_tree(model))
+            _assert_equal_to_dense(self, model, name, recursive)
 
-                    def values(matrix):
-                        return [mpmath.mpf(e.xreplace(point).evalf(DIGITS)) for e in matrix]
-                    mass = mpmath.matrix([[mpmath.mpf(e.xreplace(point).evalf(DIGITS))
-                                           for e in dense.mass_matrix.row(i)]
-                                          for i in range(model.nq)])
-                    force = mpmath.matrix(values(dense.applied_forces + dense.inertial_forces))
-                    expected = list(mpmath.lu_solve(mass, force))
-                    tolerance = mpmath.mpf(10) ** (8 - DIGITS)
-                    self.assertLess(relative_error(values(recursive.qddot), expected), tolerance,
-                                    f"{name}: qddot")
-                    self.assertLess(relative_error(values(recursive.residual),
-                                                   values(dense.residual())), tolerance,
-                                    f"{name}: inverse dynamics")
+
+def _links(tree) -> list[tuple[str, str | None, list[int]]]:
+    return [(node.link.name, None if node.parent is None else tree.nodes[node.parent].link.name,
+             node.coordinates) for node in tree.nodes]
+
+
+class BodyTreeTest(unittest.TestCase):
+
+    def test_links_branches_and_welds(self):
+        model, _ = _load(FORCED_ARM)
+        self.assertEqual(_links(body_tree(model)),
+                         [("turret", None, [0]), ("slider", "turret", [1]),
+                          ("wrist", "slider", [2]), ("hand", "wrist", [3]),
+                          ("tool", "hand", []), ("side", "turret", [4])])
+
+    def test_a_free_base_is_one_node_of_six_coordinates(self):
+        model, _ = _load(FLOATING_LEG)
+        tree = body_tree(model)
+        self.assertEqual(_links(tree)[:3], [("world", None, []), ("trunk", None, list(range(6))),
+                                            ("FR_hip", "trunk", [6])])
+        # the translation's rates are the base velocity in its own axes: S_v = E^T
+        self.assertEqual(tree.nodes[1].subspace[3:, :3], tree.nodes[1].rotation.T)
+
+    def test_models_that_are_not_joint_trees(self):
+        for path, options in [(MODELS / "heavy_top.py", None),     # a body without links
+                              (MODELS / "furuta_pendulum.py", None),
+                              (MODELS / "n_link_chain.py", {"n": "3"})]:  # particles
+            model, name = _load(path, options)
+            self.assertIsNone(body_tree(model), name)
+
+    def test_rigid_body_recursions_equal_the_dense_dynamics(self):
+        # torques, springs, dampers, a moving anchor, joint springs and damping, a massless
+        # link and a welded one; then a free base in Euler angles
+        # (a URDF's numbers are binary floats: the dense form's LDL^T of a body's second
+        # moment rounds at 1e-16, which bounds the agreement there)
+        for path, tolerance in ((FORCED_ARM, None), (FLOATING_LEG, 1e-12)):
+            model, name = _load(path)
+            recursive = body_recursive_dynamics(model, Kinematics(model), body_tree(model))
+            _assert_equal_to_dense(self, model, name, recursive, tolerance)
 
 
 class PathChoiceTest(unittest.TestCase):
@@ -126,7 +196,7 @@ class PathChoiceTest(unittest.TestCase):
             generate(str(MODELS / "falling_cat.py"), dynamics="recursive")
         message = str(caught.exception)
         self.assertIn("falling_cat.py", message)
-        self.assertIn("not a tree of particles", message)
+        self.assertIn("neither a tree of particles", message)
         self.assertIn("--dynamics auto or dense", message)
 
 

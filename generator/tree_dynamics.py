@@ -1,0 +1,23 @@
+"""The O(n) recursions for a model that is a tree: of particles (point_tree.py,
+recursive.py) or of rigid bodies joined by joints (body_tree.py, body_recursion.py)."""
+
+from __future__ import annotations
+
+from .body_recursion import body_recursive_dynamics
+from .body_tree import body_tree
+from .derive import Kinematics
+from .model import Model
+from .point_tree import point_tree
+from .recursive import RecursiveDynamics, recursive_dynamics
+
+
+def tree_dynamics(model: Model, kin: Kinematics) -> RecursiveDynamics | None:
+    """qddot and the inverse-dynamics residual by the recursions, or None for a model that
+    is no tree (it keeps the dense kernels)."""
+    points = point_tree(model)
+    if points is not None:
+        return recursive_dynamics(model, kin, points)
+    bodies = body_tree(model)
+    if bodies is not None:
+        return body_recursive_dynamics(model, kin, bodies)
+    return None
