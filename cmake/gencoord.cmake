@@ -9,8 +9,8 @@
 # passes --name) followed by "_<value>" for each option, in the order given (list options in
 # the model file's order).
 # DEPENDS names other files the model file reads (a URDF its load_urdf() loads): a change
-# to one regenerates the header too. DYNAMICS passes --dynamics (how a tree of particles
-# computes qddot and inverse_dynamics).
+# to one regenerates the header too. DYNAMICS passes --dynamics (how a tree of particles or
+# of bodies computes qddot and inverse_dynamics).
 #
 # TRANSLATION_UNITS <k> (./generate --translation-units, for large models) also generates
 # <name>_double_0.cpp ... <name>_double_<k-1>.cpp, which compile every kernel for double once

@@ -94,9 +94,10 @@ def main(argv: list[str] | None = None, prog: str = "generate") -> int:
                              "(DIR/<name>_double_K.cpp), which build in parallel; the header "
                              "declares them extern template (default 0: header only)")
     parser.add_argument("--dynamics", choices=DYNAMICS_CHOICES, default="auto",
-                        help="qddot and inverse_dynamics of a model that is a tree of "
-                             "particles: by the O(nq) recursions, dense (Mt, Ft + Fi), or auto: "
-                             "whichever takes fewer operations (default %(default)s)")
+                        help="qddot and inverse_dynamics of a model that is a tree (of "
+                             "particles, or of bodies joined by joints): by the O(nq) "
+                             "recursions, dense (Mt, Ft + Fi), or auto: whichever takes fewer "
+                             "operations (default %(default)s)")
     parser.add_argument("--load-timeout", type=float, default=LOAD_TIMEOUT, metavar="SECONDS",
                         help="stop with an error when running the model file takes longer "
                              "(default %(default)g; 0: no limit)")
