@@ -26,7 +26,7 @@ omega = model.parameter("omega", 3.0, "frequency of the anchor and the torque (r
 
 def box(a, b, c):
     """A principal inertia diag(a, b, c) with a general orientation's products."""
-    return [[a, R(1, 50), R(-1, 80)], [R(1, 50), b, R(1, 60)], [R(-1, 80), R(1, 60), c]]
+    return [[a, R(1, 500), R(-1, 800)], [R(1, 500), b, R(1, 600)], [R(-1, 800), R(1, 600), c]]
 
 
 turret = add_link(model, "turret", None,
