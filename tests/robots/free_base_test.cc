@@ -1,8 +1,9 @@
-// A robot with a free-floating base against MuJoCo on the same URDF: the generated model's
-// Z-Y-X Euler chart and MuJoCo's free joint (position and quaternion, the body's angular
-// velocity) mapped onto each other as free_joint.hpp describes. At random states: the map
-// against MuJoCo's own mj_differentiatePos, the mass matrix, the bias forces, qddot and
-// inverse dynamics; and a 1 s RK4 trajectory of the falling robot at the same step.
+// A robot with a free-floating base against MuJoCo on the same URDF: the generated model in
+// each Euler chart (zyx and yzx, one model each) and MuJoCo's free joint (position and
+// quaternion, the body's angular velocity) mapped onto each other as free_joint.hpp
+// describes. At random states: the map against MuJoCo's own mj_differentiatePos, the mass
+// matrix, the bias forces, qddot and inverse dynamics; and a 1 s RK4 trajectory of the falling
+// robot at the same step.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -14,21 +15,22 @@
 #include "free_joint.hpp"
 #include "gencoord/gencoord.hpp"
 #include "generated/floating_leg.hpp"
+#include "generated/floating_leg_yzx.hpp"
 
 namespace gencoord {
 namespace {
 
-using M = models::FloatingLeg;
+using robot_testing::euler_chart_of;
 using robot_testing::FreeBaseReference;
-using QVec = FreeBaseReference<M>::QVec;
 
 const char* const kUrdf = GENCOORD_ROOT "/tests/robots/floating_leg.urdf";
 // the fixed-base quadruped's bounds (mujoco_reference_test.cc says why they are not 1e-9):
 // `kernels` for the mass matrix and the bias forces, `solved` for qddot, inverse dynamics and
 // the trajectory
 constexpr double kKernels = 1e-8, kSolved = 1e-6;
-// the pitch stays this far from gimbal lock (pi/2), where the zyx chart is singular
-constexpr double kPitchLimit = 1.2;
+// the middle angle (q[4]: pitch or attitude) stays this far from pi/2, where its chart is
+// singular (gimbal lock)
+constexpr double kMiddleAngleLimit = 1.2;
 
 /// |a - b| relative to the larger of the two and 1.
 template <class A, class B>
@@ -36,13 +38,15 @@ double relative(const A& a, const B& b) {
   return (a - b).norm() / std::max(1.0, std::max(a.norm(), b.norm()));
 }
 
-/// The base anywhere within 1 m of the origin moving at up to 2 m/s, yaw and roll in
-/// (-pi, pi), pitch in (-1.2, 1.2), the joints in (-pi, pi), angle rates in (-2, 2) rad/s.
+/// The base anywhere within 1 m of the origin moving at up to 2 m/s, the outer and inner
+/// angles in (-pi, pi), the middle one in (-1.2, 1.2), the joints in (-pi, pi), angle rates in
+/// (-2, 2) rad/s.
+template <class M>
 State<M> random_state(std::mt19937& rng) {
   std::uniform_real_distribution<double> unit(-1.0, 1.0);
   State<M> s;
   for (int i = 0; i < M::nq; ++i) {
-    s.q[i] = (i < 3 ? 1.0 : i == 4 ? kPitchLimit : M_PI) * unit(rng);
+    s.q[i] = (i < 3 ? 1.0 : i == 4 ? kMiddleAngleLimit : M_PI) * unit(rng);
     s.v[i] = 2.0 * unit(rng);
   }
   return s;
@@ -54,15 +58,33 @@ void record(const char* key, double value) {
   ::testing::Test::RecordProperty(key, text);
 }
 
-TEST(FreeBaseMujoco, VelocityMapIsMujocosDerivativeOfThePose) {
+/// The floating leg in one Euler chart.
+template <class M>
+class FreeBaseMujoco : public ::testing::Test {};
+
+/// Test names carry the chart: FreeBaseMujoco/zyx, FreeBaseMujoco/yzx.
+struct ChartName {
+  template <class M>
+  static std::string GetName(int) {
+    return euler_chart_of<M>().name;
+  }
+};
+
+using Charts = ::testing::Types<models::FloatingLeg, models::FloatingLegYzx>;
+TYPED_TEST_SUITE(FreeBaseMujoco, Charts, ChartName);
+
+TYPED_TEST(FreeBaseMujoco, VelocityMapIsMujocosDerivativeOfThePose) {
   // qvel = T v is what mj_differentiatePos makes of the mapped poses at q -+ h v, and
-  // Tdot v is T's central difference along v times v: both to the differences' truncation
+  // Tdot v is T's central difference along v times v: both to the differences' truncation.
+  // This ties E to the chart's own quaternion; the tests below tie the chart to the model's.
+  using M = TypeParam;
+  using QVec = typename FreeBaseReference<M>::QVec;
   FreeBaseReference<M> mujoco(kUrdf);
   std::mt19937 rng(41);
   const double h = 1e-5;
   double worst_velocity = 0, worst_bias = 0;
   for (int k = 0; k < 100; ++k) {
-    const State<M> s = random_state(rng);
+    const State<M> s = random_state<M>(rng);
     const QVec qvel = mujoco.velocity_map(s.q) * s.v;
     const QVec secant =
         mujoco.difference(mujoco.qpos(s.q - h * s.v), mujoco.qpos(s.q + h * s.v)) / (2 * h);
@@ -75,15 +97,19 @@ TEST(FreeBaseMujoco, VelocityMapIsMujocosDerivativeOfThePose) {
   record("velocity_map_bias", worst_bias);
   EXPECT_LT(worst_velocity, 1e-8);
   EXPECT_LT(worst_bias, 1e-8);
+  std::printf("%s (free base): velocity map against mj_differentiatePos %.2g, its bias %.2g\n",
+              M::name, worst_velocity, worst_bias);
 }
 
-TEST(FreeBaseMujoco, KernelsMatchAtRandomStates) {
+TYPED_TEST(FreeBaseMujoco, KernelsMatchAtRandomStates) {
+  using M = TypeParam;
+  using QVec = typename FreeBaseReference<M>::QVec;
   FreeBaseReference<M> mujoco(kUrdf);
-  const M::Params p;
+  const typename M::Params p;
   std::mt19937 rng(20261123);
   double worst_mass = 0, worst_bias = 0, worst_qdd = 0, worst_rne = 0;
   for (int k = 0; k < 100; ++k) {
-    const State<M> s = random_state(rng);
+    const State<M> s = random_state<M>(rng);
     mujoco.forward(s.q, s.v);
     worst_mass = std::max(worst_mass, relative(M::mass_matrix(s.q, s.t, p), mujoco.mass_matrix()));
     worst_bias = std::max(worst_bias, relative(M::forces(s.q, s.v, s.t, p), -mujoco.bias()));
@@ -106,11 +132,13 @@ TEST(FreeBaseMujoco, KernelsMatchAtRandomStates) {
       M::name, worst_mass, worst_bias, worst_qdd, worst_rne);
 }
 
-TEST(FreeBaseMujoco, RK4TrajectoryFollowsMujoco) {
+TYPED_TEST(FreeBaseMujoco, RK4TrajectoryFollowsMujoco) {
   // compared through mj_differentiatePos: the base's displacement (m), its rotation (rad) and
   // the joints' differences (rad)
+  using M = TypeParam;
+  using QVec = typename FreeBaseReference<M>::QVec;
   FreeBaseReference<M> mujoco(kUrdf);
-  const M::Params p;
+  const typename M::Params p;
   std::mt19937 rng(7);
   std::uniform_real_distribution<double> unit(-1.0, 1.0);
   State<M> initial;
@@ -127,15 +155,17 @@ TEST(FreeBaseMujoco, RK4TrajectoryFollowsMujoco) {
            [&](const State<M>& s) {
              if (step++ > 0) mj_step(mujoco.model(), mujoco.data());
              const QVec gap = mujoco.difference(mujoco.qpos(s.q), mujoco.qpos());
-             worst = std::max(worst, gap.lpNorm<Eigen::Infinity>());
+             worst = std::max(worst, gap.template lpNorm<Eigen::Infinity>());
              steepest = std::max(steepest, std::abs(s.q[4]));
            });
   EXPECT_EQ(step, 1001);
-  EXPECT_LT(steepest, kPitchLimit);
+  EXPECT_LT(steepest, kMiddleAngleLimit);
   EXPECT_LT(worst, kSolved);
   record("trajectory", worst);
-  std::printf("%s (free base): largest |q - q_MuJoCo| over 1 s of RK4 at dt = 1 ms: %.2g\n",
-              M::name, worst);
+  std::printf(
+      "%s (free base): largest |q - q_MuJoCo| over 1 s of RK4 at dt = 1 ms: %.2g (the "
+      "middle angle within %.2g rad)\n",
+      M::name, worst, steepest);
 }
 
 }  // namespace

@@ -1,66 +1,100 @@
 // MuJoCo's free joint as the reference for a generated model with a free-floating base.
 //
 // The generated model's first chart moves the base link by x, y, z (the link frame's origin
-// in the world) and the Z-Y-X Euler angles yaw, pitch, roll (R = Rz(yaw) Ry(pitch) Rx(roll));
-// its velocities are the coordinates' time derivatives. MuJoCo's free joint has
-// qpos = (x, y, z, qw, qx, qy, qz), the same origin and R as a unit quaternion, and
-// qvel = (the origin's velocity in world axes, the angular velocity in the base's own axes).
-// So qvel = T v with T = diag(I, E(pitch, roll), I), E the map from the angle rates to the
-// body angular velocity and I on the joints (rows in MuJoCo's order), and MuJoCo's
-// qacc = T qdd + Tdot v. Virtual power gives the generated model's forces from MuJoCo's as
-// T^T f; hence
+// in the world) and three Euler angles of one of generator/joints.py's EULER_CHARTS (zyx:
+// R = Rz(yaw) Ry(pitch) Rx(roll); yzx: R = Ry(heading) Rz(attitude) Rx(bank)); its velocities
+// are the coordinates' time derivatives. MuJoCo's free joint has qpos = (x, y, z, qw, qx, qy,
+// qz), the same origin and R as a unit quaternion, and qvel = (the origin's velocity in world
+// axes, the angular velocity in the base's own axes). So qvel = T v with
+// T = diag(I, E(angles), I), E the chart's map from the angle rates to the body angular
+// velocity and I on the joints (rows in MuJoCo's order), and MuJoCo's qacc = T qdd + Tdot v.
+// Virtual power gives the generated model's forces from MuJoCo's as T^T f; hence
 //   Mt = T^T M T,   Ft + Fi = -T^T (c + M Tdot v),   tau = T^T (M qacc + c).
 // Contacts and joint-limit constraints are switched off (load_smooth_model).
 #pragma once
 
+#include <algorithm>
 #include <array>
-#include <cmath>
 #include <cstring>
 #include <stdexcept>
 #include <string>
 
 #include <mujoco/mujoco.h>
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 
 #include "mujoco_model.hpp"
 
 namespace gencoord::robot_testing {
 
-/// Rz(yaw) Ry(pitch) Rx(roll) as a unit quaternion (w, x, y, z): qz qy qx.
-inline Eigen::Vector4d zyx_quaternion(double yaw, double pitch, double roll) {
-  const double cy = std::cos(yaw / 2), sy = std::sin(yaw / 2);
-  const double cp = std::cos(pitch / 2), sp = std::sin(pitch / 2);
-  const double cr = std::cos(roll / 2), sr = std::sin(roll / 2);
-  return {cy * cp * cr + sy * sp * sr, cy * cp * sr - sy * sp * cr, cy * sp * cr + sy * cp * sr,
-          sy * cp * cr - cy * sp * sr};
-}
+/// An Euler chart: R = Ra(q0) Rb(q1) Rc(q2), rotations about the fixed axes a, b, c (0, 1, 2:
+/// x, y, z), outermost (world) first; singular where the middle angle q1 is +-pi/2. One
+/// formula for every axis order, so the charts cannot drift apart.
+struct EulerChart {
+  const char* name;
+  std::array<const char*, 3> angles;  // the generated model's names for q0, q1, q2
+  std::array<int, 3> axes;
 
-/// E(pitch, roll): the angular velocity in the body's axes, R^T Rdot, is E (yaw', pitch', roll').
-inline Eigen::Matrix3d zyx_body_rates(double pitch, double roll) {
-  const double cp = std::cos(pitch), sp = std::sin(pitch);
-  const double cr = std::cos(roll), sr = std::sin(roll);
-  Eigen::Matrix3d e;
-  e << -sp, 0, 1,      //
-      sr * cp, cr, 0,  //
-      cr * cp, -sr, 0;
-  return e;
-}
+  Eigen::Vector3d axis(int i) const { return Eigen::Vector3d::Unit(axes[i]); }
 
-/// Edot (yaw', pitch', roll'): what the body angular acceleration has beyond E times the angle
-/// accelerations.
-inline Eigen::Vector3d zyx_body_rates_bias(double pitch, double roll,
-                                           const Eigen::Vector3d& rates) {
-  const double cp = std::cos(pitch), sp = std::sin(pitch);
-  const double cr = std::cos(roll), sr = std::sin(roll);
-  const double yaw_rate = rates[0], pitch_rate = rates[1], roll_rate = rates[2];
-  return {-cp * pitch_rate * yaw_rate,
-          (cr * cp * roll_rate - sr * sp * pitch_rate) * yaw_rate - sr * roll_rate * pitch_rate,
-          (-sr * cp * roll_rate - cr * sp * pitch_rate) * yaw_rate - cr * roll_rate * pitch_rate};
+  Eigen::AngleAxisd rotation(int i, double angle) const {
+    return Eigen::AngleAxisd(angle, axis(i));
+  }
+
+  /// R as a unit quaternion (w, x, y, z): the product of the three rotations' quaternions.
+  Eigen::Vector4d quaternion(const Eigen::Vector3d& q) const {
+    const Eigen::Quaterniond r = rotation(0, q[0]) * rotation(1, q[1]) * rotation(2, q[2]);
+    return {r.w(), r.x(), r.y(), r.z()};
+  }
+
+  /// E(q): the angular velocity in the body's axes, R^T Rdot = q2' c + Rc^T q1' b +
+  /// Rc^T Rb^T q0' a, is E q'; column i is angle i's axis seen from the body, through the
+  /// rotations inside it.
+  Eigen::Matrix3d body_rates(const Eigen::Vector3d& q) const {
+    const Eigen::Matrix3d inner = rotation(2, q[2]).inverse().toRotationMatrix();
+    Eigen::Matrix3d e;
+    e.col(0) = inner * (rotation(1, q[1]).inverse() * axis(0));
+    e.col(1) = inner * axis(1);
+    e.col(2) = axis(2);
+    return e;
+  }
+
+  /// Edot q': what the body angular acceleration has beyond E q''. With w_i = E.col(i) q_i',
+  /// each column turns with the angular velocity of the rotations inside it (w_2 for column
+  /// 1, w_1 + w_2 for column 0), so Edot q' = w_0 x w_1 + (w_0 + w_1) x w_2.
+  Eigen::Vector3d body_rates_bias(const Eigen::Vector3d& q, const Eigen::Vector3d& rates) const {
+    const Eigen::Matrix3d e = body_rates(q);
+    const Eigen::Vector3d w0 = e.col(0) * rates[0], w1 = e.col(1) * rates[1];
+    const Eigen::Vector3d w2 = e.col(2) * rates[2];
+    return w0.cross(w1) + (w0 + w1).cross(w2);
+  }
+};
+
+// generator/joints.py's EULER_CHARTS, in its order
+inline constexpr std::array<EulerChart, 2> kEulerCharts{{
+    {"zyx", {{"yaw", "pitch", "roll"}}, {{2, 1, 0}}},
+    {"yzx", {{"heading", "attitude", "bank"}}, {{1, 2, 0}}},
+}};
+
+/// The chart whose angles the generated model M's coordinates 3 to 5 are, or an error.
+template <class M>
+const EulerChart& euler_chart_of() {
+  for (const EulerChart& chart : kEulerCharts) {
+    const auto same = [](const char* a, const char* b) { return std::strcmp(a, b) == 0; };
+    if (std::equal(chart.angles.begin(), chart.angles.end(), M::coordinate_names.begin() + 3,
+                   same)) {
+      return chart;
+    }
+  }
+  throw std::runtime_error(std::string(M::name) + ": coordinates 3 to 5 (" +
+                           M::coordinate_names[3] + ", " + M::coordinate_names[4] + ", " +
+                           M::coordinate_names[5] + ") are the angles of no Euler chart");
 }
 
 /// MuJoCo on a URDF whose floating joint frees the base, against a generated model M's
-/// first chart (coordinates x, y, z, yaw, pitch, roll, then the joints, each named after its
-/// joint). Vectors of MuJoCo's degrees of freedom are in MuJoCo's order; the others in M's.
+/// first chart (coordinates x, y, z, the three angles of an Euler chart, then the joints, each
+/// named after its joint). Vectors of MuJoCo's degrees of freedom are in MuJoCo's order; the
+/// others in M's.
 template <class M>
 class FreeBaseReference {
  public:
@@ -70,19 +104,20 @@ class FreeBaseReference {
   using QMat = Eigen::Matrix<double, M::nq, M::nq>;
   using PosVec = Eigen::Matrix<double, nq, 1>;
 
-  explicit FreeBaseReference(const std::string& urdf_path) : model_(load_smooth_model(urdf_path)) {
+  explicit FreeBaseReference(const std::string& urdf_path)
+      : model_(load_smooth_model(urdf_path)), chart_(&euler_chart_of<M>()) {
     if (model_->nq != nq || model_->nv != nv) {
       throw std::runtime_error(urdf_path + ": MuJoCo has nq = " + std::to_string(model_->nq) +
                                " and nv = " + std::to_string(model_->nv) +
                                "; a free base and the generated model's joints make " +
                                std::to_string(nq) + " and " + std::to_string(nv));
     }
-    const std::array<const char*, 6> base{{"x", "y", "z", "yaw", "pitch", "roll"}};
-    for (int i = 0; i < 6; ++i) {
-      if (std::strcmp(M::coordinate_names[i], base[i]) != 0) {
+    const std::array<const char*, 3> origin{{"x", "y", "z"}};
+    for (int i = 0; i < 3; ++i) {
+      if (std::strcmp(M::coordinate_names[i], origin[i]) != 0) {
         throw std::runtime_error(std::string("the generated model's coordinate ") +
                                  std::to_string(i) + " is " + M::coordinate_names[i] +
-                                 ", not the zyx chart's " + base[i]);
+                                 ", not the base's " + origin[i]);
       }
     }
     data_.reset(mj_makeData(model_.get()));
@@ -99,13 +134,14 @@ class FreeBaseReference {
 
   mjModel* model() { return model_.get(); }
   mjData* data() { return data_.get(); }
+  const EulerChart& chart() const { return *chart_; }
 
   /// MuJoCo's qpos for the generated model's q.
   PosVec qpos(const QVec& q) const {
     PosVec out = PosVec::Zero();
     const int base = model_->jnt_qposadr[free_];
     out.template segment<3>(base) = q.template head<3>();
-    out.template segment<4>(base + 3) = zyx_quaternion(q[3], q[4], q[5]);
+    out.template segment<4>(base + 3) = chart_->quaternion(q.template segment<3>(3));
     for (int i = 6; i < M::nq; ++i) out[qpos_[i]] = q[i];
     return out;
   }
@@ -116,7 +152,7 @@ class FreeBaseReference {
     QMat t = QMat::Zero();
     const int base = model_->jnt_dofadr[free_];
     t.template block<3, 3>(base, 0).setIdentity();
-    t.template block<3, 3>(base + 3, 3) = zyx_body_rates(q[4], q[5]);
+    t.template block<3, 3>(base + 3, 3) = chart_->body_rates(q.template segment<3>(3));
     for (int i = 6; i < M::nq; ++i) t(dof_[i], i) = 1.0;
     return t;
   }
@@ -125,7 +161,7 @@ class FreeBaseReference {
   QVec velocity_map_bias(const QVec& q, const QVec& v) const {
     QVec out = QVec::Zero();
     out.template segment<3>(model_->jnt_dofadr[free_] + 3) =
-        zyx_body_rates_bias(q[4], q[5], v.template segment<3>(3));
+        chart_->body_rates_bias(q.template segment<3>(3), v.template segment<3>(3));
     return out;
   }
 
@@ -187,6 +223,7 @@ class FreeBaseReference {
 
  private:
   ModelPtr model_;
+  const EulerChart* chart_;  // one of kEulerCharts
   DataPtr data_;
   int free_ = -1;
   std::array<int, M::nq> qpos_{};  // the joints' entries (from 6 on) of qpos and qvel
