@@ -22,6 +22,7 @@ import sympy as sp
 from .frames import unskew
 from .joints import Link, Prismatic, Revolute
 from .model import BodyParticle, Model
+from .tree import Tree
 
 
 @dataclass
@@ -36,15 +37,8 @@ class BodyNode:
 
 
 @dataclass
-class BodyTree:
+class BodyTree(Tree):
     nodes: list[BodyNode]        # parents before children
-
-    def children(self) -> list[list[int]]:
-        kids: list[list[int]] = [[] for _ in self.nodes]
-        for index, node in enumerate(self.nodes):
-            if node.parent is not None:
-                kids[node.parent].append(index)
-        return kids
 
 
 def body_tree(model: Model) -> BodyTree | None:

@@ -24,6 +24,7 @@ from dataclasses import dataclass
 import sympy as sp
 
 from .model import Model, Particle
+from .tree import Tree
 
 
 @dataclass
@@ -35,15 +36,8 @@ class TreeNode:
 
 
 @dataclass
-class PointTree:
+class PointTree(Tree):
     nodes: list[TreeNode]        # parents before children
-
-    def children(self) -> list[list[int]]:
-        kids: list[list[int]] = [[] for _ in self.nodes]
-        for index, node in enumerate(self.nodes):
-            if node.parent is not None:
-                kids[node.parent].append(index)
-        return kids
 
 
 def point_tree(model: Model) -> PointTree | None:
