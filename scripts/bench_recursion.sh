@@ -4,7 +4,9 @@
 #
 #   scripts/bench_recursion.sh [--sizes "1;2;5;10;20;50;100"] [rounds]
 #
-# Generating and compiling the n = 100 chain twice takes a few minutes of CPU.
+# Generating and compiling the n = 100 chain twice takes a few minutes of CPU. Sizes above the
+# CMake cache option GENCOORD_RECURSION_DENSE_MAX (default 100; set it with cmake -D in the build
+# folder) are generated only with --dynamics recursive and have no dense contender.
 # Environment: GENCOORD_RECURSION_BUILD_DIR (default build-bench-recursion), JOBS (default 2).
 set -euo pipefail
 cd "$(dirname "$0")/.."

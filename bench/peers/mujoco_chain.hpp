@@ -9,6 +9,7 @@
 // phi_k = theta_k - theta_{k-1}; set_state() and absolute_qacc() convert.
 #pragma once
 
+#include <algorithm>
 #include <cstring>
 #include <memory>
 #include <sstream>
@@ -20,29 +21,60 @@
 
 namespace peers {
 
-/// MJCF text of the n-link chain; params = g, l1, m1, l2, m2, ... (gencoord's order).
-inline std::string chain_mjcf(int n, const std::vector<double>& params) {
+/// One file of an MJCF model: its name in MuJoCo's virtual file system and its text.
+struct MjcfFile {
+  std::string name, text;
+};
+
+/// Bodies per MJCF file. MuJoCo's XML parser (tinyxml2) refuses elements nested 100 deep, and
+/// each link nests one body deeper (one file holds at most 96 links), so a longer chain is
+/// split across files: the innermost body of each file holds <include file="..."/> of the
+/// next, and MuJoCo puts the children of that file's <mujoco> root (the next body) where the
+/// include stands. Each file is parsed on its own, so only its own bodies count towards the
+/// limit. The merged model is the one a single file gives: body positions are relative to the
+/// parent.
+constexpr int kChainBodiesPerFile = 32;
+
+/// The n-link chain as MJCF files, main file first; params = g, l1, m1, l2, m2, ...
+/// (gencoord's order). For n <= kChainBodiesPerFile the main file is the whole model.
+inline std::vector<MjcfFile> chain_mjcf(int n, const std::vector<double>& params) {
   // tiny but positive inertia about the mass point: MuJoCo refuses bodies without one
   constexpr double kPointInertia = 1e-10;
-  std::ostringstream x;
-  x.precision(17);
-  x << "<mujoco model=\"n_link_chain_" << n << "\">\n"
-    << "  <option gravity=\"0 0 " << -params[0] << "\" timestep=\"1e-4\">\n"
-    << "    <flag contact=\"disable\"/>\n"
-    << "  </option>\n"
-    << "  <worldbody>\n";
-  for (int k = 0; k < n; ++k) {
-    const double length = params[1 + 2 * k], mass = params[2 + 2 * k];
-    const double previous_length = k == 0 ? 0.0 : params[1 + 2 * (k - 1)];
-    // body k's origin is joint k, at the end of link k - 1
-    x << "    <body name=\"link" << k + 1 << "\" pos=\"0 0 " << -previous_length << "\">\n"
-      << "      <joint name=\"theta" << k + 1 << "\" type=\"hinge\" axis=\"0 -1 0\"/>\n"
-      << "      <inertial pos=\"0 0 " << -length << "\" mass=\"" << mass << "\" diaginertia=\""
-      << kPointInertia << " " << kPointInertia << " " << kPointInertia << "\"/>\n";
+  const int files = std::max(1, (n + kChainBodiesPerFile - 1) / kChainBodiesPerFile);
+  const auto file_name = [](int file) {
+    return file == 0 ? std::string("n_link_chain.xml")
+                     : "n_link_chain_part" + std::to_string(file) + ".xml";
+  };
+  std::vector<MjcfFile> mjcf;
+  for (int file = 0; file < files; ++file) {
+    std::ostringstream x;
+    x.precision(17);
+    if (file == 0) {
+      x << "<mujoco model=\"n_link_chain_" << n << "\">\n"
+        << "  <option gravity=\"0 0 " << -params[0] << "\" timestep=\"1e-4\">\n"
+        << "    <flag contact=\"disable\"/>\n"
+        << "  </option>\n"
+        << "  <worldbody>\n";
+    } else {
+      x << "<mujoco>\n";
+    }
+    const int first = file * kChainBodiesPerFile;
+    const int end = std::min(n, first + kChainBodiesPerFile);
+    for (int k = first; k < end; ++k) {
+      const double length = params[1 + 2 * k], mass = params[2 + 2 * k];
+      const double previous_length = k == 0 ? 0.0 : params[1 + 2 * (k - 1)];
+      // body k's origin is joint k, at the end of link k - 1
+      x << "    <body name=\"link" << k + 1 << "\" pos=\"0 0 " << -previous_length << "\">\n"
+        << "      <joint name=\"theta" << k + 1 << "\" type=\"hinge\" axis=\"0 -1 0\"/>\n"
+        << "      <inertial pos=\"0 0 " << -length << "\" mass=\"" << mass << "\" diaginertia=\""
+        << kPointInertia << " " << kPointInertia << " " << kPointInertia << "\"/>\n";
+    }
+    if (file + 1 < files) x << "    <include file=\"" << file_name(file + 1) << "\"/>\n";
+    for (int k = first; k < end; ++k) x << "    </body>\n";
+    x << (file == 0 ? "  </worldbody>\n</mujoco>\n" : "</mujoco>\n");
+    mjcf.push_back({file_name(file), x.str()});
   }
-  for (int k = 0; k < n; ++k) x << "    </body>\n";
-  x << "  </worldbody>\n</mujoco>\n";
-  return x.str();
+  return mjcf;
 }
 
 /// A loaded MuJoCo model and data of the n-link chain.
@@ -50,17 +82,24 @@ class MujocoChain {
  public:
   /// \throws std::runtime_error with MuJoCo's message if the model does not compile.
   MujocoChain(int n, const std::vector<double>& params) : n_(n) {
-    const std::string xml = chain_mjcf(n, params);
-    // mjVFS holds thousands of file names: far too big for the stack
-    auto vfs = std::make_unique<mjVFS>();
+    // mjVFS holds thousands of file names: far too big for the stack; the deleter frees the
+    // files as well, on a throw too
+    const auto delete_vfs = [](mjVFS* vfs) {
+      mj_deleteVFS(vfs);
+      delete vfs;
+    };
+    std::unique_ptr<mjVFS, decltype(delete_vfs)> vfs(new mjVFS, delete_vfs);
     mj_defaultVFS(vfs.get());
-    const char* file = "n_link_chain.xml";
-    if (mj_makeEmptyFileVFS(vfs.get(), file, static_cast<int>(xml.size())) != 0)
-      throw std::runtime_error("mujoco: cannot make a VFS file");
-    std::memcpy(vfs->filedata[mj_findFileVFS(vfs.get(), file)], xml.data(), xml.size());
+    const std::vector<MjcfFile> files = chain_mjcf(n, params);
+    for (const MjcfFile& file : files) {
+      const int size = static_cast<int>(file.text.size());
+      if (mj_makeEmptyFileVFS(vfs.get(), file.name.c_str(), size) != 0)
+        throw std::runtime_error("mujoco: cannot make the VFS file " + file.name);
+      std::memcpy(vfs->filedata[mj_findFileVFS(vfs.get(), file.name.c_str())], file.text.data(),
+                  file.text.size());
+    }
     char error[1000] = "";
-    model_ = mj_loadXML(file, vfs.get(), error, sizeof error);
-    mj_deleteVFS(vfs.get());
+    model_ = mj_loadXML(files.front().name.c_str(), vfs.get(), error, sizeof error);
     if (!model_) throw std::runtime_error(std::string("mujoco: ") + error);
     data_ = mj_makeData(model_);
   }
