@@ -30,10 +30,10 @@ from __future__ import annotations
 import sympy as sp
 
 from .body_tree import BodyTree
-from .derive import bias_acceleration, particle_forces
+from .derive import bias_acceleration, coordinate_forces, particle_forces
 from .frames import skew
 from .model import Model
-from .recursive import RecursiveDynamics, named, named_symmetric, spd_inverse
+from .recursive import RecursiveDynamics, spd_inverse
 from .structured import Intermediates, NamedKinematics
 
 
@@ -97,8 +97,8 @@ def body_recursive_dynamics(model: Model, kin, tree: BodyTree) -> RecursiveDynam
     nodes, children = tree.nodes, tree.children()
     n = len(nodes)
 
-    rotation = [named(names, node.rotation) for node in nodes]
-    translation = [named(names, node.translation) for node in nodes]
+    rotation = [names.matrix(node.rotation) for node in nodes]
+    translation = [names.matrix(node.translation) for node in nodes]
     velocity: list[sp.Matrix] = [None] * n
     bias: list[sp.Matrix] = [None] * n
     for i, node in enumerate(nodes):
@@ -107,20 +107,20 @@ def body_recursive_dynamics(model: Model, kin, tree: BodyTree) -> RecursiveDynam
         joint_velocity = node.subspace * own_v + node.drift
         carried = (sp.zeros(6, 1) if node.parent is None else
                    motion_to_child(rotation[i], translation[i], velocity[node.parent]))
-        velocity[i] = named(names, carried + joint_velocity)
+        velocity[i] = names.matrix(carried + joint_velocity)
         change = bias_acceleration(joint_velocity, own_q, list(own_v), t)
-        bias[i] = named(names, change + cross_motion(velocity[i], joint_velocity))
+        bias[i] = names.matrix(change + cross_motion(velocity[i], joint_velocity))
 
     inertia = [_link_inertia(names, node) for node in nodes]
-    momentum_change = [named(names, cross_force(velocity[i], inertia[i] * velocity[i]))
+    momentum_change = [names.matrix(cross_force(velocity[i], inertia[i] * velocity[i]))
                        for i in range(n)]
     external = _external_wrenches(model, names, tree, rotation, translation, velocity, t)
-    tau = _joint_forces(model, q)
+    tau = coordinate_forces(model, q)  # body torques enter as wrenches
     gravity = sum((field.acceleration for field in model.gravities), sp.zeros(3, 1))
-    world = sp.Matrix.vstack(sp.zeros(3, 1), named(names, -gravity))
+    world = sp.Matrix.vstack(sp.zeros(3, 1), names.matrix(-gravity))
 
     ctx = (names, nodes, children, rotation, translation, bias, inertia, world)
-    bias_force = [named(names, momentum_change[i] - external[i]) for i in range(n)]
+    bias_force = [names.matrix(momentum_change[i] - external[i]) for i in range(n)]
     qddot = _articulated_body(ctx, bias_force, tau, len(qdd))
     residual = _newton_euler(ctx, bias_force, tau, qdd)
     return RecursiveDynamics(qddot, residual, names.definitions)
@@ -132,24 +132,16 @@ def _link_inertia(names: Intermediates, node) -> sp.Matrix:
         return sp.zeros(6, 6)
     body, inertial = link.body, link.inertial
     at_com = inertial.rotation * body.inertia * inertial.rotation.T
-    return named_symmetric(names, rigid_inertia(body.mass, inertial.origin, at_com))
-
-
-def _joint_forces(model: Model, q: list[sp.Symbol]) -> list[sp.Expr]:
-    """The generalized forces acting on each coordinate (body torques are wrenches here)."""
-    tau = [sp.Integer(0)] * len(q)
-    for g in model.generalized_forces:
-        tau[q.index(g.coordinate.symbol)] += g.force
-    return tau
+    return names.symmetric(rigid_inertia(body.mass, inertial.origin, at_com))
 
 
 def _external_wrenches(model: Model, names: Intermediates, tree: BodyTree, rotation,
                        translation, velocity, t) -> list[sp.Matrix]:
     """Each link's external wrench in its axes about its origin: body torques, and the forces
     of springs, dampers and user forces on its bodies' points."""
-    n = len(tree.nodes)
-    wrench = [sp.zeros(6, 1) for _ in range(n)]
-    if not (model.torques or model.springs or model.dampers or model.particle_forces):
+    wrench = [sp.zeros(6, 1) for _ in tree.nodes]
+    on_points = bool(model.springs or model.dampers or model.particle_forces)
+    if not (model.torques or on_points):
         return wrench
     world_rotation, world_origin = _world_frames(names, tree, rotation, translation)
     link_of = {id(node.link.body): i for i, node in enumerate(tree.nodes)
@@ -157,10 +149,15 @@ def _external_wrenches(model: Model, names: Intermediates, tree: BodyTree, rotat
     for item in model.torques:
         i = link_of[id(item.body)]
         wrench[i] += sp.Matrix.vstack(world_rotation[i].T * item.torque, sp.zeros(3, 1))
+    if on_points:
+        _add_point_forces(model, names, tree, world_rotation, world_origin, velocity, t, wrench)
+    return [names.matrix(w) for w in wrench]
 
-    if not (model.springs or model.dampers or model.particle_forces):
-        return [named(names, w) for w in wrench]
-    # every point's position and velocity from its link's frame and body-fixed velocity
+
+def _add_point_forces(model: Model, names: Intermediates, tree: BodyTree, world_rotation,
+                      world_origin, velocity, t, wrench: list[sp.Matrix]) -> None:
+    """Adds the forces on the bodies' points to their links' wrenches; the points' positions
+    and velocities come from their link's frame and body-fixed velocity."""
     position, point_velocity, offset_of = {}, {}, {}
     for point in model.fixed_points:
         position[point.name] = point.position
@@ -169,21 +166,19 @@ def _external_wrenches(model: Model, names: Intermediates, tree: BodyTree, rotat
         body = node.link.body
         if body is None:
             continue
-        inertial = node.link.inertial
         w, v = _split(velocity[i])
         located = [(p.name, r) for p, r in zip(body.particles, body.offsets)]
         located += [(p.name, p.offset) for p in body.points]
         for name, r in located:
-            rho = inertial.point(r)
+            rho = node.link.inertial.point(r)
             offset_of[name] = (i, rho)
-            position[name] = named(names, world_origin[i] + world_rotation[i] * rho)
-            point_velocity[name] = named(names, world_rotation[i] * (v + w.cross(rho)))
+            position[name] = names.matrix(world_origin[i] + world_rotation[i] * rho)
+            point_velocity[name] = names.matrix(world_rotation[i] * (v + w.cross(rho)))
     local = NamedKinematics(model, t, position, point_velocity)
     for name, force in particle_forces(model, local, gravity=False).items():
         i, rho = offset_of[name]
-        in_link = named(names, world_rotation[i].T * force)
+        in_link = names.matrix(world_rotation[i].T * force)
         wrench[i] += sp.Matrix.vstack(rho.cross(in_link), in_link)
-    return [named(names, w) for w in wrench]
 
 
 def _world_frames(names: Intermediates, tree: BodyTree, rotation, translation):
@@ -195,8 +190,8 @@ def _world_frames(names: Intermediates, tree: BodyTree, rotation, translation):
             world_origin.append(translation[i])
             continue
         R, p = world_rotation[node.parent], world_origin[node.parent]
-        world_rotation.append(named(names, R * rotation[i]))
-        world_origin.append(named(names, p + R * translation[i]))
+        world_rotation.append(names.matrix(R * rotation[i]))
+        world_origin.append(names.matrix(p + R * translation[i]))
     return world_rotation, world_origin
 
 
@@ -205,7 +200,7 @@ def _incoming(ctx, i: int, accelerations) -> sp.Matrix:
     names, nodes, _, rotation, translation, _, _, world = ctx
     parent = nodes[i].parent
     base = world if parent is None else accelerations[parent]
-    return named(names, motion_to_child(rotation[i], translation[i], base))
+    return names.matrix(motion_to_child(rotation[i], translation[i], base))
 
 
 def _articulated_body(ctx, bias_force, tau, nq) -> sp.Matrix:
@@ -218,36 +213,35 @@ def _articulated_body(ctx, bias_force, tau, nq) -> sp.Matrix:
         IA, pA = inertia[i], bias_force[i]
         for c in children[i]:
             IA, pA = IA + passed[c][0], pA + passed[c][1]
-        IA, pA = named_symmetric(names, IA), named(names, pA)
+        IA, pA = names.symmetric(IA), names.matrix(pA)
         S = node.subspace
         if S.shape[1] == 0:
-            Ia, pa = IA, named(names, pA + IA * bias[i])
+            Ia, pa = IA, names.matrix(pA + IA * bias[i])
         else:
-            U = named(names, IA * S)
-            D_inverse = spd_inverse(names, named_symmetric(names, S.T * U))
+            U = names.matrix(IA * S)
+            D_inverse = spd_inverse(names, names.symmetric(S.T * U))
             own_tau = sp.Matrix([tau[j] for j in node.coordinates])
-            u = named(names, own_tau - S.T * pA)
-            UD = named(names, U * D_inverse)
-            Ia = named_symmetric(names, IA - UD * U.T)
-            pa = named(names, pA + Ia * bias[i] + UD * u)
+            u = names.matrix(own_tau - S.T * pA)
+            UD = names.matrix(U * D_inverse)
+            Ia = names.symmetric(IA - UD * U.T)
+            pa = names.matrix(pA + Ia * bias[i] + UD * u)
             solve[i] = (U, D_inverse, u)
         if node.parent is not None:
-            passed[i] = (named_symmetric(names, inertia_to_parent(rotation[i], translation[i],
-                                                                  Ia)),
-                         named(names, force_to_parent(rotation[i], translation[i], pa)))
+            passed[i] = (names.symmetric(inertia_to_parent(rotation[i], translation[i], Ia)),
+                         names.matrix(force_to_parent(rotation[i], translation[i], pa)))
 
     qddot = [sp.Integer(0)] * nq
     acceleration: list[sp.Matrix] = [None] * n
     for i, node in enumerate(nodes):
-        before = named(names, _incoming(ctx, i, acceleration) + bias[i])
+        before = names.matrix(_incoming(ctx, i, acceleration) + bias[i])
         if solve[i] is None:
             acceleration[i] = before
             continue
         U, D_inverse, u = solve[i]
-        own = named(names, D_inverse * (u - U.T * before))
+        own = names.matrix(D_inverse * (u - U.T * before))
         for j, value in zip(node.coordinates, own):
             qddot[j] = value
-        acceleration[i] = named(names, before + node.subspace * own)
+        acceleration[i] = names.matrix(before + node.subspace * own)
     return sp.Matrix(qddot)
 
 
@@ -257,8 +251,8 @@ def _newton_euler(ctx, bias_force, tau, qdd) -> sp.Matrix:
     acceleration: list[sp.Matrix] = [None] * n
     for i, node in enumerate(nodes):
         own = sp.Matrix(len(node.coordinates), 1, [qdd[j] for j in node.coordinates])
-        acceleration[i] = named(names, _incoming(ctx, i, acceleration)
-                                + node.subspace * own + bias[i])
+        acceleration[i] = names.matrix(_incoming(ctx, i, acceleration)
+                                       + node.subspace * own + bias[i])
     residual = [sp.Integer(0)] * len(qdd)
     transmitted: list[sp.Matrix] = [None] * n
     for i in reversed(range(n)):
@@ -266,7 +260,7 @@ def _newton_euler(ctx, bias_force, tau, qdd) -> sp.Matrix:
         F = inertia[i] * acceleration[i] + bias_force[i]
         for c in children[i]:
             F = F + force_to_parent(rotation[c], translation[c], transmitted[c])
-        transmitted[i] = named(names, F)
+        transmitted[i] = names.matrix(F)
         for j, value in zip(node.coordinates, node.subspace.T * transmitted[i]):
             residual[j] = names.name(value - tau[j])
     return sp.Matrix(residual)

@@ -200,12 +200,17 @@ def generalized_potential(model: Model) -> sp.Expr:
                sp.Integer(0))
 
 
+def coordinate_forces(model: Model, q: list[sp.Symbol]) -> sp.Matrix:
+    """The forces the model file puts on coordinates (generalized forces, joint springs)."""
+    forces = sp.zeros(len(q), 1)
+    for g in model.generalized_forces:
+        forces[q.index(g.coordinate.symbol)] += g.force
+    return forces
+
+
 def generalized_force_vector(model: Model, q: list[sp.Symbol]) -> sp.Matrix:
     """Q: the forces acting directly on q (generalized forces, joint springs, body torques)."""
-    generalized = torque_generalized_forces(model, q)
-    for g in model.generalized_forces:
-        generalized[q.index(g.coordinate.symbol)] += g.force
-    return generalized
+    return torque_generalized_forces(model, q) + coordinate_forces(model, q)
 
 
 def fixed_point_positions(model: Model, kin: Kinematics) -> sp.Matrix:

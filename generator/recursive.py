@@ -45,26 +45,12 @@ class RecursiveDynamics:
     definitions: list[tuple[sp.Symbol, sp.Expr]]
 
 
-def named(names: Intermediates, matrix: sp.Matrix) -> sp.Matrix:
-    return matrix.applyfunc(names.name)
-
-
-def named_symmetric(names: Intermediates, matrix: sp.Matrix) -> sp.Matrix:
-    """Names the lower triangle and mirrors it, so equal entries are computed once."""
-    n = matrix.shape[0]
-    result = sp.zeros(n, n)
-    for i in range(n):
-        for j in range(i + 1):
-            result[i, j] = result[j, i] = names.name(matrix[i, j])
-    return result
-
-
 def spd_inverse(names: Intermediates, matrix: sp.Matrix) -> sp.Matrix:
     """The inverse of a small symmetric positive definite matrix of named entries."""
     if matrix.shape == (1, 1):
         return sp.Matrix([[names.name(1 / matrix[0, 0])]])
     inverse_det = names.name(1 / names.name(matrix.det(method="berkowitz")))
-    return named_symmetric(names, matrix.adjugate() * inverse_det)
+    return names.symmetric(matrix.adjugate() * inverse_det)
 
 
 @dataclass
@@ -94,23 +80,23 @@ def recursive_dynamics(model: Model, kin, tree: PointTree) -> RecursiveDynamics:
         subspace = node.offset.jacobian(own_q) if own_q else sp.zeros(dim, 0)
         moving_frame = node.offset.diff(t)
         bias = bias_acceleration(subspace * own_v + moving_frame, own_q, list(own_v), t)
-        joints.append(_Joint(node.coordinates, named(names, subspace), named(names, bias)))
+        joints.append(_Joint(node.coordinates, names.matrix(subspace), names.matrix(bias)))
         name = node.particle.name
         if node.parent is None:
             base_x, base_v = zero, zero
         else:
             parent = nodes[node.parent].particle.name
             base_x, base_v = position[parent], velocity[parent]
-        position[name] = named(names, base_x + node.offset)
-        velocity[name] = named(names, base_v + joints[-1].subspace * own_v + moving_frame)
+        position[name] = names.matrix(base_x + node.offset)
+        velocity[name] = names.matrix(base_v + joints[-1].subspace * own_v + moving_frame)
 
     local = NamedKinematics(model, t, position, velocity)
-    force = {name: named(names, f)
+    force = {name: names.matrix(f)
              for name, f in particle_forces(model, local, gravity=False).items()}
     gravity = sum((field.acceleration for field in model.gravities), zero)
-    root = named(names, -gravity)
+    root = names.matrix(-gravity)
     tau = generalized_force_vector(model, q)
-    joint_force = [named(names, sp.Matrix(len(joint.coordinates), 1,
+    joint_force = [names.matrix(sp.Matrix(len(joint.coordinates), 1,
                                           [tau[j] for j in joint.coordinates]))
                    for joint in joints]
 
@@ -132,18 +118,18 @@ def _articulated_body(names, nodes, children, joints, force, joint_force, root, 
         pA = -force[node.particle.name]
         for c in children[i]:
             IA, pA = IA + passed[c][0], pA + passed[c][1]
-        IA, pA = named_symmetric(names, IA), named(names, pA)
+        IA, pA = names.symmetric(IA), names.matrix(pA)
         inertia[i], bias_force[i] = IA, pA
         S, c_i = joint.subspace, joint.bias
         if S.shape[1] == 0:
-            passed[i] = (IA, named(names, pA + IA * c_i))
+            passed[i] = (IA, names.matrix(pA + IA * c_i))
             continue
-        U = named(names, IA * S)
-        D_inverse = spd_inverse(names, named_symmetric(names, S.T * U))
-        u = named(names, joint_force[i] - S.T * (IA * c_i + pA))
-        UD = named(names, U * D_inverse)
-        passed[i] = (named_symmetric(names, IA - UD * U.T),
-                     named(names, pA + IA * c_i + UD * u))
+        U = names.matrix(IA * S)
+        D_inverse = spd_inverse(names, names.symmetric(S.T * U))
+        u = names.matrix(joint_force[i] - S.T * (IA * c_i + pA))
+        UD = names.matrix(U * D_inverse)
+        passed[i] = (names.symmetric(IA - UD * U.T),
+                     names.matrix(pA + IA * c_i + UD * u))
         solve[i] = (U, D_inverse, u)
 
     qddot = [sp.Integer(0)] * len(qdd)
@@ -154,10 +140,10 @@ def _articulated_body(names, nodes, children, joints, force, joint_force, root, 
         own = sp.zeros(0, 1)
         if solve[i] is not None:
             U, D_inverse, u = solve[i]
-            own = named(names, D_inverse * (u - U.T * base))
+            own = names.matrix(D_inverse * (u - U.T * base))
             for j, value in zip(joint.coordinates, own):
                 qddot[j] = value
-        acceleration[i] = named(names, base + joint.subspace * own + joint.bias)
+        acceleration[i] = names.matrix(base + joint.subspace * own + joint.bias)
     return sp.Matrix(qddot)
 
 
@@ -169,7 +155,7 @@ def _newton_euler(names, nodes, children, joints, force, joint_force, root, qdd
         base = root if node.parent is None else acceleration[node.parent]
         joint = joints[i]
         own = sp.Matrix(len(joint.coordinates), 1, [qdd[j] for j in joint.coordinates])
-        acceleration[i] = named(names, base + joint.subspace * own + joint.bias)
+        acceleration[i] = names.matrix(base + joint.subspace * own + joint.bias)
     residual = [sp.Integer(0)] * len(qdd)
     transmitted: list[sp.Matrix] = [None] * n
     for i in reversed(range(n)):
@@ -177,7 +163,7 @@ def _newton_euler(names, nodes, children, joints, force, joint_force, root, qdd
         F = node.particle.mass * acceleration[i] - force[node.particle.name]
         for c in children[i]:
             F = F + transmitted[c]
-        transmitted[i] = named(names, F)
+        transmitted[i] = names.matrix(F)
         for j, value in zip(joint.coordinates,
                             joint.subspace.T * transmitted[i] - joint_force[i]):
             residual[j] = names.name(value)

@@ -53,6 +53,19 @@ class Intermediates:
     def vector(self, values: sp.Matrix) -> sp.Matrix:
         return sp.Matrix([self.name(e) for e in values])
 
+    def matrix(self, values: sp.Matrix) -> sp.Matrix:
+        """Every entry named, in the matrix's shape."""
+        return values.applyfunc(self.name)
+
+    def symmetric(self, values: sp.Matrix) -> sp.Matrix:
+        """Names the lower triangle and mirrors it, so equal entries are computed once."""
+        n = values.shape[0]
+        result = sp.zeros(n, n)
+        for i in range(n):
+            for j in range(i + 1):
+                result[i, j] = result[j, i] = self.name(values[i, j])
+        return result
+
     def sums(self, term_lists: list[list[sp.Expr]]) -> list[sp.Expr]:
         """Names each sum, the ones with fewer terms first, so larger ones can reuse them."""
         order = sorted(range(len(term_lists)), key=lambda k: len(term_lists[k]))

@@ -72,11 +72,10 @@ class PointTreeTest(unittest.TestCase):
             self.assertIsNone(point_tree(model), name)
 
 
-def _assert_equal_to_dense(test: unittest.TestCase, model, name: str, recursive,
-                           tolerance=None) -> None:
+def _assert_equal_to_dense(test: unittest.TestCase, model, kin: Kinematics, name: str,
+                           recursive, tolerance=None) -> None:
     """Both recursions against the dense derivation at random states, in DIGITS digits, to
     `tolerance` relative (default: 1e8 units of the last digit)."""
-    kin = Kinematics(model)
     dense = derive(model, kin)
     inputs = [*dense.q, *dense.v, *dense.a, *dense.params, dense.t]
     # compiled once, through a CSE: a robot's dense expression trees take minutes to
@@ -96,10 +95,9 @@ def _assert_equal_to_dense(test: unittest.TestCase, model, name: str, recursive,
                 point[symbol] = expr.xreplace(point).evalf(DIGITS)
 
             def values(matrix):
-                return [_real(e.xreplace(point).evalf(DIGITS)) for e in matrix]
+                return [mpmath.mpf(e.xreplace(point).evalf(DIGITS)) for e in matrix]
 
-            mass, force = (mpmath.matrix(value).apply(_real)
-                           for value in dense_values(*arguments))
+            mass, force = (mpmath.matrix(value) for value in dense_values(*arguments))
             acceleration = mpmath.matrix([point[a] for a in dense.a])
             expected = list(mpmath.lu_solve(mass, force))
             test.assertLess(relative_error(values(recursive.qddot), expected), tolerance,
@@ -109,24 +107,14 @@ def _assert_equal_to_dense(test: unittest.TestCase, model, name: str, recursive,
                             tolerance, f"{name}: inverse dynamics")
 
 
-def _real(value) -> mpmath.mpf:
-    """A value that is real up to the evaluation's round-off (a body's point masses sit at
-    square roots, whose products may leave an imaginary part of 1e-40)."""
-    if isinstance(value, sp.Basic):
-        real, imaginary = (mpmath.mpf(part) for part in value.as_real_imag())
-    else:
-        real, imaginary = mpmath.re(value), mpmath.im(value)
-    assert abs(imaginary) <= mpmath.mpf(10) ** (10 - DIGITS) * (1 + abs(real)), value
-    return real
-
-
 class RecursionsTest(unittest.TestCase):
 
     def test_recursions_equal_the_dense_dynamics(self):
         for path, options in TREES:
             model, name = _load(path, options)
-            recursive = recursive_dynamics(model, Kinematics(model), point_tree(model))
-            _assert_equal_to_dense(self, model, name, recursive)
+            kin = Kinematics(model)
+            recursive = recursive_dynamics(model, kin, point_tree(model))
+            _assert_equal_to_dense(self, model, kin, name, recursive)
 
 
 def _links(tree) -> list[tuple[str, str | None, list[int]]]:
@@ -165,8 +153,9 @@ class BodyTreeTest(unittest.TestCase):
         # moment rounds at 1e-16, which bounds the agreement there)
         for path, tolerance in ((FORCED_ARM, None), (FLOATING_LEG, 1e-12)):
             model, name = _load(path)
-            recursive = body_recursive_dynamics(model, Kinematics(model), body_tree(model))
-            _assert_equal_to_dense(self, model, name, recursive, tolerance)
+            kin = Kinematics(model)
+            recursive = body_recursive_dynamics(model, kin, body_tree(model))
+            _assert_equal_to_dense(self, model, kin, name, recursive, tolerance)
 
 
 class PathChoiceTest(unittest.TestCase):
