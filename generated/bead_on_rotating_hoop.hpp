@@ -7,12 +7,12 @@
 // Singular configurations (J loses rank): none found
 // Worst conditioning of J in 200 random configurations: sigma_min / sigma_max = 1 at theta =
 //   0.04927
-// qddot: Mt, Ft + Fi and an LDL^T solve, 63 operations (articulated-body recursion: 62)
-// inverse_dynamics: Mt qdd - Ft - Fi, 62 operations (recursive Newton-Euler: 55)
+// qddot: Mt, Ft + Fi and an LDL^T solve, 63 operations (articulated-body recursion: 60)
+// inverse_dynamics: Mt qdd - Ft - Fi, 62 operations (recursive Newton-Euler: 53)
 //
-// Total ops: 498
-// Intermediate terms (139)
-// Output terms (46)
+// Total ops: 497
+// Intermediate terms (137)
+// Output terms (47)
 #pragma once
 
 #include <array>
@@ -135,14 +135,14 @@ struct BeadOnRotatingHoop {
     const Scalar tmp2 = cos(theta);
     const Scalar tmp5 = sin(tmp0);
     const Scalar tmp7 = sin(theta);
-    const Scalar tmp58 = (R*R);
-    const Scalar tmp59 = tmp58*(tmp7*tmp7);
-    const Scalar tmp60 = (tmp5*tmp5);
-    const Scalar tmp61 = tmp58*(tmp2*tmp2);
-    const Scalar tmp62 = (tmp1*tmp1);
-    const Scalar tmp63 = m*(tmp59 + tmp60*tmp61 + tmp61*tmp62);
+    const Scalar tmp56 = (R*R);
+    const Scalar tmp57 = tmp56*(tmp7*tmp7);
+    const Scalar tmp58 = (tmp5*tmp5);
+    const Scalar tmp59 = tmp56*(tmp2*tmp2);
+    const Scalar tmp60 = (tmp1*tmp1);
+    const Scalar tmp61 = m*(tmp57 + tmp58*tmp59 + tmp59*tmp60);
     QMatrix<Scalar> result;
-    result(0) = tmp63;
+    result(0) = tmp61;
     return result;
   }
 
@@ -167,11 +167,11 @@ struct BeadOnRotatingHoop {
     const Scalar c = Scalar(params.c);
     const Scalar tmp7 = sin(theta);
     const Scalar tmp8 = tmp7*R;
-    const Scalar tmp24 = c*theta_dot;
-    const Scalar tmp64 = g*m;
-    const Scalar tmp65 = tmp24 + tmp64*tmp8;
+    const Scalar tmp29 = c*theta_dot;
+    const Scalar tmp62 = g*m;
+    const Scalar tmp63 = tmp29 + tmp62*tmp8;
     QVector<Scalar> result;
-    result(0) = -tmp65;
+    result(0) = -tmp63;
     return result;
   }
 
@@ -189,9 +189,9 @@ struct BeadOnRotatingHoop {
                                             const Params& params) {
     const Scalar theta_dot = v(0);
     const Scalar c = Scalar(params.c);
-    const Scalar tmp24 = c*theta_dot;
+    const Scalar tmp29 = c*theta_dot;
     QVector<Scalar> result;
-    result(0) = -tmp24;
+    result(0) = -tmp29;
     return result;
   }
 
@@ -231,10 +231,10 @@ struct BeadOnRotatingHoop {
     const Scalar tmp14 = tmp5*tmp8;
     const Scalar tmp15 = tmp13*theta_dot + theta_dot*(tmp13 - tmp14*theta_dot) - tmp10*tmp14;
     const Scalar tmp16 = (theta_dot*theta_dot);
-    const Scalar tmp58 = (R*R);
-    const Scalar tmp66 = m*(tmp12*tmp4 + tmp15*tmp6 + tmp16*tmp2*tmp58*tmp7);
+    const Scalar tmp56 = (R*R);
+    const Scalar tmp64 = m*(tmp12*tmp4 + tmp15*tmp6 + tmp16*tmp2*tmp56*tmp7);
     QVector<Scalar> result;
-    result(0) = -tmp66;
+    result(0) = -tmp64;
     return result;
   }
 
@@ -276,14 +276,14 @@ struct BeadOnRotatingHoop {
     const Scalar tmp14 = tmp5*tmp8;
     const Scalar tmp15 = tmp13*theta_dot + theta_dot*(tmp13 - tmp14*theta_dot) - tmp10*tmp14;
     const Scalar tmp16 = (theta_dot*theta_dot);
-    const Scalar tmp24 = c*theta_dot;
-    const Scalar tmp58 = (R*R);
-    const Scalar tmp64 = g*m;
-    const Scalar tmp65 = tmp24 + tmp64*tmp8;
-    const Scalar tmp66 = m*(tmp12*tmp4 + tmp15*tmp6 + tmp16*tmp2*tmp58*tmp7);
-    const Scalar tmp67 = tmp65 + tmp66;
+    const Scalar tmp29 = c*theta_dot;
+    const Scalar tmp56 = (R*R);
+    const Scalar tmp62 = g*m;
+    const Scalar tmp63 = tmp29 + tmp62*tmp8;
+    const Scalar tmp64 = m*(tmp12*tmp4 + tmp15*tmp6 + tmp16*tmp2*tmp56*tmp7);
+    const Scalar tmp65 = tmp63 + tmp64;
     QVector<Scalar> result;
-    result(0) = -tmp67;
+    result(0) = -tmp65;
     return result;
   }
 
@@ -327,19 +327,19 @@ struct BeadOnRotatingHoop {
     const Scalar tmp14 = tmp5*tmp8;
     const Scalar tmp15 = tmp13*theta_dot + theta_dot*(tmp13 - tmp14*theta_dot) - tmp10*tmp14;
     const Scalar tmp16 = (theta_dot*theta_dot);
-    const Scalar tmp24 = c*theta_dot;
-    const Scalar tmp58 = (R*R);
-    const Scalar tmp59 = tmp58*(tmp7*tmp7);
-    const Scalar tmp60 = (tmp5*tmp5);
-    const Scalar tmp61 = tmp58*(tmp2*tmp2);
-    const Scalar tmp62 = (tmp1*tmp1);
-    const Scalar tmp63 = m*(tmp59 + tmp60*tmp61 + tmp61*tmp62);
-    const Scalar tmp64 = g*m;
-    const Scalar tmp65 = tmp24 + tmp64*tmp8;
-    const Scalar tmp66 = m*(tmp12*tmp4 + tmp15*tmp6 + tmp16*tmp2*tmp58*tmp7);
-    const Scalar tmp67 = tmp65 + tmp66;
-    (*Mt)(0) = tmp63;
-    (*f)(0) = -tmp67;
+    const Scalar tmp29 = c*theta_dot;
+    const Scalar tmp56 = (R*R);
+    const Scalar tmp57 = tmp56*(tmp7*tmp7);
+    const Scalar tmp58 = (tmp5*tmp5);
+    const Scalar tmp59 = tmp56*(tmp2*tmp2);
+    const Scalar tmp60 = (tmp1*tmp1);
+    const Scalar tmp61 = m*(tmp57 + tmp58*tmp59 + tmp59*tmp60);
+    const Scalar tmp62 = g*m;
+    const Scalar tmp63 = tmp29 + tmp62*tmp8;
+    const Scalar tmp64 = m*(tmp12*tmp4 + tmp15*tmp6 + tmp16*tmp2*tmp56*tmp7);
+    const Scalar tmp65 = tmp63 + tmp64;
+    (*Mt)(0) = tmp61;
+    (*f)(0) = -tmp65;
   }
 
   /// Inverse dynamics: the residual r = Mt qdd - Ft - Fi, i.e. the generalized force that produces
@@ -384,19 +384,19 @@ struct BeadOnRotatingHoop {
     const Scalar tmp14 = tmp5*tmp8;
     const Scalar tmp15 = tmp13*theta_dot + theta_dot*(tmp13 - tmp14*theta_dot) - tmp10*tmp14;
     const Scalar tmp16 = (theta_dot*theta_dot);
-    const Scalar tmp24 = c*theta_dot;
-    const Scalar tmp58 = (R*R);
-    const Scalar tmp59 = tmp58*(tmp7*tmp7);
-    const Scalar tmp60 = (tmp5*tmp5);
-    const Scalar tmp61 = tmp58*(tmp2*tmp2);
-    const Scalar tmp62 = (tmp1*tmp1);
-    const Scalar tmp63 = m*(tmp59 + tmp60*tmp61 + tmp61*tmp62);
-    const Scalar tmp64 = g*m;
-    const Scalar tmp65 = tmp24 + tmp64*tmp8;
-    const Scalar tmp66 = m*(tmp12*tmp4 + tmp15*tmp6 + tmp16*tmp2*tmp58*tmp7);
-    const Scalar tmp67 = tmp65 + tmp66;
+    const Scalar tmp29 = c*theta_dot;
+    const Scalar tmp56 = (R*R);
+    const Scalar tmp57 = tmp56*(tmp7*tmp7);
+    const Scalar tmp58 = (tmp5*tmp5);
+    const Scalar tmp59 = tmp56*(tmp2*tmp2);
+    const Scalar tmp60 = (tmp1*tmp1);
+    const Scalar tmp61 = m*(tmp57 + tmp58*tmp59 + tmp59*tmp60);
+    const Scalar tmp62 = g*m;
+    const Scalar tmp63 = tmp29 + tmp62*tmp8;
+    const Scalar tmp64 = m*(tmp12*tmp4 + tmp15*tmp6 + tmp16*tmp2*tmp56*tmp7);
+    const Scalar tmp65 = tmp63 + tmp64;
     QVector<Scalar> result;
-    result(0) = tmp67 + tmp63*theta_ddot;
+    result(0) = tmp65 + tmp61*theta_ddot;
     return result;
   }
 
@@ -443,35 +443,35 @@ struct BeadOnRotatingHoop {
     const Scalar tmp14 = tmp5*tmp8;
     const Scalar tmp15 = tmp13*theta_dot + theta_dot*(tmp13 - tmp14*theta_dot) - tmp10*tmp14;
     const Scalar tmp16 = (theta_dot*theta_dot);
-    const Scalar tmp58 = (R*R);
-    const Scalar tmp60 = (tmp5*tmp5);
-    const Scalar tmp62 = (tmp1*tmp1);
-    const Scalar tmp64 = g*m;
-    const Scalar tmp117 = -tmp7;
-    const Scalar tmp118 = R*tmp117;
-    const Scalar tmp119 = tmp1*tmp118;
-    const Scalar tmp120 = tmp5*tmp118;
-    const Scalar tmp121 = R*tmp2;
-    const Scalar tmp122 = omega*tmp120;
-    const Scalar tmp123 = tmp1*tmp121;
-    const Scalar tmp124 = (-tmp10 - (theta_dot*theta_dot))*tmp123 - Scalar(2)*theta_dot*tmp122;
-    const Scalar tmp125 = omega*tmp119;
-    const Scalar tmp126 = tmp5*tmp121;
-    const Scalar tmp127 = Scalar(2)*theta_dot*tmp125 + (-tmp10 - (theta_dot*theta_dot))*tmp126;
-    const Scalar tmp128 = Scalar(2)*tmp58*tmp7*tmp2;
-    const Scalar tmp129 = Scalar(2)*tmp2*tmp58*tmp117;
-    const Scalar tmp130 = m*tmp128 + m*(tmp60 + tmp62)*tmp129;
-    const Scalar tmp131 = tmp64*tmp121;
-    const Scalar tmp132 = tmp4*m*tmp124 + tmp6*m*tmp127 + tmp16*tmp58*tmp7*m*tmp117 + tmp12*m*tmp119
-        + tmp15*m*tmp120 + tmp16*tmp2*tmp58*m*tmp2;
-    const Scalar tmp133 = tmp131 + tmp132;
-    const Scalar tmp134 = -Scalar(2)*tmp9 - Scalar(2)*tmp11*theta_dot;
-    const Scalar tmp135 = Scalar(2)*tmp13 - Scalar(2)*tmp14*theta_dot;
-    const Scalar tmp136 = Scalar(2)*theta_dot;
-    const Scalar tmp137 = tmp4*m*tmp134 + tmp6*m*tmp135 + tmp2*tmp58*tmp7*m*tmp136;
-    const Scalar tmp138 = c + tmp137;
-    (*dr_dq)(0) = theta_ddot*tmp130 + tmp133;
-    (*dr_dv)(0) = tmp138;
+    const Scalar tmp56 = (R*R);
+    const Scalar tmp58 = (tmp5*tmp5);
+    const Scalar tmp60 = (tmp1*tmp1);
+    const Scalar tmp62 = g*m;
+    const Scalar tmp115 = -tmp7;
+    const Scalar tmp116 = R*tmp115;
+    const Scalar tmp117 = tmp1*tmp116;
+    const Scalar tmp118 = tmp5*tmp116;
+    const Scalar tmp119 = R*tmp2;
+    const Scalar tmp120 = omega*tmp118;
+    const Scalar tmp121 = tmp1*tmp119;
+    const Scalar tmp122 = (-tmp10 - (theta_dot*theta_dot))*tmp121 - Scalar(2)*theta_dot*tmp120;
+    const Scalar tmp123 = omega*tmp117;
+    const Scalar tmp124 = tmp5*tmp119;
+    const Scalar tmp125 = Scalar(2)*theta_dot*tmp123 + (-tmp10 - (theta_dot*theta_dot))*tmp124;
+    const Scalar tmp126 = Scalar(2)*tmp56*tmp7*tmp2;
+    const Scalar tmp127 = Scalar(2)*tmp2*tmp56*tmp115;
+    const Scalar tmp128 = m*tmp126 + m*(tmp58 + tmp60)*tmp127;
+    const Scalar tmp129 = tmp62*tmp119;
+    const Scalar tmp130 = tmp4*m*tmp122 + tmp6*m*tmp125 + tmp16*tmp56*tmp7*m*tmp115 + tmp12*m*tmp117
+        + tmp15*m*tmp118 + tmp16*tmp2*tmp56*m*tmp2;
+    const Scalar tmp131 = tmp129 + tmp130;
+    const Scalar tmp132 = -Scalar(2)*tmp9 - Scalar(2)*tmp11*theta_dot;
+    const Scalar tmp133 = Scalar(2)*tmp13 - Scalar(2)*tmp14*theta_dot;
+    const Scalar tmp134 = Scalar(2)*theta_dot;
+    const Scalar tmp135 = tmp4*m*tmp132 + tmp6*m*tmp133 + tmp2*tmp56*tmp7*m*tmp134;
+    const Scalar tmp136 = c + tmp135;
+    (*dr_dq)(0) = theta_ddot*tmp128 + tmp131;
+    (*dr_dv)(0) = tmp136;
   }
 
   /// Kinetic energy T = 1/2 xdot^T M xdot.
@@ -506,13 +506,13 @@ struct BeadOnRotatingHoop {
     const Scalar tmp16 = (theta_dot*theta_dot);
     const Scalar tmp19 = tmp14*omega;
     const Scalar tmp21 = tmp11*omega;
-    const Scalar tmp58 = (R*R);
-    const Scalar tmp59 = tmp58*(tmp7*tmp7);
-    const Scalar tmp68 = tmp21 + tmp6*theta_dot;
-    const Scalar tmp69 = -tmp19 + tmp1*tmp2*R*theta_dot;
-    const Scalar tmp70 = (tmp68*tmp68) + (tmp69*tmp69) + tmp16*tmp59;
+    const Scalar tmp56 = (R*R);
+    const Scalar tmp57 = tmp56*(tmp7*tmp7);
+    const Scalar tmp66 = tmp21 + tmp6*theta_dot;
+    const Scalar tmp67 = -tmp19 + tmp1*tmp2*R*theta_dot;
+    const Scalar tmp68 = (tmp66*tmp66) + (tmp67*tmp67) + tmp16*tmp57;
     Scalar result;
-    result = (Scalar(0.5))*tmp70*m;
+    result = (Scalar(0.5))*tmp68*m;
     return result;
   }
 
@@ -533,10 +533,10 @@ struct BeadOnRotatingHoop {
     const Scalar g = Scalar(params.g);
     const Scalar tmp2 = cos(theta);
     const Scalar tmp3 = tmp2*R;
-    const Scalar tmp64 = g*m;
-    const Scalar tmp71 = tmp3*tmp64;
+    const Scalar tmp62 = g*m;
+    const Scalar tmp69 = tmp3*tmp62;
     Scalar result;
-    result = -tmp71;
+    result = -tmp69;
     return result;
   }
 
@@ -588,15 +588,15 @@ struct BeadOnRotatingHoop {
     const Scalar tmp16 = (theta_dot*theta_dot);
     const Scalar tmp19 = tmp14*omega;
     const Scalar tmp21 = tmp11*omega;
-    const Scalar tmp58 = (R*R);
-    const Scalar tmp59 = tmp58*(tmp7*tmp7);
-    const Scalar tmp64 = g*m;
-    const Scalar tmp68 = tmp21 + tmp6*theta_dot;
-    const Scalar tmp69 = -tmp19 + tmp1*tmp2*R*theta_dot;
-    const Scalar tmp70 = (tmp68*tmp68) + (tmp69*tmp69) + tmp16*tmp59;
-    const Scalar tmp71 = tmp3*tmp64;
+    const Scalar tmp56 = (R*R);
+    const Scalar tmp57 = tmp56*(tmp7*tmp7);
+    const Scalar tmp62 = g*m;
+    const Scalar tmp66 = tmp21 + tmp6*theta_dot;
+    const Scalar tmp67 = -tmp19 + tmp1*tmp2*R*theta_dot;
+    const Scalar tmp68 = (tmp66*tmp66) + (tmp67*tmp67) + tmp16*tmp57;
+    const Scalar tmp69 = tmp3*tmp62;
     Scalar result;
-    result = -tmp71 + (Scalar(0.5))*tmp70*m;
+    result = -tmp69 + (Scalar(0.5))*tmp68*m;
     return result;
   }
 
@@ -661,13 +661,13 @@ struct BeadOnRotatingHoop {
     const Scalar tmp14 = tmp5*tmp8;
     const Scalar tmp19 = tmp14*omega;
     const Scalar tmp21 = tmp11*omega;
-    const Scalar tmp68 = tmp21 + tmp6*theta_dot;
-    const Scalar tmp69 = -tmp19 + tmp1*tmp2*R*theta_dot;
-    const Scalar tmp72 = tmp8*theta_dot;
+    const Scalar tmp66 = tmp21 + tmp6*theta_dot;
+    const Scalar tmp67 = -tmp19 + tmp1*tmp2*R*theta_dot;
+    const Scalar tmp70 = tmp8*theta_dot;
     XVector<Scalar> result;
-    result(0) = tmp69;
-    result(1) = tmp68;
-    result(2) = tmp72;
+    result(0) = tmp67;
+    result(1) = tmp66;
+    result(2) = tmp70;
     return result;
   }
 
@@ -775,13 +775,13 @@ struct BeadOnRotatingHoop {
     const Scalar tmp14 = tmp5*tmp8;
     const Scalar tmp19 = tmp14*omega;
     const Scalar tmp21 = tmp11*omega;
-    const Scalar tmp68 = tmp21 + tmp6*theta_dot;
-    const Scalar tmp69 = -tmp19 + tmp1*tmp2*R*theta_dot;
-    const Scalar tmp72 = tmp8*theta_dot;
+    const Scalar tmp66 = tmp21 + tmp6*theta_dot;
+    const Scalar tmp67 = -tmp19 + tmp1*tmp2*R*theta_dot;
+    const Scalar tmp70 = tmp8*theta_dot;
     SpaceVector<Scalar> result;
-    result(0) = tmp69*m;
-    result(1) = tmp68*m;
-    result(2) = tmp72*m;
+    result(0) = tmp67*m;
+    result(1) = tmp66*m;
+    result(2) = tmp70*m;
     return result;
   }
 
@@ -816,15 +816,15 @@ struct BeadOnRotatingHoop {
     const Scalar tmp14 = tmp5*tmp8;
     const Scalar tmp19 = tmp14*omega;
     const Scalar tmp21 = tmp11*omega;
-    const Scalar tmp58 = (R*R);
-    const Scalar tmp59 = tmp58*(tmp7*tmp7);
-    const Scalar tmp68 = tmp21 + tmp6*theta_dot;
-    const Scalar tmp69 = -tmp19 + tmp1*tmp2*R*theta_dot;
-    const Scalar tmp73 = tmp59*theta_dot;
+    const Scalar tmp56 = (R*R);
+    const Scalar tmp57 = tmp56*(tmp7*tmp7);
+    const Scalar tmp66 = tmp21 + tmp6*theta_dot;
+    const Scalar tmp67 = -tmp19 + tmp1*tmp2*R*theta_dot;
+    const Scalar tmp71 = tmp57*theta_dot;
     AngularVector<Scalar> result;
-    result(0) = m*(tmp3*tmp68 + tmp73*tmp5);
-    result(1) = m*(-tmp1*tmp73 - tmp3*tmp69);
-    result(2) = m*(-tmp14*tmp69 + tmp1*tmp68*tmp7*R);
+    result(0) = m*(tmp3*tmp66 + tmp71*tmp5);
+    result(1) = m*(-tmp1*tmp71 - tmp3*tmp67);
+    result(2) = m*(-tmp14*tmp67 + tmp1*tmp66*tmp7*R);
     return result;
   }
 
@@ -932,11 +932,11 @@ struct BeadOnRotatingHoop {
                                            const Params& params) {
       const Scalar m = Scalar(params.m);
       const Scalar g = Scalar(params.g);
-      const Scalar tmp64 = g*m;
+      const Scalar tmp62 = g*m;
       XVector<Scalar> result;
       result(0) = Scalar(0);
       result(1) = Scalar(0);
-      result(2) = -tmp64;
+      result(2) = -tmp62;
       return result;
     }
 
@@ -964,34 +964,34 @@ struct BeadOnRotatingHoop {
       const Scalar tmp0 = omega*t;
       const Scalar tmp1 = cos(tmp0);
       const Scalar tmp5 = sin(tmp0);
-      const Scalar tmp60 = (tmp5*tmp5);
-      const Scalar tmp62 = (tmp1*tmp1);
-      const Scalar tmp74 = (pos(0)*pos(0));
-      const Scalar tmp75 = (pos(1)*pos(1));
-      const Scalar tmp76 = (pos(2)*pos(2));
-      const Scalar tmp77 = tmp74 + tmp75 + tmp76;
-      const Scalar tmp78 = sqrt(tmp77);
-      const Scalar tmp79 = (Scalar(1)/tmp78);
-      const Scalar tmp80 = tmp78 - R;
-      const Scalar tmp81 = (Scalar(1)/R);
-      const Scalar tmp82 = tmp81*kappa;
-      const Scalar tmp83 = tmp81*penalty_damping;
-      const Scalar tmp84 = -tmp80*tmp82
-          - tmp83*(tmp79*pos(0)*vel(0) + tmp79*pos(1)*vel(1) + tmp79*pos(2)*vel(2));
-      const Scalar tmp85 = tmp79*tmp84;
-      const Scalar tmp86 = tmp60 + tmp62;
-      const Scalar tmp87 = (Scalar(1)/sqrt(tmp86));
-      const Scalar tmp88 = tmp5*pos(0);
-      const Scalar tmp89 = -tmp87*tmp88 + tmp1*tmp87*pos(1);
-      const Scalar tmp90 = tmp5*tmp87;
-      const Scalar tmp91 = tmp1*tmp87;
-      const Scalar tmp92 = tmp91*omega;
-      const Scalar tmp93 = -tmp89*kappa
-          - penalty_damping*(-tmp90*vel(0) - tmp92*pos(0) + tmp1*tmp87*vel(1) - tmp90*pos(1)*omega);
+      const Scalar tmp58 = (tmp5*tmp5);
+      const Scalar tmp60 = (tmp1*tmp1);
+      const Scalar tmp72 = (pos(0)*pos(0));
+      const Scalar tmp73 = (pos(1)*pos(1));
+      const Scalar tmp74 = (pos(2)*pos(2));
+      const Scalar tmp75 = tmp72 + tmp73 + tmp74;
+      const Scalar tmp76 = sqrt(tmp75);
+      const Scalar tmp77 = (Scalar(1)/tmp76);
+      const Scalar tmp78 = tmp76 - R;
+      const Scalar tmp79 = (Scalar(1)/R);
+      const Scalar tmp80 = tmp79*kappa;
+      const Scalar tmp81 = tmp79*penalty_damping;
+      const Scalar tmp82 = -tmp78*tmp80
+          - tmp81*(tmp77*pos(0)*vel(0) + tmp77*pos(1)*vel(1) + tmp77*pos(2)*vel(2));
+      const Scalar tmp83 = tmp77*tmp82;
+      const Scalar tmp84 = tmp58 + tmp60;
+      const Scalar tmp85 = (Scalar(1)/sqrt(tmp84));
+      const Scalar tmp86 = tmp5*pos(0);
+      const Scalar tmp87 = -tmp85*tmp86 + tmp1*tmp85*pos(1);
+      const Scalar tmp88 = tmp5*tmp85;
+      const Scalar tmp89 = tmp1*tmp85;
+      const Scalar tmp90 = tmp89*omega;
+      const Scalar tmp91 = -tmp87*kappa
+          - penalty_damping*(-tmp88*vel(0) - tmp90*pos(0) + tmp1*tmp85*vel(1) - tmp88*pos(1)*omega);
       XVector<Scalar> result;
-      result(0) = tmp85*pos(0) - tmp90*tmp93;
-      result(1) = tmp85*pos(1) + tmp91*tmp93;
-      result(2) = tmp85*pos(2);
+      result(0) = tmp83*pos(0) - tmp88*tmp91;
+      result(1) = tmp83*pos(1) + tmp89*tmp91;
+      result(2) = tmp83*pos(2);
       return result;
     }
 
@@ -1019,59 +1019,59 @@ struct BeadOnRotatingHoop {
       const Scalar tmp0 = omega*t;
       const Scalar tmp1 = cos(tmp0);
       const Scalar tmp5 = sin(tmp0);
-      const Scalar tmp60 = (tmp5*tmp5);
-      const Scalar tmp62 = (tmp1*tmp1);
-      const Scalar tmp74 = (pos(0)*pos(0));
-      const Scalar tmp75 = (pos(1)*pos(1));
-      const Scalar tmp76 = (pos(2)*pos(2));
-      const Scalar tmp77 = tmp74 + tmp75 + tmp76;
-      const Scalar tmp78 = sqrt(tmp77);
-      const Scalar tmp79 = (Scalar(1)/tmp78);
-      const Scalar tmp80 = tmp78 - R;
-      const Scalar tmp81 = (Scalar(1)/R);
-      const Scalar tmp82 = tmp81*kappa;
-      const Scalar tmp83 = tmp81*penalty_damping;
-      const Scalar tmp84 = -tmp80*tmp82
-          - tmp83*(tmp79*pos(0)*vel(0) + tmp79*pos(1)*vel(1) + tmp79*pos(2)*vel(2));
-      const Scalar tmp85 = tmp79*tmp84;
-      const Scalar tmp86 = tmp60 + tmp62;
-      const Scalar tmp87 = (Scalar(1)/sqrt(tmp86));
-      const Scalar tmp90 = tmp5*tmp87;
-      const Scalar tmp91 = tmp1*tmp87;
-      const Scalar tmp92 = tmp91*omega;
-      const Scalar tmp94 = tmp90*kappa + tmp92*penalty_damping;
-      const Scalar tmp95 = (Scalar(1)/(tmp77*sqrt(tmp77)));
-      const Scalar tmp96 = tmp74*tmp95;
-      const Scalar tmp97 = tmp95*pos(0);
-      const Scalar tmp98 = tmp97*pos(1);
-      const Scalar tmp99 = pos(2)*vel(2);
-      const Scalar tmp100 = -tmp83*(tmp79*vel(0) - tmp96*vel(0) - tmp97*tmp99 - tmp98*vel(1))
-          - tmp79*tmp82*pos(0);
-      const Scalar tmp101 = -tmp91*kappa + tmp5*tmp87*omega*penalty_damping;
-      const Scalar tmp102 = tmp84*tmp98;
-      const Scalar tmp103 = tmp79*pos(1);
-      const Scalar tmp104 = tmp95*pos(1);
-      const Scalar tmp105 = tmp75*tmp95;
-      const Scalar tmp106 = -tmp82*tmp103
-          - tmp83*(tmp79*vel(1) - tmp98*vel(0) - tmp99*tmp104 - tmp105*vel(1));
-      const Scalar tmp107 = tmp97*pos(2);
-      const Scalar tmp108 = tmp84*tmp107;
-      const Scalar tmp109 = tmp79*pos(2);
-      const Scalar tmp110 = tmp104*pos(2);
-      const Scalar tmp111 = tmp76*tmp95;
-      const Scalar tmp112 = -tmp82*tmp109
-          - tmp83*(tmp79*vel(2) - tmp107*vel(0) - tmp110*vel(1) - tmp111*vel(2));
-      const Scalar tmp113 = tmp84*tmp110;
+      const Scalar tmp58 = (tmp5*tmp5);
+      const Scalar tmp60 = (tmp1*tmp1);
+      const Scalar tmp72 = (pos(0)*pos(0));
+      const Scalar tmp73 = (pos(1)*pos(1));
+      const Scalar tmp74 = (pos(2)*pos(2));
+      const Scalar tmp75 = tmp72 + tmp73 + tmp74;
+      const Scalar tmp76 = sqrt(tmp75);
+      const Scalar tmp77 = (Scalar(1)/tmp76);
+      const Scalar tmp78 = tmp76 - R;
+      const Scalar tmp79 = (Scalar(1)/R);
+      const Scalar tmp80 = tmp79*kappa;
+      const Scalar tmp81 = tmp79*penalty_damping;
+      const Scalar tmp82 = -tmp78*tmp80
+          - tmp81*(tmp77*pos(0)*vel(0) + tmp77*pos(1)*vel(1) + tmp77*pos(2)*vel(2));
+      const Scalar tmp83 = tmp77*tmp82;
+      const Scalar tmp84 = tmp58 + tmp60;
+      const Scalar tmp85 = (Scalar(1)/sqrt(tmp84));
+      const Scalar tmp88 = tmp5*tmp85;
+      const Scalar tmp89 = tmp1*tmp85;
+      const Scalar tmp90 = tmp89*omega;
+      const Scalar tmp92 = tmp88*kappa + tmp90*penalty_damping;
+      const Scalar tmp93 = (Scalar(1)/(tmp75*sqrt(tmp75)));
+      const Scalar tmp94 = tmp72*tmp93;
+      const Scalar tmp95 = tmp93*pos(0);
+      const Scalar tmp96 = tmp95*pos(1);
+      const Scalar tmp97 = pos(2)*vel(2);
+      const Scalar tmp98 = -tmp81*(tmp77*vel(0) - tmp94*vel(0) - tmp95*tmp97 - tmp96*vel(1))
+          - tmp77*tmp80*pos(0);
+      const Scalar tmp99 = -tmp89*kappa + tmp5*tmp85*omega*penalty_damping;
+      const Scalar tmp100 = tmp82*tmp96;
+      const Scalar tmp101 = tmp77*pos(1);
+      const Scalar tmp102 = tmp93*pos(1);
+      const Scalar tmp103 = tmp73*tmp93;
+      const Scalar tmp104 = -tmp80*tmp101
+          - tmp81*(tmp77*vel(1) - tmp96*vel(0) - tmp97*tmp102 - tmp103*vel(1));
+      const Scalar tmp105 = tmp95*pos(2);
+      const Scalar tmp106 = tmp82*tmp105;
+      const Scalar tmp107 = tmp77*pos(2);
+      const Scalar tmp108 = tmp102*pos(2);
+      const Scalar tmp109 = tmp74*tmp93;
+      const Scalar tmp110 = -tmp80*tmp107
+          - tmp81*(tmp77*vel(2) - tmp105*vel(0) - tmp108*vel(1) - tmp109*vel(2));
+      const Scalar tmp111 = tmp82*tmp108;
       std::array<Scalar, 9> result;
-      result[0] = tmp79*tmp84 - tmp84*tmp96 - tmp90*tmp94 + tmp79*tmp100*pos(0);
-      result[1] = -tmp102 - tmp90*tmp101 + tmp79*tmp106*pos(0);
-      result[2] = -tmp108 + tmp79*tmp112*pos(0);
-      result[3] = -tmp102 + tmp91*tmp94 + tmp100*tmp103;
-      result[4] = tmp85 + tmp91*tmp101 + tmp103*tmp106 - tmp84*tmp105;
-      result[5] = -tmp113 + tmp79*tmp112*pos(1);
-      result[6] = -tmp108 + tmp79*tmp100*pos(2);
-      result[7] = -tmp113 + tmp79*tmp106*pos(2);
-      result[8] = tmp85 + tmp109*tmp112 - tmp84*tmp111;
+      result[0] = tmp77*tmp82 - tmp82*tmp94 - tmp88*tmp92 + tmp77*tmp98*pos(0);
+      result[1] = -tmp100 - tmp88*tmp99 + tmp77*tmp104*pos(0);
+      result[2] = -tmp106 + tmp77*tmp110*pos(0);
+      result[3] = -tmp100 + tmp89*tmp92 + tmp98*tmp101;
+      result[4] = tmp83 + tmp89*tmp99 + tmp101*tmp104 - tmp82*tmp103;
+      result[5] = -tmp111 + tmp77*tmp110*pos(1);
+      result[6] = -tmp106 + tmp77*tmp98*pos(2);
+      result[7] = -tmp111 + tmp77*tmp104*pos(2);
+      result[8] = tmp83 + tmp107*tmp110 - tmp82*tmp109;
       return result;
     }
 
@@ -1098,28 +1098,28 @@ struct BeadOnRotatingHoop {
       const Scalar tmp0 = omega*t;
       const Scalar tmp1 = cos(tmp0);
       const Scalar tmp5 = sin(tmp0);
-      const Scalar tmp60 = (tmp5*tmp5);
-      const Scalar tmp62 = (tmp1*tmp1);
-      const Scalar tmp74 = (pos(0)*pos(0));
-      const Scalar tmp75 = (pos(1)*pos(1));
-      const Scalar tmp76 = (pos(2)*pos(2));
-      const Scalar tmp77 = tmp74 + tmp75 + tmp76;
-      const Scalar tmp81 = (Scalar(1)/R);
-      const Scalar tmp83 = tmp81*penalty_damping;
-      const Scalar tmp86 = tmp60 + tmp62;
-      const Scalar tmp114 = tmp83/tmp77;
-      const Scalar tmp115 = penalty_damping/tmp86;
-      const Scalar tmp116 = tmp114*pos(0);
+      const Scalar tmp58 = (tmp5*tmp5);
+      const Scalar tmp60 = (tmp1*tmp1);
+      const Scalar tmp72 = (pos(0)*pos(0));
+      const Scalar tmp73 = (pos(1)*pos(1));
+      const Scalar tmp74 = (pos(2)*pos(2));
+      const Scalar tmp75 = tmp72 + tmp73 + tmp74;
+      const Scalar tmp79 = (Scalar(1)/R);
+      const Scalar tmp81 = tmp79*penalty_damping;
+      const Scalar tmp84 = tmp58 + tmp60;
+      const Scalar tmp112 = tmp81/tmp75;
+      const Scalar tmp113 = penalty_damping/tmp84;
+      const Scalar tmp114 = tmp112*pos(0);
       std::array<Scalar, 9> result;
-      result[0] = -tmp60*tmp115 - tmp74*tmp114;
-      result[1] = -tmp116*pos(1) + tmp1*tmp5*tmp115;
-      result[2] = -tmp116*pos(2);
-      result[3] = -tmp116*pos(1) + tmp1*tmp5*tmp115;
-      result[4] = -tmp62*tmp115 - tmp75*tmp114;
-      result[5] = -tmp114*pos(1)*pos(2);
-      result[6] = -tmp116*pos(2);
-      result[7] = -tmp114*pos(1)*pos(2);
-      result[8] = -tmp76*tmp114;
+      result[0] = -tmp58*tmp113 - tmp72*tmp112;
+      result[1] = -tmp114*pos(1) + tmp1*tmp5*tmp113;
+      result[2] = -tmp114*pos(2);
+      result[3] = -tmp114*pos(1) + tmp1*tmp5*tmp113;
+      result[4] = -tmp60*tmp113 - tmp73*tmp112;
+      result[5] = -tmp112*pos(1)*pos(2);
+      result[6] = -tmp114*pos(2);
+      result[7] = -tmp112*pos(1)*pos(2);
+      result[8] = -tmp74*tmp112;
       return result;
     }
 
@@ -1135,9 +1135,9 @@ struct BeadOnRotatingHoop {
                                    const Params& params) {
       const Scalar m = Scalar(params.m);
       const Scalar g = Scalar(params.g);
-      const Scalar tmp64 = g*m;
+      const Scalar tmp62 = g*m;
       Scalar result;
-      result = tmp64*pos(2);
+      result = tmp62*pos(2);
       return result;
     }
 
@@ -1161,22 +1161,22 @@ struct BeadOnRotatingHoop {
       const Scalar tmp0 = omega*t;
       const Scalar tmp1 = cos(tmp0);
       const Scalar tmp5 = sin(tmp0);
-      const Scalar tmp60 = (tmp5*tmp5);
-      const Scalar tmp62 = (tmp1*tmp1);
-      const Scalar tmp74 = (pos(0)*pos(0));
-      const Scalar tmp75 = (pos(1)*pos(1));
-      const Scalar tmp76 = (pos(2)*pos(2));
-      const Scalar tmp77 = tmp74 + tmp75 + tmp76;
-      const Scalar tmp78 = sqrt(tmp77);
-      const Scalar tmp80 = tmp78 - R;
-      const Scalar tmp81 = (Scalar(1)/R);
-      const Scalar tmp82 = tmp81*kappa;
-      const Scalar tmp86 = tmp60 + tmp62;
-      const Scalar tmp87 = (Scalar(1)/sqrt(tmp86));
-      const Scalar tmp88 = tmp5*pos(0);
-      const Scalar tmp89 = -tmp87*tmp88 + tmp1*tmp87*pos(1);
+      const Scalar tmp58 = (tmp5*tmp5);
+      const Scalar tmp60 = (tmp1*tmp1);
+      const Scalar tmp72 = (pos(0)*pos(0));
+      const Scalar tmp73 = (pos(1)*pos(1));
+      const Scalar tmp74 = (pos(2)*pos(2));
+      const Scalar tmp75 = tmp72 + tmp73 + tmp74;
+      const Scalar tmp76 = sqrt(tmp75);
+      const Scalar tmp78 = tmp76 - R;
+      const Scalar tmp79 = (Scalar(1)/R);
+      const Scalar tmp80 = tmp79*kappa;
+      const Scalar tmp84 = tmp58 + tmp60;
+      const Scalar tmp85 = (Scalar(1)/sqrt(tmp84));
+      const Scalar tmp86 = tmp5*pos(0);
+      const Scalar tmp87 = -tmp85*tmp86 + tmp1*tmp85*pos(1);
       Scalar result;
-      result = (Scalar(0.5))*tmp82*(tmp80*tmp80) + (Scalar(0.5))*kappa*(tmp89*tmp89);
+      result = (Scalar(0.5))*tmp80*(tmp78*tmp78) + (Scalar(0.5))*kappa*(tmp87*tmp87);
       return result;
     }
 
@@ -1198,20 +1198,20 @@ struct BeadOnRotatingHoop {
       const Scalar tmp0 = omega*t;
       const Scalar tmp1 = cos(tmp0);
       const Scalar tmp5 = sin(tmp0);
-      const Scalar tmp60 = (tmp5*tmp5);
-      const Scalar tmp62 = (tmp1*tmp1);
-      const Scalar tmp74 = (pos(0)*pos(0));
-      const Scalar tmp75 = (pos(1)*pos(1));
-      const Scalar tmp76 = (pos(2)*pos(2));
-      const Scalar tmp77 = tmp74 + tmp75 + tmp76;
-      const Scalar tmp78 = sqrt(tmp77);
-      const Scalar tmp80 = tmp78 - R;
-      const Scalar tmp86 = tmp60 + tmp62;
-      const Scalar tmp87 = (Scalar(1)/sqrt(tmp86));
-      const Scalar tmp88 = tmp5*pos(0);
+      const Scalar tmp58 = (tmp5*tmp5);
+      const Scalar tmp60 = (tmp1*tmp1);
+      const Scalar tmp72 = (pos(0)*pos(0));
+      const Scalar tmp73 = (pos(1)*pos(1));
+      const Scalar tmp74 = (pos(2)*pos(2));
+      const Scalar tmp75 = tmp72 + tmp73 + tmp74;
+      const Scalar tmp76 = sqrt(tmp75);
+      const Scalar tmp78 = tmp76 - R;
+      const Scalar tmp84 = tmp58 + tmp60;
+      const Scalar tmp85 = (Scalar(1)/sqrt(tmp84));
+      const Scalar tmp86 = tmp5*pos(0);
       ConstraintVector<Scalar> result;
-      result(0) = tmp80;
-      result(1) = tmp87*(-tmp88 + tmp1*pos(1));
+      result(0) = tmp78;
+      result(1) = tmp85*(-tmp86 + tmp1*pos(1));
       return result;
     }
   };

@@ -24,7 +24,7 @@
 //     back to q (the inverse map, an atlas) depends on the first guess
 //
 // Total ops: 16149
-// Intermediate terms (2659)
+// Intermediate terms (3451)
 // Output terms (998)
 #pragma once
 
@@ -1623,729 +1623,729 @@ struct RigidBodyEuler {
     const Scalar tmp292 = tmp19*tmp232;
     const Scalar tmp293 = tmp24*tmp256;
     const Scalar tmp294 = tmp37*tmp263;
-    const Scalar tmp456 = tmp1*tmp5;
-    const Scalar tmp457 = -tmp0;
-    const Scalar tmp458 = tmp4*tmp457;
-    const Scalar tmp459 = tmp3*tmp458;
-    const Scalar tmp460 = -tmp456 + tmp459;
-    const Scalar tmp461 = tmp4*tmp5;
-    const Scalar tmp462 = tmp1*tmp457;
-    const Scalar tmp463 = tmp3*tmp462;
-    const Scalar tmp464 = tmp461 + tmp463;
-    const Scalar tmp465 = tmp44*tmp457;
-    const Scalar tmp466 = tmp48*tmp457;
-    const Scalar tmp467 = com_z*tmp464 + tmp466 + com_y*tmp460;
-    const Scalar tmp468 = tmp3*tmp461;
-    const Scalar tmp469 = tmp462 + tmp468;
-    const Scalar tmp470 = tmp3*tmp456;
-    const Scalar tmp471 = tmp470 - tmp458;
-    const Scalar tmp472 = tmp44*tmp5;
-    const Scalar tmp473 = tmp48*tmp5;
-    const Scalar tmp474 = -tmp460;
-    const Scalar tmp475 = com_y*tmp464 + com_z*tmp474;
-    const Scalar tmp476 = tmp44*tmp458;
-    const Scalar tmp477 = tmp44*tmp462;
-    const Scalar tmp478 = tmp3*tmp457;
-    const Scalar tmp479 = -tmp69*tmp457 + com_y*tmp476 + com_z*tmp477;
-    const Scalar tmp480 = -tmp469;
-    const Scalar tmp481 = -tmp471;
-    const Scalar tmp482 = com_y*tmp480 + com_z*tmp481;
-    const Scalar tmp483 = -tmp473 + tmp482;
-    const Scalar tmp484 = com_y*tmp471 + com_z*tmp480;
-    const Scalar tmp485 = tmp44*tmp461;
-    const Scalar tmp486 = tmp44*tmp456;
-    const Scalar tmp487 = tmp3*tmp5;
-    const Scalar tmp488 = -tmp69*tmp5 + com_y*tmp485 + com_z*tmp486;
-    const Scalar tmp489 = roll_dot*tmp475 + pitch_dot*tmp479 + yaw_dot*tmp483;
-    const Scalar tmp490 = -com_z*tmp476 + com_y*tmp477;
-    const Scalar tmp491 = -tmp488;
-    const Scalar tmp492 = com_z*tmp463 + tmp466 + com_y*tmp459;
-    const Scalar tmp493 = com_z*tmp469 + com_y*tmp481;
-    const Scalar tmp494 = -tmp464;
-    const Scalar tmp495 = com_z*tmp494 + com_y*tmp474;
-    const Scalar tmp496 = tmp495 - tmp466;
-    const Scalar tmp497 = Scalar(2)*pitch_dot*roll_dot*tmp490 + Scalar(2)*pitch_dot*yaw_dot*tmp491
-        - (pitch_dot*pitch_dot)*tmp492 + Scalar(2)*roll_dot*yaw_dot*tmp493
-        + (roll_dot*roll_dot)*tmp495 + (yaw_dot*yaw_dot)*tmp496;
-    const Scalar tmp498 = -com_z*tmp485 + com_y*tmp486;
-    const Scalar tmp499 = com_y*tmp468 + com_z*tmp470 + tmp473;
-    const Scalar tmp500 = yaw_dot*tmp489 + Scalar(2)*pitch_dot*roll_dot*tmp498
-        - (pitch_dot*pitch_dot)*tmp499 + roll_dot*yaw_dot*tmp475 + pitch_dot*yaw_dot*tmp479
-        + (roll_dot*roll_dot)*tmp482;
-    const Scalar tmp501 = tmp35*tmp464 + tmp465 + tmp208*tmp460;
-    const Scalar tmp502 = tmp208*tmp476 + tmp35*tmp477 - tmp478;
-    const Scalar tmp503 = tmp208*tmp464 + tmp35*tmp474;
-    const Scalar tmp504 = tmp208*tmp480 + tmp35*tmp481;
-    const Scalar tmp505 = tmp504 - tmp472;
-    const Scalar tmp506 = pitch_dot*tmp502 + roll_dot*tmp503 + yaw_dot*tmp505;
-    const Scalar tmp507 = tmp208*tmp485 + tmp35*tmp486 - tmp487;
-    const Scalar tmp508 = tmp208*tmp471 + tmp35*tmp480;
-    const Scalar tmp509 = tmp1*tmp18*tmp23*tmp44*tmp457 - tmp35*tmp476;
-    const Scalar tmp510 = -tmp507;
-    const Scalar tmp511 = tmp35*tmp469 + tmp208*tmp481;
-    const Scalar tmp512 = tmp35*tmp494 + tmp208*tmp474;
-    const Scalar tmp513 = Scalar(2)*pitch_dot*roll_dot*tmp509 + Scalar(2)*pitch_dot*yaw_dot*tmp510
-        + Scalar(2)*roll_dot*yaw_dot*tmp511 + ((roll_dot*roll_dot) + (yaw_dot*yaw_dot))*tmp512
-        - tmp35*(pitch_dot*pitch_dot)*tmp463 + (-(pitch_dot*pitch_dot) - (yaw_dot*yaw_dot))*tmp465
-        - tmp208*(pitch_dot*pitch_dot)*tmp459;
-    const Scalar tmp514 = tmp1*tmp18*tmp23*tmp44*tmp5 - tmp35*tmp485;
-    const Scalar tmp515 = pitch_dot*yaw_dot*tmp502 + roll_dot*yaw_dot*tmp503
-        + (roll_dot*roll_dot)*tmp504 + yaw_dot*tmp506 + Scalar(2)*pitch_dot*roll_dot*tmp514
-        - tmp208*(pitch_dot*pitch_dot)*tmp468 - tmp35*(pitch_dot*pitch_dot)*tmp470
-        - (pitch_dot*pitch_dot)*tmp472;
-    const Scalar tmp516 = tmp233*tmp464 + tmp460;
-    const Scalar tmp517 = tmp476 + tmp233*tmp477;
-    const Scalar tmp518 = tmp464 + tmp233*tmp474;
-    const Scalar tmp519 = -tmp469 + tmp34*tmp36*tmp481;
-    const Scalar tmp520 = pitch_dot*tmp517 + roll_dot*tmp518 + yaw_dot*tmp519;
-    const Scalar tmp521 = tmp485 + tmp233*tmp486;
-    const Scalar tmp522 = tmp471 + tmp233*tmp480;
-    const Scalar tmp523 = tmp1*tmp44*tmp457 - tmp233*tmp476;
-    const Scalar tmp524 = -tmp521;
-    const Scalar tmp525 = tmp233*tmp469 - tmp470 + tmp458;
-    const Scalar tmp526 = tmp233*tmp494 + tmp456 - tmp459;
-    const Scalar tmp527 = Scalar(2)*pitch_dot*roll_dot*tmp523 + Scalar(2)*pitch_dot*yaw_dot*tmp524
-        + Scalar(2)*roll_dot*yaw_dot*tmp525 + ((roll_dot*roll_dot) + (yaw_dot*yaw_dot))*tmp526
-        - tmp233*(pitch_dot*pitch_dot)*tmp463 - (pitch_dot*pitch_dot)*tmp459;
-    const Scalar tmp528 = tmp1*tmp44*tmp5 - tmp233*tmp485;
-    const Scalar tmp529 = pitch_dot*yaw_dot*tmp517 + roll_dot*yaw_dot*tmp518
-        + (roll_dot*roll_dot)*tmp519 + yaw_dot*tmp520 + Scalar(2)*pitch_dot*roll_dot*tmp528
-        - (pitch_dot*pitch_dot)*tmp468 - tmp233*(pitch_dot*pitch_dot)*tmp470;
-    const Scalar tmp530 = roll_dot*tmp474 + pitch_dot*tmp477 + yaw_dot*tmp481;
-    const Scalar tmp531 = pitch_dot*tmp486;
-    const Scalar tmp532 = ((roll_dot*roll_dot) + (yaw_dot*yaw_dot))*tmp494 - yaw_dot*tmp531
-        - (pitch_dot*pitch_dot)*tmp463 + Scalar(2)*roll_dot*yaw_dot*tmp469
-        - Scalar(2)*pitch_dot*roll_dot*tmp476 - pitch_dot*yaw_dot*tmp486;
-    const Scalar tmp533 = yaw_dot*tmp530 + tmp1*tmp44*pitch_dot*yaw_dot*tmp457
-        - (pitch_dot*pitch_dot)*tmp470 + roll_dot*yaw_dot*tmp474 + (roll_dot*roll_dot)*tmp481
-        - Scalar(2)*pitch_dot*roll_dot*tmp485;
-    const Scalar tmp534 = m*tmp483;
-    const Scalar tmp535 = m*tmp467;
-    const Scalar tmp536 = Scalar(2)*tmp209*tmp19*tmp501 + Scalar(2)*tmp216*tmp19*tmp505
-        + Scalar(2)*tmp234*tmp24*tmp516 + Scalar(2)*tmp239*tmp24*tmp519
-        + Scalar(2)*tmp31*tmp37*tmp464 + Scalar(2)*tmp50*m*tmp467 + Scalar(2)*tmp37*tmp86*tmp481
-        + Scalar(2)*tmp90*m*tmp483;
-    const Scalar tmp537 = m*tmp479;
-    const Scalar tmp538 = m*tmp488;
-    const Scalar tmp539 = tmp218*tmp19*tmp501 + tmp216*tmp19*tmp502 + tmp213*tmp19*tmp505
-        + tmp209*tmp19*tmp507 + tmp241*tmp24*tmp516 + tmp239*tmp24*tmp517 + tmp237*tmp24*tmp519
-        + tmp234*tmp24*tmp521 + tmp37*tmp98*tmp464 + tmp101*m*tmp467 + tmp37*tmp86*tmp477
-        + tmp90*m*tmp479 + tmp37*tmp79*tmp481 + tmp82*m*tmp483 + tmp31*tmp37*tmp486
-        + tmp50*m*tmp488;
-    const Scalar tmp540 = Scalar(2)*tmp0*tmp273*tmp37*tmp5 + Scalar(2)*tmp213*tmp19*tmp502
-        + Scalar(2)*tmp218*tmp19*tmp507 + Scalar(2)*tmp237*tmp24*tmp517
-        + Scalar(2)*tmp241*tmp24*tmp521 + Scalar(2)*tmp273*tmp37*tmp5*tmp457
-        + Scalar(2)*tmp82*m*tmp479 + Scalar(2)*tmp101*m*tmp488;
-    const Scalar tmp541 = m*tmp475;
-    const Scalar tmp542 = m*tmp484;
-    const Scalar tmp543 = tmp219*tmp19*tmp501 + tmp216*tmp19*tmp503 + tmp214*tmp19*tmp505
-        + tmp209*tmp19*tmp508 + tmp242*tmp24*tmp516 + tmp239*tmp24*tmp518 + tmp238*tmp24*tmp519
-        + tmp234*tmp24*tmp522 + tmp37*tmp85*tmp464 + tmp95*m*tmp467 + tmp37*tmp86*tmp474
-        + tmp90*m*tmp475 + tmp31*tmp37*tmp480 + tmp37*tmp75*tmp481 + tmp76*m*tmp483
-        + tmp50*m*tmp484;
-    const Scalar tmp544 = tmp214*tmp19*tmp502 + tmp213*tmp19*tmp503 + tmp219*tmp19*tmp507
-        + tmp218*tmp19*tmp508 + tmp238*tmp24*tmp517 + tmp237*tmp24*tmp518 + tmp242*tmp24*tmp521
-        + tmp241*tmp24*tmp522 + tmp37*tmp79*tmp474 + tmp82*m*tmp475 + tmp37*tmp75*tmp477
-        + tmp76*m*tmp479 + tmp37*tmp98*tmp480 + tmp101*m*tmp484 + tmp37*tmp85*tmp486
-        + tmp95*m*tmp488;
-    const Scalar tmp545 = Scalar(2)*tmp214*tmp19*tmp503 + Scalar(2)*tmp219*tmp19*tmp508
-        + Scalar(2)*tmp238*tmp24*tmp518 + Scalar(2)*tmp242*tmp24*tmp522
-        + Scalar(2)*tmp37*tmp75*tmp474 + Scalar(2)*tmp76*m*tmp475 + Scalar(2)*tmp37*tmp85*tmp480
-        + Scalar(2)*tmp95*m*tmp484;
-    const Scalar tmp546 = m*tmp497;
-    const Scalar tmp547 = m*tmp500;
-    const Scalar tmp548 = tmp19*tmp513;
-    const Scalar tmp549 = tmp19*tmp515;
-    const Scalar tmp550 = tmp24*tmp527;
-    const Scalar tmp551 = tmp24*tmp529;
-    const Scalar tmp552 = tmp37*tmp532;
-    const Scalar tmp553 = tmp37*tmp533;
-    const Scalar tmp554 = -tmp546;
-    const Scalar tmp555 = -tmp547;
-    const Scalar tmp556 = -tmp287*tmp501 - tmp286*tmp505 - tmp289*tmp516 - tmp288*tmp519
-        - tmp291*tmp464 - tmp284*tmp467 - tmp290*tmp481 - tmp283*tmp483 - tmp90*tmp546
-        - tmp50*tmp547 - tmp216*tmp548 - tmp209*tmp549 - tmp239*tmp550 - tmp234*tmp551
-        - tmp86*tmp552 - tmp31*tmp553;
-    const Scalar tmp557 = -tmp286*tmp502 - tmp287*tmp507 - tmp288*tmp517 - tmp289*tmp521
-        - tmp290*tmp477 - tmp283*tmp479 - tmp291*tmp486 - tmp284*tmp488 - tmp82*tmp546
-        - tmp101*tmp547 - tmp213*tmp548 - tmp218*tmp549 - tmp237*tmp550 - tmp241*tmp551
-        - tmp79*tmp552 - tmp98*tmp553;
-    const Scalar tmp558 = -tmp286*tmp503 - tmp287*tmp508 - tmp288*tmp518 - tmp289*tmp522
-        - tmp290*tmp474 - tmp283*tmp475 - tmp291*tmp480 - tmp284*tmp484 - tmp76*tmp546
-        - tmp95*tmp547 - tmp214*tmp548 - tmp219*tmp549 - tmp238*tmp550 - tmp242*tmp551
-        - tmp75*tmp552 - tmp85*tmp553;
-    const Scalar tmp559 = tmp6*tmp44;
-    const Scalar tmp560 = tmp29*tmp44;
-    const Scalar tmp561 = -tmp3;
-    const Scalar tmp562 = tmp5*tmp561;
-    const Scalar tmp563 = com_x*tmp561;
-    const Scalar tmp564 = tmp5*tmp563;
-    const Scalar tmp565 = com_z*tmp560 + tmp564 + com_y*tmp559;
-    const Scalar tmp566 = tmp28*tmp44;
-    const Scalar tmp567 = tmp2*tmp44;
-    const Scalar tmp568 = tmp0*tmp561;
-    const Scalar tmp569 = tmp0*tmp563;
-    const Scalar tmp570 = tmp4*tmp561;
-    const Scalar tmp571 = tmp1*tmp561;
-    const Scalar tmp572 = com_x*tmp44;
-    const Scalar tmp573 = com_y*tmp570 + com_z*tmp571;
-    const Scalar tmp574 = -tmp572 + tmp573;
-    const Scalar tmp575 = -tmp559;
-    const Scalar tmp576 = com_y*tmp560 + com_z*tmp575;
-    const Scalar tmp577 = tmp6*tmp561;
-    const Scalar tmp578 = tmp29*tmp561;
-    const Scalar tmp579 = tmp5*tmp44;
-    const Scalar tmp580 = -tmp5*tmp572 + com_y*tmp577 + com_z*tmp578;
-    const Scalar tmp581 = -tmp566;
-    const Scalar tmp582 = -tmp567;
-    const Scalar tmp583 = com_y*tmp581 + com_z*tmp582;
-    const Scalar tmp584 = -tmp569 + tmp583;
-    const Scalar tmp585 = com_y*tmp567 + com_z*tmp581;
-    const Scalar tmp586 = tmp28*tmp561;
-    const Scalar tmp587 = tmp2*tmp561;
-    const Scalar tmp588 = tmp0*tmp44;
-    const Scalar tmp589 = -tmp0*tmp572 + com_y*tmp586 + com_z*tmp587;
-    const Scalar tmp590 = -com_z*tmp570 + com_y*tmp571;
-    const Scalar tmp591 = tmp4*tmp44;
-    const Scalar tmp592 = tmp1*tmp44;
-    const Scalar tmp593 = com_y*tmp591 + com_z*tmp592 + tmp563;
-    const Scalar tmp594 = roll_dot*tmp576 + pitch_dot*tmp580 + yaw_dot*tmp584;
-    const Scalar tmp595 = -tmp593;
-    const Scalar tmp596 = -com_z*tmp577 + com_y*tmp578;
-    const Scalar tmp597 = -tmp589;
-    const Scalar tmp598 = com_z*tmp560 + tmp564 + com_y*tmp559;
-    const Scalar tmp599 = com_z*tmp566 + com_y*tmp582;
-    const Scalar tmp600 = -tmp560;
-    const Scalar tmp601 = com_z*tmp600 + com_y*tmp575;
-    const Scalar tmp602 = tmp601 - tmp564;
-    const Scalar tmp603 = Scalar(2)*pitch_dot*roll_dot*tmp596 + Scalar(2)*pitch_dot*yaw_dot*tmp597
-        - (pitch_dot*pitch_dot)*tmp598 + Scalar(2)*roll_dot*yaw_dot*tmp599
-        + (roll_dot*roll_dot)*tmp601 + (yaw_dot*yaw_dot)*tmp602;
-    const Scalar tmp604 = -com_z*tmp586 + com_y*tmp587;
-    const Scalar tmp605 = com_y*tmp566 + com_z*tmp567 + tmp569;
-    const Scalar tmp606 = yaw_dot*tmp594 + Scalar(2)*pitch_dot*roll_dot*tmp604
-        - (pitch_dot*pitch_dot)*tmp605 + roll_dot*yaw_dot*tmp576 + pitch_dot*yaw_dot*tmp580
-        + (roll_dot*roll_dot)*tmp583;
-    const Scalar tmp607 = com_y*tmp592 - tmp4*com_z*tmp44;
-    const Scalar tmp608 = -tmp607;
-    const Scalar tmp609 = Scalar(2)*pitch_dot*roll_dot*tmp608 - (roll_dot*roll_dot)*tmp573
-        - (pitch_dot*pitch_dot)*tmp574;
-    const Scalar tmp610 = tmp35*tmp560 + tmp562 + tmp208*tmp559;
-    const Scalar tmp611 = tmp208*tmp570 + tmp35*tmp571;
-    const Scalar tmp612 = tmp611 - tmp44;
-    const Scalar tmp613 = tmp208*tmp577 + tmp35*tmp578 - tmp579;
-    const Scalar tmp614 = tmp208*tmp560 + tmp35*tmp575;
-    const Scalar tmp615 = tmp208*tmp581 + tmp35*tmp582;
-    const Scalar tmp616 = tmp615 - tmp568;
-    const Scalar tmp617 = pitch_dot*tmp613 + roll_dot*tmp614 + yaw_dot*tmp616;
-    const Scalar tmp618 = tmp208*tmp586 + tmp35*tmp587 - tmp588;
-    const Scalar tmp619 = tmp208*tmp567 + tmp35*tmp581;
-    const Scalar tmp620 = tmp1*tmp18*tmp23*tmp561 - tmp35*tmp570;
-    const Scalar tmp621 = -tmp208*tmp591 - tmp35*tmp592 - tmp561;
-    const Scalar tmp622 = tmp1*tmp18*tmp23*tmp5*tmp561 - tmp35*tmp577;
-    const Scalar tmp623 = -tmp618;
-    const Scalar tmp624 = tmp35*tmp566 + tmp208*tmp582;
-    const Scalar tmp625 = tmp35*tmp600 + tmp208*tmp575;
-    const Scalar tmp626 = Scalar(2)*pitch_dot*roll_dot*tmp622 + Scalar(2)*pitch_dot*yaw_dot*tmp623
-        + Scalar(2)*roll_dot*yaw_dot*tmp624 + ((roll_dot*roll_dot) + (yaw_dot*yaw_dot))*tmp625
-        - tmp35*(pitch_dot*pitch_dot)*tmp560 + (-(pitch_dot*pitch_dot) - (yaw_dot*yaw_dot))*tmp562
-        - tmp208*(pitch_dot*pitch_dot)*tmp559;
-    const Scalar tmp627 = tmp0*tmp1*tmp18*tmp23*tmp561 - tmp35*tmp586;
-    const Scalar tmp628 = pitch_dot*yaw_dot*tmp613 + roll_dot*yaw_dot*tmp614
-        + (roll_dot*roll_dot)*tmp615 + yaw_dot*tmp617 + Scalar(2)*pitch_dot*roll_dot*tmp627
-        - tmp208*(pitch_dot*pitch_dot)*tmp566 - tmp35*(pitch_dot*pitch_dot)*tmp567
-        - (pitch_dot*pitch_dot)*tmp568;
-    const Scalar tmp629 = tmp35*tmp591 - tmp208*tmp592;
-    const Scalar tmp630 = -(roll_dot*roll_dot)*tmp611 - (pitch_dot*pitch_dot)*tmp612
-        + Scalar(2)*pitch_dot*roll_dot*tmp629;
-    const Scalar tmp631 = tmp233*tmp560 + tmp559;
-    const Scalar tmp632 = tmp570 + tmp233*tmp571;
-    const Scalar tmp633 = tmp577 + tmp233*tmp578;
-    const Scalar tmp634 = tmp560 + tmp233*tmp575;
-    const Scalar tmp635 = -tmp566 + tmp34*tmp36*tmp582;
-    const Scalar tmp636 = pitch_dot*tmp633 + roll_dot*tmp634 + yaw_dot*tmp635;
-    const Scalar tmp637 = tmp586 + tmp233*tmp587;
-    const Scalar tmp638 = tmp567 + tmp233*tmp581;
-    const Scalar tmp639 = tmp1*tmp561 - tmp233*tmp570;
-    const Scalar tmp640 = -tmp591 - tmp233*tmp592;
-    const Scalar tmp641 = tmp1*tmp5*tmp561 - tmp233*tmp577;
-    const Scalar tmp642 = -tmp637;
-    const Scalar tmp643 = tmp233*tmp566 - tmp567;
-    const Scalar tmp644 = tmp233*tmp600 - tmp559;
-    const Scalar tmp645 = Scalar(2)*pitch_dot*roll_dot*tmp641 + Scalar(2)*pitch_dot*yaw_dot*tmp642
-        + Scalar(2)*roll_dot*yaw_dot*tmp643 + ((roll_dot*roll_dot) + (yaw_dot*yaw_dot))*tmp644
-        - tmp233*(pitch_dot*pitch_dot)*tmp560 - (pitch_dot*pitch_dot)*tmp559;
-    const Scalar tmp646 = tmp0*tmp1*tmp561 - tmp233*tmp586;
-    const Scalar tmp647 = pitch_dot*yaw_dot*tmp633 + roll_dot*yaw_dot*tmp634
-        + (roll_dot*roll_dot)*tmp635 + yaw_dot*tmp636 + Scalar(2)*pitch_dot*roll_dot*tmp646
-        - (pitch_dot*pitch_dot)*tmp566 - tmp233*(pitch_dot*pitch_dot)*tmp567;
-    const Scalar tmp648 = tmp233*tmp591 - tmp592;
-    const Scalar tmp649 = -tmp632;
-    const Scalar tmp650 = Scalar(2)*pitch_dot*roll_dot*tmp648
-        + ((pitch_dot*pitch_dot) + (roll_dot*roll_dot))*tmp649;
-    const Scalar tmp651 = roll_dot*tmp575 + pitch_dot*tmp578 + yaw_dot*tmp582;
-    const Scalar tmp652 = pitch_dot*tmp587;
-    const Scalar tmp653 = ((roll_dot*roll_dot) + (yaw_dot*yaw_dot))*tmp600 - yaw_dot*tmp652
-        - (pitch_dot*pitch_dot)*tmp560 + Scalar(2)*roll_dot*yaw_dot*tmp566
-        - Scalar(2)*pitch_dot*roll_dot*tmp577 - pitch_dot*yaw_dot*tmp587;
-    const Scalar tmp654 = yaw_dot*tmp651 + tmp1*tmp5*pitch_dot*yaw_dot*tmp561
-        - (pitch_dot*pitch_dot)*tmp567 + roll_dot*yaw_dot*tmp575 + (roll_dot*roll_dot)*tmp582
-        - Scalar(2)*pitch_dot*roll_dot*tmp586;
-    const Scalar tmp655 = pitch_dot*roll_dot*tmp591 + tmp4*pitch_dot*roll_dot*tmp44
-        + (-(pitch_dot*pitch_dot) - (roll_dot*roll_dot))*tmp571;
-    const Scalar tmp656 = m*tmp584;
-    const Scalar tmp657 = m*tmp565;
-    const Scalar tmp658 = Scalar(2)*tmp209*tmp19*tmp610 + Scalar(2)*tmp216*tmp19*tmp616
-        + Scalar(2)*tmp234*tmp24*tmp631 + Scalar(2)*tmp239*tmp24*tmp635
-        + Scalar(2)*tmp31*tmp37*tmp560 + Scalar(2)*tmp50*m*tmp565 + Scalar(2)*tmp37*tmp86*tmp582
-        + Scalar(2)*tmp90*m*tmp584;
-    const Scalar tmp659 = m*tmp580;
-    const Scalar tmp660 = m*tmp589;
-    const Scalar tmp661 = m*tmp595;
-    const Scalar tmp662 = tmp218*tmp19*tmp610 + tmp216*tmp19*tmp613 + tmp213*tmp19*tmp616
-        + tmp209*tmp19*tmp618 + tmp241*tmp24*tmp631 + tmp239*tmp24*tmp633 + tmp237*tmp24*tmp635
-        + tmp234*tmp24*tmp637 + tmp37*tmp98*tmp560 + tmp101*m*tmp565 + tmp37*tmp86*tmp578
-        + tmp90*m*tmp580 + tmp37*tmp79*tmp582 + tmp82*m*tmp584 + tmp31*tmp37*tmp587
-        + tmp50*m*tmp589;
-    const Scalar tmp663 = Scalar(2)*tmp44*tmp561;
-    const Scalar tmp664 = tmp271*tmp663;
-    const Scalar tmp665 = Scalar(2)*tmp192*m*tmp595 + Scalar(2)*tmp213*tmp19*tmp613
-        + Scalar(2)*tmp218*tmp19*tmp618 + Scalar(2)*tmp19*tmp222*tmp621
-        + Scalar(2)*tmp237*tmp24*tmp633 + Scalar(2)*tmp241*tmp24*tmp637
-        + Scalar(2)*tmp245*tmp24*tmp640 + tmp37*((tmp0*tmp0) + (tmp5*tmp5))*tmp664
-        + Scalar(2)*tmp271*tmp3*tmp37*tmp44 + Scalar(2)*tmp82*m*tmp580 + Scalar(2)*tmp101*m*tmp589;
-    const Scalar tmp666 = m*tmp576;
-    const Scalar tmp667 = m*tmp585;
-    const Scalar tmp668 = m*tmp590;
-    const Scalar tmp669 = tmp219*tmp19*tmp610 + tmp216*tmp19*tmp614 + tmp214*tmp19*tmp616
-        + tmp209*tmp19*tmp619 + tmp242*tmp24*tmp631 + tmp239*tmp24*tmp634 + tmp238*tmp24*tmp635
-        + tmp234*tmp24*tmp638 + tmp37*tmp85*tmp560 + tmp95*m*tmp565 + tmp37*tmp86*tmp575
-        + tmp90*m*tmp576 + tmp31*tmp37*tmp581 + tmp37*tmp75*tmp582 + tmp76*m*tmp584
-        + tmp50*m*tmp585;
-    const Scalar tmp670 = tmp192*m*tmp590 + tmp37*tmp64*tmp592 + tmp107*m*tmp595
-        + tmp214*tmp19*tmp613 + tmp213*tmp19*tmp614 + tmp219*tmp19*tmp618 + tmp218*tmp19*tmp619
-        + tmp19*tmp222*tmp620 + tmp221*tmp19*tmp621 + tmp238*tmp24*tmp633 + tmp237*tmp24*tmp634
-        + tmp242*tmp24*tmp637 + tmp241*tmp24*tmp638 + tmp245*tmp24*tmp639 + tmp244*tmp24*tmp640
-        + tmp110*tmp37*tmp570 + tmp37*tmp79*tmp575 + tmp82*m*tmp576 + tmp37*tmp75*tmp578
-        + tmp76*m*tmp580 + tmp37*tmp98*tmp581 + tmp101*m*tmp585 + tmp37*tmp85*tmp587
-        + tmp95*m*tmp589;
-    const Scalar tmp671 = Scalar(2)*tmp107*m*tmp590 + Scalar(2)*tmp214*tmp19*tmp614
-        + Scalar(2)*tmp219*tmp19*tmp619 + Scalar(2)*tmp221*tmp19*tmp620
-        + Scalar(2)*tmp238*tmp24*tmp634 + Scalar(2)*tmp242*tmp24*tmp638
-        + Scalar(2)*tmp244*tmp24*tmp639 + tmp37*(tmp4*tmp4)*tmp663 + Scalar(2)*tmp37*tmp75*tmp575
-        + Scalar(2)*tmp76*m*tmp576 + Scalar(2)*tmp37*tmp85*tmp581 + Scalar(2)*tmp95*m*tmp585;
-    const Scalar tmp672 = m*tmp603;
-    const Scalar tmp673 = m*tmp606;
-    const Scalar tmp674 = m*tmp609;
-    const Scalar tmp675 = tmp19*tmp626;
-    const Scalar tmp676 = tmp19*tmp628;
-    const Scalar tmp677 = tmp24*tmp645;
-    const Scalar tmp678 = tmp24*tmp647;
-    const Scalar tmp679 = tmp37*tmp653;
-    const Scalar tmp680 = tmp37*tmp654;
-    const Scalar tmp681 = tmp19*tmp630;
-    const Scalar tmp682 = tmp24*tmp650;
-    const Scalar tmp683 = tmp37*tmp655;
-    const Scalar tmp684 = tmp282*tmp595;
-    const Scalar tmp685 = tmp282*tmp590;
-    const Scalar tmp686 = -tmp672;
-    const Scalar tmp687 = -tmp673;
-    const Scalar tmp688 = -tmp674;
-    const Scalar tmp689 = -tmp287*tmp610 - tmp286*tmp616 - tmp289*tmp631 - tmp288*tmp635
-        - tmp291*tmp560 - tmp284*tmp565 - tmp290*tmp582 - tmp283*tmp584 - tmp90*tmp672
-        - tmp50*tmp673 - tmp216*tmp675 - tmp209*tmp676 - tmp239*tmp677 - tmp234*tmp678
-        - tmp86*tmp679 - tmp31*tmp680;
-    const Scalar tmp690 = -tmp285*tmp595 - tmp286*tmp613 - tmp287*tmp618 - tmp292*tmp621
-        - tmp288*tmp633 - tmp289*tmp637 - tmp293*tmp640 + tmp1*tmp294*tmp44 - tmp290*tmp578
-        - tmp283*tmp580 - tmp291*tmp587 - tmp284*tmp589 - tmp82*tmp672 - tmp101*tmp673
-        - tmp192*tmp674 - tmp213*tmp675 - tmp218*tmp676 - tmp237*tmp677 - tmp241*tmp678
-        - tmp79*tmp679 - tmp98*tmp680 - tmp222*tmp681 - tmp245*tmp682 + tmp1*tmp3*tmp683;
-    const Scalar tmp691 = -tmp285*tmp590 - tmp286*tmp614 - tmp287*tmp619 - tmp292*tmp620
-        - tmp288*tmp634 - tmp289*tmp638 - tmp293*tmp639 + tmp4*tmp294*tmp561 - tmp290*tmp575
-        - tmp283*tmp576 - tmp291*tmp581 - tmp284*tmp585 - tmp76*tmp672 - tmp95*tmp673
-        - tmp107*tmp674 - tmp214*tmp675 - tmp219*tmp676 - tmp238*tmp677 - tmp242*tmp678
-        - tmp75*tmp679 - tmp85*tmp680 - tmp221*tmp681 - tmp244*tmp682 + tmp4*tmp44*tmp683;
-    const Scalar tmp692 = -tmp4;
-    const Scalar tmp693 = tmp0*tmp692;
-    const Scalar tmp694 = tmp5*tmp1;
-    const Scalar tmp695 = tmp3*tmp694;
-    const Scalar tmp696 = -tmp693 + tmp695;
-    const Scalar tmp697 = tmp0*tmp1;
-    const Scalar tmp698 = tmp5*tmp692;
-    const Scalar tmp699 = tmp3*tmp698;
-    const Scalar tmp700 = tmp697 + tmp699;
-    const Scalar tmp701 = com_z*tmp700 + com_y*tmp696;
-    const Scalar tmp702 = tmp3*tmp697;
-    const Scalar tmp703 = tmp698 + tmp702;
-    const Scalar tmp704 = tmp3*tmp693;
-    const Scalar tmp705 = tmp704 - tmp694;
-    const Scalar tmp706 = tmp44*tmp1;
-    const Scalar tmp707 = tmp44*tmp692;
-    const Scalar tmp708 = com_y*tmp706 + com_z*tmp707;
-    const Scalar tmp709 = -tmp696;
-    const Scalar tmp710 = com_y*tmp700 + com_z*tmp709;
-    const Scalar tmp711 = tmp44*tmp694;
-    const Scalar tmp712 = tmp44*tmp698;
-    const Scalar tmp713 = com_y*tmp711 + com_z*tmp712;
-    const Scalar tmp714 = -tmp703;
-    const Scalar tmp715 = -tmp705;
-    const Scalar tmp716 = com_y*tmp714 + com_z*tmp715;
-    const Scalar tmp717 = com_y*tmp705 + com_z*tmp714;
-    const Scalar tmp718 = tmp44*tmp697;
-    const Scalar tmp719 = tmp44*tmp693;
-    const Scalar tmp720 = com_y*tmp718 + com_z*tmp719;
-    const Scalar tmp721 = -com_z*tmp706 + com_y*tmp707;
-    const Scalar tmp722 = tmp3*tmp1;
-    const Scalar tmp723 = tmp3*tmp692;
-    const Scalar tmp724 = com_y*tmp722 + com_z*tmp723;
-    const Scalar tmp725 = roll_dot*tmp710 + pitch_dot*tmp713 + yaw_dot*tmp716;
-    const Scalar tmp726 = -tmp724;
-    const Scalar tmp727 = -com_z*tmp711 + com_y*tmp712;
-    const Scalar tmp728 = -tmp720;
-    const Scalar tmp729 = com_z*tmp699 + com_y*tmp695;
-    const Scalar tmp730 = com_z*tmp703 + com_y*tmp715;
-    const Scalar tmp731 = -tmp700;
-    const Scalar tmp732 = com_z*tmp731 + com_y*tmp709;
-    const Scalar tmp733 = Scalar(2)*pitch_dot*roll_dot*tmp727 + Scalar(2)*pitch_dot*yaw_dot*tmp728
-        - (pitch_dot*pitch_dot)*tmp729 + Scalar(2)*roll_dot*yaw_dot*tmp730
-        + ((roll_dot*roll_dot) + (yaw_dot*yaw_dot))*tmp732;
-    const Scalar tmp734 = -com_z*tmp718 + com_y*tmp719;
-    const Scalar tmp735 = com_y*tmp702 + com_z*tmp704;
-    const Scalar tmp736 = yaw_dot*tmp725 + Scalar(2)*pitch_dot*roll_dot*tmp734
-        - (pitch_dot*pitch_dot)*tmp735 + roll_dot*yaw_dot*tmp710 + pitch_dot*yaw_dot*tmp713
-        + (roll_dot*roll_dot)*tmp716;
-    const Scalar tmp737 = com_y*tmp723 - tmp3*com_z*tmp1;
-    const Scalar tmp738 = -tmp737;
-    const Scalar tmp739 = Scalar(2)*pitch_dot*roll_dot*tmp738
-        + (-(pitch_dot*pitch_dot) - (roll_dot*roll_dot))*tmp708;
-    const Scalar tmp740 = tmp35*tmp700 + tmp208*tmp696;
-    const Scalar tmp741 = tmp208*tmp706 + tmp35*tmp707;
-    const Scalar tmp742 = tmp208*tmp711 + tmp35*tmp712;
-    const Scalar tmp743 = tmp208*tmp700 + tmp35*tmp709;
-    const Scalar tmp744 = tmp208*tmp714 + tmp35*tmp715;
-    const Scalar tmp745 = pitch_dot*tmp742 + roll_dot*tmp743 + yaw_dot*tmp744;
-    const Scalar tmp746 = tmp208*tmp718 + tmp35*tmp719;
-    const Scalar tmp747 = tmp208*tmp705 + tmp35*tmp714;
-    const Scalar tmp748 = tmp18*tmp23*tmp44*tmp692 - tmp35*tmp706;
-    const Scalar tmp749 = -tmp208*tmp722 - tmp35*tmp723;
-    const Scalar tmp750 = tmp18*tmp23*tmp44*tmp5*tmp692 - tmp35*tmp711;
-    const Scalar tmp751 = -tmp746;
-    const Scalar tmp752 = tmp35*tmp703 + tmp208*tmp715;
-    const Scalar tmp753 = tmp35*tmp731 + tmp208*tmp709;
-    const Scalar tmp754 = Scalar(2)*pitch_dot*roll_dot*tmp750 + Scalar(2)*pitch_dot*yaw_dot*tmp751
-        + Scalar(2)*roll_dot*yaw_dot*tmp752 + ((roll_dot*roll_dot) + (yaw_dot*yaw_dot))*tmp753
-        - tmp35*(pitch_dot*pitch_dot)*tmp699 - tmp208*(pitch_dot*pitch_dot)*tmp695;
-    const Scalar tmp755 = tmp0*tmp18*tmp23*tmp44*tmp692 - tmp35*tmp718;
-    const Scalar tmp756 = pitch_dot*yaw_dot*tmp742 + roll_dot*yaw_dot*tmp743
-        + (roll_dot*roll_dot)*tmp744 + yaw_dot*tmp745 + Scalar(2)*pitch_dot*roll_dot*tmp755
-        - tmp208*(pitch_dot*pitch_dot)*tmp702 - tmp35*(pitch_dot*pitch_dot)*tmp704;
-    const Scalar tmp757 = tmp35*tmp722 - tmp208*tmp723;
-    const Scalar tmp758 = (-(pitch_dot*pitch_dot) - (roll_dot*roll_dot))*tmp741
-        + Scalar(2)*pitch_dot*roll_dot*tmp757;
-    const Scalar tmp759 = tmp233*tmp700 + tmp696;
-    const Scalar tmp760 = tmp706 + tmp233*tmp707;
-    const Scalar tmp761 = tmp711 + tmp233*tmp712;
-    const Scalar tmp762 = tmp700 + tmp233*tmp709;
-    const Scalar tmp763 = -tmp703 + tmp34*tmp36*tmp715;
-    const Scalar tmp764 = pitch_dot*tmp761 + roll_dot*tmp762 + yaw_dot*tmp763;
-    const Scalar tmp765 = tmp718 + tmp233*tmp719;
-    const Scalar tmp766 = tmp705 + tmp233*tmp714;
-    const Scalar tmp767 = tmp44*tmp692 - tmp233*tmp706;
-    const Scalar tmp768 = -tmp722 - tmp233*tmp723;
-    const Scalar tmp769 = tmp44*tmp5*tmp692 - tmp233*tmp711;
-    const Scalar tmp770 = -tmp765;
-    const Scalar tmp771 = tmp233*tmp703 - tmp704 + tmp694;
-    const Scalar tmp772 = tmp233*tmp731 + tmp693 - tmp695;
-    const Scalar tmp773 = Scalar(2)*pitch_dot*roll_dot*tmp769 + Scalar(2)*pitch_dot*yaw_dot*tmp770
-        + Scalar(2)*roll_dot*yaw_dot*tmp771 + ((roll_dot*roll_dot) + (yaw_dot*yaw_dot))*tmp772
-        - tmp233*(pitch_dot*pitch_dot)*tmp699 - (pitch_dot*pitch_dot)*tmp695;
-    const Scalar tmp774 = tmp0*tmp44*tmp692 - tmp233*tmp718;
-    const Scalar tmp775 = pitch_dot*yaw_dot*tmp761 + roll_dot*yaw_dot*tmp762
-        + (roll_dot*roll_dot)*tmp763 + yaw_dot*tmp764 + Scalar(2)*pitch_dot*roll_dot*tmp774
-        - (pitch_dot*pitch_dot)*tmp702 - tmp233*(pitch_dot*pitch_dot)*tmp704;
-    const Scalar tmp776 = tmp233*tmp722 - tmp723;
-    const Scalar tmp777 = -tmp760;
-    const Scalar tmp778 = Scalar(2)*pitch_dot*roll_dot*tmp776
-        + ((pitch_dot*pitch_dot) + (roll_dot*roll_dot))*tmp777;
-    const Scalar tmp779 = roll_dot*tmp709 + pitch_dot*tmp712 + yaw_dot*tmp715;
-    const Scalar tmp780 = pitch_dot*tmp719;
-    const Scalar tmp781 = ((roll_dot*roll_dot) + (yaw_dot*yaw_dot))*tmp731 - yaw_dot*tmp780
-        - (pitch_dot*pitch_dot)*tmp699 + Scalar(2)*roll_dot*yaw_dot*tmp703
-        - Scalar(2)*pitch_dot*roll_dot*tmp711 - pitch_dot*yaw_dot*tmp719;
-    const Scalar tmp782 = tmp44*tmp5*pitch_dot*yaw_dot*tmp692 + yaw_dot*tmp779
-        - (pitch_dot*pitch_dot)*tmp704 + roll_dot*yaw_dot*tmp709 + (roll_dot*roll_dot)*tmp715
-        - Scalar(2)*pitch_dot*roll_dot*tmp718;
-    const Scalar tmp783 = pitch_dot*roll_dot*tmp722 + tmp3*pitch_dot*roll_dot*tmp1
-        + (-(pitch_dot*pitch_dot) - (roll_dot*roll_dot))*tmp707;
-    const Scalar tmp784 = m*tmp716;
-    const Scalar tmp785 = m*tmp701;
-    const Scalar tmp786 = Scalar(2)*tmp209*tmp19*tmp740 + Scalar(2)*tmp216*tmp19*tmp744
-        + Scalar(2)*tmp234*tmp24*tmp759 + Scalar(2)*tmp239*tmp24*tmp763
-        + Scalar(2)*tmp31*tmp37*tmp700 + Scalar(2)*tmp50*m*tmp701 + Scalar(2)*tmp37*tmp86*tmp715
-        + Scalar(2)*tmp90*m*tmp716;
-    const Scalar tmp787 = m*tmp713;
-    const Scalar tmp788 = m*tmp720;
-    const Scalar tmp789 = m*tmp726;
-    const Scalar tmp790 = tmp218*tmp19*tmp740 + tmp216*tmp19*tmp742 + tmp213*tmp19*tmp744
-        + tmp209*tmp19*tmp746 + tmp241*tmp24*tmp759 + tmp239*tmp24*tmp761 + tmp237*tmp24*tmp763
-        + tmp234*tmp24*tmp765 + tmp37*tmp98*tmp700 + tmp101*m*tmp701 + tmp37*tmp86*tmp712
-        + tmp90*m*tmp713 + tmp37*tmp79*tmp715 + tmp82*m*tmp716 + tmp31*tmp37*tmp719
-        + tmp50*m*tmp720;
-    const Scalar tmp791 = Scalar(2)*tmp1*tmp692;
-    const Scalar tmp792 = tmp272*tmp791;
-    const Scalar tmp793 = Scalar(2)*tmp192*m*tmp726 + Scalar(2)*tmp213*tmp19*tmp742
-        + Scalar(2)*tmp218*tmp19*tmp746 + Scalar(2)*tmp19*tmp222*tmp749
-        + Scalar(2)*tmp237*tmp24*tmp761 + Scalar(2)*tmp241*tmp24*tmp765
-        + Scalar(2)*tmp245*tmp24*tmp768 + tmp37*(tmp3*tmp3)*tmp791
-        + tmp37*((tmp0*tmp0) + (tmp5*tmp5))*tmp792 + Scalar(2)*tmp82*m*tmp713
-        + Scalar(2)*tmp101*m*tmp720;
-    const Scalar tmp794 = m*tmp710;
-    const Scalar tmp795 = m*tmp717;
-    const Scalar tmp796 = m*tmp721;
-    const Scalar tmp797 = tmp219*tmp19*tmp740 + tmp216*tmp19*tmp743 + tmp214*tmp19*tmp744
-        + tmp209*tmp19*tmp747 + tmp242*tmp24*tmp759 + tmp239*tmp24*tmp762 + tmp238*tmp24*tmp763
-        + tmp234*tmp24*tmp766 + tmp37*tmp85*tmp700 + tmp95*m*tmp701 + tmp37*tmp86*tmp709
-        + tmp90*m*tmp710 + tmp31*tmp37*tmp714 + tmp37*tmp75*tmp715 + tmp76*m*tmp716
-        + tmp50*m*tmp717;
-    const Scalar tmp798 = tmp192*m*tmp721 + tmp37*tmp64*tmp723 + tmp107*m*tmp726
-        + tmp214*tmp19*tmp742 + tmp213*tmp19*tmp743 + tmp219*tmp19*tmp746 + tmp218*tmp19*tmp747
-        + tmp19*tmp222*tmp748 + tmp221*tmp19*tmp749 + tmp238*tmp24*tmp761 + tmp237*tmp24*tmp762
-        + tmp242*tmp24*tmp765 + tmp241*tmp24*tmp766 + tmp245*tmp24*tmp767 + tmp244*tmp24*tmp768
-        + tmp110*tmp37*tmp706 + tmp37*tmp79*tmp709 + tmp82*m*tmp710 + tmp37*tmp75*tmp712
-        + tmp76*m*tmp713 + tmp37*tmp98*tmp714 + tmp101*m*tmp717 + tmp37*tmp85*tmp719
-        + tmp95*m*tmp720;
-    const Scalar tmp799 = Scalar(2)*tmp107*m*tmp721 + Scalar(2)*tmp214*tmp19*tmp743
-        + Scalar(2)*tmp219*tmp19*tmp747 + Scalar(2)*tmp221*tmp19*tmp748
-        + Scalar(2)*tmp238*tmp24*tmp762 + Scalar(2)*tmp242*tmp24*tmp766
-        + Scalar(2)*tmp244*tmp24*tmp767 + Scalar(2)*tmp272*tmp37*tmp4*tmp1
-        + Scalar(2)*tmp37*tmp75*tmp709 + Scalar(2)*tmp76*m*tmp710 + Scalar(2)*tmp37*tmp85*tmp714
-        + Scalar(2)*tmp95*m*tmp717;
-    const Scalar tmp800 = m*tmp733;
-    const Scalar tmp801 = m*tmp736;
-    const Scalar tmp802 = m*tmp739;
-    const Scalar tmp803 = tmp19*tmp754;
-    const Scalar tmp804 = tmp19*tmp756;
-    const Scalar tmp805 = tmp24*tmp773;
-    const Scalar tmp806 = tmp24*tmp775;
-    const Scalar tmp807 = tmp37*tmp781;
-    const Scalar tmp808 = tmp37*tmp782;
-    const Scalar tmp809 = tmp19*tmp758;
-    const Scalar tmp810 = tmp24*tmp778;
-    const Scalar tmp811 = tmp37*tmp783;
-    const Scalar tmp812 = tmp282*tmp726;
-    const Scalar tmp813 = tmp282*tmp721;
-    const Scalar tmp814 = -tmp800;
-    const Scalar tmp815 = -tmp801;
-    const Scalar tmp816 = -tmp802;
-    const Scalar tmp817 = -tmp287*tmp740 - tmp286*tmp744 - tmp289*tmp759 - tmp288*tmp763
-        - tmp291*tmp700 - tmp284*tmp701 - tmp290*tmp715 - tmp283*tmp716 - tmp90*tmp800
-        - tmp50*tmp801 - tmp216*tmp803 - tmp209*tmp804 - tmp239*tmp805 - tmp234*tmp806
-        - tmp86*tmp807 - tmp31*tmp808;
-    const Scalar tmp818 = tmp3*tmp294*tmp692 - tmp285*tmp726 - tmp286*tmp742 - tmp287*tmp746
-        - tmp292*tmp749 - tmp288*tmp761 - tmp289*tmp765 - tmp293*tmp768 - tmp290*tmp712
-        - tmp283*tmp713 - tmp291*tmp719 - tmp284*tmp720 - tmp82*tmp800 - tmp101*tmp801
-        - tmp192*tmp802 - tmp213*tmp803 - tmp218*tmp804 - tmp237*tmp805 - tmp241*tmp806
-        - tmp79*tmp807 - tmp98*tmp808 - tmp222*tmp809 - tmp245*tmp810 + tmp1*tmp3*tmp811;
-    const Scalar tmp819 = -tmp285*tmp721 - tmp286*tmp743 - tmp287*tmp747 - tmp292*tmp748
-        - tmp288*tmp762 - tmp289*tmp766 - tmp293*tmp767 + tmp44*tmp294*tmp1 - tmp290*tmp709
-        - tmp283*tmp710 - tmp291*tmp714 - tmp284*tmp717 - tmp76*tmp800 - tmp95*tmp801
-        - tmp107*tmp802 - tmp214*tmp803 - tmp219*tmp804 - tmp238*tmp805 - tmp242*tmp806
-        - tmp75*tmp807 - tmp85*tmp808 - tmp221*tmp809 - tmp244*tmp810 + tmp4*tmp44*tmp811;
-    const Scalar tmp820 = Scalar(2)*tmp195*pitch_dot + Scalar(2)*tmp197*roll_dot
+    const Scalar tmp492 = tmp1*tmp5;
+    const Scalar tmp493 = -tmp0;
+    const Scalar tmp494 = tmp4*tmp493;
+    const Scalar tmp495 = tmp3*tmp494;
+    const Scalar tmp496 = -tmp492 + tmp495;
+    const Scalar tmp497 = tmp4*tmp5;
+    const Scalar tmp498 = tmp1*tmp493;
+    const Scalar tmp499 = tmp3*tmp498;
+    const Scalar tmp500 = tmp497 + tmp499;
+    const Scalar tmp501 = tmp44*tmp493;
+    const Scalar tmp502 = tmp48*tmp493;
+    const Scalar tmp503 = com_z*tmp500 + tmp502 + com_y*tmp496;
+    const Scalar tmp504 = tmp3*tmp497;
+    const Scalar tmp505 = tmp498 + tmp504;
+    const Scalar tmp506 = tmp3*tmp492;
+    const Scalar tmp507 = tmp506 - tmp494;
+    const Scalar tmp508 = tmp44*tmp5;
+    const Scalar tmp509 = tmp48*tmp5;
+    const Scalar tmp510 = -tmp496;
+    const Scalar tmp511 = com_y*tmp500 + com_z*tmp510;
+    const Scalar tmp512 = tmp44*tmp494;
+    const Scalar tmp513 = tmp44*tmp498;
+    const Scalar tmp514 = tmp3*tmp493;
+    const Scalar tmp515 = -tmp69*tmp493 + com_y*tmp512 + com_z*tmp513;
+    const Scalar tmp516 = -tmp505;
+    const Scalar tmp517 = -tmp507;
+    const Scalar tmp518 = com_y*tmp516 + com_z*tmp517;
+    const Scalar tmp519 = -tmp509 + tmp518;
+    const Scalar tmp520 = com_y*tmp507 + com_z*tmp516;
+    const Scalar tmp521 = tmp44*tmp497;
+    const Scalar tmp522 = tmp44*tmp492;
+    const Scalar tmp523 = tmp3*tmp5;
+    const Scalar tmp524 = -tmp69*tmp5 + com_y*tmp521 + com_z*tmp522;
+    const Scalar tmp525 = roll_dot*tmp511 + pitch_dot*tmp515 + yaw_dot*tmp519;
+    const Scalar tmp526 = -com_z*tmp512 + com_y*tmp513;
+    const Scalar tmp527 = -tmp524;
+    const Scalar tmp528 = com_z*tmp499 + tmp502 + com_y*tmp495;
+    const Scalar tmp529 = com_z*tmp505 + com_y*tmp517;
+    const Scalar tmp530 = -tmp500;
+    const Scalar tmp531 = com_z*tmp530 + com_y*tmp510;
+    const Scalar tmp532 = tmp531 - tmp502;
+    const Scalar tmp533 = Scalar(2)*pitch_dot*roll_dot*tmp526 + Scalar(2)*pitch_dot*yaw_dot*tmp527
+        - (pitch_dot*pitch_dot)*tmp528 + Scalar(2)*roll_dot*yaw_dot*tmp529
+        + (roll_dot*roll_dot)*tmp531 + (yaw_dot*yaw_dot)*tmp532;
+    const Scalar tmp534 = -com_z*tmp521 + com_y*tmp522;
+    const Scalar tmp535 = com_y*tmp504 + com_z*tmp506 + tmp509;
+    const Scalar tmp536 = yaw_dot*tmp525 + Scalar(2)*pitch_dot*roll_dot*tmp534
+        - (pitch_dot*pitch_dot)*tmp535 + roll_dot*yaw_dot*tmp511 + pitch_dot*yaw_dot*tmp515
+        + (roll_dot*roll_dot)*tmp518;
+    const Scalar tmp537 = tmp35*tmp500 + tmp501 + tmp208*tmp496;
+    const Scalar tmp538 = tmp208*tmp512 + tmp35*tmp513 - tmp514;
+    const Scalar tmp539 = tmp208*tmp500 + tmp35*tmp510;
+    const Scalar tmp540 = tmp208*tmp516 + tmp35*tmp517;
+    const Scalar tmp541 = tmp540 - tmp508;
+    const Scalar tmp542 = pitch_dot*tmp538 + roll_dot*tmp539 + yaw_dot*tmp541;
+    const Scalar tmp543 = tmp208*tmp521 + tmp35*tmp522 - tmp523;
+    const Scalar tmp544 = tmp208*tmp507 + tmp35*tmp516;
+    const Scalar tmp545 = tmp1*tmp18*tmp23*tmp44*tmp493 - tmp35*tmp512;
+    const Scalar tmp546 = -tmp543;
+    const Scalar tmp547 = tmp35*tmp505 + tmp208*tmp517;
+    const Scalar tmp548 = tmp35*tmp530 + tmp208*tmp510;
+    const Scalar tmp549 = Scalar(2)*pitch_dot*roll_dot*tmp545 + Scalar(2)*pitch_dot*yaw_dot*tmp546
+        + Scalar(2)*roll_dot*yaw_dot*tmp547 + ((roll_dot*roll_dot) + (yaw_dot*yaw_dot))*tmp548
+        - tmp35*(pitch_dot*pitch_dot)*tmp499 + (-(pitch_dot*pitch_dot) - (yaw_dot*yaw_dot))*tmp501
+        - tmp208*(pitch_dot*pitch_dot)*tmp495;
+    const Scalar tmp550 = tmp1*tmp18*tmp23*tmp44*tmp5 - tmp35*tmp521;
+    const Scalar tmp551 = pitch_dot*yaw_dot*tmp538 + roll_dot*yaw_dot*tmp539
+        + (roll_dot*roll_dot)*tmp540 + yaw_dot*tmp542 + Scalar(2)*pitch_dot*roll_dot*tmp550
+        - tmp208*(pitch_dot*pitch_dot)*tmp504 - tmp35*(pitch_dot*pitch_dot)*tmp506
+        - (pitch_dot*pitch_dot)*tmp508;
+    const Scalar tmp552 = tmp233*tmp500 + tmp496;
+    const Scalar tmp553 = tmp512 + tmp233*tmp513;
+    const Scalar tmp554 = tmp500 + tmp233*tmp510;
+    const Scalar tmp555 = -tmp505 + tmp34*tmp36*tmp517;
+    const Scalar tmp556 = pitch_dot*tmp553 + roll_dot*tmp554 + yaw_dot*tmp555;
+    const Scalar tmp557 = tmp521 + tmp233*tmp522;
+    const Scalar tmp558 = tmp507 + tmp233*tmp516;
+    const Scalar tmp559 = tmp1*tmp44*tmp493 - tmp233*tmp512;
+    const Scalar tmp560 = -tmp557;
+    const Scalar tmp561 = tmp233*tmp505 - tmp506 + tmp494;
+    const Scalar tmp562 = tmp233*tmp530 + tmp492 - tmp495;
+    const Scalar tmp563 = Scalar(2)*pitch_dot*roll_dot*tmp559 + Scalar(2)*pitch_dot*yaw_dot*tmp560
+        + Scalar(2)*roll_dot*yaw_dot*tmp561 + ((roll_dot*roll_dot) + (yaw_dot*yaw_dot))*tmp562
+        - tmp233*(pitch_dot*pitch_dot)*tmp499 - (pitch_dot*pitch_dot)*tmp495;
+    const Scalar tmp564 = tmp1*tmp44*tmp5 - tmp233*tmp521;
+    const Scalar tmp565 = pitch_dot*yaw_dot*tmp553 + roll_dot*yaw_dot*tmp554
+        + (roll_dot*roll_dot)*tmp555 + yaw_dot*tmp556 + Scalar(2)*pitch_dot*roll_dot*tmp564
+        - (pitch_dot*pitch_dot)*tmp504 - tmp233*(pitch_dot*pitch_dot)*tmp506;
+    const Scalar tmp566 = roll_dot*tmp510 + pitch_dot*tmp513 + yaw_dot*tmp517;
+    const Scalar tmp567 = pitch_dot*tmp522;
+    const Scalar tmp568 = ((roll_dot*roll_dot) + (yaw_dot*yaw_dot))*tmp530 - yaw_dot*tmp567
+        - (pitch_dot*pitch_dot)*tmp499 + Scalar(2)*roll_dot*yaw_dot*tmp505
+        - Scalar(2)*pitch_dot*roll_dot*tmp512 - pitch_dot*yaw_dot*tmp522;
+    const Scalar tmp569 = yaw_dot*tmp566 + tmp1*tmp44*pitch_dot*yaw_dot*tmp493
+        - (pitch_dot*pitch_dot)*tmp506 + roll_dot*yaw_dot*tmp510 + (roll_dot*roll_dot)*tmp517
+        - Scalar(2)*pitch_dot*roll_dot*tmp521;
+    const Scalar tmp570 = m*tmp519;
+    const Scalar tmp571 = m*tmp503;
+    const Scalar tmp572 = Scalar(2)*tmp209*tmp19*tmp537 + Scalar(2)*tmp216*tmp19*tmp541
+        + Scalar(2)*tmp234*tmp24*tmp552 + Scalar(2)*tmp239*tmp24*tmp555
+        + Scalar(2)*tmp31*tmp37*tmp500 + Scalar(2)*tmp50*m*tmp503 + Scalar(2)*tmp37*tmp86*tmp517
+        + Scalar(2)*tmp90*m*tmp519;
+    const Scalar tmp573 = m*tmp515;
+    const Scalar tmp574 = m*tmp524;
+    const Scalar tmp575 = tmp218*tmp19*tmp537 + tmp216*tmp19*tmp538 + tmp213*tmp19*tmp541
+        + tmp209*tmp19*tmp543 + tmp241*tmp24*tmp552 + tmp239*tmp24*tmp553 + tmp237*tmp24*tmp555
+        + tmp234*tmp24*tmp557 + tmp37*tmp98*tmp500 + tmp101*m*tmp503 + tmp37*tmp86*tmp513
+        + tmp90*m*tmp515 + tmp37*tmp79*tmp517 + tmp82*m*tmp519 + tmp31*tmp37*tmp522
+        + tmp50*m*tmp524;
+    const Scalar tmp576 = Scalar(2)*tmp0*tmp273*tmp37*tmp5 + Scalar(2)*tmp213*tmp19*tmp538
+        + Scalar(2)*tmp218*tmp19*tmp543 + Scalar(2)*tmp237*tmp24*tmp553
+        + Scalar(2)*tmp241*tmp24*tmp557 + Scalar(2)*tmp273*tmp37*tmp5*tmp493
+        + Scalar(2)*tmp82*m*tmp515 + Scalar(2)*tmp101*m*tmp524;
+    const Scalar tmp577 = m*tmp511;
+    const Scalar tmp578 = m*tmp520;
+    const Scalar tmp579 = tmp219*tmp19*tmp537 + tmp216*tmp19*tmp539 + tmp214*tmp19*tmp541
+        + tmp209*tmp19*tmp544 + tmp242*tmp24*tmp552 + tmp239*tmp24*tmp554 + tmp238*tmp24*tmp555
+        + tmp234*tmp24*tmp558 + tmp37*tmp85*tmp500 + tmp95*m*tmp503 + tmp37*tmp86*tmp510
+        + tmp90*m*tmp511 + tmp31*tmp37*tmp516 + tmp37*tmp75*tmp517 + tmp76*m*tmp519
+        + tmp50*m*tmp520;
+    const Scalar tmp580 = tmp214*tmp19*tmp538 + tmp213*tmp19*tmp539 + tmp219*tmp19*tmp543
+        + tmp218*tmp19*tmp544 + tmp238*tmp24*tmp553 + tmp237*tmp24*tmp554 + tmp242*tmp24*tmp557
+        + tmp241*tmp24*tmp558 + tmp37*tmp79*tmp510 + tmp82*m*tmp511 + tmp37*tmp75*tmp513
+        + tmp76*m*tmp515 + tmp37*tmp98*tmp516 + tmp101*m*tmp520 + tmp37*tmp85*tmp522
+        + tmp95*m*tmp524;
+    const Scalar tmp581 = Scalar(2)*tmp214*tmp19*tmp539 + Scalar(2)*tmp219*tmp19*tmp544
+        + Scalar(2)*tmp238*tmp24*tmp554 + Scalar(2)*tmp242*tmp24*tmp558
+        + Scalar(2)*tmp37*tmp75*tmp510 + Scalar(2)*tmp76*m*tmp511 + Scalar(2)*tmp37*tmp85*tmp516
+        + Scalar(2)*tmp95*m*tmp520;
+    const Scalar tmp582 = m*tmp533;
+    const Scalar tmp583 = m*tmp536;
+    const Scalar tmp584 = tmp19*tmp549;
+    const Scalar tmp585 = tmp19*tmp551;
+    const Scalar tmp586 = tmp24*tmp563;
+    const Scalar tmp587 = tmp24*tmp565;
+    const Scalar tmp588 = tmp37*tmp568;
+    const Scalar tmp589 = tmp37*tmp569;
+    const Scalar tmp590 = -tmp582;
+    const Scalar tmp591 = -tmp583;
+    const Scalar tmp592 = -tmp287*tmp537 - tmp286*tmp541 - tmp289*tmp552 - tmp288*tmp555
+        - tmp291*tmp500 - tmp284*tmp503 - tmp290*tmp517 - tmp283*tmp519 - tmp90*tmp582
+        - tmp50*tmp583 - tmp216*tmp584 - tmp209*tmp585 - tmp239*tmp586 - tmp234*tmp587
+        - tmp86*tmp588 - tmp31*tmp589;
+    const Scalar tmp593 = -tmp286*tmp538 - tmp287*tmp543 - tmp288*tmp553 - tmp289*tmp557
+        - tmp290*tmp513 - tmp283*tmp515 - tmp291*tmp522 - tmp284*tmp524 - tmp82*tmp582
+        - tmp101*tmp583 - tmp213*tmp584 - tmp218*tmp585 - tmp237*tmp586 - tmp241*tmp587
+        - tmp79*tmp588 - tmp98*tmp589;
+    const Scalar tmp594 = -tmp286*tmp539 - tmp287*tmp544 - tmp288*tmp554 - tmp289*tmp558
+        - tmp290*tmp510 - tmp283*tmp511 - tmp291*tmp516 - tmp284*tmp520 - tmp76*tmp582
+        - tmp95*tmp583 - tmp214*tmp584 - tmp219*tmp585 - tmp238*tmp586 - tmp242*tmp587
+        - tmp75*tmp588 - tmp85*tmp589;
+    const Scalar tmp595 = tmp6*tmp44;
+    const Scalar tmp596 = tmp29*tmp44;
+    const Scalar tmp597 = -tmp3;
+    const Scalar tmp598 = tmp5*tmp597;
+    const Scalar tmp599 = com_x*tmp597;
+    const Scalar tmp600 = tmp5*tmp599;
+    const Scalar tmp601 = com_z*tmp596 + tmp600 + com_y*tmp595;
+    const Scalar tmp602 = tmp28*tmp44;
+    const Scalar tmp603 = tmp2*tmp44;
+    const Scalar tmp604 = tmp0*tmp597;
+    const Scalar tmp605 = tmp0*tmp599;
+    const Scalar tmp606 = tmp4*tmp597;
+    const Scalar tmp607 = tmp1*tmp597;
+    const Scalar tmp608 = com_x*tmp44;
+    const Scalar tmp609 = com_y*tmp606 + com_z*tmp607;
+    const Scalar tmp610 = -tmp608 + tmp609;
+    const Scalar tmp611 = -tmp595;
+    const Scalar tmp612 = com_y*tmp596 + com_z*tmp611;
+    const Scalar tmp613 = tmp6*tmp597;
+    const Scalar tmp614 = tmp29*tmp597;
+    const Scalar tmp615 = tmp5*tmp44;
+    const Scalar tmp616 = -tmp5*tmp608 + com_y*tmp613 + com_z*tmp614;
+    const Scalar tmp617 = -tmp602;
+    const Scalar tmp618 = -tmp603;
+    const Scalar tmp619 = com_y*tmp617 + com_z*tmp618;
+    const Scalar tmp620 = -tmp605 + tmp619;
+    const Scalar tmp621 = com_y*tmp603 + com_z*tmp617;
+    const Scalar tmp622 = tmp28*tmp597;
+    const Scalar tmp623 = tmp2*tmp597;
+    const Scalar tmp624 = tmp0*tmp44;
+    const Scalar tmp625 = -tmp0*tmp608 + com_y*tmp622 + com_z*tmp623;
+    const Scalar tmp626 = -com_z*tmp606 + com_y*tmp607;
+    const Scalar tmp627 = tmp4*tmp44;
+    const Scalar tmp628 = tmp1*tmp44;
+    const Scalar tmp629 = com_y*tmp627 + com_z*tmp628 + tmp599;
+    const Scalar tmp630 = roll_dot*tmp612 + pitch_dot*tmp616 + yaw_dot*tmp620;
+    const Scalar tmp631 = -tmp629;
+    const Scalar tmp632 = -com_z*tmp613 + com_y*tmp614;
+    const Scalar tmp633 = -tmp625;
+    const Scalar tmp634 = com_z*tmp596 + tmp600 + com_y*tmp595;
+    const Scalar tmp635 = com_z*tmp602 + com_y*tmp618;
+    const Scalar tmp636 = -tmp596;
+    const Scalar tmp637 = com_z*tmp636 + com_y*tmp611;
+    const Scalar tmp638 = tmp637 - tmp600;
+    const Scalar tmp639 = Scalar(2)*pitch_dot*roll_dot*tmp632 + Scalar(2)*pitch_dot*yaw_dot*tmp633
+        - (pitch_dot*pitch_dot)*tmp634 + Scalar(2)*roll_dot*yaw_dot*tmp635
+        + (roll_dot*roll_dot)*tmp637 + (yaw_dot*yaw_dot)*tmp638;
+    const Scalar tmp640 = -com_z*tmp622 + com_y*tmp623;
+    const Scalar tmp641 = com_y*tmp602 + com_z*tmp603 + tmp605;
+    const Scalar tmp642 = yaw_dot*tmp630 + Scalar(2)*pitch_dot*roll_dot*tmp640
+        - (pitch_dot*pitch_dot)*tmp641 + roll_dot*yaw_dot*tmp612 + pitch_dot*yaw_dot*tmp616
+        + (roll_dot*roll_dot)*tmp619;
+    const Scalar tmp643 = com_y*tmp628 - tmp4*com_z*tmp44;
+    const Scalar tmp644 = -tmp643;
+    const Scalar tmp645 = Scalar(2)*pitch_dot*roll_dot*tmp644 - (roll_dot*roll_dot)*tmp609
+        - (pitch_dot*pitch_dot)*tmp610;
+    const Scalar tmp646 = tmp35*tmp596 + tmp598 + tmp208*tmp595;
+    const Scalar tmp647 = tmp208*tmp606 + tmp35*tmp607;
+    const Scalar tmp648 = tmp647 - tmp44;
+    const Scalar tmp649 = tmp208*tmp613 + tmp35*tmp614 - tmp615;
+    const Scalar tmp650 = tmp208*tmp596 + tmp35*tmp611;
+    const Scalar tmp651 = tmp208*tmp617 + tmp35*tmp618;
+    const Scalar tmp652 = tmp651 - tmp604;
+    const Scalar tmp653 = pitch_dot*tmp649 + roll_dot*tmp650 + yaw_dot*tmp652;
+    const Scalar tmp654 = tmp208*tmp622 + tmp35*tmp623 - tmp624;
+    const Scalar tmp655 = tmp208*tmp603 + tmp35*tmp617;
+    const Scalar tmp656 = tmp1*tmp18*tmp23*tmp597 - tmp35*tmp606;
+    const Scalar tmp657 = -tmp208*tmp627 - tmp35*tmp628 - tmp597;
+    const Scalar tmp658 = tmp1*tmp18*tmp23*tmp5*tmp597 - tmp35*tmp613;
+    const Scalar tmp659 = -tmp654;
+    const Scalar tmp660 = tmp35*tmp602 + tmp208*tmp618;
+    const Scalar tmp661 = tmp35*tmp636 + tmp208*tmp611;
+    const Scalar tmp662 = Scalar(2)*pitch_dot*roll_dot*tmp658 + Scalar(2)*pitch_dot*yaw_dot*tmp659
+        + Scalar(2)*roll_dot*yaw_dot*tmp660 + ((roll_dot*roll_dot) + (yaw_dot*yaw_dot))*tmp661
+        - tmp35*(pitch_dot*pitch_dot)*tmp596 + (-(pitch_dot*pitch_dot) - (yaw_dot*yaw_dot))*tmp598
+        - tmp208*(pitch_dot*pitch_dot)*tmp595;
+    const Scalar tmp663 = tmp0*tmp1*tmp18*tmp23*tmp597 - tmp35*tmp622;
+    const Scalar tmp664 = pitch_dot*yaw_dot*tmp649 + roll_dot*yaw_dot*tmp650
+        + (roll_dot*roll_dot)*tmp651 + yaw_dot*tmp653 + Scalar(2)*pitch_dot*roll_dot*tmp663
+        - tmp208*(pitch_dot*pitch_dot)*tmp602 - tmp35*(pitch_dot*pitch_dot)*tmp603
+        - (pitch_dot*pitch_dot)*tmp604;
+    const Scalar tmp665 = tmp35*tmp627 - tmp208*tmp628;
+    const Scalar tmp666 = -(roll_dot*roll_dot)*tmp647 - (pitch_dot*pitch_dot)*tmp648
+        + Scalar(2)*pitch_dot*roll_dot*tmp665;
+    const Scalar tmp667 = tmp233*tmp596 + tmp595;
+    const Scalar tmp668 = tmp606 + tmp233*tmp607;
+    const Scalar tmp669 = tmp613 + tmp233*tmp614;
+    const Scalar tmp670 = tmp596 + tmp233*tmp611;
+    const Scalar tmp671 = -tmp602 + tmp34*tmp36*tmp618;
+    const Scalar tmp672 = pitch_dot*tmp669 + roll_dot*tmp670 + yaw_dot*tmp671;
+    const Scalar tmp673 = tmp622 + tmp233*tmp623;
+    const Scalar tmp674 = tmp603 + tmp233*tmp617;
+    const Scalar tmp675 = tmp1*tmp597 - tmp233*tmp606;
+    const Scalar tmp676 = -tmp627 - tmp233*tmp628;
+    const Scalar tmp677 = tmp1*tmp5*tmp597 - tmp233*tmp613;
+    const Scalar tmp678 = -tmp673;
+    const Scalar tmp679 = tmp233*tmp602 - tmp603;
+    const Scalar tmp680 = tmp233*tmp636 - tmp595;
+    const Scalar tmp681 = Scalar(2)*pitch_dot*roll_dot*tmp677 + Scalar(2)*pitch_dot*yaw_dot*tmp678
+        + Scalar(2)*roll_dot*yaw_dot*tmp679 + ((roll_dot*roll_dot) + (yaw_dot*yaw_dot))*tmp680
+        - tmp233*(pitch_dot*pitch_dot)*tmp596 - (pitch_dot*pitch_dot)*tmp595;
+    const Scalar tmp682 = tmp0*tmp1*tmp597 - tmp233*tmp622;
+    const Scalar tmp683 = pitch_dot*yaw_dot*tmp669 + roll_dot*yaw_dot*tmp670
+        + (roll_dot*roll_dot)*tmp671 + yaw_dot*tmp672 + Scalar(2)*pitch_dot*roll_dot*tmp682
+        - (pitch_dot*pitch_dot)*tmp602 - tmp233*(pitch_dot*pitch_dot)*tmp603;
+    const Scalar tmp684 = tmp233*tmp627 - tmp628;
+    const Scalar tmp685 = -tmp668;
+    const Scalar tmp686 = Scalar(2)*pitch_dot*roll_dot*tmp684
+        + ((pitch_dot*pitch_dot) + (roll_dot*roll_dot))*tmp685;
+    const Scalar tmp687 = roll_dot*tmp611 + pitch_dot*tmp614 + yaw_dot*tmp618;
+    const Scalar tmp688 = pitch_dot*tmp623;
+    const Scalar tmp689 = ((roll_dot*roll_dot) + (yaw_dot*yaw_dot))*tmp636 - yaw_dot*tmp688
+        - (pitch_dot*pitch_dot)*tmp596 + Scalar(2)*roll_dot*yaw_dot*tmp602
+        - Scalar(2)*pitch_dot*roll_dot*tmp613 - pitch_dot*yaw_dot*tmp623;
+    const Scalar tmp690 = yaw_dot*tmp687 + tmp1*tmp5*pitch_dot*yaw_dot*tmp597
+        - (pitch_dot*pitch_dot)*tmp603 + roll_dot*yaw_dot*tmp611 + (roll_dot*roll_dot)*tmp618
+        - Scalar(2)*pitch_dot*roll_dot*tmp622;
+    const Scalar tmp691 = pitch_dot*roll_dot*tmp627 + tmp4*pitch_dot*roll_dot*tmp44
+        + (-(pitch_dot*pitch_dot) - (roll_dot*roll_dot))*tmp607;
+    const Scalar tmp692 = m*tmp620;
+    const Scalar tmp693 = m*tmp601;
+    const Scalar tmp694 = Scalar(2)*tmp209*tmp19*tmp646 + Scalar(2)*tmp216*tmp19*tmp652
+        + Scalar(2)*tmp234*tmp24*tmp667 + Scalar(2)*tmp239*tmp24*tmp671
+        + Scalar(2)*tmp31*tmp37*tmp596 + Scalar(2)*tmp50*m*tmp601 + Scalar(2)*tmp37*tmp86*tmp618
+        + Scalar(2)*tmp90*m*tmp620;
+    const Scalar tmp695 = m*tmp616;
+    const Scalar tmp696 = m*tmp625;
+    const Scalar tmp697 = m*tmp631;
+    const Scalar tmp698 = tmp218*tmp19*tmp646 + tmp216*tmp19*tmp649 + tmp213*tmp19*tmp652
+        + tmp209*tmp19*tmp654 + tmp241*tmp24*tmp667 + tmp239*tmp24*tmp669 + tmp237*tmp24*tmp671
+        + tmp234*tmp24*tmp673 + tmp37*tmp98*tmp596 + tmp101*m*tmp601 + tmp37*tmp86*tmp614
+        + tmp90*m*tmp616 + tmp37*tmp79*tmp618 + tmp82*m*tmp620 + tmp31*tmp37*tmp623
+        + tmp50*m*tmp625;
+    const Scalar tmp699 = Scalar(2)*tmp44*tmp597;
+    const Scalar tmp700 = tmp271*tmp699;
+    const Scalar tmp701 = Scalar(2)*tmp192*m*tmp631 + Scalar(2)*tmp213*tmp19*tmp649
+        + Scalar(2)*tmp218*tmp19*tmp654 + Scalar(2)*tmp19*tmp222*tmp657
+        + Scalar(2)*tmp237*tmp24*tmp669 + Scalar(2)*tmp241*tmp24*tmp673
+        + Scalar(2)*tmp245*tmp24*tmp676 + tmp37*((tmp0*tmp0) + (tmp5*tmp5))*tmp700
+        + Scalar(2)*tmp271*tmp3*tmp37*tmp44 + Scalar(2)*tmp82*m*tmp616 + Scalar(2)*tmp101*m*tmp625;
+    const Scalar tmp702 = m*tmp612;
+    const Scalar tmp703 = m*tmp621;
+    const Scalar tmp704 = m*tmp626;
+    const Scalar tmp705 = tmp219*tmp19*tmp646 + tmp216*tmp19*tmp650 + tmp214*tmp19*tmp652
+        + tmp209*tmp19*tmp655 + tmp242*tmp24*tmp667 + tmp239*tmp24*tmp670 + tmp238*tmp24*tmp671
+        + tmp234*tmp24*tmp674 + tmp37*tmp85*tmp596 + tmp95*m*tmp601 + tmp37*tmp86*tmp611
+        + tmp90*m*tmp612 + tmp31*tmp37*tmp617 + tmp37*tmp75*tmp618 + tmp76*m*tmp620
+        + tmp50*m*tmp621;
+    const Scalar tmp706 = tmp192*m*tmp626 + tmp37*tmp64*tmp628 + tmp107*m*tmp631
+        + tmp214*tmp19*tmp649 + tmp213*tmp19*tmp650 + tmp219*tmp19*tmp654 + tmp218*tmp19*tmp655
+        + tmp19*tmp222*tmp656 + tmp221*tmp19*tmp657 + tmp238*tmp24*tmp669 + tmp237*tmp24*tmp670
+        + tmp242*tmp24*tmp673 + tmp241*tmp24*tmp674 + tmp245*tmp24*tmp675 + tmp244*tmp24*tmp676
+        + tmp110*tmp37*tmp606 + tmp37*tmp79*tmp611 + tmp82*m*tmp612 + tmp37*tmp75*tmp614
+        + tmp76*m*tmp616 + tmp37*tmp98*tmp617 + tmp101*m*tmp621 + tmp37*tmp85*tmp623
+        + tmp95*m*tmp625;
+    const Scalar tmp707 = Scalar(2)*tmp107*m*tmp626 + Scalar(2)*tmp214*tmp19*tmp650
+        + Scalar(2)*tmp219*tmp19*tmp655 + Scalar(2)*tmp221*tmp19*tmp656
+        + Scalar(2)*tmp238*tmp24*tmp670 + Scalar(2)*tmp242*tmp24*tmp674
+        + Scalar(2)*tmp244*tmp24*tmp675 + tmp37*(tmp4*tmp4)*tmp699 + Scalar(2)*tmp37*tmp75*tmp611
+        + Scalar(2)*tmp76*m*tmp612 + Scalar(2)*tmp37*tmp85*tmp617 + Scalar(2)*tmp95*m*tmp621;
+    const Scalar tmp708 = m*tmp639;
+    const Scalar tmp709 = m*tmp642;
+    const Scalar tmp710 = m*tmp645;
+    const Scalar tmp711 = tmp19*tmp662;
+    const Scalar tmp712 = tmp19*tmp664;
+    const Scalar tmp713 = tmp24*tmp681;
+    const Scalar tmp714 = tmp24*tmp683;
+    const Scalar tmp715 = tmp37*tmp689;
+    const Scalar tmp716 = tmp37*tmp690;
+    const Scalar tmp717 = tmp19*tmp666;
+    const Scalar tmp718 = tmp24*tmp686;
+    const Scalar tmp719 = tmp37*tmp691;
+    const Scalar tmp720 = tmp282*tmp631;
+    const Scalar tmp721 = tmp282*tmp626;
+    const Scalar tmp722 = -tmp708;
+    const Scalar tmp723 = -tmp709;
+    const Scalar tmp724 = -tmp710;
+    const Scalar tmp725 = -tmp287*tmp646 - tmp286*tmp652 - tmp289*tmp667 - tmp288*tmp671
+        - tmp291*tmp596 - tmp284*tmp601 - tmp290*tmp618 - tmp283*tmp620 - tmp90*tmp708
+        - tmp50*tmp709 - tmp216*tmp711 - tmp209*tmp712 - tmp239*tmp713 - tmp234*tmp714
+        - tmp86*tmp715 - tmp31*tmp716;
+    const Scalar tmp726 = -tmp285*tmp631 - tmp286*tmp649 - tmp287*tmp654 - tmp292*tmp657
+        - tmp288*tmp669 - tmp289*tmp673 - tmp293*tmp676 + tmp1*tmp294*tmp44 - tmp290*tmp614
+        - tmp283*tmp616 - tmp291*tmp623 - tmp284*tmp625 - tmp82*tmp708 - tmp101*tmp709
+        - tmp192*tmp710 - tmp213*tmp711 - tmp218*tmp712 - tmp237*tmp713 - tmp241*tmp714
+        - tmp79*tmp715 - tmp98*tmp716 - tmp222*tmp717 - tmp245*tmp718 + tmp1*tmp3*tmp719;
+    const Scalar tmp727 = -tmp285*tmp626 - tmp286*tmp650 - tmp287*tmp655 - tmp292*tmp656
+        - tmp288*tmp670 - tmp289*tmp674 - tmp293*tmp675 + tmp4*tmp294*tmp597 - tmp290*tmp611
+        - tmp283*tmp612 - tmp291*tmp617 - tmp284*tmp621 - tmp76*tmp708 - tmp95*tmp709
+        - tmp107*tmp710 - tmp214*tmp711 - tmp219*tmp712 - tmp238*tmp713 - tmp242*tmp714
+        - tmp75*tmp715 - tmp85*tmp716 - tmp221*tmp717 - tmp244*tmp718 + tmp4*tmp44*tmp719;
+    const Scalar tmp728 = -tmp4;
+    const Scalar tmp729 = tmp0*tmp728;
+    const Scalar tmp730 = tmp5*tmp1;
+    const Scalar tmp731 = tmp3*tmp730;
+    const Scalar tmp732 = -tmp729 + tmp731;
+    const Scalar tmp733 = tmp0*tmp1;
+    const Scalar tmp734 = tmp5*tmp728;
+    const Scalar tmp735 = tmp3*tmp734;
+    const Scalar tmp736 = tmp733 + tmp735;
+    const Scalar tmp737 = com_z*tmp736 + com_y*tmp732;
+    const Scalar tmp738 = tmp3*tmp733;
+    const Scalar tmp739 = tmp734 + tmp738;
+    const Scalar tmp740 = tmp3*tmp729;
+    const Scalar tmp741 = tmp740 - tmp730;
+    const Scalar tmp742 = tmp44*tmp1;
+    const Scalar tmp743 = tmp44*tmp728;
+    const Scalar tmp744 = com_y*tmp742 + com_z*tmp743;
+    const Scalar tmp745 = -tmp732;
+    const Scalar tmp746 = com_y*tmp736 + com_z*tmp745;
+    const Scalar tmp747 = tmp44*tmp730;
+    const Scalar tmp748 = tmp44*tmp734;
+    const Scalar tmp749 = com_y*tmp747 + com_z*tmp748;
+    const Scalar tmp750 = -tmp739;
+    const Scalar tmp751 = -tmp741;
+    const Scalar tmp752 = com_y*tmp750 + com_z*tmp751;
+    const Scalar tmp753 = com_y*tmp741 + com_z*tmp750;
+    const Scalar tmp754 = tmp44*tmp733;
+    const Scalar tmp755 = tmp44*tmp729;
+    const Scalar tmp756 = com_y*tmp754 + com_z*tmp755;
+    const Scalar tmp757 = -com_z*tmp742 + com_y*tmp743;
+    const Scalar tmp758 = tmp3*tmp1;
+    const Scalar tmp759 = tmp3*tmp728;
+    const Scalar tmp760 = com_y*tmp758 + com_z*tmp759;
+    const Scalar tmp761 = roll_dot*tmp746 + pitch_dot*tmp749 + yaw_dot*tmp752;
+    const Scalar tmp762 = -tmp760;
+    const Scalar tmp763 = -com_z*tmp747 + com_y*tmp748;
+    const Scalar tmp764 = -tmp756;
+    const Scalar tmp765 = com_z*tmp735 + com_y*tmp731;
+    const Scalar tmp766 = com_z*tmp739 + com_y*tmp751;
+    const Scalar tmp767 = -tmp736;
+    const Scalar tmp768 = com_z*tmp767 + com_y*tmp745;
+    const Scalar tmp769 = Scalar(2)*pitch_dot*roll_dot*tmp763 + Scalar(2)*pitch_dot*yaw_dot*tmp764
+        - (pitch_dot*pitch_dot)*tmp765 + Scalar(2)*roll_dot*yaw_dot*tmp766
+        + ((roll_dot*roll_dot) + (yaw_dot*yaw_dot))*tmp768;
+    const Scalar tmp770 = -com_z*tmp754 + com_y*tmp755;
+    const Scalar tmp771 = com_y*tmp738 + com_z*tmp740;
+    const Scalar tmp772 = yaw_dot*tmp761 + Scalar(2)*pitch_dot*roll_dot*tmp770
+        - (pitch_dot*pitch_dot)*tmp771 + roll_dot*yaw_dot*tmp746 + pitch_dot*yaw_dot*tmp749
+        + (roll_dot*roll_dot)*tmp752;
+    const Scalar tmp773 = com_y*tmp759 - tmp3*com_z*tmp1;
+    const Scalar tmp774 = -tmp773;
+    const Scalar tmp775 = Scalar(2)*pitch_dot*roll_dot*tmp774
+        + (-(pitch_dot*pitch_dot) - (roll_dot*roll_dot))*tmp744;
+    const Scalar tmp776 = tmp35*tmp736 + tmp208*tmp732;
+    const Scalar tmp777 = tmp208*tmp742 + tmp35*tmp743;
+    const Scalar tmp778 = tmp208*tmp747 + tmp35*tmp748;
+    const Scalar tmp779 = tmp208*tmp736 + tmp35*tmp745;
+    const Scalar tmp780 = tmp208*tmp750 + tmp35*tmp751;
+    const Scalar tmp781 = pitch_dot*tmp778 + roll_dot*tmp779 + yaw_dot*tmp780;
+    const Scalar tmp782 = tmp208*tmp754 + tmp35*tmp755;
+    const Scalar tmp783 = tmp208*tmp741 + tmp35*tmp750;
+    const Scalar tmp784 = tmp18*tmp23*tmp44*tmp728 - tmp35*tmp742;
+    const Scalar tmp785 = -tmp208*tmp758 - tmp35*tmp759;
+    const Scalar tmp786 = tmp18*tmp23*tmp44*tmp5*tmp728 - tmp35*tmp747;
+    const Scalar tmp787 = -tmp782;
+    const Scalar tmp788 = tmp35*tmp739 + tmp208*tmp751;
+    const Scalar tmp789 = tmp35*tmp767 + tmp208*tmp745;
+    const Scalar tmp790 = Scalar(2)*pitch_dot*roll_dot*tmp786 + Scalar(2)*pitch_dot*yaw_dot*tmp787
+        + Scalar(2)*roll_dot*yaw_dot*tmp788 + ((roll_dot*roll_dot) + (yaw_dot*yaw_dot))*tmp789
+        - tmp35*(pitch_dot*pitch_dot)*tmp735 - tmp208*(pitch_dot*pitch_dot)*tmp731;
+    const Scalar tmp791 = tmp0*tmp18*tmp23*tmp44*tmp728 - tmp35*tmp754;
+    const Scalar tmp792 = pitch_dot*yaw_dot*tmp778 + roll_dot*yaw_dot*tmp779
+        + (roll_dot*roll_dot)*tmp780 + yaw_dot*tmp781 + Scalar(2)*pitch_dot*roll_dot*tmp791
+        - tmp208*(pitch_dot*pitch_dot)*tmp738 - tmp35*(pitch_dot*pitch_dot)*tmp740;
+    const Scalar tmp793 = tmp35*tmp758 - tmp208*tmp759;
+    const Scalar tmp794 = (-(pitch_dot*pitch_dot) - (roll_dot*roll_dot))*tmp777
+        + Scalar(2)*pitch_dot*roll_dot*tmp793;
+    const Scalar tmp795 = tmp233*tmp736 + tmp732;
+    const Scalar tmp796 = tmp742 + tmp233*tmp743;
+    const Scalar tmp797 = tmp747 + tmp233*tmp748;
+    const Scalar tmp798 = tmp736 + tmp233*tmp745;
+    const Scalar tmp799 = -tmp739 + tmp34*tmp36*tmp751;
+    const Scalar tmp800 = pitch_dot*tmp797 + roll_dot*tmp798 + yaw_dot*tmp799;
+    const Scalar tmp801 = tmp754 + tmp233*tmp755;
+    const Scalar tmp802 = tmp741 + tmp233*tmp750;
+    const Scalar tmp803 = tmp44*tmp728 - tmp233*tmp742;
+    const Scalar tmp804 = -tmp758 - tmp233*tmp759;
+    const Scalar tmp805 = tmp44*tmp5*tmp728 - tmp233*tmp747;
+    const Scalar tmp806 = -tmp801;
+    const Scalar tmp807 = tmp233*tmp739 - tmp740 + tmp730;
+    const Scalar tmp808 = tmp233*tmp767 + tmp729 - tmp731;
+    const Scalar tmp809 = Scalar(2)*pitch_dot*roll_dot*tmp805 + Scalar(2)*pitch_dot*yaw_dot*tmp806
+        + Scalar(2)*roll_dot*yaw_dot*tmp807 + ((roll_dot*roll_dot) + (yaw_dot*yaw_dot))*tmp808
+        - tmp233*(pitch_dot*pitch_dot)*tmp735 - (pitch_dot*pitch_dot)*tmp731;
+    const Scalar tmp810 = tmp0*tmp44*tmp728 - tmp233*tmp754;
+    const Scalar tmp811 = pitch_dot*yaw_dot*tmp797 + roll_dot*yaw_dot*tmp798
+        + (roll_dot*roll_dot)*tmp799 + yaw_dot*tmp800 + Scalar(2)*pitch_dot*roll_dot*tmp810
+        - (pitch_dot*pitch_dot)*tmp738 - tmp233*(pitch_dot*pitch_dot)*tmp740;
+    const Scalar tmp812 = tmp233*tmp758 - tmp759;
+    const Scalar tmp813 = -tmp796;
+    const Scalar tmp814 = Scalar(2)*pitch_dot*roll_dot*tmp812
+        + ((pitch_dot*pitch_dot) + (roll_dot*roll_dot))*tmp813;
+    const Scalar tmp815 = roll_dot*tmp745 + pitch_dot*tmp748 + yaw_dot*tmp751;
+    const Scalar tmp816 = pitch_dot*tmp755;
+    const Scalar tmp817 = ((roll_dot*roll_dot) + (yaw_dot*yaw_dot))*tmp767 - yaw_dot*tmp816
+        - (pitch_dot*pitch_dot)*tmp735 + Scalar(2)*roll_dot*yaw_dot*tmp739
+        - Scalar(2)*pitch_dot*roll_dot*tmp747 - pitch_dot*yaw_dot*tmp755;
+    const Scalar tmp818 = tmp44*tmp5*pitch_dot*yaw_dot*tmp728 + yaw_dot*tmp815
+        - (pitch_dot*pitch_dot)*tmp740 + roll_dot*yaw_dot*tmp745 + (roll_dot*roll_dot)*tmp751
+        - Scalar(2)*pitch_dot*roll_dot*tmp754;
+    const Scalar tmp819 = pitch_dot*roll_dot*tmp758 + tmp3*pitch_dot*roll_dot*tmp1
+        + (-(pitch_dot*pitch_dot) - (roll_dot*roll_dot))*tmp743;
+    const Scalar tmp820 = m*tmp752;
+    const Scalar tmp821 = m*tmp737;
+    const Scalar tmp822 = Scalar(2)*tmp209*tmp19*tmp776 + Scalar(2)*tmp216*tmp19*tmp780
+        + Scalar(2)*tmp234*tmp24*tmp795 + Scalar(2)*tmp239*tmp24*tmp799
+        + Scalar(2)*tmp31*tmp37*tmp736 + Scalar(2)*tmp50*m*tmp737 + Scalar(2)*tmp37*tmp86*tmp751
+        + Scalar(2)*tmp90*m*tmp752;
+    const Scalar tmp823 = m*tmp749;
+    const Scalar tmp824 = m*tmp756;
+    const Scalar tmp825 = m*tmp762;
+    const Scalar tmp826 = tmp218*tmp19*tmp776 + tmp216*tmp19*tmp778 + tmp213*tmp19*tmp780
+        + tmp209*tmp19*tmp782 + tmp241*tmp24*tmp795 + tmp239*tmp24*tmp797 + tmp237*tmp24*tmp799
+        + tmp234*tmp24*tmp801 + tmp37*tmp98*tmp736 + tmp101*m*tmp737 + tmp37*tmp86*tmp748
+        + tmp90*m*tmp749 + tmp37*tmp79*tmp751 + tmp82*m*tmp752 + tmp31*tmp37*tmp755
+        + tmp50*m*tmp756;
+    const Scalar tmp827 = Scalar(2)*tmp1*tmp728;
+    const Scalar tmp828 = tmp272*tmp827;
+    const Scalar tmp829 = Scalar(2)*tmp192*m*tmp762 + Scalar(2)*tmp213*tmp19*tmp778
+        + Scalar(2)*tmp218*tmp19*tmp782 + Scalar(2)*tmp19*tmp222*tmp785
+        + Scalar(2)*tmp237*tmp24*tmp797 + Scalar(2)*tmp241*tmp24*tmp801
+        + Scalar(2)*tmp245*tmp24*tmp804 + tmp37*(tmp3*tmp3)*tmp827
+        + tmp37*((tmp0*tmp0) + (tmp5*tmp5))*tmp828 + Scalar(2)*tmp82*m*tmp749
+        + Scalar(2)*tmp101*m*tmp756;
+    const Scalar tmp830 = m*tmp746;
+    const Scalar tmp831 = m*tmp753;
+    const Scalar tmp832 = m*tmp757;
+    const Scalar tmp833 = tmp219*tmp19*tmp776 + tmp216*tmp19*tmp779 + tmp214*tmp19*tmp780
+        + tmp209*tmp19*tmp783 + tmp242*tmp24*tmp795 + tmp239*tmp24*tmp798 + tmp238*tmp24*tmp799
+        + tmp234*tmp24*tmp802 + tmp37*tmp85*tmp736 + tmp95*m*tmp737 + tmp37*tmp86*tmp745
+        + tmp90*m*tmp746 + tmp31*tmp37*tmp750 + tmp37*tmp75*tmp751 + tmp76*m*tmp752
+        + tmp50*m*tmp753;
+    const Scalar tmp834 = tmp192*m*tmp757 + tmp37*tmp64*tmp759 + tmp107*m*tmp762
+        + tmp214*tmp19*tmp778 + tmp213*tmp19*tmp779 + tmp219*tmp19*tmp782 + tmp218*tmp19*tmp783
+        + tmp19*tmp222*tmp784 + tmp221*tmp19*tmp785 + tmp238*tmp24*tmp797 + tmp237*tmp24*tmp798
+        + tmp242*tmp24*tmp801 + tmp241*tmp24*tmp802 + tmp245*tmp24*tmp803 + tmp244*tmp24*tmp804
+        + tmp110*tmp37*tmp742 + tmp37*tmp79*tmp745 + tmp82*m*tmp746 + tmp37*tmp75*tmp748
+        + tmp76*m*tmp749 + tmp37*tmp98*tmp750 + tmp101*m*tmp753 + tmp37*tmp85*tmp755
+        + tmp95*m*tmp756;
+    const Scalar tmp835 = Scalar(2)*tmp107*m*tmp757 + Scalar(2)*tmp214*tmp19*tmp779
+        + Scalar(2)*tmp219*tmp19*tmp783 + Scalar(2)*tmp221*tmp19*tmp784
+        + Scalar(2)*tmp238*tmp24*tmp798 + Scalar(2)*tmp242*tmp24*tmp802
+        + Scalar(2)*tmp244*tmp24*tmp803 + Scalar(2)*tmp272*tmp37*tmp4*tmp1
+        + Scalar(2)*tmp37*tmp75*tmp745 + Scalar(2)*tmp76*m*tmp746 + Scalar(2)*tmp37*tmp85*tmp750
+        + Scalar(2)*tmp95*m*tmp753;
+    const Scalar tmp836 = m*tmp769;
+    const Scalar tmp837 = m*tmp772;
+    const Scalar tmp838 = m*tmp775;
+    const Scalar tmp839 = tmp19*tmp790;
+    const Scalar tmp840 = tmp19*tmp792;
+    const Scalar tmp841 = tmp24*tmp809;
+    const Scalar tmp842 = tmp24*tmp811;
+    const Scalar tmp843 = tmp37*tmp817;
+    const Scalar tmp844 = tmp37*tmp818;
+    const Scalar tmp845 = tmp19*tmp794;
+    const Scalar tmp846 = tmp24*tmp814;
+    const Scalar tmp847 = tmp37*tmp819;
+    const Scalar tmp848 = tmp282*tmp762;
+    const Scalar tmp849 = tmp282*tmp757;
+    const Scalar tmp850 = -tmp836;
+    const Scalar tmp851 = -tmp837;
+    const Scalar tmp852 = -tmp838;
+    const Scalar tmp853 = -tmp287*tmp776 - tmp286*tmp780 - tmp289*tmp795 - tmp288*tmp799
+        - tmp291*tmp736 - tmp284*tmp737 - tmp290*tmp751 - tmp283*tmp752 - tmp90*tmp836
+        - tmp50*tmp837 - tmp216*tmp839 - tmp209*tmp840 - tmp239*tmp841 - tmp234*tmp842
+        - tmp86*tmp843 - tmp31*tmp844;
+    const Scalar tmp854 = tmp3*tmp294*tmp728 - tmp285*tmp762 - tmp286*tmp778 - tmp287*tmp782
+        - tmp292*tmp785 - tmp288*tmp797 - tmp289*tmp801 - tmp293*tmp804 - tmp290*tmp748
+        - tmp283*tmp749 - tmp291*tmp755 - tmp284*tmp756 - tmp82*tmp836 - tmp101*tmp837
+        - tmp192*tmp838 - tmp213*tmp839 - tmp218*tmp840 - tmp237*tmp841 - tmp241*tmp842
+        - tmp79*tmp843 - tmp98*tmp844 - tmp222*tmp845 - tmp245*tmp846 + tmp1*tmp3*tmp847;
+    const Scalar tmp855 = -tmp285*tmp757 - tmp286*tmp779 - tmp287*tmp783 - tmp292*tmp784
+        - tmp288*tmp798 - tmp289*tmp802 - tmp293*tmp803 + tmp44*tmp294*tmp1 - tmp290*tmp745
+        - tmp283*tmp746 - tmp291*tmp750 - tmp284*tmp753 - tmp76*tmp836 - tmp95*tmp837
+        - tmp107*tmp838 - tmp214*tmp839 - tmp219*tmp840 - tmp238*tmp841 - tmp242*tmp842
+        - tmp75*tmp843 - tmp85*tmp844 - tmp221*tmp845 - tmp244*tmp846 + tmp4*tmp44*tmp847;
+    const Scalar tmp856 = Scalar(2)*tmp195*pitch_dot + Scalar(2)*tmp197*roll_dot
         + Scalar(2)*tmp200*yaw_dot;
-    const Scalar tmp821 = tmp189 + tmp76*roll_dot + tmp82*pitch_dot + yaw_dot*tmp90;
-    const Scalar tmp822 = Scalar(2)*tmp225*pitch_dot + Scalar(2)*tmp226*roll_dot
+    const Scalar tmp857 = tmp189 + tmp76*roll_dot + tmp82*pitch_dot + yaw_dot*tmp90;
+    const Scalar tmp858 = Scalar(2)*tmp225*pitch_dot + Scalar(2)*tmp226*roll_dot
         + Scalar(2)*yaw_dot*(tmp227 - tmp45);
-    const Scalar tmp823 = tmp217 + tmp213*pitch_dot + tmp214*roll_dot + yaw_dot*tmp216;
-    const Scalar tmp824 = Scalar(2)*tmp248*pitch_dot + Scalar(2)*tmp249*roll_dot
+    const Scalar tmp859 = tmp217 + tmp213*pitch_dot + tmp214*roll_dot + yaw_dot*tmp216;
+    const Scalar tmp860 = Scalar(2)*tmp248*pitch_dot + Scalar(2)*tmp249*roll_dot
         + Scalar(2)*tmp250*yaw_dot;
-    const Scalar tmp825 = tmp240 + tmp237*pitch_dot + tmp238*roll_dot + yaw_dot*tmp239;
-    const Scalar tmp826 = -tmp258 - tmp98*pitch_dot + Scalar(2)*tmp198*yaw_dot
+    const Scalar tmp861 = tmp240 + tmp237*pitch_dot + tmp238*roll_dot + yaw_dot*tmp239;
+    const Scalar tmp862 = -tmp258 - tmp98*pitch_dot + Scalar(2)*tmp198*yaw_dot
         + Scalar(2)*tmp55*roll_dot;
-    const Scalar tmp827 = tmp257 + tmp75*roll_dot + tmp1*tmp44*tmp5*pitch_dot + yaw_dot*tmp86;
-    const Scalar tmp828 = m*tmp820;
-    const Scalar tmp829 = m*tmp821;
-    const Scalar tmp830 = tmp19*tmp822;
-    const Scalar tmp831 = tmp19*tmp823;
-    const Scalar tmp832 = tmp24*tmp824;
-    const Scalar tmp833 = tmp24*tmp825;
-    const Scalar tmp834 = tmp37*tmp826;
-    const Scalar tmp835 = tmp37*tmp827;
-    const Scalar tmp836 = -tmp828;
-    const Scalar tmp837 = -tmp829;
-    const Scalar tmp838 = -tmp90*tmp828 - tmp50*tmp829 - tmp216*tmp830 - tmp209*tmp831
-        - tmp239*tmp832 - tmp234*tmp833 - tmp86*tmp834 - tmp31*tmp835;
-    const Scalar tmp839 = -tmp82*tmp828 - tmp101*tmp829 - tmp213*tmp830 - tmp218*tmp831
-        - tmp237*tmp832 - tmp241*tmp833 - tmp79*tmp834 - tmp98*tmp835;
-    const Scalar tmp840 = -tmp76*tmp828 - tmp95*tmp829 - tmp214*tmp830 - tmp219*tmp831
-        - tmp238*tmp832 - tmp242*tmp833 - tmp75*tmp834 - tmp85*tmp835;
-    const Scalar tmp841 = -Scalar(2)*tmp196*pitch_dot + Scalar(2)*tmp194*roll_dot
+    const Scalar tmp863 = tmp257 + tmp75*roll_dot + tmp1*tmp44*tmp5*pitch_dot + yaw_dot*tmp86;
+    const Scalar tmp864 = m*tmp856;
+    const Scalar tmp865 = m*tmp857;
+    const Scalar tmp866 = tmp19*tmp858;
+    const Scalar tmp867 = tmp19*tmp859;
+    const Scalar tmp868 = tmp24*tmp860;
+    const Scalar tmp869 = tmp24*tmp861;
+    const Scalar tmp870 = tmp37*tmp862;
+    const Scalar tmp871 = tmp37*tmp863;
+    const Scalar tmp872 = -tmp864;
+    const Scalar tmp873 = -tmp865;
+    const Scalar tmp874 = -tmp90*tmp864 - tmp50*tmp865 - tmp216*tmp866 - tmp209*tmp867
+        - tmp239*tmp868 - tmp234*tmp869 - tmp86*tmp870 - tmp31*tmp871;
+    const Scalar tmp875 = -tmp82*tmp864 - tmp101*tmp865 - tmp213*tmp866 - tmp218*tmp867
+        - tmp237*tmp868 - tmp241*tmp869 - tmp79*tmp870 - tmp98*tmp871;
+    const Scalar tmp876 = -tmp76*tmp864 - tmp95*tmp865 - tmp214*tmp866 - tmp219*tmp867
+        - tmp238*tmp868 - tmp242*tmp869 - tmp75*tmp870 - tmp85*tmp871;
+    const Scalar tmp877 = -Scalar(2)*tmp196*pitch_dot + Scalar(2)*tmp194*roll_dot
         + Scalar(2)*tmp195*yaw_dot;
-    const Scalar tmp842 = tmp82*yaw_dot - Scalar(2)*tmp203*pitch_dot + Scalar(2)*tmp202*roll_dot
+    const Scalar tmp878 = tmp82*yaw_dot - Scalar(2)*tmp203*pitch_dot + Scalar(2)*tmp202*roll_dot
         + yaw_dot*tmp82;
-    const Scalar tmp843 = -Scalar(2)*tmp71*pitch_dot + Scalar(2)*tmp206*roll_dot;
-    const Scalar tmp844 = Scalar(2)*tmp224*roll_dot + Scalar(2)*tmp225*yaw_dot
+    const Scalar tmp879 = -Scalar(2)*tmp71*pitch_dot + Scalar(2)*tmp206*roll_dot;
+    const Scalar tmp880 = Scalar(2)*tmp224*roll_dot + Scalar(2)*tmp225*yaw_dot
         + Scalar(2)*pitch_dot*(-tmp45 - tmp208*tmp7 - tmp30*tmp35);
-    const Scalar tmp845 = tmp213*yaw_dot + Scalar(2)*tmp229*roll_dot
+    const Scalar tmp881 = tmp213*yaw_dot + Scalar(2)*tmp229*roll_dot
         + Scalar(2)*pitch_dot*(-tmp58 - tmp208*tmp54 - tmp35*tmp56) + yaw_dot*tmp213;
-    const Scalar tmp846 = -Scalar(2)*tmp212*pitch_dot + Scalar(2)*tmp231*roll_dot;
-    const Scalar tmp847 = Scalar(2)*tmp247*roll_dot + Scalar(2)*tmp248*yaw_dot
+    const Scalar tmp882 = -Scalar(2)*tmp212*pitch_dot + Scalar(2)*tmp231*roll_dot;
+    const Scalar tmp883 = Scalar(2)*tmp247*roll_dot + Scalar(2)*tmp248*yaw_dot
         + Scalar(2)*pitch_dot*(-tmp7 - tmp233*tmp30);
-    const Scalar tmp848 = tmp237*yaw_dot + Scalar(2)*tmp252*roll_dot
+    const Scalar tmp884 = tmp237*yaw_dot + Scalar(2)*tmp252*roll_dot
         + Scalar(2)*pitch_dot*(-tmp54 - tmp233*tmp56) + yaw_dot*tmp237;
-    const Scalar tmp849 = Scalar(2)*tmp254*roll_dot + Scalar(2)*tmp255*pitch_dot;
-    const Scalar tmp850 = -tmp98*yaw_dot - Scalar(2)*tmp30*pitch_dot - Scalar(2)*tmp78*roll_dot
+    const Scalar tmp885 = Scalar(2)*tmp254*roll_dot + Scalar(2)*tmp255*pitch_dot;
+    const Scalar tmp886 = -tmp98*yaw_dot - Scalar(2)*tmp30*pitch_dot - Scalar(2)*tmp78*roll_dot
         - yaw_dot*tmp98;
-    const Scalar tmp851 = -Scalar(2)*tmp56*pitch_dot - Scalar(2)*tmp97*roll_dot
+    const Scalar tmp887 = -Scalar(2)*tmp56*pitch_dot - Scalar(2)*tmp97*roll_dot
         + tmp1*tmp44*tmp5*yaw_dot + yaw_dot*tmp79;
-    const Scalar tmp852 = tmp109*roll_dot - Scalar(2)*tmp65*pitch_dot + tmp3*tmp4*roll_dot;
-    const Scalar tmp853 = m*tmp841;
-    const Scalar tmp854 = m*tmp842;
-    const Scalar tmp855 = m*tmp843;
-    const Scalar tmp856 = tmp19*tmp844;
-    const Scalar tmp857 = tmp19*tmp845;
-    const Scalar tmp858 = tmp24*tmp847;
-    const Scalar tmp859 = tmp24*tmp848;
-    const Scalar tmp860 = tmp37*tmp850;
-    const Scalar tmp861 = tmp37*tmp851;
-    const Scalar tmp862 = tmp19*tmp846;
-    const Scalar tmp863 = tmp24*tmp849;
-    const Scalar tmp864 = tmp37*tmp852;
-    const Scalar tmp865 = -tmp853;
-    const Scalar tmp866 = -tmp854;
-    const Scalar tmp867 = -tmp855;
-    const Scalar tmp868 = -tmp90*tmp853 - tmp50*tmp854 - tmp216*tmp856 - tmp209*tmp857
-        - tmp239*tmp858 - tmp234*tmp859 - tmp86*tmp860 - tmp31*tmp861;
-    const Scalar tmp869 = -tmp82*tmp853 - tmp101*tmp854 - tmp192*tmp855 - tmp213*tmp856
-        - tmp218*tmp857 - tmp237*tmp858 - tmp241*tmp859 - tmp79*tmp860 - tmp98*tmp861
-        - tmp222*tmp862 - tmp245*tmp863 + tmp1*tmp3*tmp864;
-    const Scalar tmp870 = -tmp76*tmp853 - tmp95*tmp854 - tmp107*tmp855 - tmp214*tmp856
-        - tmp219*tmp857 - tmp238*tmp858 - tmp242*tmp859 - tmp75*tmp860 - tmp85*tmp861
-        - tmp221*tmp862 - tmp244*tmp863 + tmp4*tmp44*tmp864;
-    const Scalar tmp871 = Scalar(2)*tmp194*pitch_dot + Scalar(2)*tmp197*yaw_dot
+    const Scalar tmp888 = tmp109*roll_dot - Scalar(2)*tmp65*pitch_dot + tmp3*tmp4*roll_dot;
+    const Scalar tmp889 = m*tmp877;
+    const Scalar tmp890 = m*tmp878;
+    const Scalar tmp891 = m*tmp879;
+    const Scalar tmp892 = tmp19*tmp880;
+    const Scalar tmp893 = tmp19*tmp881;
+    const Scalar tmp894 = tmp24*tmp883;
+    const Scalar tmp895 = tmp24*tmp884;
+    const Scalar tmp896 = tmp37*tmp886;
+    const Scalar tmp897 = tmp37*tmp887;
+    const Scalar tmp898 = tmp19*tmp882;
+    const Scalar tmp899 = tmp24*tmp885;
+    const Scalar tmp900 = tmp37*tmp888;
+    const Scalar tmp901 = -tmp889;
+    const Scalar tmp902 = -tmp890;
+    const Scalar tmp903 = -tmp891;
+    const Scalar tmp904 = -tmp90*tmp889 - tmp50*tmp890 - tmp216*tmp892 - tmp209*tmp893
+        - tmp239*tmp894 - tmp234*tmp895 - tmp86*tmp896 - tmp31*tmp897;
+    const Scalar tmp905 = -tmp82*tmp889 - tmp101*tmp890 - tmp192*tmp891 - tmp213*tmp892
+        - tmp218*tmp893 - tmp237*tmp894 - tmp241*tmp895 - tmp79*tmp896 - tmp98*tmp897
+        - tmp222*tmp898 - tmp245*tmp899 + tmp1*tmp3*tmp900;
+    const Scalar tmp906 = -tmp76*tmp889 - tmp95*tmp890 - tmp107*tmp891 - tmp214*tmp892
+        - tmp219*tmp893 - tmp238*tmp894 - tmp242*tmp895 - tmp75*tmp896 - tmp85*tmp897
+        - tmp221*tmp898 - tmp244*tmp899 + tmp4*tmp44*tmp900;
+    const Scalar tmp907 = Scalar(2)*tmp194*pitch_dot + Scalar(2)*tmp197*yaw_dot
         + Scalar(2)*tmp199*roll_dot;
-    const Scalar tmp872 = tmp76*yaw_dot + Scalar(2)*tmp202*pitch_dot + Scalar(2)*tmp89*roll_dot
+    const Scalar tmp908 = tmp76*yaw_dot + Scalar(2)*tmp202*pitch_dot + Scalar(2)*tmp89*roll_dot
         + yaw_dot*tmp76;
-    const Scalar tmp873 = -Scalar(2)*tmp70*roll_dot + Scalar(2)*tmp206*pitch_dot;
-    const Scalar tmp874 = Scalar(2)*tmp224*pitch_dot + Scalar(2)*tmp226*yaw_dot
+    const Scalar tmp909 = -Scalar(2)*tmp70*roll_dot + Scalar(2)*tmp206*pitch_dot;
+    const Scalar tmp910 = Scalar(2)*tmp224*pitch_dot + Scalar(2)*tmp226*yaw_dot
         + Scalar(2)*tmp227*roll_dot;
-    const Scalar tmp875 = tmp214*yaw_dot + Scalar(2)*tmp215*roll_dot + Scalar(2)*tmp229*pitch_dot
+    const Scalar tmp911 = tmp214*yaw_dot + Scalar(2)*tmp215*roll_dot + Scalar(2)*tmp229*pitch_dot
         + yaw_dot*tmp214;
-    const Scalar tmp876 = -Scalar(2)*tmp211*roll_dot + Scalar(2)*tmp231*pitch_dot;
-    const Scalar tmp877 = Scalar(2)*tmp247*pitch_dot + Scalar(2)*tmp249*yaw_dot
+    const Scalar tmp912 = -Scalar(2)*tmp211*roll_dot + Scalar(2)*tmp231*pitch_dot;
+    const Scalar tmp913 = Scalar(2)*tmp247*pitch_dot + Scalar(2)*tmp249*yaw_dot
         + Scalar(2)*tmp250*roll_dot;
-    const Scalar tmp878 = tmp238*yaw_dot + Scalar(2)*tmp239*roll_dot + Scalar(2)*tmp252*pitch_dot
+    const Scalar tmp914 = tmp238*yaw_dot + Scalar(2)*tmp239*roll_dot + Scalar(2)*tmp252*pitch_dot
         + yaw_dot*tmp238;
-    const Scalar tmp879 = Scalar(2)*tmp254*pitch_dot + Scalar(2)*tmp255*roll_dot;
-    const Scalar tmp880 = -Scalar(2)*tmp78*pitch_dot + Scalar(2)*tmp198*roll_dot
+    const Scalar tmp915 = Scalar(2)*tmp254*pitch_dot + Scalar(2)*tmp255*roll_dot;
+    const Scalar tmp916 = -Scalar(2)*tmp78*pitch_dot + Scalar(2)*tmp198*roll_dot
         + Scalar(2)*tmp55*yaw_dot;
-    const Scalar tmp881 = tmp75*yaw_dot - Scalar(2)*tmp97*pitch_dot + Scalar(2)*tmp86*roll_dot
+    const Scalar tmp917 = tmp75*yaw_dot - Scalar(2)*tmp97*pitch_dot + Scalar(2)*tmp86*roll_dot
         + yaw_dot*tmp75;
-    const Scalar tmp882 = tmp109*pitch_dot - Scalar(2)*tmp65*roll_dot + tmp3*tmp4*pitch_dot;
-    const Scalar tmp883 = m*tmp871;
-    const Scalar tmp884 = m*tmp872;
-    const Scalar tmp885 = m*tmp873;
-    const Scalar tmp886 = tmp19*tmp874;
-    const Scalar tmp887 = tmp19*tmp875;
-    const Scalar tmp888 = tmp24*tmp877;
-    const Scalar tmp889 = tmp24*tmp878;
-    const Scalar tmp890 = tmp37*tmp880;
-    const Scalar tmp891 = tmp37*tmp881;
-    const Scalar tmp892 = tmp19*tmp876;
-    const Scalar tmp893 = tmp24*tmp879;
-    const Scalar tmp894 = tmp37*tmp882;
-    const Scalar tmp895 = -tmp883;
-    const Scalar tmp896 = -tmp884;
-    const Scalar tmp897 = -tmp885;
-    const Scalar tmp898 = -tmp90*tmp883 - tmp50*tmp884 - tmp216*tmp886 - tmp209*tmp887
-        - tmp239*tmp888 - tmp234*tmp889 - tmp86*tmp890 - tmp31*tmp891;
-    const Scalar tmp899 = -tmp82*tmp883 - tmp101*tmp884 - tmp192*tmp885 - tmp213*tmp886
-        - tmp218*tmp887 - tmp237*tmp888 - tmp241*tmp889 - tmp79*tmp890 - tmp98*tmp891
-        - tmp222*tmp892 - tmp245*tmp893 + tmp1*tmp3*tmp894;
-    const Scalar tmp900 = -tmp76*tmp883 - tmp95*tmp884 - tmp107*tmp885 - tmp214*tmp886
-        - tmp219*tmp887 - tmp238*tmp888 - tmp242*tmp889 - tmp75*tmp890 - tmp85*tmp891
-        - tmp221*tmp892 - tmp244*tmp893 + tmp4*tmp44*tmp894;
+    const Scalar tmp918 = tmp109*pitch_dot - Scalar(2)*tmp65*roll_dot + tmp3*tmp4*pitch_dot;
+    const Scalar tmp919 = m*tmp907;
+    const Scalar tmp920 = m*tmp908;
+    const Scalar tmp921 = m*tmp909;
+    const Scalar tmp922 = tmp19*tmp910;
+    const Scalar tmp923 = tmp19*tmp911;
+    const Scalar tmp924 = tmp24*tmp913;
+    const Scalar tmp925 = tmp24*tmp914;
+    const Scalar tmp926 = tmp37*tmp916;
+    const Scalar tmp927 = tmp37*tmp917;
+    const Scalar tmp928 = tmp19*tmp912;
+    const Scalar tmp929 = tmp24*tmp915;
+    const Scalar tmp930 = tmp37*tmp918;
+    const Scalar tmp931 = -tmp919;
+    const Scalar tmp932 = -tmp920;
+    const Scalar tmp933 = -tmp921;
+    const Scalar tmp934 = -tmp90*tmp919 - tmp50*tmp920 - tmp216*tmp922 - tmp209*tmp923
+        - tmp239*tmp924 - tmp234*tmp925 - tmp86*tmp926 - tmp31*tmp927;
+    const Scalar tmp935 = -tmp82*tmp919 - tmp101*tmp920 - tmp192*tmp921 - tmp213*tmp922
+        - tmp218*tmp923 - tmp237*tmp924 - tmp241*tmp925 - tmp79*tmp926 - tmp98*tmp927
+        - tmp222*tmp928 - tmp245*tmp929 + tmp1*tmp3*tmp930;
+    const Scalar tmp936 = -tmp76*tmp919 - tmp95*tmp920 - tmp107*tmp921 - tmp214*tmp922
+        - tmp219*tmp923 - tmp238*tmp924 - tmp242*tmp925 - tmp75*tmp926 - tmp85*tmp927
+        - tmp221*tmp928 - tmp244*tmp929 + tmp4*tmp44*tmp930;
     (*dr_dq)(0, 0) = Scalar(0);
     (*dr_dq)(0, 1) = Scalar(0);
     (*dr_dq)(0, 2) = Scalar(0);
-    (*dr_dq)(0, 3) = yaw_ddot*tmp534 + pitch_ddot*tmp537 + roll_ddot*tmp541 - tmp554;
-    (*dr_dq)(0, 4) = yaw_ddot*tmp656 + pitch_ddot*tmp659 + roll_ddot*tmp666 - tmp686;
-    (*dr_dq)(0, 5) = yaw_ddot*tmp784 + pitch_ddot*tmp787 + roll_ddot*tmp794 - tmp814;
+    (*dr_dq)(0, 3) = yaw_ddot*tmp570 + pitch_ddot*tmp573 + roll_ddot*tmp577 - tmp590;
+    (*dr_dq)(0, 4) = yaw_ddot*tmp692 + pitch_ddot*tmp695 + roll_ddot*tmp702 - tmp722;
+    (*dr_dq)(0, 5) = yaw_ddot*tmp820 + pitch_ddot*tmp823 + roll_ddot*tmp830 - tmp850;
     (*dr_dq)(1, 0) = Scalar(0);
     (*dr_dq)(1, 1) = Scalar(0);
     (*dr_dq)(1, 2) = Scalar(0);
-    (*dr_dq)(1, 3) = yaw_ddot*tmp535 + pitch_ddot*tmp538 + roll_ddot*tmp542 - tmp555;
-    (*dr_dq)(1, 4) = yaw_ddot*tmp657 + pitch_ddot*tmp660 + roll_ddot*tmp667 - tmp687;
-    (*dr_dq)(1, 5) = yaw_ddot*tmp785 + pitch_ddot*tmp788 + roll_ddot*tmp795 - tmp815;
+    (*dr_dq)(1, 3) = yaw_ddot*tmp571 + pitch_ddot*tmp574 + roll_ddot*tmp578 - tmp591;
+    (*dr_dq)(1, 4) = yaw_ddot*tmp693 + pitch_ddot*tmp696 + roll_ddot*tmp703 - tmp723;
+    (*dr_dq)(1, 5) = yaw_ddot*tmp821 + pitch_ddot*tmp824 + roll_ddot*tmp831 - tmp851;
     (*dr_dq)(2, 0) = Scalar(0);
     (*dr_dq)(2, 1) = Scalar(0);
     (*dr_dq)(2, 2) = Scalar(0);
     (*dr_dq)(2, 3) = Scalar(0);
-    (*dr_dq)(2, 4) = pitch_ddot*tmp661 + roll_ddot*tmp668 - tmp688;
-    (*dr_dq)(2, 5) = pitch_ddot*tmp789 + roll_ddot*tmp796 - tmp816;
+    (*dr_dq)(2, 4) = pitch_ddot*tmp697 + roll_ddot*tmp704 - tmp724;
+    (*dr_dq)(2, 5) = pitch_ddot*tmp825 + roll_ddot*tmp832 - tmp852;
     (*dr_dq)(3, 0) = Scalar(0);
     (*dr_dq)(3, 1) = Scalar(0);
     (*dr_dq)(3, 2) = Scalar(0);
-    (*dr_dq)(3, 3) = x_ddot*tmp534 + y_ddot*tmp535 + yaw_ddot*tmp536 + pitch_ddot*tmp539
-        + roll_ddot*tmp543 - tmp556;
-    (*dr_dq)(3, 4) = x_ddot*tmp656 + y_ddot*tmp657 + yaw_ddot*tmp658 + pitch_ddot*tmp662
-        + roll_ddot*tmp669 - tmp689;
-    (*dr_dq)(3, 5) = x_ddot*tmp784 + y_ddot*tmp785 + yaw_ddot*tmp786 + pitch_ddot*tmp790
-        + roll_ddot*tmp797 - tmp817;
+    (*dr_dq)(3, 3) = x_ddot*tmp570 + y_ddot*tmp571 + yaw_ddot*tmp572 + pitch_ddot*tmp575
+        + roll_ddot*tmp579 - tmp592;
+    (*dr_dq)(3, 4) = x_ddot*tmp692 + y_ddot*tmp693 + yaw_ddot*tmp694 + pitch_ddot*tmp698
+        + roll_ddot*tmp705 - tmp725;
+    (*dr_dq)(3, 5) = x_ddot*tmp820 + y_ddot*tmp821 + yaw_ddot*tmp822 + pitch_ddot*tmp826
+        + roll_ddot*tmp833 - tmp853;
     (*dr_dq)(4, 0) = Scalar(0);
     (*dr_dq)(4, 1) = Scalar(0);
     (*dr_dq)(4, 2) = Scalar(0);
-    (*dr_dq)(4, 3) = x_ddot*tmp537 + y_ddot*tmp538 + yaw_ddot*tmp539 + pitch_ddot*tmp540
-        + roll_ddot*tmp544 - tmp557;
-    (*dr_dq)(4, 4) = x_ddot*tmp659 + y_ddot*tmp660 + z_ddot*tmp661 + yaw_ddot*tmp662
-        + pitch_ddot*tmp665 + roll_ddot*tmp670 - tmp684 - tmp690;
-    (*dr_dq)(4, 5) = x_ddot*tmp787 + y_ddot*tmp788 + z_ddot*tmp789 + yaw_ddot*tmp790
-        + pitch_ddot*tmp793 + roll_ddot*tmp798 - tmp812 - tmp818;
+    (*dr_dq)(4, 3) = x_ddot*tmp573 + y_ddot*tmp574 + yaw_ddot*tmp575 + pitch_ddot*tmp576
+        + roll_ddot*tmp580 - tmp593;
+    (*dr_dq)(4, 4) = x_ddot*tmp695 + y_ddot*tmp696 + z_ddot*tmp697 + yaw_ddot*tmp698
+        + pitch_ddot*tmp701 + roll_ddot*tmp706 - tmp720 - tmp726;
+    (*dr_dq)(4, 5) = x_ddot*tmp823 + y_ddot*tmp824 + z_ddot*tmp825 + yaw_ddot*tmp826
+        + pitch_ddot*tmp829 + roll_ddot*tmp834 - tmp848 - tmp854;
     (*dr_dq)(5, 0) = Scalar(0);
     (*dr_dq)(5, 1) = Scalar(0);
     (*dr_dq)(5, 2) = Scalar(0);
-    (*dr_dq)(5, 3) = x_ddot*tmp541 + y_ddot*tmp542 + yaw_ddot*tmp543 + pitch_ddot*tmp544
-        + roll_ddot*tmp545 - tmp558;
-    (*dr_dq)(5, 4) = x_ddot*tmp666 + y_ddot*tmp667 + z_ddot*tmp668 + yaw_ddot*tmp669
-        + pitch_ddot*tmp670 + roll_ddot*tmp671 - tmp685 - tmp691;
-    (*dr_dq)(5, 5) = x_ddot*tmp794 + y_ddot*tmp795 + z_ddot*tmp796 + yaw_ddot*tmp797
-        + pitch_ddot*tmp798 + roll_ddot*tmp799 - tmp813 - tmp819;
+    (*dr_dq)(5, 3) = x_ddot*tmp577 + y_ddot*tmp578 + yaw_ddot*tmp579 + pitch_ddot*tmp580
+        + roll_ddot*tmp581 - tmp594;
+    (*dr_dq)(5, 4) = x_ddot*tmp702 + y_ddot*tmp703 + z_ddot*tmp704 + yaw_ddot*tmp705
+        + pitch_ddot*tmp706 + roll_ddot*tmp707 - tmp721 - tmp727;
+    (*dr_dq)(5, 5) = x_ddot*tmp830 + y_ddot*tmp831 + z_ddot*tmp832 + yaw_ddot*tmp833
+        + pitch_ddot*tmp834 + roll_ddot*tmp835 - tmp849 - tmp855;
     (*dr_dv)(0, 0) = Scalar(0);
     (*dr_dv)(0, 1) = Scalar(0);
     (*dr_dv)(0, 2) = Scalar(0);
-    (*dr_dv)(0, 3) = -tmp836;
-    (*dr_dv)(0, 4) = -tmp865;
-    (*dr_dv)(0, 5) = -tmp895;
+    (*dr_dv)(0, 3) = -tmp872;
+    (*dr_dv)(0, 4) = -tmp901;
+    (*dr_dv)(0, 5) = -tmp931;
     (*dr_dv)(1, 0) = Scalar(0);
     (*dr_dv)(1, 1) = Scalar(0);
     (*dr_dv)(1, 2) = Scalar(0);
-    (*dr_dv)(1, 3) = -tmp837;
-    (*dr_dv)(1, 4) = -tmp866;
-    (*dr_dv)(1, 5) = -tmp896;
+    (*dr_dv)(1, 3) = -tmp873;
+    (*dr_dv)(1, 4) = -tmp902;
+    (*dr_dv)(1, 5) = -tmp932;
     (*dr_dv)(2, 0) = Scalar(0);
     (*dr_dv)(2, 1) = Scalar(0);
     (*dr_dv)(2, 2) = Scalar(0);
     (*dr_dv)(2, 3) = Scalar(0);
-    (*dr_dv)(2, 4) = -tmp867;
-    (*dr_dv)(2, 5) = -tmp897;
+    (*dr_dv)(2, 4) = -tmp903;
+    (*dr_dv)(2, 5) = -tmp933;
     (*dr_dv)(3, 0) = Scalar(0);
     (*dr_dv)(3, 1) = Scalar(0);
     (*dr_dv)(3, 2) = Scalar(0);
-    (*dr_dv)(3, 3) = -tmp838;
-    (*dr_dv)(3, 4) = -tmp868;
-    (*dr_dv)(3, 5) = -tmp898;
+    (*dr_dv)(3, 3) = -tmp874;
+    (*dr_dv)(3, 4) = -tmp904;
+    (*dr_dv)(3, 5) = -tmp934;
     (*dr_dv)(4, 0) = Scalar(0);
     (*dr_dv)(4, 1) = Scalar(0);
     (*dr_dv)(4, 2) = Scalar(0);
-    (*dr_dv)(4, 3) = -tmp839;
-    (*dr_dv)(4, 4) = -tmp869;
-    (*dr_dv)(4, 5) = -tmp899;
+    (*dr_dv)(4, 3) = -tmp875;
+    (*dr_dv)(4, 4) = -tmp905;
+    (*dr_dv)(4, 5) = -tmp935;
     (*dr_dv)(5, 0) = Scalar(0);
     (*dr_dv)(5, 1) = Scalar(0);
     (*dr_dv)(5, 2) = Scalar(0);
-    (*dr_dv)(5, 3) = -tmp840;
-    (*dr_dv)(5, 4) = -tmp870;
-    (*dr_dv)(5, 5) = -tmp900;
+    (*dr_dv)(5, 3) = -tmp876;
+    (*dr_dv)(5, 4) = -tmp906;
+    (*dr_dv)(5, 5) = -tmp936;
   }
 
   /// Kinetic energy T = 1/2 xdot^T M xdot.
@@ -2482,12 +2482,12 @@ struct RigidBodyEuler {
     const Scalar tmp258 = tmp98*pitch_dot;
     const Scalar tmp259 = tmp258 + tmp31*yaw_dot + tmp85*roll_dot;
     const Scalar tmp260 = -tmp110*pitch_dot - tmp64*roll_dot;
-    const Scalar tmp347 = (Scalar(0.5))*tmp19*((tmp217*tmp217) + (tmp220*tmp220) + (tmp223*tmp223))
+    const Scalar tmp484 = (Scalar(0.5))*tmp19*((tmp217*tmp217) + (tmp220*tmp220) + (tmp223*tmp223))
         + (Scalar(0.5))*tmp24*((tmp240*tmp240) + (tmp243*tmp243) + (tmp246*tmp246))
         + (Scalar(0.5))*tmp37*((tmp257*tmp257) + (tmp259*tmp259) + (tmp260*tmp260))
         + (Scalar(0.5))*m*((tmp190*tmp190) + (tmp191*tmp191) + (tmp193*tmp193));
     Scalar result;
-    result = tmp347;
+    result = tmp484;
     return result;
   }
 
@@ -2522,9 +2522,9 @@ struct RigidBodyEuler {
     const Scalar tmp71 = tmp70 - tmp69;
     const Scalar tmp72 = tmp71 + z;
     const Scalar tmp281 = g*m;
-    const Scalar tmp348 = tmp281*tmp72;
+    const Scalar tmp485 = tmp281*tmp72;
     Scalar result;
-    result = tmp348;
+    result = tmp485;
     return result;
   }
 
@@ -2683,13 +2683,13 @@ struct RigidBodyEuler {
     const Scalar tmp259 = tmp258 + tmp31*yaw_dot + tmp85*roll_dot;
     const Scalar tmp260 = -tmp110*pitch_dot - tmp64*roll_dot;
     const Scalar tmp281 = g*m;
-    const Scalar tmp347 = (Scalar(0.5))*tmp19*((tmp217*tmp217) + (tmp220*tmp220) + (tmp223*tmp223))
+    const Scalar tmp484 = (Scalar(0.5))*tmp19*((tmp217*tmp217) + (tmp220*tmp220) + (tmp223*tmp223))
         + (Scalar(0.5))*tmp24*((tmp240*tmp240) + (tmp243*tmp243) + (tmp246*tmp246))
         + (Scalar(0.5))*tmp37*((tmp257*tmp257) + (tmp259*tmp259) + (tmp260*tmp260))
         + (Scalar(0.5))*m*((tmp190*tmp190) + (tmp191*tmp191) + (tmp193*tmp193));
-    const Scalar tmp348 = tmp281*tmp72;
+    const Scalar tmp485 = tmp281*tmp72;
     Scalar result;
-    result = tmp347 + tmp348;
+    result = tmp484 + tmp485;
     return result;
   }
 
@@ -3990,21 +3990,21 @@ struct RigidBodyEuler {
       const Scalar g = Scalar(params.g);
       const Scalar m = Scalar(params.m);
       const Scalar tmp281 = g*m;
-      const Scalar tmp349 = (Scalar(0.25))*tmp281;
-      const Scalar tmp350 = -tmp349;
+      const Scalar tmp486 = (Scalar(0.25))*tmp281;
+      const Scalar tmp487 = -tmp486;
       XVector<Scalar> result;
       result(0) = Scalar(0);
       result(1) = Scalar(0);
-      result(2) = tmp350;
+      result(2) = tmp487;
       result(3) = Scalar(0);
       result(4) = Scalar(0);
-      result(5) = tmp350;
+      result(5) = tmp487;
       result(6) = Scalar(0);
       result(7) = Scalar(0);
-      result(8) = tmp350;
+      result(8) = tmp487;
       result(9) = Scalar(0);
       result(10) = Scalar(0);
-      result(11) = tmp350;
+      result(11) = tmp487;
       return result;
     }
 
@@ -4074,142 +4074,178 @@ struct RigidBodyEuler {
       const Scalar tmp168 = -tmp26*tmp9;
       const Scalar tmp169 = tmp38 - tmp33 - tmp39;
       const Scalar tmp170 = tmp169*tmp9;
-      const Scalar tmp351 = pos(3) - pos(0);
-      const Scalar tmp352 = pos(4) - pos(1);
-      const Scalar tmp353 = pos(5) - pos(2);
-      const Scalar tmp354 = sqrt((tmp351*tmp351) + (tmp352*tmp352) + (tmp353*tmp353));
-      const Scalar tmp355 = (Scalar(1)/tmp354);
-      const Scalar tmp356 = tmp351*tmp355;
-      const Scalar tmp357 = tmp352*tmp355;
-      const Scalar tmp358 = tmp353*tmp355;
-      const Scalar tmp359 = -tmp26*tmp9;
-      const Scalar tmp360 = -tmp41*tmp9;
-      const Scalar tmp361 = sqrt(((-tmp117 - tmp359)*(-tmp117 - tmp359))
-          + ((-tmp119 - tmp360)*(-tmp119 - tmp360)));
-      const Scalar tmp362 = (Scalar(1)/tmp361);
-      const Scalar tmp363 = tmp354 - tmp361;
-      const Scalar tmp364 = tmp362*kappa;
-      const Scalar tmp365 = tmp363*tmp364
-          + tmp362*penalty_damping*(tmp356*(vel(3) - vel(0)) + tmp357*(vel(4) - vel(1))
-              + tmp358*(vel(5) - vel(2)));
-      const Scalar tmp366 = -vel(6);
-      const Scalar tmp367 = -pos(6);
-      const Scalar tmp368 = -tmp367 - pos(0);
-      const Scalar tmp369 = -pos(7);
-      const Scalar tmp370 = -tmp369 - pos(1);
-      const Scalar tmp371 = -pos(8);
-      const Scalar tmp372 = -tmp371 - pos(2);
-      const Scalar tmp373 = sqrt((tmp368*tmp368) + (tmp370*tmp370) + (tmp372*tmp372));
-      const Scalar tmp374 = (Scalar(1)/tmp373);
-      const Scalar tmp375 = tmp368*tmp374;
-      const Scalar tmp376 = -vel(7);
-      const Scalar tmp377 = tmp370*tmp374;
-      const Scalar tmp378 = -vel(8);
-      const Scalar tmp379 = tmp372*tmp374;
-      const Scalar tmp380 = Scalar(4)*tmp19/m;
-      const Scalar tmp381 = sqrt(tmp380 + ((-tmp138 - tmp359)*(-tmp138 - tmp359))
-          + ((-tmp140 - tmp360)*(-tmp140 - tmp360)));
-      const Scalar tmp382 = (Scalar(1)/tmp381);
-      const Scalar tmp383 = tmp373 - tmp381;
-      const Scalar tmp384 = tmp382*kappa;
-      const Scalar tmp385 = tmp383*tmp384
-          + tmp382*penalty_damping*(tmp375*(-tmp366 - vel(0)) + tmp377*(-tmp376 - vel(1))
-              + tmp379*(-tmp378 - vel(2)));
-      const Scalar tmp386 = -vel(9);
-      const Scalar tmp387 = -pos(9);
-      const Scalar tmp388 = -tmp387 - pos(0);
-      const Scalar tmp389 = -pos(10);
-      const Scalar tmp390 = -tmp389 - pos(1);
-      const Scalar tmp391 = -pos(11);
-      const Scalar tmp392 = -tmp391 - pos(2);
-      const Scalar tmp393 = sqrt((tmp388*tmp388) + (tmp390*tmp390) + (tmp392*tmp392));
-      const Scalar tmp394 = (Scalar(1)/tmp393);
-      const Scalar tmp395 = tmp388*tmp394;
-      const Scalar tmp396 = -vel(10);
-      const Scalar tmp397 = tmp390*tmp394;
-      const Scalar tmp398 = -vel(11);
-      const Scalar tmp399 = tmp392*tmp394;
-      const Scalar tmp400 = sqrt(tmp380 + ((-tmp168 - tmp359)*(-tmp168 - tmp359))
-          + ((-tmp170 - tmp360)*(-tmp170 - tmp360)));
-      const Scalar tmp401 = (Scalar(1)/tmp400);
-      const Scalar tmp402 = tmp393 - tmp400;
-      const Scalar tmp403 = tmp401*kappa;
-      const Scalar tmp404 = tmp402*tmp403
-          + tmp401*penalty_damping*(tmp395*(-tmp386 - vel(0)) + tmp397*(-tmp396 - vel(1))
-              + tmp399*(-tmp398 - vel(2)));
-      const Scalar tmp405 = tmp358*tmp365 + tmp379*tmp385 + tmp399*tmp404;
-      const Scalar tmp406 = -tmp365;
-      const Scalar tmp407 = -tmp367 - pos(3);
-      const Scalar tmp408 = -tmp369 - pos(4);
-      const Scalar tmp409 = -tmp371 - pos(5);
-      const Scalar tmp410 = sqrt((tmp407*tmp407) + (tmp408*tmp408) + (tmp409*tmp409));
+      const Scalar tmp347 = pos(3) - pos(0);
+      const Scalar tmp348 = pos(4) - pos(1);
+      const Scalar tmp349 = pos(5) - pos(2);
+      const Scalar tmp350 = sqrt((tmp347*tmp347) + (tmp348*tmp348) + (tmp349*tmp349));
+      const Scalar tmp351 = (Scalar(1)/tmp350);
+      const Scalar tmp352 = tmp347*tmp351;
+      const Scalar tmp353 = tmp348*tmp351;
+      const Scalar tmp354 = tmp349*tmp351;
+      const Scalar tmp355 = -tmp26*tmp9;
+      const Scalar tmp356 = -tmp41*tmp9;
+      const Scalar tmp357 = sqrt(((-tmp117 - tmp355)*(-tmp117 - tmp355))
+          + ((-tmp119 - tmp356)*(-tmp119 - tmp356)));
+      const Scalar tmp358 = (Scalar(1)/tmp357);
+      const Scalar tmp359 = tmp350 - tmp357;
+      const Scalar tmp360 = tmp358*kappa;
+      const Scalar tmp361 = tmp359*tmp360
+          + tmp358*penalty_damping*(tmp352*(vel(3) - vel(0)) + tmp353*(vel(4) - vel(1))
+              + tmp354*(vel(5) - vel(2)));
+      const Scalar tmp362 = -tmp361;
+      const Scalar tmp363 = tmp352*tmp362;
+      const Scalar tmp364 = tmp353*tmp362;
+      const Scalar tmp365 = tmp354*tmp362;
+      const Scalar tmp366 = tmp352*tmp361;
+      const Scalar tmp367 = tmp353*tmp361;
+      const Scalar tmp368 = tmp354*tmp361;
+      const Scalar tmp369 = -pos(6);
+      const Scalar tmp370 = -tmp369 - pos(0);
+      const Scalar tmp371 = -pos(7);
+      const Scalar tmp372 = -tmp371 - pos(1);
+      const Scalar tmp373 = -pos(8);
+      const Scalar tmp374 = -tmp373 - pos(2);
+      const Scalar tmp375 = sqrt((tmp370*tmp370) + (tmp372*tmp372) + (tmp374*tmp374));
+      const Scalar tmp376 = (Scalar(1)/tmp375);
+      const Scalar tmp377 = tmp370*tmp376;
+      const Scalar tmp378 = -vel(6);
+      const Scalar tmp379 = -vel(7);
+      const Scalar tmp380 = tmp372*tmp376;
+      const Scalar tmp381 = -vel(8);
+      const Scalar tmp382 = tmp374*tmp376;
+      const Scalar tmp383 = Scalar(4)*tmp19/m;
+      const Scalar tmp384 = sqrt(tmp383 + ((-tmp138 - tmp355)*(-tmp138 - tmp355))
+          + ((-tmp140 - tmp356)*(-tmp140 - tmp356)));
+      const Scalar tmp385 = (Scalar(1)/tmp384);
+      const Scalar tmp386 = tmp375 - tmp384;
+      const Scalar tmp387 = tmp385*kappa;
+      const Scalar tmp388 = tmp386*tmp387
+          + tmp385*penalty_damping*(tmp377*(-tmp378 - vel(0)) + tmp380*(-tmp379 - vel(1))
+              + tmp382*(-tmp381 - vel(2)));
+      const Scalar tmp389 = -tmp388;
+      const Scalar tmp390 = tmp377*tmp389;
+      const Scalar tmp391 = tmp380*tmp389;
+      const Scalar tmp392 = tmp382*tmp389;
+      const Scalar tmp393 = tmp377*tmp388;
+      const Scalar tmp394 = tmp380*tmp388;
+      const Scalar tmp395 = tmp382*tmp388;
+      const Scalar tmp396 = -pos(9);
+      const Scalar tmp397 = -tmp396 - pos(0);
+      const Scalar tmp398 = -pos(10);
+      const Scalar tmp399 = -tmp398 - pos(1);
+      const Scalar tmp400 = -pos(11);
+      const Scalar tmp401 = -tmp400 - pos(2);
+      const Scalar tmp402 = sqrt((tmp397*tmp397) + (tmp399*tmp399) + (tmp401*tmp401));
+      const Scalar tmp403 = (Scalar(1)/tmp402);
+      const Scalar tmp404 = tmp397*tmp403;
+      const Scalar tmp405 = -vel(9);
+      const Scalar tmp406 = -vel(10);
+      const Scalar tmp407 = tmp399*tmp403;
+      const Scalar tmp408 = -vel(11);
+      const Scalar tmp409 = tmp401*tmp403;
+      const Scalar tmp410 = sqrt(tmp383 + ((-tmp168 - tmp355)*(-tmp168 - tmp355))
+          + ((-tmp170 - tmp356)*(-tmp170 - tmp356)));
       const Scalar tmp411 = (Scalar(1)/tmp410);
-      const Scalar tmp412 = tmp407*tmp411;
-      const Scalar tmp413 = tmp408*tmp411;
-      const Scalar tmp414 = tmp409*tmp411;
-      const Scalar tmp415 = -tmp117;
-      const Scalar tmp416 = -tmp119;
-      const Scalar tmp417 = sqrt(tmp380 + ((-tmp138 - tmp415)*(-tmp138 - tmp415))
-          + ((-tmp140 - tmp416)*(-tmp140 - tmp416)));
-      const Scalar tmp418 = (Scalar(1)/tmp417);
-      const Scalar tmp419 = tmp410 - tmp417;
-      const Scalar tmp420 = tmp418*kappa;
-      const Scalar tmp421 = tmp419*tmp420
-          + tmp418*penalty_damping*(tmp412*(-tmp366 - vel(3)) + tmp413*(-tmp376 - vel(4))
-              + tmp414*(-tmp378 - vel(5)));
-      const Scalar tmp422 = -tmp387 - pos(3);
-      const Scalar tmp423 = -tmp389 - pos(4);
-      const Scalar tmp424 = -tmp391 - pos(5);
+      const Scalar tmp412 = tmp402 - tmp410;
+      const Scalar tmp413 = tmp411*kappa;
+      const Scalar tmp414 = tmp412*tmp413
+          + tmp411*penalty_damping*(tmp404*(-tmp405 - vel(0)) + tmp407*(-tmp406 - vel(1))
+              + tmp409*(-tmp408 - vel(2)));
+      const Scalar tmp415 = -tmp414;
+      const Scalar tmp416 = tmp404*tmp415;
+      const Scalar tmp417 = tmp407*tmp415;
+      const Scalar tmp418 = tmp409*tmp415;
+      const Scalar tmp419 = tmp404*tmp414;
+      const Scalar tmp420 = tmp407*tmp414;
+      const Scalar tmp421 = tmp409*tmp414;
+      const Scalar tmp422 = -tmp369 - pos(3);
+      const Scalar tmp423 = -tmp371 - pos(4);
+      const Scalar tmp424 = -tmp373 - pos(5);
       const Scalar tmp425 = sqrt((tmp422*tmp422) + (tmp423*tmp423) + (tmp424*tmp424));
       const Scalar tmp426 = (Scalar(1)/tmp425);
       const Scalar tmp427 = tmp422*tmp426;
       const Scalar tmp428 = tmp423*tmp426;
       const Scalar tmp429 = tmp424*tmp426;
-      const Scalar tmp430 = sqrt(tmp380 + ((-tmp168 - tmp415)*(-tmp168 - tmp415))
-          + ((-tmp170 - tmp416)*(-tmp170 - tmp416)));
-      const Scalar tmp431 = (Scalar(1)/tmp430);
-      const Scalar tmp432 = tmp425 - tmp430;
-      const Scalar tmp433 = tmp431*kappa;
-      const Scalar tmp434 = tmp432*tmp433
-          + tmp431*penalty_damping*(tmp427*(-tmp386 - vel(3)) + tmp428*(-tmp396 - vel(4))
-              + tmp429*(-tmp398 - vel(5)));
-      const Scalar tmp435 = tmp358*tmp406 + tmp414*tmp421 + tmp429*tmp434;
-      const Scalar tmp436 = -tmp387 - pos(6);
-      const Scalar tmp437 = -tmp389 - pos(7);
-      const Scalar tmp438 = -tmp391 - pos(8);
-      const Scalar tmp439 = sqrt((tmp436*tmp436) + (tmp437*tmp437) + (tmp438*tmp438));
-      const Scalar tmp440 = (Scalar(1)/tmp439);
-      const Scalar tmp441 = tmp436*tmp440;
-      const Scalar tmp442 = tmp437*tmp440;
-      const Scalar tmp443 = tmp438*tmp440;
-      const Scalar tmp444 = sqrt(((tmp138 - tmp168)*(tmp138 - tmp168))
+      const Scalar tmp430 = -tmp117;
+      const Scalar tmp431 = -tmp119;
+      const Scalar tmp432 = sqrt(tmp383 + ((-tmp138 - tmp430)*(-tmp138 - tmp430))
+          + ((-tmp140 - tmp431)*(-tmp140 - tmp431)));
+      const Scalar tmp433 = (Scalar(1)/tmp432);
+      const Scalar tmp434 = tmp425 - tmp432;
+      const Scalar tmp435 = tmp433*kappa;
+      const Scalar tmp436 = tmp434*tmp435
+          + tmp433*penalty_damping*(tmp427*(-tmp378 - vel(3)) + tmp428*(-tmp379 - vel(4))
+              + tmp429*(-tmp381 - vel(5)));
+      const Scalar tmp437 = -tmp436;
+      const Scalar tmp438 = tmp427*tmp437;
+      const Scalar tmp439 = tmp428*tmp437;
+      const Scalar tmp440 = tmp429*tmp437;
+      const Scalar tmp441 = tmp427*tmp436;
+      const Scalar tmp442 = tmp428*tmp436;
+      const Scalar tmp443 = tmp429*tmp436;
+      const Scalar tmp444 = -tmp396 - pos(3);
+      const Scalar tmp445 = -tmp398 - pos(4);
+      const Scalar tmp446 = -tmp400 - pos(5);
+      const Scalar tmp447 = sqrt((tmp444*tmp444) + (tmp445*tmp445) + (tmp446*tmp446));
+      const Scalar tmp448 = (Scalar(1)/tmp447);
+      const Scalar tmp449 = tmp444*tmp448;
+      const Scalar tmp450 = tmp445*tmp448;
+      const Scalar tmp451 = tmp446*tmp448;
+      const Scalar tmp452 = sqrt(tmp383 + ((-tmp168 - tmp430)*(-tmp168 - tmp430))
+          + ((-tmp170 - tmp431)*(-tmp170 - tmp431)));
+      const Scalar tmp453 = (Scalar(1)/tmp452);
+      const Scalar tmp454 = tmp447 - tmp452;
+      const Scalar tmp455 = tmp453*kappa;
+      const Scalar tmp456 = tmp454*tmp455
+          + tmp453*penalty_damping*(tmp449*(-tmp405 - vel(3)) + tmp450*(-tmp406 - vel(4))
+              + tmp451*(-tmp408 - vel(5)));
+      const Scalar tmp457 = -tmp456;
+      const Scalar tmp458 = tmp449*tmp457;
+      const Scalar tmp459 = tmp450*tmp457;
+      const Scalar tmp460 = tmp451*tmp457;
+      const Scalar tmp461 = tmp449*tmp456;
+      const Scalar tmp462 = tmp450*tmp456;
+      const Scalar tmp463 = tmp451*tmp456;
+      const Scalar tmp464 = -tmp396 - pos(6);
+      const Scalar tmp465 = -tmp398 - pos(7);
+      const Scalar tmp466 = -tmp400 - pos(8);
+      const Scalar tmp467 = sqrt((tmp464*tmp464) + (tmp465*tmp465) + (tmp466*tmp466));
+      const Scalar tmp468 = (Scalar(1)/tmp467);
+      const Scalar tmp469 = tmp464*tmp468;
+      const Scalar tmp470 = tmp465*tmp468;
+      const Scalar tmp471 = tmp466*tmp468;
+      const Scalar tmp472 = sqrt(((tmp138 - tmp168)*(tmp138 - tmp168))
           + ((tmp140 - tmp170)*(tmp140 - tmp170)));
-      const Scalar tmp445 = (Scalar(1)/tmp444);
-      const Scalar tmp446 = tmp439 - tmp444;
-      const Scalar tmp447 = tmp445*kappa;
-      const Scalar tmp448 = tmp446*tmp447
-          + tmp445*penalty_damping*(tmp441*(-tmp386 - vel(6)) + tmp442*(-tmp396 - vel(7))
-              + tmp443*(-tmp398 - vel(8)));
-      const Scalar tmp449 = -tmp385;
-      const Scalar tmp450 = -tmp421;
-      const Scalar tmp451 = tmp379*tmp449 + tmp414*tmp450 + tmp443*tmp448;
-      const Scalar tmp452 = -tmp448;
-      const Scalar tmp453 = -tmp404;
-      const Scalar tmp454 = -tmp434;
-      const Scalar tmp455 = tmp399*tmp453 + tmp429*tmp454 + tmp443*tmp452;
+      const Scalar tmp473 = (Scalar(1)/tmp472);
+      const Scalar tmp474 = tmp467 - tmp472;
+      const Scalar tmp475 = tmp473*kappa;
+      const Scalar tmp476 = tmp474*tmp475
+          + tmp473*penalty_damping*(tmp469*(-tmp405 - vel(6)) + tmp470*(-tmp406 - vel(7))
+              + tmp471*(-tmp408 - vel(8)));
+      const Scalar tmp477 = -tmp476;
+      const Scalar tmp478 = tmp469*tmp477;
+      const Scalar tmp479 = tmp470*tmp477;
+      const Scalar tmp480 = tmp471*tmp477;
+      const Scalar tmp481 = tmp469*tmp476;
+      const Scalar tmp482 = tmp470*tmp476;
+      const Scalar tmp483 = tmp471*tmp476;
+      const Scalar tmp488 = tmp395 + tmp421 + tmp368;
+      const Scalar tmp489 = tmp365 + tmp443 + tmp463;
+      const Scalar tmp490 = tmp440 + tmp483 + tmp392;
+      const Scalar tmp491 = tmp418 + tmp460 + tmp480;
       XVector<Scalar> result;
-      result(0) = tmp356*tmp365 + tmp375*tmp385 + tmp395*tmp404;
-      result(1) = tmp357*tmp365 + tmp377*tmp385 + tmp397*tmp404;
-      result(2) = tmp405;
-      result(3) = tmp356*tmp406 + tmp412*tmp421 + tmp427*tmp434;
-      result(4) = tmp357*tmp406 + tmp413*tmp421 + tmp428*tmp434;
-      result(5) = tmp435;
-      result(6) = tmp375*tmp449 + tmp412*tmp450 + tmp441*tmp448;
-      result(7) = tmp377*tmp449 + tmp413*tmp450 + tmp442*tmp448;
-      result(8) = tmp451;
-      result(9) = tmp395*tmp453 + tmp427*tmp454 + tmp441*tmp452;
-      result(10) = tmp397*tmp453 + tmp428*tmp454 + tmp442*tmp452;
-      result(11) = tmp455;
+      result(0) = tmp419 + tmp366 + tmp393;
+      result(1) = tmp394 + tmp420 + tmp367;
+      result(2) = tmp488;
+      result(3) = tmp363 + tmp441 + tmp461;
+      result(4) = tmp364 + tmp442 + tmp462;
+      result(5) = tmp489;
+      result(6) = tmp438 + tmp481 + tmp390;
+      result(7) = tmp439 + tmp482 + tmp391;
+      result(8) = tmp490;
+      result(9) = tmp416 + tmp458 + tmp478;
+      result(10) = tmp417 + tmp459 + tmp479;
+      result(11) = tmp491;
       return result;
     }
 
@@ -4279,678 +4315,822 @@ struct RigidBodyEuler {
       const Scalar tmp168 = -tmp26*tmp9;
       const Scalar tmp169 = tmp38 - tmp33 - tmp39;
       const Scalar tmp170 = tmp169*tmp9;
-      const Scalar tmp351 = pos(3) - pos(0);
-      const Scalar tmp352 = pos(4) - pos(1);
-      const Scalar tmp353 = pos(5) - pos(2);
-      const Scalar tmp354 = sqrt((tmp351*tmp351) + (tmp352*tmp352) + (tmp353*tmp353));
-      const Scalar tmp355 = (Scalar(1)/tmp354);
-      const Scalar tmp356 = tmp351*tmp355;
-      const Scalar tmp357 = tmp352*tmp355;
-      const Scalar tmp358 = tmp353*tmp355;
-      const Scalar tmp359 = -tmp26*tmp9;
-      const Scalar tmp360 = -tmp41*tmp9;
-      const Scalar tmp361 = sqrt(((-tmp117 - tmp359)*(-tmp117 - tmp359))
-          + ((-tmp119 - tmp360)*(-tmp119 - tmp360)));
-      const Scalar tmp362 = (Scalar(1)/tmp361);
-      const Scalar tmp363 = tmp354 - tmp361;
-      const Scalar tmp364 = tmp362*kappa;
-      const Scalar tmp365 = tmp363*tmp364
-          + tmp362*penalty_damping*(tmp356*(vel(3) - vel(0)) + tmp357*(vel(4) - vel(1))
-              + tmp358*(vel(5) - vel(2)));
-      const Scalar tmp366 = -vel(6);
-      const Scalar tmp367 = -pos(6);
-      const Scalar tmp368 = -tmp367 - pos(0);
-      const Scalar tmp369 = -pos(7);
-      const Scalar tmp370 = -tmp369 - pos(1);
-      const Scalar tmp371 = -pos(8);
-      const Scalar tmp372 = -tmp371 - pos(2);
-      const Scalar tmp373 = sqrt((tmp368*tmp368) + (tmp370*tmp370) + (tmp372*tmp372));
-      const Scalar tmp374 = (Scalar(1)/tmp373);
-      const Scalar tmp375 = tmp368*tmp374;
-      const Scalar tmp376 = -vel(7);
-      const Scalar tmp377 = tmp370*tmp374;
-      const Scalar tmp378 = -vel(8);
-      const Scalar tmp379 = tmp372*tmp374;
-      const Scalar tmp380 = Scalar(4)*tmp19/m;
-      const Scalar tmp381 = sqrt(tmp380 + ((-tmp138 - tmp359)*(-tmp138 - tmp359))
-          + ((-tmp140 - tmp360)*(-tmp140 - tmp360)));
-      const Scalar tmp382 = (Scalar(1)/tmp381);
-      const Scalar tmp383 = tmp373 - tmp381;
-      const Scalar tmp384 = tmp382*kappa;
-      const Scalar tmp385 = tmp383*tmp384
-          + tmp382*penalty_damping*(tmp375*(-tmp366 - vel(0)) + tmp377*(-tmp376 - vel(1))
-              + tmp379*(-tmp378 - vel(2)));
-      const Scalar tmp386 = -vel(9);
-      const Scalar tmp387 = -pos(9);
-      const Scalar tmp388 = -tmp387 - pos(0);
-      const Scalar tmp389 = -pos(10);
-      const Scalar tmp390 = -tmp389 - pos(1);
-      const Scalar tmp391 = -pos(11);
-      const Scalar tmp392 = -tmp391 - pos(2);
-      const Scalar tmp393 = sqrt((tmp388*tmp388) + (tmp390*tmp390) + (tmp392*tmp392));
-      const Scalar tmp394 = (Scalar(1)/tmp393);
-      const Scalar tmp395 = tmp388*tmp394;
-      const Scalar tmp396 = -vel(10);
-      const Scalar tmp397 = tmp390*tmp394;
-      const Scalar tmp398 = -vel(11);
-      const Scalar tmp399 = tmp392*tmp394;
-      const Scalar tmp400 = sqrt(tmp380 + ((-tmp168 - tmp359)*(-tmp168 - tmp359))
-          + ((-tmp170 - tmp360)*(-tmp170 - tmp360)));
-      const Scalar tmp401 = (Scalar(1)/tmp400);
-      const Scalar tmp402 = tmp393 - tmp400;
-      const Scalar tmp403 = tmp401*kappa;
-      const Scalar tmp404 = tmp402*tmp403
-          + tmp401*penalty_damping*(tmp395*(-tmp386 - vel(0)) + tmp397*(-tmp396 - vel(1))
-              + tmp399*(-tmp398 - vel(2)));
-      const Scalar tmp406 = -tmp365;
-      const Scalar tmp407 = -tmp367 - pos(3);
-      const Scalar tmp408 = -tmp369 - pos(4);
-      const Scalar tmp409 = -tmp371 - pos(5);
-      const Scalar tmp410 = sqrt((tmp407*tmp407) + (tmp408*tmp408) + (tmp409*tmp409));
+      const Scalar tmp347 = pos(3) - pos(0);
+      const Scalar tmp348 = pos(4) - pos(1);
+      const Scalar tmp349 = pos(5) - pos(2);
+      const Scalar tmp350 = sqrt((tmp347*tmp347) + (tmp348*tmp348) + (tmp349*tmp349));
+      const Scalar tmp351 = (Scalar(1)/tmp350);
+      const Scalar tmp352 = tmp347*tmp351;
+      const Scalar tmp353 = tmp348*tmp351;
+      const Scalar tmp354 = tmp349*tmp351;
+      const Scalar tmp355 = -tmp26*tmp9;
+      const Scalar tmp356 = -tmp41*tmp9;
+      const Scalar tmp357 = sqrt(((-tmp117 - tmp355)*(-tmp117 - tmp355))
+          + ((-tmp119 - tmp356)*(-tmp119 - tmp356)));
+      const Scalar tmp358 = (Scalar(1)/tmp357);
+      const Scalar tmp359 = tmp350 - tmp357;
+      const Scalar tmp360 = tmp358*kappa;
+      const Scalar tmp361 = tmp359*tmp360
+          + tmp358*penalty_damping*(tmp352*(vel(3) - vel(0)) + tmp353*(vel(4) - vel(1))
+              + tmp354*(vel(5) - vel(2)));
+      const Scalar tmp362 = -tmp361;
+      const Scalar tmp369 = -pos(6);
+      const Scalar tmp370 = -tmp369 - pos(0);
+      const Scalar tmp371 = -pos(7);
+      const Scalar tmp372 = -tmp371 - pos(1);
+      const Scalar tmp373 = -pos(8);
+      const Scalar tmp374 = -tmp373 - pos(2);
+      const Scalar tmp375 = sqrt((tmp370*tmp370) + (tmp372*tmp372) + (tmp374*tmp374));
+      const Scalar tmp376 = (Scalar(1)/tmp375);
+      const Scalar tmp377 = tmp370*tmp376;
+      const Scalar tmp378 = -vel(6);
+      const Scalar tmp379 = -vel(7);
+      const Scalar tmp380 = tmp372*tmp376;
+      const Scalar tmp381 = -vel(8);
+      const Scalar tmp382 = tmp374*tmp376;
+      const Scalar tmp383 = Scalar(4)*tmp19/m;
+      const Scalar tmp384 = sqrt(tmp383 + ((-tmp138 - tmp355)*(-tmp138 - tmp355))
+          + ((-tmp140 - tmp356)*(-tmp140 - tmp356)));
+      const Scalar tmp385 = (Scalar(1)/tmp384);
+      const Scalar tmp386 = tmp375 - tmp384;
+      const Scalar tmp387 = tmp385*kappa;
+      const Scalar tmp388 = tmp386*tmp387
+          + tmp385*penalty_damping*(tmp377*(-tmp378 - vel(0)) + tmp380*(-tmp379 - vel(1))
+              + tmp382*(-tmp381 - vel(2)));
+      const Scalar tmp389 = -tmp388;
+      const Scalar tmp396 = -pos(9);
+      const Scalar tmp397 = -tmp396 - pos(0);
+      const Scalar tmp398 = -pos(10);
+      const Scalar tmp399 = -tmp398 - pos(1);
+      const Scalar tmp400 = -pos(11);
+      const Scalar tmp401 = -tmp400 - pos(2);
+      const Scalar tmp402 = sqrt((tmp397*tmp397) + (tmp399*tmp399) + (tmp401*tmp401));
+      const Scalar tmp403 = (Scalar(1)/tmp402);
+      const Scalar tmp404 = tmp397*tmp403;
+      const Scalar tmp405 = -vel(9);
+      const Scalar tmp406 = -vel(10);
+      const Scalar tmp407 = tmp399*tmp403;
+      const Scalar tmp408 = -vel(11);
+      const Scalar tmp409 = tmp401*tmp403;
+      const Scalar tmp410 = sqrt(tmp383 + ((-tmp168 - tmp355)*(-tmp168 - tmp355))
+          + ((-tmp170 - tmp356)*(-tmp170 - tmp356)));
       const Scalar tmp411 = (Scalar(1)/tmp410);
-      const Scalar tmp412 = tmp407*tmp411;
-      const Scalar tmp413 = tmp408*tmp411;
-      const Scalar tmp414 = tmp409*tmp411;
-      const Scalar tmp415 = -tmp117;
-      const Scalar tmp416 = -tmp119;
-      const Scalar tmp417 = sqrt(tmp380 + ((-tmp138 - tmp415)*(-tmp138 - tmp415))
-          + ((-tmp140 - tmp416)*(-tmp140 - tmp416)));
-      const Scalar tmp418 = (Scalar(1)/tmp417);
-      const Scalar tmp419 = tmp410 - tmp417;
-      const Scalar tmp420 = tmp418*kappa;
-      const Scalar tmp421 = tmp419*tmp420
-          + tmp418*penalty_damping*(tmp412*(-tmp366 - vel(3)) + tmp413*(-tmp376 - vel(4))
-              + tmp414*(-tmp378 - vel(5)));
-      const Scalar tmp422 = -tmp387 - pos(3);
-      const Scalar tmp423 = -tmp389 - pos(4);
-      const Scalar tmp424 = -tmp391 - pos(5);
+      const Scalar tmp412 = tmp402 - tmp410;
+      const Scalar tmp413 = tmp411*kappa;
+      const Scalar tmp414 = tmp412*tmp413
+          + tmp411*penalty_damping*(tmp404*(-tmp405 - vel(0)) + tmp407*(-tmp406 - vel(1))
+              + tmp409*(-tmp408 - vel(2)));
+      const Scalar tmp415 = -tmp414;
+      const Scalar tmp422 = -tmp369 - pos(3);
+      const Scalar tmp423 = -tmp371 - pos(4);
+      const Scalar tmp424 = -tmp373 - pos(5);
       const Scalar tmp425 = sqrt((tmp422*tmp422) + (tmp423*tmp423) + (tmp424*tmp424));
       const Scalar tmp426 = (Scalar(1)/tmp425);
       const Scalar tmp427 = tmp422*tmp426;
       const Scalar tmp428 = tmp423*tmp426;
       const Scalar tmp429 = tmp424*tmp426;
-      const Scalar tmp430 = sqrt(tmp380 + ((-tmp168 - tmp415)*(-tmp168 - tmp415))
-          + ((-tmp170 - tmp416)*(-tmp170 - tmp416)));
-      const Scalar tmp431 = (Scalar(1)/tmp430);
-      const Scalar tmp432 = tmp425 - tmp430;
-      const Scalar tmp433 = tmp431*kappa;
-      const Scalar tmp434 = tmp432*tmp433
-          + tmp431*penalty_damping*(tmp427*(-tmp386 - vel(3)) + tmp428*(-tmp396 - vel(4))
-              + tmp429*(-tmp398 - vel(5)));
-      const Scalar tmp436 = -tmp387 - pos(6);
-      const Scalar tmp437 = -tmp389 - pos(7);
-      const Scalar tmp438 = -tmp391 - pos(8);
-      const Scalar tmp439 = sqrt((tmp436*tmp436) + (tmp437*tmp437) + (tmp438*tmp438));
-      const Scalar tmp440 = (Scalar(1)/tmp439);
-      const Scalar tmp441 = tmp436*tmp440;
-      const Scalar tmp442 = tmp437*tmp440;
-      const Scalar tmp443 = tmp438*tmp440;
-      const Scalar tmp444 = sqrt(((tmp138 - tmp168)*(tmp138 - tmp168))
+      const Scalar tmp430 = -tmp117;
+      const Scalar tmp431 = -tmp119;
+      const Scalar tmp432 = sqrt(tmp383 + ((-tmp138 - tmp430)*(-tmp138 - tmp430))
+          + ((-tmp140 - tmp431)*(-tmp140 - tmp431)));
+      const Scalar tmp433 = (Scalar(1)/tmp432);
+      const Scalar tmp434 = tmp425 - tmp432;
+      const Scalar tmp435 = tmp433*kappa;
+      const Scalar tmp436 = tmp434*tmp435
+          + tmp433*penalty_damping*(tmp427*(-tmp378 - vel(3)) + tmp428*(-tmp379 - vel(4))
+              + tmp429*(-tmp381 - vel(5)));
+      const Scalar tmp437 = -tmp436;
+      const Scalar tmp444 = -tmp396 - pos(3);
+      const Scalar tmp445 = -tmp398 - pos(4);
+      const Scalar tmp446 = -tmp400 - pos(5);
+      const Scalar tmp447 = sqrt((tmp444*tmp444) + (tmp445*tmp445) + (tmp446*tmp446));
+      const Scalar tmp448 = (Scalar(1)/tmp447);
+      const Scalar tmp449 = tmp444*tmp448;
+      const Scalar tmp450 = tmp445*tmp448;
+      const Scalar tmp451 = tmp446*tmp448;
+      const Scalar tmp452 = sqrt(tmp383 + ((-tmp168 - tmp430)*(-tmp168 - tmp430))
+          + ((-tmp170 - tmp431)*(-tmp170 - tmp431)));
+      const Scalar tmp453 = (Scalar(1)/tmp452);
+      const Scalar tmp454 = tmp447 - tmp452;
+      const Scalar tmp455 = tmp453*kappa;
+      const Scalar tmp456 = tmp454*tmp455
+          + tmp453*penalty_damping*(tmp449*(-tmp405 - vel(3)) + tmp450*(-tmp406 - vel(4))
+              + tmp451*(-tmp408 - vel(5)));
+      const Scalar tmp457 = -tmp456;
+      const Scalar tmp464 = -tmp396 - pos(6);
+      const Scalar tmp465 = -tmp398 - pos(7);
+      const Scalar tmp466 = -tmp400 - pos(8);
+      const Scalar tmp467 = sqrt((tmp464*tmp464) + (tmp465*tmp465) + (tmp466*tmp466));
+      const Scalar tmp468 = (Scalar(1)/tmp467);
+      const Scalar tmp469 = tmp464*tmp468;
+      const Scalar tmp470 = tmp465*tmp468;
+      const Scalar tmp471 = tmp466*tmp468;
+      const Scalar tmp472 = sqrt(((tmp138 - tmp168)*(tmp138 - tmp168))
           + ((tmp140 - tmp170)*(tmp140 - tmp170)));
-      const Scalar tmp445 = (Scalar(1)/tmp444);
-      const Scalar tmp446 = tmp439 - tmp444;
-      const Scalar tmp447 = tmp445*kappa;
-      const Scalar tmp448 = tmp446*tmp447
-          + tmp445*penalty_damping*(tmp441*(-tmp386 - vel(6)) + tmp442*(-tmp396 - vel(7))
-              + tmp443*(-tmp398 - vel(8)));
-      const Scalar tmp449 = -tmp385;
-      const Scalar tmp450 = -tmp421;
-      const Scalar tmp452 = -tmp448;
-      const Scalar tmp453 = -tmp404;
-      const Scalar tmp454 = -tmp434;
-      const Scalar tmp901 = -tmp351/sqrt((tmp351*tmp351) + (tmp352*tmp352) + (tmp353*tmp353));
-      const Scalar tmp902 = -(Scalar(1)/(tmp354*tmp354))*tmp901;
-      const Scalar tmp903 = -tmp355 + tmp351*tmp902;
-      const Scalar tmp904 = tmp352*tmp902;
-      const Scalar tmp905 = tmp353*tmp902;
-      const Scalar tmp906 = tmp362*penalty_damping*(vel(3) - vel(0))*tmp903
-          + tmp362*penalty_damping*(vel(4) - vel(1))*tmp904
-          + tmp362*penalty_damping*(vel(5) - vel(2))*tmp905 + tmp364*tmp901;
-      const Scalar tmp907 = -tmp368/sqrt((tmp368*tmp368) + (tmp370*tmp370) + (tmp372*tmp372));
-      const Scalar tmp908 = -(Scalar(1)/(tmp373*tmp373))*tmp907;
-      const Scalar tmp909 = -tmp374 + tmp368*tmp908;
-      const Scalar tmp910 = tmp370*tmp908;
-      const Scalar tmp911 = tmp372*tmp908;
-      const Scalar tmp912 = tmp382*penalty_damping*(-tmp366 - vel(0))*tmp909
-          + tmp382*penalty_damping*(-tmp376 - vel(1))*tmp910
-          + tmp382*penalty_damping*(-tmp378 - vel(2))*tmp911 + tmp384*tmp907;
-      const Scalar tmp913 = -tmp388/sqrt((tmp388*tmp388) + (tmp390*tmp390) + (tmp392*tmp392));
-      const Scalar tmp914 = -(Scalar(1)/(tmp393*tmp393))*tmp913;
-      const Scalar tmp915 = -tmp394 + tmp388*tmp914;
-      const Scalar tmp916 = tmp390*tmp914;
-      const Scalar tmp917 = tmp392*tmp914;
-      const Scalar tmp918 = tmp401*penalty_damping*(-tmp386 - vel(0))*tmp915
-          + tmp401*penalty_damping*(-tmp396 - vel(1))*tmp916
-          + tmp401*penalty_damping*(-tmp398 - vel(2))*tmp917 + tmp403*tmp913;
-      const Scalar tmp919 = tmp365*tmp905 + tmp358*tmp906 + tmp385*tmp911 + tmp379*tmp912
-          + tmp404*tmp917 + tmp399*tmp918;
-      const Scalar tmp920 = -tmp906;
-      const Scalar tmp921 = tmp406*tmp905 + tmp358*tmp920;
-      const Scalar tmp922 = -tmp912;
-      const Scalar tmp923 = tmp449*tmp911 + tmp379*tmp922;
-      const Scalar tmp924 = -tmp918;
-      const Scalar tmp925 = tmp453*tmp917 + tmp399*tmp924;
-      const Scalar tmp926 = -tmp352/sqrt((tmp351*tmp351) + (tmp352*tmp352) + (tmp353*tmp353));
-      const Scalar tmp927 = -(Scalar(1)/(tmp354*tmp354))*tmp926;
-      const Scalar tmp928 = tmp351*tmp927;
-      const Scalar tmp929 = -tmp355 + tmp352*tmp927;
-      const Scalar tmp930 = tmp353*tmp927;
-      const Scalar tmp931 = tmp362*penalty_damping*(vel(3) - vel(0))*tmp928
-          + tmp362*penalty_damping*(vel(4) - vel(1))*tmp929
-          + tmp362*penalty_damping*(vel(5) - vel(2))*tmp930 + tmp364*tmp926;
-      const Scalar tmp932 = -tmp370/sqrt((tmp368*tmp368) + (tmp370*tmp370) + (tmp372*tmp372));
-      const Scalar tmp933 = -(Scalar(1)/(tmp373*tmp373))*tmp932;
-      const Scalar tmp934 = tmp368*tmp933;
-      const Scalar tmp935 = -tmp374 + tmp370*tmp933;
-      const Scalar tmp936 = tmp372*tmp933;
-      const Scalar tmp937 = tmp382*penalty_damping*(-tmp366 - vel(0))*tmp934
-          + tmp382*penalty_damping*(-tmp376 - vel(1))*tmp935
-          + tmp382*penalty_damping*(-tmp378 - vel(2))*tmp936 + tmp384*tmp932;
-      const Scalar tmp938 = -tmp390/sqrt((tmp388*tmp388) + (tmp390*tmp390) + (tmp392*tmp392));
-      const Scalar tmp939 = -(Scalar(1)/(tmp393*tmp393))*tmp938;
-      const Scalar tmp940 = tmp388*tmp939;
-      const Scalar tmp941 = -tmp394 + tmp390*tmp939;
-      const Scalar tmp942 = tmp392*tmp939;
-      const Scalar tmp943 = tmp401*penalty_damping*(-tmp386 - vel(0))*tmp940
-          + tmp401*penalty_damping*(-tmp396 - vel(1))*tmp941
-          + tmp401*penalty_damping*(-tmp398 - vel(2))*tmp942 + tmp403*tmp938;
-      const Scalar tmp944 = tmp365*tmp930 + tmp358*tmp931 + tmp385*tmp936 + tmp379*tmp937
-          + tmp404*tmp942 + tmp399*tmp943;
-      const Scalar tmp945 = -tmp931;
-      const Scalar tmp946 = tmp406*tmp930 + tmp358*tmp945;
-      const Scalar tmp947 = -tmp937;
-      const Scalar tmp948 = tmp449*tmp936 + tmp379*tmp947;
-      const Scalar tmp949 = -tmp943;
-      const Scalar tmp950 = tmp453*tmp942 + tmp399*tmp949;
-      const Scalar tmp951 = -tmp353/sqrt((tmp351*tmp351) + (tmp352*tmp352) + (tmp353*tmp353));
-      const Scalar tmp952 = -(Scalar(1)/(tmp354*tmp354))*tmp951;
-      const Scalar tmp953 = tmp351*tmp952;
-      const Scalar tmp954 = tmp352*tmp952;
-      const Scalar tmp955 = -tmp355 + tmp353*tmp952;
-      const Scalar tmp956 = tmp362*penalty_damping*(vel(3) - vel(0))*tmp953
-          + tmp362*penalty_damping*(vel(4) - vel(1))*tmp954
-          + tmp362*penalty_damping*(vel(5) - vel(2))*tmp955 + tmp364*tmp951;
-      const Scalar tmp957 = -tmp372/sqrt((tmp368*tmp368) + (tmp370*tmp370) + (tmp372*tmp372));
-      const Scalar tmp958 = -(Scalar(1)/(tmp373*tmp373))*tmp957;
-      const Scalar tmp959 = tmp368*tmp958;
-      const Scalar tmp960 = tmp370*tmp958;
-      const Scalar tmp961 = -tmp374 + tmp372*tmp958;
-      const Scalar tmp962 = tmp382*penalty_damping*(-tmp366 - vel(0))*tmp959
-          + tmp382*penalty_damping*(-tmp376 - vel(1))*tmp960
-          + tmp382*penalty_damping*(-tmp378 - vel(2))*tmp961 + tmp384*tmp957;
-      const Scalar tmp963 = -tmp392/sqrt((tmp388*tmp388) + (tmp390*tmp390) + (tmp392*tmp392));
-      const Scalar tmp964 = -(Scalar(1)/(tmp393*tmp393))*tmp963;
-      const Scalar tmp965 = tmp388*tmp964;
-      const Scalar tmp966 = tmp390*tmp964;
-      const Scalar tmp967 = -tmp394 + tmp392*tmp964;
-      const Scalar tmp968 = tmp401*penalty_damping*(-tmp386 - vel(0))*tmp965
-          + tmp401*penalty_damping*(-tmp396 - vel(1))*tmp966
-          + tmp401*penalty_damping*(-tmp398 - vel(2))*tmp967 + tmp403*tmp963;
-      const Scalar tmp969 = tmp365*tmp955 + tmp358*tmp956 + tmp385*tmp961 + tmp379*tmp962
-          + tmp404*tmp967 + tmp399*tmp968;
-      const Scalar tmp970 = -tmp956;
-      const Scalar tmp971 = tmp406*tmp955 + tmp358*tmp970;
-      const Scalar tmp972 = -tmp962;
-      const Scalar tmp973 = tmp449*tmp961 + tmp379*tmp972;
-      const Scalar tmp974 = -tmp968;
-      const Scalar tmp975 = tmp453*tmp967 + tmp399*tmp974;
-      const Scalar tmp976 = tmp351/sqrt((tmp351*tmp351) + (tmp352*tmp352) + (tmp353*tmp353));
-      const Scalar tmp977 = -(Scalar(1)/(tmp354*tmp354))*tmp976;
-      const Scalar tmp978 = tmp355 + tmp351*tmp977;
-      const Scalar tmp979 = tmp352*tmp977;
-      const Scalar tmp980 = tmp353*tmp977;
-      const Scalar tmp981 = tmp362*penalty_damping*(vel(3) - vel(0))*tmp978
-          + tmp362*penalty_damping*(vel(4) - vel(1))*tmp979
-          + tmp362*penalty_damping*(vel(5) - vel(2))*tmp980 + tmp364*tmp976;
-      const Scalar tmp982 = tmp365*tmp980 + tmp358*tmp981;
-      const Scalar tmp983 = -tmp981;
-      const Scalar tmp984 = -tmp407/sqrt((tmp407*tmp407) + (tmp408*tmp408) + (tmp409*tmp409));
-      const Scalar tmp985 = -(Scalar(1)/(tmp410*tmp410))*tmp984;
-      const Scalar tmp986 = -tmp411 + tmp407*tmp985;
-      const Scalar tmp987 = tmp408*tmp985;
-      const Scalar tmp988 = tmp409*tmp985;
-      const Scalar tmp989 = tmp418*penalty_damping*(-tmp366 - vel(3))*tmp986
-          + tmp418*penalty_damping*(-tmp376 - vel(4))*tmp987
-          + tmp418*penalty_damping*(-tmp378 - vel(5))*tmp988 + tmp420*tmp984;
-      const Scalar tmp990 = -tmp422/sqrt((tmp422*tmp422) + (tmp423*tmp423) + (tmp424*tmp424));
-      const Scalar tmp991 = -(Scalar(1)/(tmp425*tmp425))*tmp990;
-      const Scalar tmp992 = -tmp426 + tmp422*tmp991;
-      const Scalar tmp993 = tmp423*tmp991;
-      const Scalar tmp994 = tmp424*tmp991;
-      const Scalar tmp995 = tmp431*penalty_damping*(-tmp386 - vel(3))*tmp992
-          + tmp431*penalty_damping*(-tmp396 - vel(4))*tmp993
-          + tmp431*penalty_damping*(-tmp398 - vel(5))*tmp994 + tmp433*tmp990;
-      const Scalar tmp996 = tmp406*tmp980 + tmp358*tmp983 + tmp421*tmp988 + tmp414*tmp989
-          + tmp434*tmp994 + tmp429*tmp995;
-      const Scalar tmp997 = -tmp989;
-      const Scalar tmp998 = tmp450*tmp988 + tmp414*tmp997;
-      const Scalar tmp999 = -tmp995;
-      const Scalar tmp1000 = tmp454*tmp994 + tmp429*tmp999;
-      const Scalar tmp1001 = tmp352/sqrt((tmp351*tmp351) + (tmp352*tmp352) + (tmp353*tmp353));
-      const Scalar tmp1002 = -(Scalar(1)/(tmp354*tmp354))*tmp1001;
-      const Scalar tmp1003 = tmp351*tmp1002;
-      const Scalar tmp1004 = tmp355 + tmp352*tmp1002;
-      const Scalar tmp1005 = tmp353*tmp1002;
-      const Scalar tmp1006 = tmp362*penalty_damping*(vel(3) - vel(0))*tmp1003
-          + tmp362*penalty_damping*(vel(4) - vel(1))*tmp1004
-          + tmp362*penalty_damping*(vel(5) - vel(2))*tmp1005 + tmp364*tmp1001;
-      const Scalar tmp1007 = tmp365*tmp1005 + tmp358*tmp1006;
-      const Scalar tmp1008 = -tmp1006;
-      const Scalar tmp1009 = -tmp408/sqrt((tmp407*tmp407) + (tmp408*tmp408) + (tmp409*tmp409));
-      const Scalar tmp1010 = -(Scalar(1)/(tmp410*tmp410))*tmp1009;
-      const Scalar tmp1011 = tmp407*tmp1010;
-      const Scalar tmp1012 = -tmp411 + tmp408*tmp1010;
-      const Scalar tmp1013 = tmp409*tmp1010;
-      const Scalar tmp1014 = tmp418*penalty_damping*(-tmp366 - vel(3))*tmp1011
-          + tmp418*penalty_damping*(-tmp376 - vel(4))*tmp1012
-          + tmp418*penalty_damping*(-tmp378 - vel(5))*tmp1013 + tmp420*tmp1009;
-      const Scalar tmp1015 = -tmp423/sqrt((tmp422*tmp422) + (tmp423*tmp423) + (tmp424*tmp424));
-      const Scalar tmp1016 = -(Scalar(1)/(tmp425*tmp425))*tmp1015;
-      const Scalar tmp1017 = tmp422*tmp1016;
-      const Scalar tmp1018 = -tmp426 + tmp423*tmp1016;
-      const Scalar tmp1019 = tmp424*tmp1016;
-      const Scalar tmp1020 = tmp431*penalty_damping*(-tmp386 - vel(3))*tmp1017
-          + tmp431*penalty_damping*(-tmp396 - vel(4))*tmp1018
-          + tmp431*penalty_damping*(-tmp398 - vel(5))*tmp1019 + tmp433*tmp1015;
-      const Scalar tmp1021 = tmp406*tmp1005 + tmp358*tmp1008 + tmp421*tmp1013 + tmp414*tmp1014
-          + tmp434*tmp1019 + tmp429*tmp1020;
-      const Scalar tmp1022 = -tmp1014;
-      const Scalar tmp1023 = tmp450*tmp1013 + tmp414*tmp1022;
-      const Scalar tmp1024 = -tmp1020;
-      const Scalar tmp1025 = tmp454*tmp1019 + tmp429*tmp1024;
-      const Scalar tmp1026 = tmp353/sqrt((tmp351*tmp351) + (tmp352*tmp352) + (tmp353*tmp353));
-      const Scalar tmp1027 = -(Scalar(1)/(tmp354*tmp354))*tmp1026;
-      const Scalar tmp1028 = tmp351*tmp1027;
-      const Scalar tmp1029 = tmp352*tmp1027;
-      const Scalar tmp1030 = tmp355 + tmp353*tmp1027;
-      const Scalar tmp1031 = tmp362*penalty_damping*(vel(3) - vel(0))*tmp1028
-          + tmp362*penalty_damping*(vel(4) - vel(1))*tmp1029
-          + tmp362*penalty_damping*(vel(5) - vel(2))*tmp1030 + tmp364*tmp1026;
-      const Scalar tmp1032 = tmp365*tmp1030 + tmp358*tmp1031;
-      const Scalar tmp1033 = -tmp1031;
-      const Scalar tmp1034 = -tmp409/sqrt((tmp407*tmp407) + (tmp408*tmp408) + (tmp409*tmp409));
-      const Scalar tmp1035 = -(Scalar(1)/(tmp410*tmp410))*tmp1034;
-      const Scalar tmp1036 = tmp407*tmp1035;
-      const Scalar tmp1037 = tmp408*tmp1035;
-      const Scalar tmp1038 = -tmp411 + tmp409*tmp1035;
-      const Scalar tmp1039 = tmp418*penalty_damping*(-tmp366 - vel(3))*tmp1036
-          + tmp418*penalty_damping*(-tmp376 - vel(4))*tmp1037
-          + tmp418*penalty_damping*(-tmp378 - vel(5))*tmp1038 + tmp420*tmp1034;
-      const Scalar tmp1040 = -tmp424/sqrt((tmp422*tmp422) + (tmp423*tmp423) + (tmp424*tmp424));
-      const Scalar tmp1041 = -(Scalar(1)/(tmp425*tmp425))*tmp1040;
-      const Scalar tmp1042 = tmp422*tmp1041;
-      const Scalar tmp1043 = tmp423*tmp1041;
-      const Scalar tmp1044 = -tmp426 + tmp424*tmp1041;
-      const Scalar tmp1045 = tmp431*penalty_damping*(-tmp386 - vel(3))*tmp1042
-          + tmp431*penalty_damping*(-tmp396 - vel(4))*tmp1043
-          + tmp431*penalty_damping*(-tmp398 - vel(5))*tmp1044 + tmp433*tmp1040;
-      const Scalar tmp1046 = tmp406*tmp1030 + tmp358*tmp1033 + tmp421*tmp1038 + tmp414*tmp1039
-          + tmp434*tmp1044 + tmp429*tmp1045;
-      const Scalar tmp1047 = -tmp1039;
-      const Scalar tmp1048 = tmp450*tmp1038 + tmp414*tmp1047;
-      const Scalar tmp1049 = -tmp1045;
-      const Scalar tmp1050 = tmp454*tmp1044 + tmp429*tmp1049;
-      const Scalar tmp1051 = tmp368/sqrt((tmp368*tmp368) + (tmp370*tmp370) + (tmp372*tmp372));
-      const Scalar tmp1052 = -(Scalar(1)/(tmp373*tmp373))*tmp1051;
-      const Scalar tmp1053 = tmp374 + tmp368*tmp1052;
-      const Scalar tmp1054 = tmp370*tmp1052;
-      const Scalar tmp1055 = tmp372*tmp1052;
-      const Scalar tmp1056 = tmp382*penalty_damping*(-tmp366 - vel(0))*tmp1053
-          + tmp382*penalty_damping*(-tmp376 - vel(1))*tmp1054
-          + tmp382*penalty_damping*(-tmp378 - vel(2))*tmp1055 + tmp384*tmp1051;
-      const Scalar tmp1057 = tmp385*tmp1055 + tmp379*tmp1056;
-      const Scalar tmp1058 = tmp407/sqrt((tmp407*tmp407) + (tmp408*tmp408) + (tmp409*tmp409));
-      const Scalar tmp1059 = -(Scalar(1)/(tmp410*tmp410))*tmp1058;
-      const Scalar tmp1060 = tmp411 + tmp407*tmp1059;
-      const Scalar tmp1061 = tmp408*tmp1059;
-      const Scalar tmp1062 = tmp409*tmp1059;
-      const Scalar tmp1063 = tmp418*penalty_damping*(-tmp366 - vel(3))*tmp1060
-          + tmp418*penalty_damping*(-tmp376 - vel(4))*tmp1061
-          + tmp418*penalty_damping*(-tmp378 - vel(5))*tmp1062 + tmp420*tmp1058;
-      const Scalar tmp1064 = tmp421*tmp1062 + tmp414*tmp1063;
-      const Scalar tmp1065 = -tmp436/sqrt((tmp436*tmp436) + (tmp437*tmp437) + (tmp438*tmp438));
-      const Scalar tmp1066 = -(Scalar(1)/(tmp439*tmp439))*tmp1065;
-      const Scalar tmp1067 = -tmp440 + tmp436*tmp1066;
-      const Scalar tmp1068 = tmp437*tmp1066;
-      const Scalar tmp1069 = tmp438*tmp1066;
-      const Scalar tmp1070 = tmp445*penalty_damping*(-tmp386 - vel(6))*tmp1067
-          + tmp445*penalty_damping*(-tmp396 - vel(7))*tmp1068
-          + tmp445*penalty_damping*(-tmp398 - vel(8))*tmp1069 + tmp447*tmp1065;
-      const Scalar tmp1071 = -tmp1056;
-      const Scalar tmp1072 = -tmp1063;
-      const Scalar tmp1073 = tmp449*tmp1055 + tmp450*tmp1062 + tmp448*tmp1069 + tmp443*tmp1070
-          + tmp379*tmp1071 + tmp414*tmp1072;
-      const Scalar tmp1074 = -tmp1070;
-      const Scalar tmp1075 = tmp452*tmp1069 + tmp443*tmp1074;
-      const Scalar tmp1076 = tmp370/sqrt((tmp368*tmp368) + (tmp370*tmp370) + (tmp372*tmp372));
-      const Scalar tmp1077 = -(Scalar(1)/(tmp373*tmp373))*tmp1076;
-      const Scalar tmp1078 = tmp368*tmp1077;
-      const Scalar tmp1079 = tmp374 + tmp370*tmp1077;
-      const Scalar tmp1080 = tmp372*tmp1077;
-      const Scalar tmp1081 = tmp382*penalty_damping*(-tmp366 - vel(0))*tmp1078
-          + tmp382*penalty_damping*(-tmp376 - vel(1))*tmp1079
-          + tmp382*penalty_damping*(-tmp378 - vel(2))*tmp1080 + tmp384*tmp1076;
-      const Scalar tmp1082 = tmp385*tmp1080 + tmp379*tmp1081;
-      const Scalar tmp1083 = tmp408/sqrt((tmp407*tmp407) + (tmp408*tmp408) + (tmp409*tmp409));
-      const Scalar tmp1084 = -(Scalar(1)/(tmp410*tmp410))*tmp1083;
-      const Scalar tmp1085 = tmp407*tmp1084;
-      const Scalar tmp1086 = tmp411 + tmp408*tmp1084;
-      const Scalar tmp1087 = tmp409*tmp1084;
-      const Scalar tmp1088 = tmp418*penalty_damping*(-tmp366 - vel(3))*tmp1085
-          + tmp418*penalty_damping*(-tmp376 - vel(4))*tmp1086
-          + tmp418*penalty_damping*(-tmp378 - vel(5))*tmp1087 + tmp420*tmp1083;
-      const Scalar tmp1089 = tmp421*tmp1087 + tmp414*tmp1088;
-      const Scalar tmp1090 = -tmp437/sqrt((tmp436*tmp436) + (tmp437*tmp437) + (tmp438*tmp438));
-      const Scalar tmp1091 = -(Scalar(1)/(tmp439*tmp439))*tmp1090;
-      const Scalar tmp1092 = tmp436*tmp1091;
-      const Scalar tmp1093 = -tmp440 + tmp437*tmp1091;
-      const Scalar tmp1094 = tmp438*tmp1091;
-      const Scalar tmp1095 = tmp445*penalty_damping*(-tmp386 - vel(6))*tmp1092
-          + tmp445*penalty_damping*(-tmp396 - vel(7))*tmp1093
-          + tmp445*penalty_damping*(-tmp398 - vel(8))*tmp1094 + tmp447*tmp1090;
-      const Scalar tmp1096 = -tmp1081;
-      const Scalar tmp1097 = -tmp1088;
-      const Scalar tmp1098 = tmp449*tmp1080 + tmp450*tmp1087 + tmp448*tmp1094 + tmp443*tmp1095
-          + tmp379*tmp1096 + tmp414*tmp1097;
-      const Scalar tmp1099 = -tmp1095;
-      const Scalar tmp1100 = tmp452*tmp1094 + tmp443*tmp1099;
-      const Scalar tmp1101 = tmp372/sqrt((tmp368*tmp368) + (tmp370*tmp370) + (tmp372*tmp372));
-      const Scalar tmp1102 = -(Scalar(1)/(tmp373*tmp373))*tmp1101;
-      const Scalar tmp1103 = tmp368*tmp1102;
-      const Scalar tmp1104 = tmp370*tmp1102;
-      const Scalar tmp1105 = tmp374 + tmp372*tmp1102;
-      const Scalar tmp1106 = tmp382*penalty_damping*(-tmp366 - vel(0))*tmp1103
-          + tmp382*penalty_damping*(-tmp376 - vel(1))*tmp1104
-          + tmp382*penalty_damping*(-tmp378 - vel(2))*tmp1105 + tmp384*tmp1101;
-      const Scalar tmp1107 = tmp385*tmp1105 + tmp379*tmp1106;
-      const Scalar tmp1108 = tmp409/sqrt((tmp407*tmp407) + (tmp408*tmp408) + (tmp409*tmp409));
-      const Scalar tmp1109 = -(Scalar(1)/(tmp410*tmp410))*tmp1108;
-      const Scalar tmp1110 = tmp407*tmp1109;
-      const Scalar tmp1111 = tmp408*tmp1109;
-      const Scalar tmp1112 = tmp411 + tmp409*tmp1109;
-      const Scalar tmp1113 = tmp418*penalty_damping*(-tmp366 - vel(3))*tmp1110
-          + tmp418*penalty_damping*(-tmp376 - vel(4))*tmp1111
-          + tmp418*penalty_damping*(-tmp378 - vel(5))*tmp1112 + tmp420*tmp1108;
-      const Scalar tmp1114 = tmp421*tmp1112 + tmp414*tmp1113;
-      const Scalar tmp1115 = -tmp438/sqrt((tmp436*tmp436) + (tmp437*tmp437) + (tmp438*tmp438));
-      const Scalar tmp1116 = -(Scalar(1)/(tmp439*tmp439))*tmp1115;
-      const Scalar tmp1117 = tmp436*tmp1116;
-      const Scalar tmp1118 = tmp437*tmp1116;
-      const Scalar tmp1119 = -tmp440 + tmp438*tmp1116;
-      const Scalar tmp1120 = tmp445*penalty_damping*(-tmp386 - vel(6))*tmp1117
-          + tmp445*penalty_damping*(-tmp396 - vel(7))*tmp1118
-          + tmp445*penalty_damping*(-tmp398 - vel(8))*tmp1119 + tmp447*tmp1115;
-      const Scalar tmp1121 = -tmp1106;
-      const Scalar tmp1122 = -tmp1113;
-      const Scalar tmp1123 = tmp449*tmp1105 + tmp450*tmp1112 + tmp448*tmp1119 + tmp443*tmp1120
-          + tmp379*tmp1121 + tmp414*tmp1122;
-      const Scalar tmp1124 = -tmp1120;
-      const Scalar tmp1125 = tmp452*tmp1119 + tmp443*tmp1124;
-      const Scalar tmp1126 = tmp388/sqrt((tmp388*tmp388) + (tmp390*tmp390) + (tmp392*tmp392));
-      const Scalar tmp1127 = -(Scalar(1)/(tmp393*tmp393))*tmp1126;
-      const Scalar tmp1128 = tmp394 + tmp388*tmp1127;
-      const Scalar tmp1129 = tmp390*tmp1127;
-      const Scalar tmp1130 = tmp392*tmp1127;
-      const Scalar tmp1131 = tmp401*penalty_damping*(-tmp386 - vel(0))*tmp1128
-          + tmp401*penalty_damping*(-tmp396 - vel(1))*tmp1129
-          + tmp401*penalty_damping*(-tmp398 - vel(2))*tmp1130 + tmp403*tmp1126;
-      const Scalar tmp1132 = tmp404*tmp1130 + tmp399*tmp1131;
-      const Scalar tmp1133 = tmp422/sqrt((tmp422*tmp422) + (tmp423*tmp423) + (tmp424*tmp424));
-      const Scalar tmp1134 = -(Scalar(1)/(tmp425*tmp425))*tmp1133;
-      const Scalar tmp1135 = tmp426 + tmp422*tmp1134;
-      const Scalar tmp1136 = tmp423*tmp1134;
-      const Scalar tmp1137 = tmp424*tmp1134;
-      const Scalar tmp1138 = tmp431*penalty_damping*(-tmp386 - vel(3))*tmp1135
-          + tmp431*penalty_damping*(-tmp396 - vel(4))*tmp1136
-          + tmp431*penalty_damping*(-tmp398 - vel(5))*tmp1137 + tmp433*tmp1133;
-      const Scalar tmp1139 = tmp434*tmp1137 + tmp429*tmp1138;
-      const Scalar tmp1140 = tmp436/sqrt((tmp436*tmp436) + (tmp437*tmp437) + (tmp438*tmp438));
-      const Scalar tmp1141 = -(Scalar(1)/(tmp439*tmp439))*tmp1140;
-      const Scalar tmp1142 = tmp440 + tmp436*tmp1141;
-      const Scalar tmp1143 = tmp437*tmp1141;
-      const Scalar tmp1144 = tmp438*tmp1141;
-      const Scalar tmp1145 = tmp445*penalty_damping*(-tmp386 - vel(6))*tmp1142
-          + tmp445*penalty_damping*(-tmp396 - vel(7))*tmp1143
-          + tmp445*penalty_damping*(-tmp398 - vel(8))*tmp1144 + tmp447*tmp1140;
-      const Scalar tmp1146 = tmp448*tmp1144 + tmp443*tmp1145;
-      const Scalar tmp1147 = -tmp1145;
-      const Scalar tmp1148 = -tmp1131;
-      const Scalar tmp1149 = -tmp1138;
-      const Scalar tmp1150 = tmp453*tmp1130 + tmp454*tmp1137 + tmp452*tmp1144 + tmp443*tmp1147
-          + tmp399*tmp1148 + tmp429*tmp1149;
-      const Scalar tmp1151 = tmp390/sqrt((tmp388*tmp388) + (tmp390*tmp390) + (tmp392*tmp392));
-      const Scalar tmp1152 = -(Scalar(1)/(tmp393*tmp393))*tmp1151;
-      const Scalar tmp1153 = tmp388*tmp1152;
-      const Scalar tmp1154 = tmp394 + tmp390*tmp1152;
-      const Scalar tmp1155 = tmp392*tmp1152;
-      const Scalar tmp1156 = tmp401*penalty_damping*(-tmp386 - vel(0))*tmp1153
-          + tmp401*penalty_damping*(-tmp396 - vel(1))*tmp1154
-          + tmp401*penalty_damping*(-tmp398 - vel(2))*tmp1155 + tmp403*tmp1151;
-      const Scalar tmp1157 = tmp404*tmp1155 + tmp399*tmp1156;
-      const Scalar tmp1158 = tmp423/sqrt((tmp422*tmp422) + (tmp423*tmp423) + (tmp424*tmp424));
-      const Scalar tmp1159 = -(Scalar(1)/(tmp425*tmp425))*tmp1158;
-      const Scalar tmp1160 = tmp422*tmp1159;
-      const Scalar tmp1161 = tmp426 + tmp423*tmp1159;
-      const Scalar tmp1162 = tmp424*tmp1159;
-      const Scalar tmp1163 = tmp431*penalty_damping*(-tmp386 - vel(3))*tmp1160
-          + tmp431*penalty_damping*(-tmp396 - vel(4))*tmp1161
-          + tmp431*penalty_damping*(-tmp398 - vel(5))*tmp1162 + tmp433*tmp1158;
-      const Scalar tmp1164 = tmp434*tmp1162 + tmp429*tmp1163;
-      const Scalar tmp1165 = tmp437/sqrt((tmp436*tmp436) + (tmp437*tmp437) + (tmp438*tmp438));
-      const Scalar tmp1166 = -(Scalar(1)/(tmp439*tmp439))*tmp1165;
-      const Scalar tmp1167 = tmp436*tmp1166;
-      const Scalar tmp1168 = tmp440 + tmp437*tmp1166;
-      const Scalar tmp1169 = tmp438*tmp1166;
-      const Scalar tmp1170 = tmp445*penalty_damping*(-tmp386 - vel(6))*tmp1167
-          + tmp445*penalty_damping*(-tmp396 - vel(7))*tmp1168
-          + tmp445*penalty_damping*(-tmp398 - vel(8))*tmp1169 + tmp447*tmp1165;
-      const Scalar tmp1171 = tmp448*tmp1169 + tmp443*tmp1170;
-      const Scalar tmp1172 = -tmp1170;
-      const Scalar tmp1173 = -tmp1156;
-      const Scalar tmp1174 = -tmp1163;
-      const Scalar tmp1175 = tmp453*tmp1155 + tmp454*tmp1162 + tmp452*tmp1169 + tmp443*tmp1172
-          + tmp399*tmp1173 + tmp429*tmp1174;
-      const Scalar tmp1176 = tmp392/sqrt((tmp388*tmp388) + (tmp390*tmp390) + (tmp392*tmp392));
-      const Scalar tmp1177 = -(Scalar(1)/(tmp393*tmp393))*tmp1176;
-      const Scalar tmp1178 = tmp388*tmp1177;
-      const Scalar tmp1179 = tmp390*tmp1177;
-      const Scalar tmp1180 = tmp394 + tmp392*tmp1177;
-      const Scalar tmp1181 = tmp401*penalty_damping*(-tmp386 - vel(0))*tmp1178
-          + tmp401*penalty_damping*(-tmp396 - vel(1))*tmp1179
-          + tmp401*penalty_damping*(-tmp398 - vel(2))*tmp1180 + tmp403*tmp1176;
-      const Scalar tmp1182 = tmp404*tmp1180 + tmp399*tmp1181;
-      const Scalar tmp1183 = tmp424/sqrt((tmp422*tmp422) + (tmp423*tmp423) + (tmp424*tmp424));
-      const Scalar tmp1184 = -(Scalar(1)/(tmp425*tmp425))*tmp1183;
-      const Scalar tmp1185 = tmp422*tmp1184;
-      const Scalar tmp1186 = tmp423*tmp1184;
-      const Scalar tmp1187 = tmp426 + tmp424*tmp1184;
-      const Scalar tmp1188 = tmp431*penalty_damping*(-tmp386 - vel(3))*tmp1185
-          + tmp431*penalty_damping*(-tmp396 - vel(4))*tmp1186
-          + tmp431*penalty_damping*(-tmp398 - vel(5))*tmp1187 + tmp433*tmp1183;
-      const Scalar tmp1189 = tmp434*tmp1187 + tmp429*tmp1188;
-      const Scalar tmp1190 = tmp438/sqrt((tmp436*tmp436) + (tmp437*tmp437) + (tmp438*tmp438));
-      const Scalar tmp1191 = -(Scalar(1)/(tmp439*tmp439))*tmp1190;
-      const Scalar tmp1192 = tmp436*tmp1191;
-      const Scalar tmp1193 = tmp437*tmp1191;
-      const Scalar tmp1194 = tmp440 + tmp438*tmp1191;
-      const Scalar tmp1195 = tmp445*penalty_damping*(-tmp386 - vel(6))*tmp1192
-          + tmp445*penalty_damping*(-tmp396 - vel(7))*tmp1193
-          + tmp445*penalty_damping*(-tmp398 - vel(8))*tmp1194 + tmp447*tmp1190;
-      const Scalar tmp1196 = tmp448*tmp1194 + tmp443*tmp1195;
-      const Scalar tmp1197 = -tmp1195;
-      const Scalar tmp1198 = -tmp1181;
-      const Scalar tmp1199 = -tmp1188;
-      const Scalar tmp1200 = tmp453*tmp1180 + tmp454*tmp1187 + tmp452*tmp1194 + tmp443*tmp1197
-          + tmp399*tmp1198 + tmp429*tmp1199;
+      const Scalar tmp473 = (Scalar(1)/tmp472);
+      const Scalar tmp474 = tmp467 - tmp472;
+      const Scalar tmp475 = tmp473*kappa;
+      const Scalar tmp476 = tmp474*tmp475
+          + tmp473*penalty_damping*(tmp469*(-tmp405 - vel(6)) + tmp470*(-tmp406 - vel(7))
+              + tmp471*(-tmp408 - vel(8)));
+      const Scalar tmp477 = -tmp476;
+      const Scalar tmp937 = -tmp347/sqrt((tmp347*tmp347) + (tmp348*tmp348) + (tmp349*tmp349));
+      const Scalar tmp938 = -(Scalar(1)/(tmp350*tmp350))*tmp937;
+      const Scalar tmp939 = -tmp351 + tmp347*tmp938;
+      const Scalar tmp940 = tmp348*tmp938;
+      const Scalar tmp941 = tmp349*tmp938;
+      const Scalar tmp942 = tmp358*penalty_damping*(vel(3) - vel(0))*tmp939
+          + tmp358*penalty_damping*(vel(4) - vel(1))*tmp940
+          + tmp358*penalty_damping*(vel(5) - vel(2))*tmp941 + tmp360*tmp937;
+      const Scalar tmp943 = -tmp942;
+      const Scalar tmp944 = tmp362*tmp939 + tmp352*tmp943;
+      const Scalar tmp945 = tmp362*tmp940 + tmp353*tmp943;
+      const Scalar tmp946 = tmp362*tmp941 + tmp354*tmp943;
+      const Scalar tmp947 = tmp361*tmp939 + tmp352*tmp942;
+      const Scalar tmp948 = tmp361*tmp940 + tmp353*tmp942;
+      const Scalar tmp949 = tmp361*tmp941 + tmp354*tmp942;
+      const Scalar tmp950 = -tmp370/sqrt((tmp370*tmp370) + (tmp372*tmp372) + (tmp374*tmp374));
+      const Scalar tmp951 = -(Scalar(1)/(tmp375*tmp375))*tmp950;
+      const Scalar tmp952 = -tmp376 + tmp370*tmp951;
+      const Scalar tmp953 = tmp372*tmp951;
+      const Scalar tmp954 = tmp374*tmp951;
+      const Scalar tmp955 = tmp385*penalty_damping*(-tmp378 - vel(0))*tmp952
+          + tmp385*penalty_damping*(-tmp379 - vel(1))*tmp953
+          + tmp385*penalty_damping*(-tmp381 - vel(2))*tmp954 + tmp387*tmp950;
+      const Scalar tmp956 = -tmp955;
+      const Scalar tmp957 = tmp389*tmp952 + tmp377*tmp956;
+      const Scalar tmp958 = tmp389*tmp953 + tmp380*tmp956;
+      const Scalar tmp959 = tmp389*tmp954 + tmp382*tmp956;
+      const Scalar tmp960 = tmp388*tmp952 + tmp377*tmp955;
+      const Scalar tmp961 = tmp388*tmp953 + tmp380*tmp955;
+      const Scalar tmp962 = tmp388*tmp954 + tmp382*tmp955;
+      const Scalar tmp963 = -tmp397/sqrt((tmp397*tmp397) + (tmp399*tmp399) + (tmp401*tmp401));
+      const Scalar tmp964 = -(Scalar(1)/(tmp402*tmp402))*tmp963;
+      const Scalar tmp965 = -tmp403 + tmp397*tmp964;
+      const Scalar tmp966 = tmp399*tmp964;
+      const Scalar tmp967 = tmp401*tmp964;
+      const Scalar tmp968 = tmp411*penalty_damping*(-tmp405 - vel(0))*tmp965
+          + tmp411*penalty_damping*(-tmp406 - vel(1))*tmp966
+          + tmp411*penalty_damping*(-tmp408 - vel(2))*tmp967 + tmp413*tmp963;
+      const Scalar tmp969 = -tmp968;
+      const Scalar tmp970 = tmp415*tmp965 + tmp404*tmp969;
+      const Scalar tmp971 = tmp415*tmp966 + tmp407*tmp969;
+      const Scalar tmp972 = tmp415*tmp967 + tmp409*tmp969;
+      const Scalar tmp973 = tmp414*tmp965 + tmp404*tmp968;
+      const Scalar tmp974 = tmp414*tmp966 + tmp407*tmp968;
+      const Scalar tmp975 = tmp414*tmp967 + tmp409*tmp968;
+      const Scalar tmp976 = tmp962 + tmp975 + tmp949;
+      const Scalar tmp977 = -tmp348/sqrt((tmp347*tmp347) + (tmp348*tmp348) + (tmp349*tmp349));
+      const Scalar tmp978 = -(Scalar(1)/(tmp350*tmp350))*tmp977;
+      const Scalar tmp979 = tmp347*tmp978;
+      const Scalar tmp980 = -tmp351 + tmp348*tmp978;
+      const Scalar tmp981 = tmp349*tmp978;
+      const Scalar tmp982 = tmp358*penalty_damping*(vel(3) - vel(0))*tmp979
+          + tmp358*penalty_damping*(vel(4) - vel(1))*tmp980
+          + tmp358*penalty_damping*(vel(5) - vel(2))*tmp981 + tmp360*tmp977;
+      const Scalar tmp983 = -tmp982;
+      const Scalar tmp984 = tmp362*tmp979 + tmp352*tmp983;
+      const Scalar tmp985 = tmp362*tmp980 + tmp353*tmp983;
+      const Scalar tmp986 = tmp362*tmp981 + tmp354*tmp983;
+      const Scalar tmp987 = tmp361*tmp979 + tmp352*tmp982;
+      const Scalar tmp988 = tmp361*tmp980 + tmp353*tmp982;
+      const Scalar tmp989 = tmp361*tmp981 + tmp354*tmp982;
+      const Scalar tmp990 = -tmp372/sqrt((tmp370*tmp370) + (tmp372*tmp372) + (tmp374*tmp374));
+      const Scalar tmp991 = -(Scalar(1)/(tmp375*tmp375))*tmp990;
+      const Scalar tmp992 = tmp370*tmp991;
+      const Scalar tmp993 = -tmp376 + tmp372*tmp991;
+      const Scalar tmp994 = tmp374*tmp991;
+      const Scalar tmp995 = tmp385*penalty_damping*(-tmp378 - vel(0))*tmp992
+          + tmp385*penalty_damping*(-tmp379 - vel(1))*tmp993
+          + tmp385*penalty_damping*(-tmp381 - vel(2))*tmp994 + tmp387*tmp990;
+      const Scalar tmp996 = -tmp995;
+      const Scalar tmp997 = tmp389*tmp992 + tmp377*tmp996;
+      const Scalar tmp998 = tmp389*tmp993 + tmp380*tmp996;
+      const Scalar tmp999 = tmp389*tmp994 + tmp382*tmp996;
+      const Scalar tmp1000 = tmp388*tmp992 + tmp377*tmp995;
+      const Scalar tmp1001 = tmp388*tmp993 + tmp380*tmp995;
+      const Scalar tmp1002 = tmp388*tmp994 + tmp382*tmp995;
+      const Scalar tmp1003 = -tmp399/sqrt((tmp397*tmp397) + (tmp399*tmp399) + (tmp401*tmp401));
+      const Scalar tmp1004 = -(Scalar(1)/(tmp402*tmp402))*tmp1003;
+      const Scalar tmp1005 = tmp397*tmp1004;
+      const Scalar tmp1006 = -tmp403 + tmp399*tmp1004;
+      const Scalar tmp1007 = tmp401*tmp1004;
+      const Scalar tmp1008 = tmp411*penalty_damping*(-tmp405 - vel(0))*tmp1005
+          + tmp411*penalty_damping*(-tmp406 - vel(1))*tmp1006
+          + tmp411*penalty_damping*(-tmp408 - vel(2))*tmp1007 + tmp413*tmp1003;
+      const Scalar tmp1009 = -tmp1008;
+      const Scalar tmp1010 = tmp415*tmp1005 + tmp404*tmp1009;
+      const Scalar tmp1011 = tmp415*tmp1006 + tmp407*tmp1009;
+      const Scalar tmp1012 = tmp415*tmp1007 + tmp409*tmp1009;
+      const Scalar tmp1013 = tmp414*tmp1005 + tmp404*tmp1008;
+      const Scalar tmp1014 = tmp414*tmp1006 + tmp407*tmp1008;
+      const Scalar tmp1015 = tmp414*tmp1007 + tmp409*tmp1008;
+      const Scalar tmp1016 = tmp1002 + tmp1015 + tmp989;
+      const Scalar tmp1017 = -tmp349/sqrt((tmp347*tmp347) + (tmp348*tmp348) + (tmp349*tmp349));
+      const Scalar tmp1018 = -(Scalar(1)/(tmp350*tmp350))*tmp1017;
+      const Scalar tmp1019 = tmp347*tmp1018;
+      const Scalar tmp1020 = tmp348*tmp1018;
+      const Scalar tmp1021 = -tmp351 + tmp349*tmp1018;
+      const Scalar tmp1022 = tmp358*penalty_damping*(vel(3) - vel(0))*tmp1019
+          + tmp358*penalty_damping*(vel(4) - vel(1))*tmp1020
+          + tmp358*penalty_damping*(vel(5) - vel(2))*tmp1021 + tmp360*tmp1017;
+      const Scalar tmp1023 = -tmp1022;
+      const Scalar tmp1024 = tmp362*tmp1019 + tmp352*tmp1023;
+      const Scalar tmp1025 = tmp362*tmp1020 + tmp353*tmp1023;
+      const Scalar tmp1026 = tmp362*tmp1021 + tmp354*tmp1023;
+      const Scalar tmp1027 = tmp361*tmp1019 + tmp352*tmp1022;
+      const Scalar tmp1028 = tmp361*tmp1020 + tmp353*tmp1022;
+      const Scalar tmp1029 = tmp361*tmp1021 + tmp354*tmp1022;
+      const Scalar tmp1030 = -tmp374/sqrt((tmp370*tmp370) + (tmp372*tmp372) + (tmp374*tmp374));
+      const Scalar tmp1031 = -(Scalar(1)/(tmp375*tmp375))*tmp1030;
+      const Scalar tmp1032 = tmp370*tmp1031;
+      const Scalar tmp1033 = tmp372*tmp1031;
+      const Scalar tmp1034 = -tmp376 + tmp374*tmp1031;
+      const Scalar tmp1035 = tmp385*penalty_damping*(-tmp378 - vel(0))*tmp1032
+          + tmp385*penalty_damping*(-tmp379 - vel(1))*tmp1033
+          + tmp385*penalty_damping*(-tmp381 - vel(2))*tmp1034 + tmp387*tmp1030;
+      const Scalar tmp1036 = -tmp1035;
+      const Scalar tmp1037 = tmp389*tmp1032 + tmp377*tmp1036;
+      const Scalar tmp1038 = tmp389*tmp1033 + tmp380*tmp1036;
+      const Scalar tmp1039 = tmp389*tmp1034 + tmp382*tmp1036;
+      const Scalar tmp1040 = tmp388*tmp1032 + tmp377*tmp1035;
+      const Scalar tmp1041 = tmp388*tmp1033 + tmp380*tmp1035;
+      const Scalar tmp1042 = tmp388*tmp1034 + tmp382*tmp1035;
+      const Scalar tmp1043 = -tmp401/sqrt((tmp397*tmp397) + (tmp399*tmp399) + (tmp401*tmp401));
+      const Scalar tmp1044 = -(Scalar(1)/(tmp402*tmp402))*tmp1043;
+      const Scalar tmp1045 = tmp397*tmp1044;
+      const Scalar tmp1046 = tmp399*tmp1044;
+      const Scalar tmp1047 = -tmp403 + tmp401*tmp1044;
+      const Scalar tmp1048 = tmp411*penalty_damping*(-tmp405 - vel(0))*tmp1045
+          + tmp411*penalty_damping*(-tmp406 - vel(1))*tmp1046
+          + tmp411*penalty_damping*(-tmp408 - vel(2))*tmp1047 + tmp413*tmp1043;
+      const Scalar tmp1049 = -tmp1048;
+      const Scalar tmp1050 = tmp415*tmp1045 + tmp404*tmp1049;
+      const Scalar tmp1051 = tmp415*tmp1046 + tmp407*tmp1049;
+      const Scalar tmp1052 = tmp415*tmp1047 + tmp409*tmp1049;
+      const Scalar tmp1053 = tmp414*tmp1045 + tmp404*tmp1048;
+      const Scalar tmp1054 = tmp414*tmp1046 + tmp407*tmp1048;
+      const Scalar tmp1055 = tmp414*tmp1047 + tmp409*tmp1048;
+      const Scalar tmp1056 = tmp1042 + tmp1055 + tmp1029;
+      const Scalar tmp1057 = tmp347/sqrt((tmp347*tmp347) + (tmp348*tmp348) + (tmp349*tmp349));
+      const Scalar tmp1058 = -(Scalar(1)/(tmp350*tmp350))*tmp1057;
+      const Scalar tmp1059 = tmp351 + tmp347*tmp1058;
+      const Scalar tmp1060 = tmp348*tmp1058;
+      const Scalar tmp1061 = tmp349*tmp1058;
+      const Scalar tmp1062 = tmp358*penalty_damping*(vel(3) - vel(0))*tmp1059
+          + tmp358*penalty_damping*(vel(4) - vel(1))*tmp1060
+          + tmp358*penalty_damping*(vel(5) - vel(2))*tmp1061 + tmp360*tmp1057;
+      const Scalar tmp1063 = -tmp1062;
+      const Scalar tmp1064 = tmp362*tmp1059 + tmp352*tmp1063;
+      const Scalar tmp1065 = tmp362*tmp1060 + tmp353*tmp1063;
+      const Scalar tmp1066 = tmp362*tmp1061 + tmp354*tmp1063;
+      const Scalar tmp1067 = tmp361*tmp1059 + tmp352*tmp1062;
+      const Scalar tmp1068 = tmp361*tmp1060 + tmp353*tmp1062;
+      const Scalar tmp1069 = tmp361*tmp1061 + tmp354*tmp1062;
+      const Scalar tmp1070 = -tmp422/sqrt((tmp422*tmp422) + (tmp423*tmp423) + (tmp424*tmp424));
+      const Scalar tmp1071 = -(Scalar(1)/(tmp425*tmp425))*tmp1070;
+      const Scalar tmp1072 = -tmp426 + tmp422*tmp1071;
+      const Scalar tmp1073 = tmp423*tmp1071;
+      const Scalar tmp1074 = tmp424*tmp1071;
+      const Scalar tmp1075 = tmp433*penalty_damping*(-tmp378 - vel(3))*tmp1072
+          + tmp433*penalty_damping*(-tmp379 - vel(4))*tmp1073
+          + tmp433*penalty_damping*(-tmp381 - vel(5))*tmp1074 + tmp435*tmp1070;
+      const Scalar tmp1076 = -tmp1075;
+      const Scalar tmp1077 = tmp437*tmp1072 + tmp427*tmp1076;
+      const Scalar tmp1078 = tmp437*tmp1073 + tmp428*tmp1076;
+      const Scalar tmp1079 = tmp437*tmp1074 + tmp429*tmp1076;
+      const Scalar tmp1080 = tmp436*tmp1072 + tmp427*tmp1075;
+      const Scalar tmp1081 = tmp436*tmp1073 + tmp428*tmp1075;
+      const Scalar tmp1082 = tmp436*tmp1074 + tmp429*tmp1075;
+      const Scalar tmp1083 = -tmp444/sqrt((tmp444*tmp444) + (tmp445*tmp445) + (tmp446*tmp446));
+      const Scalar tmp1084 = -(Scalar(1)/(tmp447*tmp447))*tmp1083;
+      const Scalar tmp1085 = -tmp448 + tmp444*tmp1084;
+      const Scalar tmp1086 = tmp445*tmp1084;
+      const Scalar tmp1087 = tmp446*tmp1084;
+      const Scalar tmp1088 = tmp453*penalty_damping*(-tmp405 - vel(3))*tmp1085
+          + tmp453*penalty_damping*(-tmp406 - vel(4))*tmp1086
+          + tmp453*penalty_damping*(-tmp408 - vel(5))*tmp1087 + tmp455*tmp1083;
+      const Scalar tmp1089 = -tmp1088;
+      const Scalar tmp1090 = tmp457*tmp1085 + tmp449*tmp1089;
+      const Scalar tmp1091 = tmp457*tmp1086 + tmp450*tmp1089;
+      const Scalar tmp1092 = tmp457*tmp1087 + tmp451*tmp1089;
+      const Scalar tmp1093 = tmp456*tmp1085 + tmp449*tmp1088;
+      const Scalar tmp1094 = tmp456*tmp1086 + tmp450*tmp1088;
+      const Scalar tmp1095 = tmp456*tmp1087 + tmp451*tmp1088;
+      const Scalar tmp1096 = tmp1066 + tmp1082 + tmp1095;
+      const Scalar tmp1097 = tmp348/sqrt((tmp347*tmp347) + (tmp348*tmp348) + (tmp349*tmp349));
+      const Scalar tmp1098 = -(Scalar(1)/(tmp350*tmp350))*tmp1097;
+      const Scalar tmp1099 = tmp347*tmp1098;
+      const Scalar tmp1100 = tmp351 + tmp348*tmp1098;
+      const Scalar tmp1101 = tmp349*tmp1098;
+      const Scalar tmp1102 = tmp358*penalty_damping*(vel(3) - vel(0))*tmp1099
+          + tmp358*penalty_damping*(vel(4) - vel(1))*tmp1100
+          + tmp358*penalty_damping*(vel(5) - vel(2))*tmp1101 + tmp360*tmp1097;
+      const Scalar tmp1103 = -tmp1102;
+      const Scalar tmp1104 = tmp362*tmp1099 + tmp352*tmp1103;
+      const Scalar tmp1105 = tmp362*tmp1100 + tmp353*tmp1103;
+      const Scalar tmp1106 = tmp362*tmp1101 + tmp354*tmp1103;
+      const Scalar tmp1107 = tmp361*tmp1099 + tmp352*tmp1102;
+      const Scalar tmp1108 = tmp361*tmp1100 + tmp353*tmp1102;
+      const Scalar tmp1109 = tmp361*tmp1101 + tmp354*tmp1102;
+      const Scalar tmp1110 = -tmp423/sqrt((tmp422*tmp422) + (tmp423*tmp423) + (tmp424*tmp424));
+      const Scalar tmp1111 = -(Scalar(1)/(tmp425*tmp425))*tmp1110;
+      const Scalar tmp1112 = tmp422*tmp1111;
+      const Scalar tmp1113 = -tmp426 + tmp423*tmp1111;
+      const Scalar tmp1114 = tmp424*tmp1111;
+      const Scalar tmp1115 = tmp433*penalty_damping*(-tmp378 - vel(3))*tmp1112
+          + tmp433*penalty_damping*(-tmp379 - vel(4))*tmp1113
+          + tmp433*penalty_damping*(-tmp381 - vel(5))*tmp1114 + tmp435*tmp1110;
+      const Scalar tmp1116 = -tmp1115;
+      const Scalar tmp1117 = tmp437*tmp1112 + tmp427*tmp1116;
+      const Scalar tmp1118 = tmp437*tmp1113 + tmp428*tmp1116;
+      const Scalar tmp1119 = tmp437*tmp1114 + tmp429*tmp1116;
+      const Scalar tmp1120 = tmp436*tmp1112 + tmp427*tmp1115;
+      const Scalar tmp1121 = tmp436*tmp1113 + tmp428*tmp1115;
+      const Scalar tmp1122 = tmp436*tmp1114 + tmp429*tmp1115;
+      const Scalar tmp1123 = -tmp445/sqrt((tmp444*tmp444) + (tmp445*tmp445) + (tmp446*tmp446));
+      const Scalar tmp1124 = -(Scalar(1)/(tmp447*tmp447))*tmp1123;
+      const Scalar tmp1125 = tmp444*tmp1124;
+      const Scalar tmp1126 = -tmp448 + tmp445*tmp1124;
+      const Scalar tmp1127 = tmp446*tmp1124;
+      const Scalar tmp1128 = tmp453*penalty_damping*(-tmp405 - vel(3))*tmp1125
+          + tmp453*penalty_damping*(-tmp406 - vel(4))*tmp1126
+          + tmp453*penalty_damping*(-tmp408 - vel(5))*tmp1127 + tmp455*tmp1123;
+      const Scalar tmp1129 = -tmp1128;
+      const Scalar tmp1130 = tmp457*tmp1125 + tmp449*tmp1129;
+      const Scalar tmp1131 = tmp457*tmp1126 + tmp450*tmp1129;
+      const Scalar tmp1132 = tmp457*tmp1127 + tmp451*tmp1129;
+      const Scalar tmp1133 = tmp456*tmp1125 + tmp449*tmp1128;
+      const Scalar tmp1134 = tmp456*tmp1126 + tmp450*tmp1128;
+      const Scalar tmp1135 = tmp456*tmp1127 + tmp451*tmp1128;
+      const Scalar tmp1136 = tmp1106 + tmp1122 + tmp1135;
+      const Scalar tmp1137 = tmp349/sqrt((tmp347*tmp347) + (tmp348*tmp348) + (tmp349*tmp349));
+      const Scalar tmp1138 = -(Scalar(1)/(tmp350*tmp350))*tmp1137;
+      const Scalar tmp1139 = tmp347*tmp1138;
+      const Scalar tmp1140 = tmp348*tmp1138;
+      const Scalar tmp1141 = tmp351 + tmp349*tmp1138;
+      const Scalar tmp1142 = tmp358*penalty_damping*(vel(3) - vel(0))*tmp1139
+          + tmp358*penalty_damping*(vel(4) - vel(1))*tmp1140
+          + tmp358*penalty_damping*(vel(5) - vel(2))*tmp1141 + tmp360*tmp1137;
+      const Scalar tmp1143 = -tmp1142;
+      const Scalar tmp1144 = tmp362*tmp1139 + tmp352*tmp1143;
+      const Scalar tmp1145 = tmp362*tmp1140 + tmp353*tmp1143;
+      const Scalar tmp1146 = tmp362*tmp1141 + tmp354*tmp1143;
+      const Scalar tmp1147 = tmp361*tmp1139 + tmp352*tmp1142;
+      const Scalar tmp1148 = tmp361*tmp1140 + tmp353*tmp1142;
+      const Scalar tmp1149 = tmp361*tmp1141 + tmp354*tmp1142;
+      const Scalar tmp1150 = -tmp424/sqrt((tmp422*tmp422) + (tmp423*tmp423) + (tmp424*tmp424));
+      const Scalar tmp1151 = -(Scalar(1)/(tmp425*tmp425))*tmp1150;
+      const Scalar tmp1152 = tmp422*tmp1151;
+      const Scalar tmp1153 = tmp423*tmp1151;
+      const Scalar tmp1154 = -tmp426 + tmp424*tmp1151;
+      const Scalar tmp1155 = tmp433*penalty_damping*(-tmp378 - vel(3))*tmp1152
+          + tmp433*penalty_damping*(-tmp379 - vel(4))*tmp1153
+          + tmp433*penalty_damping*(-tmp381 - vel(5))*tmp1154 + tmp435*tmp1150;
+      const Scalar tmp1156 = -tmp1155;
+      const Scalar tmp1157 = tmp437*tmp1152 + tmp427*tmp1156;
+      const Scalar tmp1158 = tmp437*tmp1153 + tmp428*tmp1156;
+      const Scalar tmp1159 = tmp437*tmp1154 + tmp429*tmp1156;
+      const Scalar tmp1160 = tmp436*tmp1152 + tmp427*tmp1155;
+      const Scalar tmp1161 = tmp436*tmp1153 + tmp428*tmp1155;
+      const Scalar tmp1162 = tmp436*tmp1154 + tmp429*tmp1155;
+      const Scalar tmp1163 = -tmp446/sqrt((tmp444*tmp444) + (tmp445*tmp445) + (tmp446*tmp446));
+      const Scalar tmp1164 = -(Scalar(1)/(tmp447*tmp447))*tmp1163;
+      const Scalar tmp1165 = tmp444*tmp1164;
+      const Scalar tmp1166 = tmp445*tmp1164;
+      const Scalar tmp1167 = -tmp448 + tmp446*tmp1164;
+      const Scalar tmp1168 = tmp453*penalty_damping*(-tmp405 - vel(3))*tmp1165
+          + tmp453*penalty_damping*(-tmp406 - vel(4))*tmp1166
+          + tmp453*penalty_damping*(-tmp408 - vel(5))*tmp1167 + tmp455*tmp1163;
+      const Scalar tmp1169 = -tmp1168;
+      const Scalar tmp1170 = tmp457*tmp1165 + tmp449*tmp1169;
+      const Scalar tmp1171 = tmp457*tmp1166 + tmp450*tmp1169;
+      const Scalar tmp1172 = tmp457*tmp1167 + tmp451*tmp1169;
+      const Scalar tmp1173 = tmp456*tmp1165 + tmp449*tmp1168;
+      const Scalar tmp1174 = tmp456*tmp1166 + tmp450*tmp1168;
+      const Scalar tmp1175 = tmp456*tmp1167 + tmp451*tmp1168;
+      const Scalar tmp1176 = tmp1146 + tmp1162 + tmp1175;
+      const Scalar tmp1177 = tmp370/sqrt((tmp370*tmp370) + (tmp372*tmp372) + (tmp374*tmp374));
+      const Scalar tmp1178 = -(Scalar(1)/(tmp375*tmp375))*tmp1177;
+      const Scalar tmp1179 = tmp376 + tmp370*tmp1178;
+      const Scalar tmp1180 = tmp372*tmp1178;
+      const Scalar tmp1181 = tmp374*tmp1178;
+      const Scalar tmp1182 = tmp385*penalty_damping*(-tmp378 - vel(0))*tmp1179
+          + tmp385*penalty_damping*(-tmp379 - vel(1))*tmp1180
+          + tmp385*penalty_damping*(-tmp381 - vel(2))*tmp1181 + tmp387*tmp1177;
+      const Scalar tmp1183 = -tmp1182;
+      const Scalar tmp1184 = tmp389*tmp1179 + tmp377*tmp1183;
+      const Scalar tmp1185 = tmp389*tmp1180 + tmp380*tmp1183;
+      const Scalar tmp1186 = tmp389*tmp1181 + tmp382*tmp1183;
+      const Scalar tmp1187 = tmp388*tmp1179 + tmp377*tmp1182;
+      const Scalar tmp1188 = tmp388*tmp1180 + tmp380*tmp1182;
+      const Scalar tmp1189 = tmp388*tmp1181 + tmp382*tmp1182;
+      const Scalar tmp1190 = tmp422/sqrt((tmp422*tmp422) + (tmp423*tmp423) + (tmp424*tmp424));
+      const Scalar tmp1191 = -(Scalar(1)/(tmp425*tmp425))*tmp1190;
+      const Scalar tmp1192 = tmp426 + tmp422*tmp1191;
+      const Scalar tmp1193 = tmp423*tmp1191;
+      const Scalar tmp1194 = tmp424*tmp1191;
+      const Scalar tmp1195 = tmp433*penalty_damping*(-tmp378 - vel(3))*tmp1192
+          + tmp433*penalty_damping*(-tmp379 - vel(4))*tmp1193
+          + tmp433*penalty_damping*(-tmp381 - vel(5))*tmp1194 + tmp435*tmp1190;
+      const Scalar tmp1196 = -tmp1195;
+      const Scalar tmp1197 = tmp437*tmp1192 + tmp427*tmp1196;
+      const Scalar tmp1198 = tmp437*tmp1193 + tmp428*tmp1196;
+      const Scalar tmp1199 = tmp437*tmp1194 + tmp429*tmp1196;
+      const Scalar tmp1200 = tmp436*tmp1192 + tmp427*tmp1195;
+      const Scalar tmp1201 = tmp436*tmp1193 + tmp428*tmp1195;
+      const Scalar tmp1202 = tmp436*tmp1194 + tmp429*tmp1195;
+      const Scalar tmp1203 = -tmp464/sqrt((tmp464*tmp464) + (tmp465*tmp465) + (tmp466*tmp466));
+      const Scalar tmp1204 = -(Scalar(1)/(tmp467*tmp467))*tmp1203;
+      const Scalar tmp1205 = -tmp468 + tmp464*tmp1204;
+      const Scalar tmp1206 = tmp465*tmp1204;
+      const Scalar tmp1207 = tmp466*tmp1204;
+      const Scalar tmp1208 = tmp473*penalty_damping*(-tmp405 - vel(6))*tmp1205
+          + tmp473*penalty_damping*(-tmp406 - vel(7))*tmp1206
+          + tmp473*penalty_damping*(-tmp408 - vel(8))*tmp1207 + tmp475*tmp1203;
+      const Scalar tmp1209 = -tmp1208;
+      const Scalar tmp1210 = tmp477*tmp1205 + tmp469*tmp1209;
+      const Scalar tmp1211 = tmp477*tmp1206 + tmp470*tmp1209;
+      const Scalar tmp1212 = tmp477*tmp1207 + tmp471*tmp1209;
+      const Scalar tmp1213 = tmp476*tmp1205 + tmp469*tmp1208;
+      const Scalar tmp1214 = tmp476*tmp1206 + tmp470*tmp1208;
+      const Scalar tmp1215 = tmp476*tmp1207 + tmp471*tmp1208;
+      const Scalar tmp1216 = tmp1199 + tmp1215 + tmp1186;
+      const Scalar tmp1217 = tmp372/sqrt((tmp370*tmp370) + (tmp372*tmp372) + (tmp374*tmp374));
+      const Scalar tmp1218 = -(Scalar(1)/(tmp375*tmp375))*tmp1217;
+      const Scalar tmp1219 = tmp370*tmp1218;
+      const Scalar tmp1220 = tmp376 + tmp372*tmp1218;
+      const Scalar tmp1221 = tmp374*tmp1218;
+      const Scalar tmp1222 = tmp385*penalty_damping*(-tmp378 - vel(0))*tmp1219
+          + tmp385*penalty_damping*(-tmp379 - vel(1))*tmp1220
+          + tmp385*penalty_damping*(-tmp381 - vel(2))*tmp1221 + tmp387*tmp1217;
+      const Scalar tmp1223 = -tmp1222;
+      const Scalar tmp1224 = tmp389*tmp1219 + tmp377*tmp1223;
+      const Scalar tmp1225 = tmp389*tmp1220 + tmp380*tmp1223;
+      const Scalar tmp1226 = tmp389*tmp1221 + tmp382*tmp1223;
+      const Scalar tmp1227 = tmp388*tmp1219 + tmp377*tmp1222;
+      const Scalar tmp1228 = tmp388*tmp1220 + tmp380*tmp1222;
+      const Scalar tmp1229 = tmp388*tmp1221 + tmp382*tmp1222;
+      const Scalar tmp1230 = tmp423/sqrt((tmp422*tmp422) + (tmp423*tmp423) + (tmp424*tmp424));
+      const Scalar tmp1231 = -(Scalar(1)/(tmp425*tmp425))*tmp1230;
+      const Scalar tmp1232 = tmp422*tmp1231;
+      const Scalar tmp1233 = tmp426 + tmp423*tmp1231;
+      const Scalar tmp1234 = tmp424*tmp1231;
+      const Scalar tmp1235 = tmp433*penalty_damping*(-tmp378 - vel(3))*tmp1232
+          + tmp433*penalty_damping*(-tmp379 - vel(4))*tmp1233
+          + tmp433*penalty_damping*(-tmp381 - vel(5))*tmp1234 + tmp435*tmp1230;
+      const Scalar tmp1236 = -tmp1235;
+      const Scalar tmp1237 = tmp437*tmp1232 + tmp427*tmp1236;
+      const Scalar tmp1238 = tmp437*tmp1233 + tmp428*tmp1236;
+      const Scalar tmp1239 = tmp437*tmp1234 + tmp429*tmp1236;
+      const Scalar tmp1240 = tmp436*tmp1232 + tmp427*tmp1235;
+      const Scalar tmp1241 = tmp436*tmp1233 + tmp428*tmp1235;
+      const Scalar tmp1242 = tmp436*tmp1234 + tmp429*tmp1235;
+      const Scalar tmp1243 = -tmp465/sqrt((tmp464*tmp464) + (tmp465*tmp465) + (tmp466*tmp466));
+      const Scalar tmp1244 = -(Scalar(1)/(tmp467*tmp467))*tmp1243;
+      const Scalar tmp1245 = tmp464*tmp1244;
+      const Scalar tmp1246 = -tmp468 + tmp465*tmp1244;
+      const Scalar tmp1247 = tmp466*tmp1244;
+      const Scalar tmp1248 = tmp473*penalty_damping*(-tmp405 - vel(6))*tmp1245
+          + tmp473*penalty_damping*(-tmp406 - vel(7))*tmp1246
+          + tmp473*penalty_damping*(-tmp408 - vel(8))*tmp1247 + tmp475*tmp1243;
+      const Scalar tmp1249 = -tmp1248;
+      const Scalar tmp1250 = tmp477*tmp1245 + tmp469*tmp1249;
+      const Scalar tmp1251 = tmp477*tmp1246 + tmp470*tmp1249;
+      const Scalar tmp1252 = tmp477*tmp1247 + tmp471*tmp1249;
+      const Scalar tmp1253 = tmp476*tmp1245 + tmp469*tmp1248;
+      const Scalar tmp1254 = tmp476*tmp1246 + tmp470*tmp1248;
+      const Scalar tmp1255 = tmp476*tmp1247 + tmp471*tmp1248;
+      const Scalar tmp1256 = tmp1239 + tmp1255 + tmp1226;
+      const Scalar tmp1257 = tmp374/sqrt((tmp370*tmp370) + (tmp372*tmp372) + (tmp374*tmp374));
+      const Scalar tmp1258 = -(Scalar(1)/(tmp375*tmp375))*tmp1257;
+      const Scalar tmp1259 = tmp370*tmp1258;
+      const Scalar tmp1260 = tmp372*tmp1258;
+      const Scalar tmp1261 = tmp376 + tmp374*tmp1258;
+      const Scalar tmp1262 = tmp385*penalty_damping*(-tmp378 - vel(0))*tmp1259
+          + tmp385*penalty_damping*(-tmp379 - vel(1))*tmp1260
+          + tmp385*penalty_damping*(-tmp381 - vel(2))*tmp1261 + tmp387*tmp1257;
+      const Scalar tmp1263 = -tmp1262;
+      const Scalar tmp1264 = tmp389*tmp1259 + tmp377*tmp1263;
+      const Scalar tmp1265 = tmp389*tmp1260 + tmp380*tmp1263;
+      const Scalar tmp1266 = tmp389*tmp1261 + tmp382*tmp1263;
+      const Scalar tmp1267 = tmp388*tmp1259 + tmp377*tmp1262;
+      const Scalar tmp1268 = tmp388*tmp1260 + tmp380*tmp1262;
+      const Scalar tmp1269 = tmp388*tmp1261 + tmp382*tmp1262;
+      const Scalar tmp1270 = tmp424/sqrt((tmp422*tmp422) + (tmp423*tmp423) + (tmp424*tmp424));
+      const Scalar tmp1271 = -(Scalar(1)/(tmp425*tmp425))*tmp1270;
+      const Scalar tmp1272 = tmp422*tmp1271;
+      const Scalar tmp1273 = tmp423*tmp1271;
+      const Scalar tmp1274 = tmp426 + tmp424*tmp1271;
+      const Scalar tmp1275 = tmp433*penalty_damping*(-tmp378 - vel(3))*tmp1272
+          + tmp433*penalty_damping*(-tmp379 - vel(4))*tmp1273
+          + tmp433*penalty_damping*(-tmp381 - vel(5))*tmp1274 + tmp435*tmp1270;
+      const Scalar tmp1276 = -tmp1275;
+      const Scalar tmp1277 = tmp437*tmp1272 + tmp427*tmp1276;
+      const Scalar tmp1278 = tmp437*tmp1273 + tmp428*tmp1276;
+      const Scalar tmp1279 = tmp437*tmp1274 + tmp429*tmp1276;
+      const Scalar tmp1280 = tmp436*tmp1272 + tmp427*tmp1275;
+      const Scalar tmp1281 = tmp436*tmp1273 + tmp428*tmp1275;
+      const Scalar tmp1282 = tmp436*tmp1274 + tmp429*tmp1275;
+      const Scalar tmp1283 = -tmp466/sqrt((tmp464*tmp464) + (tmp465*tmp465) + (tmp466*tmp466));
+      const Scalar tmp1284 = -(Scalar(1)/(tmp467*tmp467))*tmp1283;
+      const Scalar tmp1285 = tmp464*tmp1284;
+      const Scalar tmp1286 = tmp465*tmp1284;
+      const Scalar tmp1287 = -tmp468 + tmp466*tmp1284;
+      const Scalar tmp1288 = tmp473*penalty_damping*(-tmp405 - vel(6))*tmp1285
+          + tmp473*penalty_damping*(-tmp406 - vel(7))*tmp1286
+          + tmp473*penalty_damping*(-tmp408 - vel(8))*tmp1287 + tmp475*tmp1283;
+      const Scalar tmp1289 = -tmp1288;
+      const Scalar tmp1290 = tmp477*tmp1285 + tmp469*tmp1289;
+      const Scalar tmp1291 = tmp477*tmp1286 + tmp470*tmp1289;
+      const Scalar tmp1292 = tmp477*tmp1287 + tmp471*tmp1289;
+      const Scalar tmp1293 = tmp476*tmp1285 + tmp469*tmp1288;
+      const Scalar tmp1294 = tmp476*tmp1286 + tmp470*tmp1288;
+      const Scalar tmp1295 = tmp476*tmp1287 + tmp471*tmp1288;
+      const Scalar tmp1296 = tmp1279 + tmp1295 + tmp1266;
+      const Scalar tmp1297 = tmp397/sqrt((tmp397*tmp397) + (tmp399*tmp399) + (tmp401*tmp401));
+      const Scalar tmp1298 = -(Scalar(1)/(tmp402*tmp402))*tmp1297;
+      const Scalar tmp1299 = tmp403 + tmp397*tmp1298;
+      const Scalar tmp1300 = tmp399*tmp1298;
+      const Scalar tmp1301 = tmp401*tmp1298;
+      const Scalar tmp1302 = tmp411*penalty_damping*(-tmp405 - vel(0))*tmp1299
+          + tmp411*penalty_damping*(-tmp406 - vel(1))*tmp1300
+          + tmp411*penalty_damping*(-tmp408 - vel(2))*tmp1301 + tmp413*tmp1297;
+      const Scalar tmp1303 = -tmp1302;
+      const Scalar tmp1304 = tmp415*tmp1299 + tmp404*tmp1303;
+      const Scalar tmp1305 = tmp415*tmp1300 + tmp407*tmp1303;
+      const Scalar tmp1306 = tmp415*tmp1301 + tmp409*tmp1303;
+      const Scalar tmp1307 = tmp414*tmp1299 + tmp404*tmp1302;
+      const Scalar tmp1308 = tmp414*tmp1300 + tmp407*tmp1302;
+      const Scalar tmp1309 = tmp414*tmp1301 + tmp409*tmp1302;
+      const Scalar tmp1310 = tmp444/sqrt((tmp444*tmp444) + (tmp445*tmp445) + (tmp446*tmp446));
+      const Scalar tmp1311 = -(Scalar(1)/(tmp447*tmp447))*tmp1310;
+      const Scalar tmp1312 = tmp448 + tmp444*tmp1311;
+      const Scalar tmp1313 = tmp445*tmp1311;
+      const Scalar tmp1314 = tmp446*tmp1311;
+      const Scalar tmp1315 = tmp453*penalty_damping*(-tmp405 - vel(3))*tmp1312
+          + tmp453*penalty_damping*(-tmp406 - vel(4))*tmp1313
+          + tmp453*penalty_damping*(-tmp408 - vel(5))*tmp1314 + tmp455*tmp1310;
+      const Scalar tmp1316 = -tmp1315;
+      const Scalar tmp1317 = tmp457*tmp1312 + tmp449*tmp1316;
+      const Scalar tmp1318 = tmp457*tmp1313 + tmp450*tmp1316;
+      const Scalar tmp1319 = tmp457*tmp1314 + tmp451*tmp1316;
+      const Scalar tmp1320 = tmp456*tmp1312 + tmp449*tmp1315;
+      const Scalar tmp1321 = tmp456*tmp1313 + tmp450*tmp1315;
+      const Scalar tmp1322 = tmp456*tmp1314 + tmp451*tmp1315;
+      const Scalar tmp1323 = tmp464/sqrt((tmp464*tmp464) + (tmp465*tmp465) + (tmp466*tmp466));
+      const Scalar tmp1324 = -(Scalar(1)/(tmp467*tmp467))*tmp1323;
+      const Scalar tmp1325 = tmp468 + tmp464*tmp1324;
+      const Scalar tmp1326 = tmp465*tmp1324;
+      const Scalar tmp1327 = tmp466*tmp1324;
+      const Scalar tmp1328 = tmp473*penalty_damping*(-tmp405 - vel(6))*tmp1325
+          + tmp473*penalty_damping*(-tmp406 - vel(7))*tmp1326
+          + tmp473*penalty_damping*(-tmp408 - vel(8))*tmp1327 + tmp475*tmp1323;
+      const Scalar tmp1329 = -tmp1328;
+      const Scalar tmp1330 = tmp477*tmp1325 + tmp469*tmp1329;
+      const Scalar tmp1331 = tmp477*tmp1326 + tmp470*tmp1329;
+      const Scalar tmp1332 = tmp477*tmp1327 + tmp471*tmp1329;
+      const Scalar tmp1333 = tmp476*tmp1325 + tmp469*tmp1328;
+      const Scalar tmp1334 = tmp476*tmp1326 + tmp470*tmp1328;
+      const Scalar tmp1335 = tmp476*tmp1327 + tmp471*tmp1328;
+      const Scalar tmp1336 = tmp1306 + tmp1319 + tmp1332;
+      const Scalar tmp1337 = tmp399/sqrt((tmp397*tmp397) + (tmp399*tmp399) + (tmp401*tmp401));
+      const Scalar tmp1338 = -(Scalar(1)/(tmp402*tmp402))*tmp1337;
+      const Scalar tmp1339 = tmp397*tmp1338;
+      const Scalar tmp1340 = tmp403 + tmp399*tmp1338;
+      const Scalar tmp1341 = tmp401*tmp1338;
+      const Scalar tmp1342 = tmp411*penalty_damping*(-tmp405 - vel(0))*tmp1339
+          + tmp411*penalty_damping*(-tmp406 - vel(1))*tmp1340
+          + tmp411*penalty_damping*(-tmp408 - vel(2))*tmp1341 + tmp413*tmp1337;
+      const Scalar tmp1343 = -tmp1342;
+      const Scalar tmp1344 = tmp415*tmp1339 + tmp404*tmp1343;
+      const Scalar tmp1345 = tmp415*tmp1340 + tmp407*tmp1343;
+      const Scalar tmp1346 = tmp415*tmp1341 + tmp409*tmp1343;
+      const Scalar tmp1347 = tmp414*tmp1339 + tmp404*tmp1342;
+      const Scalar tmp1348 = tmp414*tmp1340 + tmp407*tmp1342;
+      const Scalar tmp1349 = tmp414*tmp1341 + tmp409*tmp1342;
+      const Scalar tmp1350 = tmp445/sqrt((tmp444*tmp444) + (tmp445*tmp445) + (tmp446*tmp446));
+      const Scalar tmp1351 = -(Scalar(1)/(tmp447*tmp447))*tmp1350;
+      const Scalar tmp1352 = tmp444*tmp1351;
+      const Scalar tmp1353 = tmp448 + tmp445*tmp1351;
+      const Scalar tmp1354 = tmp446*tmp1351;
+      const Scalar tmp1355 = tmp453*penalty_damping*(-tmp405 - vel(3))*tmp1352
+          + tmp453*penalty_damping*(-tmp406 - vel(4))*tmp1353
+          + tmp453*penalty_damping*(-tmp408 - vel(5))*tmp1354 + tmp455*tmp1350;
+      const Scalar tmp1356 = -tmp1355;
+      const Scalar tmp1357 = tmp457*tmp1352 + tmp449*tmp1356;
+      const Scalar tmp1358 = tmp457*tmp1353 + tmp450*tmp1356;
+      const Scalar tmp1359 = tmp457*tmp1354 + tmp451*tmp1356;
+      const Scalar tmp1360 = tmp456*tmp1352 + tmp449*tmp1355;
+      const Scalar tmp1361 = tmp456*tmp1353 + tmp450*tmp1355;
+      const Scalar tmp1362 = tmp456*tmp1354 + tmp451*tmp1355;
+      const Scalar tmp1363 = tmp465/sqrt((tmp464*tmp464) + (tmp465*tmp465) + (tmp466*tmp466));
+      const Scalar tmp1364 = -(Scalar(1)/(tmp467*tmp467))*tmp1363;
+      const Scalar tmp1365 = tmp464*tmp1364;
+      const Scalar tmp1366 = tmp468 + tmp465*tmp1364;
+      const Scalar tmp1367 = tmp466*tmp1364;
+      const Scalar tmp1368 = tmp473*penalty_damping*(-tmp405 - vel(6))*tmp1365
+          + tmp473*penalty_damping*(-tmp406 - vel(7))*tmp1366
+          + tmp473*penalty_damping*(-tmp408 - vel(8))*tmp1367 + tmp475*tmp1363;
+      const Scalar tmp1369 = -tmp1368;
+      const Scalar tmp1370 = tmp477*tmp1365 + tmp469*tmp1369;
+      const Scalar tmp1371 = tmp477*tmp1366 + tmp470*tmp1369;
+      const Scalar tmp1372 = tmp477*tmp1367 + tmp471*tmp1369;
+      const Scalar tmp1373 = tmp476*tmp1365 + tmp469*tmp1368;
+      const Scalar tmp1374 = tmp476*tmp1366 + tmp470*tmp1368;
+      const Scalar tmp1375 = tmp476*tmp1367 + tmp471*tmp1368;
+      const Scalar tmp1376 = tmp1346 + tmp1359 + tmp1372;
+      const Scalar tmp1377 = tmp401/sqrt((tmp397*tmp397) + (tmp399*tmp399) + (tmp401*tmp401));
+      const Scalar tmp1378 = -(Scalar(1)/(tmp402*tmp402))*tmp1377;
+      const Scalar tmp1379 = tmp397*tmp1378;
+      const Scalar tmp1380 = tmp399*tmp1378;
+      const Scalar tmp1381 = tmp403 + tmp401*tmp1378;
+      const Scalar tmp1382 = tmp411*penalty_damping*(-tmp405 - vel(0))*tmp1379
+          + tmp411*penalty_damping*(-tmp406 - vel(1))*tmp1380
+          + tmp411*penalty_damping*(-tmp408 - vel(2))*tmp1381 + tmp413*tmp1377;
+      const Scalar tmp1383 = -tmp1382;
+      const Scalar tmp1384 = tmp415*tmp1379 + tmp404*tmp1383;
+      const Scalar tmp1385 = tmp415*tmp1380 + tmp407*tmp1383;
+      const Scalar tmp1386 = tmp415*tmp1381 + tmp409*tmp1383;
+      const Scalar tmp1387 = tmp414*tmp1379 + tmp404*tmp1382;
+      const Scalar tmp1388 = tmp414*tmp1380 + tmp407*tmp1382;
+      const Scalar tmp1389 = tmp414*tmp1381 + tmp409*tmp1382;
+      const Scalar tmp1390 = tmp446/sqrt((tmp444*tmp444) + (tmp445*tmp445) + (tmp446*tmp446));
+      const Scalar tmp1391 = -(Scalar(1)/(tmp447*tmp447))*tmp1390;
+      const Scalar tmp1392 = tmp444*tmp1391;
+      const Scalar tmp1393 = tmp445*tmp1391;
+      const Scalar tmp1394 = tmp448 + tmp446*tmp1391;
+      const Scalar tmp1395 = tmp453*penalty_damping*(-tmp405 - vel(3))*tmp1392
+          + tmp453*penalty_damping*(-tmp406 - vel(4))*tmp1393
+          + tmp453*penalty_damping*(-tmp408 - vel(5))*tmp1394 + tmp455*tmp1390;
+      const Scalar tmp1396 = -tmp1395;
+      const Scalar tmp1397 = tmp457*tmp1392 + tmp449*tmp1396;
+      const Scalar tmp1398 = tmp457*tmp1393 + tmp450*tmp1396;
+      const Scalar tmp1399 = tmp457*tmp1394 + tmp451*tmp1396;
+      const Scalar tmp1400 = tmp456*tmp1392 + tmp449*tmp1395;
+      const Scalar tmp1401 = tmp456*tmp1393 + tmp450*tmp1395;
+      const Scalar tmp1402 = tmp456*tmp1394 + tmp451*tmp1395;
+      const Scalar tmp1403 = tmp466/sqrt((tmp464*tmp464) + (tmp465*tmp465) + (tmp466*tmp466));
+      const Scalar tmp1404 = -(Scalar(1)/(tmp467*tmp467))*tmp1403;
+      const Scalar tmp1405 = tmp464*tmp1404;
+      const Scalar tmp1406 = tmp465*tmp1404;
+      const Scalar tmp1407 = tmp468 + tmp466*tmp1404;
+      const Scalar tmp1408 = tmp473*penalty_damping*(-tmp405 - vel(6))*tmp1405
+          + tmp473*penalty_damping*(-tmp406 - vel(7))*tmp1406
+          + tmp473*penalty_damping*(-tmp408 - vel(8))*tmp1407 + tmp475*tmp1403;
+      const Scalar tmp1409 = -tmp1408;
+      const Scalar tmp1410 = tmp477*tmp1405 + tmp469*tmp1409;
+      const Scalar tmp1411 = tmp477*tmp1406 + tmp470*tmp1409;
+      const Scalar tmp1412 = tmp477*tmp1407 + tmp471*tmp1409;
+      const Scalar tmp1413 = tmp476*tmp1405 + tmp469*tmp1408;
+      const Scalar tmp1414 = tmp476*tmp1406 + tmp470*tmp1408;
+      const Scalar tmp1415 = tmp476*tmp1407 + tmp471*tmp1408;
+      const Scalar tmp1416 = tmp1386 + tmp1399 + tmp1412;
       std::array<Scalar, 144> result;
-      result[0] = tmp365*tmp903 + tmp356*tmp906 + tmp385*tmp909 + tmp375*tmp912 + tmp404*tmp915
-          + tmp395*tmp918;
-      result[1] = tmp365*tmp928 + tmp356*tmp931 + tmp385*tmp934 + tmp375*tmp937 + tmp404*tmp940
-          + tmp395*tmp943;
-      result[2] = tmp365*tmp953 + tmp356*tmp956 + tmp385*tmp959 + tmp375*tmp962 + tmp404*tmp965
-          + tmp395*tmp968;
-      result[3] = tmp365*tmp978 + tmp356*tmp981;
-      result[4] = tmp365*tmp1003 + tmp356*tmp1006;
-      result[5] = tmp365*tmp1028 + tmp356*tmp1031;
-      result[6] = tmp385*tmp1053 + tmp375*tmp1056;
-      result[7] = tmp385*tmp1078 + tmp375*tmp1081;
-      result[8] = tmp385*tmp1103 + tmp375*tmp1106;
-      result[9] = tmp404*tmp1128 + tmp395*tmp1131;
-      result[10] = tmp404*tmp1153 + tmp395*tmp1156;
-      result[11] = tmp404*tmp1178 + tmp395*tmp1181;
-      result[12] = tmp365*tmp904 + tmp357*tmp906 + tmp385*tmp910 + tmp377*tmp912 + tmp404*tmp916
-          + tmp397*tmp918;
-      result[13] = tmp365*tmp929 + tmp357*tmp931 + tmp385*tmp935 + tmp377*tmp937 + tmp404*tmp941
-          + tmp397*tmp943;
-      result[14] = tmp365*tmp954 + tmp357*tmp956 + tmp385*tmp960 + tmp377*tmp962 + tmp404*tmp966
-          + tmp397*tmp968;
-      result[15] = tmp365*tmp979 + tmp357*tmp981;
-      result[16] = tmp365*tmp1004 + tmp357*tmp1006;
-      result[17] = tmp365*tmp1029 + tmp357*tmp1031;
-      result[18] = tmp385*tmp1054 + tmp377*tmp1056;
-      result[19] = tmp385*tmp1079 + tmp377*tmp1081;
-      result[20] = tmp385*tmp1104 + tmp377*tmp1106;
-      result[21] = tmp404*tmp1129 + tmp397*tmp1131;
-      result[22] = tmp404*tmp1154 + tmp397*tmp1156;
-      result[23] = tmp404*tmp1179 + tmp397*tmp1181;
-      result[24] = tmp919;
-      result[25] = tmp944;
-      result[26] = tmp969;
-      result[27] = tmp982;
-      result[28] = tmp1007;
-      result[29] = tmp1032;
-      result[30] = tmp1057;
-      result[31] = tmp1082;
-      result[32] = tmp1107;
-      result[33] = tmp1132;
-      result[34] = tmp1157;
-      result[35] = tmp1182;
-      result[36] = tmp406*tmp903 + tmp356*tmp920;
-      result[37] = tmp406*tmp928 + tmp356*tmp945;
-      result[38] = tmp406*tmp953 + tmp356*tmp970;
-      result[39] = tmp406*tmp978 + tmp356*tmp983 + tmp421*tmp986 + tmp412*tmp989 + tmp434*tmp992
-          + tmp427*tmp995;
-      result[40] = tmp406*tmp1003 + tmp356*tmp1008 + tmp421*tmp1011 + tmp412*tmp1014
-          + tmp434*tmp1017 + tmp427*tmp1020;
-      result[41] = tmp406*tmp1028 + tmp356*tmp1033 + tmp421*tmp1036 + tmp412*tmp1039
-          + tmp434*tmp1042 + tmp427*tmp1045;
-      result[42] = tmp421*tmp1060 + tmp412*tmp1063;
-      result[43] = tmp421*tmp1085 + tmp412*tmp1088;
-      result[44] = tmp421*tmp1110 + tmp412*tmp1113;
-      result[45] = tmp434*tmp1135 + tmp427*tmp1138;
-      result[46] = tmp434*tmp1160 + tmp427*tmp1163;
-      result[47] = tmp434*tmp1185 + tmp427*tmp1188;
-      result[48] = tmp406*tmp904 + tmp357*tmp920;
-      result[49] = tmp406*tmp929 + tmp357*tmp945;
-      result[50] = tmp406*tmp954 + tmp357*tmp970;
-      result[51] = tmp406*tmp979 + tmp357*tmp983 + tmp421*tmp987 + tmp413*tmp989 + tmp434*tmp993
-          + tmp428*tmp995;
-      result[52] = tmp406*tmp1004 + tmp357*tmp1008 + tmp421*tmp1012 + tmp413*tmp1014
-          + tmp434*tmp1018 + tmp428*tmp1020;
-      result[53] = tmp406*tmp1029 + tmp357*tmp1033 + tmp421*tmp1037 + tmp413*tmp1039
-          + tmp434*tmp1043 + tmp428*tmp1045;
-      result[54] = tmp421*tmp1061 + tmp413*tmp1063;
-      result[55] = tmp421*tmp1086 + tmp413*tmp1088;
-      result[56] = tmp421*tmp1111 + tmp413*tmp1113;
-      result[57] = tmp434*tmp1136 + tmp428*tmp1138;
-      result[58] = tmp434*tmp1161 + tmp428*tmp1163;
-      result[59] = tmp434*tmp1186 + tmp428*tmp1188;
-      result[60] = tmp921;
-      result[61] = tmp946;
-      result[62] = tmp971;
-      result[63] = tmp996;
-      result[64] = tmp1021;
-      result[65] = tmp1046;
-      result[66] = tmp1064;
-      result[67] = tmp1089;
-      result[68] = tmp1114;
-      result[69] = tmp1139;
-      result[70] = tmp1164;
-      result[71] = tmp1189;
-      result[72] = tmp449*tmp909 + tmp375*tmp922;
-      result[73] = tmp449*tmp934 + tmp375*tmp947;
-      result[74] = tmp449*tmp959 + tmp375*tmp972;
-      result[75] = tmp450*tmp986 + tmp412*tmp997;
-      result[76] = tmp450*tmp1011 + tmp412*tmp1022;
-      result[77] = tmp450*tmp1036 + tmp412*tmp1047;
-      result[78] = tmp449*tmp1053 + tmp450*tmp1060 + tmp448*tmp1067 + tmp441*tmp1070
-          + tmp375*tmp1071 + tmp412*tmp1072;
-      result[79] = tmp449*tmp1078 + tmp450*tmp1085 + tmp448*tmp1092 + tmp441*tmp1095
-          + tmp375*tmp1096 + tmp412*tmp1097;
-      result[80] = tmp449*tmp1103 + tmp450*tmp1110 + tmp448*tmp1117 + tmp441*tmp1120
-          + tmp375*tmp1121 + tmp412*tmp1122;
-      result[81] = tmp448*tmp1142 + tmp441*tmp1145;
-      result[82] = tmp448*tmp1167 + tmp441*tmp1170;
-      result[83] = tmp448*tmp1192 + tmp441*tmp1195;
-      result[84] = tmp449*tmp910 + tmp377*tmp922;
-      result[85] = tmp449*tmp935 + tmp377*tmp947;
-      result[86] = tmp449*tmp960 + tmp377*tmp972;
-      result[87] = tmp450*tmp987 + tmp413*tmp997;
-      result[88] = tmp450*tmp1012 + tmp413*tmp1022;
-      result[89] = tmp450*tmp1037 + tmp413*tmp1047;
-      result[90] = tmp449*tmp1054 + tmp450*tmp1061 + tmp448*tmp1068 + tmp442*tmp1070
-          + tmp377*tmp1071 + tmp413*tmp1072;
-      result[91] = tmp449*tmp1079 + tmp450*tmp1086 + tmp448*tmp1093 + tmp442*tmp1095
-          + tmp377*tmp1096 + tmp413*tmp1097;
-      result[92] = tmp449*tmp1104 + tmp450*tmp1111 + tmp448*tmp1118 + tmp442*tmp1120
-          + tmp377*tmp1121 + tmp413*tmp1122;
-      result[93] = tmp448*tmp1143 + tmp442*tmp1145;
-      result[94] = tmp448*tmp1168 + tmp442*tmp1170;
-      result[95] = tmp448*tmp1193 + tmp442*tmp1195;
-      result[96] = tmp923;
-      result[97] = tmp948;
-      result[98] = tmp973;
-      result[99] = tmp998;
-      result[100] = tmp1023;
-      result[101] = tmp1048;
-      result[102] = tmp1073;
-      result[103] = tmp1098;
-      result[104] = tmp1123;
-      result[105] = tmp1146;
-      result[106] = tmp1171;
-      result[107] = tmp1196;
-      result[108] = tmp453*tmp915 + tmp395*tmp924;
-      result[109] = tmp453*tmp940 + tmp395*tmp949;
-      result[110] = tmp453*tmp965 + tmp395*tmp974;
-      result[111] = tmp454*tmp992 + tmp427*tmp999;
-      result[112] = tmp454*tmp1017 + tmp427*tmp1024;
-      result[113] = tmp454*tmp1042 + tmp427*tmp1049;
-      result[114] = tmp452*tmp1067 + tmp441*tmp1074;
-      result[115] = tmp452*tmp1092 + tmp441*tmp1099;
-      result[116] = tmp452*tmp1117 + tmp441*tmp1124;
-      result[117] = tmp453*tmp1128 + tmp454*tmp1135 + tmp452*tmp1142 + tmp441*tmp1147
-          + tmp395*tmp1148 + tmp427*tmp1149;
-      result[118] = tmp453*tmp1153 + tmp454*tmp1160 + tmp452*tmp1167 + tmp441*tmp1172
-          + tmp395*tmp1173 + tmp427*tmp1174;
-      result[119] = tmp453*tmp1178 + tmp454*tmp1185 + tmp452*tmp1192 + tmp441*tmp1197
-          + tmp395*tmp1198 + tmp427*tmp1199;
-      result[120] = tmp453*tmp916 + tmp397*tmp924;
-      result[121] = tmp453*tmp941 + tmp397*tmp949;
-      result[122] = tmp453*tmp966 + tmp397*tmp974;
-      result[123] = tmp454*tmp993 + tmp428*tmp999;
-      result[124] = tmp454*tmp1018 + tmp428*tmp1024;
-      result[125] = tmp454*tmp1043 + tmp428*tmp1049;
-      result[126] = tmp452*tmp1068 + tmp442*tmp1074;
-      result[127] = tmp452*tmp1093 + tmp442*tmp1099;
-      result[128] = tmp452*tmp1118 + tmp442*tmp1124;
-      result[129] = tmp453*tmp1129 + tmp454*tmp1136 + tmp452*tmp1143 + tmp442*tmp1147
-          + tmp397*tmp1148 + tmp428*tmp1149;
-      result[130] = tmp453*tmp1154 + tmp454*tmp1161 + tmp452*tmp1168 + tmp442*tmp1172
-          + tmp397*tmp1173 + tmp428*tmp1174;
-      result[131] = tmp453*tmp1179 + tmp454*tmp1186 + tmp452*tmp1193 + tmp442*tmp1197
-          + tmp397*tmp1198 + tmp428*tmp1199;
-      result[132] = tmp925;
-      result[133] = tmp950;
-      result[134] = tmp975;
-      result[135] = tmp1000;
-      result[136] = tmp1025;
-      result[137] = tmp1050;
-      result[138] = tmp1075;
-      result[139] = tmp1100;
-      result[140] = tmp1125;
-      result[141] = tmp1150;
-      result[142] = tmp1175;
-      result[143] = tmp1200;
+      result[0] = tmp973 + tmp947 + tmp960;
+      result[1] = tmp1013 + tmp987 + tmp1000;
+      result[2] = tmp1053 + tmp1027 + tmp1040;
+      result[3] = tmp1067;
+      result[4] = tmp1107;
+      result[5] = tmp1147;
+      result[6] = tmp1187;
+      result[7] = tmp1227;
+      result[8] = tmp1267;
+      result[9] = tmp1307;
+      result[10] = tmp1347;
+      result[11] = tmp1387;
+      result[12] = tmp961 + tmp974 + tmp948;
+      result[13] = tmp1001 + tmp1014 + tmp988;
+      result[14] = tmp1041 + tmp1054 + tmp1028;
+      result[15] = tmp1068;
+      result[16] = tmp1108;
+      result[17] = tmp1148;
+      result[18] = tmp1188;
+      result[19] = tmp1228;
+      result[20] = tmp1268;
+      result[21] = tmp1308;
+      result[22] = tmp1348;
+      result[23] = tmp1388;
+      result[24] = tmp976;
+      result[25] = tmp1016;
+      result[26] = tmp1056;
+      result[27] = tmp1069;
+      result[28] = tmp1109;
+      result[29] = tmp1149;
+      result[30] = tmp1189;
+      result[31] = tmp1229;
+      result[32] = tmp1269;
+      result[33] = tmp1309;
+      result[34] = tmp1349;
+      result[35] = tmp1389;
+      result[36] = tmp944;
+      result[37] = tmp984;
+      result[38] = tmp1024;
+      result[39] = tmp1064 + tmp1080 + tmp1093;
+      result[40] = tmp1104 + tmp1120 + tmp1133;
+      result[41] = tmp1144 + tmp1160 + tmp1173;
+      result[42] = tmp1200;
+      result[43] = tmp1240;
+      result[44] = tmp1280;
+      result[45] = tmp1320;
+      result[46] = tmp1360;
+      result[47] = tmp1400;
+      result[48] = tmp945;
+      result[49] = tmp985;
+      result[50] = tmp1025;
+      result[51] = tmp1065 + tmp1081 + tmp1094;
+      result[52] = tmp1105 + tmp1121 + tmp1134;
+      result[53] = tmp1145 + tmp1161 + tmp1174;
+      result[54] = tmp1201;
+      result[55] = tmp1241;
+      result[56] = tmp1281;
+      result[57] = tmp1321;
+      result[58] = tmp1361;
+      result[59] = tmp1401;
+      result[60] = tmp946;
+      result[61] = tmp986;
+      result[62] = tmp1026;
+      result[63] = tmp1096;
+      result[64] = tmp1136;
+      result[65] = tmp1176;
+      result[66] = tmp1202;
+      result[67] = tmp1242;
+      result[68] = tmp1282;
+      result[69] = tmp1322;
+      result[70] = tmp1362;
+      result[71] = tmp1402;
+      result[72] = tmp957;
+      result[73] = tmp997;
+      result[74] = tmp1037;
+      result[75] = tmp1077;
+      result[76] = tmp1117;
+      result[77] = tmp1157;
+      result[78] = tmp1197 + tmp1213 + tmp1184;
+      result[79] = tmp1237 + tmp1253 + tmp1224;
+      result[80] = tmp1277 + tmp1293 + tmp1264;
+      result[81] = tmp1333;
+      result[82] = tmp1373;
+      result[83] = tmp1413;
+      result[84] = tmp958;
+      result[85] = tmp998;
+      result[86] = tmp1038;
+      result[87] = tmp1078;
+      result[88] = tmp1118;
+      result[89] = tmp1158;
+      result[90] = tmp1198 + tmp1214 + tmp1185;
+      result[91] = tmp1238 + tmp1254 + tmp1225;
+      result[92] = tmp1278 + tmp1294 + tmp1265;
+      result[93] = tmp1334;
+      result[94] = tmp1374;
+      result[95] = tmp1414;
+      result[96] = tmp959;
+      result[97] = tmp999;
+      result[98] = tmp1039;
+      result[99] = tmp1079;
+      result[100] = tmp1119;
+      result[101] = tmp1159;
+      result[102] = tmp1216;
+      result[103] = tmp1256;
+      result[104] = tmp1296;
+      result[105] = tmp1335;
+      result[106] = tmp1375;
+      result[107] = tmp1415;
+      result[108] = tmp970;
+      result[109] = tmp1010;
+      result[110] = tmp1050;
+      result[111] = tmp1090;
+      result[112] = tmp1130;
+      result[113] = tmp1170;
+      result[114] = tmp1210;
+      result[115] = tmp1250;
+      result[116] = tmp1290;
+      result[117] = tmp1304 + tmp1317 + tmp1330;
+      result[118] = tmp1344 + tmp1357 + tmp1370;
+      result[119] = tmp1384 + tmp1397 + tmp1410;
+      result[120] = tmp971;
+      result[121] = tmp1011;
+      result[122] = tmp1051;
+      result[123] = tmp1091;
+      result[124] = tmp1131;
+      result[125] = tmp1171;
+      result[126] = tmp1211;
+      result[127] = tmp1251;
+      result[128] = tmp1291;
+      result[129] = tmp1305 + tmp1318 + tmp1331;
+      result[130] = tmp1345 + tmp1358 + tmp1371;
+      result[131] = tmp1385 + tmp1398 + tmp1411;
+      result[132] = tmp972;
+      result[133] = tmp1012;
+      result[134] = tmp1052;
+      result[135] = tmp1092;
+      result[136] = tmp1132;
+      result[137] = tmp1172;
+      result[138] = tmp1212;
+      result[139] = tmp1252;
+      result[140] = tmp1292;
+      result[141] = tmp1336;
+      result[142] = tmp1376;
+      result[143] = tmp1416;
       return result;
     }
 
@@ -5020,348 +5200,528 @@ struct RigidBodyEuler {
       const Scalar tmp168 = -tmp26*tmp9;
       const Scalar tmp169 = tmp38 - tmp33 - tmp39;
       const Scalar tmp170 = tmp169*tmp9;
-      const Scalar tmp351 = pos(3) - pos(0);
-      const Scalar tmp352 = pos(4) - pos(1);
-      const Scalar tmp353 = pos(5) - pos(2);
-      const Scalar tmp354 = sqrt((tmp351*tmp351) + (tmp352*tmp352) + (tmp353*tmp353));
-      const Scalar tmp355 = (Scalar(1)/tmp354);
-      const Scalar tmp356 = tmp351*tmp355;
-      const Scalar tmp357 = tmp352*tmp355;
-      const Scalar tmp358 = tmp353*tmp355;
-      const Scalar tmp359 = -tmp26*tmp9;
-      const Scalar tmp360 = -tmp41*tmp9;
-      const Scalar tmp361 = sqrt(((-tmp117 - tmp359)*(-tmp117 - tmp359))
-          + ((-tmp119 - tmp360)*(-tmp119 - tmp360)));
-      const Scalar tmp362 = (Scalar(1)/tmp361);
-      const Scalar tmp367 = -pos(6);
-      const Scalar tmp368 = -tmp367 - pos(0);
-      const Scalar tmp369 = -pos(7);
-      const Scalar tmp370 = -tmp369 - pos(1);
-      const Scalar tmp371 = -pos(8);
-      const Scalar tmp372 = -tmp371 - pos(2);
-      const Scalar tmp373 = sqrt((tmp368*tmp368) + (tmp370*tmp370) + (tmp372*tmp372));
-      const Scalar tmp374 = (Scalar(1)/tmp373);
-      const Scalar tmp375 = tmp368*tmp374;
-      const Scalar tmp377 = tmp370*tmp374;
-      const Scalar tmp379 = tmp372*tmp374;
-      const Scalar tmp380 = Scalar(4)*tmp19/m;
-      const Scalar tmp381 = sqrt(tmp380 + ((-tmp138 - tmp359)*(-tmp138 - tmp359))
-          + ((-tmp140 - tmp360)*(-tmp140 - tmp360)));
-      const Scalar tmp382 = (Scalar(1)/tmp381);
-      const Scalar tmp387 = -pos(9);
-      const Scalar tmp388 = -tmp387 - pos(0);
-      const Scalar tmp389 = -pos(10);
-      const Scalar tmp390 = -tmp389 - pos(1);
-      const Scalar tmp391 = -pos(11);
-      const Scalar tmp392 = -tmp391 - pos(2);
-      const Scalar tmp393 = sqrt((tmp388*tmp388) + (tmp390*tmp390) + (tmp392*tmp392));
-      const Scalar tmp394 = (Scalar(1)/tmp393);
-      const Scalar tmp395 = tmp388*tmp394;
-      const Scalar tmp397 = tmp390*tmp394;
-      const Scalar tmp399 = tmp392*tmp394;
-      const Scalar tmp400 = sqrt(tmp380 + ((-tmp168 - tmp359)*(-tmp168 - tmp359))
-          + ((-tmp170 - tmp360)*(-tmp170 - tmp360)));
-      const Scalar tmp401 = (Scalar(1)/tmp400);
-      const Scalar tmp407 = -tmp367 - pos(3);
-      const Scalar tmp408 = -tmp369 - pos(4);
-      const Scalar tmp409 = -tmp371 - pos(5);
-      const Scalar tmp410 = sqrt((tmp407*tmp407) + (tmp408*tmp408) + (tmp409*tmp409));
+      const Scalar tmp347 = pos(3) - pos(0);
+      const Scalar tmp348 = pos(4) - pos(1);
+      const Scalar tmp349 = pos(5) - pos(2);
+      const Scalar tmp350 = sqrt((tmp347*tmp347) + (tmp348*tmp348) + (tmp349*tmp349));
+      const Scalar tmp351 = (Scalar(1)/tmp350);
+      const Scalar tmp352 = tmp347*tmp351;
+      const Scalar tmp353 = tmp348*tmp351;
+      const Scalar tmp354 = tmp349*tmp351;
+      const Scalar tmp355 = -tmp26*tmp9;
+      const Scalar tmp356 = -tmp41*tmp9;
+      const Scalar tmp357 = sqrt(((-tmp117 - tmp355)*(-tmp117 - tmp355))
+          + ((-tmp119 - tmp356)*(-tmp119 - tmp356)));
+      const Scalar tmp358 = (Scalar(1)/tmp357);
+      const Scalar tmp369 = -pos(6);
+      const Scalar tmp370 = -tmp369 - pos(0);
+      const Scalar tmp371 = -pos(7);
+      const Scalar tmp372 = -tmp371 - pos(1);
+      const Scalar tmp373 = -pos(8);
+      const Scalar tmp374 = -tmp373 - pos(2);
+      const Scalar tmp375 = sqrt((tmp370*tmp370) + (tmp372*tmp372) + (tmp374*tmp374));
+      const Scalar tmp376 = (Scalar(1)/tmp375);
+      const Scalar tmp377 = tmp370*tmp376;
+      const Scalar tmp380 = tmp372*tmp376;
+      const Scalar tmp382 = tmp374*tmp376;
+      const Scalar tmp383 = Scalar(4)*tmp19/m;
+      const Scalar tmp384 = sqrt(tmp383 + ((-tmp138 - tmp355)*(-tmp138 - tmp355))
+          + ((-tmp140 - tmp356)*(-tmp140 - tmp356)));
+      const Scalar tmp385 = (Scalar(1)/tmp384);
+      const Scalar tmp396 = -pos(9);
+      const Scalar tmp397 = -tmp396 - pos(0);
+      const Scalar tmp398 = -pos(10);
+      const Scalar tmp399 = -tmp398 - pos(1);
+      const Scalar tmp400 = -pos(11);
+      const Scalar tmp401 = -tmp400 - pos(2);
+      const Scalar tmp402 = sqrt((tmp397*tmp397) + (tmp399*tmp399) + (tmp401*tmp401));
+      const Scalar tmp403 = (Scalar(1)/tmp402);
+      const Scalar tmp404 = tmp397*tmp403;
+      const Scalar tmp407 = tmp399*tmp403;
+      const Scalar tmp409 = tmp401*tmp403;
+      const Scalar tmp410 = sqrt(tmp383 + ((-tmp168 - tmp355)*(-tmp168 - tmp355))
+          + ((-tmp170 - tmp356)*(-tmp170 - tmp356)));
       const Scalar tmp411 = (Scalar(1)/tmp410);
-      const Scalar tmp412 = tmp407*tmp411;
-      const Scalar tmp413 = tmp408*tmp411;
-      const Scalar tmp414 = tmp409*tmp411;
-      const Scalar tmp415 = -tmp117;
-      const Scalar tmp416 = -tmp119;
-      const Scalar tmp417 = sqrt(tmp380 + ((-tmp138 - tmp415)*(-tmp138 - tmp415))
-          + ((-tmp140 - tmp416)*(-tmp140 - tmp416)));
-      const Scalar tmp418 = (Scalar(1)/tmp417);
-      const Scalar tmp422 = -tmp387 - pos(3);
-      const Scalar tmp423 = -tmp389 - pos(4);
-      const Scalar tmp424 = -tmp391 - pos(5);
+      const Scalar tmp422 = -tmp369 - pos(3);
+      const Scalar tmp423 = -tmp371 - pos(4);
+      const Scalar tmp424 = -tmp373 - pos(5);
       const Scalar tmp425 = sqrt((tmp422*tmp422) + (tmp423*tmp423) + (tmp424*tmp424));
       const Scalar tmp426 = (Scalar(1)/tmp425);
       const Scalar tmp427 = tmp422*tmp426;
       const Scalar tmp428 = tmp423*tmp426;
       const Scalar tmp429 = tmp424*tmp426;
-      const Scalar tmp430 = sqrt(tmp380 + ((-tmp168 - tmp415)*(-tmp168 - tmp415))
-          + ((-tmp170 - tmp416)*(-tmp170 - tmp416)));
-      const Scalar tmp431 = (Scalar(1)/tmp430);
-      const Scalar tmp436 = -tmp387 - pos(6);
-      const Scalar tmp437 = -tmp389 - pos(7);
-      const Scalar tmp438 = -tmp391 - pos(8);
-      const Scalar tmp439 = sqrt((tmp436*tmp436) + (tmp437*tmp437) + (tmp438*tmp438));
-      const Scalar tmp440 = (Scalar(1)/tmp439);
-      const Scalar tmp441 = tmp436*tmp440;
-      const Scalar tmp442 = tmp437*tmp440;
-      const Scalar tmp443 = tmp438*tmp440;
-      const Scalar tmp444 = sqrt(((tmp138 - tmp168)*(tmp138 - tmp168))
+      const Scalar tmp430 = -tmp117;
+      const Scalar tmp431 = -tmp119;
+      const Scalar tmp432 = sqrt(tmp383 + ((-tmp138 - tmp430)*(-tmp138 - tmp430))
+          + ((-tmp140 - tmp431)*(-tmp140 - tmp431)));
+      const Scalar tmp433 = (Scalar(1)/tmp432);
+      const Scalar tmp444 = -tmp396 - pos(3);
+      const Scalar tmp445 = -tmp398 - pos(4);
+      const Scalar tmp446 = -tmp400 - pos(5);
+      const Scalar tmp447 = sqrt((tmp444*tmp444) + (tmp445*tmp445) + (tmp446*tmp446));
+      const Scalar tmp448 = (Scalar(1)/tmp447);
+      const Scalar tmp449 = tmp444*tmp448;
+      const Scalar tmp450 = tmp445*tmp448;
+      const Scalar tmp451 = tmp446*tmp448;
+      const Scalar tmp452 = sqrt(tmp383 + ((-tmp168 - tmp430)*(-tmp168 - tmp430))
+          + ((-tmp170 - tmp431)*(-tmp170 - tmp431)));
+      const Scalar tmp453 = (Scalar(1)/tmp452);
+      const Scalar tmp464 = -tmp396 - pos(6);
+      const Scalar tmp465 = -tmp398 - pos(7);
+      const Scalar tmp466 = -tmp400 - pos(8);
+      const Scalar tmp467 = sqrt((tmp464*tmp464) + (tmp465*tmp465) + (tmp466*tmp466));
+      const Scalar tmp468 = (Scalar(1)/tmp467);
+      const Scalar tmp469 = tmp464*tmp468;
+      const Scalar tmp470 = tmp465*tmp468;
+      const Scalar tmp471 = tmp466*tmp468;
+      const Scalar tmp472 = sqrt(((tmp138 - tmp168)*(tmp138 - tmp168))
           + ((tmp140 - tmp170)*(tmp140 - tmp170)));
-      const Scalar tmp445 = (Scalar(1)/tmp444);
-      const Scalar tmp1201 = -tmp356*tmp362*penalty_damping;
-      const Scalar tmp1202 = -tmp375*tmp382*penalty_damping;
-      const Scalar tmp1203 = -tmp395*tmp401*penalty_damping;
-      const Scalar tmp1204 = tmp358*tmp1201 + tmp379*tmp1202 + tmp399*tmp1203;
-      const Scalar tmp1205 = -tmp1201;
-      const Scalar tmp1206 = tmp358*tmp1205;
-      const Scalar tmp1207 = -tmp1202;
-      const Scalar tmp1208 = tmp379*tmp1207;
-      const Scalar tmp1209 = -tmp1203;
-      const Scalar tmp1210 = tmp399*tmp1209;
-      const Scalar tmp1211 = -tmp357*tmp362*penalty_damping;
-      const Scalar tmp1212 = -tmp377*tmp382*penalty_damping;
-      const Scalar tmp1213 = -tmp397*tmp401*penalty_damping;
-      const Scalar tmp1214 = tmp358*tmp1211 + tmp379*tmp1212 + tmp399*tmp1213;
-      const Scalar tmp1215 = -tmp1211;
-      const Scalar tmp1216 = tmp358*tmp1215;
-      const Scalar tmp1217 = -tmp1212;
-      const Scalar tmp1218 = tmp379*tmp1217;
-      const Scalar tmp1219 = -tmp1213;
-      const Scalar tmp1220 = tmp399*tmp1219;
-      const Scalar tmp1221 = -tmp358*tmp362*penalty_damping;
-      const Scalar tmp1222 = -tmp379*tmp382*penalty_damping;
-      const Scalar tmp1223 = -tmp399*tmp401*penalty_damping;
-      const Scalar tmp1224 = tmp358*tmp1221 + tmp379*tmp1222 + tmp399*tmp1223;
-      const Scalar tmp1225 = -tmp1221;
-      const Scalar tmp1226 = tmp358*tmp1225;
-      const Scalar tmp1227 = -tmp1222;
-      const Scalar tmp1228 = tmp379*tmp1227;
-      const Scalar tmp1229 = -tmp1223;
-      const Scalar tmp1230 = tmp399*tmp1229;
-      const Scalar tmp1231 = tmp356*tmp362*penalty_damping;
-      const Scalar tmp1232 = tmp358*tmp1231;
-      const Scalar tmp1233 = -tmp1231;
-      const Scalar tmp1234 = -tmp412*tmp418*penalty_damping;
-      const Scalar tmp1235 = -tmp427*tmp431*penalty_damping;
-      const Scalar tmp1236 = tmp358*tmp1233 + tmp414*tmp1234 + tmp429*tmp1235;
-      const Scalar tmp1237 = -tmp1234;
-      const Scalar tmp1238 = tmp414*tmp1237;
-      const Scalar tmp1239 = -tmp1235;
-      const Scalar tmp1240 = tmp429*tmp1239;
-      const Scalar tmp1241 = tmp357*tmp362*penalty_damping;
-      const Scalar tmp1242 = tmp358*tmp1241;
-      const Scalar tmp1243 = -tmp1241;
-      const Scalar tmp1244 = -tmp413*tmp418*penalty_damping;
-      const Scalar tmp1245 = -tmp428*tmp431*penalty_damping;
-      const Scalar tmp1246 = tmp358*tmp1243 + tmp414*tmp1244 + tmp429*tmp1245;
-      const Scalar tmp1247 = -tmp1244;
-      const Scalar tmp1248 = tmp414*tmp1247;
-      const Scalar tmp1249 = -tmp1245;
-      const Scalar tmp1250 = tmp429*tmp1249;
-      const Scalar tmp1251 = tmp358*tmp362*penalty_damping;
-      const Scalar tmp1252 = tmp358*tmp1251;
-      const Scalar tmp1253 = -tmp1251;
-      const Scalar tmp1254 = -tmp414*tmp418*penalty_damping;
-      const Scalar tmp1255 = -tmp429*tmp431*penalty_damping;
-      const Scalar tmp1256 = tmp358*tmp1253 + tmp414*tmp1254 + tmp429*tmp1255;
-      const Scalar tmp1257 = -tmp1254;
-      const Scalar tmp1258 = tmp414*tmp1257;
-      const Scalar tmp1259 = -tmp1255;
-      const Scalar tmp1260 = tmp429*tmp1259;
-      const Scalar tmp1261 = tmp375*tmp382*penalty_damping;
-      const Scalar tmp1262 = tmp379*tmp1261;
-      const Scalar tmp1263 = tmp412*tmp418*penalty_damping;
-      const Scalar tmp1264 = tmp414*tmp1263;
-      const Scalar tmp1265 = -tmp441*tmp445*penalty_damping;
-      const Scalar tmp1266 = -tmp1261;
-      const Scalar tmp1267 = -tmp1263;
-      const Scalar tmp1268 = tmp443*tmp1265 + tmp379*tmp1266 + tmp414*tmp1267;
-      const Scalar tmp1269 = -tmp1265;
-      const Scalar tmp1270 = tmp443*tmp1269;
-      const Scalar tmp1271 = tmp377*tmp382*penalty_damping;
-      const Scalar tmp1272 = tmp379*tmp1271;
-      const Scalar tmp1273 = tmp413*tmp418*penalty_damping;
-      const Scalar tmp1274 = tmp414*tmp1273;
-      const Scalar tmp1275 = -tmp442*tmp445*penalty_damping;
-      const Scalar tmp1276 = -tmp1271;
-      const Scalar tmp1277 = -tmp1273;
-      const Scalar tmp1278 = tmp443*tmp1275 + tmp379*tmp1276 + tmp414*tmp1277;
-      const Scalar tmp1279 = -tmp1275;
-      const Scalar tmp1280 = tmp443*tmp1279;
-      const Scalar tmp1281 = tmp379*tmp382*penalty_damping;
-      const Scalar tmp1282 = tmp379*tmp1281;
-      const Scalar tmp1283 = tmp414*tmp418*penalty_damping;
-      const Scalar tmp1284 = tmp414*tmp1283;
-      const Scalar tmp1285 = -tmp443*tmp445*penalty_damping;
-      const Scalar tmp1286 = -tmp1281;
-      const Scalar tmp1287 = -tmp1283;
-      const Scalar tmp1288 = tmp443*tmp1285 + tmp379*tmp1286 + tmp414*tmp1287;
-      const Scalar tmp1289 = -tmp1285;
-      const Scalar tmp1290 = tmp443*tmp1289;
-      const Scalar tmp1291 = tmp395*tmp401*penalty_damping;
-      const Scalar tmp1292 = tmp399*tmp1291;
-      const Scalar tmp1293 = tmp427*tmp431*penalty_damping;
-      const Scalar tmp1294 = tmp429*tmp1293;
-      const Scalar tmp1295 = tmp441*tmp445*penalty_damping;
-      const Scalar tmp1296 = tmp443*tmp1295;
-      const Scalar tmp1297 = -tmp1295;
-      const Scalar tmp1298 = -tmp1291;
-      const Scalar tmp1299 = -tmp1293;
-      const Scalar tmp1300 = tmp443*tmp1297 + tmp399*tmp1298 + tmp429*tmp1299;
-      const Scalar tmp1301 = tmp397*tmp401*penalty_damping;
-      const Scalar tmp1302 = tmp399*tmp1301;
-      const Scalar tmp1303 = tmp428*tmp431*penalty_damping;
-      const Scalar tmp1304 = tmp429*tmp1303;
-      const Scalar tmp1305 = tmp442*tmp445*penalty_damping;
-      const Scalar tmp1306 = tmp443*tmp1305;
-      const Scalar tmp1307 = -tmp1305;
-      const Scalar tmp1308 = -tmp1301;
-      const Scalar tmp1309 = -tmp1303;
-      const Scalar tmp1310 = tmp443*tmp1307 + tmp399*tmp1308 + tmp429*tmp1309;
-      const Scalar tmp1311 = tmp399*tmp401*penalty_damping;
-      const Scalar tmp1312 = tmp399*tmp1311;
-      const Scalar tmp1313 = tmp429*tmp431*penalty_damping;
-      const Scalar tmp1314 = tmp429*tmp1313;
-      const Scalar tmp1315 = tmp443*tmp445*penalty_damping;
-      const Scalar tmp1316 = tmp443*tmp1315;
-      const Scalar tmp1317 = -tmp1315;
-      const Scalar tmp1318 = -tmp1311;
-      const Scalar tmp1319 = -tmp1313;
-      const Scalar tmp1320 = tmp443*tmp1317 + tmp399*tmp1318 + tmp429*tmp1319;
+      const Scalar tmp473 = (Scalar(1)/tmp472);
+      const Scalar tmp1417 = -tmp352*tmp358*penalty_damping;
+      const Scalar tmp1418 = -tmp1417;
+      const Scalar tmp1419 = tmp352*tmp1418;
+      const Scalar tmp1420 = tmp353*tmp1418;
+      const Scalar tmp1421 = tmp354*tmp1418;
+      const Scalar tmp1422 = tmp352*tmp1417;
+      const Scalar tmp1423 = tmp353*tmp1417;
+      const Scalar tmp1424 = tmp354*tmp1417;
+      const Scalar tmp1425 = -tmp377*tmp385*penalty_damping;
+      const Scalar tmp1426 = -tmp1425;
+      const Scalar tmp1427 = tmp377*tmp1426;
+      const Scalar tmp1428 = tmp380*tmp1426;
+      const Scalar tmp1429 = tmp382*tmp1426;
+      const Scalar tmp1430 = tmp377*tmp1425;
+      const Scalar tmp1431 = tmp380*tmp1425;
+      const Scalar tmp1432 = tmp382*tmp1425;
+      const Scalar tmp1433 = -tmp404*tmp411*penalty_damping;
+      const Scalar tmp1434 = -tmp1433;
+      const Scalar tmp1435 = tmp404*tmp1434;
+      const Scalar tmp1436 = tmp407*tmp1434;
+      const Scalar tmp1437 = tmp409*tmp1434;
+      const Scalar tmp1438 = tmp404*tmp1433;
+      const Scalar tmp1439 = tmp407*tmp1433;
+      const Scalar tmp1440 = tmp409*tmp1433;
+      const Scalar tmp1441 = tmp1432 + tmp1440 + tmp1424;
+      const Scalar tmp1442 = -tmp353*tmp358*penalty_damping;
+      const Scalar tmp1443 = -tmp1442;
+      const Scalar tmp1444 = tmp352*tmp1443;
+      const Scalar tmp1445 = tmp353*tmp1443;
+      const Scalar tmp1446 = tmp354*tmp1443;
+      const Scalar tmp1447 = tmp352*tmp1442;
+      const Scalar tmp1448 = tmp353*tmp1442;
+      const Scalar tmp1449 = tmp354*tmp1442;
+      const Scalar tmp1450 = -tmp380*tmp385*penalty_damping;
+      const Scalar tmp1451 = -tmp1450;
+      const Scalar tmp1452 = tmp377*tmp1451;
+      const Scalar tmp1453 = tmp380*tmp1451;
+      const Scalar tmp1454 = tmp382*tmp1451;
+      const Scalar tmp1455 = tmp377*tmp1450;
+      const Scalar tmp1456 = tmp380*tmp1450;
+      const Scalar tmp1457 = tmp382*tmp1450;
+      const Scalar tmp1458 = -tmp407*tmp411*penalty_damping;
+      const Scalar tmp1459 = -tmp1458;
+      const Scalar tmp1460 = tmp404*tmp1459;
+      const Scalar tmp1461 = tmp407*tmp1459;
+      const Scalar tmp1462 = tmp409*tmp1459;
+      const Scalar tmp1463 = tmp404*tmp1458;
+      const Scalar tmp1464 = tmp407*tmp1458;
+      const Scalar tmp1465 = tmp409*tmp1458;
+      const Scalar tmp1466 = tmp1457 + tmp1465 + tmp1449;
+      const Scalar tmp1467 = -tmp354*tmp358*penalty_damping;
+      const Scalar tmp1468 = -tmp1467;
+      const Scalar tmp1469 = tmp352*tmp1468;
+      const Scalar tmp1470 = tmp353*tmp1468;
+      const Scalar tmp1471 = tmp354*tmp1468;
+      const Scalar tmp1472 = tmp352*tmp1467;
+      const Scalar tmp1473 = tmp353*tmp1467;
+      const Scalar tmp1474 = tmp354*tmp1467;
+      const Scalar tmp1475 = -tmp382*tmp385*penalty_damping;
+      const Scalar tmp1476 = -tmp1475;
+      const Scalar tmp1477 = tmp377*tmp1476;
+      const Scalar tmp1478 = tmp380*tmp1476;
+      const Scalar tmp1479 = tmp382*tmp1476;
+      const Scalar tmp1480 = tmp377*tmp1475;
+      const Scalar tmp1481 = tmp380*tmp1475;
+      const Scalar tmp1482 = tmp382*tmp1475;
+      const Scalar tmp1483 = -tmp409*tmp411*penalty_damping;
+      const Scalar tmp1484 = -tmp1483;
+      const Scalar tmp1485 = tmp404*tmp1484;
+      const Scalar tmp1486 = tmp407*tmp1484;
+      const Scalar tmp1487 = tmp409*tmp1484;
+      const Scalar tmp1488 = tmp404*tmp1483;
+      const Scalar tmp1489 = tmp407*tmp1483;
+      const Scalar tmp1490 = tmp409*tmp1483;
+      const Scalar tmp1491 = tmp1482 + tmp1490 + tmp1474;
+      const Scalar tmp1492 = tmp352*tmp358*penalty_damping;
+      const Scalar tmp1493 = -tmp1492;
+      const Scalar tmp1494 = tmp352*tmp1493;
+      const Scalar tmp1495 = tmp353*tmp1493;
+      const Scalar tmp1496 = tmp354*tmp1493;
+      const Scalar tmp1497 = tmp352*tmp1492;
+      const Scalar tmp1498 = tmp353*tmp1492;
+      const Scalar tmp1499 = tmp354*tmp1492;
+      const Scalar tmp1500 = -tmp427*tmp433*penalty_damping;
+      const Scalar tmp1501 = -tmp1500;
+      const Scalar tmp1502 = tmp427*tmp1501;
+      const Scalar tmp1503 = tmp428*tmp1501;
+      const Scalar tmp1504 = tmp429*tmp1501;
+      const Scalar tmp1505 = tmp427*tmp1500;
+      const Scalar tmp1506 = tmp428*tmp1500;
+      const Scalar tmp1507 = tmp429*tmp1500;
+      const Scalar tmp1508 = -tmp449*tmp453*penalty_damping;
+      const Scalar tmp1509 = -tmp1508;
+      const Scalar tmp1510 = tmp449*tmp1509;
+      const Scalar tmp1511 = tmp450*tmp1509;
+      const Scalar tmp1512 = tmp451*tmp1509;
+      const Scalar tmp1513 = tmp449*tmp1508;
+      const Scalar tmp1514 = tmp450*tmp1508;
+      const Scalar tmp1515 = tmp451*tmp1508;
+      const Scalar tmp1516 = tmp1496 + tmp1507 + tmp1515;
+      const Scalar tmp1517 = tmp353*tmp358*penalty_damping;
+      const Scalar tmp1518 = -tmp1517;
+      const Scalar tmp1519 = tmp352*tmp1518;
+      const Scalar tmp1520 = tmp353*tmp1518;
+      const Scalar tmp1521 = tmp354*tmp1518;
+      const Scalar tmp1522 = tmp352*tmp1517;
+      const Scalar tmp1523 = tmp353*tmp1517;
+      const Scalar tmp1524 = tmp354*tmp1517;
+      const Scalar tmp1525 = -tmp428*tmp433*penalty_damping;
+      const Scalar tmp1526 = -tmp1525;
+      const Scalar tmp1527 = tmp427*tmp1526;
+      const Scalar tmp1528 = tmp428*tmp1526;
+      const Scalar tmp1529 = tmp429*tmp1526;
+      const Scalar tmp1530 = tmp427*tmp1525;
+      const Scalar tmp1531 = tmp428*tmp1525;
+      const Scalar tmp1532 = tmp429*tmp1525;
+      const Scalar tmp1533 = -tmp450*tmp453*penalty_damping;
+      const Scalar tmp1534 = -tmp1533;
+      const Scalar tmp1535 = tmp449*tmp1534;
+      const Scalar tmp1536 = tmp450*tmp1534;
+      const Scalar tmp1537 = tmp451*tmp1534;
+      const Scalar tmp1538 = tmp449*tmp1533;
+      const Scalar tmp1539 = tmp450*tmp1533;
+      const Scalar tmp1540 = tmp451*tmp1533;
+      const Scalar tmp1541 = tmp1521 + tmp1532 + tmp1540;
+      const Scalar tmp1542 = tmp354*tmp358*penalty_damping;
+      const Scalar tmp1543 = -tmp1542;
+      const Scalar tmp1544 = tmp352*tmp1543;
+      const Scalar tmp1545 = tmp353*tmp1543;
+      const Scalar tmp1546 = tmp354*tmp1543;
+      const Scalar tmp1547 = tmp352*tmp1542;
+      const Scalar tmp1548 = tmp353*tmp1542;
+      const Scalar tmp1549 = tmp354*tmp1542;
+      const Scalar tmp1550 = -tmp429*tmp433*penalty_damping;
+      const Scalar tmp1551 = -tmp1550;
+      const Scalar tmp1552 = tmp427*tmp1551;
+      const Scalar tmp1553 = tmp428*tmp1551;
+      const Scalar tmp1554 = tmp429*tmp1551;
+      const Scalar tmp1555 = tmp427*tmp1550;
+      const Scalar tmp1556 = tmp428*tmp1550;
+      const Scalar tmp1557 = tmp429*tmp1550;
+      const Scalar tmp1558 = -tmp451*tmp453*penalty_damping;
+      const Scalar tmp1559 = -tmp1558;
+      const Scalar tmp1560 = tmp449*tmp1559;
+      const Scalar tmp1561 = tmp450*tmp1559;
+      const Scalar tmp1562 = tmp451*tmp1559;
+      const Scalar tmp1563 = tmp449*tmp1558;
+      const Scalar tmp1564 = tmp450*tmp1558;
+      const Scalar tmp1565 = tmp451*tmp1558;
+      const Scalar tmp1566 = tmp1546 + tmp1557 + tmp1565;
+      const Scalar tmp1567 = tmp377*tmp385*penalty_damping;
+      const Scalar tmp1568 = -tmp1567;
+      const Scalar tmp1569 = tmp377*tmp1568;
+      const Scalar tmp1570 = tmp380*tmp1568;
+      const Scalar tmp1571 = tmp382*tmp1568;
+      const Scalar tmp1572 = tmp377*tmp1567;
+      const Scalar tmp1573 = tmp380*tmp1567;
+      const Scalar tmp1574 = tmp382*tmp1567;
+      const Scalar tmp1575 = tmp427*tmp433*penalty_damping;
+      const Scalar tmp1576 = -tmp1575;
+      const Scalar tmp1577 = tmp427*tmp1576;
+      const Scalar tmp1578 = tmp428*tmp1576;
+      const Scalar tmp1579 = tmp429*tmp1576;
+      const Scalar tmp1580 = tmp427*tmp1575;
+      const Scalar tmp1581 = tmp428*tmp1575;
+      const Scalar tmp1582 = tmp429*tmp1575;
+      const Scalar tmp1583 = -tmp469*tmp473*penalty_damping;
+      const Scalar tmp1584 = -tmp1583;
+      const Scalar tmp1585 = tmp469*tmp1584;
+      const Scalar tmp1586 = tmp470*tmp1584;
+      const Scalar tmp1587 = tmp471*tmp1584;
+      const Scalar tmp1588 = tmp469*tmp1583;
+      const Scalar tmp1589 = tmp470*tmp1583;
+      const Scalar tmp1590 = tmp471*tmp1583;
+      const Scalar tmp1591 = tmp1579 + tmp1590 + tmp1571;
+      const Scalar tmp1592 = tmp380*tmp385*penalty_damping;
+      const Scalar tmp1593 = -tmp1592;
+      const Scalar tmp1594 = tmp377*tmp1593;
+      const Scalar tmp1595 = tmp380*tmp1593;
+      const Scalar tmp1596 = tmp382*tmp1593;
+      const Scalar tmp1597 = tmp377*tmp1592;
+      const Scalar tmp1598 = tmp380*tmp1592;
+      const Scalar tmp1599 = tmp382*tmp1592;
+      const Scalar tmp1600 = tmp428*tmp433*penalty_damping;
+      const Scalar tmp1601 = -tmp1600;
+      const Scalar tmp1602 = tmp427*tmp1601;
+      const Scalar tmp1603 = tmp428*tmp1601;
+      const Scalar tmp1604 = tmp429*tmp1601;
+      const Scalar tmp1605 = tmp427*tmp1600;
+      const Scalar tmp1606 = tmp428*tmp1600;
+      const Scalar tmp1607 = tmp429*tmp1600;
+      const Scalar tmp1608 = -tmp470*tmp473*penalty_damping;
+      const Scalar tmp1609 = -tmp1608;
+      const Scalar tmp1610 = tmp469*tmp1609;
+      const Scalar tmp1611 = tmp470*tmp1609;
+      const Scalar tmp1612 = tmp471*tmp1609;
+      const Scalar tmp1613 = tmp469*tmp1608;
+      const Scalar tmp1614 = tmp470*tmp1608;
+      const Scalar tmp1615 = tmp471*tmp1608;
+      const Scalar tmp1616 = tmp1604 + tmp1615 + tmp1596;
+      const Scalar tmp1617 = tmp382*tmp385*penalty_damping;
+      const Scalar tmp1618 = -tmp1617;
+      const Scalar tmp1619 = tmp377*tmp1618;
+      const Scalar tmp1620 = tmp380*tmp1618;
+      const Scalar tmp1621 = tmp382*tmp1618;
+      const Scalar tmp1622 = tmp377*tmp1617;
+      const Scalar tmp1623 = tmp380*tmp1617;
+      const Scalar tmp1624 = tmp382*tmp1617;
+      const Scalar tmp1625 = tmp429*tmp433*penalty_damping;
+      const Scalar tmp1626 = -tmp1625;
+      const Scalar tmp1627 = tmp427*tmp1626;
+      const Scalar tmp1628 = tmp428*tmp1626;
+      const Scalar tmp1629 = tmp429*tmp1626;
+      const Scalar tmp1630 = tmp427*tmp1625;
+      const Scalar tmp1631 = tmp428*tmp1625;
+      const Scalar tmp1632 = tmp429*tmp1625;
+      const Scalar tmp1633 = -tmp471*tmp473*penalty_damping;
+      const Scalar tmp1634 = -tmp1633;
+      const Scalar tmp1635 = tmp469*tmp1634;
+      const Scalar tmp1636 = tmp470*tmp1634;
+      const Scalar tmp1637 = tmp471*tmp1634;
+      const Scalar tmp1638 = tmp469*tmp1633;
+      const Scalar tmp1639 = tmp470*tmp1633;
+      const Scalar tmp1640 = tmp471*tmp1633;
+      const Scalar tmp1641 = tmp1629 + tmp1640 + tmp1621;
+      const Scalar tmp1642 = tmp404*tmp411*penalty_damping;
+      const Scalar tmp1643 = -tmp1642;
+      const Scalar tmp1644 = tmp404*tmp1643;
+      const Scalar tmp1645 = tmp407*tmp1643;
+      const Scalar tmp1646 = tmp409*tmp1643;
+      const Scalar tmp1647 = tmp404*tmp1642;
+      const Scalar tmp1648 = tmp407*tmp1642;
+      const Scalar tmp1649 = tmp409*tmp1642;
+      const Scalar tmp1650 = tmp449*tmp453*penalty_damping;
+      const Scalar tmp1651 = -tmp1650;
+      const Scalar tmp1652 = tmp449*tmp1651;
+      const Scalar tmp1653 = tmp450*tmp1651;
+      const Scalar tmp1654 = tmp451*tmp1651;
+      const Scalar tmp1655 = tmp449*tmp1650;
+      const Scalar tmp1656 = tmp450*tmp1650;
+      const Scalar tmp1657 = tmp451*tmp1650;
+      const Scalar tmp1658 = tmp469*tmp473*penalty_damping;
+      const Scalar tmp1659 = -tmp1658;
+      const Scalar tmp1660 = tmp469*tmp1659;
+      const Scalar tmp1661 = tmp470*tmp1659;
+      const Scalar tmp1662 = tmp471*tmp1659;
+      const Scalar tmp1663 = tmp469*tmp1658;
+      const Scalar tmp1664 = tmp470*tmp1658;
+      const Scalar tmp1665 = tmp471*tmp1658;
+      const Scalar tmp1666 = tmp1646 + tmp1654 + tmp1662;
+      const Scalar tmp1667 = tmp407*tmp411*penalty_damping;
+      const Scalar tmp1668 = -tmp1667;
+      const Scalar tmp1669 = tmp404*tmp1668;
+      const Scalar tmp1670 = tmp407*tmp1668;
+      const Scalar tmp1671 = tmp409*tmp1668;
+      const Scalar tmp1672 = tmp404*tmp1667;
+      const Scalar tmp1673 = tmp407*tmp1667;
+      const Scalar tmp1674 = tmp409*tmp1667;
+      const Scalar tmp1675 = tmp450*tmp453*penalty_damping;
+      const Scalar tmp1676 = -tmp1675;
+      const Scalar tmp1677 = tmp449*tmp1676;
+      const Scalar tmp1678 = tmp450*tmp1676;
+      const Scalar tmp1679 = tmp451*tmp1676;
+      const Scalar tmp1680 = tmp449*tmp1675;
+      const Scalar tmp1681 = tmp450*tmp1675;
+      const Scalar tmp1682 = tmp451*tmp1675;
+      const Scalar tmp1683 = tmp470*tmp473*penalty_damping;
+      const Scalar tmp1684 = -tmp1683;
+      const Scalar tmp1685 = tmp469*tmp1684;
+      const Scalar tmp1686 = tmp470*tmp1684;
+      const Scalar tmp1687 = tmp471*tmp1684;
+      const Scalar tmp1688 = tmp469*tmp1683;
+      const Scalar tmp1689 = tmp470*tmp1683;
+      const Scalar tmp1690 = tmp471*tmp1683;
+      const Scalar tmp1691 = tmp1671 + tmp1679 + tmp1687;
+      const Scalar tmp1692 = tmp409*tmp411*penalty_damping;
+      const Scalar tmp1693 = -tmp1692;
+      const Scalar tmp1694 = tmp404*tmp1693;
+      const Scalar tmp1695 = tmp407*tmp1693;
+      const Scalar tmp1696 = tmp409*tmp1693;
+      const Scalar tmp1697 = tmp404*tmp1692;
+      const Scalar tmp1698 = tmp407*tmp1692;
+      const Scalar tmp1699 = tmp409*tmp1692;
+      const Scalar tmp1700 = tmp451*tmp453*penalty_damping;
+      const Scalar tmp1701 = -tmp1700;
+      const Scalar tmp1702 = tmp449*tmp1701;
+      const Scalar tmp1703 = tmp450*tmp1701;
+      const Scalar tmp1704 = tmp451*tmp1701;
+      const Scalar tmp1705 = tmp449*tmp1700;
+      const Scalar tmp1706 = tmp450*tmp1700;
+      const Scalar tmp1707 = tmp451*tmp1700;
+      const Scalar tmp1708 = tmp471*tmp473*penalty_damping;
+      const Scalar tmp1709 = -tmp1708;
+      const Scalar tmp1710 = tmp469*tmp1709;
+      const Scalar tmp1711 = tmp470*tmp1709;
+      const Scalar tmp1712 = tmp471*tmp1709;
+      const Scalar tmp1713 = tmp469*tmp1708;
+      const Scalar tmp1714 = tmp470*tmp1708;
+      const Scalar tmp1715 = tmp471*tmp1708;
+      const Scalar tmp1716 = tmp1696 + tmp1704 + tmp1712;
       std::array<Scalar, 144> result;
-      result[0] = tmp356*tmp1201 + tmp375*tmp1202 + tmp395*tmp1203;
-      result[1] = tmp356*tmp1211 + tmp375*tmp1212 + tmp395*tmp1213;
-      result[2] = tmp356*tmp1221 + tmp375*tmp1222 + tmp395*tmp1223;
-      result[3] = tmp356*tmp1231;
-      result[4] = tmp356*tmp1241;
-      result[5] = tmp356*tmp1251;
-      result[6] = tmp375*tmp1261;
-      result[7] = tmp375*tmp1271;
-      result[8] = tmp375*tmp1281;
-      result[9] = tmp395*tmp1291;
-      result[10] = tmp395*tmp1301;
-      result[11] = tmp395*tmp1311;
-      result[12] = tmp357*tmp1201 + tmp377*tmp1202 + tmp397*tmp1203;
-      result[13] = tmp357*tmp1211 + tmp377*tmp1212 + tmp397*tmp1213;
-      result[14] = tmp357*tmp1221 + tmp377*tmp1222 + tmp397*tmp1223;
-      result[15] = tmp357*tmp1231;
-      result[16] = tmp357*tmp1241;
-      result[17] = tmp357*tmp1251;
-      result[18] = tmp377*tmp1261;
-      result[19] = tmp377*tmp1271;
-      result[20] = tmp377*tmp1281;
-      result[21] = tmp397*tmp1291;
-      result[22] = tmp397*tmp1301;
-      result[23] = tmp397*tmp1311;
-      result[24] = tmp1204;
-      result[25] = tmp1214;
-      result[26] = tmp1224;
-      result[27] = tmp1232;
-      result[28] = tmp1242;
-      result[29] = tmp1252;
-      result[30] = tmp1262;
-      result[31] = tmp1272;
-      result[32] = tmp1282;
-      result[33] = tmp1292;
-      result[34] = tmp1302;
-      result[35] = tmp1312;
-      result[36] = tmp356*tmp1205;
-      result[37] = tmp356*tmp1215;
-      result[38] = tmp356*tmp1225;
-      result[39] = tmp356*tmp1233 + tmp412*tmp1234 + tmp427*tmp1235;
-      result[40] = tmp356*tmp1243 + tmp412*tmp1244 + tmp427*tmp1245;
-      result[41] = tmp356*tmp1253 + tmp412*tmp1254 + tmp427*tmp1255;
-      result[42] = tmp412*tmp1263;
-      result[43] = tmp412*tmp1273;
-      result[44] = tmp412*tmp1283;
-      result[45] = tmp427*tmp1293;
-      result[46] = tmp427*tmp1303;
-      result[47] = tmp427*tmp1313;
-      result[48] = tmp357*tmp1205;
-      result[49] = tmp357*tmp1215;
-      result[50] = tmp357*tmp1225;
-      result[51] = tmp357*tmp1233 + tmp413*tmp1234 + tmp428*tmp1235;
-      result[52] = tmp357*tmp1243 + tmp413*tmp1244 + tmp428*tmp1245;
-      result[53] = tmp357*tmp1253 + tmp413*tmp1254 + tmp428*tmp1255;
-      result[54] = tmp413*tmp1263;
-      result[55] = tmp413*tmp1273;
-      result[56] = tmp413*tmp1283;
-      result[57] = tmp428*tmp1293;
-      result[58] = tmp428*tmp1303;
-      result[59] = tmp428*tmp1313;
-      result[60] = tmp1206;
-      result[61] = tmp1216;
-      result[62] = tmp1226;
-      result[63] = tmp1236;
-      result[64] = tmp1246;
-      result[65] = tmp1256;
-      result[66] = tmp1264;
-      result[67] = tmp1274;
-      result[68] = tmp1284;
-      result[69] = tmp1294;
-      result[70] = tmp1304;
-      result[71] = tmp1314;
-      result[72] = tmp375*tmp1207;
-      result[73] = tmp375*tmp1217;
-      result[74] = tmp375*tmp1227;
-      result[75] = tmp412*tmp1237;
-      result[76] = tmp412*tmp1247;
-      result[77] = tmp412*tmp1257;
-      result[78] = tmp441*tmp1265 + tmp375*tmp1266 + tmp412*tmp1267;
-      result[79] = tmp441*tmp1275 + tmp375*tmp1276 + tmp412*tmp1277;
-      result[80] = tmp441*tmp1285 + tmp375*tmp1286 + tmp412*tmp1287;
-      result[81] = tmp441*tmp1295;
-      result[82] = tmp441*tmp1305;
-      result[83] = tmp441*tmp1315;
-      result[84] = tmp377*tmp1207;
-      result[85] = tmp377*tmp1217;
-      result[86] = tmp377*tmp1227;
-      result[87] = tmp413*tmp1237;
-      result[88] = tmp413*tmp1247;
-      result[89] = tmp413*tmp1257;
-      result[90] = tmp442*tmp1265 + tmp377*tmp1266 + tmp413*tmp1267;
-      result[91] = tmp442*tmp1275 + tmp377*tmp1276 + tmp413*tmp1277;
-      result[92] = tmp442*tmp1285 + tmp377*tmp1286 + tmp413*tmp1287;
-      result[93] = tmp442*tmp1295;
-      result[94] = tmp442*tmp1305;
-      result[95] = tmp442*tmp1315;
-      result[96] = tmp1208;
-      result[97] = tmp1218;
-      result[98] = tmp1228;
-      result[99] = tmp1238;
-      result[100] = tmp1248;
-      result[101] = tmp1258;
-      result[102] = tmp1268;
-      result[103] = tmp1278;
-      result[104] = tmp1288;
-      result[105] = tmp1296;
-      result[106] = tmp1306;
-      result[107] = tmp1316;
-      result[108] = tmp395*tmp1209;
-      result[109] = tmp395*tmp1219;
-      result[110] = tmp395*tmp1229;
-      result[111] = tmp427*tmp1239;
-      result[112] = tmp427*tmp1249;
-      result[113] = tmp427*tmp1259;
-      result[114] = tmp441*tmp1269;
-      result[115] = tmp441*tmp1279;
-      result[116] = tmp441*tmp1289;
-      result[117] = tmp441*tmp1297 + tmp395*tmp1298 + tmp427*tmp1299;
-      result[118] = tmp441*tmp1307 + tmp395*tmp1308 + tmp427*tmp1309;
-      result[119] = tmp441*tmp1317 + tmp395*tmp1318 + tmp427*tmp1319;
-      result[120] = tmp397*tmp1209;
-      result[121] = tmp397*tmp1219;
-      result[122] = tmp397*tmp1229;
-      result[123] = tmp428*tmp1239;
-      result[124] = tmp428*tmp1249;
-      result[125] = tmp428*tmp1259;
-      result[126] = tmp442*tmp1269;
-      result[127] = tmp442*tmp1279;
-      result[128] = tmp442*tmp1289;
-      result[129] = tmp442*tmp1297 + tmp397*tmp1298 + tmp428*tmp1299;
-      result[130] = tmp442*tmp1307 + tmp397*tmp1308 + tmp428*tmp1309;
-      result[131] = tmp442*tmp1317 + tmp397*tmp1318 + tmp428*tmp1319;
-      result[132] = tmp1210;
-      result[133] = tmp1220;
-      result[134] = tmp1230;
-      result[135] = tmp1240;
-      result[136] = tmp1250;
-      result[137] = tmp1260;
-      result[138] = tmp1270;
-      result[139] = tmp1280;
-      result[140] = tmp1290;
-      result[141] = tmp1300;
-      result[142] = tmp1310;
-      result[143] = tmp1320;
+      result[0] = tmp1438 + tmp1422 + tmp1430;
+      result[1] = tmp1463 + tmp1447 + tmp1455;
+      result[2] = tmp1488 + tmp1472 + tmp1480;
+      result[3] = tmp1497;
+      result[4] = tmp1522;
+      result[5] = tmp1547;
+      result[6] = tmp1572;
+      result[7] = tmp1597;
+      result[8] = tmp1622;
+      result[9] = tmp1647;
+      result[10] = tmp1672;
+      result[11] = tmp1697;
+      result[12] = tmp1431 + tmp1439 + tmp1423;
+      result[13] = tmp1456 + tmp1464 + tmp1448;
+      result[14] = tmp1481 + tmp1489 + tmp1473;
+      result[15] = tmp1498;
+      result[16] = tmp1523;
+      result[17] = tmp1548;
+      result[18] = tmp1573;
+      result[19] = tmp1598;
+      result[20] = tmp1623;
+      result[21] = tmp1648;
+      result[22] = tmp1673;
+      result[23] = tmp1698;
+      result[24] = tmp1441;
+      result[25] = tmp1466;
+      result[26] = tmp1491;
+      result[27] = tmp1499;
+      result[28] = tmp1524;
+      result[29] = tmp1549;
+      result[30] = tmp1574;
+      result[31] = tmp1599;
+      result[32] = tmp1624;
+      result[33] = tmp1649;
+      result[34] = tmp1674;
+      result[35] = tmp1699;
+      result[36] = tmp1419;
+      result[37] = tmp1444;
+      result[38] = tmp1469;
+      result[39] = tmp1494 + tmp1505 + tmp1513;
+      result[40] = tmp1519 + tmp1530 + tmp1538;
+      result[41] = tmp1544 + tmp1555 + tmp1563;
+      result[42] = tmp1580;
+      result[43] = tmp1605;
+      result[44] = tmp1630;
+      result[45] = tmp1655;
+      result[46] = tmp1680;
+      result[47] = tmp1705;
+      result[48] = tmp1420;
+      result[49] = tmp1445;
+      result[50] = tmp1470;
+      result[51] = tmp1495 + tmp1506 + tmp1514;
+      result[52] = tmp1520 + tmp1531 + tmp1539;
+      result[53] = tmp1545 + tmp1556 + tmp1564;
+      result[54] = tmp1581;
+      result[55] = tmp1606;
+      result[56] = tmp1631;
+      result[57] = tmp1656;
+      result[58] = tmp1681;
+      result[59] = tmp1706;
+      result[60] = tmp1421;
+      result[61] = tmp1446;
+      result[62] = tmp1471;
+      result[63] = tmp1516;
+      result[64] = tmp1541;
+      result[65] = tmp1566;
+      result[66] = tmp1582;
+      result[67] = tmp1607;
+      result[68] = tmp1632;
+      result[69] = tmp1657;
+      result[70] = tmp1682;
+      result[71] = tmp1707;
+      result[72] = tmp1427;
+      result[73] = tmp1452;
+      result[74] = tmp1477;
+      result[75] = tmp1502;
+      result[76] = tmp1527;
+      result[77] = tmp1552;
+      result[78] = tmp1577 + tmp1588 + tmp1569;
+      result[79] = tmp1602 + tmp1613 + tmp1594;
+      result[80] = tmp1627 + tmp1638 + tmp1619;
+      result[81] = tmp1663;
+      result[82] = tmp1688;
+      result[83] = tmp1713;
+      result[84] = tmp1428;
+      result[85] = tmp1453;
+      result[86] = tmp1478;
+      result[87] = tmp1503;
+      result[88] = tmp1528;
+      result[89] = tmp1553;
+      result[90] = tmp1578 + tmp1589 + tmp1570;
+      result[91] = tmp1603 + tmp1614 + tmp1595;
+      result[92] = tmp1628 + tmp1639 + tmp1620;
+      result[93] = tmp1664;
+      result[94] = tmp1689;
+      result[95] = tmp1714;
+      result[96] = tmp1429;
+      result[97] = tmp1454;
+      result[98] = tmp1479;
+      result[99] = tmp1504;
+      result[100] = tmp1529;
+      result[101] = tmp1554;
+      result[102] = tmp1591;
+      result[103] = tmp1616;
+      result[104] = tmp1641;
+      result[105] = tmp1665;
+      result[106] = tmp1690;
+      result[107] = tmp1715;
+      result[108] = tmp1435;
+      result[109] = tmp1460;
+      result[110] = tmp1485;
+      result[111] = tmp1510;
+      result[112] = tmp1535;
+      result[113] = tmp1560;
+      result[114] = tmp1585;
+      result[115] = tmp1610;
+      result[116] = tmp1635;
+      result[117] = tmp1644 + tmp1652 + tmp1660;
+      result[118] = tmp1669 + tmp1677 + tmp1685;
+      result[119] = tmp1694 + tmp1702 + tmp1710;
+      result[120] = tmp1436;
+      result[121] = tmp1461;
+      result[122] = tmp1486;
+      result[123] = tmp1511;
+      result[124] = tmp1536;
+      result[125] = tmp1561;
+      result[126] = tmp1586;
+      result[127] = tmp1611;
+      result[128] = tmp1636;
+      result[129] = tmp1645 + tmp1653 + tmp1661;
+      result[130] = tmp1670 + tmp1678 + tmp1686;
+      result[131] = tmp1695 + tmp1703 + tmp1711;
+      result[132] = tmp1437;
+      result[133] = tmp1462;
+      result[134] = tmp1487;
+      result[135] = tmp1512;
+      result[136] = tmp1537;
+      result[137] = tmp1562;
+      result[138] = tmp1587;
+      result[139] = tmp1612;
+      result[140] = tmp1637;
+      result[141] = tmp1666;
+      result[142] = tmp1691;
+      result[143] = tmp1716;
       return result;
     }
 
@@ -5378,9 +5738,9 @@ struct RigidBodyEuler {
       const Scalar g = Scalar(params.g);
       const Scalar m = Scalar(params.m);
       const Scalar tmp281 = g*m;
-      const Scalar tmp349 = (Scalar(0.25))*tmp281;
+      const Scalar tmp486 = (Scalar(0.25))*tmp281;
       Scalar result;
-      result = tmp349*pos(2) + tmp349*pos(5) + tmp349*pos(8) + tmp349*pos(11);
+      result = tmp486*pos(2) + tmp486*pos(5) + tmp486*pos(8) + tmp486*pos(11);
       return result;
     }
 
@@ -5446,75 +5806,75 @@ struct RigidBodyEuler {
       const Scalar tmp168 = -tmp26*tmp9;
       const Scalar tmp169 = tmp38 - tmp33 - tmp39;
       const Scalar tmp170 = tmp169*tmp9;
-      const Scalar tmp351 = pos(3) - pos(0);
-      const Scalar tmp352 = pos(4) - pos(1);
-      const Scalar tmp353 = pos(5) - pos(2);
-      const Scalar tmp354 = sqrt((tmp351*tmp351) + (tmp352*tmp352) + (tmp353*tmp353));
-      const Scalar tmp359 = -tmp26*tmp9;
-      const Scalar tmp360 = -tmp41*tmp9;
-      const Scalar tmp361 = sqrt(((-tmp117 - tmp359)*(-tmp117 - tmp359))
-          + ((-tmp119 - tmp360)*(-tmp119 - tmp360)));
-      const Scalar tmp362 = (Scalar(1)/tmp361);
-      const Scalar tmp363 = tmp354 - tmp361;
-      const Scalar tmp364 = tmp362*kappa;
-      const Scalar tmp367 = -pos(6);
-      const Scalar tmp368 = -tmp367 - pos(0);
-      const Scalar tmp369 = -pos(7);
-      const Scalar tmp370 = -tmp369 - pos(1);
-      const Scalar tmp371 = -pos(8);
-      const Scalar tmp372 = -tmp371 - pos(2);
-      const Scalar tmp373 = sqrt((tmp368*tmp368) + (tmp370*tmp370) + (tmp372*tmp372));
-      const Scalar tmp380 = Scalar(4)*tmp19/m;
-      const Scalar tmp381 = sqrt(tmp380 + ((-tmp138 - tmp359)*(-tmp138 - tmp359))
-          + ((-tmp140 - tmp360)*(-tmp140 - tmp360)));
-      const Scalar tmp382 = (Scalar(1)/tmp381);
-      const Scalar tmp383 = tmp373 - tmp381;
-      const Scalar tmp384 = tmp382*kappa;
-      const Scalar tmp387 = -pos(9);
-      const Scalar tmp388 = -tmp387 - pos(0);
-      const Scalar tmp389 = -pos(10);
-      const Scalar tmp390 = -tmp389 - pos(1);
-      const Scalar tmp391 = -pos(11);
-      const Scalar tmp392 = -tmp391 - pos(2);
-      const Scalar tmp393 = sqrt((tmp388*tmp388) + (tmp390*tmp390) + (tmp392*tmp392));
-      const Scalar tmp400 = sqrt(tmp380 + ((-tmp168 - tmp359)*(-tmp168 - tmp359))
-          + ((-tmp170 - tmp360)*(-tmp170 - tmp360)));
-      const Scalar tmp401 = (Scalar(1)/tmp400);
-      const Scalar tmp402 = tmp393 - tmp400;
-      const Scalar tmp403 = tmp401*kappa;
-      const Scalar tmp407 = -tmp367 - pos(3);
-      const Scalar tmp408 = -tmp369 - pos(4);
-      const Scalar tmp409 = -tmp371 - pos(5);
-      const Scalar tmp410 = sqrt((tmp407*tmp407) + (tmp408*tmp408) + (tmp409*tmp409));
-      const Scalar tmp415 = -tmp117;
-      const Scalar tmp416 = -tmp119;
-      const Scalar tmp417 = sqrt(tmp380 + ((-tmp138 - tmp415)*(-tmp138 - tmp415))
-          + ((-tmp140 - tmp416)*(-tmp140 - tmp416)));
-      const Scalar tmp418 = (Scalar(1)/tmp417);
-      const Scalar tmp419 = tmp410 - tmp417;
-      const Scalar tmp420 = tmp418*kappa;
-      const Scalar tmp422 = -tmp387 - pos(3);
-      const Scalar tmp423 = -tmp389 - pos(4);
-      const Scalar tmp424 = -tmp391 - pos(5);
+      const Scalar tmp347 = pos(3) - pos(0);
+      const Scalar tmp348 = pos(4) - pos(1);
+      const Scalar tmp349 = pos(5) - pos(2);
+      const Scalar tmp350 = sqrt((tmp347*tmp347) + (tmp348*tmp348) + (tmp349*tmp349));
+      const Scalar tmp355 = -tmp26*tmp9;
+      const Scalar tmp356 = -tmp41*tmp9;
+      const Scalar tmp357 = sqrt(((-tmp117 - tmp355)*(-tmp117 - tmp355))
+          + ((-tmp119 - tmp356)*(-tmp119 - tmp356)));
+      const Scalar tmp358 = (Scalar(1)/tmp357);
+      const Scalar tmp359 = tmp350 - tmp357;
+      const Scalar tmp360 = tmp358*kappa;
+      const Scalar tmp369 = -pos(6);
+      const Scalar tmp370 = -tmp369 - pos(0);
+      const Scalar tmp371 = -pos(7);
+      const Scalar tmp372 = -tmp371 - pos(1);
+      const Scalar tmp373 = -pos(8);
+      const Scalar tmp374 = -tmp373 - pos(2);
+      const Scalar tmp375 = sqrt((tmp370*tmp370) + (tmp372*tmp372) + (tmp374*tmp374));
+      const Scalar tmp383 = Scalar(4)*tmp19/m;
+      const Scalar tmp384 = sqrt(tmp383 + ((-tmp138 - tmp355)*(-tmp138 - tmp355))
+          + ((-tmp140 - tmp356)*(-tmp140 - tmp356)));
+      const Scalar tmp385 = (Scalar(1)/tmp384);
+      const Scalar tmp386 = tmp375 - tmp384;
+      const Scalar tmp387 = tmp385*kappa;
+      const Scalar tmp396 = -pos(9);
+      const Scalar tmp397 = -tmp396 - pos(0);
+      const Scalar tmp398 = -pos(10);
+      const Scalar tmp399 = -tmp398 - pos(1);
+      const Scalar tmp400 = -pos(11);
+      const Scalar tmp401 = -tmp400 - pos(2);
+      const Scalar tmp402 = sqrt((tmp397*tmp397) + (tmp399*tmp399) + (tmp401*tmp401));
+      const Scalar tmp410 = sqrt(tmp383 + ((-tmp168 - tmp355)*(-tmp168 - tmp355))
+          + ((-tmp170 - tmp356)*(-tmp170 - tmp356)));
+      const Scalar tmp411 = (Scalar(1)/tmp410);
+      const Scalar tmp412 = tmp402 - tmp410;
+      const Scalar tmp413 = tmp411*kappa;
+      const Scalar tmp422 = -tmp369 - pos(3);
+      const Scalar tmp423 = -tmp371 - pos(4);
+      const Scalar tmp424 = -tmp373 - pos(5);
       const Scalar tmp425 = sqrt((tmp422*tmp422) + (tmp423*tmp423) + (tmp424*tmp424));
-      const Scalar tmp430 = sqrt(tmp380 + ((-tmp168 - tmp415)*(-tmp168 - tmp415))
-          + ((-tmp170 - tmp416)*(-tmp170 - tmp416)));
-      const Scalar tmp431 = (Scalar(1)/tmp430);
-      const Scalar tmp432 = tmp425 - tmp430;
-      const Scalar tmp433 = tmp431*kappa;
-      const Scalar tmp436 = -tmp387 - pos(6);
-      const Scalar tmp437 = -tmp389 - pos(7);
-      const Scalar tmp438 = -tmp391 - pos(8);
-      const Scalar tmp439 = sqrt((tmp436*tmp436) + (tmp437*tmp437) + (tmp438*tmp438));
-      const Scalar tmp444 = sqrt(((tmp138 - tmp168)*(tmp138 - tmp168))
+      const Scalar tmp430 = -tmp117;
+      const Scalar tmp431 = -tmp119;
+      const Scalar tmp432 = sqrt(tmp383 + ((-tmp138 - tmp430)*(-tmp138 - tmp430))
+          + ((-tmp140 - tmp431)*(-tmp140 - tmp431)));
+      const Scalar tmp433 = (Scalar(1)/tmp432);
+      const Scalar tmp434 = tmp425 - tmp432;
+      const Scalar tmp435 = tmp433*kappa;
+      const Scalar tmp444 = -tmp396 - pos(3);
+      const Scalar tmp445 = -tmp398 - pos(4);
+      const Scalar tmp446 = -tmp400 - pos(5);
+      const Scalar tmp447 = sqrt((tmp444*tmp444) + (tmp445*tmp445) + (tmp446*tmp446));
+      const Scalar tmp452 = sqrt(tmp383 + ((-tmp168 - tmp430)*(-tmp168 - tmp430))
+          + ((-tmp170 - tmp431)*(-tmp170 - tmp431)));
+      const Scalar tmp453 = (Scalar(1)/tmp452);
+      const Scalar tmp454 = tmp447 - tmp452;
+      const Scalar tmp455 = tmp453*kappa;
+      const Scalar tmp464 = -tmp396 - pos(6);
+      const Scalar tmp465 = -tmp398 - pos(7);
+      const Scalar tmp466 = -tmp400 - pos(8);
+      const Scalar tmp467 = sqrt((tmp464*tmp464) + (tmp465*tmp465) + (tmp466*tmp466));
+      const Scalar tmp472 = sqrt(((tmp138 - tmp168)*(tmp138 - tmp168))
           + ((tmp140 - tmp170)*(tmp140 - tmp170)));
-      const Scalar tmp445 = (Scalar(1)/tmp444);
-      const Scalar tmp446 = tmp439 - tmp444;
-      const Scalar tmp447 = tmp445*kappa;
+      const Scalar tmp473 = (Scalar(1)/tmp472);
+      const Scalar tmp474 = tmp467 - tmp472;
+      const Scalar tmp475 = tmp473*kappa;
       Scalar result;
-      result = (Scalar(0.5))*tmp364*(tmp363*tmp363) + (Scalar(0.5))*tmp384*(tmp383*tmp383)
-          + (Scalar(0.5))*tmp403*(tmp402*tmp402) + (Scalar(0.5))*tmp420*(tmp419*tmp419)
-          + (Scalar(0.5))*tmp433*(tmp432*tmp432) + (Scalar(0.5))*tmp447*(tmp446*tmp446);
+      result = (Scalar(0.5))*tmp360*(tmp359*tmp359) + (Scalar(0.5))*tmp387*(tmp386*tmp386)
+          + (Scalar(0.5))*tmp413*(tmp412*tmp412) + (Scalar(0.5))*tmp435*(tmp434*tmp434)
+          + (Scalar(0.5))*tmp455*(tmp454*tmp454) + (Scalar(0.5))*tmp475*(tmp474*tmp474);
       return result;
     }
 
@@ -5578,66 +5938,66 @@ struct RigidBodyEuler {
       const Scalar tmp168 = -tmp26*tmp9;
       const Scalar tmp169 = tmp38 - tmp33 - tmp39;
       const Scalar tmp170 = tmp169*tmp9;
-      const Scalar tmp351 = pos(3) - pos(0);
-      const Scalar tmp352 = pos(4) - pos(1);
-      const Scalar tmp353 = pos(5) - pos(2);
-      const Scalar tmp354 = sqrt((tmp351*tmp351) + (tmp352*tmp352) + (tmp353*tmp353));
-      const Scalar tmp359 = -tmp26*tmp9;
-      const Scalar tmp360 = -tmp41*tmp9;
-      const Scalar tmp361 = sqrt(((-tmp117 - tmp359)*(-tmp117 - tmp359))
-          + ((-tmp119 - tmp360)*(-tmp119 - tmp360)));
-      const Scalar tmp363 = tmp354 - tmp361;
-      const Scalar tmp367 = -pos(6);
-      const Scalar tmp368 = -tmp367 - pos(0);
-      const Scalar tmp369 = -pos(7);
-      const Scalar tmp370 = -tmp369 - pos(1);
-      const Scalar tmp371 = -pos(8);
-      const Scalar tmp372 = -tmp371 - pos(2);
-      const Scalar tmp373 = sqrt((tmp368*tmp368) + (tmp370*tmp370) + (tmp372*tmp372));
-      const Scalar tmp380 = Scalar(4)*tmp19/m;
-      const Scalar tmp381 = sqrt(tmp380 + ((-tmp138 - tmp359)*(-tmp138 - tmp359))
-          + ((-tmp140 - tmp360)*(-tmp140 - tmp360)));
-      const Scalar tmp383 = tmp373 - tmp381;
-      const Scalar tmp387 = -pos(9);
-      const Scalar tmp388 = -tmp387 - pos(0);
-      const Scalar tmp389 = -pos(10);
-      const Scalar tmp390 = -tmp389 - pos(1);
-      const Scalar tmp391 = -pos(11);
-      const Scalar tmp392 = -tmp391 - pos(2);
-      const Scalar tmp393 = sqrt((tmp388*tmp388) + (tmp390*tmp390) + (tmp392*tmp392));
-      const Scalar tmp400 = sqrt(tmp380 + ((-tmp168 - tmp359)*(-tmp168 - tmp359))
-          + ((-tmp170 - tmp360)*(-tmp170 - tmp360)));
-      const Scalar tmp402 = tmp393 - tmp400;
-      const Scalar tmp407 = -tmp367 - pos(3);
-      const Scalar tmp408 = -tmp369 - pos(4);
-      const Scalar tmp409 = -tmp371 - pos(5);
-      const Scalar tmp410 = sqrt((tmp407*tmp407) + (tmp408*tmp408) + (tmp409*tmp409));
-      const Scalar tmp415 = -tmp117;
-      const Scalar tmp416 = -tmp119;
-      const Scalar tmp417 = sqrt(tmp380 + ((-tmp138 - tmp415)*(-tmp138 - tmp415))
-          + ((-tmp140 - tmp416)*(-tmp140 - tmp416)));
-      const Scalar tmp419 = tmp410 - tmp417;
-      const Scalar tmp422 = -tmp387 - pos(3);
-      const Scalar tmp423 = -tmp389 - pos(4);
-      const Scalar tmp424 = -tmp391 - pos(5);
+      const Scalar tmp347 = pos(3) - pos(0);
+      const Scalar tmp348 = pos(4) - pos(1);
+      const Scalar tmp349 = pos(5) - pos(2);
+      const Scalar tmp350 = sqrt((tmp347*tmp347) + (tmp348*tmp348) + (tmp349*tmp349));
+      const Scalar tmp355 = -tmp26*tmp9;
+      const Scalar tmp356 = -tmp41*tmp9;
+      const Scalar tmp357 = sqrt(((-tmp117 - tmp355)*(-tmp117 - tmp355))
+          + ((-tmp119 - tmp356)*(-tmp119 - tmp356)));
+      const Scalar tmp359 = tmp350 - tmp357;
+      const Scalar tmp369 = -pos(6);
+      const Scalar tmp370 = -tmp369 - pos(0);
+      const Scalar tmp371 = -pos(7);
+      const Scalar tmp372 = -tmp371 - pos(1);
+      const Scalar tmp373 = -pos(8);
+      const Scalar tmp374 = -tmp373 - pos(2);
+      const Scalar tmp375 = sqrt((tmp370*tmp370) + (tmp372*tmp372) + (tmp374*tmp374));
+      const Scalar tmp383 = Scalar(4)*tmp19/m;
+      const Scalar tmp384 = sqrt(tmp383 + ((-tmp138 - tmp355)*(-tmp138 - tmp355))
+          + ((-tmp140 - tmp356)*(-tmp140 - tmp356)));
+      const Scalar tmp386 = tmp375 - tmp384;
+      const Scalar tmp396 = -pos(9);
+      const Scalar tmp397 = -tmp396 - pos(0);
+      const Scalar tmp398 = -pos(10);
+      const Scalar tmp399 = -tmp398 - pos(1);
+      const Scalar tmp400 = -pos(11);
+      const Scalar tmp401 = -tmp400 - pos(2);
+      const Scalar tmp402 = sqrt((tmp397*tmp397) + (tmp399*tmp399) + (tmp401*tmp401));
+      const Scalar tmp410 = sqrt(tmp383 + ((-tmp168 - tmp355)*(-tmp168 - tmp355))
+          + ((-tmp170 - tmp356)*(-tmp170 - tmp356)));
+      const Scalar tmp412 = tmp402 - tmp410;
+      const Scalar tmp422 = -tmp369 - pos(3);
+      const Scalar tmp423 = -tmp371 - pos(4);
+      const Scalar tmp424 = -tmp373 - pos(5);
       const Scalar tmp425 = sqrt((tmp422*tmp422) + (tmp423*tmp423) + (tmp424*tmp424));
-      const Scalar tmp430 = sqrt(tmp380 + ((-tmp168 - tmp415)*(-tmp168 - tmp415))
-          + ((-tmp170 - tmp416)*(-tmp170 - tmp416)));
-      const Scalar tmp432 = tmp425 - tmp430;
-      const Scalar tmp436 = -tmp387 - pos(6);
-      const Scalar tmp437 = -tmp389 - pos(7);
-      const Scalar tmp438 = -tmp391 - pos(8);
-      const Scalar tmp439 = sqrt((tmp436*tmp436) + (tmp437*tmp437) + (tmp438*tmp438));
-      const Scalar tmp444 = sqrt(((tmp138 - tmp168)*(tmp138 - tmp168))
+      const Scalar tmp430 = -tmp117;
+      const Scalar tmp431 = -tmp119;
+      const Scalar tmp432 = sqrt(tmp383 + ((-tmp138 - tmp430)*(-tmp138 - tmp430))
+          + ((-tmp140 - tmp431)*(-tmp140 - tmp431)));
+      const Scalar tmp434 = tmp425 - tmp432;
+      const Scalar tmp444 = -tmp396 - pos(3);
+      const Scalar tmp445 = -tmp398 - pos(4);
+      const Scalar tmp446 = -tmp400 - pos(5);
+      const Scalar tmp447 = sqrt((tmp444*tmp444) + (tmp445*tmp445) + (tmp446*tmp446));
+      const Scalar tmp452 = sqrt(tmp383 + ((-tmp168 - tmp430)*(-tmp168 - tmp430))
+          + ((-tmp170 - tmp431)*(-tmp170 - tmp431)));
+      const Scalar tmp454 = tmp447 - tmp452;
+      const Scalar tmp464 = -tmp396 - pos(6);
+      const Scalar tmp465 = -tmp398 - pos(7);
+      const Scalar tmp466 = -tmp400 - pos(8);
+      const Scalar tmp467 = sqrt((tmp464*tmp464) + (tmp465*tmp465) + (tmp466*tmp466));
+      const Scalar tmp472 = sqrt(((tmp138 - tmp168)*(tmp138 - tmp168))
           + ((tmp140 - tmp170)*(tmp140 - tmp170)));
-      const Scalar tmp446 = tmp439 - tmp444;
+      const Scalar tmp474 = tmp467 - tmp472;
       ConstraintVector<Scalar> result;
-      result(0) = tmp363;
-      result(1) = tmp383;
-      result(2) = tmp402;
-      result(3) = tmp419;
-      result(4) = tmp432;
-      result(5) = tmp446;
+      result(0) = tmp359;
+      result(1) = tmp386;
+      result(2) = tmp412;
+      result(3) = tmp434;
+      result(4) = tmp454;
+      result(5) = tmp474;
       return result;
     }
   };
@@ -7217,756 +7577,756 @@ struct RigidBodyEulerYzx {
     const Scalar tmp301 = tmp20*tmp235;
     const Scalar tmp302 = tmp25*tmp259;
     const Scalar tmp303 = tmp38*tmp271;
-    const Scalar tmp462 = tmp0*tmp5;
-    const Scalar tmp463 = -tmp1;
-    const Scalar tmp464 = tmp4*tmp463;
-    const Scalar tmp465 = tmp3*tmp464;
-    const Scalar tmp466 = -tmp462 + tmp465;
-    const Scalar tmp467 = -tmp466;
-    const Scalar tmp468 = tmp4*tmp5;
-    const Scalar tmp469 = tmp0*tmp463;
-    const Scalar tmp470 = tmp3*tmp469;
-    const Scalar tmp471 = tmp468 + tmp470;
-    const Scalar tmp472 = tmp44*tmp463;
-    const Scalar tmp473 = tmp48*tmp463;
-    const Scalar tmp474 = tmp3*tmp468;
-    const Scalar tmp475 = tmp469 + tmp474;
-    const Scalar tmp476 = tmp3*tmp462;
-    const Scalar tmp477 = -tmp4*tmp463 + tmp476;
-    const Scalar tmp478 = -tmp477;
-    const Scalar tmp479 = tmp44*tmp5;
-    const Scalar tmp480 = tmp48*tmp5;
-    const Scalar tmp481 = com_y*tmp475 + com_z*tmp478 - tmp480;
-    const Scalar tmp482 = com_y*tmp471 + com_z*tmp466;
-    const Scalar tmp483 = tmp44*tmp464;
-    const Scalar tmp484 = tmp3*tmp463;
-    const Scalar tmp485 = (tmp57 - tmp0*tmp44*com_z)*tmp463 + com_y*tmp483;
-    const Scalar tmp486 = -tmp475;
-    const Scalar tmp487 = com_y*tmp478 + com_z*tmp486;
-    const Scalar tmp488 = tmp44*tmp468;
-    const Scalar tmp489 = tmp44*tmp462;
-    const Scalar tmp490 = tmp3*tmp5;
-    const Scalar tmp491 = tmp57*tmp5 + com_y*tmp488 - com_z*tmp489;
-    const Scalar tmp492 = -tmp471;
-    const Scalar tmp493 = com_z*tmp492 + com_y*tmp466;
-    const Scalar tmp494 = tmp493 - tmp473;
-    const Scalar tmp495 = -tmp485;
-    const Scalar tmp496 = attitude_dot*tmp491 + heading_dot*tmp494 + bank_dot*tmp487;
-    const Scalar tmp497 = tmp44*tmp469;
-    const Scalar tmp498 = com_y*tmp497 + com_z*tmp483;
-    const Scalar tmp499 = com_z*tmp470 + tmp473 - tmp3*tmp4*com_y*tmp463;
-    const Scalar tmp500 = attitude_dot*heading_dot*tmp491 + (bank_dot*bank_dot)*tmp493
-        + heading_dot*tmp496 + Scalar(2)*attitude_dot*bank_dot*tmp498
-        - (attitude_dot*attitude_dot)*tmp499 + bank_dot*heading_dot*tmp487;
-    const Scalar tmp501 = com_z*tmp488 + com_y*tmp489;
-    const Scalar tmp502 = -tmp501;
-    const Scalar tmp503 = -com_y*tmp474 + com_z*tmp476 + tmp480;
-    const Scalar tmp504 = com_z*tmp477 + com_y*tmp486;
-    const Scalar tmp505 = com_y*tmp492 + com_z*tmp467;
-    const Scalar tmp506 = tmp504 + tmp480;
-    const Scalar tmp507 = Scalar(2)*attitude_dot*bank_dot*tmp502
-        + (attitude_dot*attitude_dot)*tmp503 + (bank_dot*bank_dot)*tmp504
-        + Scalar(2)*bank_dot*heading_dot*tmp505 + (heading_dot*heading_dot)*tmp506
-        + Scalar(2)*attitude_dot*heading_dot*tmp485;
-    const Scalar tmp508 = tmp214*tmp475 + tmp36*tmp478 - tmp479;
-    const Scalar tmp509 = -tmp0*tmp24*tmp33*tmp44*tmp463 + tmp214*tmp483 + tmp484;
-    const Scalar tmp510 = -tmp509;
-    const Scalar tmp511 = tmp214*tmp471 + tmp36*tmp466;
-    const Scalar tmp512 = tmp214*tmp488 - tmp36*tmp489 + tmp490;
-    const Scalar tmp513 = tmp214*tmp478 + tmp36*tmp486;
-    const Scalar tmp514 = tmp36*tmp492 + tmp214*tmp466;
-    const Scalar tmp515 = tmp514 - tmp472;
-    const Scalar tmp516 = attitude_dot*tmp512 + bank_dot*tmp513 + heading_dot*tmp515;
-    const Scalar tmp517 = tmp214*tmp497 + tmp36*tmp483;
-    const Scalar tmp518 = attitude_dot*heading_dot*tmp512 + bank_dot*heading_dot*tmp513
-        + (bank_dot*bank_dot)*tmp514 + heading_dot*tmp516 + Scalar(2)*attitude_dot*bank_dot*tmp517
-        - tmp36*(attitude_dot*attitude_dot)*tmp470 - (attitude_dot*attitude_dot)*tmp472
-        + tmp19*tmp24*tmp3*tmp4*(attitude_dot*attitude_dot)*tmp463;
-    const Scalar tmp519 = -tmp36*tmp488 - tmp214*tmp489;
-    const Scalar tmp520 = tmp36*tmp477 + tmp214*tmp486;
-    const Scalar tmp521 = tmp214*tmp492 + tmp36*tmp467;
-    const Scalar tmp522 = Scalar(2)*attitude_dot*heading_dot*tmp509
-        + Scalar(2)*attitude_dot*bank_dot*tmp519
-        + ((bank_dot*bank_dot) + (heading_dot*heading_dot))*tmp520
-        + Scalar(2)*bank_dot*heading_dot*tmp521 - tmp214*(attitude_dot*attitude_dot)*tmp474
-        + tmp36*(attitude_dot*attitude_dot)*tmp476
-        + ((attitude_dot*attitude_dot) + (heading_dot*heading_dot))*tmp479;
-    const Scalar tmp523 = -tmp465;
-    const Scalar tmp524 = tmp475 + tmp241*tmp478;
-    const Scalar tmp525 = tmp241*tmp497 - tmp483;
-    const Scalar tmp526 = tmp471 + tmp241*tmp466;
-    const Scalar tmp527 = tmp4*tmp44*tmp5 - tmp241*tmp489;
-    const Scalar tmp528 = tmp464 - tmp476 + tmp241*tmp486;
-    const Scalar tmp529 = tmp241*tmp492 + tmp466;
-    const Scalar tmp530 = attitude_dot*tmp527 + bank_dot*tmp528 + heading_dot*tmp529;
-    const Scalar tmp531 = tmp497 + tmp241*tmp483;
-    const Scalar tmp532 = -(attitude_dot*attitude_dot)*tmp523 + attitude_dot*heading_dot*tmp527
-        + bank_dot*heading_dot*tmp528 + (bank_dot*bank_dot)*tmp529 + heading_dot*tmp530
-        + Scalar(2)*attitude_dot*bank_dot*tmp531 - tmp241*(attitude_dot*attitude_dot)*tmp470;
-    const Scalar tmp533 = -tmp525;
-    const Scalar tmp534 = -tmp241*tmp488 - tmp489;
-    const Scalar tmp535 = -tmp471 + tmp35*tmp37*tmp467;
-    const Scalar tmp536 = -tmp475 + tmp35*tmp37*tmp477;
-    const Scalar tmp537 = Scalar(2)*attitude_dot*heading_dot*tmp533
-        + Scalar(2)*attitude_dot*bank_dot*tmp534 + Scalar(2)*bank_dot*heading_dot*tmp535
-        + ((bank_dot*bank_dot) + (heading_dot*heading_dot))*tmp536
-        - (attitude_dot*attitude_dot)*tmp474 + tmp241*(attitude_dot*attitude_dot)*tmp476;
-    const Scalar tmp538 = attitude_dot*tmp497;
-    const Scalar tmp539 = heading_dot*tmp492 + bank_dot*tmp486 - attitude_dot*tmp489;
-    const Scalar tmp540 = (bank_dot*bank_dot)*tmp492 + heading_dot*tmp539
-        - (attitude_dot*attitude_dot)*tmp470 + tmp4*tmp44*attitude_dot*bank_dot*tmp463
-        + attitude_dot*bank_dot*tmp483 + bank_dot*heading_dot*tmp486
-        - attitude_dot*heading_dot*tmp489;
-    const Scalar tmp541 = tmp0*tmp3*(attitude_dot*attitude_dot)*tmp5
-        - attitude_dot*heading_dot*tmp497 - heading_dot*tmp538
-        + ((bank_dot*bank_dot) + (heading_dot*heading_dot))*tmp477
-        + Scalar(2)*bank_dot*heading_dot*tmp467 - Scalar(2)*attitude_dot*bank_dot*tmp488;
-    const Scalar tmp542 = m*tmp481;
-    const Scalar tmp543 = m*tmp494;
-    const Scalar tmp544 = Scalar(2)*tmp108*tmp38*tmp492 + Scalar(2)*tmp112*m*tmp494
-        + Scalar(2)*tmp219*tmp20*tmp508 + Scalar(2)*tmp230*tmp20*tmp515
-        + Scalar(2)*tmp245*tmp25*tmp524 + Scalar(2)*tmp254*tmp25*tmp529
-        + Scalar(2)*tmp38*tmp67*tmp478 + Scalar(2)*tmp73*m*tmp481;
-    const Scalar tmp545 = m*tmp495;
-    const Scalar tmp546 = m*tmp491;
-    const Scalar tmp547 = tmp112*m*tmp491 - tmp38*tmp102*tmp492 + tmp105*m*tmp494 + tmp73*m*tmp495
-        + tmp38*tmp67*tmp497 + tmp221*tmp20*tmp508 + tmp219*tmp20*tmp510 + tmp230*tmp20*tmp512
-        + tmp227*tmp20*tmp515 + tmp246*tmp25*tmp524 + tmp245*tmp25*tmp525 + tmp254*tmp25*tmp527
-        + tmp252*tmp25*tmp529 + tmp201*tmp38*tmp478 + tmp195*m*tmp481 - tmp108*tmp38*tmp489;
-    const Scalar tmp548 = Scalar(2)*tmp1*tmp282*tmp38*tmp5 + Scalar(2)*tmp105*m*tmp491
-        + Scalar(2)*tmp195*m*tmp495 + Scalar(2)*tmp221*tmp20*tmp510 + Scalar(2)*tmp227*tmp20*tmp512
-        + Scalar(2)*tmp246*tmp25*tmp525 + Scalar(2)*tmp252*tmp25*tmp527
-        + Scalar(2)*tmp282*tmp38*tmp5*tmp463;
-    const Scalar tmp549 = m*tmp482;
-    const Scalar tmp550 = m*tmp487;
-    const Scalar tmp551 = tmp38*tmp98*tmp492 + tmp99*m*tmp494 + tmp222*tmp20*tmp508
-        + tmp219*tmp20*tmp511 + tmp230*tmp20*tmp513 + tmp228*tmp20*tmp515 + tmp247*tmp25*tmp524
-        + tmp245*tmp25*tmp526 + tmp254*tmp25*tmp528 + tmp253*tmp25*tmp529 + tmp38*tmp8*tmp478
-        + tmp77*m*tmp481 + tmp73*m*tmp482 + tmp38*tmp67*tmp466 + tmp108*tmp38*tmp486
-        + tmp112*m*tmp487;
-    const Scalar tmp552 = tmp99*m*tmp491 + tmp77*m*tmp495 + tmp222*tmp20*tmp510
-        + tmp221*tmp20*tmp511 + tmp228*tmp20*tmp512 + tmp227*tmp20*tmp513 + tmp247*tmp25*tmp525
-        + tmp246*tmp25*tmp526 + tmp253*tmp25*tmp527 + tmp252*tmp25*tmp528
-        + tmp0*tmp38*tmp44*tmp8*tmp463 + tmp195*m*tmp482 + tmp0*tmp38*tmp44*tmp5*tmp466
-        - tmp38*tmp102*tmp486 + tmp105*m*tmp487 - tmp38*tmp98*tmp489;
-    const Scalar tmp553 = Scalar(2)*tmp222*tmp20*tmp511 + Scalar(2)*tmp228*tmp20*tmp513
-        + Scalar(2)*tmp247*tmp25*tmp526 + Scalar(2)*tmp253*tmp25*tmp528 + Scalar(2)*tmp77*m*tmp482
-        + Scalar(2)*tmp38*tmp8*tmp466 + Scalar(2)*tmp38*tmp98*tmp486 + Scalar(2)*tmp99*m*tmp487;
-    const Scalar tmp554 = m*tmp500;
-    const Scalar tmp555 = m*tmp507;
-    const Scalar tmp556 = tmp20*tmp518;
-    const Scalar tmp557 = tmp20*tmp522;
-    const Scalar tmp558 = tmp25*tmp532;
-    const Scalar tmp559 = tmp25*tmp537;
-    const Scalar tmp560 = tmp38*tmp540;
-    const Scalar tmp561 = tmp38*tmp541;
-    const Scalar tmp562 = tmp291*tmp494;
-    const Scalar tmp563 = tmp291*tmp491;
-    const Scalar tmp564 = tmp291*tmp487;
-    const Scalar tmp565 = -tmp554;
-    const Scalar tmp566 = -tmp555;
-    const Scalar tmp567 = -tmp300*tmp492 - tmp294*tmp494 - tmp295*tmp508 - tmp296*tmp515
-        - tmp297*tmp524 - tmp298*tmp529 - tmp299*tmp478 - tmp292*tmp481 - tmp73*tmp554
-        - tmp112*tmp555 - tmp219*tmp556 - tmp230*tmp557 - tmp245*tmp558 - tmp254*tmp559
-        - tmp67*tmp560 - tmp108*tmp561;
-    const Scalar tmp568 = tmp0*tmp44*tmp300*tmp5 - tmp294*tmp491 - tmp292*tmp495 - tmp299*tmp497
-        - tmp295*tmp510 - tmp296*tmp512 - tmp297*tmp525 - tmp298*tmp527 - tmp195*tmp554
-        - tmp105*tmp555 - tmp221*tmp556 - tmp227*tmp557 - tmp246*tmp558 - tmp252*tmp559
-        - tmp201*tmp560 + tmp0*tmp1*tmp44*tmp561;
-    const Scalar tmp569 = -tmp295*tmp511 - tmp296*tmp513 - tmp297*tmp526 - tmp298*tmp528
-        - tmp292*tmp482 - tmp299*tmp466 - tmp300*tmp486 - tmp294*tmp487 - tmp77*tmp554
-        - tmp99*tmp555 - tmp222*tmp556 - tmp228*tmp557 - tmp247*tmp558 - tmp253*tmp559 - tmp8*tmp560
-        - tmp98*tmp561;
-    const Scalar tmp570 = tmp6*tmp44;
-    const Scalar tmp571 = -tmp570;
-    const Scalar tmp572 = tmp30*tmp44;
-    const Scalar tmp573 = -tmp3;
-    const Scalar tmp574 = tmp5*tmp573;
-    const Scalar tmp575 = com_x*tmp573;
-    const Scalar tmp576 = tmp5*tmp575;
-    const Scalar tmp577 = tmp4*tmp573;
-    const Scalar tmp578 = tmp0*tmp573;
-    const Scalar tmp579 = com_x*tmp44;
-    const Scalar tmp580 = com_y*tmp577 - com_z*tmp578;
-    const Scalar tmp581 = tmp579 + tmp580;
-    const Scalar tmp582 = tmp29*tmp44;
-    const Scalar tmp583 = tmp2*tmp44;
-    const Scalar tmp584 = -tmp583;
-    const Scalar tmp585 = tmp1*tmp573;
-    const Scalar tmp586 = tmp1*tmp575;
-    const Scalar tmp587 = com_y*tmp582 + com_z*tmp584 - tmp586;
-    const Scalar tmp588 = com_y*tmp572 + com_z*tmp570;
-    const Scalar tmp589 = tmp6*tmp573;
-    const Scalar tmp590 = tmp5*tmp44;
-    const Scalar tmp591 = -tmp0*tmp5*com_z*tmp573 + tmp5*tmp579 + com_y*tmp589;
-    const Scalar tmp592 = com_z*tmp577 + com_y*tmp578;
-    const Scalar tmp593 = tmp0*tmp44;
-    const Scalar tmp594 = tmp4*tmp44;
-    const Scalar tmp595 = tmp575 + com_z*tmp593 - com_y*tmp594;
-    const Scalar tmp596 = -tmp582;
-    const Scalar tmp597 = com_y*tmp584 + com_z*tmp596;
-    const Scalar tmp598 = tmp29*tmp573;
-    const Scalar tmp599 = tmp2*tmp573;
-    const Scalar tmp600 = tmp1*tmp44;
-    const Scalar tmp601 = tmp1*tmp579 + com_y*tmp598 - com_z*tmp599;
-    const Scalar tmp602 = -tmp572;
-    const Scalar tmp603 = com_z*tmp602 + com_y*tmp570;
-    const Scalar tmp604 = tmp603 - tmp576;
-    const Scalar tmp605 = -tmp591;
-    const Scalar tmp606 = -tmp592;
-    const Scalar tmp607 = attitude_dot*tmp601 + heading_dot*tmp604 + bank_dot*tmp597;
-    const Scalar tmp608 = tmp30*tmp573;
-    const Scalar tmp609 = com_y*tmp608 + com_z*tmp589;
-    const Scalar tmp610 = -tmp4*tmp5*com_y*tmp44 + com_z*tmp572 + tmp576;
-    const Scalar tmp611 = attitude_dot*heading_dot*tmp601 + (bank_dot*bank_dot)*tmp603
-        + heading_dot*tmp607 + Scalar(2)*attitude_dot*bank_dot*tmp609
-        - (attitude_dot*attitude_dot)*tmp610 + bank_dot*heading_dot*tmp597;
-    const Scalar tmp612 = com_y*tmp593 + com_z*tmp594;
-    const Scalar tmp613 = Scalar(2)*attitude_dot*bank_dot*tmp612 - (bank_dot*bank_dot)*tmp580
-        - (attitude_dot*attitude_dot)*tmp581;
-    const Scalar tmp614 = com_z*tmp598 + com_y*tmp599;
-    const Scalar tmp615 = -tmp614;
-    const Scalar tmp616 = -com_y*tmp582 + com_z*tmp583 + tmp586;
-    const Scalar tmp617 = com_z*tmp583 + com_y*tmp596;
-    const Scalar tmp618 = com_y*tmp602 + com_z*tmp571;
-    const Scalar tmp619 = tmp617 + tmp586;
-    const Scalar tmp620 = Scalar(2)*attitude_dot*bank_dot*tmp615
-        + (attitude_dot*attitude_dot)*tmp616 + (bank_dot*bank_dot)*tmp617
-        + Scalar(2)*bank_dot*heading_dot*tmp618 + (heading_dot*heading_dot)*tmp619
-        + Scalar(2)*attitude_dot*heading_dot*tmp591;
-    const Scalar tmp621 = tmp214*tmp577;
-    const Scalar tmp622 = tmp36*tmp578;
-    const Scalar tmp623 = tmp621 - tmp622 + tmp44;
-    const Scalar tmp624 = tmp214*tmp582 + tmp36*tmp584 - tmp585;
-    const Scalar tmp625 = -tmp0*tmp24*tmp33*tmp5*tmp573 + tmp214*tmp589 + tmp590;
-    const Scalar tmp626 = -tmp625;
-    const Scalar tmp627 = tmp214*tmp572 + tmp36*tmp570;
-    const Scalar tmp628 = -tmp36*tmp577 - tmp214*tmp578;
-    const Scalar tmp629 = tmp573 + tmp36*tmp593 - tmp214*tmp594;
-    const Scalar tmp630 = tmp214*tmp598 - tmp36*tmp599 + tmp600;
-    const Scalar tmp631 = tmp214*tmp584 + tmp36*tmp596;
-    const Scalar tmp632 = tmp36*tmp602 + tmp214*tmp570;
-    const Scalar tmp633 = tmp632 - tmp574;
-    const Scalar tmp634 = attitude_dot*tmp630 + bank_dot*tmp631 + heading_dot*tmp633;
-    const Scalar tmp635 = tmp214*tmp608 + tmp36*tmp589;
-    const Scalar tmp636 = attitude_dot*heading_dot*tmp630 + bank_dot*heading_dot*tmp631
-        + (bank_dot*bank_dot)*tmp632 + heading_dot*tmp634 + Scalar(2)*attitude_dot*bank_dot*tmp635
+    const Scalar tmp498 = tmp0*tmp5;
+    const Scalar tmp499 = -tmp1;
+    const Scalar tmp500 = tmp4*tmp499;
+    const Scalar tmp501 = tmp3*tmp500;
+    const Scalar tmp502 = -tmp498 + tmp501;
+    const Scalar tmp503 = -tmp502;
+    const Scalar tmp504 = tmp4*tmp5;
+    const Scalar tmp505 = tmp0*tmp499;
+    const Scalar tmp506 = tmp3*tmp505;
+    const Scalar tmp507 = tmp504 + tmp506;
+    const Scalar tmp508 = tmp44*tmp499;
+    const Scalar tmp509 = tmp48*tmp499;
+    const Scalar tmp510 = tmp3*tmp504;
+    const Scalar tmp511 = tmp505 + tmp510;
+    const Scalar tmp512 = tmp3*tmp498;
+    const Scalar tmp513 = -tmp4*tmp499 + tmp512;
+    const Scalar tmp514 = -tmp513;
+    const Scalar tmp515 = tmp44*tmp5;
+    const Scalar tmp516 = tmp48*tmp5;
+    const Scalar tmp517 = com_y*tmp511 + com_z*tmp514 - tmp516;
+    const Scalar tmp518 = com_y*tmp507 + com_z*tmp502;
+    const Scalar tmp519 = tmp44*tmp500;
+    const Scalar tmp520 = tmp3*tmp499;
+    const Scalar tmp521 = (tmp57 - tmp0*tmp44*com_z)*tmp499 + com_y*tmp519;
+    const Scalar tmp522 = -tmp511;
+    const Scalar tmp523 = com_y*tmp514 + com_z*tmp522;
+    const Scalar tmp524 = tmp44*tmp504;
+    const Scalar tmp525 = tmp44*tmp498;
+    const Scalar tmp526 = tmp3*tmp5;
+    const Scalar tmp527 = tmp57*tmp5 + com_y*tmp524 - com_z*tmp525;
+    const Scalar tmp528 = -tmp507;
+    const Scalar tmp529 = com_z*tmp528 + com_y*tmp502;
+    const Scalar tmp530 = tmp529 - tmp509;
+    const Scalar tmp531 = -tmp521;
+    const Scalar tmp532 = attitude_dot*tmp527 + heading_dot*tmp530 + bank_dot*tmp523;
+    const Scalar tmp533 = tmp44*tmp505;
+    const Scalar tmp534 = com_y*tmp533 + com_z*tmp519;
+    const Scalar tmp535 = com_z*tmp506 + tmp509 - tmp3*tmp4*com_y*tmp499;
+    const Scalar tmp536 = attitude_dot*heading_dot*tmp527 + (bank_dot*bank_dot)*tmp529
+        + heading_dot*tmp532 + Scalar(2)*attitude_dot*bank_dot*tmp534
+        - (attitude_dot*attitude_dot)*tmp535 + bank_dot*heading_dot*tmp523;
+    const Scalar tmp537 = com_z*tmp524 + com_y*tmp525;
+    const Scalar tmp538 = -tmp537;
+    const Scalar tmp539 = -com_y*tmp510 + com_z*tmp512 + tmp516;
+    const Scalar tmp540 = com_z*tmp513 + com_y*tmp522;
+    const Scalar tmp541 = com_y*tmp528 + com_z*tmp503;
+    const Scalar tmp542 = tmp540 + tmp516;
+    const Scalar tmp543 = Scalar(2)*attitude_dot*bank_dot*tmp538
+        + (attitude_dot*attitude_dot)*tmp539 + (bank_dot*bank_dot)*tmp540
+        + Scalar(2)*bank_dot*heading_dot*tmp541 + (heading_dot*heading_dot)*tmp542
+        + Scalar(2)*attitude_dot*heading_dot*tmp521;
+    const Scalar tmp544 = tmp214*tmp511 + tmp36*tmp514 - tmp515;
+    const Scalar tmp545 = -tmp0*tmp24*tmp33*tmp44*tmp499 + tmp214*tmp519 + tmp520;
+    const Scalar tmp546 = -tmp545;
+    const Scalar tmp547 = tmp214*tmp507 + tmp36*tmp502;
+    const Scalar tmp548 = tmp214*tmp524 - tmp36*tmp525 + tmp526;
+    const Scalar tmp549 = tmp214*tmp514 + tmp36*tmp522;
+    const Scalar tmp550 = tmp36*tmp528 + tmp214*tmp502;
+    const Scalar tmp551 = tmp550 - tmp508;
+    const Scalar tmp552 = attitude_dot*tmp548 + bank_dot*tmp549 + heading_dot*tmp551;
+    const Scalar tmp553 = tmp214*tmp533 + tmp36*tmp519;
+    const Scalar tmp554 = attitude_dot*heading_dot*tmp548 + bank_dot*heading_dot*tmp549
+        + (bank_dot*bank_dot)*tmp550 + heading_dot*tmp552 + Scalar(2)*attitude_dot*bank_dot*tmp553
+        - tmp36*(attitude_dot*attitude_dot)*tmp506 - (attitude_dot*attitude_dot)*tmp508
+        + tmp19*tmp24*tmp3*tmp4*(attitude_dot*attitude_dot)*tmp499;
+    const Scalar tmp555 = -tmp36*tmp524 - tmp214*tmp525;
+    const Scalar tmp556 = tmp36*tmp513 + tmp214*tmp522;
+    const Scalar tmp557 = tmp214*tmp528 + tmp36*tmp503;
+    const Scalar tmp558 = Scalar(2)*attitude_dot*heading_dot*tmp545
+        + Scalar(2)*attitude_dot*bank_dot*tmp555
+        + ((bank_dot*bank_dot) + (heading_dot*heading_dot))*tmp556
+        + Scalar(2)*bank_dot*heading_dot*tmp557 - tmp214*(attitude_dot*attitude_dot)*tmp510
+        + tmp36*(attitude_dot*attitude_dot)*tmp512
+        + ((attitude_dot*attitude_dot) + (heading_dot*heading_dot))*tmp515;
+    const Scalar tmp559 = -tmp501;
+    const Scalar tmp560 = tmp511 + tmp241*tmp514;
+    const Scalar tmp561 = tmp241*tmp533 - tmp519;
+    const Scalar tmp562 = tmp507 + tmp241*tmp502;
+    const Scalar tmp563 = tmp4*tmp44*tmp5 - tmp241*tmp525;
+    const Scalar tmp564 = tmp500 - tmp512 + tmp241*tmp522;
+    const Scalar tmp565 = tmp241*tmp528 + tmp502;
+    const Scalar tmp566 = attitude_dot*tmp563 + bank_dot*tmp564 + heading_dot*tmp565;
+    const Scalar tmp567 = tmp533 + tmp241*tmp519;
+    const Scalar tmp568 = -(attitude_dot*attitude_dot)*tmp559 + attitude_dot*heading_dot*tmp563
+        + bank_dot*heading_dot*tmp564 + (bank_dot*bank_dot)*tmp565 + heading_dot*tmp566
+        + Scalar(2)*attitude_dot*bank_dot*tmp567 - tmp241*(attitude_dot*attitude_dot)*tmp506;
+    const Scalar tmp569 = -tmp561;
+    const Scalar tmp570 = -tmp241*tmp524 - tmp525;
+    const Scalar tmp571 = -tmp507 + tmp35*tmp37*tmp503;
+    const Scalar tmp572 = -tmp511 + tmp35*tmp37*tmp513;
+    const Scalar tmp573 = Scalar(2)*attitude_dot*heading_dot*tmp569
+        + Scalar(2)*attitude_dot*bank_dot*tmp570 + Scalar(2)*bank_dot*heading_dot*tmp571
+        + ((bank_dot*bank_dot) + (heading_dot*heading_dot))*tmp572
+        - (attitude_dot*attitude_dot)*tmp510 + tmp241*(attitude_dot*attitude_dot)*tmp512;
+    const Scalar tmp574 = attitude_dot*tmp533;
+    const Scalar tmp575 = heading_dot*tmp528 + bank_dot*tmp522 - attitude_dot*tmp525;
+    const Scalar tmp576 = (bank_dot*bank_dot)*tmp528 + heading_dot*tmp575
+        - (attitude_dot*attitude_dot)*tmp506 + tmp4*tmp44*attitude_dot*bank_dot*tmp499
+        + attitude_dot*bank_dot*tmp519 + bank_dot*heading_dot*tmp522
+        - attitude_dot*heading_dot*tmp525;
+    const Scalar tmp577 = tmp0*tmp3*(attitude_dot*attitude_dot)*tmp5
+        - attitude_dot*heading_dot*tmp533 - heading_dot*tmp574
+        + ((bank_dot*bank_dot) + (heading_dot*heading_dot))*tmp513
+        + Scalar(2)*bank_dot*heading_dot*tmp503 - Scalar(2)*attitude_dot*bank_dot*tmp524;
+    const Scalar tmp578 = m*tmp517;
+    const Scalar tmp579 = m*tmp530;
+    const Scalar tmp580 = Scalar(2)*tmp108*tmp38*tmp528 + Scalar(2)*tmp112*m*tmp530
+        + Scalar(2)*tmp219*tmp20*tmp544 + Scalar(2)*tmp230*tmp20*tmp551
+        + Scalar(2)*tmp245*tmp25*tmp560 + Scalar(2)*tmp254*tmp25*tmp565
+        + Scalar(2)*tmp38*tmp67*tmp514 + Scalar(2)*tmp73*m*tmp517;
+    const Scalar tmp581 = m*tmp531;
+    const Scalar tmp582 = m*tmp527;
+    const Scalar tmp583 = tmp112*m*tmp527 - tmp38*tmp102*tmp528 + tmp105*m*tmp530 + tmp73*m*tmp531
+        + tmp38*tmp67*tmp533 + tmp221*tmp20*tmp544 + tmp219*tmp20*tmp546 + tmp230*tmp20*tmp548
+        + tmp227*tmp20*tmp551 + tmp246*tmp25*tmp560 + tmp245*tmp25*tmp561 + tmp254*tmp25*tmp563
+        + tmp252*tmp25*tmp565 + tmp201*tmp38*tmp514 + tmp195*m*tmp517 - tmp108*tmp38*tmp525;
+    const Scalar tmp584 = Scalar(2)*tmp1*tmp282*tmp38*tmp5 + Scalar(2)*tmp105*m*tmp527
+        + Scalar(2)*tmp195*m*tmp531 + Scalar(2)*tmp221*tmp20*tmp546 + Scalar(2)*tmp227*tmp20*tmp548
+        + Scalar(2)*tmp246*tmp25*tmp561 + Scalar(2)*tmp252*tmp25*tmp563
+        + Scalar(2)*tmp282*tmp38*tmp5*tmp499;
+    const Scalar tmp585 = m*tmp518;
+    const Scalar tmp586 = m*tmp523;
+    const Scalar tmp587 = tmp38*tmp98*tmp528 + tmp99*m*tmp530 + tmp222*tmp20*tmp544
+        + tmp219*tmp20*tmp547 + tmp230*tmp20*tmp549 + tmp228*tmp20*tmp551 + tmp247*tmp25*tmp560
+        + tmp245*tmp25*tmp562 + tmp254*tmp25*tmp564 + tmp253*tmp25*tmp565 + tmp38*tmp8*tmp514
+        + tmp77*m*tmp517 + tmp73*m*tmp518 + tmp38*tmp67*tmp502 + tmp108*tmp38*tmp522
+        + tmp112*m*tmp523;
+    const Scalar tmp588 = tmp99*m*tmp527 + tmp77*m*tmp531 + tmp222*tmp20*tmp546
+        + tmp221*tmp20*tmp547 + tmp228*tmp20*tmp548 + tmp227*tmp20*tmp549 + tmp247*tmp25*tmp561
+        + tmp246*tmp25*tmp562 + tmp253*tmp25*tmp563 + tmp252*tmp25*tmp564
+        + tmp0*tmp38*tmp44*tmp8*tmp499 + tmp195*m*tmp518 + tmp0*tmp38*tmp44*tmp5*tmp502
+        - tmp38*tmp102*tmp522 + tmp105*m*tmp523 - tmp38*tmp98*tmp525;
+    const Scalar tmp589 = Scalar(2)*tmp222*tmp20*tmp547 + Scalar(2)*tmp228*tmp20*tmp549
+        + Scalar(2)*tmp247*tmp25*tmp562 + Scalar(2)*tmp253*tmp25*tmp564 + Scalar(2)*tmp77*m*tmp518
+        + Scalar(2)*tmp38*tmp8*tmp502 + Scalar(2)*tmp38*tmp98*tmp522 + Scalar(2)*tmp99*m*tmp523;
+    const Scalar tmp590 = m*tmp536;
+    const Scalar tmp591 = m*tmp543;
+    const Scalar tmp592 = tmp20*tmp554;
+    const Scalar tmp593 = tmp20*tmp558;
+    const Scalar tmp594 = tmp25*tmp568;
+    const Scalar tmp595 = tmp25*tmp573;
+    const Scalar tmp596 = tmp38*tmp576;
+    const Scalar tmp597 = tmp38*tmp577;
+    const Scalar tmp598 = tmp291*tmp530;
+    const Scalar tmp599 = tmp291*tmp527;
+    const Scalar tmp600 = tmp291*tmp523;
+    const Scalar tmp601 = -tmp590;
+    const Scalar tmp602 = -tmp591;
+    const Scalar tmp603 = -tmp300*tmp528 - tmp294*tmp530 - tmp295*tmp544 - tmp296*tmp551
+        - tmp297*tmp560 - tmp298*tmp565 - tmp299*tmp514 - tmp292*tmp517 - tmp73*tmp590
+        - tmp112*tmp591 - tmp219*tmp592 - tmp230*tmp593 - tmp245*tmp594 - tmp254*tmp595
+        - tmp67*tmp596 - tmp108*tmp597;
+    const Scalar tmp604 = tmp0*tmp44*tmp300*tmp5 - tmp294*tmp527 - tmp292*tmp531 - tmp299*tmp533
+        - tmp295*tmp546 - tmp296*tmp548 - tmp297*tmp561 - tmp298*tmp563 - tmp195*tmp590
+        - tmp105*tmp591 - tmp221*tmp592 - tmp227*tmp593 - tmp246*tmp594 - tmp252*tmp595
+        - tmp201*tmp596 + tmp0*tmp1*tmp44*tmp597;
+    const Scalar tmp605 = -tmp295*tmp547 - tmp296*tmp549 - tmp297*tmp562 - tmp298*tmp564
+        - tmp292*tmp518 - tmp299*tmp502 - tmp300*tmp522 - tmp294*tmp523 - tmp77*tmp590
+        - tmp99*tmp591 - tmp222*tmp592 - tmp228*tmp593 - tmp247*tmp594 - tmp253*tmp595 - tmp8*tmp596
+        - tmp98*tmp597;
+    const Scalar tmp606 = tmp6*tmp44;
+    const Scalar tmp607 = -tmp606;
+    const Scalar tmp608 = tmp30*tmp44;
+    const Scalar tmp609 = -tmp3;
+    const Scalar tmp610 = tmp5*tmp609;
+    const Scalar tmp611 = com_x*tmp609;
+    const Scalar tmp612 = tmp5*tmp611;
+    const Scalar tmp613 = tmp4*tmp609;
+    const Scalar tmp614 = tmp0*tmp609;
+    const Scalar tmp615 = com_x*tmp44;
+    const Scalar tmp616 = com_y*tmp613 - com_z*tmp614;
+    const Scalar tmp617 = tmp615 + tmp616;
+    const Scalar tmp618 = tmp29*tmp44;
+    const Scalar tmp619 = tmp2*tmp44;
+    const Scalar tmp620 = -tmp619;
+    const Scalar tmp621 = tmp1*tmp609;
+    const Scalar tmp622 = tmp1*tmp611;
+    const Scalar tmp623 = com_y*tmp618 + com_z*tmp620 - tmp622;
+    const Scalar tmp624 = com_y*tmp608 + com_z*tmp606;
+    const Scalar tmp625 = tmp6*tmp609;
+    const Scalar tmp626 = tmp5*tmp44;
+    const Scalar tmp627 = -tmp0*tmp5*com_z*tmp609 + tmp5*tmp615 + com_y*tmp625;
+    const Scalar tmp628 = com_z*tmp613 + com_y*tmp614;
+    const Scalar tmp629 = tmp0*tmp44;
+    const Scalar tmp630 = tmp4*tmp44;
+    const Scalar tmp631 = tmp611 + com_z*tmp629 - com_y*tmp630;
+    const Scalar tmp632 = -tmp618;
+    const Scalar tmp633 = com_y*tmp620 + com_z*tmp632;
+    const Scalar tmp634 = tmp29*tmp609;
+    const Scalar tmp635 = tmp2*tmp609;
+    const Scalar tmp636 = tmp1*tmp44;
+    const Scalar tmp637 = tmp1*tmp615 + com_y*tmp634 - com_z*tmp635;
+    const Scalar tmp638 = -tmp608;
+    const Scalar tmp639 = com_z*tmp638 + com_y*tmp606;
+    const Scalar tmp640 = tmp639 - tmp612;
+    const Scalar tmp641 = -tmp627;
+    const Scalar tmp642 = -tmp628;
+    const Scalar tmp643 = attitude_dot*tmp637 + heading_dot*tmp640 + bank_dot*tmp633;
+    const Scalar tmp644 = tmp30*tmp609;
+    const Scalar tmp645 = com_y*tmp644 + com_z*tmp625;
+    const Scalar tmp646 = -tmp4*tmp5*com_y*tmp44 + com_z*tmp608 + tmp612;
+    const Scalar tmp647 = attitude_dot*heading_dot*tmp637 + (bank_dot*bank_dot)*tmp639
+        + heading_dot*tmp643 + Scalar(2)*attitude_dot*bank_dot*tmp645
+        - (attitude_dot*attitude_dot)*tmp646 + bank_dot*heading_dot*tmp633;
+    const Scalar tmp648 = com_y*tmp629 + com_z*tmp630;
+    const Scalar tmp649 = Scalar(2)*attitude_dot*bank_dot*tmp648 - (bank_dot*bank_dot)*tmp616
+        - (attitude_dot*attitude_dot)*tmp617;
+    const Scalar tmp650 = com_z*tmp634 + com_y*tmp635;
+    const Scalar tmp651 = -tmp650;
+    const Scalar tmp652 = -com_y*tmp618 + com_z*tmp619 + tmp622;
+    const Scalar tmp653 = com_z*tmp619 + com_y*tmp632;
+    const Scalar tmp654 = com_y*tmp638 + com_z*tmp607;
+    const Scalar tmp655 = tmp653 + tmp622;
+    const Scalar tmp656 = Scalar(2)*attitude_dot*bank_dot*tmp651
+        + (attitude_dot*attitude_dot)*tmp652 + (bank_dot*bank_dot)*tmp653
+        + Scalar(2)*bank_dot*heading_dot*tmp654 + (heading_dot*heading_dot)*tmp655
+        + Scalar(2)*attitude_dot*heading_dot*tmp627;
+    const Scalar tmp657 = tmp214*tmp613;
+    const Scalar tmp658 = tmp36*tmp614;
+    const Scalar tmp659 = tmp657 - tmp658 + tmp44;
+    const Scalar tmp660 = tmp214*tmp618 + tmp36*tmp620 - tmp621;
+    const Scalar tmp661 = -tmp0*tmp24*tmp33*tmp5*tmp609 + tmp214*tmp625 + tmp626;
+    const Scalar tmp662 = -tmp661;
+    const Scalar tmp663 = tmp214*tmp608 + tmp36*tmp606;
+    const Scalar tmp664 = -tmp36*tmp613 - tmp214*tmp614;
+    const Scalar tmp665 = tmp609 + tmp36*tmp629 - tmp214*tmp630;
+    const Scalar tmp666 = tmp214*tmp634 - tmp36*tmp635 + tmp636;
+    const Scalar tmp667 = tmp214*tmp620 + tmp36*tmp632;
+    const Scalar tmp668 = tmp36*tmp638 + tmp214*tmp606;
+    const Scalar tmp669 = tmp668 - tmp610;
+    const Scalar tmp670 = attitude_dot*tmp666 + bank_dot*tmp667 + heading_dot*tmp669;
+    const Scalar tmp671 = tmp214*tmp644 + tmp36*tmp625;
+    const Scalar tmp672 = attitude_dot*heading_dot*tmp666 + bank_dot*heading_dot*tmp667
+        + (bank_dot*bank_dot)*tmp668 + heading_dot*tmp670 + Scalar(2)*attitude_dot*bank_dot*tmp671
         + tmp19*tmp24*tmp4*tmp5*(attitude_dot*attitude_dot)*tmp44
-        - tmp36*(attitude_dot*attitude_dot)*tmp572 - (attitude_dot*attitude_dot)*tmp574;
-    const Scalar tmp637 = tmp214*tmp593 + tmp36*tmp594;
-    const Scalar tmp638 = -(bank_dot*bank_dot)*tmp621 + (bank_dot*bank_dot)*tmp622
-        - (attitude_dot*attitude_dot)*tmp623 + Scalar(2)*attitude_dot*bank_dot*tmp637;
-    const Scalar tmp639 = -tmp36*tmp598 - tmp214*tmp599;
-    const Scalar tmp640 = tmp36*tmp583 + tmp214*tmp596;
-    const Scalar tmp641 = tmp214*tmp602 + tmp36*tmp571;
-    const Scalar tmp642 = Scalar(2)*attitude_dot*heading_dot*tmp625
-        + Scalar(2)*attitude_dot*bank_dot*tmp639
-        + ((bank_dot*bank_dot) + (heading_dot*heading_dot))*tmp640
-        + Scalar(2)*bank_dot*heading_dot*tmp641 - tmp214*(attitude_dot*attitude_dot)*tmp582
-        + tmp36*(attitude_dot*attitude_dot)*tmp583
-        + ((attitude_dot*attitude_dot) + (heading_dot*heading_dot))*tmp585;
-    const Scalar tmp643 = -tmp570;
-    const Scalar tmp644 = -tmp4*tmp573 + tmp241*tmp578;
-    const Scalar tmp645 = tmp582 + tmp241*tmp584;
-    const Scalar tmp646 = tmp241*tmp608 - tmp589;
-    const Scalar tmp647 = tmp572 + tmp241*tmp570;
-    const Scalar tmp648 = tmp241*tmp593 - tmp594;
-    const Scalar tmp649 = -tmp241*tmp577 - tmp578;
-    const Scalar tmp650 = tmp1*tmp4*tmp573 - tmp241*tmp599;
-    const Scalar tmp651 = -tmp583 + tmp241*tmp596;
-    const Scalar tmp652 = tmp241*tmp602 + tmp570;
-    const Scalar tmp653 = attitude_dot*tmp650 + bank_dot*tmp651 + heading_dot*tmp652;
-    const Scalar tmp654 = tmp608 + tmp241*tmp589;
-    const Scalar tmp655 = -(attitude_dot*attitude_dot)*tmp643 + attitude_dot*heading_dot*tmp650
-        + bank_dot*heading_dot*tmp651 + (bank_dot*bank_dot)*tmp652 + heading_dot*tmp653
-        + Scalar(2)*attitude_dot*bank_dot*tmp654 - tmp241*(attitude_dot*attitude_dot)*tmp572;
-    const Scalar tmp656 = tmp593 + tmp241*tmp594;
-    const Scalar tmp657 = ((attitude_dot*attitude_dot) + (bank_dot*bank_dot))*tmp644
-        + Scalar(2)*attitude_dot*bank_dot*tmp656;
-    const Scalar tmp658 = -tmp646;
-    const Scalar tmp659 = -tmp241*tmp598 - tmp599;
-    const Scalar tmp660 = -tmp572 + tmp35*tmp37*tmp571;
-    const Scalar tmp661 = -tmp582 + tmp35*tmp37*tmp583;
-    const Scalar tmp662 = Scalar(2)*attitude_dot*heading_dot*tmp658
-        + Scalar(2)*attitude_dot*bank_dot*tmp659 + Scalar(2)*bank_dot*heading_dot*tmp660
-        + ((bank_dot*bank_dot) + (heading_dot*heading_dot))*tmp661
-        - (attitude_dot*attitude_dot)*tmp582 + tmp241*(attitude_dot*attitude_dot)*tmp583;
-    const Scalar tmp663 = attitude_dot*tmp608;
-    const Scalar tmp664 = heading_dot*tmp602 + bank_dot*tmp596 - attitude_dot*tmp599;
-    const Scalar tmp665 = (bank_dot*bank_dot)*tmp602 + heading_dot*tmp664
-        - (attitude_dot*attitude_dot)*tmp572 + tmp4*tmp5*attitude_dot*bank_dot*tmp573
-        + attitude_dot*bank_dot*tmp589 + bank_dot*heading_dot*tmp596
-        - attitude_dot*heading_dot*tmp599;
-    const Scalar tmp666 = ((attitude_dot*attitude_dot) + (bank_dot*bank_dot))*tmp578
-        + Scalar(2)*attitude_dot*bank_dot*tmp594;
-    const Scalar tmp667 = -attitude_dot*heading_dot*tmp608 - heading_dot*tmp663
+        - tmp36*(attitude_dot*attitude_dot)*tmp608 - (attitude_dot*attitude_dot)*tmp610;
+    const Scalar tmp673 = tmp214*tmp629 + tmp36*tmp630;
+    const Scalar tmp674 = -(bank_dot*bank_dot)*tmp657 + (bank_dot*bank_dot)*tmp658
+        - (attitude_dot*attitude_dot)*tmp659 + Scalar(2)*attitude_dot*bank_dot*tmp673;
+    const Scalar tmp675 = -tmp36*tmp634 - tmp214*tmp635;
+    const Scalar tmp676 = tmp36*tmp619 + tmp214*tmp632;
+    const Scalar tmp677 = tmp214*tmp638 + tmp36*tmp607;
+    const Scalar tmp678 = Scalar(2)*attitude_dot*heading_dot*tmp661
+        + Scalar(2)*attitude_dot*bank_dot*tmp675
+        + ((bank_dot*bank_dot) + (heading_dot*heading_dot))*tmp676
+        + Scalar(2)*bank_dot*heading_dot*tmp677 - tmp214*(attitude_dot*attitude_dot)*tmp618
+        + tmp36*(attitude_dot*attitude_dot)*tmp619
+        + ((attitude_dot*attitude_dot) + (heading_dot*heading_dot))*tmp621;
+    const Scalar tmp679 = -tmp606;
+    const Scalar tmp680 = -tmp4*tmp609 + tmp241*tmp614;
+    const Scalar tmp681 = tmp618 + tmp241*tmp620;
+    const Scalar tmp682 = tmp241*tmp644 - tmp625;
+    const Scalar tmp683 = tmp608 + tmp241*tmp606;
+    const Scalar tmp684 = tmp241*tmp629 - tmp630;
+    const Scalar tmp685 = -tmp241*tmp613 - tmp614;
+    const Scalar tmp686 = tmp1*tmp4*tmp609 - tmp241*tmp635;
+    const Scalar tmp687 = -tmp619 + tmp241*tmp632;
+    const Scalar tmp688 = tmp241*tmp638 + tmp606;
+    const Scalar tmp689 = attitude_dot*tmp686 + bank_dot*tmp687 + heading_dot*tmp688;
+    const Scalar tmp690 = tmp644 + tmp241*tmp625;
+    const Scalar tmp691 = -(attitude_dot*attitude_dot)*tmp679 + attitude_dot*heading_dot*tmp686
+        + bank_dot*heading_dot*tmp687 + (bank_dot*bank_dot)*tmp688 + heading_dot*tmp689
+        + Scalar(2)*attitude_dot*bank_dot*tmp690 - tmp241*(attitude_dot*attitude_dot)*tmp608;
+    const Scalar tmp692 = tmp629 + tmp241*tmp630;
+    const Scalar tmp693 = ((attitude_dot*attitude_dot) + (bank_dot*bank_dot))*tmp680
+        + Scalar(2)*attitude_dot*bank_dot*tmp692;
+    const Scalar tmp694 = -tmp682;
+    const Scalar tmp695 = -tmp241*tmp634 - tmp635;
+    const Scalar tmp696 = -tmp608 + tmp35*tmp37*tmp607;
+    const Scalar tmp697 = -tmp618 + tmp35*tmp37*tmp619;
+    const Scalar tmp698 = Scalar(2)*attitude_dot*heading_dot*tmp694
+        + Scalar(2)*attitude_dot*bank_dot*tmp695 + Scalar(2)*bank_dot*heading_dot*tmp696
+        + ((bank_dot*bank_dot) + (heading_dot*heading_dot))*tmp697
+        - (attitude_dot*attitude_dot)*tmp618 + tmp241*(attitude_dot*attitude_dot)*tmp619;
+    const Scalar tmp699 = attitude_dot*tmp644;
+    const Scalar tmp700 = heading_dot*tmp638 + bank_dot*tmp632 - attitude_dot*tmp635;
+    const Scalar tmp701 = (bank_dot*bank_dot)*tmp638 + heading_dot*tmp700
+        - (attitude_dot*attitude_dot)*tmp608 + tmp4*tmp5*attitude_dot*bank_dot*tmp609
+        + attitude_dot*bank_dot*tmp625 + bank_dot*heading_dot*tmp632
+        - attitude_dot*heading_dot*tmp635;
+    const Scalar tmp702 = ((attitude_dot*attitude_dot) + (bank_dot*bank_dot))*tmp614
+        + Scalar(2)*attitude_dot*bank_dot*tmp630;
+    const Scalar tmp703 = -attitude_dot*heading_dot*tmp644 - heading_dot*tmp699
         + tmp0*tmp1*(attitude_dot*attitude_dot)*tmp44
-        + ((bank_dot*bank_dot) + (heading_dot*heading_dot))*tmp583
-        + Scalar(2)*bank_dot*heading_dot*tmp571 - Scalar(2)*attitude_dot*bank_dot*tmp598;
-    const Scalar tmp668 = m*tmp587;
-    const Scalar tmp669 = m*tmp604;
-    const Scalar tmp670 = Scalar(2)*tmp108*tmp38*tmp602 + Scalar(2)*tmp112*m*tmp604
-        + Scalar(2)*tmp219*tmp20*tmp624 + Scalar(2)*tmp230*tmp20*tmp633
-        + Scalar(2)*tmp245*tmp25*tmp645 + Scalar(2)*tmp254*tmp25*tmp652
-        + Scalar(2)*tmp38*tmp67*tmp584 + Scalar(2)*tmp73*m*tmp587;
-    const Scalar tmp671 = m*tmp605;
-    const Scalar tmp672 = m*tmp595;
-    const Scalar tmp673 = m*tmp601;
-    const Scalar tmp674 = tmp112*m*tmp601 - tmp38*tmp102*tmp602 + tmp105*m*tmp604 + tmp73*m*tmp605
-        + tmp38*tmp67*tmp608 + tmp221*tmp20*tmp624 + tmp219*tmp20*tmp626 + tmp230*tmp20*tmp630
-        + tmp227*tmp20*tmp633 + tmp246*tmp25*tmp645 + tmp245*tmp25*tmp646 + tmp254*tmp25*tmp650
-        + tmp252*tmp25*tmp652 + tmp201*tmp38*tmp584 + tmp195*m*tmp587 - tmp108*tmp38*tmp599;
-    const Scalar tmp675 = Scalar(2)*tmp44*tmp573;
-    const Scalar tmp676 = tmp280*tmp675;
-    const Scalar tmp677 = Scalar(2)*tmp105*m*tmp601 + Scalar(2)*tmp195*m*tmp605
-        + Scalar(2)*tmp221*tmp20*tmp626 + Scalar(2)*tmp225*tmp20*tmp629
-        + Scalar(2)*tmp227*tmp20*tmp630 + Scalar(2)*tmp246*tmp25*tmp646
-        + Scalar(2)*tmp249*tmp25*tmp648 + Scalar(2)*tmp252*tmp25*tmp650
-        + tmp38*((tmp1*tmp1) + (tmp5*tmp5))*tmp676 + Scalar(2)*tmp280*tmp3*tmp38*tmp44
-        + Scalar(2)*tmp94*m*tmp595;
-    const Scalar tmp678 = m*tmp588;
-    const Scalar tmp679 = m*tmp606;
-    const Scalar tmp680 = m*tmp597;
-    const Scalar tmp681 = tmp38*tmp98*tmp602 + tmp99*m*tmp604 + tmp222*tmp20*tmp624
-        + tmp219*tmp20*tmp627 + tmp230*tmp20*tmp631 + tmp228*tmp20*tmp633 + tmp247*tmp25*tmp645
-        + tmp245*tmp25*tmp647 + tmp254*tmp25*tmp651 + tmp253*tmp25*tmp652 + tmp38*tmp8*tmp584
-        + tmp77*m*tmp587 + tmp73*m*tmp588 + tmp38*tmp67*tmp570 + tmp108*tmp38*tmp596
-        + tmp112*m*tmp597;
-    const Scalar tmp682 = tmp99*m*tmp601 + tmp77*m*tmp605 + tmp94*m*tmp606 + tmp222*tmp20*tmp626
-        + tmp221*tmp20*tmp627 + tmp225*tmp20*tmp628 + tmp224*tmp20*tmp629 + tmp228*tmp20*tmp630
-        + tmp227*tmp20*tmp631 + tmp247*tmp25*tmp646 + tmp246*tmp25*tmp647 + tmp250*tmp25*tmp648
-        + tmp249*tmp25*tmp649 + tmp253*tmp25*tmp650 + tmp252*tmp25*tmp651
-        + tmp0*tmp38*tmp5*tmp8*tmp573 - tmp38*tmp91*tmp577 + tmp195*m*tmp588
-        + tmp0*tmp38*tmp44*tmp5*tmp570 - tmp38*tmp53*tmp593 + tmp197*m*tmp595 - tmp38*tmp102*tmp596
-        + tmp105*m*tmp597 - tmp38*tmp98*tmp599;
-    const Scalar tmp683 = Scalar(2)*tmp197*m*tmp606 + Scalar(2)*tmp222*tmp20*tmp627
-        + Scalar(2)*tmp224*tmp20*tmp628 + Scalar(2)*tmp228*tmp20*tmp631
-        + Scalar(2)*tmp247*tmp25*tmp647 + Scalar(2)*tmp250*tmp25*tmp649
-        + Scalar(2)*tmp253*tmp25*tmp651 + tmp38*(tmp4*tmp4)*tmp675 + Scalar(2)*tmp77*m*tmp588
-        + Scalar(2)*tmp38*tmp8*tmp570 + Scalar(2)*tmp38*tmp98*tmp596 + Scalar(2)*tmp99*m*tmp597;
-    const Scalar tmp684 = m*tmp611;
-    const Scalar tmp685 = m*tmp613;
-    const Scalar tmp686 = m*tmp620;
-    const Scalar tmp687 = tmp20*tmp636;
-    const Scalar tmp688 = tmp20*tmp642;
-    const Scalar tmp689 = tmp25*tmp655;
-    const Scalar tmp690 = tmp25*tmp662;
-    const Scalar tmp691 = tmp38*tmp665;
-    const Scalar tmp692 = tmp38*tmp667;
-    const Scalar tmp693 = tmp20*tmp638;
-    const Scalar tmp694 = tmp25*tmp657;
-    const Scalar tmp695 = tmp38*tmp666;
-    const Scalar tmp696 = tmp291*tmp604;
-    const Scalar tmp697 = tmp291*tmp601;
-    const Scalar tmp698 = tmp291*tmp597;
-    const Scalar tmp699 = -tmp684;
-    const Scalar tmp700 = -tmp685;
-    const Scalar tmp701 = -tmp686;
-    const Scalar tmp702 = -tmp300*tmp602 - tmp294*tmp604 - tmp295*tmp624 - tmp296*tmp633
-        - tmp297*tmp645 - tmp298*tmp652 - tmp299*tmp584 - tmp292*tmp587 - tmp73*tmp684
-        - tmp112*tmp686 - tmp219*tmp687 - tmp230*tmp688 - tmp245*tmp689 - tmp254*tmp690
-        - tmp67*tmp691 - tmp108*tmp692;
-    const Scalar tmp703 = -tmp294*tmp601 - tmp292*tmp605 - tmp299*tmp608 - tmp295*tmp626
-        - tmp301*tmp629 - tmp296*tmp630 - tmp297*tmp646 - tmp302*tmp648 - tmp298*tmp650
-        + tmp0*tmp1*tmp300*tmp573 - tmp303*tmp593 - tmp293*tmp595 - tmp195*tmp684 - tmp94*tmp685
-        - tmp105*tmp686 - tmp221*tmp687 - tmp227*tmp688 - tmp246*tmp689 - tmp252*tmp690
-        - tmp201*tmp691 + tmp0*tmp1*tmp44*tmp692 - tmp225*tmp693 - tmp249*tmp694 - tmp91*tmp695;
-    const Scalar tmp704 = -tmp293*tmp606 - tmp295*tmp627 - tmp301*tmp628 - tmp296*tmp631
-        - tmp297*tmp647 - tmp302*tmp649 - tmp298*tmp651 + tmp4*tmp303*tmp573 - tmp292*tmp588
-        - tmp299*tmp570 - tmp300*tmp596 - tmp294*tmp597 - tmp77*tmp684 - tmp197*tmp685
-        - tmp99*tmp686 - tmp222*tmp687 - tmp228*tmp688 - tmp247*tmp689 - tmp253*tmp690 - tmp8*tmp691
-        - tmp98*tmp692 - tmp224*tmp693 - tmp250*tmp694 + tmp4*tmp44*tmp695;
-    const Scalar tmp705 = tmp1*tmp4;
-    const Scalar tmp706 = -tmp0;
-    const Scalar tmp707 = tmp5*tmp706;
-    const Scalar tmp708 = tmp3*tmp707;
-    const Scalar tmp709 = -tmp705 + tmp708;
-    const Scalar tmp710 = -tmp709;
-    const Scalar tmp711 = tmp1*tmp706;
-    const Scalar tmp712 = tmp5*tmp4;
-    const Scalar tmp713 = tmp3*tmp712;
-    const Scalar tmp714 = tmp711 + tmp713;
-    const Scalar tmp715 = tmp44*tmp706;
-    const Scalar tmp716 = tmp44*tmp4;
-    const Scalar tmp717 = com_y*tmp715 - com_z*tmp716;
-    const Scalar tmp718 = tmp3*tmp711;
-    const Scalar tmp719 = tmp712 + tmp718;
-    const Scalar tmp720 = tmp3*tmp705;
-    const Scalar tmp721 = -tmp5*tmp706 + tmp720;
-    const Scalar tmp722 = -tmp721;
-    const Scalar tmp723 = com_y*tmp719 + com_z*tmp722;
-    const Scalar tmp724 = com_y*tmp714 + com_z*tmp709;
-    const Scalar tmp725 = tmp44*tmp707;
-    const Scalar tmp726 = -tmp44*tmp5*com_z*tmp4 + com_y*tmp725;
-    const Scalar tmp727 = com_z*tmp715 + com_y*tmp716;
-    const Scalar tmp728 = tmp3*tmp4;
-    const Scalar tmp729 = tmp3*tmp706;
-    const Scalar tmp730 = com_z*tmp728 - com_y*tmp729;
-    const Scalar tmp731 = -tmp719;
-    const Scalar tmp732 = com_y*tmp722 + com_z*tmp731;
-    const Scalar tmp733 = tmp44*tmp711;
-    const Scalar tmp734 = tmp44*tmp705;
-    const Scalar tmp735 = com_y*tmp733 - com_z*tmp734;
-    const Scalar tmp736 = -tmp714;
-    const Scalar tmp737 = com_z*tmp736 + com_y*tmp709;
-    const Scalar tmp738 = -tmp726;
-    const Scalar tmp739 = -tmp727;
-    const Scalar tmp740 = attitude_dot*tmp735 + heading_dot*tmp737 + bank_dot*tmp732;
-    const Scalar tmp741 = tmp44*tmp712;
-    const Scalar tmp742 = com_y*tmp741 + com_z*tmp725;
-    const Scalar tmp743 = com_z*tmp713 - tmp3*tmp5*com_y*tmp706;
-    const Scalar tmp744 = attitude_dot*heading_dot*tmp735 + (bank_dot*bank_dot)*tmp737
-        + heading_dot*tmp740 + Scalar(2)*attitude_dot*bank_dot*tmp742
-        - (attitude_dot*attitude_dot)*tmp743 + bank_dot*heading_dot*tmp732;
-    const Scalar tmp745 = com_y*tmp728 + com_z*tmp729;
-    const Scalar tmp746 = Scalar(2)*attitude_dot*bank_dot*tmp745
-        + (-(attitude_dot*attitude_dot) - (bank_dot*bank_dot))*tmp717;
-    const Scalar tmp747 = com_z*tmp733 + com_y*tmp734;
-    const Scalar tmp748 = -tmp747;
-    const Scalar tmp749 = -com_y*tmp718 + com_z*tmp720;
-    const Scalar tmp750 = com_z*tmp721 + com_y*tmp731;
-    const Scalar tmp751 = com_y*tmp736 + com_z*tmp710;
-    const Scalar tmp752 = Scalar(2)*attitude_dot*bank_dot*tmp748
-        + (attitude_dot*attitude_dot)*tmp749
-        + ((bank_dot*bank_dot) + (heading_dot*heading_dot))*tmp750
-        + Scalar(2)*bank_dot*heading_dot*tmp751 + Scalar(2)*attitude_dot*heading_dot*tmp726;
-    const Scalar tmp753 = tmp214*tmp715;
-    const Scalar tmp754 = tmp36*tmp716;
-    const Scalar tmp755 = tmp753 - tmp754;
-    const Scalar tmp756 = tmp214*tmp719 + tmp36*tmp722;
-    const Scalar tmp757 = -tmp24*tmp33*tmp44*tmp5*tmp4 + tmp214*tmp725;
+        + ((bank_dot*bank_dot) + (heading_dot*heading_dot))*tmp619
+        + Scalar(2)*bank_dot*heading_dot*tmp607 - Scalar(2)*attitude_dot*bank_dot*tmp634;
+    const Scalar tmp704 = m*tmp623;
+    const Scalar tmp705 = m*tmp640;
+    const Scalar tmp706 = Scalar(2)*tmp108*tmp38*tmp638 + Scalar(2)*tmp112*m*tmp640
+        + Scalar(2)*tmp219*tmp20*tmp660 + Scalar(2)*tmp230*tmp20*tmp669
+        + Scalar(2)*tmp245*tmp25*tmp681 + Scalar(2)*tmp254*tmp25*tmp688
+        + Scalar(2)*tmp38*tmp67*tmp620 + Scalar(2)*tmp73*m*tmp623;
+    const Scalar tmp707 = m*tmp641;
+    const Scalar tmp708 = m*tmp631;
+    const Scalar tmp709 = m*tmp637;
+    const Scalar tmp710 = tmp112*m*tmp637 - tmp38*tmp102*tmp638 + tmp105*m*tmp640 + tmp73*m*tmp641
+        + tmp38*tmp67*tmp644 + tmp221*tmp20*tmp660 + tmp219*tmp20*tmp662 + tmp230*tmp20*tmp666
+        + tmp227*tmp20*tmp669 + tmp246*tmp25*tmp681 + tmp245*tmp25*tmp682 + tmp254*tmp25*tmp686
+        + tmp252*tmp25*tmp688 + tmp201*tmp38*tmp620 + tmp195*m*tmp623 - tmp108*tmp38*tmp635;
+    const Scalar tmp711 = Scalar(2)*tmp44*tmp609;
+    const Scalar tmp712 = tmp280*tmp711;
+    const Scalar tmp713 = Scalar(2)*tmp105*m*tmp637 + Scalar(2)*tmp195*m*tmp641
+        + Scalar(2)*tmp221*tmp20*tmp662 + Scalar(2)*tmp225*tmp20*tmp665
+        + Scalar(2)*tmp227*tmp20*tmp666 + Scalar(2)*tmp246*tmp25*tmp682
+        + Scalar(2)*tmp249*tmp25*tmp684 + Scalar(2)*tmp252*tmp25*tmp686
+        + tmp38*((tmp1*tmp1) + (tmp5*tmp5))*tmp712 + Scalar(2)*tmp280*tmp3*tmp38*tmp44
+        + Scalar(2)*tmp94*m*tmp631;
+    const Scalar tmp714 = m*tmp624;
+    const Scalar tmp715 = m*tmp642;
+    const Scalar tmp716 = m*tmp633;
+    const Scalar tmp717 = tmp38*tmp98*tmp638 + tmp99*m*tmp640 + tmp222*tmp20*tmp660
+        + tmp219*tmp20*tmp663 + tmp230*tmp20*tmp667 + tmp228*tmp20*tmp669 + tmp247*tmp25*tmp681
+        + tmp245*tmp25*tmp683 + tmp254*tmp25*tmp687 + tmp253*tmp25*tmp688 + tmp38*tmp8*tmp620
+        + tmp77*m*tmp623 + tmp73*m*tmp624 + tmp38*tmp67*tmp606 + tmp108*tmp38*tmp632
+        + tmp112*m*tmp633;
+    const Scalar tmp718 = tmp99*m*tmp637 + tmp77*m*tmp641 + tmp94*m*tmp642 + tmp222*tmp20*tmp662
+        + tmp221*tmp20*tmp663 + tmp225*tmp20*tmp664 + tmp224*tmp20*tmp665 + tmp228*tmp20*tmp666
+        + tmp227*tmp20*tmp667 + tmp247*tmp25*tmp682 + tmp246*tmp25*tmp683 + tmp250*tmp25*tmp684
+        + tmp249*tmp25*tmp685 + tmp253*tmp25*tmp686 + tmp252*tmp25*tmp687
+        + tmp0*tmp38*tmp5*tmp8*tmp609 - tmp38*tmp91*tmp613 + tmp195*m*tmp624
+        + tmp0*tmp38*tmp44*tmp5*tmp606 - tmp38*tmp53*tmp629 + tmp197*m*tmp631 - tmp38*tmp102*tmp632
+        + tmp105*m*tmp633 - tmp38*tmp98*tmp635;
+    const Scalar tmp719 = Scalar(2)*tmp197*m*tmp642 + Scalar(2)*tmp222*tmp20*tmp663
+        + Scalar(2)*tmp224*tmp20*tmp664 + Scalar(2)*tmp228*tmp20*tmp667
+        + Scalar(2)*tmp247*tmp25*tmp683 + Scalar(2)*tmp250*tmp25*tmp685
+        + Scalar(2)*tmp253*tmp25*tmp687 + tmp38*(tmp4*tmp4)*tmp711 + Scalar(2)*tmp77*m*tmp624
+        + Scalar(2)*tmp38*tmp8*tmp606 + Scalar(2)*tmp38*tmp98*tmp632 + Scalar(2)*tmp99*m*tmp633;
+    const Scalar tmp720 = m*tmp647;
+    const Scalar tmp721 = m*tmp649;
+    const Scalar tmp722 = m*tmp656;
+    const Scalar tmp723 = tmp20*tmp672;
+    const Scalar tmp724 = tmp20*tmp678;
+    const Scalar tmp725 = tmp25*tmp691;
+    const Scalar tmp726 = tmp25*tmp698;
+    const Scalar tmp727 = tmp38*tmp701;
+    const Scalar tmp728 = tmp38*tmp703;
+    const Scalar tmp729 = tmp20*tmp674;
+    const Scalar tmp730 = tmp25*tmp693;
+    const Scalar tmp731 = tmp38*tmp702;
+    const Scalar tmp732 = tmp291*tmp640;
+    const Scalar tmp733 = tmp291*tmp637;
+    const Scalar tmp734 = tmp291*tmp633;
+    const Scalar tmp735 = -tmp720;
+    const Scalar tmp736 = -tmp721;
+    const Scalar tmp737 = -tmp722;
+    const Scalar tmp738 = -tmp300*tmp638 - tmp294*tmp640 - tmp295*tmp660 - tmp296*tmp669
+        - tmp297*tmp681 - tmp298*tmp688 - tmp299*tmp620 - tmp292*tmp623 - tmp73*tmp720
+        - tmp112*tmp722 - tmp219*tmp723 - tmp230*tmp724 - tmp245*tmp725 - tmp254*tmp726
+        - tmp67*tmp727 - tmp108*tmp728;
+    const Scalar tmp739 = -tmp294*tmp637 - tmp292*tmp641 - tmp299*tmp644 - tmp295*tmp662
+        - tmp301*tmp665 - tmp296*tmp666 - tmp297*tmp682 - tmp302*tmp684 - tmp298*tmp686
+        + tmp0*tmp1*tmp300*tmp609 - tmp303*tmp629 - tmp293*tmp631 - tmp195*tmp720 - tmp94*tmp721
+        - tmp105*tmp722 - tmp221*tmp723 - tmp227*tmp724 - tmp246*tmp725 - tmp252*tmp726
+        - tmp201*tmp727 + tmp0*tmp1*tmp44*tmp728 - tmp225*tmp729 - tmp249*tmp730 - tmp91*tmp731;
+    const Scalar tmp740 = -tmp293*tmp642 - tmp295*tmp663 - tmp301*tmp664 - tmp296*tmp667
+        - tmp297*tmp683 - tmp302*tmp685 - tmp298*tmp687 + tmp4*tmp303*tmp609 - tmp292*tmp624
+        - tmp299*tmp606 - tmp300*tmp632 - tmp294*tmp633 - tmp77*tmp720 - tmp197*tmp721
+        - tmp99*tmp722 - tmp222*tmp723 - tmp228*tmp724 - tmp247*tmp725 - tmp253*tmp726 - tmp8*tmp727
+        - tmp98*tmp728 - tmp224*tmp729 - tmp250*tmp730 + tmp4*tmp44*tmp731;
+    const Scalar tmp741 = tmp1*tmp4;
+    const Scalar tmp742 = -tmp0;
+    const Scalar tmp743 = tmp5*tmp742;
+    const Scalar tmp744 = tmp3*tmp743;
+    const Scalar tmp745 = -tmp741 + tmp744;
+    const Scalar tmp746 = -tmp745;
+    const Scalar tmp747 = tmp1*tmp742;
+    const Scalar tmp748 = tmp5*tmp4;
+    const Scalar tmp749 = tmp3*tmp748;
+    const Scalar tmp750 = tmp747 + tmp749;
+    const Scalar tmp751 = tmp44*tmp742;
+    const Scalar tmp752 = tmp44*tmp4;
+    const Scalar tmp753 = com_y*tmp751 - com_z*tmp752;
+    const Scalar tmp754 = tmp3*tmp747;
+    const Scalar tmp755 = tmp748 + tmp754;
+    const Scalar tmp756 = tmp3*tmp741;
+    const Scalar tmp757 = -tmp5*tmp742 + tmp756;
     const Scalar tmp758 = -tmp757;
-    const Scalar tmp759 = tmp214*tmp714 + tmp36*tmp709;
-    const Scalar tmp760 = -tmp36*tmp715 - tmp214*tmp716;
-    const Scalar tmp761 = tmp36*tmp728 - tmp214*tmp729;
-    const Scalar tmp762 = tmp214*tmp733 - tmp36*tmp734;
-    const Scalar tmp763 = tmp214*tmp722 + tmp36*tmp731;
-    const Scalar tmp764 = tmp36*tmp736 + tmp214*tmp709;
-    const Scalar tmp765 = attitude_dot*tmp762 + bank_dot*tmp763 + heading_dot*tmp764;
-    const Scalar tmp766 = tmp214*tmp741 + tmp36*tmp725;
-    const Scalar tmp767 = attitude_dot*heading_dot*tmp762 + bank_dot*heading_dot*tmp763
-        + (bank_dot*bank_dot)*tmp764 + heading_dot*tmp765 + Scalar(2)*attitude_dot*bank_dot*tmp766
-        - tmp36*(attitude_dot*attitude_dot)*tmp713
-        + tmp19*tmp24*tmp3*tmp5*(attitude_dot*attitude_dot)*tmp706;
-    const Scalar tmp768 = tmp214*tmp728 + tmp36*tmp729;
-    const Scalar tmp769 = -(bank_dot*bank_dot)*tmp753 + (bank_dot*bank_dot)*tmp754
-        - (attitude_dot*attitude_dot)*tmp755 + Scalar(2)*attitude_dot*bank_dot*tmp768;
-    const Scalar tmp770 = -tmp36*tmp733 - tmp214*tmp734;
-    const Scalar tmp771 = tmp36*tmp721 + tmp214*tmp731;
-    const Scalar tmp772 = tmp214*tmp736 + tmp36*tmp710;
-    const Scalar tmp773 = Scalar(2)*attitude_dot*heading_dot*tmp757
-        + Scalar(2)*attitude_dot*bank_dot*tmp770
-        + ((bank_dot*bank_dot) + (heading_dot*heading_dot))*tmp771
-        + Scalar(2)*bank_dot*heading_dot*tmp772 - tmp214*(attitude_dot*attitude_dot)*tmp718
-        + tmp36*(attitude_dot*attitude_dot)*tmp720;
-    const Scalar tmp774 = -tmp708;
-    const Scalar tmp775 = -tmp44*tmp706 + tmp241*tmp716;
-    const Scalar tmp776 = tmp719 + tmp241*tmp722;
-    const Scalar tmp777 = tmp241*tmp741 - tmp725;
-    const Scalar tmp778 = tmp714 + tmp241*tmp709;
-    const Scalar tmp779 = tmp241*tmp728 - tmp729;
-    const Scalar tmp780 = -tmp241*tmp715 - tmp716;
-    const Scalar tmp781 = tmp1*tmp44*tmp706 - tmp241*tmp734;
-    const Scalar tmp782 = tmp707 - tmp720 + tmp241*tmp731;
-    const Scalar tmp783 = tmp241*tmp736 + tmp709;
-    const Scalar tmp784 = attitude_dot*tmp781 + bank_dot*tmp782 + heading_dot*tmp783;
-    const Scalar tmp785 = tmp741 + tmp241*tmp725;
-    const Scalar tmp786 = -(attitude_dot*attitude_dot)*tmp774 + attitude_dot*heading_dot*tmp781
-        + bank_dot*heading_dot*tmp782 + (bank_dot*bank_dot)*tmp783 + heading_dot*tmp784
-        + Scalar(2)*attitude_dot*bank_dot*tmp785 - tmp241*(attitude_dot*attitude_dot)*tmp713;
-    const Scalar tmp787 = tmp728 + tmp241*tmp729;
-    const Scalar tmp788 = ((attitude_dot*attitude_dot) + (bank_dot*bank_dot))*tmp775
-        + Scalar(2)*attitude_dot*bank_dot*tmp787;
-    const Scalar tmp789 = -tmp777;
-    const Scalar tmp790 = -tmp241*tmp733 - tmp734;
-    const Scalar tmp791 = -tmp714 + tmp35*tmp37*tmp710;
-    const Scalar tmp792 = -tmp719 + tmp35*tmp37*tmp721;
-    const Scalar tmp793 = Scalar(2)*attitude_dot*heading_dot*tmp789
-        + Scalar(2)*attitude_dot*bank_dot*tmp790 + Scalar(2)*bank_dot*heading_dot*tmp791
-        + ((bank_dot*bank_dot) + (heading_dot*heading_dot))*tmp792
-        - (attitude_dot*attitude_dot)*tmp718 + tmp241*(attitude_dot*attitude_dot)*tmp720;
-    const Scalar tmp794 = attitude_dot*tmp741;
-    const Scalar tmp795 = heading_dot*tmp736 + bank_dot*tmp731 - attitude_dot*tmp734;
-    const Scalar tmp796 = (bank_dot*bank_dot)*tmp736 + heading_dot*tmp795
-        - (attitude_dot*attitude_dot)*tmp713 + tmp44*tmp5*attitude_dot*bank_dot*tmp706
-        + attitude_dot*bank_dot*tmp725 + bank_dot*heading_dot*tmp731
-        - attitude_dot*heading_dot*tmp734;
-    const Scalar tmp797 = ((attitude_dot*attitude_dot) + (bank_dot*bank_dot))*tmp716
-        + Scalar(2)*attitude_dot*bank_dot*tmp729;
-    const Scalar tmp798 = tmp1*tmp3*(attitude_dot*attitude_dot)*tmp4
-        - attitude_dot*heading_dot*tmp741 - heading_dot*tmp794
-        + ((bank_dot*bank_dot) + (heading_dot*heading_dot))*tmp721
-        + Scalar(2)*bank_dot*heading_dot*tmp710 - Scalar(2)*attitude_dot*bank_dot*tmp733;
-    const Scalar tmp799 = m*tmp723;
-    const Scalar tmp800 = m*tmp737;
-    const Scalar tmp801 = Scalar(2)*tmp108*tmp38*tmp736 + Scalar(2)*tmp112*m*tmp737
-        + Scalar(2)*tmp219*tmp20*tmp756 + Scalar(2)*tmp230*tmp20*tmp764
-        + Scalar(2)*tmp245*tmp25*tmp776 + Scalar(2)*tmp254*tmp25*tmp783
-        + Scalar(2)*tmp38*tmp67*tmp722 + Scalar(2)*tmp73*m*tmp723;
-    const Scalar tmp802 = m*tmp738;
-    const Scalar tmp803 = m*tmp730;
-    const Scalar tmp804 = m*tmp735;
-    const Scalar tmp805 = tmp112*m*tmp735 - tmp38*tmp102*tmp736 + tmp105*m*tmp737 + tmp73*m*tmp738
-        + tmp38*tmp67*tmp741 + tmp221*tmp20*tmp756 + tmp219*tmp20*tmp758 + tmp230*tmp20*tmp762
-        + tmp227*tmp20*tmp764 + tmp246*tmp25*tmp776 + tmp245*tmp25*tmp777 + tmp254*tmp25*tmp781
-        + tmp252*tmp25*tmp783 + tmp201*tmp38*tmp722 + tmp195*m*tmp723 - tmp108*tmp38*tmp734;
-    const Scalar tmp806 = Scalar(2)*tmp0*tmp4;
-    const Scalar tmp807 = tmp281*tmp806;
-    const Scalar tmp808 = Scalar(2)*tmp105*m*tmp735 + Scalar(2)*tmp195*m*tmp738
-        + Scalar(2)*tmp221*tmp20*tmp758 + Scalar(2)*tmp225*tmp20*tmp761
-        + Scalar(2)*tmp227*tmp20*tmp762 + Scalar(2)*tmp246*tmp25*tmp777
-        + Scalar(2)*tmp249*tmp25*tmp779 + Scalar(2)*tmp252*tmp25*tmp781 + tmp38*(tmp3*tmp3)*tmp806
-        + tmp38*((tmp1*tmp1) + (tmp5*tmp5))*tmp807 + Scalar(2)*tmp94*m*tmp730;
-    const Scalar tmp809 = m*tmp724;
-    const Scalar tmp810 = m*tmp739;
-    const Scalar tmp811 = m*tmp732;
-    const Scalar tmp812 = tmp38*tmp98*tmp736 + tmp99*m*tmp737 + tmp222*tmp20*tmp756
-        + tmp219*tmp20*tmp759 + tmp230*tmp20*tmp763 + tmp228*tmp20*tmp764 + tmp247*tmp25*tmp776
-        + tmp245*tmp25*tmp778 + tmp254*tmp25*tmp782 + tmp253*tmp25*tmp783 + tmp38*tmp8*tmp722
-        + tmp77*m*tmp723 + tmp73*m*tmp724 + tmp38*tmp67*tmp709 + tmp108*tmp38*tmp731
-        + tmp112*m*tmp732;
-    const Scalar tmp813 = tmp38*tmp44*tmp5*tmp8*tmp4 + tmp99*m*tmp735 + tmp77*m*tmp738
-        + tmp94*m*tmp739 + tmp222*tmp20*tmp758 + tmp221*tmp20*tmp759 + tmp225*tmp20*tmp760
-        + tmp224*tmp20*tmp761 + tmp228*tmp20*tmp762 + tmp227*tmp20*tmp763 + tmp247*tmp25*tmp777
-        + tmp246*tmp25*tmp778 + tmp250*tmp25*tmp779 + tmp249*tmp25*tmp780 + tmp253*tmp25*tmp781
-        + tmp252*tmp25*tmp782 - tmp38*tmp91*tmp715 + tmp195*m*tmp724 + tmp0*tmp38*tmp44*tmp5*tmp709
-        - tmp38*tmp53*tmp728 + tmp197*m*tmp730 - tmp38*tmp102*tmp731 + tmp105*m*tmp732
-        - tmp38*tmp98*tmp734;
-    const Scalar tmp814 = Scalar(2)*tmp197*m*tmp739 + Scalar(2)*tmp222*tmp20*tmp759
-        + Scalar(2)*tmp224*tmp20*tmp760 + Scalar(2)*tmp228*tmp20*tmp763
-        + Scalar(2)*tmp247*tmp25*tmp778 + Scalar(2)*tmp250*tmp25*tmp780
-        + Scalar(2)*tmp253*tmp25*tmp782 + Scalar(2)*tmp281*tmp38*tmp4*tmp706
-        + Scalar(2)*tmp77*m*tmp724 + Scalar(2)*tmp38*tmp8*tmp709 + Scalar(2)*tmp38*tmp98*tmp731
-        + Scalar(2)*tmp99*m*tmp732;
-    const Scalar tmp815 = m*tmp744;
-    const Scalar tmp816 = m*tmp746;
-    const Scalar tmp817 = m*tmp752;
-    const Scalar tmp818 = tmp20*tmp767;
-    const Scalar tmp819 = tmp20*tmp773;
-    const Scalar tmp820 = tmp25*tmp786;
-    const Scalar tmp821 = tmp25*tmp793;
-    const Scalar tmp822 = tmp38*tmp796;
-    const Scalar tmp823 = tmp38*tmp798;
-    const Scalar tmp824 = tmp20*tmp769;
-    const Scalar tmp825 = tmp25*tmp788;
-    const Scalar tmp826 = tmp38*tmp797;
-    const Scalar tmp827 = tmp291*tmp737;
-    const Scalar tmp828 = tmp291*tmp735;
-    const Scalar tmp829 = tmp291*tmp732;
-    const Scalar tmp830 = -tmp815;
-    const Scalar tmp831 = -tmp816;
-    const Scalar tmp832 = -tmp817;
-    const Scalar tmp833 = -tmp300*tmp736 - tmp294*tmp737 - tmp295*tmp756 - tmp296*tmp764
-        - tmp297*tmp776 - tmp298*tmp783 - tmp299*tmp722 - tmp292*tmp723 - tmp73*tmp815
-        - tmp112*tmp817 - tmp219*tmp818 - tmp230*tmp819 - tmp245*tmp820 - tmp254*tmp821
-        - tmp67*tmp822 - tmp108*tmp823;
-    const Scalar tmp834 = tmp1*tmp44*tmp300*tmp4 - tmp294*tmp735 - tmp292*tmp738 - tmp299*tmp741
-        - tmp295*tmp758 - tmp301*tmp761 - tmp296*tmp762 - tmp297*tmp777 - tmp302*tmp779
-        - tmp298*tmp781 - tmp303*tmp728 - tmp293*tmp730 - tmp195*tmp815 - tmp94*tmp816
-        - tmp105*tmp817 - tmp221*tmp818 - tmp227*tmp819 - tmp246*tmp820 - tmp252*tmp821
-        - tmp201*tmp822 + tmp0*tmp1*tmp44*tmp823 - tmp225*tmp824 - tmp249*tmp825 - tmp91*tmp826;
-    const Scalar tmp835 = -tmp293*tmp739 - tmp295*tmp759 - tmp301*tmp760 - tmp296*tmp763
-        - tmp297*tmp778 - tmp302*tmp780 - tmp298*tmp782 + tmp44*tmp303*tmp706 - tmp292*tmp724
-        - tmp299*tmp709 - tmp300*tmp731 - tmp294*tmp732 - tmp77*tmp815 - tmp197*tmp816
-        - tmp99*tmp817 - tmp222*tmp818 - tmp228*tmp819 - tmp247*tmp820 - tmp253*tmp821 - tmp8*tmp822
-        - tmp98*tmp823 - tmp224*tmp824 - tmp250*tmp825 + tmp4*tmp44*tmp826;
-    const Scalar tmp836 = tmp199 + tmp105*attitude_dot + tmp99*bank_dot + heading_dot*tmp112;
-    const Scalar tmp837 = Scalar(2)*tmp211*bank_dot + Scalar(2)*tmp212*heading_dot
+    const Scalar tmp759 = com_y*tmp755 + com_z*tmp758;
+    const Scalar tmp760 = com_y*tmp750 + com_z*tmp745;
+    const Scalar tmp761 = tmp44*tmp743;
+    const Scalar tmp762 = -tmp44*tmp5*com_z*tmp4 + com_y*tmp761;
+    const Scalar tmp763 = com_z*tmp751 + com_y*tmp752;
+    const Scalar tmp764 = tmp3*tmp4;
+    const Scalar tmp765 = tmp3*tmp742;
+    const Scalar tmp766 = com_z*tmp764 - com_y*tmp765;
+    const Scalar tmp767 = -tmp755;
+    const Scalar tmp768 = com_y*tmp758 + com_z*tmp767;
+    const Scalar tmp769 = tmp44*tmp747;
+    const Scalar tmp770 = tmp44*tmp741;
+    const Scalar tmp771 = com_y*tmp769 - com_z*tmp770;
+    const Scalar tmp772 = -tmp750;
+    const Scalar tmp773 = com_z*tmp772 + com_y*tmp745;
+    const Scalar tmp774 = -tmp762;
+    const Scalar tmp775 = -tmp763;
+    const Scalar tmp776 = attitude_dot*tmp771 + heading_dot*tmp773 + bank_dot*tmp768;
+    const Scalar tmp777 = tmp44*tmp748;
+    const Scalar tmp778 = com_y*tmp777 + com_z*tmp761;
+    const Scalar tmp779 = com_z*tmp749 - tmp3*tmp5*com_y*tmp742;
+    const Scalar tmp780 = attitude_dot*heading_dot*tmp771 + (bank_dot*bank_dot)*tmp773
+        + heading_dot*tmp776 + Scalar(2)*attitude_dot*bank_dot*tmp778
+        - (attitude_dot*attitude_dot)*tmp779 + bank_dot*heading_dot*tmp768;
+    const Scalar tmp781 = com_y*tmp764 + com_z*tmp765;
+    const Scalar tmp782 = Scalar(2)*attitude_dot*bank_dot*tmp781
+        + (-(attitude_dot*attitude_dot) - (bank_dot*bank_dot))*tmp753;
+    const Scalar tmp783 = com_z*tmp769 + com_y*tmp770;
+    const Scalar tmp784 = -tmp783;
+    const Scalar tmp785 = -com_y*tmp754 + com_z*tmp756;
+    const Scalar tmp786 = com_z*tmp757 + com_y*tmp767;
+    const Scalar tmp787 = com_y*tmp772 + com_z*tmp746;
+    const Scalar tmp788 = Scalar(2)*attitude_dot*bank_dot*tmp784
+        + (attitude_dot*attitude_dot)*tmp785
+        + ((bank_dot*bank_dot) + (heading_dot*heading_dot))*tmp786
+        + Scalar(2)*bank_dot*heading_dot*tmp787 + Scalar(2)*attitude_dot*heading_dot*tmp762;
+    const Scalar tmp789 = tmp214*tmp751;
+    const Scalar tmp790 = tmp36*tmp752;
+    const Scalar tmp791 = tmp789 - tmp790;
+    const Scalar tmp792 = tmp214*tmp755 + tmp36*tmp758;
+    const Scalar tmp793 = -tmp24*tmp33*tmp44*tmp5*tmp4 + tmp214*tmp761;
+    const Scalar tmp794 = -tmp793;
+    const Scalar tmp795 = tmp214*tmp750 + tmp36*tmp745;
+    const Scalar tmp796 = -tmp36*tmp751 - tmp214*tmp752;
+    const Scalar tmp797 = tmp36*tmp764 - tmp214*tmp765;
+    const Scalar tmp798 = tmp214*tmp769 - tmp36*tmp770;
+    const Scalar tmp799 = tmp214*tmp758 + tmp36*tmp767;
+    const Scalar tmp800 = tmp36*tmp772 + tmp214*tmp745;
+    const Scalar tmp801 = attitude_dot*tmp798 + bank_dot*tmp799 + heading_dot*tmp800;
+    const Scalar tmp802 = tmp214*tmp777 + tmp36*tmp761;
+    const Scalar tmp803 = attitude_dot*heading_dot*tmp798 + bank_dot*heading_dot*tmp799
+        + (bank_dot*bank_dot)*tmp800 + heading_dot*tmp801 + Scalar(2)*attitude_dot*bank_dot*tmp802
+        - tmp36*(attitude_dot*attitude_dot)*tmp749
+        + tmp19*tmp24*tmp3*tmp5*(attitude_dot*attitude_dot)*tmp742;
+    const Scalar tmp804 = tmp214*tmp764 + tmp36*tmp765;
+    const Scalar tmp805 = -(bank_dot*bank_dot)*tmp789 + (bank_dot*bank_dot)*tmp790
+        - (attitude_dot*attitude_dot)*tmp791 + Scalar(2)*attitude_dot*bank_dot*tmp804;
+    const Scalar tmp806 = -tmp36*tmp769 - tmp214*tmp770;
+    const Scalar tmp807 = tmp36*tmp757 + tmp214*tmp767;
+    const Scalar tmp808 = tmp214*tmp772 + tmp36*tmp746;
+    const Scalar tmp809 = Scalar(2)*attitude_dot*heading_dot*tmp793
+        + Scalar(2)*attitude_dot*bank_dot*tmp806
+        + ((bank_dot*bank_dot) + (heading_dot*heading_dot))*tmp807
+        + Scalar(2)*bank_dot*heading_dot*tmp808 - tmp214*(attitude_dot*attitude_dot)*tmp754
+        + tmp36*(attitude_dot*attitude_dot)*tmp756;
+    const Scalar tmp810 = -tmp744;
+    const Scalar tmp811 = -tmp44*tmp742 + tmp241*tmp752;
+    const Scalar tmp812 = tmp755 + tmp241*tmp758;
+    const Scalar tmp813 = tmp241*tmp777 - tmp761;
+    const Scalar tmp814 = tmp750 + tmp241*tmp745;
+    const Scalar tmp815 = tmp241*tmp764 - tmp765;
+    const Scalar tmp816 = -tmp241*tmp751 - tmp752;
+    const Scalar tmp817 = tmp1*tmp44*tmp742 - tmp241*tmp770;
+    const Scalar tmp818 = tmp743 - tmp756 + tmp241*tmp767;
+    const Scalar tmp819 = tmp241*tmp772 + tmp745;
+    const Scalar tmp820 = attitude_dot*tmp817 + bank_dot*tmp818 + heading_dot*tmp819;
+    const Scalar tmp821 = tmp777 + tmp241*tmp761;
+    const Scalar tmp822 = -(attitude_dot*attitude_dot)*tmp810 + attitude_dot*heading_dot*tmp817
+        + bank_dot*heading_dot*tmp818 + (bank_dot*bank_dot)*tmp819 + heading_dot*tmp820
+        + Scalar(2)*attitude_dot*bank_dot*tmp821 - tmp241*(attitude_dot*attitude_dot)*tmp749;
+    const Scalar tmp823 = tmp764 + tmp241*tmp765;
+    const Scalar tmp824 = ((attitude_dot*attitude_dot) + (bank_dot*bank_dot))*tmp811
+        + Scalar(2)*attitude_dot*bank_dot*tmp823;
+    const Scalar tmp825 = -tmp813;
+    const Scalar tmp826 = -tmp241*tmp769 - tmp770;
+    const Scalar tmp827 = -tmp750 + tmp35*tmp37*tmp746;
+    const Scalar tmp828 = -tmp755 + tmp35*tmp37*tmp757;
+    const Scalar tmp829 = Scalar(2)*attitude_dot*heading_dot*tmp825
+        + Scalar(2)*attitude_dot*bank_dot*tmp826 + Scalar(2)*bank_dot*heading_dot*tmp827
+        + ((bank_dot*bank_dot) + (heading_dot*heading_dot))*tmp828
+        - (attitude_dot*attitude_dot)*tmp754 + tmp241*(attitude_dot*attitude_dot)*tmp756;
+    const Scalar tmp830 = attitude_dot*tmp777;
+    const Scalar tmp831 = heading_dot*tmp772 + bank_dot*tmp767 - attitude_dot*tmp770;
+    const Scalar tmp832 = (bank_dot*bank_dot)*tmp772 + heading_dot*tmp831
+        - (attitude_dot*attitude_dot)*tmp749 + tmp44*tmp5*attitude_dot*bank_dot*tmp742
+        + attitude_dot*bank_dot*tmp761 + bank_dot*heading_dot*tmp767
+        - attitude_dot*heading_dot*tmp770;
+    const Scalar tmp833 = ((attitude_dot*attitude_dot) + (bank_dot*bank_dot))*tmp752
+        + Scalar(2)*attitude_dot*bank_dot*tmp765;
+    const Scalar tmp834 = tmp1*tmp3*(attitude_dot*attitude_dot)*tmp4
+        - attitude_dot*heading_dot*tmp777 - heading_dot*tmp830
+        + ((bank_dot*bank_dot) + (heading_dot*heading_dot))*tmp757
+        + Scalar(2)*bank_dot*heading_dot*tmp746 - Scalar(2)*attitude_dot*bank_dot*tmp769;
+    const Scalar tmp835 = m*tmp759;
+    const Scalar tmp836 = m*tmp773;
+    const Scalar tmp837 = Scalar(2)*tmp108*tmp38*tmp772 + Scalar(2)*tmp112*m*tmp773
+        + Scalar(2)*tmp219*tmp20*tmp792 + Scalar(2)*tmp230*tmp20*tmp800
+        + Scalar(2)*tmp245*tmp25*tmp812 + Scalar(2)*tmp254*tmp25*tmp819
+        + Scalar(2)*tmp38*tmp67*tmp758 + Scalar(2)*tmp73*m*tmp759;
+    const Scalar tmp838 = m*tmp774;
+    const Scalar tmp839 = m*tmp766;
+    const Scalar tmp840 = m*tmp771;
+    const Scalar tmp841 = tmp112*m*tmp771 - tmp38*tmp102*tmp772 + tmp105*m*tmp773 + tmp73*m*tmp774
+        + tmp38*tmp67*tmp777 + tmp221*tmp20*tmp792 + tmp219*tmp20*tmp794 + tmp230*tmp20*tmp798
+        + tmp227*tmp20*tmp800 + tmp246*tmp25*tmp812 + tmp245*tmp25*tmp813 + tmp254*tmp25*tmp817
+        + tmp252*tmp25*tmp819 + tmp201*tmp38*tmp758 + tmp195*m*tmp759 - tmp108*tmp38*tmp770;
+    const Scalar tmp842 = Scalar(2)*tmp0*tmp4;
+    const Scalar tmp843 = tmp281*tmp842;
+    const Scalar tmp844 = Scalar(2)*tmp105*m*tmp771 + Scalar(2)*tmp195*m*tmp774
+        + Scalar(2)*tmp221*tmp20*tmp794 + Scalar(2)*tmp225*tmp20*tmp797
+        + Scalar(2)*tmp227*tmp20*tmp798 + Scalar(2)*tmp246*tmp25*tmp813
+        + Scalar(2)*tmp249*tmp25*tmp815 + Scalar(2)*tmp252*tmp25*tmp817 + tmp38*(tmp3*tmp3)*tmp842
+        + tmp38*((tmp1*tmp1) + (tmp5*tmp5))*tmp843 + Scalar(2)*tmp94*m*tmp766;
+    const Scalar tmp845 = m*tmp760;
+    const Scalar tmp846 = m*tmp775;
+    const Scalar tmp847 = m*tmp768;
+    const Scalar tmp848 = tmp38*tmp98*tmp772 + tmp99*m*tmp773 + tmp222*tmp20*tmp792
+        + tmp219*tmp20*tmp795 + tmp230*tmp20*tmp799 + tmp228*tmp20*tmp800 + tmp247*tmp25*tmp812
+        + tmp245*tmp25*tmp814 + tmp254*tmp25*tmp818 + tmp253*tmp25*tmp819 + tmp38*tmp8*tmp758
+        + tmp77*m*tmp759 + tmp73*m*tmp760 + tmp38*tmp67*tmp745 + tmp108*tmp38*tmp767
+        + tmp112*m*tmp768;
+    const Scalar tmp849 = tmp38*tmp44*tmp5*tmp8*tmp4 + tmp99*m*tmp771 + tmp77*m*tmp774
+        + tmp94*m*tmp775 + tmp222*tmp20*tmp794 + tmp221*tmp20*tmp795 + tmp225*tmp20*tmp796
+        + tmp224*tmp20*tmp797 + tmp228*tmp20*tmp798 + tmp227*tmp20*tmp799 + tmp247*tmp25*tmp813
+        + tmp246*tmp25*tmp814 + tmp250*tmp25*tmp815 + tmp249*tmp25*tmp816 + tmp253*tmp25*tmp817
+        + tmp252*tmp25*tmp818 - tmp38*tmp91*tmp751 + tmp195*m*tmp760 + tmp0*tmp38*tmp44*tmp5*tmp745
+        - tmp38*tmp53*tmp764 + tmp197*m*tmp766 - tmp38*tmp102*tmp767 + tmp105*m*tmp768
+        - tmp38*tmp98*tmp770;
+    const Scalar tmp850 = Scalar(2)*tmp197*m*tmp775 + Scalar(2)*tmp222*tmp20*tmp795
+        + Scalar(2)*tmp224*tmp20*tmp796 + Scalar(2)*tmp228*tmp20*tmp799
+        + Scalar(2)*tmp247*tmp25*tmp814 + Scalar(2)*tmp250*tmp25*tmp816
+        + Scalar(2)*tmp253*tmp25*tmp818 + Scalar(2)*tmp281*tmp38*tmp4*tmp742
+        + Scalar(2)*tmp77*m*tmp760 + Scalar(2)*tmp38*tmp8*tmp745 + Scalar(2)*tmp38*tmp98*tmp767
+        + Scalar(2)*tmp99*m*tmp768;
+    const Scalar tmp851 = m*tmp780;
+    const Scalar tmp852 = m*tmp782;
+    const Scalar tmp853 = m*tmp788;
+    const Scalar tmp854 = tmp20*tmp803;
+    const Scalar tmp855 = tmp20*tmp809;
+    const Scalar tmp856 = tmp25*tmp822;
+    const Scalar tmp857 = tmp25*tmp829;
+    const Scalar tmp858 = tmp38*tmp832;
+    const Scalar tmp859 = tmp38*tmp834;
+    const Scalar tmp860 = tmp20*tmp805;
+    const Scalar tmp861 = tmp25*tmp824;
+    const Scalar tmp862 = tmp38*tmp833;
+    const Scalar tmp863 = tmp291*tmp773;
+    const Scalar tmp864 = tmp291*tmp771;
+    const Scalar tmp865 = tmp291*tmp768;
+    const Scalar tmp866 = -tmp851;
+    const Scalar tmp867 = -tmp852;
+    const Scalar tmp868 = -tmp853;
+    const Scalar tmp869 = -tmp300*tmp772 - tmp294*tmp773 - tmp295*tmp792 - tmp296*tmp800
+        - tmp297*tmp812 - tmp298*tmp819 - tmp299*tmp758 - tmp292*tmp759 - tmp73*tmp851
+        - tmp112*tmp853 - tmp219*tmp854 - tmp230*tmp855 - tmp245*tmp856 - tmp254*tmp857
+        - tmp67*tmp858 - tmp108*tmp859;
+    const Scalar tmp870 = tmp1*tmp44*tmp300*tmp4 - tmp294*tmp771 - tmp292*tmp774 - tmp299*tmp777
+        - tmp295*tmp794 - tmp301*tmp797 - tmp296*tmp798 - tmp297*tmp813 - tmp302*tmp815
+        - tmp298*tmp817 - tmp303*tmp764 - tmp293*tmp766 - tmp195*tmp851 - tmp94*tmp852
+        - tmp105*tmp853 - tmp221*tmp854 - tmp227*tmp855 - tmp246*tmp856 - tmp252*tmp857
+        - tmp201*tmp858 + tmp0*tmp1*tmp44*tmp859 - tmp225*tmp860 - tmp249*tmp861 - tmp91*tmp862;
+    const Scalar tmp871 = -tmp293*tmp775 - tmp295*tmp795 - tmp301*tmp796 - tmp296*tmp799
+        - tmp297*tmp814 - tmp302*tmp816 - tmp298*tmp818 + tmp44*tmp303*tmp742 - tmp292*tmp760
+        - tmp299*tmp745 - tmp300*tmp767 - tmp294*tmp768 - tmp77*tmp851 - tmp197*tmp852
+        - tmp99*tmp853 - tmp222*tmp854 - tmp228*tmp855 - tmp247*tmp856 - tmp253*tmp857 - tmp8*tmp858
+        - tmp98*tmp859 - tmp224*tmp860 - tmp250*tmp861 + tmp4*tmp44*tmp862;
+    const Scalar tmp872 = tmp199 + tmp105*attitude_dot + tmp99*bank_dot + heading_dot*tmp112;
+    const Scalar tmp873 = Scalar(2)*tmp211*bank_dot + Scalar(2)*tmp212*heading_dot
         + Scalar(2)*tmp82*attitude_dot;
-    const Scalar tmp838 = tmp231 + tmp227*attitude_dot + tmp228*bank_dot + heading_dot*tmp230;
-    const Scalar tmp839 = Scalar(2)*tmp220*attitude_dot + Scalar(2)*tmp238*bank_dot
+    const Scalar tmp874 = tmp231 + tmp227*attitude_dot + tmp228*bank_dot + heading_dot*tmp230;
+    const Scalar tmp875 = Scalar(2)*tmp220*attitude_dot + Scalar(2)*tmp238*bank_dot
         + Scalar(2)*heading_dot*(tmp237 + tmp69);
-    const Scalar tmp840 = tmp255 + tmp252*attitude_dot + tmp253*bank_dot + heading_dot*tmp254;
-    const Scalar tmp841 = Scalar(2)*tmp260*attitude_dot + Scalar(2)*tmp262*bank_dot
+    const Scalar tmp876 = tmp255 + tmp252*attitude_dot + tmp253*bank_dot + heading_dot*tmp254;
+    const Scalar tmp877 = Scalar(2)*tmp260*attitude_dot + Scalar(2)*tmp262*bank_dot
         + Scalar(2)*tmp263*heading_dot;
-    const Scalar tmp842 = tmp269 + tmp98*bank_dot - tmp102*attitude_dot + heading_dot*tmp108;
-    const Scalar tmp843 = -tmp266 - tmp201*attitude_dot + Scalar(2)*tmp66*heading_dot
+    const Scalar tmp878 = tmp269 + tmp98*bank_dot - tmp102*attitude_dot + heading_dot*tmp108;
+    const Scalar tmp879 = -tmp266 - tmp201*attitude_dot + Scalar(2)*tmp66*heading_dot
         + Scalar(2)*tmp9*bank_dot;
-    const Scalar tmp844 = m*tmp836;
-    const Scalar tmp845 = m*tmp837;
-    const Scalar tmp846 = tmp20*tmp838;
-    const Scalar tmp847 = tmp20*tmp839;
-    const Scalar tmp848 = tmp25*tmp840;
-    const Scalar tmp849 = tmp25*tmp841;
-    const Scalar tmp850 = tmp38*tmp842;
-    const Scalar tmp851 = tmp38*tmp843;
-    const Scalar tmp852 = -tmp844;
-    const Scalar tmp853 = -tmp845;
-    const Scalar tmp854 = -tmp73*tmp844 - tmp112*tmp845 - tmp219*tmp846 - tmp230*tmp847
-        - tmp245*tmp848 - tmp254*tmp849 - tmp67*tmp850 - tmp108*tmp851;
-    const Scalar tmp855 = -tmp195*tmp844 - tmp105*tmp845 - tmp221*tmp846 - tmp227*tmp847
-        - tmp246*tmp848 - tmp252*tmp849 - tmp201*tmp850 + tmp0*tmp1*tmp44*tmp851;
-    const Scalar tmp856 = -tmp77*tmp844 - tmp99*tmp845 - tmp222*tmp846 - tmp228*tmp847
-        - tmp247*tmp848 - tmp253*tmp849 - tmp8*tmp850 - tmp98*tmp851;
-    const Scalar tmp857 = tmp105*heading_dot - Scalar(2)*tmp203*attitude_dot
+    const Scalar tmp880 = m*tmp872;
+    const Scalar tmp881 = m*tmp873;
+    const Scalar tmp882 = tmp20*tmp874;
+    const Scalar tmp883 = tmp20*tmp875;
+    const Scalar tmp884 = tmp25*tmp876;
+    const Scalar tmp885 = tmp25*tmp877;
+    const Scalar tmp886 = tmp38*tmp878;
+    const Scalar tmp887 = tmp38*tmp879;
+    const Scalar tmp888 = -tmp880;
+    const Scalar tmp889 = -tmp881;
+    const Scalar tmp890 = -tmp73*tmp880 - tmp112*tmp881 - tmp219*tmp882 - tmp230*tmp883
+        - tmp245*tmp884 - tmp254*tmp885 - tmp67*tmp886 - tmp108*tmp887;
+    const Scalar tmp891 = -tmp195*tmp880 - tmp105*tmp881 - tmp221*tmp882 - tmp227*tmp883
+        - tmp246*tmp884 - tmp252*tmp885 - tmp201*tmp886 + tmp0*tmp1*tmp44*tmp887;
+    const Scalar tmp892 = -tmp77*tmp880 - tmp99*tmp881 - tmp222*tmp882 - tmp228*tmp883
+        - tmp247*tmp884 - tmp253*tmp885 - tmp8*tmp886 - tmp98*tmp887;
+    const Scalar tmp893 = tmp105*heading_dot - Scalar(2)*tmp203*attitude_dot
         + Scalar(2)*tmp202*bank_dot + heading_dot*tmp105;
-    const Scalar tmp858 = -Scalar(2)*tmp59*attitude_dot + Scalar(2)*tmp205*bank_dot;
-    const Scalar tmp859 = Scalar(2)*tmp208*bank_dot + Scalar(2)*tmp209*attitude_dot
+    const Scalar tmp894 = -Scalar(2)*tmp59*attitude_dot + Scalar(2)*tmp205*bank_dot;
+    const Scalar tmp895 = Scalar(2)*tmp208*bank_dot + Scalar(2)*tmp209*attitude_dot
         + Scalar(2)*tmp82*heading_dot;
-    const Scalar tmp860 = tmp227*heading_dot + Scalar(2)*tmp232*bank_dot
+    const Scalar tmp896 = tmp227*heading_dot + Scalar(2)*tmp232*bank_dot
         + Scalar(2)*attitude_dot*(-tmp45 - tmp31*tmp36 + tmp19*tmp24*tmp3*tmp4*tmp5)
         + heading_dot*tmp227;
-    const Scalar tmp861 = -Scalar(2)*tmp218*attitude_dot + Scalar(2)*tmp234*bank_dot;
-    const Scalar tmp862 = Scalar(2)*tmp220*heading_dot + Scalar(2)*tmp236*bank_dot
+    const Scalar tmp897 = -Scalar(2)*tmp218*attitude_dot + Scalar(2)*tmp234*bank_dot;
+    const Scalar tmp898 = Scalar(2)*tmp220*heading_dot + Scalar(2)*tmp236*bank_dot
         + Scalar(2)*attitude_dot*(tmp69 + tmp36*tmp65 - tmp214*tmp63);
-    const Scalar tmp863 = tmp252*heading_dot + Scalar(2)*tmp256*bank_dot
+    const Scalar tmp899 = tmp252*heading_dot + Scalar(2)*tmp256*bank_dot
         + Scalar(2)*attitude_dot*(-tmp240 - tmp241*tmp31) + heading_dot*tmp252;
-    const Scalar tmp864 = Scalar(2)*tmp243*attitude_dot + Scalar(2)*tmp258*bank_dot;
-    const Scalar tmp865 = Scalar(2)*tmp260*heading_dot + Scalar(2)*tmp261*bank_dot
+    const Scalar tmp900 = Scalar(2)*tmp243*attitude_dot + Scalar(2)*tmp258*bank_dot;
+    const Scalar tmp901 = Scalar(2)*tmp260*heading_dot + Scalar(2)*tmp261*bank_dot
         + Scalar(2)*attitude_dot*(-tmp63 + tmp241*tmp65);
-    const Scalar tmp866 = -tmp102;
-    const Scalar tmp867 = tmp79*bank_dot - tmp102*heading_dot - Scalar(2)*tmp31*attitude_dot
-        + tmp4*tmp44*tmp5*bank_dot + heading_dot*tmp866;
-    const Scalar tmp868 = Scalar(2)*tmp54*attitude_dot + Scalar(2)*tmp92*bank_dot;
-    const Scalar tmp869 = -tmp201*heading_dot - Scalar(2)*tmp101*bank_dot
+    const Scalar tmp902 = -tmp102;
+    const Scalar tmp903 = tmp79*bank_dot - tmp102*heading_dot - Scalar(2)*tmp31*attitude_dot
+        + tmp4*tmp44*tmp5*bank_dot + heading_dot*tmp902;
+    const Scalar tmp904 = Scalar(2)*tmp54*attitude_dot + Scalar(2)*tmp92*bank_dot;
+    const Scalar tmp905 = -tmp201*heading_dot - Scalar(2)*tmp101*bank_dot
         + Scalar(2)*tmp0*tmp1*tmp3*attitude_dot - heading_dot*tmp201;
-    const Scalar tmp870 = m*tmp857;
-    const Scalar tmp871 = m*tmp858;
-    const Scalar tmp872 = m*tmp859;
-    const Scalar tmp873 = tmp20*tmp860;
-    const Scalar tmp874 = tmp20*tmp862;
-    const Scalar tmp875 = tmp25*tmp863;
-    const Scalar tmp876 = tmp25*tmp865;
-    const Scalar tmp877 = tmp38*tmp867;
-    const Scalar tmp878 = tmp38*tmp869;
-    const Scalar tmp879 = tmp20*tmp861;
-    const Scalar tmp880 = tmp25*tmp864;
-    const Scalar tmp881 = tmp38*tmp868;
-    const Scalar tmp882 = -tmp870;
-    const Scalar tmp883 = -tmp871;
-    const Scalar tmp884 = -tmp872;
-    const Scalar tmp885 = -tmp73*tmp870 - tmp112*tmp872 - tmp219*tmp873 - tmp230*tmp874
-        - tmp245*tmp875 - tmp254*tmp876 - tmp67*tmp877 - tmp108*tmp878;
-    const Scalar tmp886 = -tmp195*tmp870 - tmp94*tmp871 - tmp105*tmp872 - tmp221*tmp873
-        - tmp227*tmp874 - tmp246*tmp875 - tmp252*tmp876 - tmp201*tmp877 + tmp0*tmp1*tmp44*tmp878
-        - tmp225*tmp879 - tmp249*tmp880 - tmp91*tmp881;
-    const Scalar tmp887 = -tmp77*tmp870 - tmp197*tmp871 - tmp99*tmp872 - tmp222*tmp873
-        - tmp228*tmp874 - tmp247*tmp875 - tmp253*tmp876 - tmp8*tmp877 - tmp98*tmp878 - tmp224*tmp879
-        - tmp250*tmp880 + tmp4*tmp44*tmp881;
-    const Scalar tmp888 = tmp99*heading_dot + Scalar(2)*tmp111*bank_dot
+    const Scalar tmp906 = m*tmp893;
+    const Scalar tmp907 = m*tmp894;
+    const Scalar tmp908 = m*tmp895;
+    const Scalar tmp909 = tmp20*tmp896;
+    const Scalar tmp910 = tmp20*tmp898;
+    const Scalar tmp911 = tmp25*tmp899;
+    const Scalar tmp912 = tmp25*tmp901;
+    const Scalar tmp913 = tmp38*tmp903;
+    const Scalar tmp914 = tmp38*tmp905;
+    const Scalar tmp915 = tmp20*tmp897;
+    const Scalar tmp916 = tmp25*tmp900;
+    const Scalar tmp917 = tmp38*tmp904;
+    const Scalar tmp918 = -tmp906;
+    const Scalar tmp919 = -tmp907;
+    const Scalar tmp920 = -tmp908;
+    const Scalar tmp921 = -tmp73*tmp906 - tmp112*tmp908 - tmp219*tmp909 - tmp230*tmp910
+        - tmp245*tmp911 - tmp254*tmp912 - tmp67*tmp913 - tmp108*tmp914;
+    const Scalar tmp922 = -tmp195*tmp906 - tmp94*tmp907 - tmp105*tmp908 - tmp221*tmp909
+        - tmp227*tmp910 - tmp246*tmp911 - tmp252*tmp912 - tmp201*tmp913 + tmp0*tmp1*tmp44*tmp914
+        - tmp225*tmp915 - tmp249*tmp916 - tmp91*tmp917;
+    const Scalar tmp923 = -tmp77*tmp906 - tmp197*tmp907 - tmp99*tmp908 - tmp222*tmp909
+        - tmp228*tmp910 - tmp247*tmp911 - tmp253*tmp912 - tmp8*tmp913 - tmp98*tmp914 - tmp224*tmp915
+        - tmp250*tmp916 + tmp4*tmp44*tmp917;
+    const Scalar tmp924 = tmp99*heading_dot + Scalar(2)*tmp111*bank_dot
         + Scalar(2)*tmp202*attitude_dot + heading_dot*tmp99;
-    const Scalar tmp889 = -Scalar(2)*tmp58*bank_dot + Scalar(2)*tmp205*attitude_dot;
-    const Scalar tmp890 = Scalar(2)*tmp208*attitude_dot + Scalar(2)*tmp210*bank_dot
+    const Scalar tmp925 = -Scalar(2)*tmp58*bank_dot + Scalar(2)*tmp205*attitude_dot;
+    const Scalar tmp926 = Scalar(2)*tmp208*attitude_dot + Scalar(2)*tmp210*bank_dot
         + Scalar(2)*tmp211*heading_dot;
-    const Scalar tmp891 = tmp228*heading_dot + Scalar(2)*tmp229*bank_dot
+    const Scalar tmp927 = tmp228*heading_dot + Scalar(2)*tmp229*bank_dot
         + Scalar(2)*tmp232*attitude_dot + heading_dot*tmp228;
-    const Scalar tmp892 = Scalar(2)*tmp234*attitude_dot + Scalar(2)*bank_dot*(tmp217 - tmp216);
-    const Scalar tmp893 = Scalar(2)*tmp236*attitude_dot + Scalar(2)*tmp237*bank_dot
+    const Scalar tmp928 = Scalar(2)*tmp234*attitude_dot + Scalar(2)*bank_dot*(tmp217 - tmp216);
+    const Scalar tmp929 = Scalar(2)*tmp236*attitude_dot + Scalar(2)*tmp237*bank_dot
         + Scalar(2)*tmp238*heading_dot;
-    const Scalar tmp894 = tmp253*heading_dot + Scalar(2)*tmp254*bank_dot
+    const Scalar tmp930 = tmp253*heading_dot + Scalar(2)*tmp254*bank_dot
         + Scalar(2)*tmp256*attitude_dot + heading_dot*tmp253;
-    const Scalar tmp895 = Scalar(2)*tmp243*bank_dot + Scalar(2)*tmp258*attitude_dot;
-    const Scalar tmp896 = Scalar(2)*tmp261*attitude_dot + Scalar(2)*tmp262*heading_dot
+    const Scalar tmp931 = Scalar(2)*tmp243*bank_dot + Scalar(2)*tmp258*attitude_dot;
+    const Scalar tmp932 = Scalar(2)*tmp261*attitude_dot + Scalar(2)*tmp262*heading_dot
         + Scalar(2)*tmp263*bank_dot;
-    const Scalar tmp897 = tmp79*attitude_dot + tmp98*heading_dot + Scalar(2)*tmp108*bank_dot
+    const Scalar tmp933 = tmp79*attitude_dot + tmp98*heading_dot + Scalar(2)*tmp108*bank_dot
         + tmp4*tmp44*tmp5*attitude_dot + heading_dot*tmp98;
-    const Scalar tmp898 = Scalar(2)*tmp54*bank_dot + Scalar(2)*tmp92*attitude_dot;
-    const Scalar tmp899 = -Scalar(2)*tmp101*attitude_dot + Scalar(2)*tmp66*bank_dot
+    const Scalar tmp934 = Scalar(2)*tmp54*bank_dot + Scalar(2)*tmp92*attitude_dot;
+    const Scalar tmp935 = -Scalar(2)*tmp101*attitude_dot + Scalar(2)*tmp66*bank_dot
         + Scalar(2)*tmp9*heading_dot;
-    const Scalar tmp900 = m*tmp888;
-    const Scalar tmp901 = m*tmp889;
-    const Scalar tmp902 = m*tmp890;
-    const Scalar tmp903 = tmp20*tmp891;
-    const Scalar tmp904 = tmp20*tmp893;
-    const Scalar tmp905 = tmp25*tmp894;
-    const Scalar tmp906 = tmp25*tmp896;
-    const Scalar tmp907 = tmp38*tmp897;
-    const Scalar tmp908 = tmp38*tmp899;
-    const Scalar tmp909 = tmp20*tmp892;
-    const Scalar tmp910 = tmp25*tmp895;
-    const Scalar tmp911 = tmp38*tmp898;
-    const Scalar tmp912 = -tmp900;
-    const Scalar tmp913 = -tmp901;
-    const Scalar tmp914 = -tmp902;
-    const Scalar tmp915 = -tmp73*tmp900 - tmp112*tmp902 - tmp219*tmp903 - tmp230*tmp904
-        - tmp245*tmp905 - tmp254*tmp906 - tmp67*tmp907 - tmp108*tmp908;
-    const Scalar tmp916 = -tmp195*tmp900 - tmp94*tmp901 - tmp105*tmp902 - tmp221*tmp903
-        - tmp227*tmp904 - tmp246*tmp905 - tmp252*tmp906 - tmp201*tmp907 + tmp0*tmp1*tmp44*tmp908
-        - tmp225*tmp909 - tmp249*tmp910 - tmp91*tmp911;
-    const Scalar tmp917 = -tmp77*tmp900 - tmp197*tmp901 - tmp99*tmp902 - tmp222*tmp903
-        - tmp228*tmp904 - tmp247*tmp905 - tmp253*tmp906 - tmp8*tmp907 - tmp98*tmp908 - tmp224*tmp909
-        - tmp250*tmp910 + tmp4*tmp44*tmp911;
+    const Scalar tmp936 = m*tmp924;
+    const Scalar tmp937 = m*tmp925;
+    const Scalar tmp938 = m*tmp926;
+    const Scalar tmp939 = tmp20*tmp927;
+    const Scalar tmp940 = tmp20*tmp929;
+    const Scalar tmp941 = tmp25*tmp930;
+    const Scalar tmp942 = tmp25*tmp932;
+    const Scalar tmp943 = tmp38*tmp933;
+    const Scalar tmp944 = tmp38*tmp935;
+    const Scalar tmp945 = tmp20*tmp928;
+    const Scalar tmp946 = tmp25*tmp931;
+    const Scalar tmp947 = tmp38*tmp934;
+    const Scalar tmp948 = -tmp936;
+    const Scalar tmp949 = -tmp937;
+    const Scalar tmp950 = -tmp938;
+    const Scalar tmp951 = -tmp73*tmp936 - tmp112*tmp938 - tmp219*tmp939 - tmp230*tmp940
+        - tmp245*tmp941 - tmp254*tmp942 - tmp67*tmp943 - tmp108*tmp944;
+    const Scalar tmp952 = -tmp195*tmp936 - tmp94*tmp937 - tmp105*tmp938 - tmp221*tmp939
+        - tmp227*tmp940 - tmp246*tmp941 - tmp252*tmp942 - tmp201*tmp943 + tmp0*tmp1*tmp44*tmp944
+        - tmp225*tmp945 - tmp249*tmp946 - tmp91*tmp947;
+    const Scalar tmp953 = -tmp77*tmp936 - tmp197*tmp937 - tmp99*tmp938 - tmp222*tmp939
+        - tmp228*tmp940 - tmp247*tmp941 - tmp253*tmp942 - tmp8*tmp943 - tmp98*tmp944 - tmp224*tmp945
+        - tmp250*tmp946 + tmp4*tmp44*tmp947;
     (*dr_dq)(0, 0) = Scalar(0);
     (*dr_dq)(0, 1) = Scalar(0);
     (*dr_dq)(0, 2) = Scalar(0);
-    (*dr_dq)(0, 3) = heading_ddot*tmp542 + attitude_ddot*tmp545 + bank_ddot*tmp549 - tmp565;
-    (*dr_dq)(0, 4) = heading_ddot*tmp668 + attitude_ddot*tmp671 + bank_ddot*tmp678 - tmp699;
-    (*dr_dq)(0, 5) = heading_ddot*tmp799 + attitude_ddot*tmp802 + bank_ddot*tmp809 - tmp830;
+    (*dr_dq)(0, 3) = heading_ddot*tmp578 + attitude_ddot*tmp581 + bank_ddot*tmp585 - tmp601;
+    (*dr_dq)(0, 4) = heading_ddot*tmp704 + attitude_ddot*tmp707 + bank_ddot*tmp714 - tmp735;
+    (*dr_dq)(0, 5) = heading_ddot*tmp835 + attitude_ddot*tmp838 + bank_ddot*tmp845 - tmp866;
     (*dr_dq)(1, 0) = Scalar(0);
     (*dr_dq)(1, 1) = Scalar(0);
     (*dr_dq)(1, 2) = Scalar(0);
     (*dr_dq)(1, 3) = Scalar(0);
-    (*dr_dq)(1, 4) = attitude_ddot*tmp672 + bank_ddot*tmp679 - tmp700;
-    (*dr_dq)(1, 5) = attitude_ddot*tmp803 + bank_ddot*tmp810 - tmp831;
+    (*dr_dq)(1, 4) = attitude_ddot*tmp708 + bank_ddot*tmp715 - tmp736;
+    (*dr_dq)(1, 5) = attitude_ddot*tmp839 + bank_ddot*tmp846 - tmp867;
     (*dr_dq)(2, 0) = Scalar(0);
     (*dr_dq)(2, 1) = Scalar(0);
     (*dr_dq)(2, 2) = Scalar(0);
-    (*dr_dq)(2, 3) = heading_ddot*tmp543 + attitude_ddot*tmp546 + bank_ddot*tmp550 - tmp566;
-    (*dr_dq)(2, 4) = heading_ddot*tmp669 + attitude_ddot*tmp673 + bank_ddot*tmp680 - tmp701;
-    (*dr_dq)(2, 5) = heading_ddot*tmp800 + attitude_ddot*tmp804 + bank_ddot*tmp811 - tmp832;
+    (*dr_dq)(2, 3) = heading_ddot*tmp579 + attitude_ddot*tmp582 + bank_ddot*tmp586 - tmp602;
+    (*dr_dq)(2, 4) = heading_ddot*tmp705 + attitude_ddot*tmp709 + bank_ddot*tmp716 - tmp737;
+    (*dr_dq)(2, 5) = heading_ddot*tmp836 + attitude_ddot*tmp840 + bank_ddot*tmp847 - tmp868;
     (*dr_dq)(3, 0) = Scalar(0);
     (*dr_dq)(3, 1) = Scalar(0);
     (*dr_dq)(3, 2) = Scalar(0);
-    (*dr_dq)(3, 3) = x_ddot*tmp542 + z_ddot*tmp543 + heading_ddot*tmp544 + attitude_ddot*tmp547
-        + bank_ddot*tmp551 - tmp562 - tmp567;
-    (*dr_dq)(3, 4) = x_ddot*tmp668 + z_ddot*tmp669 + heading_ddot*tmp670 + attitude_ddot*tmp674
-        + bank_ddot*tmp681 - tmp696 - tmp702;
-    (*dr_dq)(3, 5) = x_ddot*tmp799 + z_ddot*tmp800 + heading_ddot*tmp801 + attitude_ddot*tmp805
-        + bank_ddot*tmp812 - tmp827 - tmp833;
+    (*dr_dq)(3, 3) = x_ddot*tmp578 + z_ddot*tmp579 + heading_ddot*tmp580 + attitude_ddot*tmp583
+        + bank_ddot*tmp587 - tmp598 - tmp603;
+    (*dr_dq)(3, 4) = x_ddot*tmp704 + z_ddot*tmp705 + heading_ddot*tmp706 + attitude_ddot*tmp710
+        + bank_ddot*tmp717 - tmp732 - tmp738;
+    (*dr_dq)(3, 5) = x_ddot*tmp835 + z_ddot*tmp836 + heading_ddot*tmp837 + attitude_ddot*tmp841
+        + bank_ddot*tmp848 - tmp863 - tmp869;
     (*dr_dq)(4, 0) = Scalar(0);
     (*dr_dq)(4, 1) = Scalar(0);
     (*dr_dq)(4, 2) = Scalar(0);
-    (*dr_dq)(4, 3) = x_ddot*tmp545 + z_ddot*tmp546 + heading_ddot*tmp547 + attitude_ddot*tmp548
-        + bank_ddot*tmp552 - tmp563 - tmp568;
-    (*dr_dq)(4, 4) = x_ddot*tmp671 + y_ddot*tmp672 + z_ddot*tmp673 + heading_ddot*tmp674
-        + attitude_ddot*tmp677 + bank_ddot*tmp682 - tmp697 - tmp703;
-    (*dr_dq)(4, 5) = x_ddot*tmp802 + y_ddot*tmp803 + z_ddot*tmp804 + heading_ddot*tmp805
-        + attitude_ddot*tmp808 + bank_ddot*tmp813 - tmp828 - tmp834;
+    (*dr_dq)(4, 3) = x_ddot*tmp581 + z_ddot*tmp582 + heading_ddot*tmp583 + attitude_ddot*tmp584
+        + bank_ddot*tmp588 - tmp599 - tmp604;
+    (*dr_dq)(4, 4) = x_ddot*tmp707 + y_ddot*tmp708 + z_ddot*tmp709 + heading_ddot*tmp710
+        + attitude_ddot*tmp713 + bank_ddot*tmp718 - tmp733 - tmp739;
+    (*dr_dq)(4, 5) = x_ddot*tmp838 + y_ddot*tmp839 + z_ddot*tmp840 + heading_ddot*tmp841
+        + attitude_ddot*tmp844 + bank_ddot*tmp849 - tmp864 - tmp870;
     (*dr_dq)(5, 0) = Scalar(0);
     (*dr_dq)(5, 1) = Scalar(0);
     (*dr_dq)(5, 2) = Scalar(0);
-    (*dr_dq)(5, 3) = x_ddot*tmp549 + z_ddot*tmp550 + heading_ddot*tmp551 + attitude_ddot*tmp552
-        + bank_ddot*tmp553 - tmp564 - tmp569;
-    (*dr_dq)(5, 4) = x_ddot*tmp678 + y_ddot*tmp679 + z_ddot*tmp680 + heading_ddot*tmp681
-        + attitude_ddot*tmp682 + bank_ddot*tmp683 - tmp698 - tmp704;
-    (*dr_dq)(5, 5) = x_ddot*tmp809 + y_ddot*tmp810 + z_ddot*tmp811 + heading_ddot*tmp812
-        + attitude_ddot*tmp813 + bank_ddot*tmp814 - tmp829 - tmp835;
+    (*dr_dq)(5, 3) = x_ddot*tmp585 + z_ddot*tmp586 + heading_ddot*tmp587 + attitude_ddot*tmp588
+        + bank_ddot*tmp589 - tmp600 - tmp605;
+    (*dr_dq)(5, 4) = x_ddot*tmp714 + y_ddot*tmp715 + z_ddot*tmp716 + heading_ddot*tmp717
+        + attitude_ddot*tmp718 + bank_ddot*tmp719 - tmp734 - tmp740;
+    (*dr_dq)(5, 5) = x_ddot*tmp845 + y_ddot*tmp846 + z_ddot*tmp847 + heading_ddot*tmp848
+        + attitude_ddot*tmp849 + bank_ddot*tmp850 - tmp865 - tmp871;
     (*dr_dv)(0, 0) = Scalar(0);
     (*dr_dv)(0, 1) = Scalar(0);
     (*dr_dv)(0, 2) = Scalar(0);
-    (*dr_dv)(0, 3) = -tmp852;
-    (*dr_dv)(0, 4) = -tmp882;
-    (*dr_dv)(0, 5) = -tmp912;
+    (*dr_dv)(0, 3) = -tmp888;
+    (*dr_dv)(0, 4) = -tmp918;
+    (*dr_dv)(0, 5) = -tmp948;
     (*dr_dv)(1, 0) = Scalar(0);
     (*dr_dv)(1, 1) = Scalar(0);
     (*dr_dv)(1, 2) = Scalar(0);
     (*dr_dv)(1, 3) = Scalar(0);
-    (*dr_dv)(1, 4) = -tmp883;
-    (*dr_dv)(1, 5) = -tmp913;
+    (*dr_dv)(1, 4) = -tmp919;
+    (*dr_dv)(1, 5) = -tmp949;
     (*dr_dv)(2, 0) = Scalar(0);
     (*dr_dv)(2, 1) = Scalar(0);
     (*dr_dv)(2, 2) = Scalar(0);
-    (*dr_dv)(2, 3) = -tmp853;
-    (*dr_dv)(2, 4) = -tmp884;
-    (*dr_dv)(2, 5) = -tmp914;
+    (*dr_dv)(2, 3) = -tmp889;
+    (*dr_dv)(2, 4) = -tmp920;
+    (*dr_dv)(2, 5) = -tmp950;
     (*dr_dv)(3, 0) = Scalar(0);
     (*dr_dv)(3, 1) = Scalar(0);
     (*dr_dv)(3, 2) = Scalar(0);
-    (*dr_dv)(3, 3) = -tmp854;
-    (*dr_dv)(3, 4) = -tmp885;
-    (*dr_dv)(3, 5) = -tmp915;
+    (*dr_dv)(3, 3) = -tmp890;
+    (*dr_dv)(3, 4) = -tmp921;
+    (*dr_dv)(3, 5) = -tmp951;
     (*dr_dv)(4, 0) = Scalar(0);
     (*dr_dv)(4, 1) = Scalar(0);
     (*dr_dv)(4, 2) = Scalar(0);
-    (*dr_dv)(4, 3) = -tmp855;
-    (*dr_dv)(4, 4) = -tmp886;
-    (*dr_dv)(4, 5) = -tmp916;
+    (*dr_dv)(4, 3) = -tmp891;
+    (*dr_dv)(4, 4) = -tmp922;
+    (*dr_dv)(4, 5) = -tmp952;
     (*dr_dv)(5, 0) = Scalar(0);
     (*dr_dv)(5, 1) = Scalar(0);
     (*dr_dv)(5, 2) = Scalar(0);
-    (*dr_dv)(5, 3) = -tmp856;
-    (*dr_dv)(5, 4) = -tmp887;
-    (*dr_dv)(5, 5) = -tmp917;
+    (*dr_dv)(5, 3) = -tmp892;
+    (*dr_dv)(5, 4) = -tmp923;
+    (*dr_dv)(5, 5) = -tmp953;
   }
 
   /// Kinetic energy T = 1/2 xdot^T M xdot.
@@ -8105,12 +8465,12 @@ struct RigidBodyEulerYzx {
     const Scalar tmp267 = tmp266 + tmp67*heading_dot + tmp8*bank_dot;
     const Scalar tmp268 = tmp91*attitude_dot - tmp53*bank_dot;
     const Scalar tmp269 = tmp108*heading_dot + tmp98*bank_dot - tmp102*attitude_dot;
-    const Scalar tmp353 = (Scalar(0.5))*tmp20*((tmp231*tmp231) + (tmp223*tmp223) + (tmp226*tmp226))
+    const Scalar tmp490 = (Scalar(0.5))*tmp20*((tmp231*tmp231) + (tmp223*tmp223) + (tmp226*tmp226))
         + (Scalar(0.5))*tmp25*((tmp255*tmp255) + (tmp248*tmp248) + (tmp251*tmp251))
         + (Scalar(0.5))*tmp38*((tmp269*tmp269) + (tmp267*tmp267) + (tmp268*tmp268))
         + (Scalar(0.5))*m*((tmp196*tmp196) + (tmp198*tmp198) + (tmp200*tmp200));
     Scalar result;
-    result = tmp353;
+    result = tmp490;
     return result;
   }
 
@@ -8154,9 +8514,9 @@ struct RigidBodyEulerYzx {
     const Scalar tmp73 = -tmp72 + tmp64*com_y + tmp67*com_z;
     const Scalar tmp74 = tmp73 + z;
     const Scalar tmp290 = g*m;
-    const Scalar tmp354 = tmp290*tmp74;
+    const Scalar tmp491 = tmp290*tmp74;
     Scalar result;
-    result = tmp354;
+    result = tmp491;
     return result;
   }
 
@@ -8315,13 +8675,13 @@ struct RigidBodyEulerYzx {
     const Scalar tmp268 = tmp91*attitude_dot - tmp53*bank_dot;
     const Scalar tmp269 = tmp108*heading_dot + tmp98*bank_dot - tmp102*attitude_dot;
     const Scalar tmp290 = g*m;
-    const Scalar tmp353 = (Scalar(0.5))*tmp20*((tmp231*tmp231) + (tmp223*tmp223) + (tmp226*tmp226))
+    const Scalar tmp490 = (Scalar(0.5))*tmp20*((tmp231*tmp231) + (tmp223*tmp223) + (tmp226*tmp226))
         + (Scalar(0.5))*tmp25*((tmp255*tmp255) + (tmp248*tmp248) + (tmp251*tmp251))
         + (Scalar(0.5))*tmp38*((tmp269*tmp269) + (tmp267*tmp267) + (tmp268*tmp268))
         + (Scalar(0.5))*m*((tmp196*tmp196) + (tmp198*tmp198) + (tmp200*tmp200));
-    const Scalar tmp354 = tmp290*tmp74;
+    const Scalar tmp491 = tmp290*tmp74;
     Scalar result;
-    result = tmp353 + tmp354;
+    result = tmp490 + tmp491;
     return result;
   }
 
@@ -9642,21 +10002,21 @@ struct RigidBodyEulerYzx {
       const Scalar g = Scalar(params.g);
       const Scalar m = Scalar(params.m);
       const Scalar tmp290 = g*m;
-      const Scalar tmp355 = (Scalar(0.25))*tmp290;
-      const Scalar tmp356 = -tmp355;
+      const Scalar tmp492 = (Scalar(0.25))*tmp290;
+      const Scalar tmp493 = -tmp492;
       XVector<Scalar> result;
       result(0) = Scalar(0);
       result(1) = Scalar(0);
-      result(2) = tmp356;
+      result(2) = tmp493;
       result(3) = Scalar(0);
       result(4) = Scalar(0);
-      result(5) = tmp356;
+      result(5) = tmp493;
       result(6) = Scalar(0);
       result(7) = Scalar(0);
-      result(8) = tmp356;
+      result(8) = tmp493;
       result(9) = Scalar(0);
       result(10) = Scalar(0);
-      result(11) = tmp356;
+      result(11) = tmp493;
       return result;
     }
 
@@ -9728,142 +10088,178 @@ struct RigidBodyEulerYzx {
       const Scalar tmp173 = tmp10*tmp172;
       const Scalar tmp174 = tmp39 - tmp34 - tmp40;
       const Scalar tmp175 = tmp10*tmp174;
-      const Scalar tmp357 = pos(3) - pos(0);
-      const Scalar tmp358 = pos(4) - pos(1);
-      const Scalar tmp359 = pos(5) - pos(2);
-      const Scalar tmp360 = sqrt((tmp357*tmp357) + (tmp358*tmp358) + (tmp359*tmp359));
-      const Scalar tmp361 = (Scalar(1)/tmp360);
-      const Scalar tmp362 = tmp357*tmp361;
-      const Scalar tmp363 = tmp358*tmp361;
-      const Scalar tmp364 = tmp359*tmp361;
-      const Scalar tmp365 = -tmp10*tmp27;
-      const Scalar tmp366 = -tmp10*tmp42;
-      const Scalar tmp367 = sqrt(((-tmp118 - tmp365)*(-tmp118 - tmp365))
-          + ((-tmp120 - tmp366)*(-tmp120 - tmp366)));
-      const Scalar tmp368 = (Scalar(1)/tmp367);
-      const Scalar tmp369 = tmp360 - tmp367;
-      const Scalar tmp370 = tmp368*kappa;
-      const Scalar tmp371 = tmp369*tmp370
-          + tmp368*penalty_damping*(tmp362*(vel(3) - vel(0)) + tmp363*(vel(4) - vel(1))
-              + tmp364*(vel(5) - vel(2)));
-      const Scalar tmp372 = -vel(6);
-      const Scalar tmp373 = -pos(6);
-      const Scalar tmp374 = -tmp373 - pos(0);
-      const Scalar tmp375 = -pos(7);
-      const Scalar tmp376 = -tmp375 - pos(1);
-      const Scalar tmp377 = -pos(8);
-      const Scalar tmp378 = -tmp377 - pos(2);
-      const Scalar tmp379 = sqrt((tmp374*tmp374) + (tmp376*tmp376) + (tmp378*tmp378));
-      const Scalar tmp380 = (Scalar(1)/tmp379);
-      const Scalar tmp381 = tmp374*tmp380;
-      const Scalar tmp382 = -vel(7);
-      const Scalar tmp383 = tmp376*tmp380;
-      const Scalar tmp384 = -vel(8);
-      const Scalar tmp385 = tmp378*tmp380;
-      const Scalar tmp386 = Scalar(4)*tmp20/m;
-      const Scalar tmp387 = sqrt(tmp386 + ((-tmp141 - tmp365)*(-tmp141 - tmp365))
-          + ((-tmp143 - tmp366)*(-tmp143 - tmp366)));
-      const Scalar tmp388 = (Scalar(1)/tmp387);
-      const Scalar tmp389 = tmp379 - tmp387;
-      const Scalar tmp390 = tmp388*kappa;
-      const Scalar tmp391 = tmp389*tmp390
-          + tmp388*penalty_damping*(tmp381*(-tmp372 - vel(0)) + tmp383*(-tmp382 - vel(1))
-              + tmp385*(-tmp384 - vel(2)));
-      const Scalar tmp392 = -vel(9);
-      const Scalar tmp393 = -pos(9);
-      const Scalar tmp394 = -tmp393 - pos(0);
-      const Scalar tmp395 = -pos(10);
-      const Scalar tmp396 = -tmp395 - pos(1);
-      const Scalar tmp397 = -pos(11);
-      const Scalar tmp398 = -tmp397 - pos(2);
-      const Scalar tmp399 = sqrt((tmp394*tmp394) + (tmp396*tmp396) + (tmp398*tmp398));
-      const Scalar tmp400 = (Scalar(1)/tmp399);
-      const Scalar tmp401 = tmp394*tmp400;
-      const Scalar tmp402 = -vel(10);
-      const Scalar tmp403 = tmp396*tmp400;
-      const Scalar tmp404 = -vel(11);
-      const Scalar tmp405 = tmp398*tmp400;
-      const Scalar tmp406 = sqrt(tmp386 + ((-tmp173 - tmp365)*(-tmp173 - tmp365))
-          + ((-tmp175 - tmp366)*(-tmp175 - tmp366)));
-      const Scalar tmp407 = (Scalar(1)/tmp406);
-      const Scalar tmp408 = tmp399 - tmp406;
-      const Scalar tmp409 = tmp407*kappa;
-      const Scalar tmp410 = tmp408*tmp409
-          + tmp407*penalty_damping*(tmp401*(-tmp392 - vel(0)) + tmp403*(-tmp402 - vel(1))
-              + tmp405*(-tmp404 - vel(2)));
-      const Scalar tmp411 = tmp364*tmp371 + tmp385*tmp391 + tmp405*tmp410;
-      const Scalar tmp412 = -tmp371;
-      const Scalar tmp413 = -tmp373 - pos(3);
-      const Scalar tmp414 = -tmp375 - pos(4);
-      const Scalar tmp415 = -tmp377 - pos(5);
-      const Scalar tmp416 = sqrt((tmp413*tmp413) + (tmp414*tmp414) + (tmp415*tmp415));
+      const Scalar tmp353 = pos(3) - pos(0);
+      const Scalar tmp354 = pos(4) - pos(1);
+      const Scalar tmp355 = pos(5) - pos(2);
+      const Scalar tmp356 = sqrt((tmp353*tmp353) + (tmp354*tmp354) + (tmp355*tmp355));
+      const Scalar tmp357 = (Scalar(1)/tmp356);
+      const Scalar tmp358 = tmp353*tmp357;
+      const Scalar tmp359 = tmp354*tmp357;
+      const Scalar tmp360 = tmp355*tmp357;
+      const Scalar tmp361 = -tmp10*tmp27;
+      const Scalar tmp362 = -tmp10*tmp42;
+      const Scalar tmp363 = sqrt(((-tmp118 - tmp361)*(-tmp118 - tmp361))
+          + ((-tmp120 - tmp362)*(-tmp120 - tmp362)));
+      const Scalar tmp364 = (Scalar(1)/tmp363);
+      const Scalar tmp365 = tmp356 - tmp363;
+      const Scalar tmp366 = tmp364*kappa;
+      const Scalar tmp367 = tmp365*tmp366
+          + tmp364*penalty_damping*(tmp358*(vel(3) - vel(0)) + tmp359*(vel(4) - vel(1))
+              + tmp360*(vel(5) - vel(2)));
+      const Scalar tmp368 = -tmp367;
+      const Scalar tmp369 = tmp358*tmp368;
+      const Scalar tmp370 = tmp359*tmp368;
+      const Scalar tmp371 = tmp360*tmp368;
+      const Scalar tmp372 = tmp358*tmp367;
+      const Scalar tmp373 = tmp359*tmp367;
+      const Scalar tmp374 = tmp360*tmp367;
+      const Scalar tmp375 = -pos(6);
+      const Scalar tmp376 = -tmp375 - pos(0);
+      const Scalar tmp377 = -pos(7);
+      const Scalar tmp378 = -tmp377 - pos(1);
+      const Scalar tmp379 = -pos(8);
+      const Scalar tmp380 = -tmp379 - pos(2);
+      const Scalar tmp381 = sqrt((tmp376*tmp376) + (tmp378*tmp378) + (tmp380*tmp380));
+      const Scalar tmp382 = (Scalar(1)/tmp381);
+      const Scalar tmp383 = tmp376*tmp382;
+      const Scalar tmp384 = -vel(6);
+      const Scalar tmp385 = -vel(7);
+      const Scalar tmp386 = tmp378*tmp382;
+      const Scalar tmp387 = -vel(8);
+      const Scalar tmp388 = tmp380*tmp382;
+      const Scalar tmp389 = Scalar(4)*tmp20/m;
+      const Scalar tmp390 = sqrt(tmp389 + ((-tmp141 - tmp361)*(-tmp141 - tmp361))
+          + ((-tmp143 - tmp362)*(-tmp143 - tmp362)));
+      const Scalar tmp391 = (Scalar(1)/tmp390);
+      const Scalar tmp392 = tmp381 - tmp390;
+      const Scalar tmp393 = tmp391*kappa;
+      const Scalar tmp394 = tmp392*tmp393
+          + tmp391*penalty_damping*(tmp383*(-tmp384 - vel(0)) + tmp386*(-tmp385 - vel(1))
+              + tmp388*(-tmp387 - vel(2)));
+      const Scalar tmp395 = -tmp394;
+      const Scalar tmp396 = tmp383*tmp395;
+      const Scalar tmp397 = tmp386*tmp395;
+      const Scalar tmp398 = tmp388*tmp395;
+      const Scalar tmp399 = tmp383*tmp394;
+      const Scalar tmp400 = tmp386*tmp394;
+      const Scalar tmp401 = tmp388*tmp394;
+      const Scalar tmp402 = -pos(9);
+      const Scalar tmp403 = -tmp402 - pos(0);
+      const Scalar tmp404 = -pos(10);
+      const Scalar tmp405 = -tmp404 - pos(1);
+      const Scalar tmp406 = -pos(11);
+      const Scalar tmp407 = -tmp406 - pos(2);
+      const Scalar tmp408 = sqrt((tmp403*tmp403) + (tmp405*tmp405) + (tmp407*tmp407));
+      const Scalar tmp409 = (Scalar(1)/tmp408);
+      const Scalar tmp410 = tmp403*tmp409;
+      const Scalar tmp411 = -vel(9);
+      const Scalar tmp412 = -vel(10);
+      const Scalar tmp413 = tmp405*tmp409;
+      const Scalar tmp414 = -vel(11);
+      const Scalar tmp415 = tmp407*tmp409;
+      const Scalar tmp416 = sqrt(tmp389 + ((-tmp173 - tmp361)*(-tmp173 - tmp361))
+          + ((-tmp175 - tmp362)*(-tmp175 - tmp362)));
       const Scalar tmp417 = (Scalar(1)/tmp416);
-      const Scalar tmp418 = tmp413*tmp417;
-      const Scalar tmp419 = tmp414*tmp417;
-      const Scalar tmp420 = tmp415*tmp417;
-      const Scalar tmp421 = -tmp118;
-      const Scalar tmp422 = -tmp120;
-      const Scalar tmp423 = sqrt(tmp386 + ((-tmp141 - tmp421)*(-tmp141 - tmp421))
-          + ((-tmp143 - tmp422)*(-tmp143 - tmp422)));
-      const Scalar tmp424 = (Scalar(1)/tmp423);
-      const Scalar tmp425 = tmp416 - tmp423;
-      const Scalar tmp426 = tmp424*kappa;
-      const Scalar tmp427 = tmp425*tmp426
-          + tmp424*penalty_damping*(tmp418*(-tmp372 - vel(3)) + tmp419*(-tmp382 - vel(4))
-              + tmp420*(-tmp384 - vel(5)));
-      const Scalar tmp428 = -tmp393 - pos(3);
-      const Scalar tmp429 = -tmp395 - pos(4);
-      const Scalar tmp430 = -tmp397 - pos(5);
+      const Scalar tmp418 = tmp408 - tmp416;
+      const Scalar tmp419 = tmp417*kappa;
+      const Scalar tmp420 = tmp418*tmp419
+          + tmp417*penalty_damping*(tmp410*(-tmp411 - vel(0)) + tmp413*(-tmp412 - vel(1))
+              + tmp415*(-tmp414 - vel(2)));
+      const Scalar tmp421 = -tmp420;
+      const Scalar tmp422 = tmp410*tmp421;
+      const Scalar tmp423 = tmp413*tmp421;
+      const Scalar tmp424 = tmp415*tmp421;
+      const Scalar tmp425 = tmp410*tmp420;
+      const Scalar tmp426 = tmp413*tmp420;
+      const Scalar tmp427 = tmp415*tmp420;
+      const Scalar tmp428 = -tmp375 - pos(3);
+      const Scalar tmp429 = -tmp377 - pos(4);
+      const Scalar tmp430 = -tmp379 - pos(5);
       const Scalar tmp431 = sqrt((tmp428*tmp428) + (tmp429*tmp429) + (tmp430*tmp430));
       const Scalar tmp432 = (Scalar(1)/tmp431);
       const Scalar tmp433 = tmp428*tmp432;
       const Scalar tmp434 = tmp429*tmp432;
       const Scalar tmp435 = tmp430*tmp432;
-      const Scalar tmp436 = sqrt(tmp386 + ((-tmp173 - tmp421)*(-tmp173 - tmp421))
-          + ((-tmp175 - tmp422)*(-tmp175 - tmp422)));
-      const Scalar tmp437 = (Scalar(1)/tmp436);
-      const Scalar tmp438 = tmp431 - tmp436;
-      const Scalar tmp439 = tmp437*kappa;
-      const Scalar tmp440 = tmp438*tmp439
-          + tmp437*penalty_damping*(tmp433*(-tmp392 - vel(3)) + tmp434*(-tmp402 - vel(4))
-              + tmp435*(-tmp404 - vel(5)));
-      const Scalar tmp441 = tmp364*tmp412 + tmp420*tmp427 + tmp435*tmp440;
-      const Scalar tmp442 = -tmp393 - pos(6);
-      const Scalar tmp443 = -tmp395 - pos(7);
-      const Scalar tmp444 = -tmp397 - pos(8);
-      const Scalar tmp445 = sqrt((tmp442*tmp442) + (tmp443*tmp443) + (tmp444*tmp444));
-      const Scalar tmp446 = (Scalar(1)/tmp445);
-      const Scalar tmp447 = tmp442*tmp446;
-      const Scalar tmp448 = tmp443*tmp446;
-      const Scalar tmp449 = tmp444*tmp446;
-      const Scalar tmp450 = sqrt(((tmp141 - tmp173)*(tmp141 - tmp173))
+      const Scalar tmp436 = -tmp118;
+      const Scalar tmp437 = -tmp120;
+      const Scalar tmp438 = sqrt(tmp389 + ((-tmp141 - tmp436)*(-tmp141 - tmp436))
+          + ((-tmp143 - tmp437)*(-tmp143 - tmp437)));
+      const Scalar tmp439 = (Scalar(1)/tmp438);
+      const Scalar tmp440 = tmp431 - tmp438;
+      const Scalar tmp441 = tmp439*kappa;
+      const Scalar tmp442 = tmp440*tmp441
+          + tmp439*penalty_damping*(tmp433*(-tmp384 - vel(3)) + tmp434*(-tmp385 - vel(4))
+              + tmp435*(-tmp387 - vel(5)));
+      const Scalar tmp443 = -tmp442;
+      const Scalar tmp444 = tmp433*tmp443;
+      const Scalar tmp445 = tmp434*tmp443;
+      const Scalar tmp446 = tmp435*tmp443;
+      const Scalar tmp447 = tmp433*tmp442;
+      const Scalar tmp448 = tmp434*tmp442;
+      const Scalar tmp449 = tmp435*tmp442;
+      const Scalar tmp450 = -tmp402 - pos(3);
+      const Scalar tmp451 = -tmp404 - pos(4);
+      const Scalar tmp452 = -tmp406 - pos(5);
+      const Scalar tmp453 = sqrt((tmp450*tmp450) + (tmp451*tmp451) + (tmp452*tmp452));
+      const Scalar tmp454 = (Scalar(1)/tmp453);
+      const Scalar tmp455 = tmp450*tmp454;
+      const Scalar tmp456 = tmp451*tmp454;
+      const Scalar tmp457 = tmp452*tmp454;
+      const Scalar tmp458 = sqrt(tmp389 + ((-tmp173 - tmp436)*(-tmp173 - tmp436))
+          + ((-tmp175 - tmp437)*(-tmp175 - tmp437)));
+      const Scalar tmp459 = (Scalar(1)/tmp458);
+      const Scalar tmp460 = tmp453 - tmp458;
+      const Scalar tmp461 = tmp459*kappa;
+      const Scalar tmp462 = tmp460*tmp461
+          + tmp459*penalty_damping*(tmp455*(-tmp411 - vel(3)) + tmp456*(-tmp412 - vel(4))
+              + tmp457*(-tmp414 - vel(5)));
+      const Scalar tmp463 = -tmp462;
+      const Scalar tmp464 = tmp455*tmp463;
+      const Scalar tmp465 = tmp456*tmp463;
+      const Scalar tmp466 = tmp457*tmp463;
+      const Scalar tmp467 = tmp455*tmp462;
+      const Scalar tmp468 = tmp456*tmp462;
+      const Scalar tmp469 = tmp457*tmp462;
+      const Scalar tmp470 = -tmp402 - pos(6);
+      const Scalar tmp471 = -tmp404 - pos(7);
+      const Scalar tmp472 = -tmp406 - pos(8);
+      const Scalar tmp473 = sqrt((tmp470*tmp470) + (tmp471*tmp471) + (tmp472*tmp472));
+      const Scalar tmp474 = (Scalar(1)/tmp473);
+      const Scalar tmp475 = tmp470*tmp474;
+      const Scalar tmp476 = tmp471*tmp474;
+      const Scalar tmp477 = tmp472*tmp474;
+      const Scalar tmp478 = sqrt(((tmp141 - tmp173)*(tmp141 - tmp173))
           + ((tmp143 - tmp175)*(tmp143 - tmp175)));
-      const Scalar tmp451 = (Scalar(1)/tmp450);
-      const Scalar tmp452 = tmp445 - tmp450;
-      const Scalar tmp453 = tmp451*kappa;
-      const Scalar tmp454 = tmp452*tmp453
-          + tmp451*penalty_damping*(tmp447*(-tmp392 - vel(6)) + tmp448*(-tmp402 - vel(7))
-              + tmp449*(-tmp404 - vel(8)));
-      const Scalar tmp455 = -tmp391;
-      const Scalar tmp456 = -tmp427;
-      const Scalar tmp457 = tmp385*tmp455 + tmp420*tmp456 + tmp449*tmp454;
-      const Scalar tmp458 = -tmp454;
-      const Scalar tmp459 = -tmp410;
-      const Scalar tmp460 = -tmp440;
-      const Scalar tmp461 = tmp405*tmp459 + tmp435*tmp460 + tmp449*tmp458;
+      const Scalar tmp479 = (Scalar(1)/tmp478);
+      const Scalar tmp480 = tmp473 - tmp478;
+      const Scalar tmp481 = tmp479*kappa;
+      const Scalar tmp482 = tmp480*tmp481
+          + tmp479*penalty_damping*(tmp475*(-tmp411 - vel(6)) + tmp476*(-tmp412 - vel(7))
+              + tmp477*(-tmp414 - vel(8)));
+      const Scalar tmp483 = -tmp482;
+      const Scalar tmp484 = tmp475*tmp483;
+      const Scalar tmp485 = tmp476*tmp483;
+      const Scalar tmp486 = tmp477*tmp483;
+      const Scalar tmp487 = tmp475*tmp482;
+      const Scalar tmp488 = tmp476*tmp482;
+      const Scalar tmp489 = tmp477*tmp482;
+      const Scalar tmp494 = tmp401 + tmp427 + tmp374;
+      const Scalar tmp495 = tmp371 + tmp449 + tmp469;
+      const Scalar tmp496 = tmp446 + tmp489 + tmp398;
+      const Scalar tmp497 = tmp424 + tmp466 + tmp486;
       XVector<Scalar> result;
-      result(0) = tmp362*tmp371 + tmp381*tmp391 + tmp401*tmp410;
-      result(1) = tmp363*tmp371 + tmp383*tmp391 + tmp403*tmp410;
-      result(2) = tmp411;
-      result(3) = tmp362*tmp412 + tmp418*tmp427 + tmp433*tmp440;
-      result(4) = tmp363*tmp412 + tmp419*tmp427 + tmp434*tmp440;
-      result(5) = tmp441;
-      result(6) = tmp381*tmp455 + tmp418*tmp456 + tmp447*tmp454;
-      result(7) = tmp383*tmp455 + tmp419*tmp456 + tmp448*tmp454;
-      result(8) = tmp457;
-      result(9) = tmp401*tmp459 + tmp433*tmp460 + tmp447*tmp458;
-      result(10) = tmp403*tmp459 + tmp434*tmp460 + tmp448*tmp458;
-      result(11) = tmp461;
+      result(0) = tmp425 + tmp372 + tmp399;
+      result(1) = tmp400 + tmp426 + tmp373;
+      result(2) = tmp494;
+      result(3) = tmp369 + tmp447 + tmp467;
+      result(4) = tmp370 + tmp448 + tmp468;
+      result(5) = tmp495;
+      result(6) = tmp444 + tmp487 + tmp396;
+      result(7) = tmp445 + tmp488 + tmp397;
+      result(8) = tmp496;
+      result(9) = tmp422 + tmp464 + tmp484;
+      result(10) = tmp423 + tmp465 + tmp485;
+      result(11) = tmp497;
       return result;
     }
 
@@ -9935,678 +10331,822 @@ struct RigidBodyEulerYzx {
       const Scalar tmp173 = tmp10*tmp172;
       const Scalar tmp174 = tmp39 - tmp34 - tmp40;
       const Scalar tmp175 = tmp10*tmp174;
-      const Scalar tmp357 = pos(3) - pos(0);
-      const Scalar tmp358 = pos(4) - pos(1);
-      const Scalar tmp359 = pos(5) - pos(2);
-      const Scalar tmp360 = sqrt((tmp357*tmp357) + (tmp358*tmp358) + (tmp359*tmp359));
-      const Scalar tmp361 = (Scalar(1)/tmp360);
-      const Scalar tmp362 = tmp357*tmp361;
-      const Scalar tmp363 = tmp358*tmp361;
-      const Scalar tmp364 = tmp359*tmp361;
-      const Scalar tmp365 = -tmp10*tmp27;
-      const Scalar tmp366 = -tmp10*tmp42;
-      const Scalar tmp367 = sqrt(((-tmp118 - tmp365)*(-tmp118 - tmp365))
-          + ((-tmp120 - tmp366)*(-tmp120 - tmp366)));
-      const Scalar tmp368 = (Scalar(1)/tmp367);
-      const Scalar tmp369 = tmp360 - tmp367;
-      const Scalar tmp370 = tmp368*kappa;
-      const Scalar tmp371 = tmp369*tmp370
-          + tmp368*penalty_damping*(tmp362*(vel(3) - vel(0)) + tmp363*(vel(4) - vel(1))
-              + tmp364*(vel(5) - vel(2)));
-      const Scalar tmp372 = -vel(6);
-      const Scalar tmp373 = -pos(6);
-      const Scalar tmp374 = -tmp373 - pos(0);
-      const Scalar tmp375 = -pos(7);
-      const Scalar tmp376 = -tmp375 - pos(1);
-      const Scalar tmp377 = -pos(8);
-      const Scalar tmp378 = -tmp377 - pos(2);
-      const Scalar tmp379 = sqrt((tmp374*tmp374) + (tmp376*tmp376) + (tmp378*tmp378));
-      const Scalar tmp380 = (Scalar(1)/tmp379);
-      const Scalar tmp381 = tmp374*tmp380;
-      const Scalar tmp382 = -vel(7);
-      const Scalar tmp383 = tmp376*tmp380;
-      const Scalar tmp384 = -vel(8);
-      const Scalar tmp385 = tmp378*tmp380;
-      const Scalar tmp386 = Scalar(4)*tmp20/m;
-      const Scalar tmp387 = sqrt(tmp386 + ((-tmp141 - tmp365)*(-tmp141 - tmp365))
-          + ((-tmp143 - tmp366)*(-tmp143 - tmp366)));
-      const Scalar tmp388 = (Scalar(1)/tmp387);
-      const Scalar tmp389 = tmp379 - tmp387;
-      const Scalar tmp390 = tmp388*kappa;
-      const Scalar tmp391 = tmp389*tmp390
-          + tmp388*penalty_damping*(tmp381*(-tmp372 - vel(0)) + tmp383*(-tmp382 - vel(1))
-              + tmp385*(-tmp384 - vel(2)));
-      const Scalar tmp392 = -vel(9);
-      const Scalar tmp393 = -pos(9);
-      const Scalar tmp394 = -tmp393 - pos(0);
-      const Scalar tmp395 = -pos(10);
-      const Scalar tmp396 = -tmp395 - pos(1);
-      const Scalar tmp397 = -pos(11);
-      const Scalar tmp398 = -tmp397 - pos(2);
-      const Scalar tmp399 = sqrt((tmp394*tmp394) + (tmp396*tmp396) + (tmp398*tmp398));
-      const Scalar tmp400 = (Scalar(1)/tmp399);
-      const Scalar tmp401 = tmp394*tmp400;
-      const Scalar tmp402 = -vel(10);
-      const Scalar tmp403 = tmp396*tmp400;
-      const Scalar tmp404 = -vel(11);
-      const Scalar tmp405 = tmp398*tmp400;
-      const Scalar tmp406 = sqrt(tmp386 + ((-tmp173 - tmp365)*(-tmp173 - tmp365))
-          + ((-tmp175 - tmp366)*(-tmp175 - tmp366)));
-      const Scalar tmp407 = (Scalar(1)/tmp406);
-      const Scalar tmp408 = tmp399 - tmp406;
-      const Scalar tmp409 = tmp407*kappa;
-      const Scalar tmp410 = tmp408*tmp409
-          + tmp407*penalty_damping*(tmp401*(-tmp392 - vel(0)) + tmp403*(-tmp402 - vel(1))
-              + tmp405*(-tmp404 - vel(2)));
-      const Scalar tmp412 = -tmp371;
-      const Scalar tmp413 = -tmp373 - pos(3);
-      const Scalar tmp414 = -tmp375 - pos(4);
-      const Scalar tmp415 = -tmp377 - pos(5);
-      const Scalar tmp416 = sqrt((tmp413*tmp413) + (tmp414*tmp414) + (tmp415*tmp415));
+      const Scalar tmp353 = pos(3) - pos(0);
+      const Scalar tmp354 = pos(4) - pos(1);
+      const Scalar tmp355 = pos(5) - pos(2);
+      const Scalar tmp356 = sqrt((tmp353*tmp353) + (tmp354*tmp354) + (tmp355*tmp355));
+      const Scalar tmp357 = (Scalar(1)/tmp356);
+      const Scalar tmp358 = tmp353*tmp357;
+      const Scalar tmp359 = tmp354*tmp357;
+      const Scalar tmp360 = tmp355*tmp357;
+      const Scalar tmp361 = -tmp10*tmp27;
+      const Scalar tmp362 = -tmp10*tmp42;
+      const Scalar tmp363 = sqrt(((-tmp118 - tmp361)*(-tmp118 - tmp361))
+          + ((-tmp120 - tmp362)*(-tmp120 - tmp362)));
+      const Scalar tmp364 = (Scalar(1)/tmp363);
+      const Scalar tmp365 = tmp356 - tmp363;
+      const Scalar tmp366 = tmp364*kappa;
+      const Scalar tmp367 = tmp365*tmp366
+          + tmp364*penalty_damping*(tmp358*(vel(3) - vel(0)) + tmp359*(vel(4) - vel(1))
+              + tmp360*(vel(5) - vel(2)));
+      const Scalar tmp368 = -tmp367;
+      const Scalar tmp375 = -pos(6);
+      const Scalar tmp376 = -tmp375 - pos(0);
+      const Scalar tmp377 = -pos(7);
+      const Scalar tmp378 = -tmp377 - pos(1);
+      const Scalar tmp379 = -pos(8);
+      const Scalar tmp380 = -tmp379 - pos(2);
+      const Scalar tmp381 = sqrt((tmp376*tmp376) + (tmp378*tmp378) + (tmp380*tmp380));
+      const Scalar tmp382 = (Scalar(1)/tmp381);
+      const Scalar tmp383 = tmp376*tmp382;
+      const Scalar tmp384 = -vel(6);
+      const Scalar tmp385 = -vel(7);
+      const Scalar tmp386 = tmp378*tmp382;
+      const Scalar tmp387 = -vel(8);
+      const Scalar tmp388 = tmp380*tmp382;
+      const Scalar tmp389 = Scalar(4)*tmp20/m;
+      const Scalar tmp390 = sqrt(tmp389 + ((-tmp141 - tmp361)*(-tmp141 - tmp361))
+          + ((-tmp143 - tmp362)*(-tmp143 - tmp362)));
+      const Scalar tmp391 = (Scalar(1)/tmp390);
+      const Scalar tmp392 = tmp381 - tmp390;
+      const Scalar tmp393 = tmp391*kappa;
+      const Scalar tmp394 = tmp392*tmp393
+          + tmp391*penalty_damping*(tmp383*(-tmp384 - vel(0)) + tmp386*(-tmp385 - vel(1))
+              + tmp388*(-tmp387 - vel(2)));
+      const Scalar tmp395 = -tmp394;
+      const Scalar tmp402 = -pos(9);
+      const Scalar tmp403 = -tmp402 - pos(0);
+      const Scalar tmp404 = -pos(10);
+      const Scalar tmp405 = -tmp404 - pos(1);
+      const Scalar tmp406 = -pos(11);
+      const Scalar tmp407 = -tmp406 - pos(2);
+      const Scalar tmp408 = sqrt((tmp403*tmp403) + (tmp405*tmp405) + (tmp407*tmp407));
+      const Scalar tmp409 = (Scalar(1)/tmp408);
+      const Scalar tmp410 = tmp403*tmp409;
+      const Scalar tmp411 = -vel(9);
+      const Scalar tmp412 = -vel(10);
+      const Scalar tmp413 = tmp405*tmp409;
+      const Scalar tmp414 = -vel(11);
+      const Scalar tmp415 = tmp407*tmp409;
+      const Scalar tmp416 = sqrt(tmp389 + ((-tmp173 - tmp361)*(-tmp173 - tmp361))
+          + ((-tmp175 - tmp362)*(-tmp175 - tmp362)));
       const Scalar tmp417 = (Scalar(1)/tmp416);
-      const Scalar tmp418 = tmp413*tmp417;
-      const Scalar tmp419 = tmp414*tmp417;
-      const Scalar tmp420 = tmp415*tmp417;
-      const Scalar tmp421 = -tmp118;
-      const Scalar tmp422 = -tmp120;
-      const Scalar tmp423 = sqrt(tmp386 + ((-tmp141 - tmp421)*(-tmp141 - tmp421))
-          + ((-tmp143 - tmp422)*(-tmp143 - tmp422)));
-      const Scalar tmp424 = (Scalar(1)/tmp423);
-      const Scalar tmp425 = tmp416 - tmp423;
-      const Scalar tmp426 = tmp424*kappa;
-      const Scalar tmp427 = tmp425*tmp426
-          + tmp424*penalty_damping*(tmp418*(-tmp372 - vel(3)) + tmp419*(-tmp382 - vel(4))
-              + tmp420*(-tmp384 - vel(5)));
-      const Scalar tmp428 = -tmp393 - pos(3);
-      const Scalar tmp429 = -tmp395 - pos(4);
-      const Scalar tmp430 = -tmp397 - pos(5);
+      const Scalar tmp418 = tmp408 - tmp416;
+      const Scalar tmp419 = tmp417*kappa;
+      const Scalar tmp420 = tmp418*tmp419
+          + tmp417*penalty_damping*(tmp410*(-tmp411 - vel(0)) + tmp413*(-tmp412 - vel(1))
+              + tmp415*(-tmp414 - vel(2)));
+      const Scalar tmp421 = -tmp420;
+      const Scalar tmp428 = -tmp375 - pos(3);
+      const Scalar tmp429 = -tmp377 - pos(4);
+      const Scalar tmp430 = -tmp379 - pos(5);
       const Scalar tmp431 = sqrt((tmp428*tmp428) + (tmp429*tmp429) + (tmp430*tmp430));
       const Scalar tmp432 = (Scalar(1)/tmp431);
       const Scalar tmp433 = tmp428*tmp432;
       const Scalar tmp434 = tmp429*tmp432;
       const Scalar tmp435 = tmp430*tmp432;
-      const Scalar tmp436 = sqrt(tmp386 + ((-tmp173 - tmp421)*(-tmp173 - tmp421))
-          + ((-tmp175 - tmp422)*(-tmp175 - tmp422)));
-      const Scalar tmp437 = (Scalar(1)/tmp436);
-      const Scalar tmp438 = tmp431 - tmp436;
-      const Scalar tmp439 = tmp437*kappa;
-      const Scalar tmp440 = tmp438*tmp439
-          + tmp437*penalty_damping*(tmp433*(-tmp392 - vel(3)) + tmp434*(-tmp402 - vel(4))
-              + tmp435*(-tmp404 - vel(5)));
-      const Scalar tmp442 = -tmp393 - pos(6);
-      const Scalar tmp443 = -tmp395 - pos(7);
-      const Scalar tmp444 = -tmp397 - pos(8);
-      const Scalar tmp445 = sqrt((tmp442*tmp442) + (tmp443*tmp443) + (tmp444*tmp444));
-      const Scalar tmp446 = (Scalar(1)/tmp445);
-      const Scalar tmp447 = tmp442*tmp446;
-      const Scalar tmp448 = tmp443*tmp446;
-      const Scalar tmp449 = tmp444*tmp446;
-      const Scalar tmp450 = sqrt(((tmp141 - tmp173)*(tmp141 - tmp173))
+      const Scalar tmp436 = -tmp118;
+      const Scalar tmp437 = -tmp120;
+      const Scalar tmp438 = sqrt(tmp389 + ((-tmp141 - tmp436)*(-tmp141 - tmp436))
+          + ((-tmp143 - tmp437)*(-tmp143 - tmp437)));
+      const Scalar tmp439 = (Scalar(1)/tmp438);
+      const Scalar tmp440 = tmp431 - tmp438;
+      const Scalar tmp441 = tmp439*kappa;
+      const Scalar tmp442 = tmp440*tmp441
+          + tmp439*penalty_damping*(tmp433*(-tmp384 - vel(3)) + tmp434*(-tmp385 - vel(4))
+              + tmp435*(-tmp387 - vel(5)));
+      const Scalar tmp443 = -tmp442;
+      const Scalar tmp450 = -tmp402 - pos(3);
+      const Scalar tmp451 = -tmp404 - pos(4);
+      const Scalar tmp452 = -tmp406 - pos(5);
+      const Scalar tmp453 = sqrt((tmp450*tmp450) + (tmp451*tmp451) + (tmp452*tmp452));
+      const Scalar tmp454 = (Scalar(1)/tmp453);
+      const Scalar tmp455 = tmp450*tmp454;
+      const Scalar tmp456 = tmp451*tmp454;
+      const Scalar tmp457 = tmp452*tmp454;
+      const Scalar tmp458 = sqrt(tmp389 + ((-tmp173 - tmp436)*(-tmp173 - tmp436))
+          + ((-tmp175 - tmp437)*(-tmp175 - tmp437)));
+      const Scalar tmp459 = (Scalar(1)/tmp458);
+      const Scalar tmp460 = tmp453 - tmp458;
+      const Scalar tmp461 = tmp459*kappa;
+      const Scalar tmp462 = tmp460*tmp461
+          + tmp459*penalty_damping*(tmp455*(-tmp411 - vel(3)) + tmp456*(-tmp412 - vel(4))
+              + tmp457*(-tmp414 - vel(5)));
+      const Scalar tmp463 = -tmp462;
+      const Scalar tmp470 = -tmp402 - pos(6);
+      const Scalar tmp471 = -tmp404 - pos(7);
+      const Scalar tmp472 = -tmp406 - pos(8);
+      const Scalar tmp473 = sqrt((tmp470*tmp470) + (tmp471*tmp471) + (tmp472*tmp472));
+      const Scalar tmp474 = (Scalar(1)/tmp473);
+      const Scalar tmp475 = tmp470*tmp474;
+      const Scalar tmp476 = tmp471*tmp474;
+      const Scalar tmp477 = tmp472*tmp474;
+      const Scalar tmp478 = sqrt(((tmp141 - tmp173)*(tmp141 - tmp173))
           + ((tmp143 - tmp175)*(tmp143 - tmp175)));
-      const Scalar tmp451 = (Scalar(1)/tmp450);
-      const Scalar tmp452 = tmp445 - tmp450;
-      const Scalar tmp453 = tmp451*kappa;
-      const Scalar tmp454 = tmp452*tmp453
-          + tmp451*penalty_damping*(tmp447*(-tmp392 - vel(6)) + tmp448*(-tmp402 - vel(7))
-              + tmp449*(-tmp404 - vel(8)));
-      const Scalar tmp455 = -tmp391;
-      const Scalar tmp456 = -tmp427;
-      const Scalar tmp458 = -tmp454;
-      const Scalar tmp459 = -tmp410;
-      const Scalar tmp460 = -tmp440;
-      const Scalar tmp918 = -tmp357/sqrt((tmp357*tmp357) + (tmp358*tmp358) + (tmp359*tmp359));
-      const Scalar tmp919 = -(Scalar(1)/(tmp360*tmp360))*tmp918;
-      const Scalar tmp920 = -tmp361 + tmp357*tmp919;
-      const Scalar tmp921 = tmp358*tmp919;
-      const Scalar tmp922 = tmp359*tmp919;
-      const Scalar tmp923 = tmp368*penalty_damping*(vel(3) - vel(0))*tmp920
-          + tmp368*penalty_damping*(vel(4) - vel(1))*tmp921
-          + tmp368*penalty_damping*(vel(5) - vel(2))*tmp922 + tmp370*tmp918;
-      const Scalar tmp924 = -tmp374/sqrt((tmp374*tmp374) + (tmp376*tmp376) + (tmp378*tmp378));
-      const Scalar tmp925 = -(Scalar(1)/(tmp379*tmp379))*tmp924;
-      const Scalar tmp926 = -tmp380 + tmp374*tmp925;
-      const Scalar tmp927 = tmp376*tmp925;
-      const Scalar tmp928 = tmp378*tmp925;
-      const Scalar tmp929 = tmp388*penalty_damping*(-tmp372 - vel(0))*tmp926
-          + tmp388*penalty_damping*(-tmp382 - vel(1))*tmp927
-          + tmp388*penalty_damping*(-tmp384 - vel(2))*tmp928 + tmp390*tmp924;
-      const Scalar tmp930 = -tmp394/sqrt((tmp394*tmp394) + (tmp396*tmp396) + (tmp398*tmp398));
-      const Scalar tmp931 = -(Scalar(1)/(tmp399*tmp399))*tmp930;
-      const Scalar tmp932 = -tmp400 + tmp394*tmp931;
-      const Scalar tmp933 = tmp396*tmp931;
-      const Scalar tmp934 = tmp398*tmp931;
-      const Scalar tmp935 = tmp407*penalty_damping*(-tmp392 - vel(0))*tmp932
-          + tmp407*penalty_damping*(-tmp402 - vel(1))*tmp933
-          + tmp407*penalty_damping*(-tmp404 - vel(2))*tmp934 + tmp409*tmp930;
-      const Scalar tmp936 = tmp371*tmp922 + tmp364*tmp923 + tmp391*tmp928 + tmp385*tmp929
-          + tmp410*tmp934 + tmp405*tmp935;
-      const Scalar tmp937 = -tmp923;
-      const Scalar tmp938 = tmp412*tmp922 + tmp364*tmp937;
-      const Scalar tmp939 = -tmp929;
-      const Scalar tmp940 = tmp455*tmp928 + tmp385*tmp939;
-      const Scalar tmp941 = -tmp935;
-      const Scalar tmp942 = tmp459*tmp934 + tmp405*tmp941;
-      const Scalar tmp943 = -tmp358/sqrt((tmp357*tmp357) + (tmp358*tmp358) + (tmp359*tmp359));
-      const Scalar tmp944 = -(Scalar(1)/(tmp360*tmp360))*tmp943;
-      const Scalar tmp945 = tmp357*tmp944;
-      const Scalar tmp946 = -tmp361 + tmp358*tmp944;
-      const Scalar tmp947 = tmp359*tmp944;
-      const Scalar tmp948 = tmp368*penalty_damping*(vel(3) - vel(0))*tmp945
-          + tmp368*penalty_damping*(vel(4) - vel(1))*tmp946
-          + tmp368*penalty_damping*(vel(5) - vel(2))*tmp947 + tmp370*tmp943;
-      const Scalar tmp949 = -tmp376/sqrt((tmp374*tmp374) + (tmp376*tmp376) + (tmp378*tmp378));
-      const Scalar tmp950 = -(Scalar(1)/(tmp379*tmp379))*tmp949;
-      const Scalar tmp951 = tmp374*tmp950;
-      const Scalar tmp952 = -tmp380 + tmp376*tmp950;
-      const Scalar tmp953 = tmp378*tmp950;
-      const Scalar tmp954 = tmp388*penalty_damping*(-tmp372 - vel(0))*tmp951
-          + tmp388*penalty_damping*(-tmp382 - vel(1))*tmp952
-          + tmp388*penalty_damping*(-tmp384 - vel(2))*tmp953 + tmp390*tmp949;
-      const Scalar tmp955 = -tmp396/sqrt((tmp394*tmp394) + (tmp396*tmp396) + (tmp398*tmp398));
-      const Scalar tmp956 = -(Scalar(1)/(tmp399*tmp399))*tmp955;
-      const Scalar tmp957 = tmp394*tmp956;
-      const Scalar tmp958 = -tmp400 + tmp396*tmp956;
-      const Scalar tmp959 = tmp398*tmp956;
-      const Scalar tmp960 = tmp407*penalty_damping*(-tmp392 - vel(0))*tmp957
-          + tmp407*penalty_damping*(-tmp402 - vel(1))*tmp958
-          + tmp407*penalty_damping*(-tmp404 - vel(2))*tmp959 + tmp409*tmp955;
-      const Scalar tmp961 = tmp371*tmp947 + tmp364*tmp948 + tmp391*tmp953 + tmp385*tmp954
-          + tmp410*tmp959 + tmp405*tmp960;
-      const Scalar tmp962 = -tmp948;
-      const Scalar tmp963 = tmp412*tmp947 + tmp364*tmp962;
-      const Scalar tmp964 = -tmp954;
-      const Scalar tmp965 = tmp455*tmp953 + tmp385*tmp964;
-      const Scalar tmp966 = -tmp960;
-      const Scalar tmp967 = tmp459*tmp959 + tmp405*tmp966;
-      const Scalar tmp968 = -tmp359/sqrt((tmp357*tmp357) + (tmp358*tmp358) + (tmp359*tmp359));
-      const Scalar tmp969 = -(Scalar(1)/(tmp360*tmp360))*tmp968;
-      const Scalar tmp970 = tmp357*tmp969;
-      const Scalar tmp971 = tmp358*tmp969;
-      const Scalar tmp972 = -tmp361 + tmp359*tmp969;
-      const Scalar tmp973 = tmp368*penalty_damping*(vel(3) - vel(0))*tmp970
-          + tmp368*penalty_damping*(vel(4) - vel(1))*tmp971
-          + tmp368*penalty_damping*(vel(5) - vel(2))*tmp972 + tmp370*tmp968;
-      const Scalar tmp974 = -tmp378/sqrt((tmp374*tmp374) + (tmp376*tmp376) + (tmp378*tmp378));
-      const Scalar tmp975 = -(Scalar(1)/(tmp379*tmp379))*tmp974;
-      const Scalar tmp976 = tmp374*tmp975;
-      const Scalar tmp977 = tmp376*tmp975;
-      const Scalar tmp978 = -tmp380 + tmp378*tmp975;
-      const Scalar tmp979 = tmp388*penalty_damping*(-tmp372 - vel(0))*tmp976
-          + tmp388*penalty_damping*(-tmp382 - vel(1))*tmp977
-          + tmp388*penalty_damping*(-tmp384 - vel(2))*tmp978 + tmp390*tmp974;
-      const Scalar tmp980 = -tmp398/sqrt((tmp394*tmp394) + (tmp396*tmp396) + (tmp398*tmp398));
-      const Scalar tmp981 = -(Scalar(1)/(tmp399*tmp399))*tmp980;
-      const Scalar tmp982 = tmp394*tmp981;
-      const Scalar tmp983 = tmp396*tmp981;
-      const Scalar tmp984 = -tmp400 + tmp398*tmp981;
-      const Scalar tmp985 = tmp407*penalty_damping*(-tmp392 - vel(0))*tmp982
-          + tmp407*penalty_damping*(-tmp402 - vel(1))*tmp983
-          + tmp407*penalty_damping*(-tmp404 - vel(2))*tmp984 + tmp409*tmp980;
-      const Scalar tmp986 = tmp371*tmp972 + tmp364*tmp973 + tmp391*tmp978 + tmp385*tmp979
-          + tmp410*tmp984 + tmp405*tmp985;
-      const Scalar tmp987 = -tmp973;
-      const Scalar tmp988 = tmp412*tmp972 + tmp364*tmp987;
-      const Scalar tmp989 = -tmp979;
-      const Scalar tmp990 = tmp455*tmp978 + tmp385*tmp989;
-      const Scalar tmp991 = -tmp985;
-      const Scalar tmp992 = tmp459*tmp984 + tmp405*tmp991;
-      const Scalar tmp993 = tmp357/sqrt((tmp357*tmp357) + (tmp358*tmp358) + (tmp359*tmp359));
-      const Scalar tmp994 = -(Scalar(1)/(tmp360*tmp360))*tmp993;
-      const Scalar tmp995 = tmp361 + tmp357*tmp994;
-      const Scalar tmp996 = tmp358*tmp994;
-      const Scalar tmp997 = tmp359*tmp994;
-      const Scalar tmp998 = tmp368*penalty_damping*(vel(3) - vel(0))*tmp995
-          + tmp368*penalty_damping*(vel(4) - vel(1))*tmp996
-          + tmp368*penalty_damping*(vel(5) - vel(2))*tmp997 + tmp370*tmp993;
-      const Scalar tmp999 = tmp371*tmp997 + tmp364*tmp998;
-      const Scalar tmp1000 = -tmp998;
-      const Scalar tmp1001 = -tmp413/sqrt((tmp413*tmp413) + (tmp414*tmp414) + (tmp415*tmp415));
-      const Scalar tmp1002 = -(Scalar(1)/(tmp416*tmp416))*tmp1001;
-      const Scalar tmp1003 = -tmp417 + tmp413*tmp1002;
-      const Scalar tmp1004 = tmp414*tmp1002;
-      const Scalar tmp1005 = tmp415*tmp1002;
-      const Scalar tmp1006 = tmp424*penalty_damping*(-tmp372 - vel(3))*tmp1003
-          + tmp424*penalty_damping*(-tmp382 - vel(4))*tmp1004
-          + tmp424*penalty_damping*(-tmp384 - vel(5))*tmp1005 + tmp426*tmp1001;
-      const Scalar tmp1007 = -tmp428/sqrt((tmp428*tmp428) + (tmp429*tmp429) + (tmp430*tmp430));
-      const Scalar tmp1008 = -(Scalar(1)/(tmp431*tmp431))*tmp1007;
-      const Scalar tmp1009 = -tmp432 + tmp428*tmp1008;
-      const Scalar tmp1010 = tmp429*tmp1008;
-      const Scalar tmp1011 = tmp430*tmp1008;
-      const Scalar tmp1012 = tmp437*penalty_damping*(-tmp392 - vel(3))*tmp1009
-          + tmp437*penalty_damping*(-tmp402 - vel(4))*tmp1010
-          + tmp437*penalty_damping*(-tmp404 - vel(5))*tmp1011 + tmp439*tmp1007;
-      const Scalar tmp1013 = tmp412*tmp997 + tmp364*tmp1000 + tmp427*tmp1005 + tmp420*tmp1006
-          + tmp440*tmp1011 + tmp435*tmp1012;
-      const Scalar tmp1014 = -tmp1006;
-      const Scalar tmp1015 = tmp456*tmp1005 + tmp420*tmp1014;
-      const Scalar tmp1016 = -tmp1012;
-      const Scalar tmp1017 = tmp460*tmp1011 + tmp435*tmp1016;
-      const Scalar tmp1018 = tmp358/sqrt((tmp357*tmp357) + (tmp358*tmp358) + (tmp359*tmp359));
-      const Scalar tmp1019 = -(Scalar(1)/(tmp360*tmp360))*tmp1018;
-      const Scalar tmp1020 = tmp357*tmp1019;
-      const Scalar tmp1021 = tmp361 + tmp358*tmp1019;
-      const Scalar tmp1022 = tmp359*tmp1019;
-      const Scalar tmp1023 = tmp368*penalty_damping*(vel(3) - vel(0))*tmp1020
-          + tmp368*penalty_damping*(vel(4) - vel(1))*tmp1021
-          + tmp368*penalty_damping*(vel(5) - vel(2))*tmp1022 + tmp370*tmp1018;
-      const Scalar tmp1024 = tmp371*tmp1022 + tmp364*tmp1023;
-      const Scalar tmp1025 = -tmp1023;
-      const Scalar tmp1026 = -tmp414/sqrt((tmp413*tmp413) + (tmp414*tmp414) + (tmp415*tmp415));
-      const Scalar tmp1027 = -(Scalar(1)/(tmp416*tmp416))*tmp1026;
-      const Scalar tmp1028 = tmp413*tmp1027;
-      const Scalar tmp1029 = -tmp417 + tmp414*tmp1027;
-      const Scalar tmp1030 = tmp415*tmp1027;
-      const Scalar tmp1031 = tmp424*penalty_damping*(-tmp372 - vel(3))*tmp1028
-          + tmp424*penalty_damping*(-tmp382 - vel(4))*tmp1029
-          + tmp424*penalty_damping*(-tmp384 - vel(5))*tmp1030 + tmp426*tmp1026;
-      const Scalar tmp1032 = -tmp429/sqrt((tmp428*tmp428) + (tmp429*tmp429) + (tmp430*tmp430));
-      const Scalar tmp1033 = -(Scalar(1)/(tmp431*tmp431))*tmp1032;
-      const Scalar tmp1034 = tmp428*tmp1033;
-      const Scalar tmp1035 = -tmp432 + tmp429*tmp1033;
-      const Scalar tmp1036 = tmp430*tmp1033;
-      const Scalar tmp1037 = tmp437*penalty_damping*(-tmp392 - vel(3))*tmp1034
-          + tmp437*penalty_damping*(-tmp402 - vel(4))*tmp1035
-          + tmp437*penalty_damping*(-tmp404 - vel(5))*tmp1036 + tmp439*tmp1032;
-      const Scalar tmp1038 = tmp412*tmp1022 + tmp364*tmp1025 + tmp427*tmp1030 + tmp420*tmp1031
-          + tmp440*tmp1036 + tmp435*tmp1037;
-      const Scalar tmp1039 = -tmp1031;
-      const Scalar tmp1040 = tmp456*tmp1030 + tmp420*tmp1039;
-      const Scalar tmp1041 = -tmp1037;
-      const Scalar tmp1042 = tmp460*tmp1036 + tmp435*tmp1041;
-      const Scalar tmp1043 = tmp359/sqrt((tmp357*tmp357) + (tmp358*tmp358) + (tmp359*tmp359));
-      const Scalar tmp1044 = -(Scalar(1)/(tmp360*tmp360))*tmp1043;
-      const Scalar tmp1045 = tmp357*tmp1044;
-      const Scalar tmp1046 = tmp358*tmp1044;
-      const Scalar tmp1047 = tmp361 + tmp359*tmp1044;
-      const Scalar tmp1048 = tmp368*penalty_damping*(vel(3) - vel(0))*tmp1045
-          + tmp368*penalty_damping*(vel(4) - vel(1))*tmp1046
-          + tmp368*penalty_damping*(vel(5) - vel(2))*tmp1047 + tmp370*tmp1043;
-      const Scalar tmp1049 = tmp371*tmp1047 + tmp364*tmp1048;
-      const Scalar tmp1050 = -tmp1048;
-      const Scalar tmp1051 = -tmp415/sqrt((tmp413*tmp413) + (tmp414*tmp414) + (tmp415*tmp415));
-      const Scalar tmp1052 = -(Scalar(1)/(tmp416*tmp416))*tmp1051;
-      const Scalar tmp1053 = tmp413*tmp1052;
-      const Scalar tmp1054 = tmp414*tmp1052;
-      const Scalar tmp1055 = -tmp417 + tmp415*tmp1052;
-      const Scalar tmp1056 = tmp424*penalty_damping*(-tmp372 - vel(3))*tmp1053
-          + tmp424*penalty_damping*(-tmp382 - vel(4))*tmp1054
-          + tmp424*penalty_damping*(-tmp384 - vel(5))*tmp1055 + tmp426*tmp1051;
-      const Scalar tmp1057 = -tmp430/sqrt((tmp428*tmp428) + (tmp429*tmp429) + (tmp430*tmp430));
-      const Scalar tmp1058 = -(Scalar(1)/(tmp431*tmp431))*tmp1057;
-      const Scalar tmp1059 = tmp428*tmp1058;
-      const Scalar tmp1060 = tmp429*tmp1058;
-      const Scalar tmp1061 = -tmp432 + tmp430*tmp1058;
-      const Scalar tmp1062 = tmp437*penalty_damping*(-tmp392 - vel(3))*tmp1059
-          + tmp437*penalty_damping*(-tmp402 - vel(4))*tmp1060
-          + tmp437*penalty_damping*(-tmp404 - vel(5))*tmp1061 + tmp439*tmp1057;
-      const Scalar tmp1063 = tmp412*tmp1047 + tmp364*tmp1050 + tmp427*tmp1055 + tmp420*tmp1056
-          + tmp440*tmp1061 + tmp435*tmp1062;
-      const Scalar tmp1064 = -tmp1056;
-      const Scalar tmp1065 = tmp456*tmp1055 + tmp420*tmp1064;
-      const Scalar tmp1066 = -tmp1062;
-      const Scalar tmp1067 = tmp460*tmp1061 + tmp435*tmp1066;
-      const Scalar tmp1068 = tmp374/sqrt((tmp374*tmp374) + (tmp376*tmp376) + (tmp378*tmp378));
-      const Scalar tmp1069 = -(Scalar(1)/(tmp379*tmp379))*tmp1068;
-      const Scalar tmp1070 = tmp380 + tmp374*tmp1069;
-      const Scalar tmp1071 = tmp376*tmp1069;
-      const Scalar tmp1072 = tmp378*tmp1069;
-      const Scalar tmp1073 = tmp388*penalty_damping*(-tmp372 - vel(0))*tmp1070
-          + tmp388*penalty_damping*(-tmp382 - vel(1))*tmp1071
-          + tmp388*penalty_damping*(-tmp384 - vel(2))*tmp1072 + tmp390*tmp1068;
-      const Scalar tmp1074 = tmp391*tmp1072 + tmp385*tmp1073;
-      const Scalar tmp1075 = tmp413/sqrt((tmp413*tmp413) + (tmp414*tmp414) + (tmp415*tmp415));
-      const Scalar tmp1076 = -(Scalar(1)/(tmp416*tmp416))*tmp1075;
-      const Scalar tmp1077 = tmp417 + tmp413*tmp1076;
-      const Scalar tmp1078 = tmp414*tmp1076;
-      const Scalar tmp1079 = tmp415*tmp1076;
-      const Scalar tmp1080 = tmp424*penalty_damping*(-tmp372 - vel(3))*tmp1077
-          + tmp424*penalty_damping*(-tmp382 - vel(4))*tmp1078
-          + tmp424*penalty_damping*(-tmp384 - vel(5))*tmp1079 + tmp426*tmp1075;
-      const Scalar tmp1081 = tmp427*tmp1079 + tmp420*tmp1080;
-      const Scalar tmp1082 = -tmp442/sqrt((tmp442*tmp442) + (tmp443*tmp443) + (tmp444*tmp444));
-      const Scalar tmp1083 = -(Scalar(1)/(tmp445*tmp445))*tmp1082;
-      const Scalar tmp1084 = -tmp446 + tmp442*tmp1083;
-      const Scalar tmp1085 = tmp443*tmp1083;
-      const Scalar tmp1086 = tmp444*tmp1083;
-      const Scalar tmp1087 = tmp451*penalty_damping*(-tmp392 - vel(6))*tmp1084
-          + tmp451*penalty_damping*(-tmp402 - vel(7))*tmp1085
-          + tmp451*penalty_damping*(-tmp404 - vel(8))*tmp1086 + tmp453*tmp1082;
-      const Scalar tmp1088 = -tmp1073;
-      const Scalar tmp1089 = -tmp1080;
-      const Scalar tmp1090 = tmp455*tmp1072 + tmp456*tmp1079 + tmp454*tmp1086 + tmp449*tmp1087
-          + tmp385*tmp1088 + tmp420*tmp1089;
-      const Scalar tmp1091 = -tmp1087;
-      const Scalar tmp1092 = tmp458*tmp1086 + tmp449*tmp1091;
-      const Scalar tmp1093 = tmp376/sqrt((tmp374*tmp374) + (tmp376*tmp376) + (tmp378*tmp378));
-      const Scalar tmp1094 = -(Scalar(1)/(tmp379*tmp379))*tmp1093;
-      const Scalar tmp1095 = tmp374*tmp1094;
-      const Scalar tmp1096 = tmp380 + tmp376*tmp1094;
-      const Scalar tmp1097 = tmp378*tmp1094;
-      const Scalar tmp1098 = tmp388*penalty_damping*(-tmp372 - vel(0))*tmp1095
-          + tmp388*penalty_damping*(-tmp382 - vel(1))*tmp1096
-          + tmp388*penalty_damping*(-tmp384 - vel(2))*tmp1097 + tmp390*tmp1093;
-      const Scalar tmp1099 = tmp391*tmp1097 + tmp385*tmp1098;
-      const Scalar tmp1100 = tmp414/sqrt((tmp413*tmp413) + (tmp414*tmp414) + (tmp415*tmp415));
-      const Scalar tmp1101 = -(Scalar(1)/(tmp416*tmp416))*tmp1100;
-      const Scalar tmp1102 = tmp413*tmp1101;
-      const Scalar tmp1103 = tmp417 + tmp414*tmp1101;
-      const Scalar tmp1104 = tmp415*tmp1101;
-      const Scalar tmp1105 = tmp424*penalty_damping*(-tmp372 - vel(3))*tmp1102
-          + tmp424*penalty_damping*(-tmp382 - vel(4))*tmp1103
-          + tmp424*penalty_damping*(-tmp384 - vel(5))*tmp1104 + tmp426*tmp1100;
-      const Scalar tmp1106 = tmp427*tmp1104 + tmp420*tmp1105;
-      const Scalar tmp1107 = -tmp443/sqrt((tmp442*tmp442) + (tmp443*tmp443) + (tmp444*tmp444));
-      const Scalar tmp1108 = -(Scalar(1)/(tmp445*tmp445))*tmp1107;
-      const Scalar tmp1109 = tmp442*tmp1108;
-      const Scalar tmp1110 = -tmp446 + tmp443*tmp1108;
-      const Scalar tmp1111 = tmp444*tmp1108;
-      const Scalar tmp1112 = tmp451*penalty_damping*(-tmp392 - vel(6))*tmp1109
-          + tmp451*penalty_damping*(-tmp402 - vel(7))*tmp1110
-          + tmp451*penalty_damping*(-tmp404 - vel(8))*tmp1111 + tmp453*tmp1107;
-      const Scalar tmp1113 = -tmp1098;
-      const Scalar tmp1114 = -tmp1105;
-      const Scalar tmp1115 = tmp455*tmp1097 + tmp456*tmp1104 + tmp454*tmp1111 + tmp449*tmp1112
-          + tmp385*tmp1113 + tmp420*tmp1114;
-      const Scalar tmp1116 = -tmp1112;
-      const Scalar tmp1117 = tmp458*tmp1111 + tmp449*tmp1116;
-      const Scalar tmp1118 = tmp378/sqrt((tmp374*tmp374) + (tmp376*tmp376) + (tmp378*tmp378));
-      const Scalar tmp1119 = -(Scalar(1)/(tmp379*tmp379))*tmp1118;
-      const Scalar tmp1120 = tmp374*tmp1119;
-      const Scalar tmp1121 = tmp376*tmp1119;
-      const Scalar tmp1122 = tmp380 + tmp378*tmp1119;
-      const Scalar tmp1123 = tmp388*penalty_damping*(-tmp372 - vel(0))*tmp1120
-          + tmp388*penalty_damping*(-tmp382 - vel(1))*tmp1121
-          + tmp388*penalty_damping*(-tmp384 - vel(2))*tmp1122 + tmp390*tmp1118;
-      const Scalar tmp1124 = tmp391*tmp1122 + tmp385*tmp1123;
-      const Scalar tmp1125 = tmp415/sqrt((tmp413*tmp413) + (tmp414*tmp414) + (tmp415*tmp415));
-      const Scalar tmp1126 = -(Scalar(1)/(tmp416*tmp416))*tmp1125;
-      const Scalar tmp1127 = tmp413*tmp1126;
-      const Scalar tmp1128 = tmp414*tmp1126;
-      const Scalar tmp1129 = tmp417 + tmp415*tmp1126;
-      const Scalar tmp1130 = tmp424*penalty_damping*(-tmp372 - vel(3))*tmp1127
-          + tmp424*penalty_damping*(-tmp382 - vel(4))*tmp1128
-          + tmp424*penalty_damping*(-tmp384 - vel(5))*tmp1129 + tmp426*tmp1125;
-      const Scalar tmp1131 = tmp427*tmp1129 + tmp420*tmp1130;
-      const Scalar tmp1132 = -tmp444/sqrt((tmp442*tmp442) + (tmp443*tmp443) + (tmp444*tmp444));
-      const Scalar tmp1133 = -(Scalar(1)/(tmp445*tmp445))*tmp1132;
-      const Scalar tmp1134 = tmp442*tmp1133;
-      const Scalar tmp1135 = tmp443*tmp1133;
-      const Scalar tmp1136 = -tmp446 + tmp444*tmp1133;
-      const Scalar tmp1137 = tmp451*penalty_damping*(-tmp392 - vel(6))*tmp1134
-          + tmp451*penalty_damping*(-tmp402 - vel(7))*tmp1135
-          + tmp451*penalty_damping*(-tmp404 - vel(8))*tmp1136 + tmp453*tmp1132;
-      const Scalar tmp1138 = -tmp1123;
-      const Scalar tmp1139 = -tmp1130;
-      const Scalar tmp1140 = tmp455*tmp1122 + tmp456*tmp1129 + tmp454*tmp1136 + tmp449*tmp1137
-          + tmp385*tmp1138 + tmp420*tmp1139;
-      const Scalar tmp1141 = -tmp1137;
-      const Scalar tmp1142 = tmp458*tmp1136 + tmp449*tmp1141;
-      const Scalar tmp1143 = tmp394/sqrt((tmp394*tmp394) + (tmp396*tmp396) + (tmp398*tmp398));
-      const Scalar tmp1144 = -(Scalar(1)/(tmp399*tmp399))*tmp1143;
-      const Scalar tmp1145 = tmp400 + tmp394*tmp1144;
-      const Scalar tmp1146 = tmp396*tmp1144;
-      const Scalar tmp1147 = tmp398*tmp1144;
-      const Scalar tmp1148 = tmp407*penalty_damping*(-tmp392 - vel(0))*tmp1145
-          + tmp407*penalty_damping*(-tmp402 - vel(1))*tmp1146
-          + tmp407*penalty_damping*(-tmp404 - vel(2))*tmp1147 + tmp409*tmp1143;
-      const Scalar tmp1149 = tmp410*tmp1147 + tmp405*tmp1148;
-      const Scalar tmp1150 = tmp428/sqrt((tmp428*tmp428) + (tmp429*tmp429) + (tmp430*tmp430));
-      const Scalar tmp1151 = -(Scalar(1)/(tmp431*tmp431))*tmp1150;
-      const Scalar tmp1152 = tmp432 + tmp428*tmp1151;
-      const Scalar tmp1153 = tmp429*tmp1151;
-      const Scalar tmp1154 = tmp430*tmp1151;
-      const Scalar tmp1155 = tmp437*penalty_damping*(-tmp392 - vel(3))*tmp1152
-          + tmp437*penalty_damping*(-tmp402 - vel(4))*tmp1153
-          + tmp437*penalty_damping*(-tmp404 - vel(5))*tmp1154 + tmp439*tmp1150;
-      const Scalar tmp1156 = tmp440*tmp1154 + tmp435*tmp1155;
-      const Scalar tmp1157 = tmp442/sqrt((tmp442*tmp442) + (tmp443*tmp443) + (tmp444*tmp444));
-      const Scalar tmp1158 = -(Scalar(1)/(tmp445*tmp445))*tmp1157;
-      const Scalar tmp1159 = tmp446 + tmp442*tmp1158;
-      const Scalar tmp1160 = tmp443*tmp1158;
-      const Scalar tmp1161 = tmp444*tmp1158;
-      const Scalar tmp1162 = tmp451*penalty_damping*(-tmp392 - vel(6))*tmp1159
-          + tmp451*penalty_damping*(-tmp402 - vel(7))*tmp1160
-          + tmp451*penalty_damping*(-tmp404 - vel(8))*tmp1161 + tmp453*tmp1157;
-      const Scalar tmp1163 = tmp454*tmp1161 + tmp449*tmp1162;
-      const Scalar tmp1164 = -tmp1162;
-      const Scalar tmp1165 = -tmp1148;
-      const Scalar tmp1166 = -tmp1155;
-      const Scalar tmp1167 = tmp459*tmp1147 + tmp460*tmp1154 + tmp458*tmp1161 + tmp449*tmp1164
-          + tmp405*tmp1165 + tmp435*tmp1166;
-      const Scalar tmp1168 = tmp396/sqrt((tmp394*tmp394) + (tmp396*tmp396) + (tmp398*tmp398));
-      const Scalar tmp1169 = -(Scalar(1)/(tmp399*tmp399))*tmp1168;
-      const Scalar tmp1170 = tmp394*tmp1169;
-      const Scalar tmp1171 = tmp400 + tmp396*tmp1169;
-      const Scalar tmp1172 = tmp398*tmp1169;
-      const Scalar tmp1173 = tmp407*penalty_damping*(-tmp392 - vel(0))*tmp1170
-          + tmp407*penalty_damping*(-tmp402 - vel(1))*tmp1171
-          + tmp407*penalty_damping*(-tmp404 - vel(2))*tmp1172 + tmp409*tmp1168;
-      const Scalar tmp1174 = tmp410*tmp1172 + tmp405*tmp1173;
-      const Scalar tmp1175 = tmp429/sqrt((tmp428*tmp428) + (tmp429*tmp429) + (tmp430*tmp430));
-      const Scalar tmp1176 = -(Scalar(1)/(tmp431*tmp431))*tmp1175;
-      const Scalar tmp1177 = tmp428*tmp1176;
-      const Scalar tmp1178 = tmp432 + tmp429*tmp1176;
-      const Scalar tmp1179 = tmp430*tmp1176;
-      const Scalar tmp1180 = tmp437*penalty_damping*(-tmp392 - vel(3))*tmp1177
-          + tmp437*penalty_damping*(-tmp402 - vel(4))*tmp1178
-          + tmp437*penalty_damping*(-tmp404 - vel(5))*tmp1179 + tmp439*tmp1175;
-      const Scalar tmp1181 = tmp440*tmp1179 + tmp435*tmp1180;
-      const Scalar tmp1182 = tmp443/sqrt((tmp442*tmp442) + (tmp443*tmp443) + (tmp444*tmp444));
-      const Scalar tmp1183 = -(Scalar(1)/(tmp445*tmp445))*tmp1182;
-      const Scalar tmp1184 = tmp442*tmp1183;
-      const Scalar tmp1185 = tmp446 + tmp443*tmp1183;
-      const Scalar tmp1186 = tmp444*tmp1183;
-      const Scalar tmp1187 = tmp451*penalty_damping*(-tmp392 - vel(6))*tmp1184
-          + tmp451*penalty_damping*(-tmp402 - vel(7))*tmp1185
-          + tmp451*penalty_damping*(-tmp404 - vel(8))*tmp1186 + tmp453*tmp1182;
-      const Scalar tmp1188 = tmp454*tmp1186 + tmp449*tmp1187;
-      const Scalar tmp1189 = -tmp1187;
-      const Scalar tmp1190 = -tmp1173;
-      const Scalar tmp1191 = -tmp1180;
-      const Scalar tmp1192 = tmp459*tmp1172 + tmp460*tmp1179 + tmp458*tmp1186 + tmp449*tmp1189
-          + tmp405*tmp1190 + tmp435*tmp1191;
-      const Scalar tmp1193 = tmp398/sqrt((tmp394*tmp394) + (tmp396*tmp396) + (tmp398*tmp398));
-      const Scalar tmp1194 = -(Scalar(1)/(tmp399*tmp399))*tmp1193;
-      const Scalar tmp1195 = tmp394*tmp1194;
-      const Scalar tmp1196 = tmp396*tmp1194;
-      const Scalar tmp1197 = tmp400 + tmp398*tmp1194;
-      const Scalar tmp1198 = tmp407*penalty_damping*(-tmp392 - vel(0))*tmp1195
-          + tmp407*penalty_damping*(-tmp402 - vel(1))*tmp1196
-          + tmp407*penalty_damping*(-tmp404 - vel(2))*tmp1197 + tmp409*tmp1193;
-      const Scalar tmp1199 = tmp410*tmp1197 + tmp405*tmp1198;
-      const Scalar tmp1200 = tmp430/sqrt((tmp428*tmp428) + (tmp429*tmp429) + (tmp430*tmp430));
-      const Scalar tmp1201 = -(Scalar(1)/(tmp431*tmp431))*tmp1200;
-      const Scalar tmp1202 = tmp428*tmp1201;
-      const Scalar tmp1203 = tmp429*tmp1201;
-      const Scalar tmp1204 = tmp432 + tmp430*tmp1201;
-      const Scalar tmp1205 = tmp437*penalty_damping*(-tmp392 - vel(3))*tmp1202
-          + tmp437*penalty_damping*(-tmp402 - vel(4))*tmp1203
-          + tmp437*penalty_damping*(-tmp404 - vel(5))*tmp1204 + tmp439*tmp1200;
-      const Scalar tmp1206 = tmp440*tmp1204 + tmp435*tmp1205;
-      const Scalar tmp1207 = tmp444/sqrt((tmp442*tmp442) + (tmp443*tmp443) + (tmp444*tmp444));
-      const Scalar tmp1208 = -(Scalar(1)/(tmp445*tmp445))*tmp1207;
-      const Scalar tmp1209 = tmp442*tmp1208;
-      const Scalar tmp1210 = tmp443*tmp1208;
-      const Scalar tmp1211 = tmp446 + tmp444*tmp1208;
-      const Scalar tmp1212 = tmp451*penalty_damping*(-tmp392 - vel(6))*tmp1209
-          + tmp451*penalty_damping*(-tmp402 - vel(7))*tmp1210
-          + tmp451*penalty_damping*(-tmp404 - vel(8))*tmp1211 + tmp453*tmp1207;
-      const Scalar tmp1213 = tmp454*tmp1211 + tmp449*tmp1212;
-      const Scalar tmp1214 = -tmp1212;
-      const Scalar tmp1215 = -tmp1198;
-      const Scalar tmp1216 = -tmp1205;
-      const Scalar tmp1217 = tmp459*tmp1197 + tmp460*tmp1204 + tmp458*tmp1211 + tmp449*tmp1214
-          + tmp405*tmp1215 + tmp435*tmp1216;
+      const Scalar tmp479 = (Scalar(1)/tmp478);
+      const Scalar tmp480 = tmp473 - tmp478;
+      const Scalar tmp481 = tmp479*kappa;
+      const Scalar tmp482 = tmp480*tmp481
+          + tmp479*penalty_damping*(tmp475*(-tmp411 - vel(6)) + tmp476*(-tmp412 - vel(7))
+              + tmp477*(-tmp414 - vel(8)));
+      const Scalar tmp483 = -tmp482;
+      const Scalar tmp954 = -tmp353/sqrt((tmp353*tmp353) + (tmp354*tmp354) + (tmp355*tmp355));
+      const Scalar tmp955 = -(Scalar(1)/(tmp356*tmp356))*tmp954;
+      const Scalar tmp956 = -tmp357 + tmp353*tmp955;
+      const Scalar tmp957 = tmp354*tmp955;
+      const Scalar tmp958 = tmp355*tmp955;
+      const Scalar tmp959 = tmp364*penalty_damping*(vel(3) - vel(0))*tmp956
+          + tmp364*penalty_damping*(vel(4) - vel(1))*tmp957
+          + tmp364*penalty_damping*(vel(5) - vel(2))*tmp958 + tmp366*tmp954;
+      const Scalar tmp960 = -tmp959;
+      const Scalar tmp961 = tmp368*tmp956 + tmp358*tmp960;
+      const Scalar tmp962 = tmp368*tmp957 + tmp359*tmp960;
+      const Scalar tmp963 = tmp368*tmp958 + tmp360*tmp960;
+      const Scalar tmp964 = tmp367*tmp956 + tmp358*tmp959;
+      const Scalar tmp965 = tmp367*tmp957 + tmp359*tmp959;
+      const Scalar tmp966 = tmp367*tmp958 + tmp360*tmp959;
+      const Scalar tmp967 = -tmp376/sqrt((tmp376*tmp376) + (tmp378*tmp378) + (tmp380*tmp380));
+      const Scalar tmp968 = -(Scalar(1)/(tmp381*tmp381))*tmp967;
+      const Scalar tmp969 = -tmp382 + tmp376*tmp968;
+      const Scalar tmp970 = tmp378*tmp968;
+      const Scalar tmp971 = tmp380*tmp968;
+      const Scalar tmp972 = tmp391*penalty_damping*(-tmp384 - vel(0))*tmp969
+          + tmp391*penalty_damping*(-tmp385 - vel(1))*tmp970
+          + tmp391*penalty_damping*(-tmp387 - vel(2))*tmp971 + tmp393*tmp967;
+      const Scalar tmp973 = -tmp972;
+      const Scalar tmp974 = tmp395*tmp969 + tmp383*tmp973;
+      const Scalar tmp975 = tmp395*tmp970 + tmp386*tmp973;
+      const Scalar tmp976 = tmp395*tmp971 + tmp388*tmp973;
+      const Scalar tmp977 = tmp394*tmp969 + tmp383*tmp972;
+      const Scalar tmp978 = tmp394*tmp970 + tmp386*tmp972;
+      const Scalar tmp979 = tmp394*tmp971 + tmp388*tmp972;
+      const Scalar tmp980 = -tmp403/sqrt((tmp403*tmp403) + (tmp405*tmp405) + (tmp407*tmp407));
+      const Scalar tmp981 = -(Scalar(1)/(tmp408*tmp408))*tmp980;
+      const Scalar tmp982 = -tmp409 + tmp403*tmp981;
+      const Scalar tmp983 = tmp405*tmp981;
+      const Scalar tmp984 = tmp407*tmp981;
+      const Scalar tmp985 = tmp417*penalty_damping*(-tmp411 - vel(0))*tmp982
+          + tmp417*penalty_damping*(-tmp412 - vel(1))*tmp983
+          + tmp417*penalty_damping*(-tmp414 - vel(2))*tmp984 + tmp419*tmp980;
+      const Scalar tmp986 = -tmp985;
+      const Scalar tmp987 = tmp421*tmp982 + tmp410*tmp986;
+      const Scalar tmp988 = tmp421*tmp983 + tmp413*tmp986;
+      const Scalar tmp989 = tmp421*tmp984 + tmp415*tmp986;
+      const Scalar tmp990 = tmp420*tmp982 + tmp410*tmp985;
+      const Scalar tmp991 = tmp420*tmp983 + tmp413*tmp985;
+      const Scalar tmp992 = tmp420*tmp984 + tmp415*tmp985;
+      const Scalar tmp993 = tmp979 + tmp992 + tmp966;
+      const Scalar tmp994 = -tmp354/sqrt((tmp353*tmp353) + (tmp354*tmp354) + (tmp355*tmp355));
+      const Scalar tmp995 = -(Scalar(1)/(tmp356*tmp356))*tmp994;
+      const Scalar tmp996 = tmp353*tmp995;
+      const Scalar tmp997 = -tmp357 + tmp354*tmp995;
+      const Scalar tmp998 = tmp355*tmp995;
+      const Scalar tmp999 = tmp364*penalty_damping*(vel(3) - vel(0))*tmp996
+          + tmp364*penalty_damping*(vel(4) - vel(1))*tmp997
+          + tmp364*penalty_damping*(vel(5) - vel(2))*tmp998 + tmp366*tmp994;
+      const Scalar tmp1000 = -tmp999;
+      const Scalar tmp1001 = tmp368*tmp996 + tmp358*tmp1000;
+      const Scalar tmp1002 = tmp368*tmp997 + tmp359*tmp1000;
+      const Scalar tmp1003 = tmp368*tmp998 + tmp360*tmp1000;
+      const Scalar tmp1004 = tmp367*tmp996 + tmp358*tmp999;
+      const Scalar tmp1005 = tmp367*tmp997 + tmp359*tmp999;
+      const Scalar tmp1006 = tmp367*tmp998 + tmp360*tmp999;
+      const Scalar tmp1007 = -tmp378/sqrt((tmp376*tmp376) + (tmp378*tmp378) + (tmp380*tmp380));
+      const Scalar tmp1008 = -(Scalar(1)/(tmp381*tmp381))*tmp1007;
+      const Scalar tmp1009 = tmp376*tmp1008;
+      const Scalar tmp1010 = -tmp382 + tmp378*tmp1008;
+      const Scalar tmp1011 = tmp380*tmp1008;
+      const Scalar tmp1012 = tmp391*penalty_damping*(-tmp384 - vel(0))*tmp1009
+          + tmp391*penalty_damping*(-tmp385 - vel(1))*tmp1010
+          + tmp391*penalty_damping*(-tmp387 - vel(2))*tmp1011 + tmp393*tmp1007;
+      const Scalar tmp1013 = -tmp1012;
+      const Scalar tmp1014 = tmp395*tmp1009 + tmp383*tmp1013;
+      const Scalar tmp1015 = tmp395*tmp1010 + tmp386*tmp1013;
+      const Scalar tmp1016 = tmp395*tmp1011 + tmp388*tmp1013;
+      const Scalar tmp1017 = tmp394*tmp1009 + tmp383*tmp1012;
+      const Scalar tmp1018 = tmp394*tmp1010 + tmp386*tmp1012;
+      const Scalar tmp1019 = tmp394*tmp1011 + tmp388*tmp1012;
+      const Scalar tmp1020 = -tmp405/sqrt((tmp403*tmp403) + (tmp405*tmp405) + (tmp407*tmp407));
+      const Scalar tmp1021 = -(Scalar(1)/(tmp408*tmp408))*tmp1020;
+      const Scalar tmp1022 = tmp403*tmp1021;
+      const Scalar tmp1023 = -tmp409 + tmp405*tmp1021;
+      const Scalar tmp1024 = tmp407*tmp1021;
+      const Scalar tmp1025 = tmp417*penalty_damping*(-tmp411 - vel(0))*tmp1022
+          + tmp417*penalty_damping*(-tmp412 - vel(1))*tmp1023
+          + tmp417*penalty_damping*(-tmp414 - vel(2))*tmp1024 + tmp419*tmp1020;
+      const Scalar tmp1026 = -tmp1025;
+      const Scalar tmp1027 = tmp421*tmp1022 + tmp410*tmp1026;
+      const Scalar tmp1028 = tmp421*tmp1023 + tmp413*tmp1026;
+      const Scalar tmp1029 = tmp421*tmp1024 + tmp415*tmp1026;
+      const Scalar tmp1030 = tmp420*tmp1022 + tmp410*tmp1025;
+      const Scalar tmp1031 = tmp420*tmp1023 + tmp413*tmp1025;
+      const Scalar tmp1032 = tmp420*tmp1024 + tmp415*tmp1025;
+      const Scalar tmp1033 = tmp1019 + tmp1032 + tmp1006;
+      const Scalar tmp1034 = -tmp355/sqrt((tmp353*tmp353) + (tmp354*tmp354) + (tmp355*tmp355));
+      const Scalar tmp1035 = -(Scalar(1)/(tmp356*tmp356))*tmp1034;
+      const Scalar tmp1036 = tmp353*tmp1035;
+      const Scalar tmp1037 = tmp354*tmp1035;
+      const Scalar tmp1038 = -tmp357 + tmp355*tmp1035;
+      const Scalar tmp1039 = tmp364*penalty_damping*(vel(3) - vel(0))*tmp1036
+          + tmp364*penalty_damping*(vel(4) - vel(1))*tmp1037
+          + tmp364*penalty_damping*(vel(5) - vel(2))*tmp1038 + tmp366*tmp1034;
+      const Scalar tmp1040 = -tmp1039;
+      const Scalar tmp1041 = tmp368*tmp1036 + tmp358*tmp1040;
+      const Scalar tmp1042 = tmp368*tmp1037 + tmp359*tmp1040;
+      const Scalar tmp1043 = tmp368*tmp1038 + tmp360*tmp1040;
+      const Scalar tmp1044 = tmp367*tmp1036 + tmp358*tmp1039;
+      const Scalar tmp1045 = tmp367*tmp1037 + tmp359*tmp1039;
+      const Scalar tmp1046 = tmp367*tmp1038 + tmp360*tmp1039;
+      const Scalar tmp1047 = -tmp380/sqrt((tmp376*tmp376) + (tmp378*tmp378) + (tmp380*tmp380));
+      const Scalar tmp1048 = -(Scalar(1)/(tmp381*tmp381))*tmp1047;
+      const Scalar tmp1049 = tmp376*tmp1048;
+      const Scalar tmp1050 = tmp378*tmp1048;
+      const Scalar tmp1051 = -tmp382 + tmp380*tmp1048;
+      const Scalar tmp1052 = tmp391*penalty_damping*(-tmp384 - vel(0))*tmp1049
+          + tmp391*penalty_damping*(-tmp385 - vel(1))*tmp1050
+          + tmp391*penalty_damping*(-tmp387 - vel(2))*tmp1051 + tmp393*tmp1047;
+      const Scalar tmp1053 = -tmp1052;
+      const Scalar tmp1054 = tmp395*tmp1049 + tmp383*tmp1053;
+      const Scalar tmp1055 = tmp395*tmp1050 + tmp386*tmp1053;
+      const Scalar tmp1056 = tmp395*tmp1051 + tmp388*tmp1053;
+      const Scalar tmp1057 = tmp394*tmp1049 + tmp383*tmp1052;
+      const Scalar tmp1058 = tmp394*tmp1050 + tmp386*tmp1052;
+      const Scalar tmp1059 = tmp394*tmp1051 + tmp388*tmp1052;
+      const Scalar tmp1060 = -tmp407/sqrt((tmp403*tmp403) + (tmp405*tmp405) + (tmp407*tmp407));
+      const Scalar tmp1061 = -(Scalar(1)/(tmp408*tmp408))*tmp1060;
+      const Scalar tmp1062 = tmp403*tmp1061;
+      const Scalar tmp1063 = tmp405*tmp1061;
+      const Scalar tmp1064 = -tmp409 + tmp407*tmp1061;
+      const Scalar tmp1065 = tmp417*penalty_damping*(-tmp411 - vel(0))*tmp1062
+          + tmp417*penalty_damping*(-tmp412 - vel(1))*tmp1063
+          + tmp417*penalty_damping*(-tmp414 - vel(2))*tmp1064 + tmp419*tmp1060;
+      const Scalar tmp1066 = -tmp1065;
+      const Scalar tmp1067 = tmp421*tmp1062 + tmp410*tmp1066;
+      const Scalar tmp1068 = tmp421*tmp1063 + tmp413*tmp1066;
+      const Scalar tmp1069 = tmp421*tmp1064 + tmp415*tmp1066;
+      const Scalar tmp1070 = tmp420*tmp1062 + tmp410*tmp1065;
+      const Scalar tmp1071 = tmp420*tmp1063 + tmp413*tmp1065;
+      const Scalar tmp1072 = tmp420*tmp1064 + tmp415*tmp1065;
+      const Scalar tmp1073 = tmp1059 + tmp1072 + tmp1046;
+      const Scalar tmp1074 = tmp353/sqrt((tmp353*tmp353) + (tmp354*tmp354) + (tmp355*tmp355));
+      const Scalar tmp1075 = -(Scalar(1)/(tmp356*tmp356))*tmp1074;
+      const Scalar tmp1076 = tmp357 + tmp353*tmp1075;
+      const Scalar tmp1077 = tmp354*tmp1075;
+      const Scalar tmp1078 = tmp355*tmp1075;
+      const Scalar tmp1079 = tmp364*penalty_damping*(vel(3) - vel(0))*tmp1076
+          + tmp364*penalty_damping*(vel(4) - vel(1))*tmp1077
+          + tmp364*penalty_damping*(vel(5) - vel(2))*tmp1078 + tmp366*tmp1074;
+      const Scalar tmp1080 = -tmp1079;
+      const Scalar tmp1081 = tmp368*tmp1076 + tmp358*tmp1080;
+      const Scalar tmp1082 = tmp368*tmp1077 + tmp359*tmp1080;
+      const Scalar tmp1083 = tmp368*tmp1078 + tmp360*tmp1080;
+      const Scalar tmp1084 = tmp367*tmp1076 + tmp358*tmp1079;
+      const Scalar tmp1085 = tmp367*tmp1077 + tmp359*tmp1079;
+      const Scalar tmp1086 = tmp367*tmp1078 + tmp360*tmp1079;
+      const Scalar tmp1087 = -tmp428/sqrt((tmp428*tmp428) + (tmp429*tmp429) + (tmp430*tmp430));
+      const Scalar tmp1088 = -(Scalar(1)/(tmp431*tmp431))*tmp1087;
+      const Scalar tmp1089 = -tmp432 + tmp428*tmp1088;
+      const Scalar tmp1090 = tmp429*tmp1088;
+      const Scalar tmp1091 = tmp430*tmp1088;
+      const Scalar tmp1092 = tmp439*penalty_damping*(-tmp384 - vel(3))*tmp1089
+          + tmp439*penalty_damping*(-tmp385 - vel(4))*tmp1090
+          + tmp439*penalty_damping*(-tmp387 - vel(5))*tmp1091 + tmp441*tmp1087;
+      const Scalar tmp1093 = -tmp1092;
+      const Scalar tmp1094 = tmp443*tmp1089 + tmp433*tmp1093;
+      const Scalar tmp1095 = tmp443*tmp1090 + tmp434*tmp1093;
+      const Scalar tmp1096 = tmp443*tmp1091 + tmp435*tmp1093;
+      const Scalar tmp1097 = tmp442*tmp1089 + tmp433*tmp1092;
+      const Scalar tmp1098 = tmp442*tmp1090 + tmp434*tmp1092;
+      const Scalar tmp1099 = tmp442*tmp1091 + tmp435*tmp1092;
+      const Scalar tmp1100 = -tmp450/sqrt((tmp450*tmp450) + (tmp451*tmp451) + (tmp452*tmp452));
+      const Scalar tmp1101 = -(Scalar(1)/(tmp453*tmp453))*tmp1100;
+      const Scalar tmp1102 = -tmp454 + tmp450*tmp1101;
+      const Scalar tmp1103 = tmp451*tmp1101;
+      const Scalar tmp1104 = tmp452*tmp1101;
+      const Scalar tmp1105 = tmp459*penalty_damping*(-tmp411 - vel(3))*tmp1102
+          + tmp459*penalty_damping*(-tmp412 - vel(4))*tmp1103
+          + tmp459*penalty_damping*(-tmp414 - vel(5))*tmp1104 + tmp461*tmp1100;
+      const Scalar tmp1106 = -tmp1105;
+      const Scalar tmp1107 = tmp463*tmp1102 + tmp455*tmp1106;
+      const Scalar tmp1108 = tmp463*tmp1103 + tmp456*tmp1106;
+      const Scalar tmp1109 = tmp463*tmp1104 + tmp457*tmp1106;
+      const Scalar tmp1110 = tmp462*tmp1102 + tmp455*tmp1105;
+      const Scalar tmp1111 = tmp462*tmp1103 + tmp456*tmp1105;
+      const Scalar tmp1112 = tmp462*tmp1104 + tmp457*tmp1105;
+      const Scalar tmp1113 = tmp1083 + tmp1099 + tmp1112;
+      const Scalar tmp1114 = tmp354/sqrt((tmp353*tmp353) + (tmp354*tmp354) + (tmp355*tmp355));
+      const Scalar tmp1115 = -(Scalar(1)/(tmp356*tmp356))*tmp1114;
+      const Scalar tmp1116 = tmp353*tmp1115;
+      const Scalar tmp1117 = tmp357 + tmp354*tmp1115;
+      const Scalar tmp1118 = tmp355*tmp1115;
+      const Scalar tmp1119 = tmp364*penalty_damping*(vel(3) - vel(0))*tmp1116
+          + tmp364*penalty_damping*(vel(4) - vel(1))*tmp1117
+          + tmp364*penalty_damping*(vel(5) - vel(2))*tmp1118 + tmp366*tmp1114;
+      const Scalar tmp1120 = -tmp1119;
+      const Scalar tmp1121 = tmp368*tmp1116 + tmp358*tmp1120;
+      const Scalar tmp1122 = tmp368*tmp1117 + tmp359*tmp1120;
+      const Scalar tmp1123 = tmp368*tmp1118 + tmp360*tmp1120;
+      const Scalar tmp1124 = tmp367*tmp1116 + tmp358*tmp1119;
+      const Scalar tmp1125 = tmp367*tmp1117 + tmp359*tmp1119;
+      const Scalar tmp1126 = tmp367*tmp1118 + tmp360*tmp1119;
+      const Scalar tmp1127 = -tmp429/sqrt((tmp428*tmp428) + (tmp429*tmp429) + (tmp430*tmp430));
+      const Scalar tmp1128 = -(Scalar(1)/(tmp431*tmp431))*tmp1127;
+      const Scalar tmp1129 = tmp428*tmp1128;
+      const Scalar tmp1130 = -tmp432 + tmp429*tmp1128;
+      const Scalar tmp1131 = tmp430*tmp1128;
+      const Scalar tmp1132 = tmp439*penalty_damping*(-tmp384 - vel(3))*tmp1129
+          + tmp439*penalty_damping*(-tmp385 - vel(4))*tmp1130
+          + tmp439*penalty_damping*(-tmp387 - vel(5))*tmp1131 + tmp441*tmp1127;
+      const Scalar tmp1133 = -tmp1132;
+      const Scalar tmp1134 = tmp443*tmp1129 + tmp433*tmp1133;
+      const Scalar tmp1135 = tmp443*tmp1130 + tmp434*tmp1133;
+      const Scalar tmp1136 = tmp443*tmp1131 + tmp435*tmp1133;
+      const Scalar tmp1137 = tmp442*tmp1129 + tmp433*tmp1132;
+      const Scalar tmp1138 = tmp442*tmp1130 + tmp434*tmp1132;
+      const Scalar tmp1139 = tmp442*tmp1131 + tmp435*tmp1132;
+      const Scalar tmp1140 = -tmp451/sqrt((tmp450*tmp450) + (tmp451*tmp451) + (tmp452*tmp452));
+      const Scalar tmp1141 = -(Scalar(1)/(tmp453*tmp453))*tmp1140;
+      const Scalar tmp1142 = tmp450*tmp1141;
+      const Scalar tmp1143 = -tmp454 + tmp451*tmp1141;
+      const Scalar tmp1144 = tmp452*tmp1141;
+      const Scalar tmp1145 = tmp459*penalty_damping*(-tmp411 - vel(3))*tmp1142
+          + tmp459*penalty_damping*(-tmp412 - vel(4))*tmp1143
+          + tmp459*penalty_damping*(-tmp414 - vel(5))*tmp1144 + tmp461*tmp1140;
+      const Scalar tmp1146 = -tmp1145;
+      const Scalar tmp1147 = tmp463*tmp1142 + tmp455*tmp1146;
+      const Scalar tmp1148 = tmp463*tmp1143 + tmp456*tmp1146;
+      const Scalar tmp1149 = tmp463*tmp1144 + tmp457*tmp1146;
+      const Scalar tmp1150 = tmp462*tmp1142 + tmp455*tmp1145;
+      const Scalar tmp1151 = tmp462*tmp1143 + tmp456*tmp1145;
+      const Scalar tmp1152 = tmp462*tmp1144 + tmp457*tmp1145;
+      const Scalar tmp1153 = tmp1123 + tmp1139 + tmp1152;
+      const Scalar tmp1154 = tmp355/sqrt((tmp353*tmp353) + (tmp354*tmp354) + (tmp355*tmp355));
+      const Scalar tmp1155 = -(Scalar(1)/(tmp356*tmp356))*tmp1154;
+      const Scalar tmp1156 = tmp353*tmp1155;
+      const Scalar tmp1157 = tmp354*tmp1155;
+      const Scalar tmp1158 = tmp357 + tmp355*tmp1155;
+      const Scalar tmp1159 = tmp364*penalty_damping*(vel(3) - vel(0))*tmp1156
+          + tmp364*penalty_damping*(vel(4) - vel(1))*tmp1157
+          + tmp364*penalty_damping*(vel(5) - vel(2))*tmp1158 + tmp366*tmp1154;
+      const Scalar tmp1160 = -tmp1159;
+      const Scalar tmp1161 = tmp368*tmp1156 + tmp358*tmp1160;
+      const Scalar tmp1162 = tmp368*tmp1157 + tmp359*tmp1160;
+      const Scalar tmp1163 = tmp368*tmp1158 + tmp360*tmp1160;
+      const Scalar tmp1164 = tmp367*tmp1156 + tmp358*tmp1159;
+      const Scalar tmp1165 = tmp367*tmp1157 + tmp359*tmp1159;
+      const Scalar tmp1166 = tmp367*tmp1158 + tmp360*tmp1159;
+      const Scalar tmp1167 = -tmp430/sqrt((tmp428*tmp428) + (tmp429*tmp429) + (tmp430*tmp430));
+      const Scalar tmp1168 = -(Scalar(1)/(tmp431*tmp431))*tmp1167;
+      const Scalar tmp1169 = tmp428*tmp1168;
+      const Scalar tmp1170 = tmp429*tmp1168;
+      const Scalar tmp1171 = -tmp432 + tmp430*tmp1168;
+      const Scalar tmp1172 = tmp439*penalty_damping*(-tmp384 - vel(3))*tmp1169
+          + tmp439*penalty_damping*(-tmp385 - vel(4))*tmp1170
+          + tmp439*penalty_damping*(-tmp387 - vel(5))*tmp1171 + tmp441*tmp1167;
+      const Scalar tmp1173 = -tmp1172;
+      const Scalar tmp1174 = tmp443*tmp1169 + tmp433*tmp1173;
+      const Scalar tmp1175 = tmp443*tmp1170 + tmp434*tmp1173;
+      const Scalar tmp1176 = tmp443*tmp1171 + tmp435*tmp1173;
+      const Scalar tmp1177 = tmp442*tmp1169 + tmp433*tmp1172;
+      const Scalar tmp1178 = tmp442*tmp1170 + tmp434*tmp1172;
+      const Scalar tmp1179 = tmp442*tmp1171 + tmp435*tmp1172;
+      const Scalar tmp1180 = -tmp452/sqrt((tmp450*tmp450) + (tmp451*tmp451) + (tmp452*tmp452));
+      const Scalar tmp1181 = -(Scalar(1)/(tmp453*tmp453))*tmp1180;
+      const Scalar tmp1182 = tmp450*tmp1181;
+      const Scalar tmp1183 = tmp451*tmp1181;
+      const Scalar tmp1184 = -tmp454 + tmp452*tmp1181;
+      const Scalar tmp1185 = tmp459*penalty_damping*(-tmp411 - vel(3))*tmp1182
+          + tmp459*penalty_damping*(-tmp412 - vel(4))*tmp1183
+          + tmp459*penalty_damping*(-tmp414 - vel(5))*tmp1184 + tmp461*tmp1180;
+      const Scalar tmp1186 = -tmp1185;
+      const Scalar tmp1187 = tmp463*tmp1182 + tmp455*tmp1186;
+      const Scalar tmp1188 = tmp463*tmp1183 + tmp456*tmp1186;
+      const Scalar tmp1189 = tmp463*tmp1184 + tmp457*tmp1186;
+      const Scalar tmp1190 = tmp462*tmp1182 + tmp455*tmp1185;
+      const Scalar tmp1191 = tmp462*tmp1183 + tmp456*tmp1185;
+      const Scalar tmp1192 = tmp462*tmp1184 + tmp457*tmp1185;
+      const Scalar tmp1193 = tmp1163 + tmp1179 + tmp1192;
+      const Scalar tmp1194 = tmp376/sqrt((tmp376*tmp376) + (tmp378*tmp378) + (tmp380*tmp380));
+      const Scalar tmp1195 = -(Scalar(1)/(tmp381*tmp381))*tmp1194;
+      const Scalar tmp1196 = tmp382 + tmp376*tmp1195;
+      const Scalar tmp1197 = tmp378*tmp1195;
+      const Scalar tmp1198 = tmp380*tmp1195;
+      const Scalar tmp1199 = tmp391*penalty_damping*(-tmp384 - vel(0))*tmp1196
+          + tmp391*penalty_damping*(-tmp385 - vel(1))*tmp1197
+          + tmp391*penalty_damping*(-tmp387 - vel(2))*tmp1198 + tmp393*tmp1194;
+      const Scalar tmp1200 = -tmp1199;
+      const Scalar tmp1201 = tmp395*tmp1196 + tmp383*tmp1200;
+      const Scalar tmp1202 = tmp395*tmp1197 + tmp386*tmp1200;
+      const Scalar tmp1203 = tmp395*tmp1198 + tmp388*tmp1200;
+      const Scalar tmp1204 = tmp394*tmp1196 + tmp383*tmp1199;
+      const Scalar tmp1205 = tmp394*tmp1197 + tmp386*tmp1199;
+      const Scalar tmp1206 = tmp394*tmp1198 + tmp388*tmp1199;
+      const Scalar tmp1207 = tmp428/sqrt((tmp428*tmp428) + (tmp429*tmp429) + (tmp430*tmp430));
+      const Scalar tmp1208 = -(Scalar(1)/(tmp431*tmp431))*tmp1207;
+      const Scalar tmp1209 = tmp432 + tmp428*tmp1208;
+      const Scalar tmp1210 = tmp429*tmp1208;
+      const Scalar tmp1211 = tmp430*tmp1208;
+      const Scalar tmp1212 = tmp439*penalty_damping*(-tmp384 - vel(3))*tmp1209
+          + tmp439*penalty_damping*(-tmp385 - vel(4))*tmp1210
+          + tmp439*penalty_damping*(-tmp387 - vel(5))*tmp1211 + tmp441*tmp1207;
+      const Scalar tmp1213 = -tmp1212;
+      const Scalar tmp1214 = tmp443*tmp1209 + tmp433*tmp1213;
+      const Scalar tmp1215 = tmp443*tmp1210 + tmp434*tmp1213;
+      const Scalar tmp1216 = tmp443*tmp1211 + tmp435*tmp1213;
+      const Scalar tmp1217 = tmp442*tmp1209 + tmp433*tmp1212;
+      const Scalar tmp1218 = tmp442*tmp1210 + tmp434*tmp1212;
+      const Scalar tmp1219 = tmp442*tmp1211 + tmp435*tmp1212;
+      const Scalar tmp1220 = -tmp470/sqrt((tmp470*tmp470) + (tmp471*tmp471) + (tmp472*tmp472));
+      const Scalar tmp1221 = -(Scalar(1)/(tmp473*tmp473))*tmp1220;
+      const Scalar tmp1222 = -tmp474 + tmp470*tmp1221;
+      const Scalar tmp1223 = tmp471*tmp1221;
+      const Scalar tmp1224 = tmp472*tmp1221;
+      const Scalar tmp1225 = tmp479*penalty_damping*(-tmp411 - vel(6))*tmp1222
+          + tmp479*penalty_damping*(-tmp412 - vel(7))*tmp1223
+          + tmp479*penalty_damping*(-tmp414 - vel(8))*tmp1224 + tmp481*tmp1220;
+      const Scalar tmp1226 = -tmp1225;
+      const Scalar tmp1227 = tmp483*tmp1222 + tmp475*tmp1226;
+      const Scalar tmp1228 = tmp483*tmp1223 + tmp476*tmp1226;
+      const Scalar tmp1229 = tmp483*tmp1224 + tmp477*tmp1226;
+      const Scalar tmp1230 = tmp482*tmp1222 + tmp475*tmp1225;
+      const Scalar tmp1231 = tmp482*tmp1223 + tmp476*tmp1225;
+      const Scalar tmp1232 = tmp482*tmp1224 + tmp477*tmp1225;
+      const Scalar tmp1233 = tmp1216 + tmp1232 + tmp1203;
+      const Scalar tmp1234 = tmp378/sqrt((tmp376*tmp376) + (tmp378*tmp378) + (tmp380*tmp380));
+      const Scalar tmp1235 = -(Scalar(1)/(tmp381*tmp381))*tmp1234;
+      const Scalar tmp1236 = tmp376*tmp1235;
+      const Scalar tmp1237 = tmp382 + tmp378*tmp1235;
+      const Scalar tmp1238 = tmp380*tmp1235;
+      const Scalar tmp1239 = tmp391*penalty_damping*(-tmp384 - vel(0))*tmp1236
+          + tmp391*penalty_damping*(-tmp385 - vel(1))*tmp1237
+          + tmp391*penalty_damping*(-tmp387 - vel(2))*tmp1238 + tmp393*tmp1234;
+      const Scalar tmp1240 = -tmp1239;
+      const Scalar tmp1241 = tmp395*tmp1236 + tmp383*tmp1240;
+      const Scalar tmp1242 = tmp395*tmp1237 + tmp386*tmp1240;
+      const Scalar tmp1243 = tmp395*tmp1238 + tmp388*tmp1240;
+      const Scalar tmp1244 = tmp394*tmp1236 + tmp383*tmp1239;
+      const Scalar tmp1245 = tmp394*tmp1237 + tmp386*tmp1239;
+      const Scalar tmp1246 = tmp394*tmp1238 + tmp388*tmp1239;
+      const Scalar tmp1247 = tmp429/sqrt((tmp428*tmp428) + (tmp429*tmp429) + (tmp430*tmp430));
+      const Scalar tmp1248 = -(Scalar(1)/(tmp431*tmp431))*tmp1247;
+      const Scalar tmp1249 = tmp428*tmp1248;
+      const Scalar tmp1250 = tmp432 + tmp429*tmp1248;
+      const Scalar tmp1251 = tmp430*tmp1248;
+      const Scalar tmp1252 = tmp439*penalty_damping*(-tmp384 - vel(3))*tmp1249
+          + tmp439*penalty_damping*(-tmp385 - vel(4))*tmp1250
+          + tmp439*penalty_damping*(-tmp387 - vel(5))*tmp1251 + tmp441*tmp1247;
+      const Scalar tmp1253 = -tmp1252;
+      const Scalar tmp1254 = tmp443*tmp1249 + tmp433*tmp1253;
+      const Scalar tmp1255 = tmp443*tmp1250 + tmp434*tmp1253;
+      const Scalar tmp1256 = tmp443*tmp1251 + tmp435*tmp1253;
+      const Scalar tmp1257 = tmp442*tmp1249 + tmp433*tmp1252;
+      const Scalar tmp1258 = tmp442*tmp1250 + tmp434*tmp1252;
+      const Scalar tmp1259 = tmp442*tmp1251 + tmp435*tmp1252;
+      const Scalar tmp1260 = -tmp471/sqrt((tmp470*tmp470) + (tmp471*tmp471) + (tmp472*tmp472));
+      const Scalar tmp1261 = -(Scalar(1)/(tmp473*tmp473))*tmp1260;
+      const Scalar tmp1262 = tmp470*tmp1261;
+      const Scalar tmp1263 = -tmp474 + tmp471*tmp1261;
+      const Scalar tmp1264 = tmp472*tmp1261;
+      const Scalar tmp1265 = tmp479*penalty_damping*(-tmp411 - vel(6))*tmp1262
+          + tmp479*penalty_damping*(-tmp412 - vel(7))*tmp1263
+          + tmp479*penalty_damping*(-tmp414 - vel(8))*tmp1264 + tmp481*tmp1260;
+      const Scalar tmp1266 = -tmp1265;
+      const Scalar tmp1267 = tmp483*tmp1262 + tmp475*tmp1266;
+      const Scalar tmp1268 = tmp483*tmp1263 + tmp476*tmp1266;
+      const Scalar tmp1269 = tmp483*tmp1264 + tmp477*tmp1266;
+      const Scalar tmp1270 = tmp482*tmp1262 + tmp475*tmp1265;
+      const Scalar tmp1271 = tmp482*tmp1263 + tmp476*tmp1265;
+      const Scalar tmp1272 = tmp482*tmp1264 + tmp477*tmp1265;
+      const Scalar tmp1273 = tmp1256 + tmp1272 + tmp1243;
+      const Scalar tmp1274 = tmp380/sqrt((tmp376*tmp376) + (tmp378*tmp378) + (tmp380*tmp380));
+      const Scalar tmp1275 = -(Scalar(1)/(tmp381*tmp381))*tmp1274;
+      const Scalar tmp1276 = tmp376*tmp1275;
+      const Scalar tmp1277 = tmp378*tmp1275;
+      const Scalar tmp1278 = tmp382 + tmp380*tmp1275;
+      const Scalar tmp1279 = tmp391*penalty_damping*(-tmp384 - vel(0))*tmp1276
+          + tmp391*penalty_damping*(-tmp385 - vel(1))*tmp1277
+          + tmp391*penalty_damping*(-tmp387 - vel(2))*tmp1278 + tmp393*tmp1274;
+      const Scalar tmp1280 = -tmp1279;
+      const Scalar tmp1281 = tmp395*tmp1276 + tmp383*tmp1280;
+      const Scalar tmp1282 = tmp395*tmp1277 + tmp386*tmp1280;
+      const Scalar tmp1283 = tmp395*tmp1278 + tmp388*tmp1280;
+      const Scalar tmp1284 = tmp394*tmp1276 + tmp383*tmp1279;
+      const Scalar tmp1285 = tmp394*tmp1277 + tmp386*tmp1279;
+      const Scalar tmp1286 = tmp394*tmp1278 + tmp388*tmp1279;
+      const Scalar tmp1287 = tmp430/sqrt((tmp428*tmp428) + (tmp429*tmp429) + (tmp430*tmp430));
+      const Scalar tmp1288 = -(Scalar(1)/(tmp431*tmp431))*tmp1287;
+      const Scalar tmp1289 = tmp428*tmp1288;
+      const Scalar tmp1290 = tmp429*tmp1288;
+      const Scalar tmp1291 = tmp432 + tmp430*tmp1288;
+      const Scalar tmp1292 = tmp439*penalty_damping*(-tmp384 - vel(3))*tmp1289
+          + tmp439*penalty_damping*(-tmp385 - vel(4))*tmp1290
+          + tmp439*penalty_damping*(-tmp387 - vel(5))*tmp1291 + tmp441*tmp1287;
+      const Scalar tmp1293 = -tmp1292;
+      const Scalar tmp1294 = tmp443*tmp1289 + tmp433*tmp1293;
+      const Scalar tmp1295 = tmp443*tmp1290 + tmp434*tmp1293;
+      const Scalar tmp1296 = tmp443*tmp1291 + tmp435*tmp1293;
+      const Scalar tmp1297 = tmp442*tmp1289 + tmp433*tmp1292;
+      const Scalar tmp1298 = tmp442*tmp1290 + tmp434*tmp1292;
+      const Scalar tmp1299 = tmp442*tmp1291 + tmp435*tmp1292;
+      const Scalar tmp1300 = -tmp472/sqrt((tmp470*tmp470) + (tmp471*tmp471) + (tmp472*tmp472));
+      const Scalar tmp1301 = -(Scalar(1)/(tmp473*tmp473))*tmp1300;
+      const Scalar tmp1302 = tmp470*tmp1301;
+      const Scalar tmp1303 = tmp471*tmp1301;
+      const Scalar tmp1304 = -tmp474 + tmp472*tmp1301;
+      const Scalar tmp1305 = tmp479*penalty_damping*(-tmp411 - vel(6))*tmp1302
+          + tmp479*penalty_damping*(-tmp412 - vel(7))*tmp1303
+          + tmp479*penalty_damping*(-tmp414 - vel(8))*tmp1304 + tmp481*tmp1300;
+      const Scalar tmp1306 = -tmp1305;
+      const Scalar tmp1307 = tmp483*tmp1302 + tmp475*tmp1306;
+      const Scalar tmp1308 = tmp483*tmp1303 + tmp476*tmp1306;
+      const Scalar tmp1309 = tmp483*tmp1304 + tmp477*tmp1306;
+      const Scalar tmp1310 = tmp482*tmp1302 + tmp475*tmp1305;
+      const Scalar tmp1311 = tmp482*tmp1303 + tmp476*tmp1305;
+      const Scalar tmp1312 = tmp482*tmp1304 + tmp477*tmp1305;
+      const Scalar tmp1313 = tmp1296 + tmp1312 + tmp1283;
+      const Scalar tmp1314 = tmp403/sqrt((tmp403*tmp403) + (tmp405*tmp405) + (tmp407*tmp407));
+      const Scalar tmp1315 = -(Scalar(1)/(tmp408*tmp408))*tmp1314;
+      const Scalar tmp1316 = tmp409 + tmp403*tmp1315;
+      const Scalar tmp1317 = tmp405*tmp1315;
+      const Scalar tmp1318 = tmp407*tmp1315;
+      const Scalar tmp1319 = tmp417*penalty_damping*(-tmp411 - vel(0))*tmp1316
+          + tmp417*penalty_damping*(-tmp412 - vel(1))*tmp1317
+          + tmp417*penalty_damping*(-tmp414 - vel(2))*tmp1318 + tmp419*tmp1314;
+      const Scalar tmp1320 = -tmp1319;
+      const Scalar tmp1321 = tmp421*tmp1316 + tmp410*tmp1320;
+      const Scalar tmp1322 = tmp421*tmp1317 + tmp413*tmp1320;
+      const Scalar tmp1323 = tmp421*tmp1318 + tmp415*tmp1320;
+      const Scalar tmp1324 = tmp420*tmp1316 + tmp410*tmp1319;
+      const Scalar tmp1325 = tmp420*tmp1317 + tmp413*tmp1319;
+      const Scalar tmp1326 = tmp420*tmp1318 + tmp415*tmp1319;
+      const Scalar tmp1327 = tmp450/sqrt((tmp450*tmp450) + (tmp451*tmp451) + (tmp452*tmp452));
+      const Scalar tmp1328 = -(Scalar(1)/(tmp453*tmp453))*tmp1327;
+      const Scalar tmp1329 = tmp454 + tmp450*tmp1328;
+      const Scalar tmp1330 = tmp451*tmp1328;
+      const Scalar tmp1331 = tmp452*tmp1328;
+      const Scalar tmp1332 = tmp459*penalty_damping*(-tmp411 - vel(3))*tmp1329
+          + tmp459*penalty_damping*(-tmp412 - vel(4))*tmp1330
+          + tmp459*penalty_damping*(-tmp414 - vel(5))*tmp1331 + tmp461*tmp1327;
+      const Scalar tmp1333 = -tmp1332;
+      const Scalar tmp1334 = tmp463*tmp1329 + tmp455*tmp1333;
+      const Scalar tmp1335 = tmp463*tmp1330 + tmp456*tmp1333;
+      const Scalar tmp1336 = tmp463*tmp1331 + tmp457*tmp1333;
+      const Scalar tmp1337 = tmp462*tmp1329 + tmp455*tmp1332;
+      const Scalar tmp1338 = tmp462*tmp1330 + tmp456*tmp1332;
+      const Scalar tmp1339 = tmp462*tmp1331 + tmp457*tmp1332;
+      const Scalar tmp1340 = tmp470/sqrt((tmp470*tmp470) + (tmp471*tmp471) + (tmp472*tmp472));
+      const Scalar tmp1341 = -(Scalar(1)/(tmp473*tmp473))*tmp1340;
+      const Scalar tmp1342 = tmp474 + tmp470*tmp1341;
+      const Scalar tmp1343 = tmp471*tmp1341;
+      const Scalar tmp1344 = tmp472*tmp1341;
+      const Scalar tmp1345 = tmp479*penalty_damping*(-tmp411 - vel(6))*tmp1342
+          + tmp479*penalty_damping*(-tmp412 - vel(7))*tmp1343
+          + tmp479*penalty_damping*(-tmp414 - vel(8))*tmp1344 + tmp481*tmp1340;
+      const Scalar tmp1346 = -tmp1345;
+      const Scalar tmp1347 = tmp483*tmp1342 + tmp475*tmp1346;
+      const Scalar tmp1348 = tmp483*tmp1343 + tmp476*tmp1346;
+      const Scalar tmp1349 = tmp483*tmp1344 + tmp477*tmp1346;
+      const Scalar tmp1350 = tmp482*tmp1342 + tmp475*tmp1345;
+      const Scalar tmp1351 = tmp482*tmp1343 + tmp476*tmp1345;
+      const Scalar tmp1352 = tmp482*tmp1344 + tmp477*tmp1345;
+      const Scalar tmp1353 = tmp1323 + tmp1336 + tmp1349;
+      const Scalar tmp1354 = tmp405/sqrt((tmp403*tmp403) + (tmp405*tmp405) + (tmp407*tmp407));
+      const Scalar tmp1355 = -(Scalar(1)/(tmp408*tmp408))*tmp1354;
+      const Scalar tmp1356 = tmp403*tmp1355;
+      const Scalar tmp1357 = tmp409 + tmp405*tmp1355;
+      const Scalar tmp1358 = tmp407*tmp1355;
+      const Scalar tmp1359 = tmp417*penalty_damping*(-tmp411 - vel(0))*tmp1356
+          + tmp417*penalty_damping*(-tmp412 - vel(1))*tmp1357
+          + tmp417*penalty_damping*(-tmp414 - vel(2))*tmp1358 + tmp419*tmp1354;
+      const Scalar tmp1360 = -tmp1359;
+      const Scalar tmp1361 = tmp421*tmp1356 + tmp410*tmp1360;
+      const Scalar tmp1362 = tmp421*tmp1357 + tmp413*tmp1360;
+      const Scalar tmp1363 = tmp421*tmp1358 + tmp415*tmp1360;
+      const Scalar tmp1364 = tmp420*tmp1356 + tmp410*tmp1359;
+      const Scalar tmp1365 = tmp420*tmp1357 + tmp413*tmp1359;
+      const Scalar tmp1366 = tmp420*tmp1358 + tmp415*tmp1359;
+      const Scalar tmp1367 = tmp451/sqrt((tmp450*tmp450) + (tmp451*tmp451) + (tmp452*tmp452));
+      const Scalar tmp1368 = -(Scalar(1)/(tmp453*tmp453))*tmp1367;
+      const Scalar tmp1369 = tmp450*tmp1368;
+      const Scalar tmp1370 = tmp454 + tmp451*tmp1368;
+      const Scalar tmp1371 = tmp452*tmp1368;
+      const Scalar tmp1372 = tmp459*penalty_damping*(-tmp411 - vel(3))*tmp1369
+          + tmp459*penalty_damping*(-tmp412 - vel(4))*tmp1370
+          + tmp459*penalty_damping*(-tmp414 - vel(5))*tmp1371 + tmp461*tmp1367;
+      const Scalar tmp1373 = -tmp1372;
+      const Scalar tmp1374 = tmp463*tmp1369 + tmp455*tmp1373;
+      const Scalar tmp1375 = tmp463*tmp1370 + tmp456*tmp1373;
+      const Scalar tmp1376 = tmp463*tmp1371 + tmp457*tmp1373;
+      const Scalar tmp1377 = tmp462*tmp1369 + tmp455*tmp1372;
+      const Scalar tmp1378 = tmp462*tmp1370 + tmp456*tmp1372;
+      const Scalar tmp1379 = tmp462*tmp1371 + tmp457*tmp1372;
+      const Scalar tmp1380 = tmp471/sqrt((tmp470*tmp470) + (tmp471*tmp471) + (tmp472*tmp472));
+      const Scalar tmp1381 = -(Scalar(1)/(tmp473*tmp473))*tmp1380;
+      const Scalar tmp1382 = tmp470*tmp1381;
+      const Scalar tmp1383 = tmp474 + tmp471*tmp1381;
+      const Scalar tmp1384 = tmp472*tmp1381;
+      const Scalar tmp1385 = tmp479*penalty_damping*(-tmp411 - vel(6))*tmp1382
+          + tmp479*penalty_damping*(-tmp412 - vel(7))*tmp1383
+          + tmp479*penalty_damping*(-tmp414 - vel(8))*tmp1384 + tmp481*tmp1380;
+      const Scalar tmp1386 = -tmp1385;
+      const Scalar tmp1387 = tmp483*tmp1382 + tmp475*tmp1386;
+      const Scalar tmp1388 = tmp483*tmp1383 + tmp476*tmp1386;
+      const Scalar tmp1389 = tmp483*tmp1384 + tmp477*tmp1386;
+      const Scalar tmp1390 = tmp482*tmp1382 + tmp475*tmp1385;
+      const Scalar tmp1391 = tmp482*tmp1383 + tmp476*tmp1385;
+      const Scalar tmp1392 = tmp482*tmp1384 + tmp477*tmp1385;
+      const Scalar tmp1393 = tmp1363 + tmp1376 + tmp1389;
+      const Scalar tmp1394 = tmp407/sqrt((tmp403*tmp403) + (tmp405*tmp405) + (tmp407*tmp407));
+      const Scalar tmp1395 = -(Scalar(1)/(tmp408*tmp408))*tmp1394;
+      const Scalar tmp1396 = tmp403*tmp1395;
+      const Scalar tmp1397 = tmp405*tmp1395;
+      const Scalar tmp1398 = tmp409 + tmp407*tmp1395;
+      const Scalar tmp1399 = tmp417*penalty_damping*(-tmp411 - vel(0))*tmp1396
+          + tmp417*penalty_damping*(-tmp412 - vel(1))*tmp1397
+          + tmp417*penalty_damping*(-tmp414 - vel(2))*tmp1398 + tmp419*tmp1394;
+      const Scalar tmp1400 = -tmp1399;
+      const Scalar tmp1401 = tmp421*tmp1396 + tmp410*tmp1400;
+      const Scalar tmp1402 = tmp421*tmp1397 + tmp413*tmp1400;
+      const Scalar tmp1403 = tmp421*tmp1398 + tmp415*tmp1400;
+      const Scalar tmp1404 = tmp420*tmp1396 + tmp410*tmp1399;
+      const Scalar tmp1405 = tmp420*tmp1397 + tmp413*tmp1399;
+      const Scalar tmp1406 = tmp420*tmp1398 + tmp415*tmp1399;
+      const Scalar tmp1407 = tmp452/sqrt((tmp450*tmp450) + (tmp451*tmp451) + (tmp452*tmp452));
+      const Scalar tmp1408 = -(Scalar(1)/(tmp453*tmp453))*tmp1407;
+      const Scalar tmp1409 = tmp450*tmp1408;
+      const Scalar tmp1410 = tmp451*tmp1408;
+      const Scalar tmp1411 = tmp454 + tmp452*tmp1408;
+      const Scalar tmp1412 = tmp459*penalty_damping*(-tmp411 - vel(3))*tmp1409
+          + tmp459*penalty_damping*(-tmp412 - vel(4))*tmp1410
+          + tmp459*penalty_damping*(-tmp414 - vel(5))*tmp1411 + tmp461*tmp1407;
+      const Scalar tmp1413 = -tmp1412;
+      const Scalar tmp1414 = tmp463*tmp1409 + tmp455*tmp1413;
+      const Scalar tmp1415 = tmp463*tmp1410 + tmp456*tmp1413;
+      const Scalar tmp1416 = tmp463*tmp1411 + tmp457*tmp1413;
+      const Scalar tmp1417 = tmp462*tmp1409 + tmp455*tmp1412;
+      const Scalar tmp1418 = tmp462*tmp1410 + tmp456*tmp1412;
+      const Scalar tmp1419 = tmp462*tmp1411 + tmp457*tmp1412;
+      const Scalar tmp1420 = tmp472/sqrt((tmp470*tmp470) + (tmp471*tmp471) + (tmp472*tmp472));
+      const Scalar tmp1421 = -(Scalar(1)/(tmp473*tmp473))*tmp1420;
+      const Scalar tmp1422 = tmp470*tmp1421;
+      const Scalar tmp1423 = tmp471*tmp1421;
+      const Scalar tmp1424 = tmp474 + tmp472*tmp1421;
+      const Scalar tmp1425 = tmp479*penalty_damping*(-tmp411 - vel(6))*tmp1422
+          + tmp479*penalty_damping*(-tmp412 - vel(7))*tmp1423
+          + tmp479*penalty_damping*(-tmp414 - vel(8))*tmp1424 + tmp481*tmp1420;
+      const Scalar tmp1426 = -tmp1425;
+      const Scalar tmp1427 = tmp483*tmp1422 + tmp475*tmp1426;
+      const Scalar tmp1428 = tmp483*tmp1423 + tmp476*tmp1426;
+      const Scalar tmp1429 = tmp483*tmp1424 + tmp477*tmp1426;
+      const Scalar tmp1430 = tmp482*tmp1422 + tmp475*tmp1425;
+      const Scalar tmp1431 = tmp482*tmp1423 + tmp476*tmp1425;
+      const Scalar tmp1432 = tmp482*tmp1424 + tmp477*tmp1425;
+      const Scalar tmp1433 = tmp1403 + tmp1416 + tmp1429;
       std::array<Scalar, 144> result;
-      result[0] = tmp371*tmp920 + tmp362*tmp923 + tmp391*tmp926 + tmp381*tmp929 + tmp410*tmp932
-          + tmp401*tmp935;
-      result[1] = tmp371*tmp945 + tmp362*tmp948 + tmp391*tmp951 + tmp381*tmp954 + tmp410*tmp957
-          + tmp401*tmp960;
-      result[2] = tmp371*tmp970 + tmp362*tmp973 + tmp391*tmp976 + tmp381*tmp979 + tmp410*tmp982
-          + tmp401*tmp985;
-      result[3] = tmp371*tmp995 + tmp362*tmp998;
-      result[4] = tmp371*tmp1020 + tmp362*tmp1023;
-      result[5] = tmp371*tmp1045 + tmp362*tmp1048;
-      result[6] = tmp391*tmp1070 + tmp381*tmp1073;
-      result[7] = tmp391*tmp1095 + tmp381*tmp1098;
-      result[8] = tmp391*tmp1120 + tmp381*tmp1123;
-      result[9] = tmp410*tmp1145 + tmp401*tmp1148;
-      result[10] = tmp410*tmp1170 + tmp401*tmp1173;
-      result[11] = tmp410*tmp1195 + tmp401*tmp1198;
-      result[12] = tmp371*tmp921 + tmp363*tmp923 + tmp391*tmp927 + tmp383*tmp929 + tmp410*tmp933
-          + tmp403*tmp935;
-      result[13] = tmp371*tmp946 + tmp363*tmp948 + tmp391*tmp952 + tmp383*tmp954 + tmp410*tmp958
-          + tmp403*tmp960;
-      result[14] = tmp371*tmp971 + tmp363*tmp973 + tmp391*tmp977 + tmp383*tmp979 + tmp410*tmp983
-          + tmp403*tmp985;
-      result[15] = tmp371*tmp996 + tmp363*tmp998;
-      result[16] = tmp371*tmp1021 + tmp363*tmp1023;
-      result[17] = tmp371*tmp1046 + tmp363*tmp1048;
-      result[18] = tmp391*tmp1071 + tmp383*tmp1073;
-      result[19] = tmp391*tmp1096 + tmp383*tmp1098;
-      result[20] = tmp391*tmp1121 + tmp383*tmp1123;
-      result[21] = tmp410*tmp1146 + tmp403*tmp1148;
-      result[22] = tmp410*tmp1171 + tmp403*tmp1173;
-      result[23] = tmp410*tmp1196 + tmp403*tmp1198;
-      result[24] = tmp936;
-      result[25] = tmp961;
-      result[26] = tmp986;
-      result[27] = tmp999;
-      result[28] = tmp1024;
-      result[29] = tmp1049;
-      result[30] = tmp1074;
-      result[31] = tmp1099;
-      result[32] = tmp1124;
-      result[33] = tmp1149;
-      result[34] = tmp1174;
-      result[35] = tmp1199;
-      result[36] = tmp412*tmp920 + tmp362*tmp937;
-      result[37] = tmp412*tmp945 + tmp362*tmp962;
-      result[38] = tmp412*tmp970 + tmp362*tmp987;
-      result[39] = tmp412*tmp995 + tmp362*tmp1000 + tmp427*tmp1003 + tmp418*tmp1006 + tmp440*tmp1009
-          + tmp433*tmp1012;
-      result[40] = tmp412*tmp1020 + tmp362*tmp1025 + tmp427*tmp1028 + tmp418*tmp1031
-          + tmp440*tmp1034 + tmp433*tmp1037;
-      result[41] = tmp412*tmp1045 + tmp362*tmp1050 + tmp427*tmp1053 + tmp418*tmp1056
-          + tmp440*tmp1059 + tmp433*tmp1062;
-      result[42] = tmp427*tmp1077 + tmp418*tmp1080;
-      result[43] = tmp427*tmp1102 + tmp418*tmp1105;
-      result[44] = tmp427*tmp1127 + tmp418*tmp1130;
-      result[45] = tmp440*tmp1152 + tmp433*tmp1155;
-      result[46] = tmp440*tmp1177 + tmp433*tmp1180;
-      result[47] = tmp440*tmp1202 + tmp433*tmp1205;
-      result[48] = tmp412*tmp921 + tmp363*tmp937;
-      result[49] = tmp412*tmp946 + tmp363*tmp962;
-      result[50] = tmp412*tmp971 + tmp363*tmp987;
-      result[51] = tmp412*tmp996 + tmp363*tmp1000 + tmp427*tmp1004 + tmp419*tmp1006 + tmp440*tmp1010
-          + tmp434*tmp1012;
-      result[52] = tmp412*tmp1021 + tmp363*tmp1025 + tmp427*tmp1029 + tmp419*tmp1031
-          + tmp440*tmp1035 + tmp434*tmp1037;
-      result[53] = tmp412*tmp1046 + tmp363*tmp1050 + tmp427*tmp1054 + tmp419*tmp1056
-          + tmp440*tmp1060 + tmp434*tmp1062;
-      result[54] = tmp427*tmp1078 + tmp419*tmp1080;
-      result[55] = tmp427*tmp1103 + tmp419*tmp1105;
-      result[56] = tmp427*tmp1128 + tmp419*tmp1130;
-      result[57] = tmp440*tmp1153 + tmp434*tmp1155;
-      result[58] = tmp440*tmp1178 + tmp434*tmp1180;
-      result[59] = tmp440*tmp1203 + tmp434*tmp1205;
-      result[60] = tmp938;
-      result[61] = tmp963;
-      result[62] = tmp988;
-      result[63] = tmp1013;
-      result[64] = tmp1038;
-      result[65] = tmp1063;
-      result[66] = tmp1081;
-      result[67] = tmp1106;
-      result[68] = tmp1131;
-      result[69] = tmp1156;
-      result[70] = tmp1181;
-      result[71] = tmp1206;
-      result[72] = tmp455*tmp926 + tmp381*tmp939;
-      result[73] = tmp455*tmp951 + tmp381*tmp964;
-      result[74] = tmp455*tmp976 + tmp381*tmp989;
-      result[75] = tmp456*tmp1003 + tmp418*tmp1014;
-      result[76] = tmp456*tmp1028 + tmp418*tmp1039;
-      result[77] = tmp456*tmp1053 + tmp418*tmp1064;
-      result[78] = tmp455*tmp1070 + tmp456*tmp1077 + tmp454*tmp1084 + tmp447*tmp1087
-          + tmp381*tmp1088 + tmp418*tmp1089;
-      result[79] = tmp455*tmp1095 + tmp456*tmp1102 + tmp454*tmp1109 + tmp447*tmp1112
-          + tmp381*tmp1113 + tmp418*tmp1114;
-      result[80] = tmp455*tmp1120 + tmp456*tmp1127 + tmp454*tmp1134 + tmp447*tmp1137
-          + tmp381*tmp1138 + tmp418*tmp1139;
-      result[81] = tmp454*tmp1159 + tmp447*tmp1162;
-      result[82] = tmp454*tmp1184 + tmp447*tmp1187;
-      result[83] = tmp454*tmp1209 + tmp447*tmp1212;
-      result[84] = tmp455*tmp927 + tmp383*tmp939;
-      result[85] = tmp455*tmp952 + tmp383*tmp964;
-      result[86] = tmp455*tmp977 + tmp383*tmp989;
-      result[87] = tmp456*tmp1004 + tmp419*tmp1014;
-      result[88] = tmp456*tmp1029 + tmp419*tmp1039;
-      result[89] = tmp456*tmp1054 + tmp419*tmp1064;
-      result[90] = tmp455*tmp1071 + tmp456*tmp1078 + tmp454*tmp1085 + tmp448*tmp1087
-          + tmp383*tmp1088 + tmp419*tmp1089;
-      result[91] = tmp455*tmp1096 + tmp456*tmp1103 + tmp454*tmp1110 + tmp448*tmp1112
-          + tmp383*tmp1113 + tmp419*tmp1114;
-      result[92] = tmp455*tmp1121 + tmp456*tmp1128 + tmp454*tmp1135 + tmp448*tmp1137
-          + tmp383*tmp1138 + tmp419*tmp1139;
-      result[93] = tmp454*tmp1160 + tmp448*tmp1162;
-      result[94] = tmp454*tmp1185 + tmp448*tmp1187;
-      result[95] = tmp454*tmp1210 + tmp448*tmp1212;
-      result[96] = tmp940;
-      result[97] = tmp965;
-      result[98] = tmp990;
-      result[99] = tmp1015;
-      result[100] = tmp1040;
-      result[101] = tmp1065;
-      result[102] = tmp1090;
-      result[103] = tmp1115;
-      result[104] = tmp1140;
-      result[105] = tmp1163;
-      result[106] = tmp1188;
-      result[107] = tmp1213;
-      result[108] = tmp459*tmp932 + tmp401*tmp941;
-      result[109] = tmp459*tmp957 + tmp401*tmp966;
-      result[110] = tmp459*tmp982 + tmp401*tmp991;
-      result[111] = tmp460*tmp1009 + tmp433*tmp1016;
-      result[112] = tmp460*tmp1034 + tmp433*tmp1041;
-      result[113] = tmp460*tmp1059 + tmp433*tmp1066;
-      result[114] = tmp458*tmp1084 + tmp447*tmp1091;
-      result[115] = tmp458*tmp1109 + tmp447*tmp1116;
-      result[116] = tmp458*tmp1134 + tmp447*tmp1141;
-      result[117] = tmp459*tmp1145 + tmp460*tmp1152 + tmp458*tmp1159 + tmp447*tmp1164
-          + tmp401*tmp1165 + tmp433*tmp1166;
-      result[118] = tmp459*tmp1170 + tmp460*tmp1177 + tmp458*tmp1184 + tmp447*tmp1189
-          + tmp401*tmp1190 + tmp433*tmp1191;
-      result[119] = tmp459*tmp1195 + tmp460*tmp1202 + tmp458*tmp1209 + tmp447*tmp1214
-          + tmp401*tmp1215 + tmp433*tmp1216;
-      result[120] = tmp459*tmp933 + tmp403*tmp941;
-      result[121] = tmp459*tmp958 + tmp403*tmp966;
-      result[122] = tmp459*tmp983 + tmp403*tmp991;
-      result[123] = tmp460*tmp1010 + tmp434*tmp1016;
-      result[124] = tmp460*tmp1035 + tmp434*tmp1041;
-      result[125] = tmp460*tmp1060 + tmp434*tmp1066;
-      result[126] = tmp458*tmp1085 + tmp448*tmp1091;
-      result[127] = tmp458*tmp1110 + tmp448*tmp1116;
-      result[128] = tmp458*tmp1135 + tmp448*tmp1141;
-      result[129] = tmp459*tmp1146 + tmp460*tmp1153 + tmp458*tmp1160 + tmp448*tmp1164
-          + tmp403*tmp1165 + tmp434*tmp1166;
-      result[130] = tmp459*tmp1171 + tmp460*tmp1178 + tmp458*tmp1185 + tmp448*tmp1189
-          + tmp403*tmp1190 + tmp434*tmp1191;
-      result[131] = tmp459*tmp1196 + tmp460*tmp1203 + tmp458*tmp1210 + tmp448*tmp1214
-          + tmp403*tmp1215 + tmp434*tmp1216;
-      result[132] = tmp942;
-      result[133] = tmp967;
-      result[134] = tmp992;
-      result[135] = tmp1017;
-      result[136] = tmp1042;
-      result[137] = tmp1067;
-      result[138] = tmp1092;
-      result[139] = tmp1117;
-      result[140] = tmp1142;
-      result[141] = tmp1167;
-      result[142] = tmp1192;
-      result[143] = tmp1217;
+      result[0] = tmp990 + tmp964 + tmp977;
+      result[1] = tmp1030 + tmp1004 + tmp1017;
+      result[2] = tmp1070 + tmp1044 + tmp1057;
+      result[3] = tmp1084;
+      result[4] = tmp1124;
+      result[5] = tmp1164;
+      result[6] = tmp1204;
+      result[7] = tmp1244;
+      result[8] = tmp1284;
+      result[9] = tmp1324;
+      result[10] = tmp1364;
+      result[11] = tmp1404;
+      result[12] = tmp978 + tmp991 + tmp965;
+      result[13] = tmp1018 + tmp1031 + tmp1005;
+      result[14] = tmp1058 + tmp1071 + tmp1045;
+      result[15] = tmp1085;
+      result[16] = tmp1125;
+      result[17] = tmp1165;
+      result[18] = tmp1205;
+      result[19] = tmp1245;
+      result[20] = tmp1285;
+      result[21] = tmp1325;
+      result[22] = tmp1365;
+      result[23] = tmp1405;
+      result[24] = tmp993;
+      result[25] = tmp1033;
+      result[26] = tmp1073;
+      result[27] = tmp1086;
+      result[28] = tmp1126;
+      result[29] = tmp1166;
+      result[30] = tmp1206;
+      result[31] = tmp1246;
+      result[32] = tmp1286;
+      result[33] = tmp1326;
+      result[34] = tmp1366;
+      result[35] = tmp1406;
+      result[36] = tmp961;
+      result[37] = tmp1001;
+      result[38] = tmp1041;
+      result[39] = tmp1081 + tmp1097 + tmp1110;
+      result[40] = tmp1121 + tmp1137 + tmp1150;
+      result[41] = tmp1161 + tmp1177 + tmp1190;
+      result[42] = tmp1217;
+      result[43] = tmp1257;
+      result[44] = tmp1297;
+      result[45] = tmp1337;
+      result[46] = tmp1377;
+      result[47] = tmp1417;
+      result[48] = tmp962;
+      result[49] = tmp1002;
+      result[50] = tmp1042;
+      result[51] = tmp1082 + tmp1098 + tmp1111;
+      result[52] = tmp1122 + tmp1138 + tmp1151;
+      result[53] = tmp1162 + tmp1178 + tmp1191;
+      result[54] = tmp1218;
+      result[55] = tmp1258;
+      result[56] = tmp1298;
+      result[57] = tmp1338;
+      result[58] = tmp1378;
+      result[59] = tmp1418;
+      result[60] = tmp963;
+      result[61] = tmp1003;
+      result[62] = tmp1043;
+      result[63] = tmp1113;
+      result[64] = tmp1153;
+      result[65] = tmp1193;
+      result[66] = tmp1219;
+      result[67] = tmp1259;
+      result[68] = tmp1299;
+      result[69] = tmp1339;
+      result[70] = tmp1379;
+      result[71] = tmp1419;
+      result[72] = tmp974;
+      result[73] = tmp1014;
+      result[74] = tmp1054;
+      result[75] = tmp1094;
+      result[76] = tmp1134;
+      result[77] = tmp1174;
+      result[78] = tmp1214 + tmp1230 + tmp1201;
+      result[79] = tmp1254 + tmp1270 + tmp1241;
+      result[80] = tmp1294 + tmp1310 + tmp1281;
+      result[81] = tmp1350;
+      result[82] = tmp1390;
+      result[83] = tmp1430;
+      result[84] = tmp975;
+      result[85] = tmp1015;
+      result[86] = tmp1055;
+      result[87] = tmp1095;
+      result[88] = tmp1135;
+      result[89] = tmp1175;
+      result[90] = tmp1215 + tmp1231 + tmp1202;
+      result[91] = tmp1255 + tmp1271 + tmp1242;
+      result[92] = tmp1295 + tmp1311 + tmp1282;
+      result[93] = tmp1351;
+      result[94] = tmp1391;
+      result[95] = tmp1431;
+      result[96] = tmp976;
+      result[97] = tmp1016;
+      result[98] = tmp1056;
+      result[99] = tmp1096;
+      result[100] = tmp1136;
+      result[101] = tmp1176;
+      result[102] = tmp1233;
+      result[103] = tmp1273;
+      result[104] = tmp1313;
+      result[105] = tmp1352;
+      result[106] = tmp1392;
+      result[107] = tmp1432;
+      result[108] = tmp987;
+      result[109] = tmp1027;
+      result[110] = tmp1067;
+      result[111] = tmp1107;
+      result[112] = tmp1147;
+      result[113] = tmp1187;
+      result[114] = tmp1227;
+      result[115] = tmp1267;
+      result[116] = tmp1307;
+      result[117] = tmp1321 + tmp1334 + tmp1347;
+      result[118] = tmp1361 + tmp1374 + tmp1387;
+      result[119] = tmp1401 + tmp1414 + tmp1427;
+      result[120] = tmp988;
+      result[121] = tmp1028;
+      result[122] = tmp1068;
+      result[123] = tmp1108;
+      result[124] = tmp1148;
+      result[125] = tmp1188;
+      result[126] = tmp1228;
+      result[127] = tmp1268;
+      result[128] = tmp1308;
+      result[129] = tmp1322 + tmp1335 + tmp1348;
+      result[130] = tmp1362 + tmp1375 + tmp1388;
+      result[131] = tmp1402 + tmp1415 + tmp1428;
+      result[132] = tmp989;
+      result[133] = tmp1029;
+      result[134] = tmp1069;
+      result[135] = tmp1109;
+      result[136] = tmp1149;
+      result[137] = tmp1189;
+      result[138] = tmp1229;
+      result[139] = tmp1269;
+      result[140] = tmp1309;
+      result[141] = tmp1353;
+      result[142] = tmp1393;
+      result[143] = tmp1433;
       return result;
     }
 
@@ -10678,348 +11218,528 @@ struct RigidBodyEulerYzx {
       const Scalar tmp173 = tmp10*tmp172;
       const Scalar tmp174 = tmp39 - tmp34 - tmp40;
       const Scalar tmp175 = tmp10*tmp174;
-      const Scalar tmp357 = pos(3) - pos(0);
-      const Scalar tmp358 = pos(4) - pos(1);
-      const Scalar tmp359 = pos(5) - pos(2);
-      const Scalar tmp360 = sqrt((tmp357*tmp357) + (tmp358*tmp358) + (tmp359*tmp359));
-      const Scalar tmp361 = (Scalar(1)/tmp360);
-      const Scalar tmp362 = tmp357*tmp361;
-      const Scalar tmp363 = tmp358*tmp361;
-      const Scalar tmp364 = tmp359*tmp361;
-      const Scalar tmp365 = -tmp10*tmp27;
-      const Scalar tmp366 = -tmp10*tmp42;
-      const Scalar tmp367 = sqrt(((-tmp118 - tmp365)*(-tmp118 - tmp365))
-          + ((-tmp120 - tmp366)*(-tmp120 - tmp366)));
-      const Scalar tmp368 = (Scalar(1)/tmp367);
-      const Scalar tmp373 = -pos(6);
-      const Scalar tmp374 = -tmp373 - pos(0);
-      const Scalar tmp375 = -pos(7);
-      const Scalar tmp376 = -tmp375 - pos(1);
-      const Scalar tmp377 = -pos(8);
-      const Scalar tmp378 = -tmp377 - pos(2);
-      const Scalar tmp379 = sqrt((tmp374*tmp374) + (tmp376*tmp376) + (tmp378*tmp378));
-      const Scalar tmp380 = (Scalar(1)/tmp379);
-      const Scalar tmp381 = tmp374*tmp380;
-      const Scalar tmp383 = tmp376*tmp380;
-      const Scalar tmp385 = tmp378*tmp380;
-      const Scalar tmp386 = Scalar(4)*tmp20/m;
-      const Scalar tmp387 = sqrt(tmp386 + ((-tmp141 - tmp365)*(-tmp141 - tmp365))
-          + ((-tmp143 - tmp366)*(-tmp143 - tmp366)));
-      const Scalar tmp388 = (Scalar(1)/tmp387);
-      const Scalar tmp393 = -pos(9);
-      const Scalar tmp394 = -tmp393 - pos(0);
-      const Scalar tmp395 = -pos(10);
-      const Scalar tmp396 = -tmp395 - pos(1);
-      const Scalar tmp397 = -pos(11);
-      const Scalar tmp398 = -tmp397 - pos(2);
-      const Scalar tmp399 = sqrt((tmp394*tmp394) + (tmp396*tmp396) + (tmp398*tmp398));
-      const Scalar tmp400 = (Scalar(1)/tmp399);
-      const Scalar tmp401 = tmp394*tmp400;
-      const Scalar tmp403 = tmp396*tmp400;
-      const Scalar tmp405 = tmp398*tmp400;
-      const Scalar tmp406 = sqrt(tmp386 + ((-tmp173 - tmp365)*(-tmp173 - tmp365))
-          + ((-tmp175 - tmp366)*(-tmp175 - tmp366)));
-      const Scalar tmp407 = (Scalar(1)/tmp406);
-      const Scalar tmp413 = -tmp373 - pos(3);
-      const Scalar tmp414 = -tmp375 - pos(4);
-      const Scalar tmp415 = -tmp377 - pos(5);
-      const Scalar tmp416 = sqrt((tmp413*tmp413) + (tmp414*tmp414) + (tmp415*tmp415));
+      const Scalar tmp353 = pos(3) - pos(0);
+      const Scalar tmp354 = pos(4) - pos(1);
+      const Scalar tmp355 = pos(5) - pos(2);
+      const Scalar tmp356 = sqrt((tmp353*tmp353) + (tmp354*tmp354) + (tmp355*tmp355));
+      const Scalar tmp357 = (Scalar(1)/tmp356);
+      const Scalar tmp358 = tmp353*tmp357;
+      const Scalar tmp359 = tmp354*tmp357;
+      const Scalar tmp360 = tmp355*tmp357;
+      const Scalar tmp361 = -tmp10*tmp27;
+      const Scalar tmp362 = -tmp10*tmp42;
+      const Scalar tmp363 = sqrt(((-tmp118 - tmp361)*(-tmp118 - tmp361))
+          + ((-tmp120 - tmp362)*(-tmp120 - tmp362)));
+      const Scalar tmp364 = (Scalar(1)/tmp363);
+      const Scalar tmp375 = -pos(6);
+      const Scalar tmp376 = -tmp375 - pos(0);
+      const Scalar tmp377 = -pos(7);
+      const Scalar tmp378 = -tmp377 - pos(1);
+      const Scalar tmp379 = -pos(8);
+      const Scalar tmp380 = -tmp379 - pos(2);
+      const Scalar tmp381 = sqrt((tmp376*tmp376) + (tmp378*tmp378) + (tmp380*tmp380));
+      const Scalar tmp382 = (Scalar(1)/tmp381);
+      const Scalar tmp383 = tmp376*tmp382;
+      const Scalar tmp386 = tmp378*tmp382;
+      const Scalar tmp388 = tmp380*tmp382;
+      const Scalar tmp389 = Scalar(4)*tmp20/m;
+      const Scalar tmp390 = sqrt(tmp389 + ((-tmp141 - tmp361)*(-tmp141 - tmp361))
+          + ((-tmp143 - tmp362)*(-tmp143 - tmp362)));
+      const Scalar tmp391 = (Scalar(1)/tmp390);
+      const Scalar tmp402 = -pos(9);
+      const Scalar tmp403 = -tmp402 - pos(0);
+      const Scalar tmp404 = -pos(10);
+      const Scalar tmp405 = -tmp404 - pos(1);
+      const Scalar tmp406 = -pos(11);
+      const Scalar tmp407 = -tmp406 - pos(2);
+      const Scalar tmp408 = sqrt((tmp403*tmp403) + (tmp405*tmp405) + (tmp407*tmp407));
+      const Scalar tmp409 = (Scalar(1)/tmp408);
+      const Scalar tmp410 = tmp403*tmp409;
+      const Scalar tmp413 = tmp405*tmp409;
+      const Scalar tmp415 = tmp407*tmp409;
+      const Scalar tmp416 = sqrt(tmp389 + ((-tmp173 - tmp361)*(-tmp173 - tmp361))
+          + ((-tmp175 - tmp362)*(-tmp175 - tmp362)));
       const Scalar tmp417 = (Scalar(1)/tmp416);
-      const Scalar tmp418 = tmp413*tmp417;
-      const Scalar tmp419 = tmp414*tmp417;
-      const Scalar tmp420 = tmp415*tmp417;
-      const Scalar tmp421 = -tmp118;
-      const Scalar tmp422 = -tmp120;
-      const Scalar tmp423 = sqrt(tmp386 + ((-tmp141 - tmp421)*(-tmp141 - tmp421))
-          + ((-tmp143 - tmp422)*(-tmp143 - tmp422)));
-      const Scalar tmp424 = (Scalar(1)/tmp423);
-      const Scalar tmp428 = -tmp393 - pos(3);
-      const Scalar tmp429 = -tmp395 - pos(4);
-      const Scalar tmp430 = -tmp397 - pos(5);
+      const Scalar tmp428 = -tmp375 - pos(3);
+      const Scalar tmp429 = -tmp377 - pos(4);
+      const Scalar tmp430 = -tmp379 - pos(5);
       const Scalar tmp431 = sqrt((tmp428*tmp428) + (tmp429*tmp429) + (tmp430*tmp430));
       const Scalar tmp432 = (Scalar(1)/tmp431);
       const Scalar tmp433 = tmp428*tmp432;
       const Scalar tmp434 = tmp429*tmp432;
       const Scalar tmp435 = tmp430*tmp432;
-      const Scalar tmp436 = sqrt(tmp386 + ((-tmp173 - tmp421)*(-tmp173 - tmp421))
-          + ((-tmp175 - tmp422)*(-tmp175 - tmp422)));
-      const Scalar tmp437 = (Scalar(1)/tmp436);
-      const Scalar tmp442 = -tmp393 - pos(6);
-      const Scalar tmp443 = -tmp395 - pos(7);
-      const Scalar tmp444 = -tmp397 - pos(8);
-      const Scalar tmp445 = sqrt((tmp442*tmp442) + (tmp443*tmp443) + (tmp444*tmp444));
-      const Scalar tmp446 = (Scalar(1)/tmp445);
-      const Scalar tmp447 = tmp442*tmp446;
-      const Scalar tmp448 = tmp443*tmp446;
-      const Scalar tmp449 = tmp444*tmp446;
-      const Scalar tmp450 = sqrt(((tmp141 - tmp173)*(tmp141 - tmp173))
+      const Scalar tmp436 = -tmp118;
+      const Scalar tmp437 = -tmp120;
+      const Scalar tmp438 = sqrt(tmp389 + ((-tmp141 - tmp436)*(-tmp141 - tmp436))
+          + ((-tmp143 - tmp437)*(-tmp143 - tmp437)));
+      const Scalar tmp439 = (Scalar(1)/tmp438);
+      const Scalar tmp450 = -tmp402 - pos(3);
+      const Scalar tmp451 = -tmp404 - pos(4);
+      const Scalar tmp452 = -tmp406 - pos(5);
+      const Scalar tmp453 = sqrt((tmp450*tmp450) + (tmp451*tmp451) + (tmp452*tmp452));
+      const Scalar tmp454 = (Scalar(1)/tmp453);
+      const Scalar tmp455 = tmp450*tmp454;
+      const Scalar tmp456 = tmp451*tmp454;
+      const Scalar tmp457 = tmp452*tmp454;
+      const Scalar tmp458 = sqrt(tmp389 + ((-tmp173 - tmp436)*(-tmp173 - tmp436))
+          + ((-tmp175 - tmp437)*(-tmp175 - tmp437)));
+      const Scalar tmp459 = (Scalar(1)/tmp458);
+      const Scalar tmp470 = -tmp402 - pos(6);
+      const Scalar tmp471 = -tmp404 - pos(7);
+      const Scalar tmp472 = -tmp406 - pos(8);
+      const Scalar tmp473 = sqrt((tmp470*tmp470) + (tmp471*tmp471) + (tmp472*tmp472));
+      const Scalar tmp474 = (Scalar(1)/tmp473);
+      const Scalar tmp475 = tmp470*tmp474;
+      const Scalar tmp476 = tmp471*tmp474;
+      const Scalar tmp477 = tmp472*tmp474;
+      const Scalar tmp478 = sqrt(((tmp141 - tmp173)*(tmp141 - tmp173))
           + ((tmp143 - tmp175)*(tmp143 - tmp175)));
-      const Scalar tmp451 = (Scalar(1)/tmp450);
-      const Scalar tmp1218 = -tmp362*tmp368*penalty_damping;
-      const Scalar tmp1219 = -tmp381*tmp388*penalty_damping;
-      const Scalar tmp1220 = -tmp401*tmp407*penalty_damping;
-      const Scalar tmp1221 = tmp364*tmp1218 + tmp385*tmp1219 + tmp405*tmp1220;
-      const Scalar tmp1222 = -tmp1218;
-      const Scalar tmp1223 = tmp364*tmp1222;
-      const Scalar tmp1224 = -tmp1219;
-      const Scalar tmp1225 = tmp385*tmp1224;
-      const Scalar tmp1226 = -tmp1220;
-      const Scalar tmp1227 = tmp405*tmp1226;
-      const Scalar tmp1228 = -tmp363*tmp368*penalty_damping;
-      const Scalar tmp1229 = -tmp383*tmp388*penalty_damping;
-      const Scalar tmp1230 = -tmp403*tmp407*penalty_damping;
-      const Scalar tmp1231 = tmp364*tmp1228 + tmp385*tmp1229 + tmp405*tmp1230;
-      const Scalar tmp1232 = -tmp1228;
-      const Scalar tmp1233 = tmp364*tmp1232;
-      const Scalar tmp1234 = -tmp1229;
-      const Scalar tmp1235 = tmp385*tmp1234;
-      const Scalar tmp1236 = -tmp1230;
-      const Scalar tmp1237 = tmp405*tmp1236;
-      const Scalar tmp1238 = -tmp364*tmp368*penalty_damping;
-      const Scalar tmp1239 = -tmp385*tmp388*penalty_damping;
-      const Scalar tmp1240 = -tmp405*tmp407*penalty_damping;
-      const Scalar tmp1241 = tmp364*tmp1238 + tmp385*tmp1239 + tmp405*tmp1240;
-      const Scalar tmp1242 = -tmp1238;
-      const Scalar tmp1243 = tmp364*tmp1242;
-      const Scalar tmp1244 = -tmp1239;
-      const Scalar tmp1245 = tmp385*tmp1244;
-      const Scalar tmp1246 = -tmp1240;
-      const Scalar tmp1247 = tmp405*tmp1246;
-      const Scalar tmp1248 = tmp362*tmp368*penalty_damping;
-      const Scalar tmp1249 = tmp364*tmp1248;
-      const Scalar tmp1250 = -tmp1248;
-      const Scalar tmp1251 = -tmp418*tmp424*penalty_damping;
-      const Scalar tmp1252 = -tmp433*tmp437*penalty_damping;
-      const Scalar tmp1253 = tmp364*tmp1250 + tmp420*tmp1251 + tmp435*tmp1252;
-      const Scalar tmp1254 = -tmp1251;
-      const Scalar tmp1255 = tmp420*tmp1254;
-      const Scalar tmp1256 = -tmp1252;
-      const Scalar tmp1257 = tmp435*tmp1256;
-      const Scalar tmp1258 = tmp363*tmp368*penalty_damping;
-      const Scalar tmp1259 = tmp364*tmp1258;
-      const Scalar tmp1260 = -tmp1258;
-      const Scalar tmp1261 = -tmp419*tmp424*penalty_damping;
-      const Scalar tmp1262 = -tmp434*tmp437*penalty_damping;
-      const Scalar tmp1263 = tmp364*tmp1260 + tmp420*tmp1261 + tmp435*tmp1262;
-      const Scalar tmp1264 = -tmp1261;
-      const Scalar tmp1265 = tmp420*tmp1264;
-      const Scalar tmp1266 = -tmp1262;
-      const Scalar tmp1267 = tmp435*tmp1266;
-      const Scalar tmp1268 = tmp364*tmp368*penalty_damping;
-      const Scalar tmp1269 = tmp364*tmp1268;
-      const Scalar tmp1270 = -tmp1268;
-      const Scalar tmp1271 = -tmp420*tmp424*penalty_damping;
-      const Scalar tmp1272 = -tmp435*tmp437*penalty_damping;
-      const Scalar tmp1273 = tmp364*tmp1270 + tmp420*tmp1271 + tmp435*tmp1272;
-      const Scalar tmp1274 = -tmp1271;
-      const Scalar tmp1275 = tmp420*tmp1274;
-      const Scalar tmp1276 = -tmp1272;
-      const Scalar tmp1277 = tmp435*tmp1276;
-      const Scalar tmp1278 = tmp381*tmp388*penalty_damping;
-      const Scalar tmp1279 = tmp385*tmp1278;
-      const Scalar tmp1280 = tmp418*tmp424*penalty_damping;
-      const Scalar tmp1281 = tmp420*tmp1280;
-      const Scalar tmp1282 = -tmp447*tmp451*penalty_damping;
-      const Scalar tmp1283 = -tmp1278;
-      const Scalar tmp1284 = -tmp1280;
-      const Scalar tmp1285 = tmp449*tmp1282 + tmp385*tmp1283 + tmp420*tmp1284;
-      const Scalar tmp1286 = -tmp1282;
-      const Scalar tmp1287 = tmp449*tmp1286;
-      const Scalar tmp1288 = tmp383*tmp388*penalty_damping;
-      const Scalar tmp1289 = tmp385*tmp1288;
-      const Scalar tmp1290 = tmp419*tmp424*penalty_damping;
-      const Scalar tmp1291 = tmp420*tmp1290;
-      const Scalar tmp1292 = -tmp448*tmp451*penalty_damping;
-      const Scalar tmp1293 = -tmp1288;
-      const Scalar tmp1294 = -tmp1290;
-      const Scalar tmp1295 = tmp449*tmp1292 + tmp385*tmp1293 + tmp420*tmp1294;
-      const Scalar tmp1296 = -tmp1292;
-      const Scalar tmp1297 = tmp449*tmp1296;
-      const Scalar tmp1298 = tmp385*tmp388*penalty_damping;
-      const Scalar tmp1299 = tmp385*tmp1298;
-      const Scalar tmp1300 = tmp420*tmp424*penalty_damping;
-      const Scalar tmp1301 = tmp420*tmp1300;
-      const Scalar tmp1302 = -tmp449*tmp451*penalty_damping;
-      const Scalar tmp1303 = -tmp1298;
-      const Scalar tmp1304 = -tmp1300;
-      const Scalar tmp1305 = tmp449*tmp1302 + tmp385*tmp1303 + tmp420*tmp1304;
-      const Scalar tmp1306 = -tmp1302;
-      const Scalar tmp1307 = tmp449*tmp1306;
-      const Scalar tmp1308 = tmp401*tmp407*penalty_damping;
-      const Scalar tmp1309 = tmp405*tmp1308;
-      const Scalar tmp1310 = tmp433*tmp437*penalty_damping;
-      const Scalar tmp1311 = tmp435*tmp1310;
-      const Scalar tmp1312 = tmp447*tmp451*penalty_damping;
-      const Scalar tmp1313 = tmp449*tmp1312;
-      const Scalar tmp1314 = -tmp1312;
-      const Scalar tmp1315 = -tmp1308;
-      const Scalar tmp1316 = -tmp1310;
-      const Scalar tmp1317 = tmp449*tmp1314 + tmp405*tmp1315 + tmp435*tmp1316;
-      const Scalar tmp1318 = tmp403*tmp407*penalty_damping;
-      const Scalar tmp1319 = tmp405*tmp1318;
-      const Scalar tmp1320 = tmp434*tmp437*penalty_damping;
-      const Scalar tmp1321 = tmp435*tmp1320;
-      const Scalar tmp1322 = tmp448*tmp451*penalty_damping;
-      const Scalar tmp1323 = tmp449*tmp1322;
-      const Scalar tmp1324 = -tmp1322;
-      const Scalar tmp1325 = -tmp1318;
-      const Scalar tmp1326 = -tmp1320;
-      const Scalar tmp1327 = tmp449*tmp1324 + tmp405*tmp1325 + tmp435*tmp1326;
-      const Scalar tmp1328 = tmp405*tmp407*penalty_damping;
-      const Scalar tmp1329 = tmp405*tmp1328;
-      const Scalar tmp1330 = tmp435*tmp437*penalty_damping;
-      const Scalar tmp1331 = tmp435*tmp1330;
-      const Scalar tmp1332 = tmp449*tmp451*penalty_damping;
-      const Scalar tmp1333 = tmp449*tmp1332;
-      const Scalar tmp1334 = -tmp1332;
-      const Scalar tmp1335 = -tmp1328;
-      const Scalar tmp1336 = -tmp1330;
-      const Scalar tmp1337 = tmp449*tmp1334 + tmp405*tmp1335 + tmp435*tmp1336;
+      const Scalar tmp479 = (Scalar(1)/tmp478);
+      const Scalar tmp1434 = -tmp358*tmp364*penalty_damping;
+      const Scalar tmp1435 = -tmp1434;
+      const Scalar tmp1436 = tmp358*tmp1435;
+      const Scalar tmp1437 = tmp359*tmp1435;
+      const Scalar tmp1438 = tmp360*tmp1435;
+      const Scalar tmp1439 = tmp358*tmp1434;
+      const Scalar tmp1440 = tmp359*tmp1434;
+      const Scalar tmp1441 = tmp360*tmp1434;
+      const Scalar tmp1442 = -tmp383*tmp391*penalty_damping;
+      const Scalar tmp1443 = -tmp1442;
+      const Scalar tmp1444 = tmp383*tmp1443;
+      const Scalar tmp1445 = tmp386*tmp1443;
+      const Scalar tmp1446 = tmp388*tmp1443;
+      const Scalar tmp1447 = tmp383*tmp1442;
+      const Scalar tmp1448 = tmp386*tmp1442;
+      const Scalar tmp1449 = tmp388*tmp1442;
+      const Scalar tmp1450 = -tmp410*tmp417*penalty_damping;
+      const Scalar tmp1451 = -tmp1450;
+      const Scalar tmp1452 = tmp410*tmp1451;
+      const Scalar tmp1453 = tmp413*tmp1451;
+      const Scalar tmp1454 = tmp415*tmp1451;
+      const Scalar tmp1455 = tmp410*tmp1450;
+      const Scalar tmp1456 = tmp413*tmp1450;
+      const Scalar tmp1457 = tmp415*tmp1450;
+      const Scalar tmp1458 = tmp1449 + tmp1457 + tmp1441;
+      const Scalar tmp1459 = -tmp359*tmp364*penalty_damping;
+      const Scalar tmp1460 = -tmp1459;
+      const Scalar tmp1461 = tmp358*tmp1460;
+      const Scalar tmp1462 = tmp359*tmp1460;
+      const Scalar tmp1463 = tmp360*tmp1460;
+      const Scalar tmp1464 = tmp358*tmp1459;
+      const Scalar tmp1465 = tmp359*tmp1459;
+      const Scalar tmp1466 = tmp360*tmp1459;
+      const Scalar tmp1467 = -tmp386*tmp391*penalty_damping;
+      const Scalar tmp1468 = -tmp1467;
+      const Scalar tmp1469 = tmp383*tmp1468;
+      const Scalar tmp1470 = tmp386*tmp1468;
+      const Scalar tmp1471 = tmp388*tmp1468;
+      const Scalar tmp1472 = tmp383*tmp1467;
+      const Scalar tmp1473 = tmp386*tmp1467;
+      const Scalar tmp1474 = tmp388*tmp1467;
+      const Scalar tmp1475 = -tmp413*tmp417*penalty_damping;
+      const Scalar tmp1476 = -tmp1475;
+      const Scalar tmp1477 = tmp410*tmp1476;
+      const Scalar tmp1478 = tmp413*tmp1476;
+      const Scalar tmp1479 = tmp415*tmp1476;
+      const Scalar tmp1480 = tmp410*tmp1475;
+      const Scalar tmp1481 = tmp413*tmp1475;
+      const Scalar tmp1482 = tmp415*tmp1475;
+      const Scalar tmp1483 = tmp1474 + tmp1482 + tmp1466;
+      const Scalar tmp1484 = -tmp360*tmp364*penalty_damping;
+      const Scalar tmp1485 = -tmp1484;
+      const Scalar tmp1486 = tmp358*tmp1485;
+      const Scalar tmp1487 = tmp359*tmp1485;
+      const Scalar tmp1488 = tmp360*tmp1485;
+      const Scalar tmp1489 = tmp358*tmp1484;
+      const Scalar tmp1490 = tmp359*tmp1484;
+      const Scalar tmp1491 = tmp360*tmp1484;
+      const Scalar tmp1492 = -tmp388*tmp391*penalty_damping;
+      const Scalar tmp1493 = -tmp1492;
+      const Scalar tmp1494 = tmp383*tmp1493;
+      const Scalar tmp1495 = tmp386*tmp1493;
+      const Scalar tmp1496 = tmp388*tmp1493;
+      const Scalar tmp1497 = tmp383*tmp1492;
+      const Scalar tmp1498 = tmp386*tmp1492;
+      const Scalar tmp1499 = tmp388*tmp1492;
+      const Scalar tmp1500 = -tmp415*tmp417*penalty_damping;
+      const Scalar tmp1501 = -tmp1500;
+      const Scalar tmp1502 = tmp410*tmp1501;
+      const Scalar tmp1503 = tmp413*tmp1501;
+      const Scalar tmp1504 = tmp415*tmp1501;
+      const Scalar tmp1505 = tmp410*tmp1500;
+      const Scalar tmp1506 = tmp413*tmp1500;
+      const Scalar tmp1507 = tmp415*tmp1500;
+      const Scalar tmp1508 = tmp1499 + tmp1507 + tmp1491;
+      const Scalar tmp1509 = tmp358*tmp364*penalty_damping;
+      const Scalar tmp1510 = -tmp1509;
+      const Scalar tmp1511 = tmp358*tmp1510;
+      const Scalar tmp1512 = tmp359*tmp1510;
+      const Scalar tmp1513 = tmp360*tmp1510;
+      const Scalar tmp1514 = tmp358*tmp1509;
+      const Scalar tmp1515 = tmp359*tmp1509;
+      const Scalar tmp1516 = tmp360*tmp1509;
+      const Scalar tmp1517 = -tmp433*tmp439*penalty_damping;
+      const Scalar tmp1518 = -tmp1517;
+      const Scalar tmp1519 = tmp433*tmp1518;
+      const Scalar tmp1520 = tmp434*tmp1518;
+      const Scalar tmp1521 = tmp435*tmp1518;
+      const Scalar tmp1522 = tmp433*tmp1517;
+      const Scalar tmp1523 = tmp434*tmp1517;
+      const Scalar tmp1524 = tmp435*tmp1517;
+      const Scalar tmp1525 = -tmp455*tmp459*penalty_damping;
+      const Scalar tmp1526 = -tmp1525;
+      const Scalar tmp1527 = tmp455*tmp1526;
+      const Scalar tmp1528 = tmp456*tmp1526;
+      const Scalar tmp1529 = tmp457*tmp1526;
+      const Scalar tmp1530 = tmp455*tmp1525;
+      const Scalar tmp1531 = tmp456*tmp1525;
+      const Scalar tmp1532 = tmp457*tmp1525;
+      const Scalar tmp1533 = tmp1513 + tmp1524 + tmp1532;
+      const Scalar tmp1534 = tmp359*tmp364*penalty_damping;
+      const Scalar tmp1535 = -tmp1534;
+      const Scalar tmp1536 = tmp358*tmp1535;
+      const Scalar tmp1537 = tmp359*tmp1535;
+      const Scalar tmp1538 = tmp360*tmp1535;
+      const Scalar tmp1539 = tmp358*tmp1534;
+      const Scalar tmp1540 = tmp359*tmp1534;
+      const Scalar tmp1541 = tmp360*tmp1534;
+      const Scalar tmp1542 = -tmp434*tmp439*penalty_damping;
+      const Scalar tmp1543 = -tmp1542;
+      const Scalar tmp1544 = tmp433*tmp1543;
+      const Scalar tmp1545 = tmp434*tmp1543;
+      const Scalar tmp1546 = tmp435*tmp1543;
+      const Scalar tmp1547 = tmp433*tmp1542;
+      const Scalar tmp1548 = tmp434*tmp1542;
+      const Scalar tmp1549 = tmp435*tmp1542;
+      const Scalar tmp1550 = -tmp456*tmp459*penalty_damping;
+      const Scalar tmp1551 = -tmp1550;
+      const Scalar tmp1552 = tmp455*tmp1551;
+      const Scalar tmp1553 = tmp456*tmp1551;
+      const Scalar tmp1554 = tmp457*tmp1551;
+      const Scalar tmp1555 = tmp455*tmp1550;
+      const Scalar tmp1556 = tmp456*tmp1550;
+      const Scalar tmp1557 = tmp457*tmp1550;
+      const Scalar tmp1558 = tmp1538 + tmp1549 + tmp1557;
+      const Scalar tmp1559 = tmp360*tmp364*penalty_damping;
+      const Scalar tmp1560 = -tmp1559;
+      const Scalar tmp1561 = tmp358*tmp1560;
+      const Scalar tmp1562 = tmp359*tmp1560;
+      const Scalar tmp1563 = tmp360*tmp1560;
+      const Scalar tmp1564 = tmp358*tmp1559;
+      const Scalar tmp1565 = tmp359*tmp1559;
+      const Scalar tmp1566 = tmp360*tmp1559;
+      const Scalar tmp1567 = -tmp435*tmp439*penalty_damping;
+      const Scalar tmp1568 = -tmp1567;
+      const Scalar tmp1569 = tmp433*tmp1568;
+      const Scalar tmp1570 = tmp434*tmp1568;
+      const Scalar tmp1571 = tmp435*tmp1568;
+      const Scalar tmp1572 = tmp433*tmp1567;
+      const Scalar tmp1573 = tmp434*tmp1567;
+      const Scalar tmp1574 = tmp435*tmp1567;
+      const Scalar tmp1575 = -tmp457*tmp459*penalty_damping;
+      const Scalar tmp1576 = -tmp1575;
+      const Scalar tmp1577 = tmp455*tmp1576;
+      const Scalar tmp1578 = tmp456*tmp1576;
+      const Scalar tmp1579 = tmp457*tmp1576;
+      const Scalar tmp1580 = tmp455*tmp1575;
+      const Scalar tmp1581 = tmp456*tmp1575;
+      const Scalar tmp1582 = tmp457*tmp1575;
+      const Scalar tmp1583 = tmp1563 + tmp1574 + tmp1582;
+      const Scalar tmp1584 = tmp383*tmp391*penalty_damping;
+      const Scalar tmp1585 = -tmp1584;
+      const Scalar tmp1586 = tmp383*tmp1585;
+      const Scalar tmp1587 = tmp386*tmp1585;
+      const Scalar tmp1588 = tmp388*tmp1585;
+      const Scalar tmp1589 = tmp383*tmp1584;
+      const Scalar tmp1590 = tmp386*tmp1584;
+      const Scalar tmp1591 = tmp388*tmp1584;
+      const Scalar tmp1592 = tmp433*tmp439*penalty_damping;
+      const Scalar tmp1593 = -tmp1592;
+      const Scalar tmp1594 = tmp433*tmp1593;
+      const Scalar tmp1595 = tmp434*tmp1593;
+      const Scalar tmp1596 = tmp435*tmp1593;
+      const Scalar tmp1597 = tmp433*tmp1592;
+      const Scalar tmp1598 = tmp434*tmp1592;
+      const Scalar tmp1599 = tmp435*tmp1592;
+      const Scalar tmp1600 = -tmp475*tmp479*penalty_damping;
+      const Scalar tmp1601 = -tmp1600;
+      const Scalar tmp1602 = tmp475*tmp1601;
+      const Scalar tmp1603 = tmp476*tmp1601;
+      const Scalar tmp1604 = tmp477*tmp1601;
+      const Scalar tmp1605 = tmp475*tmp1600;
+      const Scalar tmp1606 = tmp476*tmp1600;
+      const Scalar tmp1607 = tmp477*tmp1600;
+      const Scalar tmp1608 = tmp1596 + tmp1607 + tmp1588;
+      const Scalar tmp1609 = tmp386*tmp391*penalty_damping;
+      const Scalar tmp1610 = -tmp1609;
+      const Scalar tmp1611 = tmp383*tmp1610;
+      const Scalar tmp1612 = tmp386*tmp1610;
+      const Scalar tmp1613 = tmp388*tmp1610;
+      const Scalar tmp1614 = tmp383*tmp1609;
+      const Scalar tmp1615 = tmp386*tmp1609;
+      const Scalar tmp1616 = tmp388*tmp1609;
+      const Scalar tmp1617 = tmp434*tmp439*penalty_damping;
+      const Scalar tmp1618 = -tmp1617;
+      const Scalar tmp1619 = tmp433*tmp1618;
+      const Scalar tmp1620 = tmp434*tmp1618;
+      const Scalar tmp1621 = tmp435*tmp1618;
+      const Scalar tmp1622 = tmp433*tmp1617;
+      const Scalar tmp1623 = tmp434*tmp1617;
+      const Scalar tmp1624 = tmp435*tmp1617;
+      const Scalar tmp1625 = -tmp476*tmp479*penalty_damping;
+      const Scalar tmp1626 = -tmp1625;
+      const Scalar tmp1627 = tmp475*tmp1626;
+      const Scalar tmp1628 = tmp476*tmp1626;
+      const Scalar tmp1629 = tmp477*tmp1626;
+      const Scalar tmp1630 = tmp475*tmp1625;
+      const Scalar tmp1631 = tmp476*tmp1625;
+      const Scalar tmp1632 = tmp477*tmp1625;
+      const Scalar tmp1633 = tmp1621 + tmp1632 + tmp1613;
+      const Scalar tmp1634 = tmp388*tmp391*penalty_damping;
+      const Scalar tmp1635 = -tmp1634;
+      const Scalar tmp1636 = tmp383*tmp1635;
+      const Scalar tmp1637 = tmp386*tmp1635;
+      const Scalar tmp1638 = tmp388*tmp1635;
+      const Scalar tmp1639 = tmp383*tmp1634;
+      const Scalar tmp1640 = tmp386*tmp1634;
+      const Scalar tmp1641 = tmp388*tmp1634;
+      const Scalar tmp1642 = tmp435*tmp439*penalty_damping;
+      const Scalar tmp1643 = -tmp1642;
+      const Scalar tmp1644 = tmp433*tmp1643;
+      const Scalar tmp1645 = tmp434*tmp1643;
+      const Scalar tmp1646 = tmp435*tmp1643;
+      const Scalar tmp1647 = tmp433*tmp1642;
+      const Scalar tmp1648 = tmp434*tmp1642;
+      const Scalar tmp1649 = tmp435*tmp1642;
+      const Scalar tmp1650 = -tmp477*tmp479*penalty_damping;
+      const Scalar tmp1651 = -tmp1650;
+      const Scalar tmp1652 = tmp475*tmp1651;
+      const Scalar tmp1653 = tmp476*tmp1651;
+      const Scalar tmp1654 = tmp477*tmp1651;
+      const Scalar tmp1655 = tmp475*tmp1650;
+      const Scalar tmp1656 = tmp476*tmp1650;
+      const Scalar tmp1657 = tmp477*tmp1650;
+      const Scalar tmp1658 = tmp1646 + tmp1657 + tmp1638;
+      const Scalar tmp1659 = tmp410*tmp417*penalty_damping;
+      const Scalar tmp1660 = -tmp1659;
+      const Scalar tmp1661 = tmp410*tmp1660;
+      const Scalar tmp1662 = tmp413*tmp1660;
+      const Scalar tmp1663 = tmp415*tmp1660;
+      const Scalar tmp1664 = tmp410*tmp1659;
+      const Scalar tmp1665 = tmp413*tmp1659;
+      const Scalar tmp1666 = tmp415*tmp1659;
+      const Scalar tmp1667 = tmp455*tmp459*penalty_damping;
+      const Scalar tmp1668 = -tmp1667;
+      const Scalar tmp1669 = tmp455*tmp1668;
+      const Scalar tmp1670 = tmp456*tmp1668;
+      const Scalar tmp1671 = tmp457*tmp1668;
+      const Scalar tmp1672 = tmp455*tmp1667;
+      const Scalar tmp1673 = tmp456*tmp1667;
+      const Scalar tmp1674 = tmp457*tmp1667;
+      const Scalar tmp1675 = tmp475*tmp479*penalty_damping;
+      const Scalar tmp1676 = -tmp1675;
+      const Scalar tmp1677 = tmp475*tmp1676;
+      const Scalar tmp1678 = tmp476*tmp1676;
+      const Scalar tmp1679 = tmp477*tmp1676;
+      const Scalar tmp1680 = tmp475*tmp1675;
+      const Scalar tmp1681 = tmp476*tmp1675;
+      const Scalar tmp1682 = tmp477*tmp1675;
+      const Scalar tmp1683 = tmp1663 + tmp1671 + tmp1679;
+      const Scalar tmp1684 = tmp413*tmp417*penalty_damping;
+      const Scalar tmp1685 = -tmp1684;
+      const Scalar tmp1686 = tmp410*tmp1685;
+      const Scalar tmp1687 = tmp413*tmp1685;
+      const Scalar tmp1688 = tmp415*tmp1685;
+      const Scalar tmp1689 = tmp410*tmp1684;
+      const Scalar tmp1690 = tmp413*tmp1684;
+      const Scalar tmp1691 = tmp415*tmp1684;
+      const Scalar tmp1692 = tmp456*tmp459*penalty_damping;
+      const Scalar tmp1693 = -tmp1692;
+      const Scalar tmp1694 = tmp455*tmp1693;
+      const Scalar tmp1695 = tmp456*tmp1693;
+      const Scalar tmp1696 = tmp457*tmp1693;
+      const Scalar tmp1697 = tmp455*tmp1692;
+      const Scalar tmp1698 = tmp456*tmp1692;
+      const Scalar tmp1699 = tmp457*tmp1692;
+      const Scalar tmp1700 = tmp476*tmp479*penalty_damping;
+      const Scalar tmp1701 = -tmp1700;
+      const Scalar tmp1702 = tmp475*tmp1701;
+      const Scalar tmp1703 = tmp476*tmp1701;
+      const Scalar tmp1704 = tmp477*tmp1701;
+      const Scalar tmp1705 = tmp475*tmp1700;
+      const Scalar tmp1706 = tmp476*tmp1700;
+      const Scalar tmp1707 = tmp477*tmp1700;
+      const Scalar tmp1708 = tmp1688 + tmp1696 + tmp1704;
+      const Scalar tmp1709 = tmp415*tmp417*penalty_damping;
+      const Scalar tmp1710 = -tmp1709;
+      const Scalar tmp1711 = tmp410*tmp1710;
+      const Scalar tmp1712 = tmp413*tmp1710;
+      const Scalar tmp1713 = tmp415*tmp1710;
+      const Scalar tmp1714 = tmp410*tmp1709;
+      const Scalar tmp1715 = tmp413*tmp1709;
+      const Scalar tmp1716 = tmp415*tmp1709;
+      const Scalar tmp1717 = tmp457*tmp459*penalty_damping;
+      const Scalar tmp1718 = -tmp1717;
+      const Scalar tmp1719 = tmp455*tmp1718;
+      const Scalar tmp1720 = tmp456*tmp1718;
+      const Scalar tmp1721 = tmp457*tmp1718;
+      const Scalar tmp1722 = tmp455*tmp1717;
+      const Scalar tmp1723 = tmp456*tmp1717;
+      const Scalar tmp1724 = tmp457*tmp1717;
+      const Scalar tmp1725 = tmp477*tmp479*penalty_damping;
+      const Scalar tmp1726 = -tmp1725;
+      const Scalar tmp1727 = tmp475*tmp1726;
+      const Scalar tmp1728 = tmp476*tmp1726;
+      const Scalar tmp1729 = tmp477*tmp1726;
+      const Scalar tmp1730 = tmp475*tmp1725;
+      const Scalar tmp1731 = tmp476*tmp1725;
+      const Scalar tmp1732 = tmp477*tmp1725;
+      const Scalar tmp1733 = tmp1713 + tmp1721 + tmp1729;
       std::array<Scalar, 144> result;
-      result[0] = tmp362*tmp1218 + tmp381*tmp1219 + tmp401*tmp1220;
-      result[1] = tmp362*tmp1228 + tmp381*tmp1229 + tmp401*tmp1230;
-      result[2] = tmp362*tmp1238 + tmp381*tmp1239 + tmp401*tmp1240;
-      result[3] = tmp362*tmp1248;
-      result[4] = tmp362*tmp1258;
-      result[5] = tmp362*tmp1268;
-      result[6] = tmp381*tmp1278;
-      result[7] = tmp381*tmp1288;
-      result[8] = tmp381*tmp1298;
-      result[9] = tmp401*tmp1308;
-      result[10] = tmp401*tmp1318;
-      result[11] = tmp401*tmp1328;
-      result[12] = tmp363*tmp1218 + tmp383*tmp1219 + tmp403*tmp1220;
-      result[13] = tmp363*tmp1228 + tmp383*tmp1229 + tmp403*tmp1230;
-      result[14] = tmp363*tmp1238 + tmp383*tmp1239 + tmp403*tmp1240;
-      result[15] = tmp363*tmp1248;
-      result[16] = tmp363*tmp1258;
-      result[17] = tmp363*tmp1268;
-      result[18] = tmp383*tmp1278;
-      result[19] = tmp383*tmp1288;
-      result[20] = tmp383*tmp1298;
-      result[21] = tmp403*tmp1308;
-      result[22] = tmp403*tmp1318;
-      result[23] = tmp403*tmp1328;
-      result[24] = tmp1221;
-      result[25] = tmp1231;
-      result[26] = tmp1241;
-      result[27] = tmp1249;
-      result[28] = tmp1259;
-      result[29] = tmp1269;
-      result[30] = tmp1279;
-      result[31] = tmp1289;
-      result[32] = tmp1299;
-      result[33] = tmp1309;
-      result[34] = tmp1319;
-      result[35] = tmp1329;
-      result[36] = tmp362*tmp1222;
-      result[37] = tmp362*tmp1232;
-      result[38] = tmp362*tmp1242;
-      result[39] = tmp362*tmp1250 + tmp418*tmp1251 + tmp433*tmp1252;
-      result[40] = tmp362*tmp1260 + tmp418*tmp1261 + tmp433*tmp1262;
-      result[41] = tmp362*tmp1270 + tmp418*tmp1271 + tmp433*tmp1272;
-      result[42] = tmp418*tmp1280;
-      result[43] = tmp418*tmp1290;
-      result[44] = tmp418*tmp1300;
-      result[45] = tmp433*tmp1310;
-      result[46] = tmp433*tmp1320;
-      result[47] = tmp433*tmp1330;
-      result[48] = tmp363*tmp1222;
-      result[49] = tmp363*tmp1232;
-      result[50] = tmp363*tmp1242;
-      result[51] = tmp363*tmp1250 + tmp419*tmp1251 + tmp434*tmp1252;
-      result[52] = tmp363*tmp1260 + tmp419*tmp1261 + tmp434*tmp1262;
-      result[53] = tmp363*tmp1270 + tmp419*tmp1271 + tmp434*tmp1272;
-      result[54] = tmp419*tmp1280;
-      result[55] = tmp419*tmp1290;
-      result[56] = tmp419*tmp1300;
-      result[57] = tmp434*tmp1310;
-      result[58] = tmp434*tmp1320;
-      result[59] = tmp434*tmp1330;
-      result[60] = tmp1223;
-      result[61] = tmp1233;
-      result[62] = tmp1243;
-      result[63] = tmp1253;
-      result[64] = tmp1263;
-      result[65] = tmp1273;
-      result[66] = tmp1281;
-      result[67] = tmp1291;
-      result[68] = tmp1301;
-      result[69] = tmp1311;
-      result[70] = tmp1321;
-      result[71] = tmp1331;
-      result[72] = tmp381*tmp1224;
-      result[73] = tmp381*tmp1234;
-      result[74] = tmp381*tmp1244;
-      result[75] = tmp418*tmp1254;
-      result[76] = tmp418*tmp1264;
-      result[77] = tmp418*tmp1274;
-      result[78] = tmp447*tmp1282 + tmp381*tmp1283 + tmp418*tmp1284;
-      result[79] = tmp447*tmp1292 + tmp381*tmp1293 + tmp418*tmp1294;
-      result[80] = tmp447*tmp1302 + tmp381*tmp1303 + tmp418*tmp1304;
-      result[81] = tmp447*tmp1312;
-      result[82] = tmp447*tmp1322;
-      result[83] = tmp447*tmp1332;
-      result[84] = tmp383*tmp1224;
-      result[85] = tmp383*tmp1234;
-      result[86] = tmp383*tmp1244;
-      result[87] = tmp419*tmp1254;
-      result[88] = tmp419*tmp1264;
-      result[89] = tmp419*tmp1274;
-      result[90] = tmp448*tmp1282 + tmp383*tmp1283 + tmp419*tmp1284;
-      result[91] = tmp448*tmp1292 + tmp383*tmp1293 + tmp419*tmp1294;
-      result[92] = tmp448*tmp1302 + tmp383*tmp1303 + tmp419*tmp1304;
-      result[93] = tmp448*tmp1312;
-      result[94] = tmp448*tmp1322;
-      result[95] = tmp448*tmp1332;
-      result[96] = tmp1225;
-      result[97] = tmp1235;
-      result[98] = tmp1245;
-      result[99] = tmp1255;
-      result[100] = tmp1265;
-      result[101] = tmp1275;
-      result[102] = tmp1285;
-      result[103] = tmp1295;
-      result[104] = tmp1305;
-      result[105] = tmp1313;
-      result[106] = tmp1323;
-      result[107] = tmp1333;
-      result[108] = tmp401*tmp1226;
-      result[109] = tmp401*tmp1236;
-      result[110] = tmp401*tmp1246;
-      result[111] = tmp433*tmp1256;
-      result[112] = tmp433*tmp1266;
-      result[113] = tmp433*tmp1276;
-      result[114] = tmp447*tmp1286;
-      result[115] = tmp447*tmp1296;
-      result[116] = tmp447*tmp1306;
-      result[117] = tmp447*tmp1314 + tmp401*tmp1315 + tmp433*tmp1316;
-      result[118] = tmp447*tmp1324 + tmp401*tmp1325 + tmp433*tmp1326;
-      result[119] = tmp447*tmp1334 + tmp401*tmp1335 + tmp433*tmp1336;
-      result[120] = tmp403*tmp1226;
-      result[121] = tmp403*tmp1236;
-      result[122] = tmp403*tmp1246;
-      result[123] = tmp434*tmp1256;
-      result[124] = tmp434*tmp1266;
-      result[125] = tmp434*tmp1276;
-      result[126] = tmp448*tmp1286;
-      result[127] = tmp448*tmp1296;
-      result[128] = tmp448*tmp1306;
-      result[129] = tmp448*tmp1314 + tmp403*tmp1315 + tmp434*tmp1316;
-      result[130] = tmp448*tmp1324 + tmp403*tmp1325 + tmp434*tmp1326;
-      result[131] = tmp448*tmp1334 + tmp403*tmp1335 + tmp434*tmp1336;
-      result[132] = tmp1227;
-      result[133] = tmp1237;
-      result[134] = tmp1247;
-      result[135] = tmp1257;
-      result[136] = tmp1267;
-      result[137] = tmp1277;
-      result[138] = tmp1287;
-      result[139] = tmp1297;
-      result[140] = tmp1307;
-      result[141] = tmp1317;
-      result[142] = tmp1327;
-      result[143] = tmp1337;
+      result[0] = tmp1455 + tmp1439 + tmp1447;
+      result[1] = tmp1480 + tmp1464 + tmp1472;
+      result[2] = tmp1505 + tmp1489 + tmp1497;
+      result[3] = tmp1514;
+      result[4] = tmp1539;
+      result[5] = tmp1564;
+      result[6] = tmp1589;
+      result[7] = tmp1614;
+      result[8] = tmp1639;
+      result[9] = tmp1664;
+      result[10] = tmp1689;
+      result[11] = tmp1714;
+      result[12] = tmp1448 + tmp1456 + tmp1440;
+      result[13] = tmp1473 + tmp1481 + tmp1465;
+      result[14] = tmp1498 + tmp1506 + tmp1490;
+      result[15] = tmp1515;
+      result[16] = tmp1540;
+      result[17] = tmp1565;
+      result[18] = tmp1590;
+      result[19] = tmp1615;
+      result[20] = tmp1640;
+      result[21] = tmp1665;
+      result[22] = tmp1690;
+      result[23] = tmp1715;
+      result[24] = tmp1458;
+      result[25] = tmp1483;
+      result[26] = tmp1508;
+      result[27] = tmp1516;
+      result[28] = tmp1541;
+      result[29] = tmp1566;
+      result[30] = tmp1591;
+      result[31] = tmp1616;
+      result[32] = tmp1641;
+      result[33] = tmp1666;
+      result[34] = tmp1691;
+      result[35] = tmp1716;
+      result[36] = tmp1436;
+      result[37] = tmp1461;
+      result[38] = tmp1486;
+      result[39] = tmp1511 + tmp1522 + tmp1530;
+      result[40] = tmp1536 + tmp1547 + tmp1555;
+      result[41] = tmp1561 + tmp1572 + tmp1580;
+      result[42] = tmp1597;
+      result[43] = tmp1622;
+      result[44] = tmp1647;
+      result[45] = tmp1672;
+      result[46] = tmp1697;
+      result[47] = tmp1722;
+      result[48] = tmp1437;
+      result[49] = tmp1462;
+      result[50] = tmp1487;
+      result[51] = tmp1512 + tmp1523 + tmp1531;
+      result[52] = tmp1537 + tmp1548 + tmp1556;
+      result[53] = tmp1562 + tmp1573 + tmp1581;
+      result[54] = tmp1598;
+      result[55] = tmp1623;
+      result[56] = tmp1648;
+      result[57] = tmp1673;
+      result[58] = tmp1698;
+      result[59] = tmp1723;
+      result[60] = tmp1438;
+      result[61] = tmp1463;
+      result[62] = tmp1488;
+      result[63] = tmp1533;
+      result[64] = tmp1558;
+      result[65] = tmp1583;
+      result[66] = tmp1599;
+      result[67] = tmp1624;
+      result[68] = tmp1649;
+      result[69] = tmp1674;
+      result[70] = tmp1699;
+      result[71] = tmp1724;
+      result[72] = tmp1444;
+      result[73] = tmp1469;
+      result[74] = tmp1494;
+      result[75] = tmp1519;
+      result[76] = tmp1544;
+      result[77] = tmp1569;
+      result[78] = tmp1594 + tmp1605 + tmp1586;
+      result[79] = tmp1619 + tmp1630 + tmp1611;
+      result[80] = tmp1644 + tmp1655 + tmp1636;
+      result[81] = tmp1680;
+      result[82] = tmp1705;
+      result[83] = tmp1730;
+      result[84] = tmp1445;
+      result[85] = tmp1470;
+      result[86] = tmp1495;
+      result[87] = tmp1520;
+      result[88] = tmp1545;
+      result[89] = tmp1570;
+      result[90] = tmp1595 + tmp1606 + tmp1587;
+      result[91] = tmp1620 + tmp1631 + tmp1612;
+      result[92] = tmp1645 + tmp1656 + tmp1637;
+      result[93] = tmp1681;
+      result[94] = tmp1706;
+      result[95] = tmp1731;
+      result[96] = tmp1446;
+      result[97] = tmp1471;
+      result[98] = tmp1496;
+      result[99] = tmp1521;
+      result[100] = tmp1546;
+      result[101] = tmp1571;
+      result[102] = tmp1608;
+      result[103] = tmp1633;
+      result[104] = tmp1658;
+      result[105] = tmp1682;
+      result[106] = tmp1707;
+      result[107] = tmp1732;
+      result[108] = tmp1452;
+      result[109] = tmp1477;
+      result[110] = tmp1502;
+      result[111] = tmp1527;
+      result[112] = tmp1552;
+      result[113] = tmp1577;
+      result[114] = tmp1602;
+      result[115] = tmp1627;
+      result[116] = tmp1652;
+      result[117] = tmp1661 + tmp1669 + tmp1677;
+      result[118] = tmp1686 + tmp1694 + tmp1702;
+      result[119] = tmp1711 + tmp1719 + tmp1727;
+      result[120] = tmp1453;
+      result[121] = tmp1478;
+      result[122] = tmp1503;
+      result[123] = tmp1528;
+      result[124] = tmp1553;
+      result[125] = tmp1578;
+      result[126] = tmp1603;
+      result[127] = tmp1628;
+      result[128] = tmp1653;
+      result[129] = tmp1662 + tmp1670 + tmp1678;
+      result[130] = tmp1687 + tmp1695 + tmp1703;
+      result[131] = tmp1712 + tmp1720 + tmp1728;
+      result[132] = tmp1454;
+      result[133] = tmp1479;
+      result[134] = tmp1504;
+      result[135] = tmp1529;
+      result[136] = tmp1554;
+      result[137] = tmp1579;
+      result[138] = tmp1604;
+      result[139] = tmp1629;
+      result[140] = tmp1654;
+      result[141] = tmp1683;
+      result[142] = tmp1708;
+      result[143] = tmp1733;
       return result;
     }
 
@@ -11036,9 +11756,9 @@ struct RigidBodyEulerYzx {
       const Scalar g = Scalar(params.g);
       const Scalar m = Scalar(params.m);
       const Scalar tmp290 = g*m;
-      const Scalar tmp355 = (Scalar(0.25))*tmp290;
+      const Scalar tmp492 = (Scalar(0.25))*tmp290;
       Scalar result;
-      result = tmp355*pos(2) + tmp355*pos(5) + tmp355*pos(8) + tmp355*pos(11);
+      result = tmp492*pos(2) + tmp492*pos(5) + tmp492*pos(8) + tmp492*pos(11);
       return result;
     }
 
@@ -11106,75 +11826,75 @@ struct RigidBodyEulerYzx {
       const Scalar tmp173 = tmp10*tmp172;
       const Scalar tmp174 = tmp39 - tmp34 - tmp40;
       const Scalar tmp175 = tmp10*tmp174;
-      const Scalar tmp357 = pos(3) - pos(0);
-      const Scalar tmp358 = pos(4) - pos(1);
-      const Scalar tmp359 = pos(5) - pos(2);
-      const Scalar tmp360 = sqrt((tmp357*tmp357) + (tmp358*tmp358) + (tmp359*tmp359));
-      const Scalar tmp365 = -tmp10*tmp27;
-      const Scalar tmp366 = -tmp10*tmp42;
-      const Scalar tmp367 = sqrt(((-tmp118 - tmp365)*(-tmp118 - tmp365))
-          + ((-tmp120 - tmp366)*(-tmp120 - tmp366)));
-      const Scalar tmp368 = (Scalar(1)/tmp367);
-      const Scalar tmp369 = tmp360 - tmp367;
-      const Scalar tmp370 = tmp368*kappa;
-      const Scalar tmp373 = -pos(6);
-      const Scalar tmp374 = -tmp373 - pos(0);
-      const Scalar tmp375 = -pos(7);
-      const Scalar tmp376 = -tmp375 - pos(1);
-      const Scalar tmp377 = -pos(8);
-      const Scalar tmp378 = -tmp377 - pos(2);
-      const Scalar tmp379 = sqrt((tmp374*tmp374) + (tmp376*tmp376) + (tmp378*tmp378));
-      const Scalar tmp386 = Scalar(4)*tmp20/m;
-      const Scalar tmp387 = sqrt(tmp386 + ((-tmp141 - tmp365)*(-tmp141 - tmp365))
-          + ((-tmp143 - tmp366)*(-tmp143 - tmp366)));
-      const Scalar tmp388 = (Scalar(1)/tmp387);
-      const Scalar tmp389 = tmp379 - tmp387;
-      const Scalar tmp390 = tmp388*kappa;
-      const Scalar tmp393 = -pos(9);
-      const Scalar tmp394 = -tmp393 - pos(0);
-      const Scalar tmp395 = -pos(10);
-      const Scalar tmp396 = -tmp395 - pos(1);
-      const Scalar tmp397 = -pos(11);
-      const Scalar tmp398 = -tmp397 - pos(2);
-      const Scalar tmp399 = sqrt((tmp394*tmp394) + (tmp396*tmp396) + (tmp398*tmp398));
-      const Scalar tmp406 = sqrt(tmp386 + ((-tmp173 - tmp365)*(-tmp173 - tmp365))
-          + ((-tmp175 - tmp366)*(-tmp175 - tmp366)));
-      const Scalar tmp407 = (Scalar(1)/tmp406);
-      const Scalar tmp408 = tmp399 - tmp406;
-      const Scalar tmp409 = tmp407*kappa;
-      const Scalar tmp413 = -tmp373 - pos(3);
-      const Scalar tmp414 = -tmp375 - pos(4);
-      const Scalar tmp415 = -tmp377 - pos(5);
-      const Scalar tmp416 = sqrt((tmp413*tmp413) + (tmp414*tmp414) + (tmp415*tmp415));
-      const Scalar tmp421 = -tmp118;
-      const Scalar tmp422 = -tmp120;
-      const Scalar tmp423 = sqrt(tmp386 + ((-tmp141 - tmp421)*(-tmp141 - tmp421))
-          + ((-tmp143 - tmp422)*(-tmp143 - tmp422)));
-      const Scalar tmp424 = (Scalar(1)/tmp423);
-      const Scalar tmp425 = tmp416 - tmp423;
-      const Scalar tmp426 = tmp424*kappa;
-      const Scalar tmp428 = -tmp393 - pos(3);
-      const Scalar tmp429 = -tmp395 - pos(4);
-      const Scalar tmp430 = -tmp397 - pos(5);
+      const Scalar tmp353 = pos(3) - pos(0);
+      const Scalar tmp354 = pos(4) - pos(1);
+      const Scalar tmp355 = pos(5) - pos(2);
+      const Scalar tmp356 = sqrt((tmp353*tmp353) + (tmp354*tmp354) + (tmp355*tmp355));
+      const Scalar tmp361 = -tmp10*tmp27;
+      const Scalar tmp362 = -tmp10*tmp42;
+      const Scalar tmp363 = sqrt(((-tmp118 - tmp361)*(-tmp118 - tmp361))
+          + ((-tmp120 - tmp362)*(-tmp120 - tmp362)));
+      const Scalar tmp364 = (Scalar(1)/tmp363);
+      const Scalar tmp365 = tmp356 - tmp363;
+      const Scalar tmp366 = tmp364*kappa;
+      const Scalar tmp375 = -pos(6);
+      const Scalar tmp376 = -tmp375 - pos(0);
+      const Scalar tmp377 = -pos(7);
+      const Scalar tmp378 = -tmp377 - pos(1);
+      const Scalar tmp379 = -pos(8);
+      const Scalar tmp380 = -tmp379 - pos(2);
+      const Scalar tmp381 = sqrt((tmp376*tmp376) + (tmp378*tmp378) + (tmp380*tmp380));
+      const Scalar tmp389 = Scalar(4)*tmp20/m;
+      const Scalar tmp390 = sqrt(tmp389 + ((-tmp141 - tmp361)*(-tmp141 - tmp361))
+          + ((-tmp143 - tmp362)*(-tmp143 - tmp362)));
+      const Scalar tmp391 = (Scalar(1)/tmp390);
+      const Scalar tmp392 = tmp381 - tmp390;
+      const Scalar tmp393 = tmp391*kappa;
+      const Scalar tmp402 = -pos(9);
+      const Scalar tmp403 = -tmp402 - pos(0);
+      const Scalar tmp404 = -pos(10);
+      const Scalar tmp405 = -tmp404 - pos(1);
+      const Scalar tmp406 = -pos(11);
+      const Scalar tmp407 = -tmp406 - pos(2);
+      const Scalar tmp408 = sqrt((tmp403*tmp403) + (tmp405*tmp405) + (tmp407*tmp407));
+      const Scalar tmp416 = sqrt(tmp389 + ((-tmp173 - tmp361)*(-tmp173 - tmp361))
+          + ((-tmp175 - tmp362)*(-tmp175 - tmp362)));
+      const Scalar tmp417 = (Scalar(1)/tmp416);
+      const Scalar tmp418 = tmp408 - tmp416;
+      const Scalar tmp419 = tmp417*kappa;
+      const Scalar tmp428 = -tmp375 - pos(3);
+      const Scalar tmp429 = -tmp377 - pos(4);
+      const Scalar tmp430 = -tmp379 - pos(5);
       const Scalar tmp431 = sqrt((tmp428*tmp428) + (tmp429*tmp429) + (tmp430*tmp430));
-      const Scalar tmp436 = sqrt(tmp386 + ((-tmp173 - tmp421)*(-tmp173 - tmp421))
-          + ((-tmp175 - tmp422)*(-tmp175 - tmp422)));
-      const Scalar tmp437 = (Scalar(1)/tmp436);
-      const Scalar tmp438 = tmp431 - tmp436;
-      const Scalar tmp439 = tmp437*kappa;
-      const Scalar tmp442 = -tmp393 - pos(6);
-      const Scalar tmp443 = -tmp395 - pos(7);
-      const Scalar tmp444 = -tmp397 - pos(8);
-      const Scalar tmp445 = sqrt((tmp442*tmp442) + (tmp443*tmp443) + (tmp444*tmp444));
-      const Scalar tmp450 = sqrt(((tmp141 - tmp173)*(tmp141 - tmp173))
+      const Scalar tmp436 = -tmp118;
+      const Scalar tmp437 = -tmp120;
+      const Scalar tmp438 = sqrt(tmp389 + ((-tmp141 - tmp436)*(-tmp141 - tmp436))
+          + ((-tmp143 - tmp437)*(-tmp143 - tmp437)));
+      const Scalar tmp439 = (Scalar(1)/tmp438);
+      const Scalar tmp440 = tmp431 - tmp438;
+      const Scalar tmp441 = tmp439*kappa;
+      const Scalar tmp450 = -tmp402 - pos(3);
+      const Scalar tmp451 = -tmp404 - pos(4);
+      const Scalar tmp452 = -tmp406 - pos(5);
+      const Scalar tmp453 = sqrt((tmp450*tmp450) + (tmp451*tmp451) + (tmp452*tmp452));
+      const Scalar tmp458 = sqrt(tmp389 + ((-tmp173 - tmp436)*(-tmp173 - tmp436))
+          + ((-tmp175 - tmp437)*(-tmp175 - tmp437)));
+      const Scalar tmp459 = (Scalar(1)/tmp458);
+      const Scalar tmp460 = tmp453 - tmp458;
+      const Scalar tmp461 = tmp459*kappa;
+      const Scalar tmp470 = -tmp402 - pos(6);
+      const Scalar tmp471 = -tmp404 - pos(7);
+      const Scalar tmp472 = -tmp406 - pos(8);
+      const Scalar tmp473 = sqrt((tmp470*tmp470) + (tmp471*tmp471) + (tmp472*tmp472));
+      const Scalar tmp478 = sqrt(((tmp141 - tmp173)*(tmp141 - tmp173))
           + ((tmp143 - tmp175)*(tmp143 - tmp175)));
-      const Scalar tmp451 = (Scalar(1)/tmp450);
-      const Scalar tmp452 = tmp445 - tmp450;
-      const Scalar tmp453 = tmp451*kappa;
+      const Scalar tmp479 = (Scalar(1)/tmp478);
+      const Scalar tmp480 = tmp473 - tmp478;
+      const Scalar tmp481 = tmp479*kappa;
       Scalar result;
-      result = (Scalar(0.5))*tmp370*(tmp369*tmp369) + (Scalar(0.5))*tmp390*(tmp389*tmp389)
-          + (Scalar(0.5))*tmp409*(tmp408*tmp408) + (Scalar(0.5))*tmp426*(tmp425*tmp425)
-          + (Scalar(0.5))*tmp439*(tmp438*tmp438) + (Scalar(0.5))*tmp453*(tmp452*tmp452);
+      result = (Scalar(0.5))*tmp366*(tmp365*tmp365) + (Scalar(0.5))*tmp393*(tmp392*tmp392)
+          + (Scalar(0.5))*tmp419*(tmp418*tmp418) + (Scalar(0.5))*tmp441*(tmp440*tmp440)
+          + (Scalar(0.5))*tmp461*(tmp460*tmp460) + (Scalar(0.5))*tmp481*(tmp480*tmp480);
       return result;
     }
 
@@ -11240,66 +11960,66 @@ struct RigidBodyEulerYzx {
       const Scalar tmp173 = tmp10*tmp172;
       const Scalar tmp174 = tmp39 - tmp34 - tmp40;
       const Scalar tmp175 = tmp10*tmp174;
-      const Scalar tmp357 = pos(3) - pos(0);
-      const Scalar tmp358 = pos(4) - pos(1);
-      const Scalar tmp359 = pos(5) - pos(2);
-      const Scalar tmp360 = sqrt((tmp357*tmp357) + (tmp358*tmp358) + (tmp359*tmp359));
-      const Scalar tmp365 = -tmp10*tmp27;
-      const Scalar tmp366 = -tmp10*tmp42;
-      const Scalar tmp367 = sqrt(((-tmp118 - tmp365)*(-tmp118 - tmp365))
-          + ((-tmp120 - tmp366)*(-tmp120 - tmp366)));
-      const Scalar tmp369 = tmp360 - tmp367;
-      const Scalar tmp373 = -pos(6);
-      const Scalar tmp374 = -tmp373 - pos(0);
-      const Scalar tmp375 = -pos(7);
-      const Scalar tmp376 = -tmp375 - pos(1);
-      const Scalar tmp377 = -pos(8);
-      const Scalar tmp378 = -tmp377 - pos(2);
-      const Scalar tmp379 = sqrt((tmp374*tmp374) + (tmp376*tmp376) + (tmp378*tmp378));
-      const Scalar tmp386 = Scalar(4)*tmp20/m;
-      const Scalar tmp387 = sqrt(tmp386 + ((-tmp141 - tmp365)*(-tmp141 - tmp365))
-          + ((-tmp143 - tmp366)*(-tmp143 - tmp366)));
-      const Scalar tmp389 = tmp379 - tmp387;
-      const Scalar tmp393 = -pos(9);
-      const Scalar tmp394 = -tmp393 - pos(0);
-      const Scalar tmp395 = -pos(10);
-      const Scalar tmp396 = -tmp395 - pos(1);
-      const Scalar tmp397 = -pos(11);
-      const Scalar tmp398 = -tmp397 - pos(2);
-      const Scalar tmp399 = sqrt((tmp394*tmp394) + (tmp396*tmp396) + (tmp398*tmp398));
-      const Scalar tmp406 = sqrt(tmp386 + ((-tmp173 - tmp365)*(-tmp173 - tmp365))
-          + ((-tmp175 - tmp366)*(-tmp175 - tmp366)));
-      const Scalar tmp408 = tmp399 - tmp406;
-      const Scalar tmp413 = -tmp373 - pos(3);
-      const Scalar tmp414 = -tmp375 - pos(4);
-      const Scalar tmp415 = -tmp377 - pos(5);
-      const Scalar tmp416 = sqrt((tmp413*tmp413) + (tmp414*tmp414) + (tmp415*tmp415));
-      const Scalar tmp421 = -tmp118;
-      const Scalar tmp422 = -tmp120;
-      const Scalar tmp423 = sqrt(tmp386 + ((-tmp141 - tmp421)*(-tmp141 - tmp421))
-          + ((-tmp143 - tmp422)*(-tmp143 - tmp422)));
-      const Scalar tmp425 = tmp416 - tmp423;
-      const Scalar tmp428 = -tmp393 - pos(3);
-      const Scalar tmp429 = -tmp395 - pos(4);
-      const Scalar tmp430 = -tmp397 - pos(5);
+      const Scalar tmp353 = pos(3) - pos(0);
+      const Scalar tmp354 = pos(4) - pos(1);
+      const Scalar tmp355 = pos(5) - pos(2);
+      const Scalar tmp356 = sqrt((tmp353*tmp353) + (tmp354*tmp354) + (tmp355*tmp355));
+      const Scalar tmp361 = -tmp10*tmp27;
+      const Scalar tmp362 = -tmp10*tmp42;
+      const Scalar tmp363 = sqrt(((-tmp118 - tmp361)*(-tmp118 - tmp361))
+          + ((-tmp120 - tmp362)*(-tmp120 - tmp362)));
+      const Scalar tmp365 = tmp356 - tmp363;
+      const Scalar tmp375 = -pos(6);
+      const Scalar tmp376 = -tmp375 - pos(0);
+      const Scalar tmp377 = -pos(7);
+      const Scalar tmp378 = -tmp377 - pos(1);
+      const Scalar tmp379 = -pos(8);
+      const Scalar tmp380 = -tmp379 - pos(2);
+      const Scalar tmp381 = sqrt((tmp376*tmp376) + (tmp378*tmp378) + (tmp380*tmp380));
+      const Scalar tmp389 = Scalar(4)*tmp20/m;
+      const Scalar tmp390 = sqrt(tmp389 + ((-tmp141 - tmp361)*(-tmp141 - tmp361))
+          + ((-tmp143 - tmp362)*(-tmp143 - tmp362)));
+      const Scalar tmp392 = tmp381 - tmp390;
+      const Scalar tmp402 = -pos(9);
+      const Scalar tmp403 = -tmp402 - pos(0);
+      const Scalar tmp404 = -pos(10);
+      const Scalar tmp405 = -tmp404 - pos(1);
+      const Scalar tmp406 = -pos(11);
+      const Scalar tmp407 = -tmp406 - pos(2);
+      const Scalar tmp408 = sqrt((tmp403*tmp403) + (tmp405*tmp405) + (tmp407*tmp407));
+      const Scalar tmp416 = sqrt(tmp389 + ((-tmp173 - tmp361)*(-tmp173 - tmp361))
+          + ((-tmp175 - tmp362)*(-tmp175 - tmp362)));
+      const Scalar tmp418 = tmp408 - tmp416;
+      const Scalar tmp428 = -tmp375 - pos(3);
+      const Scalar tmp429 = -tmp377 - pos(4);
+      const Scalar tmp430 = -tmp379 - pos(5);
       const Scalar tmp431 = sqrt((tmp428*tmp428) + (tmp429*tmp429) + (tmp430*tmp430));
-      const Scalar tmp436 = sqrt(tmp386 + ((-tmp173 - tmp421)*(-tmp173 - tmp421))
-          + ((-tmp175 - tmp422)*(-tmp175 - tmp422)));
-      const Scalar tmp438 = tmp431 - tmp436;
-      const Scalar tmp442 = -tmp393 - pos(6);
-      const Scalar tmp443 = -tmp395 - pos(7);
-      const Scalar tmp444 = -tmp397 - pos(8);
-      const Scalar tmp445 = sqrt((tmp442*tmp442) + (tmp443*tmp443) + (tmp444*tmp444));
-      const Scalar tmp450 = sqrt(((tmp141 - tmp173)*(tmp141 - tmp173))
+      const Scalar tmp436 = -tmp118;
+      const Scalar tmp437 = -tmp120;
+      const Scalar tmp438 = sqrt(tmp389 + ((-tmp141 - tmp436)*(-tmp141 - tmp436))
+          + ((-tmp143 - tmp437)*(-tmp143 - tmp437)));
+      const Scalar tmp440 = tmp431 - tmp438;
+      const Scalar tmp450 = -tmp402 - pos(3);
+      const Scalar tmp451 = -tmp404 - pos(4);
+      const Scalar tmp452 = -tmp406 - pos(5);
+      const Scalar tmp453 = sqrt((tmp450*tmp450) + (tmp451*tmp451) + (tmp452*tmp452));
+      const Scalar tmp458 = sqrt(tmp389 + ((-tmp173 - tmp436)*(-tmp173 - tmp436))
+          + ((-tmp175 - tmp437)*(-tmp175 - tmp437)));
+      const Scalar tmp460 = tmp453 - tmp458;
+      const Scalar tmp470 = -tmp402 - pos(6);
+      const Scalar tmp471 = -tmp404 - pos(7);
+      const Scalar tmp472 = -tmp406 - pos(8);
+      const Scalar tmp473 = sqrt((tmp470*tmp470) + (tmp471*tmp471) + (tmp472*tmp472));
+      const Scalar tmp478 = sqrt(((tmp141 - tmp173)*(tmp141 - tmp173))
           + ((tmp143 - tmp175)*(tmp143 - tmp175)));
-      const Scalar tmp452 = tmp445 - tmp450;
+      const Scalar tmp480 = tmp473 - tmp478;
       ConstraintVector<Scalar> result;
-      result(0) = tmp369;
-      result(1) = tmp389;
-      result(2) = tmp408;
-      result(3) = tmp425;
-      result(4) = tmp438;
-      result(5) = tmp452;
+      result(0) = tmp365;
+      result(1) = tmp392;
+      result(2) = tmp418;
+      result(3) = tmp440;
+      result(4) = tmp460;
+      result(5) = tmp480;
       return result;
     }
   };

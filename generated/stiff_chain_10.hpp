@@ -9,8 +9,8 @@
 //   phi1 = 2.837, phi2 = -0.2383, phi3 = 1.663, phi4 = -1.088, phi5 = -0.2076, phi6 =
 //   0.09605, phi7 = -0.4393, phi8 = 0.6342, phi9 = -3.058, phi10 = 1.263
 //
-// Total ops: 43700
-// Intermediate terms (3881)
+// Total ops: 43677
+// Intermediate terms (4154)
 // Output terms (749)
 #pragma once
 
@@ -4027,2769 +4027,2769 @@ struct StiffChain10 {
     carried[271] = tmp401;
     const Scalar tmp402 = tmp324*m;
     carried[272] = tmp402;
-    const Scalar tmp551 = l*tmp2;
-    const Scalar tmp552 = -tmp0;
-    const Scalar tmp553 = l*tmp552;
-    const Scalar tmp554 = l*tmp11;
-    const Scalar tmp555 = -tmp8;
-    const Scalar tmp556 = l*tmp555;
-    const Scalar tmp557 = phi2_dot*tmp556;
-    const Scalar tmp558 = tmp553 + tmp556;
-    const Scalar tmp559 = phi1_dot*tmp558 + tmp557;
-    const Scalar tmp560 = phi2_dot*tmp554;
-    const Scalar tmp561 = tmp551 + tmp554;
-    const Scalar tmp562 = l*tmp24;
-    const Scalar tmp563 = -tmp21;
-    const Scalar tmp564 = l*tmp563;
-    const Scalar tmp565 = tmp558 + tmp564;
-    const Scalar tmp566 = tmp564 + tmp556;
-    const Scalar tmp567 = phi3_dot*tmp564;
-    const Scalar tmp568 = phi2_dot*tmp566 + tmp567;
-    const Scalar tmp569 = phi1_dot*tmp565 + tmp568;
-    const Scalar tmp570 = phi3_dot*tmp562;
-    const Scalar tmp571 = tmp562 + tmp554;
-    const Scalar tmp572 = tmp561 + tmp562;
-    const Scalar tmp573 = l*tmp40;
-    const Scalar tmp574 = -tmp37;
-    const Scalar tmp575 = l*tmp574;
-    const Scalar tmp576 = tmp564 + tmp575;
-    const Scalar tmp577 = tmp558 + tmp576;
-    const Scalar tmp578 = tmp566 + tmp575;
-    const Scalar tmp579 = phi4_dot*tmp575;
-    const Scalar tmp580 = phi3_dot*tmp576 + tmp579;
-    const Scalar tmp581 = phi2_dot*tmp578 + tmp580;
-    const Scalar tmp582 = phi1_dot*tmp577 + tmp581;
-    const Scalar tmp583 = phi4_dot*tmp573;
-    const Scalar tmp584 = tmp562 + tmp573;
-    const Scalar tmp585 = tmp571 + tmp573;
-    const Scalar tmp586 = tmp561 + tmp584;
-    const Scalar tmp587 = l*tmp59;
-    const Scalar tmp588 = -tmp56;
-    const Scalar tmp589 = l*tmp588;
-    const Scalar tmp590 = tmp576 + tmp589;
-    const Scalar tmp591 = tmp558 + tmp590;
-    const Scalar tmp592 = tmp575 + tmp589;
-    const Scalar tmp593 = tmp566 + tmp592;
-    const Scalar tmp594 = phi5_dot*tmp589;
-    const Scalar tmp595 = phi4_dot*tmp592 + tmp594;
-    const Scalar tmp596 = phi3_dot*tmp590 + tmp595;
-    const Scalar tmp597 = phi2_dot*tmp593 + tmp596;
-    const Scalar tmp598 = phi1_dot*tmp591 + tmp597;
-    const Scalar tmp599 = phi5_dot*tmp587;
-    const Scalar tmp600 = tmp573 + tmp587;
-    const Scalar tmp601 = tmp584 + tmp587;
-    const Scalar tmp602 = tmp571 + tmp600;
-    const Scalar tmp603 = tmp561 + tmp601;
-    const Scalar tmp604 = l*tmp81;
-    const Scalar tmp605 = -tmp78;
-    const Scalar tmp606 = l*tmp605;
-    const Scalar tmp607 = tmp589 + tmp606;
-    const Scalar tmp608 = tmp577 + tmp607;
-    const Scalar tmp609 = tmp592 + tmp606;
-    const Scalar tmp610 = tmp566 + tmp609;
-    const Scalar tmp611 = tmp576 + tmp607;
-    const Scalar tmp612 = phi6_dot*tmp606;
-    const Scalar tmp613 = phi5_dot*tmp607 + tmp612;
-    const Scalar tmp614 = phi4_dot*tmp609 + tmp613;
-    const Scalar tmp615 = phi3_dot*tmp611 + tmp614;
-    const Scalar tmp616 = phi2_dot*tmp610 + tmp615;
-    const Scalar tmp617 = phi1_dot*tmp608 + tmp616;
-    const Scalar tmp618 = phi6_dot*tmp604;
-    const Scalar tmp619 = tmp587 + tmp604;
-    const Scalar tmp620 = tmp600 + tmp604;
-    const Scalar tmp621 = tmp584 + tmp619;
-    const Scalar tmp622 = tmp571 + tmp620;
-    const Scalar tmp623 = tmp586 + tmp619;
-    const Scalar tmp624 = l*tmp106;
-    const Scalar tmp625 = -tmp103;
-    const Scalar tmp626 = l*tmp625;
-    const Scalar tmp627 = tmp607 + tmp626;
-    const Scalar tmp628 = tmp577 + tmp627;
-    const Scalar tmp629 = tmp606 + tmp626;
-    const Scalar tmp630 = tmp593 + tmp629;
-    const Scalar tmp631 = tmp576 + tmp627;
-    const Scalar tmp632 = tmp592 + tmp629;
-    const Scalar tmp633 = phi7_dot*tmp626;
-    const Scalar tmp634 = phi6_dot*tmp629 + tmp633;
-    const Scalar tmp635 = phi5_dot*tmp627 + tmp634;
-    const Scalar tmp636 = phi4_dot*tmp632 + tmp635;
+    const Scalar tmp592 = l*tmp2;
+    const Scalar tmp593 = -tmp0;
+    const Scalar tmp594 = l*tmp593;
+    const Scalar tmp595 = l*tmp11;
+    const Scalar tmp596 = -tmp8;
+    const Scalar tmp597 = l*tmp596;
+    const Scalar tmp598 = phi2_dot*tmp597;
+    const Scalar tmp599 = tmp594 + tmp597;
+    const Scalar tmp600 = phi1_dot*tmp599 + tmp598;
+    const Scalar tmp601 = phi2_dot*tmp595;
+    const Scalar tmp602 = tmp592 + tmp595;
+    const Scalar tmp603 = l*tmp24;
+    const Scalar tmp604 = -tmp21;
+    const Scalar tmp605 = l*tmp604;
+    const Scalar tmp606 = tmp599 + tmp605;
+    const Scalar tmp607 = tmp605 + tmp597;
+    const Scalar tmp608 = phi3_dot*tmp605;
+    const Scalar tmp609 = phi2_dot*tmp607 + tmp608;
+    const Scalar tmp610 = phi1_dot*tmp606 + tmp609;
+    const Scalar tmp611 = phi3_dot*tmp603;
+    const Scalar tmp612 = tmp603 + tmp595;
+    const Scalar tmp613 = tmp602 + tmp603;
+    const Scalar tmp614 = l*tmp40;
+    const Scalar tmp615 = -tmp37;
+    const Scalar tmp616 = l*tmp615;
+    const Scalar tmp617 = tmp605 + tmp616;
+    const Scalar tmp618 = tmp599 + tmp617;
+    const Scalar tmp619 = tmp607 + tmp616;
+    const Scalar tmp620 = phi4_dot*tmp616;
+    const Scalar tmp621 = phi3_dot*tmp617 + tmp620;
+    const Scalar tmp622 = phi2_dot*tmp619 + tmp621;
+    const Scalar tmp623 = phi1_dot*tmp618 + tmp622;
+    const Scalar tmp624 = phi4_dot*tmp614;
+    const Scalar tmp625 = tmp603 + tmp614;
+    const Scalar tmp626 = tmp612 + tmp614;
+    const Scalar tmp627 = tmp602 + tmp625;
+    const Scalar tmp628 = l*tmp59;
+    const Scalar tmp629 = -tmp56;
+    const Scalar tmp630 = l*tmp629;
+    const Scalar tmp631 = tmp617 + tmp630;
+    const Scalar tmp632 = tmp599 + tmp631;
+    const Scalar tmp633 = tmp616 + tmp630;
+    const Scalar tmp634 = tmp607 + tmp633;
+    const Scalar tmp635 = phi5_dot*tmp630;
+    const Scalar tmp636 = phi4_dot*tmp633 + tmp635;
     const Scalar tmp637 = phi3_dot*tmp631 + tmp636;
-    const Scalar tmp638 = phi2_dot*tmp630 + tmp637;
-    const Scalar tmp639 = tmp638 + phi1_dot*tmp628;
-    const Scalar tmp640 = phi7_dot*tmp624;
-    const Scalar tmp641 = tmp604 + tmp624;
-    const Scalar tmp642 = tmp619 + tmp624;
-    const Scalar tmp643 = tmp641 + tmp600;
-    const Scalar tmp644 = tmp642 + tmp584;
-    const Scalar tmp645 = tmp641 + tmp602;
-    const Scalar tmp646 = tmp642 + tmp586;
-    const Scalar tmp647 = l*tmp134;
-    const Scalar tmp648 = -tmp131;
-    const Scalar tmp649 = l*tmp648;
-    const Scalar tmp650 = tmp649 + tmp626;
-    const Scalar tmp651 = tmp650 + tmp607;
-    const Scalar tmp652 = tmp651 + tmp577;
-    const Scalar tmp653 = tmp649 + tmp629;
-    const Scalar tmp654 = tmp653 + tmp593;
-    const Scalar tmp655 = tmp650 + tmp611;
-    const Scalar tmp656 = tmp653 + tmp592;
-    const Scalar tmp657 = phi8_dot*tmp649;
-    const Scalar tmp658 = phi7_dot*tmp650 + tmp657;
-    const Scalar tmp659 = phi6_dot*tmp653 + tmp658;
-    const Scalar tmp660 = phi5_dot*tmp651 + tmp659;
-    const Scalar tmp661 = phi4_dot*tmp656 + tmp660;
-    const Scalar tmp662 = phi3_dot*tmp655 + tmp661;
-    const Scalar tmp663 = phi2_dot*tmp654 + tmp662;
-    const Scalar tmp664 = phi1_dot*tmp652 + tmp663;
-    const Scalar tmp665 = phi8_dot*tmp647;
-    const Scalar tmp666 = tmp647 + tmp624;
-    const Scalar tmp667 = tmp641 + tmp647;
-    const Scalar tmp668 = tmp666 + tmp619;
-    const Scalar tmp669 = tmp667 + tmp600;
-    const Scalar tmp670 = tmp666 + tmp621;
-    const Scalar tmp671 = tmp667 + tmp602;
-    const Scalar tmp672 = tmp668 + tmp586;
-    const Scalar tmp673 = l*tmp165;
-    const Scalar tmp674 = -tmp162;
-    const Scalar tmp675 = l*tmp674;
-    const Scalar tmp676 = tmp650 + tmp675;
-    const Scalar tmp677 = tmp676 + tmp607;
-    const Scalar tmp678 = tmp677 + tmp577;
-    const Scalar tmp679 = tmp649 + tmp675;
-    const Scalar tmp680 = tmp679 + tmp629;
-    const Scalar tmp681 = tmp680 + tmp593;
-    const Scalar tmp682 = tmp676 + tmp611;
-    const Scalar tmp683 = tmp679 + tmp632;
-    const Scalar tmp684 = phi9_dot*tmp675;
-    const Scalar tmp685 = phi8_dot*tmp679 + tmp684;
-    const Scalar tmp686 = phi7_dot*tmp676 + tmp685;
-    const Scalar tmp687 = phi6_dot*tmp680 + tmp686;
-    const Scalar tmp688 = phi5_dot*tmp677 + tmp687;
-    const Scalar tmp689 = phi4_dot*tmp683 + tmp688;
-    const Scalar tmp690 = phi3_dot*tmp682 + tmp689;
-    const Scalar tmp691 = phi2_dot*tmp681 + tmp690;
-    const Scalar tmp692 = phi1_dot*tmp678 + tmp691;
-    const Scalar tmp693 = phi9_dot*tmp673;
-    const Scalar tmp694 = tmp647 + tmp673;
-    const Scalar tmp695 = tmp666 + tmp673;
-    const Scalar tmp696 = tmp641 + tmp694;
-    const Scalar tmp697 = tmp695 + tmp619;
-    const Scalar tmp698 = tmp643 + tmp694;
-    const Scalar tmp699 = tmp695 + tmp621;
-    const Scalar tmp700 = tmp696 + tmp602;
-    const Scalar tmp701 = tmp697 + tmp586;
-    const Scalar tmp702 = l*tmp199;
-    const Scalar tmp703 = -tmp196;
-    const Scalar tmp704 = l*tmp703;
-    const Scalar tmp705 = tmp675 + tmp704;
-    const Scalar tmp706 = tmp651 + tmp705;
-    const Scalar tmp707 = tmp706 + tmp577;
-    const Scalar tmp708 = tmp679 + tmp704;
-    const Scalar tmp709 = tmp708 + tmp629;
-    const Scalar tmp710 = tmp709 + tmp593;
-    const Scalar tmp711 = tmp650 + tmp705;
-    const Scalar tmp712 = tmp711 + tmp611;
-    const Scalar tmp713 = tmp708 + tmp632;
-    const Scalar tmp714 = phi10_dot*tmp704;
-    const Scalar tmp715 = phi9_dot*tmp705 + tmp714;
-    const Scalar tmp716 = phi8_dot*tmp708 + tmp715;
-    const Scalar tmp717 = phi7_dot*tmp711 + tmp716;
-    const Scalar tmp718 = phi6_dot*tmp709 + tmp717;
-    const Scalar tmp719 = phi5_dot*tmp706 + tmp718;
-    const Scalar tmp720 = phi4_dot*tmp713 + tmp719;
-    const Scalar tmp721 = phi3_dot*tmp712 + tmp720;
-    const Scalar tmp722 = phi2_dot*tmp710 + tmp721;
-    const Scalar tmp723 = phi1_dot*tmp707 + tmp722;
-    const Scalar tmp724 = phi10_dot*tmp702;
-    const Scalar tmp725 = tmp673 + tmp702;
-    const Scalar tmp726 = tmp694 + tmp702;
-    const Scalar tmp727 = tmp666 + tmp725;
-    const Scalar tmp728 = tmp641 + tmp726;
-    const Scalar tmp729 = tmp668 + tmp725;
-    const Scalar tmp730 = tmp643 + tmp726;
-    const Scalar tmp731 = tmp727 + tmp621;
-    const Scalar tmp732 = tmp728 + tmp602;
-    const Scalar tmp733 = tmp729 + tmp586;
-    const Scalar tmp734 = -tmp232*tmp551;
-    const Scalar tmp735 = tmp232*tmp553;
-    const Scalar tmp736 = (-phi1_dot - phi2_dot)*tmp560 - (phi1_dot*phi1_dot)*tmp561
-        - phi1_dot*phi2_dot*tmp554;
-    const Scalar tmp737 = phi1_dot*tmp559 + phi1_dot*phi2_dot*tmp556 + phi2_dot*tmp557;
-    const Scalar tmp738 = -tmp571;
-    const Scalar tmp739 = phi2_dot*tmp738 - tmp570;
-    const Scalar tmp740 = phi3_dot*(-phi1_dot - phi2_dot)*tmp562 + phi1_dot*phi2_dot*tmp738
-        + (phi1_dot + phi2_dot)*tmp739 - phi3_dot*tmp570 - (phi1_dot*phi1_dot)*tmp572;
-    const Scalar tmp741 = phi3_dot*(phi1_dot + phi2_dot)*tmp564 + phi1_dot*phi2_dot*tmp566
-        + phi3_dot*tmp567 + phi2_dot*tmp568 + phi1_dot*tmp569;
-    const Scalar tmp742 = -tmp584;
-    const Scalar tmp743 = phi3_dot*tmp742 - tmp583;
-    const Scalar tmp744 = -tmp585;
-    const Scalar tmp745 = tmp743 + phi2_dot*tmp744;
-    const Scalar tmp746 = phi3_dot*(phi1_dot + phi2_dot)*tmp742 + phi3_dot*tmp743
-        + phi1_dot*phi2_dot*tmp744 + (phi1_dot + phi2_dot)*tmp745
-        + phi4_dot*(-phi1_dot - phi2_dot - phi3_dot)*tmp573 - phi4_dot*tmp583
-        - (phi1_dot*phi1_dot)*tmp586;
-    const Scalar tmp747 = phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp575
-        + phi3_dot*(phi1_dot + phi2_dot)*tmp576 + phi1_dot*phi2_dot*tmp578 + phi4_dot*tmp579
-        + phi3_dot*tmp580 + phi2_dot*tmp581 + phi1_dot*tmp582;
-    const Scalar tmp748 = -tmp600;
-    const Scalar tmp749 = phi4_dot*tmp748 - tmp599;
-    const Scalar tmp750 = -tmp601;
-    const Scalar tmp751 = tmp749 + phi3_dot*tmp750;
-    const Scalar tmp752 = -tmp602;
-    const Scalar tmp753 = tmp751 + phi2_dot*tmp752;
-    const Scalar tmp754 = phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp748 + phi4_dot*tmp749
-        + phi3_dot*(phi1_dot + phi2_dot)*tmp750 + phi3_dot*tmp751 + phi1_dot*phi2_dot*tmp752
-        + (phi1_dot + phi2_dot)*tmp753
-        + phi5_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot)*tmp587 - phi5_dot*tmp599
-        - (phi1_dot*phi1_dot)*tmp603;
-    const Scalar tmp755 = phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp589
-        + phi3_dot*(phi1_dot + phi2_dot)*tmp590 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp592
-        + phi1_dot*phi2_dot*tmp593 + phi5_dot*tmp594 + phi4_dot*tmp595 + phi3_dot*tmp596
-        + phi2_dot*tmp597 + phi1_dot*tmp598;
-    const Scalar tmp756 = -tmp619;
-    const Scalar tmp757 = phi5_dot*tmp756 - tmp618;
-    const Scalar tmp758 = -tmp620;
-    const Scalar tmp759 = tmp757 + phi4_dot*tmp758;
-    const Scalar tmp760 = -tmp621;
-    const Scalar tmp761 = tmp759 + phi3_dot*tmp760;
-    const Scalar tmp762 = -tmp622;
-    const Scalar tmp763 = tmp761 + phi2_dot*tmp762;
-    const Scalar tmp764 = phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp756
-        + phi5_dot*tmp757 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp758 + phi4_dot*tmp759
-        + phi3_dot*(phi1_dot + phi2_dot)*tmp760 + phi3_dot*tmp761 + phi1_dot*phi2_dot*tmp762
-        + (phi1_dot + phi2_dot)*tmp763
-        + phi6_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot)*tmp604 - phi6_dot*tmp618
-        - (phi1_dot*phi1_dot)*tmp623;
-    const Scalar tmp765 = phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp606
-        + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp607
-        + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp609 + phi1_dot*phi2_dot*tmp610
-        + phi3_dot*(phi1_dot + phi2_dot)*tmp611 + phi6_dot*tmp612 + phi5_dot*tmp613
-        + phi4_dot*tmp614 + phi3_dot*tmp615 + phi2_dot*tmp616 + phi1_dot*tmp617;
-    const Scalar tmp766 = -tmp641;
-    const Scalar tmp767 = -tmp640 + phi6_dot*tmp766;
-    const Scalar tmp768 = -tmp642;
-    const Scalar tmp769 = tmp767 + phi5_dot*tmp768;
-    const Scalar tmp770 = -tmp643;
-    const Scalar tmp771 = tmp769 + phi4_dot*tmp770;
-    const Scalar tmp772 = -tmp644;
-    const Scalar tmp773 = tmp771 + phi3_dot*tmp772;
-    const Scalar tmp774 = -tmp645;
-    const Scalar tmp775 = tmp773 + phi2_dot*tmp774;
-    const Scalar tmp776 = -phi7_dot*tmp640 - (phi1_dot*phi1_dot)*tmp646
-        + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp766 + phi6_dot*tmp767
-        + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp768 + phi5_dot*tmp769
-        + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp770 + phi4_dot*tmp771
-        + phi3_dot*(phi1_dot + phi2_dot)*tmp772 + phi3_dot*tmp773 + phi1_dot*phi2_dot*tmp774
-        + (phi1_dot + phi2_dot)*tmp775
-        + phi7_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot - phi6_dot)*tmp624;
-    const Scalar tmp777 = phi2_dot*tmp638 + phi1_dot*tmp639
-        + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp626
-        + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp627
-        + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp629
-        + phi1_dot*phi2_dot*tmp630 + phi3_dot*(phi1_dot + phi2_dot)*tmp631
-        + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp632 + phi7_dot*tmp633 + phi6_dot*tmp634
-        + phi5_dot*tmp635 + phi4_dot*tmp636 + phi3_dot*tmp637;
-    const Scalar tmp778 = -tmp666;
-    const Scalar tmp779 = -tmp665 + phi7_dot*tmp778;
-    const Scalar tmp780 = -tmp667;
-    const Scalar tmp781 = tmp779 + phi6_dot*tmp780;
-    const Scalar tmp782 = -tmp668;
-    const Scalar tmp783 = tmp781 + phi5_dot*tmp782;
-    const Scalar tmp784 = -tmp669;
-    const Scalar tmp785 = tmp783 + phi4_dot*tmp784;
-    const Scalar tmp786 = -tmp670;
-    const Scalar tmp787 = tmp785 + phi3_dot*tmp786;
-    const Scalar tmp788 = -tmp671;
-    const Scalar tmp789 = tmp787 + phi2_dot*tmp788;
-    const Scalar tmp790 = phi8_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot - phi6_dot
-            - phi7_dot)*tmp647
-        - phi8_dot*tmp665 - (phi1_dot*phi1_dot)*tmp672
-        + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp778
-        + phi7_dot*tmp779 + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp780
-        + phi6_dot*tmp781 + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp782
-        + phi5_dot*tmp783 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp784 + phi4_dot*tmp785
-        + phi3_dot*(phi1_dot + phi2_dot)*tmp786 + phi3_dot*tmp787 + phi1_dot*phi2_dot*tmp788
-        + (phi1_dot + phi2_dot)*tmp789;
-    const Scalar tmp791 = phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot
-            + phi7_dot)*tmp649
-        + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp650
-        + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp651
-        + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp653
-        + phi1_dot*phi2_dot*tmp654 + phi3_dot*(phi1_dot + phi2_dot)*tmp655
-        + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp656 + phi8_dot*tmp657 + phi7_dot*tmp658
-        + phi6_dot*tmp659 + phi5_dot*tmp660 + phi4_dot*tmp661 + phi3_dot*tmp662 + phi2_dot*tmp663
-        + phi1_dot*tmp664;
-    const Scalar tmp792 = -tmp694;
-    const Scalar tmp793 = -tmp693 + phi8_dot*tmp792;
-    const Scalar tmp794 = -tmp695;
-    const Scalar tmp795 = tmp793 + phi7_dot*tmp794;
-    const Scalar tmp796 = -tmp696;
-    const Scalar tmp797 = tmp795 + phi6_dot*tmp796;
-    const Scalar tmp798 = -tmp697;
-    const Scalar tmp799 = tmp797 + phi5_dot*tmp798;
-    const Scalar tmp800 = -tmp698;
-    const Scalar tmp801 = tmp799 + phi4_dot*tmp800;
-    const Scalar tmp802 = -tmp699;
-    const Scalar tmp803 = tmp801 + phi3_dot*tmp802;
-    const Scalar tmp804 = -tmp700;
-    const Scalar tmp805 = tmp803 + phi2_dot*tmp804;
-    const Scalar tmp806 = phi9_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot - phi6_dot
-            - phi7_dot - phi8_dot)*tmp673
-        - phi9_dot*tmp693 - (phi1_dot*phi1_dot)*tmp701
+    const Scalar tmp638 = phi2_dot*tmp634 + tmp637;
+    const Scalar tmp639 = phi1_dot*tmp632 + tmp638;
+    const Scalar tmp640 = phi5_dot*tmp628;
+    const Scalar tmp641 = tmp614 + tmp628;
+    const Scalar tmp642 = tmp625 + tmp628;
+    const Scalar tmp643 = tmp612 + tmp641;
+    const Scalar tmp644 = tmp602 + tmp642;
+    const Scalar tmp645 = l*tmp81;
+    const Scalar tmp646 = -tmp78;
+    const Scalar tmp647 = l*tmp646;
+    const Scalar tmp648 = tmp630 + tmp647;
+    const Scalar tmp649 = tmp618 + tmp648;
+    const Scalar tmp650 = tmp633 + tmp647;
+    const Scalar tmp651 = tmp607 + tmp650;
+    const Scalar tmp652 = tmp617 + tmp648;
+    const Scalar tmp653 = phi6_dot*tmp647;
+    const Scalar tmp654 = phi5_dot*tmp648 + tmp653;
+    const Scalar tmp655 = phi4_dot*tmp650 + tmp654;
+    const Scalar tmp656 = phi3_dot*tmp652 + tmp655;
+    const Scalar tmp657 = phi2_dot*tmp651 + tmp656;
+    const Scalar tmp658 = phi1_dot*tmp649 + tmp657;
+    const Scalar tmp659 = phi6_dot*tmp645;
+    const Scalar tmp660 = tmp628 + tmp645;
+    const Scalar tmp661 = tmp641 + tmp645;
+    const Scalar tmp662 = tmp625 + tmp660;
+    const Scalar tmp663 = tmp612 + tmp661;
+    const Scalar tmp664 = tmp627 + tmp660;
+    const Scalar tmp665 = l*tmp106;
+    const Scalar tmp666 = -tmp103;
+    const Scalar tmp667 = l*tmp666;
+    const Scalar tmp668 = tmp648 + tmp667;
+    const Scalar tmp669 = tmp618 + tmp668;
+    const Scalar tmp670 = tmp647 + tmp667;
+    const Scalar tmp671 = tmp634 + tmp670;
+    const Scalar tmp672 = tmp617 + tmp668;
+    const Scalar tmp673 = tmp633 + tmp670;
+    const Scalar tmp674 = phi7_dot*tmp667;
+    const Scalar tmp675 = phi6_dot*tmp670 + tmp674;
+    const Scalar tmp676 = phi5_dot*tmp668 + tmp675;
+    const Scalar tmp677 = phi4_dot*tmp673 + tmp676;
+    const Scalar tmp678 = phi3_dot*tmp672 + tmp677;
+    const Scalar tmp679 = phi2_dot*tmp671 + tmp678;
+    const Scalar tmp680 = tmp679 + phi1_dot*tmp669;
+    const Scalar tmp681 = phi7_dot*tmp665;
+    const Scalar tmp682 = tmp645 + tmp665;
+    const Scalar tmp683 = tmp660 + tmp665;
+    const Scalar tmp684 = tmp682 + tmp641;
+    const Scalar tmp685 = tmp683 + tmp625;
+    const Scalar tmp686 = tmp682 + tmp643;
+    const Scalar tmp687 = tmp683 + tmp627;
+    const Scalar tmp688 = l*tmp134;
+    const Scalar tmp689 = -tmp131;
+    const Scalar tmp690 = l*tmp689;
+    const Scalar tmp691 = tmp690 + tmp667;
+    const Scalar tmp692 = tmp691 + tmp648;
+    const Scalar tmp693 = tmp692 + tmp618;
+    const Scalar tmp694 = tmp690 + tmp670;
+    const Scalar tmp695 = tmp694 + tmp634;
+    const Scalar tmp696 = tmp691 + tmp652;
+    const Scalar tmp697 = tmp694 + tmp633;
+    const Scalar tmp698 = phi8_dot*tmp690;
+    const Scalar tmp699 = phi7_dot*tmp691 + tmp698;
+    const Scalar tmp700 = phi6_dot*tmp694 + tmp699;
+    const Scalar tmp701 = phi5_dot*tmp692 + tmp700;
+    const Scalar tmp702 = phi4_dot*tmp697 + tmp701;
+    const Scalar tmp703 = phi3_dot*tmp696 + tmp702;
+    const Scalar tmp704 = phi2_dot*tmp695 + tmp703;
+    const Scalar tmp705 = phi1_dot*tmp693 + tmp704;
+    const Scalar tmp706 = phi8_dot*tmp688;
+    const Scalar tmp707 = tmp688 + tmp665;
+    const Scalar tmp708 = tmp682 + tmp688;
+    const Scalar tmp709 = tmp707 + tmp660;
+    const Scalar tmp710 = tmp708 + tmp641;
+    const Scalar tmp711 = tmp707 + tmp662;
+    const Scalar tmp712 = tmp708 + tmp643;
+    const Scalar tmp713 = tmp709 + tmp627;
+    const Scalar tmp714 = l*tmp165;
+    const Scalar tmp715 = -tmp162;
+    const Scalar tmp716 = l*tmp715;
+    const Scalar tmp717 = tmp691 + tmp716;
+    const Scalar tmp718 = tmp717 + tmp648;
+    const Scalar tmp719 = tmp718 + tmp618;
+    const Scalar tmp720 = tmp690 + tmp716;
+    const Scalar tmp721 = tmp720 + tmp670;
+    const Scalar tmp722 = tmp721 + tmp634;
+    const Scalar tmp723 = tmp717 + tmp652;
+    const Scalar tmp724 = tmp720 + tmp673;
+    const Scalar tmp725 = phi9_dot*tmp716;
+    const Scalar tmp726 = phi8_dot*tmp720 + tmp725;
+    const Scalar tmp727 = phi7_dot*tmp717 + tmp726;
+    const Scalar tmp728 = phi6_dot*tmp721 + tmp727;
+    const Scalar tmp729 = phi5_dot*tmp718 + tmp728;
+    const Scalar tmp730 = phi4_dot*tmp724 + tmp729;
+    const Scalar tmp731 = phi3_dot*tmp723 + tmp730;
+    const Scalar tmp732 = phi2_dot*tmp722 + tmp731;
+    const Scalar tmp733 = phi1_dot*tmp719 + tmp732;
+    const Scalar tmp734 = phi9_dot*tmp714;
+    const Scalar tmp735 = tmp688 + tmp714;
+    const Scalar tmp736 = tmp707 + tmp714;
+    const Scalar tmp737 = tmp682 + tmp735;
+    const Scalar tmp738 = tmp736 + tmp660;
+    const Scalar tmp739 = tmp684 + tmp735;
+    const Scalar tmp740 = tmp736 + tmp662;
+    const Scalar tmp741 = tmp737 + tmp643;
+    const Scalar tmp742 = tmp738 + tmp627;
+    const Scalar tmp743 = l*tmp199;
+    const Scalar tmp744 = -tmp196;
+    const Scalar tmp745 = l*tmp744;
+    const Scalar tmp746 = tmp716 + tmp745;
+    const Scalar tmp747 = tmp692 + tmp746;
+    const Scalar tmp748 = tmp747 + tmp618;
+    const Scalar tmp749 = tmp720 + tmp745;
+    const Scalar tmp750 = tmp749 + tmp670;
+    const Scalar tmp751 = tmp750 + tmp634;
+    const Scalar tmp752 = tmp691 + tmp746;
+    const Scalar tmp753 = tmp752 + tmp652;
+    const Scalar tmp754 = tmp749 + tmp673;
+    const Scalar tmp755 = phi10_dot*tmp745;
+    const Scalar tmp756 = phi9_dot*tmp746 + tmp755;
+    const Scalar tmp757 = phi8_dot*tmp749 + tmp756;
+    const Scalar tmp758 = phi7_dot*tmp752 + tmp757;
+    const Scalar tmp759 = phi6_dot*tmp750 + tmp758;
+    const Scalar tmp760 = phi5_dot*tmp747 + tmp759;
+    const Scalar tmp761 = phi4_dot*tmp754 + tmp760;
+    const Scalar tmp762 = phi3_dot*tmp753 + tmp761;
+    const Scalar tmp763 = phi2_dot*tmp751 + tmp762;
+    const Scalar tmp764 = phi1_dot*tmp748 + tmp763;
+    const Scalar tmp765 = phi10_dot*tmp743;
+    const Scalar tmp766 = tmp714 + tmp743;
+    const Scalar tmp767 = tmp735 + tmp743;
+    const Scalar tmp768 = tmp707 + tmp766;
+    const Scalar tmp769 = tmp682 + tmp767;
+    const Scalar tmp770 = tmp709 + tmp766;
+    const Scalar tmp771 = tmp684 + tmp767;
+    const Scalar tmp772 = tmp768 + tmp662;
+    const Scalar tmp773 = tmp769 + tmp643;
+    const Scalar tmp774 = tmp770 + tmp627;
+    const Scalar tmp775 = -tmp232*tmp592;
+    const Scalar tmp776 = tmp232*tmp594;
+    const Scalar tmp777 = (-phi1_dot - phi2_dot)*tmp601 - (phi1_dot*phi1_dot)*tmp602
+        - phi1_dot*phi2_dot*tmp595;
+    const Scalar tmp778 = phi1_dot*tmp600 + phi1_dot*phi2_dot*tmp597 + phi2_dot*tmp598;
+    const Scalar tmp779 = -tmp612;
+    const Scalar tmp780 = phi2_dot*tmp779 - tmp611;
+    const Scalar tmp781 = phi3_dot*(-phi1_dot - phi2_dot)*tmp603 + phi1_dot*phi2_dot*tmp779
+        + (phi1_dot + phi2_dot)*tmp780 - phi3_dot*tmp611 - (phi1_dot*phi1_dot)*tmp613;
+    const Scalar tmp782 = phi3_dot*(phi1_dot + phi2_dot)*tmp605 + phi1_dot*phi2_dot*tmp607
+        + phi3_dot*tmp608 + phi2_dot*tmp609 + phi1_dot*tmp610;
+    const Scalar tmp783 = -tmp625;
+    const Scalar tmp784 = phi3_dot*tmp783 - tmp624;
+    const Scalar tmp785 = -tmp626;
+    const Scalar tmp786 = tmp784 + phi2_dot*tmp785;
+    const Scalar tmp787 = phi3_dot*(phi1_dot + phi2_dot)*tmp783 + phi3_dot*tmp784
+        + phi1_dot*phi2_dot*tmp785 + (phi1_dot + phi2_dot)*tmp786
+        + phi4_dot*(-phi1_dot - phi2_dot - phi3_dot)*tmp614 - phi4_dot*tmp624
+        - (phi1_dot*phi1_dot)*tmp627;
+    const Scalar tmp788 = phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp616
+        + phi3_dot*(phi1_dot + phi2_dot)*tmp617 + phi1_dot*phi2_dot*tmp619 + phi4_dot*tmp620
+        + phi3_dot*tmp621 + phi2_dot*tmp622 + phi1_dot*tmp623;
+    const Scalar tmp789 = -tmp641;
+    const Scalar tmp790 = phi4_dot*tmp789 - tmp640;
+    const Scalar tmp791 = -tmp642;
+    const Scalar tmp792 = tmp790 + phi3_dot*tmp791;
+    const Scalar tmp793 = -tmp643;
+    const Scalar tmp794 = tmp792 + phi2_dot*tmp793;
+    const Scalar tmp795 = phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp789 + phi4_dot*tmp790
+        + phi3_dot*(phi1_dot + phi2_dot)*tmp791 + phi3_dot*tmp792 + phi1_dot*phi2_dot*tmp793
+        + (phi1_dot + phi2_dot)*tmp794
+        + phi5_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot)*tmp628 - phi5_dot*tmp640
+        - (phi1_dot*phi1_dot)*tmp644;
+    const Scalar tmp796 = phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp630
+        + phi3_dot*(phi1_dot + phi2_dot)*tmp631 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp633
+        + phi1_dot*phi2_dot*tmp634 + phi5_dot*tmp635 + phi4_dot*tmp636 + phi3_dot*tmp637
+        + phi2_dot*tmp638 + phi1_dot*tmp639;
+    const Scalar tmp797 = -tmp660;
+    const Scalar tmp798 = phi5_dot*tmp797 - tmp659;
+    const Scalar tmp799 = -tmp661;
+    const Scalar tmp800 = tmp798 + phi4_dot*tmp799;
+    const Scalar tmp801 = -tmp662;
+    const Scalar tmp802 = tmp800 + phi3_dot*tmp801;
+    const Scalar tmp803 = -tmp663;
+    const Scalar tmp804 = tmp802 + phi2_dot*tmp803;
+    const Scalar tmp805 = phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp797
+        + phi5_dot*tmp798 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp799 + phi4_dot*tmp800
+        + phi3_dot*(phi1_dot + phi2_dot)*tmp801 + phi3_dot*tmp802 + phi1_dot*phi2_dot*tmp803
+        + (phi1_dot + phi2_dot)*tmp804
+        + phi6_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot)*tmp645 - phi6_dot*tmp659
+        - (phi1_dot*phi1_dot)*tmp664;
+    const Scalar tmp806 = phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp647
+        + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp648
+        + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp650 + phi1_dot*phi2_dot*tmp651
+        + phi3_dot*(phi1_dot + phi2_dot)*tmp652 + phi6_dot*tmp653 + phi5_dot*tmp654
+        + phi4_dot*tmp655 + phi3_dot*tmp656 + phi2_dot*tmp657 + phi1_dot*tmp658;
+    const Scalar tmp807 = -tmp682;
+    const Scalar tmp808 = -tmp681 + phi6_dot*tmp807;
+    const Scalar tmp809 = -tmp683;
+    const Scalar tmp810 = tmp808 + phi5_dot*tmp809;
+    const Scalar tmp811 = -tmp684;
+    const Scalar tmp812 = tmp810 + phi4_dot*tmp811;
+    const Scalar tmp813 = -tmp685;
+    const Scalar tmp814 = tmp812 + phi3_dot*tmp813;
+    const Scalar tmp815 = -tmp686;
+    const Scalar tmp816 = tmp814 + phi2_dot*tmp815;
+    const Scalar tmp817 = -phi7_dot*tmp681 - (phi1_dot*phi1_dot)*tmp687
+        + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp807 + phi6_dot*tmp808
+        + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp809 + phi5_dot*tmp810
+        + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp811 + phi4_dot*tmp812
+        + phi3_dot*(phi1_dot + phi2_dot)*tmp813 + phi3_dot*tmp814 + phi1_dot*phi2_dot*tmp815
+        + (phi1_dot + phi2_dot)*tmp816
+        + phi7_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot - phi6_dot)*tmp665;
+    const Scalar tmp818 = phi2_dot*tmp679 + phi1_dot*tmp680
+        + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp667
+        + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp668
+        + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp670
+        + phi1_dot*phi2_dot*tmp671 + phi3_dot*(phi1_dot + phi2_dot)*tmp672
+        + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp673 + phi7_dot*tmp674 + phi6_dot*tmp675
+        + phi5_dot*tmp676 + phi4_dot*tmp677 + phi3_dot*tmp678;
+    const Scalar tmp819 = -tmp707;
+    const Scalar tmp820 = -tmp706 + phi7_dot*tmp819;
+    const Scalar tmp821 = -tmp708;
+    const Scalar tmp822 = tmp820 + phi6_dot*tmp821;
+    const Scalar tmp823 = -tmp709;
+    const Scalar tmp824 = tmp822 + phi5_dot*tmp823;
+    const Scalar tmp825 = -tmp710;
+    const Scalar tmp826 = tmp824 + phi4_dot*tmp825;
+    const Scalar tmp827 = -tmp711;
+    const Scalar tmp828 = tmp826 + phi3_dot*tmp827;
+    const Scalar tmp829 = -tmp712;
+    const Scalar tmp830 = tmp828 + phi2_dot*tmp829;
+    const Scalar tmp831 = phi8_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot - phi6_dot
+            - phi7_dot)*tmp688
+        - phi8_dot*tmp706 - (phi1_dot*phi1_dot)*tmp713
+        + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp819
+        + phi7_dot*tmp820 + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp821
+        + phi6_dot*tmp822 + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp823
+        + phi5_dot*tmp824 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp825 + phi4_dot*tmp826
+        + phi3_dot*(phi1_dot + phi2_dot)*tmp827 + phi3_dot*tmp828 + phi1_dot*phi2_dot*tmp829
+        + (phi1_dot + phi2_dot)*tmp830;
+    const Scalar tmp832 = phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot
+            + phi7_dot)*tmp690
+        + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp691
+        + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp692
+        + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp694
+        + phi1_dot*phi2_dot*tmp695 + phi3_dot*(phi1_dot + phi2_dot)*tmp696
+        + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp697 + phi8_dot*tmp698 + phi7_dot*tmp699
+        + phi6_dot*tmp700 + phi5_dot*tmp701 + phi4_dot*tmp702 + phi3_dot*tmp703 + phi2_dot*tmp704
+        + phi1_dot*tmp705;
+    const Scalar tmp833 = -tmp735;
+    const Scalar tmp834 = -tmp734 + phi8_dot*tmp833;
+    const Scalar tmp835 = -tmp736;
+    const Scalar tmp836 = tmp834 + phi7_dot*tmp835;
+    const Scalar tmp837 = -tmp737;
+    const Scalar tmp838 = tmp836 + phi6_dot*tmp837;
+    const Scalar tmp839 = -tmp738;
+    const Scalar tmp840 = tmp838 + phi5_dot*tmp839;
+    const Scalar tmp841 = -tmp739;
+    const Scalar tmp842 = tmp840 + phi4_dot*tmp841;
+    const Scalar tmp843 = -tmp740;
+    const Scalar tmp844 = tmp842 + phi3_dot*tmp843;
+    const Scalar tmp845 = -tmp741;
+    const Scalar tmp846 = tmp844 + phi2_dot*tmp845;
+    const Scalar tmp847 = phi9_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot - phi6_dot
+            - phi7_dot - phi8_dot)*tmp714
+        - phi9_dot*tmp734 - (phi1_dot*phi1_dot)*tmp742
         + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot
-            + phi7_dot)*tmp792
-        + phi8_dot*tmp793
-        + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp794
-        + phi7_dot*tmp795 + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp796
-        + phi6_dot*tmp797 + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp798
-        + phi5_dot*tmp799 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp800 + phi4_dot*tmp801
-        + phi3_dot*(phi1_dot + phi2_dot)*tmp802 + phi3_dot*tmp803 + phi1_dot*phi2_dot*tmp804
-        + (phi1_dot + phi2_dot)*tmp805;
-    const Scalar tmp807 = phi9_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot
-            + phi7_dot + phi8_dot)*tmp675
-        + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp676
-        + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp677
+            + phi7_dot)*tmp833
+        + phi8_dot*tmp834
+        + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp835
+        + phi7_dot*tmp836 + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp837
+        + phi6_dot*tmp838 + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp839
+        + phi5_dot*tmp840 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp841 + phi4_dot*tmp842
+        + phi3_dot*(phi1_dot + phi2_dot)*tmp843 + phi3_dot*tmp844 + phi1_dot*phi2_dot*tmp845
+        + (phi1_dot + phi2_dot)*tmp846;
+    const Scalar tmp848 = phi9_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot
+            + phi7_dot + phi8_dot)*tmp716
+        + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp717
+        + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp718
         + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot
-            + phi7_dot)*tmp679
-        + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp680
-        + phi1_dot*phi2_dot*tmp681 + phi3_dot*(phi1_dot + phi2_dot)*tmp682
-        + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp683 + phi9_dot*tmp684 + phi8_dot*tmp685
-        + phi7_dot*tmp686 + phi6_dot*tmp687 + phi5_dot*tmp688 + phi4_dot*tmp689 + phi3_dot*tmp690
-        + phi2_dot*tmp691 + phi1_dot*tmp692;
-    const Scalar tmp808 = -tmp725;
-    const Scalar tmp809 = -tmp724 + phi9_dot*tmp808;
-    const Scalar tmp810 = -tmp726;
-    const Scalar tmp811 = tmp809 + phi8_dot*tmp810;
-    const Scalar tmp812 = -tmp727;
-    const Scalar tmp813 = tmp811 + phi7_dot*tmp812;
-    const Scalar tmp814 = -tmp728;
-    const Scalar tmp815 = tmp813 + phi6_dot*tmp814;
-    const Scalar tmp816 = -tmp729;
-    const Scalar tmp817 = tmp815 + phi5_dot*tmp816;
-    const Scalar tmp818 = -tmp730;
-    const Scalar tmp819 = tmp817 + phi4_dot*tmp818;
-    const Scalar tmp820 = -tmp731;
-    const Scalar tmp821 = tmp819 + phi3_dot*tmp820;
-    const Scalar tmp822 = -tmp732;
-    const Scalar tmp823 = tmp821 + phi2_dot*tmp822;
-    const Scalar tmp824 = phi10_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot
-            - phi6_dot - phi7_dot - phi8_dot - phi9_dot)*tmp702
-        - phi10_dot*tmp724 - (phi1_dot*phi1_dot)*tmp733
+            + phi7_dot)*tmp720
+        + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp721
+        + phi1_dot*phi2_dot*tmp722 + phi3_dot*(phi1_dot + phi2_dot)*tmp723
+        + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp724 + phi9_dot*tmp725 + phi8_dot*tmp726
+        + phi7_dot*tmp727 + phi6_dot*tmp728 + phi5_dot*tmp729 + phi4_dot*tmp730 + phi3_dot*tmp731
+        + phi2_dot*tmp732 + phi1_dot*tmp733;
+    const Scalar tmp849 = -tmp766;
+    const Scalar tmp850 = -tmp765 + phi9_dot*tmp849;
+    const Scalar tmp851 = -tmp767;
+    const Scalar tmp852 = tmp850 + phi8_dot*tmp851;
+    const Scalar tmp853 = -tmp768;
+    const Scalar tmp854 = tmp852 + phi7_dot*tmp853;
+    const Scalar tmp855 = -tmp769;
+    const Scalar tmp856 = tmp854 + phi6_dot*tmp855;
+    const Scalar tmp857 = -tmp770;
+    const Scalar tmp858 = tmp856 + phi5_dot*tmp857;
+    const Scalar tmp859 = -tmp771;
+    const Scalar tmp860 = tmp858 + phi4_dot*tmp859;
+    const Scalar tmp861 = -tmp772;
+    const Scalar tmp862 = tmp860 + phi3_dot*tmp861;
+    const Scalar tmp863 = -tmp773;
+    const Scalar tmp864 = tmp862 + phi2_dot*tmp863;
+    const Scalar tmp865 = phi10_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot
+            - phi6_dot - phi7_dot - phi8_dot - phi9_dot)*tmp743
+        - phi10_dot*tmp765 - (phi1_dot*phi1_dot)*tmp774
         + phi9_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot
-            + phi8_dot)*tmp808
-        + phi9_dot*tmp809
+            + phi8_dot)*tmp849
+        + phi9_dot*tmp850
         + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot
-            + phi7_dot)*tmp810
-        + phi8_dot*tmp811
-        + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp812
-        + phi7_dot*tmp813 + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp814
-        + phi6_dot*tmp815 + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp816
-        + phi5_dot*tmp817 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp818 + phi4_dot*tmp819
-        + phi3_dot*(phi1_dot + phi2_dot)*tmp820 + phi3_dot*tmp821 + phi1_dot*phi2_dot*tmp822
-        + (phi1_dot + phi2_dot)*tmp823;
-    const Scalar tmp825 = phi10_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot
-            + phi7_dot + phi8_dot + phi9_dot)*tmp704
+            + phi7_dot)*tmp851
+        + phi8_dot*tmp852
+        + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp853
+        + phi7_dot*tmp854 + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp855
+        + phi6_dot*tmp856 + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp857
+        + phi5_dot*tmp858 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp859 + phi4_dot*tmp860
+        + phi3_dot*(phi1_dot + phi2_dot)*tmp861 + phi3_dot*tmp862 + phi1_dot*phi2_dot*tmp863
+        + (phi1_dot + phi2_dot)*tmp864;
+    const Scalar tmp866 = phi10_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot
+            + phi7_dot + phi8_dot + phi9_dot)*tmp745
         + phi9_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot
-            + phi8_dot)*tmp705
-        + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp706
+            + phi8_dot)*tmp746
+        + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp747
         + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot
-            + phi7_dot)*tmp708
-        + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp709
-        + phi1_dot*phi2_dot*tmp710
-        + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp711
-        + phi3_dot*(phi1_dot + phi2_dot)*tmp712 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp713
-        + phi10_dot*tmp714 + phi9_dot*tmp715 + phi8_dot*tmp716 + phi7_dot*tmp717 + phi6_dot*tmp718
-        + phi5_dot*tmp719 + phi4_dot*tmp720 + phi3_dot*tmp721 + phi2_dot*tmp722 + phi1_dot*tmp723;
-    const Scalar tmp826 = Scalar(2)*tmp0*tmp325*m*tmp2 + Scalar(2)*tmp15*m*tmp558
-        + Scalar(2)*tmp128*m*tmp646 + Scalar(2)*tmp139*m*tmp652 + Scalar(2)*tmp18*m*tmp561
-        + Scalar(2)*tmp159*m*tmp672 + Scalar(2)*tmp170*m*tmp678 + Scalar(2)*tmp193*m*tmp701
-        + Scalar(2)*tmp204*m*tmp707 + Scalar(2)*tmp27*m*tmp565 + Scalar(2)*tmp2*tmp325*m*tmp552
-        + Scalar(2)*tmp230*m*tmp733 + Scalar(2)*tmp34*m*tmp572 + Scalar(2)*tmp44*m*tmp577
-        + Scalar(2)*tmp53*m*tmp586 + Scalar(2)*tmp63*m*tmp591 + Scalar(2)*tmp75*m*tmp603
-        + Scalar(2)*tmp85*m*tmp608 + Scalar(2)*tmp100*m*tmp623 + Scalar(2)*tmp110*m*tmp628;
-    const Scalar tmp827 = tmp12*m*tmp558 + tmp128*m*tmp645 + tmp127*m*tmp646 + tmp141*m*tmp652
-        + tmp139*m*tmp654 + tmp9*m*tmp561 + tmp159*m*tmp671 + tmp158*m*tmp672 + tmp173*m*tmp678
-        + tmp170*m*tmp681 + tmp193*m*tmp700 + tmp192*m*tmp701 + tmp207*m*tmp707 + tmp204*m*tmp710
-        + tmp28*m*tmp565 + tmp27*m*tmp566 + tmp230*m*tmp732 + tmp229*m*tmp733 + tmp34*m*tmp571
-        + tmp33*m*tmp572 + tmp45*m*tmp577 + tmp44*m*tmp578 + tmp53*m*tmp585 + tmp52*m*tmp586
-        + tmp65*m*tmp591 + tmp63*m*tmp593 + tmp18*m*tmp554 + tmp75*m*tmp602 + tmp74*m*tmp603
-        + tmp87*m*tmp608 + tmp85*m*tmp610 + tmp15*m*tmp556 + tmp100*m*tmp622 + tmp99*m*tmp623
-        + tmp112*m*tmp628 + tmp110*m*tmp630;
-    const Scalar tmp828 = Scalar(2)*tmp127*m*tmp645 + Scalar(2)*tmp141*m*tmp654
-        + Scalar(2)*tmp158*m*tmp671 + Scalar(2)*tmp173*m*tmp681 + Scalar(2)*tmp192*m*tmp700
-        + Scalar(2)*tmp207*m*tmp710 + Scalar(2)*tmp28*m*tmp566 + Scalar(2)*tmp229*m*tmp732
-        + Scalar(2)*tmp33*m*tmp571 + Scalar(2)*tmp45*m*tmp578 + Scalar(2)*tmp52*m*tmp585
-        + Scalar(2)*tmp325*tmp8*m*tmp11 + Scalar(2)*tmp65*m*tmp593 + Scalar(2)*tmp74*m*tmp602
-        + Scalar(2)*tmp325*tmp11*m*tmp555 + Scalar(2)*tmp87*m*tmp610 + Scalar(2)*tmp99*m*tmp622
-        + Scalar(2)*tmp112*m*tmp630;
-    const Scalar tmp829 = tmp128*m*tmp644 + tmp126*m*tmp646 + tmp142*m*tmp652 + tmp139*m*tmp655
-        + tmp159*m*tmp670 + tmp157*m*tmp672 + tmp174*m*tmp678 + tmp170*m*tmp682 + tmp34*m*tmp562
-        + tmp193*m*tmp699 + tmp191*m*tmp701 + tmp209*m*tmp707 + tmp27*m*tmp564 + tmp204*m*tmp712
-        + tmp25*m*tmp565 + tmp230*m*tmp731 + tmp228*m*tmp733 + tmp22*m*tmp572 + tmp44*m*tmp576
-        + tmp43*m*tmp577 + tmp53*m*tmp584 + tmp51*m*tmp586 + tmp63*m*tmp590 + tmp62*m*tmp591
-        + tmp75*m*tmp601 + tmp73*m*tmp603 + tmp88*m*tmp608 + tmp85*m*tmp611 + tmp100*m*tmp621
-        + tmp98*m*tmp623 + tmp113*m*tmp628 + tmp110*m*tmp631;
-    const Scalar tmp830 = tmp127*m*tmp644 + tmp126*m*tmp645 + tmp142*m*tmp654 + tmp141*m*tmp655
-        + tmp158*m*tmp670 + tmp157*m*tmp671 + tmp174*m*tmp681 + tmp173*m*tmp682 + tmp33*m*tmp562
-        + tmp192*m*tmp699 + tmp191*m*tmp700 + tmp209*m*tmp710 + tmp28*m*tmp564 + tmp207*m*tmp712
-        + tmp229*m*tmp731 + tmp25*m*tmp566 + tmp228*m*tmp732 + tmp22*m*tmp571 + tmp45*m*tmp576
-        + tmp43*m*tmp578 + tmp52*m*tmp584 + tmp51*m*tmp585 + tmp65*m*tmp590 + tmp62*m*tmp593
-        + tmp74*m*tmp601 + tmp73*m*tmp602 + tmp88*m*tmp610 + tmp87*m*tmp611 + tmp99*m*tmp621
-        + tmp98*m*tmp622 + tmp113*m*tmp630 + tmp112*m*tmp631;
-    const Scalar tmp831 = Scalar(2)*tmp126*m*tmp644 + Scalar(2)*tmp142*m*tmp655
-        + Scalar(2)*tmp157*m*tmp670 + Scalar(2)*tmp174*m*tmp682 + Scalar(2)*tmp21*tmp325*m*tmp24
-        + Scalar(2)*tmp191*m*tmp699 + Scalar(2)*tmp24*tmp325*m*tmp563 + Scalar(2)*tmp209*m*tmp712
-        + Scalar(2)*tmp228*m*tmp731 + Scalar(2)*tmp43*m*tmp576 + Scalar(2)*tmp51*m*tmp584
-        + Scalar(2)*tmp62*m*tmp590 + Scalar(2)*tmp73*m*tmp601 + Scalar(2)*tmp88*m*tmp611
-        + Scalar(2)*tmp98*m*tmp621 + Scalar(2)*tmp113*m*tmp631;
-    const Scalar tmp832 = tmp128*m*tmp643 + tmp125*m*tmp646 + tmp143*m*tmp652 + tmp139*m*tmp656
-        + tmp159*m*tmp669 + tmp156*m*tmp672 + tmp175*m*tmp678 + tmp170*m*tmp683 + tmp193*m*tmp698
-        + tmp190*m*tmp701 + tmp210*m*tmp707 + tmp204*m*tmp713 + tmp230*m*tmp730 + tmp227*m*tmp733
-        + tmp53*m*tmp573 + tmp44*m*tmp575 + tmp41*m*tmp577 + tmp38*m*tmp586 + tmp64*m*tmp591
-        + tmp63*m*tmp592 + tmp75*m*tmp600 + tmp72*m*tmp603 + tmp86*m*tmp608 + tmp85*m*tmp609
-        + tmp100*m*tmp620 + tmp97*m*tmp623 + tmp114*m*tmp628 + tmp110*m*tmp632;
-    const Scalar tmp833 = tmp127*m*tmp643 + tmp125*m*tmp645 + tmp143*m*tmp654 + tmp141*m*tmp656
-        + tmp158*m*tmp669 + tmp156*m*tmp671 + tmp175*m*tmp681 + tmp173*m*tmp683 + tmp192*m*tmp698
-        + tmp190*m*tmp700 + tmp210*m*tmp710 + tmp207*m*tmp713 + tmp229*m*tmp730 + tmp227*m*tmp732
-        + tmp52*m*tmp573 + tmp45*m*tmp575 + tmp41*m*tmp578 + tmp38*m*tmp585 + tmp65*m*tmp592
-        + tmp64*m*tmp593 + tmp74*m*tmp600 + tmp72*m*tmp602 + tmp87*m*tmp609 + tmp86*m*tmp610
-        + tmp99*m*tmp620 + tmp97*m*tmp622 + tmp114*m*tmp630 + tmp112*m*tmp632;
-    const Scalar tmp834 = tmp126*m*tmp643 + tmp125*m*tmp644 + tmp143*m*tmp655 + tmp142*m*tmp656
-        + tmp157*m*tmp669 + tmp156*m*tmp670 + tmp175*m*tmp682 + tmp174*m*tmp683 + tmp191*m*tmp698
-        + tmp190*m*tmp699 + tmp210*m*tmp712 + tmp209*m*tmp713 + tmp228*m*tmp730 + tmp227*m*tmp731
-        + tmp51*m*tmp573 + tmp43*m*tmp575 + tmp41*m*tmp576 + tmp38*m*tmp584 + tmp64*m*tmp590
-        + tmp62*m*tmp592 + tmp73*m*tmp600 + tmp72*m*tmp601 + tmp88*m*tmp609 + tmp86*m*tmp611
-        + tmp98*m*tmp620 + tmp97*m*tmp621 + tmp114*m*tmp631 + tmp113*m*tmp632;
-    const Scalar tmp835 = Scalar(2)*tmp125*m*tmp643 + Scalar(2)*tmp143*m*tmp656
-        + Scalar(2)*tmp156*m*tmp669 + Scalar(2)*tmp175*m*tmp683 + Scalar(2)*tmp190*m*tmp698
-        + Scalar(2)*tmp210*m*tmp713 + Scalar(2)*tmp227*m*tmp730 + Scalar(2)*tmp325*tmp37*m*tmp40
-        + Scalar(2)*tmp325*tmp40*m*tmp574 + Scalar(2)*tmp64*m*tmp592 + Scalar(2)*tmp72*m*tmp600
-        + Scalar(2)*tmp86*m*tmp609 + Scalar(2)*tmp97*m*tmp620 + Scalar(2)*tmp114*m*tmp632;
-    const Scalar tmp836 = tmp128*m*tmp642 + tmp124*m*tmp646 + tmp139*m*tmp651 + tmp138*m*tmp652
-        + tmp159*m*tmp668 + tmp155*m*tmp672 + tmp170*m*tmp677 + tmp169*m*tmp678 + tmp193*m*tmp697
-        + tmp189*m*tmp701 + tmp204*m*tmp706 + tmp203*m*tmp707 + tmp230*m*tmp729 + tmp226*m*tmp733
-        + tmp75*m*tmp587 + tmp63*m*tmp589 + tmp60*m*tmp591 + tmp57*m*tmp603 + tmp85*m*tmp607
-        + tmp84*m*tmp608 + tmp100*m*tmp619 + tmp96*m*tmp623 + tmp110*m*tmp627 + tmp109*m*tmp628;
-    const Scalar tmp837 = tmp127*m*tmp642 + tmp124*m*tmp645 + tmp141*m*tmp651 + tmp138*m*tmp654
-        + tmp158*m*tmp668 + tmp155*m*tmp671 + tmp173*m*tmp677 + tmp169*m*tmp681 + tmp192*m*tmp697
-        + tmp189*m*tmp700 + tmp207*m*tmp706 + tmp203*m*tmp710 + tmp229*m*tmp729 + tmp226*m*tmp732
-        + tmp74*m*tmp587 + tmp65*m*tmp589 + tmp60*m*tmp593 + tmp57*m*tmp602 + tmp87*m*tmp607
-        + tmp84*m*tmp610 + tmp99*m*tmp619 + tmp96*m*tmp622 + tmp112*m*tmp627 + tmp109*m*tmp630;
-    const Scalar tmp838 = tmp126*m*tmp642 + tmp124*m*tmp644 + tmp142*m*tmp651 + tmp138*m*tmp655
-        + tmp157*m*tmp668 + tmp155*m*tmp670 + tmp174*m*tmp677 + tmp169*m*tmp682 + tmp191*m*tmp697
-        + tmp189*m*tmp699 + tmp209*m*tmp706 + tmp203*m*tmp712 + tmp228*m*tmp729 + tmp226*m*tmp731
-        + tmp73*m*tmp587 + tmp62*m*tmp589 + tmp60*m*tmp590 + tmp57*m*tmp601 + tmp88*m*tmp607
-        + tmp84*m*tmp611 + tmp98*m*tmp619 + tmp96*m*tmp621 + tmp113*m*tmp627 + tmp109*m*tmp631;
-    const Scalar tmp839 = tmp125*m*tmp642 + tmp124*m*tmp643 + tmp143*m*tmp651 + tmp138*m*tmp656
-        + tmp156*m*tmp668 + tmp155*m*tmp669 + tmp175*m*tmp677 + tmp169*m*tmp683 + tmp190*m*tmp697
-        + tmp189*m*tmp698 + tmp210*m*tmp706 + tmp203*m*tmp713 + tmp227*m*tmp729 + tmp226*m*tmp730
-        + tmp72*m*tmp587 + tmp64*m*tmp589 + tmp60*m*tmp592 + tmp57*m*tmp600 + tmp86*m*tmp607
-        + tmp84*m*tmp609 + tmp97*m*tmp619 + tmp96*m*tmp620 + tmp114*m*tmp627 + tmp109*m*tmp632;
-    const Scalar tmp840 = Scalar(2)*tmp124*m*tmp642 + Scalar(2)*tmp138*m*tmp651
-        + Scalar(2)*tmp155*m*tmp668 + Scalar(2)*tmp169*m*tmp677 + Scalar(2)*tmp189*m*tmp697
-        + Scalar(2)*tmp203*m*tmp706 + Scalar(2)*tmp226*m*tmp729 + Scalar(2)*tmp325*tmp56*m*tmp59
-        + Scalar(2)*tmp325*tmp59*m*tmp588 + Scalar(2)*tmp84*m*tmp607 + Scalar(2)*tmp96*m*tmp619
-        + Scalar(2)*tmp109*m*tmp627;
-    const Scalar tmp841 = tmp128*m*tmp641 + tmp123*m*tmp646 + tmp140*m*tmp652 + tmp139*m*tmp653
-        + tmp159*m*tmp667 + tmp154*m*tmp672 + tmp172*m*tmp678 + tmp170*m*tmp680 + tmp193*m*tmp696
-        + tmp188*m*tmp701 + tmp206*m*tmp707 + tmp204*m*tmp709 + tmp230*m*tmp728 + tmp225*m*tmp733
-        + tmp100*m*tmp604 + tmp85*m*tmp606 + tmp82*m*tmp608 + tmp79*m*tmp623 + tmp111*m*tmp628
-        + tmp110*m*tmp629;
-    const Scalar tmp842 = tmp127*m*tmp641 + tmp123*m*tmp645 + tmp141*m*tmp653 + tmp140*m*tmp654
-        + tmp158*m*tmp667 + tmp154*m*tmp671 + tmp173*m*tmp680 + tmp172*m*tmp681 + tmp192*m*tmp696
-        + tmp188*m*tmp700 + tmp207*m*tmp709 + tmp206*m*tmp710 + tmp229*m*tmp728 + tmp225*m*tmp732
-        + tmp99*m*tmp604 + tmp87*m*tmp606 + tmp82*m*tmp610 + tmp79*m*tmp622 + tmp112*m*tmp629
-        + tmp111*m*tmp630;
-    const Scalar tmp843 = tmp126*m*tmp641 + tmp123*m*tmp644 + tmp142*m*tmp653 + tmp140*m*tmp655
-        + tmp157*m*tmp667 + tmp154*m*tmp670 + tmp174*m*tmp680 + tmp172*m*tmp682 + tmp191*m*tmp696
-        + tmp188*m*tmp699 + tmp209*m*tmp709 + tmp206*m*tmp712 + tmp228*m*tmp728 + tmp225*m*tmp731
-        + tmp98*m*tmp604 + tmp88*m*tmp606 + tmp82*m*tmp611 + tmp79*m*tmp621 + tmp113*m*tmp629
-        + tmp111*m*tmp631;
-    const Scalar tmp844 = tmp125*m*tmp641 + tmp123*m*tmp643 + tmp143*m*tmp653 + tmp140*m*tmp656
-        + tmp156*m*tmp667 + tmp154*m*tmp669 + tmp175*m*tmp680 + tmp172*m*tmp683 + tmp190*m*tmp696
-        + tmp188*m*tmp698 + tmp210*m*tmp709 + tmp206*m*tmp713 + tmp227*m*tmp728 + tmp225*m*tmp730
-        + tmp97*m*tmp604 + tmp86*m*tmp606 + tmp82*m*tmp609 + tmp79*m*tmp620 + tmp114*m*tmp629
-        + tmp111*m*tmp632;
-    const Scalar tmp845 = tmp124*m*tmp641 + tmp123*m*tmp642 + tmp140*m*tmp651 + tmp138*m*tmp653
-        + tmp155*m*tmp667 + tmp154*m*tmp668 + tmp172*m*tmp677 + tmp169*m*tmp680 + tmp189*m*tmp696
-        + tmp188*m*tmp697 + tmp206*m*tmp706 + tmp203*m*tmp709 + tmp226*m*tmp728 + tmp225*m*tmp729
-        + tmp96*m*tmp604 + tmp84*m*tmp606 + tmp82*m*tmp607 + tmp79*m*tmp619 + tmp111*m*tmp627
-        + tmp109*m*tmp629;
-    const Scalar tmp846 = Scalar(2)*tmp123*m*tmp641 + Scalar(2)*tmp140*m*tmp653
-        + Scalar(2)*tmp154*m*tmp667 + Scalar(2)*tmp172*m*tmp680 + Scalar(2)*tmp188*m*tmp696
-        + Scalar(2)*tmp206*m*tmp709 + Scalar(2)*tmp225*m*tmp728 + Scalar(2)*tmp325*tmp78*m*tmp81
-        + Scalar(2)*tmp325*tmp81*m*tmp605 + Scalar(2)*tmp111*m*tmp629;
-    const Scalar tmp847 = tmp104*m*tmp646 + tmp139*m*tmp650 + tmp137*m*tmp652 + tmp159*m*tmp666
-        + tmp153*m*tmp672 + tmp170*m*tmp676 + tmp168*m*tmp678 + tmp193*m*tmp695 + tmp187*m*tmp701
-        + tmp208*m*tmp707 + tmp204*m*tmp711 + tmp230*m*tmp727 + tmp224*m*tmp733 + tmp128*m*tmp624
-        + tmp110*m*tmp626 + tmp107*m*tmp628;
-    const Scalar tmp848 = tmp104*m*tmp645 + tmp141*m*tmp650 + tmp137*m*tmp654 + tmp158*m*tmp666
-        + tmp153*m*tmp671 + tmp173*m*tmp676 + tmp168*m*tmp681 + tmp192*m*tmp695 + tmp187*m*tmp700
-        + tmp208*m*tmp710 + tmp207*m*tmp711 + tmp229*m*tmp727 + tmp224*m*tmp732 + tmp127*m*tmp624
-        + tmp112*m*tmp626 + tmp107*m*tmp630;
-    const Scalar tmp849 = tmp104*m*tmp644 + tmp142*m*tmp650 + tmp137*m*tmp655 + tmp157*m*tmp666
-        + tmp153*m*tmp670 + tmp174*m*tmp676 + tmp168*m*tmp682 + tmp191*m*tmp695 + tmp187*m*tmp699
-        + tmp209*m*tmp711 + tmp208*m*tmp712 + tmp228*m*tmp727 + tmp224*m*tmp731 + tmp126*m*tmp624
-        + tmp113*m*tmp626 + tmp107*m*tmp631;
-    const Scalar tmp850 = tmp104*m*tmp643 + tmp143*m*tmp650 + tmp137*m*tmp656 + tmp156*m*tmp666
-        + tmp153*m*tmp669 + tmp175*m*tmp676 + tmp168*m*tmp683 + tmp190*m*tmp695 + tmp187*m*tmp698
-        + tmp210*m*tmp711 + tmp208*m*tmp713 + tmp227*m*tmp727 + tmp224*m*tmp730 + tmp125*m*tmp624
-        + tmp114*m*tmp626 + tmp107*m*tmp632;
-    const Scalar tmp851 = tmp104*m*tmp642 + tmp138*m*tmp650 + tmp137*m*tmp651 + tmp155*m*tmp666
-        + tmp153*m*tmp668 + tmp169*m*tmp676 + tmp168*m*tmp677 + tmp189*m*tmp695 + tmp187*m*tmp697
-        + tmp208*m*tmp706 + tmp203*m*tmp711 + tmp226*m*tmp727 + tmp224*m*tmp729 + tmp124*m*tmp624
-        + tmp109*m*tmp626 + tmp107*m*tmp627;
-    const Scalar tmp852 = tmp104*m*tmp641 + tmp140*m*tmp650 + tmp137*m*tmp653 + tmp154*m*tmp666
-        + tmp153*m*tmp667 + tmp172*m*tmp676 + tmp168*m*tmp680 + tmp188*m*tmp695 + tmp187*m*tmp696
-        + tmp208*m*tmp709 + tmp206*m*tmp711 + tmp225*m*tmp727 + tmp224*m*tmp728 + tmp123*m*tmp624
-        + tmp111*m*tmp626 + tmp107*m*tmp629;
-    const Scalar tmp853 = Scalar(2)*tmp137*m*tmp650 + Scalar(2)*tmp153*m*tmp666
-        + Scalar(2)*tmp168*m*tmp676 + Scalar(2)*tmp187*m*tmp695 + Scalar(2)*tmp208*m*tmp711
-        + Scalar(2)*tmp224*m*tmp727 + Scalar(2)*tmp325*tmp103*m*tmp106
-        + Scalar(2)*tmp325*tmp106*m*tmp625;
-    const Scalar tmp854 = tmp159*m*tmp647 + tmp139*m*tmp649 + tmp135*m*tmp652 + tmp132*m*tmp672
-        + tmp171*m*tmp678 + tmp170*m*tmp679 + tmp193*m*tmp694 + tmp186*m*tmp701 + tmp205*m*tmp707
-        + tmp204*m*tmp708 + tmp230*m*tmp726 + tmp223*m*tmp733;
-    const Scalar tmp855 = tmp158*m*tmp647 + tmp141*m*tmp649 + tmp135*m*tmp654 + tmp132*m*tmp671
-        + tmp173*m*tmp679 + tmp171*m*tmp681 + tmp192*m*tmp694 + tmp186*m*tmp700 + tmp207*m*tmp708
-        + tmp205*m*tmp710 + tmp229*m*tmp726 + tmp223*m*tmp732;
-    const Scalar tmp856 = tmp157*m*tmp647 + tmp142*m*tmp649 + tmp135*m*tmp655 + tmp132*m*tmp670
-        + tmp174*m*tmp679 + tmp171*m*tmp682 + tmp191*m*tmp694 + tmp186*m*tmp699 + tmp209*m*tmp708
-        + tmp205*m*tmp712 + tmp228*m*tmp726 + tmp223*m*tmp731;
-    const Scalar tmp857 = tmp156*m*tmp647 + tmp143*m*tmp649 + tmp135*m*tmp656 + tmp132*m*tmp669
-        + tmp175*m*tmp679 + tmp171*m*tmp683 + tmp190*m*tmp694 + tmp186*m*tmp698 + tmp210*m*tmp708
-        + tmp205*m*tmp713 + tmp227*m*tmp726 + tmp223*m*tmp730;
-    const Scalar tmp858 = tmp155*m*tmp647 + tmp138*m*tmp649 + tmp135*m*tmp651 + tmp132*m*tmp668
-        + tmp171*m*tmp677 + tmp169*m*tmp679 + tmp189*m*tmp694 + tmp186*m*tmp697 + tmp205*m*tmp706
-        + tmp203*m*tmp708 + tmp226*m*tmp726 + tmp223*m*tmp729;
-    const Scalar tmp859 = tmp154*m*tmp647 + tmp140*m*tmp649 + tmp135*m*tmp653 + tmp132*m*tmp667
-        + tmp172*m*tmp679 + tmp171*m*tmp680 + tmp188*m*tmp694 + tmp186*m*tmp696 + tmp206*m*tmp708
-        + tmp205*m*tmp709 + tmp225*m*tmp726 + tmp223*m*tmp728;
-    const Scalar tmp860 = tmp153*m*tmp647 + tmp137*m*tmp649 + tmp135*m*tmp650 + tmp132*m*tmp666
-        + tmp171*m*tmp676 + tmp168*m*tmp679 + tmp187*m*tmp694 + tmp186*m*tmp695 + tmp208*m*tmp708
-        + tmp205*m*tmp711 + tmp224*m*tmp726 + tmp223*m*tmp727;
-    const Scalar tmp861 = Scalar(2)*tmp131*tmp325*m*tmp134 + Scalar(2)*tmp134*tmp325*m*tmp648
-        + Scalar(2)*tmp171*m*tmp679 + Scalar(2)*tmp186*m*tmp694 + Scalar(2)*tmp205*m*tmp708
-        + Scalar(2)*tmp223*m*tmp726;
-    const Scalar tmp862 = tmp193*m*tmp673 + tmp170*m*tmp675 + tmp166*m*tmp678 + tmp163*m*tmp701
-        + tmp204*m*tmp705 + tmp202*m*tmp707 + tmp230*m*tmp725 + tmp222*m*tmp733;
-    const Scalar tmp863 = tmp192*m*tmp673 + tmp173*m*tmp675 + tmp166*m*tmp681 + tmp163*m*tmp700
-        + tmp207*m*tmp705 + tmp202*m*tmp710 + tmp229*m*tmp725 + tmp222*m*tmp732;
-    const Scalar tmp864 = tmp191*m*tmp673 + tmp174*m*tmp675 + tmp166*m*tmp682 + tmp163*m*tmp699
-        + tmp209*m*tmp705 + tmp202*m*tmp712 + tmp228*m*tmp725 + tmp222*m*tmp731;
-    const Scalar tmp865 = tmp190*m*tmp673 + tmp175*m*tmp675 + tmp166*m*tmp683 + tmp163*m*tmp698
-        + tmp210*m*tmp705 + tmp202*m*tmp713 + tmp227*m*tmp725 + tmp222*m*tmp730;
-    const Scalar tmp866 = tmp189*m*tmp673 + tmp169*m*tmp675 + tmp166*m*tmp677 + tmp163*m*tmp697
-        + tmp203*m*tmp705 + tmp202*m*tmp706 + tmp226*m*tmp725 + tmp222*m*tmp729;
-    const Scalar tmp867 = tmp188*m*tmp673 + tmp172*m*tmp675 + tmp166*m*tmp680 + tmp163*m*tmp696
-        + tmp206*m*tmp705 + tmp202*m*tmp709 + tmp225*m*tmp725 + tmp222*m*tmp728;
-    const Scalar tmp868 = tmp187*m*tmp673 + tmp168*m*tmp675 + tmp166*m*tmp676 + tmp163*m*tmp695
-        + tmp208*m*tmp705 + tmp202*m*tmp711 + tmp224*m*tmp725 + tmp222*m*tmp727;
-    const Scalar tmp869 = tmp186*m*tmp673 + tmp171*m*tmp675 + tmp166*m*tmp679 + tmp163*m*tmp694
-        + tmp205*m*tmp705 + tmp202*m*tmp708 + tmp223*m*tmp725 + tmp222*m*tmp726;
-    const Scalar tmp870 = Scalar(2)*tmp162*tmp325*m*tmp165 + Scalar(2)*tmp165*tmp325*m*tmp674
-        + Scalar(2)*tmp202*m*tmp705 + Scalar(2)*tmp222*m*tmp725;
-    const Scalar tmp871 = tmp230*m*tmp702 + tmp204*m*tmp704 + tmp200*m*tmp707 + tmp197*m*tmp733;
-    const Scalar tmp872 = tmp229*m*tmp702 + tmp207*m*tmp704 + tmp200*m*tmp710 + tmp197*m*tmp732;
-    const Scalar tmp873 = tmp228*m*tmp702 + tmp209*m*tmp704 + tmp200*m*tmp712 + tmp197*m*tmp731;
-    const Scalar tmp874 = tmp227*m*tmp702 + tmp210*m*tmp704 + tmp200*m*tmp713 + tmp197*m*tmp730;
-    const Scalar tmp875 = tmp226*m*tmp702 + tmp203*m*tmp704 + tmp200*m*tmp706 + tmp197*m*tmp729;
-    const Scalar tmp876 = tmp225*m*tmp702 + tmp206*m*tmp704 + tmp200*m*tmp709 + tmp197*m*tmp728;
-    const Scalar tmp877 = tmp224*m*tmp702 + tmp208*m*tmp704 + tmp200*m*tmp711 + tmp197*m*tmp727;
-    const Scalar tmp878 = tmp223*m*tmp702 + tmp205*m*tmp704 + tmp200*m*tmp708 + tmp197*m*tmp726;
-    const Scalar tmp879 = tmp222*m*tmp702 + tmp202*m*tmp704 + tmp200*m*tmp705 + tmp197*m*tmp725;
-    const Scalar tmp880 = Scalar(2)*tmp196*tmp325*m*tmp199 + Scalar(2)*tmp199*tmp325*m*tmp703;
-    const Scalar tmp881 = m*tmp734;
-    const Scalar tmp882 = m*tmp735;
-    const Scalar tmp883 = m*tmp736;
-    const Scalar tmp884 = m*tmp737;
-    const Scalar tmp885 = m*tmp740;
-    const Scalar tmp886 = m*tmp741;
-    const Scalar tmp887 = m*tmp746;
-    const Scalar tmp888 = m*tmp747;
-    const Scalar tmp889 = m*tmp754;
-    const Scalar tmp890 = m*tmp755;
-    const Scalar tmp891 = m*tmp764;
-    const Scalar tmp892 = m*tmp765;
-    const Scalar tmp893 = m*tmp776;
-    const Scalar tmp894 = m*tmp777;
-    const Scalar tmp895 = m*tmp790;
-    const Scalar tmp896 = m*tmp791;
-    const Scalar tmp897 = m*tmp806;
-    const Scalar tmp898 = m*tmp807;
-    const Scalar tmp899 = m*tmp824;
-    const Scalar tmp900 = m*tmp825;
-    const Scalar tmp901 = tmp382*tmp551 + tmp382*tmp646 + tmp382*tmp561 + tmp382*tmp672
-        + tmp382*tmp701 + tmp382*tmp733 + tmp382*tmp572 - k + tmp382*tmp586 + tmp382*tmp603
-        + tmp382*tmp623;
-    const Scalar tmp902 = tmp382*tmp645 + tmp382*tmp671 + tmp382*tmp700 + tmp382*tmp732
-        + tmp382*tmp571 + tmp382*tmp585 + tmp382*tmp554 + tmp382*tmp602 + tmp382*tmp622;
-    const Scalar tmp903 = tmp382*tmp644 + tmp382*tmp670 + tmp382*tmp562 + tmp382*tmp699
-        + tmp382*tmp731 + tmp382*tmp584 + tmp382*tmp601 + tmp382*tmp621;
-    const Scalar tmp904 = tmp382*tmp643 + tmp382*tmp669 + tmp382*tmp698 + tmp382*tmp730
-        + tmp382*tmp573 + tmp382*tmp600 + tmp382*tmp620;
-    const Scalar tmp905 = tmp382*tmp642 + tmp382*tmp668 + tmp382*tmp697 + tmp382*tmp729
-        + tmp382*tmp587 + tmp382*tmp619;
-    const Scalar tmp906 = tmp382*tmp641 + tmp382*tmp667 + tmp382*tmp696 + tmp382*tmp728
-        + tmp382*tmp604;
-    const Scalar tmp907 = tmp382*tmp666 + tmp382*tmp695 + tmp382*tmp727 + tmp382*tmp624;
-    const Scalar tmp908 = tmp382*tmp647 + tmp382*tmp694 + tmp382*tmp726;
-    const Scalar tmp909 = tmp382*tmp673 + tmp382*tmp725;
-    const Scalar tmp910 = tmp382*l*tmp199;
-    const Scalar tmp911 = -tmp384*tmp551 - tmp385*tmp558 - tmp396*tmp646 - tmp397*tmp652
-        - tmp386*tmp561 - tmp398*tmp672 - tmp399*tmp678 - tmp400*tmp701 - tmp401*tmp707
-        - tmp387*tmp565 - tmp402*tmp733 - tmp388*tmp572 - tmp383*tmp553 - tmp389*tmp577
-        - tmp390*tmp586 - tmp391*tmp591 - tmp392*tmp603 - tmp393*tmp608 - tmp394*tmp623
-        - tmp395*tmp628 - tmp3*tmp881 - tmp1*tmp882 - tmp15*tmp883 - tmp18*tmp884 - tmp27*tmp885
-        - tmp34*tmp886 - tmp44*tmp887 - tmp53*tmp888 - tmp63*tmp889 - tmp75*tmp890 - tmp85*tmp891
-        - tmp100*tmp892 - tmp110*tmp893 - tmp128*tmp894 - tmp139*tmp895 - tmp159*tmp896
-        - tmp170*tmp897 - tmp193*tmp898 - tmp204*tmp899 - tmp230*tmp900;
-    dr_dq_data[0 + 10 * 0] = phi10_ddot*tmp871 - tmp901 - tmp911 + phi1_ddot*tmp826
-        + phi2_ddot*tmp827 + phi3_ddot*tmp829 + phi4_ddot*tmp832 + phi5_ddot*tmp836
-        + phi6_ddot*tmp841 + phi7_ddot*tmp847 + phi8_ddot*tmp854 + phi9_ddot*tmp862;
-    const Scalar tmp912 = -tmp396*tmp645 - tmp397*tmp654 - tmp398*tmp671 - tmp399*tmp681
-        - tmp400*tmp700 - tmp401*tmp710 - tmp387*tmp566 - tmp402*tmp732 - tmp388*tmp571
-        - tmp389*tmp578 - tmp390*tmp585 - tmp391*tmp593 - tmp386*tmp554 - tmp392*tmp602
-        - tmp393*tmp610 - tmp385*tmp556 - tmp394*tmp622 - tmp395*tmp630 - tmp12*tmp883 - tmp9*tmp884
-        - tmp28*tmp885 - tmp33*tmp886 - tmp45*tmp887 - tmp52*tmp888 - tmp65*tmp889 - tmp74*tmp890
-        - tmp87*tmp891 - tmp99*tmp892 - tmp112*tmp893 - tmp127*tmp894 - tmp141*tmp895
-        - tmp158*tmp896 - tmp173*tmp897 - tmp192*tmp898 - tmp207*tmp899 - tmp229*tmp900;
-    dr_dq_data[1 + 10 * 0] = phi10_ddot*tmp872 - tmp902 - tmp912 + phi1_ddot*tmp827
-        + phi2_ddot*tmp828 + phi3_ddot*tmp830 + phi4_ddot*tmp833 + phi5_ddot*tmp837
-        + phi6_ddot*tmp842 + phi7_ddot*tmp848 + phi8_ddot*tmp855 + phi9_ddot*tmp863;
-    const Scalar tmp913 = -tmp396*tmp644 - tmp397*tmp655 - tmp398*tmp670 - tmp399*tmp682
-        - tmp388*tmp562 - tmp400*tmp699 - tmp387*tmp564 - tmp401*tmp712 - tmp402*tmp731
-        - tmp389*tmp576 - tmp390*tmp584 - tmp391*tmp590 - tmp392*tmp601 - tmp393*tmp611
-        - tmp394*tmp621 - tmp395*tmp631 - tmp25*tmp885 - tmp22*tmp886 - tmp43*tmp887 - tmp51*tmp888
-        - tmp62*tmp889 - tmp73*tmp890 - tmp88*tmp891 - tmp98*tmp892 - tmp113*tmp893 - tmp126*tmp894
-        - tmp142*tmp895 - tmp157*tmp896 - tmp174*tmp897 - tmp191*tmp898 - tmp209*tmp899
-        - tmp228*tmp900;
-    dr_dq_data[2 + 10 * 0] = phi10_ddot*tmp873 - tmp903 - tmp913 + phi1_ddot*tmp829
-        + phi2_ddot*tmp830 + phi3_ddot*tmp831 + phi4_ddot*tmp834 + phi5_ddot*tmp838
-        + phi6_ddot*tmp843 + phi7_ddot*tmp849 + phi8_ddot*tmp856 + phi9_ddot*tmp864;
-    const Scalar tmp914 = -tmp396*tmp643 - tmp397*tmp656 - tmp398*tmp669 - tmp399*tmp683
-        - tmp400*tmp698 - tmp401*tmp713 - tmp402*tmp730 - tmp390*tmp573 - tmp389*tmp575
-        - tmp391*tmp592 - tmp392*tmp600 - tmp393*tmp609 - tmp394*tmp620 - tmp395*tmp632
-        - tmp41*tmp887 - tmp38*tmp888 - tmp64*tmp889 - tmp72*tmp890 - tmp86*tmp891 - tmp97*tmp892
-        - tmp114*tmp893 - tmp125*tmp894 - tmp143*tmp895 - tmp156*tmp896 - tmp175*tmp897
-        - tmp190*tmp898 - tmp210*tmp899 - tmp227*tmp900;
-    dr_dq_data[3 + 10 * 0] = phi10_ddot*tmp874 - tmp904 - tmp914 + phi1_ddot*tmp832
-        + phi2_ddot*tmp833 + phi3_ddot*tmp834 + phi4_ddot*tmp835 + phi5_ddot*tmp839
-        + phi6_ddot*tmp844 + phi7_ddot*tmp850 + phi8_ddot*tmp857 + phi9_ddot*tmp865;
-    const Scalar tmp915 = -tmp396*tmp642 - tmp397*tmp651 - tmp398*tmp668 - tmp399*tmp677
-        - tmp400*tmp697 - tmp401*tmp706 - tmp402*tmp729 - tmp392*tmp587 - tmp391*tmp589
-        - tmp393*tmp607 - tmp394*tmp619 - tmp395*tmp627 - tmp60*tmp889 - tmp57*tmp890 - tmp84*tmp891
-        - tmp96*tmp892 - tmp109*tmp893 - tmp124*tmp894 - tmp138*tmp895 - tmp155*tmp896
-        - tmp169*tmp897 - tmp189*tmp898 - tmp203*tmp899 - tmp226*tmp900;
-    dr_dq_data[4 + 10 * 0] = phi9_ddot*tmp866 + phi10_ddot*tmp875 - tmp905 - tmp915
-        + phi1_ddot*tmp836 + phi2_ddot*tmp837 + phi3_ddot*tmp838 + phi4_ddot*tmp839
-        + phi5_ddot*tmp840 + phi6_ddot*tmp845 + phi7_ddot*tmp851 + phi8_ddot*tmp858;
-    const Scalar tmp916 = -tmp396*tmp641 - tmp397*tmp653 - tmp398*tmp667 - tmp399*tmp680
-        - tmp400*tmp696 - tmp401*tmp709 - tmp402*tmp728 - tmp394*tmp604 - tmp393*tmp606
-        - tmp395*tmp629 - tmp82*tmp891 - tmp79*tmp892 - tmp111*tmp893 - tmp123*tmp894
-        - tmp140*tmp895 - tmp154*tmp896 - tmp172*tmp897 - tmp188*tmp898 - tmp206*tmp899
-        - tmp225*tmp900;
-    dr_dq_data[5 + 10 * 0] = phi9_ddot*tmp867 + phi10_ddot*tmp876 - tmp906 - tmp916
-        + phi1_ddot*tmp841 + phi2_ddot*tmp842 + phi3_ddot*tmp843 + phi4_ddot*tmp844
-        + phi5_ddot*tmp845 + phi6_ddot*tmp846 + phi7_ddot*tmp852 + phi8_ddot*tmp859;
-    const Scalar tmp917 = -tmp397*tmp650 - tmp398*tmp666 - tmp399*tmp676 - tmp400*tmp695
-        - tmp401*tmp711 - tmp402*tmp727 - tmp396*tmp624 - tmp395*tmp626 - tmp107*tmp893
-        - tmp104*tmp894 - tmp137*tmp895 - tmp153*tmp896 - tmp168*tmp897 - tmp187*tmp898
-        - tmp208*tmp899 - tmp224*tmp900;
-    dr_dq_data[6 + 10 * 0] = phi9_ddot*tmp868 + phi10_ddot*tmp877 - tmp907 - tmp917
-        + phi1_ddot*tmp847 + phi2_ddot*tmp848 + phi3_ddot*tmp849 + phi4_ddot*tmp850
-        + phi5_ddot*tmp851 + phi6_ddot*tmp852 + phi7_ddot*tmp853 + phi8_ddot*tmp860;
-    const Scalar tmp918 = -tmp398*tmp647 - tmp397*tmp649 - tmp399*tmp679 - tmp400*tmp694
-        - tmp401*tmp708 - tmp402*tmp726 - tmp135*tmp895 - tmp132*tmp896 - tmp171*tmp897
-        - tmp186*tmp898 - tmp205*tmp899 - tmp223*tmp900;
-    dr_dq_data[7 + 10 * 0] = phi9_ddot*tmp869 + phi10_ddot*tmp878 - tmp908 - tmp918
-        + phi1_ddot*tmp854 + phi2_ddot*tmp855 + phi3_ddot*tmp856 + phi4_ddot*tmp857
-        + phi5_ddot*tmp858 + phi6_ddot*tmp859 + phi7_ddot*tmp860 + phi8_ddot*tmp861;
-    const Scalar tmp919 = -tmp400*tmp673 - tmp399*tmp675 - tmp401*tmp705 - tmp402*tmp725
-        - tmp166*tmp897 - tmp163*tmp898 - tmp202*tmp899 - tmp222*tmp900;
-    dr_dq_data[8 + 10 * 0] = phi5_ddot*tmp866 + phi6_ddot*tmp867 + phi7_ddot*tmp868
-        + phi8_ddot*tmp869 + phi9_ddot*tmp870 + phi10_ddot*tmp879 - tmp909 - tmp919
-        + phi1_ddot*tmp862 + phi2_ddot*tmp863 + phi3_ddot*tmp864 + phi4_ddot*tmp865;
-    const Scalar tmp920 = -tmp402*tmp702 - tmp401*tmp704 - tmp200*tmp899 - tmp197*tmp900;
-    dr_dq_data[9 + 10 * 0] = phi1_ddot*tmp871 + phi2_ddot*tmp872 + phi3_ddot*tmp873
-        + phi4_ddot*tmp874 + phi5_ddot*tmp875 + phi6_ddot*tmp876 + phi7_ddot*tmp877
-        + phi8_ddot*tmp878 + phi9_ddot*tmp879 + phi10_ddot*tmp880 - tmp910 - tmp920;
-    const Scalar tmp921 = l*tmp11;
-    const Scalar tmp922 = -tmp8;
-    const Scalar tmp923 = l*tmp922;
-    const Scalar tmp924 = phi2_dot*tmp923;
-    const Scalar tmp925 = phi1_dot*tmp923 + tmp924;
-    const Scalar tmp926 = phi2_dot*tmp921;
-    const Scalar tmp927 = l*tmp24;
-    const Scalar tmp928 = -tmp21;
-    const Scalar tmp929 = l*tmp928;
-    const Scalar tmp930 = tmp923 + tmp929;
-    const Scalar tmp931 = tmp929 + tmp923;
-    const Scalar tmp932 = phi3_dot*tmp929;
-    const Scalar tmp933 = phi2_dot*tmp931 + tmp932;
-    const Scalar tmp934 = phi1_dot*tmp930 + tmp933;
-    const Scalar tmp935 = phi3_dot*tmp927;
-    const Scalar tmp936 = tmp927 + tmp921;
-    const Scalar tmp937 = tmp921 + tmp927;
-    const Scalar tmp938 = l*tmp40;
-    const Scalar tmp939 = -tmp37;
-    const Scalar tmp940 = l*tmp939;
-    const Scalar tmp941 = tmp929 + tmp940;
-    const Scalar tmp942 = tmp923 + tmp941;
-    const Scalar tmp943 = tmp931 + tmp940;
-    const Scalar tmp944 = phi4_dot*tmp940;
-    const Scalar tmp945 = phi3_dot*tmp941 + tmp944;
-    const Scalar tmp946 = phi2_dot*tmp943 + tmp945;
-    const Scalar tmp947 = phi1_dot*tmp942 + tmp946;
-    const Scalar tmp948 = phi4_dot*tmp938;
-    const Scalar tmp949 = tmp927 + tmp938;
-    const Scalar tmp950 = tmp936 + tmp938;
-    const Scalar tmp951 = tmp921 + tmp949;
-    const Scalar tmp952 = l*tmp59;
-    const Scalar tmp953 = -tmp56;
-    const Scalar tmp954 = l*tmp953;
-    const Scalar tmp955 = tmp941 + tmp954;
-    const Scalar tmp956 = tmp923 + tmp955;
-    const Scalar tmp957 = tmp940 + tmp954;
-    const Scalar tmp958 = tmp931 + tmp957;
-    const Scalar tmp959 = phi5_dot*tmp954;
-    const Scalar tmp960 = phi4_dot*tmp957 + tmp959;
-    const Scalar tmp961 = phi3_dot*tmp955 + tmp960;
-    const Scalar tmp962 = phi2_dot*tmp958 + tmp961;
-    const Scalar tmp963 = phi1_dot*tmp956 + tmp962;
-    const Scalar tmp964 = phi5_dot*tmp952;
-    const Scalar tmp965 = tmp938 + tmp952;
-    const Scalar tmp966 = tmp949 + tmp952;
-    const Scalar tmp967 = tmp936 + tmp965;
-    const Scalar tmp968 = tmp921 + tmp966;
-    const Scalar tmp969 = l*tmp81;
-    const Scalar tmp970 = -tmp78;
-    const Scalar tmp971 = l*tmp970;
-    const Scalar tmp972 = tmp954 + tmp971;
-    const Scalar tmp973 = tmp942 + tmp972;
-    const Scalar tmp974 = tmp957 + tmp971;
-    const Scalar tmp975 = tmp931 + tmp974;
-    const Scalar tmp976 = tmp941 + tmp972;
-    const Scalar tmp977 = phi6_dot*tmp971;
-    const Scalar tmp978 = phi5_dot*tmp972 + tmp977;
-    const Scalar tmp979 = phi4_dot*tmp974 + tmp978;
-    const Scalar tmp980 = phi3_dot*tmp976 + tmp979;
-    const Scalar tmp981 = phi2_dot*tmp975 + tmp980;
-    const Scalar tmp982 = phi1_dot*tmp973 + tmp981;
-    const Scalar tmp983 = phi6_dot*tmp969;
-    const Scalar tmp984 = tmp952 + tmp969;
-    const Scalar tmp985 = tmp965 + tmp969;
-    const Scalar tmp986 = tmp949 + tmp984;
-    const Scalar tmp987 = tmp936 + tmp985;
-    const Scalar tmp988 = tmp951 + tmp984;
-    const Scalar tmp989 = l*tmp106;
-    const Scalar tmp990 = -tmp103;
-    const Scalar tmp991 = l*tmp990;
-    const Scalar tmp992 = tmp972 + tmp991;
-    const Scalar tmp993 = tmp942 + tmp992;
-    const Scalar tmp994 = tmp971 + tmp991;
-    const Scalar tmp995 = tmp958 + tmp994;
-    const Scalar tmp996 = tmp941 + tmp992;
-    const Scalar tmp997 = tmp957 + tmp994;
-    const Scalar tmp998 = phi7_dot*tmp991;
-    const Scalar tmp999 = phi6_dot*tmp994 + tmp998;
-    const Scalar tmp1000 = phi5_dot*tmp992 + tmp999;
-    const Scalar tmp1001 = phi4_dot*tmp997 + tmp1000;
+            + phi7_dot)*tmp749
+        + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp750
+        + phi1_dot*phi2_dot*tmp751
+        + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp752
+        + phi3_dot*(phi1_dot + phi2_dot)*tmp753 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp754
+        + phi10_dot*tmp755 + phi9_dot*tmp756 + phi8_dot*tmp757 + phi7_dot*tmp758 + phi6_dot*tmp759
+        + phi5_dot*tmp760 + phi4_dot*tmp761 + phi3_dot*tmp762 + phi2_dot*tmp763 + phi1_dot*tmp764;
+    const Scalar tmp867 = Scalar(2)*tmp0*tmp325*m*tmp2 + Scalar(2)*tmp15*m*tmp599
+        + Scalar(2)*tmp128*m*tmp687 + Scalar(2)*tmp139*m*tmp693 + Scalar(2)*tmp18*m*tmp602
+        + Scalar(2)*tmp159*m*tmp713 + Scalar(2)*tmp170*m*tmp719 + Scalar(2)*tmp193*m*tmp742
+        + Scalar(2)*tmp204*m*tmp748 + Scalar(2)*tmp27*m*tmp606 + Scalar(2)*tmp2*tmp325*m*tmp593
+        + Scalar(2)*tmp230*m*tmp774 + Scalar(2)*tmp34*m*tmp613 + Scalar(2)*tmp44*m*tmp618
+        + Scalar(2)*tmp53*m*tmp627 + Scalar(2)*tmp63*m*tmp632 + Scalar(2)*tmp75*m*tmp644
+        + Scalar(2)*tmp85*m*tmp649 + Scalar(2)*tmp100*m*tmp664 + Scalar(2)*tmp110*m*tmp669;
+    const Scalar tmp868 = tmp12*m*tmp599 + tmp128*m*tmp686 + tmp127*m*tmp687 + tmp141*m*tmp693
+        + tmp139*m*tmp695 + tmp9*m*tmp602 + tmp159*m*tmp712 + tmp158*m*tmp713 + tmp173*m*tmp719
+        + tmp170*m*tmp722 + tmp193*m*tmp741 + tmp192*m*tmp742 + tmp207*m*tmp748 + tmp204*m*tmp751
+        + tmp28*m*tmp606 + tmp27*m*tmp607 + tmp230*m*tmp773 + tmp229*m*tmp774 + tmp34*m*tmp612
+        + tmp33*m*tmp613 + tmp45*m*tmp618 + tmp44*m*tmp619 + tmp53*m*tmp626 + tmp52*m*tmp627
+        + tmp65*m*tmp632 + tmp63*m*tmp634 + tmp18*m*tmp595 + tmp75*m*tmp643 + tmp74*m*tmp644
+        + tmp87*m*tmp649 + tmp85*m*tmp651 + tmp15*m*tmp597 + tmp100*m*tmp663 + tmp99*m*tmp664
+        + tmp112*m*tmp669 + tmp110*m*tmp671;
+    const Scalar tmp869 = Scalar(2)*tmp127*m*tmp686 + Scalar(2)*tmp141*m*tmp695
+        + Scalar(2)*tmp158*m*tmp712 + Scalar(2)*tmp173*m*tmp722 + Scalar(2)*tmp192*m*tmp741
+        + Scalar(2)*tmp207*m*tmp751 + Scalar(2)*tmp28*m*tmp607 + Scalar(2)*tmp229*m*tmp773
+        + Scalar(2)*tmp33*m*tmp612 + Scalar(2)*tmp45*m*tmp619 + Scalar(2)*tmp52*m*tmp626
+        + Scalar(2)*tmp325*tmp8*m*tmp11 + Scalar(2)*tmp65*m*tmp634 + Scalar(2)*tmp74*m*tmp643
+        + Scalar(2)*tmp325*tmp11*m*tmp596 + Scalar(2)*tmp87*m*tmp651 + Scalar(2)*tmp99*m*tmp663
+        + Scalar(2)*tmp112*m*tmp671;
+    const Scalar tmp870 = tmp128*m*tmp685 + tmp126*m*tmp687 + tmp142*m*tmp693 + tmp139*m*tmp696
+        + tmp159*m*tmp711 + tmp157*m*tmp713 + tmp174*m*tmp719 + tmp170*m*tmp723 + tmp34*m*tmp603
+        + tmp193*m*tmp740 + tmp191*m*tmp742 + tmp209*m*tmp748 + tmp27*m*tmp605 + tmp204*m*tmp753
+        + tmp25*m*tmp606 + tmp230*m*tmp772 + tmp228*m*tmp774 + tmp22*m*tmp613 + tmp44*m*tmp617
+        + tmp43*m*tmp618 + tmp53*m*tmp625 + tmp51*m*tmp627 + tmp63*m*tmp631 + tmp62*m*tmp632
+        + tmp75*m*tmp642 + tmp73*m*tmp644 + tmp88*m*tmp649 + tmp85*m*tmp652 + tmp100*m*tmp662
+        + tmp98*m*tmp664 + tmp113*m*tmp669 + tmp110*m*tmp672;
+    const Scalar tmp871 = tmp127*m*tmp685 + tmp126*m*tmp686 + tmp142*m*tmp695 + tmp141*m*tmp696
+        + tmp158*m*tmp711 + tmp157*m*tmp712 + tmp174*m*tmp722 + tmp173*m*tmp723 + tmp33*m*tmp603
+        + tmp192*m*tmp740 + tmp191*m*tmp741 + tmp209*m*tmp751 + tmp28*m*tmp605 + tmp207*m*tmp753
+        + tmp229*m*tmp772 + tmp25*m*tmp607 + tmp228*m*tmp773 + tmp22*m*tmp612 + tmp45*m*tmp617
+        + tmp43*m*tmp619 + tmp52*m*tmp625 + tmp51*m*tmp626 + tmp65*m*tmp631 + tmp62*m*tmp634
+        + tmp74*m*tmp642 + tmp73*m*tmp643 + tmp88*m*tmp651 + tmp87*m*tmp652 + tmp99*m*tmp662
+        + tmp98*m*tmp663 + tmp113*m*tmp671 + tmp112*m*tmp672;
+    const Scalar tmp872 = Scalar(2)*tmp126*m*tmp685 + Scalar(2)*tmp142*m*tmp696
+        + Scalar(2)*tmp157*m*tmp711 + Scalar(2)*tmp174*m*tmp723 + Scalar(2)*tmp21*tmp325*m*tmp24
+        + Scalar(2)*tmp191*m*tmp740 + Scalar(2)*tmp24*tmp325*m*tmp604 + Scalar(2)*tmp209*m*tmp753
+        + Scalar(2)*tmp228*m*tmp772 + Scalar(2)*tmp43*m*tmp617 + Scalar(2)*tmp51*m*tmp625
+        + Scalar(2)*tmp62*m*tmp631 + Scalar(2)*tmp73*m*tmp642 + Scalar(2)*tmp88*m*tmp652
+        + Scalar(2)*tmp98*m*tmp662 + Scalar(2)*tmp113*m*tmp672;
+    const Scalar tmp873 = tmp128*m*tmp684 + tmp125*m*tmp687 + tmp143*m*tmp693 + tmp139*m*tmp697
+        + tmp159*m*tmp710 + tmp156*m*tmp713 + tmp175*m*tmp719 + tmp170*m*tmp724 + tmp193*m*tmp739
+        + tmp190*m*tmp742 + tmp210*m*tmp748 + tmp204*m*tmp754 + tmp230*m*tmp771 + tmp227*m*tmp774
+        + tmp53*m*tmp614 + tmp44*m*tmp616 + tmp41*m*tmp618 + tmp38*m*tmp627 + tmp64*m*tmp632
+        + tmp63*m*tmp633 + tmp75*m*tmp641 + tmp72*m*tmp644 + tmp86*m*tmp649 + tmp85*m*tmp650
+        + tmp100*m*tmp661 + tmp97*m*tmp664 + tmp114*m*tmp669 + tmp110*m*tmp673;
+    const Scalar tmp874 = tmp127*m*tmp684 + tmp125*m*tmp686 + tmp143*m*tmp695 + tmp141*m*tmp697
+        + tmp158*m*tmp710 + tmp156*m*tmp712 + tmp175*m*tmp722 + tmp173*m*tmp724 + tmp192*m*tmp739
+        + tmp190*m*tmp741 + tmp210*m*tmp751 + tmp207*m*tmp754 + tmp229*m*tmp771 + tmp227*m*tmp773
+        + tmp52*m*tmp614 + tmp45*m*tmp616 + tmp41*m*tmp619 + tmp38*m*tmp626 + tmp65*m*tmp633
+        + tmp64*m*tmp634 + tmp74*m*tmp641 + tmp72*m*tmp643 + tmp87*m*tmp650 + tmp86*m*tmp651
+        + tmp99*m*tmp661 + tmp97*m*tmp663 + tmp114*m*tmp671 + tmp112*m*tmp673;
+    const Scalar tmp875 = tmp126*m*tmp684 + tmp125*m*tmp685 + tmp143*m*tmp696 + tmp142*m*tmp697
+        + tmp157*m*tmp710 + tmp156*m*tmp711 + tmp175*m*tmp723 + tmp174*m*tmp724 + tmp191*m*tmp739
+        + tmp190*m*tmp740 + tmp210*m*tmp753 + tmp209*m*tmp754 + tmp228*m*tmp771 + tmp227*m*tmp772
+        + tmp51*m*tmp614 + tmp43*m*tmp616 + tmp41*m*tmp617 + tmp38*m*tmp625 + tmp64*m*tmp631
+        + tmp62*m*tmp633 + tmp73*m*tmp641 + tmp72*m*tmp642 + tmp88*m*tmp650 + tmp86*m*tmp652
+        + tmp98*m*tmp661 + tmp97*m*tmp662 + tmp114*m*tmp672 + tmp113*m*tmp673;
+    const Scalar tmp876 = Scalar(2)*tmp125*m*tmp684 + Scalar(2)*tmp143*m*tmp697
+        + Scalar(2)*tmp156*m*tmp710 + Scalar(2)*tmp175*m*tmp724 + Scalar(2)*tmp190*m*tmp739
+        + Scalar(2)*tmp210*m*tmp754 + Scalar(2)*tmp227*m*tmp771 + Scalar(2)*tmp325*tmp37*m*tmp40
+        + Scalar(2)*tmp325*tmp40*m*tmp615 + Scalar(2)*tmp64*m*tmp633 + Scalar(2)*tmp72*m*tmp641
+        + Scalar(2)*tmp86*m*tmp650 + Scalar(2)*tmp97*m*tmp661 + Scalar(2)*tmp114*m*tmp673;
+    const Scalar tmp877 = tmp128*m*tmp683 + tmp124*m*tmp687 + tmp139*m*tmp692 + tmp138*m*tmp693
+        + tmp159*m*tmp709 + tmp155*m*tmp713 + tmp170*m*tmp718 + tmp169*m*tmp719 + tmp193*m*tmp738
+        + tmp189*m*tmp742 + tmp204*m*tmp747 + tmp203*m*tmp748 + tmp230*m*tmp770 + tmp226*m*tmp774
+        + tmp75*m*tmp628 + tmp63*m*tmp630 + tmp60*m*tmp632 + tmp57*m*tmp644 + tmp85*m*tmp648
+        + tmp84*m*tmp649 + tmp100*m*tmp660 + tmp96*m*tmp664 + tmp110*m*tmp668 + tmp109*m*tmp669;
+    const Scalar tmp878 = tmp127*m*tmp683 + tmp124*m*tmp686 + tmp141*m*tmp692 + tmp138*m*tmp695
+        + tmp158*m*tmp709 + tmp155*m*tmp712 + tmp173*m*tmp718 + tmp169*m*tmp722 + tmp192*m*tmp738
+        + tmp189*m*tmp741 + tmp207*m*tmp747 + tmp203*m*tmp751 + tmp229*m*tmp770 + tmp226*m*tmp773
+        + tmp74*m*tmp628 + tmp65*m*tmp630 + tmp60*m*tmp634 + tmp57*m*tmp643 + tmp87*m*tmp648
+        + tmp84*m*tmp651 + tmp99*m*tmp660 + tmp96*m*tmp663 + tmp112*m*tmp668 + tmp109*m*tmp671;
+    const Scalar tmp879 = tmp126*m*tmp683 + tmp124*m*tmp685 + tmp142*m*tmp692 + tmp138*m*tmp696
+        + tmp157*m*tmp709 + tmp155*m*tmp711 + tmp174*m*tmp718 + tmp169*m*tmp723 + tmp191*m*tmp738
+        + tmp189*m*tmp740 + tmp209*m*tmp747 + tmp203*m*tmp753 + tmp228*m*tmp770 + tmp226*m*tmp772
+        + tmp73*m*tmp628 + tmp62*m*tmp630 + tmp60*m*tmp631 + tmp57*m*tmp642 + tmp88*m*tmp648
+        + tmp84*m*tmp652 + tmp98*m*tmp660 + tmp96*m*tmp662 + tmp113*m*tmp668 + tmp109*m*tmp672;
+    const Scalar tmp880 = tmp125*m*tmp683 + tmp124*m*tmp684 + tmp143*m*tmp692 + tmp138*m*tmp697
+        + tmp156*m*tmp709 + tmp155*m*tmp710 + tmp175*m*tmp718 + tmp169*m*tmp724 + tmp190*m*tmp738
+        + tmp189*m*tmp739 + tmp210*m*tmp747 + tmp203*m*tmp754 + tmp227*m*tmp770 + tmp226*m*tmp771
+        + tmp72*m*tmp628 + tmp64*m*tmp630 + tmp60*m*tmp633 + tmp57*m*tmp641 + tmp86*m*tmp648
+        + tmp84*m*tmp650 + tmp97*m*tmp660 + tmp96*m*tmp661 + tmp114*m*tmp668 + tmp109*m*tmp673;
+    const Scalar tmp881 = Scalar(2)*tmp124*m*tmp683 + Scalar(2)*tmp138*m*tmp692
+        + Scalar(2)*tmp155*m*tmp709 + Scalar(2)*tmp169*m*tmp718 + Scalar(2)*tmp189*m*tmp738
+        + Scalar(2)*tmp203*m*tmp747 + Scalar(2)*tmp226*m*tmp770 + Scalar(2)*tmp325*tmp56*m*tmp59
+        + Scalar(2)*tmp325*tmp59*m*tmp629 + Scalar(2)*tmp84*m*tmp648 + Scalar(2)*tmp96*m*tmp660
+        + Scalar(2)*tmp109*m*tmp668;
+    const Scalar tmp882 = tmp128*m*tmp682 + tmp123*m*tmp687 + tmp140*m*tmp693 + tmp139*m*tmp694
+        + tmp159*m*tmp708 + tmp154*m*tmp713 + tmp172*m*tmp719 + tmp170*m*tmp721 + tmp193*m*tmp737
+        + tmp188*m*tmp742 + tmp206*m*tmp748 + tmp204*m*tmp750 + tmp230*m*tmp769 + tmp225*m*tmp774
+        + tmp100*m*tmp645 + tmp85*m*tmp647 + tmp82*m*tmp649 + tmp79*m*tmp664 + tmp111*m*tmp669
+        + tmp110*m*tmp670;
+    const Scalar tmp883 = tmp127*m*tmp682 + tmp123*m*tmp686 + tmp141*m*tmp694 + tmp140*m*tmp695
+        + tmp158*m*tmp708 + tmp154*m*tmp712 + tmp173*m*tmp721 + tmp172*m*tmp722 + tmp192*m*tmp737
+        + tmp188*m*tmp741 + tmp207*m*tmp750 + tmp206*m*tmp751 + tmp229*m*tmp769 + tmp225*m*tmp773
+        + tmp99*m*tmp645 + tmp87*m*tmp647 + tmp82*m*tmp651 + tmp79*m*tmp663 + tmp112*m*tmp670
+        + tmp111*m*tmp671;
+    const Scalar tmp884 = tmp126*m*tmp682 + tmp123*m*tmp685 + tmp142*m*tmp694 + tmp140*m*tmp696
+        + tmp157*m*tmp708 + tmp154*m*tmp711 + tmp174*m*tmp721 + tmp172*m*tmp723 + tmp191*m*tmp737
+        + tmp188*m*tmp740 + tmp209*m*tmp750 + tmp206*m*tmp753 + tmp228*m*tmp769 + tmp225*m*tmp772
+        + tmp98*m*tmp645 + tmp88*m*tmp647 + tmp82*m*tmp652 + tmp79*m*tmp662 + tmp113*m*tmp670
+        + tmp111*m*tmp672;
+    const Scalar tmp885 = tmp125*m*tmp682 + tmp123*m*tmp684 + tmp143*m*tmp694 + tmp140*m*tmp697
+        + tmp156*m*tmp708 + tmp154*m*tmp710 + tmp175*m*tmp721 + tmp172*m*tmp724 + tmp190*m*tmp737
+        + tmp188*m*tmp739 + tmp210*m*tmp750 + tmp206*m*tmp754 + tmp227*m*tmp769 + tmp225*m*tmp771
+        + tmp97*m*tmp645 + tmp86*m*tmp647 + tmp82*m*tmp650 + tmp79*m*tmp661 + tmp114*m*tmp670
+        + tmp111*m*tmp673;
+    const Scalar tmp886 = tmp124*m*tmp682 + tmp123*m*tmp683 + tmp140*m*tmp692 + tmp138*m*tmp694
+        + tmp155*m*tmp708 + tmp154*m*tmp709 + tmp172*m*tmp718 + tmp169*m*tmp721 + tmp189*m*tmp737
+        + tmp188*m*tmp738 + tmp206*m*tmp747 + tmp203*m*tmp750 + tmp226*m*tmp769 + tmp225*m*tmp770
+        + tmp96*m*tmp645 + tmp84*m*tmp647 + tmp82*m*tmp648 + tmp79*m*tmp660 + tmp111*m*tmp668
+        + tmp109*m*tmp670;
+    const Scalar tmp887 = Scalar(2)*tmp123*m*tmp682 + Scalar(2)*tmp140*m*tmp694
+        + Scalar(2)*tmp154*m*tmp708 + Scalar(2)*tmp172*m*tmp721 + Scalar(2)*tmp188*m*tmp737
+        + Scalar(2)*tmp206*m*tmp750 + Scalar(2)*tmp225*m*tmp769 + Scalar(2)*tmp325*tmp78*m*tmp81
+        + Scalar(2)*tmp325*tmp81*m*tmp646 + Scalar(2)*tmp111*m*tmp670;
+    const Scalar tmp888 = tmp104*m*tmp687 + tmp139*m*tmp691 + tmp137*m*tmp693 + tmp159*m*tmp707
+        + tmp153*m*tmp713 + tmp170*m*tmp717 + tmp168*m*tmp719 + tmp193*m*tmp736 + tmp187*m*tmp742
+        + tmp208*m*tmp748 + tmp204*m*tmp752 + tmp230*m*tmp768 + tmp224*m*tmp774 + tmp128*m*tmp665
+        + tmp110*m*tmp667 + tmp107*m*tmp669;
+    const Scalar tmp889 = tmp104*m*tmp686 + tmp141*m*tmp691 + tmp137*m*tmp695 + tmp158*m*tmp707
+        + tmp153*m*tmp712 + tmp173*m*tmp717 + tmp168*m*tmp722 + tmp192*m*tmp736 + tmp187*m*tmp741
+        + tmp208*m*tmp751 + tmp207*m*tmp752 + tmp229*m*tmp768 + tmp224*m*tmp773 + tmp127*m*tmp665
+        + tmp112*m*tmp667 + tmp107*m*tmp671;
+    const Scalar tmp890 = tmp104*m*tmp685 + tmp142*m*tmp691 + tmp137*m*tmp696 + tmp157*m*tmp707
+        + tmp153*m*tmp711 + tmp174*m*tmp717 + tmp168*m*tmp723 + tmp191*m*tmp736 + tmp187*m*tmp740
+        + tmp209*m*tmp752 + tmp208*m*tmp753 + tmp228*m*tmp768 + tmp224*m*tmp772 + tmp126*m*tmp665
+        + tmp113*m*tmp667 + tmp107*m*tmp672;
+    const Scalar tmp891 = tmp104*m*tmp684 + tmp143*m*tmp691 + tmp137*m*tmp697 + tmp156*m*tmp707
+        + tmp153*m*tmp710 + tmp175*m*tmp717 + tmp168*m*tmp724 + tmp190*m*tmp736 + tmp187*m*tmp739
+        + tmp210*m*tmp752 + tmp208*m*tmp754 + tmp227*m*tmp768 + tmp224*m*tmp771 + tmp125*m*tmp665
+        + tmp114*m*tmp667 + tmp107*m*tmp673;
+    const Scalar tmp892 = tmp104*m*tmp683 + tmp138*m*tmp691 + tmp137*m*tmp692 + tmp155*m*tmp707
+        + tmp153*m*tmp709 + tmp169*m*tmp717 + tmp168*m*tmp718 + tmp189*m*tmp736 + tmp187*m*tmp738
+        + tmp208*m*tmp747 + tmp203*m*tmp752 + tmp226*m*tmp768 + tmp224*m*tmp770 + tmp124*m*tmp665
+        + tmp109*m*tmp667 + tmp107*m*tmp668;
+    const Scalar tmp893 = tmp104*m*tmp682 + tmp140*m*tmp691 + tmp137*m*tmp694 + tmp154*m*tmp707
+        + tmp153*m*tmp708 + tmp172*m*tmp717 + tmp168*m*tmp721 + tmp188*m*tmp736 + tmp187*m*tmp737
+        + tmp208*m*tmp750 + tmp206*m*tmp752 + tmp225*m*tmp768 + tmp224*m*tmp769 + tmp123*m*tmp665
+        + tmp111*m*tmp667 + tmp107*m*tmp670;
+    const Scalar tmp894 = Scalar(2)*tmp137*m*tmp691 + Scalar(2)*tmp153*m*tmp707
+        + Scalar(2)*tmp168*m*tmp717 + Scalar(2)*tmp187*m*tmp736 + Scalar(2)*tmp208*m*tmp752
+        + Scalar(2)*tmp224*m*tmp768 + Scalar(2)*tmp325*tmp103*m*tmp106
+        + Scalar(2)*tmp325*tmp106*m*tmp666;
+    const Scalar tmp895 = tmp159*m*tmp688 + tmp139*m*tmp690 + tmp135*m*tmp693 + tmp132*m*tmp713
+        + tmp171*m*tmp719 + tmp170*m*tmp720 + tmp193*m*tmp735 + tmp186*m*tmp742 + tmp205*m*tmp748
+        + tmp204*m*tmp749 + tmp230*m*tmp767 + tmp223*m*tmp774;
+    const Scalar tmp896 = tmp158*m*tmp688 + tmp141*m*tmp690 + tmp135*m*tmp695 + tmp132*m*tmp712
+        + tmp173*m*tmp720 + tmp171*m*tmp722 + tmp192*m*tmp735 + tmp186*m*tmp741 + tmp207*m*tmp749
+        + tmp205*m*tmp751 + tmp229*m*tmp767 + tmp223*m*tmp773;
+    const Scalar tmp897 = tmp157*m*tmp688 + tmp142*m*tmp690 + tmp135*m*tmp696 + tmp132*m*tmp711
+        + tmp174*m*tmp720 + tmp171*m*tmp723 + tmp191*m*tmp735 + tmp186*m*tmp740 + tmp209*m*tmp749
+        + tmp205*m*tmp753 + tmp228*m*tmp767 + tmp223*m*tmp772;
+    const Scalar tmp898 = tmp156*m*tmp688 + tmp143*m*tmp690 + tmp135*m*tmp697 + tmp132*m*tmp710
+        + tmp175*m*tmp720 + tmp171*m*tmp724 + tmp190*m*tmp735 + tmp186*m*tmp739 + tmp210*m*tmp749
+        + tmp205*m*tmp754 + tmp227*m*tmp767 + tmp223*m*tmp771;
+    const Scalar tmp899 = tmp155*m*tmp688 + tmp138*m*tmp690 + tmp135*m*tmp692 + tmp132*m*tmp709
+        + tmp171*m*tmp718 + tmp169*m*tmp720 + tmp189*m*tmp735 + tmp186*m*tmp738 + tmp205*m*tmp747
+        + tmp203*m*tmp749 + tmp226*m*tmp767 + tmp223*m*tmp770;
+    const Scalar tmp900 = tmp154*m*tmp688 + tmp140*m*tmp690 + tmp135*m*tmp694 + tmp132*m*tmp708
+        + tmp172*m*tmp720 + tmp171*m*tmp721 + tmp188*m*tmp735 + tmp186*m*tmp737 + tmp206*m*tmp749
+        + tmp205*m*tmp750 + tmp225*m*tmp767 + tmp223*m*tmp769;
+    const Scalar tmp901 = tmp153*m*tmp688 + tmp137*m*tmp690 + tmp135*m*tmp691 + tmp132*m*tmp707
+        + tmp171*m*tmp717 + tmp168*m*tmp720 + tmp187*m*tmp735 + tmp186*m*tmp736 + tmp208*m*tmp749
+        + tmp205*m*tmp752 + tmp224*m*tmp767 + tmp223*m*tmp768;
+    const Scalar tmp902 = Scalar(2)*tmp131*tmp325*m*tmp134 + Scalar(2)*tmp134*tmp325*m*tmp689
+        + Scalar(2)*tmp171*m*tmp720 + Scalar(2)*tmp186*m*tmp735 + Scalar(2)*tmp205*m*tmp749
+        + Scalar(2)*tmp223*m*tmp767;
+    const Scalar tmp903 = tmp193*m*tmp714 + tmp170*m*tmp716 + tmp166*m*tmp719 + tmp163*m*tmp742
+        + tmp204*m*tmp746 + tmp202*m*tmp748 + tmp230*m*tmp766 + tmp222*m*tmp774;
+    const Scalar tmp904 = tmp192*m*tmp714 + tmp173*m*tmp716 + tmp166*m*tmp722 + tmp163*m*tmp741
+        + tmp207*m*tmp746 + tmp202*m*tmp751 + tmp229*m*tmp766 + tmp222*m*tmp773;
+    const Scalar tmp905 = tmp191*m*tmp714 + tmp174*m*tmp716 + tmp166*m*tmp723 + tmp163*m*tmp740
+        + tmp209*m*tmp746 + tmp202*m*tmp753 + tmp228*m*tmp766 + tmp222*m*tmp772;
+    const Scalar tmp906 = tmp190*m*tmp714 + tmp175*m*tmp716 + tmp166*m*tmp724 + tmp163*m*tmp739
+        + tmp210*m*tmp746 + tmp202*m*tmp754 + tmp227*m*tmp766 + tmp222*m*tmp771;
+    const Scalar tmp907 = tmp189*m*tmp714 + tmp169*m*tmp716 + tmp166*m*tmp718 + tmp163*m*tmp738
+        + tmp203*m*tmp746 + tmp202*m*tmp747 + tmp226*m*tmp766 + tmp222*m*tmp770;
+    const Scalar tmp908 = tmp188*m*tmp714 + tmp172*m*tmp716 + tmp166*m*tmp721 + tmp163*m*tmp737
+        + tmp206*m*tmp746 + tmp202*m*tmp750 + tmp225*m*tmp766 + tmp222*m*tmp769;
+    const Scalar tmp909 = tmp187*m*tmp714 + tmp168*m*tmp716 + tmp166*m*tmp717 + tmp163*m*tmp736
+        + tmp208*m*tmp746 + tmp202*m*tmp752 + tmp224*m*tmp766 + tmp222*m*tmp768;
+    const Scalar tmp910 = tmp186*m*tmp714 + tmp171*m*tmp716 + tmp166*m*tmp720 + tmp163*m*tmp735
+        + tmp205*m*tmp746 + tmp202*m*tmp749 + tmp223*m*tmp766 + tmp222*m*tmp767;
+    const Scalar tmp911 = Scalar(2)*tmp162*tmp325*m*tmp165 + Scalar(2)*tmp165*tmp325*m*tmp715
+        + Scalar(2)*tmp202*m*tmp746 + Scalar(2)*tmp222*m*tmp766;
+    const Scalar tmp912 = tmp230*m*tmp743 + tmp204*m*tmp745 + tmp200*m*tmp748 + tmp197*m*tmp774;
+    const Scalar tmp913 = tmp229*m*tmp743 + tmp207*m*tmp745 + tmp200*m*tmp751 + tmp197*m*tmp773;
+    const Scalar tmp914 = tmp228*m*tmp743 + tmp209*m*tmp745 + tmp200*m*tmp753 + tmp197*m*tmp772;
+    const Scalar tmp915 = tmp227*m*tmp743 + tmp210*m*tmp745 + tmp200*m*tmp754 + tmp197*m*tmp771;
+    const Scalar tmp916 = tmp226*m*tmp743 + tmp203*m*tmp745 + tmp200*m*tmp747 + tmp197*m*tmp770;
+    const Scalar tmp917 = tmp225*m*tmp743 + tmp206*m*tmp745 + tmp200*m*tmp750 + tmp197*m*tmp769;
+    const Scalar tmp918 = tmp224*m*tmp743 + tmp208*m*tmp745 + tmp200*m*tmp752 + tmp197*m*tmp768;
+    const Scalar tmp919 = tmp223*m*tmp743 + tmp205*m*tmp745 + tmp200*m*tmp749 + tmp197*m*tmp767;
+    const Scalar tmp920 = tmp222*m*tmp743 + tmp202*m*tmp745 + tmp200*m*tmp746 + tmp197*m*tmp766;
+    const Scalar tmp921 = Scalar(2)*tmp196*tmp325*m*tmp199 + Scalar(2)*tmp199*tmp325*m*tmp744;
+    const Scalar tmp922 = m*tmp775;
+    const Scalar tmp923 = m*tmp776;
+    const Scalar tmp924 = m*tmp777;
+    const Scalar tmp925 = m*tmp778;
+    const Scalar tmp926 = m*tmp781;
+    const Scalar tmp927 = m*tmp782;
+    const Scalar tmp928 = m*tmp787;
+    const Scalar tmp929 = m*tmp788;
+    const Scalar tmp930 = m*tmp795;
+    const Scalar tmp931 = m*tmp796;
+    const Scalar tmp932 = m*tmp805;
+    const Scalar tmp933 = m*tmp806;
+    const Scalar tmp934 = m*tmp817;
+    const Scalar tmp935 = m*tmp818;
+    const Scalar tmp936 = m*tmp831;
+    const Scalar tmp937 = m*tmp832;
+    const Scalar tmp938 = m*tmp847;
+    const Scalar tmp939 = m*tmp848;
+    const Scalar tmp940 = m*tmp865;
+    const Scalar tmp941 = m*tmp866;
+    const Scalar tmp942 = tmp382*tmp592 + tmp382*tmp687 + tmp382*tmp602 + tmp382*tmp713
+        + tmp382*tmp742 + tmp382*tmp774 + tmp382*tmp613 - k + tmp382*tmp627 + tmp382*tmp644
+        + tmp382*tmp664;
+    const Scalar tmp943 = tmp382*tmp686 + tmp382*tmp712 + tmp382*tmp741 + tmp382*tmp773
+        + tmp382*tmp612 + tmp382*tmp626 + tmp382*tmp595 + tmp382*tmp643 + tmp382*tmp663;
+    const Scalar tmp944 = tmp382*tmp685 + tmp382*tmp711 + tmp382*tmp603 + tmp382*tmp740
+        + tmp382*tmp772 + tmp382*tmp625 + tmp382*tmp642 + tmp382*tmp662;
+    const Scalar tmp945 = tmp382*tmp684 + tmp382*tmp710 + tmp382*tmp739 + tmp382*tmp771
+        + tmp382*tmp614 + tmp382*tmp641 + tmp382*tmp661;
+    const Scalar tmp946 = tmp382*tmp683 + tmp382*tmp709 + tmp382*tmp738 + tmp382*tmp770
+        + tmp382*tmp628 + tmp382*tmp660;
+    const Scalar tmp947 = tmp382*tmp682 + tmp382*tmp708 + tmp382*tmp737 + tmp382*tmp769
+        + tmp382*tmp645;
+    const Scalar tmp948 = tmp382*tmp707 + tmp382*tmp736 + tmp382*tmp768 + tmp382*tmp665;
+    const Scalar tmp949 = tmp382*tmp688 + tmp382*tmp735 + tmp382*tmp767;
+    const Scalar tmp950 = tmp382*tmp714 + tmp382*tmp766;
+    const Scalar tmp951 = tmp382*l*tmp199;
+    const Scalar tmp952 = -tmp384*tmp592 - tmp385*tmp599 - tmp396*tmp687 - tmp397*tmp693
+        - tmp386*tmp602 - tmp398*tmp713 - tmp399*tmp719 - tmp400*tmp742 - tmp401*tmp748
+        - tmp387*tmp606 - tmp402*tmp774 - tmp388*tmp613 - tmp383*tmp594 - tmp389*tmp618
+        - tmp390*tmp627 - tmp391*tmp632 - tmp392*tmp644 - tmp393*tmp649 - tmp394*tmp664
+        - tmp395*tmp669 - tmp3*tmp922 - tmp1*tmp923 - tmp15*tmp924 - tmp18*tmp925 - tmp27*tmp926
+        - tmp34*tmp927 - tmp44*tmp928 - tmp53*tmp929 - tmp63*tmp930 - tmp75*tmp931 - tmp85*tmp932
+        - tmp100*tmp933 - tmp110*tmp934 - tmp128*tmp935 - tmp139*tmp936 - tmp159*tmp937
+        - tmp170*tmp938 - tmp193*tmp939 - tmp204*tmp940 - tmp230*tmp941;
+    dr_dq_data[0 + 10 * 0] = phi10_ddot*tmp912 - tmp942 - tmp952 + phi1_ddot*tmp867
+        + phi2_ddot*tmp868 + phi3_ddot*tmp870 + phi4_ddot*tmp873 + phi5_ddot*tmp877
+        + phi6_ddot*tmp882 + phi7_ddot*tmp888 + phi8_ddot*tmp895 + phi9_ddot*tmp903;
+    const Scalar tmp953 = -tmp396*tmp686 - tmp397*tmp695 - tmp398*tmp712 - tmp399*tmp722
+        - tmp400*tmp741 - tmp401*tmp751 - tmp387*tmp607 - tmp402*tmp773 - tmp388*tmp612
+        - tmp389*tmp619 - tmp390*tmp626 - tmp391*tmp634 - tmp386*tmp595 - tmp392*tmp643
+        - tmp393*tmp651 - tmp385*tmp597 - tmp394*tmp663 - tmp395*tmp671 - tmp12*tmp924 - tmp9*tmp925
+        - tmp28*tmp926 - tmp33*tmp927 - tmp45*tmp928 - tmp52*tmp929 - tmp65*tmp930 - tmp74*tmp931
+        - tmp87*tmp932 - tmp99*tmp933 - tmp112*tmp934 - tmp127*tmp935 - tmp141*tmp936
+        - tmp158*tmp937 - tmp173*tmp938 - tmp192*tmp939 - tmp207*tmp940 - tmp229*tmp941;
+    dr_dq_data[1 + 10 * 0] = phi10_ddot*tmp913 - tmp943 - tmp953 + phi1_ddot*tmp868
+        + phi2_ddot*tmp869 + phi3_ddot*tmp871 + phi4_ddot*tmp874 + phi5_ddot*tmp878
+        + phi6_ddot*tmp883 + phi7_ddot*tmp889 + phi8_ddot*tmp896 + phi9_ddot*tmp904;
+    const Scalar tmp954 = -tmp396*tmp685 - tmp397*tmp696 - tmp398*tmp711 - tmp399*tmp723
+        - tmp388*tmp603 - tmp400*tmp740 - tmp387*tmp605 - tmp401*tmp753 - tmp402*tmp772
+        - tmp389*tmp617 - tmp390*tmp625 - tmp391*tmp631 - tmp392*tmp642 - tmp393*tmp652
+        - tmp394*tmp662 - tmp395*tmp672 - tmp25*tmp926 - tmp22*tmp927 - tmp43*tmp928 - tmp51*tmp929
+        - tmp62*tmp930 - tmp73*tmp931 - tmp88*tmp932 - tmp98*tmp933 - tmp113*tmp934 - tmp126*tmp935
+        - tmp142*tmp936 - tmp157*tmp937 - tmp174*tmp938 - tmp191*tmp939 - tmp209*tmp940
+        - tmp228*tmp941;
+    dr_dq_data[2 + 10 * 0] = phi10_ddot*tmp914 - tmp944 - tmp954 + phi1_ddot*tmp870
+        + phi2_ddot*tmp871 + phi3_ddot*tmp872 + phi4_ddot*tmp875 + phi5_ddot*tmp879
+        + phi6_ddot*tmp884 + phi7_ddot*tmp890 + phi8_ddot*tmp897 + phi9_ddot*tmp905;
+    const Scalar tmp955 = -tmp396*tmp684 - tmp397*tmp697 - tmp398*tmp710 - tmp399*tmp724
+        - tmp400*tmp739 - tmp401*tmp754 - tmp402*tmp771 - tmp390*tmp614 - tmp389*tmp616
+        - tmp391*tmp633 - tmp392*tmp641 - tmp393*tmp650 - tmp394*tmp661 - tmp395*tmp673
+        - tmp41*tmp928 - tmp38*tmp929 - tmp64*tmp930 - tmp72*tmp931 - tmp86*tmp932 - tmp97*tmp933
+        - tmp114*tmp934 - tmp125*tmp935 - tmp143*tmp936 - tmp156*tmp937 - tmp175*tmp938
+        - tmp190*tmp939 - tmp210*tmp940 - tmp227*tmp941;
+    dr_dq_data[3 + 10 * 0] = phi10_ddot*tmp915 - tmp945 - tmp955 + phi1_ddot*tmp873
+        + phi2_ddot*tmp874 + phi3_ddot*tmp875 + phi4_ddot*tmp876 + phi5_ddot*tmp880
+        + phi6_ddot*tmp885 + phi7_ddot*tmp891 + phi8_ddot*tmp898 + phi9_ddot*tmp906;
+    const Scalar tmp956 = -tmp396*tmp683 - tmp397*tmp692 - tmp398*tmp709 - tmp399*tmp718
+        - tmp400*tmp738 - tmp401*tmp747 - tmp402*tmp770 - tmp392*tmp628 - tmp391*tmp630
+        - tmp393*tmp648 - tmp394*tmp660 - tmp395*tmp668 - tmp60*tmp930 - tmp57*tmp931 - tmp84*tmp932
+        - tmp96*tmp933 - tmp109*tmp934 - tmp124*tmp935 - tmp138*tmp936 - tmp155*tmp937
+        - tmp169*tmp938 - tmp189*tmp939 - tmp203*tmp940 - tmp226*tmp941;
+    dr_dq_data[4 + 10 * 0] = phi9_ddot*tmp907 + phi10_ddot*tmp916 - tmp946 - tmp956
+        + phi1_ddot*tmp877 + phi2_ddot*tmp878 + phi3_ddot*tmp879 + phi4_ddot*tmp880
+        + phi5_ddot*tmp881 + phi6_ddot*tmp886 + phi7_ddot*tmp892 + phi8_ddot*tmp899;
+    const Scalar tmp957 = -tmp396*tmp682 - tmp397*tmp694 - tmp398*tmp708 - tmp399*tmp721
+        - tmp400*tmp737 - tmp401*tmp750 - tmp402*tmp769 - tmp394*tmp645 - tmp393*tmp647
+        - tmp395*tmp670 - tmp82*tmp932 - tmp79*tmp933 - tmp111*tmp934 - tmp123*tmp935
+        - tmp140*tmp936 - tmp154*tmp937 - tmp172*tmp938 - tmp188*tmp939 - tmp206*tmp940
+        - tmp225*tmp941;
+    dr_dq_data[5 + 10 * 0] = phi9_ddot*tmp908 + phi10_ddot*tmp917 - tmp947 - tmp957
+        + phi1_ddot*tmp882 + phi2_ddot*tmp883 + phi3_ddot*tmp884 + phi4_ddot*tmp885
+        + phi5_ddot*tmp886 + phi6_ddot*tmp887 + phi7_ddot*tmp893 + phi8_ddot*tmp900;
+    const Scalar tmp958 = -tmp397*tmp691 - tmp398*tmp707 - tmp399*tmp717 - tmp400*tmp736
+        - tmp401*tmp752 - tmp402*tmp768 - tmp396*tmp665 - tmp395*tmp667 - tmp107*tmp934
+        - tmp104*tmp935 - tmp137*tmp936 - tmp153*tmp937 - tmp168*tmp938 - tmp187*tmp939
+        - tmp208*tmp940 - tmp224*tmp941;
+    dr_dq_data[6 + 10 * 0] = phi9_ddot*tmp909 + phi10_ddot*tmp918 - tmp948 - tmp958
+        + phi1_ddot*tmp888 + phi2_ddot*tmp889 + phi3_ddot*tmp890 + phi4_ddot*tmp891
+        + phi5_ddot*tmp892 + phi6_ddot*tmp893 + phi7_ddot*tmp894 + phi8_ddot*tmp901;
+    const Scalar tmp959 = -tmp398*tmp688 - tmp397*tmp690 - tmp399*tmp720 - tmp400*tmp735
+        - tmp401*tmp749 - tmp402*tmp767 - tmp135*tmp936 - tmp132*tmp937 - tmp171*tmp938
+        - tmp186*tmp939 - tmp205*tmp940 - tmp223*tmp941;
+    dr_dq_data[7 + 10 * 0] = phi9_ddot*tmp910 + phi10_ddot*tmp919 - tmp949 - tmp959
+        + phi1_ddot*tmp895 + phi2_ddot*tmp896 + phi3_ddot*tmp897 + phi4_ddot*tmp898
+        + phi5_ddot*tmp899 + phi6_ddot*tmp900 + phi7_ddot*tmp901 + phi8_ddot*tmp902;
+    const Scalar tmp960 = -tmp400*tmp714 - tmp399*tmp716 - tmp401*tmp746 - tmp402*tmp766
+        - tmp166*tmp938 - tmp163*tmp939 - tmp202*tmp940 - tmp222*tmp941;
+    dr_dq_data[8 + 10 * 0] = phi5_ddot*tmp907 + phi6_ddot*tmp908 + phi7_ddot*tmp909
+        + phi8_ddot*tmp910 + phi9_ddot*tmp911 + phi10_ddot*tmp920 - tmp950 - tmp960
+        + phi1_ddot*tmp903 + phi2_ddot*tmp904 + phi3_ddot*tmp905 + phi4_ddot*tmp906;
+    const Scalar tmp961 = -tmp402*tmp743 - tmp401*tmp745 - tmp200*tmp940 - tmp197*tmp941;
+    dr_dq_data[9 + 10 * 0] = phi1_ddot*tmp912 + phi2_ddot*tmp913 + phi3_ddot*tmp914
+        + phi4_ddot*tmp915 + phi5_ddot*tmp916 + phi6_ddot*tmp917 + phi7_ddot*tmp918
+        + phi8_ddot*tmp919 + phi9_ddot*tmp920 + phi10_ddot*tmp921 - tmp951 - tmp961;
+    const Scalar tmp962 = l*tmp11;
+    const Scalar tmp963 = -tmp8;
+    const Scalar tmp964 = l*tmp963;
+    const Scalar tmp965 = phi2_dot*tmp964;
+    const Scalar tmp966 = phi1_dot*tmp964 + tmp965;
+    const Scalar tmp967 = phi2_dot*tmp962;
+    const Scalar tmp968 = l*tmp24;
+    const Scalar tmp969 = -tmp21;
+    const Scalar tmp970 = l*tmp969;
+    const Scalar tmp971 = tmp964 + tmp970;
+    const Scalar tmp972 = tmp970 + tmp964;
+    const Scalar tmp973 = phi3_dot*tmp970;
+    const Scalar tmp974 = phi2_dot*tmp972 + tmp973;
+    const Scalar tmp975 = phi1_dot*tmp971 + tmp974;
+    const Scalar tmp976 = phi3_dot*tmp968;
+    const Scalar tmp977 = tmp968 + tmp962;
+    const Scalar tmp978 = tmp962 + tmp968;
+    const Scalar tmp979 = l*tmp40;
+    const Scalar tmp980 = -tmp37;
+    const Scalar tmp981 = l*tmp980;
+    const Scalar tmp982 = tmp970 + tmp981;
+    const Scalar tmp983 = tmp964 + tmp982;
+    const Scalar tmp984 = tmp972 + tmp981;
+    const Scalar tmp985 = phi4_dot*tmp981;
+    const Scalar tmp986 = phi3_dot*tmp982 + tmp985;
+    const Scalar tmp987 = phi2_dot*tmp984 + tmp986;
+    const Scalar tmp988 = phi1_dot*tmp983 + tmp987;
+    const Scalar tmp989 = phi4_dot*tmp979;
+    const Scalar tmp990 = tmp968 + tmp979;
+    const Scalar tmp991 = tmp977 + tmp979;
+    const Scalar tmp992 = tmp962 + tmp990;
+    const Scalar tmp993 = l*tmp59;
+    const Scalar tmp994 = -tmp56;
+    const Scalar tmp995 = l*tmp994;
+    const Scalar tmp996 = tmp982 + tmp995;
+    const Scalar tmp997 = tmp964 + tmp996;
+    const Scalar tmp998 = tmp981 + tmp995;
+    const Scalar tmp999 = tmp972 + tmp998;
+    const Scalar tmp1000 = phi5_dot*tmp995;
+    const Scalar tmp1001 = phi4_dot*tmp998 + tmp1000;
     const Scalar tmp1002 = phi3_dot*tmp996 + tmp1001;
-    const Scalar tmp1003 = phi2_dot*tmp995 + tmp1002;
-    const Scalar tmp1004 = tmp1003 + phi1_dot*tmp993;
-    const Scalar tmp1005 = phi7_dot*tmp989;
-    const Scalar tmp1006 = tmp969 + tmp989;
-    const Scalar tmp1007 = tmp984 + tmp989;
-    const Scalar tmp1008 = tmp1006 + tmp965;
-    const Scalar tmp1009 = tmp1007 + tmp949;
-    const Scalar tmp1010 = tmp1006 + tmp967;
-    const Scalar tmp1011 = tmp1007 + tmp951;
-    const Scalar tmp1012 = l*tmp134;
-    const Scalar tmp1013 = -tmp131;
-    const Scalar tmp1014 = l*tmp1013;
-    const Scalar tmp1015 = tmp1014 + tmp991;
-    const Scalar tmp1016 = tmp1015 + tmp972;
-    const Scalar tmp1017 = tmp1016 + tmp942;
-    const Scalar tmp1018 = tmp1014 + tmp994;
-    const Scalar tmp1019 = tmp1018 + tmp958;
-    const Scalar tmp1020 = tmp1015 + tmp976;
-    const Scalar tmp1021 = tmp1018 + tmp957;
-    const Scalar tmp1022 = phi8_dot*tmp1014;
-    const Scalar tmp1023 = phi7_dot*tmp1015 + tmp1022;
-    const Scalar tmp1024 = phi6_dot*tmp1018 + tmp1023;
-    const Scalar tmp1025 = phi5_dot*tmp1016 + tmp1024;
-    const Scalar tmp1026 = phi4_dot*tmp1021 + tmp1025;
-    const Scalar tmp1027 = phi3_dot*tmp1020 + tmp1026;
-    const Scalar tmp1028 = phi2_dot*tmp1019 + tmp1027;
-    const Scalar tmp1029 = phi1_dot*tmp1017 + tmp1028;
-    const Scalar tmp1030 = phi8_dot*tmp1012;
-    const Scalar tmp1031 = tmp1012 + tmp989;
-    const Scalar tmp1032 = tmp1006 + tmp1012;
-    const Scalar tmp1033 = tmp1031 + tmp984;
-    const Scalar tmp1034 = tmp1032 + tmp965;
-    const Scalar tmp1035 = tmp1031 + tmp986;
-    const Scalar tmp1036 = tmp1032 + tmp967;
-    const Scalar tmp1037 = tmp1033 + tmp951;
-    const Scalar tmp1038 = l*tmp165;
-    const Scalar tmp1039 = -tmp162;
-    const Scalar tmp1040 = l*tmp1039;
-    const Scalar tmp1041 = tmp1015 + tmp1040;
-    const Scalar tmp1042 = tmp1041 + tmp972;
-    const Scalar tmp1043 = tmp1042 + tmp942;
-    const Scalar tmp1044 = tmp1014 + tmp1040;
-    const Scalar tmp1045 = tmp1044 + tmp994;
-    const Scalar tmp1046 = tmp1045 + tmp958;
-    const Scalar tmp1047 = tmp1041 + tmp976;
-    const Scalar tmp1048 = tmp1044 + tmp997;
-    const Scalar tmp1049 = phi9_dot*tmp1040;
-    const Scalar tmp1050 = phi8_dot*tmp1044 + tmp1049;
-    const Scalar tmp1051 = phi7_dot*tmp1041 + tmp1050;
-    const Scalar tmp1052 = phi6_dot*tmp1045 + tmp1051;
-    const Scalar tmp1053 = phi5_dot*tmp1042 + tmp1052;
-    const Scalar tmp1054 = phi4_dot*tmp1048 + tmp1053;
-    const Scalar tmp1055 = phi3_dot*tmp1047 + tmp1054;
-    const Scalar tmp1056 = phi2_dot*tmp1046 + tmp1055;
-    const Scalar tmp1057 = phi1_dot*tmp1043 + tmp1056;
-    const Scalar tmp1058 = phi9_dot*tmp1038;
-    const Scalar tmp1059 = tmp1012 + tmp1038;
-    const Scalar tmp1060 = tmp1031 + tmp1038;
-    const Scalar tmp1061 = tmp1006 + tmp1059;
-    const Scalar tmp1062 = tmp1060 + tmp984;
-    const Scalar tmp1063 = tmp1008 + tmp1059;
-    const Scalar tmp1064 = tmp1060 + tmp986;
-    const Scalar tmp1065 = tmp1061 + tmp967;
-    const Scalar tmp1066 = tmp1062 + tmp951;
-    const Scalar tmp1067 = l*tmp199;
-    const Scalar tmp1068 = -tmp196;
-    const Scalar tmp1069 = l*tmp1068;
-    const Scalar tmp1070 = tmp1040 + tmp1069;
-    const Scalar tmp1071 = tmp1016 + tmp1070;
-    const Scalar tmp1072 = tmp1071 + tmp942;
-    const Scalar tmp1073 = tmp1044 + tmp1069;
-    const Scalar tmp1074 = tmp1073 + tmp994;
-    const Scalar tmp1075 = tmp1074 + tmp958;
-    const Scalar tmp1076 = tmp1015 + tmp1070;
-    const Scalar tmp1077 = tmp1076 + tmp976;
-    const Scalar tmp1078 = tmp1073 + tmp997;
-    const Scalar tmp1079 = phi10_dot*tmp1069;
-    const Scalar tmp1080 = phi9_dot*tmp1070 + tmp1079;
-    const Scalar tmp1081 = phi8_dot*tmp1073 + tmp1080;
-    const Scalar tmp1082 = phi7_dot*tmp1076 + tmp1081;
-    const Scalar tmp1083 = phi6_dot*tmp1074 + tmp1082;
-    const Scalar tmp1084 = phi5_dot*tmp1071 + tmp1083;
-    const Scalar tmp1085 = phi4_dot*tmp1078 + tmp1084;
-    const Scalar tmp1086 = phi3_dot*tmp1077 + tmp1085;
-    const Scalar tmp1087 = phi2_dot*tmp1075 + tmp1086;
-    const Scalar tmp1088 = phi1_dot*tmp1072 + tmp1087;
-    const Scalar tmp1089 = phi10_dot*tmp1067;
-    const Scalar tmp1090 = tmp1038 + tmp1067;
-    const Scalar tmp1091 = tmp1059 + tmp1067;
-    const Scalar tmp1092 = tmp1031 + tmp1090;
-    const Scalar tmp1093 = tmp1006 + tmp1091;
-    const Scalar tmp1094 = tmp1033 + tmp1090;
-    const Scalar tmp1095 = tmp1008 + tmp1091;
-    const Scalar tmp1096 = tmp1092 + tmp986;
-    const Scalar tmp1097 = tmp1093 + tmp967;
-    const Scalar tmp1098 = tmp1094 + tmp951;
-    const Scalar tmp1099 = (-phi1_dot - phi2_dot)*tmp926
-        + (-(phi1_dot*phi1_dot) - phi1_dot*phi2_dot)*tmp921;
-    const Scalar tmp1100 = phi1_dot*tmp925 + phi1_dot*phi2_dot*tmp923 + phi2_dot*tmp924;
-    const Scalar tmp1101 = -tmp936;
-    const Scalar tmp1102 = phi2_dot*tmp1101 - tmp935;
-    const Scalar tmp1103 = phi3_dot*(-phi1_dot - phi2_dot)*tmp927 + phi1_dot*phi2_dot*tmp1101
-        + (phi1_dot + phi2_dot)*tmp1102 - phi3_dot*tmp935 - (phi1_dot*phi1_dot)*tmp937;
-    const Scalar tmp1104 = phi3_dot*(phi1_dot + phi2_dot)*tmp929 + phi1_dot*phi2_dot*tmp931
-        + phi3_dot*tmp932 + phi2_dot*tmp933 + phi1_dot*tmp934;
-    const Scalar tmp1105 = -tmp949;
-    const Scalar tmp1106 = phi3_dot*tmp1105 - tmp948;
-    const Scalar tmp1107 = -tmp950;
-    const Scalar tmp1108 = tmp1106 + phi2_dot*tmp1107;
-    const Scalar tmp1109 = phi3_dot*(phi1_dot + phi2_dot)*tmp1105 + phi3_dot*tmp1106
-        + phi1_dot*phi2_dot*tmp1107 + (phi1_dot + phi2_dot)*tmp1108
-        + phi4_dot*(-phi1_dot - phi2_dot - phi3_dot)*tmp938 - phi4_dot*tmp948
-        - (phi1_dot*phi1_dot)*tmp951;
-    const Scalar tmp1110 = phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp940
-        + phi3_dot*(phi1_dot + phi2_dot)*tmp941 + phi1_dot*phi2_dot*tmp943 + phi4_dot*tmp944
-        + phi3_dot*tmp945 + phi2_dot*tmp946 + phi1_dot*tmp947;
-    const Scalar tmp1111 = -tmp965;
-    const Scalar tmp1112 = phi4_dot*tmp1111 - tmp964;
-    const Scalar tmp1113 = -tmp966;
-    const Scalar tmp1114 = tmp1112 + phi3_dot*tmp1113;
-    const Scalar tmp1115 = -tmp967;
-    const Scalar tmp1116 = tmp1114 + phi2_dot*tmp1115;
-    const Scalar tmp1117 = phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp1111 + phi4_dot*tmp1112
-        + phi3_dot*(phi1_dot + phi2_dot)*tmp1113 + phi3_dot*tmp1114 + phi1_dot*phi2_dot*tmp1115
-        + (phi1_dot + phi2_dot)*tmp1116
-        + phi5_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot)*tmp952 - phi5_dot*tmp964
-        - (phi1_dot*phi1_dot)*tmp968;
-    const Scalar tmp1118 = phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp954
-        + phi3_dot*(phi1_dot + phi2_dot)*tmp955 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp957
-        + phi1_dot*phi2_dot*tmp958 + phi5_dot*tmp959 + phi4_dot*tmp960 + phi3_dot*tmp961
-        + phi2_dot*tmp962 + phi1_dot*tmp963;
-    const Scalar tmp1119 = -tmp984;
-    const Scalar tmp1120 = phi5_dot*tmp1119 - tmp983;
-    const Scalar tmp1121 = -tmp985;
-    const Scalar tmp1122 = tmp1120 + phi4_dot*tmp1121;
-    const Scalar tmp1123 = -tmp986;
-    const Scalar tmp1124 = tmp1122 + phi3_dot*tmp1123;
-    const Scalar tmp1125 = -tmp987;
-    const Scalar tmp1126 = tmp1124 + phi2_dot*tmp1125;
-    const Scalar tmp1127 = phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp1119
-        + phi5_dot*tmp1120 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp1121 + phi4_dot*tmp1122
-        + phi3_dot*(phi1_dot + phi2_dot)*tmp1123 + phi3_dot*tmp1124 + phi1_dot*phi2_dot*tmp1125
-        + (phi1_dot + phi2_dot)*tmp1126
-        + phi6_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot)*tmp969 - phi6_dot*tmp983
-        - (phi1_dot*phi1_dot)*tmp988;
-    const Scalar tmp1128 = phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp971
-        + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp972
-        + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp974 + phi1_dot*phi2_dot*tmp975
-        + phi3_dot*(phi1_dot + phi2_dot)*tmp976 + phi6_dot*tmp977 + phi5_dot*tmp978
-        + phi4_dot*tmp979 + phi3_dot*tmp980 + phi2_dot*tmp981 + phi1_dot*tmp982;
-    const Scalar tmp1129 = -tmp1006;
-    const Scalar tmp1130 = -tmp1005 + phi6_dot*tmp1129;
-    const Scalar tmp1131 = -tmp1007;
-    const Scalar tmp1132 = tmp1130 + phi5_dot*tmp1131;
-    const Scalar tmp1133 = -tmp1008;
-    const Scalar tmp1134 = tmp1132 + phi4_dot*tmp1133;
-    const Scalar tmp1135 = -tmp1009;
-    const Scalar tmp1136 = tmp1134 + phi3_dot*tmp1135;
-    const Scalar tmp1137 = -tmp1010;
-    const Scalar tmp1138 = tmp1136 + phi2_dot*tmp1137;
-    const Scalar tmp1139 = -phi7_dot*tmp1005 - (phi1_dot*phi1_dot)*tmp1011
-        + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp1129 + phi6_dot*tmp1130
-        + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp1131 + phi5_dot*tmp1132
-        + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp1133 + phi4_dot*tmp1134
-        + phi3_dot*(phi1_dot + phi2_dot)*tmp1135 + phi3_dot*tmp1136 + phi1_dot*phi2_dot*tmp1137
-        + (phi1_dot + phi2_dot)*tmp1138
-        + phi7_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot - phi6_dot)*tmp989;
-    const Scalar tmp1140 = phi2_dot*tmp1003 + phi1_dot*tmp1004
-        + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp991
-        + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp992
-        + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp994
-        + phi1_dot*phi2_dot*tmp995 + phi3_dot*(phi1_dot + phi2_dot)*tmp996
-        + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp997 + phi7_dot*tmp998 + phi6_dot*tmp999
-        + phi5_dot*tmp1000 + phi4_dot*tmp1001 + phi3_dot*tmp1002;
-    const Scalar tmp1141 = -tmp1031;
-    const Scalar tmp1142 = -tmp1030 + phi7_dot*tmp1141;
-    const Scalar tmp1143 = -tmp1032;
-    const Scalar tmp1144 = tmp1142 + phi6_dot*tmp1143;
-    const Scalar tmp1145 = -tmp1033;
-    const Scalar tmp1146 = tmp1144 + phi5_dot*tmp1145;
-    const Scalar tmp1147 = -tmp1034;
-    const Scalar tmp1148 = tmp1146 + phi4_dot*tmp1147;
-    const Scalar tmp1149 = -tmp1035;
-    const Scalar tmp1150 = tmp1148 + phi3_dot*tmp1149;
-    const Scalar tmp1151 = -tmp1036;
-    const Scalar tmp1152 = tmp1150 + phi2_dot*tmp1151;
-    const Scalar tmp1153 = phi8_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot
-            - phi6_dot - phi7_dot)*tmp1012
-        - phi8_dot*tmp1030 - (phi1_dot*phi1_dot)*tmp1037
-        + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp1141
-        + phi7_dot*tmp1142 + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp1143
-        + phi6_dot*tmp1144 + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp1145
-        + phi5_dot*tmp1146 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp1147 + phi4_dot*tmp1148
-        + phi3_dot*(phi1_dot + phi2_dot)*tmp1149 + phi3_dot*tmp1150 + phi1_dot*phi2_dot*tmp1151
-        + (phi1_dot + phi2_dot)*tmp1152;
-    const Scalar tmp1154 = phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot
-            + phi7_dot)*tmp1014
-        + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp1015
-        + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp1016
-        + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp1018
-        + phi1_dot*phi2_dot*tmp1019 + phi3_dot*(phi1_dot + phi2_dot)*tmp1020
-        + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp1021 + phi8_dot*tmp1022 + phi7_dot*tmp1023
-        + phi6_dot*tmp1024 + phi5_dot*tmp1025 + phi4_dot*tmp1026 + phi3_dot*tmp1027
-        + phi2_dot*tmp1028 + phi1_dot*tmp1029;
-    const Scalar tmp1155 = -tmp1059;
-    const Scalar tmp1156 = -tmp1058 + phi8_dot*tmp1155;
-    const Scalar tmp1157 = -tmp1060;
-    const Scalar tmp1158 = tmp1156 + phi7_dot*tmp1157;
-    const Scalar tmp1159 = -tmp1061;
-    const Scalar tmp1160 = tmp1158 + phi6_dot*tmp1159;
-    const Scalar tmp1161 = -tmp1062;
-    const Scalar tmp1162 = tmp1160 + phi5_dot*tmp1161;
-    const Scalar tmp1163 = -tmp1063;
-    const Scalar tmp1164 = tmp1162 + phi4_dot*tmp1163;
-    const Scalar tmp1165 = -tmp1064;
-    const Scalar tmp1166 = tmp1164 + phi3_dot*tmp1165;
-    const Scalar tmp1167 = -tmp1065;
-    const Scalar tmp1168 = tmp1166 + phi2_dot*tmp1167;
-    const Scalar tmp1169 = phi9_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot
-            - phi6_dot - phi7_dot - phi8_dot)*tmp1038
-        - phi9_dot*tmp1058 - (phi1_dot*phi1_dot)*tmp1066
+    const Scalar tmp1003 = phi2_dot*tmp999 + tmp1002;
+    const Scalar tmp1004 = phi1_dot*tmp997 + tmp1003;
+    const Scalar tmp1005 = phi5_dot*tmp993;
+    const Scalar tmp1006 = tmp979 + tmp993;
+    const Scalar tmp1007 = tmp990 + tmp993;
+    const Scalar tmp1008 = tmp977 + tmp1006;
+    const Scalar tmp1009 = tmp962 + tmp1007;
+    const Scalar tmp1010 = l*tmp81;
+    const Scalar tmp1011 = -tmp78;
+    const Scalar tmp1012 = l*tmp1011;
+    const Scalar tmp1013 = tmp995 + tmp1012;
+    const Scalar tmp1014 = tmp983 + tmp1013;
+    const Scalar tmp1015 = tmp998 + tmp1012;
+    const Scalar tmp1016 = tmp972 + tmp1015;
+    const Scalar tmp1017 = tmp982 + tmp1013;
+    const Scalar tmp1018 = phi6_dot*tmp1012;
+    const Scalar tmp1019 = phi5_dot*tmp1013 + tmp1018;
+    const Scalar tmp1020 = phi4_dot*tmp1015 + tmp1019;
+    const Scalar tmp1021 = phi3_dot*tmp1017 + tmp1020;
+    const Scalar tmp1022 = phi2_dot*tmp1016 + tmp1021;
+    const Scalar tmp1023 = phi1_dot*tmp1014 + tmp1022;
+    const Scalar tmp1024 = phi6_dot*tmp1010;
+    const Scalar tmp1025 = tmp993 + tmp1010;
+    const Scalar tmp1026 = tmp1006 + tmp1010;
+    const Scalar tmp1027 = tmp990 + tmp1025;
+    const Scalar tmp1028 = tmp977 + tmp1026;
+    const Scalar tmp1029 = tmp992 + tmp1025;
+    const Scalar tmp1030 = l*tmp106;
+    const Scalar tmp1031 = -tmp103;
+    const Scalar tmp1032 = l*tmp1031;
+    const Scalar tmp1033 = tmp1013 + tmp1032;
+    const Scalar tmp1034 = tmp983 + tmp1033;
+    const Scalar tmp1035 = tmp1012 + tmp1032;
+    const Scalar tmp1036 = tmp999 + tmp1035;
+    const Scalar tmp1037 = tmp982 + tmp1033;
+    const Scalar tmp1038 = tmp998 + tmp1035;
+    const Scalar tmp1039 = phi7_dot*tmp1032;
+    const Scalar tmp1040 = phi6_dot*tmp1035 + tmp1039;
+    const Scalar tmp1041 = phi5_dot*tmp1033 + tmp1040;
+    const Scalar tmp1042 = phi4_dot*tmp1038 + tmp1041;
+    const Scalar tmp1043 = phi3_dot*tmp1037 + tmp1042;
+    const Scalar tmp1044 = phi2_dot*tmp1036 + tmp1043;
+    const Scalar tmp1045 = tmp1044 + phi1_dot*tmp1034;
+    const Scalar tmp1046 = phi7_dot*tmp1030;
+    const Scalar tmp1047 = tmp1010 + tmp1030;
+    const Scalar tmp1048 = tmp1025 + tmp1030;
+    const Scalar tmp1049 = tmp1047 + tmp1006;
+    const Scalar tmp1050 = tmp1048 + tmp990;
+    const Scalar tmp1051 = tmp1047 + tmp1008;
+    const Scalar tmp1052 = tmp1048 + tmp992;
+    const Scalar tmp1053 = l*tmp134;
+    const Scalar tmp1054 = -tmp131;
+    const Scalar tmp1055 = l*tmp1054;
+    const Scalar tmp1056 = tmp1055 + tmp1032;
+    const Scalar tmp1057 = tmp1056 + tmp1013;
+    const Scalar tmp1058 = tmp1057 + tmp983;
+    const Scalar tmp1059 = tmp1055 + tmp1035;
+    const Scalar tmp1060 = tmp1059 + tmp999;
+    const Scalar tmp1061 = tmp1056 + tmp1017;
+    const Scalar tmp1062 = tmp1059 + tmp998;
+    const Scalar tmp1063 = phi8_dot*tmp1055;
+    const Scalar tmp1064 = phi7_dot*tmp1056 + tmp1063;
+    const Scalar tmp1065 = phi6_dot*tmp1059 + tmp1064;
+    const Scalar tmp1066 = phi5_dot*tmp1057 + tmp1065;
+    const Scalar tmp1067 = phi4_dot*tmp1062 + tmp1066;
+    const Scalar tmp1068 = phi3_dot*tmp1061 + tmp1067;
+    const Scalar tmp1069 = phi2_dot*tmp1060 + tmp1068;
+    const Scalar tmp1070 = phi1_dot*tmp1058 + tmp1069;
+    const Scalar tmp1071 = phi8_dot*tmp1053;
+    const Scalar tmp1072 = tmp1053 + tmp1030;
+    const Scalar tmp1073 = tmp1047 + tmp1053;
+    const Scalar tmp1074 = tmp1072 + tmp1025;
+    const Scalar tmp1075 = tmp1073 + tmp1006;
+    const Scalar tmp1076 = tmp1072 + tmp1027;
+    const Scalar tmp1077 = tmp1073 + tmp1008;
+    const Scalar tmp1078 = tmp1074 + tmp992;
+    const Scalar tmp1079 = l*tmp165;
+    const Scalar tmp1080 = -tmp162;
+    const Scalar tmp1081 = l*tmp1080;
+    const Scalar tmp1082 = tmp1056 + tmp1081;
+    const Scalar tmp1083 = tmp1082 + tmp1013;
+    const Scalar tmp1084 = tmp1083 + tmp983;
+    const Scalar tmp1085 = tmp1055 + tmp1081;
+    const Scalar tmp1086 = tmp1085 + tmp1035;
+    const Scalar tmp1087 = tmp1086 + tmp999;
+    const Scalar tmp1088 = tmp1082 + tmp1017;
+    const Scalar tmp1089 = tmp1085 + tmp1038;
+    const Scalar tmp1090 = phi9_dot*tmp1081;
+    const Scalar tmp1091 = phi8_dot*tmp1085 + tmp1090;
+    const Scalar tmp1092 = phi7_dot*tmp1082 + tmp1091;
+    const Scalar tmp1093 = phi6_dot*tmp1086 + tmp1092;
+    const Scalar tmp1094 = phi5_dot*tmp1083 + tmp1093;
+    const Scalar tmp1095 = phi4_dot*tmp1089 + tmp1094;
+    const Scalar tmp1096 = phi3_dot*tmp1088 + tmp1095;
+    const Scalar tmp1097 = phi2_dot*tmp1087 + tmp1096;
+    const Scalar tmp1098 = phi1_dot*tmp1084 + tmp1097;
+    const Scalar tmp1099 = phi9_dot*tmp1079;
+    const Scalar tmp1100 = tmp1053 + tmp1079;
+    const Scalar tmp1101 = tmp1072 + tmp1079;
+    const Scalar tmp1102 = tmp1047 + tmp1100;
+    const Scalar tmp1103 = tmp1101 + tmp1025;
+    const Scalar tmp1104 = tmp1049 + tmp1100;
+    const Scalar tmp1105 = tmp1101 + tmp1027;
+    const Scalar tmp1106 = tmp1102 + tmp1008;
+    const Scalar tmp1107 = tmp1103 + tmp992;
+    const Scalar tmp1108 = l*tmp199;
+    const Scalar tmp1109 = -tmp196;
+    const Scalar tmp1110 = l*tmp1109;
+    const Scalar tmp1111 = tmp1081 + tmp1110;
+    const Scalar tmp1112 = tmp1057 + tmp1111;
+    const Scalar tmp1113 = tmp1112 + tmp983;
+    const Scalar tmp1114 = tmp1085 + tmp1110;
+    const Scalar tmp1115 = tmp1114 + tmp1035;
+    const Scalar tmp1116 = tmp1115 + tmp999;
+    const Scalar tmp1117 = tmp1056 + tmp1111;
+    const Scalar tmp1118 = tmp1117 + tmp1017;
+    const Scalar tmp1119 = tmp1114 + tmp1038;
+    const Scalar tmp1120 = phi10_dot*tmp1110;
+    const Scalar tmp1121 = phi9_dot*tmp1111 + tmp1120;
+    const Scalar tmp1122 = phi8_dot*tmp1114 + tmp1121;
+    const Scalar tmp1123 = phi7_dot*tmp1117 + tmp1122;
+    const Scalar tmp1124 = phi6_dot*tmp1115 + tmp1123;
+    const Scalar tmp1125 = phi5_dot*tmp1112 + tmp1124;
+    const Scalar tmp1126 = phi4_dot*tmp1119 + tmp1125;
+    const Scalar tmp1127 = phi3_dot*tmp1118 + tmp1126;
+    const Scalar tmp1128 = phi2_dot*tmp1116 + tmp1127;
+    const Scalar tmp1129 = phi1_dot*tmp1113 + tmp1128;
+    const Scalar tmp1130 = phi10_dot*tmp1108;
+    const Scalar tmp1131 = tmp1079 + tmp1108;
+    const Scalar tmp1132 = tmp1100 + tmp1108;
+    const Scalar tmp1133 = tmp1072 + tmp1131;
+    const Scalar tmp1134 = tmp1047 + tmp1132;
+    const Scalar tmp1135 = tmp1074 + tmp1131;
+    const Scalar tmp1136 = tmp1049 + tmp1132;
+    const Scalar tmp1137 = tmp1133 + tmp1027;
+    const Scalar tmp1138 = tmp1134 + tmp1008;
+    const Scalar tmp1139 = tmp1135 + tmp992;
+    const Scalar tmp1140 = (-phi1_dot - phi2_dot)*tmp967
+        + (-(phi1_dot*phi1_dot) - phi1_dot*phi2_dot)*tmp962;
+    const Scalar tmp1141 = phi1_dot*tmp966 + phi1_dot*phi2_dot*tmp964 + phi2_dot*tmp965;
+    const Scalar tmp1142 = -tmp977;
+    const Scalar tmp1143 = phi2_dot*tmp1142 - tmp976;
+    const Scalar tmp1144 = phi3_dot*(-phi1_dot - phi2_dot)*tmp968 + phi1_dot*phi2_dot*tmp1142
+        + (phi1_dot + phi2_dot)*tmp1143 - phi3_dot*tmp976 - (phi1_dot*phi1_dot)*tmp978;
+    const Scalar tmp1145 = phi3_dot*(phi1_dot + phi2_dot)*tmp970 + phi1_dot*phi2_dot*tmp972
+        + phi3_dot*tmp973 + phi2_dot*tmp974 + phi1_dot*tmp975;
+    const Scalar tmp1146 = -tmp990;
+    const Scalar tmp1147 = phi3_dot*tmp1146 - tmp989;
+    const Scalar tmp1148 = -tmp991;
+    const Scalar tmp1149 = tmp1147 + phi2_dot*tmp1148;
+    const Scalar tmp1150 = phi3_dot*(phi1_dot + phi2_dot)*tmp1146 + phi3_dot*tmp1147
+        + phi1_dot*phi2_dot*tmp1148 + (phi1_dot + phi2_dot)*tmp1149
+        + phi4_dot*(-phi1_dot - phi2_dot - phi3_dot)*tmp979 - phi4_dot*tmp989
+        - (phi1_dot*phi1_dot)*tmp992;
+    const Scalar tmp1151 = phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp981
+        + phi3_dot*(phi1_dot + phi2_dot)*tmp982 + phi1_dot*phi2_dot*tmp984 + phi4_dot*tmp985
+        + phi3_dot*tmp986 + phi2_dot*tmp987 + phi1_dot*tmp988;
+    const Scalar tmp1152 = -tmp1006;
+    const Scalar tmp1153 = phi4_dot*tmp1152 - tmp1005;
+    const Scalar tmp1154 = -tmp1007;
+    const Scalar tmp1155 = tmp1153 + phi3_dot*tmp1154;
+    const Scalar tmp1156 = -tmp1008;
+    const Scalar tmp1157 = tmp1155 + phi2_dot*tmp1156;
+    const Scalar tmp1158 = phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp1152 + phi4_dot*tmp1153
+        + phi3_dot*(phi1_dot + phi2_dot)*tmp1154 + phi3_dot*tmp1155 + phi1_dot*phi2_dot*tmp1156
+        + (phi1_dot + phi2_dot)*tmp1157
+        + phi5_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot)*tmp993 - phi5_dot*tmp1005
+        - (phi1_dot*phi1_dot)*tmp1009;
+    const Scalar tmp1159 = phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp995
+        + phi3_dot*(phi1_dot + phi2_dot)*tmp996 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp998
+        + phi1_dot*phi2_dot*tmp999 + phi5_dot*tmp1000 + phi4_dot*tmp1001 + phi3_dot*tmp1002
+        + phi2_dot*tmp1003 + phi1_dot*tmp1004;
+    const Scalar tmp1160 = -tmp1025;
+    const Scalar tmp1161 = phi5_dot*tmp1160 - tmp1024;
+    const Scalar tmp1162 = -tmp1026;
+    const Scalar tmp1163 = tmp1161 + phi4_dot*tmp1162;
+    const Scalar tmp1164 = -tmp1027;
+    const Scalar tmp1165 = tmp1163 + phi3_dot*tmp1164;
+    const Scalar tmp1166 = -tmp1028;
+    const Scalar tmp1167 = tmp1165 + phi2_dot*tmp1166;
+    const Scalar tmp1168 = phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp1160
+        + phi5_dot*tmp1161 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp1162 + phi4_dot*tmp1163
+        + phi3_dot*(phi1_dot + phi2_dot)*tmp1164 + phi3_dot*tmp1165 + phi1_dot*phi2_dot*tmp1166
+        + (phi1_dot + phi2_dot)*tmp1167
+        + phi6_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot)*tmp1010
+        - phi6_dot*tmp1024 - (phi1_dot*phi1_dot)*tmp1029;
+    const Scalar tmp1169 = phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp1012
+        + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp1013
+        + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp1015 + phi1_dot*phi2_dot*tmp1016
+        + phi3_dot*(phi1_dot + phi2_dot)*tmp1017 + phi6_dot*tmp1018 + phi5_dot*tmp1019
+        + phi4_dot*tmp1020 + phi3_dot*tmp1021 + phi2_dot*tmp1022 + phi1_dot*tmp1023;
+    const Scalar tmp1170 = -tmp1047;
+    const Scalar tmp1171 = -tmp1046 + phi6_dot*tmp1170;
+    const Scalar tmp1172 = -tmp1048;
+    const Scalar tmp1173 = tmp1171 + phi5_dot*tmp1172;
+    const Scalar tmp1174 = -tmp1049;
+    const Scalar tmp1175 = tmp1173 + phi4_dot*tmp1174;
+    const Scalar tmp1176 = -tmp1050;
+    const Scalar tmp1177 = tmp1175 + phi3_dot*tmp1176;
+    const Scalar tmp1178 = -tmp1051;
+    const Scalar tmp1179 = tmp1177 + phi2_dot*tmp1178;
+    const Scalar tmp1180 = -phi7_dot*tmp1046 - (phi1_dot*phi1_dot)*tmp1052
+        + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp1170 + phi6_dot*tmp1171
+        + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp1172 + phi5_dot*tmp1173
+        + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp1174 + phi4_dot*tmp1175
+        + phi3_dot*(phi1_dot + phi2_dot)*tmp1176 + phi3_dot*tmp1177 + phi1_dot*phi2_dot*tmp1178
+        + (phi1_dot + phi2_dot)*tmp1179
+        + phi7_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot - phi6_dot)*tmp1030;
+    const Scalar tmp1181 = phi2_dot*tmp1044 + phi1_dot*tmp1045
+        + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp1032
+        + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp1033
+        + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp1035
+        + phi1_dot*phi2_dot*tmp1036 + phi3_dot*(phi1_dot + phi2_dot)*tmp1037
+        + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp1038 + phi7_dot*tmp1039 + phi6_dot*tmp1040
+        + phi5_dot*tmp1041 + phi4_dot*tmp1042 + phi3_dot*tmp1043;
+    const Scalar tmp1182 = -tmp1072;
+    const Scalar tmp1183 = -tmp1071 + phi7_dot*tmp1182;
+    const Scalar tmp1184 = -tmp1073;
+    const Scalar tmp1185 = tmp1183 + phi6_dot*tmp1184;
+    const Scalar tmp1186 = -tmp1074;
+    const Scalar tmp1187 = tmp1185 + phi5_dot*tmp1186;
+    const Scalar tmp1188 = -tmp1075;
+    const Scalar tmp1189 = tmp1187 + phi4_dot*tmp1188;
+    const Scalar tmp1190 = -tmp1076;
+    const Scalar tmp1191 = tmp1189 + phi3_dot*tmp1190;
+    const Scalar tmp1192 = -tmp1077;
+    const Scalar tmp1193 = tmp1191 + phi2_dot*tmp1192;
+    const Scalar tmp1194 = phi8_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot
+            - phi6_dot - phi7_dot)*tmp1053
+        - phi8_dot*tmp1071 - (phi1_dot*phi1_dot)*tmp1078
+        + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp1182
+        + phi7_dot*tmp1183 + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp1184
+        + phi6_dot*tmp1185 + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp1186
+        + phi5_dot*tmp1187 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp1188 + phi4_dot*tmp1189
+        + phi3_dot*(phi1_dot + phi2_dot)*tmp1190 + phi3_dot*tmp1191 + phi1_dot*phi2_dot*tmp1192
+        + (phi1_dot + phi2_dot)*tmp1193;
+    const Scalar tmp1195 = phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot
+            + phi7_dot)*tmp1055
+        + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp1056
+        + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp1057
+        + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp1059
+        + phi1_dot*phi2_dot*tmp1060 + phi3_dot*(phi1_dot + phi2_dot)*tmp1061
+        + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp1062 + phi8_dot*tmp1063 + phi7_dot*tmp1064
+        + phi6_dot*tmp1065 + phi5_dot*tmp1066 + phi4_dot*tmp1067 + phi3_dot*tmp1068
+        + phi2_dot*tmp1069 + phi1_dot*tmp1070;
+    const Scalar tmp1196 = -tmp1100;
+    const Scalar tmp1197 = -tmp1099 + phi8_dot*tmp1196;
+    const Scalar tmp1198 = -tmp1101;
+    const Scalar tmp1199 = tmp1197 + phi7_dot*tmp1198;
+    const Scalar tmp1200 = -tmp1102;
+    const Scalar tmp1201 = tmp1199 + phi6_dot*tmp1200;
+    const Scalar tmp1202 = -tmp1103;
+    const Scalar tmp1203 = tmp1201 + phi5_dot*tmp1202;
+    const Scalar tmp1204 = -tmp1104;
+    const Scalar tmp1205 = tmp1203 + phi4_dot*tmp1204;
+    const Scalar tmp1206 = -tmp1105;
+    const Scalar tmp1207 = tmp1205 + phi3_dot*tmp1206;
+    const Scalar tmp1208 = -tmp1106;
+    const Scalar tmp1209 = tmp1207 + phi2_dot*tmp1208;
+    const Scalar tmp1210 = phi9_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot
+            - phi6_dot - phi7_dot - phi8_dot)*tmp1079
+        - phi9_dot*tmp1099 - (phi1_dot*phi1_dot)*tmp1107
         + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot
-            + phi7_dot)*tmp1155
-        + phi8_dot*tmp1156
-        + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp1157
-        + phi7_dot*tmp1158 + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp1159
-        + phi6_dot*tmp1160 + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp1161
-        + phi5_dot*tmp1162 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp1163 + phi4_dot*tmp1164
-        + phi3_dot*(phi1_dot + phi2_dot)*tmp1165 + phi3_dot*tmp1166 + phi1_dot*phi2_dot*tmp1167
-        + (phi1_dot + phi2_dot)*tmp1168;
-    const Scalar tmp1170 = phi9_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot
-            + phi7_dot + phi8_dot)*tmp1040
-        + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp1041
-        + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp1042
+            + phi7_dot)*tmp1196
+        + phi8_dot*tmp1197
+        + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp1198
+        + phi7_dot*tmp1199 + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp1200
+        + phi6_dot*tmp1201 + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp1202
+        + phi5_dot*tmp1203 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp1204 + phi4_dot*tmp1205
+        + phi3_dot*(phi1_dot + phi2_dot)*tmp1206 + phi3_dot*tmp1207 + phi1_dot*phi2_dot*tmp1208
+        + (phi1_dot + phi2_dot)*tmp1209;
+    const Scalar tmp1211 = phi9_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot
+            + phi7_dot + phi8_dot)*tmp1081
+        + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp1082
+        + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp1083
         + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot
-            + phi7_dot)*tmp1044
-        + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp1045
-        + phi1_dot*phi2_dot*tmp1046 + phi3_dot*(phi1_dot + phi2_dot)*tmp1047
-        + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp1048 + phi9_dot*tmp1049 + phi8_dot*tmp1050
-        + phi7_dot*tmp1051 + phi6_dot*tmp1052 + phi5_dot*tmp1053 + phi4_dot*tmp1054
-        + phi3_dot*tmp1055 + phi2_dot*tmp1056 + phi1_dot*tmp1057;
-    const Scalar tmp1171 = -tmp1090;
-    const Scalar tmp1172 = -tmp1089 + phi9_dot*tmp1171;
-    const Scalar tmp1173 = -tmp1091;
-    const Scalar tmp1174 = tmp1172 + phi8_dot*tmp1173;
-    const Scalar tmp1175 = -tmp1092;
-    const Scalar tmp1176 = tmp1174 + phi7_dot*tmp1175;
-    const Scalar tmp1177 = -tmp1093;
-    const Scalar tmp1178 = tmp1176 + phi6_dot*tmp1177;
-    const Scalar tmp1179 = -tmp1094;
-    const Scalar tmp1180 = tmp1178 + phi5_dot*tmp1179;
-    const Scalar tmp1181 = -tmp1095;
-    const Scalar tmp1182 = tmp1180 + phi4_dot*tmp1181;
-    const Scalar tmp1183 = -tmp1096;
-    const Scalar tmp1184 = tmp1182 + phi3_dot*tmp1183;
-    const Scalar tmp1185 = -tmp1097;
-    const Scalar tmp1186 = tmp1184 + phi2_dot*tmp1185;
-    const Scalar tmp1187 = phi10_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot
-            - phi6_dot - phi7_dot - phi8_dot - phi9_dot)*tmp1067
-        - phi10_dot*tmp1089 - (phi1_dot*phi1_dot)*tmp1098
+            + phi7_dot)*tmp1085
+        + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp1086
+        + phi1_dot*phi2_dot*tmp1087 + phi3_dot*(phi1_dot + phi2_dot)*tmp1088
+        + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp1089 + phi9_dot*tmp1090 + phi8_dot*tmp1091
+        + phi7_dot*tmp1092 + phi6_dot*tmp1093 + phi5_dot*tmp1094 + phi4_dot*tmp1095
+        + phi3_dot*tmp1096 + phi2_dot*tmp1097 + phi1_dot*tmp1098;
+    const Scalar tmp1212 = -tmp1131;
+    const Scalar tmp1213 = -tmp1130 + phi9_dot*tmp1212;
+    const Scalar tmp1214 = -tmp1132;
+    const Scalar tmp1215 = tmp1213 + phi8_dot*tmp1214;
+    const Scalar tmp1216 = -tmp1133;
+    const Scalar tmp1217 = tmp1215 + phi7_dot*tmp1216;
+    const Scalar tmp1218 = -tmp1134;
+    const Scalar tmp1219 = tmp1217 + phi6_dot*tmp1218;
+    const Scalar tmp1220 = -tmp1135;
+    const Scalar tmp1221 = tmp1219 + phi5_dot*tmp1220;
+    const Scalar tmp1222 = -tmp1136;
+    const Scalar tmp1223 = tmp1221 + phi4_dot*tmp1222;
+    const Scalar tmp1224 = -tmp1137;
+    const Scalar tmp1225 = tmp1223 + phi3_dot*tmp1224;
+    const Scalar tmp1226 = -tmp1138;
+    const Scalar tmp1227 = tmp1225 + phi2_dot*tmp1226;
+    const Scalar tmp1228 = phi10_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot
+            - phi6_dot - phi7_dot - phi8_dot - phi9_dot)*tmp1108
+        - phi10_dot*tmp1130 - (phi1_dot*phi1_dot)*tmp1139
         + phi9_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot
-            + phi8_dot)*tmp1171
-        + phi9_dot*tmp1172
+            + phi8_dot)*tmp1212
+        + phi9_dot*tmp1213
         + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot
-            + phi7_dot)*tmp1173
-        + phi8_dot*tmp1174
-        + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp1175
-        + phi7_dot*tmp1176 + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp1177
-        + phi6_dot*tmp1178 + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp1179
-        + phi5_dot*tmp1180 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp1181 + phi4_dot*tmp1182
-        + phi3_dot*(phi1_dot + phi2_dot)*tmp1183 + phi3_dot*tmp1184 + phi1_dot*phi2_dot*tmp1185
-        + (phi1_dot + phi2_dot)*tmp1186;
-    const Scalar tmp1188 = phi10_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot
-            + phi6_dot + phi7_dot + phi8_dot + phi9_dot)*tmp1069
+            + phi7_dot)*tmp1214
+        + phi8_dot*tmp1215
+        + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp1216
+        + phi7_dot*tmp1217 + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp1218
+        + phi6_dot*tmp1219 + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp1220
+        + phi5_dot*tmp1221 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp1222 + phi4_dot*tmp1223
+        + phi3_dot*(phi1_dot + phi2_dot)*tmp1224 + phi3_dot*tmp1225 + phi1_dot*phi2_dot*tmp1226
+        + (phi1_dot + phi2_dot)*tmp1227;
+    const Scalar tmp1229 = phi10_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot
+            + phi6_dot + phi7_dot + phi8_dot + phi9_dot)*tmp1110
         + phi9_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot
-            + phi8_dot)*tmp1070
-        + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp1071
+            + phi8_dot)*tmp1111
+        + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp1112
         + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot
-            + phi7_dot)*tmp1073
-        + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp1074
-        + phi1_dot*phi2_dot*tmp1075
-        + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp1076
-        + phi3_dot*(phi1_dot + phi2_dot)*tmp1077 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp1078
-        + phi10_dot*tmp1079 + phi9_dot*tmp1080 + phi8_dot*tmp1081 + phi7_dot*tmp1082
-        + phi6_dot*tmp1083 + phi5_dot*tmp1084 + phi4_dot*tmp1085 + phi3_dot*tmp1086
-        + phi2_dot*tmp1087 + phi1_dot*tmp1088;
-    const Scalar tmp1189 = Scalar(2)*tmp15*m*tmp923 + Scalar(2)*tmp128*m*tmp1011
-        + Scalar(2)*tmp139*m*tmp1017 + Scalar(2)*tmp18*m*tmp921 + Scalar(2)*tmp159*m*tmp1037
-        + Scalar(2)*tmp170*m*tmp1043 + Scalar(2)*tmp193*m*tmp1066 + Scalar(2)*tmp204*m*tmp1072
-        + Scalar(2)*tmp27*m*tmp930 + Scalar(2)*tmp230*m*tmp1098 + Scalar(2)*tmp34*m*tmp937
-        + Scalar(2)*tmp44*m*tmp942 + Scalar(2)*tmp53*m*tmp951 + Scalar(2)*tmp63*m*tmp956
-        + Scalar(2)*tmp75*m*tmp968 + Scalar(2)*tmp85*m*tmp973 + Scalar(2)*tmp100*m*tmp988
-        + Scalar(2)*tmp110*m*tmp993;
-    const Scalar tmp1190 = (tmp15*m + tmp12*m)*tmp923 + tmp128*m*tmp1010 + tmp127*m*tmp1011
-        + tmp141*m*tmp1017 + tmp139*m*tmp1019 + (tmp18*m + tmp9*m)*tmp921 + tmp159*m*tmp1036
-        + tmp158*m*tmp1037 + tmp173*m*tmp1043 + tmp170*m*tmp1046 + tmp193*m*tmp1065
-        + tmp192*m*tmp1066 + tmp207*m*tmp1072 + tmp204*m*tmp1075 + tmp28*m*tmp930 + tmp27*m*tmp931
-        + tmp230*m*tmp1097 + tmp229*m*tmp1098 + tmp34*m*tmp936 + tmp33*m*tmp937 + tmp45*m*tmp942
-        + tmp44*m*tmp943 + tmp53*m*tmp950 + tmp52*m*tmp951 + tmp65*m*tmp956 + tmp63*m*tmp958
-        + tmp75*m*tmp967 + tmp74*m*tmp968 + tmp87*m*tmp973 + tmp85*m*tmp975 + tmp100*m*tmp987
-        + tmp99*m*tmp988 + tmp112*m*tmp993 + tmp110*m*tmp995;
-    const Scalar tmp1191 = Scalar(2)*tmp127*m*tmp1010 + Scalar(2)*tmp141*m*tmp1019
-        + Scalar(2)*tmp158*m*tmp1036 + Scalar(2)*tmp173*m*tmp1046 + Scalar(2)*tmp192*m*tmp1065
-        + Scalar(2)*tmp207*m*tmp1075 + Scalar(2)*tmp28*m*tmp931 + Scalar(2)*tmp229*m*tmp1097
-        + Scalar(2)*tmp33*m*tmp936 + Scalar(2)*tmp45*m*tmp943 + Scalar(2)*tmp52*m*tmp950
-        + Scalar(2)*tmp325*tmp8*m*tmp11 + Scalar(2)*tmp65*m*tmp958 + Scalar(2)*tmp74*m*tmp967
-        + Scalar(2)*tmp325*tmp11*m*tmp922 + Scalar(2)*tmp87*m*tmp975 + Scalar(2)*tmp99*m*tmp987
-        + Scalar(2)*tmp112*m*tmp995;
-    const Scalar tmp1192 = tmp128*m*tmp1009 + tmp126*m*tmp1011 + tmp142*m*tmp1017 + tmp139*m*tmp1020
-        + tmp159*m*tmp1035 + tmp157*m*tmp1037 + tmp174*m*tmp1043 + tmp170*m*tmp1047 + tmp34*m*tmp927
-        + tmp193*m*tmp1064 + tmp191*m*tmp1066 + tmp209*m*tmp1072 + tmp27*m*tmp929 + tmp204*m*tmp1077
-        + tmp25*m*tmp930 + tmp230*m*tmp1096 + tmp228*m*tmp1098 + tmp22*m*tmp937 + tmp44*m*tmp941
-        + tmp43*m*tmp942 + tmp53*m*tmp949 + tmp51*m*tmp951 + tmp63*m*tmp955 + tmp62*m*tmp956
-        + tmp75*m*tmp966 + tmp73*m*tmp968 + tmp88*m*tmp973 + tmp85*m*tmp976 + tmp100*m*tmp986
-        + tmp98*m*tmp988 + tmp113*m*tmp993 + tmp110*m*tmp996;
-    const Scalar tmp1193 = tmp127*m*tmp1009 + tmp126*m*tmp1010 + tmp142*m*tmp1019 + tmp141*m*tmp1020
-        + tmp158*m*tmp1035 + tmp157*m*tmp1036 + tmp174*m*tmp1046 + tmp173*m*tmp1047 + tmp33*m*tmp927
-        + tmp192*m*tmp1064 + tmp191*m*tmp1065 + tmp209*m*tmp1075 + tmp28*m*tmp929 + tmp207*m*tmp1077
-        + tmp229*m*tmp1096 + tmp25*m*tmp931 + tmp228*m*tmp1097 + tmp22*m*tmp936 + tmp45*m*tmp941
-        + tmp43*m*tmp943 + tmp52*m*tmp949 + tmp51*m*tmp950 + tmp65*m*tmp955 + tmp62*m*tmp958
-        + tmp74*m*tmp966 + tmp73*m*tmp967 + tmp88*m*tmp975 + tmp87*m*tmp976 + tmp99*m*tmp986
-        + tmp98*m*tmp987 + tmp113*m*tmp995 + tmp112*m*tmp996;
-    const Scalar tmp1194 = Scalar(2)*tmp126*m*tmp1009 + Scalar(2)*tmp142*m*tmp1020
-        + Scalar(2)*tmp157*m*tmp1035 + Scalar(2)*tmp174*m*tmp1047 + Scalar(2)*tmp21*tmp325*m*tmp24
-        + Scalar(2)*tmp191*m*tmp1064 + Scalar(2)*tmp24*tmp325*m*tmp928 + Scalar(2)*tmp209*m*tmp1077
-        + Scalar(2)*tmp228*m*tmp1096 + Scalar(2)*tmp43*m*tmp941 + Scalar(2)*tmp51*m*tmp949
-        + Scalar(2)*tmp62*m*tmp955 + Scalar(2)*tmp73*m*tmp966 + Scalar(2)*tmp88*m*tmp976
-        + Scalar(2)*tmp98*m*tmp986 + Scalar(2)*tmp113*m*tmp996;
-    const Scalar tmp1195 = tmp128*m*tmp1008 + tmp125*m*tmp1011 + tmp143*m*tmp1017 + tmp139*m*tmp1021
-        + tmp159*m*tmp1034 + tmp156*m*tmp1037 + tmp175*m*tmp1043 + tmp170*m*tmp1048
-        + tmp193*m*tmp1063 + tmp190*m*tmp1066 + tmp210*m*tmp1072 + tmp204*m*tmp1078
-        + tmp230*m*tmp1095 + tmp227*m*tmp1098 + tmp53*m*tmp938 + tmp44*m*tmp940 + tmp41*m*tmp942
-        + tmp38*m*tmp951 + tmp64*m*tmp956 + tmp63*m*tmp957 + tmp75*m*tmp965 + tmp72*m*tmp968
-        + tmp86*m*tmp973 + tmp85*m*tmp974 + tmp100*m*tmp985 + tmp97*m*tmp988 + tmp114*m*tmp993
-        + tmp110*m*tmp997;
-    const Scalar tmp1196 = tmp127*m*tmp1008 + tmp125*m*tmp1010 + tmp143*m*tmp1019 + tmp141*m*tmp1021
-        + tmp158*m*tmp1034 + tmp156*m*tmp1036 + tmp175*m*tmp1046 + tmp173*m*tmp1048
-        + tmp192*m*tmp1063 + tmp190*m*tmp1065 + tmp210*m*tmp1075 + tmp207*m*tmp1078
-        + tmp229*m*tmp1095 + tmp227*m*tmp1097 + tmp52*m*tmp938 + tmp45*m*tmp940 + tmp41*m*tmp943
-        + tmp38*m*tmp950 + tmp65*m*tmp957 + tmp64*m*tmp958 + tmp74*m*tmp965 + tmp72*m*tmp967
-        + tmp87*m*tmp974 + tmp86*m*tmp975 + tmp99*m*tmp985 + tmp97*m*tmp987 + tmp114*m*tmp995
-        + tmp112*m*tmp997;
-    const Scalar tmp1197 = tmp126*m*tmp1008 + tmp125*m*tmp1009 + tmp143*m*tmp1020 + tmp142*m*tmp1021
-        + tmp157*m*tmp1034 + tmp156*m*tmp1035 + tmp175*m*tmp1047 + tmp174*m*tmp1048
-        + tmp191*m*tmp1063 + tmp190*m*tmp1064 + tmp210*m*tmp1077 + tmp209*m*tmp1078
-        + tmp228*m*tmp1095 + tmp227*m*tmp1096 + tmp51*m*tmp938 + tmp43*m*tmp940 + tmp41*m*tmp941
-        + tmp38*m*tmp949 + tmp64*m*tmp955 + tmp62*m*tmp957 + tmp73*m*tmp965 + tmp72*m*tmp966
-        + tmp88*m*tmp974 + tmp86*m*tmp976 + tmp98*m*tmp985 + tmp97*m*tmp986 + tmp114*m*tmp996
-        + tmp113*m*tmp997;
-    const Scalar tmp1198 = Scalar(2)*tmp125*m*tmp1008 + Scalar(2)*tmp143*m*tmp1021
-        + Scalar(2)*tmp156*m*tmp1034 + Scalar(2)*tmp175*m*tmp1048 + Scalar(2)*tmp190*m*tmp1063
-        + Scalar(2)*tmp210*m*tmp1078 + Scalar(2)*tmp227*m*tmp1095 + Scalar(2)*tmp325*tmp37*m*tmp40
-        + Scalar(2)*tmp325*tmp40*m*tmp939 + Scalar(2)*tmp64*m*tmp957 + Scalar(2)*tmp72*m*tmp965
-        + Scalar(2)*tmp86*m*tmp974 + Scalar(2)*tmp97*m*tmp985 + Scalar(2)*tmp114*m*tmp997;
-    const Scalar tmp1199 = tmp128*m*tmp1007 + tmp124*m*tmp1011 + tmp139*m*tmp1016 + tmp138*m*tmp1017
-        + tmp159*m*tmp1033 + tmp155*m*tmp1037 + tmp170*m*tmp1042 + tmp169*m*tmp1043
-        + tmp193*m*tmp1062 + tmp189*m*tmp1066 + tmp204*m*tmp1071 + tmp203*m*tmp1072
-        + tmp230*m*tmp1094 + tmp226*m*tmp1098 + tmp75*m*tmp952 + tmp63*m*tmp954 + tmp60*m*tmp956
-        + tmp57*m*tmp968 + tmp85*m*tmp972 + tmp84*m*tmp973 + tmp100*m*tmp984 + tmp96*m*tmp988
-        + tmp110*m*tmp992 + tmp109*m*tmp993;
-    const Scalar tmp1200 = tmp127*m*tmp1007 + tmp124*m*tmp1010 + tmp141*m*tmp1016 + tmp138*m*tmp1019
-        + tmp158*m*tmp1033 + tmp155*m*tmp1036 + tmp173*m*tmp1042 + tmp169*m*tmp1046
-        + tmp192*m*tmp1062 + tmp189*m*tmp1065 + tmp207*m*tmp1071 + tmp203*m*tmp1075
-        + tmp229*m*tmp1094 + tmp226*m*tmp1097 + tmp74*m*tmp952 + tmp65*m*tmp954 + tmp60*m*tmp958
-        + tmp57*m*tmp967 + tmp87*m*tmp972 + tmp84*m*tmp975 + tmp99*m*tmp984 + tmp96*m*tmp987
-        + tmp112*m*tmp992 + tmp109*m*tmp995;
-    const Scalar tmp1201 = tmp126*m*tmp1007 + tmp124*m*tmp1009 + tmp142*m*tmp1016 + tmp138*m*tmp1020
-        + tmp157*m*tmp1033 + tmp155*m*tmp1035 + tmp174*m*tmp1042 + tmp169*m*tmp1047
-        + tmp191*m*tmp1062 + tmp189*m*tmp1064 + tmp209*m*tmp1071 + tmp203*m*tmp1077
-        + tmp228*m*tmp1094 + tmp226*m*tmp1096 + tmp73*m*tmp952 + tmp62*m*tmp954 + tmp60*m*tmp955
-        + tmp57*m*tmp966 + tmp88*m*tmp972 + tmp84*m*tmp976 + tmp98*m*tmp984 + tmp96*m*tmp986
-        + tmp113*m*tmp992 + tmp109*m*tmp996;
-    const Scalar tmp1202 = tmp125*m*tmp1007 + tmp124*m*tmp1008 + tmp143*m*tmp1016 + tmp138*m*tmp1021
-        + tmp156*m*tmp1033 + tmp155*m*tmp1034 + tmp175*m*tmp1042 + tmp169*m*tmp1048
-        + tmp190*m*tmp1062 + tmp189*m*tmp1063 + tmp210*m*tmp1071 + tmp203*m*tmp1078
-        + tmp227*m*tmp1094 + tmp226*m*tmp1095 + tmp72*m*tmp952 + tmp64*m*tmp954 + tmp60*m*tmp957
-        + tmp57*m*tmp965 + tmp86*m*tmp972 + tmp84*m*tmp974 + tmp97*m*tmp984 + tmp96*m*tmp985
-        + tmp114*m*tmp992 + tmp109*m*tmp997;
-    const Scalar tmp1203 = Scalar(2)*tmp124*m*tmp1007 + Scalar(2)*tmp138*m*tmp1016
-        + Scalar(2)*tmp155*m*tmp1033 + Scalar(2)*tmp169*m*tmp1042 + Scalar(2)*tmp189*m*tmp1062
-        + Scalar(2)*tmp203*m*tmp1071 + Scalar(2)*tmp226*m*tmp1094 + Scalar(2)*tmp325*tmp56*m*tmp59
-        + Scalar(2)*tmp325*tmp59*m*tmp953 + Scalar(2)*tmp84*m*tmp972 + Scalar(2)*tmp96*m*tmp984
-        + Scalar(2)*tmp109*m*tmp992;
-    const Scalar tmp1204 = tmp128*m*tmp1006 + tmp123*m*tmp1011 + tmp140*m*tmp1017 + tmp139*m*tmp1018
-        + tmp159*m*tmp1032 + tmp154*m*tmp1037 + tmp172*m*tmp1043 + tmp170*m*tmp1045
-        + tmp193*m*tmp1061 + tmp188*m*tmp1066 + tmp206*m*tmp1072 + tmp204*m*tmp1074
-        + tmp230*m*tmp1093 + tmp225*m*tmp1098 + tmp100*m*tmp969 + tmp85*m*tmp971 + tmp82*m*tmp973
-        + tmp79*m*tmp988 + tmp111*m*tmp993 + tmp110*m*tmp994;
-    const Scalar tmp1205 = tmp127*m*tmp1006 + tmp123*m*tmp1010 + tmp141*m*tmp1018 + tmp140*m*tmp1019
-        + tmp158*m*tmp1032 + tmp154*m*tmp1036 + tmp173*m*tmp1045 + tmp172*m*tmp1046
-        + tmp192*m*tmp1061 + tmp188*m*tmp1065 + tmp207*m*tmp1074 + tmp206*m*tmp1075
-        + tmp229*m*tmp1093 + tmp225*m*tmp1097 + tmp99*m*tmp969 + tmp87*m*tmp971 + tmp82*m*tmp975
-        + tmp79*m*tmp987 + tmp112*m*tmp994 + tmp111*m*tmp995;
-    const Scalar tmp1206 = tmp126*m*tmp1006 + tmp123*m*tmp1009 + tmp142*m*tmp1018 + tmp140*m*tmp1020
-        + tmp157*m*tmp1032 + tmp154*m*tmp1035 + tmp174*m*tmp1045 + tmp172*m*tmp1047
-        + tmp191*m*tmp1061 + tmp188*m*tmp1064 + tmp209*m*tmp1074 + tmp206*m*tmp1077
-        + tmp228*m*tmp1093 + tmp225*m*tmp1096 + tmp98*m*tmp969 + tmp88*m*tmp971 + tmp82*m*tmp976
-        + tmp79*m*tmp986 + tmp113*m*tmp994 + tmp111*m*tmp996;
-    const Scalar tmp1207 = tmp125*m*tmp1006 + tmp123*m*tmp1008 + tmp143*m*tmp1018 + tmp140*m*tmp1021
-        + tmp156*m*tmp1032 + tmp154*m*tmp1034 + tmp175*m*tmp1045 + tmp172*m*tmp1048
-        + tmp190*m*tmp1061 + tmp188*m*tmp1063 + tmp210*m*tmp1074 + tmp206*m*tmp1078
-        + tmp227*m*tmp1093 + tmp225*m*tmp1095 + tmp97*m*tmp969 + tmp86*m*tmp971 + tmp82*m*tmp974
-        + tmp79*m*tmp985 + tmp114*m*tmp994 + tmp111*m*tmp997;
-    const Scalar tmp1208 = tmp124*m*tmp1006 + tmp123*m*tmp1007 + tmp140*m*tmp1016 + tmp138*m*tmp1018
-        + tmp155*m*tmp1032 + tmp154*m*tmp1033 + tmp172*m*tmp1042 + tmp169*m*tmp1045
-        + tmp189*m*tmp1061 + tmp188*m*tmp1062 + tmp206*m*tmp1071 + tmp203*m*tmp1074
-        + tmp226*m*tmp1093 + tmp225*m*tmp1094 + tmp96*m*tmp969 + tmp84*m*tmp971 + tmp82*m*tmp972
-        + tmp79*m*tmp984 + tmp111*m*tmp992 + tmp109*m*tmp994;
-    const Scalar tmp1209 = Scalar(2)*tmp123*m*tmp1006 + Scalar(2)*tmp140*m*tmp1018
-        + Scalar(2)*tmp154*m*tmp1032 + Scalar(2)*tmp172*m*tmp1045 + Scalar(2)*tmp188*m*tmp1061
-        + Scalar(2)*tmp206*m*tmp1074 + Scalar(2)*tmp225*m*tmp1093 + Scalar(2)*tmp325*tmp78*m*tmp81
-        + Scalar(2)*tmp325*tmp81*m*tmp970 + Scalar(2)*tmp111*m*tmp994;
-    const Scalar tmp1210 = tmp104*m*tmp1011 + tmp139*m*tmp1015 + tmp137*m*tmp1017 + tmp159*m*tmp1031
-        + tmp153*m*tmp1037 + tmp170*m*tmp1041 + tmp168*m*tmp1043 + tmp193*m*tmp1060
-        + tmp187*m*tmp1066 + tmp208*m*tmp1072 + tmp204*m*tmp1076 + tmp230*m*tmp1092
-        + tmp224*m*tmp1098 + tmp128*m*tmp989 + tmp110*m*tmp991 + tmp107*m*tmp993;
-    const Scalar tmp1211 = tmp104*m*tmp1010 + tmp141*m*tmp1015 + tmp137*m*tmp1019 + tmp158*m*tmp1031
-        + tmp153*m*tmp1036 + tmp173*m*tmp1041 + tmp168*m*tmp1046 + tmp192*m*tmp1060
-        + tmp187*m*tmp1065 + tmp208*m*tmp1075 + tmp207*m*tmp1076 + tmp229*m*tmp1092
-        + tmp224*m*tmp1097 + tmp127*m*tmp989 + tmp112*m*tmp991 + tmp107*m*tmp995;
-    const Scalar tmp1212 = tmp104*m*tmp1009 + tmp142*m*tmp1015 + tmp137*m*tmp1020 + tmp157*m*tmp1031
-        + tmp153*m*tmp1035 + tmp174*m*tmp1041 + tmp168*m*tmp1047 + tmp191*m*tmp1060
-        + tmp187*m*tmp1064 + tmp209*m*tmp1076 + tmp208*m*tmp1077 + tmp228*m*tmp1092
-        + tmp224*m*tmp1096 + tmp126*m*tmp989 + tmp113*m*tmp991 + tmp107*m*tmp996;
-    const Scalar tmp1213 = tmp104*m*tmp1008 + tmp143*m*tmp1015 + tmp137*m*tmp1021 + tmp156*m*tmp1031
-        + tmp153*m*tmp1034 + tmp175*m*tmp1041 + tmp168*m*tmp1048 + tmp190*m*tmp1060
-        + tmp187*m*tmp1063 + tmp210*m*tmp1076 + tmp208*m*tmp1078 + tmp227*m*tmp1092
-        + tmp224*m*tmp1095 + tmp125*m*tmp989 + tmp114*m*tmp991 + tmp107*m*tmp997;
-    const Scalar tmp1214 = tmp104*m*tmp1007 + tmp138*m*tmp1015 + tmp137*m*tmp1016 + tmp155*m*tmp1031
-        + tmp153*m*tmp1033 + tmp169*m*tmp1041 + tmp168*m*tmp1042 + tmp189*m*tmp1060
-        + tmp187*m*tmp1062 + tmp208*m*tmp1071 + tmp203*m*tmp1076 + tmp226*m*tmp1092
-        + tmp224*m*tmp1094 + tmp124*m*tmp989 + tmp109*m*tmp991 + tmp107*m*tmp992;
-    const Scalar tmp1215 = tmp104*m*tmp1006 + tmp140*m*tmp1015 + tmp137*m*tmp1018 + tmp154*m*tmp1031
-        + tmp153*m*tmp1032 + tmp172*m*tmp1041 + tmp168*m*tmp1045 + tmp188*m*tmp1060
-        + tmp187*m*tmp1061 + tmp208*m*tmp1074 + tmp206*m*tmp1076 + tmp225*m*tmp1092
-        + tmp224*m*tmp1093 + tmp123*m*tmp989 + tmp111*m*tmp991 + tmp107*m*tmp994;
-    const Scalar tmp1216 = Scalar(2)*tmp137*m*tmp1015 + Scalar(2)*tmp153*m*tmp1031
-        + Scalar(2)*tmp168*m*tmp1041 + Scalar(2)*tmp187*m*tmp1060 + Scalar(2)*tmp208*m*tmp1076
-        + Scalar(2)*tmp224*m*tmp1092 + Scalar(2)*tmp325*tmp103*m*tmp106
-        + Scalar(2)*tmp325*tmp106*m*tmp990;
-    const Scalar tmp1217 = tmp159*m*tmp1012 + tmp139*m*tmp1014 + tmp135*m*tmp1017 + tmp132*m*tmp1037
-        + tmp171*m*tmp1043 + tmp170*m*tmp1044 + tmp193*m*tmp1059 + tmp186*m*tmp1066
-        + tmp205*m*tmp1072 + tmp204*m*tmp1073 + tmp230*m*tmp1091 + tmp223*m*tmp1098;
-    const Scalar tmp1218 = tmp158*m*tmp1012 + tmp141*m*tmp1014 + tmp135*m*tmp1019 + tmp132*m*tmp1036
-        + tmp173*m*tmp1044 + tmp171*m*tmp1046 + tmp192*m*tmp1059 + tmp186*m*tmp1065
-        + tmp207*m*tmp1073 + tmp205*m*tmp1075 + tmp229*m*tmp1091 + tmp223*m*tmp1097;
-    const Scalar tmp1219 = tmp157*m*tmp1012 + tmp142*m*tmp1014 + tmp135*m*tmp1020 + tmp132*m*tmp1035
-        + tmp174*m*tmp1044 + tmp171*m*tmp1047 + tmp191*m*tmp1059 + tmp186*m*tmp1064
-        + tmp209*m*tmp1073 + tmp205*m*tmp1077 + tmp228*m*tmp1091 + tmp223*m*tmp1096;
-    const Scalar tmp1220 = tmp156*m*tmp1012 + tmp143*m*tmp1014 + tmp135*m*tmp1021 + tmp132*m*tmp1034
-        + tmp175*m*tmp1044 + tmp171*m*tmp1048 + tmp190*m*tmp1059 + tmp186*m*tmp1063
-        + tmp210*m*tmp1073 + tmp205*m*tmp1078 + tmp227*m*tmp1091 + tmp223*m*tmp1095;
-    const Scalar tmp1221 = tmp155*m*tmp1012 + tmp138*m*tmp1014 + tmp135*m*tmp1016 + tmp132*m*tmp1033
-        + tmp171*m*tmp1042 + tmp169*m*tmp1044 + tmp189*m*tmp1059 + tmp186*m*tmp1062
-        + tmp205*m*tmp1071 + tmp203*m*tmp1073 + tmp226*m*tmp1091 + tmp223*m*tmp1094;
-    const Scalar tmp1222 = tmp154*m*tmp1012 + tmp140*m*tmp1014 + tmp135*m*tmp1018 + tmp132*m*tmp1032
-        + tmp172*m*tmp1044 + tmp171*m*tmp1045 + tmp188*m*tmp1059 + tmp186*m*tmp1061
-        + tmp206*m*tmp1073 + tmp205*m*tmp1074 + tmp225*m*tmp1091 + tmp223*m*tmp1093;
-    const Scalar tmp1223 = tmp153*m*tmp1012 + tmp137*m*tmp1014 + tmp135*m*tmp1015 + tmp132*m*tmp1031
-        + tmp171*m*tmp1041 + tmp168*m*tmp1044 + tmp187*m*tmp1059 + tmp186*m*tmp1060
-        + tmp208*m*tmp1073 + tmp205*m*tmp1076 + tmp224*m*tmp1091 + tmp223*m*tmp1092;
-    const Scalar tmp1224 = Scalar(2)*tmp131*tmp325*m*tmp134 + Scalar(2)*tmp134*tmp325*m*tmp1013
-        + Scalar(2)*tmp171*m*tmp1044 + Scalar(2)*tmp186*m*tmp1059 + Scalar(2)*tmp205*m*tmp1073
-        + Scalar(2)*tmp223*m*tmp1091;
-    const Scalar tmp1225 = tmp193*m*tmp1038 + tmp170*m*tmp1040 + tmp166*m*tmp1043 + tmp163*m*tmp1066
-        + tmp204*m*tmp1070 + tmp202*m*tmp1072 + tmp230*m*tmp1090 + tmp222*m*tmp1098;
-    const Scalar tmp1226 = tmp192*m*tmp1038 + tmp173*m*tmp1040 + tmp166*m*tmp1046 + tmp163*m*tmp1065
-        + tmp207*m*tmp1070 + tmp202*m*tmp1075 + tmp229*m*tmp1090 + tmp222*m*tmp1097;
-    const Scalar tmp1227 = tmp191*m*tmp1038 + tmp174*m*tmp1040 + tmp166*m*tmp1047 + tmp163*m*tmp1064
-        + tmp209*m*tmp1070 + tmp202*m*tmp1077 + tmp228*m*tmp1090 + tmp222*m*tmp1096;
-    const Scalar tmp1228 = tmp190*m*tmp1038 + tmp175*m*tmp1040 + tmp166*m*tmp1048 + tmp163*m*tmp1063
-        + tmp210*m*tmp1070 + tmp202*m*tmp1078 + tmp227*m*tmp1090 + tmp222*m*tmp1095;
-    const Scalar tmp1229 = tmp189*m*tmp1038 + tmp169*m*tmp1040 + tmp166*m*tmp1042 + tmp163*m*tmp1062
-        + tmp203*m*tmp1070 + tmp202*m*tmp1071 + tmp226*m*tmp1090 + tmp222*m*tmp1094;
-    const Scalar tmp1230 = tmp188*m*tmp1038 + tmp172*m*tmp1040 + tmp166*m*tmp1045 + tmp163*m*tmp1061
-        + tmp206*m*tmp1070 + tmp202*m*tmp1074 + tmp225*m*tmp1090 + tmp222*m*tmp1093;
-    const Scalar tmp1231 = tmp187*m*tmp1038 + tmp168*m*tmp1040 + tmp166*m*tmp1041 + tmp163*m*tmp1060
-        + tmp208*m*tmp1070 + tmp202*m*tmp1076 + tmp224*m*tmp1090 + tmp222*m*tmp1092;
-    const Scalar tmp1232 = tmp186*m*tmp1038 + tmp171*m*tmp1040 + tmp166*m*tmp1044 + tmp163*m*tmp1059
-        + tmp205*m*tmp1070 + tmp202*m*tmp1073 + tmp223*m*tmp1090 + tmp222*m*tmp1091;
-    const Scalar tmp1233 = Scalar(2)*tmp162*tmp325*m*tmp165 + Scalar(2)*tmp165*tmp325*m*tmp1039
-        + Scalar(2)*tmp202*m*tmp1070 + Scalar(2)*tmp222*m*tmp1090;
-    const Scalar tmp1234 = tmp230*m*tmp1067 + tmp204*m*tmp1069 + tmp200*m*tmp1072
-        + tmp197*m*tmp1098;
-    const Scalar tmp1235 = tmp229*m*tmp1067 + tmp207*m*tmp1069 + tmp200*m*tmp1075
-        + tmp197*m*tmp1097;
-    const Scalar tmp1236 = tmp228*m*tmp1067 + tmp209*m*tmp1069 + tmp200*m*tmp1077
-        + tmp197*m*tmp1096;
-    const Scalar tmp1237 = tmp227*m*tmp1067 + tmp210*m*tmp1069 + tmp200*m*tmp1078
-        + tmp197*m*tmp1095;
-    const Scalar tmp1238 = tmp226*m*tmp1067 + tmp203*m*tmp1069 + tmp200*m*tmp1071
-        + tmp197*m*tmp1094;
-    const Scalar tmp1239 = tmp225*m*tmp1067 + tmp206*m*tmp1069 + tmp200*m*tmp1074
-        + tmp197*m*tmp1093;
-    const Scalar tmp1240 = tmp224*m*tmp1067 + tmp208*m*tmp1069 + tmp200*m*tmp1076
-        + tmp197*m*tmp1092;
-    const Scalar tmp1241 = tmp223*m*tmp1067 + tmp205*m*tmp1069 + tmp200*m*tmp1073
-        + tmp197*m*tmp1091;
-    const Scalar tmp1242 = tmp222*m*tmp1067 + tmp202*m*tmp1069 + tmp200*m*tmp1070
-        + tmp197*m*tmp1090;
-    const Scalar tmp1243 = Scalar(2)*tmp196*tmp325*m*tmp199 + Scalar(2)*tmp199*tmp325*m*tmp1068;
-    const Scalar tmp1244 = m*tmp1099;
-    const Scalar tmp1245 = m*tmp1100;
-    const Scalar tmp1246 = m*tmp1103;
-    const Scalar tmp1247 = m*tmp1104;
-    const Scalar tmp1248 = m*tmp1109;
-    const Scalar tmp1249 = m*tmp1110;
-    const Scalar tmp1250 = m*tmp1117;
-    const Scalar tmp1251 = m*tmp1118;
-    const Scalar tmp1252 = m*tmp1127;
-    const Scalar tmp1253 = m*tmp1128;
-    const Scalar tmp1254 = m*tmp1139;
-    const Scalar tmp1255 = m*tmp1140;
-    const Scalar tmp1256 = m*tmp1153;
-    const Scalar tmp1257 = m*tmp1154;
-    const Scalar tmp1258 = m*tmp1169;
-    const Scalar tmp1259 = m*tmp1170;
-    const Scalar tmp1260 = m*tmp1187;
-    const Scalar tmp1261 = m*tmp1188;
-    const Scalar tmp1262 = tmp382*tmp1011 + tmp382*tmp921 + tmp382*tmp1037 + tmp382*tmp1066
-        + tmp382*tmp1098 + tmp382*tmp937 + tmp382*tmp951 + tmp382*tmp968 + tmp382*tmp988;
-    const Scalar tmp1263 = tmp382*tmp1010 + tmp382*tmp1036 + tmp382*tmp1065 + tmp382*tmp1097
-        + tmp382*tmp936 - k + tmp382*tmp950 + tmp382*tmp921 + tmp382*tmp967 + tmp382*tmp987;
-    const Scalar tmp1264 = tmp382*tmp1009 + tmp382*tmp1035 + tmp382*tmp927 + tmp382*tmp1064
-        + tmp382*tmp1096 + tmp382*tmp949 + tmp382*tmp966 + tmp382*tmp986;
-    const Scalar tmp1265 = tmp382*tmp1008 + tmp382*tmp1034 + tmp382*tmp1063 + tmp382*tmp1095
-        + tmp382*tmp938 + tmp382*tmp965 + tmp382*tmp985;
-    const Scalar tmp1266 = tmp382*tmp1007 + tmp382*tmp1033 + tmp382*tmp1062 + tmp382*tmp1094
-        + tmp382*tmp952 + tmp382*tmp984;
-    const Scalar tmp1267 = tmp382*tmp1006 + tmp382*tmp1032 + tmp382*tmp1061 + tmp382*tmp1093
-        + tmp382*tmp969;
-    const Scalar tmp1268 = tmp382*tmp1031 + tmp382*tmp1060 + tmp382*tmp1092 + tmp382*tmp989;
-    const Scalar tmp1269 = tmp382*tmp1012 + tmp382*tmp1059 + tmp382*tmp1091;
-    const Scalar tmp1270 = tmp382*tmp1038 + tmp382*tmp1090;
-    const Scalar tmp1271 = tmp382*l*tmp199;
-    const Scalar tmp1272 = -tmp385*tmp923 - tmp396*tmp1011 - tmp397*tmp1017 - tmp386*tmp921
-        - tmp398*tmp1037 - tmp399*tmp1043 - tmp400*tmp1066 - tmp401*tmp1072 - tmp387*tmp930
-        - tmp402*tmp1098 - tmp388*tmp937 - tmp389*tmp942 - tmp390*tmp951 - tmp391*tmp956
-        - tmp392*tmp968 - tmp393*tmp973 - tmp394*tmp988 - tmp395*tmp993 - tmp15*tmp1244
-        - tmp18*tmp1245 - tmp27*tmp1246 - tmp34*tmp1247 - tmp44*tmp1248 - tmp53*tmp1249
-        - tmp63*tmp1250 - tmp75*tmp1251 - tmp85*tmp1252 - tmp100*tmp1253 - tmp110*tmp1254
-        - tmp128*tmp1255 - tmp139*tmp1256 - tmp159*tmp1257 - tmp170*tmp1258 - tmp193*tmp1259
-        - tmp204*tmp1260 - tmp230*tmp1261;
-    dr_dq_data[0 + 10 * 1] = phi10_ddot*tmp1234 - tmp1262 - tmp1272 + phi1_ddot*tmp1189
-        + phi2_ddot*tmp1190 + phi3_ddot*tmp1192 + phi4_ddot*tmp1195 + phi5_ddot*tmp1199
-        + phi6_ddot*tmp1204 + phi7_ddot*tmp1210 + phi8_ddot*tmp1217 + phi9_ddot*tmp1225;
-    const Scalar tmp1273 = -tmp396*tmp1010 - tmp397*tmp1019 - tmp398*tmp1036 - tmp399*tmp1046
-        - tmp400*tmp1065 - tmp401*tmp1075 - tmp387*tmp931 - tmp402*tmp1097 - tmp388*tmp936
-        - tmp389*tmp943 - tmp390*tmp950 - tmp391*tmp958 - tmp386*tmp921 - tmp392*tmp967
-        - tmp393*tmp975 - tmp385*tmp923 - tmp394*tmp987 - tmp395*tmp995 - tmp12*tmp1244
-        - tmp9*tmp1245 - tmp28*tmp1246 - tmp33*tmp1247 - tmp45*tmp1248 - tmp52*tmp1249
-        - tmp65*tmp1250 - tmp74*tmp1251 - tmp87*tmp1252 - tmp99*tmp1253 - tmp112*tmp1254
-        - tmp127*tmp1255 - tmp141*tmp1256 - tmp158*tmp1257 - tmp173*tmp1258 - tmp192*tmp1259
-        - tmp207*tmp1260 - tmp229*tmp1261;
-    dr_dq_data[1 + 10 * 1] = phi10_ddot*tmp1235 - tmp1263 - tmp1273 + phi1_ddot*tmp1190
-        + phi2_ddot*tmp1191 + phi3_ddot*tmp1193 + phi4_ddot*tmp1196 + phi5_ddot*tmp1200
-        + phi6_ddot*tmp1205 + phi7_ddot*tmp1211 + phi8_ddot*tmp1218 + phi9_ddot*tmp1226;
-    const Scalar tmp1274 = -tmp396*tmp1009 - tmp397*tmp1020 - tmp398*tmp1035 - tmp399*tmp1047
-        - tmp388*tmp927 - tmp400*tmp1064 - tmp387*tmp929 - tmp401*tmp1077 - tmp402*tmp1096
-        - tmp389*tmp941 - tmp390*tmp949 - tmp391*tmp955 - tmp392*tmp966 - tmp393*tmp976
-        - tmp394*tmp986 - tmp395*tmp996 - tmp25*tmp1246 - tmp22*tmp1247 - tmp43*tmp1248
-        - tmp51*tmp1249 - tmp62*tmp1250 - tmp73*tmp1251 - tmp88*tmp1252 - tmp98*tmp1253
-        - tmp113*tmp1254 - tmp126*tmp1255 - tmp142*tmp1256 - tmp157*tmp1257 - tmp174*tmp1258
-        - tmp191*tmp1259 - tmp209*tmp1260 - tmp228*tmp1261;
-    dr_dq_data[2 + 10 * 1] = phi10_ddot*tmp1236 - tmp1264 - tmp1274 + phi1_ddot*tmp1192
-        + phi2_ddot*tmp1193 + phi3_ddot*tmp1194 + phi4_ddot*tmp1197 + phi5_ddot*tmp1201
-        + phi6_ddot*tmp1206 + phi7_ddot*tmp1212 + phi8_ddot*tmp1219 + phi9_ddot*tmp1227;
-    const Scalar tmp1275 = -tmp396*tmp1008 - tmp397*tmp1021 - tmp398*tmp1034 - tmp399*tmp1048
-        - tmp400*tmp1063 - tmp401*tmp1078 - tmp402*tmp1095 - tmp390*tmp938 - tmp389*tmp940
-        - tmp391*tmp957 - tmp392*tmp965 - tmp393*tmp974 - tmp394*tmp985 - tmp395*tmp997
-        - tmp41*tmp1248 - tmp38*tmp1249 - tmp64*tmp1250 - tmp72*tmp1251 - tmp86*tmp1252
-        - tmp97*tmp1253 - tmp114*tmp1254 - tmp125*tmp1255 - tmp143*tmp1256 - tmp156*tmp1257
-        - tmp175*tmp1258 - tmp190*tmp1259 - tmp210*tmp1260 - tmp227*tmp1261;
-    dr_dq_data[3 + 10 * 1] = phi10_ddot*tmp1237 - tmp1265 - tmp1275 + phi1_ddot*tmp1195
-        + phi2_ddot*tmp1196 + phi3_ddot*tmp1197 + phi4_ddot*tmp1198 + phi5_ddot*tmp1202
-        + phi6_ddot*tmp1207 + phi7_ddot*tmp1213 + phi8_ddot*tmp1220 + phi9_ddot*tmp1228;
-    const Scalar tmp1276 = -tmp396*tmp1007 - tmp397*tmp1016 - tmp398*tmp1033 - tmp399*tmp1042
-        - tmp400*tmp1062 - tmp401*tmp1071 - tmp402*tmp1094 - tmp392*tmp952 - tmp391*tmp954
-        - tmp393*tmp972 - tmp394*tmp984 - tmp395*tmp992 - tmp60*tmp1250 - tmp57*tmp1251
-        - tmp84*tmp1252 - tmp96*tmp1253 - tmp109*tmp1254 - tmp124*tmp1255 - tmp138*tmp1256
-        - tmp155*tmp1257 - tmp169*tmp1258 - tmp189*tmp1259 - tmp203*tmp1260 - tmp226*tmp1261;
-    dr_dq_data[4 + 10 * 1] = phi9_ddot*tmp1229 + phi10_ddot*tmp1238 - tmp1266 - tmp1276
-        + phi1_ddot*tmp1199 + phi2_ddot*tmp1200 + phi3_ddot*tmp1201 + phi4_ddot*tmp1202
-        + phi5_ddot*tmp1203 + phi6_ddot*tmp1208 + phi7_ddot*tmp1214 + phi8_ddot*tmp1221;
-    const Scalar tmp1277 = -tmp396*tmp1006 - tmp397*tmp1018 - tmp398*tmp1032 - tmp399*tmp1045
-        - tmp400*tmp1061 - tmp401*tmp1074 - tmp402*tmp1093 - tmp394*tmp969 - tmp393*tmp971
-        - tmp395*tmp994 - tmp82*tmp1252 - tmp79*tmp1253 - tmp111*tmp1254 - tmp123*tmp1255
-        - tmp140*tmp1256 - tmp154*tmp1257 - tmp172*tmp1258 - tmp188*tmp1259 - tmp206*tmp1260
-        - tmp225*tmp1261;
-    dr_dq_data[5 + 10 * 1] = phi9_ddot*tmp1230 + phi10_ddot*tmp1239 - tmp1267 - tmp1277
-        + phi1_ddot*tmp1204 + phi2_ddot*tmp1205 + phi3_ddot*tmp1206 + phi4_ddot*tmp1207
-        + phi5_ddot*tmp1208 + phi6_ddot*tmp1209 + phi7_ddot*tmp1215 + phi8_ddot*tmp1222;
-    const Scalar tmp1278 = -tmp397*tmp1015 - tmp398*tmp1031 - tmp399*tmp1041 - tmp400*tmp1060
-        - tmp401*tmp1076 - tmp402*tmp1092 - tmp396*tmp989 - tmp395*tmp991 - tmp107*tmp1254
-        - tmp104*tmp1255 - tmp137*tmp1256 - tmp153*tmp1257 - tmp168*tmp1258 - tmp187*tmp1259
-        - tmp208*tmp1260 - tmp224*tmp1261;
-    dr_dq_data[6 + 10 * 1] = phi9_ddot*tmp1231 + phi10_ddot*tmp1240 - tmp1268 - tmp1278
-        + phi1_ddot*tmp1210 + phi2_ddot*tmp1211 + phi3_ddot*tmp1212 + phi4_ddot*tmp1213
-        + phi5_ddot*tmp1214 + phi6_ddot*tmp1215 + phi7_ddot*tmp1216 + phi8_ddot*tmp1223;
-    const Scalar tmp1279 = -tmp398*tmp1012 - tmp397*tmp1014 - tmp399*tmp1044 - tmp400*tmp1059
-        - tmp401*tmp1073 - tmp402*tmp1091 - tmp135*tmp1256 - tmp132*tmp1257 - tmp171*tmp1258
-        - tmp186*tmp1259 - tmp205*tmp1260 - tmp223*tmp1261;
-    dr_dq_data[7 + 10 * 1] = phi9_ddot*tmp1232 + phi10_ddot*tmp1241 - tmp1269 - tmp1279
-        + phi1_ddot*tmp1217 + phi2_ddot*tmp1218 + phi3_ddot*tmp1219 + phi4_ddot*tmp1220
-        + phi5_ddot*tmp1221 + phi6_ddot*tmp1222 + phi7_ddot*tmp1223 + phi8_ddot*tmp1224;
-    const Scalar tmp1280 = -tmp400*tmp1038 - tmp399*tmp1040 - tmp401*tmp1070 - tmp402*tmp1090
-        - tmp166*tmp1258 - tmp163*tmp1259 - tmp202*tmp1260 - tmp222*tmp1261;
-    dr_dq_data[8 + 10 * 1] = phi5_ddot*tmp1229 + phi6_ddot*tmp1230 + phi7_ddot*tmp1231
-        + phi8_ddot*tmp1232 + phi9_ddot*tmp1233 + phi10_ddot*tmp1242 - tmp1270 - tmp1280
-        + phi1_ddot*tmp1225 + phi2_ddot*tmp1226 + phi3_ddot*tmp1227 + phi4_ddot*tmp1228;
-    const Scalar tmp1281 = -tmp402*tmp1067 - tmp401*tmp1069 - tmp200*tmp1260 - tmp197*tmp1261;
-    dr_dq_data[9 + 10 * 1] = phi1_ddot*tmp1234 + phi2_ddot*tmp1235 + phi3_ddot*tmp1236
-        + phi4_ddot*tmp1237 + phi5_ddot*tmp1238 + phi6_ddot*tmp1239 + phi7_ddot*tmp1240
-        + phi8_ddot*tmp1241 + phi9_ddot*tmp1242 + phi10_ddot*tmp1243 - tmp1271 - tmp1281;
-    const Scalar tmp1282 = l*tmp24;
-    const Scalar tmp1283 = -tmp21;
-    const Scalar tmp1284 = l*tmp1283;
-    const Scalar tmp1285 = phi3_dot*tmp1284;
-    const Scalar tmp1286 = phi2_dot*tmp1284 + tmp1285;
-    const Scalar tmp1287 = phi1_dot*tmp1284 + tmp1286;
-    const Scalar tmp1288 = phi3_dot*tmp1282;
-    const Scalar tmp1289 = l*tmp40;
-    const Scalar tmp1290 = -tmp37;
-    const Scalar tmp1291 = l*tmp1290;
-    const Scalar tmp1292 = tmp1284 + tmp1291;
-    const Scalar tmp1293 = tmp1284 + tmp1291;
-    const Scalar tmp1294 = phi4_dot*tmp1291;
-    const Scalar tmp1295 = phi3_dot*tmp1292 + tmp1294;
-    const Scalar tmp1296 = phi2_dot*tmp1293 + tmp1295;
-    const Scalar tmp1297 = phi1_dot*tmp1292 + tmp1296;
-    const Scalar tmp1298 = phi4_dot*tmp1289;
-    const Scalar tmp1299 = tmp1282 + tmp1289;
-    const Scalar tmp1300 = tmp1282 + tmp1289;
-    const Scalar tmp1301 = l*tmp59;
-    const Scalar tmp1302 = -tmp56;
-    const Scalar tmp1303 = l*tmp1302;
-    const Scalar tmp1304 = tmp1292 + tmp1303;
-    const Scalar tmp1305 = tmp1291 + tmp1303;
-    const Scalar tmp1306 = tmp1284 + tmp1305;
-    const Scalar tmp1307 = phi5_dot*tmp1303;
-    const Scalar tmp1308 = phi4_dot*tmp1305 + tmp1307;
-    const Scalar tmp1309 = phi3_dot*tmp1304 + tmp1308;
-    const Scalar tmp1310 = phi2_dot*tmp1306 + tmp1309;
-    const Scalar tmp1311 = phi1_dot*tmp1304 + tmp1310;
-    const Scalar tmp1312 = phi5_dot*tmp1301;
-    const Scalar tmp1313 = tmp1289 + tmp1301;
-    const Scalar tmp1314 = tmp1299 + tmp1301;
-    const Scalar tmp1315 = tmp1282 + tmp1313;
-    const Scalar tmp1316 = l*tmp81;
-    const Scalar tmp1317 = -tmp78;
-    const Scalar tmp1318 = l*tmp1317;
-    const Scalar tmp1319 = tmp1303 + tmp1318;
-    const Scalar tmp1320 = tmp1292 + tmp1319;
-    const Scalar tmp1321 = tmp1305 + tmp1318;
-    const Scalar tmp1322 = tmp1284 + tmp1321;
-    const Scalar tmp1323 = tmp1292 + tmp1319;
-    const Scalar tmp1324 = phi6_dot*tmp1318;
-    const Scalar tmp1325 = phi5_dot*tmp1319 + tmp1324;
-    const Scalar tmp1326 = phi4_dot*tmp1321 + tmp1325;
-    const Scalar tmp1327 = phi3_dot*tmp1323 + tmp1326;
-    const Scalar tmp1328 = phi2_dot*tmp1322 + tmp1327;
-    const Scalar tmp1329 = phi1_dot*tmp1320 + tmp1328;
-    const Scalar tmp1330 = phi6_dot*tmp1316;
-    const Scalar tmp1331 = tmp1301 + tmp1316;
-    const Scalar tmp1332 = tmp1313 + tmp1316;
-    const Scalar tmp1333 = tmp1299 + tmp1331;
-    const Scalar tmp1334 = tmp1282 + tmp1332;
-    const Scalar tmp1335 = tmp1299 + tmp1331;
-    const Scalar tmp1336 = l*tmp106;
-    const Scalar tmp1337 = -tmp103;
-    const Scalar tmp1338 = l*tmp1337;
-    const Scalar tmp1339 = tmp1319 + tmp1338;
-    const Scalar tmp1340 = tmp1292 + tmp1339;
-    const Scalar tmp1341 = tmp1318 + tmp1338;
-    const Scalar tmp1342 = tmp1306 + tmp1341;
-    const Scalar tmp1343 = tmp1292 + tmp1339;
-    const Scalar tmp1344 = tmp1305 + tmp1341;
-    const Scalar tmp1345 = phi7_dot*tmp1338;
-    const Scalar tmp1346 = phi6_dot*tmp1341 + tmp1345;
-    const Scalar tmp1347 = phi5_dot*tmp1339 + tmp1346;
-    const Scalar tmp1348 = phi4_dot*tmp1344 + tmp1347;
-    const Scalar tmp1349 = phi3_dot*tmp1343 + tmp1348;
-    const Scalar tmp1350 = phi2_dot*tmp1342 + tmp1349;
-    const Scalar tmp1351 = tmp1350 + phi1_dot*tmp1340;
-    const Scalar tmp1352 = phi7_dot*tmp1336;
-    const Scalar tmp1353 = tmp1316 + tmp1336;
-    const Scalar tmp1354 = tmp1331 + tmp1336;
-    const Scalar tmp1355 = tmp1353 + tmp1313;
-    const Scalar tmp1356 = tmp1354 + tmp1299;
-    const Scalar tmp1357 = tmp1353 + tmp1315;
-    const Scalar tmp1358 = tmp1354 + tmp1299;
-    const Scalar tmp1359 = l*tmp134;
-    const Scalar tmp1360 = -tmp131;
-    const Scalar tmp1361 = l*tmp1360;
-    const Scalar tmp1362 = tmp1361 + tmp1338;
-    const Scalar tmp1363 = tmp1362 + tmp1319;
-    const Scalar tmp1364 = tmp1363 + tmp1292;
-    const Scalar tmp1365 = tmp1361 + tmp1341;
-    const Scalar tmp1366 = tmp1365 + tmp1306;
-    const Scalar tmp1367 = tmp1362 + tmp1323;
-    const Scalar tmp1368 = tmp1365 + tmp1305;
-    const Scalar tmp1369 = phi8_dot*tmp1361;
-    const Scalar tmp1370 = phi7_dot*tmp1362 + tmp1369;
-    const Scalar tmp1371 = phi6_dot*tmp1365 + tmp1370;
-    const Scalar tmp1372 = phi5_dot*tmp1363 + tmp1371;
-    const Scalar tmp1373 = phi4_dot*tmp1368 + tmp1372;
-    const Scalar tmp1374 = phi3_dot*tmp1367 + tmp1373;
-    const Scalar tmp1375 = phi2_dot*tmp1366 + tmp1374;
-    const Scalar tmp1376 = phi1_dot*tmp1364 + tmp1375;
-    const Scalar tmp1377 = phi8_dot*tmp1359;
-    const Scalar tmp1378 = tmp1359 + tmp1336;
-    const Scalar tmp1379 = tmp1353 + tmp1359;
-    const Scalar tmp1380 = tmp1378 + tmp1331;
-    const Scalar tmp1381 = tmp1379 + tmp1313;
-    const Scalar tmp1382 = tmp1378 + tmp1333;
-    const Scalar tmp1383 = tmp1379 + tmp1315;
-    const Scalar tmp1384 = tmp1380 + tmp1299;
-    const Scalar tmp1385 = l*tmp165;
-    const Scalar tmp1386 = -tmp162;
-    const Scalar tmp1387 = l*tmp1386;
-    const Scalar tmp1388 = tmp1362 + tmp1387;
-    const Scalar tmp1389 = tmp1388 + tmp1319;
-    const Scalar tmp1390 = tmp1389 + tmp1292;
-    const Scalar tmp1391 = tmp1361 + tmp1387;
-    const Scalar tmp1392 = tmp1391 + tmp1341;
-    const Scalar tmp1393 = tmp1392 + tmp1306;
-    const Scalar tmp1394 = tmp1388 + tmp1323;
-    const Scalar tmp1395 = tmp1391 + tmp1344;
-    const Scalar tmp1396 = phi9_dot*tmp1387;
-    const Scalar tmp1397 = phi8_dot*tmp1391 + tmp1396;
-    const Scalar tmp1398 = phi7_dot*tmp1388 + tmp1397;
-    const Scalar tmp1399 = phi6_dot*tmp1392 + tmp1398;
-    const Scalar tmp1400 = phi5_dot*tmp1389 + tmp1399;
-    const Scalar tmp1401 = phi4_dot*tmp1395 + tmp1400;
-    const Scalar tmp1402 = phi3_dot*tmp1394 + tmp1401;
-    const Scalar tmp1403 = phi2_dot*tmp1393 + tmp1402;
-    const Scalar tmp1404 = phi1_dot*tmp1390 + tmp1403;
-    const Scalar tmp1405 = phi9_dot*tmp1385;
-    const Scalar tmp1406 = tmp1359 + tmp1385;
-    const Scalar tmp1407 = tmp1378 + tmp1385;
-    const Scalar tmp1408 = tmp1353 + tmp1406;
-    const Scalar tmp1409 = tmp1407 + tmp1331;
-    const Scalar tmp1410 = tmp1355 + tmp1406;
-    const Scalar tmp1411 = tmp1407 + tmp1333;
-    const Scalar tmp1412 = tmp1408 + tmp1315;
-    const Scalar tmp1413 = tmp1409 + tmp1299;
-    const Scalar tmp1414 = l*tmp199;
-    const Scalar tmp1415 = -tmp196;
-    const Scalar tmp1416 = l*tmp1415;
-    const Scalar tmp1417 = tmp1387 + tmp1416;
-    const Scalar tmp1418 = tmp1363 + tmp1417;
-    const Scalar tmp1419 = tmp1418 + tmp1292;
-    const Scalar tmp1420 = tmp1391 + tmp1416;
-    const Scalar tmp1421 = tmp1420 + tmp1341;
-    const Scalar tmp1422 = tmp1421 + tmp1306;
-    const Scalar tmp1423 = tmp1362 + tmp1417;
-    const Scalar tmp1424 = tmp1423 + tmp1323;
-    const Scalar tmp1425 = tmp1420 + tmp1344;
-    const Scalar tmp1426 = phi10_dot*tmp1416;
-    const Scalar tmp1427 = phi9_dot*tmp1417 + tmp1426;
-    const Scalar tmp1428 = phi8_dot*tmp1420 + tmp1427;
-    const Scalar tmp1429 = phi7_dot*tmp1423 + tmp1428;
-    const Scalar tmp1430 = phi6_dot*tmp1421 + tmp1429;
-    const Scalar tmp1431 = phi5_dot*tmp1418 + tmp1430;
-    const Scalar tmp1432 = phi4_dot*tmp1425 + tmp1431;
-    const Scalar tmp1433 = phi3_dot*tmp1424 + tmp1432;
-    const Scalar tmp1434 = phi2_dot*tmp1422 + tmp1433;
-    const Scalar tmp1435 = phi1_dot*tmp1419 + tmp1434;
-    const Scalar tmp1436 = phi10_dot*tmp1414;
-    const Scalar tmp1437 = tmp1385 + tmp1414;
-    const Scalar tmp1438 = tmp1406 + tmp1414;
-    const Scalar tmp1439 = tmp1378 + tmp1437;
-    const Scalar tmp1440 = tmp1353 + tmp1438;
-    const Scalar tmp1441 = tmp1380 + tmp1437;
-    const Scalar tmp1442 = tmp1355 + tmp1438;
-    const Scalar tmp1443 = tmp1439 + tmp1333;
-    const Scalar tmp1444 = tmp1440 + tmp1315;
-    const Scalar tmp1445 = tmp1441 + tmp1299;
-    const Scalar tmp1446 = -tmp1282;
-    const Scalar tmp1447 = phi2_dot*tmp1446 - tmp1288;
-    const Scalar tmp1448 = (-(phi1_dot*phi1_dot) + phi3_dot*(-phi1_dot - phi2_dot))*tmp1282
-        + phi1_dot*phi2_dot*tmp1446 + (phi1_dot + phi2_dot)*tmp1447 - phi3_dot*tmp1288;
-    const Scalar tmp1449 = (phi1_dot*phi2_dot + phi3_dot*(phi1_dot + phi2_dot))*tmp1284
-        + phi3_dot*tmp1285 + phi2_dot*tmp1286 + phi1_dot*tmp1287;
-    const Scalar tmp1450 = -tmp1299;
-    const Scalar tmp1451 = phi3_dot*tmp1450 - tmp1298;
-    const Scalar tmp1452 = -tmp1300;
-    const Scalar tmp1453 = tmp1451 + phi2_dot*tmp1452;
-    const Scalar tmp1454 = phi3_dot*(phi1_dot + phi2_dot)*tmp1450 + phi3_dot*tmp1451
-        + phi1_dot*phi2_dot*tmp1452 + (phi1_dot + phi2_dot)*tmp1453
-        + phi4_dot*(-phi1_dot - phi2_dot - phi3_dot)*tmp1289 - phi4_dot*tmp1298
-        - (phi1_dot*phi1_dot)*tmp1299;
-    const Scalar tmp1455 = phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp1291
-        + phi3_dot*(phi1_dot + phi2_dot)*tmp1292 + phi1_dot*phi2_dot*tmp1293 + phi4_dot*tmp1294
-        + phi3_dot*tmp1295 + phi2_dot*tmp1296 + phi1_dot*tmp1297;
-    const Scalar tmp1456 = -tmp1313;
-    const Scalar tmp1457 = phi4_dot*tmp1456 - tmp1312;
-    const Scalar tmp1458 = -tmp1314;
-    const Scalar tmp1459 = tmp1457 + phi3_dot*tmp1458;
-    const Scalar tmp1460 = -tmp1315;
-    const Scalar tmp1461 = tmp1459 + phi2_dot*tmp1460;
-    const Scalar tmp1462 = phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp1456 + phi4_dot*tmp1457
-        + phi3_dot*(phi1_dot + phi2_dot)*tmp1458 + phi3_dot*tmp1459 + phi1_dot*phi2_dot*tmp1460
-        + (phi1_dot + phi2_dot)*tmp1461
-        + phi5_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot)*tmp1301 - phi5_dot*tmp1312
-        - (phi1_dot*phi1_dot)*tmp1314;
-    const Scalar tmp1463 = phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp1303
-        + phi3_dot*(phi1_dot + phi2_dot)*tmp1304 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp1305
-        + phi1_dot*phi2_dot*tmp1306 + phi5_dot*tmp1307 + phi4_dot*tmp1308 + phi3_dot*tmp1309
-        + phi2_dot*tmp1310 + phi1_dot*tmp1311;
-    const Scalar tmp1464 = -tmp1331;
-    const Scalar tmp1465 = phi5_dot*tmp1464 - tmp1330;
-    const Scalar tmp1466 = -tmp1332;
-    const Scalar tmp1467 = tmp1465 + phi4_dot*tmp1466;
-    const Scalar tmp1468 = -tmp1333;
-    const Scalar tmp1469 = tmp1467 + phi3_dot*tmp1468;
-    const Scalar tmp1470 = -tmp1334;
-    const Scalar tmp1471 = tmp1469 + phi2_dot*tmp1470;
-    const Scalar tmp1472 = phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp1464
-        + phi5_dot*tmp1465 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp1466 + phi4_dot*tmp1467
-        + phi3_dot*(phi1_dot + phi2_dot)*tmp1468 + phi3_dot*tmp1469 + phi1_dot*phi2_dot*tmp1470
-        + (phi1_dot + phi2_dot)*tmp1471
-        + phi6_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot)*tmp1316
-        - phi6_dot*tmp1330 - (phi1_dot*phi1_dot)*tmp1335;
-    const Scalar tmp1473 = phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp1318
-        + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp1319
-        + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp1321 + phi1_dot*phi2_dot*tmp1322
-        + phi3_dot*(phi1_dot + phi2_dot)*tmp1323 + phi6_dot*tmp1324 + phi5_dot*tmp1325
-        + phi4_dot*tmp1326 + phi3_dot*tmp1327 + phi2_dot*tmp1328 + phi1_dot*tmp1329;
-    const Scalar tmp1474 = -tmp1353;
-    const Scalar tmp1475 = -tmp1352 + phi6_dot*tmp1474;
-    const Scalar tmp1476 = -tmp1354;
-    const Scalar tmp1477 = tmp1475 + phi5_dot*tmp1476;
-    const Scalar tmp1478 = -tmp1355;
-    const Scalar tmp1479 = tmp1477 + phi4_dot*tmp1478;
-    const Scalar tmp1480 = -tmp1356;
-    const Scalar tmp1481 = tmp1479 + phi3_dot*tmp1480;
-    const Scalar tmp1482 = -tmp1357;
-    const Scalar tmp1483 = tmp1481 + phi2_dot*tmp1482;
-    const Scalar tmp1484 = -phi7_dot*tmp1352 - (phi1_dot*phi1_dot)*tmp1358
-        + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp1474 + phi6_dot*tmp1475
-        + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp1476 + phi5_dot*tmp1477
-        + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp1478 + phi4_dot*tmp1479
-        + phi3_dot*(phi1_dot + phi2_dot)*tmp1480 + phi3_dot*tmp1481 + phi1_dot*phi2_dot*tmp1482
-        + (phi1_dot + phi2_dot)*tmp1483
-        + phi7_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot - phi6_dot)*tmp1336;
-    const Scalar tmp1485 = phi2_dot*tmp1350 + phi1_dot*tmp1351
-        + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp1338
-        + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp1339
-        + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp1341
-        + phi1_dot*phi2_dot*tmp1342 + phi3_dot*(phi1_dot + phi2_dot)*tmp1343
-        + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp1344 + phi7_dot*tmp1345 + phi6_dot*tmp1346
-        + phi5_dot*tmp1347 + phi4_dot*tmp1348 + phi3_dot*tmp1349;
-    const Scalar tmp1486 = -tmp1378;
-    const Scalar tmp1487 = -tmp1377 + phi7_dot*tmp1486;
-    const Scalar tmp1488 = -tmp1379;
-    const Scalar tmp1489 = tmp1487 + phi6_dot*tmp1488;
-    const Scalar tmp1490 = -tmp1380;
-    const Scalar tmp1491 = tmp1489 + phi5_dot*tmp1490;
-    const Scalar tmp1492 = -tmp1381;
-    const Scalar tmp1493 = tmp1491 + phi4_dot*tmp1492;
-    const Scalar tmp1494 = -tmp1382;
-    const Scalar tmp1495 = tmp1493 + phi3_dot*tmp1494;
-    const Scalar tmp1496 = -tmp1383;
-    const Scalar tmp1497 = tmp1495 + phi2_dot*tmp1496;
-    const Scalar tmp1498 = phi8_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot
-            - phi6_dot - phi7_dot)*tmp1359
-        - phi8_dot*tmp1377 - (phi1_dot*phi1_dot)*tmp1384
-        + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp1486
-        + phi7_dot*tmp1487 + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp1488
-        + phi6_dot*tmp1489 + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp1490
-        + phi5_dot*tmp1491 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp1492 + phi4_dot*tmp1493
-        + phi3_dot*(phi1_dot + phi2_dot)*tmp1494 + phi3_dot*tmp1495 + phi1_dot*phi2_dot*tmp1496
-        + (phi1_dot + phi2_dot)*tmp1497;
-    const Scalar tmp1499 = phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot
-            + phi7_dot)*tmp1361
-        + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp1362
-        + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp1363
-        + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp1365
-        + phi1_dot*phi2_dot*tmp1366 + phi3_dot*(phi1_dot + phi2_dot)*tmp1367
-        + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp1368 + phi8_dot*tmp1369 + phi7_dot*tmp1370
-        + phi6_dot*tmp1371 + phi5_dot*tmp1372 + phi4_dot*tmp1373 + phi3_dot*tmp1374
-        + phi2_dot*tmp1375 + phi1_dot*tmp1376;
-    const Scalar tmp1500 = -tmp1406;
-    const Scalar tmp1501 = -tmp1405 + phi8_dot*tmp1500;
-    const Scalar tmp1502 = -tmp1407;
-    const Scalar tmp1503 = tmp1501 + phi7_dot*tmp1502;
-    const Scalar tmp1504 = -tmp1408;
-    const Scalar tmp1505 = tmp1503 + phi6_dot*tmp1504;
-    const Scalar tmp1506 = -tmp1409;
-    const Scalar tmp1507 = tmp1505 + phi5_dot*tmp1506;
-    const Scalar tmp1508 = -tmp1410;
-    const Scalar tmp1509 = tmp1507 + phi4_dot*tmp1508;
-    const Scalar tmp1510 = -tmp1411;
-    const Scalar tmp1511 = tmp1509 + phi3_dot*tmp1510;
-    const Scalar tmp1512 = -tmp1412;
-    const Scalar tmp1513 = tmp1511 + phi2_dot*tmp1512;
-    const Scalar tmp1514 = phi9_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot
-            - phi6_dot - phi7_dot - phi8_dot)*tmp1385
-        - phi9_dot*tmp1405 - (phi1_dot*phi1_dot)*tmp1413
+            + phi7_dot)*tmp1114
+        + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp1115
+        + phi1_dot*phi2_dot*tmp1116
+        + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp1117
+        + phi3_dot*(phi1_dot + phi2_dot)*tmp1118 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp1119
+        + phi10_dot*tmp1120 + phi9_dot*tmp1121 + phi8_dot*tmp1122 + phi7_dot*tmp1123
+        + phi6_dot*tmp1124 + phi5_dot*tmp1125 + phi4_dot*tmp1126 + phi3_dot*tmp1127
+        + phi2_dot*tmp1128 + phi1_dot*tmp1129;
+    const Scalar tmp1230 = Scalar(2)*tmp15*m*tmp964 + Scalar(2)*tmp128*m*tmp1052
+        + Scalar(2)*tmp139*m*tmp1058 + Scalar(2)*tmp18*m*tmp962 + Scalar(2)*tmp159*m*tmp1078
+        + Scalar(2)*tmp170*m*tmp1084 + Scalar(2)*tmp193*m*tmp1107 + Scalar(2)*tmp204*m*tmp1113
+        + Scalar(2)*tmp27*m*tmp971 + Scalar(2)*tmp230*m*tmp1139 + Scalar(2)*tmp34*m*tmp978
+        + Scalar(2)*tmp44*m*tmp983 + Scalar(2)*tmp53*m*tmp992 + Scalar(2)*tmp63*m*tmp997
+        + Scalar(2)*tmp75*m*tmp1009 + Scalar(2)*tmp85*m*tmp1014 + Scalar(2)*tmp100*m*tmp1029
+        + Scalar(2)*tmp110*m*tmp1034;
+    const Scalar tmp1231 = (tmp15*m + tmp12*m)*tmp964 + tmp128*m*tmp1051 + tmp127*m*tmp1052
+        + tmp141*m*tmp1058 + tmp139*m*tmp1060 + (tmp18*m + tmp9*m)*tmp962 + tmp159*m*tmp1077
+        + tmp158*m*tmp1078 + tmp173*m*tmp1084 + tmp170*m*tmp1087 + tmp193*m*tmp1106
+        + tmp192*m*tmp1107 + tmp207*m*tmp1113 + tmp204*m*tmp1116 + tmp28*m*tmp971 + tmp27*m*tmp972
+        + tmp230*m*tmp1138 + tmp229*m*tmp1139 + tmp34*m*tmp977 + tmp33*m*tmp978 + tmp45*m*tmp983
+        + tmp44*m*tmp984 + tmp53*m*tmp991 + tmp52*m*tmp992 + tmp65*m*tmp997 + tmp63*m*tmp999
+        + tmp75*m*tmp1008 + tmp74*m*tmp1009 + tmp87*m*tmp1014 + tmp85*m*tmp1016 + tmp100*m*tmp1028
+        + tmp99*m*tmp1029 + tmp112*m*tmp1034 + tmp110*m*tmp1036;
+    const Scalar tmp1232 = Scalar(2)*tmp127*m*tmp1051 + Scalar(2)*tmp141*m*tmp1060
+        + Scalar(2)*tmp158*m*tmp1077 + Scalar(2)*tmp173*m*tmp1087 + Scalar(2)*tmp192*m*tmp1106
+        + Scalar(2)*tmp207*m*tmp1116 + Scalar(2)*tmp28*m*tmp972 + Scalar(2)*tmp229*m*tmp1138
+        + Scalar(2)*tmp33*m*tmp977 + Scalar(2)*tmp45*m*tmp984 + Scalar(2)*tmp52*m*tmp991
+        + Scalar(2)*tmp325*tmp8*m*tmp11 + Scalar(2)*tmp65*m*tmp999 + Scalar(2)*tmp74*m*tmp1008
+        + Scalar(2)*tmp325*tmp11*m*tmp963 + Scalar(2)*tmp87*m*tmp1016 + Scalar(2)*tmp99*m*tmp1028
+        + Scalar(2)*tmp112*m*tmp1036;
+    const Scalar tmp1233 = tmp128*m*tmp1050 + tmp126*m*tmp1052 + tmp142*m*tmp1058 + tmp139*m*tmp1061
+        + tmp159*m*tmp1076 + tmp157*m*tmp1078 + tmp174*m*tmp1084 + tmp170*m*tmp1088 + tmp34*m*tmp968
+        + tmp193*m*tmp1105 + tmp191*m*tmp1107 + tmp209*m*tmp1113 + tmp27*m*tmp970 + tmp204*m*tmp1118
+        + tmp25*m*tmp971 + tmp230*m*tmp1137 + tmp228*m*tmp1139 + tmp22*m*tmp978 + tmp44*m*tmp982
+        + tmp43*m*tmp983 + tmp53*m*tmp990 + tmp51*m*tmp992 + tmp63*m*tmp996 + tmp62*m*tmp997
+        + tmp75*m*tmp1007 + tmp73*m*tmp1009 + tmp88*m*tmp1014 + tmp85*m*tmp1017 + tmp100*m*tmp1027
+        + tmp98*m*tmp1029 + tmp113*m*tmp1034 + tmp110*m*tmp1037;
+    const Scalar tmp1234 = tmp127*m*tmp1050 + tmp126*m*tmp1051 + tmp142*m*tmp1060 + tmp141*m*tmp1061
+        + tmp158*m*tmp1076 + tmp157*m*tmp1077 + tmp174*m*tmp1087 + tmp173*m*tmp1088 + tmp33*m*tmp968
+        + tmp192*m*tmp1105 + tmp191*m*tmp1106 + tmp209*m*tmp1116 + tmp28*m*tmp970 + tmp207*m*tmp1118
+        + tmp229*m*tmp1137 + tmp25*m*tmp972 + tmp228*m*tmp1138 + tmp22*m*tmp977 + tmp45*m*tmp982
+        + tmp43*m*tmp984 + tmp52*m*tmp990 + tmp51*m*tmp991 + tmp65*m*tmp996 + tmp62*m*tmp999
+        + tmp74*m*tmp1007 + tmp73*m*tmp1008 + tmp88*m*tmp1016 + tmp87*m*tmp1017 + tmp99*m*tmp1027
+        + tmp98*m*tmp1028 + tmp113*m*tmp1036 + tmp112*m*tmp1037;
+    const Scalar tmp1235 = Scalar(2)*tmp126*m*tmp1050 + Scalar(2)*tmp142*m*tmp1061
+        + Scalar(2)*tmp157*m*tmp1076 + Scalar(2)*tmp174*m*tmp1088 + Scalar(2)*tmp21*tmp325*m*tmp24
+        + Scalar(2)*tmp191*m*tmp1105 + Scalar(2)*tmp24*tmp325*m*tmp969 + Scalar(2)*tmp209*m*tmp1118
+        + Scalar(2)*tmp228*m*tmp1137 + Scalar(2)*tmp43*m*tmp982 + Scalar(2)*tmp51*m*tmp990
+        + Scalar(2)*tmp62*m*tmp996 + Scalar(2)*tmp73*m*tmp1007 + Scalar(2)*tmp88*m*tmp1017
+        + Scalar(2)*tmp98*m*tmp1027 + Scalar(2)*tmp113*m*tmp1037;
+    const Scalar tmp1236 = tmp128*m*tmp1049 + tmp125*m*tmp1052 + tmp143*m*tmp1058 + tmp139*m*tmp1062
+        + tmp159*m*tmp1075 + tmp156*m*tmp1078 + tmp175*m*tmp1084 + tmp170*m*tmp1089
+        + tmp193*m*tmp1104 + tmp190*m*tmp1107 + tmp210*m*tmp1113 + tmp204*m*tmp1119
+        + tmp230*m*tmp1136 + tmp227*m*tmp1139 + tmp53*m*tmp979 + tmp44*m*tmp981 + tmp41*m*tmp983
+        + tmp38*m*tmp992 + tmp64*m*tmp997 + tmp63*m*tmp998 + tmp75*m*tmp1006 + tmp72*m*tmp1009
+        + tmp86*m*tmp1014 + tmp85*m*tmp1015 + tmp100*m*tmp1026 + tmp97*m*tmp1029 + tmp114*m*tmp1034
+        + tmp110*m*tmp1038;
+    const Scalar tmp1237 = tmp127*m*tmp1049 + tmp125*m*tmp1051 + tmp143*m*tmp1060 + tmp141*m*tmp1062
+        + tmp158*m*tmp1075 + tmp156*m*tmp1077 + tmp175*m*tmp1087 + tmp173*m*tmp1089
+        + tmp192*m*tmp1104 + tmp190*m*tmp1106 + tmp210*m*tmp1116 + tmp207*m*tmp1119
+        + tmp229*m*tmp1136 + tmp227*m*tmp1138 + tmp52*m*tmp979 + tmp45*m*tmp981 + tmp41*m*tmp984
+        + tmp38*m*tmp991 + tmp65*m*tmp998 + tmp64*m*tmp999 + tmp74*m*tmp1006 + tmp72*m*tmp1008
+        + tmp87*m*tmp1015 + tmp86*m*tmp1016 + tmp99*m*tmp1026 + tmp97*m*tmp1028 + tmp114*m*tmp1036
+        + tmp112*m*tmp1038;
+    const Scalar tmp1238 = tmp126*m*tmp1049 + tmp125*m*tmp1050 + tmp143*m*tmp1061 + tmp142*m*tmp1062
+        + tmp157*m*tmp1075 + tmp156*m*tmp1076 + tmp175*m*tmp1088 + tmp174*m*tmp1089
+        + tmp191*m*tmp1104 + tmp190*m*tmp1105 + tmp210*m*tmp1118 + tmp209*m*tmp1119
+        + tmp228*m*tmp1136 + tmp227*m*tmp1137 + tmp51*m*tmp979 + tmp43*m*tmp981 + tmp41*m*tmp982
+        + tmp38*m*tmp990 + tmp64*m*tmp996 + tmp62*m*tmp998 + tmp73*m*tmp1006 + tmp72*m*tmp1007
+        + tmp88*m*tmp1015 + tmp86*m*tmp1017 + tmp98*m*tmp1026 + tmp97*m*tmp1027 + tmp114*m*tmp1037
+        + tmp113*m*tmp1038;
+    const Scalar tmp1239 = Scalar(2)*tmp125*m*tmp1049 + Scalar(2)*tmp143*m*tmp1062
+        + Scalar(2)*tmp156*m*tmp1075 + Scalar(2)*tmp175*m*tmp1089 + Scalar(2)*tmp190*m*tmp1104
+        + Scalar(2)*tmp210*m*tmp1119 + Scalar(2)*tmp227*m*tmp1136 + Scalar(2)*tmp325*tmp37*m*tmp40
+        + Scalar(2)*tmp325*tmp40*m*tmp980 + Scalar(2)*tmp64*m*tmp998 + Scalar(2)*tmp72*m*tmp1006
+        + Scalar(2)*tmp86*m*tmp1015 + Scalar(2)*tmp97*m*tmp1026 + Scalar(2)*tmp114*m*tmp1038;
+    const Scalar tmp1240 = tmp128*m*tmp1048 + tmp124*m*tmp1052 + tmp139*m*tmp1057 + tmp138*m*tmp1058
+        + tmp159*m*tmp1074 + tmp155*m*tmp1078 + tmp170*m*tmp1083 + tmp169*m*tmp1084
+        + tmp193*m*tmp1103 + tmp189*m*tmp1107 + tmp204*m*tmp1112 + tmp203*m*tmp1113
+        + tmp230*m*tmp1135 + tmp226*m*tmp1139 + tmp75*m*tmp993 + tmp63*m*tmp995 + tmp60*m*tmp997
+        + tmp57*m*tmp1009 + tmp85*m*tmp1013 + tmp84*m*tmp1014 + tmp100*m*tmp1025 + tmp96*m*tmp1029
+        + tmp110*m*tmp1033 + tmp109*m*tmp1034;
+    const Scalar tmp1241 = tmp127*m*tmp1048 + tmp124*m*tmp1051 + tmp141*m*tmp1057 + tmp138*m*tmp1060
+        + tmp158*m*tmp1074 + tmp155*m*tmp1077 + tmp173*m*tmp1083 + tmp169*m*tmp1087
+        + tmp192*m*tmp1103 + tmp189*m*tmp1106 + tmp207*m*tmp1112 + tmp203*m*tmp1116
+        + tmp229*m*tmp1135 + tmp226*m*tmp1138 + tmp74*m*tmp993 + tmp65*m*tmp995 + tmp60*m*tmp999
+        + tmp57*m*tmp1008 + tmp87*m*tmp1013 + tmp84*m*tmp1016 + tmp99*m*tmp1025 + tmp96*m*tmp1028
+        + tmp112*m*tmp1033 + tmp109*m*tmp1036;
+    const Scalar tmp1242 = tmp126*m*tmp1048 + tmp124*m*tmp1050 + tmp142*m*tmp1057 + tmp138*m*tmp1061
+        + tmp157*m*tmp1074 + tmp155*m*tmp1076 + tmp174*m*tmp1083 + tmp169*m*tmp1088
+        + tmp191*m*tmp1103 + tmp189*m*tmp1105 + tmp209*m*tmp1112 + tmp203*m*tmp1118
+        + tmp228*m*tmp1135 + tmp226*m*tmp1137 + tmp73*m*tmp993 + tmp62*m*tmp995 + tmp60*m*tmp996
+        + tmp57*m*tmp1007 + tmp88*m*tmp1013 + tmp84*m*tmp1017 + tmp98*m*tmp1025 + tmp96*m*tmp1027
+        + tmp113*m*tmp1033 + tmp109*m*tmp1037;
+    const Scalar tmp1243 = tmp125*m*tmp1048 + tmp124*m*tmp1049 + tmp143*m*tmp1057 + tmp138*m*tmp1062
+        + tmp156*m*tmp1074 + tmp155*m*tmp1075 + tmp175*m*tmp1083 + tmp169*m*tmp1089
+        + tmp190*m*tmp1103 + tmp189*m*tmp1104 + tmp210*m*tmp1112 + tmp203*m*tmp1119
+        + tmp227*m*tmp1135 + tmp226*m*tmp1136 + tmp72*m*tmp993 + tmp64*m*tmp995 + tmp60*m*tmp998
+        + tmp57*m*tmp1006 + tmp86*m*tmp1013 + tmp84*m*tmp1015 + tmp97*m*tmp1025 + tmp96*m*tmp1026
+        + tmp114*m*tmp1033 + tmp109*m*tmp1038;
+    const Scalar tmp1244 = Scalar(2)*tmp124*m*tmp1048 + Scalar(2)*tmp138*m*tmp1057
+        + Scalar(2)*tmp155*m*tmp1074 + Scalar(2)*tmp169*m*tmp1083 + Scalar(2)*tmp189*m*tmp1103
+        + Scalar(2)*tmp203*m*tmp1112 + Scalar(2)*tmp226*m*tmp1135 + Scalar(2)*tmp325*tmp56*m*tmp59
+        + Scalar(2)*tmp325*tmp59*m*tmp994 + Scalar(2)*tmp84*m*tmp1013 + Scalar(2)*tmp96*m*tmp1025
+        + Scalar(2)*tmp109*m*tmp1033;
+    const Scalar tmp1245 = tmp128*m*tmp1047 + tmp123*m*tmp1052 + tmp140*m*tmp1058 + tmp139*m*tmp1059
+        + tmp159*m*tmp1073 + tmp154*m*tmp1078 + tmp172*m*tmp1084 + tmp170*m*tmp1086
+        + tmp193*m*tmp1102 + tmp188*m*tmp1107 + tmp206*m*tmp1113 + tmp204*m*tmp1115
+        + tmp230*m*tmp1134 + tmp225*m*tmp1139 + tmp100*m*tmp1010 + tmp85*m*tmp1012 + tmp82*m*tmp1014
+        + tmp79*m*tmp1029 + tmp111*m*tmp1034 + tmp110*m*tmp1035;
+    const Scalar tmp1246 = tmp127*m*tmp1047 + tmp123*m*tmp1051 + tmp141*m*tmp1059 + tmp140*m*tmp1060
+        + tmp158*m*tmp1073 + tmp154*m*tmp1077 + tmp173*m*tmp1086 + tmp172*m*tmp1087
+        + tmp192*m*tmp1102 + tmp188*m*tmp1106 + tmp207*m*tmp1115 + tmp206*m*tmp1116
+        + tmp229*m*tmp1134 + tmp225*m*tmp1138 + tmp99*m*tmp1010 + tmp87*m*tmp1012 + tmp82*m*tmp1016
+        + tmp79*m*tmp1028 + tmp112*m*tmp1035 + tmp111*m*tmp1036;
+    const Scalar tmp1247 = tmp126*m*tmp1047 + tmp123*m*tmp1050 + tmp142*m*tmp1059 + tmp140*m*tmp1061
+        + tmp157*m*tmp1073 + tmp154*m*tmp1076 + tmp174*m*tmp1086 + tmp172*m*tmp1088
+        + tmp191*m*tmp1102 + tmp188*m*tmp1105 + tmp209*m*tmp1115 + tmp206*m*tmp1118
+        + tmp228*m*tmp1134 + tmp225*m*tmp1137 + tmp98*m*tmp1010 + tmp88*m*tmp1012 + tmp82*m*tmp1017
+        + tmp79*m*tmp1027 + tmp113*m*tmp1035 + tmp111*m*tmp1037;
+    const Scalar tmp1248 = tmp125*m*tmp1047 + tmp123*m*tmp1049 + tmp143*m*tmp1059 + tmp140*m*tmp1062
+        + tmp156*m*tmp1073 + tmp154*m*tmp1075 + tmp175*m*tmp1086 + tmp172*m*tmp1089
+        + tmp190*m*tmp1102 + tmp188*m*tmp1104 + tmp210*m*tmp1115 + tmp206*m*tmp1119
+        + tmp227*m*tmp1134 + tmp225*m*tmp1136 + tmp97*m*tmp1010 + tmp86*m*tmp1012 + tmp82*m*tmp1015
+        + tmp79*m*tmp1026 + tmp114*m*tmp1035 + tmp111*m*tmp1038;
+    const Scalar tmp1249 = tmp124*m*tmp1047 + tmp123*m*tmp1048 + tmp140*m*tmp1057 + tmp138*m*tmp1059
+        + tmp155*m*tmp1073 + tmp154*m*tmp1074 + tmp172*m*tmp1083 + tmp169*m*tmp1086
+        + tmp189*m*tmp1102 + tmp188*m*tmp1103 + tmp206*m*tmp1112 + tmp203*m*tmp1115
+        + tmp226*m*tmp1134 + tmp225*m*tmp1135 + tmp96*m*tmp1010 + tmp84*m*tmp1012 + tmp82*m*tmp1013
+        + tmp79*m*tmp1025 + tmp111*m*tmp1033 + tmp109*m*tmp1035;
+    const Scalar tmp1250 = Scalar(2)*tmp123*m*tmp1047 + Scalar(2)*tmp140*m*tmp1059
+        + Scalar(2)*tmp154*m*tmp1073 + Scalar(2)*tmp172*m*tmp1086 + Scalar(2)*tmp188*m*tmp1102
+        + Scalar(2)*tmp206*m*tmp1115 + Scalar(2)*tmp225*m*tmp1134 + Scalar(2)*tmp325*tmp78*m*tmp81
+        + Scalar(2)*tmp325*tmp81*m*tmp1011 + Scalar(2)*tmp111*m*tmp1035;
+    const Scalar tmp1251 = tmp104*m*tmp1052 + tmp139*m*tmp1056 + tmp137*m*tmp1058 + tmp159*m*tmp1072
+        + tmp153*m*tmp1078 + tmp170*m*tmp1082 + tmp168*m*tmp1084 + tmp193*m*tmp1101
+        + tmp187*m*tmp1107 + tmp208*m*tmp1113 + tmp204*m*tmp1117 + tmp230*m*tmp1133
+        + tmp224*m*tmp1139 + tmp128*m*tmp1030 + tmp110*m*tmp1032 + tmp107*m*tmp1034;
+    const Scalar tmp1252 = tmp104*m*tmp1051 + tmp141*m*tmp1056 + tmp137*m*tmp1060 + tmp158*m*tmp1072
+        + tmp153*m*tmp1077 + tmp173*m*tmp1082 + tmp168*m*tmp1087 + tmp192*m*tmp1101
+        + tmp187*m*tmp1106 + tmp208*m*tmp1116 + tmp207*m*tmp1117 + tmp229*m*tmp1133
+        + tmp224*m*tmp1138 + tmp127*m*tmp1030 + tmp112*m*tmp1032 + tmp107*m*tmp1036;
+    const Scalar tmp1253 = tmp104*m*tmp1050 + tmp142*m*tmp1056 + tmp137*m*tmp1061 + tmp157*m*tmp1072
+        + tmp153*m*tmp1076 + tmp174*m*tmp1082 + tmp168*m*tmp1088 + tmp191*m*tmp1101
+        + tmp187*m*tmp1105 + tmp209*m*tmp1117 + tmp208*m*tmp1118 + tmp228*m*tmp1133
+        + tmp224*m*tmp1137 + tmp126*m*tmp1030 + tmp113*m*tmp1032 + tmp107*m*tmp1037;
+    const Scalar tmp1254 = tmp104*m*tmp1049 + tmp143*m*tmp1056 + tmp137*m*tmp1062 + tmp156*m*tmp1072
+        + tmp153*m*tmp1075 + tmp175*m*tmp1082 + tmp168*m*tmp1089 + tmp190*m*tmp1101
+        + tmp187*m*tmp1104 + tmp210*m*tmp1117 + tmp208*m*tmp1119 + tmp227*m*tmp1133
+        + tmp224*m*tmp1136 + tmp125*m*tmp1030 + tmp114*m*tmp1032 + tmp107*m*tmp1038;
+    const Scalar tmp1255 = tmp104*m*tmp1048 + tmp138*m*tmp1056 + tmp137*m*tmp1057 + tmp155*m*tmp1072
+        + tmp153*m*tmp1074 + tmp169*m*tmp1082 + tmp168*m*tmp1083 + tmp189*m*tmp1101
+        + tmp187*m*tmp1103 + tmp208*m*tmp1112 + tmp203*m*tmp1117 + tmp226*m*tmp1133
+        + tmp224*m*tmp1135 + tmp124*m*tmp1030 + tmp109*m*tmp1032 + tmp107*m*tmp1033;
+    const Scalar tmp1256 = tmp104*m*tmp1047 + tmp140*m*tmp1056 + tmp137*m*tmp1059 + tmp154*m*tmp1072
+        + tmp153*m*tmp1073 + tmp172*m*tmp1082 + tmp168*m*tmp1086 + tmp188*m*tmp1101
+        + tmp187*m*tmp1102 + tmp208*m*tmp1115 + tmp206*m*tmp1117 + tmp225*m*tmp1133
+        + tmp224*m*tmp1134 + tmp123*m*tmp1030 + tmp111*m*tmp1032 + tmp107*m*tmp1035;
+    const Scalar tmp1257 = Scalar(2)*tmp137*m*tmp1056 + Scalar(2)*tmp153*m*tmp1072
+        + Scalar(2)*tmp168*m*tmp1082 + Scalar(2)*tmp187*m*tmp1101 + Scalar(2)*tmp208*m*tmp1117
+        + Scalar(2)*tmp224*m*tmp1133 + Scalar(2)*tmp325*tmp103*m*tmp106
+        + Scalar(2)*tmp325*tmp106*m*tmp1031;
+    const Scalar tmp1258 = tmp159*m*tmp1053 + tmp139*m*tmp1055 + tmp135*m*tmp1058 + tmp132*m*tmp1078
+        + tmp171*m*tmp1084 + tmp170*m*tmp1085 + tmp193*m*tmp1100 + tmp186*m*tmp1107
+        + tmp205*m*tmp1113 + tmp204*m*tmp1114 + tmp230*m*tmp1132 + tmp223*m*tmp1139;
+    const Scalar tmp1259 = tmp158*m*tmp1053 + tmp141*m*tmp1055 + tmp135*m*tmp1060 + tmp132*m*tmp1077
+        + tmp173*m*tmp1085 + tmp171*m*tmp1087 + tmp192*m*tmp1100 + tmp186*m*tmp1106
+        + tmp207*m*tmp1114 + tmp205*m*tmp1116 + tmp229*m*tmp1132 + tmp223*m*tmp1138;
+    const Scalar tmp1260 = tmp157*m*tmp1053 + tmp142*m*tmp1055 + tmp135*m*tmp1061 + tmp132*m*tmp1076
+        + tmp174*m*tmp1085 + tmp171*m*tmp1088 + tmp191*m*tmp1100 + tmp186*m*tmp1105
+        + tmp209*m*tmp1114 + tmp205*m*tmp1118 + tmp228*m*tmp1132 + tmp223*m*tmp1137;
+    const Scalar tmp1261 = tmp156*m*tmp1053 + tmp143*m*tmp1055 + tmp135*m*tmp1062 + tmp132*m*tmp1075
+        + tmp175*m*tmp1085 + tmp171*m*tmp1089 + tmp190*m*tmp1100 + tmp186*m*tmp1104
+        + tmp210*m*tmp1114 + tmp205*m*tmp1119 + tmp227*m*tmp1132 + tmp223*m*tmp1136;
+    const Scalar tmp1262 = tmp155*m*tmp1053 + tmp138*m*tmp1055 + tmp135*m*tmp1057 + tmp132*m*tmp1074
+        + tmp171*m*tmp1083 + tmp169*m*tmp1085 + tmp189*m*tmp1100 + tmp186*m*tmp1103
+        + tmp205*m*tmp1112 + tmp203*m*tmp1114 + tmp226*m*tmp1132 + tmp223*m*tmp1135;
+    const Scalar tmp1263 = tmp154*m*tmp1053 + tmp140*m*tmp1055 + tmp135*m*tmp1059 + tmp132*m*tmp1073
+        + tmp172*m*tmp1085 + tmp171*m*tmp1086 + tmp188*m*tmp1100 + tmp186*m*tmp1102
+        + tmp206*m*tmp1114 + tmp205*m*tmp1115 + tmp225*m*tmp1132 + tmp223*m*tmp1134;
+    const Scalar tmp1264 = tmp153*m*tmp1053 + tmp137*m*tmp1055 + tmp135*m*tmp1056 + tmp132*m*tmp1072
+        + tmp171*m*tmp1082 + tmp168*m*tmp1085 + tmp187*m*tmp1100 + tmp186*m*tmp1101
+        + tmp208*m*tmp1114 + tmp205*m*tmp1117 + tmp224*m*tmp1132 + tmp223*m*tmp1133;
+    const Scalar tmp1265 = Scalar(2)*tmp131*tmp325*m*tmp134 + Scalar(2)*tmp134*tmp325*m*tmp1054
+        + Scalar(2)*tmp171*m*tmp1085 + Scalar(2)*tmp186*m*tmp1100 + Scalar(2)*tmp205*m*tmp1114
+        + Scalar(2)*tmp223*m*tmp1132;
+    const Scalar tmp1266 = tmp193*m*tmp1079 + tmp170*m*tmp1081 + tmp166*m*tmp1084 + tmp163*m*tmp1107
+        + tmp204*m*tmp1111 + tmp202*m*tmp1113 + tmp230*m*tmp1131 + tmp222*m*tmp1139;
+    const Scalar tmp1267 = tmp192*m*tmp1079 + tmp173*m*tmp1081 + tmp166*m*tmp1087 + tmp163*m*tmp1106
+        + tmp207*m*tmp1111 + tmp202*m*tmp1116 + tmp229*m*tmp1131 + tmp222*m*tmp1138;
+    const Scalar tmp1268 = tmp191*m*tmp1079 + tmp174*m*tmp1081 + tmp166*m*tmp1088 + tmp163*m*tmp1105
+        + tmp209*m*tmp1111 + tmp202*m*tmp1118 + tmp228*m*tmp1131 + tmp222*m*tmp1137;
+    const Scalar tmp1269 = tmp190*m*tmp1079 + tmp175*m*tmp1081 + tmp166*m*tmp1089 + tmp163*m*tmp1104
+        + tmp210*m*tmp1111 + tmp202*m*tmp1119 + tmp227*m*tmp1131 + tmp222*m*tmp1136;
+    const Scalar tmp1270 = tmp189*m*tmp1079 + tmp169*m*tmp1081 + tmp166*m*tmp1083 + tmp163*m*tmp1103
+        + tmp203*m*tmp1111 + tmp202*m*tmp1112 + tmp226*m*tmp1131 + tmp222*m*tmp1135;
+    const Scalar tmp1271 = tmp188*m*tmp1079 + tmp172*m*tmp1081 + tmp166*m*tmp1086 + tmp163*m*tmp1102
+        + tmp206*m*tmp1111 + tmp202*m*tmp1115 + tmp225*m*tmp1131 + tmp222*m*tmp1134;
+    const Scalar tmp1272 = tmp187*m*tmp1079 + tmp168*m*tmp1081 + tmp166*m*tmp1082 + tmp163*m*tmp1101
+        + tmp208*m*tmp1111 + tmp202*m*tmp1117 + tmp224*m*tmp1131 + tmp222*m*tmp1133;
+    const Scalar tmp1273 = tmp186*m*tmp1079 + tmp171*m*tmp1081 + tmp166*m*tmp1085 + tmp163*m*tmp1100
+        + tmp205*m*tmp1111 + tmp202*m*tmp1114 + tmp223*m*tmp1131 + tmp222*m*tmp1132;
+    const Scalar tmp1274 = Scalar(2)*tmp162*tmp325*m*tmp165 + Scalar(2)*tmp165*tmp325*m*tmp1080
+        + Scalar(2)*tmp202*m*tmp1111 + Scalar(2)*tmp222*m*tmp1131;
+    const Scalar tmp1275 = tmp230*m*tmp1108 + tmp204*m*tmp1110 + tmp200*m*tmp1113
+        + tmp197*m*tmp1139;
+    const Scalar tmp1276 = tmp229*m*tmp1108 + tmp207*m*tmp1110 + tmp200*m*tmp1116
+        + tmp197*m*tmp1138;
+    const Scalar tmp1277 = tmp228*m*tmp1108 + tmp209*m*tmp1110 + tmp200*m*tmp1118
+        + tmp197*m*tmp1137;
+    const Scalar tmp1278 = tmp227*m*tmp1108 + tmp210*m*tmp1110 + tmp200*m*tmp1119
+        + tmp197*m*tmp1136;
+    const Scalar tmp1279 = tmp226*m*tmp1108 + tmp203*m*tmp1110 + tmp200*m*tmp1112
+        + tmp197*m*tmp1135;
+    const Scalar tmp1280 = tmp225*m*tmp1108 + tmp206*m*tmp1110 + tmp200*m*tmp1115
+        + tmp197*m*tmp1134;
+    const Scalar tmp1281 = tmp224*m*tmp1108 + tmp208*m*tmp1110 + tmp200*m*tmp1117
+        + tmp197*m*tmp1133;
+    const Scalar tmp1282 = tmp223*m*tmp1108 + tmp205*m*tmp1110 + tmp200*m*tmp1114
+        + tmp197*m*tmp1132;
+    const Scalar tmp1283 = tmp222*m*tmp1108 + tmp202*m*tmp1110 + tmp200*m*tmp1111
+        + tmp197*m*tmp1131;
+    const Scalar tmp1284 = Scalar(2)*tmp196*tmp325*m*tmp199 + Scalar(2)*tmp199*tmp325*m*tmp1109;
+    const Scalar tmp1285 = m*tmp1140;
+    const Scalar tmp1286 = m*tmp1141;
+    const Scalar tmp1287 = m*tmp1144;
+    const Scalar tmp1288 = m*tmp1145;
+    const Scalar tmp1289 = m*tmp1150;
+    const Scalar tmp1290 = m*tmp1151;
+    const Scalar tmp1291 = m*tmp1158;
+    const Scalar tmp1292 = m*tmp1159;
+    const Scalar tmp1293 = m*tmp1168;
+    const Scalar tmp1294 = m*tmp1169;
+    const Scalar tmp1295 = m*tmp1180;
+    const Scalar tmp1296 = m*tmp1181;
+    const Scalar tmp1297 = m*tmp1194;
+    const Scalar tmp1298 = m*tmp1195;
+    const Scalar tmp1299 = m*tmp1210;
+    const Scalar tmp1300 = m*tmp1211;
+    const Scalar tmp1301 = m*tmp1228;
+    const Scalar tmp1302 = m*tmp1229;
+    const Scalar tmp1303 = tmp382*tmp1052 + tmp382*tmp962 + tmp382*tmp1078 + tmp382*tmp1107
+        + tmp382*tmp1139 + tmp382*tmp978 + tmp382*tmp992 + tmp382*tmp1009 + tmp382*tmp1029;
+    const Scalar tmp1304 = tmp382*tmp1051 + tmp382*tmp1077 + tmp382*tmp1106 + tmp382*tmp1138
+        + tmp382*tmp977 - k + tmp382*tmp991 + tmp382*tmp962 + tmp382*tmp1008 + tmp382*tmp1028;
+    const Scalar tmp1305 = tmp382*tmp1050 + tmp382*tmp1076 + tmp382*tmp968 + tmp382*tmp1105
+        + tmp382*tmp1137 + tmp382*tmp990 + tmp382*tmp1007 + tmp382*tmp1027;
+    const Scalar tmp1306 = tmp382*tmp1049 + tmp382*tmp1075 + tmp382*tmp1104 + tmp382*tmp1136
+        + tmp382*tmp979 + tmp382*tmp1006 + tmp382*tmp1026;
+    const Scalar tmp1307 = tmp382*tmp1048 + tmp382*tmp1074 + tmp382*tmp1103 + tmp382*tmp1135
+        + tmp382*tmp993 + tmp382*tmp1025;
+    const Scalar tmp1308 = tmp382*tmp1047 + tmp382*tmp1073 + tmp382*tmp1102 + tmp382*tmp1134
+        + tmp382*tmp1010;
+    const Scalar tmp1309 = tmp382*tmp1072 + tmp382*tmp1101 + tmp382*tmp1133 + tmp382*tmp1030;
+    const Scalar tmp1310 = tmp382*tmp1053 + tmp382*tmp1100 + tmp382*tmp1132;
+    const Scalar tmp1311 = tmp382*tmp1079 + tmp382*tmp1131;
+    const Scalar tmp1312 = tmp382*l*tmp199;
+    const Scalar tmp1313 = -tmp385*tmp964 - tmp396*tmp1052 - tmp397*tmp1058 - tmp386*tmp962
+        - tmp398*tmp1078 - tmp399*tmp1084 - tmp400*tmp1107 - tmp401*tmp1113 - tmp387*tmp971
+        - tmp402*tmp1139 - tmp388*tmp978 - tmp389*tmp983 - tmp390*tmp992 - tmp391*tmp997
+        - tmp392*tmp1009 - tmp393*tmp1014 - tmp394*tmp1029 - tmp395*tmp1034 - tmp15*tmp1285
+        - tmp18*tmp1286 - tmp27*tmp1287 - tmp34*tmp1288 - tmp44*tmp1289 - tmp53*tmp1290
+        - tmp63*tmp1291 - tmp75*tmp1292 - tmp85*tmp1293 - tmp100*tmp1294 - tmp110*tmp1295
+        - tmp128*tmp1296 - tmp139*tmp1297 - tmp159*tmp1298 - tmp170*tmp1299 - tmp193*tmp1300
+        - tmp204*tmp1301 - tmp230*tmp1302;
+    dr_dq_data[0 + 10 * 1] = phi10_ddot*tmp1275 - tmp1303 - tmp1313 + phi1_ddot*tmp1230
+        + phi2_ddot*tmp1231 + phi3_ddot*tmp1233 + phi4_ddot*tmp1236 + phi5_ddot*tmp1240
+        + phi6_ddot*tmp1245 + phi7_ddot*tmp1251 + phi8_ddot*tmp1258 + phi9_ddot*tmp1266;
+    const Scalar tmp1314 = -tmp396*tmp1051 - tmp397*tmp1060 - tmp398*tmp1077 - tmp399*tmp1087
+        - tmp400*tmp1106 - tmp401*tmp1116 - tmp387*tmp972 - tmp402*tmp1138 - tmp388*tmp977
+        - tmp389*tmp984 - tmp390*tmp991 - tmp391*tmp999 - tmp386*tmp962 - tmp392*tmp1008
+        - tmp393*tmp1016 - tmp385*tmp964 - tmp394*tmp1028 - tmp395*tmp1036 - tmp12*tmp1285
+        - tmp9*tmp1286 - tmp28*tmp1287 - tmp33*tmp1288 - tmp45*tmp1289 - tmp52*tmp1290
+        - tmp65*tmp1291 - tmp74*tmp1292 - tmp87*tmp1293 - tmp99*tmp1294 - tmp112*tmp1295
+        - tmp127*tmp1296 - tmp141*tmp1297 - tmp158*tmp1298 - tmp173*tmp1299 - tmp192*tmp1300
+        - tmp207*tmp1301 - tmp229*tmp1302;
+    dr_dq_data[1 + 10 * 1] = phi10_ddot*tmp1276 - tmp1304 - tmp1314 + phi1_ddot*tmp1231
+        + phi2_ddot*tmp1232 + phi3_ddot*tmp1234 + phi4_ddot*tmp1237 + phi5_ddot*tmp1241
+        + phi6_ddot*tmp1246 + phi7_ddot*tmp1252 + phi8_ddot*tmp1259 + phi9_ddot*tmp1267;
+    const Scalar tmp1315 = -tmp396*tmp1050 - tmp397*tmp1061 - tmp398*tmp1076 - tmp399*tmp1088
+        - tmp388*tmp968 - tmp400*tmp1105 - tmp387*tmp970 - tmp401*tmp1118 - tmp402*tmp1137
+        - tmp389*tmp982 - tmp390*tmp990 - tmp391*tmp996 - tmp392*tmp1007 - tmp393*tmp1017
+        - tmp394*tmp1027 - tmp395*tmp1037 - tmp25*tmp1287 - tmp22*tmp1288 - tmp43*tmp1289
+        - tmp51*tmp1290 - tmp62*tmp1291 - tmp73*tmp1292 - tmp88*tmp1293 - tmp98*tmp1294
+        - tmp113*tmp1295 - tmp126*tmp1296 - tmp142*tmp1297 - tmp157*tmp1298 - tmp174*tmp1299
+        - tmp191*tmp1300 - tmp209*tmp1301 - tmp228*tmp1302;
+    dr_dq_data[2 + 10 * 1] = phi10_ddot*tmp1277 - tmp1305 - tmp1315 + phi1_ddot*tmp1233
+        + phi2_ddot*tmp1234 + phi3_ddot*tmp1235 + phi4_ddot*tmp1238 + phi5_ddot*tmp1242
+        + phi6_ddot*tmp1247 + phi7_ddot*tmp1253 + phi8_ddot*tmp1260 + phi9_ddot*tmp1268;
+    const Scalar tmp1316 = -tmp396*tmp1049 - tmp397*tmp1062 - tmp398*tmp1075 - tmp399*tmp1089
+        - tmp400*tmp1104 - tmp401*tmp1119 - tmp402*tmp1136 - tmp390*tmp979 - tmp389*tmp981
+        - tmp391*tmp998 - tmp392*tmp1006 - tmp393*tmp1015 - tmp394*tmp1026 - tmp395*tmp1038
+        - tmp41*tmp1289 - tmp38*tmp1290 - tmp64*tmp1291 - tmp72*tmp1292 - tmp86*tmp1293
+        - tmp97*tmp1294 - tmp114*tmp1295 - tmp125*tmp1296 - tmp143*tmp1297 - tmp156*tmp1298
+        - tmp175*tmp1299 - tmp190*tmp1300 - tmp210*tmp1301 - tmp227*tmp1302;
+    dr_dq_data[3 + 10 * 1] = phi10_ddot*tmp1278 - tmp1306 - tmp1316 + phi1_ddot*tmp1236
+        + phi2_ddot*tmp1237 + phi3_ddot*tmp1238 + phi4_ddot*tmp1239 + phi5_ddot*tmp1243
+        + phi6_ddot*tmp1248 + phi7_ddot*tmp1254 + phi8_ddot*tmp1261 + phi9_ddot*tmp1269;
+    const Scalar tmp1317 = -tmp396*tmp1048 - tmp397*tmp1057 - tmp398*tmp1074 - tmp399*tmp1083
+        - tmp400*tmp1103 - tmp401*tmp1112 - tmp402*tmp1135 - tmp392*tmp993 - tmp391*tmp995
+        - tmp393*tmp1013 - tmp394*tmp1025 - tmp395*tmp1033 - tmp60*tmp1291 - tmp57*tmp1292
+        - tmp84*tmp1293 - tmp96*tmp1294 - tmp109*tmp1295 - tmp124*tmp1296 - tmp138*tmp1297
+        - tmp155*tmp1298 - tmp169*tmp1299 - tmp189*tmp1300 - tmp203*tmp1301 - tmp226*tmp1302;
+    dr_dq_data[4 + 10 * 1] = phi9_ddot*tmp1270 + phi10_ddot*tmp1279 - tmp1307 - tmp1317
+        + phi1_ddot*tmp1240 + phi2_ddot*tmp1241 + phi3_ddot*tmp1242 + phi4_ddot*tmp1243
+        + phi5_ddot*tmp1244 + phi6_ddot*tmp1249 + phi7_ddot*tmp1255 + phi8_ddot*tmp1262;
+    const Scalar tmp1318 = -tmp396*tmp1047 - tmp397*tmp1059 - tmp398*tmp1073 - tmp399*tmp1086
+        - tmp400*tmp1102 - tmp401*tmp1115 - tmp402*tmp1134 - tmp394*tmp1010 - tmp393*tmp1012
+        - tmp395*tmp1035 - tmp82*tmp1293 - tmp79*tmp1294 - tmp111*tmp1295 - tmp123*tmp1296
+        - tmp140*tmp1297 - tmp154*tmp1298 - tmp172*tmp1299 - tmp188*tmp1300 - tmp206*tmp1301
+        - tmp225*tmp1302;
+    dr_dq_data[5 + 10 * 1] = phi9_ddot*tmp1271 + phi10_ddot*tmp1280 - tmp1308 - tmp1318
+        + phi1_ddot*tmp1245 + phi2_ddot*tmp1246 + phi3_ddot*tmp1247 + phi4_ddot*tmp1248
+        + phi5_ddot*tmp1249 + phi6_ddot*tmp1250 + phi7_ddot*tmp1256 + phi8_ddot*tmp1263;
+    const Scalar tmp1319 = -tmp397*tmp1056 - tmp398*tmp1072 - tmp399*tmp1082 - tmp400*tmp1101
+        - tmp401*tmp1117 - tmp402*tmp1133 - tmp396*tmp1030 - tmp395*tmp1032 - tmp107*tmp1295
+        - tmp104*tmp1296 - tmp137*tmp1297 - tmp153*tmp1298 - tmp168*tmp1299 - tmp187*tmp1300
+        - tmp208*tmp1301 - tmp224*tmp1302;
+    dr_dq_data[6 + 10 * 1] = phi9_ddot*tmp1272 + phi10_ddot*tmp1281 - tmp1309 - tmp1319
+        + phi1_ddot*tmp1251 + phi2_ddot*tmp1252 + phi3_ddot*tmp1253 + phi4_ddot*tmp1254
+        + phi5_ddot*tmp1255 + phi6_ddot*tmp1256 + phi7_ddot*tmp1257 + phi8_ddot*tmp1264;
+    const Scalar tmp1320 = -tmp398*tmp1053 - tmp397*tmp1055 - tmp399*tmp1085 - tmp400*tmp1100
+        - tmp401*tmp1114 - tmp402*tmp1132 - tmp135*tmp1297 - tmp132*tmp1298 - tmp171*tmp1299
+        - tmp186*tmp1300 - tmp205*tmp1301 - tmp223*tmp1302;
+    dr_dq_data[7 + 10 * 1] = phi9_ddot*tmp1273 + phi10_ddot*tmp1282 - tmp1310 - tmp1320
+        + phi1_ddot*tmp1258 + phi2_ddot*tmp1259 + phi3_ddot*tmp1260 + phi4_ddot*tmp1261
+        + phi5_ddot*tmp1262 + phi6_ddot*tmp1263 + phi7_ddot*tmp1264 + phi8_ddot*tmp1265;
+    const Scalar tmp1321 = -tmp400*tmp1079 - tmp399*tmp1081 - tmp401*tmp1111 - tmp402*tmp1131
+        - tmp166*tmp1299 - tmp163*tmp1300 - tmp202*tmp1301 - tmp222*tmp1302;
+    dr_dq_data[8 + 10 * 1] = phi5_ddot*tmp1270 + phi6_ddot*tmp1271 + phi7_ddot*tmp1272
+        + phi8_ddot*tmp1273 + phi9_ddot*tmp1274 + phi10_ddot*tmp1283 - tmp1311 - tmp1321
+        + phi1_ddot*tmp1266 + phi2_ddot*tmp1267 + phi3_ddot*tmp1268 + phi4_ddot*tmp1269;
+    const Scalar tmp1322 = -tmp402*tmp1108 - tmp401*tmp1110 - tmp200*tmp1301 - tmp197*tmp1302;
+    dr_dq_data[9 + 10 * 1] = phi1_ddot*tmp1275 + phi2_ddot*tmp1276 + phi3_ddot*tmp1277
+        + phi4_ddot*tmp1278 + phi5_ddot*tmp1279 + phi6_ddot*tmp1280 + phi7_ddot*tmp1281
+        + phi8_ddot*tmp1282 + phi9_ddot*tmp1283 + phi10_ddot*tmp1284 - tmp1312 - tmp1322;
+    const Scalar tmp1323 = l*tmp24;
+    const Scalar tmp1324 = -tmp21;
+    const Scalar tmp1325 = l*tmp1324;
+    const Scalar tmp1326 = phi3_dot*tmp1325;
+    const Scalar tmp1327 = phi2_dot*tmp1325 + tmp1326;
+    const Scalar tmp1328 = phi1_dot*tmp1325 + tmp1327;
+    const Scalar tmp1329 = phi3_dot*tmp1323;
+    const Scalar tmp1330 = l*tmp40;
+    const Scalar tmp1331 = -tmp37;
+    const Scalar tmp1332 = l*tmp1331;
+    const Scalar tmp1333 = tmp1325 + tmp1332;
+    const Scalar tmp1334 = tmp1325 + tmp1332;
+    const Scalar tmp1335 = phi4_dot*tmp1332;
+    const Scalar tmp1336 = phi3_dot*tmp1333 + tmp1335;
+    const Scalar tmp1337 = phi2_dot*tmp1334 + tmp1336;
+    const Scalar tmp1338 = phi1_dot*tmp1333 + tmp1337;
+    const Scalar tmp1339 = phi4_dot*tmp1330;
+    const Scalar tmp1340 = tmp1323 + tmp1330;
+    const Scalar tmp1341 = tmp1323 + tmp1330;
+    const Scalar tmp1342 = l*tmp59;
+    const Scalar tmp1343 = -tmp56;
+    const Scalar tmp1344 = l*tmp1343;
+    const Scalar tmp1345 = tmp1333 + tmp1344;
+    const Scalar tmp1346 = tmp1332 + tmp1344;
+    const Scalar tmp1347 = tmp1325 + tmp1346;
+    const Scalar tmp1348 = phi5_dot*tmp1344;
+    const Scalar tmp1349 = phi4_dot*tmp1346 + tmp1348;
+    const Scalar tmp1350 = phi3_dot*tmp1345 + tmp1349;
+    const Scalar tmp1351 = phi2_dot*tmp1347 + tmp1350;
+    const Scalar tmp1352 = phi1_dot*tmp1345 + tmp1351;
+    const Scalar tmp1353 = phi5_dot*tmp1342;
+    const Scalar tmp1354 = tmp1330 + tmp1342;
+    const Scalar tmp1355 = tmp1340 + tmp1342;
+    const Scalar tmp1356 = tmp1323 + tmp1354;
+    const Scalar tmp1357 = l*tmp81;
+    const Scalar tmp1358 = -tmp78;
+    const Scalar tmp1359 = l*tmp1358;
+    const Scalar tmp1360 = tmp1344 + tmp1359;
+    const Scalar tmp1361 = tmp1333 + tmp1360;
+    const Scalar tmp1362 = tmp1346 + tmp1359;
+    const Scalar tmp1363 = tmp1325 + tmp1362;
+    const Scalar tmp1364 = tmp1333 + tmp1360;
+    const Scalar tmp1365 = phi6_dot*tmp1359;
+    const Scalar tmp1366 = phi5_dot*tmp1360 + tmp1365;
+    const Scalar tmp1367 = phi4_dot*tmp1362 + tmp1366;
+    const Scalar tmp1368 = phi3_dot*tmp1364 + tmp1367;
+    const Scalar tmp1369 = phi2_dot*tmp1363 + tmp1368;
+    const Scalar tmp1370 = phi1_dot*tmp1361 + tmp1369;
+    const Scalar tmp1371 = phi6_dot*tmp1357;
+    const Scalar tmp1372 = tmp1342 + tmp1357;
+    const Scalar tmp1373 = tmp1354 + tmp1357;
+    const Scalar tmp1374 = tmp1340 + tmp1372;
+    const Scalar tmp1375 = tmp1323 + tmp1373;
+    const Scalar tmp1376 = tmp1340 + tmp1372;
+    const Scalar tmp1377 = l*tmp106;
+    const Scalar tmp1378 = -tmp103;
+    const Scalar tmp1379 = l*tmp1378;
+    const Scalar tmp1380 = tmp1360 + tmp1379;
+    const Scalar tmp1381 = tmp1333 + tmp1380;
+    const Scalar tmp1382 = tmp1359 + tmp1379;
+    const Scalar tmp1383 = tmp1347 + tmp1382;
+    const Scalar tmp1384 = tmp1333 + tmp1380;
+    const Scalar tmp1385 = tmp1346 + tmp1382;
+    const Scalar tmp1386 = phi7_dot*tmp1379;
+    const Scalar tmp1387 = phi6_dot*tmp1382 + tmp1386;
+    const Scalar tmp1388 = phi5_dot*tmp1380 + tmp1387;
+    const Scalar tmp1389 = phi4_dot*tmp1385 + tmp1388;
+    const Scalar tmp1390 = phi3_dot*tmp1384 + tmp1389;
+    const Scalar tmp1391 = phi2_dot*tmp1383 + tmp1390;
+    const Scalar tmp1392 = tmp1391 + phi1_dot*tmp1381;
+    const Scalar tmp1393 = phi7_dot*tmp1377;
+    const Scalar tmp1394 = tmp1357 + tmp1377;
+    const Scalar tmp1395 = tmp1372 + tmp1377;
+    const Scalar tmp1396 = tmp1394 + tmp1354;
+    const Scalar tmp1397 = tmp1395 + tmp1340;
+    const Scalar tmp1398 = tmp1394 + tmp1356;
+    const Scalar tmp1399 = tmp1395 + tmp1340;
+    const Scalar tmp1400 = l*tmp134;
+    const Scalar tmp1401 = -tmp131;
+    const Scalar tmp1402 = l*tmp1401;
+    const Scalar tmp1403 = tmp1402 + tmp1379;
+    const Scalar tmp1404 = tmp1403 + tmp1360;
+    const Scalar tmp1405 = tmp1404 + tmp1333;
+    const Scalar tmp1406 = tmp1402 + tmp1382;
+    const Scalar tmp1407 = tmp1406 + tmp1347;
+    const Scalar tmp1408 = tmp1403 + tmp1364;
+    const Scalar tmp1409 = tmp1406 + tmp1346;
+    const Scalar tmp1410 = phi8_dot*tmp1402;
+    const Scalar tmp1411 = phi7_dot*tmp1403 + tmp1410;
+    const Scalar tmp1412 = phi6_dot*tmp1406 + tmp1411;
+    const Scalar tmp1413 = phi5_dot*tmp1404 + tmp1412;
+    const Scalar tmp1414 = phi4_dot*tmp1409 + tmp1413;
+    const Scalar tmp1415 = phi3_dot*tmp1408 + tmp1414;
+    const Scalar tmp1416 = phi2_dot*tmp1407 + tmp1415;
+    const Scalar tmp1417 = phi1_dot*tmp1405 + tmp1416;
+    const Scalar tmp1418 = phi8_dot*tmp1400;
+    const Scalar tmp1419 = tmp1400 + tmp1377;
+    const Scalar tmp1420 = tmp1394 + tmp1400;
+    const Scalar tmp1421 = tmp1419 + tmp1372;
+    const Scalar tmp1422 = tmp1420 + tmp1354;
+    const Scalar tmp1423 = tmp1419 + tmp1374;
+    const Scalar tmp1424 = tmp1420 + tmp1356;
+    const Scalar tmp1425 = tmp1421 + tmp1340;
+    const Scalar tmp1426 = l*tmp165;
+    const Scalar tmp1427 = -tmp162;
+    const Scalar tmp1428 = l*tmp1427;
+    const Scalar tmp1429 = tmp1403 + tmp1428;
+    const Scalar tmp1430 = tmp1429 + tmp1360;
+    const Scalar tmp1431 = tmp1430 + tmp1333;
+    const Scalar tmp1432 = tmp1402 + tmp1428;
+    const Scalar tmp1433 = tmp1432 + tmp1382;
+    const Scalar tmp1434 = tmp1433 + tmp1347;
+    const Scalar tmp1435 = tmp1429 + tmp1364;
+    const Scalar tmp1436 = tmp1432 + tmp1385;
+    const Scalar tmp1437 = phi9_dot*tmp1428;
+    const Scalar tmp1438 = phi8_dot*tmp1432 + tmp1437;
+    const Scalar tmp1439 = phi7_dot*tmp1429 + tmp1438;
+    const Scalar tmp1440 = phi6_dot*tmp1433 + tmp1439;
+    const Scalar tmp1441 = phi5_dot*tmp1430 + tmp1440;
+    const Scalar tmp1442 = phi4_dot*tmp1436 + tmp1441;
+    const Scalar tmp1443 = phi3_dot*tmp1435 + tmp1442;
+    const Scalar tmp1444 = phi2_dot*tmp1434 + tmp1443;
+    const Scalar tmp1445 = phi1_dot*tmp1431 + tmp1444;
+    const Scalar tmp1446 = phi9_dot*tmp1426;
+    const Scalar tmp1447 = tmp1400 + tmp1426;
+    const Scalar tmp1448 = tmp1419 + tmp1426;
+    const Scalar tmp1449 = tmp1394 + tmp1447;
+    const Scalar tmp1450 = tmp1448 + tmp1372;
+    const Scalar tmp1451 = tmp1396 + tmp1447;
+    const Scalar tmp1452 = tmp1448 + tmp1374;
+    const Scalar tmp1453 = tmp1449 + tmp1356;
+    const Scalar tmp1454 = tmp1450 + tmp1340;
+    const Scalar tmp1455 = l*tmp199;
+    const Scalar tmp1456 = -tmp196;
+    const Scalar tmp1457 = l*tmp1456;
+    const Scalar tmp1458 = tmp1428 + tmp1457;
+    const Scalar tmp1459 = tmp1404 + tmp1458;
+    const Scalar tmp1460 = tmp1459 + tmp1333;
+    const Scalar tmp1461 = tmp1432 + tmp1457;
+    const Scalar tmp1462 = tmp1461 + tmp1382;
+    const Scalar tmp1463 = tmp1462 + tmp1347;
+    const Scalar tmp1464 = tmp1403 + tmp1458;
+    const Scalar tmp1465 = tmp1464 + tmp1364;
+    const Scalar tmp1466 = tmp1461 + tmp1385;
+    const Scalar tmp1467 = phi10_dot*tmp1457;
+    const Scalar tmp1468 = phi9_dot*tmp1458 + tmp1467;
+    const Scalar tmp1469 = phi8_dot*tmp1461 + tmp1468;
+    const Scalar tmp1470 = phi7_dot*tmp1464 + tmp1469;
+    const Scalar tmp1471 = phi6_dot*tmp1462 + tmp1470;
+    const Scalar tmp1472 = phi5_dot*tmp1459 + tmp1471;
+    const Scalar tmp1473 = phi4_dot*tmp1466 + tmp1472;
+    const Scalar tmp1474 = phi3_dot*tmp1465 + tmp1473;
+    const Scalar tmp1475 = phi2_dot*tmp1463 + tmp1474;
+    const Scalar tmp1476 = phi1_dot*tmp1460 + tmp1475;
+    const Scalar tmp1477 = phi10_dot*tmp1455;
+    const Scalar tmp1478 = tmp1426 + tmp1455;
+    const Scalar tmp1479 = tmp1447 + tmp1455;
+    const Scalar tmp1480 = tmp1419 + tmp1478;
+    const Scalar tmp1481 = tmp1394 + tmp1479;
+    const Scalar tmp1482 = tmp1421 + tmp1478;
+    const Scalar tmp1483 = tmp1396 + tmp1479;
+    const Scalar tmp1484 = tmp1480 + tmp1374;
+    const Scalar tmp1485 = tmp1481 + tmp1356;
+    const Scalar tmp1486 = tmp1482 + tmp1340;
+    const Scalar tmp1487 = -tmp1323;
+    const Scalar tmp1488 = phi2_dot*tmp1487 - tmp1329;
+    const Scalar tmp1489 = (-(phi1_dot*phi1_dot) + phi3_dot*(-phi1_dot - phi2_dot))*tmp1323
+        + phi1_dot*phi2_dot*tmp1487 + (phi1_dot + phi2_dot)*tmp1488 - phi3_dot*tmp1329;
+    const Scalar tmp1490 = (phi1_dot*phi2_dot + phi3_dot*(phi1_dot + phi2_dot))*tmp1325
+        + phi3_dot*tmp1326 + phi2_dot*tmp1327 + phi1_dot*tmp1328;
+    const Scalar tmp1491 = -tmp1340;
+    const Scalar tmp1492 = phi3_dot*tmp1491 - tmp1339;
+    const Scalar tmp1493 = -tmp1341;
+    const Scalar tmp1494 = tmp1492 + phi2_dot*tmp1493;
+    const Scalar tmp1495 = phi3_dot*(phi1_dot + phi2_dot)*tmp1491 + phi3_dot*tmp1492
+        + phi1_dot*phi2_dot*tmp1493 + (phi1_dot + phi2_dot)*tmp1494
+        + phi4_dot*(-phi1_dot - phi2_dot - phi3_dot)*tmp1330 - phi4_dot*tmp1339
+        - (phi1_dot*phi1_dot)*tmp1340;
+    const Scalar tmp1496 = phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp1332
+        + phi3_dot*(phi1_dot + phi2_dot)*tmp1333 + phi1_dot*phi2_dot*tmp1334 + phi4_dot*tmp1335
+        + phi3_dot*tmp1336 + phi2_dot*tmp1337 + phi1_dot*tmp1338;
+    const Scalar tmp1497 = -tmp1354;
+    const Scalar tmp1498 = phi4_dot*tmp1497 - tmp1353;
+    const Scalar tmp1499 = -tmp1355;
+    const Scalar tmp1500 = tmp1498 + phi3_dot*tmp1499;
+    const Scalar tmp1501 = -tmp1356;
+    const Scalar tmp1502 = tmp1500 + phi2_dot*tmp1501;
+    const Scalar tmp1503 = phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp1497 + phi4_dot*tmp1498
+        + phi3_dot*(phi1_dot + phi2_dot)*tmp1499 + phi3_dot*tmp1500 + phi1_dot*phi2_dot*tmp1501
+        + (phi1_dot + phi2_dot)*tmp1502
+        + phi5_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot)*tmp1342 - phi5_dot*tmp1353
+        - (phi1_dot*phi1_dot)*tmp1355;
+    const Scalar tmp1504 = phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp1344
+        + phi3_dot*(phi1_dot + phi2_dot)*tmp1345 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp1346
+        + phi1_dot*phi2_dot*tmp1347 + phi5_dot*tmp1348 + phi4_dot*tmp1349 + phi3_dot*tmp1350
+        + phi2_dot*tmp1351 + phi1_dot*tmp1352;
+    const Scalar tmp1505 = -tmp1372;
+    const Scalar tmp1506 = phi5_dot*tmp1505 - tmp1371;
+    const Scalar tmp1507 = -tmp1373;
+    const Scalar tmp1508 = tmp1506 + phi4_dot*tmp1507;
+    const Scalar tmp1509 = -tmp1374;
+    const Scalar tmp1510 = tmp1508 + phi3_dot*tmp1509;
+    const Scalar tmp1511 = -tmp1375;
+    const Scalar tmp1512 = tmp1510 + phi2_dot*tmp1511;
+    const Scalar tmp1513 = phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp1505
+        + phi5_dot*tmp1506 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp1507 + phi4_dot*tmp1508
+        + phi3_dot*(phi1_dot + phi2_dot)*tmp1509 + phi3_dot*tmp1510 + phi1_dot*phi2_dot*tmp1511
+        + (phi1_dot + phi2_dot)*tmp1512
+        + phi6_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot)*tmp1357
+        - phi6_dot*tmp1371 - (phi1_dot*phi1_dot)*tmp1376;
+    const Scalar tmp1514 = phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp1359
+        + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp1360
+        + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp1362 + phi1_dot*phi2_dot*tmp1363
+        + phi3_dot*(phi1_dot + phi2_dot)*tmp1364 + phi6_dot*tmp1365 + phi5_dot*tmp1366
+        + phi4_dot*tmp1367 + phi3_dot*tmp1368 + phi2_dot*tmp1369 + phi1_dot*tmp1370;
+    const Scalar tmp1515 = -tmp1394;
+    const Scalar tmp1516 = -tmp1393 + phi6_dot*tmp1515;
+    const Scalar tmp1517 = -tmp1395;
+    const Scalar tmp1518 = tmp1516 + phi5_dot*tmp1517;
+    const Scalar tmp1519 = -tmp1396;
+    const Scalar tmp1520 = tmp1518 + phi4_dot*tmp1519;
+    const Scalar tmp1521 = -tmp1397;
+    const Scalar tmp1522 = tmp1520 + phi3_dot*tmp1521;
+    const Scalar tmp1523 = -tmp1398;
+    const Scalar tmp1524 = tmp1522 + phi2_dot*tmp1523;
+    const Scalar tmp1525 = -phi7_dot*tmp1393 - (phi1_dot*phi1_dot)*tmp1399
+        + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp1515 + phi6_dot*tmp1516
+        + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp1517 + phi5_dot*tmp1518
+        + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp1519 + phi4_dot*tmp1520
+        + phi3_dot*(phi1_dot + phi2_dot)*tmp1521 + phi3_dot*tmp1522 + phi1_dot*phi2_dot*tmp1523
+        + (phi1_dot + phi2_dot)*tmp1524
+        + phi7_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot - phi6_dot)*tmp1377;
+    const Scalar tmp1526 = phi2_dot*tmp1391 + phi1_dot*tmp1392
+        + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp1379
+        + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp1380
+        + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp1382
+        + phi1_dot*phi2_dot*tmp1383 + phi3_dot*(phi1_dot + phi2_dot)*tmp1384
+        + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp1385 + phi7_dot*tmp1386 + phi6_dot*tmp1387
+        + phi5_dot*tmp1388 + phi4_dot*tmp1389 + phi3_dot*tmp1390;
+    const Scalar tmp1527 = -tmp1419;
+    const Scalar tmp1528 = -tmp1418 + phi7_dot*tmp1527;
+    const Scalar tmp1529 = -tmp1420;
+    const Scalar tmp1530 = tmp1528 + phi6_dot*tmp1529;
+    const Scalar tmp1531 = -tmp1421;
+    const Scalar tmp1532 = tmp1530 + phi5_dot*tmp1531;
+    const Scalar tmp1533 = -tmp1422;
+    const Scalar tmp1534 = tmp1532 + phi4_dot*tmp1533;
+    const Scalar tmp1535 = -tmp1423;
+    const Scalar tmp1536 = tmp1534 + phi3_dot*tmp1535;
+    const Scalar tmp1537 = -tmp1424;
+    const Scalar tmp1538 = tmp1536 + phi2_dot*tmp1537;
+    const Scalar tmp1539 = phi8_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot
+            - phi6_dot - phi7_dot)*tmp1400
+        - phi8_dot*tmp1418 - (phi1_dot*phi1_dot)*tmp1425
+        + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp1527
+        + phi7_dot*tmp1528 + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp1529
+        + phi6_dot*tmp1530 + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp1531
+        + phi5_dot*tmp1532 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp1533 + phi4_dot*tmp1534
+        + phi3_dot*(phi1_dot + phi2_dot)*tmp1535 + phi3_dot*tmp1536 + phi1_dot*phi2_dot*tmp1537
+        + (phi1_dot + phi2_dot)*tmp1538;
+    const Scalar tmp1540 = phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot
+            + phi7_dot)*tmp1402
+        + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp1403
+        + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp1404
+        + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp1406
+        + phi1_dot*phi2_dot*tmp1407 + phi3_dot*(phi1_dot + phi2_dot)*tmp1408
+        + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp1409 + phi8_dot*tmp1410 + phi7_dot*tmp1411
+        + phi6_dot*tmp1412 + phi5_dot*tmp1413 + phi4_dot*tmp1414 + phi3_dot*tmp1415
+        + phi2_dot*tmp1416 + phi1_dot*tmp1417;
+    const Scalar tmp1541 = -tmp1447;
+    const Scalar tmp1542 = -tmp1446 + phi8_dot*tmp1541;
+    const Scalar tmp1543 = -tmp1448;
+    const Scalar tmp1544 = tmp1542 + phi7_dot*tmp1543;
+    const Scalar tmp1545 = -tmp1449;
+    const Scalar tmp1546 = tmp1544 + phi6_dot*tmp1545;
+    const Scalar tmp1547 = -tmp1450;
+    const Scalar tmp1548 = tmp1546 + phi5_dot*tmp1547;
+    const Scalar tmp1549 = -tmp1451;
+    const Scalar tmp1550 = tmp1548 + phi4_dot*tmp1549;
+    const Scalar tmp1551 = -tmp1452;
+    const Scalar tmp1552 = tmp1550 + phi3_dot*tmp1551;
+    const Scalar tmp1553 = -tmp1453;
+    const Scalar tmp1554 = tmp1552 + phi2_dot*tmp1553;
+    const Scalar tmp1555 = phi9_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot
+            - phi6_dot - phi7_dot - phi8_dot)*tmp1426
+        - phi9_dot*tmp1446 - (phi1_dot*phi1_dot)*tmp1454
         + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot
-            + phi7_dot)*tmp1500
-        + phi8_dot*tmp1501
-        + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp1502
-        + phi7_dot*tmp1503 + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp1504
-        + phi6_dot*tmp1505 + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp1506
-        + phi5_dot*tmp1507 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp1508 + phi4_dot*tmp1509
-        + phi3_dot*(phi1_dot + phi2_dot)*tmp1510 + phi3_dot*tmp1511 + phi1_dot*phi2_dot*tmp1512
-        + (phi1_dot + phi2_dot)*tmp1513;
-    const Scalar tmp1515 = phi9_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot
-            + phi7_dot + phi8_dot)*tmp1387
-        + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp1388
-        + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp1389
+            + phi7_dot)*tmp1541
+        + phi8_dot*tmp1542
+        + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp1543
+        + phi7_dot*tmp1544 + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp1545
+        + phi6_dot*tmp1546 + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp1547
+        + phi5_dot*tmp1548 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp1549 + phi4_dot*tmp1550
+        + phi3_dot*(phi1_dot + phi2_dot)*tmp1551 + phi3_dot*tmp1552 + phi1_dot*phi2_dot*tmp1553
+        + (phi1_dot + phi2_dot)*tmp1554;
+    const Scalar tmp1556 = phi9_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot
+            + phi7_dot + phi8_dot)*tmp1428
+        + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp1429
+        + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp1430
         + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot
-            + phi7_dot)*tmp1391
-        + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp1392
-        + phi1_dot*phi2_dot*tmp1393 + phi3_dot*(phi1_dot + phi2_dot)*tmp1394
-        + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp1395 + phi9_dot*tmp1396 + phi8_dot*tmp1397
-        + phi7_dot*tmp1398 + phi6_dot*tmp1399 + phi5_dot*tmp1400 + phi4_dot*tmp1401
-        + phi3_dot*tmp1402 + phi2_dot*tmp1403 + phi1_dot*tmp1404;
-    const Scalar tmp1516 = -tmp1437;
-    const Scalar tmp1517 = -tmp1436 + phi9_dot*tmp1516;
-    const Scalar tmp1518 = -tmp1438;
-    const Scalar tmp1519 = tmp1517 + phi8_dot*tmp1518;
-    const Scalar tmp1520 = -tmp1439;
-    const Scalar tmp1521 = tmp1519 + phi7_dot*tmp1520;
-    const Scalar tmp1522 = -tmp1440;
-    const Scalar tmp1523 = tmp1521 + phi6_dot*tmp1522;
-    const Scalar tmp1524 = -tmp1441;
-    const Scalar tmp1525 = tmp1523 + phi5_dot*tmp1524;
-    const Scalar tmp1526 = -tmp1442;
-    const Scalar tmp1527 = tmp1525 + phi4_dot*tmp1526;
-    const Scalar tmp1528 = -tmp1443;
-    const Scalar tmp1529 = tmp1527 + phi3_dot*tmp1528;
-    const Scalar tmp1530 = -tmp1444;
-    const Scalar tmp1531 = tmp1529 + phi2_dot*tmp1530;
-    const Scalar tmp1532 = phi10_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot
-            - phi6_dot - phi7_dot - phi8_dot - phi9_dot)*tmp1414
-        - phi10_dot*tmp1436 - (phi1_dot*phi1_dot)*tmp1445
+            + phi7_dot)*tmp1432
+        + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp1433
+        + phi1_dot*phi2_dot*tmp1434 + phi3_dot*(phi1_dot + phi2_dot)*tmp1435
+        + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp1436 + phi9_dot*tmp1437 + phi8_dot*tmp1438
+        + phi7_dot*tmp1439 + phi6_dot*tmp1440 + phi5_dot*tmp1441 + phi4_dot*tmp1442
+        + phi3_dot*tmp1443 + phi2_dot*tmp1444 + phi1_dot*tmp1445;
+    const Scalar tmp1557 = -tmp1478;
+    const Scalar tmp1558 = -tmp1477 + phi9_dot*tmp1557;
+    const Scalar tmp1559 = -tmp1479;
+    const Scalar tmp1560 = tmp1558 + phi8_dot*tmp1559;
+    const Scalar tmp1561 = -tmp1480;
+    const Scalar tmp1562 = tmp1560 + phi7_dot*tmp1561;
+    const Scalar tmp1563 = -tmp1481;
+    const Scalar tmp1564 = tmp1562 + phi6_dot*tmp1563;
+    const Scalar tmp1565 = -tmp1482;
+    const Scalar tmp1566 = tmp1564 + phi5_dot*tmp1565;
+    const Scalar tmp1567 = -tmp1483;
+    const Scalar tmp1568 = tmp1566 + phi4_dot*tmp1567;
+    const Scalar tmp1569 = -tmp1484;
+    const Scalar tmp1570 = tmp1568 + phi3_dot*tmp1569;
+    const Scalar tmp1571 = -tmp1485;
+    const Scalar tmp1572 = tmp1570 + phi2_dot*tmp1571;
+    const Scalar tmp1573 = phi10_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot
+            - phi6_dot - phi7_dot - phi8_dot - phi9_dot)*tmp1455
+        - phi10_dot*tmp1477 - (phi1_dot*phi1_dot)*tmp1486
         + phi9_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot
-            + phi8_dot)*tmp1516
-        + phi9_dot*tmp1517
+            + phi8_dot)*tmp1557
+        + phi9_dot*tmp1558
         + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot
-            + phi7_dot)*tmp1518
-        + phi8_dot*tmp1519
-        + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp1520
-        + phi7_dot*tmp1521 + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp1522
-        + phi6_dot*tmp1523 + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp1524
-        + phi5_dot*tmp1525 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp1526 + phi4_dot*tmp1527
-        + phi3_dot*(phi1_dot + phi2_dot)*tmp1528 + phi3_dot*tmp1529 + phi1_dot*phi2_dot*tmp1530
-        + (phi1_dot + phi2_dot)*tmp1531;
-    const Scalar tmp1533 = phi10_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot
-            + phi6_dot + phi7_dot + phi8_dot + phi9_dot)*tmp1416
+            + phi7_dot)*tmp1559
+        + phi8_dot*tmp1560
+        + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp1561
+        + phi7_dot*tmp1562 + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp1563
+        + phi6_dot*tmp1564 + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp1565
+        + phi5_dot*tmp1566 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp1567 + phi4_dot*tmp1568
+        + phi3_dot*(phi1_dot + phi2_dot)*tmp1569 + phi3_dot*tmp1570 + phi1_dot*phi2_dot*tmp1571
+        + (phi1_dot + phi2_dot)*tmp1572;
+    const Scalar tmp1574 = phi10_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot
+            + phi6_dot + phi7_dot + phi8_dot + phi9_dot)*tmp1457
         + phi9_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot
-            + phi8_dot)*tmp1417
-        + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp1418
+            + phi8_dot)*tmp1458
+        + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp1459
         + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot
-            + phi7_dot)*tmp1420
-        + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp1421
-        + phi1_dot*phi2_dot*tmp1422
-        + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp1423
-        + phi3_dot*(phi1_dot + phi2_dot)*tmp1424 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp1425
-        + phi10_dot*tmp1426 + phi9_dot*tmp1427 + phi8_dot*tmp1428 + phi7_dot*tmp1429
-        + phi6_dot*tmp1430 + phi5_dot*tmp1431 + phi4_dot*tmp1432 + phi3_dot*tmp1433
-        + phi2_dot*tmp1434 + phi1_dot*tmp1435;
-    const Scalar tmp1534 = Scalar(2)*tmp128*m*tmp1358 + Scalar(2)*tmp139*m*tmp1364
-        + Scalar(2)*tmp159*m*tmp1384 + Scalar(2)*tmp170*m*tmp1390 + Scalar(2)*tmp193*m*tmp1413
-        + Scalar(2)*tmp204*m*tmp1419 + Scalar(2)*tmp27*m*tmp1284 + Scalar(2)*tmp230*m*tmp1445
-        + Scalar(2)*tmp34*m*tmp1282 + Scalar(2)*tmp44*m*tmp1292 + Scalar(2)*tmp53*m*tmp1299
-        + Scalar(2)*tmp63*m*tmp1304 + Scalar(2)*tmp75*m*tmp1314 + Scalar(2)*tmp85*m*tmp1320
-        + Scalar(2)*tmp100*m*tmp1335 + Scalar(2)*tmp110*m*tmp1340;
-    const Scalar tmp1535 = tmp128*m*tmp1357 + tmp127*m*tmp1358 + tmp141*m*tmp1364 + tmp139*m*tmp1366
-        + tmp159*m*tmp1383 + tmp158*m*tmp1384 + tmp173*m*tmp1390 + tmp170*m*tmp1393
-        + tmp193*m*tmp1412 + tmp192*m*tmp1413 + tmp207*m*tmp1419 + tmp204*m*tmp1422
-        + (tmp27*m + tmp28*m)*tmp1284 + tmp230*m*tmp1444 + tmp229*m*tmp1445
-        + (tmp33*m + tmp34*m)*tmp1282 + tmp45*m*tmp1292 + tmp44*m*tmp1293 + tmp53*m*tmp1300
-        + tmp52*m*tmp1299 + tmp65*m*tmp1304 + tmp63*m*tmp1306 + tmp75*m*tmp1315 + tmp74*m*tmp1314
-        + tmp87*m*tmp1320 + tmp85*m*tmp1322 + tmp100*m*tmp1334 + tmp99*m*tmp1335 + tmp112*m*tmp1340
-        + tmp110*m*tmp1342;
-    const Scalar tmp1536 = Scalar(2)*tmp127*m*tmp1357 + Scalar(2)*tmp141*m*tmp1366
-        + Scalar(2)*tmp158*m*tmp1383 + Scalar(2)*tmp173*m*tmp1393 + Scalar(2)*tmp192*m*tmp1412
-        + Scalar(2)*tmp207*m*tmp1422 + Scalar(2)*tmp28*m*tmp1284 + Scalar(2)*tmp229*m*tmp1444
-        + Scalar(2)*tmp33*m*tmp1282 + Scalar(2)*tmp45*m*tmp1293 + Scalar(2)*tmp52*m*tmp1300
-        + Scalar(2)*tmp65*m*tmp1306 + Scalar(2)*tmp74*m*tmp1315 + Scalar(2)*tmp87*m*tmp1322
-        + Scalar(2)*tmp99*m*tmp1334 + Scalar(2)*tmp112*m*tmp1342;
-    const Scalar tmp1537 = tmp128*m*tmp1356 + tmp126*m*tmp1358 + tmp142*m*tmp1364 + tmp139*m*tmp1367
-        + tmp159*m*tmp1382 + tmp157*m*tmp1384 + tmp174*m*tmp1390 + tmp170*m*tmp1394
-        + (tmp22*m + tmp34*m)*tmp1282 + tmp193*m*tmp1411 + tmp191*m*tmp1413 + tmp209*m*tmp1419
-        + (tmp25*m + tmp27*m)*tmp1284 + tmp204*m*tmp1424 + tmp230*m*tmp1443 + tmp228*m*tmp1445
-        + (tmp43*m + tmp44*m)*tmp1292 + (tmp51*m + tmp53*m)*tmp1299 + (tmp62*m + tmp63*m)*tmp1304
-        + (tmp73*m + tmp75*m)*tmp1314 + tmp88*m*tmp1320 + tmp85*m*tmp1323 + tmp100*m*tmp1333
-        + tmp98*m*tmp1335 + tmp113*m*tmp1340 + tmp110*m*tmp1343;
-    const Scalar tmp1538 = tmp127*m*tmp1356 + tmp126*m*tmp1357 + tmp142*m*tmp1366 + tmp141*m*tmp1367
-        + tmp158*m*tmp1382 + tmp157*m*tmp1383 + tmp174*m*tmp1393 + tmp173*m*tmp1394
-        + (tmp22*m + tmp33*m)*tmp1282 + tmp192*m*tmp1411 + tmp191*m*tmp1412 + tmp209*m*tmp1422
-        + (tmp25*m + tmp28*m)*tmp1284 + tmp207*m*tmp1424 + tmp229*m*tmp1443 + tmp228*m*tmp1444
-        + tmp45*m*tmp1292 + tmp43*m*tmp1293 + tmp52*m*tmp1299 + tmp51*m*tmp1300 + tmp65*m*tmp1304
-        + tmp62*m*tmp1306 + tmp74*m*tmp1314 + tmp73*m*tmp1315 + tmp88*m*tmp1322 + tmp87*m*tmp1323
-        + tmp99*m*tmp1333 + tmp98*m*tmp1334 + tmp113*m*tmp1342 + tmp112*m*tmp1343;
-    const Scalar tmp1539 = Scalar(2)*tmp126*m*tmp1356 + Scalar(2)*tmp142*m*tmp1367
-        + Scalar(2)*tmp157*m*tmp1382 + Scalar(2)*tmp174*m*tmp1394 + Scalar(2)*tmp21*tmp325*m*tmp24
-        + Scalar(2)*tmp191*m*tmp1411 + Scalar(2)*tmp24*tmp325*m*tmp1283 + Scalar(2)*tmp209*m*tmp1424
-        + Scalar(2)*tmp228*m*tmp1443 + Scalar(2)*tmp43*m*tmp1292 + Scalar(2)*tmp51*m*tmp1299
-        + Scalar(2)*tmp62*m*tmp1304 + Scalar(2)*tmp73*m*tmp1314 + Scalar(2)*tmp88*m*tmp1323
-        + Scalar(2)*tmp98*m*tmp1333 + Scalar(2)*tmp113*m*tmp1343;
-    const Scalar tmp1540 = tmp128*m*tmp1355 + tmp125*m*tmp1358 + tmp143*m*tmp1364 + tmp139*m*tmp1368
-        + tmp159*m*tmp1381 + tmp156*m*tmp1384 + tmp175*m*tmp1390 + tmp170*m*tmp1395
-        + tmp193*m*tmp1410 + tmp190*m*tmp1413 + tmp210*m*tmp1419 + tmp204*m*tmp1425
-        + tmp230*m*tmp1442 + tmp227*m*tmp1445 + tmp53*m*tmp1289 + tmp44*m*tmp1291 + tmp41*m*tmp1292
-        + tmp38*m*tmp1299 + tmp64*m*tmp1304 + tmp63*m*tmp1305 + tmp75*m*tmp1313 + tmp72*m*tmp1314
-        + tmp86*m*tmp1320 + tmp85*m*tmp1321 + tmp100*m*tmp1332 + tmp97*m*tmp1335 + tmp114*m*tmp1340
-        + tmp110*m*tmp1344;
-    const Scalar tmp1541 = tmp127*m*tmp1355 + tmp125*m*tmp1357 + tmp143*m*tmp1366 + tmp141*m*tmp1368
-        + tmp158*m*tmp1381 + tmp156*m*tmp1383 + tmp175*m*tmp1393 + tmp173*m*tmp1395
-        + tmp192*m*tmp1410 + tmp190*m*tmp1412 + tmp210*m*tmp1422 + tmp207*m*tmp1425
-        + tmp229*m*tmp1442 + tmp227*m*tmp1444 + tmp52*m*tmp1289 + tmp45*m*tmp1291 + tmp41*m*tmp1293
-        + tmp38*m*tmp1300 + tmp65*m*tmp1305 + tmp64*m*tmp1306 + tmp74*m*tmp1313 + tmp72*m*tmp1315
-        + tmp87*m*tmp1321 + tmp86*m*tmp1322 + tmp99*m*tmp1332 + tmp97*m*tmp1334 + tmp114*m*tmp1342
-        + tmp112*m*tmp1344;
-    const Scalar tmp1542 = tmp126*m*tmp1355 + tmp125*m*tmp1356 + tmp143*m*tmp1367 + tmp142*m*tmp1368
-        + tmp157*m*tmp1381 + tmp156*m*tmp1382 + tmp175*m*tmp1394 + tmp174*m*tmp1395
-        + tmp191*m*tmp1410 + tmp190*m*tmp1411 + tmp210*m*tmp1424 + tmp209*m*tmp1425
-        + tmp228*m*tmp1442 + tmp227*m*tmp1443 + tmp51*m*tmp1289 + tmp43*m*tmp1291 + tmp41*m*tmp1292
-        + tmp38*m*tmp1299 + tmp64*m*tmp1304 + tmp62*m*tmp1305 + tmp73*m*tmp1313 + tmp72*m*tmp1314
-        + tmp88*m*tmp1321 + tmp86*m*tmp1323 + tmp98*m*tmp1332 + tmp97*m*tmp1333 + tmp114*m*tmp1343
-        + tmp113*m*tmp1344;
-    const Scalar tmp1543 = Scalar(2)*tmp125*m*tmp1355 + Scalar(2)*tmp143*m*tmp1368
-        + Scalar(2)*tmp156*m*tmp1381 + Scalar(2)*tmp175*m*tmp1395 + Scalar(2)*tmp190*m*tmp1410
-        + Scalar(2)*tmp210*m*tmp1425 + Scalar(2)*tmp227*m*tmp1442 + Scalar(2)*tmp325*tmp37*m*tmp40
-        + Scalar(2)*tmp325*tmp40*m*tmp1290 + Scalar(2)*tmp64*m*tmp1305 + Scalar(2)*tmp72*m*tmp1313
-        + Scalar(2)*tmp86*m*tmp1321 + Scalar(2)*tmp97*m*tmp1332 + Scalar(2)*tmp114*m*tmp1344;
-    const Scalar tmp1544 = tmp128*m*tmp1354 + tmp124*m*tmp1358 + tmp139*m*tmp1363 + tmp138*m*tmp1364
-        + tmp159*m*tmp1380 + tmp155*m*tmp1384 + tmp170*m*tmp1389 + tmp169*m*tmp1390
-        + tmp193*m*tmp1409 + tmp189*m*tmp1413 + tmp204*m*tmp1418 + tmp203*m*tmp1419
-        + tmp230*m*tmp1441 + tmp226*m*tmp1445 + tmp75*m*tmp1301 + tmp63*m*tmp1303 + tmp60*m*tmp1304
-        + tmp57*m*tmp1314 + tmp85*m*tmp1319 + tmp84*m*tmp1320 + tmp100*m*tmp1331 + tmp96*m*tmp1335
-        + tmp110*m*tmp1339 + tmp109*m*tmp1340;
-    const Scalar tmp1545 = tmp127*m*tmp1354 + tmp124*m*tmp1357 + tmp141*m*tmp1363 + tmp138*m*tmp1366
-        + tmp158*m*tmp1380 + tmp155*m*tmp1383 + tmp173*m*tmp1389 + tmp169*m*tmp1393
-        + tmp192*m*tmp1409 + tmp189*m*tmp1412 + tmp207*m*tmp1418 + tmp203*m*tmp1422
-        + tmp229*m*tmp1441 + tmp226*m*tmp1444 + tmp74*m*tmp1301 + tmp65*m*tmp1303 + tmp60*m*tmp1306
-        + tmp57*m*tmp1315 + tmp87*m*tmp1319 + tmp84*m*tmp1322 + tmp99*m*tmp1331 + tmp96*m*tmp1334
-        + tmp112*m*tmp1339 + tmp109*m*tmp1342;
-    const Scalar tmp1546 = tmp126*m*tmp1354 + tmp124*m*tmp1356 + tmp142*m*tmp1363 + tmp138*m*tmp1367
-        + tmp157*m*tmp1380 + tmp155*m*tmp1382 + tmp174*m*tmp1389 + tmp169*m*tmp1394
-        + tmp191*m*tmp1409 + tmp189*m*tmp1411 + tmp209*m*tmp1418 + tmp203*m*tmp1424
-        + tmp228*m*tmp1441 + tmp226*m*tmp1443 + tmp73*m*tmp1301 + tmp62*m*tmp1303 + tmp60*m*tmp1304
-        + tmp57*m*tmp1314 + tmp88*m*tmp1319 + tmp84*m*tmp1323 + tmp98*m*tmp1331 + tmp96*m*tmp1333
-        + tmp113*m*tmp1339 + tmp109*m*tmp1343;
-    const Scalar tmp1547 = tmp125*m*tmp1354 + tmp124*m*tmp1355 + tmp143*m*tmp1363 + tmp138*m*tmp1368
-        + tmp156*m*tmp1380 + tmp155*m*tmp1381 + tmp175*m*tmp1389 + tmp169*m*tmp1395
-        + tmp190*m*tmp1409 + tmp189*m*tmp1410 + tmp210*m*tmp1418 + tmp203*m*tmp1425
-        + tmp227*m*tmp1441 + tmp226*m*tmp1442 + tmp72*m*tmp1301 + tmp64*m*tmp1303 + tmp60*m*tmp1305
-        + tmp57*m*tmp1313 + tmp86*m*tmp1319 + tmp84*m*tmp1321 + tmp97*m*tmp1331 + tmp96*m*tmp1332
-        + tmp114*m*tmp1339 + tmp109*m*tmp1344;
-    const Scalar tmp1548 = Scalar(2)*tmp124*m*tmp1354 + Scalar(2)*tmp138*m*tmp1363
-        + Scalar(2)*tmp155*m*tmp1380 + Scalar(2)*tmp169*m*tmp1389 + Scalar(2)*tmp189*m*tmp1409
-        + Scalar(2)*tmp203*m*tmp1418 + Scalar(2)*tmp226*m*tmp1441 + Scalar(2)*tmp325*tmp56*m*tmp59
-        + Scalar(2)*tmp325*tmp59*m*tmp1302 + Scalar(2)*tmp84*m*tmp1319 + Scalar(2)*tmp96*m*tmp1331
-        + Scalar(2)*tmp109*m*tmp1339;
-    const Scalar tmp1549 = tmp128*m*tmp1353 + tmp123*m*tmp1358 + tmp140*m*tmp1364 + tmp139*m*tmp1365
-        + tmp159*m*tmp1379 + tmp154*m*tmp1384 + tmp172*m*tmp1390 + tmp170*m*tmp1392
-        + tmp193*m*tmp1408 + tmp188*m*tmp1413 + tmp206*m*tmp1419 + tmp204*m*tmp1421
-        + tmp230*m*tmp1440 + tmp225*m*tmp1445 + tmp100*m*tmp1316 + tmp85*m*tmp1318 + tmp82*m*tmp1320
-        + tmp79*m*tmp1335 + tmp111*m*tmp1340 + tmp110*m*tmp1341;
-    const Scalar tmp1550 = tmp127*m*tmp1353 + tmp123*m*tmp1357 + tmp141*m*tmp1365 + tmp140*m*tmp1366
-        + tmp158*m*tmp1379 + tmp154*m*tmp1383 + tmp173*m*tmp1392 + tmp172*m*tmp1393
-        + tmp192*m*tmp1408 + tmp188*m*tmp1412 + tmp207*m*tmp1421 + tmp206*m*tmp1422
-        + tmp229*m*tmp1440 + tmp225*m*tmp1444 + tmp99*m*tmp1316 + tmp87*m*tmp1318 + tmp82*m*tmp1322
-        + tmp79*m*tmp1334 + tmp112*m*tmp1341 + tmp111*m*tmp1342;
-    const Scalar tmp1551 = tmp126*m*tmp1353 + tmp123*m*tmp1356 + tmp142*m*tmp1365 + tmp140*m*tmp1367
-        + tmp157*m*tmp1379 + tmp154*m*tmp1382 + tmp174*m*tmp1392 + tmp172*m*tmp1394
-        + tmp191*m*tmp1408 + tmp188*m*tmp1411 + tmp209*m*tmp1421 + tmp206*m*tmp1424
-        + tmp228*m*tmp1440 + tmp225*m*tmp1443 + tmp98*m*tmp1316 + tmp88*m*tmp1318 + tmp82*m*tmp1323
-        + tmp79*m*tmp1333 + tmp113*m*tmp1341 + tmp111*m*tmp1343;
-    const Scalar tmp1552 = tmp125*m*tmp1353 + tmp123*m*tmp1355 + tmp143*m*tmp1365 + tmp140*m*tmp1368
-        + tmp156*m*tmp1379 + tmp154*m*tmp1381 + tmp175*m*tmp1392 + tmp172*m*tmp1395
-        + tmp190*m*tmp1408 + tmp188*m*tmp1410 + tmp210*m*tmp1421 + tmp206*m*tmp1425
-        + tmp227*m*tmp1440 + tmp225*m*tmp1442 + tmp97*m*tmp1316 + tmp86*m*tmp1318 + tmp82*m*tmp1321
-        + tmp79*m*tmp1332 + tmp114*m*tmp1341 + tmp111*m*tmp1344;
-    const Scalar tmp1553 = tmp124*m*tmp1353 + tmp123*m*tmp1354 + tmp140*m*tmp1363 + tmp138*m*tmp1365
-        + tmp155*m*tmp1379 + tmp154*m*tmp1380 + tmp172*m*tmp1389 + tmp169*m*tmp1392
-        + tmp189*m*tmp1408 + tmp188*m*tmp1409 + tmp206*m*tmp1418 + tmp203*m*tmp1421
-        + tmp226*m*tmp1440 + tmp225*m*tmp1441 + tmp96*m*tmp1316 + tmp84*m*tmp1318 + tmp82*m*tmp1319
-        + tmp79*m*tmp1331 + tmp111*m*tmp1339 + tmp109*m*tmp1341;
-    const Scalar tmp1554 = Scalar(2)*tmp123*m*tmp1353 + Scalar(2)*tmp140*m*tmp1365
-        + Scalar(2)*tmp154*m*tmp1379 + Scalar(2)*tmp172*m*tmp1392 + Scalar(2)*tmp188*m*tmp1408
-        + Scalar(2)*tmp206*m*tmp1421 + Scalar(2)*tmp225*m*tmp1440 + Scalar(2)*tmp325*tmp78*m*tmp81
-        + Scalar(2)*tmp325*tmp81*m*tmp1317 + Scalar(2)*tmp111*m*tmp1341;
-    const Scalar tmp1555 = tmp104*m*tmp1358 + tmp139*m*tmp1362 + tmp137*m*tmp1364 + tmp159*m*tmp1378
-        + tmp153*m*tmp1384 + tmp170*m*tmp1388 + tmp168*m*tmp1390 + tmp193*m*tmp1407
-        + tmp187*m*tmp1413 + tmp208*m*tmp1419 + tmp204*m*tmp1423 + tmp230*m*tmp1439
-        + tmp224*m*tmp1445 + tmp128*m*tmp1336 + tmp110*m*tmp1338 + tmp107*m*tmp1340;
-    const Scalar tmp1556 = tmp104*m*tmp1357 + tmp141*m*tmp1362 + tmp137*m*tmp1366 + tmp158*m*tmp1378
-        + tmp153*m*tmp1383 + tmp173*m*tmp1388 + tmp168*m*tmp1393 + tmp192*m*tmp1407
-        + tmp187*m*tmp1412 + tmp208*m*tmp1422 + tmp207*m*tmp1423 + tmp229*m*tmp1439
-        + tmp224*m*tmp1444 + tmp127*m*tmp1336 + tmp112*m*tmp1338 + tmp107*m*tmp1342;
-    const Scalar tmp1557 = tmp104*m*tmp1356 + tmp142*m*tmp1362 + tmp137*m*tmp1367 + tmp157*m*tmp1378
-        + tmp153*m*tmp1382 + tmp174*m*tmp1388 + tmp168*m*tmp1394 + tmp191*m*tmp1407
-        + tmp187*m*tmp1411 + tmp209*m*tmp1423 + tmp208*m*tmp1424 + tmp228*m*tmp1439
-        + tmp224*m*tmp1443 + tmp126*m*tmp1336 + tmp113*m*tmp1338 + tmp107*m*tmp1343;
-    const Scalar tmp1558 = tmp104*m*tmp1355 + tmp143*m*tmp1362 + tmp137*m*tmp1368 + tmp156*m*tmp1378
-        + tmp153*m*tmp1381 + tmp175*m*tmp1388 + tmp168*m*tmp1395 + tmp190*m*tmp1407
-        + tmp187*m*tmp1410 + tmp210*m*tmp1423 + tmp208*m*tmp1425 + tmp227*m*tmp1439
-        + tmp224*m*tmp1442 + tmp125*m*tmp1336 + tmp114*m*tmp1338 + tmp107*m*tmp1344;
-    const Scalar tmp1559 = tmp104*m*tmp1354 + tmp138*m*tmp1362 + tmp137*m*tmp1363 + tmp155*m*tmp1378
-        + tmp153*m*tmp1380 + tmp169*m*tmp1388 + tmp168*m*tmp1389 + tmp189*m*tmp1407
-        + tmp187*m*tmp1409 + tmp208*m*tmp1418 + tmp203*m*tmp1423 + tmp226*m*tmp1439
-        + tmp224*m*tmp1441 + tmp124*m*tmp1336 + tmp109*m*tmp1338 + tmp107*m*tmp1339;
-    const Scalar tmp1560 = tmp104*m*tmp1353 + tmp140*m*tmp1362 + tmp137*m*tmp1365 + tmp154*m*tmp1378
-        + tmp153*m*tmp1379 + tmp172*m*tmp1388 + tmp168*m*tmp1392 + tmp188*m*tmp1407
-        + tmp187*m*tmp1408 + tmp208*m*tmp1421 + tmp206*m*tmp1423 + tmp225*m*tmp1439
-        + tmp224*m*tmp1440 + tmp123*m*tmp1336 + tmp111*m*tmp1338 + tmp107*m*tmp1341;
-    const Scalar tmp1561 = Scalar(2)*tmp137*m*tmp1362 + Scalar(2)*tmp153*m*tmp1378
-        + Scalar(2)*tmp168*m*tmp1388 + Scalar(2)*tmp187*m*tmp1407 + Scalar(2)*tmp208*m*tmp1423
-        + Scalar(2)*tmp224*m*tmp1439 + Scalar(2)*tmp325*tmp103*m*tmp106
-        + Scalar(2)*tmp325*tmp106*m*tmp1337;
-    const Scalar tmp1562 = tmp159*m*tmp1359 + tmp139*m*tmp1361 + tmp135*m*tmp1364 + tmp132*m*tmp1384
-        + tmp171*m*tmp1390 + tmp170*m*tmp1391 + tmp193*m*tmp1406 + tmp186*m*tmp1413
-        + tmp205*m*tmp1419 + tmp204*m*tmp1420 + tmp230*m*tmp1438 + tmp223*m*tmp1445;
-    const Scalar tmp1563 = tmp158*m*tmp1359 + tmp141*m*tmp1361 + tmp135*m*tmp1366 + tmp132*m*tmp1383
-        + tmp173*m*tmp1391 + tmp171*m*tmp1393 + tmp192*m*tmp1406 + tmp186*m*tmp1412
-        + tmp207*m*tmp1420 + tmp205*m*tmp1422 + tmp229*m*tmp1438 + tmp223*m*tmp1444;
-    const Scalar tmp1564 = tmp157*m*tmp1359 + tmp142*m*tmp1361 + tmp135*m*tmp1367 + tmp132*m*tmp1382
-        + tmp174*m*tmp1391 + tmp171*m*tmp1394 + tmp191*m*tmp1406 + tmp186*m*tmp1411
-        + tmp209*m*tmp1420 + tmp205*m*tmp1424 + tmp228*m*tmp1438 + tmp223*m*tmp1443;
-    const Scalar tmp1565 = tmp156*m*tmp1359 + tmp143*m*tmp1361 + tmp135*m*tmp1368 + tmp132*m*tmp1381
-        + tmp175*m*tmp1391 + tmp171*m*tmp1395 + tmp190*m*tmp1406 + tmp186*m*tmp1410
-        + tmp210*m*tmp1420 + tmp205*m*tmp1425 + tmp227*m*tmp1438 + tmp223*m*tmp1442;
-    const Scalar tmp1566 = tmp155*m*tmp1359 + tmp138*m*tmp1361 + tmp135*m*tmp1363 + tmp132*m*tmp1380
-        + tmp171*m*tmp1389 + tmp169*m*tmp1391 + tmp189*m*tmp1406 + tmp186*m*tmp1409
-        + tmp205*m*tmp1418 + tmp203*m*tmp1420 + tmp226*m*tmp1438 + tmp223*m*tmp1441;
-    const Scalar tmp1567 = tmp154*m*tmp1359 + tmp140*m*tmp1361 + tmp135*m*tmp1365 + tmp132*m*tmp1379
-        + tmp172*m*tmp1391 + tmp171*m*tmp1392 + tmp188*m*tmp1406 + tmp186*m*tmp1408
-        + tmp206*m*tmp1420 + tmp205*m*tmp1421 + tmp225*m*tmp1438 + tmp223*m*tmp1440;
-    const Scalar tmp1568 = tmp153*m*tmp1359 + tmp137*m*tmp1361 + tmp135*m*tmp1362 + tmp132*m*tmp1378
-        + tmp171*m*tmp1388 + tmp168*m*tmp1391 + tmp187*m*tmp1406 + tmp186*m*tmp1407
-        + tmp208*m*tmp1420 + tmp205*m*tmp1423 + tmp224*m*tmp1438 + tmp223*m*tmp1439;
-    const Scalar tmp1569 = Scalar(2)*tmp131*tmp325*m*tmp134 + Scalar(2)*tmp134*tmp325*m*tmp1360
-        + Scalar(2)*tmp171*m*tmp1391 + Scalar(2)*tmp186*m*tmp1406 + Scalar(2)*tmp205*m*tmp1420
-        + Scalar(2)*tmp223*m*tmp1438;
-    const Scalar tmp1570 = tmp193*m*tmp1385 + tmp170*m*tmp1387 + tmp166*m*tmp1390 + tmp163*m*tmp1413
-        + tmp204*m*tmp1417 + tmp202*m*tmp1419 + tmp230*m*tmp1437 + tmp222*m*tmp1445;
-    const Scalar tmp1571 = tmp192*m*tmp1385 + tmp173*m*tmp1387 + tmp166*m*tmp1393 + tmp163*m*tmp1412
-        + tmp207*m*tmp1417 + tmp202*m*tmp1422 + tmp229*m*tmp1437 + tmp222*m*tmp1444;
-    const Scalar tmp1572 = tmp191*m*tmp1385 + tmp174*m*tmp1387 + tmp166*m*tmp1394 + tmp163*m*tmp1411
-        + tmp209*m*tmp1417 + tmp202*m*tmp1424 + tmp228*m*tmp1437 + tmp222*m*tmp1443;
-    const Scalar tmp1573 = tmp190*m*tmp1385 + tmp175*m*tmp1387 + tmp166*m*tmp1395 + tmp163*m*tmp1410
-        + tmp210*m*tmp1417 + tmp202*m*tmp1425 + tmp227*m*tmp1437 + tmp222*m*tmp1442;
-    const Scalar tmp1574 = tmp189*m*tmp1385 + tmp169*m*tmp1387 + tmp166*m*tmp1389 + tmp163*m*tmp1409
-        + tmp203*m*tmp1417 + tmp202*m*tmp1418 + tmp226*m*tmp1437 + tmp222*m*tmp1441;
-    const Scalar tmp1575 = tmp188*m*tmp1385 + tmp172*m*tmp1387 + tmp166*m*tmp1392 + tmp163*m*tmp1408
-        + tmp206*m*tmp1417 + tmp202*m*tmp1421 + tmp225*m*tmp1437 + tmp222*m*tmp1440;
-    const Scalar tmp1576 = tmp187*m*tmp1385 + tmp168*m*tmp1387 + tmp166*m*tmp1388 + tmp163*m*tmp1407
-        + tmp208*m*tmp1417 + tmp202*m*tmp1423 + tmp224*m*tmp1437 + tmp222*m*tmp1439;
-    const Scalar tmp1577 = tmp186*m*tmp1385 + tmp171*m*tmp1387 + tmp166*m*tmp1391 + tmp163*m*tmp1406
-        + tmp205*m*tmp1417 + tmp202*m*tmp1420 + tmp223*m*tmp1437 + tmp222*m*tmp1438;
-    const Scalar tmp1578 = Scalar(2)*tmp162*tmp325*m*tmp165 + Scalar(2)*tmp165*tmp325*m*tmp1386
-        + Scalar(2)*tmp202*m*tmp1417 + Scalar(2)*tmp222*m*tmp1437;
-    const Scalar tmp1579 = tmp230*m*tmp1414 + tmp204*m*tmp1416 + tmp200*m*tmp1419
-        + tmp197*m*tmp1445;
-    const Scalar tmp1580 = tmp229*m*tmp1414 + tmp207*m*tmp1416 + tmp200*m*tmp1422
-        + tmp197*m*tmp1444;
-    const Scalar tmp1581 = tmp228*m*tmp1414 + tmp209*m*tmp1416 + tmp200*m*tmp1424
-        + tmp197*m*tmp1443;
-    const Scalar tmp1582 = tmp227*m*tmp1414 + tmp210*m*tmp1416 + tmp200*m*tmp1425
-        + tmp197*m*tmp1442;
-    const Scalar tmp1583 = tmp226*m*tmp1414 + tmp203*m*tmp1416 + tmp200*m*tmp1418
-        + tmp197*m*tmp1441;
-    const Scalar tmp1584 = tmp225*m*tmp1414 + tmp206*m*tmp1416 + tmp200*m*tmp1421
-        + tmp197*m*tmp1440;
-    const Scalar tmp1585 = tmp224*m*tmp1414 + tmp208*m*tmp1416 + tmp200*m*tmp1423
-        + tmp197*m*tmp1439;
-    const Scalar tmp1586 = tmp223*m*tmp1414 + tmp205*m*tmp1416 + tmp200*m*tmp1420
-        + tmp197*m*tmp1438;
-    const Scalar tmp1587 = tmp222*m*tmp1414 + tmp202*m*tmp1416 + tmp200*m*tmp1417
-        + tmp197*m*tmp1437;
-    const Scalar tmp1588 = Scalar(2)*tmp196*tmp325*m*tmp199 + Scalar(2)*tmp199*tmp325*m*tmp1415;
-    const Scalar tmp1589 = m*tmp1448;
-    const Scalar tmp1590 = m*tmp1449;
-    const Scalar tmp1591 = m*tmp1454;
-    const Scalar tmp1592 = m*tmp1455;
-    const Scalar tmp1593 = m*tmp1462;
-    const Scalar tmp1594 = m*tmp1463;
-    const Scalar tmp1595 = m*tmp1472;
-    const Scalar tmp1596 = m*tmp1473;
-    const Scalar tmp1597 = m*tmp1484;
-    const Scalar tmp1598 = m*tmp1485;
-    const Scalar tmp1599 = m*tmp1498;
-    const Scalar tmp1600 = m*tmp1499;
-    const Scalar tmp1601 = m*tmp1514;
-    const Scalar tmp1602 = m*tmp1515;
-    const Scalar tmp1603 = m*tmp1532;
-    const Scalar tmp1604 = m*tmp1533;
-    const Scalar tmp1605 = tmp382*tmp1358 + tmp382*tmp1384 + tmp382*tmp1413 + tmp382*tmp1445
-        + tmp382*tmp1282 + tmp382*tmp1299 + tmp382*tmp1314 + tmp382*tmp1335;
-    const Scalar tmp1606 = tmp382*tmp1357 + tmp382*tmp1383 + tmp382*tmp1412 + tmp382*tmp1444
-        + tmp382*tmp1282 + tmp382*tmp1300 + tmp382*tmp1315 + tmp382*tmp1334;
-    const Scalar tmp1607 = tmp382*tmp1356 + tmp382*tmp1382 + tmp382*tmp1282 + tmp382*tmp1411
-        + tmp382*tmp1443 - k + tmp382*tmp1299 + tmp382*tmp1314 + tmp382*tmp1333;
-    const Scalar tmp1608 = tmp382*tmp1355 + tmp382*tmp1381 + tmp382*tmp1410 + tmp382*tmp1442
-        + tmp382*tmp1289 + tmp382*tmp1313 + tmp382*tmp1332;
-    const Scalar tmp1609 = tmp382*tmp1354 + tmp382*tmp1380 + tmp382*tmp1409 + tmp382*tmp1441
-        + tmp382*tmp1301 + tmp382*tmp1331;
-    const Scalar tmp1610 = tmp382*tmp1353 + tmp382*tmp1379 + tmp382*tmp1408 + tmp382*tmp1440
-        + tmp382*tmp1316;
-    const Scalar tmp1611 = tmp382*tmp1378 + tmp382*tmp1407 + tmp382*tmp1439 + tmp382*tmp1336;
-    const Scalar tmp1612 = tmp382*tmp1359 + tmp382*tmp1406 + tmp382*tmp1438;
-    const Scalar tmp1613 = tmp382*tmp1385 + tmp382*tmp1437;
-    const Scalar tmp1614 = tmp382*l*tmp199;
-    const Scalar tmp1615 = -tmp396*tmp1358 - tmp397*tmp1364 - tmp398*tmp1384 - tmp399*tmp1390
-        - tmp400*tmp1413 - tmp401*tmp1419 - tmp387*tmp1284 - tmp402*tmp1445 - tmp388*tmp1282
-        - tmp389*tmp1292 - tmp390*tmp1299 - tmp391*tmp1304 - tmp392*tmp1314 - tmp393*tmp1320
-        - tmp394*tmp1335 - tmp395*tmp1340 - tmp27*tmp1589 - tmp34*tmp1590 - tmp44*tmp1591
-        - tmp53*tmp1592 - tmp63*tmp1593 - tmp75*tmp1594 - tmp85*tmp1595 - tmp100*tmp1596
-        - tmp110*tmp1597 - tmp128*tmp1598 - tmp139*tmp1599 - tmp159*tmp1600 - tmp170*tmp1601
-        - tmp193*tmp1602 - tmp204*tmp1603 - tmp230*tmp1604;
-    dr_dq_data[0 + 10 * 2] = phi10_ddot*tmp1579 - tmp1605 - tmp1615 + phi1_ddot*tmp1534
-        + phi2_ddot*tmp1535 + phi3_ddot*tmp1537 + phi4_ddot*tmp1540 + phi5_ddot*tmp1544
-        + phi6_ddot*tmp1549 + phi7_ddot*tmp1555 + phi8_ddot*tmp1562 + phi9_ddot*tmp1570;
-    const Scalar tmp1616 = -tmp396*tmp1357 - tmp397*tmp1366 - tmp398*tmp1383 - tmp399*tmp1393
-        - tmp400*tmp1412 - tmp401*tmp1422 - tmp387*tmp1284 - tmp402*tmp1444 - tmp388*tmp1282
-        - tmp389*tmp1293 - tmp390*tmp1300 - tmp391*tmp1306 - tmp392*tmp1315 - tmp393*tmp1322
-        - tmp394*tmp1334 - tmp395*tmp1342 - tmp28*tmp1589 - tmp33*tmp1590 - tmp45*tmp1591
-        - tmp52*tmp1592 - tmp65*tmp1593 - tmp74*tmp1594 - tmp87*tmp1595 - tmp99*tmp1596
-        - tmp112*tmp1597 - tmp127*tmp1598 - tmp141*tmp1599 - tmp158*tmp1600 - tmp173*tmp1601
-        - tmp192*tmp1602 - tmp207*tmp1603 - tmp229*tmp1604;
-    dr_dq_data[1 + 10 * 2] = phi10_ddot*tmp1580 - tmp1606 - tmp1616 + phi1_ddot*tmp1535
-        + phi2_ddot*tmp1536 + phi3_ddot*tmp1538 + phi4_ddot*tmp1541 + phi5_ddot*tmp1545
-        + phi6_ddot*tmp1550 + phi7_ddot*tmp1556 + phi8_ddot*tmp1563 + phi9_ddot*tmp1571;
-    const Scalar tmp1617 = -tmp396*tmp1356 - tmp397*tmp1367 - tmp398*tmp1382 - tmp399*tmp1394
-        - tmp388*tmp1282 - tmp400*tmp1411 - tmp387*tmp1284 - tmp401*tmp1424 - tmp402*tmp1443
-        - tmp389*tmp1292 - tmp390*tmp1299 - tmp391*tmp1304 - tmp392*tmp1314 - tmp393*tmp1323
-        - tmp394*tmp1333 - tmp395*tmp1343 - tmp25*tmp1589 - tmp22*tmp1590 - tmp43*tmp1591
-        - tmp51*tmp1592 - tmp62*tmp1593 - tmp73*tmp1594 - tmp88*tmp1595 - tmp98*tmp1596
-        - tmp113*tmp1597 - tmp126*tmp1598 - tmp142*tmp1599 - tmp157*tmp1600 - tmp174*tmp1601
-        - tmp191*tmp1602 - tmp209*tmp1603 - tmp228*tmp1604;
-    dr_dq_data[2 + 10 * 2] = phi10_ddot*tmp1581 - tmp1607 - tmp1617 + phi1_ddot*tmp1537
-        + phi2_ddot*tmp1538 + phi3_ddot*tmp1539 + phi4_ddot*tmp1542 + phi5_ddot*tmp1546
-        + phi6_ddot*tmp1551 + phi7_ddot*tmp1557 + phi8_ddot*tmp1564 + phi9_ddot*tmp1572;
-    const Scalar tmp1618 = -tmp396*tmp1355 - tmp397*tmp1368 - tmp398*tmp1381 - tmp399*tmp1395
-        - tmp400*tmp1410 - tmp401*tmp1425 - tmp402*tmp1442 - tmp390*tmp1289 - tmp389*tmp1291
-        - tmp391*tmp1305 - tmp392*tmp1313 - tmp393*tmp1321 - tmp394*tmp1332 - tmp395*tmp1344
-        - tmp41*tmp1591 - tmp38*tmp1592 - tmp64*tmp1593 - tmp72*tmp1594 - tmp86*tmp1595
-        - tmp97*tmp1596 - tmp114*tmp1597 - tmp125*tmp1598 - tmp143*tmp1599 - tmp156*tmp1600
-        - tmp175*tmp1601 - tmp190*tmp1602 - tmp210*tmp1603 - tmp227*tmp1604;
-    dr_dq_data[3 + 10 * 2] = phi10_ddot*tmp1582 - tmp1608 - tmp1618 + phi1_ddot*tmp1540
-        + phi2_ddot*tmp1541 + phi3_ddot*tmp1542 + phi4_ddot*tmp1543 + phi5_ddot*tmp1547
-        + phi6_ddot*tmp1552 + phi7_ddot*tmp1558 + phi8_ddot*tmp1565 + phi9_ddot*tmp1573;
-    const Scalar tmp1619 = -tmp396*tmp1354 - tmp397*tmp1363 - tmp398*tmp1380 - tmp399*tmp1389
-        - tmp400*tmp1409 - tmp401*tmp1418 - tmp402*tmp1441 - tmp392*tmp1301 - tmp391*tmp1303
-        - tmp393*tmp1319 - tmp394*tmp1331 - tmp395*tmp1339 - tmp60*tmp1593 - tmp57*tmp1594
-        - tmp84*tmp1595 - tmp96*tmp1596 - tmp109*tmp1597 - tmp124*tmp1598 - tmp138*tmp1599
-        - tmp155*tmp1600 - tmp169*tmp1601 - tmp189*tmp1602 - tmp203*tmp1603 - tmp226*tmp1604;
-    dr_dq_data[4 + 10 * 2] = phi9_ddot*tmp1574 + phi10_ddot*tmp1583 - tmp1609 - tmp1619
-        + phi1_ddot*tmp1544 + phi2_ddot*tmp1545 + phi3_ddot*tmp1546 + phi4_ddot*tmp1547
-        + phi5_ddot*tmp1548 + phi6_ddot*tmp1553 + phi7_ddot*tmp1559 + phi8_ddot*tmp1566;
-    const Scalar tmp1620 = -tmp396*tmp1353 - tmp397*tmp1365 - tmp398*tmp1379 - tmp399*tmp1392
-        - tmp400*tmp1408 - tmp401*tmp1421 - tmp402*tmp1440 - tmp394*tmp1316 - tmp393*tmp1318
-        - tmp395*tmp1341 - tmp82*tmp1595 - tmp79*tmp1596 - tmp111*tmp1597 - tmp123*tmp1598
-        - tmp140*tmp1599 - tmp154*tmp1600 - tmp172*tmp1601 - tmp188*tmp1602 - tmp206*tmp1603
-        - tmp225*tmp1604;
-    dr_dq_data[5 + 10 * 2] = phi9_ddot*tmp1575 + phi10_ddot*tmp1584 - tmp1610 - tmp1620
-        + phi1_ddot*tmp1549 + phi2_ddot*tmp1550 + phi3_ddot*tmp1551 + phi4_ddot*tmp1552
-        + phi5_ddot*tmp1553 + phi6_ddot*tmp1554 + phi7_ddot*tmp1560 + phi8_ddot*tmp1567;
-    const Scalar tmp1621 = -tmp397*tmp1362 - tmp398*tmp1378 - tmp399*tmp1388 - tmp400*tmp1407
-        - tmp401*tmp1423 - tmp402*tmp1439 - tmp396*tmp1336 - tmp395*tmp1338 - tmp107*tmp1597
-        - tmp104*tmp1598 - tmp137*tmp1599 - tmp153*tmp1600 - tmp168*tmp1601 - tmp187*tmp1602
-        - tmp208*tmp1603 - tmp224*tmp1604;
-    dr_dq_data[6 + 10 * 2] = phi9_ddot*tmp1576 + phi10_ddot*tmp1585 - tmp1611 - tmp1621
-        + phi1_ddot*tmp1555 + phi2_ddot*tmp1556 + phi3_ddot*tmp1557 + phi4_ddot*tmp1558
-        + phi5_ddot*tmp1559 + phi6_ddot*tmp1560 + phi7_ddot*tmp1561 + phi8_ddot*tmp1568;
-    const Scalar tmp1622 = -tmp398*tmp1359 - tmp397*tmp1361 - tmp399*tmp1391 - tmp400*tmp1406
-        - tmp401*tmp1420 - tmp402*tmp1438 - tmp135*tmp1599 - tmp132*tmp1600 - tmp171*tmp1601
-        - tmp186*tmp1602 - tmp205*tmp1603 - tmp223*tmp1604;
-    dr_dq_data[7 + 10 * 2] = phi9_ddot*tmp1577 + phi10_ddot*tmp1586 - tmp1612 - tmp1622
-        + phi1_ddot*tmp1562 + phi2_ddot*tmp1563 + phi3_ddot*tmp1564 + phi4_ddot*tmp1565
-        + phi5_ddot*tmp1566 + phi6_ddot*tmp1567 + phi7_ddot*tmp1568 + phi8_ddot*tmp1569;
-    const Scalar tmp1623 = -tmp400*tmp1385 - tmp399*tmp1387 - tmp401*tmp1417 - tmp402*tmp1437
-        - tmp166*tmp1601 - tmp163*tmp1602 - tmp202*tmp1603 - tmp222*tmp1604;
-    dr_dq_data[8 + 10 * 2] = phi5_ddot*tmp1574 + phi6_ddot*tmp1575 + phi7_ddot*tmp1576
-        + phi8_ddot*tmp1577 + phi9_ddot*tmp1578 + phi10_ddot*tmp1587 - tmp1613 - tmp1623
-        + phi1_ddot*tmp1570 + phi2_ddot*tmp1571 + phi3_ddot*tmp1572 + phi4_ddot*tmp1573;
-    const Scalar tmp1624 = -tmp402*tmp1414 - tmp401*tmp1416 - tmp200*tmp1603 - tmp197*tmp1604;
-    dr_dq_data[9 + 10 * 2] = phi1_ddot*tmp1579 + phi2_ddot*tmp1580 + phi3_ddot*tmp1581
-        + phi4_ddot*tmp1582 + phi5_ddot*tmp1583 + phi6_ddot*tmp1584 + phi7_ddot*tmp1585
-        + phi8_ddot*tmp1586 + phi9_ddot*tmp1587 + phi10_ddot*tmp1588 - tmp1614 - tmp1624;
-    const Scalar tmp1625 = l*tmp40;
-    carried[273] = tmp1625;
-    const Scalar tmp1626 = -tmp37;
-    const Scalar tmp1627 = l*tmp1626;
-    carried[274] = tmp1627;
-    const Scalar tmp1628 = phi4_dot*tmp1627;
-    const Scalar tmp1629 = phi3_dot*tmp1627 + tmp1628;
-    const Scalar tmp1630 = phi2_dot*tmp1627 + tmp1629;
-    const Scalar tmp1631 = phi1_dot*tmp1627 + tmp1630;
-    const Scalar tmp1632 = phi4_dot*tmp1625;
-    const Scalar tmp1633 = l*tmp59;
-    carried[275] = tmp1633;
-    const Scalar tmp1634 = -tmp56;
-    const Scalar tmp1635 = l*tmp1634;
-    carried[276] = tmp1635;
-    const Scalar tmp1636 = tmp1627 + tmp1635;
-    carried[277] = tmp1636;
-    const Scalar tmp1637 = tmp1627 + tmp1635;
-    carried[278] = tmp1637;
-    const Scalar tmp1638 = phi5_dot*tmp1635;
-    const Scalar tmp1639 = phi4_dot*tmp1637 + tmp1638;
-    const Scalar tmp1640 = phi3_dot*tmp1636 + tmp1639;
-    const Scalar tmp1641 = phi2_dot*tmp1637 + tmp1640;
-    const Scalar tmp1642 = phi1_dot*tmp1636 + tmp1641;
-    const Scalar tmp1643 = phi5_dot*tmp1633;
-    const Scalar tmp1644 = tmp1625 + tmp1633;
-    carried[279] = tmp1644;
-    const Scalar tmp1645 = tmp1625 + tmp1633;
-    carried[280] = tmp1645;
-    const Scalar tmp1646 = l*tmp81;
-    carried[281] = tmp1646;
-    const Scalar tmp1647 = -tmp78;
-    const Scalar tmp1648 = l*tmp1647;
-    carried[282] = tmp1648;
-    const Scalar tmp1649 = tmp1635 + tmp1648;
-    carried[283] = tmp1649;
-    const Scalar tmp1650 = tmp1627 + tmp1649;
-    carried[284] = tmp1650;
-    const Scalar tmp1651 = tmp1637 + tmp1648;
-    carried[285] = tmp1651;
-    const Scalar tmp1652 = tmp1627 + tmp1649;
-    carried[286] = tmp1652;
-    const Scalar tmp1653 = phi6_dot*tmp1648;
-    const Scalar tmp1654 = phi5_dot*tmp1649 + tmp1653;
-    const Scalar tmp1655 = phi4_dot*tmp1651 + tmp1654;
-    const Scalar tmp1656 = phi3_dot*tmp1652 + tmp1655;
-    const Scalar tmp1657 = phi2_dot*tmp1651 + tmp1656;
-    const Scalar tmp1658 = phi1_dot*tmp1650 + tmp1657;
-    const Scalar tmp1659 = phi6_dot*tmp1646;
-    const Scalar tmp1660 = tmp1633 + tmp1646;
-    carried[287] = tmp1660;
-    const Scalar tmp1661 = tmp1644 + tmp1646;
-    carried[288] = tmp1661;
-    const Scalar tmp1662 = tmp1625 + tmp1660;
-    carried[289] = tmp1662;
-    const Scalar tmp1663 = tmp1625 + tmp1660;
-    carried[290] = tmp1663;
-    const Scalar tmp1664 = l*tmp106;
-    carried[291] = tmp1664;
-    const Scalar tmp1665 = -tmp103;
-    const Scalar tmp1666 = l*tmp1665;
-    carried[292] = tmp1666;
-    const Scalar tmp1667 = tmp1649 + tmp1666;
-    carried[293] = tmp1667;
-    const Scalar tmp1668 = tmp1627 + tmp1667;
-    carried[294] = tmp1668;
-    const Scalar tmp1669 = tmp1648 + tmp1666;
-    carried[295] = tmp1669;
-    const Scalar tmp1670 = tmp1637 + tmp1669;
-    carried[296] = tmp1670;
-    const Scalar tmp1671 = tmp1627 + tmp1667;
-    carried[297] = tmp1671;
-    const Scalar tmp1672 = tmp1637 + tmp1669;
-    carried[298] = tmp1672;
-    const Scalar tmp1673 = phi7_dot*tmp1666;
-    const Scalar tmp1674 = phi6_dot*tmp1669 + tmp1673;
-    const Scalar tmp1675 = phi5_dot*tmp1667 + tmp1674;
-    const Scalar tmp1676 = phi4_dot*tmp1672 + tmp1675;
-    const Scalar tmp1677 = phi3_dot*tmp1671 + tmp1676;
-    const Scalar tmp1678 = phi2_dot*tmp1670 + tmp1677;
-    const Scalar tmp1679 = tmp1678 + phi1_dot*tmp1668;
-    const Scalar tmp1680 = phi7_dot*tmp1664;
-    const Scalar tmp1681 = tmp1646 + tmp1664;
-    carried[299] = tmp1681;
-    const Scalar tmp1682 = tmp1660 + tmp1664;
-    carried[300] = tmp1682;
-    const Scalar tmp1683 = tmp1681 + tmp1644;
-    carried[301] = tmp1683;
-    const Scalar tmp1684 = tmp1682 + tmp1625;
-    carried[302] = tmp1684;
-    const Scalar tmp1685 = tmp1681 + tmp1644;
-    carried[303] = tmp1685;
-    const Scalar tmp1686 = tmp1682 + tmp1625;
-    carried[304] = tmp1686;
-    const Scalar tmp1687 = l*tmp134;
-    carried[305] = tmp1687;
-    const Scalar tmp1688 = -tmp131;
+            + phi7_dot)*tmp1461
+        + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp1462
+        + phi1_dot*phi2_dot*tmp1463
+        + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp1464
+        + phi3_dot*(phi1_dot + phi2_dot)*tmp1465 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp1466
+        + phi10_dot*tmp1467 + phi9_dot*tmp1468 + phi8_dot*tmp1469 + phi7_dot*tmp1470
+        + phi6_dot*tmp1471 + phi5_dot*tmp1472 + phi4_dot*tmp1473 + phi3_dot*tmp1474
+        + phi2_dot*tmp1475 + phi1_dot*tmp1476;
+    const Scalar tmp1575 = Scalar(2)*tmp128*m*tmp1399 + Scalar(2)*tmp139*m*tmp1405
+        + Scalar(2)*tmp159*m*tmp1425 + Scalar(2)*tmp170*m*tmp1431 + Scalar(2)*tmp193*m*tmp1454
+        + Scalar(2)*tmp204*m*tmp1460 + Scalar(2)*tmp27*m*tmp1325 + Scalar(2)*tmp230*m*tmp1486
+        + Scalar(2)*tmp34*m*tmp1323 + Scalar(2)*tmp44*m*tmp1333 + Scalar(2)*tmp53*m*tmp1340
+        + Scalar(2)*tmp63*m*tmp1345 + Scalar(2)*tmp75*m*tmp1355 + Scalar(2)*tmp85*m*tmp1361
+        + Scalar(2)*tmp100*m*tmp1376 + Scalar(2)*tmp110*m*tmp1381;
+    const Scalar tmp1576 = tmp128*m*tmp1398 + tmp127*m*tmp1399 + tmp141*m*tmp1405 + tmp139*m*tmp1407
+        + tmp159*m*tmp1424 + tmp158*m*tmp1425 + tmp173*m*tmp1431 + tmp170*m*tmp1434
+        + tmp193*m*tmp1453 + tmp192*m*tmp1454 + tmp207*m*tmp1460 + tmp204*m*tmp1463
+        + (tmp27*m + tmp28*m)*tmp1325 + tmp230*m*tmp1485 + tmp229*m*tmp1486
+        + (tmp33*m + tmp34*m)*tmp1323 + tmp45*m*tmp1333 + tmp44*m*tmp1334 + tmp53*m*tmp1341
+        + tmp52*m*tmp1340 + tmp65*m*tmp1345 + tmp63*m*tmp1347 + tmp75*m*tmp1356 + tmp74*m*tmp1355
+        + tmp87*m*tmp1361 + tmp85*m*tmp1363 + tmp100*m*tmp1375 + tmp99*m*tmp1376 + tmp112*m*tmp1381
+        + tmp110*m*tmp1383;
+    const Scalar tmp1577 = Scalar(2)*tmp127*m*tmp1398 + Scalar(2)*tmp141*m*tmp1407
+        + Scalar(2)*tmp158*m*tmp1424 + Scalar(2)*tmp173*m*tmp1434 + Scalar(2)*tmp192*m*tmp1453
+        + Scalar(2)*tmp207*m*tmp1463 + Scalar(2)*tmp28*m*tmp1325 + Scalar(2)*tmp229*m*tmp1485
+        + Scalar(2)*tmp33*m*tmp1323 + Scalar(2)*tmp45*m*tmp1334 + Scalar(2)*tmp52*m*tmp1341
+        + Scalar(2)*tmp65*m*tmp1347 + Scalar(2)*tmp74*m*tmp1356 + Scalar(2)*tmp87*m*tmp1363
+        + Scalar(2)*tmp99*m*tmp1375 + Scalar(2)*tmp112*m*tmp1383;
+    const Scalar tmp1578 = tmp128*m*tmp1397 + tmp126*m*tmp1399 + tmp142*m*tmp1405 + tmp139*m*tmp1408
+        + tmp159*m*tmp1423 + tmp157*m*tmp1425 + tmp174*m*tmp1431 + tmp170*m*tmp1435
+        + (tmp22*m + tmp34*m)*tmp1323 + tmp193*m*tmp1452 + tmp191*m*tmp1454 + tmp209*m*tmp1460
+        + (tmp25*m + tmp27*m)*tmp1325 + tmp204*m*tmp1465 + tmp230*m*tmp1484 + tmp228*m*tmp1486
+        + (tmp43*m + tmp44*m)*tmp1333 + (tmp51*m + tmp53*m)*tmp1340 + (tmp62*m + tmp63*m)*tmp1345
+        + (tmp73*m + tmp75*m)*tmp1355 + tmp88*m*tmp1361 + tmp85*m*tmp1364 + tmp100*m*tmp1374
+        + tmp98*m*tmp1376 + tmp113*m*tmp1381 + tmp110*m*tmp1384;
+    const Scalar tmp1579 = tmp127*m*tmp1397 + tmp126*m*tmp1398 + tmp142*m*tmp1407 + tmp141*m*tmp1408
+        + tmp158*m*tmp1423 + tmp157*m*tmp1424 + tmp174*m*tmp1434 + tmp173*m*tmp1435
+        + (tmp22*m + tmp33*m)*tmp1323 + tmp192*m*tmp1452 + tmp191*m*tmp1453 + tmp209*m*tmp1463
+        + (tmp25*m + tmp28*m)*tmp1325 + tmp207*m*tmp1465 + tmp229*m*tmp1484 + tmp228*m*tmp1485
+        + tmp45*m*tmp1333 + tmp43*m*tmp1334 + tmp52*m*tmp1340 + tmp51*m*tmp1341 + tmp65*m*tmp1345
+        + tmp62*m*tmp1347 + tmp74*m*tmp1355 + tmp73*m*tmp1356 + tmp88*m*tmp1363 + tmp87*m*tmp1364
+        + tmp99*m*tmp1374 + tmp98*m*tmp1375 + tmp113*m*tmp1383 + tmp112*m*tmp1384;
+    const Scalar tmp1580 = Scalar(2)*tmp126*m*tmp1397 + Scalar(2)*tmp142*m*tmp1408
+        + Scalar(2)*tmp157*m*tmp1423 + Scalar(2)*tmp174*m*tmp1435 + Scalar(2)*tmp21*tmp325*m*tmp24
+        + Scalar(2)*tmp191*m*tmp1452 + Scalar(2)*tmp24*tmp325*m*tmp1324 + Scalar(2)*tmp209*m*tmp1465
+        + Scalar(2)*tmp228*m*tmp1484 + Scalar(2)*tmp43*m*tmp1333 + Scalar(2)*tmp51*m*tmp1340
+        + Scalar(2)*tmp62*m*tmp1345 + Scalar(2)*tmp73*m*tmp1355 + Scalar(2)*tmp88*m*tmp1364
+        + Scalar(2)*tmp98*m*tmp1374 + Scalar(2)*tmp113*m*tmp1384;
+    const Scalar tmp1581 = tmp128*m*tmp1396 + tmp125*m*tmp1399 + tmp143*m*tmp1405 + tmp139*m*tmp1409
+        + tmp159*m*tmp1422 + tmp156*m*tmp1425 + tmp175*m*tmp1431 + tmp170*m*tmp1436
+        + tmp193*m*tmp1451 + tmp190*m*tmp1454 + tmp210*m*tmp1460 + tmp204*m*tmp1466
+        + tmp230*m*tmp1483 + tmp227*m*tmp1486 + tmp53*m*tmp1330 + tmp44*m*tmp1332 + tmp41*m*tmp1333
+        + tmp38*m*tmp1340 + tmp64*m*tmp1345 + tmp63*m*tmp1346 + tmp75*m*tmp1354 + tmp72*m*tmp1355
+        + tmp86*m*tmp1361 + tmp85*m*tmp1362 + tmp100*m*tmp1373 + tmp97*m*tmp1376 + tmp114*m*tmp1381
+        + tmp110*m*tmp1385;
+    const Scalar tmp1582 = tmp127*m*tmp1396 + tmp125*m*tmp1398 + tmp143*m*tmp1407 + tmp141*m*tmp1409
+        + tmp158*m*tmp1422 + tmp156*m*tmp1424 + tmp175*m*tmp1434 + tmp173*m*tmp1436
+        + tmp192*m*tmp1451 + tmp190*m*tmp1453 + tmp210*m*tmp1463 + tmp207*m*tmp1466
+        + tmp229*m*tmp1483 + tmp227*m*tmp1485 + tmp52*m*tmp1330 + tmp45*m*tmp1332 + tmp41*m*tmp1334
+        + tmp38*m*tmp1341 + tmp65*m*tmp1346 + tmp64*m*tmp1347 + tmp74*m*tmp1354 + tmp72*m*tmp1356
+        + tmp87*m*tmp1362 + tmp86*m*tmp1363 + tmp99*m*tmp1373 + tmp97*m*tmp1375 + tmp114*m*tmp1383
+        + tmp112*m*tmp1385;
+    const Scalar tmp1583 = tmp126*m*tmp1396 + tmp125*m*tmp1397 + tmp143*m*tmp1408 + tmp142*m*tmp1409
+        + tmp157*m*tmp1422 + tmp156*m*tmp1423 + tmp175*m*tmp1435 + tmp174*m*tmp1436
+        + tmp191*m*tmp1451 + tmp190*m*tmp1452 + tmp210*m*tmp1465 + tmp209*m*tmp1466
+        + tmp228*m*tmp1483 + tmp227*m*tmp1484 + tmp51*m*tmp1330 + tmp43*m*tmp1332 + tmp41*m*tmp1333
+        + tmp38*m*tmp1340 + tmp64*m*tmp1345 + tmp62*m*tmp1346 + tmp73*m*tmp1354 + tmp72*m*tmp1355
+        + tmp88*m*tmp1362 + tmp86*m*tmp1364 + tmp98*m*tmp1373 + tmp97*m*tmp1374 + tmp114*m*tmp1384
+        + tmp113*m*tmp1385;
+    const Scalar tmp1584 = Scalar(2)*tmp125*m*tmp1396 + Scalar(2)*tmp143*m*tmp1409
+        + Scalar(2)*tmp156*m*tmp1422 + Scalar(2)*tmp175*m*tmp1436 + Scalar(2)*tmp190*m*tmp1451
+        + Scalar(2)*tmp210*m*tmp1466 + Scalar(2)*tmp227*m*tmp1483 + Scalar(2)*tmp325*tmp37*m*tmp40
+        + Scalar(2)*tmp325*tmp40*m*tmp1331 + Scalar(2)*tmp64*m*tmp1346 + Scalar(2)*tmp72*m*tmp1354
+        + Scalar(2)*tmp86*m*tmp1362 + Scalar(2)*tmp97*m*tmp1373 + Scalar(2)*tmp114*m*tmp1385;
+    const Scalar tmp1585 = tmp128*m*tmp1395 + tmp124*m*tmp1399 + tmp139*m*tmp1404 + tmp138*m*tmp1405
+        + tmp159*m*tmp1421 + tmp155*m*tmp1425 + tmp170*m*tmp1430 + tmp169*m*tmp1431
+        + tmp193*m*tmp1450 + tmp189*m*tmp1454 + tmp204*m*tmp1459 + tmp203*m*tmp1460
+        + tmp230*m*tmp1482 + tmp226*m*tmp1486 + tmp75*m*tmp1342 + tmp63*m*tmp1344 + tmp60*m*tmp1345
+        + tmp57*m*tmp1355 + tmp85*m*tmp1360 + tmp84*m*tmp1361 + tmp100*m*tmp1372 + tmp96*m*tmp1376
+        + tmp110*m*tmp1380 + tmp109*m*tmp1381;
+    const Scalar tmp1586 = tmp127*m*tmp1395 + tmp124*m*tmp1398 + tmp141*m*tmp1404 + tmp138*m*tmp1407
+        + tmp158*m*tmp1421 + tmp155*m*tmp1424 + tmp173*m*tmp1430 + tmp169*m*tmp1434
+        + tmp192*m*tmp1450 + tmp189*m*tmp1453 + tmp207*m*tmp1459 + tmp203*m*tmp1463
+        + tmp229*m*tmp1482 + tmp226*m*tmp1485 + tmp74*m*tmp1342 + tmp65*m*tmp1344 + tmp60*m*tmp1347
+        + tmp57*m*tmp1356 + tmp87*m*tmp1360 + tmp84*m*tmp1363 + tmp99*m*tmp1372 + tmp96*m*tmp1375
+        + tmp112*m*tmp1380 + tmp109*m*tmp1383;
+    const Scalar tmp1587 = tmp126*m*tmp1395 + tmp124*m*tmp1397 + tmp142*m*tmp1404 + tmp138*m*tmp1408
+        + tmp157*m*tmp1421 + tmp155*m*tmp1423 + tmp174*m*tmp1430 + tmp169*m*tmp1435
+        + tmp191*m*tmp1450 + tmp189*m*tmp1452 + tmp209*m*tmp1459 + tmp203*m*tmp1465
+        + tmp228*m*tmp1482 + tmp226*m*tmp1484 + tmp73*m*tmp1342 + tmp62*m*tmp1344 + tmp60*m*tmp1345
+        + tmp57*m*tmp1355 + tmp88*m*tmp1360 + tmp84*m*tmp1364 + tmp98*m*tmp1372 + tmp96*m*tmp1374
+        + tmp113*m*tmp1380 + tmp109*m*tmp1384;
+    const Scalar tmp1588 = tmp125*m*tmp1395 + tmp124*m*tmp1396 + tmp143*m*tmp1404 + tmp138*m*tmp1409
+        + tmp156*m*tmp1421 + tmp155*m*tmp1422 + tmp175*m*tmp1430 + tmp169*m*tmp1436
+        + tmp190*m*tmp1450 + tmp189*m*tmp1451 + tmp210*m*tmp1459 + tmp203*m*tmp1466
+        + tmp227*m*tmp1482 + tmp226*m*tmp1483 + tmp72*m*tmp1342 + tmp64*m*tmp1344 + tmp60*m*tmp1346
+        + tmp57*m*tmp1354 + tmp86*m*tmp1360 + tmp84*m*tmp1362 + tmp97*m*tmp1372 + tmp96*m*tmp1373
+        + tmp114*m*tmp1380 + tmp109*m*tmp1385;
+    const Scalar tmp1589 = Scalar(2)*tmp124*m*tmp1395 + Scalar(2)*tmp138*m*tmp1404
+        + Scalar(2)*tmp155*m*tmp1421 + Scalar(2)*tmp169*m*tmp1430 + Scalar(2)*tmp189*m*tmp1450
+        + Scalar(2)*tmp203*m*tmp1459 + Scalar(2)*tmp226*m*tmp1482 + Scalar(2)*tmp325*tmp56*m*tmp59
+        + Scalar(2)*tmp325*tmp59*m*tmp1343 + Scalar(2)*tmp84*m*tmp1360 + Scalar(2)*tmp96*m*tmp1372
+        + Scalar(2)*tmp109*m*tmp1380;
+    const Scalar tmp1590 = tmp128*m*tmp1394 + tmp123*m*tmp1399 + tmp140*m*tmp1405 + tmp139*m*tmp1406
+        + tmp159*m*tmp1420 + tmp154*m*tmp1425 + tmp172*m*tmp1431 + tmp170*m*tmp1433
+        + tmp193*m*tmp1449 + tmp188*m*tmp1454 + tmp206*m*tmp1460 + tmp204*m*tmp1462
+        + tmp230*m*tmp1481 + tmp225*m*tmp1486 + tmp100*m*tmp1357 + tmp85*m*tmp1359 + tmp82*m*tmp1361
+        + tmp79*m*tmp1376 + tmp111*m*tmp1381 + tmp110*m*tmp1382;
+    const Scalar tmp1591 = tmp127*m*tmp1394 + tmp123*m*tmp1398 + tmp141*m*tmp1406 + tmp140*m*tmp1407
+        + tmp158*m*tmp1420 + tmp154*m*tmp1424 + tmp173*m*tmp1433 + tmp172*m*tmp1434
+        + tmp192*m*tmp1449 + tmp188*m*tmp1453 + tmp207*m*tmp1462 + tmp206*m*tmp1463
+        + tmp229*m*tmp1481 + tmp225*m*tmp1485 + tmp99*m*tmp1357 + tmp87*m*tmp1359 + tmp82*m*tmp1363
+        + tmp79*m*tmp1375 + tmp112*m*tmp1382 + tmp111*m*tmp1383;
+    const Scalar tmp1592 = tmp126*m*tmp1394 + tmp123*m*tmp1397 + tmp142*m*tmp1406 + tmp140*m*tmp1408
+        + tmp157*m*tmp1420 + tmp154*m*tmp1423 + tmp174*m*tmp1433 + tmp172*m*tmp1435
+        + tmp191*m*tmp1449 + tmp188*m*tmp1452 + tmp209*m*tmp1462 + tmp206*m*tmp1465
+        + tmp228*m*tmp1481 + tmp225*m*tmp1484 + tmp98*m*tmp1357 + tmp88*m*tmp1359 + tmp82*m*tmp1364
+        + tmp79*m*tmp1374 + tmp113*m*tmp1382 + tmp111*m*tmp1384;
+    const Scalar tmp1593 = tmp125*m*tmp1394 + tmp123*m*tmp1396 + tmp143*m*tmp1406 + tmp140*m*tmp1409
+        + tmp156*m*tmp1420 + tmp154*m*tmp1422 + tmp175*m*tmp1433 + tmp172*m*tmp1436
+        + tmp190*m*tmp1449 + tmp188*m*tmp1451 + tmp210*m*tmp1462 + tmp206*m*tmp1466
+        + tmp227*m*tmp1481 + tmp225*m*tmp1483 + tmp97*m*tmp1357 + tmp86*m*tmp1359 + tmp82*m*tmp1362
+        + tmp79*m*tmp1373 + tmp114*m*tmp1382 + tmp111*m*tmp1385;
+    const Scalar tmp1594 = tmp124*m*tmp1394 + tmp123*m*tmp1395 + tmp140*m*tmp1404 + tmp138*m*tmp1406
+        + tmp155*m*tmp1420 + tmp154*m*tmp1421 + tmp172*m*tmp1430 + tmp169*m*tmp1433
+        + tmp189*m*tmp1449 + tmp188*m*tmp1450 + tmp206*m*tmp1459 + tmp203*m*tmp1462
+        + tmp226*m*tmp1481 + tmp225*m*tmp1482 + tmp96*m*tmp1357 + tmp84*m*tmp1359 + tmp82*m*tmp1360
+        + tmp79*m*tmp1372 + tmp111*m*tmp1380 + tmp109*m*tmp1382;
+    const Scalar tmp1595 = Scalar(2)*tmp123*m*tmp1394 + Scalar(2)*tmp140*m*tmp1406
+        + Scalar(2)*tmp154*m*tmp1420 + Scalar(2)*tmp172*m*tmp1433 + Scalar(2)*tmp188*m*tmp1449
+        + Scalar(2)*tmp206*m*tmp1462 + Scalar(2)*tmp225*m*tmp1481 + Scalar(2)*tmp325*tmp78*m*tmp81
+        + Scalar(2)*tmp325*tmp81*m*tmp1358 + Scalar(2)*tmp111*m*tmp1382;
+    const Scalar tmp1596 = tmp104*m*tmp1399 + tmp139*m*tmp1403 + tmp137*m*tmp1405 + tmp159*m*tmp1419
+        + tmp153*m*tmp1425 + tmp170*m*tmp1429 + tmp168*m*tmp1431 + tmp193*m*tmp1448
+        + tmp187*m*tmp1454 + tmp208*m*tmp1460 + tmp204*m*tmp1464 + tmp230*m*tmp1480
+        + tmp224*m*tmp1486 + tmp128*m*tmp1377 + tmp110*m*tmp1379 + tmp107*m*tmp1381;
+    const Scalar tmp1597 = tmp104*m*tmp1398 + tmp141*m*tmp1403 + tmp137*m*tmp1407 + tmp158*m*tmp1419
+        + tmp153*m*tmp1424 + tmp173*m*tmp1429 + tmp168*m*tmp1434 + tmp192*m*tmp1448
+        + tmp187*m*tmp1453 + tmp208*m*tmp1463 + tmp207*m*tmp1464 + tmp229*m*tmp1480
+        + tmp224*m*tmp1485 + tmp127*m*tmp1377 + tmp112*m*tmp1379 + tmp107*m*tmp1383;
+    const Scalar tmp1598 = tmp104*m*tmp1397 + tmp142*m*tmp1403 + tmp137*m*tmp1408 + tmp157*m*tmp1419
+        + tmp153*m*tmp1423 + tmp174*m*tmp1429 + tmp168*m*tmp1435 + tmp191*m*tmp1448
+        + tmp187*m*tmp1452 + tmp209*m*tmp1464 + tmp208*m*tmp1465 + tmp228*m*tmp1480
+        + tmp224*m*tmp1484 + tmp126*m*tmp1377 + tmp113*m*tmp1379 + tmp107*m*tmp1384;
+    const Scalar tmp1599 = tmp104*m*tmp1396 + tmp143*m*tmp1403 + tmp137*m*tmp1409 + tmp156*m*tmp1419
+        + tmp153*m*tmp1422 + tmp175*m*tmp1429 + tmp168*m*tmp1436 + tmp190*m*tmp1448
+        + tmp187*m*tmp1451 + tmp210*m*tmp1464 + tmp208*m*tmp1466 + tmp227*m*tmp1480
+        + tmp224*m*tmp1483 + tmp125*m*tmp1377 + tmp114*m*tmp1379 + tmp107*m*tmp1385;
+    const Scalar tmp1600 = tmp104*m*tmp1395 + tmp138*m*tmp1403 + tmp137*m*tmp1404 + tmp155*m*tmp1419
+        + tmp153*m*tmp1421 + tmp169*m*tmp1429 + tmp168*m*tmp1430 + tmp189*m*tmp1448
+        + tmp187*m*tmp1450 + tmp208*m*tmp1459 + tmp203*m*tmp1464 + tmp226*m*tmp1480
+        + tmp224*m*tmp1482 + tmp124*m*tmp1377 + tmp109*m*tmp1379 + tmp107*m*tmp1380;
+    const Scalar tmp1601 = tmp104*m*tmp1394 + tmp140*m*tmp1403 + tmp137*m*tmp1406 + tmp154*m*tmp1419
+        + tmp153*m*tmp1420 + tmp172*m*tmp1429 + tmp168*m*tmp1433 + tmp188*m*tmp1448
+        + tmp187*m*tmp1449 + tmp208*m*tmp1462 + tmp206*m*tmp1464 + tmp225*m*tmp1480
+        + tmp224*m*tmp1481 + tmp123*m*tmp1377 + tmp111*m*tmp1379 + tmp107*m*tmp1382;
+    const Scalar tmp1602 = Scalar(2)*tmp137*m*tmp1403 + Scalar(2)*tmp153*m*tmp1419
+        + Scalar(2)*tmp168*m*tmp1429 + Scalar(2)*tmp187*m*tmp1448 + Scalar(2)*tmp208*m*tmp1464
+        + Scalar(2)*tmp224*m*tmp1480 + Scalar(2)*tmp325*tmp103*m*tmp106
+        + Scalar(2)*tmp325*tmp106*m*tmp1378;
+    const Scalar tmp1603 = tmp159*m*tmp1400 + tmp139*m*tmp1402 + tmp135*m*tmp1405 + tmp132*m*tmp1425
+        + tmp171*m*tmp1431 + tmp170*m*tmp1432 + tmp193*m*tmp1447 + tmp186*m*tmp1454
+        + tmp205*m*tmp1460 + tmp204*m*tmp1461 + tmp230*m*tmp1479 + tmp223*m*tmp1486;
+    const Scalar tmp1604 = tmp158*m*tmp1400 + tmp141*m*tmp1402 + tmp135*m*tmp1407 + tmp132*m*tmp1424
+        + tmp173*m*tmp1432 + tmp171*m*tmp1434 + tmp192*m*tmp1447 + tmp186*m*tmp1453
+        + tmp207*m*tmp1461 + tmp205*m*tmp1463 + tmp229*m*tmp1479 + tmp223*m*tmp1485;
+    const Scalar tmp1605 = tmp157*m*tmp1400 + tmp142*m*tmp1402 + tmp135*m*tmp1408 + tmp132*m*tmp1423
+        + tmp174*m*tmp1432 + tmp171*m*tmp1435 + tmp191*m*tmp1447 + tmp186*m*tmp1452
+        + tmp209*m*tmp1461 + tmp205*m*tmp1465 + tmp228*m*tmp1479 + tmp223*m*tmp1484;
+    const Scalar tmp1606 = tmp156*m*tmp1400 + tmp143*m*tmp1402 + tmp135*m*tmp1409 + tmp132*m*tmp1422
+        + tmp175*m*tmp1432 + tmp171*m*tmp1436 + tmp190*m*tmp1447 + tmp186*m*tmp1451
+        + tmp210*m*tmp1461 + tmp205*m*tmp1466 + tmp227*m*tmp1479 + tmp223*m*tmp1483;
+    const Scalar tmp1607 = tmp155*m*tmp1400 + tmp138*m*tmp1402 + tmp135*m*tmp1404 + tmp132*m*tmp1421
+        + tmp171*m*tmp1430 + tmp169*m*tmp1432 + tmp189*m*tmp1447 + tmp186*m*tmp1450
+        + tmp205*m*tmp1459 + tmp203*m*tmp1461 + tmp226*m*tmp1479 + tmp223*m*tmp1482;
+    const Scalar tmp1608 = tmp154*m*tmp1400 + tmp140*m*tmp1402 + tmp135*m*tmp1406 + tmp132*m*tmp1420
+        + tmp172*m*tmp1432 + tmp171*m*tmp1433 + tmp188*m*tmp1447 + tmp186*m*tmp1449
+        + tmp206*m*tmp1461 + tmp205*m*tmp1462 + tmp225*m*tmp1479 + tmp223*m*tmp1481;
+    const Scalar tmp1609 = tmp153*m*tmp1400 + tmp137*m*tmp1402 + tmp135*m*tmp1403 + tmp132*m*tmp1419
+        + tmp171*m*tmp1429 + tmp168*m*tmp1432 + tmp187*m*tmp1447 + tmp186*m*tmp1448
+        + tmp208*m*tmp1461 + tmp205*m*tmp1464 + tmp224*m*tmp1479 + tmp223*m*tmp1480;
+    const Scalar tmp1610 = Scalar(2)*tmp131*tmp325*m*tmp134 + Scalar(2)*tmp134*tmp325*m*tmp1401
+        + Scalar(2)*tmp171*m*tmp1432 + Scalar(2)*tmp186*m*tmp1447 + Scalar(2)*tmp205*m*tmp1461
+        + Scalar(2)*tmp223*m*tmp1479;
+    const Scalar tmp1611 = tmp193*m*tmp1426 + tmp170*m*tmp1428 + tmp166*m*tmp1431 + tmp163*m*tmp1454
+        + tmp204*m*tmp1458 + tmp202*m*tmp1460 + tmp230*m*tmp1478 + tmp222*m*tmp1486;
+    const Scalar tmp1612 = tmp192*m*tmp1426 + tmp173*m*tmp1428 + tmp166*m*tmp1434 + tmp163*m*tmp1453
+        + tmp207*m*tmp1458 + tmp202*m*tmp1463 + tmp229*m*tmp1478 + tmp222*m*tmp1485;
+    const Scalar tmp1613 = tmp191*m*tmp1426 + tmp174*m*tmp1428 + tmp166*m*tmp1435 + tmp163*m*tmp1452
+        + tmp209*m*tmp1458 + tmp202*m*tmp1465 + tmp228*m*tmp1478 + tmp222*m*tmp1484;
+    const Scalar tmp1614 = tmp190*m*tmp1426 + tmp175*m*tmp1428 + tmp166*m*tmp1436 + tmp163*m*tmp1451
+        + tmp210*m*tmp1458 + tmp202*m*tmp1466 + tmp227*m*tmp1478 + tmp222*m*tmp1483;
+    const Scalar tmp1615 = tmp189*m*tmp1426 + tmp169*m*tmp1428 + tmp166*m*tmp1430 + tmp163*m*tmp1450
+        + tmp203*m*tmp1458 + tmp202*m*tmp1459 + tmp226*m*tmp1478 + tmp222*m*tmp1482;
+    const Scalar tmp1616 = tmp188*m*tmp1426 + tmp172*m*tmp1428 + tmp166*m*tmp1433 + tmp163*m*tmp1449
+        + tmp206*m*tmp1458 + tmp202*m*tmp1462 + tmp225*m*tmp1478 + tmp222*m*tmp1481;
+    const Scalar tmp1617 = tmp187*m*tmp1426 + tmp168*m*tmp1428 + tmp166*m*tmp1429 + tmp163*m*tmp1448
+        + tmp208*m*tmp1458 + tmp202*m*tmp1464 + tmp224*m*tmp1478 + tmp222*m*tmp1480;
+    const Scalar tmp1618 = tmp186*m*tmp1426 + tmp171*m*tmp1428 + tmp166*m*tmp1432 + tmp163*m*tmp1447
+        + tmp205*m*tmp1458 + tmp202*m*tmp1461 + tmp223*m*tmp1478 + tmp222*m*tmp1479;
+    const Scalar tmp1619 = Scalar(2)*tmp162*tmp325*m*tmp165 + Scalar(2)*tmp165*tmp325*m*tmp1427
+        + Scalar(2)*tmp202*m*tmp1458 + Scalar(2)*tmp222*m*tmp1478;
+    const Scalar tmp1620 = tmp230*m*tmp1455 + tmp204*m*tmp1457 + tmp200*m*tmp1460
+        + tmp197*m*tmp1486;
+    const Scalar tmp1621 = tmp229*m*tmp1455 + tmp207*m*tmp1457 + tmp200*m*tmp1463
+        + tmp197*m*tmp1485;
+    const Scalar tmp1622 = tmp228*m*tmp1455 + tmp209*m*tmp1457 + tmp200*m*tmp1465
+        + tmp197*m*tmp1484;
+    const Scalar tmp1623 = tmp227*m*tmp1455 + tmp210*m*tmp1457 + tmp200*m*tmp1466
+        + tmp197*m*tmp1483;
+    const Scalar tmp1624 = tmp226*m*tmp1455 + tmp203*m*tmp1457 + tmp200*m*tmp1459
+        + tmp197*m*tmp1482;
+    const Scalar tmp1625 = tmp225*m*tmp1455 + tmp206*m*tmp1457 + tmp200*m*tmp1462
+        + tmp197*m*tmp1481;
+    const Scalar tmp1626 = tmp224*m*tmp1455 + tmp208*m*tmp1457 + tmp200*m*tmp1464
+        + tmp197*m*tmp1480;
+    const Scalar tmp1627 = tmp223*m*tmp1455 + tmp205*m*tmp1457 + tmp200*m*tmp1461
+        + tmp197*m*tmp1479;
+    const Scalar tmp1628 = tmp222*m*tmp1455 + tmp202*m*tmp1457 + tmp200*m*tmp1458
+        + tmp197*m*tmp1478;
+    const Scalar tmp1629 = Scalar(2)*tmp196*tmp325*m*tmp199 + Scalar(2)*tmp199*tmp325*m*tmp1456;
+    const Scalar tmp1630 = m*tmp1489;
+    const Scalar tmp1631 = m*tmp1490;
+    const Scalar tmp1632 = m*tmp1495;
+    const Scalar tmp1633 = m*tmp1496;
+    const Scalar tmp1634 = m*tmp1503;
+    const Scalar tmp1635 = m*tmp1504;
+    const Scalar tmp1636 = m*tmp1513;
+    const Scalar tmp1637 = m*tmp1514;
+    const Scalar tmp1638 = m*tmp1525;
+    const Scalar tmp1639 = m*tmp1526;
+    const Scalar tmp1640 = m*tmp1539;
+    const Scalar tmp1641 = m*tmp1540;
+    const Scalar tmp1642 = m*tmp1555;
+    const Scalar tmp1643 = m*tmp1556;
+    const Scalar tmp1644 = m*tmp1573;
+    const Scalar tmp1645 = m*tmp1574;
+    const Scalar tmp1646 = tmp382*tmp1399 + tmp382*tmp1425 + tmp382*tmp1454 + tmp382*tmp1486
+        + tmp382*tmp1323 + tmp382*tmp1340 + tmp382*tmp1355 + tmp382*tmp1376;
+    const Scalar tmp1647 = tmp382*tmp1398 + tmp382*tmp1424 + tmp382*tmp1453 + tmp382*tmp1485
+        + tmp382*tmp1323 + tmp382*tmp1341 + tmp382*tmp1356 + tmp382*tmp1375;
+    const Scalar tmp1648 = tmp382*tmp1397 + tmp382*tmp1423 + tmp382*tmp1323 + tmp382*tmp1452
+        + tmp382*tmp1484 - k + tmp382*tmp1340 + tmp382*tmp1355 + tmp382*tmp1374;
+    const Scalar tmp1649 = tmp382*tmp1396 + tmp382*tmp1422 + tmp382*tmp1451 + tmp382*tmp1483
+        + tmp382*tmp1330 + tmp382*tmp1354 + tmp382*tmp1373;
+    const Scalar tmp1650 = tmp382*tmp1395 + tmp382*tmp1421 + tmp382*tmp1450 + tmp382*tmp1482
+        + tmp382*tmp1342 + tmp382*tmp1372;
+    const Scalar tmp1651 = tmp382*tmp1394 + tmp382*tmp1420 + tmp382*tmp1449 + tmp382*tmp1481
+        + tmp382*tmp1357;
+    const Scalar tmp1652 = tmp382*tmp1419 + tmp382*tmp1448 + tmp382*tmp1480 + tmp382*tmp1377;
+    const Scalar tmp1653 = tmp382*tmp1400 + tmp382*tmp1447 + tmp382*tmp1479;
+    const Scalar tmp1654 = tmp382*tmp1426 + tmp382*tmp1478;
+    const Scalar tmp1655 = tmp382*l*tmp199;
+    const Scalar tmp1656 = -tmp396*tmp1399 - tmp397*tmp1405 - tmp398*tmp1425 - tmp399*tmp1431
+        - tmp400*tmp1454 - tmp401*tmp1460 - tmp387*tmp1325 - tmp402*tmp1486 - tmp388*tmp1323
+        - tmp389*tmp1333 - tmp390*tmp1340 - tmp391*tmp1345 - tmp392*tmp1355 - tmp393*tmp1361
+        - tmp394*tmp1376 - tmp395*tmp1381 - tmp27*tmp1630 - tmp34*tmp1631 - tmp44*tmp1632
+        - tmp53*tmp1633 - tmp63*tmp1634 - tmp75*tmp1635 - tmp85*tmp1636 - tmp100*tmp1637
+        - tmp110*tmp1638 - tmp128*tmp1639 - tmp139*tmp1640 - tmp159*tmp1641 - tmp170*tmp1642
+        - tmp193*tmp1643 - tmp204*tmp1644 - tmp230*tmp1645;
+    dr_dq_data[0 + 10 * 2] = phi10_ddot*tmp1620 - tmp1646 - tmp1656 + phi1_ddot*tmp1575
+        + phi2_ddot*tmp1576 + phi3_ddot*tmp1578 + phi4_ddot*tmp1581 + phi5_ddot*tmp1585
+        + phi6_ddot*tmp1590 + phi7_ddot*tmp1596 + phi8_ddot*tmp1603 + phi9_ddot*tmp1611;
+    const Scalar tmp1657 = -tmp396*tmp1398 - tmp397*tmp1407 - tmp398*tmp1424 - tmp399*tmp1434
+        - tmp400*tmp1453 - tmp401*tmp1463 - tmp387*tmp1325 - tmp402*tmp1485 - tmp388*tmp1323
+        - tmp389*tmp1334 - tmp390*tmp1341 - tmp391*tmp1347 - tmp392*tmp1356 - tmp393*tmp1363
+        - tmp394*tmp1375 - tmp395*tmp1383 - tmp28*tmp1630 - tmp33*tmp1631 - tmp45*tmp1632
+        - tmp52*tmp1633 - tmp65*tmp1634 - tmp74*tmp1635 - tmp87*tmp1636 - tmp99*tmp1637
+        - tmp112*tmp1638 - tmp127*tmp1639 - tmp141*tmp1640 - tmp158*tmp1641 - tmp173*tmp1642
+        - tmp192*tmp1643 - tmp207*tmp1644 - tmp229*tmp1645;
+    dr_dq_data[1 + 10 * 2] = phi10_ddot*tmp1621 - tmp1647 - tmp1657 + phi1_ddot*tmp1576
+        + phi2_ddot*tmp1577 + phi3_ddot*tmp1579 + phi4_ddot*tmp1582 + phi5_ddot*tmp1586
+        + phi6_ddot*tmp1591 + phi7_ddot*tmp1597 + phi8_ddot*tmp1604 + phi9_ddot*tmp1612;
+    const Scalar tmp1658 = -tmp396*tmp1397 - tmp397*tmp1408 - tmp398*tmp1423 - tmp399*tmp1435
+        - tmp388*tmp1323 - tmp400*tmp1452 - tmp387*tmp1325 - tmp401*tmp1465 - tmp402*tmp1484
+        - tmp389*tmp1333 - tmp390*tmp1340 - tmp391*tmp1345 - tmp392*tmp1355 - tmp393*tmp1364
+        - tmp394*tmp1374 - tmp395*tmp1384 - tmp25*tmp1630 - tmp22*tmp1631 - tmp43*tmp1632
+        - tmp51*tmp1633 - tmp62*tmp1634 - tmp73*tmp1635 - tmp88*tmp1636 - tmp98*tmp1637
+        - tmp113*tmp1638 - tmp126*tmp1639 - tmp142*tmp1640 - tmp157*tmp1641 - tmp174*tmp1642
+        - tmp191*tmp1643 - tmp209*tmp1644 - tmp228*tmp1645;
+    dr_dq_data[2 + 10 * 2] = phi10_ddot*tmp1622 - tmp1648 - tmp1658 + phi1_ddot*tmp1578
+        + phi2_ddot*tmp1579 + phi3_ddot*tmp1580 + phi4_ddot*tmp1583 + phi5_ddot*tmp1587
+        + phi6_ddot*tmp1592 + phi7_ddot*tmp1598 + phi8_ddot*tmp1605 + phi9_ddot*tmp1613;
+    const Scalar tmp1659 = -tmp396*tmp1396 - tmp397*tmp1409 - tmp398*tmp1422 - tmp399*tmp1436
+        - tmp400*tmp1451 - tmp401*tmp1466 - tmp402*tmp1483 - tmp390*tmp1330 - tmp389*tmp1332
+        - tmp391*tmp1346 - tmp392*tmp1354 - tmp393*tmp1362 - tmp394*tmp1373 - tmp395*tmp1385
+        - tmp41*tmp1632 - tmp38*tmp1633 - tmp64*tmp1634 - tmp72*tmp1635 - tmp86*tmp1636
+        - tmp97*tmp1637 - tmp114*tmp1638 - tmp125*tmp1639 - tmp143*tmp1640 - tmp156*tmp1641
+        - tmp175*tmp1642 - tmp190*tmp1643 - tmp210*tmp1644 - tmp227*tmp1645;
+    dr_dq_data[3 + 10 * 2] = phi10_ddot*tmp1623 - tmp1649 - tmp1659 + phi1_ddot*tmp1581
+        + phi2_ddot*tmp1582 + phi3_ddot*tmp1583 + phi4_ddot*tmp1584 + phi5_ddot*tmp1588
+        + phi6_ddot*tmp1593 + phi7_ddot*tmp1599 + phi8_ddot*tmp1606 + phi9_ddot*tmp1614;
+    const Scalar tmp1660 = -tmp396*tmp1395 - tmp397*tmp1404 - tmp398*tmp1421 - tmp399*tmp1430
+        - tmp400*tmp1450 - tmp401*tmp1459 - tmp402*tmp1482 - tmp392*tmp1342 - tmp391*tmp1344
+        - tmp393*tmp1360 - tmp394*tmp1372 - tmp395*tmp1380 - tmp60*tmp1634 - tmp57*tmp1635
+        - tmp84*tmp1636 - tmp96*tmp1637 - tmp109*tmp1638 - tmp124*tmp1639 - tmp138*tmp1640
+        - tmp155*tmp1641 - tmp169*tmp1642 - tmp189*tmp1643 - tmp203*tmp1644 - tmp226*tmp1645;
+    dr_dq_data[4 + 10 * 2] = phi9_ddot*tmp1615 + phi10_ddot*tmp1624 - tmp1650 - tmp1660
+        + phi1_ddot*tmp1585 + phi2_ddot*tmp1586 + phi3_ddot*tmp1587 + phi4_ddot*tmp1588
+        + phi5_ddot*tmp1589 + phi6_ddot*tmp1594 + phi7_ddot*tmp1600 + phi8_ddot*tmp1607;
+    const Scalar tmp1661 = -tmp396*tmp1394 - tmp397*tmp1406 - tmp398*tmp1420 - tmp399*tmp1433
+        - tmp400*tmp1449 - tmp401*tmp1462 - tmp402*tmp1481 - tmp394*tmp1357 - tmp393*tmp1359
+        - tmp395*tmp1382 - tmp82*tmp1636 - tmp79*tmp1637 - tmp111*tmp1638 - tmp123*tmp1639
+        - tmp140*tmp1640 - tmp154*tmp1641 - tmp172*tmp1642 - tmp188*tmp1643 - tmp206*tmp1644
+        - tmp225*tmp1645;
+    dr_dq_data[5 + 10 * 2] = phi9_ddot*tmp1616 + phi10_ddot*tmp1625 - tmp1651 - tmp1661
+        + phi1_ddot*tmp1590 + phi2_ddot*tmp1591 + phi3_ddot*tmp1592 + phi4_ddot*tmp1593
+        + phi5_ddot*tmp1594 + phi6_ddot*tmp1595 + phi7_ddot*tmp1601 + phi8_ddot*tmp1608;
+    const Scalar tmp1662 = -tmp397*tmp1403 - tmp398*tmp1419 - tmp399*tmp1429 - tmp400*tmp1448
+        - tmp401*tmp1464 - tmp402*tmp1480 - tmp396*tmp1377 - tmp395*tmp1379 - tmp107*tmp1638
+        - tmp104*tmp1639 - tmp137*tmp1640 - tmp153*tmp1641 - tmp168*tmp1642 - tmp187*tmp1643
+        - tmp208*tmp1644 - tmp224*tmp1645;
+    dr_dq_data[6 + 10 * 2] = phi9_ddot*tmp1617 + phi10_ddot*tmp1626 - tmp1652 - tmp1662
+        + phi1_ddot*tmp1596 + phi2_ddot*tmp1597 + phi3_ddot*tmp1598 + phi4_ddot*tmp1599
+        + phi5_ddot*tmp1600 + phi6_ddot*tmp1601 + phi7_ddot*tmp1602 + phi8_ddot*tmp1609;
+    const Scalar tmp1663 = -tmp398*tmp1400 - tmp397*tmp1402 - tmp399*tmp1432 - tmp400*tmp1447
+        - tmp401*tmp1461 - tmp402*tmp1479 - tmp135*tmp1640 - tmp132*tmp1641 - tmp171*tmp1642
+        - tmp186*tmp1643 - tmp205*tmp1644 - tmp223*tmp1645;
+    dr_dq_data[7 + 10 * 2] = phi9_ddot*tmp1618 + phi10_ddot*tmp1627 - tmp1653 - tmp1663
+        + phi1_ddot*tmp1603 + phi2_ddot*tmp1604 + phi3_ddot*tmp1605 + phi4_ddot*tmp1606
+        + phi5_ddot*tmp1607 + phi6_ddot*tmp1608 + phi7_ddot*tmp1609 + phi8_ddot*tmp1610;
+    const Scalar tmp1664 = -tmp400*tmp1426 - tmp399*tmp1428 - tmp401*tmp1458 - tmp402*tmp1478
+        - tmp166*tmp1642 - tmp163*tmp1643 - tmp202*tmp1644 - tmp222*tmp1645;
+    dr_dq_data[8 + 10 * 2] = phi5_ddot*tmp1615 + phi6_ddot*tmp1616 + phi7_ddot*tmp1617
+        + phi8_ddot*tmp1618 + phi9_ddot*tmp1619 + phi10_ddot*tmp1628 - tmp1654 - tmp1664
+        + phi1_ddot*tmp1611 + phi2_ddot*tmp1612 + phi3_ddot*tmp1613 + phi4_ddot*tmp1614;
+    const Scalar tmp1665 = -tmp402*tmp1455 - tmp401*tmp1457 - tmp200*tmp1644 - tmp197*tmp1645;
+    dr_dq_data[9 + 10 * 2] = phi1_ddot*tmp1620 + phi2_ddot*tmp1621 + phi3_ddot*tmp1622
+        + phi4_ddot*tmp1623 + phi5_ddot*tmp1624 + phi6_ddot*tmp1625 + phi7_ddot*tmp1626
+        + phi8_ddot*tmp1627 + phi9_ddot*tmp1628 + phi10_ddot*tmp1629 - tmp1655 - tmp1665;
+    const Scalar tmp1666 = l*tmp40;
+    carried[273] = tmp1666;
+    const Scalar tmp1667 = -tmp37;
+    const Scalar tmp1668 = l*tmp1667;
+    carried[274] = tmp1668;
+    const Scalar tmp1669 = phi4_dot*tmp1668;
+    const Scalar tmp1670 = phi3_dot*tmp1668 + tmp1669;
+    const Scalar tmp1671 = phi2_dot*tmp1668 + tmp1670;
+    const Scalar tmp1672 = phi1_dot*tmp1668 + tmp1671;
+    const Scalar tmp1673 = phi4_dot*tmp1666;
+    const Scalar tmp1674 = l*tmp59;
+    carried[275] = tmp1674;
+    const Scalar tmp1675 = -tmp56;
+    const Scalar tmp1676 = l*tmp1675;
+    carried[276] = tmp1676;
+    const Scalar tmp1677 = tmp1668 + tmp1676;
+    carried[277] = tmp1677;
+    const Scalar tmp1678 = tmp1668 + tmp1676;
+    carried[278] = tmp1678;
+    const Scalar tmp1679 = phi5_dot*tmp1676;
+    const Scalar tmp1680 = phi4_dot*tmp1678 + tmp1679;
+    const Scalar tmp1681 = phi3_dot*tmp1677 + tmp1680;
+    const Scalar tmp1682 = phi2_dot*tmp1678 + tmp1681;
+    const Scalar tmp1683 = phi1_dot*tmp1677 + tmp1682;
+    const Scalar tmp1684 = phi5_dot*tmp1674;
+    const Scalar tmp1685 = tmp1666 + tmp1674;
+    carried[279] = tmp1685;
+    const Scalar tmp1686 = tmp1666 + tmp1674;
+    carried[280] = tmp1686;
+    const Scalar tmp1687 = l*tmp81;
+    carried[281] = tmp1687;
+    const Scalar tmp1688 = -tmp78;
     const Scalar tmp1689 = l*tmp1688;
-    carried[306] = tmp1689;
-    const Scalar tmp1690 = tmp1689 + tmp1666;
-    carried[307] = tmp1690;
-    const Scalar tmp1691 = tmp1690 + tmp1649;
-    carried[308] = tmp1691;
-    const Scalar tmp1692 = tmp1691 + tmp1627;
-    carried[309] = tmp1692;
-    const Scalar tmp1693 = tmp1689 + tmp1669;
-    carried[310] = tmp1693;
-    const Scalar tmp1694 = tmp1693 + tmp1637;
-    carried[311] = tmp1694;
-    const Scalar tmp1695 = tmp1690 + tmp1652;
-    carried[312] = tmp1695;
-    const Scalar tmp1696 = tmp1693 + tmp1637;
-    carried[313] = tmp1696;
-    const Scalar tmp1697 = phi8_dot*tmp1689;
-    const Scalar tmp1698 = phi7_dot*tmp1690 + tmp1697;
-    const Scalar tmp1699 = phi6_dot*tmp1693 + tmp1698;
-    const Scalar tmp1700 = phi5_dot*tmp1691 + tmp1699;
-    const Scalar tmp1701 = phi4_dot*tmp1696 + tmp1700;
-    const Scalar tmp1702 = phi3_dot*tmp1695 + tmp1701;
-    const Scalar tmp1703 = phi2_dot*tmp1694 + tmp1702;
-    const Scalar tmp1704 = phi1_dot*tmp1692 + tmp1703;
-    const Scalar tmp1705 = phi8_dot*tmp1687;
-    const Scalar tmp1706 = tmp1687 + tmp1664;
-    carried[314] = tmp1706;
-    const Scalar tmp1707 = tmp1681 + tmp1687;
-    carried[315] = tmp1707;
-    const Scalar tmp1708 = tmp1706 + tmp1660;
-    carried[316] = tmp1708;
-    const Scalar tmp1709 = tmp1707 + tmp1644;
-    carried[317] = tmp1709;
-    const Scalar tmp1710 = tmp1706 + tmp1662;
-    carried[318] = tmp1710;
-    const Scalar tmp1711 = tmp1707 + tmp1644;
-    carried[319] = tmp1711;
-    const Scalar tmp1712 = tmp1708 + tmp1625;
-    carried[320] = tmp1712;
-    const Scalar tmp1713 = l*tmp165;
-    carried[321] = tmp1713;
-    const Scalar tmp1714 = -tmp162;
-    const Scalar tmp1715 = l*tmp1714;
-    carried[322] = tmp1715;
-    const Scalar tmp1716 = tmp1690 + tmp1715;
-    carried[323] = tmp1716;
-    const Scalar tmp1717 = tmp1716 + tmp1649;
-    carried[324] = tmp1717;
-    const Scalar tmp1718 = tmp1717 + tmp1627;
-    carried[325] = tmp1718;
-    const Scalar tmp1719 = tmp1689 + tmp1715;
-    carried[326] = tmp1719;
-    const Scalar tmp1720 = tmp1719 + tmp1669;
-    carried[327] = tmp1720;
-    const Scalar tmp1721 = tmp1720 + tmp1637;
-    carried[328] = tmp1721;
-    const Scalar tmp1722 = tmp1716 + tmp1652;
-    carried[329] = tmp1722;
-    const Scalar tmp1723 = tmp1719 + tmp1672;
-    carried[330] = tmp1723;
-    const Scalar tmp1724 = phi9_dot*tmp1715;
-    const Scalar tmp1725 = phi8_dot*tmp1719 + tmp1724;
-    const Scalar tmp1726 = phi7_dot*tmp1716 + tmp1725;
-    const Scalar tmp1727 = phi6_dot*tmp1720 + tmp1726;
-    const Scalar tmp1728 = phi5_dot*tmp1717 + tmp1727;
-    const Scalar tmp1729 = phi4_dot*tmp1723 + tmp1728;
-    const Scalar tmp1730 = phi3_dot*tmp1722 + tmp1729;
-    const Scalar tmp1731 = phi2_dot*tmp1721 + tmp1730;
-    const Scalar tmp1732 = phi1_dot*tmp1718 + tmp1731;
-    const Scalar tmp1733 = phi9_dot*tmp1713;
-    const Scalar tmp1734 = tmp1687 + tmp1713;
-    carried[331] = tmp1734;
-    const Scalar tmp1735 = tmp1706 + tmp1713;
-    carried[332] = tmp1735;
-    const Scalar tmp1736 = tmp1681 + tmp1734;
-    carried[333] = tmp1736;
-    const Scalar tmp1737 = tmp1735 + tmp1660;
-    carried[334] = tmp1737;
-    const Scalar tmp1738 = tmp1683 + tmp1734;
-    carried[335] = tmp1738;
-    const Scalar tmp1739 = tmp1735 + tmp1662;
-    carried[336] = tmp1739;
-    const Scalar tmp1740 = tmp1736 + tmp1644;
-    carried[337] = tmp1740;
-    const Scalar tmp1741 = tmp1737 + tmp1625;
-    carried[338] = tmp1741;
-    const Scalar tmp1742 = l*tmp199;
-    carried[339] = tmp1742;
-    const Scalar tmp1743 = -tmp196;
-    const Scalar tmp1744 = l*tmp1743;
-    carried[340] = tmp1744;
-    const Scalar tmp1745 = tmp1715 + tmp1744;
-    carried[341] = tmp1745;
-    const Scalar tmp1746 = tmp1691 + tmp1745;
-    carried[342] = tmp1746;
-    const Scalar tmp1747 = tmp1746 + tmp1627;
-    carried[343] = tmp1747;
-    const Scalar tmp1748 = tmp1719 + tmp1744;
-    carried[344] = tmp1748;
-    const Scalar tmp1749 = tmp1748 + tmp1669;
-    carried[345] = tmp1749;
-    const Scalar tmp1750 = tmp1749 + tmp1637;
-    carried[346] = tmp1750;
-    const Scalar tmp1751 = tmp1690 + tmp1745;
-    carried[347] = tmp1751;
-    const Scalar tmp1752 = tmp1751 + tmp1652;
-    carried[348] = tmp1752;
-    const Scalar tmp1753 = tmp1748 + tmp1672;
-    carried[349] = tmp1753;
-    const Scalar tmp1754 = phi10_dot*tmp1744;
-    const Scalar tmp1755 = phi9_dot*tmp1745 + tmp1754;
-    const Scalar tmp1756 = phi8_dot*tmp1748 + tmp1755;
-    const Scalar tmp1757 = phi7_dot*tmp1751 + tmp1756;
-    const Scalar tmp1758 = phi6_dot*tmp1749 + tmp1757;
-    const Scalar tmp1759 = phi5_dot*tmp1746 + tmp1758;
-    const Scalar tmp1760 = phi4_dot*tmp1753 + tmp1759;
-    const Scalar tmp1761 = phi3_dot*tmp1752 + tmp1760;
-    const Scalar tmp1762 = phi2_dot*tmp1750 + tmp1761;
-    const Scalar tmp1763 = phi1_dot*tmp1747 + tmp1762;
-    const Scalar tmp1764 = phi10_dot*tmp1742;
-    const Scalar tmp1765 = tmp1713 + tmp1742;
-    carried[350] = tmp1765;
-    const Scalar tmp1766 = tmp1734 + tmp1742;
-    carried[351] = tmp1766;
-    const Scalar tmp1767 = tmp1706 + tmp1765;
-    carried[352] = tmp1767;
-    const Scalar tmp1768 = tmp1681 + tmp1766;
-    carried[353] = tmp1768;
-    const Scalar tmp1769 = tmp1708 + tmp1765;
-    carried[354] = tmp1769;
-    const Scalar tmp1770 = tmp1683 + tmp1766;
-    carried[355] = tmp1770;
-    const Scalar tmp1771 = tmp1767 + tmp1662;
-    carried[356] = tmp1771;
-    const Scalar tmp1772 = tmp1768 + tmp1644;
-    carried[357] = tmp1772;
-    const Scalar tmp1773 = tmp1769 + tmp1625;
-    carried[358] = tmp1773;
-    const Scalar tmp1774 = -tmp1625;
-    const Scalar tmp1775 = phi3_dot*tmp1774 - tmp1632;
-    const Scalar tmp1776 = -tmp1625;
-    const Scalar tmp1777 = tmp1775 + phi2_dot*tmp1776;
-    const Scalar tmp1778 = phi3_dot*(phi1_dot + phi2_dot)*tmp1774 + phi3_dot*tmp1775
-        + phi1_dot*phi2_dot*tmp1776 + (phi1_dot + phi2_dot)*tmp1777
-        + (-(phi1_dot*phi1_dot) + phi4_dot*(-phi1_dot - phi2_dot - phi3_dot))*tmp1625
-        - phi4_dot*tmp1632;
-    const Scalar tmp1779 = (phi1_dot*phi2_dot + phi3_dot*(phi1_dot + phi2_dot)
-            + phi4_dot*(phi1_dot + phi2_dot + phi3_dot))*tmp1627
-        + phi4_dot*tmp1628 + phi3_dot*tmp1629 + phi2_dot*tmp1630 + phi1_dot*tmp1631;
-    const Scalar tmp1780 = -tmp1644;
-    const Scalar tmp1781 = phi4_dot*tmp1780 - tmp1643;
-    const Scalar tmp1782 = -tmp1645;
-    const Scalar tmp1783 = tmp1781 + phi3_dot*tmp1782;
-    const Scalar tmp1784 = -tmp1644;
-    const Scalar tmp1785 = tmp1783 + phi2_dot*tmp1784;
-    const Scalar tmp1786 = phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp1780 + phi4_dot*tmp1781
-        + phi3_dot*(phi1_dot + phi2_dot)*tmp1782 + phi3_dot*tmp1783 + phi1_dot*phi2_dot*tmp1784
-        + (phi1_dot + phi2_dot)*tmp1785
-        + phi5_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot)*tmp1633 - phi5_dot*tmp1643
-        - (phi1_dot*phi1_dot)*tmp1645;
-    const Scalar tmp1787 = phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp1635
-        + phi3_dot*(phi1_dot + phi2_dot)*tmp1636
-        + (phi1_dot*phi2_dot + phi4_dot*(phi1_dot + phi2_dot + phi3_dot))*tmp1637 + phi5_dot*tmp1638
-        + phi4_dot*tmp1639 + phi3_dot*tmp1640 + phi2_dot*tmp1641 + phi1_dot*tmp1642;
-    const Scalar tmp1788 = -tmp1660;
-    const Scalar tmp1789 = phi5_dot*tmp1788 - tmp1659;
-    const Scalar tmp1790 = -tmp1661;
-    const Scalar tmp1791 = tmp1789 + phi4_dot*tmp1790;
-    const Scalar tmp1792 = -tmp1662;
-    const Scalar tmp1793 = tmp1791 + phi3_dot*tmp1792;
-    const Scalar tmp1794 = -tmp1661;
-    const Scalar tmp1795 = tmp1793 + phi2_dot*tmp1794;
-    const Scalar tmp1796 = phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp1788
-        + phi5_dot*tmp1789 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp1790 + phi4_dot*tmp1791
-        + phi3_dot*(phi1_dot + phi2_dot)*tmp1792 + phi3_dot*tmp1793 + phi1_dot*phi2_dot*tmp1794
-        + (phi1_dot + phi2_dot)*tmp1795
-        + phi6_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot)*tmp1646
-        - phi6_dot*tmp1659 - (phi1_dot*phi1_dot)*tmp1663;
-    const Scalar tmp1797 = phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp1648
-        + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp1649
-        + (phi1_dot*phi2_dot + phi4_dot*(phi1_dot + phi2_dot + phi3_dot))*tmp1651
-        + phi3_dot*(phi1_dot + phi2_dot)*tmp1652 + phi6_dot*tmp1653 + phi5_dot*tmp1654
-        + phi4_dot*tmp1655 + phi3_dot*tmp1656 + phi2_dot*tmp1657 + phi1_dot*tmp1658;
-    const Scalar tmp1798 = -tmp1681;
-    const Scalar tmp1799 = -tmp1680 + phi6_dot*tmp1798;
-    const Scalar tmp1800 = -tmp1682;
-    const Scalar tmp1801 = tmp1799 + phi5_dot*tmp1800;
-    const Scalar tmp1802 = -tmp1683;
-    const Scalar tmp1803 = tmp1801 + phi4_dot*tmp1802;
-    const Scalar tmp1804 = -tmp1684;
-    const Scalar tmp1805 = tmp1803 + phi3_dot*tmp1804;
-    const Scalar tmp1806 = -tmp1685;
-    const Scalar tmp1807 = tmp1805 + phi2_dot*tmp1806;
-    const Scalar tmp1808 = -phi7_dot*tmp1680 - (phi1_dot*phi1_dot)*tmp1686
-        + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp1798 + phi6_dot*tmp1799
-        + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp1800 + phi5_dot*tmp1801
-        + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp1802 + phi4_dot*tmp1803
-        + phi3_dot*(phi1_dot + phi2_dot)*tmp1804 + phi3_dot*tmp1805 + phi1_dot*phi2_dot*tmp1806
-        + (phi1_dot + phi2_dot)*tmp1807
-        + phi7_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot - phi6_dot)*tmp1664;
-    const Scalar tmp1809 = phi2_dot*tmp1678 + phi1_dot*tmp1679
-        + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp1666
-        + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp1667
-        + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp1669
-        + phi1_dot*phi2_dot*tmp1670 + phi3_dot*(phi1_dot + phi2_dot)*tmp1671
-        + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp1672 + phi7_dot*tmp1673 + phi6_dot*tmp1674
-        + phi5_dot*tmp1675 + phi4_dot*tmp1676 + phi3_dot*tmp1677;
-    const Scalar tmp1810 = -tmp1706;
-    const Scalar tmp1811 = -tmp1705 + phi7_dot*tmp1810;
-    const Scalar tmp1812 = -tmp1707;
-    const Scalar tmp1813 = tmp1811 + phi6_dot*tmp1812;
-    const Scalar tmp1814 = -tmp1708;
-    const Scalar tmp1815 = tmp1813 + phi5_dot*tmp1814;
-    const Scalar tmp1816 = -tmp1709;
-    const Scalar tmp1817 = tmp1815 + phi4_dot*tmp1816;
-    const Scalar tmp1818 = -tmp1710;
-    const Scalar tmp1819 = tmp1817 + phi3_dot*tmp1818;
-    const Scalar tmp1820 = -tmp1711;
-    const Scalar tmp1821 = tmp1819 + phi2_dot*tmp1820;
-    const Scalar tmp1822 = phi8_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot
-            - phi6_dot - phi7_dot)*tmp1687
-        - phi8_dot*tmp1705 - (phi1_dot*phi1_dot)*tmp1712
-        + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp1810
-        + phi7_dot*tmp1811 + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp1812
-        + phi6_dot*tmp1813 + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp1814
-        + phi5_dot*tmp1815 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp1816 + phi4_dot*tmp1817
-        + phi3_dot*(phi1_dot + phi2_dot)*tmp1818 + phi3_dot*tmp1819 + phi1_dot*phi2_dot*tmp1820
-        + (phi1_dot + phi2_dot)*tmp1821;
-    const Scalar tmp1823 = phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot
-            + phi7_dot)*tmp1689
-        + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp1690
-        + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp1691
-        + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp1693
-        + phi1_dot*phi2_dot*tmp1694 + phi3_dot*(phi1_dot + phi2_dot)*tmp1695
-        + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp1696 + phi8_dot*tmp1697 + phi7_dot*tmp1698
-        + phi6_dot*tmp1699 + phi5_dot*tmp1700 + phi4_dot*tmp1701 + phi3_dot*tmp1702
-        + phi2_dot*tmp1703 + phi1_dot*tmp1704;
-    const Scalar tmp1824 = -tmp1734;
-    const Scalar tmp1825 = -tmp1733 + phi8_dot*tmp1824;
-    const Scalar tmp1826 = -tmp1735;
-    const Scalar tmp1827 = tmp1825 + phi7_dot*tmp1826;
-    const Scalar tmp1828 = -tmp1736;
-    const Scalar tmp1829 = tmp1827 + phi6_dot*tmp1828;
-    const Scalar tmp1830 = -tmp1737;
-    const Scalar tmp1831 = tmp1829 + phi5_dot*tmp1830;
-    const Scalar tmp1832 = -tmp1738;
-    const Scalar tmp1833 = tmp1831 + phi4_dot*tmp1832;
-    const Scalar tmp1834 = -tmp1739;
-    const Scalar tmp1835 = tmp1833 + phi3_dot*tmp1834;
-    const Scalar tmp1836 = -tmp1740;
-    const Scalar tmp1837 = tmp1835 + phi2_dot*tmp1836;
-    const Scalar tmp1838 = phi9_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot
-            - phi6_dot - phi7_dot - phi8_dot)*tmp1713
-        - phi9_dot*tmp1733 - (phi1_dot*phi1_dot)*tmp1741
+    carried[282] = tmp1689;
+    const Scalar tmp1690 = tmp1676 + tmp1689;
+    carried[283] = tmp1690;
+    const Scalar tmp1691 = tmp1668 + tmp1690;
+    carried[284] = tmp1691;
+    const Scalar tmp1692 = tmp1678 + tmp1689;
+    carried[285] = tmp1692;
+    const Scalar tmp1693 = tmp1668 + tmp1690;
+    carried[286] = tmp1693;
+    const Scalar tmp1694 = phi6_dot*tmp1689;
+    const Scalar tmp1695 = phi5_dot*tmp1690 + tmp1694;
+    const Scalar tmp1696 = phi4_dot*tmp1692 + tmp1695;
+    const Scalar tmp1697 = phi3_dot*tmp1693 + tmp1696;
+    const Scalar tmp1698 = phi2_dot*tmp1692 + tmp1697;
+    const Scalar tmp1699 = phi1_dot*tmp1691 + tmp1698;
+    const Scalar tmp1700 = phi6_dot*tmp1687;
+    const Scalar tmp1701 = tmp1674 + tmp1687;
+    carried[287] = tmp1701;
+    const Scalar tmp1702 = tmp1685 + tmp1687;
+    carried[288] = tmp1702;
+    const Scalar tmp1703 = tmp1666 + tmp1701;
+    carried[289] = tmp1703;
+    const Scalar tmp1704 = tmp1666 + tmp1701;
+    carried[290] = tmp1704;
+    const Scalar tmp1705 = l*tmp106;
+    carried[291] = tmp1705;
+    const Scalar tmp1706 = -tmp103;
+    const Scalar tmp1707 = l*tmp1706;
+    carried[292] = tmp1707;
+    const Scalar tmp1708 = tmp1690 + tmp1707;
+    carried[293] = tmp1708;
+    const Scalar tmp1709 = tmp1668 + tmp1708;
+    carried[294] = tmp1709;
+    const Scalar tmp1710 = tmp1689 + tmp1707;
+    carried[295] = tmp1710;
+    const Scalar tmp1711 = tmp1678 + tmp1710;
+    carried[296] = tmp1711;
+    const Scalar tmp1712 = tmp1668 + tmp1708;
+    carried[297] = tmp1712;
+    const Scalar tmp1713 = tmp1678 + tmp1710;
+    carried[298] = tmp1713;
+    const Scalar tmp1714 = phi7_dot*tmp1707;
+    const Scalar tmp1715 = phi6_dot*tmp1710 + tmp1714;
+    const Scalar tmp1716 = phi5_dot*tmp1708 + tmp1715;
+    const Scalar tmp1717 = phi4_dot*tmp1713 + tmp1716;
+    const Scalar tmp1718 = phi3_dot*tmp1712 + tmp1717;
+    const Scalar tmp1719 = phi2_dot*tmp1711 + tmp1718;
+    const Scalar tmp1720 = tmp1719 + phi1_dot*tmp1709;
+    const Scalar tmp1721 = phi7_dot*tmp1705;
+    const Scalar tmp1722 = tmp1687 + tmp1705;
+    carried[299] = tmp1722;
+    const Scalar tmp1723 = tmp1701 + tmp1705;
+    carried[300] = tmp1723;
+    const Scalar tmp1724 = tmp1722 + tmp1685;
+    carried[301] = tmp1724;
+    const Scalar tmp1725 = tmp1723 + tmp1666;
+    carried[302] = tmp1725;
+    const Scalar tmp1726 = tmp1722 + tmp1685;
+    carried[303] = tmp1726;
+    const Scalar tmp1727 = tmp1723 + tmp1666;
+    carried[304] = tmp1727;
+    const Scalar tmp1728 = l*tmp134;
+    carried[305] = tmp1728;
+    const Scalar tmp1729 = -tmp131;
+    const Scalar tmp1730 = l*tmp1729;
+    carried[306] = tmp1730;
+    const Scalar tmp1731 = tmp1730 + tmp1707;
+    carried[307] = tmp1731;
+    const Scalar tmp1732 = tmp1731 + tmp1690;
+    carried[308] = tmp1732;
+    const Scalar tmp1733 = tmp1732 + tmp1668;
+    carried[309] = tmp1733;
+    const Scalar tmp1734 = tmp1730 + tmp1710;
+    carried[310] = tmp1734;
+    const Scalar tmp1735 = tmp1734 + tmp1678;
+    carried[311] = tmp1735;
+    const Scalar tmp1736 = tmp1731 + tmp1693;
+    carried[312] = tmp1736;
+    const Scalar tmp1737 = tmp1734 + tmp1678;
+    carried[313] = tmp1737;
+    const Scalar tmp1738 = phi8_dot*tmp1730;
+    const Scalar tmp1739 = phi7_dot*tmp1731 + tmp1738;
+    const Scalar tmp1740 = phi6_dot*tmp1734 + tmp1739;
+    const Scalar tmp1741 = phi5_dot*tmp1732 + tmp1740;
+    const Scalar tmp1742 = phi4_dot*tmp1737 + tmp1741;
+    const Scalar tmp1743 = phi3_dot*tmp1736 + tmp1742;
+    const Scalar tmp1744 = phi2_dot*tmp1735 + tmp1743;
+    const Scalar tmp1745 = phi1_dot*tmp1733 + tmp1744;
+    const Scalar tmp1746 = phi8_dot*tmp1728;
+    const Scalar tmp1747 = tmp1728 + tmp1705;
+    carried[314] = tmp1747;
+    const Scalar tmp1748 = tmp1722 + tmp1728;
+    carried[315] = tmp1748;
+    const Scalar tmp1749 = tmp1747 + tmp1701;
+    carried[316] = tmp1749;
+    const Scalar tmp1750 = tmp1748 + tmp1685;
+    carried[317] = tmp1750;
+    const Scalar tmp1751 = tmp1747 + tmp1703;
+    carried[318] = tmp1751;
+    const Scalar tmp1752 = tmp1748 + tmp1685;
+    carried[319] = tmp1752;
+    const Scalar tmp1753 = tmp1749 + tmp1666;
+    carried[320] = tmp1753;
+    const Scalar tmp1754 = l*tmp165;
+    carried[321] = tmp1754;
+    const Scalar tmp1755 = -tmp162;
+    const Scalar tmp1756 = l*tmp1755;
+    carried[322] = tmp1756;
+    const Scalar tmp1757 = tmp1731 + tmp1756;
+    carried[323] = tmp1757;
+    const Scalar tmp1758 = tmp1757 + tmp1690;
+    carried[324] = tmp1758;
+    const Scalar tmp1759 = tmp1758 + tmp1668;
+    carried[325] = tmp1759;
+    const Scalar tmp1760 = tmp1730 + tmp1756;
+    carried[326] = tmp1760;
+    const Scalar tmp1761 = tmp1760 + tmp1710;
+    carried[327] = tmp1761;
+    const Scalar tmp1762 = tmp1761 + tmp1678;
+    carried[328] = tmp1762;
+    const Scalar tmp1763 = tmp1757 + tmp1693;
+    carried[329] = tmp1763;
+    const Scalar tmp1764 = tmp1760 + tmp1713;
+    carried[330] = tmp1764;
+    const Scalar tmp1765 = phi9_dot*tmp1756;
+    const Scalar tmp1766 = phi8_dot*tmp1760 + tmp1765;
+    const Scalar tmp1767 = phi7_dot*tmp1757 + tmp1766;
+    const Scalar tmp1768 = phi6_dot*tmp1761 + tmp1767;
+    const Scalar tmp1769 = phi5_dot*tmp1758 + tmp1768;
+    const Scalar tmp1770 = phi4_dot*tmp1764 + tmp1769;
+    const Scalar tmp1771 = phi3_dot*tmp1763 + tmp1770;
+    const Scalar tmp1772 = phi2_dot*tmp1762 + tmp1771;
+    const Scalar tmp1773 = phi1_dot*tmp1759 + tmp1772;
+    const Scalar tmp1774 = phi9_dot*tmp1754;
+    const Scalar tmp1775 = tmp1728 + tmp1754;
+    carried[331] = tmp1775;
+    const Scalar tmp1776 = tmp1747 + tmp1754;
+    carried[332] = tmp1776;
+    const Scalar tmp1777 = tmp1722 + tmp1775;
+    carried[333] = tmp1777;
+    const Scalar tmp1778 = tmp1776 + tmp1701;
+    carried[334] = tmp1778;
+    const Scalar tmp1779 = tmp1724 + tmp1775;
+    carried[335] = tmp1779;
+    const Scalar tmp1780 = tmp1776 + tmp1703;
+    carried[336] = tmp1780;
+    const Scalar tmp1781 = tmp1777 + tmp1685;
+    carried[337] = tmp1781;
+    const Scalar tmp1782 = tmp1778 + tmp1666;
+    carried[338] = tmp1782;
+    const Scalar tmp1783 = l*tmp199;
+    carried[339] = tmp1783;
+    const Scalar tmp1784 = -tmp196;
+    const Scalar tmp1785 = l*tmp1784;
+    carried[340] = tmp1785;
+    const Scalar tmp1786 = tmp1756 + tmp1785;
+    carried[341] = tmp1786;
+    const Scalar tmp1787 = tmp1732 + tmp1786;
+    carried[342] = tmp1787;
+    const Scalar tmp1788 = tmp1787 + tmp1668;
+    carried[343] = tmp1788;
+    const Scalar tmp1789 = tmp1760 + tmp1785;
+    carried[344] = tmp1789;
+    const Scalar tmp1790 = tmp1789 + tmp1710;
+    carried[345] = tmp1790;
+    const Scalar tmp1791 = tmp1790 + tmp1678;
+    carried[346] = tmp1791;
+    const Scalar tmp1792 = tmp1731 + tmp1786;
+    carried[347] = tmp1792;
+    const Scalar tmp1793 = tmp1792 + tmp1693;
+    carried[348] = tmp1793;
+    const Scalar tmp1794 = tmp1789 + tmp1713;
+    carried[349] = tmp1794;
+    const Scalar tmp1795 = phi10_dot*tmp1785;
+    const Scalar tmp1796 = phi9_dot*tmp1786 + tmp1795;
+    const Scalar tmp1797 = phi8_dot*tmp1789 + tmp1796;
+    const Scalar tmp1798 = phi7_dot*tmp1792 + tmp1797;
+    const Scalar tmp1799 = phi6_dot*tmp1790 + tmp1798;
+    const Scalar tmp1800 = phi5_dot*tmp1787 + tmp1799;
+    const Scalar tmp1801 = phi4_dot*tmp1794 + tmp1800;
+    const Scalar tmp1802 = phi3_dot*tmp1793 + tmp1801;
+    const Scalar tmp1803 = phi2_dot*tmp1791 + tmp1802;
+    const Scalar tmp1804 = phi1_dot*tmp1788 + tmp1803;
+    const Scalar tmp1805 = phi10_dot*tmp1783;
+    const Scalar tmp1806 = tmp1754 + tmp1783;
+    carried[350] = tmp1806;
+    const Scalar tmp1807 = tmp1775 + tmp1783;
+    carried[351] = tmp1807;
+    const Scalar tmp1808 = tmp1747 + tmp1806;
+    carried[352] = tmp1808;
+    const Scalar tmp1809 = tmp1722 + tmp1807;
+    carried[353] = tmp1809;
+    const Scalar tmp1810 = tmp1749 + tmp1806;
+    carried[354] = tmp1810;
+    const Scalar tmp1811 = tmp1724 + tmp1807;
+    carried[355] = tmp1811;
+    const Scalar tmp1812 = tmp1808 + tmp1703;
+    carried[356] = tmp1812;
+    const Scalar tmp1813 = tmp1809 + tmp1685;
+    carried[357] = tmp1813;
+    const Scalar tmp1814 = tmp1810 + tmp1666;
+    carried[358] = tmp1814;
+    const Scalar tmp1815 = -tmp1666;
+    const Scalar tmp1816 = phi3_dot*tmp1815 - tmp1673;
+    const Scalar tmp1817 = -tmp1666;
+    const Scalar tmp1818 = tmp1816 + phi2_dot*tmp1817;
+    const Scalar tmp1819 = phi3_dot*(phi1_dot + phi2_dot)*tmp1815 + phi3_dot*tmp1816
+        + phi1_dot*phi2_dot*tmp1817 + (phi1_dot + phi2_dot)*tmp1818
+        + (-(phi1_dot*phi1_dot) + phi4_dot*(-phi1_dot - phi2_dot - phi3_dot))*tmp1666
+        - phi4_dot*tmp1673;
+    const Scalar tmp1820 = (phi1_dot*phi2_dot + phi3_dot*(phi1_dot + phi2_dot)
+            + phi4_dot*(phi1_dot + phi2_dot + phi3_dot))*tmp1668
+        + phi4_dot*tmp1669 + phi3_dot*tmp1670 + phi2_dot*tmp1671 + phi1_dot*tmp1672;
+    const Scalar tmp1821 = -tmp1685;
+    const Scalar tmp1822 = phi4_dot*tmp1821 - tmp1684;
+    const Scalar tmp1823 = -tmp1686;
+    const Scalar tmp1824 = tmp1822 + phi3_dot*tmp1823;
+    const Scalar tmp1825 = -tmp1685;
+    const Scalar tmp1826 = tmp1824 + phi2_dot*tmp1825;
+    const Scalar tmp1827 = phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp1821 + phi4_dot*tmp1822
+        + phi3_dot*(phi1_dot + phi2_dot)*tmp1823 + phi3_dot*tmp1824 + phi1_dot*phi2_dot*tmp1825
+        + (phi1_dot + phi2_dot)*tmp1826
+        + phi5_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot)*tmp1674 - phi5_dot*tmp1684
+        - (phi1_dot*phi1_dot)*tmp1686;
+    const Scalar tmp1828 = phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp1676
+        + phi3_dot*(phi1_dot + phi2_dot)*tmp1677
+        + (phi1_dot*phi2_dot + phi4_dot*(phi1_dot + phi2_dot + phi3_dot))*tmp1678 + phi5_dot*tmp1679
+        + phi4_dot*tmp1680 + phi3_dot*tmp1681 + phi2_dot*tmp1682 + phi1_dot*tmp1683;
+    const Scalar tmp1829 = -tmp1701;
+    const Scalar tmp1830 = phi5_dot*tmp1829 - tmp1700;
+    const Scalar tmp1831 = -tmp1702;
+    const Scalar tmp1832 = tmp1830 + phi4_dot*tmp1831;
+    const Scalar tmp1833 = -tmp1703;
+    const Scalar tmp1834 = tmp1832 + phi3_dot*tmp1833;
+    const Scalar tmp1835 = -tmp1702;
+    const Scalar tmp1836 = tmp1834 + phi2_dot*tmp1835;
+    const Scalar tmp1837 = phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp1829
+        + phi5_dot*tmp1830 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp1831 + phi4_dot*tmp1832
+        + phi3_dot*(phi1_dot + phi2_dot)*tmp1833 + phi3_dot*tmp1834 + phi1_dot*phi2_dot*tmp1835
+        + (phi1_dot + phi2_dot)*tmp1836
+        + phi6_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot)*tmp1687
+        - phi6_dot*tmp1700 - (phi1_dot*phi1_dot)*tmp1704;
+    const Scalar tmp1838 = phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp1689
+        + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp1690
+        + (phi1_dot*phi2_dot + phi4_dot*(phi1_dot + phi2_dot + phi3_dot))*tmp1692
+        + phi3_dot*(phi1_dot + phi2_dot)*tmp1693 + phi6_dot*tmp1694 + phi5_dot*tmp1695
+        + phi4_dot*tmp1696 + phi3_dot*tmp1697 + phi2_dot*tmp1698 + phi1_dot*tmp1699;
+    const Scalar tmp1839 = -tmp1722;
+    const Scalar tmp1840 = -tmp1721 + phi6_dot*tmp1839;
+    const Scalar tmp1841 = -tmp1723;
+    const Scalar tmp1842 = tmp1840 + phi5_dot*tmp1841;
+    const Scalar tmp1843 = -tmp1724;
+    const Scalar tmp1844 = tmp1842 + phi4_dot*tmp1843;
+    const Scalar tmp1845 = -tmp1725;
+    const Scalar tmp1846 = tmp1844 + phi3_dot*tmp1845;
+    const Scalar tmp1847 = -tmp1726;
+    const Scalar tmp1848 = tmp1846 + phi2_dot*tmp1847;
+    const Scalar tmp1849 = -phi7_dot*tmp1721 - (phi1_dot*phi1_dot)*tmp1727
+        + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp1839 + phi6_dot*tmp1840
+        + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp1841 + phi5_dot*tmp1842
+        + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp1843 + phi4_dot*tmp1844
+        + phi3_dot*(phi1_dot + phi2_dot)*tmp1845 + phi3_dot*tmp1846 + phi1_dot*phi2_dot*tmp1847
+        + (phi1_dot + phi2_dot)*tmp1848
+        + phi7_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot - phi6_dot)*tmp1705;
+    const Scalar tmp1850 = phi2_dot*tmp1719 + phi1_dot*tmp1720
+        + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp1707
+        + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp1708
+        + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp1710
+        + phi1_dot*phi2_dot*tmp1711 + phi3_dot*(phi1_dot + phi2_dot)*tmp1712
+        + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp1713 + phi7_dot*tmp1714 + phi6_dot*tmp1715
+        + phi5_dot*tmp1716 + phi4_dot*tmp1717 + phi3_dot*tmp1718;
+    const Scalar tmp1851 = -tmp1747;
+    const Scalar tmp1852 = -tmp1746 + phi7_dot*tmp1851;
+    const Scalar tmp1853 = -tmp1748;
+    const Scalar tmp1854 = tmp1852 + phi6_dot*tmp1853;
+    const Scalar tmp1855 = -tmp1749;
+    const Scalar tmp1856 = tmp1854 + phi5_dot*tmp1855;
+    const Scalar tmp1857 = -tmp1750;
+    const Scalar tmp1858 = tmp1856 + phi4_dot*tmp1857;
+    const Scalar tmp1859 = -tmp1751;
+    const Scalar tmp1860 = tmp1858 + phi3_dot*tmp1859;
+    const Scalar tmp1861 = -tmp1752;
+    const Scalar tmp1862 = tmp1860 + phi2_dot*tmp1861;
+    const Scalar tmp1863 = phi8_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot
+            - phi6_dot - phi7_dot)*tmp1728
+        - phi8_dot*tmp1746 - (phi1_dot*phi1_dot)*tmp1753
+        + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp1851
+        + phi7_dot*tmp1852 + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp1853
+        + phi6_dot*tmp1854 + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp1855
+        + phi5_dot*tmp1856 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp1857 + phi4_dot*tmp1858
+        + phi3_dot*(phi1_dot + phi2_dot)*tmp1859 + phi3_dot*tmp1860 + phi1_dot*phi2_dot*tmp1861
+        + (phi1_dot + phi2_dot)*tmp1862;
+    const Scalar tmp1864 = phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot
+            + phi7_dot)*tmp1730
+        + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp1731
+        + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp1732
+        + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp1734
+        + phi1_dot*phi2_dot*tmp1735 + phi3_dot*(phi1_dot + phi2_dot)*tmp1736
+        + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp1737 + phi8_dot*tmp1738 + phi7_dot*tmp1739
+        + phi6_dot*tmp1740 + phi5_dot*tmp1741 + phi4_dot*tmp1742 + phi3_dot*tmp1743
+        + phi2_dot*tmp1744 + phi1_dot*tmp1745;
+    const Scalar tmp1865 = -tmp1775;
+    const Scalar tmp1866 = -tmp1774 + phi8_dot*tmp1865;
+    const Scalar tmp1867 = -tmp1776;
+    const Scalar tmp1868 = tmp1866 + phi7_dot*tmp1867;
+    const Scalar tmp1869 = -tmp1777;
+    const Scalar tmp1870 = tmp1868 + phi6_dot*tmp1869;
+    const Scalar tmp1871 = -tmp1778;
+    const Scalar tmp1872 = tmp1870 + phi5_dot*tmp1871;
+    const Scalar tmp1873 = -tmp1779;
+    const Scalar tmp1874 = tmp1872 + phi4_dot*tmp1873;
+    const Scalar tmp1875 = -tmp1780;
+    const Scalar tmp1876 = tmp1874 + phi3_dot*tmp1875;
+    const Scalar tmp1877 = -tmp1781;
+    const Scalar tmp1878 = tmp1876 + phi2_dot*tmp1877;
+    const Scalar tmp1879 = phi9_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot
+            - phi6_dot - phi7_dot - phi8_dot)*tmp1754
+        - phi9_dot*tmp1774 - (phi1_dot*phi1_dot)*tmp1782
         + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot
-            + phi7_dot)*tmp1824
-        + phi8_dot*tmp1825
-        + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp1826
-        + phi7_dot*tmp1827 + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp1828
-        + phi6_dot*tmp1829 + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp1830
-        + phi5_dot*tmp1831 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp1832 + phi4_dot*tmp1833
-        + phi3_dot*(phi1_dot + phi2_dot)*tmp1834 + phi3_dot*tmp1835 + phi1_dot*phi2_dot*tmp1836
-        + (phi1_dot + phi2_dot)*tmp1837;
-    const Scalar tmp1839 = phi9_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot
-            + phi7_dot + phi8_dot)*tmp1715
-        + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp1716
-        + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp1717
+            + phi7_dot)*tmp1865
+        + phi8_dot*tmp1866
+        + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp1867
+        + phi7_dot*tmp1868 + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp1869
+        + phi6_dot*tmp1870 + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp1871
+        + phi5_dot*tmp1872 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp1873 + phi4_dot*tmp1874
+        + phi3_dot*(phi1_dot + phi2_dot)*tmp1875 + phi3_dot*tmp1876 + phi1_dot*phi2_dot*tmp1877
+        + (phi1_dot + phi2_dot)*tmp1878;
+    const Scalar tmp1880 = phi9_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot
+            + phi7_dot + phi8_dot)*tmp1756
+        + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp1757
+        + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp1758
         + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot
-            + phi7_dot)*tmp1719
-        + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp1720
-        + phi1_dot*phi2_dot*tmp1721 + phi3_dot*(phi1_dot + phi2_dot)*tmp1722
-        + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp1723 + phi9_dot*tmp1724 + phi8_dot*tmp1725
-        + phi7_dot*tmp1726 + phi6_dot*tmp1727 + phi5_dot*tmp1728 + phi4_dot*tmp1729
-        + phi3_dot*tmp1730 + phi2_dot*tmp1731 + phi1_dot*tmp1732;
-    const Scalar tmp1840 = -tmp1765;
-    const Scalar tmp1841 = -tmp1764 + phi9_dot*tmp1840;
-    const Scalar tmp1842 = -tmp1766;
-    const Scalar tmp1843 = tmp1841 + phi8_dot*tmp1842;
-    const Scalar tmp1844 = -tmp1767;
-    const Scalar tmp1845 = tmp1843 + phi7_dot*tmp1844;
-    const Scalar tmp1846 = -tmp1768;
-    const Scalar tmp1847 = tmp1845 + phi6_dot*tmp1846;
-    const Scalar tmp1848 = -tmp1769;
-    const Scalar tmp1849 = tmp1847 + phi5_dot*tmp1848;
-    const Scalar tmp1850 = -tmp1770;
-    const Scalar tmp1851 = tmp1849 + phi4_dot*tmp1850;
-    const Scalar tmp1852 = -tmp1771;
-    const Scalar tmp1853 = tmp1851 + phi3_dot*tmp1852;
-    const Scalar tmp1854 = -tmp1772;
-    const Scalar tmp1855 = tmp1853 + phi2_dot*tmp1854;
-    const Scalar tmp1856 = phi10_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot
-            - phi6_dot - phi7_dot - phi8_dot - phi9_dot)*tmp1742
-        - phi10_dot*tmp1764 - (phi1_dot*phi1_dot)*tmp1773
+            + phi7_dot)*tmp1760
+        + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp1761
+        + phi1_dot*phi2_dot*tmp1762 + phi3_dot*(phi1_dot + phi2_dot)*tmp1763
+        + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp1764 + phi9_dot*tmp1765 + phi8_dot*tmp1766
+        + phi7_dot*tmp1767 + phi6_dot*tmp1768 + phi5_dot*tmp1769 + phi4_dot*tmp1770
+        + phi3_dot*tmp1771 + phi2_dot*tmp1772 + phi1_dot*tmp1773;
+    const Scalar tmp1881 = -tmp1806;
+    const Scalar tmp1882 = -tmp1805 + phi9_dot*tmp1881;
+    const Scalar tmp1883 = -tmp1807;
+    const Scalar tmp1884 = tmp1882 + phi8_dot*tmp1883;
+    const Scalar tmp1885 = -tmp1808;
+    const Scalar tmp1886 = tmp1884 + phi7_dot*tmp1885;
+    const Scalar tmp1887 = -tmp1809;
+    const Scalar tmp1888 = tmp1886 + phi6_dot*tmp1887;
+    const Scalar tmp1889 = -tmp1810;
+    const Scalar tmp1890 = tmp1888 + phi5_dot*tmp1889;
+    const Scalar tmp1891 = -tmp1811;
+    const Scalar tmp1892 = tmp1890 + phi4_dot*tmp1891;
+    const Scalar tmp1893 = -tmp1812;
+    const Scalar tmp1894 = tmp1892 + phi3_dot*tmp1893;
+    const Scalar tmp1895 = -tmp1813;
+    const Scalar tmp1896 = tmp1894 + phi2_dot*tmp1895;
+    const Scalar tmp1897 = phi10_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot
+            - phi6_dot - phi7_dot - phi8_dot - phi9_dot)*tmp1783
+        - phi10_dot*tmp1805 - (phi1_dot*phi1_dot)*tmp1814
         + phi9_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot
-            + phi8_dot)*tmp1840
-        + phi9_dot*tmp1841
+            + phi8_dot)*tmp1881
+        + phi9_dot*tmp1882
         + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot
-            + phi7_dot)*tmp1842
-        + phi8_dot*tmp1843
-        + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp1844
-        + phi7_dot*tmp1845 + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp1846
-        + phi6_dot*tmp1847 + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp1848
-        + phi5_dot*tmp1849 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp1850 + phi4_dot*tmp1851
-        + phi3_dot*(phi1_dot + phi2_dot)*tmp1852 + phi3_dot*tmp1853 + phi1_dot*phi2_dot*tmp1854
-        + (phi1_dot + phi2_dot)*tmp1855;
-    carried[359] = tmp1856;
-    const Scalar tmp1857 = phi10_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot
-            + phi6_dot + phi7_dot + phi8_dot + phi9_dot)*tmp1744
+            + phi7_dot)*tmp1883
+        + phi8_dot*tmp1884
+        + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp1885
+        + phi7_dot*tmp1886 + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp1887
+        + phi6_dot*tmp1888 + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp1889
+        + phi5_dot*tmp1890 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp1891 + phi4_dot*tmp1892
+        + phi3_dot*(phi1_dot + phi2_dot)*tmp1893 + phi3_dot*tmp1894 + phi1_dot*phi2_dot*tmp1895
+        + (phi1_dot + phi2_dot)*tmp1896;
+    carried[359] = tmp1897;
+    const Scalar tmp1898 = phi10_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot
+            + phi6_dot + phi7_dot + phi8_dot + phi9_dot)*tmp1785
         + phi9_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot
-            + phi8_dot)*tmp1745
-        + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp1746
+            + phi8_dot)*tmp1786
+        + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp1787
         + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot
-            + phi7_dot)*tmp1748
-        + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp1749
-        + phi1_dot*phi2_dot*tmp1750
-        + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp1751
-        + phi3_dot*(phi1_dot + phi2_dot)*tmp1752 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp1753
-        + phi10_dot*tmp1754 + phi9_dot*tmp1755 + phi8_dot*tmp1756 + phi7_dot*tmp1757
-        + phi6_dot*tmp1758 + phi5_dot*tmp1759 + phi4_dot*tmp1760 + phi3_dot*tmp1761
-        + phi2_dot*tmp1762 + phi1_dot*tmp1763;
-    carried[360] = tmp1857;
-    const Scalar tmp1858 = Scalar(2)*tmp128*m*tmp1686 + Scalar(2)*tmp139*m*tmp1692
-        + Scalar(2)*tmp159*m*tmp1712 + Scalar(2)*tmp170*m*tmp1718 + Scalar(2)*tmp193*m*tmp1741
-        + Scalar(2)*tmp204*m*tmp1747 + Scalar(2)*tmp230*m*tmp1773 + Scalar(2)*tmp44*m*tmp1627
-        + Scalar(2)*tmp53*m*tmp1625 + Scalar(2)*tmp63*m*tmp1636 + Scalar(2)*tmp75*m*tmp1645
-        + Scalar(2)*tmp85*m*tmp1650 + Scalar(2)*tmp100*m*tmp1663 + Scalar(2)*tmp110*m*tmp1668;
-    carried[361] = tmp1858;
-    const Scalar tmp1859 = tmp128*m*tmp1685 + tmp127*m*tmp1686 + tmp141*m*tmp1692 + tmp139*m*tmp1694
-        + tmp159*m*tmp1711 + tmp158*m*tmp1712 + tmp173*m*tmp1718 + tmp170*m*tmp1721
-        + tmp193*m*tmp1740 + tmp192*m*tmp1741 + tmp207*m*tmp1747 + tmp204*m*tmp1750
-        + tmp230*m*tmp1772 + tmp229*m*tmp1773 + (tmp44*m + tmp45*m)*tmp1627
-        + (tmp52*m + tmp53*m)*tmp1625 + tmp65*m*tmp1636 + tmp63*m*tmp1637 + tmp75*m*tmp1644
-        + tmp74*m*tmp1645 + tmp87*m*tmp1650 + tmp85*m*tmp1651 + tmp100*m*tmp1661 + tmp99*m*tmp1663
-        + tmp112*m*tmp1668 + tmp110*m*tmp1670;
-    carried[362] = tmp1859;
-    const Scalar tmp1860 = Scalar(2)*tmp127*m*tmp1685 + Scalar(2)*tmp141*m*tmp1694
-        + Scalar(2)*tmp158*m*tmp1711 + Scalar(2)*tmp173*m*tmp1721 + Scalar(2)*tmp192*m*tmp1740
-        + Scalar(2)*tmp207*m*tmp1750 + Scalar(2)*tmp229*m*tmp1772 + Scalar(2)*tmp45*m*tmp1627
-        + Scalar(2)*tmp52*m*tmp1625 + Scalar(2)*tmp65*m*tmp1637 + Scalar(2)*tmp74*m*tmp1644
-        + Scalar(2)*tmp87*m*tmp1651 + Scalar(2)*tmp99*m*tmp1661 + Scalar(2)*tmp112*m*tmp1670;
-    carried[363] = tmp1860;
-    const Scalar tmp1861 = tmp128*m*tmp1684 + tmp126*m*tmp1686 + tmp142*m*tmp1692 + tmp139*m*tmp1695
-        + tmp159*m*tmp1710 + tmp157*m*tmp1712 + tmp174*m*tmp1718 + tmp170*m*tmp1722
-        + tmp193*m*tmp1739 + tmp191*m*tmp1741 + tmp209*m*tmp1747 + tmp204*m*tmp1752
-        + tmp230*m*tmp1771 + tmp228*m*tmp1773 + (tmp43*m + tmp44*m)*tmp1627
-        + (tmp51*m + tmp53*m)*tmp1625 + (tmp62*m + tmp63*m)*tmp1636 + (tmp73*m + tmp75*m)*tmp1645
-        + tmp88*m*tmp1650 + tmp85*m*tmp1652 + tmp100*m*tmp1662 + tmp98*m*tmp1663 + tmp113*m*tmp1668
-        + tmp110*m*tmp1671;
-    carried[364] = tmp1861;
-    const Scalar tmp1862 = tmp127*m*tmp1684 + tmp126*m*tmp1685 + tmp142*m*tmp1694 + tmp141*m*tmp1695
-        + tmp158*m*tmp1710 + tmp157*m*tmp1711 + tmp174*m*tmp1721 + tmp173*m*tmp1722
-        + tmp192*m*tmp1739 + tmp191*m*tmp1740 + tmp209*m*tmp1750 + tmp207*m*tmp1752
-        + tmp229*m*tmp1771 + tmp228*m*tmp1772 + (tmp43*m + tmp45*m)*tmp1627
-        + (tmp51*m + tmp52*m)*tmp1625 + tmp65*m*tmp1636 + tmp62*m*tmp1637 + tmp74*m*tmp1645
-        + tmp73*m*tmp1644 + tmp88*m*tmp1651 + tmp87*m*tmp1652 + tmp99*m*tmp1662 + tmp98*m*tmp1661
-        + tmp113*m*tmp1670 + tmp112*m*tmp1671;
-    carried[365] = tmp1862;
-    const Scalar tmp1863 = Scalar(2)*tmp126*m*tmp1684 + Scalar(2)*tmp142*m*tmp1695
-        + Scalar(2)*tmp157*m*tmp1710 + Scalar(2)*tmp174*m*tmp1722 + Scalar(2)*tmp191*m*tmp1739
-        + Scalar(2)*tmp209*m*tmp1752 + Scalar(2)*tmp228*m*tmp1771 + Scalar(2)*tmp43*m*tmp1627
-        + Scalar(2)*tmp51*m*tmp1625 + Scalar(2)*tmp62*m*tmp1636 + Scalar(2)*tmp73*m*tmp1645
-        + Scalar(2)*tmp88*m*tmp1652 + Scalar(2)*tmp98*m*tmp1662 + Scalar(2)*tmp113*m*tmp1671;
-    carried[366] = tmp1863;
-    const Scalar tmp1864 = tmp128*m*tmp1683 + tmp125*m*tmp1686 + tmp143*m*tmp1692 + tmp139*m*tmp1696
-        + tmp159*m*tmp1709 + tmp156*m*tmp1712 + tmp175*m*tmp1718 + tmp170*m*tmp1723
-        + tmp193*m*tmp1738 + tmp190*m*tmp1741 + tmp210*m*tmp1747 + tmp204*m*tmp1753
-        + tmp230*m*tmp1770 + tmp227*m*tmp1773 + (tmp38*m + tmp53*m)*tmp1625
-        + (tmp41*m + tmp44*m)*tmp1627 + tmp64*m*tmp1636 + tmp63*m*tmp1637 + tmp75*m*tmp1644
-        + tmp72*m*tmp1645 + tmp86*m*tmp1650 + tmp85*m*tmp1651 + tmp100*m*tmp1661 + tmp97*m*tmp1663
-        + tmp114*m*tmp1668 + tmp110*m*tmp1672;
-    carried[367] = tmp1864;
-    const Scalar tmp1865 = tmp127*m*tmp1683 + tmp125*m*tmp1685 + tmp143*m*tmp1694 + tmp141*m*tmp1696
-        + tmp158*m*tmp1709 + tmp156*m*tmp1711 + tmp175*m*tmp1721 + tmp173*m*tmp1723
-        + tmp192*m*tmp1738 + tmp190*m*tmp1740 + tmp210*m*tmp1750 + tmp207*m*tmp1753
-        + tmp229*m*tmp1770 + tmp227*m*tmp1772 + (tmp38*m + tmp52*m)*tmp1625
-        + (tmp41*m + tmp45*m)*tmp1627 + (tmp64*m + tmp65*m)*tmp1637 + (tmp72*m + tmp74*m)*tmp1644
-        + (tmp86*m + tmp87*m)*tmp1651 + (tmp97*m + tmp99*m)*tmp1661 + tmp114*m*tmp1670
-        + tmp112*m*tmp1672;
-    carried[368] = tmp1865;
-    const Scalar tmp1866 = tmp126*m*tmp1683 + tmp125*m*tmp1684 + tmp143*m*tmp1695 + tmp142*m*tmp1696
-        + tmp157*m*tmp1709 + tmp156*m*tmp1710 + tmp175*m*tmp1722 + tmp174*m*tmp1723
-        + tmp191*m*tmp1738 + tmp190*m*tmp1739 + tmp210*m*tmp1752 + tmp209*m*tmp1753
-        + tmp228*m*tmp1770 + tmp227*m*tmp1771 + (tmp38*m + tmp51*m)*tmp1625
-        + (tmp41*m + tmp43*m)*tmp1627 + tmp64*m*tmp1636 + tmp62*m*tmp1637 + tmp73*m*tmp1644
-        + tmp72*m*tmp1645 + tmp88*m*tmp1651 + tmp86*m*tmp1652 + tmp98*m*tmp1661 + tmp97*m*tmp1662
-        + tmp114*m*tmp1671 + tmp113*m*tmp1672;
-    carried[369] = tmp1866;
-    const Scalar tmp1867 = Scalar(2)*tmp125*m*tmp1683 + Scalar(2)*tmp143*m*tmp1696
-        + Scalar(2)*tmp156*m*tmp1709 + Scalar(2)*tmp175*m*tmp1723 + Scalar(2)*tmp190*m*tmp1738
-        + Scalar(2)*tmp210*m*tmp1753 + Scalar(2)*tmp227*m*tmp1770 + Scalar(2)*tmp325*tmp37*m*tmp40
-        + Scalar(2)*tmp325*tmp40*m*tmp1626 + Scalar(2)*tmp64*m*tmp1637 + Scalar(2)*tmp72*m*tmp1644
-        + Scalar(2)*tmp86*m*tmp1651 + Scalar(2)*tmp97*m*tmp1661 + Scalar(2)*tmp114*m*tmp1672;
-    carried[370] = tmp1867;
-    const Scalar tmp1868 = tmp128*m*tmp1682 + tmp124*m*tmp1686 + tmp139*m*tmp1691 + tmp138*m*tmp1692
-        + tmp159*m*tmp1708 + tmp155*m*tmp1712 + tmp170*m*tmp1717 + tmp169*m*tmp1718
-        + tmp193*m*tmp1737 + tmp189*m*tmp1741 + tmp204*m*tmp1746 + tmp203*m*tmp1747
-        + tmp230*m*tmp1769 + tmp226*m*tmp1773 + tmp75*m*tmp1633 + tmp63*m*tmp1635 + tmp60*m*tmp1636
-        + tmp57*m*tmp1645 + tmp85*m*tmp1649 + tmp84*m*tmp1650 + tmp100*m*tmp1660 + tmp96*m*tmp1663
-        + tmp110*m*tmp1667 + tmp109*m*tmp1668;
-    carried[371] = tmp1868;
-    const Scalar tmp1869 = tmp127*m*tmp1682 + tmp124*m*tmp1685 + tmp141*m*tmp1691 + tmp138*m*tmp1694
-        + tmp158*m*tmp1708 + tmp155*m*tmp1711 + tmp173*m*tmp1717 + tmp169*m*tmp1721
-        + tmp192*m*tmp1737 + tmp189*m*tmp1740 + tmp207*m*tmp1746 + tmp203*m*tmp1750
-        + tmp229*m*tmp1769 + tmp226*m*tmp1772 + tmp74*m*tmp1633 + tmp65*m*tmp1635 + tmp60*m*tmp1637
-        + tmp57*m*tmp1644 + tmp87*m*tmp1649 + tmp84*m*tmp1651 + tmp99*m*tmp1660 + tmp96*m*tmp1661
-        + tmp112*m*tmp1667 + tmp109*m*tmp1670;
-    carried[372] = tmp1869;
-    const Scalar tmp1870 = tmp126*m*tmp1682 + tmp124*m*tmp1684 + tmp142*m*tmp1691 + tmp138*m*tmp1695
-        + tmp157*m*tmp1708 + tmp155*m*tmp1710 + tmp174*m*tmp1717 + tmp169*m*tmp1722
-        + tmp191*m*tmp1737 + tmp189*m*tmp1739 + tmp209*m*tmp1746 + tmp203*m*tmp1752
-        + tmp228*m*tmp1769 + tmp226*m*tmp1771 + tmp73*m*tmp1633 + tmp62*m*tmp1635 + tmp60*m*tmp1636
-        + tmp57*m*tmp1645 + tmp88*m*tmp1649 + tmp84*m*tmp1652 + tmp98*m*tmp1660 + tmp96*m*tmp1662
-        + tmp113*m*tmp1667 + tmp109*m*tmp1671;
-    carried[373] = tmp1870;
-    const Scalar tmp1871 = tmp125*m*tmp1682 + tmp124*m*tmp1683 + tmp143*m*tmp1691 + tmp138*m*tmp1696
-        + tmp156*m*tmp1708 + tmp155*m*tmp1709 + tmp175*m*tmp1717 + tmp169*m*tmp1723
-        + tmp190*m*tmp1737 + tmp189*m*tmp1738 + tmp210*m*tmp1746 + tmp203*m*tmp1753
-        + tmp227*m*tmp1769 + tmp226*m*tmp1770 + tmp72*m*tmp1633 + tmp64*m*tmp1635 + tmp60*m*tmp1637
-        + tmp57*m*tmp1644 + tmp86*m*tmp1649 + tmp84*m*tmp1651 + tmp97*m*tmp1660 + tmp96*m*tmp1661
-        + tmp114*m*tmp1667 + tmp109*m*tmp1672;
-    carried[374] = tmp1871;
-    const Scalar tmp1872 = Scalar(2)*tmp124*m*tmp1682 + Scalar(2)*tmp138*m*tmp1691
-        + Scalar(2)*tmp155*m*tmp1708 + Scalar(2)*tmp169*m*tmp1717 + Scalar(2)*tmp189*m*tmp1737
-        + Scalar(2)*tmp203*m*tmp1746 + Scalar(2)*tmp226*m*tmp1769 + Scalar(2)*tmp325*tmp56*m*tmp59
-        + Scalar(2)*tmp325*tmp59*m*tmp1634 + Scalar(2)*tmp84*m*tmp1649 + Scalar(2)*tmp96*m*tmp1660
-        + Scalar(2)*tmp109*m*tmp1667;
-    carried[375] = tmp1872;
-    const Scalar tmp1873 = tmp128*m*tmp1681 + tmp123*m*tmp1686 + tmp140*m*tmp1692 + tmp139*m*tmp1693
-        + tmp159*m*tmp1707 + tmp154*m*tmp1712 + tmp172*m*tmp1718 + tmp170*m*tmp1720
-        + tmp193*m*tmp1736 + tmp188*m*tmp1741 + tmp206*m*tmp1747 + tmp204*m*tmp1749
-        + tmp230*m*tmp1768 + tmp225*m*tmp1773 + tmp100*m*tmp1646 + tmp85*m*tmp1648 + tmp82*m*tmp1650
-        + tmp79*m*tmp1663 + tmp111*m*tmp1668 + tmp110*m*tmp1669;
-    carried[376] = tmp1873;
-    const Scalar tmp1874 = tmp127*m*tmp1681 + tmp123*m*tmp1685 + tmp141*m*tmp1693 + tmp140*m*tmp1694
-        + tmp158*m*tmp1707 + tmp154*m*tmp1711 + tmp173*m*tmp1720 + tmp172*m*tmp1721
-        + tmp192*m*tmp1736 + tmp188*m*tmp1740 + tmp207*m*tmp1749 + tmp206*m*tmp1750
-        + tmp229*m*tmp1768 + tmp225*m*tmp1772 + tmp99*m*tmp1646 + tmp87*m*tmp1648 + tmp82*m*tmp1651
-        + tmp79*m*tmp1661 + tmp112*m*tmp1669 + tmp111*m*tmp1670;
-    carried[377] = tmp1874;
-    const Scalar tmp1875 = tmp126*m*tmp1681 + tmp123*m*tmp1684 + tmp142*m*tmp1693 + tmp140*m*tmp1695
-        + tmp157*m*tmp1707 + tmp154*m*tmp1710 + tmp174*m*tmp1720 + tmp172*m*tmp1722
-        + tmp191*m*tmp1736 + tmp188*m*tmp1739 + tmp209*m*tmp1749 + tmp206*m*tmp1752
-        + tmp228*m*tmp1768 + tmp225*m*tmp1771 + tmp98*m*tmp1646 + tmp88*m*tmp1648 + tmp82*m*tmp1652
-        + tmp79*m*tmp1662 + tmp113*m*tmp1669 + tmp111*m*tmp1671;
-    carried[378] = tmp1875;
-    const Scalar tmp1876 = tmp125*m*tmp1681 + tmp123*m*tmp1683 + tmp143*m*tmp1693 + tmp140*m*tmp1696
-        + tmp156*m*tmp1707 + tmp154*m*tmp1709 + tmp175*m*tmp1720 + tmp172*m*tmp1723
-        + tmp190*m*tmp1736 + tmp188*m*tmp1738 + tmp210*m*tmp1749 + tmp206*m*tmp1753
-        + tmp227*m*tmp1768 + tmp225*m*tmp1770 + tmp97*m*tmp1646 + tmp86*m*tmp1648 + tmp82*m*tmp1651
-        + tmp79*m*tmp1661 + tmp114*m*tmp1669 + tmp111*m*tmp1672;
-    carried[379] = tmp1876;
-    const Scalar tmp1877 = tmp124*m*tmp1681 + tmp123*m*tmp1682 + tmp140*m*tmp1691 + tmp138*m*tmp1693
-        + tmp155*m*tmp1707 + tmp154*m*tmp1708 + tmp172*m*tmp1717 + tmp169*m*tmp1720
-        + tmp189*m*tmp1736 + tmp188*m*tmp1737 + tmp206*m*tmp1746 + tmp203*m*tmp1749
-        + tmp226*m*tmp1768 + tmp225*m*tmp1769 + tmp96*m*tmp1646 + tmp84*m*tmp1648 + tmp82*m*tmp1649
-        + tmp79*m*tmp1660 + tmp111*m*tmp1667 + tmp109*m*tmp1669;
-    carried[380] = tmp1877;
-    const Scalar tmp1878 = Scalar(2)*tmp123*m*tmp1681 + Scalar(2)*tmp140*m*tmp1693
-        + Scalar(2)*tmp154*m*tmp1707 + Scalar(2)*tmp172*m*tmp1720 + Scalar(2)*tmp188*m*tmp1736
-        + Scalar(2)*tmp206*m*tmp1749 + Scalar(2)*tmp225*m*tmp1768 + Scalar(2)*tmp325*tmp78*m*tmp81
-        + Scalar(2)*tmp325*tmp81*m*tmp1647 + Scalar(2)*tmp111*m*tmp1669;
-    carried[381] = tmp1878;
-    const Scalar tmp1879 = tmp104*m*tmp1686 + tmp139*m*tmp1690 + tmp137*m*tmp1692 + tmp159*m*tmp1706
-        + tmp153*m*tmp1712 + tmp170*m*tmp1716 + tmp168*m*tmp1718 + tmp193*m*tmp1735
-        + tmp187*m*tmp1741 + tmp208*m*tmp1747 + tmp204*m*tmp1751 + tmp230*m*tmp1767
-        + tmp224*m*tmp1773 + tmp128*m*tmp1664 + tmp110*m*tmp1666 + tmp107*m*tmp1668;
-    carried[382] = tmp1879;
-    const Scalar tmp1880 = tmp104*m*tmp1685 + tmp141*m*tmp1690 + tmp137*m*tmp1694 + tmp158*m*tmp1706
-        + tmp153*m*tmp1711 + tmp173*m*tmp1716 + tmp168*m*tmp1721 + tmp192*m*tmp1735
-        + tmp187*m*tmp1740 + tmp208*m*tmp1750 + tmp207*m*tmp1751 + tmp229*m*tmp1767
-        + tmp224*m*tmp1772 + tmp127*m*tmp1664 + tmp112*m*tmp1666 + tmp107*m*tmp1670;
-    carried[383] = tmp1880;
-    const Scalar tmp1881 = tmp104*m*tmp1684 + tmp142*m*tmp1690 + tmp137*m*tmp1695 + tmp157*m*tmp1706
-        + tmp153*m*tmp1710 + tmp174*m*tmp1716 + tmp168*m*tmp1722 + tmp191*m*tmp1735
-        + tmp187*m*tmp1739 + tmp209*m*tmp1751 + tmp208*m*tmp1752 + tmp228*m*tmp1767
-        + tmp224*m*tmp1771 + tmp126*m*tmp1664 + tmp113*m*tmp1666 + tmp107*m*tmp1671;
-    carried[384] = tmp1881;
-    const Scalar tmp1882 = tmp104*m*tmp1683 + tmp143*m*tmp1690 + tmp137*m*tmp1696 + tmp156*m*tmp1706
-        + tmp153*m*tmp1709 + tmp175*m*tmp1716 + tmp168*m*tmp1723 + tmp190*m*tmp1735
-        + tmp187*m*tmp1738 + tmp210*m*tmp1751 + tmp208*m*tmp1753 + tmp227*m*tmp1767
-        + tmp224*m*tmp1770 + tmp125*m*tmp1664 + tmp114*m*tmp1666 + tmp107*m*tmp1672;
-    carried[385] = tmp1882;
-    const Scalar tmp1883 = tmp104*m*tmp1682 + tmp138*m*tmp1690 + tmp137*m*tmp1691 + tmp155*m*tmp1706
-        + tmp153*m*tmp1708 + tmp169*m*tmp1716 + tmp168*m*tmp1717 + tmp189*m*tmp1735
-        + tmp187*m*tmp1737 + tmp208*m*tmp1746 + tmp203*m*tmp1751 + tmp226*m*tmp1767
-        + tmp224*m*tmp1769 + tmp124*m*tmp1664 + tmp109*m*tmp1666 + tmp107*m*tmp1667;
-    carried[386] = tmp1883;
-    const Scalar tmp1884 = tmp104*m*tmp1681 + tmp140*m*tmp1690 + tmp137*m*tmp1693 + tmp154*m*tmp1706
-        + tmp153*m*tmp1707 + tmp172*m*tmp1716 + tmp168*m*tmp1720 + tmp188*m*tmp1735
-        + tmp187*m*tmp1736 + tmp208*m*tmp1749 + tmp206*m*tmp1751 + tmp225*m*tmp1767
-        + tmp224*m*tmp1768 + tmp123*m*tmp1664 + tmp111*m*tmp1666 + tmp107*m*tmp1669;
-    carried[387] = tmp1884;
-    const Scalar tmp1885 = Scalar(2)*tmp137*m*tmp1690 + Scalar(2)*tmp153*m*tmp1706
-        + Scalar(2)*tmp168*m*tmp1716 + Scalar(2)*tmp187*m*tmp1735 + Scalar(2)*tmp208*m*tmp1751
-        + Scalar(2)*tmp224*m*tmp1767 + Scalar(2)*tmp325*tmp103*m*tmp106
-        + Scalar(2)*tmp325*tmp106*m*tmp1665;
-    carried[388] = tmp1885;
-    const Scalar tmp1886 = tmp159*m*tmp1687 + tmp139*m*tmp1689 + tmp135*m*tmp1692 + tmp132*m*tmp1712
-        + tmp171*m*tmp1718 + tmp170*m*tmp1719 + tmp193*m*tmp1734 + tmp186*m*tmp1741
-        + tmp205*m*tmp1747 + tmp204*m*tmp1748 + tmp230*m*tmp1766 + tmp223*m*tmp1773;
-    carried[389] = tmp1886;
-    const Scalar tmp1887 = tmp158*m*tmp1687 + tmp141*m*tmp1689 + tmp135*m*tmp1694 + tmp132*m*tmp1711
-        + tmp173*m*tmp1719 + tmp171*m*tmp1721 + tmp192*m*tmp1734 + tmp186*m*tmp1740
-        + tmp207*m*tmp1748 + tmp205*m*tmp1750 + tmp229*m*tmp1766 + tmp223*m*tmp1772;
-    carried[390] = tmp1887;
-    const Scalar tmp1888 = tmp157*m*tmp1687 + tmp142*m*tmp1689 + tmp135*m*tmp1695 + tmp132*m*tmp1710
-        + tmp174*m*tmp1719 + tmp171*m*tmp1722 + tmp191*m*tmp1734 + tmp186*m*tmp1739
-        + tmp209*m*tmp1748 + tmp205*m*tmp1752 + tmp228*m*tmp1766 + tmp223*m*tmp1771;
-    carried[391] = tmp1888;
-    const Scalar tmp1889 = tmp156*m*tmp1687 + tmp143*m*tmp1689 + tmp135*m*tmp1696 + tmp132*m*tmp1709
-        + tmp175*m*tmp1719 + tmp171*m*tmp1723 + tmp190*m*tmp1734 + tmp186*m*tmp1738
-        + tmp210*m*tmp1748 + tmp205*m*tmp1753 + tmp227*m*tmp1766 + tmp223*m*tmp1770;
-    carried[392] = tmp1889;
-    const Scalar tmp1890 = tmp155*m*tmp1687 + tmp138*m*tmp1689 + tmp135*m*tmp1691 + tmp132*m*tmp1708
-        + tmp171*m*tmp1717 + tmp169*m*tmp1719 + tmp189*m*tmp1734 + tmp186*m*tmp1737
-        + tmp205*m*tmp1746 + tmp203*m*tmp1748 + tmp226*m*tmp1766 + tmp223*m*tmp1769;
-    carried[393] = tmp1890;
-    const Scalar tmp1891 = tmp154*m*tmp1687 + tmp140*m*tmp1689 + tmp135*m*tmp1693 + tmp132*m*tmp1707
-        + tmp172*m*tmp1719 + tmp171*m*tmp1720 + tmp188*m*tmp1734 + tmp186*m*tmp1736
-        + tmp206*m*tmp1748 + tmp205*m*tmp1749 + tmp225*m*tmp1766 + tmp223*m*tmp1768;
-    carried[394] = tmp1891;
-    const Scalar tmp1892 = tmp153*m*tmp1687 + tmp137*m*tmp1689 + tmp135*m*tmp1690 + tmp132*m*tmp1706
-        + tmp171*m*tmp1716 + tmp168*m*tmp1719 + tmp187*m*tmp1734 + tmp186*m*tmp1735
-        + tmp208*m*tmp1748 + tmp205*m*tmp1751 + tmp224*m*tmp1766 + tmp223*m*tmp1767;
-    carried[395] = tmp1892;
-    const Scalar tmp1893 = Scalar(2)*tmp131*tmp325*m*tmp134 + Scalar(2)*tmp134*tmp325*m*tmp1688
-        + Scalar(2)*tmp171*m*tmp1719 + Scalar(2)*tmp186*m*tmp1734 + Scalar(2)*tmp205*m*tmp1748
-        + Scalar(2)*tmp223*m*tmp1766;
-    carried[396] = tmp1893;
-    const Scalar tmp1894 = tmp193*m*tmp1713 + tmp170*m*tmp1715 + tmp166*m*tmp1718 + tmp163*m*tmp1741
-        + tmp204*m*tmp1745 + tmp202*m*tmp1747 + tmp230*m*tmp1765 + tmp222*m*tmp1773;
-    carried[397] = tmp1894;
-    const Scalar tmp1895 = tmp192*m*tmp1713 + tmp173*m*tmp1715 + tmp166*m*tmp1721 + tmp163*m*tmp1740
-        + tmp207*m*tmp1745 + tmp202*m*tmp1750 + tmp229*m*tmp1765 + tmp222*m*tmp1772;
-    carried[398] = tmp1895;
-    const Scalar tmp1896 = tmp191*m*tmp1713 + tmp174*m*tmp1715 + tmp166*m*tmp1722 + tmp163*m*tmp1739
-        + tmp209*m*tmp1745 + tmp202*m*tmp1752 + tmp228*m*tmp1765 + tmp222*m*tmp1771;
-    carried[399] = tmp1896;
-    const Scalar tmp1897 = tmp190*m*tmp1713 + tmp175*m*tmp1715 + tmp166*m*tmp1723 + tmp163*m*tmp1738
-        + tmp210*m*tmp1745 + tmp202*m*tmp1753 + tmp227*m*tmp1765 + tmp222*m*tmp1770;
-    carried[400] = tmp1897;
-    const Scalar tmp1898 = tmp189*m*tmp1713 + tmp169*m*tmp1715 + tmp166*m*tmp1717 + tmp163*m*tmp1737
-        + tmp203*m*tmp1745 + tmp202*m*tmp1746 + tmp226*m*tmp1765 + tmp222*m*tmp1769;
-    carried[401] = tmp1898;
-    const Scalar tmp1899 = tmp188*m*tmp1713 + tmp172*m*tmp1715 + tmp166*m*tmp1720 + tmp163*m*tmp1736
-        + tmp206*m*tmp1745 + tmp202*m*tmp1749 + tmp225*m*tmp1765 + tmp222*m*tmp1768;
-    carried[402] = tmp1899;
-    const Scalar tmp1900 = tmp187*m*tmp1713 + tmp168*m*tmp1715 + tmp166*m*tmp1716 + tmp163*m*tmp1735
-        + tmp208*m*tmp1745 + tmp202*m*tmp1751 + tmp224*m*tmp1765 + tmp222*m*tmp1767;
-    carried[403] = tmp1900;
-    const Scalar tmp1901 = tmp186*m*tmp1713 + tmp171*m*tmp1715 + tmp166*m*tmp1719 + tmp163*m*tmp1734
-        + tmp205*m*tmp1745 + tmp202*m*tmp1748 + tmp223*m*tmp1765 + tmp222*m*tmp1766;
-    carried[404] = tmp1901;
-    const Scalar tmp1902 = Scalar(2)*tmp162*tmp325*m*tmp165 + Scalar(2)*tmp165*tmp325*m*tmp1714
-        + Scalar(2)*tmp202*m*tmp1745 + Scalar(2)*tmp222*m*tmp1765;
-    carried[405] = tmp1902;
-    const Scalar tmp1903 = tmp230*m*tmp1742 + tmp204*m*tmp1744 + tmp200*m*tmp1747
-        + tmp197*m*tmp1773;
-    carried[406] = tmp1903;
-    const Scalar tmp1904 = tmp229*m*tmp1742 + tmp207*m*tmp1744 + tmp200*m*tmp1750
-        + tmp197*m*tmp1772;
-    carried[407] = tmp1904;
-    const Scalar tmp1905 = tmp228*m*tmp1742 + tmp209*m*tmp1744 + tmp200*m*tmp1752
-        + tmp197*m*tmp1771;
-    carried[408] = tmp1905;
-    const Scalar tmp1906 = tmp227*m*tmp1742 + tmp210*m*tmp1744 + tmp200*m*tmp1753
-        + tmp197*m*tmp1770;
-    carried[409] = tmp1906;
-    const Scalar tmp1907 = tmp226*m*tmp1742 + tmp203*m*tmp1744 + tmp200*m*tmp1746
-        + tmp197*m*tmp1769;
-    carried[410] = tmp1907;
-    const Scalar tmp1908 = tmp225*m*tmp1742 + tmp206*m*tmp1744 + tmp200*m*tmp1749
-        + tmp197*m*tmp1768;
-    carried[411] = tmp1908;
-    const Scalar tmp1909 = tmp224*m*tmp1742 + tmp208*m*tmp1744 + tmp200*m*tmp1751
-        + tmp197*m*tmp1767;
-    carried[412] = tmp1909;
-    const Scalar tmp1910 = tmp223*m*tmp1742 + tmp205*m*tmp1744 + tmp200*m*tmp1748
-        + tmp197*m*tmp1766;
-    carried[413] = tmp1910;
-    const Scalar tmp1911 = tmp222*m*tmp1742 + tmp202*m*tmp1744 + tmp200*m*tmp1745
-        + tmp197*m*tmp1765;
-    carried[414] = tmp1911;
-    const Scalar tmp1912 = Scalar(2)*tmp196*tmp325*m*tmp199 + Scalar(2)*tmp199*tmp325*m*tmp1743;
-    carried[415] = tmp1912;
-    const Scalar tmp1913 = m*tmp1778;
-    carried[416] = tmp1913;
-    const Scalar tmp1914 = m*tmp1779;
-    carried[417] = tmp1914;
-    const Scalar tmp1915 = m*tmp1786;
-    carried[418] = tmp1915;
-    const Scalar tmp1916 = m*tmp1787;
-    carried[419] = tmp1916;
-    const Scalar tmp1917 = m*tmp1796;
-    carried[420] = tmp1917;
-    const Scalar tmp1918 = m*tmp1797;
-    carried[421] = tmp1918;
-    const Scalar tmp1919 = m*tmp1808;
-    carried[422] = tmp1919;
-    const Scalar tmp1920 = m*tmp1809;
-    carried[423] = tmp1920;
-    const Scalar tmp1921 = m*tmp1822;
-    carried[424] = tmp1921;
-    const Scalar tmp1922 = m*tmp1823;
-    carried[425] = tmp1922;
-    const Scalar tmp1923 = m*tmp1838;
-    carried[426] = tmp1923;
-    const Scalar tmp1924 = m*tmp1839;
-    carried[427] = tmp1924;
+            + phi7_dot)*tmp1789
+        + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp1790
+        + phi1_dot*phi2_dot*tmp1791
+        + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp1792
+        + phi3_dot*(phi1_dot + phi2_dot)*tmp1793 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp1794
+        + phi10_dot*tmp1795 + phi9_dot*tmp1796 + phi8_dot*tmp1797 + phi7_dot*tmp1798
+        + phi6_dot*tmp1799 + phi5_dot*tmp1800 + phi4_dot*tmp1801 + phi3_dot*tmp1802
+        + phi2_dot*tmp1803 + phi1_dot*tmp1804;
+    carried[360] = tmp1898;
+    const Scalar tmp1899 = Scalar(2)*tmp128*m*tmp1727 + Scalar(2)*tmp139*m*tmp1733
+        + Scalar(2)*tmp159*m*tmp1753 + Scalar(2)*tmp170*m*tmp1759 + Scalar(2)*tmp193*m*tmp1782
+        + Scalar(2)*tmp204*m*tmp1788 + Scalar(2)*tmp230*m*tmp1814 + Scalar(2)*tmp44*m*tmp1668
+        + Scalar(2)*tmp53*m*tmp1666 + Scalar(2)*tmp63*m*tmp1677 + Scalar(2)*tmp75*m*tmp1686
+        + Scalar(2)*tmp85*m*tmp1691 + Scalar(2)*tmp100*m*tmp1704 + Scalar(2)*tmp110*m*tmp1709;
+    carried[361] = tmp1899;
+    const Scalar tmp1900 = tmp128*m*tmp1726 + tmp127*m*tmp1727 + tmp141*m*tmp1733 + tmp139*m*tmp1735
+        + tmp159*m*tmp1752 + tmp158*m*tmp1753 + tmp173*m*tmp1759 + tmp170*m*tmp1762
+        + tmp193*m*tmp1781 + tmp192*m*tmp1782 + tmp207*m*tmp1788 + tmp204*m*tmp1791
+        + tmp230*m*tmp1813 + tmp229*m*tmp1814 + (tmp44*m + tmp45*m)*tmp1668
+        + (tmp52*m + tmp53*m)*tmp1666 + tmp65*m*tmp1677 + tmp63*m*tmp1678 + tmp75*m*tmp1685
+        + tmp74*m*tmp1686 + tmp87*m*tmp1691 + tmp85*m*tmp1692 + tmp100*m*tmp1702 + tmp99*m*tmp1704
+        + tmp112*m*tmp1709 + tmp110*m*tmp1711;
+    carried[362] = tmp1900;
+    const Scalar tmp1901 = Scalar(2)*tmp127*m*tmp1726 + Scalar(2)*tmp141*m*tmp1735
+        + Scalar(2)*tmp158*m*tmp1752 + Scalar(2)*tmp173*m*tmp1762 + Scalar(2)*tmp192*m*tmp1781
+        + Scalar(2)*tmp207*m*tmp1791 + Scalar(2)*tmp229*m*tmp1813 + Scalar(2)*tmp45*m*tmp1668
+        + Scalar(2)*tmp52*m*tmp1666 + Scalar(2)*tmp65*m*tmp1678 + Scalar(2)*tmp74*m*tmp1685
+        + Scalar(2)*tmp87*m*tmp1692 + Scalar(2)*tmp99*m*tmp1702 + Scalar(2)*tmp112*m*tmp1711;
+    carried[363] = tmp1901;
+    const Scalar tmp1902 = tmp128*m*tmp1725 + tmp126*m*tmp1727 + tmp142*m*tmp1733 + tmp139*m*tmp1736
+        + tmp159*m*tmp1751 + tmp157*m*tmp1753 + tmp174*m*tmp1759 + tmp170*m*tmp1763
+        + tmp193*m*tmp1780 + tmp191*m*tmp1782 + tmp209*m*tmp1788 + tmp204*m*tmp1793
+        + tmp230*m*tmp1812 + tmp228*m*tmp1814 + (tmp43*m + tmp44*m)*tmp1668
+        + (tmp51*m + tmp53*m)*tmp1666 + (tmp62*m + tmp63*m)*tmp1677 + (tmp73*m + tmp75*m)*tmp1686
+        + tmp88*m*tmp1691 + tmp85*m*tmp1693 + tmp100*m*tmp1703 + tmp98*m*tmp1704 + tmp113*m*tmp1709
+        + tmp110*m*tmp1712;
+    carried[364] = tmp1902;
+    const Scalar tmp1903 = tmp127*m*tmp1725 + tmp126*m*tmp1726 + tmp142*m*tmp1735 + tmp141*m*tmp1736
+        + tmp158*m*tmp1751 + tmp157*m*tmp1752 + tmp174*m*tmp1762 + tmp173*m*tmp1763
+        + tmp192*m*tmp1780 + tmp191*m*tmp1781 + tmp209*m*tmp1791 + tmp207*m*tmp1793
+        + tmp229*m*tmp1812 + tmp228*m*tmp1813 + (tmp43*m + tmp45*m)*tmp1668
+        + (tmp51*m + tmp52*m)*tmp1666 + tmp65*m*tmp1677 + tmp62*m*tmp1678 + tmp74*m*tmp1686
+        + tmp73*m*tmp1685 + tmp88*m*tmp1692 + tmp87*m*tmp1693 + tmp99*m*tmp1703 + tmp98*m*tmp1702
+        + tmp113*m*tmp1711 + tmp112*m*tmp1712;
+    carried[365] = tmp1903;
+    const Scalar tmp1904 = Scalar(2)*tmp126*m*tmp1725 + Scalar(2)*tmp142*m*tmp1736
+        + Scalar(2)*tmp157*m*tmp1751 + Scalar(2)*tmp174*m*tmp1763 + Scalar(2)*tmp191*m*tmp1780
+        + Scalar(2)*tmp209*m*tmp1793 + Scalar(2)*tmp228*m*tmp1812 + Scalar(2)*tmp43*m*tmp1668
+        + Scalar(2)*tmp51*m*tmp1666 + Scalar(2)*tmp62*m*tmp1677 + Scalar(2)*tmp73*m*tmp1686
+        + Scalar(2)*tmp88*m*tmp1693 + Scalar(2)*tmp98*m*tmp1703 + Scalar(2)*tmp113*m*tmp1712;
+    carried[366] = tmp1904;
+    const Scalar tmp1905 = tmp128*m*tmp1724 + tmp125*m*tmp1727 + tmp143*m*tmp1733 + tmp139*m*tmp1737
+        + tmp159*m*tmp1750 + tmp156*m*tmp1753 + tmp175*m*tmp1759 + tmp170*m*tmp1764
+        + tmp193*m*tmp1779 + tmp190*m*tmp1782 + tmp210*m*tmp1788 + tmp204*m*tmp1794
+        + tmp230*m*tmp1811 + tmp227*m*tmp1814 + (tmp38*m + tmp53*m)*tmp1666
+        + (tmp41*m + tmp44*m)*tmp1668 + tmp64*m*tmp1677 + tmp63*m*tmp1678 + tmp75*m*tmp1685
+        + tmp72*m*tmp1686 + tmp86*m*tmp1691 + tmp85*m*tmp1692 + tmp100*m*tmp1702 + tmp97*m*tmp1704
+        + tmp114*m*tmp1709 + tmp110*m*tmp1713;
+    carried[367] = tmp1905;
+    const Scalar tmp1906 = tmp127*m*tmp1724 + tmp125*m*tmp1726 + tmp143*m*tmp1735 + tmp141*m*tmp1737
+        + tmp158*m*tmp1750 + tmp156*m*tmp1752 + tmp175*m*tmp1762 + tmp173*m*tmp1764
+        + tmp192*m*tmp1779 + tmp190*m*tmp1781 + tmp210*m*tmp1791 + tmp207*m*tmp1794
+        + tmp229*m*tmp1811 + tmp227*m*tmp1813 + (tmp38*m + tmp52*m)*tmp1666
+        + (tmp41*m + tmp45*m)*tmp1668 + (tmp64*m + tmp65*m)*tmp1678 + (tmp72*m + tmp74*m)*tmp1685
+        + (tmp86*m + tmp87*m)*tmp1692 + (tmp97*m + tmp99*m)*tmp1702 + tmp114*m*tmp1711
+        + tmp112*m*tmp1713;
+    carried[368] = tmp1906;
+    const Scalar tmp1907 = tmp126*m*tmp1724 + tmp125*m*tmp1725 + tmp143*m*tmp1736 + tmp142*m*tmp1737
+        + tmp157*m*tmp1750 + tmp156*m*tmp1751 + tmp175*m*tmp1763 + tmp174*m*tmp1764
+        + tmp191*m*tmp1779 + tmp190*m*tmp1780 + tmp210*m*tmp1793 + tmp209*m*tmp1794
+        + tmp228*m*tmp1811 + tmp227*m*tmp1812 + (tmp38*m + tmp51*m)*tmp1666
+        + (tmp41*m + tmp43*m)*tmp1668 + tmp64*m*tmp1677 + tmp62*m*tmp1678 + tmp73*m*tmp1685
+        + tmp72*m*tmp1686 + tmp88*m*tmp1692 + tmp86*m*tmp1693 + tmp98*m*tmp1702 + tmp97*m*tmp1703
+        + tmp114*m*tmp1712 + tmp113*m*tmp1713;
+    carried[369] = tmp1907;
+    const Scalar tmp1908 = Scalar(2)*tmp125*m*tmp1724 + Scalar(2)*tmp143*m*tmp1737
+        + Scalar(2)*tmp156*m*tmp1750 + Scalar(2)*tmp175*m*tmp1764 + Scalar(2)*tmp190*m*tmp1779
+        + Scalar(2)*tmp210*m*tmp1794 + Scalar(2)*tmp227*m*tmp1811 + Scalar(2)*tmp325*tmp37*m*tmp40
+        + Scalar(2)*tmp325*tmp40*m*tmp1667 + Scalar(2)*tmp64*m*tmp1678 + Scalar(2)*tmp72*m*tmp1685
+        + Scalar(2)*tmp86*m*tmp1692 + Scalar(2)*tmp97*m*tmp1702 + Scalar(2)*tmp114*m*tmp1713;
+    carried[370] = tmp1908;
+    const Scalar tmp1909 = tmp128*m*tmp1723 + tmp124*m*tmp1727 + tmp139*m*tmp1732 + tmp138*m*tmp1733
+        + tmp159*m*tmp1749 + tmp155*m*tmp1753 + tmp170*m*tmp1758 + tmp169*m*tmp1759
+        + tmp193*m*tmp1778 + tmp189*m*tmp1782 + tmp204*m*tmp1787 + tmp203*m*tmp1788
+        + tmp230*m*tmp1810 + tmp226*m*tmp1814 + tmp75*m*tmp1674 + tmp63*m*tmp1676 + tmp60*m*tmp1677
+        + tmp57*m*tmp1686 + tmp85*m*tmp1690 + tmp84*m*tmp1691 + tmp100*m*tmp1701 + tmp96*m*tmp1704
+        + tmp110*m*tmp1708 + tmp109*m*tmp1709;
+    carried[371] = tmp1909;
+    const Scalar tmp1910 = tmp127*m*tmp1723 + tmp124*m*tmp1726 + tmp141*m*tmp1732 + tmp138*m*tmp1735
+        + tmp158*m*tmp1749 + tmp155*m*tmp1752 + tmp173*m*tmp1758 + tmp169*m*tmp1762
+        + tmp192*m*tmp1778 + tmp189*m*tmp1781 + tmp207*m*tmp1787 + tmp203*m*tmp1791
+        + tmp229*m*tmp1810 + tmp226*m*tmp1813 + tmp74*m*tmp1674 + tmp65*m*tmp1676 + tmp60*m*tmp1678
+        + tmp57*m*tmp1685 + tmp87*m*tmp1690 + tmp84*m*tmp1692 + tmp99*m*tmp1701 + tmp96*m*tmp1702
+        + tmp112*m*tmp1708 + tmp109*m*tmp1711;
+    carried[372] = tmp1910;
+    const Scalar tmp1911 = tmp126*m*tmp1723 + tmp124*m*tmp1725 + tmp142*m*tmp1732 + tmp138*m*tmp1736
+        + tmp157*m*tmp1749 + tmp155*m*tmp1751 + tmp174*m*tmp1758 + tmp169*m*tmp1763
+        + tmp191*m*tmp1778 + tmp189*m*tmp1780 + tmp209*m*tmp1787 + tmp203*m*tmp1793
+        + tmp228*m*tmp1810 + tmp226*m*tmp1812 + tmp73*m*tmp1674 + tmp62*m*tmp1676 + tmp60*m*tmp1677
+        + tmp57*m*tmp1686 + tmp88*m*tmp1690 + tmp84*m*tmp1693 + tmp98*m*tmp1701 + tmp96*m*tmp1703
+        + tmp113*m*tmp1708 + tmp109*m*tmp1712;
+    carried[373] = tmp1911;
+    const Scalar tmp1912 = tmp125*m*tmp1723 + tmp124*m*tmp1724 + tmp143*m*tmp1732 + tmp138*m*tmp1737
+        + tmp156*m*tmp1749 + tmp155*m*tmp1750 + tmp175*m*tmp1758 + tmp169*m*tmp1764
+        + tmp190*m*tmp1778 + tmp189*m*tmp1779 + tmp210*m*tmp1787 + tmp203*m*tmp1794
+        + tmp227*m*tmp1810 + tmp226*m*tmp1811 + tmp72*m*tmp1674 + tmp64*m*tmp1676 + tmp60*m*tmp1678
+        + tmp57*m*tmp1685 + tmp86*m*tmp1690 + tmp84*m*tmp1692 + tmp97*m*tmp1701 + tmp96*m*tmp1702
+        + tmp114*m*tmp1708 + tmp109*m*tmp1713;
+    carried[374] = tmp1912;
+    const Scalar tmp1913 = Scalar(2)*tmp124*m*tmp1723 + Scalar(2)*tmp138*m*tmp1732
+        + Scalar(2)*tmp155*m*tmp1749 + Scalar(2)*tmp169*m*tmp1758 + Scalar(2)*tmp189*m*tmp1778
+        + Scalar(2)*tmp203*m*tmp1787 + Scalar(2)*tmp226*m*tmp1810 + Scalar(2)*tmp325*tmp56*m*tmp59
+        + Scalar(2)*tmp325*tmp59*m*tmp1675 + Scalar(2)*tmp84*m*tmp1690 + Scalar(2)*tmp96*m*tmp1701
+        + Scalar(2)*tmp109*m*tmp1708;
+    carried[375] = tmp1913;
+    const Scalar tmp1914 = tmp128*m*tmp1722 + tmp123*m*tmp1727 + tmp140*m*tmp1733 + tmp139*m*tmp1734
+        + tmp159*m*tmp1748 + tmp154*m*tmp1753 + tmp172*m*tmp1759 + tmp170*m*tmp1761
+        + tmp193*m*tmp1777 + tmp188*m*tmp1782 + tmp206*m*tmp1788 + tmp204*m*tmp1790
+        + tmp230*m*tmp1809 + tmp225*m*tmp1814 + tmp100*m*tmp1687 + tmp85*m*tmp1689 + tmp82*m*tmp1691
+        + tmp79*m*tmp1704 + tmp111*m*tmp1709 + tmp110*m*tmp1710;
+    carried[376] = tmp1914;
+    const Scalar tmp1915 = tmp127*m*tmp1722 + tmp123*m*tmp1726 + tmp141*m*tmp1734 + tmp140*m*tmp1735
+        + tmp158*m*tmp1748 + tmp154*m*tmp1752 + tmp173*m*tmp1761 + tmp172*m*tmp1762
+        + tmp192*m*tmp1777 + tmp188*m*tmp1781 + tmp207*m*tmp1790 + tmp206*m*tmp1791
+        + tmp229*m*tmp1809 + tmp225*m*tmp1813 + tmp99*m*tmp1687 + tmp87*m*tmp1689 + tmp82*m*tmp1692
+        + tmp79*m*tmp1702 + tmp112*m*tmp1710 + tmp111*m*tmp1711;
+    carried[377] = tmp1915;
+    const Scalar tmp1916 = tmp126*m*tmp1722 + tmp123*m*tmp1725 + tmp142*m*tmp1734 + tmp140*m*tmp1736
+        + tmp157*m*tmp1748 + tmp154*m*tmp1751 + tmp174*m*tmp1761 + tmp172*m*tmp1763
+        + tmp191*m*tmp1777 + tmp188*m*tmp1780 + tmp209*m*tmp1790 + tmp206*m*tmp1793
+        + tmp228*m*tmp1809 + tmp225*m*tmp1812 + tmp98*m*tmp1687 + tmp88*m*tmp1689 + tmp82*m*tmp1693
+        + tmp79*m*tmp1703 + tmp113*m*tmp1710 + tmp111*m*tmp1712;
+    carried[378] = tmp1916;
+    const Scalar tmp1917 = tmp125*m*tmp1722 + tmp123*m*tmp1724 + tmp143*m*tmp1734 + tmp140*m*tmp1737
+        + tmp156*m*tmp1748 + tmp154*m*tmp1750 + tmp175*m*tmp1761 + tmp172*m*tmp1764
+        + tmp190*m*tmp1777 + tmp188*m*tmp1779 + tmp210*m*tmp1790 + tmp206*m*tmp1794
+        + tmp227*m*tmp1809 + tmp225*m*tmp1811 + tmp97*m*tmp1687 + tmp86*m*tmp1689 + tmp82*m*tmp1692
+        + tmp79*m*tmp1702 + tmp114*m*tmp1710 + tmp111*m*tmp1713;
+    carried[379] = tmp1917;
+    const Scalar tmp1918 = tmp124*m*tmp1722 + tmp123*m*tmp1723 + tmp140*m*tmp1732 + tmp138*m*tmp1734
+        + tmp155*m*tmp1748 + tmp154*m*tmp1749 + tmp172*m*tmp1758 + tmp169*m*tmp1761
+        + tmp189*m*tmp1777 + tmp188*m*tmp1778 + tmp206*m*tmp1787 + tmp203*m*tmp1790
+        + tmp226*m*tmp1809 + tmp225*m*tmp1810 + tmp96*m*tmp1687 + tmp84*m*tmp1689 + tmp82*m*tmp1690
+        + tmp79*m*tmp1701 + tmp111*m*tmp1708 + tmp109*m*tmp1710;
+    carried[380] = tmp1918;
+    const Scalar tmp1919 = Scalar(2)*tmp123*m*tmp1722 + Scalar(2)*tmp140*m*tmp1734
+        + Scalar(2)*tmp154*m*tmp1748 + Scalar(2)*tmp172*m*tmp1761 + Scalar(2)*tmp188*m*tmp1777
+        + Scalar(2)*tmp206*m*tmp1790 + Scalar(2)*tmp225*m*tmp1809 + Scalar(2)*tmp325*tmp78*m*tmp81
+        + Scalar(2)*tmp325*tmp81*m*tmp1688 + Scalar(2)*tmp111*m*tmp1710;
+    carried[381] = tmp1919;
+    const Scalar tmp1920 = tmp104*m*tmp1727 + tmp139*m*tmp1731 + tmp137*m*tmp1733 + tmp159*m*tmp1747
+        + tmp153*m*tmp1753 + tmp170*m*tmp1757 + tmp168*m*tmp1759 + tmp193*m*tmp1776
+        + tmp187*m*tmp1782 + tmp208*m*tmp1788 + tmp204*m*tmp1792 + tmp230*m*tmp1808
+        + tmp224*m*tmp1814 + tmp128*m*tmp1705 + tmp110*m*tmp1707 + tmp107*m*tmp1709;
+    carried[382] = tmp1920;
+    const Scalar tmp1921 = tmp104*m*tmp1726 + tmp141*m*tmp1731 + tmp137*m*tmp1735 + tmp158*m*tmp1747
+        + tmp153*m*tmp1752 + tmp173*m*tmp1757 + tmp168*m*tmp1762 + tmp192*m*tmp1776
+        + tmp187*m*tmp1781 + tmp208*m*tmp1791 + tmp207*m*tmp1792 + tmp229*m*tmp1808
+        + tmp224*m*tmp1813 + tmp127*m*tmp1705 + tmp112*m*tmp1707 + tmp107*m*tmp1711;
+    carried[383] = tmp1921;
+    const Scalar tmp1922 = tmp104*m*tmp1725 + tmp142*m*tmp1731 + tmp137*m*tmp1736 + tmp157*m*tmp1747
+        + tmp153*m*tmp1751 + tmp174*m*tmp1757 + tmp168*m*tmp1763 + tmp191*m*tmp1776
+        + tmp187*m*tmp1780 + tmp209*m*tmp1792 + tmp208*m*tmp1793 + tmp228*m*tmp1808
+        + tmp224*m*tmp1812 + tmp126*m*tmp1705 + tmp113*m*tmp1707 + tmp107*m*tmp1712;
+    carried[384] = tmp1922;
+    const Scalar tmp1923 = tmp104*m*tmp1724 + tmp143*m*tmp1731 + tmp137*m*tmp1737 + tmp156*m*tmp1747
+        + tmp153*m*tmp1750 + tmp175*m*tmp1757 + tmp168*m*tmp1764 + tmp190*m*tmp1776
+        + tmp187*m*tmp1779 + tmp210*m*tmp1792 + tmp208*m*tmp1794 + tmp227*m*tmp1808
+        + tmp224*m*tmp1811 + tmp125*m*tmp1705 + tmp114*m*tmp1707 + tmp107*m*tmp1713;
+    carried[385] = tmp1923;
+    const Scalar tmp1924 = tmp104*m*tmp1723 + tmp138*m*tmp1731 + tmp137*m*tmp1732 + tmp155*m*tmp1747
+        + tmp153*m*tmp1749 + tmp169*m*tmp1757 + tmp168*m*tmp1758 + tmp189*m*tmp1776
+        + tmp187*m*tmp1778 + tmp208*m*tmp1787 + tmp203*m*tmp1792 + tmp226*m*tmp1808
+        + tmp224*m*tmp1810 + tmp124*m*tmp1705 + tmp109*m*tmp1707 + tmp107*m*tmp1708;
+    carried[386] = tmp1924;
+    const Scalar tmp1925 = tmp104*m*tmp1722 + tmp140*m*tmp1731 + tmp137*m*tmp1734 + tmp154*m*tmp1747
+        + tmp153*m*tmp1748 + tmp172*m*tmp1757 + tmp168*m*tmp1761 + tmp188*m*tmp1776
+        + tmp187*m*tmp1777 + tmp208*m*tmp1790 + tmp206*m*tmp1792 + tmp225*m*tmp1808
+        + tmp224*m*tmp1809 + tmp123*m*tmp1705 + tmp111*m*tmp1707 + tmp107*m*tmp1710;
+    carried[387] = tmp1925;
+    const Scalar tmp1926 = Scalar(2)*tmp137*m*tmp1731 + Scalar(2)*tmp153*m*tmp1747
+        + Scalar(2)*tmp168*m*tmp1757 + Scalar(2)*tmp187*m*tmp1776 + Scalar(2)*tmp208*m*tmp1792
+        + Scalar(2)*tmp224*m*tmp1808 + Scalar(2)*tmp325*tmp103*m*tmp106
+        + Scalar(2)*tmp325*tmp106*m*tmp1706;
+    carried[388] = tmp1926;
+    const Scalar tmp1927 = tmp159*m*tmp1728 + tmp139*m*tmp1730 + tmp135*m*tmp1733 + tmp132*m*tmp1753
+        + tmp171*m*tmp1759 + tmp170*m*tmp1760 + tmp193*m*tmp1775 + tmp186*m*tmp1782
+        + tmp205*m*tmp1788 + tmp204*m*tmp1789 + tmp230*m*tmp1807 + tmp223*m*tmp1814;
+    carried[389] = tmp1927;
+    const Scalar tmp1928 = tmp158*m*tmp1728 + tmp141*m*tmp1730 + tmp135*m*tmp1735 + tmp132*m*tmp1752
+        + tmp173*m*tmp1760 + tmp171*m*tmp1762 + tmp192*m*tmp1775 + tmp186*m*tmp1781
+        + tmp207*m*tmp1789 + tmp205*m*tmp1791 + tmp229*m*tmp1807 + tmp223*m*tmp1813;
+    carried[390] = tmp1928;
+    const Scalar tmp1929 = tmp157*m*tmp1728 + tmp142*m*tmp1730 + tmp135*m*tmp1736 + tmp132*m*tmp1751
+        + tmp174*m*tmp1760 + tmp171*m*tmp1763 + tmp191*m*tmp1775 + tmp186*m*tmp1780
+        + tmp209*m*tmp1789 + tmp205*m*tmp1793 + tmp228*m*tmp1807 + tmp223*m*tmp1812;
+    carried[391] = tmp1929;
+    const Scalar tmp1930 = tmp156*m*tmp1728 + tmp143*m*tmp1730 + tmp135*m*tmp1737 + tmp132*m*tmp1750
+        + tmp175*m*tmp1760 + tmp171*m*tmp1764 + tmp190*m*tmp1775 + tmp186*m*tmp1779
+        + tmp210*m*tmp1789 + tmp205*m*tmp1794 + tmp227*m*tmp1807 + tmp223*m*tmp1811;
+    carried[392] = tmp1930;
+    const Scalar tmp1931 = tmp155*m*tmp1728 + tmp138*m*tmp1730 + tmp135*m*tmp1732 + tmp132*m*tmp1749
+        + tmp171*m*tmp1758 + tmp169*m*tmp1760 + tmp189*m*tmp1775 + tmp186*m*tmp1778
+        + tmp205*m*tmp1787 + tmp203*m*tmp1789 + tmp226*m*tmp1807 + tmp223*m*tmp1810;
+    carried[393] = tmp1931;
+    const Scalar tmp1932 = tmp154*m*tmp1728 + tmp140*m*tmp1730 + tmp135*m*tmp1734 + tmp132*m*tmp1748
+        + tmp172*m*tmp1760 + tmp171*m*tmp1761 + tmp188*m*tmp1775 + tmp186*m*tmp1777
+        + tmp206*m*tmp1789 + tmp205*m*tmp1790 + tmp225*m*tmp1807 + tmp223*m*tmp1809;
+    carried[394] = tmp1932;
+    const Scalar tmp1933 = tmp153*m*tmp1728 + tmp137*m*tmp1730 + tmp135*m*tmp1731 + tmp132*m*tmp1747
+        + tmp171*m*tmp1757 + tmp168*m*tmp1760 + tmp187*m*tmp1775 + tmp186*m*tmp1776
+        + tmp208*m*tmp1789 + tmp205*m*tmp1792 + tmp224*m*tmp1807 + tmp223*m*tmp1808;
+    carried[395] = tmp1933;
+    const Scalar tmp1934 = Scalar(2)*tmp131*tmp325*m*tmp134 + Scalar(2)*tmp134*tmp325*m*tmp1729
+        + Scalar(2)*tmp171*m*tmp1760 + Scalar(2)*tmp186*m*tmp1775 + Scalar(2)*tmp205*m*tmp1789
+        + Scalar(2)*tmp223*m*tmp1807;
+    carried[396] = tmp1934;
+    const Scalar tmp1935 = tmp193*m*tmp1754 + tmp170*m*tmp1756 + tmp166*m*tmp1759 + tmp163*m*tmp1782
+        + tmp204*m*tmp1786 + tmp202*m*tmp1788 + tmp230*m*tmp1806 + tmp222*m*tmp1814;
+    carried[397] = tmp1935;
+    const Scalar tmp1936 = tmp192*m*tmp1754 + tmp173*m*tmp1756 + tmp166*m*tmp1762 + tmp163*m*tmp1781
+        + tmp207*m*tmp1786 + tmp202*m*tmp1791 + tmp229*m*tmp1806 + tmp222*m*tmp1813;
+    carried[398] = tmp1936;
+    const Scalar tmp1937 = tmp191*m*tmp1754 + tmp174*m*tmp1756 + tmp166*m*tmp1763 + tmp163*m*tmp1780
+        + tmp209*m*tmp1786 + tmp202*m*tmp1793 + tmp228*m*tmp1806 + tmp222*m*tmp1812;
+    carried[399] = tmp1937;
+    const Scalar tmp1938 = tmp190*m*tmp1754 + tmp175*m*tmp1756 + tmp166*m*tmp1764 + tmp163*m*tmp1779
+        + tmp210*m*tmp1786 + tmp202*m*tmp1794 + tmp227*m*tmp1806 + tmp222*m*tmp1811;
+    carried[400] = tmp1938;
+    const Scalar tmp1939 = tmp189*m*tmp1754 + tmp169*m*tmp1756 + tmp166*m*tmp1758 + tmp163*m*tmp1778
+        + tmp203*m*tmp1786 + tmp202*m*tmp1787 + tmp226*m*tmp1806 + tmp222*m*tmp1810;
+    carried[401] = tmp1939;
+    const Scalar tmp1940 = tmp188*m*tmp1754 + tmp172*m*tmp1756 + tmp166*m*tmp1761 + tmp163*m*tmp1777
+        + tmp206*m*tmp1786 + tmp202*m*tmp1790 + tmp225*m*tmp1806 + tmp222*m*tmp1809;
+    carried[402] = tmp1940;
+    const Scalar tmp1941 = tmp187*m*tmp1754 + tmp168*m*tmp1756 + tmp166*m*tmp1757 + tmp163*m*tmp1776
+        + tmp208*m*tmp1786 + tmp202*m*tmp1792 + tmp224*m*tmp1806 + tmp222*m*tmp1808;
+    carried[403] = tmp1941;
+    const Scalar tmp1942 = tmp186*m*tmp1754 + tmp171*m*tmp1756 + tmp166*m*tmp1760 + tmp163*m*tmp1775
+        + tmp205*m*tmp1786 + tmp202*m*tmp1789 + tmp223*m*tmp1806 + tmp222*m*tmp1807;
+    carried[404] = tmp1942;
+    const Scalar tmp1943 = Scalar(2)*tmp162*tmp325*m*tmp165 + Scalar(2)*tmp165*tmp325*m*tmp1755
+        + Scalar(2)*tmp202*m*tmp1786 + Scalar(2)*tmp222*m*tmp1806;
+    carried[405] = tmp1943;
+    const Scalar tmp1944 = tmp230*m*tmp1783 + tmp204*m*tmp1785 + tmp200*m*tmp1788
+        + tmp197*m*tmp1814;
+    carried[406] = tmp1944;
+    const Scalar tmp1945 = tmp229*m*tmp1783 + tmp207*m*tmp1785 + tmp200*m*tmp1791
+        + tmp197*m*tmp1813;
+    carried[407] = tmp1945;
+    const Scalar tmp1946 = tmp228*m*tmp1783 + tmp209*m*tmp1785 + tmp200*m*tmp1793
+        + tmp197*m*tmp1812;
+    carried[408] = tmp1946;
+    const Scalar tmp1947 = tmp227*m*tmp1783 + tmp210*m*tmp1785 + tmp200*m*tmp1794
+        + tmp197*m*tmp1811;
+    carried[409] = tmp1947;
+    const Scalar tmp1948 = tmp226*m*tmp1783 + tmp203*m*tmp1785 + tmp200*m*tmp1787
+        + tmp197*m*tmp1810;
+    carried[410] = tmp1948;
+    const Scalar tmp1949 = tmp225*m*tmp1783 + tmp206*m*tmp1785 + tmp200*m*tmp1790
+        + tmp197*m*tmp1809;
+    carried[411] = tmp1949;
+    const Scalar tmp1950 = tmp224*m*tmp1783 + tmp208*m*tmp1785 + tmp200*m*tmp1792
+        + tmp197*m*tmp1808;
+    carried[412] = tmp1950;
+    const Scalar tmp1951 = tmp223*m*tmp1783 + tmp205*m*tmp1785 + tmp200*m*tmp1789
+        + tmp197*m*tmp1807;
+    carried[413] = tmp1951;
+    const Scalar tmp1952 = tmp222*m*tmp1783 + tmp202*m*tmp1785 + tmp200*m*tmp1786
+        + tmp197*m*tmp1806;
+    carried[414] = tmp1952;
+    const Scalar tmp1953 = Scalar(2)*tmp196*tmp325*m*tmp199 + Scalar(2)*tmp199*tmp325*m*tmp1784;
+    carried[415] = tmp1953;
+    const Scalar tmp1954 = m*tmp1819;
+    carried[416] = tmp1954;
+    const Scalar tmp1955 = m*tmp1820;
+    carried[417] = tmp1955;
+    const Scalar tmp1956 = m*tmp1827;
+    carried[418] = tmp1956;
+    const Scalar tmp1957 = m*tmp1828;
+    carried[419] = tmp1957;
+    const Scalar tmp1958 = m*tmp1837;
+    carried[420] = tmp1958;
+    const Scalar tmp1959 = m*tmp1838;
+    carried[421] = tmp1959;
+    const Scalar tmp1960 = m*tmp1849;
+    carried[422] = tmp1960;
+    const Scalar tmp1961 = m*tmp1850;
+    carried[423] = tmp1961;
+    const Scalar tmp1962 = m*tmp1863;
+    carried[424] = tmp1962;
+    const Scalar tmp1963 = m*tmp1864;
+    carried[425] = tmp1963;
+    const Scalar tmp1964 = m*tmp1879;
+    carried[426] = tmp1964;
+    const Scalar tmp1965 = m*tmp1880;
+    carried[427] = tmp1965;
   }
 
   /// Part 2 of 2 of residual_jacobians(), which calls them in order (a long kernel is
@@ -6828,70 +6828,70 @@ struct StiffChain10 {
     const Scalar c = Scalar(params.c);
     Scalar* const dr_dq_data = dr_dq->data();  // column-major
     Scalar* const dr_dv_data = dr_dv->data();  // column-major
-    const Scalar tmp1856 = carried[359];
-    const Scalar tmp1925 = m*tmp1856;
-    const Scalar tmp1857 = carried[360];
-    const Scalar tmp1926 = m*tmp1857;
+    const Scalar tmp1897 = carried[359];
+    const Scalar tmp1966 = m*tmp1897;
+    const Scalar tmp1898 = carried[360];
+    const Scalar tmp1967 = m*tmp1898;
     const Scalar tmp382 = carried[258];
-    const Scalar tmp1625 = carried[273];
-    const Scalar tmp1645 = carried[280];
-    const Scalar tmp1663 = carried[290];
-    const Scalar tmp1686 = carried[304];
-    const Scalar tmp1712 = carried[320];
-    const Scalar tmp1741 = carried[338];
-    const Scalar tmp1773 = carried[358];
-    const Scalar tmp1927 = tmp382*tmp1686 + tmp382*tmp1712 + tmp382*tmp1741 + tmp382*tmp1773
-        + tmp382*tmp1625 + tmp382*tmp1645 + tmp382*tmp1663;
-    const Scalar tmp1644 = carried[279];
-    const Scalar tmp1661 = carried[288];
-    const Scalar tmp1685 = carried[303];
-    const Scalar tmp1711 = carried[319];
-    const Scalar tmp1740 = carried[337];
-    const Scalar tmp1772 = carried[357];
-    const Scalar tmp1928 = tmp382*tmp1685 + tmp382*tmp1711 + tmp382*tmp1740 + tmp382*tmp1772
-        + tmp382*tmp1625 + tmp382*tmp1644 + tmp382*tmp1661;
-    const Scalar tmp1662 = carried[289];
-    const Scalar tmp1684 = carried[302];
-    const Scalar tmp1710 = carried[318];
-    const Scalar tmp1739 = carried[336];
-    const Scalar tmp1771 = carried[356];
-    const Scalar tmp1929 = tmp382*tmp1684 + tmp382*tmp1710 + tmp382*tmp1739 + tmp382*tmp1771
-        + tmp382*tmp1625 + tmp382*tmp1645 + tmp382*tmp1662;
-    const Scalar tmp1683 = carried[301];
-    const Scalar tmp1709 = carried[317];
-    const Scalar tmp1738 = carried[335];
-    const Scalar tmp1770 = carried[355];
-    const Scalar tmp1930 = tmp382*tmp1683 + tmp382*tmp1709 + tmp382*tmp1738 + tmp382*tmp1770 - k
-        + tmp382*tmp1625 + tmp382*tmp1644 + tmp382*tmp1661;
-    const Scalar tmp1633 = carried[275];
-    const Scalar tmp1660 = carried[287];
-    const Scalar tmp1682 = carried[300];
-    const Scalar tmp1708 = carried[316];
-    const Scalar tmp1737 = carried[334];
-    const Scalar tmp1769 = carried[354];
-    const Scalar tmp1931 = tmp382*tmp1682 + tmp382*tmp1708 + tmp382*tmp1737 + tmp382*tmp1769
-        + tmp382*tmp1633 + tmp382*tmp1660;
-    const Scalar tmp1646 = carried[281];
-    const Scalar tmp1681 = carried[299];
-    const Scalar tmp1707 = carried[315];
-    const Scalar tmp1736 = carried[333];
-    const Scalar tmp1768 = carried[353];
-    const Scalar tmp1932 = tmp382*tmp1681 + tmp382*tmp1707 + tmp382*tmp1736 + tmp382*tmp1768
-        + tmp382*tmp1646;
-    const Scalar tmp1664 = carried[291];
-    const Scalar tmp1706 = carried[314];
-    const Scalar tmp1735 = carried[332];
-    const Scalar tmp1767 = carried[352];
-    const Scalar tmp1933 = tmp382*tmp1706 + tmp382*tmp1735 + tmp382*tmp1767 + tmp382*tmp1664;
-    const Scalar tmp1687 = carried[305];
-    const Scalar tmp1734 = carried[331];
-    const Scalar tmp1766 = carried[351];
-    const Scalar tmp1934 = tmp382*tmp1687 + tmp382*tmp1734 + tmp382*tmp1766;
-    const Scalar tmp1713 = carried[321];
-    const Scalar tmp1765 = carried[350];
-    const Scalar tmp1935 = tmp382*tmp1713 + tmp382*tmp1765;
+    const Scalar tmp1666 = carried[273];
+    const Scalar tmp1686 = carried[280];
+    const Scalar tmp1704 = carried[290];
+    const Scalar tmp1727 = carried[304];
+    const Scalar tmp1753 = carried[320];
+    const Scalar tmp1782 = carried[338];
+    const Scalar tmp1814 = carried[358];
+    const Scalar tmp1968 = tmp382*tmp1727 + tmp382*tmp1753 + tmp382*tmp1782 + tmp382*tmp1814
+        + tmp382*tmp1666 + tmp382*tmp1686 + tmp382*tmp1704;
+    const Scalar tmp1685 = carried[279];
+    const Scalar tmp1702 = carried[288];
+    const Scalar tmp1726 = carried[303];
+    const Scalar tmp1752 = carried[319];
+    const Scalar tmp1781 = carried[337];
+    const Scalar tmp1813 = carried[357];
+    const Scalar tmp1969 = tmp382*tmp1726 + tmp382*tmp1752 + tmp382*tmp1781 + tmp382*tmp1813
+        + tmp382*tmp1666 + tmp382*tmp1685 + tmp382*tmp1702;
+    const Scalar tmp1703 = carried[289];
+    const Scalar tmp1725 = carried[302];
+    const Scalar tmp1751 = carried[318];
+    const Scalar tmp1780 = carried[336];
+    const Scalar tmp1812 = carried[356];
+    const Scalar tmp1970 = tmp382*tmp1725 + tmp382*tmp1751 + tmp382*tmp1780 + tmp382*tmp1812
+        + tmp382*tmp1666 + tmp382*tmp1686 + tmp382*tmp1703;
+    const Scalar tmp1724 = carried[301];
+    const Scalar tmp1750 = carried[317];
+    const Scalar tmp1779 = carried[335];
+    const Scalar tmp1811 = carried[355];
+    const Scalar tmp1971 = tmp382*tmp1724 + tmp382*tmp1750 + tmp382*tmp1779 + tmp382*tmp1811 - k
+        + tmp382*tmp1666 + tmp382*tmp1685 + tmp382*tmp1702;
+    const Scalar tmp1674 = carried[275];
+    const Scalar tmp1701 = carried[287];
+    const Scalar tmp1723 = carried[300];
+    const Scalar tmp1749 = carried[316];
+    const Scalar tmp1778 = carried[334];
+    const Scalar tmp1810 = carried[354];
+    const Scalar tmp1972 = tmp382*tmp1723 + tmp382*tmp1749 + tmp382*tmp1778 + tmp382*tmp1810
+        + tmp382*tmp1674 + tmp382*tmp1701;
+    const Scalar tmp1687 = carried[281];
+    const Scalar tmp1722 = carried[299];
+    const Scalar tmp1748 = carried[315];
+    const Scalar tmp1777 = carried[333];
+    const Scalar tmp1809 = carried[353];
+    const Scalar tmp1973 = tmp382*tmp1722 + tmp382*tmp1748 + tmp382*tmp1777 + tmp382*tmp1809
+        + tmp382*tmp1687;
+    const Scalar tmp1705 = carried[291];
+    const Scalar tmp1747 = carried[314];
+    const Scalar tmp1776 = carried[332];
+    const Scalar tmp1808 = carried[352];
+    const Scalar tmp1974 = tmp382*tmp1747 + tmp382*tmp1776 + tmp382*tmp1808 + tmp382*tmp1705;
+    const Scalar tmp1728 = carried[305];
+    const Scalar tmp1775 = carried[331];
+    const Scalar tmp1807 = carried[351];
+    const Scalar tmp1975 = tmp382*tmp1728 + tmp382*tmp1775 + tmp382*tmp1807;
+    const Scalar tmp1754 = carried[321];
+    const Scalar tmp1806 = carried[350];
+    const Scalar tmp1976 = tmp382*tmp1754 + tmp382*tmp1806;
     const Scalar tmp199 = carried[154];
-    const Scalar tmp1936 = tmp382*l*tmp199;
+    const Scalar tmp1977 = tmp382*l*tmp199;
     const Scalar tmp44 = carried[22];
     const Scalar tmp53 = carried[31];
     const Scalar tmp63 = carried[37];
@@ -6920,44 +6920,44 @@ struct StiffChain10 {
     const Scalar tmp400 = carried[270];
     const Scalar tmp401 = carried[271];
     const Scalar tmp402 = carried[272];
-    const Scalar tmp1627 = carried[274];
-    const Scalar tmp1636 = carried[277];
-    const Scalar tmp1650 = carried[284];
-    const Scalar tmp1668 = carried[294];
-    const Scalar tmp1692 = carried[309];
-    const Scalar tmp1718 = carried[325];
-    const Scalar tmp1747 = carried[343];
-    const Scalar tmp1913 = carried[416];
-    const Scalar tmp1914 = carried[417];
-    const Scalar tmp1915 = carried[418];
-    const Scalar tmp1916 = carried[419];
-    const Scalar tmp1917 = carried[420];
-    const Scalar tmp1918 = carried[421];
-    const Scalar tmp1919 = carried[422];
-    const Scalar tmp1920 = carried[423];
-    const Scalar tmp1921 = carried[424];
-    const Scalar tmp1922 = carried[425];
-    const Scalar tmp1923 = carried[426];
-    const Scalar tmp1924 = carried[427];
-    const Scalar tmp1937 = -tmp396*tmp1686 - tmp397*tmp1692 - tmp398*tmp1712 - tmp399*tmp1718
-        - tmp400*tmp1741 - tmp401*tmp1747 - tmp402*tmp1773 - tmp389*tmp1627 - tmp390*tmp1625
-        - tmp391*tmp1636 - tmp392*tmp1645 - tmp393*tmp1650 - tmp394*tmp1663 - tmp395*tmp1668
-        - tmp44*tmp1913 - tmp53*tmp1914 - tmp63*tmp1915 - tmp75*tmp1916 - tmp85*tmp1917
-        - tmp100*tmp1918 - tmp110*tmp1919 - tmp128*tmp1920 - tmp139*tmp1921 - tmp159*tmp1922
-        - tmp170*tmp1923 - tmp193*tmp1924 - tmp204*tmp1925 - tmp230*tmp1926;
-    const Scalar tmp1858 = carried[361];
-    const Scalar tmp1859 = carried[362];
-    const Scalar tmp1861 = carried[364];
-    const Scalar tmp1864 = carried[367];
-    const Scalar tmp1868 = carried[371];
-    const Scalar tmp1873 = carried[376];
-    const Scalar tmp1879 = carried[382];
-    const Scalar tmp1886 = carried[389];
-    const Scalar tmp1894 = carried[397];
-    const Scalar tmp1903 = carried[406];
-    dr_dq_data[0 + 10 * 3] = phi10_ddot*tmp1903 - tmp1927 - tmp1937 + phi1_ddot*tmp1858
-        + phi2_ddot*tmp1859 + phi3_ddot*tmp1861 + phi4_ddot*tmp1864 + phi5_ddot*tmp1868
-        + phi6_ddot*tmp1873 + phi7_ddot*tmp1879 + phi8_ddot*tmp1886 + phi9_ddot*tmp1894;
+    const Scalar tmp1668 = carried[274];
+    const Scalar tmp1677 = carried[277];
+    const Scalar tmp1691 = carried[284];
+    const Scalar tmp1709 = carried[294];
+    const Scalar tmp1733 = carried[309];
+    const Scalar tmp1759 = carried[325];
+    const Scalar tmp1788 = carried[343];
+    const Scalar tmp1954 = carried[416];
+    const Scalar tmp1955 = carried[417];
+    const Scalar tmp1956 = carried[418];
+    const Scalar tmp1957 = carried[419];
+    const Scalar tmp1958 = carried[420];
+    const Scalar tmp1959 = carried[421];
+    const Scalar tmp1960 = carried[422];
+    const Scalar tmp1961 = carried[423];
+    const Scalar tmp1962 = carried[424];
+    const Scalar tmp1963 = carried[425];
+    const Scalar tmp1964 = carried[426];
+    const Scalar tmp1965 = carried[427];
+    const Scalar tmp1978 = -tmp396*tmp1727 - tmp397*tmp1733 - tmp398*tmp1753 - tmp399*tmp1759
+        - tmp400*tmp1782 - tmp401*tmp1788 - tmp402*tmp1814 - tmp389*tmp1668 - tmp390*tmp1666
+        - tmp391*tmp1677 - tmp392*tmp1686 - tmp393*tmp1691 - tmp394*tmp1704 - tmp395*tmp1709
+        - tmp44*tmp1954 - tmp53*tmp1955 - tmp63*tmp1956 - tmp75*tmp1957 - tmp85*tmp1958
+        - tmp100*tmp1959 - tmp110*tmp1960 - tmp128*tmp1961 - tmp139*tmp1962 - tmp159*tmp1963
+        - tmp170*tmp1964 - tmp193*tmp1965 - tmp204*tmp1966 - tmp230*tmp1967;
+    const Scalar tmp1899 = carried[361];
+    const Scalar tmp1900 = carried[362];
+    const Scalar tmp1902 = carried[364];
+    const Scalar tmp1905 = carried[367];
+    const Scalar tmp1909 = carried[371];
+    const Scalar tmp1914 = carried[376];
+    const Scalar tmp1920 = carried[382];
+    const Scalar tmp1927 = carried[389];
+    const Scalar tmp1935 = carried[397];
+    const Scalar tmp1944 = carried[406];
+    dr_dq_data[0 + 10 * 3] = phi10_ddot*tmp1944 - tmp1968 - tmp1978 + phi1_ddot*tmp1899
+        + phi2_ddot*tmp1900 + phi3_ddot*tmp1902 + phi4_ddot*tmp1905 + phi5_ddot*tmp1909
+        + phi6_ddot*tmp1914 + phi7_ddot*tmp1920 + phi8_ddot*tmp1927 + phi9_ddot*tmp1935;
     const Scalar tmp45 = carried[23];
     const Scalar tmp52 = carried[30];
     const Scalar tmp65 = carried[39];
@@ -6972,30 +6972,30 @@ struct StiffChain10 {
     const Scalar tmp192 = carried[150];
     const Scalar tmp207 = carried[161];
     const Scalar tmp229 = carried[183];
-    const Scalar tmp1637 = carried[278];
-    const Scalar tmp1651 = carried[285];
-    const Scalar tmp1670 = carried[296];
-    const Scalar tmp1694 = carried[311];
-    const Scalar tmp1721 = carried[328];
-    const Scalar tmp1750 = carried[346];
-    const Scalar tmp1938 = -tmp396*tmp1685 - tmp397*tmp1694 - tmp398*tmp1711 - tmp399*tmp1721
-        - tmp400*tmp1740 - tmp401*tmp1750 - tmp402*tmp1772 - tmp389*tmp1627 - tmp390*tmp1625
-        - tmp391*tmp1637 - tmp392*tmp1644 - tmp393*tmp1651 - tmp394*tmp1661 - tmp395*tmp1670
-        - tmp45*tmp1913 - tmp52*tmp1914 - tmp65*tmp1915 - tmp74*tmp1916 - tmp87*tmp1917
-        - tmp99*tmp1918 - tmp112*tmp1919 - tmp127*tmp1920 - tmp141*tmp1921 - tmp158*tmp1922
-        - tmp173*tmp1923 - tmp192*tmp1924 - tmp207*tmp1925 - tmp229*tmp1926;
-    const Scalar tmp1860 = carried[363];
-    const Scalar tmp1862 = carried[365];
-    const Scalar tmp1865 = carried[368];
-    const Scalar tmp1869 = carried[372];
-    const Scalar tmp1874 = carried[377];
-    const Scalar tmp1880 = carried[383];
-    const Scalar tmp1887 = carried[390];
-    const Scalar tmp1895 = carried[398];
-    const Scalar tmp1904 = carried[407];
-    dr_dq_data[1 + 10 * 3] = phi10_ddot*tmp1904 - tmp1928 - tmp1938 + phi1_ddot*tmp1859
-        + phi2_ddot*tmp1860 + phi3_ddot*tmp1862 + phi4_ddot*tmp1865 + phi5_ddot*tmp1869
-        + phi6_ddot*tmp1874 + phi7_ddot*tmp1880 + phi8_ddot*tmp1887 + phi9_ddot*tmp1895;
+    const Scalar tmp1678 = carried[278];
+    const Scalar tmp1692 = carried[285];
+    const Scalar tmp1711 = carried[296];
+    const Scalar tmp1735 = carried[311];
+    const Scalar tmp1762 = carried[328];
+    const Scalar tmp1791 = carried[346];
+    const Scalar tmp1979 = -tmp396*tmp1726 - tmp397*tmp1735 - tmp398*tmp1752 - tmp399*tmp1762
+        - tmp400*tmp1781 - tmp401*tmp1791 - tmp402*tmp1813 - tmp389*tmp1668 - tmp390*tmp1666
+        - tmp391*tmp1678 - tmp392*tmp1685 - tmp393*tmp1692 - tmp394*tmp1702 - tmp395*tmp1711
+        - tmp45*tmp1954 - tmp52*tmp1955 - tmp65*tmp1956 - tmp74*tmp1957 - tmp87*tmp1958
+        - tmp99*tmp1959 - tmp112*tmp1960 - tmp127*tmp1961 - tmp141*tmp1962 - tmp158*tmp1963
+        - tmp173*tmp1964 - tmp192*tmp1965 - tmp207*tmp1966 - tmp229*tmp1967;
+    const Scalar tmp1901 = carried[363];
+    const Scalar tmp1903 = carried[365];
+    const Scalar tmp1906 = carried[368];
+    const Scalar tmp1910 = carried[372];
+    const Scalar tmp1915 = carried[377];
+    const Scalar tmp1921 = carried[383];
+    const Scalar tmp1928 = carried[390];
+    const Scalar tmp1936 = carried[398];
+    const Scalar tmp1945 = carried[407];
+    dr_dq_data[1 + 10 * 3] = phi10_ddot*tmp1945 - tmp1969 - tmp1979 + phi1_ddot*tmp1900
+        + phi2_ddot*tmp1901 + phi3_ddot*tmp1903 + phi4_ddot*tmp1906 + phi5_ddot*tmp1910
+        + phi6_ddot*tmp1915 + phi7_ddot*tmp1921 + phi8_ddot*tmp1928 + phi9_ddot*tmp1936;
     const Scalar tmp43 = carried[21];
     const Scalar tmp51 = carried[29];
     const Scalar tmp62 = carried[36];
@@ -7010,28 +7010,28 @@ struct StiffChain10 {
     const Scalar tmp191 = carried[149];
     const Scalar tmp209 = carried[163];
     const Scalar tmp228 = carried[182];
-    const Scalar tmp1652 = carried[286];
-    const Scalar tmp1671 = carried[297];
-    const Scalar tmp1695 = carried[312];
-    const Scalar tmp1722 = carried[329];
-    const Scalar tmp1752 = carried[348];
-    const Scalar tmp1939 = -tmp396*tmp1684 - tmp397*tmp1695 - tmp398*tmp1710 - tmp399*tmp1722
-        - tmp400*tmp1739 - tmp401*tmp1752 - tmp402*tmp1771 - tmp389*tmp1627 - tmp390*tmp1625
-        - tmp391*tmp1636 - tmp392*tmp1645 - tmp393*tmp1652 - tmp394*tmp1662 - tmp395*tmp1671
-        - tmp43*tmp1913 - tmp51*tmp1914 - tmp62*tmp1915 - tmp73*tmp1916 - tmp88*tmp1917
-        - tmp98*tmp1918 - tmp113*tmp1919 - tmp126*tmp1920 - tmp142*tmp1921 - tmp157*tmp1922
-        - tmp174*tmp1923 - tmp191*tmp1924 - tmp209*tmp1925 - tmp228*tmp1926;
-    const Scalar tmp1863 = carried[366];
-    const Scalar tmp1866 = carried[369];
-    const Scalar tmp1870 = carried[373];
-    const Scalar tmp1875 = carried[378];
-    const Scalar tmp1881 = carried[384];
-    const Scalar tmp1888 = carried[391];
-    const Scalar tmp1896 = carried[399];
-    const Scalar tmp1905 = carried[408];
-    dr_dq_data[2 + 10 * 3] = phi10_ddot*tmp1905 - tmp1929 - tmp1939 + phi1_ddot*tmp1861
-        + phi2_ddot*tmp1862 + phi3_ddot*tmp1863 + phi4_ddot*tmp1866 + phi5_ddot*tmp1870
-        + phi6_ddot*tmp1875 + phi7_ddot*tmp1881 + phi8_ddot*tmp1888 + phi9_ddot*tmp1896;
+    const Scalar tmp1693 = carried[286];
+    const Scalar tmp1712 = carried[297];
+    const Scalar tmp1736 = carried[312];
+    const Scalar tmp1763 = carried[329];
+    const Scalar tmp1793 = carried[348];
+    const Scalar tmp1980 = -tmp396*tmp1725 - tmp397*tmp1736 - tmp398*tmp1751 - tmp399*tmp1763
+        - tmp400*tmp1780 - tmp401*tmp1793 - tmp402*tmp1812 - tmp389*tmp1668 - tmp390*tmp1666
+        - tmp391*tmp1677 - tmp392*tmp1686 - tmp393*tmp1693 - tmp394*tmp1703 - tmp395*tmp1712
+        - tmp43*tmp1954 - tmp51*tmp1955 - tmp62*tmp1956 - tmp73*tmp1957 - tmp88*tmp1958
+        - tmp98*tmp1959 - tmp113*tmp1960 - tmp126*tmp1961 - tmp142*tmp1962 - tmp157*tmp1963
+        - tmp174*tmp1964 - tmp191*tmp1965 - tmp209*tmp1966 - tmp228*tmp1967;
+    const Scalar tmp1904 = carried[366];
+    const Scalar tmp1907 = carried[369];
+    const Scalar tmp1911 = carried[373];
+    const Scalar tmp1916 = carried[378];
+    const Scalar tmp1922 = carried[384];
+    const Scalar tmp1929 = carried[391];
+    const Scalar tmp1937 = carried[399];
+    const Scalar tmp1946 = carried[408];
+    dr_dq_data[2 + 10 * 3] = phi10_ddot*tmp1946 - tmp1970 - tmp1980 + phi1_ddot*tmp1902
+        + phi2_ddot*tmp1903 + phi3_ddot*tmp1904 + phi4_ddot*tmp1907 + phi5_ddot*tmp1911
+        + phi6_ddot*tmp1916 + phi7_ddot*tmp1922 + phi8_ddot*tmp1929 + phi9_ddot*tmp1937;
     const Scalar tmp38 = carried[19];
     const Scalar tmp41 = carried[20];
     const Scalar tmp64 = carried[38];
@@ -7046,26 +7046,26 @@ struct StiffChain10 {
     const Scalar tmp190 = carried[148];
     const Scalar tmp210 = carried[164];
     const Scalar tmp227 = carried[181];
-    const Scalar tmp1672 = carried[298];
-    const Scalar tmp1696 = carried[313];
-    const Scalar tmp1723 = carried[330];
-    const Scalar tmp1753 = carried[349];
-    const Scalar tmp1940 = -tmp396*tmp1683 - tmp397*tmp1696 - tmp398*tmp1709 - tmp399*tmp1723
-        - tmp400*tmp1738 - tmp401*tmp1753 - tmp402*tmp1770 - tmp390*tmp1625 - tmp389*tmp1627
-        - tmp391*tmp1637 - tmp392*tmp1644 - tmp393*tmp1651 - tmp394*tmp1661 - tmp395*tmp1672
-        - tmp41*tmp1913 - tmp38*tmp1914 - tmp64*tmp1915 - tmp72*tmp1916 - tmp86*tmp1917
-        - tmp97*tmp1918 - tmp114*tmp1919 - tmp125*tmp1920 - tmp143*tmp1921 - tmp156*tmp1922
-        - tmp175*tmp1923 - tmp190*tmp1924 - tmp210*tmp1925 - tmp227*tmp1926;
-    const Scalar tmp1867 = carried[370];
-    const Scalar tmp1871 = carried[374];
-    const Scalar tmp1876 = carried[379];
-    const Scalar tmp1882 = carried[385];
-    const Scalar tmp1889 = carried[392];
-    const Scalar tmp1897 = carried[400];
-    const Scalar tmp1906 = carried[409];
-    dr_dq_data[3 + 10 * 3] = phi10_ddot*tmp1906 - tmp1930 - tmp1940 + phi1_ddot*tmp1864
-        + phi2_ddot*tmp1865 + phi3_ddot*tmp1866 + phi4_ddot*tmp1867 + phi5_ddot*tmp1871
-        + phi6_ddot*tmp1876 + phi7_ddot*tmp1882 + phi8_ddot*tmp1889 + phi9_ddot*tmp1897;
+    const Scalar tmp1713 = carried[298];
+    const Scalar tmp1737 = carried[313];
+    const Scalar tmp1764 = carried[330];
+    const Scalar tmp1794 = carried[349];
+    const Scalar tmp1981 = -tmp396*tmp1724 - tmp397*tmp1737 - tmp398*tmp1750 - tmp399*tmp1764
+        - tmp400*tmp1779 - tmp401*tmp1794 - tmp402*tmp1811 - tmp390*tmp1666 - tmp389*tmp1668
+        - tmp391*tmp1678 - tmp392*tmp1685 - tmp393*tmp1692 - tmp394*tmp1702 - tmp395*tmp1713
+        - tmp41*tmp1954 - tmp38*tmp1955 - tmp64*tmp1956 - tmp72*tmp1957 - tmp86*tmp1958
+        - tmp97*tmp1959 - tmp114*tmp1960 - tmp125*tmp1961 - tmp143*tmp1962 - tmp156*tmp1963
+        - tmp175*tmp1964 - tmp190*tmp1965 - tmp210*tmp1966 - tmp227*tmp1967;
+    const Scalar tmp1908 = carried[370];
+    const Scalar tmp1912 = carried[374];
+    const Scalar tmp1917 = carried[379];
+    const Scalar tmp1923 = carried[385];
+    const Scalar tmp1930 = carried[392];
+    const Scalar tmp1938 = carried[400];
+    const Scalar tmp1947 = carried[409];
+    dr_dq_data[3 + 10 * 3] = phi10_ddot*tmp1947 - tmp1971 - tmp1981 + phi1_ddot*tmp1905
+        + phi2_ddot*tmp1906 + phi3_ddot*tmp1907 + phi4_ddot*tmp1908 + phi5_ddot*tmp1912
+        + phi6_ddot*tmp1917 + phi7_ddot*tmp1923 + phi8_ddot*tmp1930 + phi9_ddot*tmp1938;
     const Scalar tmp57 = carried[33];
     const Scalar tmp60 = carried[35];
     const Scalar tmp84 = carried[54];
@@ -7078,26 +7078,26 @@ struct StiffChain10 {
     const Scalar tmp189 = carried[147];
     const Scalar tmp203 = carried[157];
     const Scalar tmp226 = carried[180];
-    const Scalar tmp1635 = carried[276];
-    const Scalar tmp1649 = carried[283];
-    const Scalar tmp1667 = carried[293];
-    const Scalar tmp1691 = carried[308];
-    const Scalar tmp1717 = carried[324];
-    const Scalar tmp1746 = carried[342];
-    const Scalar tmp1941 = -tmp396*tmp1682 - tmp397*tmp1691 - tmp398*tmp1708 - tmp399*tmp1717
-        - tmp400*tmp1737 - tmp401*tmp1746 - tmp402*tmp1769 - tmp392*tmp1633 - tmp391*tmp1635
-        - tmp393*tmp1649 - tmp394*tmp1660 - tmp395*tmp1667 - tmp60*tmp1915 - tmp57*tmp1916
-        - tmp84*tmp1917 - tmp96*tmp1918 - tmp109*tmp1919 - tmp124*tmp1920 - tmp138*tmp1921
-        - tmp155*tmp1922 - tmp169*tmp1923 - tmp189*tmp1924 - tmp203*tmp1925 - tmp226*tmp1926;
-    const Scalar tmp1872 = carried[375];
-    const Scalar tmp1877 = carried[380];
-    const Scalar tmp1883 = carried[386];
-    const Scalar tmp1890 = carried[393];
-    const Scalar tmp1898 = carried[401];
-    const Scalar tmp1907 = carried[410];
-    dr_dq_data[4 + 10 * 3] = phi9_ddot*tmp1898 + phi10_ddot*tmp1907 - tmp1931 - tmp1941
-        + phi1_ddot*tmp1868 + phi2_ddot*tmp1869 + phi3_ddot*tmp1870 + phi4_ddot*tmp1871
-        + phi5_ddot*tmp1872 + phi6_ddot*tmp1877 + phi7_ddot*tmp1883 + phi8_ddot*tmp1890;
+    const Scalar tmp1676 = carried[276];
+    const Scalar tmp1690 = carried[283];
+    const Scalar tmp1708 = carried[293];
+    const Scalar tmp1732 = carried[308];
+    const Scalar tmp1758 = carried[324];
+    const Scalar tmp1787 = carried[342];
+    const Scalar tmp1982 = -tmp396*tmp1723 - tmp397*tmp1732 - tmp398*tmp1749 - tmp399*tmp1758
+        - tmp400*tmp1778 - tmp401*tmp1787 - tmp402*tmp1810 - tmp392*tmp1674 - tmp391*tmp1676
+        - tmp393*tmp1690 - tmp394*tmp1701 - tmp395*tmp1708 - tmp60*tmp1956 - tmp57*tmp1957
+        - tmp84*tmp1958 - tmp96*tmp1959 - tmp109*tmp1960 - tmp124*tmp1961 - tmp138*tmp1962
+        - tmp155*tmp1963 - tmp169*tmp1964 - tmp189*tmp1965 - tmp203*tmp1966 - tmp226*tmp1967;
+    const Scalar tmp1913 = carried[375];
+    const Scalar tmp1918 = carried[380];
+    const Scalar tmp1924 = carried[386];
+    const Scalar tmp1931 = carried[393];
+    const Scalar tmp1939 = carried[401];
+    const Scalar tmp1948 = carried[410];
+    dr_dq_data[4 + 10 * 3] = phi9_ddot*tmp1939 + phi10_ddot*tmp1948 - tmp1972 - tmp1982
+        + phi1_ddot*tmp1909 + phi2_ddot*tmp1910 + phi3_ddot*tmp1911 + phi4_ddot*tmp1912
+        + phi5_ddot*tmp1913 + phi6_ddot*tmp1918 + phi7_ddot*tmp1924 + phi8_ddot*tmp1931;
     const Scalar tmp79 = carried[51];
     const Scalar tmp82 = carried[53];
     const Scalar tmp111 = carried[77];
@@ -7108,24 +7108,24 @@ struct StiffChain10 {
     const Scalar tmp188 = carried[146];
     const Scalar tmp206 = carried[160];
     const Scalar tmp225 = carried[179];
-    const Scalar tmp1648 = carried[282];
-    const Scalar tmp1669 = carried[295];
-    const Scalar tmp1693 = carried[310];
-    const Scalar tmp1720 = carried[327];
-    const Scalar tmp1749 = carried[345];
-    const Scalar tmp1942 = -tmp396*tmp1681 - tmp397*tmp1693 - tmp398*tmp1707 - tmp399*tmp1720
-        - tmp400*tmp1736 - tmp401*tmp1749 - tmp402*tmp1768 - tmp394*tmp1646 - tmp393*tmp1648
-        - tmp395*tmp1669 - tmp82*tmp1917 - tmp79*tmp1918 - tmp111*tmp1919 - tmp123*tmp1920
-        - tmp140*tmp1921 - tmp154*tmp1922 - tmp172*tmp1923 - tmp188*tmp1924 - tmp206*tmp1925
-        - tmp225*tmp1926;
-    const Scalar tmp1878 = carried[381];
-    const Scalar tmp1884 = carried[387];
-    const Scalar tmp1891 = carried[394];
-    const Scalar tmp1899 = carried[402];
-    const Scalar tmp1908 = carried[411];
-    dr_dq_data[5 + 10 * 3] = phi9_ddot*tmp1899 + phi10_ddot*tmp1908 - tmp1932 - tmp1942
-        + phi1_ddot*tmp1873 + phi2_ddot*tmp1874 + phi3_ddot*tmp1875 + phi4_ddot*tmp1876
-        + phi5_ddot*tmp1877 + phi6_ddot*tmp1878 + phi7_ddot*tmp1884 + phi8_ddot*tmp1891;
+    const Scalar tmp1689 = carried[282];
+    const Scalar tmp1710 = carried[295];
+    const Scalar tmp1734 = carried[310];
+    const Scalar tmp1761 = carried[327];
+    const Scalar tmp1790 = carried[345];
+    const Scalar tmp1983 = -tmp396*tmp1722 - tmp397*tmp1734 - tmp398*tmp1748 - tmp399*tmp1761
+        - tmp400*tmp1777 - tmp401*tmp1790 - tmp402*tmp1809 - tmp394*tmp1687 - tmp393*tmp1689
+        - tmp395*tmp1710 - tmp82*tmp1958 - tmp79*tmp1959 - tmp111*tmp1960 - tmp123*tmp1961
+        - tmp140*tmp1962 - tmp154*tmp1963 - tmp172*tmp1964 - tmp188*tmp1965 - tmp206*tmp1966
+        - tmp225*tmp1967;
+    const Scalar tmp1919 = carried[381];
+    const Scalar tmp1925 = carried[387];
+    const Scalar tmp1932 = carried[394];
+    const Scalar tmp1940 = carried[402];
+    const Scalar tmp1949 = carried[411];
+    dr_dq_data[5 + 10 * 3] = phi9_ddot*tmp1940 + phi10_ddot*tmp1949 - tmp1973 - tmp1983
+        + phi1_ddot*tmp1914 + phi2_ddot*tmp1915 + phi3_ddot*tmp1916 + phi4_ddot*tmp1917
+        + phi5_ddot*tmp1918 + phi6_ddot*tmp1919 + phi7_ddot*tmp1925 + phi8_ddot*tmp1932;
     const Scalar tmp104 = carried[72];
     const Scalar tmp107 = carried[74];
     const Scalar tmp137 = carried[99];
@@ -7134,2385 +7134,2385 @@ struct StiffChain10 {
     const Scalar tmp187 = carried[145];
     const Scalar tmp208 = carried[162];
     const Scalar tmp224 = carried[178];
-    const Scalar tmp1666 = carried[292];
-    const Scalar tmp1690 = carried[307];
-    const Scalar tmp1716 = carried[323];
-    const Scalar tmp1751 = carried[347];
-    const Scalar tmp1943 = -tmp397*tmp1690 - tmp398*tmp1706 - tmp399*tmp1716 - tmp400*tmp1735
-        - tmp401*tmp1751 - tmp402*tmp1767 - tmp396*tmp1664 - tmp395*tmp1666 - tmp107*tmp1919
-        - tmp104*tmp1920 - tmp137*tmp1921 - tmp153*tmp1922 - tmp168*tmp1923 - tmp187*tmp1924
-        - tmp208*tmp1925 - tmp224*tmp1926;
-    const Scalar tmp1885 = carried[388];
-    const Scalar tmp1892 = carried[395];
-    const Scalar tmp1900 = carried[403];
-    const Scalar tmp1909 = carried[412];
-    dr_dq_data[6 + 10 * 3] = phi9_ddot*tmp1900 + phi10_ddot*tmp1909 - tmp1933 - tmp1943
-        + phi1_ddot*tmp1879 + phi2_ddot*tmp1880 + phi3_ddot*tmp1881 + phi4_ddot*tmp1882
-        + phi5_ddot*tmp1883 + phi6_ddot*tmp1884 + phi7_ddot*tmp1885 + phi8_ddot*tmp1892;
+    const Scalar tmp1707 = carried[292];
+    const Scalar tmp1731 = carried[307];
+    const Scalar tmp1757 = carried[323];
+    const Scalar tmp1792 = carried[347];
+    const Scalar tmp1984 = -tmp397*tmp1731 - tmp398*tmp1747 - tmp399*tmp1757 - tmp400*tmp1776
+        - tmp401*tmp1792 - tmp402*tmp1808 - tmp396*tmp1705 - tmp395*tmp1707 - tmp107*tmp1960
+        - tmp104*tmp1961 - tmp137*tmp1962 - tmp153*tmp1963 - tmp168*tmp1964 - tmp187*tmp1965
+        - tmp208*tmp1966 - tmp224*tmp1967;
+    const Scalar tmp1926 = carried[388];
+    const Scalar tmp1933 = carried[395];
+    const Scalar tmp1941 = carried[403];
+    const Scalar tmp1950 = carried[412];
+    dr_dq_data[6 + 10 * 3] = phi9_ddot*tmp1941 + phi10_ddot*tmp1950 - tmp1974 - tmp1984
+        + phi1_ddot*tmp1920 + phi2_ddot*tmp1921 + phi3_ddot*tmp1922 + phi4_ddot*tmp1923
+        + phi5_ddot*tmp1924 + phi6_ddot*tmp1925 + phi7_ddot*tmp1926 + phi8_ddot*tmp1933;
     const Scalar tmp132 = carried[96];
     const Scalar tmp135 = carried[98];
     const Scalar tmp171 = carried[129];
     const Scalar tmp186 = carried[144];
     const Scalar tmp205 = carried[159];
     const Scalar tmp223 = carried[177];
-    const Scalar tmp1689 = carried[306];
-    const Scalar tmp1719 = carried[326];
-    const Scalar tmp1748 = carried[344];
-    const Scalar tmp1944 = -tmp398*tmp1687 - tmp397*tmp1689 - tmp399*tmp1719 - tmp400*tmp1734
-        - tmp401*tmp1748 - tmp402*tmp1766 - tmp135*tmp1921 - tmp132*tmp1922 - tmp171*tmp1923
-        - tmp186*tmp1924 - tmp205*tmp1925 - tmp223*tmp1926;
-    const Scalar tmp1893 = carried[396];
-    const Scalar tmp1901 = carried[404];
-    const Scalar tmp1910 = carried[413];
-    dr_dq_data[7 + 10 * 3] = phi9_ddot*tmp1901 + phi10_ddot*tmp1910 - tmp1934 - tmp1944
-        + phi1_ddot*tmp1886 + phi2_ddot*tmp1887 + phi3_ddot*tmp1888 + phi4_ddot*tmp1889
-        + phi5_ddot*tmp1890 + phi6_ddot*tmp1891 + phi7_ddot*tmp1892 + phi8_ddot*tmp1893;
+    const Scalar tmp1730 = carried[306];
+    const Scalar tmp1760 = carried[326];
+    const Scalar tmp1789 = carried[344];
+    const Scalar tmp1985 = -tmp398*tmp1728 - tmp397*tmp1730 - tmp399*tmp1760 - tmp400*tmp1775
+        - tmp401*tmp1789 - tmp402*tmp1807 - tmp135*tmp1962 - tmp132*tmp1963 - tmp171*tmp1964
+        - tmp186*tmp1965 - tmp205*tmp1966 - tmp223*tmp1967;
+    const Scalar tmp1934 = carried[396];
+    const Scalar tmp1942 = carried[404];
+    const Scalar tmp1951 = carried[413];
+    dr_dq_data[7 + 10 * 3] = phi9_ddot*tmp1942 + phi10_ddot*tmp1951 - tmp1975 - tmp1985
+        + phi1_ddot*tmp1927 + phi2_ddot*tmp1928 + phi3_ddot*tmp1929 + phi4_ddot*tmp1930
+        + phi5_ddot*tmp1931 + phi6_ddot*tmp1932 + phi7_ddot*tmp1933 + phi8_ddot*tmp1934;
     const Scalar tmp163 = carried[123];
     const Scalar tmp166 = carried[125];
     const Scalar tmp202 = carried[156];
     const Scalar tmp222 = carried[176];
-    const Scalar tmp1715 = carried[322];
-    const Scalar tmp1745 = carried[341];
-    const Scalar tmp1945 = -tmp400*tmp1713 - tmp399*tmp1715 - tmp401*tmp1745 - tmp402*tmp1765
-        - tmp166*tmp1923 - tmp163*tmp1924 - tmp202*tmp1925 - tmp222*tmp1926;
-    const Scalar tmp1902 = carried[405];
-    const Scalar tmp1911 = carried[414];
-    dr_dq_data[8 + 10 * 3] = phi5_ddot*tmp1898 + phi6_ddot*tmp1899 + phi7_ddot*tmp1900
-        + phi8_ddot*tmp1901 + phi9_ddot*tmp1902 + phi10_ddot*tmp1911 - tmp1935 - tmp1945
-        + phi1_ddot*tmp1894 + phi2_ddot*tmp1895 + phi3_ddot*tmp1896 + phi4_ddot*tmp1897;
+    const Scalar tmp1756 = carried[322];
+    const Scalar tmp1786 = carried[341];
+    const Scalar tmp1986 = -tmp400*tmp1754 - tmp399*tmp1756 - tmp401*tmp1786 - tmp402*tmp1806
+        - tmp166*tmp1964 - tmp163*tmp1965 - tmp202*tmp1966 - tmp222*tmp1967;
+    const Scalar tmp1943 = carried[405];
+    const Scalar tmp1952 = carried[414];
+    dr_dq_data[8 + 10 * 3] = phi5_ddot*tmp1939 + phi6_ddot*tmp1940 + phi7_ddot*tmp1941
+        + phi8_ddot*tmp1942 + phi9_ddot*tmp1943 + phi10_ddot*tmp1952 - tmp1976 - tmp1986
+        + phi1_ddot*tmp1935 + phi2_ddot*tmp1936 + phi3_ddot*tmp1937 + phi4_ddot*tmp1938;
     const Scalar tmp197 = carried[153];
     const Scalar tmp200 = carried[155];
-    const Scalar tmp1742 = carried[339];
-    const Scalar tmp1744 = carried[340];
-    const Scalar tmp1946 = -tmp402*tmp1742 - tmp401*tmp1744 - tmp200*tmp1925 - tmp197*tmp1926;
-    const Scalar tmp1912 = carried[415];
-    dr_dq_data[9 + 10 * 3] = phi1_ddot*tmp1903 + phi2_ddot*tmp1904 + phi3_ddot*tmp1905
-        + phi4_ddot*tmp1906 + phi5_ddot*tmp1907 + phi6_ddot*tmp1908 + phi7_ddot*tmp1909
-        + phi8_ddot*tmp1910 + phi9_ddot*tmp1911 + phi10_ddot*tmp1912 - tmp1936 - tmp1946;
+    const Scalar tmp1783 = carried[339];
+    const Scalar tmp1785 = carried[340];
+    const Scalar tmp1987 = -tmp402*tmp1783 - tmp401*tmp1785 - tmp200*tmp1966 - tmp197*tmp1967;
+    const Scalar tmp1953 = carried[415];
+    dr_dq_data[9 + 10 * 3] = phi1_ddot*tmp1944 + phi2_ddot*tmp1945 + phi3_ddot*tmp1946
+        + phi4_ddot*tmp1947 + phi5_ddot*tmp1948 + phi6_ddot*tmp1949 + phi7_ddot*tmp1950
+        + phi8_ddot*tmp1951 + phi9_ddot*tmp1952 + phi10_ddot*tmp1953 - tmp1977 - tmp1987;
     const Scalar tmp59 = carried[34];
-    const Scalar tmp1947 = l*tmp59;
+    const Scalar tmp1988 = l*tmp59;
     const Scalar tmp56 = carried[32];
-    const Scalar tmp1948 = -tmp56;
-    const Scalar tmp1949 = l*tmp1948;
-    const Scalar tmp1950 = phi5_dot*tmp1949;
-    const Scalar tmp1951 = phi4_dot*tmp1949 + tmp1950;
-    const Scalar tmp1952 = phi3_dot*tmp1949 + tmp1951;
-    const Scalar tmp1953 = phi2_dot*tmp1949 + tmp1952;
-    const Scalar tmp1954 = phi1_dot*tmp1949 + tmp1953;
-    const Scalar tmp1955 = phi5_dot*tmp1947;
+    const Scalar tmp1989 = -tmp56;
+    const Scalar tmp1990 = l*tmp1989;
+    const Scalar tmp1991 = phi5_dot*tmp1990;
+    const Scalar tmp1992 = phi4_dot*tmp1990 + tmp1991;
+    const Scalar tmp1993 = phi3_dot*tmp1990 + tmp1992;
+    const Scalar tmp1994 = phi2_dot*tmp1990 + tmp1993;
+    const Scalar tmp1995 = phi1_dot*tmp1990 + tmp1994;
+    const Scalar tmp1996 = phi5_dot*tmp1988;
     const Scalar tmp81 = carried[52];
-    const Scalar tmp1956 = l*tmp81;
+    const Scalar tmp1997 = l*tmp81;
     const Scalar tmp78 = carried[50];
-    const Scalar tmp1957 = -tmp78;
-    const Scalar tmp1958 = l*tmp1957;
-    const Scalar tmp1959 = tmp1949 + tmp1958;
-    const Scalar tmp1960 = tmp1949 + tmp1958;
-    const Scalar tmp1961 = phi6_dot*tmp1958;
-    const Scalar tmp1962 = phi5_dot*tmp1959 + tmp1961;
-    const Scalar tmp1963 = phi4_dot*tmp1960 + tmp1962;
-    const Scalar tmp1964 = phi3_dot*tmp1959 + tmp1963;
-    const Scalar tmp1965 = phi2_dot*tmp1960 + tmp1964;
-    const Scalar tmp1966 = phi1_dot*tmp1959 + tmp1965;
-    const Scalar tmp1967 = phi6_dot*tmp1956;
-    const Scalar tmp1968 = tmp1947 + tmp1956;
-    const Scalar tmp1969 = tmp1947 + tmp1956;
+    const Scalar tmp1998 = -tmp78;
+    const Scalar tmp1999 = l*tmp1998;
+    const Scalar tmp2000 = tmp1990 + tmp1999;
+    const Scalar tmp2001 = tmp1990 + tmp1999;
+    const Scalar tmp2002 = phi6_dot*tmp1999;
+    const Scalar tmp2003 = phi5_dot*tmp2000 + tmp2002;
+    const Scalar tmp2004 = phi4_dot*tmp2001 + tmp2003;
+    const Scalar tmp2005 = phi3_dot*tmp2000 + tmp2004;
+    const Scalar tmp2006 = phi2_dot*tmp2001 + tmp2005;
+    const Scalar tmp2007 = phi1_dot*tmp2000 + tmp2006;
+    const Scalar tmp2008 = phi6_dot*tmp1997;
+    const Scalar tmp2009 = tmp1988 + tmp1997;
+    const Scalar tmp2010 = tmp1988 + tmp1997;
     const Scalar tmp106 = carried[73];
-    const Scalar tmp1970 = l*tmp106;
+    const Scalar tmp2011 = l*tmp106;
     const Scalar tmp103 = carried[71];
-    const Scalar tmp1971 = -tmp103;
-    const Scalar tmp1972 = l*tmp1971;
-    const Scalar tmp1973 = tmp1959 + tmp1972;
-    const Scalar tmp1974 = tmp1958 + tmp1972;
-    const Scalar tmp1975 = tmp1949 + tmp1974;
-    const Scalar tmp1976 = tmp1949 + tmp1974;
-    const Scalar tmp1977 = phi7_dot*tmp1972;
-    const Scalar tmp1978 = phi6_dot*tmp1974 + tmp1977;
-    const Scalar tmp1979 = phi5_dot*tmp1973 + tmp1978;
-    const Scalar tmp1980 = phi4_dot*tmp1976 + tmp1979;
-    const Scalar tmp1981 = phi3_dot*tmp1973 + tmp1980;
-    const Scalar tmp1982 = phi2_dot*tmp1975 + tmp1981;
-    const Scalar tmp1983 = tmp1982 + phi1_dot*tmp1973;
-    const Scalar tmp1984 = phi7_dot*tmp1970;
-    const Scalar tmp1985 = tmp1956 + tmp1970;
-    const Scalar tmp1986 = tmp1968 + tmp1970;
-    const Scalar tmp1987 = tmp1985 + tmp1947;
-    const Scalar tmp1988 = tmp1985 + tmp1947;
+    const Scalar tmp2012 = -tmp103;
+    const Scalar tmp2013 = l*tmp2012;
+    const Scalar tmp2014 = tmp2000 + tmp2013;
+    const Scalar tmp2015 = tmp1999 + tmp2013;
+    const Scalar tmp2016 = tmp1990 + tmp2015;
+    const Scalar tmp2017 = tmp1990 + tmp2015;
+    const Scalar tmp2018 = phi7_dot*tmp2013;
+    const Scalar tmp2019 = phi6_dot*tmp2015 + tmp2018;
+    const Scalar tmp2020 = phi5_dot*tmp2014 + tmp2019;
+    const Scalar tmp2021 = phi4_dot*tmp2017 + tmp2020;
+    const Scalar tmp2022 = phi3_dot*tmp2014 + tmp2021;
+    const Scalar tmp2023 = phi2_dot*tmp2016 + tmp2022;
+    const Scalar tmp2024 = tmp2023 + phi1_dot*tmp2014;
+    const Scalar tmp2025 = phi7_dot*tmp2011;
+    const Scalar tmp2026 = tmp1997 + tmp2011;
+    const Scalar tmp2027 = tmp2009 + tmp2011;
+    const Scalar tmp2028 = tmp2026 + tmp1988;
+    const Scalar tmp2029 = tmp2026 + tmp1988;
     const Scalar tmp134 = carried[97];
-    const Scalar tmp1989 = l*tmp134;
+    const Scalar tmp2030 = l*tmp134;
     const Scalar tmp131 = carried[95];
-    const Scalar tmp1990 = -tmp131;
-    const Scalar tmp1991 = l*tmp1990;
-    const Scalar tmp1992 = tmp1991 + tmp1972;
-    const Scalar tmp1993 = tmp1992 + tmp1959;
-    const Scalar tmp1994 = tmp1991 + tmp1974;
-    const Scalar tmp1995 = tmp1994 + tmp1949;
-    const Scalar tmp1996 = tmp1992 + tmp1959;
-    const Scalar tmp1997 = tmp1994 + tmp1949;
-    const Scalar tmp1998 = phi8_dot*tmp1991;
-    const Scalar tmp1999 = phi7_dot*tmp1992 + tmp1998;
-    const Scalar tmp2000 = phi6_dot*tmp1994 + tmp1999;
-    const Scalar tmp2001 = phi5_dot*tmp1993 + tmp2000;
-    const Scalar tmp2002 = phi4_dot*tmp1997 + tmp2001;
-    const Scalar tmp2003 = phi3_dot*tmp1996 + tmp2002;
-    const Scalar tmp2004 = phi2_dot*tmp1995 + tmp2003;
-    const Scalar tmp2005 = phi1_dot*tmp1993 + tmp2004;
-    const Scalar tmp2006 = phi8_dot*tmp1989;
-    const Scalar tmp2007 = tmp1989 + tmp1970;
-    const Scalar tmp2008 = tmp1985 + tmp1989;
-    const Scalar tmp2009 = tmp2007 + tmp1968;
-    const Scalar tmp2010 = tmp2008 + tmp1947;
-    const Scalar tmp2011 = tmp2007 + tmp1968;
-    const Scalar tmp2012 = tmp2008 + tmp1947;
+    const Scalar tmp2031 = -tmp131;
+    const Scalar tmp2032 = l*tmp2031;
+    const Scalar tmp2033 = tmp2032 + tmp2013;
+    const Scalar tmp2034 = tmp2033 + tmp2000;
+    const Scalar tmp2035 = tmp2032 + tmp2015;
+    const Scalar tmp2036 = tmp2035 + tmp1990;
+    const Scalar tmp2037 = tmp2033 + tmp2000;
+    const Scalar tmp2038 = tmp2035 + tmp1990;
+    const Scalar tmp2039 = phi8_dot*tmp2032;
+    const Scalar tmp2040 = phi7_dot*tmp2033 + tmp2039;
+    const Scalar tmp2041 = phi6_dot*tmp2035 + tmp2040;
+    const Scalar tmp2042 = phi5_dot*tmp2034 + tmp2041;
+    const Scalar tmp2043 = phi4_dot*tmp2038 + tmp2042;
+    const Scalar tmp2044 = phi3_dot*tmp2037 + tmp2043;
+    const Scalar tmp2045 = phi2_dot*tmp2036 + tmp2044;
+    const Scalar tmp2046 = phi1_dot*tmp2034 + tmp2045;
+    const Scalar tmp2047 = phi8_dot*tmp2030;
+    const Scalar tmp2048 = tmp2030 + tmp2011;
+    const Scalar tmp2049 = tmp2026 + tmp2030;
+    const Scalar tmp2050 = tmp2048 + tmp2009;
+    const Scalar tmp2051 = tmp2049 + tmp1988;
+    const Scalar tmp2052 = tmp2048 + tmp2009;
+    const Scalar tmp2053 = tmp2049 + tmp1988;
     const Scalar tmp165 = carried[124];
-    const Scalar tmp2013 = l*tmp165;
+    const Scalar tmp2054 = l*tmp165;
     const Scalar tmp162 = carried[122];
-    const Scalar tmp2014 = -tmp162;
-    const Scalar tmp2015 = l*tmp2014;
-    const Scalar tmp2016 = tmp1992 + tmp2015;
-    const Scalar tmp2017 = tmp2016 + tmp1959;
-    const Scalar tmp2018 = tmp1991 + tmp2015;
-    const Scalar tmp2019 = tmp2018 + tmp1974;
-    const Scalar tmp2020 = tmp2019 + tmp1949;
-    const Scalar tmp2021 = tmp2016 + tmp1959;
-    const Scalar tmp2022 = tmp2018 + tmp1976;
-    const Scalar tmp2023 = phi9_dot*tmp2015;
-    const Scalar tmp2024 = phi8_dot*tmp2018 + tmp2023;
-    const Scalar tmp2025 = phi7_dot*tmp2016 + tmp2024;
-    const Scalar tmp2026 = phi6_dot*tmp2019 + tmp2025;
-    const Scalar tmp2027 = phi5_dot*tmp2017 + tmp2026;
-    const Scalar tmp2028 = phi4_dot*tmp2022 + tmp2027;
-    const Scalar tmp2029 = phi3_dot*tmp2021 + tmp2028;
-    const Scalar tmp2030 = phi2_dot*tmp2020 + tmp2029;
-    const Scalar tmp2031 = phi1_dot*tmp2017 + tmp2030;
-    const Scalar tmp2032 = phi9_dot*tmp2013;
-    const Scalar tmp2033 = tmp1989 + tmp2013;
-    const Scalar tmp2034 = tmp2007 + tmp2013;
-    const Scalar tmp2035 = tmp1985 + tmp2033;
-    const Scalar tmp2036 = tmp2034 + tmp1968;
-    const Scalar tmp2037 = tmp1987 + tmp2033;
-    const Scalar tmp2038 = tmp2034 + tmp1968;
-    const Scalar tmp2039 = tmp2035 + tmp1947;
-    const Scalar tmp2040 = l*tmp199;
+    const Scalar tmp2055 = -tmp162;
+    const Scalar tmp2056 = l*tmp2055;
+    const Scalar tmp2057 = tmp2033 + tmp2056;
+    const Scalar tmp2058 = tmp2057 + tmp2000;
+    const Scalar tmp2059 = tmp2032 + tmp2056;
+    const Scalar tmp2060 = tmp2059 + tmp2015;
+    const Scalar tmp2061 = tmp2060 + tmp1990;
+    const Scalar tmp2062 = tmp2057 + tmp2000;
+    const Scalar tmp2063 = tmp2059 + tmp2017;
+    const Scalar tmp2064 = phi9_dot*tmp2056;
+    const Scalar tmp2065 = phi8_dot*tmp2059 + tmp2064;
+    const Scalar tmp2066 = phi7_dot*tmp2057 + tmp2065;
+    const Scalar tmp2067 = phi6_dot*tmp2060 + tmp2066;
+    const Scalar tmp2068 = phi5_dot*tmp2058 + tmp2067;
+    const Scalar tmp2069 = phi4_dot*tmp2063 + tmp2068;
+    const Scalar tmp2070 = phi3_dot*tmp2062 + tmp2069;
+    const Scalar tmp2071 = phi2_dot*tmp2061 + tmp2070;
+    const Scalar tmp2072 = phi1_dot*tmp2058 + tmp2071;
+    const Scalar tmp2073 = phi9_dot*tmp2054;
+    const Scalar tmp2074 = tmp2030 + tmp2054;
+    const Scalar tmp2075 = tmp2048 + tmp2054;
+    const Scalar tmp2076 = tmp2026 + tmp2074;
+    const Scalar tmp2077 = tmp2075 + tmp2009;
+    const Scalar tmp2078 = tmp2028 + tmp2074;
+    const Scalar tmp2079 = tmp2075 + tmp2009;
+    const Scalar tmp2080 = tmp2076 + tmp1988;
+    const Scalar tmp2081 = l*tmp199;
     const Scalar tmp196 = carried[152];
-    const Scalar tmp2041 = -tmp196;
-    const Scalar tmp2042 = l*tmp2041;
-    const Scalar tmp2043 = tmp2015 + tmp2042;
-    const Scalar tmp2044 = tmp1993 + tmp2043;
-    const Scalar tmp2045 = tmp2018 + tmp2042;
-    const Scalar tmp2046 = tmp2045 + tmp1974;
-    const Scalar tmp2047 = tmp2046 + tmp1949;
-    const Scalar tmp2048 = tmp1992 + tmp2043;
-    const Scalar tmp2049 = tmp2048 + tmp1959;
-    const Scalar tmp2050 = tmp2045 + tmp1976;
-    const Scalar tmp2051 = phi10_dot*tmp2042;
-    const Scalar tmp2052 = phi9_dot*tmp2043 + tmp2051;
-    const Scalar tmp2053 = phi8_dot*tmp2045 + tmp2052;
-    const Scalar tmp2054 = phi7_dot*tmp2048 + tmp2053;
-    const Scalar tmp2055 = phi6_dot*tmp2046 + tmp2054;
-    const Scalar tmp2056 = phi5_dot*tmp2044 + tmp2055;
-    const Scalar tmp2057 = phi4_dot*tmp2050 + tmp2056;
-    const Scalar tmp2058 = phi3_dot*tmp2049 + tmp2057;
-    const Scalar tmp2059 = phi2_dot*tmp2047 + tmp2058;
-    const Scalar tmp2060 = phi1_dot*tmp2044 + tmp2059;
-    const Scalar tmp2061 = phi10_dot*tmp2040;
-    const Scalar tmp2062 = tmp2013 + tmp2040;
-    const Scalar tmp2063 = tmp2033 + tmp2040;
-    const Scalar tmp2064 = tmp2007 + tmp2062;
-    const Scalar tmp2065 = tmp1985 + tmp2063;
-    const Scalar tmp2066 = tmp2009 + tmp2062;
-    const Scalar tmp2067 = tmp1987 + tmp2063;
-    const Scalar tmp2068 = tmp2064 + tmp1968;
-    const Scalar tmp2069 = tmp2065 + tmp1947;
-    const Scalar tmp2070 = -tmp1947;
-    const Scalar tmp2071 = phi4_dot*tmp2070 - tmp1955;
-    const Scalar tmp2072 = -tmp1947;
-    const Scalar tmp2073 = tmp2071 + phi3_dot*tmp2072;
-    const Scalar tmp2074 = -tmp1947;
-    const Scalar tmp2075 = tmp2073 + phi2_dot*tmp2074;
-    const Scalar tmp2076 = phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp2070 + phi4_dot*tmp2071
-        + phi3_dot*(phi1_dot + phi2_dot)*tmp2072 + phi3_dot*tmp2073 + phi1_dot*phi2_dot*tmp2074
-        + (phi1_dot + phi2_dot)*tmp2075
-        + (-(phi1_dot*phi1_dot) + phi5_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot))*tmp1947
-        - phi5_dot*tmp1955;
-    const Scalar tmp2077 = (phi1_dot*phi2_dot + phi3_dot*(phi1_dot + phi2_dot)
+    const Scalar tmp2082 = -tmp196;
+    const Scalar tmp2083 = l*tmp2082;
+    const Scalar tmp2084 = tmp2056 + tmp2083;
+    const Scalar tmp2085 = tmp2034 + tmp2084;
+    const Scalar tmp2086 = tmp2059 + tmp2083;
+    const Scalar tmp2087 = tmp2086 + tmp2015;
+    const Scalar tmp2088 = tmp2087 + tmp1990;
+    const Scalar tmp2089 = tmp2033 + tmp2084;
+    const Scalar tmp2090 = tmp2089 + tmp2000;
+    const Scalar tmp2091 = tmp2086 + tmp2017;
+    const Scalar tmp2092 = phi10_dot*tmp2083;
+    const Scalar tmp2093 = phi9_dot*tmp2084 + tmp2092;
+    const Scalar tmp2094 = phi8_dot*tmp2086 + tmp2093;
+    const Scalar tmp2095 = phi7_dot*tmp2089 + tmp2094;
+    const Scalar tmp2096 = phi6_dot*tmp2087 + tmp2095;
+    const Scalar tmp2097 = phi5_dot*tmp2085 + tmp2096;
+    const Scalar tmp2098 = phi4_dot*tmp2091 + tmp2097;
+    const Scalar tmp2099 = phi3_dot*tmp2090 + tmp2098;
+    const Scalar tmp2100 = phi2_dot*tmp2088 + tmp2099;
+    const Scalar tmp2101 = phi1_dot*tmp2085 + tmp2100;
+    const Scalar tmp2102 = phi10_dot*tmp2081;
+    const Scalar tmp2103 = tmp2054 + tmp2081;
+    const Scalar tmp2104 = tmp2074 + tmp2081;
+    const Scalar tmp2105 = tmp2048 + tmp2103;
+    const Scalar tmp2106 = tmp2026 + tmp2104;
+    const Scalar tmp2107 = tmp2050 + tmp2103;
+    const Scalar tmp2108 = tmp2028 + tmp2104;
+    const Scalar tmp2109 = tmp2105 + tmp2009;
+    const Scalar tmp2110 = tmp2106 + tmp1988;
+    const Scalar tmp2111 = -tmp1988;
+    const Scalar tmp2112 = phi4_dot*tmp2111 - tmp1996;
+    const Scalar tmp2113 = -tmp1988;
+    const Scalar tmp2114 = tmp2112 + phi3_dot*tmp2113;
+    const Scalar tmp2115 = -tmp1988;
+    const Scalar tmp2116 = tmp2114 + phi2_dot*tmp2115;
+    const Scalar tmp2117 = phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp2111 + phi4_dot*tmp2112
+        + phi3_dot*(phi1_dot + phi2_dot)*tmp2113 + phi3_dot*tmp2114 + phi1_dot*phi2_dot*tmp2115
+        + (phi1_dot + phi2_dot)*tmp2116
+        + (-(phi1_dot*phi1_dot) + phi5_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot))*tmp1988
+        - phi5_dot*tmp1996;
+    const Scalar tmp2118 = (phi1_dot*phi2_dot + phi3_dot*(phi1_dot + phi2_dot)
             + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)
-            + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot))*tmp1949
-        + phi5_dot*tmp1950 + phi4_dot*tmp1951 + phi3_dot*tmp1952 + phi2_dot*tmp1953
-        + phi1_dot*tmp1954;
-    const Scalar tmp2078 = -tmp1968;
-    const Scalar tmp2079 = phi5_dot*tmp2078 - tmp1967;
-    const Scalar tmp2080 = -tmp1969;
-    const Scalar tmp2081 = tmp2079 + phi4_dot*tmp2080;
-    const Scalar tmp2082 = -tmp1968;
-    const Scalar tmp2083 = tmp2081 + phi3_dot*tmp2082;
-    const Scalar tmp2084 = -tmp1969;
-    const Scalar tmp2085 = tmp2083 + phi2_dot*tmp2084;
-    const Scalar tmp2086 = phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp2078
-        + phi5_dot*tmp2079 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp2080 + phi4_dot*tmp2081
-        + phi3_dot*(phi1_dot + phi2_dot)*tmp2082 + phi3_dot*tmp2083 + phi1_dot*phi2_dot*tmp2084
-        + (phi1_dot + phi2_dot)*tmp2085
-        + phi6_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot)*tmp1956
-        - phi6_dot*tmp1967 - (phi1_dot*phi1_dot)*tmp1968;
-    const Scalar tmp2087 = phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp1958
+            + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot))*tmp1990
+        + phi5_dot*tmp1991 + phi4_dot*tmp1992 + phi3_dot*tmp1993 + phi2_dot*tmp1994
+        + phi1_dot*tmp1995;
+    const Scalar tmp2119 = -tmp2009;
+    const Scalar tmp2120 = phi5_dot*tmp2119 - tmp2008;
+    const Scalar tmp2121 = -tmp2010;
+    const Scalar tmp2122 = tmp2120 + phi4_dot*tmp2121;
+    const Scalar tmp2123 = -tmp2009;
+    const Scalar tmp2124 = tmp2122 + phi3_dot*tmp2123;
+    const Scalar tmp2125 = -tmp2010;
+    const Scalar tmp2126 = tmp2124 + phi2_dot*tmp2125;
+    const Scalar tmp2127 = phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp2119
+        + phi5_dot*tmp2120 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp2121 + phi4_dot*tmp2122
+        + phi3_dot*(phi1_dot + phi2_dot)*tmp2123 + phi3_dot*tmp2124 + phi1_dot*phi2_dot*tmp2125
+        + (phi1_dot + phi2_dot)*tmp2126
+        + phi6_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot)*tmp1997
+        - phi6_dot*tmp2008 - (phi1_dot*phi1_dot)*tmp2009;
+    const Scalar tmp2128 = phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp1999
         + (phi3_dot*(phi1_dot + phi2_dot)
-            + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot))*tmp1959
-        + (phi1_dot*phi2_dot + phi4_dot*(phi1_dot + phi2_dot + phi3_dot))*tmp1960 + phi6_dot*tmp1961
-        + phi5_dot*tmp1962 + phi4_dot*tmp1963 + phi3_dot*tmp1964 + phi2_dot*tmp1965
-        + phi1_dot*tmp1966;
-    const Scalar tmp2088 = -tmp1985;
-    const Scalar tmp2089 = -tmp1984 + phi6_dot*tmp2088;
-    const Scalar tmp2090 = -tmp1986;
-    const Scalar tmp2091 = tmp2089 + phi5_dot*tmp2090;
-    const Scalar tmp2092 = -tmp1987;
-    const Scalar tmp2093 = tmp2091 + phi4_dot*tmp2092;
-    const Scalar tmp2094 = -tmp1986;
-    const Scalar tmp2095 = tmp2093 + phi3_dot*tmp2094;
-    const Scalar tmp2096 = -tmp1988;
-    const Scalar tmp2097 = tmp2095 + phi2_dot*tmp2096;
-    const Scalar tmp2098 = -phi7_dot*tmp1984 - (phi1_dot*phi1_dot)*tmp1986
-        + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp2088 + phi6_dot*tmp2089
-        + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp2090 + phi5_dot*tmp2091
-        + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp2092 + phi4_dot*tmp2093
-        + phi3_dot*(phi1_dot + phi2_dot)*tmp2094 + phi3_dot*tmp2095 + phi1_dot*phi2_dot*tmp2096
-        + (phi1_dot + phi2_dot)*tmp2097
-        + phi7_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot - phi6_dot)*tmp1970;
-    const Scalar tmp2099 = phi2_dot*tmp1982 + phi1_dot*tmp1983
-        + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp1972
+            + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot))*tmp2000
+        + (phi1_dot*phi2_dot + phi4_dot*(phi1_dot + phi2_dot + phi3_dot))*tmp2001 + phi6_dot*tmp2002
+        + phi5_dot*tmp2003 + phi4_dot*tmp2004 + phi3_dot*tmp2005 + phi2_dot*tmp2006
+        + phi1_dot*tmp2007;
+    const Scalar tmp2129 = -tmp2026;
+    const Scalar tmp2130 = -tmp2025 + phi6_dot*tmp2129;
+    const Scalar tmp2131 = -tmp2027;
+    const Scalar tmp2132 = tmp2130 + phi5_dot*tmp2131;
+    const Scalar tmp2133 = -tmp2028;
+    const Scalar tmp2134 = tmp2132 + phi4_dot*tmp2133;
+    const Scalar tmp2135 = -tmp2027;
+    const Scalar tmp2136 = tmp2134 + phi3_dot*tmp2135;
+    const Scalar tmp2137 = -tmp2029;
+    const Scalar tmp2138 = tmp2136 + phi2_dot*tmp2137;
+    const Scalar tmp2139 = -phi7_dot*tmp2025 - (phi1_dot*phi1_dot)*tmp2027
+        + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp2129 + phi6_dot*tmp2130
+        + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp2131 + phi5_dot*tmp2132
+        + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp2133 + phi4_dot*tmp2134
+        + phi3_dot*(phi1_dot + phi2_dot)*tmp2135 + phi3_dot*tmp2136 + phi1_dot*phi2_dot*tmp2137
+        + (phi1_dot + phi2_dot)*tmp2138
+        + phi7_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot - phi6_dot)*tmp2011;
+    const Scalar tmp2140 = phi2_dot*tmp2023 + phi1_dot*tmp2024
+        + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp2013
         + (phi3_dot*(phi1_dot + phi2_dot)
-            + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot))*tmp1973
-        + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp1974
-        + phi1_dot*phi2_dot*tmp1975 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp1976
-        + phi7_dot*tmp1977 + phi6_dot*tmp1978 + phi5_dot*tmp1979 + phi4_dot*tmp1980
-        + phi3_dot*tmp1981;
-    const Scalar tmp2100 = -tmp2007;
-    const Scalar tmp2101 = -tmp2006 + phi7_dot*tmp2100;
-    const Scalar tmp2102 = -tmp2008;
-    const Scalar tmp2103 = tmp2101 + phi6_dot*tmp2102;
-    const Scalar tmp2104 = -tmp2009;
-    const Scalar tmp2105 = tmp2103 + phi5_dot*tmp2104;
-    const Scalar tmp2106 = -tmp2010;
-    const Scalar tmp2107 = tmp2105 + phi4_dot*tmp2106;
-    const Scalar tmp2108 = -tmp2011;
-    const Scalar tmp2109 = tmp2107 + phi3_dot*tmp2108;
-    const Scalar tmp2110 = -tmp2012;
-    const Scalar tmp2111 = tmp2109 + phi2_dot*tmp2110;
-    const Scalar tmp2112 = phi8_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot
-            - phi6_dot - phi7_dot)*tmp1989
-        - phi8_dot*tmp2006 - (phi1_dot*phi1_dot)*tmp2009
-        + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp2100
-        + phi7_dot*tmp2101 + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp2102
-        + phi6_dot*tmp2103 + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp2104
-        + phi5_dot*tmp2105 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp2106 + phi4_dot*tmp2107
-        + phi3_dot*(phi1_dot + phi2_dot)*tmp2108 + phi3_dot*tmp2109 + phi1_dot*phi2_dot*tmp2110
-        + (phi1_dot + phi2_dot)*tmp2111;
-    const Scalar tmp2113 = phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot
-            + phi7_dot)*tmp1991
-        + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp1992
-        + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp1993
-        + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp1994
-        + phi1_dot*phi2_dot*tmp1995 + phi3_dot*(phi1_dot + phi2_dot)*tmp1996
-        + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp1997 + phi8_dot*tmp1998 + phi7_dot*tmp1999
-        + phi6_dot*tmp2000 + phi5_dot*tmp2001 + phi4_dot*tmp2002 + phi3_dot*tmp2003
-        + phi2_dot*tmp2004 + phi1_dot*tmp2005;
-    const Scalar tmp2114 = -tmp2033;
-    const Scalar tmp2115 = -tmp2032 + phi8_dot*tmp2114;
-    const Scalar tmp2116 = -tmp2034;
-    const Scalar tmp2117 = tmp2115 + phi7_dot*tmp2116;
-    const Scalar tmp2118 = -tmp2035;
-    const Scalar tmp2119 = tmp2117 + phi6_dot*tmp2118;
-    const Scalar tmp2120 = -tmp2036;
-    const Scalar tmp2121 = tmp2119 + phi5_dot*tmp2120;
-    const Scalar tmp2122 = -tmp2037;
-    const Scalar tmp2123 = tmp2121 + phi4_dot*tmp2122;
-    const Scalar tmp2124 = -tmp2038;
-    const Scalar tmp2125 = tmp2123 + phi3_dot*tmp2124;
-    const Scalar tmp2126 = -tmp2039;
-    const Scalar tmp2127 = tmp2125 + phi2_dot*tmp2126;
-    const Scalar tmp2128 = phi9_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot
-            - phi6_dot - phi7_dot - phi8_dot)*tmp2013
-        - phi9_dot*tmp2032 - (phi1_dot*phi1_dot)*tmp2036
+            + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot))*tmp2014
+        + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp2015
+        + phi1_dot*phi2_dot*tmp2016 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp2017
+        + phi7_dot*tmp2018 + phi6_dot*tmp2019 + phi5_dot*tmp2020 + phi4_dot*tmp2021
+        + phi3_dot*tmp2022;
+    const Scalar tmp2141 = -tmp2048;
+    const Scalar tmp2142 = -tmp2047 + phi7_dot*tmp2141;
+    const Scalar tmp2143 = -tmp2049;
+    const Scalar tmp2144 = tmp2142 + phi6_dot*tmp2143;
+    const Scalar tmp2145 = -tmp2050;
+    const Scalar tmp2146 = tmp2144 + phi5_dot*tmp2145;
+    const Scalar tmp2147 = -tmp2051;
+    const Scalar tmp2148 = tmp2146 + phi4_dot*tmp2147;
+    const Scalar tmp2149 = -tmp2052;
+    const Scalar tmp2150 = tmp2148 + phi3_dot*tmp2149;
+    const Scalar tmp2151 = -tmp2053;
+    const Scalar tmp2152 = tmp2150 + phi2_dot*tmp2151;
+    const Scalar tmp2153 = phi8_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot
+            - phi6_dot - phi7_dot)*tmp2030
+        - phi8_dot*tmp2047 - (phi1_dot*phi1_dot)*tmp2050
+        + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp2141
+        + phi7_dot*tmp2142 + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp2143
+        + phi6_dot*tmp2144 + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp2145
+        + phi5_dot*tmp2146 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp2147 + phi4_dot*tmp2148
+        + phi3_dot*(phi1_dot + phi2_dot)*tmp2149 + phi3_dot*tmp2150 + phi1_dot*phi2_dot*tmp2151
+        + (phi1_dot + phi2_dot)*tmp2152;
+    const Scalar tmp2154 = phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot
+            + phi7_dot)*tmp2032
+        + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp2033
+        + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp2034
+        + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp2035
+        + phi1_dot*phi2_dot*tmp2036 + phi3_dot*(phi1_dot + phi2_dot)*tmp2037
+        + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp2038 + phi8_dot*tmp2039 + phi7_dot*tmp2040
+        + phi6_dot*tmp2041 + phi5_dot*tmp2042 + phi4_dot*tmp2043 + phi3_dot*tmp2044
+        + phi2_dot*tmp2045 + phi1_dot*tmp2046;
+    const Scalar tmp2155 = -tmp2074;
+    const Scalar tmp2156 = -tmp2073 + phi8_dot*tmp2155;
+    const Scalar tmp2157 = -tmp2075;
+    const Scalar tmp2158 = tmp2156 + phi7_dot*tmp2157;
+    const Scalar tmp2159 = -tmp2076;
+    const Scalar tmp2160 = tmp2158 + phi6_dot*tmp2159;
+    const Scalar tmp2161 = -tmp2077;
+    const Scalar tmp2162 = tmp2160 + phi5_dot*tmp2161;
+    const Scalar tmp2163 = -tmp2078;
+    const Scalar tmp2164 = tmp2162 + phi4_dot*tmp2163;
+    const Scalar tmp2165 = -tmp2079;
+    const Scalar tmp2166 = tmp2164 + phi3_dot*tmp2165;
+    const Scalar tmp2167 = -tmp2080;
+    const Scalar tmp2168 = tmp2166 + phi2_dot*tmp2167;
+    const Scalar tmp2169 = phi9_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot
+            - phi6_dot - phi7_dot - phi8_dot)*tmp2054
+        - phi9_dot*tmp2073 - (phi1_dot*phi1_dot)*tmp2077
         + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot
-            + phi7_dot)*tmp2114
-        + phi8_dot*tmp2115
-        + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp2116
-        + phi7_dot*tmp2117 + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp2118
-        + phi6_dot*tmp2119 + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp2120
-        + phi5_dot*tmp2121 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp2122 + phi4_dot*tmp2123
-        + phi3_dot*(phi1_dot + phi2_dot)*tmp2124 + phi3_dot*tmp2125 + phi1_dot*phi2_dot*tmp2126
-        + (phi1_dot + phi2_dot)*tmp2127;
-    const Scalar tmp2129 = phi9_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot
-            + phi7_dot + phi8_dot)*tmp2015
-        + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp2016
-        + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp2017
+            + phi7_dot)*tmp2155
+        + phi8_dot*tmp2156
+        + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp2157
+        + phi7_dot*tmp2158 + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp2159
+        + phi6_dot*tmp2160 + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp2161
+        + phi5_dot*tmp2162 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp2163 + phi4_dot*tmp2164
+        + phi3_dot*(phi1_dot + phi2_dot)*tmp2165 + phi3_dot*tmp2166 + phi1_dot*phi2_dot*tmp2167
+        + (phi1_dot + phi2_dot)*tmp2168;
+    const Scalar tmp2170 = phi9_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot
+            + phi7_dot + phi8_dot)*tmp2056
+        + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp2057
+        + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp2058
         + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot
-            + phi7_dot)*tmp2018
-        + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp2019
-        + phi1_dot*phi2_dot*tmp2020 + phi3_dot*(phi1_dot + phi2_dot)*tmp2021
-        + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp2022 + phi9_dot*tmp2023 + phi8_dot*tmp2024
-        + phi7_dot*tmp2025 + phi6_dot*tmp2026 + phi5_dot*tmp2027 + phi4_dot*tmp2028
-        + phi3_dot*tmp2029 + phi2_dot*tmp2030 + phi1_dot*tmp2031;
-    const Scalar tmp2130 = -tmp2062;
-    const Scalar tmp2131 = -tmp2061 + phi9_dot*tmp2130;
-    const Scalar tmp2132 = -tmp2063;
-    const Scalar tmp2133 = tmp2131 + phi8_dot*tmp2132;
-    const Scalar tmp2134 = -tmp2064;
-    const Scalar tmp2135 = tmp2133 + phi7_dot*tmp2134;
-    const Scalar tmp2136 = -tmp2065;
-    const Scalar tmp2137 = tmp2135 + phi6_dot*tmp2136;
-    const Scalar tmp2138 = -tmp2066;
-    const Scalar tmp2139 = tmp2137 + phi5_dot*tmp2138;
-    const Scalar tmp2140 = -tmp2067;
-    const Scalar tmp2141 = tmp2139 + phi4_dot*tmp2140;
-    const Scalar tmp2142 = -tmp2068;
-    const Scalar tmp2143 = tmp2141 + phi3_dot*tmp2142;
-    const Scalar tmp2144 = -tmp2069;
-    const Scalar tmp2145 = tmp2143 + phi2_dot*tmp2144;
-    const Scalar tmp2146 = phi10_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot
-            - phi6_dot - phi7_dot - phi8_dot - phi9_dot)*tmp2040
-        - phi10_dot*tmp2061 - (phi1_dot*phi1_dot)*tmp2066
+            + phi7_dot)*tmp2059
+        + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp2060
+        + phi1_dot*phi2_dot*tmp2061 + phi3_dot*(phi1_dot + phi2_dot)*tmp2062
+        + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp2063 + phi9_dot*tmp2064 + phi8_dot*tmp2065
+        + phi7_dot*tmp2066 + phi6_dot*tmp2067 + phi5_dot*tmp2068 + phi4_dot*tmp2069
+        + phi3_dot*tmp2070 + phi2_dot*tmp2071 + phi1_dot*tmp2072;
+    const Scalar tmp2171 = -tmp2103;
+    const Scalar tmp2172 = -tmp2102 + phi9_dot*tmp2171;
+    const Scalar tmp2173 = -tmp2104;
+    const Scalar tmp2174 = tmp2172 + phi8_dot*tmp2173;
+    const Scalar tmp2175 = -tmp2105;
+    const Scalar tmp2176 = tmp2174 + phi7_dot*tmp2175;
+    const Scalar tmp2177 = -tmp2106;
+    const Scalar tmp2178 = tmp2176 + phi6_dot*tmp2177;
+    const Scalar tmp2179 = -tmp2107;
+    const Scalar tmp2180 = tmp2178 + phi5_dot*tmp2179;
+    const Scalar tmp2181 = -tmp2108;
+    const Scalar tmp2182 = tmp2180 + phi4_dot*tmp2181;
+    const Scalar tmp2183 = -tmp2109;
+    const Scalar tmp2184 = tmp2182 + phi3_dot*tmp2183;
+    const Scalar tmp2185 = -tmp2110;
+    const Scalar tmp2186 = tmp2184 + phi2_dot*tmp2185;
+    const Scalar tmp2187 = phi10_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot
+            - phi6_dot - phi7_dot - phi8_dot - phi9_dot)*tmp2081
+        - phi10_dot*tmp2102 - (phi1_dot*phi1_dot)*tmp2107
         + phi9_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot
-            + phi8_dot)*tmp2130
-        + phi9_dot*tmp2131
+            + phi8_dot)*tmp2171
+        + phi9_dot*tmp2172
         + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot
-            + phi7_dot)*tmp2132
-        + phi8_dot*tmp2133
-        + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp2134
-        + phi7_dot*tmp2135 + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp2136
-        + phi6_dot*tmp2137 + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp2138
-        + phi5_dot*tmp2139 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp2140 + phi4_dot*tmp2141
-        + phi3_dot*(phi1_dot + phi2_dot)*tmp2142 + phi3_dot*tmp2143 + phi1_dot*phi2_dot*tmp2144
-        + (phi1_dot + phi2_dot)*tmp2145;
-    const Scalar tmp2147 = phi10_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot
-            + phi6_dot + phi7_dot + phi8_dot + phi9_dot)*tmp2042
+            + phi7_dot)*tmp2173
+        + phi8_dot*tmp2174
+        + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp2175
+        + phi7_dot*tmp2176 + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp2177
+        + phi6_dot*tmp2178 + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp2179
+        + phi5_dot*tmp2180 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp2181 + phi4_dot*tmp2182
+        + phi3_dot*(phi1_dot + phi2_dot)*tmp2183 + phi3_dot*tmp2184 + phi1_dot*phi2_dot*tmp2185
+        + (phi1_dot + phi2_dot)*tmp2186;
+    const Scalar tmp2188 = phi10_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot
+            + phi6_dot + phi7_dot + phi8_dot + phi9_dot)*tmp2083
         + phi9_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot
-            + phi8_dot)*tmp2043
-        + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp2044
+            + phi8_dot)*tmp2084
+        + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp2085
         + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot
-            + phi7_dot)*tmp2045
-        + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp2046
-        + phi1_dot*phi2_dot*tmp2047
-        + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp2048
-        + phi3_dot*(phi1_dot + phi2_dot)*tmp2049 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp2050
-        + phi10_dot*tmp2051 + phi9_dot*tmp2052 + phi8_dot*tmp2053 + phi7_dot*tmp2054
-        + phi6_dot*tmp2055 + phi5_dot*tmp2056 + phi4_dot*tmp2057 + phi3_dot*tmp2058
-        + phi2_dot*tmp2059 + phi1_dot*tmp2060;
-    const Scalar tmp2148 = Scalar(2)*tmp128*m*tmp1986 + Scalar(2)*tmp139*m*tmp1993
-        + Scalar(2)*tmp159*m*tmp2009 + Scalar(2)*tmp170*m*tmp2017 + Scalar(2)*tmp193*m*tmp2036
-        + Scalar(2)*tmp204*m*tmp2044 + Scalar(2)*tmp230*m*tmp2066 + Scalar(2)*tmp63*m*tmp1949
-        + Scalar(2)*tmp75*m*tmp1947 + Scalar(2)*tmp85*m*tmp1959 + Scalar(2)*tmp100*m*tmp1968
-        + Scalar(2)*tmp110*m*tmp1973;
-    const Scalar tmp2149 = tmp128*m*tmp1988 + tmp127*m*tmp1986 + tmp141*m*tmp1993 + tmp139*m*tmp1995
-        + tmp159*m*tmp2012 + tmp158*m*tmp2009 + tmp173*m*tmp2017 + tmp170*m*tmp2020
-        + tmp193*m*tmp2039 + tmp192*m*tmp2036 + tmp207*m*tmp2044 + tmp204*m*tmp2047
-        + tmp230*m*tmp2069 + tmp229*m*tmp2066 + (tmp63*m + tmp65*m)*tmp1949
-        + (tmp74*m + tmp75*m)*tmp1947 + tmp87*m*tmp1959 + tmp85*m*tmp1960 + tmp100*m*tmp1969
-        + tmp99*m*tmp1968 + tmp112*m*tmp1973 + tmp110*m*tmp1975;
-    const Scalar tmp2150 = Scalar(2)*tmp127*m*tmp1988 + Scalar(2)*tmp141*m*tmp1995
-        + Scalar(2)*tmp158*m*tmp2012 + Scalar(2)*tmp173*m*tmp2020 + Scalar(2)*tmp192*m*tmp2039
-        + Scalar(2)*tmp207*m*tmp2047 + Scalar(2)*tmp229*m*tmp2069 + Scalar(2)*tmp65*m*tmp1949
-        + Scalar(2)*tmp74*m*tmp1947 + Scalar(2)*tmp87*m*tmp1960 + Scalar(2)*tmp99*m*tmp1969
-        + Scalar(2)*tmp112*m*tmp1975;
-    const Scalar tmp2151 = (tmp126*m + tmp128*m)*tmp1986 + tmp142*m*tmp1993 + tmp139*m*tmp1996
-        + tmp159*m*tmp2011 + tmp157*m*tmp2009 + tmp174*m*tmp2017 + tmp170*m*tmp2021
-        + tmp193*m*tmp2038 + tmp191*m*tmp2036 + tmp209*m*tmp2044 + tmp204*m*tmp2049
-        + tmp230*m*tmp2068 + tmp228*m*tmp2066 + (tmp62*m + tmp63*m)*tmp1949
-        + (tmp73*m + tmp75*m)*tmp1947 + (tmp85*m + tmp88*m)*tmp1959 + (tmp98*m + tmp100*m)*tmp1968
-        + (tmp110*m + tmp113*m)*tmp1973;
-    const Scalar tmp2152 = tmp127*m*tmp1986 + tmp126*m*tmp1988 + tmp142*m*tmp1995 + tmp141*m*tmp1996
-        + tmp158*m*tmp2011 + tmp157*m*tmp2012 + tmp174*m*tmp2020 + tmp173*m*tmp2021
-        + tmp192*m*tmp2038 + tmp191*m*tmp2039 + tmp209*m*tmp2047 + tmp207*m*tmp2049
-        + tmp229*m*tmp2068 + tmp228*m*tmp2069 + (tmp62*m + tmp65*m)*tmp1949
-        + (tmp73*m + tmp74*m)*tmp1947 + tmp88*m*tmp1960 + tmp87*m*tmp1959 + tmp99*m*tmp1968
-        + tmp98*m*tmp1969 + tmp113*m*tmp1975 + tmp112*m*tmp1973;
-    const Scalar tmp2153 = Scalar(2)*tmp126*m*tmp1986 + Scalar(2)*tmp142*m*tmp1996
-        + Scalar(2)*tmp157*m*tmp2011 + Scalar(2)*tmp174*m*tmp2021 + Scalar(2)*tmp191*m*tmp2038
-        + Scalar(2)*tmp209*m*tmp2049 + Scalar(2)*tmp228*m*tmp2068 + Scalar(2)*tmp62*m*tmp1949
-        + Scalar(2)*tmp73*m*tmp1947 + Scalar(2)*tmp88*m*tmp1959 + Scalar(2)*tmp98*m*tmp1968
-        + Scalar(2)*tmp113*m*tmp1973;
-    const Scalar tmp2154 = tmp128*m*tmp1987 + tmp125*m*tmp1986 + tmp143*m*tmp1993 + tmp139*m*tmp1997
-        + tmp159*m*tmp2010 + tmp156*m*tmp2009 + tmp175*m*tmp2017 + tmp170*m*tmp2022
-        + tmp193*m*tmp2037 + tmp190*m*tmp2036 + tmp210*m*tmp2044 + tmp204*m*tmp2050
-        + tmp230*m*tmp2067 + tmp227*m*tmp2066 + (tmp63*m + tmp64*m)*tmp1949
-        + (tmp72*m + tmp75*m)*tmp1947 + tmp86*m*tmp1959 + tmp85*m*tmp1960 + tmp100*m*tmp1969
-        + tmp97*m*tmp1968 + tmp114*m*tmp1973 + tmp110*m*tmp1976;
-    const Scalar tmp2155 = tmp127*m*tmp1987 + tmp125*m*tmp1988 + tmp143*m*tmp1995 + tmp141*m*tmp1997
-        + tmp158*m*tmp2010 + tmp156*m*tmp2012 + tmp175*m*tmp2020 + tmp173*m*tmp2022
-        + tmp192*m*tmp2037 + tmp190*m*tmp2039 + tmp210*m*tmp2047 + tmp207*m*tmp2050
-        + tmp229*m*tmp2067 + tmp227*m*tmp2069 + (tmp64*m + tmp65*m)*tmp1949
-        + (tmp72*m + tmp74*m)*tmp1947 + (tmp86*m + tmp87*m)*tmp1960 + (tmp97*m + tmp99*m)*tmp1969
-        + tmp114*m*tmp1975 + tmp112*m*tmp1976;
-    const Scalar tmp2156 = tmp126*m*tmp1987 + tmp125*m*tmp1986 + tmp143*m*tmp1996 + tmp142*m*tmp1997
-        + tmp157*m*tmp2010 + tmp156*m*tmp2011 + tmp175*m*tmp2021 + tmp174*m*tmp2022
-        + tmp191*m*tmp2037 + tmp190*m*tmp2038 + tmp210*m*tmp2049 + tmp209*m*tmp2050
-        + tmp228*m*tmp2067 + tmp227*m*tmp2068 + (tmp62*m + tmp64*m)*tmp1949
-        + (tmp72*m + tmp73*m)*tmp1947 + tmp88*m*tmp1960 + tmp86*m*tmp1959 + tmp98*m*tmp1969
-        + tmp97*m*tmp1968 + tmp114*m*tmp1973 + tmp113*m*tmp1976;
-    const Scalar tmp2157 = Scalar(2)*tmp125*m*tmp1987 + Scalar(2)*tmp143*m*tmp1997
-        + Scalar(2)*tmp156*m*tmp2010 + Scalar(2)*tmp175*m*tmp2022 + Scalar(2)*tmp190*m*tmp2037
-        + Scalar(2)*tmp210*m*tmp2050 + Scalar(2)*tmp227*m*tmp2067 + Scalar(2)*tmp64*m*tmp1949
-        + Scalar(2)*tmp72*m*tmp1947 + Scalar(2)*tmp86*m*tmp1960 + Scalar(2)*tmp97*m*tmp1969
-        + Scalar(2)*tmp114*m*tmp1976;
-    const Scalar tmp2158 = (tmp124*m + tmp128*m)*tmp1986 + (tmp138*m + tmp139*m)*tmp1993
-        + (tmp155*m + tmp159*m)*tmp2009 + (tmp169*m + tmp170*m)*tmp2017
-        + (tmp189*m + tmp193*m)*tmp2036 + (tmp203*m + tmp204*m)*tmp2044
-        + (tmp226*m + tmp230*m)*tmp2066 + (tmp57*m + tmp75*m)*tmp1947 + (tmp60*m + tmp63*m)*tmp1949
-        + (tmp84*m + tmp85*m)*tmp1959 + (tmp96*m + tmp100*m)*tmp1968
-        + (tmp109*m + tmp110*m)*tmp1973;
-    const Scalar tmp2159 = tmp127*m*tmp1986 + tmp124*m*tmp1988 + tmp141*m*tmp1993 + tmp138*m*tmp1995
-        + tmp158*m*tmp2009 + tmp155*m*tmp2012 + tmp173*m*tmp2017 + tmp169*m*tmp2020
-        + tmp192*m*tmp2036 + tmp189*m*tmp2039 + tmp207*m*tmp2044 + tmp203*m*tmp2047
-        + tmp229*m*tmp2066 + tmp226*m*tmp2069 + (tmp57*m + tmp74*m)*tmp1947
-        + (tmp60*m + tmp65*m)*tmp1949 + tmp87*m*tmp1959 + tmp84*m*tmp1960 + tmp99*m*tmp1968
-        + tmp96*m*tmp1969 + tmp112*m*tmp1973 + tmp109*m*tmp1975;
-    const Scalar tmp2160 = (tmp124*m + tmp126*m)*tmp1986 + tmp142*m*tmp1993 + tmp138*m*tmp1996
-        + tmp157*m*tmp2009 + tmp155*m*tmp2011 + tmp174*m*tmp2017 + tmp169*m*tmp2021
-        + tmp191*m*tmp2036 + tmp189*m*tmp2038 + tmp209*m*tmp2044 + tmp203*m*tmp2049
-        + tmp228*m*tmp2066 + tmp226*m*tmp2068 + (tmp57*m + tmp73*m)*tmp1947
-        + (tmp60*m + tmp62*m)*tmp1949 + (tmp84*m + tmp88*m)*tmp1959 + (tmp96*m + tmp98*m)*tmp1968
-        + (tmp109*m + tmp113*m)*tmp1973;
-    const Scalar tmp2161 = tmp125*m*tmp1986 + tmp124*m*tmp1987 + tmp143*m*tmp1993 + tmp138*m*tmp1997
-        + tmp156*m*tmp2009 + tmp155*m*tmp2010 + tmp175*m*tmp2017 + tmp169*m*tmp2022
-        + tmp190*m*tmp2036 + tmp189*m*tmp2037 + tmp210*m*tmp2044 + tmp203*m*tmp2050
-        + tmp227*m*tmp2066 + tmp226*m*tmp2067 + (tmp57*m + tmp72*m)*tmp1947
-        + (tmp60*m + tmp64*m)*tmp1949 + tmp86*m*tmp1959 + tmp84*m*tmp1960 + tmp97*m*tmp1968
-        + tmp96*m*tmp1969 + tmp114*m*tmp1973 + tmp109*m*tmp1976;
+            + phi7_dot)*tmp2086
+        + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp2087
+        + phi1_dot*phi2_dot*tmp2088
+        + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp2089
+        + phi3_dot*(phi1_dot + phi2_dot)*tmp2090 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp2091
+        + phi10_dot*tmp2092 + phi9_dot*tmp2093 + phi8_dot*tmp2094 + phi7_dot*tmp2095
+        + phi6_dot*tmp2096 + phi5_dot*tmp2097 + phi4_dot*tmp2098 + phi3_dot*tmp2099
+        + phi2_dot*tmp2100 + phi1_dot*tmp2101;
+    const Scalar tmp2189 = Scalar(2)*tmp128*m*tmp2027 + Scalar(2)*tmp139*m*tmp2034
+        + Scalar(2)*tmp159*m*tmp2050 + Scalar(2)*tmp170*m*tmp2058 + Scalar(2)*tmp193*m*tmp2077
+        + Scalar(2)*tmp204*m*tmp2085 + Scalar(2)*tmp230*m*tmp2107 + Scalar(2)*tmp63*m*tmp1990
+        + Scalar(2)*tmp75*m*tmp1988 + Scalar(2)*tmp85*m*tmp2000 + Scalar(2)*tmp100*m*tmp2009
+        + Scalar(2)*tmp110*m*tmp2014;
+    const Scalar tmp2190 = tmp128*m*tmp2029 + tmp127*m*tmp2027 + tmp141*m*tmp2034 + tmp139*m*tmp2036
+        + tmp159*m*tmp2053 + tmp158*m*tmp2050 + tmp173*m*tmp2058 + tmp170*m*tmp2061
+        + tmp193*m*tmp2080 + tmp192*m*tmp2077 + tmp207*m*tmp2085 + tmp204*m*tmp2088
+        + tmp230*m*tmp2110 + tmp229*m*tmp2107 + (tmp63*m + tmp65*m)*tmp1990
+        + (tmp74*m + tmp75*m)*tmp1988 + tmp87*m*tmp2000 + tmp85*m*tmp2001 + tmp100*m*tmp2010
+        + tmp99*m*tmp2009 + tmp112*m*tmp2014 + tmp110*m*tmp2016;
+    const Scalar tmp2191 = Scalar(2)*tmp127*m*tmp2029 + Scalar(2)*tmp141*m*tmp2036
+        + Scalar(2)*tmp158*m*tmp2053 + Scalar(2)*tmp173*m*tmp2061 + Scalar(2)*tmp192*m*tmp2080
+        + Scalar(2)*tmp207*m*tmp2088 + Scalar(2)*tmp229*m*tmp2110 + Scalar(2)*tmp65*m*tmp1990
+        + Scalar(2)*tmp74*m*tmp1988 + Scalar(2)*tmp87*m*tmp2001 + Scalar(2)*tmp99*m*tmp2010
+        + Scalar(2)*tmp112*m*tmp2016;
+    const Scalar tmp2192 = (tmp126*m + tmp128*m)*tmp2027 + tmp142*m*tmp2034 + tmp139*m*tmp2037
+        + tmp159*m*tmp2052 + tmp157*m*tmp2050 + tmp174*m*tmp2058 + tmp170*m*tmp2062
+        + tmp193*m*tmp2079 + tmp191*m*tmp2077 + tmp209*m*tmp2085 + tmp204*m*tmp2090
+        + tmp230*m*tmp2109 + tmp228*m*tmp2107 + (tmp62*m + tmp63*m)*tmp1990
+        + (tmp73*m + tmp75*m)*tmp1988 + (tmp85*m + tmp88*m)*tmp2000 + (tmp98*m + tmp100*m)*tmp2009
+        + (tmp110*m + tmp113*m)*tmp2014;
+    const Scalar tmp2193 = tmp127*m*tmp2027 + tmp126*m*tmp2029 + tmp142*m*tmp2036 + tmp141*m*tmp2037
+        + tmp158*m*tmp2052 + tmp157*m*tmp2053 + tmp174*m*tmp2061 + tmp173*m*tmp2062
+        + tmp192*m*tmp2079 + tmp191*m*tmp2080 + tmp209*m*tmp2088 + tmp207*m*tmp2090
+        + tmp229*m*tmp2109 + tmp228*m*tmp2110 + (tmp62*m + tmp65*m)*tmp1990
+        + (tmp73*m + tmp74*m)*tmp1988 + tmp88*m*tmp2001 + tmp87*m*tmp2000 + tmp99*m*tmp2009
+        + tmp98*m*tmp2010 + tmp113*m*tmp2016 + tmp112*m*tmp2014;
+    const Scalar tmp2194 = Scalar(2)*tmp126*m*tmp2027 + Scalar(2)*tmp142*m*tmp2037
+        + Scalar(2)*tmp157*m*tmp2052 + Scalar(2)*tmp174*m*tmp2062 + Scalar(2)*tmp191*m*tmp2079
+        + Scalar(2)*tmp209*m*tmp2090 + Scalar(2)*tmp228*m*tmp2109 + Scalar(2)*tmp62*m*tmp1990
+        + Scalar(2)*tmp73*m*tmp1988 + Scalar(2)*tmp88*m*tmp2000 + Scalar(2)*tmp98*m*tmp2009
+        + Scalar(2)*tmp113*m*tmp2014;
+    const Scalar tmp2195 = tmp128*m*tmp2028 + tmp125*m*tmp2027 + tmp143*m*tmp2034 + tmp139*m*tmp2038
+        + tmp159*m*tmp2051 + tmp156*m*tmp2050 + tmp175*m*tmp2058 + tmp170*m*tmp2063
+        + tmp193*m*tmp2078 + tmp190*m*tmp2077 + tmp210*m*tmp2085 + tmp204*m*tmp2091
+        + tmp230*m*tmp2108 + tmp227*m*tmp2107 + (tmp63*m + tmp64*m)*tmp1990
+        + (tmp72*m + tmp75*m)*tmp1988 + tmp86*m*tmp2000 + tmp85*m*tmp2001 + tmp100*m*tmp2010
+        + tmp97*m*tmp2009 + tmp114*m*tmp2014 + tmp110*m*tmp2017;
+    const Scalar tmp2196 = tmp127*m*tmp2028 + tmp125*m*tmp2029 + tmp143*m*tmp2036 + tmp141*m*tmp2038
+        + tmp158*m*tmp2051 + tmp156*m*tmp2053 + tmp175*m*tmp2061 + tmp173*m*tmp2063
+        + tmp192*m*tmp2078 + tmp190*m*tmp2080 + tmp210*m*tmp2088 + tmp207*m*tmp2091
+        + tmp229*m*tmp2108 + tmp227*m*tmp2110 + (tmp64*m + tmp65*m)*tmp1990
+        + (tmp72*m + tmp74*m)*tmp1988 + (tmp86*m + tmp87*m)*tmp2001 + (tmp97*m + tmp99*m)*tmp2010
+        + tmp114*m*tmp2016 + tmp112*m*tmp2017;
+    const Scalar tmp2197 = tmp126*m*tmp2028 + tmp125*m*tmp2027 + tmp143*m*tmp2037 + tmp142*m*tmp2038
+        + tmp157*m*tmp2051 + tmp156*m*tmp2052 + tmp175*m*tmp2062 + tmp174*m*tmp2063
+        + tmp191*m*tmp2078 + tmp190*m*tmp2079 + tmp210*m*tmp2090 + tmp209*m*tmp2091
+        + tmp228*m*tmp2108 + tmp227*m*tmp2109 + (tmp62*m + tmp64*m)*tmp1990
+        + (tmp72*m + tmp73*m)*tmp1988 + tmp88*m*tmp2001 + tmp86*m*tmp2000 + tmp98*m*tmp2010
+        + tmp97*m*tmp2009 + tmp114*m*tmp2014 + tmp113*m*tmp2017;
+    const Scalar tmp2198 = Scalar(2)*tmp125*m*tmp2028 + Scalar(2)*tmp143*m*tmp2038
+        + Scalar(2)*tmp156*m*tmp2051 + Scalar(2)*tmp175*m*tmp2063 + Scalar(2)*tmp190*m*tmp2078
+        + Scalar(2)*tmp210*m*tmp2091 + Scalar(2)*tmp227*m*tmp2108 + Scalar(2)*tmp64*m*tmp1990
+        + Scalar(2)*tmp72*m*tmp1988 + Scalar(2)*tmp86*m*tmp2001 + Scalar(2)*tmp97*m*tmp2010
+        + Scalar(2)*tmp114*m*tmp2017;
+    const Scalar tmp2199 = (tmp124*m + tmp128*m)*tmp2027 + (tmp138*m + tmp139*m)*tmp2034
+        + (tmp155*m + tmp159*m)*tmp2050 + (tmp169*m + tmp170*m)*tmp2058
+        + (tmp189*m + tmp193*m)*tmp2077 + (tmp203*m + tmp204*m)*tmp2085
+        + (tmp226*m + tmp230*m)*tmp2107 + (tmp57*m + tmp75*m)*tmp1988 + (tmp60*m + tmp63*m)*tmp1990
+        + (tmp84*m + tmp85*m)*tmp2000 + (tmp96*m + tmp100*m)*tmp2009
+        + (tmp109*m + tmp110*m)*tmp2014;
+    const Scalar tmp2200 = tmp127*m*tmp2027 + tmp124*m*tmp2029 + tmp141*m*tmp2034 + tmp138*m*tmp2036
+        + tmp158*m*tmp2050 + tmp155*m*tmp2053 + tmp173*m*tmp2058 + tmp169*m*tmp2061
+        + tmp192*m*tmp2077 + tmp189*m*tmp2080 + tmp207*m*tmp2085 + tmp203*m*tmp2088
+        + tmp229*m*tmp2107 + tmp226*m*tmp2110 + (tmp57*m + tmp74*m)*tmp1988
+        + (tmp60*m + tmp65*m)*tmp1990 + tmp87*m*tmp2000 + tmp84*m*tmp2001 + tmp99*m*tmp2009
+        + tmp96*m*tmp2010 + tmp112*m*tmp2014 + tmp109*m*tmp2016;
+    const Scalar tmp2201 = (tmp124*m + tmp126*m)*tmp2027 + tmp142*m*tmp2034 + tmp138*m*tmp2037
+        + tmp157*m*tmp2050 + tmp155*m*tmp2052 + tmp174*m*tmp2058 + tmp169*m*tmp2062
+        + tmp191*m*tmp2077 + tmp189*m*tmp2079 + tmp209*m*tmp2085 + tmp203*m*tmp2090
+        + tmp228*m*tmp2107 + tmp226*m*tmp2109 + (tmp57*m + tmp73*m)*tmp1988
+        + (tmp60*m + tmp62*m)*tmp1990 + (tmp84*m + tmp88*m)*tmp2000 + (tmp96*m + tmp98*m)*tmp2009
+        + (tmp109*m + tmp113*m)*tmp2014;
+    const Scalar tmp2202 = tmp125*m*tmp2027 + tmp124*m*tmp2028 + tmp143*m*tmp2034 + tmp138*m*tmp2038
+        + tmp156*m*tmp2050 + tmp155*m*tmp2051 + tmp175*m*tmp2058 + tmp169*m*tmp2063
+        + tmp190*m*tmp2077 + tmp189*m*tmp2078 + tmp210*m*tmp2085 + tmp203*m*tmp2091
+        + tmp227*m*tmp2107 + tmp226*m*tmp2108 + (tmp57*m + tmp72*m)*tmp1988
+        + (tmp60*m + tmp64*m)*tmp1990 + tmp86*m*tmp2000 + tmp84*m*tmp2001 + tmp97*m*tmp2009
+        + tmp96*m*tmp2010 + tmp114*m*tmp2014 + tmp109*m*tmp2017;
     const Scalar tmp325 = carried[257];
-    const Scalar tmp2162 = Scalar(2)*tmp124*m*tmp1986 + Scalar(2)*tmp138*m*tmp1993
-        + Scalar(2)*tmp155*m*tmp2009 + Scalar(2)*tmp169*m*tmp2017 + Scalar(2)*tmp189*m*tmp2036
-        + Scalar(2)*tmp203*m*tmp2044 + Scalar(2)*tmp226*m*tmp2066 + Scalar(2)*tmp325*tmp56*m*tmp59
-        + Scalar(2)*tmp325*tmp59*m*tmp1948 + Scalar(2)*tmp84*m*tmp1959 + Scalar(2)*tmp96*m*tmp1968
-        + Scalar(2)*tmp109*m*tmp1973;
-    const Scalar tmp2163 = tmp128*m*tmp1985 + tmp123*m*tmp1986 + tmp140*m*tmp1993 + tmp139*m*tmp1994
-        + tmp159*m*tmp2008 + tmp154*m*tmp2009 + tmp172*m*tmp2017 + tmp170*m*tmp2019
-        + tmp193*m*tmp2035 + tmp188*m*tmp2036 + tmp206*m*tmp2044 + tmp204*m*tmp2046
-        + tmp230*m*tmp2065 + tmp225*m*tmp2066 + tmp100*m*tmp1956 + tmp85*m*tmp1958 + tmp82*m*tmp1959
-        + tmp79*m*tmp1968 + tmp111*m*tmp1973 + tmp110*m*tmp1974;
-    const Scalar tmp2164 = tmp127*m*tmp1985 + tmp123*m*tmp1988 + tmp141*m*tmp1994 + tmp140*m*tmp1995
-        + tmp158*m*tmp2008 + tmp154*m*tmp2012 + tmp173*m*tmp2019 + tmp172*m*tmp2020
-        + tmp192*m*tmp2035 + tmp188*m*tmp2039 + tmp207*m*tmp2046 + tmp206*m*tmp2047
-        + tmp229*m*tmp2065 + tmp225*m*tmp2069 + tmp99*m*tmp1956 + tmp87*m*tmp1958 + tmp82*m*tmp1960
-        + tmp79*m*tmp1969 + tmp112*m*tmp1974 + tmp111*m*tmp1975;
-    const Scalar tmp2165 = tmp126*m*tmp1985 + tmp123*m*tmp1986 + tmp142*m*tmp1994 + tmp140*m*tmp1996
-        + tmp157*m*tmp2008 + tmp154*m*tmp2011 + tmp174*m*tmp2019 + tmp172*m*tmp2021
-        + tmp191*m*tmp2035 + tmp188*m*tmp2038 + tmp209*m*tmp2046 + tmp206*m*tmp2049
-        + tmp228*m*tmp2065 + tmp225*m*tmp2068 + tmp98*m*tmp1956 + tmp88*m*tmp1958 + tmp82*m*tmp1959
-        + tmp79*m*tmp1968 + tmp113*m*tmp1974 + tmp111*m*tmp1973;
-    const Scalar tmp2166 = tmp125*m*tmp1985 + tmp123*m*tmp1987 + tmp143*m*tmp1994 + tmp140*m*tmp1997
-        + tmp156*m*tmp2008 + tmp154*m*tmp2010 + tmp175*m*tmp2019 + tmp172*m*tmp2022
-        + tmp190*m*tmp2035 + tmp188*m*tmp2037 + tmp210*m*tmp2046 + tmp206*m*tmp2050
-        + tmp227*m*tmp2065 + tmp225*m*tmp2067 + tmp97*m*tmp1956 + tmp86*m*tmp1958 + tmp82*m*tmp1960
-        + tmp79*m*tmp1969 + tmp114*m*tmp1974 + tmp111*m*tmp1976;
-    const Scalar tmp2167 = tmp124*m*tmp1985 + tmp123*m*tmp1986 + tmp140*m*tmp1993 + tmp138*m*tmp1994
-        + tmp155*m*tmp2008 + tmp154*m*tmp2009 + tmp172*m*tmp2017 + tmp169*m*tmp2019
-        + tmp189*m*tmp2035 + tmp188*m*tmp2036 + tmp206*m*tmp2044 + tmp203*m*tmp2046
-        + tmp226*m*tmp2065 + tmp225*m*tmp2066 + tmp96*m*tmp1956 + tmp84*m*tmp1958 + tmp82*m*tmp1959
-        + tmp79*m*tmp1968 + tmp111*m*tmp1973 + tmp109*m*tmp1974;
-    const Scalar tmp2168 = Scalar(2)*tmp123*m*tmp1985 + Scalar(2)*tmp140*m*tmp1994
-        + Scalar(2)*tmp154*m*tmp2008 + Scalar(2)*tmp172*m*tmp2019 + Scalar(2)*tmp188*m*tmp2035
-        + Scalar(2)*tmp206*m*tmp2046 + Scalar(2)*tmp225*m*tmp2065 + Scalar(2)*tmp325*tmp78*m*tmp81
-        + Scalar(2)*tmp325*tmp81*m*tmp1957 + Scalar(2)*tmp111*m*tmp1974;
-    const Scalar tmp2169 = tmp104*m*tmp1986 + tmp139*m*tmp1992 + tmp137*m*tmp1993 + tmp159*m*tmp2007
-        + tmp153*m*tmp2009 + tmp170*m*tmp2016 + tmp168*m*tmp2017 + tmp193*m*tmp2034
-        + tmp187*m*tmp2036 + tmp208*m*tmp2044 + tmp204*m*tmp2048 + tmp230*m*tmp2064
-        + tmp224*m*tmp2066 + tmp128*m*tmp1970 + tmp110*m*tmp1972 + tmp107*m*tmp1973;
-    const Scalar tmp2170 = tmp104*m*tmp1988 + tmp141*m*tmp1992 + tmp137*m*tmp1995 + tmp158*m*tmp2007
-        + tmp153*m*tmp2012 + tmp173*m*tmp2016 + tmp168*m*tmp2020 + tmp192*m*tmp2034
-        + tmp187*m*tmp2039 + tmp208*m*tmp2047 + tmp207*m*tmp2048 + tmp229*m*tmp2064
-        + tmp224*m*tmp2069 + tmp127*m*tmp1970 + tmp112*m*tmp1972 + tmp107*m*tmp1975;
-    const Scalar tmp2171 = tmp104*m*tmp1986 + tmp142*m*tmp1992 + tmp137*m*tmp1996 + tmp157*m*tmp2007
-        + tmp153*m*tmp2011 + tmp174*m*tmp2016 + tmp168*m*tmp2021 + tmp191*m*tmp2034
-        + tmp187*m*tmp2038 + tmp209*m*tmp2048 + tmp208*m*tmp2049 + tmp228*m*tmp2064
-        + tmp224*m*tmp2068 + tmp126*m*tmp1970 + tmp113*m*tmp1972 + tmp107*m*tmp1973;
-    const Scalar tmp2172 = tmp104*m*tmp1987 + tmp143*m*tmp1992 + tmp137*m*tmp1997 + tmp156*m*tmp2007
-        + tmp153*m*tmp2010 + tmp175*m*tmp2016 + tmp168*m*tmp2022 + tmp190*m*tmp2034
-        + tmp187*m*tmp2037 + tmp210*m*tmp2048 + tmp208*m*tmp2050 + tmp227*m*tmp2064
-        + tmp224*m*tmp2067 + tmp125*m*tmp1970 + tmp114*m*tmp1972 + tmp107*m*tmp1976;
-    const Scalar tmp2173 = tmp104*m*tmp1986 + tmp138*m*tmp1992 + tmp137*m*tmp1993 + tmp155*m*tmp2007
-        + tmp153*m*tmp2009 + tmp169*m*tmp2016 + tmp168*m*tmp2017 + tmp189*m*tmp2034
-        + tmp187*m*tmp2036 + tmp208*m*tmp2044 + tmp203*m*tmp2048 + tmp226*m*tmp2064
-        + tmp224*m*tmp2066 + tmp124*m*tmp1970 + tmp109*m*tmp1972 + tmp107*m*tmp1973;
-    const Scalar tmp2174 = tmp104*m*tmp1985 + tmp140*m*tmp1992 + tmp137*m*tmp1994 + tmp154*m*tmp2007
-        + tmp153*m*tmp2008 + tmp172*m*tmp2016 + tmp168*m*tmp2019 + tmp188*m*tmp2034
-        + tmp187*m*tmp2035 + tmp208*m*tmp2046 + tmp206*m*tmp2048 + tmp225*m*tmp2064
-        + tmp224*m*tmp2065 + tmp123*m*tmp1970 + tmp111*m*tmp1972 + tmp107*m*tmp1974;
-    const Scalar tmp2175 = Scalar(2)*tmp137*m*tmp1992 + Scalar(2)*tmp153*m*tmp2007
-        + Scalar(2)*tmp168*m*tmp2016 + Scalar(2)*tmp187*m*tmp2034 + Scalar(2)*tmp208*m*tmp2048
-        + Scalar(2)*tmp224*m*tmp2064 + Scalar(2)*tmp325*tmp103*m*tmp106
-        + Scalar(2)*tmp325*tmp106*m*tmp1971;
-    const Scalar tmp2176 = tmp159*m*tmp1989 + tmp139*m*tmp1991 + tmp135*m*tmp1993 + tmp132*m*tmp2009
-        + tmp171*m*tmp2017 + tmp170*m*tmp2018 + tmp193*m*tmp2033 + tmp186*m*tmp2036
-        + tmp205*m*tmp2044 + tmp204*m*tmp2045 + tmp230*m*tmp2063 + tmp223*m*tmp2066;
-    const Scalar tmp2177 = tmp158*m*tmp1989 + tmp141*m*tmp1991 + tmp135*m*tmp1995 + tmp132*m*tmp2012
-        + tmp173*m*tmp2018 + tmp171*m*tmp2020 + tmp192*m*tmp2033 + tmp186*m*tmp2039
-        + tmp207*m*tmp2045 + tmp205*m*tmp2047 + tmp229*m*tmp2063 + tmp223*m*tmp2069;
-    const Scalar tmp2178 = tmp157*m*tmp1989 + tmp142*m*tmp1991 + tmp135*m*tmp1996 + tmp132*m*tmp2011
-        + tmp174*m*tmp2018 + tmp171*m*tmp2021 + tmp191*m*tmp2033 + tmp186*m*tmp2038
-        + tmp209*m*tmp2045 + tmp205*m*tmp2049 + tmp228*m*tmp2063 + tmp223*m*tmp2068;
-    const Scalar tmp2179 = tmp156*m*tmp1989 + tmp143*m*tmp1991 + tmp135*m*tmp1997 + tmp132*m*tmp2010
-        + tmp175*m*tmp2018 + tmp171*m*tmp2022 + tmp190*m*tmp2033 + tmp186*m*tmp2037
-        + tmp210*m*tmp2045 + tmp205*m*tmp2050 + tmp227*m*tmp2063 + tmp223*m*tmp2067;
-    const Scalar tmp2180 = tmp155*m*tmp1989 + tmp138*m*tmp1991 + tmp135*m*tmp1993 + tmp132*m*tmp2009
-        + tmp171*m*tmp2017 + tmp169*m*tmp2018 + tmp189*m*tmp2033 + tmp186*m*tmp2036
-        + tmp205*m*tmp2044 + tmp203*m*tmp2045 + tmp226*m*tmp2063 + tmp223*m*tmp2066;
-    const Scalar tmp2181 = tmp154*m*tmp1989 + tmp140*m*tmp1991 + tmp135*m*tmp1994 + tmp132*m*tmp2008
-        + tmp172*m*tmp2018 + tmp171*m*tmp2019 + tmp188*m*tmp2033 + tmp186*m*tmp2035
-        + tmp206*m*tmp2045 + tmp205*m*tmp2046 + tmp225*m*tmp2063 + tmp223*m*tmp2065;
-    const Scalar tmp2182 = tmp153*m*tmp1989 + tmp137*m*tmp1991 + tmp135*m*tmp1992 + tmp132*m*tmp2007
-        + tmp171*m*tmp2016 + tmp168*m*tmp2018 + tmp187*m*tmp2033 + tmp186*m*tmp2034
-        + tmp208*m*tmp2045 + tmp205*m*tmp2048 + tmp224*m*tmp2063 + tmp223*m*tmp2064;
-    const Scalar tmp2183 = Scalar(2)*tmp131*tmp325*m*tmp134 + Scalar(2)*tmp134*tmp325*m*tmp1990
-        + Scalar(2)*tmp171*m*tmp2018 + Scalar(2)*tmp186*m*tmp2033 + Scalar(2)*tmp205*m*tmp2045
-        + Scalar(2)*tmp223*m*tmp2063;
-    const Scalar tmp2184 = tmp193*m*tmp2013 + tmp170*m*tmp2015 + tmp166*m*tmp2017 + tmp163*m*tmp2036
-        + tmp204*m*tmp2043 + tmp202*m*tmp2044 + tmp230*m*tmp2062 + tmp222*m*tmp2066;
-    const Scalar tmp2185 = tmp192*m*tmp2013 + tmp173*m*tmp2015 + tmp166*m*tmp2020 + tmp163*m*tmp2039
-        + tmp207*m*tmp2043 + tmp202*m*tmp2047 + tmp229*m*tmp2062 + tmp222*m*tmp2069;
-    const Scalar tmp2186 = tmp191*m*tmp2013 + tmp174*m*tmp2015 + tmp166*m*tmp2021 + tmp163*m*tmp2038
-        + tmp209*m*tmp2043 + tmp202*m*tmp2049 + tmp228*m*tmp2062 + tmp222*m*tmp2068;
-    const Scalar tmp2187 = tmp190*m*tmp2013 + tmp175*m*tmp2015 + tmp166*m*tmp2022 + tmp163*m*tmp2037
-        + tmp210*m*tmp2043 + tmp202*m*tmp2050 + tmp227*m*tmp2062 + tmp222*m*tmp2067;
-    const Scalar tmp2188 = tmp189*m*tmp2013 + tmp169*m*tmp2015 + tmp166*m*tmp2017 + tmp163*m*tmp2036
-        + tmp203*m*tmp2043 + tmp202*m*tmp2044 + tmp226*m*tmp2062 + tmp222*m*tmp2066;
-    const Scalar tmp2189 = tmp188*m*tmp2013 + tmp172*m*tmp2015 + tmp166*m*tmp2019 + tmp163*m*tmp2035
-        + tmp206*m*tmp2043 + tmp202*m*tmp2046 + tmp225*m*tmp2062 + tmp222*m*tmp2065;
-    const Scalar tmp2190 = tmp187*m*tmp2013 + tmp168*m*tmp2015 + tmp166*m*tmp2016 + tmp163*m*tmp2034
-        + tmp208*m*tmp2043 + tmp202*m*tmp2048 + tmp224*m*tmp2062 + tmp222*m*tmp2064;
-    const Scalar tmp2191 = tmp186*m*tmp2013 + tmp171*m*tmp2015 + tmp166*m*tmp2018 + tmp163*m*tmp2033
-        + tmp205*m*tmp2043 + tmp202*m*tmp2045 + tmp223*m*tmp2062 + tmp222*m*tmp2063;
-    const Scalar tmp2192 = Scalar(2)*tmp162*tmp325*m*tmp165 + Scalar(2)*tmp165*tmp325*m*tmp2014
-        + Scalar(2)*tmp202*m*tmp2043 + Scalar(2)*tmp222*m*tmp2062;
-    const Scalar tmp2193 = tmp230*m*tmp2040 + tmp204*m*tmp2042 + tmp200*m*tmp2044
-        + tmp197*m*tmp2066;
-    const Scalar tmp2194 = tmp229*m*tmp2040 + tmp207*m*tmp2042 + tmp200*m*tmp2047
-        + tmp197*m*tmp2069;
-    const Scalar tmp2195 = tmp228*m*tmp2040 + tmp209*m*tmp2042 + tmp200*m*tmp2049
-        + tmp197*m*tmp2068;
-    const Scalar tmp2196 = tmp227*m*tmp2040 + tmp210*m*tmp2042 + tmp200*m*tmp2050
-        + tmp197*m*tmp2067;
-    const Scalar tmp2197 = tmp226*m*tmp2040 + tmp203*m*tmp2042 + tmp200*m*tmp2044
-        + tmp197*m*tmp2066;
-    const Scalar tmp2198 = tmp225*m*tmp2040 + tmp206*m*tmp2042 + tmp200*m*tmp2046
-        + tmp197*m*tmp2065;
-    const Scalar tmp2199 = tmp224*m*tmp2040 + tmp208*m*tmp2042 + tmp200*m*tmp2048
-        + tmp197*m*tmp2064;
-    const Scalar tmp2200 = tmp223*m*tmp2040 + tmp205*m*tmp2042 + tmp200*m*tmp2045
-        + tmp197*m*tmp2063;
-    const Scalar tmp2201 = tmp222*m*tmp2040 + tmp202*m*tmp2042 + tmp200*m*tmp2043
-        + tmp197*m*tmp2062;
-    const Scalar tmp2202 = Scalar(2)*tmp196*tmp325*m*tmp199 + Scalar(2)*tmp199*tmp325*m*tmp2041;
-    const Scalar tmp2203 = m*tmp2076;
-    const Scalar tmp2204 = m*tmp2077;
-    const Scalar tmp2205 = m*tmp2086;
-    const Scalar tmp2206 = m*tmp2087;
-    const Scalar tmp2207 = m*tmp2098;
-    const Scalar tmp2208 = m*tmp2099;
-    const Scalar tmp2209 = m*tmp2112;
-    const Scalar tmp2210 = m*tmp2113;
-    const Scalar tmp2211 = m*tmp2128;
-    const Scalar tmp2212 = m*tmp2129;
-    const Scalar tmp2213 = m*tmp2146;
-    const Scalar tmp2214 = m*tmp2147;
-    const Scalar tmp2215 = tmp382*tmp1986 + tmp382*tmp2009 + tmp382*tmp2036 + tmp382*tmp2066
-        + tmp382*tmp1947 + tmp382*tmp1968;
-    const Scalar tmp2216 = tmp382*tmp1988 + tmp382*tmp2012 + tmp382*tmp2039 + tmp382*tmp2069
-        + tmp382*tmp1947 + tmp382*tmp1969;
-    const Scalar tmp2217 = tmp382*tmp1986 + tmp382*tmp2011 + tmp382*tmp2038 + tmp382*tmp2068
-        + tmp382*tmp1947 + tmp382*tmp1968;
-    const Scalar tmp2218 = tmp382*tmp1987 + tmp382*tmp2010 + tmp382*tmp2037 + tmp382*tmp2067
-        + tmp382*tmp1947 + tmp382*tmp1969;
-    const Scalar tmp2219 = tmp382*tmp1986 + tmp382*tmp2009 + tmp382*tmp2036 + tmp382*tmp2066 - k
-        + tmp382*tmp1947 + tmp382*tmp1968;
-    const Scalar tmp2220 = tmp382*tmp1985 + tmp382*tmp2008 + tmp382*tmp2035 + tmp382*tmp2065
-        + tmp382*tmp1956;
-    const Scalar tmp2221 = tmp382*tmp2007 + tmp382*tmp2034 + tmp382*tmp2064 + tmp382*tmp1970;
-    const Scalar tmp2222 = tmp382*tmp1989 + tmp382*tmp2033 + tmp382*tmp2063;
-    const Scalar tmp2223 = tmp382*tmp2013 + tmp382*tmp2062;
-    const Scalar tmp2224 = tmp382*l*tmp199;
-    const Scalar tmp2225 = -tmp396*tmp1986 - tmp397*tmp1993 - tmp398*tmp2009 - tmp399*tmp2017
-        - tmp400*tmp2036 - tmp401*tmp2044 - tmp402*tmp2066 - tmp391*tmp1949 - tmp392*tmp1947
-        - tmp393*tmp1959 - tmp394*tmp1968 - tmp395*tmp1973 - tmp63*tmp2203 - tmp75*tmp2204
-        - tmp85*tmp2205 - tmp100*tmp2206 - tmp110*tmp2207 - tmp128*tmp2208 - tmp139*tmp2209
-        - tmp159*tmp2210 - tmp170*tmp2211 - tmp193*tmp2212 - tmp204*tmp2213 - tmp230*tmp2214;
-    dr_dq_data[0 + 10 * 4] = phi10_ddot*tmp2193 - tmp2215 - tmp2225 + phi1_ddot*tmp2148
-        + phi2_ddot*tmp2149 + phi3_ddot*tmp2151 + phi4_ddot*tmp2154 + phi5_ddot*tmp2158
-        + phi6_ddot*tmp2163 + phi7_ddot*tmp2169 + phi8_ddot*tmp2176 + phi9_ddot*tmp2184;
-    const Scalar tmp2226 = -tmp396*tmp1988 - tmp397*tmp1995 - tmp398*tmp2012 - tmp399*tmp2020
-        - tmp400*tmp2039 - tmp401*tmp2047 - tmp402*tmp2069 - tmp391*tmp1949 - tmp392*tmp1947
-        - tmp393*tmp1960 - tmp394*tmp1969 - tmp395*tmp1975 - tmp65*tmp2203 - tmp74*tmp2204
-        - tmp87*tmp2205 - tmp99*tmp2206 - tmp112*tmp2207 - tmp127*tmp2208 - tmp141*tmp2209
-        - tmp158*tmp2210 - tmp173*tmp2211 - tmp192*tmp2212 - tmp207*tmp2213 - tmp229*tmp2214;
-    dr_dq_data[1 + 10 * 4] = phi10_ddot*tmp2194 - tmp2216 - tmp2226 + phi1_ddot*tmp2149
-        + phi2_ddot*tmp2150 + phi3_ddot*tmp2152 + phi4_ddot*tmp2155 + phi5_ddot*tmp2159
-        + phi6_ddot*tmp2164 + phi7_ddot*tmp2170 + phi8_ddot*tmp2177 + phi9_ddot*tmp2185;
-    const Scalar tmp2227 = -tmp396*tmp1986 - tmp397*tmp1996 - tmp398*tmp2011 - tmp399*tmp2021
-        - tmp400*tmp2038 - tmp401*tmp2049 - tmp402*tmp2068 - tmp391*tmp1949 - tmp392*tmp1947
-        - tmp393*tmp1959 - tmp394*tmp1968 - tmp395*tmp1973 - tmp62*tmp2203 - tmp73*tmp2204
-        - tmp88*tmp2205 - tmp98*tmp2206 - tmp113*tmp2207 - tmp126*tmp2208 - tmp142*tmp2209
-        - tmp157*tmp2210 - tmp174*tmp2211 - tmp191*tmp2212 - tmp209*tmp2213 - tmp228*tmp2214;
-    dr_dq_data[2 + 10 * 4] = phi10_ddot*tmp2195 - tmp2217 - tmp2227 + phi1_ddot*tmp2151
-        + phi2_ddot*tmp2152 + phi3_ddot*tmp2153 + phi4_ddot*tmp2156 + phi5_ddot*tmp2160
-        + phi6_ddot*tmp2165 + phi7_ddot*tmp2171 + phi8_ddot*tmp2178 + phi9_ddot*tmp2186;
-    const Scalar tmp2228 = -tmp396*tmp1987 - tmp397*tmp1997 - tmp398*tmp2010 - tmp399*tmp2022
-        - tmp400*tmp2037 - tmp401*tmp2050 - tmp402*tmp2067 - tmp391*tmp1949 - tmp392*tmp1947
-        - tmp393*tmp1960 - tmp394*tmp1969 - tmp395*tmp1976 - tmp64*tmp2203 - tmp72*tmp2204
-        - tmp86*tmp2205 - tmp97*tmp2206 - tmp114*tmp2207 - tmp125*tmp2208 - tmp143*tmp2209
-        - tmp156*tmp2210 - tmp175*tmp2211 - tmp190*tmp2212 - tmp210*tmp2213 - tmp227*tmp2214;
-    dr_dq_data[3 + 10 * 4] = phi10_ddot*tmp2196 - tmp2218 - tmp2228 + phi1_ddot*tmp2154
-        + phi2_ddot*tmp2155 + phi3_ddot*tmp2156 + phi4_ddot*tmp2157 + phi5_ddot*tmp2161
-        + phi6_ddot*tmp2166 + phi7_ddot*tmp2172 + phi8_ddot*tmp2179 + phi9_ddot*tmp2187;
-    const Scalar tmp2229 = -tmp396*tmp1986 - tmp397*tmp1993 - tmp398*tmp2009 - tmp399*tmp2017
-        - tmp400*tmp2036 - tmp401*tmp2044 - tmp402*tmp2066 - tmp392*tmp1947 - tmp391*tmp1949
-        - tmp393*tmp1959 - tmp394*tmp1968 - tmp395*tmp1973 - tmp60*tmp2203 - tmp57*tmp2204
-        - tmp84*tmp2205 - tmp96*tmp2206 - tmp109*tmp2207 - tmp124*tmp2208 - tmp138*tmp2209
-        - tmp155*tmp2210 - tmp169*tmp2211 - tmp189*tmp2212 - tmp203*tmp2213 - tmp226*tmp2214;
-    dr_dq_data[4 + 10 * 4] = phi9_ddot*tmp2188 + phi10_ddot*tmp2197 - tmp2219 - tmp2229
-        + phi1_ddot*tmp2158 + phi2_ddot*tmp2159 + phi3_ddot*tmp2160 + phi4_ddot*tmp2161
-        + phi5_ddot*tmp2162 + phi6_ddot*tmp2167 + phi7_ddot*tmp2173 + phi8_ddot*tmp2180;
-    const Scalar tmp2230 = -tmp396*tmp1985 - tmp397*tmp1994 - tmp398*tmp2008 - tmp399*tmp2019
-        - tmp400*tmp2035 - tmp401*tmp2046 - tmp402*tmp2065 - tmp394*tmp1956 - tmp393*tmp1958
-        - tmp395*tmp1974 - tmp82*tmp2205 - tmp79*tmp2206 - tmp111*tmp2207 - tmp123*tmp2208
-        - tmp140*tmp2209 - tmp154*tmp2210 - tmp172*tmp2211 - tmp188*tmp2212 - tmp206*tmp2213
-        - tmp225*tmp2214;
-    dr_dq_data[5 + 10 * 4] = phi9_ddot*tmp2189 + phi10_ddot*tmp2198 - tmp2220 - tmp2230
-        + phi1_ddot*tmp2163 + phi2_ddot*tmp2164 + phi3_ddot*tmp2165 + phi4_ddot*tmp2166
-        + phi5_ddot*tmp2167 + phi6_ddot*tmp2168 + phi7_ddot*tmp2174 + phi8_ddot*tmp2181;
-    const Scalar tmp2231 = -tmp397*tmp1992 - tmp398*tmp2007 - tmp399*tmp2016 - tmp400*tmp2034
-        - tmp401*tmp2048 - tmp402*tmp2064 - tmp396*tmp1970 - tmp395*tmp1972 - tmp107*tmp2207
-        - tmp104*tmp2208 - tmp137*tmp2209 - tmp153*tmp2210 - tmp168*tmp2211 - tmp187*tmp2212
-        - tmp208*tmp2213 - tmp224*tmp2214;
-    dr_dq_data[6 + 10 * 4] = phi9_ddot*tmp2190 + phi10_ddot*tmp2199 - tmp2221 - tmp2231
-        + phi1_ddot*tmp2169 + phi2_ddot*tmp2170 + phi3_ddot*tmp2171 + phi4_ddot*tmp2172
-        + phi5_ddot*tmp2173 + phi6_ddot*tmp2174 + phi7_ddot*tmp2175 + phi8_ddot*tmp2182;
-    const Scalar tmp2232 = -tmp398*tmp1989 - tmp397*tmp1991 - tmp399*tmp2018 - tmp400*tmp2033
-        - tmp401*tmp2045 - tmp402*tmp2063 - tmp135*tmp2209 - tmp132*tmp2210 - tmp171*tmp2211
-        - tmp186*tmp2212 - tmp205*tmp2213 - tmp223*tmp2214;
-    dr_dq_data[7 + 10 * 4] = phi9_ddot*tmp2191 + phi10_ddot*tmp2200 - tmp2222 - tmp2232
-        + phi1_ddot*tmp2176 + phi2_ddot*tmp2177 + phi3_ddot*tmp2178 + phi4_ddot*tmp2179
-        + phi5_ddot*tmp2180 + phi6_ddot*tmp2181 + phi7_ddot*tmp2182 + phi8_ddot*tmp2183;
-    const Scalar tmp2233 = -tmp400*tmp2013 - tmp399*tmp2015 - tmp401*tmp2043 - tmp402*tmp2062
-        - tmp166*tmp2211 - tmp163*tmp2212 - tmp202*tmp2213 - tmp222*tmp2214;
-    dr_dq_data[8 + 10 * 4] = phi5_ddot*tmp2188 + phi6_ddot*tmp2189 + phi7_ddot*tmp2190
-        + phi8_ddot*tmp2191 + phi9_ddot*tmp2192 + phi10_ddot*tmp2201 - tmp2223 - tmp2233
-        + phi1_ddot*tmp2184 + phi2_ddot*tmp2185 + phi3_ddot*tmp2186 + phi4_ddot*tmp2187;
-    const Scalar tmp2234 = -tmp402*tmp2040 - tmp401*tmp2042 - tmp200*tmp2213 - tmp197*tmp2214;
-    dr_dq_data[9 + 10 * 4] = phi1_ddot*tmp2193 + phi2_ddot*tmp2194 + phi3_ddot*tmp2195
-        + phi4_ddot*tmp2196 + phi5_ddot*tmp2197 + phi6_ddot*tmp2198 + phi7_ddot*tmp2199
-        + phi8_ddot*tmp2200 + phi9_ddot*tmp2201 + phi10_ddot*tmp2202 - tmp2224 - tmp2234;
-    const Scalar tmp2235 = l*tmp81;
-    const Scalar tmp2236 = -tmp78;
-    const Scalar tmp2237 = l*tmp2236;
-    const Scalar tmp2238 = phi6_dot*tmp2237;
-    const Scalar tmp2239 = phi5_dot*tmp2237 + tmp2238;
-    const Scalar tmp2240 = phi4_dot*tmp2237 + tmp2239;
-    const Scalar tmp2241 = phi3_dot*tmp2237 + tmp2240;
-    const Scalar tmp2242 = phi2_dot*tmp2237 + tmp2241;
-    const Scalar tmp2243 = phi1_dot*tmp2237 + tmp2242;
-    const Scalar tmp2244 = phi6_dot*tmp2235;
-    const Scalar tmp2245 = l*tmp106;
-    const Scalar tmp2246 = -tmp103;
-    const Scalar tmp2247 = l*tmp2246;
-    const Scalar tmp2248 = tmp2237 + tmp2247;
-    const Scalar tmp2249 = tmp2237 + tmp2247;
-    const Scalar tmp2250 = phi7_dot*tmp2247;
-    const Scalar tmp2251 = phi6_dot*tmp2249 + tmp2250;
-    const Scalar tmp2252 = phi5_dot*tmp2248 + tmp2251;
-    const Scalar tmp2253 = phi4_dot*tmp2249 + tmp2252;
-    const Scalar tmp2254 = phi3_dot*tmp2248 + tmp2253;
-    const Scalar tmp2255 = phi2_dot*tmp2249 + tmp2254;
-    const Scalar tmp2256 = tmp2255 + phi1_dot*tmp2248;
-    const Scalar tmp2257 = phi7_dot*tmp2245;
-    const Scalar tmp2258 = tmp2235 + tmp2245;
-    const Scalar tmp2259 = tmp2235 + tmp2245;
-    const Scalar tmp2260 = l*tmp134;
-    const Scalar tmp2261 = -tmp131;
-    const Scalar tmp2262 = l*tmp2261;
-    const Scalar tmp2263 = tmp2262 + tmp2247;
-    const Scalar tmp2264 = tmp2263 + tmp2237;
-    const Scalar tmp2265 = tmp2262 + tmp2249;
-    const Scalar tmp2266 = tmp2263 + tmp2237;
-    const Scalar tmp2267 = phi8_dot*tmp2262;
-    const Scalar tmp2268 = phi7_dot*tmp2263 + tmp2267;
-    const Scalar tmp2269 = phi6_dot*tmp2265 + tmp2268;
-    const Scalar tmp2270 = phi5_dot*tmp2264 + tmp2269;
-    const Scalar tmp2271 = phi4_dot*tmp2265 + tmp2270;
-    const Scalar tmp2272 = phi3_dot*tmp2266 + tmp2271;
-    const Scalar tmp2273 = phi2_dot*tmp2265 + tmp2272;
-    const Scalar tmp2274 = phi1_dot*tmp2264 + tmp2273;
-    const Scalar tmp2275 = phi8_dot*tmp2260;
-    const Scalar tmp2276 = tmp2260 + tmp2245;
-    const Scalar tmp2277 = tmp2258 + tmp2260;
-    const Scalar tmp2278 = tmp2276 + tmp2235;
-    const Scalar tmp2279 = tmp2276 + tmp2235;
-    const Scalar tmp2280 = l*tmp165;
-    const Scalar tmp2281 = -tmp162;
-    const Scalar tmp2282 = l*tmp2281;
-    const Scalar tmp2283 = tmp2263 + tmp2282;
-    const Scalar tmp2284 = tmp2283 + tmp2237;
-    const Scalar tmp2285 = tmp2262 + tmp2282;
-    const Scalar tmp2286 = tmp2285 + tmp2249;
-    const Scalar tmp2287 = tmp2283 + tmp2237;
-    const Scalar tmp2288 = tmp2285 + tmp2249;
-    const Scalar tmp2289 = phi9_dot*tmp2282;
-    const Scalar tmp2290 = phi8_dot*tmp2285 + tmp2289;
-    const Scalar tmp2291 = phi7_dot*tmp2283 + tmp2290;
-    const Scalar tmp2292 = phi6_dot*tmp2286 + tmp2291;
-    const Scalar tmp2293 = phi5_dot*tmp2284 + tmp2292;
-    const Scalar tmp2294 = phi4_dot*tmp2288 + tmp2293;
-    const Scalar tmp2295 = phi3_dot*tmp2287 + tmp2294;
-    const Scalar tmp2296 = phi2_dot*tmp2286 + tmp2295;
-    const Scalar tmp2297 = phi1_dot*tmp2284 + tmp2296;
-    const Scalar tmp2298 = phi9_dot*tmp2280;
-    const Scalar tmp2299 = tmp2260 + tmp2280;
-    const Scalar tmp2300 = tmp2276 + tmp2280;
-    const Scalar tmp2301 = tmp2258 + tmp2299;
-    const Scalar tmp2302 = tmp2300 + tmp2235;
-    const Scalar tmp2303 = tmp2258 + tmp2299;
-    const Scalar tmp2304 = tmp2300 + tmp2235;
-    const Scalar tmp2305 = l*tmp199;
-    const Scalar tmp2306 = -tmp196;
-    const Scalar tmp2307 = l*tmp2306;
-    const Scalar tmp2308 = tmp2282 + tmp2307;
-    const Scalar tmp2309 = tmp2264 + tmp2308;
-    const Scalar tmp2310 = tmp2285 + tmp2307;
-    const Scalar tmp2311 = tmp2310 + tmp2249;
-    const Scalar tmp2312 = tmp2263 + tmp2308;
-    const Scalar tmp2313 = tmp2312 + tmp2237;
-    const Scalar tmp2314 = tmp2310 + tmp2249;
-    const Scalar tmp2315 = phi10_dot*tmp2307;
-    const Scalar tmp2316 = phi9_dot*tmp2308 + tmp2315;
-    const Scalar tmp2317 = phi8_dot*tmp2310 + tmp2316;
-    const Scalar tmp2318 = phi7_dot*tmp2312 + tmp2317;
-    const Scalar tmp2319 = phi6_dot*tmp2311 + tmp2318;
-    const Scalar tmp2320 = phi5_dot*tmp2309 + tmp2319;
-    const Scalar tmp2321 = phi4_dot*tmp2314 + tmp2320;
-    const Scalar tmp2322 = phi3_dot*tmp2313 + tmp2321;
-    const Scalar tmp2323 = phi2_dot*tmp2311 + tmp2322;
-    const Scalar tmp2324 = phi1_dot*tmp2309 + tmp2323;
-    const Scalar tmp2325 = phi10_dot*tmp2305;
-    const Scalar tmp2326 = tmp2280 + tmp2305;
-    const Scalar tmp2327 = tmp2299 + tmp2305;
-    const Scalar tmp2328 = tmp2276 + tmp2326;
-    const Scalar tmp2329 = tmp2258 + tmp2327;
-    const Scalar tmp2330 = tmp2278 + tmp2326;
-    const Scalar tmp2331 = tmp2258 + tmp2327;
-    const Scalar tmp2332 = tmp2328 + tmp2235;
-    const Scalar tmp2333 = -tmp2235;
-    const Scalar tmp2334 = phi5_dot*tmp2333 - tmp2244;
-    const Scalar tmp2335 = -tmp2235;
-    const Scalar tmp2336 = tmp2334 + phi4_dot*tmp2335;
-    const Scalar tmp2337 = -tmp2235;
-    const Scalar tmp2338 = tmp2336 + phi3_dot*tmp2337;
-    const Scalar tmp2339 = -tmp2235;
-    const Scalar tmp2340 = tmp2338 + phi2_dot*tmp2339;
-    const Scalar tmp2341 = phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp2333
-        + phi5_dot*tmp2334 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp2335 + phi4_dot*tmp2336
-        + phi3_dot*(phi1_dot + phi2_dot)*tmp2337 + phi3_dot*tmp2338 + phi1_dot*phi2_dot*tmp2339
-        + (phi1_dot + phi2_dot)*tmp2340
+    const Scalar tmp2203 = Scalar(2)*tmp124*m*tmp2027 + Scalar(2)*tmp138*m*tmp2034
+        + Scalar(2)*tmp155*m*tmp2050 + Scalar(2)*tmp169*m*tmp2058 + Scalar(2)*tmp189*m*tmp2077
+        + Scalar(2)*tmp203*m*tmp2085 + Scalar(2)*tmp226*m*tmp2107 + Scalar(2)*tmp325*tmp56*m*tmp59
+        + Scalar(2)*tmp325*tmp59*m*tmp1989 + Scalar(2)*tmp84*m*tmp2000 + Scalar(2)*tmp96*m*tmp2009
+        + Scalar(2)*tmp109*m*tmp2014;
+    const Scalar tmp2204 = tmp128*m*tmp2026 + tmp123*m*tmp2027 + tmp140*m*tmp2034 + tmp139*m*tmp2035
+        + tmp159*m*tmp2049 + tmp154*m*tmp2050 + tmp172*m*tmp2058 + tmp170*m*tmp2060
+        + tmp193*m*tmp2076 + tmp188*m*tmp2077 + tmp206*m*tmp2085 + tmp204*m*tmp2087
+        + tmp230*m*tmp2106 + tmp225*m*tmp2107 + tmp100*m*tmp1997 + tmp85*m*tmp1999 + tmp82*m*tmp2000
+        + tmp79*m*tmp2009 + tmp111*m*tmp2014 + tmp110*m*tmp2015;
+    const Scalar tmp2205 = tmp127*m*tmp2026 + tmp123*m*tmp2029 + tmp141*m*tmp2035 + tmp140*m*tmp2036
+        + tmp158*m*tmp2049 + tmp154*m*tmp2053 + tmp173*m*tmp2060 + tmp172*m*tmp2061
+        + tmp192*m*tmp2076 + tmp188*m*tmp2080 + tmp207*m*tmp2087 + tmp206*m*tmp2088
+        + tmp229*m*tmp2106 + tmp225*m*tmp2110 + tmp99*m*tmp1997 + tmp87*m*tmp1999 + tmp82*m*tmp2001
+        + tmp79*m*tmp2010 + tmp112*m*tmp2015 + tmp111*m*tmp2016;
+    const Scalar tmp2206 = tmp126*m*tmp2026 + tmp123*m*tmp2027 + tmp142*m*tmp2035 + tmp140*m*tmp2037
+        + tmp157*m*tmp2049 + tmp154*m*tmp2052 + tmp174*m*tmp2060 + tmp172*m*tmp2062
+        + tmp191*m*tmp2076 + tmp188*m*tmp2079 + tmp209*m*tmp2087 + tmp206*m*tmp2090
+        + tmp228*m*tmp2106 + tmp225*m*tmp2109 + tmp98*m*tmp1997 + tmp88*m*tmp1999 + tmp82*m*tmp2000
+        + tmp79*m*tmp2009 + tmp113*m*tmp2015 + tmp111*m*tmp2014;
+    const Scalar tmp2207 = tmp125*m*tmp2026 + tmp123*m*tmp2028 + tmp143*m*tmp2035 + tmp140*m*tmp2038
+        + tmp156*m*tmp2049 + tmp154*m*tmp2051 + tmp175*m*tmp2060 + tmp172*m*tmp2063
+        + tmp190*m*tmp2076 + tmp188*m*tmp2078 + tmp210*m*tmp2087 + tmp206*m*tmp2091
+        + tmp227*m*tmp2106 + tmp225*m*tmp2108 + tmp97*m*tmp1997 + tmp86*m*tmp1999 + tmp82*m*tmp2001
+        + tmp79*m*tmp2010 + tmp114*m*tmp2015 + tmp111*m*tmp2017;
+    const Scalar tmp2208 = tmp124*m*tmp2026 + tmp123*m*tmp2027 + tmp140*m*tmp2034 + tmp138*m*tmp2035
+        + tmp155*m*tmp2049 + tmp154*m*tmp2050 + tmp172*m*tmp2058 + tmp169*m*tmp2060
+        + tmp189*m*tmp2076 + tmp188*m*tmp2077 + tmp206*m*tmp2085 + tmp203*m*tmp2087
+        + tmp226*m*tmp2106 + tmp225*m*tmp2107 + tmp96*m*tmp1997 + tmp84*m*tmp1999 + tmp82*m*tmp2000
+        + tmp79*m*tmp2009 + tmp111*m*tmp2014 + tmp109*m*tmp2015;
+    const Scalar tmp2209 = Scalar(2)*tmp123*m*tmp2026 + Scalar(2)*tmp140*m*tmp2035
+        + Scalar(2)*tmp154*m*tmp2049 + Scalar(2)*tmp172*m*tmp2060 + Scalar(2)*tmp188*m*tmp2076
+        + Scalar(2)*tmp206*m*tmp2087 + Scalar(2)*tmp225*m*tmp2106 + Scalar(2)*tmp325*tmp78*m*tmp81
+        + Scalar(2)*tmp325*tmp81*m*tmp1998 + Scalar(2)*tmp111*m*tmp2015;
+    const Scalar tmp2210 = tmp104*m*tmp2027 + tmp139*m*tmp2033 + tmp137*m*tmp2034 + tmp159*m*tmp2048
+        + tmp153*m*tmp2050 + tmp170*m*tmp2057 + tmp168*m*tmp2058 + tmp193*m*tmp2075
+        + tmp187*m*tmp2077 + tmp208*m*tmp2085 + tmp204*m*tmp2089 + tmp230*m*tmp2105
+        + tmp224*m*tmp2107 + tmp128*m*tmp2011 + tmp110*m*tmp2013 + tmp107*m*tmp2014;
+    const Scalar tmp2211 = tmp104*m*tmp2029 + tmp141*m*tmp2033 + tmp137*m*tmp2036 + tmp158*m*tmp2048
+        + tmp153*m*tmp2053 + tmp173*m*tmp2057 + tmp168*m*tmp2061 + tmp192*m*tmp2075
+        + tmp187*m*tmp2080 + tmp208*m*tmp2088 + tmp207*m*tmp2089 + tmp229*m*tmp2105
+        + tmp224*m*tmp2110 + tmp127*m*tmp2011 + tmp112*m*tmp2013 + tmp107*m*tmp2016;
+    const Scalar tmp2212 = tmp104*m*tmp2027 + tmp142*m*tmp2033 + tmp137*m*tmp2037 + tmp157*m*tmp2048
+        + tmp153*m*tmp2052 + tmp174*m*tmp2057 + tmp168*m*tmp2062 + tmp191*m*tmp2075
+        + tmp187*m*tmp2079 + tmp209*m*tmp2089 + tmp208*m*tmp2090 + tmp228*m*tmp2105
+        + tmp224*m*tmp2109 + tmp126*m*tmp2011 + tmp113*m*tmp2013 + tmp107*m*tmp2014;
+    const Scalar tmp2213 = tmp104*m*tmp2028 + tmp143*m*tmp2033 + tmp137*m*tmp2038 + tmp156*m*tmp2048
+        + tmp153*m*tmp2051 + tmp175*m*tmp2057 + tmp168*m*tmp2063 + tmp190*m*tmp2075
+        + tmp187*m*tmp2078 + tmp210*m*tmp2089 + tmp208*m*tmp2091 + tmp227*m*tmp2105
+        + tmp224*m*tmp2108 + tmp125*m*tmp2011 + tmp114*m*tmp2013 + tmp107*m*tmp2017;
+    const Scalar tmp2214 = tmp104*m*tmp2027 + tmp138*m*tmp2033 + tmp137*m*tmp2034 + tmp155*m*tmp2048
+        + tmp153*m*tmp2050 + tmp169*m*tmp2057 + tmp168*m*tmp2058 + tmp189*m*tmp2075
+        + tmp187*m*tmp2077 + tmp208*m*tmp2085 + tmp203*m*tmp2089 + tmp226*m*tmp2105
+        + tmp224*m*tmp2107 + tmp124*m*tmp2011 + tmp109*m*tmp2013 + tmp107*m*tmp2014;
+    const Scalar tmp2215 = tmp104*m*tmp2026 + tmp140*m*tmp2033 + tmp137*m*tmp2035 + tmp154*m*tmp2048
+        + tmp153*m*tmp2049 + tmp172*m*tmp2057 + tmp168*m*tmp2060 + tmp188*m*tmp2075
+        + tmp187*m*tmp2076 + tmp208*m*tmp2087 + tmp206*m*tmp2089 + tmp225*m*tmp2105
+        + tmp224*m*tmp2106 + tmp123*m*tmp2011 + tmp111*m*tmp2013 + tmp107*m*tmp2015;
+    const Scalar tmp2216 = Scalar(2)*tmp137*m*tmp2033 + Scalar(2)*tmp153*m*tmp2048
+        + Scalar(2)*tmp168*m*tmp2057 + Scalar(2)*tmp187*m*tmp2075 + Scalar(2)*tmp208*m*tmp2089
+        + Scalar(2)*tmp224*m*tmp2105 + Scalar(2)*tmp325*tmp103*m*tmp106
+        + Scalar(2)*tmp325*tmp106*m*tmp2012;
+    const Scalar tmp2217 = tmp159*m*tmp2030 + tmp139*m*tmp2032 + tmp135*m*tmp2034 + tmp132*m*tmp2050
+        + tmp171*m*tmp2058 + tmp170*m*tmp2059 + tmp193*m*tmp2074 + tmp186*m*tmp2077
+        + tmp205*m*tmp2085 + tmp204*m*tmp2086 + tmp230*m*tmp2104 + tmp223*m*tmp2107;
+    const Scalar tmp2218 = tmp158*m*tmp2030 + tmp141*m*tmp2032 + tmp135*m*tmp2036 + tmp132*m*tmp2053
+        + tmp173*m*tmp2059 + tmp171*m*tmp2061 + tmp192*m*tmp2074 + tmp186*m*tmp2080
+        + tmp207*m*tmp2086 + tmp205*m*tmp2088 + tmp229*m*tmp2104 + tmp223*m*tmp2110;
+    const Scalar tmp2219 = tmp157*m*tmp2030 + tmp142*m*tmp2032 + tmp135*m*tmp2037 + tmp132*m*tmp2052
+        + tmp174*m*tmp2059 + tmp171*m*tmp2062 + tmp191*m*tmp2074 + tmp186*m*tmp2079
+        + tmp209*m*tmp2086 + tmp205*m*tmp2090 + tmp228*m*tmp2104 + tmp223*m*tmp2109;
+    const Scalar tmp2220 = tmp156*m*tmp2030 + tmp143*m*tmp2032 + tmp135*m*tmp2038 + tmp132*m*tmp2051
+        + tmp175*m*tmp2059 + tmp171*m*tmp2063 + tmp190*m*tmp2074 + tmp186*m*tmp2078
+        + tmp210*m*tmp2086 + tmp205*m*tmp2091 + tmp227*m*tmp2104 + tmp223*m*tmp2108;
+    const Scalar tmp2221 = tmp155*m*tmp2030 + tmp138*m*tmp2032 + tmp135*m*tmp2034 + tmp132*m*tmp2050
+        + tmp171*m*tmp2058 + tmp169*m*tmp2059 + tmp189*m*tmp2074 + tmp186*m*tmp2077
+        + tmp205*m*tmp2085 + tmp203*m*tmp2086 + tmp226*m*tmp2104 + tmp223*m*tmp2107;
+    const Scalar tmp2222 = tmp154*m*tmp2030 + tmp140*m*tmp2032 + tmp135*m*tmp2035 + tmp132*m*tmp2049
+        + tmp172*m*tmp2059 + tmp171*m*tmp2060 + tmp188*m*tmp2074 + tmp186*m*tmp2076
+        + tmp206*m*tmp2086 + tmp205*m*tmp2087 + tmp225*m*tmp2104 + tmp223*m*tmp2106;
+    const Scalar tmp2223 = tmp153*m*tmp2030 + tmp137*m*tmp2032 + tmp135*m*tmp2033 + tmp132*m*tmp2048
+        + tmp171*m*tmp2057 + tmp168*m*tmp2059 + tmp187*m*tmp2074 + tmp186*m*tmp2075
+        + tmp208*m*tmp2086 + tmp205*m*tmp2089 + tmp224*m*tmp2104 + tmp223*m*tmp2105;
+    const Scalar tmp2224 = Scalar(2)*tmp131*tmp325*m*tmp134 + Scalar(2)*tmp134*tmp325*m*tmp2031
+        + Scalar(2)*tmp171*m*tmp2059 + Scalar(2)*tmp186*m*tmp2074 + Scalar(2)*tmp205*m*tmp2086
+        + Scalar(2)*tmp223*m*tmp2104;
+    const Scalar tmp2225 = tmp193*m*tmp2054 + tmp170*m*tmp2056 + tmp166*m*tmp2058 + tmp163*m*tmp2077
+        + tmp204*m*tmp2084 + tmp202*m*tmp2085 + tmp230*m*tmp2103 + tmp222*m*tmp2107;
+    const Scalar tmp2226 = tmp192*m*tmp2054 + tmp173*m*tmp2056 + tmp166*m*tmp2061 + tmp163*m*tmp2080
+        + tmp207*m*tmp2084 + tmp202*m*tmp2088 + tmp229*m*tmp2103 + tmp222*m*tmp2110;
+    const Scalar tmp2227 = tmp191*m*tmp2054 + tmp174*m*tmp2056 + tmp166*m*tmp2062 + tmp163*m*tmp2079
+        + tmp209*m*tmp2084 + tmp202*m*tmp2090 + tmp228*m*tmp2103 + tmp222*m*tmp2109;
+    const Scalar tmp2228 = tmp190*m*tmp2054 + tmp175*m*tmp2056 + tmp166*m*tmp2063 + tmp163*m*tmp2078
+        + tmp210*m*tmp2084 + tmp202*m*tmp2091 + tmp227*m*tmp2103 + tmp222*m*tmp2108;
+    const Scalar tmp2229 = tmp189*m*tmp2054 + tmp169*m*tmp2056 + tmp166*m*tmp2058 + tmp163*m*tmp2077
+        + tmp203*m*tmp2084 + tmp202*m*tmp2085 + tmp226*m*tmp2103 + tmp222*m*tmp2107;
+    const Scalar tmp2230 = tmp188*m*tmp2054 + tmp172*m*tmp2056 + tmp166*m*tmp2060 + tmp163*m*tmp2076
+        + tmp206*m*tmp2084 + tmp202*m*tmp2087 + tmp225*m*tmp2103 + tmp222*m*tmp2106;
+    const Scalar tmp2231 = tmp187*m*tmp2054 + tmp168*m*tmp2056 + tmp166*m*tmp2057 + tmp163*m*tmp2075
+        + tmp208*m*tmp2084 + tmp202*m*tmp2089 + tmp224*m*tmp2103 + tmp222*m*tmp2105;
+    const Scalar tmp2232 = tmp186*m*tmp2054 + tmp171*m*tmp2056 + tmp166*m*tmp2059 + tmp163*m*tmp2074
+        + tmp205*m*tmp2084 + tmp202*m*tmp2086 + tmp223*m*tmp2103 + tmp222*m*tmp2104;
+    const Scalar tmp2233 = Scalar(2)*tmp162*tmp325*m*tmp165 + Scalar(2)*tmp165*tmp325*m*tmp2055
+        + Scalar(2)*tmp202*m*tmp2084 + Scalar(2)*tmp222*m*tmp2103;
+    const Scalar tmp2234 = tmp230*m*tmp2081 + tmp204*m*tmp2083 + tmp200*m*tmp2085
+        + tmp197*m*tmp2107;
+    const Scalar tmp2235 = tmp229*m*tmp2081 + tmp207*m*tmp2083 + tmp200*m*tmp2088
+        + tmp197*m*tmp2110;
+    const Scalar tmp2236 = tmp228*m*tmp2081 + tmp209*m*tmp2083 + tmp200*m*tmp2090
+        + tmp197*m*tmp2109;
+    const Scalar tmp2237 = tmp227*m*tmp2081 + tmp210*m*tmp2083 + tmp200*m*tmp2091
+        + tmp197*m*tmp2108;
+    const Scalar tmp2238 = tmp226*m*tmp2081 + tmp203*m*tmp2083 + tmp200*m*tmp2085
+        + tmp197*m*tmp2107;
+    const Scalar tmp2239 = tmp225*m*tmp2081 + tmp206*m*tmp2083 + tmp200*m*tmp2087
+        + tmp197*m*tmp2106;
+    const Scalar tmp2240 = tmp224*m*tmp2081 + tmp208*m*tmp2083 + tmp200*m*tmp2089
+        + tmp197*m*tmp2105;
+    const Scalar tmp2241 = tmp223*m*tmp2081 + tmp205*m*tmp2083 + tmp200*m*tmp2086
+        + tmp197*m*tmp2104;
+    const Scalar tmp2242 = tmp222*m*tmp2081 + tmp202*m*tmp2083 + tmp200*m*tmp2084
+        + tmp197*m*tmp2103;
+    const Scalar tmp2243 = Scalar(2)*tmp196*tmp325*m*tmp199 + Scalar(2)*tmp199*tmp325*m*tmp2082;
+    const Scalar tmp2244 = m*tmp2117;
+    const Scalar tmp2245 = m*tmp2118;
+    const Scalar tmp2246 = m*tmp2127;
+    const Scalar tmp2247 = m*tmp2128;
+    const Scalar tmp2248 = m*tmp2139;
+    const Scalar tmp2249 = m*tmp2140;
+    const Scalar tmp2250 = m*tmp2153;
+    const Scalar tmp2251 = m*tmp2154;
+    const Scalar tmp2252 = m*tmp2169;
+    const Scalar tmp2253 = m*tmp2170;
+    const Scalar tmp2254 = m*tmp2187;
+    const Scalar tmp2255 = m*tmp2188;
+    const Scalar tmp2256 = tmp382*tmp2027 + tmp382*tmp2050 + tmp382*tmp2077 + tmp382*tmp2107
+        + tmp382*tmp1988 + tmp382*tmp2009;
+    const Scalar tmp2257 = tmp382*tmp2029 + tmp382*tmp2053 + tmp382*tmp2080 + tmp382*tmp2110
+        + tmp382*tmp1988 + tmp382*tmp2010;
+    const Scalar tmp2258 = tmp382*tmp2027 + tmp382*tmp2052 + tmp382*tmp2079 + tmp382*tmp2109
+        + tmp382*tmp1988 + tmp382*tmp2009;
+    const Scalar tmp2259 = tmp382*tmp2028 + tmp382*tmp2051 + tmp382*tmp2078 + tmp382*tmp2108
+        + tmp382*tmp1988 + tmp382*tmp2010;
+    const Scalar tmp2260 = tmp382*tmp2027 + tmp382*tmp2050 + tmp382*tmp2077 + tmp382*tmp2107 - k
+        + tmp382*tmp1988 + tmp382*tmp2009;
+    const Scalar tmp2261 = tmp382*tmp2026 + tmp382*tmp2049 + tmp382*tmp2076 + tmp382*tmp2106
+        + tmp382*tmp1997;
+    const Scalar tmp2262 = tmp382*tmp2048 + tmp382*tmp2075 + tmp382*tmp2105 + tmp382*tmp2011;
+    const Scalar tmp2263 = tmp382*tmp2030 + tmp382*tmp2074 + tmp382*tmp2104;
+    const Scalar tmp2264 = tmp382*tmp2054 + tmp382*tmp2103;
+    const Scalar tmp2265 = tmp382*l*tmp199;
+    const Scalar tmp2266 = -tmp396*tmp2027 - tmp397*tmp2034 - tmp398*tmp2050 - tmp399*tmp2058
+        - tmp400*tmp2077 - tmp401*tmp2085 - tmp402*tmp2107 - tmp391*tmp1990 - tmp392*tmp1988
+        - tmp393*tmp2000 - tmp394*tmp2009 - tmp395*tmp2014 - tmp63*tmp2244 - tmp75*tmp2245
+        - tmp85*tmp2246 - tmp100*tmp2247 - tmp110*tmp2248 - tmp128*tmp2249 - tmp139*tmp2250
+        - tmp159*tmp2251 - tmp170*tmp2252 - tmp193*tmp2253 - tmp204*tmp2254 - tmp230*tmp2255;
+    dr_dq_data[0 + 10 * 4] = phi10_ddot*tmp2234 - tmp2256 - tmp2266 + phi1_ddot*tmp2189
+        + phi2_ddot*tmp2190 + phi3_ddot*tmp2192 + phi4_ddot*tmp2195 + phi5_ddot*tmp2199
+        + phi6_ddot*tmp2204 + phi7_ddot*tmp2210 + phi8_ddot*tmp2217 + phi9_ddot*tmp2225;
+    const Scalar tmp2267 = -tmp396*tmp2029 - tmp397*tmp2036 - tmp398*tmp2053 - tmp399*tmp2061
+        - tmp400*tmp2080 - tmp401*tmp2088 - tmp402*tmp2110 - tmp391*tmp1990 - tmp392*tmp1988
+        - tmp393*tmp2001 - tmp394*tmp2010 - tmp395*tmp2016 - tmp65*tmp2244 - tmp74*tmp2245
+        - tmp87*tmp2246 - tmp99*tmp2247 - tmp112*tmp2248 - tmp127*tmp2249 - tmp141*tmp2250
+        - tmp158*tmp2251 - tmp173*tmp2252 - tmp192*tmp2253 - tmp207*tmp2254 - tmp229*tmp2255;
+    dr_dq_data[1 + 10 * 4] = phi10_ddot*tmp2235 - tmp2257 - tmp2267 + phi1_ddot*tmp2190
+        + phi2_ddot*tmp2191 + phi3_ddot*tmp2193 + phi4_ddot*tmp2196 + phi5_ddot*tmp2200
+        + phi6_ddot*tmp2205 + phi7_ddot*tmp2211 + phi8_ddot*tmp2218 + phi9_ddot*tmp2226;
+    const Scalar tmp2268 = -tmp396*tmp2027 - tmp397*tmp2037 - tmp398*tmp2052 - tmp399*tmp2062
+        - tmp400*tmp2079 - tmp401*tmp2090 - tmp402*tmp2109 - tmp391*tmp1990 - tmp392*tmp1988
+        - tmp393*tmp2000 - tmp394*tmp2009 - tmp395*tmp2014 - tmp62*tmp2244 - tmp73*tmp2245
+        - tmp88*tmp2246 - tmp98*tmp2247 - tmp113*tmp2248 - tmp126*tmp2249 - tmp142*tmp2250
+        - tmp157*tmp2251 - tmp174*tmp2252 - tmp191*tmp2253 - tmp209*tmp2254 - tmp228*tmp2255;
+    dr_dq_data[2 + 10 * 4] = phi10_ddot*tmp2236 - tmp2258 - tmp2268 + phi1_ddot*tmp2192
+        + phi2_ddot*tmp2193 + phi3_ddot*tmp2194 + phi4_ddot*tmp2197 + phi5_ddot*tmp2201
+        + phi6_ddot*tmp2206 + phi7_ddot*tmp2212 + phi8_ddot*tmp2219 + phi9_ddot*tmp2227;
+    const Scalar tmp2269 = -tmp396*tmp2028 - tmp397*tmp2038 - tmp398*tmp2051 - tmp399*tmp2063
+        - tmp400*tmp2078 - tmp401*tmp2091 - tmp402*tmp2108 - tmp391*tmp1990 - tmp392*tmp1988
+        - tmp393*tmp2001 - tmp394*tmp2010 - tmp395*tmp2017 - tmp64*tmp2244 - tmp72*tmp2245
+        - tmp86*tmp2246 - tmp97*tmp2247 - tmp114*tmp2248 - tmp125*tmp2249 - tmp143*tmp2250
+        - tmp156*tmp2251 - tmp175*tmp2252 - tmp190*tmp2253 - tmp210*tmp2254 - tmp227*tmp2255;
+    dr_dq_data[3 + 10 * 4] = phi10_ddot*tmp2237 - tmp2259 - tmp2269 + phi1_ddot*tmp2195
+        + phi2_ddot*tmp2196 + phi3_ddot*tmp2197 + phi4_ddot*tmp2198 + phi5_ddot*tmp2202
+        + phi6_ddot*tmp2207 + phi7_ddot*tmp2213 + phi8_ddot*tmp2220 + phi9_ddot*tmp2228;
+    const Scalar tmp2270 = -tmp396*tmp2027 - tmp397*tmp2034 - tmp398*tmp2050 - tmp399*tmp2058
+        - tmp400*tmp2077 - tmp401*tmp2085 - tmp402*tmp2107 - tmp392*tmp1988 - tmp391*tmp1990
+        - tmp393*tmp2000 - tmp394*tmp2009 - tmp395*tmp2014 - tmp60*tmp2244 - tmp57*tmp2245
+        - tmp84*tmp2246 - tmp96*tmp2247 - tmp109*tmp2248 - tmp124*tmp2249 - tmp138*tmp2250
+        - tmp155*tmp2251 - tmp169*tmp2252 - tmp189*tmp2253 - tmp203*tmp2254 - tmp226*tmp2255;
+    dr_dq_data[4 + 10 * 4] = phi9_ddot*tmp2229 + phi10_ddot*tmp2238 - tmp2260 - tmp2270
+        + phi1_ddot*tmp2199 + phi2_ddot*tmp2200 + phi3_ddot*tmp2201 + phi4_ddot*tmp2202
+        + phi5_ddot*tmp2203 + phi6_ddot*tmp2208 + phi7_ddot*tmp2214 + phi8_ddot*tmp2221;
+    const Scalar tmp2271 = -tmp396*tmp2026 - tmp397*tmp2035 - tmp398*tmp2049 - tmp399*tmp2060
+        - tmp400*tmp2076 - tmp401*tmp2087 - tmp402*tmp2106 - tmp394*tmp1997 - tmp393*tmp1999
+        - tmp395*tmp2015 - tmp82*tmp2246 - tmp79*tmp2247 - tmp111*tmp2248 - tmp123*tmp2249
+        - tmp140*tmp2250 - tmp154*tmp2251 - tmp172*tmp2252 - tmp188*tmp2253 - tmp206*tmp2254
+        - tmp225*tmp2255;
+    dr_dq_data[5 + 10 * 4] = phi9_ddot*tmp2230 + phi10_ddot*tmp2239 - tmp2261 - tmp2271
+        + phi1_ddot*tmp2204 + phi2_ddot*tmp2205 + phi3_ddot*tmp2206 + phi4_ddot*tmp2207
+        + phi5_ddot*tmp2208 + phi6_ddot*tmp2209 + phi7_ddot*tmp2215 + phi8_ddot*tmp2222;
+    const Scalar tmp2272 = -tmp397*tmp2033 - tmp398*tmp2048 - tmp399*tmp2057 - tmp400*tmp2075
+        - tmp401*tmp2089 - tmp402*tmp2105 - tmp396*tmp2011 - tmp395*tmp2013 - tmp107*tmp2248
+        - tmp104*tmp2249 - tmp137*tmp2250 - tmp153*tmp2251 - tmp168*tmp2252 - tmp187*tmp2253
+        - tmp208*tmp2254 - tmp224*tmp2255;
+    dr_dq_data[6 + 10 * 4] = phi9_ddot*tmp2231 + phi10_ddot*tmp2240 - tmp2262 - tmp2272
+        + phi1_ddot*tmp2210 + phi2_ddot*tmp2211 + phi3_ddot*tmp2212 + phi4_ddot*tmp2213
+        + phi5_ddot*tmp2214 + phi6_ddot*tmp2215 + phi7_ddot*tmp2216 + phi8_ddot*tmp2223;
+    const Scalar tmp2273 = -tmp398*tmp2030 - tmp397*tmp2032 - tmp399*tmp2059 - tmp400*tmp2074
+        - tmp401*tmp2086 - tmp402*tmp2104 - tmp135*tmp2250 - tmp132*tmp2251 - tmp171*tmp2252
+        - tmp186*tmp2253 - tmp205*tmp2254 - tmp223*tmp2255;
+    dr_dq_data[7 + 10 * 4] = phi9_ddot*tmp2232 + phi10_ddot*tmp2241 - tmp2263 - tmp2273
+        + phi1_ddot*tmp2217 + phi2_ddot*tmp2218 + phi3_ddot*tmp2219 + phi4_ddot*tmp2220
+        + phi5_ddot*tmp2221 + phi6_ddot*tmp2222 + phi7_ddot*tmp2223 + phi8_ddot*tmp2224;
+    const Scalar tmp2274 = -tmp400*tmp2054 - tmp399*tmp2056 - tmp401*tmp2084 - tmp402*tmp2103
+        - tmp166*tmp2252 - tmp163*tmp2253 - tmp202*tmp2254 - tmp222*tmp2255;
+    dr_dq_data[8 + 10 * 4] = phi5_ddot*tmp2229 + phi6_ddot*tmp2230 + phi7_ddot*tmp2231
+        + phi8_ddot*tmp2232 + phi9_ddot*tmp2233 + phi10_ddot*tmp2242 - tmp2264 - tmp2274
+        + phi1_ddot*tmp2225 + phi2_ddot*tmp2226 + phi3_ddot*tmp2227 + phi4_ddot*tmp2228;
+    const Scalar tmp2275 = -tmp402*tmp2081 - tmp401*tmp2083 - tmp200*tmp2254 - tmp197*tmp2255;
+    dr_dq_data[9 + 10 * 4] = phi1_ddot*tmp2234 + phi2_ddot*tmp2235 + phi3_ddot*tmp2236
+        + phi4_ddot*tmp2237 + phi5_ddot*tmp2238 + phi6_ddot*tmp2239 + phi7_ddot*tmp2240
+        + phi8_ddot*tmp2241 + phi9_ddot*tmp2242 + phi10_ddot*tmp2243 - tmp2265 - tmp2275;
+    const Scalar tmp2276 = l*tmp81;
+    const Scalar tmp2277 = -tmp78;
+    const Scalar tmp2278 = l*tmp2277;
+    const Scalar tmp2279 = phi6_dot*tmp2278;
+    const Scalar tmp2280 = phi5_dot*tmp2278 + tmp2279;
+    const Scalar tmp2281 = phi4_dot*tmp2278 + tmp2280;
+    const Scalar tmp2282 = phi3_dot*tmp2278 + tmp2281;
+    const Scalar tmp2283 = phi2_dot*tmp2278 + tmp2282;
+    const Scalar tmp2284 = phi1_dot*tmp2278 + tmp2283;
+    const Scalar tmp2285 = phi6_dot*tmp2276;
+    const Scalar tmp2286 = l*tmp106;
+    const Scalar tmp2287 = -tmp103;
+    const Scalar tmp2288 = l*tmp2287;
+    const Scalar tmp2289 = tmp2278 + tmp2288;
+    const Scalar tmp2290 = tmp2278 + tmp2288;
+    const Scalar tmp2291 = phi7_dot*tmp2288;
+    const Scalar tmp2292 = phi6_dot*tmp2290 + tmp2291;
+    const Scalar tmp2293 = phi5_dot*tmp2289 + tmp2292;
+    const Scalar tmp2294 = phi4_dot*tmp2290 + tmp2293;
+    const Scalar tmp2295 = phi3_dot*tmp2289 + tmp2294;
+    const Scalar tmp2296 = phi2_dot*tmp2290 + tmp2295;
+    const Scalar tmp2297 = tmp2296 + phi1_dot*tmp2289;
+    const Scalar tmp2298 = phi7_dot*tmp2286;
+    const Scalar tmp2299 = tmp2276 + tmp2286;
+    const Scalar tmp2300 = tmp2276 + tmp2286;
+    const Scalar tmp2301 = l*tmp134;
+    const Scalar tmp2302 = -tmp131;
+    const Scalar tmp2303 = l*tmp2302;
+    const Scalar tmp2304 = tmp2303 + tmp2288;
+    const Scalar tmp2305 = tmp2304 + tmp2278;
+    const Scalar tmp2306 = tmp2303 + tmp2290;
+    const Scalar tmp2307 = tmp2304 + tmp2278;
+    const Scalar tmp2308 = phi8_dot*tmp2303;
+    const Scalar tmp2309 = phi7_dot*tmp2304 + tmp2308;
+    const Scalar tmp2310 = phi6_dot*tmp2306 + tmp2309;
+    const Scalar tmp2311 = phi5_dot*tmp2305 + tmp2310;
+    const Scalar tmp2312 = phi4_dot*tmp2306 + tmp2311;
+    const Scalar tmp2313 = phi3_dot*tmp2307 + tmp2312;
+    const Scalar tmp2314 = phi2_dot*tmp2306 + tmp2313;
+    const Scalar tmp2315 = phi1_dot*tmp2305 + tmp2314;
+    const Scalar tmp2316 = phi8_dot*tmp2301;
+    const Scalar tmp2317 = tmp2301 + tmp2286;
+    const Scalar tmp2318 = tmp2299 + tmp2301;
+    const Scalar tmp2319 = tmp2317 + tmp2276;
+    const Scalar tmp2320 = tmp2317 + tmp2276;
+    const Scalar tmp2321 = l*tmp165;
+    const Scalar tmp2322 = -tmp162;
+    const Scalar tmp2323 = l*tmp2322;
+    const Scalar tmp2324 = tmp2304 + tmp2323;
+    const Scalar tmp2325 = tmp2324 + tmp2278;
+    const Scalar tmp2326 = tmp2303 + tmp2323;
+    const Scalar tmp2327 = tmp2326 + tmp2290;
+    const Scalar tmp2328 = tmp2324 + tmp2278;
+    const Scalar tmp2329 = tmp2326 + tmp2290;
+    const Scalar tmp2330 = phi9_dot*tmp2323;
+    const Scalar tmp2331 = phi8_dot*tmp2326 + tmp2330;
+    const Scalar tmp2332 = phi7_dot*tmp2324 + tmp2331;
+    const Scalar tmp2333 = phi6_dot*tmp2327 + tmp2332;
+    const Scalar tmp2334 = phi5_dot*tmp2325 + tmp2333;
+    const Scalar tmp2335 = phi4_dot*tmp2329 + tmp2334;
+    const Scalar tmp2336 = phi3_dot*tmp2328 + tmp2335;
+    const Scalar tmp2337 = phi2_dot*tmp2327 + tmp2336;
+    const Scalar tmp2338 = phi1_dot*tmp2325 + tmp2337;
+    const Scalar tmp2339 = phi9_dot*tmp2321;
+    const Scalar tmp2340 = tmp2301 + tmp2321;
+    const Scalar tmp2341 = tmp2317 + tmp2321;
+    const Scalar tmp2342 = tmp2299 + tmp2340;
+    const Scalar tmp2343 = tmp2341 + tmp2276;
+    const Scalar tmp2344 = tmp2299 + tmp2340;
+    const Scalar tmp2345 = tmp2341 + tmp2276;
+    const Scalar tmp2346 = l*tmp199;
+    const Scalar tmp2347 = -tmp196;
+    const Scalar tmp2348 = l*tmp2347;
+    const Scalar tmp2349 = tmp2323 + tmp2348;
+    const Scalar tmp2350 = tmp2305 + tmp2349;
+    const Scalar tmp2351 = tmp2326 + tmp2348;
+    const Scalar tmp2352 = tmp2351 + tmp2290;
+    const Scalar tmp2353 = tmp2304 + tmp2349;
+    const Scalar tmp2354 = tmp2353 + tmp2278;
+    const Scalar tmp2355 = tmp2351 + tmp2290;
+    const Scalar tmp2356 = phi10_dot*tmp2348;
+    const Scalar tmp2357 = phi9_dot*tmp2349 + tmp2356;
+    const Scalar tmp2358 = phi8_dot*tmp2351 + tmp2357;
+    const Scalar tmp2359 = phi7_dot*tmp2353 + tmp2358;
+    const Scalar tmp2360 = phi6_dot*tmp2352 + tmp2359;
+    const Scalar tmp2361 = phi5_dot*tmp2350 + tmp2360;
+    const Scalar tmp2362 = phi4_dot*tmp2355 + tmp2361;
+    const Scalar tmp2363 = phi3_dot*tmp2354 + tmp2362;
+    const Scalar tmp2364 = phi2_dot*tmp2352 + tmp2363;
+    const Scalar tmp2365 = phi1_dot*tmp2350 + tmp2364;
+    const Scalar tmp2366 = phi10_dot*tmp2346;
+    const Scalar tmp2367 = tmp2321 + tmp2346;
+    const Scalar tmp2368 = tmp2340 + tmp2346;
+    const Scalar tmp2369 = tmp2317 + tmp2367;
+    const Scalar tmp2370 = tmp2299 + tmp2368;
+    const Scalar tmp2371 = tmp2319 + tmp2367;
+    const Scalar tmp2372 = tmp2299 + tmp2368;
+    const Scalar tmp2373 = tmp2369 + tmp2276;
+    const Scalar tmp2374 = -tmp2276;
+    const Scalar tmp2375 = phi5_dot*tmp2374 - tmp2285;
+    const Scalar tmp2376 = -tmp2276;
+    const Scalar tmp2377 = tmp2375 + phi4_dot*tmp2376;
+    const Scalar tmp2378 = -tmp2276;
+    const Scalar tmp2379 = tmp2377 + phi3_dot*tmp2378;
+    const Scalar tmp2380 = -tmp2276;
+    const Scalar tmp2381 = tmp2379 + phi2_dot*tmp2380;
+    const Scalar tmp2382 = phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp2374
+        + phi5_dot*tmp2375 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp2376 + phi4_dot*tmp2377
+        + phi3_dot*(phi1_dot + phi2_dot)*tmp2378 + phi3_dot*tmp2379 + phi1_dot*phi2_dot*tmp2380
+        + (phi1_dot + phi2_dot)*tmp2381
         + (-(phi1_dot*phi1_dot)
-            + phi6_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot))*tmp2235
-        - phi6_dot*tmp2244;
-    const Scalar tmp2342 = (phi1_dot*phi2_dot + phi3_dot*(phi1_dot + phi2_dot)
+            + phi6_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot))*tmp2276
+        - phi6_dot*tmp2285;
+    const Scalar tmp2383 = (phi1_dot*phi2_dot + phi3_dot*(phi1_dot + phi2_dot)
             + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)
             + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)
-            + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot))*tmp2237
-        + phi6_dot*tmp2238 + phi5_dot*tmp2239 + phi4_dot*tmp2240 + phi3_dot*tmp2241
-        + phi2_dot*tmp2242 + phi1_dot*tmp2243;
-    const Scalar tmp2343 = -tmp2258;
-    const Scalar tmp2344 = -tmp2257 + phi6_dot*tmp2343;
-    const Scalar tmp2345 = -tmp2259;
-    const Scalar tmp2346 = tmp2344 + phi5_dot*tmp2345;
-    const Scalar tmp2347 = -tmp2258;
-    const Scalar tmp2348 = tmp2346 + phi4_dot*tmp2347;
-    const Scalar tmp2349 = -tmp2259;
-    const Scalar tmp2350 = tmp2348 + phi3_dot*tmp2349;
-    const Scalar tmp2351 = -tmp2258;
-    const Scalar tmp2352 = tmp2350 + phi2_dot*tmp2351;
-    const Scalar tmp2353 = -phi7_dot*tmp2257 - (phi1_dot*phi1_dot)*tmp2259
-        + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp2343 + phi6_dot*tmp2344
-        + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp2345 + phi5_dot*tmp2346
-        + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp2347 + phi4_dot*tmp2348
-        + phi3_dot*(phi1_dot + phi2_dot)*tmp2349 + phi3_dot*tmp2350 + phi1_dot*phi2_dot*tmp2351
-        + (phi1_dot + phi2_dot)*tmp2352
-        + phi7_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot - phi6_dot)*tmp2245;
-    const Scalar tmp2354 = phi2_dot*tmp2255 + phi1_dot*tmp2256
-        + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp2247
+            + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot))*tmp2278
+        + phi6_dot*tmp2279 + phi5_dot*tmp2280 + phi4_dot*tmp2281 + phi3_dot*tmp2282
+        + phi2_dot*tmp2283 + phi1_dot*tmp2284;
+    const Scalar tmp2384 = -tmp2299;
+    const Scalar tmp2385 = -tmp2298 + phi6_dot*tmp2384;
+    const Scalar tmp2386 = -tmp2300;
+    const Scalar tmp2387 = tmp2385 + phi5_dot*tmp2386;
+    const Scalar tmp2388 = -tmp2299;
+    const Scalar tmp2389 = tmp2387 + phi4_dot*tmp2388;
+    const Scalar tmp2390 = -tmp2300;
+    const Scalar tmp2391 = tmp2389 + phi3_dot*tmp2390;
+    const Scalar tmp2392 = -tmp2299;
+    const Scalar tmp2393 = tmp2391 + phi2_dot*tmp2392;
+    const Scalar tmp2394 = -phi7_dot*tmp2298 - (phi1_dot*phi1_dot)*tmp2300
+        + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp2384 + phi6_dot*tmp2385
+        + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp2386 + phi5_dot*tmp2387
+        + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp2388 + phi4_dot*tmp2389
+        + phi3_dot*(phi1_dot + phi2_dot)*tmp2390 + phi3_dot*tmp2391 + phi1_dot*phi2_dot*tmp2392
+        + (phi1_dot + phi2_dot)*tmp2393
+        + phi7_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot - phi6_dot)*tmp2286;
+    const Scalar tmp2395 = phi2_dot*tmp2296 + phi1_dot*tmp2297
+        + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp2288
         + (phi3_dot*(phi1_dot + phi2_dot)
-            + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot))*tmp2248
+            + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot))*tmp2289
         + (phi1_dot*phi2_dot + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)
-            + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot))*tmp2249
-        + phi7_dot*tmp2250 + phi6_dot*tmp2251 + phi5_dot*tmp2252 + phi4_dot*tmp2253
-        + phi3_dot*tmp2254;
-    const Scalar tmp2355 = -tmp2276;
-    const Scalar tmp2356 = -tmp2275 + phi7_dot*tmp2355;
-    const Scalar tmp2357 = -tmp2277;
-    const Scalar tmp2358 = tmp2356 + phi6_dot*tmp2357;
-    const Scalar tmp2359 = -tmp2278;
-    const Scalar tmp2360 = tmp2358 + phi5_dot*tmp2359;
-    const Scalar tmp2361 = -tmp2277;
-    const Scalar tmp2362 = tmp2360 + phi4_dot*tmp2361;
-    const Scalar tmp2363 = -tmp2279;
-    const Scalar tmp2364 = tmp2362 + phi3_dot*tmp2363;
-    const Scalar tmp2365 = -tmp2277;
-    const Scalar tmp2366 = tmp2364 + phi2_dot*tmp2365;
-    const Scalar tmp2367 = phi8_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot
-            - phi6_dot - phi7_dot)*tmp2260
-        - phi8_dot*tmp2275 - (phi1_dot*phi1_dot)*tmp2278
-        + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp2355
-        + phi7_dot*tmp2356 + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp2357
-        + phi6_dot*tmp2358 + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp2359
-        + phi5_dot*tmp2360 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp2361 + phi4_dot*tmp2362
-        + phi3_dot*(phi1_dot + phi2_dot)*tmp2363 + phi3_dot*tmp2364 + phi1_dot*phi2_dot*tmp2365
-        + (phi1_dot + phi2_dot)*tmp2366;
-    const Scalar tmp2368 = phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot
-            + phi7_dot)*tmp2262
-        + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp2263
-        + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp2264
+            + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot))*tmp2290
+        + phi7_dot*tmp2291 + phi6_dot*tmp2292 + phi5_dot*tmp2293 + phi4_dot*tmp2294
+        + phi3_dot*tmp2295;
+    const Scalar tmp2396 = -tmp2317;
+    const Scalar tmp2397 = -tmp2316 + phi7_dot*tmp2396;
+    const Scalar tmp2398 = -tmp2318;
+    const Scalar tmp2399 = tmp2397 + phi6_dot*tmp2398;
+    const Scalar tmp2400 = -tmp2319;
+    const Scalar tmp2401 = tmp2399 + phi5_dot*tmp2400;
+    const Scalar tmp2402 = -tmp2318;
+    const Scalar tmp2403 = tmp2401 + phi4_dot*tmp2402;
+    const Scalar tmp2404 = -tmp2320;
+    const Scalar tmp2405 = tmp2403 + phi3_dot*tmp2404;
+    const Scalar tmp2406 = -tmp2318;
+    const Scalar tmp2407 = tmp2405 + phi2_dot*tmp2406;
+    const Scalar tmp2408 = phi8_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot
+            - phi6_dot - phi7_dot)*tmp2301
+        - phi8_dot*tmp2316 - (phi1_dot*phi1_dot)*tmp2319
+        + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp2396
+        + phi7_dot*tmp2397 + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp2398
+        + phi6_dot*tmp2399 + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp2400
+        + phi5_dot*tmp2401 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp2402 + phi4_dot*tmp2403
+        + phi3_dot*(phi1_dot + phi2_dot)*tmp2404 + phi3_dot*tmp2405 + phi1_dot*phi2_dot*tmp2406
+        + (phi1_dot + phi2_dot)*tmp2407;
+    const Scalar tmp2409 = phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot
+            + phi7_dot)*tmp2303
+        + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp2304
+        + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp2305
         + (phi1_dot*phi2_dot + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)
-            + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot))*tmp2265
-        + phi3_dot*(phi1_dot + phi2_dot)*tmp2266 + phi8_dot*tmp2267 + phi7_dot*tmp2268
-        + phi6_dot*tmp2269 + phi5_dot*tmp2270 + phi4_dot*tmp2271 + phi3_dot*tmp2272
-        + phi2_dot*tmp2273 + phi1_dot*tmp2274;
-    const Scalar tmp2369 = -tmp2299;
-    const Scalar tmp2370 = -tmp2298 + phi8_dot*tmp2369;
-    const Scalar tmp2371 = -tmp2300;
-    const Scalar tmp2372 = tmp2370 + phi7_dot*tmp2371;
-    const Scalar tmp2373 = -tmp2301;
-    const Scalar tmp2374 = tmp2372 + phi6_dot*tmp2373;
-    const Scalar tmp2375 = -tmp2302;
-    const Scalar tmp2376 = tmp2374 + phi5_dot*tmp2375;
-    const Scalar tmp2377 = -tmp2303;
-    const Scalar tmp2378 = tmp2376 + phi4_dot*tmp2377;
-    const Scalar tmp2379 = -tmp2304;
-    const Scalar tmp2380 = tmp2378 + phi3_dot*tmp2379;
-    const Scalar tmp2381 = -tmp2301;
-    const Scalar tmp2382 = tmp2380 + phi2_dot*tmp2381;
-    const Scalar tmp2383 = phi9_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot
-            - phi6_dot - phi7_dot - phi8_dot)*tmp2280
-        - phi9_dot*tmp2298 - (phi1_dot*phi1_dot)*tmp2302
+            + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot))*tmp2306
+        + phi3_dot*(phi1_dot + phi2_dot)*tmp2307 + phi8_dot*tmp2308 + phi7_dot*tmp2309
+        + phi6_dot*tmp2310 + phi5_dot*tmp2311 + phi4_dot*tmp2312 + phi3_dot*tmp2313
+        + phi2_dot*tmp2314 + phi1_dot*tmp2315;
+    const Scalar tmp2410 = -tmp2340;
+    const Scalar tmp2411 = -tmp2339 + phi8_dot*tmp2410;
+    const Scalar tmp2412 = -tmp2341;
+    const Scalar tmp2413 = tmp2411 + phi7_dot*tmp2412;
+    const Scalar tmp2414 = -tmp2342;
+    const Scalar tmp2415 = tmp2413 + phi6_dot*tmp2414;
+    const Scalar tmp2416 = -tmp2343;
+    const Scalar tmp2417 = tmp2415 + phi5_dot*tmp2416;
+    const Scalar tmp2418 = -tmp2344;
+    const Scalar tmp2419 = tmp2417 + phi4_dot*tmp2418;
+    const Scalar tmp2420 = -tmp2345;
+    const Scalar tmp2421 = tmp2419 + phi3_dot*tmp2420;
+    const Scalar tmp2422 = -tmp2342;
+    const Scalar tmp2423 = tmp2421 + phi2_dot*tmp2422;
+    const Scalar tmp2424 = phi9_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot
+            - phi6_dot - phi7_dot - phi8_dot)*tmp2321
+        - phi9_dot*tmp2339 - (phi1_dot*phi1_dot)*tmp2343
         + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot
-            + phi7_dot)*tmp2369
-        + phi8_dot*tmp2370
-        + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp2371
-        + phi7_dot*tmp2372 + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp2373
-        + phi6_dot*tmp2374 + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp2375
-        + phi5_dot*tmp2376 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp2377 + phi4_dot*tmp2378
-        + phi3_dot*(phi1_dot + phi2_dot)*tmp2379 + phi3_dot*tmp2380 + phi1_dot*phi2_dot*tmp2381
-        + (phi1_dot + phi2_dot)*tmp2382;
-    const Scalar tmp2384 = phi9_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot
-            + phi7_dot + phi8_dot)*tmp2282
-        + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp2283
-        + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp2284
+            + phi7_dot)*tmp2410
+        + phi8_dot*tmp2411
+        + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp2412
+        + phi7_dot*tmp2413 + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp2414
+        + phi6_dot*tmp2415 + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp2416
+        + phi5_dot*tmp2417 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp2418 + phi4_dot*tmp2419
+        + phi3_dot*(phi1_dot + phi2_dot)*tmp2420 + phi3_dot*tmp2421 + phi1_dot*phi2_dot*tmp2422
+        + (phi1_dot + phi2_dot)*tmp2423;
+    const Scalar tmp2425 = phi9_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot
+            + phi7_dot + phi8_dot)*tmp2323
+        + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp2324
+        + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp2325
         + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot
-            + phi7_dot)*tmp2285
+            + phi7_dot)*tmp2326
         + (phi1_dot*phi2_dot
-            + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot))*tmp2286
-        + phi3_dot*(phi1_dot + phi2_dot)*tmp2287 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp2288
-        + phi9_dot*tmp2289 + phi8_dot*tmp2290 + phi7_dot*tmp2291 + phi6_dot*tmp2292
-        + phi5_dot*tmp2293 + phi4_dot*tmp2294 + phi3_dot*tmp2295 + phi2_dot*tmp2296
-        + phi1_dot*tmp2297;
-    const Scalar tmp2385 = -tmp2326;
-    const Scalar tmp2386 = -tmp2325 + phi9_dot*tmp2385;
-    const Scalar tmp2387 = -tmp2327;
-    const Scalar tmp2388 = tmp2386 + phi8_dot*tmp2387;
-    const Scalar tmp2389 = -tmp2328;
-    const Scalar tmp2390 = tmp2388 + phi7_dot*tmp2389;
-    const Scalar tmp2391 = -tmp2329;
-    const Scalar tmp2392 = tmp2390 + phi6_dot*tmp2391;
-    const Scalar tmp2393 = -tmp2330;
-    const Scalar tmp2394 = tmp2392 + phi5_dot*tmp2393;
-    const Scalar tmp2395 = -tmp2331;
-    const Scalar tmp2396 = tmp2394 + phi4_dot*tmp2395;
-    const Scalar tmp2397 = -tmp2332;
-    const Scalar tmp2398 = tmp2396 + phi3_dot*tmp2397;
-    const Scalar tmp2399 = -tmp2329;
-    const Scalar tmp2400 = tmp2398 + phi2_dot*tmp2399;
-    const Scalar tmp2401 = phi10_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot
-            - phi6_dot - phi7_dot - phi8_dot - phi9_dot)*tmp2305
-        - phi10_dot*tmp2325 - (phi1_dot*phi1_dot)*tmp2330
+            + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot))*tmp2327
+        + phi3_dot*(phi1_dot + phi2_dot)*tmp2328 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp2329
+        + phi9_dot*tmp2330 + phi8_dot*tmp2331 + phi7_dot*tmp2332 + phi6_dot*tmp2333
+        + phi5_dot*tmp2334 + phi4_dot*tmp2335 + phi3_dot*tmp2336 + phi2_dot*tmp2337
+        + phi1_dot*tmp2338;
+    const Scalar tmp2426 = -tmp2367;
+    const Scalar tmp2427 = -tmp2366 + phi9_dot*tmp2426;
+    const Scalar tmp2428 = -tmp2368;
+    const Scalar tmp2429 = tmp2427 + phi8_dot*tmp2428;
+    const Scalar tmp2430 = -tmp2369;
+    const Scalar tmp2431 = tmp2429 + phi7_dot*tmp2430;
+    const Scalar tmp2432 = -tmp2370;
+    const Scalar tmp2433 = tmp2431 + phi6_dot*tmp2432;
+    const Scalar tmp2434 = -tmp2371;
+    const Scalar tmp2435 = tmp2433 + phi5_dot*tmp2434;
+    const Scalar tmp2436 = -tmp2372;
+    const Scalar tmp2437 = tmp2435 + phi4_dot*tmp2436;
+    const Scalar tmp2438 = -tmp2373;
+    const Scalar tmp2439 = tmp2437 + phi3_dot*tmp2438;
+    const Scalar tmp2440 = -tmp2370;
+    const Scalar tmp2441 = tmp2439 + phi2_dot*tmp2440;
+    const Scalar tmp2442 = phi10_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot
+            - phi6_dot - phi7_dot - phi8_dot - phi9_dot)*tmp2346
+        - phi10_dot*tmp2366 - (phi1_dot*phi1_dot)*tmp2371
         + phi9_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot
-            + phi8_dot)*tmp2385
-        + phi9_dot*tmp2386
+            + phi8_dot)*tmp2426
+        + phi9_dot*tmp2427
         + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot
-            + phi7_dot)*tmp2387
-        + phi8_dot*tmp2388
-        + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp2389
-        + phi7_dot*tmp2390 + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp2391
-        + phi6_dot*tmp2392 + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp2393
-        + phi5_dot*tmp2394 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp2395 + phi4_dot*tmp2396
-        + phi3_dot*(phi1_dot + phi2_dot)*tmp2397 + phi3_dot*tmp2398 + phi1_dot*phi2_dot*tmp2399
-        + (phi1_dot + phi2_dot)*tmp2400;
-    const Scalar tmp2402 = phi10_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot
-            + phi6_dot + phi7_dot + phi8_dot + phi9_dot)*tmp2307
+            + phi7_dot)*tmp2428
+        + phi8_dot*tmp2429
+        + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp2430
+        + phi7_dot*tmp2431 + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp2432
+        + phi6_dot*tmp2433 + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp2434
+        + phi5_dot*tmp2435 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp2436 + phi4_dot*tmp2437
+        + phi3_dot*(phi1_dot + phi2_dot)*tmp2438 + phi3_dot*tmp2439 + phi1_dot*phi2_dot*tmp2440
+        + (phi1_dot + phi2_dot)*tmp2441;
+    const Scalar tmp2443 = phi10_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot
+            + phi6_dot + phi7_dot + phi8_dot + phi9_dot)*tmp2348
         + phi9_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot
-            + phi8_dot)*tmp2308
-        + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp2309
+            + phi8_dot)*tmp2349
+        + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp2350
         + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot
-            + phi7_dot)*tmp2310
+            + phi7_dot)*tmp2351
         + (phi1_dot*phi2_dot
-            + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot))*tmp2311
-        + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp2312
-        + phi3_dot*(phi1_dot + phi2_dot)*tmp2313 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp2314
-        + phi10_dot*tmp2315 + phi9_dot*tmp2316 + phi8_dot*tmp2317 + phi7_dot*tmp2318
-        + phi6_dot*tmp2319 + phi5_dot*tmp2320 + phi4_dot*tmp2321 + phi3_dot*tmp2322
-        + phi2_dot*tmp2323 + phi1_dot*tmp2324;
-    const Scalar tmp2403 = Scalar(2)*tmp128*m*tmp2259 + Scalar(2)*tmp139*m*tmp2264
-        + Scalar(2)*tmp159*m*tmp2278 + Scalar(2)*tmp170*m*tmp2284 + Scalar(2)*tmp193*m*tmp2302
-        + Scalar(2)*tmp204*m*tmp2309 + Scalar(2)*tmp230*m*tmp2330 + Scalar(2)*tmp85*m*tmp2237
-        + Scalar(2)*tmp100*m*tmp2235 + Scalar(2)*tmp110*m*tmp2248;
-    const Scalar tmp2404 = tmp128*m*tmp2258 + tmp127*m*tmp2259 + tmp141*m*tmp2264 + tmp139*m*tmp2265
-        + tmp159*m*tmp2277 + tmp158*m*tmp2278 + tmp173*m*tmp2284 + tmp170*m*tmp2286
-        + tmp193*m*tmp2301 + tmp192*m*tmp2302 + tmp207*m*tmp2309 + tmp204*m*tmp2311
-        + tmp230*m*tmp2329 + tmp229*m*tmp2330 + (tmp85*m + tmp87*m)*tmp2237
-        + (tmp99*m + tmp100*m)*tmp2235 + tmp112*m*tmp2248 + tmp110*m*tmp2249;
-    const Scalar tmp2405 = Scalar(2)*tmp127*m*tmp2258 + Scalar(2)*tmp141*m*tmp2265
-        + Scalar(2)*tmp158*m*tmp2277 + Scalar(2)*tmp173*m*tmp2286 + Scalar(2)*tmp192*m*tmp2301
-        + Scalar(2)*tmp207*m*tmp2311 + Scalar(2)*tmp229*m*tmp2329 + Scalar(2)*tmp87*m*tmp2237
-        + Scalar(2)*tmp99*m*tmp2235 + Scalar(2)*tmp112*m*tmp2249;
-    const Scalar tmp2406 = (tmp126*m + tmp128*m)*tmp2259 + tmp142*m*tmp2264 + tmp139*m*tmp2266
-        + tmp159*m*tmp2279 + tmp157*m*tmp2278 + tmp174*m*tmp2284 + tmp170*m*tmp2287
-        + tmp193*m*tmp2304 + tmp191*m*tmp2302 + tmp209*m*tmp2309 + tmp204*m*tmp2313
-        + tmp230*m*tmp2332 + tmp228*m*tmp2330 + (tmp85*m + tmp88*m)*tmp2237
-        + (tmp98*m + tmp100*m)*tmp2235 + (tmp110*m + tmp113*m)*tmp2248;
-    const Scalar tmp2407 = tmp127*m*tmp2259 + tmp126*m*tmp2258 + tmp142*m*tmp2265 + tmp141*m*tmp2266
-        + tmp158*m*tmp2279 + tmp157*m*tmp2277 + tmp174*m*tmp2286 + tmp173*m*tmp2287
-        + tmp192*m*tmp2304 + tmp191*m*tmp2301 + tmp209*m*tmp2311 + tmp207*m*tmp2313
-        + tmp229*m*tmp2332 + tmp228*m*tmp2329 + (tmp87*m + tmp88*m)*tmp2237
-        + (tmp98*m + tmp99*m)*tmp2235 + tmp113*m*tmp2249 + tmp112*m*tmp2248;
-    const Scalar tmp2408 = Scalar(2)*tmp126*m*tmp2259 + Scalar(2)*tmp142*m*tmp2266
-        + Scalar(2)*tmp157*m*tmp2279 + Scalar(2)*tmp174*m*tmp2287 + Scalar(2)*tmp191*m*tmp2304
-        + Scalar(2)*tmp209*m*tmp2313 + Scalar(2)*tmp228*m*tmp2332 + Scalar(2)*tmp88*m*tmp2237
-        + Scalar(2)*tmp98*m*tmp2235 + Scalar(2)*tmp113*m*tmp2248;
-    const Scalar tmp2409 = tmp128*m*tmp2258 + tmp125*m*tmp2259 + tmp143*m*tmp2264 + tmp139*m*tmp2265
-        + tmp159*m*tmp2277 + tmp156*m*tmp2278 + tmp175*m*tmp2284 + tmp170*m*tmp2288
-        + tmp193*m*tmp2303 + tmp190*m*tmp2302 + tmp210*m*tmp2309 + tmp204*m*tmp2314
-        + tmp230*m*tmp2331 + tmp227*m*tmp2330 + (tmp85*m + tmp86*m)*tmp2237
-        + (tmp97*m + tmp100*m)*tmp2235 + tmp114*m*tmp2248 + tmp110*m*tmp2249;
-    const Scalar tmp2410 = (tmp125*m + tmp127*m)*tmp2258 + (tmp141*m + tmp143*m)*tmp2265
-        + (tmp156*m + tmp158*m)*tmp2277 + tmp175*m*tmp2286 + tmp173*m*tmp2288 + tmp192*m*tmp2303
-        + tmp190*m*tmp2301 + tmp210*m*tmp2311 + tmp207*m*tmp2314 + tmp229*m*tmp2331
-        + tmp227*m*tmp2329 + (tmp86*m + tmp87*m)*tmp2237 + (tmp97*m + tmp99*m)*tmp2235
-        + (tmp112*m + tmp114*m)*tmp2249;
-    const Scalar tmp2411 = tmp126*m*tmp2258 + tmp125*m*tmp2259 + tmp143*m*tmp2266 + tmp142*m*tmp2265
-        + tmp157*m*tmp2277 + tmp156*m*tmp2279 + tmp175*m*tmp2287 + tmp174*m*tmp2288
-        + tmp191*m*tmp2303 + tmp190*m*tmp2304 + tmp210*m*tmp2313 + tmp209*m*tmp2314
-        + tmp228*m*tmp2331 + tmp227*m*tmp2332 + (tmp86*m + tmp88*m)*tmp2237
-        + (tmp97*m + tmp98*m)*tmp2235 + tmp114*m*tmp2248 + tmp113*m*tmp2249;
-    const Scalar tmp2412 = Scalar(2)*tmp125*m*tmp2258 + Scalar(2)*tmp143*m*tmp2265
-        + Scalar(2)*tmp156*m*tmp2277 + Scalar(2)*tmp175*m*tmp2288 + Scalar(2)*tmp190*m*tmp2303
-        + Scalar(2)*tmp210*m*tmp2314 + Scalar(2)*tmp227*m*tmp2331 + Scalar(2)*tmp86*m*tmp2237
-        + Scalar(2)*tmp97*m*tmp2235 + Scalar(2)*tmp114*m*tmp2249;
-    const Scalar tmp2413 = (tmp124*m + tmp128*m)*tmp2259 + (tmp138*m + tmp139*m)*tmp2264
-        + (tmp155*m + tmp159*m)*tmp2278 + (tmp169*m + tmp170*m)*tmp2284
-        + (tmp189*m + tmp193*m)*tmp2302 + (tmp203*m + tmp204*m)*tmp2309
-        + (tmp226*m + tmp230*m)*tmp2330 + (tmp84*m + tmp85*m)*tmp2237 + (tmp96*m + tmp100*m)*tmp2235
-        + (tmp109*m + tmp110*m)*tmp2248;
-    const Scalar tmp2414 = tmp127*m*tmp2259 + tmp124*m*tmp2258 + tmp141*m*tmp2264 + tmp138*m*tmp2265
-        + tmp158*m*tmp2278 + tmp155*m*tmp2277 + tmp173*m*tmp2284 + tmp169*m*tmp2286
-        + tmp192*m*tmp2302 + tmp189*m*tmp2301 + tmp207*m*tmp2309 + tmp203*m*tmp2311
-        + tmp229*m*tmp2330 + tmp226*m*tmp2329 + (tmp84*m + tmp87*m)*tmp2237
-        + (tmp96*m + tmp99*m)*tmp2235 + tmp112*m*tmp2248 + tmp109*m*tmp2249;
-    const Scalar tmp2415 = (tmp124*m + tmp126*m)*tmp2259 + tmp142*m*tmp2264 + tmp138*m*tmp2266
-        + tmp157*m*tmp2278 + tmp155*m*tmp2279 + tmp174*m*tmp2284 + tmp169*m*tmp2287
-        + tmp191*m*tmp2302 + tmp189*m*tmp2304 + tmp209*m*tmp2309 + tmp203*m*tmp2313
-        + tmp228*m*tmp2330 + tmp226*m*tmp2332 + (tmp84*m + tmp88*m)*tmp2237
-        + (tmp96*m + tmp98*m)*tmp2235 + (tmp109*m + tmp113*m)*tmp2248;
-    const Scalar tmp2416 = tmp125*m*tmp2259 + tmp124*m*tmp2258 + tmp143*m*tmp2264 + tmp138*m*tmp2265
-        + tmp156*m*tmp2278 + tmp155*m*tmp2277 + tmp175*m*tmp2284 + tmp169*m*tmp2288
-        + tmp190*m*tmp2302 + tmp189*m*tmp2303 + tmp210*m*tmp2309 + tmp203*m*tmp2314
-        + tmp227*m*tmp2330 + tmp226*m*tmp2331 + (tmp84*m + tmp86*m)*tmp2237
-        + (tmp96*m + tmp97*m)*tmp2235 + tmp114*m*tmp2248 + tmp109*m*tmp2249;
-    const Scalar tmp2417 = Scalar(2)*tmp124*m*tmp2259 + Scalar(2)*tmp138*m*tmp2264
-        + Scalar(2)*tmp155*m*tmp2278 + Scalar(2)*tmp169*m*tmp2284 + Scalar(2)*tmp189*m*tmp2302
-        + Scalar(2)*tmp203*m*tmp2309 + Scalar(2)*tmp226*m*tmp2330 + Scalar(2)*tmp84*m*tmp2237
-        + Scalar(2)*tmp96*m*tmp2235 + Scalar(2)*tmp109*m*tmp2248;
-    const Scalar tmp2418 = tmp128*m*tmp2258 + tmp123*m*tmp2259 + tmp140*m*tmp2264 + tmp139*m*tmp2265
-        + tmp159*m*tmp2277 + tmp154*m*tmp2278 + tmp172*m*tmp2284 + tmp170*m*tmp2286
-        + tmp193*m*tmp2301 + tmp188*m*tmp2302 + tmp206*m*tmp2309 + tmp204*m*tmp2311
-        + tmp230*m*tmp2329 + tmp225*m*tmp2330 + (tmp79*m + tmp100*m)*tmp2235
-        + (tmp82*m + tmp85*m)*tmp2237 + tmp111*m*tmp2248 + tmp110*m*tmp2249;
-    const Scalar tmp2419 = (tmp123*m + tmp127*m)*tmp2258 + (tmp140*m + tmp141*m)*tmp2265
-        + (tmp154*m + tmp158*m)*tmp2277 + (tmp172*m + tmp173*m)*tmp2286
-        + (tmp188*m + tmp192*m)*tmp2301 + (tmp206*m + tmp207*m)*tmp2311
-        + (tmp225*m + tmp229*m)*tmp2329 + (tmp79*m + tmp99*m)*tmp2235 + (tmp82*m + tmp87*m)*tmp2237
-        + (tmp111*m + tmp112*m)*tmp2249;
-    const Scalar tmp2420 = tmp126*m*tmp2258 + tmp123*m*tmp2259 + tmp142*m*tmp2265 + tmp140*m*tmp2266
-        + tmp157*m*tmp2277 + tmp154*m*tmp2279 + tmp174*m*tmp2286 + tmp172*m*tmp2287
-        + tmp191*m*tmp2301 + tmp188*m*tmp2304 + tmp209*m*tmp2311 + tmp206*m*tmp2313
-        + tmp228*m*tmp2329 + tmp225*m*tmp2332 + (tmp79*m + tmp98*m)*tmp2235
-        + (tmp82*m + tmp88*m)*tmp2237 + tmp113*m*tmp2249 + tmp111*m*tmp2248;
-    const Scalar tmp2421 = (tmp123*m + tmp125*m)*tmp2258 + (tmp140*m + tmp143*m)*tmp2265
-        + (tmp154*m + tmp156*m)*tmp2277 + tmp175*m*tmp2286 + tmp172*m*tmp2288 + tmp190*m*tmp2301
-        + tmp188*m*tmp2303 + tmp210*m*tmp2311 + tmp206*m*tmp2314 + tmp227*m*tmp2329
-        + tmp225*m*tmp2331 + (tmp79*m + tmp97*m)*tmp2235 + (tmp82*m + tmp86*m)*tmp2237
-        + (tmp111*m + tmp114*m)*tmp2249;
-    const Scalar tmp2422 = tmp124*m*tmp2258 + tmp123*m*tmp2259 + tmp140*m*tmp2264 + tmp138*m*tmp2265
-        + tmp155*m*tmp2277 + tmp154*m*tmp2278 + tmp172*m*tmp2284 + tmp169*m*tmp2286
-        + tmp189*m*tmp2301 + tmp188*m*tmp2302 + tmp206*m*tmp2309 + tmp203*m*tmp2311
-        + tmp226*m*tmp2329 + tmp225*m*tmp2330 + (tmp79*m + tmp96*m)*tmp2235
-        + (tmp82*m + tmp84*m)*tmp2237 + tmp111*m*tmp2248 + tmp109*m*tmp2249;
-    const Scalar tmp2423 = Scalar(2)*tmp123*m*tmp2258 + Scalar(2)*tmp140*m*tmp2265
-        + Scalar(2)*tmp154*m*tmp2277 + Scalar(2)*tmp172*m*tmp2286 + Scalar(2)*tmp188*m*tmp2301
-        + Scalar(2)*tmp206*m*tmp2311 + Scalar(2)*tmp225*m*tmp2329 + Scalar(2)*tmp325*tmp78*m*tmp81
-        + Scalar(2)*tmp325*tmp81*m*tmp2236 + Scalar(2)*tmp111*m*tmp2249;
-    const Scalar tmp2424 = tmp104*m*tmp2259 + tmp139*m*tmp2263 + tmp137*m*tmp2264 + tmp159*m*tmp2276
-        + tmp153*m*tmp2278 + tmp170*m*tmp2283 + tmp168*m*tmp2284 + tmp193*m*tmp2300
-        + tmp187*m*tmp2302 + tmp208*m*tmp2309 + tmp204*m*tmp2312 + tmp230*m*tmp2328
-        + tmp224*m*tmp2330 + tmp128*m*tmp2245 + tmp110*m*tmp2247 + tmp107*m*tmp2248;
-    const Scalar tmp2425 = tmp104*m*tmp2258 + tmp141*m*tmp2263 + tmp137*m*tmp2265 + tmp158*m*tmp2276
-        + tmp153*m*tmp2277 + tmp173*m*tmp2283 + tmp168*m*tmp2286 + tmp192*m*tmp2300
-        + tmp187*m*tmp2301 + tmp208*m*tmp2311 + tmp207*m*tmp2312 + tmp229*m*tmp2328
-        + tmp224*m*tmp2329 + tmp127*m*tmp2245 + tmp112*m*tmp2247 + tmp107*m*tmp2249;
-    const Scalar tmp2426 = tmp104*m*tmp2259 + tmp142*m*tmp2263 + tmp137*m*tmp2266 + tmp157*m*tmp2276
-        + tmp153*m*tmp2279 + tmp174*m*tmp2283 + tmp168*m*tmp2287 + tmp191*m*tmp2300
-        + tmp187*m*tmp2304 + tmp209*m*tmp2312 + tmp208*m*tmp2313 + tmp228*m*tmp2328
-        + tmp224*m*tmp2332 + tmp126*m*tmp2245 + tmp113*m*tmp2247 + tmp107*m*tmp2248;
-    const Scalar tmp2427 = tmp104*m*tmp2258 + tmp143*m*tmp2263 + tmp137*m*tmp2265 + tmp156*m*tmp2276
-        + tmp153*m*tmp2277 + tmp175*m*tmp2283 + tmp168*m*tmp2288 + tmp190*m*tmp2300
-        + tmp187*m*tmp2303 + tmp210*m*tmp2312 + tmp208*m*tmp2314 + tmp227*m*tmp2328
-        + tmp224*m*tmp2331 + tmp125*m*tmp2245 + tmp114*m*tmp2247 + tmp107*m*tmp2249;
-    const Scalar tmp2428 = tmp104*m*tmp2259 + tmp138*m*tmp2263 + tmp137*m*tmp2264 + tmp155*m*tmp2276
-        + tmp153*m*tmp2278 + tmp169*m*tmp2283 + tmp168*m*tmp2284 + tmp189*m*tmp2300
-        + tmp187*m*tmp2302 + tmp208*m*tmp2309 + tmp203*m*tmp2312 + tmp226*m*tmp2328
-        + tmp224*m*tmp2330 + tmp124*m*tmp2245 + tmp109*m*tmp2247 + tmp107*m*tmp2248;
-    const Scalar tmp2429 = tmp104*m*tmp2258 + tmp140*m*tmp2263 + tmp137*m*tmp2265 + tmp154*m*tmp2276
-        + tmp153*m*tmp2277 + tmp172*m*tmp2283 + tmp168*m*tmp2286 + tmp188*m*tmp2300
-        + tmp187*m*tmp2301 + tmp208*m*tmp2311 + tmp206*m*tmp2312 + tmp225*m*tmp2328
-        + tmp224*m*tmp2329 + tmp123*m*tmp2245 + tmp111*m*tmp2247 + tmp107*m*tmp2249;
-    const Scalar tmp2430 = Scalar(2)*tmp137*m*tmp2263 + Scalar(2)*tmp153*m*tmp2276
-        + Scalar(2)*tmp168*m*tmp2283 + Scalar(2)*tmp187*m*tmp2300 + Scalar(2)*tmp208*m*tmp2312
-        + Scalar(2)*tmp224*m*tmp2328 + Scalar(2)*tmp325*tmp103*m*tmp106
-        + Scalar(2)*tmp325*tmp106*m*tmp2246;
-    const Scalar tmp2431 = tmp159*m*tmp2260 + tmp139*m*tmp2262 + tmp135*m*tmp2264 + tmp132*m*tmp2278
-        + tmp171*m*tmp2284 + tmp170*m*tmp2285 + tmp193*m*tmp2299 + tmp186*m*tmp2302
-        + tmp205*m*tmp2309 + tmp204*m*tmp2310 + tmp230*m*tmp2327 + tmp223*m*tmp2330;
-    const Scalar tmp2432 = tmp158*m*tmp2260 + tmp141*m*tmp2262 + tmp135*m*tmp2265 + tmp132*m*tmp2277
-        + tmp173*m*tmp2285 + tmp171*m*tmp2286 + tmp192*m*tmp2299 + tmp186*m*tmp2301
-        + tmp207*m*tmp2310 + tmp205*m*tmp2311 + tmp229*m*tmp2327 + tmp223*m*tmp2329;
-    const Scalar tmp2433 = tmp157*m*tmp2260 + tmp142*m*tmp2262 + tmp135*m*tmp2266 + tmp132*m*tmp2279
-        + tmp174*m*tmp2285 + tmp171*m*tmp2287 + tmp191*m*tmp2299 + tmp186*m*tmp2304
-        + tmp209*m*tmp2310 + tmp205*m*tmp2313 + tmp228*m*tmp2327 + tmp223*m*tmp2332;
-    const Scalar tmp2434 = tmp156*m*tmp2260 + tmp143*m*tmp2262 + tmp135*m*tmp2265 + tmp132*m*tmp2277
-        + tmp175*m*tmp2285 + tmp171*m*tmp2288 + tmp190*m*tmp2299 + tmp186*m*tmp2303
-        + tmp210*m*tmp2310 + tmp205*m*tmp2314 + tmp227*m*tmp2327 + tmp223*m*tmp2331;
-    const Scalar tmp2435 = tmp155*m*tmp2260 + tmp138*m*tmp2262 + tmp135*m*tmp2264 + tmp132*m*tmp2278
-        + tmp171*m*tmp2284 + tmp169*m*tmp2285 + tmp189*m*tmp2299 + tmp186*m*tmp2302
-        + tmp205*m*tmp2309 + tmp203*m*tmp2310 + tmp226*m*tmp2327 + tmp223*m*tmp2330;
-    const Scalar tmp2436 = tmp154*m*tmp2260 + tmp140*m*tmp2262 + tmp135*m*tmp2265 + tmp132*m*tmp2277
-        + tmp172*m*tmp2285 + tmp171*m*tmp2286 + tmp188*m*tmp2299 + tmp186*m*tmp2301
-        + tmp206*m*tmp2310 + tmp205*m*tmp2311 + tmp225*m*tmp2327 + tmp223*m*tmp2329;
-    const Scalar tmp2437 = tmp153*m*tmp2260 + tmp137*m*tmp2262 + tmp135*m*tmp2263 + tmp132*m*tmp2276
-        + tmp171*m*tmp2283 + tmp168*m*tmp2285 + tmp187*m*tmp2299 + tmp186*m*tmp2300
-        + tmp208*m*tmp2310 + tmp205*m*tmp2312 + tmp224*m*tmp2327 + tmp223*m*tmp2328;
-    const Scalar tmp2438 = Scalar(2)*tmp131*tmp325*m*tmp134 + Scalar(2)*tmp134*tmp325*m*tmp2261
-        + Scalar(2)*tmp171*m*tmp2285 + Scalar(2)*tmp186*m*tmp2299 + Scalar(2)*tmp205*m*tmp2310
-        + Scalar(2)*tmp223*m*tmp2327;
-    const Scalar tmp2439 = tmp193*m*tmp2280 + tmp170*m*tmp2282 + tmp166*m*tmp2284 + tmp163*m*tmp2302
-        + tmp204*m*tmp2308 + tmp202*m*tmp2309 + tmp230*m*tmp2326 + tmp222*m*tmp2330;
-    const Scalar tmp2440 = tmp192*m*tmp2280 + tmp173*m*tmp2282 + tmp166*m*tmp2286 + tmp163*m*tmp2301
-        + tmp207*m*tmp2308 + tmp202*m*tmp2311 + tmp229*m*tmp2326 + tmp222*m*tmp2329;
-    const Scalar tmp2441 = tmp191*m*tmp2280 + tmp174*m*tmp2282 + tmp166*m*tmp2287 + tmp163*m*tmp2304
-        + tmp209*m*tmp2308 + tmp202*m*tmp2313 + tmp228*m*tmp2326 + tmp222*m*tmp2332;
-    const Scalar tmp2442 = tmp190*m*tmp2280 + tmp175*m*tmp2282 + tmp166*m*tmp2288 + tmp163*m*tmp2303
-        + tmp210*m*tmp2308 + tmp202*m*tmp2314 + tmp227*m*tmp2326 + tmp222*m*tmp2331;
-    const Scalar tmp2443 = tmp189*m*tmp2280 + tmp169*m*tmp2282 + tmp166*m*tmp2284 + tmp163*m*tmp2302
-        + tmp203*m*tmp2308 + tmp202*m*tmp2309 + tmp226*m*tmp2326 + tmp222*m*tmp2330;
-    const Scalar tmp2444 = tmp188*m*tmp2280 + tmp172*m*tmp2282 + tmp166*m*tmp2286 + tmp163*m*tmp2301
-        + tmp206*m*tmp2308 + tmp202*m*tmp2311 + tmp225*m*tmp2326 + tmp222*m*tmp2329;
-    const Scalar tmp2445 = tmp187*m*tmp2280 + tmp168*m*tmp2282 + tmp166*m*tmp2283 + tmp163*m*tmp2300
-        + tmp208*m*tmp2308 + tmp202*m*tmp2312 + tmp224*m*tmp2326 + tmp222*m*tmp2328;
-    const Scalar tmp2446 = tmp186*m*tmp2280 + tmp171*m*tmp2282 + tmp166*m*tmp2285 + tmp163*m*tmp2299
-        + tmp205*m*tmp2308 + tmp202*m*tmp2310 + tmp223*m*tmp2326 + tmp222*m*tmp2327;
-    const Scalar tmp2447 = Scalar(2)*tmp162*tmp325*m*tmp165 + Scalar(2)*tmp165*tmp325*m*tmp2281
-        + Scalar(2)*tmp202*m*tmp2308 + Scalar(2)*tmp222*m*tmp2326;
-    const Scalar tmp2448 = tmp230*m*tmp2305 + tmp204*m*tmp2307 + tmp200*m*tmp2309
-        + tmp197*m*tmp2330;
-    const Scalar tmp2449 = tmp229*m*tmp2305 + tmp207*m*tmp2307 + tmp200*m*tmp2311
-        + tmp197*m*tmp2329;
-    const Scalar tmp2450 = tmp228*m*tmp2305 + tmp209*m*tmp2307 + tmp200*m*tmp2313
-        + tmp197*m*tmp2332;
-    const Scalar tmp2451 = tmp227*m*tmp2305 + tmp210*m*tmp2307 + tmp200*m*tmp2314
-        + tmp197*m*tmp2331;
-    const Scalar tmp2452 = tmp226*m*tmp2305 + tmp203*m*tmp2307 + tmp200*m*tmp2309
-        + tmp197*m*tmp2330;
-    const Scalar tmp2453 = tmp225*m*tmp2305 + tmp206*m*tmp2307 + tmp200*m*tmp2311
-        + tmp197*m*tmp2329;
-    const Scalar tmp2454 = tmp224*m*tmp2305 + tmp208*m*tmp2307 + tmp200*m*tmp2312
-        + tmp197*m*tmp2328;
-    const Scalar tmp2455 = tmp223*m*tmp2305 + tmp205*m*tmp2307 + tmp200*m*tmp2310
-        + tmp197*m*tmp2327;
-    const Scalar tmp2456 = tmp222*m*tmp2305 + tmp202*m*tmp2307 + tmp200*m*tmp2308
-        + tmp197*m*tmp2326;
-    const Scalar tmp2457 = Scalar(2)*tmp196*tmp325*m*tmp199 + Scalar(2)*tmp199*tmp325*m*tmp2306;
-    const Scalar tmp2458 = m*tmp2341;
-    const Scalar tmp2459 = m*tmp2342;
-    const Scalar tmp2460 = m*tmp2353;
-    const Scalar tmp2461 = m*tmp2354;
-    const Scalar tmp2462 = m*tmp2367;
-    const Scalar tmp2463 = m*tmp2368;
-    const Scalar tmp2464 = m*tmp2383;
-    const Scalar tmp2465 = m*tmp2384;
-    const Scalar tmp2466 = m*tmp2401;
-    const Scalar tmp2467 = m*tmp2402;
-    const Scalar tmp2468 = tmp382*tmp2259 + tmp382*tmp2278 + tmp382*tmp2302 + tmp382*tmp2330
-        + tmp382*tmp2235;
-    const Scalar tmp2469 = tmp382*tmp2258 + tmp382*tmp2277 + tmp382*tmp2301 + tmp382*tmp2329
-        + tmp382*tmp2235;
-    const Scalar tmp2470 = tmp382*tmp2259 + tmp382*tmp2279 + tmp382*tmp2304 + tmp382*tmp2332
-        + tmp382*tmp2235;
-    const Scalar tmp2471 = tmp382*tmp2258 + tmp382*tmp2277 + tmp382*tmp2303 + tmp382*tmp2331
-        + tmp382*tmp2235;
-    const Scalar tmp2472 = tmp382*tmp2259 + tmp382*tmp2278 + tmp382*tmp2302 + tmp382*tmp2330
-        + tmp382*tmp2235;
-    const Scalar tmp2473 = tmp382*tmp2258 + tmp382*tmp2277 + tmp382*tmp2301 + tmp382*tmp2329 - k
-        + tmp382*tmp2235;
-    const Scalar tmp2474 = tmp382*tmp2276 + tmp382*tmp2300 + tmp382*tmp2328 + tmp382*tmp2245;
-    const Scalar tmp2475 = tmp382*tmp2260 + tmp382*tmp2299 + tmp382*tmp2327;
-    const Scalar tmp2476 = tmp382*tmp2280 + tmp382*tmp2326;
-    const Scalar tmp2477 = tmp382*l*tmp199;
-    const Scalar tmp2478 = -tmp396*tmp2259 - tmp397*tmp2264 - tmp398*tmp2278 - tmp399*tmp2284
-        - tmp400*tmp2302 - tmp401*tmp2309 - tmp402*tmp2330 - tmp393*tmp2237 - tmp394*tmp2235
-        - tmp395*tmp2248 - tmp85*tmp2458 - tmp100*tmp2459 - tmp110*tmp2460 - tmp128*tmp2461
-        - tmp139*tmp2462 - tmp159*tmp2463 - tmp170*tmp2464 - tmp193*tmp2465 - tmp204*tmp2466
-        - tmp230*tmp2467;
-    dr_dq_data[0 + 10 * 5] = phi10_ddot*tmp2448 - tmp2468 - tmp2478 + phi1_ddot*tmp2403
-        + phi2_ddot*tmp2404 + phi3_ddot*tmp2406 + phi4_ddot*tmp2409 + phi5_ddot*tmp2413
-        + phi6_ddot*tmp2418 + phi7_ddot*tmp2424 + phi8_ddot*tmp2431 + phi9_ddot*tmp2439;
-    const Scalar tmp2479 = -tmp396*tmp2258 - tmp397*tmp2265 - tmp398*tmp2277 - tmp399*tmp2286
-        - tmp400*tmp2301 - tmp401*tmp2311 - tmp402*tmp2329 - tmp393*tmp2237 - tmp394*tmp2235
-        - tmp395*tmp2249 - tmp87*tmp2458 - tmp99*tmp2459 - tmp112*tmp2460 - tmp127*tmp2461
-        - tmp141*tmp2462 - tmp158*tmp2463 - tmp173*tmp2464 - tmp192*tmp2465 - tmp207*tmp2466
-        - tmp229*tmp2467;
-    dr_dq_data[1 + 10 * 5] = phi10_ddot*tmp2449 - tmp2469 - tmp2479 + phi1_ddot*tmp2404
-        + phi2_ddot*tmp2405 + phi3_ddot*tmp2407 + phi4_ddot*tmp2410 + phi5_ddot*tmp2414
-        + phi6_ddot*tmp2419 + phi7_ddot*tmp2425 + phi8_ddot*tmp2432 + phi9_ddot*tmp2440;
-    const Scalar tmp2480 = -tmp396*tmp2259 - tmp397*tmp2266 - tmp398*tmp2279 - tmp399*tmp2287
-        - tmp400*tmp2304 - tmp401*tmp2313 - tmp402*tmp2332 - tmp393*tmp2237 - tmp394*tmp2235
-        - tmp395*tmp2248 - tmp88*tmp2458 - tmp98*tmp2459 - tmp113*tmp2460 - tmp126*tmp2461
-        - tmp142*tmp2462 - tmp157*tmp2463 - tmp174*tmp2464 - tmp191*tmp2465 - tmp209*tmp2466
-        - tmp228*tmp2467;
-    dr_dq_data[2 + 10 * 5] = phi10_ddot*tmp2450 - tmp2470 - tmp2480 + phi1_ddot*tmp2406
-        + phi2_ddot*tmp2407 + phi3_ddot*tmp2408 + phi4_ddot*tmp2411 + phi5_ddot*tmp2415
-        + phi6_ddot*tmp2420 + phi7_ddot*tmp2426 + phi8_ddot*tmp2433 + phi9_ddot*tmp2441;
-    const Scalar tmp2481 = -tmp396*tmp2258 - tmp397*tmp2265 - tmp398*tmp2277 - tmp399*tmp2288
-        - tmp400*tmp2303 - tmp401*tmp2314 - tmp402*tmp2331 - tmp393*tmp2237 - tmp394*tmp2235
-        - tmp395*tmp2249 - tmp86*tmp2458 - tmp97*tmp2459 - tmp114*tmp2460 - tmp125*tmp2461
-        - tmp143*tmp2462 - tmp156*tmp2463 - tmp175*tmp2464 - tmp190*tmp2465 - tmp210*tmp2466
-        - tmp227*tmp2467;
-    dr_dq_data[3 + 10 * 5] = phi10_ddot*tmp2451 - tmp2471 - tmp2481 + phi1_ddot*tmp2409
-        + phi2_ddot*tmp2410 + phi3_ddot*tmp2411 + phi4_ddot*tmp2412 + phi5_ddot*tmp2416
-        + phi6_ddot*tmp2421 + phi7_ddot*tmp2427 + phi8_ddot*tmp2434 + phi9_ddot*tmp2442;
-    const Scalar tmp2482 = -tmp396*tmp2259 - tmp397*tmp2264 - tmp398*tmp2278 - tmp399*tmp2284
-        - tmp400*tmp2302 - tmp401*tmp2309 - tmp402*tmp2330 - tmp393*tmp2237 - tmp394*tmp2235
-        - tmp395*tmp2248 - tmp84*tmp2458 - tmp96*tmp2459 - tmp109*tmp2460 - tmp124*tmp2461
-        - tmp138*tmp2462 - tmp155*tmp2463 - tmp169*tmp2464 - tmp189*tmp2465 - tmp203*tmp2466
-        - tmp226*tmp2467;
-    dr_dq_data[4 + 10 * 5] = phi9_ddot*tmp2443 + phi10_ddot*tmp2452 - tmp2472 - tmp2482
-        + phi1_ddot*tmp2413 + phi2_ddot*tmp2414 + phi3_ddot*tmp2415 + phi4_ddot*tmp2416
-        + phi5_ddot*tmp2417 + phi6_ddot*tmp2422 + phi7_ddot*tmp2428 + phi8_ddot*tmp2435;
-    const Scalar tmp2483 = -tmp396*tmp2258 - tmp397*tmp2265 - tmp398*tmp2277 - tmp399*tmp2286
-        - tmp400*tmp2301 - tmp401*tmp2311 - tmp402*tmp2329 - tmp394*tmp2235 - tmp393*tmp2237
-        - tmp395*tmp2249 - tmp82*tmp2458 - tmp79*tmp2459 - tmp111*tmp2460 - tmp123*tmp2461
-        - tmp140*tmp2462 - tmp154*tmp2463 - tmp172*tmp2464 - tmp188*tmp2465 - tmp206*tmp2466
-        - tmp225*tmp2467;
-    dr_dq_data[5 + 10 * 5] = phi9_ddot*tmp2444 + phi10_ddot*tmp2453 - tmp2473 - tmp2483
-        + phi1_ddot*tmp2418 + phi2_ddot*tmp2419 + phi3_ddot*tmp2420 + phi4_ddot*tmp2421
-        + phi5_ddot*tmp2422 + phi6_ddot*tmp2423 + phi7_ddot*tmp2429 + phi8_ddot*tmp2436;
-    const Scalar tmp2484 = -tmp397*tmp2263 - tmp398*tmp2276 - tmp399*tmp2283 - tmp400*tmp2300
-        - tmp401*tmp2312 - tmp402*tmp2328 - tmp396*tmp2245 - tmp395*tmp2247 - tmp107*tmp2460
-        - tmp104*tmp2461 - tmp137*tmp2462 - tmp153*tmp2463 - tmp168*tmp2464 - tmp187*tmp2465
-        - tmp208*tmp2466 - tmp224*tmp2467;
-    dr_dq_data[6 + 10 * 5] = phi9_ddot*tmp2445 + phi10_ddot*tmp2454 - tmp2474 - tmp2484
-        + phi1_ddot*tmp2424 + phi2_ddot*tmp2425 + phi3_ddot*tmp2426 + phi4_ddot*tmp2427
-        + phi5_ddot*tmp2428 + phi6_ddot*tmp2429 + phi7_ddot*tmp2430 + phi8_ddot*tmp2437;
-    const Scalar tmp2485 = -tmp398*tmp2260 - tmp397*tmp2262 - tmp399*tmp2285 - tmp400*tmp2299
-        - tmp401*tmp2310 - tmp402*tmp2327 - tmp135*tmp2462 - tmp132*tmp2463 - tmp171*tmp2464
-        - tmp186*tmp2465 - tmp205*tmp2466 - tmp223*tmp2467;
-    dr_dq_data[7 + 10 * 5] = phi9_ddot*tmp2446 + phi10_ddot*tmp2455 - tmp2475 - tmp2485
-        + phi1_ddot*tmp2431 + phi2_ddot*tmp2432 + phi3_ddot*tmp2433 + phi4_ddot*tmp2434
-        + phi5_ddot*tmp2435 + phi6_ddot*tmp2436 + phi7_ddot*tmp2437 + phi8_ddot*tmp2438;
-    const Scalar tmp2486 = -tmp400*tmp2280 - tmp399*tmp2282 - tmp401*tmp2308 - tmp402*tmp2326
-        - tmp166*tmp2464 - tmp163*tmp2465 - tmp202*tmp2466 - tmp222*tmp2467;
-    dr_dq_data[8 + 10 * 5] = phi5_ddot*tmp2443 + phi6_ddot*tmp2444 + phi7_ddot*tmp2445
-        + phi8_ddot*tmp2446 + phi9_ddot*tmp2447 + phi10_ddot*tmp2456 - tmp2476 - tmp2486
-        + phi1_ddot*tmp2439 + phi2_ddot*tmp2440 + phi3_ddot*tmp2441 + phi4_ddot*tmp2442;
-    const Scalar tmp2487 = -tmp402*tmp2305 - tmp401*tmp2307 - tmp200*tmp2466 - tmp197*tmp2467;
-    dr_dq_data[9 + 10 * 5] = phi1_ddot*tmp2448 + phi2_ddot*tmp2449 + phi3_ddot*tmp2450
-        + phi4_ddot*tmp2451 + phi5_ddot*tmp2452 + phi6_ddot*tmp2453 + phi7_ddot*tmp2454
-        + phi8_ddot*tmp2455 + phi9_ddot*tmp2456 + phi10_ddot*tmp2457 - tmp2477 - tmp2487;
-    const Scalar tmp2488 = l*tmp106;
-    const Scalar tmp2489 = -tmp103;
-    const Scalar tmp2490 = l*tmp2489;
-    const Scalar tmp2491 = phi7_dot*tmp2490;
-    const Scalar tmp2492 = phi6_dot*tmp2490 + tmp2491;
-    const Scalar tmp2493 = phi5_dot*tmp2490 + tmp2492;
-    const Scalar tmp2494 = phi4_dot*tmp2490 + tmp2493;
-    const Scalar tmp2495 = phi3_dot*tmp2490 + tmp2494;
-    const Scalar tmp2496 = phi2_dot*tmp2490 + tmp2495;
-    const Scalar tmp2497 = tmp2496 + phi1_dot*tmp2490;
-    const Scalar tmp2498 = phi7_dot*tmp2488;
-    const Scalar tmp2499 = l*tmp134;
-    const Scalar tmp2500 = -tmp131;
-    const Scalar tmp2501 = l*tmp2500;
-    const Scalar tmp2502 = tmp2501 + tmp2490;
-    const Scalar tmp2503 = tmp2501 + tmp2490;
-    const Scalar tmp2504 = phi8_dot*tmp2501;
-    const Scalar tmp2505 = phi7_dot*tmp2502 + tmp2504;
-    const Scalar tmp2506 = phi6_dot*tmp2503 + tmp2505;
-    const Scalar tmp2507 = phi5_dot*tmp2502 + tmp2506;
-    const Scalar tmp2508 = phi4_dot*tmp2503 + tmp2507;
-    const Scalar tmp2509 = phi3_dot*tmp2502 + tmp2508;
-    const Scalar tmp2510 = phi2_dot*tmp2503 + tmp2509;
-    const Scalar tmp2511 = phi1_dot*tmp2502 + tmp2510;
-    const Scalar tmp2512 = phi8_dot*tmp2499;
-    const Scalar tmp2513 = tmp2499 + tmp2488;
-    const Scalar tmp2514 = tmp2488 + tmp2499;
-    const Scalar tmp2515 = l*tmp165;
-    const Scalar tmp2516 = -tmp162;
-    const Scalar tmp2517 = l*tmp2516;
-    const Scalar tmp2518 = tmp2502 + tmp2517;
-    const Scalar tmp2519 = tmp2501 + tmp2517;
-    const Scalar tmp2520 = tmp2519 + tmp2490;
-    const Scalar tmp2521 = tmp2519 + tmp2490;
-    const Scalar tmp2522 = phi9_dot*tmp2517;
-    const Scalar tmp2523 = phi8_dot*tmp2519 + tmp2522;
-    const Scalar tmp2524 = phi7_dot*tmp2518 + tmp2523;
-    const Scalar tmp2525 = phi6_dot*tmp2520 + tmp2524;
-    const Scalar tmp2526 = phi5_dot*tmp2518 + tmp2525;
-    const Scalar tmp2527 = phi4_dot*tmp2521 + tmp2526;
-    const Scalar tmp2528 = phi3_dot*tmp2518 + tmp2527;
-    const Scalar tmp2529 = phi2_dot*tmp2520 + tmp2528;
-    const Scalar tmp2530 = phi1_dot*tmp2518 + tmp2529;
-    const Scalar tmp2531 = phi9_dot*tmp2515;
-    const Scalar tmp2532 = tmp2499 + tmp2515;
-    const Scalar tmp2533 = tmp2513 + tmp2515;
-    const Scalar tmp2534 = tmp2488 + tmp2532;
-    const Scalar tmp2535 = tmp2488 + tmp2532;
-    const Scalar tmp2536 = l*tmp199;
-    const Scalar tmp2537 = -tmp196;
-    const Scalar tmp2538 = l*tmp2537;
-    const Scalar tmp2539 = tmp2517 + tmp2538;
-    const Scalar tmp2540 = tmp2502 + tmp2539;
-    const Scalar tmp2541 = tmp2519 + tmp2538;
-    const Scalar tmp2542 = tmp2541 + tmp2490;
-    const Scalar tmp2543 = tmp2502 + tmp2539;
-    const Scalar tmp2544 = tmp2541 + tmp2490;
-    const Scalar tmp2545 = phi10_dot*tmp2538;
-    const Scalar tmp2546 = phi9_dot*tmp2539 + tmp2545;
-    const Scalar tmp2547 = phi8_dot*tmp2541 + tmp2546;
-    const Scalar tmp2548 = phi7_dot*tmp2543 + tmp2547;
-    const Scalar tmp2549 = phi6_dot*tmp2542 + tmp2548;
-    const Scalar tmp2550 = phi5_dot*tmp2540 + tmp2549;
-    const Scalar tmp2551 = phi4_dot*tmp2544 + tmp2550;
-    const Scalar tmp2552 = phi3_dot*tmp2543 + tmp2551;
-    const Scalar tmp2553 = phi2_dot*tmp2542 + tmp2552;
-    const Scalar tmp2554 = phi1_dot*tmp2540 + tmp2553;
-    const Scalar tmp2555 = phi10_dot*tmp2536;
-    const Scalar tmp2556 = tmp2515 + tmp2536;
-    const Scalar tmp2557 = tmp2532 + tmp2536;
-    const Scalar tmp2558 = tmp2513 + tmp2556;
-    const Scalar tmp2559 = tmp2488 + tmp2557;
-    const Scalar tmp2560 = tmp2513 + tmp2556;
-    const Scalar tmp2561 = tmp2488 + tmp2557;
-    const Scalar tmp2562 = -tmp2488;
-    const Scalar tmp2563 = -tmp2498 + phi6_dot*tmp2562;
-    const Scalar tmp2564 = -tmp2488;
-    const Scalar tmp2565 = tmp2563 + phi5_dot*tmp2564;
-    const Scalar tmp2566 = -tmp2488;
-    const Scalar tmp2567 = tmp2565 + phi4_dot*tmp2566;
-    const Scalar tmp2568 = -tmp2488;
-    const Scalar tmp2569 = tmp2567 + phi3_dot*tmp2568;
-    const Scalar tmp2570 = -tmp2488;
-    const Scalar tmp2571 = tmp2569 + phi2_dot*tmp2570;
-    const Scalar tmp2572 = -phi7_dot*tmp2498
+            + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot))*tmp2352
+        + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp2353
+        + phi3_dot*(phi1_dot + phi2_dot)*tmp2354 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp2355
+        + phi10_dot*tmp2356 + phi9_dot*tmp2357 + phi8_dot*tmp2358 + phi7_dot*tmp2359
+        + phi6_dot*tmp2360 + phi5_dot*tmp2361 + phi4_dot*tmp2362 + phi3_dot*tmp2363
+        + phi2_dot*tmp2364 + phi1_dot*tmp2365;
+    const Scalar tmp2444 = Scalar(2)*tmp128*m*tmp2300 + Scalar(2)*tmp139*m*tmp2305
+        + Scalar(2)*tmp159*m*tmp2319 + Scalar(2)*tmp170*m*tmp2325 + Scalar(2)*tmp193*m*tmp2343
+        + Scalar(2)*tmp204*m*tmp2350 + Scalar(2)*tmp230*m*tmp2371 + Scalar(2)*tmp85*m*tmp2278
+        + Scalar(2)*tmp100*m*tmp2276 + Scalar(2)*tmp110*m*tmp2289;
+    const Scalar tmp2445 = tmp128*m*tmp2299 + tmp127*m*tmp2300 + tmp141*m*tmp2305 + tmp139*m*tmp2306
+        + tmp159*m*tmp2318 + tmp158*m*tmp2319 + tmp173*m*tmp2325 + tmp170*m*tmp2327
+        + tmp193*m*tmp2342 + tmp192*m*tmp2343 + tmp207*m*tmp2350 + tmp204*m*tmp2352
+        + tmp230*m*tmp2370 + tmp229*m*tmp2371 + (tmp85*m + tmp87*m)*tmp2278
+        + (tmp99*m + tmp100*m)*tmp2276 + tmp112*m*tmp2289 + tmp110*m*tmp2290;
+    const Scalar tmp2446 = Scalar(2)*tmp127*m*tmp2299 + Scalar(2)*tmp141*m*tmp2306
+        + Scalar(2)*tmp158*m*tmp2318 + Scalar(2)*tmp173*m*tmp2327 + Scalar(2)*tmp192*m*tmp2342
+        + Scalar(2)*tmp207*m*tmp2352 + Scalar(2)*tmp229*m*tmp2370 + Scalar(2)*tmp87*m*tmp2278
+        + Scalar(2)*tmp99*m*tmp2276 + Scalar(2)*tmp112*m*tmp2290;
+    const Scalar tmp2447 = (tmp126*m + tmp128*m)*tmp2300 + tmp142*m*tmp2305 + tmp139*m*tmp2307
+        + tmp159*m*tmp2320 + tmp157*m*tmp2319 + tmp174*m*tmp2325 + tmp170*m*tmp2328
+        + tmp193*m*tmp2345 + tmp191*m*tmp2343 + tmp209*m*tmp2350 + tmp204*m*tmp2354
+        + tmp230*m*tmp2373 + tmp228*m*tmp2371 + (tmp85*m + tmp88*m)*tmp2278
+        + (tmp98*m + tmp100*m)*tmp2276 + (tmp110*m + tmp113*m)*tmp2289;
+    const Scalar tmp2448 = tmp127*m*tmp2300 + tmp126*m*tmp2299 + tmp142*m*tmp2306 + tmp141*m*tmp2307
+        + tmp158*m*tmp2320 + tmp157*m*tmp2318 + tmp174*m*tmp2327 + tmp173*m*tmp2328
+        + tmp192*m*tmp2345 + tmp191*m*tmp2342 + tmp209*m*tmp2352 + tmp207*m*tmp2354
+        + tmp229*m*tmp2373 + tmp228*m*tmp2370 + (tmp87*m + tmp88*m)*tmp2278
+        + (tmp98*m + tmp99*m)*tmp2276 + tmp113*m*tmp2290 + tmp112*m*tmp2289;
+    const Scalar tmp2449 = Scalar(2)*tmp126*m*tmp2300 + Scalar(2)*tmp142*m*tmp2307
+        + Scalar(2)*tmp157*m*tmp2320 + Scalar(2)*tmp174*m*tmp2328 + Scalar(2)*tmp191*m*tmp2345
+        + Scalar(2)*tmp209*m*tmp2354 + Scalar(2)*tmp228*m*tmp2373 + Scalar(2)*tmp88*m*tmp2278
+        + Scalar(2)*tmp98*m*tmp2276 + Scalar(2)*tmp113*m*tmp2289;
+    const Scalar tmp2450 = tmp128*m*tmp2299 + tmp125*m*tmp2300 + tmp143*m*tmp2305 + tmp139*m*tmp2306
+        + tmp159*m*tmp2318 + tmp156*m*tmp2319 + tmp175*m*tmp2325 + tmp170*m*tmp2329
+        + tmp193*m*tmp2344 + tmp190*m*tmp2343 + tmp210*m*tmp2350 + tmp204*m*tmp2355
+        + tmp230*m*tmp2372 + tmp227*m*tmp2371 + (tmp85*m + tmp86*m)*tmp2278
+        + (tmp97*m + tmp100*m)*tmp2276 + tmp114*m*tmp2289 + tmp110*m*tmp2290;
+    const Scalar tmp2451 = (tmp125*m + tmp127*m)*tmp2299 + (tmp141*m + tmp143*m)*tmp2306
+        + (tmp156*m + tmp158*m)*tmp2318 + tmp175*m*tmp2327 + tmp173*m*tmp2329 + tmp192*m*tmp2344
+        + tmp190*m*tmp2342 + tmp210*m*tmp2352 + tmp207*m*tmp2355 + tmp229*m*tmp2372
+        + tmp227*m*tmp2370 + (tmp86*m + tmp87*m)*tmp2278 + (tmp97*m + tmp99*m)*tmp2276
+        + (tmp112*m + tmp114*m)*tmp2290;
+    const Scalar tmp2452 = tmp126*m*tmp2299 + tmp125*m*tmp2300 + tmp143*m*tmp2307 + tmp142*m*tmp2306
+        + tmp157*m*tmp2318 + tmp156*m*tmp2320 + tmp175*m*tmp2328 + tmp174*m*tmp2329
+        + tmp191*m*tmp2344 + tmp190*m*tmp2345 + tmp210*m*tmp2354 + tmp209*m*tmp2355
+        + tmp228*m*tmp2372 + tmp227*m*tmp2373 + (tmp86*m + tmp88*m)*tmp2278
+        + (tmp97*m + tmp98*m)*tmp2276 + tmp114*m*tmp2289 + tmp113*m*tmp2290;
+    const Scalar tmp2453 = Scalar(2)*tmp125*m*tmp2299 + Scalar(2)*tmp143*m*tmp2306
+        + Scalar(2)*tmp156*m*tmp2318 + Scalar(2)*tmp175*m*tmp2329 + Scalar(2)*tmp190*m*tmp2344
+        + Scalar(2)*tmp210*m*tmp2355 + Scalar(2)*tmp227*m*tmp2372 + Scalar(2)*tmp86*m*tmp2278
+        + Scalar(2)*tmp97*m*tmp2276 + Scalar(2)*tmp114*m*tmp2290;
+    const Scalar tmp2454 = (tmp124*m + tmp128*m)*tmp2300 + (tmp138*m + tmp139*m)*tmp2305
+        + (tmp155*m + tmp159*m)*tmp2319 + (tmp169*m + tmp170*m)*tmp2325
+        + (tmp189*m + tmp193*m)*tmp2343 + (tmp203*m + tmp204*m)*tmp2350
+        + (tmp226*m + tmp230*m)*tmp2371 + (tmp84*m + tmp85*m)*tmp2278 + (tmp96*m + tmp100*m)*tmp2276
+        + (tmp109*m + tmp110*m)*tmp2289;
+    const Scalar tmp2455 = tmp127*m*tmp2300 + tmp124*m*tmp2299 + tmp141*m*tmp2305 + tmp138*m*tmp2306
+        + tmp158*m*tmp2319 + tmp155*m*tmp2318 + tmp173*m*tmp2325 + tmp169*m*tmp2327
+        + tmp192*m*tmp2343 + tmp189*m*tmp2342 + tmp207*m*tmp2350 + tmp203*m*tmp2352
+        + tmp229*m*tmp2371 + tmp226*m*tmp2370 + (tmp84*m + tmp87*m)*tmp2278
+        + (tmp96*m + tmp99*m)*tmp2276 + tmp112*m*tmp2289 + tmp109*m*tmp2290;
+    const Scalar tmp2456 = (tmp124*m + tmp126*m)*tmp2300 + tmp142*m*tmp2305 + tmp138*m*tmp2307
+        + tmp157*m*tmp2319 + tmp155*m*tmp2320 + tmp174*m*tmp2325 + tmp169*m*tmp2328
+        + tmp191*m*tmp2343 + tmp189*m*tmp2345 + tmp209*m*tmp2350 + tmp203*m*tmp2354
+        + tmp228*m*tmp2371 + tmp226*m*tmp2373 + (tmp84*m + tmp88*m)*tmp2278
+        + (tmp96*m + tmp98*m)*tmp2276 + (tmp109*m + tmp113*m)*tmp2289;
+    const Scalar tmp2457 = tmp125*m*tmp2300 + tmp124*m*tmp2299 + tmp143*m*tmp2305 + tmp138*m*tmp2306
+        + tmp156*m*tmp2319 + tmp155*m*tmp2318 + tmp175*m*tmp2325 + tmp169*m*tmp2329
+        + tmp190*m*tmp2343 + tmp189*m*tmp2344 + tmp210*m*tmp2350 + tmp203*m*tmp2355
+        + tmp227*m*tmp2371 + tmp226*m*tmp2372 + (tmp84*m + tmp86*m)*tmp2278
+        + (tmp96*m + tmp97*m)*tmp2276 + tmp114*m*tmp2289 + tmp109*m*tmp2290;
+    const Scalar tmp2458 = Scalar(2)*tmp124*m*tmp2300 + Scalar(2)*tmp138*m*tmp2305
+        + Scalar(2)*tmp155*m*tmp2319 + Scalar(2)*tmp169*m*tmp2325 + Scalar(2)*tmp189*m*tmp2343
+        + Scalar(2)*tmp203*m*tmp2350 + Scalar(2)*tmp226*m*tmp2371 + Scalar(2)*tmp84*m*tmp2278
+        + Scalar(2)*tmp96*m*tmp2276 + Scalar(2)*tmp109*m*tmp2289;
+    const Scalar tmp2459 = tmp128*m*tmp2299 + tmp123*m*tmp2300 + tmp140*m*tmp2305 + tmp139*m*tmp2306
+        + tmp159*m*tmp2318 + tmp154*m*tmp2319 + tmp172*m*tmp2325 + tmp170*m*tmp2327
+        + tmp193*m*tmp2342 + tmp188*m*tmp2343 + tmp206*m*tmp2350 + tmp204*m*tmp2352
+        + tmp230*m*tmp2370 + tmp225*m*tmp2371 + (tmp79*m + tmp100*m)*tmp2276
+        + (tmp82*m + tmp85*m)*tmp2278 + tmp111*m*tmp2289 + tmp110*m*tmp2290;
+    const Scalar tmp2460 = (tmp123*m + tmp127*m)*tmp2299 + (tmp140*m + tmp141*m)*tmp2306
+        + (tmp154*m + tmp158*m)*tmp2318 + (tmp172*m + tmp173*m)*tmp2327
+        + (tmp188*m + tmp192*m)*tmp2342 + (tmp206*m + tmp207*m)*tmp2352
+        + (tmp225*m + tmp229*m)*tmp2370 + (tmp79*m + tmp99*m)*tmp2276 + (tmp82*m + tmp87*m)*tmp2278
+        + (tmp111*m + tmp112*m)*tmp2290;
+    const Scalar tmp2461 = tmp126*m*tmp2299 + tmp123*m*tmp2300 + tmp142*m*tmp2306 + tmp140*m*tmp2307
+        + tmp157*m*tmp2318 + tmp154*m*tmp2320 + tmp174*m*tmp2327 + tmp172*m*tmp2328
+        + tmp191*m*tmp2342 + tmp188*m*tmp2345 + tmp209*m*tmp2352 + tmp206*m*tmp2354
+        + tmp228*m*tmp2370 + tmp225*m*tmp2373 + (tmp79*m + tmp98*m)*tmp2276
+        + (tmp82*m + tmp88*m)*tmp2278 + tmp113*m*tmp2290 + tmp111*m*tmp2289;
+    const Scalar tmp2462 = (tmp123*m + tmp125*m)*tmp2299 + (tmp140*m + tmp143*m)*tmp2306
+        + (tmp154*m + tmp156*m)*tmp2318 + tmp175*m*tmp2327 + tmp172*m*tmp2329 + tmp190*m*tmp2342
+        + tmp188*m*tmp2344 + tmp210*m*tmp2352 + tmp206*m*tmp2355 + tmp227*m*tmp2370
+        + tmp225*m*tmp2372 + (tmp79*m + tmp97*m)*tmp2276 + (tmp82*m + tmp86*m)*tmp2278
+        + (tmp111*m + tmp114*m)*tmp2290;
+    const Scalar tmp2463 = tmp124*m*tmp2299 + tmp123*m*tmp2300 + tmp140*m*tmp2305 + tmp138*m*tmp2306
+        + tmp155*m*tmp2318 + tmp154*m*tmp2319 + tmp172*m*tmp2325 + tmp169*m*tmp2327
+        + tmp189*m*tmp2342 + tmp188*m*tmp2343 + tmp206*m*tmp2350 + tmp203*m*tmp2352
+        + tmp226*m*tmp2370 + tmp225*m*tmp2371 + (tmp79*m + tmp96*m)*tmp2276
+        + (tmp82*m + tmp84*m)*tmp2278 + tmp111*m*tmp2289 + tmp109*m*tmp2290;
+    const Scalar tmp2464 = Scalar(2)*tmp123*m*tmp2299 + Scalar(2)*tmp140*m*tmp2306
+        + Scalar(2)*tmp154*m*tmp2318 + Scalar(2)*tmp172*m*tmp2327 + Scalar(2)*tmp188*m*tmp2342
+        + Scalar(2)*tmp206*m*tmp2352 + Scalar(2)*tmp225*m*tmp2370 + Scalar(2)*tmp325*tmp78*m*tmp81
+        + Scalar(2)*tmp325*tmp81*m*tmp2277 + Scalar(2)*tmp111*m*tmp2290;
+    const Scalar tmp2465 = tmp104*m*tmp2300 + tmp139*m*tmp2304 + tmp137*m*tmp2305 + tmp159*m*tmp2317
+        + tmp153*m*tmp2319 + tmp170*m*tmp2324 + tmp168*m*tmp2325 + tmp193*m*tmp2341
+        + tmp187*m*tmp2343 + tmp208*m*tmp2350 + tmp204*m*tmp2353 + tmp230*m*tmp2369
+        + tmp224*m*tmp2371 + tmp128*m*tmp2286 + tmp110*m*tmp2288 + tmp107*m*tmp2289;
+    const Scalar tmp2466 = tmp104*m*tmp2299 + tmp141*m*tmp2304 + tmp137*m*tmp2306 + tmp158*m*tmp2317
+        + tmp153*m*tmp2318 + tmp173*m*tmp2324 + tmp168*m*tmp2327 + tmp192*m*tmp2341
+        + tmp187*m*tmp2342 + tmp208*m*tmp2352 + tmp207*m*tmp2353 + tmp229*m*tmp2369
+        + tmp224*m*tmp2370 + tmp127*m*tmp2286 + tmp112*m*tmp2288 + tmp107*m*tmp2290;
+    const Scalar tmp2467 = tmp104*m*tmp2300 + tmp142*m*tmp2304 + tmp137*m*tmp2307 + tmp157*m*tmp2317
+        + tmp153*m*tmp2320 + tmp174*m*tmp2324 + tmp168*m*tmp2328 + tmp191*m*tmp2341
+        + tmp187*m*tmp2345 + tmp209*m*tmp2353 + tmp208*m*tmp2354 + tmp228*m*tmp2369
+        + tmp224*m*tmp2373 + tmp126*m*tmp2286 + tmp113*m*tmp2288 + tmp107*m*tmp2289;
+    const Scalar tmp2468 = tmp104*m*tmp2299 + tmp143*m*tmp2304 + tmp137*m*tmp2306 + tmp156*m*tmp2317
+        + tmp153*m*tmp2318 + tmp175*m*tmp2324 + tmp168*m*tmp2329 + tmp190*m*tmp2341
+        + tmp187*m*tmp2344 + tmp210*m*tmp2353 + tmp208*m*tmp2355 + tmp227*m*tmp2369
+        + tmp224*m*tmp2372 + tmp125*m*tmp2286 + tmp114*m*tmp2288 + tmp107*m*tmp2290;
+    const Scalar tmp2469 = tmp104*m*tmp2300 + tmp138*m*tmp2304 + tmp137*m*tmp2305 + tmp155*m*tmp2317
+        + tmp153*m*tmp2319 + tmp169*m*tmp2324 + tmp168*m*tmp2325 + tmp189*m*tmp2341
+        + tmp187*m*tmp2343 + tmp208*m*tmp2350 + tmp203*m*tmp2353 + tmp226*m*tmp2369
+        + tmp224*m*tmp2371 + tmp124*m*tmp2286 + tmp109*m*tmp2288 + tmp107*m*tmp2289;
+    const Scalar tmp2470 = tmp104*m*tmp2299 + tmp140*m*tmp2304 + tmp137*m*tmp2306 + tmp154*m*tmp2317
+        + tmp153*m*tmp2318 + tmp172*m*tmp2324 + tmp168*m*tmp2327 + tmp188*m*tmp2341
+        + tmp187*m*tmp2342 + tmp208*m*tmp2352 + tmp206*m*tmp2353 + tmp225*m*tmp2369
+        + tmp224*m*tmp2370 + tmp123*m*tmp2286 + tmp111*m*tmp2288 + tmp107*m*tmp2290;
+    const Scalar tmp2471 = Scalar(2)*tmp137*m*tmp2304 + Scalar(2)*tmp153*m*tmp2317
+        + Scalar(2)*tmp168*m*tmp2324 + Scalar(2)*tmp187*m*tmp2341 + Scalar(2)*tmp208*m*tmp2353
+        + Scalar(2)*tmp224*m*tmp2369 + Scalar(2)*tmp325*tmp103*m*tmp106
+        + Scalar(2)*tmp325*tmp106*m*tmp2287;
+    const Scalar tmp2472 = tmp159*m*tmp2301 + tmp139*m*tmp2303 + tmp135*m*tmp2305 + tmp132*m*tmp2319
+        + tmp171*m*tmp2325 + tmp170*m*tmp2326 + tmp193*m*tmp2340 + tmp186*m*tmp2343
+        + tmp205*m*tmp2350 + tmp204*m*tmp2351 + tmp230*m*tmp2368 + tmp223*m*tmp2371;
+    const Scalar tmp2473 = tmp158*m*tmp2301 + tmp141*m*tmp2303 + tmp135*m*tmp2306 + tmp132*m*tmp2318
+        + tmp173*m*tmp2326 + tmp171*m*tmp2327 + tmp192*m*tmp2340 + tmp186*m*tmp2342
+        + tmp207*m*tmp2351 + tmp205*m*tmp2352 + tmp229*m*tmp2368 + tmp223*m*tmp2370;
+    const Scalar tmp2474 = tmp157*m*tmp2301 + tmp142*m*tmp2303 + tmp135*m*tmp2307 + tmp132*m*tmp2320
+        + tmp174*m*tmp2326 + tmp171*m*tmp2328 + tmp191*m*tmp2340 + tmp186*m*tmp2345
+        + tmp209*m*tmp2351 + tmp205*m*tmp2354 + tmp228*m*tmp2368 + tmp223*m*tmp2373;
+    const Scalar tmp2475 = tmp156*m*tmp2301 + tmp143*m*tmp2303 + tmp135*m*tmp2306 + tmp132*m*tmp2318
+        + tmp175*m*tmp2326 + tmp171*m*tmp2329 + tmp190*m*tmp2340 + tmp186*m*tmp2344
+        + tmp210*m*tmp2351 + tmp205*m*tmp2355 + tmp227*m*tmp2368 + tmp223*m*tmp2372;
+    const Scalar tmp2476 = tmp155*m*tmp2301 + tmp138*m*tmp2303 + tmp135*m*tmp2305 + tmp132*m*tmp2319
+        + tmp171*m*tmp2325 + tmp169*m*tmp2326 + tmp189*m*tmp2340 + tmp186*m*tmp2343
+        + tmp205*m*tmp2350 + tmp203*m*tmp2351 + tmp226*m*tmp2368 + tmp223*m*tmp2371;
+    const Scalar tmp2477 = tmp154*m*tmp2301 + tmp140*m*tmp2303 + tmp135*m*tmp2306 + tmp132*m*tmp2318
+        + tmp172*m*tmp2326 + tmp171*m*tmp2327 + tmp188*m*tmp2340 + tmp186*m*tmp2342
+        + tmp206*m*tmp2351 + tmp205*m*tmp2352 + tmp225*m*tmp2368 + tmp223*m*tmp2370;
+    const Scalar tmp2478 = tmp153*m*tmp2301 + tmp137*m*tmp2303 + tmp135*m*tmp2304 + tmp132*m*tmp2317
+        + tmp171*m*tmp2324 + tmp168*m*tmp2326 + tmp187*m*tmp2340 + tmp186*m*tmp2341
+        + tmp208*m*tmp2351 + tmp205*m*tmp2353 + tmp224*m*tmp2368 + tmp223*m*tmp2369;
+    const Scalar tmp2479 = Scalar(2)*tmp131*tmp325*m*tmp134 + Scalar(2)*tmp134*tmp325*m*tmp2302
+        + Scalar(2)*tmp171*m*tmp2326 + Scalar(2)*tmp186*m*tmp2340 + Scalar(2)*tmp205*m*tmp2351
+        + Scalar(2)*tmp223*m*tmp2368;
+    const Scalar tmp2480 = tmp193*m*tmp2321 + tmp170*m*tmp2323 + tmp166*m*tmp2325 + tmp163*m*tmp2343
+        + tmp204*m*tmp2349 + tmp202*m*tmp2350 + tmp230*m*tmp2367 + tmp222*m*tmp2371;
+    const Scalar tmp2481 = tmp192*m*tmp2321 + tmp173*m*tmp2323 + tmp166*m*tmp2327 + tmp163*m*tmp2342
+        + tmp207*m*tmp2349 + tmp202*m*tmp2352 + tmp229*m*tmp2367 + tmp222*m*tmp2370;
+    const Scalar tmp2482 = tmp191*m*tmp2321 + tmp174*m*tmp2323 + tmp166*m*tmp2328 + tmp163*m*tmp2345
+        + tmp209*m*tmp2349 + tmp202*m*tmp2354 + tmp228*m*tmp2367 + tmp222*m*tmp2373;
+    const Scalar tmp2483 = tmp190*m*tmp2321 + tmp175*m*tmp2323 + tmp166*m*tmp2329 + tmp163*m*tmp2344
+        + tmp210*m*tmp2349 + tmp202*m*tmp2355 + tmp227*m*tmp2367 + tmp222*m*tmp2372;
+    const Scalar tmp2484 = tmp189*m*tmp2321 + tmp169*m*tmp2323 + tmp166*m*tmp2325 + tmp163*m*tmp2343
+        + tmp203*m*tmp2349 + tmp202*m*tmp2350 + tmp226*m*tmp2367 + tmp222*m*tmp2371;
+    const Scalar tmp2485 = tmp188*m*tmp2321 + tmp172*m*tmp2323 + tmp166*m*tmp2327 + tmp163*m*tmp2342
+        + tmp206*m*tmp2349 + tmp202*m*tmp2352 + tmp225*m*tmp2367 + tmp222*m*tmp2370;
+    const Scalar tmp2486 = tmp187*m*tmp2321 + tmp168*m*tmp2323 + tmp166*m*tmp2324 + tmp163*m*tmp2341
+        + tmp208*m*tmp2349 + tmp202*m*tmp2353 + tmp224*m*tmp2367 + tmp222*m*tmp2369;
+    const Scalar tmp2487 = tmp186*m*tmp2321 + tmp171*m*tmp2323 + tmp166*m*tmp2326 + tmp163*m*tmp2340
+        + tmp205*m*tmp2349 + tmp202*m*tmp2351 + tmp223*m*tmp2367 + tmp222*m*tmp2368;
+    const Scalar tmp2488 = Scalar(2)*tmp162*tmp325*m*tmp165 + Scalar(2)*tmp165*tmp325*m*tmp2322
+        + Scalar(2)*tmp202*m*tmp2349 + Scalar(2)*tmp222*m*tmp2367;
+    const Scalar tmp2489 = tmp230*m*tmp2346 + tmp204*m*tmp2348 + tmp200*m*tmp2350
+        + tmp197*m*tmp2371;
+    const Scalar tmp2490 = tmp229*m*tmp2346 + tmp207*m*tmp2348 + tmp200*m*tmp2352
+        + tmp197*m*tmp2370;
+    const Scalar tmp2491 = tmp228*m*tmp2346 + tmp209*m*tmp2348 + tmp200*m*tmp2354
+        + tmp197*m*tmp2373;
+    const Scalar tmp2492 = tmp227*m*tmp2346 + tmp210*m*tmp2348 + tmp200*m*tmp2355
+        + tmp197*m*tmp2372;
+    const Scalar tmp2493 = tmp226*m*tmp2346 + tmp203*m*tmp2348 + tmp200*m*tmp2350
+        + tmp197*m*tmp2371;
+    const Scalar tmp2494 = tmp225*m*tmp2346 + tmp206*m*tmp2348 + tmp200*m*tmp2352
+        + tmp197*m*tmp2370;
+    const Scalar tmp2495 = tmp224*m*tmp2346 + tmp208*m*tmp2348 + tmp200*m*tmp2353
+        + tmp197*m*tmp2369;
+    const Scalar tmp2496 = tmp223*m*tmp2346 + tmp205*m*tmp2348 + tmp200*m*tmp2351
+        + tmp197*m*tmp2368;
+    const Scalar tmp2497 = tmp222*m*tmp2346 + tmp202*m*tmp2348 + tmp200*m*tmp2349
+        + tmp197*m*tmp2367;
+    const Scalar tmp2498 = Scalar(2)*tmp196*tmp325*m*tmp199 + Scalar(2)*tmp199*tmp325*m*tmp2347;
+    const Scalar tmp2499 = m*tmp2382;
+    const Scalar tmp2500 = m*tmp2383;
+    const Scalar tmp2501 = m*tmp2394;
+    const Scalar tmp2502 = m*tmp2395;
+    const Scalar tmp2503 = m*tmp2408;
+    const Scalar tmp2504 = m*tmp2409;
+    const Scalar tmp2505 = m*tmp2424;
+    const Scalar tmp2506 = m*tmp2425;
+    const Scalar tmp2507 = m*tmp2442;
+    const Scalar tmp2508 = m*tmp2443;
+    const Scalar tmp2509 = tmp382*tmp2300 + tmp382*tmp2319 + tmp382*tmp2343 + tmp382*tmp2371
+        + tmp382*tmp2276;
+    const Scalar tmp2510 = tmp382*tmp2299 + tmp382*tmp2318 + tmp382*tmp2342 + tmp382*tmp2370
+        + tmp382*tmp2276;
+    const Scalar tmp2511 = tmp382*tmp2300 + tmp382*tmp2320 + tmp382*tmp2345 + tmp382*tmp2373
+        + tmp382*tmp2276;
+    const Scalar tmp2512 = tmp382*tmp2299 + tmp382*tmp2318 + tmp382*tmp2344 + tmp382*tmp2372
+        + tmp382*tmp2276;
+    const Scalar tmp2513 = tmp382*tmp2300 + tmp382*tmp2319 + tmp382*tmp2343 + tmp382*tmp2371
+        + tmp382*tmp2276;
+    const Scalar tmp2514 = tmp382*tmp2299 + tmp382*tmp2318 + tmp382*tmp2342 + tmp382*tmp2370 - k
+        + tmp382*tmp2276;
+    const Scalar tmp2515 = tmp382*tmp2317 + tmp382*tmp2341 + tmp382*tmp2369 + tmp382*tmp2286;
+    const Scalar tmp2516 = tmp382*tmp2301 + tmp382*tmp2340 + tmp382*tmp2368;
+    const Scalar tmp2517 = tmp382*tmp2321 + tmp382*tmp2367;
+    const Scalar tmp2518 = tmp382*l*tmp199;
+    const Scalar tmp2519 = -tmp396*tmp2300 - tmp397*tmp2305 - tmp398*tmp2319 - tmp399*tmp2325
+        - tmp400*tmp2343 - tmp401*tmp2350 - tmp402*tmp2371 - tmp393*tmp2278 - tmp394*tmp2276
+        - tmp395*tmp2289 - tmp85*tmp2499 - tmp100*tmp2500 - tmp110*tmp2501 - tmp128*tmp2502
+        - tmp139*tmp2503 - tmp159*tmp2504 - tmp170*tmp2505 - tmp193*tmp2506 - tmp204*tmp2507
+        - tmp230*tmp2508;
+    dr_dq_data[0 + 10 * 5] = phi10_ddot*tmp2489 - tmp2509 - tmp2519 + phi1_ddot*tmp2444
+        + phi2_ddot*tmp2445 + phi3_ddot*tmp2447 + phi4_ddot*tmp2450 + phi5_ddot*tmp2454
+        + phi6_ddot*tmp2459 + phi7_ddot*tmp2465 + phi8_ddot*tmp2472 + phi9_ddot*tmp2480;
+    const Scalar tmp2520 = -tmp396*tmp2299 - tmp397*tmp2306 - tmp398*tmp2318 - tmp399*tmp2327
+        - tmp400*tmp2342 - tmp401*tmp2352 - tmp402*tmp2370 - tmp393*tmp2278 - tmp394*tmp2276
+        - tmp395*tmp2290 - tmp87*tmp2499 - tmp99*tmp2500 - tmp112*tmp2501 - tmp127*tmp2502
+        - tmp141*tmp2503 - tmp158*tmp2504 - tmp173*tmp2505 - tmp192*tmp2506 - tmp207*tmp2507
+        - tmp229*tmp2508;
+    dr_dq_data[1 + 10 * 5] = phi10_ddot*tmp2490 - tmp2510 - tmp2520 + phi1_ddot*tmp2445
+        + phi2_ddot*tmp2446 + phi3_ddot*tmp2448 + phi4_ddot*tmp2451 + phi5_ddot*tmp2455
+        + phi6_ddot*tmp2460 + phi7_ddot*tmp2466 + phi8_ddot*tmp2473 + phi9_ddot*tmp2481;
+    const Scalar tmp2521 = -tmp396*tmp2300 - tmp397*tmp2307 - tmp398*tmp2320 - tmp399*tmp2328
+        - tmp400*tmp2345 - tmp401*tmp2354 - tmp402*tmp2373 - tmp393*tmp2278 - tmp394*tmp2276
+        - tmp395*tmp2289 - tmp88*tmp2499 - tmp98*tmp2500 - tmp113*tmp2501 - tmp126*tmp2502
+        - tmp142*tmp2503 - tmp157*tmp2504 - tmp174*tmp2505 - tmp191*tmp2506 - tmp209*tmp2507
+        - tmp228*tmp2508;
+    dr_dq_data[2 + 10 * 5] = phi10_ddot*tmp2491 - tmp2511 - tmp2521 + phi1_ddot*tmp2447
+        + phi2_ddot*tmp2448 + phi3_ddot*tmp2449 + phi4_ddot*tmp2452 + phi5_ddot*tmp2456
+        + phi6_ddot*tmp2461 + phi7_ddot*tmp2467 + phi8_ddot*tmp2474 + phi9_ddot*tmp2482;
+    const Scalar tmp2522 = -tmp396*tmp2299 - tmp397*tmp2306 - tmp398*tmp2318 - tmp399*tmp2329
+        - tmp400*tmp2344 - tmp401*tmp2355 - tmp402*tmp2372 - tmp393*tmp2278 - tmp394*tmp2276
+        - tmp395*tmp2290 - tmp86*tmp2499 - tmp97*tmp2500 - tmp114*tmp2501 - tmp125*tmp2502
+        - tmp143*tmp2503 - tmp156*tmp2504 - tmp175*tmp2505 - tmp190*tmp2506 - tmp210*tmp2507
+        - tmp227*tmp2508;
+    dr_dq_data[3 + 10 * 5] = phi10_ddot*tmp2492 - tmp2512 - tmp2522 + phi1_ddot*tmp2450
+        + phi2_ddot*tmp2451 + phi3_ddot*tmp2452 + phi4_ddot*tmp2453 + phi5_ddot*tmp2457
+        + phi6_ddot*tmp2462 + phi7_ddot*tmp2468 + phi8_ddot*tmp2475 + phi9_ddot*tmp2483;
+    const Scalar tmp2523 = -tmp396*tmp2300 - tmp397*tmp2305 - tmp398*tmp2319 - tmp399*tmp2325
+        - tmp400*tmp2343 - tmp401*tmp2350 - tmp402*tmp2371 - tmp393*tmp2278 - tmp394*tmp2276
+        - tmp395*tmp2289 - tmp84*tmp2499 - tmp96*tmp2500 - tmp109*tmp2501 - tmp124*tmp2502
+        - tmp138*tmp2503 - tmp155*tmp2504 - tmp169*tmp2505 - tmp189*tmp2506 - tmp203*tmp2507
+        - tmp226*tmp2508;
+    dr_dq_data[4 + 10 * 5] = phi9_ddot*tmp2484 + phi10_ddot*tmp2493 - tmp2513 - tmp2523
+        + phi1_ddot*tmp2454 + phi2_ddot*tmp2455 + phi3_ddot*tmp2456 + phi4_ddot*tmp2457
+        + phi5_ddot*tmp2458 + phi6_ddot*tmp2463 + phi7_ddot*tmp2469 + phi8_ddot*tmp2476;
+    const Scalar tmp2524 = -tmp396*tmp2299 - tmp397*tmp2306 - tmp398*tmp2318 - tmp399*tmp2327
+        - tmp400*tmp2342 - tmp401*tmp2352 - tmp402*tmp2370 - tmp394*tmp2276 - tmp393*tmp2278
+        - tmp395*tmp2290 - tmp82*tmp2499 - tmp79*tmp2500 - tmp111*tmp2501 - tmp123*tmp2502
+        - tmp140*tmp2503 - tmp154*tmp2504 - tmp172*tmp2505 - tmp188*tmp2506 - tmp206*tmp2507
+        - tmp225*tmp2508;
+    dr_dq_data[5 + 10 * 5] = phi9_ddot*tmp2485 + phi10_ddot*tmp2494 - tmp2514 - tmp2524
+        + phi1_ddot*tmp2459 + phi2_ddot*tmp2460 + phi3_ddot*tmp2461 + phi4_ddot*tmp2462
+        + phi5_ddot*tmp2463 + phi6_ddot*tmp2464 + phi7_ddot*tmp2470 + phi8_ddot*tmp2477;
+    const Scalar tmp2525 = -tmp397*tmp2304 - tmp398*tmp2317 - tmp399*tmp2324 - tmp400*tmp2341
+        - tmp401*tmp2353 - tmp402*tmp2369 - tmp396*tmp2286 - tmp395*tmp2288 - tmp107*tmp2501
+        - tmp104*tmp2502 - tmp137*tmp2503 - tmp153*tmp2504 - tmp168*tmp2505 - tmp187*tmp2506
+        - tmp208*tmp2507 - tmp224*tmp2508;
+    dr_dq_data[6 + 10 * 5] = phi9_ddot*tmp2486 + phi10_ddot*tmp2495 - tmp2515 - tmp2525
+        + phi1_ddot*tmp2465 + phi2_ddot*tmp2466 + phi3_ddot*tmp2467 + phi4_ddot*tmp2468
+        + phi5_ddot*tmp2469 + phi6_ddot*tmp2470 + phi7_ddot*tmp2471 + phi8_ddot*tmp2478;
+    const Scalar tmp2526 = -tmp398*tmp2301 - tmp397*tmp2303 - tmp399*tmp2326 - tmp400*tmp2340
+        - tmp401*tmp2351 - tmp402*tmp2368 - tmp135*tmp2503 - tmp132*tmp2504 - tmp171*tmp2505
+        - tmp186*tmp2506 - tmp205*tmp2507 - tmp223*tmp2508;
+    dr_dq_data[7 + 10 * 5] = phi9_ddot*tmp2487 + phi10_ddot*tmp2496 - tmp2516 - tmp2526
+        + phi1_ddot*tmp2472 + phi2_ddot*tmp2473 + phi3_ddot*tmp2474 + phi4_ddot*tmp2475
+        + phi5_ddot*tmp2476 + phi6_ddot*tmp2477 + phi7_ddot*tmp2478 + phi8_ddot*tmp2479;
+    const Scalar tmp2527 = -tmp400*tmp2321 - tmp399*tmp2323 - tmp401*tmp2349 - tmp402*tmp2367
+        - tmp166*tmp2505 - tmp163*tmp2506 - tmp202*tmp2507 - tmp222*tmp2508;
+    dr_dq_data[8 + 10 * 5] = phi5_ddot*tmp2484 + phi6_ddot*tmp2485 + phi7_ddot*tmp2486
+        + phi8_ddot*tmp2487 + phi9_ddot*tmp2488 + phi10_ddot*tmp2497 - tmp2517 - tmp2527
+        + phi1_ddot*tmp2480 + phi2_ddot*tmp2481 + phi3_ddot*tmp2482 + phi4_ddot*tmp2483;
+    const Scalar tmp2528 = -tmp402*tmp2346 - tmp401*tmp2348 - tmp200*tmp2507 - tmp197*tmp2508;
+    dr_dq_data[9 + 10 * 5] = phi1_ddot*tmp2489 + phi2_ddot*tmp2490 + phi3_ddot*tmp2491
+        + phi4_ddot*tmp2492 + phi5_ddot*tmp2493 + phi6_ddot*tmp2494 + phi7_ddot*tmp2495
+        + phi8_ddot*tmp2496 + phi9_ddot*tmp2497 + phi10_ddot*tmp2498 - tmp2518 - tmp2528;
+    const Scalar tmp2529 = l*tmp106;
+    const Scalar tmp2530 = -tmp103;
+    const Scalar tmp2531 = l*tmp2530;
+    const Scalar tmp2532 = phi7_dot*tmp2531;
+    const Scalar tmp2533 = phi6_dot*tmp2531 + tmp2532;
+    const Scalar tmp2534 = phi5_dot*tmp2531 + tmp2533;
+    const Scalar tmp2535 = phi4_dot*tmp2531 + tmp2534;
+    const Scalar tmp2536 = phi3_dot*tmp2531 + tmp2535;
+    const Scalar tmp2537 = phi2_dot*tmp2531 + tmp2536;
+    const Scalar tmp2538 = tmp2537 + phi1_dot*tmp2531;
+    const Scalar tmp2539 = phi7_dot*tmp2529;
+    const Scalar tmp2540 = l*tmp134;
+    const Scalar tmp2541 = -tmp131;
+    const Scalar tmp2542 = l*tmp2541;
+    const Scalar tmp2543 = tmp2542 + tmp2531;
+    const Scalar tmp2544 = tmp2542 + tmp2531;
+    const Scalar tmp2545 = phi8_dot*tmp2542;
+    const Scalar tmp2546 = phi7_dot*tmp2543 + tmp2545;
+    const Scalar tmp2547 = phi6_dot*tmp2544 + tmp2546;
+    const Scalar tmp2548 = phi5_dot*tmp2543 + tmp2547;
+    const Scalar tmp2549 = phi4_dot*tmp2544 + tmp2548;
+    const Scalar tmp2550 = phi3_dot*tmp2543 + tmp2549;
+    const Scalar tmp2551 = phi2_dot*tmp2544 + tmp2550;
+    const Scalar tmp2552 = phi1_dot*tmp2543 + tmp2551;
+    const Scalar tmp2553 = phi8_dot*tmp2540;
+    const Scalar tmp2554 = tmp2540 + tmp2529;
+    const Scalar tmp2555 = tmp2529 + tmp2540;
+    const Scalar tmp2556 = l*tmp165;
+    const Scalar tmp2557 = -tmp162;
+    const Scalar tmp2558 = l*tmp2557;
+    const Scalar tmp2559 = tmp2543 + tmp2558;
+    const Scalar tmp2560 = tmp2542 + tmp2558;
+    const Scalar tmp2561 = tmp2560 + tmp2531;
+    const Scalar tmp2562 = tmp2560 + tmp2531;
+    const Scalar tmp2563 = phi9_dot*tmp2558;
+    const Scalar tmp2564 = phi8_dot*tmp2560 + tmp2563;
+    const Scalar tmp2565 = phi7_dot*tmp2559 + tmp2564;
+    const Scalar tmp2566 = phi6_dot*tmp2561 + tmp2565;
+    const Scalar tmp2567 = phi5_dot*tmp2559 + tmp2566;
+    const Scalar tmp2568 = phi4_dot*tmp2562 + tmp2567;
+    const Scalar tmp2569 = phi3_dot*tmp2559 + tmp2568;
+    const Scalar tmp2570 = phi2_dot*tmp2561 + tmp2569;
+    const Scalar tmp2571 = phi1_dot*tmp2559 + tmp2570;
+    const Scalar tmp2572 = phi9_dot*tmp2556;
+    const Scalar tmp2573 = tmp2540 + tmp2556;
+    const Scalar tmp2574 = tmp2554 + tmp2556;
+    const Scalar tmp2575 = tmp2529 + tmp2573;
+    const Scalar tmp2576 = tmp2529 + tmp2573;
+    const Scalar tmp2577 = l*tmp199;
+    const Scalar tmp2578 = -tmp196;
+    const Scalar tmp2579 = l*tmp2578;
+    const Scalar tmp2580 = tmp2558 + tmp2579;
+    const Scalar tmp2581 = tmp2543 + tmp2580;
+    const Scalar tmp2582 = tmp2560 + tmp2579;
+    const Scalar tmp2583 = tmp2582 + tmp2531;
+    const Scalar tmp2584 = tmp2543 + tmp2580;
+    const Scalar tmp2585 = tmp2582 + tmp2531;
+    const Scalar tmp2586 = phi10_dot*tmp2579;
+    const Scalar tmp2587 = phi9_dot*tmp2580 + tmp2586;
+    const Scalar tmp2588 = phi8_dot*tmp2582 + tmp2587;
+    const Scalar tmp2589 = phi7_dot*tmp2584 + tmp2588;
+    const Scalar tmp2590 = phi6_dot*tmp2583 + tmp2589;
+    const Scalar tmp2591 = phi5_dot*tmp2581 + tmp2590;
+    const Scalar tmp2592 = phi4_dot*tmp2585 + tmp2591;
+    const Scalar tmp2593 = phi3_dot*tmp2584 + tmp2592;
+    const Scalar tmp2594 = phi2_dot*tmp2583 + tmp2593;
+    const Scalar tmp2595 = phi1_dot*tmp2581 + tmp2594;
+    const Scalar tmp2596 = phi10_dot*tmp2577;
+    const Scalar tmp2597 = tmp2556 + tmp2577;
+    const Scalar tmp2598 = tmp2573 + tmp2577;
+    const Scalar tmp2599 = tmp2554 + tmp2597;
+    const Scalar tmp2600 = tmp2529 + tmp2598;
+    const Scalar tmp2601 = tmp2554 + tmp2597;
+    const Scalar tmp2602 = tmp2529 + tmp2598;
+    const Scalar tmp2603 = -tmp2529;
+    const Scalar tmp2604 = -tmp2539 + phi6_dot*tmp2603;
+    const Scalar tmp2605 = -tmp2529;
+    const Scalar tmp2606 = tmp2604 + phi5_dot*tmp2605;
+    const Scalar tmp2607 = -tmp2529;
+    const Scalar tmp2608 = tmp2606 + phi4_dot*tmp2607;
+    const Scalar tmp2609 = -tmp2529;
+    const Scalar tmp2610 = tmp2608 + phi3_dot*tmp2609;
+    const Scalar tmp2611 = -tmp2529;
+    const Scalar tmp2612 = tmp2610 + phi2_dot*tmp2611;
+    const Scalar tmp2613 = -phi7_dot*tmp2539
         + (-(phi1_dot*phi1_dot)
-            + phi7_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot - phi6_dot))*tmp2488
-        + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp2562 + phi6_dot*tmp2563
-        + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp2564 + phi5_dot*tmp2565
-        + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp2566 + phi4_dot*tmp2567
-        + phi3_dot*(phi1_dot + phi2_dot)*tmp2568 + phi3_dot*tmp2569 + phi1_dot*phi2_dot*tmp2570
-        + (phi1_dot + phi2_dot)*tmp2571;
-    const Scalar tmp2573 = phi2_dot*tmp2496 + phi1_dot*tmp2497
+            + phi7_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot - phi6_dot))*tmp2529
+        + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp2603 + phi6_dot*tmp2604
+        + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp2605 + phi5_dot*tmp2606
+        + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp2607 + phi4_dot*tmp2608
+        + phi3_dot*(phi1_dot + phi2_dot)*tmp2609 + phi3_dot*tmp2610 + phi1_dot*phi2_dot*tmp2611
+        + (phi1_dot + phi2_dot)*tmp2612;
+    const Scalar tmp2614 = phi2_dot*tmp2537 + phi1_dot*tmp2538
         + (phi1_dot*phi2_dot + phi3_dot*(phi1_dot + phi2_dot)
             + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)
             + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)
             + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)
-            + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot))*tmp2490
-        + phi7_dot*tmp2491 + phi6_dot*tmp2492 + phi5_dot*tmp2493 + phi4_dot*tmp2494
-        + phi3_dot*tmp2495;
-    const Scalar tmp2574 = -tmp2513;
-    const Scalar tmp2575 = -tmp2512 + phi7_dot*tmp2574;
-    const Scalar tmp2576 = -tmp2514;
-    const Scalar tmp2577 = tmp2575 + phi6_dot*tmp2576;
-    const Scalar tmp2578 = -tmp2513;
-    const Scalar tmp2579 = tmp2577 + phi5_dot*tmp2578;
-    const Scalar tmp2580 = -tmp2514;
-    const Scalar tmp2581 = tmp2579 + phi4_dot*tmp2580;
-    const Scalar tmp2582 = -tmp2513;
-    const Scalar tmp2583 = tmp2581 + phi3_dot*tmp2582;
-    const Scalar tmp2584 = -tmp2514;
-    const Scalar tmp2585 = tmp2583 + phi2_dot*tmp2584;
-    const Scalar tmp2586 = phi8_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot
-            - phi6_dot - phi7_dot)*tmp2499
-        - phi8_dot*tmp2512 - (phi1_dot*phi1_dot)*tmp2513
-        + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp2574
-        + phi7_dot*tmp2575 + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp2576
-        + phi6_dot*tmp2577 + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp2578
-        + phi5_dot*tmp2579 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp2580 + phi4_dot*tmp2581
-        + phi3_dot*(phi1_dot + phi2_dot)*tmp2582 + phi3_dot*tmp2583 + phi1_dot*phi2_dot*tmp2584
-        + (phi1_dot + phi2_dot)*tmp2585;
-    const Scalar tmp2587 = phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot
-            + phi7_dot)*tmp2501
+            + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot))*tmp2531
+        + phi7_dot*tmp2532 + phi6_dot*tmp2533 + phi5_dot*tmp2534 + phi4_dot*tmp2535
+        + phi3_dot*tmp2536;
+    const Scalar tmp2615 = -tmp2554;
+    const Scalar tmp2616 = -tmp2553 + phi7_dot*tmp2615;
+    const Scalar tmp2617 = -tmp2555;
+    const Scalar tmp2618 = tmp2616 + phi6_dot*tmp2617;
+    const Scalar tmp2619 = -tmp2554;
+    const Scalar tmp2620 = tmp2618 + phi5_dot*tmp2619;
+    const Scalar tmp2621 = -tmp2555;
+    const Scalar tmp2622 = tmp2620 + phi4_dot*tmp2621;
+    const Scalar tmp2623 = -tmp2554;
+    const Scalar tmp2624 = tmp2622 + phi3_dot*tmp2623;
+    const Scalar tmp2625 = -tmp2555;
+    const Scalar tmp2626 = tmp2624 + phi2_dot*tmp2625;
+    const Scalar tmp2627 = phi8_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot
+            - phi6_dot - phi7_dot)*tmp2540
+        - phi8_dot*tmp2553 - (phi1_dot*phi1_dot)*tmp2554
+        + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp2615
+        + phi7_dot*tmp2616 + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp2617
+        + phi6_dot*tmp2618 + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp2619
+        + phi5_dot*tmp2620 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp2621 + phi4_dot*tmp2622
+        + phi3_dot*(phi1_dot + phi2_dot)*tmp2623 + phi3_dot*tmp2624 + phi1_dot*phi2_dot*tmp2625
+        + (phi1_dot + phi2_dot)*tmp2626;
+    const Scalar tmp2628 = phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot
+            + phi7_dot)*tmp2542
         + (phi3_dot*(phi1_dot + phi2_dot) + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)
-            + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot))*tmp2502
-        + (phi1_dot*phi2_dot + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)
-            + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot))*tmp2503
-        + phi8_dot*tmp2504 + phi7_dot*tmp2505 + phi6_dot*tmp2506 + phi5_dot*tmp2507
-        + phi4_dot*tmp2508 + phi3_dot*tmp2509 + phi2_dot*tmp2510 + phi1_dot*tmp2511;
-    const Scalar tmp2588 = -tmp2532;
-    const Scalar tmp2589 = -tmp2531 + phi8_dot*tmp2588;
-    const Scalar tmp2590 = -tmp2533;
-    const Scalar tmp2591 = tmp2589 + phi7_dot*tmp2590;
-    const Scalar tmp2592 = -tmp2534;
-    const Scalar tmp2593 = tmp2591 + phi6_dot*tmp2592;
-    const Scalar tmp2594 = -tmp2533;
-    const Scalar tmp2595 = tmp2593 + phi5_dot*tmp2594;
-    const Scalar tmp2596 = -tmp2535;
-    const Scalar tmp2597 = tmp2595 + phi4_dot*tmp2596;
-    const Scalar tmp2598 = -tmp2533;
-    const Scalar tmp2599 = tmp2597 + phi3_dot*tmp2598;
-    const Scalar tmp2600 = -tmp2534;
-    const Scalar tmp2601 = tmp2599 + phi2_dot*tmp2600;
-    const Scalar tmp2602 = phi9_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot
-            - phi6_dot - phi7_dot - phi8_dot)*tmp2515
-        - phi9_dot*tmp2531 - (phi1_dot*phi1_dot)*tmp2533
-        + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot
-            + phi7_dot)*tmp2588
-        + phi8_dot*tmp2589
-        + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp2590
-        + phi7_dot*tmp2591 + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp2592
-        + phi6_dot*tmp2593 + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp2594
-        + phi5_dot*tmp2595 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp2596 + phi4_dot*tmp2597
-        + phi3_dot*(phi1_dot + phi2_dot)*tmp2598 + phi3_dot*tmp2599 + phi1_dot*phi2_dot*tmp2600
-        + (phi1_dot + phi2_dot)*tmp2601;
-    const Scalar tmp2603 = phi9_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot
-            + phi7_dot + phi8_dot)*tmp2517
-        + (phi3_dot*(phi1_dot + phi2_dot) + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)
-            + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot))*tmp2518
-        + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot
-            + phi7_dot)*tmp2519
-        + (phi1_dot*phi2_dot
-            + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot))*tmp2520
-        + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp2521 + phi9_dot*tmp2522 + phi8_dot*tmp2523
-        + phi7_dot*tmp2524 + phi6_dot*tmp2525 + phi5_dot*tmp2526 + phi4_dot*tmp2527
-        + phi3_dot*tmp2528 + phi2_dot*tmp2529 + phi1_dot*tmp2530;
-    const Scalar tmp2604 = -tmp2556;
-    const Scalar tmp2605 = -tmp2555 + phi9_dot*tmp2604;
-    const Scalar tmp2606 = -tmp2557;
-    const Scalar tmp2607 = tmp2605 + phi8_dot*tmp2606;
-    const Scalar tmp2608 = -tmp2558;
-    const Scalar tmp2609 = tmp2607 + phi7_dot*tmp2608;
-    const Scalar tmp2610 = -tmp2559;
-    const Scalar tmp2611 = tmp2609 + phi6_dot*tmp2610;
-    const Scalar tmp2612 = -tmp2560;
-    const Scalar tmp2613 = tmp2611 + phi5_dot*tmp2612;
-    const Scalar tmp2614 = -tmp2561;
-    const Scalar tmp2615 = tmp2613 + phi4_dot*tmp2614;
-    const Scalar tmp2616 = -tmp2558;
-    const Scalar tmp2617 = tmp2615 + phi3_dot*tmp2616;
-    const Scalar tmp2618 = -tmp2559;
-    const Scalar tmp2619 = tmp2617 + phi2_dot*tmp2618;
-    const Scalar tmp2620 = phi10_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot
-            - phi6_dot - phi7_dot - phi8_dot - phi9_dot)*tmp2536
-        - phi10_dot*tmp2555 - (phi1_dot*phi1_dot)*tmp2560
-        + phi9_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot
-            + phi8_dot)*tmp2604
-        + phi9_dot*tmp2605
-        + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot
-            + phi7_dot)*tmp2606
-        + phi8_dot*tmp2607
-        + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp2608
-        + phi7_dot*tmp2609 + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp2610
-        + phi6_dot*tmp2611 + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp2612
-        + phi5_dot*tmp2613 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp2614 + phi4_dot*tmp2615
-        + phi3_dot*(phi1_dot + phi2_dot)*tmp2616 + phi3_dot*tmp2617 + phi1_dot*phi2_dot*tmp2618
-        + (phi1_dot + phi2_dot)*tmp2619;
-    const Scalar tmp2621 = phi10_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot
-            + phi6_dot + phi7_dot + phi8_dot + phi9_dot)*tmp2538
-        + phi9_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot
-            + phi8_dot)*tmp2539
-        + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp2540
-        + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot
-            + phi7_dot)*tmp2541
-        + (phi1_dot*phi2_dot
-            + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot))*tmp2542
-        + (phi3_dot*(phi1_dot + phi2_dot)
             + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot))*tmp2543
-        + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp2544 + phi10_dot*tmp2545 + phi9_dot*tmp2546
-        + phi8_dot*tmp2547 + phi7_dot*tmp2548 + phi6_dot*tmp2549 + phi5_dot*tmp2550
-        + phi4_dot*tmp2551 + phi3_dot*tmp2552 + phi2_dot*tmp2553 + phi1_dot*tmp2554;
-    const Scalar tmp2622 = Scalar(2)*tmp128*m*tmp2488 + Scalar(2)*tmp139*m*tmp2502
-        + Scalar(2)*tmp159*m*tmp2513 + Scalar(2)*tmp170*m*tmp2518 + Scalar(2)*tmp193*m*tmp2533
-        + Scalar(2)*tmp204*m*tmp2540 + Scalar(2)*tmp230*m*tmp2560 + Scalar(2)*tmp110*m*tmp2490;
-    const Scalar tmp2623 = (tmp127*m + tmp128*m)*tmp2488 + tmp141*m*tmp2502 + tmp139*m*tmp2503
-        + tmp159*m*tmp2514 + tmp158*m*tmp2513 + tmp173*m*tmp2518 + tmp170*m*tmp2520
-        + tmp193*m*tmp2534 + tmp192*m*tmp2533 + tmp207*m*tmp2540 + tmp204*m*tmp2542
-        + tmp230*m*tmp2559 + tmp229*m*tmp2560 + (tmp110*m + tmp112*m)*tmp2490;
-    const Scalar tmp2624 = Scalar(2)*tmp127*m*tmp2488 + Scalar(2)*tmp141*m*tmp2503
-        + Scalar(2)*tmp158*m*tmp2514 + Scalar(2)*tmp173*m*tmp2520 + Scalar(2)*tmp192*m*tmp2534
-        + Scalar(2)*tmp207*m*tmp2542 + Scalar(2)*tmp229*m*tmp2559 + Scalar(2)*tmp112*m*tmp2490;
-    const Scalar tmp2625 = (tmp126*m + tmp128*m)*tmp2488 + (tmp139*m + tmp142*m)*tmp2502
-        + (tmp157*m + tmp159*m)*tmp2513 + (tmp170*m + tmp174*m)*tmp2518
-        + (tmp191*m + tmp193*m)*tmp2533 + tmp209*m*tmp2540 + tmp204*m*tmp2543 + tmp230*m*tmp2558
-        + tmp228*m*tmp2560 + (tmp110*m + tmp113*m)*tmp2490;
-    const Scalar tmp2626 = (tmp126*m + tmp127*m)*tmp2488 + tmp142*m*tmp2503 + tmp141*m*tmp2502
-        + tmp158*m*tmp2513 + tmp157*m*tmp2514 + tmp174*m*tmp2520 + tmp173*m*tmp2518
-        + tmp192*m*tmp2533 + tmp191*m*tmp2534 + tmp209*m*tmp2542 + tmp207*m*tmp2543
-        + tmp229*m*tmp2558 + tmp228*m*tmp2559 + (tmp112*m + tmp113*m)*tmp2490;
-    const Scalar tmp2627 = Scalar(2)*tmp126*m*tmp2488 + Scalar(2)*tmp142*m*tmp2502
-        + Scalar(2)*tmp157*m*tmp2513 + Scalar(2)*tmp174*m*tmp2518 + Scalar(2)*tmp191*m*tmp2533
-        + Scalar(2)*tmp209*m*tmp2543 + Scalar(2)*tmp228*m*tmp2558 + Scalar(2)*tmp113*m*tmp2490;
-    const Scalar tmp2628 = (tmp125*m + tmp128*m)*tmp2488 + tmp143*m*tmp2502 + tmp139*m*tmp2503
-        + tmp159*m*tmp2514 + tmp156*m*tmp2513 + tmp175*m*tmp2518 + tmp170*m*tmp2521
-        + tmp193*m*tmp2535 + tmp190*m*tmp2533 + tmp210*m*tmp2540 + tmp204*m*tmp2544
-        + tmp230*m*tmp2561 + tmp227*m*tmp2560 + (tmp110*m + tmp114*m)*tmp2490;
-    const Scalar tmp2629 = (tmp125*m + tmp127*m)*tmp2488 + (tmp141*m + tmp143*m)*tmp2503
-        + (tmp156*m + tmp158*m)*tmp2514 + tmp175*m*tmp2520 + tmp173*m*tmp2521 + tmp192*m*tmp2535
-        + tmp190*m*tmp2534 + tmp210*m*tmp2542 + tmp207*m*tmp2544 + tmp229*m*tmp2561
-        + tmp227*m*tmp2559 + (tmp112*m + tmp114*m)*tmp2490;
-    const Scalar tmp2630 = (tmp125*m + tmp126*m)*tmp2488 + tmp143*m*tmp2502 + tmp142*m*tmp2503
-        + tmp157*m*tmp2514 + tmp156*m*tmp2513 + tmp175*m*tmp2518 + tmp174*m*tmp2521
-        + tmp191*m*tmp2535 + tmp190*m*tmp2533 + tmp210*m*tmp2543 + tmp209*m*tmp2544
-        + tmp228*m*tmp2561 + tmp227*m*tmp2558 + (tmp113*m + tmp114*m)*tmp2490;
-    const Scalar tmp2631 = Scalar(2)*tmp125*m*tmp2488 + Scalar(2)*tmp143*m*tmp2503
-        + Scalar(2)*tmp156*m*tmp2514 + Scalar(2)*tmp175*m*tmp2521 + Scalar(2)*tmp190*m*tmp2535
-        + Scalar(2)*tmp210*m*tmp2544 + Scalar(2)*tmp227*m*tmp2561 + Scalar(2)*tmp114*m*tmp2490;
-    const Scalar tmp2632 = (tmp124*m + tmp128*m)*tmp2488 + (tmp138*m + tmp139*m)*tmp2502
-        + (tmp155*m + tmp159*m)*tmp2513 + (tmp169*m + tmp170*m)*tmp2518
-        + (tmp189*m + tmp193*m)*tmp2533 + (tmp203*m + tmp204*m)*tmp2540
-        + (tmp226*m + tmp230*m)*tmp2560 + (tmp109*m + tmp110*m)*tmp2490;
-    const Scalar tmp2633 = (tmp124*m + tmp127*m)*tmp2488 + tmp141*m*tmp2502 + tmp138*m*tmp2503
-        + tmp158*m*tmp2513 + tmp155*m*tmp2514 + tmp173*m*tmp2518 + tmp169*m*tmp2520
-        + tmp192*m*tmp2533 + tmp189*m*tmp2534 + tmp207*m*tmp2540 + tmp203*m*tmp2542
-        + tmp229*m*tmp2560 + tmp226*m*tmp2559 + (tmp109*m + tmp112*m)*tmp2490;
-    const Scalar tmp2634 = (tmp124*m + tmp126*m)*tmp2488 + (tmp138*m + tmp142*m)*tmp2502
-        + (tmp155*m + tmp157*m)*tmp2513 + (tmp169*m + tmp174*m)*tmp2518
-        + (tmp189*m + tmp191*m)*tmp2533 + tmp209*m*tmp2540 + tmp203*m*tmp2543 + tmp228*m*tmp2560
-        + tmp226*m*tmp2558 + (tmp109*m + tmp113*m)*tmp2490;
-    const Scalar tmp2635 = (tmp124*m + tmp125*m)*tmp2488 + tmp143*m*tmp2502 + tmp138*m*tmp2503
-        + tmp156*m*tmp2513 + tmp155*m*tmp2514 + tmp175*m*tmp2518 + tmp169*m*tmp2521
-        + tmp190*m*tmp2533 + tmp189*m*tmp2535 + tmp210*m*tmp2540 + tmp203*m*tmp2544
-        + tmp227*m*tmp2560 + tmp226*m*tmp2561 + (tmp109*m + tmp114*m)*tmp2490;
-    const Scalar tmp2636 = Scalar(2)*tmp124*m*tmp2488 + Scalar(2)*tmp138*m*tmp2502
-        + Scalar(2)*tmp155*m*tmp2513 + Scalar(2)*tmp169*m*tmp2518 + Scalar(2)*tmp189*m*tmp2533
-        + Scalar(2)*tmp203*m*tmp2540 + Scalar(2)*tmp226*m*tmp2560 + Scalar(2)*tmp109*m*tmp2490;
-    const Scalar tmp2637 = (tmp123*m + tmp128*m)*tmp2488 + tmp140*m*tmp2502 + tmp139*m*tmp2503
-        + tmp159*m*tmp2514 + tmp154*m*tmp2513 + tmp172*m*tmp2518 + tmp170*m*tmp2520
-        + tmp193*m*tmp2534 + tmp188*m*tmp2533 + tmp206*m*tmp2540 + tmp204*m*tmp2542
-        + tmp230*m*tmp2559 + tmp225*m*tmp2560 + (tmp110*m + tmp111*m)*tmp2490;
-    const Scalar tmp2638 = (tmp123*m + tmp127*m)*tmp2488 + (tmp140*m + tmp141*m)*tmp2503
-        + (tmp154*m + tmp158*m)*tmp2514 + (tmp172*m + tmp173*m)*tmp2520
-        + (tmp188*m + tmp192*m)*tmp2534 + (tmp206*m + tmp207*m)*tmp2542
-        + (tmp225*m + tmp229*m)*tmp2559 + (tmp111*m + tmp112*m)*tmp2490;
-    const Scalar tmp2639 = (tmp123*m + tmp126*m)*tmp2488 + tmp142*m*tmp2503 + tmp140*m*tmp2502
-        + tmp157*m*tmp2514 + tmp154*m*tmp2513 + tmp174*m*tmp2520 + tmp172*m*tmp2518
-        + tmp191*m*tmp2534 + tmp188*m*tmp2533 + tmp209*m*tmp2542 + tmp206*m*tmp2543
-        + tmp228*m*tmp2559 + tmp225*m*tmp2558 + (tmp111*m + tmp113*m)*tmp2490;
-    const Scalar tmp2640 = (tmp123*m + tmp125*m)*tmp2488 + (tmp140*m + tmp143*m)*tmp2503
-        + (tmp154*m + tmp156*m)*tmp2514 + tmp175*m*tmp2520 + tmp172*m*tmp2521 + tmp190*m*tmp2534
-        + tmp188*m*tmp2535 + tmp210*m*tmp2542 + tmp206*m*tmp2544 + tmp227*m*tmp2559
-        + tmp225*m*tmp2561 + (tmp111*m + tmp114*m)*tmp2490;
-    const Scalar tmp2641 = (tmp123*m + tmp124*m)*tmp2488 + tmp140*m*tmp2502 + tmp138*m*tmp2503
-        + tmp155*m*tmp2514 + tmp154*m*tmp2513 + tmp172*m*tmp2518 + tmp169*m*tmp2520
-        + tmp189*m*tmp2534 + tmp188*m*tmp2533 + tmp206*m*tmp2540 + tmp203*m*tmp2542
-        + tmp226*m*tmp2559 + tmp225*m*tmp2560 + (tmp109*m + tmp111*m)*tmp2490;
-    const Scalar tmp2642 = Scalar(2)*tmp123*m*tmp2488 + Scalar(2)*tmp140*m*tmp2503
-        + Scalar(2)*tmp154*m*tmp2514 + Scalar(2)*tmp172*m*tmp2520 + Scalar(2)*tmp188*m*tmp2534
-        + Scalar(2)*tmp206*m*tmp2542 + Scalar(2)*tmp225*m*tmp2559 + Scalar(2)*tmp111*m*tmp2490;
-    const Scalar tmp2643 = (tmp128*m + tmp104*m)*tmp2488 + (tmp137*m + tmp139*m)*tmp2502
-        + (tmp153*m + tmp159*m)*tmp2513 + (tmp168*m + tmp170*m)*tmp2518
-        + (tmp187*m + tmp193*m)*tmp2533 + tmp208*m*tmp2540 + tmp204*m*tmp2543 + tmp230*m*tmp2558
-        + tmp224*m*tmp2560 + (tmp107*m + tmp110*m)*tmp2490;
-    const Scalar tmp2644 = (tmp127*m + tmp104*m)*tmp2488 + tmp141*m*tmp2502 + tmp137*m*tmp2503
-        + tmp158*m*tmp2513 + tmp153*m*tmp2514 + tmp173*m*tmp2518 + tmp168*m*tmp2520
-        + tmp192*m*tmp2533 + tmp187*m*tmp2534 + tmp208*m*tmp2542 + tmp207*m*tmp2543
-        + tmp229*m*tmp2558 + tmp224*m*tmp2559 + (tmp107*m + tmp112*m)*tmp2490;
-    const Scalar tmp2645 = (tmp126*m + tmp104*m)*tmp2488 + (tmp137*m + tmp142*m)*tmp2502
-        + (tmp153*m + tmp157*m)*tmp2513 + (tmp168*m + tmp174*m)*tmp2518
-        + (tmp187*m + tmp191*m)*tmp2533 + (tmp208*m + tmp209*m)*tmp2543
-        + (tmp224*m + tmp228*m)*tmp2558 + (tmp107*m + tmp113*m)*tmp2490;
-    const Scalar tmp2646 = (tmp125*m + tmp104*m)*tmp2488 + tmp143*m*tmp2502 + tmp137*m*tmp2503
-        + tmp156*m*tmp2513 + tmp153*m*tmp2514 + tmp175*m*tmp2518 + tmp168*m*tmp2521
-        + tmp190*m*tmp2533 + tmp187*m*tmp2535 + tmp210*m*tmp2543 + tmp208*m*tmp2544
-        + tmp227*m*tmp2558 + tmp224*m*tmp2561 + (tmp107*m + tmp114*m)*tmp2490;
-    const Scalar tmp2647 = (tmp124*m + tmp104*m)*tmp2488 + (tmp137*m + tmp138*m)*tmp2502
-        + (tmp153*m + tmp155*m)*tmp2513 + (tmp168*m + tmp169*m)*tmp2518
-        + (tmp187*m + tmp189*m)*tmp2533 + tmp208*m*tmp2540 + tmp203*m*tmp2543 + tmp226*m*tmp2558
-        + tmp224*m*tmp2560 + (tmp107*m + tmp109*m)*tmp2490;
-    const Scalar tmp2648 = (tmp123*m + tmp104*m)*tmp2488 + tmp140*m*tmp2502 + tmp137*m*tmp2503
-        + tmp154*m*tmp2513 + tmp153*m*tmp2514 + tmp172*m*tmp2518 + tmp168*m*tmp2520
-        + tmp188*m*tmp2533 + tmp187*m*tmp2534 + tmp208*m*tmp2542 + tmp206*m*tmp2543
-        + tmp225*m*tmp2558 + tmp224*m*tmp2559 + (tmp107*m + tmp111*m)*tmp2490;
-    const Scalar tmp2649 = Scalar(2)*tmp137*m*tmp2502 + Scalar(2)*tmp153*m*tmp2513
-        + Scalar(2)*tmp168*m*tmp2518 + Scalar(2)*tmp187*m*tmp2533 + Scalar(2)*tmp208*m*tmp2543
-        + Scalar(2)*tmp224*m*tmp2558 + Scalar(2)*tmp325*tmp103*m*tmp106
-        + Scalar(2)*tmp325*tmp106*m*tmp2489;
-    const Scalar tmp2650 = tmp159*m*tmp2499 + tmp139*m*tmp2501 + tmp135*m*tmp2502 + tmp132*m*tmp2513
-        + tmp171*m*tmp2518 + tmp170*m*tmp2519 + tmp193*m*tmp2532 + tmp186*m*tmp2533
-        + tmp205*m*tmp2540 + tmp204*m*tmp2541 + tmp230*m*tmp2557 + tmp223*m*tmp2560;
-    const Scalar tmp2651 = tmp158*m*tmp2499 + tmp141*m*tmp2501 + tmp135*m*tmp2503 + tmp132*m*tmp2514
-        + tmp173*m*tmp2519 + tmp171*m*tmp2520 + tmp192*m*tmp2532 + tmp186*m*tmp2534
-        + tmp207*m*tmp2541 + tmp205*m*tmp2542 + tmp229*m*tmp2557 + tmp223*m*tmp2559;
-    const Scalar tmp2652 = tmp157*m*tmp2499 + tmp142*m*tmp2501 + tmp135*m*tmp2502 + tmp132*m*tmp2513
-        + tmp174*m*tmp2519 + tmp171*m*tmp2518 + tmp191*m*tmp2532 + tmp186*m*tmp2533
-        + tmp209*m*tmp2541 + tmp205*m*tmp2543 + tmp228*m*tmp2557 + tmp223*m*tmp2558;
-    const Scalar tmp2653 = tmp156*m*tmp2499 + tmp143*m*tmp2501 + tmp135*m*tmp2503 + tmp132*m*tmp2514
-        + tmp175*m*tmp2519 + tmp171*m*tmp2521 + tmp190*m*tmp2532 + tmp186*m*tmp2535
-        + tmp210*m*tmp2541 + tmp205*m*tmp2544 + tmp227*m*tmp2557 + tmp223*m*tmp2561;
-    const Scalar tmp2654 = tmp155*m*tmp2499 + tmp138*m*tmp2501 + tmp135*m*tmp2502 + tmp132*m*tmp2513
-        + tmp171*m*tmp2518 + tmp169*m*tmp2519 + tmp189*m*tmp2532 + tmp186*m*tmp2533
-        + tmp205*m*tmp2540 + tmp203*m*tmp2541 + tmp226*m*tmp2557 + tmp223*m*tmp2560;
-    const Scalar tmp2655 = tmp154*m*tmp2499 + tmp140*m*tmp2501 + tmp135*m*tmp2503 + tmp132*m*tmp2514
-        + tmp172*m*tmp2519 + tmp171*m*tmp2520 + tmp188*m*tmp2532 + tmp186*m*tmp2534
-        + tmp206*m*tmp2541 + tmp205*m*tmp2542 + tmp225*m*tmp2557 + tmp223*m*tmp2559;
-    const Scalar tmp2656 = tmp153*m*tmp2499 + tmp137*m*tmp2501 + tmp135*m*tmp2502 + tmp132*m*tmp2513
-        + tmp171*m*tmp2518 + tmp168*m*tmp2519 + tmp187*m*tmp2532 + tmp186*m*tmp2533
-        + tmp208*m*tmp2541 + tmp205*m*tmp2543 + tmp224*m*tmp2557 + tmp223*m*tmp2558;
-    const Scalar tmp2657 = Scalar(2)*tmp131*tmp325*m*tmp134 + Scalar(2)*tmp134*tmp325*m*tmp2500
-        + Scalar(2)*tmp171*m*tmp2519 + Scalar(2)*tmp186*m*tmp2532 + Scalar(2)*tmp205*m*tmp2541
-        + Scalar(2)*tmp223*m*tmp2557;
-    const Scalar tmp2658 = tmp193*m*tmp2515 + tmp170*m*tmp2517 + tmp166*m*tmp2518 + tmp163*m*tmp2533
-        + tmp204*m*tmp2539 + tmp202*m*tmp2540 + tmp230*m*tmp2556 + tmp222*m*tmp2560;
-    const Scalar tmp2659 = tmp192*m*tmp2515 + tmp173*m*tmp2517 + tmp166*m*tmp2520 + tmp163*m*tmp2534
-        + tmp207*m*tmp2539 + tmp202*m*tmp2542 + tmp229*m*tmp2556 + tmp222*m*tmp2559;
-    const Scalar tmp2660 = tmp191*m*tmp2515 + tmp174*m*tmp2517 + tmp166*m*tmp2518 + tmp163*m*tmp2533
-        + tmp209*m*tmp2539 + tmp202*m*tmp2543 + tmp228*m*tmp2556 + tmp222*m*tmp2558;
-    const Scalar tmp2661 = tmp190*m*tmp2515 + tmp175*m*tmp2517 + tmp166*m*tmp2521 + tmp163*m*tmp2535
-        + tmp210*m*tmp2539 + tmp202*m*tmp2544 + tmp227*m*tmp2556 + tmp222*m*tmp2561;
-    const Scalar tmp2662 = tmp189*m*tmp2515 + tmp169*m*tmp2517 + tmp166*m*tmp2518 + tmp163*m*tmp2533
-        + tmp203*m*tmp2539 + tmp202*m*tmp2540 + tmp226*m*tmp2556 + tmp222*m*tmp2560;
-    const Scalar tmp2663 = tmp188*m*tmp2515 + tmp172*m*tmp2517 + tmp166*m*tmp2520 + tmp163*m*tmp2534
-        + tmp206*m*tmp2539 + tmp202*m*tmp2542 + tmp225*m*tmp2556 + tmp222*m*tmp2559;
-    const Scalar tmp2664 = tmp187*m*tmp2515 + tmp168*m*tmp2517 + tmp166*m*tmp2518 + tmp163*m*tmp2533
-        + tmp208*m*tmp2539 + tmp202*m*tmp2543 + tmp224*m*tmp2556 + tmp222*m*tmp2558;
-    const Scalar tmp2665 = tmp186*m*tmp2515 + tmp171*m*tmp2517 + tmp166*m*tmp2519 + tmp163*m*tmp2532
-        + tmp205*m*tmp2539 + tmp202*m*tmp2541 + tmp223*m*tmp2556 + tmp222*m*tmp2557;
-    const Scalar tmp2666 = Scalar(2)*tmp162*tmp325*m*tmp165 + Scalar(2)*tmp165*tmp325*m*tmp2516
-        + Scalar(2)*tmp202*m*tmp2539 + Scalar(2)*tmp222*m*tmp2556;
-    const Scalar tmp2667 = tmp230*m*tmp2536 + tmp204*m*tmp2538 + tmp200*m*tmp2540
-        + tmp197*m*tmp2560;
-    const Scalar tmp2668 = tmp229*m*tmp2536 + tmp207*m*tmp2538 + tmp200*m*tmp2542
-        + tmp197*m*tmp2559;
-    const Scalar tmp2669 = tmp228*m*tmp2536 + tmp209*m*tmp2538 + tmp200*m*tmp2543
-        + tmp197*m*tmp2558;
-    const Scalar tmp2670 = tmp227*m*tmp2536 + tmp210*m*tmp2538 + tmp200*m*tmp2544
-        + tmp197*m*tmp2561;
-    const Scalar tmp2671 = tmp226*m*tmp2536 + tmp203*m*tmp2538 + tmp200*m*tmp2540
-        + tmp197*m*tmp2560;
-    const Scalar tmp2672 = tmp225*m*tmp2536 + tmp206*m*tmp2538 + tmp200*m*tmp2542
-        + tmp197*m*tmp2559;
-    const Scalar tmp2673 = tmp224*m*tmp2536 + tmp208*m*tmp2538 + tmp200*m*tmp2543
-        + tmp197*m*tmp2558;
-    const Scalar tmp2674 = tmp223*m*tmp2536 + tmp205*m*tmp2538 + tmp200*m*tmp2541
-        + tmp197*m*tmp2557;
-    const Scalar tmp2675 = tmp222*m*tmp2536 + tmp202*m*tmp2538 + tmp200*m*tmp2539
-        + tmp197*m*tmp2556;
-    const Scalar tmp2676 = Scalar(2)*tmp196*tmp325*m*tmp199 + Scalar(2)*tmp199*tmp325*m*tmp2537;
-    const Scalar tmp2677 = m*tmp2572;
-    const Scalar tmp2678 = m*tmp2573;
-    const Scalar tmp2679 = m*tmp2586;
-    const Scalar tmp2680 = m*tmp2587;
-    const Scalar tmp2681 = m*tmp2602;
-    const Scalar tmp2682 = m*tmp2603;
-    const Scalar tmp2683 = m*tmp2620;
-    const Scalar tmp2684 = m*tmp2621;
-    const Scalar tmp2685 = tmp382*tmp2488 + tmp382*tmp2513 + tmp382*tmp2533 + tmp382*tmp2560;
-    const Scalar tmp2686 = tmp382*tmp2488 + tmp382*tmp2514 + tmp382*tmp2534 + tmp382*tmp2559;
-    const Scalar tmp2687 = tmp382*tmp2488 + tmp382*tmp2513 + tmp382*tmp2533 + tmp382*tmp2558;
-    const Scalar tmp2688 = tmp382*tmp2488 + tmp382*tmp2514 + tmp382*tmp2535 + tmp382*tmp2561;
-    const Scalar tmp2689 = tmp382*tmp2488 + tmp382*tmp2513 + tmp382*tmp2533 + tmp382*tmp2560;
-    const Scalar tmp2690 = tmp382*tmp2488 + tmp382*tmp2514 + tmp382*tmp2534 + tmp382*tmp2559;
-    const Scalar tmp2691 = tmp382*tmp2513 + tmp382*tmp2533 + tmp382*tmp2558 - k + tmp382*tmp2488;
-    const Scalar tmp2692 = tmp382*tmp2499 + tmp382*tmp2532 + tmp382*tmp2557;
-    const Scalar tmp2693 = tmp382*tmp2515 + tmp382*tmp2556;
-    const Scalar tmp2694 = tmp382*l*tmp199;
-    const Scalar tmp2695 = -tmp396*tmp2488 - tmp397*tmp2502 - tmp398*tmp2513 - tmp399*tmp2518
-        - tmp400*tmp2533 - tmp401*tmp2540 - tmp402*tmp2560 - tmp395*tmp2490 - tmp110*tmp2677
-        - tmp128*tmp2678 - tmp139*tmp2679 - tmp159*tmp2680 - tmp170*tmp2681 - tmp193*tmp2682
-        - tmp204*tmp2683 - tmp230*tmp2684;
-    dr_dq_data[0 + 10 * 6] = phi10_ddot*tmp2667 - tmp2685 - tmp2695 + phi1_ddot*tmp2622
-        + phi2_ddot*tmp2623 + phi3_ddot*tmp2625 + phi4_ddot*tmp2628 + phi5_ddot*tmp2632
-        + phi6_ddot*tmp2637 + phi7_ddot*tmp2643 + phi8_ddot*tmp2650 + phi9_ddot*tmp2658;
-    const Scalar tmp2696 = -tmp396*tmp2488 - tmp397*tmp2503 - tmp398*tmp2514 - tmp399*tmp2520
-        - tmp400*tmp2534 - tmp401*tmp2542 - tmp402*tmp2559 - tmp395*tmp2490 - tmp112*tmp2677
-        - tmp127*tmp2678 - tmp141*tmp2679 - tmp158*tmp2680 - tmp173*tmp2681 - tmp192*tmp2682
-        - tmp207*tmp2683 - tmp229*tmp2684;
-    dr_dq_data[1 + 10 * 6] = phi10_ddot*tmp2668 - tmp2686 - tmp2696 + phi1_ddot*tmp2623
-        + phi2_ddot*tmp2624 + phi3_ddot*tmp2626 + phi4_ddot*tmp2629 + phi5_ddot*tmp2633
-        + phi6_ddot*tmp2638 + phi7_ddot*tmp2644 + phi8_ddot*tmp2651 + phi9_ddot*tmp2659;
-    const Scalar tmp2697 = -tmp396*tmp2488 - tmp397*tmp2502 - tmp398*tmp2513 - tmp399*tmp2518
-        - tmp400*tmp2533 - tmp401*tmp2543 - tmp402*tmp2558 - tmp395*tmp2490 - tmp113*tmp2677
-        - tmp126*tmp2678 - tmp142*tmp2679 - tmp157*tmp2680 - tmp174*tmp2681 - tmp191*tmp2682
-        - tmp209*tmp2683 - tmp228*tmp2684;
-    dr_dq_data[2 + 10 * 6] = phi10_ddot*tmp2669 - tmp2687 - tmp2697 + phi1_ddot*tmp2625
-        + phi2_ddot*tmp2626 + phi3_ddot*tmp2627 + phi4_ddot*tmp2630 + phi5_ddot*tmp2634
-        + phi6_ddot*tmp2639 + phi7_ddot*tmp2645 + phi8_ddot*tmp2652 + phi9_ddot*tmp2660;
-    const Scalar tmp2698 = -tmp396*tmp2488 - tmp397*tmp2503 - tmp398*tmp2514 - tmp399*tmp2521
-        - tmp400*tmp2535 - tmp401*tmp2544 - tmp402*tmp2561 - tmp395*tmp2490 - tmp114*tmp2677
-        - tmp125*tmp2678 - tmp143*tmp2679 - tmp156*tmp2680 - tmp175*tmp2681 - tmp190*tmp2682
-        - tmp210*tmp2683 - tmp227*tmp2684;
-    dr_dq_data[3 + 10 * 6] = phi10_ddot*tmp2670 - tmp2688 - tmp2698 + phi1_ddot*tmp2628
-        + phi2_ddot*tmp2629 + phi3_ddot*tmp2630 + phi4_ddot*tmp2631 + phi5_ddot*tmp2635
-        + phi6_ddot*tmp2640 + phi7_ddot*tmp2646 + phi8_ddot*tmp2653 + phi9_ddot*tmp2661;
-    const Scalar tmp2699 = -tmp396*tmp2488 - tmp397*tmp2502 - tmp398*tmp2513 - tmp399*tmp2518
-        - tmp400*tmp2533 - tmp401*tmp2540 - tmp402*tmp2560 - tmp395*tmp2490 - tmp109*tmp2677
-        - tmp124*tmp2678 - tmp138*tmp2679 - tmp155*tmp2680 - tmp169*tmp2681 - tmp189*tmp2682
-        - tmp203*tmp2683 - tmp226*tmp2684;
-    dr_dq_data[4 + 10 * 6] = phi9_ddot*tmp2662 + phi10_ddot*tmp2671 - tmp2689 - tmp2699
-        + phi1_ddot*tmp2632 + phi2_ddot*tmp2633 + phi3_ddot*tmp2634 + phi4_ddot*tmp2635
-        + phi5_ddot*tmp2636 + phi6_ddot*tmp2641 + phi7_ddot*tmp2647 + phi8_ddot*tmp2654;
-    const Scalar tmp2700 = -tmp396*tmp2488 - tmp397*tmp2503 - tmp398*tmp2514 - tmp399*tmp2520
-        - tmp400*tmp2534 - tmp401*tmp2542 - tmp402*tmp2559 - tmp395*tmp2490 - tmp111*tmp2677
-        - tmp123*tmp2678 - tmp140*tmp2679 - tmp154*tmp2680 - tmp172*tmp2681 - tmp188*tmp2682
-        - tmp206*tmp2683 - tmp225*tmp2684;
-    dr_dq_data[5 + 10 * 6] = phi9_ddot*tmp2663 + phi10_ddot*tmp2672 - tmp2690 - tmp2700
-        + phi1_ddot*tmp2637 + phi2_ddot*tmp2638 + phi3_ddot*tmp2639 + phi4_ddot*tmp2640
-        + phi5_ddot*tmp2641 + phi6_ddot*tmp2642 + phi7_ddot*tmp2648 + phi8_ddot*tmp2655;
-    const Scalar tmp2701 = -tmp397*tmp2502 - tmp398*tmp2513 - tmp399*tmp2518 - tmp400*tmp2533
-        - tmp401*tmp2543 - tmp402*tmp2558 - tmp396*tmp2488 - tmp395*tmp2490 - tmp107*tmp2677
-        - tmp104*tmp2678 - tmp137*tmp2679 - tmp153*tmp2680 - tmp168*tmp2681 - tmp187*tmp2682
-        - tmp208*tmp2683 - tmp224*tmp2684;
-    dr_dq_data[6 + 10 * 6] = phi9_ddot*tmp2664 + phi10_ddot*tmp2673 - tmp2691 - tmp2701
-        + phi1_ddot*tmp2643 + phi2_ddot*tmp2644 + phi3_ddot*tmp2645 + phi4_ddot*tmp2646
-        + phi5_ddot*tmp2647 + phi6_ddot*tmp2648 + phi7_ddot*tmp2649 + phi8_ddot*tmp2656;
-    const Scalar tmp2702 = -tmp398*tmp2499 - tmp397*tmp2501 - tmp399*tmp2519 - tmp400*tmp2532
-        - tmp401*tmp2541 - tmp402*tmp2557 - tmp135*tmp2679 - tmp132*tmp2680 - tmp171*tmp2681
-        - tmp186*tmp2682 - tmp205*tmp2683 - tmp223*tmp2684;
-    dr_dq_data[7 + 10 * 6] = phi9_ddot*tmp2665 + phi10_ddot*tmp2674 - tmp2692 - tmp2702
-        + phi1_ddot*tmp2650 + phi2_ddot*tmp2651 + phi3_ddot*tmp2652 + phi4_ddot*tmp2653
-        + phi5_ddot*tmp2654 + phi6_ddot*tmp2655 + phi7_ddot*tmp2656 + phi8_ddot*tmp2657;
-    const Scalar tmp2703 = -tmp400*tmp2515 - tmp399*tmp2517 - tmp401*tmp2539 - tmp402*tmp2556
-        - tmp166*tmp2681 - tmp163*tmp2682 - tmp202*tmp2683 - tmp222*tmp2684;
-    dr_dq_data[8 + 10 * 6] = phi5_ddot*tmp2662 + phi6_ddot*tmp2663 + phi7_ddot*tmp2664
-        + phi8_ddot*tmp2665 + phi9_ddot*tmp2666 + phi10_ddot*tmp2675 - tmp2693 - tmp2703
-        + phi1_ddot*tmp2658 + phi2_ddot*tmp2659 + phi3_ddot*tmp2660 + phi4_ddot*tmp2661;
-    const Scalar tmp2704 = -tmp402*tmp2536 - tmp401*tmp2538 - tmp200*tmp2683 - tmp197*tmp2684;
-    dr_dq_data[9 + 10 * 6] = phi1_ddot*tmp2667 + phi2_ddot*tmp2668 + phi3_ddot*tmp2669
-        + phi4_ddot*tmp2670 + phi5_ddot*tmp2671 + phi6_ddot*tmp2672 + phi7_ddot*tmp2673
-        + phi8_ddot*tmp2674 + phi9_ddot*tmp2675 + phi10_ddot*tmp2676 - tmp2694 - tmp2704;
-    const Scalar tmp2705 = l*tmp134;
-    const Scalar tmp2706 = -tmp131;
-    const Scalar tmp2707 = l*tmp2706;
-    const Scalar tmp2708 = phi8_dot*tmp2707;
-    const Scalar tmp2709 = phi7_dot*tmp2707 + tmp2708;
-    const Scalar tmp2710 = phi6_dot*tmp2707 + tmp2709;
-    const Scalar tmp2711 = phi5_dot*tmp2707 + tmp2710;
-    const Scalar tmp2712 = phi4_dot*tmp2707 + tmp2711;
-    const Scalar tmp2713 = phi3_dot*tmp2707 + tmp2712;
-    const Scalar tmp2714 = phi2_dot*tmp2707 + tmp2713;
-    const Scalar tmp2715 = phi1_dot*tmp2707 + tmp2714;
-    const Scalar tmp2716 = phi8_dot*tmp2705;
-    const Scalar tmp2717 = l*tmp165;
-    const Scalar tmp2718 = -tmp162;
-    const Scalar tmp2719 = l*tmp2718;
-    const Scalar tmp2720 = tmp2707 + tmp2719;
-    const Scalar tmp2721 = tmp2707 + tmp2719;
-    const Scalar tmp2722 = phi9_dot*tmp2719;
-    const Scalar tmp2723 = phi8_dot*tmp2721 + tmp2722;
-    const Scalar tmp2724 = phi7_dot*tmp2720 + tmp2723;
-    const Scalar tmp2725 = phi6_dot*tmp2721 + tmp2724;
-    const Scalar tmp2726 = phi5_dot*tmp2720 + tmp2725;
-    const Scalar tmp2727 = phi4_dot*tmp2721 + tmp2726;
-    const Scalar tmp2728 = phi3_dot*tmp2720 + tmp2727;
-    const Scalar tmp2729 = phi2_dot*tmp2721 + tmp2728;
-    const Scalar tmp2730 = phi1_dot*tmp2720 + tmp2729;
-    const Scalar tmp2731 = phi9_dot*tmp2717;
-    const Scalar tmp2732 = tmp2705 + tmp2717;
-    const Scalar tmp2733 = tmp2705 + tmp2717;
-    const Scalar tmp2734 = l*tmp199;
-    const Scalar tmp2735 = -tmp196;
-    const Scalar tmp2736 = l*tmp2735;
-    const Scalar tmp2737 = tmp2719 + tmp2736;
-    const Scalar tmp2738 = tmp2707 + tmp2737;
-    const Scalar tmp2739 = tmp2721 + tmp2736;
-    const Scalar tmp2740 = tmp2707 + tmp2737;
-    const Scalar tmp2741 = phi10_dot*tmp2736;
-    const Scalar tmp2742 = phi9_dot*tmp2737 + tmp2741;
-    const Scalar tmp2743 = phi8_dot*tmp2739 + tmp2742;
-    const Scalar tmp2744 = phi7_dot*tmp2740 + tmp2743;
-    const Scalar tmp2745 = phi6_dot*tmp2739 + tmp2744;
-    const Scalar tmp2746 = phi5_dot*tmp2738 + tmp2745;
-    const Scalar tmp2747 = phi4_dot*tmp2739 + tmp2746;
-    const Scalar tmp2748 = phi3_dot*tmp2740 + tmp2747;
-    const Scalar tmp2749 = phi2_dot*tmp2739 + tmp2748;
-    const Scalar tmp2750 = phi1_dot*tmp2738 + tmp2749;
-    const Scalar tmp2751 = phi10_dot*tmp2734;
-    const Scalar tmp2752 = tmp2717 + tmp2734;
-    const Scalar tmp2753 = tmp2732 + tmp2734;
-    const Scalar tmp2754 = tmp2705 + tmp2752;
-    const Scalar tmp2755 = tmp2705 + tmp2752;
-    const Scalar tmp2756 = -tmp2705;
-    const Scalar tmp2757 = -tmp2716 + phi7_dot*tmp2756;
-    const Scalar tmp2758 = -tmp2705;
-    const Scalar tmp2759 = tmp2757 + phi6_dot*tmp2758;
-    const Scalar tmp2760 = -tmp2705;
-    const Scalar tmp2761 = tmp2759 + phi5_dot*tmp2760;
-    const Scalar tmp2762 = -tmp2705;
-    const Scalar tmp2763 = tmp2761 + phi4_dot*tmp2762;
-    const Scalar tmp2764 = -tmp2705;
-    const Scalar tmp2765 = tmp2763 + phi3_dot*tmp2764;
-    const Scalar tmp2766 = -tmp2705;
-    const Scalar tmp2767 = tmp2765 + phi2_dot*tmp2766;
-    const Scalar tmp2768 = (-(phi1_dot*phi1_dot)
+        + (phi1_dot*phi2_dot + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)
+            + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot))*tmp2544
+        + phi8_dot*tmp2545 + phi7_dot*tmp2546 + phi6_dot*tmp2547 + phi5_dot*tmp2548
+        + phi4_dot*tmp2549 + phi3_dot*tmp2550 + phi2_dot*tmp2551 + phi1_dot*tmp2552;
+    const Scalar tmp2629 = -tmp2573;
+    const Scalar tmp2630 = -tmp2572 + phi8_dot*tmp2629;
+    const Scalar tmp2631 = -tmp2574;
+    const Scalar tmp2632 = tmp2630 + phi7_dot*tmp2631;
+    const Scalar tmp2633 = -tmp2575;
+    const Scalar tmp2634 = tmp2632 + phi6_dot*tmp2633;
+    const Scalar tmp2635 = -tmp2574;
+    const Scalar tmp2636 = tmp2634 + phi5_dot*tmp2635;
+    const Scalar tmp2637 = -tmp2576;
+    const Scalar tmp2638 = tmp2636 + phi4_dot*tmp2637;
+    const Scalar tmp2639 = -tmp2574;
+    const Scalar tmp2640 = tmp2638 + phi3_dot*tmp2639;
+    const Scalar tmp2641 = -tmp2575;
+    const Scalar tmp2642 = tmp2640 + phi2_dot*tmp2641;
+    const Scalar tmp2643 = phi9_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot
+            - phi6_dot - phi7_dot - phi8_dot)*tmp2556
+        - phi9_dot*tmp2572 - (phi1_dot*phi1_dot)*tmp2574
+        + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot
+            + phi7_dot)*tmp2629
+        + phi8_dot*tmp2630
+        + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp2631
+        + phi7_dot*tmp2632 + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp2633
+        + phi6_dot*tmp2634 + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp2635
+        + phi5_dot*tmp2636 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp2637 + phi4_dot*tmp2638
+        + phi3_dot*(phi1_dot + phi2_dot)*tmp2639 + phi3_dot*tmp2640 + phi1_dot*phi2_dot*tmp2641
+        + (phi1_dot + phi2_dot)*tmp2642;
+    const Scalar tmp2644 = phi9_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot
+            + phi7_dot + phi8_dot)*tmp2558
+        + (phi3_dot*(phi1_dot + phi2_dot) + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)
+            + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot))*tmp2559
+        + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot
+            + phi7_dot)*tmp2560
+        + (phi1_dot*phi2_dot
+            + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot))*tmp2561
+        + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp2562 + phi9_dot*tmp2563 + phi8_dot*tmp2564
+        + phi7_dot*tmp2565 + phi6_dot*tmp2566 + phi5_dot*tmp2567 + phi4_dot*tmp2568
+        + phi3_dot*tmp2569 + phi2_dot*tmp2570 + phi1_dot*tmp2571;
+    const Scalar tmp2645 = -tmp2597;
+    const Scalar tmp2646 = -tmp2596 + phi9_dot*tmp2645;
+    const Scalar tmp2647 = -tmp2598;
+    const Scalar tmp2648 = tmp2646 + phi8_dot*tmp2647;
+    const Scalar tmp2649 = -tmp2599;
+    const Scalar tmp2650 = tmp2648 + phi7_dot*tmp2649;
+    const Scalar tmp2651 = -tmp2600;
+    const Scalar tmp2652 = tmp2650 + phi6_dot*tmp2651;
+    const Scalar tmp2653 = -tmp2601;
+    const Scalar tmp2654 = tmp2652 + phi5_dot*tmp2653;
+    const Scalar tmp2655 = -tmp2602;
+    const Scalar tmp2656 = tmp2654 + phi4_dot*tmp2655;
+    const Scalar tmp2657 = -tmp2599;
+    const Scalar tmp2658 = tmp2656 + phi3_dot*tmp2657;
+    const Scalar tmp2659 = -tmp2600;
+    const Scalar tmp2660 = tmp2658 + phi2_dot*tmp2659;
+    const Scalar tmp2661 = phi10_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot
+            - phi6_dot - phi7_dot - phi8_dot - phi9_dot)*tmp2577
+        - phi10_dot*tmp2596 - (phi1_dot*phi1_dot)*tmp2601
+        + phi9_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot
+            + phi8_dot)*tmp2645
+        + phi9_dot*tmp2646
+        + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot
+            + phi7_dot)*tmp2647
+        + phi8_dot*tmp2648
+        + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp2649
+        + phi7_dot*tmp2650 + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp2651
+        + phi6_dot*tmp2652 + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp2653
+        + phi5_dot*tmp2654 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp2655 + phi4_dot*tmp2656
+        + phi3_dot*(phi1_dot + phi2_dot)*tmp2657 + phi3_dot*tmp2658 + phi1_dot*phi2_dot*tmp2659
+        + (phi1_dot + phi2_dot)*tmp2660;
+    const Scalar tmp2662 = phi10_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot
+            + phi6_dot + phi7_dot + phi8_dot + phi9_dot)*tmp2579
+        + phi9_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot
+            + phi8_dot)*tmp2580
+        + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp2581
+        + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot
+            + phi7_dot)*tmp2582
+        + (phi1_dot*phi2_dot
+            + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot))*tmp2583
+        + (phi3_dot*(phi1_dot + phi2_dot)
+            + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot))*tmp2584
+        + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp2585 + phi10_dot*tmp2586 + phi9_dot*tmp2587
+        + phi8_dot*tmp2588 + phi7_dot*tmp2589 + phi6_dot*tmp2590 + phi5_dot*tmp2591
+        + phi4_dot*tmp2592 + phi3_dot*tmp2593 + phi2_dot*tmp2594 + phi1_dot*tmp2595;
+    const Scalar tmp2663 = Scalar(2)*tmp128*m*tmp2529 + Scalar(2)*tmp139*m*tmp2543
+        + Scalar(2)*tmp159*m*tmp2554 + Scalar(2)*tmp170*m*tmp2559 + Scalar(2)*tmp193*m*tmp2574
+        + Scalar(2)*tmp204*m*tmp2581 + Scalar(2)*tmp230*m*tmp2601 + Scalar(2)*tmp110*m*tmp2531;
+    const Scalar tmp2664 = (tmp127*m + tmp128*m)*tmp2529 + tmp141*m*tmp2543 + tmp139*m*tmp2544
+        + tmp159*m*tmp2555 + tmp158*m*tmp2554 + tmp173*m*tmp2559 + tmp170*m*tmp2561
+        + tmp193*m*tmp2575 + tmp192*m*tmp2574 + tmp207*m*tmp2581 + tmp204*m*tmp2583
+        + tmp230*m*tmp2600 + tmp229*m*tmp2601 + (tmp110*m + tmp112*m)*tmp2531;
+    const Scalar tmp2665 = Scalar(2)*tmp127*m*tmp2529 + Scalar(2)*tmp141*m*tmp2544
+        + Scalar(2)*tmp158*m*tmp2555 + Scalar(2)*tmp173*m*tmp2561 + Scalar(2)*tmp192*m*tmp2575
+        + Scalar(2)*tmp207*m*tmp2583 + Scalar(2)*tmp229*m*tmp2600 + Scalar(2)*tmp112*m*tmp2531;
+    const Scalar tmp2666 = (tmp126*m + tmp128*m)*tmp2529 + (tmp139*m + tmp142*m)*tmp2543
+        + (tmp157*m + tmp159*m)*tmp2554 + (tmp170*m + tmp174*m)*tmp2559
+        + (tmp191*m + tmp193*m)*tmp2574 + tmp209*m*tmp2581 + tmp204*m*tmp2584 + tmp230*m*tmp2599
+        + tmp228*m*tmp2601 + (tmp110*m + tmp113*m)*tmp2531;
+    const Scalar tmp2667 = (tmp126*m + tmp127*m)*tmp2529 + tmp142*m*tmp2544 + tmp141*m*tmp2543
+        + tmp158*m*tmp2554 + tmp157*m*tmp2555 + tmp174*m*tmp2561 + tmp173*m*tmp2559
+        + tmp192*m*tmp2574 + tmp191*m*tmp2575 + tmp209*m*tmp2583 + tmp207*m*tmp2584
+        + tmp229*m*tmp2599 + tmp228*m*tmp2600 + (tmp112*m + tmp113*m)*tmp2531;
+    const Scalar tmp2668 = Scalar(2)*tmp126*m*tmp2529 + Scalar(2)*tmp142*m*tmp2543
+        + Scalar(2)*tmp157*m*tmp2554 + Scalar(2)*tmp174*m*tmp2559 + Scalar(2)*tmp191*m*tmp2574
+        + Scalar(2)*tmp209*m*tmp2584 + Scalar(2)*tmp228*m*tmp2599 + Scalar(2)*tmp113*m*tmp2531;
+    const Scalar tmp2669 = (tmp125*m + tmp128*m)*tmp2529 + tmp143*m*tmp2543 + tmp139*m*tmp2544
+        + tmp159*m*tmp2555 + tmp156*m*tmp2554 + tmp175*m*tmp2559 + tmp170*m*tmp2562
+        + tmp193*m*tmp2576 + tmp190*m*tmp2574 + tmp210*m*tmp2581 + tmp204*m*tmp2585
+        + tmp230*m*tmp2602 + tmp227*m*tmp2601 + (tmp110*m + tmp114*m)*tmp2531;
+    const Scalar tmp2670 = (tmp125*m + tmp127*m)*tmp2529 + (tmp141*m + tmp143*m)*tmp2544
+        + (tmp156*m + tmp158*m)*tmp2555 + tmp175*m*tmp2561 + tmp173*m*tmp2562 + tmp192*m*tmp2576
+        + tmp190*m*tmp2575 + tmp210*m*tmp2583 + tmp207*m*tmp2585 + tmp229*m*tmp2602
+        + tmp227*m*tmp2600 + (tmp112*m + tmp114*m)*tmp2531;
+    const Scalar tmp2671 = (tmp125*m + tmp126*m)*tmp2529 + tmp143*m*tmp2543 + tmp142*m*tmp2544
+        + tmp157*m*tmp2555 + tmp156*m*tmp2554 + tmp175*m*tmp2559 + tmp174*m*tmp2562
+        + tmp191*m*tmp2576 + tmp190*m*tmp2574 + tmp210*m*tmp2584 + tmp209*m*tmp2585
+        + tmp228*m*tmp2602 + tmp227*m*tmp2599 + (tmp113*m + tmp114*m)*tmp2531;
+    const Scalar tmp2672 = Scalar(2)*tmp125*m*tmp2529 + Scalar(2)*tmp143*m*tmp2544
+        + Scalar(2)*tmp156*m*tmp2555 + Scalar(2)*tmp175*m*tmp2562 + Scalar(2)*tmp190*m*tmp2576
+        + Scalar(2)*tmp210*m*tmp2585 + Scalar(2)*tmp227*m*tmp2602 + Scalar(2)*tmp114*m*tmp2531;
+    const Scalar tmp2673 = (tmp124*m + tmp128*m)*tmp2529 + (tmp138*m + tmp139*m)*tmp2543
+        + (tmp155*m + tmp159*m)*tmp2554 + (tmp169*m + tmp170*m)*tmp2559
+        + (tmp189*m + tmp193*m)*tmp2574 + (tmp203*m + tmp204*m)*tmp2581
+        + (tmp226*m + tmp230*m)*tmp2601 + (tmp109*m + tmp110*m)*tmp2531;
+    const Scalar tmp2674 = (tmp124*m + tmp127*m)*tmp2529 + tmp141*m*tmp2543 + tmp138*m*tmp2544
+        + tmp158*m*tmp2554 + tmp155*m*tmp2555 + tmp173*m*tmp2559 + tmp169*m*tmp2561
+        + tmp192*m*tmp2574 + tmp189*m*tmp2575 + tmp207*m*tmp2581 + tmp203*m*tmp2583
+        + tmp229*m*tmp2601 + tmp226*m*tmp2600 + (tmp109*m + tmp112*m)*tmp2531;
+    const Scalar tmp2675 = (tmp124*m + tmp126*m)*tmp2529 + (tmp138*m + tmp142*m)*tmp2543
+        + (tmp155*m + tmp157*m)*tmp2554 + (tmp169*m + tmp174*m)*tmp2559
+        + (tmp189*m + tmp191*m)*tmp2574 + tmp209*m*tmp2581 + tmp203*m*tmp2584 + tmp228*m*tmp2601
+        + tmp226*m*tmp2599 + (tmp109*m + tmp113*m)*tmp2531;
+    const Scalar tmp2676 = (tmp124*m + tmp125*m)*tmp2529 + tmp143*m*tmp2543 + tmp138*m*tmp2544
+        + tmp156*m*tmp2554 + tmp155*m*tmp2555 + tmp175*m*tmp2559 + tmp169*m*tmp2562
+        + tmp190*m*tmp2574 + tmp189*m*tmp2576 + tmp210*m*tmp2581 + tmp203*m*tmp2585
+        + tmp227*m*tmp2601 + tmp226*m*tmp2602 + (tmp109*m + tmp114*m)*tmp2531;
+    const Scalar tmp2677 = Scalar(2)*tmp124*m*tmp2529 + Scalar(2)*tmp138*m*tmp2543
+        + Scalar(2)*tmp155*m*tmp2554 + Scalar(2)*tmp169*m*tmp2559 + Scalar(2)*tmp189*m*tmp2574
+        + Scalar(2)*tmp203*m*tmp2581 + Scalar(2)*tmp226*m*tmp2601 + Scalar(2)*tmp109*m*tmp2531;
+    const Scalar tmp2678 = (tmp123*m + tmp128*m)*tmp2529 + tmp140*m*tmp2543 + tmp139*m*tmp2544
+        + tmp159*m*tmp2555 + tmp154*m*tmp2554 + tmp172*m*tmp2559 + tmp170*m*tmp2561
+        + tmp193*m*tmp2575 + tmp188*m*tmp2574 + tmp206*m*tmp2581 + tmp204*m*tmp2583
+        + tmp230*m*tmp2600 + tmp225*m*tmp2601 + (tmp110*m + tmp111*m)*tmp2531;
+    const Scalar tmp2679 = (tmp123*m + tmp127*m)*tmp2529 + (tmp140*m + tmp141*m)*tmp2544
+        + (tmp154*m + tmp158*m)*tmp2555 + (tmp172*m + tmp173*m)*tmp2561
+        + (tmp188*m + tmp192*m)*tmp2575 + (tmp206*m + tmp207*m)*tmp2583
+        + (tmp225*m + tmp229*m)*tmp2600 + (tmp111*m + tmp112*m)*tmp2531;
+    const Scalar tmp2680 = (tmp123*m + tmp126*m)*tmp2529 + tmp142*m*tmp2544 + tmp140*m*tmp2543
+        + tmp157*m*tmp2555 + tmp154*m*tmp2554 + tmp174*m*tmp2561 + tmp172*m*tmp2559
+        + tmp191*m*tmp2575 + tmp188*m*tmp2574 + tmp209*m*tmp2583 + tmp206*m*tmp2584
+        + tmp228*m*tmp2600 + tmp225*m*tmp2599 + (tmp111*m + tmp113*m)*tmp2531;
+    const Scalar tmp2681 = (tmp123*m + tmp125*m)*tmp2529 + (tmp140*m + tmp143*m)*tmp2544
+        + (tmp154*m + tmp156*m)*tmp2555 + tmp175*m*tmp2561 + tmp172*m*tmp2562 + tmp190*m*tmp2575
+        + tmp188*m*tmp2576 + tmp210*m*tmp2583 + tmp206*m*tmp2585 + tmp227*m*tmp2600
+        + tmp225*m*tmp2602 + (tmp111*m + tmp114*m)*tmp2531;
+    const Scalar tmp2682 = (tmp123*m + tmp124*m)*tmp2529 + tmp140*m*tmp2543 + tmp138*m*tmp2544
+        + tmp155*m*tmp2555 + tmp154*m*tmp2554 + tmp172*m*tmp2559 + tmp169*m*tmp2561
+        + tmp189*m*tmp2575 + tmp188*m*tmp2574 + tmp206*m*tmp2581 + tmp203*m*tmp2583
+        + tmp226*m*tmp2600 + tmp225*m*tmp2601 + (tmp109*m + tmp111*m)*tmp2531;
+    const Scalar tmp2683 = Scalar(2)*tmp123*m*tmp2529 + Scalar(2)*tmp140*m*tmp2544
+        + Scalar(2)*tmp154*m*tmp2555 + Scalar(2)*tmp172*m*tmp2561 + Scalar(2)*tmp188*m*tmp2575
+        + Scalar(2)*tmp206*m*tmp2583 + Scalar(2)*tmp225*m*tmp2600 + Scalar(2)*tmp111*m*tmp2531;
+    const Scalar tmp2684 = (tmp128*m + tmp104*m)*tmp2529 + (tmp137*m + tmp139*m)*tmp2543
+        + (tmp153*m + tmp159*m)*tmp2554 + (tmp168*m + tmp170*m)*tmp2559
+        + (tmp187*m + tmp193*m)*tmp2574 + tmp208*m*tmp2581 + tmp204*m*tmp2584 + tmp230*m*tmp2599
+        + tmp224*m*tmp2601 + (tmp107*m + tmp110*m)*tmp2531;
+    const Scalar tmp2685 = (tmp127*m + tmp104*m)*tmp2529 + tmp141*m*tmp2543 + tmp137*m*tmp2544
+        + tmp158*m*tmp2554 + tmp153*m*tmp2555 + tmp173*m*tmp2559 + tmp168*m*tmp2561
+        + tmp192*m*tmp2574 + tmp187*m*tmp2575 + tmp208*m*tmp2583 + tmp207*m*tmp2584
+        + tmp229*m*tmp2599 + tmp224*m*tmp2600 + (tmp107*m + tmp112*m)*tmp2531;
+    const Scalar tmp2686 = (tmp126*m + tmp104*m)*tmp2529 + (tmp137*m + tmp142*m)*tmp2543
+        + (tmp153*m + tmp157*m)*tmp2554 + (tmp168*m + tmp174*m)*tmp2559
+        + (tmp187*m + tmp191*m)*tmp2574 + (tmp208*m + tmp209*m)*tmp2584
+        + (tmp224*m + tmp228*m)*tmp2599 + (tmp107*m + tmp113*m)*tmp2531;
+    const Scalar tmp2687 = (tmp125*m + tmp104*m)*tmp2529 + tmp143*m*tmp2543 + tmp137*m*tmp2544
+        + tmp156*m*tmp2554 + tmp153*m*tmp2555 + tmp175*m*tmp2559 + tmp168*m*tmp2562
+        + tmp190*m*tmp2574 + tmp187*m*tmp2576 + tmp210*m*tmp2584 + tmp208*m*tmp2585
+        + tmp227*m*tmp2599 + tmp224*m*tmp2602 + (tmp107*m + tmp114*m)*tmp2531;
+    const Scalar tmp2688 = (tmp124*m + tmp104*m)*tmp2529 + (tmp137*m + tmp138*m)*tmp2543
+        + (tmp153*m + tmp155*m)*tmp2554 + (tmp168*m + tmp169*m)*tmp2559
+        + (tmp187*m + tmp189*m)*tmp2574 + tmp208*m*tmp2581 + tmp203*m*tmp2584 + tmp226*m*tmp2599
+        + tmp224*m*tmp2601 + (tmp107*m + tmp109*m)*tmp2531;
+    const Scalar tmp2689 = (tmp123*m + tmp104*m)*tmp2529 + tmp140*m*tmp2543 + tmp137*m*tmp2544
+        + tmp154*m*tmp2554 + tmp153*m*tmp2555 + tmp172*m*tmp2559 + tmp168*m*tmp2561
+        + tmp188*m*tmp2574 + tmp187*m*tmp2575 + tmp208*m*tmp2583 + tmp206*m*tmp2584
+        + tmp225*m*tmp2599 + tmp224*m*tmp2600 + (tmp107*m + tmp111*m)*tmp2531;
+    const Scalar tmp2690 = Scalar(2)*tmp137*m*tmp2543 + Scalar(2)*tmp153*m*tmp2554
+        + Scalar(2)*tmp168*m*tmp2559 + Scalar(2)*tmp187*m*tmp2574 + Scalar(2)*tmp208*m*tmp2584
+        + Scalar(2)*tmp224*m*tmp2599 + Scalar(2)*tmp325*tmp103*m*tmp106
+        + Scalar(2)*tmp325*tmp106*m*tmp2530;
+    const Scalar tmp2691 = tmp159*m*tmp2540 + tmp139*m*tmp2542 + tmp135*m*tmp2543 + tmp132*m*tmp2554
+        + tmp171*m*tmp2559 + tmp170*m*tmp2560 + tmp193*m*tmp2573 + tmp186*m*tmp2574
+        + tmp205*m*tmp2581 + tmp204*m*tmp2582 + tmp230*m*tmp2598 + tmp223*m*tmp2601;
+    const Scalar tmp2692 = tmp158*m*tmp2540 + tmp141*m*tmp2542 + tmp135*m*tmp2544 + tmp132*m*tmp2555
+        + tmp173*m*tmp2560 + tmp171*m*tmp2561 + tmp192*m*tmp2573 + tmp186*m*tmp2575
+        + tmp207*m*tmp2582 + tmp205*m*tmp2583 + tmp229*m*tmp2598 + tmp223*m*tmp2600;
+    const Scalar tmp2693 = tmp157*m*tmp2540 + tmp142*m*tmp2542 + tmp135*m*tmp2543 + tmp132*m*tmp2554
+        + tmp174*m*tmp2560 + tmp171*m*tmp2559 + tmp191*m*tmp2573 + tmp186*m*tmp2574
+        + tmp209*m*tmp2582 + tmp205*m*tmp2584 + tmp228*m*tmp2598 + tmp223*m*tmp2599;
+    const Scalar tmp2694 = tmp156*m*tmp2540 + tmp143*m*tmp2542 + tmp135*m*tmp2544 + tmp132*m*tmp2555
+        + tmp175*m*tmp2560 + tmp171*m*tmp2562 + tmp190*m*tmp2573 + tmp186*m*tmp2576
+        + tmp210*m*tmp2582 + tmp205*m*tmp2585 + tmp227*m*tmp2598 + tmp223*m*tmp2602;
+    const Scalar tmp2695 = tmp155*m*tmp2540 + tmp138*m*tmp2542 + tmp135*m*tmp2543 + tmp132*m*tmp2554
+        + tmp171*m*tmp2559 + tmp169*m*tmp2560 + tmp189*m*tmp2573 + tmp186*m*tmp2574
+        + tmp205*m*tmp2581 + tmp203*m*tmp2582 + tmp226*m*tmp2598 + tmp223*m*tmp2601;
+    const Scalar tmp2696 = tmp154*m*tmp2540 + tmp140*m*tmp2542 + tmp135*m*tmp2544 + tmp132*m*tmp2555
+        + tmp172*m*tmp2560 + tmp171*m*tmp2561 + tmp188*m*tmp2573 + tmp186*m*tmp2575
+        + tmp206*m*tmp2582 + tmp205*m*tmp2583 + tmp225*m*tmp2598 + tmp223*m*tmp2600;
+    const Scalar tmp2697 = tmp153*m*tmp2540 + tmp137*m*tmp2542 + tmp135*m*tmp2543 + tmp132*m*tmp2554
+        + tmp171*m*tmp2559 + tmp168*m*tmp2560 + tmp187*m*tmp2573 + tmp186*m*tmp2574
+        + tmp208*m*tmp2582 + tmp205*m*tmp2584 + tmp224*m*tmp2598 + tmp223*m*tmp2599;
+    const Scalar tmp2698 = Scalar(2)*tmp131*tmp325*m*tmp134 + Scalar(2)*tmp134*tmp325*m*tmp2541
+        + Scalar(2)*tmp171*m*tmp2560 + Scalar(2)*tmp186*m*tmp2573 + Scalar(2)*tmp205*m*tmp2582
+        + Scalar(2)*tmp223*m*tmp2598;
+    const Scalar tmp2699 = tmp193*m*tmp2556 + tmp170*m*tmp2558 + tmp166*m*tmp2559 + tmp163*m*tmp2574
+        + tmp204*m*tmp2580 + tmp202*m*tmp2581 + tmp230*m*tmp2597 + tmp222*m*tmp2601;
+    const Scalar tmp2700 = tmp192*m*tmp2556 + tmp173*m*tmp2558 + tmp166*m*tmp2561 + tmp163*m*tmp2575
+        + tmp207*m*tmp2580 + tmp202*m*tmp2583 + tmp229*m*tmp2597 + tmp222*m*tmp2600;
+    const Scalar tmp2701 = tmp191*m*tmp2556 + tmp174*m*tmp2558 + tmp166*m*tmp2559 + tmp163*m*tmp2574
+        + tmp209*m*tmp2580 + tmp202*m*tmp2584 + tmp228*m*tmp2597 + tmp222*m*tmp2599;
+    const Scalar tmp2702 = tmp190*m*tmp2556 + tmp175*m*tmp2558 + tmp166*m*tmp2562 + tmp163*m*tmp2576
+        + tmp210*m*tmp2580 + tmp202*m*tmp2585 + tmp227*m*tmp2597 + tmp222*m*tmp2602;
+    const Scalar tmp2703 = tmp189*m*tmp2556 + tmp169*m*tmp2558 + tmp166*m*tmp2559 + tmp163*m*tmp2574
+        + tmp203*m*tmp2580 + tmp202*m*tmp2581 + tmp226*m*tmp2597 + tmp222*m*tmp2601;
+    const Scalar tmp2704 = tmp188*m*tmp2556 + tmp172*m*tmp2558 + tmp166*m*tmp2561 + tmp163*m*tmp2575
+        + tmp206*m*tmp2580 + tmp202*m*tmp2583 + tmp225*m*tmp2597 + tmp222*m*tmp2600;
+    const Scalar tmp2705 = tmp187*m*tmp2556 + tmp168*m*tmp2558 + tmp166*m*tmp2559 + tmp163*m*tmp2574
+        + tmp208*m*tmp2580 + tmp202*m*tmp2584 + tmp224*m*tmp2597 + tmp222*m*tmp2599;
+    const Scalar tmp2706 = tmp186*m*tmp2556 + tmp171*m*tmp2558 + tmp166*m*tmp2560 + tmp163*m*tmp2573
+        + tmp205*m*tmp2580 + tmp202*m*tmp2582 + tmp223*m*tmp2597 + tmp222*m*tmp2598;
+    const Scalar tmp2707 = Scalar(2)*tmp162*tmp325*m*tmp165 + Scalar(2)*tmp165*tmp325*m*tmp2557
+        + Scalar(2)*tmp202*m*tmp2580 + Scalar(2)*tmp222*m*tmp2597;
+    const Scalar tmp2708 = tmp230*m*tmp2577 + tmp204*m*tmp2579 + tmp200*m*tmp2581
+        + tmp197*m*tmp2601;
+    const Scalar tmp2709 = tmp229*m*tmp2577 + tmp207*m*tmp2579 + tmp200*m*tmp2583
+        + tmp197*m*tmp2600;
+    const Scalar tmp2710 = tmp228*m*tmp2577 + tmp209*m*tmp2579 + tmp200*m*tmp2584
+        + tmp197*m*tmp2599;
+    const Scalar tmp2711 = tmp227*m*tmp2577 + tmp210*m*tmp2579 + tmp200*m*tmp2585
+        + tmp197*m*tmp2602;
+    const Scalar tmp2712 = tmp226*m*tmp2577 + tmp203*m*tmp2579 + tmp200*m*tmp2581
+        + tmp197*m*tmp2601;
+    const Scalar tmp2713 = tmp225*m*tmp2577 + tmp206*m*tmp2579 + tmp200*m*tmp2583
+        + tmp197*m*tmp2600;
+    const Scalar tmp2714 = tmp224*m*tmp2577 + tmp208*m*tmp2579 + tmp200*m*tmp2584
+        + tmp197*m*tmp2599;
+    const Scalar tmp2715 = tmp223*m*tmp2577 + tmp205*m*tmp2579 + tmp200*m*tmp2582
+        + tmp197*m*tmp2598;
+    const Scalar tmp2716 = tmp222*m*tmp2577 + tmp202*m*tmp2579 + tmp200*m*tmp2580
+        + tmp197*m*tmp2597;
+    const Scalar tmp2717 = Scalar(2)*tmp196*tmp325*m*tmp199 + Scalar(2)*tmp199*tmp325*m*tmp2578;
+    const Scalar tmp2718 = m*tmp2613;
+    const Scalar tmp2719 = m*tmp2614;
+    const Scalar tmp2720 = m*tmp2627;
+    const Scalar tmp2721 = m*tmp2628;
+    const Scalar tmp2722 = m*tmp2643;
+    const Scalar tmp2723 = m*tmp2644;
+    const Scalar tmp2724 = m*tmp2661;
+    const Scalar tmp2725 = m*tmp2662;
+    const Scalar tmp2726 = tmp382*tmp2529 + tmp382*tmp2554 + tmp382*tmp2574 + tmp382*tmp2601;
+    const Scalar tmp2727 = tmp382*tmp2529 + tmp382*tmp2555 + tmp382*tmp2575 + tmp382*tmp2600;
+    const Scalar tmp2728 = tmp382*tmp2529 + tmp382*tmp2554 + tmp382*tmp2574 + tmp382*tmp2599;
+    const Scalar tmp2729 = tmp382*tmp2529 + tmp382*tmp2555 + tmp382*tmp2576 + tmp382*tmp2602;
+    const Scalar tmp2730 = tmp382*tmp2529 + tmp382*tmp2554 + tmp382*tmp2574 + tmp382*tmp2601;
+    const Scalar tmp2731 = tmp382*tmp2529 + tmp382*tmp2555 + tmp382*tmp2575 + tmp382*tmp2600;
+    const Scalar tmp2732 = tmp382*tmp2554 + tmp382*tmp2574 + tmp382*tmp2599 - k + tmp382*tmp2529;
+    const Scalar tmp2733 = tmp382*tmp2540 + tmp382*tmp2573 + tmp382*tmp2598;
+    const Scalar tmp2734 = tmp382*tmp2556 + tmp382*tmp2597;
+    const Scalar tmp2735 = tmp382*l*tmp199;
+    const Scalar tmp2736 = -tmp396*tmp2529 - tmp397*tmp2543 - tmp398*tmp2554 - tmp399*tmp2559
+        - tmp400*tmp2574 - tmp401*tmp2581 - tmp402*tmp2601 - tmp395*tmp2531 - tmp110*tmp2718
+        - tmp128*tmp2719 - tmp139*tmp2720 - tmp159*tmp2721 - tmp170*tmp2722 - tmp193*tmp2723
+        - tmp204*tmp2724 - tmp230*tmp2725;
+    dr_dq_data[0 + 10 * 6] = phi10_ddot*tmp2708 - tmp2726 - tmp2736 + phi1_ddot*tmp2663
+        + phi2_ddot*tmp2664 + phi3_ddot*tmp2666 + phi4_ddot*tmp2669 + phi5_ddot*tmp2673
+        + phi6_ddot*tmp2678 + phi7_ddot*tmp2684 + phi8_ddot*tmp2691 + phi9_ddot*tmp2699;
+    const Scalar tmp2737 = -tmp396*tmp2529 - tmp397*tmp2544 - tmp398*tmp2555 - tmp399*tmp2561
+        - tmp400*tmp2575 - tmp401*tmp2583 - tmp402*tmp2600 - tmp395*tmp2531 - tmp112*tmp2718
+        - tmp127*tmp2719 - tmp141*tmp2720 - tmp158*tmp2721 - tmp173*tmp2722 - tmp192*tmp2723
+        - tmp207*tmp2724 - tmp229*tmp2725;
+    dr_dq_data[1 + 10 * 6] = phi10_ddot*tmp2709 - tmp2727 - tmp2737 + phi1_ddot*tmp2664
+        + phi2_ddot*tmp2665 + phi3_ddot*tmp2667 + phi4_ddot*tmp2670 + phi5_ddot*tmp2674
+        + phi6_ddot*tmp2679 + phi7_ddot*tmp2685 + phi8_ddot*tmp2692 + phi9_ddot*tmp2700;
+    const Scalar tmp2738 = -tmp396*tmp2529 - tmp397*tmp2543 - tmp398*tmp2554 - tmp399*tmp2559
+        - tmp400*tmp2574 - tmp401*tmp2584 - tmp402*tmp2599 - tmp395*tmp2531 - tmp113*tmp2718
+        - tmp126*tmp2719 - tmp142*tmp2720 - tmp157*tmp2721 - tmp174*tmp2722 - tmp191*tmp2723
+        - tmp209*tmp2724 - tmp228*tmp2725;
+    dr_dq_data[2 + 10 * 6] = phi10_ddot*tmp2710 - tmp2728 - tmp2738 + phi1_ddot*tmp2666
+        + phi2_ddot*tmp2667 + phi3_ddot*tmp2668 + phi4_ddot*tmp2671 + phi5_ddot*tmp2675
+        + phi6_ddot*tmp2680 + phi7_ddot*tmp2686 + phi8_ddot*tmp2693 + phi9_ddot*tmp2701;
+    const Scalar tmp2739 = -tmp396*tmp2529 - tmp397*tmp2544 - tmp398*tmp2555 - tmp399*tmp2562
+        - tmp400*tmp2576 - tmp401*tmp2585 - tmp402*tmp2602 - tmp395*tmp2531 - tmp114*tmp2718
+        - tmp125*tmp2719 - tmp143*tmp2720 - tmp156*tmp2721 - tmp175*tmp2722 - tmp190*tmp2723
+        - tmp210*tmp2724 - tmp227*tmp2725;
+    dr_dq_data[3 + 10 * 6] = phi10_ddot*tmp2711 - tmp2729 - tmp2739 + phi1_ddot*tmp2669
+        + phi2_ddot*tmp2670 + phi3_ddot*tmp2671 + phi4_ddot*tmp2672 + phi5_ddot*tmp2676
+        + phi6_ddot*tmp2681 + phi7_ddot*tmp2687 + phi8_ddot*tmp2694 + phi9_ddot*tmp2702;
+    const Scalar tmp2740 = -tmp396*tmp2529 - tmp397*tmp2543 - tmp398*tmp2554 - tmp399*tmp2559
+        - tmp400*tmp2574 - tmp401*tmp2581 - tmp402*tmp2601 - tmp395*tmp2531 - tmp109*tmp2718
+        - tmp124*tmp2719 - tmp138*tmp2720 - tmp155*tmp2721 - tmp169*tmp2722 - tmp189*tmp2723
+        - tmp203*tmp2724 - tmp226*tmp2725;
+    dr_dq_data[4 + 10 * 6] = phi9_ddot*tmp2703 + phi10_ddot*tmp2712 - tmp2730 - tmp2740
+        + phi1_ddot*tmp2673 + phi2_ddot*tmp2674 + phi3_ddot*tmp2675 + phi4_ddot*tmp2676
+        + phi5_ddot*tmp2677 + phi6_ddot*tmp2682 + phi7_ddot*tmp2688 + phi8_ddot*tmp2695;
+    const Scalar tmp2741 = -tmp396*tmp2529 - tmp397*tmp2544 - tmp398*tmp2555 - tmp399*tmp2561
+        - tmp400*tmp2575 - tmp401*tmp2583 - tmp402*tmp2600 - tmp395*tmp2531 - tmp111*tmp2718
+        - tmp123*tmp2719 - tmp140*tmp2720 - tmp154*tmp2721 - tmp172*tmp2722 - tmp188*tmp2723
+        - tmp206*tmp2724 - tmp225*tmp2725;
+    dr_dq_data[5 + 10 * 6] = phi9_ddot*tmp2704 + phi10_ddot*tmp2713 - tmp2731 - tmp2741
+        + phi1_ddot*tmp2678 + phi2_ddot*tmp2679 + phi3_ddot*tmp2680 + phi4_ddot*tmp2681
+        + phi5_ddot*tmp2682 + phi6_ddot*tmp2683 + phi7_ddot*tmp2689 + phi8_ddot*tmp2696;
+    const Scalar tmp2742 = -tmp397*tmp2543 - tmp398*tmp2554 - tmp399*tmp2559 - tmp400*tmp2574
+        - tmp401*tmp2584 - tmp402*tmp2599 - tmp396*tmp2529 - tmp395*tmp2531 - tmp107*tmp2718
+        - tmp104*tmp2719 - tmp137*tmp2720 - tmp153*tmp2721 - tmp168*tmp2722 - tmp187*tmp2723
+        - tmp208*tmp2724 - tmp224*tmp2725;
+    dr_dq_data[6 + 10 * 6] = phi9_ddot*tmp2705 + phi10_ddot*tmp2714 - tmp2732 - tmp2742
+        + phi1_ddot*tmp2684 + phi2_ddot*tmp2685 + phi3_ddot*tmp2686 + phi4_ddot*tmp2687
+        + phi5_ddot*tmp2688 + phi6_ddot*tmp2689 + phi7_ddot*tmp2690 + phi8_ddot*tmp2697;
+    const Scalar tmp2743 = -tmp398*tmp2540 - tmp397*tmp2542 - tmp399*tmp2560 - tmp400*tmp2573
+        - tmp401*tmp2582 - tmp402*tmp2598 - tmp135*tmp2720 - tmp132*tmp2721 - tmp171*tmp2722
+        - tmp186*tmp2723 - tmp205*tmp2724 - tmp223*tmp2725;
+    dr_dq_data[7 + 10 * 6] = phi9_ddot*tmp2706 + phi10_ddot*tmp2715 - tmp2733 - tmp2743
+        + phi1_ddot*tmp2691 + phi2_ddot*tmp2692 + phi3_ddot*tmp2693 + phi4_ddot*tmp2694
+        + phi5_ddot*tmp2695 + phi6_ddot*tmp2696 + phi7_ddot*tmp2697 + phi8_ddot*tmp2698;
+    const Scalar tmp2744 = -tmp400*tmp2556 - tmp399*tmp2558 - tmp401*tmp2580 - tmp402*tmp2597
+        - tmp166*tmp2722 - tmp163*tmp2723 - tmp202*tmp2724 - tmp222*tmp2725;
+    dr_dq_data[8 + 10 * 6] = phi5_ddot*tmp2703 + phi6_ddot*tmp2704 + phi7_ddot*tmp2705
+        + phi8_ddot*tmp2706 + phi9_ddot*tmp2707 + phi10_ddot*tmp2716 - tmp2734 - tmp2744
+        + phi1_ddot*tmp2699 + phi2_ddot*tmp2700 + phi3_ddot*tmp2701 + phi4_ddot*tmp2702;
+    const Scalar tmp2745 = -tmp402*tmp2577 - tmp401*tmp2579 - tmp200*tmp2724 - tmp197*tmp2725;
+    dr_dq_data[9 + 10 * 6] = phi1_ddot*tmp2708 + phi2_ddot*tmp2709 + phi3_ddot*tmp2710
+        + phi4_ddot*tmp2711 + phi5_ddot*tmp2712 + phi6_ddot*tmp2713 + phi7_ddot*tmp2714
+        + phi8_ddot*tmp2715 + phi9_ddot*tmp2716 + phi10_ddot*tmp2717 - tmp2735 - tmp2745;
+    const Scalar tmp2746 = l*tmp134;
+    const Scalar tmp2747 = -tmp131;
+    const Scalar tmp2748 = l*tmp2747;
+    const Scalar tmp2749 = phi8_dot*tmp2748;
+    const Scalar tmp2750 = phi7_dot*tmp2748 + tmp2749;
+    const Scalar tmp2751 = phi6_dot*tmp2748 + tmp2750;
+    const Scalar tmp2752 = phi5_dot*tmp2748 + tmp2751;
+    const Scalar tmp2753 = phi4_dot*tmp2748 + tmp2752;
+    const Scalar tmp2754 = phi3_dot*tmp2748 + tmp2753;
+    const Scalar tmp2755 = phi2_dot*tmp2748 + tmp2754;
+    const Scalar tmp2756 = phi1_dot*tmp2748 + tmp2755;
+    const Scalar tmp2757 = phi8_dot*tmp2746;
+    const Scalar tmp2758 = l*tmp165;
+    const Scalar tmp2759 = -tmp162;
+    const Scalar tmp2760 = l*tmp2759;
+    const Scalar tmp2761 = tmp2748 + tmp2760;
+    const Scalar tmp2762 = tmp2748 + tmp2760;
+    const Scalar tmp2763 = phi9_dot*tmp2760;
+    const Scalar tmp2764 = phi8_dot*tmp2762 + tmp2763;
+    const Scalar tmp2765 = phi7_dot*tmp2761 + tmp2764;
+    const Scalar tmp2766 = phi6_dot*tmp2762 + tmp2765;
+    const Scalar tmp2767 = phi5_dot*tmp2761 + tmp2766;
+    const Scalar tmp2768 = phi4_dot*tmp2762 + tmp2767;
+    const Scalar tmp2769 = phi3_dot*tmp2761 + tmp2768;
+    const Scalar tmp2770 = phi2_dot*tmp2762 + tmp2769;
+    const Scalar tmp2771 = phi1_dot*tmp2761 + tmp2770;
+    const Scalar tmp2772 = phi9_dot*tmp2758;
+    const Scalar tmp2773 = tmp2746 + tmp2758;
+    const Scalar tmp2774 = tmp2746 + tmp2758;
+    const Scalar tmp2775 = l*tmp199;
+    const Scalar tmp2776 = -tmp196;
+    const Scalar tmp2777 = l*tmp2776;
+    const Scalar tmp2778 = tmp2760 + tmp2777;
+    const Scalar tmp2779 = tmp2748 + tmp2778;
+    const Scalar tmp2780 = tmp2762 + tmp2777;
+    const Scalar tmp2781 = tmp2748 + tmp2778;
+    const Scalar tmp2782 = phi10_dot*tmp2777;
+    const Scalar tmp2783 = phi9_dot*tmp2778 + tmp2782;
+    const Scalar tmp2784 = phi8_dot*tmp2780 + tmp2783;
+    const Scalar tmp2785 = phi7_dot*tmp2781 + tmp2784;
+    const Scalar tmp2786 = phi6_dot*tmp2780 + tmp2785;
+    const Scalar tmp2787 = phi5_dot*tmp2779 + tmp2786;
+    const Scalar tmp2788 = phi4_dot*tmp2780 + tmp2787;
+    const Scalar tmp2789 = phi3_dot*tmp2781 + tmp2788;
+    const Scalar tmp2790 = phi2_dot*tmp2780 + tmp2789;
+    const Scalar tmp2791 = phi1_dot*tmp2779 + tmp2790;
+    const Scalar tmp2792 = phi10_dot*tmp2775;
+    const Scalar tmp2793 = tmp2758 + tmp2775;
+    const Scalar tmp2794 = tmp2773 + tmp2775;
+    const Scalar tmp2795 = tmp2746 + tmp2793;
+    const Scalar tmp2796 = tmp2746 + tmp2793;
+    const Scalar tmp2797 = -tmp2746;
+    const Scalar tmp2798 = -tmp2757 + phi7_dot*tmp2797;
+    const Scalar tmp2799 = -tmp2746;
+    const Scalar tmp2800 = tmp2798 + phi6_dot*tmp2799;
+    const Scalar tmp2801 = -tmp2746;
+    const Scalar tmp2802 = tmp2800 + phi5_dot*tmp2801;
+    const Scalar tmp2803 = -tmp2746;
+    const Scalar tmp2804 = tmp2802 + phi4_dot*tmp2803;
+    const Scalar tmp2805 = -tmp2746;
+    const Scalar tmp2806 = tmp2804 + phi3_dot*tmp2805;
+    const Scalar tmp2807 = -tmp2746;
+    const Scalar tmp2808 = tmp2806 + phi2_dot*tmp2807;
+    const Scalar tmp2809 = (-(phi1_dot*phi1_dot)
             + phi8_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot - phi6_dot
-                - phi7_dot))*tmp2705
-        - phi8_dot*tmp2716
-        + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp2756
-        + phi7_dot*tmp2757 + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp2758
-        + phi6_dot*tmp2759 + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp2760
-        + phi5_dot*tmp2761 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp2762 + phi4_dot*tmp2763
-        + phi3_dot*(phi1_dot + phi2_dot)*tmp2764 + phi3_dot*tmp2765 + phi1_dot*phi2_dot*tmp2766
-        + (phi1_dot + phi2_dot)*tmp2767;
-    const Scalar tmp2769 = (phi1_dot*phi2_dot + phi3_dot*(phi1_dot + phi2_dot)
+                - phi7_dot))*tmp2746
+        - phi8_dot*tmp2757
+        + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp2797
+        + phi7_dot*tmp2798 + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp2799
+        + phi6_dot*tmp2800 + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp2801
+        + phi5_dot*tmp2802 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp2803 + phi4_dot*tmp2804
+        + phi3_dot*(phi1_dot + phi2_dot)*tmp2805 + phi3_dot*tmp2806 + phi1_dot*phi2_dot*tmp2807
+        + (phi1_dot + phi2_dot)*tmp2808;
+    const Scalar tmp2810 = (phi1_dot*phi2_dot + phi3_dot*(phi1_dot + phi2_dot)
             + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)
             + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)
             + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)
             + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)
             + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot
-                + phi7_dot))*tmp2707
-        + phi8_dot*tmp2708 + phi7_dot*tmp2709 + phi6_dot*tmp2710 + phi5_dot*tmp2711
-        + phi4_dot*tmp2712 + phi3_dot*tmp2713 + phi2_dot*tmp2714 + phi1_dot*tmp2715;
-    const Scalar tmp2770 = -tmp2732;
-    const Scalar tmp2771 = -tmp2731 + phi8_dot*tmp2770;
-    const Scalar tmp2772 = -tmp2733;
-    const Scalar tmp2773 = tmp2771 + phi7_dot*tmp2772;
-    const Scalar tmp2774 = -tmp2732;
-    const Scalar tmp2775 = tmp2773 + phi6_dot*tmp2774;
-    const Scalar tmp2776 = -tmp2733;
-    const Scalar tmp2777 = tmp2775 + phi5_dot*tmp2776;
-    const Scalar tmp2778 = -tmp2732;
-    const Scalar tmp2779 = tmp2777 + phi4_dot*tmp2778;
-    const Scalar tmp2780 = -tmp2733;
-    const Scalar tmp2781 = tmp2779 + phi3_dot*tmp2780;
-    const Scalar tmp2782 = -tmp2732;
-    const Scalar tmp2783 = tmp2781 + phi2_dot*tmp2782;
-    const Scalar tmp2784 = phi9_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot
-            - phi6_dot - phi7_dot - phi8_dot)*tmp2717
-        - phi9_dot*tmp2731 - (phi1_dot*phi1_dot)*tmp2733
+                + phi7_dot))*tmp2748
+        + phi8_dot*tmp2749 + phi7_dot*tmp2750 + phi6_dot*tmp2751 + phi5_dot*tmp2752
+        + phi4_dot*tmp2753 + phi3_dot*tmp2754 + phi2_dot*tmp2755 + phi1_dot*tmp2756;
+    const Scalar tmp2811 = -tmp2773;
+    const Scalar tmp2812 = -tmp2772 + phi8_dot*tmp2811;
+    const Scalar tmp2813 = -tmp2774;
+    const Scalar tmp2814 = tmp2812 + phi7_dot*tmp2813;
+    const Scalar tmp2815 = -tmp2773;
+    const Scalar tmp2816 = tmp2814 + phi6_dot*tmp2815;
+    const Scalar tmp2817 = -tmp2774;
+    const Scalar tmp2818 = tmp2816 + phi5_dot*tmp2817;
+    const Scalar tmp2819 = -tmp2773;
+    const Scalar tmp2820 = tmp2818 + phi4_dot*tmp2819;
+    const Scalar tmp2821 = -tmp2774;
+    const Scalar tmp2822 = tmp2820 + phi3_dot*tmp2821;
+    const Scalar tmp2823 = -tmp2773;
+    const Scalar tmp2824 = tmp2822 + phi2_dot*tmp2823;
+    const Scalar tmp2825 = phi9_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot
+            - phi6_dot - phi7_dot - phi8_dot)*tmp2758
+        - phi9_dot*tmp2772 - (phi1_dot*phi1_dot)*tmp2774
         + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot
-            + phi7_dot)*tmp2770
-        + phi8_dot*tmp2771
-        + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp2772
-        + phi7_dot*tmp2773 + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp2774
-        + phi6_dot*tmp2775 + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp2776
-        + phi5_dot*tmp2777 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp2778 + phi4_dot*tmp2779
-        + phi3_dot*(phi1_dot + phi2_dot)*tmp2780 + phi3_dot*tmp2781 + phi1_dot*phi2_dot*tmp2782
-        + (phi1_dot + phi2_dot)*tmp2783;
-    const Scalar tmp2785 = phi9_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot
-            + phi7_dot + phi8_dot)*tmp2719
+            + phi7_dot)*tmp2811
+        + phi8_dot*tmp2812
+        + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp2813
+        + phi7_dot*tmp2814 + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp2815
+        + phi6_dot*tmp2816 + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp2817
+        + phi5_dot*tmp2818 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp2819 + phi4_dot*tmp2820
+        + phi3_dot*(phi1_dot + phi2_dot)*tmp2821 + phi3_dot*tmp2822 + phi1_dot*phi2_dot*tmp2823
+        + (phi1_dot + phi2_dot)*tmp2824;
+    const Scalar tmp2826 = phi9_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot
+            + phi7_dot + phi8_dot)*tmp2760
         + (phi3_dot*(phi1_dot + phi2_dot) + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)
-            + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot))*tmp2720
+            + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot))*tmp2761
         + (phi1_dot*phi2_dot + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)
             + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)
             + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot
-                + phi7_dot))*tmp2721
-        + phi9_dot*tmp2722 + phi8_dot*tmp2723 + phi7_dot*tmp2724 + phi6_dot*tmp2725
-        + phi5_dot*tmp2726 + phi4_dot*tmp2727 + phi3_dot*tmp2728 + phi2_dot*tmp2729
-        + phi1_dot*tmp2730;
-    const Scalar tmp2786 = -tmp2752;
-    const Scalar tmp2787 = -tmp2751 + phi9_dot*tmp2786;
-    const Scalar tmp2788 = -tmp2753;
-    const Scalar tmp2789 = tmp2787 + phi8_dot*tmp2788;
-    const Scalar tmp2790 = -tmp2754;
-    const Scalar tmp2791 = tmp2789 + phi7_dot*tmp2790;
-    const Scalar tmp2792 = -tmp2753;
-    const Scalar tmp2793 = tmp2791 + phi6_dot*tmp2792;
-    const Scalar tmp2794 = -tmp2755;
-    const Scalar tmp2795 = tmp2793 + phi5_dot*tmp2794;
-    const Scalar tmp2796 = -tmp2753;
-    const Scalar tmp2797 = tmp2795 + phi4_dot*tmp2796;
-    const Scalar tmp2798 = -tmp2754;
-    const Scalar tmp2799 = tmp2797 + phi3_dot*tmp2798;
-    const Scalar tmp2800 = -tmp2753;
-    const Scalar tmp2801 = tmp2799 + phi2_dot*tmp2800;
-    const Scalar tmp2802 = phi10_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot
-            - phi6_dot - phi7_dot - phi8_dot - phi9_dot)*tmp2734
-        - phi10_dot*tmp2751 - (phi1_dot*phi1_dot)*tmp2755
+                + phi7_dot))*tmp2762
+        + phi9_dot*tmp2763 + phi8_dot*tmp2764 + phi7_dot*tmp2765 + phi6_dot*tmp2766
+        + phi5_dot*tmp2767 + phi4_dot*tmp2768 + phi3_dot*tmp2769 + phi2_dot*tmp2770
+        + phi1_dot*tmp2771;
+    const Scalar tmp2827 = -tmp2793;
+    const Scalar tmp2828 = -tmp2792 + phi9_dot*tmp2827;
+    const Scalar tmp2829 = -tmp2794;
+    const Scalar tmp2830 = tmp2828 + phi8_dot*tmp2829;
+    const Scalar tmp2831 = -tmp2795;
+    const Scalar tmp2832 = tmp2830 + phi7_dot*tmp2831;
+    const Scalar tmp2833 = -tmp2794;
+    const Scalar tmp2834 = tmp2832 + phi6_dot*tmp2833;
+    const Scalar tmp2835 = -tmp2796;
+    const Scalar tmp2836 = tmp2834 + phi5_dot*tmp2835;
+    const Scalar tmp2837 = -tmp2794;
+    const Scalar tmp2838 = tmp2836 + phi4_dot*tmp2837;
+    const Scalar tmp2839 = -tmp2795;
+    const Scalar tmp2840 = tmp2838 + phi3_dot*tmp2839;
+    const Scalar tmp2841 = -tmp2794;
+    const Scalar tmp2842 = tmp2840 + phi2_dot*tmp2841;
+    const Scalar tmp2843 = phi10_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot
+            - phi6_dot - phi7_dot - phi8_dot - phi9_dot)*tmp2775
+        - phi10_dot*tmp2792 - (phi1_dot*phi1_dot)*tmp2796
         + phi9_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot
-            + phi8_dot)*tmp2786
-        + phi9_dot*tmp2787
+            + phi8_dot)*tmp2827
+        + phi9_dot*tmp2828
         + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot
-            + phi7_dot)*tmp2788
-        + phi8_dot*tmp2789
-        + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp2790
-        + phi7_dot*tmp2791 + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp2792
-        + phi6_dot*tmp2793 + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp2794
-        + phi5_dot*tmp2795 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp2796 + phi4_dot*tmp2797
-        + phi3_dot*(phi1_dot + phi2_dot)*tmp2798 + phi3_dot*tmp2799 + phi1_dot*phi2_dot*tmp2800
-        + (phi1_dot + phi2_dot)*tmp2801;
-    const Scalar tmp2803 = phi10_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot
-            + phi6_dot + phi7_dot + phi8_dot + phi9_dot)*tmp2736
+            + phi7_dot)*tmp2829
+        + phi8_dot*tmp2830
+        + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp2831
+        + phi7_dot*tmp2832 + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp2833
+        + phi6_dot*tmp2834 + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp2835
+        + phi5_dot*tmp2836 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp2837 + phi4_dot*tmp2838
+        + phi3_dot*(phi1_dot + phi2_dot)*tmp2839 + phi3_dot*tmp2840 + phi1_dot*phi2_dot*tmp2841
+        + (phi1_dot + phi2_dot)*tmp2842;
+    const Scalar tmp2844 = phi10_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot
+            + phi6_dot + phi7_dot + phi8_dot + phi9_dot)*tmp2777
         + phi9_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot
-            + phi8_dot)*tmp2737
-        + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp2738
+            + phi8_dot)*tmp2778
+        + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp2779
         + (phi1_dot*phi2_dot + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)
             + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)
             + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot
-                + phi7_dot))*tmp2739
+                + phi7_dot))*tmp2780
         + (phi3_dot*(phi1_dot + phi2_dot)
-            + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot))*tmp2740
-        + phi10_dot*tmp2741 + phi9_dot*tmp2742 + phi8_dot*tmp2743 + phi7_dot*tmp2744
-        + phi6_dot*tmp2745 + phi5_dot*tmp2746 + phi4_dot*tmp2747 + phi3_dot*tmp2748
-        + phi2_dot*tmp2749 + phi1_dot*tmp2750;
-    const Scalar tmp2804 = Scalar(2)*tmp139*m*tmp2707 + Scalar(2)*tmp159*m*tmp2705
-        + Scalar(2)*tmp170*m*tmp2720 + Scalar(2)*tmp193*m*tmp2733 + Scalar(2)*tmp204*m*tmp2738
-        + Scalar(2)*tmp230*m*tmp2755;
-    const Scalar tmp2805 = (tmp139*m + tmp141*m)*tmp2707 + (tmp158*m + tmp159*m)*tmp2705
-        + tmp173*m*tmp2720 + tmp170*m*tmp2721 + tmp193*m*tmp2732 + tmp192*m*tmp2733
-        + tmp207*m*tmp2738 + tmp204*m*tmp2739 + tmp230*m*tmp2753 + tmp229*m*tmp2755;
-    const Scalar tmp2806 = Scalar(2)*tmp141*m*tmp2707 + Scalar(2)*tmp158*m*tmp2705
-        + Scalar(2)*tmp173*m*tmp2721 + Scalar(2)*tmp192*m*tmp2732 + Scalar(2)*tmp207*m*tmp2739
-        + Scalar(2)*tmp229*m*tmp2753;
-    const Scalar tmp2807 = (tmp139*m + tmp142*m)*tmp2707 + (tmp157*m + tmp159*m)*tmp2705
-        + (tmp170*m + tmp174*m)*tmp2720 + (tmp191*m + tmp193*m)*tmp2733 + tmp209*m*tmp2738
-        + tmp204*m*tmp2740 + tmp230*m*tmp2754 + tmp228*m*tmp2755;
-    const Scalar tmp2808 = (tmp141*m + tmp142*m)*tmp2707 + (tmp157*m + tmp158*m)*tmp2705
-        + tmp174*m*tmp2721 + tmp173*m*tmp2720 + tmp192*m*tmp2733 + tmp191*m*tmp2732
-        + tmp209*m*tmp2739 + tmp207*m*tmp2740 + tmp229*m*tmp2754 + tmp228*m*tmp2753;
-    const Scalar tmp2809 = Scalar(2)*tmp142*m*tmp2707 + Scalar(2)*tmp157*m*tmp2705
-        + Scalar(2)*tmp174*m*tmp2720 + Scalar(2)*tmp191*m*tmp2733 + Scalar(2)*tmp209*m*tmp2740
-        + Scalar(2)*tmp228*m*tmp2754;
-    const Scalar tmp2810 = (tmp139*m + tmp143*m)*tmp2707 + (tmp156*m + tmp159*m)*tmp2705
-        + tmp175*m*tmp2720 + tmp170*m*tmp2721 + tmp193*m*tmp2732 + tmp190*m*tmp2733
-        + tmp210*m*tmp2738 + tmp204*m*tmp2739 + tmp230*m*tmp2753 + tmp227*m*tmp2755;
-    const Scalar tmp2811 = (tmp141*m + tmp143*m)*tmp2707 + (tmp156*m + tmp158*m)*tmp2705
-        + (tmp173*m + tmp175*m)*tmp2721 + (tmp190*m + tmp192*m)*tmp2732
-        + (tmp207*m + tmp210*m)*tmp2739 + (tmp227*m + tmp229*m)*tmp2753;
-    const Scalar tmp2812 = (tmp142*m + tmp143*m)*tmp2707 + (tmp156*m + tmp157*m)*tmp2705
-        + tmp175*m*tmp2720 + tmp174*m*tmp2721 + tmp191*m*tmp2732 + tmp190*m*tmp2733
-        + tmp210*m*tmp2740 + tmp209*m*tmp2739 + tmp228*m*tmp2753 + tmp227*m*tmp2754;
-    const Scalar tmp2813 = Scalar(2)*tmp143*m*tmp2707 + Scalar(2)*tmp156*m*tmp2705
-        + Scalar(2)*tmp175*m*tmp2721 + Scalar(2)*tmp190*m*tmp2732 + Scalar(2)*tmp210*m*tmp2739
-        + Scalar(2)*tmp227*m*tmp2753;
-    const Scalar tmp2814 = (tmp138*m + tmp139*m)*tmp2707 + (tmp155*m + tmp159*m)*tmp2705
-        + (tmp169*m + tmp170*m)*tmp2720 + (tmp189*m + tmp193*m)*tmp2733
-        + (tmp203*m + tmp204*m)*tmp2738 + (tmp226*m + tmp230*m)*tmp2755;
-    const Scalar tmp2815 = (tmp138*m + tmp141*m)*tmp2707 + (tmp155*m + tmp158*m)*tmp2705
-        + tmp173*m*tmp2720 + tmp169*m*tmp2721 + tmp192*m*tmp2733 + tmp189*m*tmp2732
-        + tmp207*m*tmp2738 + tmp203*m*tmp2739 + tmp229*m*tmp2755 + tmp226*m*tmp2753;
-    const Scalar tmp2816 = (tmp138*m + tmp142*m)*tmp2707 + (tmp155*m + tmp157*m)*tmp2705
-        + (tmp169*m + tmp174*m)*tmp2720 + (tmp189*m + tmp191*m)*tmp2733 + tmp209*m*tmp2738
-        + tmp203*m*tmp2740 + tmp228*m*tmp2755 + tmp226*m*tmp2754;
-    const Scalar tmp2817 = (tmp138*m + tmp143*m)*tmp2707 + (tmp155*m + tmp156*m)*tmp2705
-        + tmp175*m*tmp2720 + tmp169*m*tmp2721 + tmp190*m*tmp2733 + tmp189*m*tmp2732
-        + tmp210*m*tmp2738 + tmp203*m*tmp2739 + tmp227*m*tmp2755 + tmp226*m*tmp2753;
-    const Scalar tmp2818 = Scalar(2)*tmp138*m*tmp2707 + Scalar(2)*tmp155*m*tmp2705
-        + Scalar(2)*tmp169*m*tmp2720 + Scalar(2)*tmp189*m*tmp2733 + Scalar(2)*tmp203*m*tmp2738
-        + Scalar(2)*tmp226*m*tmp2755;
-    const Scalar tmp2819 = (tmp139*m + tmp140*m)*tmp2707 + (tmp154*m + tmp159*m)*tmp2705
-        + tmp172*m*tmp2720 + tmp170*m*tmp2721 + tmp193*m*tmp2732 + tmp188*m*tmp2733
-        + tmp206*m*tmp2738 + tmp204*m*tmp2739 + tmp230*m*tmp2753 + tmp225*m*tmp2755;
-    const Scalar tmp2820 = (tmp140*m + tmp141*m)*tmp2707 + (tmp154*m + tmp158*m)*tmp2705
-        + (tmp172*m + tmp173*m)*tmp2721 + (tmp188*m + tmp192*m)*tmp2732
-        + (tmp206*m + tmp207*m)*tmp2739 + (tmp225*m + tmp229*m)*tmp2753;
-    const Scalar tmp2821 = (tmp140*m + tmp142*m)*tmp2707 + (tmp154*m + tmp157*m)*tmp2705
-        + tmp174*m*tmp2721 + tmp172*m*tmp2720 + tmp191*m*tmp2732 + tmp188*m*tmp2733
-        + tmp209*m*tmp2739 + tmp206*m*tmp2740 + tmp228*m*tmp2753 + tmp225*m*tmp2754;
-    const Scalar tmp2822 = (tmp140*m + tmp143*m)*tmp2707 + (tmp154*m + tmp156*m)*tmp2705
-        + (tmp172*m + tmp175*m)*tmp2721 + (tmp188*m + tmp190*m)*tmp2732
-        + (tmp206*m + tmp210*m)*tmp2739 + (tmp225*m + tmp227*m)*tmp2753;
-    const Scalar tmp2823 = (tmp138*m + tmp140*m)*tmp2707 + (tmp154*m + tmp155*m)*tmp2705
-        + tmp172*m*tmp2720 + tmp169*m*tmp2721 + tmp189*m*tmp2732 + tmp188*m*tmp2733
-        + tmp206*m*tmp2738 + tmp203*m*tmp2739 + tmp226*m*tmp2753 + tmp225*m*tmp2755;
-    const Scalar tmp2824 = Scalar(2)*tmp140*m*tmp2707 + Scalar(2)*tmp154*m*tmp2705
-        + Scalar(2)*tmp172*m*tmp2721 + Scalar(2)*tmp188*m*tmp2732 + Scalar(2)*tmp206*m*tmp2739
-        + Scalar(2)*tmp225*m*tmp2753;
-    const Scalar tmp2825 = (tmp137*m + tmp139*m)*tmp2707 + (tmp153*m + tmp159*m)*tmp2705
-        + (tmp168*m + tmp170*m)*tmp2720 + (tmp187*m + tmp193*m)*tmp2733 + tmp208*m*tmp2738
-        + tmp204*m*tmp2740 + tmp230*m*tmp2754 + tmp224*m*tmp2755;
-    const Scalar tmp2826 = (tmp137*m + tmp141*m)*tmp2707 + (tmp153*m + tmp158*m)*tmp2705
-        + tmp173*m*tmp2720 + tmp168*m*tmp2721 + tmp192*m*tmp2733 + tmp187*m*tmp2732
-        + tmp208*m*tmp2739 + tmp207*m*tmp2740 + tmp229*m*tmp2754 + tmp224*m*tmp2753;
-    const Scalar tmp2827 = (tmp137*m + tmp142*m)*tmp2707 + (tmp153*m + tmp157*m)*tmp2705
-        + (tmp168*m + tmp174*m)*tmp2720 + (tmp187*m + tmp191*m)*tmp2733
-        + (tmp208*m + tmp209*m)*tmp2740 + (tmp224*m + tmp228*m)*tmp2754;
-    const Scalar tmp2828 = (tmp137*m + tmp143*m)*tmp2707 + (tmp153*m + tmp156*m)*tmp2705
-        + tmp175*m*tmp2720 + tmp168*m*tmp2721 + tmp190*m*tmp2733 + tmp187*m*tmp2732
-        + tmp210*m*tmp2740 + tmp208*m*tmp2739 + tmp227*m*tmp2754 + tmp224*m*tmp2753;
-    const Scalar tmp2829 = (tmp137*m + tmp138*m)*tmp2707 + (tmp153*m + tmp155*m)*tmp2705
-        + (tmp168*m + tmp169*m)*tmp2720 + (tmp187*m + tmp189*m)*tmp2733 + tmp208*m*tmp2738
-        + tmp203*m*tmp2740 + tmp226*m*tmp2754 + tmp224*m*tmp2755;
-    const Scalar tmp2830 = (tmp137*m + tmp140*m)*tmp2707 + (tmp153*m + tmp154*m)*tmp2705
-        + tmp172*m*tmp2720 + tmp168*m*tmp2721 + tmp188*m*tmp2733 + tmp187*m*tmp2732
-        + tmp208*m*tmp2739 + tmp206*m*tmp2740 + tmp225*m*tmp2754 + tmp224*m*tmp2753;
-    const Scalar tmp2831 = Scalar(2)*tmp137*m*tmp2707 + Scalar(2)*tmp153*m*tmp2705
-        + Scalar(2)*tmp168*m*tmp2720 + Scalar(2)*tmp187*m*tmp2733 + Scalar(2)*tmp208*m*tmp2740
-        + Scalar(2)*tmp224*m*tmp2754;
-    const Scalar tmp2832 = (tmp132*m + tmp159*m)*tmp2705 + (tmp135*m + tmp139*m)*tmp2707
-        + tmp171*m*tmp2720 + tmp170*m*tmp2721 + tmp193*m*tmp2732 + tmp186*m*tmp2733
-        + tmp205*m*tmp2738 + tmp204*m*tmp2739 + tmp230*m*tmp2753 + tmp223*m*tmp2755;
-    const Scalar tmp2833 = (tmp132*m + tmp158*m)*tmp2705 + (tmp135*m + tmp141*m)*tmp2707
-        + (tmp171*m + tmp173*m)*tmp2721 + (tmp186*m + tmp192*m)*tmp2732
-        + (tmp205*m + tmp207*m)*tmp2739 + (tmp223*m + tmp229*m)*tmp2753;
-    const Scalar tmp2834 = (tmp132*m + tmp157*m)*tmp2705 + (tmp135*m + tmp142*m)*tmp2707
-        + tmp174*m*tmp2721 + tmp171*m*tmp2720 + tmp191*m*tmp2732 + tmp186*m*tmp2733
-        + tmp209*m*tmp2739 + tmp205*m*tmp2740 + tmp228*m*tmp2753 + tmp223*m*tmp2754;
-    const Scalar tmp2835 = (tmp132*m + tmp156*m)*tmp2705 + (tmp135*m + tmp143*m)*tmp2707
-        + (tmp171*m + tmp175*m)*tmp2721 + (tmp186*m + tmp190*m)*tmp2732
-        + (tmp205*m + tmp210*m)*tmp2739 + (tmp223*m + tmp227*m)*tmp2753;
-    const Scalar tmp2836 = (tmp132*m + tmp155*m)*tmp2705 + (tmp135*m + tmp138*m)*tmp2707
-        + tmp171*m*tmp2720 + tmp169*m*tmp2721 + tmp189*m*tmp2732 + tmp186*m*tmp2733
-        + tmp205*m*tmp2738 + tmp203*m*tmp2739 + tmp226*m*tmp2753 + tmp223*m*tmp2755;
-    const Scalar tmp2837 = (tmp132*m + tmp154*m)*tmp2705 + (tmp135*m + tmp140*m)*tmp2707
-        + (tmp171*m + tmp172*m)*tmp2721 + (tmp186*m + tmp188*m)*tmp2732
-        + (tmp205*m + tmp206*m)*tmp2739 + (tmp223*m + tmp225*m)*tmp2753;
-    const Scalar tmp2838 = (tmp132*m + tmp153*m)*tmp2705 + (tmp135*m + tmp137*m)*tmp2707
-        + tmp171*m*tmp2720 + tmp168*m*tmp2721 + tmp187*m*tmp2732 + tmp186*m*tmp2733
-        + tmp208*m*tmp2739 + tmp205*m*tmp2740 + tmp224*m*tmp2753 + tmp223*m*tmp2754;
-    const Scalar tmp2839 = Scalar(2)*tmp131*tmp325*m*tmp134 + Scalar(2)*tmp134*tmp325*m*tmp2706
-        + Scalar(2)*tmp171*m*tmp2721 + Scalar(2)*tmp186*m*tmp2732 + Scalar(2)*tmp205*m*tmp2739
-        + Scalar(2)*tmp223*m*tmp2753;
-    const Scalar tmp2840 = tmp193*m*tmp2717 + tmp170*m*tmp2719 + tmp166*m*tmp2720 + tmp163*m*tmp2733
-        + tmp204*m*tmp2737 + tmp202*m*tmp2738 + tmp230*m*tmp2752 + tmp222*m*tmp2755;
-    const Scalar tmp2841 = tmp192*m*tmp2717 + tmp173*m*tmp2719 + tmp166*m*tmp2721 + tmp163*m*tmp2732
-        + tmp207*m*tmp2737 + tmp202*m*tmp2739 + tmp229*m*tmp2752 + tmp222*m*tmp2753;
-    const Scalar tmp2842 = tmp191*m*tmp2717 + tmp174*m*tmp2719 + tmp166*m*tmp2720 + tmp163*m*tmp2733
-        + tmp209*m*tmp2737 + tmp202*m*tmp2740 + tmp228*m*tmp2752 + tmp222*m*tmp2754;
-    const Scalar tmp2843 = tmp190*m*tmp2717 + tmp175*m*tmp2719 + tmp166*m*tmp2721 + tmp163*m*tmp2732
-        + tmp210*m*tmp2737 + tmp202*m*tmp2739 + tmp227*m*tmp2752 + tmp222*m*tmp2753;
-    const Scalar tmp2844 = tmp189*m*tmp2717 + tmp169*m*tmp2719 + tmp166*m*tmp2720 + tmp163*m*tmp2733
-        + tmp203*m*tmp2737 + tmp202*m*tmp2738 + tmp226*m*tmp2752 + tmp222*m*tmp2755;
-    const Scalar tmp2845 = tmp188*m*tmp2717 + tmp172*m*tmp2719 + tmp166*m*tmp2721 + tmp163*m*tmp2732
-        + tmp206*m*tmp2737 + tmp202*m*tmp2739 + tmp225*m*tmp2752 + tmp222*m*tmp2753;
-    const Scalar tmp2846 = tmp187*m*tmp2717 + tmp168*m*tmp2719 + tmp166*m*tmp2720 + tmp163*m*tmp2733
-        + tmp208*m*tmp2737 + tmp202*m*tmp2740 + tmp224*m*tmp2752 + tmp222*m*tmp2754;
-    const Scalar tmp2847 = tmp186*m*tmp2717 + tmp171*m*tmp2719 + tmp166*m*tmp2721 + tmp163*m*tmp2732
-        + tmp205*m*tmp2737 + tmp202*m*tmp2739 + tmp223*m*tmp2752 + tmp222*m*tmp2753;
-    const Scalar tmp2848 = Scalar(2)*tmp162*tmp325*m*tmp165 + Scalar(2)*tmp165*tmp325*m*tmp2718
-        + Scalar(2)*tmp202*m*tmp2737 + Scalar(2)*tmp222*m*tmp2752;
-    const Scalar tmp2849 = tmp230*m*tmp2734 + tmp204*m*tmp2736 + tmp200*m*tmp2738
-        + tmp197*m*tmp2755;
-    const Scalar tmp2850 = tmp229*m*tmp2734 + tmp207*m*tmp2736 + tmp200*m*tmp2739
-        + tmp197*m*tmp2753;
-    const Scalar tmp2851 = tmp228*m*tmp2734 + tmp209*m*tmp2736 + tmp200*m*tmp2740
-        + tmp197*m*tmp2754;
-    const Scalar tmp2852 = tmp227*m*tmp2734 + tmp210*m*tmp2736 + tmp200*m*tmp2739
-        + tmp197*m*tmp2753;
-    const Scalar tmp2853 = tmp226*m*tmp2734 + tmp203*m*tmp2736 + tmp200*m*tmp2738
-        + tmp197*m*tmp2755;
-    const Scalar tmp2854 = tmp225*m*tmp2734 + tmp206*m*tmp2736 + tmp200*m*tmp2739
-        + tmp197*m*tmp2753;
-    const Scalar tmp2855 = tmp224*m*tmp2734 + tmp208*m*tmp2736 + tmp200*m*tmp2740
-        + tmp197*m*tmp2754;
-    const Scalar tmp2856 = tmp223*m*tmp2734 + tmp205*m*tmp2736 + tmp200*m*tmp2739
-        + tmp197*m*tmp2753;
-    const Scalar tmp2857 = tmp222*m*tmp2734 + tmp202*m*tmp2736 + tmp200*m*tmp2737
-        + tmp197*m*tmp2752;
-    const Scalar tmp2858 = Scalar(2)*tmp196*tmp325*m*tmp199 + Scalar(2)*tmp199*tmp325*m*tmp2735;
-    const Scalar tmp2859 = m*tmp2768;
-    const Scalar tmp2860 = m*tmp2769;
-    const Scalar tmp2861 = m*tmp2784;
-    const Scalar tmp2862 = m*tmp2785;
-    const Scalar tmp2863 = m*tmp2802;
-    const Scalar tmp2864 = m*tmp2803;
-    const Scalar tmp2865 = tmp382*tmp2705 + tmp382*tmp2733 + tmp382*tmp2755;
-    const Scalar tmp2866 = tmp382*tmp2705 + tmp382*tmp2732 + tmp382*tmp2753;
-    const Scalar tmp2867 = tmp382*tmp2705 + tmp382*tmp2733 + tmp382*tmp2754;
-    const Scalar tmp2868 = tmp382*tmp2705 + tmp382*tmp2732 + tmp382*tmp2753;
-    const Scalar tmp2869 = tmp382*tmp2705 + tmp382*tmp2733 + tmp382*tmp2755;
-    const Scalar tmp2870 = tmp382*tmp2705 + tmp382*tmp2732 + tmp382*tmp2753;
-    const Scalar tmp2871 = tmp382*tmp2705 + tmp382*tmp2733 + tmp382*tmp2754;
-    const Scalar tmp2872 = tmp382*tmp2705 + tmp382*tmp2732 + tmp382*tmp2753 - k;
-    const Scalar tmp2873 = tmp382*tmp2717 + tmp382*tmp2752;
-    const Scalar tmp2874 = tmp382*l*tmp199;
-    const Scalar tmp2875 = -tmp397*tmp2707 - tmp398*tmp2705 - tmp399*tmp2720 - tmp400*tmp2733
-        - tmp401*tmp2738 - tmp402*tmp2755 - tmp139*tmp2859 - tmp159*tmp2860 - tmp170*tmp2861
-        - tmp193*tmp2862 - tmp204*tmp2863 - tmp230*tmp2864;
-    dr_dq_data[0 + 10 * 7] = phi10_ddot*tmp2849 - tmp2865 - tmp2875 + phi1_ddot*tmp2804
-        + phi2_ddot*tmp2805 + phi3_ddot*tmp2807 + phi4_ddot*tmp2810 + phi5_ddot*tmp2814
-        + phi6_ddot*tmp2819 + phi7_ddot*tmp2825 + phi8_ddot*tmp2832 + phi9_ddot*tmp2840;
-    const Scalar tmp2876 = -tmp397*tmp2707 - tmp398*tmp2705 - tmp399*tmp2721 - tmp400*tmp2732
-        - tmp401*tmp2739 - tmp402*tmp2753 - tmp141*tmp2859 - tmp158*tmp2860 - tmp173*tmp2861
-        - tmp192*tmp2862 - tmp207*tmp2863 - tmp229*tmp2864;
-    dr_dq_data[1 + 10 * 7] = phi10_ddot*tmp2850 - tmp2866 - tmp2876 + phi1_ddot*tmp2805
-        + phi2_ddot*tmp2806 + phi3_ddot*tmp2808 + phi4_ddot*tmp2811 + phi5_ddot*tmp2815
-        + phi6_ddot*tmp2820 + phi7_ddot*tmp2826 + phi8_ddot*tmp2833 + phi9_ddot*tmp2841;
-    const Scalar tmp2877 = -tmp397*tmp2707 - tmp398*tmp2705 - tmp399*tmp2720 - tmp400*tmp2733
-        - tmp401*tmp2740 - tmp402*tmp2754 - tmp142*tmp2859 - tmp157*tmp2860 - tmp174*tmp2861
-        - tmp191*tmp2862 - tmp209*tmp2863 - tmp228*tmp2864;
-    dr_dq_data[2 + 10 * 7] = phi10_ddot*tmp2851 - tmp2867 - tmp2877 + phi1_ddot*tmp2807
-        + phi2_ddot*tmp2808 + phi3_ddot*tmp2809 + phi4_ddot*tmp2812 + phi5_ddot*tmp2816
-        + phi6_ddot*tmp2821 + phi7_ddot*tmp2827 + phi8_ddot*tmp2834 + phi9_ddot*tmp2842;
-    const Scalar tmp2878 = -tmp397*tmp2707 - tmp398*tmp2705 - tmp399*tmp2721 - tmp400*tmp2732
-        - tmp401*tmp2739 - tmp402*tmp2753 - tmp143*tmp2859 - tmp156*tmp2860 - tmp175*tmp2861
-        - tmp190*tmp2862 - tmp210*tmp2863 - tmp227*tmp2864;
-    dr_dq_data[3 + 10 * 7] = phi10_ddot*tmp2852 - tmp2868 - tmp2878 + phi1_ddot*tmp2810
-        + phi2_ddot*tmp2811 + phi3_ddot*tmp2812 + phi4_ddot*tmp2813 + phi5_ddot*tmp2817
-        + phi6_ddot*tmp2822 + phi7_ddot*tmp2828 + phi8_ddot*tmp2835 + phi9_ddot*tmp2843;
-    const Scalar tmp2879 = -tmp397*tmp2707 - tmp398*tmp2705 - tmp399*tmp2720 - tmp400*tmp2733
-        - tmp401*tmp2738 - tmp402*tmp2755 - tmp138*tmp2859 - tmp155*tmp2860 - tmp169*tmp2861
-        - tmp189*tmp2862 - tmp203*tmp2863 - tmp226*tmp2864;
-    dr_dq_data[4 + 10 * 7] = phi9_ddot*tmp2844 + phi10_ddot*tmp2853 - tmp2869 - tmp2879
-        + phi1_ddot*tmp2814 + phi2_ddot*tmp2815 + phi3_ddot*tmp2816 + phi4_ddot*tmp2817
-        + phi5_ddot*tmp2818 + phi6_ddot*tmp2823 + phi7_ddot*tmp2829 + phi8_ddot*tmp2836;
-    const Scalar tmp2880 = -tmp397*tmp2707 - tmp398*tmp2705 - tmp399*tmp2721 - tmp400*tmp2732
-        - tmp401*tmp2739 - tmp402*tmp2753 - tmp140*tmp2859 - tmp154*tmp2860 - tmp172*tmp2861
-        - tmp188*tmp2862 - tmp206*tmp2863 - tmp225*tmp2864;
-    dr_dq_data[5 + 10 * 7] = phi9_ddot*tmp2845 + phi10_ddot*tmp2854 - tmp2870 - tmp2880
-        + phi1_ddot*tmp2819 + phi2_ddot*tmp2820 + phi3_ddot*tmp2821 + phi4_ddot*tmp2822
-        + phi5_ddot*tmp2823 + phi6_ddot*tmp2824 + phi7_ddot*tmp2830 + phi8_ddot*tmp2837;
-    const Scalar tmp2881 = -tmp397*tmp2707 - tmp398*tmp2705 - tmp399*tmp2720 - tmp400*tmp2733
-        - tmp401*tmp2740 - tmp402*tmp2754 - tmp137*tmp2859 - tmp153*tmp2860 - tmp168*tmp2861
-        - tmp187*tmp2862 - tmp208*tmp2863 - tmp224*tmp2864;
-    dr_dq_data[6 + 10 * 7] = phi9_ddot*tmp2846 + phi10_ddot*tmp2855 - tmp2871 - tmp2881
-        + phi1_ddot*tmp2825 + phi2_ddot*tmp2826 + phi3_ddot*tmp2827 + phi4_ddot*tmp2828
-        + phi5_ddot*tmp2829 + phi6_ddot*tmp2830 + phi7_ddot*tmp2831 + phi8_ddot*tmp2838;
-    const Scalar tmp2882 = -tmp398*tmp2705 - tmp397*tmp2707 - tmp399*tmp2721 - tmp400*tmp2732
-        - tmp401*tmp2739 - tmp402*tmp2753 - tmp135*tmp2859 - tmp132*tmp2860 - tmp171*tmp2861
-        - tmp186*tmp2862 - tmp205*tmp2863 - tmp223*tmp2864;
-    dr_dq_data[7 + 10 * 7] = phi9_ddot*tmp2847 + phi10_ddot*tmp2856 - tmp2872 - tmp2882
-        + phi1_ddot*tmp2832 + phi2_ddot*tmp2833 + phi3_ddot*tmp2834 + phi4_ddot*tmp2835
-        + phi5_ddot*tmp2836 + phi6_ddot*tmp2837 + phi7_ddot*tmp2838 + phi8_ddot*tmp2839;
-    const Scalar tmp2883 = -tmp400*tmp2717 - tmp399*tmp2719 - tmp401*tmp2737 - tmp402*tmp2752
-        - tmp166*tmp2861 - tmp163*tmp2862 - tmp202*tmp2863 - tmp222*tmp2864;
-    dr_dq_data[8 + 10 * 7] = phi5_ddot*tmp2844 + phi6_ddot*tmp2845 + phi7_ddot*tmp2846
-        + phi8_ddot*tmp2847 + phi9_ddot*tmp2848 + phi10_ddot*tmp2857 - tmp2873 - tmp2883
-        + phi1_ddot*tmp2840 + phi2_ddot*tmp2841 + phi3_ddot*tmp2842 + phi4_ddot*tmp2843;
-    const Scalar tmp2884 = -tmp402*tmp2734 - tmp401*tmp2736 - tmp200*tmp2863 - tmp197*tmp2864;
-    dr_dq_data[9 + 10 * 7] = phi1_ddot*tmp2849 + phi2_ddot*tmp2850 + phi3_ddot*tmp2851
-        + phi4_ddot*tmp2852 + phi5_ddot*tmp2853 + phi6_ddot*tmp2854 + phi7_ddot*tmp2855
-        + phi8_ddot*tmp2856 + phi9_ddot*tmp2857 + phi10_ddot*tmp2858 - tmp2874 - tmp2884;
-    const Scalar tmp2885 = l*tmp165;
-    const Scalar tmp2886 = -tmp162;
-    const Scalar tmp2887 = l*tmp2886;
-    const Scalar tmp2888 = phi9_dot*tmp2887;
-    const Scalar tmp2889 = phi8_dot*tmp2887 + tmp2888;
-    const Scalar tmp2890 = phi7_dot*tmp2887 + tmp2889;
-    const Scalar tmp2891 = phi6_dot*tmp2887 + tmp2890;
-    const Scalar tmp2892 = phi5_dot*tmp2887 + tmp2891;
-    const Scalar tmp2893 = phi4_dot*tmp2887 + tmp2892;
-    const Scalar tmp2894 = phi3_dot*tmp2887 + tmp2893;
-    const Scalar tmp2895 = phi2_dot*tmp2887 + tmp2894;
-    const Scalar tmp2896 = phi1_dot*tmp2887 + tmp2895;
-    const Scalar tmp2897 = phi9_dot*tmp2885;
-    const Scalar tmp2898 = l*tmp199;
-    const Scalar tmp2899 = -tmp196;
-    const Scalar tmp2900 = l*tmp2899;
-    const Scalar tmp2901 = tmp2887 + tmp2900;
-    const Scalar tmp2902 = tmp2887 + tmp2900;
-    const Scalar tmp2903 = phi10_dot*tmp2900;
-    const Scalar tmp2904 = phi9_dot*tmp2901 + tmp2903;
-    const Scalar tmp2905 = phi8_dot*tmp2902 + tmp2904;
-    const Scalar tmp2906 = phi7_dot*tmp2901 + tmp2905;
-    const Scalar tmp2907 = phi6_dot*tmp2902 + tmp2906;
-    const Scalar tmp2908 = phi5_dot*tmp2901 + tmp2907;
-    const Scalar tmp2909 = phi4_dot*tmp2902 + tmp2908;
-    const Scalar tmp2910 = phi3_dot*tmp2901 + tmp2909;
-    const Scalar tmp2911 = phi2_dot*tmp2902 + tmp2910;
-    const Scalar tmp2912 = phi1_dot*tmp2901 + tmp2911;
-    const Scalar tmp2913 = phi10_dot*tmp2898;
-    const Scalar tmp2914 = tmp2885 + tmp2898;
-    const Scalar tmp2915 = tmp2885 + tmp2898;
-    const Scalar tmp2916 = -tmp2885;
-    const Scalar tmp2917 = -tmp2897 + phi8_dot*tmp2916;
-    const Scalar tmp2918 = -tmp2885;
-    const Scalar tmp2919 = tmp2917 + phi7_dot*tmp2918;
-    const Scalar tmp2920 = -tmp2885;
-    const Scalar tmp2921 = tmp2919 + phi6_dot*tmp2920;
-    const Scalar tmp2922 = -tmp2885;
-    const Scalar tmp2923 = tmp2921 + phi5_dot*tmp2922;
-    const Scalar tmp2924 = -tmp2885;
-    const Scalar tmp2925 = tmp2923 + phi4_dot*tmp2924;
-    const Scalar tmp2926 = -tmp2885;
-    const Scalar tmp2927 = tmp2925 + phi3_dot*tmp2926;
-    const Scalar tmp2928 = -tmp2885;
-    const Scalar tmp2929 = tmp2927 + phi2_dot*tmp2928;
-    const Scalar tmp2930 = (-(phi1_dot*phi1_dot)
+            + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot))*tmp2781
+        + phi10_dot*tmp2782 + phi9_dot*tmp2783 + phi8_dot*tmp2784 + phi7_dot*tmp2785
+        + phi6_dot*tmp2786 + phi5_dot*tmp2787 + phi4_dot*tmp2788 + phi3_dot*tmp2789
+        + phi2_dot*tmp2790 + phi1_dot*tmp2791;
+    const Scalar tmp2845 = Scalar(2)*tmp139*m*tmp2748 + Scalar(2)*tmp159*m*tmp2746
+        + Scalar(2)*tmp170*m*tmp2761 + Scalar(2)*tmp193*m*tmp2774 + Scalar(2)*tmp204*m*tmp2779
+        + Scalar(2)*tmp230*m*tmp2796;
+    const Scalar tmp2846 = (tmp139*m + tmp141*m)*tmp2748 + (tmp158*m + tmp159*m)*tmp2746
+        + tmp173*m*tmp2761 + tmp170*m*tmp2762 + tmp193*m*tmp2773 + tmp192*m*tmp2774
+        + tmp207*m*tmp2779 + tmp204*m*tmp2780 + tmp230*m*tmp2794 + tmp229*m*tmp2796;
+    const Scalar tmp2847 = Scalar(2)*tmp141*m*tmp2748 + Scalar(2)*tmp158*m*tmp2746
+        + Scalar(2)*tmp173*m*tmp2762 + Scalar(2)*tmp192*m*tmp2773 + Scalar(2)*tmp207*m*tmp2780
+        + Scalar(2)*tmp229*m*tmp2794;
+    const Scalar tmp2848 = (tmp139*m + tmp142*m)*tmp2748 + (tmp157*m + tmp159*m)*tmp2746
+        + (tmp170*m + tmp174*m)*tmp2761 + (tmp191*m + tmp193*m)*tmp2774 + tmp209*m*tmp2779
+        + tmp204*m*tmp2781 + tmp230*m*tmp2795 + tmp228*m*tmp2796;
+    const Scalar tmp2849 = (tmp141*m + tmp142*m)*tmp2748 + (tmp157*m + tmp158*m)*tmp2746
+        + tmp174*m*tmp2762 + tmp173*m*tmp2761 + tmp192*m*tmp2774 + tmp191*m*tmp2773
+        + tmp209*m*tmp2780 + tmp207*m*tmp2781 + tmp229*m*tmp2795 + tmp228*m*tmp2794;
+    const Scalar tmp2850 = Scalar(2)*tmp142*m*tmp2748 + Scalar(2)*tmp157*m*tmp2746
+        + Scalar(2)*tmp174*m*tmp2761 + Scalar(2)*tmp191*m*tmp2774 + Scalar(2)*tmp209*m*tmp2781
+        + Scalar(2)*tmp228*m*tmp2795;
+    const Scalar tmp2851 = (tmp139*m + tmp143*m)*tmp2748 + (tmp156*m + tmp159*m)*tmp2746
+        + tmp175*m*tmp2761 + tmp170*m*tmp2762 + tmp193*m*tmp2773 + tmp190*m*tmp2774
+        + tmp210*m*tmp2779 + tmp204*m*tmp2780 + tmp230*m*tmp2794 + tmp227*m*tmp2796;
+    const Scalar tmp2852 = (tmp141*m + tmp143*m)*tmp2748 + (tmp156*m + tmp158*m)*tmp2746
+        + (tmp173*m + tmp175*m)*tmp2762 + (tmp190*m + tmp192*m)*tmp2773
+        + (tmp207*m + tmp210*m)*tmp2780 + (tmp227*m + tmp229*m)*tmp2794;
+    const Scalar tmp2853 = (tmp142*m + tmp143*m)*tmp2748 + (tmp156*m + tmp157*m)*tmp2746
+        + tmp175*m*tmp2761 + tmp174*m*tmp2762 + tmp191*m*tmp2773 + tmp190*m*tmp2774
+        + tmp210*m*tmp2781 + tmp209*m*tmp2780 + tmp228*m*tmp2794 + tmp227*m*tmp2795;
+    const Scalar tmp2854 = Scalar(2)*tmp143*m*tmp2748 + Scalar(2)*tmp156*m*tmp2746
+        + Scalar(2)*tmp175*m*tmp2762 + Scalar(2)*tmp190*m*tmp2773 + Scalar(2)*tmp210*m*tmp2780
+        + Scalar(2)*tmp227*m*tmp2794;
+    const Scalar tmp2855 = (tmp138*m + tmp139*m)*tmp2748 + (tmp155*m + tmp159*m)*tmp2746
+        + (tmp169*m + tmp170*m)*tmp2761 + (tmp189*m + tmp193*m)*tmp2774
+        + (tmp203*m + tmp204*m)*tmp2779 + (tmp226*m + tmp230*m)*tmp2796;
+    const Scalar tmp2856 = (tmp138*m + tmp141*m)*tmp2748 + (tmp155*m + tmp158*m)*tmp2746
+        + tmp173*m*tmp2761 + tmp169*m*tmp2762 + tmp192*m*tmp2774 + tmp189*m*tmp2773
+        + tmp207*m*tmp2779 + tmp203*m*tmp2780 + tmp229*m*tmp2796 + tmp226*m*tmp2794;
+    const Scalar tmp2857 = (tmp138*m + tmp142*m)*tmp2748 + (tmp155*m + tmp157*m)*tmp2746
+        + (tmp169*m + tmp174*m)*tmp2761 + (tmp189*m + tmp191*m)*tmp2774 + tmp209*m*tmp2779
+        + tmp203*m*tmp2781 + tmp228*m*tmp2796 + tmp226*m*tmp2795;
+    const Scalar tmp2858 = (tmp138*m + tmp143*m)*tmp2748 + (tmp155*m + tmp156*m)*tmp2746
+        + tmp175*m*tmp2761 + tmp169*m*tmp2762 + tmp190*m*tmp2774 + tmp189*m*tmp2773
+        + tmp210*m*tmp2779 + tmp203*m*tmp2780 + tmp227*m*tmp2796 + tmp226*m*tmp2794;
+    const Scalar tmp2859 = Scalar(2)*tmp138*m*tmp2748 + Scalar(2)*tmp155*m*tmp2746
+        + Scalar(2)*tmp169*m*tmp2761 + Scalar(2)*tmp189*m*tmp2774 + Scalar(2)*tmp203*m*tmp2779
+        + Scalar(2)*tmp226*m*tmp2796;
+    const Scalar tmp2860 = (tmp139*m + tmp140*m)*tmp2748 + (tmp154*m + tmp159*m)*tmp2746
+        + tmp172*m*tmp2761 + tmp170*m*tmp2762 + tmp193*m*tmp2773 + tmp188*m*tmp2774
+        + tmp206*m*tmp2779 + tmp204*m*tmp2780 + tmp230*m*tmp2794 + tmp225*m*tmp2796;
+    const Scalar tmp2861 = (tmp140*m + tmp141*m)*tmp2748 + (tmp154*m + tmp158*m)*tmp2746
+        + (tmp172*m + tmp173*m)*tmp2762 + (tmp188*m + tmp192*m)*tmp2773
+        + (tmp206*m + tmp207*m)*tmp2780 + (tmp225*m + tmp229*m)*tmp2794;
+    const Scalar tmp2862 = (tmp140*m + tmp142*m)*tmp2748 + (tmp154*m + tmp157*m)*tmp2746
+        + tmp174*m*tmp2762 + tmp172*m*tmp2761 + tmp191*m*tmp2773 + tmp188*m*tmp2774
+        + tmp209*m*tmp2780 + tmp206*m*tmp2781 + tmp228*m*tmp2794 + tmp225*m*tmp2795;
+    const Scalar tmp2863 = (tmp140*m + tmp143*m)*tmp2748 + (tmp154*m + tmp156*m)*tmp2746
+        + (tmp172*m + tmp175*m)*tmp2762 + (tmp188*m + tmp190*m)*tmp2773
+        + (tmp206*m + tmp210*m)*tmp2780 + (tmp225*m + tmp227*m)*tmp2794;
+    const Scalar tmp2864 = (tmp138*m + tmp140*m)*tmp2748 + (tmp154*m + tmp155*m)*tmp2746
+        + tmp172*m*tmp2761 + tmp169*m*tmp2762 + tmp189*m*tmp2773 + tmp188*m*tmp2774
+        + tmp206*m*tmp2779 + tmp203*m*tmp2780 + tmp226*m*tmp2794 + tmp225*m*tmp2796;
+    const Scalar tmp2865 = Scalar(2)*tmp140*m*tmp2748 + Scalar(2)*tmp154*m*tmp2746
+        + Scalar(2)*tmp172*m*tmp2762 + Scalar(2)*tmp188*m*tmp2773 + Scalar(2)*tmp206*m*tmp2780
+        + Scalar(2)*tmp225*m*tmp2794;
+    const Scalar tmp2866 = (tmp137*m + tmp139*m)*tmp2748 + (tmp153*m + tmp159*m)*tmp2746
+        + (tmp168*m + tmp170*m)*tmp2761 + (tmp187*m + tmp193*m)*tmp2774 + tmp208*m*tmp2779
+        + tmp204*m*tmp2781 + tmp230*m*tmp2795 + tmp224*m*tmp2796;
+    const Scalar tmp2867 = (tmp137*m + tmp141*m)*tmp2748 + (tmp153*m + tmp158*m)*tmp2746
+        + tmp173*m*tmp2761 + tmp168*m*tmp2762 + tmp192*m*tmp2774 + tmp187*m*tmp2773
+        + tmp208*m*tmp2780 + tmp207*m*tmp2781 + tmp229*m*tmp2795 + tmp224*m*tmp2794;
+    const Scalar tmp2868 = (tmp137*m + tmp142*m)*tmp2748 + (tmp153*m + tmp157*m)*tmp2746
+        + (tmp168*m + tmp174*m)*tmp2761 + (tmp187*m + tmp191*m)*tmp2774
+        + (tmp208*m + tmp209*m)*tmp2781 + (tmp224*m + tmp228*m)*tmp2795;
+    const Scalar tmp2869 = (tmp137*m + tmp143*m)*tmp2748 + (tmp153*m + tmp156*m)*tmp2746
+        + tmp175*m*tmp2761 + tmp168*m*tmp2762 + tmp190*m*tmp2774 + tmp187*m*tmp2773
+        + tmp210*m*tmp2781 + tmp208*m*tmp2780 + tmp227*m*tmp2795 + tmp224*m*tmp2794;
+    const Scalar tmp2870 = (tmp137*m + tmp138*m)*tmp2748 + (tmp153*m + tmp155*m)*tmp2746
+        + (tmp168*m + tmp169*m)*tmp2761 + (tmp187*m + tmp189*m)*tmp2774 + tmp208*m*tmp2779
+        + tmp203*m*tmp2781 + tmp226*m*tmp2795 + tmp224*m*tmp2796;
+    const Scalar tmp2871 = (tmp137*m + tmp140*m)*tmp2748 + (tmp153*m + tmp154*m)*tmp2746
+        + tmp172*m*tmp2761 + tmp168*m*tmp2762 + tmp188*m*tmp2774 + tmp187*m*tmp2773
+        + tmp208*m*tmp2780 + tmp206*m*tmp2781 + tmp225*m*tmp2795 + tmp224*m*tmp2794;
+    const Scalar tmp2872 = Scalar(2)*tmp137*m*tmp2748 + Scalar(2)*tmp153*m*tmp2746
+        + Scalar(2)*tmp168*m*tmp2761 + Scalar(2)*tmp187*m*tmp2774 + Scalar(2)*tmp208*m*tmp2781
+        + Scalar(2)*tmp224*m*tmp2795;
+    const Scalar tmp2873 = (tmp132*m + tmp159*m)*tmp2746 + (tmp135*m + tmp139*m)*tmp2748
+        + tmp171*m*tmp2761 + tmp170*m*tmp2762 + tmp193*m*tmp2773 + tmp186*m*tmp2774
+        + tmp205*m*tmp2779 + tmp204*m*tmp2780 + tmp230*m*tmp2794 + tmp223*m*tmp2796;
+    const Scalar tmp2874 = (tmp132*m + tmp158*m)*tmp2746 + (tmp135*m + tmp141*m)*tmp2748
+        + (tmp171*m + tmp173*m)*tmp2762 + (tmp186*m + tmp192*m)*tmp2773
+        + (tmp205*m + tmp207*m)*tmp2780 + (tmp223*m + tmp229*m)*tmp2794;
+    const Scalar tmp2875 = (tmp132*m + tmp157*m)*tmp2746 + (tmp135*m + tmp142*m)*tmp2748
+        + tmp174*m*tmp2762 + tmp171*m*tmp2761 + tmp191*m*tmp2773 + tmp186*m*tmp2774
+        + tmp209*m*tmp2780 + tmp205*m*tmp2781 + tmp228*m*tmp2794 + tmp223*m*tmp2795;
+    const Scalar tmp2876 = (tmp132*m + tmp156*m)*tmp2746 + (tmp135*m + tmp143*m)*tmp2748
+        + (tmp171*m + tmp175*m)*tmp2762 + (tmp186*m + tmp190*m)*tmp2773
+        + (tmp205*m + tmp210*m)*tmp2780 + (tmp223*m + tmp227*m)*tmp2794;
+    const Scalar tmp2877 = (tmp132*m + tmp155*m)*tmp2746 + (tmp135*m + tmp138*m)*tmp2748
+        + tmp171*m*tmp2761 + tmp169*m*tmp2762 + tmp189*m*tmp2773 + tmp186*m*tmp2774
+        + tmp205*m*tmp2779 + tmp203*m*tmp2780 + tmp226*m*tmp2794 + tmp223*m*tmp2796;
+    const Scalar tmp2878 = (tmp132*m + tmp154*m)*tmp2746 + (tmp135*m + tmp140*m)*tmp2748
+        + (tmp171*m + tmp172*m)*tmp2762 + (tmp186*m + tmp188*m)*tmp2773
+        + (tmp205*m + tmp206*m)*tmp2780 + (tmp223*m + tmp225*m)*tmp2794;
+    const Scalar tmp2879 = (tmp132*m + tmp153*m)*tmp2746 + (tmp135*m + tmp137*m)*tmp2748
+        + tmp171*m*tmp2761 + tmp168*m*tmp2762 + tmp187*m*tmp2773 + tmp186*m*tmp2774
+        + tmp208*m*tmp2780 + tmp205*m*tmp2781 + tmp224*m*tmp2794 + tmp223*m*tmp2795;
+    const Scalar tmp2880 = Scalar(2)*tmp131*tmp325*m*tmp134 + Scalar(2)*tmp134*tmp325*m*tmp2747
+        + Scalar(2)*tmp171*m*tmp2762 + Scalar(2)*tmp186*m*tmp2773 + Scalar(2)*tmp205*m*tmp2780
+        + Scalar(2)*tmp223*m*tmp2794;
+    const Scalar tmp2881 = tmp193*m*tmp2758 + tmp170*m*tmp2760 + tmp166*m*tmp2761 + tmp163*m*tmp2774
+        + tmp204*m*tmp2778 + tmp202*m*tmp2779 + tmp230*m*tmp2793 + tmp222*m*tmp2796;
+    const Scalar tmp2882 = tmp192*m*tmp2758 + tmp173*m*tmp2760 + tmp166*m*tmp2762 + tmp163*m*tmp2773
+        + tmp207*m*tmp2778 + tmp202*m*tmp2780 + tmp229*m*tmp2793 + tmp222*m*tmp2794;
+    const Scalar tmp2883 = tmp191*m*tmp2758 + tmp174*m*tmp2760 + tmp166*m*tmp2761 + tmp163*m*tmp2774
+        + tmp209*m*tmp2778 + tmp202*m*tmp2781 + tmp228*m*tmp2793 + tmp222*m*tmp2795;
+    const Scalar tmp2884 = tmp190*m*tmp2758 + tmp175*m*tmp2760 + tmp166*m*tmp2762 + tmp163*m*tmp2773
+        + tmp210*m*tmp2778 + tmp202*m*tmp2780 + tmp227*m*tmp2793 + tmp222*m*tmp2794;
+    const Scalar tmp2885 = tmp189*m*tmp2758 + tmp169*m*tmp2760 + tmp166*m*tmp2761 + tmp163*m*tmp2774
+        + tmp203*m*tmp2778 + tmp202*m*tmp2779 + tmp226*m*tmp2793 + tmp222*m*tmp2796;
+    const Scalar tmp2886 = tmp188*m*tmp2758 + tmp172*m*tmp2760 + tmp166*m*tmp2762 + tmp163*m*tmp2773
+        + tmp206*m*tmp2778 + tmp202*m*tmp2780 + tmp225*m*tmp2793 + tmp222*m*tmp2794;
+    const Scalar tmp2887 = tmp187*m*tmp2758 + tmp168*m*tmp2760 + tmp166*m*tmp2761 + tmp163*m*tmp2774
+        + tmp208*m*tmp2778 + tmp202*m*tmp2781 + tmp224*m*tmp2793 + tmp222*m*tmp2795;
+    const Scalar tmp2888 = tmp186*m*tmp2758 + tmp171*m*tmp2760 + tmp166*m*tmp2762 + tmp163*m*tmp2773
+        + tmp205*m*tmp2778 + tmp202*m*tmp2780 + tmp223*m*tmp2793 + tmp222*m*tmp2794;
+    const Scalar tmp2889 = Scalar(2)*tmp162*tmp325*m*tmp165 + Scalar(2)*tmp165*tmp325*m*tmp2759
+        + Scalar(2)*tmp202*m*tmp2778 + Scalar(2)*tmp222*m*tmp2793;
+    const Scalar tmp2890 = tmp230*m*tmp2775 + tmp204*m*tmp2777 + tmp200*m*tmp2779
+        + tmp197*m*tmp2796;
+    const Scalar tmp2891 = tmp229*m*tmp2775 + tmp207*m*tmp2777 + tmp200*m*tmp2780
+        + tmp197*m*tmp2794;
+    const Scalar tmp2892 = tmp228*m*tmp2775 + tmp209*m*tmp2777 + tmp200*m*tmp2781
+        + tmp197*m*tmp2795;
+    const Scalar tmp2893 = tmp227*m*tmp2775 + tmp210*m*tmp2777 + tmp200*m*tmp2780
+        + tmp197*m*tmp2794;
+    const Scalar tmp2894 = tmp226*m*tmp2775 + tmp203*m*tmp2777 + tmp200*m*tmp2779
+        + tmp197*m*tmp2796;
+    const Scalar tmp2895 = tmp225*m*tmp2775 + tmp206*m*tmp2777 + tmp200*m*tmp2780
+        + tmp197*m*tmp2794;
+    const Scalar tmp2896 = tmp224*m*tmp2775 + tmp208*m*tmp2777 + tmp200*m*tmp2781
+        + tmp197*m*tmp2795;
+    const Scalar tmp2897 = tmp223*m*tmp2775 + tmp205*m*tmp2777 + tmp200*m*tmp2780
+        + tmp197*m*tmp2794;
+    const Scalar tmp2898 = tmp222*m*tmp2775 + tmp202*m*tmp2777 + tmp200*m*tmp2778
+        + tmp197*m*tmp2793;
+    const Scalar tmp2899 = Scalar(2)*tmp196*tmp325*m*tmp199 + Scalar(2)*tmp199*tmp325*m*tmp2776;
+    const Scalar tmp2900 = m*tmp2809;
+    const Scalar tmp2901 = m*tmp2810;
+    const Scalar tmp2902 = m*tmp2825;
+    const Scalar tmp2903 = m*tmp2826;
+    const Scalar tmp2904 = m*tmp2843;
+    const Scalar tmp2905 = m*tmp2844;
+    const Scalar tmp2906 = tmp382*tmp2746 + tmp382*tmp2774 + tmp382*tmp2796;
+    const Scalar tmp2907 = tmp382*tmp2746 + tmp382*tmp2773 + tmp382*tmp2794;
+    const Scalar tmp2908 = tmp382*tmp2746 + tmp382*tmp2774 + tmp382*tmp2795;
+    const Scalar tmp2909 = tmp382*tmp2746 + tmp382*tmp2773 + tmp382*tmp2794;
+    const Scalar tmp2910 = tmp382*tmp2746 + tmp382*tmp2774 + tmp382*tmp2796;
+    const Scalar tmp2911 = tmp382*tmp2746 + tmp382*tmp2773 + tmp382*tmp2794;
+    const Scalar tmp2912 = tmp382*tmp2746 + tmp382*tmp2774 + tmp382*tmp2795;
+    const Scalar tmp2913 = tmp382*tmp2746 + tmp382*tmp2773 + tmp382*tmp2794 - k;
+    const Scalar tmp2914 = tmp382*tmp2758 + tmp382*tmp2793;
+    const Scalar tmp2915 = tmp382*l*tmp199;
+    const Scalar tmp2916 = -tmp397*tmp2748 - tmp398*tmp2746 - tmp399*tmp2761 - tmp400*tmp2774
+        - tmp401*tmp2779 - tmp402*tmp2796 - tmp139*tmp2900 - tmp159*tmp2901 - tmp170*tmp2902
+        - tmp193*tmp2903 - tmp204*tmp2904 - tmp230*tmp2905;
+    dr_dq_data[0 + 10 * 7] = phi10_ddot*tmp2890 - tmp2906 - tmp2916 + phi1_ddot*tmp2845
+        + phi2_ddot*tmp2846 + phi3_ddot*tmp2848 + phi4_ddot*tmp2851 + phi5_ddot*tmp2855
+        + phi6_ddot*tmp2860 + phi7_ddot*tmp2866 + phi8_ddot*tmp2873 + phi9_ddot*tmp2881;
+    const Scalar tmp2917 = -tmp397*tmp2748 - tmp398*tmp2746 - tmp399*tmp2762 - tmp400*tmp2773
+        - tmp401*tmp2780 - tmp402*tmp2794 - tmp141*tmp2900 - tmp158*tmp2901 - tmp173*tmp2902
+        - tmp192*tmp2903 - tmp207*tmp2904 - tmp229*tmp2905;
+    dr_dq_data[1 + 10 * 7] = phi10_ddot*tmp2891 - tmp2907 - tmp2917 + phi1_ddot*tmp2846
+        + phi2_ddot*tmp2847 + phi3_ddot*tmp2849 + phi4_ddot*tmp2852 + phi5_ddot*tmp2856
+        + phi6_ddot*tmp2861 + phi7_ddot*tmp2867 + phi8_ddot*tmp2874 + phi9_ddot*tmp2882;
+    const Scalar tmp2918 = -tmp397*tmp2748 - tmp398*tmp2746 - tmp399*tmp2761 - tmp400*tmp2774
+        - tmp401*tmp2781 - tmp402*tmp2795 - tmp142*tmp2900 - tmp157*tmp2901 - tmp174*tmp2902
+        - tmp191*tmp2903 - tmp209*tmp2904 - tmp228*tmp2905;
+    dr_dq_data[2 + 10 * 7] = phi10_ddot*tmp2892 - tmp2908 - tmp2918 + phi1_ddot*tmp2848
+        + phi2_ddot*tmp2849 + phi3_ddot*tmp2850 + phi4_ddot*tmp2853 + phi5_ddot*tmp2857
+        + phi6_ddot*tmp2862 + phi7_ddot*tmp2868 + phi8_ddot*tmp2875 + phi9_ddot*tmp2883;
+    const Scalar tmp2919 = -tmp397*tmp2748 - tmp398*tmp2746 - tmp399*tmp2762 - tmp400*tmp2773
+        - tmp401*tmp2780 - tmp402*tmp2794 - tmp143*tmp2900 - tmp156*tmp2901 - tmp175*tmp2902
+        - tmp190*tmp2903 - tmp210*tmp2904 - tmp227*tmp2905;
+    dr_dq_data[3 + 10 * 7] = phi10_ddot*tmp2893 - tmp2909 - tmp2919 + phi1_ddot*tmp2851
+        + phi2_ddot*tmp2852 + phi3_ddot*tmp2853 + phi4_ddot*tmp2854 + phi5_ddot*tmp2858
+        + phi6_ddot*tmp2863 + phi7_ddot*tmp2869 + phi8_ddot*tmp2876 + phi9_ddot*tmp2884;
+    const Scalar tmp2920 = -tmp397*tmp2748 - tmp398*tmp2746 - tmp399*tmp2761 - tmp400*tmp2774
+        - tmp401*tmp2779 - tmp402*tmp2796 - tmp138*tmp2900 - tmp155*tmp2901 - tmp169*tmp2902
+        - tmp189*tmp2903 - tmp203*tmp2904 - tmp226*tmp2905;
+    dr_dq_data[4 + 10 * 7] = phi9_ddot*tmp2885 + phi10_ddot*tmp2894 - tmp2910 - tmp2920
+        + phi1_ddot*tmp2855 + phi2_ddot*tmp2856 + phi3_ddot*tmp2857 + phi4_ddot*tmp2858
+        + phi5_ddot*tmp2859 + phi6_ddot*tmp2864 + phi7_ddot*tmp2870 + phi8_ddot*tmp2877;
+    const Scalar tmp2921 = -tmp397*tmp2748 - tmp398*tmp2746 - tmp399*tmp2762 - tmp400*tmp2773
+        - tmp401*tmp2780 - tmp402*tmp2794 - tmp140*tmp2900 - tmp154*tmp2901 - tmp172*tmp2902
+        - tmp188*tmp2903 - tmp206*tmp2904 - tmp225*tmp2905;
+    dr_dq_data[5 + 10 * 7] = phi9_ddot*tmp2886 + phi10_ddot*tmp2895 - tmp2911 - tmp2921
+        + phi1_ddot*tmp2860 + phi2_ddot*tmp2861 + phi3_ddot*tmp2862 + phi4_ddot*tmp2863
+        + phi5_ddot*tmp2864 + phi6_ddot*tmp2865 + phi7_ddot*tmp2871 + phi8_ddot*tmp2878;
+    const Scalar tmp2922 = -tmp397*tmp2748 - tmp398*tmp2746 - tmp399*tmp2761 - tmp400*tmp2774
+        - tmp401*tmp2781 - tmp402*tmp2795 - tmp137*tmp2900 - tmp153*tmp2901 - tmp168*tmp2902
+        - tmp187*tmp2903 - tmp208*tmp2904 - tmp224*tmp2905;
+    dr_dq_data[6 + 10 * 7] = phi9_ddot*tmp2887 + phi10_ddot*tmp2896 - tmp2912 - tmp2922
+        + phi1_ddot*tmp2866 + phi2_ddot*tmp2867 + phi3_ddot*tmp2868 + phi4_ddot*tmp2869
+        + phi5_ddot*tmp2870 + phi6_ddot*tmp2871 + phi7_ddot*tmp2872 + phi8_ddot*tmp2879;
+    const Scalar tmp2923 = -tmp398*tmp2746 - tmp397*tmp2748 - tmp399*tmp2762 - tmp400*tmp2773
+        - tmp401*tmp2780 - tmp402*tmp2794 - tmp135*tmp2900 - tmp132*tmp2901 - tmp171*tmp2902
+        - tmp186*tmp2903 - tmp205*tmp2904 - tmp223*tmp2905;
+    dr_dq_data[7 + 10 * 7] = phi9_ddot*tmp2888 + phi10_ddot*tmp2897 - tmp2913 - tmp2923
+        + phi1_ddot*tmp2873 + phi2_ddot*tmp2874 + phi3_ddot*tmp2875 + phi4_ddot*tmp2876
+        + phi5_ddot*tmp2877 + phi6_ddot*tmp2878 + phi7_ddot*tmp2879 + phi8_ddot*tmp2880;
+    const Scalar tmp2924 = -tmp400*tmp2758 - tmp399*tmp2760 - tmp401*tmp2778 - tmp402*tmp2793
+        - tmp166*tmp2902 - tmp163*tmp2903 - tmp202*tmp2904 - tmp222*tmp2905;
+    dr_dq_data[8 + 10 * 7] = phi5_ddot*tmp2885 + phi6_ddot*tmp2886 + phi7_ddot*tmp2887
+        + phi8_ddot*tmp2888 + phi9_ddot*tmp2889 + phi10_ddot*tmp2898 - tmp2914 - tmp2924
+        + phi1_ddot*tmp2881 + phi2_ddot*tmp2882 + phi3_ddot*tmp2883 + phi4_ddot*tmp2884;
+    const Scalar tmp2925 = -tmp402*tmp2775 - tmp401*tmp2777 - tmp200*tmp2904 - tmp197*tmp2905;
+    dr_dq_data[9 + 10 * 7] = phi1_ddot*tmp2890 + phi2_ddot*tmp2891 + phi3_ddot*tmp2892
+        + phi4_ddot*tmp2893 + phi5_ddot*tmp2894 + phi6_ddot*tmp2895 + phi7_ddot*tmp2896
+        + phi8_ddot*tmp2897 + phi9_ddot*tmp2898 + phi10_ddot*tmp2899 - tmp2915 - tmp2925;
+    const Scalar tmp2926 = l*tmp165;
+    const Scalar tmp2927 = -tmp162;
+    const Scalar tmp2928 = l*tmp2927;
+    const Scalar tmp2929 = phi9_dot*tmp2928;
+    const Scalar tmp2930 = phi8_dot*tmp2928 + tmp2929;
+    const Scalar tmp2931 = phi7_dot*tmp2928 + tmp2930;
+    const Scalar tmp2932 = phi6_dot*tmp2928 + tmp2931;
+    const Scalar tmp2933 = phi5_dot*tmp2928 + tmp2932;
+    const Scalar tmp2934 = phi4_dot*tmp2928 + tmp2933;
+    const Scalar tmp2935 = phi3_dot*tmp2928 + tmp2934;
+    const Scalar tmp2936 = phi2_dot*tmp2928 + tmp2935;
+    const Scalar tmp2937 = phi1_dot*tmp2928 + tmp2936;
+    const Scalar tmp2938 = phi9_dot*tmp2926;
+    const Scalar tmp2939 = l*tmp199;
+    const Scalar tmp2940 = -tmp196;
+    const Scalar tmp2941 = l*tmp2940;
+    const Scalar tmp2942 = tmp2928 + tmp2941;
+    const Scalar tmp2943 = tmp2928 + tmp2941;
+    const Scalar tmp2944 = phi10_dot*tmp2941;
+    const Scalar tmp2945 = phi9_dot*tmp2942 + tmp2944;
+    const Scalar tmp2946 = phi8_dot*tmp2943 + tmp2945;
+    const Scalar tmp2947 = phi7_dot*tmp2942 + tmp2946;
+    const Scalar tmp2948 = phi6_dot*tmp2943 + tmp2947;
+    const Scalar tmp2949 = phi5_dot*tmp2942 + tmp2948;
+    const Scalar tmp2950 = phi4_dot*tmp2943 + tmp2949;
+    const Scalar tmp2951 = phi3_dot*tmp2942 + tmp2950;
+    const Scalar tmp2952 = phi2_dot*tmp2943 + tmp2951;
+    const Scalar tmp2953 = phi1_dot*tmp2942 + tmp2952;
+    const Scalar tmp2954 = phi10_dot*tmp2939;
+    const Scalar tmp2955 = tmp2926 + tmp2939;
+    const Scalar tmp2956 = tmp2926 + tmp2939;
+    const Scalar tmp2957 = -tmp2926;
+    const Scalar tmp2958 = -tmp2938 + phi8_dot*tmp2957;
+    const Scalar tmp2959 = -tmp2926;
+    const Scalar tmp2960 = tmp2958 + phi7_dot*tmp2959;
+    const Scalar tmp2961 = -tmp2926;
+    const Scalar tmp2962 = tmp2960 + phi6_dot*tmp2961;
+    const Scalar tmp2963 = -tmp2926;
+    const Scalar tmp2964 = tmp2962 + phi5_dot*tmp2963;
+    const Scalar tmp2965 = -tmp2926;
+    const Scalar tmp2966 = tmp2964 + phi4_dot*tmp2965;
+    const Scalar tmp2967 = -tmp2926;
+    const Scalar tmp2968 = tmp2966 + phi3_dot*tmp2967;
+    const Scalar tmp2969 = -tmp2926;
+    const Scalar tmp2970 = tmp2968 + phi2_dot*tmp2969;
+    const Scalar tmp2971 = (-(phi1_dot*phi1_dot)
             + phi9_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot - phi6_dot - phi7_dot
-                - phi8_dot))*tmp2885
-        - phi9_dot*tmp2897
+                - phi8_dot))*tmp2926
+        - phi9_dot*tmp2938
         + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot
-            + phi7_dot)*tmp2916
-        + phi8_dot*tmp2917
-        + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp2918
-        + phi7_dot*tmp2919 + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp2920
-        + phi6_dot*tmp2921 + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp2922
-        + phi5_dot*tmp2923 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp2924 + phi4_dot*tmp2925
-        + phi3_dot*(phi1_dot + phi2_dot)*tmp2926 + phi3_dot*tmp2927 + phi1_dot*phi2_dot*tmp2928
-        + (phi1_dot + phi2_dot)*tmp2929;
-    const Scalar tmp2931 = (phi1_dot*phi2_dot + phi3_dot*(phi1_dot + phi2_dot)
+            + phi7_dot)*tmp2957
+        + phi8_dot*tmp2958
+        + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp2959
+        + phi7_dot*tmp2960 + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp2961
+        + phi6_dot*tmp2962 + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp2963
+        + phi5_dot*tmp2964 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp2965 + phi4_dot*tmp2966
+        + phi3_dot*(phi1_dot + phi2_dot)*tmp2967 + phi3_dot*tmp2968 + phi1_dot*phi2_dot*tmp2969
+        + (phi1_dot + phi2_dot)*tmp2970;
+    const Scalar tmp2972 = (phi1_dot*phi2_dot + phi3_dot*(phi1_dot + phi2_dot)
             + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)
             + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)
             + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)
             + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)
             + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot)
             + phi9_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot
-                + phi8_dot))*tmp2887
-        + phi9_dot*tmp2888 + phi8_dot*tmp2889 + phi7_dot*tmp2890 + phi6_dot*tmp2891
-        + phi5_dot*tmp2892 + phi4_dot*tmp2893 + phi3_dot*tmp2894 + phi2_dot*tmp2895
-        + phi1_dot*tmp2896;
-    const Scalar tmp2932 = -tmp2914;
-    const Scalar tmp2933 = -tmp2913 + phi9_dot*tmp2932;
-    const Scalar tmp2934 = -tmp2915;
-    const Scalar tmp2935 = tmp2933 + phi8_dot*tmp2934;
-    const Scalar tmp2936 = -tmp2914;
-    const Scalar tmp2937 = tmp2935 + phi7_dot*tmp2936;
-    const Scalar tmp2938 = -tmp2915;
-    const Scalar tmp2939 = tmp2937 + phi6_dot*tmp2938;
-    const Scalar tmp2940 = -tmp2914;
-    const Scalar tmp2941 = tmp2939 + phi5_dot*tmp2940;
-    const Scalar tmp2942 = -tmp2915;
-    const Scalar tmp2943 = tmp2941 + phi4_dot*tmp2942;
-    const Scalar tmp2944 = -tmp2914;
-    const Scalar tmp2945 = tmp2943 + phi3_dot*tmp2944;
-    const Scalar tmp2946 = -tmp2915;
-    const Scalar tmp2947 = tmp2945 + phi2_dot*tmp2946;
-    const Scalar tmp2948 = phi10_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot
-            - phi6_dot - phi7_dot - phi8_dot - phi9_dot)*tmp2898
-        - phi10_dot*tmp2913 - (phi1_dot*phi1_dot)*tmp2914
+                + phi8_dot))*tmp2928
+        + phi9_dot*tmp2929 + phi8_dot*tmp2930 + phi7_dot*tmp2931 + phi6_dot*tmp2932
+        + phi5_dot*tmp2933 + phi4_dot*tmp2934 + phi3_dot*tmp2935 + phi2_dot*tmp2936
+        + phi1_dot*tmp2937;
+    const Scalar tmp2973 = -tmp2955;
+    const Scalar tmp2974 = -tmp2954 + phi9_dot*tmp2973;
+    const Scalar tmp2975 = -tmp2956;
+    const Scalar tmp2976 = tmp2974 + phi8_dot*tmp2975;
+    const Scalar tmp2977 = -tmp2955;
+    const Scalar tmp2978 = tmp2976 + phi7_dot*tmp2977;
+    const Scalar tmp2979 = -tmp2956;
+    const Scalar tmp2980 = tmp2978 + phi6_dot*tmp2979;
+    const Scalar tmp2981 = -tmp2955;
+    const Scalar tmp2982 = tmp2980 + phi5_dot*tmp2981;
+    const Scalar tmp2983 = -tmp2956;
+    const Scalar tmp2984 = tmp2982 + phi4_dot*tmp2983;
+    const Scalar tmp2985 = -tmp2955;
+    const Scalar tmp2986 = tmp2984 + phi3_dot*tmp2985;
+    const Scalar tmp2987 = -tmp2956;
+    const Scalar tmp2988 = tmp2986 + phi2_dot*tmp2987;
+    const Scalar tmp2989 = phi10_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot
+            - phi6_dot - phi7_dot - phi8_dot - phi9_dot)*tmp2939
+        - phi10_dot*tmp2954 - (phi1_dot*phi1_dot)*tmp2955
         + phi9_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot
-            + phi8_dot)*tmp2932
-        + phi9_dot*tmp2933
+            + phi8_dot)*tmp2973
+        + phi9_dot*tmp2974
         + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot
-            + phi7_dot)*tmp2934
-        + phi8_dot*tmp2935
-        + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp2936
-        + phi7_dot*tmp2937 + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp2938
-        + phi6_dot*tmp2939 + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp2940
-        + phi5_dot*tmp2941 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp2942 + phi4_dot*tmp2943
-        + phi3_dot*(phi1_dot + phi2_dot)*tmp2944 + phi3_dot*tmp2945 + phi1_dot*phi2_dot*tmp2946
-        + (phi1_dot + phi2_dot)*tmp2947;
-    const Scalar tmp2949 = phi10_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot
-            + phi6_dot + phi7_dot + phi8_dot + phi9_dot)*tmp2900
+            + phi7_dot)*tmp2975
+        + phi8_dot*tmp2976
+        + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp2977
+        + phi7_dot*tmp2978 + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp2979
+        + phi6_dot*tmp2980 + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp2981
+        + phi5_dot*tmp2982 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp2983 + phi4_dot*tmp2984
+        + phi3_dot*(phi1_dot + phi2_dot)*tmp2985 + phi3_dot*tmp2986 + phi1_dot*phi2_dot*tmp2987
+        + (phi1_dot + phi2_dot)*tmp2988;
+    const Scalar tmp2990 = phi10_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot
+            + phi6_dot + phi7_dot + phi8_dot + phi9_dot)*tmp2941
         + (phi3_dot*(phi1_dot + phi2_dot) + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)
             + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)
             + phi9_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot
-                + phi8_dot))*tmp2901
+                + phi8_dot))*tmp2942
         + (phi1_dot*phi2_dot + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)
             + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)
             + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot
-                + phi7_dot))*tmp2902
-        + phi10_dot*tmp2903 + phi9_dot*tmp2904 + phi8_dot*tmp2905 + phi7_dot*tmp2906
-        + phi6_dot*tmp2907 + phi5_dot*tmp2908 + phi4_dot*tmp2909 + phi3_dot*tmp2910
-        + phi2_dot*tmp2911 + phi1_dot*tmp2912;
-    const Scalar tmp2950 = Scalar(2)*tmp170*m*tmp2887 + Scalar(2)*tmp193*m*tmp2885
-        + Scalar(2)*tmp204*m*tmp2901 + Scalar(2)*tmp230*m*tmp2914;
-    const Scalar tmp2951 = (tmp170*m + tmp173*m)*tmp2887 + (tmp192*m + tmp193*m)*tmp2885
-        + tmp207*m*tmp2901 + tmp204*m*tmp2902 + tmp230*m*tmp2915 + tmp229*m*tmp2914;
-    const Scalar tmp2952 = Scalar(2)*tmp173*m*tmp2887 + Scalar(2)*tmp192*m*tmp2885
-        + Scalar(2)*tmp207*m*tmp2902 + Scalar(2)*tmp229*m*tmp2915;
-    const Scalar tmp2953 = (tmp170*m + tmp174*m)*tmp2887 + (tmp191*m + tmp193*m)*tmp2885
-        + (tmp204*m + tmp209*m)*tmp2901 + (tmp228*m + tmp230*m)*tmp2914;
-    const Scalar tmp2954 = (tmp173*m + tmp174*m)*tmp2887 + (tmp191*m + tmp192*m)*tmp2885
-        + tmp209*m*tmp2902 + tmp207*m*tmp2901 + tmp229*m*tmp2914 + tmp228*m*tmp2915;
-    const Scalar tmp2955 = Scalar(2)*tmp174*m*tmp2887 + Scalar(2)*tmp191*m*tmp2885
-        + Scalar(2)*tmp209*m*tmp2901 + Scalar(2)*tmp228*m*tmp2914;
-    const Scalar tmp2956 = (tmp170*m + tmp175*m)*tmp2887 + (tmp190*m + tmp193*m)*tmp2885
-        + tmp210*m*tmp2901 + tmp204*m*tmp2902 + tmp230*m*tmp2915 + tmp227*m*tmp2914;
-    const Scalar tmp2957 = (tmp173*m + tmp175*m)*tmp2887 + (tmp190*m + tmp192*m)*tmp2885
-        + (tmp207*m + tmp210*m)*tmp2902 + (tmp227*m + tmp229*m)*tmp2915;
-    const Scalar tmp2958 = (tmp174*m + tmp175*m)*tmp2887 + (tmp190*m + tmp191*m)*tmp2885
-        + tmp210*m*tmp2901 + tmp209*m*tmp2902 + tmp228*m*tmp2915 + tmp227*m*tmp2914;
-    const Scalar tmp2959 = Scalar(2)*tmp175*m*tmp2887 + Scalar(2)*tmp190*m*tmp2885
-        + Scalar(2)*tmp210*m*tmp2902 + Scalar(2)*tmp227*m*tmp2915;
-    const Scalar tmp2960 = (tmp169*m + tmp170*m)*tmp2887 + (tmp189*m + tmp193*m)*tmp2885
-        + (tmp203*m + tmp204*m)*tmp2901 + (tmp226*m + tmp230*m)*tmp2914;
-    const Scalar tmp2961 = (tmp169*m + tmp173*m)*tmp2887 + (tmp189*m + tmp192*m)*tmp2885
-        + tmp207*m*tmp2901 + tmp203*m*tmp2902 + tmp229*m*tmp2914 + tmp226*m*tmp2915;
-    const Scalar tmp2962 = (tmp169*m + tmp174*m)*tmp2887 + (tmp189*m + tmp191*m)*tmp2885
-        + (tmp203*m + tmp209*m)*tmp2901 + (tmp226*m + tmp228*m)*tmp2914;
-    const Scalar tmp2963 = (tmp169*m + tmp175*m)*tmp2887 + (tmp189*m + tmp190*m)*tmp2885
-        + tmp210*m*tmp2901 + tmp203*m*tmp2902 + tmp227*m*tmp2914 + tmp226*m*tmp2915;
-    const Scalar tmp2964 = Scalar(2)*tmp169*m*tmp2887 + Scalar(2)*tmp189*m*tmp2885
-        + Scalar(2)*tmp203*m*tmp2901 + Scalar(2)*tmp226*m*tmp2914;
-    const Scalar tmp2965 = (tmp170*m + tmp172*m)*tmp2887 + (tmp188*m + tmp193*m)*tmp2885
-        + tmp206*m*tmp2901 + tmp204*m*tmp2902 + tmp230*m*tmp2915 + tmp225*m*tmp2914;
-    const Scalar tmp2966 = (tmp172*m + tmp173*m)*tmp2887 + (tmp188*m + tmp192*m)*tmp2885
-        + (tmp206*m + tmp207*m)*tmp2902 + (tmp225*m + tmp229*m)*tmp2915;
-    const Scalar tmp2967 = (tmp172*m + tmp174*m)*tmp2887 + (tmp188*m + tmp191*m)*tmp2885
-        + tmp209*m*tmp2902 + tmp206*m*tmp2901 + tmp228*m*tmp2915 + tmp225*m*tmp2914;
-    const Scalar tmp2968 = (tmp172*m + tmp175*m)*tmp2887 + (tmp188*m + tmp190*m)*tmp2885
-        + (tmp206*m + tmp210*m)*tmp2902 + (tmp225*m + tmp227*m)*tmp2915;
-    const Scalar tmp2969 = (tmp169*m + tmp172*m)*tmp2887 + (tmp188*m + tmp189*m)*tmp2885
-        + tmp206*m*tmp2901 + tmp203*m*tmp2902 + tmp226*m*tmp2915 + tmp225*m*tmp2914;
-    const Scalar tmp2970 = Scalar(2)*tmp172*m*tmp2887 + Scalar(2)*tmp188*m*tmp2885
-        + Scalar(2)*tmp206*m*tmp2902 + Scalar(2)*tmp225*m*tmp2915;
-    const Scalar tmp2971 = (tmp168*m + tmp170*m)*tmp2887 + (tmp187*m + tmp193*m)*tmp2885
-        + (tmp204*m + tmp208*m)*tmp2901 + (tmp224*m + tmp230*m)*tmp2914;
-    const Scalar tmp2972 = (tmp168*m + tmp173*m)*tmp2887 + (tmp187*m + tmp192*m)*tmp2885
-        + tmp208*m*tmp2902 + tmp207*m*tmp2901 + tmp229*m*tmp2914 + tmp224*m*tmp2915;
-    const Scalar tmp2973 = (tmp168*m + tmp174*m)*tmp2887 + (tmp187*m + tmp191*m)*tmp2885
-        + (tmp208*m + tmp209*m)*tmp2901 + (tmp224*m + tmp228*m)*tmp2914;
-    const Scalar tmp2974 = (tmp168*m + tmp175*m)*tmp2887 + (tmp187*m + tmp190*m)*tmp2885
-        + tmp210*m*tmp2901 + tmp208*m*tmp2902 + tmp227*m*tmp2914 + tmp224*m*tmp2915;
-    const Scalar tmp2975 = (tmp168*m + tmp169*m)*tmp2887 + (tmp187*m + tmp189*m)*tmp2885
-        + (tmp203*m + tmp208*m)*tmp2901 + (tmp224*m + tmp226*m)*tmp2914;
-    const Scalar tmp2976 = (tmp168*m + tmp172*m)*tmp2887 + (tmp187*m + tmp188*m)*tmp2885
-        + tmp208*m*tmp2902 + tmp206*m*tmp2901 + tmp225*m*tmp2914 + tmp224*m*tmp2915;
-    const Scalar tmp2977 = Scalar(2)*tmp168*m*tmp2887 + Scalar(2)*tmp187*m*tmp2885
-        + Scalar(2)*tmp208*m*tmp2901 + Scalar(2)*tmp224*m*tmp2914;
-    const Scalar tmp2978 = (tmp170*m + tmp171*m)*tmp2887 + (tmp186*m + tmp193*m)*tmp2885
-        + tmp205*m*tmp2901 + tmp204*m*tmp2902 + tmp230*m*tmp2915 + tmp223*m*tmp2914;
-    const Scalar tmp2979 = (tmp171*m + tmp173*m)*tmp2887 + (tmp186*m + tmp192*m)*tmp2885
-        + (tmp205*m + tmp207*m)*tmp2902 + (tmp223*m + tmp229*m)*tmp2915;
-    const Scalar tmp2980 = (tmp171*m + tmp174*m)*tmp2887 + (tmp186*m + tmp191*m)*tmp2885
-        + tmp209*m*tmp2902 + tmp205*m*tmp2901 + tmp228*m*tmp2915 + tmp223*m*tmp2914;
-    const Scalar tmp2981 = (tmp171*m + tmp175*m)*tmp2887 + (tmp186*m + tmp190*m)*tmp2885
-        + (tmp205*m + tmp210*m)*tmp2902 + (tmp223*m + tmp227*m)*tmp2915;
-    const Scalar tmp2982 = (tmp169*m + tmp171*m)*tmp2887 + (tmp186*m + tmp189*m)*tmp2885
-        + tmp205*m*tmp2901 + tmp203*m*tmp2902 + tmp226*m*tmp2915 + tmp223*m*tmp2914;
-    const Scalar tmp2983 = (tmp171*m + tmp172*m)*tmp2887 + (tmp186*m + tmp188*m)*tmp2885
-        + (tmp205*m + tmp206*m)*tmp2902 + (tmp223*m + tmp225*m)*tmp2915;
-    const Scalar tmp2984 = (tmp168*m + tmp171*m)*tmp2887 + (tmp186*m + tmp187*m)*tmp2885
-        + tmp208*m*tmp2902 + tmp205*m*tmp2901 + tmp224*m*tmp2915 + tmp223*m*tmp2914;
-    const Scalar tmp2985 = Scalar(2)*tmp171*m*tmp2887 + Scalar(2)*tmp186*m*tmp2885
-        + Scalar(2)*tmp205*m*tmp2902 + Scalar(2)*tmp223*m*tmp2915;
-    const Scalar tmp2986 = (tmp163*m + tmp193*m)*tmp2885 + (tmp166*m + tmp170*m)*tmp2887
-        + (tmp202*m + tmp204*m)*tmp2901 + (tmp222*m + tmp230*m)*tmp2914;
-    const Scalar tmp2987 = (tmp163*m + tmp192*m)*tmp2885 + (tmp166*m + tmp173*m)*tmp2887
-        + tmp207*m*tmp2901 + tmp202*m*tmp2902 + tmp229*m*tmp2914 + tmp222*m*tmp2915;
-    const Scalar tmp2988 = (tmp163*m + tmp191*m)*tmp2885 + (tmp166*m + tmp174*m)*tmp2887
-        + (tmp202*m + tmp209*m)*tmp2901 + (tmp222*m + tmp228*m)*tmp2914;
-    const Scalar tmp2989 = (tmp163*m + tmp190*m)*tmp2885 + (tmp166*m + tmp175*m)*tmp2887
-        + tmp210*m*tmp2901 + tmp202*m*tmp2902 + tmp227*m*tmp2914 + tmp222*m*tmp2915;
-    const Scalar tmp2990 = (tmp163*m + tmp189*m)*tmp2885 + (tmp166*m + tmp169*m)*tmp2887
-        + (tmp202*m + tmp203*m)*tmp2901 + (tmp222*m + tmp226*m)*tmp2914;
-    const Scalar tmp2991 = (tmp163*m + tmp188*m)*tmp2885 + (tmp166*m + tmp172*m)*tmp2887
-        + tmp206*m*tmp2901 + tmp202*m*tmp2902 + tmp225*m*tmp2914 + tmp222*m*tmp2915;
-    const Scalar tmp2992 = (tmp163*m + tmp187*m)*tmp2885 + (tmp166*m + tmp168*m)*tmp2887
-        + (tmp202*m + tmp208*m)*tmp2901 + (tmp222*m + tmp224*m)*tmp2914;
-    const Scalar tmp2993 = (tmp163*m + tmp186*m)*tmp2885 + (tmp166*m + tmp171*m)*tmp2887
-        + tmp205*m*tmp2901 + tmp202*m*tmp2902 + tmp223*m*tmp2914 + tmp222*m*tmp2915;
-    const Scalar tmp2994 = Scalar(2)*tmp162*tmp325*m*tmp165 + Scalar(2)*tmp165*tmp325*m*tmp2886
-        + Scalar(2)*tmp202*m*tmp2901 + Scalar(2)*tmp222*m*tmp2914;
-    const Scalar tmp2995 = tmp230*m*tmp2898 + tmp204*m*tmp2900 + tmp200*m*tmp2901
-        + tmp197*m*tmp2914;
-    const Scalar tmp2996 = tmp229*m*tmp2898 + tmp207*m*tmp2900 + tmp200*m*tmp2902
-        + tmp197*m*tmp2915;
-    const Scalar tmp2997 = tmp228*m*tmp2898 + tmp209*m*tmp2900 + tmp200*m*tmp2901
-        + tmp197*m*tmp2914;
-    const Scalar tmp2998 = tmp227*m*tmp2898 + tmp210*m*tmp2900 + tmp200*m*tmp2902
-        + tmp197*m*tmp2915;
-    const Scalar tmp2999 = tmp226*m*tmp2898 + tmp203*m*tmp2900 + tmp200*m*tmp2901
-        + tmp197*m*tmp2914;
-    const Scalar tmp3000 = tmp225*m*tmp2898 + tmp206*m*tmp2900 + tmp200*m*tmp2902
-        + tmp197*m*tmp2915;
-    const Scalar tmp3001 = tmp224*m*tmp2898 + tmp208*m*tmp2900 + tmp200*m*tmp2901
-        + tmp197*m*tmp2914;
-    const Scalar tmp3002 = tmp223*m*tmp2898 + tmp205*m*tmp2900 + tmp200*m*tmp2902
-        + tmp197*m*tmp2915;
-    const Scalar tmp3003 = tmp222*m*tmp2898 + tmp202*m*tmp2900 + tmp200*m*tmp2901
-        + tmp197*m*tmp2914;
-    const Scalar tmp3004 = Scalar(2)*tmp196*tmp325*m*tmp199 + Scalar(2)*tmp199*tmp325*m*tmp2899;
-    const Scalar tmp3005 = m*tmp2930;
-    const Scalar tmp3006 = m*tmp2931;
-    const Scalar tmp3007 = m*tmp2948;
-    const Scalar tmp3008 = m*tmp2949;
-    const Scalar tmp3009 = tmp382*tmp2885 + tmp382*tmp2914;
-    const Scalar tmp3010 = tmp382*tmp2885 + tmp382*tmp2915;
-    const Scalar tmp3011 = tmp382*tmp2885 + tmp382*tmp2914;
-    const Scalar tmp3012 = tmp382*tmp2885 + tmp382*tmp2915;
-    const Scalar tmp3013 = tmp382*tmp2885 + tmp382*tmp2914;
-    const Scalar tmp3014 = tmp382*tmp2885 + tmp382*tmp2915;
-    const Scalar tmp3015 = tmp382*tmp2885 + tmp382*tmp2914;
-    const Scalar tmp3016 = tmp382*tmp2885 + tmp382*tmp2915;
-    const Scalar tmp3017 = tmp382*tmp2885 + tmp382*tmp2914 - k;
-    const Scalar tmp3018 = tmp382*l*tmp199;
-    const Scalar tmp3019 = -tmp399*tmp2887 - tmp400*tmp2885 - tmp401*tmp2901 - tmp402*tmp2914
-        - tmp170*tmp3005 - tmp193*tmp3006 - tmp204*tmp3007 - tmp230*tmp3008;
-    dr_dq_data[0 + 10 * 8] = phi10_ddot*tmp2995 - tmp3009 - tmp3019 + phi1_ddot*tmp2950
-        + phi2_ddot*tmp2951 + phi3_ddot*tmp2953 + phi4_ddot*tmp2956 + phi5_ddot*tmp2960
-        + phi6_ddot*tmp2965 + phi7_ddot*tmp2971 + phi8_ddot*tmp2978 + phi9_ddot*tmp2986;
-    const Scalar tmp3020 = -tmp399*tmp2887 - tmp400*tmp2885 - tmp401*tmp2902 - tmp402*tmp2915
-        - tmp173*tmp3005 - tmp192*tmp3006 - tmp207*tmp3007 - tmp229*tmp3008;
-    dr_dq_data[1 + 10 * 8] = phi10_ddot*tmp2996 - tmp3010 - tmp3020 + phi1_ddot*tmp2951
-        + phi2_ddot*tmp2952 + phi3_ddot*tmp2954 + phi4_ddot*tmp2957 + phi5_ddot*tmp2961
-        + phi6_ddot*tmp2966 + phi7_ddot*tmp2972 + phi8_ddot*tmp2979 + phi9_ddot*tmp2987;
-    const Scalar tmp3021 = -tmp399*tmp2887 - tmp400*tmp2885 - tmp401*tmp2901 - tmp402*tmp2914
-        - tmp174*tmp3005 - tmp191*tmp3006 - tmp209*tmp3007 - tmp228*tmp3008;
-    dr_dq_data[2 + 10 * 8] = phi10_ddot*tmp2997 - tmp3011 - tmp3021 + phi1_ddot*tmp2953
-        + phi2_ddot*tmp2954 + phi3_ddot*tmp2955 + phi4_ddot*tmp2958 + phi5_ddot*tmp2962
-        + phi6_ddot*tmp2967 + phi7_ddot*tmp2973 + phi8_ddot*tmp2980 + phi9_ddot*tmp2988;
-    const Scalar tmp3022 = -tmp399*tmp2887 - tmp400*tmp2885 - tmp401*tmp2902 - tmp402*tmp2915
-        - tmp175*tmp3005 - tmp190*tmp3006 - tmp210*tmp3007 - tmp227*tmp3008;
-    dr_dq_data[3 + 10 * 8] = phi10_ddot*tmp2998 - tmp3012 - tmp3022 + phi1_ddot*tmp2956
-        + phi2_ddot*tmp2957 + phi3_ddot*tmp2958 + phi4_ddot*tmp2959 + phi5_ddot*tmp2963
-        + phi6_ddot*tmp2968 + phi7_ddot*tmp2974 + phi8_ddot*tmp2981 + phi9_ddot*tmp2989;
-    const Scalar tmp3023 = -tmp399*tmp2887 - tmp400*tmp2885 - tmp401*tmp2901 - tmp402*tmp2914
-        - tmp169*tmp3005 - tmp189*tmp3006 - tmp203*tmp3007 - tmp226*tmp3008;
-    dr_dq_data[4 + 10 * 8] = phi9_ddot*tmp2990 + phi10_ddot*tmp2999 - tmp3013 - tmp3023
-        + phi1_ddot*tmp2960 + phi2_ddot*tmp2961 + phi3_ddot*tmp2962 + phi4_ddot*tmp2963
-        + phi5_ddot*tmp2964 + phi6_ddot*tmp2969 + phi7_ddot*tmp2975 + phi8_ddot*tmp2982;
-    const Scalar tmp3024 = -tmp399*tmp2887 - tmp400*tmp2885 - tmp401*tmp2902 - tmp402*tmp2915
-        - tmp172*tmp3005 - tmp188*tmp3006 - tmp206*tmp3007 - tmp225*tmp3008;
-    dr_dq_data[5 + 10 * 8] = phi9_ddot*tmp2991 + phi10_ddot*tmp3000 - tmp3014 - tmp3024
-        + phi1_ddot*tmp2965 + phi2_ddot*tmp2966 + phi3_ddot*tmp2967 + phi4_ddot*tmp2968
-        + phi5_ddot*tmp2969 + phi6_ddot*tmp2970 + phi7_ddot*tmp2976 + phi8_ddot*tmp2983;
-    const Scalar tmp3025 = -tmp399*tmp2887 - tmp400*tmp2885 - tmp401*tmp2901 - tmp402*tmp2914
-        - tmp168*tmp3005 - tmp187*tmp3006 - tmp208*tmp3007 - tmp224*tmp3008;
-    dr_dq_data[6 + 10 * 8] = phi9_ddot*tmp2992 + phi10_ddot*tmp3001 - tmp3015 - tmp3025
-        + phi1_ddot*tmp2971 + phi2_ddot*tmp2972 + phi3_ddot*tmp2973 + phi4_ddot*tmp2974
-        + phi5_ddot*tmp2975 + phi6_ddot*tmp2976 + phi7_ddot*tmp2977 + phi8_ddot*tmp2984;
-    const Scalar tmp3026 = -tmp399*tmp2887 - tmp400*tmp2885 - tmp401*tmp2902 - tmp402*tmp2915
-        - tmp171*tmp3005 - tmp186*tmp3006 - tmp205*tmp3007 - tmp223*tmp3008;
-    dr_dq_data[7 + 10 * 8] = phi9_ddot*tmp2993 + phi10_ddot*tmp3002 - tmp3016 - tmp3026
-        + phi1_ddot*tmp2978 + phi2_ddot*tmp2979 + phi3_ddot*tmp2980 + phi4_ddot*tmp2981
-        + phi5_ddot*tmp2982 + phi6_ddot*tmp2983 + phi7_ddot*tmp2984 + phi8_ddot*tmp2985;
-    const Scalar tmp3027 = -tmp400*tmp2885 - tmp399*tmp2887 - tmp401*tmp2901 - tmp402*tmp2914
-        - tmp166*tmp3005 - tmp163*tmp3006 - tmp202*tmp3007 - tmp222*tmp3008;
-    dr_dq_data[8 + 10 * 8] = phi5_ddot*tmp2990 + phi6_ddot*tmp2991 + phi7_ddot*tmp2992
-        + phi8_ddot*tmp2993 + phi9_ddot*tmp2994 + phi10_ddot*tmp3003 - tmp3017 - tmp3027
-        + phi1_ddot*tmp2986 + phi2_ddot*tmp2987 + phi3_ddot*tmp2988 + phi4_ddot*tmp2989;
-    const Scalar tmp3028 = -tmp402*tmp2898 - tmp401*tmp2900 - tmp200*tmp3007 - tmp197*tmp3008;
-    dr_dq_data[9 + 10 * 8] = phi1_ddot*tmp2995 + phi2_ddot*tmp2996 + phi3_ddot*tmp2997
-        + phi4_ddot*tmp2998 + phi5_ddot*tmp2999 + phi6_ddot*tmp3000 + phi7_ddot*tmp3001
-        + phi8_ddot*tmp3002 + phi9_ddot*tmp3003 + phi10_ddot*tmp3004 - tmp3018 - tmp3028;
-    const Scalar tmp3029 = l*tmp199;
-    const Scalar tmp3030 = -tmp196;
-    const Scalar tmp3031 = l*tmp3030;
-    const Scalar tmp3032 = phi10_dot*tmp3031;
-    const Scalar tmp3033 = phi9_dot*tmp3031 + tmp3032;
-    const Scalar tmp3034 = phi8_dot*tmp3031 + tmp3033;
-    const Scalar tmp3035 = phi7_dot*tmp3031 + tmp3034;
-    const Scalar tmp3036 = phi6_dot*tmp3031 + tmp3035;
-    const Scalar tmp3037 = phi5_dot*tmp3031 + tmp3036;
-    const Scalar tmp3038 = phi4_dot*tmp3031 + tmp3037;
-    const Scalar tmp3039 = phi3_dot*tmp3031 + tmp3038;
-    const Scalar tmp3040 = phi2_dot*tmp3031 + tmp3039;
-    const Scalar tmp3041 = phi1_dot*tmp3031 + tmp3040;
-    const Scalar tmp3042 = phi10_dot*tmp3029;
-    const Scalar tmp3043 = -tmp3029;
-    const Scalar tmp3044 = -tmp3042 + phi9_dot*tmp3043;
-    const Scalar tmp3045 = -tmp3029;
-    const Scalar tmp3046 = tmp3044 + phi8_dot*tmp3045;
-    const Scalar tmp3047 = -tmp3029;
-    const Scalar tmp3048 = tmp3046 + phi7_dot*tmp3047;
-    const Scalar tmp3049 = -tmp3029;
-    const Scalar tmp3050 = tmp3048 + phi6_dot*tmp3049;
-    const Scalar tmp3051 = -tmp3029;
-    const Scalar tmp3052 = tmp3050 + phi5_dot*tmp3051;
-    const Scalar tmp3053 = -tmp3029;
-    const Scalar tmp3054 = tmp3052 + phi4_dot*tmp3053;
-    const Scalar tmp3055 = -tmp3029;
-    const Scalar tmp3056 = tmp3054 + phi3_dot*tmp3055;
-    const Scalar tmp3057 = -tmp3029;
-    const Scalar tmp3058 = tmp3056 + phi2_dot*tmp3057;
-    const Scalar tmp3059 = (-(phi1_dot*phi1_dot)
+                + phi7_dot))*tmp2943
+        + phi10_dot*tmp2944 + phi9_dot*tmp2945 + phi8_dot*tmp2946 + phi7_dot*tmp2947
+        + phi6_dot*tmp2948 + phi5_dot*tmp2949 + phi4_dot*tmp2950 + phi3_dot*tmp2951
+        + phi2_dot*tmp2952 + phi1_dot*tmp2953;
+    const Scalar tmp2991 = Scalar(2)*tmp170*m*tmp2928 + Scalar(2)*tmp193*m*tmp2926
+        + Scalar(2)*tmp204*m*tmp2942 + Scalar(2)*tmp230*m*tmp2955;
+    const Scalar tmp2992 = (tmp170*m + tmp173*m)*tmp2928 + (tmp192*m + tmp193*m)*tmp2926
+        + tmp207*m*tmp2942 + tmp204*m*tmp2943 + tmp230*m*tmp2956 + tmp229*m*tmp2955;
+    const Scalar tmp2993 = Scalar(2)*tmp173*m*tmp2928 + Scalar(2)*tmp192*m*tmp2926
+        + Scalar(2)*tmp207*m*tmp2943 + Scalar(2)*tmp229*m*tmp2956;
+    const Scalar tmp2994 = (tmp170*m + tmp174*m)*tmp2928 + (tmp191*m + tmp193*m)*tmp2926
+        + (tmp204*m + tmp209*m)*tmp2942 + (tmp228*m + tmp230*m)*tmp2955;
+    const Scalar tmp2995 = (tmp173*m + tmp174*m)*tmp2928 + (tmp191*m + tmp192*m)*tmp2926
+        + tmp209*m*tmp2943 + tmp207*m*tmp2942 + tmp229*m*tmp2955 + tmp228*m*tmp2956;
+    const Scalar tmp2996 = Scalar(2)*tmp174*m*tmp2928 + Scalar(2)*tmp191*m*tmp2926
+        + Scalar(2)*tmp209*m*tmp2942 + Scalar(2)*tmp228*m*tmp2955;
+    const Scalar tmp2997 = (tmp170*m + tmp175*m)*tmp2928 + (tmp190*m + tmp193*m)*tmp2926
+        + tmp210*m*tmp2942 + tmp204*m*tmp2943 + tmp230*m*tmp2956 + tmp227*m*tmp2955;
+    const Scalar tmp2998 = (tmp173*m + tmp175*m)*tmp2928 + (tmp190*m + tmp192*m)*tmp2926
+        + (tmp207*m + tmp210*m)*tmp2943 + (tmp227*m + tmp229*m)*tmp2956;
+    const Scalar tmp2999 = (tmp174*m + tmp175*m)*tmp2928 + (tmp190*m + tmp191*m)*tmp2926
+        + tmp210*m*tmp2942 + tmp209*m*tmp2943 + tmp228*m*tmp2956 + tmp227*m*tmp2955;
+    const Scalar tmp3000 = Scalar(2)*tmp175*m*tmp2928 + Scalar(2)*tmp190*m*tmp2926
+        + Scalar(2)*tmp210*m*tmp2943 + Scalar(2)*tmp227*m*tmp2956;
+    const Scalar tmp3001 = (tmp169*m + tmp170*m)*tmp2928 + (tmp189*m + tmp193*m)*tmp2926
+        + (tmp203*m + tmp204*m)*tmp2942 + (tmp226*m + tmp230*m)*tmp2955;
+    const Scalar tmp3002 = (tmp169*m + tmp173*m)*tmp2928 + (tmp189*m + tmp192*m)*tmp2926
+        + tmp207*m*tmp2942 + tmp203*m*tmp2943 + tmp229*m*tmp2955 + tmp226*m*tmp2956;
+    const Scalar tmp3003 = (tmp169*m + tmp174*m)*tmp2928 + (tmp189*m + tmp191*m)*tmp2926
+        + (tmp203*m + tmp209*m)*tmp2942 + (tmp226*m + tmp228*m)*tmp2955;
+    const Scalar tmp3004 = (tmp169*m + tmp175*m)*tmp2928 + (tmp189*m + tmp190*m)*tmp2926
+        + tmp210*m*tmp2942 + tmp203*m*tmp2943 + tmp227*m*tmp2955 + tmp226*m*tmp2956;
+    const Scalar tmp3005 = Scalar(2)*tmp169*m*tmp2928 + Scalar(2)*tmp189*m*tmp2926
+        + Scalar(2)*tmp203*m*tmp2942 + Scalar(2)*tmp226*m*tmp2955;
+    const Scalar tmp3006 = (tmp170*m + tmp172*m)*tmp2928 + (tmp188*m + tmp193*m)*tmp2926
+        + tmp206*m*tmp2942 + tmp204*m*tmp2943 + tmp230*m*tmp2956 + tmp225*m*tmp2955;
+    const Scalar tmp3007 = (tmp172*m + tmp173*m)*tmp2928 + (tmp188*m + tmp192*m)*tmp2926
+        + (tmp206*m + tmp207*m)*tmp2943 + (tmp225*m + tmp229*m)*tmp2956;
+    const Scalar tmp3008 = (tmp172*m + tmp174*m)*tmp2928 + (tmp188*m + tmp191*m)*tmp2926
+        + tmp209*m*tmp2943 + tmp206*m*tmp2942 + tmp228*m*tmp2956 + tmp225*m*tmp2955;
+    const Scalar tmp3009 = (tmp172*m + tmp175*m)*tmp2928 + (tmp188*m + tmp190*m)*tmp2926
+        + (tmp206*m + tmp210*m)*tmp2943 + (tmp225*m + tmp227*m)*tmp2956;
+    const Scalar tmp3010 = (tmp169*m + tmp172*m)*tmp2928 + (tmp188*m + tmp189*m)*tmp2926
+        + tmp206*m*tmp2942 + tmp203*m*tmp2943 + tmp226*m*tmp2956 + tmp225*m*tmp2955;
+    const Scalar tmp3011 = Scalar(2)*tmp172*m*tmp2928 + Scalar(2)*tmp188*m*tmp2926
+        + Scalar(2)*tmp206*m*tmp2943 + Scalar(2)*tmp225*m*tmp2956;
+    const Scalar tmp3012 = (tmp168*m + tmp170*m)*tmp2928 + (tmp187*m + tmp193*m)*tmp2926
+        + (tmp204*m + tmp208*m)*tmp2942 + (tmp224*m + tmp230*m)*tmp2955;
+    const Scalar tmp3013 = (tmp168*m + tmp173*m)*tmp2928 + (tmp187*m + tmp192*m)*tmp2926
+        + tmp208*m*tmp2943 + tmp207*m*tmp2942 + tmp229*m*tmp2955 + tmp224*m*tmp2956;
+    const Scalar tmp3014 = (tmp168*m + tmp174*m)*tmp2928 + (tmp187*m + tmp191*m)*tmp2926
+        + (tmp208*m + tmp209*m)*tmp2942 + (tmp224*m + tmp228*m)*tmp2955;
+    const Scalar tmp3015 = (tmp168*m + tmp175*m)*tmp2928 + (tmp187*m + tmp190*m)*tmp2926
+        + tmp210*m*tmp2942 + tmp208*m*tmp2943 + tmp227*m*tmp2955 + tmp224*m*tmp2956;
+    const Scalar tmp3016 = (tmp168*m + tmp169*m)*tmp2928 + (tmp187*m + tmp189*m)*tmp2926
+        + (tmp203*m + tmp208*m)*tmp2942 + (tmp224*m + tmp226*m)*tmp2955;
+    const Scalar tmp3017 = (tmp168*m + tmp172*m)*tmp2928 + (tmp187*m + tmp188*m)*tmp2926
+        + tmp208*m*tmp2943 + tmp206*m*tmp2942 + tmp225*m*tmp2955 + tmp224*m*tmp2956;
+    const Scalar tmp3018 = Scalar(2)*tmp168*m*tmp2928 + Scalar(2)*tmp187*m*tmp2926
+        + Scalar(2)*tmp208*m*tmp2942 + Scalar(2)*tmp224*m*tmp2955;
+    const Scalar tmp3019 = (tmp170*m + tmp171*m)*tmp2928 + (tmp186*m + tmp193*m)*tmp2926
+        + tmp205*m*tmp2942 + tmp204*m*tmp2943 + tmp230*m*tmp2956 + tmp223*m*tmp2955;
+    const Scalar tmp3020 = (tmp171*m + tmp173*m)*tmp2928 + (tmp186*m + tmp192*m)*tmp2926
+        + (tmp205*m + tmp207*m)*tmp2943 + (tmp223*m + tmp229*m)*tmp2956;
+    const Scalar tmp3021 = (tmp171*m + tmp174*m)*tmp2928 + (tmp186*m + tmp191*m)*tmp2926
+        + tmp209*m*tmp2943 + tmp205*m*tmp2942 + tmp228*m*tmp2956 + tmp223*m*tmp2955;
+    const Scalar tmp3022 = (tmp171*m + tmp175*m)*tmp2928 + (tmp186*m + tmp190*m)*tmp2926
+        + (tmp205*m + tmp210*m)*tmp2943 + (tmp223*m + tmp227*m)*tmp2956;
+    const Scalar tmp3023 = (tmp169*m + tmp171*m)*tmp2928 + (tmp186*m + tmp189*m)*tmp2926
+        + tmp205*m*tmp2942 + tmp203*m*tmp2943 + tmp226*m*tmp2956 + tmp223*m*tmp2955;
+    const Scalar tmp3024 = (tmp171*m + tmp172*m)*tmp2928 + (tmp186*m + tmp188*m)*tmp2926
+        + (tmp205*m + tmp206*m)*tmp2943 + (tmp223*m + tmp225*m)*tmp2956;
+    const Scalar tmp3025 = (tmp168*m + tmp171*m)*tmp2928 + (tmp186*m + tmp187*m)*tmp2926
+        + tmp208*m*tmp2943 + tmp205*m*tmp2942 + tmp224*m*tmp2956 + tmp223*m*tmp2955;
+    const Scalar tmp3026 = Scalar(2)*tmp171*m*tmp2928 + Scalar(2)*tmp186*m*tmp2926
+        + Scalar(2)*tmp205*m*tmp2943 + Scalar(2)*tmp223*m*tmp2956;
+    const Scalar tmp3027 = (tmp163*m + tmp193*m)*tmp2926 + (tmp166*m + tmp170*m)*tmp2928
+        + (tmp202*m + tmp204*m)*tmp2942 + (tmp222*m + tmp230*m)*tmp2955;
+    const Scalar tmp3028 = (tmp163*m + tmp192*m)*tmp2926 + (tmp166*m + tmp173*m)*tmp2928
+        + tmp207*m*tmp2942 + tmp202*m*tmp2943 + tmp229*m*tmp2955 + tmp222*m*tmp2956;
+    const Scalar tmp3029 = (tmp163*m + tmp191*m)*tmp2926 + (tmp166*m + tmp174*m)*tmp2928
+        + (tmp202*m + tmp209*m)*tmp2942 + (tmp222*m + tmp228*m)*tmp2955;
+    const Scalar tmp3030 = (tmp163*m + tmp190*m)*tmp2926 + (tmp166*m + tmp175*m)*tmp2928
+        + tmp210*m*tmp2942 + tmp202*m*tmp2943 + tmp227*m*tmp2955 + tmp222*m*tmp2956;
+    const Scalar tmp3031 = (tmp163*m + tmp189*m)*tmp2926 + (tmp166*m + tmp169*m)*tmp2928
+        + (tmp202*m + tmp203*m)*tmp2942 + (tmp222*m + tmp226*m)*tmp2955;
+    const Scalar tmp3032 = (tmp163*m + tmp188*m)*tmp2926 + (tmp166*m + tmp172*m)*tmp2928
+        + tmp206*m*tmp2942 + tmp202*m*tmp2943 + tmp225*m*tmp2955 + tmp222*m*tmp2956;
+    const Scalar tmp3033 = (tmp163*m + tmp187*m)*tmp2926 + (tmp166*m + tmp168*m)*tmp2928
+        + (tmp202*m + tmp208*m)*tmp2942 + (tmp222*m + tmp224*m)*tmp2955;
+    const Scalar tmp3034 = (tmp163*m + tmp186*m)*tmp2926 + (tmp166*m + tmp171*m)*tmp2928
+        + tmp205*m*tmp2942 + tmp202*m*tmp2943 + tmp223*m*tmp2955 + tmp222*m*tmp2956;
+    const Scalar tmp3035 = Scalar(2)*tmp162*tmp325*m*tmp165 + Scalar(2)*tmp165*tmp325*m*tmp2927
+        + Scalar(2)*tmp202*m*tmp2942 + Scalar(2)*tmp222*m*tmp2955;
+    const Scalar tmp3036 = tmp230*m*tmp2939 + tmp204*m*tmp2941 + tmp200*m*tmp2942
+        + tmp197*m*tmp2955;
+    const Scalar tmp3037 = tmp229*m*tmp2939 + tmp207*m*tmp2941 + tmp200*m*tmp2943
+        + tmp197*m*tmp2956;
+    const Scalar tmp3038 = tmp228*m*tmp2939 + tmp209*m*tmp2941 + tmp200*m*tmp2942
+        + tmp197*m*tmp2955;
+    const Scalar tmp3039 = tmp227*m*tmp2939 + tmp210*m*tmp2941 + tmp200*m*tmp2943
+        + tmp197*m*tmp2956;
+    const Scalar tmp3040 = tmp226*m*tmp2939 + tmp203*m*tmp2941 + tmp200*m*tmp2942
+        + tmp197*m*tmp2955;
+    const Scalar tmp3041 = tmp225*m*tmp2939 + tmp206*m*tmp2941 + tmp200*m*tmp2943
+        + tmp197*m*tmp2956;
+    const Scalar tmp3042 = tmp224*m*tmp2939 + tmp208*m*tmp2941 + tmp200*m*tmp2942
+        + tmp197*m*tmp2955;
+    const Scalar tmp3043 = tmp223*m*tmp2939 + tmp205*m*tmp2941 + tmp200*m*tmp2943
+        + tmp197*m*tmp2956;
+    const Scalar tmp3044 = tmp222*m*tmp2939 + tmp202*m*tmp2941 + tmp200*m*tmp2942
+        + tmp197*m*tmp2955;
+    const Scalar tmp3045 = Scalar(2)*tmp196*tmp325*m*tmp199 + Scalar(2)*tmp199*tmp325*m*tmp2940;
+    const Scalar tmp3046 = m*tmp2971;
+    const Scalar tmp3047 = m*tmp2972;
+    const Scalar tmp3048 = m*tmp2989;
+    const Scalar tmp3049 = m*tmp2990;
+    const Scalar tmp3050 = tmp382*tmp2926 + tmp382*tmp2955;
+    const Scalar tmp3051 = tmp382*tmp2926 + tmp382*tmp2956;
+    const Scalar tmp3052 = tmp382*tmp2926 + tmp382*tmp2955;
+    const Scalar tmp3053 = tmp382*tmp2926 + tmp382*tmp2956;
+    const Scalar tmp3054 = tmp382*tmp2926 + tmp382*tmp2955;
+    const Scalar tmp3055 = tmp382*tmp2926 + tmp382*tmp2956;
+    const Scalar tmp3056 = tmp382*tmp2926 + tmp382*tmp2955;
+    const Scalar tmp3057 = tmp382*tmp2926 + tmp382*tmp2956;
+    const Scalar tmp3058 = tmp382*tmp2926 + tmp382*tmp2955 - k;
+    const Scalar tmp3059 = tmp382*l*tmp199;
+    const Scalar tmp3060 = -tmp399*tmp2928 - tmp400*tmp2926 - tmp401*tmp2942 - tmp402*tmp2955
+        - tmp170*tmp3046 - tmp193*tmp3047 - tmp204*tmp3048 - tmp230*tmp3049;
+    dr_dq_data[0 + 10 * 8] = phi10_ddot*tmp3036 - tmp3050 - tmp3060 + phi1_ddot*tmp2991
+        + phi2_ddot*tmp2992 + phi3_ddot*tmp2994 + phi4_ddot*tmp2997 + phi5_ddot*tmp3001
+        + phi6_ddot*tmp3006 + phi7_ddot*tmp3012 + phi8_ddot*tmp3019 + phi9_ddot*tmp3027;
+    const Scalar tmp3061 = -tmp399*tmp2928 - tmp400*tmp2926 - tmp401*tmp2943 - tmp402*tmp2956
+        - tmp173*tmp3046 - tmp192*tmp3047 - tmp207*tmp3048 - tmp229*tmp3049;
+    dr_dq_data[1 + 10 * 8] = phi10_ddot*tmp3037 - tmp3051 - tmp3061 + phi1_ddot*tmp2992
+        + phi2_ddot*tmp2993 + phi3_ddot*tmp2995 + phi4_ddot*tmp2998 + phi5_ddot*tmp3002
+        + phi6_ddot*tmp3007 + phi7_ddot*tmp3013 + phi8_ddot*tmp3020 + phi9_ddot*tmp3028;
+    const Scalar tmp3062 = -tmp399*tmp2928 - tmp400*tmp2926 - tmp401*tmp2942 - tmp402*tmp2955
+        - tmp174*tmp3046 - tmp191*tmp3047 - tmp209*tmp3048 - tmp228*tmp3049;
+    dr_dq_data[2 + 10 * 8] = phi10_ddot*tmp3038 - tmp3052 - tmp3062 + phi1_ddot*tmp2994
+        + phi2_ddot*tmp2995 + phi3_ddot*tmp2996 + phi4_ddot*tmp2999 + phi5_ddot*tmp3003
+        + phi6_ddot*tmp3008 + phi7_ddot*tmp3014 + phi8_ddot*tmp3021 + phi9_ddot*tmp3029;
+    const Scalar tmp3063 = -tmp399*tmp2928 - tmp400*tmp2926 - tmp401*tmp2943 - tmp402*tmp2956
+        - tmp175*tmp3046 - tmp190*tmp3047 - tmp210*tmp3048 - tmp227*tmp3049;
+    dr_dq_data[3 + 10 * 8] = phi10_ddot*tmp3039 - tmp3053 - tmp3063 + phi1_ddot*tmp2997
+        + phi2_ddot*tmp2998 + phi3_ddot*tmp2999 + phi4_ddot*tmp3000 + phi5_ddot*tmp3004
+        + phi6_ddot*tmp3009 + phi7_ddot*tmp3015 + phi8_ddot*tmp3022 + phi9_ddot*tmp3030;
+    const Scalar tmp3064 = -tmp399*tmp2928 - tmp400*tmp2926 - tmp401*tmp2942 - tmp402*tmp2955
+        - tmp169*tmp3046 - tmp189*tmp3047 - tmp203*tmp3048 - tmp226*tmp3049;
+    dr_dq_data[4 + 10 * 8] = phi9_ddot*tmp3031 + phi10_ddot*tmp3040 - tmp3054 - tmp3064
+        + phi1_ddot*tmp3001 + phi2_ddot*tmp3002 + phi3_ddot*tmp3003 + phi4_ddot*tmp3004
+        + phi5_ddot*tmp3005 + phi6_ddot*tmp3010 + phi7_ddot*tmp3016 + phi8_ddot*tmp3023;
+    const Scalar tmp3065 = -tmp399*tmp2928 - tmp400*tmp2926 - tmp401*tmp2943 - tmp402*tmp2956
+        - tmp172*tmp3046 - tmp188*tmp3047 - tmp206*tmp3048 - tmp225*tmp3049;
+    dr_dq_data[5 + 10 * 8] = phi9_ddot*tmp3032 + phi10_ddot*tmp3041 - tmp3055 - tmp3065
+        + phi1_ddot*tmp3006 + phi2_ddot*tmp3007 + phi3_ddot*tmp3008 + phi4_ddot*tmp3009
+        + phi5_ddot*tmp3010 + phi6_ddot*tmp3011 + phi7_ddot*tmp3017 + phi8_ddot*tmp3024;
+    const Scalar tmp3066 = -tmp399*tmp2928 - tmp400*tmp2926 - tmp401*tmp2942 - tmp402*tmp2955
+        - tmp168*tmp3046 - tmp187*tmp3047 - tmp208*tmp3048 - tmp224*tmp3049;
+    dr_dq_data[6 + 10 * 8] = phi9_ddot*tmp3033 + phi10_ddot*tmp3042 - tmp3056 - tmp3066
+        + phi1_ddot*tmp3012 + phi2_ddot*tmp3013 + phi3_ddot*tmp3014 + phi4_ddot*tmp3015
+        + phi5_ddot*tmp3016 + phi6_ddot*tmp3017 + phi7_ddot*tmp3018 + phi8_ddot*tmp3025;
+    const Scalar tmp3067 = -tmp399*tmp2928 - tmp400*tmp2926 - tmp401*tmp2943 - tmp402*tmp2956
+        - tmp171*tmp3046 - tmp186*tmp3047 - tmp205*tmp3048 - tmp223*tmp3049;
+    dr_dq_data[7 + 10 * 8] = phi9_ddot*tmp3034 + phi10_ddot*tmp3043 - tmp3057 - tmp3067
+        + phi1_ddot*tmp3019 + phi2_ddot*tmp3020 + phi3_ddot*tmp3021 + phi4_ddot*tmp3022
+        + phi5_ddot*tmp3023 + phi6_ddot*tmp3024 + phi7_ddot*tmp3025 + phi8_ddot*tmp3026;
+    const Scalar tmp3068 = -tmp400*tmp2926 - tmp399*tmp2928 - tmp401*tmp2942 - tmp402*tmp2955
+        - tmp166*tmp3046 - tmp163*tmp3047 - tmp202*tmp3048 - tmp222*tmp3049;
+    dr_dq_data[8 + 10 * 8] = phi5_ddot*tmp3031 + phi6_ddot*tmp3032 + phi7_ddot*tmp3033
+        + phi8_ddot*tmp3034 + phi9_ddot*tmp3035 + phi10_ddot*tmp3044 - tmp3058 - tmp3068
+        + phi1_ddot*tmp3027 + phi2_ddot*tmp3028 + phi3_ddot*tmp3029 + phi4_ddot*tmp3030;
+    const Scalar tmp3069 = -tmp402*tmp2939 - tmp401*tmp2941 - tmp200*tmp3048 - tmp197*tmp3049;
+    dr_dq_data[9 + 10 * 8] = phi1_ddot*tmp3036 + phi2_ddot*tmp3037 + phi3_ddot*tmp3038
+        + phi4_ddot*tmp3039 + phi5_ddot*tmp3040 + phi6_ddot*tmp3041 + phi7_ddot*tmp3042
+        + phi8_ddot*tmp3043 + phi9_ddot*tmp3044 + phi10_ddot*tmp3045 - tmp3059 - tmp3069;
+    const Scalar tmp3070 = l*tmp199;
+    const Scalar tmp3071 = -tmp196;
+    const Scalar tmp3072 = l*tmp3071;
+    const Scalar tmp3073 = phi10_dot*tmp3072;
+    const Scalar tmp3074 = phi9_dot*tmp3072 + tmp3073;
+    const Scalar tmp3075 = phi8_dot*tmp3072 + tmp3074;
+    const Scalar tmp3076 = phi7_dot*tmp3072 + tmp3075;
+    const Scalar tmp3077 = phi6_dot*tmp3072 + tmp3076;
+    const Scalar tmp3078 = phi5_dot*tmp3072 + tmp3077;
+    const Scalar tmp3079 = phi4_dot*tmp3072 + tmp3078;
+    const Scalar tmp3080 = phi3_dot*tmp3072 + tmp3079;
+    const Scalar tmp3081 = phi2_dot*tmp3072 + tmp3080;
+    const Scalar tmp3082 = phi1_dot*tmp3072 + tmp3081;
+    const Scalar tmp3083 = phi10_dot*tmp3070;
+    const Scalar tmp3084 = -tmp3070;
+    const Scalar tmp3085 = -tmp3083 + phi9_dot*tmp3084;
+    const Scalar tmp3086 = -tmp3070;
+    const Scalar tmp3087 = tmp3085 + phi8_dot*tmp3086;
+    const Scalar tmp3088 = -tmp3070;
+    const Scalar tmp3089 = tmp3087 + phi7_dot*tmp3088;
+    const Scalar tmp3090 = -tmp3070;
+    const Scalar tmp3091 = tmp3089 + phi6_dot*tmp3090;
+    const Scalar tmp3092 = -tmp3070;
+    const Scalar tmp3093 = tmp3091 + phi5_dot*tmp3092;
+    const Scalar tmp3094 = -tmp3070;
+    const Scalar tmp3095 = tmp3093 + phi4_dot*tmp3094;
+    const Scalar tmp3096 = -tmp3070;
+    const Scalar tmp3097 = tmp3095 + phi3_dot*tmp3096;
+    const Scalar tmp3098 = -tmp3070;
+    const Scalar tmp3099 = tmp3097 + phi2_dot*tmp3098;
+    const Scalar tmp3100 = (-(phi1_dot*phi1_dot)
             + phi10_dot*(-phi1_dot - phi2_dot - phi3_dot - phi4_dot - phi5_dot - phi6_dot - phi7_dot
-                - phi8_dot - phi9_dot))*tmp3029
-        - phi10_dot*tmp3042
+                - phi8_dot - phi9_dot))*tmp3070
+        - phi10_dot*tmp3083
         + phi9_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot
-            + phi8_dot)*tmp3043
-        + phi9_dot*tmp3044
+            + phi8_dot)*tmp3084
+        + phi9_dot*tmp3085
         + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot
-            + phi7_dot)*tmp3045
-        + phi8_dot*tmp3046
-        + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp3047
-        + phi7_dot*tmp3048 + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp3049
-        + phi6_dot*tmp3050 + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp3051
-        + phi5_dot*tmp3052 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp3053 + phi4_dot*tmp3054
-        + phi3_dot*(phi1_dot + phi2_dot)*tmp3055 + phi3_dot*tmp3056 + phi1_dot*phi2_dot*tmp3057
-        + (phi1_dot + phi2_dot)*tmp3058;
-    const Scalar tmp3060 = (phi10_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot
+            + phi7_dot)*tmp3086
+        + phi8_dot*tmp3087
+        + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp3088
+        + phi7_dot*tmp3089 + phi6_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp3090
+        + phi6_dot*tmp3091 + phi5_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp3092
+        + phi5_dot*tmp3093 + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)*tmp3094 + phi4_dot*tmp3095
+        + phi3_dot*(phi1_dot + phi2_dot)*tmp3096 + phi3_dot*tmp3097 + phi1_dot*phi2_dot*tmp3098
+        + (phi1_dot + phi2_dot)*tmp3099;
+    const Scalar tmp3101 = (phi10_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot
                 + phi6_dot + phi7_dot + phi8_dot + phi9_dot)
             + phi1_dot*phi2_dot + phi3_dot*(phi1_dot + phi2_dot)
             + phi4_dot*(phi1_dot + phi2_dot + phi3_dot)
@@ -9521,166 +9521,166 @@ struct StiffChain10 {
             + phi7_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)
             + phi8_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot)
             + phi9_dot*(phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot
-                + phi8_dot))*tmp3031
-        + phi10_dot*tmp3032 + phi9_dot*tmp3033 + phi8_dot*tmp3034 + phi7_dot*tmp3035
-        + phi6_dot*tmp3036 + phi5_dot*tmp3037 + phi4_dot*tmp3038 + phi3_dot*tmp3039
-        + phi2_dot*tmp3040 + phi1_dot*tmp3041;
-    const Scalar tmp3061 = Scalar(2)*tmp204*m*tmp3031 + Scalar(2)*tmp230*m*tmp3029;
-    const Scalar tmp3062 = (tmp204*m + tmp207*m)*tmp3031 + (tmp229*m + tmp230*m)*tmp3029;
-    const Scalar tmp3063 = Scalar(2)*tmp207*m*tmp3031 + Scalar(2)*tmp229*m*tmp3029;
-    const Scalar tmp3064 = (tmp204*m + tmp209*m)*tmp3031 + (tmp228*m + tmp230*m)*tmp3029;
-    const Scalar tmp3065 = (tmp207*m + tmp209*m)*tmp3031 + (tmp228*m + tmp229*m)*tmp3029;
-    const Scalar tmp3066 = Scalar(2)*tmp209*m*tmp3031 + Scalar(2)*tmp228*m*tmp3029;
-    const Scalar tmp3067 = (tmp204*m + tmp210*m)*tmp3031 + (tmp227*m + tmp230*m)*tmp3029;
-    const Scalar tmp3068 = (tmp207*m + tmp210*m)*tmp3031 + (tmp227*m + tmp229*m)*tmp3029;
-    const Scalar tmp3069 = (tmp209*m + tmp210*m)*tmp3031 + (tmp227*m + tmp228*m)*tmp3029;
-    const Scalar tmp3070 = Scalar(2)*tmp210*m*tmp3031 + Scalar(2)*tmp227*m*tmp3029;
-    const Scalar tmp3071 = (tmp203*m + tmp204*m)*tmp3031 + (tmp226*m + tmp230*m)*tmp3029;
-    const Scalar tmp3072 = (tmp203*m + tmp207*m)*tmp3031 + (tmp226*m + tmp229*m)*tmp3029;
-    const Scalar tmp3073 = (tmp203*m + tmp209*m)*tmp3031 + (tmp226*m + tmp228*m)*tmp3029;
-    const Scalar tmp3074 = (tmp203*m + tmp210*m)*tmp3031 + (tmp226*m + tmp227*m)*tmp3029;
-    const Scalar tmp3075 = Scalar(2)*tmp203*m*tmp3031 + Scalar(2)*tmp226*m*tmp3029;
-    const Scalar tmp3076 = (tmp204*m + tmp206*m)*tmp3031 + (tmp225*m + tmp230*m)*tmp3029;
-    const Scalar tmp3077 = (tmp206*m + tmp207*m)*tmp3031 + (tmp225*m + tmp229*m)*tmp3029;
-    const Scalar tmp3078 = (tmp206*m + tmp209*m)*tmp3031 + (tmp225*m + tmp228*m)*tmp3029;
-    const Scalar tmp3079 = (tmp206*m + tmp210*m)*tmp3031 + (tmp225*m + tmp227*m)*tmp3029;
-    const Scalar tmp3080 = (tmp203*m + tmp206*m)*tmp3031 + (tmp225*m + tmp226*m)*tmp3029;
-    const Scalar tmp3081 = Scalar(2)*tmp206*m*tmp3031 + Scalar(2)*tmp225*m*tmp3029;
-    const Scalar tmp3082 = (tmp204*m + tmp208*m)*tmp3031 + (tmp224*m + tmp230*m)*tmp3029;
-    const Scalar tmp3083 = (tmp207*m + tmp208*m)*tmp3031 + (tmp224*m + tmp229*m)*tmp3029;
-    const Scalar tmp3084 = (tmp208*m + tmp209*m)*tmp3031 + (tmp224*m + tmp228*m)*tmp3029;
-    const Scalar tmp3085 = (tmp208*m + tmp210*m)*tmp3031 + (tmp224*m + tmp227*m)*tmp3029;
-    const Scalar tmp3086 = (tmp203*m + tmp208*m)*tmp3031 + (tmp224*m + tmp226*m)*tmp3029;
-    const Scalar tmp3087 = (tmp206*m + tmp208*m)*tmp3031 + (tmp224*m + tmp225*m)*tmp3029;
-    const Scalar tmp3088 = Scalar(2)*tmp208*m*tmp3031 + Scalar(2)*tmp224*m*tmp3029;
-    const Scalar tmp3089 = (tmp204*m + tmp205*m)*tmp3031 + (tmp223*m + tmp230*m)*tmp3029;
-    const Scalar tmp3090 = (tmp205*m + tmp207*m)*tmp3031 + (tmp223*m + tmp229*m)*tmp3029;
-    const Scalar tmp3091 = (tmp205*m + tmp209*m)*tmp3031 + (tmp223*m + tmp228*m)*tmp3029;
-    const Scalar tmp3092 = (tmp205*m + tmp210*m)*tmp3031 + (tmp223*m + tmp227*m)*tmp3029;
-    const Scalar tmp3093 = (tmp203*m + tmp205*m)*tmp3031 + (tmp223*m + tmp226*m)*tmp3029;
-    const Scalar tmp3094 = (tmp205*m + tmp206*m)*tmp3031 + (tmp223*m + tmp225*m)*tmp3029;
-    const Scalar tmp3095 = (tmp205*m + tmp208*m)*tmp3031 + (tmp223*m + tmp224*m)*tmp3029;
-    const Scalar tmp3096 = Scalar(2)*tmp205*m*tmp3031 + Scalar(2)*tmp223*m*tmp3029;
-    const Scalar tmp3097 = (tmp202*m + tmp204*m)*tmp3031 + (tmp222*m + tmp230*m)*tmp3029;
-    const Scalar tmp3098 = (tmp202*m + tmp207*m)*tmp3031 + (tmp222*m + tmp229*m)*tmp3029;
-    const Scalar tmp3099 = (tmp202*m + tmp209*m)*tmp3031 + (tmp222*m + tmp228*m)*tmp3029;
-    const Scalar tmp3100 = (tmp202*m + tmp210*m)*tmp3031 + (tmp222*m + tmp227*m)*tmp3029;
-    const Scalar tmp3101 = (tmp202*m + tmp203*m)*tmp3031 + (tmp222*m + tmp226*m)*tmp3029;
-    const Scalar tmp3102 = (tmp202*m + tmp206*m)*tmp3031 + (tmp222*m + tmp225*m)*tmp3029;
-    const Scalar tmp3103 = (tmp202*m + tmp208*m)*tmp3031 + (tmp222*m + tmp224*m)*tmp3029;
-    const Scalar tmp3104 = (tmp202*m + tmp205*m)*tmp3031 + (tmp222*m + tmp223*m)*tmp3029;
-    const Scalar tmp3105 = Scalar(2)*tmp202*m*tmp3031 + Scalar(2)*tmp222*m*tmp3029;
-    const Scalar tmp3106 = (tmp197*m + tmp230*m)*tmp3029 + (tmp200*m + tmp204*m)*tmp3031;
-    const Scalar tmp3107 = (tmp197*m + tmp229*m)*tmp3029 + (tmp200*m + tmp207*m)*tmp3031;
-    const Scalar tmp3108 = (tmp197*m + tmp228*m)*tmp3029 + (tmp200*m + tmp209*m)*tmp3031;
-    const Scalar tmp3109 = (tmp197*m + tmp227*m)*tmp3029 + (tmp200*m + tmp210*m)*tmp3031;
-    const Scalar tmp3110 = (tmp197*m + tmp226*m)*tmp3029 + (tmp200*m + tmp203*m)*tmp3031;
-    const Scalar tmp3111 = (tmp197*m + tmp225*m)*tmp3029 + (tmp200*m + tmp206*m)*tmp3031;
-    const Scalar tmp3112 = (tmp197*m + tmp224*m)*tmp3029 + (tmp200*m + tmp208*m)*tmp3031;
-    const Scalar tmp3113 = (tmp197*m + tmp223*m)*tmp3029 + (tmp200*m + tmp205*m)*tmp3031;
-    const Scalar tmp3114 = (tmp197*m + tmp222*m)*tmp3029 + (tmp200*m + tmp202*m)*tmp3031;
-    const Scalar tmp3115 = Scalar(2)*tmp196*tmp325*m*tmp199 + Scalar(2)*tmp199*tmp325*m*tmp3030;
-    const Scalar tmp3116 = m*tmp3059;
-    const Scalar tmp3117 = m*tmp3060;
-    const Scalar tmp3118 = tmp382*tmp3029;
-    const Scalar tmp3119 = tmp382*tmp3029;
-    const Scalar tmp3120 = tmp382*tmp3029;
-    const Scalar tmp3121 = tmp382*tmp3029;
-    const Scalar tmp3122 = tmp382*tmp3029;
-    const Scalar tmp3123 = tmp382*tmp3029;
-    const Scalar tmp3124 = tmp382*tmp3029;
-    const Scalar tmp3125 = tmp382*tmp3029;
-    const Scalar tmp3126 = tmp382*tmp3029;
-    const Scalar tmp3127 = tmp382*l*tmp199 - k;
-    const Scalar tmp3128 = -tmp401*tmp3031 - tmp402*tmp3029 - tmp204*tmp3116 - tmp230*tmp3117;
-    dr_dq_data[0 + 10 * 9] = phi10_ddot*tmp3106 - tmp3118 - tmp3128 + phi1_ddot*tmp3061
-        + phi2_ddot*tmp3062 + phi3_ddot*tmp3064 + phi4_ddot*tmp3067 + phi5_ddot*tmp3071
-        + phi6_ddot*tmp3076 + phi7_ddot*tmp3082 + phi8_ddot*tmp3089 + phi9_ddot*tmp3097;
-    const Scalar tmp3129 = -tmp401*tmp3031 - tmp402*tmp3029 - tmp207*tmp3116 - tmp229*tmp3117;
-    dr_dq_data[1 + 10 * 9] = phi10_ddot*tmp3107 - tmp3119 - tmp3129 + phi1_ddot*tmp3062
-        + phi2_ddot*tmp3063 + phi3_ddot*tmp3065 + phi4_ddot*tmp3068 + phi5_ddot*tmp3072
-        + phi6_ddot*tmp3077 + phi7_ddot*tmp3083 + phi8_ddot*tmp3090 + phi9_ddot*tmp3098;
-    const Scalar tmp3130 = -tmp401*tmp3031 - tmp402*tmp3029 - tmp209*tmp3116 - tmp228*tmp3117;
-    dr_dq_data[2 + 10 * 9] = phi10_ddot*tmp3108 - tmp3120 - tmp3130 + phi1_ddot*tmp3064
-        + phi2_ddot*tmp3065 + phi3_ddot*tmp3066 + phi4_ddot*tmp3069 + phi5_ddot*tmp3073
-        + phi6_ddot*tmp3078 + phi7_ddot*tmp3084 + phi8_ddot*tmp3091 + phi9_ddot*tmp3099;
-    const Scalar tmp3131 = -tmp401*tmp3031 - tmp402*tmp3029 - tmp210*tmp3116 - tmp227*tmp3117;
-    dr_dq_data[3 + 10 * 9] = phi10_ddot*tmp3109 - tmp3121 - tmp3131 + phi1_ddot*tmp3067
-        + phi2_ddot*tmp3068 + phi3_ddot*tmp3069 + phi4_ddot*tmp3070 + phi5_ddot*tmp3074
-        + phi6_ddot*tmp3079 + phi7_ddot*tmp3085 + phi8_ddot*tmp3092 + phi9_ddot*tmp3100;
-    const Scalar tmp3132 = -tmp401*tmp3031 - tmp402*tmp3029 - tmp203*tmp3116 - tmp226*tmp3117;
-    dr_dq_data[4 + 10 * 9] = phi9_ddot*tmp3101 + phi10_ddot*tmp3110 - tmp3122 - tmp3132
-        + phi1_ddot*tmp3071 + phi2_ddot*tmp3072 + phi3_ddot*tmp3073 + phi4_ddot*tmp3074
-        + phi5_ddot*tmp3075 + phi6_ddot*tmp3080 + phi7_ddot*tmp3086 + phi8_ddot*tmp3093;
-    const Scalar tmp3133 = -tmp401*tmp3031 - tmp402*tmp3029 - tmp206*tmp3116 - tmp225*tmp3117;
-    dr_dq_data[5 + 10 * 9] = phi9_ddot*tmp3102 + phi10_ddot*tmp3111 - tmp3123 - tmp3133
-        + phi1_ddot*tmp3076 + phi2_ddot*tmp3077 + phi3_ddot*tmp3078 + phi4_ddot*tmp3079
-        + phi5_ddot*tmp3080 + phi6_ddot*tmp3081 + phi7_ddot*tmp3087 + phi8_ddot*tmp3094;
-    const Scalar tmp3134 = -tmp401*tmp3031 - tmp402*tmp3029 - tmp208*tmp3116 - tmp224*tmp3117;
-    dr_dq_data[6 + 10 * 9] = phi9_ddot*tmp3103 + phi10_ddot*tmp3112 - tmp3124 - tmp3134
-        + phi1_ddot*tmp3082 + phi2_ddot*tmp3083 + phi3_ddot*tmp3084 + phi4_ddot*tmp3085
-        + phi5_ddot*tmp3086 + phi6_ddot*tmp3087 + phi7_ddot*tmp3088 + phi8_ddot*tmp3095;
-    const Scalar tmp3135 = -tmp401*tmp3031 - tmp402*tmp3029 - tmp205*tmp3116 - tmp223*tmp3117;
-    dr_dq_data[7 + 10 * 9] = phi9_ddot*tmp3104 + phi10_ddot*tmp3113 - tmp3125 - tmp3135
-        + phi1_ddot*tmp3089 + phi2_ddot*tmp3090 + phi3_ddot*tmp3091 + phi4_ddot*tmp3092
-        + phi5_ddot*tmp3093 + phi6_ddot*tmp3094 + phi7_ddot*tmp3095 + phi8_ddot*tmp3096;
-    const Scalar tmp3136 = -tmp401*tmp3031 - tmp402*tmp3029 - tmp202*tmp3116 - tmp222*tmp3117;
-    dr_dq_data[8 + 10 * 9] = phi5_ddot*tmp3101 + phi6_ddot*tmp3102 + phi7_ddot*tmp3103
-        + phi8_ddot*tmp3104 + phi9_ddot*tmp3105 + phi10_ddot*tmp3114 - tmp3126 - tmp3136
-        + phi1_ddot*tmp3097 + phi2_ddot*tmp3098 + phi3_ddot*tmp3099 + phi4_ddot*tmp3100;
-    const Scalar tmp3137 = -tmp402*tmp3029 - tmp401*tmp3031 - tmp200*tmp3116 - tmp197*tmp3117;
-    dr_dq_data[9 + 10 * 9] = phi1_ddot*tmp3106 + phi2_ddot*tmp3107 + phi3_ddot*tmp3108
-        + phi4_ddot*tmp3109 + phi5_ddot*tmp3110 + phi6_ddot*tmp3111 + phi7_ddot*tmp3112
-        + phi8_ddot*tmp3113 + phi9_ddot*tmp3114 + phi10_ddot*tmp3115 - tmp3127 - tmp3137;
-    const Scalar tmp3138 = Scalar(2)*phi1_dot;
+                + phi8_dot))*tmp3072
+        + phi10_dot*tmp3073 + phi9_dot*tmp3074 + phi8_dot*tmp3075 + phi7_dot*tmp3076
+        + phi6_dot*tmp3077 + phi5_dot*tmp3078 + phi4_dot*tmp3079 + phi3_dot*tmp3080
+        + phi2_dot*tmp3081 + phi1_dot*tmp3082;
+    const Scalar tmp3102 = Scalar(2)*tmp204*m*tmp3072 + Scalar(2)*tmp230*m*tmp3070;
+    const Scalar tmp3103 = (tmp204*m + tmp207*m)*tmp3072 + (tmp229*m + tmp230*m)*tmp3070;
+    const Scalar tmp3104 = Scalar(2)*tmp207*m*tmp3072 + Scalar(2)*tmp229*m*tmp3070;
+    const Scalar tmp3105 = (tmp204*m + tmp209*m)*tmp3072 + (tmp228*m + tmp230*m)*tmp3070;
+    const Scalar tmp3106 = (tmp207*m + tmp209*m)*tmp3072 + (tmp228*m + tmp229*m)*tmp3070;
+    const Scalar tmp3107 = Scalar(2)*tmp209*m*tmp3072 + Scalar(2)*tmp228*m*tmp3070;
+    const Scalar tmp3108 = (tmp204*m + tmp210*m)*tmp3072 + (tmp227*m + tmp230*m)*tmp3070;
+    const Scalar tmp3109 = (tmp207*m + tmp210*m)*tmp3072 + (tmp227*m + tmp229*m)*tmp3070;
+    const Scalar tmp3110 = (tmp209*m + tmp210*m)*tmp3072 + (tmp227*m + tmp228*m)*tmp3070;
+    const Scalar tmp3111 = Scalar(2)*tmp210*m*tmp3072 + Scalar(2)*tmp227*m*tmp3070;
+    const Scalar tmp3112 = (tmp203*m + tmp204*m)*tmp3072 + (tmp226*m + tmp230*m)*tmp3070;
+    const Scalar tmp3113 = (tmp203*m + tmp207*m)*tmp3072 + (tmp226*m + tmp229*m)*tmp3070;
+    const Scalar tmp3114 = (tmp203*m + tmp209*m)*tmp3072 + (tmp226*m + tmp228*m)*tmp3070;
+    const Scalar tmp3115 = (tmp203*m + tmp210*m)*tmp3072 + (tmp226*m + tmp227*m)*tmp3070;
+    const Scalar tmp3116 = Scalar(2)*tmp203*m*tmp3072 + Scalar(2)*tmp226*m*tmp3070;
+    const Scalar tmp3117 = (tmp204*m + tmp206*m)*tmp3072 + (tmp225*m + tmp230*m)*tmp3070;
+    const Scalar tmp3118 = (tmp206*m + tmp207*m)*tmp3072 + (tmp225*m + tmp229*m)*tmp3070;
+    const Scalar tmp3119 = (tmp206*m + tmp209*m)*tmp3072 + (tmp225*m + tmp228*m)*tmp3070;
+    const Scalar tmp3120 = (tmp206*m + tmp210*m)*tmp3072 + (tmp225*m + tmp227*m)*tmp3070;
+    const Scalar tmp3121 = (tmp203*m + tmp206*m)*tmp3072 + (tmp225*m + tmp226*m)*tmp3070;
+    const Scalar tmp3122 = Scalar(2)*tmp206*m*tmp3072 + Scalar(2)*tmp225*m*tmp3070;
+    const Scalar tmp3123 = (tmp204*m + tmp208*m)*tmp3072 + (tmp224*m + tmp230*m)*tmp3070;
+    const Scalar tmp3124 = (tmp207*m + tmp208*m)*tmp3072 + (tmp224*m + tmp229*m)*tmp3070;
+    const Scalar tmp3125 = (tmp208*m + tmp209*m)*tmp3072 + (tmp224*m + tmp228*m)*tmp3070;
+    const Scalar tmp3126 = (tmp208*m + tmp210*m)*tmp3072 + (tmp224*m + tmp227*m)*tmp3070;
+    const Scalar tmp3127 = (tmp203*m + tmp208*m)*tmp3072 + (tmp224*m + tmp226*m)*tmp3070;
+    const Scalar tmp3128 = (tmp206*m + tmp208*m)*tmp3072 + (tmp224*m + tmp225*m)*tmp3070;
+    const Scalar tmp3129 = Scalar(2)*tmp208*m*tmp3072 + Scalar(2)*tmp224*m*tmp3070;
+    const Scalar tmp3130 = (tmp204*m + tmp205*m)*tmp3072 + (tmp223*m + tmp230*m)*tmp3070;
+    const Scalar tmp3131 = (tmp205*m + tmp207*m)*tmp3072 + (tmp223*m + tmp229*m)*tmp3070;
+    const Scalar tmp3132 = (tmp205*m + tmp209*m)*tmp3072 + (tmp223*m + tmp228*m)*tmp3070;
+    const Scalar tmp3133 = (tmp205*m + tmp210*m)*tmp3072 + (tmp223*m + tmp227*m)*tmp3070;
+    const Scalar tmp3134 = (tmp203*m + tmp205*m)*tmp3072 + (tmp223*m + tmp226*m)*tmp3070;
+    const Scalar tmp3135 = (tmp205*m + tmp206*m)*tmp3072 + (tmp223*m + tmp225*m)*tmp3070;
+    const Scalar tmp3136 = (tmp205*m + tmp208*m)*tmp3072 + (tmp223*m + tmp224*m)*tmp3070;
+    const Scalar tmp3137 = Scalar(2)*tmp205*m*tmp3072 + Scalar(2)*tmp223*m*tmp3070;
+    const Scalar tmp3138 = (tmp202*m + tmp204*m)*tmp3072 + (tmp222*m + tmp230*m)*tmp3070;
+    const Scalar tmp3139 = (tmp202*m + tmp207*m)*tmp3072 + (tmp222*m + tmp229*m)*tmp3070;
+    const Scalar tmp3140 = (tmp202*m + tmp209*m)*tmp3072 + (tmp222*m + tmp228*m)*tmp3070;
+    const Scalar tmp3141 = (tmp202*m + tmp210*m)*tmp3072 + (tmp222*m + tmp227*m)*tmp3070;
+    const Scalar tmp3142 = (tmp202*m + tmp203*m)*tmp3072 + (tmp222*m + tmp226*m)*tmp3070;
+    const Scalar tmp3143 = (tmp202*m + tmp206*m)*tmp3072 + (tmp222*m + tmp225*m)*tmp3070;
+    const Scalar tmp3144 = (tmp202*m + tmp208*m)*tmp3072 + (tmp222*m + tmp224*m)*tmp3070;
+    const Scalar tmp3145 = (tmp202*m + tmp205*m)*tmp3072 + (tmp222*m + tmp223*m)*tmp3070;
+    const Scalar tmp3146 = Scalar(2)*tmp202*m*tmp3072 + Scalar(2)*tmp222*m*tmp3070;
+    const Scalar tmp3147 = (tmp197*m + tmp230*m)*tmp3070 + (tmp200*m + tmp204*m)*tmp3072;
+    const Scalar tmp3148 = (tmp197*m + tmp229*m)*tmp3070 + (tmp200*m + tmp207*m)*tmp3072;
+    const Scalar tmp3149 = (tmp197*m + tmp228*m)*tmp3070 + (tmp200*m + tmp209*m)*tmp3072;
+    const Scalar tmp3150 = (tmp197*m + tmp227*m)*tmp3070 + (tmp200*m + tmp210*m)*tmp3072;
+    const Scalar tmp3151 = (tmp197*m + tmp226*m)*tmp3070 + (tmp200*m + tmp203*m)*tmp3072;
+    const Scalar tmp3152 = (tmp197*m + tmp225*m)*tmp3070 + (tmp200*m + tmp206*m)*tmp3072;
+    const Scalar tmp3153 = (tmp197*m + tmp224*m)*tmp3070 + (tmp200*m + tmp208*m)*tmp3072;
+    const Scalar tmp3154 = (tmp197*m + tmp223*m)*tmp3070 + (tmp200*m + tmp205*m)*tmp3072;
+    const Scalar tmp3155 = (tmp197*m + tmp222*m)*tmp3070 + (tmp200*m + tmp202*m)*tmp3072;
+    const Scalar tmp3156 = Scalar(2)*tmp196*tmp325*m*tmp199 + Scalar(2)*tmp199*tmp325*m*tmp3071;
+    const Scalar tmp3157 = m*tmp3100;
+    const Scalar tmp3158 = m*tmp3101;
+    const Scalar tmp3159 = tmp382*tmp3070;
+    const Scalar tmp3160 = tmp382*tmp3070;
+    const Scalar tmp3161 = tmp382*tmp3070;
+    const Scalar tmp3162 = tmp382*tmp3070;
+    const Scalar tmp3163 = tmp382*tmp3070;
+    const Scalar tmp3164 = tmp382*tmp3070;
+    const Scalar tmp3165 = tmp382*tmp3070;
+    const Scalar tmp3166 = tmp382*tmp3070;
+    const Scalar tmp3167 = tmp382*tmp3070;
+    const Scalar tmp3168 = tmp382*l*tmp199 - k;
+    const Scalar tmp3169 = -tmp401*tmp3072 - tmp402*tmp3070 - tmp204*tmp3157 - tmp230*tmp3158;
+    dr_dq_data[0 + 10 * 9] = phi10_ddot*tmp3147 - tmp3159 - tmp3169 + phi1_ddot*tmp3102
+        + phi2_ddot*tmp3103 + phi3_ddot*tmp3105 + phi4_ddot*tmp3108 + phi5_ddot*tmp3112
+        + phi6_ddot*tmp3117 + phi7_ddot*tmp3123 + phi8_ddot*tmp3130 + phi9_ddot*tmp3138;
+    const Scalar tmp3170 = -tmp401*tmp3072 - tmp402*tmp3070 - tmp207*tmp3157 - tmp229*tmp3158;
+    dr_dq_data[1 + 10 * 9] = phi10_ddot*tmp3148 - tmp3160 - tmp3170 + phi1_ddot*tmp3103
+        + phi2_ddot*tmp3104 + phi3_ddot*tmp3106 + phi4_ddot*tmp3109 + phi5_ddot*tmp3113
+        + phi6_ddot*tmp3118 + phi7_ddot*tmp3124 + phi8_ddot*tmp3131 + phi9_ddot*tmp3139;
+    const Scalar tmp3171 = -tmp401*tmp3072 - tmp402*tmp3070 - tmp209*tmp3157 - tmp228*tmp3158;
+    dr_dq_data[2 + 10 * 9] = phi10_ddot*tmp3149 - tmp3161 - tmp3171 + phi1_ddot*tmp3105
+        + phi2_ddot*tmp3106 + phi3_ddot*tmp3107 + phi4_ddot*tmp3110 + phi5_ddot*tmp3114
+        + phi6_ddot*tmp3119 + phi7_ddot*tmp3125 + phi8_ddot*tmp3132 + phi9_ddot*tmp3140;
+    const Scalar tmp3172 = -tmp401*tmp3072 - tmp402*tmp3070 - tmp210*tmp3157 - tmp227*tmp3158;
+    dr_dq_data[3 + 10 * 9] = phi10_ddot*tmp3150 - tmp3162 - tmp3172 + phi1_ddot*tmp3108
+        + phi2_ddot*tmp3109 + phi3_ddot*tmp3110 + phi4_ddot*tmp3111 + phi5_ddot*tmp3115
+        + phi6_ddot*tmp3120 + phi7_ddot*tmp3126 + phi8_ddot*tmp3133 + phi9_ddot*tmp3141;
+    const Scalar tmp3173 = -tmp401*tmp3072 - tmp402*tmp3070 - tmp203*tmp3157 - tmp226*tmp3158;
+    dr_dq_data[4 + 10 * 9] = phi9_ddot*tmp3142 + phi10_ddot*tmp3151 - tmp3163 - tmp3173
+        + phi1_ddot*tmp3112 + phi2_ddot*tmp3113 + phi3_ddot*tmp3114 + phi4_ddot*tmp3115
+        + phi5_ddot*tmp3116 + phi6_ddot*tmp3121 + phi7_ddot*tmp3127 + phi8_ddot*tmp3134;
+    const Scalar tmp3174 = -tmp401*tmp3072 - tmp402*tmp3070 - tmp206*tmp3157 - tmp225*tmp3158;
+    dr_dq_data[5 + 10 * 9] = phi9_ddot*tmp3143 + phi10_ddot*tmp3152 - tmp3164 - tmp3174
+        + phi1_ddot*tmp3117 + phi2_ddot*tmp3118 + phi3_ddot*tmp3119 + phi4_ddot*tmp3120
+        + phi5_ddot*tmp3121 + phi6_ddot*tmp3122 + phi7_ddot*tmp3128 + phi8_ddot*tmp3135;
+    const Scalar tmp3175 = -tmp401*tmp3072 - tmp402*tmp3070 - tmp208*tmp3157 - tmp224*tmp3158;
+    dr_dq_data[6 + 10 * 9] = phi9_ddot*tmp3144 + phi10_ddot*tmp3153 - tmp3165 - tmp3175
+        + phi1_ddot*tmp3123 + phi2_ddot*tmp3124 + phi3_ddot*tmp3125 + phi4_ddot*tmp3126
+        + phi5_ddot*tmp3127 + phi6_ddot*tmp3128 + phi7_ddot*tmp3129 + phi8_ddot*tmp3136;
+    const Scalar tmp3176 = -tmp401*tmp3072 - tmp402*tmp3070 - tmp205*tmp3157 - tmp223*tmp3158;
+    dr_dq_data[7 + 10 * 9] = phi9_ddot*tmp3145 + phi10_ddot*tmp3154 - tmp3166 - tmp3176
+        + phi1_ddot*tmp3130 + phi2_ddot*tmp3131 + phi3_ddot*tmp3132 + phi4_ddot*tmp3133
+        + phi5_ddot*tmp3134 + phi6_ddot*tmp3135 + phi7_ddot*tmp3136 + phi8_ddot*tmp3137;
+    const Scalar tmp3177 = -tmp401*tmp3072 - tmp402*tmp3070 - tmp202*tmp3157 - tmp222*tmp3158;
+    dr_dq_data[8 + 10 * 9] = phi5_ddot*tmp3142 + phi6_ddot*tmp3143 + phi7_ddot*tmp3144
+        + phi8_ddot*tmp3145 + phi9_ddot*tmp3146 + phi10_ddot*tmp3155 - tmp3167 - tmp3177
+        + phi1_ddot*tmp3138 + phi2_ddot*tmp3139 + phi3_ddot*tmp3140 + phi4_ddot*tmp3141;
+    const Scalar tmp3178 = -tmp402*tmp3070 - tmp401*tmp3072 - tmp200*tmp3157 - tmp197*tmp3158;
+    dr_dq_data[9 + 10 * 9] = phi1_ddot*tmp3147 + phi2_ddot*tmp3148 + phi3_ddot*tmp3149
+        + phi4_ddot*tmp3150 + phi5_ddot*tmp3151 + phi6_ddot*tmp3152 + phi7_ddot*tmp3153
+        + phi8_ddot*tmp3154 + phi9_ddot*tmp3155 + phi10_ddot*tmp3156 - tmp3168 - tmp3178;
+    const Scalar tmp3179 = Scalar(2)*phi1_dot;
     const Scalar tmp1 = carried[0];
-    const Scalar tmp3139 = -tmp1*tmp3138;
+    const Scalar tmp3180 = -tmp1*tmp3179;
     const Scalar tmp3 = carried[1];
-    const Scalar tmp3140 = tmp3*tmp3138;
+    const Scalar tmp3181 = tmp3*tmp3179;
     const Scalar tmp9 = carried[2];
     const Scalar tmp17 = carried[7];
     const Scalar tmp18 = carried[8];
-    const Scalar tmp3141 = -tmp17 - tmp9*phi2_dot - Scalar(2)*tmp18*phi1_dot;
+    const Scalar tmp3182 = -tmp17 - tmp9*phi2_dot - Scalar(2)*tmp18*phi1_dot;
     const Scalar tmp12 = carried[3];
     const Scalar tmp15 = carried[5];
     const Scalar tmp16 = carried[6];
-    const Scalar tmp3142 = tmp16 + tmp12*phi2_dot + phi1_dot*tmp15;
+    const Scalar tmp3183 = tmp16 + tmp12*phi2_dot + phi1_dot*tmp15;
     const Scalar tmp22 = carried[9];
     const Scalar tmp34 = carried[18];
     const Scalar tmp237 = carried[185];
     const Scalar tmp238 = carried[186];
-    const Scalar tmp3143 = tmp238 + tmp237*phi2_dot - tmp22*phi3_dot - Scalar(2)*tmp34*phi1_dot;
+    const Scalar tmp3184 = tmp238 + tmp237*phi2_dot - tmp22*phi3_dot - Scalar(2)*tmp34*phi1_dot;
     const Scalar tmp25 = carried[10];
     const Scalar tmp27 = carried[11];
     const Scalar tmp28 = carried[12];
     const Scalar tmp31 = carried[15];
-    const Scalar tmp3144 = tmp31 + tmp25*phi3_dot + tmp28*phi2_dot + phi1_dot*tmp27;
+    const Scalar tmp3185 = tmp31 + tmp25*phi3_dot + tmp28*phi2_dot + phi1_dot*tmp27;
     const Scalar tmp241 = carried[187];
     const Scalar tmp243 = carried[189];
     const Scalar tmp244 = carried[190];
-    const Scalar tmp3145 = tmp244 + tmp241*phi3_dot + tmp243*phi2_dot - tmp38*phi4_dot
+    const Scalar tmp3186 = tmp244 + tmp241*phi3_dot + tmp243*phi2_dot - tmp38*phi4_dot
         - Scalar(2)*tmp53*phi1_dot;
     const Scalar tmp49 = carried[27];
-    const Scalar tmp3146 = tmp49 + tmp41*phi4_dot + tmp43*phi3_dot + tmp45*phi2_dot
+    const Scalar tmp3187 = tmp49 + tmp41*phi4_dot + tmp43*phi3_dot + tmp45*phi2_dot
         + phi1_dot*tmp44;
     const Scalar tmp247 = carried[191];
     const Scalar tmp249 = carried[193];
     const Scalar tmp251 = carried[195];
     const Scalar tmp252 = carried[196];
-    const Scalar tmp3147 = tmp252 + tmp247*phi4_dot + tmp249*phi3_dot + tmp251*phi2_dot
+    const Scalar tmp3188 = tmp252 + tmp247*phi4_dot + tmp249*phi3_dot + tmp251*phi2_dot
         - tmp57*phi5_dot - Scalar(2)*tmp75*phi1_dot;
     const Scalar tmp70 = carried[44];
-    const Scalar tmp3148 = tmp70 + tmp60*phi5_dot + tmp62*phi3_dot + tmp64*phi4_dot + tmp65*phi2_dot
+    const Scalar tmp3189 = tmp70 + tmp60*phi5_dot + tmp62*phi3_dot + tmp64*phi4_dot + tmp65*phi2_dot
         + phi1_dot*tmp63;
     const Scalar tmp255 = carried[197];
     const Scalar tmp257 = carried[199];
     const Scalar tmp259 = carried[201];
     const Scalar tmp261 = carried[203];
     const Scalar tmp262 = carried[204];
-    const Scalar tmp3149 = tmp262 + tmp255*phi5_dot + tmp257*phi4_dot + tmp259*phi3_dot
+    const Scalar tmp3190 = tmp262 + tmp255*phi5_dot + tmp257*phi4_dot + tmp259*phi3_dot
         + tmp261*phi2_dot - tmp79*phi6_dot - Scalar(2)*tmp100*phi1_dot;
     const Scalar tmp94 = carried[64];
-    const Scalar tmp3150 = tmp94 + tmp82*phi6_dot + tmp84*phi5_dot + tmp86*phi4_dot + tmp87*phi2_dot
+    const Scalar tmp3191 = tmp94 + tmp82*phi6_dot + tmp84*phi5_dot + tmp86*phi4_dot + tmp87*phi2_dot
         + tmp88*phi3_dot + phi1_dot*tmp85;
     const Scalar tmp265 = carried[205];
     const Scalar tmp267 = carried[207];
@@ -9688,10 +9688,10 @@ struct StiffChain10 {
     const Scalar tmp271 = carried[211];
     const Scalar tmp273 = carried[213];
     const Scalar tmp274 = carried[214];
-    const Scalar tmp3151 = tmp274 + tmp265*phi6_dot + tmp267*phi5_dot + tmp269*phi4_dot
+    const Scalar tmp3192 = tmp274 + tmp265*phi6_dot + tmp267*phi5_dot + tmp269*phi4_dot
         + tmp271*phi3_dot + tmp273*phi2_dot - tmp104*phi7_dot - Scalar(2)*tmp128*phi1_dot;
     const Scalar tmp121 = carried[87];
-    const Scalar tmp3152 = tmp121 + tmp107*phi7_dot + tmp109*phi5_dot + tmp111*phi6_dot
+    const Scalar tmp3193 = tmp121 + tmp107*phi7_dot + tmp109*phi5_dot + tmp111*phi6_dot
         + tmp112*phi2_dot + tmp113*phi3_dot + tmp114*phi4_dot + phi1_dot*tmp110;
     const Scalar tmp277 = carried[215];
     const Scalar tmp279 = carried[217];
@@ -9700,11 +9700,11 @@ struct StiffChain10 {
     const Scalar tmp285 = carried[223];
     const Scalar tmp287 = carried[225];
     const Scalar tmp288 = carried[226];
-    const Scalar tmp3153 = tmp288 + tmp277*phi7_dot + tmp279*phi6_dot + tmp281*phi5_dot
+    const Scalar tmp3194 = tmp288 + tmp277*phi7_dot + tmp279*phi6_dot + tmp281*phi5_dot
         + tmp283*phi4_dot + tmp285*phi3_dot + tmp287*phi2_dot - tmp132*phi8_dot
         - Scalar(2)*tmp159*phi1_dot;
     const Scalar tmp151 = carried[113];
-    const Scalar tmp3154 = tmp151 + tmp135*phi8_dot + tmp137*phi7_dot + tmp138*phi5_dot
+    const Scalar tmp3195 = tmp151 + tmp135*phi8_dot + tmp137*phi7_dot + tmp138*phi5_dot
         + tmp140*phi6_dot + tmp141*phi2_dot + tmp142*phi3_dot + tmp143*phi4_dot + phi1_dot*tmp139;
     const Scalar tmp291 = carried[227];
     const Scalar tmp293 = carried[229];
@@ -9714,11 +9714,11 @@ struct StiffChain10 {
     const Scalar tmp301 = carried[237];
     const Scalar tmp303 = carried[239];
     const Scalar tmp304 = carried[240];
-    const Scalar tmp3155 = tmp304 + tmp291*phi8_dot + tmp293*phi7_dot + tmp295*phi6_dot
+    const Scalar tmp3196 = tmp304 + tmp291*phi8_dot + tmp293*phi7_dot + tmp295*phi6_dot
         + tmp297*phi5_dot + tmp299*phi4_dot + tmp301*phi3_dot + tmp303*phi2_dot - tmp163*phi9_dot
         - Scalar(2)*tmp193*phi1_dot;
     const Scalar tmp184 = carried[142];
-    const Scalar tmp3156 = tmp184 + tmp166*phi9_dot + tmp168*phi7_dot + tmp169*phi5_dot
+    const Scalar tmp3197 = tmp184 + tmp166*phi9_dot + tmp168*phi7_dot + tmp169*phi5_dot
         + tmp171*phi8_dot + tmp172*phi6_dot + tmp173*phi2_dot + tmp174*phi3_dot + tmp175*phi4_dot
         + phi1_dot*tmp170;
     const Scalar tmp307 = carried[241];
@@ -9730,791 +9730,791 @@ struct StiffChain10 {
     const Scalar tmp319 = carried[253];
     const Scalar tmp321 = carried[255];
     const Scalar tmp322 = carried[256];
-    const Scalar tmp3157 = tmp322 + tmp307*phi9_dot + tmp309*phi8_dot + tmp311*phi7_dot
+    const Scalar tmp3198 = tmp322 + tmp307*phi9_dot + tmp309*phi8_dot + tmp311*phi7_dot
         + tmp313*phi6_dot + tmp315*phi5_dot + tmp317*phi4_dot + tmp319*phi3_dot + tmp321*phi2_dot
         - tmp197*phi10_dot - Scalar(2)*tmp230*phi1_dot;
     const Scalar tmp220 = carried[174];
-    const Scalar tmp3158 = tmp220 + tmp200*phi10_dot + tmp202*phi9_dot + tmp203*phi5_dot
+    const Scalar tmp3199 = tmp220 + tmp200*phi10_dot + tmp202*phi9_dot + tmp203*phi5_dot
         + tmp205*phi8_dot + tmp206*phi6_dot + tmp207*phi2_dot + tmp208*phi7_dot + tmp209*phi3_dot
         + tmp210*phi4_dot + phi1_dot*tmp204;
-    const Scalar tmp3159 = m*tmp3139;
-    const Scalar tmp3160 = m*tmp3140;
-    const Scalar tmp3161 = m*tmp3141;
-    const Scalar tmp3162 = m*tmp3142;
-    const Scalar tmp3163 = m*tmp3143;
-    const Scalar tmp3164 = m*tmp3144;
-    const Scalar tmp3165 = m*tmp3145;
-    const Scalar tmp3166 = m*tmp3146;
-    const Scalar tmp3167 = m*tmp3147;
-    const Scalar tmp3168 = m*tmp3148;
-    const Scalar tmp3169 = m*tmp3149;
-    const Scalar tmp3170 = m*tmp3150;
-    const Scalar tmp3171 = m*tmp3151;
-    const Scalar tmp3172 = m*tmp3152;
-    const Scalar tmp3173 = m*tmp3153;
-    const Scalar tmp3174 = m*tmp3154;
-    const Scalar tmp3175 = m*tmp3155;
-    const Scalar tmp3176 = m*tmp3156;
-    const Scalar tmp3177 = m*tmp3157;
-    const Scalar tmp3178 = m*tmp3158;
-    const Scalar tmp3179 = -c;
-    const Scalar tmp3180 = -tmp3*tmp3159 - tmp1*tmp3160 - tmp15*tmp3161 - tmp18*tmp3162
-        - tmp27*tmp3163 - tmp34*tmp3164 - tmp44*tmp3165 - tmp53*tmp3166 - tmp63*tmp3167
-        - tmp75*tmp3168 - tmp85*tmp3169 - tmp100*tmp3170 - tmp110*tmp3171 - tmp128*tmp3172
-        - tmp139*tmp3173 - tmp159*tmp3174 - tmp170*tmp3175 - tmp193*tmp3176 - tmp204*tmp3177
-        - tmp230*tmp3178;
-    dr_dv_data[0 + 10 * 0] = -tmp3179 - tmp3180;
+    const Scalar tmp3200 = m*tmp3180;
+    const Scalar tmp3201 = m*tmp3181;
+    const Scalar tmp3202 = m*tmp3182;
+    const Scalar tmp3203 = m*tmp3183;
+    const Scalar tmp3204 = m*tmp3184;
+    const Scalar tmp3205 = m*tmp3185;
+    const Scalar tmp3206 = m*tmp3186;
+    const Scalar tmp3207 = m*tmp3187;
+    const Scalar tmp3208 = m*tmp3188;
+    const Scalar tmp3209 = m*tmp3189;
+    const Scalar tmp3210 = m*tmp3190;
+    const Scalar tmp3211 = m*tmp3191;
+    const Scalar tmp3212 = m*tmp3192;
+    const Scalar tmp3213 = m*tmp3193;
+    const Scalar tmp3214 = m*tmp3194;
+    const Scalar tmp3215 = m*tmp3195;
+    const Scalar tmp3216 = m*tmp3196;
+    const Scalar tmp3217 = m*tmp3197;
+    const Scalar tmp3218 = m*tmp3198;
+    const Scalar tmp3219 = m*tmp3199;
+    const Scalar tmp3220 = -c;
+    const Scalar tmp3221 = -tmp3*tmp3200 - tmp1*tmp3201 - tmp15*tmp3202 - tmp18*tmp3203
+        - tmp27*tmp3204 - tmp34*tmp3205 - tmp44*tmp3206 - tmp53*tmp3207 - tmp63*tmp3208
+        - tmp75*tmp3209 - tmp85*tmp3210 - tmp100*tmp3211 - tmp110*tmp3212 - tmp128*tmp3213
+        - tmp139*tmp3214 - tmp159*tmp3215 - tmp170*tmp3216 - tmp193*tmp3217 - tmp204*tmp3218
+        - tmp230*tmp3219;
+    dr_dv_data[0 + 10 * 0] = -tmp3220 - tmp3221;
     const Scalar tmp33 = carried[17];
-    const Scalar tmp3181 = -tmp12*tmp3161 - tmp9*tmp3162 - tmp28*tmp3163 - tmp33*tmp3164
-        - tmp45*tmp3165 - tmp52*tmp3166 - tmp65*tmp3167 - tmp74*tmp3168 - tmp87*tmp3169
-        - tmp99*tmp3170 - tmp112*tmp3171 - tmp127*tmp3172 - tmp141*tmp3173 - tmp158*tmp3174
-        - tmp173*tmp3175 - tmp192*tmp3176 - tmp207*tmp3177 - tmp229*tmp3178;
-    dr_dv_data[1 + 10 * 0] = -tmp3181;
-    const Scalar tmp3182 = -tmp25*tmp3163 - tmp22*tmp3164 - tmp43*tmp3165 - tmp51*tmp3166
-        - tmp62*tmp3167 - tmp73*tmp3168 - tmp88*tmp3169 - tmp98*tmp3170 - tmp113*tmp3171
-        - tmp126*tmp3172 - tmp142*tmp3173 - tmp157*tmp3174 - tmp174*tmp3175 - tmp191*tmp3176
-        - tmp209*tmp3177 - tmp228*tmp3178;
-    dr_dv_data[2 + 10 * 0] = -tmp3182;
-    const Scalar tmp3183 = -tmp41*tmp3165 - tmp38*tmp3166 - tmp64*tmp3167 - tmp72*tmp3168
-        - tmp86*tmp3169 - tmp97*tmp3170 - tmp114*tmp3171 - tmp125*tmp3172 - tmp143*tmp3173
-        - tmp156*tmp3174 - tmp175*tmp3175 - tmp190*tmp3176 - tmp210*tmp3177 - tmp227*tmp3178;
-    dr_dv_data[3 + 10 * 0] = -tmp3183;
-    const Scalar tmp3184 = -tmp60*tmp3167 - tmp57*tmp3168 - tmp84*tmp3169 - tmp96*tmp3170
-        - tmp109*tmp3171 - tmp124*tmp3172 - tmp138*tmp3173 - tmp155*tmp3174 - tmp169*tmp3175
-        - tmp189*tmp3176 - tmp203*tmp3177 - tmp226*tmp3178;
-    dr_dv_data[4 + 10 * 0] = -tmp3184;
-    const Scalar tmp3185 = -tmp82*tmp3169 - tmp79*tmp3170 - tmp111*tmp3171 - tmp123*tmp3172
-        - tmp140*tmp3173 - tmp154*tmp3174 - tmp172*tmp3175 - tmp188*tmp3176 - tmp206*tmp3177
-        - tmp225*tmp3178;
-    dr_dv_data[5 + 10 * 0] = -tmp3185;
-    const Scalar tmp3186 = -tmp107*tmp3171 - tmp104*tmp3172 - tmp137*tmp3173 - tmp153*tmp3174
-        - tmp168*tmp3175 - tmp187*tmp3176 - tmp208*tmp3177 - tmp224*tmp3178;
-    dr_dv_data[6 + 10 * 0] = -tmp3186;
-    const Scalar tmp3187 = -tmp135*tmp3173 - tmp132*tmp3174 - tmp171*tmp3175 - tmp186*tmp3176
-        - tmp205*tmp3177 - tmp223*tmp3178;
-    dr_dv_data[7 + 10 * 0] = -tmp3187;
-    const Scalar tmp3188 = -tmp166*tmp3175 - tmp163*tmp3176 - tmp202*tmp3177 - tmp222*tmp3178;
-    dr_dv_data[8 + 10 * 0] = -tmp3188;
-    const Scalar tmp3189 = -tmp200*tmp3177 - tmp197*tmp3178;
-    dr_dv_data[9 + 10 * 0] = -tmp3189;
-    const Scalar tmp3190 = -tmp17 - tmp9*phi1_dot + (-phi1_dot - phi2_dot)*tmp9;
+    const Scalar tmp3222 = -tmp12*tmp3202 - tmp9*tmp3203 - tmp28*tmp3204 - tmp33*tmp3205
+        - tmp45*tmp3206 - tmp52*tmp3207 - tmp65*tmp3208 - tmp74*tmp3209 - tmp87*tmp3210
+        - tmp99*tmp3211 - tmp112*tmp3212 - tmp127*tmp3213 - tmp141*tmp3214 - tmp158*tmp3215
+        - tmp173*tmp3216 - tmp192*tmp3217 - tmp207*tmp3218 - tmp229*tmp3219;
+    dr_dv_data[1 + 10 * 0] = -tmp3222;
+    const Scalar tmp3223 = -tmp25*tmp3204 - tmp22*tmp3205 - tmp43*tmp3206 - tmp51*tmp3207
+        - tmp62*tmp3208 - tmp73*tmp3209 - tmp88*tmp3210 - tmp98*tmp3211 - tmp113*tmp3212
+        - tmp126*tmp3213 - tmp142*tmp3214 - tmp157*tmp3215 - tmp174*tmp3216 - tmp191*tmp3217
+        - tmp209*tmp3218 - tmp228*tmp3219;
+    dr_dv_data[2 + 10 * 0] = -tmp3223;
+    const Scalar tmp3224 = -tmp41*tmp3206 - tmp38*tmp3207 - tmp64*tmp3208 - tmp72*tmp3209
+        - tmp86*tmp3210 - tmp97*tmp3211 - tmp114*tmp3212 - tmp125*tmp3213 - tmp143*tmp3214
+        - tmp156*tmp3215 - tmp175*tmp3216 - tmp190*tmp3217 - tmp210*tmp3218 - tmp227*tmp3219;
+    dr_dv_data[3 + 10 * 0] = -tmp3224;
+    const Scalar tmp3225 = -tmp60*tmp3208 - tmp57*tmp3209 - tmp84*tmp3210 - tmp96*tmp3211
+        - tmp109*tmp3212 - tmp124*tmp3213 - tmp138*tmp3214 - tmp155*tmp3215 - tmp169*tmp3216
+        - tmp189*tmp3217 - tmp203*tmp3218 - tmp226*tmp3219;
+    dr_dv_data[4 + 10 * 0] = -tmp3225;
+    const Scalar tmp3226 = -tmp82*tmp3210 - tmp79*tmp3211 - tmp111*tmp3212 - tmp123*tmp3213
+        - tmp140*tmp3214 - tmp154*tmp3215 - tmp172*tmp3216 - tmp188*tmp3217 - tmp206*tmp3218
+        - tmp225*tmp3219;
+    dr_dv_data[5 + 10 * 0] = -tmp3226;
+    const Scalar tmp3227 = -tmp107*tmp3212 - tmp104*tmp3213 - tmp137*tmp3214 - tmp153*tmp3215
+        - tmp168*tmp3216 - tmp187*tmp3217 - tmp208*tmp3218 - tmp224*tmp3219;
+    dr_dv_data[6 + 10 * 0] = -tmp3227;
+    const Scalar tmp3228 = -tmp135*tmp3214 - tmp132*tmp3215 - tmp171*tmp3216 - tmp186*tmp3217
+        - tmp205*tmp3218 - tmp223*tmp3219;
+    dr_dv_data[7 + 10 * 0] = -tmp3228;
+    const Scalar tmp3229 = -tmp166*tmp3216 - tmp163*tmp3217 - tmp202*tmp3218 - tmp222*tmp3219;
+    dr_dv_data[8 + 10 * 0] = -tmp3229;
+    const Scalar tmp3230 = -tmp200*tmp3218 - tmp197*tmp3219;
+    dr_dv_data[9 + 10 * 0] = -tmp3230;
+    const Scalar tmp3231 = -tmp17 - tmp9*phi1_dot + (-phi1_dot - phi2_dot)*tmp9;
     const Scalar tmp14 = carried[4];
-    const Scalar tmp3191 = tmp14 + tmp12*phi1_dot + (phi1_dot + phi2_dot)*tmp12;
-    const Scalar tmp3192 = tmp238 + tmp237*phi1_dot - tmp22*phi3_dot + (phi1_dot + phi2_dot)*tmp237;
+    const Scalar tmp3232 = tmp14 + tmp12*phi1_dot + (phi1_dot + phi2_dot)*tmp12;
+    const Scalar tmp3233 = tmp238 + tmp237*phi1_dot - tmp22*phi3_dot + (phi1_dot + phi2_dot)*tmp237;
     const Scalar tmp30 = carried[14];
-    const Scalar tmp3193 = tmp30 + tmp25*phi3_dot + tmp28*phi1_dot + (phi1_dot + phi2_dot)*tmp28;
-    const Scalar tmp3194 = tmp244 + tmp241*phi3_dot + tmp243*phi1_dot - tmp38*phi4_dot
+    const Scalar tmp3234 = tmp30 + tmp25*phi3_dot + tmp28*phi1_dot + (phi1_dot + phi2_dot)*tmp28;
+    const Scalar tmp3235 = tmp244 + tmp241*phi3_dot + tmp243*phi1_dot - tmp38*phi4_dot
         + (phi1_dot + phi2_dot)*tmp243;
     const Scalar tmp48 = carried[26];
-    const Scalar tmp3195 = tmp48 + tmp41*phi4_dot + tmp43*phi3_dot + tmp45*phi1_dot
+    const Scalar tmp3236 = tmp48 + tmp41*phi4_dot + tmp43*phi3_dot + tmp45*phi1_dot
         + (phi1_dot + phi2_dot)*tmp45;
-    const Scalar tmp3196 = tmp252 + tmp247*phi4_dot + tmp249*phi3_dot + tmp251*phi1_dot
+    const Scalar tmp3237 = tmp252 + tmp247*phi4_dot + tmp249*phi3_dot + tmp251*phi1_dot
         - tmp57*phi5_dot + (phi1_dot + phi2_dot)*tmp251;
     const Scalar tmp69 = carried[43];
-    const Scalar tmp3197 = tmp69 + tmp60*phi5_dot + tmp62*phi3_dot + tmp64*phi4_dot + tmp65*phi1_dot
+    const Scalar tmp3238 = tmp69 + tmp60*phi5_dot + tmp62*phi3_dot + tmp64*phi4_dot + tmp65*phi1_dot
         + (phi1_dot + phi2_dot)*tmp65;
-    const Scalar tmp3198 = tmp262 + tmp255*phi5_dot + tmp257*phi4_dot + tmp259*phi3_dot
+    const Scalar tmp3239 = tmp262 + tmp255*phi5_dot + tmp257*phi4_dot + tmp259*phi3_dot
         + tmp261*phi1_dot - tmp79*phi6_dot + (phi1_dot + phi2_dot)*tmp261;
     const Scalar tmp93 = carried[63];
-    const Scalar tmp3199 = tmp93 + tmp82*phi6_dot + tmp84*phi5_dot + tmp86*phi4_dot + tmp87*phi1_dot
+    const Scalar tmp3240 = tmp93 + tmp82*phi6_dot + tmp84*phi5_dot + tmp86*phi4_dot + tmp87*phi1_dot
         + tmp88*phi3_dot + (phi1_dot + phi2_dot)*tmp87;
-    const Scalar tmp3200 = tmp274 + tmp265*phi6_dot + tmp267*phi5_dot + tmp269*phi4_dot
+    const Scalar tmp3241 = tmp274 + tmp265*phi6_dot + tmp267*phi5_dot + tmp269*phi4_dot
         + tmp271*phi3_dot + tmp273*phi1_dot - tmp104*phi7_dot + (phi1_dot + phi2_dot)*tmp273;
     const Scalar tmp120 = carried[86];
-    const Scalar tmp3201 = tmp120 + tmp107*phi7_dot + tmp109*phi5_dot + tmp111*phi6_dot
+    const Scalar tmp3242 = tmp120 + tmp107*phi7_dot + tmp109*phi5_dot + tmp111*phi6_dot
         + tmp112*phi1_dot + tmp113*phi3_dot + tmp114*phi4_dot + (phi1_dot + phi2_dot)*tmp112;
-    const Scalar tmp3202 = tmp288 + tmp277*phi7_dot + tmp279*phi6_dot + tmp281*phi5_dot
+    const Scalar tmp3243 = tmp288 + tmp277*phi7_dot + tmp279*phi6_dot + tmp281*phi5_dot
         + tmp283*phi4_dot + tmp285*phi3_dot + tmp287*phi1_dot - tmp132*phi8_dot
         + (phi1_dot + phi2_dot)*tmp287;
     const Scalar tmp150 = carried[112];
-    const Scalar tmp3203 = tmp150 + tmp135*phi8_dot + tmp137*phi7_dot + tmp138*phi5_dot
+    const Scalar tmp3244 = tmp150 + tmp135*phi8_dot + tmp137*phi7_dot + tmp138*phi5_dot
         + tmp140*phi6_dot + tmp141*phi1_dot + tmp142*phi3_dot + tmp143*phi4_dot
         + (phi1_dot + phi2_dot)*tmp141;
-    const Scalar tmp3204 = tmp304 + tmp291*phi8_dot + tmp293*phi7_dot + tmp295*phi6_dot
+    const Scalar tmp3245 = tmp304 + tmp291*phi8_dot + tmp293*phi7_dot + tmp295*phi6_dot
         + tmp297*phi5_dot + tmp299*phi4_dot + tmp301*phi3_dot + tmp303*phi1_dot - tmp163*phi9_dot
         + (phi1_dot + phi2_dot)*tmp303;
     const Scalar tmp183 = carried[141];
-    const Scalar tmp3205 = tmp183 + tmp166*phi9_dot + tmp168*phi7_dot + tmp169*phi5_dot
+    const Scalar tmp3246 = tmp183 + tmp166*phi9_dot + tmp168*phi7_dot + tmp169*phi5_dot
         + tmp171*phi8_dot + tmp172*phi6_dot + tmp173*phi1_dot + tmp174*phi3_dot + tmp175*phi4_dot
         + (phi1_dot + phi2_dot)*tmp173;
-    const Scalar tmp3206 = tmp322 + tmp307*phi9_dot + tmp309*phi8_dot + tmp311*phi7_dot
+    const Scalar tmp3247 = tmp322 + tmp307*phi9_dot + tmp309*phi8_dot + tmp311*phi7_dot
         + tmp313*phi6_dot + tmp315*phi5_dot + tmp317*phi4_dot + tmp319*phi3_dot + tmp321*phi1_dot
         - tmp197*phi10_dot + (phi1_dot + phi2_dot)*tmp321;
     const Scalar tmp219 = carried[173];
-    const Scalar tmp3207 = tmp219 + tmp200*phi10_dot + tmp202*phi9_dot + tmp203*phi5_dot
+    const Scalar tmp3248 = tmp219 + tmp200*phi10_dot + tmp202*phi9_dot + tmp203*phi5_dot
         + tmp205*phi8_dot + tmp206*phi6_dot + tmp207*phi1_dot + tmp208*phi7_dot + tmp209*phi3_dot
         + tmp210*phi4_dot + (phi1_dot + phi2_dot)*tmp207;
-    const Scalar tmp3208 = m*tmp3190;
-    const Scalar tmp3209 = m*tmp3191;
-    const Scalar tmp3210 = m*tmp3192;
-    const Scalar tmp3211 = m*tmp3193;
-    const Scalar tmp3212 = m*tmp3194;
-    const Scalar tmp3213 = m*tmp3195;
-    const Scalar tmp3214 = m*tmp3196;
-    const Scalar tmp3215 = m*tmp3197;
-    const Scalar tmp3216 = m*tmp3198;
-    const Scalar tmp3217 = m*tmp3199;
-    const Scalar tmp3218 = m*tmp3200;
-    const Scalar tmp3219 = m*tmp3201;
-    const Scalar tmp3220 = m*tmp3202;
-    const Scalar tmp3221 = m*tmp3203;
-    const Scalar tmp3222 = m*tmp3204;
-    const Scalar tmp3223 = m*tmp3205;
-    const Scalar tmp3224 = m*tmp3206;
-    const Scalar tmp3225 = m*tmp3207;
-    const Scalar tmp3226 = -c;
-    const Scalar tmp3227 = -tmp15*tmp3208 - tmp18*tmp3209 - tmp27*tmp3210 - tmp34*tmp3211
-        - tmp44*tmp3212 - tmp53*tmp3213 - tmp63*tmp3214 - tmp75*tmp3215 - tmp85*tmp3216
-        - tmp100*tmp3217 - tmp110*tmp3218 - tmp128*tmp3219 - tmp139*tmp3220 - tmp159*tmp3221
-        - tmp170*tmp3222 - tmp193*tmp3223 - tmp204*tmp3224 - tmp230*tmp3225;
-    dr_dv_data[0 + 10 * 1] = -tmp3227;
-    const Scalar tmp3228 = -tmp12*tmp3208 - tmp9*tmp3209 - tmp28*tmp3210 - tmp33*tmp3211
-        - tmp45*tmp3212 - tmp52*tmp3213 - tmp65*tmp3214 - tmp74*tmp3215 - tmp87*tmp3216
-        - tmp99*tmp3217 - tmp112*tmp3218 - tmp127*tmp3219 - tmp141*tmp3220 - tmp158*tmp3221
-        - tmp173*tmp3222 - tmp192*tmp3223 - tmp207*tmp3224 - tmp229*tmp3225;
-    dr_dv_data[1 + 10 * 1] = -tmp3226 - tmp3228;
-    const Scalar tmp3229 = -tmp25*tmp3210 - tmp22*tmp3211 - tmp43*tmp3212 - tmp51*tmp3213
-        - tmp62*tmp3214 - tmp73*tmp3215 - tmp88*tmp3216 - tmp98*tmp3217 - tmp113*tmp3218
-        - tmp126*tmp3219 - tmp142*tmp3220 - tmp157*tmp3221 - tmp174*tmp3222 - tmp191*tmp3223
-        - tmp209*tmp3224 - tmp228*tmp3225;
-    dr_dv_data[2 + 10 * 1] = -tmp3229;
-    const Scalar tmp3230 = -tmp41*tmp3212 - tmp38*tmp3213 - tmp64*tmp3214 - tmp72*tmp3215
-        - tmp86*tmp3216 - tmp97*tmp3217 - tmp114*tmp3218 - tmp125*tmp3219 - tmp143*tmp3220
-        - tmp156*tmp3221 - tmp175*tmp3222 - tmp190*tmp3223 - tmp210*tmp3224 - tmp227*tmp3225;
-    dr_dv_data[3 + 10 * 1] = -tmp3230;
-    const Scalar tmp3231 = -tmp60*tmp3214 - tmp57*tmp3215 - tmp84*tmp3216 - tmp96*tmp3217
-        - tmp109*tmp3218 - tmp124*tmp3219 - tmp138*tmp3220 - tmp155*tmp3221 - tmp169*tmp3222
-        - tmp189*tmp3223 - tmp203*tmp3224 - tmp226*tmp3225;
-    dr_dv_data[4 + 10 * 1] = -tmp3231;
-    const Scalar tmp3232 = -tmp82*tmp3216 - tmp79*tmp3217 - tmp111*tmp3218 - tmp123*tmp3219
-        - tmp140*tmp3220 - tmp154*tmp3221 - tmp172*tmp3222 - tmp188*tmp3223 - tmp206*tmp3224
-        - tmp225*tmp3225;
-    dr_dv_data[5 + 10 * 1] = -tmp3232;
-    const Scalar tmp3233 = -tmp107*tmp3218 - tmp104*tmp3219 - tmp137*tmp3220 - tmp153*tmp3221
-        - tmp168*tmp3222 - tmp187*tmp3223 - tmp208*tmp3224 - tmp224*tmp3225;
-    dr_dv_data[6 + 10 * 1] = -tmp3233;
-    const Scalar tmp3234 = -tmp135*tmp3220 - tmp132*tmp3221 - tmp171*tmp3222 - tmp186*tmp3223
-        - tmp205*tmp3224 - tmp223*tmp3225;
-    dr_dv_data[7 + 10 * 1] = -tmp3234;
-    const Scalar tmp3235 = -tmp166*tmp3222 - tmp163*tmp3223 - tmp202*tmp3224 - tmp222*tmp3225;
-    dr_dv_data[8 + 10 * 1] = -tmp3235;
-    const Scalar tmp3236 = -tmp200*tmp3224 - tmp197*tmp3225;
-    dr_dv_data[9 + 10 * 1] = -tmp3236;
-    const Scalar tmp3237 = -tmp22;
+    const Scalar tmp3249 = m*tmp3231;
+    const Scalar tmp3250 = m*tmp3232;
+    const Scalar tmp3251 = m*tmp3233;
+    const Scalar tmp3252 = m*tmp3234;
+    const Scalar tmp3253 = m*tmp3235;
+    const Scalar tmp3254 = m*tmp3236;
+    const Scalar tmp3255 = m*tmp3237;
+    const Scalar tmp3256 = m*tmp3238;
+    const Scalar tmp3257 = m*tmp3239;
+    const Scalar tmp3258 = m*tmp3240;
+    const Scalar tmp3259 = m*tmp3241;
+    const Scalar tmp3260 = m*tmp3242;
+    const Scalar tmp3261 = m*tmp3243;
+    const Scalar tmp3262 = m*tmp3244;
+    const Scalar tmp3263 = m*tmp3245;
+    const Scalar tmp3264 = m*tmp3246;
+    const Scalar tmp3265 = m*tmp3247;
+    const Scalar tmp3266 = m*tmp3248;
+    const Scalar tmp3267 = -c;
+    const Scalar tmp3268 = -tmp15*tmp3249 - tmp18*tmp3250 - tmp27*tmp3251 - tmp34*tmp3252
+        - tmp44*tmp3253 - tmp53*tmp3254 - tmp63*tmp3255 - tmp75*tmp3256 - tmp85*tmp3257
+        - tmp100*tmp3258 - tmp110*tmp3259 - tmp128*tmp3260 - tmp139*tmp3261 - tmp159*tmp3262
+        - tmp170*tmp3263 - tmp193*tmp3264 - tmp204*tmp3265 - tmp230*tmp3266;
+    dr_dv_data[0 + 10 * 1] = -tmp3268;
+    const Scalar tmp3269 = -tmp12*tmp3249 - tmp9*tmp3250 - tmp28*tmp3251 - tmp33*tmp3252
+        - tmp45*tmp3253 - tmp52*tmp3254 - tmp65*tmp3255 - tmp74*tmp3256 - tmp87*tmp3257
+        - tmp99*tmp3258 - tmp112*tmp3259 - tmp127*tmp3260 - tmp141*tmp3261 - tmp158*tmp3262
+        - tmp173*tmp3263 - tmp192*tmp3264 - tmp207*tmp3265 - tmp229*tmp3266;
+    dr_dv_data[1 + 10 * 1] = -tmp3267 - tmp3269;
+    const Scalar tmp3270 = -tmp25*tmp3251 - tmp22*tmp3252 - tmp43*tmp3253 - tmp51*tmp3254
+        - tmp62*tmp3255 - tmp73*tmp3256 - tmp88*tmp3257 - tmp98*tmp3258 - tmp113*tmp3259
+        - tmp126*tmp3260 - tmp142*tmp3261 - tmp157*tmp3262 - tmp174*tmp3263 - tmp191*tmp3264
+        - tmp209*tmp3265 - tmp228*tmp3266;
+    dr_dv_data[2 + 10 * 1] = -tmp3270;
+    const Scalar tmp3271 = -tmp41*tmp3253 - tmp38*tmp3254 - tmp64*tmp3255 - tmp72*tmp3256
+        - tmp86*tmp3257 - tmp97*tmp3258 - tmp114*tmp3259 - tmp125*tmp3260 - tmp143*tmp3261
+        - tmp156*tmp3262 - tmp175*tmp3263 - tmp190*tmp3264 - tmp210*tmp3265 - tmp227*tmp3266;
+    dr_dv_data[3 + 10 * 1] = -tmp3271;
+    const Scalar tmp3272 = -tmp60*tmp3255 - tmp57*tmp3256 - tmp84*tmp3257 - tmp96*tmp3258
+        - tmp109*tmp3259 - tmp124*tmp3260 - tmp138*tmp3261 - tmp155*tmp3262 - tmp169*tmp3263
+        - tmp189*tmp3264 - tmp203*tmp3265 - tmp226*tmp3266;
+    dr_dv_data[4 + 10 * 1] = -tmp3272;
+    const Scalar tmp3273 = -tmp82*tmp3257 - tmp79*tmp3258 - tmp111*tmp3259 - tmp123*tmp3260
+        - tmp140*tmp3261 - tmp154*tmp3262 - tmp172*tmp3263 - tmp188*tmp3264 - tmp206*tmp3265
+        - tmp225*tmp3266;
+    dr_dv_data[5 + 10 * 1] = -tmp3273;
+    const Scalar tmp3274 = -tmp107*tmp3259 - tmp104*tmp3260 - tmp137*tmp3261 - tmp153*tmp3262
+        - tmp168*tmp3263 - tmp187*tmp3264 - tmp208*tmp3265 - tmp224*tmp3266;
+    dr_dv_data[6 + 10 * 1] = -tmp3274;
+    const Scalar tmp3275 = -tmp135*tmp3261 - tmp132*tmp3262 - tmp171*tmp3263 - tmp186*tmp3264
+        - tmp205*tmp3265 - tmp223*tmp3266;
+    dr_dv_data[7 + 10 * 1] = -tmp3275;
+    const Scalar tmp3276 = -tmp166*tmp3263 - tmp163*tmp3264 - tmp202*tmp3265 - tmp222*tmp3266;
+    dr_dv_data[8 + 10 * 1] = -tmp3276;
+    const Scalar tmp3277 = -tmp200*tmp3265 - tmp197*tmp3266;
+    dr_dv_data[9 + 10 * 1] = -tmp3277;
+    const Scalar tmp3278 = -tmp22;
     const Scalar tmp32 = carried[16];
-    const Scalar tmp3238 = -tmp32 - tmp22*phi1_dot - tmp22*phi2_dot + (phi1_dot + phi2_dot)*tmp3237
+    const Scalar tmp3279 = -tmp32 - tmp22*phi1_dot - tmp22*phi2_dot + (phi1_dot + phi2_dot)*tmp3278
         - phi3_dot*tmp22;
     const Scalar tmp29 = carried[13];
-    const Scalar tmp3239 = tmp29 + tmp25*phi1_dot + tmp25*phi2_dot
+    const Scalar tmp3280 = tmp29 + tmp25*phi1_dot + tmp25*phi2_dot
         + (phi1_dot + phi2_dot + phi3_dot)*tmp25;
     const Scalar tmp242 = carried[188];
-    const Scalar tmp3240 = tmp242 + tmp241*phi1_dot + tmp241*phi2_dot - tmp38*phi4_dot
+    const Scalar tmp3281 = tmp242 + tmp241*phi1_dot + tmp241*phi2_dot - tmp38*phi4_dot
         + (phi1_dot + phi2_dot + phi3_dot)*tmp241;
     const Scalar tmp47 = carried[25];
-    const Scalar tmp3241 = tmp47 + tmp41*phi4_dot + tmp43*phi1_dot + tmp43*phi2_dot
+    const Scalar tmp3282 = tmp47 + tmp41*phi4_dot + tmp43*phi1_dot + tmp43*phi2_dot
         + (phi1_dot + phi2_dot + phi3_dot)*tmp43;
     const Scalar tmp250 = carried[194];
-    const Scalar tmp3242 = tmp250 + tmp247*phi4_dot + tmp249*phi1_dot + tmp249*phi2_dot
+    const Scalar tmp3283 = tmp250 + tmp247*phi4_dot + tmp249*phi1_dot + tmp249*phi2_dot
         - tmp57*phi5_dot + (phi1_dot + phi2_dot + phi3_dot)*tmp249;
     const Scalar tmp68 = carried[42];
-    const Scalar tmp3243 = tmp68 + tmp60*phi5_dot + tmp62*phi1_dot + tmp62*phi2_dot + tmp64*phi4_dot
+    const Scalar tmp3284 = tmp68 + tmp60*phi5_dot + tmp62*phi1_dot + tmp62*phi2_dot + tmp64*phi4_dot
         + (phi1_dot + phi2_dot + phi3_dot)*tmp62;
     const Scalar tmp260 = carried[202];
-    const Scalar tmp3244 = tmp260 + tmp255*phi5_dot + tmp257*phi4_dot + tmp259*phi1_dot
+    const Scalar tmp3285 = tmp260 + tmp255*phi5_dot + tmp257*phi4_dot + tmp259*phi1_dot
         + tmp259*phi2_dot - tmp79*phi6_dot + (phi1_dot + phi2_dot + phi3_dot)*tmp259;
     const Scalar tmp92 = carried[62];
-    const Scalar tmp3245 = tmp92 + tmp82*phi6_dot + tmp84*phi5_dot + tmp86*phi4_dot + tmp88*phi1_dot
+    const Scalar tmp3286 = tmp92 + tmp82*phi6_dot + tmp84*phi5_dot + tmp86*phi4_dot + tmp88*phi1_dot
         + tmp88*phi2_dot + (phi1_dot + phi2_dot + phi3_dot)*tmp88;
     const Scalar tmp272 = carried[212];
-    const Scalar tmp3246 = tmp272 + tmp265*phi6_dot + tmp267*phi5_dot + tmp269*phi4_dot
+    const Scalar tmp3287 = tmp272 + tmp265*phi6_dot + tmp267*phi5_dot + tmp269*phi4_dot
         + tmp271*phi1_dot + tmp271*phi2_dot - tmp104*phi7_dot
         + (phi1_dot + phi2_dot + phi3_dot)*tmp271;
     const Scalar tmp119 = carried[85];
-    const Scalar tmp3247 = tmp119 + tmp107*phi7_dot + tmp109*phi5_dot + tmp111*phi6_dot
+    const Scalar tmp3288 = tmp119 + tmp107*phi7_dot + tmp109*phi5_dot + tmp111*phi6_dot
         + tmp113*phi1_dot + tmp113*phi2_dot + tmp114*phi4_dot
         + (phi1_dot + phi2_dot + phi3_dot)*tmp113;
     const Scalar tmp286 = carried[224];
-    const Scalar tmp3248 = tmp286 + tmp277*phi7_dot + tmp279*phi6_dot + tmp281*phi5_dot
+    const Scalar tmp3289 = tmp286 + tmp277*phi7_dot + tmp279*phi6_dot + tmp281*phi5_dot
         + tmp283*phi4_dot + tmp285*phi1_dot + tmp285*phi2_dot - tmp132*phi8_dot
         + (phi1_dot + phi2_dot + phi3_dot)*tmp285;
     const Scalar tmp149 = carried[111];
-    const Scalar tmp3249 = tmp149 + tmp135*phi8_dot + tmp137*phi7_dot + tmp138*phi5_dot
+    const Scalar tmp3290 = tmp149 + tmp135*phi8_dot + tmp137*phi7_dot + tmp138*phi5_dot
         + tmp140*phi6_dot + tmp142*phi1_dot + tmp142*phi2_dot + tmp143*phi4_dot
         + (phi1_dot + phi2_dot + phi3_dot)*tmp142;
     const Scalar tmp302 = carried[238];
-    const Scalar tmp3250 = tmp302 + tmp291*phi8_dot + tmp293*phi7_dot + tmp295*phi6_dot
+    const Scalar tmp3291 = tmp302 + tmp291*phi8_dot + tmp293*phi7_dot + tmp295*phi6_dot
         + tmp297*phi5_dot + tmp299*phi4_dot + tmp301*phi1_dot + tmp301*phi2_dot - tmp163*phi9_dot
         + (phi1_dot + phi2_dot + phi3_dot)*tmp301;
     const Scalar tmp182 = carried[140];
-    const Scalar tmp3251 = tmp182 + tmp166*phi9_dot + tmp168*phi7_dot + tmp169*phi5_dot
+    const Scalar tmp3292 = tmp182 + tmp166*phi9_dot + tmp168*phi7_dot + tmp169*phi5_dot
         + tmp171*phi8_dot + tmp172*phi6_dot + tmp174*phi1_dot + tmp174*phi2_dot + tmp175*phi4_dot
         + (phi1_dot + phi2_dot + phi3_dot)*tmp174;
     const Scalar tmp320 = carried[254];
-    const Scalar tmp3252 = tmp320 + tmp307*phi9_dot + tmp309*phi8_dot + tmp311*phi7_dot
+    const Scalar tmp3293 = tmp320 + tmp307*phi9_dot + tmp309*phi8_dot + tmp311*phi7_dot
         + tmp313*phi6_dot + tmp315*phi5_dot + tmp317*phi4_dot + tmp319*phi1_dot + tmp319*phi2_dot
         - tmp197*phi10_dot + (phi1_dot + phi2_dot + phi3_dot)*tmp319;
     const Scalar tmp218 = carried[172];
-    const Scalar tmp3253 = tmp218 + tmp200*phi10_dot + tmp202*phi9_dot + tmp203*phi5_dot
+    const Scalar tmp3294 = tmp218 + tmp200*phi10_dot + tmp202*phi9_dot + tmp203*phi5_dot
         + tmp205*phi8_dot + tmp206*phi6_dot + tmp208*phi7_dot + tmp209*phi1_dot + tmp209*phi2_dot
         + tmp210*phi4_dot + (phi1_dot + phi2_dot + phi3_dot)*tmp209;
-    const Scalar tmp3254 = m*tmp3238;
-    const Scalar tmp3255 = m*tmp3239;
-    const Scalar tmp3256 = m*tmp3240;
-    const Scalar tmp3257 = m*tmp3241;
-    const Scalar tmp3258 = m*tmp3242;
-    const Scalar tmp3259 = m*tmp3243;
-    const Scalar tmp3260 = m*tmp3244;
-    const Scalar tmp3261 = m*tmp3245;
-    const Scalar tmp3262 = m*tmp3246;
-    const Scalar tmp3263 = m*tmp3247;
-    const Scalar tmp3264 = m*tmp3248;
-    const Scalar tmp3265 = m*tmp3249;
-    const Scalar tmp3266 = m*tmp3250;
-    const Scalar tmp3267 = m*tmp3251;
-    const Scalar tmp3268 = m*tmp3252;
-    const Scalar tmp3269 = m*tmp3253;
-    const Scalar tmp3270 = -c;
-    const Scalar tmp3271 = -tmp27*tmp3254 - tmp34*tmp3255 - tmp44*tmp3256 - tmp53*tmp3257
-        - tmp63*tmp3258 - tmp75*tmp3259 - tmp85*tmp3260 - tmp100*tmp3261 - tmp110*tmp3262
-        - tmp128*tmp3263 - tmp139*tmp3264 - tmp159*tmp3265 - tmp170*tmp3266 - tmp193*tmp3267
-        - tmp204*tmp3268 - tmp230*tmp3269;
-    dr_dv_data[0 + 10 * 2] = -tmp3271;
-    const Scalar tmp3272 = -tmp28*tmp3254 - tmp33*tmp3255 - tmp45*tmp3256 - tmp52*tmp3257
-        - tmp65*tmp3258 - tmp74*tmp3259 - tmp87*tmp3260 - tmp99*tmp3261 - tmp112*tmp3262
-        - tmp127*tmp3263 - tmp141*tmp3264 - tmp158*tmp3265 - tmp173*tmp3266 - tmp192*tmp3267
-        - tmp207*tmp3268 - tmp229*tmp3269;
-    dr_dv_data[1 + 10 * 2] = -tmp3272;
-    const Scalar tmp3273 = -tmp25*tmp3254 - tmp22*tmp3255 - tmp43*tmp3256 - tmp51*tmp3257
-        - tmp62*tmp3258 - tmp73*tmp3259 - tmp88*tmp3260 - tmp98*tmp3261 - tmp113*tmp3262
-        - tmp126*tmp3263 - tmp142*tmp3264 - tmp157*tmp3265 - tmp174*tmp3266 - tmp191*tmp3267
-        - tmp209*tmp3268 - tmp228*tmp3269;
-    dr_dv_data[2 + 10 * 2] = -tmp3270 - tmp3273;
-    const Scalar tmp3274 = -tmp41*tmp3256 - tmp38*tmp3257 - tmp64*tmp3258 - tmp72*tmp3259
-        - tmp86*tmp3260 - tmp97*tmp3261 - tmp114*tmp3262 - tmp125*tmp3263 - tmp143*tmp3264
-        - tmp156*tmp3265 - tmp175*tmp3266 - tmp190*tmp3267 - tmp210*tmp3268 - tmp227*tmp3269;
-    dr_dv_data[3 + 10 * 2] = -tmp3274;
-    const Scalar tmp3275 = -tmp60*tmp3258 - tmp57*tmp3259 - tmp84*tmp3260 - tmp96*tmp3261
-        - tmp109*tmp3262 - tmp124*tmp3263 - tmp138*tmp3264 - tmp155*tmp3265 - tmp169*tmp3266
-        - tmp189*tmp3267 - tmp203*tmp3268 - tmp226*tmp3269;
-    dr_dv_data[4 + 10 * 2] = -tmp3275;
-    const Scalar tmp3276 = -tmp82*tmp3260 - tmp79*tmp3261 - tmp111*tmp3262 - tmp123*tmp3263
-        - tmp140*tmp3264 - tmp154*tmp3265 - tmp172*tmp3266 - tmp188*tmp3267 - tmp206*tmp3268
-        - tmp225*tmp3269;
-    dr_dv_data[5 + 10 * 2] = -tmp3276;
-    const Scalar tmp3277 = -tmp107*tmp3262 - tmp104*tmp3263 - tmp137*tmp3264 - tmp153*tmp3265
-        - tmp168*tmp3266 - tmp187*tmp3267 - tmp208*tmp3268 - tmp224*tmp3269;
-    dr_dv_data[6 + 10 * 2] = -tmp3277;
-    const Scalar tmp3278 = -tmp135*tmp3264 - tmp132*tmp3265 - tmp171*tmp3266 - tmp186*tmp3267
-        - tmp205*tmp3268 - tmp223*tmp3269;
-    dr_dv_data[7 + 10 * 2] = -tmp3278;
-    const Scalar tmp3279 = -tmp166*tmp3266 - tmp163*tmp3267 - tmp202*tmp3268 - tmp222*tmp3269;
-    dr_dv_data[8 + 10 * 2] = -tmp3279;
-    const Scalar tmp3280 = -tmp200*tmp3268 - tmp197*tmp3269;
-    dr_dv_data[9 + 10 * 2] = -tmp3280;
-    const Scalar tmp3281 = -tmp38;
+    const Scalar tmp3295 = m*tmp3279;
+    const Scalar tmp3296 = m*tmp3280;
+    const Scalar tmp3297 = m*tmp3281;
+    const Scalar tmp3298 = m*tmp3282;
+    const Scalar tmp3299 = m*tmp3283;
+    const Scalar tmp3300 = m*tmp3284;
+    const Scalar tmp3301 = m*tmp3285;
+    const Scalar tmp3302 = m*tmp3286;
+    const Scalar tmp3303 = m*tmp3287;
+    const Scalar tmp3304 = m*tmp3288;
+    const Scalar tmp3305 = m*tmp3289;
+    const Scalar tmp3306 = m*tmp3290;
+    const Scalar tmp3307 = m*tmp3291;
+    const Scalar tmp3308 = m*tmp3292;
+    const Scalar tmp3309 = m*tmp3293;
+    const Scalar tmp3310 = m*tmp3294;
+    const Scalar tmp3311 = -c;
+    const Scalar tmp3312 = -tmp27*tmp3295 - tmp34*tmp3296 - tmp44*tmp3297 - tmp53*tmp3298
+        - tmp63*tmp3299 - tmp75*tmp3300 - tmp85*tmp3301 - tmp100*tmp3302 - tmp110*tmp3303
+        - tmp128*tmp3304 - tmp139*tmp3305 - tmp159*tmp3306 - tmp170*tmp3307 - tmp193*tmp3308
+        - tmp204*tmp3309 - tmp230*tmp3310;
+    dr_dv_data[0 + 10 * 2] = -tmp3312;
+    const Scalar tmp3313 = -tmp28*tmp3295 - tmp33*tmp3296 - tmp45*tmp3297 - tmp52*tmp3298
+        - tmp65*tmp3299 - tmp74*tmp3300 - tmp87*tmp3301 - tmp99*tmp3302 - tmp112*tmp3303
+        - tmp127*tmp3304 - tmp141*tmp3305 - tmp158*tmp3306 - tmp173*tmp3307 - tmp192*tmp3308
+        - tmp207*tmp3309 - tmp229*tmp3310;
+    dr_dv_data[1 + 10 * 2] = -tmp3313;
+    const Scalar tmp3314 = -tmp25*tmp3295 - tmp22*tmp3296 - tmp43*tmp3297 - tmp51*tmp3298
+        - tmp62*tmp3299 - tmp73*tmp3300 - tmp88*tmp3301 - tmp98*tmp3302 - tmp113*tmp3303
+        - tmp126*tmp3304 - tmp142*tmp3305 - tmp157*tmp3306 - tmp174*tmp3307 - tmp191*tmp3308
+        - tmp209*tmp3309 - tmp228*tmp3310;
+    dr_dv_data[2 + 10 * 2] = -tmp3311 - tmp3314;
+    const Scalar tmp3315 = -tmp41*tmp3297 - tmp38*tmp3298 - tmp64*tmp3299 - tmp72*tmp3300
+        - tmp86*tmp3301 - tmp97*tmp3302 - tmp114*tmp3303 - tmp125*tmp3304 - tmp143*tmp3305
+        - tmp156*tmp3306 - tmp175*tmp3307 - tmp190*tmp3308 - tmp210*tmp3309 - tmp227*tmp3310;
+    dr_dv_data[3 + 10 * 2] = -tmp3315;
+    const Scalar tmp3316 = -tmp60*tmp3299 - tmp57*tmp3300 - tmp84*tmp3301 - tmp96*tmp3302
+        - tmp109*tmp3303 - tmp124*tmp3304 - tmp138*tmp3305 - tmp155*tmp3306 - tmp169*tmp3307
+        - tmp189*tmp3308 - tmp203*tmp3309 - tmp226*tmp3310;
+    dr_dv_data[4 + 10 * 2] = -tmp3316;
+    const Scalar tmp3317 = -tmp82*tmp3301 - tmp79*tmp3302 - tmp111*tmp3303 - tmp123*tmp3304
+        - tmp140*tmp3305 - tmp154*tmp3306 - tmp172*tmp3307 - tmp188*tmp3308 - tmp206*tmp3309
+        - tmp225*tmp3310;
+    dr_dv_data[5 + 10 * 2] = -tmp3317;
+    const Scalar tmp3318 = -tmp107*tmp3303 - tmp104*tmp3304 - tmp137*tmp3305 - tmp153*tmp3306
+        - tmp168*tmp3307 - tmp187*tmp3308 - tmp208*tmp3309 - tmp224*tmp3310;
+    dr_dv_data[6 + 10 * 2] = -tmp3318;
+    const Scalar tmp3319 = -tmp135*tmp3305 - tmp132*tmp3306 - tmp171*tmp3307 - tmp186*tmp3308
+        - tmp205*tmp3309 - tmp223*tmp3310;
+    dr_dv_data[7 + 10 * 2] = -tmp3319;
+    const Scalar tmp3320 = -tmp166*tmp3307 - tmp163*tmp3308 - tmp202*tmp3309 - tmp222*tmp3310;
+    dr_dv_data[8 + 10 * 2] = -tmp3320;
+    const Scalar tmp3321 = -tmp200*tmp3309 - tmp197*tmp3310;
+    dr_dv_data[9 + 10 * 2] = -tmp3321;
+    const Scalar tmp3322 = -tmp38;
     const Scalar tmp50 = carried[28];
-    const Scalar tmp3282 = -tmp50 - tmp38*phi1_dot - tmp38*phi2_dot - tmp38*phi3_dot
-        + (phi1_dot + phi2_dot + phi3_dot)*tmp3281 - phi4_dot*tmp38;
+    const Scalar tmp3323 = -tmp50 - tmp38*phi1_dot - tmp38*phi2_dot - tmp38*phi3_dot
+        + (phi1_dot + phi2_dot + phi3_dot)*tmp3322 - phi4_dot*tmp38;
     const Scalar tmp46 = carried[24];
-    const Scalar tmp3283 = tmp46 + tmp41*phi1_dot + tmp41*phi2_dot + tmp41*phi3_dot
+    const Scalar tmp3324 = tmp46 + tmp41*phi1_dot + tmp41*phi2_dot + tmp41*phi3_dot
         + (phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp41;
     const Scalar tmp248 = carried[192];
-    const Scalar tmp3284 = tmp248 + tmp247*phi1_dot + tmp247*phi2_dot + tmp247*phi3_dot
+    const Scalar tmp3325 = tmp248 + tmp247*phi1_dot + tmp247*phi2_dot + tmp247*phi3_dot
         - tmp57*phi5_dot + (phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp247;
     const Scalar tmp67 = carried[41];
-    const Scalar tmp3285 = tmp67 + tmp60*phi5_dot + tmp64*phi1_dot + tmp64*phi2_dot + tmp64*phi3_dot
+    const Scalar tmp3326 = tmp67 + tmp60*phi5_dot + tmp64*phi1_dot + tmp64*phi2_dot + tmp64*phi3_dot
         + (phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp64;
     const Scalar tmp258 = carried[200];
-    const Scalar tmp3286 = tmp258 + tmp255*phi5_dot + tmp257*phi1_dot + tmp257*phi2_dot
+    const Scalar tmp3327 = tmp258 + tmp255*phi5_dot + tmp257*phi1_dot + tmp257*phi2_dot
         + tmp257*phi3_dot - tmp79*phi6_dot + (phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp257;
     const Scalar tmp91 = carried[61];
-    const Scalar tmp3287 = tmp91 + tmp82*phi6_dot + tmp84*phi5_dot + tmp86*phi1_dot + tmp86*phi2_dot
+    const Scalar tmp3328 = tmp91 + tmp82*phi6_dot + tmp84*phi5_dot + tmp86*phi1_dot + tmp86*phi2_dot
         + tmp86*phi3_dot + (phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp86;
     const Scalar tmp270 = carried[210];
-    const Scalar tmp3288 = tmp270 + tmp265*phi6_dot + tmp267*phi5_dot + tmp269*phi1_dot
+    const Scalar tmp3329 = tmp270 + tmp265*phi6_dot + tmp267*phi5_dot + tmp269*phi1_dot
         + tmp269*phi2_dot + tmp269*phi3_dot - tmp104*phi7_dot
         + (phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp269;
     const Scalar tmp118 = carried[84];
-    const Scalar tmp3289 = tmp118 + tmp107*phi7_dot + tmp109*phi5_dot + tmp111*phi6_dot
+    const Scalar tmp3330 = tmp118 + tmp107*phi7_dot + tmp109*phi5_dot + tmp111*phi6_dot
         + tmp114*phi1_dot + tmp114*phi2_dot + tmp114*phi3_dot
         + (phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp114;
     const Scalar tmp284 = carried[222];
-    const Scalar tmp3290 = tmp284 + tmp277*phi7_dot + tmp279*phi6_dot + tmp281*phi5_dot
+    const Scalar tmp3331 = tmp284 + tmp277*phi7_dot + tmp279*phi6_dot + tmp281*phi5_dot
         + tmp283*phi1_dot + tmp283*phi2_dot + tmp283*phi3_dot - tmp132*phi8_dot
         + (phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp283;
     const Scalar tmp148 = carried[110];
-    const Scalar tmp3291 = tmp148 + tmp135*phi8_dot + tmp137*phi7_dot + tmp138*phi5_dot
+    const Scalar tmp3332 = tmp148 + tmp135*phi8_dot + tmp137*phi7_dot + tmp138*phi5_dot
         + tmp140*phi6_dot + tmp143*phi1_dot + tmp143*phi2_dot + tmp143*phi3_dot
         + (phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp143;
     const Scalar tmp300 = carried[236];
-    const Scalar tmp3292 = tmp300 + tmp291*phi8_dot + tmp293*phi7_dot + tmp295*phi6_dot
+    const Scalar tmp3333 = tmp300 + tmp291*phi8_dot + tmp293*phi7_dot + tmp295*phi6_dot
         + tmp297*phi5_dot + tmp299*phi1_dot + tmp299*phi2_dot + tmp299*phi3_dot - tmp163*phi9_dot
         + (phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp299;
     const Scalar tmp181 = carried[139];
-    const Scalar tmp3293 = tmp181 + tmp166*phi9_dot + tmp168*phi7_dot + tmp169*phi5_dot
+    const Scalar tmp3334 = tmp181 + tmp166*phi9_dot + tmp168*phi7_dot + tmp169*phi5_dot
         + tmp171*phi8_dot + tmp172*phi6_dot + tmp175*phi1_dot + tmp175*phi2_dot + tmp175*phi3_dot
         + (phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp175;
     const Scalar tmp318 = carried[252];
-    const Scalar tmp3294 = tmp318 + tmp307*phi9_dot + tmp309*phi8_dot + tmp311*phi7_dot
+    const Scalar tmp3335 = tmp318 + tmp307*phi9_dot + tmp309*phi8_dot + tmp311*phi7_dot
         + tmp313*phi6_dot + tmp315*phi5_dot + tmp317*phi1_dot + tmp317*phi2_dot + tmp317*phi3_dot
         - tmp197*phi10_dot + (phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp317;
     const Scalar tmp217 = carried[171];
-    const Scalar tmp3295 = tmp217 + tmp200*phi10_dot + tmp202*phi9_dot + tmp203*phi5_dot
+    const Scalar tmp3336 = tmp217 + tmp200*phi10_dot + tmp202*phi9_dot + tmp203*phi5_dot
         + tmp205*phi8_dot + tmp206*phi6_dot + tmp208*phi7_dot + tmp210*phi1_dot + tmp210*phi2_dot
         + tmp210*phi3_dot + (phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp210;
-    const Scalar tmp3296 = m*tmp3282;
-    const Scalar tmp3297 = m*tmp3283;
-    const Scalar tmp3298 = m*tmp3284;
-    const Scalar tmp3299 = m*tmp3285;
-    const Scalar tmp3300 = m*tmp3286;
-    const Scalar tmp3301 = m*tmp3287;
-    const Scalar tmp3302 = m*tmp3288;
-    const Scalar tmp3303 = m*tmp3289;
-    const Scalar tmp3304 = m*tmp3290;
-    const Scalar tmp3305 = m*tmp3291;
-    const Scalar tmp3306 = m*tmp3292;
-    const Scalar tmp3307 = m*tmp3293;
-    const Scalar tmp3308 = m*tmp3294;
-    const Scalar tmp3309 = m*tmp3295;
-    const Scalar tmp3310 = -c;
-    const Scalar tmp3311 = -tmp44*tmp3296 - tmp53*tmp3297 - tmp63*tmp3298 - tmp75*tmp3299
-        - tmp85*tmp3300 - tmp100*tmp3301 - tmp110*tmp3302 - tmp128*tmp3303 - tmp139*tmp3304
-        - tmp159*tmp3305 - tmp170*tmp3306 - tmp193*tmp3307 - tmp204*tmp3308 - tmp230*tmp3309;
-    dr_dv_data[0 + 10 * 3] = -tmp3311;
-    const Scalar tmp3312 = -tmp45*tmp3296 - tmp52*tmp3297 - tmp65*tmp3298 - tmp74*tmp3299
-        - tmp87*tmp3300 - tmp99*tmp3301 - tmp112*tmp3302 - tmp127*tmp3303 - tmp141*tmp3304
-        - tmp158*tmp3305 - tmp173*tmp3306 - tmp192*tmp3307 - tmp207*tmp3308 - tmp229*tmp3309;
-    dr_dv_data[1 + 10 * 3] = -tmp3312;
-    const Scalar tmp3313 = -tmp43*tmp3296 - tmp51*tmp3297 - tmp62*tmp3298 - tmp73*tmp3299
-        - tmp88*tmp3300 - tmp98*tmp3301 - tmp113*tmp3302 - tmp126*tmp3303 - tmp142*tmp3304
-        - tmp157*tmp3305 - tmp174*tmp3306 - tmp191*tmp3307 - tmp209*tmp3308 - tmp228*tmp3309;
-    dr_dv_data[2 + 10 * 3] = -tmp3313;
-    const Scalar tmp3314 = -tmp41*tmp3296 - tmp38*tmp3297 - tmp64*tmp3298 - tmp72*tmp3299
-        - tmp86*tmp3300 - tmp97*tmp3301 - tmp114*tmp3302 - tmp125*tmp3303 - tmp143*tmp3304
-        - tmp156*tmp3305 - tmp175*tmp3306 - tmp190*tmp3307 - tmp210*tmp3308 - tmp227*tmp3309;
-    dr_dv_data[3 + 10 * 3] = -tmp3310 - tmp3314;
-    const Scalar tmp3315 = -tmp60*tmp3298 - tmp57*tmp3299 - tmp84*tmp3300 - tmp96*tmp3301
-        - tmp109*tmp3302 - tmp124*tmp3303 - tmp138*tmp3304 - tmp155*tmp3305 - tmp169*tmp3306
-        - tmp189*tmp3307 - tmp203*tmp3308 - tmp226*tmp3309;
-    dr_dv_data[4 + 10 * 3] = -tmp3315;
-    const Scalar tmp3316 = -tmp82*tmp3300 - tmp79*tmp3301 - tmp111*tmp3302 - tmp123*tmp3303
-        - tmp140*tmp3304 - tmp154*tmp3305 - tmp172*tmp3306 - tmp188*tmp3307 - tmp206*tmp3308
-        - tmp225*tmp3309;
-    dr_dv_data[5 + 10 * 3] = -tmp3316;
-    const Scalar tmp3317 = -tmp107*tmp3302 - tmp104*tmp3303 - tmp137*tmp3304 - tmp153*tmp3305
-        - tmp168*tmp3306 - tmp187*tmp3307 - tmp208*tmp3308 - tmp224*tmp3309;
-    dr_dv_data[6 + 10 * 3] = -tmp3317;
-    const Scalar tmp3318 = -tmp135*tmp3304 - tmp132*tmp3305 - tmp171*tmp3306 - tmp186*tmp3307
-        - tmp205*tmp3308 - tmp223*tmp3309;
-    dr_dv_data[7 + 10 * 3] = -tmp3318;
-    const Scalar tmp3319 = -tmp166*tmp3306 - tmp163*tmp3307 - tmp202*tmp3308 - tmp222*tmp3309;
-    dr_dv_data[8 + 10 * 3] = -tmp3319;
-    const Scalar tmp3320 = -tmp200*tmp3308 - tmp197*tmp3309;
-    dr_dv_data[9 + 10 * 3] = -tmp3320;
-    const Scalar tmp3321 = -tmp57;
+    const Scalar tmp3337 = m*tmp3323;
+    const Scalar tmp3338 = m*tmp3324;
+    const Scalar tmp3339 = m*tmp3325;
+    const Scalar tmp3340 = m*tmp3326;
+    const Scalar tmp3341 = m*tmp3327;
+    const Scalar tmp3342 = m*tmp3328;
+    const Scalar tmp3343 = m*tmp3329;
+    const Scalar tmp3344 = m*tmp3330;
+    const Scalar tmp3345 = m*tmp3331;
+    const Scalar tmp3346 = m*tmp3332;
+    const Scalar tmp3347 = m*tmp3333;
+    const Scalar tmp3348 = m*tmp3334;
+    const Scalar tmp3349 = m*tmp3335;
+    const Scalar tmp3350 = m*tmp3336;
+    const Scalar tmp3351 = -c;
+    const Scalar tmp3352 = -tmp44*tmp3337 - tmp53*tmp3338 - tmp63*tmp3339 - tmp75*tmp3340
+        - tmp85*tmp3341 - tmp100*tmp3342 - tmp110*tmp3343 - tmp128*tmp3344 - tmp139*tmp3345
+        - tmp159*tmp3346 - tmp170*tmp3347 - tmp193*tmp3348 - tmp204*tmp3349 - tmp230*tmp3350;
+    dr_dv_data[0 + 10 * 3] = -tmp3352;
+    const Scalar tmp3353 = -tmp45*tmp3337 - tmp52*tmp3338 - tmp65*tmp3339 - tmp74*tmp3340
+        - tmp87*tmp3341 - tmp99*tmp3342 - tmp112*tmp3343 - tmp127*tmp3344 - tmp141*tmp3345
+        - tmp158*tmp3346 - tmp173*tmp3347 - tmp192*tmp3348 - tmp207*tmp3349 - tmp229*tmp3350;
+    dr_dv_data[1 + 10 * 3] = -tmp3353;
+    const Scalar tmp3354 = -tmp43*tmp3337 - tmp51*tmp3338 - tmp62*tmp3339 - tmp73*tmp3340
+        - tmp88*tmp3341 - tmp98*tmp3342 - tmp113*tmp3343 - tmp126*tmp3344 - tmp142*tmp3345
+        - tmp157*tmp3346 - tmp174*tmp3347 - tmp191*tmp3348 - tmp209*tmp3349 - tmp228*tmp3350;
+    dr_dv_data[2 + 10 * 3] = -tmp3354;
+    const Scalar tmp3355 = -tmp41*tmp3337 - tmp38*tmp3338 - tmp64*tmp3339 - tmp72*tmp3340
+        - tmp86*tmp3341 - tmp97*tmp3342 - tmp114*tmp3343 - tmp125*tmp3344 - tmp143*tmp3345
+        - tmp156*tmp3346 - tmp175*tmp3347 - tmp190*tmp3348 - tmp210*tmp3349 - tmp227*tmp3350;
+    dr_dv_data[3 + 10 * 3] = -tmp3351 - tmp3355;
+    const Scalar tmp3356 = -tmp60*tmp3339 - tmp57*tmp3340 - tmp84*tmp3341 - tmp96*tmp3342
+        - tmp109*tmp3343 - tmp124*tmp3344 - tmp138*tmp3345 - tmp155*tmp3346 - tmp169*tmp3347
+        - tmp189*tmp3348 - tmp203*tmp3349 - tmp226*tmp3350;
+    dr_dv_data[4 + 10 * 3] = -tmp3356;
+    const Scalar tmp3357 = -tmp82*tmp3341 - tmp79*tmp3342 - tmp111*tmp3343 - tmp123*tmp3344
+        - tmp140*tmp3345 - tmp154*tmp3346 - tmp172*tmp3347 - tmp188*tmp3348 - tmp206*tmp3349
+        - tmp225*tmp3350;
+    dr_dv_data[5 + 10 * 3] = -tmp3357;
+    const Scalar tmp3358 = -tmp107*tmp3343 - tmp104*tmp3344 - tmp137*tmp3345 - tmp153*tmp3346
+        - tmp168*tmp3347 - tmp187*tmp3348 - tmp208*tmp3349 - tmp224*tmp3350;
+    dr_dv_data[6 + 10 * 3] = -tmp3358;
+    const Scalar tmp3359 = -tmp135*tmp3345 - tmp132*tmp3346 - tmp171*tmp3347 - tmp186*tmp3348
+        - tmp205*tmp3349 - tmp223*tmp3350;
+    dr_dv_data[7 + 10 * 3] = -tmp3359;
+    const Scalar tmp3360 = -tmp166*tmp3347 - tmp163*tmp3348 - tmp202*tmp3349 - tmp222*tmp3350;
+    dr_dv_data[8 + 10 * 3] = -tmp3360;
+    const Scalar tmp3361 = -tmp200*tmp3349 - tmp197*tmp3350;
+    dr_dv_data[9 + 10 * 3] = -tmp3361;
+    const Scalar tmp3362 = -tmp57;
     const Scalar tmp71 = carried[45];
-    const Scalar tmp3322 = -tmp71 - tmp57*phi1_dot - tmp57*phi2_dot - tmp57*phi3_dot
-        - tmp57*phi4_dot + (phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp3321 - phi5_dot*tmp57;
+    const Scalar tmp3363 = -tmp71 - tmp57*phi1_dot - tmp57*phi2_dot - tmp57*phi3_dot
+        - tmp57*phi4_dot + (phi1_dot + phi2_dot + phi3_dot + phi4_dot)*tmp3362 - phi5_dot*tmp57;
     const Scalar tmp66 = carried[40];
-    const Scalar tmp3323 = tmp66 + tmp60*phi1_dot + tmp60*phi2_dot + tmp60*phi3_dot + tmp60*phi4_dot
+    const Scalar tmp3364 = tmp66 + tmp60*phi1_dot + tmp60*phi2_dot + tmp60*phi3_dot + tmp60*phi4_dot
         + (phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp60;
     const Scalar tmp256 = carried[198];
-    const Scalar tmp3324 = tmp256 + tmp255*phi1_dot + tmp255*phi2_dot + tmp255*phi3_dot
+    const Scalar tmp3365 = tmp256 + tmp255*phi1_dot + tmp255*phi2_dot + tmp255*phi3_dot
         + tmp255*phi4_dot - tmp79*phi6_dot
         + (phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp255;
     const Scalar tmp90 = carried[60];
-    const Scalar tmp3325 = tmp90 + tmp82*phi6_dot + tmp84*phi1_dot + tmp84*phi2_dot + tmp84*phi3_dot
+    const Scalar tmp3366 = tmp90 + tmp82*phi6_dot + tmp84*phi1_dot + tmp84*phi2_dot + tmp84*phi3_dot
         + tmp84*phi4_dot + (phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp84;
     const Scalar tmp268 = carried[208];
-    const Scalar tmp3326 = tmp268 + tmp265*phi6_dot + tmp267*phi1_dot + tmp267*phi2_dot
+    const Scalar tmp3367 = tmp268 + tmp265*phi6_dot + tmp267*phi1_dot + tmp267*phi2_dot
         + tmp267*phi3_dot + tmp267*phi4_dot - tmp104*phi7_dot
         + (phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp267;
     const Scalar tmp117 = carried[83];
-    const Scalar tmp3327 = tmp117 + tmp107*phi7_dot + tmp109*phi1_dot + tmp109*phi2_dot
+    const Scalar tmp3368 = tmp117 + tmp107*phi7_dot + tmp109*phi1_dot + tmp109*phi2_dot
         + tmp109*phi3_dot + tmp109*phi4_dot + tmp111*phi6_dot
         + (phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp109;
     const Scalar tmp282 = carried[220];
-    const Scalar tmp3328 = tmp282 + tmp277*phi7_dot + tmp279*phi6_dot + tmp281*phi1_dot
+    const Scalar tmp3369 = tmp282 + tmp277*phi7_dot + tmp279*phi6_dot + tmp281*phi1_dot
         + tmp281*phi2_dot + tmp281*phi3_dot + tmp281*phi4_dot - tmp132*phi8_dot
         + (phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp281;
     const Scalar tmp147 = carried[109];
-    const Scalar tmp3329 = tmp147 + tmp135*phi8_dot + tmp137*phi7_dot + tmp138*phi1_dot
+    const Scalar tmp3370 = tmp147 + tmp135*phi8_dot + tmp137*phi7_dot + tmp138*phi1_dot
         + tmp138*phi2_dot + tmp138*phi3_dot + tmp138*phi4_dot + tmp140*phi6_dot
         + (phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp138;
     const Scalar tmp298 = carried[234];
-    const Scalar tmp3330 = tmp298 + tmp291*phi8_dot + tmp293*phi7_dot + tmp295*phi6_dot
+    const Scalar tmp3371 = tmp298 + tmp291*phi8_dot + tmp293*phi7_dot + tmp295*phi6_dot
         + tmp297*phi1_dot + tmp297*phi2_dot + tmp297*phi3_dot + tmp297*phi4_dot - tmp163*phi9_dot
         + (phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp297;
     const Scalar tmp180 = carried[138];
-    const Scalar tmp3331 = tmp180 + tmp166*phi9_dot + tmp168*phi7_dot + tmp169*phi1_dot
+    const Scalar tmp3372 = tmp180 + tmp166*phi9_dot + tmp168*phi7_dot + tmp169*phi1_dot
         + tmp169*phi2_dot + tmp169*phi3_dot + tmp169*phi4_dot + tmp171*phi8_dot + tmp172*phi6_dot
         + (phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp169;
     const Scalar tmp316 = carried[250];
-    const Scalar tmp3332 = tmp316 + tmp307*phi9_dot + tmp309*phi8_dot + tmp311*phi7_dot
+    const Scalar tmp3373 = tmp316 + tmp307*phi9_dot + tmp309*phi8_dot + tmp311*phi7_dot
         + tmp313*phi6_dot + tmp315*phi1_dot + tmp315*phi2_dot + tmp315*phi3_dot + tmp315*phi4_dot
         - tmp197*phi10_dot + (phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp315;
     const Scalar tmp216 = carried[170];
-    const Scalar tmp3333 = tmp216 + tmp200*phi10_dot + tmp202*phi9_dot + tmp203*phi1_dot
+    const Scalar tmp3374 = tmp216 + tmp200*phi10_dot + tmp202*phi9_dot + tmp203*phi1_dot
         + tmp203*phi2_dot + tmp203*phi3_dot + tmp203*phi4_dot + tmp205*phi8_dot + tmp206*phi6_dot
         + tmp208*phi7_dot + (phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp203;
-    const Scalar tmp3334 = m*tmp3322;
-    const Scalar tmp3335 = m*tmp3323;
-    const Scalar tmp3336 = m*tmp3324;
-    const Scalar tmp3337 = m*tmp3325;
-    const Scalar tmp3338 = m*tmp3326;
-    const Scalar tmp3339 = m*tmp3327;
-    const Scalar tmp3340 = m*tmp3328;
-    const Scalar tmp3341 = m*tmp3329;
-    const Scalar tmp3342 = m*tmp3330;
-    const Scalar tmp3343 = m*tmp3331;
-    const Scalar tmp3344 = m*tmp3332;
-    const Scalar tmp3345 = m*tmp3333;
-    const Scalar tmp3346 = -c;
-    const Scalar tmp3347 = -tmp63*tmp3334 - tmp75*tmp3335 - tmp85*tmp3336 - tmp100*tmp3337
-        - tmp110*tmp3338 - tmp128*tmp3339 - tmp139*tmp3340 - tmp159*tmp3341 - tmp170*tmp3342
-        - tmp193*tmp3343 - tmp204*tmp3344 - tmp230*tmp3345;
-    dr_dv_data[0 + 10 * 4] = -tmp3347;
-    const Scalar tmp3348 = -tmp65*tmp3334 - tmp74*tmp3335 - tmp87*tmp3336 - tmp99*tmp3337
-        - tmp112*tmp3338 - tmp127*tmp3339 - tmp141*tmp3340 - tmp158*tmp3341 - tmp173*tmp3342
-        - tmp192*tmp3343 - tmp207*tmp3344 - tmp229*tmp3345;
-    dr_dv_data[1 + 10 * 4] = -tmp3348;
-    const Scalar tmp3349 = -tmp62*tmp3334 - tmp73*tmp3335 - tmp88*tmp3336 - tmp98*tmp3337
-        - tmp113*tmp3338 - tmp126*tmp3339 - tmp142*tmp3340 - tmp157*tmp3341 - tmp174*tmp3342
-        - tmp191*tmp3343 - tmp209*tmp3344 - tmp228*tmp3345;
-    dr_dv_data[2 + 10 * 4] = -tmp3349;
-    const Scalar tmp3350 = -tmp64*tmp3334 - tmp72*tmp3335 - tmp86*tmp3336 - tmp97*tmp3337
-        - tmp114*tmp3338 - tmp125*tmp3339 - tmp143*tmp3340 - tmp156*tmp3341 - tmp175*tmp3342
-        - tmp190*tmp3343 - tmp210*tmp3344 - tmp227*tmp3345;
-    dr_dv_data[3 + 10 * 4] = -tmp3350;
-    const Scalar tmp3351 = -tmp60*tmp3334 - tmp57*tmp3335 - tmp84*tmp3336 - tmp96*tmp3337
-        - tmp109*tmp3338 - tmp124*tmp3339 - tmp138*tmp3340 - tmp155*tmp3341 - tmp169*tmp3342
-        - tmp189*tmp3343 - tmp203*tmp3344 - tmp226*tmp3345;
-    dr_dv_data[4 + 10 * 4] = -tmp3346 - tmp3351;
-    const Scalar tmp3352 = -tmp82*tmp3336 - tmp79*tmp3337 - tmp111*tmp3338 - tmp123*tmp3339
-        - tmp140*tmp3340 - tmp154*tmp3341 - tmp172*tmp3342 - tmp188*tmp3343 - tmp206*tmp3344
-        - tmp225*tmp3345;
-    dr_dv_data[5 + 10 * 4] = -tmp3352;
-    const Scalar tmp3353 = -tmp107*tmp3338 - tmp104*tmp3339 - tmp137*tmp3340 - tmp153*tmp3341
-        - tmp168*tmp3342 - tmp187*tmp3343 - tmp208*tmp3344 - tmp224*tmp3345;
-    dr_dv_data[6 + 10 * 4] = -tmp3353;
-    const Scalar tmp3354 = -tmp135*tmp3340 - tmp132*tmp3341 - tmp171*tmp3342 - tmp186*tmp3343
-        - tmp205*tmp3344 - tmp223*tmp3345;
-    dr_dv_data[7 + 10 * 4] = -tmp3354;
-    const Scalar tmp3355 = -tmp166*tmp3342 - tmp163*tmp3343 - tmp202*tmp3344 - tmp222*tmp3345;
-    dr_dv_data[8 + 10 * 4] = -tmp3355;
-    const Scalar tmp3356 = -tmp200*tmp3344 - tmp197*tmp3345;
-    dr_dv_data[9 + 10 * 4] = -tmp3356;
-    const Scalar tmp3357 = -tmp79;
+    const Scalar tmp3375 = m*tmp3363;
+    const Scalar tmp3376 = m*tmp3364;
+    const Scalar tmp3377 = m*tmp3365;
+    const Scalar tmp3378 = m*tmp3366;
+    const Scalar tmp3379 = m*tmp3367;
+    const Scalar tmp3380 = m*tmp3368;
+    const Scalar tmp3381 = m*tmp3369;
+    const Scalar tmp3382 = m*tmp3370;
+    const Scalar tmp3383 = m*tmp3371;
+    const Scalar tmp3384 = m*tmp3372;
+    const Scalar tmp3385 = m*tmp3373;
+    const Scalar tmp3386 = m*tmp3374;
+    const Scalar tmp3387 = -c;
+    const Scalar tmp3388 = -tmp63*tmp3375 - tmp75*tmp3376 - tmp85*tmp3377 - tmp100*tmp3378
+        - tmp110*tmp3379 - tmp128*tmp3380 - tmp139*tmp3381 - tmp159*tmp3382 - tmp170*tmp3383
+        - tmp193*tmp3384 - tmp204*tmp3385 - tmp230*tmp3386;
+    dr_dv_data[0 + 10 * 4] = -tmp3388;
+    const Scalar tmp3389 = -tmp65*tmp3375 - tmp74*tmp3376 - tmp87*tmp3377 - tmp99*tmp3378
+        - tmp112*tmp3379 - tmp127*tmp3380 - tmp141*tmp3381 - tmp158*tmp3382 - tmp173*tmp3383
+        - tmp192*tmp3384 - tmp207*tmp3385 - tmp229*tmp3386;
+    dr_dv_data[1 + 10 * 4] = -tmp3389;
+    const Scalar tmp3390 = -tmp62*tmp3375 - tmp73*tmp3376 - tmp88*tmp3377 - tmp98*tmp3378
+        - tmp113*tmp3379 - tmp126*tmp3380 - tmp142*tmp3381 - tmp157*tmp3382 - tmp174*tmp3383
+        - tmp191*tmp3384 - tmp209*tmp3385 - tmp228*tmp3386;
+    dr_dv_data[2 + 10 * 4] = -tmp3390;
+    const Scalar tmp3391 = -tmp64*tmp3375 - tmp72*tmp3376 - tmp86*tmp3377 - tmp97*tmp3378
+        - tmp114*tmp3379 - tmp125*tmp3380 - tmp143*tmp3381 - tmp156*tmp3382 - tmp175*tmp3383
+        - tmp190*tmp3384 - tmp210*tmp3385 - tmp227*tmp3386;
+    dr_dv_data[3 + 10 * 4] = -tmp3391;
+    const Scalar tmp3392 = -tmp60*tmp3375 - tmp57*tmp3376 - tmp84*tmp3377 - tmp96*tmp3378
+        - tmp109*tmp3379 - tmp124*tmp3380 - tmp138*tmp3381 - tmp155*tmp3382 - tmp169*tmp3383
+        - tmp189*tmp3384 - tmp203*tmp3385 - tmp226*tmp3386;
+    dr_dv_data[4 + 10 * 4] = -tmp3387 - tmp3392;
+    const Scalar tmp3393 = -tmp82*tmp3377 - tmp79*tmp3378 - tmp111*tmp3379 - tmp123*tmp3380
+        - tmp140*tmp3381 - tmp154*tmp3382 - tmp172*tmp3383 - tmp188*tmp3384 - tmp206*tmp3385
+        - tmp225*tmp3386;
+    dr_dv_data[5 + 10 * 4] = -tmp3393;
+    const Scalar tmp3394 = -tmp107*tmp3379 - tmp104*tmp3380 - tmp137*tmp3381 - tmp153*tmp3382
+        - tmp168*tmp3383 - tmp187*tmp3384 - tmp208*tmp3385 - tmp224*tmp3386;
+    dr_dv_data[6 + 10 * 4] = -tmp3394;
+    const Scalar tmp3395 = -tmp135*tmp3381 - tmp132*tmp3382 - tmp171*tmp3383 - tmp186*tmp3384
+        - tmp205*tmp3385 - tmp223*tmp3386;
+    dr_dv_data[7 + 10 * 4] = -tmp3395;
+    const Scalar tmp3396 = -tmp166*tmp3383 - tmp163*tmp3384 - tmp202*tmp3385 - tmp222*tmp3386;
+    dr_dv_data[8 + 10 * 4] = -tmp3396;
+    const Scalar tmp3397 = -tmp200*tmp3385 - tmp197*tmp3386;
+    dr_dv_data[9 + 10 * 4] = -tmp3397;
+    const Scalar tmp3398 = -tmp79;
     const Scalar tmp95 = carried[65];
-    const Scalar tmp3358 = -tmp95 - tmp79*phi1_dot - tmp79*phi2_dot - tmp79*phi3_dot
+    const Scalar tmp3399 = -tmp95 - tmp79*phi1_dot - tmp79*phi2_dot - tmp79*phi3_dot
         - tmp79*phi4_dot - tmp79*phi5_dot
-        + (phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp3357 - phi6_dot*tmp79;
+        + (phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot)*tmp3398 - phi6_dot*tmp79;
     const Scalar tmp89 = carried[59];
-    const Scalar tmp3359 = tmp89 + tmp82*phi1_dot + tmp82*phi2_dot + tmp82*phi3_dot + tmp82*phi4_dot
+    const Scalar tmp3400 = tmp89 + tmp82*phi1_dot + tmp82*phi2_dot + tmp82*phi3_dot + tmp82*phi4_dot
         + tmp82*phi5_dot + (phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp82;
     const Scalar tmp266 = carried[206];
-    const Scalar tmp3360 = tmp266 + tmp265*phi1_dot + tmp265*phi2_dot + tmp265*phi3_dot
+    const Scalar tmp3401 = tmp266 + tmp265*phi1_dot + tmp265*phi2_dot + tmp265*phi3_dot
         + tmp265*phi4_dot + tmp265*phi5_dot - tmp104*phi7_dot
         + (phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp265;
     const Scalar tmp116 = carried[82];
-    const Scalar tmp3361 = tmp116 + tmp107*phi7_dot + tmp111*phi1_dot + tmp111*phi2_dot
+    const Scalar tmp3402 = tmp116 + tmp107*phi7_dot + tmp111*phi1_dot + tmp111*phi2_dot
         + tmp111*phi3_dot + tmp111*phi4_dot + tmp111*phi5_dot
         + (phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp111;
     const Scalar tmp280 = carried[218];
-    const Scalar tmp3362 = tmp280 + tmp277*phi7_dot + tmp279*phi1_dot + tmp279*phi2_dot
+    const Scalar tmp3403 = tmp280 + tmp277*phi7_dot + tmp279*phi1_dot + tmp279*phi2_dot
         + tmp279*phi3_dot + tmp279*phi4_dot + tmp279*phi5_dot - tmp132*phi8_dot
         + (phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp279;
     const Scalar tmp146 = carried[108];
-    const Scalar tmp3363 = tmp146 + tmp135*phi8_dot + tmp137*phi7_dot + tmp140*phi1_dot
+    const Scalar tmp3404 = tmp146 + tmp135*phi8_dot + tmp137*phi7_dot + tmp140*phi1_dot
         + tmp140*phi2_dot + tmp140*phi3_dot + tmp140*phi4_dot + tmp140*phi5_dot
         + (phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp140;
     const Scalar tmp296 = carried[232];
-    const Scalar tmp3364 = tmp296 + tmp291*phi8_dot + tmp293*phi7_dot + tmp295*phi1_dot
+    const Scalar tmp3405 = tmp296 + tmp291*phi8_dot + tmp293*phi7_dot + tmp295*phi1_dot
         + tmp295*phi2_dot + tmp295*phi3_dot + tmp295*phi4_dot + tmp295*phi5_dot - tmp163*phi9_dot
         + (phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp295;
     const Scalar tmp179 = carried[137];
-    const Scalar tmp3365 = tmp179 + tmp166*phi9_dot + tmp168*phi7_dot + tmp171*phi8_dot
+    const Scalar tmp3406 = tmp179 + tmp166*phi9_dot + tmp168*phi7_dot + tmp171*phi8_dot
         + tmp172*phi1_dot + tmp172*phi2_dot + tmp172*phi3_dot + tmp172*phi4_dot + tmp172*phi5_dot
         + (phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp172;
     const Scalar tmp314 = carried[248];
-    const Scalar tmp3366 = tmp314 + tmp307*phi9_dot + tmp309*phi8_dot + tmp311*phi7_dot
+    const Scalar tmp3407 = tmp314 + tmp307*phi9_dot + tmp309*phi8_dot + tmp311*phi7_dot
         + tmp313*phi1_dot + tmp313*phi2_dot + tmp313*phi3_dot + tmp313*phi4_dot + tmp313*phi5_dot
         - tmp197*phi10_dot
         + (phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp313;
     const Scalar tmp215 = carried[169];
-    const Scalar tmp3367 = tmp215 + tmp200*phi10_dot + tmp202*phi9_dot + tmp205*phi8_dot
+    const Scalar tmp3408 = tmp215 + tmp200*phi10_dot + tmp202*phi9_dot + tmp205*phi8_dot
         + tmp206*phi1_dot + tmp206*phi2_dot + tmp206*phi3_dot + tmp206*phi4_dot + tmp206*phi5_dot
         + tmp208*phi7_dot
         + (phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp206;
-    const Scalar tmp3368 = m*tmp3358;
-    const Scalar tmp3369 = m*tmp3359;
-    const Scalar tmp3370 = m*tmp3360;
-    const Scalar tmp3371 = m*tmp3361;
-    const Scalar tmp3372 = m*tmp3362;
-    const Scalar tmp3373 = m*tmp3363;
-    const Scalar tmp3374 = m*tmp3364;
-    const Scalar tmp3375 = m*tmp3365;
-    const Scalar tmp3376 = m*tmp3366;
-    const Scalar tmp3377 = m*tmp3367;
-    const Scalar tmp3378 = -c;
-    const Scalar tmp3379 = -tmp85*tmp3368 - tmp100*tmp3369 - tmp110*tmp3370 - tmp128*tmp3371
-        - tmp139*tmp3372 - tmp159*tmp3373 - tmp170*tmp3374 - tmp193*tmp3375 - tmp204*tmp3376
-        - tmp230*tmp3377;
-    dr_dv_data[0 + 10 * 5] = -tmp3379;
-    const Scalar tmp3380 = -tmp87*tmp3368 - tmp99*tmp3369 - tmp112*tmp3370 - tmp127*tmp3371
-        - tmp141*tmp3372 - tmp158*tmp3373 - tmp173*tmp3374 - tmp192*tmp3375 - tmp207*tmp3376
-        - tmp229*tmp3377;
-    dr_dv_data[1 + 10 * 5] = -tmp3380;
-    const Scalar tmp3381 = -tmp88*tmp3368 - tmp98*tmp3369 - tmp113*tmp3370 - tmp126*tmp3371
-        - tmp142*tmp3372 - tmp157*tmp3373 - tmp174*tmp3374 - tmp191*tmp3375 - tmp209*tmp3376
-        - tmp228*tmp3377;
-    dr_dv_data[2 + 10 * 5] = -tmp3381;
-    const Scalar tmp3382 = -tmp86*tmp3368 - tmp97*tmp3369 - tmp114*tmp3370 - tmp125*tmp3371
-        - tmp143*tmp3372 - tmp156*tmp3373 - tmp175*tmp3374 - tmp190*tmp3375 - tmp210*tmp3376
-        - tmp227*tmp3377;
-    dr_dv_data[3 + 10 * 5] = -tmp3382;
-    const Scalar tmp3383 = -tmp84*tmp3368 - tmp96*tmp3369 - tmp109*tmp3370 - tmp124*tmp3371
-        - tmp138*tmp3372 - tmp155*tmp3373 - tmp169*tmp3374 - tmp189*tmp3375 - tmp203*tmp3376
-        - tmp226*tmp3377;
-    dr_dv_data[4 + 10 * 5] = -tmp3383;
-    const Scalar tmp3384 = -tmp82*tmp3368 - tmp79*tmp3369 - tmp111*tmp3370 - tmp123*tmp3371
-        - tmp140*tmp3372 - tmp154*tmp3373 - tmp172*tmp3374 - tmp188*tmp3375 - tmp206*tmp3376
-        - tmp225*tmp3377;
-    dr_dv_data[5 + 10 * 5] = -tmp3378 - tmp3384;
-    const Scalar tmp3385 = -tmp107*tmp3370 - tmp104*tmp3371 - tmp137*tmp3372 - tmp153*tmp3373
-        - tmp168*tmp3374 - tmp187*tmp3375 - tmp208*tmp3376 - tmp224*tmp3377;
-    dr_dv_data[6 + 10 * 5] = -tmp3385;
-    const Scalar tmp3386 = -tmp135*tmp3372 - tmp132*tmp3373 - tmp171*tmp3374 - tmp186*tmp3375
-        - tmp205*tmp3376 - tmp223*tmp3377;
-    dr_dv_data[7 + 10 * 5] = -tmp3386;
-    const Scalar tmp3387 = -tmp166*tmp3374 - tmp163*tmp3375 - tmp202*tmp3376 - tmp222*tmp3377;
-    dr_dv_data[8 + 10 * 5] = -tmp3387;
-    const Scalar tmp3388 = -tmp200*tmp3376 - tmp197*tmp3377;
-    dr_dv_data[9 + 10 * 5] = -tmp3388;
-    const Scalar tmp3389 = -tmp104;
+    const Scalar tmp3409 = m*tmp3399;
+    const Scalar tmp3410 = m*tmp3400;
+    const Scalar tmp3411 = m*tmp3401;
+    const Scalar tmp3412 = m*tmp3402;
+    const Scalar tmp3413 = m*tmp3403;
+    const Scalar tmp3414 = m*tmp3404;
+    const Scalar tmp3415 = m*tmp3405;
+    const Scalar tmp3416 = m*tmp3406;
+    const Scalar tmp3417 = m*tmp3407;
+    const Scalar tmp3418 = m*tmp3408;
+    const Scalar tmp3419 = -c;
+    const Scalar tmp3420 = -tmp85*tmp3409 - tmp100*tmp3410 - tmp110*tmp3411 - tmp128*tmp3412
+        - tmp139*tmp3413 - tmp159*tmp3414 - tmp170*tmp3415 - tmp193*tmp3416 - tmp204*tmp3417
+        - tmp230*tmp3418;
+    dr_dv_data[0 + 10 * 5] = -tmp3420;
+    const Scalar tmp3421 = -tmp87*tmp3409 - tmp99*tmp3410 - tmp112*tmp3411 - tmp127*tmp3412
+        - tmp141*tmp3413 - tmp158*tmp3414 - tmp173*tmp3415 - tmp192*tmp3416 - tmp207*tmp3417
+        - tmp229*tmp3418;
+    dr_dv_data[1 + 10 * 5] = -tmp3421;
+    const Scalar tmp3422 = -tmp88*tmp3409 - tmp98*tmp3410 - tmp113*tmp3411 - tmp126*tmp3412
+        - tmp142*tmp3413 - tmp157*tmp3414 - tmp174*tmp3415 - tmp191*tmp3416 - tmp209*tmp3417
+        - tmp228*tmp3418;
+    dr_dv_data[2 + 10 * 5] = -tmp3422;
+    const Scalar tmp3423 = -tmp86*tmp3409 - tmp97*tmp3410 - tmp114*tmp3411 - tmp125*tmp3412
+        - tmp143*tmp3413 - tmp156*tmp3414 - tmp175*tmp3415 - tmp190*tmp3416 - tmp210*tmp3417
+        - tmp227*tmp3418;
+    dr_dv_data[3 + 10 * 5] = -tmp3423;
+    const Scalar tmp3424 = -tmp84*tmp3409 - tmp96*tmp3410 - tmp109*tmp3411 - tmp124*tmp3412
+        - tmp138*tmp3413 - tmp155*tmp3414 - tmp169*tmp3415 - tmp189*tmp3416 - tmp203*tmp3417
+        - tmp226*tmp3418;
+    dr_dv_data[4 + 10 * 5] = -tmp3424;
+    const Scalar tmp3425 = -tmp82*tmp3409 - tmp79*tmp3410 - tmp111*tmp3411 - tmp123*tmp3412
+        - tmp140*tmp3413 - tmp154*tmp3414 - tmp172*tmp3415 - tmp188*tmp3416 - tmp206*tmp3417
+        - tmp225*tmp3418;
+    dr_dv_data[5 + 10 * 5] = -tmp3419 - tmp3425;
+    const Scalar tmp3426 = -tmp107*tmp3411 - tmp104*tmp3412 - tmp137*tmp3413 - tmp153*tmp3414
+        - tmp168*tmp3415 - tmp187*tmp3416 - tmp208*tmp3417 - tmp224*tmp3418;
+    dr_dv_data[6 + 10 * 5] = -tmp3426;
+    const Scalar tmp3427 = -tmp135*tmp3413 - tmp132*tmp3414 - tmp171*tmp3415 - tmp186*tmp3416
+        - tmp205*tmp3417 - tmp223*tmp3418;
+    dr_dv_data[7 + 10 * 5] = -tmp3427;
+    const Scalar tmp3428 = -tmp166*tmp3415 - tmp163*tmp3416 - tmp202*tmp3417 - tmp222*tmp3418;
+    dr_dv_data[8 + 10 * 5] = -tmp3428;
+    const Scalar tmp3429 = -tmp200*tmp3417 - tmp197*tmp3418;
+    dr_dv_data[9 + 10 * 5] = -tmp3429;
+    const Scalar tmp3430 = -tmp104;
     const Scalar tmp122 = carried[88];
-    const Scalar tmp3390 = -tmp122 - tmp104*phi1_dot - tmp104*phi2_dot - tmp104*phi3_dot
+    const Scalar tmp3431 = -tmp122 - tmp104*phi1_dot - tmp104*phi2_dot - tmp104*phi3_dot
         - tmp104*phi4_dot - tmp104*phi5_dot - tmp104*phi6_dot - phi7_dot*tmp104
-        + (phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp3389;
+        + (phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot)*tmp3430;
     const Scalar tmp115 = carried[81];
-    const Scalar tmp3391 = tmp115 + tmp107*phi1_dot + tmp107*phi2_dot + tmp107*phi3_dot
+    const Scalar tmp3432 = tmp115 + tmp107*phi1_dot + tmp107*phi2_dot + tmp107*phi3_dot
         + tmp107*phi4_dot + tmp107*phi5_dot + tmp107*phi6_dot
         + (phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot)*tmp107;
     const Scalar tmp278 = carried[216];
-    const Scalar tmp3392 = tmp278 + tmp277*phi1_dot + tmp277*phi2_dot + tmp277*phi3_dot
+    const Scalar tmp3433 = tmp278 + tmp277*phi1_dot + tmp277*phi2_dot + tmp277*phi3_dot
         + tmp277*phi4_dot + tmp277*phi5_dot + tmp277*phi6_dot - tmp132*phi8_dot
         + (phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot)*tmp277;
     const Scalar tmp145 = carried[107];
-    const Scalar tmp3393 = tmp145 + tmp135*phi8_dot + tmp137*phi1_dot + tmp137*phi2_dot
+    const Scalar tmp3434 = tmp145 + tmp135*phi8_dot + tmp137*phi1_dot + tmp137*phi2_dot
         + tmp137*phi3_dot + tmp137*phi4_dot + tmp137*phi5_dot + tmp137*phi6_dot
         + (phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot)*tmp137;
     const Scalar tmp294 = carried[230];
-    const Scalar tmp3394 = tmp294 + tmp291*phi8_dot + tmp293*phi1_dot + tmp293*phi2_dot
+    const Scalar tmp3435 = tmp294 + tmp291*phi8_dot + tmp293*phi1_dot + tmp293*phi2_dot
         + tmp293*phi3_dot + tmp293*phi4_dot + tmp293*phi5_dot + tmp293*phi6_dot - tmp163*phi9_dot
         + (phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot)*tmp293;
     const Scalar tmp178 = carried[136];
-    const Scalar tmp3395 = tmp178 + tmp166*phi9_dot + tmp168*phi1_dot + tmp168*phi2_dot
+    const Scalar tmp3436 = tmp178 + tmp166*phi9_dot + tmp168*phi1_dot + tmp168*phi2_dot
         + tmp168*phi3_dot + tmp168*phi4_dot + tmp168*phi5_dot + tmp168*phi6_dot + tmp171*phi8_dot
         + (phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot)*tmp168;
     const Scalar tmp312 = carried[246];
-    const Scalar tmp3396 = tmp312 + tmp307*phi9_dot + tmp309*phi8_dot + tmp311*phi1_dot
+    const Scalar tmp3437 = tmp312 + tmp307*phi9_dot + tmp309*phi8_dot + tmp311*phi1_dot
         + tmp311*phi2_dot + tmp311*phi3_dot + tmp311*phi4_dot + tmp311*phi5_dot + tmp311*phi6_dot
         - tmp197*phi10_dot
         + (phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot)*tmp311;
     const Scalar tmp214 = carried[168];
-    const Scalar tmp3397 = tmp214 + tmp200*phi10_dot + tmp202*phi9_dot + tmp205*phi8_dot
+    const Scalar tmp3438 = tmp214 + tmp200*phi10_dot + tmp202*phi9_dot + tmp205*phi8_dot
         + tmp208*phi1_dot + tmp208*phi2_dot + tmp208*phi3_dot + tmp208*phi4_dot + tmp208*phi5_dot
         + tmp208*phi6_dot
         + (phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot)*tmp208;
-    const Scalar tmp3398 = m*tmp3390;
-    const Scalar tmp3399 = m*tmp3391;
-    const Scalar tmp3400 = m*tmp3392;
-    const Scalar tmp3401 = m*tmp3393;
-    const Scalar tmp3402 = m*tmp3394;
-    const Scalar tmp3403 = m*tmp3395;
-    const Scalar tmp3404 = m*tmp3396;
-    const Scalar tmp3405 = m*tmp3397;
-    const Scalar tmp3406 = -c;
-    const Scalar tmp3407 = -tmp110*tmp3398 - tmp128*tmp3399 - tmp139*tmp3400 - tmp159*tmp3401
-        - tmp170*tmp3402 - tmp193*tmp3403 - tmp204*tmp3404 - tmp230*tmp3405;
-    dr_dv_data[0 + 10 * 6] = -tmp3407;
-    const Scalar tmp3408 = -tmp112*tmp3398 - tmp127*tmp3399 - tmp141*tmp3400 - tmp158*tmp3401
-        - tmp173*tmp3402 - tmp192*tmp3403 - tmp207*tmp3404 - tmp229*tmp3405;
-    dr_dv_data[1 + 10 * 6] = -tmp3408;
-    const Scalar tmp3409 = -tmp113*tmp3398 - tmp126*tmp3399 - tmp142*tmp3400 - tmp157*tmp3401
-        - tmp174*tmp3402 - tmp191*tmp3403 - tmp209*tmp3404 - tmp228*tmp3405;
-    dr_dv_data[2 + 10 * 6] = -tmp3409;
-    const Scalar tmp3410 = -tmp114*tmp3398 - tmp125*tmp3399 - tmp143*tmp3400 - tmp156*tmp3401
-        - tmp175*tmp3402 - tmp190*tmp3403 - tmp210*tmp3404 - tmp227*tmp3405;
-    dr_dv_data[3 + 10 * 6] = -tmp3410;
-    const Scalar tmp3411 = -tmp109*tmp3398 - tmp124*tmp3399 - tmp138*tmp3400 - tmp155*tmp3401
-        - tmp169*tmp3402 - tmp189*tmp3403 - tmp203*tmp3404 - tmp226*tmp3405;
-    dr_dv_data[4 + 10 * 6] = -tmp3411;
-    const Scalar tmp3412 = -tmp111*tmp3398 - tmp123*tmp3399 - tmp140*tmp3400 - tmp154*tmp3401
-        - tmp172*tmp3402 - tmp188*tmp3403 - tmp206*tmp3404 - tmp225*tmp3405;
-    dr_dv_data[5 + 10 * 6] = -tmp3412;
-    const Scalar tmp3413 = -tmp107*tmp3398 - tmp104*tmp3399 - tmp137*tmp3400 - tmp153*tmp3401
-        - tmp168*tmp3402 - tmp187*tmp3403 - tmp208*tmp3404 - tmp224*tmp3405;
-    dr_dv_data[6 + 10 * 6] = -tmp3406 - tmp3413;
-    const Scalar tmp3414 = -tmp135*tmp3400 - tmp132*tmp3401 - tmp171*tmp3402 - tmp186*tmp3403
-        - tmp205*tmp3404 - tmp223*tmp3405;
-    dr_dv_data[7 + 10 * 6] = -tmp3414;
-    const Scalar tmp3415 = -tmp166*tmp3402 - tmp163*tmp3403 - tmp202*tmp3404 - tmp222*tmp3405;
-    dr_dv_data[8 + 10 * 6] = -tmp3415;
-    const Scalar tmp3416 = -tmp200*tmp3404 - tmp197*tmp3405;
-    dr_dv_data[9 + 10 * 6] = -tmp3416;
-    const Scalar tmp3417 = -tmp132;
+    const Scalar tmp3439 = m*tmp3431;
+    const Scalar tmp3440 = m*tmp3432;
+    const Scalar tmp3441 = m*tmp3433;
+    const Scalar tmp3442 = m*tmp3434;
+    const Scalar tmp3443 = m*tmp3435;
+    const Scalar tmp3444 = m*tmp3436;
+    const Scalar tmp3445 = m*tmp3437;
+    const Scalar tmp3446 = m*tmp3438;
+    const Scalar tmp3447 = -c;
+    const Scalar tmp3448 = -tmp110*tmp3439 - tmp128*tmp3440 - tmp139*tmp3441 - tmp159*tmp3442
+        - tmp170*tmp3443 - tmp193*tmp3444 - tmp204*tmp3445 - tmp230*tmp3446;
+    dr_dv_data[0 + 10 * 6] = -tmp3448;
+    const Scalar tmp3449 = -tmp112*tmp3439 - tmp127*tmp3440 - tmp141*tmp3441 - tmp158*tmp3442
+        - tmp173*tmp3443 - tmp192*tmp3444 - tmp207*tmp3445 - tmp229*tmp3446;
+    dr_dv_data[1 + 10 * 6] = -tmp3449;
+    const Scalar tmp3450 = -tmp113*tmp3439 - tmp126*tmp3440 - tmp142*tmp3441 - tmp157*tmp3442
+        - tmp174*tmp3443 - tmp191*tmp3444 - tmp209*tmp3445 - tmp228*tmp3446;
+    dr_dv_data[2 + 10 * 6] = -tmp3450;
+    const Scalar tmp3451 = -tmp114*tmp3439 - tmp125*tmp3440 - tmp143*tmp3441 - tmp156*tmp3442
+        - tmp175*tmp3443 - tmp190*tmp3444 - tmp210*tmp3445 - tmp227*tmp3446;
+    dr_dv_data[3 + 10 * 6] = -tmp3451;
+    const Scalar tmp3452 = -tmp109*tmp3439 - tmp124*tmp3440 - tmp138*tmp3441 - tmp155*tmp3442
+        - tmp169*tmp3443 - tmp189*tmp3444 - tmp203*tmp3445 - tmp226*tmp3446;
+    dr_dv_data[4 + 10 * 6] = -tmp3452;
+    const Scalar tmp3453 = -tmp111*tmp3439 - tmp123*tmp3440 - tmp140*tmp3441 - tmp154*tmp3442
+        - tmp172*tmp3443 - tmp188*tmp3444 - tmp206*tmp3445 - tmp225*tmp3446;
+    dr_dv_data[5 + 10 * 6] = -tmp3453;
+    const Scalar tmp3454 = -tmp107*tmp3439 - tmp104*tmp3440 - tmp137*tmp3441 - tmp153*tmp3442
+        - tmp168*tmp3443 - tmp187*tmp3444 - tmp208*tmp3445 - tmp224*tmp3446;
+    dr_dv_data[6 + 10 * 6] = -tmp3447 - tmp3454;
+    const Scalar tmp3455 = -tmp135*tmp3441 - tmp132*tmp3442 - tmp171*tmp3443 - tmp186*tmp3444
+        - tmp205*tmp3445 - tmp223*tmp3446;
+    dr_dv_data[7 + 10 * 6] = -tmp3455;
+    const Scalar tmp3456 = -tmp166*tmp3443 - tmp163*tmp3444 - tmp202*tmp3445 - tmp222*tmp3446;
+    dr_dv_data[8 + 10 * 6] = -tmp3456;
+    const Scalar tmp3457 = -tmp200*tmp3445 - tmp197*tmp3446;
+    dr_dv_data[9 + 10 * 6] = -tmp3457;
+    const Scalar tmp3458 = -tmp132;
     const Scalar tmp152 = carried[114];
-    const Scalar tmp3418 = -tmp152 - tmp132*phi1_dot - tmp132*phi2_dot - tmp132*phi3_dot
+    const Scalar tmp3459 = -tmp152 - tmp132*phi1_dot - tmp132*phi2_dot - tmp132*phi3_dot
         - tmp132*phi4_dot - tmp132*phi5_dot - tmp132*phi6_dot - tmp132*phi7_dot - phi8_dot*tmp132
-        + (phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot)*tmp3417;
+        + (phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot)*tmp3458;
     const Scalar tmp144 = carried[106];
-    const Scalar tmp3419 = tmp144 + tmp135*phi1_dot + tmp135*phi2_dot + tmp135*phi3_dot
+    const Scalar tmp3460 = tmp144 + tmp135*phi1_dot + tmp135*phi2_dot + tmp135*phi3_dot
         + tmp135*phi4_dot + tmp135*phi5_dot + tmp135*phi6_dot + tmp135*phi7_dot
         + (phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot
             + phi8_dot)*tmp135;
     const Scalar tmp292 = carried[228];
-    const Scalar tmp3420 = tmp292 + tmp291*phi1_dot + tmp291*phi2_dot + tmp291*phi3_dot
+    const Scalar tmp3461 = tmp292 + tmp291*phi1_dot + tmp291*phi2_dot + tmp291*phi3_dot
         + tmp291*phi4_dot + tmp291*phi5_dot + tmp291*phi6_dot + tmp291*phi7_dot - tmp163*phi9_dot
         + (phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot
             + phi8_dot)*tmp291;
     const Scalar tmp177 = carried[135];
-    const Scalar tmp3421 = tmp177 + tmp166*phi9_dot + tmp171*phi1_dot + tmp171*phi2_dot
+    const Scalar tmp3462 = tmp177 + tmp166*phi9_dot + tmp171*phi1_dot + tmp171*phi2_dot
         + tmp171*phi3_dot + tmp171*phi4_dot + tmp171*phi5_dot + tmp171*phi6_dot + tmp171*phi7_dot
         + (phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot
             + phi8_dot)*tmp171;
     const Scalar tmp310 = carried[244];
-    const Scalar tmp3422 = tmp310 + tmp307*phi9_dot + tmp309*phi1_dot + tmp309*phi2_dot
+    const Scalar tmp3463 = tmp310 + tmp307*phi9_dot + tmp309*phi1_dot + tmp309*phi2_dot
         + tmp309*phi3_dot + tmp309*phi4_dot + tmp309*phi5_dot + tmp309*phi6_dot + tmp309*phi7_dot
         - tmp197*phi10_dot
         + (phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot
             + phi8_dot)*tmp309;
     const Scalar tmp213 = carried[167];
-    const Scalar tmp3423 = tmp213 + tmp200*phi10_dot + tmp202*phi9_dot + tmp205*phi1_dot
+    const Scalar tmp3464 = tmp213 + tmp200*phi10_dot + tmp202*phi9_dot + tmp205*phi1_dot
         + tmp205*phi2_dot + tmp205*phi3_dot + tmp205*phi4_dot + tmp205*phi5_dot + tmp205*phi6_dot
         + tmp205*phi7_dot
         + (phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot
             + phi8_dot)*tmp205;
-    const Scalar tmp3424 = m*tmp3418;
-    const Scalar tmp3425 = m*tmp3419;
-    const Scalar tmp3426 = m*tmp3420;
-    const Scalar tmp3427 = m*tmp3421;
-    const Scalar tmp3428 = m*tmp3422;
-    const Scalar tmp3429 = m*tmp3423;
-    const Scalar tmp3430 = -c;
-    const Scalar tmp3431 = -tmp139*tmp3424 - tmp159*tmp3425 - tmp170*tmp3426 - tmp193*tmp3427
-        - tmp204*tmp3428 - tmp230*tmp3429;
-    dr_dv_data[0 + 10 * 7] = -tmp3431;
-    const Scalar tmp3432 = -tmp141*tmp3424 - tmp158*tmp3425 - tmp173*tmp3426 - tmp192*tmp3427
-        - tmp207*tmp3428 - tmp229*tmp3429;
-    dr_dv_data[1 + 10 * 7] = -tmp3432;
-    const Scalar tmp3433 = -tmp142*tmp3424 - tmp157*tmp3425 - tmp174*tmp3426 - tmp191*tmp3427
-        - tmp209*tmp3428 - tmp228*tmp3429;
-    dr_dv_data[2 + 10 * 7] = -tmp3433;
-    const Scalar tmp3434 = -tmp143*tmp3424 - tmp156*tmp3425 - tmp175*tmp3426 - tmp190*tmp3427
-        - tmp210*tmp3428 - tmp227*tmp3429;
-    dr_dv_data[3 + 10 * 7] = -tmp3434;
-    const Scalar tmp3435 = -tmp138*tmp3424 - tmp155*tmp3425 - tmp169*tmp3426 - tmp189*tmp3427
-        - tmp203*tmp3428 - tmp226*tmp3429;
-    dr_dv_data[4 + 10 * 7] = -tmp3435;
-    const Scalar tmp3436 = -tmp140*tmp3424 - tmp154*tmp3425 - tmp172*tmp3426 - tmp188*tmp3427
-        - tmp206*tmp3428 - tmp225*tmp3429;
-    dr_dv_data[5 + 10 * 7] = -tmp3436;
-    const Scalar tmp3437 = -tmp137*tmp3424 - tmp153*tmp3425 - tmp168*tmp3426 - tmp187*tmp3427
-        - tmp208*tmp3428 - tmp224*tmp3429;
-    dr_dv_data[6 + 10 * 7] = -tmp3437;
-    const Scalar tmp3438 = -tmp135*tmp3424 - tmp132*tmp3425 - tmp171*tmp3426 - tmp186*tmp3427
-        - tmp205*tmp3428 - tmp223*tmp3429;
-    dr_dv_data[7 + 10 * 7] = -tmp3430 - tmp3438;
-    const Scalar tmp3439 = -tmp166*tmp3426 - tmp163*tmp3427 - tmp202*tmp3428 - tmp222*tmp3429;
-    dr_dv_data[8 + 10 * 7] = -tmp3439;
-    const Scalar tmp3440 = -tmp200*tmp3428 - tmp197*tmp3429;
-    dr_dv_data[9 + 10 * 7] = -tmp3440;
-    const Scalar tmp3441 = -tmp163;
+    const Scalar tmp3465 = m*tmp3459;
+    const Scalar tmp3466 = m*tmp3460;
+    const Scalar tmp3467 = m*tmp3461;
+    const Scalar tmp3468 = m*tmp3462;
+    const Scalar tmp3469 = m*tmp3463;
+    const Scalar tmp3470 = m*tmp3464;
+    const Scalar tmp3471 = -c;
+    const Scalar tmp3472 = -tmp139*tmp3465 - tmp159*tmp3466 - tmp170*tmp3467 - tmp193*tmp3468
+        - tmp204*tmp3469 - tmp230*tmp3470;
+    dr_dv_data[0 + 10 * 7] = -tmp3472;
+    const Scalar tmp3473 = -tmp141*tmp3465 - tmp158*tmp3466 - tmp173*tmp3467 - tmp192*tmp3468
+        - tmp207*tmp3469 - tmp229*tmp3470;
+    dr_dv_data[1 + 10 * 7] = -tmp3473;
+    const Scalar tmp3474 = -tmp142*tmp3465 - tmp157*tmp3466 - tmp174*tmp3467 - tmp191*tmp3468
+        - tmp209*tmp3469 - tmp228*tmp3470;
+    dr_dv_data[2 + 10 * 7] = -tmp3474;
+    const Scalar tmp3475 = -tmp143*tmp3465 - tmp156*tmp3466 - tmp175*tmp3467 - tmp190*tmp3468
+        - tmp210*tmp3469 - tmp227*tmp3470;
+    dr_dv_data[3 + 10 * 7] = -tmp3475;
+    const Scalar tmp3476 = -tmp138*tmp3465 - tmp155*tmp3466 - tmp169*tmp3467 - tmp189*tmp3468
+        - tmp203*tmp3469 - tmp226*tmp3470;
+    dr_dv_data[4 + 10 * 7] = -tmp3476;
+    const Scalar tmp3477 = -tmp140*tmp3465 - tmp154*tmp3466 - tmp172*tmp3467 - tmp188*tmp3468
+        - tmp206*tmp3469 - tmp225*tmp3470;
+    dr_dv_data[5 + 10 * 7] = -tmp3477;
+    const Scalar tmp3478 = -tmp137*tmp3465 - tmp153*tmp3466 - tmp168*tmp3467 - tmp187*tmp3468
+        - tmp208*tmp3469 - tmp224*tmp3470;
+    dr_dv_data[6 + 10 * 7] = -tmp3478;
+    const Scalar tmp3479 = -tmp135*tmp3465 - tmp132*tmp3466 - tmp171*tmp3467 - tmp186*tmp3468
+        - tmp205*tmp3469 - tmp223*tmp3470;
+    dr_dv_data[7 + 10 * 7] = -tmp3471 - tmp3479;
+    const Scalar tmp3480 = -tmp166*tmp3467 - tmp163*tmp3468 - tmp202*tmp3469 - tmp222*tmp3470;
+    dr_dv_data[8 + 10 * 7] = -tmp3480;
+    const Scalar tmp3481 = -tmp200*tmp3469 - tmp197*tmp3470;
+    dr_dv_data[9 + 10 * 7] = -tmp3481;
+    const Scalar tmp3482 = -tmp163;
     const Scalar tmp185 = carried[143];
-    const Scalar tmp3442 = -tmp185 - tmp163*phi1_dot - tmp163*phi2_dot - tmp163*phi3_dot
+    const Scalar tmp3483 = -tmp185 - tmp163*phi1_dot - tmp163*phi2_dot - tmp163*phi3_dot
         - tmp163*phi4_dot - tmp163*phi5_dot - tmp163*phi6_dot - tmp163*phi7_dot - tmp163*phi8_dot
         - phi9_dot*tmp163
         + (phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot
-            + phi8_dot)*tmp3441;
+            + phi8_dot)*tmp3482;
     const Scalar tmp176 = carried[134];
-    const Scalar tmp3443 = tmp176 + tmp166*phi1_dot + tmp166*phi2_dot + tmp166*phi3_dot
+    const Scalar tmp3484 = tmp176 + tmp166*phi1_dot + tmp166*phi2_dot + tmp166*phi3_dot
         + tmp166*phi4_dot + tmp166*phi5_dot + tmp166*phi6_dot + tmp166*phi7_dot + tmp166*phi8_dot
         + (phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot + phi8_dot
             + phi9_dot)*tmp166;
     const Scalar tmp308 = carried[242];
-    const Scalar tmp3444 = tmp308 + tmp307*phi1_dot + tmp307*phi2_dot + tmp307*phi3_dot
+    const Scalar tmp3485 = tmp308 + tmp307*phi1_dot + tmp307*phi2_dot + tmp307*phi3_dot
         + tmp307*phi4_dot + tmp307*phi5_dot + tmp307*phi6_dot + tmp307*phi7_dot + tmp307*phi8_dot
         - tmp197*phi10_dot
         + (phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot + phi8_dot
             + phi9_dot)*tmp307;
     const Scalar tmp212 = carried[166];
-    const Scalar tmp3445 = tmp212 + tmp200*phi10_dot + tmp202*phi1_dot + tmp202*phi2_dot
+    const Scalar tmp3486 = tmp212 + tmp200*phi10_dot + tmp202*phi1_dot + tmp202*phi2_dot
         + tmp202*phi3_dot + tmp202*phi4_dot + tmp202*phi5_dot + tmp202*phi6_dot + tmp202*phi7_dot
         + tmp202*phi8_dot
         + (phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot + phi8_dot
             + phi9_dot)*tmp202;
-    const Scalar tmp3446 = m*tmp3442;
-    const Scalar tmp3447 = m*tmp3443;
-    const Scalar tmp3448 = m*tmp3444;
-    const Scalar tmp3449 = m*tmp3445;
-    const Scalar tmp3450 = -c;
-    const Scalar tmp3451 = -tmp170*tmp3446 - tmp193*tmp3447 - tmp204*tmp3448 - tmp230*tmp3449;
-    dr_dv_data[0 + 10 * 8] = -tmp3451;
-    const Scalar tmp3452 = -tmp173*tmp3446 - tmp192*tmp3447 - tmp207*tmp3448 - tmp229*tmp3449;
-    dr_dv_data[1 + 10 * 8] = -tmp3452;
-    const Scalar tmp3453 = -tmp174*tmp3446 - tmp191*tmp3447 - tmp209*tmp3448 - tmp228*tmp3449;
-    dr_dv_data[2 + 10 * 8] = -tmp3453;
-    const Scalar tmp3454 = -tmp175*tmp3446 - tmp190*tmp3447 - tmp210*tmp3448 - tmp227*tmp3449;
-    dr_dv_data[3 + 10 * 8] = -tmp3454;
-    const Scalar tmp3455 = -tmp169*tmp3446 - tmp189*tmp3447 - tmp203*tmp3448 - tmp226*tmp3449;
-    dr_dv_data[4 + 10 * 8] = -tmp3455;
-    const Scalar tmp3456 = -tmp172*tmp3446 - tmp188*tmp3447 - tmp206*tmp3448 - tmp225*tmp3449;
-    dr_dv_data[5 + 10 * 8] = -tmp3456;
-    const Scalar tmp3457 = -tmp168*tmp3446 - tmp187*tmp3447 - tmp208*tmp3448 - tmp224*tmp3449;
-    dr_dv_data[6 + 10 * 8] = -tmp3457;
-    const Scalar tmp3458 = -tmp171*tmp3446 - tmp186*tmp3447 - tmp205*tmp3448 - tmp223*tmp3449;
-    dr_dv_data[7 + 10 * 8] = -tmp3458;
-    const Scalar tmp3459 = -tmp166*tmp3446 - tmp163*tmp3447 - tmp202*tmp3448 - tmp222*tmp3449;
-    dr_dv_data[8 + 10 * 8] = -tmp3450 - tmp3459;
-    const Scalar tmp3460 = -tmp200*tmp3448 - tmp197*tmp3449;
-    dr_dv_data[9 + 10 * 8] = -tmp3460;
-    const Scalar tmp3461 = -tmp197;
+    const Scalar tmp3487 = m*tmp3483;
+    const Scalar tmp3488 = m*tmp3484;
+    const Scalar tmp3489 = m*tmp3485;
+    const Scalar tmp3490 = m*tmp3486;
+    const Scalar tmp3491 = -c;
+    const Scalar tmp3492 = -tmp170*tmp3487 - tmp193*tmp3488 - tmp204*tmp3489 - tmp230*tmp3490;
+    dr_dv_data[0 + 10 * 8] = -tmp3492;
+    const Scalar tmp3493 = -tmp173*tmp3487 - tmp192*tmp3488 - tmp207*tmp3489 - tmp229*tmp3490;
+    dr_dv_data[1 + 10 * 8] = -tmp3493;
+    const Scalar tmp3494 = -tmp174*tmp3487 - tmp191*tmp3488 - tmp209*tmp3489 - tmp228*tmp3490;
+    dr_dv_data[2 + 10 * 8] = -tmp3494;
+    const Scalar tmp3495 = -tmp175*tmp3487 - tmp190*tmp3488 - tmp210*tmp3489 - tmp227*tmp3490;
+    dr_dv_data[3 + 10 * 8] = -tmp3495;
+    const Scalar tmp3496 = -tmp169*tmp3487 - tmp189*tmp3488 - tmp203*tmp3489 - tmp226*tmp3490;
+    dr_dv_data[4 + 10 * 8] = -tmp3496;
+    const Scalar tmp3497 = -tmp172*tmp3487 - tmp188*tmp3488 - tmp206*tmp3489 - tmp225*tmp3490;
+    dr_dv_data[5 + 10 * 8] = -tmp3497;
+    const Scalar tmp3498 = -tmp168*tmp3487 - tmp187*tmp3488 - tmp208*tmp3489 - tmp224*tmp3490;
+    dr_dv_data[6 + 10 * 8] = -tmp3498;
+    const Scalar tmp3499 = -tmp171*tmp3487 - tmp186*tmp3488 - tmp205*tmp3489 - tmp223*tmp3490;
+    dr_dv_data[7 + 10 * 8] = -tmp3499;
+    const Scalar tmp3500 = -tmp166*tmp3487 - tmp163*tmp3488 - tmp202*tmp3489 - tmp222*tmp3490;
+    dr_dv_data[8 + 10 * 8] = -tmp3491 - tmp3500;
+    const Scalar tmp3501 = -tmp200*tmp3489 - tmp197*tmp3490;
+    dr_dv_data[9 + 10 * 8] = -tmp3501;
+    const Scalar tmp3502 = -tmp197;
     const Scalar tmp221 = carried[175];
-    const Scalar tmp3462 = -tmp221 - tmp197*phi1_dot - tmp197*phi2_dot - tmp197*phi3_dot
+    const Scalar tmp3503 = -tmp221 - tmp197*phi1_dot - tmp197*phi2_dot - tmp197*phi3_dot
         - tmp197*phi4_dot - tmp197*phi5_dot - tmp197*phi6_dot - tmp197*phi7_dot - tmp197*phi8_dot
         - tmp197*phi9_dot - phi10_dot*tmp197
         + (phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot + phi8_dot
-            + phi9_dot)*tmp3461;
+            + phi9_dot)*tmp3502;
     const Scalar tmp211 = carried[165];
-    const Scalar tmp3463 = tmp211 + tmp200*phi1_dot + tmp200*phi2_dot + tmp200*phi3_dot
+    const Scalar tmp3504 = tmp211 + tmp200*phi1_dot + tmp200*phi2_dot + tmp200*phi3_dot
         + tmp200*phi4_dot + tmp200*phi5_dot + tmp200*phi6_dot + tmp200*phi7_dot + tmp200*phi8_dot
         + tmp200*phi9_dot
         + (phi10_dot + phi1_dot + phi2_dot + phi3_dot + phi4_dot + phi5_dot + phi6_dot + phi7_dot
             + phi8_dot + phi9_dot)*tmp200;
-    const Scalar tmp3464 = m*tmp3462;
-    const Scalar tmp3465 = m*tmp3463;
-    const Scalar tmp3466 = -c;
-    const Scalar tmp3467 = -tmp204*tmp3464 - tmp230*tmp3465;
-    dr_dv_data[0 + 10 * 9] = -tmp3467;
-    const Scalar tmp3468 = -tmp207*tmp3464 - tmp229*tmp3465;
-    dr_dv_data[1 + 10 * 9] = -tmp3468;
-    const Scalar tmp3469 = -tmp209*tmp3464 - tmp228*tmp3465;
-    dr_dv_data[2 + 10 * 9] = -tmp3469;
-    const Scalar tmp3470 = -tmp210*tmp3464 - tmp227*tmp3465;
-    dr_dv_data[3 + 10 * 9] = -tmp3470;
-    const Scalar tmp3471 = -tmp203*tmp3464 - tmp226*tmp3465;
-    dr_dv_data[4 + 10 * 9] = -tmp3471;
-    const Scalar tmp3472 = -tmp206*tmp3464 - tmp225*tmp3465;
-    dr_dv_data[5 + 10 * 9] = -tmp3472;
-    const Scalar tmp3473 = -tmp208*tmp3464 - tmp224*tmp3465;
-    dr_dv_data[6 + 10 * 9] = -tmp3473;
-    const Scalar tmp3474 = -tmp205*tmp3464 - tmp223*tmp3465;
-    dr_dv_data[7 + 10 * 9] = -tmp3474;
-    const Scalar tmp3475 = -tmp202*tmp3464 - tmp222*tmp3465;
-    dr_dv_data[8 + 10 * 9] = -tmp3475;
-    const Scalar tmp3476 = -tmp200*tmp3464 - tmp197*tmp3465;
-    dr_dv_data[9 + 10 * 9] = -tmp3466 - tmp3476;
+    const Scalar tmp3505 = m*tmp3503;
+    const Scalar tmp3506 = m*tmp3504;
+    const Scalar tmp3507 = -c;
+    const Scalar tmp3508 = -tmp204*tmp3505 - tmp230*tmp3506;
+    dr_dv_data[0 + 10 * 9] = -tmp3508;
+    const Scalar tmp3509 = -tmp207*tmp3505 - tmp229*tmp3506;
+    dr_dv_data[1 + 10 * 9] = -tmp3509;
+    const Scalar tmp3510 = -tmp209*tmp3505 - tmp228*tmp3506;
+    dr_dv_data[2 + 10 * 9] = -tmp3510;
+    const Scalar tmp3511 = -tmp210*tmp3505 - tmp227*tmp3506;
+    dr_dv_data[3 + 10 * 9] = -tmp3511;
+    const Scalar tmp3512 = -tmp203*tmp3505 - tmp226*tmp3506;
+    dr_dv_data[4 + 10 * 9] = -tmp3512;
+    const Scalar tmp3513 = -tmp206*tmp3505 - tmp225*tmp3506;
+    dr_dv_data[5 + 10 * 9] = -tmp3513;
+    const Scalar tmp3514 = -tmp208*tmp3505 - tmp224*tmp3506;
+    dr_dv_data[6 + 10 * 9] = -tmp3514;
+    const Scalar tmp3515 = -tmp205*tmp3505 - tmp223*tmp3506;
+    dr_dv_data[7 + 10 * 9] = -tmp3515;
+    const Scalar tmp3516 = -tmp202*tmp3505 - tmp222*tmp3506;
+    dr_dv_data[8 + 10 * 9] = -tmp3516;
+    const Scalar tmp3517 = -tmp200*tmp3505 - tmp197*tmp3506;
+    dr_dv_data[9 + 10 * 9] = -tmp3507 - tmp3517;
   }
 
   /// Jacobians dr/dq and dr/dv of the residual (dr/dqdd = Mt), for Newton steps.
@@ -10793,15 +10793,15 @@ struct StiffChain10 {
     const Scalar tmp231 = tmp221 + tmp222*phi9_dot + tmp223*phi8_dot + tmp224*phi7_dot
         + tmp225*phi6_dot + tmp226*phi5_dot + tmp227*phi4_dot + tmp228*phi3_dot + tmp229*phi2_dot
         + tmp230*phi1_dot;
-    const Scalar tmp442 = (Scalar(0.5))*m;
-    const Scalar tmp443 = tmp442*((tmp121*tmp121) + (tmp129*tmp129))
-        + tmp442*((tmp16*tmp16) + (tmp19*tmp19)) + tmp442*((tmp151*tmp151) + (tmp160*tmp160))
-        + tmp442*((tmp184*tmp184) + (tmp194*tmp194)) + tmp442*((tmp220*tmp220) + (tmp231*tmp231))
-        + tmp442*((tmp31*tmp31) + (tmp35*tmp35)) + tmp442*((tmp49*tmp49) + (tmp54*tmp54))
-        + tmp442*((tmp70*tmp70) + (tmp76*tmp76)) + tmp442*((tmp94*tmp94) + (tmp101*tmp101))
-        + tmp442*((tmp5*tmp5) + (tmp6*tmp6));
+    const Scalar tmp577 = (Scalar(0.5))*m;
+    const Scalar tmp578 = tmp577*((tmp121*tmp121) + (tmp129*tmp129))
+        + tmp577*((tmp16*tmp16) + (tmp19*tmp19)) + tmp577*((tmp151*tmp151) + (tmp160*tmp160))
+        + tmp577*((tmp184*tmp184) + (tmp194*tmp194)) + tmp577*((tmp220*tmp220) + (tmp231*tmp231))
+        + tmp577*((tmp31*tmp31) + (tmp35*tmp35)) + tmp577*((tmp49*tmp49) + (tmp54*tmp54))
+        + tmp577*((tmp70*tmp70) + (tmp76*tmp76)) + tmp577*((tmp94*tmp94) + (tmp101*tmp101))
+        + tmp577*((tmp5*tmp5) + (tmp6*tmp6));
     Scalar result;
-    result = tmp443;
+    result = tmp578;
     return result;
   }
 
@@ -10870,15 +10870,15 @@ struct StiffChain10 {
     const Scalar tmp200 = tmp199*l;
     const Scalar tmp201 = tmp167 - tmp200;
     const Scalar tmp381 = g*m;
-    const Scalar tmp444 = (Scalar(0.5))*k;
-    const Scalar tmp445 = tmp444*(phi1*phi1) + tmp444*(phi10*phi10) + tmp444*(phi2*phi2)
-        + tmp444*(phi3*phi3) + tmp444*(phi4*phi4) + tmp444*(phi5*phi5) + tmp444*(phi6*phi6)
-        + tmp444*(phi7*phi7) + tmp444*(phi8*phi8) + tmp444*(phi9*phi9);
-    const Scalar tmp446 = tmp445 + tmp381*tmp4 + tmp381*tmp42 + tmp381*tmp61 + tmp381*tmp83
+    const Scalar tmp579 = (Scalar(0.5))*k;
+    const Scalar tmp580 = tmp579*(phi1*phi1) + tmp579*(phi10*phi10) + tmp579*(phi2*phi2)
+        + tmp579*(phi3*phi3) + tmp579*(phi4*phi4) + tmp579*(phi5*phi5) + tmp579*(phi6*phi6)
+        + tmp579*(phi7*phi7) + tmp579*(phi8*phi8) + tmp579*(phi9*phi9);
+    const Scalar tmp581 = tmp580 + tmp381*tmp4 + tmp381*tmp42 + tmp381*tmp61 + tmp381*tmp83
         + tmp381*tmp108 + tmp381*tmp136 + tmp381*tmp167 + tmp381*tmp201 + tmp381*tmp13
         + tmp381*tmp26;
     Scalar result;
-    result = tmp446;
+    result = tmp581;
     return result;
   }
 
@@ -10903,12 +10903,12 @@ struct StiffChain10 {
     const Scalar phi9 = q(8);
     const Scalar phi10 = q(9);
     const Scalar k = Scalar(params.k);
-    const Scalar tmp444 = (Scalar(0.5))*k;
-    const Scalar tmp445 = tmp444*(phi1*phi1) + tmp444*(phi10*phi10) + tmp444*(phi2*phi2)
-        + tmp444*(phi3*phi3) + tmp444*(phi4*phi4) + tmp444*(phi5*phi5) + tmp444*(phi6*phi6)
-        + tmp444*(phi7*phi7) + tmp444*(phi8*phi8) + tmp444*(phi9*phi9);
+    const Scalar tmp579 = (Scalar(0.5))*k;
+    const Scalar tmp580 = tmp579*(phi1*phi1) + tmp579*(phi10*phi10) + tmp579*(phi2*phi2)
+        + tmp579*(phi3*phi3) + tmp579*(phi4*phi4) + tmp579*(phi5*phi5) + tmp579*(phi6*phi6)
+        + tmp579*(phi7*phi7) + tmp579*(phi8*phi8) + tmp579*(phi9*phi9);
     Scalar result;
-    result = tmp445;
+    result = tmp580;
     return result;
   }
 
@@ -11180,22 +11180,22 @@ struct StiffChain10 {
         + tmp225*phi6_dot + tmp226*phi5_dot + tmp227*phi4_dot + tmp228*phi3_dot + tmp229*phi2_dot
         + tmp230*phi1_dot;
     const Scalar tmp381 = g*m;
-    const Scalar tmp442 = (Scalar(0.5))*m;
-    const Scalar tmp443 = tmp442*((tmp121*tmp121) + (tmp129*tmp129))
-        + tmp442*((tmp16*tmp16) + (tmp19*tmp19)) + tmp442*((tmp151*tmp151) + (tmp160*tmp160))
-        + tmp442*((tmp184*tmp184) + (tmp194*tmp194)) + tmp442*((tmp220*tmp220) + (tmp231*tmp231))
-        + tmp442*((tmp31*tmp31) + (tmp35*tmp35)) + tmp442*((tmp49*tmp49) + (tmp54*tmp54))
-        + tmp442*((tmp70*tmp70) + (tmp76*tmp76)) + tmp442*((tmp94*tmp94) + (tmp101*tmp101))
-        + tmp442*((tmp5*tmp5) + (tmp6*tmp6));
-    const Scalar tmp444 = (Scalar(0.5))*k;
-    const Scalar tmp445 = tmp444*(phi1*phi1) + tmp444*(phi10*phi10) + tmp444*(phi2*phi2)
-        + tmp444*(phi3*phi3) + tmp444*(phi4*phi4) + tmp444*(phi5*phi5) + tmp444*(phi6*phi6)
-        + tmp444*(phi7*phi7) + tmp444*(phi8*phi8) + tmp444*(phi9*phi9);
-    const Scalar tmp446 = tmp445 + tmp381*tmp4 + tmp381*tmp42 + tmp381*tmp61 + tmp381*tmp83
+    const Scalar tmp577 = (Scalar(0.5))*m;
+    const Scalar tmp578 = tmp577*((tmp121*tmp121) + (tmp129*tmp129))
+        + tmp577*((tmp16*tmp16) + (tmp19*tmp19)) + tmp577*((tmp151*tmp151) + (tmp160*tmp160))
+        + tmp577*((tmp184*tmp184) + (tmp194*tmp194)) + tmp577*((tmp220*tmp220) + (tmp231*tmp231))
+        + tmp577*((tmp31*tmp31) + (tmp35*tmp35)) + tmp577*((tmp49*tmp49) + (tmp54*tmp54))
+        + tmp577*((tmp70*tmp70) + (tmp76*tmp76)) + tmp577*((tmp94*tmp94) + (tmp101*tmp101))
+        + tmp577*((tmp5*tmp5) + (tmp6*tmp6));
+    const Scalar tmp579 = (Scalar(0.5))*k;
+    const Scalar tmp580 = tmp579*(phi1*phi1) + tmp579*(phi10*phi10) + tmp579*(phi2*phi2)
+        + tmp579*(phi3*phi3) + tmp579*(phi4*phi4) + tmp579*(phi5*phi5) + tmp579*(phi6*phi6)
+        + tmp579*(phi7*phi7) + tmp579*(phi8*phi8) + tmp579*(phi9*phi9);
+    const Scalar tmp581 = tmp580 + tmp381*tmp4 + tmp381*tmp42 + tmp381*tmp61 + tmp381*tmp83
         + tmp381*tmp108 + tmp381*tmp136 + tmp381*tmp167 + tmp381*tmp201 + tmp381*tmp13
         + tmp381*tmp26;
     Scalar result;
-    result = tmp443 + tmp446;
+    result = tmp578 + tmp581;
     return result;
   }
 
@@ -13144,7 +13144,7 @@ struct StiffChain10 {
     /// \param[in] penalty_damping  penalty damping coefficient
     /// \param[in] params  model parameters
     /// \return F_penalty (nx)
-    /// Ops: 296
+    /// Ops: 295
     template <typename Scalar>
     static XVector<Scalar> penalty_forces(const XVector<Scalar>& pos,
                                           const XVector<Scalar>& vel,
@@ -13154,139 +13154,178 @@ struct StiffChain10 {
                                           const Params& params) {
       using std::sqrt;
       const Scalar l = Scalar(params.l);
-      const Scalar tmp447 = sqrt((pos(0)*pos(0)) + (pos(1)*pos(1)));
-      const Scalar tmp448 = tmp447 - l;
-      const Scalar tmp449 = (Scalar(1)/l);
-      const Scalar tmp450 = tmp449*kappa;
-      const Scalar tmp451 = (Scalar(1)/tmp447);
-      const Scalar tmp452 = tmp451*pos(0);
-      const Scalar tmp453 = tmp451*pos(1);
-      const Scalar tmp454 = tmp449*penalty_damping;
-      const Scalar tmp455 = -tmp448*tmp450 - tmp454*(tmp452*vel(0) + tmp453*vel(1));
+      const Scalar tmp442 = sqrt((pos(0)*pos(0)) + (pos(1)*pos(1)));
+      const Scalar tmp443 = (Scalar(1)/tmp442);
+      const Scalar tmp444 = tmp443*pos(0);
+      const Scalar tmp445 = tmp442 - l;
+      const Scalar tmp446 = (Scalar(1)/l);
+      const Scalar tmp447 = tmp446*kappa;
+      const Scalar tmp448 = tmp443*pos(1);
+      const Scalar tmp449 = tmp446*penalty_damping;
+      const Scalar tmp450 = tmp445*tmp447 + tmp449*(tmp444*vel(0) + tmp448*vel(1));
+      const Scalar tmp451 = -tmp450;
+      const Scalar tmp452 = tmp444*tmp451;
+      const Scalar tmp453 = tmp448*tmp451;
       const Scalar tmp456 = pos(2) - pos(0);
       const Scalar tmp457 = pos(3) - pos(1);
       const Scalar tmp458 = sqrt((tmp456*tmp456) + (tmp457*tmp457));
-      const Scalar tmp459 = tmp458 - l;
-      const Scalar tmp460 = (Scalar(1)/tmp458);
-      const Scalar tmp461 = tmp456*tmp460;
-      const Scalar tmp462 = tmp457*tmp460;
-      const Scalar tmp463 = tmp450*tmp459
-          + tmp454*(tmp461*(vel(2) - vel(0)) + tmp462*(vel(3) - vel(1)));
-      const Scalar tmp464 = tmp453*tmp455 + tmp462*tmp463;
-      const Scalar tmp465 = pos(4) - pos(2);
-      const Scalar tmp466 = pos(5) - pos(3);
-      const Scalar tmp467 = sqrt((tmp465*tmp465) + (tmp466*tmp466));
-      const Scalar tmp468 = tmp467 - l;
-      const Scalar tmp469 = (Scalar(1)/tmp467);
-      const Scalar tmp470 = tmp465*tmp469;
-      const Scalar tmp471 = tmp466*tmp469;
-      const Scalar tmp472 = tmp450*tmp468
-          + tmp454*(tmp470*(vel(4) - vel(2)) + tmp471*(vel(5) - vel(3)));
-      const Scalar tmp473 = -tmp463;
-      const Scalar tmp474 = tmp462*tmp473 + tmp471*tmp472;
-      const Scalar tmp475 = pos(6) - pos(4);
-      const Scalar tmp476 = pos(7) - pos(5);
-      const Scalar tmp477 = sqrt((tmp475*tmp475) + (tmp476*tmp476));
-      const Scalar tmp478 = tmp477 - l;
-      const Scalar tmp479 = (Scalar(1)/tmp477);
-      const Scalar tmp480 = tmp475*tmp479;
-      const Scalar tmp481 = tmp476*tmp479;
-      const Scalar tmp482 = tmp450*tmp478
-          + tmp454*(tmp480*(vel(6) - vel(4)) + tmp481*(vel(7) - vel(5)));
-      const Scalar tmp483 = -tmp472;
-      const Scalar tmp484 = tmp471*tmp483 + tmp481*tmp482;
-      const Scalar tmp485 = pos(8) - pos(6);
-      const Scalar tmp486 = pos(9) - pos(7);
-      const Scalar tmp487 = sqrt((tmp485*tmp485) + (tmp486*tmp486));
-      const Scalar tmp488 = tmp487 - l;
-      const Scalar tmp489 = (Scalar(1)/tmp487);
-      const Scalar tmp490 = tmp485*tmp489;
-      const Scalar tmp491 = tmp486*tmp489;
-      const Scalar tmp492 = tmp450*tmp488
-          + tmp454*(tmp490*(vel(8) - vel(6)) + tmp491*(vel(9) - vel(7)));
-      const Scalar tmp493 = -tmp482;
-      const Scalar tmp494 = tmp481*tmp493 + tmp491*tmp492;
-      const Scalar tmp495 = pos(10) - pos(8);
-      const Scalar tmp496 = pos(11) - pos(9);
+      const Scalar tmp459 = (Scalar(1)/tmp458);
+      const Scalar tmp460 = tmp456*tmp459;
+      const Scalar tmp461 = tmp458 - l;
+      const Scalar tmp462 = tmp457*tmp459;
+      const Scalar tmp463 = tmp447*tmp461
+          + tmp449*(tmp460*(vel(2) - vel(0)) + tmp462*(vel(3) - vel(1)));
+      const Scalar tmp464 = -tmp463;
+      const Scalar tmp465 = tmp460*tmp464;
+      const Scalar tmp466 = tmp462*tmp464;
+      const Scalar tmp467 = tmp460*tmp463;
+      const Scalar tmp468 = tmp462*tmp463;
+      const Scalar tmp469 = pos(4) - pos(2);
+      const Scalar tmp470 = pos(5) - pos(3);
+      const Scalar tmp471 = sqrt((tmp469*tmp469) + (tmp470*tmp470));
+      const Scalar tmp472 = (Scalar(1)/tmp471);
+      const Scalar tmp473 = tmp469*tmp472;
+      const Scalar tmp474 = tmp471 - l;
+      const Scalar tmp475 = tmp470*tmp472;
+      const Scalar tmp476 = tmp447*tmp474
+          + tmp449*(tmp473*(vel(4) - vel(2)) + tmp475*(vel(5) - vel(3)));
+      const Scalar tmp477 = -tmp476;
+      const Scalar tmp478 = tmp473*tmp477;
+      const Scalar tmp479 = tmp475*tmp477;
+      const Scalar tmp480 = tmp473*tmp476;
+      const Scalar tmp481 = tmp475*tmp476;
+      const Scalar tmp482 = pos(6) - pos(4);
+      const Scalar tmp483 = pos(7) - pos(5);
+      const Scalar tmp484 = sqrt((tmp482*tmp482) + (tmp483*tmp483));
+      const Scalar tmp485 = (Scalar(1)/tmp484);
+      const Scalar tmp486 = tmp482*tmp485;
+      const Scalar tmp487 = tmp484 - l;
+      const Scalar tmp488 = tmp483*tmp485;
+      const Scalar tmp489 = tmp447*tmp487
+          + tmp449*(tmp486*(vel(6) - vel(4)) + tmp488*(vel(7) - vel(5)));
+      const Scalar tmp490 = -tmp489;
+      const Scalar tmp491 = tmp486*tmp490;
+      const Scalar tmp492 = tmp488*tmp490;
+      const Scalar tmp493 = tmp486*tmp489;
+      const Scalar tmp494 = tmp488*tmp489;
+      const Scalar tmp495 = pos(8) - pos(6);
+      const Scalar tmp496 = pos(9) - pos(7);
       const Scalar tmp497 = sqrt((tmp495*tmp495) + (tmp496*tmp496));
-      const Scalar tmp498 = tmp497 - l;
-      const Scalar tmp499 = (Scalar(1)/tmp497);
-      const Scalar tmp500 = tmp495*tmp499;
-      const Scalar tmp501 = tmp496*tmp499;
-      const Scalar tmp502 = tmp450*tmp498
-          + tmp454*(tmp500*(vel(10) - vel(8)) + tmp501*(vel(11) - vel(9)));
-      const Scalar tmp503 = -tmp492;
-      const Scalar tmp504 = tmp491*tmp503 + tmp501*tmp502;
-      const Scalar tmp505 = pos(12) - pos(10);
-      const Scalar tmp506 = pos(13) - pos(11);
-      const Scalar tmp507 = sqrt((tmp505*tmp505) + (tmp506*tmp506));
-      const Scalar tmp508 = tmp507 - l;
-      const Scalar tmp509 = (Scalar(1)/tmp507);
-      const Scalar tmp510 = tmp505*tmp509;
-      const Scalar tmp511 = tmp506*tmp509;
-      const Scalar tmp512 = tmp450*tmp508
-          + tmp454*(tmp510*(vel(12) - vel(10)) + tmp511*(vel(13) - vel(11)));
-      const Scalar tmp513 = -tmp502;
-      const Scalar tmp514 = tmp501*tmp513 + tmp511*tmp512;
-      const Scalar tmp515 = pos(14) - pos(12);
-      const Scalar tmp516 = pos(15) - pos(13);
-      const Scalar tmp517 = sqrt((tmp515*tmp515) + (tmp516*tmp516));
-      const Scalar tmp518 = tmp517 - l;
-      const Scalar tmp519 = (Scalar(1)/tmp517);
-      const Scalar tmp520 = tmp515*tmp519;
-      const Scalar tmp521 = tmp516*tmp519;
-      const Scalar tmp522 = tmp450*tmp518
-          + tmp454*(tmp520*(vel(14) - vel(12)) + tmp521*(vel(15) - vel(13)));
-      const Scalar tmp523 = -tmp512;
-      const Scalar tmp524 = tmp511*tmp523 + tmp521*tmp522;
-      const Scalar tmp525 = -pos(16);
-      const Scalar tmp526 = -tmp525 - pos(14);
-      const Scalar tmp527 = -pos(17);
-      const Scalar tmp528 = -tmp527 - pos(15);
-      const Scalar tmp529 = sqrt((tmp526*tmp526) + (tmp528*tmp528));
-      const Scalar tmp530 = tmp529 - l;
-      const Scalar tmp531 = -vel(16);
-      const Scalar tmp532 = (Scalar(1)/tmp529);
-      const Scalar tmp533 = tmp526*tmp532;
-      const Scalar tmp534 = -vel(17);
-      const Scalar tmp535 = tmp528*tmp532;
-      const Scalar tmp536 = tmp450*tmp530
-          + tmp454*(tmp533*(-tmp531 - vel(14)) + tmp535*(-tmp534 - vel(15)));
-      const Scalar tmp537 = -tmp522;
-      const Scalar tmp538 = tmp521*tmp537 + tmp535*tmp536;
-      const Scalar tmp539 = tmp525 + pos(18);
-      const Scalar tmp540 = tmp527 + pos(19);
-      const Scalar tmp541 = sqrt((tmp539*tmp539) + (tmp540*tmp540));
-      const Scalar tmp542 = tmp541 - l;
-      const Scalar tmp543 = (Scalar(1)/tmp541);
-      const Scalar tmp544 = tmp539*tmp543;
-      const Scalar tmp545 = tmp540*tmp543;
-      const Scalar tmp546 = tmp450*tmp542
-          + tmp454*(tmp544*(tmp531 + vel(18)) + tmp545*(tmp534 + vel(19)));
-      const Scalar tmp547 = -tmp536;
-      const Scalar tmp548 = tmp535*tmp547 + tmp545*tmp546;
-      const Scalar tmp549 = -tmp546;
+      const Scalar tmp498 = (Scalar(1)/tmp497);
+      const Scalar tmp499 = tmp495*tmp498;
+      const Scalar tmp500 = tmp497 - l;
+      const Scalar tmp501 = tmp496*tmp498;
+      const Scalar tmp502 = tmp447*tmp500
+          + tmp449*(tmp499*(vel(8) - vel(6)) + tmp501*(vel(9) - vel(7)));
+      const Scalar tmp503 = -tmp502;
+      const Scalar tmp504 = tmp499*tmp503;
+      const Scalar tmp505 = tmp501*tmp503;
+      const Scalar tmp506 = tmp499*tmp502;
+      const Scalar tmp507 = tmp501*tmp502;
+      const Scalar tmp508 = pos(10) - pos(8);
+      const Scalar tmp509 = pos(11) - pos(9);
+      const Scalar tmp510 = sqrt((tmp508*tmp508) + (tmp509*tmp509));
+      const Scalar tmp511 = (Scalar(1)/tmp510);
+      const Scalar tmp512 = tmp508*tmp511;
+      const Scalar tmp513 = tmp510 - l;
+      const Scalar tmp514 = tmp509*tmp511;
+      const Scalar tmp515 = tmp447*tmp513
+          + tmp449*(tmp512*(vel(10) - vel(8)) + tmp514*(vel(11) - vel(9)));
+      const Scalar tmp516 = -tmp515;
+      const Scalar tmp517 = tmp512*tmp516;
+      const Scalar tmp518 = tmp514*tmp516;
+      const Scalar tmp519 = tmp512*tmp515;
+      const Scalar tmp520 = tmp514*tmp515;
+      const Scalar tmp521 = pos(12) - pos(10);
+      const Scalar tmp522 = pos(13) - pos(11);
+      const Scalar tmp523 = sqrt((tmp521*tmp521) + (tmp522*tmp522));
+      const Scalar tmp524 = (Scalar(1)/tmp523);
+      const Scalar tmp525 = tmp521*tmp524;
+      const Scalar tmp526 = tmp523 - l;
+      const Scalar tmp527 = tmp522*tmp524;
+      const Scalar tmp528 = tmp447*tmp526
+          + tmp449*(tmp525*(vel(12) - vel(10)) + tmp527*(vel(13) - vel(11)));
+      const Scalar tmp529 = -tmp528;
+      const Scalar tmp530 = tmp525*tmp529;
+      const Scalar tmp531 = tmp527*tmp529;
+      const Scalar tmp532 = tmp525*tmp528;
+      const Scalar tmp533 = tmp527*tmp528;
+      const Scalar tmp534 = pos(14) - pos(12);
+      const Scalar tmp535 = pos(15) - pos(13);
+      const Scalar tmp536 = sqrt((tmp534*tmp534) + (tmp535*tmp535));
+      const Scalar tmp537 = (Scalar(1)/tmp536);
+      const Scalar tmp538 = tmp534*tmp537;
+      const Scalar tmp539 = tmp536 - l;
+      const Scalar tmp540 = tmp535*tmp537;
+      const Scalar tmp541 = tmp447*tmp539
+          + tmp449*(tmp538*(vel(14) - vel(12)) + tmp540*(vel(15) - vel(13)));
+      const Scalar tmp542 = -tmp541;
+      const Scalar tmp543 = tmp538*tmp542;
+      const Scalar tmp544 = tmp540*tmp542;
+      const Scalar tmp545 = tmp538*tmp541;
+      const Scalar tmp546 = tmp540*tmp541;
+      const Scalar tmp547 = -pos(16);
+      const Scalar tmp548 = -tmp547 - pos(14);
+      const Scalar tmp549 = -pos(17);
+      const Scalar tmp550 = -tmp549 - pos(15);
+      const Scalar tmp551 = sqrt((tmp548*tmp548) + (tmp550*tmp550));
+      const Scalar tmp552 = (Scalar(1)/tmp551);
+      const Scalar tmp553 = tmp548*tmp552;
+      const Scalar tmp554 = tmp551 - l;
+      const Scalar tmp555 = -vel(16);
+      const Scalar tmp556 = -vel(17);
+      const Scalar tmp557 = tmp550*tmp552;
+      const Scalar tmp558 = tmp447*tmp554
+          + tmp449*(tmp553*(-tmp555 - vel(14)) + tmp557*(-tmp556 - vel(15)));
+      const Scalar tmp559 = -tmp558;
+      const Scalar tmp560 = tmp553*tmp559;
+      const Scalar tmp561 = tmp557*tmp559;
+      const Scalar tmp562 = tmp553*tmp558;
+      const Scalar tmp563 = tmp557*tmp558;
+      const Scalar tmp564 = tmp547 + pos(18);
+      const Scalar tmp565 = tmp549 + pos(19);
+      const Scalar tmp566 = sqrt((tmp564*tmp564) + (tmp565*tmp565));
+      const Scalar tmp567 = (Scalar(1)/tmp566);
+      const Scalar tmp568 = tmp564*tmp567;
+      const Scalar tmp569 = tmp566 - l;
+      const Scalar tmp570 = tmp565*tmp567;
+      const Scalar tmp571 = tmp447*tmp569
+          + tmp449*(tmp568*(tmp555 + vel(18)) + tmp570*(tmp556 + vel(19)));
+      const Scalar tmp572 = -tmp571;
+      const Scalar tmp573 = tmp568*tmp572;
+      const Scalar tmp574 = tmp570*tmp572;
+      const Scalar tmp575 = tmp568*tmp571;
+      const Scalar tmp576 = tmp570*tmp571;
+      const Scalar tmp582 = tmp453 + tmp468;
+      const Scalar tmp583 = tmp481 + tmp466;
+      const Scalar tmp584 = tmp494 + tmp479;
+      const Scalar tmp585 = tmp492 + tmp507;
+      const Scalar tmp586 = tmp505 + tmp520;
+      const Scalar tmp587 = tmp518 + tmp533;
+      const Scalar tmp588 = tmp531 + tmp546;
+      const Scalar tmp589 = tmp544 + tmp563;
+      const Scalar tmp590 = tmp561 + tmp576;
       XVector<Scalar> result;
-      result(0) = tmp452*tmp455 + tmp461*tmp463;
-      result(1) = tmp464;
-      result(2) = tmp461*tmp473 + tmp470*tmp472;
-      result(3) = tmp474;
-      result(4) = tmp470*tmp483 + tmp480*tmp482;
-      result(5) = tmp484;
-      result(6) = tmp480*tmp493 + tmp490*tmp492;
-      result(7) = tmp494;
-      result(8) = tmp490*tmp503 + tmp500*tmp502;
-      result(9) = tmp504;
-      result(10) = tmp500*tmp513 + tmp510*tmp512;
-      result(11) = tmp514;
-      result(12) = tmp510*tmp523 + tmp520*tmp522;
-      result(13) = tmp524;
-      result(14) = tmp520*tmp537 + tmp533*tmp536;
-      result(15) = tmp538;
-      result(16) = tmp533*tmp547 + tmp544*tmp546;
-      result(17) = tmp548;
-      result(18) = tmp544*tmp549;
-      result(19) = tmp545*tmp549;
+      result(0) = tmp452 + tmp467;
+      result(1) = tmp582;
+      result(2) = tmp480 + tmp465;
+      result(3) = tmp583;
+      result(4) = tmp493 + tmp478;
+      result(5) = tmp584;
+      result(6) = tmp491 + tmp506;
+      result(7) = tmp585;
+      result(8) = tmp504 + tmp519;
+      result(9) = tmp586;
+      result(10) = tmp517 + tmp532;
+      result(11) = tmp587;
+      result(12) = tmp530 + tmp545;
+      result(13) = tmp588;
+      result(14) = tmp543 + tmp562;
+      result(15) = tmp589;
+      result(16) = tmp560 + tmp575;
+      result(17) = tmp590;
+      result(18) = tmp573;
+      result(19) = tmp574;
       return result;
     }
 
@@ -13298,7 +13337,7 @@ struct StiffChain10 {
     /// \param[in] penalty_damping  penalty damping coefficient
     /// \param[in] params  model parameters
     /// \return values (jacobian_x_nonzeros)
-    /// Ops: 1639
+    /// Ops: 1621
     template <typename Scalar>
     static std::array<Scalar, 112> force_jacobian_x(const XVector<Scalar>& pos,
                                                     const XVector<Scalar>& vel,
@@ -13308,536 +13347,653 @@ struct StiffChain10 {
                                                     const Params& params) {
       using std::sqrt;
       const Scalar l = Scalar(params.l);
-      const Scalar tmp447 = sqrt((pos(0)*pos(0)) + (pos(1)*pos(1)));
-      const Scalar tmp448 = tmp447 - l;
-      const Scalar tmp449 = (Scalar(1)/l);
-      const Scalar tmp450 = tmp449*kappa;
-      const Scalar tmp451 = (Scalar(1)/tmp447);
-      const Scalar tmp452 = tmp451*pos(0);
-      const Scalar tmp453 = tmp451*pos(1);
-      const Scalar tmp454 = tmp449*penalty_damping;
-      const Scalar tmp455 = -tmp448*tmp450 - tmp454*(tmp452*vel(0) + tmp453*vel(1));
+      const Scalar tmp442 = sqrt((pos(0)*pos(0)) + (pos(1)*pos(1)));
+      const Scalar tmp443 = (Scalar(1)/tmp442);
+      const Scalar tmp444 = tmp443*pos(0);
+      const Scalar tmp445 = tmp442 - l;
+      const Scalar tmp446 = (Scalar(1)/l);
+      const Scalar tmp447 = tmp446*kappa;
+      const Scalar tmp448 = tmp443*pos(1);
+      const Scalar tmp449 = tmp446*penalty_damping;
+      const Scalar tmp450 = tmp445*tmp447 + tmp449*(tmp444*vel(0) + tmp448*vel(1));
+      const Scalar tmp451 = -tmp450;
       const Scalar tmp456 = pos(2) - pos(0);
       const Scalar tmp457 = pos(3) - pos(1);
       const Scalar tmp458 = sqrt((tmp456*tmp456) + (tmp457*tmp457));
-      const Scalar tmp459 = tmp458 - l;
-      const Scalar tmp460 = (Scalar(1)/tmp458);
-      const Scalar tmp461 = tmp456*tmp460;
-      const Scalar tmp462 = tmp457*tmp460;
-      const Scalar tmp463 = tmp450*tmp459
-          + tmp454*(tmp461*(vel(2) - vel(0)) + tmp462*(vel(3) - vel(1)));
-      const Scalar tmp465 = pos(4) - pos(2);
-      const Scalar tmp466 = pos(5) - pos(3);
-      const Scalar tmp467 = sqrt((tmp465*tmp465) + (tmp466*tmp466));
-      const Scalar tmp468 = tmp467 - l;
-      const Scalar tmp469 = (Scalar(1)/tmp467);
-      const Scalar tmp470 = tmp465*tmp469;
-      const Scalar tmp471 = tmp466*tmp469;
-      const Scalar tmp472 = tmp450*tmp468
-          + tmp454*(tmp470*(vel(4) - vel(2)) + tmp471*(vel(5) - vel(3)));
-      const Scalar tmp473 = -tmp463;
-      const Scalar tmp475 = pos(6) - pos(4);
-      const Scalar tmp476 = pos(7) - pos(5);
-      const Scalar tmp477 = sqrt((tmp475*tmp475) + (tmp476*tmp476));
-      const Scalar tmp478 = tmp477 - l;
-      const Scalar tmp479 = (Scalar(1)/tmp477);
-      const Scalar tmp480 = tmp475*tmp479;
-      const Scalar tmp481 = tmp476*tmp479;
-      const Scalar tmp482 = tmp450*tmp478
-          + tmp454*(tmp480*(vel(6) - vel(4)) + tmp481*(vel(7) - vel(5)));
-      const Scalar tmp483 = -tmp472;
-      const Scalar tmp485 = pos(8) - pos(6);
-      const Scalar tmp486 = pos(9) - pos(7);
-      const Scalar tmp487 = sqrt((tmp485*tmp485) + (tmp486*tmp486));
-      const Scalar tmp488 = tmp487 - l;
-      const Scalar tmp489 = (Scalar(1)/tmp487);
-      const Scalar tmp490 = tmp485*tmp489;
-      const Scalar tmp491 = tmp486*tmp489;
-      const Scalar tmp492 = tmp450*tmp488
-          + tmp454*(tmp490*(vel(8) - vel(6)) + tmp491*(vel(9) - vel(7)));
-      const Scalar tmp493 = -tmp482;
-      const Scalar tmp495 = pos(10) - pos(8);
-      const Scalar tmp496 = pos(11) - pos(9);
+      const Scalar tmp459 = (Scalar(1)/tmp458);
+      const Scalar tmp460 = tmp456*tmp459;
+      const Scalar tmp461 = tmp458 - l;
+      const Scalar tmp462 = tmp457*tmp459;
+      const Scalar tmp463 = tmp447*tmp461
+          + tmp449*(tmp460*(vel(2) - vel(0)) + tmp462*(vel(3) - vel(1)));
+      const Scalar tmp464 = -tmp463;
+      const Scalar tmp469 = pos(4) - pos(2);
+      const Scalar tmp470 = pos(5) - pos(3);
+      const Scalar tmp471 = sqrt((tmp469*tmp469) + (tmp470*tmp470));
+      const Scalar tmp472 = (Scalar(1)/tmp471);
+      const Scalar tmp473 = tmp469*tmp472;
+      const Scalar tmp474 = tmp471 - l;
+      const Scalar tmp475 = tmp470*tmp472;
+      const Scalar tmp476 = tmp447*tmp474
+          + tmp449*(tmp473*(vel(4) - vel(2)) + tmp475*(vel(5) - vel(3)));
+      const Scalar tmp477 = -tmp476;
+      const Scalar tmp482 = pos(6) - pos(4);
+      const Scalar tmp483 = pos(7) - pos(5);
+      const Scalar tmp484 = sqrt((tmp482*tmp482) + (tmp483*tmp483));
+      const Scalar tmp485 = (Scalar(1)/tmp484);
+      const Scalar tmp486 = tmp482*tmp485;
+      const Scalar tmp487 = tmp484 - l;
+      const Scalar tmp488 = tmp483*tmp485;
+      const Scalar tmp489 = tmp447*tmp487
+          + tmp449*(tmp486*(vel(6) - vel(4)) + tmp488*(vel(7) - vel(5)));
+      const Scalar tmp490 = -tmp489;
+      const Scalar tmp495 = pos(8) - pos(6);
+      const Scalar tmp496 = pos(9) - pos(7);
       const Scalar tmp497 = sqrt((tmp495*tmp495) + (tmp496*tmp496));
-      const Scalar tmp498 = tmp497 - l;
-      const Scalar tmp499 = (Scalar(1)/tmp497);
-      const Scalar tmp500 = tmp495*tmp499;
-      const Scalar tmp501 = tmp496*tmp499;
-      const Scalar tmp502 = tmp450*tmp498
-          + tmp454*(tmp500*(vel(10) - vel(8)) + tmp501*(vel(11) - vel(9)));
-      const Scalar tmp503 = -tmp492;
-      const Scalar tmp505 = pos(12) - pos(10);
-      const Scalar tmp506 = pos(13) - pos(11);
-      const Scalar tmp507 = sqrt((tmp505*tmp505) + (tmp506*tmp506));
-      const Scalar tmp508 = tmp507 - l;
-      const Scalar tmp509 = (Scalar(1)/tmp507);
-      const Scalar tmp510 = tmp505*tmp509;
-      const Scalar tmp511 = tmp506*tmp509;
-      const Scalar tmp512 = tmp450*tmp508
-          + tmp454*(tmp510*(vel(12) - vel(10)) + tmp511*(vel(13) - vel(11)));
-      const Scalar tmp513 = -tmp502;
-      const Scalar tmp515 = pos(14) - pos(12);
-      const Scalar tmp516 = pos(15) - pos(13);
-      const Scalar tmp517 = sqrt((tmp515*tmp515) + (tmp516*tmp516));
-      const Scalar tmp518 = tmp517 - l;
-      const Scalar tmp519 = (Scalar(1)/tmp517);
-      const Scalar tmp520 = tmp515*tmp519;
-      const Scalar tmp521 = tmp516*tmp519;
-      const Scalar tmp522 = tmp450*tmp518
-          + tmp454*(tmp520*(vel(14) - vel(12)) + tmp521*(vel(15) - vel(13)));
-      const Scalar tmp523 = -tmp512;
-      const Scalar tmp525 = -pos(16);
-      const Scalar tmp526 = -tmp525 - pos(14);
-      const Scalar tmp527 = -pos(17);
-      const Scalar tmp528 = -tmp527 - pos(15);
-      const Scalar tmp529 = sqrt((tmp526*tmp526) + (tmp528*tmp528));
-      const Scalar tmp530 = tmp529 - l;
-      const Scalar tmp531 = -vel(16);
-      const Scalar tmp532 = (Scalar(1)/tmp529);
-      const Scalar tmp533 = tmp526*tmp532;
-      const Scalar tmp534 = -vel(17);
-      const Scalar tmp535 = tmp528*tmp532;
-      const Scalar tmp536 = tmp450*tmp530
-          + tmp454*(tmp533*(-tmp531 - vel(14)) + tmp535*(-tmp534 - vel(15)));
-      const Scalar tmp537 = -tmp522;
-      const Scalar tmp539 = tmp525 + pos(18);
-      const Scalar tmp540 = tmp527 + pos(19);
-      const Scalar tmp541 = sqrt((tmp539*tmp539) + (tmp540*tmp540));
-      const Scalar tmp542 = tmp541 - l;
-      const Scalar tmp543 = (Scalar(1)/tmp541);
-      const Scalar tmp544 = tmp539*tmp543;
-      const Scalar tmp545 = tmp540*tmp543;
-      const Scalar tmp546 = tmp450*tmp542
-          + tmp454*(tmp544*(tmp531 + vel(18)) + tmp545*(tmp534 + vel(19)));
-      const Scalar tmp547 = -tmp536;
-      const Scalar tmp549 = -tmp546;
-      const Scalar tmp3477 = pos(0)/sqrt((pos(0)*pos(0)) + (pos(1)*pos(1)));
-      const Scalar tmp3478 = -(Scalar(1)/(tmp447*tmp447))*tmp3477;
-      const Scalar tmp3479 = tmp451 + pos(0)*tmp3478;
-      const Scalar tmp3480 = pos(1)*tmp3478;
-      const Scalar tmp3481 = -tmp450*tmp3477 - tmp454*vel(0)*tmp3479 - tmp454*vel(1)*tmp3480;
-      const Scalar tmp3482 = -tmp456/sqrt((tmp456*tmp456) + (tmp457*tmp457));
-      const Scalar tmp3483 = -(Scalar(1)/(tmp458*tmp458))*tmp3482;
-      const Scalar tmp3484 = -tmp460 + tmp456*tmp3483;
-      const Scalar tmp3485 = tmp457*tmp3483;
-      const Scalar tmp3486 = tmp450*tmp3482 + tmp454*(vel(2) - vel(0))*tmp3484
-          + tmp454*(vel(3) - vel(1))*tmp3485;
-      const Scalar tmp3487 = tmp455*tmp3480 + tmp453*tmp3481 + tmp463*tmp3485 + tmp462*tmp3486;
-      const Scalar tmp3488 = -tmp3486;
-      const Scalar tmp3489 = tmp473*tmp3485 + tmp462*tmp3488;
-      const Scalar tmp3490 = pos(1)/sqrt((pos(0)*pos(0)) + (pos(1)*pos(1)));
-      const Scalar tmp3491 = -(Scalar(1)/(tmp447*tmp447))*tmp3490;
-      const Scalar tmp3492 = pos(0)*tmp3491;
-      const Scalar tmp3493 = tmp451 + pos(1)*tmp3491;
-      const Scalar tmp3494 = -tmp450*tmp3490 - tmp454*vel(0)*tmp3492 - tmp454*vel(1)*tmp3493;
-      const Scalar tmp3495 = -tmp457/sqrt((tmp456*tmp456) + (tmp457*tmp457));
-      const Scalar tmp3496 = -(Scalar(1)/(tmp458*tmp458))*tmp3495;
-      const Scalar tmp3497 = tmp456*tmp3496;
-      const Scalar tmp3498 = -tmp460 + tmp457*tmp3496;
-      const Scalar tmp3499 = tmp450*tmp3495 + tmp454*(vel(2) - vel(0))*tmp3497
-          + tmp454*(vel(3) - vel(1))*tmp3498;
-      const Scalar tmp3500 = tmp455*tmp3493 + tmp453*tmp3494 + tmp463*tmp3498 + tmp462*tmp3499;
-      const Scalar tmp3501 = -tmp3499;
-      const Scalar tmp3502 = tmp473*tmp3498 + tmp462*tmp3501;
-      const Scalar tmp3503 = tmp456/sqrt((tmp456*tmp456) + (tmp457*tmp457));
-      const Scalar tmp3504 = -(Scalar(1)/(tmp458*tmp458))*tmp3503;
-      const Scalar tmp3505 = tmp460 + tmp456*tmp3504;
-      const Scalar tmp3506 = tmp457*tmp3504;
-      const Scalar tmp3507 = tmp450*tmp3503 + tmp454*(vel(2) - vel(0))*tmp3505
-          + tmp454*(vel(3) - vel(1))*tmp3506;
-      const Scalar tmp3508 = tmp463*tmp3506 + tmp462*tmp3507;
-      const Scalar tmp3509 = -tmp465/sqrt((tmp465*tmp465) + (tmp466*tmp466));
-      const Scalar tmp3510 = -(Scalar(1)/(tmp467*tmp467))*tmp3509;
-      const Scalar tmp3511 = -tmp469 + tmp465*tmp3510;
-      const Scalar tmp3512 = tmp466*tmp3510;
-      const Scalar tmp3513 = tmp450*tmp3509 + tmp454*(vel(4) - vel(2))*tmp3511
-          + tmp454*(vel(5) - vel(3))*tmp3512;
-      const Scalar tmp3514 = -tmp3507;
-      const Scalar tmp3515 = tmp473*tmp3506 + tmp472*tmp3512 + tmp471*tmp3513 + tmp462*tmp3514;
-      const Scalar tmp3516 = -tmp3513;
-      const Scalar tmp3517 = tmp483*tmp3512 + tmp471*tmp3516;
-      const Scalar tmp3518 = tmp457/sqrt((tmp456*tmp456) + (tmp457*tmp457));
-      const Scalar tmp3519 = -(Scalar(1)/(tmp458*tmp458))*tmp3518;
-      const Scalar tmp3520 = tmp456*tmp3519;
-      const Scalar tmp3521 = tmp460 + tmp457*tmp3519;
-      const Scalar tmp3522 = tmp450*tmp3518 + tmp454*(vel(2) - vel(0))*tmp3520
-          + tmp454*(vel(3) - vel(1))*tmp3521;
-      const Scalar tmp3523 = tmp463*tmp3521 + tmp462*tmp3522;
-      const Scalar tmp3524 = -tmp466/sqrt((tmp465*tmp465) + (tmp466*tmp466));
-      const Scalar tmp3525 = -(Scalar(1)/(tmp467*tmp467))*tmp3524;
-      const Scalar tmp3526 = tmp465*tmp3525;
-      const Scalar tmp3527 = -tmp469 + tmp466*tmp3525;
-      const Scalar tmp3528 = tmp450*tmp3524 + tmp454*(vel(4) - vel(2))*tmp3526
-          + tmp454*(vel(5) - vel(3))*tmp3527;
-      const Scalar tmp3529 = -tmp3522;
-      const Scalar tmp3530 = tmp473*tmp3521 + tmp472*tmp3527 + tmp471*tmp3528 + tmp462*tmp3529;
-      const Scalar tmp3531 = -tmp3528;
-      const Scalar tmp3532 = tmp483*tmp3527 + tmp471*tmp3531;
-      const Scalar tmp3533 = tmp465/sqrt((tmp465*tmp465) + (tmp466*tmp466));
-      const Scalar tmp3534 = -(Scalar(1)/(tmp467*tmp467))*tmp3533;
-      const Scalar tmp3535 = tmp469 + tmp465*tmp3534;
-      const Scalar tmp3536 = tmp466*tmp3534;
-      const Scalar tmp3537 = tmp450*tmp3533 + tmp454*(vel(4) - vel(2))*tmp3535
-          + tmp454*(vel(5) - vel(3))*tmp3536;
-      const Scalar tmp3538 = tmp472*tmp3536 + tmp471*tmp3537;
-      const Scalar tmp3539 = -tmp475/sqrt((tmp475*tmp475) + (tmp476*tmp476));
-      const Scalar tmp3540 = -(Scalar(1)/(tmp477*tmp477))*tmp3539;
-      const Scalar tmp3541 = -tmp479 + tmp475*tmp3540;
-      const Scalar tmp3542 = tmp476*tmp3540;
-      const Scalar tmp3543 = tmp450*tmp3539 + tmp454*(vel(6) - vel(4))*tmp3541
-          + tmp454*(vel(7) - vel(5))*tmp3542;
-      const Scalar tmp3544 = -tmp3537;
-      const Scalar tmp3545 = tmp483*tmp3536 + tmp482*tmp3542 + tmp481*tmp3543 + tmp471*tmp3544;
-      const Scalar tmp3546 = -tmp3543;
-      const Scalar tmp3547 = tmp493*tmp3542 + tmp481*tmp3546;
-      const Scalar tmp3548 = tmp466/sqrt((tmp465*tmp465) + (tmp466*tmp466));
-      const Scalar tmp3549 = -(Scalar(1)/(tmp467*tmp467))*tmp3548;
-      const Scalar tmp3550 = tmp465*tmp3549;
-      const Scalar tmp3551 = tmp469 + tmp466*tmp3549;
-      const Scalar tmp3552 = tmp450*tmp3548 + tmp454*(vel(4) - vel(2))*tmp3550
-          + tmp454*(vel(5) - vel(3))*tmp3551;
-      const Scalar tmp3553 = tmp472*tmp3551 + tmp471*tmp3552;
-      const Scalar tmp3554 = -tmp476/sqrt((tmp475*tmp475) + (tmp476*tmp476));
-      const Scalar tmp3555 = -(Scalar(1)/(tmp477*tmp477))*tmp3554;
-      const Scalar tmp3556 = tmp475*tmp3555;
-      const Scalar tmp3557 = -tmp479 + tmp476*tmp3555;
-      const Scalar tmp3558 = tmp450*tmp3554 + tmp454*(vel(6) - vel(4))*tmp3556
-          + tmp454*(vel(7) - vel(5))*tmp3557;
-      const Scalar tmp3559 = -tmp3552;
-      const Scalar tmp3560 = tmp483*tmp3551 + tmp482*tmp3557 + tmp481*tmp3558 + tmp471*tmp3559;
-      const Scalar tmp3561 = -tmp3558;
-      const Scalar tmp3562 = tmp493*tmp3557 + tmp481*tmp3561;
-      const Scalar tmp3563 = tmp475/sqrt((tmp475*tmp475) + (tmp476*tmp476));
-      const Scalar tmp3564 = -(Scalar(1)/(tmp477*tmp477))*tmp3563;
-      const Scalar tmp3565 = tmp479 + tmp475*tmp3564;
-      const Scalar tmp3566 = tmp476*tmp3564;
-      const Scalar tmp3567 = tmp450*tmp3563 + tmp454*(vel(6) - vel(4))*tmp3565
-          + tmp454*(vel(7) - vel(5))*tmp3566;
-      const Scalar tmp3568 = tmp482*tmp3566 + tmp481*tmp3567;
-      const Scalar tmp3569 = -tmp485/sqrt((tmp485*tmp485) + (tmp486*tmp486));
-      const Scalar tmp3570 = -(Scalar(1)/(tmp487*tmp487))*tmp3569;
-      const Scalar tmp3571 = -tmp489 + tmp485*tmp3570;
-      const Scalar tmp3572 = tmp486*tmp3570;
-      const Scalar tmp3573 = tmp450*tmp3569 + tmp454*(vel(8) - vel(6))*tmp3571
-          + tmp454*(vel(9) - vel(7))*tmp3572;
-      const Scalar tmp3574 = -tmp3567;
-      const Scalar tmp3575 = tmp493*tmp3566 + tmp492*tmp3572 + tmp491*tmp3573 + tmp481*tmp3574;
-      const Scalar tmp3576 = -tmp3573;
-      const Scalar tmp3577 = tmp503*tmp3572 + tmp491*tmp3576;
-      const Scalar tmp3578 = tmp476/sqrt((tmp475*tmp475) + (tmp476*tmp476));
-      const Scalar tmp3579 = -(Scalar(1)/(tmp477*tmp477))*tmp3578;
-      const Scalar tmp3580 = tmp475*tmp3579;
-      const Scalar tmp3581 = tmp479 + tmp476*tmp3579;
-      const Scalar tmp3582 = tmp450*tmp3578 + tmp454*(vel(6) - vel(4))*tmp3580
-          + tmp454*(vel(7) - vel(5))*tmp3581;
-      const Scalar tmp3583 = tmp482*tmp3581 + tmp481*tmp3582;
-      const Scalar tmp3584 = -tmp486/sqrt((tmp485*tmp485) + (tmp486*tmp486));
-      const Scalar tmp3585 = -(Scalar(1)/(tmp487*tmp487))*tmp3584;
-      const Scalar tmp3586 = tmp485*tmp3585;
-      const Scalar tmp3587 = -tmp489 + tmp486*tmp3585;
-      const Scalar tmp3588 = tmp450*tmp3584 + tmp454*(vel(8) - vel(6))*tmp3586
-          + tmp454*(vel(9) - vel(7))*tmp3587;
-      const Scalar tmp3589 = -tmp3582;
-      const Scalar tmp3590 = tmp493*tmp3581 + tmp492*tmp3587 + tmp491*tmp3588 + tmp481*tmp3589;
-      const Scalar tmp3591 = -tmp3588;
-      const Scalar tmp3592 = tmp503*tmp3587 + tmp491*tmp3591;
-      const Scalar tmp3593 = tmp485/sqrt((tmp485*tmp485) + (tmp486*tmp486));
-      const Scalar tmp3594 = -(Scalar(1)/(tmp487*tmp487))*tmp3593;
-      const Scalar tmp3595 = tmp489 + tmp485*tmp3594;
-      const Scalar tmp3596 = tmp486*tmp3594;
-      const Scalar tmp3597 = tmp450*tmp3593 + tmp454*(vel(8) - vel(6))*tmp3595
-          + tmp454*(vel(9) - vel(7))*tmp3596;
-      const Scalar tmp3598 = tmp492*tmp3596 + tmp491*tmp3597;
-      const Scalar tmp3599 = -tmp495/sqrt((tmp495*tmp495) + (tmp496*tmp496));
-      const Scalar tmp3600 = -(Scalar(1)/(tmp497*tmp497))*tmp3599;
-      const Scalar tmp3601 = -tmp499 + tmp495*tmp3600;
-      const Scalar tmp3602 = tmp496*tmp3600;
-      const Scalar tmp3603 = tmp450*tmp3599 + tmp454*(vel(10) - vel(8))*tmp3601
-          + tmp454*(vel(11) - vel(9))*tmp3602;
-      const Scalar tmp3604 = -tmp3597;
-      const Scalar tmp3605 = tmp503*tmp3596 + tmp502*tmp3602 + tmp501*tmp3603 + tmp491*tmp3604;
-      const Scalar tmp3606 = -tmp3603;
-      const Scalar tmp3607 = tmp513*tmp3602 + tmp501*tmp3606;
-      const Scalar tmp3608 = tmp486/sqrt((tmp485*tmp485) + (tmp486*tmp486));
-      const Scalar tmp3609 = -(Scalar(1)/(tmp487*tmp487))*tmp3608;
-      const Scalar tmp3610 = tmp485*tmp3609;
-      const Scalar tmp3611 = tmp489 + tmp486*tmp3609;
-      const Scalar tmp3612 = tmp450*tmp3608 + tmp454*(vel(8) - vel(6))*tmp3610
-          + tmp454*(vel(9) - vel(7))*tmp3611;
-      const Scalar tmp3613 = tmp492*tmp3611 + tmp491*tmp3612;
-      const Scalar tmp3614 = -tmp496/sqrt((tmp495*tmp495) + (tmp496*tmp496));
-      const Scalar tmp3615 = -(Scalar(1)/(tmp497*tmp497))*tmp3614;
-      const Scalar tmp3616 = tmp495*tmp3615;
-      const Scalar tmp3617 = -tmp499 + tmp496*tmp3615;
-      const Scalar tmp3618 = tmp450*tmp3614 + tmp454*(vel(10) - vel(8))*tmp3616
-          + tmp454*(vel(11) - vel(9))*tmp3617;
-      const Scalar tmp3619 = -tmp3612;
-      const Scalar tmp3620 = tmp503*tmp3611 + tmp502*tmp3617 + tmp501*tmp3618 + tmp491*tmp3619;
-      const Scalar tmp3621 = -tmp3618;
-      const Scalar tmp3622 = tmp513*tmp3617 + tmp501*tmp3621;
-      const Scalar tmp3623 = tmp495/sqrt((tmp495*tmp495) + (tmp496*tmp496));
-      const Scalar tmp3624 = -(Scalar(1)/(tmp497*tmp497))*tmp3623;
-      const Scalar tmp3625 = tmp499 + tmp495*tmp3624;
-      const Scalar tmp3626 = tmp496*tmp3624;
-      const Scalar tmp3627 = tmp450*tmp3623 + tmp454*(vel(10) - vel(8))*tmp3625
-          + tmp454*(vel(11) - vel(9))*tmp3626;
-      const Scalar tmp3628 = tmp502*tmp3626 + tmp501*tmp3627;
-      const Scalar tmp3629 = -tmp505/sqrt((tmp505*tmp505) + (tmp506*tmp506));
-      const Scalar tmp3630 = -(Scalar(1)/(tmp507*tmp507))*tmp3629;
-      const Scalar tmp3631 = -tmp509 + tmp505*tmp3630;
-      const Scalar tmp3632 = tmp506*tmp3630;
-      const Scalar tmp3633 = tmp450*tmp3629 + tmp454*(vel(12) - vel(10))*tmp3631
-          + tmp454*(vel(13) - vel(11))*tmp3632;
-      const Scalar tmp3634 = -tmp3627;
-      const Scalar tmp3635 = tmp513*tmp3626 + tmp512*tmp3632 + tmp511*tmp3633 + tmp501*tmp3634;
-      const Scalar tmp3636 = -tmp3633;
-      const Scalar tmp3637 = tmp523*tmp3632 + tmp511*tmp3636;
-      const Scalar tmp3638 = tmp496/sqrt((tmp495*tmp495) + (tmp496*tmp496));
-      const Scalar tmp3639 = -(Scalar(1)/(tmp497*tmp497))*tmp3638;
-      const Scalar tmp3640 = tmp495*tmp3639;
-      const Scalar tmp3641 = tmp499 + tmp496*tmp3639;
-      const Scalar tmp3642 = tmp450*tmp3638 + tmp454*(vel(10) - vel(8))*tmp3640
-          + tmp454*(vel(11) - vel(9))*tmp3641;
-      const Scalar tmp3643 = tmp502*tmp3641 + tmp501*tmp3642;
-      const Scalar tmp3644 = -tmp506/sqrt((tmp505*tmp505) + (tmp506*tmp506));
-      const Scalar tmp3645 = -(Scalar(1)/(tmp507*tmp507))*tmp3644;
-      const Scalar tmp3646 = tmp505*tmp3645;
-      const Scalar tmp3647 = -tmp509 + tmp506*tmp3645;
-      const Scalar tmp3648 = tmp450*tmp3644 + tmp454*(vel(12) - vel(10))*tmp3646
-          + tmp454*(vel(13) - vel(11))*tmp3647;
-      const Scalar tmp3649 = -tmp3642;
-      const Scalar tmp3650 = tmp513*tmp3641 + tmp512*tmp3647 + tmp511*tmp3648 + tmp501*tmp3649;
-      const Scalar tmp3651 = -tmp3648;
-      const Scalar tmp3652 = tmp523*tmp3647 + tmp511*tmp3651;
-      const Scalar tmp3653 = tmp505/sqrt((tmp505*tmp505) + (tmp506*tmp506));
-      const Scalar tmp3654 = -(Scalar(1)/(tmp507*tmp507))*tmp3653;
-      const Scalar tmp3655 = tmp509 + tmp505*tmp3654;
-      const Scalar tmp3656 = tmp506*tmp3654;
-      const Scalar tmp3657 = tmp450*tmp3653 + tmp454*(vel(12) - vel(10))*tmp3655
-          + tmp454*(vel(13) - vel(11))*tmp3656;
-      const Scalar tmp3658 = tmp512*tmp3656 + tmp511*tmp3657;
-      const Scalar tmp3659 = -tmp515/sqrt((tmp515*tmp515) + (tmp516*tmp516));
-      const Scalar tmp3660 = -(Scalar(1)/(tmp517*tmp517))*tmp3659;
-      const Scalar tmp3661 = -tmp519 + tmp515*tmp3660;
-      const Scalar tmp3662 = tmp516*tmp3660;
-      const Scalar tmp3663 = tmp450*tmp3659 + tmp454*(vel(14) - vel(12))*tmp3661
-          + tmp454*(vel(15) - vel(13))*tmp3662;
-      const Scalar tmp3664 = -tmp3657;
-      const Scalar tmp3665 = tmp523*tmp3656 + tmp522*tmp3662 + tmp521*tmp3663 + tmp511*tmp3664;
-      const Scalar tmp3666 = -tmp3663;
-      const Scalar tmp3667 = tmp537*tmp3662 + tmp521*tmp3666;
-      const Scalar tmp3668 = tmp506/sqrt((tmp505*tmp505) + (tmp506*tmp506));
-      const Scalar tmp3669 = -(Scalar(1)/(tmp507*tmp507))*tmp3668;
-      const Scalar tmp3670 = tmp505*tmp3669;
-      const Scalar tmp3671 = tmp509 + tmp506*tmp3669;
-      const Scalar tmp3672 = tmp450*tmp3668 + tmp454*(vel(12) - vel(10))*tmp3670
-          + tmp454*(vel(13) - vel(11))*tmp3671;
-      const Scalar tmp3673 = tmp512*tmp3671 + tmp511*tmp3672;
-      const Scalar tmp3674 = -tmp516/sqrt((tmp515*tmp515) + (tmp516*tmp516));
-      const Scalar tmp3675 = -(Scalar(1)/(tmp517*tmp517))*tmp3674;
-      const Scalar tmp3676 = tmp515*tmp3675;
-      const Scalar tmp3677 = -tmp519 + tmp516*tmp3675;
-      const Scalar tmp3678 = tmp450*tmp3674 + tmp454*(vel(14) - vel(12))*tmp3676
-          + tmp454*(vel(15) - vel(13))*tmp3677;
-      const Scalar tmp3679 = -tmp3672;
-      const Scalar tmp3680 = tmp523*tmp3671 + tmp522*tmp3677 + tmp521*tmp3678 + tmp511*tmp3679;
-      const Scalar tmp3681 = -tmp3678;
-      const Scalar tmp3682 = tmp537*tmp3677 + tmp521*tmp3681;
-      const Scalar tmp3683 = tmp515/sqrt((tmp515*tmp515) + (tmp516*tmp516));
-      const Scalar tmp3684 = -(Scalar(1)/(tmp517*tmp517))*tmp3683;
-      const Scalar tmp3685 = tmp519 + tmp515*tmp3684;
-      const Scalar tmp3686 = tmp516*tmp3684;
-      const Scalar tmp3687 = tmp450*tmp3683 + tmp454*(vel(14) - vel(12))*tmp3685
-          + tmp454*(vel(15) - vel(13))*tmp3686;
-      const Scalar tmp3688 = tmp522*tmp3686 + tmp521*tmp3687;
-      const Scalar tmp3689 = -tmp526/sqrt((tmp526*tmp526) + (tmp528*tmp528));
-      const Scalar tmp3690 = -(Scalar(1)/(tmp529*tmp529))*tmp3689;
-      const Scalar tmp3691 = -tmp532 + tmp526*tmp3690;
-      const Scalar tmp3692 = tmp528*tmp3690;
-      const Scalar tmp3693 = tmp450*tmp3689 + tmp454*(-tmp531 - vel(14))*tmp3691
-          + tmp454*(-tmp534 - vel(15))*tmp3692;
-      const Scalar tmp3694 = -tmp3687;
-      const Scalar tmp3695 = tmp537*tmp3686 + tmp536*tmp3692 + tmp535*tmp3693 + tmp521*tmp3694;
-      const Scalar tmp3696 = -tmp3693;
-      const Scalar tmp3697 = tmp547*tmp3692 + tmp535*tmp3696;
-      const Scalar tmp3698 = tmp516/sqrt((tmp515*tmp515) + (tmp516*tmp516));
-      const Scalar tmp3699 = -(Scalar(1)/(tmp517*tmp517))*tmp3698;
-      const Scalar tmp3700 = tmp515*tmp3699;
-      const Scalar tmp3701 = tmp519 + tmp516*tmp3699;
-      const Scalar tmp3702 = tmp450*tmp3698 + tmp454*(vel(14) - vel(12))*tmp3700
-          + tmp454*(vel(15) - vel(13))*tmp3701;
-      const Scalar tmp3703 = tmp522*tmp3701 + tmp521*tmp3702;
-      const Scalar tmp3704 = -tmp528/sqrt((tmp526*tmp526) + (tmp528*tmp528));
-      const Scalar tmp3705 = -(Scalar(1)/(tmp529*tmp529))*tmp3704;
-      const Scalar tmp3706 = tmp526*tmp3705;
-      const Scalar tmp3707 = -tmp532 + tmp528*tmp3705;
-      const Scalar tmp3708 = tmp450*tmp3704 + tmp454*(-tmp531 - vel(14))*tmp3706
-          + tmp454*(-tmp534 - vel(15))*tmp3707;
-      const Scalar tmp3709 = -tmp3702;
-      const Scalar tmp3710 = tmp537*tmp3701 + tmp536*tmp3707 + tmp535*tmp3708 + tmp521*tmp3709;
-      const Scalar tmp3711 = -tmp3708;
-      const Scalar tmp3712 = tmp547*tmp3707 + tmp535*tmp3711;
-      const Scalar tmp3713 = tmp526/sqrt((tmp526*tmp526) + (tmp528*tmp528));
-      const Scalar tmp3714 = -(Scalar(1)/(tmp529*tmp529))*tmp3713;
-      const Scalar tmp3715 = tmp532 + tmp526*tmp3714;
-      const Scalar tmp3716 = tmp528*tmp3714;
-      const Scalar tmp3717 = tmp450*tmp3713 + tmp454*(-tmp531 - vel(14))*tmp3715
-          + tmp454*(-tmp534 - vel(15))*tmp3716;
-      const Scalar tmp3718 = tmp536*tmp3716 + tmp535*tmp3717;
-      const Scalar tmp3719 = -tmp539/sqrt((tmp539*tmp539) + (tmp540*tmp540));
-      const Scalar tmp3720 = -(Scalar(1)/(tmp541*tmp541))*tmp3719;
-      const Scalar tmp3721 = -tmp543 + tmp539*tmp3720;
-      const Scalar tmp3722 = tmp540*tmp3720;
-      const Scalar tmp3723 = tmp450*tmp3719 + tmp454*(tmp531 + vel(18))*tmp3721
-          + tmp454*(tmp534 + vel(19))*tmp3722;
-      const Scalar tmp3724 = -tmp3717;
-      const Scalar tmp3725 = tmp547*tmp3716 + tmp546*tmp3722 + tmp545*tmp3723 + tmp535*tmp3724;
-      const Scalar tmp3726 = -tmp3723;
-      const Scalar tmp3727 = tmp528/sqrt((tmp526*tmp526) + (tmp528*tmp528));
-      const Scalar tmp3728 = -(Scalar(1)/(tmp529*tmp529))*tmp3727;
-      const Scalar tmp3729 = tmp526*tmp3728;
-      const Scalar tmp3730 = tmp532 + tmp528*tmp3728;
-      const Scalar tmp3731 = tmp450*tmp3727 + tmp454*(-tmp531 - vel(14))*tmp3729
-          + tmp454*(-tmp534 - vel(15))*tmp3730;
-      const Scalar tmp3732 = tmp536*tmp3730 + tmp535*tmp3731;
-      const Scalar tmp3733 = -tmp540/sqrt((tmp539*tmp539) + (tmp540*tmp540));
-      const Scalar tmp3734 = -(Scalar(1)/(tmp541*tmp541))*tmp3733;
-      const Scalar tmp3735 = tmp539*tmp3734;
-      const Scalar tmp3736 = -tmp543 + tmp540*tmp3734;
-      const Scalar tmp3737 = tmp450*tmp3733 + tmp454*(tmp531 + vel(18))*tmp3735
-          + tmp454*(tmp534 + vel(19))*tmp3736;
-      const Scalar tmp3738 = -tmp3731;
-      const Scalar tmp3739 = tmp547*tmp3730 + tmp546*tmp3736 + tmp545*tmp3737 + tmp535*tmp3738;
-      const Scalar tmp3740 = -tmp3737;
-      const Scalar tmp3741 = tmp539/sqrt((tmp539*tmp539) + (tmp540*tmp540));
-      const Scalar tmp3742 = -(Scalar(1)/(tmp541*tmp541))*tmp3741;
-      const Scalar tmp3743 = tmp543 + tmp539*tmp3742;
-      const Scalar tmp3744 = tmp540*tmp3742;
-      const Scalar tmp3745 = tmp450*tmp3741 + tmp454*(tmp531 + vel(18))*tmp3743
-          + tmp454*(tmp534 + vel(19))*tmp3744;
-      const Scalar tmp3746 = tmp546*tmp3744 + tmp545*tmp3745;
-      const Scalar tmp3747 = -tmp3745;
-      const Scalar tmp3748 = tmp540/sqrt((tmp539*tmp539) + (tmp540*tmp540));
-      const Scalar tmp3749 = -(Scalar(1)/(tmp541*tmp541))*tmp3748;
-      const Scalar tmp3750 = tmp539*tmp3749;
-      const Scalar tmp3751 = tmp543 + tmp540*tmp3749;
-      const Scalar tmp3752 = tmp450*tmp3748 + tmp454*(tmp531 + vel(18))*tmp3750
-          + tmp454*(tmp534 + vel(19))*tmp3751;
-      const Scalar tmp3753 = tmp546*tmp3751 + tmp545*tmp3752;
-      const Scalar tmp3754 = -tmp3752;
+      const Scalar tmp498 = (Scalar(1)/tmp497);
+      const Scalar tmp499 = tmp495*tmp498;
+      const Scalar tmp500 = tmp497 - l;
+      const Scalar tmp501 = tmp496*tmp498;
+      const Scalar tmp502 = tmp447*tmp500
+          + tmp449*(tmp499*(vel(8) - vel(6)) + tmp501*(vel(9) - vel(7)));
+      const Scalar tmp503 = -tmp502;
+      const Scalar tmp508 = pos(10) - pos(8);
+      const Scalar tmp509 = pos(11) - pos(9);
+      const Scalar tmp510 = sqrt((tmp508*tmp508) + (tmp509*tmp509));
+      const Scalar tmp511 = (Scalar(1)/tmp510);
+      const Scalar tmp512 = tmp508*tmp511;
+      const Scalar tmp513 = tmp510 - l;
+      const Scalar tmp514 = tmp509*tmp511;
+      const Scalar tmp515 = tmp447*tmp513
+          + tmp449*(tmp512*(vel(10) - vel(8)) + tmp514*(vel(11) - vel(9)));
+      const Scalar tmp516 = -tmp515;
+      const Scalar tmp521 = pos(12) - pos(10);
+      const Scalar tmp522 = pos(13) - pos(11);
+      const Scalar tmp523 = sqrt((tmp521*tmp521) + (tmp522*tmp522));
+      const Scalar tmp524 = (Scalar(1)/tmp523);
+      const Scalar tmp525 = tmp521*tmp524;
+      const Scalar tmp526 = tmp523 - l;
+      const Scalar tmp527 = tmp522*tmp524;
+      const Scalar tmp528 = tmp447*tmp526
+          + tmp449*(tmp525*(vel(12) - vel(10)) + tmp527*(vel(13) - vel(11)));
+      const Scalar tmp529 = -tmp528;
+      const Scalar tmp534 = pos(14) - pos(12);
+      const Scalar tmp535 = pos(15) - pos(13);
+      const Scalar tmp536 = sqrt((tmp534*tmp534) + (tmp535*tmp535));
+      const Scalar tmp537 = (Scalar(1)/tmp536);
+      const Scalar tmp538 = tmp534*tmp537;
+      const Scalar tmp539 = tmp536 - l;
+      const Scalar tmp540 = tmp535*tmp537;
+      const Scalar tmp541 = tmp447*tmp539
+          + tmp449*(tmp538*(vel(14) - vel(12)) + tmp540*(vel(15) - vel(13)));
+      const Scalar tmp542 = -tmp541;
+      const Scalar tmp547 = -pos(16);
+      const Scalar tmp548 = -tmp547 - pos(14);
+      const Scalar tmp549 = -pos(17);
+      const Scalar tmp550 = -tmp549 - pos(15);
+      const Scalar tmp551 = sqrt((tmp548*tmp548) + (tmp550*tmp550));
+      const Scalar tmp552 = (Scalar(1)/tmp551);
+      const Scalar tmp553 = tmp548*tmp552;
+      const Scalar tmp554 = tmp551 - l;
+      const Scalar tmp555 = -vel(16);
+      const Scalar tmp556 = -vel(17);
+      const Scalar tmp557 = tmp550*tmp552;
+      const Scalar tmp558 = tmp447*tmp554
+          + tmp449*(tmp553*(-tmp555 - vel(14)) + tmp557*(-tmp556 - vel(15)));
+      const Scalar tmp559 = -tmp558;
+      const Scalar tmp564 = tmp547 + pos(18);
+      const Scalar tmp565 = tmp549 + pos(19);
+      const Scalar tmp566 = sqrt((tmp564*tmp564) + (tmp565*tmp565));
+      const Scalar tmp567 = (Scalar(1)/tmp566);
+      const Scalar tmp568 = tmp564*tmp567;
+      const Scalar tmp569 = tmp566 - l;
+      const Scalar tmp570 = tmp565*tmp567;
+      const Scalar tmp571 = tmp447*tmp569
+          + tmp449*(tmp568*(tmp555 + vel(18)) + tmp570*(tmp556 + vel(19)));
+      const Scalar tmp572 = -tmp571;
+      const Scalar tmp3518 = pos(0)/sqrt((pos(0)*pos(0)) + (pos(1)*pos(1)));
+      const Scalar tmp3519 = -(Scalar(1)/(tmp442*tmp442))*tmp3518;
+      const Scalar tmp3520 = tmp443 + pos(0)*tmp3519;
+      const Scalar tmp3521 = pos(1)*tmp3519;
+      const Scalar tmp3522 = tmp447*tmp3518 + tmp449*vel(0)*tmp3520 + tmp449*vel(1)*tmp3521;
+      const Scalar tmp3523 = -tmp3522;
+      const Scalar tmp3524 = tmp451*tmp3520 + tmp444*tmp3523;
+      const Scalar tmp3525 = tmp451*tmp3521 + tmp448*tmp3523;
+      const Scalar tmp3526 = -tmp456/sqrt((tmp456*tmp456) + (tmp457*tmp457));
+      const Scalar tmp3527 = -(Scalar(1)/(tmp458*tmp458))*tmp3526;
+      const Scalar tmp3528 = -tmp459 + tmp456*tmp3527;
+      const Scalar tmp3529 = tmp457*tmp3527;
+      const Scalar tmp3530 = tmp447*tmp3526 + tmp449*(vel(2) - vel(0))*tmp3528
+          + tmp449*(vel(3) - vel(1))*tmp3529;
+      const Scalar tmp3531 = -tmp3530;
+      const Scalar tmp3532 = tmp464*tmp3528 + tmp460*tmp3531;
+      const Scalar tmp3533 = tmp464*tmp3529 + tmp462*tmp3531;
+      const Scalar tmp3534 = tmp463*tmp3528 + tmp460*tmp3530;
+      const Scalar tmp3535 = tmp463*tmp3529 + tmp462*tmp3530;
+      const Scalar tmp3536 = tmp3525 + tmp3535;
+      const Scalar tmp3537 = pos(1)/sqrt((pos(0)*pos(0)) + (pos(1)*pos(1)));
+      const Scalar tmp3538 = -(Scalar(1)/(tmp442*tmp442))*tmp3537;
+      const Scalar tmp3539 = pos(0)*tmp3538;
+      const Scalar tmp3540 = tmp443 + pos(1)*tmp3538;
+      const Scalar tmp3541 = tmp447*tmp3537 + tmp449*vel(0)*tmp3539 + tmp449*vel(1)*tmp3540;
+      const Scalar tmp3542 = -tmp3541;
+      const Scalar tmp3543 = tmp451*tmp3539 + tmp444*tmp3542;
+      const Scalar tmp3544 = tmp451*tmp3540 + tmp448*tmp3542;
+      const Scalar tmp3545 = -tmp457/sqrt((tmp456*tmp456) + (tmp457*tmp457));
+      const Scalar tmp3546 = -(Scalar(1)/(tmp458*tmp458))*tmp3545;
+      const Scalar tmp3547 = tmp456*tmp3546;
+      const Scalar tmp3548 = -tmp459 + tmp457*tmp3546;
+      const Scalar tmp3549 = tmp447*tmp3545 + tmp449*(vel(2) - vel(0))*tmp3547
+          + tmp449*(vel(3) - vel(1))*tmp3548;
+      const Scalar tmp3550 = -tmp3549;
+      const Scalar tmp3551 = tmp464*tmp3547 + tmp460*tmp3550;
+      const Scalar tmp3552 = tmp464*tmp3548 + tmp462*tmp3550;
+      const Scalar tmp3553 = tmp463*tmp3547 + tmp460*tmp3549;
+      const Scalar tmp3554 = tmp463*tmp3548 + tmp462*tmp3549;
+      const Scalar tmp3555 = tmp3544 + tmp3554;
+      const Scalar tmp3556 = tmp456/sqrt((tmp456*tmp456) + (tmp457*tmp457));
+      const Scalar tmp3557 = -(Scalar(1)/(tmp458*tmp458))*tmp3556;
+      const Scalar tmp3558 = tmp459 + tmp456*tmp3557;
+      const Scalar tmp3559 = tmp457*tmp3557;
+      const Scalar tmp3560 = tmp447*tmp3556 + tmp449*(vel(2) - vel(0))*tmp3558
+          + tmp449*(vel(3) - vel(1))*tmp3559;
+      const Scalar tmp3561 = -tmp3560;
+      const Scalar tmp3562 = tmp464*tmp3558 + tmp460*tmp3561;
+      const Scalar tmp3563 = tmp464*tmp3559 + tmp462*tmp3561;
+      const Scalar tmp3564 = tmp463*tmp3558 + tmp460*tmp3560;
+      const Scalar tmp3565 = tmp463*tmp3559 + tmp462*tmp3560;
+      const Scalar tmp3566 = -tmp469/sqrt((tmp469*tmp469) + (tmp470*tmp470));
+      const Scalar tmp3567 = -(Scalar(1)/(tmp471*tmp471))*tmp3566;
+      const Scalar tmp3568 = -tmp472 + tmp469*tmp3567;
+      const Scalar tmp3569 = tmp470*tmp3567;
+      const Scalar tmp3570 = tmp447*tmp3566 + tmp449*(vel(4) - vel(2))*tmp3568
+          + tmp449*(vel(5) - vel(3))*tmp3569;
+      const Scalar tmp3571 = -tmp3570;
+      const Scalar tmp3572 = tmp477*tmp3568 + tmp473*tmp3571;
+      const Scalar tmp3573 = tmp477*tmp3569 + tmp475*tmp3571;
+      const Scalar tmp3574 = tmp476*tmp3568 + tmp473*tmp3570;
+      const Scalar tmp3575 = tmp476*tmp3569 + tmp475*tmp3570;
+      const Scalar tmp3576 = tmp3575 + tmp3563;
+      const Scalar tmp3577 = tmp457/sqrt((tmp456*tmp456) + (tmp457*tmp457));
+      const Scalar tmp3578 = -(Scalar(1)/(tmp458*tmp458))*tmp3577;
+      const Scalar tmp3579 = tmp456*tmp3578;
+      const Scalar tmp3580 = tmp459 + tmp457*tmp3578;
+      const Scalar tmp3581 = tmp447*tmp3577 + tmp449*(vel(2) - vel(0))*tmp3579
+          + tmp449*(vel(3) - vel(1))*tmp3580;
+      const Scalar tmp3582 = -tmp3581;
+      const Scalar tmp3583 = tmp464*tmp3579 + tmp460*tmp3582;
+      const Scalar tmp3584 = tmp464*tmp3580 + tmp462*tmp3582;
+      const Scalar tmp3585 = tmp463*tmp3579 + tmp460*tmp3581;
+      const Scalar tmp3586 = tmp463*tmp3580 + tmp462*tmp3581;
+      const Scalar tmp3587 = -tmp470/sqrt((tmp469*tmp469) + (tmp470*tmp470));
+      const Scalar tmp3588 = -(Scalar(1)/(tmp471*tmp471))*tmp3587;
+      const Scalar tmp3589 = tmp469*tmp3588;
+      const Scalar tmp3590 = -tmp472 + tmp470*tmp3588;
+      const Scalar tmp3591 = tmp447*tmp3587 + tmp449*(vel(4) - vel(2))*tmp3589
+          + tmp449*(vel(5) - vel(3))*tmp3590;
+      const Scalar tmp3592 = -tmp3591;
+      const Scalar tmp3593 = tmp477*tmp3589 + tmp473*tmp3592;
+      const Scalar tmp3594 = tmp477*tmp3590 + tmp475*tmp3592;
+      const Scalar tmp3595 = tmp476*tmp3589 + tmp473*tmp3591;
+      const Scalar tmp3596 = tmp476*tmp3590 + tmp475*tmp3591;
+      const Scalar tmp3597 = tmp3596 + tmp3584;
+      const Scalar tmp3598 = tmp469/sqrt((tmp469*tmp469) + (tmp470*tmp470));
+      const Scalar tmp3599 = -(Scalar(1)/(tmp471*tmp471))*tmp3598;
+      const Scalar tmp3600 = tmp472 + tmp469*tmp3599;
+      const Scalar tmp3601 = tmp470*tmp3599;
+      const Scalar tmp3602 = tmp447*tmp3598 + tmp449*(vel(4) - vel(2))*tmp3600
+          + tmp449*(vel(5) - vel(3))*tmp3601;
+      const Scalar tmp3603 = -tmp3602;
+      const Scalar tmp3604 = tmp477*tmp3600 + tmp473*tmp3603;
+      const Scalar tmp3605 = tmp477*tmp3601 + tmp475*tmp3603;
+      const Scalar tmp3606 = tmp476*tmp3600 + tmp473*tmp3602;
+      const Scalar tmp3607 = tmp476*tmp3601 + tmp475*tmp3602;
+      const Scalar tmp3608 = -tmp482/sqrt((tmp482*tmp482) + (tmp483*tmp483));
+      const Scalar tmp3609 = -(Scalar(1)/(tmp484*tmp484))*tmp3608;
+      const Scalar tmp3610 = -tmp485 + tmp482*tmp3609;
+      const Scalar tmp3611 = tmp483*tmp3609;
+      const Scalar tmp3612 = tmp447*tmp3608 + tmp449*(vel(6) - vel(4))*tmp3610
+          + tmp449*(vel(7) - vel(5))*tmp3611;
+      const Scalar tmp3613 = -tmp3612;
+      const Scalar tmp3614 = tmp490*tmp3610 + tmp486*tmp3613;
+      const Scalar tmp3615 = tmp490*tmp3611 + tmp488*tmp3613;
+      const Scalar tmp3616 = tmp489*tmp3610 + tmp486*tmp3612;
+      const Scalar tmp3617 = tmp489*tmp3611 + tmp488*tmp3612;
+      const Scalar tmp3618 = tmp3617 + tmp3605;
+      const Scalar tmp3619 = tmp470/sqrt((tmp469*tmp469) + (tmp470*tmp470));
+      const Scalar tmp3620 = -(Scalar(1)/(tmp471*tmp471))*tmp3619;
+      const Scalar tmp3621 = tmp469*tmp3620;
+      const Scalar tmp3622 = tmp472 + tmp470*tmp3620;
+      const Scalar tmp3623 = tmp447*tmp3619 + tmp449*(vel(4) - vel(2))*tmp3621
+          + tmp449*(vel(5) - vel(3))*tmp3622;
+      const Scalar tmp3624 = -tmp3623;
+      const Scalar tmp3625 = tmp477*tmp3621 + tmp473*tmp3624;
+      const Scalar tmp3626 = tmp477*tmp3622 + tmp475*tmp3624;
+      const Scalar tmp3627 = tmp476*tmp3621 + tmp473*tmp3623;
+      const Scalar tmp3628 = tmp476*tmp3622 + tmp475*tmp3623;
+      const Scalar tmp3629 = -tmp483/sqrt((tmp482*tmp482) + (tmp483*tmp483));
+      const Scalar tmp3630 = -(Scalar(1)/(tmp484*tmp484))*tmp3629;
+      const Scalar tmp3631 = tmp482*tmp3630;
+      const Scalar tmp3632 = -tmp485 + tmp483*tmp3630;
+      const Scalar tmp3633 = tmp447*tmp3629 + tmp449*(vel(6) - vel(4))*tmp3631
+          + tmp449*(vel(7) - vel(5))*tmp3632;
+      const Scalar tmp3634 = -tmp3633;
+      const Scalar tmp3635 = tmp490*tmp3631 + tmp486*tmp3634;
+      const Scalar tmp3636 = tmp490*tmp3632 + tmp488*tmp3634;
+      const Scalar tmp3637 = tmp489*tmp3631 + tmp486*tmp3633;
+      const Scalar tmp3638 = tmp489*tmp3632 + tmp488*tmp3633;
+      const Scalar tmp3639 = tmp3638 + tmp3626;
+      const Scalar tmp3640 = tmp482/sqrt((tmp482*tmp482) + (tmp483*tmp483));
+      const Scalar tmp3641 = -(Scalar(1)/(tmp484*tmp484))*tmp3640;
+      const Scalar tmp3642 = tmp485 + tmp482*tmp3641;
+      const Scalar tmp3643 = tmp483*tmp3641;
+      const Scalar tmp3644 = tmp447*tmp3640 + tmp449*(vel(6) - vel(4))*tmp3642
+          + tmp449*(vel(7) - vel(5))*tmp3643;
+      const Scalar tmp3645 = -tmp3644;
+      const Scalar tmp3646 = tmp490*tmp3642 + tmp486*tmp3645;
+      const Scalar tmp3647 = tmp490*tmp3643 + tmp488*tmp3645;
+      const Scalar tmp3648 = tmp489*tmp3642 + tmp486*tmp3644;
+      const Scalar tmp3649 = tmp489*tmp3643 + tmp488*tmp3644;
+      const Scalar tmp3650 = -tmp495/sqrt((tmp495*tmp495) + (tmp496*tmp496));
+      const Scalar tmp3651 = -(Scalar(1)/(tmp497*tmp497))*tmp3650;
+      const Scalar tmp3652 = -tmp498 + tmp495*tmp3651;
+      const Scalar tmp3653 = tmp496*tmp3651;
+      const Scalar tmp3654 = tmp447*tmp3650 + tmp449*(vel(8) - vel(6))*tmp3652
+          + tmp449*(vel(9) - vel(7))*tmp3653;
+      const Scalar tmp3655 = -tmp3654;
+      const Scalar tmp3656 = tmp503*tmp3652 + tmp499*tmp3655;
+      const Scalar tmp3657 = tmp503*tmp3653 + tmp501*tmp3655;
+      const Scalar tmp3658 = tmp502*tmp3652 + tmp499*tmp3654;
+      const Scalar tmp3659 = tmp502*tmp3653 + tmp501*tmp3654;
+      const Scalar tmp3660 = tmp3647 + tmp3659;
+      const Scalar tmp3661 = tmp483/sqrt((tmp482*tmp482) + (tmp483*tmp483));
+      const Scalar tmp3662 = -(Scalar(1)/(tmp484*tmp484))*tmp3661;
+      const Scalar tmp3663 = tmp482*tmp3662;
+      const Scalar tmp3664 = tmp485 + tmp483*tmp3662;
+      const Scalar tmp3665 = tmp447*tmp3661 + tmp449*(vel(6) - vel(4))*tmp3663
+          + tmp449*(vel(7) - vel(5))*tmp3664;
+      const Scalar tmp3666 = -tmp3665;
+      const Scalar tmp3667 = tmp490*tmp3663 + tmp486*tmp3666;
+      const Scalar tmp3668 = tmp490*tmp3664 + tmp488*tmp3666;
+      const Scalar tmp3669 = tmp489*tmp3663 + tmp486*tmp3665;
+      const Scalar tmp3670 = tmp489*tmp3664 + tmp488*tmp3665;
+      const Scalar tmp3671 = -tmp496/sqrt((tmp495*tmp495) + (tmp496*tmp496));
+      const Scalar tmp3672 = -(Scalar(1)/(tmp497*tmp497))*tmp3671;
+      const Scalar tmp3673 = tmp495*tmp3672;
+      const Scalar tmp3674 = -tmp498 + tmp496*tmp3672;
+      const Scalar tmp3675 = tmp447*tmp3671 + tmp449*(vel(8) - vel(6))*tmp3673
+          + tmp449*(vel(9) - vel(7))*tmp3674;
+      const Scalar tmp3676 = -tmp3675;
+      const Scalar tmp3677 = tmp503*tmp3673 + tmp499*tmp3676;
+      const Scalar tmp3678 = tmp503*tmp3674 + tmp501*tmp3676;
+      const Scalar tmp3679 = tmp502*tmp3673 + tmp499*tmp3675;
+      const Scalar tmp3680 = tmp502*tmp3674 + tmp501*tmp3675;
+      const Scalar tmp3681 = tmp3668 + tmp3680;
+      const Scalar tmp3682 = tmp495/sqrt((tmp495*tmp495) + (tmp496*tmp496));
+      const Scalar tmp3683 = -(Scalar(1)/(tmp497*tmp497))*tmp3682;
+      const Scalar tmp3684 = tmp498 + tmp495*tmp3683;
+      const Scalar tmp3685 = tmp496*tmp3683;
+      const Scalar tmp3686 = tmp447*tmp3682 + tmp449*(vel(8) - vel(6))*tmp3684
+          + tmp449*(vel(9) - vel(7))*tmp3685;
+      const Scalar tmp3687 = -tmp3686;
+      const Scalar tmp3688 = tmp503*tmp3684 + tmp499*tmp3687;
+      const Scalar tmp3689 = tmp503*tmp3685 + tmp501*tmp3687;
+      const Scalar tmp3690 = tmp502*tmp3684 + tmp499*tmp3686;
+      const Scalar tmp3691 = tmp502*tmp3685 + tmp501*tmp3686;
+      const Scalar tmp3692 = -tmp508/sqrt((tmp508*tmp508) + (tmp509*tmp509));
+      const Scalar tmp3693 = -(Scalar(1)/(tmp510*tmp510))*tmp3692;
+      const Scalar tmp3694 = -tmp511 + tmp508*tmp3693;
+      const Scalar tmp3695 = tmp509*tmp3693;
+      const Scalar tmp3696 = tmp447*tmp3692 + tmp449*(vel(10) - vel(8))*tmp3694
+          + tmp449*(vel(11) - vel(9))*tmp3695;
+      const Scalar tmp3697 = -tmp3696;
+      const Scalar tmp3698 = tmp516*tmp3694 + tmp512*tmp3697;
+      const Scalar tmp3699 = tmp516*tmp3695 + tmp514*tmp3697;
+      const Scalar tmp3700 = tmp515*tmp3694 + tmp512*tmp3696;
+      const Scalar tmp3701 = tmp515*tmp3695 + tmp514*tmp3696;
+      const Scalar tmp3702 = tmp3689 + tmp3701;
+      const Scalar tmp3703 = tmp496/sqrt((tmp495*tmp495) + (tmp496*tmp496));
+      const Scalar tmp3704 = -(Scalar(1)/(tmp497*tmp497))*tmp3703;
+      const Scalar tmp3705 = tmp495*tmp3704;
+      const Scalar tmp3706 = tmp498 + tmp496*tmp3704;
+      const Scalar tmp3707 = tmp447*tmp3703 + tmp449*(vel(8) - vel(6))*tmp3705
+          + tmp449*(vel(9) - vel(7))*tmp3706;
+      const Scalar tmp3708 = -tmp3707;
+      const Scalar tmp3709 = tmp503*tmp3705 + tmp499*tmp3708;
+      const Scalar tmp3710 = tmp503*tmp3706 + tmp501*tmp3708;
+      const Scalar tmp3711 = tmp502*tmp3705 + tmp499*tmp3707;
+      const Scalar tmp3712 = tmp502*tmp3706 + tmp501*tmp3707;
+      const Scalar tmp3713 = -tmp509/sqrt((tmp508*tmp508) + (tmp509*tmp509));
+      const Scalar tmp3714 = -(Scalar(1)/(tmp510*tmp510))*tmp3713;
+      const Scalar tmp3715 = tmp508*tmp3714;
+      const Scalar tmp3716 = -tmp511 + tmp509*tmp3714;
+      const Scalar tmp3717 = tmp447*tmp3713 + tmp449*(vel(10) - vel(8))*tmp3715
+          + tmp449*(vel(11) - vel(9))*tmp3716;
+      const Scalar tmp3718 = -tmp3717;
+      const Scalar tmp3719 = tmp516*tmp3715 + tmp512*tmp3718;
+      const Scalar tmp3720 = tmp516*tmp3716 + tmp514*tmp3718;
+      const Scalar tmp3721 = tmp515*tmp3715 + tmp512*tmp3717;
+      const Scalar tmp3722 = tmp515*tmp3716 + tmp514*tmp3717;
+      const Scalar tmp3723 = tmp3710 + tmp3722;
+      const Scalar tmp3724 = tmp508/sqrt((tmp508*tmp508) + (tmp509*tmp509));
+      const Scalar tmp3725 = -(Scalar(1)/(tmp510*tmp510))*tmp3724;
+      const Scalar tmp3726 = tmp511 + tmp508*tmp3725;
+      const Scalar tmp3727 = tmp509*tmp3725;
+      const Scalar tmp3728 = tmp447*tmp3724 + tmp449*(vel(10) - vel(8))*tmp3726
+          + tmp449*(vel(11) - vel(9))*tmp3727;
+      const Scalar tmp3729 = -tmp3728;
+      const Scalar tmp3730 = tmp516*tmp3726 + tmp512*tmp3729;
+      const Scalar tmp3731 = tmp516*tmp3727 + tmp514*tmp3729;
+      const Scalar tmp3732 = tmp515*tmp3726 + tmp512*tmp3728;
+      const Scalar tmp3733 = tmp515*tmp3727 + tmp514*tmp3728;
+      const Scalar tmp3734 = -tmp521/sqrt((tmp521*tmp521) + (tmp522*tmp522));
+      const Scalar tmp3735 = -(Scalar(1)/(tmp523*tmp523))*tmp3734;
+      const Scalar tmp3736 = -tmp524 + tmp521*tmp3735;
+      const Scalar tmp3737 = tmp522*tmp3735;
+      const Scalar tmp3738 = tmp447*tmp3734 + tmp449*(vel(12) - vel(10))*tmp3736
+          + tmp449*(vel(13) - vel(11))*tmp3737;
+      const Scalar tmp3739 = -tmp3738;
+      const Scalar tmp3740 = tmp529*tmp3736 + tmp525*tmp3739;
+      const Scalar tmp3741 = tmp529*tmp3737 + tmp527*tmp3739;
+      const Scalar tmp3742 = tmp528*tmp3736 + tmp525*tmp3738;
+      const Scalar tmp3743 = tmp528*tmp3737 + tmp527*tmp3738;
+      const Scalar tmp3744 = tmp3731 + tmp3743;
+      const Scalar tmp3745 = tmp509/sqrt((tmp508*tmp508) + (tmp509*tmp509));
+      const Scalar tmp3746 = -(Scalar(1)/(tmp510*tmp510))*tmp3745;
+      const Scalar tmp3747 = tmp508*tmp3746;
+      const Scalar tmp3748 = tmp511 + tmp509*tmp3746;
+      const Scalar tmp3749 = tmp447*tmp3745 + tmp449*(vel(10) - vel(8))*tmp3747
+          + tmp449*(vel(11) - vel(9))*tmp3748;
+      const Scalar tmp3750 = -tmp3749;
+      const Scalar tmp3751 = tmp516*tmp3747 + tmp512*tmp3750;
+      const Scalar tmp3752 = tmp516*tmp3748 + tmp514*tmp3750;
+      const Scalar tmp3753 = tmp515*tmp3747 + tmp512*tmp3749;
+      const Scalar tmp3754 = tmp515*tmp3748 + tmp514*tmp3749;
+      const Scalar tmp3755 = -tmp522/sqrt((tmp521*tmp521) + (tmp522*tmp522));
+      const Scalar tmp3756 = -(Scalar(1)/(tmp523*tmp523))*tmp3755;
+      const Scalar tmp3757 = tmp521*tmp3756;
+      const Scalar tmp3758 = -tmp524 + tmp522*tmp3756;
+      const Scalar tmp3759 = tmp447*tmp3755 + tmp449*(vel(12) - vel(10))*tmp3757
+          + tmp449*(vel(13) - vel(11))*tmp3758;
+      const Scalar tmp3760 = -tmp3759;
+      const Scalar tmp3761 = tmp529*tmp3757 + tmp525*tmp3760;
+      const Scalar tmp3762 = tmp529*tmp3758 + tmp527*tmp3760;
+      const Scalar tmp3763 = tmp528*tmp3757 + tmp525*tmp3759;
+      const Scalar tmp3764 = tmp528*tmp3758 + tmp527*tmp3759;
+      const Scalar tmp3765 = tmp3752 + tmp3764;
+      const Scalar tmp3766 = tmp521/sqrt((tmp521*tmp521) + (tmp522*tmp522));
+      const Scalar tmp3767 = -(Scalar(1)/(tmp523*tmp523))*tmp3766;
+      const Scalar tmp3768 = tmp524 + tmp521*tmp3767;
+      const Scalar tmp3769 = tmp522*tmp3767;
+      const Scalar tmp3770 = tmp447*tmp3766 + tmp449*(vel(12) - vel(10))*tmp3768
+          + tmp449*(vel(13) - vel(11))*tmp3769;
+      const Scalar tmp3771 = -tmp3770;
+      const Scalar tmp3772 = tmp529*tmp3768 + tmp525*tmp3771;
+      const Scalar tmp3773 = tmp529*tmp3769 + tmp527*tmp3771;
+      const Scalar tmp3774 = tmp528*tmp3768 + tmp525*tmp3770;
+      const Scalar tmp3775 = tmp528*tmp3769 + tmp527*tmp3770;
+      const Scalar tmp3776 = -tmp534/sqrt((tmp534*tmp534) + (tmp535*tmp535));
+      const Scalar tmp3777 = -(Scalar(1)/(tmp536*tmp536))*tmp3776;
+      const Scalar tmp3778 = -tmp537 + tmp534*tmp3777;
+      const Scalar tmp3779 = tmp535*tmp3777;
+      const Scalar tmp3780 = tmp447*tmp3776 + tmp449*(vel(14) - vel(12))*tmp3778
+          + tmp449*(vel(15) - vel(13))*tmp3779;
+      const Scalar tmp3781 = -tmp3780;
+      const Scalar tmp3782 = tmp542*tmp3778 + tmp538*tmp3781;
+      const Scalar tmp3783 = tmp542*tmp3779 + tmp540*tmp3781;
+      const Scalar tmp3784 = tmp541*tmp3778 + tmp538*tmp3780;
+      const Scalar tmp3785 = tmp541*tmp3779 + tmp540*tmp3780;
+      const Scalar tmp3786 = tmp3773 + tmp3785;
+      const Scalar tmp3787 = tmp522/sqrt((tmp521*tmp521) + (tmp522*tmp522));
+      const Scalar tmp3788 = -(Scalar(1)/(tmp523*tmp523))*tmp3787;
+      const Scalar tmp3789 = tmp521*tmp3788;
+      const Scalar tmp3790 = tmp524 + tmp522*tmp3788;
+      const Scalar tmp3791 = tmp447*tmp3787 + tmp449*(vel(12) - vel(10))*tmp3789
+          + tmp449*(vel(13) - vel(11))*tmp3790;
+      const Scalar tmp3792 = -tmp3791;
+      const Scalar tmp3793 = tmp529*tmp3789 + tmp525*tmp3792;
+      const Scalar tmp3794 = tmp529*tmp3790 + tmp527*tmp3792;
+      const Scalar tmp3795 = tmp528*tmp3789 + tmp525*tmp3791;
+      const Scalar tmp3796 = tmp528*tmp3790 + tmp527*tmp3791;
+      const Scalar tmp3797 = -tmp535/sqrt((tmp534*tmp534) + (tmp535*tmp535));
+      const Scalar tmp3798 = -(Scalar(1)/(tmp536*tmp536))*tmp3797;
+      const Scalar tmp3799 = tmp534*tmp3798;
+      const Scalar tmp3800 = -tmp537 + tmp535*tmp3798;
+      const Scalar tmp3801 = tmp447*tmp3797 + tmp449*(vel(14) - vel(12))*tmp3799
+          + tmp449*(vel(15) - vel(13))*tmp3800;
+      const Scalar tmp3802 = -tmp3801;
+      const Scalar tmp3803 = tmp542*tmp3799 + tmp538*tmp3802;
+      const Scalar tmp3804 = tmp542*tmp3800 + tmp540*tmp3802;
+      const Scalar tmp3805 = tmp541*tmp3799 + tmp538*tmp3801;
+      const Scalar tmp3806 = tmp541*tmp3800 + tmp540*tmp3801;
+      const Scalar tmp3807 = tmp3794 + tmp3806;
+      const Scalar tmp3808 = tmp534/sqrt((tmp534*tmp534) + (tmp535*tmp535));
+      const Scalar tmp3809 = -(Scalar(1)/(tmp536*tmp536))*tmp3808;
+      const Scalar tmp3810 = tmp537 + tmp534*tmp3809;
+      const Scalar tmp3811 = tmp535*tmp3809;
+      const Scalar tmp3812 = tmp447*tmp3808 + tmp449*(vel(14) - vel(12))*tmp3810
+          + tmp449*(vel(15) - vel(13))*tmp3811;
+      const Scalar tmp3813 = -tmp3812;
+      const Scalar tmp3814 = tmp542*tmp3810 + tmp538*tmp3813;
+      const Scalar tmp3815 = tmp542*tmp3811 + tmp540*tmp3813;
+      const Scalar tmp3816 = tmp541*tmp3810 + tmp538*tmp3812;
+      const Scalar tmp3817 = tmp541*tmp3811 + tmp540*tmp3812;
+      const Scalar tmp3818 = -tmp548/sqrt((tmp548*tmp548) + (tmp550*tmp550));
+      const Scalar tmp3819 = -(Scalar(1)/(tmp551*tmp551))*tmp3818;
+      const Scalar tmp3820 = -tmp552 + tmp548*tmp3819;
+      const Scalar tmp3821 = tmp550*tmp3819;
+      const Scalar tmp3822 = tmp447*tmp3818 + tmp449*(-tmp555 - vel(14))*tmp3820
+          + tmp449*(-tmp556 - vel(15))*tmp3821;
+      const Scalar tmp3823 = -tmp3822;
+      const Scalar tmp3824 = tmp559*tmp3820 + tmp553*tmp3823;
+      const Scalar tmp3825 = tmp559*tmp3821 + tmp557*tmp3823;
+      const Scalar tmp3826 = tmp558*tmp3820 + tmp553*tmp3822;
+      const Scalar tmp3827 = tmp558*tmp3821 + tmp557*tmp3822;
+      const Scalar tmp3828 = tmp3815 + tmp3827;
+      const Scalar tmp3829 = tmp535/sqrt((tmp534*tmp534) + (tmp535*tmp535));
+      const Scalar tmp3830 = -(Scalar(1)/(tmp536*tmp536))*tmp3829;
+      const Scalar tmp3831 = tmp534*tmp3830;
+      const Scalar tmp3832 = tmp537 + tmp535*tmp3830;
+      const Scalar tmp3833 = tmp447*tmp3829 + tmp449*(vel(14) - vel(12))*tmp3831
+          + tmp449*(vel(15) - vel(13))*tmp3832;
+      const Scalar tmp3834 = -tmp3833;
+      const Scalar tmp3835 = tmp542*tmp3831 + tmp538*tmp3834;
+      const Scalar tmp3836 = tmp542*tmp3832 + tmp540*tmp3834;
+      const Scalar tmp3837 = tmp541*tmp3831 + tmp538*tmp3833;
+      const Scalar tmp3838 = tmp541*tmp3832 + tmp540*tmp3833;
+      const Scalar tmp3839 = -tmp550/sqrt((tmp548*tmp548) + (tmp550*tmp550));
+      const Scalar tmp3840 = -(Scalar(1)/(tmp551*tmp551))*tmp3839;
+      const Scalar tmp3841 = tmp548*tmp3840;
+      const Scalar tmp3842 = -tmp552 + tmp550*tmp3840;
+      const Scalar tmp3843 = tmp447*tmp3839 + tmp449*(-tmp555 - vel(14))*tmp3841
+          + tmp449*(-tmp556 - vel(15))*tmp3842;
+      const Scalar tmp3844 = -tmp3843;
+      const Scalar tmp3845 = tmp559*tmp3841 + tmp553*tmp3844;
+      const Scalar tmp3846 = tmp559*tmp3842 + tmp557*tmp3844;
+      const Scalar tmp3847 = tmp558*tmp3841 + tmp553*tmp3843;
+      const Scalar tmp3848 = tmp558*tmp3842 + tmp557*tmp3843;
+      const Scalar tmp3849 = tmp3836 + tmp3848;
+      const Scalar tmp3850 = tmp548/sqrt((tmp548*tmp548) + (tmp550*tmp550));
+      const Scalar tmp3851 = -(Scalar(1)/(tmp551*tmp551))*tmp3850;
+      const Scalar tmp3852 = tmp552 + tmp548*tmp3851;
+      const Scalar tmp3853 = tmp550*tmp3851;
+      const Scalar tmp3854 = tmp447*tmp3850 + tmp449*(-tmp555 - vel(14))*tmp3852
+          + tmp449*(-tmp556 - vel(15))*tmp3853;
+      const Scalar tmp3855 = -tmp3854;
+      const Scalar tmp3856 = tmp559*tmp3852 + tmp553*tmp3855;
+      const Scalar tmp3857 = tmp559*tmp3853 + tmp557*tmp3855;
+      const Scalar tmp3858 = tmp558*tmp3852 + tmp553*tmp3854;
+      const Scalar tmp3859 = tmp558*tmp3853 + tmp557*tmp3854;
+      const Scalar tmp3860 = -tmp564/sqrt((tmp564*tmp564) + (tmp565*tmp565));
+      const Scalar tmp3861 = -(Scalar(1)/(tmp566*tmp566))*tmp3860;
+      const Scalar tmp3862 = -tmp567 + tmp564*tmp3861;
+      const Scalar tmp3863 = tmp565*tmp3861;
+      const Scalar tmp3864 = tmp447*tmp3860 + tmp449*(tmp555 + vel(18))*tmp3862
+          + tmp449*(tmp556 + vel(19))*tmp3863;
+      const Scalar tmp3865 = -tmp3864;
+      const Scalar tmp3866 = tmp572*tmp3862 + tmp568*tmp3865;
+      const Scalar tmp3867 = tmp572*tmp3863 + tmp570*tmp3865;
+      const Scalar tmp3868 = tmp571*tmp3862 + tmp568*tmp3864;
+      const Scalar tmp3869 = tmp571*tmp3863 + tmp570*tmp3864;
+      const Scalar tmp3870 = tmp3857 + tmp3869;
+      const Scalar tmp3871 = tmp550/sqrt((tmp548*tmp548) + (tmp550*tmp550));
+      const Scalar tmp3872 = -(Scalar(1)/(tmp551*tmp551))*tmp3871;
+      const Scalar tmp3873 = tmp548*tmp3872;
+      const Scalar tmp3874 = tmp552 + tmp550*tmp3872;
+      const Scalar tmp3875 = tmp447*tmp3871 + tmp449*(-tmp555 - vel(14))*tmp3873
+          + tmp449*(-tmp556 - vel(15))*tmp3874;
+      const Scalar tmp3876 = -tmp3875;
+      const Scalar tmp3877 = tmp559*tmp3873 + tmp553*tmp3876;
+      const Scalar tmp3878 = tmp559*tmp3874 + tmp557*tmp3876;
+      const Scalar tmp3879 = tmp558*tmp3873 + tmp553*tmp3875;
+      const Scalar tmp3880 = tmp558*tmp3874 + tmp557*tmp3875;
+      const Scalar tmp3881 = -tmp565/sqrt((tmp564*tmp564) + (tmp565*tmp565));
+      const Scalar tmp3882 = -(Scalar(1)/(tmp566*tmp566))*tmp3881;
+      const Scalar tmp3883 = tmp564*tmp3882;
+      const Scalar tmp3884 = -tmp567 + tmp565*tmp3882;
+      const Scalar tmp3885 = tmp447*tmp3881 + tmp449*(tmp555 + vel(18))*tmp3883
+          + tmp449*(tmp556 + vel(19))*tmp3884;
+      const Scalar tmp3886 = -tmp3885;
+      const Scalar tmp3887 = tmp572*tmp3883 + tmp568*tmp3886;
+      const Scalar tmp3888 = tmp572*tmp3884 + tmp570*tmp3886;
+      const Scalar tmp3889 = tmp571*tmp3883 + tmp568*tmp3885;
+      const Scalar tmp3890 = tmp571*tmp3884 + tmp570*tmp3885;
+      const Scalar tmp3891 = tmp3878 + tmp3890;
+      const Scalar tmp3892 = tmp564/sqrt((tmp564*tmp564) + (tmp565*tmp565));
+      const Scalar tmp3893 = -(Scalar(1)/(tmp566*tmp566))*tmp3892;
+      const Scalar tmp3894 = tmp567 + tmp564*tmp3893;
+      const Scalar tmp3895 = tmp565*tmp3893;
+      const Scalar tmp3896 = tmp447*tmp3892 + tmp449*(tmp555 + vel(18))*tmp3894
+          + tmp449*(tmp556 + vel(19))*tmp3895;
+      const Scalar tmp3897 = -tmp3896;
+      const Scalar tmp3898 = tmp572*tmp3894 + tmp568*tmp3897;
+      const Scalar tmp3899 = tmp572*tmp3895 + tmp570*tmp3897;
+      const Scalar tmp3900 = tmp571*tmp3894 + tmp568*tmp3896;
+      const Scalar tmp3901 = tmp571*tmp3895 + tmp570*tmp3896;
+      const Scalar tmp3902 = tmp565/sqrt((tmp564*tmp564) + (tmp565*tmp565));
+      const Scalar tmp3903 = -(Scalar(1)/(tmp566*tmp566))*tmp3902;
+      const Scalar tmp3904 = tmp564*tmp3903;
+      const Scalar tmp3905 = tmp567 + tmp565*tmp3903;
+      const Scalar tmp3906 = tmp447*tmp3902 + tmp449*(tmp555 + vel(18))*tmp3904
+          + tmp449*(tmp556 + vel(19))*tmp3905;
+      const Scalar tmp3907 = -tmp3906;
+      const Scalar tmp3908 = tmp572*tmp3904 + tmp568*tmp3907;
+      const Scalar tmp3909 = tmp572*tmp3905 + tmp570*tmp3907;
+      const Scalar tmp3910 = tmp571*tmp3904 + tmp568*tmp3906;
+      const Scalar tmp3911 = tmp571*tmp3905 + tmp570*tmp3906;
       std::array<Scalar, 112> result;
-      result[0] = tmp455*tmp3479 + tmp452*tmp3481 + tmp463*tmp3484 + tmp461*tmp3486;
-      result[1] = tmp455*tmp3492 + tmp452*tmp3494 + tmp463*tmp3497 + tmp461*tmp3499;
-      result[2] = tmp463*tmp3505 + tmp461*tmp3507;
-      result[3] = tmp463*tmp3520 + tmp461*tmp3522;
-      result[4] = tmp3487;
-      result[5] = tmp3500;
-      result[6] = tmp3508;
-      result[7] = tmp3523;
-      result[8] = tmp473*tmp3484 + tmp461*tmp3488;
-      result[9] = tmp473*tmp3497 + tmp461*tmp3501;
-      result[10] = tmp473*tmp3505 + tmp472*tmp3511 + tmp470*tmp3513 + tmp461*tmp3514;
-      result[11] = tmp473*tmp3520 + tmp472*tmp3526 + tmp470*tmp3528 + tmp461*tmp3529;
-      result[12] = tmp472*tmp3535 + tmp470*tmp3537;
-      result[13] = tmp472*tmp3550 + tmp470*tmp3552;
-      result[14] = tmp3489;
-      result[15] = tmp3502;
-      result[16] = tmp3515;
-      result[17] = tmp3530;
-      result[18] = tmp3538;
-      result[19] = tmp3553;
-      result[20] = tmp483*tmp3511 + tmp470*tmp3516;
-      result[21] = tmp483*tmp3526 + tmp470*tmp3531;
-      result[22] = tmp483*tmp3535 + tmp482*tmp3541 + tmp480*tmp3543 + tmp470*tmp3544;
-      result[23] = tmp483*tmp3550 + tmp482*tmp3556 + tmp480*tmp3558 + tmp470*tmp3559;
-      result[24] = tmp482*tmp3565 + tmp480*tmp3567;
-      result[25] = tmp482*tmp3580 + tmp480*tmp3582;
-      result[26] = tmp3517;
-      result[27] = tmp3532;
-      result[28] = tmp3545;
-      result[29] = tmp3560;
-      result[30] = tmp3568;
-      result[31] = tmp3583;
-      result[32] = tmp493*tmp3541 + tmp480*tmp3546;
-      result[33] = tmp493*tmp3556 + tmp480*tmp3561;
-      result[34] = tmp493*tmp3565 + tmp492*tmp3571 + tmp490*tmp3573 + tmp480*tmp3574;
-      result[35] = tmp493*tmp3580 + tmp492*tmp3586 + tmp490*tmp3588 + tmp480*tmp3589;
-      result[36] = tmp492*tmp3595 + tmp490*tmp3597;
-      result[37] = tmp492*tmp3610 + tmp490*tmp3612;
-      result[38] = tmp3547;
-      result[39] = tmp3562;
-      result[40] = tmp3575;
-      result[41] = tmp3590;
-      result[42] = tmp3598;
-      result[43] = tmp3613;
-      result[44] = tmp503*tmp3571 + tmp490*tmp3576;
-      result[45] = tmp503*tmp3586 + tmp490*tmp3591;
-      result[46] = tmp503*tmp3595 + tmp502*tmp3601 + tmp500*tmp3603 + tmp490*tmp3604;
-      result[47] = tmp503*tmp3610 + tmp502*tmp3616 + tmp500*tmp3618 + tmp490*tmp3619;
-      result[48] = tmp502*tmp3625 + tmp500*tmp3627;
-      result[49] = tmp502*tmp3640 + tmp500*tmp3642;
-      result[50] = tmp3577;
-      result[51] = tmp3592;
-      result[52] = tmp3605;
-      result[53] = tmp3620;
-      result[54] = tmp3628;
-      result[55] = tmp3643;
-      result[56] = tmp513*tmp3601 + tmp500*tmp3606;
-      result[57] = tmp513*tmp3616 + tmp500*tmp3621;
-      result[58] = tmp513*tmp3625 + tmp512*tmp3631 + tmp510*tmp3633 + tmp500*tmp3634;
-      result[59] = tmp513*tmp3640 + tmp512*tmp3646 + tmp510*tmp3648 + tmp500*tmp3649;
-      result[60] = tmp512*tmp3655 + tmp510*tmp3657;
-      result[61] = tmp512*tmp3670 + tmp510*tmp3672;
-      result[62] = tmp3607;
-      result[63] = tmp3622;
-      result[64] = tmp3635;
-      result[65] = tmp3650;
-      result[66] = tmp3658;
-      result[67] = tmp3673;
-      result[68] = tmp523*tmp3631 + tmp510*tmp3636;
-      result[69] = tmp523*tmp3646 + tmp510*tmp3651;
-      result[70] = tmp523*tmp3655 + tmp522*tmp3661 + tmp520*tmp3663 + tmp510*tmp3664;
-      result[71] = tmp523*tmp3670 + tmp522*tmp3676 + tmp520*tmp3678 + tmp510*tmp3679;
-      result[72] = tmp522*tmp3685 + tmp520*tmp3687;
-      result[73] = tmp522*tmp3700 + tmp520*tmp3702;
-      result[74] = tmp3637;
-      result[75] = tmp3652;
-      result[76] = tmp3665;
-      result[77] = tmp3680;
-      result[78] = tmp3688;
-      result[79] = tmp3703;
-      result[80] = tmp537*tmp3661 + tmp520*tmp3666;
-      result[81] = tmp537*tmp3676 + tmp520*tmp3681;
-      result[82] = tmp537*tmp3685 + tmp536*tmp3691 + tmp533*tmp3693 + tmp520*tmp3694;
-      result[83] = tmp537*tmp3700 + tmp536*tmp3706 + tmp533*tmp3708 + tmp520*tmp3709;
-      result[84] = tmp536*tmp3715 + tmp533*tmp3717;
-      result[85] = tmp536*tmp3729 + tmp533*tmp3731;
-      result[86] = tmp3667;
-      result[87] = tmp3682;
-      result[88] = tmp3695;
-      result[89] = tmp3710;
-      result[90] = tmp3718;
-      result[91] = tmp3732;
-      result[92] = tmp547*tmp3691 + tmp533*tmp3696;
-      result[93] = tmp547*tmp3706 + tmp533*tmp3711;
-      result[94] = tmp547*tmp3715 + tmp546*tmp3721 + tmp544*tmp3723 + tmp533*tmp3724;
-      result[95] = tmp547*tmp3729 + tmp546*tmp3735 + tmp544*tmp3737 + tmp533*tmp3738;
-      result[96] = tmp546*tmp3743 + tmp544*tmp3745;
-      result[97] = tmp546*tmp3750 + tmp544*tmp3752;
-      result[98] = tmp3697;
-      result[99] = tmp3712;
-      result[100] = tmp3725;
-      result[101] = tmp3739;
-      result[102] = tmp3746;
-      result[103] = tmp3753;
-      result[104] = tmp549*tmp3721 + tmp544*tmp3726;
-      result[105] = tmp549*tmp3735 + tmp544*tmp3740;
-      result[106] = tmp549*tmp3743 + tmp544*tmp3747;
-      result[107] = tmp549*tmp3750 + tmp544*tmp3754;
-      result[108] = tmp540*tmp549*tmp3720 + tmp540*tmp543*tmp3726;
-      result[109] = -tmp543*tmp549 + tmp540*tmp549*tmp3734 + tmp540*tmp543*tmp3740;
-      result[110] = tmp540*tmp549*tmp3742 + tmp540*tmp543*tmp3747;
-      result[111] = tmp543*tmp549 + tmp540*tmp549*tmp3749 + tmp540*tmp543*tmp3754;
+      result[0] = tmp3524 + tmp3534;
+      result[1] = tmp3543 + tmp3553;
+      result[2] = tmp3564;
+      result[3] = tmp3585;
+      result[4] = tmp3536;
+      result[5] = tmp3555;
+      result[6] = tmp3565;
+      result[7] = tmp3586;
+      result[8] = tmp3532;
+      result[9] = tmp3551;
+      result[10] = tmp3574 + tmp3562;
+      result[11] = tmp3595 + tmp3583;
+      result[12] = tmp3606;
+      result[13] = tmp3627;
+      result[14] = tmp3533;
+      result[15] = tmp3552;
+      result[16] = tmp3576;
+      result[17] = tmp3597;
+      result[18] = tmp3607;
+      result[19] = tmp3628;
+      result[20] = tmp3572;
+      result[21] = tmp3593;
+      result[22] = tmp3616 + tmp3604;
+      result[23] = tmp3637 + tmp3625;
+      result[24] = tmp3648;
+      result[25] = tmp3669;
+      result[26] = tmp3573;
+      result[27] = tmp3594;
+      result[28] = tmp3618;
+      result[29] = tmp3639;
+      result[30] = tmp3649;
+      result[31] = tmp3670;
+      result[32] = tmp3614;
+      result[33] = tmp3635;
+      result[34] = tmp3646 + tmp3658;
+      result[35] = tmp3667 + tmp3679;
+      result[36] = tmp3690;
+      result[37] = tmp3711;
+      result[38] = tmp3615;
+      result[39] = tmp3636;
+      result[40] = tmp3660;
+      result[41] = tmp3681;
+      result[42] = tmp3691;
+      result[43] = tmp3712;
+      result[44] = tmp3656;
+      result[45] = tmp3677;
+      result[46] = tmp3688 + tmp3700;
+      result[47] = tmp3709 + tmp3721;
+      result[48] = tmp3732;
+      result[49] = tmp3753;
+      result[50] = tmp3657;
+      result[51] = tmp3678;
+      result[52] = tmp3702;
+      result[53] = tmp3723;
+      result[54] = tmp3733;
+      result[55] = tmp3754;
+      result[56] = tmp3698;
+      result[57] = tmp3719;
+      result[58] = tmp3730 + tmp3742;
+      result[59] = tmp3751 + tmp3763;
+      result[60] = tmp3774;
+      result[61] = tmp3795;
+      result[62] = tmp3699;
+      result[63] = tmp3720;
+      result[64] = tmp3744;
+      result[65] = tmp3765;
+      result[66] = tmp3775;
+      result[67] = tmp3796;
+      result[68] = tmp3740;
+      result[69] = tmp3761;
+      result[70] = tmp3772 + tmp3784;
+      result[71] = tmp3793 + tmp3805;
+      result[72] = tmp3816;
+      result[73] = tmp3837;
+      result[74] = tmp3741;
+      result[75] = tmp3762;
+      result[76] = tmp3786;
+      result[77] = tmp3807;
+      result[78] = tmp3817;
+      result[79] = tmp3838;
+      result[80] = tmp3782;
+      result[81] = tmp3803;
+      result[82] = tmp3814 + tmp3826;
+      result[83] = tmp3835 + tmp3847;
+      result[84] = tmp3858;
+      result[85] = tmp3879;
+      result[86] = tmp3783;
+      result[87] = tmp3804;
+      result[88] = tmp3828;
+      result[89] = tmp3849;
+      result[90] = tmp3859;
+      result[91] = tmp3880;
+      result[92] = tmp3824;
+      result[93] = tmp3845;
+      result[94] = tmp3856 + tmp3868;
+      result[95] = tmp3877 + tmp3889;
+      result[96] = tmp3900;
+      result[97] = tmp3910;
+      result[98] = tmp3825;
+      result[99] = tmp3846;
+      result[100] = tmp3870;
+      result[101] = tmp3891;
+      result[102] = tmp3901;
+      result[103] = tmp3911;
+      result[104] = tmp3866;
+      result[105] = tmp3887;
+      result[106] = tmp3898;
+      result[107] = tmp3908;
+      result[108] = tmp3867;
+      result[109] = tmp3888;
+      result[110] = tmp3899;
+      result[111] = tmp3909;
       return result;
     }
 
@@ -13849,7 +14005,7 @@ struct StiffChain10 {
     /// \param[in] penalty_damping  penalty damping coefficient
     /// \param[in] params  model parameters
     /// \return values (jacobian_xdot_nonzeros)
-    /// Ops: 392
+    /// Ops: 388
     template <typename Scalar>
     static std::array<Scalar, 112> force_jacobian_xdot(const XVector<Scalar>& pos,
                                                        const XVector<Scalar>& /*vel*/,
@@ -13859,307 +14015,423 @@ struct StiffChain10 {
                                                        const Params& params) {
       using std::sqrt;
       const Scalar l = Scalar(params.l);
-      const Scalar tmp447 = sqrt((pos(0)*pos(0)) + (pos(1)*pos(1)));
-      const Scalar tmp449 = (Scalar(1)/l);
-      const Scalar tmp451 = (Scalar(1)/tmp447);
-      const Scalar tmp452 = tmp451*pos(0);
-      const Scalar tmp453 = tmp451*pos(1);
-      const Scalar tmp454 = tmp449*penalty_damping;
+      const Scalar tmp442 = sqrt((pos(0)*pos(0)) + (pos(1)*pos(1)));
+      const Scalar tmp443 = (Scalar(1)/tmp442);
+      const Scalar tmp444 = tmp443*pos(0);
+      const Scalar tmp446 = (Scalar(1)/l);
+      const Scalar tmp448 = tmp443*pos(1);
+      const Scalar tmp449 = tmp446*penalty_damping;
       const Scalar tmp456 = pos(2) - pos(0);
       const Scalar tmp457 = pos(3) - pos(1);
       const Scalar tmp458 = sqrt((tmp456*tmp456) + (tmp457*tmp457));
-      const Scalar tmp460 = (Scalar(1)/tmp458);
-      const Scalar tmp461 = tmp456*tmp460;
-      const Scalar tmp462 = tmp457*tmp460;
-      const Scalar tmp465 = pos(4) - pos(2);
-      const Scalar tmp466 = pos(5) - pos(3);
-      const Scalar tmp467 = sqrt((tmp465*tmp465) + (tmp466*tmp466));
-      const Scalar tmp469 = (Scalar(1)/tmp467);
-      const Scalar tmp470 = tmp465*tmp469;
-      const Scalar tmp471 = tmp466*tmp469;
-      const Scalar tmp475 = pos(6) - pos(4);
-      const Scalar tmp476 = pos(7) - pos(5);
-      const Scalar tmp477 = sqrt((tmp475*tmp475) + (tmp476*tmp476));
-      const Scalar tmp479 = (Scalar(1)/tmp477);
-      const Scalar tmp480 = tmp475*tmp479;
-      const Scalar tmp481 = tmp476*tmp479;
-      const Scalar tmp485 = pos(8) - pos(6);
-      const Scalar tmp486 = pos(9) - pos(7);
-      const Scalar tmp487 = sqrt((tmp485*tmp485) + (tmp486*tmp486));
-      const Scalar tmp489 = (Scalar(1)/tmp487);
-      const Scalar tmp490 = tmp485*tmp489;
-      const Scalar tmp491 = tmp486*tmp489;
-      const Scalar tmp495 = pos(10) - pos(8);
-      const Scalar tmp496 = pos(11) - pos(9);
+      const Scalar tmp459 = (Scalar(1)/tmp458);
+      const Scalar tmp460 = tmp456*tmp459;
+      const Scalar tmp462 = tmp457*tmp459;
+      const Scalar tmp469 = pos(4) - pos(2);
+      const Scalar tmp470 = pos(5) - pos(3);
+      const Scalar tmp471 = sqrt((tmp469*tmp469) + (tmp470*tmp470));
+      const Scalar tmp472 = (Scalar(1)/tmp471);
+      const Scalar tmp473 = tmp469*tmp472;
+      const Scalar tmp475 = tmp470*tmp472;
+      const Scalar tmp482 = pos(6) - pos(4);
+      const Scalar tmp483 = pos(7) - pos(5);
+      const Scalar tmp484 = sqrt((tmp482*tmp482) + (tmp483*tmp483));
+      const Scalar tmp485 = (Scalar(1)/tmp484);
+      const Scalar tmp486 = tmp482*tmp485;
+      const Scalar tmp488 = tmp483*tmp485;
+      const Scalar tmp495 = pos(8) - pos(6);
+      const Scalar tmp496 = pos(9) - pos(7);
       const Scalar tmp497 = sqrt((tmp495*tmp495) + (tmp496*tmp496));
-      const Scalar tmp499 = (Scalar(1)/tmp497);
-      const Scalar tmp500 = tmp495*tmp499;
-      const Scalar tmp501 = tmp496*tmp499;
-      const Scalar tmp505 = pos(12) - pos(10);
-      const Scalar tmp506 = pos(13) - pos(11);
-      const Scalar tmp507 = sqrt((tmp505*tmp505) + (tmp506*tmp506));
-      const Scalar tmp509 = (Scalar(1)/tmp507);
-      const Scalar tmp510 = tmp505*tmp509;
-      const Scalar tmp511 = tmp506*tmp509;
-      const Scalar tmp515 = pos(14) - pos(12);
-      const Scalar tmp516 = pos(15) - pos(13);
-      const Scalar tmp517 = sqrt((tmp515*tmp515) + (tmp516*tmp516));
-      const Scalar tmp519 = (Scalar(1)/tmp517);
-      const Scalar tmp520 = tmp515*tmp519;
-      const Scalar tmp521 = tmp516*tmp519;
-      const Scalar tmp525 = -pos(16);
-      const Scalar tmp526 = -tmp525 - pos(14);
-      const Scalar tmp527 = -pos(17);
-      const Scalar tmp528 = -tmp527 - pos(15);
-      const Scalar tmp529 = sqrt((tmp526*tmp526) + (tmp528*tmp528));
-      const Scalar tmp532 = (Scalar(1)/tmp529);
-      const Scalar tmp533 = tmp526*tmp532;
-      const Scalar tmp535 = tmp528*tmp532;
-      const Scalar tmp539 = tmp525 + pos(18);
-      const Scalar tmp540 = tmp527 + pos(19);
-      const Scalar tmp541 = sqrt((tmp539*tmp539) + (tmp540*tmp540));
-      const Scalar tmp543 = (Scalar(1)/tmp541);
-      const Scalar tmp544 = tmp539*tmp543;
-      const Scalar tmp545 = tmp540*tmp543;
-      const Scalar tmp3755 = -tmp452*tmp454;
-      const Scalar tmp3756 = -tmp454*tmp461;
-      const Scalar tmp3757 = tmp453*tmp3755 + tmp462*tmp3756;
-      const Scalar tmp3758 = -tmp3756;
-      const Scalar tmp3759 = tmp462*tmp3758;
-      const Scalar tmp3760 = -tmp453*tmp454;
-      const Scalar tmp3761 = -tmp454*tmp462;
-      const Scalar tmp3762 = tmp453*tmp3760 + tmp462*tmp3761;
-      const Scalar tmp3763 = -tmp3761;
-      const Scalar tmp3764 = tmp462*tmp3763;
-      const Scalar tmp3765 = tmp454*tmp461;
-      const Scalar tmp3766 = tmp462*tmp3765;
-      const Scalar tmp3767 = -tmp454*tmp470;
-      const Scalar tmp3768 = -tmp3765;
-      const Scalar tmp3769 = tmp471*tmp3767 + tmp462*tmp3768;
-      const Scalar tmp3770 = -tmp3767;
-      const Scalar tmp3771 = tmp471*tmp3770;
-      const Scalar tmp3772 = tmp454*tmp462;
-      const Scalar tmp3773 = tmp462*tmp3772;
-      const Scalar tmp3774 = -tmp454*tmp471;
-      const Scalar tmp3775 = -tmp3772;
-      const Scalar tmp3776 = tmp471*tmp3774 + tmp462*tmp3775;
-      const Scalar tmp3777 = -tmp3774;
-      const Scalar tmp3778 = tmp471*tmp3777;
-      const Scalar tmp3779 = tmp454*tmp470;
-      const Scalar tmp3780 = tmp471*tmp3779;
-      const Scalar tmp3781 = -tmp454*tmp480;
-      const Scalar tmp3782 = -tmp3779;
-      const Scalar tmp3783 = tmp481*tmp3781 + tmp471*tmp3782;
-      const Scalar tmp3784 = -tmp3781;
-      const Scalar tmp3785 = tmp481*tmp3784;
-      const Scalar tmp3786 = tmp454*tmp471;
-      const Scalar tmp3787 = tmp471*tmp3786;
-      const Scalar tmp3788 = -tmp454*tmp481;
-      const Scalar tmp3789 = -tmp3786;
-      const Scalar tmp3790 = tmp481*tmp3788 + tmp471*tmp3789;
-      const Scalar tmp3791 = -tmp3788;
-      const Scalar tmp3792 = tmp481*tmp3791;
-      const Scalar tmp3793 = tmp454*tmp480;
-      const Scalar tmp3794 = tmp481*tmp3793;
-      const Scalar tmp3795 = -tmp454*tmp490;
-      const Scalar tmp3796 = -tmp3793;
-      const Scalar tmp3797 = tmp491*tmp3795 + tmp481*tmp3796;
-      const Scalar tmp3798 = -tmp3795;
-      const Scalar tmp3799 = tmp491*tmp3798;
-      const Scalar tmp3800 = tmp454*tmp481;
-      const Scalar tmp3801 = tmp481*tmp3800;
-      const Scalar tmp3802 = -tmp454*tmp491;
-      const Scalar tmp3803 = -tmp3800;
-      const Scalar tmp3804 = tmp491*tmp3802 + tmp481*tmp3803;
-      const Scalar tmp3805 = -tmp3802;
-      const Scalar tmp3806 = tmp491*tmp3805;
-      const Scalar tmp3807 = tmp454*tmp490;
-      const Scalar tmp3808 = tmp491*tmp3807;
-      const Scalar tmp3809 = -tmp454*tmp500;
-      const Scalar tmp3810 = -tmp3807;
-      const Scalar tmp3811 = tmp501*tmp3809 + tmp491*tmp3810;
-      const Scalar tmp3812 = -tmp3809;
-      const Scalar tmp3813 = tmp501*tmp3812;
-      const Scalar tmp3814 = tmp454*tmp491;
-      const Scalar tmp3815 = tmp491*tmp3814;
-      const Scalar tmp3816 = -tmp454*tmp501;
-      const Scalar tmp3817 = -tmp3814;
-      const Scalar tmp3818 = tmp501*tmp3816 + tmp491*tmp3817;
-      const Scalar tmp3819 = -tmp3816;
-      const Scalar tmp3820 = tmp501*tmp3819;
-      const Scalar tmp3821 = tmp454*tmp500;
-      const Scalar tmp3822 = tmp501*tmp3821;
-      const Scalar tmp3823 = -tmp454*tmp510;
-      const Scalar tmp3824 = -tmp3821;
-      const Scalar tmp3825 = tmp511*tmp3823 + tmp501*tmp3824;
-      const Scalar tmp3826 = -tmp3823;
-      const Scalar tmp3827 = tmp511*tmp3826;
-      const Scalar tmp3828 = tmp454*tmp501;
-      const Scalar tmp3829 = tmp501*tmp3828;
-      const Scalar tmp3830 = -tmp454*tmp511;
-      const Scalar tmp3831 = -tmp3828;
-      const Scalar tmp3832 = tmp511*tmp3830 + tmp501*tmp3831;
-      const Scalar tmp3833 = -tmp3830;
-      const Scalar tmp3834 = tmp511*tmp3833;
-      const Scalar tmp3835 = tmp454*tmp510;
-      const Scalar tmp3836 = tmp511*tmp3835;
-      const Scalar tmp3837 = -tmp454*tmp520;
-      const Scalar tmp3838 = -tmp3835;
-      const Scalar tmp3839 = tmp521*tmp3837 + tmp511*tmp3838;
-      const Scalar tmp3840 = -tmp3837;
-      const Scalar tmp3841 = tmp521*tmp3840;
-      const Scalar tmp3842 = tmp454*tmp511;
-      const Scalar tmp3843 = tmp511*tmp3842;
-      const Scalar tmp3844 = -tmp454*tmp521;
-      const Scalar tmp3845 = -tmp3842;
-      const Scalar tmp3846 = tmp521*tmp3844 + tmp511*tmp3845;
-      const Scalar tmp3847 = -tmp3844;
-      const Scalar tmp3848 = tmp521*tmp3847;
-      const Scalar tmp3849 = tmp454*tmp520;
-      const Scalar tmp3850 = tmp521*tmp3849;
-      const Scalar tmp3851 = -tmp454*tmp533;
-      const Scalar tmp3852 = -tmp3849;
-      const Scalar tmp3853 = tmp535*tmp3851 + tmp521*tmp3852;
-      const Scalar tmp3854 = -tmp3851;
-      const Scalar tmp3855 = tmp535*tmp3854;
-      const Scalar tmp3856 = tmp454*tmp521;
-      const Scalar tmp3857 = tmp521*tmp3856;
-      const Scalar tmp3858 = -tmp454*tmp535;
-      const Scalar tmp3859 = -tmp3856;
-      const Scalar tmp3860 = tmp535*tmp3858 + tmp521*tmp3859;
-      const Scalar tmp3861 = -tmp3858;
-      const Scalar tmp3862 = tmp535*tmp3861;
-      const Scalar tmp3863 = tmp454*tmp533;
-      const Scalar tmp3864 = tmp535*tmp3863;
-      const Scalar tmp3865 = -tmp454*tmp544;
-      const Scalar tmp3866 = -tmp3863;
-      const Scalar tmp3867 = tmp545*tmp3865 + tmp535*tmp3866;
-      const Scalar tmp3868 = -tmp3865;
-      const Scalar tmp3869 = tmp454*tmp535;
-      const Scalar tmp3870 = tmp535*tmp3869;
-      const Scalar tmp3871 = -tmp454*tmp545;
-      const Scalar tmp3872 = -tmp3869;
-      const Scalar tmp3873 = tmp545*tmp3871 + tmp535*tmp3872;
-      const Scalar tmp3874 = -tmp3871;
-      const Scalar tmp3875 = tmp454*tmp544;
-      const Scalar tmp3876 = tmp545*tmp3875;
-      const Scalar tmp3877 = -tmp3875;
-      const Scalar tmp3878 = tmp454*tmp545;
-      const Scalar tmp3879 = tmp545*tmp3878;
-      const Scalar tmp3880 = -tmp3878;
+      const Scalar tmp498 = (Scalar(1)/tmp497);
+      const Scalar tmp499 = tmp495*tmp498;
+      const Scalar tmp501 = tmp496*tmp498;
+      const Scalar tmp508 = pos(10) - pos(8);
+      const Scalar tmp509 = pos(11) - pos(9);
+      const Scalar tmp510 = sqrt((tmp508*tmp508) + (tmp509*tmp509));
+      const Scalar tmp511 = (Scalar(1)/tmp510);
+      const Scalar tmp512 = tmp508*tmp511;
+      const Scalar tmp514 = tmp509*tmp511;
+      const Scalar tmp521 = pos(12) - pos(10);
+      const Scalar tmp522 = pos(13) - pos(11);
+      const Scalar tmp523 = sqrt((tmp521*tmp521) + (tmp522*tmp522));
+      const Scalar tmp524 = (Scalar(1)/tmp523);
+      const Scalar tmp525 = tmp521*tmp524;
+      const Scalar tmp527 = tmp522*tmp524;
+      const Scalar tmp534 = pos(14) - pos(12);
+      const Scalar tmp535 = pos(15) - pos(13);
+      const Scalar tmp536 = sqrt((tmp534*tmp534) + (tmp535*tmp535));
+      const Scalar tmp537 = (Scalar(1)/tmp536);
+      const Scalar tmp538 = tmp534*tmp537;
+      const Scalar tmp540 = tmp535*tmp537;
+      const Scalar tmp547 = -pos(16);
+      const Scalar tmp548 = -tmp547 - pos(14);
+      const Scalar tmp549 = -pos(17);
+      const Scalar tmp550 = -tmp549 - pos(15);
+      const Scalar tmp551 = sqrt((tmp548*tmp548) + (tmp550*tmp550));
+      const Scalar tmp552 = (Scalar(1)/tmp551);
+      const Scalar tmp553 = tmp548*tmp552;
+      const Scalar tmp557 = tmp550*tmp552;
+      const Scalar tmp564 = tmp547 + pos(18);
+      const Scalar tmp565 = tmp549 + pos(19);
+      const Scalar tmp566 = sqrt((tmp564*tmp564) + (tmp565*tmp565));
+      const Scalar tmp567 = (Scalar(1)/tmp566);
+      const Scalar tmp568 = tmp564*tmp567;
+      const Scalar tmp570 = tmp565*tmp567;
+      const Scalar tmp3912 = tmp444*tmp449;
+      const Scalar tmp3913 = -tmp3912;
+      const Scalar tmp3914 = tmp444*tmp3913;
+      const Scalar tmp3915 = tmp448*tmp3913;
+      const Scalar tmp3916 = -tmp449*tmp460;
+      const Scalar tmp3917 = -tmp3916;
+      const Scalar tmp3918 = tmp460*tmp3917;
+      const Scalar tmp3919 = tmp462*tmp3917;
+      const Scalar tmp3920 = tmp460*tmp3916;
+      const Scalar tmp3921 = tmp462*tmp3916;
+      const Scalar tmp3922 = tmp3915 + tmp3921;
+      const Scalar tmp3923 = tmp448*tmp449;
+      const Scalar tmp3924 = -tmp3923;
+      const Scalar tmp3925 = tmp444*tmp3924;
+      const Scalar tmp3926 = tmp448*tmp3924;
+      const Scalar tmp3927 = -tmp449*tmp462;
+      const Scalar tmp3928 = -tmp3927;
+      const Scalar tmp3929 = tmp460*tmp3928;
+      const Scalar tmp3930 = tmp462*tmp3928;
+      const Scalar tmp3931 = tmp460*tmp3927;
+      const Scalar tmp3932 = tmp462*tmp3927;
+      const Scalar tmp3933 = tmp3926 + tmp3932;
+      const Scalar tmp3934 = tmp449*tmp460;
+      const Scalar tmp3935 = -tmp3934;
+      const Scalar tmp3936 = tmp460*tmp3935;
+      const Scalar tmp3937 = tmp462*tmp3935;
+      const Scalar tmp3938 = tmp460*tmp3934;
+      const Scalar tmp3939 = tmp462*tmp3934;
+      const Scalar tmp3940 = -tmp449*tmp473;
+      const Scalar tmp3941 = -tmp3940;
+      const Scalar tmp3942 = tmp473*tmp3941;
+      const Scalar tmp3943 = tmp475*tmp3941;
+      const Scalar tmp3944 = tmp473*tmp3940;
+      const Scalar tmp3945 = tmp475*tmp3940;
+      const Scalar tmp3946 = tmp3945 + tmp3937;
+      const Scalar tmp3947 = tmp449*tmp462;
+      const Scalar tmp3948 = -tmp3947;
+      const Scalar tmp3949 = tmp460*tmp3948;
+      const Scalar tmp3950 = tmp462*tmp3948;
+      const Scalar tmp3951 = tmp460*tmp3947;
+      const Scalar tmp3952 = tmp462*tmp3947;
+      const Scalar tmp3953 = -tmp449*tmp475;
+      const Scalar tmp3954 = -tmp3953;
+      const Scalar tmp3955 = tmp473*tmp3954;
+      const Scalar tmp3956 = tmp475*tmp3954;
+      const Scalar tmp3957 = tmp473*tmp3953;
+      const Scalar tmp3958 = tmp475*tmp3953;
+      const Scalar tmp3959 = tmp3958 + tmp3950;
+      const Scalar tmp3960 = tmp449*tmp473;
+      const Scalar tmp3961 = -tmp3960;
+      const Scalar tmp3962 = tmp473*tmp3961;
+      const Scalar tmp3963 = tmp475*tmp3961;
+      const Scalar tmp3964 = tmp473*tmp3960;
+      const Scalar tmp3965 = tmp475*tmp3960;
+      const Scalar tmp3966 = -tmp449*tmp486;
+      const Scalar tmp3967 = -tmp3966;
+      const Scalar tmp3968 = tmp486*tmp3967;
+      const Scalar tmp3969 = tmp488*tmp3967;
+      const Scalar tmp3970 = tmp486*tmp3966;
+      const Scalar tmp3971 = tmp488*tmp3966;
+      const Scalar tmp3972 = tmp3971 + tmp3963;
+      const Scalar tmp3973 = tmp449*tmp475;
+      const Scalar tmp3974 = -tmp3973;
+      const Scalar tmp3975 = tmp473*tmp3974;
+      const Scalar tmp3976 = tmp475*tmp3974;
+      const Scalar tmp3977 = tmp473*tmp3973;
+      const Scalar tmp3978 = tmp475*tmp3973;
+      const Scalar tmp3979 = -tmp449*tmp488;
+      const Scalar tmp3980 = -tmp3979;
+      const Scalar tmp3981 = tmp486*tmp3980;
+      const Scalar tmp3982 = tmp488*tmp3980;
+      const Scalar tmp3983 = tmp486*tmp3979;
+      const Scalar tmp3984 = tmp488*tmp3979;
+      const Scalar tmp3985 = tmp3984 + tmp3976;
+      const Scalar tmp3986 = tmp449*tmp486;
+      const Scalar tmp3987 = -tmp3986;
+      const Scalar tmp3988 = tmp486*tmp3987;
+      const Scalar tmp3989 = tmp488*tmp3987;
+      const Scalar tmp3990 = tmp486*tmp3986;
+      const Scalar tmp3991 = tmp488*tmp3986;
+      const Scalar tmp3992 = -tmp449*tmp499;
+      const Scalar tmp3993 = -tmp3992;
+      const Scalar tmp3994 = tmp499*tmp3993;
+      const Scalar tmp3995 = tmp501*tmp3993;
+      const Scalar tmp3996 = tmp499*tmp3992;
+      const Scalar tmp3997 = tmp501*tmp3992;
+      const Scalar tmp3998 = tmp3989 + tmp3997;
+      const Scalar tmp3999 = tmp449*tmp488;
+      const Scalar tmp4000 = -tmp3999;
+      const Scalar tmp4001 = tmp486*tmp4000;
+      const Scalar tmp4002 = tmp488*tmp4000;
+      const Scalar tmp4003 = tmp486*tmp3999;
+      const Scalar tmp4004 = tmp488*tmp3999;
+      const Scalar tmp4005 = -tmp449*tmp501;
+      const Scalar tmp4006 = -tmp4005;
+      const Scalar tmp4007 = tmp499*tmp4006;
+      const Scalar tmp4008 = tmp501*tmp4006;
+      const Scalar tmp4009 = tmp499*tmp4005;
+      const Scalar tmp4010 = tmp501*tmp4005;
+      const Scalar tmp4011 = tmp4002 + tmp4010;
+      const Scalar tmp4012 = tmp449*tmp499;
+      const Scalar tmp4013 = -tmp4012;
+      const Scalar tmp4014 = tmp499*tmp4013;
+      const Scalar tmp4015 = tmp501*tmp4013;
+      const Scalar tmp4016 = tmp499*tmp4012;
+      const Scalar tmp4017 = tmp501*tmp4012;
+      const Scalar tmp4018 = -tmp449*tmp512;
+      const Scalar tmp4019 = -tmp4018;
+      const Scalar tmp4020 = tmp512*tmp4019;
+      const Scalar tmp4021 = tmp514*tmp4019;
+      const Scalar tmp4022 = tmp512*tmp4018;
+      const Scalar tmp4023 = tmp514*tmp4018;
+      const Scalar tmp4024 = tmp4015 + tmp4023;
+      const Scalar tmp4025 = tmp449*tmp501;
+      const Scalar tmp4026 = -tmp4025;
+      const Scalar tmp4027 = tmp499*tmp4026;
+      const Scalar tmp4028 = tmp501*tmp4026;
+      const Scalar tmp4029 = tmp499*tmp4025;
+      const Scalar tmp4030 = tmp501*tmp4025;
+      const Scalar tmp4031 = -tmp449*tmp514;
+      const Scalar tmp4032 = -tmp4031;
+      const Scalar tmp4033 = tmp512*tmp4032;
+      const Scalar tmp4034 = tmp514*tmp4032;
+      const Scalar tmp4035 = tmp512*tmp4031;
+      const Scalar tmp4036 = tmp514*tmp4031;
+      const Scalar tmp4037 = tmp4028 + tmp4036;
+      const Scalar tmp4038 = tmp449*tmp512;
+      const Scalar tmp4039 = -tmp4038;
+      const Scalar tmp4040 = tmp512*tmp4039;
+      const Scalar tmp4041 = tmp514*tmp4039;
+      const Scalar tmp4042 = tmp512*tmp4038;
+      const Scalar tmp4043 = tmp514*tmp4038;
+      const Scalar tmp4044 = -tmp449*tmp525;
+      const Scalar tmp4045 = -tmp4044;
+      const Scalar tmp4046 = tmp525*tmp4045;
+      const Scalar tmp4047 = tmp527*tmp4045;
+      const Scalar tmp4048 = tmp525*tmp4044;
+      const Scalar tmp4049 = tmp527*tmp4044;
+      const Scalar tmp4050 = tmp4041 + tmp4049;
+      const Scalar tmp4051 = tmp449*tmp514;
+      const Scalar tmp4052 = -tmp4051;
+      const Scalar tmp4053 = tmp512*tmp4052;
+      const Scalar tmp4054 = tmp514*tmp4052;
+      const Scalar tmp4055 = tmp512*tmp4051;
+      const Scalar tmp4056 = tmp514*tmp4051;
+      const Scalar tmp4057 = -tmp449*tmp527;
+      const Scalar tmp4058 = -tmp4057;
+      const Scalar tmp4059 = tmp525*tmp4058;
+      const Scalar tmp4060 = tmp527*tmp4058;
+      const Scalar tmp4061 = tmp525*tmp4057;
+      const Scalar tmp4062 = tmp527*tmp4057;
+      const Scalar tmp4063 = tmp4054 + tmp4062;
+      const Scalar tmp4064 = tmp449*tmp525;
+      const Scalar tmp4065 = -tmp4064;
+      const Scalar tmp4066 = tmp525*tmp4065;
+      const Scalar tmp4067 = tmp527*tmp4065;
+      const Scalar tmp4068 = tmp525*tmp4064;
+      const Scalar tmp4069 = tmp527*tmp4064;
+      const Scalar tmp4070 = -tmp449*tmp538;
+      const Scalar tmp4071 = -tmp4070;
+      const Scalar tmp4072 = tmp538*tmp4071;
+      const Scalar tmp4073 = tmp540*tmp4071;
+      const Scalar tmp4074 = tmp538*tmp4070;
+      const Scalar tmp4075 = tmp540*tmp4070;
+      const Scalar tmp4076 = tmp4067 + tmp4075;
+      const Scalar tmp4077 = tmp449*tmp527;
+      const Scalar tmp4078 = -tmp4077;
+      const Scalar tmp4079 = tmp525*tmp4078;
+      const Scalar tmp4080 = tmp527*tmp4078;
+      const Scalar tmp4081 = tmp525*tmp4077;
+      const Scalar tmp4082 = tmp527*tmp4077;
+      const Scalar tmp4083 = -tmp449*tmp540;
+      const Scalar tmp4084 = -tmp4083;
+      const Scalar tmp4085 = tmp538*tmp4084;
+      const Scalar tmp4086 = tmp540*tmp4084;
+      const Scalar tmp4087 = tmp538*tmp4083;
+      const Scalar tmp4088 = tmp540*tmp4083;
+      const Scalar tmp4089 = tmp4080 + tmp4088;
+      const Scalar tmp4090 = tmp449*tmp538;
+      const Scalar tmp4091 = -tmp4090;
+      const Scalar tmp4092 = tmp538*tmp4091;
+      const Scalar tmp4093 = tmp540*tmp4091;
+      const Scalar tmp4094 = tmp538*tmp4090;
+      const Scalar tmp4095 = tmp540*tmp4090;
+      const Scalar tmp4096 = -tmp449*tmp553;
+      const Scalar tmp4097 = -tmp4096;
+      const Scalar tmp4098 = tmp553*tmp4097;
+      const Scalar tmp4099 = tmp557*tmp4097;
+      const Scalar tmp4100 = tmp553*tmp4096;
+      const Scalar tmp4101 = tmp557*tmp4096;
+      const Scalar tmp4102 = tmp4093 + tmp4101;
+      const Scalar tmp4103 = tmp449*tmp540;
+      const Scalar tmp4104 = -tmp4103;
+      const Scalar tmp4105 = tmp538*tmp4104;
+      const Scalar tmp4106 = tmp540*tmp4104;
+      const Scalar tmp4107 = tmp538*tmp4103;
+      const Scalar tmp4108 = tmp540*tmp4103;
+      const Scalar tmp4109 = -tmp449*tmp557;
+      const Scalar tmp4110 = -tmp4109;
+      const Scalar tmp4111 = tmp553*tmp4110;
+      const Scalar tmp4112 = tmp557*tmp4110;
+      const Scalar tmp4113 = tmp553*tmp4109;
+      const Scalar tmp4114 = tmp557*tmp4109;
+      const Scalar tmp4115 = tmp4106 + tmp4114;
+      const Scalar tmp4116 = tmp449*tmp553;
+      const Scalar tmp4117 = -tmp4116;
+      const Scalar tmp4118 = tmp553*tmp4117;
+      const Scalar tmp4119 = tmp557*tmp4117;
+      const Scalar tmp4120 = tmp553*tmp4116;
+      const Scalar tmp4121 = tmp557*tmp4116;
+      const Scalar tmp4122 = -tmp449*tmp568;
+      const Scalar tmp4123 = -tmp4122;
+      const Scalar tmp4124 = tmp568*tmp4123;
+      const Scalar tmp4125 = tmp570*tmp4123;
+      const Scalar tmp4126 = tmp568*tmp4122;
+      const Scalar tmp4127 = tmp570*tmp4122;
+      const Scalar tmp4128 = tmp4119 + tmp4127;
+      const Scalar tmp4129 = tmp449*tmp557;
+      const Scalar tmp4130 = -tmp4129;
+      const Scalar tmp4131 = tmp553*tmp4130;
+      const Scalar tmp4132 = tmp557*tmp4130;
+      const Scalar tmp4133 = tmp553*tmp4129;
+      const Scalar tmp4134 = tmp557*tmp4129;
+      const Scalar tmp4135 = -tmp449*tmp570;
+      const Scalar tmp4136 = -tmp4135;
+      const Scalar tmp4137 = tmp568*tmp4136;
+      const Scalar tmp4138 = tmp570*tmp4136;
+      const Scalar tmp4139 = tmp568*tmp4135;
+      const Scalar tmp4140 = tmp570*tmp4135;
+      const Scalar tmp4141 = tmp4132 + tmp4140;
+      const Scalar tmp4142 = tmp449*tmp568;
+      const Scalar tmp4143 = -tmp4142;
+      const Scalar tmp4144 = tmp568*tmp4143;
+      const Scalar tmp4145 = tmp570*tmp4143;
+      const Scalar tmp4146 = tmp568*tmp4142;
+      const Scalar tmp4147 = tmp570*tmp4142;
+      const Scalar tmp4148 = tmp449*tmp570;
+      const Scalar tmp4149 = -tmp4148;
+      const Scalar tmp4150 = tmp568*tmp4149;
+      const Scalar tmp4151 = tmp570*tmp4149;
+      const Scalar tmp4152 = tmp568*tmp4148;
+      const Scalar tmp4153 = tmp570*tmp4148;
       std::array<Scalar, 112> result;
-      result[0] = tmp452*tmp3755 + tmp461*tmp3756;
-      result[1] = tmp452*tmp3760 + tmp461*tmp3761;
-      result[2] = tmp461*tmp3765;
-      result[3] = tmp461*tmp3772;
-      result[4] = tmp3757;
-      result[5] = tmp3762;
-      result[6] = tmp3766;
-      result[7] = tmp3773;
-      result[8] = tmp461*tmp3758;
-      result[9] = tmp461*tmp3763;
-      result[10] = tmp470*tmp3767 + tmp461*tmp3768;
-      result[11] = tmp470*tmp3774 + tmp461*tmp3775;
-      result[12] = tmp470*tmp3779;
-      result[13] = tmp470*tmp3786;
-      result[14] = tmp3759;
-      result[15] = tmp3764;
-      result[16] = tmp3769;
-      result[17] = tmp3776;
-      result[18] = tmp3780;
-      result[19] = tmp3787;
-      result[20] = tmp470*tmp3770;
-      result[21] = tmp470*tmp3777;
-      result[22] = tmp480*tmp3781 + tmp470*tmp3782;
-      result[23] = tmp480*tmp3788 + tmp470*tmp3789;
-      result[24] = tmp480*tmp3793;
-      result[25] = tmp480*tmp3800;
-      result[26] = tmp3771;
-      result[27] = tmp3778;
-      result[28] = tmp3783;
-      result[29] = tmp3790;
-      result[30] = tmp3794;
-      result[31] = tmp3801;
-      result[32] = tmp480*tmp3784;
-      result[33] = tmp480*tmp3791;
-      result[34] = tmp490*tmp3795 + tmp480*tmp3796;
-      result[35] = tmp490*tmp3802 + tmp480*tmp3803;
-      result[36] = tmp490*tmp3807;
-      result[37] = tmp490*tmp3814;
-      result[38] = tmp3785;
-      result[39] = tmp3792;
-      result[40] = tmp3797;
-      result[41] = tmp3804;
-      result[42] = tmp3808;
-      result[43] = tmp3815;
-      result[44] = tmp490*tmp3798;
-      result[45] = tmp490*tmp3805;
-      result[46] = tmp500*tmp3809 + tmp490*tmp3810;
-      result[47] = tmp500*tmp3816 + tmp490*tmp3817;
-      result[48] = tmp500*tmp3821;
-      result[49] = tmp500*tmp3828;
-      result[50] = tmp3799;
-      result[51] = tmp3806;
-      result[52] = tmp3811;
-      result[53] = tmp3818;
-      result[54] = tmp3822;
-      result[55] = tmp3829;
-      result[56] = tmp500*tmp3812;
-      result[57] = tmp500*tmp3819;
-      result[58] = tmp510*tmp3823 + tmp500*tmp3824;
-      result[59] = tmp510*tmp3830 + tmp500*tmp3831;
-      result[60] = tmp510*tmp3835;
-      result[61] = tmp510*tmp3842;
-      result[62] = tmp3813;
-      result[63] = tmp3820;
-      result[64] = tmp3825;
-      result[65] = tmp3832;
-      result[66] = tmp3836;
-      result[67] = tmp3843;
-      result[68] = tmp510*tmp3826;
-      result[69] = tmp510*tmp3833;
-      result[70] = tmp520*tmp3837 + tmp510*tmp3838;
-      result[71] = tmp520*tmp3844 + tmp510*tmp3845;
-      result[72] = tmp520*tmp3849;
-      result[73] = tmp520*tmp3856;
-      result[74] = tmp3827;
-      result[75] = tmp3834;
-      result[76] = tmp3839;
-      result[77] = tmp3846;
-      result[78] = tmp3850;
-      result[79] = tmp3857;
-      result[80] = tmp520*tmp3840;
-      result[81] = tmp520*tmp3847;
-      result[82] = tmp533*tmp3851 + tmp520*tmp3852;
-      result[83] = tmp533*tmp3858 + tmp520*tmp3859;
-      result[84] = tmp533*tmp3863;
-      result[85] = tmp533*tmp3869;
-      result[86] = tmp3841;
-      result[87] = tmp3848;
-      result[88] = tmp3853;
-      result[89] = tmp3860;
-      result[90] = tmp3864;
-      result[91] = tmp3870;
-      result[92] = tmp533*tmp3854;
-      result[93] = tmp533*tmp3861;
-      result[94] = tmp544*tmp3865 + tmp533*tmp3866;
-      result[95] = tmp544*tmp3871 + tmp533*tmp3872;
-      result[96] = tmp544*tmp3875;
-      result[97] = tmp544*tmp3878;
-      result[98] = tmp3855;
-      result[99] = tmp3862;
-      result[100] = tmp3867;
-      result[101] = tmp3873;
-      result[102] = tmp3876;
-      result[103] = tmp3879;
-      result[104] = tmp544*tmp3868;
-      result[105] = tmp544*tmp3874;
-      result[106] = tmp544*tmp3877;
-      result[107] = tmp544*tmp3880;
-      result[108] = tmp540*tmp543*tmp3868;
-      result[109] = tmp540*tmp543*tmp3874;
-      result[110] = tmp540*tmp543*tmp3877;
-      result[111] = tmp540*tmp543*tmp3880;
+      result[0] = tmp3914 + tmp3920;
+      result[1] = tmp3925 + tmp3931;
+      result[2] = tmp3938;
+      result[3] = tmp3951;
+      result[4] = tmp3922;
+      result[5] = tmp3933;
+      result[6] = tmp3939;
+      result[7] = tmp3952;
+      result[8] = tmp3918;
+      result[9] = tmp3929;
+      result[10] = tmp3944 + tmp3936;
+      result[11] = tmp3957 + tmp3949;
+      result[12] = tmp3964;
+      result[13] = tmp3977;
+      result[14] = tmp3919;
+      result[15] = tmp3930;
+      result[16] = tmp3946;
+      result[17] = tmp3959;
+      result[18] = tmp3965;
+      result[19] = tmp3978;
+      result[20] = tmp3942;
+      result[21] = tmp3955;
+      result[22] = tmp3970 + tmp3962;
+      result[23] = tmp3983 + tmp3975;
+      result[24] = tmp3990;
+      result[25] = tmp4003;
+      result[26] = tmp3943;
+      result[27] = tmp3956;
+      result[28] = tmp3972;
+      result[29] = tmp3985;
+      result[30] = tmp3991;
+      result[31] = tmp4004;
+      result[32] = tmp3968;
+      result[33] = tmp3981;
+      result[34] = tmp3988 + tmp3996;
+      result[35] = tmp4001 + tmp4009;
+      result[36] = tmp4016;
+      result[37] = tmp4029;
+      result[38] = tmp3969;
+      result[39] = tmp3982;
+      result[40] = tmp3998;
+      result[41] = tmp4011;
+      result[42] = tmp4017;
+      result[43] = tmp4030;
+      result[44] = tmp3994;
+      result[45] = tmp4007;
+      result[46] = tmp4014 + tmp4022;
+      result[47] = tmp4027 + tmp4035;
+      result[48] = tmp4042;
+      result[49] = tmp4055;
+      result[50] = tmp3995;
+      result[51] = tmp4008;
+      result[52] = tmp4024;
+      result[53] = tmp4037;
+      result[54] = tmp4043;
+      result[55] = tmp4056;
+      result[56] = tmp4020;
+      result[57] = tmp4033;
+      result[58] = tmp4040 + tmp4048;
+      result[59] = tmp4053 + tmp4061;
+      result[60] = tmp4068;
+      result[61] = tmp4081;
+      result[62] = tmp4021;
+      result[63] = tmp4034;
+      result[64] = tmp4050;
+      result[65] = tmp4063;
+      result[66] = tmp4069;
+      result[67] = tmp4082;
+      result[68] = tmp4046;
+      result[69] = tmp4059;
+      result[70] = tmp4066 + tmp4074;
+      result[71] = tmp4079 + tmp4087;
+      result[72] = tmp4094;
+      result[73] = tmp4107;
+      result[74] = tmp4047;
+      result[75] = tmp4060;
+      result[76] = tmp4076;
+      result[77] = tmp4089;
+      result[78] = tmp4095;
+      result[79] = tmp4108;
+      result[80] = tmp4072;
+      result[81] = tmp4085;
+      result[82] = tmp4092 + tmp4100;
+      result[83] = tmp4105 + tmp4113;
+      result[84] = tmp4120;
+      result[85] = tmp4133;
+      result[86] = tmp4073;
+      result[87] = tmp4086;
+      result[88] = tmp4102;
+      result[89] = tmp4115;
+      result[90] = tmp4121;
+      result[91] = tmp4134;
+      result[92] = tmp4098;
+      result[93] = tmp4111;
+      result[94] = tmp4118 + tmp4126;
+      result[95] = tmp4131 + tmp4139;
+      result[96] = tmp4146;
+      result[97] = tmp4152;
+      result[98] = tmp4099;
+      result[99] = tmp4112;
+      result[100] = tmp4128;
+      result[101] = tmp4141;
+      result[102] = tmp4147;
+      result[103] = tmp4153;
+      result[104] = tmp4124;
+      result[105] = tmp4137;
+      result[106] = tmp4144;
+      result[107] = tmp4150;
+      result[108] = tmp4125;
+      result[109] = tmp4138;
+      result[110] = tmp4145;
+      result[111] = tmp4151;
       return result;
     }
 
@@ -14196,54 +14468,54 @@ struct StiffChain10 {
                                  const Params& params) {
       using std::sqrt;
       const Scalar l = Scalar(params.l);
-      const Scalar tmp447 = sqrt((pos(0)*pos(0)) + (pos(1)*pos(1)));
-      const Scalar tmp448 = tmp447 - l;
-      const Scalar tmp449 = (Scalar(1)/l);
-      const Scalar tmp450 = tmp449*kappa;
+      const Scalar tmp442 = sqrt((pos(0)*pos(0)) + (pos(1)*pos(1)));
+      const Scalar tmp445 = tmp442 - l;
+      const Scalar tmp446 = (Scalar(1)/l);
+      const Scalar tmp447 = tmp446*kappa;
       const Scalar tmp456 = pos(2) - pos(0);
       const Scalar tmp457 = pos(3) - pos(1);
       const Scalar tmp458 = sqrt((tmp456*tmp456) + (tmp457*tmp457));
-      const Scalar tmp459 = tmp458 - l;
-      const Scalar tmp465 = pos(4) - pos(2);
-      const Scalar tmp466 = pos(5) - pos(3);
-      const Scalar tmp467 = sqrt((tmp465*tmp465) + (tmp466*tmp466));
-      const Scalar tmp468 = tmp467 - l;
-      const Scalar tmp475 = pos(6) - pos(4);
-      const Scalar tmp476 = pos(7) - pos(5);
-      const Scalar tmp477 = sqrt((tmp475*tmp475) + (tmp476*tmp476));
-      const Scalar tmp478 = tmp477 - l;
-      const Scalar tmp485 = pos(8) - pos(6);
-      const Scalar tmp486 = pos(9) - pos(7);
-      const Scalar tmp487 = sqrt((tmp485*tmp485) + (tmp486*tmp486));
-      const Scalar tmp488 = tmp487 - l;
-      const Scalar tmp495 = pos(10) - pos(8);
-      const Scalar tmp496 = pos(11) - pos(9);
+      const Scalar tmp461 = tmp458 - l;
+      const Scalar tmp469 = pos(4) - pos(2);
+      const Scalar tmp470 = pos(5) - pos(3);
+      const Scalar tmp471 = sqrt((tmp469*tmp469) + (tmp470*tmp470));
+      const Scalar tmp474 = tmp471 - l;
+      const Scalar tmp482 = pos(6) - pos(4);
+      const Scalar tmp483 = pos(7) - pos(5);
+      const Scalar tmp484 = sqrt((tmp482*tmp482) + (tmp483*tmp483));
+      const Scalar tmp487 = tmp484 - l;
+      const Scalar tmp495 = pos(8) - pos(6);
+      const Scalar tmp496 = pos(9) - pos(7);
       const Scalar tmp497 = sqrt((tmp495*tmp495) + (tmp496*tmp496));
-      const Scalar tmp498 = tmp497 - l;
-      const Scalar tmp505 = pos(12) - pos(10);
-      const Scalar tmp506 = pos(13) - pos(11);
-      const Scalar tmp507 = sqrt((tmp505*tmp505) + (tmp506*tmp506));
-      const Scalar tmp508 = tmp507 - l;
-      const Scalar tmp515 = pos(14) - pos(12);
-      const Scalar tmp516 = pos(15) - pos(13);
-      const Scalar tmp517 = sqrt((tmp515*tmp515) + (tmp516*tmp516));
-      const Scalar tmp518 = tmp517 - l;
-      const Scalar tmp525 = -pos(16);
-      const Scalar tmp526 = -tmp525 - pos(14);
-      const Scalar tmp527 = -pos(17);
-      const Scalar tmp528 = -tmp527 - pos(15);
-      const Scalar tmp529 = sqrt((tmp526*tmp526) + (tmp528*tmp528));
-      const Scalar tmp530 = tmp529 - l;
-      const Scalar tmp539 = tmp525 + pos(18);
-      const Scalar tmp540 = tmp527 + pos(19);
-      const Scalar tmp541 = sqrt((tmp539*tmp539) + (tmp540*tmp540));
-      const Scalar tmp542 = tmp541 - l;
-      const Scalar tmp550 = (Scalar(0.5))*tmp450;
+      const Scalar tmp500 = tmp497 - l;
+      const Scalar tmp508 = pos(10) - pos(8);
+      const Scalar tmp509 = pos(11) - pos(9);
+      const Scalar tmp510 = sqrt((tmp508*tmp508) + (tmp509*tmp509));
+      const Scalar tmp513 = tmp510 - l;
+      const Scalar tmp521 = pos(12) - pos(10);
+      const Scalar tmp522 = pos(13) - pos(11);
+      const Scalar tmp523 = sqrt((tmp521*tmp521) + (tmp522*tmp522));
+      const Scalar tmp526 = tmp523 - l;
+      const Scalar tmp534 = pos(14) - pos(12);
+      const Scalar tmp535 = pos(15) - pos(13);
+      const Scalar tmp536 = sqrt((tmp534*tmp534) + (tmp535*tmp535));
+      const Scalar tmp539 = tmp536 - l;
+      const Scalar tmp547 = -pos(16);
+      const Scalar tmp548 = -tmp547 - pos(14);
+      const Scalar tmp549 = -pos(17);
+      const Scalar tmp550 = -tmp549 - pos(15);
+      const Scalar tmp551 = sqrt((tmp548*tmp548) + (tmp550*tmp550));
+      const Scalar tmp554 = tmp551 - l;
+      const Scalar tmp564 = tmp547 + pos(18);
+      const Scalar tmp565 = tmp549 + pos(19);
+      const Scalar tmp566 = sqrt((tmp564*tmp564) + (tmp565*tmp565));
+      const Scalar tmp569 = tmp566 - l;
+      const Scalar tmp591 = (Scalar(0.5))*tmp447;
       Scalar result;
-      result = tmp550*(tmp448*tmp448) + tmp550*(tmp459*tmp459) + tmp550*(tmp468*tmp468)
-          + tmp550*(tmp478*tmp478) + tmp550*(tmp488*tmp488) + tmp550*(tmp498*tmp498)
-          + tmp550*(tmp508*tmp508) + tmp550*(tmp518*tmp518) + tmp550*(tmp530*tmp530)
-          + tmp550*(tmp542*tmp542);
+      result = tmp591*(tmp445*tmp445) + tmp591*(tmp461*tmp461) + tmp591*(tmp474*tmp474)
+          + tmp591*(tmp487*tmp487) + tmp591*(tmp500*tmp500) + tmp591*(tmp513*tmp513)
+          + tmp591*(tmp526*tmp526) + tmp591*(tmp539*tmp539) + tmp591*(tmp554*tmp554)
+          + tmp591*(tmp569*tmp569);
       return result;
     }
 
@@ -14259,57 +14531,57 @@ struct StiffChain10 {
                                                           const Params& params) {
       using std::sqrt;
       const Scalar l = Scalar(params.l);
-      const Scalar tmp447 = sqrt((pos(0)*pos(0)) + (pos(1)*pos(1)));
-      const Scalar tmp448 = tmp447 - l;
+      const Scalar tmp442 = sqrt((pos(0)*pos(0)) + (pos(1)*pos(1)));
+      const Scalar tmp445 = tmp442 - l;
       const Scalar tmp456 = pos(2) - pos(0);
       const Scalar tmp457 = pos(3) - pos(1);
       const Scalar tmp458 = sqrt((tmp456*tmp456) + (tmp457*tmp457));
-      const Scalar tmp459 = tmp458 - l;
-      const Scalar tmp465 = pos(4) - pos(2);
-      const Scalar tmp466 = pos(5) - pos(3);
-      const Scalar tmp467 = sqrt((tmp465*tmp465) + (tmp466*tmp466));
-      const Scalar tmp468 = tmp467 - l;
-      const Scalar tmp475 = pos(6) - pos(4);
-      const Scalar tmp476 = pos(7) - pos(5);
-      const Scalar tmp477 = sqrt((tmp475*tmp475) + (tmp476*tmp476));
-      const Scalar tmp478 = tmp477 - l;
-      const Scalar tmp485 = pos(8) - pos(6);
-      const Scalar tmp486 = pos(9) - pos(7);
-      const Scalar tmp487 = sqrt((tmp485*tmp485) + (tmp486*tmp486));
-      const Scalar tmp488 = tmp487 - l;
-      const Scalar tmp495 = pos(10) - pos(8);
-      const Scalar tmp496 = pos(11) - pos(9);
+      const Scalar tmp461 = tmp458 - l;
+      const Scalar tmp469 = pos(4) - pos(2);
+      const Scalar tmp470 = pos(5) - pos(3);
+      const Scalar tmp471 = sqrt((tmp469*tmp469) + (tmp470*tmp470));
+      const Scalar tmp474 = tmp471 - l;
+      const Scalar tmp482 = pos(6) - pos(4);
+      const Scalar tmp483 = pos(7) - pos(5);
+      const Scalar tmp484 = sqrt((tmp482*tmp482) + (tmp483*tmp483));
+      const Scalar tmp487 = tmp484 - l;
+      const Scalar tmp495 = pos(8) - pos(6);
+      const Scalar tmp496 = pos(9) - pos(7);
       const Scalar tmp497 = sqrt((tmp495*tmp495) + (tmp496*tmp496));
-      const Scalar tmp498 = tmp497 - l;
-      const Scalar tmp505 = pos(12) - pos(10);
-      const Scalar tmp506 = pos(13) - pos(11);
-      const Scalar tmp507 = sqrt((tmp505*tmp505) + (tmp506*tmp506));
-      const Scalar tmp508 = tmp507 - l;
-      const Scalar tmp515 = pos(14) - pos(12);
-      const Scalar tmp516 = pos(15) - pos(13);
-      const Scalar tmp517 = sqrt((tmp515*tmp515) + (tmp516*tmp516));
-      const Scalar tmp518 = tmp517 - l;
-      const Scalar tmp525 = -pos(16);
-      const Scalar tmp526 = -tmp525 - pos(14);
-      const Scalar tmp527 = -pos(17);
-      const Scalar tmp528 = -tmp527 - pos(15);
-      const Scalar tmp529 = sqrt((tmp526*tmp526) + (tmp528*tmp528));
-      const Scalar tmp530 = tmp529 - l;
-      const Scalar tmp539 = tmp525 + pos(18);
-      const Scalar tmp540 = tmp527 + pos(19);
-      const Scalar tmp541 = sqrt((tmp539*tmp539) + (tmp540*tmp540));
-      const Scalar tmp542 = tmp541 - l;
+      const Scalar tmp500 = tmp497 - l;
+      const Scalar tmp508 = pos(10) - pos(8);
+      const Scalar tmp509 = pos(11) - pos(9);
+      const Scalar tmp510 = sqrt((tmp508*tmp508) + (tmp509*tmp509));
+      const Scalar tmp513 = tmp510 - l;
+      const Scalar tmp521 = pos(12) - pos(10);
+      const Scalar tmp522 = pos(13) - pos(11);
+      const Scalar tmp523 = sqrt((tmp521*tmp521) + (tmp522*tmp522));
+      const Scalar tmp526 = tmp523 - l;
+      const Scalar tmp534 = pos(14) - pos(12);
+      const Scalar tmp535 = pos(15) - pos(13);
+      const Scalar tmp536 = sqrt((tmp534*tmp534) + (tmp535*tmp535));
+      const Scalar tmp539 = tmp536 - l;
+      const Scalar tmp547 = -pos(16);
+      const Scalar tmp548 = -tmp547 - pos(14);
+      const Scalar tmp549 = -pos(17);
+      const Scalar tmp550 = -tmp549 - pos(15);
+      const Scalar tmp551 = sqrt((tmp548*tmp548) + (tmp550*tmp550));
+      const Scalar tmp554 = tmp551 - l;
+      const Scalar tmp564 = tmp547 + pos(18);
+      const Scalar tmp565 = tmp549 + pos(19);
+      const Scalar tmp566 = sqrt((tmp564*tmp564) + (tmp565*tmp565));
+      const Scalar tmp569 = tmp566 - l;
       ConstraintVector<Scalar> result;
-      result(0) = tmp448;
-      result(1) = tmp459;
-      result(2) = tmp468;
-      result(3) = tmp478;
-      result(4) = tmp488;
-      result(5) = tmp498;
-      result(6) = tmp508;
-      result(7) = tmp518;
-      result(8) = tmp530;
-      result(9) = tmp542;
+      result(0) = tmp445;
+      result(1) = tmp461;
+      result(2) = tmp474;
+      result(3) = tmp487;
+      result(4) = tmp500;
+      result(5) = tmp513;
+      result(6) = tmp526;
+      result(7) = tmp539;
+      result(8) = tmp554;
+      result(9) = tmp569;
       return result;
     }
   };

@@ -1,239 +1,129 @@
-"""O(n) forward and inverse dynamics of a joint tree of rigid bodies (body_tree.py), unrolled.
+"""O(n) dynamics of a joint tree of rigid bodies (body_tree.py), unrolled over the links'
+named motion (body_kinematics.py).
 
-Spatial vectors are 6 x 1, in each link's own axes: motions (omega; v), v the velocity of
-the link origin, and forces (moment about the link origin; force). With the link's
-body-fixed velocity V_i = X_i V_parent + V_J (body_tree.py), V_J = S qdot + sigma, the time
-derivative of V_i is
+The body's equation of motion in its link's axes is F = I A + V x* I V, I its spatial
+inertia about the link origin. Gravity enters as the world accelerating at -g
+(A_world = (0; -g)), which is every body's weight at once. f_i are the external wrenches on
+link i, tau_i the forces the model puts on its joint's coordinates.
 
-    A_i = X_i A_parent + S_i qddot_i + c_i,    c_i = dV_J/dt (at qddot = 0) + V_i x V_J
+- Inverse dynamics (recursive Newton-Euler): A_i from the root out; from the leaves in
+  F_i = I_i A_i + V_i x* I_i V_i - f_i + sum over children X_c^T F_c, and the residual
+  S_i^T F_i - tau_i.
+- Forward dynamics (articulated-body algorithm): from the leaves in
 
-(the derivative of X_i V_parent is -V_J x X_i V_parent, and V_J x V_J = 0), and the body's
-equation of motion in these coordinates is F = I A + V x* I V, I its spatial inertia about the
-link origin. Gravity enters as the world accelerating at -g (A_world = (0; -g)), which is every
-body's weight at once.
+      IA_i = I_i + sum_c X_c^T Ia_c X_c,       pA_i = V_i x* I_i V_i - f_i + sum_c X_c^T pa_c
+      U = IA S, D = S^T U, u = tau - S^T pA,   Ia = IA - U D^-1 U^T, pa = pA + Ia c + U D^-1 u
 
-Inverse dynamics (recursive Newton-Euler): A_i from the root out; from the leaves in,
-F_i = I_i A_i + V_i x* I_i V_i - f_i + sum over children X_c^T F_c, and the residual
-S_i^T F_i - tau_i. Forward dynamics (articulated-body algorithm): from the leaves in
+  and from the root out qddot_i = D^-1 (u - U^T (X_i A_parent + c_i)).
+- The mass matrix (composite bodies): Ic_i = I_i + sum_c X_c^T Ic_c X_c; the block of
+  coordinates j, i (j an ancestor of i, or i) is S_j^T (X^T Ic_i S_i), the force Ic_i S_i
+  carried from link i to link j.
+- Ft and Fi are Newton-Euler's residual at qddot = 0 split by what moves it: -Fi with the
+  velocity terms alone (c_i, V x* I V), -Ft with gravity, the wrenches and tau alone.
 
-    IA_i = I_i + sum_c X_c^T Ia_c X_c,       pA_i = V_i x* I_i V_i - f_i + sum_c X_c^T pa_c
-    U = IA S, D = S^T U, u = tau - S^T pA,   Ia = IA - U D^-1 U^T, pa = pA + Ia c + U D^-1 u
-
-and from the root out qddot_i = D^-1 (u - U^T (X_i A_parent + c_i)). f_i are the external
-wrenches on link i (body torques, and the forces of springs, dampers and user forces on its
-points), tau_i the generalized forces on its coordinates. Every quantity is a named
-intermediate (structured.py), so both kernels and their generation grow like n.
+The outputs that list points (positions, J, gamma), the energy and the momenta are read off
+the same quantities, so every output of the derivation (derive.py) comes out in O(n)
+intermediates each; the outputs of n^2 entries (Mt, J) cost O(1) per entry.
 """
 
 from __future__ import annotations
 
 import sympy as sp
 
+from .body_kinematics import LinkKinematics
 from .body_tree import BodyTree
-from .derive import bias_acceleration, coordinate_forces, particle_forces
-from .frames import skew
+from .derive import (Derivation, fixed_point_positions, generalized_force_vector,
+                     generalized_potential, x_space_potential)
 from .model import Model
-from .recursive import RecursiveDynamics, spd_inverse
-from .structured import Intermediates, NamedKinematics
+from .recursive import RecursiveDynamics, place_symmetric, spd_inverse
+from .spatial import force_to_parent, inertia_to_parent, split
+from .structured import Intermediates
 
 
-def _split(vector: sp.Matrix) -> tuple[sp.Matrix, sp.Matrix]:
-    return vector[:3, 0], vector[3:, 0]
-
-
-def motion_to_child(E: sp.Matrix, r: sp.Matrix, motion: sp.Matrix) -> sp.Matrix:
-    """X m: a motion in the parent's axes at its origin, in the child's at the child's."""
-    w, v = _split(motion)
-    return sp.Matrix.vstack(E.T * w, E.T * (v + w.cross(r)))
-
-
-def force_to_parent(E: sp.Matrix, r: sp.Matrix, force: sp.Matrix) -> sp.Matrix:
-    """X^T f: a force in the child's axes about its origin, in the parent's about its own."""
-    n, f = _split(force)
-    f_parent = E * f
-    return sp.Matrix.vstack(E * n + r.cross(f_parent), f_parent)
-
-
-def cross_motion(V: sp.Matrix, motion: sp.Matrix) -> sp.Matrix:
-    """V x m."""
-    w, v = _split(V)
-    w2, v2 = _split(motion)
-    return sp.Matrix.vstack(w.cross(w2), w.cross(v2) + v.cross(w2))
-
-
-def cross_force(V: sp.Matrix, force: sp.Matrix) -> sp.Matrix:
-    """V x* f."""
-    w, v = _split(V)
-    n, f = _split(force)
-    return sp.Matrix.vstack(w.cross(n) + v.cross(f), w.cross(f))
-
-
-def inertia_to_parent(E: sp.Matrix, r: sp.Matrix, inertia: sp.Matrix) -> sp.Matrix:
-    """X^T I X for a symmetric 6 x 6 I = [[A, B], [B^T, C]]: rotated into the parent's axes,
-    then moved to its origin (blocks A + R B^T - B R - R C R, B + R C, C with R = [r]x)."""
-    A, B, C = inertia[:3, :3], inertia[:3, 3:], inertia[3:, 3:]
-    A, B, C = E * A * E.T, E * B * E.T, E * C * E.T
-    R = skew(r)
-    RC = R * C
-    return sp.Matrix.vstack(
-        sp.Matrix.hstack(A + R * B.T - B * R - RC * R, B + RC),
-        sp.Matrix.hstack((B + RC).T, C))
-
-
-def rigid_inertia(mass, com: sp.Matrix, inertia_at_com: sp.Matrix) -> sp.Matrix:
-    """The spatial inertia about a frame's origin of a body of `mass` centred at `com`, with
-    `inertia_at_com` about its centre of mass; all in that frame's axes."""
-    C = skew(com)
-    return sp.Matrix.vstack(
-        sp.Matrix.hstack(inertia_at_com + mass * C * C.T, mass * C),
-        sp.Matrix.hstack(mass * C.T, mass * sp.eye(3)))
-
-
-def body_recursive_dynamics(model: Model, kin, tree: BodyTree) -> RecursiveDynamics:
-    """qddot by the articulated-body algorithm and the residual by Newton-Euler."""
+def body_recursive_dynamics(model: Model, kin, tree: BodyTree, derivation: bool = True
+                            ) -> RecursiveDynamics:
+    """qddot by the articulated-body algorithm, the residual by Newton-Euler, and with
+    `derivation` every other output, by composite bodies and Newton-Euler."""
     names = Intermediates(prefix="__r")
-    q, v, t = kin.q, kin.v, kin.t
+    links = LinkKinematics(model, kin, tree, names)
     qdd = [c.acceleration for c in model.coordinates]
-    nodes, children = tree.nodes, tree.children()
-    n = len(nodes)
-
-    rotation = [names.matrix(node.rotation) for node in nodes]
-    translation = [names.matrix(node.translation) for node in nodes]
-    velocity: list[sp.Matrix] = [None] * n
-    bias: list[sp.Matrix] = [None] * n
-    for i, node in enumerate(nodes):
-        own_q = [q[j] for j in node.coordinates]
-        own_v = sp.Matrix(len(own_q), 1, [v[j] for j in node.coordinates])
-        joint_velocity = node.subspace * own_v + node.drift
-        carried = (sp.zeros(6, 1) if node.parent is None else
-                   motion_to_child(rotation[i], translation[i], velocity[node.parent]))
-        velocity[i] = names.matrix(carried + joint_velocity)
-        change = bias_acceleration(joint_velocity, own_q, list(own_v), t)
-        bias[i] = names.matrix(change + cross_motion(velocity[i], joint_velocity))
-
-    inertia = [_link_inertia(names, node) for node in nodes]
-    momentum_change = [names.matrix(cross_force(velocity[i], inertia[i] * velocity[i]))
-                       for i in range(n)]
-    external = _external_wrenches(model, names, tree, rotation, translation, velocity, t)
-    tau = coordinate_forces(model, q)  # body torques enter as wrenches
-    gravity = sum((field.acceleration for field in model.gravities), sp.zeros(3, 1))
-    world = sp.Matrix.vstack(sp.zeros(3, 1), names.matrix(-gravity))
-
-    ctx = (names, nodes, children, rotation, translation, bias, inertia, world)
-    bias_force = [names.matrix(momentum_change[i] - external[i]) for i in range(n)]
-    qddot = _articulated_body(ctx, bias_force, tau, len(qdd))
-    residual = _newton_euler(ctx, bias_force, tau, qdd)
-    return RecursiveDynamics(qddot, residual, names.definitions)
+    nq = len(qdd)
+    bias_force = [names.matrix(links.momentum_change[i] - links.external[i])
+                  for i in range(len(tree.nodes))]
+    qddot = _articulated_body(links, bias_force, nq)
+    joint = [node.subspace * sp.Matrix(len(node.coordinates), 1,
+                                       [qdd[j] for j in node.coordinates])
+             for node in tree.nodes]
+    residual = _newton_euler(links, _accelerations(links, links.world, joint, True),
+                             bias_force, links.tau)
+    return RecursiveDynamics(qddot, residual, names.definitions,
+                             _derivation(model, kin, links, qdd) if derivation else None)
 
 
-def _link_inertia(names: Intermediates, node) -> sp.Matrix:
-    link = node.link
-    if link.body is None:
-        return sp.zeros(6, 6)
-    body, inertial = link.body, link.inertial
-    at_com = inertial.rotation * body.inertia * inertial.rotation.T
-    return names.symmetric(rigid_inertia(body.mass, inertial.origin, at_com))
+def _accelerations(links: LinkKinematics, world: sp.Matrix, joint, with_bias: bool
+                   ) -> list[sp.Matrix]:
+    """A_i = X_i A_parent + joint_i + c_i (c_i only `with_bias`) from A_world = `world`;
+    joint_i is S_i qddot_i, or None for zero."""
+    accelerations: list[sp.Matrix] = []
+    for i, node in enumerate(links.nodes):
+        base = world if node.parent is None else accelerations[node.parent]
+        A = links.to_child(i, base)
+        if joint[i] is not None:
+            A += joint[i]
+        if with_bias:
+            A += links.bias[i]
+        accelerations.append(links.names.matrix(A))
+    return accelerations
 
 
-def _external_wrenches(model: Model, names: Intermediates, tree: BodyTree, rotation,
-                       translation, velocity, t) -> list[sp.Matrix]:
-    """Each link's external wrench in its axes about its origin: body torques, and the forces
-    of springs, dampers and user forces on its bodies' points."""
-    wrench = [sp.zeros(6, 1) for _ in tree.nodes]
-    on_points = bool(model.springs or model.dampers or model.particle_forces)
-    if not (model.torques or on_points):
-        return wrench
-    world_rotation, world_origin = _world_frames(names, tree, rotation, translation)
-    link_of = {id(node.link.body): i for i, node in enumerate(tree.nodes)
-               if node.link.body is not None}
-    for item in model.torques:
-        i = link_of[id(item.body)]
-        wrench[i] += sp.Matrix.vstack(world_rotation[i].T * item.torque, sp.zeros(3, 1))
-    if on_points:
-        _add_point_forces(model, names, tree, world_rotation, world_origin, velocity, t, wrench)
-    return [names.matrix(w) for w in wrench]
+def _newton_euler(links: LinkKinematics, accelerations, bias_force, tau) -> sp.Matrix:
+    """From the leaves in: F_i = I_i A_i + bias_force_i + the children's; S^T F - tau."""
+    names, nodes = links.names, links.nodes
+    residual = [sp.Integer(0)] * len(tau)
+    transmitted: list[sp.Matrix] = [None] * len(nodes)
+    for i in reversed(range(len(nodes))):
+        F = links.inertia[i] * accelerations[i] + bias_force[i]
+        for c in links.children[i]:
+            F = F + force_to_parent(links.rotation[c], links.translation[c], transmitted[c])
+        transmitted[i] = names.matrix(F)
+        for j, value in zip(nodes[i].coordinates, nodes[i].subspace.T * transmitted[i]):
+            residual[j] = names.name(value - tau[j])
+    return sp.Matrix(residual)
 
 
-def _add_point_forces(model: Model, names: Intermediates, tree: BodyTree, world_rotation,
-                      world_origin, velocity, t, wrench: list[sp.Matrix]) -> None:
-    """Adds the forces on the bodies' points to their links' wrenches; the points' positions
-    and velocities come from their link's frame and body-fixed velocity."""
-    position, point_velocity, offset_of = {}, {}, {}
-    for point in model.fixed_points:
-        position[point.name] = point.position
-        point_velocity[point.name] = point.position.diff(t)
-    for i, node in enumerate(tree.nodes):
-        body = node.link.body
-        if body is None:
-            continue
-        w, v = _split(velocity[i])
-        located = [(p.name, r) for p, r in zip(body.particles, body.offsets)]
-        located += [(p.name, p.offset) for p in body.points]
-        for name, r in located:
-            rho = node.link.inertial.point(r)
-            offset_of[name] = (i, rho)
-            position[name] = names.matrix(world_origin[i] + world_rotation[i] * rho)
-            point_velocity[name] = names.matrix(world_rotation[i] * (v + w.cross(rho)))
-    local = NamedKinematics(model, t, position, point_velocity)
-    for name, force in particle_forces(model, local, gravity=False).items():
-        i, rho = offset_of[name]
-        in_link = names.matrix(world_rotation[i].T * force)
-        wrench[i] += sp.Matrix.vstack(rho.cross(in_link), in_link)
-
-
-def _world_frames(names: Intermediates, tree: BodyTree, rotation, translation):
-    """Each link's axes and origin in the world's, composed from the root out."""
-    world_rotation, world_origin = [], []
-    for i, node in enumerate(tree.nodes):
-        if node.parent is None:
-            world_rotation.append(rotation[i])
-            world_origin.append(translation[i])
-            continue
-        R, p = world_rotation[node.parent], world_origin[node.parent]
-        world_rotation.append(names.matrix(R * rotation[i]))
-        world_origin.append(names.matrix(p + R * translation[i]))
-    return world_rotation, world_origin
-
-
-def _incoming(ctx, i: int, accelerations) -> sp.Matrix:
-    """X_i A_parent: the parent's acceleration (the world's for a root) in link i's axes."""
-    names, nodes, _, rotation, translation, _, _, world = ctx
-    parent = nodes[i].parent
-    base = world if parent is None else accelerations[parent]
-    return names.matrix(motion_to_child(rotation[i], translation[i], base))
-
-
-def _articulated_body(ctx, bias_force, tau, nq) -> sp.Matrix:
-    names, nodes, children, rotation, translation, bias, inertia, _ = ctx
+def _articulated_body(links: LinkKinematics, bias_force, nq: int) -> sp.Matrix:
+    names, nodes = links.names, links.nodes
     n = len(nodes)
     passed: list[tuple] = [None] * n             # (Ia, pa) in the parent's axes
     solve: list[tuple] = [None] * n              # (U, D^-1, u) for the outward pass
     for i in reversed(range(n)):
         node = nodes[i]
-        IA, pA = inertia[i], bias_force[i]
-        for c in children[i]:
+        IA, pA = links.inertia[i], bias_force[i]
+        for c in links.children[i]:
             IA, pA = IA + passed[c][0], pA + passed[c][1]
         IA, pA = names.symmetric(IA), names.matrix(pA)
         S = node.subspace
         if S.shape[1] == 0:
-            Ia, pa = IA, names.matrix(pA + IA * bias[i])
+            Ia, pa = IA, names.matrix(pA + IA * links.bias[i])
         else:
             U = names.matrix(IA * S)
             D_inverse = spd_inverse(names, names.symmetric(S.T * U))
-            own_tau = sp.Matrix([tau[j] for j in node.coordinates])
+            own_tau = sp.Matrix([links.tau[j] for j in node.coordinates])
             u = names.matrix(own_tau - S.T * pA)
             UD = names.matrix(U * D_inverse)
             Ia = names.symmetric(IA - UD * U.T)
-            pa = names.matrix(pA + Ia * bias[i] + UD * u)
+            pa = names.matrix(pA + Ia * links.bias[i] + UD * u)
             solve[i] = (U, D_inverse, u)
         if node.parent is not None:
-            passed[i] = (names.symmetric(inertia_to_parent(rotation[i], translation[i], Ia)),
-                         names.matrix(force_to_parent(rotation[i], translation[i], pa)))
+            E, r = links.rotation[i], links.translation[i]
+            passed[i] = (names.symmetric(inertia_to_parent(E, r, Ia)),
+                         names.matrix(force_to_parent(E, r, pa)))
 
     qddot = [sp.Integer(0)] * nq
     acceleration: list[sp.Matrix] = [None] * n
     for i, node in enumerate(nodes):
-        before = names.matrix(_incoming(ctx, i, acceleration) + bias[i])
+        base = links.world if node.parent is None else acceleration[node.parent]
+        before = names.matrix(links.to_child(i, base) + links.bias[i])
         if solve[i] is None:
             acceleration[i] = before
             continue
@@ -245,22 +135,108 @@ def _articulated_body(ctx, bias_force, tau, nq) -> sp.Matrix:
     return sp.Matrix(qddot)
 
 
-def _newton_euler(ctx, bias_force, tau, qdd) -> sp.Matrix:
-    names, nodes, children, rotation, translation, bias, inertia, _ = ctx
+def _composite_mass_matrix(links: LinkKinematics, nq: int) -> sp.Matrix:
+    names, nodes = links.names, links.nodes
     n = len(nodes)
-    acceleration: list[sp.Matrix] = [None] * n
-    for i, node in enumerate(nodes):
-        own = sp.Matrix(len(node.coordinates), 1, [qdd[j] for j in node.coordinates])
-        acceleration[i] = names.matrix(_incoming(ctx, i, acceleration)
-                                       + node.subspace * own + bias[i])
-    residual = [sp.Integer(0)] * len(qdd)
-    transmitted: list[sp.Matrix] = [None] * n
+    composite: list[sp.Matrix] = [None] * n
+    passed: list[sp.Matrix] = [None] * n
     for i in reversed(range(n)):
-        node = nodes[i]
-        F = inertia[i] * acceleration[i] + bias_force[i]
-        for c in children[i]:
-            F = F + force_to_parent(rotation[c], translation[c], transmitted[c])
-        transmitted[i] = names.matrix(F)
-        for j, value in zip(node.coordinates, node.subspace.T * transmitted[i]):
-            residual[j] = names.name(value - tau[j])
-    return sp.Matrix(residual)
+        total = links.inertia[i]
+        for c in links.children[i]:
+            total = total + passed[c]
+        composite[i] = names.symmetric(total)
+        if nodes[i].parent is not None:
+            passed[i] = names.symmetric(inertia_to_parent(links.rotation[i],
+                                                          links.translation[i], composite[i]))
+    mass_matrix = sp.zeros(nq, nq)
+    for i, node in enumerate(nodes):
+        if not node.coordinates:
+            continue
+        force = names.matrix(composite[i] * node.subspace)
+        place_symmetric(names, mass_matrix, node.coordinates, node.coordinates,
+                        node.subspace.T * force)
+        j = i
+        while nodes[j].parent is not None:
+            E, r = links.rotation[j], links.translation[j]
+            force = names.matrix(sp.Matrix.hstack(*[force_to_parent(E, r, force[:, k])
+                                                    for k in range(force.shape[1])]))
+            j = nodes[j].parent
+            if nodes[j].coordinates:
+                place_symmetric(names, mass_matrix, nodes[j].coordinates, node.coordinates,
+                                nodes[j].subspace.T * force)
+    return mass_matrix
+
+
+def _derivation(model: Model, kin, links: LinkKinematics, qdd) -> Derivation:
+    """Every output of derive.py, from the links' motion and the recursions."""
+    names, nodes = links.names, links.nodes
+    nq, n = len(qdd), len(nodes)
+    none = [None] * n
+    # gamma's accelerations: at qddot = 0 with the world at rest
+    moving = _accelerations(links, sp.zeros(6, 1), none, True)
+    inertial = -_newton_euler(links, moving, links.momentum_change, sp.zeros(nq, 1))
+    applied = -_newton_euler(links, _accelerations(links, links.world, none, False),
+                             [-wrench for wrench in links.external], links.tau)
+
+    positions, velocities, jacobians, gammas = {}, {}, {}, {}
+    world_subspace = [names.matrix(sp.Matrix.vstack(links.world_rotation[i] * node.subspace[:3, :],
+                                                    links.world_rotation[i] * node.subspace[3:, :]))
+                      for i, node in enumerate(nodes)]
+    kinetic, momentum, angular, gravity_at = sp.Integer(0), sp.zeros(3, 1), sp.zeros(3, 1), []
+    for i, node in enumerate(nodes):
+        body = node.link.body
+        if body is None:
+            continue
+        R = links.world_rotation[i]
+        w, v = split(links.velocity[i])
+        dw, dv = split(moving[i])
+        for particle in body.particles:
+            _, rho = links.point_link[particle.name]
+            x = links.points.position[particle.name]
+            positions[particle.name] = x
+            velocities[particle.name] = links.points.velocity[particle.name]
+            gammas[particle.name] = names.matrix(
+                R * (dv + dw.cross(rho) + w.cross(v + w.cross(rho))))
+            jacobians[particle.name] = _point_jacobian(links, world_subspace, i, x, nq)
+        centre = links.world_origin[i] + R * node.link.inertial.origin
+        centre_velocity = R * (v + w.cross(node.link.inertial.origin))
+        kinetic += names.name((links.velocity[i].T * links.inertia[i] * links.velocity[i])[0]
+                              / 2)
+        momentum += body.mass * centre_velocity
+        angular += (body.mass * centre.cross(centre_velocity)
+                    + R * (links.inertia_at_centre(node) * w))
+        gravity_at.append((body.mass, centre))
+    particles = model.particles
+    return Derivation(
+        q=kin.q, v=kin.v, a=qdd, t=kin.t, params=[p.symbol for p in model.parameters],
+        masses=[p.mass for p in particles],
+        positions=sp.Matrix.vstack(*[positions[p.name] for p in particles]),
+        fixed_point_positions=fixed_point_positions(model, kin),
+        velocities=sp.Matrix.vstack(*[velocities[p.name] for p in particles]),
+        jacobian=sp.Matrix.vstack(*[jacobians[p.name] for p in particles]),
+        bias_acceleration=sp.Matrix.vstack(*[gammas[p.name] for p in particles]),
+        mass_matrix=_composite_mass_matrix(links, nq),
+        applied_forces=names.vector(applied), inertial_forces=names.vector(inertial),
+        generalized_forces=generalized_force_vector(model, kin.q),
+        kinetic_energy=kinetic,
+        potential_energy=(x_space_potential(model, links.points, gravity_at)
+                          + generalized_potential(model)),
+        generalized_potential=generalized_potential(model),
+        linear_momentum=momentum, angular_momentum=angular)
+
+
+def _point_jacobian(links: LinkKinematics, world_subspace, i: int, x: sp.Matrix, nq: int
+                    ) -> sp.Matrix:
+    """dx/dq of a point at x on link i: each joint a on the way to the root moves it by its
+    world motion (omega_a; v_a) as v_a + omega_a x (x - o_a)."""
+    jacobian = sp.zeros(3, nq)
+    a = i
+    while a is not None:
+        node = links.nodes[a]
+        if node.coordinates:
+            arm = x - links.world_origin[a]
+            for k, j in enumerate(node.coordinates):
+                spin, slide = split(world_subspace[a][:, k])
+                jacobian[:, j] = slide + spin.cross(arm)
+        a = node.parent
+    return jacobian

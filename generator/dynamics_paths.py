@@ -47,12 +47,14 @@ def choose_paths(codes: list[KernelCode], nq: int, dynamics: str = "auto"
     dense = {c.kernel.name: c for c in codes if not c.kernel.variant}
     dense_qddot = dense["dynamics"].ops + ldlt_solve_ops(nq)
     use_qddot = recursive["qddot"].ops < RECURSION_ADVANTAGE * dense_qddot
-    use_inverse = (recursive["inverse_dynamics"].ops
-                   < RECURSION_ADVANTAGE * dense["inverse_dynamics"].ops)
+    # a large tree's dense inverse dynamics is generated only on request (kernels.py)
+    dense_inverse = dense.get("inverse_dynamics")
+    use_inverse = (dense_inverse is None or recursive["inverse_dynamics"].ops
+                   < RECURSION_ADVANTAGE * dense_inverse.ops)
     if dynamics != "auto":
         use_qddot = use_inverse = dynamics == "recursive"
     # the dense qddot is the template's, so only a losing recursion has a kernel to drop
-    dropped = {id(dense["inverse_dynamics"] if use_inverse else recursive["inverse_dynamics"])}
+    dropped = {id(dense_inverse if use_inverse else recursive["inverse_dynamics"])}
     if not use_qddot:
         dropped.add(id(recursive["qddot"]))
     report = [
@@ -60,14 +62,16 @@ def choose_paths(codes: list[KernelCode], nq: int, dynamics: str = "auto"
               ("Mt, Ft + Fi and an LDL^T solve", dense_qddot)),
         _line("inverse_dynamics", use_inverse,
               ("recursive Newton-Euler", recursive["inverse_dynamics"].ops),
-              ("Mt qdd - Ft - Fi", dense["inverse_dynamics"].ops))]
+              ("Mt qdd - Ft - Fi", dense_inverse.ops if dense_inverse else None))]
     return ([c for c in codes if id(c) not in dropped],
             PathChoice(use_qddot, use_inverse, report))
 
 
 def _line(kernel: str, use_recursive: bool, recursive: tuple[str, int],
           dense: tuple[str, int]) -> str:
-    """`kernel: <chosen form>, <ops> operations (<other form>: <ops>)`."""
+    """`kernel: <chosen form>, <ops> operations (<other form>: <ops>)`; the other form's
+    ops None: it was not generated."""
     (chosen, chosen_ops), (other, other_ops) = ((recursive, dense) if use_recursive
                                                 else (dense, recursive))
-    return f"{kernel}: {chosen}, {chosen_ops} operations ({other}: {other_ops})"
+    other_text = f"{other_ops}" if other_ops is not None else "n^2 operations, not generated"
+    return f"{kernel}: {chosen}, {chosen_ops} operations ({other}: {other_text})"

@@ -106,22 +106,29 @@ def _recursive_kernels(r: RecursiveDynamics) -> dict[str, Kernel]:
     }
 
 
-def build_kernels(d: Derivation, recursive: RecursiveDynamics | None = None) -> list[Kernel]:
+def build_kernels(d: Derivation, recursive: RecursiveDynamics | None = None,
+                  tree_derived: bool = False, dense_inverse: bool = True) -> list[Kernel]:
     """The kernels of one model, in the order they appear in the generated header.
 
-    With the tree recursions, their kernels follow the dense ones they may replace."""
-    kernels = _dense_kernels(d)
+    With the tree recursions, their kernels follow the dense ones they may replace. A model
+    whose derivation came from its recursions (`tree_derived`) gets the residual's Jacobians
+    through Newton-Euler's residual (n directions of O(n) operations each, where Mt qdd takes
+    n^2 each), and the dense inverse dynamics only with `dense_inverse`."""
+    kernels = _dense_kernels(d, recursive.residual if tree_derived else d.residual(),
+                             dense_inverse or not tree_derived)
     if recursive is None:
         return kernels
     alternatives = _recursive_kernels(recursive)
-    return [k for dense in kernels
-            for k in ([dense, alternatives[dense.name]] if dense.name in alternatives
-                      else [dense])]
+    follow = {name: [kernel] for name, kernel in alternatives.items()}
+    if not any(k.name == "inverse_dynamics" for k in kernels):
+        follow["dynamics"].append(follow.pop("inverse_dynamics")[0])
+    return [k for dense in kernels for k in [dense, *follow.get(dense.name, [])]]
 
 
-def _dense_kernels(d: Derivation) -> list[Kernel]:
+def _dense_kernels(d: Derivation, differentiated_residual: sp.Matrix,
+                   inverse_dynamics: bool) -> list[Kernel]:
     total_force = d.applied_forces + d.inertial_forces
-    residual = d.residual()
+    residual = d.residual() if inverse_dynamics else None
     jac = d.jacobian
     return [
         Kernel("mass_matrix", "Reduced mass matrix Mt = J^T M J (symmetric).",
@@ -141,12 +148,14 @@ def _dense_kernels(d: Derivation) -> list[Kernel]:
                [_out(_lower("Mt", d.mass_matrix)),
                 _out(_vector("f", "QVector<Scalar>", total_force))],
                notes=["Mt and f must not be null."]),
-        Kernel("inverse_dynamics", "Inverse dynamics: the residual r = Mt qdd - Ft - Fi, i.e. "
-               "the generalized force that produces qdd.", ("q", "v", "qdd", "t"),
-               [_vector("result", "QVector<Scalar>", residual)]),
+        *([Kernel("inverse_dynamics", "Inverse dynamics: the residual r = Mt qdd - Ft - Fi, "
+                  "i.e. the generalized force that produces qdd.", ("q", "v", "qdd", "t"),
+                  [_vector("result", "QVector<Scalar>", residual)])]
+          if inverse_dynamics else []),
         Kernel("residual_jacobians", "Jacobians dr/dq and dr/dv of the residual (dr/dqdd = "
                "Mt), for Newton steps.", ("q", "v", "qdd", "t"),
-               [_out(_jacobian("dr_dq", residual, d.q)), _out(_jacobian("dr_dv", residual, d.v))],
+               [_out(_jacobian("dr_dq", differentiated_residual, d.q)),
+                _out(_jacobian("dr_dv", differentiated_residual, d.v))],
                notes=["dr_dq and dr_dv must not be null."]),
         Kernel("kinetic_energy", "Kinetic energy T = 1/2 xdot^T M xdot.", ("q", "v", "t"),
                [_scalar("result", d.kinetic_energy)]),

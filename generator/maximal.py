@@ -17,6 +17,7 @@ from .bodies import force_shares
 from .constraints import penalty, violation
 from .derive import particle_forces, x_space_potential
 from .model import Model, Point
+from .structured import Intermediates
 
 KAPPA = sp.Symbol("kappa", positive=True)
 PENALTY_DAMPING = sp.Symbol("penalty_damping", nonnegative=True)
@@ -66,19 +67,8 @@ class MaximalDerivation:
     penalty_energy: sp.Expr
     violations: sp.Matrix               # one per declared constraint
     constraint_names: list[str]
-
-
-def _pattern(force: sp.Matrix, variables: list[sp.Symbol]) -> list[tuple[int, int]]:
-    """(row, column) of each entry of d force / d variables that can be nonzero.
-
-    Structural: an entry whose derivative happens to cancel to 0 is kept (and emitted as 0).
-    For large models the values are taken later by forward mode through the CSE'd force code
-    (differentiate.py), a few operations per entry instead of differentiating each row's
-    expression tree.
-    """
-    column = {w: c for c, w in enumerate(variables)}
-    return [(r, c) for r in range(force.shape[0])
-            for c in sorted(column[w] for w in force[r].free_symbols if w in column)]
+    # the named intermediates the forces are written in (derive_maximal)
+    definitions: list[tuple[sp.Symbol, sp.Expr]]
 
 
 def _values(force: sp.Matrix, variables: list[sp.Symbol], pattern: list[tuple[int, int]]):
@@ -86,8 +76,32 @@ def _values(force: sp.Matrix, variables: list[sp.Symbol], pattern: list[tuple[in
     return [force[r].diff(variables[c]) for r, c in pattern]
 
 
+def _pattern_through(force: sp.Matrix, variables: list[sp.Symbol],
+                     definitions: list[tuple[sp.Symbol, sp.Expr]]) -> list[tuple[int, int]]:
+    """(row, column) of each entry of d force / d variables that can be nonzero; a variable
+    counts where it enters through any of the named intermediates the force reads.
+
+    Structural: an entry whose derivative happens to cancel to 0 is kept (and emitted as 0).
+    For large models the values are taken later by forward mode through the CSE'd force code
+    (differentiate.py), a few operations per entry instead of differentiating each row's
+    expression tree.
+    """
+    column = {w: c for c, w in enumerate(variables)}
+    reaches: dict[sp.Symbol, set[int]] = {}
+    for symbol, expr in definitions:
+        reaches[symbol] = set().union(*[reaches.get(s, {column[s]} if s in column else set())
+                                        for s in expr.free_symbols])
+    return [(r, c) for r in range(force.shape[0])
+            for c in sorted(set().union(*[reaches.get(s, {column[s]} if s in column else set())
+                                          for s in force[r].free_symbols]))]
+
+
 def derive_maximal(model: Model, symbolic_jacobians: bool = True) -> MaximalDerivation:
+    """The maximal model's outputs. Without `symbolic_jacobians` (large models) each
+    constraint's penalty force is a named intermediate (`definitions`) before a body shares it
+    among its point masses: eight particles of a joint's two bodies take shares of one pin."""
     kin = MaximalKinematics(model)
+    names = None if symbolic_jacobians else Intermediates(prefix="__m")
     x = [s for p in model.particles for s in p.x]
     xdot = [s for p in model.particles for s in p.xdot]
     stack = lambda per_particle: sp.Matrix.vstack(*[per_particle[p.name]  # noqa: E731
@@ -99,13 +113,17 @@ def derive_maximal(model: Model, symbolic_jacobians: bool = True) -> MaximalDeri
     for constraint in model.constraints:
         forces, energy = penalty(constraint, kin, KAPPA, PENALTY_DAMPING)
         for point, force in forces:
+            if names is not None:
+                force = names.vector(force)
             for target, share in force_shares(point, force):
                 if target.name in penalties:  # a fixed point takes its reaction itself
                     penalties[target.name] = penalties[target.name] + share
         penalty_energy += energy
     penalty_total = stack(penalties)
     total = external + penalty_total
-    pattern_x, pattern_xdot = _pattern(total, x), _pattern(total, xdot)
+    definitions = names.definitions if names is not None else []
+    pattern_x = _pattern_through(total, x, definitions)
+    pattern_xdot = _pattern_through(total, xdot, definitions)
     return MaximalDerivation(
         x=x, xdot=xdot, external_forces=external, penalty_forces=penalty_total,
         total_forces=total, force_jacobian_x=pattern_x, force_jacobian_xdot=pattern_xdot,
@@ -114,4 +132,4 @@ def derive_maximal(model: Model, symbolic_jacobians: bool = True) -> MaximalDeri
                                     else None),
         potential_energy=x_space_potential(model, kin), penalty_energy=penalty_energy,
         violations=sp.Matrix([violation(c, kin)[0] for c in model.constraints]),
-        constraint_names=[c.label() for c in model.constraints])
+        constraint_names=[c.label() for c in model.constraints], definitions=definitions)

@@ -139,22 +139,31 @@ def generate(path: str, options: dict[str, str] | None = None,
         conservative = forces_have_potential(chart, kin)
         start = stage(prefix + "analyse", start)
         small = chart.nq <= FLAT_MAX_NQ
-        derivation, definitions = ((derive(chart, kin), []) if small
-                                   else derive_structured(chart, kin))
-        recursive = tree_dynamics(chart, kin) if dynamics != "dense" else None
+        recursive = (tree_dynamics(chart, kin, derivation=not small)
+                     if dynamics != "dense" or not small else None)
         if recursive is None and dynamics == "recursive":
             raise ModelError(
                 "--dynamics recursive: the model is neither a tree of particles (each particle "
                 "its parent's position plus an offset in coordinates of its own) nor a joint "
                 "tree of bodies (links, URDF); use --dynamics auto or dense"
             ).located(path, None)
+        # a large tree's every output comes from its recursions, in O(n) intermediates
+        tree_derived = recursive is not None and not small
+        if small:
+            derivation, definitions = derive(chart, kin), []
+        elif tree_derived:
+            derivation, definitions = recursive.derivation, []
+        else:
+            derivation, definitions = derive_structured(chart, kin)
         if recursive:
             definitions = [*definitions, *recursive.definitions]
         # a body's rods and pins make symbolic derivatives of the penalty forces slow (seconds
         # for one top); forward mode after CSE gives the same values
         maximal = derive_maximal(chart, symbolic_jacobians=small and not chart.bodies)
+        definitions = [*definitions, *maximal.definitions]
         start = stage(prefix + "derive", start)
-        kernels = build_kernels(derivation, recursive)
+        kernels = build_kernels(derivation, recursive, tree_derived,
+                                dense_inverse=dynamics == "dense")
         maximal_kernels = build_maximal_kernels(maximal)
         names, input_of = _symbol_names(chart)
         optimized = optimize_model(derivation, kernels + maximal_kernels, names, input_of,

@@ -1,4 +1,4 @@
-"""O(n) forward and inverse dynamics of a point-mass tree (point_tree.py), unrolled.
+"""O(n) dynamics of a point-mass tree (point_tree.py), unrolled.
 
 For a tree whose node i is a particle of mass m_i at X_i = X_parent + d_i(q_i, t), with
 S_i = dd_i/dq_i (dim x k_i) and c_i the acceleration of d_i at qddot_i = 0:
@@ -12,18 +12,23 @@ the recursions start from a_root = -g and leave gravity out of the forces f_i.
 The force F_i the parent passes to subtree i through the massless link satisfies
 tau_i = S_i^T F_i, where tau_i are the generalized forces on q_i.
 
-Inverse dynamics (recursive Newton-Euler): a_i from the root out, then from the leaves in
-F_i = m_i a_i - f_i + sum over children F_c; the residual r_i = S_i^T F_i - tau_i.
+- Inverse dynamics (recursive Newton-Euler): a_i from the root out, then from the leaves in
+  F_i = m_i a_i - f_i + sum over children F_c; the residual r_i = S_i^T F_i - tau_i.
+- Forward dynamics (articulated-body recursion): from the leaves in, F_i = IA_i a_i + pA_i with
 
-Forward dynamics (articulated-body recursion): from the leaves in, F_i = IA_i a_i + pA_i with
+      IA_i = m_i 1 + sum_c (IA_c - U_c D_c^-1 U_c^T),   U = IA S,  D = S^T U
+      pA_i = -f_i  + sum_c (pA_c + IA_c c_c + U_c D_c^-1 u_c),  u = tau - S^T (IA c + pA)
 
-    IA_i = m_i 1 + sum_c (IA_c - U_c D_c^-1 U_c^T),   U = IA S,  D = S^T U
-    pA_i = -f_i  + sum_c (pA_c + IA_c c_c + U_c D_c^-1 u_c),  u = tau - S^T (IA c + pA)
+  then from the root out qddot_i = D_i^-1 (u_i - U_i^T a_parent).
+- The mass matrix (composite bodies): with M_i the mass of subtree i, the block of
+  coordinates j, i (j an ancestor of i, or i) is M_i S_j^T S_i.
+- Ft and Fi are Newton-Euler's residual at qddot = 0 split by what moves it: -Fi with the
+  c_i alone, -Ft with gravity, the forces f_i and tau alone.
 
-then from the root out qddot_i = D_i^-1 (u_i - U_i^T a_parent). Every matrix is dim x dim
-or k x k, so each node costs a constant number of operations and the expressions stay small:
-both the kernels and their generation grow like n, where J^T M J has n^2 entries and its
-factorization n^3 / 6 steps. Every quantity is a named intermediate (structured.py).
+Every matrix is dim x dim or k x k, so each node costs a constant number of operations and
+the expressions stay small: the kernels and their generation grow like n (the outputs of n^2
+entries, Mt and J, by O(1) per entry), where J^T M J sums n terms per entry and its
+factorization takes n^3 / 6 steps. Every quantity is a named intermediate (structured.py).
 """
 
 from __future__ import annotations
@@ -32,7 +37,9 @@ from dataclasses import dataclass
 
 import sympy as sp
 
-from .derive import bias_acceleration, generalized_force_vector, particle_forces
+from .derive import (Derivation, _cross, bias_acceleration, fixed_point_positions,
+                     generalized_force_vector, generalized_potential, particle_forces,
+                     x_space_potential)
 from .model import Model
 from .point_tree import PointTree
 from .structured import Intermediates, NamedKinematics
@@ -43,6 +50,8 @@ class RecursiveDynamics:
     qddot: sp.Matrix                          # nq: articulated-body forward dynamics
     residual: sp.Matrix                       # nq: Newton-Euler r = Mt qdd - Ft - Fi
     definitions: list[tuple[sp.Symbol, sp.Expr]]
+    # every output of derive.py, by the recursions (composite bodies for Mt), when asked for
+    derivation: Derivation | None = None
 
 
 def spd_inverse(names: Intermediates, matrix: sp.Matrix) -> sp.Matrix:
@@ -53,16 +62,29 @@ def spd_inverse(names: Intermediates, matrix: sp.Matrix) -> sp.Matrix:
     return names.symmetric(matrix.adjugate() * inverse_det)
 
 
+def place_symmetric(names: Intermediates, matrix: sp.Matrix, rows: list[int],
+                    columns: list[int], block: sp.Matrix) -> None:
+    """Names the block of `matrix` at (rows, columns) and mirrors it; of a diagonal block
+    (rows == columns) only the lower triangle is computed."""
+    for a, row in enumerate(rows):
+        for b, column in enumerate(columns):
+            if rows == columns and b > a:
+                break
+            matrix[row, column] = matrix[column, row] = names.name(block[a, b])
+
+
 @dataclass
 class _Joint:
-    """One node's joint quantities, shared by both recursions."""
+    """One node's joint quantities, shared by the recursions."""
     coordinates: list[int]
     subspace: sp.Matrix      # S = dd/dq_i
     bias: sp.Matrix          # c: the acceleration of d at qddot_i = 0
 
 
-def recursive_dynamics(model: Model, kin, tree: PointTree) -> RecursiveDynamics:
-    """qddot by the articulated-body recursion and the residual by Newton-Euler."""
+def recursive_dynamics(model: Model, kin, tree: PointTree, derivation: bool = True
+                       ) -> RecursiveDynamics:
+    """qddot by the articulated-body recursion, the residual by Newton-Euler, and with
+    `derivation` every other output, by composite masses and Newton-Euler."""
     names = Intermediates(prefix="__r")
     dim = model.dim
     q, v, t = kin.q, kin.v, kin.t
@@ -91,48 +113,128 @@ def recursive_dynamics(model: Model, kin, tree: PointTree) -> RecursiveDynamics:
         velocity[name] = names.matrix(base_v + joints[-1].subspace * own_v + moving_frame)
 
     local = NamedKinematics(model, t, position, velocity)
-    force = {name: names.matrix(f)
-             for name, f in particle_forces(model, local, gravity=False).items()}
+    force = [names.matrix(f) for f in _node_forces(model, local, nodes)]
     gravity = sum((field.acceleration for field in model.gravities), zero)
     root = names.matrix(-gravity)
     tau = generalized_force_vector(model, q)
-    joint_force = [names.matrix(sp.Matrix(len(joint.coordinates), 1,
-                                          [tau[j] for j in joint.coordinates]))
-                   for joint in joints]
+    ctx = (names, nodes, children, joints)
 
-    qddot = _articulated_body(names, nodes, children, joints, force, joint_force, root, qdd)
-    residual = _newton_euler(names, nodes, children, joints, force, joint_force, root, qdd)
-    return RecursiveDynamics(qddot, residual, names.definitions)
+    qddot = _articulated_body(ctx, force, tau, root)
+    joint = [joint.subspace * sp.Matrix(len(joint.coordinates), 1,
+                                        [qdd[j] for j in joint.coordinates])
+             for joint in joints]
+    residual = _newton_euler(ctx, _accelerations(ctx, root, joint, True), force, tau)
+    if not derivation:
+        return RecursiveDynamics(qddot, residual, names.definitions)
+
+    # the derivation: Fi and gamma from the velocity terms alone, Ft from the forces alone
+    moving = _accelerations(ctx, zero, [None] * len(nodes), True)
+    inertial = -_newton_euler(ctx, moving, [zero] * len(nodes), sp.zeros(len(qdd), 1))
+    applied = -_newton_euler(ctx, _accelerations(ctx, root, [None] * len(nodes), False),
+                             force, tau)
+    particles = model.particles
+    gamma_of = {node.particle.name: moving[i] for i, node in enumerate(nodes)}
+    derived = Derivation(
+        q=q, v=v, a=qdd, t=t, params=[p.symbol for p in model.parameters],
+        masses=[p.mass for p in particles],
+        positions=sp.Matrix.vstack(*[position[p.name] for p in particles]),
+        fixed_point_positions=fixed_point_positions(model, kin),
+        velocities=sp.Matrix.vstack(*[velocity[p.name] for p in particles]),
+        jacobian=sp.Matrix.vstack(*[_particle_jacobian(tree, joints, i, len(qdd))
+                                    for i in _node_order(tree, particles)]),
+        bias_acceleration=sp.Matrix.vstack(*[gamma_of[p.name] for p in particles]),
+        mass_matrix=_composite_mass_matrix(ctx, len(qdd)),
+        applied_forces=names.vector(applied), inertial_forces=names.vector(inertial),
+        generalized_forces=tau,
+        kinetic_energy=sum((names.name(p.mass * velocity[p.name].dot(velocity[p.name]) / 2)
+                            for p in particles), sp.Integer(0)),
+        potential_energy=x_space_potential(model, local) + generalized_potential(model),
+        generalized_potential=generalized_potential(model),
+        linear_momentum=sum((p.mass * velocity[p.name] for p in particles), zero),
+        angular_momentum=sum((p.mass * _cross(position[p.name], velocity[p.name])
+                              for p in particles), sp.zeros(3 if dim == 3 else 1, 1)))
+    return RecursiveDynamics(qddot, residual, names.definitions, derived)
 
 
-def _articulated_body(names, nodes, children, joints, force, joint_force, root, qdd
-                      ) -> sp.Matrix:
+def _node_forces(model: Model, local: NamedKinematics, nodes) -> list[sp.Matrix]:
+    """f_i: the forces on each node's particle, gravity aside."""
+    force = particle_forces(model, local, gravity=False)
+    return [force[node.particle.name] for node in nodes]
+
+
+def _node_order(tree: PointTree, particles) -> list[int]:
+    """The node of each particle, in the model's particle order."""
+    node_of = {node.particle.name: i for i, node in enumerate(tree.nodes)}
+    return [node_of[p.name] for p in particles]
+
+
+def _particle_jacobian(tree: PointTree, joints: list[_Joint], i: int, nq: int) -> sp.Matrix:
+    """dX_i/dq: S_a in the columns of every node a from i to the root."""
+    jacobian = sp.zeros(joints[i].subspace.shape[0], nq)
+    a = i
+    while a is not None:
+        for k, j in enumerate(joints[a].coordinates):
+            jacobian[:, j] = joints[a].subspace[:, k]
+        a = tree.nodes[a].parent
+    return jacobian
+
+
+def _accelerations(ctx, root: sp.Matrix, joint, with_bias: bool) -> list[sp.Matrix]:
+    """a_i = a_parent + joint_i + c_i (c_i only `with_bias`) from a_root = `root`; joint_i
+    is S_i qddot_i, or None for zero."""
+    names, nodes, _, joints = ctx
+    accelerations: list[sp.Matrix] = []
+    for i, node in enumerate(nodes):
+        a = root if node.parent is None else accelerations[node.parent]
+        if joint[i] is not None:
+            a = a + joint[i]
+        if with_bias:
+            a = a + joints[i].bias
+        accelerations.append(names.matrix(a))
+    return accelerations
+
+
+def _newton_euler(ctx, accelerations, force, tau) -> sp.Matrix:
+    """From the leaves in: F_i = m_i a_i - force_i + the children's; S^T F - tau."""
+    names, nodes, children, joints = ctx
+    residual = [sp.Integer(0)] * len(tau)
+    transmitted: list[sp.Matrix] = [None] * len(nodes)
+    for i in reversed(range(len(nodes))):
+        F = nodes[i].particle.mass * accelerations[i] - force[i]
+        for c in children[i]:
+            F = F + transmitted[c]
+        transmitted[i] = names.matrix(F)
+        for j, value in zip(joints[i].coordinates, joints[i].subspace.T * transmitted[i]):
+            residual[j] = names.name(value - tau[j])
+    return sp.Matrix(residual)
+
+
+def _articulated_body(ctx, force, tau, root) -> sp.Matrix:
+    names, nodes, children, joints = ctx
     n, dim = len(nodes), root.shape[0]
-    inertia: list[sp.Matrix] = [None] * n        # IA_i
-    bias_force: list[sp.Matrix] = [None] * n     # pA_i
     passed: list[tuple] = [None] * n             # (Ia, pa) handed to the parent
     solve: list[tuple] = [None] * n              # (U, D^-1, u) for the outward pass
     for i in reversed(range(n)):
         node, joint = nodes[i], joints[i]
         IA = node.particle.mass * sp.eye(dim)
-        pA = -force[node.particle.name]
+        pA = -force[i]
         for c in children[i]:
             IA, pA = IA + passed[c][0], pA + passed[c][1]
         IA, pA = names.symmetric(IA), names.matrix(pA)
-        inertia[i], bias_force[i] = IA, pA
         S, c_i = joint.subspace, joint.bias
         if S.shape[1] == 0:
             passed[i] = (IA, names.matrix(pA + IA * c_i))
             continue
         U = names.matrix(IA * S)
         D_inverse = spd_inverse(names, names.symmetric(S.T * U))
-        u = names.matrix(joint_force[i] - S.T * (IA * c_i + pA))
+        own_tau = sp.Matrix([tau[j] for j in joint.coordinates])
+        u = names.matrix(own_tau - S.T * (IA * c_i + pA))
         UD = names.matrix(U * D_inverse)
         passed[i] = (names.symmetric(IA - UD * U.T),
                      names.matrix(pA + IA * c_i + UD * u))
         solve[i] = (U, D_inverse, u)
 
-    qddot = [sp.Integer(0)] * len(qdd)
+    qddot = [sp.Integer(0)] * len(tau)
     acceleration: list[sp.Matrix] = [None] * n
     for i, node in enumerate(nodes):
         base = root if node.parent is None else acceleration[node.parent]
@@ -147,24 +249,21 @@ def _articulated_body(names, nodes, children, joints, force, joint_force, root, 
     return sp.Matrix(qddot)
 
 
-def _newton_euler(names, nodes, children, joints, force, joint_force, root, qdd
-                  ) -> sp.Matrix:
-    n = len(nodes)
-    acceleration: list[sp.Matrix] = [None] * n
-    for i, node in enumerate(nodes):
-        base = root if node.parent is None else acceleration[node.parent]
-        joint = joints[i]
-        own = sp.Matrix(len(joint.coordinates), 1, [qdd[j] for j in joint.coordinates])
-        acceleration[i] = names.matrix(base + joint.subspace * own + joint.bias)
-    residual = [sp.Integer(0)] * len(qdd)
-    transmitted: list[sp.Matrix] = [None] * n
-    for i in reversed(range(n)):
-        node, joint = nodes[i], joints[i]
-        F = node.particle.mass * acceleration[i] - force[node.particle.name]
-        for c in children[i]:
-            F = F + transmitted[c]
-        transmitted[i] = names.matrix(F)
-        for j, value in zip(joint.coordinates,
-                            joint.subspace.T * transmitted[i] - joint_force[i]):
-            residual[j] = names.name(value)
-    return sp.Matrix(residual)
+def _composite_mass_matrix(ctx, nq: int) -> sp.Matrix:
+    names, nodes, children, joints = ctx
+    subtree_mass: list[sp.Expr] = [None] * len(nodes)
+    for i in reversed(range(len(nodes))):
+        subtree_mass[i] = names.name(nodes[i].particle.mass
+                                     + sum((subtree_mass[c] for c in children[i]), 0))
+    mass_matrix = sp.zeros(nq, nq)
+    for i, joint in enumerate(joints):
+        if not joint.coordinates:
+            continue
+        carried = names.matrix(subtree_mass[i] * joint.subspace)
+        a = i
+        while a is not None:
+            if joints[a].coordinates:
+                place_symmetric(names, mass_matrix, joints[a].coordinates, joint.coordinates,
+                                joints[a].subspace.T * carried)
+            a = nodes[a].parent
+    return mass_matrix

@@ -11,13 +11,14 @@ from .point_tree import point_tree
 from .recursive import RecursiveDynamics, recursive_dynamics
 
 
-def tree_dynamics(model: Model, kin: Kinematics) -> RecursiveDynamics | None:
-    """qddot and the inverse-dynamics residual by the recursions, or None for a model that
-    is no tree (it keeps the dense kernels)."""
+def tree_dynamics(model: Model, kin: Kinematics, derivation: bool = True
+                  ) -> RecursiveDynamics | None:
+    """qddot and the inverse-dynamics residual by the recursions, with `derivation` every
+    other output too, or None for a model that is no tree (it keeps the dense kernels)."""
     points = point_tree(model)
     if points is not None:
-        return recursive_dynamics(model, kin, points)
+        return recursive_dynamics(model, kin, points, derivation)
     bodies = body_tree(model)
     if bodies is not None:
-        return body_recursive_dynamics(model, kin, bodies)
+        return body_recursive_dynamics(model, kin, bodies, derivation)
     return None

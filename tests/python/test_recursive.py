@@ -72,21 +72,33 @@ class PointTreeTest(unittest.TestCase):
             self.assertIsNone(point_tree(model), name)
 
 
+# every output of the derivation; the recursions give each of them (composite bodies for Mt)
+FIELDS = ("mass_matrix", "applied_forces", "inertial_forces", "generalized_forces",
+          "positions", "velocities", "jacobian", "bias_acceleration", "fixed_point_positions",
+          "kinetic_energy", "potential_energy", "generalized_potential", "linear_momentum",
+          "angular_momentum")
+
+
+def _as_list(value) -> list:
+    return list(value) if isinstance(value, sp.MatrixBase) else [value]
+
+
 def _assert_equal_to_dense(test: unittest.TestCase, model, kin: Kinematics, name: str,
                            recursive, tolerance=None) -> None:
-    """Both recursions against the dense derivation at random states, in DIGITS digits, to
-    `tolerance` relative (default: 1e8 units of the last digit)."""
+    """Both recursions and every output of the recursive derivation against the dense
+    derivation at random states, in DIGITS digits, to `tolerance` relative (default: 1e8
+    units of the last digit)."""
     dense = derive(model, kin)
     inputs = [*dense.q, *dense.v, *dense.a, *dense.params, dense.t]
     # compiled once, through a CSE: a robot's dense expression trees take minutes to
-    # evaluate by substitution, and as long to print whole
-    dense_values = sp.lambdify(inputs, [dense.mass_matrix,
-                                        dense.applied_forces + dense.inertial_forces],
-                               modules="mpmath", cse=True)
+    # evaluate by substitution, and as long to print whole (one CSE per output: one over
+    # all of them takes three times as long)
+    compiled = {f: sp.lambdify(inputs, _as_list(getattr(dense, f)), modules="mpmath", cse=True)
+                for f in FIELDS}
     rng = random.Random(name)
     with mpmath.workdps(DIGITS):
         tolerance = tolerance or mpmath.mpf(10) ** (8 - DIGITS)
-        for _ in range(STATES):
+        for state in range(STATES):
             point = {s: sp.Float(rng.uniform(-1.5, 1.5), DIGITS) for s in inputs}
             point.update({p.symbol: sp.Float(p.default * rng.uniform(0.8, 1.2), DIGITS)
                           for p in model.parameters})
@@ -95,13 +107,24 @@ def _assert_equal_to_dense(test: unittest.TestCase, model, kin: Kinematics, name
                 point[symbol] = expr.xreplace(point).evalf(DIGITS)
 
             def values(matrix):
-                return [mpmath.mpf(e.xreplace(point).evalf(DIGITS)) for e in matrix]
+                return [mpmath.mpf(sp.sympify(e).xreplace(point).evalf(DIGITS))
+                        for e in _as_list(matrix)]
 
-            mass, force = (mpmath.matrix(value) for value in dense_values(*arguments))
+            # the outputs at one state; Mt and the forces at every state
+            fields = FIELDS if state == 0 else FIELDS[:3]
+            expected = {f: compiled[f](*arguments) for f in fields}
+            for field in fields:
+                test.assertLess(relative_error(values(getattr(recursive.derivation, field)),
+                                               expected[field]), tolerance, f"{name}: {field}")
+            mass = mpmath.matrix(model.nq, model.nq)
+            for k, value in enumerate(expected["mass_matrix"]):
+                mass[k // model.nq, k % model.nq] = value
+            force = mpmath.matrix([a + b for a, b in zip(expected["applied_forces"],
+                                                         expected["inertial_forces"])])
             acceleration = mpmath.matrix([point[a] for a in dense.a])
-            expected = list(mpmath.lu_solve(mass, force))
-            test.assertLess(relative_error(values(recursive.qddot), expected), tolerance,
-                            f"{name}: qddot")
+            test.assertLess(relative_error(values(recursive.qddot),
+                                           list(mpmath.lu_solve(mass, force))),
+                            tolerance, f"{name}: qddot")
             test.assertLess(relative_error(values(recursive.residual),
                                            list(mass * acceleration - force)),
                             tolerance, f"{name}: inverse dynamics")
