@@ -7,7 +7,7 @@
 // Singular configurations (J loses rank): none found
 // Worst conditioning of J in 200 random configurations: sigma_min / sigma_max = 0.158 at
 //   theta1 = -0.8447, theta2 = -0.8588, theta3 = -0.6559, theta4 = -0.7064, theta5 = -1.917
-// qddot: Mt, Ft + Fi and an LDL^T solve, 279 operations (articulated-body recursion: 270)
+// qddot: articulated-body recursion, 270 operations (Mt, Ft + Fi and an LDL^T solve: 279)
 // inverse_dynamics: recursive Newton-Euler, 102 operations (Mt qdd - Ft - Fi: n^2 operations, not
 // generated)
 //
@@ -84,7 +84,7 @@ struct NLinkChain5 {
   /// Whether qddot is the articulated-body recursion over the model's tree of particles,
   /// chosen at generation because it takes fewer operations than Mt, Ft + Fi and an LDL^T
   /// solve (generator/dynamics_paths.py); gencoord::acceleration() then calls it.
-  static constexpr bool recursive_qddot = false;
+  static constexpr bool recursive_qddot = true;
 
   template <typename Scalar>
   using QVector = Eigen::Matrix<Scalar, nq, 1>;
@@ -694,6 +694,160 @@ struct NLinkChain5 {
     (*Mt)(1, 4) = (*Mt)(4, 1);
     (*Mt)(2, 4) = (*Mt)(4, 2);
     (*Mt)(3, 4) = (*Mt)(4, 3);
+  }
+
+  /// Generalized accelerations qddot = Mt^-1 (Ft + Fi) by the articulated-body recursion (O(nq));
+  /// NaN or inf entries where Mt is singular.
+  /// \param[in] q  generalized coordinates (nq = 5)
+  /// \param[in] v  generalized velocities (nq = 5)
+  /// \param[in] t  time
+  /// \param[in] params  model parameters
+  /// \return qddot (nq)
+  /// Ops: 270
+  template <typename Scalar>
+  static QVector<Scalar> qddot(const QVector<Scalar>& q,
+                               const QVector<Scalar>& v,
+                               const Scalar& /*t*/,
+                               const Params& params) {
+    using std::cos;
+    using std::sin;
+    const Scalar theta1 = q(0);
+    const Scalar theta2 = q(1);
+    const Scalar theta3 = q(2);
+    const Scalar theta4 = q(3);
+    const Scalar theta5 = q(4);
+    const Scalar theta1_dot = v(0);
+    const Scalar theta2_dot = v(1);
+    const Scalar theta3_dot = v(2);
+    const Scalar theta4_dot = v(3);
+    const Scalar theta5_dot = v(4);
+    const Scalar g = Scalar(params.g);
+    const Scalar l1 = Scalar(params.l1);
+    const Scalar m1 = Scalar(params.m1);
+    const Scalar l2 = Scalar(params.l2);
+    const Scalar m2 = Scalar(params.m2);
+    const Scalar l3 = Scalar(params.l3);
+    const Scalar m3 = Scalar(params.m3);
+    const Scalar l4 = Scalar(params.l4);
+    const Scalar m4 = Scalar(params.m4);
+    const Scalar l5 = Scalar(params.l5);
+    const Scalar m5 = Scalar(params.m5);
+    const Scalar tmp0 = l1*cos(theta1);
+    const Scalar tmp1 = l1*sin(theta1);
+    const Scalar tmp2 = (theta1_dot*theta1_dot);
+    const Scalar tmp3 = -tmp1*tmp2;
+    const Scalar tmp4 = tmp0*tmp2;
+    const Scalar tmp8 = l2*cos(theta2);
+    const Scalar tmp9 = l2*sin(theta2);
+    const Scalar tmp10 = (theta2_dot*theta2_dot);
+    const Scalar tmp11 = -tmp9*tmp10;
+    const Scalar tmp12 = tmp8*tmp10;
+    const Scalar tmp17 = l3*cos(theta3);
+    const Scalar tmp18 = l3*sin(theta3);
+    const Scalar tmp19 = (theta3_dot*theta3_dot);
+    const Scalar tmp20 = -tmp18*tmp19;
+    const Scalar tmp21 = tmp17*tmp19;
+    const Scalar tmp26 = l4*cos(theta4);
+    const Scalar tmp27 = l4*sin(theta4);
+    const Scalar tmp28 = (theta4_dot*theta4_dot);
+    const Scalar tmp29 = -tmp27*tmp28;
+    const Scalar tmp30 = tmp28*tmp26;
+    const Scalar tmp35 = l5*cos(theta5);
+    const Scalar tmp36 = l5*sin(theta5);
+    const Scalar tmp37 = (theta5_dot*theta5_dot);
+    const Scalar tmp38 = -tmp36*tmp37;
+    const Scalar tmp39 = tmp35*tmp37;
+    const Scalar tmp44 = tmp35*m5;
+    const Scalar tmp45 = tmp36*m5;
+    const Scalar tmp46 = tmp35*tmp44 + tmp36*tmp45;
+    const Scalar tmp47 = (Scalar(1)/tmp46);
+    const Scalar tmp48 = -tmp44*tmp38 - tmp45*tmp39;
+    const Scalar tmp49 = tmp44*tmp47;
+    const Scalar tmp50 = tmp45*tmp47;
+    const Scalar tmp51 = -m5;
+    const Scalar tmp52 = -tmp51 - tmp44*tmp49;
+    const Scalar tmp53 = -tmp44*tmp50;
+    const Scalar tmp54 = -tmp51 - tmp45*tmp50;
+    const Scalar tmp55 = tmp38*m5 + tmp48*tmp49;
+    const Scalar tmp56 = tmp39*m5 + tmp48*tmp50;
+    const Scalar tmp57 = tmp52 + m4;
+    const Scalar tmp58 = tmp54 + m4;
+    const Scalar tmp59 = tmp27*tmp53 + tmp26*tmp57;
+    const Scalar tmp60 = tmp27*tmp58 + tmp26*tmp53;
+    const Scalar tmp61 = tmp27*tmp60 + tmp26*tmp59;
+    const Scalar tmp62 = (Scalar(1)/tmp61);
+    const Scalar tmp63 = tmp55 + tmp29*tmp57 + tmp30*tmp53;
+    const Scalar tmp64 = tmp56 + tmp29*tmp53 + tmp30*tmp58;
+    const Scalar tmp65 = -tmp27*tmp64 - tmp63*tmp26;
+    const Scalar tmp66 = tmp59*tmp62;
+    const Scalar tmp67 = tmp60*tmp62;
+    const Scalar tmp68 = tmp57 - tmp59*tmp66;
+    const Scalar tmp69 = tmp53 - tmp59*tmp67;
+    const Scalar tmp70 = tmp58 - tmp60*tmp67;
+    const Scalar tmp71 = tmp63 + tmp65*tmp66;
+    const Scalar tmp72 = tmp64 + tmp65*tmp67;
+    const Scalar tmp73 = tmp68 + m3;
+    const Scalar tmp74 = tmp70 + m3;
+    const Scalar tmp75 = tmp17*tmp73 + tmp18*tmp69;
+    const Scalar tmp76 = tmp17*tmp69 + tmp18*tmp74;
+    const Scalar tmp77 = tmp17*tmp75 + tmp18*tmp76;
+    const Scalar tmp78 = (Scalar(1)/tmp77);
+    const Scalar tmp79 = tmp71 + tmp20*tmp73 + tmp21*tmp69;
+    const Scalar tmp80 = tmp72 + tmp20*tmp69 + tmp21*tmp74;
+    const Scalar tmp81 = -tmp79*tmp17 - tmp80*tmp18;
+    const Scalar tmp82 = tmp75*tmp78;
+    const Scalar tmp83 = tmp76*tmp78;
+    const Scalar tmp84 = tmp73 - tmp75*tmp82;
+    const Scalar tmp85 = tmp69 - tmp75*tmp83;
+    const Scalar tmp86 = tmp74 - tmp76*tmp83;
+    const Scalar tmp87 = tmp79 + tmp81*tmp82;
+    const Scalar tmp88 = tmp80 + tmp81*tmp83;
+    const Scalar tmp89 = tmp84 + m2;
+    const Scalar tmp90 = tmp86 + m2;
+    const Scalar tmp91 = tmp8*tmp89 + tmp9*tmp85;
+    const Scalar tmp92 = tmp8*tmp85 + tmp9*tmp90;
+    const Scalar tmp93 = tmp8*tmp91 + tmp9*tmp92;
+    const Scalar tmp94 = (Scalar(1)/tmp93);
+    const Scalar tmp95 = tmp87 + tmp12*tmp85 + tmp89*tmp11;
+    const Scalar tmp96 = tmp88 + tmp12*tmp90 + tmp85*tmp11;
+    const Scalar tmp97 = -tmp95*tmp8 - tmp96*tmp9;
+    const Scalar tmp98 = tmp91*tmp94;
+    const Scalar tmp99 = tmp92*tmp94;
+    const Scalar tmp100 = tmp89 - tmp91*tmp98;
+    const Scalar tmp101 = tmp85 - tmp91*tmp99;
+    const Scalar tmp102 = tmp90 - tmp92*tmp99;
+    const Scalar tmp103 = tmp95 + tmp97*tmp98;
+    const Scalar tmp104 = tmp96 + tmp97*tmp99;
+    const Scalar tmp105 = tmp100 + m1;
+    const Scalar tmp106 = tmp102 + m1;
+    const Scalar tmp107 = tmp0*tmp105 + tmp1*tmp101;
+    const Scalar tmp108 = tmp0*tmp101 + tmp1*tmp106;
+    const Scalar tmp109 = tmp0*tmp107 + tmp1*tmp108;
+    const Scalar tmp110 = (Scalar(1)/tmp109);
+    const Scalar tmp111 = tmp103 + tmp3*tmp105 + tmp4*tmp101;
+    const Scalar tmp112 = tmp104 + tmp3*tmp101 + tmp4*tmp106;
+    const Scalar tmp113 = -tmp0*tmp111 - tmp1*tmp112;
+    const Scalar tmp121 = tmp110*(tmp113 - tmp108*g);
+    const Scalar tmp122 = tmp3 + tmp0*tmp121;
+    const Scalar tmp123 = tmp4 + g;
+    const Scalar tmp124 = tmp123 + tmp1*tmp121;
+    const Scalar tmp125 = tmp94*(tmp97 - tmp122*tmp91 - tmp124*tmp92);
+    const Scalar tmp126 = tmp122 + tmp11 + tmp8*tmp125;
+    const Scalar tmp127 = tmp12 + tmp124 + tmp9*tmp125;
+    const Scalar tmp128 = tmp78*(tmp81 - tmp126*tmp75 - tmp127*tmp76);
+    const Scalar tmp129 = tmp126 + tmp20 + tmp17*tmp128;
+    const Scalar tmp130 = tmp127 + tmp21 + tmp18*tmp128;
+    const Scalar tmp131 = tmp62*(tmp65 - tmp129*tmp59 - tmp130*tmp60);
+    const Scalar tmp132 = tmp129 + tmp29 + tmp26*tmp131;
+    const Scalar tmp133 = tmp130 + tmp30 + tmp27*tmp131;
+    const Scalar tmp134 = tmp47*(tmp48 - tmp44*tmp132 - tmp45*tmp133);
+    QVector<Scalar> result;
+    result(0) = tmp121;
+    result(1) = tmp125;
+    result(2) = tmp128;
+    result(3) = tmp131;
+    result(4) = tmp134;
+    return result;
   }
 
   /// Inverse dynamics by the recursive Newton-Euler algorithm (O(nq)): the residual r = Mt qdd - Ft
@@ -1808,24 +1962,6 @@ struct NLinkChain5 {
     return true;
   }
 
-  /// Generalized accelerations qddot = Mt^-1 (Ft + Fi), by solve() (LDL^T). Every entry
-  /// is NaN when Mt is not positive definite; the runtime's gencoord::acceleration()
-  /// reports that case as an error instead.
-  /// \param[in] q  generalized coordinates (nq = 5)
-  /// \param[in] v  generalized velocities (nq = 5)
-  /// \param[in] t  time
-  /// \param[in] params  model parameters
-  /// \return qddot (nq = 5)
-  template <typename Scalar>
-  static QVector<Scalar> qddot(const QVector<Scalar>& q, const QVector<Scalar>& v,
-                               const Scalar& t, const Params& params) {
-    QMatrix<Scalar> Mt;
-    QVector<Scalar> f;
-    dynamics(q, v, t, params, &Mt, &f);
-    QVector<Scalar> a;
-    if (!solve(Mt, f, &a)) a.setConstant(std::numeric_limits<Scalar>::quiet_NaN());
-    return a;
-  }
 
   /// The maximal-coordinate model of the same file: every particle free (x has nx entries),
   /// the same external forces, and each declared constraint enforced by a penalty force.

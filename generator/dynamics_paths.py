@@ -6,7 +6,9 @@ Mt qdd - Ft - Fi, or by Newton-Euler. Small models favour the dense form (a pend
 is one product), long chains the recursion (n^3 / 6 against n). After the CSE both are
 counted in operations and the recursion is kept when it takes fewer than RECURSION_ADVANTAGE
 times the dense form's: its steps form one long dependency chain, where the dense kernels'
-independent entries keep the processor's units busy, so an operation of it costs more.
+independent entries keep the processor's units busy, so an operation of it costs more. A
+tree of more than three coordinates takes its Mt from composite bodies, a recursion as well,
+and there the form with fewer operations is kept (TREE_DERIVED_ADVANTAGE).
 """
 
 from __future__ import annotations
@@ -19,8 +21,13 @@ from .kernel_code import KernelCode
 DYNAMICS_CHOICES = ("auto", "dense", "recursive")
 
 # Measured on the planar chain at -O2, pinned to one core (scripts/bench_recursion.sh): the
-# recursion's qddot equals the dense one's time at about 0.8 of its operations (n = 6, 7).
+# recursion's qddot equals the dense one's time at about 0.8 of its operations (n = 6, 7),
+# where Mt's entries are independent sums (structured.py).
 RECURSION_ADVANTAGE = 0.75
+# A tree derived by its recursions computes Mt by composite bodies, itself one dependency
+# chain: the form with fewer operations wins (bench_robots: the arm's articulated-body qddot
+# of 2041 operations beats composite bodies and LDL^T at 2098).
+TREE_DERIVED_ADVANTAGE = 1.0
 
 
 def ldlt_solve_ops(n: int) -> int:
@@ -37,20 +44,22 @@ class PathChoice:
     report: list[str]              # one line per choice, for the generation report
 
 
-def choose_paths(codes: list[KernelCode], nq: int, dynamics: str = "auto"
-                 ) -> tuple[list[KernelCode], PathChoice]:
+def choose_paths(codes: list[KernelCode], nq: int, dynamics: str = "auto",
+                 tree_derived: bool = False) -> tuple[list[KernelCode], PathChoice]:
     """The kernels with each loser of a dense/recursive pair removed, and what was chosen;
-    `dynamics` "dense" or "recursive" overrides the choice."""
+    `dynamics` "dense" or "recursive" overrides the choice. `tree_derived`: the dense
+    kernels came from the recursions too (composite bodies)."""
+    advantage = TREE_DERIVED_ADVANTAGE if tree_derived else RECURSION_ADVANTAGE
     recursive = {c.kernel.name: c for c in codes if c.kernel.variant == "recursive"}
     if not recursive:
         return codes, PathChoice(False, False, [])
     dense = {c.kernel.name: c for c in codes if not c.kernel.variant}
     dense_qddot = dense["dynamics"].ops + ldlt_solve_ops(nq)
-    use_qddot = recursive["qddot"].ops < RECURSION_ADVANTAGE * dense_qddot
+    use_qddot = recursive["qddot"].ops < advantage * dense_qddot
     # a large tree's dense inverse dynamics is generated only on request (kernels.py)
     dense_inverse = dense.get("inverse_dynamics")
     use_inverse = (dense_inverse is None or recursive["inverse_dynamics"].ops
-                   < RECURSION_ADVANTAGE * dense_inverse.ops)
+                   < advantage * dense_inverse.ops)
     if dynamics != "auto":
         use_qddot = use_inverse = dynamics == "recursive"
     # the dense qddot is the template's, so only a losing recursion has a kernel to drop
