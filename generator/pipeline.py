@@ -169,7 +169,7 @@ def generate(path: str, options: dict[str, str] | None = None,
         optimized = optimize_model(derivation, kernels + maximal_kernels, names, input_of,
                                    definitions, optimize_options)
         optimized.kernels, paths = choose_paths(optimized.kernels, chart.nq, dynamics,
-                                                    tree_derived)
+                                                tree_derived)
         analysis += paths.report
         start = stage(prefix + "optimize (CSE)", start)
         reduced = len(optimized.kernels) - len(maximal_kernels)
