@@ -56,7 +56,7 @@ def choose_paths(codes: list[KernelCode], nq: int, dynamics: str = "auto",
     dense = {c.kernel.name: c for c in codes if not c.kernel.variant}
     dense_qddot = dense["dynamics"].ops + ldlt_solve_ops(nq)
     use_qddot = recursive["qddot"].ops < advantage * dense_qddot
-    # a large tree's dense inverse dynamics is generated only on request (kernels.py)
+    # a tree derived by its recursions has no dense inverse dynamics (kernels.py)
     dense_inverse = dense.get("inverse_dynamics")
     use_inverse = (dense_inverse is None or recursive["inverse_dynamics"].ops
                    < advantage * dense_inverse.ops)

@@ -107,15 +107,15 @@ def _recursive_kernels(r: RecursiveDynamics) -> dict[str, Kernel]:
 
 
 def build_kernels(d: Derivation, recursive: RecursiveDynamics | None = None,
-                  tree_derived: bool = False, dense_inverse: bool = True) -> list[Kernel]:
+                  tree_derived: bool = False) -> list[Kernel]:
     """The kernels of one model, in the order they appear in the generated header.
 
     With the tree recursions, their kernels follow the dense ones they may replace. A model
     whose derivation came from its recursions (`tree_derived`) gets the residual's Jacobians
     through Newton-Euler's residual (n directions of O(n) operations each, where Mt qdd takes
-    n^2 each), and the dense inverse dynamics only with `dense_inverse`."""
+    n^2 each), and no dense inverse dynamics: Newton-Euler is it."""
     kernels = _dense_kernels(d, recursive.residual if tree_derived else d.residual(),
-                             dense_inverse or not tree_derived)
+                             not tree_derived)
     if recursive is None:
         return kernels
     alternatives = _recursive_kernels(recursive)

@@ -139,8 +139,9 @@ def generate(path: str, options: dict[str, str] | None = None,
         conservative = forces_have_potential(chart, kin)
         start = stage(prefix + "analyse", start)
         small = chart.nq <= FLAT_MAX_NQ
+        # --dynamics dense: the dense derivation and kernels, the reference
         recursive = (tree_dynamics(chart, kin, derivation=not small)
-                     if dynamics != "dense" or not small else None)
+                     if dynamics != "dense" else None)
         if recursive is None and dynamics == "recursive":
             raise ModelError(
                 "--dynamics recursive: the model is neither a tree of particles (each particle "
@@ -162,8 +163,7 @@ def generate(path: str, options: dict[str, str] | None = None,
         maximal = derive_maximal(chart, symbolic_jacobians=small and not chart.bodies)
         definitions = [*definitions, *maximal.definitions]
         start = stage(prefix + "derive", start)
-        kernels = build_kernels(derivation, recursive, tree_derived,
-                                dense_inverse=dynamics == "dense")
+        kernels = build_kernels(derivation, recursive, tree_derived)
         maximal_kernels = build_maximal_kernels(maximal)
         names, input_of = _symbol_names(chart)
         optimized = optimize_model(derivation, kernels + maximal_kernels, names, input_of,
