@@ -29,7 +29,7 @@ class LinkKinematics:
     on its body, and the wrenches and joint forces that act; all named in `names`."""
 
     def __init__(self, model: Model, kin, tree: BodyTree, names: Intermediates):
-        self.model, self.tree, self.names = model, tree, names
+        self.model, self.names = model, names
         self.nodes, self.children = tree.nodes, tree.children()
         q, v, self.t = kin.q, kin.v, kin.t
         n = len(self.nodes)
@@ -55,7 +55,6 @@ class LinkKinematics:
         self.external = self._external_wrenches()
         self.tau = coordinate_forces(model, q)  # body torques enter as wrenches
         gravity = sum((field.acceleration for field in model.gravities), sp.zeros(3, 1))
-        self.gravity = names.matrix(gravity)
         self.world = sp.Matrix.vstack(sp.zeros(3, 1), names.matrix(-gravity))  # A_world
 
     def to_child(self, i: int, motion: sp.Matrix) -> sp.Matrix:

@@ -178,7 +178,7 @@ def _derivation(model: Model, kin, links: LinkKinematics, qdd) -> Derivation:
     applied = -_newton_euler(links, _accelerations(links, links.world, none, False),
                              [-wrench for wrench in links.external], links.tau)
 
-    positions, velocities, jacobians, gammas = {}, {}, {}, {}
+    jacobians, gammas = {}, {}
     world_subspace = [names.matrix(sp.Matrix.vstack(links.world_rotation[i] * node.subspace[:3, :],
                                                     links.world_rotation[i] * node.subspace[3:, :]))
                       for i, node in enumerate(nodes)]
@@ -192,12 +192,10 @@ def _derivation(model: Model, kin, links: LinkKinematics, qdd) -> Derivation:
         dw, dv = split(moving[i])
         for particle in body.particles:
             _, rho = links.point_link[particle.name]
-            x = links.points.position[particle.name]
-            positions[particle.name] = x
-            velocities[particle.name] = links.points.velocity[particle.name]
             gammas[particle.name] = names.matrix(
                 R * (dv + dw.cross(rho) + w.cross(v + w.cross(rho))))
-            jacobians[particle.name] = _point_jacobian(links, world_subspace, i, x, nq)
+            jacobians[particle.name] = _point_jacobian(
+                links, world_subspace, i, links.points.position[particle.name], nq)
         centre = links.world_origin[i] + R * node.link.inertial.origin
         centre_velocity = R * (v + w.cross(node.link.inertial.origin))
         kinetic += names.name((links.velocity[i].T * links.inertia[i] * links.velocity[i])[0]
@@ -210,9 +208,9 @@ def _derivation(model: Model, kin, links: LinkKinematics, qdd) -> Derivation:
     return Derivation(
         q=kin.q, v=kin.v, a=qdd, t=kin.t, params=[p.symbol for p in model.parameters],
         masses=[p.mass for p in particles],
-        positions=sp.Matrix.vstack(*[positions[p.name] for p in particles]),
+        positions=sp.Matrix.vstack(*[links.points.position[p.name] for p in particles]),
         fixed_point_positions=fixed_point_positions(model, kin),
-        velocities=sp.Matrix.vstack(*[velocities[p.name] for p in particles]),
+        velocities=sp.Matrix.vstack(*[links.points.velocity[p.name] for p in particles]),
         jacobian=sp.Matrix.vstack(*[jacobians[p.name] for p in particles]),
         bias_acceleration=sp.Matrix.vstack(*[gammas[p.name] for p in particles]),
         mass_matrix=_composite_mass_matrix(links, nq),

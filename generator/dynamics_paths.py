@@ -63,7 +63,8 @@ def choose_paths(codes: list[KernelCode], nq: int, dynamics: str = "auto",
     if dynamics != "auto":
         use_qddot = use_inverse = dynamics == "recursive"
     # the dense qddot is the template's, so only a losing recursion has a kernel to drop
-    dropped = {id(dense_inverse if use_inverse else recursive["inverse_dynamics"])}
+    losing_inverse = dense_inverse if use_inverse else recursive["inverse_dynamics"]
+    dropped = {id(losing_inverse)} if losing_inverse is not None else set()
     if not use_qddot:
         dropped.add(id(recursive["qddot"]))
     report = [

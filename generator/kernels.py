@@ -114,8 +114,8 @@ def build_kernels(d: Derivation, recursive: RecursiveDynamics | None = None,
     whose derivation came from its recursions (`tree_derived`) gets the residual's Jacobians
     through Newton-Euler's residual (n directions of O(n) operations each, where Mt qdd takes
     n^2 each), and no dense inverse dynamics: Newton-Euler is it."""
-    kernels = _dense_kernels(d, recursive.residual if tree_derived else d.residual(),
-                             not tree_derived)
+    residual = None if tree_derived else d.residual()
+    kernels = _dense_kernels(d, residual, recursive.residual if tree_derived else residual)
     if recursive is None:
         return kernels
     alternatives = _recursive_kernels(recursive)
@@ -125,10 +125,10 @@ def build_kernels(d: Derivation, recursive: RecursiveDynamics | None = None,
     return [k for dense in kernels for k in [dense, *follow.get(dense.name, [])]]
 
 
-def _dense_kernels(d: Derivation, differentiated_residual: sp.Matrix,
-                   inverse_dynamics: bool) -> list[Kernel]:
+def _dense_kernels(d: Derivation, residual: sp.Matrix | None,
+                   differentiated_residual: sp.Matrix) -> list[Kernel]:
+    """The kernels of the derivation; `inverse_dynamics` only given the dense `residual`."""
     total_force = d.applied_forces + d.inertial_forces
-    residual = d.residual() if inverse_dynamics else None
     jac = d.jacobian
     return [
         Kernel("mass_matrix", "Reduced mass matrix Mt = J^T M J (symmetric).",
@@ -151,7 +151,7 @@ def _dense_kernels(d: Derivation, differentiated_residual: sp.Matrix,
         *([Kernel("inverse_dynamics", "Inverse dynamics: the residual r = Mt qdd - Ft - Fi, "
                   "i.e. the generalized force that produces qdd.", ("q", "v", "qdd", "t"),
                   [_vector("result", "QVector<Scalar>", residual)])]
-          if inverse_dynamics else []),
+          if residual is not None else []),
         Kernel("residual_jacobians", "Jacobians dr/dq and dr/dv of the residual (dr/dqdd = "
                "Mt), for Newton steps.", ("q", "v", "qdd", "t"),
                [_out(_jacobian("dr_dq", differentiated_residual, d.q)),

@@ -87,13 +87,15 @@ def _pattern_through(force: sp.Matrix, variables: list[sp.Symbol],
     expression tree.
     """
     column = {w: c for c, w in enumerate(variables)}
-    reaches: dict[sp.Symbol, set[int]] = {}
+    reaches: dict[sp.Symbol, set[int]] = {}   # intermediate -> the columns it depends on
+
+    def columns(expr: sp.Expr) -> set[int]:
+        return set().union(*[reaches.get(s, {column[s]} if s in column else set())
+                             for s in expr.free_symbols])
+
     for symbol, expr in definitions:
-        reaches[symbol] = set().union(*[reaches.get(s, {column[s]} if s in column else set())
-                                        for s in expr.free_symbols])
-    return [(r, c) for r in range(force.shape[0])
-            for c in sorted(set().union(*[reaches.get(s, {column[s]} if s in column else set())
-                                          for s in force[r].free_symbols]))]
+        reaches[symbol] = columns(expr)
+    return [(r, c) for r in range(force.shape[0]) for c in sorted(columns(force[r]))]
 
 
 def derive_maximal(model: Model, symbolic_jacobians: bool = True) -> MaximalDerivation:
