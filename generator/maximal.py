@@ -98,12 +98,17 @@ def _pattern_through(force: sp.Matrix, variables: list[sp.Symbol],
     return [(r, c) for r in range(force.shape[0]) for c in sorted(columns(force[r]))]
 
 
-def derive_maximal(model: Model, symbolic_jacobians: bool = True) -> MaximalDerivation:
-    """The maximal model's outputs. Without `symbolic_jacobians` (large models) each
-    constraint's penalty force is a named intermediate (`definitions`) before a body shares it
-    among its point masses: eight particles of a joint's two bodies take shares of one pin."""
+def derive_maximal(model: Model, symbolic_jacobians: bool = True,
+                   named: bool = False) -> MaximalDerivation:
+    """The maximal model's outputs, as expressions of x, xdot, t and the parameters.
+
+    `named` (for the CSE of large models, without `symbolic_jacobians`): each constraint's
+    penalty force is a named intermediate (`definitions`) before a body shares it among its
+    point masses, so the eight particles of a joint's two bodies read one pin force."""
+    if named and symbolic_jacobians:
+        raise ValueError("named forces are differentiated after the CSE, not symbolically")
     kin = MaximalKinematics(model)
-    names = None if symbolic_jacobians else Intermediates(prefix="__m")
+    names = Intermediates(prefix="__m") if named else None
     x = [s for p in model.particles for s in p.x]
     xdot = [s for p in model.particles for s in p.xdot]
     stack = lambda per_particle: sp.Matrix.vstack(*[per_particle[p.name]  # noqa: E731

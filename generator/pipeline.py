@@ -160,7 +160,8 @@ def generate(path: str, options: dict[str, str] | None = None,
             definitions = [*definitions, *recursive.definitions]
         # a body's rods and pins make symbolic derivatives of the penalty forces slow (seconds
         # for one top); forward mode after CSE gives the same values
-        maximal = derive_maximal(chart, symbolic_jacobians=small and not chart.bodies)
+        symbolic = small and not chart.bodies
+        maximal = derive_maximal(chart, symbolic_jacobians=symbolic, named=not symbolic)
         definitions = [*definitions, *maximal.definitions]
         start = stage(prefix + "derive", start)
         kernels = build_kernels(derivation, recursive, tree_derived)
