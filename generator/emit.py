@@ -18,6 +18,7 @@ from .kernel_views import kernel_view
 from .line_wrap import wrap_long_lines
 from .naming import type_name
 from .reserved_names import TEMPLATE_DIR
+from .storage import model_types, needs_heap_matrix
 
 MODEL_TEMPLATE = "model.hpp.j2"
 INSTANTIATION_TEMPLATE = "instantiation.cpp.j2"
@@ -123,6 +124,7 @@ def _chart_context(chart, first) -> dict:
         unroll_max_nq=UNROLL_MAX_NQ,
         params_from=None if chart is first else type_name(first.name),
         num_particles=len(model.particles), nx=model.dim * len(model.particles),
+        types=model_types(nq, model.dim * len(model.particles)),
         coordinates=[dict(name=c.name, description=c.description,
                           initial=_format_default(c.initial),
                           initial_rate=_format_default(c.initial_rate))
@@ -164,6 +166,7 @@ def render_model(charts: list, name: str, docstring: str, source_path: str, head
     extern template for double (render_instantiation writes their definitions).
     """
     model = charts[0].model
+    chart_contexts = [_chart_context(chart, charts[0]) for chart in charts]
     context = dict(
         header_path=header_path, source_path=source_path, template_name=MODEL_TEMPLATE,
         version=__version__, sympy_version=sp.__version__,
@@ -175,11 +178,12 @@ def render_model(charts: list, name: str, docstring: str, source_path: str, head
         total_ops=sum(c.optimized.total_ops for c in charts),
         intermediate_count=sum(c.optimized.intermediate_count for c in charts),
         output_count=sum(c.optimized.output_count for c in charts),
-        charts=[_chart_context(chart, charts[0]) for chart in charts],
+        charts=chart_contexts,
         atlas=dict(name=name, type_name=type_name(name) + "Atlas",
                    chart_names=[c.model.chart for c in charts]) if len(charts) > 1 else None,
         return_docs=_RETURN_DOCS,
         any_split=any(k.parts for c in charts for k in c.optimized.kernels),
+        heap_matrix=any(needs_heap_matrix(chart["types"]) for chart in chart_contexts),
         translation_units=translation_units,
         instantiation_files=[instantiation_file_name(name, g) for g in range(translation_units)],
     )

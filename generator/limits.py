@@ -2,7 +2,8 @@
 file, and a warning before a generation expected to take minutes or more.
 
 The expected time grows with the number of coordinates: the 50-link chain generates in about
-16 s (docs/performance.md), and the derivation and CSE grow at least quadratically with nq.
+9 s of CPU (docs/performance.md, section 1), and the derivation and CSE grow at least
+quadratically with nq.
 """
 
 from __future__ import annotations
@@ -14,7 +15,7 @@ import threading
 import sympy as sp
 
 LOAD_TIMEOUT = 60.0      # seconds of wall-clock time the model file may run
-SECONDS_AT_50 = 16.0     # generating the 50-link chain
+SECONDS_AT_50 = 9.0      # generating the 50-link chain, CPU
 WARN_SECONDS = 180.0     # expected generation time that earns a warning
 NODE_LIMIT = 200_000     # expression nodes in the positions beyond which a warning is due
 

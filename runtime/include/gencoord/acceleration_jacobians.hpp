@@ -76,7 +76,7 @@ namespace detail {
 // factors Mt and solves for a, with the checks of acceleration()
 template <class M>
 void factor_and_solve(const ParamsOf<M>& p, const QVec<M>& q, const QVec<M>& v, double t,
-                      Eigen::LLT<QMat<M>>* llt, QVec<M>* a) {
+                      Eigen::LLT<PlainOf<QMat<M>>>* llt, QVec<M>* a) {
   using Reason = DynamicsError::Reason;
   QMat<M> Mt;
   QVec<M> f;
@@ -131,7 +131,7 @@ void acceleration_and_jacobians(const ParamsOf<M>& p, const QVec<M>& q, const QV
   }
   if constexpr (has_residual_jacobians_v<M>) {
     // r(q, v, a(q, v)) = 0  =>  Mt da/dq = -dr/dq, Mt da/dv = -dr/dv
-    Eigen::LLT<QMat<M>> llt;
+    Eigen::LLT<PlainOf<QMat<M>>> llt;
     detail::factor_and_solve<M>(p, q, v, t, &llt, a);
     QMat<M> r_D_q, r_D_v;
     M::residual_jacobians(q, v, *a, t, p, &r_D_q, &r_D_v);

@@ -56,7 +56,7 @@ std::vector<QVec<M>> chart_guesses(const std::optional<QVec<M>>& last, int sprea
 /// The condition estimate of chart M's mass matrix at q (see condition_estimate()).
 template <class M>
 double chart_condition(const ParamsOf<M>& p, const QVec<M>& q, double t) {
-  return condition_estimate(Eigen::LLT<QMat<M>>(M::mass_matrix(q, t, p)));
+  return condition_estimate(Eigen::LLT<PlainOf<QMat<M>>>(M::mass_matrix(q, t, p)));
 }
 
 /// The state of chart To at the configuration and velocity of `s` (a state of chart From),

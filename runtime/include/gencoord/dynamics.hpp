@@ -27,7 +27,7 @@ bool solve_mass_matrix(const QMat<M>& Mt, const QVec<M>& f, QVec<M>* a) {
   if constexpr (detail::detected_v<M, detail::solve_op>) {
     return M::solve(Mt, f, a);
   } else {
-    const Eigen::LLT<QMat<M>> llt(Mt);
+    const Eigen::LLT<PlainOf<QMat<M>>> llt(Mt);
     if (llt.info() != Eigen::Success) return false;
     *a = llt.solve(f);
     return true;

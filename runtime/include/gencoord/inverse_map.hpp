@@ -73,7 +73,7 @@ InversePositions<M> inverse_map_positions(const ParamsOf<M>& p, const XVec<M>& x
     ++out.iterations;
     // Gauss-Newton step: least squares J dq = r (rank-revealing, so singular J is caught)
     const XJac<M> J = M::jacobian(out.q, t, p);
-    const Eigen::ColPivHouseholderQR<XJac<M>> qr(J);
+    const Eigen::ColPivHouseholderQR<PlainOf<XJac<M>>> qr(J);
     if (!J.allFinite() || qr.rank() < M::nq) fail(Reason::kSingular);
     QVec<M> dq = qr.solve(r);
     // far from the manifold Gauss-Newton converges only linearly (slowly where the manifold is
@@ -88,7 +88,7 @@ InversePositions<M> inverse_map_positions(const ParamsOf<M>& p, const XVec<M>& x
         qm(j) -= h;
         H.col(j) -= (M::jacobian(qp, t, p) - M::jacobian(qm, t, p)).transpose() * r / (2.0 * h);
       }
-      const Eigen::LLT<QMat<M>> llt(0.5 * (H + H.transpose()));
+      const Eigen::LLT<PlainOf<QMat<M>>> llt(0.5 * (H + H.transpose()));
       if (llt.info() == Eigen::Success) {  // else beyond a focal point: keep Gauss-Newton's
         const QVec<M> newton = llt.solve(J.transpose() * r);
         if (newton.allFinite()) dq = newton;
@@ -146,7 +146,7 @@ QVec<M> inverse_map_velocities(const ParamsOf<M>& p, const QVec<M>& q, const XVe
   const XVec<M> x_t = M::velocities(q, QVec<M>::Zero().eval(), t, p);
   const XVec<M> m = coordinate_masses<M>(p);
   const QMat<M> Mt = J.transpose() * m.asDiagonal() * J;
-  const Eigen::LLT<QMat<M>> llt(Mt);
+  const Eigen::LLT<PlainOf<QMat<M>>> llt(Mt);
   QVec<M> v = QVec<M>::Zero();
   if (llt.info() == Eigen::Success) v = llt.solve(J.transpose() * (m.asDiagonal() * (xdot - x_t)));
   if (llt.info() != Eigen::Success || !v.allFinite())

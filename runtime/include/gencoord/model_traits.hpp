@@ -12,6 +12,8 @@
 
 #include <Eigen/Core>
 
+#include "gencoord/heap_matrix.hpp"
+
 namespace gencoord {
 
 // Shorthands for a model's double-precision types.
@@ -25,6 +27,10 @@ template <class M>
 using XVec = typename M::template XVector<double>;  // (nx = dim * num_particles)
 template <class M>
 using XJac = typename M::template XJacobian<double>;  // (nx x nq)
+// The Eigen type a decomposition of one of the above takes (LLT<PlainOf<QMat<M>>>): the type
+// itself when fixed-size, Eigen's dynamic-size Matrix for a HeapMatrix.
+template <class T>
+using PlainOf = typename T::PlainObject;
 
 namespace detail {
 
@@ -74,11 +80,14 @@ using names_op = std::enable_if_t<
 template <class M>
 using params_op = std::enable_if_t<std::is_default_constructible_v<ParamsOf<M>> &&
                                    std::is_copy_constructible_v<ParamsOf<M>>>;
+// a rows x cols matrix: fixed-size Eigen, or HeapMatrix past Eigen's stack limit
+template <class T, int Rows, int Cols>
+constexpr bool is_sized_v = std::is_same_v<T, Eigen::Matrix<double, Rows, Cols>> ||
+                            std::is_same_v<T, HeapMatrix<double, Rows, Cols>>;
 template <class M>
-using types_op = std::enable_if_t<std::is_same_v<QVec<M>, Eigen::Matrix<double, M::nq, 1>> &&
-                                  std::is_same_v<QMat<M>, Eigen::Matrix<double, M::nq, M::nq>> &&
-                                  std::is_same_v<XVec<M>, Eigen::Matrix<double, M::nx, 1>> &&
-                                  std::is_same_v<XJac<M>, Eigen::Matrix<double, M::nx, M::nq>>>;
+using types_op =
+    std::enable_if_t<is_sized_v<QVec<M>, M::nq, 1> && is_sized_v<QMat<M>, M::nq, M::nq> &&
+                     is_sized_v<XVec<M>, M::nx, 1> && is_sized_v<XJac<M>, M::nx, M::nq>>;
 
 // functions, called with double arguments
 template <class M>
@@ -191,7 +200,8 @@ struct ModelCheck {
                 "gencoord model: missing a default-constructible, copyable `struct Params`");
   static_assert(detail::detected_v<M, detail::types_op>,
                 "gencoord model: QVector/QMatrix/XVector/XJacobian<Scalar> must be fixed-size "
-                "Eigen::Matrix aliases of sizes (nq), (nq x nq), (nx), (nx x nq)");
+                "Eigen::Matrix (or gencoord::HeapMatrix) aliases of sizes (nq), (nq x nq), (nx), "
+                "(nx x nq)");
   static_assert(detail::detected_v<M, detail::mass_matrix_op>,
                 "gencoord model: missing `QMatrix<S> mass_matrix(q, t, p)`");
   static_assert(detail::detected_v<M, detail::applied_forces_op>,

@@ -23,6 +23,7 @@
 #include <Eigen/SparseLU>
 
 #include "gencoord/acceleration_jacobians.hpp"
+#include "gencoord/heap_matrix.hpp"
 #include "gencoord/integrate/system.hpp"
 #include "gencoord/inverse_map.hpp"
 #include "gencoord/maximal/errors.hpp"
@@ -205,8 +206,8 @@ class MaximalModel {
     if constexpr (manifold_spring) {
       // normal projector I - J (J^T J)^-1 J^T at the closest point
       const XJac<M> J = M::jacobian(closest_point(x, t), t, p_);
-      const Eigen::Matrix<double, nx, nx> P = Eigen::Matrix<double, nx, nx>::Identity() -
-                                              J * (J.transpose() * J).ldlt().solve(J.transpose());
+      const SizedMatrix<double, nx, nx> P = SizedMatrix<double, nx, nx>::Identity() -
+                                            J * (J.transpose() * J).ldlt().solve(J.transpose());
       for (int c = 0; c < nx; ++c)
         for (int r = 0; r < nx; ++r) {
           if (K_x) K_x->emplace_back(r, c, -kappa_ * P(r, c));

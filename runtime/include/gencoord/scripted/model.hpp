@@ -15,6 +15,7 @@
 #include <limits>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -23,6 +24,7 @@
 
 #include "gencoord/acceleration_jacobians.hpp"
 #include "gencoord/errors.hpp"
+#include "gencoord/heap_matrix.hpp"
 #include "gencoord/integrate/system.hpp"
 #include "gencoord/inverse_dynamics.hpp"
 #include "gencoord/model_traits.hpp"
@@ -39,10 +41,15 @@ namespace gencoord {
 template <class M>
 class ScriptedModel {
  public:
-  /// Vectors and matrices over the free coordinates (dim n_f <= M::nq): fixed capacity,
-  /// no heap allocation.
+  /// Vectors and matrices over the free coordinates (dim n_f <= M::nq): fixed capacity, no
+  /// heap allocation, except for a matrix whose capacity would pass Eigen's stack limit.
   using FreeVector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, M::nq, 1>;
-  using FreeMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, M::nq, M::nq>;
+  static constexpr int kMatrixCapacity =
+      std::is_same_v<SizedMatrix<double, M::nq, M::nq>, Eigen::Matrix<double, M::nq, M::nq>>
+          ? M::nq
+          : Eigen::Dynamic;
+  using FreeMatrix =
+      Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kMatrixCapacity, kMatrixCapacity>;
   using State = gencoord::State<M>;
   using Unknowns = FreeVector;
   using Matrix = FreeMatrix;
