@@ -116,7 +116,7 @@ def _articulated_body(links: LinkKinematics, bias_force, nq: int) -> sp.Matrix:
             solve[i] = (U, D_inverse, u)
         if node.parent is not None:
             E, r = links.rotation[i], links.translation[i]
-            passed[i] = (names.symmetric(inertia_to_parent(E, r, Ia)),
+            passed[i] = (names.symmetric(inertia_to_parent(E, r, Ia, names)),
                          names.matrix(force_to_parent(E, r, pa)))
 
     qddot = [sp.Integer(0)] * nq
@@ -146,8 +146,8 @@ def _composite_mass_matrix(links: LinkKinematics, nq: int) -> sp.Matrix:
             total = total + passed[c]
         composite[i] = names.symmetric(total)
         if nodes[i].parent is not None:
-            passed[i] = names.symmetric(inertia_to_parent(links.rotation[i],
-                                                          links.translation[i], composite[i]))
+            passed[i] = names.symmetric(inertia_to_parent(
+                links.rotation[i], links.translation[i], composite[i], names))
     mass_matrix = sp.zeros(nq, nq)
     for i, node in enumerate(nodes):
         if not node.coordinates:

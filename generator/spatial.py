@@ -45,13 +45,19 @@ def cross_force(V: sp.Matrix, force: sp.Matrix) -> sp.Matrix:
     return sp.Matrix.vstack(w.cross(n) + v.cross(f), w.cross(f))
 
 
-def inertia_to_parent(E: sp.Matrix, r: sp.Matrix, inertia: sp.Matrix) -> sp.Matrix:
+def inertia_to_parent(E: sp.Matrix, r: sp.Matrix, inertia: sp.Matrix,
+                      names=None) -> sp.Matrix:
     """X^T I X for a symmetric 6 x 6 I = [[A, B], [B^T, C]]: rotated into the parent's axes,
-    then moved to its origin (blocks A + R B^T - B R - R C R, B + R C, C with R = [r]x)."""
+    then moved to its origin (blocks A + R B^T - B R - R C R, B + R C, C with R = [r]x).
+
+    Given `names` (structured.Intermediates), the rotated blocks and R C are named, so the
+    products after them are of symbols rather than of sums of 27 terms."""
     A, B, C = inertia[:3, :3], inertia[:3, 3:], inertia[3:, 3:]
     A, B, C = E * A * E.T, E * B * E.T, E * C * E.T
+    if names:
+        A, B, C = names.symmetric(A), names.matrix(B), names.symmetric(C)
     R = skew(r)
-    RC = R * C
+    RC = names.matrix(R * C) if names else R * C
     return sp.Matrix.vstack(
         sp.Matrix.hstack(A + R * B.T - B * R - RC * R, B + RC),
         sp.Matrix.hstack((B + RC).T, C))
