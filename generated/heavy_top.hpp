@@ -2453,17 +2453,10 @@ struct HeavyTop {
       const Scalar tmp371 = tmp7*g;
       const Scalar tmp372 = -tmp371;
       XVector<Scalar> result;
-      result(0) = Scalar(0);
-      result(1) = Scalar(0);
+      result.setZero();
       result(2) = tmp372;
-      result(3) = Scalar(0);
-      result(4) = Scalar(0);
       result(5) = tmp372;
-      result(6) = Scalar(0);
-      result(7) = Scalar(0);
       result(8) = tmp372;
-      result(9) = Scalar(0);
-      result(10) = Scalar(0);
       result(11) = tmp372;
       return result;
     }

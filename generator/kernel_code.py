@@ -44,3 +44,5 @@ class KernelCode(InputsRead):
     ops: int
     parts: list[KernelPart]                # empty unless the kernel is split (split.py)
     carried_slots: int                     # size of the array the parts exchange values in
+    # the blocks (their C++ targets) set to zero before the assignments, which skip their zeros
+    zero_filled: list[str] = field(default_factory=list)

@@ -19,6 +19,11 @@ from .split import PartPlan, plan_parts
 
 Output = tuple[Block, int, int, sp.Expr]  # (block, row, column, expression)
 
+# A matrix with at least this many zero entries is set to zero at once and only its other
+# entries are assigned: the Jacobian of a chain is half zeros, the mass matrix of a robot with
+# several legs mostly zeros, and every assignment costs compile time.
+ZERO_FILL_MIN = 8
+
 
 @dataclass
 class _Statements:
@@ -39,12 +44,22 @@ class _KernelWriter:
         self.depends = [[s for s in expr.free_symbols if s in self.position]
                         for _, expr in work.program]
 
-    def outputs(self, kernel: Kernel) -> list[Output]:
-        work = self.work
+    def entries(self, block: Block) -> list[tuple[int, int, sp.Expr]]:
+        """The block's entries after the CSE (and forward mode, for a Jacobian)."""
+        if block.jacobian_of:
+            return self.work.jacobians[id(block)]
+        return [(i, j, self.work.reduced[self.work.index_of[e]]) for i, j, e in block.entries]
+
+    def zero_filled(self, kernel: Kernel) -> list[Block]:
+        """The Eigen matrices of the kernel with at least ZERO_FILL_MIN zero entries."""
+        return [block for block in kernel.blocks if not block.is_scalar and not block.array
+                and sum(expr == 0 for *_, expr in self.entries(block)) >= ZERO_FILL_MIN]
+
+    def outputs(self, kernel: Kernel, zero_filled: list[Block]) -> list[Output]:
+        """Every entry to assign: all of a block's, but the zeros of a zero-filled one."""
         return [(block, i, j, expr) for block in kernel.blocks
-                for i, j, expr in (work.jacobians[id(block)] if block.jacobian_of else
-                                   [(i, j, work.reduced[work.index_of[e]])
-                                    for i, j, e in block.entries])]
+                for i, j, expr in self.entries(block)
+                if not (expr == 0 and block in zero_filled)]
 
     def needed(self, outputs: list[Output]) -> list[int]:
         """The intermediates these outputs need: the closure over dependencies, in order."""
@@ -58,9 +73,9 @@ class _KernelWriter:
                 stack.extend(self.position[s] for s in self.depends[k])
         return sorted(needed)
 
-    def statements(self, kernel: Kernel) -> _Statements:
+    def statements(self, kernel: Kernel, zero_filled: list[Block]) -> _Statements:
         program, printed = self.work.program, self.work.printed
-        outputs = self.outputs(kernel)
+        outputs = self.outputs(kernel, zero_filled)
         order = self.needed(outputs)
         free = ([program[k][1].free_symbols for k in order]
                 + [expr.free_symbols for *_, expr in outputs])
@@ -102,10 +117,12 @@ class _KernelWriter:
                      if k >= len(s.order)})
 
     def kernel_code(self, kernel: Kernel) -> KernelCode:
-        s = self.statements(kernel)
+        zero_filled = self.zero_filled(kernel)
+        s = self.statements(kernel, zero_filled)
         names = self.work.printed.names
         mirrored = [(block, i, j) for block in kernel.blocks if block.symmetric
-                    for i, j, _ in block.entries if i != j]
+                    for i, j, expr in self.entries(block)
+                    if i != j and not (expr == 0 and block in zero_filled)]
         mirrors = [(lvalue(block, j, i), lvalue(block, i, j)) for block, i, j in mirrored]
         plans, slots = plan_parts(
             [names[self.work.program[k][0]] for k in s.order] + [None] * len(s.outputs),
@@ -127,7 +144,7 @@ class _KernelWriter:
             kernel=kernel, **self.inputs_read(set().union(*s.free)),
             using=math_functions_used(code for _, code in s.code),
             intermediates=s.code[:len(s.order)], assignments=s.code[len(s.order):],
-            mirrors=mirrors,
+            mirrors=mirrors, zero_filled=[block.target for block in zero_filled],
             ops=sum(printed.temporary_ops[k] for k in s.order)
             + sum(printed.ops(expr) for *_, expr in s.outputs),
             parts=parts, carried_slots=slots)
