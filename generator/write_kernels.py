@@ -25,6 +25,11 @@ Output = tuple[Block, int, int, sp.Expr]  # (block, row, column, expression)
 ZERO_FILL_MIN = 8
 
 
+def _among(block: Block, blocks: list[Block]) -> bool:
+    """Whether this very block is in the list (blocks with equal entries are still two)."""
+    return any(block is other for other in blocks)
+
+
 @dataclass
 class _Statements:
     """One kernel's statements: its intermediates, then its output assignments."""
@@ -59,7 +64,7 @@ class _KernelWriter:
         """Every entry to assign: all of a block's, but the zeros of a zero-filled one."""
         return [(block, i, j, expr) for block in kernel.blocks
                 for i, j, expr in self.entries(block)
-                if not (expr == 0 and block in zero_filled)]
+                if not (expr == 0 and _among(block, zero_filled))]
 
     def needed(self, outputs: list[Output]) -> list[int]:
         """The intermediates these outputs need: the closure over dependencies, in order."""
@@ -122,7 +127,7 @@ class _KernelWriter:
         names = self.work.printed.names
         mirrored = [(block, i, j) for block in kernel.blocks if block.symmetric
                     for i, j, expr in self.entries(block)
-                    if i != j and not (expr == 0 and block in zero_filled)]
+                    if i != j and not (expr == 0 and _among(block, zero_filled))]
         mirrors = [(lvalue(block, j, i), lvalue(block, i, j)) for block, i, j in mirrored]
         plans, slots = plan_parts(
             [names[self.work.program[k][0]] for k in s.order] + [None] * len(s.outputs),
