@@ -13,7 +13,7 @@ cd "$(dirname "$0")/.."
 build=${1:-build}
 jobs=$(nproc 2>/dev/null || echo 2)
 python=$(scripts/setup.sh | tail -n 1)
-runtime_suites="runtime|deformable|integrators|crosscheck|scripted|atlas|fuzz"
+runtime_suites="runtime|deformable|integrators|crosscheck|scripted|atlas|fuzz|large"
 
 echo "== format and lint"
 scripts/check_style.sh
@@ -25,7 +25,7 @@ if [ "${GENCOORD_SKIP_SANITIZERS:-0}" != 1 ]; then
         -DGENCOORD_SANITIZE=ON -DGENCOORD_BUILD_TESTS=ON \
         -DGENCOORD_PYTHON="$python" -DGENCOORD_BUILD_BENCHMARKS=OFF >/dev/null
   targets=$(cmake --build "${build}-sanitize" --target help | grep -oE \
-            'gencoord_(runtime|integrator|crosscheck|scripted|atlas|fuzz)_tests|deformable_(tests|demo)' | sort -u)
+            'gencoord_(runtime|integrator|crosscheck|scripted|atlas|fuzz|large_model)_tests|deformable_(tests|demo)' | sort -u)
   # shellcheck disable=SC2086
   cmake --build "${build}-sanitize" -j "$jobs" --target $targets
   ctest --test-dir "${build}-sanitize" -L "$runtime_suites" --output-on-failure \
