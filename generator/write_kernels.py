@@ -25,11 +25,6 @@ Output = tuple[Block, int, int, sp.Expr]  # (block, row, column, expression)
 ZERO_FILL_MIN = 8
 
 
-def _among(block: Block, blocks: list[Block]) -> bool:
-    """Whether this very block is in the list (blocks with equal entries are still two)."""
-    return any(block is other for other in blocks)
-
-
 @dataclass
 class _Statements:
     """One kernel's statements: its intermediates, then its output assignments."""
@@ -55,16 +50,18 @@ class _KernelWriter:
             return self.work.jacobians[id(block)]
         return [(i, j, self.work.reduced[self.work.index_of[e]]) for i, j, e in block.entries]
 
-    def zero_filled(self, kernel: Kernel) -> list[Block]:
-        """The Eigen matrices of the kernel with at least ZERO_FILL_MIN zero entries."""
-        return [block for block in kernel.blocks if not block.is_scalar and not block.array
-                and sum(expr == 0 for *_, expr in self.entries(block)) >= ZERO_FILL_MIN]
-
-    def outputs(self, kernel: Kernel, zero_filled: list[Block]) -> list[Output]:
-        """Every entry to assign: all of a block's, but the zeros of a zero-filled one."""
-        return [(block, i, j, expr) for block in kernel.blocks
-                for i, j, expr in self.entries(block)
-                if not (expr == 0 and _among(block, zero_filled))]
+    def kept_entries(self, kernel: Kernel) -> tuple[list, list[Block]]:
+        """(block, its entries to assign) of each block, and the zero-filled blocks: the Eigen
+        matrices with at least ZERO_FILL_MIN zero entries, whose zeros are not assigned."""
+        kept, zero_filled = [], []
+        for block in kernel.blocks:
+            entries = self.entries(block)
+            if (not block.is_scalar and not block.array
+                    and sum(expr == 0 for *_, expr in entries) >= ZERO_FILL_MIN):
+                zero_filled.append(block)
+                entries = [entry for entry in entries if entry[2] != 0]
+            kept.append((block, entries))
+        return kept, zero_filled
 
     def needed(self, outputs: list[Output]) -> list[int]:
         """The intermediates these outputs need: the closure over dependencies, in order."""
@@ -78,9 +75,9 @@ class _KernelWriter:
                 stack.extend(self.position[s] for s in self.depends[k])
         return sorted(needed)
 
-    def statements(self, kernel: Kernel, zero_filled: list[Block]) -> _Statements:
+    def statements(self, kept: list) -> _Statements:
         program, printed = self.work.program, self.work.printed
-        outputs = self.outputs(kernel, zero_filled)
+        outputs = [(block, i, j, expr) for block, entries in kept for i, j, expr in entries]
         order = self.needed(outputs)
         free = ([program[k][1].free_symbols for k in order]
                 + [expr.free_symbols for *_, expr in outputs])
@@ -122,12 +119,11 @@ class _KernelWriter:
                      if k >= len(s.order)})
 
     def kernel_code(self, kernel: Kernel) -> KernelCode:
-        zero_filled = self.zero_filled(kernel)
-        s = self.statements(kernel, zero_filled)
+        kept, zero_filled = self.kept_entries(kernel)
+        s = self.statements(kept)
         names = self.work.printed.names
-        mirrored = [(block, i, j) for block in kernel.blocks if block.symmetric
-                    for i, j, expr in self.entries(block)
-                    if i != j and not (expr == 0 and _among(block, zero_filled))]
+        mirrored = [(block, i, j) for block, entries in kept if block.symmetric
+                    for i, j, _ in entries if i != j]
         mirrors = [(lvalue(block, j, i), lvalue(block, i, j)) for block, i, j in mirrored]
         plans, slots = plan_parts(
             [names[self.work.program[k][0]] for k in s.order] + [None] * len(s.outputs),
