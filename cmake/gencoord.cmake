@@ -1,6 +1,7 @@
 # gencoord_add_model(<target> MODEL <model.py> [NAME <name>] [OPTIONS key=value ...]
 #                    [DEPENDS <file> ...] [DYNAMICS auto|dense|recursive]
-#                    [TRANSLATION_UNITS <k>] [MAX_FUNCTION_STATEMENTS <n>] [OUTPUT_DIR <dir>])
+#                    [TRANSLATION_UNITS <k>] [MAX_FUNCTION_STATEMENTS <n>] [LOOP_MIN_NQ <n>]
+#                    [OUTPUT_DIR <dir>])
 #
 # Generates <name>.hpp from a gencoord model file at build time and makes <target> an
 # INTERFACE library that carries it: `target_link_libraries(app PRIVATE <target>)` and then
@@ -16,7 +17,8 @@
 # <name>_double_0.cpp ... <name>_double_<k-1>.cpp, which compile every kernel for double once
 # and in parallel; <target> is then a static library of them, and files that include the
 # header compile no kernel body for double. MAX_FUNCTION_STATEMENTS passes
-# --max-function-statements; OUTPUT_DIR replaces ${CMAKE_BINARY_DIR}/gencoord_generated as the
+# --max-function-statements, LOOP_MIN_NQ --loop-min-nq (from how many coordinates a tree's
+# Mt, J and residual Jacobians are loops over O(nq) products); OUTPUT_DIR replaces ${CMAKE_BINARY_DIR}/gencoord_generated as the
 # folder that holds generated/<name>.hpp (the include directory).
 #
 # This file works from three places: gencoord's own build, a project that added gencoord with
@@ -52,7 +54,7 @@ set(GENCOORD_GENERATOR_SOURCES ${_gencoord_generator_sources} "${GENCOORD_ROOT}/
 
 function(gencoord_add_model target)
   cmake_parse_arguments(ARG ""
-                        "MODEL;NAME;DYNAMICS;TRANSLATION_UNITS;MAX_FUNCTION_STATEMENTS;OUTPUT_DIR"
+                        "MODEL;NAME;DYNAMICS;TRANSLATION_UNITS;MAX_FUNCTION_STATEMENTS;LOOP_MIN_NQ;OUTPUT_DIR"
                         "OPTIONS;DEPENDS" ${ARGN})
   if(NOT ARG_MODEL)
     message(FATAL_ERROR "gencoord_add_model(${target}): MODEL <file.py> is required")
@@ -74,6 +76,9 @@ function(gencoord_add_model target)
   endforeach()
   if(DEFINED ARG_MAX_FUNCTION_STATEMENTS)
     list(APPEND set_arguments --max-function-statements ${ARG_MAX_FUNCTION_STATEMENTS})
+  endif()
+  if(DEFINED ARG_LOOP_MIN_NQ)
+    list(APPEND set_arguments --loop-min-nq ${ARG_LOOP_MIN_NQ})
   endif()
 
   set(include_dir "${CMAKE_BINARY_DIR}/gencoord_generated")

@@ -40,10 +40,11 @@ from .spatial import force_to_parent, inertia_to_parent, split
 from .structured import Intermediates
 
 
-def body_recursive_dynamics(model: Model, kin, tree: BodyTree, derivation: bool = True
-                            ) -> RecursiveDynamics:
+def body_recursive_dynamics(model: Model, kin, tree: BodyTree, derivation: bool = True,
+                            square_outputs: bool = True) -> RecursiveDynamics:
     """qddot by the articulated-body algorithm, the residual by Newton-Euler, and with
-    `derivation` every other output, by composite bodies and Newton-Euler."""
+    `derivation` every other output, by composite bodies and Newton-Euler; without
+    `square_outputs` no Mt or J (a looped tree's, looped.py)."""
     names = Intermediates(prefix="__r")
     links = LinkKinematics(model, kin, tree, names)
     qdd = [c.acceleration for c in model.coordinates]
@@ -57,7 +58,8 @@ def body_recursive_dynamics(model: Model, kin, tree: BodyTree, derivation: bool 
     residual = _newton_euler(links, _accelerations(links, links.world, joint, True),
                              bias_force, links.tau)
     return RecursiveDynamics(qddot, residual, names.definitions,
-                             _derivation(model, kin, links, qdd) if derivation else None)
+                             _derivation(model, kin, links, qdd, square_outputs)
+                             if derivation else None)
 
 
 def _accelerations(links: LinkKinematics, world: sp.Matrix, joint, with_bias: bool
@@ -167,8 +169,10 @@ def _composite_mass_matrix(links: LinkKinematics, nq: int) -> sp.Matrix:
     return mass_matrix
 
 
-def _derivation(model: Model, kin, links: LinkKinematics, qdd) -> Derivation:
-    """Every output of derive.py, from the links' motion and the recursions."""
+def _derivation(model: Model, kin, links: LinkKinematics, qdd, square_outputs: bool
+                ) -> Derivation:
+    """Every output of derive.py, from the links' motion and the recursions; Mt and J only
+    with `square_outputs`."""
     names, nodes = links.names, links.nodes
     nq, n = len(qdd), len(nodes)
     none = [None] * n
@@ -181,7 +185,7 @@ def _derivation(model: Model, kin, links: LinkKinematics, qdd) -> Derivation:
     jacobians, gammas = {}, {}
     world_subspace = [names.matrix(sp.Matrix.vstack(links.world_rotation[i] * node.subspace[:3, :],
                                                     links.world_rotation[i] * node.subspace[3:, :]))
-                      for i, node in enumerate(nodes)]
+                      for i, node in enumerate(nodes) if square_outputs]
     kinetic, momentum, angular, gravity_at = sp.Integer(0), sp.zeros(3, 1), sp.zeros(3, 1), []
     for i, node in enumerate(nodes):
         body = node.link.body
@@ -194,8 +198,9 @@ def _derivation(model: Model, kin, links: LinkKinematics, qdd) -> Derivation:
             _, rho = links.point_link[particle.name]
             gammas[particle.name] = names.matrix(
                 R * (dv + dw.cross(rho) + w.cross(v + w.cross(rho))))
-            jacobians[particle.name] = _point_jacobian(
-                links, world_subspace, i, links.points.position[particle.name], nq)
+            if square_outputs:
+                jacobians[particle.name] = _point_jacobian(
+                    links, world_subspace, i, links.points.position[particle.name], nq)
         centre = links.world_origin[i] + R * node.link.inertial.origin
         centre_velocity = R * (v + w.cross(node.link.inertial.origin))
         kinetic += names.name((links.velocity[i].T * links.inertia[i] * links.velocity[i])[0]
@@ -211,9 +216,10 @@ def _derivation(model: Model, kin, links: LinkKinematics, qdd) -> Derivation:
         positions=sp.Matrix.vstack(*[links.points.position[p.name] for p in particles]),
         fixed_point_positions=fixed_point_positions(model, kin),
         velocities=sp.Matrix.vstack(*[links.points.velocity[p.name] for p in particles]),
-        jacobian=sp.Matrix.vstack(*[jacobians[p.name] for p in particles]),
+        jacobian=(sp.Matrix.vstack(*[jacobians[p.name] for p in particles])
+                  if square_outputs else None),
         bias_acceleration=sp.Matrix.vstack(*[gammas[p.name] for p in particles]),
-        mass_matrix=_composite_mass_matrix(links, nq),
+        mass_matrix=_composite_mass_matrix(links, nq) if square_outputs else None,
         applied_forces=names.vector(applied), inertial_forces=names.vector(inertial),
         generalized_forces=generalized_force_vector(model, kin.q),
         kinetic_energy=kinetic,

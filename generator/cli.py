@@ -16,6 +16,7 @@ from .dynamics_paths import DYNAMICS_CHOICES
 from .errors import ModelError
 from .failures import report_failure
 from .limits import LOAD_TIMEOUT
+from .looped import LOOP_MIN_NQ
 from .pipeline import generate
 from .split import MAX_PART_STATEMENTS
 
@@ -98,6 +99,10 @@ def main(argv: list[str] | None = None, prog: str = "generate") -> int:
                              "particles, or of bodies joined by joints): by the O(nq) "
                              "recursions, dense (Mt, Ft + Fi), or auto: whichever takes fewer "
                              "operations (default %(default)s)")
+    parser.add_argument("--loop-min-nq", type=int, default=LOOP_MIN_NQ, metavar="N",
+                        help="a tree of N coordinates or more gets Mt, J and the residual "
+                             "Jacobians as loops over O(nq) products, which keeps generation "
+                             "and compile time linear in nq (default %(default)s)")
     parser.add_argument("--load-timeout", type=float, default=LOAD_TIMEOUT, metavar="SECONDS",
                         help="stop with an error when running the model file takes longer "
                              "(default %(default)g; 0: no limit)")
@@ -108,6 +113,8 @@ def main(argv: list[str] | None = None, prog: str = "generate") -> int:
     args = parser.parse_args(argv)
     if args.max_function_statements < 0:
         parser.error("--max-function-statements must be 0 (never split) or positive")
+    if args.loop_min_nq < 1:
+        parser.error("--loop-min-nq must be positive")
     if args.load_timeout < 0:
         parser.error("--load-timeout must be 0 (no limit) or positive")
     if args.translation_units < 0:
@@ -134,7 +141,8 @@ def _generate_and_write(args, report, started: float) -> int:
                          max_part_statements=args.max_function_statements,
                          translation_units=args.translation_units, dynamics=args.dynamics,
                          regenerate_options=_banner_options(args), name=args.name,
-                         load_timeout=args.load_timeout or None, on_warning=warn)
+                         load_timeout=args.load_timeout or None, on_warning=warn,
+                         loop_min_nq=args.loop_min_nq)
     if not args.quiet:
         for line in generated.analysis:
             print(f"  {line}")

@@ -43,33 +43,48 @@ class ChainSum:
 Derivative = Union[sp.Expr, ChainSum]
 
 
-def forward_derivatives(replacements: list[tuple[sp.Symbol, sp.Expr]],
-                        outputs: list[sp.Expr], variables: list[sp.Symbol],
-                        temporaries: Iterator[sp.Symbol]
-                        ) -> tuple[list[tuple[sp.Symbol, Derivative]], list[list[Derivative]]]:
-    """Derivatives of `outputs` (written in terms of the `replacements` intermediates).
+class _ForwardMode:
+    """The chain rule over one program of intermediates, shared by every pass over it: each
+    intermediate's gradient is taken once, whichever variables or directions follow."""
 
-    Returns (new intermediates to append after `replacements`, in dependency order, and
-    jacobian[i][j] = d outputs[i] / d variables[j] in terms of all intermediates).
-    """
-    wanted = {symbol for symbol, _ in replacements} | set(variables)
-    named = {expr: symbol for symbol, expr in replacements if isinstance(expr, (sp.sin, sp.cos))}
-    definitions: list[tuple[sp.Symbol, Derivative]] = []
-    jacobian: list[list[Derivative]] = [[sp.Integer(0)] * len(variables) for _ in outputs]
-    gradients: dict[sp.Expr, dict[sp.Symbol, sp.Expr]] = {}  # each expression's, once
-    free_of: dict[sp.Expr, frozenset] = {}                     # each gradient entry's
+    def __init__(self, replacements: list[tuple[sp.Symbol, sp.Expr]],
+                 outputs: list[sp.Expr], inputs: set[sp.Symbol],
+                 temporaries: Iterator[sp.Symbol]):
+        self.outputs, self.temporaries = outputs, temporaries
+        self.wanted = {symbol for symbol, _ in replacements} | inputs
+        self.named = {expr: symbol for symbol, expr in replacements
+                      if isinstance(expr, (sp.sin, sp.cos))}
+        self.definitions: list[tuple[sp.Symbol, Derivative]] = []
+        self.gradients: dict[sp.Expr, dict[sp.Symbol, sp.Expr]] = {}  # each expression's
+        self.free_of: dict[sp.Expr, frozenset] = {}                     # each entry's
+        reads = [expr.free_symbols & self.wanted for _, expr in replacements]
+        # only the intermediates the outputs read, directly or not, need derivatives
+        needed = set().union(*(output.free_symbols & self.wanted for output in outputs))
+        for (symbol, _), present in reversed(list(zip(replacements, reads))):
+            if symbol in needed:
+                needed |= present
+        self.program = [(assignment, present) for assignment, present
+                        in zip(replacements, reads) if assignment[0] in needed]
+        # the statements reading each symbol: a pass visits only those its seeds reach, so
+        # the derivatives by each of the maximal model's 2 nx inputs take O(1) each, not O(n)
+        self.readers: dict[sp.Symbol, list[int]] = {}
+        for k, (_, present) in enumerate(self.program):
+            for symbol in present:
+                self.readers.setdefault(symbol, []).append(k)
 
-    def gradient(expr: sp.Expr) -> dict[sp.Symbol, sp.Expr]:
-        if expr not in gradients:
-            present = sorted(expr.free_symbols & wanted, key=sp.default_sort_key)
-            gradients[expr] = termwise_gradient(expr, present, named)
-            for d in gradients[expr].values():
-                if d not in free_of:
-                    free_of[d] = frozenset(d.free_symbols)
-        return gradients[expr]
+    def gradient(self, expr: sp.Expr) -> dict[sp.Symbol, sp.Expr]:
+        if expr not in self.gradients:
+            present = sorted(expr.free_symbols & self.wanted, key=sp.default_sort_key)
+            self.gradients[expr] = termwise_gradient(expr, present, self.named)
+            for d in self.gradients[expr].values():
+                if d not in self.free_of:
+                    self.free_of[d] = frozenset(d.free_symbols)
+        return self.gradients[expr]
 
-    def derivative(expr: sp.Expr, variable: sp.Symbol, known: dict) -> Derivative:
-        partials = gradient(expr)
+    def derivative(self, expr: sp.Expr, variable: sp.Symbol | None, known: dict) -> Derivative:
+        """d expr / d variable given the derivatives `known` of the symbols it reads; with
+        `variable` None, the derivative along the direction that `known` seeds."""
+        partials = self.gradient(expr)
         factors: dict[sp.Symbol | None, sp.Expr] = (  # symbol -> its factor; None: the rest
             {None: partials[variable]} if variable in partials else {})
         for s, d in partials.items():
@@ -90,36 +105,68 @@ def forward_derivatives(replacements: list[tuple[sp.Symbol, sp.Expr]],
                 return symbol
         free = set()
         for factor, symbol in terms:
-            free |= free_of[factor] if factor in free_of else factor.free_symbols
+            free |= self.free_of[factor] if factor in self.free_of else factor.free_symbols
             if symbol is not None:
                 free.add(symbol)
         return ChainSum(terms, free)
 
-    reads = [expr.free_symbols & wanted for _, expr in replacements]
-    # only the intermediates the outputs read, directly or not, need derivatives
-    needed = set().union(*(output.free_symbols & wanted for output in outputs))
-    for (symbol, _), present in reversed(list(zip(replacements, reads))):
-        if symbol in needed:
-            needed |= present
-    program = [(assignment, present) for assignment, present in zip(replacements, reads)
-               if assignment[0] in needed]
-    for j, variable in enumerate(variables):
-        known: dict[sp.Symbol, sp.Expr] = {}  # d tmp / d variable, only where nonzero
-        for (symbol, expr), present in program:
+    def reached(self, seeds: list) -> list[int]:
+        """The statements that read the seeds, directly or not, in program order."""
+        reached: set[int] = set()
+        stack = [k for seed in seeds for k in self.readers.get(seed, ())]
+        while stack:
+            k = stack.pop()
+            if k not in reached:
+                reached.add(k)
+                stack.extend(self.readers.get(self.program[k][0][0], ()))
+        return sorted(reached)
+
+    def sweep(self, variable: sp.Symbol | None, known: dict) -> list[Derivative]:
+        """One forward pass: the outputs' derivatives, the new intermediates appended to
+        `definitions`; `known` holds the seeds and grows by each nonzero derivative."""
+        for k in self.reached([variable, *known]):
+            (symbol, expr), present = self.program[k]
             if variable not in present and known.keys().isdisjoint(present):
                 continue
-            d = derivative(expr, variable, known)
+            d = self.derivative(expr, variable, known)
             if d == 0:
                 continue
             if d.is_Symbol or d.is_Number:
                 known[symbol] = d
             else:
-                name = next(temporaries)
-                definitions.append((name, d))
+                name = next(self.temporaries)
+                self.definitions.append((name, d))
                 known[symbol] = name
-        for i, output in enumerate(outputs):
-            jacobian[i][j] = derivative(output, variable, known)
-    return definitions, jacobian
+        return [self.derivative(output, variable, known) for output in self.outputs]
+
+
+def forward_derivatives(replacements: list[tuple[sp.Symbol, sp.Expr]],
+                        outputs: list[sp.Expr], variables: list[sp.Symbol],
+                        temporaries: Iterator[sp.Symbol]
+                        ) -> tuple[list[tuple[sp.Symbol, Derivative]], list[list[Derivative]]]:
+    """Derivatives of `outputs` (written in terms of the `replacements` intermediates).
+
+    Returns (new intermediates to append after `replacements`, in dependency order, and
+    jacobian[i][j] = d outputs[i] / d variables[j] in terms of all intermediates).
+    """
+    mode = _ForwardMode(replacements, outputs, set(variables), temporaries)
+    columns = [mode.sweep(variable, {}) for variable in variables]
+    jacobian = [[column[i] for column in columns] for i in range(len(outputs))]
+    return mode.definitions, jacobian
+
+
+def directional_derivatives(replacements: list[tuple[sp.Symbol, sp.Expr]],
+                            outputs: list[sp.Expr], seeds: dict[sp.Symbol, sp.Expr],
+                            temporaries: Iterator[sp.Symbol]
+                            ) -> tuple[list[tuple[sp.Symbol, Derivative]], list[Derivative]]:
+    """The derivatives of `outputs` along a direction: sum over w of d outputs / dw times
+    seeds[w], in one pass (J times a vector, for the cost of about one evaluation).
+
+    The seeds are symbols or numbers (the direction's entries, kernel inputs). Returns the
+    new intermediates, as forward_derivatives does, and one derivative per output.
+    """
+    mode = _ForwardMode(replacements, outputs, set(seeds), temporaries)
+    return mode.definitions, mode.sweep(None, dict(seeds))
 
 
 def partial(expr: sp.Expr, variable: sp.Symbol, named: dict | None = None) -> sp.Expr:

@@ -37,6 +37,8 @@ _RETURN_DOCS = {
     "penalty_forces": "F_penalty (nx)", "force_jacobian_x": "values (jacobian_x_nonzeros)",
     "force_jacobian_xdot": "values (jacobian_xdot_nonzeros)",
     "penalty_energy": "V_penalty", "constraint_violations": "C (num_constraints)",
+    "mass_matrix_product": "Mt qdd (nq)", "jacobian_product": "J dq (nx)",
+    "residual_derivative_q": "dr/dq dq (nq)", "residual_derivative_v": "dr/dv dv (nq)",
 }
 
 
@@ -148,6 +150,8 @@ def _chart_context(chart, first) -> dict:
         input_docs={"q": f"generalized coordinates (nq = {nq})",
                     "v": f"generalized velocities (nq = {nq})", "t": "time",
                     "qdd": f"generalized accelerations (nq = {nq})",
+                    "dq": f"a direction in q (nq = {nq})",
+                    "dv": f"a direction in v (nq = {nq})",
                     "pos": "particle positions x, stacked (nx)",
                     "vel": "particle velocities xdot, stacked (nx)",
                     "kappa": "penalty stiffness (rods: force per strain; pins, planes: N/m)",

@@ -8,12 +8,16 @@ whose entries are SymPy expressions; `optimize.py` runs one CSE over all of them
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
 
 import sympy as sp
 
 from .derive import Derivation
 from .maximal import MaximalDerivation
 from .recursive import RecursiveDynamics
+
+if TYPE_CHECKING:
+    from .looped import LoopedOutputs
 
 
 @dataclass
@@ -31,6 +35,9 @@ class Block:
     # Jacobian blocks: entries are d(of[i]) / d(wrt[j]), computed after CSE (differentiate.py)
     jacobian_of: tuple[list[sp.Expr], list[sp.Symbol]] | None = None
     pattern: list[tuple[int, int]] | None = None  # sparse Jacobian: the (i, j) emitted, in order
+    # directional-derivative blocks: entry i is the derivative of of[i] along the direction
+    # that seeds[w] gives each input w, computed after CSE (differentiate.py)
+    tangent_of: tuple[list[sp.Expr], dict[sp.Symbol, sp.Expr]] | None = None
     out_param: bool = False            # written through the pointer argument `name`
 
     @property
@@ -58,6 +65,10 @@ class Kernel:
     # "recursive": the O(n) alternative to the dense kernel of the same name; after the CSE
     # the cheaper of the two is kept (dynamics_paths.py)
     variant: str = ""
+    # a looped kernel: these C++ lines are its body, which calls each (kernel, times) of
+    # `calls` (looped.py); it has no entries of its own
+    body: list[str] = field(default_factory=list)
+    calls: list[tuple[str, int]] = field(default_factory=list)
 
     @property
     def returns(self) -> str | None:
@@ -107,15 +118,21 @@ def _recursive_kernels(r: RecursiveDynamics) -> dict[str, Kernel]:
 
 
 def build_kernels(d: Derivation, recursive: RecursiveDynamics | None = None,
-                  tree_derived: bool = False) -> list[Kernel]:
+                  tree_derived: bool = False, looped: LoopedOutputs | None = None
+                  ) -> list[Kernel]:
     """The kernels of one model, in the order they appear in the generated header.
 
     With the tree recursions, their kernels follow the dense ones they may replace. A model
     whose derivation came from its recursions (`tree_derived`) gets the residual's Jacobians
     through Newton-Euler's residual (n directions of O(n) operations each, where Mt qdd takes
-    n^2 each), and no dense inverse dynamics: Newton-Euler is it."""
+    n^2 each), and no dense inverse dynamics: Newton-Euler is it. With `looped` (a large
+    tree, looped.py) its loops replace the kernels of n^2 entries, and its products follow
+    the others."""
     residual = None if tree_derived else d.residual()
-    kernels = _dense_kernels(d, residual, recursive.residual if tree_derived else residual)
+    kernels = _dense_kernels(d, residual, recursive.residual if tree_derived else residual,
+                             looped.replacing if looped else {})
+    if looped:
+        kernels += looped.products
     if recursive is None:
         return kernels
     alternatives = _recursive_kernels(recursive)
@@ -126,13 +143,20 @@ def build_kernels(d: Derivation, recursive: RecursiveDynamics | None = None,
 
 
 def _dense_kernels(d: Derivation, residual: sp.Matrix | None,
-                   differentiated_residual: sp.Matrix) -> list[Kernel]:
-    """The kernels of the derivation; `inverse_dynamics` only given the dense `residual`."""
+                   differentiated_residual: sp.Matrix, replacing: dict[str, Kernel]
+                   ) -> list[Kernel]:
+    """The kernels of the derivation; `inverse_dynamics` only given the dense `residual`;
+    each kernel named in `replacing` replaced by that one (the derivation may then lack the
+    outputs it would read: a looped tree has no Mt or J)."""
     total_force = d.applied_forces + d.inertial_forces
-    jac = d.jacobian
+
+    def unless_replaced(name: str, make) -> Kernel:
+        return replacing[name] if name in replacing else make()
+
     return [
-        Kernel("mass_matrix", "Reduced mass matrix Mt = J^T M J (symmetric).",
-               ("q", "t"), [_lower("result", d.mass_matrix)]),
+        unless_replaced("mass_matrix", lambda: Kernel(
+            "mass_matrix", "Reduced mass matrix Mt = J^T M J (symmetric).", ("q", "t"),
+            [_lower("result", d.mass_matrix)])),
         Kernel("applied_forces", "Applied generalized forces Ft = J^T F + Q.",
                ("q", "v", "t"), [_vector("result", "QVector<Scalar>", d.applied_forces)]),
         Kernel("generalized_forces", "Forces acting directly on q (joint torques, joint "
@@ -143,20 +167,21 @@ def _dense_kernels(d: Derivation, residual: sp.Matrix | None,
                [_vector("result", "QVector<Scalar>", d.inertial_forces)]),
         Kernel("forces", "Right-hand side Ft + Fi of Mt qddot = Ft + Fi.", ("q", "v", "t"),
                [_vector("result", "QVector<Scalar>", total_force)]),
-        Kernel("dynamics", "Mt and Ft + Fi in one pass, sharing their common terms.",
-               ("q", "v", "t"),
-               [_out(_lower("Mt", d.mass_matrix)),
-                _out(_vector("f", "QVector<Scalar>", total_force))],
-               notes=["Mt and f must not be null."]),
+        unless_replaced("dynamics", lambda: Kernel(
+            "dynamics", "Mt and Ft + Fi in one pass, sharing their common terms.",
+            ("q", "v", "t"),
+            [_out(_lower("Mt", d.mass_matrix)), _out(_vector("f", "QVector<Scalar>", total_force))],
+            notes=["Mt and f must not be null."])),
         *([Kernel("inverse_dynamics", "Inverse dynamics: the residual r = Mt qdd - Ft - Fi, "
                   "i.e. the generalized force that produces qdd.", ("q", "v", "qdd", "t"),
                   [_vector("result", "QVector<Scalar>", residual)])]
           if residual is not None else []),
-        Kernel("residual_jacobians", "Jacobians dr/dq and dr/dv of the residual (dr/dqdd = "
-               "Mt), for Newton steps.", ("q", "v", "qdd", "t"),
-               [_out(_jacobian("dr_dq", differentiated_residual, d.q)),
-                _out(_jacobian("dr_dv", differentiated_residual, d.v))],
-               notes=["dr_dq and dr_dv must not be null."]),
+        unless_replaced("residual_jacobians", lambda: Kernel(
+            "residual_jacobians", "Jacobians dr/dq and dr/dv of the residual (dr/dqdd = Mt), "
+            "for Newton steps.", ("q", "v", "qdd", "t"),
+            [_out(_jacobian("dr_dq", differentiated_residual, d.q)),
+             _out(_jacobian("dr_dv", differentiated_residual, d.v))],
+            notes=["dr_dq and dr_dv must not be null."])),
         Kernel("kinetic_energy", "Kinetic energy T = 1/2 xdot^T M xdot.", ("q", "v", "t"),
                [_scalar("result", d.kinetic_energy)]),
         Kernel("potential_energy", "Potential energy V (gravity, springs, given potentials).",
@@ -169,10 +194,11 @@ def _dense_kernels(d: Derivation, residual: sp.Matrix | None,
                [_vector("result", "XVector<Scalar>", d.positions)]),
         Kernel("velocities", "Particle velocities xdot = J v + X_t, stacked.", ("q", "v", "t"),
                [_vector("result", "XVector<Scalar>", d.velocities)]),
-        Kernel("jacobian", "Jacobian J = dX/dq.", ("q", "t"),
-               [Block("result", "XJacobian<Scalar>", jac.shape,
-                      [(i, j, jac[i, j]) for i in range(jac.shape[0])
-                       for j in range(jac.shape[1])])]),
+        unless_replaced("jacobian", lambda: Kernel(
+            "jacobian", "Jacobian J = dX/dq.", ("q", "t"),
+            [Block("result", "XJacobian<Scalar>", d.jacobian.shape,
+                   [(i, j, d.jacobian[i, j]) for i in range(d.jacobian.shape[0])
+                    for j in range(d.jacobian.shape[1])])])),
         Kernel("bias_acceleration", "Velocity-product acceleration gamma (xddot at qddot = 0).",
                ("q", "v", "t"), [_vector("result", "XVector<Scalar>", d.bias_acceleration)]),
         Kernel("linear_momentum", "Linear momentum p = sum m_i xdot_i.", ("q", "v", "t"),

@@ -17,7 +17,7 @@ import sympy as sp
 
 from .cxx_printer import ScalarCxxPrinter
 from .derive import Derivation
-from .differentiate import forward_derivatives
+from .differentiate import directional_derivatives, forward_derivatives
 from .kernel_code import KernelCode
 from .kernels import Kernel
 from .opcount import count_ops
@@ -54,8 +54,8 @@ def collect_expressions(work: Optimization, options: OptimizeOptions) -> Optimiz
         for block in kernel.blocks:
             for _, _, expr in block.entries:
                 add(expr)
-            if block.jacobian_of:
-                for expr in block.jacobian_of[0]:
+            for differentiated in (block.jacobian_of, block.tangent_of):
+                for expr in (differentiated[0] if differentiated else ()):
                     add(expr)
     return replace(work, expressions=expressions, index_of=index_of, first_output=first_output)
 
@@ -75,11 +75,18 @@ def eliminate_common_subexpressions(work: Optimization,
 
 
 def differentiate_jacobians(work: Optimization, options: OptimizeOptions) -> Optimization:
-    """Jacobian blocks: forward mode through the CSE'd code, appending the derivative
-    intermediates to the program (differentiate.py)."""
+    """Jacobian and directional-derivative blocks: forward mode through the CSE'd code,
+    appending the derivative intermediates to the program (differentiate.py)."""
     program, jacobians = work.program, {}
     for kernel in work.kernels:
         for block in kernel.blocks:
+            if block.tangent_of:
+                of, seeds = block.tangent_of
+                new_definitions, along = directional_derivatives(
+                    program, [work.reduced[work.index_of[e]] for e in of], seeds,
+                    work.temporaries)
+                program = program + new_definitions
+                jacobians[id(block)] = [(i, 0, d) for i, d in enumerate(along)]
             if not block.jacobian_of:
                 continue
             of, wrt = block.jacobian_of

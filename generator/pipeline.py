@@ -18,6 +18,7 @@ from .emit import instantiation_file_name, render_instantiation, render_model
 from .kernels import build_kernels, build_maximal_kernels
 from .limits import LOAD_TIMEOUT, size_warning
 from .loader import load_model
+from .looped import LOOP_MIN_NQ, looped_outputs
 from .maximal import KAPPA, PENALTY_DAMPING, derive_maximal
 from .model import Model
 from .naming import chart_name
@@ -91,7 +92,8 @@ def generate(path: str, options: dict[str, str] | None = None,
              translation_units: int = 0, dynamics: str = "auto",
              regenerate_options: Sequence[str] = (), name: str | None = None,
              load_timeout: float | None = LOAD_TIMEOUT,
-             on_warning: Callable[[str], None] | None = None) -> Generated:
+             on_warning: Callable[[str], None] | None = None,
+             loop_min_nq: int = LOOP_MIN_NQ) -> Generated:
     """Runs every stage for one model file (each chart of an atlas); raises ModelError.
 
     Kernels of more than `max_part_statements` statements are emitted in parts (split.py);
@@ -103,7 +105,9 @@ def generate(path: str, options: dict[str, str] | None = None,
     that is not a tree). `regenerate_options` (such as an -o DIR that is not the
     default) end the banner's regenerate command. `name` replaces the file's stem in the
     model's name (the header's and the C++ type's); the model file may run `load_timeout`
-    seconds. `on_warning` hears of a generation expected to take minutes or more.
+    seconds. `on_warning` hears of a generation expected to take minutes or more. A tree
+    of `loop_min_nq` coordinates or more gets its Mt, J and residual Jacobians as loops over
+    O(n) products (looped.py).
     """
     timings: list[tuple[str, float]] = []
 
@@ -139,8 +143,11 @@ def generate(path: str, options: dict[str, str] | None = None,
         conservative = forces_have_potential(chart, kin)
         start = stage(prefix + "analyse", start)
         small = chart.nq <= FLAT_MAX_NQ
+        # a large tree's n^2 outputs are loops over its recursions' products
+        square_outputs = small or chart.nq < loop_min_nq or dynamics == "dense"
         # --dynamics dense: the dense derivation and kernels, the reference
-        recursive = (tree_dynamics(chart, kin, derivation=not small)
+        recursive = (tree_dynamics(chart, kin, derivation=not small,
+                                   square_outputs=square_outputs)
                      if dynamics != "dense" else None)
         if recursive is None and dynamics == "recursive":
             raise ModelError(
@@ -164,14 +171,22 @@ def generate(path: str, options: dict[str, str] | None = None,
         maximal = derive_maximal(chart, symbolic_jacobians=symbolic, named=not symbolic)
         definitions = [*definitions, *maximal.definitions]
         start = stage(prefix + "derive", start)
-        kernels = build_kernels(derivation, recursive, tree_derived)
+        looped = (looped_outputs(derivation, recursive.residual)
+                  if tree_derived and not square_outputs else None)
+        kernels = build_kernels(derivation, recursive, tree_derived, looped)
         maximal_kernels = build_maximal_kernels(maximal)
         names, input_of = _symbol_names(chart)
+        if looped:
+            names.update(looped.names)
+            input_of.update(looped.input_of)
         optimized = optimize_model(derivation, kernels + maximal_kernels, names, input_of,
                                    definitions, optimize_options)
         optimized.kernels, paths = choose_paths(optimized.kernels, chart.nq, dynamics,
                                                 tree_derived)
         analysis += paths.report
+        if looped:
+            analysis.append(f"Mt, J, dr/dq and dr/dv: loops over their columns, each an O(nq) "
+                            f"product (nq = {chart.nq}, from --loop-min-nq {loop_min_nq} on)")
         start = stage(prefix + "optimize (CSE)", start)
         reduced = len(optimized.kernels) - len(maximal_kernels)
         charts.append(GeneratedChart(chart, chart_name(name, model, chart), optimized,
@@ -181,6 +196,8 @@ def generate(path: str, options: dict[str, str] | None = None,
         + [("  " if model.charts else "") + text for text in chart.analysis])]
     flags = ([f"--max-function-statements {max_part_statements}"]
              if max_part_statements != MAX_PART_STATEMENTS else [])
+    if loop_min_nq != LOOP_MIN_NQ:
+        flags.append(f"--loop-min-nq {loop_min_nq}")
     if translation_units:
         flags.append(f"--translation-units {translation_units}")
         parts = [part for chart in charts for kernel in chart.optimized.kernels

@@ -81,10 +81,11 @@ class _Joint:
     bias: sp.Matrix          # c: the acceleration of d at qddot_i = 0
 
 
-def recursive_dynamics(model: Model, kin, tree: PointTree, derivation: bool = True
-                       ) -> RecursiveDynamics:
+def recursive_dynamics(model: Model, kin, tree: PointTree, derivation: bool = True,
+                       square_outputs: bool = True) -> RecursiveDynamics:
     """qddot by the articulated-body recursion, the residual by Newton-Euler, and with
-    `derivation` every other output, by composite masses and Newton-Euler."""
+    `derivation` every other output, by composite masses and Newton-Euler; without
+    `square_outputs` no Mt or J (a looped tree's, looped.py)."""
     names = Intermediates(prefix="__r")
     dim = model.dim
     q, v, t = kin.q, kin.v, kin.t
@@ -140,10 +141,11 @@ def recursive_dynamics(model: Model, kin, tree: PointTree, derivation: bool = Tr
         positions=sp.Matrix.vstack(*[position[p.name] for p in particles]),
         fixed_point_positions=fixed_point_positions(model, kin),
         velocities=sp.Matrix.vstack(*[velocity[p.name] for p in particles]),
-        jacobian=sp.Matrix.vstack(*[_particle_jacobian(tree, joints, i, len(qdd))
-                                    for i in _node_order(tree, particles)]),
+        jacobian=(sp.Matrix.vstack(*[_particle_jacobian(tree, joints, i, len(qdd))
+                                     for i in _node_order(tree, particles)])
+                  if square_outputs else None),
         bias_acceleration=sp.Matrix.vstack(*[gamma_of[p.name] for p in particles]),
-        mass_matrix=_composite_mass_matrix(ctx, len(qdd)),
+        mass_matrix=_composite_mass_matrix(ctx, len(qdd)) if square_outputs else None,
         applied_forces=names.vector(applied), inertial_forces=names.vector(inertial),
         generalized_forces=tau,
         kinetic_energy=sum((names.name(p.mass * velocity[p.name].dot(velocity[p.name]) / 2)

@@ -15,7 +15,8 @@ from .line_wrap import LINE_WIDTH
 NESTED_INDENT = 2  # what struct Maximal adds to its kernels' lines
 
 INPUT_TYPES = {"q": "const QVector<Scalar>& ", "v": "const QVector<Scalar>& ",
-               "qdd": "const QVector<Scalar>& ",
+               "qdd": "const QVector<Scalar>& ", "dq": "const QVector<Scalar>& ",
+               "dv": "const QVector<Scalar>& ",
                "t": "const Scalar& ", "pos": "const XVector<Scalar>& ",
                "vel": "const XVector<Scalar>& ", "kappa": "const Scalar& ",
                "penalty_damping": "const Scalar& "}
@@ -48,7 +49,8 @@ def kernel_arguments(k: KernelCode) -> list[Argument]:
     """A kernel's: its inputs, the parameters, then its out-parameters if it has any."""
     arguments = [Argument(INPUT_TYPES[name], name, name in k.used_inputs)
                  for name in k.kernel.inputs]
-    arguments.append(Argument("const Params& ", "params", bool(k.parameters)))
+    # a looped kernel passes params on to the products it calls (looped.py)
+    arguments.append(Argument("const Params& ", "params", bool(k.parameters or k.kernel.body)))
     if not k.kernel.returns:
         arguments += [Argument(block.cxx_type + "* ", block.name) for block in k.kernel.blocks]
     return arguments

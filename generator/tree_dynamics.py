@@ -11,14 +11,15 @@ from .point_tree import point_tree
 from .recursive import RecursiveDynamics, recursive_dynamics
 
 
-def tree_dynamics(model: Model, kin: Kinematics, derivation: bool = True
-                  ) -> RecursiveDynamics | None:
+def tree_dynamics(model: Model, kin: Kinematics, derivation: bool = True,
+                  square_outputs: bool = True) -> RecursiveDynamics | None:
     """qddot and the inverse-dynamics residual by the recursions, with `derivation` every
-    other output too, or None for a model that is no tree (it keeps the dense kernels)."""
+    other output too (Mt and J only with `square_outputs`), or None for a model that is no
+    tree (it keeps the dense kernels)."""
     points = point_tree(model)
     if points is not None:
-        return recursive_dynamics(model, kin, points, derivation)
+        return recursive_dynamics(model, kin, points, derivation, square_outputs)
     bodies = body_tree(model)
     if bodies is not None:
-        return body_recursive_dynamics(model, kin, bodies, derivation)
+        return body_recursive_dynamics(model, kin, bodies, derivation, square_outputs)
     return None

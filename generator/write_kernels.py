@@ -46,7 +46,7 @@ class _KernelWriter:
 
     def entries(self, block: Block) -> list[tuple[int, int, sp.Expr]]:
         """The block's entries after the CSE (and forward mode, for a Jacobian)."""
-        if block.jacobian_of:
+        if block.jacobian_of or block.tangent_of:
             return self.work.jacobians[id(block)]
         return [(i, j, self.work.reduced[self.work.index_of[e]]) for i, j, e in block.entries]
 
@@ -151,7 +151,24 @@ class _KernelWriter:
             parts=parts, carried_slots=slots)
 
 
+def looped_kernel_code(kernel: Kernel, ops_of: dict[str, int]) -> KernelCode:
+    """A looped kernel (looped.py): its body is its code; it reads every input it takes
+    (they are passed on) and counts the operations of the calls it makes."""
+    return KernelCode(kernel=kernel, coordinates=[], rates=[], accelerations=[],
+                      parameters=[], used_inputs=set(kernel.inputs), using=[],
+                      intermediates=[], assignments=[], mirrors=[],
+                      ops=sum(ops_of[name] * times for name, times in kernel.calls),
+                      parts=[], carried_slots=0)
+
+
 def write_kernels(work: Optimization, options: OptimizeOptions) -> Optimization:
-    """Each kernel's code: its statements, mirrored entries and parts."""
+    """Each kernel's code: its statements, mirrored entries and parts; the looped kernels'
+    last, as they count the operations of the kernels they call."""
     writer = _KernelWriter(work, options)
-    return replace(work, codes=[writer.kernel_code(kernel) for kernel in work.kernels])
+    codes = {id(k): writer.kernel_code(k) for k in work.kernels if not k.body}
+    ops_of = {code.kernel.name: code.ops for code in codes.values()}
+    for kernel in work.kernels:
+        if kernel.body:
+            codes[id(kernel)] = looped_kernel_code(kernel, ops_of)
+            ops_of[kernel.name] = codes[id(kernel)].ops
+    return replace(work, codes=[codes[id(kernel)] for kernel in work.kernels])

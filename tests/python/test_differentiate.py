@@ -14,7 +14,7 @@ import unittest
 import sympy as sp
 
 from generator.cxx_printer import ScalarCxxPrinter
-from generator.differentiate import ChainSum, forward_derivatives
+from generator.differentiate import ChainSum, directional_derivatives, forward_derivatives
 from generator.opcount import count_ops
 
 from .support import DIGITS
@@ -76,6 +76,42 @@ class ForwardDerivativesTest(unittest.TestCase):
         used = set().union(*(_value(e).free_symbols for _, e in self.definitions))
         self.assertIn(t[1], used)
         self.assertIn(t[0], used)  # d t1 / dx = -t0
+
+
+class DirectionalDerivativesTest(unittest.TestCase):
+    """One pass along a direction (dx, dy) equals the Jacobian times it: the columns of the
+    large trees' looped Mt, J and residual Jacobians are such passes."""
+
+    def test_equals_the_jacobian_times_the_direction(self):
+        dx, dy = sp.symbols("dx dy")
+        definitions, derivatives = directional_derivatives(
+            PROGRAM, OUTPUTS, {x: dx, y: dy}, sp.numbered_symbols("d"))
+        rng = random.Random(11)
+        for _ in range(3):
+            point = {s: sp.Float(rng.uniform(-2, 2), DIGITS) for s in (x, y, p, dx, dy)}
+            values = dict(point)
+            for symbol, expr in PROGRAM + definitions:
+                values[symbol] = _value(expr).xreplace(values).evalf(DIGITS)
+            for i, output in enumerate(OUTPUTS):
+                flat = _flattened(output, PROGRAM)
+                expected = (sp.diff(flat, x) * dx + sp.diff(flat, y) * dy).xreplace(
+                    point).evalf(DIGITS)
+                actual = _value(derivatives[i]).xreplace(values).evalf(DIGITS)
+                self.assertLess(abs(actual - expected), 1e-20 * (1 + abs(expected)),
+                                f"output {i}")
+
+    def test_a_number_seed_is_a_partial_derivative(self):
+        # seeding x alone with 1 is d/dx, y held fixed: forward_derivatives' column for x
+        temporaries = sp.numbered_symbols("d")
+        along_definitions, along = directional_derivatives(PROGRAM, OUTPUTS, {x: sp.Integer(1)},
+                                                           temporaries)
+        definitions, jacobian = forward_derivatives(PROGRAM, OUTPUTS, [x], temporaries)
+        values = {x: sp.Float("0.3"), y: sp.Float("-1.1"), p: sp.Float("0.8")}
+        for symbol, expr in PROGRAM + along_definitions + definitions:
+            values[symbol] = _value(expr).xreplace(values).evalf(DIGITS)
+        for i in range(len(OUTPUTS)):
+            self.assertAlmostEqual(float(_value(along[i]).xreplace(values)),
+                                   float(_value(jacobian[i][0]).xreplace(values)), places=12)
 
 
 class AbsoluteValueTest(unittest.TestCase):

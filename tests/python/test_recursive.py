@@ -12,6 +12,9 @@ and the robot tests against MuJoCo.
 from __future__ import annotations
 
 import random
+import re
+import subprocess
+import sys
 import unittest
 from pathlib import Path
 
@@ -202,6 +205,30 @@ class PathChoiceTest(unittest.TestCase):
         self.assertTrue("recursive_qddot = true" in header)
         self.assertTrue("recursive_qddot = false"
                         in self._header({"n": "10"}, dynamics="dense"))
+
+    def test_large_trees_loop_their_square_outputs(self):
+        # from loop_min_nq coordinates on, Mt, J and the residual Jacobians are loops over
+        # products (looped.py), which tests/models/looped_kernels_test.cc checks in C++
+        looped = generate(str(MODELS / "n_link_chain.py"), {"n": "6"}, loop_min_nq=6).header
+        unrolled = generate(str(MODELS / "n_link_chain.py"), {"n": "5"}, loop_min_nq=6).header
+        self.assertIn("// Mt, J, dr/dq and dr/dv: loops over their columns", looped)
+        for product in ("mass_matrix_product(", "jacobian_product(", "residual_derivative_q(",
+                        "residual_derivative_v("):
+            self.assertRegex(looped, r"static \w+<Scalar> " + re.escape(product))
+            self.assertNotIn(product, unrolled)
+        self.assertEqual(looped.count("for (int j = 0; j < nq; ++j) {"), 3)
+        self.assertIn("--loop-min-nq 6", looped)
+        # the dense derivation keeps every output unrolled whatever the size
+        dense = generate(str(MODELS / "n_link_chain.py"), {"n": "6"}, dynamics="dense",
+                         loop_min_nq=6).header
+        self.assertNotIn("mass_matrix_product(", dense)
+
+    def test_a_loop_threshold_below_one_is_refused(self):
+        result = subprocess.run([sys.executable, str(MODELS.parent / "generate"),
+                                 str(MODELS / "pendulum.py"), "--loop-min-nq", "0"],
+                                capture_output=True, text=True)
+        self.assertEqual(result.returncode, 2)
+        self.assertIn("--loop-min-nq must be positive", result.stderr)
 
     def test_forcing_the_recursion_on_a_model_that_is_no_tree_is_refused(self):
         with self.assertRaises(ModelError) as caught:
