@@ -58,8 +58,7 @@ void check_looped_kernels() {
     const double t = uniform(rng);
     const QMat mass = Unrolled::mass_matrix(q, t, up);
     expect_close("mass_matrix", mass, Looped::mass_matrix(q, t, lp));
-    expect_close("mass_matrix_product", QVec(mass * a),
-                 Looped::mass_matrix_product(q, a, t, lp));
+    expect_close("mass_matrix_product", QVec(mass * a), Looped::mass_matrix_product(q, a, t, lp));
     const auto jacobian = Unrolled::jacobian(q, t, up);
     expect_close("jacobian", jacobian, Looped::jacobian(q, t, lp));
     expect_close("jacobian_product", decltype(Unrolled::positions(q, t, up))(jacobian * direction),
