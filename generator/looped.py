@@ -1,8 +1,8 @@
 """The n^2 outputs of a large tree as loops over O(n) products, so that generation grows like n.
 
 A tree's Mt, J and residual Jacobians have n^2 entries each. Written out one statement per
-entry, their code, the CSE over it and the compiler's time grow like n^2 or faster (the
-100-link chain's header is 7.5 MB, mostly these). From LOOP_MIN_NQ coordinates on, each is
+entry, their code, the CSE over it and the compiler's time grow like n^2 or faster (unrolled,
+the 100-link chain's header is 7.5 MB, three quarters of it these). From LOOP_MIN_NQ coordinates on, each is
 instead a loop over its columns, column j the product with the unit vector e_j, and each
 product one forward-mode pass (differentiate.directional_derivatives) of O(n) operations:
 
@@ -26,8 +26,8 @@ import sympy as sp
 from .derive import Derivation
 from .kernels import Block, Kernel
 
-# Measured with bench/generation_time.py --chain: the 50-link chain's unrolled outputs take
-# about as long to generate as everything else together; below, unrolled kernels run faster.
+# Unrolled, the outputs run faster (composite bodies take O(1) per entry of Mt) and, for a
+# few dozen coordinates, still generate in seconds; past that their n^2 code dominates.
 LOOP_MIN_NQ = 40
 
 
