@@ -185,7 +185,7 @@ def _derivation(model: Model, kin, links: LinkKinematics, qdd, square_outputs: b
     jacobians, gammas = {}, {}
     world_subspace = [names.matrix(sp.Matrix.vstack(links.world_rotation[i] * node.subspace[:3, :],
                                                     links.world_rotation[i] * node.subspace[3:, :]))
-                      for i, node in enumerate(nodes) if square_outputs]
+                      for i, node in enumerate(nodes)] if square_outputs else []
     kinetic, momentum, angular, gravity_at = sp.Integer(0), sp.zeros(3, 1), sp.zeros(3, 1), []
     for i, node in enumerate(nodes):
         body = node.link.body

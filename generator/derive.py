@@ -37,9 +37,9 @@ class Derivation:
     positions: sp.Matrix             # nx
     fixed_point_positions: sp.Matrix  # dim per fixed point, stacked; functions of t only
     velocities: sp.Matrix            # nx: J v + X_t
-    jacobian: sp.Matrix              # nx x nq
+    jacobian: sp.Matrix | None       # nx x nq; None for a looped tree (looped.py)
     bias_acceleration: sp.Matrix     # nx: gamma
-    mass_matrix: sp.Matrix           # nq x nq, symmetric
+    mass_matrix: sp.Matrix | None    # nq x nq, symmetric; None for a looped tree
     applied_forces: sp.Matrix        # nq: J^T F + generalized forces
     inertial_forces: sp.Matrix       # nq: -J^T M gamma
     generalized_forces: sp.Matrix    # nq: the part of applied_forces acting on q directly

@@ -1,10 +1,11 @@
-"""The n^2 outputs of a large tree as loops over O(n) products, so that generation grows like n.
+"""The n^2 outputs of a large tree as loops over O(n) products, so that their code grows like n.
 
 A tree's Mt, J and residual Jacobians have n^2 entries each. Written out one statement per
 entry, their code, the CSE over it and the compiler's time grow like n^2 or faster (unrolled,
-the 100-link chain's header is 7.5 MB, three quarters of it these). From LOOP_MIN_NQ coordinates on, each is
-instead a loop over its columns, column j the product with the unit vector e_j, and each
-product one forward-mode pass (differentiate.directional_derivatives) of O(n) operations:
+the 100-link chain's header is 7.5 MB, three quarters of it these). From LOOP_MIN_NQ
+coordinates on, each is instead a loop over its columns, column j the product with the unit
+vector e_j, and each product one forward-mode pass (differentiate.directional_derivatives) of
+O(n) operations:
 
     Mt a        mass_matrix_product(q, qdd = a, t)        Newton-Euler's r along qdd
     J dq        jacobian_product(q, dq, t)                the positions along q
@@ -12,7 +13,7 @@ product one forward-mode pass (differentiate.directional_derivatives) of O(n) op
     dr/dv dv    residual_derivative_v(q, v, qdd, dv, t)   Newton-Euler's r along v
 
 The products are kernels of their own (matrix-free solvers want Mt a without Mt). Run, a loop
-takes n products of O(n), as many operations as the entries it fills, where composite bodies
+takes n products of O(n), the same order as the entries it fills, where composite bodies
 take O(1) per entry of Mt: the looped Mt is slower by a constant factor, and a large tree's
 qddot never reads it (the articulated-body recursion is chosen there).
 """

@@ -81,7 +81,8 @@ class Optimization:
     temporaries: Iterator[sp.Symbol] | None = None
     program: Program = field(default_factory=list)
     reduced: list[sp.Expr] = field(default_factory=list)
-    # differentiate_jacobians: each Jacobian block's entries, by id(block)
+    # differentiate_jacobians: each Jacobian or directional-derivative block's entries, by
+    # id(block)
     jacobians: dict[int, JacobianEntries] = field(default_factory=dict)
     # print_program
     printed: PrintedProgram | None = None

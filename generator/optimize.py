@@ -80,22 +80,24 @@ def differentiate_jacobians(work: Optimization, options: OptimizeOptions) -> Opt
     program, jacobians = work.program, {}
     for kernel in work.kernels:
         for block in kernel.blocks:
-            if block.tangent_of:
-                of, seeds = block.tangent_of
-                new_definitions, along = directional_derivatives(
-                    program, [work.reduced[work.index_of[e]] for e in of], seeds,
-                    work.temporaries)
-                program = program + new_definitions
-                jacobians[id(block)] = [(i, 0, d) for i, d in enumerate(along)]
-            if not block.jacobian_of:
+            differentiated = block.tangent_of or block.jacobian_of
+            if not differentiated:
                 continue
-            of, wrt = block.jacobian_of
-            new_definitions, jacobian = forward_derivatives(
-                program, [work.reduced[work.index_of[e]] for e in of], wrt, work.temporaries)
+            of = [work.reduced[work.index_of[e]] for e in differentiated[0]]
+            if block.tangent_of:
+                new_definitions, along = directional_derivatives(
+                    program, of, block.tangent_of[1], work.temporaries)
+                entries = [(i, 0, d) for i, d in enumerate(along)]
+            else:
+                wrt = block.jacobian_of[1]
+                new_definitions, jacobian = forward_derivatives(program, of, wrt,
+                                                                work.temporaries)
+                pattern = block.pattern or [(i, j) for i in range(len(of))
+                                            for j in range(len(wrt))]
+                entries = [(k, 0, jacobian[i][j]) if block.pattern else (i, j, jacobian[i][j])
+                           for k, (i, j) in enumerate(pattern)]
             program = program + new_definitions
-            pattern = block.pattern or [(i, j) for i in range(len(of)) for j in range(len(wrt))]
-            jacobians[id(block)] = [(k, 0, jacobian[i][j]) if block.pattern else
-                                    (i, j, jacobian[i][j]) for k, (i, j) in enumerate(pattern)]
+            jacobians[id(block)] = entries
     return replace(work, program=program, jacobians=jacobians)
 
 

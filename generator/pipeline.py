@@ -143,11 +143,10 @@ def generate(path: str, options: dict[str, str] | None = None,
         conservative = forces_have_potential(chart, kin)
         start = stage(prefix + "analyse", start)
         small = chart.nq <= FLAT_MAX_NQ
-        # a large tree's n^2 outputs are loops over its recursions' products
-        square_outputs = small or chart.nq < loop_min_nq or dynamics == "dense"
+        # a large tree's n^2 outputs are loops over its recursions' products (looped.py)
+        large = chart.nq >= loop_min_nq
         # --dynamics dense: the dense derivation and kernels, the reference
-        recursive = (tree_dynamics(chart, kin, derivation=not small,
-                                   square_outputs=square_outputs)
+        recursive = (tree_dynamics(chart, kin, derivation=not small, square_outputs=not large)
                      if dynamics != "dense" else None)
         if recursive is None and dynamics == "recursive":
             raise ModelError(
@@ -171,8 +170,7 @@ def generate(path: str, options: dict[str, str] | None = None,
         maximal = derive_maximal(chart, symbolic_jacobians=symbolic, named=not symbolic)
         definitions = [*definitions, *maximal.definitions]
         start = stage(prefix + "derive", start)
-        looped = (looped_outputs(derivation, recursive.residual)
-                  if tree_derived and not square_outputs else None)
+        looped = looped_outputs(derivation, recursive.residual) if tree_derived and large else None
         kernels = build_kernels(derivation, recursive, tree_derived, looped)
         maximal_kernels = build_maximal_kernels(maximal)
         names, input_of = _symbol_names(chart)
