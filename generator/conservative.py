@@ -26,12 +26,20 @@ def forces_have_potential(model: Model, kin: Kinematics | None = None) -> bool:
     t = model.time
     kin = kin or Kinematics(model)
     still = {c.rate: 0 for c in model.coordinates}
-    # every point's x and xdot (J v + X_t) with v = 0, then v = 0 itself
-    at_rest = {s: e.xreplace(still) for s, e in kin.point_substitution.items()}
-    at_rest.update(still)
+    points = {symbol: point for point in model.points for symbol in (*point.x, *point.xdot)}
+
+    def at_rest(expr):
+        """expr with v = 0 and each point it reads put in: x, and xdot = J v + X_t = X_t."""
+        values = dict(still)
+        for point in {points[s].name: points[s] for s in expr.free_symbols
+                      if s in points}.values():
+            position = kin.position[point.name]
+            values.update(zip(point.x, position))
+            values.update(zip(point.xdot, position.diff(t)))
+        return expr.subs(values)
 
     def moves(point) -> bool:
-        return not _vanishes(point.position.diff(t).subs(at_rest))
+        return not _vanishes(at_rest(point.position.diff(t)))
 
     for spring in model.springs:
         if spring.damping != 0 and (moves(spring.a) or moves(spring.b)):
@@ -40,12 +48,12 @@ def forces_have_potential(model: Model, kin: Kinematics | None = None) -> bool:
         if damper.coefficient != 0 and (moves(damper.a) or moves(damper.b)):
             return False
     for force in model.particle_forces:
-        if force.potential is None and not _vanishes(force.force.subs(at_rest)):
+        if force.potential is None and not _vanishes(at_rest(force.force)):
             return False
     for force in model.generalized_forces:
-        if force.potential is None and not _vanishes(force.force.subs(at_rest)):
+        if force.potential is None and not _vanishes(at_rest(force.force)):
             return False
     for torque in model.torques:
-        if not _vanishes(torque.torque.subs(at_rest)):
+        if not _vanishes(at_rest(torque.torque)):
             return False
     return True

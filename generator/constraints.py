@@ -20,6 +20,7 @@ from .derive import Kinematics
 from .errors import ModelError
 from .finite import finite_or_none
 from .model import BodyParticle, Model, Pin, Plane, Point, Rod
+from .sums import difference, dot
 from .trig_polynomial import vanishes_identically
 
 SAMPLES = 256
@@ -47,29 +48,29 @@ def violation(constraint, kin) -> tuple[sp.Expr, sp.Expr]:
     plane: the signed distance (n.x - offset) / |n| (scale 1 + |offset| / |n|).
     """
     if isinstance(constraint, Rod):
-        d = kin.position[constraint.b.name] - kin.position[constraint.a.name]
+        d = difference(kin.position[constraint.b.name], kin.position[constraint.a.name])
         return _norm(d) - constraint.length, constraint.length
     if isinstance(constraint, Pin):
         anchor = _anchor(constraint, kin)[0]
-        d = kin.position[constraint.particle.name] - anchor
+        d = difference(kin.position[constraint.particle.name], anchor)
         return _norm(d), 1 + _norm(anchor)
     if isinstance(constraint, Plane):
         n = constraint.normal
         x = kin.position[constraint.particle.name]
-        return (n.dot(x) - constraint.offset) / _norm(n), 1 + sp.Abs(constraint.offset) / _norm(n)
+        return (dot(n, x) - constraint.offset) / _norm(n), 1 + sp.Abs(constraint.offset) / _norm(n)
     raise TypeError(f"unknown constraint {constraint!r}")
 
 
 def _squared_residual(constraint, kin) -> sp.Expr:
     """A polynomial-friendly residual that is zero exactly when the constraint holds."""
     if isinstance(constraint, Rod):
-        d = kin.position[constraint.b.name] - kin.position[constraint.a.name]
-        return d.dot(d) - constraint.length**2
+        d = difference(kin.position[constraint.b.name], kin.position[constraint.a.name])
+        return dot(d, d) - constraint.length**2
     if isinstance(constraint, Pin):
         d = kin.position[constraint.particle.name] - _anchor(constraint, kin)[0]
-        return d.dot(d)
+        return dot(d, d)
     n = constraint.normal
-    return n.dot(kin.position[constraint.particle.name]) - constraint.offset
+    return dot(n, kin.position[constraint.particle.name]) - constraint.offset
 
 
 def penalty(constraint, kin, kappa: sp.Symbol, damping: sp.Symbol):
@@ -86,7 +87,7 @@ def penalty(constraint, kin, kappa: sp.Symbol, damping: sp.Symbol):
         length = _norm(d)
         direction = d / length
         rest = constraint.length
-        magnitude = kappa * (length - rest) / rest + damping * (vb - va).dot(direction) / rest
+        magnitude = kappa * (length - rest) / rest + damping * dot(vb - va, direction) / rest
         energy = kappa * (length - rest)**2 / (2 * rest)
         return [(constraint.b, -magnitude * direction),
                 (constraint.a, magnitude * direction)], energy
@@ -97,11 +98,11 @@ def penalty(constraint, kin, kappa: sp.Symbol, damping: sp.Symbol):
         forces = [(constraint.particle, force)]
         if isinstance(constraint.anchor, Point):  # a joint: the anchor takes the reaction
             forces.append((constraint.anchor, -force))
-        return forces, kappa * (x - anchor).dot(x - anchor) / 2
+        return forces, kappa * dot(x - anchor, x - anchor) / 2
     if isinstance(constraint, Plane):
         x, v = kin.of(constraint.particle)
         unit = constraint.normal / _norm(constraint.normal)
-        distance = unit.dot(x) - constraint.offset / _norm(constraint.normal)
+        distance = dot(unit, x) - constraint.offset / _norm(constraint.normal)
         rate = distance.diff(kin.t) + sum(distance.diff(xi) * vi for xi, vi in zip(x, v)
                                           if isinstance(xi, sp.Symbol))
         force = (-kappa * distance - damping * rate) * unit

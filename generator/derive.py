@@ -23,6 +23,8 @@ import sympy as sp
 from .bodies import InertialTerm, force_shares, inertial_terms, torque_generalized_forces
 from .differentiate import termwise_jacobian
 from .model import Model, Point
+from .point_tree import PointTree, point_tree
+from .sums import dot
 
 
 @dataclass
@@ -76,37 +78,68 @@ def _norm(d: sp.Matrix) -> sp.Expr:
     return sp.sqrt(sum(component**2 for component in d))
 
 
+class _PerPoint(dict):
+    """A point name -> value map that computes each value on its first lookup."""
+
+    def __init__(self, compute: Callable[[str], sp.Matrix]):
+        super().__init__()
+        self._compute = compute
+
+    def __missing__(self, name: str) -> sp.Matrix:
+        value = self[name] = self._compute(name)
+        return value
+
+
 class Kinematics:
-    """Positions and velocities of every point: X(q, t) and J v + X_t in reduced form."""
+    """Positions and velocities of every point: X(q, t) and J v + X_t in reduced form.
+
+    `jacobian` and `velocity` are computed per point on first use: a 1000-link chain's flat
+    J has a million entries, and the checks of a tree need none of them (numeric_jacobian
+    assembles J from the tree's joints).
+    """
 
     def __init__(self, model: Model):
         self.q = [c.symbol for c in model.coordinates]
         self.v = [c.rate for c in model.coordinates]
         self.t = model.time
+        self.dim = model.dim
         self.particles = [p.name for p in model.particles]
         self.defaults = {p.symbol: sp.Float(p.default) for p in model.parameters}
+        self._model = model
+        self._tree: PointTree | None | bool = False   # False: not looked for yet
         self._numeric_jacobian = None
-        self.position: dict[str, sp.Matrix] = {}
-        self.velocity: dict[str, sp.Matrix] = {}
-        self.jacobian: dict[str, sp.Matrix] = {}
-        for point in model.points:
-            x = point.position
-            jac = termwise_jacobian(x, self.q)
-            self.position[point.name] = x
-            self.jacobian[point.name] = jac
-            self.velocity[point.name] = _times(jac, self.v) + x.diff(self.t)
-        # x / xdot symbols used in user force expressions -> their kinematic expressions
-        self.point_substitution = {}
-        for point in model.points:
-            self.point_substitution.update(zip(point.x, self.position[point.name]))
-            self.point_substitution.update(zip(point.xdot, self.velocity[point.name]))
+        self._numeric_joints = None
+        self._point_substitution = None
+        self.position: dict[str, sp.Matrix] = {p.name: p.position for p in model.points}
+        self.jacobian: dict[str, sp.Matrix] = _PerPoint(
+            lambda name: termwise_jacobian(self.position[name], self.q))
+        self.velocity: dict[str, sp.Matrix] = _PerPoint(
+            lambda name: (_times(self.jacobian[name], self.v)
+                          + self.position[name].diff(self.t)))
+
+    @property
+    def tree(self) -> PointTree | None:
+        """The model's tree of particles (point_tree.py), or None."""
+        if self._tree is False:
+            self._tree = point_tree(self._model)
+        return self._tree
+
+    @property
+    def point_substitution(self) -> dict[sp.Symbol, sp.Expr]:
+        """x / xdot symbols used in user force expressions -> their kinematic expressions."""
+        if self._point_substitution is None:
+            self._point_substitution = {}
+            for point in self._model.points:
+                self._point_substitution.update(zip(point.x, self.position[point.name]))
+                self._point_substitution.update(zip(point.xdot, self.velocity[point.name]))
+        return self._point_substitution
 
     def of(self, point: Point) -> tuple[sp.Matrix, sp.Matrix]:
         return self.position[point.name], self.velocity[point.name]
 
     def of_term(self, term: InertialTerm) -> tuple[sp.Matrix, sp.Matrix, sp.Matrix]:
         """(y, J_y, ydot) of an inertial term: a particle's as derived, a body's computed."""
-        if term.name in self.jacobian:
+        if term.name in self.position:
             return self.position[term.name], self.jacobian[term.name], self.velocity[term.name]
         jac = termwise_jacobian(term.position, self.q)
         return term.position, jac, _times(jac, self.v) + term.position.diff(self.t)
@@ -116,24 +149,75 @@ class Kinematics:
 
         Compiled once (the rank check and the singularity analysis share it), from its
         distinct nonzero entries only: a 100-link chain's J has 20000 entries, 200 distinct.
+        A tree's J is assembled from its joints' (numeric_joint_jacobians): a particle's rows
+        are its parent's plus its own joint's columns.
         """
         if self._numeric_jacobian is None:
-            jacobian = sp.Matrix.vstack(*[self.jacobian[name] for name in self.particles])
-            rows, columns = jacobian.shape
-            distinct: dict[sp.Expr, int] = {}
-            where = [(i, j, distinct.setdefault(jacobian[i, j], len(distinct)))
-                     for i in range(rows) for j in range(columns) if jacobian[i, j] != 0]
-            values = sp.lambdify([self.q, self.t], [e.xreplace(self.defaults)
-                                                    for e in distinct], modules="math")
-
-            def evaluate(q: list[float], t: float) -> list[list[float]]:
-                result = [[0.0] * columns for _ in range(rows)]
-                computed = [float(value) for value in values(q, t)]
-                for i, j, k in where:
-                    result[i][j] = computed[k]
-                return result
-            self._numeric_jacobian = evaluate
+            self._numeric_jacobian = (self._flat_numeric_jacobian() if self.tree is None
+                                      else self._tree_numeric_jacobian())
         return self._numeric_jacobian
+
+    def numeric_joint_jacobians(self) -> Callable[[list[float], float], list[list[list[float]]]]:
+        """For a tree: (q, t) -> per node, S_i = d offset_i / d q_i as dim rows of floats,
+        one column per coordinate the node introduces, parameters at their defaults.
+
+        J has full column rank exactly where every S_i has: J is block lower-triangular in
+        the tree's order, with the S_i on its diagonal and a node's columns moving only the
+        node and its descendants.
+        """
+        if self._numeric_joints is None:
+            nodes = self.tree.nodes
+            entries = [entry.xreplace(self.defaults) for node in nodes
+                       for entry in termwise_jacobian(node.offset,
+                                                      [self.q[j] for j in node.coordinates])]
+            values = sp.lambdify([self.q, self.t], entries, modules="math")
+            shapes = [(self.dim, len(node.coordinates)) for node in nodes]
+
+            def evaluate(q: list[float], t: float) -> list[list[list[float]]]:
+                computed = iter([float(value) for value in values(q, t)])
+                return [[[next(computed) for _ in range(columns)] for _ in range(rows)]
+                        for rows, columns in shapes]
+            self._numeric_joints = evaluate
+        return self._numeric_joints
+
+    def _tree_numeric_jacobian(self) -> Callable[[list[float], float], list[list[float]]]:
+        nodes = self.tree.nodes
+        joints = self.numeric_joint_jacobians()
+        row_of = {name: k for k, name in enumerate(self.particles)}
+        nq = len(self.q)
+
+        def evaluate(q: list[float], t: float) -> list[list[float]]:
+            rows_of_node: list[list[list[float]]] = []
+            for node, joint in zip(nodes, joints(q, t)):
+                rows = ([[0.0] * nq for _ in range(self.dim)] if node.parent is None
+                        else [list(row) for row in rows_of_node[node.parent]])
+                for row, joint_row in zip(rows, joint):
+                    for j, value in zip(node.coordinates, joint_row):
+                        row[j] = value
+                rows_of_node.append(rows)
+            result: list[list[float]] = [None] * (self.dim * len(self.particles))
+            for node, rows in zip(nodes, rows_of_node):
+                first = self.dim * row_of[node.particle.name]
+                result[first:first + self.dim] = rows
+            return result
+        return evaluate
+
+    def _flat_numeric_jacobian(self) -> Callable[[list[float], float], list[list[float]]]:
+        jacobian = sp.Matrix.vstack(*[self.jacobian[name] for name in self.particles])
+        rows, columns = jacobian.shape
+        distinct: dict[sp.Expr, int] = {}
+        where = [(i, j, distinct.setdefault(jacobian[i, j], len(distinct)))
+                 for i in range(rows) for j in range(columns) if jacobian[i, j] != 0]
+        values = sp.lambdify([self.q, self.t], [e.xreplace(self.defaults)
+                                                for e in distinct], modules="math")
+
+        def evaluate(q: list[float], t: float) -> list[list[float]]:
+            result = [[0.0] * columns for _ in range(rows)]
+            computed = [float(value) for value in values(q, t)]
+            for i, j, k in where:
+                result[i][j] = computed[k]
+            return result
+        return evaluate
 
 
 def particle_forces(model: Model, kin: Kinematics, gravity: bool = True
@@ -162,7 +246,7 @@ def particle_forces(model: Model, kin: Kinematics, gravity: bool = True
         direction = d / length
         magnitude = s.stiffness * (length - s.rest_length) / s.rest_length
         if s.damping != 0:
-            magnitude += s.damping * (vb - va).dot(direction) / s.rest_length
+            magnitude += s.damping * dot(vb - va, direction) / s.rest_length
         add(s.b, -magnitude * direction)
         add(s.a, magnitude * direction)
     for damper in model.dampers:
@@ -184,7 +268,7 @@ def x_space_potential(model: Model, kin: Kinematics,
         gravity_at = [(p.mass, kin.position[p.name]) for p in model.particles]
     for field in model.gravities:
         for weight, position in gravity_at:
-            potential -= weight * field.acceleration.dot(position)
+            potential -= weight * dot(field.acceleration, position)
     for s in model.springs:
         stretch = _norm(kin.position[s.b.name] - kin.position[s.a.name]) - s.rest_length
         potential += s.stiffness * stretch**2 / (2 * s.rest_length)
@@ -247,10 +331,10 @@ def derive(model: Model, kin: Kinematics | None = None) -> Derivation:
         gamma = gammas[term.name] = bias_acceleration(ydot, q, v, t)
         for a in range(nq):
             for b in range(a + 1):
-                mass_matrix[a, b] += w * jac[:, a].dot(jac[:, b])
+                mass_matrix[a, b] += w * dot(jac[:, a], jac[:, b])
         applied += jac.T * gravity_force(model, term)
         inertial -= w * (jac.T * gamma)
-        kinetic += w * ydot.dot(ydot) / 2
+        kinetic += w * dot(ydot, ydot) / 2
         angular += w * _cross(y, ydot)
         if term.translational:
             momentum += w * ydot

@@ -24,6 +24,7 @@ from dataclasses import dataclass
 import sympy as sp
 
 from .model import Model, Particle
+from .sums import difference
 from .tree import Tree
 
 
@@ -75,11 +76,10 @@ def point_tree(model: Model) -> PointTree | None:
             # a particle introducing nothing hangs from one before it (no cycles)
             candidates = [a for a in with_coordinates.get(rest, ())
                           if a != k and (introduces[k] or a < k)]
-            parent, offset = next(((a, particles[k].position - particles[a].position)
-                                   for a in candidates
-                                   if _moves_only_with(particles[k].position
-                                                       - particles[a].position,
-                                                       introduces[k], index_of)),
+            differences = ((a, difference(particles[k].position, particles[a].position))
+                           for a in candidates)
+            parent, offset = next(((a, offset) for a, offset in differences
+                                   if _moves_only_with(offset, introduces[k], index_of)),
                                   (None, None))
             if offset is None:
                 return None

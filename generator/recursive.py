@@ -40,8 +40,10 @@ import sympy as sp
 from .derive import (Derivation, _cross, bias_acceleration, fixed_point_positions,
                      generalized_force_vector, generalized_potential, particle_forces,
                      x_space_potential)
+from .differentiate import termwise_jacobian
 from .model import Model
 from .point_tree import PointTree
+from .sums import dot
 from .structured import Intermediates, NamedKinematics
 
 
@@ -100,7 +102,7 @@ def recursive_dynamics(model: Model, kin, tree: PointTree, derivation: bool = Tr
     for node in nodes:
         own_q = [q[j] for j in node.coordinates]
         own_v = sp.Matrix(len(own_q), 1, [v[j] for j in node.coordinates])
-        subspace = node.offset.jacobian(own_q) if own_q else sp.zeros(dim, 0)
+        subspace = termwise_jacobian(node.offset, own_q) if own_q else sp.zeros(dim, 0)
         moving_frame = node.offset.diff(t)
         bias = bias_acceleration(subspace * own_v + moving_frame, own_q, list(own_v), t)
         joints.append(_Joint(node.coordinates, names.matrix(subspace), names.matrix(bias)))
@@ -148,7 +150,7 @@ def recursive_dynamics(model: Model, kin, tree: PointTree, derivation: bool = Tr
         mass_matrix=_composite_mass_matrix(ctx, len(qdd)) if square_outputs else None,
         applied_forces=names.vector(applied), inertial_forces=names.vector(inertial),
         generalized_forces=tau,
-        kinetic_energy=sum((names.name(p.mass * velocity[p.name].dot(velocity[p.name]) / 2)
+        kinetic_energy=sum((names.name(p.mass * dot(velocity[p.name], velocity[p.name]) / 2)
                             for p in particles), sp.Integer(0)),
         potential_energy=x_space_potential(model, local) + generalized_potential(model),
         generalized_potential=generalized_potential(model),

@@ -45,6 +45,8 @@ CANDIDATE_SAMPLES = 12
 # the per-coordinate candidate search (2 nq samples at least) is skipped.
 SAMPLED_FULLY_NQ = 6
 MIN_SAMPLES = 8
+# beyond this many coordinates a single sample takes seconds: conditioning is not sampled
+CONDITIONING_MAX_NQ = 200
 SYMBOLIC_SECONDS = 1.0     # CPU budget of det(J^T J) and its factors
 SAMPLING_SECONDS = 0.4     # CPU budget of the random conditioning samples
 # sigma_min / sigma_max below this counts as rank lost (J^T J is diagonalized, so round-off
@@ -197,16 +199,23 @@ def analyse_singularities(model: Model, seed: int = 11,
     kin = kin or Kinematics(model)  # the pipeline builds it once for every stage
     q = [c.symbol for c in model.coordinates]
     defaults = {p.symbol: sp.Float(p.default) for p in model.parameters}
-    jacobian = sp.Matrix.vstack(*[kin.jacobian[p.name] for p in model.particles])
     evaluate = kin.numeric_jacobian()
     rng = random.Random(seed)
     report = SingularityReport()
-    if len(q) <= SYMBOLIC_MAX_NQ and sp.count_ops(jacobian) < 400:
-        _symbolic_search(report, jacobian, q, defaults, rng)
     report.candidates_searched = len(q) <= SAMPLED_FULLY_NQ
-    if not report.singular_sets and report.candidates_searched:
-        report.singular_sets = _candidate_sets(evaluate, q, jacobian, rng)
-        report.method = "rank of J at the zeros of sin and cos of each angle"
-    _sample_conditioning(report, model, evaluate, rng)
+    if report.candidates_searched:  # the symbolic J only where it is small
+        jacobian = sp.Matrix.vstack(*[kin.jacobian[p.name] for p in model.particles])
+        if len(q) <= SYMBOLIC_MAX_NQ and sp.count_ops(jacobian) < 400:
+            _symbolic_search(report, jacobian, q, defaults, rng)
+        if not report.singular_sets:
+            report.singular_sets = _candidate_sets(evaluate, q, jacobian, rng)
+            report.method = "rank of J at the zeros of sin and cos of each angle"
+    if len(q) <= CONDITIONING_MAX_NQ:
+        _sample_conditioning(report, model, evaluate, rng)
+    else:
+        report.samples = 0
+        report.notes.append(f"Conditioning of J not sampled: one sample costs about nq^3 = "
+                            f"{len(q)**3:.2g} operations in Python (sampled up to nq = "
+                            f"{CONDITIONING_MAX_NQ})")
     report.redundancy = find_redundancy(model, kin, notes=report.notes)
     return report

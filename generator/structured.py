@@ -21,6 +21,7 @@ from .derive import (Derivation, Kinematics, _cross, bias_acceleration, fixed_po
                      generalized_force_vector, generalized_potential, gravity_force,
                      particle_forces, x_space_potential)
 from .model import Model, Point
+from .sums import dot
 
 
 class Intermediates:
@@ -181,7 +182,7 @@ def derive_structured(model: Model, kin: Kinematics
                                                               []).append(w)
         project(jac, w * gamma, 0)
         project(jac, gravity_force(model, term), 1)
-        kinetic += w * ydot.dot(ydot) / 2
+        kinetic += w * dot(ydot, ydot) / 2
         angular += w * _cross(y, ydot)
         if term.translational:
             momentum += w * ydot
@@ -192,9 +193,9 @@ def derive_structured(model: Model, kin: Kinematics
     mass_matrix = sp.zeros(nq, nq)
     entries = list(mass_groups)
     dots: list[dict[sp.Expr, list[sp.Expr]]] = [{} for _ in entries]
-    for dot, entry in zip(dots, entries):  # different column pairs can have equal products
+    for products, entry in zip(dots, entries):  # different column pairs: equal products
         for columns, masses in mass_groups[entry].items():
-            dot.setdefault(sp.Add(*[ca * cb for ca, cb in zip(*columns)]), []).extend(masses)
+            products.setdefault(dot(*columns), []).extend(masses)
     for (a, b), value in zip(entries, _grouped_sums(dots, names)):
         mass_matrix[a, b] = mass_matrix[b, a] = names.name(value)
     generalized = generalized_force_vector(model, q)

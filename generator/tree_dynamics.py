@@ -7,7 +7,6 @@ from .body_recursion import body_recursive_dynamics
 from .body_tree import body_tree
 from .derive import Kinematics
 from .model import Model
-from .point_tree import point_tree
 from .recursive import RecursiveDynamics, recursive_dynamics
 
 
@@ -16,7 +15,7 @@ def tree_dynamics(model: Model, kin: Kinematics, derivation: bool = True,
     """qddot and the inverse-dynamics residual by the recursions, with `derivation` every
     other output too (Mt and J only with `square_outputs`), or None for a model that is no
     tree (it keeps the dense kernels)."""
-    points = point_tree(model)
+    points = kin.tree
     if points is not None:
         return recursive_dynamics(model, kin, points, derivation, square_outputs)
     bodies = body_tree(model)

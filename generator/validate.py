@@ -91,10 +91,16 @@ def _check_expressions(model: Model, defaults: dict) -> None:
     for torque in model.torques:
         _check_symbols(torque.torque, q | rates | t | params, torque.label(), torque.line,
                        "a torque may use coordinates, model.rate(q), t and parameters")
+    position_symbols = q | t | params
+    accepted_terms: set = set()  # a chain's position repeats its parent's terms: check each once
     for particle in model.particles:
-        _check_symbols(particle.position, q | t | params, f"{particle.label()} position",
+        entries = [sp.Add.make_args(entry) for entry in particle.position]
+        _check_symbols(sp.Matrix([sp.Add(*[term for term in terms if term not in accepted_terms])
+                                  for terms in entries]),
+                       position_symbols, f"{particle.label()} position",
                        particle.line, "positions X(q, t) are functions of the coordinates, "
                        "t and parameters; declare any other symbol with model.parameter()")
+        accepted_terms.update(term for terms in entries for term in terms)
         _check_symbols(particle.mass, q | t | params, f"{particle.label()} mass",
                        particle.line, declare)
         depends = sorted(str(s) for s in particle.mass.free_symbols & (q | t))

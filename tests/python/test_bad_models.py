@@ -241,6 +241,19 @@ class BadModelTest(unittest.TestCase):
             'bob = model.particle("bob", mass=1, position=[sin(theta + phi), '
             "-cos(theta + phi)])\n"), ["theta", "phi"], with_line=False)
 
+    def test_redundant_coordinates_of_one_link_deep_in_a_chain(self):
+        # a tree is checked joint by joint: the error names the joint's pair alone
+        self.expect_model_error("redundant_link", PREAMBLE + (
+            'alpha = model.coordinate("alpha", "a second angle (rad)")\n'
+            'beta = model.coordinate("beta", "a third angle (rad)")\n'
+            'gamma = model.coordinate("gamma", "a fourth angle (rad)")\n'
+            "x1, y1 = sin(theta), -cos(theta)\n"
+            "x2, y2 = x1 + sin(alpha + beta), y1 - cos(alpha + beta)\n"
+            'model.particle("bob1", mass=1, position=[x1, y1])\n'
+            'model.particle("bob2", mass=1, position=[x2, y2])\n'
+            'model.particle("bob3", mass=1, position=[x2 + sin(gamma), y2 - cos(gamma)])\n'),
+            ["the coordinates alpha, beta are redundant", "(alpha: "], with_line=False)
+
     # --- options -------------------------------------------------------------------------
     def test_set_of_an_unknown_option(self):
         chain = MODELS / "n_link_chain.py"
