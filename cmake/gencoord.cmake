@@ -18,8 +18,9 @@
 # and in parallel; <target> is then a static library of them, and files that include the
 # header compile no kernel body for double. MAX_FUNCTION_STATEMENTS passes
 # --max-function-statements, LOOP_MIN_NQ --loop-min-nq (from how many coordinates a tree's
-# Mt, J and residual Jacobians are loops over O(nq) products); OUTPUT_DIR replaces ${CMAKE_BINARY_DIR}/gencoord_generated as the
-# folder that holds generated/<name>.hpp (the include directory).
+# Mt, J and residual Jacobians are loops over O(nq) products); OUTPUT_DIR replaces
+# ${CMAKE_BINARY_DIR}/gencoord_generated as the folder that holds generated/<name>.hpp (the
+# include directory).
 #
 # This file works from three places: gencoord's own build, a project that added gencoord with
 # add_subdirectory(), and an install (gencoordConfig.cmake includes it from share/gencoord/cmake/).

@@ -101,8 +101,8 @@ def main(argv: list[str] | None = None, prog: str = "generate") -> int:
                              "operations (default %(default)s)")
     parser.add_argument("--loop-min-nq", type=int, default=LOOP_MIN_NQ, metavar="N",
                         help="a tree of N coordinates or more gets Mt, J and the residual "
-                             "Jacobians as loops over O(nq) products, which keeps generation "
-                             "and compile time linear in nq (default %(default)s)")
+                             "Jacobians as loops over O(nq) products, so that their code grows "
+                             "like nq, not nq^2 (default %(default)s)")
     parser.add_argument("--load-timeout", type=float, default=LOAD_TIMEOUT, metavar="SECONDS",
                         help="stop with an error when running the model file takes longer "
                              "(default %(default)g; 0: no limit)")
