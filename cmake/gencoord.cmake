@@ -126,4 +126,18 @@ function(gencoord_add_model target)
     target_compile_features(${target} INTERFACE cxx_std_17)
   endif()
   add_dependencies(${target} ${target}_header)
+  # what gencoord_add_python_module() and other callers need to include and name the model
+  string(REPLACE "_" ";" parts "${name}")
+  set(class_name "")
+  foreach(part IN LISTS parts)
+    string(SUBSTRING "${part}" 0 1 first)
+    string(SUBSTRING "${part}" 1 -1 rest)
+    string(TOUPPER "${first}" first)
+    string(APPEND class_name "${first}${rest}")
+  endforeach()
+  set_target_properties(${target} PROPERTIES GENCOORD_MODEL_NAME "${name}"
+                        GENCOORD_MODEL_CLASS "gencoord::models::${class_name}")
 endfunction()
+
+# gencoord_add_python_module(): the model's Python module (gencoord_python.cmake).
+include("${CMAKE_CURRENT_LIST_DIR}/gencoord_python.cmake")

@@ -169,6 +169,27 @@ struct NLinkChain10 {
   static constexpr std::array<const char*, num_parameters> parameter_names{{"g", "l1", "m1", "l2",
       "m2", "l3", "m3", "l4", "m4", "l5", "m5", "l6", "m6", "l7", "m7", "l8", "m8", "l9", "m9",
       "l10", "m10"}};
+  /// What each coordinate and parameter is, with its unit: the model file's descriptions.
+  static constexpr std::array<const char*, nq> coordinate_descriptions{{
+      "angle of link 1 from the downward vertical (rad)",
+      "angle of link 2 from the downward vertical (rad)",
+      "angle of link 3 from the downward vertical (rad)",
+      "angle of link 4 from the downward vertical (rad)",
+      "angle of link 5 from the downward vertical (rad)",
+      "angle of link 6 from the downward vertical (rad)",
+      "angle of link 7 from the downward vertical (rad)",
+      "angle of link 8 from the downward vertical (rad)",
+      "angle of link 9 from the downward vertical (rad)",
+      "angle of link 10 from the downward vertical (rad)"}};
+  static constexpr std::array<const char*, num_parameters> parameter_descriptions{{
+      "gravitational acceleration (m/s^2)", "length of link 1 (m)",
+      "mass at the end of link 1 (kg)", "length of link 2 (m)", "mass at the end of link 2 (kg)",
+      "length of link 3 (m)", "mass at the end of link 3 (kg)", "length of link 4 (m)",
+      "mass at the end of link 4 (kg)", "length of link 5 (m)", "mass at the end of link 5 (kg)",
+      "length of link 6 (m)", "mass at the end of link 6 (kg)", "length of link 7 (m)",
+      "mass at the end of link 7 (kg)", "length of link 8 (m)", "mass at the end of link 8 (kg)",
+      "length of link 9 (m)", "mass at the end of link 9 (kg)", "length of link 10 (m)",
+      "mass at the end of link 10 (kg)"}};
 
   /// Reduced mass matrix Mt = J^T M J (symmetric).
   /// \param[in] q  generalized coordinates (nq = 10)

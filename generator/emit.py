@@ -97,7 +97,21 @@ def _environment() -> jinja2.Environment:
     environment = jinja2.Environment(loader=jinja2.FileSystemLoader(TEMPLATE_DIR),
                                      bytecode_cache=_bytecode_cache(), **_ENVIRONMENT_OPTIONS)
     environment.filters["dedent"] = dedent
+    environment.filters["cxx_string"] = cxx_string_literal
     return environment
+
+
+def cxx_string_literal(text: str) -> str:
+    """`text` as a C++ string literal: quotes, backslashes and control characters escaped."""
+    escaped = []
+    for char in text:
+        if char in '"\\':
+            escaped.append("\\" + char)
+        elif ord(char) < 0x20 or ord(char) == 0x7F:
+            escaped.append(f"\\{ord(char):03o}")
+        else:
+            escaped.append(char)
+    return '"' + "".join(escaped) + '"'
 
 
 def _format_default(value: float) -> str:

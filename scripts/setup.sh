@@ -3,6 +3,8 @@
 # a C++17 compiler, CMake, Eigen 3.4, GoogleTest, Google Benchmark, MuJoCo (the reference the
 # robot tests and benchmarks compare with), and a python3 with SymPy and Jinja2. Safe to run again. Prints the python it settled on as its last line.
 #   GENCOORD_PYTHON=/usr/bin/python3 scripts/setup.sh    generate with Debian's own SymPy
+#   scripts/setup.sh --python-modules    also what the models' Python modules need: pybind11,
+#                                        Python's headers, NumPy and SciPy for /usr/bin/python3
 set -euo pipefail
 
 packages=()
@@ -28,6 +30,15 @@ if ! "$python" -c "import sympy, jinja2" >/dev/null 2>&1; then
   fi
   /usr/bin/python3 -c "import sympy, jinja2" >/dev/null 2>&1 \
     || packages+=(python3 python3-sympy python3-jinja2)
+fi
+
+if [ "${1:-}" = --python-modules ]; then
+  [ -f /usr/lib/cmake/pybind11/pybind11Config.cmake ] || packages+=(pybind11-dev)
+  /usr/bin/python3 -c 'import os, sysconfig
+assert os.path.isfile(os.path.join(sysconfig.get_paths()["include"], "Python.h"))' \
+    >/dev/null 2>&1 || packages+=(python3-dev)
+  /usr/bin/python3 -c "import numpy" >/dev/null 2>&1 || packages+=(python3-numpy)
+  /usr/bin/python3 -c "import scipy" >/dev/null 2>&1 || packages+=(python3-scipy)
 fi
 
 "$(dirname "$0")/install_packages.sh" setup "${packages[@]}"

@@ -6,13 +6,14 @@
 #      coordinates, atlas, fuzz) built with AddressSanitizer and UndefinedBehaviorSanitizer;
 #   2. the whole suite in a Release build: the generator's Python tests (independent
 #      derivations, golden files of generated/, bad models), the generated models' tests,
-#      and the runtime suites again.
+#      the models' Python modules (built for Debian's /usr/bin/python3, which has NumPy and
+#      SciPy), and the runtime suites again.
 # Usage: scripts/test.sh [build-dir]     (GENCOORD_SKIP_SANITIZERS=1 skips step 1)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 build=${1:-build}
 jobs=$(nproc 2>/dev/null || echo 2)
-python=$(scripts/setup.sh | tail -n 1)
+python=$(scripts/setup.sh --python-modules | tail -n 1)
 runtime_suites="runtime|deformable|integrators|crosscheck|scripted|atlas|fuzz|large"
 
 echo "== format and lint"
@@ -23,7 +24,8 @@ if [ "${GENCOORD_SKIP_SANITIZERS:-0}" != 1 ]; then
   # -O1: quick to compile, fast enough to run, and what the sanitizers' authors recommend
   cmake -S . -B "${build}-sanitize" -DCMAKE_BUILD_TYPE=Sanitize -DCMAKE_CXX_FLAGS_SANITIZE=-O1 \
         -DGENCOORD_SANITIZE=ON -DGENCOORD_BUILD_TESTS=ON \
-        -DGENCOORD_PYTHON="$python" -DGENCOORD_BUILD_BENCHMARKS=OFF >/dev/null
+        -DGENCOORD_PYTHON="$python" -DGENCOORD_BUILD_BENCHMARKS=OFF \
+        -DPYTHON_EXECUTABLE=/usr/bin/python3 >/dev/null
   targets=$(cmake --build "${build}-sanitize" --target help | grep -oE \
             'gencoord_(runtime|integrator|crosscheck|scripted|atlas|fuzz|large_model)_tests|deformable_(tests|demo)' | sort -u)
   # shellcheck disable=SC2086
@@ -35,6 +37,7 @@ fi
 echo "== every test, Release build"
 # tests ON explicitly: scripts/demo.sh configures the same build directory with them off
 cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Release -DGENCOORD_PYTHON="$python" \
-      -DGENCOORD_BUILD_TESTS=ON -DGENCOORD_BUILD_BENCHMARKS=OFF
+      -DGENCOORD_BUILD_TESTS=ON -DGENCOORD_BUILD_BENCHMARKS=OFF \
+      -DPYTHON_EXECUTABLE=/usr/bin/python3
 cmake --build "$build" -j "$jobs"
 ctest --test-dir "$build" --output-on-failure --no-tests=error -j "$jobs"

@@ -1,0 +1,210 @@
+// Everything a generated model offers Python: metadata, Params, every kernel, the right-hand
+// side and its Jacobian for scipy.integrate.solve_ivp, and the runtime's simulation loop.
+#pragma once
+
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+
+#include <array>
+#include <string>
+#include <tuple>
+#include <vector>
+
+#include "gencoord/acceleration_jacobians.hpp"
+#include "gencoord/dynamics.hpp"
+#include "gencoord/errors.hpp"
+#include "gencoord/integrate/integrator.hpp"
+#include "gencoord/model_traits.hpp"
+#include "gencoord_python/arrays.hpp"
+#include "gencoord_python/errors.hpp"
+#include "gencoord_python/first_order.hpp"
+#include "gencoord_python/kernels.hpp"
+#include "gencoord_python/params.hpp"
+#include "gencoord_python/simulation.hpp"
+
+namespace gencoord::python {
+
+namespace py = pybind11;
+
+template <class Array>
+py::tuple string_tuple(const Array& strings) {
+  py::tuple tuple(strings.size());
+  for (std::size_t k = 0; k < strings.size(); ++k) tuple[k] = py::str(strings[k]);
+  return tuple;
+}
+
+template <class M>
+void bind_metadata(py::module_& module) {
+  module.attr("name") = M::name;
+  module.attr("nq") = M::nq;
+  module.attr("dim") = M::dim;
+  module.attr("num_particles") = M::num_particles;
+  module.attr("nx") = M::nx;
+  module.attr("num_fixed_points") = M::num_fixed_points;
+  module.attr("coordinate_names") = string_tuple(M::coordinate_names);
+  module.attr("coordinate_descriptions") = string_tuple(M::coordinate_descriptions);
+  module.attr("parameter_names") = string_tuple(M::parameter_names);
+  module.attr("parameter_descriptions") = string_tuple(M::parameter_descriptions);
+  module.attr("particle_names") = string_tuple(M::particle_names);
+  module.attr("fixed_point_names") = string_tuple(M::fixed_point_names);
+  module.attr("initial_q") = read_only_array(M::initial_q);
+  module.attr("initial_v") = read_only_array(M::initial_v);
+  module.attr("forces_have_potential") = M::forces_have_potential;
+  module.attr("recursive_qddot") = M::recursive_qddot;
+  std::vector<std::string> integrators;
+  for (Integrator integrator :
+       {Integrator::ForwardEuler, Integrator::SymplecticEuler, Integrator::RK4,
+        Integrator::BackwardEuler, Integrator::Trapezoidal, Integrator::ImplicitMidpoint})
+    integrators.emplace_back(to_string(integrator));
+  module.attr("integrators") = string_tuple(integrators);
+}
+
+namespace detail {
+
+inline std::string kernel_doc(const char* summary, const char* returns) {
+  return std::string(summary) + "\n\nReturns " + returns +
+         "; with a batch of N states, one per state (leading dimension N).";
+}
+
+}  // namespace detail
+
+/// The reduced-coordinate kernels of the generated header (docs/model_interface.md).
+template <class M>
+void bind_kernels(py::module_& m) {
+  using P = ParamsOf<M>;
+  using V = QVec<M>;
+  using detail::kernel_doc;
+  const std::array<const char*, 1> q{"q"};
+  const std::array<const char*, 2> qv{"q", "v"};
+  const std::array<const char*, 3> qva{"q", "v", "qdd"};
+  def_kernel<M>(m, "mass_matrix", kernel_doc("Reduced mass matrix Mt = J^T M J.", "(nq, nq)"), q,
+                [](const std::array<V, 1>& x, double t, const P& p) {
+                  return QMat<M>(M::mass_matrix(x[0], t, p));
+                });
+  def_kernel<M>(m, "applied_forces",
+                kernel_doc("Applied forces Ft = J^T F plus the generalized forces.", "(nq,)"), qv,
+                [](const std::array<V, 2>& x, double t, const P& p) {
+                  return V(M::applied_forces(x[0], x[1], t, p));
+                });
+  def_kernel<M>(m, "generalized_forces",
+                kernel_doc("The part of Ft that acts on q directly.", "(nq,)"), qv,
+                [](const std::array<V, 2>& x, double t, const P& p) {
+                  return V(M::generalized_forces(x[0], x[1], t, p));
+                });
+  def_kernel<M>(m, "inertial_forces", kernel_doc("Inertial forces Fi = -J^T M gamma.", "(nq,)"), qv,
+                [](const std::array<V, 2>& x, double t, const P& p) {
+                  return V(M::inertial_forces(x[0], x[1], t, p));
+                });
+  def_kernel<M>(m, "forces", kernel_doc("Right-hand side Ft + Fi of Mt qddot = Ft + Fi.", "(nq,)"),
+                qv, [](const std::array<V, 2>& x, double t, const P& p) {
+                  return V(M::forces(x[0], x[1], t, p));
+                });
+  def_kernel<M>(m, "dynamics", kernel_doc("Mt and Ft + Fi in one pass.", "(Mt, f)"), qv,
+                [](const std::array<V, 2>& x, double t, const P& p) {
+                  QMat<M> Mt;
+                  V f;
+                  M::dynamics(x[0], x[1], t, p, &Mt, &f);
+                  return std::make_tuple(Mt, f);
+                });
+  def_kernel<M>(m, "qddot",
+                kernel_doc("Generalized accelerations Mt^-1 (Ft + Fi); NaN entries where Mt is "
+                           "not positive definite.",
+                           "(nq,)"),
+                qv, [](const std::array<V, 2>& x, double t, const P& p) {
+                  return V(M::qddot(x[0], x[1], t, p));
+                });
+  def_kernel<M>(m, "inverse_dynamics",
+                kernel_doc("Residual r = Mt qdd - Ft - Fi: the generalized force that gives "
+                           "the acceleration qdd.",
+                           "(nq,)"),
+                qva, [](const std::array<V, 3>& x, double t, const P& p) {
+                  return V(M::inverse_dynamics(x[0], x[1], x[2], t, p));
+                });
+  def_kernel<M>(m, "residual_jacobians",
+                kernel_doc("Jacobians dr/dq and dr/dv of the residual r(q, v, qdd).",
+                           "(dr_dq, dr_dv), each (nq, nq)"),
+                qva, [](const std::array<V, 3>& x, double t, const P& p) {
+                  QMat<M> r_D_q, r_D_v;
+                  M::residual_jacobians(x[0], x[1], x[2], t, p, &r_D_q, &r_D_v);
+                  return std::make_tuple(r_D_q, r_D_v);
+                });
+  def_kernel<M>(m, "kinetic_energy", kernel_doc("Kinetic energy T.", "a float"), qv,
+                [](const std::array<V, 2>& x, double t, const P& p) {
+                  return double(M::kinetic_energy(x[0], x[1], t, p));
+                });
+  def_kernel<M>(m, "potential_energy", kernel_doc("Potential energy V.", "a float"), q,
+                [](const std::array<V, 1>& x, double t, const P& p) {
+                  return double(M::potential_energy(x[0], t, p));
+                });
+  def_kernel<M>(m, "generalized_potential_energy",
+                kernel_doc("The joint-spring part of V.", "a float"), q,
+                [](const std::array<V, 1>& x, double t, const P& p) {
+                  return double(M::generalized_potential_energy(x[0], t, p));
+                });
+  def_kernel<M>(m, "energy", kernel_doc("Total energy T + V.", "a float"), qv,
+                [](const std::array<V, 2>& x, double t, const P& p) {
+                  return double(M::energy(x[0], x[1], t, p));
+                });
+  def_kernel<M>(m, "positions",
+                kernel_doc("Particle positions x, dim entries per particle.", "(nx,)"), q,
+                [](const std::array<V, 1>& x, double t, const P& p) {
+                  return XVec<M>(M::positions(x[0], t, p));
+                });
+  def_kernel<M>(m, "velocities", kernel_doc("Particle velocities J v + X_t.", "(nx,)"), qv,
+                [](const std::array<V, 2>& x, double t, const P& p) {
+                  return XVec<M>(M::velocities(x[0], x[1], t, p));
+                });
+  def_kernel<M>(m, "jacobian", kernel_doc("Jacobian J = dX/dq of the positions.", "(nx, nq)"), q,
+                [](const std::array<V, 1>& x, double t, const P& p) {
+                  return XJac<M>(M::jacobian(x[0], t, p));
+                });
+  def_kernel<M>(
+      m, "bias_acceleration",
+      kernel_doc("Bias acceleration gamma: the particles' acceleration at qddot = 0.", "(nx,)"), qv,
+      [](const std::array<V, 2>& x, double t, const P& p) {
+        return XVec<M>(M::bias_acceleration(x[0], x[1], t, p));
+      });
+  def_kernel<M>(
+      m, "linear_momentum", kernel_doc("Linear momentum p.", "(dim,)"), qv,
+      [](const std::array<V, 2>& x, double t, const P& p) {
+        return typename M::template SpaceVector<double>(M::linear_momentum(x[0], x[1], t, p));
+      });
+  def_kernel<M>(
+      m, "angular_momentum",
+      kernel_doc("Angular momentum L about the origin (its z component in 2D).", "(angular_dim,)"),
+      qv, [](const std::array<V, 2>& x, double t, const P& p) {
+        return typename M::template AngularVector<double>(M::angular_momentum(x[0], x[1], t, p));
+      });
+  def_kernel<M>(m, "fixed_point_positions",
+                kernel_doc("Positions of the fixed points, stacked.", "(dim * num_fixed_points,)"),
+                std::array<const char*, 0>{}, [](const std::array<V, 0>&, double t, const P& p) {
+                  return
+                      typename M::template FixedPointVector<double>(M::fixed_point_positions(t, p));
+                });
+  m.def(
+      "particle_masses",
+      [](py::object params) {
+        const ParamsInput<M> parameters = params_input<M>(params, -1);
+        return gather(-1, 1, [&](py::ssize_t) {
+          return typename M::template ParticleVector<double>(
+              M::template particle_masses<double>(parameters.at(0)));
+        });
+      },
+      "The particles' masses, (num_particles,).", py::arg("params") = py::none());
+}
+
+/// The model's module: metadata, Params, kernels, first-order form and simulation.
+template <class M>
+void bind_model(py::module_& module) {
+  static_assert(assert_model_v<M>);
+  module.doc() = std::string("gencoord model ") + M::name +
+                 ": generated kernels, scipy.integrate right-hand side and simulation.";
+  bind_metadata<M>(module);
+  bind_errors(module);
+  bind_params<M>(module);
+  bind_kernels<M>(module);
+  bind_first_order<M>(module);
+  bind_simulation<M>(module);
+}
+
+}  // namespace gencoord::python

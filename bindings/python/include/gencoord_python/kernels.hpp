@@ -1,0 +1,198 @@
+// The generated kernels as Python functions over NumPy arrays, one state or a batch.
+//
+// kernel(q, v, ..., t=0.0, params=None, *, threads=None): each vector argument has shape
+// (nq,) for one state or (N, nq) for a batch of N; t is a number, or in a batch also an array
+// of N times; params is a Params, None for the defaults, or in a batch also a sequence of N.
+// A batch returns arrays with a leading dimension N, computed on `threads` threads (default:
+// the machine's cores) with the GIL released, each element by exactly the code a single call
+// runs, so the results equal single calls bit for bit.
+#pragma once
+
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+
+#include <algorithm>
+#include <array>
+#include <cstddef>
+#include <string>
+#include <tuple>
+#include <utility>
+#include <vector>
+
+#include "gencoord/batch.hpp"
+#include "gencoord/model_traits.hpp"
+#include "gencoord_python/arrays.hpp"
+
+namespace gencoord::python {
+
+namespace py = pybind11;
+
+/// The parameters of each batch element: one set for all, or one per element.
+template <class M>
+struct ParamsInput {
+  std::vector<ParamsOf<M>> values;
+  const ParamsOf<M>& at(py::ssize_t i) const {
+    return values.size() == 1 ? values[0] : values[static_cast<std::size_t>(i)];
+  }
+};
+
+template <class M>
+ParamsInput<M> params_input(py::handle value, py::ssize_t batch) {
+  using Params = ParamsOf<M>;
+  if (value.is_none()) return {{Params{}}};
+  if (py::isinstance<Params>(value)) return {{value.cast<Params>()}};
+  const std::string expected = std::string("params: expected a ") + M::name + ".Params or None";
+  if (batch < 0 || !py::isinstance<py::sequence>(value))
+    throw py::value_error(
+        expected +
+        (batch < 0 ? "" : " or a sequence of N = " + std::to_string(batch) + " of them"));
+  const auto sequence = value.cast<py::sequence>();
+  if (static_cast<py::ssize_t>(sequence.size()) != batch)
+    throw py::value_error("params: a batch of N = " + std::to_string(batch) +
+                          " states needs one Params or N of them, got " +
+                          std::to_string(sequence.size()));
+  ParamsInput<M> input;
+  input.values.reserve(sequence.size());
+  for (const auto& item : sequence) {
+    if (!py::isinstance<Params>(item))
+      throw py::value_error(expected + ", got a sequence holding " +
+                            std::string(py::str(py::type::of(item))));
+    input.values.push_back(item.cast<Params>());
+  }
+  return input;
+}
+
+/// The time of each batch element: one number, or in a batch an array of N.
+struct TimeInput {
+  Float64Array data;
+  bool shared = true;
+  double at(py::ssize_t i) const { return data.data()[shared ? 0 : i]; }
+};
+
+inline TimeInput time_input(py::handle value, py::ssize_t batch) {
+  const std::string expected =
+      batch < 0 ? "a number" : "a number or an array of shape (" + std::to_string(batch) + ",)";
+  TimeInput input{float64_array(value, "t", expected)};
+  const py::array& array = input.data;
+  if (array.ndim() == 0) return input;
+  if (batch >= 0 && array.ndim() == 1 && array.shape(0) == batch) {
+    input.shared = false;
+    return input;
+  }
+  std::vector<py::ssize_t> shape(array.shape(), array.shape() + array.ndim());
+  throw py::value_error("t: expected " + expected + ", got shape " + shape_text(shape));
+}
+
+inline int thread_count(py::handle threads, py::ssize_t batch) {
+  if (batch < 2) return 1;
+  const int wanted = threads.is_none() ? default_batch_threads() : threads.cast<int>();
+  if (wanted < 1)
+    throw py::value_error("threads: expected at least 1, got " + std::to_string(wanted));
+  return static_cast<int>(std::min<py::ssize_t>(wanted, batch));
+}
+
+namespace detail {
+
+// What one element's kernel call returns, as a tuple: a kernel with out-parameters returns
+// a tuple of them, any other its one value.
+template <class Value>
+struct AsTuple {
+  using Type = std::tuple<Value>;
+  static Type of(Value value) { return Type(std::move(value)); }
+};
+template <class... Values>
+struct AsTuple<std::tuple<Values...>> {
+  using Type = std::tuple<Values...>;
+  static Type of(Type values) { return values; }
+};
+
+template <class Values, std::size_t... I, class Element>
+py::object gather(py::ssize_t batch, int threads, const Element& element,
+                  std::index_sequence<I...>) {
+  constexpr std::size_t count = sizeof...(I);
+  const py::ssize_t elements = std::max<py::ssize_t>(batch, 1);
+  std::array<py::array_t<double>, count> arrays{
+      output_array(batch, Result<std::tuple_element_t<I, Values>>::shape())...};
+  std::array<double*, count> data{arrays[I].mutable_data()...};
+  std::array<py::ssize_t, count> sizes{arrays[I].size() / elements...};
+  {
+    py::gil_scoped_release unlocked;
+    gencoord::detail::parallel_chunks(
+        static_cast<std::size_t>(elements), threads, [&](std::size_t begin, std::size_t end) {
+          for (auto i = static_cast<py::ssize_t>(begin); i < static_cast<py::ssize_t>(end); ++i) {
+            const Values values = element(i);
+            (Result<std::tuple_element_t<I, Values>>::copy(std::get<I>(values),
+                                                           data[I] + i * sizes[I]),
+             ...);
+          }
+        });
+  }
+  const auto finish = [batch](py::array_t<double>& array) -> py::object {
+    if (batch < 0 && array.ndim() == 0) return py::float_(*array.data());
+    return std::move(array);
+  };
+  if constexpr (count == 1) {
+    return finish(arrays[0]);
+  } else {
+    return py::make_tuple(finish(arrays[I])...);
+  }
+}
+
+}  // namespace detail
+
+/// Runs element(i) for each element of the batch (i = 0 once when batch < 0) on `threads`
+/// threads without the GIL, and returns its results as arrays: one, or a tuple of them.
+template <class Element>
+py::object gather(py::ssize_t batch, int threads, const Element& element) {
+  using Value = decltype(element(py::ssize_t{0}));
+  using Values = typename detail::AsTuple<Value>::Type;
+  return detail::gather<Values>(
+      batch, threads, [&](py::ssize_t i) { return detail::AsTuple<Value>::of(element(i)); },
+      std::make_index_sequence<std::tuple_size_v<Values>>{});
+}
+
+/// The batch size the vector arguments agree on (-1 for one state), or ValueError.
+template <std::size_t K>
+py::ssize_t common_batch(const std::array<VectorInput, K>& inputs,
+                         const std::array<const char*, K>& names) {
+  py::ssize_t batch = K ? inputs[0].batch : -1;
+  for (std::size_t k = 1; k < K; ++k)
+    if (inputs[k].batch != batch)
+      throw py::value_error(std::string(names[k]) + ": expected the batch shape of " + names[0] +
+                            " (" + (batch < 0 ? "one state" : "N = " + std::to_string(batch)) +
+                            "), got " +
+                            (inputs[k].batch < 0 ? std::string("one state")
+                                                 : "N = " + std::to_string(inputs[k].batch)));
+  return batch;
+}
+
+/// Binds `kernel(vectors, t, params)` as module.name(<names>..., t=0.0, params=None, *,
+/// threads=None); `kernel` gets the K vectors as the model's QVector<double>.
+template <class M, std::size_t... I, class Kernel>
+void def_kernel(py::module_& module, const char* name, const std::string& doc,
+                const std::array<const char*, sizeof...(I)>& names, Kernel kernel,
+                std::index_sequence<I...>) {
+  constexpr std::size_t K = sizeof...(I);
+  using Vector = QVec<M>;
+  const auto call = [names, kernel](std::conditional_t<true, py::object, decltype(I)>... values,
+                                    py::object t, py::object params, py::object threads) {
+    const std::array<VectorInput, K> inputs{vector_input(values, names[I], M::nq)...};
+    const py::ssize_t batch = common_batch(inputs, names);
+    const TimeInput times = time_input(t, batch);
+    const ParamsInput<M> parameters = params_input<M>(params, batch);
+    return gather(batch, thread_count(threads, batch), [&](py::ssize_t i) {
+      return kernel(std::array<Vector, K>{to_vector<Vector>(inputs[I].row(i))...}, times.at(i),
+                    parameters.at(i));
+    });
+  };
+  module.def(name, call, doc.c_str(), py::arg(names[I])..., py::arg("t") = 0.0,
+             py::arg("params") = py::none(), py::kw_only(), py::arg("threads") = py::none());
+}
+
+template <class M, std::size_t K, class Kernel>
+void def_kernel(py::module_& module, const char* name, const std::string& doc,
+                const std::array<const char*, K>& names, Kernel kernel) {
+  def_kernel<M>(module, name, doc, names, kernel, std::make_index_sequence<K>{});
+}
+
+}  // namespace gencoord::python

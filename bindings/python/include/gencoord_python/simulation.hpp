@@ -1,0 +1,180 @@
+// simulate(): the runtime's fixed-step loop (integrate/simulate.hpp) from Python, with
+// scripted coordinates and an observer, returning the trajectory as NumPy arrays.
+#pragma once
+
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+
+#include <array>
+#include <cstddef>
+#include <functional>
+#include <memory>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "gencoord/cubic_spline.hpp"
+#include "gencoord/integrate/integrator.hpp"
+#include "gencoord/integrate/simulate.hpp"
+#include "gencoord/model_traits.hpp"
+#include "gencoord/reduced_system.hpp"
+#include "gencoord/scripted/model.hpp"
+#include "gencoord/scripted/script.hpp"
+#include "gencoord/state.hpp"
+#include "gencoord_python/arrays.hpp"
+#include "gencoord_python/kernels.hpp"
+
+namespace gencoord::python {
+
+namespace py = pybind11;
+
+namespace detail {
+
+template <class M>
+int coordinate_index(py::handle key) {
+  if (py::isinstance<py::str>(key)) {
+    const std::string name = py::str(key);
+    for (int i = 0; i < M::nq; ++i)
+      if (name == M::coordinate_names[static_cast<std::size_t>(i)]) return i;
+    std::string names;
+    for (const char* known : M::coordinate_names)
+      names += (names.empty() ? "" : ", ") + std::string(known);
+    throw py::value_error("scripted: " + std::string(M::name) + " has no coordinate '" + name +
+                          "'; its coordinates are " + names);
+  }
+  return key.cast<int>();
+}
+
+// One scripted coordinate: (q, v, a) at time t.
+using CoordinateMotion = std::function<std::array<double, 3>(double)>;
+
+inline CoordinateMotion coordinate_motion(py::handle motion, const std::string& name) {
+  if (PyCallable_Check(motion.ptr())) {
+    py::function function = py::reinterpret_borrow<py::function>(motion);
+    return [function, name](double t) {
+      py::gil_scoped_acquire locked;
+      const py::object value = function(t);
+      const Float64Array qva = float64_array(value, "scripted[" + name + "](t)", "(q, v, a)");
+      if (qva.size() != 3)
+        throw py::value_error("scripted[" + name + "](t): expected (q, v, a), got " +
+                              std::to_string(qva.size()) + " numbers");
+      return std::array<double, 3>{qva.data()[0], qva.data()[1], qva.data()[2]};
+    };
+  }
+  const auto pair = motion.cast<py::sequence>();
+  if (pair.size() != 2)
+    throw py::value_error("scripted[" + name +
+                          "]: expected a function t -> (q, v, a) or keyframes (times, values)");
+  const Float64Array times = float64_array(pair[0], "scripted[" + name + "] times", "an array");
+  const Float64Array values = float64_array(pair[1], "scripted[" + name + "] values", "an array");
+  auto spline = std::make_shared<CubicSpline>(
+      CubicSpline::natural(std::vector<double>(times.data(), times.data() + times.size()),
+                           std::vector<double>(values.data(), values.data() + values.size())));
+  return [spline](double t) {
+    std::array<double, 3> qva;
+    spline->evaluate(t, &qva[0], &qva[1], &qva[2]);
+    return qva;
+  };
+}
+
+/// The Script of `scripted`: {coordinate name or index: function t -> (q, v, a), or
+/// keyframes (times, values) through a natural cubic spline}.
+template <class M>
+Script script_of(py::handle scripted) {
+  if (scripted.is_none()) return Script();
+  std::vector<int> coordinates;
+  std::vector<CoordinateMotion> motions;
+  for (const auto& [key, motion] : scripted.cast<py::dict>()) {
+    coordinates.push_back(coordinate_index<M>(key));
+    motions.push_back(coordinate_motion(motion, std::string(py::str(key))));
+  }
+  if (coordinates.empty()) return Script();
+  return Script::from_function(coordinates, [motions](double t) {
+    const auto k = static_cast<Eigen::Index>(motions.size());
+    ScriptSample sample{Eigen::VectorXd(k), Eigen::VectorXd(k), Eigen::VectorXd(k)};
+    for (Eigen::Index j = 0; j < k; ++j) {
+      const std::array<double, 3> qva = motions[static_cast<std::size_t>(j)](t);
+      sample.q(j) = qva[0];
+      sample.v(j) = qva[1];
+      sample.a(j) = qva[2];
+    }
+    return sample;
+  });
+}
+
+template <class M>
+QVec<M> state_vector(py::handle value, const char* name, const std::array<double, M::nq>& initial) {
+  if (value.is_none()) return Eigen::Map<const QVec<M>>(initial.data());
+  const VectorInput input = vector_input(value, name, M::nq);
+  if (input.batch >= 0)
+    throw py::value_error(std::string(name) + ": expected one state of shape (" +
+                          std::to_string(M::nq) + ",)");
+  return to_vector<QVec<M>>(input.row(0));
+}
+
+}  // namespace detail
+
+template <class M>
+void bind_simulation(py::module_& module) {
+  module.def(
+      "simulate",
+      [](py::handle q0, py::handle v0, double t_end, double dt, const std::string& integrator,
+         py::handle params, double t0, py::handle scripted, py::handle observer, long every) {
+        if (every < 1)
+          throw py::value_error("every: expected at least 1, got " + std::to_string(every));
+        State<M> initial;
+        initial.t = t0;
+        initial.q = detail::state_vector<M>(q0, "q0", M::initial_q);
+        initial.v = detail::state_vector<M>(v0, "v0", M::initial_v);
+        const ParamsOf<M> p = params_input<M>(params, -1).at(0);
+        const SimulateOptions options{parse_integrator(integrator), dt, t_end - t0};
+        const long long steps = step_count(dt, t_end - t0);
+        const auto rows = static_cast<py::ssize_t>(steps / every + 1);
+        py::array_t<double> t({rows}), q({rows, py::ssize_t{M::nq}}), v({rows, py::ssize_t{M::nq}}),
+            energy({rows});
+        double *t_out = t.mutable_data(), *q_out = q.mutable_data(), *v_out = v.mutable_data(),
+               *e_out = energy.mutable_data();
+        py::ssize_t row = 0;
+        long long k = 0;
+        const bool observed = !observer.is_none();
+        py::function observe = observed ? observer.cast<py::function>() : py::function();
+        const auto record = [&](const State<M>& s) {
+          if (k++ % every) return;
+          t_out[row] = s.t;
+          e_out[row] = M::energy(s.q, s.v, s.t, p);
+          for (int i = 0; i < M::nq; ++i) {
+            q_out[row * M::nq + i] = s.q(i);
+            v_out[row * M::nq + i] = s.v(i);
+          }
+          if (observed) {
+            py::gil_scoped_acquire locked;
+            observe(s.t, read_only_array(s.q), read_only_array(s.v));
+          }
+          ++row;
+        };
+        Script script = detail::script_of<M>(scripted);
+        {
+          py::gil_scoped_release unlocked;
+          if (script.size() == 0) simulate(ReducedSystem<M>(p), initial, options, record);
+          else simulate(ScriptedModel<M>(p, std::move(script)), initial, options, record);
+        }
+        return py::make_tuple(t, q, v, energy);
+      },
+      "Integrates from (q0, v0) at t0 to t_end with fixed steps dt; returns (t, q, v, energy)\n"
+      "as arrays of shapes (K,), (K, nq), (K, nq), (K,) holding every `every`-th state,\n"
+      "the first and the last included when every divides the step count.\n"
+      "  q0, v0      initial state (default: the model file's initial_q, initial_v)\n"
+      "  integrator  one of `integrators` (rk4 default)\n"
+      "  scripted    {coordinate name or index: f(t) -> (q, v, a), or keyframes (times,\n"
+      "              values) followed through a natural cubic spline}: prescribed\n"
+      "              coordinates, driven by whatever force it takes\n"
+      "  observer    called as observer(t, q, v) at each recorded state\n"
+      "Raises DynamicsError, NewtonError, or ValueError for a step that does not divide\n"
+      "t_end - t0.",
+      py::arg("q0") = py::none(), py::arg("v0") = py::none(), py::arg("t_end") = 10.0,
+      py::arg("dt") = 1e-3, py::arg("integrator") = "rk4", py::arg("params") = py::none(),
+      py::kw_only(), py::arg("t0") = 0.0, py::arg("scripted") = py::none(),
+      py::arg("observer") = py::none(), py::arg("every") = 1);
+}
+
+}  // namespace gencoord::python
