@@ -7,8 +7,8 @@
 #   <P>/bin/gencoord                   the gencoord command
 #   <P>/share/gencoord/                the generator and the command's parts, laid out as in
 #                                      the repository: generate, generator/*.py and *.txt,
-#                                      templates/*.j2, cmake/gencoord.cmake, tool/*.py,
-#                                      drivers/*.cpp, *.hpp, *.cmake
+#                                      templates/*.j2, cmake/gencoord*.cmake, tool/*.py,
+#                                      drivers/*.cpp, *.hpp, *.cmake, bindings/python/
 # (lib and share are GNUInstallDirs' CMAKE_INSTALL_LIBDIR and CMAKE_INSTALL_DATADIR.)
 include(CMakePackageConfigHelpers)
 
@@ -41,7 +41,10 @@ install(PROGRAMS "${PROJECT_SOURCE_DIR}/generate" DESTINATION "${GENCOORD_INSTAL
 _gencoord_install_share(generator "*.py" "*.txt")  # cxx_macros.txt: names it refuses
 _gencoord_install_share(templates "*.j2")
 install(FILES "${PROJECT_SOURCE_DIR}/cmake/gencoord.cmake"
+              "${PROJECT_SOURCE_DIR}/cmake/gencoord_python.cmake"
         DESTINATION "${GENCOORD_INSTALL_DATADIR}/cmake")
+# what gencoord_add_python_module() compiles
+_gencoord_install_share(bindings "*.cpp" "*.hpp")
 # the gencoord command: <P>/bin/gencoord runs <P>/share/gencoord/tool, which compiles the
 # drivers against this installation
 _gencoord_install_share(tool "*.py")

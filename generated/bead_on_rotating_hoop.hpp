@@ -114,11 +114,16 @@ struct BeadOnRotatingHoop {
   static constexpr std::array<const char*, num_parameters> parameter_names{{"R", "omega", "m", "g",
       "c"}};
   /// What each coordinate and parameter is, with its unit: the model file's descriptions.
-  static constexpr std::array<const char*, nq> coordinate_descriptions{{"angle of the bead from the bottom of the hoop (rad)"}};
+  static constexpr std::array<const char*, nq> coordinate_descriptions{{
+      "angle of the bead from the bottom of the hoop (rad)"
+  }};
   static constexpr std::array<const char*, num_parameters> parameter_descriptions{{
-      "hoop radius (m)", "hoop angular velocity about the vertical (rad/s)", "bead mass (kg)",
+      "hoop radius (m)",
+      "hoop angular velocity about the vertical (rad/s)",
+      "bead mass (kg)",
       "gravitational acceleration (m/s^2)",
-      "damping of the bead relative to the hoop (N m s/rad)"}};
+      "damping of the bead relative to the hoop (N m s/rad)"
+  }};
 
   /// Reduced mass matrix Mt = J^T M J (symmetric).
   /// \param[in] q  generalized coordinates (nq = 1)

@@ -114,10 +114,16 @@ struct CartPole {
       "g", "u"}};
   /// What each coordinate and parameter is, with its unit: the model file's descriptions.
   static constexpr std::array<const char*, nq> coordinate_descriptions{{
-      "cart position along the track (m)", "pole angle from the upward vertical (rad)"}};
+      "cart position along the track (m)",
+      "pole angle from the upward vertical (rad)"
+  }};
   static constexpr std::array<const char*, num_parameters> parameter_descriptions{{
-      "pole length (m)", "cart mass (kg)", "pole tip mass (kg)",
-      "gravitational acceleration (m/s^2)", "horizontal force applied to the cart (N)"}};
+      "pole length (m)",
+      "cart mass (kg)",
+      "pole tip mass (kg)",
+      "gravitational acceleration (m/s^2)",
+      "horizontal force applied to the cart (N)"
+  }};
 
   /// Reduced mass matrix Mt = J^T M J (symmetric).
   /// \param[in] q  generalized coordinates (nq = 2)

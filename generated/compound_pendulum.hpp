@@ -108,10 +108,15 @@ struct CompoundPendulum {
   };
   static constexpr std::array<const char*, num_parameters> parameter_names{{"m", "I_c", "d", "g"}};
   /// What each coordinate and parameter is, with its unit: the model file's descriptions.
-  static constexpr std::array<const char*, nq> coordinate_descriptions{{"angle of the bar from the downward vertical (rad)"}};
+  static constexpr std::array<const char*, nq> coordinate_descriptions{{
+      "angle of the bar from the downward vertical (rad)"
+  }};
   static constexpr std::array<const char*, num_parameters> parameter_descriptions{{
-      "mass of the bar (kg)", "moment of inertia about the centre of mass (kg m^2)",
-      "distance from the pivot to the centre of mass (m)", "gravitational acceleration (m/s^2)"}};
+      "mass of the bar (kg)",
+      "moment of inertia about the centre of mass (kg m^2)",
+      "distance from the pivot to the centre of mass (m)",
+      "gravitational acceleration (m/s^2)"
+  }};
 
   /// Reduced mass matrix Mt = J^T M J (symmetric).
   /// \param[in] q  generalized coordinates (nq = 1)

@@ -120,10 +120,15 @@ struct DoublePendulum {
   /// What each coordinate and parameter is, with its unit: the model file's descriptions.
   static constexpr std::array<const char*, nq> coordinate_descriptions{{
       "angle of the first rod from the downward vertical (rad)",
-      "angle of the second rod from the downward vertical (rad)"}};
+      "angle of the second rod from the downward vertical (rad)"
+  }};
   static constexpr std::array<const char*, num_parameters> parameter_descriptions{{
-      "first rod length (m)", "second rod length (m)", "first bob mass (kg)",
-      "second bob mass (kg)", "gravitational acceleration (m/s^2)"}};
+      "first rod length (m)",
+      "second rod length (m)",
+      "first bob mass (kg)",
+      "second bob mass (kg)",
+      "gravitational acceleration (m/s^2)"
+  }};
 
   /// Reduced mass matrix Mt = J^T M J (symmetric).
   /// \param[in] q  generalized coordinates (nq = 2)

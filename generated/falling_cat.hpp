@@ -119,12 +119,20 @@ struct FallingCat {
       "l_rear", "m_body", "m_front", "m_rear"}};
   /// What each coordinate and parameter is, with its unit: the model file's descriptions.
   static constexpr std::array<const char*, nq> coordinate_descriptions{{
-      "centre of the middle link, horizontal (m)", "centre of the middle link, vertical (m)",
-      "orientation of the middle link (rad)", "front joint angle (rad)", "rear joint angle (rad)"}};
+      "centre of the middle link, horizontal (m)",
+      "centre of the middle link, vertical (m)",
+      "orientation of the middle link (rad)",
+      "front joint angle (rad)",
+      "rear joint angle (rad)"
+  }};
   static constexpr std::array<const char*, num_parameters> parameter_descriptions{{
-      "length of the middle link (m)", "length of the front link (m)",
-      "length of the rear link (m)", "mass at each end of the middle link (kg)",
-      "mass at the front tip (kg)", "mass at the rear tip (kg)"}};
+      "length of the middle link (m)",
+      "length of the front link (m)",
+      "length of the rear link (m)",
+      "mass at each end of the middle link (kg)",
+      "mass at the front tip (kg)",
+      "mass at the rear tip (kg)"
+  }};
 
   /// Reduced mass matrix Mt = J^T M J (symmetric).
   /// \param[in] q  generalized coordinates (nq = 5)

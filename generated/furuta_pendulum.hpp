@@ -122,11 +122,18 @@ struct FurutaPendulum {
       "L_p", "w", "g", "tau"}};
   /// What each coordinate and parameter is, with its unit: the model file's descriptions.
   static constexpr std::array<const char*, nq> coordinate_descriptions{{
-      "arm angle about the vertical (rad)", "pendulum angle from the downward vertical (rad)"}};
+      "arm angle about the vertical (rad)",
+      "pendulum angle from the downward vertical (rad)"
+  }};
   static constexpr std::array<const char*, num_parameters> parameter_descriptions{{
-      "mass of the arm (kg)", "length of the arm (m)", "mass of the pendulum (kg)",
-      "length of the pendulum (m)", "side of the bars' square section (m)",
-      "gravitational acceleration (m/s^2)", "motor torque on the arm (N m)"}};
+      "mass of the arm (kg)",
+      "length of the arm (m)",
+      "mass of the pendulum (kg)",
+      "length of the pendulum (m)",
+      "side of the bars' square section (m)",
+      "gravitational acceleration (m/s^2)",
+      "motor torque on the arm (N m)"
+  }};
 
   /// Reduced mass matrix Mt = J^T M J (symmetric).
   /// \param[in] q  generalized coordinates (nq = 2)

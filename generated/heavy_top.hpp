@@ -118,11 +118,17 @@ struct HeavyTop {
       num_parameters> parameter_names{{"m", "d", "r", "h", "g"}};
   /// What each coordinate and parameter is, with its unit: the model file's descriptions.
   static constexpr std::array<const char*, nq> coordinate_descriptions{{
-      "precession about the vertical (rad)", "tilt of the symmetry axis from the vertical (rad)",
-      "spin about the symmetry axis (rad)"}};
-  static constexpr std::array<const char*, num_parameters> parameter_descriptions{{"mass (kg)",
-      "distance from the tip to the centre of mass (m)", "radius of the disc (m)",
-      "thickness of the disc (m)", "gravitational acceleration (m/s^2)"}};
+      "precession about the vertical (rad)",
+      "tilt of the symmetry axis from the vertical (rad)",
+      "spin about the symmetry axis (rad)"
+  }};
+  static constexpr std::array<const char*, num_parameters> parameter_descriptions{{
+      "mass (kg)",
+      "distance from the tip to the centre of mass (m)",
+      "radius of the disc (m)",
+      "thickness of the disc (m)",
+      "gravitational acceleration (m/s^2)"
+  }};
 
   /// Reduced mass matrix Mt = J^T M J (symmetric).
   /// \param[in] q  generalized coordinates (nq = 3)

@@ -112,10 +112,16 @@ struct KapitzaPendulum {
   static constexpr std::array<const char*, num_parameters> parameter_names{{"l", "m", "g", "a",
       "omega"}};
   /// What each coordinate and parameter is, with its unit: the model file's descriptions.
-  static constexpr std::array<const char*, nq> coordinate_descriptions{{"angle from the downward vertical (rad)"}};
-  static constexpr std::array<const char*, num_parameters> parameter_descriptions{{"rod length (m)",
-      "bob mass (kg)", "gravitational acceleration (m/s^2)", "pivot oscillation amplitude (m)",
-      "pivot oscillation angular frequency (rad/s)"}};
+  static constexpr std::array<const char*, nq> coordinate_descriptions{{
+      "angle from the downward vertical (rad)"
+  }};
+  static constexpr std::array<const char*, num_parameters> parameter_descriptions{{
+      "rod length (m)",
+      "bob mass (kg)",
+      "gravitational acceleration (m/s^2)",
+      "pivot oscillation amplitude (m)",
+      "pivot oscillation angular frequency (rad/s)"
+  }};
 
   /// Reduced mass matrix Mt = J^T M J (symmetric).
   /// \param[in] q  generalized coordinates (nq = 1)

@@ -180,16 +180,31 @@ struct NLinkChain10 {
       "angle of link 7 from the downward vertical (rad)",
       "angle of link 8 from the downward vertical (rad)",
       "angle of link 9 from the downward vertical (rad)",
-      "angle of link 10 from the downward vertical (rad)"}};
+      "angle of link 10 from the downward vertical (rad)"
+  }};
   static constexpr std::array<const char*, num_parameters> parameter_descriptions{{
-      "gravitational acceleration (m/s^2)", "length of link 1 (m)",
-      "mass at the end of link 1 (kg)", "length of link 2 (m)", "mass at the end of link 2 (kg)",
-      "length of link 3 (m)", "mass at the end of link 3 (kg)", "length of link 4 (m)",
-      "mass at the end of link 4 (kg)", "length of link 5 (m)", "mass at the end of link 5 (kg)",
-      "length of link 6 (m)", "mass at the end of link 6 (kg)", "length of link 7 (m)",
-      "mass at the end of link 7 (kg)", "length of link 8 (m)", "mass at the end of link 8 (kg)",
-      "length of link 9 (m)", "mass at the end of link 9 (kg)", "length of link 10 (m)",
-      "mass at the end of link 10 (kg)"}};
+      "gravitational acceleration (m/s^2)",
+      "length of link 1 (m)",
+      "mass at the end of link 1 (kg)",
+      "length of link 2 (m)",
+      "mass at the end of link 2 (kg)",
+      "length of link 3 (m)",
+      "mass at the end of link 3 (kg)",
+      "length of link 4 (m)",
+      "mass at the end of link 4 (kg)",
+      "length of link 5 (m)",
+      "mass at the end of link 5 (kg)",
+      "length of link 6 (m)",
+      "mass at the end of link 6 (kg)",
+      "length of link 7 (m)",
+      "mass at the end of link 7 (kg)",
+      "length of link 8 (m)",
+      "mass at the end of link 8 (kg)",
+      "length of link 9 (m)",
+      "mass at the end of link 9 (kg)",
+      "length of link 10 (m)",
+      "mass at the end of link 10 (kg)"
+  }};
 
   /// Reduced mass matrix Mt = J^T M J (symmetric).
   /// \param[in] q  generalized coordinates (nq = 10)

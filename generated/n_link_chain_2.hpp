@@ -117,10 +117,15 @@ struct NLinkChain2 {
   /// What each coordinate and parameter is, with its unit: the model file's descriptions.
   static constexpr std::array<const char*, nq> coordinate_descriptions{{
       "angle of link 1 from the downward vertical (rad)",
-      "angle of link 2 from the downward vertical (rad)"}};
+      "angle of link 2 from the downward vertical (rad)"
+  }};
   static constexpr std::array<const char*, num_parameters> parameter_descriptions{{
-      "gravitational acceleration (m/s^2)", "length of link 1 (m)",
-      "mass at the end of link 1 (kg)", "length of link 2 (m)", "mass at the end of link 2 (kg)"}};
+      "gravitational acceleration (m/s^2)",
+      "length of link 1 (m)",
+      "mass at the end of link 1 (kg)",
+      "length of link 2 (m)",
+      "mass at the end of link 2 (kg)"
+  }};
 
   /// Reduced mass matrix Mt = J^T M J (symmetric).
   /// \param[in] q  generalized coordinates (nq = 2)

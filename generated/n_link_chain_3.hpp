@@ -124,11 +124,17 @@ struct NLinkChain3 {
   static constexpr std::array<const char*, nq> coordinate_descriptions{{
       "angle of link 1 from the downward vertical (rad)",
       "angle of link 2 from the downward vertical (rad)",
-      "angle of link 3 from the downward vertical (rad)"}};
+      "angle of link 3 from the downward vertical (rad)"
+  }};
   static constexpr std::array<const char*, num_parameters> parameter_descriptions{{
-      "gravitational acceleration (m/s^2)", "length of link 1 (m)",
-      "mass at the end of link 1 (kg)", "length of link 2 (m)", "mass at the end of link 2 (kg)",
-      "length of link 3 (m)", "mass at the end of link 3 (kg)"}};
+      "gravitational acceleration (m/s^2)",
+      "length of link 1 (m)",
+      "mass at the end of link 1 (kg)",
+      "length of link 2 (m)",
+      "mass at the end of link 2 (kg)",
+      "length of link 3 (m)",
+      "mass at the end of link 3 (kg)"
+  }};
 
   /// Reduced mass matrix Mt = J^T M J (symmetric).
   /// \param[in] q  generalized coordinates (nq = 3)

@@ -114,10 +114,15 @@ struct Pendulum3d {
   static constexpr std::array<const char*,
       num_parameters> parameter_names{{"l", "m", "m_pivot", "g"}};
   /// What each coordinate and parameter is, with its unit: the model file's descriptions.
-  static constexpr std::array<const char*, nq> coordinate_descriptions{{"angle of the rod from the downward vertical (rad)"}};
-  static constexpr std::array<const char*, num_parameters> parameter_descriptions{{"rod length (m)",
-      "bob mass (kg)", "pivot mass, used by the maximal model (kg)",
-      "gravitational acceleration (m/s^2)"}};
+  static constexpr std::array<const char*, nq> coordinate_descriptions{{
+      "angle of the rod from the downward vertical (rad)"
+  }};
+  static constexpr std::array<const char*, num_parameters> parameter_descriptions{{
+      "rod length (m)",
+      "bob mass (kg)",
+      "pivot mass, used by the maximal model (kg)",
+      "gravitational acceleration (m/s^2)"
+  }};
 
   /// Reduced mass matrix Mt = J^T M J (symmetric).
   /// \param[in] q  generalized coordinates (nq = 1)

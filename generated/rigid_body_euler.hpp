@@ -153,14 +153,24 @@ struct RigidBodyEuler {
   static constexpr std::array<const char*, num_parameters> parameter_names{{"g", "m", "com_x",
       "com_y", "com_z", "a", "b", "c"}};
   /// What each coordinate and parameter is, with its unit: the model file's descriptions.
-  static constexpr std::array<const char*, nq> coordinate_descriptions{{"reference point, x (m)",
-      "reference point, y (m)", "reference point, z (m)", "rotation about z (rad)",
-      "rotation about the new y (rad)", "rotation about the new x (rad)"}};
+  static constexpr std::array<const char*, nq> coordinate_descriptions{{
+      "reference point, x (m)",
+      "reference point, y (m)",
+      "reference point, z (m)",
+      "rotation about z (rad)",
+      "rotation about the new y (rad)",
+      "rotation about the new x (rad)"
+  }};
   static constexpr std::array<const char*, num_parameters> parameter_descriptions{{
-      "gravitational acceleration (m/s^2)", "mass of the body (kg)",
-      "centre of mass, body axis x (m)", "centre of mass, body axis y (m)",
-      "centre of mass, body axis z (m)", "side a of the box (m)", "side b of the box (m)",
-      "side c of the box (m)"}};
+      "gravitational acceleration (m/s^2)",
+      "mass of the body (kg)",
+      "centre of mass, body axis x (m)",
+      "centre of mass, body axis y (m)",
+      "centre of mass, body axis z (m)",
+      "side a of the box (m)",
+      "side b of the box (m)",
+      "side c of the box (m)"
+  }};
 
   /// Reduced mass matrix Mt = J^T M J (symmetric).
   /// \param[in] q  generalized coordinates (nq = 6)
@@ -6005,14 +6015,24 @@ struct RigidBodyEulerYzx {
   static constexpr std::array<const char*, num_parameters> parameter_names{{"g", "m", "com_x",
       "com_y", "com_z", "a", "b", "c"}};
   /// What each coordinate and parameter is, with its unit: the model file's descriptions.
-  static constexpr std::array<const char*, nq> coordinate_descriptions{{"reference point, x (m)",
-      "reference point, y (m)", "reference point, z (m)", "rotation about y (rad)",
-      "rotation about the new z (rad)", "rotation about the new x (rad)"}};
+  static constexpr std::array<const char*, nq> coordinate_descriptions{{
+      "reference point, x (m)",
+      "reference point, y (m)",
+      "reference point, z (m)",
+      "rotation about y (rad)",
+      "rotation about the new z (rad)",
+      "rotation about the new x (rad)"
+  }};
   static constexpr std::array<const char*, num_parameters> parameter_descriptions{{
-      "gravitational acceleration (m/s^2)", "mass of the body (kg)",
-      "centre of mass, body axis x (m)", "centre of mass, body axis y (m)",
-      "centre of mass, body axis z (m)", "side a of the box (m)", "side b of the box (m)",
-      "side c of the box (m)"}};
+      "gravitational acceleration (m/s^2)",
+      "mass of the body (kg)",
+      "centre of mass, body axis x (m)",
+      "centre of mass, body axis y (m)",
+      "centre of mass, body axis z (m)",
+      "side a of the box (m)",
+      "side b of the box (m)",
+      "side c of the box (m)"
+  }};
 
   /// Reduced mass matrix Mt = J^T M J (symmetric).
   /// \param[in] q  generalized coordinates (nq = 6)

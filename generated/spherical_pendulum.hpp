@@ -131,9 +131,14 @@ struct SphericalPendulum {
   static constexpr std::array<const char*, num_parameters> parameter_names{{"l", "m", "g"}};
   /// What each coordinate and parameter is, with its unit: the model file's descriptions.
   static constexpr std::array<const char*, nq> coordinate_descriptions{{
-      "polar angle from the downward vertical (rad)", "azimuth about the vertical axis (rad)"}};
-  static constexpr std::array<const char*, num_parameters> parameter_descriptions{{"rod length (m)",
-      "bob mass (kg)", "gravitational acceleration (m/s^2)"}};
+      "polar angle from the downward vertical (rad)",
+      "azimuth about the vertical axis (rad)"
+  }};
+  static constexpr std::array<const char*, num_parameters> parameter_descriptions{{
+      "rod length (m)",
+      "bob mass (kg)",
+      "gravitational acceleration (m/s^2)"
+  }};
 
   /// Reduced mass matrix Mt = J^T M J (symmetric).
   /// \param[in] q  generalized coordinates (nq = 2)
@@ -1262,9 +1267,14 @@ struct SphericalPendulumPoleX {
   static constexpr std::array<const char*, num_parameters> parameter_names{{"l", "m", "g"}};
   /// What each coordinate and parameter is, with its unit: the model file's descriptions.
   static constexpr std::array<const char*, nq> coordinate_descriptions{{
-      "polar angle from the +x axis (rad)", "azimuth about the x axis, from +y (rad)"}};
-  static constexpr std::array<const char*, num_parameters> parameter_descriptions{{"rod length (m)",
-      "bob mass (kg)", "gravitational acceleration (m/s^2)"}};
+      "polar angle from the +x axis (rad)",
+      "azimuth about the x axis, from +y (rad)"
+  }};
+  static constexpr std::array<const char*, num_parameters> parameter_descriptions{{
+      "rod length (m)",
+      "bob mass (kg)",
+      "gravitational acceleration (m/s^2)"
+  }};
 
   /// Reduced mass matrix Mt = J^T M J (symmetric).
   /// \param[in] q  generalized coordinates (nq = 2)

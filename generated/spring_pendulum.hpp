@@ -117,10 +117,16 @@ struct SpringPendulum {
       "c_air"}};
   /// What each coordinate and parameter is, with its unit: the model file's descriptions.
   static constexpr std::array<const char*, nq> coordinate_descriptions{{
-      "distance from the pivot (m)", "angle from the downward vertical (rad)"}};
+      "distance from the pivot (m)",
+      "angle from the downward vertical (rad)"
+  }};
   static constexpr std::array<const char*, num_parameters> parameter_descriptions{{
-      "spring stiffness, force per unit strain (N)", "spring rest length (m)", "bob mass (kg)",
-      "gravitational acceleration (m/s^2)", "air drag coefficient (N s/m)"}};
+      "spring stiffness, force per unit strain (N)",
+      "spring rest length (m)",
+      "bob mass (kg)",
+      "gravitational acceleration (m/s^2)",
+      "air drag coefficient (N s/m)"
+  }};
 
   /// Reduced mass matrix Mt = J^T M J (symmetric).
   /// \param[in] q  generalized coordinates (nq = 2)

@@ -115,12 +115,17 @@ struct StiffChain3 {
       num_parameters> parameter_names{{"g", "l", "m", "k", "c"}};
   /// What each coordinate and parameter is, with its unit: the model file's descriptions.
   static constexpr std::array<const char*, nq> coordinate_descriptions{{
-      "angle of link 1 relative to link 0 (rad)", "angle of link 2 relative to link 1 (rad)",
-      "angle of link 3 relative to link 2 (rad)"}};
+      "angle of link 1 relative to link 0 (rad)",
+      "angle of link 2 relative to link 1 (rad)",
+      "angle of link 3 relative to link 2 (rad)"
+  }};
   static constexpr std::array<const char*, num_parameters> parameter_descriptions{{
-      "gravitational acceleration (m/s^2)", "length of every link (m)",
-      "mass at the end of every link (kg)", "joint spring stiffness (N m/rad)",
-      "joint damping (N m s/rad)"}};
+      "gravitational acceleration (m/s^2)",
+      "length of every link (m)",
+      "mass at the end of every link (kg)",
+      "joint spring stiffness (N m/rad)",
+      "joint damping (N m s/rad)"
+  }};
 
   /// Reduced mass matrix Mt = J^T M J (symmetric).
   /// \param[in] q  generalized coordinates (nq = 3)

@@ -15,7 +15,7 @@ import sympy as sp
 from . import __version__
 from .compat import JINJA2_CACHE_IS_SAFE
 from .kernel_views import kernel_view
-from .line_wrap import wrap_long_lines
+from .line_wrap import LINE_WIDTH, wrap_long_lines
 from .naming import type_name
 from .reserved_names import TEMPLATE_DIR
 from .storage import model_types, needs_heap_matrix
@@ -101,8 +101,7 @@ def _environment() -> jinja2.Environment:
     return environment
 
 
-def cxx_string_literal(text: str) -> str:
-    """`text` as a C++ string literal: quotes, backslashes and control characters escaped."""
+def _escaped(text: str) -> str:
     escaped = []
     for char in text:
         if char in '"\\':
@@ -111,7 +110,24 @@ def cxx_string_literal(text: str) -> str:
             escaped.append(f"\\{ord(char):03o}")
         else:
             escaped.append(char)
-    return '"' + "".join(escaped) + '"'
+    return "".join(escaped)
+
+
+def cxx_string_literal(text: str, indent: int) -> str:
+    """`text` as a C++ string literal (quotes, backslashes and control characters escaped)
+    on a line indented by `indent` columns, with room for a comma after it; a longer text
+    becomes adjacent literals ("..." "..."), one per line, cut after spaces."""
+    room = LINE_WIDTH - indent - 3  # the quotes and a comma
+    pieces, current = [], ""
+    for word in _escaped(text).split(" "):
+        candidate = word if not current else current + " " + word
+        if current and len(candidate) > room:
+            pieces.append(current + " ")
+            current = word
+        else:
+            current = candidate
+    pieces.append(current)
+    return ("\n" + " " * indent).join(f'"{piece}"' for piece in pieces)
 
 
 def _format_default(value: float) -> str:

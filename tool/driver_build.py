@@ -42,10 +42,15 @@ endif()
 include("${{GENCOORD_DRIVERS_DIR}}/gencoord_drivers.cmake")
 add_library(model INTERFACE)
 target_include_directories(model INTERFACE "${{CMAKE_CURRENT_SOURCE_DIR}}/../include")
+set_target_properties(model PROPERTIES GENCOORD_MODEL_NAME {name}
+                      GENCOORD_MODEL_CLASS gencoord::models::{class_name})
 foreach(driver IN ITEMS simulate crosscheck)
   gencoord_add_driver(${{driver}} DRIVER ${{driver}} MODEL model
                       CLASS gencoord::models::{class_name} HEADER generated/{name}.hpp)
 endforeach()
+if(GENCOORD_PYTHON_MODULE)
+  gencoord_add_python_module(python_module MODEL_TARGET model)
+endif()
 """
 
 
@@ -164,14 +169,9 @@ def driver_program(layout: Layout, target: ModelTarget, driver: str, *, rebuild:
     return os.path.join(build, driver)
 
 
-def _build_drivers(layout: Layout, target: ModelTarget, entry: str, *, rebuild: bool,
-                   verbose: bool) -> None:
-    print(f"gencoord: building the programs for {target.name} (once; cached in {entry})",
-          file=sys.stderr, flush=True)
-    build = os.path.join(entry, "build")
-    for program in DRIVERS:
-        with contextlib.suppress(FileNotFoundError):
-            os.unlink(os.path.join(build, program))  # a link cut short would look up to date
+def _write_project(target: ModelTarget, entry: str, rebuild: bool) -> str:
+    """Generates the header unless the entry has it, writes the CMake project, returns its
+    folder."""
     include_dir = os.path.join(entry, "include")
     if rebuild or not os.path.isfile(os.path.join(include_dir, "generated",
                                                   f"{target.name}.hpp")):
@@ -180,6 +180,18 @@ def _build_drivers(layout: Layout, target: ModelTarget, entry: str, *, rebuild: 
     os.makedirs(project, exist_ok=True)
     with open(os.path.join(project, "CMakeLists.txt"), "w", encoding="utf-8") as handle:
         handle.write(_PROJECT.format(name=target.name, class_name=target.class_name))
+    return project
+
+
+def _build_drivers(layout: Layout, target: ModelTarget, entry: str, *, rebuild: bool,
+                   verbose: bool) -> None:
+    print(f"gencoord: building the programs for {target.name} (once; cached in {entry})",
+          file=sys.stderr, flush=True)
+    build = os.path.join(entry, "build")
+    for program in DRIVERS:
+        with contextlib.suppress(FileNotFoundError):
+            os.unlink(os.path.join(build, program))  # a link cut short would look up to date
+    project = _write_project(target, entry, rebuild)
     log = os.path.join(entry, "build.log")
     if not os.path.isfile(os.path.join(build, "CMakeCache.txt")):
         _run_logged(_configure_command(layout, project, build), log,
@@ -187,3 +199,44 @@ def _build_drivers(layout: Layout, target: ModelTarget, entry: str, *, rebuild: 
     jobs = str(max(1, os.cpu_count() or 1))
     _run_logged([shutil.which("cmake") or "cmake", "--build", build, "-j", jobs, "--target",
                  *DRIVERS], log, f"compiling the programs for {target.name}", verbose)
+
+
+def python_module(layout: Layout, target: ModelTarget, python: str, *, rebuild: bool = False,
+                  verbose: bool = False) -> str:
+    """The path of the model's Python extension module built for `python` (an interpreter),
+    built into the cache entry the first time."""
+    entry = entry_dir(layout, target)
+    interpreter = subprocess.run(
+        [python, "-c", "import sys, sysconfig; print(sys.version); "
+                       "print(sysconfig.get_config_var('EXT_SUFFIX'))"],
+        capture_output=True, text=True, check=False)
+    if interpreter.returncode != 0:
+        raise ToolError(f"cannot run the Python interpreter {python}; name one with --python")
+    version, suffix = interpreter.stdout.splitlines()[-2:]
+    key = hashlib.sha256((os.path.realpath(python) + "\0" + version).encode()).hexdigest()[:12]
+    build = os.path.join(entry, f"build-python-{key}")
+    module = os.path.join(build, target.name + suffix)
+    stamp = os.path.join(build, "module.built")
+    with _locked(entry):
+        if rebuild:
+            with contextlib.suppress(FileNotFoundError):
+                os.unlink(stamp)
+        if not (os.path.isfile(stamp) and os.path.isfile(module)):
+            print(f"gencoord: building the Python module of {target.name} for {python} (once; "
+                  f"cached in {entry})", file=sys.stderr, flush=True)
+            with contextlib.suppress(FileNotFoundError):
+                os.unlink(module)
+            project = _write_project(target, entry, rebuild)
+            log = os.path.join(entry, "build.log")
+            if not os.path.isfile(os.path.join(build, "CMakeCache.txt")):
+                _run_logged(_configure_command(layout, project, build)
+                            + ["-DGENCOORD_PYTHON_MODULE=ON", f"-DPYTHON_EXECUTABLE={python}"],
+                            log, "configuring the Python module's project (it needs pybind11 "
+                            "and Python's headers: Debian's pybind11-dev and python3-dev)",
+                            verbose)
+            _run_logged([shutil.which("cmake") or "cmake", "--build", build, "--target",
+                         "python_module"], log,
+                        f"compiling the Python module of {target.name}", verbose)
+            with open(stamp, "w", encoding="utf-8") as handle:
+                handle.write(module + "\n")
+    return module

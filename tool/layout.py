@@ -19,7 +19,8 @@ class Layout:
     @property
     def fingerprint_dirs(self) -> list[str]:
         """Folders whose content decides what a driver build produces."""
-        dirs = [os.path.join(self.root, d) for d in ("generator", "templates", "drivers", "tool")]
+        dirs = [os.path.join(self.root, d) for d in ("generator", "templates", "drivers", "tool",
+                                                     "bindings")]
         if self.source_dir:
             dirs += [os.path.join(self.source_dir, "runtime", "include"),
                      os.path.join(self.source_dir, "runtime", "src"),

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import argparse
 import os
+import shutil
 import subprocess
 import sys
 import textwrap
@@ -12,7 +13,7 @@ from generator import cli as generator_cli
 from generator.failures import report_failure
 
 from . import info, trajectory_svg
-from .driver_build import driver_program
+from .driver_build import driver_program, python_module
 from .errors import ToolError
 from .layout import find_layout
 from .model_file import load, split_settings
@@ -23,9 +24,10 @@ Generalized-coordinate dynamics from a model file.
   gencoord generate MODEL.py [-o DIR] [--set n=5]     the C++ header (see generate --help)
   gencoord simulate MODEL.py [options]                integrate it: summary, CSV, SVG
   gencoord crosscheck MODEL.py [options]              against the maximal penalty model
+  gencoord python MODEL.py [-o DIR]                   its Python module (docs/python.md)
   gencoord info MODEL.py                              what the model file declares
 
-simulate and crosscheck compile a small program for the model the first time (a CMake
+simulate, crosscheck and python compile a small program for the model the first time (a CMake
 project against the gencoord runtime; a C++17 compiler and CMake are needed) and keep it in a
 per-user cache ($GENCOORD_CACHE_DIR, else $XDG_CACHE_HOME/gencoord, else ~/.cache/gencoord)
 keyed by the model file's content and options, so the next run starts at once.
@@ -87,6 +89,15 @@ def _parser() -> argparse.ArgumentParser:
     _model_command(subparsers, "crosscheck",
                    "cross-check a model file against its maximal-coordinate penalty model",
                    _CROSSCHECK_EPILOG)
+    python_parser = _model_command(
+        subparsers, "python", "build a model file's Python extension module",
+        "Copies the module to DIR (default ./out) and prints its path: with DIR on sys.path,\n"
+        "`import <name>` gives its Params, metadata, kernels over NumPy arrays, rhs and jac\n"
+        "for scipy.integrate.solve_ivp, and simulate(). Needs pybind11 and Python's headers\n"
+        "(Debian: pybind11-dev, python3-dev) and NumPy where it is imported.")
+    python_parser.add_argument("--python", default=sys.executable,
+                               help="the Python interpreter to build for (default: the one "
+                                    "running gencoord, %(default)s)")
     info_parser = subparsers.add_parser(
         "info", help="what a model file declares",
         description="what a model file declares.\n\n" + _TRUST,
@@ -147,6 +158,19 @@ def _crosscheck(args, forwarded: list[str]) -> int:
     return _run(program, arguments)
 
 
+def _python(args) -> int:
+    loaded = load(args.model, split_settings(args.settings), args.name)
+    built = python_module(find_layout(), loaded.target, args.python, rebuild=args.rebuild,
+                          verbose=args.verbose)
+    os.makedirs(args.output_dir, exist_ok=True)
+    copy = os.path.join(args.output_dir, os.path.basename(built))
+    partial = copy + ".partial"
+    shutil.copyfile(built, partial)
+    os.replace(partial, copy)  # an importer never sees half a module
+    print(copy)
+    return 0
+
+
 def _info(args) -> int:
     loaded = load(args.model, split_settings(args.settings), args.name)
     print("\n".join(info.describe(loaded)))
@@ -162,13 +186,15 @@ def main(argv: list[str] | None = None) -> int:
     if args.command is None:
         parser.print_help()
         return 2
-    if forwarded and args.command == "info":
-        parser.error(f"info: unrecognized arguments: {' '.join(forwarded)}")
+    if forwarded and args.command in ("info", "python"):
+        parser.error(f"{args.command}: unrecognized arguments: {' '.join(forwarded)}")
     try:
         if args.command == "simulate":
             return _simulate(args, forwarded)
         if args.command == "crosscheck":
             return _crosscheck(args, forwarded)
+        if args.command == "python":
+            return _python(args)
         return _info(args)
     except ToolError as error:
         if not error.shown:

@@ -101,6 +101,26 @@ class GencoordCommandTest(unittest.TestCase):
                          "k = 40", "drive force"):
             self.assertIn(expected, result.stdout)
 
+    def test_6_python_builds_a_module_the_user_imports(self):
+        # Debian's interpreter: it has NumPy (scripts/setup.sh --python-modules)
+        result = self.gencoord("python", "crane.py", "--python", "/usr/bin/python3",
+                               "-o", "modules")
+        self.assertSucceeded(result)
+        module = Path(result.stdout.strip().splitlines()[-1])
+        self.assertEqual(module.parent, Path("modules"))
+        self.assertTrue((self.user / module).is_file())
+        script = ("import crane; p = crane.Params(l=1.6); "
+                  "print(crane.nq, crane.coordinate_names, p.l, "
+                  "crane.energy(crane.initial_q, crane.initial_v, params=p))")
+        imported = subprocess.run(["/usr/bin/python3", "-c", script], cwd=self.user / "modules",
+                                  capture_output=True, text=True, check=False)
+        self.assertEqual(imported.returncode, 0, imported.stderr)
+        self.assertTrue(imported.stdout.startswith("2 ('s', 'theta') 1.6 "), imported.stdout)
+        again = self.gencoord("python", "crane.py", "--python", "/usr/bin/python3",
+                              "-o", "modules")
+        self.assertSucceeded(again)
+        self.assertNotIn("building", again.stderr)
+
     def test_bad_input_is_one_clear_line(self):
         cases = [
             (("simulate", "crane.py", "--set", "nope=1"), r"nope: not an option or a parameter"),
