@@ -50,10 +50,16 @@ using CoordinateMotion = std::function<std::array<double, 3>(double)>;
 
 inline CoordinateMotion coordinate_motion(py::handle motion, const std::string& name) {
   if (PyCallable_Check(motion.ptr())) {
-    py::function function = py::reinterpret_borrow<py::function>(motion);
+    // the Script's copies are made and dropped without the GIL: share one reference, let go
+    // of it with the GIL held
+    const std::shared_ptr<py::function> function(
+        new py::function(py::reinterpret_borrow<py::function>(motion)), [](py::function* f) {
+          py::gil_scoped_acquire locked;
+          delete f;
+        });
     return [function, name](double t) {
       py::gil_scoped_acquire locked;
-      const py::object value = function(t);
+      const py::object value = (*function)(t);
       const Float64Array qva = float64_array(value, "scripted[" + name + "](t)", "(q, v, a)");
       if (qva.size() != 3)
         throw py::value_error("scripted[" + name + "](t): expected (q, v, a), got " +
