@@ -1,12 +1,14 @@
-"""Builds a driver (drivers/*.cpp) for one model file into the per-user cache, once.
+"""Builds the drivers (drivers/*.cpp) or the Python module of one model file into the
+per-user cache, once.
 
 A cache entry is a folder named after the model and a key: the hash of the model file, its
-options, gencoord's own sources (generator, templates, drivers, runtime), the Python and SymPy
-that generate, and the C++ compiler. It holds the generated header, a small CMake project that
-compiles the drivers against the runtime, its build, and a stamp written only after every
-driver built: without it the drivers are built again. A lock file serializes
-concurrent builds of the same entry. Files the model file imports are not part of the key;
-`--rebuild` forces a fresh build.
+options, gencoord's own sources (generator, templates, drivers, bindings, runtime), the Python
+and SymPy that generate, and the C++ compiler. It holds the generated header, a small CMake
+project that compiles the drivers and the module against the runtime, its builds (the
+drivers', and one per Python interpreter for the module), and in each build a stamp written
+only after everything it builds is complete: without it the build runs again. A lock file
+serializes concurrent builds of the same entry. Files the model file imports are not part of
+the key; `--rebuild` forces a fresh build.
 """
 
 from __future__ import annotations
@@ -150,22 +152,45 @@ def _configure_command(layout: Layout, project: str, build: str) -> list[str]:
 DRIVERS = ("simulate", "crosscheck")
 
 
-def driver_program(layout: Layout, target: ModelTarget, driver: str, *, rebuild: bool = False,
-                   verbose: bool = False) -> str:
-    """The path of `driver` built for `target`. The first call for a model builds every
-    driver at once (they compile in parallel and share the runtime's build)."""
+def _cached_build(layout: Layout, target: ModelTarget, build: str, outputs: list[str], *,
+                  cmake_targets: list[str], configure: list[str], what: str, rebuild: bool,
+                  verbose: bool, needs: str = "") -> None:
+    """Builds `cmake_targets` of the model's project in `build` unless a stamp there says that
+    `outputs` were built completely; the cache entry is locked meanwhile. `needs` says what
+    the configuration needs beyond a compiler and CMake, when it fails."""
     entry = entry_dir(layout, target)
-    build = os.path.join(entry, "build")
-    programs = [os.path.join(build, name) for name in DRIVERS]
-    stamp = os.path.join(entry, "drivers.built")
+    stamp = os.path.join(build, "outputs.built")
     with _locked(entry):
         if rebuild:
             with contextlib.suppress(FileNotFoundError):
                 os.unlink(stamp)
-        if not (os.path.isfile(stamp) and all(map(os.path.isfile, programs))):
-            _build_drivers(layout, target, entry, rebuild=rebuild, verbose=verbose)
-            with open(stamp, "w", encoding="utf-8") as handle:
-                handle.write("\n".join(programs) + "\n")
+        if os.path.isfile(stamp) and all(map(os.path.isfile, outputs)):
+            return
+        print(f"gencoord: building {what} (once; cached in {entry})", file=sys.stderr,
+              flush=True)
+        for output in outputs:
+            with contextlib.suppress(FileNotFoundError):
+                os.unlink(output)  # a link cut short would look up to date
+        project = _write_project(target, entry, rebuild)
+        log = os.path.join(entry, "build.log")
+        if not os.path.isfile(os.path.join(build, "CMakeCache.txt")):
+            _run_logged(_configure_command(layout, project, build) + configure, log,
+                        f"configuring the project of {what}{needs}", verbose)
+        jobs = str(max(1, os.cpu_count() or 1))
+        _run_logged([shutil.which("cmake") or "cmake", "--build", build, "-j", jobs, "--target",
+                     *cmake_targets], log, f"compiling {what}", verbose)
+        with open(stamp, "w", encoding="utf-8") as handle:
+            handle.write("\n".join(outputs) + "\n")
+
+
+def driver_program(layout: Layout, target: ModelTarget, driver: str, *, rebuild: bool = False,
+                   verbose: bool = False) -> str:
+    """The path of `driver` built for `target`. The first call for a model builds every
+    driver at once (they compile in parallel and share the runtime's build)."""
+    build = os.path.join(entry_dir(layout, target), "build")
+    _cached_build(layout, target, build, [os.path.join(build, name) for name in DRIVERS],
+                  cmake_targets=list(DRIVERS), configure=[],
+                  what=f"the programs for {target.name}", rebuild=rebuild, verbose=verbose)
     return os.path.join(build, driver)
 
 
@@ -183,29 +208,10 @@ def _write_project(target: ModelTarget, entry: str, rebuild: bool) -> str:
     return project
 
 
-def _build_drivers(layout: Layout, target: ModelTarget, entry: str, *, rebuild: bool,
-                   verbose: bool) -> None:
-    print(f"gencoord: building the programs for {target.name} (once; cached in {entry})",
-          file=sys.stderr, flush=True)
-    build = os.path.join(entry, "build")
-    for program in DRIVERS:
-        with contextlib.suppress(FileNotFoundError):
-            os.unlink(os.path.join(build, program))  # a link cut short would look up to date
-    project = _write_project(target, entry, rebuild)
-    log = os.path.join(entry, "build.log")
-    if not os.path.isfile(os.path.join(build, "CMakeCache.txt")):
-        _run_logged(_configure_command(layout, project, build), log,
-                    "configuring the driver project", verbose)
-    jobs = str(max(1, os.cpu_count() or 1))
-    _run_logged([shutil.which("cmake") or "cmake", "--build", build, "-j", jobs, "--target",
-                 *DRIVERS], log, f"compiling the programs for {target.name}", verbose)
-
-
 def python_module(layout: Layout, target: ModelTarget, python: str, *, rebuild: bool = False,
                   verbose: bool = False) -> str:
     """The path of the model's Python extension module built for `python` (an interpreter),
-    built into the cache entry the first time."""
-    entry = entry_dir(layout, target)
+    built into the cache entry the first time; one build folder per interpreter."""
     interpreter = subprocess.run(
         [python, "-c", "import sys, sysconfig; print(sys.version); "
                        "print(sysconfig.get_config_var('EXT_SUFFIX'))"],
@@ -214,29 +220,11 @@ def python_module(layout: Layout, target: ModelTarget, python: str, *, rebuild: 
         raise ToolError(f"cannot run the Python interpreter {python}; name one with --python")
     version, suffix = interpreter.stdout.splitlines()[-2:]
     key = hashlib.sha256((os.path.realpath(python) + "\0" + version).encode()).hexdigest()[:12]
-    build = os.path.join(entry, f"build-python-{key}")
+    build = os.path.join(entry_dir(layout, target), f"build-python-{key}")
     module = os.path.join(build, target.name + suffix)
-    stamp = os.path.join(build, "module.built")
-    with _locked(entry):
-        if rebuild:
-            with contextlib.suppress(FileNotFoundError):
-                os.unlink(stamp)
-        if not (os.path.isfile(stamp) and os.path.isfile(module)):
-            print(f"gencoord: building the Python module of {target.name} for {python} (once; "
-                  f"cached in {entry})", file=sys.stderr, flush=True)
-            with contextlib.suppress(FileNotFoundError):
-                os.unlink(module)
-            project = _write_project(target, entry, rebuild)
-            log = os.path.join(entry, "build.log")
-            if not os.path.isfile(os.path.join(build, "CMakeCache.txt")):
-                _run_logged(_configure_command(layout, project, build)
-                            + ["-DGENCOORD_PYTHON_MODULE=ON", f"-DPYTHON_EXECUTABLE={python}"],
-                            log, "configuring the Python module's project (it needs pybind11 "
-                            "and Python's headers: Debian's pybind11-dev and python3-dev)",
-                            verbose)
-            _run_logged([shutil.which("cmake") or "cmake", "--build", build, "--target",
-                         "python_module"], log,
-                        f"compiling the Python module of {target.name}", verbose)
-            with open(stamp, "w", encoding="utf-8") as handle:
-                handle.write(module + "\n")
+    _cached_build(layout, target, build, [module], cmake_targets=["python_module"],
+                  configure=["-DGENCOORD_PYTHON_MODULE=ON", f"-DPYTHON_EXECUTABLE={python}"],
+                  what=f"the Python module of {target.name} for {python}",
+                  needs=" (it needs pybind11 and Python's headers: Debian's pybind11-dev and "
+                        "python3-dev)", rebuild=rebuild, verbose=verbose)
     return module

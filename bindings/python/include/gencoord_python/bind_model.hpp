@@ -8,11 +8,7 @@
 #include <array>
 #include <string>
 #include <tuple>
-#include <vector>
 
-#include "gencoord/acceleration_jacobians.hpp"
-#include "gencoord/dynamics.hpp"
-#include "gencoord/errors.hpp"
 #include "gencoord/integrate/integrator.hpp"
 #include "gencoord/model_traits.hpp"
 #include "gencoord_python/arrays.hpp"
@@ -51,12 +47,8 @@ void bind_metadata(py::module_& module) {
   module.attr("initial_v") = read_only_array(M::initial_v);
   module.attr("forces_have_potential") = M::forces_have_potential;
   module.attr("recursive_qddot") = M::recursive_qddot;
-  std::vector<std::string> integrators;
-  for (Integrator integrator :
-       {Integrator::ForwardEuler, Integrator::SymplecticEuler, Integrator::RK4,
-        Integrator::BackwardEuler, Integrator::Trapezoidal, Integrator::ImplicitMidpoint})
-    integrators.emplace_back(to_string(integrator));
-  module.attr("integrators") = string_tuple(integrators);
+  // the names parse_integrator() accepts, in the runtime's order
+  module.attr("integrators") = py::tuple(py::str(integrator_names()).attr("split")(", "));
 }
 
 namespace detail {

@@ -110,7 +110,7 @@ Script script_of(py::handle scripted) {
 
 template <class M>
 QVec<M> state_vector(py::handle value, const char* name, const std::array<double, M::nq>& initial) {
-  if (value.is_none()) return Eigen::Map<const QVec<M>>(initial.data());
+  if (value.is_none()) return to_vector<QVec<M>>(initial.data());
   const VectorInput input = vector_input(value, name, M::nq);
   if (input.batch >= 0)
     throw py::value_error(std::string(name) + ": expected one state of shape (" +
