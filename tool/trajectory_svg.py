@@ -109,6 +109,13 @@ def format_tick(value: float, step: float) -> str:
     return "0" if float(text) == 0 else text.replace("-", "\u2212")
 
 
+def time_axis(t: list[float]) -> tuple[float, float, list[float]]:
+    """Bounds t[0] .. t[-1] of a time axis (one second long when they are equal) and its ticks."""
+    if t[-1] > t[0]:
+        return t[0], t[-1], ticks_within(t[0], t[-1], nice_step(t[-1] - t[0]))
+    return t[0], t[0] + 1.0, ticks_within(t[0], t[0] + 1.0, nice_step(1.0))
+
+
 def padded_range(values: list[float], fraction: float = 0.05) -> tuple[float, float]:
     """[min, max] of `values` widened by `fraction` of the span (by 1 when all are equal)."""
     lo, hi = min(values), max(values)
@@ -292,19 +299,28 @@ def legend(trajectory: Trajectory) -> list[str]:
     left, top, _, height = PATH_RECT
     y, x, parts = top + height + 72, left - 60, ['<g class="legend">']
     for k, particle in enumerate(trajectory.particles):
-        colour = COLOURS[k % len(COLOURS)]
-        parts += [element("line", x1=x, y1=y - 4, x2=x + 16, y2=y - 4, stroke=colour,
-                          stroke_width=3),
-                  element("text", particle, x=x + 20, y=y, fill=colour)]
-        x += 20 + text_width(particle) + 18
+        parts += legend_key(x, y, COLOURS[k % len(COLOURS)], particle)
+        x += key_width(particle)
     for point in trajectory.fixed_points:
         label = display_name(point) + (" (moving fixed point)" if is_moving(trajectory, point)
                                        else " (fixed point)")
         parts += [element("circle", cx=x + 8, cy=y - 4, r=5, fill="white", stroke=FIXED_COLOUR,
                           stroke_width=2),
                   element("text", label, x=x + 20, y=y, fill=FIXED_COLOUR)]
-        x += 20 + text_width(label) + 18
+        x += key_width(label)
     return parts + ["</g>"]
+
+
+def legend_key(x: float, y: float, colour: str, label: str) -> list[str]:
+    """A short thick line in `colour` followed by `label`, from x on the text baseline y."""
+    return [element("line", x1=x, y1=y - 4, x2=x + 16, y2=y - 4, stroke=colour,
+                    stroke_width=3),
+            element("text", label, x=x + 20, y=y, fill=colour)]
+
+
+def key_width(label: str) -> float:
+    """How far the next legend entry starts after one labelled `label`."""
+    return 20 + text_width(label) + 18
 
 
 def text_width(text: str) -> float:
@@ -346,15 +362,15 @@ def error_axis(values: list[float]) -> tuple[float, float, float]:
 
 def energy_panel(trajectory: Trajectory, error: EnergyError) -> list[str]:
     t = trajectory.t
-    t_step = nice_step((t[-1] - t[0]) or 1.0)
+    t0, t1, t_ticks = time_axis(t)
     lo, hi, step = error_axis(error.values)
-    frame = Frame((t[0], t[-1] if t[-1] > t[0] else t[0] + 1.0, lo, hi), ENERGY_RECT)
+    frame = Frame((t0, t1, lo, hi), ENERGY_RECT)
     y_ticks = ticks_within(lo, hi, step)
     scale = decade_of(y_ticks)
     xs, ys = envelope(t, error.values)
     return ['<g id="energy-panel">',
-            *axes(frame, ticks_within(frame.bounds[0], frame.bounds[1], t_step), y_ticks,
-                  "t (s)", scaled_label(error.label, scale), y_scale=scale),
+            *axes(frame, t_ticks, y_ticks, "t (s)", scaled_label(error.label, scale),
+                  y_scale=scale),
             element("line", x1=ENERGY_RECT[0], y1=f"{frame.py(0):.1f}",
                     x2=ENERGY_RECT[0] + ENERGY_RECT[2], y2=f"{frame.py(0):.1f}",
                     stroke="#999", stroke_dasharray="4 3"),
