@@ -63,6 +63,10 @@ struct BeadOnRotatingHoop {
   static constexpr int num_fixed_points = 1;
   static constexpr std::array<const char*, nq> coordinate_names{{"theta"}};
   static constexpr int num_parameters = 5;
+  /// Control inputs u: parameters the caller changes while the model runs (their values
+  /// live in Params; Params::inputs() and set_inputs() read and write them in this order).
+  static constexpr int num_inputs = 0;
+  static constexpr std::array<const char*, num_inputs> input_names{{}};
   /// A suggested initial state, from the model file.
   static constexpr std::array<double, nq> initial_q{{0.3}};
   static constexpr std::array<double, nq> initial_v{{0.0}};
@@ -92,6 +96,8 @@ struct BeadOnRotatingHoop {
   using ParticleVector = Eigen::Matrix<Scalar, num_particles, 1>;
   template <typename Scalar>
   using FixedPointVector = Eigen::Matrix<Scalar, dim * num_fixed_points, 1>;
+  template <typename Scalar>
+  using InputMatrix = Eigen::Matrix<Scalar, nq, num_inputs>;
 
   /// Model parameters; the defaults are the model file's.
   struct Params {
@@ -101,7 +107,13 @@ struct BeadOnRotatingHoop {
     double g = 9.81;  ///< gravitational acceleration (m/s^2)
     double c = 0.0;  ///< damping of the bead relative to the hoop (N m s/rad)
 
-    /// The parameter called `key`, or nullptr: lets tools set parameters by name.
+    /// The control inputs' values, in the order of input_names.
+    std::array<double, 0> inputs() const { return {{}}; }
+    /// Sets the control inputs, given in the order of input_names.
+    void set_inputs(const std::array<double, 0>& /*values*/) {
+    }
+
+    /// The parameter or input called `key`, or nullptr: lets tools set them by name.
     double* find(std::string_view key) {
       if (key == "R") return &R;
       if (key == "omega") return &omega;
@@ -123,6 +135,8 @@ struct BeadOnRotatingHoop {
       "bead mass (kg)",
       "gravitational acceleration (m/s^2)",
       "damping of the bead relative to the hoop (N m s/rad)"
+  }};
+  static constexpr std::array<const char*, num_inputs> input_descriptions{{
   }};
 
   /// Reduced mass matrix Mt = J^T M J (symmetric).

@@ -12,7 +12,7 @@
 //
 // Total ops: 351
 // Intermediate terms (125)
-// Output terms (68)
+// Output terms (70)
 #pragma once
 
 #include <array>
@@ -62,6 +62,10 @@ struct CartPole {
   static constexpr int num_fixed_points = 0;
   static constexpr std::array<const char*, nq> coordinate_names{{"s", "theta"}};
   static constexpr int num_parameters = 5;
+  /// Control inputs u: parameters the caller changes while the model runs (their values
+  /// live in Params; Params::inputs() and set_inputs() read and write them in this order).
+  static constexpr int num_inputs = 1;
+  static constexpr std::array<const char*, num_inputs> input_names{{"u"}};
   /// A suggested initial state, from the model file.
   static constexpr std::array<double, nq> initial_q{{0.0, 0.2}};
   static constexpr std::array<double, nq> initial_v{{0.0, 0.0}};
@@ -91,6 +95,8 @@ struct CartPole {
   using ParticleVector = Eigen::Matrix<Scalar, num_particles, 1>;
   template <typename Scalar>
   using FixedPointVector = Eigen::Matrix<Scalar, dim * num_fixed_points, 1>;
+  template <typename Scalar>
+  using InputMatrix = Eigen::Matrix<Scalar, nq, num_inputs>;
 
   /// Model parameters; the defaults are the model file's.
   struct Params {
@@ -100,7 +106,14 @@ struct CartPole {
     double g = 9.81;  ///< gravitational acceleration (m/s^2)
     double u = 0.0;  ///< horizontal force applied to the cart (N)
 
-    /// The parameter called `key`, or nullptr: lets tools set parameters by name.
+    /// The control inputs' values, in the order of input_names.
+    std::array<double, 1> inputs() const { return {{u}}; }
+    /// Sets the control inputs, given in the order of input_names.
+    void set_inputs(const std::array<double, 1>& values) {
+      u = values[0];
+    }
+
+    /// The parameter or input called `key`, or nullptr: lets tools set them by name.
     double* find(std::string_view key) {
       if (key == "l") return &l;
       if (key == "m_cart") return &m_cart;
@@ -122,6 +135,9 @@ struct CartPole {
       "cart mass (kg)",
       "pole tip mass (kg)",
       "gravitational acceleration (m/s^2)",
+      "horizontal force applied to the cart (N)"
+  }};
+  static constexpr std::array<const char*, num_inputs> input_descriptions{{
       "horizontal force applied to the cart (N)"
   }};
 
@@ -407,6 +423,25 @@ struct CartPole {
     (*dr_dv)(0, 1) = -tmp124;
     (*dr_dv)(1, 0) = Scalar(0);
     (*dr_dv)(1, 1) = Scalar(0);
+  }
+
+  /// Input matrix B = dFt/du: the generalized force per unit of each control input (Ft = B u + the
+  /// rest when u enters linearly).
+  /// \param[in] q  generalized coordinates (nq = 2)
+  /// \param[in] v  generalized velocities (nq = 2)
+  /// \param[in] t  time
+  /// \param[in] params  model parameters
+  /// \return B = dFt/du (nq x num_inputs)
+  /// Ops: 0
+  template <typename Scalar>
+  static InputMatrix<Scalar> input_matrix(const QVector<Scalar>& /*q*/,
+                                          const QVector<Scalar>& /*v*/,
+                                          const Scalar& /*t*/,
+                                          const Params& /*params*/) {
+    InputMatrix<Scalar> result;
+    result(0) = Scalar(1);
+    result(1) = Scalar(0);
+    return result;
   }
 
   /// Kinetic energy T = 1/2 xdot^T M xdot.

@@ -67,6 +67,10 @@ struct DoublePendulum {
   static constexpr int num_fixed_points = 1;
   static constexpr std::array<const char*, nq> coordinate_names{{"theta1", "theta2"}};
   static constexpr int num_parameters = 5;
+  /// Control inputs u: parameters the caller changes while the model runs (their values
+  /// live in Params; Params::inputs() and set_inputs() read and write them in this order).
+  static constexpr int num_inputs = 0;
+  static constexpr std::array<const char*, num_inputs> input_names{{}};
   /// A suggested initial state, from the model file.
   static constexpr std::array<double, nq> initial_q{{1.5707963267948966, 0.0}};
   static constexpr std::array<double, nq> initial_v{{0.0, 0.0}};
@@ -96,6 +100,8 @@ struct DoublePendulum {
   using ParticleVector = Eigen::Matrix<Scalar, num_particles, 1>;
   template <typename Scalar>
   using FixedPointVector = Eigen::Matrix<Scalar, dim * num_fixed_points, 1>;
+  template <typename Scalar>
+  using InputMatrix = Eigen::Matrix<Scalar, nq, num_inputs>;
 
   /// Model parameters; the defaults are the model file's.
   struct Params {
@@ -105,7 +111,13 @@ struct DoublePendulum {
     double m2 = 1.0;  ///< second bob mass (kg)
     double g = 9.81;  ///< gravitational acceleration (m/s^2)
 
-    /// The parameter called `key`, or nullptr: lets tools set parameters by name.
+    /// The control inputs' values, in the order of input_names.
+    std::array<double, 0> inputs() const { return {{}}; }
+    /// Sets the control inputs, given in the order of input_names.
+    void set_inputs(const std::array<double, 0>& /*values*/) {
+    }
+
+    /// The parameter or input called `key`, or nullptr: lets tools set them by name.
     double* find(std::string_view key) {
       if (key == "l1") return &l1;
       if (key == "l2") return &l2;
@@ -128,6 +140,8 @@ struct DoublePendulum {
       "first bob mass (kg)",
       "second bob mass (kg)",
       "gravitational acceleration (m/s^2)"
+  }};
+  static constexpr std::array<const char*, num_inputs> input_descriptions{{
   }};
 
   /// Reduced mass matrix Mt = J^T M J (symmetric).

@@ -64,6 +64,10 @@ struct FallingCat {
   static constexpr int num_fixed_points = 0;
   static constexpr std::array<const char*, nq> coordinate_names{{"x", "y", "psi", "alpha", "beta"}};
   static constexpr int num_parameters = 6;
+  /// Control inputs u: parameters the caller changes while the model runs (their values
+  /// live in Params; Params::inputs() and set_inputs() read and write them in this order).
+  static constexpr int num_inputs = 0;
+  static constexpr std::array<const char*, num_inputs> input_names{{}};
   /// A suggested initial state, from the model file.
   static constexpr std::array<double, nq> initial_q{{0.0, 0.0, 0.0, 0.5, -0.5}};
   static constexpr std::array<double, nq> initial_v{{0.0, 0.0, 0.0, 0.0, 0.0}};
@@ -94,6 +98,8 @@ struct FallingCat {
   using ParticleVector = Eigen::Matrix<Scalar, num_particles, 1>;
   template <typename Scalar>
   using FixedPointVector = Eigen::Matrix<Scalar, dim * num_fixed_points, 1>;
+  template <typename Scalar>
+  using InputMatrix = Eigen::Matrix<Scalar, nq, num_inputs>;
 
   /// Model parameters; the defaults are the model file's.
   struct Params {
@@ -104,7 +110,13 @@ struct FallingCat {
     double m_front = 0.5;  ///< mass at the front tip (kg)
     double m_rear = 0.5;  ///< mass at the rear tip (kg)
 
-    /// The parameter called `key`, or nullptr: lets tools set parameters by name.
+    /// The control inputs' values, in the order of input_names.
+    std::array<double, 0> inputs() const { return {{}}; }
+    /// Sets the control inputs, given in the order of input_names.
+    void set_inputs(const std::array<double, 0>& /*values*/) {
+    }
+
+    /// The parameter or input called `key`, or nullptr: lets tools set them by name.
     double* find(std::string_view key) {
       if (key == "L") return &L;
       if (key == "l_front") return &l_front;
@@ -132,6 +144,8 @@ struct FallingCat {
       "mass at each end of the middle link (kg)",
       "mass at the front tip (kg)",
       "mass at the rear tip (kg)"
+  }};
+  static constexpr std::array<const char*, num_inputs> input_descriptions{{
   }};
 
   /// Reduced mass matrix Mt = J^T M J (symmetric).

@@ -65,6 +65,10 @@ struct HeavyTop {
   static constexpr int num_fixed_points = 0;
   static constexpr std::array<const char*, nq> coordinate_names{{"phi", "theta", "psi"}};
   static constexpr int num_parameters = 5;
+  /// Control inputs u: parameters the caller changes while the model runs (their values
+  /// live in Params; Params::inputs() and set_inputs() read and write them in this order).
+  static constexpr int num_inputs = 0;
+  static constexpr std::array<const char*, num_inputs> input_names{{}};
   /// A suggested initial state, from the model file.
   static constexpr std::array<double, nq> initial_q{{0.0, 0.5, 0.0}};
   static constexpr std::array<double, nq> initial_v{{0.0, 0.0, 150.0}};
@@ -95,6 +99,8 @@ struct HeavyTop {
   using ParticleVector = Eigen::Matrix<Scalar, num_particles, 1>;
   template <typename Scalar>
   using FixedPointVector = Eigen::Matrix<Scalar, dim * num_fixed_points, 1>;
+  template <typename Scalar>
+  using InputMatrix = Eigen::Matrix<Scalar, nq, num_inputs>;
 
   /// Model parameters; the defaults are the model file's.
   struct Params {
@@ -104,7 +110,13 @@ struct HeavyTop {
     double h = 0.02;  ///< thickness of the disc (m)
     double g = 9.81;  ///< gravitational acceleration (m/s^2)
 
-    /// The parameter called `key`, or nullptr: lets tools set parameters by name.
+    /// The control inputs' values, in the order of input_names.
+    std::array<double, 0> inputs() const { return {{}}; }
+    /// Sets the control inputs, given in the order of input_names.
+    void set_inputs(const std::array<double, 0>& /*values*/) {
+    }
+
+    /// The parameter or input called `key`, or nullptr: lets tools set them by name.
     double* find(std::string_view key) {
       if (key == "m") return &m;
       if (key == "d") return &d;
@@ -128,6 +140,8 @@ struct HeavyTop {
       "radius of the disc (m)",
       "thickness of the disc (m)",
       "gravitational acceleration (m/s^2)"
+  }};
+  static constexpr std::array<const char*, num_inputs> input_descriptions{{
   }};
 
   /// Reduced mass matrix Mt = J^T M J (symmetric).

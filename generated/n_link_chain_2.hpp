@@ -64,6 +64,10 @@ struct NLinkChain2 {
   static constexpr int num_fixed_points = 1;
   static constexpr std::array<const char*, nq> coordinate_names{{"theta1", "theta2"}};
   static constexpr int num_parameters = 5;
+  /// Control inputs u: parameters the caller changes while the model runs (their values
+  /// live in Params; Params::inputs() and set_inputs() read and write them in this order).
+  static constexpr int num_inputs = 0;
+  static constexpr std::array<const char*, num_inputs> input_names{{}};
   /// A suggested initial state, from the model file.
   static constexpr std::array<double, nq> initial_q{{0.5, 0.5}};
   static constexpr std::array<double, nq> initial_v{{0.0, 0.0}};
@@ -93,6 +97,8 @@ struct NLinkChain2 {
   using ParticleVector = Eigen::Matrix<Scalar, num_particles, 1>;
   template <typename Scalar>
   using FixedPointVector = Eigen::Matrix<Scalar, dim * num_fixed_points, 1>;
+  template <typename Scalar>
+  using InputMatrix = Eigen::Matrix<Scalar, nq, num_inputs>;
 
   /// Model parameters; the defaults are the model file's.
   struct Params {
@@ -102,7 +108,13 @@ struct NLinkChain2 {
     double l2 = 1.0;  ///< length of link 2 (m)
     double m2 = 1.0;  ///< mass at the end of link 2 (kg)
 
-    /// The parameter called `key`, or nullptr: lets tools set parameters by name.
+    /// The control inputs' values, in the order of input_names.
+    std::array<double, 0> inputs() const { return {{}}; }
+    /// Sets the control inputs, given in the order of input_names.
+    void set_inputs(const std::array<double, 0>& /*values*/) {
+    }
+
+    /// The parameter or input called `key`, or nullptr: lets tools set them by name.
     double* find(std::string_view key) {
       if (key == "g") return &g;
       if (key == "l1") return &l1;
@@ -125,6 +137,8 @@ struct NLinkChain2 {
       "mass at the end of link 1 (kg)",
       "length of link 2 (m)",
       "mass at the end of link 2 (kg)"
+  }};
+  static constexpr std::array<const char*, num_inputs> input_descriptions{{
   }};
 
   /// Reduced mass matrix Mt = J^T M J (symmetric).

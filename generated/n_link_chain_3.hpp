@@ -66,6 +66,10 @@ struct NLinkChain3 {
   static constexpr int num_fixed_points = 1;
   static constexpr std::array<const char*, nq> coordinate_names{{"theta1", "theta2", "theta3"}};
   static constexpr int num_parameters = 7;
+  /// Control inputs u: parameters the caller changes while the model runs (their values
+  /// live in Params; Params::inputs() and set_inputs() read and write them in this order).
+  static constexpr int num_inputs = 0;
+  static constexpr std::array<const char*, num_inputs> input_names{{}};
   /// A suggested initial state, from the model file.
   static constexpr std::array<double, nq> initial_q{{0.5, 0.5, 0.5}};
   static constexpr std::array<double, nq> initial_v{{0.0, 0.0, 0.0}};
@@ -95,6 +99,8 @@ struct NLinkChain3 {
   using ParticleVector = Eigen::Matrix<Scalar, num_particles, 1>;
   template <typename Scalar>
   using FixedPointVector = Eigen::Matrix<Scalar, dim * num_fixed_points, 1>;
+  template <typename Scalar>
+  using InputMatrix = Eigen::Matrix<Scalar, nq, num_inputs>;
 
   /// Model parameters; the defaults are the model file's.
   struct Params {
@@ -106,7 +112,13 @@ struct NLinkChain3 {
     double l3 = 1.0;  ///< length of link 3 (m)
     double m3 = 1.0;  ///< mass at the end of link 3 (kg)
 
-    /// The parameter called `key`, or nullptr: lets tools set parameters by name.
+    /// The control inputs' values, in the order of input_names.
+    std::array<double, 0> inputs() const { return {{}}; }
+    /// Sets the control inputs, given in the order of input_names.
+    void set_inputs(const std::array<double, 0>& /*values*/) {
+    }
+
+    /// The parameter or input called `key`, or nullptr: lets tools set them by name.
     double* find(std::string_view key) {
       if (key == "g") return &g;
       if (key == "l1") return &l1;
@@ -134,6 +146,8 @@ struct NLinkChain3 {
       "mass at the end of link 2 (kg)",
       "length of link 3 (m)",
       "mass at the end of link 3 (kg)"
+  }};
+  static constexpr std::array<const char*, num_inputs> input_descriptions{{
   }};
 
   /// Reduced mass matrix Mt = J^T M J (symmetric).

@@ -65,6 +65,10 @@ struct Pendulum3d {
   static constexpr int num_fixed_points = 1;
   static constexpr std::array<const char*, nq> coordinate_names{{"theta"}};
   static constexpr int num_parameters = 4;
+  /// Control inputs u: parameters the caller changes while the model runs (their values
+  /// live in Params; Params::inputs() and set_inputs() read and write them in this order).
+  static constexpr int num_inputs = 0;
+  static constexpr std::array<const char*, num_inputs> input_names{{}};
   /// A suggested initial state, from the model file.
   static constexpr std::array<double, nq> initial_q{{0.5}};
   static constexpr std::array<double, nq> initial_v{{0.0}};
@@ -94,6 +98,8 @@ struct Pendulum3d {
   using ParticleVector = Eigen::Matrix<Scalar, num_particles, 1>;
   template <typename Scalar>
   using FixedPointVector = Eigen::Matrix<Scalar, dim * num_fixed_points, 1>;
+  template <typename Scalar>
+  using InputMatrix = Eigen::Matrix<Scalar, nq, num_inputs>;
 
   /// Model parameters; the defaults are the model file's.
   struct Params {
@@ -102,7 +108,13 @@ struct Pendulum3d {
     double m_pivot = 1.0;  ///< pivot mass, used by the maximal model (kg)
     double g = 9.81;  ///< gravitational acceleration (m/s^2)
 
-    /// The parameter called `key`, or nullptr: lets tools set parameters by name.
+    /// The control inputs' values, in the order of input_names.
+    std::array<double, 0> inputs() const { return {{}}; }
+    /// Sets the control inputs, given in the order of input_names.
+    void set_inputs(const std::array<double, 0>& /*values*/) {
+    }
+
+    /// The parameter or input called `key`, or nullptr: lets tools set them by name.
     double* find(std::string_view key) {
       if (key == "l") return &l;
       if (key == "m") return &m;
@@ -122,6 +134,8 @@ struct Pendulum3d {
       "bob mass (kg)",
       "pivot mass, used by the maximal model (kg)",
       "gravitational acceleration (m/s^2)"
+  }};
+  static constexpr std::array<const char*, num_inputs> input_descriptions{{
   }};
 
   /// Reduced mass matrix Mt = J^T M J (symmetric).

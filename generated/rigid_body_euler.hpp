@@ -95,6 +95,10 @@ struct RigidBodyEuler {
   static constexpr std::array<const char*, nq> coordinate_names{{"x", "y", "z", "yaw", "pitch",
       "roll"}};
   static constexpr int num_parameters = 8;
+  /// Control inputs u: parameters the caller changes while the model runs (their values
+  /// live in Params; Params::inputs() and set_inputs() read and write them in this order).
+  static constexpr int num_inputs = 0;
+  static constexpr std::array<const char*, num_inputs> input_names{{}};
   /// A suggested initial state, from the model file.
   static constexpr std::array<double, nq> initial_q{{0.0, 0.0, 0.0, 0.0, 0.2, 0.0}};
   static constexpr std::array<double, nq> initial_v{{0.0, 0.0, 0.0, 0.3, 1.0, 2.0}};
@@ -125,6 +129,8 @@ struct RigidBodyEuler {
   using ParticleVector = Eigen::Matrix<Scalar, num_particles, 1>;
   template <typename Scalar>
   using FixedPointVector = Eigen::Matrix<Scalar, dim * num_fixed_points, 1>;
+  template <typename Scalar>
+  using InputMatrix = Eigen::Matrix<Scalar, nq, num_inputs>;
 
   /// Model parameters; the defaults are the model file's.
   struct Params {
@@ -137,7 +143,13 @@ struct RigidBodyEuler {
     double b = 0.641;  ///< side b of the box (m)
     double c = 0.29;  ///< side c of the box (m)
 
-    /// The parameter called `key`, or nullptr: lets tools set parameters by name.
+    /// The control inputs' values, in the order of input_names.
+    std::array<double, 0> inputs() const { return {{}}; }
+    /// Sets the control inputs, given in the order of input_names.
+    void set_inputs(const std::array<double, 0>& /*values*/) {
+    }
+
+    /// The parameter or input called `key`, or nullptr: lets tools set them by name.
     double* find(std::string_view key) {
       if (key == "g") return &g;
       if (key == "m") return &m;
@@ -170,6 +182,8 @@ struct RigidBodyEuler {
       "side a of the box (m)",
       "side b of the box (m)",
       "side c of the box (m)"
+  }};
+  static constexpr std::array<const char*, num_inputs> input_descriptions{{
   }};
 
   /// Reduced mass matrix Mt = J^T M J (symmetric).
@@ -5979,6 +5993,10 @@ struct RigidBodyEulerYzx {
   static constexpr std::array<const char*, nq> coordinate_names{{"x", "y", "z", "heading",
       "attitude", "bank"}};
   static constexpr int num_parameters = 8;
+  /// Control inputs u: parameters the caller changes while the model runs (their values
+  /// live in Params; Params::inputs() and set_inputs() read and write them in this order).
+  static constexpr int num_inputs = 0;
+  static constexpr std::array<const char*, num_inputs> input_names{{}};
   /// A suggested initial state, from the model file.
   static constexpr std::array<double, nq> initial_q{{0.0, 0.0, 0.0, 0.0, 0.0, 0.0}};
   static constexpr std::array<double, nq> initial_v{{0.0, 0.0, 0.0, 0.0, 0.0, 0.0}};
@@ -6009,6 +6027,8 @@ struct RigidBodyEulerYzx {
   using ParticleVector = Eigen::Matrix<Scalar, num_particles, 1>;
   template <typename Scalar>
   using FixedPointVector = Eigen::Matrix<Scalar, dim * num_fixed_points, 1>;
+  template <typename Scalar>
+  using InputMatrix = Eigen::Matrix<Scalar, nq, num_inputs>;
 
   /// Model parameters: one type for every chart of the atlas (RigidBodyEuler's).
   using Params = RigidBodyEuler::Params;
@@ -6032,6 +6052,8 @@ struct RigidBodyEulerYzx {
       "side a of the box (m)",
       "side b of the box (m)",
       "side c of the box (m)"
+  }};
+  static constexpr std::array<const char*, num_inputs> input_descriptions{{
   }};
 
   /// Reduced mass matrix Mt = J^T M J (symmetric).

@@ -84,6 +84,10 @@ struct SphericalPendulum {
   static constexpr int num_fixed_points = 1;
   static constexpr std::array<const char*, nq> coordinate_names{{"theta", "phi"}};
   static constexpr int num_parameters = 3;
+  /// Control inputs u: parameters the caller changes while the model runs (their values
+  /// live in Params; Params::inputs() and set_inputs() read and write them in this order).
+  static constexpr int num_inputs = 0;
+  static constexpr std::array<const char*, num_inputs> input_names{{}};
   /// A suggested initial state, from the model file.
   static constexpr std::array<double, nq> initial_q{{1.0, 0.0}};
   static constexpr std::array<double, nq> initial_v{{0.0, 2.0}};
@@ -113,6 +117,8 @@ struct SphericalPendulum {
   using ParticleVector = Eigen::Matrix<Scalar, num_particles, 1>;
   template <typename Scalar>
   using FixedPointVector = Eigen::Matrix<Scalar, dim * num_fixed_points, 1>;
+  template <typename Scalar>
+  using InputMatrix = Eigen::Matrix<Scalar, nq, num_inputs>;
 
   /// Model parameters; the defaults are the model file's.
   struct Params {
@@ -120,7 +126,13 @@ struct SphericalPendulum {
     double m = 1.0;  ///< bob mass (kg)
     double g = 9.81;  ///< gravitational acceleration (m/s^2)
 
-    /// The parameter called `key`, or nullptr: lets tools set parameters by name.
+    /// The control inputs' values, in the order of input_names.
+    std::array<double, 0> inputs() const { return {{}}; }
+    /// Sets the control inputs, given in the order of input_names.
+    void set_inputs(const std::array<double, 0>& /*values*/) {
+    }
+
+    /// The parameter or input called `key`, or nullptr: lets tools set them by name.
     double* find(std::string_view key) {
       if (key == "l") return &l;
       if (key == "m") return &m;
@@ -138,6 +150,8 @@ struct SphericalPendulum {
       "rod length (m)",
       "bob mass (kg)",
       "gravitational acceleration (m/s^2)"
+  }};
+  static constexpr std::array<const char*, num_inputs> input_descriptions{{
   }};
 
   /// Reduced mass matrix Mt = J^T M J (symmetric).
@@ -1232,6 +1246,10 @@ struct SphericalPendulumPoleX {
   static constexpr int num_fixed_points = 1;
   static constexpr std::array<const char*, nq> coordinate_names{{"alpha", "beta"}};
   static constexpr int num_parameters = 3;
+  /// Control inputs u: parameters the caller changes while the model runs (their values
+  /// live in Params; Params::inputs() and set_inputs() read and write them in this order).
+  static constexpr int num_inputs = 0;
+  static constexpr std::array<const char*, num_inputs> input_names{{}};
   /// A suggested initial state, from the model file.
   static constexpr std::array<double, nq> initial_q{{1.5707963267948966, -1.5707963267948966}};
   static constexpr std::array<double, nq> initial_v{{0.0, 0.0}};
@@ -1261,6 +1279,8 @@ struct SphericalPendulumPoleX {
   using ParticleVector = Eigen::Matrix<Scalar, num_particles, 1>;
   template <typename Scalar>
   using FixedPointVector = Eigen::Matrix<Scalar, dim * num_fixed_points, 1>;
+  template <typename Scalar>
+  using InputMatrix = Eigen::Matrix<Scalar, nq, num_inputs>;
 
   /// Model parameters: one type for every chart of the atlas (SphericalPendulum's).
   using Params = SphericalPendulum::Params;
@@ -1274,6 +1294,8 @@ struct SphericalPendulumPoleX {
       "rod length (m)",
       "bob mass (kg)",
       "gravitational acceleration (m/s^2)"
+  }};
+  static constexpr std::array<const char*, num_inputs> input_descriptions{{
   }};
 
   /// Reduced mass matrix Mt = J^T M J (symmetric).

@@ -95,6 +95,10 @@ struct StiffChain10 {
   static constexpr std::array<const char*, nq> coordinate_names{{"phi1", "phi2", "phi3", "phi4",
       "phi5", "phi6", "phi7", "phi8", "phi9", "phi10"}};
   static constexpr int num_parameters = 5;
+  /// Control inputs u: parameters the caller changes while the model runs (their values
+  /// live in Params; Params::inputs() and set_inputs() read and write them in this order).
+  static constexpr int num_inputs = 0;
+  static constexpr std::array<const char*, num_inputs> input_names{{}};
   /// A suggested initial state, from the model file.
   static constexpr std::array<double, nq> initial_q{{0.3, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0,
       0.0}};
@@ -127,6 +131,8 @@ struct StiffChain10 {
   using ParticleVector = Eigen::Matrix<Scalar, num_particles, 1>;
   template <typename Scalar>
   using FixedPointVector = Eigen::Matrix<Scalar, dim * num_fixed_points, 1>;
+  template <typename Scalar>
+  using InputMatrix = Eigen::Matrix<Scalar, nq, num_inputs>;
 
   /// Model parameters; the defaults are the model file's.
   struct Params {
@@ -136,7 +142,13 @@ struct StiffChain10 {
     double k = 1000.0;  ///< joint spring stiffness (N m/rad)
     double c = 0.01;  ///< joint damping (N m s/rad)
 
-    /// The parameter called `key`, or nullptr: lets tools set parameters by name.
+    /// The control inputs' values, in the order of input_names.
+    std::array<double, 0> inputs() const { return {{}}; }
+    /// Sets the control inputs, given in the order of input_names.
+    void set_inputs(const std::array<double, 0>& /*values*/) {
+    }
+
+    /// The parameter or input called `key`, or nullptr: lets tools set them by name.
     double* find(std::string_view key) {
       if (key == "g") return &g;
       if (key == "l") return &l;
@@ -167,6 +179,8 @@ struct StiffChain10 {
       "mass at the end of every link (kg)",
       "joint spring stiffness (N m/rad)",
       "joint damping (N m s/rad)"
+  }};
+  static constexpr std::array<const char*, num_inputs> input_descriptions{{
   }};
 
   /// Reduced mass matrix Mt = J^T M J (symmetric).

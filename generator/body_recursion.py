@@ -212,6 +212,7 @@ def _derivation(model: Model, kin, links: LinkKinematics, qdd, square_outputs: b
     particles = model.particles
     return Derivation(
         q=kin.q, v=kin.v, a=qdd, t=kin.t, params=[p.symbol for p in model.parameters],
+        inputs=[p.symbol for p in model.inputs],
         masses=[p.mass for p in particles],
         positions=sp.Matrix.vstack(*[links.points.position[p.name] for p in particles]),
         fixed_point_positions=fixed_point_positions(model, kin),

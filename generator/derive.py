@@ -15,6 +15,7 @@ use it as the reference; structured.py derives large models as named intermediat
 
 from __future__ import annotations
 
+import dataclasses
 from dataclasses import dataclass
 from typing import Callable
 
@@ -50,6 +51,7 @@ class Derivation:
     generalized_potential: sp.Expr   # the part of V given with generalized forces
     linear_momentum: sp.Matrix       # dim
     angular_momentum: sp.Matrix      # 3 in 3D, 1 (the z component) in 2D
+    inputs: list[sp.Symbol] = dataclasses.field(default_factory=list)  # the control inputs
 
     def residual(self) -> sp.Matrix:
         """Inverse-dynamics residual r(q, v, a, t) = Mt a - Ft - Fi (the force to apply)."""
@@ -350,6 +352,7 @@ def derive(model: Model, kin: Kinematics | None = None) -> Derivation:
     return Derivation(
         q=q, v=v, a=[c.acceleration for c in model.coordinates], t=t,
         params=[prm.symbol for prm in model.parameters],
+        inputs=[prm.symbol for prm in model.inputs],
         masses=[p.mass for p in model.particles],
         positions=sp.Matrix.vstack(*[kin.position[p.name] for p in model.particles]),
         fixed_point_positions=fixed_point_positions(model, kin),

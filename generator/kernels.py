@@ -92,6 +92,12 @@ def _jacobian(name: str, of: sp.Matrix, wrt: list[sp.Symbol]) -> Block:
     return Block(name, "QMatrix<Scalar>", (len(of), len(wrt)), [], jacobian_of=(list(of), wrt))
 
 
+def _input_matrix(d: Derivation) -> Block:
+    """B = dFt/du, nq x (number of inputs)."""
+    return Block("result", "InputMatrix<Scalar>", (len(d.applied_forces), len(d.inputs)), [],
+                 jacobian_of=(list(d.applied_forces), d.inputs))
+
+
 def _scalar(name: str, value: sp.Expr) -> Block:
     return Block(name, "Scalar", (1, 1), [(0, 0, value)])
 
@@ -182,6 +188,9 @@ def _dense_kernels(d: Derivation, residual: sp.Matrix | None,
             [_out(_jacobian("dr_dq", differentiated_residual, d.q)),
              _out(_jacobian("dr_dv", differentiated_residual, d.v))],
             notes=["dr_dq and dr_dv must not be null."])),
+        *([Kernel("input_matrix", "Input matrix B = dFt/du: the generalized force per unit of "
+                  "each control input (Ft = B u + the rest when u enters linearly).",
+                  ("q", "v", "t"), [_input_matrix(d)])] if d.inputs else []),
         Kernel("kinetic_energy", "Kinetic energy T = 1/2 xdot^T M xdot.", ("q", "v", "t"),
                [_scalar("result", d.kinetic_energy)]),
         Kernel("potential_energy", "Potential energy V (gravity, springs, given potentials).",

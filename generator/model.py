@@ -85,6 +85,15 @@ class Parameter(Item):
 
 
 @dataclass
+class Input(Parameter):
+    """A control input: a parameter the caller changes while the model runs (0 unless set).
+
+    It may appear only in forces, so the generalized force is Ft(q, v, t, u) and the input
+    matrix B = dFt/du is what a linearization and a controller need."""
+    kind = "input"
+
+
+@dataclass
 class Point(Item):
     """A point with a position: a particle (with mass) or a fixed/prescribed point."""
     position: sp.Matrix
@@ -412,6 +421,19 @@ class Model:
         self.parameters.append(Parameter(name, symbol, default, description, line=line))
         return symbol
 
+    def input(self, name: str, description: str) -> sp.Symbol:
+        """Declares a control input u: a force the caller sets at run time (0 by default).
+
+        Use the returned symbol in forces: on a coordinate (`generalized_force(s, u)`), at a
+        point along a direction (`force(p, [u, 0])`), as a torque on a body (`torque(b, u)`).
+        The generated Params holds its value like a parameter's; `input_matrix()` is
+        B = dFt/du, so Mt qddot = Ft + Fi is B(q) u plus the rest when u enters linearly.
+        """
+        line = _caller_line()
+        symbol = sp.Symbol(name, real=True)
+        self.parameters.append(Input(name, symbol, 0.0, description, line=line))
+        return symbol
+
     # --- points --------------------------------------------------------------------------
     def particle(self, name: str, mass, position: Sequence) -> Particle:
         """A point mass at `position` = X(q, t), a SymPy vector of q, t and parameters.
@@ -577,6 +599,11 @@ class Model:
     def points(self) -> list[Point]:
         return [*self.particles, *self.fixed_points,
                 *(point for body in self.bodies for point in body.points)]
+
+    @property
+    def inputs(self) -> list[Input]:
+        """The control inputs, in declaration order (they are parameters too)."""
+        return [p for p in self.parameters if isinstance(p, Input)]
 
     @property
     def nq(self) -> int:

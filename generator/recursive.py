@@ -139,6 +139,7 @@ def recursive_dynamics(model: Model, kin, tree: PointTree, derivation: bool = Tr
     gamma_of = {node.particle.name: moving[i] for i, node in enumerate(nodes)}
     derived = Derivation(
         q=q, v=v, a=qdd, t=t, params=[p.symbol for p in model.parameters],
+        inputs=[p.symbol for p in model.inputs],
         masses=[p.mass for p in particles],
         positions=sp.Matrix.vstack(*[position[p.name] for p in particles]),
         fixed_point_positions=fixed_point_positions(model, kin),

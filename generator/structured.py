@@ -208,7 +208,9 @@ def derive_structured(model: Model, kin: Kinematics
     particles = model.particles
     derivation = Derivation(
         q=q, v=v, a=[c.acceleration for c in model.coordinates], t=t,
-        params=[prm.symbol for prm in model.parameters], masses=[p.mass for p in particles],
+        params=[prm.symbol for prm in model.parameters],
+        inputs=[prm.symbol for prm in model.inputs],
+        masses=[p.mass for p in particles],
         positions=sp.Matrix.vstack(*[local.position[p.name] for p in particles]),
         fixed_point_positions=fixed_point_positions(model, kin),
         velocities=sp.Matrix.vstack(*[local.velocity[p.name] for p in particles]),

@@ -40,9 +40,10 @@ def _check_names(model: Model) -> None:
 
 
 def _check_expression(expr, allowed: set, label: str, line: int | None, hint: str, *,
-                      constants: set, velocities: dict) -> None:
+                      constants: set, velocities: dict, inputs: set = frozenset()) -> None:
     """`expr` uses only `allowed` symbols and what emittable.py accepts; `constants` are the
-    parameters, `velocities` maps each coordinate's rate and acceleration to it."""
+    parameters, `velocities` maps each coordinate's rate and acceleration to it, `inputs`
+    are the control inputs (allowed in forces only)."""
     expr = sp.sympify(expr)
     functions = sorted(str(f) for f in expr.atoms(AppliedUndef))
     if functions:
@@ -61,6 +62,12 @@ def _check_expression(expr, allowed: set, label: str, line: int | None, hint: st
     if moving:
         raise ModelError(f"may not depend on velocities, but uses {', '.join(moving)}; {hint}",
                          item=label, line=line)
+    misplaced_inputs = sorted(str(s) for s in unknown & inputs)
+    if misplaced_inputs:
+        raise ModelError(f"uses the input {', '.join(misplaced_inputs)}; an input acts only "
+                         "through forces (model.force, model.generalized_force, model.torque, "
+                         "springs and dampers), not in positions, masses, constraints or "
+                         "potentials", item=label, line=line)
     allowed_names = {str(a) for a in allowed}
     lookalikes = sorted(name for name in names if name in allowed_names)
     if lookalikes:
@@ -72,7 +79,10 @@ def _check_expression(expr, allowed: set, label: str, line: int | None, hint: st
 
 
 def _check_expressions(model: Model, defaults: dict) -> None:
-    params = {p.symbol for p in model.parameters}
+    # forces may use every parameter; kinematics, masses and potentials not the inputs
+    forcing = {p.symbol for p in model.parameters}
+    inputs = {p.symbol for p in model.inputs}
+    params = forcing - inputs
     q = {c.symbol for c in model.coordinates}
     rates = {c.rate for c in model.coordinates}
     t = {model.time}
@@ -83,13 +93,13 @@ def _check_expressions(model: Model, defaults: dict) -> None:
     velocities = {s: c for c in model.coordinates for s in (c.rate, c.acceleration)}
 
     def _check_symbols(expr, allowed, label, line, hint):  # with this model's symbols
-        _check_expression(expr, allowed, label, line, hint, constants=params,
-                          velocities=velocities)
+        _check_expression(expr, allowed, label, line, hint, constants=forcing,
+                          velocities=velocities, inputs=inputs)
 
     for body in model.bodies:
         _check_body(body, defaults, _check_symbols, q | t | params, params)
     for torque in model.torques:
-        _check_symbols(torque.torque, q | rates | t | params, torque.label(), torque.line,
+        _check_symbols(torque.torque, q | rates | t | forcing, torque.label(), torque.line,
                        "a torque may use coordinates, model.rate(q), t and parameters")
     position_symbols = q | t | params
     accepted_terms: set = set()  # a chain's position repeats its parent's terms: check each once
@@ -112,22 +122,23 @@ def _check_expressions(model: Model, defaults: dict) -> None:
         _check_symbols(point.position, t | params, f"{point.label()} position", point.line,
                        "a fixed point may depend only on parameters and t")
     for item in model.gravities:
-        _check_symbols(item.acceleration, t | params, item.label(), item.line, declare)
+        _check_symbols(item.acceleration, t | forcing, item.label(), item.line, declare)
     for spring in model.springs:
         for what, expr in (("stiffness", spring.stiffness), ("rest length", spring.rest_length),
                            ("damping", spring.damping)):
-            _check_symbols(expr, t | params, f"{spring.label()} {what}", spring.line,
+            _check_symbols(expr, t | (forcing if what == "damping" else params),
+                           f"{spring.label()} {what}", spring.line,
                            "spring constants may depend only on parameters and t")
     for damper in model.dampers:
-        _check_symbols(damper.coefficient, t | params, damper.label(), damper.line, declare)
+        _check_symbols(damper.coefficient, t | forcing, damper.label(), damper.line, declare)
     for force in model.particle_forces:
-        _check_symbols(force.force, point_symbols | t | params, force.label(), force.line,
+        _check_symbols(force.force, point_symbols | t | forcing, force.label(), force.line,
                        "a particle force may use points' .x and .xdot, t and parameters")
         if force.potential is not None:
             _check_symbols(force.potential, point_symbols | t | params, force.label(),
                            force.line, "a potential may use points' .x, t and parameters")
     for force in model.generalized_forces:
-        _check_symbols(force.force, q | rates | t | params, force.label(), force.line,
+        _check_symbols(force.force, q | rates | t | forcing, force.label(), force.line,
                        "a generalized force may use coordinates, model.rate(q), t, parameters")
         if force.potential is not None:
             _check_symbols(force.potential, q | t | params, f"{force.label()} potential",

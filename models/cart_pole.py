@@ -22,7 +22,7 @@ l = model.parameter("l", 0.5, "pole length (m)")
 m_cart = model.parameter("m_cart", 1.0, "cart mass (kg)")
 m_pole = model.parameter("m_pole", 0.1, "pole tip mass (kg)")
 g = model.parameter("g", 9.81, "gravitational acceleration (m/s^2)")
-u = model.parameter("u", 0.0, "horizontal force applied to the cart (N)")
+u = model.input("u", "horizontal force applied to the cart (N)")
 
 cart = model.particle("cart", mass=m_cart, position=[s, 0])
 tip = model.particle("tip", mass=m_pole, position=[s + l * sin(theta), l * cos(theta)])

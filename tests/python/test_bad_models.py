@@ -124,6 +124,24 @@ class BadModelTest(unittest.TestCase):
             'bob = model.particle("bob", mass=1, position=[omega_undeclared * sin(theta), '
             "-cos(theta)])  " + MARK + "\n"), ["particle 'bob'", "omega_undeclared"])
 
+    def test_an_input_outside_the_forces(self):
+        # an input is a force the caller sets: kinematics, masses and potentials may not use it
+        declare = 'u = model.input("u", "a push (N)")\n'
+        cases = {
+            "input_position": ('bob = model.particle("bob", mass=1, position=[u + sin(theta), '
+                               "-cos(theta)])  " + MARK + "\n", ["particle 'bob' position"]),
+            "input_mass": ('bob = model.particle("bob", mass=1 + u, position=[sin(theta), '
+                           "-cos(theta)])  " + MARK + "\n", ["particle 'bob' mass"]),
+            "input_potential": (BOB + "model.force(bob, [u, 0], potential=-u * bob.x[0])  "
+                                + MARK + "\n", ["force 'on bob'"]),
+            "input_rod": (BOB + 'model.pin(bob, [0, -u])  ' + MARK + "\n",
+                          ["pin 'bob'", "anchor"]),
+        }
+        for stem, (body, fragments) in cases.items():
+            with self.subTest(stem):
+                self.expect_model_error(stem, PREAMBLE + declare + body,
+                                        [*fragments, "input u", "only through forces"])
+
     def test_undeclared_symbol_in_every_kind_of_item(self):
         # every place a user expression enters: each names the item (and the part of it)
         pivot = 'pivot = model.fixed_point("pivot", [0, 0])\n'

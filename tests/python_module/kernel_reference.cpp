@@ -2,7 +2,10 @@
 // test_model_module.py to compare with the Python module's results bit for bit. The build
 // defines GENCOORD_MODEL_HEADER and GENCOORD_MODEL_CLASS as for the module.
 //   input:  one state per line: t, then q, v, qdd (nq each), as decimal or hex floats
-//   output: per state, one line per kernel: its name and its entries in row-major order
+//   output: per state, one line per kernel: its name and its entries in row-major order; a
+//           model with inputs adds input_matrix and qddot_with_inputs at u_k = 0.5 + k
+#include <array>
+#include <cstddef>
 #include <cstdio>
 #include <iostream>
 #include <string>
@@ -32,6 +35,19 @@ V read_vector() {
     x(k) = std::stod(word);
   }
   return x;
+}
+
+// input_matrix and qddot at u_k = 0.5 + k, which test_model_module.py passes as u=
+template <class Model>
+void print_input_kernels(const V& q, const V& v, double t, const typename Model::Params& p) {
+  if constexpr (Model::num_inputs > 0) {
+    typename Model::Params driven = p;
+    std::array<double, Model::num_inputs> u;
+    for (int k = 0; k < Model::num_inputs; ++k) u[static_cast<std::size_t>(k)] = 0.5 + k;
+    driven.set_inputs(u);
+    print("input_matrix", Model::input_matrix(q, v, t, driven));
+    print("qddot_with_inputs", Model::qddot(q, v, t, driven));
+  }
 }
 
 }  // namespace
@@ -68,6 +84,7 @@ int main() {
     print("linear_momentum", M::linear_momentum(q, v, t, p));
     print("angular_momentum", M::angular_momentum(q, v, t, p));
     print("fixed_point_positions", M::fixed_point_positions(t, p));
+    print_input_kernels<M>(q, v, t, p);
   }
   return 0;
 }

@@ -76,6 +76,11 @@ class ModuleTest(unittest.TestCase):
                         got[kernel + suffix] = values
                 got["fixed_point_positions"] = np.ravel(
                     model.fixed_point_positions(t[i])).tolist()
+                if model.num_inputs:
+                    u = 0.5 + np.arange(model.num_inputs)
+                    got["input_matrix"] = np.ravel(
+                        model.input_matrix(q[i], v[i], t[i], u=u)).tolist()
+                    got["qddot_with_inputs"] = model.qddot(q[i], v[i], t[i], u=u).tolist()
                 self.assertEqual(sorted(got), sorted(expected), name)
                 for kernel, values in expected.items():
                     self.assertEqual(got[kernel], values, f"{name}.{kernel} at state {i}")

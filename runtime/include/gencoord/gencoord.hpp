@@ -3,6 +3,9 @@
 
 #include "gencoord/acceleration_jacobians.hpp"
 #include "gencoord/batch.hpp"
+#include "gencoord/control/controlled_system.hpp"
+#include "gencoord/control/inputs.hpp"
+#include "gencoord/control/linearize.hpp"
 #include "gencoord/csv_writer.hpp"
 #include "gencoord/cubic_spline.hpp"
 #include "gencoord/dynamics.hpp"

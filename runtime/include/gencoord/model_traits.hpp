@@ -158,12 +158,46 @@ using fixed_points_op = std::enable_if_t<
 template <class M>
 using recursive_qddot_op = std::enable_if_t<M::recursive_qddot>;
 
+// control inputs: optional; a model with inputs holds their values in Params (inputs(),
+// set_inputs()) and has B = input_matrix(q, v, t, p)
+template <class M>
+using inputs_op = std::enable_if_t<
+    (M::num_inputs > 0) &&
+    std::is_same_v<std::remove_cv_t<decltype(M::input_names)>,
+                   std::array<const char*, static_cast<std::size_t>(M::num_inputs)>> &&
+    std::is_same_v<decltype(std::declval<const typename M::Params&>().inputs()),
+                   std::array<double, static_cast<std::size_t>(M::num_inputs)>> &&
+    std::is_void_v<decltype(std::declval<typename M::Params&>().set_inputs(
+        std::declval<const std::array<double, static_cast<std::size_t>(M::num_inputs)>&>()))> &&
+    std::is_convertible_v<decltype(M::input_matrix(q_arg<M>(), q_arg<M>(), t_arg(), p_arg<M>())),
+                          Eigen::Matrix<double, M::nq, M::num_inputs>>>;
+
 }  // namespace detail
 
 /// True when M::qddot is a recursion that is cheaper than Mt, Ft + Fi and a factorization
 /// (generated tree models that say `recursive_qddot = true`); acceleration() then calls it.
 template <class M>
 inline constexpr bool has_recursive_qddot_v = detail::detected_v<M, detail::recursive_qddot_op>;
+
+/// True when M has control inputs (docs/model_interface.md): num_inputs > 0, input_names,
+/// Params::inputs() and set_inputs(), input_matrix(q, v, t, p).
+template <class M>
+inline constexpr bool has_inputs_v = detail::detected_v<M, detail::inputs_op>;
+
+namespace detail {
+template <class M, bool = has_inputs_v<M>>
+struct InputCount : std::integral_constant<int, 0> {};
+template <class M>
+struct InputCount<M, true> : std::integral_constant<int, M::num_inputs> {};
+}  // namespace detail
+
+/// The number of control inputs of M (0 for a model without them).
+template <class M>
+inline constexpr int num_inputs_v = detail::InputCount<M>::value;
+
+/// A vector of M's control inputs, in the order of M::input_names (dim num_inputs_v<M>).
+template <class M>
+using InputVec = Eigen::Matrix<double, num_inputs_v<M>, 1>;
 
 /// True when M has the optional fixed-point members of docs/model_interface.md
 /// (num_fixed_points, fixed_point_names, fixed_point_positions(t, p)).

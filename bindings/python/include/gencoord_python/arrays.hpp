@@ -97,10 +97,35 @@ struct Result<Value, std::enable_if_t<std::is_arithmetic_v<Value>>> {
   static void copy(Value value, double* out) { *out = static_cast<double>(value); }
 };
 
+/// A fixed-size kernel result kept two-dimensional even with one column: the input matrix
+/// of a one-input model is (nq, 1), as B is.
+template <class Matrix>
+struct AsMatrix {
+  Matrix value;
+};
+
+template <class Matrix>
+struct Result<AsMatrix<Matrix>> {
+  static std::vector<py::ssize_t> shape() {
+    return {Matrix::RowsAtCompileTime, Matrix::ColsAtCompileTime};
+  }
+  static void copy(const AsMatrix<Matrix>& matrix, double* out) {
+    Result<Matrix>::copy(matrix.value, out);
+  }
+};
+
 /// A float64 array of shape (batch, *shape), or `shape` when batch < 0.
 inline py::array_t<double> output_array(py::ssize_t batch, std::vector<py::ssize_t> shape) {
   if (batch >= 0) shape.insert(shape.begin(), batch);
   return py::array_t<double>(shape);
+}
+
+/// A float64 array of shape (rows, cols) holding a copy of a dynamic-size matrix.
+inline py::array_t<double> matrix_array(const Eigen::MatrixXd& matrix) {
+  py::array_t<double> array(
+      {static_cast<py::ssize_t>(matrix.rows()), static_cast<py::ssize_t>(matrix.cols())});
+  Result<Eigen::MatrixXd>::copy(matrix, array.mutable_data());
+  return array;
 }
 
 /// A read-only float64 array holding a copy of `values`.

@@ -12,6 +12,7 @@
 #include "gencoord/integrate/integrator.hpp"
 #include "gencoord/model_traits.hpp"
 #include "gencoord_python/arrays.hpp"
+#include "gencoord_python/control.hpp"
 #include "gencoord_python/errors.hpp"
 #include "gencoord_python/first_order.hpp"
 #include "gencoord_python/kernels.hpp"
@@ -41,6 +42,14 @@ void bind_metadata(py::module_& module) {
   module.attr("coordinate_descriptions") = string_tuple(M::coordinate_descriptions);
   module.attr("parameter_names") = string_tuple(M::parameter_names);
   module.attr("parameter_descriptions") = string_tuple(M::parameter_descriptions);
+  module.attr("num_inputs") = num_inputs_v<M>;
+  if constexpr (has_inputs_v<M>) {
+    module.attr("input_names") = string_tuple(M::input_names);
+    module.attr("input_descriptions") = string_tuple(M::input_descriptions);
+  } else {
+    module.attr("input_names") = py::tuple();
+    module.attr("input_descriptions") = py::tuple();
+  }
   module.attr("particle_names") = string_tuple(M::particle_names);
   module.attr("fixed_point_names") = string_tuple(M::fixed_point_names);
   module.attr("initial_q") = read_only_array(M::initial_q);
@@ -120,6 +129,16 @@ void bind_kernels(py::module_& m) {
                   M::residual_jacobians(x[0], x[1], x[2], t, p, &r_D_q, &r_D_v);
                   return std::make_tuple(r_D_q, r_D_v);
                 });
+  if constexpr (has_inputs_v<M>) {
+    def_kernel<M>(m, "input_matrix",
+                  kernel_doc("Input matrix B = dFt/du: the generalized force per unit of each "
+                             "control input.",
+                             "(nq, num_inputs)"),
+                  qv, [](const std::array<V, 2>& x, double t, const P& p) {
+                    return AsMatrix<typename M::template InputMatrix<double>>{
+                        M::input_matrix(x[0], x[1], t, p)};
+                  });
+  }
   def_kernel<M>(m, "kinetic_energy", kernel_doc("Kinetic energy T.", "a float"), qv,
                 [](const std::array<V, 2>& x, double t, const P& p) {
                   return double(M::kinetic_energy(x[0], x[1], t, p));
@@ -196,6 +215,7 @@ void bind_model(py::module_& module) {
   bind_params<M>(module);
   bind_kernels<M>(module);
   bind_first_order<M>(module);
+  bind_control<M>(module);
   bind_simulation<M>(module);
 }
 

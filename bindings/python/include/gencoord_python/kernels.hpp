@@ -2,7 +2,8 @@
 //
 // kernel(q, v, ..., t=0.0, params=None, *, threads=None): each vector argument has shape
 // (nq,) for one state or (N, nq) for a batch of N; t is a number, or in a batch also an array
-// of N times; params is a Params, None for the defaults, or in a batch also a sequence of N.
+// of N times; params is a Params, None for the defaults, or in a batch also a sequence of N;
+// a model with control inputs takes u=, which overrides the inputs the params hold.
 // A batch returns arrays with a leading dimension N, computed on `threads` threads (default:
 // the machine's cores) with the GIL released, each element by exactly the code a single call
 // runs, so the results equal single calls bit for bit.
@@ -20,6 +21,7 @@
 #include <vector>
 
 #include "gencoord/batch.hpp"
+#include "gencoord/control/inputs.hpp"
 #include "gencoord/model_traits.hpp"
 #include "gencoord_python/arrays.hpp"
 
@@ -81,6 +83,37 @@ inline TimeInput time_input(py::handle value, py::ssize_t batch) {
   }
   std::vector<py::ssize_t> shape(array.shape(), array.shape() + array.ndim());
   throw py::value_error("t: expected " + expected + ", got shape " + shape_text(shape));
+}
+
+/// The control inputs of each batch element: None (those the params hold), one vector of
+/// shape (num_inputs,) for all, or in a batch one per element, (N, num_inputs); a model with
+/// one input also takes a number.
+template <class M>
+struct InputsInput {
+  VectorInput values;
+  bool given = false;
+
+  ParamsOf<M> apply(const ParamsOf<M>& p, py::ssize_t i) const {
+    return with_inputs<M>(p, to_vector<InputVec<M>>(values.row(i)));
+  }
+};
+
+template <class M>
+InputsInput<M> inputs_input(py::handle value, py::ssize_t batch) {
+  if (value.is_none()) return {};
+  constexpr int m = num_inputs_v<M>;
+  InputsInput<M> input;
+  input.given = true;
+  if (m == 1 && (py::isinstance<py::float_>(value) || py::isinstance<py::int_>(value))) {
+    input.values = vector_input(py::make_tuple(value), "u", m);
+    return input;
+  }
+  input.values = vector_input(value, "u", m);
+  if (input.values.batch >= 0 && input.values.batch != batch)
+    throw py::value_error("u: expected one input vector for every state or one per state (" +
+                          (batch < 0 ? std::string("one state") : "N = " + std::to_string(batch)) +
+                          "), got N = " + std::to_string(input.values.batch));
+  return input;
 }
 
 inline int thread_count(py::handle threads, py::ssize_t batch) {
@@ -167,7 +200,8 @@ py::ssize_t common_batch(const std::array<VectorInput, K>& inputs,
 }
 
 /// Binds `kernel(vectors, t, params)` as module.name(<names>..., t=0.0, params=None, *,
-/// threads=None); `kernel` gets the K vectors as the model's QVector<double>.
+/// threads=None), with u=None before threads for a model with inputs; `kernel` gets the K
+/// vectors as the model's QVector<double>.
 template <class M, std::size_t... I, class Kernel>
 void def_kernel(py::module_& module, const char* name, const std::string& doc,
                 const std::array<const char*, sizeof...(I)>& names, Kernel kernel,
@@ -175,18 +209,32 @@ void def_kernel(py::module_& module, const char* name, const std::string& doc,
   constexpr std::size_t K = sizeof...(I);
   using Vector = QVec<M>;
   const auto call = [names, kernel](std::conditional_t<true, py::object, decltype(I)>... values,
-                                    py::object t, py::object params, py::object threads) {
+                                    py::object t, py::object params, py::object u,
+                                    py::object threads) {
     const std::array<VectorInput, K> inputs{vector_input(values, names[I], M::nq)...};
     const py::ssize_t batch = common_batch(inputs, names);
     const TimeInput times = time_input(t, batch);
     const ParamsInput<M> parameters = params_input<M>(params, batch);
+    const InputsInput<M> controls = inputs_input<M>(u, batch);
     return gather(batch, thread_count(threads, batch), [&](py::ssize_t i) {
-      return kernel(std::array<Vector, K>{to_vector<Vector>(inputs[I].row(i))...}, times.at(i),
-                    parameters.at(i));
+      const std::array<Vector, K> vectors{to_vector<Vector>(inputs[I].row(i))...};
+      if (controls.given) return kernel(vectors, times.at(i), controls.apply(parameters.at(i), i));
+      return kernel(vectors, times.at(i), parameters.at(i));
     });
   };
-  module.def(name, call, doc.c_str(), py::arg(names[I])..., py::arg("t") = 0.0,
-             py::arg("params") = py::none(), py::kw_only(), py::arg("threads") = py::none());
+  if constexpr (has_inputs_v<M>) {
+    module.def(name, call, doc.c_str(), py::arg(names[I])..., py::arg("t") = 0.0,
+               py::arg("params") = py::none(), py::kw_only(), py::arg("u") = py::none(),
+               py::arg("threads") = py::none());
+  } else {
+    module.def(
+        name,
+        [call](std::conditional_t<true, py::object, decltype(I)>... values, py::object t,
+               py::object params,
+               py::object threads) { return call(values..., t, params, py::none(), threads); },
+        doc.c_str(), py::arg(names[I])..., py::arg("t") = 0.0, py::arg("params") = py::none(),
+        py::kw_only(), py::arg("threads") = py::none());
+  }
 }
 
 template <class M, std::size_t K, class Kernel>

@@ -1,5 +1,5 @@
 // simulate(): the runtime's fixed-step loop (integrate/simulate.hpp) from Python, with
-// scripted coordinates and an observer, returning the trajectory as NumPy arrays.
+// scripted coordinates, control inputs and an observer, returning the trajectory as NumPy arrays.
 #pragma once
 
 #include <pybind11/numpy.h>
@@ -13,6 +13,8 @@
 #include <utility>
 #include <vector>
 
+#include "gencoord/control/controlled_system.hpp"
+#include "gencoord/control/inputs.hpp"
 #include "gencoord/cubic_spline.hpp"
 #include "gencoord/integrate/integrator.hpp"
 #include "gencoord/integrate/simulate.hpp"
@@ -45,18 +47,34 @@ int coordinate_index(py::handle key) {
   return key.cast<int>();
 }
 
+// A Python function that C++ copies may hold and drop without the GIL (the Script's and the
+// control law's copies are): one shared reference, let go of with the GIL held.
+inline std::shared_ptr<py::function> shared_function(py::handle function) {
+  return std::shared_ptr<py::function>(
+      new py::function(py::reinterpret_borrow<py::function>(function)), [](py::function* f) {
+        py::gil_scoped_acquire locked;
+        delete f;
+      });
+}
+
+// A natural cubic spline through keyframes (times, values) given from Python as `what`.
+inline std::shared_ptr<CubicSpline> keyframe_spline(py::handle keyframes, const std::string& what) {
+  const auto pair = keyframes.cast<py::sequence>();
+  if (pair.size() != 2)
+    throw py::value_error(what + ": expected a function of t or keyframes (times, values)");
+  const Float64Array times = float64_array(pair[0], what + " times", "an array");
+  const Float64Array values = float64_array(pair[1], what + " values", "an array");
+  return std::make_shared<CubicSpline>(
+      CubicSpline::natural(std::vector<double>(times.data(), times.data() + times.size()),
+                           std::vector<double>(values.data(), values.data() + values.size())));
+}
+
 // One scripted coordinate: (q, v, a) at time t.
 using CoordinateMotion = std::function<std::array<double, 3>(double)>;
 
 inline CoordinateMotion coordinate_motion(py::handle motion, const std::string& name) {
   if (PyCallable_Check(motion.ptr())) {
-    // the Script's copies are made and dropped without the GIL: share one reference, let go
-    // of it with the GIL held
-    const std::shared_ptr<py::function> function(
-        new py::function(py::reinterpret_borrow<py::function>(motion)), [](py::function* f) {
-          py::gil_scoped_acquire locked;
-          delete f;
-        });
+    const std::shared_ptr<py::function> function = shared_function(motion);
     return [function, name](double t) {
       py::gil_scoped_acquire locked;
       const py::object value = (*function)(t);
@@ -67,15 +85,7 @@ inline CoordinateMotion coordinate_motion(py::handle motion, const std::string& 
       return std::array<double, 3>{qva.data()[0], qva.data()[1], qva.data()[2]};
     };
   }
-  const auto pair = motion.cast<py::sequence>();
-  if (pair.size() != 2)
-    throw py::value_error("scripted[" + name +
-                          "]: expected a function t -> (q, v, a) or keyframes (times, values)");
-  const Float64Array times = float64_array(pair[0], "scripted[" + name + "] times", "an array");
-  const Float64Array values = float64_array(pair[1], "scripted[" + name + "] values", "an array");
-  auto spline = std::make_shared<CubicSpline>(
-      CubicSpline::natural(std::vector<double>(times.data(), times.data() + times.size()),
-                           std::vector<double>(values.data(), values.data() + values.size())));
+  const std::shared_ptr<CubicSpline> spline = keyframe_spline(motion, "scripted[" + name + "]");
   return [spline](double t) {
     std::array<double, 3> qva;
     spline->evaluate(t, &qva[0], &qva[1], &qva[2]);
@@ -109,6 +119,78 @@ Script script_of(py::handle scripted) {
 }
 
 template <class M>
+int input_index(py::handle key) {
+  if (!py::isinstance<py::str>(key)) return key.cast<int>();
+  const std::string name = py::str(key);
+  std::string names;
+  if constexpr (has_inputs_v<M>) {
+    for (int k = 0; k < M::num_inputs; ++k)
+      if (name == M::input_names[static_cast<std::size_t>(k)]) return k;
+    for (const char* known : M::input_names)
+      names += (names.empty() ? "" : ", ") + std::string(known);
+  }
+  throw py::value_error("inputs: " + std::string(M::name) + " has no input '" + name +
+                        "'; its inputs are " + names);
+}
+
+/// The control law of `inputs`: a function (t, q, v) -> u of shape (num_inputs,), a feedback
+/// law; or {input name or index: f(t) -> value, or keyframes (times, values)}, an input
+/// script (an input it does not name is 0).
+template <class M>
+ControlLaw<M> control_law(py::handle inputs, LawKind* kind) {
+  constexpr int m = num_inputs_v<M>;
+  if (PyCallable_Check(inputs.ptr())) {
+    *kind = LawKind::Feedback;
+    const std::shared_ptr<py::function> law = shared_function(inputs);
+    return [law](double t, const QVec<M>& q, const QVec<M>& v) {
+      py::gil_scoped_acquire locked;
+      const py::object value = (*law)(t, read_only_array(q), read_only_array(v));
+      const Float64Array u = float64_array(value, "inputs(t, q, v)", "an array of the inputs");
+      if (u.size() != m)
+        throw py::value_error("inputs(t, q, v): expected " + std::to_string(m) +
+                              " input values, got " + std::to_string(u.size()));
+      return to_vector<InputVec<M>>(u.data());
+    };
+  }
+  if (!py::isinstance<py::dict>(inputs))
+    throw py::value_error(
+        "inputs: expected a function (t, q, v) -> u or a dict {input: f(t) "
+        "or keyframes (times, values)}");
+  *kind = LawKind::OpenLoop;
+  std::vector<std::pair<int, std::function<double(double)>>> signals;
+  for (const auto& [key, signal] : inputs.cast<py::dict>()) {
+    const int k = input_index<M>(key);
+    if (k < 0 || k >= m)
+      throw py::value_error("inputs: index " + std::to_string(k) + " is out of range for " +
+                            std::to_string(m) + " inputs");
+    const std::string what = "inputs[" + std::string(py::str(key)) + "]";
+    if (PyCallable_Check(signal.ptr())) {
+      const std::shared_ptr<py::function> function = shared_function(signal);
+      signals.emplace_back(k, [function, what](double t) {
+        py::gil_scoped_acquire locked;
+        const Float64Array value = float64_array((*function)(t), what + "(t)", "a number");
+        if (value.size() != 1)
+          throw py::value_error(what + "(t): expected a number, got " +
+                                std::to_string(value.size()) + " values");
+        return value.data()[0];
+      });
+    } else {
+      const std::shared_ptr<CubicSpline> spline = keyframe_spline(signal, what);
+      signals.emplace_back(k, [spline](double t) {
+        double value, rate, acceleration;
+        spline->evaluate(t, &value, &rate, &acceleration);
+        return value;
+      });
+    }
+  }
+  return [signals](double t, const QVec<M>&, const QVec<M>&) {
+    InputVec<M> u = InputVec<M>::Zero();
+    for (const auto& [k, signal] : signals) u[k] = signal(t);
+    return u;
+  };
+}
+
+template <class M>
 QVec<M> state_vector(py::handle value, const char* name, const std::array<double, M::nq>& initial) {
   if (value.is_none()) return to_vector<QVec<M>>(initial.data());
   const VectorInput input = vector_input(value, name, M::nq);
@@ -125,7 +207,8 @@ void bind_simulation(py::module_& module) {
   module.def(
       "simulate",
       [](py::handle q0, py::handle v0, double t_end, double dt, const std::string& integrator,
-         py::handle params, double t0, py::handle scripted, py::handle observer, long every) {
+         py::handle params, double t0, py::handle scripted, py::handle inputs, py::handle observer,
+         long every) {
         if (every < 1)
           throw py::value_error("every: expected at least 1, got " + std::to_string(every));
         State<M> initial;
@@ -159,7 +242,21 @@ void bind_simulation(py::module_& module) {
           ++row;
         };
         Script script = detail::script_of<M>(scripted);
-        {
+        if (!inputs.is_none()) {
+          if constexpr (has_inputs_v<M>) {
+            if (script.size() != 0)
+              throw py::value_error(
+                  "inputs: scripted coordinates and inputs cannot be combined "
+                  "in one simulation");
+            LawKind kind = LawKind::Feedback;
+            ControlLaw<M> law = detail::control_law<M>(inputs, &kind);
+            py::gil_scoped_release unlocked;
+            simulate(ControlledSystem<M>(p, std::move(law), kind), initial, options, record);
+          } else {
+            throw py::value_error("inputs: " + std::string(M::name) +
+                                  " declares no inputs (model.input() in its model file)");
+          }
+        } else {
           py::gil_scoped_release unlocked;
           if (script.size() == 0) simulate(ReducedSystem<M>(p), initial, options, record);
           else simulate(ScriptedModel<M>(p, std::move(script)), initial, options, record);
@@ -174,13 +271,16 @@ void bind_simulation(py::module_& module) {
       "  scripted    {coordinate name or index: f(t) -> (q, v, a), or keyframes (times,\n"
       "              values) followed through a natural cubic spline}: prescribed\n"
       "              coordinates, driven by whatever force it takes\n"
+      "  inputs      the control inputs (models with model.input()): a feedback law\n"
+      "              f(t, q, v) -> u, or {input name or index: f(t) -> value, or\n"
+      "              keyframes (times, values)}; by default those the params hold\n"
       "  observer    called as observer(t, q, v) at each recorded state\n"
       "Raises DynamicsError, NewtonError, or ValueError for a step that does not divide\n"
       "t_end - t0.",
       py::arg("q0") = py::none(), py::arg("v0") = py::none(), py::arg("t_end") = 10.0,
       py::arg("dt") = 1e-3, py::arg("integrator") = "rk4", py::arg("params") = py::none(),
       py::kw_only(), py::arg("t0") = 0.0, py::arg("scripted") = py::none(),
-      py::arg("observer") = py::none(), py::arg("every") = 1);
+      py::arg("inputs") = py::none(), py::arg("observer") = py::none(), py::arg("every") = 1);
 }
 
 }  // namespace gencoord::python

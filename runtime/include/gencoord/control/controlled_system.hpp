@@ -1,0 +1,121 @@
+// A model driven by a control law u = law(t, q, v), as a system for the integrators
+// (integrate/system.hpp): every acceleration the integrators ask for is taken with the inputs
+// the law gives at that stage's time and state.
+//
+// The implicit methods' Jacobians include the law's: with u = u(t, q, v),
+//   da/dq = -Mt^-1 dr/dq + Mt^-1 B du/dq,   da/dv = -Mt^-1 dr/dv + Mt^-1 B du/dv,
+// where the law's du/dq, du/dv come from central differences (the law is the caller's code)
+// unless it says it reads t only.
+#pragma once
+
+#include <Eigen/Cholesky>
+#include <Eigen/Core>
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <limits>
+#include <utility>
+
+#include "gencoord/acceleration_jacobians.hpp"
+#include "gencoord/control/inputs.hpp"
+#include "gencoord/dynamics.hpp"
+#include "gencoord/integrate/system.hpp"
+#include "gencoord/model_traits.hpp"
+#include "gencoord/state.hpp"
+
+namespace gencoord {
+
+/// The control inputs at time t and state (q, v) (dim num_inputs_v<M>).
+template <class M>
+using ControlLaw = std::function<InputVec<M>(double t, const QVec<M>& q, const QVec<M>& v)>;
+
+/// Whether a control law reads the state (feedback) or only the time (an input script).
+enum class LawKind { Feedback, OpenLoop };
+
+template <class M>
+class ControlledSystem {
+ public:
+  using State = gencoord::State<M>;
+  using Unknowns = QVec<M>;
+  using Matrix = QMat<M>;
+  static constexpr bool unit_mass = true;
+
+  /// \param[in] p     The model parameters (their input fields are overwritten by the law).
+  /// \param[in] law   The control law; it must return num_inputs_v<M> values.
+  /// \param[in] kind  OpenLoop when the law reads t only: the implicit methods then skip its
+  ///                  Jacobian.
+  ControlledSystem(ParamsOf<M> p, ControlLaw<M> law, LawKind kind = LawKind::Feedback)
+      : p_(std::move(p)), law_(std::move(law)), kind_(kind) {
+    static_assert(assert_model_v<M>);
+    static_assert(has_inputs_v<M>, "ControlledSystem: the model declares no inputs");
+  }
+
+  const char* name() const { return M::name; }
+  /// The inputs the law gives at s.
+  InputVec<M> inputs(const State& s) const { return law_(s.t, s.q, s.v); }
+  /// The parameters with the law's inputs at s.
+  ParamsOf<M> params(const State& s) const { return with_inputs<M>(p_, inputs(s)); }
+
+  /// \throws DynamicsError as gencoord::acceleration(); what the law throws.
+  QVec<M> acceleration(const State& s) const { return gencoord::acceleration<M>(params(s), s); }
+  void impose(State*) const {}
+  void check(const State&, double) const {}
+
+  const QVec<M>& free_part(const QVec<M>& x) const { return x; }
+  void add_to_free(const QVec<M>& dx, QVec<M>* x) const { *x += dx; }
+
+  /// The acceleration and its total Jacobians, the law's included (see the file comment).
+  void linearize(const State& s, JacobianSource source,
+                 Linearization<ControlledSystem>* out) const {
+    const ParamsOf<M> pu = params(s);
+    acceleration_and_jacobians<M>(pu, s.q, s.v, s.t, source, &out->force, &out->force_D_q,
+                                  &out->force_D_v);
+    if (kind_ == LawKind::OpenLoop) return;
+    // da/du = Mt^-1 B, by central differences where the model's Jacobians are
+    Eigen::Matrix<double, M::nq, Eigen::Dynamic> a_D_u(M::nq, M::num_inputs);
+    const InputVec<M> u = inputs(s);
+    if (resolve_jacobian_source<M>(source) == JacobianSource::Generated) {
+      const Eigen::LLT<PlainOf<QMat<M>>> llt(M::mass_matrix(s.q, s.t, pu));
+      a_D_u = llt.solve(M::input_matrix(s.q, s.v, s.t, pu));
+    } else {
+      for (int k = 0; k < M::num_inputs; ++k) {
+        InputVec<M> up = u, um = u;
+        up[k] += step(u[k]);
+        um[k] -= step(u[k]);
+        a_D_u.col(k) = (gencoord::acceleration<M>(with_inputs<M>(p_, up), s) -
+                        gencoord::acceleration<M>(with_inputs<M>(p_, um), s)) /
+                       (up[k] - um[k]);
+      }
+    }
+    // the law's du/dq and du/dv, by central differences
+    for (int j = 0; j < M::nq; ++j) {
+      State sp = s, sm = s;
+      sp.q[j] += step(s.q[j]);
+      sm.q[j] -= step(s.q[j]);
+      out->force_D_q.col(j) += a_D_u * ((inputs(sp) - inputs(sm)) / (sp.q[j] - sm.q[j]));
+      sp = s;
+      sm = s;
+      sp.v[j] += step(s.v[j]);
+      sm.v[j] -= step(s.v[j]);
+      out->force_D_v.col(j) += a_D_u * ((inputs(sp) - inputs(sm)) / (sp.v[j] - sm.v[j]));
+    }
+  }
+
+  /// A singular A gives a non-finite x.
+  bool solve(const QMat<M>& A, const QVec<M>& b, QVec<M>* x) const {
+    return detail::dense_lu_solve(A, b, x);
+  }
+
+ private:
+  static double step(double x) {
+    static const double kRelStep = std::cbrt(std::numeric_limits<double>::epsilon());
+    return kRelStep * std::max(1.0, std::abs(x));
+  }
+
+  ParamsOf<M> p_;
+  ControlLaw<M> law_;
+  LawKind kind_;
+};
+
+}  // namespace gencoord

@@ -1,0 +1,91 @@
+// The linearization of a model's dynamics about a state and an input, for controller design.
+//
+// With x = (q, v) and qdot = v, qddot = a(q, v, u, t) the first-order system is
+// xdot = f(x, u, t), and its Jacobians are
+//   A = df/dx = [[0, I], [da/dq, da/dv]],   B = df/du = [[0], [da/du]].
+// a solves r(q, v, a, u, t) = Mt a - Ft - Fi = 0, so with the generated Jacobians
+//   da/dq = -Mt^-1 dr/dq,   da/dv = -Mt^-1 dr/dv,   da/du = Mt^-1 dFt/du = Mt^-1 B(q),
+// from one Cholesky factor of Mt, residual_jacobians() and input_matrix().
+#pragma once
+
+#include <Eigen/Cholesky>
+#include <Eigen/Core>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "gencoord/acceleration_jacobians.hpp"
+#include "gencoord/control/inputs.hpp"
+#include "gencoord/dynamics.hpp"
+#include "gencoord/model_traits.hpp"
+
+namespace gencoord {
+
+/// xdot ~ xdot0 + A (x - x0) + B (u - u0) near the operating point (x0, u0).
+struct LinearizedDynamics {
+  Eigen::VectorXd xdot;  // f(x0, u0, t) = (v, a) (dim 2 nq)
+  Eigen::MatrixXd A;     // df/dx (2 nq x 2 nq), x = (q, v)
+  Eigen::MatrixXd B;     // df/du (2 nq x num_inputs)
+};
+
+/// The linearization of model M's dynamics at (q, v, u, t); see LinearizedDynamics.
+/// \param[in] p       The model parameters; their input fields are replaced by u.
+/// \param[in] q       The generalized coordinates (dim M::nq).
+/// \param[in] v       The generalized velocities (dim M::nq).
+/// \param[in] u       The control inputs (dim num_inputs_v<M>).
+/// \param[in] t       The time.
+/// \param[in] source  Generated (the default where the model has residual_jacobians()):
+///                    exact to round-off; FiniteDifference: central differences of
+///                    acceleration() in q, v and u, for comparison.
+/// \throws DynamicsError if the dynamics fail at the point (or at a perturbed one);
+///         std::invalid_argument as acceleration_and_jacobians().
+template <class M>
+LinearizedDynamics linearize(const ParamsOf<M>& p, const QVec<M>& q, const QVec<M>& v,
+                             const InputVec<M>& u, double t,
+                             JacobianSource source = JacobianSource::Auto) {
+  static_assert(assert_model_v<M>);
+  constexpr int n = M::nq;
+  constexpr int m = num_inputs_v<M>;
+  const ParamsOf<M> pu = with_inputs<M>(p, u);
+  QVec<M> a;
+  QMat<M> a_D_q, a_D_v;
+  Eigen::MatrixXd a_D_u(n, m);
+  if (resolve_jacobian_source<M>(source) == JacobianSource::FiniteDifference) {
+    acceleration_and_jacobians<M>(pu, q, v, t, source, &a, &a_D_q, &a_D_v);
+    static const double kRelStep = std::cbrt(std::numeric_limits<double>::epsilon());
+    for (int k = 0; k < m; ++k) {
+      InputVec<M> up = u, um = u;
+      up[k] += kRelStep * std::max(1.0, std::abs(u[k]));
+      um[k] -= kRelStep * std::max(1.0, std::abs(u[k]));
+      a_D_u.col(k) = (acceleration<M>(with_inputs<M>(p, up), q, v, t) -
+                      acceleration<M>(with_inputs<M>(p, um), q, v, t)) /
+                     (up[k] - um[k]);
+    }
+  } else if constexpr (has_residual_jacobians_v<M>) {
+    Eigen::LLT<PlainOf<QMat<M>>> llt;
+    detail::factor_and_solve<M>(pu, q, v, t, &llt, &a);
+    QMat<M> r_D_q, r_D_v;
+    M::residual_jacobians(q, v, a, t, pu, &r_D_q, &r_D_v);
+    a_D_q = -llt.solve(r_D_q);
+    a_D_v = -llt.solve(r_D_v);
+    if constexpr (m > 0) a_D_u = llt.solve(M::input_matrix(q, v, t, pu));
+  } else {
+    detail::throw_no_generated_jacobians(M::name);
+  }
+  LinearizedDynamics out;
+  out.xdot.resize(2 * n);
+  for (int i = 0; i < n; ++i) {  // entry by entry: GCC 12 misreads a vectorized block copy
+    out.xdot[i] = v[i];
+    out.xdot[n + i] = a[i];
+  }
+  out.A = Eigen::MatrixXd::Zero(2 * n, 2 * n);
+  out.A.topRightCorner(n, n).setIdentity();
+  out.A.bottomLeftCorner(n, n) = a_D_q;
+  out.A.bottomRightCorner(n, n) = a_D_v;
+  out.B = Eigen::MatrixXd::Zero(2 * n, m);
+  if constexpr (m > 0) out.B.bottomRows(n) = a_D_u;  // (GCC 12 warns of a 0-column copy)
+  return out;
+}
+
+}  // namespace gencoord
