@@ -6,6 +6,7 @@
 #include "gencoord/control/controlled_system.hpp"
 #include "gencoord/control/inputs.hpp"
 #include "gencoord/control/linearize.hpp"
+#include "gencoord/control/lqr.hpp"
 #include "gencoord/csv_writer.hpp"
 #include "gencoord/cubic_spline.hpp"
 #include "gencoord/dynamics.hpp"
