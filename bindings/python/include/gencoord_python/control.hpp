@@ -18,27 +18,14 @@ namespace gencoord::python {
 
 namespace py = pybind11;
 
-namespace detail {
-
-template <class M>
-QVec<M> one_vector(py::handle value, const char* name) {
-  const VectorInput input = vector_input(value, name, M::nq);
-  if (input.batch >= 0)
-    throw py::value_error(std::string(name) + ": expected one state of shape (" +
-                          std::to_string(M::nq) + ",)");
-  return to_vector<QVec<M>>(input.row(0));
-}
-
-}  // namespace detail
-
 template <class M>
 void bind_control(py::module_& module) {
   module.def(
       "linearize",
       [](py::handle q, py::handle v, py::handle u, double t, py::handle params,
          const std::string& method) {
-        const QVec<M> q0 = detail::one_vector<M>(q, "q");
-        const QVec<M> v0 = detail::one_vector<M>(v, "v");
+        const QVec<M> q0 = one_state_vector<M>(q, "q");
+        const QVec<M> v0 = one_state_vector<M>(v, "v");
         const ParamsOf<M> p = params_input<M>(params, -1).at(0);
         const InputsInput<M> controls = inputs_input<M>(u, -1);
         const InputVec<M> u0 =

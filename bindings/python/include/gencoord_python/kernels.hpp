@@ -29,6 +29,15 @@ namespace gencoord::python {
 
 namespace py = pybind11;
 
+/// One vector of shape (nq,), not a batch: a state where only one makes sense.
+template <class M>
+QVec<M> one_state_vector(py::handle value, const std::string& name) {
+  const VectorInput input = vector_input(value, name, M::nq);
+  if (input.batch >= 0)
+    throw py::value_error(name + ": expected one state of shape (" + std::to_string(M::nq) + ",)");
+  return to_vector<QVec<M>>(input.row(0));
+}
+
 /// The parameters of each batch element: one set for all, or one per element.
 template <class M>
 struct ParamsInput {

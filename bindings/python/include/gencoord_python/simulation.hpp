@@ -193,11 +193,7 @@ ControlLaw<M> control_law(py::handle inputs, LawKind* kind) {
 template <class M>
 QVec<M> state_vector(py::handle value, const char* name, const std::array<double, M::nq>& initial) {
   if (value.is_none()) return to_vector<QVec<M>>(initial.data());
-  const VectorInput input = vector_input(value, name, M::nq);
-  if (input.batch >= 0)
-    throw py::value_error(std::string(name) + ": expected one state of shape (" +
-                          std::to_string(M::nq) + ",)");
-  return to_vector<QVec<M>>(input.row(0));
+  return one_state_vector<M>(value, name);
 }
 
 }  // namespace detail
