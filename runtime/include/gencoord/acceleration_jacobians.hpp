@@ -42,6 +42,17 @@ constexpr JacobianSource resolve_jacobian_source(JacobianSource source) {
   return source;
 }
 
+namespace detail {
+
+// the step of a central difference in x: cbrt(eps) * max(1, |x|), which balances truncation
+// and round-off (both O(eps^(2/3)) relative)
+inline double central_difference_step(double x) {
+  static const double kRelStep = std::cbrt(std::numeric_limits<double>::epsilon());
+  return kRelStep * std::max(1.0, std::abs(x));
+}
+
+}  // namespace detail
+
 /// Central finite-difference Jacobians of acceleration() at (q, v, t).
 /// Each column costs two evaluations; step cbrt(eps) * max(1, |x_j|), truncation and
 /// round-off error both O(eps^(2/3)) relative.
@@ -55,18 +66,18 @@ constexpr JacobianSource resolve_jacobian_source(JacobianSource source) {
 template <class M>
 void acceleration_jacobians_fd(const ParamsOf<M>& p, const QVec<M>& q, const QVec<M>& v, double t,
                                QMat<M>* a_D_q, QMat<M>* a_D_v) {
-  static const double kRelStep = std::cbrt(std::numeric_limits<double>::epsilon());
+  using detail::central_difference_step;
   for (int j = 0; j < M::nq; ++j) {
     // columns of da/dq
     QVec<M> qp = q, qm = q;
-    qp[j] += kRelStep * std::max(1.0, std::abs(q[j]));
-    qm[j] -= kRelStep * std::max(1.0, std::abs(q[j]));
+    qp[j] += central_difference_step(q[j]);
+    qm[j] -= central_difference_step(q[j]);
     // divide by the representable step, not the nominal one
     a_D_q->col(j) = (acceleration<M>(p, qp, v, t) - acceleration<M>(p, qm, v, t)) / (qp[j] - qm[j]);
     // columns of da/dv
     QVec<M> vp = v, vm = v;
-    vp[j] += kRelStep * std::max(1.0, std::abs(v[j]));
-    vm[j] -= kRelStep * std::max(1.0, std::abs(v[j]));
+    vp[j] += central_difference_step(v[j]);
+    vm[j] -= central_difference_step(v[j]);
     a_D_v->col(j) = (acceleration<M>(p, q, vp, t) - acceleration<M>(p, q, vm, t)) / (vp[j] - vm[j]);
   }
 }

@@ -32,19 +32,20 @@ namespace py = pybind11;
 
 namespace detail {
 
-template <class M>
-int coordinate_index(py::handle key) {
-  if (py::isinstance<py::str>(key)) {
-    const std::string name = py::str(key);
-    for (int i = 0; i < M::nq; ++i)
-      if (name == M::coordinate_names[static_cast<std::size_t>(i)]) return i;
-    std::string names;
-    for (const char* known : M::coordinate_names)
-      names += (names.empty() ? "" : ", ") + std::string(known);
-    throw py::value_error("scripted: " + std::string(M::name) + " has no coordinate '" + name +
-                          "'; its coordinates are " + names);
+// The index that `key` names: a name among `names` (`kind`s of model M, for the error),
+// or an index as given; `argument` is the simulate() argument it came in.
+template <class M, std::size_t N>
+int index_of(py::handle key, const std::array<const char*, N>& names, const char* argument,
+             const char* kind) {
+  if (!py::isinstance<py::str>(key)) return key.cast<int>();
+  const std::string name = py::str(key);
+  std::string known;
+  for (std::size_t i = 0; i < N; ++i) {
+    if (name == names[i]) return static_cast<int>(i);
+    known += (i ? ", " : "") + std::string(names[i]);
   }
-  return key.cast<int>();
+  throw py::value_error(std::string(argument) + ": " + M::name + " has no " + kind + " '" + name +
+                        "'; its " + kind + "s are " + known);
 }
 
 // A Python function that C++ copies may hold and drop without the GIL (the Script's and the
@@ -101,7 +102,7 @@ Script script_of(py::handle scripted) {
   std::vector<int> coordinates;
   std::vector<CoordinateMotion> motions;
   for (const auto& [key, motion] : scripted.cast<py::dict>()) {
-    coordinates.push_back(coordinate_index<M>(key));
+    coordinates.push_back(index_of<M>(key, M::coordinate_names, "scripted", "coordinate"));
     motions.push_back(coordinate_motion(motion, std::string(py::str(key))));
   }
   if (coordinates.empty()) return Script();
@@ -116,21 +117,6 @@ Script script_of(py::handle scripted) {
     }
     return sample;
   });
-}
-
-template <class M>
-int input_index(py::handle key) {
-  if (!py::isinstance<py::str>(key)) return key.cast<int>();
-  const std::string name = py::str(key);
-  std::string names;
-  if constexpr (has_inputs_v<M>) {
-    for (int k = 0; k < M::num_inputs; ++k)
-      if (name == M::input_names[static_cast<std::size_t>(k)]) return k;
-    for (const char* known : M::input_names)
-      names += (names.empty() ? "" : ", ") + std::string(known);
-  }
-  throw py::value_error("inputs: " + std::string(M::name) + " has no input '" + name +
-                        "'; its inputs are " + names);
 }
 
 /// The control law of `inputs`: a function (t, q, v) -> u of shape (num_inputs,), a feedback
@@ -159,7 +145,7 @@ ControlLaw<M> control_law(py::handle inputs, LawKind* kind) {
   *kind = LawKind::OpenLoop;
   std::vector<std::pair<int, std::function<double(double)>>> signals;
   for (const auto& [key, signal] : inputs.cast<py::dict>()) {
-    const int k = input_index<M>(key);
+    const int k = index_of<M>(key, M::input_names, "inputs", "input");
     if (k < 0 || k >= m)
       throw py::value_error("inputs: index " + std::to_string(k) + " is out of range for " +
                             std::to_string(m) + " inputs");

@@ -8,17 +8,14 @@
 // unless it says it reads t only.
 #pragma once
 
-#include <Eigen/Cholesky>
 #include <Eigen/Core>
 
-#include <algorithm>
-#include <cmath>
 #include <functional>
-#include <limits>
 #include <utility>
 
 #include "gencoord/acceleration_jacobians.hpp"
 #include "gencoord/control/inputs.hpp"
+#include "gencoord/control/linearize.hpp"
 #include "gencoord/dynamics.hpp"
 #include "gencoord/integrate/system.hpp"
 #include "gencoord/model_traits.hpp"
@@ -68,36 +65,26 @@ class ControlledSystem {
   /// The acceleration and its total Jacobians, the law's included (see the file comment).
   void linearize(const State& s, JacobianSource source,
                  Linearization<ControlledSystem>* out) const {
-    const ParamsOf<M> pu = params(s);
-    acceleration_and_jacobians<M>(pu, s.q, s.v, s.t, source, &out->force, &out->force_D_q,
-                                  &out->force_D_v);
-    if (kind_ == LawKind::OpenLoop) return;
-    // da/du = Mt^-1 B, by central differences where the model's Jacobians are
-    Eigen::Matrix<double, M::nq, Eigen::Dynamic> a_D_u(M::nq, M::num_inputs);
     const InputVec<M> u = inputs(s);
-    if (resolve_jacobian_source<M>(source) == JacobianSource::Generated) {
-      const Eigen::LLT<PlainOf<QMat<M>>> llt(M::mass_matrix(s.q, s.t, pu));
-      a_D_u = llt.solve(M::input_matrix(s.q, s.v, s.t, pu));
-    } else {
-      for (int k = 0; k < M::num_inputs; ++k) {
-        InputVec<M> up = u, um = u;
-        up[k] += step(u[k]);
-        um[k] -= step(u[k]);
-        a_D_u.col(k) = (gencoord::acceleration<M>(with_inputs<M>(p_, up), s) -
-                        gencoord::acceleration<M>(with_inputs<M>(p_, um), s)) /
-                       (up[k] - um[k]);
-      }
+    if (kind_ == LawKind::OpenLoop) {
+      acceleration_and_input_jacobians<M>(p_, s.q, s.v, u, s.t, source, &out->force,
+                                          &out->force_D_q, &out->force_D_v, nullptr);
+      return;
     }
+    InputJacobian<M> a_D_u;
+    acceleration_and_input_jacobians<M>(p_, s.q, s.v, u, s.t, source, &out->force, &out->force_D_q,
+                                        &out->force_D_v, &a_D_u);
     // the law's du/dq and du/dv, by central differences
+    using detail::central_difference_step;
     for (int j = 0; j < M::nq; ++j) {
       State sp = s, sm = s;
-      sp.q[j] += step(s.q[j]);
-      sm.q[j] -= step(s.q[j]);
+      sp.q[j] += central_difference_step(s.q[j]);
+      sm.q[j] -= central_difference_step(s.q[j]);
       out->force_D_q.col(j) += a_D_u * ((inputs(sp) - inputs(sm)) / (sp.q[j] - sm.q[j]));
       sp = s;
       sm = s;
-      sp.v[j] += step(s.v[j]);
-      sm.v[j] -= step(s.v[j]);
+      sp.v[j] += central_difference_step(s.v[j]);
+      sm.v[j] -= central_difference_step(s.v[j]);
       out->force_D_v.col(j) += a_D_u * ((inputs(sp) - inputs(sm)) / (sp.v[j] - sm.v[j]));
     }
   }
@@ -108,11 +95,6 @@ class ControlledSystem {
   }
 
  private:
-  static double step(double x) {
-    static const double kRelStep = std::cbrt(std::numeric_limits<double>::epsilon());
-    return kRelStep * std::max(1.0, std::abs(x));
-  }
-
   ParamsOf<M> p_;
   ControlLaw<M> law_;
   LawKind kind_;

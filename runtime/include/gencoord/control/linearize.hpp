@@ -11,10 +11,6 @@
 #include <Eigen/Cholesky>
 #include <Eigen/Core>
 
-#include <algorithm>
-#include <cmath>
-#include <limits>
-
 #include "gencoord/acceleration_jacobians.hpp"
 #include "gencoord/control/inputs.hpp"
 #include "gencoord/dynamics.hpp"
@@ -28,6 +24,49 @@ struct LinearizedDynamics {
   Eigen::MatrixXd A;     // df/dx (2 nq x 2 nq), x = (q, v)
   Eigen::MatrixXd B;     // df/du (2 nq x num_inputs)
 };
+
+/// da/du of a model's acceleration (dim M::nq x num_inputs_v<M>).
+template <class M>
+using InputJacobian = Eigen::Matrix<double, M::nq, num_inputs_v<M>>;
+
+/// The acceleration a(q, v, u, t) and its Jacobians da/dq, da/dv and, unless a_D_u is null,
+/// da/du. Generated: one Cholesky factor of Mt serves all three (the file comment);
+/// FiniteDifference: central differences of acceleration(), 2 per column.
+/// \param[in]  p       The model parameters; their input fields are replaced by u.
+/// \param[in]  u       The control inputs (dim num_inputs_v<M>).
+/// \param[out] a, a_D_q, a_D_v  Must not be null.
+/// \param[out] a_D_u   da/du; may be null when it is not wanted.
+/// \throws DynamicsError, std::invalid_argument as acceleration_and_jacobians().
+template <class M>
+void acceleration_and_input_jacobians(const ParamsOf<M>& p, const QVec<M>& q, const QVec<M>& v,
+                                      const InputVec<M>& u, double t, JacobianSource source,
+                                      QVec<M>* a, QMat<M>* a_D_q, QMat<M>* a_D_v,
+                                      InputJacobian<M>* a_D_u) {
+  const ParamsOf<M> pu = with_inputs<M>(p, u);
+  if (resolve_jacobian_source<M>(source) == JacobianSource::FiniteDifference) {
+    acceleration_and_jacobians<M>(pu, q, v, t, source, a, a_D_q, a_D_v);
+    if (!a_D_u) return;
+    for (int k = 0; k < num_inputs_v<M>; ++k) {
+      InputVec<M> up = u, um = u;
+      up[k] += detail::central_difference_step(u[k]);
+      um[k] -= detail::central_difference_step(u[k]);
+      a_D_u->col(k) = (acceleration<M>(with_inputs<M>(p, up), q, v, t) -
+                       acceleration<M>(with_inputs<M>(p, um), q, v, t)) /
+                      (up[k] - um[k]);
+    }
+  } else if constexpr (has_residual_jacobians_v<M>) {
+    Eigen::LLT<PlainOf<QMat<M>>> llt;
+    detail::factor_and_solve<M>(pu, q, v, t, &llt, a);
+    QMat<M> r_D_q, r_D_v;
+    M::residual_jacobians(q, v, *a, t, pu, &r_D_q, &r_D_v);
+    *a_D_q = -llt.solve(r_D_q);
+    *a_D_v = -llt.solve(r_D_v);
+    if constexpr (has_inputs_v<M>)
+      if (a_D_u) *a_D_u = llt.solve(M::input_matrix(q, v, t, pu));
+  } else {
+    detail::throw_no_generated_jacobians(M::name);
+  }
+}
 
 /// The linearization of model M's dynamics at (q, v, u, t); see LinearizedDynamics.
 /// \param[in] p       The model parameters; their input fields are replaced by u.
@@ -46,33 +85,10 @@ LinearizedDynamics linearize(const ParamsOf<M>& p, const QVec<M>& q, const QVec<
                              JacobianSource source = JacobianSource::Auto) {
   static_assert(assert_model_v<M>);
   constexpr int n = M::nq;
-  constexpr int m = num_inputs_v<M>;
-  const ParamsOf<M> pu = with_inputs<M>(p, u);
   QVec<M> a;
   QMat<M> a_D_q, a_D_v;
-  Eigen::MatrixXd a_D_u(n, m);
-  if (resolve_jacobian_source<M>(source) == JacobianSource::FiniteDifference) {
-    acceleration_and_jacobians<M>(pu, q, v, t, source, &a, &a_D_q, &a_D_v);
-    static const double kRelStep = std::cbrt(std::numeric_limits<double>::epsilon());
-    for (int k = 0; k < m; ++k) {
-      InputVec<M> up = u, um = u;
-      up[k] += kRelStep * std::max(1.0, std::abs(u[k]));
-      um[k] -= kRelStep * std::max(1.0, std::abs(u[k]));
-      a_D_u.col(k) = (acceleration<M>(with_inputs<M>(p, up), q, v, t) -
-                      acceleration<M>(with_inputs<M>(p, um), q, v, t)) /
-                     (up[k] - um[k]);
-    }
-  } else if constexpr (has_residual_jacobians_v<M>) {
-    Eigen::LLT<PlainOf<QMat<M>>> llt;
-    detail::factor_and_solve<M>(pu, q, v, t, &llt, &a);
-    QMat<M> r_D_q, r_D_v;
-    M::residual_jacobians(q, v, a, t, pu, &r_D_q, &r_D_v);
-    a_D_q = -llt.solve(r_D_q);
-    a_D_v = -llt.solve(r_D_v);
-    if constexpr (m > 0) a_D_u = llt.solve(M::input_matrix(q, v, t, pu));
-  } else {
-    detail::throw_no_generated_jacobians(M::name);
-  }
+  InputJacobian<M> a_D_u;
+  acceleration_and_input_jacobians<M>(p, q, v, u, t, source, &a, &a_D_q, &a_D_v, &a_D_u);
   LinearizedDynamics out;
   out.xdot.resize(2 * n);
   for (int i = 0; i < n; ++i) {  // entry by entry: GCC 12 misreads a vectorized block copy
@@ -83,8 +99,9 @@ LinearizedDynamics linearize(const ParamsOf<M>& p, const QVec<M>& q, const QVec<
   out.A.topRightCorner(n, n).setIdentity();
   out.A.bottomLeftCorner(n, n) = a_D_q;
   out.A.bottomRightCorner(n, n) = a_D_v;
-  out.B = Eigen::MatrixXd::Zero(2 * n, m);
-  if constexpr (m > 0) out.B.bottomRows(n) = a_D_u;  // (GCC 12 warns of a 0-column copy)
+  out.B = Eigen::MatrixXd::Zero(2 * n, num_inputs_v<M>);
+  // (GCC 12 warns of a 0-column copy)
+  if constexpr (num_inputs_v < M >> 0) out.B.bottomRows(n) = a_D_u;
   return out;
 }
 

@@ -10,9 +10,6 @@
 // da_f/dv_f = -Mt_ff^-1 (dr/dv)_ff (the scripted q_s, v_s do not vary within a step).
 #pragma once
 
-#include <algorithm>
-#include <cmath>
-#include <limits>
 #include <stdexcept>
 #include <string>
 #include <type_traits>
@@ -246,18 +243,18 @@ class ScriptedModel {
   // central differences of a_f over the free q and v, as acceleration_jacobians_fd()
   void fd_jacobians(const QVec<M>& q, const QVec<M>& v, double t, const ScriptSample& at,
                     FreeMatrix* af_D_qf, FreeMatrix* af_D_vf) const {
-    static const double kRelStep = std::cbrt(std::numeric_limits<double>::epsilon());
+    using detail::central_difference_step;
     for (int j = 0; j < num_free(); ++j) {
       const int c = free_[static_cast<std::size_t>(j)];
       QVec<M> qp = q, qm = q;
-      qp[c] += kRelStep * std::max(1.0, std::abs(q[c]));
-      qm[c] -= kRelStep * std::max(1.0, std::abs(q[c]));
+      qp[c] += central_difference_step(q[c]);
+      qm[c] -= central_difference_step(q[c]);
       af_D_qf->col(j) =
           (free_part(acceleration(qp, v, t, at)) - free_part(acceleration(qm, v, t, at))) /
           (qp[c] - qm[c]);
       QVec<M> vp = v, vm = v;
-      vp[c] += kRelStep * std::max(1.0, std::abs(v[c]));
-      vm[c] -= kRelStep * std::max(1.0, std::abs(v[c]));
+      vp[c] += central_difference_step(v[c]);
+      vm[c] -= central_difference_step(v[c]);
       af_D_vf->col(j) =
           (free_part(acceleration(q, vp, t, at)) - free_part(acceleration(q, vm, t, at))) /
           (vp[c] - vm[c]);
