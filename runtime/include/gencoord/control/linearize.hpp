@@ -45,14 +45,16 @@ void acceleration_and_input_jacobians(const ParamsOf<M>& p, const QVec<M>& q, co
   const ParamsOf<M> pu = with_inputs<M>(p, u);
   if (resolve_jacobian_source<M>(source) == JacobianSource::FiniteDifference) {
     acceleration_and_jacobians<M>(pu, q, v, t, source, a, a_D_q, a_D_v);
-    if (!a_D_u) return;
-    for (int k = 0; k < num_inputs_v<M>; ++k) {
-      InputVec<M> up = u, um = u;
-      up[k] += detail::central_difference_step(u[k]);
-      um[k] -= detail::central_difference_step(u[k]);
-      a_D_u->col(k) = (acceleration<M>(with_inputs<M>(p, up), q, v, t) -
-                       acceleration<M>(with_inputs<M>(p, um), q, v, t)) /
-                      (up[k] - um[k]);
+    if constexpr (has_inputs_v<M>) {
+      if (!a_D_u) return;
+      for (int k = 0; k < M::num_inputs; ++k) {
+        InputVec<M> up = u, um = u;
+        up[k] += detail::central_difference_step(u[k]);
+        um[k] -= detail::central_difference_step(u[k]);
+        a_D_u->col(k) = (acceleration<M>(with_inputs<M>(p, up), q, v, t) -
+                         acceleration<M>(with_inputs<M>(p, um), q, v, t)) /
+                        (up[k] - um[k]);
+      }
     }
   } else if constexpr (has_residual_jacobians_v<M>) {
     Eigen::LLT<PlainOf<QMat<M>>> llt;
