@@ -3,11 +3,14 @@
 route users of sympy.physics.mechanics take, lambdify of the mass matrix M and forcing f of
 LagrangesMethod, then numpy.linalg.solve(M, f).
 
-Both contenders run interleaved in one process pinned to one core, on the same random states;
+Every contender runs interleaved in one process pinned to one core, on the same random states;
 each round times one call per state (single calls) and one batch of all states (the module's
-batch on one thread against a Python loop over the lambdified functions). Prints the minimum
-and the median per state over the rounds and the ratios. Run with a Python that has NumPy and
-SymPy (Debian's /usr/bin/python3):
+batch on one thread against a Python loop over the lambdified functions). Beside them, the
+floor of a single call (bench/python_call_floor.cpp, compiled with the module's own compile
+command): the same C++ kernel called from C++, and an empty pybind11 function with qddot's
+signature, whose sum is what one call from Python cannot go below. Prints the minimum and the
+median per state over the rounds and the ratios. Run with a Python that has NumPy and SymPy
+(Debian's /usr/bin/python3):
 
     /usr/bin/python3 bench/python_lambdify.py [--sizes 2,5] [--batch 10000] [--rounds 7]
 """
@@ -16,7 +19,10 @@ from __future__ import annotations
 
 import argparse
 import importlib
+import json
 import os
+import shlex
+import shutil
 import statistics
 import subprocess
 import sys
@@ -28,6 +34,13 @@ import sympy as sp
 from sympy.physics import mechanics as me
 
 REPOSITORY = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+sys.path.insert(0, REPOSITORY)
+
+from tool.driver_build import python_module  # noqa: E402
+from tool.layout import find_layout  # noqa: E402
+from tool.model_file import load  # noqa: E402
+
+FLOOR_SOURCE = os.path.join(REPOSITORY, "bench", "python_call_floor.cpp")
 
 
 def lambdified_chain(n: int):
@@ -53,14 +66,28 @@ def lambdified_chain(n: int):
     return lambda qs, us: np.linalg.solve(mass(qs, us), forcing(qs, us).ravel())
 
 
-def chain_module(n: int, folder: str):
-    """The module of models/n_link_chain.py with n links, built by `gencoord python`."""
-    subprocess.run([os.path.join(REPOSITORY, "gencoord"), "python",
-                    os.path.join(REPOSITORY, "models", "n_link_chain.py"), "--set", f"n={n}",
-                    "--python", sys.executable, "-o", folder], check=True,
-                   stdout=subprocess.DEVNULL)
+def chain_modules(n: int, folder: str):
+    """The module of models/n_link_chain.py with n links (built as `gencoord python` builds
+    it, into the cache) and its floor module, compiled into `folder` with the module's compile
+    command, the source swapped."""
+    target = load(os.path.join(REPOSITORY, "models", "n_link_chain.py"), {"n": str(n)}).target
+    built = python_module(find_layout(), target, sys.executable)
+    with open(os.path.join(os.path.dirname(built), "compile_commands.json"),
+              encoding="utf-8") as handle:
+        entry = next(e for e in json.load(handle) if e["file"].endswith("model_module.cpp"))
+    floor_name = f"floor_{target.name}"
+    words = shlex.split(entry["command"])
+    source_at, output_at = words.index(entry["file"]), words.index("-o") + 1
+    words[source_at], words[output_at] = FLOOR_SOURCE, os.path.join(folder, floor_name + ".o")
+    words = [f"-DGENCOORD_MODULE_NAME={floor_name}" if w.startswith("-DGENCOORD_MODULE_NAME=")
+             else w for w in words]
+    suffix = os.path.basename(built)[len(target.name):]  # e.g. .cpython-311-x86_64-linux-gnu.so
+    for command in (words, [words[0], "-shared", words[output_at], "-o",
+                            os.path.join(folder, floor_name + suffix)]):
+        subprocess.run(command, check=True, cwd=entry["directory"])
+    shutil.copy(built, folder)
     sys.path.insert(0, folder)
-    return importlib.import_module(f"n_link_chain_{n}")
+    return importlib.import_module(target.name), importlib.import_module(floor_name)
 
 
 def per_state(seconds: list[float], count: int) -> tuple[float, float]:
@@ -68,18 +95,24 @@ def per_state(seconds: list[float], count: int) -> tuple[float, float]:
 
 
 def measure(n: int, batch: int, rounds: int, folder: str) -> None:
-    module, solve = chain_module(n, folder), lambdified_chain(n)
+    (module, floor), solve = chain_modules(n, folder), lambdified_chain(n)
     rng = np.random.default_rng(n)
     q, v = rng.uniform(-1, 1, (batch, n)), rng.uniform(-1, 1, (batch, n))
     worst = np.abs(module.qddot(q[:100], v[:100]) -
                    np.array([solve(q[i], v[i]) for i in range(100)])).max()
     singles = min(batch, 1000)
-    times = {name: [] for name in ("module", "lambdify", "module batch", "lambdify loop")}
+    names = ("module", "bare C++", "empty call", "lambdify", "module batch", "lambdify loop")
+    times = {name: [] for name in names}
     for _ in range(rounds):
         start = time.perf_counter()
         for i in range(singles):
             module.qddot(q[i], v[i])
         times["module"].append(time.perf_counter() - start)
+        times["bare C++"].append(floor.bare_qddot(q[:singles], v[:singles])[0])
+        start = time.perf_counter()
+        for i in range(singles):
+            floor.empty(q[i], v[i])
+        times["empty call"].append(time.perf_counter() - start)
         start = time.perf_counter()
         for i in range(singles):
             solve(q[i], v[i])
@@ -96,9 +129,12 @@ def measure(n: int, batch: int, rounds: int, folder: str) -> None:
     print(f"  {'contender':<16}{'min (us/state)':>16}{'median':>10}")
     results = {}
     for name, seconds in times.items():
-        count = singles if name in ("module", "lambdify") else batch
+        count = batch if name in ("module batch", "lambdify loop") else singles
         results[name] = per_state(seconds, count)
         print(f"  {name:<16}{results[name][0] * 1e6:>16.3f}{results[name][1] * 1e6:>10.3f}")
+    floor_of = [results["bare C++"][k] + results["empty call"][k] for k in (0, 1)]
+    print(f"  module / (bare C++ + empty call): {results['module'][0] / floor_of[0]:.2f}x (min), "
+          f"{results['module'][1] / floor_of[1]:.2f}x (median)")
     for fast, slow in (("module", "lambdify"), ("module batch", "lambdify loop")):
         print(f"  {slow} / {fast}: {results[slow][0] / results[fast][0]:.1f}x (min), "
               f"{results[slow][1] / results[fast][1]:.1f}x (median)")

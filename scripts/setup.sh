@@ -4,7 +4,8 @@
 # robot tests and benchmarks compare with), and a python3 with SymPy and Jinja2. Safe to run again. Prints the python it settled on as its last line.
 #   GENCOORD_PYTHON=/usr/bin/python3 scripts/setup.sh    generate with Debian's own SymPy
 #   scripts/setup.sh --python-modules    also what the models' Python modules need: pybind11,
-#                                        Python's headers, NumPy and SciPy for /usr/bin/python3
+#                                        Python's headers, NumPy, SciPy and Matplotlib (the
+#                                        README's plot) for /usr/bin/python3
 set -euo pipefail
 
 packages=()
@@ -39,6 +40,7 @@ assert os.path.isfile(os.path.join(sysconfig.get_paths()["include"], "Python.h")
     >/dev/null 2>&1 || packages+=(python3-dev)
   /usr/bin/python3 -c "import numpy" >/dev/null 2>&1 || packages+=(python3-numpy)
   /usr/bin/python3 -c "import scipy" >/dev/null 2>&1 || packages+=(python3-scipy)
+  /usr/bin/python3 -c "import matplotlib" >/dev/null 2>&1 || packages+=(python3-matplotlib)
 fi
 
 "$(dirname "$0")/install_packages.sh" setup "${packages[@]}"
