@@ -6,7 +6,20 @@
 #   scripts/setup.sh --python-modules    also what the models' Python modules need: pybind11,
 #                                        Python's headers, NumPy, SciPy and Matplotlib (the
 #                                        README's plot) for /usr/bin/python3
+#   scripts/setup.sh --browser           also Chromium, which tool/viewer/headless.py runs
+#                                        headless for the viewer page's browser tests; or
+#                                        checks that the browser $GENCOORD_CHROMIUM names is there
+# The options combine.
 set -euo pipefail
+
+python_modules=false
+browser=false
+for option in "$@"; do
+  case $option in
+    --python-modules) python_modules=true ;;
+    --browser) browser=true ;;
+  esac
+done
 
 packages=()
 command -v g++ >/dev/null 2>&1 || packages+=(g++)
@@ -33,7 +46,7 @@ if ! "$python" -c "import sympy, jinja2" >/dev/null 2>&1; then
     || packages+=(python3 python3-sympy python3-jinja2)
 fi
 
-if [ "${1:-}" = --python-modules ]; then
+if $python_modules; then
   [ -f /usr/lib/cmake/pybind11/pybind11Config.cmake ] || packages+=(pybind11-dev)
   /usr/bin/python3 -c 'import os, sysconfig
 assert os.path.isfile(os.path.join(sysconfig.get_paths()["include"], "Python.h"))' \
@@ -41,6 +54,19 @@ assert os.path.isfile(os.path.join(sysconfig.get_paths()["include"], "Python.h")
   /usr/bin/python3 -c "import numpy" >/dev/null 2>&1 || packages+=(python3-numpy)
   /usr/bin/python3 -c "import scipy" >/dev/null 2>&1 || packages+=(python3-scipy)
   /usr/bin/python3 -c "import matplotlib" >/dev/null 2>&1 || packages+=(python3-matplotlib)
+fi
+
+# the browser tool/viewer/headless.py would run: $GENCOORD_CHROMIUM, else one of these names
+if $browser; then
+  if [ -n "${GENCOORD_CHROMIUM:-}" ]; then
+    if ! command -v "$GENCOORD_CHROMIUM" >/dev/null 2>&1; then
+      echo "setup: error: GENCOORD_CHROMIUM=$GENCOORD_CHROMIUM is not a program" >&2
+      exit 1
+    fi
+  elif ! { command -v chromium || command -v chromium-browser || command -v google-chrome
+         } >/dev/null 2>&1; then
+    packages+=(chromium)
+  fi
 fi
 
 "$(dirname "$0")/install_packages.sh" setup "${packages[@]}"
