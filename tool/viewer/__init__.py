@@ -1,0 +1,1 @@
+"""Headless Chromium for the viewer page's browser tests, benchmark and screenshots."""
