@@ -1,6 +1,7 @@
-"""`./generate models/<name>.py [-o DIR] [--set key=value]`: writes DIR/<name>.hpp (and with
---translation-units N, DIR/<name>_double_0.cpp ... <name>_double_<N-1>.cpp); DIR defaults to
-generated/ in the current directory."""
+"""`./generate models/<name>.py [-o DIR] [--set key=value]`: writes DIR/<name>.hpp, the scene
+a viewer draws DIR/<name>.scene.json (scene.py) and, with --translation-units N,
+DIR/<name>_double_0.cpp ... <name>_double_<N-1>.cpp; DIR defaults to generated/ in the
+current directory."""
 
 from __future__ import annotations
 
@@ -148,6 +149,8 @@ def _generate_and_write(args, report, started: float) -> int:
             print(f"  {line}")
     path = os.path.join(args.output_dir, f"{generated.name}.hpp")
     changed = write_atomically(path, generated.header)
+    changed = write_atomically(os.path.join(args.output_dir, f"{generated.name}.scene.json"),
+                               generated.scene) or changed
     for file_name, text in generated.sources.items():
         changed = write_atomically(os.path.join(args.output_dir, file_name), text) or changed
     removed = _remove_stale_sources(args.output_dir, generated.name, generated.sources)

@@ -24,6 +24,7 @@ from .model import Model
 from .naming import chart_name
 from .optimize import OptimizeOptions, optimize_model
 from .rank import check_full_rank
+from .scene import scene_json
 from .singularities import analyse_singularities
 from .split import MAX_PART_STATEMENTS, assign_groups
 from .structured import derive_structured
@@ -46,6 +47,7 @@ class Generated:
     timings: list[tuple[str, float]] = field(default_factory=list)
     # with --translation-units N: file name -> text of each <name>_double_<k>.cpp
     sources: dict[str, str] = field(default_factory=dict)
+    scene: str = ""                               # <name>.scene.json's text (scene.py)
 
 
 def working_directory_relative(path: str) -> str:
@@ -210,5 +212,6 @@ def generate(path: str, options: dict[str, str] | None = None,
     sources = {instantiation_file_name(name, group): render_instantiation(
                    charts, name, source_path, flags, group, translation_units)
                for group in range(translation_units)}
+    scene = scene_json(model, name)
     stage("emit", start)
-    return Generated(name, header, analysis, timings, sources)
+    return Generated(name, header, analysis, timings, sources, scene)

@@ -7,13 +7,13 @@
 #   2. the whole suite in a Release build: the generator's Python tests (independent
 #      derivations, golden files of generated/, bad models), the generated models' tests,
 #      the models' Python modules (built for Debian's /usr/bin/python3, which has NumPy and
-#      SciPy), and the runtime suites again.
+#      SciPy), the viewer page in headless Chromium, and the runtime suites again.
 # Usage: scripts/test.sh [build-dir]     (GENCOORD_SKIP_SANITIZERS=1 skips step 1)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 build=${1:-build}
 jobs=$(nproc 2>/dev/null || echo 2)
-python=$(scripts/setup.sh --python-modules | tail -n 1)
+python=$(scripts/setup.sh --python-modules --browser | tail -n 1)
 runtime_suites="runtime|deformable|integrators|crosscheck|scripted|atlas|fuzz|large"
 
 echo "== format and lint"

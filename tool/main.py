@@ -11,18 +11,21 @@ import textwrap
 
 from generator import cli as generator_cli
 from generator.failures import report_failure
+from generator.scene import scene as scene_of
 
 from . import info, trajectory_svg
 from .driver_build import driver_program, python_module
 from .errors import ToolError
 from .layout import find_layout
 from .model_file import load, split_settings
+from .viewer import page as viewer_page
 
 _DESCRIPTION = """\
 Generalized-coordinate dynamics from a model file.
 
   gencoord generate MODEL.py [-o DIR] [--set n=5]     the C++ header (see generate --help)
-  gencoord simulate MODEL.py [options]                integrate it: summary, CSV, SVG
+  gencoord simulate MODEL.py [options]                integrate it: summary, CSV, SVG, HTML
+  gencoord view MODEL.py [--csv FILE]                 a trajectory as an HTML page (3D)
   gencoord crosscheck MODEL.py [options]              against the maximal penalty model
   gencoord python MODEL.py [-o DIR]                   its Python module (docs/python.md)
   gencoord info MODEL.py                              what the model file declares
@@ -43,7 +46,16 @@ Options for the simulation itself go to the compiled program:
   --dt DT             step size in s (default 1e-3)
   --duration T        simulated time in s (default 10)
   --q a,b,...  --v a,b,...   initial state (default: the model file's)
-Writes DIR/<name>.csv (t, q, v, energy, positions) and DIR/<name>.svg."""
+Writes DIR/<name>.csv (t, q, v, energy, positions), DIR/<name>.svg and DIR/<name>.html
+(the motion in 3D in any browser; see gencoord view --help)."""
+
+_VIEW_EPILOG = """\
+The page holds the trajectory, the model's scene and three.js, and needs nothing else: open
+it in any browser. three.js is fetched once from the npm registry into the cache. Controls:
+play/pause, time slider, speed, trails, drag to orbit the camera (right-drag pans, wheel
+zooms), and a plot of the energy error or a coordinate with the current time marked. A
+trajectory of more than 2,000,000 numbers is thinned to that many (every k-th state, the
+worst energy error of each k kept)."""
 
 _CROSSCHECK_EPILOG = """\
 Options for the cross-check itself go to the compiled program:
@@ -98,6 +110,11 @@ def _parser() -> argparse.ArgumentParser:
     python_parser.add_argument("--python", default=sys.executable,
                                help="the Python interpreter to build for (default: the one "
                                     "running gencoord, %(default)s)")
+    view_parser = _model_command(subparsers, "view",
+                                 "write a trajectory of a model file as an HTML page",
+                                 _VIEW_EPILOG)
+    view_parser.add_argument("--csv", help="the trajectory (default: DIR/<name>.csv, which "
+                                           "gencoord simulate writes)")
     info_parser = subparsers.add_parser(
         "info", help="what a model file declares",
         description="what a model file declares.\n\n" + _TRUST,
@@ -145,7 +162,30 @@ def _simulate(args, forwarded: list[str]) -> int:
         svg = os.path.splitext(csv)[0] + ".svg"
         trajectory_svg.write_svg(csv, svg, loaded.target.name)
         print(f"picture     {svg}")
+        html = os.path.splitext(csv)[0] + ".html"
+        _write_view(loaded, csv, html)
+        print(f"viewer      {html} (open it in a browser)")
     return status
+
+
+def _write_view(loaded, csv: str, html: str) -> None:
+    values = {name: float(value) for name, value in loaded.parameters.items()}
+    scene = scene_of(loaded.model, loaded.target.name, values)
+    viewer_page.write_page(csv, scene, html, loaded.target.name)
+
+
+def _view(args) -> int:
+    loaded = load(args.model, split_settings(args.settings), args.name)
+    csv = args.csv or os.path.join(args.output_dir, f"{loaded.target.name}.csv")
+    if not os.path.isfile(csv):
+        raise ToolError(f"{csv}: no such trajectory; run gencoord simulate {args.model} first, "
+                        f"or name one with --csv")
+    os.makedirs(args.output_dir, exist_ok=True)
+    html = os.path.join(args.output_dir,
+                        os.path.splitext(os.path.basename(csv))[0] + ".html")
+    _write_view(loaded, csv, html)
+    print(html)
+    return 0
 
 
 def _crosscheck(args, forwarded: list[str]) -> int:
@@ -186,7 +226,7 @@ def main(argv: list[str] | None = None) -> int:
     if args.command is None:
         parser.print_help()
         return 2
-    if forwarded and args.command in ("info", "python"):
+    if forwarded and args.command in ("info", "python", "view"):
         parser.error(f"{args.command}: unrecognized arguments: {' '.join(forwarded)}")
     try:
         if args.command == "simulate":
@@ -195,6 +235,8 @@ def main(argv: list[str] | None = None) -> int:
             return _crosscheck(args, forwarded)
         if args.command == "python":
             return _python(args)
+        if args.command == "view":
+            return _view(args)
         return _info(args)
     except ToolError as error:
         if not error.shown:

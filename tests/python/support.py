@@ -34,7 +34,7 @@ def other_sympy_than_generated(names) -> str | None:
     """Why the files `names` of generated/ cannot be compared byte for byte with what this
     SymPy writes (another version may order terms differently), or None when they can."""
     versions = {banner_sympy_version((GENERATED / name).read_text(encoding="utf-8"))
-                for name in names}
+                for name in names} - {None}  # a scene (JSON) has no banner
     others = sorted(str(v) for v in versions if v != sp.__version__)
     if not others:
         return None

@@ -183,7 +183,8 @@ class GoldenFilesTest(unittest.TestCase):
             result = run_generate(*arguments, hash_seed="54321", cwd=root)
             self.assertEqual(result.returncode, 0, describe(result))
             name = "double_pendulum.hpp"
-            self.assertEqual([p.name for p in (root / "generated").iterdir()], [name])
+            self.assertEqual(sorted(p.name for p in (root / "generated").iterdir()),
+                             ["double_pendulum.scene.json", name])
             first = (self.output / name).read_text(encoding="utf-8")
             second = (root / "generated" / name).read_text(encoding="utf-8")
             self.assertEqual(second, first, "\n" + unified_diff(first, second, name))
@@ -197,8 +198,9 @@ class GoldenFilesTest(unittest.TestCase):
                          "or add their model to the script")
 
     def test_no_temporary_files_left(self):
-        leftovers = sorted(p.name for p in self.output.iterdir() if not p.name.endswith(".hpp"))
-        self.assertEqual(leftovers, [], "generation left files that are not headers")
+        leftovers = sorted(p.name for p in self.output.iterdir()
+                           if not p.name.endswith((".hpp", ".scene.json")))
+        self.assertEqual(leftovers, [], "generation left files that are not headers or scenes")
 
 
 class HeaderSkeletonTest(unittest.TestCase):

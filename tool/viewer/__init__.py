@@ -1,1 +1,1 @@
-"""Headless Chromium for the viewer page's browser tests, benchmark and screenshots."""
+"""The browser viewer: a trajectory as one self-contained HTML page, and headless Chromium."""

@@ -1,0 +1,129 @@
+"""The viewer page without a browser (tool/viewer/page.py): it carries everything it needs
+and nothing from the network, holds the trajectory exactly enough, stays light, and thins a
+long trajectory without hiding its worst energy error."""
+
+from __future__ import annotations
+
+import array
+import base64
+import json
+import os
+import re
+import tempfile
+import unittest
+from unittest import mock
+
+from tool.errors import ToolError
+from tool.trajectory_svg import read_trajectory
+from tool.viewer import page, three_js
+
+from .trajectory import double_pendulum_csv, double_pendulum_scene
+
+
+def decoded(text: str, kind: str) -> list[float]:
+    return list(array.array(kind, base64.b64decode(text)))
+
+
+def embedded_data(html: str) -> dict:
+    match = re.search(r'<script type="application/json" id="gencoord-data">(.*?)</script>',
+                      html, re.DOTALL)
+    return json.loads(match.group(1).replace("<\\/", "</"))
+
+
+class PageTest(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        cls.csv = double_pendulum_csv()
+        cls.html = page.page_html(cls.csv, double_pendulum_scene(), "double_pendulum")
+
+    def test_nothing_is_fetched(self):
+        self.assertNotRegex(self.html, r"<script[^>]*\ssrc=")
+        self.assertNotRegex(self.html, r"<link[^>]*\shref=")
+        import_map = json.loads(re.search(r'<script type="importmap">(.*?)</script>',
+                                          self.html, re.DOTALL).group(1))
+        self.assertEqual(sorted(import_map["imports"]),
+                         ["three", "three/addons/controls/OrbitControls.js"])
+        for url in import_map["imports"].values():
+            self.assertTrue(url.startswith("data:text/javascript;base64,"))
+        library = base64.b64decode(import_map["imports"]["three"].split(",", 1)[1]).decode()
+        self.assertEqual(library, three_js.sources()["three"])  # the pinned, verified one
+
+    def test_ten_seconds_at_one_kilohertz_stay_under_two_megabytes(self):
+        self.assertLess(len(self.html.encode()), 2_000_000)
+
+    def test_the_page_holds_the_trajectory(self):
+        data = embedded_data(self.html)
+        trajectory = read_trajectory(self.csv)
+        self.assertEqual((data["rows"], data["stride"], data["frames"]), (10001, 1, 10001))
+        self.assertEqual(data["points"], ["bob1", "bob2", "fixed:pivot"])
+        self.assertEqual(data["coordinates"], ["theta1", "theta2"])
+        self.assertEqual(decoded(data["arrays"]["t"], "d"), trajectory.t)
+        positions = decoded(data["arrays"]["positions"], "f")
+        for row in (0, 1234, 10000):
+            for k, point in enumerate(data["points"]):
+                for a, axis in enumerate("xy"):
+                    self.assertAlmostEqual(positions[(row * 3 + k) * 2 + a],
+                                           trajectory.path(point, axis)[row], places=6)
+        errors = decoded(data["arrays"]["energy_error"], "f")
+        e0 = trajectory.energy[0]
+        worst = max(abs(e - e0) / abs(e0) for e in trajectory.energy)
+        self.assertAlmostEqual(max(map(abs, errors)) / worst, 1.0, places=6)
+        self.assertAlmostEqual(data["energy"]["worst"], worst, delta=1e-15)
+
+    def test_a_long_trajectory_is_thinned_and_keeps_its_worst_energy_error(self):
+        rows = 1001
+        with tempfile.TemporaryDirectory() as folder:
+            csv = os.path.join(folder, "thin.csv")
+            with open(csv, "w", encoding="utf-8") as handle:
+                handle.write("t,q_a,v_a,energy,p_x,p_y,fixed:o_x,fixed:o_y\n")
+                for i in range(rows):
+                    energy = 1.0 + (1e-3 if i == 517 else 0.0)  # one spike between kept rows
+                    handle.write(f"{i * 0.01},{i},{0},{energy},{i},{-i},0,0\n")
+            scene = dict(double_pendulum_scene(), particles=[{"name": "p", "mass": 1.0}])
+            with mock.patch.object(page, "MAX_NUMBERS", 1000):
+                data = page.page_data(csv, scene)
+        per_row = 2 + 1 + 2 * 2
+        self.assertEqual(data["stride"], -(-rows * per_row // 1000))
+        t = decoded(data["arrays"]["t"], "d")
+        self.assertEqual(t[-1], (rows - 1) * 0.01, "the last state is always kept")
+        self.assertEqual(len(t), data["frames"])
+        self.assertLessEqual(data["frames"] * per_row, 1000 + per_row)
+        self.assertNotIn(517 * 0.01, t)
+        self.assertAlmostEqual(max(decoded(data["arrays"]["energy_error"], "f")), 1e-3,
+                               places=9)
+
+    def test_a_page_is_written_whole_or_not_at_all(self):
+        with tempfile.TemporaryDirectory() as folder:
+            target = os.path.join(folder, "view.html")
+            with mock.patch.object(page, "page_data", side_effect=ValueError("bad row")):
+                with self.assertRaises(ValueError):
+                    page.write_page(self.csv, double_pendulum_scene(), target, "x")
+            self.assertEqual(os.listdir(folder), [])
+            page.write_page(self.csv, double_pendulum_scene(), target, "x")
+            self.assertEqual(os.listdir(folder), ["view.html"])
+
+
+class ThreeJsTest(unittest.TestCase):
+    """three.js comes from the cache, else the registry, and only as published."""
+
+    def test_an_unreachable_registry_says_what_to_do(self):
+        with tempfile.TemporaryDirectory() as cache, mock.patch.dict(
+                os.environ, {"GENCOORD_CACHE_DIR": cache,
+                             "GENCOORD_NPM_REGISTRY": "http://127.0.0.1:9"}):
+            with self.assertRaisesRegex(ToolError, r"cannot fetch three\.js 0\.170\.0 .*"
+                                                   r"npm pack three@0\.170\.0"):
+                three_js.sources()
+            self.assertEqual(os.listdir(cache), [], "nothing half-written")
+
+    def test_a_tampered_tarball_is_refused(self):
+        with tempfile.TemporaryDirectory() as cache, mock.patch.dict(
+                os.environ, {"GENCOORD_CACHE_DIR": cache}):
+            os.makedirs(os.path.join(cache, "three"))
+            with open(os.path.join(cache, "three", f"three-{three_js.VERSION}.tgz"), "wb") as f:
+                f.write(b"not three.js")
+            with self.assertRaisesRegex(ToolError, "is not three.js .* delete it"):
+                three_js.sources()
+
+
+if __name__ == "__main__":
+    unittest.main()
