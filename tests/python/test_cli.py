@@ -31,7 +31,8 @@ class CommandLineTest(unittest.TestCase):
 
     def test_pendulum_header(self):
         result = self.generate("models/pendulum.py")
-        self.assertEqual(sorted(p.name for p in self.output.iterdir()), ["pendulum.hpp"])
+        self.assertEqual(sorted(p.name for p in self.output.iterdir()),
+                         ["pendulum.hpp", "pendulum.scene.json"])
         header = (self.output / "pendulum.hpp").read_text(encoding="utf-8")
         banner = header[:header.index("#pragma once")]
         self.assertRegex(banner.splitlines()[0], r"(?i)do not (modify|edit)",
@@ -62,7 +63,8 @@ class CommandLineTest(unittest.TestCase):
 
     def test_set_option_names_header_and_type(self):
         self.generate("models/n_link_chain.py", "--set", "n=5", "--quiet")
-        self.assertEqual(sorted(p.name for p in self.output.iterdir()), ["n_link_chain_5.hpp"])
+        self.assertEqual(sorted(p.name for p in self.output.iterdir()),
+                         ["n_link_chain_5.hpp", "n_link_chain_5.scene.json"])
         header = (self.output / "n_link_chain_5.hpp").read_text(encoding="utf-8")
         self.assertRegex(header, r"\bstruct NLinkChain5\b")
         self.assertRegex(header, r"\bnq = 5;")
@@ -106,7 +108,7 @@ class OutputNextToTheUserTest(unittest.TestCase):
         result = run_generate("../elsewhere/crane.py", "--quiet", cwd=self.work)
         self.assertEqual(result.returncode, 0, describe(result))
         self.assertEqual(sorted(p.name for p in (self.work / "generated").iterdir()),
-                         ["crane.hpp"])
+                         ["crane.hpp", "crane.scene.json"])
         self.assertEqual(snapshot_difference(checkout_before, snapshot(GENERATED)), "",
                          "generation outside the checkout wrote into its generated/")
         header = (self.work / "generated" / "crane.hpp").read_text(encoding="utf-8")
