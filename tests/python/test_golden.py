@@ -184,7 +184,7 @@ class GoldenFilesTest(unittest.TestCase):
             self.assertEqual(result.returncode, 0, describe(result))
             name = "double_pendulum.hpp"
             self.assertEqual(sorted(p.name for p in (root / "generated").iterdir()),
-                             ["double_pendulum.scene.json", name])
+                             [name, "double_pendulum.scene.json"])
             first = (self.output / name).read_text(encoding="utf-8")
             second = (root / "generated" / name).read_text(encoding="utf-8")
             self.assertEqual(second, first, "\n" + unified_diff(first, second, name))
