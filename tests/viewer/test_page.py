@@ -34,7 +34,8 @@ class PageTest(unittest.TestCase):
     @classmethod
     def setUpClass(cls):
         cls.csv = double_pendulum_csv()
-        cls.html = page.page_html(cls.csv, double_pendulum_scene(), "double_pendulum")
+        cls.html = page.page_html(page.page_data(cls.csv, double_pendulum_scene()),
+                                  "double_pendulum")
 
     def test_nothing_is_fetched(self):
         self.assertNotRegex(self.html, r"<script[^>]*\ssrc=")

@@ -30,15 +30,15 @@ MAX_NUMBERS = 2_000_000   # 8 MB of float32 before base64: what a browser tab ho
 HERE = os.path.dirname(os.path.abspath(__file__))
 
 
-def _encoded(values, kind: str) -> str:
-    """Little-endian float32 ('f') or float64 ('d') values as base64."""
+def encoded(values, kind: str) -> str:
+    """Little-endian float32 ('f'), float64 ('d') or int32 ('i') values as base64."""
     packed = array.array(kind, values)
     if sys.byteorder == "big":
         packed.byteswap()
     return base64.b64encode(packed.tobytes()).decode("ascii")
 
 
-def _kept_rows(count: int, per_row: int) -> tuple[list[int], int]:
+def kept_rows(count: int, per_row: int) -> tuple[list[int], int]:
     """The rows a page keeps, and the stride between them."""
     stride = max(1, math.ceil(count * per_row / MAX_NUMBERS))
     rows = list(range(0, count, stride))
@@ -59,7 +59,7 @@ def page_data(csv_path: str, scene: dict) -> dict:
     columns, dim = trajectory.columns, scene["dim"]
     coordinates = [name[2:] for name in columns if name.startswith("q_")]
     points = [*trajectory.particles, *trajectory.fixed_points]
-    rows, stride = _kept_rows(len(trajectory.t), 2 + len(coordinates) + dim * len(points))
+    rows, stride = kept_rows(len(trajectory.t), 2 + len(coordinates) + dim * len(points))
     error = energy_error(trajectory.energy)
     positions = [columns[f"{point}_{axis}"][row]
                  for row in rows for point in points for axis in "xyz"[:dim]]
@@ -71,10 +71,10 @@ def page_data(csv_path: str, scene: dict) -> dict:
         "points": points,            # particles, then "fixed:<name>"
         "energy": {"label": error.label, "relative": error.relative, "worst": error.worst},
         "arrays": {
-            "t": _encoded([trajectory.t[row] for row in rows], "d"),
-            "energy_error": _encoded(_worst_in_buckets(error.values, rows), "f"),
-            "q": _encoded([columns["q_" + c][row] for row in rows for c in coordinates], "f"),
-            "positions": _encoded(positions, "f"),   # frames x points x dim
+            "t": encoded([trajectory.t[row] for row in rows], "d"),
+            "energy_error": encoded(_worst_in_buckets(error.values, rows), "f"),
+            "q": encoded([columns["q_" + c][row] for row in rows for c in coordinates], "f"),
+            "positions": encoded(positions, "f"),   # frames x points x dim
         },
     }
 
@@ -88,7 +88,8 @@ def _script_safe(text: str) -> str:
     return text.replace("</", "<\\/")
 
 
-def page_html(csv_path: str, scene: dict, title: str) -> str:
+def page_html(data: dict, title: str) -> str:
+    """The page that plays `data` (page_data's layout)."""
     library = three_js.sources()
     with open(os.path.join(HERE, "page.html"), encoding="utf-8") as handle:
         template = string.Template(handle.read())
@@ -100,13 +101,18 @@ def page_html(csv_path: str, scene: dict, title: str) -> str:
         title=title.replace("&", "&amp;").replace("<", "&lt;"),
         three_version=three_js.VERSION,
         import_map=json.dumps({"imports": imports}),
-        data=_script_safe(json.dumps(page_data(csv_path, scene), separators=(",", ":"))),
+        data=_script_safe(json.dumps(data, separators=(",", ":"))),
         viewer=_script_safe(viewer))
 
 
 def write_page(csv_path: str, scene: dict, html_path: str, title: str) -> None:
-    """Writes the page atomically: a reader never sees half of it."""
-    text = page_html(csv_path, scene, title)
+    """Writes the page of a trajectory CSV, atomically: a reader never sees half of it."""
+    write_data_page(page_data(csv_path, scene), html_path, title)
+
+
+def write_data_page(data: dict, html_path: str, title: str) -> None:
+    """Writes the page that plays `data`, atomically."""
+    text = page_html(data, title)
     folder = os.path.dirname(os.path.abspath(html_path))
     descriptor, partial = tempfile.mkstemp(dir=folder, suffix=".partial")
     try:

@@ -17,8 +17,9 @@ function decode(text, Type) {
 
 // --- the trajectory ---------------------------------------------------------------------
 const times = decode(data.arrays.t, Float64Array);
-const energyError = decode(data.arrays.energy_error, Float32Array);
-const coordinates = decode(data.arrays.q, Float32Array);
+// a model's run has an energy error and coordinates; a deformable run a mesh of springs
+const energyError = data.energy ? decode(data.arrays.energy_error, Float32Array) : null;
+const coordinates = data.arrays.q ? decode(data.arrays.q, Float32Array) : new Float32Array();
 const frames = data.frames;
 const numPoints = data.points.length;
 const positions = new Float32Array(frames * numPoints * 3); // frames x points x 3, z = 0 in 2D
@@ -154,6 +155,33 @@ function placeBetween(mesh, a, b) {
   mesh.scale.set(1, Math.max(length, 1e-9), 1);
 }
 
+// planes (normal . x = offset): in 2D a rail across the view, in 3D a translucent square;
+// both centred on the point of the plane nearest the motion's centre
+for (const plane of model.planes) {
+  if (!plane.normal || plane.offset === null) continue; // moves with t: not drawn
+  const normal = new THREE.Vector3(plane.normal[0], plane.normal[1], is2d ? 0 : plane.normal[2]);
+  const scale = normal.lengthSq();
+  if (!scale) continue;
+  const nearest = centre.clone().addScaledVector(normal, (plane.offset - normal.dot(centre))
+    / scale);
+  normal.normalize();
+  let mesh;
+  if (is2d) {
+    const along = new THREE.Vector3(-normal.y, normal.x, 0);
+    mesh = new THREE.Mesh(new THREE.CylinderGeometry(radius0 * 0.1, radius0 * 0.1, 1, 8),
+      material(0xaaaaaa));
+    placeBetween(mesh, nearest.clone().addScaledVector(along, -extent),
+      nearest.clone().addScaledVector(along, extent));
+  } else {
+    mesh = new THREE.Mesh(new THREE.PlaneGeometry(2 * extent, 2 * extent),
+      new THREE.MeshBasicMaterial({ color: 0x88aacc, transparent: true, opacity: 0.18,
+        side: THREE.DoubleSide, depthWrite: false }));
+    mesh.quaternion.setFromUnitVectors(new THREE.Vector3(0, 0, 1), normal);
+    mesh.position.copy(nearest);
+  }
+  world.add(mesh);
+}
+
 const COIL_POINTS = 160;
 const links = model.links.map((link) => {
   const entry = { link, a: new THREE.Vector3(), b: new THREE.Vector3() };
@@ -272,6 +300,45 @@ const trails = particles.map(({ name, colour }) => {
   return line;
 });
 
+// a deformable object: its nodes as dots and its intact springs as segments, both reading
+// `current`; the springs come latest broken first, so those intact at t are a prefix
+const mesh = data.arrays.spring_nodes ? (() => {
+  const pairs = decode(data.arrays.spring_nodes, Int32Array);
+  const brokenAt = decode(data.arrays.broken_at, Float64Array);
+  const geometry = new THREE.BufferGeometry();
+  const shared = new THREE.BufferAttribute(current, 3);
+  geometry.setAttribute("position", shared);
+  geometry.setIndex(new THREE.BufferAttribute(Uint32Array.from(pairs), 1));
+  const springs = new THREE.LineSegments(geometry,
+    new THREE.LineBasicMaterial({ color: 0x1f77b4 }));
+  springs.frustumCulled = false;
+  world.add(springs);
+  const dots = new THREE.BufferGeometry();
+  dots.setAttribute("position", shared);
+  const nodes = new THREE.Points(dots, new THREE.PointsMaterial({ color: 0x222222, size: 3,
+    sizeAttenuation: false }));
+  nodes.frustumCulled = false;
+  world.add(nodes);
+  const intactAt = (time) => {
+    let lo = 0;
+    let hi = brokenAt.length; // brokenAt falls: the first index whose spring broke by `time`
+    while (lo < hi) {
+      const mid = (lo + hi) >> 1;
+      if (brokenAt[mid] > time) lo = mid + 1;
+      else hi = mid;
+    }
+    return lo;
+  };
+  return {
+    intactAt,
+    update(time) {
+      shared.needsUpdate = true;
+      geometry.setDrawRange(0, 2 * intactAt(time));
+    },
+    drawn: () => geometry.drawRange.count / 2,
+  };
+})() : null;
+
 if (!is2d) {
   // the ground: a grid across the up axis, under the lowest point
   const low = Math.min(...[0, 1, 2, 3, 4, 5, 6, 7].map((c) => new THREE.Vector3(
@@ -314,13 +381,19 @@ controls.update();
 const plotCanvas = document.getElementById("plot");
 const seriesSelect = document.getElementById("series");
 const nq = data.coordinates.length;
-const series = [{ label: data.energy.label, values: energyError }];
+const series = data.energy ? [{ label: data.energy.label, values: energyError }] : [];
 data.coordinates.forEach((name, k) => {
   const values = new Float32Array(frames);
   for (let i = 0; i < frames; ++i) values[i] = coordinates[i * nq + k];
   series.push({ label: name, values });
 });
-series.forEach((s, k) => seriesSelect.add(new Option(k === 0 ? "energy error" : s.label, k)));
+if (mesh) {
+  const values = new Float32Array(frames);
+  for (let i = 0; i < frames; ++i) values[i] = mesh.intactAt(times[i]);
+  series.push({ label: "springs intact", values });
+}
+series.forEach((s) => seriesSelect.add(new Option(s.values === energyError ? "energy error"
+  : s.label, seriesSelect.options.length)));
 const PLOT_MARGIN = { left: 70, right: 14, top: 20, bottom: 22 };
 let plotCache = null; // a canvas holding the plot without its cursor
 let plotInfo = null; // null: the plot is to be drawn again (resize, another series)
@@ -442,8 +515,10 @@ const trailsBox = document.getElementById("trails");
 const clock = document.getElementById("clock");
 slider.min = t0;
 slider.max = t1;
-document.getElementById("title").innerHTML =
-  `<b></b><br>${frames} frames` + (data.stride > 1 ? ` (every ${data.stride}th of ${data.rows})` : "");
+document.getElementById("title").innerHTML = `<b></b><br>${frames} frames`
+  + (data.stride > 1 ? ` (every ${data.stride}th of ${data.rows})` : "")
+  + (data.mesh ? `, ${numPoints} nodes, ${data.mesh.springs} springs`
+    + ` (${data.mesh.broken} break)` : "");
 document.querySelector("#title b").textContent = model.name;
 
 let time = t0;
@@ -464,6 +539,7 @@ function render() {
     else if (entry.link.kind === "pin") entry.mesh.position.copy(entry.a);
     else placeBetween(entry.mesh, entry.a, entry.b);
   }
+  if (mesh) mesh.update(time);
   const [i] = locate(time);
   const first = locate(time - TRAIL_SECONDS)[0];
   for (const line of trails) {
@@ -555,6 +631,8 @@ window.gencoordViewer = {
     return particle ? [(c >> 16) & 255, (c >> 8) & 255, c & 255] : null;
   },
   plot: () => ({ ...plotInfo, x: undefined }),
+  /** The springs of a deformable object drawn now (null for a model). */
+  springsDrawn: () => (mesh ? mesh.drawn() : null),
   /** Frames drawn and milliseconds elapsed since resetStats(), and the milliseconds spent
    * in drawing them (the script's share: the rest is the browser's compositing). */
   stats: () => ({ frames: stats.frames, milliseconds: performance.now() - stats.since,
