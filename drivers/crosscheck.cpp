@@ -3,7 +3,7 @@
 //   crosscheck [--kappa 1e2:1e8] [--points N] [--t 5] [--samples 100]
 //              [--integrator rk4|symplectic_euler|backward_euler] [--max-dt 1e-4]
 //              [--safety 0.9] [--damping 0] [--reference-dt 1e-4] [--set name=value ...]
-//              [--csv FILE] [--svg FILE] [--min-slope -0.8]
+//              [--csv FILE] [--svg FILE] [--trajectory FILE] [--min-slope -0.8]
 //
 // The model is chosen when the program is compiled (driver_model.hpp, written by
 // gencoord_add_driver()); `gencoord crosscheck MODEL.py` builds and runs it for any model file.
@@ -21,11 +21,13 @@
 #include <cstdlib>
 #include <fstream>
 #include <iostream>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "command_line.hpp"
 #include "driver_model.hpp"
+#include "gencoord/csv_writer.hpp"
 #include "gencoord/maximal/crosscheck.hpp"
 #include "loglog_svg.hpp"
 
@@ -38,6 +40,7 @@ struct Options {
   int count = 0;  // kappa values; 0: one per decade
   gencoord::CrosscheckOptions run;
   std::string csv, svg;
+  std::string trajectory;  // both models at the smallest kappa, sample by sample
   double min_slope = -0.8;
   std::vector<std::pair<std::string, double>> parameters;
 };
@@ -48,7 +51,7 @@ struct Options {
          "                  [--integrator rk4|symplectic_euler|backward_euler] [--max-dt DT]\n"
          "                  [--safety F] [--damping C] [--reference-dt DT]\n"
          "                  [--set param=value ...] [--csv FILE] [--svg FILE]\n"
-         "                  [--min-slope S]\n"
+         "                  [--trajectory FILE] [--min-slope S]\n"
          "  --kappa      penalty stiffness range, log-spaced (or one value); default 1e2:1e8\n"
          "  --points     number of kappa values; default one per decade\n"
          "  --t          simulated time; default 5\n"
@@ -56,6 +59,8 @@ struct Options {
          "  --max-dt     largest maximal step (accuracy); default 1e-4\n"
          "  --safety     fraction of the explicit stability limit; default 0.9\n"
          "  --min-slope  exit 1 if the fitted error slope is shallower; default -0.8\n"
+         "  --trajectory the reduced and the maximal model at the smallest kappa, at every\n"
+         "               sample (CSV: the simulate layout, then maximal:<particle>_x, ...)\n"
          "  model:       "
       << M::name << '\n';
   std::exit(status);
@@ -86,6 +91,7 @@ Options parse(int argc, char** argv) {
     else if (arg == "--min-slope") o.min_slope = number(value(), arg);
     else if (arg == "--csv") o.csv = value();
     else if (arg == "--svg") o.svg = value();
+    else if (arg == "--trajectory") o.trajectory = value();
     else if (arg == "--integrator") {
       try {
         o.run.integrator = gencoord::parse_integrator(value());
@@ -165,14 +171,33 @@ int run(const Options& o) {
   std::vector<gencoord::CrosscheckRow> rows;
   std::vector<double> kappas, errors, violations;
   int failed = 0;
+  // the smallest kappa's run, beside the reduced one: where they differ most
+  std::unique_ptr<gencoord::TrajectoryCsvWriter<M>> trajectory;
+  auto new_trajectory = [&] {
+    return std::make_unique<gencoord::TrajectoryCsvWriter<M>>(o.trajectory, p, "maximal:");
+  };
+  if (!o.trajectory.empty()) trajectory = new_trajectory();
+  double trajectory_kappa = 0.0;
   for (double kappa : gencoord::log_spaced(o.kappa_lo, o.kappa_hi, o.count)) {
     gencoord::CrosscheckRow r;
     try {
-      r = gencoord::crosscheck_at<M>(p, ref, kappa, o.run);
+      if (trajectory) {
+        r = gencoord::crosscheck_at<M>(
+            p, ref, kappa, o.run,
+            [&](const gencoord::State<M>& reduced, const gencoord::MaximalState<M>& maximal) {
+              trajectory->write(reduced, maximal.q);
+            });
+        trajectory->close();
+        trajectory.reset();
+        trajectory_kappa = kappa;
+      } else {
+        r = gencoord::crosscheck_at<M>(p, ref, kappa, o.run);
+      }
     } catch (const std::exception& e) {
       // e.g. a soft penalty lets the state stray so far that the inverse map has no unique
       // closest point: report the row, fit the others
       std::printf("%10.3g  failed: %s\n", kappa, e.what());
+      if (trajectory) trajectory = new_trajectory();  // the next kappa's run, from the start
       ++failed;
       continue;
     }
@@ -185,6 +210,9 @@ int run(const Options& o) {
     violations.push_back(r.max_constraint_violation);
   }
   write_csv(o.csv, rows);
+  if (trajectory_kappa > 0)
+    std::printf("trajectory  %s: reduced and maximal at kappa = %g\n", o.trajectory.c_str(),
+                trajectory_kappa);
   const auto error_fit = gencoord::fit_loglog(kappas, errors);
   const auto violation_fit = gencoord::fit_loglog(kappas, violations);
   char note[160];

@@ -63,8 +63,10 @@ Options for the cross-check itself go to the compiled program:
   --t T               simulated time (default 5), --samples S compared samples (default 100)
   --integrator rk4|symplectic_euler|backward_euler   the maximal model's integrator
   --max-dt DT, --safety F, --damping C, --reference-dt DT, --min-slope S
-Writes DIR/<name>_crosscheck.csv and DIR/<name>_crosscheck.svg; exit status 1 when the
-maximal model does not converge to the reduced one as kappa grows."""
+Writes DIR/<name>_crosscheck.csv and DIR/<name>_crosscheck.svg, and DIR/<name>_crosscheck.html
+with DIR/<name>_crosscheck_trajectory.csv: the reduced and the maximal model at the smallest
+kappa side by side (see gencoord view --help); exit status 1 when the maximal model does not
+converge to the reduced one as kappa grows."""
 
 
 def _model_command(subparsers, name: str, help_text: str, epilog: str):
@@ -191,11 +193,26 @@ def _view(args) -> int:
 def _crosscheck(args, forwarded: list[str]) -> int:
     loaded, program, arguments = _prepared(args, forwarded, "crosscheck")
     stem = os.path.join(args.output_dir, f"{loaded.target.name}_crosscheck")
-    for option, suffix in (("--csv", ".csv"), ("--svg", ".svg")):
+    for option, suffix in (("--csv", ".csv"), ("--svg", ".svg"),
+                           ("--trajectory", "_trajectory.csv")):
         if not _has_option(forwarded, option, "-h", "--help"):
             os.makedirs(args.output_dir, exist_ok=True)
             arguments += [option, stem + suffix]
-    return _run(program, arguments)
+    status = _run(program, arguments)
+    trajectory = stem + "_trajectory.csv"
+    if not _has_option(forwarded, "--trajectory", "-h", "--help") and _has_rows(trajectory):
+        _write_view(loaded, trajectory, stem + ".html")
+        print(f"viewer      {stem}.html: reduced and maximal side by side")
+    return status
+
+
+def _has_rows(csv: str) -> bool:
+    """Whether a trajectory CSV holds a row beyond its header."""
+    try:
+        with open(csv, encoding="utf-8") as handle:
+            return len(handle.readlines(1 << 16)) > 1
+    except FileNotFoundError:
+        return False
 
 
 def _python(args) -> int:

@@ -5,6 +5,7 @@
 #include <cstdlib>
 #include <fstream>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -125,6 +126,28 @@ TEST(TrajectoryCsvWriter, FixedPointColumnsFollowTheParticlesOnEveryRow) {
   EXPECT_EQ(first[8], 0.0);   // mark_x = l t at t = 0
   EXPECT_EQ(second[8], 1.5);  // and at t = 3
   EXPECT_EQ(second[9], -2.0);
+}
+
+TEST(TrajectoryCsvWriter, CompanionPositionsFollowTheFixedPoints) {
+  HandPendulumWithAnchors::Params p;
+  std::ostringstream out;
+  TrajectoryCsvWriter<HandPendulumWithAnchors> writer(out, p, "maximal:");
+  State<HandPendulumWithAnchors> s;
+  s.q[0] = 0.3;
+  XVec<HandPendulumWithAnchors> companion;
+  companion << 0.25, -0.75;
+  writer.write(s, companion);
+  EXPECT_THROW(writer(s), std::logic_error);  // a row without the companion's positions
+  const std::vector<std::string> lines = lines_of(out.str());
+  ASSERT_EQ(lines.size(), 2u);
+  EXPECT_EQ(lines[0],
+            "t,q_theta,v_theta,energy,bob_x,bob_y,fixed:pivot_x,fixed:pivot_y,fixed:mark_x,"
+            "fixed:mark_y,maximal:bob_x,maximal:bob_y");
+  const std::vector<double> fields = fields_of(lines[1]);
+  ASSERT_EQ(fields.size(), 12u);
+  EXPECT_EQ(fields[10], 0.25);
+  EXPECT_EQ(fields[11], -0.75);
+  EXPECT_EQ(writer.rows(), 1);
 }
 
 TEST(TrajectoryCsvWriter, WritesToAFile) {

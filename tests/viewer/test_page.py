@@ -93,6 +93,30 @@ class PageTest(unittest.TestCase):
         self.assertAlmostEqual(max(decoded(data["arrays"]["energy_error"], "f")), 1e-3,
                                places=9)
 
+    def test_a_crosscheck_trajectory_puts_the_maximal_model_beside_the_reduced(self):
+        with tempfile.TemporaryDirectory() as folder:
+            csv = os.path.join(folder, "crosscheck.csv")
+            with open(csv, "w", encoding="utf-8") as handle:
+                handle.write("t,q_a,v_a,energy,bob_x,bob_y,fixed:pivot_x,fixed:pivot_y,"
+                             "maximal:bob_x,maximal:bob_y\n")
+                for i in range(11):
+                    x, y = 0.1 * i - 0.5, -1.0
+                    handle.write(f"{i * 0.1},0,0,1,{x},{y},0,0,{x + 0.01},{y - 0.02}\n")
+            scene = dict(double_pendulum_scene(), particles=[{"name": "bob", "mass": 1.0}])
+            data = page.page_data(csv, scene)
+        self.assertEqual(data["points"], ["bob", "fixed:pivot", "maximal:bob",
+                                          "maximal:fixed:pivot"])
+        self.assertEqual(data["companion"], "maximal:")
+        shift = data["companion_shift"]
+        self.assertEqual(shift[1], 0.0, "beside, across the up axis")
+        self.assertGreaterEqual(shift[0], 1.3 * 1.0)  # the reduced model spans 1 m in x
+        positions = decoded(data["arrays"]["positions"], "f")
+        last = positions[10 * 8:]      # the last frame: 4 points x 2
+        self.assertAlmostEqual(last[4], 0.5 + 0.01 + shift[0], places=6)
+        self.assertAlmostEqual(last[5], -1.02, places=6)
+        self.assertAlmostEqual(last[6], shift[0], places=6)  # the pivot's copy
+        self.assertAlmostEqual(last[7], 0.0, places=6)
+
     def test_a_page_is_written_whole_or_not_at_all(self):
         with tempfile.TemporaryDirectory() as folder:
             target = os.path.join(folder, "view.html")

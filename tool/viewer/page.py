@@ -5,6 +5,10 @@ that opens in any browser without a server or the network.
     python3 -m tool.viewer.page out/double_pendulum.csv generated/double_pendulum.scene.json \\
         out/double_pendulum.html
 
+A cross-check trajectory (`crosscheck --trajectory`) also holds the maximal penalty model's
+particles (columns maximal:<particle>_x, ...): the page draws that model beside the reduced
+one, faded, with its own copies of the fixed points.
+
 A page holds at most MAX_NUMBERS numbers of trajectory: a longer trajectory keeps every
 stride-th state (and its last), and each kept energy error is the largest of those it stands
 for, so that the plot still shows the worst drift.
@@ -27,6 +31,8 @@ from ..trajectory_svg import energy_error, read_trajectory
 from . import three_js
 
 MAX_NUMBERS = 2_000_000   # 8 MB of float32 before base64: what a browser tab holds at ease
+# the prefix of a cross-check trajectory's maximal-model columns (drivers/crosscheck.cpp)
+COMPANION = "maximal:"
 HERE = os.path.dirname(os.path.abspath(__file__))
 
 
@@ -53,12 +59,38 @@ def _worst_in_buckets(values: list[float], rows: list[int]) -> list[float]:
     return [max(values[start:max(end, start + 1)], key=abs) for start, end in zip(rows, ends)]
 
 
+def _side_by_side(trajectory, scene: dict) -> tuple[list[str], list[float]]:
+    """Moves a companion model's points (a cross-check trajectory's maximal:<particle>) beside
+    the model's, across the up axis, and adds its copies of the fixed points; returns the
+    companion's columns and the shift."""
+    companion = [p for p in trajectory.particles if p.startswith(COMPANION)]
+    if not companion:
+        return [], []
+    axes, up = trajectory.axes, scene["up"]
+    side = [1.0, 0.0, 0.0][:len(axes)] if abs(up[0]) < 0.9 else [0.0, 1.0, 0.0][:len(axes)]
+    own = [p for p in trajectory.particles if not p.startswith(COMPANION)]
+    across = [sum(s * trajectory.path(point, a)[row] for s, a in zip(side, axes))
+              for point in own + trajectory.fixed_points for row in range(len(trajectory.t))]
+    width = max(across) - min(across)
+    shift = [s * max(1.3 * width, 0.5) for s in side]
+    columns = trajectory.columns
+    for point in trajectory.fixed_points:
+        for a in axes:
+            columns[f"{COMPANION}{point}_{a}"] = list(columns[f"{point}_{a}"])
+    for point in companion + [COMPANION + p for p in trajectory.fixed_points]:
+        for offset, a in zip(shift, axes):
+            columns[f"{point}_{a}"] = [value + offset for value in columns[f"{point}_{a}"]]
+    return companion + [COMPANION + p for p in trajectory.fixed_points], shift
+
+
 def page_data(csv_path: str, scene: dict) -> dict:
     """Everything the page's script reads: the scene and the trajectory's arrays."""
     trajectory = read_trajectory(csv_path)
     columns, dim = trajectory.columns, scene["dim"]
     coordinates = [name[2:] for name in columns if name.startswith("q_")]
-    points = [*trajectory.particles, *trajectory.fixed_points]
+    companion, shift = _side_by_side(trajectory, scene)
+    points = [*(p for p in trajectory.particles if not p.startswith(COMPANION)),
+              *trajectory.fixed_points, *companion]
     rows, stride = kept_rows(len(trajectory.t), 2 + len(coordinates) + dim * len(points))
     error = energy_error(trajectory.energy)
     positions = [columns[f"{point}_{axis}"][row]
@@ -68,7 +100,9 @@ def page_data(csv_path: str, scene: dict) -> dict:
         "source": os.path.basename(csv_path),
         "rows": len(trajectory.t), "stride": stride, "frames": len(rows),
         "coordinates": coordinates,
-        "points": points,            # particles, then "fixed:<name>"
+        "points": points,            # particles, "fixed:<name>", then the companion's
+        "companion": COMPANION if companion else None,
+        "companion_shift": shift,
         "energy": {"label": error.label, "relative": error.relative, "worst": error.worst},
         "arrays": {
             "t": encoded([trajectory.t[row] for row in rows], "d"),

@@ -112,37 +112,13 @@ const sun = new THREE.DirectionalLight(0xffffff, 2.0);
 sun.position.copy(up).multiplyScalar(2).add(new THREE.Vector3(1, 1, 1)).multiplyScalar(extent);
 world.add(sun);
 
-function material(colour) {
+function material(colour, faded = false) {
   // flat colours in a plane (a picture of a 2D model), shading for depth in 3D
+  const fading = faded ? { transparent: true, opacity: 0.45 } : {};
   return is2d
-    ? new THREE.MeshBasicMaterial({ color: colour })
-    : new THREE.MeshStandardMaterial({ color: colour, roughness: 0.5, metalness: 0.1 });
-}
-
-const masses = model.particles.map((p) => p.mass).filter((m) => m > 0);
-const heaviest = masses.length ? Math.max(...masses) : 1;
-const particles = model.particles.map((particle, k) => {
-  const scale = particle.mass > 0 ? Math.max(0.5, Math.cbrt(particle.mass / heaviest)) : 1;
-  const colour = COLOURS[k % COLOURS.length];
-  const mesh = new THREE.Mesh(new THREE.SphereGeometry(radius0 * scale, 32, 16),
-    material(colour));
-  mesh.renderOrder = 2; // over rods and trails
-  world.add(mesh);
-  return { name: particle.name, mesh, colour };
-});
-
-const fixedPoints = model.fixed_points.map((name) => {
-  const mesh = new THREE.Mesh(new THREE.BoxGeometry(radius0, radius0, radius0),
-    material(0x333333));
-  world.add(mesh);
-  return { name: "fixed:" + name, mesh };
-});
-
-for (const pivot of model.pivots) {
-  const mesh = new THREE.Mesh(new THREE.BoxGeometry(radius0, radius0, radius0),
-    material(0x333333));
-  mesh.position.set(pivot.position[0], pivot.position[1], is2d ? 0 : pivot.position[2]);
-  world.add(mesh);
+    ? new THREE.MeshBasicMaterial({ color: colour, ...fading })
+    : new THREE.MeshStandardMaterial({ color: colour, roughness: 0.5, metalness: 0.1,
+      ...fading });
 }
 
 const Y_AXIS = new THREE.Vector3(0, 1, 0);
@@ -155,56 +131,7 @@ function placeBetween(mesh, a, b) {
   mesh.scale.set(1, Math.max(length, 1e-9), 1);
 }
 
-// planes (normal . x = offset): in 2D a rail across the view, in 3D a translucent square;
-// both centred on the point of the plane nearest the motion's centre
-for (const plane of model.planes) {
-  if (!plane.normal || plane.offset === null) continue; // moves with t: not drawn
-  const normal = new THREE.Vector3(plane.normal[0], plane.normal[1], is2d ? 0 : plane.normal[2]);
-  const scale = normal.lengthSq();
-  if (!scale) continue;
-  const nearest = centre.clone().addScaledVector(normal, (plane.offset - normal.dot(centre))
-    / scale);
-  normal.normalize();
-  let mesh;
-  if (is2d) {
-    const along = new THREE.Vector3(-normal.y, normal.x, 0);
-    mesh = new THREE.Mesh(new THREE.CylinderGeometry(radius0 * 0.1, radius0 * 0.1, 1, 8),
-      material(0xaaaaaa));
-    placeBetween(mesh, nearest.clone().addScaledVector(along, -extent),
-      nearest.clone().addScaledVector(along, extent));
-  } else {
-    mesh = new THREE.Mesh(new THREE.PlaneGeometry(2 * extent, 2 * extent),
-      new THREE.MeshBasicMaterial({ color: 0x88aacc, transparent: true, opacity: 0.18,
-        side: THREE.DoubleSide, depthWrite: false }));
-    mesh.quaternion.setFromUnitVectors(new THREE.Vector3(0, 0, 1), normal);
-    mesh.position.copy(nearest);
-  }
-  world.add(mesh);
-}
-
 const COIL_POINTS = 160;
-const links = model.links.map((link) => {
-  const entry = { link, a: new THREE.Vector3(), b: new THREE.Vector3() };
-  if (link.kind === "spring") {
-    const geometry = new THREE.BufferGeometry();
-    geometry.setAttribute("position",
-      new THREE.BufferAttribute(new Float32Array(COIL_POINTS * 3), 3));
-    entry.coil = new THREE.Line(geometry, new THREE.LineBasicMaterial({ color: 0x555555 }));
-    entry.coil.frustumCulled = false;
-    world.add(entry.coil);
-  } else if (link.kind === "pin") {
-    entry.mesh = new THREE.Mesh(new THREE.SphereGeometry(radius0 * 0.4, 16, 8),
-      material(0x333333));
-    world.add(entry.mesh);
-  } else {
-    const thickness = link.kind === "damper" ? 0.35 : 0.18;
-    const geometry = new THREE.CylinderGeometry(radius0 * thickness, radius0 * thickness, 1,
-      12);
-    entry.mesh = new THREE.Mesh(geometry, material(link.kind === "damper" ? 0x999999 : 0x555555));
-    world.add(entry.mesh);
-  }
-  return entry;
-});
 
 /** A coil from a to b: a helix about the segment, fixed turns, ends straight. */
 function drawCoil(entry) {
@@ -233,41 +160,135 @@ function drawCoil(entry) {
   entry.coil.geometry.attributes.position.needsUpdate = true;
 }
 
-// a body: its shape posed by p + R r, R and p from its point masses (x_k = p + R r_k)
-const bodies = model.bodies.map((body, k) => {
-  const n = model.dim;
-  const offsets = body.offsets.map((r) => new THREE.Vector3(r[0], r[1], n === 3 ? r[2] : 0));
-  const differences = new THREE.Matrix3();
-  const columns = [1, 2, 3].map((j) => (j <= n ? offsets[j].clone().sub(offsets[0])
-    : new THREE.Vector3(0, 0, 1)));
-  differences.set(columns[0].x, columns[1].x, columns[2].x,
-    columns[0].y, columns[1].y, columns[2].y,
-    columns[0].z, columns[1].z, columns[2].z);
-  const inverse = differences.clone().invert();
-  let geometry;
-  const shape = new THREE.Matrix4();
-  if (body.shape && body.shape.kind === "ellipsoid") {
-    geometry = new THREE.SphereGeometry(1, 48, 24);
-    const [a, b, c] = body.shape.semi_axes;
-    const axes = body.shape.axes; // rows: principal axes in body axes
-    shape.set(axes[0][0] * a, axes[1][0] * b, axes[2][0] * c, 0,
-      axes[0][1] * a, axes[1][1] * b, axes[2][1] * c, 0,
-      axes[0][2] * a, axes[1][2] * b, axes[2][2] * c, 0,
-      0, 0, 0, 1);
-  } else {
-    const r = body.shape ? body.shape.radius : radius0 * 2;
-    geometry = new THREE.CircleGeometry(r, 48);
+// The model's drawing: `prefix` names its points in the trajectory ("" for the model, the
+// cross-check's "maximal:" for the penalty model drawn beside it, faded and moved by `shift`)
+function drawModel(prefix, faded, shift) {
+  const masses = model.particles.map((p) => p.mass).filter((m) => m > 0);
+  const heaviest = masses.length ? Math.max(...masses) : 1;
+  const particles = model.particles.map((particle, k) => {
+    const name = prefix + particle.name;
+    const scale = particle.mass > 0 ? Math.max(0.5, Math.cbrt(particle.mass / heaviest)) : 1;
+    const colour = COLOURS[k % COLOURS.length];
+    const mesh = new THREE.Mesh(new THREE.SphereGeometry(radius0 * scale, 32, 16),
+      material(colour, faded));
+    mesh.renderOrder = 2; // over rods and trails
+    world.add(mesh);
+    return { name, mesh, colour };
+  });
+
+  const fixedPoints = model.fixed_points.map((name) => {
+    const mesh = new THREE.Mesh(new THREE.BoxGeometry(radius0, radius0, radius0),
+      material(0x333333, faded));
+    world.add(mesh);
+    return { name: prefix + "fixed:" + name, mesh };
+  });
+
+  for (const pivot of model.pivots) {
+    const mesh = new THREE.Mesh(new THREE.BoxGeometry(radius0, radius0, radius0),
+      material(0x333333, faded));
+    mesh.position.set(pivot.position[0], pivot.position[1], is2d ? 0 : pivot.position[2])
+      .add(shift);
+    world.add(mesh);
   }
-  const mesh = new THREE.Mesh(geometry, material(COLOURS[(k + particles.length) % COLOURS.length]));
-  if (is2d) mesh.material.side = THREE.DoubleSide;
-  mesh.matrixAutoUpdate = false;
-  world.add(mesh);
-  return { body, mesh, shape, inverse, n };
-});
+
+  // planes (normal . x = offset): in 2D a rail across the view, in 3D a translucent square;
+  // both centred on the point of the plane nearest the motion's centre
+  for (const plane of model.planes) {
+    if (!plane.normal || plane.offset === null) continue; // moves with t: not drawn
+    const normal = new THREE.Vector3(plane.normal[0], plane.normal[1], is2d ? 0 : plane.normal[2]);
+    const scale = normal.lengthSq();
+    if (!scale) continue;
+    const nearest = centre.clone().addScaledVector(normal, (plane.offset - normal.dot(centre))
+      / scale);
+    normal.normalize();
+    let mesh;
+    if (is2d) {
+      const along = new THREE.Vector3(-normal.y, normal.x, 0);
+      mesh = new THREE.Mesh(new THREE.CylinderGeometry(radius0 * 0.1, radius0 * 0.1, 1, 8),
+        material(0xaaaaaa));
+      placeBetween(mesh, nearest.clone().addScaledVector(along, -extent).add(shift),
+        nearest.clone().addScaledVector(along, extent).add(shift));
+    } else {
+      mesh = new THREE.Mesh(new THREE.PlaneGeometry(2 * extent, 2 * extent),
+        new THREE.MeshBasicMaterial({ color: 0x88aacc, transparent: true, opacity: 0.18,
+          side: THREE.DoubleSide, depthWrite: false }));
+      mesh.quaternion.setFromUnitVectors(new THREE.Vector3(0, 0, 1), normal);
+      mesh.position.copy(nearest).add(shift);
+    }
+    world.add(mesh);
+  }
+
+  const links = model.links.map((declared) => {
+    const rename = (anchor) => anchor.map(([column, weight]) => [prefix + column, weight]);
+    const link = { ...declared, a: rename(declared.a), b: rename(declared.b) };
+    const entry = { link, a: new THREE.Vector3(), b: new THREE.Vector3() };
+    if (link.kind === "spring") {
+      const geometry = new THREE.BufferGeometry();
+      geometry.setAttribute("position",
+        new THREE.BufferAttribute(new Float32Array(COIL_POINTS * 3), 3));
+      entry.coil = new THREE.Line(geometry, new THREE.LineBasicMaterial({ color: 0x555555,
+        transparent: faded, opacity: faded ? 0.45 : 1 }));
+      entry.coil.frustumCulled = false;
+      world.add(entry.coil);
+    } else if (link.kind === "pin") {
+      entry.mesh = new THREE.Mesh(new THREE.SphereGeometry(radius0 * 0.4, 16, 8),
+        material(0x333333, faded));
+      world.add(entry.mesh);
+    } else {
+      const thickness = link.kind === "damper" ? 0.35 : 0.18;
+      const geometry = new THREE.CylinderGeometry(radius0 * thickness, radius0 * thickness, 1,
+        12);
+      entry.mesh = new THREE.Mesh(geometry,
+        material(link.kind === "damper" ? 0x999999 : 0x555555, faded));
+      world.add(entry.mesh);
+    }
+    return entry;
+  });
+
+  // a body: its shape posed by p + R r, R and p from its point masses (x_k = p + R r_k)
+  const bodies = model.bodies.map((body, k) => {
+    const n = model.dim;
+    const offsets = body.offsets.map((r) => new THREE.Vector3(r[0], r[1], n === 3 ? r[2] : 0));
+    const differences = new THREE.Matrix3();
+    const columns = [1, 2, 3].map((j) => (j <= n ? offsets[j].clone().sub(offsets[0])
+      : new THREE.Vector3(0, 0, 1)));
+    differences.set(columns[0].x, columns[1].x, columns[2].x,
+      columns[0].y, columns[1].y, columns[2].y,
+      columns[0].z, columns[1].z, columns[2].z);
+    const inverse = differences.clone().invert();
+    let geometry;
+    const shape = new THREE.Matrix4();
+    if (body.shape && body.shape.kind === "ellipsoid") {
+      geometry = new THREE.SphereGeometry(1, 48, 24);
+      const [a, b, c] = body.shape.semi_axes;
+      const axes = body.shape.axes; // rows: principal axes in body axes
+      shape.set(axes[0][0] * a, axes[1][0] * b, axes[2][0] * c, 0,
+        axes[0][1] * a, axes[1][1] * b, axes[2][1] * c, 0,
+        axes[0][2] * a, axes[1][2] * b, axes[2][2] * c, 0,
+        0, 0, 0, 1);
+    } else {
+      const r = body.shape ? body.shape.radius : radius0 * 2;
+      geometry = new THREE.CircleGeometry(r, 48);
+    }
+    const mesh = new THREE.Mesh(geometry,
+      material(COLOURS[(k + particles.length) % COLOURS.length], faded));
+    if (is2d) mesh.material.side = THREE.DoubleSide;
+    mesh.matrixAutoUpdate = false;
+    world.add(mesh);
+    return { points: body.points.map((name) => prefix + name), mesh, shape, inverse, n };
+  });
+  return { particles, fixedPoints, links, bodies };
+}
+
+const companionShift = new THREE.Vector3(...(data.companion_shift || [0, 0, 0]), 0);
+if (is2d) companionShift.z = 0;
+const drawings = [drawModel("", false, new THREE.Vector3())];
+if (data.companion) drawings.push(drawModel(data.companion, true, companionShift));
+const { particles } = drawings[0];
 
 function poseBody(entry) {
-  const { body, n } = entry;
-  const points = body.points.map((name) => pointAt(name, new THREE.Vector3()));
+  const { n } = entry;
+  const points = entry.points.map((name) => pointAt(name, new THREE.Vector3()));
   const origin = points.reduce((sum, p) => sum.add(p), new THREE.Vector3())
     .divideScalar(points.length);
   const columns = [1, 2, 3].map((j) => (j <= n ? points[j].clone().sub(points[0])
@@ -449,30 +470,41 @@ function drawPlot() {
   context.fillText(`t = ${t0.toFixed(2)} s`, area.left, height - 6);
   context.textAlign = "right";
   context.fillText(`${t1.toFixed(2)} s`, area.left + area.width, height - 6);
-  // one vertical stroke per pixel column from its smallest to its largest value: every
-  // extreme shows however many frames share the column
   context.strokeStyle = "#1f77b4";
   context.beginPath();
-  let column = -1;
-  let low = 0;
-  let high = 0;
-  const flush = () => {
-    if (column < 0) return;
-    context.moveTo(column + 0.5, y(high));
-    context.lineTo(column + 0.5, y(low) + 1);
-  };
-  for (let i = 0; i < frames; ++i) {
-    const c = Math.floor(x(times[i]));
-    if (c !== column) {
-      flush();
-      column = c;
-      low = high = values[i];
-    } else {
-      low = Math.min(low, values[i]);
-      high = Math.max(high, values[i]);
+  if (frames <= 2 * area.width) {
+    // few frames: a line through every one
+    for (let i = 0; i < frames; ++i) {
+      if (i === 0) context.moveTo(x(times[i]), y(values[i]));
+      else context.lineTo(x(times[i]), y(values[i]));
     }
+  } else {
+    // many: one vertical stroke per pixel column from its smallest to its largest value
+    // (the previous column's last included, so the curve is continuous); every extreme
+    // shows however many frames share a column
+    let column = -1;
+    let low = 0;
+    let high = 0;
+    const flush = () => {
+      if (column < 0) return;
+      context.moveTo(column + 0.5, y(high));
+      context.lineTo(column + 0.5, y(low) + 1);
+    };
+    for (let i = 0; i < frames; ++i) {
+      const c = Math.floor(x(times[i]));
+      if (c !== column) {
+        flush();
+        column = c;
+        const previous = i > 0 ? values[i - 1] : values[i];
+        low = Math.min(values[i], previous);
+        high = Math.max(values[i], previous);
+      } else {
+        low = Math.min(low, values[i]);
+        high = Math.max(high, values[i]);
+      }
+    }
+    flush();
   }
-  flush();
   context.stroke();
   let worst = 0;
   for (const v of values) worst = Math.max(worst, Math.abs(v));
@@ -518,7 +550,9 @@ slider.max = t1;
 document.getElementById("title").innerHTML = `<b></b><br>${frames} frames`
   + (data.stride > 1 ? ` (every ${data.stride}th of ${data.rows})` : "")
   + (data.mesh ? `, ${numPoints} nodes, ${data.mesh.springs} springs`
-    + ` (${data.mesh.broken} break)` : "");
+    + ` (${data.mesh.broken} break)` : "")
+  + (data.companion ? "<br>left: the reduced model; right, faded: the maximal penalty model"
+    : "");
 document.querySelector("#title b").textContent = model.name;
 
 let time = t0;
@@ -529,15 +563,17 @@ const stats = { frames: 0, since: performance.now(), scriptMs: 0 };
 function render() {
   const started = performance.now();
   interpolate(time);
-  for (const { name, mesh } of particles) pointAt(name, mesh.position);
-  for (const { name, mesh } of fixedPoints) pointAt(name, mesh.position);
-  for (const entry of bodies) poseBody(entry);
-  for (const entry of links) {
-    anchorPosition(entry.link.a, entry.a);
-    anchorPosition(entry.link.b, entry.b);
-    if (entry.coil) drawCoil(entry);
-    else if (entry.link.kind === "pin") entry.mesh.position.copy(entry.a);
-    else placeBetween(entry.mesh, entry.a, entry.b);
+  for (const { particles: spheres, fixedPoints, bodies, links } of drawings) {
+    for (const { name, mesh } of spheres) pointAt(name, mesh.position);
+    for (const { name, mesh } of fixedPoints) pointAt(name, mesh.position);
+    for (const entry of bodies) poseBody(entry);
+    for (const entry of links) {
+      anchorPosition(entry.link.a, entry.a);
+      anchorPosition(entry.link.b, entry.b);
+      if (entry.coil) drawCoil(entry);
+      else if (entry.link.kind === "pin") entry.mesh.position.copy(entry.a);
+      else placeBetween(entry.mesh, entry.a, entry.b);
+    }
   }
   if (mesh) mesh.update(time);
   const [i] = locate(time);

@@ -6,6 +6,7 @@
 #include <ostream>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 #include "gencoord/model_traits.hpp"
 #include "gencoord/output_file.hpp"
@@ -21,6 +22,9 @@ namespace gencoord {
 /// "fixed:" prefix, which no model name can contain, tells anchors from particles.
 /// Numbers are written in the shortest form that reads back to the same double
 /// (std::to_chars), independent of the stream's locale and precision.
+/// A writer given a `companion` prefix (e.g. "maximal:") also has the positions of a second
+/// model of the same particles, <companion><particle>_x, ..., after the fixed points; its
+/// rows come from write(s, companion_x).
 /// Usable directly as a simulate() observer.
 /// Write failures throw OutputError (output_file.hpp) with the path (or "the output stream"):
 /// each row checks the stream, which sees a failed write at the next flush of its buffer;
@@ -30,32 +34,36 @@ class TrajectoryCsvWriter {
  public:
   /// Writes the header to `out`, which must outlive the writer.
   /// \throws OutputError if the stream has failed.
-  TrajectoryCsvWriter(std::ostream& out, const ParamsOf<M>& p) : out_(&out), p_(p) {
+  TrajectoryCsvWriter(std::ostream& out, const ParamsOf<M>& p, std::string companion = {})
+      : out_(&out), p_(p), companion_(std::move(companion)) {
     write_header();
   }
 
   /// Creates (truncates) the file at `path` and writes the header.
   /// \throws OutputError if the file cannot be opened or written.
-  TrajectoryCsvWriter(const std::string& path, const ParamsOf<M>& p)
-      : file_(std::make_unique<OutputFile>(path)), out_(&file_->stream()), p_(p) {
+  TrajectoryCsvWriter(const std::string& path, const ParamsOf<M>& p, std::string companion = {})
+      : file_(std::make_unique<OutputFile>(path)),
+        out_(&file_->stream()),
+        p_(p),
+        companion_(std::move(companion)) {
     write_header();
   }
 
-  /// Appends one row for state s. \throws OutputError if the stream has failed.
+  /// Appends one row for state s. \throws OutputError if the stream has failed;
+  /// std::logic_error for a writer with a companion (write(s, companion_x) writes its rows).
   void operator()(const State<M>& s) {
-    write_number(s.t);
-    for (int i = 0; i < M::nq; ++i) write_field(s.q[i]);
-    for (int i = 0; i < M::nq; ++i) write_field(s.v[i]);
-    write_field(static_cast<double>(M::energy(s.q, s.v, s.t, p_)));
-    const XVec<M> x = M::positions(s.q, s.t, p_);
-    for (int i = 0; i < M::nx; ++i) write_field(x[i]);
-    if constexpr (has_fixed_points_v<M>) {
-      const auto anchors = M::fixed_point_positions(s.t, p_);
-      for (int i = 0; i < M::dim * M::num_fixed_points; ++i) write_field(anchors[i]);
-    }
-    *out_ << '\n';
-    check();
-    ++rows_;
+    if (!companion_.empty())
+      throw std::logic_error("gencoord: a trajectory with companion positions needs them");
+    write_row(s);
+    end_row();
+  }
+
+  /// Appends one row for state s and the companion model's positions x (nx).
+  /// \throws OutputError if the stream has failed.
+  void write(const State<M>& s, const XVec<M>& companion_x) {
+    write_row(s);
+    for (int i = 0; i < M::nx; ++i) write_field(companion_x[i]);
+    end_row();
   }
 
   /// Rows the stream accepted (not counting the header); in the file once flush() or
@@ -89,6 +97,26 @@ class TrajectoryCsvWriter {
  private:
   static_assert(assert_model_v<M>);
 
+  // t, q, v, energy, positions and fixed points, without the line's end
+  void write_row(const State<M>& s) {
+    write_number(s.t);
+    for (int i = 0; i < M::nq; ++i) write_field(s.q[i]);
+    for (int i = 0; i < M::nq; ++i) write_field(s.v[i]);
+    write_field(static_cast<double>(M::energy(s.q, s.v, s.t, p_)));
+    const XVec<M> x = M::positions(s.q, s.t, p_);
+    for (int i = 0; i < M::nx; ++i) write_field(x[i]);
+    if constexpr (has_fixed_points_v<M>) {
+      const auto anchors = M::fixed_point_positions(s.t, p_);
+      for (int i = 0; i < M::dim * M::num_fixed_points; ++i) write_field(anchors[i]);
+    }
+  }
+
+  void end_row() {
+    *out_ << '\n';
+    check();
+    ++rows_;
+  }
+
   void write_header() {
     static constexpr const char* kAxes[] = {"_x", "_y", "_z"};
     *out_ << 't';
@@ -100,6 +128,10 @@ class TrajectoryCsvWriter {
     if constexpr (has_fixed_points_v<M>) {
       for (const char* point : M::fixed_point_names)
         for (int k = 0; k < M::dim; ++k) *out_ << ",fixed:" << point << kAxes[k];
+    }
+    if (!companion_.empty()) {
+      for (const char* particle : M::particle_names)
+        for (int k = 0; k < M::dim; ++k) *out_ << ',' << companion_ << particle << kAxes[k];
     }
     *out_ << '\n';
     check();
@@ -127,6 +159,7 @@ class TrajectoryCsvWriter {
   std::unique_ptr<OutputFile> file_;  // owned file, if constructed from a path
   std::ostream* out_;
   ParamsOf<M> p_;
+  std::string companion_;  // prefix of the companion model's position columns, or empty
   long rows_ = 0;
   long flushed_rows_ = 0;
 };

@@ -116,13 +116,21 @@ double omega_max_along(const MaximalModel<M>& model, const ReducedReference<M>& 
   return omega;
 }
 
+/// The default sample observer of crosscheck_at(): nothing.
+struct IgnoreSamples {
+  template <class Reduced, class Maximal>
+  void operator()(const Reduced&, const Maximal&) const {}
+};
+
 /// The maximal model at one kappa against the reference: consistent initial state
 /// (x = X(q0), xdot = J v0 + X_t), step = the largest divisor of the sample interval below
 /// both the stability limit (safety times, with omega_max_along()) and o.max_dt.
+/// `on_sample(reduced, maximal)` sees both states at every sample time (a side-by-side
+/// trajectory).
 /// \throws MaximalDivergedError, InverseMapError, NewtonError from the run.
-template <class M>
+template <class M, class SampleObserver = IgnoreSamples>
 CrosscheckRow crosscheck_at(const ParamsOf<M>& p, const ReducedReference<M>& ref, double kappa,
-                            const CrosscheckOptions& o) {
+                            const CrosscheckOptions& o, SampleObserver&& on_sample = {}) {
   const double interval = sample_interval(o);
   const MaximalModel<M> model(p, kappa, o.penalty_damping, ref.samples.front().q);
   CrosscheckRow row;
@@ -139,6 +147,7 @@ CrosscheckRow crosscheck_at(const ParamsOf<M>& p, const ReducedReference<M>& ref
   simulate(model, initial, run, [&](const MaximalState<M>& s) {
     if (k++ % per_sample != 0) return;
     const State<M>& r = ref.samples[static_cast<std::size_t>((k - 1) / per_sample)];
+    on_sample(r, s);
     row.max_position_error =
         std::max(row.max_position_error, max_particle_distance<M>(s.q, M::positions(r.q, r.t, p)));
     row.energy_drift = std::max(row.energy_drift, std::abs(model.energy(s) - e0));
