@@ -49,8 +49,11 @@ def scene(model: Model, name: str, values: Mapping[str, float] | None = None) ->
         "links": [link for link in _links(model, numbers, body_particles) if link],
         "planes": [_plane(plane, numbers) for plane in model.constraints
                    if isinstance(plane, Plane)],
-        # pins to a position that never moves: where they hold their point
-        "pivots": [{"name": pin.name, "position": _vector(pin.anchor, numbers)}
+        # pins to a position that never moves: where they hold their point (with the body
+        # whose point it is, drawn joined to its centre)
+        "pivots": [{"name": pin.name, "position": _vector(pin.anchor, numbers),
+                    "body": pin.particle.body.name if isinstance(pin.particle, BodyPoint)
+                    else None}
                    for pin in model.constraints if isinstance(pin, Pin)
                    and not isinstance(pin.anchor, Point) and _vector(pin.anchor, numbers)],
     }

@@ -79,7 +79,8 @@ class SceneTest(unittest.TestCase):
         self.assertAlmostEqual(body["mass"] * body["shape"]["radius"] ** 2 / 2, inertia,
                                places=10)
         self.assertEqual(scene(model, name)["pivots"], [{"name": "pivot",
-                                                         "position": [0.0, 0.0]}])
+                                                         "position": [0.0, 0.0],
+                                                         "body": "bar"}])
 
     def test_a_body_point_is_an_affine_combination_of_the_point_masses(self):
         model, name = loaded("furuta_pendulum")

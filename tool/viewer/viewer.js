@@ -183,12 +183,20 @@ function drawModel(prefix, faded, shift) {
     return { name: prefix + "fixed:" + name, mesh };
   });
 
+  const spindles = []; // a pivot holding a body's point, joined to the body's centre
   for (const pivot of model.pivots) {
     const mesh = new THREE.Mesh(new THREE.BoxGeometry(radius0, radius0, radius0),
       material(0x333333, faded));
     mesh.position.set(pivot.position[0], pivot.position[1], is2d ? 0 : pivot.position[2])
       .add(shift);
     world.add(mesh);
+    if (pivot.body) {
+      const rod = new THREE.Mesh(new THREE.CylinderGeometry(radius0 * 0.12, radius0 * 0.12, 1,
+        8), material(0x555555, faded));
+      world.add(rod);
+      spindles.push({ rod, at: mesh.position, body: model.bodies.findIndex((b) => b.name
+        === pivot.body) });
+    }
   }
 
   // planes (normal . x = offset): in 2D a rail across the view, in 3D a translucent square;
@@ -275,9 +283,17 @@ function drawModel(prefix, faded, shift) {
     if (is2d) mesh.material.side = THREE.DoubleSide;
     mesh.matrixAutoUpdate = false;
     world.add(mesh);
-    return { points: body.points.map((name) => prefix + name), mesh, shape, inverse, n };
+    // the body's frame: its axes (x red, y green, z blue) at its centre of mass
+    const reach = body.shape ? 1.4 * (body.shape.radius || Math.max(...body.shape.semi_axes))
+      : radius0 * 3;
+    const frame = new THREE.AxesHelper(reach);
+    frame.matrixAutoUpdate = false;
+    frame.renderOrder = 3;
+    frame.material.depthTest = false; // seen through the body
+    world.add(frame);
+    return { points: body.points.map((name) => prefix + name), mesh, frame, shape, inverse, n };
   });
-  return { particles, fixedPoints, links, bodies };
+  return { particles, fixedPoints, links, bodies, spindles };
 }
 
 const companionShift = new THREE.Vector3(...(data.companion_shift || [0, 0, 0]), 0);
@@ -302,6 +318,7 @@ function poseBody(entry) {
     rotation[2], rotation[5], rotation[8], origin.z,
     0, 0, 0, 1);
   entry.mesh.matrix.multiplyMatrices(pose, entry.shape);
+  entry.frame.matrix.copy(pose);
   entry.centre = origin;
 }
 
@@ -563,10 +580,11 @@ const stats = { frames: 0, since: performance.now(), scriptMs: 0 };
 function render() {
   const started = performance.now();
   interpolate(time);
-  for (const { particles: spheres, fixedPoints, bodies, links } of drawings) {
+  for (const { particles: spheres, fixedPoints, bodies, links, spindles } of drawings) {
     for (const { name, mesh } of spheres) pointAt(name, mesh.position);
     for (const { name, mesh } of fixedPoints) pointAt(name, mesh.position);
     for (const entry of bodies) poseBody(entry);
+    for (const { rod, at, body } of spindles) placeBetween(rod, at, bodies[body].centre);
     for (const entry of links) {
       anchorPosition(entry.link.a, entry.a);
       anchorPosition(entry.link.b, entry.b);
