@@ -80,7 +80,7 @@ def _model_command(subparsers, name: str, help_text: str, epilog: str):
                         help="a build option of the model (e.g. n=5) or a parameter value")
     _name_option(parser)
     parser.add_argument("-o", "--output-dir", default="out",
-                        help="where the CSV and SVG go (default: ./out)")
+                        help="the output folder (default: ./out)")
     parser.add_argument("--rebuild", action="store_true",
                         help="generate and compile again even when the cache has the program")
     parser.add_argument("-v", "--verbose", action="store_true",
