@@ -47,7 +47,7 @@ install(FILES "${PROJECT_SOURCE_DIR}/cmake/gencoord.cmake"
 _gencoord_install_share(bindings "*.cpp" "*.hpp")
 # the gencoord command: <P>/bin/gencoord runs <P>/share/gencoord/tool, which compiles the
 # drivers against this installation
-_gencoord_install_share(tool "*.py")
+_gencoord_install_share(tool "*.py" "*.html" "*.js")  # the viewer page's template, script
 _gencoord_install_share(drivers "*.cpp" "*.hpp" "*.cmake")
 install(PROGRAMS "${PROJECT_SOURCE_DIR}/gencoord" DESTINATION "${CMAKE_INSTALL_BINDIR}")
 

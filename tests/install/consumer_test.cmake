@@ -69,7 +69,8 @@ if(ROUTE STREQUAL "find_package")
           share/gencoord/generate share/gencoord/generator/cli.py
           share/gencoord/templates/model.hpp.j2 share/gencoord/cmake/gencoord.cmake
           bin/gencoord share/gencoord/tool/main.py share/gencoord/drivers/simulate.cpp
-          share/gencoord/drivers/gencoord_drivers.cmake)
+          share/gencoord/drivers/gencoord_drivers.cmake share/gencoord/tool/viewer/page.html
+          share/gencoord/tool/viewer/viewer.js)
     if(NOT EXISTS "${prefix}/${expected}")
       message(FATAL_ERROR "not installed: ${expected}")
     endif()
@@ -109,7 +110,8 @@ if(ROUTE STREQUAL "find_package")
                   RESULT_VARIABLE rc OUTPUT_VARIABLE output ERROR_VARIABLE output)
   message("${output}")
   if(NOT rc EQUAL 0 OR NOT output MATCHES "trajectory .*gantry_crane.csv \\(501 rows\\)"
-     OR NOT EXISTS "${WORK_DIR}/out/gantry_crane.svg")
+     OR NOT EXISTS "${WORK_DIR}/out/gantry_crane.svg"
+     OR NOT EXISTS "${WORK_DIR}/out/gantry_crane.html")
     message(FATAL_ERROR "the installed gencoord simulate failed (exit status ${rc})")
   endif()
   file(GLOB driver_caches "${WORK_DIR}/cache/gantry_crane-*/build/CMakeCache.txt")

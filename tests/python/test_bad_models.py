@@ -300,8 +300,9 @@ class GoodInvocationTest(unittest.TestCase):
             target = Path(scratch) / "a" / "b"
             result = run_generate(MODELS / "pendulum.py", "-o", target, "--quiet")
             self.assertEqual(result.returncode, 0, describe(result))
-            self.assertEqual(sorted(p.name for p in target.iterdir()), ["pendulum.hpp"],
-                             "exactly the header, no temporary file")
+            self.assertEqual(sorted(p.name for p in target.iterdir()),
+                             ["pendulum.hpp", "pendulum.scene.json"],
+                             "exactly the header and the scene, no temporary file")
             reason = other_sympy_than_generated(["pendulum.hpp"])
             if reason:
                 self.skipTest(reason)
