@@ -433,7 +433,6 @@ if (mesh) {
 series.forEach((s) => seriesSelect.add(new Option(s.values === energyError ? "energy error"
   : s.label, seriesSelect.options.length)));
 const PLOT_MARGIN = { left: 70, right: 14, top: 20, bottom: 22 };
-let plotCache = null; // a canvas holding the plot without its cursor
 let plotInfo = null; // null: the plot is to be drawn again (resize, another series)
 
 function drawPlot() {
@@ -525,10 +524,6 @@ function drawPlot() {
   context.stroke();
   let worst = 0;
   for (const v of values) worst = Math.max(worst, Math.abs(v));
-  plotCache = plotCache || document.createElement("canvas");
-  plotCache.width = plotCanvas.width;
-  plotCache.height = plotCanvas.height;
-  plotCache.getContext("2d").drawImage(plotCanvas, 0, 0);
   const box = plotCanvas.getBoundingClientRect();
   plotInfo = { label: chosen.label, lo, hi, worst, t0, t1,
     left: box.left + area.left, top: box.top + area.top,
@@ -536,19 +531,18 @@ function drawPlot() {
   plotInfo.x = x;
 }
 
+// the cursor is an element over the plot, moved by a transform: the plot is drawn once, not
+// every frame
+const cursor = document.getElementById("cursor");
+
 function drawCursor(time) {
-  if (!plotInfo) drawPlot();
-  const context = plotCanvas.getContext("2d");
-  context.setTransform(1, 0, 0, 1, 0, 0);
-  context.drawImage(plotCache, 0, 0);
-  const ratio = window.devicePixelRatio;
-  context.setTransform(ratio, 0, 0, ratio, 0, 0);
-  const cx = Math.round(plotInfo.x(time)) + 0.5;
-  context.strokeStyle = "#d62728";
-  context.beginPath();
-  context.moveTo(cx, PLOT_MARGIN.top);
-  context.lineTo(cx, PLOT_MARGIN.top + plotInfo.height);
-  context.stroke();
+  if (!plotInfo) {
+    drawPlot();
+    cursor.style.top = `${PLOT_MARGIN.top}px`;
+    cursor.style.height = `${plotInfo.height}px`;
+    cursor.style.display = "block";
+  }
+  cursor.style.transform = `translateX(${Math.round(plotInfo.x(time))}px)`;
 }
 
 seriesSelect.addEventListener("change", () => {
