@@ -2,9 +2,11 @@
 #include "gencoord/integrate/step.hpp"
 #include "gencoord/reduced_system.hpp"
 
+#include <algorithm>
 #include <cstddef>
 #include <random>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -97,7 +99,49 @@ TEST_P(BatchThreads, StepInPlaceEqualsSerialExactly) {
   }
 }
 
+TEST_P(BatchThreads, ForEachRunsEveryIndexOnceAndEqualsSerial) {
+  // runs of very different lengths, as in a sweep whose samples stop at an event
+  const int threads = GetParam();
+  const PendulumBatch b = pendulum_batch(301);
+  auto run = [&](std::size_t i) {
+    State<HandPendulum> s = b.states[i];
+    const ReducedSystem<HandPendulum> system(b.params[i]);
+    for (std::size_t k = 0; k < i % 17 * 10; ++k) s = step(system, Integrator::RK4, s, 1e-3);
+    return s;
+  };
+  std::vector<State<HandPendulum>> out(b.states.size());
+  std::vector<int> calls(b.states.size(), 0);
+  batch_for_each(b.states.size(), threads, [&](std::size_t i) {
+    ++calls[i];
+    out[i] = run(i);
+  });
+  for (std::size_t i = 0; i < out.size(); ++i) {
+    EXPECT_EQ(calls[i], 1) << "index " << i;
+    const State<HandPendulum> serial = run(i);
+    EXPECT_EQ(out[i].q, serial.q) << "index " << i << ", " << threads << " threads";
+    EXPECT_EQ(out[i].v, serial.v) << "index " << i << ", " << threads << " threads";
+  }
+}
+
 INSTANTIATE_TEST_SUITE_P(Threads, BatchThreads, ::testing::Values(1, 2, 5));
+
+TEST(Batch, ForEachRethrowsTheLowestFailureAfterEveryIndex) {
+  for (const int threads : {1, 2, 5}) {
+    std::vector<int> ran(50, 0);
+    try {
+      batch_for_each(ran.size(), threads, [&](std::size_t i) {
+        ran[i] = 1;
+        if (i == 7 || i == 30) throw std::runtime_error(std::to_string(i));
+      });
+      ADD_FAILURE() << "no exception with " << threads << " threads";
+    } catch (const std::runtime_error& error) {
+      EXPECT_STREQ(error.what(), "7") << threads << " threads";
+    }
+    EXPECT_EQ(std::count(ran.begin(), ran.end(), 1), 50) << threads << " threads";
+  }
+  EXPECT_NO_THROW(batch_for_each(0, 2, [](std::size_t) { throw std::runtime_error("never"); }));
+  EXPECT_THROW(batch_for_each(3, 0, [](std::size_t) {}), std::invalid_argument);
+}
 
 TEST(Batch, FailureInAnyChunkIsRethrownAfterJoin) {
   // an indefinite mass matrix in the second half: the second thread's chunk throws
