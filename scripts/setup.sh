@@ -9,15 +9,20 @@
 #   scripts/setup.sh --browser           also Chromium, which tool/viewer/headless.py runs
 #                                        headless for the viewer page's browser tests; or
 #                                        checks that the browser $GENCOORD_CHROMIUM names is there
+#   scripts/setup.sh --sweep             also what gencoord sweep needs: Open MPI (mpirun and
+#                                        its C headers), serial HDF5, and h5py and Matplotlib
+#                                        for /usr/bin/python3 (the sweep's picture scripts)
 # The options combine.
 set -euo pipefail
 
 python_modules=false
 browser=false
+sweep=false
 for option in "$@"; do
   case $option in
     --python-modules) python_modules=true ;;
     --browser) browser=true ;;
+    --sweep) sweep=true ;;
   esac
 done
 
@@ -67,6 +72,16 @@ if $browser; then
          } >/dev/null 2>&1; then
     packages+=(chromium)
   fi
+fi
+
+# gencoord sweep: its driver compiles against MPI and HDF5 and runs under mpirun
+if $sweep; then
+  command -v mpirun >/dev/null 2>&1 || packages+=(openmpi-bin)
+  { command -v mpicxx >/dev/null 2>&1 \
+    && [ -f /usr/lib/x86_64-linux-gnu/openmpi/include/mpi.h ]; } || packages+=(libopenmpi-dev)
+  [ -f /usr/include/hdf5/serial/hdf5.h ] || packages+=(libhdf5-dev)
+  /usr/bin/python3 -c "import h5py" >/dev/null 2>&1 || packages+=(python3-h5py)
+  /usr/bin/python3 -c "import matplotlib" >/dev/null 2>&1 || packages+=(python3-matplotlib)
 fi
 
 "$(dirname "$0")/install_packages.sh" setup "${packages[@]}"

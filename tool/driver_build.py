@@ -53,6 +53,14 @@ endforeach()
 if(GENCOORD_PYTHON_MODULE)
   gencoord_add_python_module(python_module MODEL_TARGET model)
 endif()
+if(GENCOORD_SWEEP_DRIVER)  # only this program needs MPI and HDF5 (FindHDF5 compiles C)
+  enable_language(C)
+  set(MPI_CXX_SKIP_MPICXX ON)
+  find_package(MPI REQUIRED COMPONENTS CXX)
+  find_package(HDF5 REQUIRED COMPONENTS C)
+  gencoord_add_driver(sweep DRIVER sweep MODEL model
+                      CLASS gencoord::models::{class_name} HEADER generated/{name}.hpp)
+endif()
 """
 
 
@@ -192,6 +200,25 @@ def driver_program(layout: Layout, target: ModelTarget, driver: str, *, rebuild:
                   cmake_targets=list(DRIVERS), configure=[],
                   what=f"the programs for {target.name}", rebuild=rebuild, verbose=verbose)
     return os.path.join(build, driver)
+
+
+def sweep_program(layout: Layout, target: ModelTarget, *, rebuild: bool = False,
+                  verbose: bool = False) -> str:
+    """The path of the sweep driver built for `target`, in a build of its own: only it needs
+    MPI and HDF5, so the other drivers build without them."""
+    build = os.path.join(entry_dir(layout, target), "build-sweep")
+    program = os.path.join(build, "sweep")
+    _cached_build(layout, target, build, [program], cmake_targets=["sweep"],
+                  configure=["-DGENCOORD_SWEEP_DRIVER=ON"],
+                  what=f"the sweep program for {target.name}",
+                  needs=" (it needs MPI and HDF5: scripts/setup.sh --sweep installs Debian's "
+                        "libopenmpi-dev and libhdf5-dev)", rebuild=rebuild, verbose=verbose)
+    return program
+
+
+def generated_header(layout: Layout, target: ModelTarget) -> str:
+    """The header generated for `target` in its cache entry (after a build)."""
+    return os.path.join(entry_dir(layout, target), "include", "generated", f"{target.name}.hpp")
 
 
 def _write_project(target: ModelTarget, entry: str, rebuild: bool) -> str:

@@ -1,4 +1,4 @@
-"""gencoord {generate,simulate,crosscheck,info}: the command-line entry point."""
+"""gencoord {generate,simulate,crosscheck,python,view,sweep,info}: the command-line entry point."""
 
 from __future__ import annotations
 
@@ -18,6 +18,7 @@ from .driver_build import driver_program, python_module
 from .errors import ToolError
 from .layout import find_layout
 from .model_file import load, split_settings
+from .sweep.command import run_sweep
 from .viewer import page as viewer_page
 
 _DESCRIPTION = """\
@@ -29,8 +30,9 @@ Generalized-coordinate dynamics from a model file.
   gencoord crosscheck MODEL.py [options]              against the maximal penalty model
   gencoord python MODEL.py [-o DIR]                   its Python module (docs/python.md)
   gencoord info MODEL.py                              what the model file declares
+  gencoord sweep SWEEP.toml [--ranks N] [--resume]    an ensemble under MPI (docs/sweep.md)
 
-simulate, crosscheck and python compile a small program for the model the first time (a CMake
+simulate, crosscheck, python and sweep compile a small program for the model the first time (a CMake
 project against the gencoord runtime; a C++17 compiler and CMake are needed) and keep it in a
 per-user cache ($GENCOORD_CACHE_DIR, else $XDG_CACHE_HOME/gencoord, else ~/.cache/gencoord)
 keyed by the model file's content and options, so the next run starts at once.
@@ -67,6 +69,41 @@ Writes DIR/<name>_crosscheck.csv and DIR/<name>_crosscheck.svg, and DIR/<name>_c
 with DIR/<name>_crosscheck_trajectory.csv: the reduced and the maximal model at the smallest
 kappa side by side (see gencoord view --help); exit status 1 when the maximal model does not
 converge to the reduced one as kappa grows."""
+
+
+_SWEEP_EPILOG = """\
+The sweep file (TOML) names the model file, the integrator, the end time or an event, the
+samples (a grid, Monte Carlo or a Latin hypercube) and what to record; docs/sweep.md and
+examples/sweeps/ show its keys. Writes DIR/<stem>.table (the samples) and DIR/<stem>.h5 (the
+results: one HDF5 file, written by rank 0). Needs Open MPI and HDF5 (scripts/setup.sh --sweep).
+A run that was stopped continues with --resume: the chunks it completed are not run again."""
+
+
+def _sweep_command(subparsers) -> None:
+    parser = subparsers.add_parser(
+        "sweep", help="run an ensemble of a model file under MPI",
+        description="run an ensemble of a model file under MPI.\n\n" + _TRUST,
+        epilog=_SWEEP_EPILOG, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("file", help="the sweep file (TOML)")
+    parser.add_argument("--ranks", type=int, default=1,
+                        help="MPI ranks (mpirun -np; default 1)")
+    parser.add_argument("--threads", type=int, default=0,
+                        help="threads per rank (default 0: the node's cores over its ranks)")
+    again = parser.add_mutually_exclusive_group()
+    again.add_argument("--resume", action="store_true",
+                       help="continue the sweep in DIR/<stem>.h5, running only the chunks "
+                            "it lacks")
+    again.add_argument("--overwrite", action="store_true",
+                       help="remove DIR/<stem>.h5 and run the whole sweep again")
+    parser.add_argument("--mpi-args", default="", metavar="ARGS",
+                        help="more options for mpirun, e.g. \"--hostfile hosts\"")
+    parser.add_argument("-o", "--output-dir", default="out",
+                        help="where the table and the results go (default: ./out)")
+    parser.add_argument("--rebuild", action="store_true",
+                        help="generate and compile again even when the cache has the program")
+    parser.add_argument("-v", "--verbose", action="store_true",
+                        help="show the build's commands and output, the mpirun command, and "
+                             "the traceback of an error")
 
 
 def _model_command(subparsers, name: str, help_text: str, epilog: str):
@@ -117,6 +154,7 @@ def _parser() -> argparse.ArgumentParser:
                                  _VIEW_EPILOG)
     view_parser.add_argument("--csv", help="the trajectory (default: DIR/<name>.csv, which "
                                            "gencoord simulate writes)")
+    _sweep_command(subparsers)
     info_parser = subparsers.add_parser(
         "info", help="what a model file declares",
         description="what a model file declares.\n\n" + _TRUST,
@@ -243,7 +281,7 @@ def main(argv: list[str] | None = None) -> int:
     if args.command is None:
         parser.print_help()
         return 2
-    if forwarded and args.command in ("info", "python", "view"):
+    if forwarded and args.command in ("info", "python", "view", "sweep"):
         parser.error(f"{args.command}: unrecognized arguments: {' '.join(forwarded)}")
     try:
         if args.command == "simulate":
@@ -254,10 +292,12 @@ def main(argv: list[str] | None = None) -> int:
             return _python(args)
         if args.command == "view":
             return _view(args)
+        if args.command == "sweep":
+            return run_sweep(args)
         return _info(args)
     except ToolError as error:
         if not error.shown:
-            print(f"gencoord: error: {error}", file=sys.stderr)
+            print(f"{error.prefix}{error}", file=sys.stderr)
         return 1
     except BrokenPipeError:
         # the reader went away (gencoord info MODEL.py | head): stop quietly, and keep the
@@ -265,4 +305,5 @@ def main(argv: list[str] | None = None) -> int:
         os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
         return 141
     except (Exception, KeyboardInterrupt) as error:  # one line, never a traceback
-        return report_failure(error, args.model, "gencoord", verbose=args.verbose)
+        return report_failure(error, getattr(args, "model", None), "gencoord",
+                              verbose=args.verbose)
