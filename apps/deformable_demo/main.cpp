@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "frame_output.hpp"
+#include "gencoord/deformable/implicit_stepper.hpp"
 #include "gencoord/deformable/time_step.hpp"
 #include "scenarios.hpp"
 #include "svg_output.hpp"
@@ -143,9 +144,10 @@ int Run(const Options& o) {
   std::vector<demo::Frame> frames;
   frames.push_back({s.t, s.x});
   const double energy0 = gd::total_energy(s);
+  gd::BackwardEulerStepper<2> stepper;  // keeps the step matrix's pattern between steps
   for (int k = 1; k <= steps; ++k) {
     if (implicit) {
-      gd::backward_euler_step(s, dt);
+      stepper.step(s, dt);
     } else {
       gd::symplectic_euler_step(s, dt, explicit_options);
     }

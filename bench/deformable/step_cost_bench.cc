@@ -1,12 +1,15 @@
 // Cost of one time step per spring, explicit (symplectic Euler) and implicit (backward Euler
-// with conjugate gradient), on 2D sheets of about 1e3, 1e4 and 1e5 springs. The per-spring
-// cost ("per_spring") should stay flat as the size grows: stepping is linear in the springs.
+// with conjugate gradient, the stepper keeping its pattern), on 2D sheets of about 1e3, 1e4
+// and 1e5 springs. The per-spring cost ("per_spring") should stay flat as the size grows:
+// stepping is linear in the springs. bench_deformable_ratios compares the steps with the
+// springs' forces alone.
 //
 //   bench_deformable --benchmark_counters_tabular=true
 #include <benchmark/benchmark.h>
 
 #include <cmath>
 
+#include "gencoord/deformable/implicit_stepper.hpp"
 #include "gencoord/deformable/mesh_to_springs.hpp"
 #include "gencoord/deformable/time_step.hpp"
 
@@ -47,9 +50,10 @@ void BM_BackwardEulerStep(benchmark::State& state) {
   gd::MassSpringSystem<2> s = MakeSheet(static_cast<int>(state.range(0)));
   // a fixed multiple of each mesh's CFL limit keeps the CG iteration count size-independent
   const double dt = 10.0 * gd::cfl_limit(s);
+  gd::BackwardEulerStepper<2> stepper;
   int iterations = 0;
   for (auto _ : state) {
-    iterations = gd::backward_euler_step(s, dt).iterations;
+    iterations = stepper.step(s, dt).iterations;
     benchmark::DoNotOptimize(s.x.data());
   }
   SetCounters(state, s);

@@ -1,15 +1,13 @@
 // The mass-spring object's side of the integrators' system interface.
 #include "gencoord/deformable/mass_spring_integration.hpp"
 
-#include <Eigen/IterativeLinearSolvers>
 #include <Eigen/SparseCholesky>
-#include <limits>
-#include <sstream>
 #include <utility>
 
 #include "gencoord/deformable/errors.hpp"
 #include "gencoord/deformable/inelastic.hpp"
 #include "gencoord/deformable/validate.hpp"
+#include "spd_solve.hpp"
 
 namespace gencoord::deformable {
 
@@ -93,6 +91,7 @@ void MassSpringIntegration<Dim>::linearize(const State& y, JacobianSource,
   Points f = Points::Zero(Dim, count);
   accumulate_forces(s_, y.q, y.v, f);
   out->force = free_part(f);
+  linearized_velocities_ = free_part(y.v);
   // spring blocks: +J at ii and jj, -J at ij and ji
   std::vector<Eigen::Triplet<double>> k_x, k_v;
   k_x.reserve(s_.springs.size() * 4 * Dim * Dim);
@@ -136,36 +135,13 @@ bool MassSpringIntegration<Dim>::solve(const Matrix& A, const Unknowns& b, Unkno
   stats_ = ImplicitStats{};
   stats_.unknowns = static_cast<int>(b.size());
   if (options_.solver == LinearSolver::kConjugateGradient) {
-    Eigen::ConjugateGradient<Matrix, Eigen::Lower | Eigen::Upper> cg;
-    cg.setTolerance(options_.tolerance);
-    cg.setMaxIterations(options_.max_iterations);
-    cg.compute(A);
-    *x = cg.solve(b);
-    stats_.iterations = static_cast<int>(cg.iterations());
-    stats_.residual = cg.error();
-    if (cg.info() != Eigen::Success || !x->allFinite()) {
-      std::ostringstream os;
-      os << "backward Euler: conjugate gradients did not converge in " << stats_.iterations
-         << " iterations (relative residual " << stats_.residual << ", tolerance "
-         << options_.tolerance << ", " << stats_.unknowns
-         << " unknowns): raise ImplicitOptions::max_iterations, loosen "
-            "ImplicitOptions::tolerance, take a smaller step, or use "
-            "LinearSolver::kSparseCholesky";
-      throw LinearSolveError(os.str(), stats_.iterations, stats_.residual, stats_.unknowns);
-    }
+    x->resize(0);  // no warm start: each solve is a new Newton update
+    detail::solve_by_conjugate_gradient(A, b, free_masses_, linearized_velocities_, options_, x,
+                                        &stats_);
   } else {
     Eigen::SimplicialLDLT<Matrix> ldlt(A);
     if (ldlt.info() == Eigen::Success) *x = ldlt.solve(b);
-    if (ldlt.info() != Eigen::Success || !x->allFinite()) {
-      stats_.residual = std::numeric_limits<double>::infinity();
-      std::ostringstream os;
-      os << "backward Euler: the sparse Cholesky factorization (SimplicialLDLT) of the "
-         << stats_.unknowns << " x " << stats_.unknowns
-         << " step matrix failed or gave a non-finite solution: the matrix is not positive "
-            "definite or not finite; check the object (masses, stiffnesses) and take a "
-            "smaller step";
-      throw LinearSolveError(os.str(), 0, stats_.residual, stats_.unknowns);
-    }
+    if (ldlt.info() != Eigen::Success || !x->allFinite()) detail::throw_cholesky_failure(&stats_);
   }
   return true;
 }

@@ -46,6 +46,8 @@ class MassSpringIntegration {
   /// The free forces and their Jacobians K = df/dx, D = df/dv (definite spring blocks, the
   /// ground penalty while it pushes).
   void linearize(const State& y, JacobianSource, Linearization<MassSpringIntegration>* out) const;
+  /// Conjugate gradients stop by ImplicitOptions::tolerance's rule, its velocity floor being
+  /// the velocities of the last linearize() call's state.
   /// \throws LinearSolveError (errors.hpp) if conjugate gradients do not converge or the
   ///         factorization fails, with the residual and what to change.
   bool solve(const Matrix& A, const Unknowns& b, Unknowns* x) const;
@@ -59,6 +61,7 @@ class MassSpringIntegration {
   std::vector<int> dof_;  // first free DOF of each node, -1 if pinned
   Unknowns free_masses_;
   mutable ImplicitStats stats_;
+  mutable Unknowns linearized_velocities_;  // the CG stopping rule's floor (solve())
 };
 
 /// Ends a step of dt of `s` at `end` (what an integrator of the runtime returned for

@@ -47,22 +47,36 @@ enum class LinearSolver {
 
 struct ImplicitOptions {
   LinearSolver solver = LinearSolver::kConjugateGradient;
-  double tolerance = 1e-8;  ///< CG relative residual
+  /// CG stopping rule: the residual r = b - A dv of the step's solve, in the inverse-mass norm
+  /// (|r|^2 = sum r_k^2 / m_k over the free unknowns), at most `tolerance` times the right-hand
+  /// side's norm, or at most the floor 64 eps |v| (|v|^2 = sum m_k v_k^2, the state's
+  /// velocities; eps the double epsilon), below which adding dv to v is lost in rounding v.
+  /// Since the step matrix is at least the mass matrix, the error of dv in the kinetic-energy
+  /// norm is at most the bound. A zero right-hand side gives dv = 0 without iterating.
+  double tolerance = 1e-8;
   int max_iterations = 2000;
+  /// CG starts from the previous step's velocity change (BackwardEulerStepper keeps it)
+  /// instead of zero.
+  bool warm_start = true;
 };
 
 /// What one backward Euler solve did.
 struct ImplicitStats {
-  int iterations = 0;     ///< CG iterations (0 for Cholesky)
-  double residual = 0.0;  ///< CG relative residual estimate
+  int iterations = 0;     ///< CG iterations (0 for Cholesky and for a zero right-hand side)
+  double residual = 0.0;  ///< CG relative residual |r| / |b| (inverse-mass norms, as above)
   int unknowns = 0;       ///< free degrees of freedom
+  /// Builds of the step matrix's pattern (with Cholesky, each with its symbolic analysis)
+  /// by the stepper so far, this step's included: 1 while no spring breaks.
+  int pattern_analyses = 0;
 };
 
 /// One backward Euler step of dt (s), linearized (one Newton update from v1 = v):
 ///     (M - dt D - dt^2 K) dv = dt (f + dt K v),  v += dv,  x += dt v,
 /// with f, K = df/dx, D = df/dv over the free nodes at (x, v); K uses the definite spring
 /// Jacobian, so the matrix is symmetric positive definite. Throws LinearSolveError if the
-/// solve fails; StepSizeError and ObjectError as symplectic_euler_step().
+/// solve fails; StepSizeError and ObjectError as symplectic_euler_step(). Each call builds
+/// the matrix's pattern anew; BackwardEulerStepper (implicit_stepper.hpp) keeps it between
+/// steps.
 template <int Dim>
 ImplicitStats backward_euler_step(MassSpringSystem<Dim>& s, double dt,
                                   const ImplicitOptions& options = {});

@@ -1,0 +1,146 @@
+// Backward Euler's step matrix, kept between steps (step_matrix.hpp).
+#include "step_matrix.hpp"
+
+#include <algorithm>
+#include <cstddef>
+
+namespace gencoord::deformable::detail {
+
+template <int Dim>
+bool StepMatrix<Dim>::matches(const MassSpringSystem<Dim>& s) const {
+  if (s.pinned != pinned_ || spring_nodes_.size() != 3 * s.springs.size()) return false;
+  for (std::size_t k = 0; k < s.springs.size(); ++k) {
+    const Spring& sp = s.springs[k];
+    if (spring_nodes_[3 * k] != sp.i || spring_nodes_[3 * k + 1] != sp.j ||
+        spring_nodes_[3 * k + 2] != static_cast<int>(sp.broken))
+      return false;
+  }
+  return true;
+}
+
+template <int Dim>
+int StepMatrix<Dim>::slot(int a, int b, int c) const {
+  if (dof_[a] < 0 || dof_[b] < 0) return -1;
+  const int column = dof_[b] + c;
+  const int* begin = a_.innerIndexPtr() + a_.outerIndexPtr()[column];
+  const int* end = a_.innerIndexPtr() + a_.outerIndexPtr()[column + 1];
+  // the block's Dim rows are consecutive in the sorted column
+  return static_cast<int>(std::lower_bound(begin, end, dof_[a]) - a_.innerIndexPtr());
+}
+
+template <int Dim>
+void StepMatrix<Dim>::build(const MassSpringSystem<Dim>& s) {
+  const int count = s.num_nodes();
+  pinned_ = s.pinned;
+  dof_.assign(count, -1);
+  int unknowns = 0;
+  for (int n = 0; n < count; ++n) {
+    if (!s.pinned[n]) {
+      dof_[n] = unknowns;
+      unknowns += Dim;
+    }
+  }
+  std::vector<Eigen::Triplet<double>> entries;
+  entries.reserve(static_cast<std::size_t>(unknowns) * Dim + s.springs.size() * 2 * Dim * Dim);
+  auto add_block = [&](int a, int b) {
+    if (dof_[a] < 0 || dof_[b] < 0) return;
+    for (int c = 0; c < Dim; ++c) {
+      for (int r = 0; r < Dim; ++r) entries.emplace_back(dof_[a] + r, dof_[b] + c, 0.0);
+    }
+  };
+  for (int n = 0; n < count; ++n) add_block(n, n);
+  spring_nodes_.clear();
+  spring_nodes_.reserve(3 * s.springs.size());
+  for (const Spring& sp : s.springs) {
+    spring_nodes_.insert(spring_nodes_.end(), {sp.i, sp.j, static_cast<int>(sp.broken)});
+    if (sp.broken) continue;
+    add_block(sp.i, sp.j);
+    add_block(sp.j, sp.i);
+  }
+  a_.resize(unknowns, unknowns);
+  a_.setFromTriplets(entries.begin(), entries.end());  // duplicates (parallel springs) summed
+  a_.makeCompressed();
+
+  spring_slots_.assign(s.springs.size() * 4 * Dim, -1);
+  for (std::size_t k = 0; k < s.springs.size(); ++k) {
+    const Spring& sp = s.springs[k];
+    if (sp.broken) continue;
+    const int blocks[4][2] = {{sp.i, sp.i}, {sp.j, sp.j}, {sp.i, sp.j}, {sp.j, sp.i}};
+    for (int blk = 0; blk < 4; ++blk) {
+      for (int c = 0; c < Dim; ++c)
+        spring_slots_[(k * 4 + blk) * Dim + c] = slot(blocks[blk][0], blocks[blk][1], c);
+    }
+  }
+  diagonal_slots_.resize(unknowns);
+  for (int n = 0; n < count; ++n) {
+    if (dof_[n] < 0) continue;
+    for (int c = 0; c < Dim; ++c) diagonal_slots_[dof_[n] + c] = slot(n, n, c) + c;
+  }
+}
+
+template <int Dim>
+void StepMatrix<Dim>::assemble(const MassSpringSystem<Dim>& s, const Points& q, const Points& v,
+                               double dt, Eigen::VectorXd* masses, Eigen::VectorXd* k_v) {
+  using Vec = Eigen::Matrix<double, Dim, 1>;
+  using Block = Eigen::Matrix<double, Dim, Dim>;
+  double* values = a_.valuePtr();
+  std::fill(values, values + a_.nonZeros(), 0.0);
+  masses->resize(unknowns());
+  k_v->setZero(unknowns());
+  for (int n = 0; n < s.num_nodes(); ++n) {
+    if (dof_[n] < 0) continue;
+    for (int c = 0; c < Dim; ++c) {
+      (*masses)[dof_[n] + c] = s.mass(n);
+      values[diagonal_slots_[dof_[n] + c]] = s.mass(n);
+    }
+  }
+  // adds sign * block at the block's slots (one per column; its Dim rows follow)
+  auto add = [&](const int* slots, double sign, const Block& block) {
+    if (slots[0] < 0) return;
+    for (int c = 0; c < Dim; ++c) {
+      for (int r = 0; r < Dim; ++r) values[slots[c] + r] += sign * block(r, c);
+    }
+  };
+  for (std::size_t k = 0; k < s.springs.size(); ++k) {
+    const Spring& sp = s.springs[k];
+    if (sp.broken) continue;
+    const SpringForce<Dim> sf =
+        spring_force<Dim>(q.col(sp.i), q.col(sp.j), v.col(sp.i), v.col(sp.j), sp.params);
+    const SpringJacobian<Dim> jac = spring_jacobian<Dim>(sf, sp.params, /*definite=*/true);
+    // K has -J at ii and jj and +J at ij and ji (springs.hpp), D the same with the damping J
+    const Block c = dt * jac.f_i_D_dv + (dt * dt) * jac.f_i_D_d;
+    const int* slots = &spring_slots_[k * 4 * Dim];
+    add(slots, 1.0, c);
+    add(slots + Dim, 1.0, c);
+    add(slots + 2 * Dim, -1.0, c);
+    add(slots + 3 * Dim, -1.0, c);
+    const int di = dof_[sp.i], dj = dof_[sp.j];
+    const Vec vi = di >= 0 ? Vec(v.col(sp.i)) : Vec::Zero();
+    const Vec vj = dj >= 0 ? Vec(v.col(sp.j)) : Vec::Zero();
+    const Vec kv = jac.f_i_D_d * (vj - vi);
+    if (di >= 0) k_v->template segment<Dim>(di) += kv;
+    if (dj >= 0) k_v->template segment<Dim>(dj) -= kv;
+  }
+  // ground contact: a penalty spring and damper along the up axis while it pushes
+  if (s.ground) {
+    const GroundPlane& g = *s.ground;
+    constexpr int up = Dim - 1;
+    for (int n = 0; n < s.num_nodes(); ++n) {
+      if (dof_[n] < 0) continue;
+      const double depth = g.height - q(up, n);
+      const double push = g.omega * g.omega * depth - 2.0 * g.damping_ratio * g.omega * v(up, n);
+      if (depth > 0.0 && push > 0.0) {
+        const double stiffness = s.mass(n) * g.omega * g.omega;
+        const double damping = s.mass(n) * 2.0 * g.damping_ratio * g.omega;
+        values[diagonal_slots_[dof_[n] + up]] += dt * damping + dt * dt * stiffness;
+        (*k_v)[dof_[n] + up] -= stiffness * v(up, n);
+      }
+    }
+  }
+}
+
+template class StepMatrix<1>;
+template class StepMatrix<2>;
+template class StepMatrix<3>;
+
+}  // namespace gencoord::deformable::detail

@@ -1,0 +1,52 @@
+// Backward Euler's step matrix A = M - dt D - dt^2 K over the free nodes of a mass-spring
+// object, kept between steps: its sparsity pattern is built once per set of springs and
+// pinned nodes, and each step writes the values into it in place. Private to the library.
+#pragma once
+
+#include <Eigen/SparseCore>
+#include <vector>
+
+#include "gencoord/deformable/mass_spring_system.hpp"
+
+namespace gencoord::deformable::detail {
+
+template <int Dim>
+class StepMatrix {
+ public:
+  using Points = typename MassSpringSystem<Dim>::Points;
+
+  /// Whether the pattern was built for these springs (nodes, broken flags) and pinned nodes.
+  bool matches(const MassSpringSystem<Dim>& s) const;
+
+  /// Builds the pattern of `s` (values zero): the Dim x Dim diagonal block of every free node
+  /// (so a ground contact that starts or ends does not change it) and the four blocks of every
+  /// unbroken spring between free nodes, both triangles; and where each block's entries lie
+  /// in the value array.
+  void build(const MassSpringSystem<Dim>& s);
+
+  /// Writes A at (q, v) into the pattern (definite spring Jacobians, the ground penalty while
+  /// it pushes), the free masses into `masses`, and K v over the free nodes (v of the pinned
+  /// ones left out, as their motion is in the force at their end positions) into `k_v`.
+  void assemble(const MassSpringSystem<Dim>& s, const Points& q, const Points& v, double dt,
+                Eigen::VectorXd* masses, Eigen::VectorXd* k_v);
+
+  const Eigen::SparseMatrix<double>& matrix() const { return a_; }
+  /// First free unknown of node n, -1 if it is pinned.
+  int dof(int n) const { return dof_[n]; }
+  int unknowns() const { return static_cast<int>(a_.rows()); }
+
+ private:
+  // where the (a, b) block of node rows a and node columns b starts in column c of the block
+  int slot(int a, int b, int c) const;
+
+  Eigen::SparseMatrix<double> a_;
+  std::vector<int> dof_;
+  std::vector<char> pinned_;
+  std::vector<int> spring_nodes_;  // i, j and broken of each spring, as built
+  // per spring, 4 blocks (ii, jj, ij, ji) x Dim columns: index of the block column's first
+  // entry in a_'s values, -1 where the block is not stored (a pinned node)
+  std::vector<int> spring_slots_;
+  std::vector<int> diagonal_slots_;  // index of (k, k) in a_'s values, per unknown
+};
+
+}  // namespace gencoord::deformable::detail
