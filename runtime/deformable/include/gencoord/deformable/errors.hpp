@@ -6,6 +6,7 @@
 
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 namespace gencoord::deformable {
 
@@ -20,6 +21,22 @@ class MeshError : public std::invalid_argument {
 
  private:
   int element_, node_;
+};
+
+/// A mesh file that cannot be read (mesh_io.hpp): the message starts with "file:line: " and
+/// says what is wrong there and what to do; element() and node() are those of the mesh being
+/// built (-1 if none), line() counts from 1 (0: the file as a whole, e.g. it cannot be opened).
+class MeshFileError : public MeshError {
+ public:
+  MeshFileError(const std::string& what, std::string path, int line, int element = -1,
+                int node = -1)
+      : MeshError(what, element, node), path_(std::move(path)), line_(line) {}
+  const std::string& path() const { return path_; }
+  int line() const { return line_; }
+
+ private:
+  std::string path_;
+  int line_;
 };
 
 /// Material constants that are not usable: E and rho must be positive and finite, the damping
