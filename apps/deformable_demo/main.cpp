@@ -1,4 +1,5 @@
-// deformable_demo: runs one mass-spring scenario and writes CSV frames and SVG pictures.
+// deformable_demo: runs one mass-spring scenario and writes CSV frames and SVG pictures, and
+// with --vtk the frames for ParaView.
 //
 //   deformable_demo disk-drop --out out/disk --duration 1.5 --animate
 //   deformable_demo --help
@@ -7,6 +8,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <iostream>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -14,6 +16,7 @@
 #include "frame_output.hpp"
 #include "gencoord/deformable/implicit_stepper.hpp"
 #include "gencoord/deformable/time_step.hpp"
+#include "gencoord/deformable/vtk_writer.hpp"
 #include "scenarios.hpp"
 #include "svg_output.hpp"
 
@@ -35,6 +38,7 @@ struct Options {
   bool animate = false;
   std::string sampler = "polar";
   unsigned seed = 1;
+  std::string vtk;  // "": no ParaView output
 };
 
 void PrintHelp() {
@@ -44,7 +48,10 @@ void PrintHelp() {
       "  frames.csv     frame,time,node,x,y for every saved frame\n"
       "  springs.csv    spring,i,j,broken_at (time the spring broke, empty if never)\n"
       "  frames.svg     chosen frames side by side\n"
-      "  animation.svg  all frames, looping (with --animate)\n\n"
+      "  animation.svg  all frames, looping (with --animate)\n"
+      "and with --vtk DIR, into DIR, for ParaView (File > Open frames.pvd):\n"
+      "  frames.pvd, frames_NNNNNN.vtu  every saved frame: springs with strain and broken\n"
+      "                 flags, mesh triangles, node velocities and masses\n\n"
       "scenarios:\n");
   for (const std::string& name : demo::scenario_names()) {
     const demo::Scenario sc = demo::make_scenario(name, 1, "polar", 1);
@@ -63,6 +70,7 @@ void PrintHelp() {
       "  --animate            also write animation.svg\n"
       "  --sampler NAME       particles: polar (r = R sqrt(u1)) or rejection (default polar)\n"
       "  --seed S             particles: random seed (default 1)\n"
+      "  --vtk DIR            also write the frames as VTK files for ParaView into DIR\n"
       "  --help               this text\n");
 }
 
@@ -108,6 +116,8 @@ bool Parse(int argc, char** argv, Options& o) {
       o.animate = true;
     } else if (arg == "--sampler") {
       o.sampler = value();
+    } else if (arg == "--vtk") {
+      o.vtk = value();
     } else if (arg == "--seed") {
       o.seed = static_cast<unsigned>(std::stoul(value()));
     } else if (!arg.empty() && arg[0] == '-') {
@@ -143,6 +153,12 @@ int Run(const Options& o) {
   explicit_options.allow_cfl_violation = o.allow_cfl_violation;
   std::vector<demo::Frame> frames;
   frames.push_back({s.t, s.x});
+  std::optional<gd::VtkSeriesWriter> vtk;
+  const gd::SimplexMesh<2>* mesh = sc.mesh ? &*sc.mesh : nullptr;
+  if (!o.vtk.empty()) {
+    vtk.emplace(o.vtk);
+    vtk->write_frame(s, mesh);
+  }
   const double energy0 = gd::total_energy(s);
   gd::BackwardEulerStepper<2> stepper;  // keeps the step matrix's pattern between steps
   for (int k = 1; k <= steps; ++k) {
@@ -153,7 +169,10 @@ int Run(const Options& o) {
     }
     // save when the step crosses the next frame time
     const int frame_due = static_cast<int>(static_cast<long>(k) * (o.frames - 1) / steps);
-    if (frame_due >= static_cast<int>(frames.size())) frames.push_back({s.t, s.x});
+    if (frame_due >= static_cast<int>(frames.size())) {
+      frames.push_back({s.t, s.x});
+      if (vtk) vtk->write_frame(s, mesh);
+    }
   }
   std::printf("  energy %.5g J -> %.5g J, %zu springs broke", energy0, gd::total_energy(s),
               s.fractures.size());
@@ -178,6 +197,7 @@ int Run(const Options& o) {
   if (o.animate) demo::write_svg_animation(o.out + "/animation.svg", sc, s, frames);
   std::printf("  wrote %s/frames.csv, springs.csv, frames.svg%s (%zu frames)\n", o.out.c_str(),
               o.animate ? ", animation.svg" : "", frames.size());
+  if (vtk) std::printf("  wrote %s (%zu frames)\n", vtk->pvd_path().c_str(), vtk->frames().size());
   return 0;
 }
 

@@ -20,8 +20,8 @@ Scenario DiskDrop(int resolution) {
   Scenario sc;
   sc.name = "disk-drop";
   sc.description = "elastic disk (R = 0.2 m, E = 5000 N/m) dropped from 0.3 m onto the ground";
-  sc.system =
-      make_mass_spring(disk_mesh(0.2, 3 * resolution, {0.0, 0.5}), Material{5000.0, 1.0, 0.5});
+  sc.mesh = disk_mesh(0.2, 3 * resolution, {0.0, 0.5});
+  sc.system = make_mass_spring(*sc.mesh, Material{5000.0, 1.0, 0.5});
   sc.system.gravity << 0.0, -kGravity;
   with_ground(sc.system, 0.0, 0.05);
   sc.duration = 1.5;
@@ -33,8 +33,8 @@ Scenario Cantilever(int resolution) {
   Scenario sc;
   sc.name = "cantilever";
   sc.description = "cantilever beam 1 m x 0.1 m clamped at x = 0, sagging under gravity";
-  sc.system = make_mass_spring(rectangle_mesh(1.0, 0.1, 20 * resolution, 2 * resolution),
-                               Material{2e4, 1.0, 2.0});
+  sc.mesh = rectangle_mesh(1.0, 0.1, 20 * resolution, 2 * resolution);
+  sc.system = make_mass_spring(*sc.mesh, Material{2e4, 1.0, 2.0});
   pin_nodes_where(sc.system, 0, 0.0);
   sc.system.gravity << 0.0, -kGravity;
   sc.duration = 3.0;
@@ -50,8 +50,8 @@ Scenario BrittleBeam(int resolution) {
   sc.description =
       "brittle beam 1 m x 0.1 m clamped at both ends, a 3 kg load in the middle; springs "
       "break at 3% strain";
-  MassSpringSystem<2> s = make_mass_spring(
-      rectangle_mesh(1.0, 0.1, 20 * resolution, 2 * resolution), Material{2e4, 1.0, 1.0});
+  sc.mesh = rectangle_mesh(1.0, 0.1, 20 * resolution, 2 * resolution);
+  MassSpringSystem<2> s = make_mass_spring(*sc.mesh, Material{2e4, 1.0, 1.0});
   pin_nodes_where(s, 0, 0.0);
   pin_nodes_where(s, 0, 1.0);
   // the load: 3 kg spread over the top nodes within 5 cm of the middle

@@ -1,10 +1,12 @@
 #pragma once
 // The demo's scenarios: each builds a 2D mass-spring object and says how to step it.
 
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "gencoord/deformable/mass_spring_system.hpp"
+#include "gencoord/deformable/mesh.hpp"
 
 namespace gencoord::deformable::demo {
 
@@ -12,10 +14,11 @@ struct Scenario {
   std::string name;
   std::string description;
   MassSpringSystem<2> system;
-  double duration = 1.0;     ///< default simulated time (s)
-  bool implicit = false;     ///< default integrator: backward Euler if true
-  double dt = 0.0;           ///< default step (s); 0: half the CFL limit
-  double view_min_x = -1.0;  ///< picture bounds (m)
+  std::optional<SimplexMesh<2>> mesh;  ///< the mesh the system was made from, if any
+  double duration = 1.0;               ///< default simulated time (s)
+  bool implicit = false;               ///< default integrator: backward Euler if true
+  double dt = 0.0;                     ///< default step (s); 0: half the CFL limit
+  double view_min_x = -1.0;            ///< picture bounds (m)
   double view_max_x = 1.0;
   double view_min_y = -0.1;
   double view_max_y = 1.0;
