@@ -423,6 +423,7 @@ TEST(MeshIoTest, RefusesADegenerateElement) {
     EXPECT_THAT(e.what(), HasSubstr("mesh.msh:28: element 13 is degenerate: its volume 0 is not "
                                     "above"));
     EXPECT_THAT(e.what(), HasSubstr("coplanar"));
+    std::printf("[ refused ] %s\n", e.what());
   }
   ExpectRefused([&] { ReadTetgen<2>(kSquareNode, "2 3 0\n0 0 1 2\n1 0 2 2\n"); }, 3,
                 "mesh.ele:3: element 1 uses node 2 twice");
