@@ -13,6 +13,8 @@
 #include <sstream>
 #include <tuple>
 
+#include <unistd.h>
+
 #include "gencoord/deformable/errors.hpp"
 #include "gencoord/deformable/mesh_io.hpp"
 #include "gencoord/deformable/mesh_to_springs.hpp"
@@ -326,7 +328,8 @@ TEST(MeshIoTest, GmshFixturesBothVersionsAgree) {
 
 TEST(MeshIoTest, TetgenFilesByPathAndBase) {
   const std::filesystem::path folder =
-      std::filesystem::temp_directory_path() / "gencoord_mesh_io_test";
+      std::filesystem::temp_directory_path() /
+      ("gencoord_mesh_io_test_" + std::to_string(::getpid()));  // one per process
   std::filesystem::create_directories(folder);
   std::ofstream(folder / "cube.node") << kCubeNode;
   std::ofstream(folder / "cube.ele") << kCubeEle;

@@ -12,6 +12,8 @@
 #include <string>
 #include <vector>
 
+#include <unistd.h>
+
 #include "gencoord/deformable/mesh_to_springs.hpp"
 #include "gencoord/deformable/time_step.hpp"
 #include "gencoord/deformable/vtk_writer.hpp"
@@ -31,9 +33,20 @@ std::string Slurp(const fs::path& path) {
   return text.str();
 }
 
-// A fresh folder under the temporary directory.
+// The folders of this process's tests (one root per process, so that runs do not collide),
+// removed when the tests have run.
+const fs::path kRoot =
+    fs::temp_directory_path() / ("gencoord_vtk_test_" + std::to_string(::getpid()));
+class RemoveFolders : public ::testing::Environment {
+ public:
+  void TearDown() override { fs::remove_all(kRoot); }
+};
+const ::testing::Environment* const kRemoveFolders =
+    ::testing::AddGlobalTestEnvironment(new RemoveFolders);
+
+// A fresh folder under kRoot.
 fs::path Folder(const std::string& name) {
-  const fs::path folder = fs::temp_directory_path() / ("gencoord_vtk_test_" + name);
+  const fs::path folder = kRoot / name;
   fs::remove_all(folder);
   fs::create_directories(folder);
   return folder;
@@ -286,8 +299,7 @@ TEST(VtkWriterTest, SameRunSameBytes) {
 TEST(VtkWriterTest, RefusesAMissingFolderAndAMeshThatDoesNotFit) {
   const SimplexMesh<2> mesh = rectangle_mesh(1.0, 1.0, 1, 1);
   const MassSpringSystem<2> s = make_mass_spring(mesh, Material{100.0, 1.0, 0.0});
-  const std::string missing =
-      (fs::temp_directory_path() / "gencoord_vtk_test_missing" / "no" / "frame.vtu").string();
+  const std::string missing = (kRoot / "missing" / "no" / "frame.vtu").string();
   try {
     write_vtu(missing, s);
     ADD_FAILURE() << "wrote into a folder that does not exist";
