@@ -111,13 +111,14 @@ TEST(ImplicitStepperTest, PatternIsAnalysedOnceWithoutFracture) {
     options.solver = solver;
     BackwardEulerStepper<2> stepper(options);
     ImplicitStats stats;
-    double lowest = 1.0;
+    double lowest = 1.0, rising = -1.0;
     for (int k = 0; k < 100; ++k) {
       stats = stepper.step(s, 2e-3);
       lowest = std::min(lowest, s.x.row(1).minCoeff());
+      rising = std::max(rising, s.v.row(1).maxCoeff());
     }
     EXPECT_LT(lowest, 0.0) << "the sheet never touched the ground";
-    EXPECT_GT(s.v.row(1).maxCoeff(), 0.0) << "the sheet never bounced";
+    EXPECT_GT(rising, 0.0) << "the sheet never bounced";
     EXPECT_EQ(stats.pattern_analyses, 1);
   }
 }

@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <map>
 
@@ -62,8 +63,10 @@ TEST(MeshTest, BoxHasTheExpectedVolumeAndKuhnEdges) {
   EXPECT_EQ(static_cast<long>(mesh_edges(mesh).size()), axis + faces + nx * ny * nz);
 }
 
-// Every spring's own wave speed sqrt(k L / m) is c, with m the mass around it.
-TEST(MeshTest, EverySpringHasTheMaterialWaveSpeed) {
+// Every spring's own wave speed sqrt(k L / m), with m the mass around it, is c times the
+// square root of its calibration factor, which depends on its direction only
+// (lattice_elasticity.hpp); the fastest spring sets the object's wave speed (the CFL limit).
+TEST(MeshTest, SpringSpeedsDependOnDirectionOnly) {
   const Material material{9.0, 4.0, 0.0};  // c = 1.5
   const SimplexMesh<3> mesh = box_mesh(0.3, 0.2, 0.4, 3, 2, 4);
   const MassSpringSystem<3> s = make_mass_spring(mesh, material);
@@ -79,10 +82,26 @@ TEST(MeshTest, EverySpringHasTheMaterialWaveSpeed) {
     }
   }
   ASSERT_EQ(around.size(), s.springs.size());
+  std::map<std::array<long, 3>, double> speed_of_direction;  // n and -n together
+  double fastest = 0.0;
   for (const Spring& sp : s.springs) {
-    const double m = around.at({sp.i, sp.j});
-    EXPECT_NEAR(std::sqrt(sp.params.stiffness * sp.params.rest_length / m), 1.5, 1e-12);
+    const double speed =
+        std::sqrt(sp.params.stiffness * sp.params.rest_length / around.at({sp.i, sp.j}));
+    Eigen::Vector3d n = (mesh.nodes.col(sp.j) - mesh.nodes.col(sp.i)).normalized();
+    const bool negative =
+        n.x() < -1e-9 || (n.x() < 1e-9 && (n.y() < -1e-9 || (n.y() < 1e-9 && n.z() < 0)));
+    if (negative) n = -n;
+    const std::array<long, 3> key{std::lround(1e6 * n.x()), std::lround(1e6 * n.y()),
+                                  std::lround(1e6 * n.z())};
+    const auto [at, added] = speed_of_direction.emplace(key, speed);
+    if (!added) {
+      EXPECT_NEAR(speed, at->second, 1e-12 * speed);
+    }
+    fastest = std::max(fastest, speed);
   }
+  EXPECT_EQ(speed_of_direction.size(), 13u);  // the cubic lattice's 13 directions
+  EXPECT_NEAR(s.wave_speed, fastest, 1e-12 * fastest);
+  EXPECT_GT(fastest, 1.5);  // faster than c: a network is softer than each of its springs
   EXPECT_NEAR(s.mass.sum(), 4.0 * 0.3 * 0.2 * 0.4, 1e-12);
 }
 

@@ -92,18 +92,28 @@ SimplexMesh<3> box_mesh(double lx, double ly, double lz, int nx, int ny, int nz,
       }
     }
   }
-  // Kuhn split: one tetrahedron per order of the three axes, along the diagonal 000 -> 111
+  // Kuhn split: one tetrahedron per order of the three axes, along the diagonal 000 -> 111 of
+  // the cell, mirrored along every axis whose cell index is odd. Neighbouring cells are mirror
+  // images across their shared face, so the faces' diagonals match (the mesh conforms), and
+  // the edges run along all 13 directions of the cubic lattice rather than 7: calibrated
+  // springs can then be isotropic (lattice_elasticity.hpp).
   const int orders[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
   for (int k = 0; k < nz; ++k) {
     for (int j = 0; j < ny; ++j) {
       for (int i = 0; i < nx; ++i) {
+        const int cell[3] = {i, j, k};
+        auto node = [&](const int(&local)[3]) {
+          int at[3];
+          for (int a = 0; a < 3; ++a) at[a] = cell[a] + (cell[a] % 2 ? 1 - local[a] : local[a]);
+          return id(at[0], at[1], at[2]);
+        };
         for (const auto& order : orders) {
           int corner[3] = {0, 0, 0};
           std::array<int, 4> tet;
-          tet[0] = id(i, j, k);
+          tet[0] = node(corner);
           for (int step = 0; step < 3; ++step) {
             corner[order[step]] = 1;
-            tet[step + 1] = id(i + corner[0], j + corner[1], k + corner[2]);
+            tet[step + 1] = node(corner);
           }
           mesh.elements.push_back(tet);
         }

@@ -1,10 +1,12 @@
-// Mass-spring object from a simplex mesh: lumped masses and k = c^2 m / L.
+// Mass-spring object from a simplex mesh: lumped masses, k = c^2 m / L, then calibrated to
+// the material (lattice_elasticity.hpp).
 #include "gencoord/deformable/mesh_to_springs.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <tuple>
 
+#include "gencoord/deformable/lattice_elasticity.hpp"
 #include "gencoord/deformable/validate.hpp"
 
 namespace gencoord::deformable {
@@ -58,6 +60,12 @@ MassSpringSystem<Dim> make_mass_spring(const SimplexMesh<Dim>& mesh, const Mater
     sp.params.damping = material.damping * m / (rho * sp.params.rest_length);
     s.springs.push_back(sp);
   }
+  // the network's own modulus is rho c^2 / 3 (2D) or / 6 (3D); lattice_elasticity.hpp
+  double measure = 0.0;
+  for (int e = 0; e < static_cast<int>(mesh.elements.size()); ++e)
+    measure += element_measure(mesh, e);
+  const double largest = calibrate_springs(s, mesh.nodes, measure, material.youngs_modulus);
+  s.wave_speed = c * std::sqrt(largest);  // the fastest spring's sqrt(k L / m), for the CFL limit
   return s;
 }
 

@@ -28,8 +28,9 @@ namespace {
 // sqrt(1 + zeta^2) - zeta, written so that it neither overflows nor cancels for large zeta
 double damping_factor(double zeta) { return 1.0 / (std::hypot(1.0, zeta) + zeta); }
 
-// undamped: L_min / c. Damping evaluated explicitly shrinks it by sqrt(1 + zeta^2) - zeta
-// (the stability bound of symplectic Euler on a damped mode); the factor is 1 without damping
+// undamped: L_min / c_s (c_s: the fastest spring's own speed). Damping evaluated explicitly shrinks
+// it by sqrt(1 + zeta^2) - zeta (the stability bound of symplectic Euler on a damped mode); the
+// factor is 1 without damping
 template <int Dim>
 double cfl_limit_at(const MassSpringSystem<Dim>& s, double zeta) {
   return min_rest_length(s) / s.wave_speed * damping_factor(zeta);
@@ -48,12 +49,13 @@ void symplectic_euler_step(MassSpringSystem<Dim>& s, double dt, const ExplicitOp
   const double zeta = damping_ratio_at_cfl(s);
   const double limit = cfl_limit_at(s, zeta);
   if (!(dt <= limit) && !options.allow_cfl_violation) {
-    char message[256];
-    std::snprintf(message, sizeof message,
-                  "explicit step dt = %.6g s exceeds the CFL limit %.6g s = L_min / c "
-                  "(L_min = %.6g m, c = %.6g m/s) times %.6g for damping; take a smaller "
-                  "step, use backward Euler, or set ExplicitOptions::allow_cfl_violation",
-                  dt, limit, min_rest_length(s), s.wave_speed, damping_factor(zeta));
+    char message[384];
+    std::snprintf(
+        message, sizeof message,
+        "explicit step dt = %.6g s exceeds the CFL limit %.6g s = L_min / c_s "
+        "(L_min = %.6g m, fastest spring c_s = %.6g m/s) times %.6g for damping; take a smaller "
+        "step, use backward Euler, or set ExplicitOptions::allow_cfl_violation",
+        dt, limit, min_rest_length(s), s.wave_speed, damping_factor(zeta));
     throw CflViolation(message);
   }
   const MassSpringIntegration<Dim> system(s);

@@ -66,9 +66,10 @@ struct MassSpringSystem {
   std::optional<GroundPlane> ground;
   InelasticParams inelastic;
   std::vector<FractureEvent> fractures;  ///< appended to by the time steppers
-  double wave_speed = 1.0;  ///< c = sqrt(E / rho) of the material (m/s), for the CFL limit
-  double t = 0.0;           ///< time (s)
-  long steps = 0;           ///< steps taken
+  double wave_speed =
+      1.0;         ///< the fastest spring's sqrt(k L / m) (m/s; c for a rod), for the CFL limit
+  double t = 0.0;  ///< time (s)
+  long steps = 0;  ///< steps taken
 
   int num_nodes() const { return static_cast<int>(x.cols()); }
   int num_unbroken_springs() const;

@@ -33,7 +33,8 @@ SimplexMesh<2> rectangle_mesh(double width, double height, int nx, int ny,
 SimplexMesh<2> disk_mesh(double radius, int rings, const Eigen::Vector2d& center);
 
 /// Box [0, lx] x [0, ly] x [0, lz] + origin cut into nx x ny x nz cubes, each split into the
-/// six Kuhn tetrahedra around its main diagonal (conforming across cells).
+/// six Kuhn tetrahedra around its main diagonal, each cell the mirror image of its neighbours
+/// (conforming across cells; the edges run along all 13 directions of the cubic lattice).
 SimplexMesh<3> box_mesh(double lx, double ly, double lz, int nx, int ny, int nz,
                         const Eigen::Vector3d& origin = Eigen::Vector3d::Zero());
 
