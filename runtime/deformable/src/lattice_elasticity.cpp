@@ -12,6 +12,8 @@
 #include <string>
 #include <vector>
 
+#include "gencoord/deformable/errors.hpp"
+
 namespace gencoord::deformable {
 namespace {
 
@@ -166,7 +168,19 @@ double calibrate_springs(MassSpringSystem<Dim>& s,
   check_measure(measure);
   // g_s = 1 + phi_s . z with the smallest sum_s w_s (g_s - 1)^2 (w_s = k_s L_s) such that
   // sum_s w_s g_s phi_s is the target tensor times V, or, where the springs' directions cannot
-  // reach it, closest to it: z = G^+ (V target - sum_s w_s phi_s), G = sum_s w_s phi_s phi_s^T
+  // reach it, closest to it: z = G^+ (V target - sum_s w_s phi_s), G = sum_s w_s phi_s phi_s^T.
+  // Every sum is taken relative to W = sum_s w_s, so that no extreme material overflows it.
+  double total = 0.0;
+  for (const Spring& sp : s.springs)
+    if (!sp.broken) total += sp.params.stiffness * sp.params.rest_length;
+  // the factor that gives the isotropic part alone its modulus: sum_s w_s g = V alpha D (D + 2)
+  const double uniform = measure / total * alpha_of_youngs<Dim>(youngs_modulus) * Dim * (Dim + 2);
+  if (!(std::isfinite(uniform) && uniform > 0.0))
+    throw MaterialError("calibrate springs: Young's modulus " + std::to_string(youngs_modulus) +
+                        " over springs of total k L " + std::to_string(total) + " and measure " +
+                        std::to_string(measure) +
+                        " gives no finite spring stiffness; choose E, rho and the mesh's size "
+                        "so that E / rho and the springs' stiffness stay within double range");
   using Gram = Eigen::Matrix<double, kMonomials<Dim>, kMonomials<Dim>>;
   Gram gram = Gram::Zero();
   Components<Dim> now = Components<Dim>::Zero();
@@ -175,28 +189,22 @@ double calibrate_springs(MassSpringSystem<Dim>& s,
     const Spring& sp = s.springs[k];
     if (sp.broken) continue;
     phi[k] = outer4<Dim>(rest_direction<Dim>(sp, rest));
-    const double weight = sp.params.stiffness * sp.params.rest_length;
+    const double weight = sp.params.stiffness * sp.params.rest_length / total;
     gram += weight * phi[k] * phi[k].transpose();
     now += weight * phi[k];
   }
-  const double alpha = alpha_of_youngs<Dim>(youngs_modulus);
-  const Components<Dim> target = measure * isotropic<Dim>(alpha);
+  const Components<Dim> target = isotropic<Dim>(uniform / (Dim * (Dim + 2)));
   const Components<Dim> z = gram.completeOrthogonalDecomposition().solve(target - now);
-  std::vector<double> factor(s.springs.size(), 0.0);
-  double total = 0.0, smallest = INFINITY;  // total: sum_s w_s over the unbroken springs
-  for (std::size_t k = 0; k < s.springs.size(); ++k) {
-    const Spring& sp = s.springs[k];
-    if (sp.broken) continue;
+  std::vector<double> factor(s.springs.size(), uniform);
+  bool directional = true;
+  for (std::size_t k = 0; k < s.springs.size() && directional; ++k) {
+    if (s.springs[k].broken) continue;
     factor[k] = 1.0 + phi[k].dot(z);
-    total += sp.params.stiffness * sp.params.rest_length;
+    // directions too few, or too nearly those of a lattice with too few, ask for factors near
+    // or below zero: then keep the mesh's anisotropy and set the isotropic part only
+    directional = std::isfinite(factor[k]) && factor[k] >= kSmallestFactor * uniform;
   }
-  // the factor that gives the isotropic part alone its modulus: sum_s w_s g = V alpha D (D + 2)
-  const double uniform = measure * alpha * Dim * (Dim + 2) / total;
-  for (std::size_t k = 0; k < s.springs.size(); ++k)
-    if (!s.springs[k].broken) smallest = std::min(smallest, factor[k]);
-  // directions too few, or too nearly those of a lattice with too few, ask for factors near or
-  // below zero: keep the mesh's anisotropy and set the isotropic part only
-  if (!(smallest >= kSmallestFactor * uniform)) std::fill(factor.begin(), factor.end(), uniform);
+  if (!directional) std::fill(factor.begin(), factor.end(), uniform);
   double largest = 0.0;
   for (std::size_t k = 0; k < s.springs.size(); ++k) {
     Spring& sp = s.springs[k];

@@ -58,7 +58,7 @@ LatticeElasticity<Dim> lattice_elasticity(const MassSpringSystem<Dim>& s,
 /// factor below a fifth of the uniform one (springs in too few directions, or nearly those of
 /// such a lattice), every spring gets the uniform factor instead, which gives the isotropic
 /// part its modulus and keeps the mesh's anisotropy (lattice_elasticity() measures it).
-/// Returns the largest factor.
+/// Returns the largest factor. \throws MaterialError if the stiffness would not be finite.
 template <int Dim>
 double calibrate_springs(MassSpringSystem<Dim>& s,
                          const Eigen::Matrix<double, Dim, Eigen::Dynamic>& rest, double measure,
