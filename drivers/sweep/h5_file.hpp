@@ -232,19 +232,9 @@ class ResultsFile {
       write_rows(name, type, r.begin, r.count, data);
     };
     rows("status", status_type.get(), r.status.data());
-    rows("error_time", H5T_NATIVE_DOUBLE, r.error_time.data());
     rows("error", error_type.get(), r.error.data());
-    if (layout_.final_state) {
-      rows("final_t", H5T_NATIVE_DOUBLE, r.final_t.data());
-      rows("final_q", H5T_NATIVE_DOUBLE, r.final_q.data());
-      rows("final_v", H5T_NATIVE_DOUBLE, r.final_v.data());
-    }
-    if (layout_.energy_drift) rows("energy_drift", H5T_NATIVE_DOUBLE, r.energy_drift.data());
-    if (layout_.event_time) rows("event_time", H5T_NATIVE_DOUBLE, r.event_time.data());
-    if (layout_.trajectory_points > 0) {
-      rows("trajectory_q", H5T_NATIVE_DOUBLE, r.trajectory_q.data());
-      rows("trajectory_v", H5T_NATIVE_DOUBLE, r.trajectory_v.data());
-    }
+    for (const auto& [name, values] : ChunkResults::double_fields(r))
+      if (!values->empty()) rows(name, H5T_NATIVE_DOUBLE, values->data());  // recorded
   }
 
   // makes the datasets and attributes of a new file

@@ -10,6 +10,8 @@
 #include <limits>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
+#include <utility>
 #include <vector>
 
 namespace gencoord::sweep {
@@ -78,6 +80,22 @@ struct ChunkResults {
     trajectory_v.assign(n * points * nq, nan);
   }
 
+  /// The double-valued fields with their datasets' names, in the order pack() sends them; a
+  /// field the layout does not record is empty.
+  template <class Self>
+  static auto double_fields(Self& r) {
+    using Values =
+        std::conditional_t<std::is_const_v<Self>, const std::vector<double>, std::vector<double>>;
+    return std::array<std::pair<const char*, Values*>, 8>{{{"error_time", &r.error_time},
+                                                           {"final_t", &r.final_t},
+                                                           {"final_q", &r.final_q},
+                                                           {"final_v", &r.final_v},
+                                                           {"energy_drift", &r.energy_drift},
+                                                           {"event_time", &r.event_time},
+                                                           {"trajectory_q", &r.trajectory_q},
+                                                           {"trajectory_v", &r.trajectory_v}}};
+  }
+
   /// Sets sample i's error text (cut to kErrorLength - 1 bytes).
   void set_error(long long i, const std::string& text) {
     char* slot = error.data() + static_cast<std::size_t>(i) * kErrorLength;
@@ -110,9 +128,8 @@ inline std::vector<char> pack(const ChunkResults& r) {
   std::vector<char> out;
   detail::append_bytes(&out, std::vector<long long>{r.chunk, r.begin, r.count});
   detail::append_bytes(&out, r.status);
-  for (const auto* field : {&r.error_time, &r.final_t, &r.final_q, &r.final_v, &r.energy_drift,
-                            &r.event_time, &r.trajectory_q, &r.trajectory_v})
-    detail::append_bytes(&out, *field);
+  for (const auto& [name, values] : ChunkResults::double_fields(r))
+    detail::append_bytes(&out, *values);
   detail::append_bytes(&out, r.error);
   return out;
 }
@@ -130,9 +147,8 @@ inline ChunkResults unpack(const std::vector<char>& bytes, const Layout& layout,
   ChunkResults r;
   r.reset(layout, head[0], head[1], head[2]);
   detail::take_bytes(bytes, &offset, &r.status);
-  for (auto* field : {&r.error_time, &r.final_t, &r.final_q, &r.final_v, &r.energy_drift,
-                      &r.event_time, &r.trajectory_q, &r.trajectory_v})
-    detail::take_bytes(bytes, &offset, field);
+  for (const auto& [name, values] : ChunkResults::double_fields(r))
+    detail::take_bytes(bytes, &offset, values);
   detail::take_bytes(bytes, &offset, &r.error);
   if (offset != bytes.size()) throw std::runtime_error("sweep: a chunk's results are too long");
   return r;

@@ -40,7 +40,8 @@ struct Plan {
   std::vector<Check> checks;
   Integrator integrator = Integrator::RK4;
   double dt = 0.0;
-  long long steps = 0, every = 0;
+  double duration = 0.0;  // steps x dt: simulate() runs that many fixed steps
+  long long every = 0;
   bool stop_at_event = true, need_energy = false;
   Layout layout;
 };
@@ -112,7 +113,7 @@ Plan<M> make_plan(const Table& table) {
   }
   plan.integrator = parse_integrator(table.integrator);
   plan.dt = table.dt;
-  plan.steps = table.steps;
+  plan.duration = static_cast<double>(table.steps) * table.dt;
   plan.every = table.trajectory_every;
   plan.stop_at_event = table.event_stop;
   plan.need_energy = plan.need_energy || table.record_energy_drift;
@@ -175,10 +176,12 @@ void run_sample(const Plan<M>& plan, const double* row, long long i, ChunkResult
   const auto n = static_cast<std::size_t>(i);
   const auto nq = static_cast<std::size_t>(M::nq);
   const double nan = std::numeric_limits<double>::quiet_NaN();
-  const double t0 = s.t;
   double e0 = nan, drift = 0.0, event_time = nan;
-  // energy, trajectory and event at step k's state; true when the sample stops there
-  auto observe = [&](const State<M>& x, long long k) {
+  long long k = 0;  // the step whose state is observed
+  // energy, trajectory and event at step k's state, which it keeps as the last state reached
+  // (a failing step throws before it is observed); true when the sample stops there
+  auto observe = [&](const State<M>& x) {
+    s = x;
     double energy = nan;
     if (plan.need_energy) {
       energy = M::energy(x.q, x.v, x.t, p);
@@ -195,6 +198,7 @@ void run_sample(const Plan<M>& plan, const double* row, long long i, ChunkResult
         out->trajectory_v[at + j] = x.v[static_cast<Eigen::Index>(j)];
       }
     }
+    ++k;
     if (plan.checks.empty() || !std::isnan(event_time)) return false;
     if (!detail::event_happens(plan, x, energy)) return false;
     event_time = x.t;
@@ -204,14 +208,7 @@ void run_sample(const Plan<M>& plan, const double* row, long long i, ChunkResult
   std::string error;
   double error_time = nan;
   try {
-    if (!observe(s, 0)) {
-      for (long long k = 1; k <= plan.steps; ++k) {
-        State<M> next = step(system, plan.integrator, s, plan.dt);
-        next.t = t0 + static_cast<double>(k) * plan.dt;  // as simulate(): times do not drift
-        s = next;
-        if (observe(s, k)) break;
-      }
-    }
+    simulate(system, s, SimulateOptions{plan.integrator, plan.dt, plan.duration}, observe);
   } catch (const DynamicsError& e) {
     using Reason = DynamicsError::Reason;
     status = e.reason() == Reason::kNotPositiveDefinite   ? Status::kNotPositiveDefinite

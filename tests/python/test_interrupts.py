@@ -24,6 +24,12 @@ while True:
 """
 
 
+def _default_sigint():
+    """In the child: SIGINT does its default. A shell starts background jobs with SIGINT
+    ignored, and Python then never raises KeyboardInterrupt; a user's terminal does not."""
+    signal.signal(signal.SIGINT, signal.SIG_DFL)
+
+
 class InterruptTest(unittest.TestCase):
 
     def setUp(self):
@@ -37,7 +43,8 @@ class InterruptTest(unittest.TestCase):
         process = subprocess.Popen([sys.executable, str(REPO / command[0]), *command[1:],
                                     str(model)], cwd=str(self.root), stdout=subprocess.PIPE,
                                    stderr=subprocess.PIPE, text=True,
-                                   env=dict(os.environ, PYTHONHASHSEED="0"))
+                                   env=dict(os.environ, PYTHONHASHSEED="0"),
+                                   preexec_fn=_default_sigint)
         deadline = time.monotonic() + 120
         while not model.with_suffix(".running").exists() and time.monotonic() < deadline:
             time.sleep(0.05)
@@ -46,7 +53,12 @@ class InterruptTest(unittest.TestCase):
             process.communicate()
             self.fail("the model file never started running")
         process.send_signal(signal.SIGINT)
-        out, err = process.communicate(timeout=60)
+        try:
+            out, err = process.communicate(timeout=60)
+        except subprocess.TimeoutExpired:
+            process.kill()
+            process.communicate()
+            self.fail("the command went on for 60 s after SIGINT")
         return subprocess.CompletedProcess(process.args, process.returncode, out, err)
 
     def test_generate(self):

@@ -33,6 +33,23 @@ TEST(Simulate, CallsObserverStepsPlusOneTimesAndEndsAtDuration) {
   EXPECT_EQ(seen.back().v, end.v);
 }
 
+// An observer that returns bool ends the run when it returns true (an event); the state it
+// was given is the final one.
+TEST(Simulate, AnObserverThatReturnsTrueEndsTheRun) {
+  const HandPendulum::Params p;
+  State<HandPendulum> s;
+  s.q[0] = 0.5;
+  long calls = 0;
+  const State<HandPendulum> end =
+      simulate(ReducedSystem<HandPendulum>(p), s, {Integrator::RK4, 0.1, 1.0},
+               [&](const State<HandPendulum>& x) {
+                 ++calls;
+                 return x.t > 0.25;
+               });
+  EXPECT_EQ(calls, 4);  // t = 0, 0.1, 0.2, 0.3
+  EXPECT_DOUBLE_EQ(end.t, 0.3);
+}
+
 TEST(Simulate, StartsFromTheInitialTime) {
   const HandPendulum::Params p;
   State<HandPendulum> s;

@@ -1,6 +1,7 @@
 // The fixed-step simulation loop, for any system.
 #pragma once
 
+#include <type_traits>
 #include <utility>
 
 #include "gencoord/errors.hpp"
@@ -36,16 +37,32 @@ struct IgnoreStates {
   void operator()(const State&) const {}
 };
 
+namespace detail {
+// Calls observer(s); true when the observer returns a bool and it is true (stop the run).
+template <class Observer, class State>
+bool observe(Observer& observer, const State& s) {
+  if constexpr (std::is_same_v<decltype(observer(s)), bool>) {
+    return observer(s);
+  } else {
+    observer(s);
+    return false;
+  }
+}
+}  // namespace detail
+
 /// Integrates `system` from `initial` with step_count(options.dt, options.duration) fixed steps.
-/// observer(state) is called with the initial state and after every step (num + 1 calls);
-/// step k ends at exactly initial.t + k dt (times are not accumulated, so they do not drift).
+/// observer(state) is called with the initial state and after every step (num + 1 calls); an
+/// observer that returns bool ends the run early by returning true (an event), and the state
+/// it was given is the one returned. Step k ends at exactly initial.t + k dt (times are not
+/// accumulated, so they do not drift).
 /// Prescribed entries (S::impose()) are set at every observed state. The observer is a
 /// template parameter, not part of the options, so that its calls are resolved at compile
 /// time.
 /// \param[in] system    The system (integrate/system.hpp).
 /// \param[in] initial   The initial state.
 /// \param[in] options   Integrator, step size, duration, Newton settings, work counters.
-/// \param[in] observer  Callable as observer(const S::State&), e.g. a TrajectoryCsvWriter.
+/// \param[in] observer  Callable as observer(const S::State&), e.g. a TrajectoryCsvWriter;
+///                      returning void, or bool: true stops the run.
 /// \return The final state.
 /// \throws StepSizeError (see step_count()); what step() throws.
 template <class S, class Observer = IgnoreStates>
@@ -55,12 +72,12 @@ typename S::State simulate(const S& system, typename S::State initial,
   const double t0 = initial.t;
   typename S::State s = std::move(initial);
   system.impose(&s);
-  observer(std::as_const(s));
+  if (detail::observe(observer, std::as_const(s))) return s;
   for (long long k = 1; k <= num; ++k) {
     s = step(system, options.integrator, s, options.dt, options.newton, options.stats);
     s.t = t0 + static_cast<double>(k) * options.dt;
     system.impose(&s);  // at the exact end time of the step
-    observer(std::as_const(s));
+    if (detail::observe(observer, std::as_const(s))) break;
   }
   return s;
 }
