@@ -17,6 +17,13 @@ struct SimplexMesh {
   std::vector<std::array<int, Dim + 1>> elements;
 };
 
+/// Triangles in 3D: a sheet (cloth, a membrane) or the boundary of a solid. Each triangle's
+/// nodes run counter-clockwise seen from the side its normal points to.
+struct TriangleSurface {
+  Eigen::Matrix3Xd nodes;  ///< rest positions (m), 3 x n
+  std::vector<std::array<int, 3>> triangles;
+};
+
 /// How each grid cell of a rectangle is cut into two triangles.
 enum class DiagonalPattern {
   kUniform,      ///< every cell cut along the same diagonal (strongly anisotropic)
