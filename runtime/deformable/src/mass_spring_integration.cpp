@@ -4,6 +4,7 @@
 #include <Eigen/SparseCholesky>
 #include <utility>
 
+#include "contact_forces.hpp"
 #include "gencoord/deformable/errors.hpp"
 #include "gencoord/deformable/inelastic.hpp"
 #include "gencoord/deformable/validate.hpp"
@@ -122,6 +123,13 @@ void MassSpringIntegration<Dim>::linearize(const State& y, JacobianSource,
         k_x.emplace_back(dof_[n] + up, dof_[n] + up, -s_.mass(n) * g.omega * g.omega);
         k_v.emplace_back(dof_[n] + up, dof_[n] + up, -s_.mass(n) * 2.0 * g.damping_ratio * g.omega);
       }
+    }
+  }
+  // contacts: their diagonal blocks (collision.hpp)
+  if constexpr (Dim > 1) {
+    for (const auto& block : detail::contact_jacobians<Dim>(s_, y.q, y.v)) {
+      add_block<Dim>(k_x, dof_, block.node, block.node, block.d_position);
+      add_block<Dim>(k_v, dof_, block.node, block.node, block.d_velocity);
     }
   }
   out->force_D_q.resize(unknowns, unknowns);

@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "contact_forces.hpp"
+
 namespace gencoord::deformable {
 
 template <int Dim>
@@ -45,6 +47,7 @@ void accumulate_forces(const MassSpringSystem<Dim>& s,
       f(up, n) += std::max(0.0, push);
     }
   }
+  if constexpr (Dim > 1) detail::add_contact_forces<Dim>(s, x, v, f);
 }
 
 template <int Dim>
@@ -75,6 +78,7 @@ double potential_energy(const MassSpringSystem<Dim>& s) {
       if (depth > 0.0) e += 0.5 * s.mass(n) * s.ground->omega * s.ground->omega * depth * depth;
     }
   }
+  if constexpr (Dim > 1) e += detail::contact_energy<Dim>(s, s.x);
   return e;
 }
 

@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cstddef>
 
+#include "contact_forces.hpp"
+
 namespace gencoord::deformable::detail {
 
 template <int Dim>
@@ -135,6 +137,19 @@ void StepMatrix<Dim>::assemble(const MassSpringSystem<Dim>& s, const Points& q, 
         values[diagonal_slots_[dof_[n] + up]] += dt * damping + dt * dt * stiffness;
         (*k_v)[dof_[n] + up] -= stiffness * v(up, n);
       }
+    }
+  }
+  // contacts: their diagonal blocks, in the pattern whatever touches what (collision.hpp)
+  if constexpr (Dim > 1) {
+    for (const auto& block : contact_jacobians<Dim>(s, q, v)) {
+      const int d = dof_[block.node];
+      if (d < 0) continue;
+      const Block c = -(dt * block.d_velocity + (dt * dt) * block.d_position);
+      for (int col = 0; col < Dim; ++col) {
+        const int column_start = diagonal_slots_[d + col] - col;
+        for (int r = 0; r < Dim; ++r) values[column_start + r] += c(r, col);
+      }
+      k_v->template segment<Dim>(d) += block.d_position * v.col(block.node);
     }
   }
 }

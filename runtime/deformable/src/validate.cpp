@@ -89,6 +89,57 @@ void validate_mesh(const SimplexMesh<Dim>& mesh) {
   }
 }
 
+namespace {
+
+// the contact settings, obstacles and surface of an object with `count` nodes
+template <int Dim>
+void validate_collisions(const Collisions<Dim>& c, int count) {
+  const ContactParams& p = c.params;
+  if (!finite_non_negative(p.omega) || !finite_non_negative(p.damping_ratio) ||
+      !finite_non_negative(p.friction) || !finite_non_negative(p.thickness))
+    throw ObjectError(message("mass-spring object: contact omega ", p.omega, ", damping ratio ",
+                              p.damping_ratio, ", friction ", p.friction, ", thickness ",
+                              p.thickness, "; each must be finite and >= 0"),
+                      -1, -1);
+  for (std::size_t k = 0; k < c.spheres.size(); ++k) {
+    const auto& sphere = c.spheres[k];
+    if (!sphere.center.allFinite() || !(std::isfinite(sphere.radius) && sphere.radius > 0.0))
+      throw ObjectError(message("mass-spring object: sphere obstacle ", k, " has centre (",
+                                sphere.center.transpose(), ") and radius ", sphere.radius,
+                                "; need a finite centre and a positive, finite radius"),
+                        -1, -1);
+  }
+  for (std::size_t k = 0; k < c.boxes.size(); ++k) {
+    const auto& box = c.boxes[k];
+    if (!box.lower.allFinite() || !box.upper.allFinite() ||
+        !(box.lower.array() < box.upper.array()).all())
+      throw ObjectError(message("mass-spring object: box obstacle ", k, " spans (",
+                                box.lower.transpose(), ") to (", box.upper.transpose(),
+                                "); need finite corners with lower < upper on every axis"),
+                        -1, -1);
+  }
+  if (!c.two_sided.empty() && c.two_sided.size() != c.surface.size())
+    throw ObjectError(message("mass-spring object: ", c.two_sided.size(), " sidedness flags for ",
+                              c.surface.size(),
+                              " contact surface simplices; give one per simplex "
+                              "or none"),
+                      -1, -1);
+  for (std::size_t k = 0; k < c.surface.size(); ++k) {
+    for (int a = 0; a < Dim; ++a) {
+      const int n = c.surface[k][a];
+      bool repeated = false;
+      for (int b = a + 1; b < Dim; ++b) repeated = repeated || c.surface[k][b] == n;
+      if (n < 0 || n >= count || repeated)
+        throw ObjectError(message("mass-spring object: contact surface simplex ", k, " has node ",
+                                  n, (repeated ? " twice" : ""), "; the object has ", count,
+                                  " nodes, and each simplex needs distinct ones"),
+                          -1, -1);
+    }
+  }
+}
+
+}  // namespace
+
 template <int Dim>
 void validate_object(const MassSpringSystem<Dim>& s) {
   const int count = s.num_nodes();
@@ -141,6 +192,7 @@ void validate_object(const MassSpringSystem<Dim>& s) {
                               s.ground->omega, ", damping ratio ", s.ground->damping_ratio,
                               "; need a finite height and finite omega and damping >= 0"),
                       -1, -1);
+  if (s.collisions) validate_collisions(*s.collisions, s.num_nodes());
   const InelasticParams& in = s.inelastic;
   if (std::isnan(in.fracture_strain) || std::isnan(in.yield_strain) ||
       !(in.plastic_fraction >= 0.0 && in.plastic_fraction <= 1.0))

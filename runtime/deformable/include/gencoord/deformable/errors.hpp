@@ -49,7 +49,8 @@ class MaterialError : public std::invalid_argument {
 /// A mass-spring object (MassSpringSystem) that cannot be stepped: sizes that disagree, a
 /// node mass that is not positive, a position or velocity that is not finite, a spring whose
 /// nodes are out of range or whose rest length, stiffness or damping is not usable, or a
-/// gravity, ground, wave speed or inelastic setting that is not finite or out of range.
+/// gravity, ground, contact (collision.hpp), wave speed or inelastic setting that is not
+/// finite or out of range.
 class ObjectError : public std::invalid_argument {
  public:
   ObjectError(const std::string& what, int node, int spring)

@@ -2,13 +2,15 @@
 /// \file mass_spring_system.hpp
 /// The state and parameters of a deformable mass-spring object in Dim = 1, 2 or 3 dimensions:
 /// lumped node masses connected by springs (springs.hpp), with pinned nodes, gravity, a ground
-/// plane with penalty contact, and optional fracture and plasticity.
+/// plane with penalty contact, contact with obstacles and between surfaces (collision.hpp),
+/// and optional fracture and plasticity.
 
 #include <Eigen/Core>
 #include <limits>
 #include <optional>
 #include <vector>
 
+#include "gencoord/deformable/collision.hpp"
 #include "gencoord/deformable/springs.hpp"
 
 namespace gencoord::deformable {
@@ -64,6 +66,7 @@ struct MassSpringSystem {
   std::vector<Spring> springs;
   Vec gravity = Vec::Zero();  ///< acceleration (m/s^2)
   std::optional<GroundPlane> ground;
+  std::optional<Collisions<Dim>> collisions;  ///< obstacles and self-contact (collision.hpp)
   InelasticParams inelastic;
   std::vector<FractureEvent> fractures;  ///< appended to by the time steppers
   double wave_speed =
@@ -75,7 +78,8 @@ struct MassSpringSystem {
   int num_unbroken_springs() const;
 };
 
-/// Adds the total force (springs, dampers, gravity, ground) on every node to f (N), Dim x n.
+/// Adds the total force (springs, dampers, gravity, ground, contact) on every node to f (N), Dim x
+/// n.
 template <int Dim>
 void accumulate_forces(const MassSpringSystem<Dim>& s,
                        Eigen::Matrix<double, Dim, Eigen::Dynamic>& f);
@@ -91,7 +95,7 @@ void accumulate_forces(const MassSpringSystem<Dim>& s,
 template <int Dim>
 double kinetic_energy(const MassSpringSystem<Dim>& s);
 
-/// Elastic (springs and ground penalty) plus gravitational potential energy (J).
+/// Elastic (springs, ground and contact penalties) plus gravitational potential energy (J).
 template <int Dim>
 double potential_energy(const MassSpringSystem<Dim>& s);
 

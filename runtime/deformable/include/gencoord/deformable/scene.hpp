@@ -1,0 +1,22 @@
+#pragma once
+/// \file scene.hpp
+/// Several objects in one mass-spring system, so that they step together and collide
+/// (collision.hpp): the system's nodes are the objects' nodes one object after the other.
+
+#include "gencoord/deformable/mass_spring_system.hpp"
+
+namespace gencoord::deformable {
+
+/// Appends `object`'s nodes (positions, velocities, masses, pinned flags), springs and
+/// contact surface to `scene`, its node indices shifted by the scene's node count, which is
+/// returned (the first index of the object's nodes in the scene). The scene keeps its own
+/// time, gravity, ground and inelastic settings; its wave speed becomes the faster of the two
+/// (the CFL limit holds for both). Contact: the object's surface simplices and obstacles join
+/// the scene's, with the smaller penalty frequency and thickness of the two when both have
+/// contact, so that the limits of each still hold; a scene without contact takes the
+/// object's settings.
+/// \throws ObjectError if the scene has taken steps (append objects before simulating).
+template <int Dim>
+int append_object(MassSpringSystem<Dim>& scene, const MassSpringSystem<Dim>& object);
+
+}  // namespace gencoord::deformable

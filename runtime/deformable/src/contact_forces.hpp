@@ -1,0 +1,41 @@
+// Contact forces, their energy and their diagonal Jacobian blocks (collision.hpp). Private to
+// the library: accumulate_forces() and potential_energy() add them, and the implicit steps
+// take their Jacobians.
+#pragma once
+
+#include <Eigen/Core>
+#include <vector>
+
+#include "gencoord/deformable/mass_spring_system.hpp"
+
+namespace gencoord::deformable::detail {
+
+/// One node in contact and the force Jacobian blocks on its own diagonal (N/m and N s/m).
+template <int Dim>
+struct ContactJacobian {
+  int node = 0;
+  Eigen::Matrix<double, Dim, Dim> d_position;  ///< d f_node / d x_node
+  Eigen::Matrix<double, Dim, Dim> d_velocity;  ///< d f_node / d v_node
+};
+
+/// Adds the contact forces at positions x and velocities v (Dim x n) to f; nothing when
+/// s.collisions is empty.
+template <int Dim>
+void add_contact_forces(const MassSpringSystem<Dim>& s,
+                        const typename MassSpringSystem<Dim>::Points& x,
+                        const typename MassSpringSystem<Dim>::Points& v,
+                        typename MassSpringSystem<Dim>::Points& f);
+
+/// The penalty potential m omega^2 depth^2 / 2 summed over the contacts at positions x (J).
+template <int Dim>
+double contact_energy(const MassSpringSystem<Dim>& s,
+                      const typename MassSpringSystem<Dim>::Points& x);
+
+/// The diagonal blocks of the contact forces' Jacobians at (x, v), one entry per node of each
+/// contact (a node may appear several times; the blocks add up).
+template <int Dim>
+std::vector<ContactJacobian<Dim>> contact_jacobians(
+    const MassSpringSystem<Dim>& s, const typename MassSpringSystem<Dim>::Points& x,
+    const typename MassSpringSystem<Dim>::Points& v);
+
+}  // namespace gencoord::deformable::detail

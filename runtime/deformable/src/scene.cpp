@@ -1,0 +1,60 @@
+// Several objects in one system (scene.hpp).
+#include "gencoord/deformable/scene.hpp"
+
+#include <algorithm>
+
+#include "gencoord/deformable/errors.hpp"
+
+namespace gencoord::deformable {
+
+template <int Dim>
+int append_object(MassSpringSystem<Dim>& scene, const MassSpringSystem<Dim>& object) {
+  if (scene.steps != 0)
+    throw ObjectError("append_object: the scene has taken steps; append objects before simulating",
+                      -1, -1);
+  const int offset = scene.num_nodes();
+  const int count = offset + object.num_nodes();
+  const bool empty = offset == 0;
+  scene.x.conservativeResize(Dim, count);
+  scene.x.rightCols(object.num_nodes()) = object.x;
+  scene.v.conservativeResize(Dim, count);
+  scene.v.rightCols(object.num_nodes()) = object.v;
+  scene.mass.conservativeResize(count);
+  scene.mass.tail(object.num_nodes()) = object.mass;
+  scene.pinned.insert(scene.pinned.end(), object.pinned.begin(), object.pinned.end());
+  for (Spring sp : object.springs) {
+    sp.i += offset;
+    sp.j += offset;
+    scene.springs.push_back(sp);
+  }
+  scene.wave_speed = empty ? object.wave_speed : std::max(scene.wave_speed, object.wave_speed);
+  if (object.collisions) {
+    Collisions<Dim> added = *object.collisions;
+    for (auto& simplex : added.surface) {
+      for (int& n : simplex) n += offset;
+    }
+    if (!scene.collisions) {
+      scene.collisions = std::move(added);
+    } else {
+      Collisions<Dim>& c = *scene.collisions;
+      c.params.omega = std::min(c.params.omega, added.params.omega);
+      c.params.thickness = std::min(c.params.thickness, added.params.thickness);
+      // both sidedness lists written out once either object has two-sided simplices
+      if (!c.two_sided.empty() || !added.two_sided.empty()) {
+        c.two_sided.resize(c.surface.size(), 0);
+        added.two_sided.resize(added.surface.size(), 0);
+        c.two_sided.insert(c.two_sided.end(), added.two_sided.begin(), added.two_sided.end());
+      }
+      c.surface.insert(c.surface.end(), added.surface.begin(), added.surface.end());
+      c.spheres.insert(c.spheres.end(), added.spheres.begin(), added.spheres.end());
+      c.boxes.insert(c.boxes.end(), added.boxes.begin(), added.boxes.end());
+    }
+  }
+  return offset;
+}
+
+template int append_object<1>(MassSpringSystem<1>&, const MassSpringSystem<1>&);
+template int append_object<2>(MassSpringSystem<2>&, const MassSpringSystem<2>&);
+template int append_object<3>(MassSpringSystem<3>&, const MassSpringSystem<3>&);
+
+}  // namespace gencoord::deformable
