@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # Installs what gencoord needs on a fresh Debian 12 machine, and nothing that is already there:
 # a C++17 compiler, CMake, Eigen 3.4, GoogleTest, Google Benchmark, MuJoCo (the reference the
-# robot tests and benchmarks compare with), and a python3 with SymPy and Jinja2. Safe to run again. Prints the python it settled on as its last line.
+# robot tests and benchmarks compare with), the tetgen program (read_mesh<3> of an .obj surface
+# runs it; the deformable tests need it), and a python3 with SymPy and Jinja2. Safe to run
+# again. Prints the python it settled on as its last line.
 #   GENCOORD_PYTHON=/usr/bin/python3 scripts/setup.sh    generate with Debian's own SymPy
 #   scripts/setup.sh --python-modules    also what the models' Python modules need: pybind11,
 #                                        Python's headers, NumPy, SciPy and Matplotlib (the
@@ -36,6 +38,8 @@ command -v cmake >/dev/null 2>&1 || packages+=(cmake)
 [ -d /usr/lib/x86_64-linux-gnu/cmake/benchmark ] || [ -d /usr/lib/cmake/benchmark ] \
   || packages+=(libbenchmark-dev)
 [ -f /usr/lib/x86_64-linux-gnu/cmake/mujoco/mujocoConfig.cmake ] || packages+=(libmujoco-dev)
+# TetGen 1.5 as a program (AGPL, so run and never linked): tetrahedra for closed .obj surfaces
+command -v tetgen >/dev/null 2>&1 || packages+=(tetgen)
 
 # The generator needs SymPy and Jinja2: from $GENCOORD_PYTHON when set, else from the python3
 # on PATH when it has both, else from Debian's python3-sympy and python3-jinja2.

@@ -1,5 +1,5 @@
 // Numbered lines and their words, the checks and clean-up shared by the mesh readers, and
-// read_mesh's choice of reader.
+// read_mesh's choice of reader (an .obj surface is filled with tetrahedra by TetGen).
 #include "mesh_read_text.hpp"
 
 #include <Eigen/LU>
@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "gencoord/deformable/mesh_io.hpp"
+#include "gencoord/deformable/tetrahedralize.hpp"
 #include "gencoord/deformable/validate.hpp"
 
 namespace gencoord::deformable::detail {
@@ -155,9 +156,22 @@ SimplexMesh<Dim> read_mesh(const std::string& path) {
   if (ends_with(".node") || ends_with(".ele")) {
     return read_tetgen<Dim>(path.substr(0, path.rfind('.')));
   }
+  if (ends_with(".obj")) {
+    if constexpr (Dim == 2) {
+      throw MeshFileError(path +
+                              ": an .obj file holds a surface in 3D, which a 2D read cannot "
+                              "take; read it with read_mesh<3> to fill it with tetrahedra, or "
+                              "with read_obj as a sheet",
+                          path, 0);
+    } else {
+      ObjSource source;
+      const TriangleSurface surface = read_obj(path, &source);
+      return tetrahedralize(surface, path, TetgenOptions{}, &source);
+    }
+  }
   throw MeshFileError(path +
-                          ": unknown mesh file extension; give a Gmsh .msh file or a TetGen / "
-                          "Triangle .node or .ele file",
+                          ": unknown mesh file extension; give a Gmsh .msh file, a TetGen / "
+                          "Triangle .node or .ele file, or (3D) a Wavefront .obj surface",
                       path, 0);
 }
 
