@@ -42,8 +42,9 @@ struct Options {
 void PrintHelp() {
   std::printf(
       "usage: deformable_drop MESH [options]\n\n"
-      "Drops the tetrahedral mesh MESH (Gmsh .msh 2.2 or 4.1, TetGen .node/.ele; lengths in m),\n"
-      "made of the material you give, from above onto something resting on the ground\n"
+      "Drops the tetrahedral mesh MESH (Gmsh .msh 2.2 or 4.1, TetGen .node/.ele, or a closed\n"
+      "Wavefront .obj surface, filled with tetrahedra by tetgen; lengths in m), made of the\n"
+      "material you give, from above onto something resting on the ground\n"
       "(z = 0, gravity along -z), with contact, friction and self-contact, and prints what\n"
       "happened. With --vtk DIR it writes every frame for ParaView (File > Open DIR/frames.pvd):\n"
       "the dropped mesh and, for --onto block, the block.\n\n"
