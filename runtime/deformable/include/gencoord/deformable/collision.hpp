@@ -27,11 +27,12 @@
 ///   is pushed back out with depth = thickness + d, up to twice the push a two-sided simplex
 ///   (a sheet) can give at most, m omega^2 thickness. Deeper the node is let go: the penalty
 ///   ends there with a jump in energy, and a longer reach let nodes sliding behind a surface
-///   gain energy where it ends (measured with the cube dropped on a cube in the tests). Candidate pairs come from a spatial hash over the simplices'
-///   bounding boxes, rebuilt at every force evaluation (no stale hierarchy to refit as the object
-///   deforms). `thickness` must stay below the distance from any surface node to the surface
-///   simplices it is not a corner of at rest: enable_collisions() takes a quarter of the
-///   shortest surface edge (a right-angled grid's nearest such simplex is 0.71 of an edge away).
+///   gain energy where it ends (measured with the cube dropped on a cube in the tests). Candidate
+///   pairs come from a spatial hash over the simplices' bounding boxes, rebuilt at every force
+///   evaluation (no stale hierarchy to refit as the object deforms). `thickness` must stay below
+///   the distance from any surface node to the surface simplices it is not a corner of at rest:
+///   enable_collisions() takes a quarter of the shortest surface edge (a right-angled grid's
+///   nearest such simplex is 0.71 of an edge away).
 /// - Implicit steps (backward Euler) include each contact's stiffness and damping on the
 ///   diagonal blocks of the nodes involved only: the pairs change from step to step and the
 ///   step matrix keeps its sparsity pattern (implicit_stepper.hpp).
