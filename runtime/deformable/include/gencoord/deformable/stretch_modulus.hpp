@@ -1,0 +1,41 @@
+#pragma once
+/// \file stretch_modulus.hpp
+/// The Young's modulus a spring network shows in a static stretch, with every node free to
+/// relax: the calibration of lattice_elasticity.hpp is the affine estimate, which the nodes
+/// near free surfaces do not follow, so a thin strip or bar of few cells is softer than it
+/// (its waves a few percent slow). Measuring the network as it is and scaling its springs to
+/// the measurement removes that at any resolution, for the direction measured.
+
+#include <Eigen/Core>
+
+#include "gencoord/deformable/mass_spring_system.hpp"
+#include "gencoord/deformable/mesh.hpp"
+
+namespace gencoord::deformable {
+
+/// Young's modulus of the unbroken springs of `s` as a bar along `axis`: the nodes within 5%
+/// of the length from either end (rest coordinates `rest` along the axis) are moved along it
+/// by a small uniform strain eps, everything else relaxes to equilibrium (the springs
+/// linearized at rest), and E = (force across the middle / cross-section) / eps, the force
+/// summed over the springs that cross the middle and the cross-section `measure` (area in
+/// 2D, volume in 3D) over the length. For a prismatic body this is uniaxial stress: the
+/// sides and the ends are free laterally.
+/// \throws ObjectError if no spring carries the stretch across the middle.
+template <int Dim>
+double stretch_modulus(const MassSpringSystem<Dim>& s,
+                       const Eigen::Matrix<double, Dim, Eigen::Dynamic>& rest, double measure,
+                       int axis);
+
+/// Scales the stiffness and damping of every spring of `s`, made from `mesh`
+/// (make_mass_spring()), by one factor so that its stretch_modulus() along `axis` is
+/// `youngs_modulus`, and its wave speed with them; returns the factor. Meant for slender
+/// bodies (strips, bars, beams) stretched along `axis`, their length: it keeps the
+/// calibration's isotropy and Poisson's ratio, and makes waves and static stretch along the
+/// length those of the material at any resolution (docs/deformables.md has the figures).
+/// \throws ObjectError as stretch_modulus(); MaterialError unless youngs_modulus is positive
+/// and finite.
+template <int Dim>
+double calibrate_to_stretch(MassSpringSystem<Dim>& s, const SimplexMesh<Dim>& mesh,
+                            double youngs_modulus, int axis);
+
+}  // namespace gencoord::deformable

@@ -1,0 +1,128 @@
+// A spring network's Young's modulus in a relaxed static stretch (stretch_modulus.hpp).
+#include "gencoord/deformable/stretch_modulus.hpp"
+
+#include <Eigen/SparseCholesky>
+#include <Eigen/SparseCore>
+#include <algorithm>
+#include <cmath>
+#include <utility>
+#include <vector>
+
+#include "gencoord/deformable/errors.hpp"
+
+namespace gencoord::deformable {
+
+namespace {
+// the end zones held at the uniform strain, as a fraction of the length
+constexpr double kEndFraction = 0.05;
+}  // namespace
+
+template <int Dim>
+double stretch_modulus(const MassSpringSystem<Dim>& s,
+                       const Eigen::Matrix<double, Dim, Eigen::Dynamic>& rest, double measure,
+                       int axis) {
+  using Block = Eigen::Matrix<double, Dim, Dim>;
+  const int count = static_cast<int>(rest.cols());
+  const double low = rest.row(axis).minCoeff(), high = rest.row(axis).maxCoeff();
+  const double length = high - low, end = kEndFraction * length;
+  const double eps = 1e-6;
+  // unknowns: every coordinate but the axis coordinate of the nodes in the end zones, which
+  // move with the uniform strain eps (so the strain between the zones is eps too)
+  std::vector<int> index(static_cast<std::size_t>(Dim) * count, -1);
+  Eigen::VectorXd u = Eigen::VectorXd::Zero(Dim * count);
+  int unknowns = 0;
+  for (int n = 0; n < count; ++n) {
+    const double p = rest(axis, n);
+    for (int d = 0; d < Dim; ++d) {
+      if (d == axis && (p <= low + end || p >= high - end)) {
+        u(Dim * n + d) = eps * (p - low);
+      } else {
+        index[Dim * n + d] = unknowns++;
+      }
+    }
+  }
+  // the springs linearized at rest: (k / L) n n^T
+  std::vector<Block> stiffness;
+  stiffness.reserve(s.springs.size());
+  for (const Spring& sp : s.springs) {
+    const Eigen::Matrix<double, Dim, 1> d = rest.col(sp.j) - rest.col(sp.i);
+    stiffness.push_back(sp.broken ? Block::Zero()
+                                  : Block((sp.params.stiffness / sp.params.rest_length) * d *
+                                          d.transpose() / d.squaredNorm()));
+  }
+  // K_ff u_f = -K_fp u_p
+  std::vector<Eigen::Triplet<double>> triplets;
+  Eigen::VectorXd rhs = Eigen::VectorXd::Zero(unknowns);
+  double largest = 0.0;
+  for (std::size_t k = 0; k < s.springs.size(); ++k) {
+    const int nodes[2] = {s.springs[k].i, s.springs[k].j};
+    for (int a = 0; a < 2; ++a) {
+      for (int b = 0; b < 2; ++b) {
+        const Block block = a == b ? stiffness[k] : Block(-stiffness[k]);
+        for (int r = 0; r < Dim; ++r) {
+          const int row = index[Dim * nodes[a] + r];
+          if (row < 0) continue;
+          for (int c = 0; c < Dim; ++c) {
+            const int column = index[Dim * nodes[b] + c];
+            if (column >= 0) {
+              triplets.emplace_back(row, column, block(r, c));
+              largest = std::max(largest, std::abs(block(r, c)));
+            } else {
+              rhs(row) -= block(r, c) * u(Dim * nodes[b] + c);
+            }
+          }
+        }
+      }
+    }
+  }
+  // the lateral rigid motions are free: a tiny diagonal fixes them without moving the rest
+  for (int i = 0; i < unknowns; ++i) triplets.emplace_back(i, i, 1e-12 * largest);
+  Eigen::SparseMatrix<double> k_ff(unknowns, unknowns);
+  k_ff.setFromTriplets(triplets.begin(), triplets.end());
+  const Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(k_ff);
+  const Eigen::VectorXd u_f = solver.solve(rhs);
+  for (int i = 0; i < Dim * count; ++i) {
+    if (index[i] >= 0) u(i) = u_f(index[i]);
+  }
+  // the force across the middle: the tension of every spring that crosses it, along the axis
+  const double middle = 0.5 * (low + high);
+  double force = 0.0;
+  for (std::size_t k = 0; k < s.springs.size(); ++k) {
+    int i = s.springs[k].i, j = s.springs[k].j;
+    if (rest(axis, i) > rest(axis, j)) std::swap(i, j);
+    if (!(rest(axis, i) < middle && rest(axis, j) >= middle)) continue;
+    const Eigen::Matrix<double, Dim, 1> stretch =
+        u.template segment<Dim>(Dim * j) - u.template segment<Dim>(Dim * i);
+    force += (stiffness[k] * stretch)(axis);
+  }
+  if (!(force > 0.0))
+    throw ObjectError("stretch_modulus: no spring carries a stretch from one end to the other", -1,
+                      -1);
+  return force / (measure / length) / eps;
+}
+
+template <int Dim>
+double calibrate_to_stretch(MassSpringSystem<Dim>& s, const SimplexMesh<Dim>& mesh,
+                            double youngs_modulus, int axis) {
+  if (!(std::isfinite(youngs_modulus) && youngs_modulus > 0.0))
+    throw MaterialError("calibrate_to_stretch: Young's modulus must be positive and finite");
+  double measure = 0.0;
+  for (int e = 0; e < static_cast<int>(mesh.elements.size()); ++e)
+    measure += element_measure(mesh, e);
+  const double factor = youngs_modulus / stretch_modulus(s, mesh.nodes, measure, axis);
+  for (Spring& sp : s.springs) {
+    sp.params.stiffness *= factor;
+    sp.params.damping *= factor;
+  }
+  s.wave_speed *= std::sqrt(factor);
+  return factor;
+}
+
+template double stretch_modulus<2>(const MassSpringSystem<2>&, const Eigen::Matrix2Xd&, double,
+                                   int);
+template double stretch_modulus<3>(const MassSpringSystem<3>&, const Eigen::Matrix3Xd&, double,
+                                   int);
+template double calibrate_to_stretch<2>(MassSpringSystem<2>&, const SimplexMesh<2>&, double, int);
+template double calibrate_to_stretch<3>(MassSpringSystem<3>&, const SimplexMesh<3>&, double, int);
+
+}  // namespace gencoord::deformable
