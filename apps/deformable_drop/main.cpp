@@ -52,6 +52,8 @@ void PrintHelp() {
       "  --youngs E         Young's modulus in Pa (default 2e5)\n"
       "  --density RHO      density in kg/m^3 (default 1000)\n"
       "  --damping D        material damping in Pa s (default 20)\n"
+      "  --poisson NU       Poisson's ratio in [0.25, 0.5) (default: the spring network's 0.25;\n"
+      "                     above it, volume terms are added)\n"
       "  --onto TARGET      sphere, step (a box whose edge is under the mesh's centre) or block\n"
       "                     (a soft block of the same material glued to the ground; default)\n"
       "  --height H         gap between the mesh and the target's top in m (default: half the\n"
@@ -96,6 +98,8 @@ Options Parse(int argc, char** argv) {
       o.material.density = Number(arg, value());
     } else if (arg == "--damping") {
       o.material.damping = Number(arg, value());
+    } else if (arg == "--poisson") {
+      o.material.poisson_ratio = Number(arg, value());
     } else if (arg == "--onto") {
       o.onto = value();
       if (o.onto != "sphere" && o.onto != "step" && o.onto != "block")

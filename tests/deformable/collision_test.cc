@@ -186,6 +186,29 @@ TEST(Surface, BadSettingsAreRefused) {
   }
 }
 
+// Two objects appended into one scene, far apart and deformed, feel in it the forces each feels
+// alone: springs and volume terms keep their nodes (and a term its springs), shifted.
+TEST(Scene, AppendedObjectsKeepTheirOwnForces) {
+  Material soft{2e5, 1000.0, 20.0};
+  soft.poisson_ratio = 0.45;  // with volume terms
+  const SimplexMesh<3> a_mesh = box_mesh(0.2, 0.2, 0.2, 2, 2, 2);
+  const SimplexMesh<3> b_mesh = box_mesh(0.1, 0.2, 0.3, 1, 2, 2, Eigen::Vector3d(5.0, 0.0, 0.0));
+  MassSpringSystem<3> a = make_mass_spring(a_mesh, soft), b = make_mass_spring(b_mesh, soft);
+  ASSERT_FALSE(b.volume_terms.empty());
+  a.x.row(0) *= 1.01;  // stretched: springs and volume terms push
+  b.x.row(2) = 0.98 * b.x.row(2);
+  b.springs[3].broken = true;  // a broken spring silences its elements' terms in the scene too
+  MassSpringSystem<3> scene = a;
+  const int first = append_object(scene, b);
+  EXPECT_EQ(first, a.num_nodes());
+  EXPECT_EQ(scene.volume_terms.size(), a.volume_terms.size() + b.volume_terms.size());
+  const auto f = Forces(scene), f_a = Forces(a), f_b = Forces(b);
+  EXPECT_TRUE(f.leftCols(first).isApprox(f_a, 1e-14));
+  EXPECT_TRUE(f.rightCols(b.num_nodes()).isApprox(f_b, 1e-14));
+  EXPECT_NEAR(potential_energy(scene), potential_energy(a) + potential_energy(b),
+              1e-12 * potential_energy(scene));
+}
+
 // Lowest height of `s`'s nodes [first, last) inside the footprint [x0, x1] x [y0, y1].
 double LowestInside(const MassSpringSystem<3>& s, int first, int last, double x0, double x1) {
   double lowest = std::numeric_limits<double>::infinity();

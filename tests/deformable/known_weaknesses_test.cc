@@ -1,7 +1,8 @@
 // Known weaknesses, shown rather than hidden (docs/deformables.md): a sheet whose springs run
 // in only three directions stays anisotropic after calibration (its stiffness depends on the
 // direction of stretch), and a spring network's Poisson's ratio is fixed (1/3 for a sheet),
-// whatever the material constants.
+// whatever E and rho (Material::poisson_ratio adds area terms for a higher one:
+// volume_terms_test.cc).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -64,7 +65,7 @@ TEST(KnownWeaknessesTest, PoissonRatioIsFixedByTheSpringsNotTheMaterial) {
     const double c12 = (w_both - w_xx - w_yy) / (e * e), c22 = 2.0 * w_yy / (e * e);
     EXPECT_NEAR(c12 / c22, 1.0 / 3.0, 1e-3)
         << "Poisson's ratio " << c12 / c22 << " with E = " << material.youngs_modulus;
-    std::printf("[ poisson ] E = %g: nu = %.4f (fixed by the springs; cannot be chosen)\n",
+    std::printf("[ poisson ] E = %g: nu = %.4f (the springs' own, without area terms)\n",
                 material.youngs_modulus, c12 / c22);
   }
 }

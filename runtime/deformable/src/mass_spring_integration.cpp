@@ -111,6 +111,11 @@ void MassSpringIntegration<Dim>::linearize(const State& y, JacobianSource,
       add_block<Dim>(*list, dof_, sp.j, sp.i, J);
     }
   }
+  // area and volume terms: definite position blocks, no damping
+  for_each_volume_term_block(s_, y.q, /*definite=*/true,
+                             [&](int a, int b, const Eigen::Matrix<double, Dim, Dim>& block) {
+                               add_block<Dim>(k_x, dof_, a, b, block);
+                             });
   // ground contact: a penalty spring and damper along the up axis while it pushes
   if (s_.ground) {
     const GroundPlane& g = *s_.ground;

@@ -1,5 +1,6 @@
 // Mass-spring object from a simplex mesh: lumped masses, k = c^2 m / L, then calibrated to
-// the material (lattice_elasticity.hpp).
+// the material (lattice_elasticity.hpp), with area or volume terms for a Poisson's ratio
+// above the network's (volume_terms.hpp).
 #include "gencoord/deformable/mesh_to_springs.hpp"
 
 #include <algorithm>
@@ -8,6 +9,7 @@
 
 #include "gencoord/deformable/lattice_elasticity.hpp"
 #include "gencoord/deformable/validate.hpp"
+#include "gencoord/deformable/volume_terms.hpp"
 
 namespace gencoord::deformable {
 
@@ -15,6 +17,8 @@ template <int Dim>
 MassSpringSystem<Dim> make_mass_spring(const SimplexMesh<Dim>& mesh, const Material& material) {
   validate_mesh(mesh);
   validate_material(material);
+  // the springs carry mu (all of it) and as much lambda; the terms add lambda - mu
+  const LameSplit split = lame_split<Dim>(material);
   constexpr int kNodesPerElement = Dim + 1;
   constexpr int kEdgesPerElement = (Dim + 1) * Dim / 2;
   const int count = static_cast<int>(mesh.nodes.cols());
@@ -64,8 +68,10 @@ MassSpringSystem<Dim> make_mass_spring(const SimplexMesh<Dim>& mesh, const Mater
   double measure = 0.0;
   for (int e = 0; e < static_cast<int>(mesh.elements.size()); ++e)
     measure += element_measure(mesh, e);
-  const double largest = calibrate_springs(s, mesh.nodes, measure, material.youngs_modulus);
+  const double largest = calibrate_springs(s, mesh.nodes, measure, split.network_youngs);
   s.wave_speed = c * std::sqrt(largest);  // the fastest spring's sqrt(k L / m), for the CFL limit
+  if (split.volume_stiffness > 0.0)
+    add_volume_terms(s, mesh.elements, mesh.nodes, split.volume_stiffness);
   return s;
 }
 

@@ -22,10 +22,16 @@ int append_object(MassSpringSystem<Dim>& scene, const MassSpringSystem<Dim>& obj
   scene.mass.conservativeResize(count);
   scene.mass.tail(object.num_nodes()) = object.mass;
   scene.pinned.insert(scene.pinned.end(), object.pinned.begin(), object.pinned.end());
+  const int first_spring = static_cast<int>(scene.springs.size());
   for (Spring sp : object.springs) {
     sp.i += offset;
     sp.j += offset;
     scene.springs.push_back(sp);
+  }
+  for (VolumeTerm<Dim> term : object.volume_terms) {
+    for (int& n : term.nodes) n += offset;
+    for (int& k : term.springs) k += first_spring;
+    scene.volume_terms.push_back(term);
   }
   scene.wave_speed = empty ? object.wave_speed : std::max(scene.wave_speed, object.wave_speed);
   if (object.collisions) {

@@ -5,6 +5,7 @@
 #include <cstddef>
 
 #include "contact_forces.hpp"
+#include "gencoord/deformable/volume_terms.hpp"
 
 namespace gencoord::deformable::detail {
 
@@ -123,6 +124,16 @@ void StepMatrix<Dim>::assemble(const MassSpringSystem<Dim>& s, const Points& q, 
     if (di >= 0) k_v->template segment<Dim>(di) += kv;
     if (dj >= 0) k_v->template segment<Dim>(dj) -= kv;
   }
+  // area and volume terms, definite: every node pair of an element is a spring, so each of
+  // their blocks is one of the pattern's while the element acts
+  for_each_volume_term_block(s, q, /*definite=*/true, [&](int a, int b, const Block& k_ab) {
+    if (dof_[a] < 0 || dof_[b] < 0) return;
+    for (int c = 0; c < Dim; ++c) {
+      const int at = slot(a, b, c);
+      for (int r = 0; r < Dim; ++r) values[at + r] -= dt * dt * k_ab(r, c);
+    }
+    k_v->template segment<Dim>(dof_[a]) += k_ab * v.col(b);
+  });
   // ground contact: a penalty spring and damper along the up axis while it pushes
   if (s.ground) {
     const GroundPlane& g = *s.ground;

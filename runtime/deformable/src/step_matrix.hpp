@@ -24,8 +24,8 @@ class StepMatrix {
   /// in the value array.
   void build(const MassSpringSystem<Dim>& s);
 
-  /// Writes A at (q, v) into the pattern (definite spring Jacobians, the ground penalty while
-  /// it pushes), the free masses into `masses`, and K v over the free nodes (v of the pinned
+  /// Writes A at (q, v) into the pattern (definite spring and volume term Jacobians, the
+  /// ground penalty while it pushes), the free masses into `masses`, and K v over the free nodes (v of the pinned
   /// ones left out, as their motion is in the force at their end positions) into `k_v`.
   void assemble(const MassSpringSystem<Dim>& s, const Points& q, const Points& v, double dt,
                 Eigen::VectorXd* masses, Eigen::VectorXd* k_v);

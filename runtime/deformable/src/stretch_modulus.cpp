@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "gencoord/deformable/errors.hpp"
+#include "gencoord/deformable/volume_terms.hpp"
 
 namespace gencoord::deformable {
 
@@ -41,40 +42,48 @@ double stretch_modulus(const MassSpringSystem<Dim>& s,
       }
     }
   }
-  // the springs linearized at rest: (k / L) n n^T
-  std::vector<Block> stiffness;
-  stiffness.reserve(s.springs.size());
+  // K = -df/dx at rest, block by block: the springs' (k / L) n n^T and the volume terms'
+  std::vector<Block> spring_blocks;
+  spring_blocks.reserve(s.springs.size());
   for (const Spring& sp : s.springs) {
     const Eigen::Matrix<double, Dim, 1> d = rest.col(sp.j) - rest.col(sp.i);
-    stiffness.push_back(sp.broken ? Block::Zero()
-                                  : Block((sp.params.stiffness / sp.params.rest_length) * d *
-                                          d.transpose() / d.squaredNorm()));
+    spring_blocks.push_back(sp.broken ? Block::Zero()
+                                      : Block((sp.params.stiffness / sp.params.rest_length) * d *
+                                              d.transpose() / d.squaredNorm()));
   }
+  MassSpringSystem<Dim> at_rest_shape = s;  // the volume terms' blocks at the rest positions
+  at_rest_shape.x = rest;
+  auto for_each_block = [&](auto&& visit) {
+    for (std::size_t k = 0; k < s.springs.size(); ++k) {
+      const int i = s.springs[k].i, j = s.springs[k].j;
+      visit(i, i, spring_blocks[k]);
+      visit(j, j, spring_blocks[k]);
+      visit(i, j, Block(-spring_blocks[k]));
+      visit(j, i, Block(-spring_blocks[k]));
+    }
+    for_each_volume_term_block(
+        at_rest_shape, rest, /*definite=*/true,
+        [&](int a, int b, const Block& d_force) { visit(a, b, Block(-d_force)); });
+  };
   // K_ff u_f = -K_fp u_p
   std::vector<Eigen::Triplet<double>> triplets;
   Eigen::VectorXd rhs = Eigen::VectorXd::Zero(unknowns);
   double largest = 0.0;
-  for (std::size_t k = 0; k < s.springs.size(); ++k) {
-    const int nodes[2] = {s.springs[k].i, s.springs[k].j};
-    for (int a = 0; a < 2; ++a) {
-      for (int b = 0; b < 2; ++b) {
-        const Block block = a == b ? stiffness[k] : Block(-stiffness[k]);
-        for (int r = 0; r < Dim; ++r) {
-          const int row = index[Dim * nodes[a] + r];
-          if (row < 0) continue;
-          for (int c = 0; c < Dim; ++c) {
-            const int column = index[Dim * nodes[b] + c];
-            if (column >= 0) {
-              triplets.emplace_back(row, column, block(r, c));
-              largest = std::max(largest, std::abs(block(r, c)));
-            } else {
-              rhs(row) -= block(r, c) * u(Dim * nodes[b] + c);
-            }
-          }
+  for_each_block([&](int a, int b, const Block& block) {
+    for (int r = 0; r < Dim; ++r) {
+      const int row = index[Dim * a + r];
+      if (row < 0) continue;
+      for (int c = 0; c < Dim; ++c) {
+        const int column = index[Dim * b + c];
+        if (column >= 0) {
+          triplets.emplace_back(row, column, block(r, c));
+          largest = std::max(largest, std::abs(block(r, c)));
+        } else {
+          rhs(row) -= block(r, c) * u(Dim * b + c);
         }
       }
     }
-  }
+  });
   // the lateral rigid motions are free: a tiny diagonal fixes them without moving the rest
   for (int i = 0; i < unknowns; ++i) triplets.emplace_back(i, i, 1e-12 * largest);
   Eigen::SparseMatrix<double> k_ff(unknowns, unknowns);
@@ -84,17 +93,12 @@ double stretch_modulus(const MassSpringSystem<Dim>& s,
   for (int i = 0; i < Dim * count; ++i) {
     if (index[i] >= 0) u(i) = u_f(index[i]);
   }
-  // the force across the middle: the tension of every spring that crosses it, along the axis
-  const double middle = 0.5 * (low + high);
+  // the force that holds the high end zone: (K u) along the axis summed over its nodes (the
+  // zone's inner forces cancel in the sum, what the rest of the body pulls with remains)
   double force = 0.0;
-  for (std::size_t k = 0; k < s.springs.size(); ++k) {
-    int i = s.springs[k].i, j = s.springs[k].j;
-    if (rest(axis, i) > rest(axis, j)) std::swap(i, j);
-    if (!(rest(axis, i) < middle && rest(axis, j) >= middle)) continue;
-    const Eigen::Matrix<double, Dim, 1> stretch =
-        u.template segment<Dim>(Dim * j) - u.template segment<Dim>(Dim * i);
-    force += (stiffness[k] * stretch)(axis);
-  }
+  for_each_block([&](int a, int b, const Block& block) {
+    if (rest(axis, a) >= high - end) force += block.row(axis).dot(u.template segment<Dim>(Dim * b));
+  });
   if (!(force > 0.0))
     throw ObjectError("stretch_modulus: no spring carries a stretch from one end to the other", -1,
                       -1);
@@ -114,6 +118,7 @@ double calibrate_to_stretch(MassSpringSystem<Dim>& s, const SimplexMesh<Dim>& me
     sp.params.stiffness *= factor;
     sp.params.damping *= factor;
   }
+  for (VolumeTerm<Dim>& term : s.volume_terms) term.stiffness *= factor;
   s.wave_speed *= std::sqrt(factor);
   return factor;
 }

@@ -23,6 +23,43 @@ std::string message(const Parts&... parts) {
 
 bool finite_non_negative(double x) { return std::isfinite(x) && x >= 0.0; }
 
+// each term's nodes distinct and in range, its edges springs joining them, V0 > 0, kappa >= 0
+template <int Dim>
+void validate_volume_terms(const MassSpringSystem<Dim>& s) {
+  const int count = s.num_nodes();
+  const int springs = static_cast<int>(s.springs.size());
+  for (int t = 0; t < static_cast<int>(s.volume_terms.size()); ++t) {
+    const VolumeTerm<Dim>& term = s.volume_terms[t];
+    for (int node : term.nodes) {
+      if (node < 0 || node >= count)
+        throw ObjectError(message("mass-spring object: volume term ", t, " refers to node ", node,
+                                  ", out of range [0, ", count, ")"),
+                          -1, -1);
+    }
+    int edge = 0;
+    for (int a = 0; a <= Dim; ++a) {
+      for (int b = a + 1; b <= Dim; ++b, ++edge) {
+        const int k = term.springs[edge];
+        const int i = term.nodes[a], j = term.nodes[b];
+        const bool joins = k >= 0 && k < springs &&
+                           ((s.springs[k].i == i && s.springs[k].j == j) ||
+                            (s.springs[k].i == j && s.springs[k].j == i));
+        if (i == j || !joins)
+          throw ObjectError(
+              message("mass-spring object: volume term ", t, "'s edge (", i, ", ", j,
+                      ") names spring ", k, ", which does not join those two distinct nodes"),
+              i, k >= 0 && k < springs ? k : -1);
+      }
+    }
+    if (!(std::isfinite(term.rest_measure) && term.rest_measure > 0.0) ||
+        !finite_non_negative(term.stiffness))
+      throw ObjectError(message("mass-spring object: volume term ", t, " has rest measure ",
+                                term.rest_measure, " and stiffness ", term.stiffness,
+                                "; need a positive, finite measure and a finite stiffness >= 0"),
+                        term.nodes[0], -1);
+  }
+}
+
 }  // namespace
 
 void validate_material(const Material& m) {
@@ -179,6 +216,7 @@ void validate_object(const MassSpringSystem<Dim>& s) {
                                 "; both must be non-negative and finite"),
                         -1, k);
   }
+  validate_volume_terms(s);
   if (!s.gravity.allFinite())
     throw ObjectError(
         message("mass-spring object: gravity (", s.gravity.transpose(), ") is not finite"), -1, -1);

@@ -11,7 +11,8 @@
 /// part is alpha (d_ij d_kl + d_ik d_jl + d_il d_jk) with alpha = sum_s k_s L_s / (V D (D + 2)),
 /// i.e. Lame constants lambda = mu = alpha, so that
 ///     2D:  E = 8 alpha / 3,  Poisson's ratio 1/3      3D:  E = 5 alpha / 2,  Poisson's ratio 1/4
-/// whatever the mesh: a spring network cannot offer another Poisson's ratio. With
+/// whatever the mesh: a spring network by itself cannot offer another Poisson's ratio (area
+/// or volume terms add the missing lambda: Material::poisson_ratio, volume_terms.hpp). With
 /// k = c^2 m / L (m the mass around the spring), sum_s k_s L_s = c^2 rho V, so the plain rule
 /// gives E_network = rho c^2 / 3 in 2D and rho c^2 / 6 in 3D: waves at 0.58 c and 0.41 c.
 ///

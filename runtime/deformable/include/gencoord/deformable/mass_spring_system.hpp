@@ -12,6 +12,7 @@
 
 #include "gencoord/deformable/collision.hpp"
 #include "gencoord/deformable/springs.hpp"
+#include "gencoord/deformable/volume_terms.hpp"
 
 namespace gencoord::deformable {
 
@@ -64,13 +65,16 @@ struct MassSpringSystem {
   Eigen::VectorXd mass;      ///< lumped node masses (kg), n
   std::vector<char> pinned;  ///< n flags; a pinned node moves with its own v, ignoring forces
   std::vector<Spring> springs;
+  /// area (2D) or volume (3D) terms of the elements (volume_terms.hpp); none in 1D
+  std::vector<VolumeTerm<Dim>> volume_terms;
   Vec gravity = Vec::Zero();  ///< acceleration (m/s^2)
   std::optional<GroundPlane> ground;
   std::optional<Collisions<Dim>> collisions;  ///< obstacles and self-contact (collision.hpp)
   InelasticParams inelastic;
   std::vector<FractureEvent> fractures;  ///< appended to by the time steppers
-  double wave_speed =
-      1.0;         ///< the fastest spring's sqrt(k L / m) (m/s; c for a rod), for the CFL limit
+  /// the fastest spring's sqrt(k L / m) (m/s; c for a rod), raised for the volume terms
+  /// (add_volume_terms()), for the CFL limit
+  double wave_speed = 1.0;
   double t = 0.0;  ///< time (s)
   long steps = 0;  ///< steps taken
 
@@ -78,8 +82,8 @@ struct MassSpringSystem {
   int num_unbroken_springs() const;
 };
 
-/// Adds the total force (springs, dampers, gravity, ground, contact) on every node to f (N), Dim x
-/// n.
+/// Adds the total force (springs, dampers, volume terms, gravity, ground, contact) on every
+/// node to f (N), Dim x n.
 template <int Dim>
 void accumulate_forces(const MassSpringSystem<Dim>& s,
                        Eigen::Matrix<double, Dim, Eigen::Dynamic>& f);
@@ -95,7 +99,8 @@ void accumulate_forces(const MassSpringSystem<Dim>& s,
 template <int Dim>
 double kinetic_energy(const MassSpringSystem<Dim>& s);
 
-/// Elastic (springs, ground and contact penalties) plus gravitational potential energy (J).
+/// Elastic (springs, volume terms, ground and contact penalties) plus gravitational potential
+/// energy (J).
 template <int Dim>
 double potential_energy(const MassSpringSystem<Dim>& s);
 

@@ -7,6 +7,7 @@
 /// solid rho is kg/m^3 and E is N/m^2 (Pa). In every case c = sqrt(E / rho) is a speed (m/s).
 
 #include <cmath>
+#include <limits>
 
 namespace gencoord::deformable {
 
@@ -14,6 +15,11 @@ struct Material {
   double youngs_modulus = 1.0;  ///< E (see the units above)
   double density = 1.0;         ///< rho (see the units above)
   double damping = 0.0;         ///< D: force per unit strain rate, E's units times seconds
+  /// Poisson's ratio nu of a sheet (2D, plane stress) or a solid (3D). NaN: the spring
+  /// network's own, 1/3 (2D) or 1/4 (3D). Otherwise make_mass_spring() calibrates the springs
+  /// to the shear modulus E / (2 (1 + nu)) and adds area or volume terms (volume_terms.hpp)
+  /// for the rest of lambda; it accepts [1/3, 1) in 2D and [1/4, 1/2) in 3D. A rod ignores it.
+  double poisson_ratio = std::numeric_limits<double>::quiet_NaN();
 
   /// Speed of sound c = sqrt(E / rho) (m/s).
   double wave_speed() const { return std::sqrt(youngs_modulus / density); }

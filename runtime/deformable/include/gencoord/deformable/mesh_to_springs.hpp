@@ -8,6 +8,9 @@
 ///     k = c^2 m / L,   d = D m / (rho L),   c = sqrt(E / rho),
 /// i.e. the 1D rod's k = E and d = D scaled by m / (rho L), so that one spring's own wave speed
 /// sqrt(k L / m) equals c everywhere, so that the mesh does not show in the material.
+/// The springs are then calibrated to the material's E (lattice_elasticity.hpp); with a
+/// Poisson's ratio (Material::poisson_ratio) to the network that has its shear modulus, and
+/// every element gets an area or volume term for the rest of lambda (volume_terms.hpp).
 
 #include "gencoord/deformable/mass_spring_system.hpp"
 #include "gencoord/deformable/material.hpp"
@@ -16,6 +19,7 @@
 namespace gencoord::deformable {
 
 /// Builds the object at rest in the mesh's rest shape. Nothing pinned, no gravity, no ground.
+/// \throws MeshError, MaterialError (validate.hpp; lame_split() for the Poisson's ratio).
 template <int Dim>
 MassSpringSystem<Dim> make_mass_spring(const SimplexMesh<Dim>& mesh, const Material& material);
 

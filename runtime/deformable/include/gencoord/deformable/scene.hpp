@@ -7,8 +7,8 @@
 
 namespace gencoord::deformable {
 
-/// Appends `object`'s nodes (positions, velocities, masses, pinned flags), springs and
-/// contact surface to `scene`, its node indices shifted by the scene's node count, which is
+/// Appends `object`'s nodes (positions, velocities, masses, pinned flags), springs, volume
+/// terms and contact surface to `scene`, its node indices shifted by the scene's node count, which is
 /// returned (the first index of the object's nodes in the scene). The scene keeps its own
 /// time, gravity, ground and inelastic settings; its wave speed becomes the faster of the two
 /// (the CFL limit holds for both). Contact: the object's surface simplices and obstacles join

@@ -13,21 +13,22 @@
 
 namespace gencoord::deformable {
 
-/// Young's modulus of the unbroken springs of `s` as a bar along `axis`: the nodes within 5%
+/// Young's modulus of `s` (its unbroken springs and active volume terms) as a bar along
+/// `axis`: the nodes within 5%
 /// of the length from either end (rest coordinates `rest` along the axis) are moved along it
 /// by a small uniform strain eps, everything else relaxes to equilibrium (the springs
-/// linearized at rest), and E = (force across the middle / cross-section) / eps, the force
-/// summed over the springs that cross the middle and the cross-section `measure` (area in
-/// 2D, volume in 3D) over the length. For a prismatic body this is uniaxial stress: the
+/// linearized at rest), and E = (force / cross-section) / eps, the force being what holds
+/// the high end zone and the cross-section `measure` (area in 2D, volume in 3D) over the
+/// length. For a prismatic body this is uniaxial stress: the
 /// sides and the ends are free laterally.
-/// \throws ObjectError if no spring carries the stretch across the middle.
+/// \throws ObjectError if nothing carries the stretch from one end to the other.
 template <int Dim>
 double stretch_modulus(const MassSpringSystem<Dim>& s,
                        const Eigen::Matrix<double, Dim, Eigen::Dynamic>& rest, double measure,
                        int axis);
 
 /// Scales the stiffness and damping of every spring of `s`, made from `mesh`
-/// (make_mass_spring()), by one factor so that its stretch_modulus() along `axis` is
+/// (make_mass_spring()), and the stiffness of its volume terms, by one factor so that its stretch_modulus() along `axis` is
 /// `youngs_modulus`, and its wave speed with them; returns the factor. Meant for slender
 /// bodies (strips, bars, beams) stretched along `axis`, their length: it keeps the
 /// calibration's isotropy and Poisson's ratio, and makes waves and static stretch along the

@@ -30,8 +30,10 @@ void validate_mesh(const SimplexMesh<Dim>& mesh);
 /// (n) agree in size; every x and v is finite; every mass is finite and positive (>= 0 for
 /// a pinned node, which ignores forces); every unbroken spring joins two distinct nodes in
 /// range with a finite rest length > 0 (sign-free in 1D) and finite stiffness and damping
-/// >= 0; gravity, the ground and the wave speed (> 0) are finite; the inelastic settings are
-/// not NaN and the plastic fraction is in [0, 1].
+/// >= 0; every volume term's nodes are distinct and in range, each of its edges names the
+/// spring joining its two nodes, its rest measure is positive and its stiffness >= 0 (both
+/// finite); gravity, the ground and the wave speed (> 0) are finite; the inelastic settings
+/// are not NaN and the plastic fraction is in [0, 1].
 template <int Dim>
 void validate_object(const MassSpringSystem<Dim>& s);
 
