@@ -25,8 +25,9 @@ class StepMatrix {
   void build(const MassSpringSystem<Dim>& s);
 
   /// Writes A at (q, v) into the pattern (definite spring and volume term Jacobians, the
-  /// ground penalty while it pushes), the free masses into `masses`, and K v over the free nodes (v of the pinned
-  /// ones left out, as their motion is in the force at their end positions) into `k_v`.
+  /// ground penalty while it pushes), the free masses into `masses`, and K v over the free nodes (v
+  /// of the pinned ones left out, as their motion is in the force at their end positions) into
+  /// `k_v`.
   void assemble(const MassSpringSystem<Dim>& s, const Points& q, const Points& v, double dt,
                 Eigen::VectorXd* masses, Eigen::VectorXd* k_v);
 

@@ -28,11 +28,11 @@ double stretch_modulus(const MassSpringSystem<Dim>& s,
                        int axis);
 
 /// Scales the stiffness and damping of every spring of `s`, made from `mesh`
-/// (make_mass_spring()), and the stiffness of its volume terms, by one factor so that its stretch_modulus() along `axis` is
-/// `youngs_modulus`, and its wave speed with them; returns the factor. Meant for slender
-/// bodies (strips, bars, beams) stretched along `axis`, their length: it keeps the
-/// calibration's isotropy and Poisson's ratio, and makes waves and static stretch along the
-/// length those of the material at any resolution (docs/deformables.md has the figures).
+/// (make_mass_spring()), and the stiffness of its volume terms, by one factor so that its
+/// stretch_modulus() along `axis` is `youngs_modulus`, and its wave speed with them; returns the
+/// factor. Meant for slender bodies (strips, bars, beams) stretched along `axis`, their length: it
+/// keeps the calibration's isotropy and Poisson's ratio, and makes waves and static stretch along
+/// the length those of the material at any resolution (docs/deformables.md has the figures).
 /// \throws ObjectError as stretch_modulus(); MaterialError unless youngs_modulus is positive
 /// and finite.
 template <int Dim>
