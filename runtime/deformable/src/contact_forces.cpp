@@ -183,6 +183,22 @@ void contact_acceleration(const ContactParams& p, const Contact<Dim>& contact,
   *a = *a_n * contact.normal - *drag * v_t;
 }
 
+// calls visit(contact, drag, a) for every contact that pushes at (x, v): its friction drag
+// rate and its acceleration per unit mass (normal and friction)
+template <int Dim, class Visit>
+void for_each_pushing_contact(const MassSpringSystem<Dim>& s,
+                              const typename MassSpringSystem<Dim>::Points& x,
+                              const typename MassSpringSystem<Dim>::Points& v, Visit&& visit) {
+  if (!s.collisions) return;
+  const ContactParams& p = s.collisions->params;
+  for_each_contact<Dim>(s, x, [&](const Contact<Dim>& contact) {
+    double a_n = 0.0, drag = 0.0;
+    Vec<Dim> a;
+    contact_acceleration(p, contact, relative_velocity(contact, v), &a_n, &drag, &a);
+    if (a_n > 0.0) visit(contact, drag, a);
+  });
+}
+
 }  // namespace
 
 template <int Dim>
@@ -190,18 +206,13 @@ void add_contact_forces(const MassSpringSystem<Dim>& s,
                         const typename MassSpringSystem<Dim>::Points& x,
                         const typename MassSpringSystem<Dim>::Points& v,
                         typename MassSpringSystem<Dim>::Points& f) {
-  if (!s.collisions) return;
-  const ContactParams& p = s.collisions->params;
-  for_each_contact<Dim>(s, x, [&](const Contact<Dim>& contact) {
-    double a_n = 0.0, drag = 0.0;
-    Vec<Dim> a;
-    contact_acceleration(p, contact, relative_velocity(contact, v), &a_n, &drag, &a);
-    if (a_n == 0.0) return;
-    const Vec<Dim> force = contact.mass * a;
-    f.col(contact.node) += force;
-    for (int k = 0; k < contact.num_corners; ++k)
-      f.col(contact.corners[k]) -= contact.weights[k] * force;
-  });
+  for_each_pushing_contact<Dim>(s, x, v,
+                                [&](const Contact<Dim>& contact, double, const Vec<Dim>& a) {
+                                  const Vec<Dim> force = contact.mass * a;
+                                  f.col(contact.node) += force;
+                                  for (int k = 0; k < contact.num_corners; ++k)
+                                    f.col(contact.corners[k]) -= contact.weights[k] * force;
+                                });
 }
 
 template <int Dim>
@@ -224,23 +235,20 @@ std::vector<ContactJacobian<Dim>> contact_jacobians(
   std::vector<ContactJacobian<Dim>> out;
   if (!s.collisions) return out;
   const ContactParams& p = s.collisions->params;
-  for_each_contact<Dim>(s, x, [&](const Contact<Dim>& contact) {
-    double a_n = 0.0, drag = 0.0;
-    Vec<Dim> a;
-    contact_acceleration(p, contact, relative_velocity(contact, v), &a_n, &drag, &a);
-    if (a_n == 0.0) return;
-    // the normal's turning is left out; friction counts as the viscous drag it is below
-    // its slip speed
-    const Mat nn = contact.normal * contact.normal.transpose();
-    const Mat k = -contact.mass * p.omega * p.omega * nn;
-    const Mat d =
-        -contact.mass * (2.0 * p.damping_ratio * p.omega * nn + drag * (Mat::Identity() - nn));
-    out.push_back({contact.node, k, d});
-    for (int c = 0; c < contact.num_corners; ++c) {
-      const double w2 = contact.weights[c] * contact.weights[c];
-      if (w2 > 0.0) out.push_back({contact.corners[c], w2 * k, w2 * d});
-    }
-  });
+  for_each_pushing_contact<Dim>(
+      s, x, v, [&](const Contact<Dim>& contact, double drag, const Vec<Dim>&) {
+        // the normal's turning is left out; friction counts as the viscous drag it is below
+        // its slip speed
+        const Mat nn = contact.normal * contact.normal.transpose();
+        const Mat k = -contact.mass * p.omega * p.omega * nn;
+        const Mat d =
+            -contact.mass * (2.0 * p.damping_ratio * p.omega * nn + drag * (Mat::Identity() - nn));
+        out.push_back({contact.node, k, d});
+        for (int c = 0; c < contact.num_corners; ++c) {
+          const double w2 = contact.weights[c] * contact.weights[c];
+          if (w2 > 0.0) out.push_back({contact.corners[c], w2 * k, w2 * d});
+        }
+      });
   return out;
 }
 

@@ -8,18 +8,13 @@
 #include <vector>
 
 #include "gencoord/errors.hpp"
+#include "message.hpp"
 
 namespace gencoord::deformable {
 
 namespace {
 
-template <class... Parts>
-std::string message(const Parts&... parts) {
-  std::ostringstream os;
-  os.precision(17);
-  (os << ... << parts);
-  return os.str();
-}
+using detail::message;
 
 bool finite_non_negative(double x) { return std::isfinite(x) && x >= 0.0; }
 

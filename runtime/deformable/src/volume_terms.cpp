@@ -10,6 +10,7 @@
 
 #include "gencoord/deformable/errors.hpp"
 #include "gencoord/deformable/mass_spring_system.hpp"
+#include "message.hpp"
 
 namespace gencoord::deformable {
 
@@ -57,13 +58,7 @@ VolumeTermJacobian<Dim> measure_hessian(const Corners<Dim>& x) {
   return h;
 }
 
-template <class... Parts>
-std::string message(const Parts&... parts) {
-  std::ostringstream os;
-  os.precision(17);
-  (os << ... << parts);
-  return os.str();
-}
+using detail::message;
 
 // Speed c_v whose CFL limit L_min / c_v keeps the terms' stiffest mode stable on its own:
 // symplectic Euler needs omega dt <= 2, and omega^2 <= max over nodes a of the Gershgorin row
