@@ -4,6 +4,7 @@
 #include <Eigen/SparseCholesky>
 #include <utility>
 
+#include "gencoord/deformable/bending.hpp"
 #include "gencoord/deformable/errors.hpp"
 #include "gencoord/deformable/inelastic.hpp"
 #include "gencoord/deformable/validate.hpp"
@@ -110,6 +111,7 @@ void MassSpringIntegration<Dim>::linearize(const State& y, JacobianSource,
       add_block<Dim>(*list, dof_, sp.j, sp.i, J);
     }
   }
+  add_bending_jacobian(s_, y.q, dof_, &k_x);  // hinges: Gauss-Newton blocks (bending.hpp)
   // ground contact: a penalty spring and damper along the up axis while it pushes
   if (s_.ground) {
     const GroundPlane& g = *s_.ground;

@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "gencoord/deformable/bending.hpp"
+
 namespace gencoord::deformable {
 
 template <int Dim>
@@ -31,6 +33,7 @@ void accumulate_forces(const MassSpringSystem<Dim>& s,
     f.col(sp.i) += sf.f_i;
     f.col(sp.j) -= sf.f_i;
   }
+  accumulate_bending_forces(s, x, f);  // hinges (3D sheets)
   // gravity
   for (int n = 0; n < s.num_nodes(); ++n) f.col(n) += s.mass(n) * s.gravity;
   // ground penalty along the last axis, pushing only
@@ -66,6 +69,7 @@ double potential_energy(const MassSpringSystem<Dim>& s) {
     spring_direction<Dim>(s.x.col(sp.j) - s.x.col(sp.i), &n, &length);
     e += spring_energy(length, sp.params);
   }
+  e += bending_energy(s, s.x);  // hinges (3D sheets)
   for (int n = 0; n < s.num_nodes(); ++n) {
     if (s.pinned[n]) continue;
     e -= s.mass(n) * s.gravity.dot(s.x.col(n));
