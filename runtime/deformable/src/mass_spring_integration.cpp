@@ -5,6 +5,7 @@
 #include <utility>
 
 #include "contact_forces.hpp"
+#include "gencoord/deformable/bending.hpp"
 #include "gencoord/deformable/errors.hpp"
 #include "gencoord/deformable/inelastic.hpp"
 #include "gencoord/deformable/validate.hpp"
@@ -116,6 +117,7 @@ void MassSpringIntegration<Dim>::linearize(const State& y, JacobianSource,
                              [&](int a, int b, const Eigen::Matrix<double, Dim, Dim>& block) {
                                add_block<Dim>(k_x, dof_, a, b, block);
                              });
+  add_bending_jacobian(s_, y.q, dof_, &k_x);  // hinges: Gauss-Newton blocks (bending.hpp)
   // ground contact: a penalty spring and damper along the up axis while it pushes
   if (s_.ground) {
     const GroundPlane& g = *s_.ground;

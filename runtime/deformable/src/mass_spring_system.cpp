@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "contact_forces.hpp"
+#include "gencoord/deformable/bending.hpp"
 
 namespace gencoord::deformable {
 
@@ -34,6 +35,7 @@ void accumulate_forces(const MassSpringSystem<Dim>& s,
     f.col(sp.j) -= sf.f_i;
   }
   accumulate_volume_term_forces(s, x, f);
+  accumulate_bending_forces(s, x, f);  // hinges (3D sheets)
   // gravity
   for (int n = 0; n < s.num_nodes(); ++n) f.col(n) += s.mass(n) * s.gravity;
   // ground penalty along the last axis, pushing only
@@ -71,6 +73,7 @@ double potential_energy(const MassSpringSystem<Dim>& s) {
     e += spring_energy(length, sp.params);
   }
   e += volume_terms_energy(s);
+  e += bending_energy(s, s.x);  // hinges (3D sheets)
   for (int n = 0; n < s.num_nodes(); ++n) {
     if (s.pinned[n]) continue;
     e -= s.mass(n) * s.gravity.dot(s.x.col(n));

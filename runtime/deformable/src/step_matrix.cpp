@@ -5,6 +5,7 @@
 #include <cstddef>
 
 #include "contact_forces.hpp"
+#include "gencoord/deformable/bending.hpp"
 #include "gencoord/deformable/volume_terms.hpp"
 
 namespace gencoord::deformable::detail {
@@ -16,6 +17,11 @@ bool StepMatrix<Dim>::matches(const MassSpringSystem<Dim>& s) const {
     const Spring& sp = s.springs[k];
     if (spring_nodes_[3 * k] != sp.i || spring_nodes_[3 * k + 1] != sp.j ||
         spring_nodes_[3 * k + 2] != static_cast<int>(sp.broken))
+      return false;
+  }
+  if (hinge_nodes_.size() != 4 * s.hinges.size()) return false;
+  for (std::size_t k = 0; k < s.hinges.size(); ++k) {
+    if (!std::equal(s.hinges[k].nodes.begin(), s.hinges[k].nodes.end(), &hinge_nodes_[4 * k]))
       return false;
   }
   return true;
@@ -60,6 +66,15 @@ void StepMatrix<Dim>::build(const MassSpringSystem<Dim>& s) {
     add_block(sp.i, sp.j);
     add_block(sp.j, sp.i);
   }
+  // a hinge couples its four nodes, also its two wings, which no spring joins
+  hinge_nodes_.clear();
+  for (const Hinge& h : s.hinges) {
+    hinge_nodes_.insert(hinge_nodes_.end(), h.nodes.begin(), h.nodes.end());
+    if (!hinge_active(s, h)) continue;
+    for (int a : h.nodes) {
+      for (int b : h.nodes) add_block(a, b);
+    }
+  }
   a_.resize(unknowns, unknowns);
   a_.setFromTriplets(entries.begin(), entries.end());  // duplicates (parallel springs) summed
   a_.makeCompressed();
@@ -72,6 +87,15 @@ void StepMatrix<Dim>::build(const MassSpringSystem<Dim>& s) {
     for (int blk = 0; blk < 4; ++blk) {
       for (int c = 0; c < Dim; ++c)
         spring_slots_[(k * 4 + blk) * Dim + c] = slot(blocks[blk][0], blocks[blk][1], c);
+    }
+  }
+  hinge_slots_.assign(s.hinges.size() * 16 * Dim, -1);
+  for (std::size_t k = 0; k < s.hinges.size(); ++k) {
+    const Hinge& h = s.hinges[k];
+    if (!hinge_active(s, h)) continue;
+    for (int blk = 0; blk < 16; ++blk) {
+      for (int c = 0; c < Dim; ++c)
+        hinge_slots_[(k * 16 + blk) * Dim + c] = slot(h.nodes[blk / 4], h.nodes[blk % 4], c);
     }
   }
   diagonal_slots_.resize(unknowns);
@@ -134,6 +158,29 @@ void StepMatrix<Dim>::assemble(const MassSpringSystem<Dim>& s, const Points& q, 
     }
     k_v->template segment<Dim>(dof_[a]) += k_ab * v.col(b);
   });
+  // hinges: K_ab = -2 kb g_a g_b^T (bending.hpp), so A gets dt^2 2 kb g_a g_b^T
+  if constexpr (Dim == 3) {
+    for (std::size_t k = 0; k < s.hinges.size(); ++k) {
+      const Hinge& h = s.hinges[k];
+      if (!hinge_active(s, h)) continue;
+      const HingeAngle angle =
+          hinge_angle(q.col(h.nodes[0]), q.col(h.nodes[1]), q.col(h.nodes[2]), q.col(h.nodes[3]));
+      const double weight = 2.0 * h.stiffness;
+      double g_v = 0.0;  // g . v over the free nodes
+      for (int a = 0; a < 4; ++a) {
+        if (dof_[h.nodes[a]] >= 0) g_v += angle.gradient[a].dot(v.col(h.nodes[a]));
+      }
+      for (int a = 0; a < 4; ++a) {
+        const int da = dof_[h.nodes[a]];
+        if (da < 0) continue;
+        k_v->template segment<Dim>(da) -= (weight * g_v) * angle.gradient[a];
+        for (int b = 0; b < 4; ++b) {
+          add(&hinge_slots_[(k * 16 + a * 4 + b) * Dim], dt * dt * weight,
+              angle.gradient[a] * angle.gradient[b].transpose());
+        }
+      }
+    }
+  }
   // ground contact: a penalty spring and damper along the up axis while it pushes
   if (s.ground) {
     const GroundPlane& g = *s.ground;

@@ -15,19 +15,20 @@ class StepMatrix {
  public:
   using Points = typename MassSpringSystem<Dim>::Points;
 
-  /// Whether the pattern was built for these springs (nodes, broken flags) and pinned nodes.
+  /// Whether the pattern was built for these springs (nodes, broken flags), hinges (nodes)
+  /// and pinned nodes.
   bool matches(const MassSpringSystem<Dim>& s) const;
 
   /// Builds the pattern of `s` (values zero): the Dim x Dim diagonal block of every free node
-  /// (so a ground contact that starts or ends does not change it) and the four blocks of every
-  /// unbroken spring between free nodes, both triangles; and where each block's entries lie
-  /// in the value array.
+  /// (so a ground contact that starts or ends does not change it), the four blocks of every
+  /// unbroken spring and the sixteen of every active hinge between free nodes, both
+  /// triangles; and where each block's entries lie in the value array.
   void build(const MassSpringSystem<Dim>& s);
 
   /// Writes A at (q, v) into the pattern (definite spring and volume term Jacobians, the
-  /// ground penalty while it pushes), the free masses into `masses`, and K v over the free nodes (v
-  /// of the pinned ones left out, as their motion is in the force at their end positions) into
-  /// `k_v`.
+  /// hinges' Gauss-Newton blocks, the ground penalty while it pushes, the contacts' diagonal
+  /// blocks), the free masses into `masses`, and K v over the free nodes (v of the pinned
+  /// ones left out, as their motion is in the force at their end positions) into `k_v`.
   void assemble(const MassSpringSystem<Dim>& s, const Points& q, const Points& v, double dt,
                 Eigen::VectorXd* masses, Eigen::VectorXd* k_v);
 
@@ -48,6 +49,9 @@ class StepMatrix {
   // entry in a_'s values, -1 where the block is not stored (a pinned node)
   std::vector<int> spring_slots_;
   std::vector<int> diagonal_slots_;  // index of (k, k) in a_'s values, per unknown
+  std::vector<int> hinge_nodes_;     // the 4 nodes of each hinge, as built
+  // per hinge, 16 blocks (a, b over its nodes) x Dim columns, as spring_slots_
+  std::vector<int> hinge_slots_;
 };
 
 }  // namespace gencoord::deformable::detail

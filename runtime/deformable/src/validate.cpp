@@ -1,7 +1,9 @@
 // Checks of meshes, materials, objects and step sizes; each refusal names what it refuses.
 #include "gencoord/deformable/validate.hpp"
 
+#include <Eigen/Geometry>
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <sstream>
 #include <string>
@@ -54,6 +56,7 @@ void validate_volume_terms(const MassSpringSystem<Dim>& s) {
                         term.nodes[0], -1);
   }
 }
+constexpr double kPi = 3.14159265358979323846;
 
 }  // namespace
 
@@ -172,6 +175,80 @@ void validate_collisions(const Collisions<Dim>& c, int count) {
 
 }  // namespace
 
+void validate_surface(const TriangleSurface& surface) {
+  const int count = static_cast<int>(surface.nodes.cols());
+  const int triangles = static_cast<int>(surface.triangles.size());
+  if (count == 0 || triangles == 0)
+    throw MeshError(message("surface: ", count, " nodes and ", triangles,
+                            " triangles; need at least one triangle"),
+                    -1, -1);
+  for (int n = 0; n < count; ++n) {
+    if (!surface.nodes.col(n).allFinite())
+      throw MeshError(message("surface: node ", n, " has a coordinate that is not finite (",
+                              surface.nodes.col(n).transpose(), ")"),
+                      -1, n);
+  }
+  std::vector<char> used(count, 0);
+  // (i, j, k) sorted with its triangle; then each edge (i < j) with its triangle
+  std::vector<std::array<int, 4>> sorted_triangles;
+  std::vector<std::array<int, 3>> edges;
+  for (int t = 0; t < triangles; ++t) {
+    const auto& tri = surface.triangles[t];
+    for (int a = 0; a < 3; ++a) {
+      if (tri[a] < 0 || tri[a] >= count)
+        throw MeshError(message("surface: triangle ", t, " refers to node ", tri[a],
+                                ", out of range (the surface has ", count, " nodes)"),
+                        t, tri[a]);
+      for (int b = 0; b < a; ++b) {
+        if (tri[a] == tri[b])
+          throw MeshError(message("surface: triangle ", t, " repeats node ", tri[a]), t, tri[a]);
+      }
+      used[tri[a]] = 1;
+    }
+    const Eigen::Vector3d x0 = surface.nodes.col(tri[0]);
+    const Eigen::Vector3d e1 = surface.nodes.col(tri[1]) - x0, e2 = surface.nodes.col(tri[2]) - x0;
+    const double longest = std::max({e1.norm(), e2.norm(), (e2 - e1).norm()});
+    const double area = 0.5 * e1.cross(e2).norm();
+    const double floor = kMinRelativeMeasure * longest * longest;
+    const double relative = kMinRelativeMeasure;  // printed without 17 digits of noise
+    if (!(area > floor))
+      throw MeshError(message("surface: triangle ", t, " is degenerate: its area ", area,
+                              " is not above ", floor, " (", static_cast<float>(relative),
+                              " times its longest edge squared); its nodes are (nearly) collinear"),
+                      t, -1);
+    std::array<int, 3> nodes = tri;
+    std::sort(nodes.begin(), nodes.end());
+    sorted_triangles.push_back({nodes[0], nodes[1], nodes[2], t});
+    for (int a = 0; a < 3; ++a) {
+      for (int b = a + 1; b < 3; ++b) edges.push_back({nodes[a], nodes[b], t});
+    }
+  }
+  std::sort(sorted_triangles.begin(), sorted_triangles.end());
+  for (std::size_t k = 1; k < sorted_triangles.size(); ++k) {
+    const auto& p = sorted_triangles[k - 1];
+    const auto& q = sorted_triangles[k];
+    if (p[0] == q[0] && p[1] == q[1] && p[2] == q[2])
+      throw MeshError(message("surface: triangles ", p[3], " and ", q[3], " have the same nodes (",
+                              p[0], ", ", p[1], ", ", p[2], "); remove one"),
+                      q[3], -1);
+  }
+  std::sort(edges.begin(), edges.end());
+  for (std::size_t k = 2; k < edges.size(); ++k) {
+    if (edges[k][0] == edges[k - 2][0] && edges[k][1] == edges[k - 2][1])
+      throw MeshError(
+          message("surface: the edge (", edges[k][0], ", ", edges[k][1], ") borders triangles ",
+                  edges[k - 2][2], ", ", edges[k - 1][2], " and ", edges[k][2],
+                  "; a sheet's edge may border at most two triangles"),
+          edges[k][2], edges[k][0]);
+  }
+  for (int n = 0; n < count; ++n) {
+    if (!used[n])
+      throw MeshError(message("surface: node ", n,
+                              " belongs to no triangle, so it would get no mass; remove it"),
+                      -1, n);
+  }
+}
+
 template <int Dim>
 void validate_object(const MassSpringSystem<Dim>& s) {
   const int count = s.num_nodes();
@@ -212,6 +289,36 @@ void validate_object(const MassSpringSystem<Dim>& s) {
                         -1, k);
   }
   validate_volume_terms(s);
+  if (Dim != 3 && !s.hinges.empty())
+    throw ObjectError(message("mass-spring object: ", s.hinges.size(), " hinges in ", Dim,
+                              "D; bending hinges exist only in 3D"),
+                      -1, -1);
+  const int spring_count = static_cast<int>(s.springs.size());
+  for (int k = 0; k < static_cast<int>(s.hinges.size()); ++k) {
+    const Hinge& h = s.hinges[k];
+    bool distinct = true;
+    for (int a = 0; a < 4; ++a) {
+      if (h.nodes[a] < 0 || h.nodes[a] >= count)
+        throw ObjectError(message("mass-spring object: hinge ", k, " refers to node ", h.nodes[a],
+                                  "; need nodes in [0, ", count, ")"),
+                          h.nodes[a], -1);
+      for (int b = 0; b < a; ++b) distinct = distinct && h.nodes[a] != h.nodes[b];
+    }
+    if (!distinct)
+      throw ObjectError(
+          message("mass-spring object: hinge ", k, " has nodes ", h.nodes[0], ", ", h.nodes[1],
+                  ", ", h.nodes[2], ", ", h.nodes[3], "; need four distinct nodes"),
+          h.nodes[0], -1);
+    if (h.spring < -1 || h.spring >= spring_count)
+      throw ObjectError(message("mass-spring object: hinge ", k, " refers to spring ", h.spring,
+                                "; need -1 (none) or a spring in [0, ", spring_count, ")"),
+                        -1, h.spring);
+    if (!finite_non_negative(h.stiffness) || !(std::abs(h.rest_angle) <= kPi))
+      throw ObjectError(message("mass-spring object: hinge ", k, " has stiffness ", h.stiffness,
+                                " and rest angle ", h.rest_angle,
+                                "; need a finite stiffness >= 0 and a rest angle in [-pi, pi]"),
+                        -1, -1);
+  }
   if (!s.gravity.allFinite())
     throw ObjectError(
         message("mass-spring object: gravity (", s.gravity.transpose(), ") is not finite"), -1, -1);

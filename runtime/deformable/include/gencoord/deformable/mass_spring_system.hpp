@@ -6,6 +6,7 @@
 /// and optional fracture and plasticity.
 
 #include <Eigen/Core>
+#include <array>
 #include <limits>
 #include <optional>
 #include <vector>
@@ -22,6 +23,16 @@ struct Spring {
   int j = 0;
   SpringParams params;
   bool broken = false;  ///< a broken spring exerts no force and is skipped everywhere
+};
+
+/// A bending hinge of a sheet in 3D (bending.hpp): the edge nodes[0]-nodes[1] shared by the
+/// triangles (nodes[0], nodes[1], nodes[2]) and (nodes[1], nodes[0], nodes[3]), with the energy
+/// stiffness (theta - rest_angle)^2 in their dihedral angle theta.
+struct Hinge {
+  std::array<int, 4> nodes{};  ///< edge start, edge end, and the two triangles' third nodes
+  int spring = -1;  ///< the edge's spring in MassSpringSystem::springs (-1: none); broken: inert
+  double rest_angle = 0.0;  ///< theta0 (rad), in [-pi, pi]; 0 is flat
+  double stiffness = 0.0;   ///< kb (J/rad^2 = N m)
 };
 
 /// Ground: the half space x[Dim - 1] < height (y in 2D, z in 3D) pushes nodes back with a
@@ -67,13 +78,15 @@ struct MassSpringSystem {
   std::vector<Spring> springs;
   /// area (2D) or volume (3D) terms of the elements (volume_terms.hpp); none in 1D
   std::vector<VolumeTerm<Dim>> volume_terms;
+  std::vector<Hinge> hinges;  ///< bending hinges; only in 3D (sheet.hpp)
   Vec gravity = Vec::Zero();  ///< acceleration (m/s^2)
   std::optional<GroundPlane> ground;
   std::optional<Collisions<Dim>> collisions;  ///< obstacles and self-contact (collision.hpp)
   InelasticParams inelastic;
   std::vector<FractureEvent> fractures;  ///< appended to by the time steppers
-  /// the fastest spring's sqrt(k L / m) (m/s; c for a rod), raised for the volume terms
-  /// (add_volume_terms()), for the CFL limit
+  /// the fastest spring's sqrt(k L / m) (m/s; c for a rod), for the CFL limit; raised for the
+  /// volume terms (add_volume_terms()) and, for a sheet with hinges, so that it also covers
+  /// their frequency (bending.hpp)
   double wave_speed = 1.0;
   double t = 0.0;  ///< time (s)
   long steps = 0;  ///< steps taken
@@ -82,8 +95,8 @@ struct MassSpringSystem {
   int num_unbroken_springs() const;
 };
 
-/// Adds the total force (springs, dampers, volume terms, gravity, ground, contact) on every
-/// node to f (N), Dim x n.
+/// Adds the total force (springs, dampers, volume terms, hinges, gravity, ground, contact) on
+/// every node to f (N), Dim x n.
 template <int Dim>
 void accumulate_forces(const MassSpringSystem<Dim>& s,
                        Eigen::Matrix<double, Dim, Eigen::Dynamic>& f);
@@ -99,8 +112,8 @@ void accumulate_forces(const MassSpringSystem<Dim>& s,
 template <int Dim>
 double kinetic_energy(const MassSpringSystem<Dim>& s);
 
-/// Elastic (springs, volume terms, ground and contact penalties) plus gravitational potential
-/// energy (J).
+/// Elastic (springs, volume terms, hinges, ground and contact penalties) plus gravitational
+/// potential energy (J).
 template <int Dim>
 double potential_energy(const MassSpringSystem<Dim>& s);
 

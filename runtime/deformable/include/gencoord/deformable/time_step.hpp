@@ -18,9 +18,10 @@ double damping_ratio_at_cfl(const MassSpringSystem<Dim>& s);
 
 /// CFL limit of the explicit step (s): dt <= L_min / c, so that no step moves information
 /// further than one (shortest) spring (c = s.wave_speed, raised for volume terms by
-/// add_volume_terms()); for a uniform rod it is exactly the stability limit of symplectic
-/// Euler. With damping it is multiplied by sqrt(1 + zeta^2) - zeta (<= 1), the
-/// stability bound for a damped mode. Infinity when no spring is left.
+/// add_volume_terms() and for a sheet's bending hinges, bending.hpp, so that the limit holds
+/// for them too); for a uniform rod it is exactly the stability limit of symplectic Euler.
+/// With damping it is multiplied by sqrt(1 + zeta^2) - zeta (<= 1), the stability bound for a
+/// damped mode. Infinity when no spring is left.
 template <int Dim>
 double cfl_limit(const MassSpringSystem<Dim>& s);
 
@@ -74,11 +75,11 @@ struct ImplicitStats {
 /// One backward Euler step of dt (s), linearized (one Newton update from v1 = v):
 ///     (M - dt D - dt^2 K) dv = dt (f + dt K v),  v += dv,  x += dt v,
 /// with f, K = df/dx, D = df/dv over the free nodes at (x, v); K uses the definite spring
-/// Jacobian and the volume terms' Gauss-Newton part (volume_terms.hpp), so the matrix is
-/// symmetric positive definite. Throws LinearSolveError if the
-/// solve fails; StepSizeError and ObjectError as symplectic_euler_step(). Each call builds
-/// the matrix's pattern anew; BackwardEulerStepper (implicit_stepper.hpp) keeps it between
-/// steps.
+/// Jacobian, the volume terms' Gauss-Newton part (volume_terms.hpp) and the hinges'
+/// Gauss-Newton blocks (bending.hpp), so the matrix is symmetric positive definite. Throws
+/// LinearSolveError if the solve fails; StepSizeError and ObjectError as
+/// symplectic_euler_step(). Each call builds the matrix's pattern anew; BackwardEulerStepper
+/// (implicit_stepper.hpp) keeps it between steps.
 template <int Dim>
 ImplicitStats backward_euler_step(MassSpringSystem<Dim>& s, double dt,
                                   const ImplicitOptions& options = {});

@@ -26,14 +26,23 @@ void validate_material(const Material& material);
 template <int Dim>
 void validate_mesh(const SimplexMesh<Dim>& mesh);
 
+/// \throws MeshError unless the surface has nodes and triangles, every node is finite and used
+/// by some triangle, every index is in range and distinct within its triangle, every
+/// triangle's area exceeds kMinRelativeMeasure times its longest edge squared, no two
+/// triangles have the same nodes, and no edge borders more than two triangles (a sheet's
+/// hinge joins two).
+void validate_surface(const TriangleSurface& surface);
+
 /// \throws ObjectError unless the object can be stepped: x, v (Dim x n), mass (n) and pinned
 /// (n) agree in size; every x and v is finite; every mass is finite and positive (>= 0 for
 /// a pinned node, which ignores forces); every unbroken spring joins two distinct nodes in
 /// range with a finite rest length > 0 (sign-free in 1D) and finite stiffness and damping
 /// >= 0; every volume term's nodes are distinct and in range, each of its edges names the
 /// spring joining its two nodes, its rest measure is positive and its stiffness >= 0 (both
-/// finite); gravity, the ground and the wave speed (> 0) are finite; the inelastic settings
-/// are not NaN and the plastic fraction is in [0, 1].
+/// finite); every hinge (3D only) has four distinct nodes in range, a spring index in
+/// [-1, springs), a finite stiffness >= 0 and a rest angle in [-pi, pi]; gravity, the ground
+/// and the wave speed (> 0) are finite; the contact settings, obstacles and surface are
+/// usable; the inelastic settings are not NaN and the plastic fraction is in [0, 1].
 template <int Dim>
 void validate_object(const MassSpringSystem<Dim>& s);
 
