@@ -16,6 +16,7 @@
 #include "gencoord/deformable/implicit_stepper.hpp"
 #include "gencoord/deformable/mesh_to_springs.hpp"
 #include "gencoord/deformable/scene.hpp"
+#include "gencoord/deformable/sheet.hpp"
 #include "gencoord/deformable/time_step.hpp"
 
 namespace gencoord::deformable {
@@ -300,6 +301,44 @@ TEST(Drop, ACubeOnACubeDoesNotPassThroughIt) {
               centre.z());
   EXPECT_GT(centre.z(), edge);
   EXPECT_LT(centre.head<2>().cwiseAbs().maxCoeff(), 0.5 * edge);
+}
+
+// A cloth sheet (with bending and two-sided self-contact) dropped onto a sphere drapes over
+// it: no node sinks into the sphere by more than half a cell, the energy never grows, the
+// middle rests on top of the sphere and the corners hang below it.
+TEST(Drop, ASheetDrapesOverASphere) {
+  const double side = 0.6, radius = 0.15, g = 9.81;
+  const int cells = 12;
+  const TriangleSurface cloth = triangle_lattice_sheet(
+      side, side, cells, cells, Eigen::Vector3d(-0.5 * side, -0.5 * side, 2.0 * radius + 0.05));
+  MassSpringSystem<3> s = make_sheet(cloth, Material{100.0, 0.2, 0.05}, 1e-5);
+  s.gravity << 0.0, 0.0, -g;
+  auto& c = enable_collisions<3>(s, cloth.triangles, 0.3, 0.3, Sides::kBoth);
+  c.spheres.push_back({Eigen::Vector3d(0.0, 0.0, radius), radius});
+  const double dt = 0.5 * cfl_limit(s), e0 = total_energy(s);
+  const double allowed = 0.5 * min_rest_length(s);
+  double deepest = 0.0, highest_energy = e0;
+  while (s.t < 0.6) {
+    symplectic_euler_step(s, dt);
+    for (int n = 0; n < s.num_nodes(); ++n)
+      deepest = std::max(deepest, radius - (s.x.col(n) - Eigen::Vector3d(0.0, 0.0, radius)).norm());
+    highest_energy = std::max(highest_energy, total_energy(s));
+  }
+  // the node nearest the middle, and the lowest corner
+  int middle = 0;
+  for (int n = 1; n < s.num_nodes(); ++n) {
+    if (cloth.nodes.col(n).head<2>().norm() < cloth.nodes.col(middle).head<2>().norm()) middle = n;
+  }
+  const double top = 2.0 * radius, middle_height = s.x(2, middle);
+  std::printf(
+      "[ sheet on sphere ] deepest into the sphere %.4f m (allowed %.4f), middle at %.4f m "
+      "(sphere top %.4f), lowest node %.4f m, energy %.4f J -> %.4f J (highest %.4f J)\n",
+      deepest, allowed, middle_height, top, s.x.row(2).minCoeff(), e0, total_energy(s),
+      highest_energy);
+  EXPECT_LT(deepest, allowed);
+  EXPECT_LE(highest_energy, e0 * (1.0 + 1e-3));
+  EXPECT_NEAR(middle_height, top, allowed);
+  EXPECT_LT(s.x.row(2).minCoeff(), top - 0.1) << "the sheet does not hang down";
 }
 
 // A C-shaped object whose upper jaw swings down onto the lower one: with self-collision the

@@ -28,6 +28,11 @@ int append_object(MassSpringSystem<Dim>& scene, const MassSpringSystem<Dim>& obj
     sp.j += offset;
     scene.springs.push_back(sp);
   }
+  for (Hinge hinge : object.hinges) {
+    for (int& n : hinge.nodes) n += offset;
+    if (hinge.spring >= 0) hinge.spring += first_spring;
+    scene.hinges.push_back(hinge);
+  }
   for (VolumeTerm<Dim> term : object.volume_terms) {
     for (int& n : term.nodes) n += offset;
     for (int& k : term.springs) k += first_spring;
