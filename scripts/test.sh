@@ -29,7 +29,7 @@ if [ "${GENCOORD_SKIP_SANITIZERS:-0}" != 1 ]; then
         -DGENCOORD_PYTHON="$python" -DGENCOORD_BUILD_BENCHMARKS=OFF \
         -DPYTHON_EXECUTABLE=/usr/bin/python3 >/dev/null
   targets=$(cmake --build "${build}-sanitize" --target help | grep -oE \
-            'gencoord_(runtime|integrator|crosscheck|scripted|atlas|fuzz|large_model|sweep_exchange)_tests|deformable_(tests|demo)' | sort -u)
+            'gencoord_(runtime|integrator|crosscheck|scripted|atlas|fuzz|large_model|sweep_exchange)_tests|deformable_(tests|demo|drop)' | sort -u)
   # shellcheck disable=SC2086
   cmake --build "${build}-sanitize" -j "$jobs" --target $targets
   ctest --test-dir "${build}-sanitize" -L "$runtime_suites" --output-on-failure \

@@ -87,8 +87,12 @@ Collisions<Dim>& enable_collisions(MassSpringSystem<Dim>& s,
                   << "; give each simplex distinct corners";
           throw ObjectError(message.str(), n, -1);
         }
-        shortest = std::min(shortest, (s.x.col(surface[k][b]) - s.x.col(n)).norm());
       }
+    }
+    // every corner is in range now
+    for (int a = 0; a < Dim; ++a) {
+      for (int b = a + 1; b < Dim; ++b)
+        shortest = std::min(shortest, (s.x.col(surface[k][b]) - s.x.col(surface[k][a])).norm());
     }
   }
   Collisions<Dim> c;
