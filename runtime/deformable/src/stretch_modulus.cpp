@@ -51,8 +51,6 @@ double stretch_modulus(const MassSpringSystem<Dim>& s,
                                       : Block((sp.params.stiffness / sp.params.rest_length) * d *
                                               d.transpose() / d.squaredNorm()));
   }
-  MassSpringSystem<Dim> at_rest_shape = s;  // the volume terms' blocks at the rest positions
-  at_rest_shape.x = rest;
   auto for_each_block = [&](auto&& visit) {
     for (std::size_t k = 0; k < s.springs.size(); ++k) {
       const int i = s.springs[k].i, j = s.springs[k].j;
@@ -61,9 +59,9 @@ double stretch_modulus(const MassSpringSystem<Dim>& s,
       visit(i, j, Block(-spring_blocks[k]));
       visit(j, i, Block(-spring_blocks[k]));
     }
-    for_each_volume_term_block(
-        at_rest_shape, rest, /*definite=*/true,
-        [&](int a, int b, const Block& d_force) { visit(a, b, Block(-d_force)); });
+    for_each_volume_term_block(s, rest, /*definite=*/true, [&](int a, int b, const Block& d_force) {
+      visit(a, b, Block(-d_force));
+    });
   };
   // K_ff u_f = -K_fp u_p
   std::vector<Eigen::Triplet<double>> triplets;
