@@ -22,6 +22,7 @@ from .derive import bias_acceleration, coordinate_forces, particle_forces
 from .model import Model
 from .spatial import cross_force, cross_motion, motion_to_child, rigid_inertia, split
 from .structured import Intermediates, NamedKinematics
+from .sums import product
 
 
 class LinkKinematics:
@@ -40,7 +41,7 @@ class LinkKinematics:
         for i, node in enumerate(self.nodes):
             own_q = [q[j] for j in node.coordinates]
             own_v = sp.Matrix(len(own_q), 1, [v[j] for j in node.coordinates])
-            joint_velocity = node.subspace * own_v + node.drift
+            joint_velocity = product(node.subspace, own_v) + node.drift
             carried = (sp.zeros(6, 1) if node.parent is None else
                        self.to_child(i, self.velocity[node.parent]))
             self.velocity[i] = names.matrix(carried + joint_velocity)
@@ -72,7 +73,7 @@ class LinkKinematics:
     def inertia_at_centre(node) -> sp.Matrix:
         """The body's inertia tensor about its centre of mass, in the link's axes."""
         inertial = node.link.inertial
-        return inertial.rotation * node.link.body.inertia * inertial.rotation.T
+        return product(product(inertial.rotation, node.link.body.inertia), inertial.rotation.T)
 
     def _world_frames(self) -> tuple[list[sp.Matrix], list[sp.Matrix]]:
         """Each link's axes and origin in the world's, composed from the root out."""
@@ -84,8 +85,8 @@ class LinkKinematics:
                 world_origin.append(self.translation[i])
                 continue
             R, p = world_rotation[node.parent], world_origin[node.parent]
-            world_rotation.append(names.matrix(R * self.rotation[i]))
-            world_origin.append(names.matrix(p + R * self.translation[i]))
+            world_rotation.append(names.matrix(product(R, self.rotation[i])))
+            world_origin.append(names.matrix(p + product(R, self.translation[i])))
         return world_rotation, world_origin
 
     def _points(self) -> tuple[NamedKinematics, dict[str, tuple[int, sp.Matrix]]]:
@@ -106,8 +107,9 @@ class LinkKinematics:
             for name, r in located:
                 rho = node.link.inertial.point(r)
                 point_link[name] = (i, rho)
-                position[name] = names.matrix(self.world_origin[i] + self.world_rotation[i] * rho)
-                velocity[name] = names.matrix(self.world_rotation[i] * (v + w.cross(rho)))
+                position[name] = names.matrix(self.world_origin[i]
+                                              + product(self.world_rotation[i], rho))
+                velocity[name] = names.matrix(product(self.world_rotation[i], v + w.cross(rho)))
         return NamedKinematics(self.model, self.t, position, velocity), point_link
 
     def _external_wrenches(self) -> list[sp.Matrix]:

@@ -38,6 +38,7 @@ from .model import Model
 from .recursive import RecursiveDynamics, place_symmetric, spd_inverse
 from .spatial import force_to_parent, inertia_to_parent, split
 from .structured import Intermediates
+from .sums import product
 
 
 def body_recursive_dynamics(model: Model, kin, tree: BodyTree, derivation: bool = True,
@@ -84,11 +85,12 @@ def _newton_euler(links: LinkKinematics, accelerations, bias_force, tau) -> sp.M
     residual = [sp.Integer(0)] * len(tau)
     transmitted: list[sp.Matrix] = [None] * len(nodes)
     for i in reversed(range(len(nodes))):
-        F = links.inertia[i] * accelerations[i] + bias_force[i]
+        F = product(links.inertia[i], accelerations[i]) + bias_force[i]
         for c in links.children[i]:
             F = F + force_to_parent(links.rotation[c], links.translation[c], transmitted[c])
         transmitted[i] = names.matrix(F)
-        for j, value in zip(nodes[i].coordinates, nodes[i].subspace.T * transmitted[i]):
+        carried = product(nodes[i].subspace.T, transmitted[i])
+        for j, value in zip(nodes[i].coordinates, carried):
             residual[j] = names.name(value - tau[j])
     return sp.Matrix(residual)
 
@@ -106,15 +108,15 @@ def _articulated_body(links: LinkKinematics, bias_force, nq: int) -> sp.Matrix:
         IA, pA = names.symmetric(IA), names.matrix(pA)
         S = node.subspace
         if S.shape[1] == 0:
-            Ia, pa = IA, names.matrix(pA + IA * links.bias[i])
+            Ia, pa = IA, names.matrix(pA + product(IA, links.bias[i]))
         else:
-            U = names.matrix(IA * S)
-            D_inverse = spd_inverse(names, names.symmetric(S.T * U))
+            U = names.matrix(product(IA, S))
+            D_inverse = spd_inverse(names, names.symmetric(product(S.T, U)))
             own_tau = sp.Matrix([links.tau[j] for j in node.coordinates])
-            u = names.matrix(own_tau - S.T * pA)
-            UD = names.matrix(U * D_inverse)
-            Ia = names.symmetric(IA - UD * U.T)
-            pa = names.matrix(pA + Ia * links.bias[i] + UD * u)
+            u = names.matrix(own_tau - product(S.T, pA))
+            UD = names.matrix(product(U, D_inverse))
+            Ia = names.symmetric(IA - product(UD, U.T))
+            pa = names.matrix(pA + product(Ia, links.bias[i]) + product(UD, u))
             solve[i] = (U, D_inverse, u)
         if node.parent is not None:
             E, r = links.rotation[i], links.translation[i]
@@ -130,10 +132,10 @@ def _articulated_body(links: LinkKinematics, bias_force, nq: int) -> sp.Matrix:
             acceleration[i] = before
             continue
         U, D_inverse, u = solve[i]
-        own = names.matrix(D_inverse * (u - U.T * before))
+        own = names.matrix(product(D_inverse, u - product(U.T, before)))
         for j, value in zip(node.coordinates, own):
             qddot[j] = value
-        acceleration[i] = names.matrix(before + node.subspace * own)
+        acceleration[i] = names.matrix(before + product(node.subspace, own))
     return sp.Matrix(qddot)
 
 
@@ -154,7 +156,7 @@ def _composite_mass_matrix(links: LinkKinematics, nq: int) -> sp.Matrix:
     for i, node in enumerate(nodes):
         if not node.coordinates:
             continue
-        force = names.matrix(composite[i] * node.subspace)
+        force = names.matrix(product(composite[i], node.subspace))
         place_symmetric(names, mass_matrix, node.coordinates, node.coordinates,
                         node.subspace.T * force)
         j = i

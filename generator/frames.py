@@ -15,6 +15,8 @@ from typing import Sequence
 
 import sympy as sp
 
+from .sums import product
+
 
 def rotation_x(angle) -> sp.Matrix:
     """Rotation by `angle` about the x axis."""
@@ -115,10 +117,10 @@ class Frame:
         """The child's pose in the world, the child given in this frame's axes."""
         if child.dim != self.dim:
             raise ValueError("frames of different dimensions do not compose")
-        origin = self.origin + self.rotation * child.origin
+        origin = self.origin + product(self.rotation, child.origin)
         if self.dim == 2 and self.angle is not None and child.angle is not None:
             return Frame(self.angle + child.angle, origin)
-        return Frame(self.rotation * child.rotation, origin)
+        return Frame(product(self.rotation, child.rotation), origin)
 
     def inverse(self) -> "Frame":
         """The pose of the world in this frame: R^T and -R^T p."""
@@ -127,4 +129,4 @@ class Frame:
 
     def point(self, r: Sequence) -> sp.Matrix:
         """The world position of the point with body coordinates r: p + R r."""
-        return self.origin + self.rotation * sp.Matrix([sp.sympify(c) for c in r])
+        return self.origin + product(self.rotation, sp.Matrix([sp.sympify(c) for c in r]))

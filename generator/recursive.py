@@ -43,7 +43,7 @@ from .derive import (Derivation, _cross, bias_acceleration, fixed_point_position
 from .differentiate import termwise_jacobian
 from .model import Model
 from .point_tree import PointTree
-from .sums import dot
+from .sums import dot, product
 from .structured import Intermediates, NamedKinematics
 
 
@@ -104,7 +104,7 @@ def recursive_dynamics(model: Model, kin, tree: PointTree, derivation: bool = Tr
         own_v = sp.Matrix(len(own_q), 1, [v[j] for j in node.coordinates])
         subspace = termwise_jacobian(node.offset, own_q) if own_q else sp.zeros(dim, 0)
         moving_frame = node.offset.diff(t)
-        bias = bias_acceleration(subspace * own_v + moving_frame, own_q, list(own_v), t)
+        bias = bias_acceleration(product(subspace, own_v) + moving_frame, own_q, list(own_v), t)
         joints.append(_Joint(node.coordinates, names.matrix(subspace), names.matrix(bias)))
         name = node.particle.name
         if node.parent is None:
@@ -113,7 +113,7 @@ def recursive_dynamics(model: Model, kin, tree: PointTree, derivation: bool = Tr
             parent = nodes[node.parent].particle.name
             base_x, base_v = position[parent], velocity[parent]
         position[name] = names.matrix(base_x + node.offset)
-        velocity[name] = names.matrix(base_v + joints[-1].subspace * own_v + moving_frame)
+        velocity[name] = names.matrix(base_v + product(joints[-1].subspace, own_v) + moving_frame)
 
     local = NamedKinematics(model, t, position, velocity)
     force = [names.matrix(f) for f in _node_forces(model, local, nodes)]
@@ -123,8 +123,8 @@ def recursive_dynamics(model: Model, kin, tree: PointTree, derivation: bool = Tr
     ctx = (names, nodes, children, joints)
 
     qddot = _articulated_body(ctx, force, tau, root)
-    joint = [joint.subspace * sp.Matrix(len(joint.coordinates), 1,
-                                        [qdd[j] for j in joint.coordinates])
+    joint = [product(joint.subspace,
+                     sp.Matrix(len(joint.coordinates), 1, [qdd[j] for j in joint.coordinates]))
              for joint in joints]
     residual = _newton_euler(ctx, _accelerations(ctx, root, joint, True), force, tau)
     if not derivation:
@@ -209,7 +209,8 @@ def _newton_euler(ctx, accelerations, force, tau) -> sp.Matrix:
         for c in children[i]:
             F = F + transmitted[c]
         transmitted[i] = names.matrix(F)
-        for j, value in zip(joints[i].coordinates, joints[i].subspace.T * transmitted[i]):
+        carried = product(joints[i].subspace.T, transmitted[i])
+        for j, value in zip(joints[i].coordinates, carried):
             residual[j] = names.name(value - tau[j])
     return sp.Matrix(residual)
 
@@ -228,15 +229,15 @@ def _articulated_body(ctx, force, tau, root) -> sp.Matrix:
         IA, pA = names.symmetric(IA), names.matrix(pA)
         S, c_i = joint.subspace, joint.bias
         if S.shape[1] == 0:
-            passed[i] = (IA, names.matrix(pA + IA * c_i))
+            passed[i] = (IA, names.matrix(pA + product(IA, c_i)))
             continue
-        U = names.matrix(IA * S)
-        D_inverse = spd_inverse(names, names.symmetric(S.T * U))
+        U = names.matrix(product(IA, S))
+        D_inverse = spd_inverse(names, names.symmetric(product(S.T, U)))
         own_tau = sp.Matrix([tau[j] for j in joint.coordinates])
-        u = names.matrix(own_tau - S.T * (IA * c_i + pA))
-        UD = names.matrix(U * D_inverse)
-        passed[i] = (names.symmetric(IA - UD * U.T),
-                     names.matrix(pA + IA * c_i + UD * u))
+        u = names.matrix(own_tau - product(S.T, product(IA, c_i) + pA))
+        UD = names.matrix(product(U, D_inverse))
+        passed[i] = (names.symmetric(IA - product(UD, U.T)),
+                     names.matrix(pA + product(IA, c_i) + product(UD, u)))
         solve[i] = (U, D_inverse, u)
 
     qddot = [sp.Integer(0)] * len(tau)
@@ -247,10 +248,10 @@ def _articulated_body(ctx, force, tau, root) -> sp.Matrix:
         own = sp.zeros(0, 1)
         if solve[i] is not None:
             U, D_inverse, u = solve[i]
-            own = names.matrix(D_inverse * (u - U.T * base))
+            own = names.matrix(product(D_inverse, u - product(U.T, base)))
             for j, value in zip(joint.coordinates, own):
                 qddot[j] = value
-        acceleration[i] = names.matrix(base + joint.subspace * own + joint.bias)
+        acceleration[i] = names.matrix(base + product(joint.subspace, own) + joint.bias)
     return sp.Matrix(qddot)
 
 
@@ -269,6 +270,6 @@ def _composite_mass_matrix(ctx, nq: int) -> sp.Matrix:
         while a is not None:
             if joints[a].coordinates:
                 place_symmetric(names, mass_matrix, joints[a].coordinates, joint.coordinates,
-                                joints[a].subspace.T * carried)
+                                product(joints[a].subspace.T, carried))
             a = nodes[a].parent
     return mass_matrix

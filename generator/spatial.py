@@ -11,6 +11,7 @@ from __future__ import annotations
 import sympy as sp
 
 from .frames import skew
+from .sums import product
 
 
 def split(vector: sp.Matrix) -> tuple[sp.Matrix, sp.Matrix]:
@@ -21,14 +22,14 @@ def split(vector: sp.Matrix) -> tuple[sp.Matrix, sp.Matrix]:
 def motion_to_child(E: sp.Matrix, r: sp.Matrix, motion: sp.Matrix) -> sp.Matrix:
     """X m: a motion in the parent's axes at its origin, in the child's at the child's."""
     w, v = split(motion)
-    return sp.Matrix.vstack(E.T * w, E.T * (v + w.cross(r)))
+    return sp.Matrix.vstack(product(E.T, w), product(E.T, v + w.cross(r)))
 
 
 def force_to_parent(E: sp.Matrix, r: sp.Matrix, force: sp.Matrix) -> sp.Matrix:
     """X^T f: a force in the child's axes about its origin, in the parent's about its own."""
     n, f = split(force)
-    f_parent = E * f
-    return sp.Matrix.vstack(E * n + r.cross(f_parent), f_parent)
+    f_parent = product(E, f)
+    return sp.Matrix.vstack(product(E, n) + r.cross(f_parent), f_parent)
 
 
 def cross_motion(V: sp.Matrix, motion: sp.Matrix) -> sp.Matrix:
@@ -53,13 +54,13 @@ def inertia_to_parent(E: sp.Matrix, r: sp.Matrix, inertia: sp.Matrix,
     Given `names` (structured.Intermediates), the rotated blocks and R C are named, so the
     products after them are of symbols rather than of sums of 27 terms."""
     A, B, C = inertia[:3, :3], inertia[:3, 3:], inertia[3:, 3:]
-    A, B, C = E * A * E.T, E * B * E.T, E * C * E.T
+    A, B, C = (product(product(E, block), E.T) for block in (A, B, C))
     if names:
         A, B, C = names.symmetric(A), names.matrix(B), names.symmetric(C)
     R = skew(r)
-    RC = names.matrix(R * C) if names else R * C
+    RC = names.matrix(product(R, C)) if names else product(R, C)
     return sp.Matrix.vstack(
-        sp.Matrix.hstack(A + R * B.T - B * R - RC * R, B + RC),
+        sp.Matrix.hstack(A + product(R, B.T) - product(B, R) - product(RC, R), B + RC),
         sp.Matrix.hstack((B + RC).T, C))
 
 
