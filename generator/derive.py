@@ -210,8 +210,9 @@ class Kinematics:
         distinct: dict[sp.Expr, int] = {}
         where = [(i, j, distinct.setdefault(jacobian[i, j], len(distinct)))
                  for i in range(rows) for j in range(columns) if jacobian[i, j] != 0]
+        # a body's entries share its rotations' products: compiled with one CSE over them
         values = sp.lambdify([self.q, self.t], [e.xreplace(self.defaults)
-                                                for e in distinct], modules="math")
+                                                for e in distinct], modules="math", cse=True)
 
         def evaluate(q: list[float], t: float) -> list[list[float]]:
             result = [[0.0] * columns for _ in range(rows)]
