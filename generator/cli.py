@@ -19,7 +19,7 @@ from .failures import report_failure
 from .limits import LOAD_TIMEOUT
 from .looped import LOOP_MIN_NQ
 from .pipeline import generate
-from .split import MAX_PART_STATEMENTS
+from .split import LARGE_TREE_PART_STATEMENTS, MAX_PART_STATEMENTS
 
 # Relative to the directory generate runs in: output lands next to the user, never in the
 # gencoord checkout (unless run from there).
@@ -87,10 +87,11 @@ def main(argv: list[str] | None = None, prog: str = "generate") -> int:
                         "C++ identifier")
     parser.add_argument("--set", dest="options", action="append", default=[],
                         metavar="KEY=VALUE", help="a model option, e.g. --set n=5")
-    parser.add_argument("--max-function-statements", type=int, default=MAX_PART_STATEMENTS,
-                        metavar="N",
+    parser.add_argument("--max-function-statements", type=int, default=None, metavar="N",
                         help="emit a kernel of more statements as several functions, which "
-                             "keeps C++ compile time near linear (default %(default)s; 0: never)")
+                             "keeps C++ compile time near linear (default "
+                             f"{MAX_PART_STATEMENTS}, {LARGE_TREE_PART_STATEMENTS} for a tree "
+                             "of --loop-min-nq coordinates or more; 0: never)")
     parser.add_argument("--translation-units", type=int, default=0, metavar="N",
                         help="compile the kernels for double in N source files of their own "
                              "(DIR/<name>_double_K.cpp), which build in parallel; the header "
@@ -112,7 +113,7 @@ def main(argv: list[str] | None = None, prog: str = "generate") -> int:
                              "traceback of an error")
     parser.add_argument("-q", "--quiet", action="store_true", help="print errors only")
     args = parser.parse_args(argv)
-    if args.max_function_statements < 0:
+    if args.max_function_statements is not None and args.max_function_statements < 0:
         parser.error("--max-function-statements must be 0 (never split) or positive")
     if args.loop_min_nq < 1:
         parser.error("--loop-min-nq must be positive")

@@ -1,9 +1,11 @@
 """Limits that keep a run from going on silently: a wall-clock limit on running the model
 file, and a warning before a generation expected to take minutes or more.
 
-The expected time grows with the number of coordinates: the 50-link chain generates in about
-9 s of CPU (docs/performance.md, section 1), and the derivation and CSE grow at least
-quadratically with nq.
+The expected time grows with the number of coordinates. A tree (a chain of particles, a robot)
+is derived by its recursions: the n-link chain takes about 10 s of CPU at n = 100 and grows
+like n^1.3 up to n = 1000 (docs/performance.md, section 1). Other models are derived as sums
+over particles, which grow at least quadratically with nq; 9 s at nq = 50 is the estimate's
+scale for them.
 """
 
 from __future__ import annotations
@@ -15,7 +17,9 @@ import threading
 import sympy as sp
 
 LOAD_TIMEOUT = 60.0      # seconds of wall-clock time the model file may run
-SECONDS_AT_50 = 9.0      # generating the 50-link chain, CPU
+SECONDS_AT_50 = 9.0      # a model that is no tree, at nq = 50: CPU
+TREE_SECONDS_AT_100 = 10.0  # a tree at nq = 100 (the n-link chain), CPU
+TREE_EXPONENT = 1.3         # the chain's growth from 100 to 1000 links
 WARN_SECONDS = 180.0     # expected generation time that earns a warning
 NODE_LIMIT = 200_000     # expression nodes in the positions beyond which a warning is due
 
@@ -65,14 +69,23 @@ def _duration(seconds: float) -> str:
     return f"{seconds:.0f} s"
 
 
-def size_warning(model) -> str | None:
-    """A warning when generating `model` is expected to take minutes or more, else None."""
-    expected = SECONDS_AT_50 * (model.nq / 50) ** 2
+def size_warning(model, tree: bool = False) -> str | None:
+    """A warning when generating `model` (a `tree`, or not) is expected to take minutes or
+    more, else None."""
+    if tree:
+        expected = TREE_SECONDS_AT_100 * (model.nq / 100) ** TREE_EXPONENT
+        basis = (f"a tree of 100 coordinates takes about {TREE_SECONDS_AT_100:.0f} s, and the "
+                 f"time grows like nq^{TREE_EXPONENT}")
+    else:
+        expected = SECONDS_AT_50 * (model.nq / 50) ** 2
+        basis = (f"a model of 50 coordinates that is no tree takes about {SECONDS_AT_50:.0f} "
+                 "s, and the time grows at least like nq^2")
     if expected > WARN_SECONDS:
         return (f"{model.nq} coordinates: generation is expected to take about "
-                f"{_duration(expected)} (the 50-link chain takes {SECONDS_AT_50:.0f} s, and "
-                "the time grows at least with nq^2); interrupt with Ctrl-C if that is not "
+                f"{_duration(expected)} ({basis}); interrupt with Ctrl-C if that is not "
                 "what you meant")
+    if tree:  # a chain's positions hold n^2 terms in all, which its recursions never expand
+        return None
     nodes = _nodes_at_least((p.position for p in model.particles), NODE_LIMIT)
     if nodes >= NODE_LIMIT:
         return (f"the particle positions have more than {NODE_LIMIT} expression nodes: "

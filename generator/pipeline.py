@@ -9,6 +9,7 @@ from dataclasses import dataclass, field
 from typing import Callable, Sequence
 
 from .atlas import check_atlas
+from .body_tree import body_tree
 from .conservative import forces_have_potential
 from .constraints import verify_constraints
 from .derive import Kinematics, derive
@@ -26,7 +27,7 @@ from .optimize import OptimizeOptions, optimize_model
 from .rank import check_full_rank
 from .scene import scene_json
 from .singularities import analyse_singularities
-from .split import MAX_PART_STATEMENTS, assign_groups
+from .split import assign_groups, default_part_statements
 from .structured import derive_structured
 from .tree_dynamics import tree_dynamics
 from .validate import validate
@@ -90,7 +91,7 @@ class GeneratedChart:
 
 def generate(path: str, options: dict[str, str] | None = None,
              on_stage: Callable[[str, float], None] | None = None,
-             max_part_statements: int = MAX_PART_STATEMENTS,
+             max_part_statements: int | None = None,
              translation_units: int = 0, dynamics: str = "auto",
              regenerate_options: Sequence[str] = (), name: str | None = None,
              load_timeout: float | None = LOAD_TIMEOUT,
@@ -99,8 +100,9 @@ def generate(path: str, options: dict[str, str] | None = None,
     """Runs every stage for one model file (each chart of an atlas); raises ModelError.
 
     Kernels of more than `max_part_statements` statements are emitted in parts (split.py);
-    0 never splits. With `translation_units` N > 0 every kernel is parts, spread over N
-    groups each compiled for double in a source file of its own, which the header declares
+    0 never splits, None chooses by the model (split.default_part_statements). With
+    `translation_units` N > 0 every kernel is parts, spread over N groups each compiled for
+    double in a source file of its own, which the header declares
     `extern template`: the files compile in parallel, and code including the header compiles
     no kernel body for double. `dynamics` chooses the forward and inverse dynamics of a
     tree model (dynamics_paths.py): "auto", "dense" or "recursive" (an error for a model
@@ -123,20 +125,21 @@ def generate(path: str, options: dict[str, str] | None = None,
     start = time.perf_counter()
     model, name, docstring = load_model(path, options, name, load_timeout)
     start = stage("load", start)
-    warning = size_warning(model)
-    if warning and on_warning:
-        on_warning(warning)
     try:
         check_atlas(model)
     except ModelError as error:
         raise error.located(path, None) from None
-    optimize_options = OptimizeOptions(max_part_statements, always_parts=translation_units > 0)
     charts = []
     for chart in [model, *model.charts]:
         prefix = f"chart {chart.chart}: " if model.charts else ""
         try:
             validate(chart)
             kin = Kinematics(chart)  # X, J and xdot of every point, shared by the stages below
+            if chart is model:
+                tree = kin.tree is not None or body_tree(model) is not None
+                warning = size_warning(model, tree)
+                if warning and on_warning:
+                    on_warning(warning)
             notes = check_full_rank(chart, kin=kin) + verify_constraints(chart, kin=kin)
         except ModelError as error:
             raise error.located(path, None) from None
@@ -173,6 +176,9 @@ def generate(path: str, options: dict[str, str] | None = None,
         definitions = [*definitions, *maximal.definitions]
         start = stage(prefix + "derive", start)
         looped = looped_outputs(derivation, recursive.residual) if tree_derived and large else None
+        part_statements = (max_part_statements if max_part_statements is not None
+                           else default_part_statements(looped is not None))
+        optimize_options = OptimizeOptions(part_statements, always_parts=translation_units > 0)
         kernels = build_kernels(derivation, recursive, tree_derived, looped)
         maximal_kernels = build_maximal_kernels(maximal)
         names, input_of = _symbol_names(chart)
@@ -186,7 +192,8 @@ def generate(path: str, options: dict[str, str] | None = None,
         analysis += paths.report
         if looped:
             analysis.append(f"Mt, J, dr/dq and dr/dv: loops over their columns, each an O(nq) "
-                            f"product (nq = {chart.nq}, from --loop-min-nq {loop_min_nq} on)")
+                            f"product (nq = {chart.nq}, from --loop-min-nq {loop_min_nq} on); "
+                            f"kernels cut into parts of at most {part_statements} statements")
         start = stage(prefix + "optimize (CSE)", start)
         reduced = len(optimized.kernels) - len(maximal_kernels)
         charts.append(GeneratedChart(chart, chart_name(name, model, chart), optimized,
@@ -195,7 +202,7 @@ def generate(path: str, options: dict[str, str] | None = None,
         ([f"Chart '{chart.model.chart}' ({chart.name}):"] if model.charts else [])
         + [("  " if model.charts else "") + text for text in chart.analysis])]
     flags = ([f"--max-function-statements {max_part_statements}"]
-             if max_part_statements != MAX_PART_STATEMENTS else [])
+             if max_part_statements is not None else [])
     if loop_min_nq != LOOP_MIN_NQ:
         flags.append(f"--loop-min-nq {loop_min_nq}")
     if translation_units:

@@ -24,6 +24,16 @@ from dataclasses import dataclass
 # at 2000, 59 s at 1000, 50 s at 250; the 10-link stiff chain's residual_jacobians (3,500
 # statements) runs 12% slower at 2000, 35% at 1000, 60% at 250.
 MAX_PART_STATEMENTS = 2000
+# A large tree's kernels (looped.py) are mostly cut anyway, and in parts of 2000 GCC's time
+# still grows faster than n: the n-link chain in one translation unit, -O2, took 28, 94 and
+# 278 s of CPU at n = 100, 200 and 400, against 30, 58 and 115 s in parts of 500, with qddot
+# as fast (within the noise of a shared machine) and the other kernels within 20%.
+LARGE_TREE_PART_STATEMENTS = 500
+
+
+def default_part_statements(large_tree: bool) -> int:
+    """The longest part when --max-function-statements is not given."""
+    return LARGE_TREE_PART_STATEMENTS if large_tree else MAX_PART_STATEMENTS
 
 
 @dataclass

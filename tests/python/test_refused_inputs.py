@@ -128,6 +128,11 @@ class RefusedInputTest(unittest.TestCase):
         self.assertIn("100000 coordinates", text)
         self.assertIn("days", text)
         self.assertIsNone(limits.size_warning(SimpleNamespace(nq=50, particles=[])))
+        # a tree is derived by its recursions: 400 links take about a minute, no warning
+        self.assertIsNone(limits.size_warning(SimpleNamespace(nq=400, particles=[]), tree=True))
+        self.assertIn("nq^2", limits.size_warning(SimpleNamespace(nq=400, particles=[])))
+        self.assertIn("minutes", limits.size_warning(SimpleNamespace(nq=2000, particles=[]),
+                                                     tree=True))
 
     def test_latin1_file(self):
         path = self.write("latin1", refused_cases.PREAMBLE + 'model.description = "caf\u00e9"\n'

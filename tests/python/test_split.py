@@ -17,7 +17,8 @@ import tempfile
 import unittest
 from pathlib import Path
 
-from generator.split import plan_parts
+from generator.pipeline import generate
+from generator.split import LARGE_TREE_PART_STATEMENTS, MAX_PART_STATEMENTS, plan_parts
 
 from .support import REPO
 
@@ -114,6 +115,21 @@ class SplitHeaderTest(unittest.TestCase):
         self.assertIn("mass_matrix_part0<Scalar>(", text)
         # the checked-in pendulum is short: no parts, no macro
         self.assertNotIn("GENCOORD_NOINLINE", (REPO / "generated" / "pendulum.hpp").read_text())
+
+    def test_large_trees_default_to_shorter_parts(self):
+        """A tree that gets looped kernels is cut into parts of 500 statements unless told
+        otherwise, which the report says; an explicit size is kept and recorded."""
+        chain = str(REPO / "models" / "n_link_chain.py")
+        chosen = generate(chain, {"n": "12"}, loop_min_nq=10)
+        self.assertIn(f"kernels cut into parts of at most {LARGE_TREE_PART_STATEMENTS} "
+                      "statements", " ".join(chosen.analysis))
+        self.assertNotIn("--max-function-statements", chosen.header)
+        self.assertIn("GENCOORD_NOINLINE static void", chosen.header)
+        # every kernel of the 12-link chain is under 2000 statements: told so, none is cut
+        told = generate(chain, {"n": "12"}, loop_min_nq=10,
+                        max_part_statements=MAX_PART_STATEMENTS)
+        self.assertIn(f"--max-function-statements {MAX_PART_STATEMENTS}", told.header)
+        self.assertNotIn("GENCOORD_NOINLINE static void", told.header)
 
     def test_negative_sizes_are_refused(self):
         result = subprocess.run([sys.executable, str(REPO / "generate"),
