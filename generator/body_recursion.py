@@ -158,7 +158,7 @@ def _composite_mass_matrix(links: LinkKinematics, nq: int) -> sp.Matrix:
             continue
         force = names.matrix(product(composite[i], node.subspace))
         place_symmetric(names, mass_matrix, node.coordinates, node.coordinates,
-                        node.subspace.T * force)
+                        product(node.subspace.T, force))
         j = i
         while nodes[j].parent is not None:
             E, r = links.rotation[j], links.translation[j]
@@ -167,7 +167,7 @@ def _composite_mass_matrix(links: LinkKinematics, nq: int) -> sp.Matrix:
             j = nodes[j].parent
             if nodes[j].coordinates:
                 place_symmetric(names, mass_matrix, nodes[j].coordinates, node.coordinates,
-                                nodes[j].subspace.T * force)
+                                product(nodes[j].subspace.T, force))
     return mass_matrix
 
 

@@ -26,8 +26,9 @@ from dataclasses import dataclass
 MAX_PART_STATEMENTS = 2000
 # A large tree's kernels (looped.py) are mostly cut anyway, and in parts of 2000 GCC's time
 # still grows faster than n: the n-link chain in one translation unit, -O2, took 28, 94 and
-# 278 s of CPU at n = 100, 200 and 400, against 30, 58 and 115 s in parts of 500, with qddot
-# as fast (within the noise of a shared machine) and the other kernels within 20%.
+# 278 s of CPU at n = 100, 200 and 400, against 30, 58 and 115 s in parts of 500. Timed once
+# on a shared machine, qddot ran as fast in parts of 500 and the other kernels took 0.9 to 1.3
+# times as long.
 LARGE_TREE_PART_STATEMENTS = 500
 
 
