@@ -4,9 +4,9 @@ A model that is a translational tree of particles (point_tree.py, recursive.py) 
 tree of rigid bodies (body_tree.py, body_recursion.py) gets qddot by the articulated-body
 algorithm and the inverse dynamics by Newton-Euler. This checks which models are found to be
 trees and with what structure, that both recursions equal Mt^-1 (Ft + Fi) and Mt qdd - Ft - Fi
-of derive.py at random states in extended precision, and how generation picks between the
-recursive and the dense kernels. The C++ model tests check the same after CSE and printing,
-and the robot tests against MuJoCo.
+of derive.py at random states in extended precision on every tree of models/, and how
+generation picks between the recursive and the dense kernels. The C++ model tests check the
+same after CSE and printing, and the robot tests against MuJoCo.
 """
 
 from __future__ import annotations
@@ -26,6 +26,7 @@ from generator.body_tree import body_tree
 from generator.derive import Kinematics, derive
 from generator.errors import ModelError
 from generator.loader import load_model
+from generator.model import Model
 from generator.pipeline import generate
 from generator.point_tree import point_tree
 from generator.recursive import recursive_dynamics
@@ -35,16 +36,25 @@ from .support import DIGITS, MODELS, relative_error
 BRANCHED = Path(__file__).parent / "tree_models" / "branched_pendulum.py"
 FORCED_ARM = Path(__file__).parent / "tree_models" / "forced_arm.py"
 FLOATING_LEG = Path(__file__).parents[1] / "robots" / "floating_leg.py"
-TREES = [(MODELS / "n_link_chain.py", {"n": "6"}), (BRANCHED, None),
-         (MODELS / "spherical_pendulum.py", None), (MODELS / "cart_pole.py", None),
-         (MODELS / "spring_pendulum.py", None), (MODELS / "kapitza_pendulum.py", None),
-         (MODELS / "bead_on_rotating_hoop.py", None), (MODELS / "pendulum_3d.py", None)]
+SIX_LINKS = (MODELS / "n_link_chain.py", {"n": "6"})
 STATES = 3
 
 
 def _load(path: Path, options=None):
     model, name, _ = load_model(str(path), options)
     return model, name
+
+
+def particle_trees() -> list[tuple[str, Model]]:
+    """(name, model) of every particle tree in models/ (found by point_tree, so a new one is
+    checked too) and of two that models/ lacks: a longer chain and a branched tree."""
+    trees = []
+    for path, options in [SIX_LINKS, (BRANCHED, None),
+                          *((path, None) for path in sorted(MODELS.glob("*.py")))]:
+        model, name = _load(path, options)
+        if point_tree(model) is not None:
+            trees.append((name, model))
+    return trees
 
 
 def _structure(tree) -> list[tuple[str, str | None, list[int]]]:
@@ -136,8 +146,10 @@ def _assert_equal_to_dense(test: unittest.TestCase, model, kin: Kinematics, name
 class RecursionsTest(unittest.TestCase):
 
     def test_recursions_equal_the_dense_dynamics(self):
-        for path, options in TREES:
-            model, name = _load(path, options)
+        trees = particle_trees()
+        # models/ holds ten (pendulums, chains, cart-poles, the hoop, Kapitza's pendulum)
+        self.assertGreaterEqual(len(trees), 12, [name for name, _ in trees])
+        for name, model in trees:
             kin = Kinematics(model)
             recursive = recursive_dynamics(model, kin, point_tree(model))
             _assert_equal_to_dense(self, model, kin, name, recursive)
@@ -177,7 +189,8 @@ class BodyTreeTest(unittest.TestCase):
         # link and a welded one; then a free base in Euler angles
         # (a URDF's numbers are binary floats: the dense form's LDL^T of a body's second
         # moment rounds at 1e-16, which bounds the agreement there)
-        for path, tolerance in ((FORCED_ARM, None), (FLOATING_LEG, 1e-12)):
+        for path, tolerance in ((FORCED_ARM, None), (FLOATING_LEG, 1e-12),
+                                *((path, 1e-12) for path in sorted(MODELS.glob("*.urdf")))):
             model, name = _load(path)
             kin = Kinematics(model)
             recursive = body_recursive_dynamics(model, kin, body_tree(model))

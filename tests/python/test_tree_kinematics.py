@@ -21,16 +21,15 @@ from generator.derive import Kinematics
 from generator.loader import load_model
 from generator.sums import difference, dot
 
-from .test_recursive import TREES
+from .test_recursive import SIX_LINKS, particle_trees
 
 
 class TreeJacobianTest(unittest.TestCase):
 
     def test_assembled_jacobian_equals_sympys(self):
         rng = random.Random(3)
-        for path, options in TREES:
-            with self.subTest(path.stem):
-                model, _, _ = load_model(str(path), options)
+        for name, model in particle_trees():
+            with self.subTest(name):
                 kin = Kinematics(model)
                 self.assertIsNotNone(kin.tree)
                 q = [c.symbol for c in model.coordinates]
@@ -48,7 +47,7 @@ class TreeJacobianTest(unittest.TestCase):
                             self.assertAlmostEqual(value, float(want), delta=1e-12)
 
     def test_joint_jacobians_have_one_column_per_introduced_coordinate(self):
-        model, _, _ = load_model(str(TREES[0][0]), TREES[0][1])
+        model, _, _ = load_model(str(SIX_LINKS[0]), SIX_LINKS[1])
         kin = Kinematics(model)
         joints = kin.numeric_joint_jacobians()([0.1] * len(model.coordinates), 0.0)
         self.assertEqual([(len(s), len(s[0])) for s in joints],
@@ -79,7 +78,7 @@ class SumsTest(unittest.TestCase):
 class ConditioningLimitTest(unittest.TestCase):
 
     def test_a_model_beyond_the_limit_is_not_sampled_and_says_so(self):
-        model, _, _ = load_model(str(TREES[0][0]), TREES[0][1])
+        model, _, _ = load_model(str(SIX_LINKS[0]), SIX_LINKS[1])
         with mock.patch.object(singularities, "CONDITIONING_MAX_NQ", 3):
             report = singularities.analyse_singularities(model)
         self.assertEqual(report.worst_configuration, "")
