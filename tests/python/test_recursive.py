@@ -28,7 +28,7 @@ from generator.errors import ModelError
 from generator.loader import load_model
 from generator.model import Model
 from generator.pipeline import generate
-from generator.point_tree import point_tree
+from generator.point_tree import PointTree, point_tree
 from generator.recursive import recursive_dynamics
 
 from .support import DIGITS, MODELS, relative_error
@@ -45,15 +45,16 @@ def _load(path: Path, options=None):
     return model, name
 
 
-def particle_trees() -> list[tuple[str, Model]]:
-    """(name, model) of every particle tree in models/ (found by point_tree, so a new one is
-    checked too) and of two that models/ lacks: a longer chain and a branched tree."""
+def particle_trees() -> list[tuple[str, Model, PointTree]]:
+    """(name, model, tree) of every particle tree in models/ (found by point_tree, so a new
+    one is checked too) and of two that models/ lacks: a longer chain and a branched tree."""
     trees = []
     for path, options in [SIX_LINKS, (BRANCHED, None),
                           *((path, None) for path in sorted(MODELS.glob("*.py")))]:
         model, name = _load(path, options)
-        if point_tree(model) is not None:
-            trees.append((name, model))
+        tree = point_tree(model)
+        if tree is not None:
+            trees.append((name, model, tree))
     return trees
 
 
@@ -148,10 +149,10 @@ class RecursionsTest(unittest.TestCase):
     def test_recursions_equal_the_dense_dynamics(self):
         trees = particle_trees()
         # models/ holds ten (pendulums, chains, cart-poles, the hoop, Kapitza's pendulum)
-        self.assertGreaterEqual(len(trees), 12, [name for name, _ in trees])
-        for name, model in trees:
+        self.assertGreaterEqual(len(trees), 12, [name for name, _, _ in trees])
+        for name, model, tree in trees:
             kin = Kinematics(model)
-            recursive = recursive_dynamics(model, kin, point_tree(model))
+            recursive = recursive_dynamics(model, kin, tree)
             _assert_equal_to_dense(self, model, kin, name, recursive)
 
 
