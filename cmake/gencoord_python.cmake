@@ -31,6 +31,12 @@ function(gencoord_add_python_module target)
   if(NOT COMMAND pybind11_add_module)
     find_package(pybind11 CONFIG REQUIRED)
   endif()
+  # the interpreter pybind11 builds for (its classic or its FindPython mode), named by the
+  # module when another one lacks NumPy
+  set(built_for "${PYTHON_EXECUTABLE}")
+  if(NOT built_for)
+    set(built_for "${Python_EXECUTABLE}")
+  endif()
   if(ARG_MODEL_TARGET)
     set(model_target ${ARG_MODEL_TARGET})
   else()
@@ -51,7 +57,8 @@ function(gencoord_add_python_module target)
   target_compile_definitions(${target} PRIVATE
                              "GENCOORD_MODEL_HEADER=\"generated/${name}.hpp\""
                              "GENCOORD_MODEL_CLASS=${class_name}"
-                             "GENCOORD_MODULE_NAME=${module_name}")
+                             "GENCOORD_MODULE_NAME=${module_name}"
+                             "GENCOORD_BUILT_FOR=\"${built_for}\"")
   target_link_libraries(${target} PRIVATE ${model_target} gencoord::runtime)
   set_target_properties(${target} PROPERTIES OUTPUT_NAME "${module_name}")
   if(ARG_OUTPUT_DIR)

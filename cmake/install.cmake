@@ -2,26 +2,35 @@
 # prefix, so the installed tree can be moved:
 #   <P>/include/gencoord/*.hpp         runtime headers
 #   <P>/lib/libgencoord_runtime.a      runtime library
+#   <P>/lib/libgencoord_control.a      the LQR design (gencoord::control)
 #   <P>/lib/cmake/gencoord/            gencoordConfig.cmake, gencoordConfigVersion.cmake,
-#                                      gencoordTargets*.cmake (gencoord::runtime)
+#                                      gencoordTargets*.cmake (gencoord::runtime),
+#                                      gencoordControlTargets*.cmake (gencoord::control)
 #   <P>/bin/gencoord                   the gencoord command
 #   <P>/share/gencoord/                the generator and the command's parts, laid out as in
 #                                      the repository: generate, generator/*.py and *.txt,
 #                                      templates/*.j2, cmake/gencoord*.cmake, tool/*.py,
 #                                      drivers/*.cpp, *.hpp, *.cmake, bindings/python/
 # (lib and share are GNUInstallDirs' CMAKE_INSTALL_LIBDIR and CMAKE_INSTALL_DATADIR.)
+# The install component `runtime` is the runtime alone (headers, library, exported target):
+# the gencoord command builds it once per user into its cache and installs just it.
 include(CMakePackageConfigHelpers)
 
 set(GENCOORD_INSTALL_CMAKEDIR "${CMAKE_INSTALL_LIBDIR}/cmake/gencoord")
 set(GENCOORD_INSTALL_DATADIR "${CMAKE_INSTALL_DATADIR}/gencoord")
 
-# --- runtime: headers, library, exported target gencoord::runtime ---
+# --- runtime: headers, libraries, exported targets gencoord::runtime and gencoord::control ---
 install(TARGETS gencoord_runtime EXPORT gencoordTargets
-        ARCHIVE DESTINATION "${CMAKE_INSTALL_LIBDIR}")
+        ARCHIVE DESTINATION "${CMAKE_INSTALL_LIBDIR}" COMPONENT runtime)
 install(DIRECTORY "${PROJECT_SOURCE_DIR}/runtime/include/gencoord"
-        DESTINATION "${CMAKE_INSTALL_INCLUDEDIR}")
+        DESTINATION "${CMAKE_INSTALL_INCLUDEDIR}" COMPONENT runtime)
 install(EXPORT gencoordTargets NAMESPACE gencoord::
-        DESTINATION "${GENCOORD_INSTALL_CMAKEDIR}")
+        DESTINATION "${GENCOORD_INSTALL_CMAKEDIR}" COMPONENT runtime)
+# a set of its own, so that the runtime installs without it
+install(TARGETS gencoord_control EXPORT gencoordControlTargets
+        ARCHIVE DESTINATION "${CMAKE_INSTALL_LIBDIR}" COMPONENT control)
+install(EXPORT gencoordControlTargets NAMESPACE gencoord::
+        DESTINATION "${GENCOORD_INSTALL_CMAKEDIR}" COMPONENT control)
 
 # --- share/gencoord: what gencoord_add_model() runs, at the same relative paths as in the
 # repository (generate finds generator/ next to itself; gencoord.cmake finds generate one

@@ -181,17 +181,16 @@ int run(const Options& o) {
   for (double kappa : gencoord::log_spaced(o.kappa_lo, o.kappa_hi, o.count)) {
     gencoord::CrosscheckRow r;
     try {
+      // one observer type for every run: each type instantiates every integrator once more
+      r = gencoord::crosscheck_at<M>(
+          p, ref, kappa, o.run,
+          [&](const gencoord::State<M>& reduced, const gencoord::MaximalState<M>& maximal) {
+            if (trajectory) trajectory->write(reduced, maximal.q);
+          });
       if (trajectory) {
-        r = gencoord::crosscheck_at<M>(
-            p, ref, kappa, o.run,
-            [&](const gencoord::State<M>& reduced, const gencoord::MaximalState<M>& maximal) {
-              trajectory->write(reduced, maximal.q);
-            });
         trajectory->close();
         trajectory.reset();
         trajectory_kappa = kappa;
-      } else {
-        r = gencoord::crosscheck_at<M>(p, ref, kappa, o.run);
       }
     } catch (const std::exception& e) {
       // e.g. a soft penalty lets the state stray so far that the inverse map has no unique

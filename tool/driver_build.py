@@ -4,9 +4,10 @@ per-user cache, once.
 A cache entry is a folder named after the model and a key: the hash of the model file, its
 options, gencoord's own sources (generator, templates, drivers, bindings, runtime), the Python
 and SymPy that generate, and the C++ compiler. It holds the generated header, a small CMake
-project that compiles the drivers and the module against the runtime, its builds (the
-drivers', and one per Python interpreter for the module), and in each build a stamp written
-only after everything it builds is complete: without it the build runs again. A lock file
+project that compiles the drivers and the module against the runtime (the one the cache holds
+for every model, runtime_build.py, or an installation's), its builds (the drivers', and one per
+Python interpreter for the module), and in each build a stamp written only after everything it
+builds is complete: without it the build runs again. A lock file
 serializes concurrent builds of the same entry. Files the model file imports are not part of
 the key; `--rebuild` forces a fresh build.
 """
@@ -14,11 +15,9 @@ the key; `--rebuild` forces a fresh build.
 from __future__ import annotations
 
 import contextlib
-import fcntl
 import hashlib
 import json
 import os
-import shutil
 import subprocess
 import sys
 from dataclasses import dataclass
@@ -27,8 +26,10 @@ import sympy
 
 from generator import cli as generator_cli
 
+from .build_steps import cmake_program, configure_command_start, locked, run_logged
 from .errors import ToolError
-from .layout import Layout, cache_dir
+from .layout import Layout, cache_dir, compiler
+from .runtime_build import runtime_targets_dir
 
 _SOURCE_SUFFIXES = (".py", ".j2", ".hpp", ".cpp", ".cmake", ".txt")
 
@@ -36,9 +37,13 @@ _PROJECT = """\
 # Drivers for one gencoord model, written by the gencoord command; safe to delete.
 cmake_minimum_required(VERSION 3.20)
 project(gencoord_drivers_{name} LANGUAGES CXX)
-if(GENCOORD_SOURCE_DIR)
-  add_subdirectory("${{GENCOORD_SOURCE_DIR}}" gencoord EXCLUDE_FROM_ALL)
-else()
+if(GENCOORD_RUNTIME_DIR)  # a checkout: its runtime, built once per user into the cache
+  find_package(Eigen3 3.4 REQUIRED NO_MODULE)
+  set(THREADS_PREFER_PTHREAD_FLAG ON)
+  find_package(Threads REQUIRED)
+  include("${{GENCOORD_RUNTIME_DIR}}/gencoordTargets.cmake")
+  include("${{GENCOORD_SOURCE_DIR}}/cmake/gencoord.cmake")
+else()  # an installation
   find_package(gencoord REQUIRED)
 endif()
 include("${{GENCOORD_DRIVERS_DIR}}/gencoord_drivers.cmake")
@@ -89,46 +94,14 @@ def _fingerprint(layout: Layout) -> str:
     return digest.hexdigest()
 
 
-def _compiler() -> str:
-    return os.environ.get("CXX") or shutil.which("c++") or shutil.which("g++") or ""
-
-
 def entry_dir(layout: Layout, target: ModelTarget) -> str:
     digest = hashlib.sha256()
     with open(target.path, "rb") as handle:
         digest.update(handle.read())
     for part in (json.dumps(target.options, sort_keys=True), _fingerprint(layout),
-                 sys.version, sympy.__version__, _compiler(), os.environ.get("CXXFLAGS", "")):
+                 sys.version, sympy.__version__, compiler(), os.environ.get("CXXFLAGS", "")):
         digest.update(b"\0" + part.encode())
     return os.path.join(cache_dir(), f"{target.name}-{digest.hexdigest()[:16]}")
-
-
-@contextlib.contextmanager
-def _locked(directory: str):
-    os.makedirs(directory, exist_ok=True)
-    with open(os.path.join(directory, ".lock"), "w") as lock:
-        fcntl.flock(lock, fcntl.LOCK_EX)
-        try:
-            yield
-        finally:
-            fcntl.flock(lock, fcntl.LOCK_UN)
-
-
-def _run_logged(command: list[str], log_path: str, what: str, verbose: bool) -> None:
-    """Runs a build step; on failure shows the end of its log and raises ToolError."""
-    if verbose:
-        print("  $ " + " ".join(command), file=sys.stderr, flush=True)
-    with open(log_path, "a", encoding="utf-8") as log:
-        log.write("$ " + " ".join(command) + "\n")
-        log.flush()
-        result = subprocess.run(command, stdout=None if verbose else log,
-                                stderr=subprocess.STDOUT, check=False)
-    if result.returncode != 0:
-        if not verbose:
-            with open(log_path, encoding="utf-8", errors="replace") as log:
-                tail = log.read().splitlines()[-40:]
-            print("\n".join(tail), file=sys.stderr)
-        raise ToolError(f"{what} failed (exit {result.returncode}); the whole log is {log_path}")
 
 
 def _generate_header(target: ModelTarget, include_dir: str) -> None:
@@ -141,37 +114,45 @@ def _generate_header(target: ModelTarget, include_dir: str) -> None:
         raise ToolError(f"{target.path}: generation failed (the error is above)", shown=True)
 
 
-def _configure_command(layout: Layout, project: str, build: str) -> list[str]:
-    cmake = shutil.which("cmake")
-    if not cmake:
-        raise ToolError("cmake is not on PATH; install CMake 3.20 or newer "
-                        "(Debian: apt-get install cmake)")
-    command = [cmake, "-S", project, "-B", build, "-DCMAKE_BUILD_TYPE=Release",
-               "-DCMAKE_EXPORT_COMPILE_COMMANDS=ON",
+def _configure_command(layout: Layout, project: str, build: str, verbose: bool) -> list[str]:
+    command = [*configure_command_start(), "-S", project, "-B", build,
+               "-DCMAKE_BUILD_TYPE=Release", "-DCMAKE_EXPORT_COMPILE_COMMANDS=ON",
                f"-DGENCOORD_PYTHON={sys.executable}",
                f"-DGENCOORD_DRIVERS_DIR={layout.drivers_dir}"]
-    if layout.source_dir:
-        command.append(f"-DGENCOORD_SOURCE_DIR={layout.source_dir}")
+    runtime = runtime_targets_dir(layout, verbose=verbose)
+    if runtime:
+        command += [f"-DGENCOORD_SOURCE_DIR={layout.source_dir}",
+                    f"-DGENCOORD_RUNTIME_DIR={runtime}"]
     else:
         command.append(f"-DCMAKE_PREFIX_PATH={layout.prefix}")
     return command
 
 
-DRIVERS = ("simulate", "crosscheck")
+def _stamp(build: str, cmake_targets: list[str]) -> str:
+    return os.path.join(build, "-".join(cmake_targets) + ".built")
+
+
+def _forget_builds(entry: str) -> None:
+    """Removes every build's stamp in a cache entry: each rebuilds against the header."""
+    for folder in os.listdir(entry):
+        if folder.startswith("build"):
+            for name in os.listdir(os.path.join(entry, folder)):
+                if name.endswith(".built"):
+                    os.unlink(os.path.join(entry, folder, name))
 
 
 def _cached_build(layout: Layout, target: ModelTarget, build: str, outputs: list[str], *,
                   cmake_targets: list[str], configure: list[str], what: str, rebuild: bool,
                   verbose: bool, needs: str = "") -> None:
     """Builds `cmake_targets` of the model's project in `build` unless a stamp there says that
-    `outputs` were built completely; the cache entry is locked meanwhile. `needs` says what
-    the configuration needs beyond a compiler and CMake, when it fails."""
+    `outputs` were built completely; the cache entry is locked meanwhile. `rebuild`
+    regenerates the header, so every build of the entry is done again when next asked for.
+    `needs` says what the configuration needs beyond a compiler and CMake, when it fails."""
     entry = entry_dir(layout, target)
-    stamp = os.path.join(build, "outputs.built")
-    with _locked(entry):
+    stamp = _stamp(build, cmake_targets)
+    with locked(entry):
         if rebuild:
-            with contextlib.suppress(FileNotFoundError):
-                os.unlink(stamp)
+            _forget_builds(entry)
         if os.path.isfile(stamp) and all(map(os.path.isfile, outputs)):
             return
         print(f"gencoord: building {what} (once; cached in {entry})", file=sys.stderr,
@@ -182,24 +163,25 @@ def _cached_build(layout: Layout, target: ModelTarget, build: str, outputs: list
         project = _write_project(target, entry, rebuild)
         log = os.path.join(entry, "build.log")
         if not os.path.isfile(os.path.join(build, "CMakeCache.txt")):
-            _run_logged(_configure_command(layout, project, build) + configure, log,
-                        f"configuring the project of {what}{needs}", verbose)
+            run_logged(_configure_command(layout, project, build, verbose) + configure, log,
+                       f"configuring the project of {what}{needs}", verbose)
         jobs = str(max(1, os.cpu_count() or 1))
-        _run_logged([shutil.which("cmake") or "cmake", "--build", build, "-j", jobs, "--target",
-                     *cmake_targets], log, f"compiling {what}", verbose)
+        run_logged([cmake_program(), "--build", build, "-j", jobs, "--target",
+                    *cmake_targets], log, f"compiling {what}", verbose)
         with open(stamp, "w", encoding="utf-8") as handle:
             handle.write("\n".join(outputs) + "\n")
 
 
 def driver_program(layout: Layout, target: ModelTarget, driver: str, *, rebuild: bool = False,
                    verbose: bool = False) -> str:
-    """The path of `driver` built for `target`. The first call for a model builds every
-    driver at once (they compile in parallel and share the runtime's build)."""
+    """The path of `driver` built for `target`, compiled the first time it is asked for: a
+    model's first `simulate` waits for that program alone."""
     build = os.path.join(entry_dir(layout, target), "build")
-    _cached_build(layout, target, build, [os.path.join(build, name) for name in DRIVERS],
-                  cmake_targets=list(DRIVERS), configure=[],
-                  what=f"the programs for {target.name}", rebuild=rebuild, verbose=verbose)
-    return os.path.join(build, driver)
+    program = os.path.join(build, driver)
+    _cached_build(layout, target, build, [program], cmake_targets=[driver], configure=[],
+                  what=f"the {driver} program for {target.name}", rebuild=rebuild,
+                  verbose=verbose)
+    return program
 
 
 def sweep_program(layout: Layout, target: ModelTarget, *, rebuild: bool = False,

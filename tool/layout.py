@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import os
+import shutil
 from dataclasses import dataclass
 
 
@@ -46,3 +47,8 @@ def cache_dir() -> str:
         return os.path.abspath(explicit)
     base = os.environ.get("XDG_CACHE_HOME") or os.path.join(os.path.expanduser("~"), ".cache")
     return os.path.join(base, "gencoord")
+
+
+def compiler() -> str:
+    """The C++ compiler CMake will pick: $CXX, else c++ on PATH."""
+    return os.environ.get("CXX") or shutil.which("c++") or shutil.which("g++") or ""

@@ -18,6 +18,7 @@ from .driver_build import driver_program, python_module
 from .errors import ToolError
 from .layout import find_layout
 from .model_file import load, split_settings
+from .python_target import default_python, interpreter_version, write_import_guard
 from .sweep.command import run_sweep
 from .viewer import page as viewer_page
 
@@ -146,9 +147,10 @@ def _parser() -> argparse.ArgumentParser:
         "`import <name>` gives its Params, metadata, kernels over NumPy arrays, rhs and jac\n"
         "for scipy.integrate.solve_ivp, and simulate(). Needs pybind11 and Python's headers\n"
         "(Debian: pybind11-dev, python3-dev) and NumPy where it is imported.")
-    python_parser.add_argument("--python", default=sys.executable,
-                               help="the Python interpreter to build for (default: the one "
-                                    "running gencoord, %(default)s)")
+    python_parser.add_argument("--python",
+                               help="the Python interpreter to build for (default: the first "
+                                    "that imports NumPy of the one running gencoord, python3 "
+                                    "on PATH and /usr/bin/python3)")
     view_parser = _model_command(subparsers, "view",
                                  "write a trajectory of a model file as an HTML page",
                                  _VIEW_EPILOG)
@@ -255,14 +257,19 @@ def _has_rows(csv: str) -> bool:
 
 def _python(args) -> int:
     loaded = load(args.model, split_settings(args.settings), args.name)
-    built = python_module(find_layout(), loaded.target, args.python, rebuild=args.rebuild,
+    python = args.python or default_python()
+    built = python_module(find_layout(), loaded.target, python, rebuild=args.rebuild,
                           verbose=args.verbose)
     os.makedirs(args.output_dir, exist_ok=True)
     copy = os.path.join(args.output_dir, os.path.basename(built))
     partial = copy + ".partial"
     shutil.copyfile(built, partial)
     os.replace(partial, copy)  # an importer never sees half a module
+    version = interpreter_version(python)
+    write_import_guard(copy, loaded.target.name, python, version)
     print(copy)
+    print(f"gencoord: built for {python} (Python {version}); import it with that interpreter",
+          file=sys.stderr)
     return 0
 
 

@@ -57,7 +57,8 @@ class GencoordCommandTest(unittest.TestCase):
     def test_1_simulate_builds_runs_and_writes_next_to_the_user(self):
         result = self.gencoord("simulate", "crane.py", "--duration", "2", "--dt", "1e-3")
         self.assertSucceeded(result)
-        self.assertIn("building the programs for crane", result.stderr)
+        self.assertIn("building the simulate program for crane", result.stderr)
+        self.assertNotIn("building the crosscheck program", result.stderr)
         with (self.user / "out" / "crane.csv").open(encoding="utf-8") as handle:
             rows = list(csv.DictReader(handle))
         self.assertEqual(len(rows), 2001)
@@ -120,6 +121,28 @@ class GencoordCommandTest(unittest.TestCase):
                               "-o", "modules")
         self.assertSucceeded(again)
         self.assertNotIn("building", again.stderr)
+        # without --python: the first interpreter that has NumPy, which it names
+        chosen = self.gencoord("python", "crane.py", "-o", "chosen")
+        self.assertSucceeded(chosen)
+        python = re.search(r"built for (\S+) \(Python", chosen.stderr).group(1)
+        imported = subprocess.run([python, "-c", "import numpy, crane; print(crane.nq)"],
+                                  cwd=self.user / "chosen", capture_output=True, text=True,
+                                  check=False)
+        self.assertEqual((imported.returncode, imported.stdout), (0, "2\n"), imported.stderr)
+
+    def test_7_a_second_model_recompiles_no_runtime_code(self):
+        self.assertSucceeded(self.gencoord("simulate", "crane.py", "--duration", "0.1"))
+        trolley = self.user / "trolley.py"
+        trolley.write_text(CRANE.replace("40.0", "41.0"), encoding="utf-8")
+        result = self.gencoord("simulate", "trolley.py", "--duration", "0.1")
+        self.assertSucceeded(result)
+        self.assertIn("building the simulate program for trolley", result.stderr)
+        self.assertNotIn("runtime library", result.stderr)
+        logs = list(Path(self.environment["GENCOORD_CACHE_DIR"]).glob("trolley-*/build.log"))
+        self.assertEqual(len(logs), 1)
+        log = logs[0].read_text(encoding="utf-8")
+        self.assertIn("simulate.cpp", log)
+        self.assertNotRegex(log, r"runtime/src/\w+\.cpp", "the runtime was compiled again")
 
     def test_bad_input_is_one_clear_line(self):
         cases = [
