@@ -1,9 +1,9 @@
 #!/usr/bin/env bash
 # Installs what gencoord needs on a fresh Debian 12 machine, and nothing that is already there:
-# a C++17 compiler, CMake, Eigen 3.4, GoogleTest, Google Benchmark, MuJoCo (the reference the
-# robot tests and benchmarks compare with), the tetgen program (read_mesh<3> of an .obj surface
-# runs it; the deformable tests need it), and a python3 with SymPy and Jinja2. Safe to run
-# again. Prints the python it settled on as its last line.
+# a C++17 compiler, CMake, Ninja, ccache, Eigen 3.4, GoogleTest, Google Benchmark, MuJoCo (the
+# reference the robot tests and benchmarks compare with), the tetgen program (read_mesh<3> of
+# an .obj surface runs it; the deformable tests need it), and a python3 with SymPy and Jinja2.
+# Safe to run again. Prints the python it settled on as its last line.
 #   GENCOORD_PYTHON=/usr/bin/python3 scripts/setup.sh    generate with Debian's own SymPy
 #   scripts/setup.sh --python-modules    also what the models' Python modules need: pybind11,
 #                                        Python's headers, NumPy, SciPy and Matplotlib (the
@@ -32,6 +32,9 @@ packages=()
 command -v g++ >/dev/null 2>&1 || packages+=(g++)
 command -v make >/dev/null 2>&1 || packages+=(make)
 command -v cmake >/dev/null 2>&1 || packages+=(cmake)
+# Ninja and ccache make every build that follows quicker: the gencoord command's, the tests'
+command -v ninja >/dev/null 2>&1 || packages+=(ninja-build)
+command -v ccache >/dev/null 2>&1 || packages+=(ccache)
 [ -f /usr/include/eigen3/Eigen/Core ] || packages+=(libeigen3-dev)
 [ -d /usr/lib/x86_64-linux-gnu/cmake/GTest ] || [ -d /usr/lib/cmake/GTest ] \
   || packages+=(libgtest-dev libgmock-dev)

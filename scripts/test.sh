@@ -2,44 +2,83 @@
 # Sets everything up and runs every test:
 #   0. the format and lint checks (scripts/check_style.sh);
 # then, through CTest,
-#   1. the runtime suites (runtime, deformable, integrators, cross-check, scripted
-#      coordinates, atlas, fuzz, the sweep program's exchange between ranks) built with
-#      AddressSanitizer and UndefinedBehaviorSanitizer;
-#   2. the whole suite in a Release build: the generator's Python tests (independent
-#      derivations, golden files of generated/, bad models), the generated models' tests,
-#      the models' Python modules (built for Debian's /usr/bin/python3, which has NumPy and
-#      SciPy), the viewer page in headless Chromium, gencoord sweep under MPI (Open MPI, HDF5,
-#      h5py), and the runtime suites again.
+#   1. the suites of the code that can have memory errors, built with AddressSanitizer and
+#      UndefinedBehaviorSanitizer: the runtime (on hand-written models), the deformables, the
+#      maximal model (the cross-check), the fuzz targets' corpora and the sweep program's
+#      exchange between ranks;
+#   2. the whole suite in a Release build: the generator's Python tests, one CTest test per
+#      module, with the python that generates and with the python3 on PATH when its SymPy is
+#      another version (independent derivations, golden files of generated/ compared byte for
+#      byte by the SymPy that wrote them, bad models), the generated models' tests, the models'
+#      Python modules (built for Debian's /usr/bin/python3, which has NumPy and SciPy), the
+#      viewer page in headless Chromium, gencoord sweep under MPI (Open MPI, HDF5, h5py), and
+#      the runtime suites.
+# Builds use Ninja and ccache where installed (scripts/setup.sh installs both): ccache keeps
+# compiled objects in the user's cache (~/.cache/ccache), shared by every checkout of the
+# repository, so a second run compiles only what changed. Prints each phase's wall time and
+# the slowest tests at the end.
 # Usage: scripts/test.sh [build-dir]     (GENCOORD_SKIP_SANITIZERS=1 skips step 1)
 set -euo pipefail
 cd "$(dirname "$0")/.."
+source scripts/phases.sh
 build=${1:-build}
 jobs=$(nproc 2>/dev/null || echo 2)
-python=$(scripts/setup.sh --python-modules --browser --sweep | tail -n 1)
-runtime_suites="runtime|deformable|integrators|crosscheck|scripted|atlas|fuzz|large|sweep_exchange"
 
-echo "== format and lint"
+phase "set-up (scripts/setup.sh)"
+python=$(scripts/setup.sh --python-modules --browser --sweep | tail -n 1)
+# the generator's tests run with every SymPy at hand: the python3 on PATH too, if it has one
+test_pythons=""
+if path_python=$(command -v python3) && "$path_python" -c "import sympy, jinja2" 2>/dev/null; then
+  test_pythons=$path_python
+fi
+
+# ccache shares objects between checkouts when paths are relative to the checkout
+export CCACHE_BASEDIR="$PWD"
+launcher=()
+command -v ccache >/dev/null 2>&1 && launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
+# configure BUILD-DIR ARGS...: Ninja for a new build folder where installed (an existing one
+# keeps the generator it was made with)
+configure() {
+  local dir=$1
+  shift
+  local generator=()
+  if [ ! -f "$dir/CMakeCache.txt" ] && command -v ninja >/dev/null 2>&1; then
+    generator=(-G Ninja)
+  fi
+  cmake -S . -B "$dir" "${generator[@]}" "${launcher[@]}" -DGENCOORD_PYTHON="$python" \
+        -DGENCOORD_BUILD_BENCHMARKS=OFF -DPYTHON_EXECUTABLE=/usr/bin/python3 "$@" >/dev/null
+}
+
+phase "format and lint"
 scripts/check_style.sh
 
 if [ "${GENCOORD_SKIP_SANITIZERS:-0}" != 1 ]; then
-  echo "== runtime suites under AddressSanitizer + UndefinedBehaviorSanitizer"
+  sanitized_suites="^(runtime|deformable|crosscheck|fuzz|sweep_exchange)$"
+  phase "build: the suites under AddressSanitizer + UndefinedBehaviorSanitizer"
   # -O1: quick to compile, fast enough to run, and what the sanitizers' authors recommend
-  cmake -S . -B "${build}-sanitize" -DCMAKE_BUILD_TYPE=Sanitize -DCMAKE_CXX_FLAGS_SANITIZE=-O1 \
-        -DGENCOORD_SANITIZE=ON -DGENCOORD_BUILD_TESTS=ON \
-        -DGENCOORD_PYTHON="$python" -DGENCOORD_BUILD_BENCHMARKS=OFF \
-        -DPYTHON_EXECUTABLE=/usr/bin/python3 >/dev/null
+  configure "${build}-sanitize" -DCMAKE_BUILD_TYPE=Sanitize -DCMAKE_CXX_FLAGS_SANITIZE=-O1 \
+            -DGENCOORD_SANITIZE=ON -DGENCOORD_BUILD_TESTS=ON
   targets=$(cmake --build "${build}-sanitize" --target help | grep -oE \
-            'gencoord_(runtime|integrator|crosscheck|scripted|atlas|fuzz|large_model|sweep_exchange)_tests|deformable_(tests|demo|drop)' | sort -u)
+            'gencoord_(runtime|crosscheck|fuzz|sweep_exchange)_tests|deformable_(tests|demo|drop)' \
+            | sort -u)
   # shellcheck disable=SC2086
   cmake --build "${build}-sanitize" -j "$jobs" --target $targets
-  ctest --test-dir "${build}-sanitize" -L "$runtime_suites" --output-on-failure \
+  phase "run: the suites under AddressSanitizer + UndefinedBehaviorSanitizer"
+  ctest --test-dir "${build}-sanitize" -L "$sanitized_suites" --output-on-failure \
         --no-tests=error -j "$jobs"
 fi
 
-echo "== every test, Release build"
+phase "build: everything, Release"
 # tests ON explicitly: scripts/demo.sh configures the same build directory with them off
-cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Release -DGENCOORD_PYTHON="$python" \
-      -DGENCOORD_BUILD_TESTS=ON -DGENCOORD_BUILD_BENCHMARKS=OFF \
-      -DPYTHON_EXECUTABLE=/usr/bin/python3
+configure "$build" -DCMAKE_BUILD_TYPE=Release -DGENCOORD_BUILD_TESTS=ON \
+          -DGENCOORD_TEST_PYTHONS="$test_pythons"
 cmake --build "$build" -j "$jobs"
-ctest --test-dir "$build" --output-on-failure --no-tests=error -j "$jobs"
+phase "run: every test, Release"
+ctest --test-dir "$build" --output-on-failure --no-tests=error -j "$jobs" \
+  | tee "$build/ctest-output.log"
+phases_report "scripts/test.sh"
+slowest_tests "$build/ctest-output.log" 15
+if command -v ccache >/dev/null 2>&1; then
+  echo "== ccache"
+  ccache --show-stats | grep -iE 'hits|misses|cache size' | sed 's/^/  /'
+fi
