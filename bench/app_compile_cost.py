@@ -70,7 +70,9 @@ def main() -> int:
         entries = [e for e in compile_commands(build)
                    if any(f"/{t}.dir/" in e.get("output", e["command"]) for t in APP_TARGETS)]
         cache = os.path.join(scratch, "cache")
-        driver_build = os.path.join(cache, os.listdir(cache)[0], "build")
+        # the model's entry; the runtime's (runtime-<key>) is built once per user
+        model_entry = next(e for e in sorted(os.listdir(cache)) if not e.startswith("runtime-"))
+        driver_build = os.path.join(cache, model_entry, "build")
         entries += [e for e in compile_commands(driver_build)
                     if "/drivers/" in e["file"]]
         print(f"{'translation unit':<44} {'CPU s':>7} {'peak MiB':>9}"

@@ -99,6 +99,11 @@ Options parse(int argc, char** argv) {
         std::cerr << "crosscheck: error: " << e.what() << '\n';
         std::exit(2);
       }
+      if (!gencoord::includes(gencoord::CrosscheckIntegrators{}, o.run.integrator)) {
+        std::cerr << "crosscheck: error: --integrator " << gencoord::to_string(o.run.integrator)
+                  << ": the maximal model runs with rk4, symplectic_euler or backward_euler\n";
+        std::exit(2);
+      }
     } else if (arg == "--set") {
       const std::string pair = value();
       const auto eq = pair.find('=');

@@ -1,6 +1,8 @@
 #include "gencoord/integrate/simulate.hpp"
 #include "gencoord/reduced_system.hpp"
 
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -73,6 +75,32 @@ TEST(Simulate, ZeroDurationObservesOnlyTheInitialState) {
                [&](const auto&) { ++calls; });
   EXPECT_EQ(calls, 1);
   EXPECT_EQ(end.t, 0.0);
+}
+
+// A program that compiles only some integrators runs them as with every one compiled, and
+// refuses the others with a message that names them.
+TEST(Simulate, AnIntegratorSetCompilesOnlyItsMethods) {
+  using ExplicitOnly = IntegratorSet<Integrator::SymplecticEuler, Integrator::RK4>;
+  static_assert(includes(ExplicitOnly{}, Integrator::RK4));
+  static_assert(!includes(ExplicitOnly{}, Integrator::BackwardEuler));
+  const HandPendulum::Params p;
+  State<HandPendulum> s;
+  s.q[0] = 0.5;
+  const ReducedSystem<HandPendulum> system(p);
+  for (const Integrator method : {Integrator::SymplecticEuler, Integrator::RK4}) {
+    const State<HandPendulum> some = simulate<ExplicitOnly>(system, s, {method, 0.01, 1.0});
+    const State<HandPendulum> all = simulate(system, s, {method, 0.01, 1.0});
+    EXPECT_EQ(some.q, all.q) << to_string(method);
+    EXPECT_EQ(some.v, all.v) << to_string(method);
+  }
+  try {
+    simulate<ExplicitOnly>(system, s, {Integrator::BackwardEuler, 0.01, 1.0});
+    FAIL() << "backward Euler ran although the set leaves it out";
+  } catch (const std::invalid_argument& error) {
+    EXPECT_NE(std::string(error.what()).find("backward_euler is not compiled into this program"),
+              std::string::npos)
+        << error.what();
+  }
 }
 
 TEST(StepCount, RoundsAwayRoundOffOnly) {

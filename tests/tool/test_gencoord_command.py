@@ -94,6 +94,11 @@ class GencoordCommandTest(unittest.TestCase):
         slope = float(re.search(r"position error (-?[0-9.]+)", result.stdout).group(1))
         self.assertLess(slope, -0.8, result.stdout)
         self.assertTrue((self.user / "out" / "crane_crosscheck.svg").is_file())
+        # the program compiles the maximal model's three integrators, and says so
+        refused = self.gencoord("crosscheck", "crane.py", "--integrator", "trapezoidal")
+        self.assertEqual(refused.returncode, 2, refused.stderr)
+        self.assertIn("crosscheck: error: --integrator trapezoidal: the maximal model runs with "
+                      "rk4, symplectic_euler or backward_euler", refused.stderr)
 
     def test_5_info_describes_the_model(self):
         result = self.gencoord("info", "crane.py")

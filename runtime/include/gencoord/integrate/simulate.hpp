@@ -64,8 +64,9 @@ bool observe(Observer& observer, const State& s) {
 /// \param[in] observer  Callable as observer(const S::State&), e.g. a TrajectoryCsvWriter;
 ///                      returning void, or bool: true stops the run.
 /// \return The final state.
-/// \throws StepSizeError (see step_count()); what step() throws.
-template <class S, class Observer = IgnoreStates>
+/// \throws StepSizeError (see step_count()); what step() throws; std::invalid_argument for an
+///         integrator outside Methods (the integrators compiled: step.hpp's IntegratorSet).
+template <class Methods = AllIntegrators, class S, class Observer = IgnoreStates>
 typename S::State simulate(const S& system, typename S::State initial,
                            const SimulateOptions& options, Observer&& observer = {}) {
   const long long num = step_count(options.dt, options.duration);
@@ -74,7 +75,7 @@ typename S::State simulate(const S& system, typename S::State initial,
   system.impose(&s);
   if (detail::observe(observer, std::as_const(s))) return s;
   for (long long k = 1; k <= num; ++k) {
-    s = step(system, options.integrator, s, options.dt, options.newton, options.stats);
+    s = step<Methods>(system, options.integrator, s, options.dt, options.newton, options.stats);
     s.t = t0 + static_cast<double>(k) * options.dt;
     system.impose(&s);  // at the exact end time of the step
     if (detail::observe(observer, std::as_const(s))) break;

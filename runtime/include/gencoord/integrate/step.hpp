@@ -13,28 +13,53 @@
 
 namespace gencoord {
 
+/// The integrators a program compiles for a system: step() and simulate() take the set as
+/// their first template argument, default every integrator. Each method instantiated is code
+/// the compiler builds for that system (an implicit one: Newton and a dense LU), so a program
+/// that runs only some of them names those, e.g. IntegratorSet<Integrator::RK4>.
+template <Integrator... Methods>
+struct IntegratorSet {};
+
+using AllIntegrators =
+    IntegratorSet<Integrator::ForwardEuler, Integrator::SymplecticEuler, Integrator::RK4,
+                  Integrator::BackwardEuler, Integrator::Trapezoidal, Integrator::ImplicitMidpoint>;
+
+/// Whether `integrator` is one of the set's.
+template <Integrator... Methods>
+constexpr bool includes(IntegratorSet<Methods...>, Integrator integrator) {
+  return ((integrator == Methods) || ...);
+}
+
 namespace detail {
 
-// the method `integrator` (step() checks dt and the result)
-template <class S>
-typename S::State step_of(const S& system, Integrator integrator, const typename S::State& s,
-                          double dt, const NewtonOptions& newton, StepStats* stats) {
-  switch (integrator) {
-    case Integrator::ForwardEuler:
-      return forward_euler_step(system, s, dt);
-    case Integrator::SymplecticEuler:
-      return symplectic_euler_step(system, s, dt);
-    case Integrator::RK4:
-      return rk4_step(system, s, dt);
-    case Integrator::BackwardEuler:
-      return backward_euler_step(system, s, dt, newton, stats);
-    case Integrator::Trapezoidal:
-      return trapezoidal_step(system, s, dt, newton, stats);
-    case Integrator::ImplicitMidpoint:
-      return implicit_midpoint_step(system, s, dt, newton, stats);
-  }
-  throw std::invalid_argument("gencoord: invalid Integrator value " +
-                              std::to_string(static_cast<int>(integrator)));
+// the method I (step() checks dt and the result)
+template <Integrator I, class S>
+typename S::State step_with(const S& system, const typename S::State& s, double dt,
+                            const NewtonOptions& newton, StepStats* stats) {
+  if constexpr (I == Integrator::ForwardEuler) return forward_euler_step(system, s, dt);
+  if constexpr (I == Integrator::SymplecticEuler) return symplectic_euler_step(system, s, dt);
+  if constexpr (I == Integrator::RK4) return rk4_step(system, s, dt);
+  if constexpr (I == Integrator::BackwardEuler)
+    return backward_euler_step(system, s, dt, newton, stats);
+  if constexpr (I == Integrator::Trapezoidal) return trapezoidal_step(system, s, dt, newton, stats);
+  if constexpr (I == Integrator::ImplicitMidpoint)
+    return implicit_midpoint_step(system, s, dt, newton, stats);
+}
+
+// the method `integrator`, one of the set's
+template <class S, Integrator... Methods>
+typename S::State step_of(IntegratorSet<Methods...>, const S& system, Integrator integrator,
+                          const typename S::State& s, double dt, const NewtonOptions& newton,
+                          StepStats* stats) {
+  typename S::State out;
+  const bool found =
+      ((integrator == Methods && (out = step_with<Methods>(system, s, dt, newton, stats), true)) ||
+       ...);
+  if (!found)
+    throw std::invalid_argument("gencoord: integrator " + std::string(to_string(integrator)) +
+                                " is not compiled into this program for " +
+                                std::string(system.name()));
+  return out;
 }
 
 }  // namespace detail
@@ -50,7 +75,7 @@ typename S::State step_of(const S& system, Integrator integrator, const typename
 ///         if an implicit step does not converge; for a step that ends at a state that is
 ///         not finite, what S::check() throws for it (MaximalDivergedError, ...) or else
 ///         DivergedError; what the system throws (DynamicsError, ...).
-template <class S>
+template <class Methods = AllIntegrators, class S>
 typename S::State step(const S& system, Integrator integrator, const typename S::State& s,
                        double dt, const NewtonOptions& newton = {}, StepStats* stats = nullptr) {
   if (!(dt > 0.0) || !std::isfinite(dt))
@@ -60,7 +85,7 @@ typename S::State step(const S& system, Integrator integrator, const typename S:
     throw StepSizeError("gencoord: a step must start at a finite time, got t = " +
                         std::to_string(s.t));
   if (stats) ++stats->steps;
-  typename S::State out = detail::step_of(system, integrator, s, dt, newton, stats);
+  typename S::State out = detail::step_of(Methods{}, system, integrator, s, dt, newton, stats);
   if (!std::isfinite(detail::max_abs(out.q)) || !std::isfinite(detail::max_abs(out.v))) {
     system.check(out, dt);  // the system's own error for it, if it has one
     detail::throw_diverged_error(system.name(), to_string(integrator), s.t, dt);

@@ -23,12 +23,17 @@
 
 namespace gencoord {
 
+/// The maximal model's integrators a cross-check compiles and runs (CrosscheckOptions::
+/// integrator): the explicit ones at their stability limits, and backward Euler.
+using CrosscheckIntegrators =
+    IntegratorSet<Integrator::SymplecticEuler, Integrator::RK4, Integrator::BackwardEuler>;
+
 /// Settings of a cross-check run.
 struct CrosscheckOptions {
   double duration = 5.0;       // simulated time (s)
   int points = 100;            // sample intervals: positions compared at points + 1 times
   double reference_dt = 1e-4;  // reduced RK4 step, at most (rounded down to divide the interval)
-  Integrator integrator = Integrator::RK4;  // of the maximal model
+  Integrator integrator = Integrator::RK4;  // of the maximal model: CrosscheckIntegrators
   double safety = 0.9;                      // maximal step <= safety * explicit stability limit
   double max_dt = 1e-4;             // maximal step <= max_dt (accuracy), whatever the stability
   double penalty_damping = 0;       // damping of the penalty springs
@@ -93,12 +98,13 @@ ReducedReference<M> reduced_reference(const ParamsOf<M>& p, const State<M>& init
                        .maxCoeff());
   };
   long long k = 0;  // states observed
-  simulate(ReducedSystem<M>(p), initial,
-           SimulateOptions{Integrator::RK4, ref.reference_dt, interval * o.points},
-           [&](const State<M>& s) {
-             violation(s);
-             if (k++ % per_sample == 0) ref.samples.push_back(s);
-           });
+  simulate<IntegratorSet<Integrator::RK4>>(
+      ReducedSystem<M>(p), initial,
+      SimulateOptions{Integrator::RK4, ref.reference_dt, interval * o.points},
+      [&](const State<M>& s) {
+        violation(s);
+        if (k++ % per_sample == 0) ref.samples.push_back(s);
+      });
   ref.steps = k - 1;
   ref.wall_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -127,7 +133,8 @@ struct IgnoreSamples {
 /// both the stability limit (safety times, with omega_max_along()) and o.max_dt.
 /// `on_sample(reduced, maximal)` sees both states at every sample time (a side-by-side
 /// trajectory).
-/// \throws MaximalDivergedError, InverseMapError, NewtonError from the run.
+/// \throws MaximalDivergedError, InverseMapError, NewtonError from the run;
+///         std::invalid_argument for an integrator outside CrosscheckIntegrators.
 template <class M, class SampleObserver = IgnoreSamples>
 CrosscheckRow crosscheck_at(const ParamsOf<M>& p, const ReducedReference<M>& ref, double kappa,
                             const CrosscheckOptions& o, SampleObserver&& on_sample = {}) {
@@ -144,7 +151,7 @@ CrosscheckRow crosscheck_at(const ParamsOf<M>& p, const ReducedReference<M>& ref
   long long k = 0;
   const auto start = std::chrono::steady_clock::now();
   const SimulateOptions run{o.integrator, row.dt, interval * o.points, o.newton};
-  simulate(model, initial, run, [&](const MaximalState<M>& s) {
+  simulate<CrosscheckIntegrators>(model, initial, run, [&](const MaximalState<M>& s) {
     if (k++ % per_sample != 0) return;
     const State<M>& r = ref.samples[static_cast<std::size_t>((k - 1) / per_sample)];
     on_sample(r, s);

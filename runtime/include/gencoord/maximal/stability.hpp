@@ -7,11 +7,11 @@
 #include <stdexcept>
 
 #include <Eigen/Core>
-#include <Eigen/Eigenvalues>
 
 #include "gencoord/integrate/integrator.hpp"
 #include "gencoord/maximal/model.hpp"
 #include "gencoord/maximal/state.hpp"
+#include "gencoord/symmetric_eigenvalues.hpp"
 
 namespace gencoord {
 
@@ -26,8 +26,7 @@ double omega_max(const MaximalModel<M>& model, const MaximalState<M>& s) {
   // M^-1/2 K_sym M^-1/2, symmetric: same eigenvalues as M^-1 K_sym
   const Eigen::VectorXd w = model.masses().cwiseSqrt().cwiseInverse();
   const Eigen::MatrixXd A = w.asDiagonal() * (0.5 * (K + K.transpose())) * w.asDiagonal();
-  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(A, Eigen::EigenvaluesOnly);
-  const double lambda = eig.eigenvalues().maxCoeff();
+  const double lambda = largest_symmetric_eigenvalue(A);
   return lambda > 0.0 ? std::sqrt(lambda) : 0.0;
 }
 
