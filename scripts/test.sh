@@ -64,10 +64,8 @@ if [ "${GENCOORD_SKIP_SANITIZERS:-0}" != 1 ]; then
   # shellcheck disable=SC2086
   cmake --build "${build}-sanitize" -j "$jobs" --target $targets
   phase "run: the suites under AddressSanitizer + UndefinedBehaviorSanitizer"
-  # the wave-speed convergence runs pulses on refined 3D meshes (minutes under the
-  # sanitizers) through the code the other deformable tests run: Release only
-  ctest --test-dir "${build}-sanitize" -L "$sanitized_suites" -E '^WaveSpeedTest\.' \
-        --output-on-failure --no-tests=error -j "$jobs"
+  ctest --test-dir "${build}-sanitize" -L "$sanitized_suites" --output-on-failure \
+        --no-tests=error -j "$jobs"
 fi
 
 phase "build: everything, Release"

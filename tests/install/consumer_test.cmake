@@ -11,7 +11,8 @@
 # unfindable (they must not be needed).
 # Both: build with 2 jobs, -Wall -Wextra -Werror; the program must exit 0 and print its checks.
 # -DLINK_FLAGS=... (optional) links the consumer with them, e.g. the sanitizers that an
-# installed library built with GENCOORD_SANITIZE needs.
+# installed library built with GENCOORD_SANITIZE needs; -DCXX_LAUNCHER=... (optional) compiles
+# through it, e.g. the build's ccache.
 cmake_minimum_required(VERSION 3.20)
 
 foreach(var IN ITEMS ROUTE SOURCE_DIR BUILD_DIR WORK_DIR PYTHON GENERATOR CXX_COMPILER)
@@ -39,6 +40,9 @@ set(consumer_build "${WORK_DIR}/build")
 set(common_arguments -G "${GENERATOR}" -DCMAKE_BUILD_TYPE=Release
     "-DCMAKE_CXX_COMPILER=${CXX_COMPILER}" "-DCMAKE_CXX_FLAGS=-Wall -Wextra -Werror"
     "-DGENCOORD_PYTHON=${PYTHON}" "-DCMAKE_EXE_LINKER_FLAGS=${LINK_FLAGS}")
+if(CXX_LAUNCHER)  # the build's own, e.g. ccache
+  list(APPEND common_arguments "-DCMAKE_CXX_COMPILER_LAUNCHER=${CXX_LAUNCHER}")
+endif()
 
 if(ROUTE STREQUAL "find_package")
   # cmake --install needs the library built
