@@ -7,6 +7,7 @@
 #                                      gencoordTargets*.cmake (gencoord::runtime),
 #                                      gencoordControlTargets*.cmake (gencoord::control)
 #   <P>/bin/gencoord                   the gencoord command
+#   <P>/share/doc/gencoord/LICENSE     the licence (BSD-3-Clause)
 #   <P>/share/gencoord/                the generator and the command's parts, laid out as in
 #                                      the repository: generate, generator/*.py and *.txt,
 #                                      templates/*.j2, cmake/gencoord*.cmake, tool/*.py,
@@ -59,6 +60,7 @@ _gencoord_install_share(bindings "*.cpp" "*.hpp")
 _gencoord_install_share(tool "*.py" "*.html" "*.js")  # the viewer page's template, script
 _gencoord_install_share(drivers "*.cpp" "*.hpp" "*.cmake")
 install(PROGRAMS "${PROJECT_SOURCE_DIR}/gencoord" DESTINATION "${CMAKE_INSTALL_BINDIR}")
+install(FILES "${PROJECT_SOURCE_DIR}/LICENSE" DESTINATION "${CMAKE_INSTALL_DOCDIR}")
 
 # --- the CMake package: find_package(gencoord) ---
 configure_package_config_file(
