@@ -20,7 +20,6 @@
 #include <Eigen/OrderingMethods>
 #include <Eigen/QR>
 #include <Eigen/SparseCore>
-#include <Eigen/SparseLU>
 
 #include "gencoord/acceleration_jacobians.hpp"
 #include "gencoord/heap_matrix.hpp"
@@ -30,6 +29,7 @@
 #include "gencoord/maximal/state.hpp"
 #include "gencoord/maximal/traits.hpp"
 #include "gencoord/model_traits.hpp"
+#include "gencoord/sparse_lu.hpp"
 
 namespace gencoord {
 
@@ -138,17 +138,7 @@ class MaximalModel {
   /// every A the integrators pass has the same pattern (that of m - h (h K_x + K_v), K_x and
   /// K_v from the fixed triplet lists of force_jacobian_triplets(), whose zero values are
   /// stored entries too, as setFromTriplets() and sparse sums keep them).
-  bool solve(const Matrix& A, const XVec<M>& b, XVec<M>* x) const {
-    auto& lu = lu_.lu;
-    if (!lu_.analysed) {
-      lu.analyzePattern(A);
-      lu_.analysed = true;
-    }
-    lu.factorize(A);
-    if (lu.info() != Eigen::Success) return false;
-    *x = lu.solve(b);
-    return true;
-  }
+  bool solve(const Matrix& A, const XVec<M>& b, XVec<M>* x) const { return lu_.solve(A, b, *x); }
 
   /// Kinetic energy 1/2 xdot^T M xdot.
   double kinetic_energy(const MaximalState<M>& s) const {
@@ -227,19 +217,6 @@ class MaximalModel {
   }
 
  private:
-  // the SparseLU of solve() and whether its pattern is analysed; a copy starts unanalysed
-  // (SparseLU cannot be copied)
-  struct LuCache {
-    Eigen::SparseLU<Matrix, Eigen::COLAMDOrdering<int>> lu;
-    bool analysed = false;
-    LuCache() = default;
-    LuCache(const LuCache&) {}
-    LuCache& operator=(const LuCache&) {
-      analysed = false;
-      return *this;
-    }
-  };
-
   // the number of triplets force_jacobian_triplets() appends to one list of `nonzeros`
   static constexpr std::size_t jacobian_triplet_count(int nonzeros) {
     return static_cast<std::size_t>(nonzeros) + (manifold_spring ? std::size_t{nx} * nx : 0);
@@ -264,7 +241,7 @@ class MaximalModel {
   XVec<M> masses_;
   InverseMapOptions inverse_options_;
   mutable QVec<M> q_guess_;
-  mutable LuCache lu_;
+  mutable SparseLuSolver lu_;  // the step matrices of solve(), all of one pattern
   std::string name_;
 };
 
