@@ -35,7 +35,7 @@ phases_report() {
 
 slowest_tests() {
   echo "== the $2 slowest tests of $1"
-  grep -E 'Test +#[0-9]+: ' "$1" \
-    | sed -E 's/.*Test +#[0-9]+: ([^ ]+) .* ([0-9.]+) sec.*/\2 \1/' \
-    | sort -rn | head -n "$2" | awk '{ printf "  %8.1f s  %s\n", $1, $2 }'
+  # awk reads every line (head would close the pipe early: SIGPIPE fails the pipeline)
+  sed -nE 's/.*Test +#[0-9]+: ([^ ]+) .* ([0-9.]+) sec.*/\2 \1/p' "$1" | sort -rn \
+    | awk -v n="$2" 'NR <= n { printf "  %8.1f s  %s\n", $1, $2 }'
 }

@@ -80,5 +80,5 @@ phases_report "scripts/test.sh"
 slowest_tests "$build/ctest-output.log" 15
 if command -v ccache >/dev/null 2>&1; then
   echo "== ccache"
-  ccache --show-stats | grep -iE 'hits|misses|cache size' | sed 's/^/  /'
+  ccache --show-stats | sed -nE '/hits|misses|cache size/I s/^/  /p'
 fi
