@@ -43,6 +43,14 @@ def run_logged(command: list[str], log_path: str, what: str, verbose: bool) -> N
         raise ToolError(f"{what} failed (exit {result.returncode}); the whole log is {log_path}")
 
 
+def build_targets(build: str, targets: list[str], log_path: str, what: str,
+                  verbose: bool) -> None:
+    """`cmake --build` of `targets` in `build` with a job per core, logged as run_logged()."""
+    jobs = str(max(1, os.cpu_count() or 1))
+    run_logged([cmake_program(), "--build", build, "-j", jobs, "--target", *targets], log_path,
+               f"compiling {what}", verbose)
+
+
 def cmake_program() -> str:
     cmake = shutil.which("cmake")
     if not cmake:

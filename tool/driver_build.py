@@ -26,7 +26,7 @@ import sympy
 
 from generator import cli as generator_cli
 
-from .build_steps import cmake_program, configure_command_start, locked, run_logged
+from .build_steps import build_targets, configure_command_start, locked, run_logged
 from .errors import ToolError
 from .layout import Layout, cache_dir, compiler
 from .runtime_build import runtime_targets_dir
@@ -165,9 +165,7 @@ def _cached_build(layout: Layout, target: ModelTarget, build: str, outputs: list
         if not os.path.isfile(os.path.join(build, "CMakeCache.txt")):
             run_logged(_configure_command(layout, project, build, verbose) + configure, log,
                        f"configuring the project of {what}{needs}", verbose)
-        jobs = str(max(1, os.cpu_count() or 1))
-        run_logged([cmake_program(), "--build", build, "-j", jobs, "--target",
-                    *cmake_targets], log, f"compiling {what}", verbose)
+        build_targets(build, cmake_targets, log, what, verbose)
         with open(stamp, "w", encoding="utf-8") as handle:
             handle.write("\n".join(outputs) + "\n")
 

@@ -16,7 +16,8 @@ import os
 import shutil
 import sys
 
-from .build_steps import configure_command_start, locked, run_logged
+from .build_steps import (build_targets, cmake_program, configure_command_start, locked,
+                          run_logged)
 from .layout import Layout, cache_dir, compiler
 
 BUILD_TYPE = "Release"
@@ -71,14 +72,11 @@ def runtime_targets_dir(layout: Layout, *, verbose: bool = False) -> str | None:
         build = os.path.join(entry, "build")
         shutil.rmtree(prefix, ignore_errors=True)
         log = os.path.join(entry, "build.log")
-        cmake = configure_command_start()
-        run_logged([*cmake, "-S", layout.source_dir, "-B", build,
+        run_logged([*configure_command_start(), "-S", layout.source_dir, "-B", build,
                     f"-DCMAKE_INSTALL_PREFIX={prefix}", *_ONLY_THE_RUNTIME], log,
                    "configuring the runtime library", verbose)
-        jobs = str(max(1, os.cpu_count() or 1))
-        run_logged([cmake[0], "--build", build, "-j", jobs, "--target", "gencoord_runtime"],
-                   log, "compiling the runtime library", verbose)
-        run_logged([cmake[0], "--install", build, "--component", "runtime"], log,
+        build_targets(build, ["gencoord_runtime"], log, "the runtime library", verbose)
+        run_logged([cmake_program(), "--install", build, "--component", "runtime"], log,
                    "installing the runtime library into the cache", verbose)
         with open(stamp, "w", encoding="utf-8") as handle:
             handle.write(prefix + "\n")
