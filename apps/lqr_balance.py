@@ -22,9 +22,9 @@ import subprocess
 import sys
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-sys.path.insert(0, ROOT)
+sys.path.insert(0, os.path.join(ROOT, "python"))
 
-from tool.timeseries_svg import write_timeseries_svg  # noqa: E402
+from gencoord.tool.timeseries_svg import write_timeseries_svg  # noqa: E402
 
 try:
     import numpy as np

@@ -34,7 +34,7 @@ REPOSITORY = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 # A model of the user's own: a cart with a triple pendulum, 4 coordinates.
 USER_MODEL = '''\
 """A cart on a rail carrying a triple pendulum: 4 coordinates."""
-from generator import Model, cos, sin
+from gencoord import Model, cos, sin
 
 model = Model(dim=2)
 s = model.coordinate("s", "cart position (m)")

@@ -3,8 +3,8 @@
 
     PYTHONHASHSEED=0 python3 bench/generation_time.py [--chain 10,20,50] [--repeat 3]
 
-The built-in models are tool/model_list.py's, benchmark variants included (models/ and
-models/variants.txt); --chain adds planar chains (models/n_link_chain.py) of the sizes given,
+The built-in models are gencoord/tool/model_list.py's, benchmark variants included (models/
+and models/variants.txt); --chain adds planar chains (models/n_link_chain.py) of the sizes given,
 --chain-only leaves out every other model.
 
 Each model is generated in a fresh process (as the build does), into a temporary folder,
@@ -22,8 +22,8 @@ import tempfile
 import time
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-sys.path.insert(0, ROOT)
-from tool.model_list import variants  # noqa: E402
+sys.path.insert(0, os.path.join(ROOT, "python"))
+from gencoord.tool.model_list import variants  # noqa: E402
 
 GENERATION_STAGES = ("derive", "optimize (CSE)", "emit")
 _STAGE_LINE = re.compile(r"^\s+(.+?)\s+([0-9.]+) s$")

@@ -1,6 +1,7 @@
 // ns per generated qddot (Mt, Ft + Fi and a fixed-size Cholesky) and per RK4 step, for every
-// built-in model (tool/model_list.py --benchmarks: models/ and models/variants.txt).
-// Run: scripts/bench.sh (or build/bench/bench_model_kernels --benchmark_min_time=0.2s).
+// built-in model (python/gencoord/tool/model_list.py --benchmarks: models/ and
+// models/variants.txt). Run: scripts/bench.sh (or build/bench/bench_model_kernels
+// --benchmark_min_time=0.2s).
 #include <random>
 
 #include <benchmark/benchmark.h>

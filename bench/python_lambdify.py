@@ -34,11 +34,11 @@ import sympy as sp
 from sympy.physics import mechanics as me
 
 REPOSITORY = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-sys.path.insert(0, REPOSITORY)
+sys.path.insert(0, os.path.join(REPOSITORY, "python"))
 
-from tool.driver_build import python_module  # noqa: E402
-from tool.layout import find_layout  # noqa: E402
-from tool.model_file import load  # noqa: E402
+from gencoord.tool.driver_build import python_module  # noqa: E402
+from gencoord.tool.layout import find_layout  # noqa: E402
+from gencoord.tool.model_file import load  # noqa: E402
 
 FLOOR_SOURCE = os.path.join(REPOSITORY, "bench", "python_call_floor.cpp")
 

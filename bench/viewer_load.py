@@ -24,11 +24,12 @@ import time
 
 REPOSITORY = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, REPOSITORY)
+sys.path.insert(0, os.path.join(REPOSITORY, "python"))
 
 from tests.viewer.trajectory import double_pendulum_csv, double_pendulum_scene  # noqa: E402
-from tool.viewer import page  # noqa: E402
-from tool.viewer.headless import Browser  # noqa: E402
-from tool.viewer.in_browser import open_viewer  # noqa: E402
+from gencoord.viewer import page  # noqa: E402
+from gencoord.viewer.headless import Browser  # noqa: E402
+from gencoord.viewer.in_browser import open_viewer  # noqa: E402
 
 
 # a page that draws nothing and counts its animation frames, with the viewer's hook for them

@@ -24,9 +24,10 @@
 #
 # This file works from three places: gencoord's own build, a project that added gencoord with
 # add_subdirectory(), and an install (gencoordConfig.cmake includes it from share/gencoord/cmake/).
-# In all three the generator sits one folder up with the same layout: generate, generator/*.py,
-# templates/*.j2. The generator needs a Python with SymPy and Jinja2: GENCOORD_PYTHON, the
-# first python3 on PATH unless given.
+# In all three the generator sits one folder up with the same layout: the script `generate`
+# and the Python package python/gencoord/ (its C++ backend's templates in cxx/templates/). The
+# generator needs a Python with SymPy and Jinja2: GENCOORD_PYTHON, the first python3 on PATH
+# unless given.
 
 include_guard(GLOBAL)
 
@@ -34,7 +35,7 @@ include_guard(GLOBAL)
 # not see the variables of the directory that included this file.
 get_filename_component(_gencoord_root "${CMAKE_CURRENT_LIST_DIR}/.." ABSOLUTE)
 set(GENCOORD_ROOT "${_gencoord_root}" CACHE INTERNAL
-    "gencoord's generator folder: generate, generator/, templates/")
+    "gencoord's generator folder: the script generate and the package python/gencoord/")
 
 if(NOT GENCOORD_PYTHON)
   # the first python3 on PATH, the one a user runs ./generate with
@@ -48,8 +49,9 @@ if(NOT _gencoord_python_ok EQUAL 0)
                       "-DGENCOORD_PYTHON=<a python with both>.")
 endif()
 
-file(GLOB _gencoord_generator_sources CONFIGURE_DEPENDS
-     "${GENCOORD_ROOT}/generator/*.py" "${GENCOORD_ROOT}/templates/*.j2")
+file(GLOB_RECURSE _gencoord_generator_sources CONFIGURE_DEPENDS
+     "${GENCOORD_ROOT}/python/gencoord/*.py" "${GENCOORD_ROOT}/python/gencoord/*.j2"
+     "${GENCOORD_ROOT}/python/gencoord/*.txt")
 set(GENCOORD_GENERATOR_SOURCES ${_gencoord_generator_sources} "${GENCOORD_ROOT}/generate"
     CACHE INTERNAL "files whose change regenerates every model")
 

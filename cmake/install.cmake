@@ -9,9 +9,10 @@
 #   <P>/bin/gencoord                   the gencoord command
 #   <P>/share/doc/gencoord/LICENSE     the licence (BSD-3-Clause)
 #   <P>/share/gencoord/                the generator and the command's parts, laid out as in
-#                                      the repository: generate, generator/*.py and *.txt,
-#                                      templates/*.j2, cmake/gencoord*.cmake, tool/*.py,
-#                                      drivers/*.cpp, *.hpp, *.cmake, bindings/python/
+#                                      the repository: generate, python/gencoord/ (the
+#                                      package, its templates and data files),
+#                                      cmake/gencoord*.cmake, drivers/*.cpp, *.hpp, *.cmake,
+#                                      bindings/python/
 # (lib and share are GNUInstallDirs' CMAKE_INSTALL_LIBDIR and CMAKE_INSTALL_DATADIR.)
 # The install component `runtime` is the runtime alone (headers, library, exported target):
 # the gencoord command builds it once per user into its cache and installs just it.
@@ -34,7 +35,7 @@ install(EXPORT gencoordControlTargets NAMESPACE gencoord::
         DESTINATION "${GENCOORD_INSTALL_CMAKEDIR}" COMPONENT control)
 
 # --- share/gencoord: what gencoord_add_model() runs, at the same relative paths as in the
-# repository (generate finds generator/ next to itself; gencoord.cmake finds generate one
+# repository (generate finds python/gencoord/ beside itself; gencoord.cmake finds generate one
 # folder up). One line per piece.
 # _gencoord_install_share(<folder> <pattern>...): the files of <folder> matching a pattern.
 function(_gencoord_install_share folder)
@@ -48,16 +49,17 @@ function(_gencoord_install_share folder)
 endfunction()
 
 install(PROGRAMS "${PROJECT_SOURCE_DIR}/generate" DESTINATION "${GENCOORD_INSTALL_DATADIR}")
-_gencoord_install_share(generator "*.py" "*.txt")  # cxx_macros.txt: names it refuses
-_gencoord_install_share(templates "*.j2")
+# the package: the generator, the command, the viewer (its page template and script) and
+# the C++ backend's templates and macro list
+_gencoord_install_share(python/gencoord "*.py" "*.j2" "*.txt" "*.html" "*.js")
+_gencoord_install_share(python/generator "*.py")  # the former name, for old model files
 install(FILES "${PROJECT_SOURCE_DIR}/cmake/gencoord.cmake"
               "${PROJECT_SOURCE_DIR}/cmake/gencoord_python.cmake"
         DESTINATION "${GENCOORD_INSTALL_DATADIR}/cmake")
 # what gencoord_add_python_module() compiles
 _gencoord_install_share(bindings "*.cpp" "*.hpp")
-# the gencoord command: <P>/bin/gencoord runs <P>/share/gencoord/tool, which compiles the
-# drivers against this installation
-_gencoord_install_share(tool "*.py" "*.html" "*.js")  # the viewer page's template, script
+# the gencoord command: <P>/bin/gencoord runs gencoord.tool from <P>/share/gencoord/python,
+# which compiles the drivers against this installation
 _gencoord_install_share(drivers "*.cpp" "*.hpp" "*.cmake")
 install(PROGRAMS "${PROJECT_SOURCE_DIR}/gencoord" DESTINATION "${CMAKE_INSTALL_BINDIR}")
 install(FILES "${PROJECT_SOURCE_DIR}/LICENSE" DESTINATION "${CMAKE_INSTALL_DOCDIR}")

@@ -13,7 +13,7 @@ x = R (sin(theta) cos(omega t), sin(theta) sin(omega t), -cos(theta)): X depends
 explicitly. Equilibria: theta = 0, and cos(theta*) = g / (omega^2 R) once omega^2 > g / R
 (a pitchfork bifurcation). A damper on theta (relative to the hoop) lets the bead settle.
 """
-from generator import Model, cos, sin
+from gencoord import Model, cos, sin
 
 model = Model(dim=3)
 theta = model.coordinate("theta", "angle of the bead from the bottom of the hoop (rad)",

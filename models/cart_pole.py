@@ -12,7 +12,7 @@ r"""Cart-pole: a cart on a horizontal track carrying a pendulum pole (point mass
 Cart at (s, 0); tip at (s + l sin(theta), l cos(theta)). theta = 0 is the inverted
 (unstable) equilibrium.
 """
-from generator import Model, cos, sin
+from gencoord import Model, cos, sin
 
 model = Model(dim=2)
 s = model.coordinate("s", "cart position along the track (m)")

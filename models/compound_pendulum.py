@@ -11,7 +11,7 @@ vertical. The bar has mass m and moment of inertia I_c about its centre of mass,
 is a distance d from it, so the moment of inertia about the pivot is I_c + m d^2 and small
 swings have the period 2 pi sqrt((I_c + m d^2) / (m g d)).
 """
-from generator import Frame, Model, cos, sin
+from gencoord import Frame, Model, cos, sin
 
 model = Model(dim=2)
 theta = model.coordinate("theta", "angle of the bar from the downward vertical (rad)",

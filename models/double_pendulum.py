@@ -15,7 +15,7 @@ The textbook equations of motion (e.g. Goldstein; with d = theta1 - theta2):
   (m1 + m2) l1 a1 + m2 l2 cos(d) a2 + m2 l2 sin(d) w2^2 + (m1 + m2) g sin(theta1) = 0
   l2 a2 + l1 cos(d) a1 - l1 sin(d) w1^2 + g sin(theta2) = 0
 """
-from generator import Model, cos, sin
+from gencoord import Model, cos, sin
 
 model = Model(dim=2)
 theta1 = model.coordinate("theta1", "angle of the first rod from the downward vertical (rad)",

@@ -16,7 +16,7 @@ Cart at (s, 0); bob 1 at (s + l1 sin(theta1), l1 cos(theta1)); bob 2 at bob 1 pl
 (l2 sin(theta2), l2 cos(theta2)). theta1 = theta2 = 0 is the upright (unstable)
 equilibrium, which docs/python.md's LQR example stabilizes.
 """
-from generator import Model, cos, sin
+from gencoord import Model, cos, sin
 
 model = Model(dim=2)
 s = model.coordinate("s", "cart position along the track (m)")

@@ -11,7 +11,7 @@ Five coordinates: x, y, psi (free) and alpha, beta (scripted at runtime). With t
 angles driven through a closed cycle, the total angular momentum stays zero, yet the body
 comes back rotated: a geometric phase, how a cat rights itself.
 """
-from generator import Model, cos, sin
+from gencoord import Model, cos, sin
 
 model = Model(dim=2)
 x = model.coordinate("x", "centre of the middle link, horizontal (m)")

@@ -11,7 +11,7 @@ phi is the arm's angle about the vertical and theta the pendulum's angle from th
 vertical about the arm's axis. Both links are uniform bars of square section (side w), so
 each inertia tensor is diagonal in the bar's axes. The motor's torque tau acts on the arm.
 """
-from generator import Frame, Matrix, Model, rotation_x, rotation_z
+from gencoord import Frame, Matrix, Model, rotation_x, rotation_z
 
 model = Model(dim=3)
 phi = model.coordinate("phi", "arm angle about the vertical (rad)", initial_rate=1.0)

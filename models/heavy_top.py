@@ -10,7 +10,7 @@ C = m r^2 / 2 and about the transverse axes through the centre of mass A = m (3 
 A fast top (C psi_dot large) precesses steadily at about m g d / (C psi_dot). The angles are
 singular at theta = 0, the upright top, where phi and psi turn about the same axis.
 """
-from generator import Frame, Matrix, Model, rotation_x, rotation_z
+from gencoord import Frame, Matrix, Model, rotation_x, rotation_z
 
 model = Model(dim=3)
 phi = model.coordinate("phi", "precession about the vertical (rad)")

@@ -11,7 +11,7 @@ r"""Kapitza pendulum: a pendulum whose pivot oscillates vertically, y_pivot = a 
 X depends on time explicitly. The inverted position theta = pi is stable when the drive is
 fast and strong enough: a^2 omega^2 > 2 g l (Kapitza's criterion).
 """
-from generator import Model, cos, sin
+from gencoord import Model, cos, sin
 
 model = Model(dim=2)
 theta = model.coordinate("theta", "angle from the downward vertical (rad)", initial=3.0)

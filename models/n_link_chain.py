@@ -12,7 +12,7 @@ Link k has its own symbolic length l<k> and mass m<k>; theta<k> is its angle fro
 downward vertical. Generate a variant with `./generate models/n_link_chain.py --set n=5`
 (writes generated/n_link_chain_5.hpp, type NLinkChain5).
 """
-from generator import Model, cos, sin
+from gencoord import Model, cos, sin
 
 model = Model(dim=2)
 n = model.option("n", 3, "number of links")

@@ -10,7 +10,7 @@ r"""Planar pendulum: a point mass on a massless rigid rod.
 The same example in 2D: 2 maximal coordinates, 1 constraint (the rod), 1 generalized
 coordinate. Mt = m l^2, forces = -m g l sin(theta).
 """
-from generator import Model, cos, sin
+from gencoord import Model, cos, sin
 
 model = Model(dim=2)
 theta = model.coordinate("theta", "angle from the downward vertical (rad)", initial=0.5)

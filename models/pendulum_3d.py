@@ -14,7 +14,7 @@ r"""3D pendulum: pivot and bob are both particles in 3D.
 the plane z = 0: 1), so 1 generalized coordinate: the angle theta. The pivot's X does not
 depend on theta, so it adds nothing to Mt; its mass matters only in the maximal model.
 """
-from generator import Model, cos, sin
+from gencoord import Model, cos, sin
 
 model = Model(dim=3)
 theta = model.coordinate("theta", "angle of the rod from the downward vertical (rad)",

@@ -24,7 +24,7 @@ attitude = +-pi/2, where the body's x axis points along the world's y axis. The 
 sets are disjoint, so the atlas (gencoord/atlas.hpp) can tumble through either. No gravity
 by default, so energy and angular momentum are conserved.
 """
-from generator import EULER_CHARTS, Frame, Matrix, Model, rotation_about, rpy
+from gencoord import EULER_CHARTS, Frame, Matrix, Model, rotation_about, rpy
 
 # The zyx chart's suggested initial state: a tumble that stays clear of gimbal lock.
 INITIAL = {"yaw": (0.0, 0.3), "pitch": (0.2, 1.0), "roll": (0.0, 2.0)}

@@ -17,7 +17,7 @@ x = l (cos(alpha), sin(alpha) cos(beta), sin(alpha) sin(beta)), singular only wh
 is on the x axis. No configuration is singular in both, so gencoord/atlas.hpp can always
 move to a well-conditioned chart.
 """
-from generator import Model, cos, sin
+from gencoord import Model, cos, sin
 
 
 def spherical_chart(chart):

@@ -10,7 +10,7 @@ x = r (sin(theta), -cos(theta)). The spring is an x-space force (the strain form
 f = k (|d| - L) / L) mapped through J^T; an optional air drag -c_air xdot is a user force of
 xdot. Polar coordinates are singular at r = 0.
 """
-from generator import Model, cos, sin
+from gencoord import Model, cos, sin
 
 model = Model(dim=2)
 r = model.coordinate("r", "distance from the pivot (m)", initial=1.2)

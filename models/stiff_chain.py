@@ -11,7 +11,7 @@ phi<k> is the angle of link k relative to link k-1 (phi1 relative to the downwar
 vertical). With a large k the joint frequencies sqrt(k / (m l^2)) make explicit integrators
 take tiny steps; implicit ones do not need to. `--set n=N` (default 10).
 """
-from generator import Model, cos, sin
+from gencoord import Model, cos, sin
 
 model = Model(dim=2)
 n = model.option("n", 10, "number of links")

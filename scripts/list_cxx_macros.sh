@@ -2,7 +2,7 @@
 # Prints the object- and function-like macros a translation unit that includes a generated
 # header can see (the header's own includes, the common C library headers, GCC's predefined
 # names in the GNU dialect CMake uses by default), one per line: the names
-# generator/cxx_macros.txt lists, which no model name may take. Only names a model could
+# python/gencoord/cxx/cxx_macros.txt lists, which no model name may take. Only names a model could
 # use are printed (a letter first, no "__"); EIGEN_* are refused by their prefix.
 # Usage: scripts/list_cxx_macros.sh [compiler]
 set -euo pipefail

@@ -1,9 +1,9 @@
 #!/usr/bin/env bash
 # Regenerates every checked-in header in generated/ from models/ (what the golden test checks):
-# the models tool/model_list.py lists, which are models/*.py and models/variants.txt.
+# the models python/gencoord/tool/model_list.py lists: models/*.py and models/variants.txt.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-models="$(python3 tool/model_list.py --arguments)"
+models="$(python3 python/gencoord/tool/model_list.py --arguments)"
 while read -r -a arguments; do
   ./generate --quiet "${arguments[@]}"
 done <<< "${models}"

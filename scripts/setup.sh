@@ -8,23 +8,27 @@
 #   scripts/setup.sh --python-modules    also what the models' Python modules need: pybind11,
 #                                        Python's headers, NumPy, SciPy and Matplotlib (the
 #                                        README's plot) for /usr/bin/python3
-#   scripts/setup.sh --browser           also Chromium, which tool/viewer/headless.py runs
+#   scripts/setup.sh --browser           also Chromium, which gencoord/viewer/headless.py runs
 #                                        headless for the viewer page's browser tests; or
 #                                        checks that the browser $GENCOORD_CHROMIUM names is there
 #   scripts/setup.sh --sweep             also what gencoord sweep needs: Open MPI (mpirun and
 #                                        its C headers), serial HDF5, and h5py and Matplotlib
 #                                        for /usr/bin/python3 (the sweep's picture scripts)
+#   scripts/setup.sh --pip               also venv and pip for /usr/bin/python3, with which a
+#                                        test installs the package (pip install .)
 # The options combine.
 set -euo pipefail
 
 python_modules=false
 browser=false
 sweep=false
+pip=false
 for option in "$@"; do
   case $option in
     --python-modules) python_modules=true ;;
     --browser) browser=true ;;
     --sweep) sweep=true ;;
+    --pip) pip=true ;;
   esac
 done
 
@@ -68,7 +72,7 @@ assert os.path.isfile(os.path.join(sysconfig.get_paths()["include"], "Python.h")
   /usr/bin/python3 -c "import matplotlib" >/dev/null 2>&1 || packages+=(python3-matplotlib)
 fi
 
-# the browser tool/viewer/headless.py would run: $GENCOORD_CHROMIUM, else one of these names
+# the browser gencoord/viewer/headless.py would run: $GENCOORD_CHROMIUM, else one of these names
 if $browser; then
   if [ -n "${GENCOORD_CHROMIUM:-}" ]; then
     if ! command -v "$GENCOORD_CHROMIUM" >/dev/null 2>&1; then
@@ -89,6 +93,11 @@ if $sweep; then
   [ -f /usr/include/hdf5/serial/hdf5.h ] || packages+=(libhdf5-dev)
   /usr/bin/python3 -c "import h5py" >/dev/null 2>&1 || packages+=(python3-h5py)
   /usr/bin/python3 -c "import matplotlib" >/dev/null 2>&1 || packages+=(python3-matplotlib)
+fi
+
+if $pip; then
+  /usr/bin/python3 -c "import ensurepip, venv" >/dev/null 2>&1 || packages+=(python3-venv)
+  /usr/bin/python3 -m pip --version >/dev/null 2>&1 || packages+=(python3-pip)
 fi
 
 "$(dirname "$0")/install_packages.sh" setup "${packages[@]}"

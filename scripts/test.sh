@@ -25,7 +25,7 @@ build=${1:-build}
 jobs=$(nproc 2>/dev/null || echo 2)
 
 phase "set-up (scripts/setup.sh)"
-python=$(scripts/setup.sh --python-modules --browser --sweep | tail -n 1)
+python=$(scripts/setup.sh --python-modules --browser --sweep --pip | tail -n 1)
 # the generator's tests run with every SymPy at hand: the python3 on PATH too, if it has one
 test_pythons=""
 if path_python=$(command -v python3) && "$path_python" -c "import sympy, jinja2" 2>/dev/null; then

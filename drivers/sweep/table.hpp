@@ -1,5 +1,5 @@
-// The sample table that `gencoord sweep` writes (tool/sweep/table.py): settings as `key value`
-// lines, then `samples N` and N rows of values. Rank 0 reads the file; the other ranks get
+// The sample table that `gencoord sweep` writes (python/gencoord/sweep/table.py): settings as `key
+// value` lines, then `samples N` and N rows of values. Rank 0 reads the file; the other ranks get
 // its settings from rank 0 (the header: every line up to `samples N`) and each chunk's rows
 // with the chunk, so that they need neither the file nor memory for all the samples.
 #pragma once

@@ -11,7 +11,7 @@ Trolley at (s, 0), tethered to the anchor at the origin by a spring of stiffness
 unit strain) and rest length L; load at (s + l sin(theta), -l cos(theta)). With u = 0 the
 system is conservative. The spring's length is |s|, so keep s > 0.
 """
-from generator import Model, cos, sin
+from gencoord import Model, cos, sin
 
 model = Model(dim=2)
 s = model.coordinate("s", "trolley position along the rail (m)", initial=1.3)

@@ -10,7 +10,7 @@ kappa to the closest point X(q*(x))).
 
 nq = 1 < nx = 2, no declared constraints.
 """
-from generator import Model
+from gencoord import Model
 
 model = Model(dim=2)
 s = model.coordinate("s", "horizontal position of the bead (m)", initial=0.8)

@@ -1,11 +1,14 @@
 # Builds and runs the gantry-crane consumer (examples/consumer) against gencoord, by one route:
-#   cmake -DROUTE=find_package|add_subdirectory -DSOURCE_DIR=<repository> -DBUILD_DIR=<its build>
+#   cmake -DROUTE=find_package|pip|add_subdirectory -DSOURCE_DIR=<repository> -DBUILD_DIR=<its build>
 #         -DWORK_DIR=<scratch folder> -DPYTHON=<GENCOORD_PYTHON> -DGENERATOR=<CMake generator>
 #         -DCXX_COMPILER=<compiler> -P consumer_test.cmake
 # find_package: installs BUILD_DIR into a staging prefix, moves it (the package must be
 # relocatable and name no source or build path), copies examples/consumer out of the
 # repository and configures it with CMAKE_PREFIX_PATH=<moved prefix> only; then the installed
 # gencoord command simulates the example's model, building its driver against the prefix.
+# pip: `pip install .` into a fresh virtual environment (with the system's site packages, for
+# SymPy), the source removed; `gencoord --cmake-dir` gives the folder for find_package, and the
+# installed command simulates the example's model.
 # add_subdirectory: configures tests/install/subdirectory, which adds the repository with
 # add_subdirectory() and builds the same program, with GoogleTest and Google Benchmark made
 # unfindable (they must not be needed).
@@ -70,11 +73,11 @@ if(ROUTE STREQUAL "find_package")
   foreach(expected IN ITEMS
           include/gencoord/gencoord.hpp lib/cmake/gencoord/gencoordConfig.cmake
           lib/cmake/gencoord/gencoordConfigVersion.cmake lib/cmake/gencoord/gencoordTargets.cmake
-          share/gencoord/generate share/gencoord/generator/cli.py
-          share/gencoord/templates/model.hpp.j2 share/gencoord/cmake/gencoord.cmake
-          bin/gencoord share/gencoord/tool/main.py share/gencoord/drivers/simulate.cpp
-          share/gencoord/drivers/gencoord_drivers.cmake share/gencoord/tool/viewer/page.html
-          share/gencoord/tool/viewer/viewer.js)
+          share/gencoord/generate share/gencoord/python/gencoord/generate/cli.py
+          share/gencoord/python/gencoord/cxx/templates/model.hpp.j2 share/gencoord/cmake/gencoord.cmake
+          bin/gencoord share/gencoord/python/gencoord/tool/main.py share/gencoord/drivers/simulate.cpp
+          share/gencoord/drivers/gencoord_drivers.cmake share/gencoord/python/gencoord/viewer/page.html
+          share/gencoord/python/gencoord/viewer/viewer.js)
     if(NOT EXISTS "${prefix}/${expected}")
       message(FATAL_ERROR "not installed: ${expected}")
     endif()
@@ -89,12 +92,38 @@ if(ROUTE STREQUAL "find_package")
   if(NOT found STREQUAL "gencoord_DIR:PATH=${prefix}/lib/cmake/gencoord")
     message(FATAL_ERROR "the consumer found gencoord elsewhere: ${found}")
   endif()
+elseif(ROUTE STREQUAL "pip")
+  # a copy of what `pip install .` reads, so that its build leaves the checkout untouched
+  set(source "${WORK_DIR}/source")
+  foreach(item IN ITEMS pyproject.toml setup.py README.md LICENSE CMakeLists.txt generate
+                        cmake runtime drivers bindings python)
+    file(COPY "${SOURCE_DIR}/${item}" DESTINATION "${source}" PATTERN __pycache__ EXCLUDE
+         PATTERN "*.egg-info" EXCLUDE)
+  endforeach()
+  set(venv "${WORK_DIR}/venv")
+  run("${PYTHON}" -m venv --system-site-packages "${venv}")
+  # offline: the setuptools already installed builds it (no build isolation, no index)
+  run("${venv}/bin/python" -m pip install --quiet --no-build-isolation --no-deps --no-index
+      "${source}")
+  file(REMOVE_RECURSE "${source}")  # the installed package must not need its source
+  execute_process(COMMAND "${CMAKE_COMMAND}" -E env "GENCOORD_CACHE_DIR=${WORK_DIR}/cache"
+                          "${venv}/bin/gencoord" --cmake-dir
+                  RESULT_VARIABLE rc OUTPUT_VARIABLE cmake_dir OUTPUT_STRIP_TRAILING_WHITESPACE)
+  if(NOT rc EQUAL 0 OR NOT EXISTS "${cmake_dir}/gencoordConfig.cmake")
+    message(FATAL_ERROR "gencoord --cmake-dir of the pip install failed (${rc}): ${cmake_dir}")
+  endif()
+  file(COPY "${SOURCE_DIR}/examples/consumer/" DESTINATION "${WORK_DIR}/consumer")
+  # the generator that gencoord_add_model runs is the pip install's: its config names the
+  # virtual environment's python, so this route passes none
+  list(FILTER common_arguments EXCLUDE REGEX "^-DGENCOORD_PYTHON=")
+  run("${CMAKE_COMMAND}" -S "${WORK_DIR}/consumer" -B "${consumer_build}" ${common_arguments}
+      "-Dgencoord_DIR=${cmake_dir}")
 elseif(ROUTE STREQUAL "add_subdirectory")
   run("${CMAKE_COMMAND}" -S "${SOURCE_DIR}/tests/install/subdirectory" -B "${consumer_build}"
       ${common_arguments} "-DGENCOORD_SOURCE_DIR=${SOURCE_DIR}"
       -DCMAKE_DISABLE_FIND_PACKAGE_GTest=ON -DCMAKE_DISABLE_FIND_PACKAGE_benchmark=ON)
 else()
-  message(FATAL_ERROR "ROUTE must be find_package or add_subdirectory, not '${ROUTE}'")
+  message(FATAL_ERROR "ROUTE must be find_package, pip or add_subdirectory, not '${ROUTE}'")
 endif()
 
 run("${CMAKE_COMMAND}" --build "${consumer_build}" --parallel 2)
@@ -103,6 +132,19 @@ execute_process(COMMAND "${consumer_build}/gantry_crane" RESULT_VARIABLE rc
 message("${output}")
 if(NOT rc EQUAL 0 OR NOT output MATCHES "all checks passed")
   message(FATAL_ERROR "gantry_crane failed (exit status ${rc})")
+endif()
+
+if(ROUTE STREQUAL "pip")
+  # the pip-installed command simulates the example's model with the runtime it built
+  execute_process(COMMAND "${CMAKE_COMMAND}" -E env "GENCOORD_CACHE_DIR=${WORK_DIR}/cache"
+                          "${venv}/bin/gencoord" simulate gantry_crane.py --duration 0.5
+                          -o "${WORK_DIR}/out"
+                  WORKING_DIRECTORY "${WORK_DIR}/consumer"
+                  RESULT_VARIABLE rc OUTPUT_VARIABLE output ERROR_VARIABLE output)
+  message("${output}")
+  if(NOT rc EQUAL 0 OR NOT output MATCHES "trajectory .*gantry_crane.csv \\(501 rows\\)")
+    message(FATAL_ERROR "the pip-installed gencoord simulate failed (exit status ${rc})")
+  endif()
 endif()
 
 if(ROUTE STREQUAL "find_package")

@@ -8,7 +8,7 @@ strain, and rest length L from the anchor (-L, i): for q_i > -L its force is -(k
 so q_i(t) = q_i(0) cos(w_i t) with w_i = sqrt(k_i / (L m)). With n = 130, Mt has 16,900
 entries and J 33,800 (Eigen's limit is 16,384 doubles).
 """
-from generator import Model
+from gencoord import Model
 
 model = Model(dim=2)
 n = model.option("n", 130, "number of oscillators")

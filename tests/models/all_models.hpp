@@ -1,5 +1,6 @@
 // The generated models every model test runs on, as a GoogleTest type list: every model that
-// tool/model_list.py lists (model_list.hpp, written at build time), atlas charts included.
+// python/gencoord/tool/model_list.py lists (model_list.hpp, written at build time), atlas charts
+// included.
 #pragma once
 
 #include <string>

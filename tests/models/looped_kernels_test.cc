@@ -1,4 +1,5 @@
-// A large tree's looped kernels (generator/looped.py) compute what the unrolled ones compute.
+// A large tree's looped kernels (python/gencoord/derive/looped.py) compute what the unrolled ones
+// compute.
 //
 // The build generates the 5-link chain (a tree of particles) and the 7-joint arm of
 // models/iiwa14.urdf (a tree of bodies) a second time with --loop-min-nq 1, so their Mt,

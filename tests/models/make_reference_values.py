@@ -4,7 +4,7 @@ evaluated in 40-digit mpmath arithmetic straight from the unoptimized `derive()`
 
 reference_values_test.cc compares the generated kernels (after CSE and the C++ printer) with
 these values, so a printing or CSE bug shows up as a mismatch. The models are the ones
-tool/model_list.py lists (the tests' type list), atlas charts included.
+gencoord/tool/model_list.py lists (the tests' type list), atlas charts included.
 
     make_reference_values.py <output.hpp>
 """
@@ -20,13 +20,13 @@ import mpmath
 import sympy as sp
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-sys.path.insert(0, ROOT)
+sys.path.insert(0, os.path.join(ROOT, "python"))
 
-from generator.bodies import inertia_problem  # noqa: E402
-from generator.derive import derive  # noqa: E402
-from generator.loader import load_model  # noqa: E402
-from generator.maximal import KAPPA, PENALTY_DAMPING, derive_maximal  # noqa: E402
-from tool.model_list import Variant, variants  # noqa: E402
+from gencoord.dsl.bodies import inertia_problem  # noqa: E402
+from gencoord.derive.dense import derive  # noqa: E402
+from gencoord.generate.load import load_model  # noqa: E402
+from gencoord.derive.maximal import KAPPA, PENALTY_DAMPING, derive_maximal  # noqa: E402
+from gencoord.tool.model_list import Variant, variants  # noqa: E402
 
 STATES = 5
 DIGITS = 40

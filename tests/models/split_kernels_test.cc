@@ -1,4 +1,5 @@
-// Kernels cut into parts (generator/split.py) compute what the whole kernels compute.
+// Kernels cut into parts (python/gencoord/optimize/split.py) compute what the whole kernels
+// compute.
 //
 // The build generates double_pendulum (flat derivation) and n_link_chain_5 (structured
 // derivation, forward-mode Jacobians) a second time with --max-function-statements 3, so

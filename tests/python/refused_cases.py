@@ -11,7 +11,7 @@ from .support import BOB, MARK
 
 PREAMBLE = """\
 import sympy
-from generator import Model, cos, sin, sqrt, tan
+from gencoord import Model, cos, sin, sqrt, tan
 model = Model(dim=2)
 theta = model.coordinate("theta", "angle from the downward vertical (rad)")
 """
@@ -122,7 +122,7 @@ NOT_SMOOTH = {
 
 # --- rigid bodies that no mass distribution has, and torques on what is not a body -----------
 BODY_PREAMBLE = """\
-from generator import Frame, Matrix, Model, rotation_z
+from gencoord import Frame, Matrix, Model, rotation_z
 model = Model(dim=3)
 phi = model.coordinate("phi", "angle about the vertical (rad)")
 """
@@ -169,7 +169,7 @@ BODIES = {
               before='m = model.parameter("m", -1.0, "mass (kg)")\n'),
         ["body 'lump'", "mass is -1", "positive", "with the default parameters"]),
     "planar_inertia_negative": (
-        'from generator import Frame, Model\nmodel = Model(dim=2)\n'
+        'from gencoord import Frame, Model\nmodel = Model(dim=2)\n'
         'theta = model.coordinate("theta", "angle from the downward vertical (rad)")\n'
         f'bar = model.body("bar", mass=1, inertia=-0.5, frame=Frame(theta, [0, -1]))  {MARK}\n',
         ["body 'bar'", "inertia is -0.5", "positive"]),

@@ -9,7 +9,7 @@ from .support import MARK
 from .test_bad_models import BadModelTest
 
 CHART = """\
-from generator import Model, cos, sin
+from gencoord import Model, cos, sin
 
 
 def chart(name, mass=1, length=1, **kw):

@@ -19,7 +19,7 @@ from .support import (BOB, GENERATED, MARK, MODELS, REPO, describe, marked_line,
                       other_sympy_than_generated, run_generate, snapshot, snapshot_difference)
 
 PREAMBLE = """\
-from generator import Model, cos, sin
+from gencoord import Model, cos, sin
 model = Model(dim=2)
 theta = model.coordinate("theta", "angle from the downward vertical (rad)")
 """
@@ -108,14 +108,14 @@ class BadModelTest(unittest.TestCase):
 
     def test_file_that_does_not_assign_model(self):
         self.expect_model_error("no_model", """\
-            from generator import Model, cos, sin
+            from gencoord import Model, cos, sin
             system = Model(dim=2)
             theta = system.coordinate("theta", "angle (rad)")
             bob = system.particle("bob", mass=1, position=[sin(theta), -cos(theta)])
             """, ["'model'"], with_line=False)
 
     # --- errors the checks report (after the model file ran) ----------------------------------
-    # Regression: before commit d2b7185 generator/pipeline.py ran validate(model) without
+    # Regression: before commit d2b7185 gencoord/generate/stages.py ran validate(model) without
     # attaching the model file's path, so these errors printed with neither file nor line.
     def test_unknown_symbol_in_a_position(self):
         self.expect_model_error("unknown_symbol", PREAMBLE + (
@@ -217,7 +217,7 @@ class BadModelTest(unittest.TestCase):
 
     def test_coordinate_named_like_a_cxx_keyword(self):
         self.expect_model_error("keyword_coordinate", """\
-            from generator import Model, cos, sin
+            from gencoord import Model, cos, sin
             model = Model(dim=2)
             angle = model.coordinate("class", "angle (rad)")  # <- error
             bob = model.particle("bob", mass=1, position=[sin(angle), -cos(angle)])
@@ -225,14 +225,14 @@ class BadModelTest(unittest.TestCase):
 
     def test_model_without_coordinates(self):
         self.expect_model_error("no_coordinates", """\
-            from generator import Model
+            from gencoord import Model
             model = Model(dim=2)  # <- error
             bob = model.particle("bob", mass=1, position=[0, -1])
             """, ["no coordinates"])
 
     def test_model_without_particles(self):
         self.expect_model_error("no_particles", """\
-            from generator import Model
+            from gencoord import Model
             model = Model(dim=2)  # <- error
             theta = model.coordinate("theta", "angle (rad)")
             """, ["no particles"])

@@ -38,7 +38,7 @@ class CommandLineTest(unittest.TestCase):
         self.assertRegex(banner.splitlines()[0], r"(?i)do not (modify|edit)",
                          f"no do-not-edit banner on the first line:\n{banner}")
         self.assertIn("models/pendulum.py", banner, banner)
-        self.assertIn("templates/model.hpp.j2", banner, banner)
+        self.assertIn("gencoord/cxx/templates/model.hpp.j2", banner, banner)
         self.assertRegex(banner, r"Total ops: \d+", banner)
         docstring = ast.get_docstring(ast.parse((MODELS / "pendulum.py").read_text()))
         for line in filter(None, (text.strip() for text in docstring.splitlines())):

@@ -1,4 +1,4 @@
-"""The switches between supported SymPy and Jinja2 versions (generator/compat.py), and the
+"""The switches between supported SymPy and Jinja2 versions (gencoord/library_versions.py), and the
 printer output they must leave the same under every supported version."""
 
 from __future__ import annotations
@@ -8,8 +8,8 @@ import unittest
 import jinja2
 import sympy as sp
 
-from generator import compat
-from generator.cxx_printer import ScalarCxxPrinter, UnsupportedExpression
+from gencoord import library_versions as compat
+from gencoord.cxx.printer import ScalarCxxPrinter, UnsupportedExpression
 
 
 class VersionTupleTest(unittest.TestCase):

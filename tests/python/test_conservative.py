@@ -5,9 +5,9 @@ from __future__ import annotations
 
 import unittest
 
-from generator import Model, cos, sin
-from generator.conservative import forces_have_potential
-from generator.loader import load_model
+from gencoord import Model, cos, sin
+from gencoord.checks.conservative import forces_have_potential
+from gencoord.generate.load import load_model
 
 from .support import MODELS
 

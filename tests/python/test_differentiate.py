@@ -1,4 +1,4 @@
-"""Forward-mode Jacobians through straight-line code (generator/differentiate.py).
+"""Forward-mode Jacobians through straight-line code (gencoord/derive/differentiate.py).
 
 The derivatives are checked against SymPy's `diff` of the flattened outputs at random points,
 including the cases the chain-rule sums handle specially: a derivative that is a number,
@@ -13,9 +13,9 @@ import unittest
 
 import sympy as sp
 
-from generator.cxx_printer import ScalarCxxPrinter
-from generator.differentiate import ChainSum, directional_derivatives, forward_derivatives
-from generator.opcount import count_ops
+from gencoord.cxx.printer import ScalarCxxPrinter
+from gencoord.derive.differentiate import ChainSum, directional_derivatives, forward_derivatives
+from gencoord.optimize.opcount import count_ops
 
 from .support import DIGITS
 

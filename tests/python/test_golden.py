@@ -26,7 +26,7 @@ import unittest
 from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
-from generator.pipeline import generate
+from gencoord.generate.stages import generate
 
 from .support import (GENERATED, MODELS, REPO, banner_sympy_version, describe,
                       other_sympy_than_generated, run_generate)
@@ -50,8 +50,9 @@ def script_invocations() -> list[list[str]]:
         root = Path(scratch)
         (root / "scripts").mkdir()
         shutil.copy2(SCRIPT, root / "scripts" / SCRIPT.name)
-        (root / "tool").mkdir()
-        shutil.copy2(REPO / "tool" / "model_list.py", root / "tool" / "model_list.py")
+        model_list = Path("python", "gencoord", "tool", "model_list.py")
+        (root / model_list.parent).mkdir(parents=True)
+        shutil.copy2(REPO / model_list, root / model_list)
         (root / "models").symlink_to(MODELS, target_is_directory=True)
         recorder = root / "generate"
         recorder.write_text(_RECORDER.format(python=sys.executable), encoding="utf-8")

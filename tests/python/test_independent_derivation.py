@@ -1,7 +1,7 @@
 """The generator's Mt and Ft + Fi agree with an independent sympy.physics.mechanics derivation.
 
 Every reference below is written from scratch with reference frames, points and
-Kane's method or Lagrange's method (nothing of generator/derive.py is reused); both sides are
+Kane's method or Lagrange's method (nothing of gencoord/derive/dense.py is reused); both sides are
 evaluated in 30-digit arithmetic at seeded random states (q, v and parameter values) and must
 agree to 1e-12 relative. Both are in the model file's coordinates, with v = qdot:
     generated:  Mt(q) qddot = Ft + Fi
@@ -18,10 +18,10 @@ import mpmath
 import sympy as sp
 from sympy.physics import mechanics as me
 
-from generator.derive import derive
-from generator.loader import load_model
+from gencoord.derive.dense import derive
+from gencoord.generate.load import load_model
 
-from .support import (DIGITS, MODELS, format_numbers, lambdify_flat, relative_error)
+from .support import DIGITS, MODELS, format_numbers, lambdify_flat, relative_error
 
 STATES = 24
 TOLERANCE = 1e-12

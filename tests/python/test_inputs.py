@@ -16,12 +16,12 @@ from pathlib import Path
 
 import sympy as sp
 
-from generator.derive import derive
-from generator.loader import load_model
-from generator.pipeline import generate
+from gencoord.derive.dense import derive
+from gencoord.generate.load import load_model
+from gencoord.generate.stages import generate
 
 PUSHED_PENDULUM = """\
-from generator import Model, cos, sin
+from gencoord import Model, cos, sin
 model = Model(dim=2)
 theta = model.coordinate("theta", "angle from the downward vertical (rad)")
 l = model.parameter("l", 0.8, "length (m)")

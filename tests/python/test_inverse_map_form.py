@@ -19,8 +19,8 @@ import unittest
 import mpmath
 import sympy as sp
 
-from generator.derive import derive
-from generator.loader import load_model
+from gencoord.derive.dense import derive
+from gencoord.generate.load import load_model
 
 from .support import DIGITS, MODELS, format_numbers, lambdify_flat, relative_error
 

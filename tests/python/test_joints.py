@@ -10,10 +10,10 @@ import unittest
 
 import sympy as sp
 
-from generator import (Continuous, Fixed, Model, ModelError, Origin, Prismatic, Revolute,
-                       add_free_base, add_link)
-from generator.atlas import check_atlas
-from generator.model import Point
+from gencoord import (Continuous, Fixed, Model, ModelError, Origin, Prismatic, Revolute,
+                      add_free_base, add_link)
+from gencoord.checks.atlas import check_atlas
+from gencoord.dsl.items import Point
 
 INERTIA = [[0.02, 0.001, 0], [0.001, 0.03, -0.002], [0, -0.002, 0.025]]
 
@@ -177,7 +177,7 @@ class BodiesAndPinsTest(unittest.TestCase):
         self.assertEqual(evaluate(model, list(arm.frame.origin), [0.3]), [0, 0, 1])
 
     def test_damping_and_limits(self):
-        from generator import Limits
+        from gencoord import Limits
         model = Model(dim=3)
         link = add_link(model, "link", None, Revolute([0, 0, 1], Origin(), Limits(0.2, 1.0, 5),
                                                       damping=0.3, name="hinge"),
@@ -235,7 +235,7 @@ class FreeBaseTest(unittest.TestCase):
         self.assertEqual([t.name for t in model.torques], ["hinge_damping",
                                                            "hinge_damping_reaction"])
         # the torques' virtual work is -c qdot dq: Q = J_w^T tau on the hinge alone
-        from generator.bodies import torque_generalized_forces
+        from gencoord.dsl.bodies import torque_generalized_forces
         q = [c.symbol for c in model.coordinates]
         forces = torque_generalized_forces(model, q)
         values = dict(zip(q, [0.1, -0.2, 0.3, 0.4, -0.5, 0.6, 0.7]))

@@ -7,8 +7,7 @@ import math
 import random
 import unittest
 
-from tests.python_module.kane_linearization import (linearization, nonlinear_rhs,
-                                                    parameter_names)
+from tests.python_module.kane_linearization import linearization, nonlinear_rhs, parameter_names
 
 CLOSED_FORM_TOLERANCE = 1e-12
 DIFFERENCE_TOLERANCE = 1e-6

@@ -5,7 +5,7 @@ from __future__ import annotations
 import re
 import unittest
 
-from generator.line_wrap import LINE_WIDTH, wrap_line, wrap_long_lines
+from gencoord.cxx.line_wrap import LINE_WIDTH, wrap_line, wrap_long_lines
 
 from .support import GENERATED
 

@@ -12,8 +12,8 @@ import unittest
 
 import sympy as sp
 
-from generator.loader import load_model
-from generator.maximal import KAPPA, PENALTY_DAMPING, derive_maximal
+from gencoord.generate.load import load_model
+from gencoord.derive.maximal import KAPPA, PENALTY_DAMPING, derive_maximal
 
 from .support import MODELS
 

@@ -5,9 +5,9 @@ from __future__ import annotations
 
 import unittest
 
-from generator.errors import ModelError
-from generator.loader import load_model
-from generator.model import REQUESTED_OPTIONS, Model, requesting_options
+from gencoord.errors import ModelError
+from gencoord.generate.load import load_model
+from gencoord.dsl.model import REQUESTED_OPTIONS, Model, requesting_options
 
 from .support import MODELS
 

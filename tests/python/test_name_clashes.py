@@ -14,8 +14,8 @@ import textwrap
 import unittest
 from pathlib import Path
 
-from generator.naming import type_name
-from generator.reserved_names import name_problem
+from gencoord.naming import type_name
+from gencoord.cxx.reserved_names import name_problem
 
 from . import refused_cases
 from .support import REPO
@@ -68,7 +68,7 @@ class MacroListTest(unittest.TestCase):
         self.assertEqual(result.returncode, 0, result.stderr)
         accepted = [name for name in result.stdout.split() if name_problem(name) is None]
         self.assertEqual(accepted, [], "macros this compiler defines that a model may use as "
-                         "names: add them to generator/cxx_macros.txt")
+                         "names: add them to gencoord/cxx/cxx_macros.txt")
 
 
 if __name__ == "__main__":

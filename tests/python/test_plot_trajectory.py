@@ -1,4 +1,4 @@
-"""tool/trajectory_svg.py: axes, ticks, units, fixed points and the energy error axis of
+"""gencoord/tool/trajectory_svg.py: axes, ticks, units, fixed points and the energy error axis of
 the SVG it draws, read back with xml.etree from small synthetic trajectories."""
 
 from __future__ import annotations
@@ -10,7 +10,8 @@ import unittest
 import xml.etree.ElementTree as ET
 from pathlib import Path
 
-from tool import trajectory_svg as plot
+from gencoord.tool import svg_plot
+from gencoord.tool import trajectory_svg as plot
 
 SVG = "{http://www.w3.org/2000/svg}"
 SUPERSCRIPT_DIGITS = str.maketrans(
@@ -94,16 +95,16 @@ class NiceTicksTest(unittest.TestCase):
     def test_steps_are_one_two_or_five_times_a_power_of_ten(self):
         for span in (7.0, 10.0, 0.37, 3.3e-7, 12345.0, 1.0):
             with self.subTest(span=span):
-                step = plot.nice_step(span)
+                step = svg_plot.nice_step(span)
                 self.assertTrue(is_one_two_five(step), step)
                 self.assertTrue(3 <= span / step <= 15, (span, step))
-        self.assertEqual(plot.nice_step(10.0, 5), 2.0)
-        self.assertAlmostEqual(plot.nice_step(0.37, 6), 0.05)
+        self.assertEqual(svg_plot.nice_step(10.0, 5), 2.0)
+        self.assertAlmostEqual(svg_plot.nice_step(0.37, 6), 0.05)
 
     def test_ticks_are_the_steps_multiples_inside_the_range(self):
-        self.assertEqual(plot.ticks_within(-0.23, 1.07, 0.5), [0.0, 0.5, 1.0])
-        self.assertEqual(plot.ticks_within(0.1, 0.35, 0.1), [0.1, 0.2, 0.3])
-        self.assertEqual([plot.format_tick(v, 0.5) for v in (-1.0, 0.0, 1.5)],
+        self.assertEqual(svg_plot.ticks_within(-0.23, 1.07, 0.5), [0.0, 0.5, 1.0])
+        self.assertEqual(svg_plot.ticks_within(0.1, 0.35, 0.1), [0.1, 0.2, 0.3])
+        self.assertEqual([svg_plot.format_tick(v, 0.5) for v in (-1.0, 0.0, 1.5)],
                          ["\u22121.0", "0", "1.5"])
 
 

@@ -1,10 +1,10 @@
 """The O(n) recursions against the dense derivation.
 
-A model that is a translational tree of particles (point_tree.py, recursive.py) or a joint
+A model that is a translational tree of particles (point_tree.py, point_recursion.py) or a joint
 tree of rigid bodies (body_tree.py, body_recursion.py) gets qddot by the articulated-body
 algorithm and the inverse dynamics by Newton-Euler. This checks which models are found to be
 trees and with what structure, that both recursions equal Mt^-1 (Ft + Fi) and Mt qdd - Ft - Fi
-of derive.py at random states in extended precision on every tree of models/, and how
+of derive/dense.py at random states in extended precision on every tree of models/, and how
 generation picks between the recursive and the dense kernels. The C++ model tests check the
 same after CSE and printing, and the robot tests against MuJoCo.
 """
@@ -21,15 +21,16 @@ from pathlib import Path
 import mpmath
 import sympy as sp
 
-from generator.body_recursion import body_recursive_dynamics
-from generator.body_tree import body_tree
-from generator.derive import Kinematics, derive
-from generator.errors import ModelError
-from generator.loader import load_model
-from generator.model import Model
-from generator.pipeline import generate
-from generator.point_tree import PointTree, point_tree
-from generator.recursive import recursive_dynamics
+from gencoord.derive.body_recursion import body_recursive_dynamics
+from gencoord.derive.body_tree import body_tree
+from gencoord.derive.dense import Kinematics, derive
+from gencoord.errors import ModelError
+from gencoord.generate.load import load_model
+from gencoord.dsl.model import Model
+from gencoord.generate.stages import generate
+from gencoord.options import GenerateOptions
+from gencoord.derive.point_tree import PointTree, point_tree
+from gencoord.derive.point_recursion import recursive_dynamics
 
 from .support import DIGITS, MODELS, relative_error
 
@@ -201,7 +202,8 @@ class BodyTreeTest(unittest.TestCase):
 class PathChoiceTest(unittest.TestCase):
 
     def _header(self, options, dynamics="auto") -> str:
-        return generate(str(MODELS / "n_link_chain.py"), options, dynamics=dynamics).header
+        return generate(str(MODELS / "n_link_chain.py"), options,
+                        GenerateOptions(dynamics=dynamics)).header
 
     def test_short_chains_stay_dense_and_long_ones_recurse(self):
         short, long = self._header({"n": "2"}), self._header({"n": "10"})
@@ -223,8 +225,10 @@ class PathChoiceTest(unittest.TestCase):
     def test_large_trees_loop_their_square_outputs(self):
         # from loop_min_nq coordinates on, Mt, J and the residual Jacobians are loops over
         # products (looped.py), which tests/models/looped_kernels_test.cc checks in C++
-        looped = generate(str(MODELS / "n_link_chain.py"), {"n": "6"}, loop_min_nq=6).header
-        unrolled = generate(str(MODELS / "n_link_chain.py"), {"n": "5"}, loop_min_nq=6).header
+        looped = generate(str(MODELS / "n_link_chain.py"), {"n": "6"},
+                          GenerateOptions(loop_min_nq=6)).header
+        unrolled = generate(str(MODELS / "n_link_chain.py"), {"n": "5"},
+                            GenerateOptions(loop_min_nq=6)).header
         self.assertIn("// Mt, J, dr/dq and dr/dv: loops over their columns", looped)
         for product in ("mass_matrix_product(", "jacobian_product(", "residual_derivative_q(",
                         "residual_derivative_v("):
@@ -233,8 +237,8 @@ class PathChoiceTest(unittest.TestCase):
         self.assertEqual(looped.count("for (int j = 0; j < nq; ++j) {"), 3)
         self.assertIn("--loop-min-nq 6", looped)
         # the dense derivation keeps every output unrolled whatever the size
-        dense = generate(str(MODELS / "n_link_chain.py"), {"n": "6"}, dynamics="dense",
-                         loop_min_nq=6).header
+        dense = generate(str(MODELS / "n_link_chain.py"), {"n": "6"},
+                         GenerateOptions(dynamics="dense", loop_min_nq=6)).header
         self.assertNotIn("mass_matrix_product(", dense)
 
     def test_a_loop_threshold_below_one_is_refused(self):
@@ -246,7 +250,7 @@ class PathChoiceTest(unittest.TestCase):
 
     def test_forcing_the_recursion_on_a_model_that_is_no_tree_is_refused(self):
         with self.assertRaises(ModelError) as caught:
-            generate(str(MODELS / "falling_cat.py"), dynamics="recursive")
+            generate(str(MODELS / "falling_cat.py"), options=GenerateOptions(dynamics="recursive"))
         message = str(caught.exception)
         self.assertIn("falling_cat.py", message)
         self.assertIn("neither a tree of particles", message)

@@ -1,7 +1,7 @@
 """Inputs the generator refuses: each ends in one `file:line: error: ...` line naming what is
 wrong, a non-zero exit, no traceback and an output folder left as it was.
 
-The cases (refused_cases.py) run in this process, through generator.cli.main, so that the
+The cases (refused_cases.py) run in this process, through gencoord.generate.cli.main, so that the
 table stays fast; test_interrupts.py runs the commands themselves.
 """
 
@@ -16,7 +16,11 @@ from pathlib import Path
 from types import SimpleNamespace
 from unittest import mock
 
-from generator import cli, limits, pipeline
+from gencoord.generate import cli
+
+from gencoord.generate import limits
+
+from gencoord.generate import stages as pipeline
 
 from . import refused_cases
 from .support import MARK, MODELS, marked_line, snapshot, snapshot_difference

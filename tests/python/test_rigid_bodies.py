@@ -2,7 +2,7 @@
 independent sympy.physics.mechanics derivation built from RigidBody and inertia() dyadics.
 
 A body in gencoord is a set of point masses with its mass, centre of mass and inertia tensor
-(generator/bodies.py); the references below never see those point masses: each body is a
+(gencoord/dsl/bodies.py); the references below never see those point masses: each body is a
 mechanics RigidBody with its inertia dyadic about its centre of mass, its frame oriented by
 axis rotations, and Kane's method with generalized speeds u = qdot. Both sides are evaluated
 in 30-digit arithmetic at seeded random states and random parameter values (valid inertia
@@ -23,8 +23,8 @@ import mpmath
 import sympy as sp
 from sympy.physics import mechanics as me
 
-from generator.derive import derive
-from generator.loader import load_model
+from gencoord.derive.dense import derive
+from gencoord.generate.load import load_model
 
 from .support import DIGITS, MODELS, format_numbers, relative_error
 

@@ -1,4 +1,4 @@
-"""The scene a viewer draws (generator/scene.py): what each item becomes, the body shapes'
+"""The scene a viewer draws (gencoord/viewer/scene.py): what each item becomes, the body shapes'
 inertia, body points as affine combinations of the point masses, parameter values."""
 
 from __future__ import annotations
@@ -8,8 +8,8 @@ import unittest
 
 import sympy as sp
 
-from generator.loader import load_model
-from generator.scene import FORMAT, scene, scene_json
+from gencoord.generate.load import load_model
+from gencoord.viewer.scene import FORMAT, scene, scene_json
 
 from .support import GENERATED, MODELS
 

@@ -1,9 +1,9 @@
-"""Generation-time analysis of where J = dX/dq loses rank (generator/singularities.py)."""
+"""Generation-time analysis of where J = dX/dq loses rank (gencoord/checks/singularities.py)."""
 
 import unittest
 
-from generator.loader import load_model
-from generator.singularities import analyse_singularities
+from gencoord.generate.load import load_model
+from gencoord.checks.singularities import analyse_singularities
 
 from .support import MODELS
 

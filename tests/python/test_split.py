@@ -1,4 +1,5 @@
-"""Cutting long kernels into parts (generator/split.py): the plan runs like the whole kernel.
+"""Cutting long kernels into parts (gencoord/optimize/split.py): the plan runs like the whole
+kernel.
 
 Each plan is executed on a model of the emitted code: statements in the planned order, every
 intermediate a local of its part, `carried` an array of slots. A load must find in its slot
@@ -17,8 +18,9 @@ import tempfile
 import unittest
 from pathlib import Path
 
-from generator.pipeline import generate
-from generator.split import LARGE_TREE_PART_STATEMENTS, MAX_PART_STATEMENTS, plan_parts
+from gencoord.generate.stages import generate
+from gencoord.options import GenerateOptions
+from gencoord.optimize.split import plan_parts
 
 from .support import REPO
 
@@ -120,15 +122,17 @@ class SplitHeaderTest(unittest.TestCase):
         """A tree that gets looped kernels is cut into parts of 500 statements unless told
         otherwise, which the report says; an explicit size is kept and recorded."""
         chain = str(REPO / "models" / "n_link_chain.py")
-        chosen = generate(chain, {"n": "12"}, loop_min_nq=10)
-        self.assertIn(f"kernels cut into parts of at most {LARGE_TREE_PART_STATEMENTS} "
+        chosen = generate(chain, {"n": "12"}, GenerateOptions(loop_min_nq=10))
+        self.assertIn("kernels cut into parts of at most "
+                      f"{GenerateOptions.large_tree_part_statements} "
                       "statements", " ".join(chosen.analysis))
         self.assertNotIn("--max-function-statements", chosen.header)
         self.assertIn("GENCOORD_NOINLINE static void", chosen.header)
         # every kernel of the 12-link chain is under 2000 statements: told so, none is cut
-        told = generate(chain, {"n": "12"}, loop_min_nq=10,
-                        max_part_statements=MAX_PART_STATEMENTS)
-        self.assertIn(f"--max-function-statements {MAX_PART_STATEMENTS}", told.header)
+        every = GenerateOptions.part_statements
+        told = generate(chain, {"n": "12"},
+                        GenerateOptions(loop_min_nq=10, max_part_statements=every))
+        self.assertIn(f"--max-function-statements {every}", told.header)
         self.assertNotIn("GENCOORD_NOINLINE static void", told.header)
 
     def test_negative_sizes_are_refused(self):

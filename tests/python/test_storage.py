@@ -1,8 +1,8 @@
 """The Eigen types of a model's vectors and matrices: fixed-size up to Eigen's stack limit
-(16,384 doubles), gencoord::HeapMatrix beyond (generator/storage.py)."""
+(16,384 doubles), gencoord::HeapMatrix beyond (gencoord/cxx/storage.py)."""
 import unittest
 
-from generator.storage import FIXED_SIZE_MAX_ENTRIES, model_types, needs_heap_matrix
+from gencoord.cxx.storage import FIXED_SIZE_MAX_ENTRIES, model_types, needs_heap_matrix
 
 
 class StorageTest(unittest.TestCase):

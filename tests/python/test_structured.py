@@ -1,8 +1,8 @@
 """The structured derivation (named intermediates, grouped sums) against the plain one.
 
-generator/structured.py rewrites every output in terms of intermediates so large models
+gencoord/derive/structured.py rewrites every output in terms of intermediates so large models
 generate fast; this checks, at random states in extended precision, that each output still
-has the value derive.py's flat expressions give. The C++ reference
+has the value derive/dense.py's flat expressions give. The C++ reference
 values test checks the same end to end, after CSE and printing.
 """
 
@@ -14,9 +14,9 @@ import unittest
 import mpmath
 import sympy as sp
 
-from generator.derive import Kinematics, derive
-from generator.loader import load_model
-from generator.structured import derive_structured
+from gencoord.derive.dense import Kinematics, derive
+from gencoord.generate.load import load_model
+from gencoord.derive.structured import derive_structured
 
 from .support import DIGITS, MODELS, relative_error
 

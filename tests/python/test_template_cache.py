@@ -1,4 +1,4 @@
-"""The cache of compiled Jinja2 templates (generator/emit.py): a damaged or unwritable entry
+"""The cache of compiled Jinja2 templates (gencoord/cxx/render.py): a damaged or unwritable entry
 only means compiling again, and a change of Jinja2 or of our environment options is a
 different entry, never the old compiled code."""
 
@@ -12,7 +12,7 @@ from unittest import mock
 
 import jinja2
 
-from generator import emit
+from gencoord.cxx import render as emit
 
 
 class TemplateCacheTest(unittest.TestCase):

@@ -1,4 +1,4 @@
-"""tool/timeseries_svg.py: stacked panels of time series, read back with xml.etree: one
+"""gencoord/tool/timeseries_svg.py: stacked panels of time series, read back with xml.etree: one
 polyline per series at the right pixels, one time range for all panels, bounded point counts,
 and one-line errors for CSVs that cannot be drawn."""
 
@@ -7,6 +7,7 @@ from __future__ import annotations
 import contextlib
 import io
 import math
+import os
 import subprocess
 import sys
 import tempfile
@@ -14,9 +15,9 @@ import unittest
 import xml.etree.ElementTree as ET
 from pathlib import Path
 
-from tool import timeseries_svg as ts
-from tool.errors import ToolError
-from tool.trajectory_svg import MAX_POLYLINE_POINTS
+from gencoord.tool import timeseries_svg as ts
+from gencoord.tool.errors import ToolError
+from gencoord.tool.svg_plot import MAX_POLYLINE_POINTS
 
 SVG = "{http://www.w3.org/2000/svg}"
 REPO = Path(__file__).resolve().parents[2]
@@ -292,9 +293,9 @@ class WriteTest(unittest.TestCase):
 
     def test_module_command_exits_2_without_a_traceback(self):
         result = subprocess.run(
-            [sys.executable, "-m", "tool.timeseries_svg", str(self.source), str(self.target),
-             "--panel", "Angles=theta1,nope"], cwd=REPO, capture_output=True, text=True,
-            timeout=60)
+            [sys.executable, "-m", "gencoord.tool.timeseries_svg", str(self.source),
+             str(self.target), "--panel", "Angles=theta1,nope"], cwd=REPO, capture_output=True,
+            text=True, timeout=60, env=dict(os.environ, PYTHONPATH=str(REPO / "python")))
         self.assertEqual(result.returncode, 2)
         self.assertNotIn("Traceback", result.stderr)
         self.assertEqual(len(result.stderr.strip().splitlines()), 1, result.stderr)

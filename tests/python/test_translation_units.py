@@ -19,7 +19,7 @@ import tempfile
 import unittest
 from pathlib import Path
 
-from generator.split import assign_groups, plan_parts
+from gencoord.optimize.split import assign_groups, plan_parts
 
 from .support import describe, run_generate
 

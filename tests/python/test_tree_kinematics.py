@@ -16,10 +16,10 @@ from unittest import mock
 
 import sympy as sp
 
-from generator import singularities
-from generator.derive import Kinematics
-from generator.loader import load_model
-from generator.sums import difference, dot
+from gencoord.checks import singularities
+from gencoord.derive.dense import Kinematics
+from gencoord.generate.load import load_model
+from gencoord.symbolic.sums import difference, dot
 
 from .test_recursive import SIX_LINKS, particle_trees
 

@@ -15,11 +15,11 @@ from pathlib import Path
 
 import sympy as sp
 
-from generator import Model, load_urdf
-from generator.atlas import check_atlas
-from generator.cli import main as generate_main
-from generator.errors import ModelError
-from generator.urdf_description import read_urdf
+from gencoord import Model, load_urdf
+from gencoord.checks.atlas import check_atlas
+from gencoord.generate.cli import main as generate_main
+from gencoord.errors import ModelError
+from gencoord.urdf.description import read_urdf
 
 from .support import MODELS, describe, run_generate
 
@@ -83,7 +83,7 @@ TWO_LINKS = robot(
 </joint>""")
 
 
-# Hand-written rotations and products (plain floats), independent of generator/frames.py.
+# Hand-written rotations and products (plain floats), independent of gencoord/dsl/frames.py.
 def rx(a):
     return [[1, 0, 0], [0, math.cos(a), -math.sin(a)], [0, math.sin(a), math.cos(a)]]
 
@@ -406,7 +406,7 @@ class UrdfGenerateTest(unittest.TestCase):
         self.assertIn("Robot 'test' from urdf_pendulum.urdf", header)
 
     def test_floating_base_is_an_atlas_of_euler_charts(self):
-        from generator.loader import load_model
+        from gencoord.generate.load import load_model
         path = self.folder / "floater.urdf"
         path.write_text(FLOATING, encoding="utf-8")
         model, name, _ = load_model(str(path))
@@ -420,7 +420,7 @@ class UrdfGenerateTest(unittest.TestCase):
         check_atlas(model)
 
     def test_items_point_at_the_urdf_lines(self):
-        from generator.loader import load_model
+        from gencoord.generate.load import load_model
         path = self.folder / "floater.urdf"
         path.write_text(FLOATING, encoding="utf-8")
         model, _, _ = load_model(str(path))
@@ -434,7 +434,7 @@ class BuiltInRobotsTest(unittest.TestCase):
     """The robot descriptions in models/ load: joints, bodies, pins; numbers stay literals."""
 
     def load(self, stem: str):
-        from generator.loader import load_model
+        from gencoord.generate.load import load_model
         return load_model(str(MODELS / f"{stem}.urdf"))[0]
 
     def test_iiwa14(self):
@@ -461,11 +461,11 @@ class UrdfModelFileTest(unittest.TestCase):
     """load_urdf from a model file, relative to it, with forces added on top."""
 
     def test_model_file_loads_a_urdf_beside_it(self):
-        from generator.loader import load_model
+        from gencoord.generate.load import load_model
         with tempfile.TemporaryDirectory(prefix="gencoord-urdf-") as folder:
             Path(folder, "two.urdf").write_text(TWO_LINKS, encoding="utf-8")
             Path(folder, "arm.py").write_text(textwrap.dedent("""\
-                from generator import Model, load_urdf
+                from gencoord import Model, load_urdf
                 model = Model(dim=3)
                 links = load_urdf(model, "two.urdf")
                 model.joint_spring(links.coordinates["elbow"], 3.0, rest=1.0)

@@ -13,15 +13,19 @@ from unittest import mock
 
 import sympy as sp
 
-from generator import constraints, redundancy, singularities
-from generator.budget import Budget, BudgetSpent
-from generator.derive import Kinematics
-from generator.errors import ModelError
-from generator.loader import load_model
-from generator.rank import check_full_rank
-from generator.singularities import analyse_singularities
-from generator.trig_polynomial import vanishes_identically
-from generator.validate import validate
+from gencoord.checks import constraints
+
+from gencoord.checks import redundancy
+
+from gencoord.checks import singularities
+from gencoord.checks.budget import Budget, BudgetSpent
+from gencoord.derive.dense import Kinematics
+from gencoord.errors import ModelError
+from gencoord.generate.load import load_model
+from gencoord.checks.full_rank import check_full_rank
+from gencoord.checks.singularities import analyse_singularities
+from gencoord.symbolic.trig_polynomial import vanishes_identically
+from gencoord.checks.validate import validate
 
 from .support import describe, run_generate
 
@@ -67,7 +71,7 @@ class AlgebraicPositionsTest(unittest.TestCase):
     def test_wrong_rod_is_caught_where_positions_are_finite(self):
         with tempfile.TemporaryDirectory() as scratch:
             model = load_source(Path(scratch), """\
-                from generator import Model, sqrt
+                from gencoord import Model, sqrt
                 model = Model(dim=2)
                 s = model.coordinate("s", "slider (m)")
                 pivot = model.fixed_point("pivot", [0, 0])
@@ -81,7 +85,7 @@ class AlgebraicPositionsTest(unittest.TestCase):
     def test_positions_never_finite_in_the_samples_are_noted(self):
         with tempfile.TemporaryDirectory() as scratch:
             model = load_source(Path(scratch), """\
-                from generator import Model, sqrt
+                from gencoord import Model, sqrt
                 model = Model(dim=2)
                 s = model.coordinate("s", "slider (m)", initial=20)
                 pivot = model.fixed_point("pivot", [0, 0])
@@ -121,7 +125,7 @@ class BudgetTest(unittest.TestCase):
 
     def _double_pendulum(self, scratch: str, rod_length: str):
         return load_source(Path(scratch), f"""\
-            from generator import Model, cos, sin
+            from gencoord import Model, cos, sin
             model = Model(dim=2)
             theta = model.coordinate("theta", "angle (rad)")
             phi = model.coordinate("phi", "angle (rad)")

@@ -1,11 +1,11 @@
-"""Matrices with many zero entries are set to zero at once (generator/write_kernels.py): the
+"""Matrices with many zero entries are set to zero at once (gencoord/cxx/kernel_writer.py): the
 chain's J, whose entries above the diagonal of each particle's rows are zero, gets one
 setZero() and an assignment per nonzero entry only, in whole kernels and in parts."""
 import re
 import unittest
 
-from generator.pipeline import generate
-from generator.write_kernels import ZERO_FILL_MIN
+from gencoord.generate.stages import generate
+from gencoord.options import GenerateOptions
 
 from .support import REPO
 
@@ -28,10 +28,10 @@ class ZeroFillTest(unittest.TestCase):
         self.assertEqual(sorted((int(i), int(j)) for i, j, _ in assigned),
                          [(i, j) for i in range(2 * n) for j in range(i // 2 + 1)])
         self.assertNotIn("Scalar(0)", [code for *_, code in assigned])
-        self.assertGreaterEqual(2 * n * n - len(assigned), ZERO_FILL_MIN)
+        self.assertGreaterEqual(2 * n * n - len(assigned), GenerateOptions.zero_fill_min)
 
     def test_parts_write_nonzeros_after_the_kernel_zeroes(self):
-        header = generate(CHAIN, {"n": "5"}, max_part_statements=4).header
+        header = generate(CHAIN, {"n": "5"}, GenerateOptions(max_part_statements=4)).header
         jacobian = _kernel(header, "static XJacobian<Scalar> jacobian(")
         calls = jacobian.index("jacobian_part0<Scalar>(")
         self.assertLess(jacobian.index("result.setZero();"), calls)

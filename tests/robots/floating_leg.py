@@ -4,7 +4,7 @@
 joint is compared with each chart on its own, so this file loads the URDF into the zyx chart
 and floating_leg_yzx.py into the yzx chart.
 """
-from generator import Model, load_urdf
+from gencoord import Model, load_urdf
 
 model = Model(dim=3, chart="zyx")
 load_urdf(model, "floating_leg.urdf")

@@ -1,7 +1,7 @@
 // MuJoCo's free joint as the reference for a generated model with a free-floating base.
 //
 // The generated model's first chart moves the base link by x, y, z (the link frame's origin
-// in the world) and three Euler angles of one of generator/joints.py's EULER_CHARTS (zyx:
+// in the world) and three Euler angles of one of python/gencoord/dsl/joints.py's EULER_CHARTS (zyx:
 // R = Rz(yaw) Ry(pitch) Rx(roll); yzx: R = Ry(heading) Rz(attitude) Rx(bank)); its velocities
 // are the coordinates' time derivatives. MuJoCo's free joint has qpos = (x, y, z, qw, qx, qy,
 // qz), the same origin and R as a unit quaternion, and qvel = (the origin's velocity in world
@@ -70,7 +70,7 @@ struct EulerChart {
   }
 };
 
-// generator/joints.py's EULER_CHARTS, in its order
+// python/gencoord/dsl/joints.py's EULER_CHARTS, in its order
 inline constexpr std::array<EulerChart, 2> kEulerCharts{{
     {"zyx", {{"yaw", "pitch", "roll"}}, {{2, 1, 0}}},
     {"yzx", {{"heading", "attitude", "bank"}}, {{1, 2, 0}}},

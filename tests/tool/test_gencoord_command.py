@@ -171,12 +171,8 @@ class GencoordCommandTest(unittest.TestCase):
         self.assertNoTraceback(result)
 
     def test_cache_key_follows_the_model_file(self):
-        sys.path.insert(0, str(REPOSITORY))
-        try:
-            from tool.driver_build import ModelTarget, entry_dir
-            from tool.layout import find_layout
-        finally:
-            sys.path.remove(str(REPOSITORY))
+        from gencoord.tool.driver_build import ModelTarget, entry_dir
+        from gencoord.tool.layout import find_layout
         layout = find_layout()
         copy = self.user / "crane_copy.py"
 

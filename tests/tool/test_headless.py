@@ -1,4 +1,4 @@
-"""tool/viewer: headless Chromium over the DevTools pipe draws with WebGL2, evaluates, takes
+"""gencoord/viewer: headless Chromium over the DevTools pipe draws with WebGL2, evaluates, takes
 screenshots and gathers console errors; the PNG reader undoes every filter. The browser tests
 need Chromium (scripts/setup.sh --browser); GENCOORD_SKIP_BROWSER=1 skips them."""
 
@@ -15,8 +15,8 @@ import zlib
 from pathlib import Path
 from unittest import mock
 
-from tool.viewer.headless import Browser, BrowserError, JavaScriptError, find_chromium
-from tool.viewer.png import read_png
+from gencoord.viewer.headless import Browser, BrowserError, JavaScriptError, find_chromium
+from gencoord.viewer.png import read_png
 
 WIDTH, HEIGHT = 320, 240
 CLEAR = (51, 102, 153)  # the clear colour, 0.2 0.4 0.6

@@ -10,8 +10,8 @@ from pathlib import Path
 from unittest import mock
 
 REPOSITORY = Path(__file__).resolve().parents[2]
-sys.path.insert(0, str(REPOSITORY))
-from tool import python_target  # noqa: E402
+sys.path.insert(0, str(REPOSITORY / "python"))
+from gencoord.tool import python_target  # noqa: E402
 
 
 class ImportGuardTest(unittest.TestCase):

@@ -9,8 +9,8 @@ import tempfile
 import unittest
 from pathlib import Path
 
-from tool.sweep import event, samples, spec, table
-from tool.sweep.source import SweepFileError, read_source
+from gencoord.sweep import event, samples, spec, table
+from gencoord.sweep.source import SweepFileError, read_source
 
 REPOSITORY = Path(__file__).resolve().parents[2]
 MODEL = REPOSITORY / "models" / "double_pendulum.py"

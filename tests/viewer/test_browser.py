@@ -14,11 +14,11 @@ import tempfile
 import time
 import unittest
 
-from tool.trajectory_svg import energy_error, read_trajectory
-from tool.viewer import page
-from tool.viewer.headless import Browser, find_chromium
-from tool.viewer.in_browser import open_viewer
-from tool.viewer.png import read_png
+from gencoord.tool.trajectory_svg import energy_error, read_trajectory
+from gencoord.viewer import page
+from gencoord.viewer.headless import Browser, find_chromium
+from gencoord.viewer.in_browser import open_viewer
+from gencoord.viewer.png import read_png
 
 from .trajectory import double_pendulum_csv, double_pendulum_scene
 

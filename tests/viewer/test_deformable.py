@@ -1,4 +1,4 @@
-"""A deformable run's page (tool/viewer/deformable.py): the frames and springs the demo
+"""A deformable run's page (gencoord/viewer/deformable.py): the frames and springs the demo
 writes, read with errors that name the file and line; in headless Chromium, a spring is drawn
 until the time it broke."""
 
@@ -10,11 +10,11 @@ import os
 import tempfile
 import unittest
 
-from tool.errors import ToolError
-from tool.viewer import page
-from tool.viewer.deformable import deformable_data
-from tool.viewer.headless import Browser, find_chromium
-from tool.viewer.in_browser import open_viewer
+from gencoord.tool.errors import ToolError
+from gencoord.viewer import page
+from gencoord.viewer.deformable import deformable_data
+from gencoord.viewer.headless import Browser, find_chromium
+from gencoord.viewer.in_browser import open_viewer
 
 # a square of four nodes with both diagonals; the diagonal 0-2 breaks at t = 0.5
 FRAMES = [(0.0, [(0, 0), (1, 0), (1, 1), (0, 1)]),

@@ -1,4 +1,4 @@
-"""The viewer page without a browser (tool/viewer/page.py): it carries everything it needs
+"""The viewer page without a browser (gencoord/viewer/page.py): it carries everything it needs
 and nothing from the network, holds the trajectory exactly enough, stays light, and thins a
 long trajectory without hiding its worst energy error."""
 
@@ -13,9 +13,9 @@ import tempfile
 import unittest
 from unittest import mock
 
-from tool.errors import ToolError
-from tool.trajectory_svg import read_trajectory
-from tool.viewer import page, three_js
+from gencoord.tool.errors import ToolError
+from gencoord.tool.trajectory_svg import read_trajectory
+from gencoord.viewer import page, three_js
 
 from .trajectory import double_pendulum_csv, double_pendulum_scene
 

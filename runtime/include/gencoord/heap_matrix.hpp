@@ -3,8 +3,8 @@
 // A generated model's vectors and matrices are fixed-size Eigen objects, which Eigen keeps on
 // the stack and refuses above 128 KiB (a 100-link planar chain's 200 x 100 Jacobian already
 // is 160 KiB). For such a size the generator writes HeapMatrix<Scalar, rows, cols> instead
-// (generator/storage.py): default-constructed it has its size, like a fixed-size matrix, and
-// Zero(), Ones(), Identity() and Constant(value) take no sizes, so the runtime's code is the
+// (python/gencoord/cxx/storage.py): default-constructed it has its size, like a fixed-size matrix,
+// and Zero(), Ones(), Identity() and Constant(value) take no sizes, so the runtime's code is the
 // same for both. Everything else is Eigen's dynamic-size Matrix it derives from; Eigen's
 // expressions and decompositions see that base (LLT<PlainOf<QMat<M>>>, model_traits.hpp), never
 // a HeapMatrix.

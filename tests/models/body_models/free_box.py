@@ -8,7 +8,7 @@ body's x axis points along the world's z axis. No gravity by default: energy and
 momentum are conserved, and spun about its intermediate axis the box turns over and over (the
 Dzhanibekov effect).
 """
-from generator import Frame, Matrix, Model, rpy
+from gencoord import Frame, Matrix, Model, rpy
 
 model = Model(dim=3)
 centre = Matrix([model.coordinate(name, f"centre of mass, {name} (m)") for name in "xyz"])

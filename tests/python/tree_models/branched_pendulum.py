@@ -3,7 +3,7 @@ pendulum whose bob carries a rigidly attached lamp and two planar pendulums, the
 joined by a spring, one arm damped against the bob and one angle sprung. Every kind of tree
 node and force the recursions handle appears once. Every number is a parameter, so tests can
 evaluate the model in any precision."""
-from generator import Model, cos, sin
+from gencoord import Model, cos, sin
 
 model = Model(dim=3)
 t = model.t

@@ -5,8 +5,8 @@ anchor, a damper joins the side arm to the slider, the hand takes a body torque 
 depends on time and rates, and the slide has a joint spring. Every kind of link, joint and
 force the recursions handle appears once. Masses and force constants are parameters and the
 geometry is exact (rationals), so tests can evaluate the model in any precision."""
-from generator import Continuous, Fixed, Model, Origin, Prismatic, Rational, Revolute
-from generator import add_link, cos, sin
+from gencoord import Continuous, Fixed, Model, Origin, Prismatic, Rational, Revolute
+from gencoord import add_link, cos, sin
 
 R = Rational
 model = Model(dim=3)

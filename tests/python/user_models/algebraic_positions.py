@@ -1,5 +1,5 @@
 """Positions a user writes with tan, 1/q and sqrt: a bead on a slider s, an arm at angle a."""
-from generator import Model, sqrt, tan
+from gencoord import Model, sqrt, tan
 
 model = Model(dim=2)
 s = model.coordinate("s", "slider position (m)", initial=0.5)

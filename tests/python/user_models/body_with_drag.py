@@ -1,6 +1,6 @@
 """A 3D body of three point masses held by rods, falling with air drag: position and Z-Y-X
 Euler angles, written as a new user would."""
-from generator import Matrix, Model, cos, sin
+from gencoord import Matrix, Model, cos, sin
 
 model = Model(dim=3)
 x = model.coordinate("x", "centre x (m)")

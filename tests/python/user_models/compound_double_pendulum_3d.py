@@ -5,7 +5,7 @@ about the axis (0, 3, 4)/5 of body 1's axes, through the point j of body 1. c1 i
 centre of mass in its axes (from the origin), c2 body 2's in its axes (from the hinge), and
 I1, I2 the inertia tensors about the centres of mass in body axes. Gravity pulls along -z.
 """
-from generator import Frame, Matrix, Model, axis_angle
+from gencoord import Frame, Matrix, Model, axis_angle
 
 model = Model(dim=3)
 q1 = model.coordinate("q1", "angle of body 1 about the fixed hinge (rad)", initial=0.4)

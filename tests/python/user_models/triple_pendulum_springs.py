@@ -1,5 +1,5 @@
 """A triple pendulum with springs between the bobs, written as a new user would."""
-from generator import Model, cos, sin
+from gencoord import Model, cos, sin
 
 model = Model(dim=2)
 theta1 = model.coordinate("theta1", "first rod angle (rad)", initial=0.5)

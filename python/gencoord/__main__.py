@@ -1,0 +1,5 @@
+"""`python -m gencoord ...`: the gencoord command."""
+
+from gencoord.commands import gencoord
+
+gencoord()

@@ -1,0 +1,60 @@
+"""Whether a model's applied forces at rest are conservative: the fact a test of
+potential_energy relies on, emitted as the model struct's `forces_have_potential`
+(generate/stages.py
+decides it with the other analyses)."""
+
+from __future__ import annotations
+
+import sympy as sp
+
+from gencoord.derive.dense import Kinematics
+from gencoord.dsl.model import Model
+
+
+def _vanishes(expr) -> bool:
+    return all(sp.simplify(e) == 0 for e in sp.Matrix([expr]))
+
+
+def forces_have_potential(model: Model, kin: Kinematics | None = None) -> bool:
+    """True when at rest (v = 0) the applied forces are -dV/dq, V the potential energy.
+
+    Forces with a declared potential (gravity, springs, joint springs, user forces given one)
+    are -dV/dq at any v, so what decides is whether every force without one vanishes at rest.
+    At rest a point still moves with dX/dt, so damping is zero only between points whose
+    positions do not depend on t; a user force must vanish identically once every point's
+    position and velocity are put in. `kin`: the model's Kinematics, if already built.
+    """
+    t = model.time
+    kin = kin or Kinematics(model)
+    still = {c.rate: 0 for c in model.coordinates}
+    points = {symbol: point for point in model.points for symbol in (*point.x, *point.xdot)}
+
+    def at_rest(expr):
+        """expr with v = 0 and each point it reads put in: x, and xdot = J v + X_t = X_t."""
+        values = dict(still)
+        for point in {points[s].name: points[s] for s in expr.free_symbols
+                      if s in points}.values():
+            position = kin.position[point.name]
+            values.update(zip(point.x, position))
+            values.update(zip(point.xdot, position.diff(t)))
+        return expr.subs(values)
+
+    def moves(point) -> bool:
+        return not _vanishes(at_rest(point.position.diff(t)))
+
+    for spring in model.springs:
+        if spring.damping != 0 and (moves(spring.a) or moves(spring.b)):
+            return False
+    for damper in model.dampers:
+        if damper.coefficient != 0 and (moves(damper.a) or moves(damper.b)):
+            return False
+    for force in model.particle_forces:
+        if force.potential is None and not _vanishes(at_rest(force.force)):
+            return False
+    for force in model.generalized_forces:
+        if force.potential is None and not _vanishes(at_rest(force.force)):
+            return False
+    for torque in model.torques:
+        if not _vanishes(at_rest(torque.torque)):
+            return False
+    return True

@@ -1,0 +1,274 @@
+"""What a model file declares, one dataclass per kind (coordinates, parameters, particles,
+bodies, forces, constraints), each with the model-file line it came from.
+
+`Model` (model.py) creates them; checks and derivations read them.
+"""
+
+from __future__ import annotations
+
+import os
+import sys
+from dataclasses import dataclass, field
+from typing import Iterable, Sequence
+
+import sympy as sp
+
+from gencoord.dsl.frames import Frame
+from gencoord.errors import ModelError
+
+# the gencoord package: frames in it are not the model file's
+_PACKAGE_DIR = os.path.dirname(os.path.dirname(os.path.abspath(__file__))) + os.sep
+
+
+def model_file_frame():
+    """The first stack frame outside this package: the model file's (None if there is none)."""
+    # walks frames directly: inspect.stack() reads every frame's source lines, which cost
+    # a tenth of the 20-link chain's generation time
+    frame = sys._getframe(1)
+    while frame is not None:
+        if not os.path.abspath(frame.f_code.co_filename).startswith(_PACKAGE_DIR):
+            return frame
+        frame = frame.f_back
+    return None
+
+
+def caller_line() -> int | None:
+    """The model file's line that made the current call."""
+    frame = model_file_frame()
+    return frame.f_lineno if frame is not None else None
+
+
+@dataclass
+class Item:
+    """Anything declared in a model file: it has a kind, a name and a line."""
+    name: str
+    line: int | None = field(default=None, kw_only=True)
+
+    kind = "item"
+
+    def label(self) -> str:
+        return f"{self.kind} '{self.name}'"
+
+
+@dataclass
+class Coordinate(Item):
+    symbol: sp.Symbol
+    rate: sp.Symbol
+    acceleration: sp.Symbol
+    description: str
+    initial: float = 0.0
+    initial_rate: float = 0.0
+    kind = "coordinate"
+
+
+@dataclass
+class Parameter(Item):
+    symbol: sp.Symbol
+    default: float
+    description: str
+    kind = "parameter"
+
+
+@dataclass
+class Input(Parameter):
+    """A control input: a parameter the caller changes while the model runs (0 unless set).
+
+    It may appear only in forces, so the generalized force is Ft(q, v, t, u) and the input
+    matrix B = dFt/du is what a linearization and a controller need."""
+    kind = "input"
+
+
+@dataclass
+class Point(Item):
+    """A point with a position: a particle (with mass) or a fixed/prescribed point."""
+    position: sp.Matrix
+    # Symbols standing for this point's position and velocity inside user force expressions.
+    x: sp.Matrix
+    xdot: sp.Matrix
+
+
+@dataclass
+class Particle(Point):
+    mass: sp.Expr
+    kind = "particle"
+
+
+@dataclass
+class BodyParticle(Particle):
+    """One of the point masses that stand for a body (bodies.py): a particle the model file
+    never names, labelled by its body."""
+    body_name: str = ""
+
+    def label(self) -> str:
+        return f"body '{self.body_name}' (its point mass '{self.name}')"
+
+
+@dataclass
+class BodyPoint(Point):
+    """A massless point fixed on a body at `offset` from its centre of mass (body axes).
+
+    `weights` write it as an affine combination of the body's point masses, which is how the
+    maximal-coordinate model, where the point masses move freely, places it and spreads the
+    forces on it."""
+    body: "Body"
+    offset: sp.Matrix
+    weights: list[sp.Expr]
+    kind = "point"
+
+
+@dataclass
+class Body(Item):
+    """A rigid body: mass, inertia tensor about the centre of mass in body axes (1x1 in 2D),
+    and the frame (orientation R(q, t), centre of mass p(q, t)).
+
+    The reduced dynamics take it whole (bodies.inertial_terms); `particles` are point masses
+    with the body's mass, centre of mass and inertia tensor (bodies.py), which stand for it
+    where positions are needed one by one (the particle kernels, the maximal model)."""
+    mass: sp.Expr
+    inertia: sp.Matrix
+    frame: Frame
+    particles: list[BodyParticle] = field(default_factory=list)
+    second_moment: sp.Matrix | None = None  # S = integral of r r^T dm (bodies.py)
+    offsets: list[sp.Matrix] = field(default_factory=list)  # the point masses', body axes
+    points: list[BodyPoint] = field(default_factory=list)
+    kind = "body"
+
+    def affine_weights(self, offset: sp.Matrix) -> list[sp.Expr]:
+        """Weights w_k with sum w_k = 1 and sum w_k r_k = offset: the point at `offset` as an
+        affine combination of the point masses, w_k = 1/n + m_k r_k^T S^-1 offset (the r_k
+        have mass-weighted mean zero and second moment S)."""
+        count = len(self.offsets)
+        moment = self.second_moment
+        if moment.is_diagonal() or not moment.free_symbols:
+            inverse = moment.inv()
+        else:  # SymPy 1.11's inv() (elimination, simplifying as it goes) takes minutes on it
+            inverse = moment.adjugate() / moment.det()
+        share = self.mass / count
+        return [sp.Rational(1, count) + share * (r.T * inverse * offset)[0]
+                for r in self.offsets]
+
+    def point(self, offset: Sequence, name: str | None = None) -> BodyPoint:
+        """The point fixed on this body at `offset` (body axes, from the centre of mass);
+        springs, dampers, rods, pins and forces take it like a particle."""
+        line = caller_line()
+        name = name or f"{self.name}_point{len(self.points)}"
+        r = as_vector(offset, f"point '{name}' of body '{self.name}'", self.frame.dim, line)
+        x, xdot = point_symbols(name, self.frame.dim)
+        point = BodyPoint(name, self.frame.point(r), x, xdot, self, r,
+                          self.affine_weights(r), line=line)
+        self.points.append(point)
+        return point
+
+
+@dataclass
+class BodyTorque(Item):
+    """A torque on a body: a world-frame vector (a scalar in 2D) of q, rates, t, parameters."""
+    body: Body
+    torque: sp.Matrix
+    kind = "torque"
+
+
+@dataclass
+class FixedPoint(Point):
+    """A massless point whose position may depend on parameters and time, never on q."""
+    kind = "fixed point"
+
+
+@dataclass
+class Gravity(Item):
+    acceleration: sp.Matrix
+    kind = "gravity"
+
+
+@dataclass
+class Spring(Item):
+    """A strain spring: f = k (|d| - L) / L along d, damping c ((v_b - v_a).d^) / L."""
+    a: Point
+    b: Point
+    stiffness: sp.Expr
+    rest_length: sp.Expr
+    damping: sp.Expr
+    kind = "spring"
+
+
+@dataclass
+class Damper(Item):
+    """A linear damper: force c (v_b - v_a) on b and the opposite on a."""
+    a: Point
+    b: Point
+    coefficient: sp.Expr
+    kind = "damper"
+
+
+@dataclass
+class ParticleForce(Item):
+    """A user force on a particle or a body point, a SymPy expression of point x/xdot symbols,
+    t and parameters."""
+    particle: Point
+    force: sp.Matrix
+    potential: sp.Expr | None
+    kind = "force"
+
+
+@dataclass
+class GeneralizedForce(Item):
+    """A force acting directly on one coordinate (joint torque, joint spring)."""
+    coordinate: Coordinate
+    force: sp.Expr
+    potential: sp.Expr | None
+    kind = "generalized force"
+
+
+@dataclass
+class Rod(Item):
+    a: Point
+    b: Point
+    length: sp.Expr
+    kind = "rod"
+
+
+@dataclass
+class Pin(Item):
+    """The point sits at the anchor: a position vector of t and parameters, or another point
+    (a joint between two bodies)."""
+    particle: Point
+    anchor: sp.Matrix | Point
+    kind = "pin"
+
+
+@dataclass
+class Plane(Item):
+    particle: Particle
+    normal: sp.Matrix
+    offset: sp.Expr
+    kind = "plane"
+
+
+def as_vector(values: Iterable, what: str, dim: int, line: int | None) -> sp.Matrix:
+    try:
+        vector = sp.Matrix([sp.sympify(value) for value in values])
+    except (TypeError, sp.SympifyError) as error:
+        raise ModelError(f"is not a vector of expressions ({error})", item=what, line=line)
+    if vector.shape[0] != dim:
+        raise ModelError(
+            f"has {vector.shape[0]} components but the model is {dim}-dimensional; give "
+            f"exactly {dim}", item=what, line=line)
+    return vector
+
+
+def as_scalar(value, what: str, line: int | None) -> sp.Expr:
+    try:
+        expr = sp.sympify(value)
+    except (TypeError, sp.SympifyError) as error:
+        raise ModelError(f"is not a scalar expression ({error})", item=what, line=line)
+    if not isinstance(expr, sp.Expr):
+        raise ModelError("is not a scalar expression", item=what, line=line)
+    return expr
+
+
+def point_symbols(name: str, dim: int) -> tuple[sp.Matrix, sp.Matrix]:
+    """The symbols standing for a point's position and velocity in force expressions."""
+    axes = "xyz"[:dim]
+    x = sp.Matrix([sp.Symbol(f"{name}.{a}", real=True) for a in axes])
+    xdot = sp.Matrix([sp.Symbol(f"{name}.{a}dot", real=True) for a in axes])
+    return x, xdot

@@ -1,0 +1,375 @@
+"""Kinematic trees: links joined by revolute, continuous, prismatic and fixed joints.
+
+`add_link` composes a link's frame from its parent's (URDF's conventions), declares the
+joint's coordinate, the link's body, the joint's damping and the pins that hold the joint
+together in the maximal-coordinate model:
+
+    turret = add_link(model, "turret", None, Revolute([0, 0, 1], Origin(xyz=[0, 0, 0.1])),
+                      mass=4.0, inertia=I0)
+    arm = add_link(model, "arm", turret, Revolute([0, 1, 0], Origin(xyz=[0, 0, 0.3])),
+                   mass=2.0, inertia=I1, com=Origin(xyz=[0, 0, 0.2]))
+
+The joint frame is the parent link's frame times `origin` (translation xyz, rotation
+rpy(roll, pitch, yaw)); the joint moves about or along `axis`, given in the joint frame; the
+child link's frame is the moved joint frame. A link's body sits at `com` in the link frame,
+its inertia given in the axes of `com`.
+"""
+
+from __future__ import annotations
+
+import math
+import re
+from dataclasses import dataclass, field
+from typing import Sequence
+
+import sympy as sp
+
+from gencoord.errors import ModelError
+from gencoord.dsl.frames import Frame, axis_angle, rotation_about, rpy
+from gencoord.dsl.items import Body
+
+# Euler-angle charts of a free-floating base: each angle's name, axis and description,
+# outermost (world) first; the two charts' singular sets are disjoint (see atlas.py).
+EULER_CHARTS = {
+    "zyx": [("yaw", "z", "rotation about z (rad)"),
+            ("pitch", "y", "rotation about the new y (rad)"),
+            ("roll", "x", "rotation about the new x (rad)")],
+    "yzx": [("heading", "y", "rotation about y (rad)"),
+            ("attitude", "z", "rotation about the new z (rad)"),
+            ("bank", "x", "rotation about the new x (rad)")],
+}
+# an angle this close to a multiple of pi/2 (relative) is that multiple: below double
+# precision, and the exact rotation keeps zeros out of every expression built on it
+_RIGHT_ANGLE_TOLERANCE = 1e-12
+
+
+def identifier(name: str) -> str:
+    """A C++ identifier close to `name`: other characters become _, a leading digit gets a
+    prefix."""
+    text = re.sub(r"[^A-Za-z0-9_]", "_", name) or "unnamed"
+    return text if not text[0].isdigit() else "j_" + text
+
+
+def number(value):
+    """A literal for an expression: an integer when the float is one (exact zeros and ones
+    keep expressions small), else a Float; SymPy expressions are kept."""
+    if isinstance(value, sp.Basic):
+        return value
+    value = float(value)
+    return sp.Integer(int(value)) if value.is_integer() else sp.Float(value)
+
+
+def angle(value):
+    """A literal angle, exact when it is a multiple of pi/2 to within double precision."""
+    if isinstance(value, sp.Basic):
+        return value
+    value = float(value)
+    quarter_turns = round(value / (math.pi / 2))
+    if abs(value - quarter_turns * math.pi / 2) <= _RIGHT_ANGLE_TOLERANCE * max(1.0, abs(value)):
+        return quarter_turns * sp.pi / 2
+    return number(value)
+
+
+@dataclass
+class Origin:
+    """A pose in a parent frame: translation `xyz`, then rotation rpy(roll, pitch, yaw)."""
+    xyz: Sequence = (0, 0, 0)
+    rpy: Sequence = (0, 0, 0)
+
+    def __post_init__(self):
+        self.xyz = tuple(number(v) for v in self.xyz)
+        self.rpy = tuple(angle(v) for v in self.rpy)
+        if len(self.xyz) != 3 or len(self.rpy) != 3:
+            raise ValueError("an origin's xyz and rpy have 3 components each")
+
+    def frame(self) -> Frame:
+        return Frame(rpy(*self.rpy), self.xyz)
+
+
+@dataclass
+class Limits:
+    """A joint's range and ratings as URDF gives them; reported, not enforced."""
+    lower: float | None = None
+    upper: float | None = None
+    effort: float | None = None
+    velocity: float | None = None
+
+    def __str__(self) -> str:
+        parts = []
+        if self.lower is not None or self.upper is not None:
+            parts.append(f"limits [{_text(self.lower)}, {_text(self.upper)}]")
+        if self.effort is not None:
+            parts.append(f"effort {_text(self.effort)}")
+        if self.velocity is not None:
+            parts.append(f"velocity {_text(self.velocity)}")
+        return ", ".join(parts)
+
+
+def _text(value) -> str:
+    return "-" if value is None else f"{value:g}"
+
+
+@dataclass
+class Joint:
+    """A joint's placement in its parent link; `name` names its coordinate (default: the
+    child link's name and _joint)."""
+    origin: Origin = field(default_factory=Origin)
+    name: str | None = field(default=None, kw_only=True)
+
+    kind = "joint"
+    unit = ""
+
+    def moves(self) -> bool:
+        return False
+
+    def motion(self, q) -> Frame:
+        """The child link's frame in the joint frame at coordinate q."""
+        return Frame.identity()
+
+
+@dataclass(init=False)
+class _Moving(Joint):
+    """A joint with a coordinate: it moves about or along `axis` (joint-frame components)."""
+    axis: Sequence = (1, 0, 0)
+    limits: Limits | None = None
+    damping: float = 0
+
+    def __init__(self, axis: Sequence, origin: Origin | None = None,
+                 limits: Limits | None = None, damping=0, name: str | None = None):
+        self.axis = tuple(number(v) for v in axis)
+        self.origin = origin if origin is not None else Origin()
+        self.limits, self.damping, self.name = limits, number(damping), name
+
+    def moves(self) -> bool:
+        return True
+
+    def unit_axis(self) -> sp.Matrix:
+        axis = sp.Matrix(self.axis)
+        return axis / sp.sqrt(axis.dot(axis))
+
+
+class Revolute(_Moving):
+    """A rotation by q about `axis` (through the joint frame's origin), within `limits`."""
+    kind = "revolute"
+    unit = "rad"
+
+    def motion(self, q) -> Frame:
+        return Frame(axis_angle(self.axis, q), [0, 0, 0])
+
+
+class Continuous(Revolute):
+    """A revolute joint without a range."""
+    kind = "continuous"
+
+
+class Prismatic(_Moving):
+    """A translation by q along `axis`."""
+    kind = "prismatic"
+    unit = "m"
+
+    def motion(self, q) -> Frame:
+        return Frame(sp.eye(3), list(self.unit_axis() * q))
+
+
+class Fixed(Joint):
+    """A weld: the child link's frame is the joint frame."""
+    kind = "fixed"
+
+
+@dataclass
+class Link:
+    """A link of the tree: its world frame, its body (None when massless or welded to the
+    world) and its joint's coordinate (None for a fixed joint)."""
+    name: str
+    frame: Frame
+    joint: Joint | None
+    parent: "Link | None"
+    body: Body | None = None
+    coordinate: sp.Symbol | None = None
+    coordinates: list = field(default_factory=list)
+    limits: Limits | None = None
+    # visual and collision elements, kept for tools; dynamics ignores them
+    geometry: list = field(default_factory=list)
+    # what holds this link's frame rigidly: (body or None for the world, this frame in that
+    # body's axes -- or in the world's), None when a moving massless link lies in between
+    support: tuple | None = None
+    # why the maximal model has no pins for this link's joint ('' when it has)
+    unpinned: str = ""
+    # this link's frame in its parent link's (the world's for a root): what the joint moves
+    local: Frame | None = None
+    # the body's frame (centre of mass, inertia axes) in this link's frame
+    inertial: Frame | None = None
+
+
+def _grounded(frame: Frame, model) -> bool:
+    """True when nothing in the frame depends on a coordinate: the link cannot move."""
+    coordinates = {c.symbol for c in model.coordinates}
+    symbols = frame.rotation.free_symbols | frame.origin.free_symbols
+    return not (symbols & coordinates)
+
+
+def _unused(model, name: str, suffix: str) -> str:
+    """`name`, with `suffix` appended while the model already uses it: URDF names links and
+    joints apart, so a link and its joint may share a name."""
+    taken = {item.name for item in [*model.coordinates, *model.parameters, *model.bodies,
+                                    *model.points]}
+    while name in taken:
+        name += suffix
+    return name
+
+
+def _declare_body(model, name: str, frame: Frame, mass, inertia, com: Origin, label: str):
+    """The link's body at its centre of mass, and the body's frame in the link's."""
+    if not isinstance(com, Origin):
+        raise ModelError("com is an Origin(xyz=..., rpy=...) in the link frame", item=label)
+    inertial = com.frame()
+    body = model.body(_unused(model, identifier(name), "_body"), number(mass),
+                      sp.Matrix(inertia), frame * inertial)
+    return body, inertial
+
+
+def _check_axis(joint: Joint, label: str) -> None:
+    if isinstance(joint, _Moving):
+        if len(joint.axis) != 3:
+            raise ModelError(f"the axis has {len(joint.axis)} components; give 3", item=label)
+        if all(sp.sympify(v) == 0 for v in joint.axis):
+            raise ModelError("the axis is zero; give the direction the joint moves about or "
+                             "along, e.g. [0, 0, 1]", item=label)
+
+
+def add_link(model, name: str, parent: Link | None, joint: Joint, mass=None, inertia=None,
+             com: Origin | None = None) -> Link:
+    """Adds link `name`, joined to `parent` (None: the world) by `joint`; with `mass`, the
+    link is a body whose `inertia` (3x3, about the centre of mass) is given in `com`'s axes.
+
+    The joint's coordinate is named after the joint; a moving joint's damping c adds the
+    generalized force -c qdot. Returns the Link.
+    """
+    com = com if com is not None else Origin()
+    if not isinstance(joint, Joint):
+        raise ModelError("give a Revolute, Continuous, Prismatic or Fixed joint",
+                         item=f"link '{name}'")
+    if parent is not None and not isinstance(parent, Link):
+        raise ModelError("the parent is a Link that add_link returned, or None for the world",
+                         item=f"link '{name}'")
+    if (mass is None) != (inertia is None):
+        raise ModelError("give both mass and inertia (a body), or neither (a massless link)",
+                         item=f"link '{name}'")
+    joint_label = joint.name or f"{name}_joint"
+    label = f"joint '{joint_label}'"
+    _check_axis(joint, label)
+    joint_frame = (parent.frame if parent else Frame.identity()) * joint.origin.frame()
+    joint_name = _unused(model, identifier(joint_label), "_q")
+    q = None
+    if joint.moves():
+        description = f"{joint.kind} joint '{joint_label}' ({joint.unit})"
+        if joint.limits is not None and str(joint.limits):
+            description += f", {joint.limits}"
+        q = model.coordinate(joint_name, description, initial=_initial(joint.limits))
+    local = joint.origin.frame() * joint.motion(q)
+    link = Link(name, joint_frame * joint.motion(q), joint, parent, coordinate=q,
+                coordinates=[q] if q is not None else [],
+                limits=getattr(joint, "limits", None), local=local)
+    model.links.append(link)
+    if _grounded(link.frame, model):
+        link.support = (None, link.frame)  # welded to the world: its mass does nothing
+    elif mass is not None:
+        link.body, link.inertial = _declare_body(model, name, link.frame, mass, inertia, com,
+                                                 f"link '{name}'")
+        link.support = (link.body, link.inertial.inverse())
+    elif not joint.moves() and parent is not None and parent.support is not None:
+        body, offset = parent.support
+        link.support = (body, offset * joint.origin.frame())
+    if q is not None and joint.damping != 0:
+        _damp(model, link, joint_frame, joint_name, label)
+    if link.body is not None:
+        _pin(model, link, parent, joint, joint_name)
+    return link
+
+
+def _damp(model, link: Link, joint_frame: Frame, joint_name: str, label: str) -> None:
+    """Joint damping: the generalized force -c qdot; in a chart of an atlas, which refuses
+    forces on q, the same as torques -+c qdot about the joint axis on the two bodies (their
+    virtual work is -c qdot dq)."""
+    joint, rate = link.joint, model.rate(link.coordinate)
+    if not model.chart:
+        model.generalized_force(link.coordinate, -joint.damping * rate,
+                                name=f"{joint_name}_damping")
+        return
+    parent_support = (None, None) if link.parent is None else link.parent.support
+    if not isinstance(joint, Revolute) or link.body is None or parent_support is None:
+        raise ModelError("in an atlas, joint damping acts as torques between two bodies: the "
+                         "joint must be revolute or continuous, its child link and the link "
+                         "its parent is welded to must have mass; set the damping to 0",
+                         item=label)
+    torque = -joint.damping * rate * (joint_frame.rotation * joint.unit_axis())
+    model.torque(link.body, torque, name=f"{joint_name}_damping")
+    if parent_support[0] is not None:
+        model.torque(parent_support[0], -torque, name=f"{joint_name}_damping_reaction")
+
+
+def _initial(limits: Limits | None) -> float:
+    """The suggested initial value: 0, or the nearest end of the range without 0."""
+    if limits is None:
+        return 0.0
+    value = 0.0
+    if limits.lower is not None and limits.upper is not None and limits.lower <= limits.upper:
+        value = min(max(value, float(limits.lower)), float(limits.upper))
+    return value
+
+
+def _pin(model, link: Link, parent: Link | None, joint: Joint, joint_name: str) -> None:
+    """The pins that hold the joint in the maximal model: points of the joint frame on the
+    child body, pinned to the same points on the parent's supporting body (or the world)."""
+    if isinstance(joint, Prismatic):
+        # a sliding joint keeps the bodies' orientations equal, which pins between points
+        # cannot say without also stopping the slide: the penalty model leaves it free
+        link.unpinned = "a prismatic joint cannot be held by point pins"
+        return
+    support = (None, Frame.identity()) if parent is None else parent.support
+    if support is None:
+        link.unpinned = (f"its parent '{parent.name}' is massless and moves, so no body "
+                         "carries the joint's other half")
+        return
+    if isinstance(joint, Revolute):
+        # two points of the axis: the child may turn about it and nothing else
+        points = [[0, 0, 0], list(joint.unit_axis())]
+    else:
+        # three non-collinear points weld the child
+        points = [[0, 0, 0], [1, 0, 0], [0, 1, 0]]
+    parent_body, parent_offset = support
+    child_offset = link.support[1]
+    for index, local in enumerate(points):
+        suffix = "abc"[index]
+        in_parent = parent_offset.point(joint.origin.frame().point(local))
+        child_point = link.body.point(list(child_offset.point(local)),
+                                      name=f"{joint_name}_{suffix}")
+        if parent_body is None:
+            anchor = in_parent
+        else:
+            anchor = parent_body.point(list(in_parent), name=f"{joint_name}_{suffix}_parent")
+        model.pin(child_point, anchor, name=f"{joint_name}_{suffix}")
+
+
+def add_free_base(model, name: str, mass, inertia, com: Origin | None = None,
+                  chart: str = "zyx") -> Link:
+    """A link free to move: coordinates x, y, z (its origin) and three Euler angles of
+    `chart` ('zyx': yaw, pitch, roll; 'yzx': heading, attitude, bank), singular where the
+    middle angle is +-pi/2. Build one model per chart and add_chart the second for an atlas."""
+    if chart not in EULER_CHARTS:
+        raise ModelError(f"the chart is one of {', '.join(EULER_CHARTS)}, not {chart!r}",
+                         item=f"link '{name}'")
+    position = [model.coordinate(axis, f"origin of '{name}', {axis} (m)") for axis in "xyz"]
+    rotation = sp.eye(3)
+    angles = []
+    for angle_name, axis, description in EULER_CHARTS[chart]:
+        angles.append(model.coordinate(angle_name, f"'{name}': {description}"))
+        rotation = rotation * rotation_about(axis, angles[-1])
+    frame = Frame(rotation, position)
+    link = Link(name, frame, None, None, coordinates=[*position, *angles], local=frame)
+    model.links.append(link)
+    link.body, link.inertial = _declare_body(model, name, frame, mass, inertia,
+                                             com if com is not None else Origin(),
+                                             f"link '{name}'")
+    link.support = (link.body, link.inertial.inverse())
+    return link

@@ -1,0 +1,165 @@
+"""`./generate models/<name>.py [-o DIR] [--set key=value]`: writes DIR/<name>.hpp, the scene
+a viewer draws DIR/<name>.scene.json (scene.py) and, with --translation-units N,
+DIR/<name>_double_0.cpp ... <name>_double_<N-1>.cpp; DIR defaults to generated/ in the
+current directory."""
+
+from __future__ import annotations
+
+import argparse
+import os
+import re
+import shlex
+import sys
+import tempfile
+import time
+
+from gencoord.errors import ModelError
+from gencoord.generate.failures import report_failure
+from gencoord.generate.stages import generate
+from gencoord.options import DYNAMICS_CHOICES, GenerateOptions, knobs
+
+# Relative to the directory generate runs in: output lands next to the user, never in the
+# gencoord checkout (unless run from there).
+DEFAULT_OUTPUT = "generated"
+TRUST = ("A model file is a Python program: it runs with your rights, as a build runs its "
+         "build scripts. Run only model files you trust.")
+
+
+def _parse_options(pairs: list[str]) -> dict[str, str]:
+    options = {}
+    for pair in pairs:
+        key, sep, value = pair.partition("=")
+        if not sep or not key:
+            raise ModelError(f"--set expects key=value, got '{pair}'")
+        options[key] = value
+    return options
+
+
+def _output_flags(args) -> list[str]:
+    """The banner's `-o DIR` (relative to the working directory), none for the default."""
+    if os.path.abspath(args.output_dir) == os.path.abspath(DEFAULT_OUTPUT):
+        return []
+    return ["-o " + shlex.quote(
+        os.path.relpath(os.path.abspath(args.output_dir)).replace(os.sep, "/"))]
+
+
+def _add_knob_flags(parser: argparse.ArgumentParser) -> None:
+    """A flag per GenerateOptions field that has one, with the field's documentation."""
+    for knob in knobs():
+        flag = knob.metadata["flag"]
+        if not flag:
+            continue
+        kind = str if knob.name == "name" else (float if knob.name == "load_timeout" else int)
+        extra = {"choices": DYNAMICS_CHOICES} if knob.name == "dynamics" else {
+            "type": kind, "metavar": knob.metadata["metavar"]}
+        default = "" if knob.default is None else f" (default {knob.default})"
+        parser.add_argument(flag, dest=knob.name, default=knob.default,
+                            help=knob.metadata["help"] + default, **extra)
+
+
+def options_of(args, parser: argparse.ArgumentParser) -> GenerateOptions:
+    """The GenerateOptions of parsed arguments; an error for values the options refuse."""
+    values = {knob.name: getattr(args, knob.name) for knob in knobs() if knob.metadata["flag"]}
+    values["load_timeout"] = values["load_timeout"] or None
+    try:
+        return GenerateOptions(**values)
+    except ValueError as error:  # named by its flags here, not by the fields
+        message = str(error)
+        for knob in knobs():
+            if knob.metadata["flag"]:
+                message = message.replace(knob.name, knob.metadata["flag"])
+        parser.error(message)
+
+
+def write_atomically(path: str, text: str) -> bool:
+    """Writes `text` to `path` via a temporary file and a rename; False if unchanged."""
+    if os.path.exists(path):
+        with open(path, encoding="utf-8") as handle:
+            if handle.read() == text:
+                return False
+    directory = os.path.dirname(os.path.abspath(path))
+    os.makedirs(directory, exist_ok=True)
+    descriptor, temporary = tempfile.mkstemp(prefix=".gencoord-", dir=directory)
+    try:
+        with os.fdopen(descriptor, "w", encoding="utf-8", newline="\n") as handle:
+            handle.write(text)
+        umask = os.umask(0)
+        os.umask(umask)
+        os.chmod(temporary, 0o666 & ~umask)  # mkstemp makes 0600; headers are ordinary files
+        os.replace(temporary, path)
+    except BaseException:
+        os.unlink(temporary)
+        raise
+    return True
+
+
+def build_parser(prog: str = "generate") -> argparse.ArgumentParser:
+    parser = argparse.ArgumentParser(
+        prog=prog,
+        description="Derive the reduced equations of motion of a gencoord model file and emit "
+                    "them as a C++ header (DIR/<name>.hpp). Nothing is written unless every "
+                    "stage succeeds. " + TRUST)
+    parser.add_argument("model", help="the model file, e.g. models/double_pendulum.py")
+    parser.add_argument("-o", "--output-dir", default=DEFAULT_OUTPUT,
+                        help="where to write <name>.hpp (default: generated/ in the current "
+                             "directory)")
+    parser.add_argument("--set", dest="options", action="append", default=[],
+                        metavar="KEY=VALUE", help="a model option, e.g. --set n=5")
+    _add_knob_flags(parser)
+    parser.add_argument("-v", "--verbose", action="store_true",
+                        help="print every stage's timing even when generation is fast, and the "
+                             "traceback of an error")
+    parser.add_argument("-q", "--quiet", action="store_true", help="print errors only")
+    return parser
+
+
+def main(argv: list[str] | None = None, prog: str = "generate") -> int:
+    parser = build_parser(prog)
+    args = parser.parse_args(argv)
+    options = options_of(args, parser)
+
+    started = time.perf_counter()
+
+    def report(label: str, seconds: float) -> None:
+        # a line per stage once generation is slow enough for someone to wonder
+        if not args.quiet and (args.verbose or time.perf_counter() - started > 1.0):
+            print(f"  {label:<28} {seconds:8.2f} s", flush=True)
+
+    try:
+        return _generate_and_write(args, options, report, started)
+    except (Exception, KeyboardInterrupt) as error:
+        return report_failure(error, args.model, prog, verbose=args.verbose)
+
+
+def _generate_and_write(args, options: GenerateOptions, report, started: float) -> int:
+    def warn(text: str) -> None:  # even with --quiet: it comes before a long wait
+        print(f"{args.model}: warning: {text}", file=sys.stderr, flush=True)
+
+    generated = generate(args.model, _parse_options(args.options), options, on_stage=report,
+                         on_warning=warn, output_flags=_output_flags(args))
+    if not args.quiet:
+        for line in generated.analysis:
+            print(f"  {line}")
+    path = os.path.join(args.output_dir, f"{generated.name}.hpp")
+    changed = write_atomically(path, generated.header)
+    changed = write_atomically(os.path.join(args.output_dir, f"{generated.name}.scene.json"),
+                               generated.scene) or changed
+    for file_name, text in generated.sources.items():
+        changed = write_atomically(os.path.join(args.output_dir, file_name), text) or changed
+    removed = _remove_stale_sources(args.output_dir, generated.name, generated.sources)
+    if not args.quiet:
+        elapsed = time.perf_counter() - started
+        state = "wrote" if changed or removed else "unchanged"
+        extra = f" and {len(generated.sources)} source files" if generated.sources else ""
+        print(f"generate: {state} {os.path.relpath(path)}{extra} ({elapsed:.2f} s)")
+    return 0
+
+
+def _remove_stale_sources(directory: str, name: str, keep: dict[str, str]) -> list[str]:
+    """Deletes <name>_double_K.cpp files an earlier --translation-units left that this
+    generation did not write (they would instantiate parts the header no longer has)."""
+    pattern = re.compile(re.escape(name) + r"_double_[0-9]+\.cpp")
+    stale = sorted(f for f in os.listdir(directory) if pattern.fullmatch(f) and f not in keep)
+    for file_name in stale:
+        os.unlink(os.path.join(directory, file_name))
+    return stale

@@ -1,0 +1,2 @@
+"""Small symbolic helpers the stages share: sums without matrix arithmetic, numeric evaluation
+that may leave the domain, what a user expression may contain, trigonometric polynomials."""

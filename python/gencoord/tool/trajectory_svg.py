@@ -1,0 +1,262 @@
+"""Draws a trajectory CSV as an SVG: particle paths and energy error. `gencoord simulate`
+draws one after every run; by hand:
+
+    python3 -m gencoord.tool.trajectory_svg out/double_pendulum.csv out/double_pendulum.svg \
+        [--name NAME]
+
+Standard library only. The left panel shows the particle paths in the two spatial axes along
+which the points move the most (the plane of motion for planar models), in metres, at equal
+aspect, with the model's fixed points (columns `fixed:<name>_x`, ...) marked; a fixed point
+that moves (a driven pivot) also gets its path, drawn lighter. The right panel shows the
+energy error relative to E(0) against time, or the absolute error in J when E(0) = 0.
+The model name defaults to the CSV file's stem.
+"""
+from __future__ import annotations
+
+import argparse
+import csv
+import math
+import os
+from dataclasses import dataclass
+from xml.sax.saxutils import quoteattr
+
+from gencoord.tool.svg_plot import (COLOURS, Frame, TICK_TARGET, axes, decade_of, element, envelope,
+                                    key_width, legend_key, nice_step, padded_range, polyline,
+                                    scaled_label, ticks_within, time_axis)
+
+WIDTH, HEIGHT = 1000, 540
+PATH_RECT = (80, 70, 380, 380)      # left, top, width, height (square: equal aspect)
+ENERGY_RECT = (600, 70, 370, 380)
+FIXED_COLOUR = "#222222"
+FIXED_PREFIX = "fixed:"              # csv_writer.hpp's prefix of fixed-point columns
+
+
+# --- reading -----------------------------------------------------------------------------
+
+@dataclass
+class Trajectory:
+    """One CSV's columns, with the points it holds sorted into particles and fixed points."""
+    columns: dict[str, list[float]]
+    particles: list[str]
+    fixed_points: list[str]
+    axes: list[str]                  # "x", "y" and, in 3D, "z"
+
+    @property
+    def t(self) -> list[float]:
+        return self.columns["t"]
+
+    @property
+    def energy(self) -> list[float]:
+        return self.columns["energy"]
+
+    def path(self, point: str, axis: str) -> list[float]:
+        """The coordinate `axis` of a particle or fixed point over time."""
+        return self.columns[f"{point}_{axis}"]
+
+
+def parse_trajectory(lines) -> Trajectory:
+    """Reads CSV text (an iterable of lines) in csv_writer.hpp's layout."""
+    rows = list(csv.reader(lines))
+    header = rows[0]
+    values = list(zip(*[[float(x) for x in row] for row in rows[1:] if row]))
+    columns = dict(zip(header, (list(v) for v in values)))
+    point_columns = [name for name in header if not name.startswith(("q_", "v_"))
+                     and name.rsplit("_", 1)[-1] in ("x", "y", "z") and "_" in name]
+    points = list(dict.fromkeys(name.rsplit("_", 1)[0] for name in point_columns))
+    axes = [a for a in "xyz" if f"{points[0]}_{a}" in columns]
+    return Trajectory(columns=columns,
+                      particles=[p for p in points if not p.startswith(FIXED_PREFIX)],
+                      fixed_points=[p for p in points if p.startswith(FIXED_PREFIX)],
+                      axes=axes)
+
+
+def read_trajectory(path: str) -> Trajectory:
+    with open(path, newline="") as handle:
+        return parse_trajectory(handle)
+
+
+def display_name(point: str) -> str:
+    return point[len(FIXED_PREFIX):] if point.startswith(FIXED_PREFIX) else point
+
+
+def is_moving(trajectory: Trajectory, point: str) -> bool:
+    return any(max(trajectory.path(point, a)) > min(trajectory.path(point, a))
+               for a in trajectory.axes)
+
+
+# --- the particle-path panel -------------------------------------------------------------
+
+def plane_of_motion(trajectory: Trajectory) -> tuple[str, str]:
+    """The two axes along which the points spread the most, in x, y, z order."""
+    if len(trajectory.axes) == 2:
+        return trajectory.axes[0], trajectory.axes[1]
+    points = trajectory.particles + trajectory.fixed_points
+    spread = {a: sum(max(trajectory.path(p, a)) - min(trajectory.path(p, a)) for p in points)
+              for a in trajectory.axes}
+    first, second = sorted(sorted(trajectory.axes, key=lambda a: -spread[a])[:2])
+    return first, second
+
+
+def equal_aspect_frame(xs: list[float], ys: list[float], rect) -> tuple[Frame, float]:
+    """A frame around all (xs, ys) with one metre as long on both axes, and its tick step."""
+    x_lo, x_hi = padded_range(xs)
+    y_lo, y_hi = padded_range(ys)
+    _, _, width, height = rect
+    metres_per_pixel = max((x_hi - x_lo) / width, (y_hi - y_lo) / height)
+    x_mid, y_mid = (x_lo + x_hi) / 2, (y_lo + y_hi) / 2
+    half_w, half_h = metres_per_pixel * width / 2, metres_per_pixel * height / 2
+    frame = Frame((x_mid - half_w, x_mid + half_w, y_mid - half_h, y_mid + half_h), rect)
+    return frame, nice_step(2 * max(half_w, half_h))
+
+
+def fixed_point_marker(frame: Frame, name: str, x: float, y: float) -> list[str]:
+    """A pivot symbol: a ring with a dot, and the point's name beside it."""
+    px, py = frame.px(x), frame.py(y)
+    return [element("circle", class_="fixed-point-marker", cx=f"{px:.1f}", cy=f"{py:.1f}",
+                    r=6, fill="white", stroke=FIXED_COLOUR, stroke_width=2),
+            element("circle", cx=f"{px:.1f}", cy=f"{py:.1f}", r=2, fill=FIXED_COLOUR),
+            element("text", name, x=f"{px + 9:.1f}", y=f"{py - 8:.1f}", fill=FIXED_COLOUR,
+                    font_size=12)]
+
+
+def path_panel(trajectory: Trajectory) -> list[str]:
+    ax, ay = plane_of_motion(trajectory)
+    points = trajectory.particles + trajectory.fixed_points
+    xs = [v for p in points for v in trajectory.path(p, ax)]
+    ys = [v for p in points for v in trajectory.path(p, ay)]
+    frame, step = equal_aspect_frame(xs, ys, PATH_RECT)
+    x0, x1, y0, y1 = frame.bounds
+    parts = ['<g id="path-panel">',
+             *axes(frame, ticks_within(x0, x1, step), ticks_within(y0, y1, step),
+                   f"{ax} (m)", f"{ay} (m)")]
+    for k, particle in enumerate(trajectory.particles):
+        colour = COLOURS[k % len(COLOURS)]
+        px, py = trajectory.path(particle, ax), trajectory.path(particle, ay)
+        parts += [f'<g class="particle" data-name={quoteattr(particle)}>',
+                  polyline(frame, px, py, colour),
+                  element("circle", cx=f"{frame.px(px[-1]):.1f}", cy=f"{frame.py(py[-1]):.1f}",
+                          r=4, fill=colour),
+                  "</g>"]
+    for point in trajectory.fixed_points:
+        name = display_name(point)
+        px, py = trajectory.path(point, ax), trajectory.path(point, ay)
+        parts.append(f'<g class="fixed-point" data-name={quoteattr(name)}>')
+        if is_moving(trajectory, point):
+            parts.append(polyline(frame, px, py, FIXED_COLOUR, stroke_opacity=0.35,
+                                  class_="fixed-point-path"))
+        parts += [*fixed_point_marker(frame, name, px[-1], py[-1]), "</g>"]
+    parts += [*legend(trajectory), "</g>"]
+    return parts
+
+
+def legend(trajectory: Trajectory) -> list[str]:
+    """One line under the path panel: each particle in its colour, then the fixed points."""
+    left, top, _, height = PATH_RECT
+    y, x, parts = top + height + 72, left - 60, ['<g class="legend">']
+    for k, particle in enumerate(trajectory.particles):
+        parts += legend_key(x, y, COLOURS[k % len(COLOURS)], particle)
+        x += key_width(particle)
+    for point in trajectory.fixed_points:
+        label = display_name(point) + (" (moving fixed point)" if is_moving(trajectory, point)
+                                       else " (fixed point)")
+        parts += [element("circle", cx=x + 8, cy=y - 4, r=5, fill="white", stroke=FIXED_COLOUR,
+                          stroke_width=2),
+                  element("text", label, x=x + 20, y=y, fill=FIXED_COLOUR)]
+        x += key_width(label)
+    return parts + ["</g>"]
+
+
+# --- the energy panel --------------------------------------------------------------------
+
+@dataclass
+class EnergyError:
+    values: list[float]
+    relative: bool                   # (E - E0) / |E0|; else E - E0 in J, because E0 = 0
+    label: str
+
+    @property
+    def worst(self) -> float:
+        return max(abs(v) for v in self.values)
+
+
+def energy_error(energy: list[float]) -> EnergyError:
+    """The error of each E(t) against E(0): relative when E(0) != 0, else absolute in J."""
+    e0 = energy[0]
+    if e0 != 0:
+        return EnergyError([(e - e0) / abs(e0) for e in energy], True,
+                           "relative energy error (E \u2212 E\u2080) / |E\u2080|")
+    return EnergyError([e - e0 for e in energy], False,
+                       "energy error E \u2212 E\u2080 (J), absolute: E\u2080 = 0")
+
+
+def error_axis(values: list[float]) -> tuple[float, float, float]:
+    """Bounds (lo, hi) that end on ticks around all `values`, and the tick step."""
+    lo, hi = min(values), max(values)
+    if hi == lo:
+        lo, hi = lo - max(abs(lo), 1e-16), hi + max(abs(hi), 1e-16)
+    step = nice_step(hi - lo, TICK_TARGET - 1)
+    return math.floor(lo / step + 1e-9) * step, math.ceil(hi / step - 1e-9) * step, step
+
+
+def energy_panel(trajectory: Trajectory, error: EnergyError) -> list[str]:
+    t = trajectory.t
+    t0, t1, t_ticks = time_axis(t)
+    lo, hi, step = error_axis(error.values)
+    frame = Frame((t0, t1, lo, hi), ENERGY_RECT)
+    y_ticks = ticks_within(lo, hi, step)
+    scale = decade_of(y_ticks)
+    xs, ys = envelope(t, error.values)
+    return ['<g id="energy-panel">',
+            *axes(frame, t_ticks, y_ticks, "t (s)", scaled_label(error.label, scale),
+                  y_scale=scale),
+            element("line", x1=ENERGY_RECT[0], y1=f"{frame.py(0):.1f}",
+                    x2=ENERGY_RECT[0] + ENERGY_RECT[2], y2=f"{frame.py(0):.1f}",
+                    stroke="#999", stroke_dasharray="4 3"),
+            polyline(frame, xs, ys, "#333", class_="energy-error"),
+            "</g>"]
+
+
+# --- the picture -------------------------------------------------------------------------
+
+def render_svg(trajectory: Trajectory, name: str) -> str:
+    """The whole picture as SVG text."""
+    error = energy_error(trajectory.energy)
+    ax, ay = plane_of_motion(trajectory)
+    worst = (f"max |E \u2212 E\u2080| / |E\u2080| = {error.worst:.2e}" if error.relative
+             else f"max |E \u2212 E\u2080| = {error.worst:.2e} J (E\u2080 = 0)")
+    t = trajectory.t
+    parts = [f'<svg xmlns="http://www.w3.org/2000/svg" width="{WIDTH}" height="{HEIGHT}" '
+             f'viewBox="0 0 {WIDTH} {HEIGHT}" font-family="sans-serif" font-size="13">',
+             element("rect", width="100%", height="100%", fill="white"),
+             element("text", f"{name}: particle paths in the {ax}{ay} plane", class_="title",
+                     x=PATH_RECT[0] - 60, y=28, font_size=15, font_weight="bold"),
+             element("text", f"{len(t)} states, t = {t[0]:g} \u2026 {t[-1]:g} s",
+                     x=PATH_RECT[0] - 60, y=48, fill="#555"),
+             element("text", f"{name}: energy error", class_="title", x=ENERGY_RECT[0] - 80,
+                     y=28, font_size=15, font_weight="bold"),
+             element("text", worst, class_="max-error", x=ENERGY_RECT[0] - 80, y=48,
+                     fill="#555"),
+             *path_panel(trajectory), *energy_panel(trajectory, error), "</svg>"]
+    return "\n".join(parts) + "\n"
+
+
+def write_svg(source: str, target: str, name: str | None = None) -> None:
+    """Draws the trajectory CSV `source` into `target`; `name` defaults to the CSV's stem."""
+    name = name or os.path.splitext(os.path.basename(source))[0]
+    svg = render_svg(read_trajectory(source), name)
+    with open(target, "w", encoding="utf-8") as handle:
+        handle.write(svg)
+
+
+def main(argv: list[str] | None = None) -> None:
+    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    parser.add_argument("source", help="trajectory CSV written by simulate")
+    parser.add_argument("target", help="SVG file to write")
+    parser.add_argument("--name", help="model name for the titles (default: the CSV's stem)")
+    args = parser.parse_args(argv)
+    write_svg(args.source, args.target, args.name)
+    print(f"picture     {args.target}")
+
+
+if __name__ == "__main__":
+    main()

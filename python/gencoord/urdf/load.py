@@ -1,0 +1,143 @@
+"""URDF import: a robot description's links and joints added to a model as a joint tree.
+
+In a model file, to add forces or script joints on top:
+
+    from gencoord import Model, load_urdf
+    model = Model(dim=3)
+    links = load_urdf(model, "arm.urdf")        # relative to the model file
+    elbow = links.coordinates["elbow"]          # a joint's coordinate, by the joint's name
+    model.joint_spring(elbow, 50.0)
+
+or directly, `./generate arm.urdf`: the loader builds the model with `urdf_model`. Numbers
+stay literals in the expressions; gravity is -g along z, with the parameter g = 9.81.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import os
+
+from gencoord.errors import ModelError
+from gencoord.dsl.joints import EULER_CHARTS, Fixed, Link, Origin, add_free_base, add_link
+from gencoord.dsl.model import Model
+from gencoord.dsl.items import model_file_frame
+from gencoord.urdf.description import FLOATING, RobotDescription, read_urdf
+
+
+class UrdfTree(dict):
+    """The links by name; `coordinates` maps each moving joint's name (and a free base's
+    coordinate names) to its coordinate symbol; `robot` is the file's description."""
+
+    def __init__(self, robot: RobotDescription):
+        super().__init__()
+        self.robot = robot
+        self.coordinates: dict = {}
+
+
+def _calling_file_directory() -> str:
+    """The directory of the model file that called in (its __file__), else the working one."""
+    frame = model_file_frame()
+    caller = frame.f_globals.get("__file__") if frame is not None else None
+    return os.path.dirname(os.path.abspath(caller)) if caller else os.getcwd()
+
+
+@contextlib.contextmanager
+def _at(model: Model, path: str, line: int | None, stamp: bool):
+    """Errors of the declarations inside point at the URDF's line; with `stamp`, so do the
+    items declared (for the checks that run later)."""
+    before = {key: len(value) for key, value in vars(model).items() if isinstance(value, list)}
+    try:
+        yield
+    except ModelError as error:
+        raise ModelError(error.message, item=error.item, filename=path, line=line) from None
+    if stamp:
+        for key, value in vars(model).items():
+            if isinstance(value, list):
+                for item in value[before.get(key, 0):]:
+                    if hasattr(item, "line"):
+                        item.line = line
+
+
+def _inertial_arguments(robot: RobotDescription, name: str) -> dict:
+    inertial = robot.links[name].inertial
+    if inertial is None:
+        return {}
+    return {"mass": inertial.mass, "inertia": inertial.inertia, "com": inertial.origin}
+
+
+def _free_base(model: Model, robot: RobotDescription, name: str, chart: str | None) -> Link:
+    arguments = _inertial_arguments(robot, name)
+    if not arguments:
+        raise ModelError("a free-floating base needs an <inertial> with its mass",
+                         item=f"link '{name}'", filename=robot.path, line=robot.links[name].line)
+    return add_free_base(model, name, chart=chart or model.chart or "zyx", **arguments)
+
+
+def add_robot(model: Model, robot: RobotDescription, gravity: bool = True,
+              free_base: bool = False, chart: str | None = None,
+              stamp: bool = False) -> UrdfTree:
+    """Adds a read URDF's links to `model` (see load_urdf); `stamp` makes the declared items'
+    lines the URDF's (when the model has no file of its own)."""
+    links = UrdfTree(robot)
+    for name in robot.order():
+        joint = robot.joints.get(name)
+        line = robot.links[name].line if joint is None else joint.line
+        with _at(model, robot.path, line, stamp):
+            if (joint is None and free_base) or (joint is not None and joint.kind == FLOATING):
+                link = _free_base(model, robot, name, chart)
+            elif joint is None:
+                # the root is the world, or welded to it: add_link gives it no body
+                link = add_link(model, name, None, Fixed(Origin()))
+            else:
+                link = add_link(model, name, links[joint.parent], joint.joint,
+                                **_inertial_arguments(robot, name))
+        link.geometry = robot.links[name].geometry
+        links[name] = link
+        if link.coordinate is not None:
+            links.coordinates[joint.name] = link.coordinate
+        elif link.joint is None:
+            links.coordinates.update((str(q), q) for q in link.coordinates)
+    if gravity:
+        with _at(model, robot.path, robot.links[robot.root].line, stamp):
+            g = model.parameter("g", 9.81, "gravitational acceleration (m/s^2)")
+            model.gravity([0, 0, -g])
+    return links
+
+
+def load_urdf(model: Model, path: str, gravity: bool = True, free_base: bool = False,
+              chart: str | None = None) -> UrdfTree:
+    """Adds the URDF file's robot to `model` (3D); returns its links by name.
+
+    `path` is relative to the calling model file. The root link is welded to the world
+    unless `free_base` is true or a floating joint joins it to the base: the base then moves
+    freely, in the Euler angles of `chart` ('zyx' or 'yzx', default the model's chart name).
+    With `gravity`, -g along z and the parameter g (9.81 m/s^2).
+    """
+    if not os.path.isabs(path):
+        path = os.path.join(_calling_file_directory(), path)
+    return add_robot(model, read_urdf(path), gravity, free_base, chart)
+
+
+def _description(robot: RobotDescription) -> str:
+    moving = sum(1 for j in robot.joints.values() if j.kind != "fixed")
+    summary = (f"Robot '{robot.name}' from {os.path.basename(robot.path)}: "
+               f"{len(robot.links)} links, {moving} moving joints.")
+    return "\n\n".join([summary, *robot.comments])
+
+
+def urdf_model(path: str) -> Model:
+    """The model of a URDF file: one chart, or an atlas of the Euler charts when a floating
+    joint frees the base."""
+    robot = read_urdf(path)
+    floating = any(joint.kind == FLOATING for joint in robot.joints.values())
+    charts = list(EULER_CHARTS) if floating else [None]
+    models = []
+    for chart in charts:
+        model = Model(dim=3, description=_description(robot), chart=chart)
+        add_robot(model, robot, chart=chart, stamp=True)
+        model.line = robot.links[robot.root].line
+        models.append(model)
+    for chart in models[1:]:
+        models[0].add_chart(chart)
+        chart.line = models[0].line
+    return models[0]
