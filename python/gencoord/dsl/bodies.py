@@ -104,6 +104,7 @@ def _offsets(body: Body) -> list[sp.Matrix]:
     if body.frame.dim == 2:
         radius = sp.sqrt(body.inertia[0] / m)
         return [sp.Matrix(corner) * radius for corner in _TRIANGLE]
+    assert body.second_moment is not None  # set by add_point_masses before the offsets
     factor = body.second_moment.cholesky(hermitian=False)
     return [factor * sp.Matrix(corner) / sp.sqrt(m) for corner in _TETRAHEDRON]
 
@@ -181,6 +182,7 @@ def rotational_terms(body: Body) -> list[InertialTerm]:
     rotation = body.frame.rotation
     if body.frame.dim == 2:
         return [InertialTerm(f"{body.name}.rotation", body.inertia[0], rotation[:, 0], False)]
+    assert body.second_moment is not None  # set with the point masses (add_point_masses)
     unit_lower, diagonal = body.second_moment.LDLdecomposition(hermitian=False)
     return [InertialTerm(f"{body.name}.rotation{k}", diagonal[k, k],
                          rotation * unit_lower[:, k], False) for k in range(3)]

@@ -139,6 +139,7 @@ class Body(Item):
         have mass-weighted mean zero and second moment S)."""
         count = len(self.offsets)
         moment = self.second_moment
+        assert moment is not None  # set with the point masses (bodies.add_point_masses)
         if moment.is_diagonal() or not moment.free_symbols:
             inverse = moment.inv()
         else:  # SymPy 1.11's inv() (elimination, simplifying as it goes) takes minutes on it

@@ -218,7 +218,8 @@ def _unused(model, name: str, suffix: str) -> str:
     return name
 
 
-def _declare_body(model, name: str, frame: Frame, mass, inertia, com: Origin, label: str):
+def _declare_body(model, name: str, frame: Frame, mass, inertia, com: Origin,
+                  label: str) -> tuple[Body, Frame]:
     """The link's body at its centre of mass, and the body's frame in the link's."""
     if not isinstance(com, Origin):
         raise ModelError("com is an Origin(xyz=..., rpy=...) in the link frame", item=label)
@@ -261,7 +262,7 @@ def add_link(model, name: str, parent: Link | None, joint: Joint, mass=None, ine
     joint_frame = (parent.frame if parent else Frame.identity()) * joint.origin.frame()
     joint_name = _unused(model, identifier(joint_label), "_q")
     q = None
-    if joint.moves():
+    if isinstance(joint, _Moving):
         description = f"{joint.kind} joint '{joint_label}' ({joint.unit})"
         if joint.limits is not None and str(joint.limits):
             description += f", {joint.limits}"
@@ -280,7 +281,7 @@ def add_link(model, name: str, parent: Link | None, joint: Joint, mass=None, ine
     elif not joint.moves() and parent is not None and parent.support is not None:
         body, offset = parent.support
         link.support = (body, offset * joint.origin.frame())
-    if q is not None and joint.damping != 0:
+    if isinstance(joint, _Moving) and joint.damping != 0:
         _damp(model, link, joint_frame, joint_name, label)
     if link.body is not None:
         _pin(model, link, parent, joint, joint_name)
@@ -292,6 +293,7 @@ def _damp(model, link: Link, joint_frame: Frame, joint_name: str, label: str) ->
     forces on q, the same as torques -+c qdot about the joint axis on the two bodies (their
     virtual work is -c qdot dq)."""
     joint, rate = link.joint, model.rate(link.coordinate)
+    assert isinstance(joint, _Moving)  # only a moving joint has damping
     if not model.chart:
         model.generalized_force(link.coordinate, -joint.damping * rate,
                                 name=f"{joint_name}_damping")
@@ -328,6 +330,7 @@ def _pin(model, link: Link, parent: Link | None, joint: Joint, joint_name: str) 
         return
     support = (None, Frame.identity()) if parent is None else parent.support
     if support is None:
+        assert parent is not None  # the world supports a root link
         link.unpinned = (f"its parent '{parent.name}' is massless and moves, so no body "
                          "carries the joint's other half")
         return
@@ -338,6 +341,7 @@ def _pin(model, link: Link, parent: Link | None, joint: Joint, joint_name: str) 
         # three non-collinear points weld the child
         points = [[0, 0, 0], [1, 0, 0], [0, 1, 0]]
     parent_body, parent_offset = support
+    assert link.body is not None and link.support is not None  # called for a link with a body
     child_offset = link.support[1]
     for index, local in enumerate(points):
         suffix = "abc"[index]

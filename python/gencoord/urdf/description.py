@@ -15,7 +15,7 @@ import sympy as sp
 
 from gencoord.dsl.bodies import inertia_problem
 from gencoord.errors import ModelError
-from gencoord.dsl.joints import Continuous, Fixed, Limits, Origin, Prismatic, Revolute
+from gencoord.dsl.joints import Continuous, Fixed, Joint, Limits, Origin, Prismatic, Revolute
 from gencoord.urdf.xml_lines import XmlFile
 
 JOINT_TYPES = {"revolute": Revolute, "continuous": Continuous, "prismatic": Prismatic,
@@ -57,7 +57,7 @@ class JointDescription:
     kind: str
     parent: str
     child: str
-    joint: object  # a joints.Joint; None for a floating joint
+    joint: Joint | None  # None for a floating joint
 
 
 @dataclass
@@ -108,6 +108,7 @@ def _inertial(xml: XmlFile, link: ET.Element, item: str) -> Inertial | None:
         if child is None:
             raise xml.error(f"<inertial> needs {what}; remove <inertial> for a massless link",
                             inertial, item)
+    assert mass is not None and inertia is not None  # refused just above
     value = xml.number(mass, "value", item=item)
     if value <= 0:
         raise xml.error(f"the mass is {value:g}; give a positive mass, or remove <inertial> "
@@ -156,9 +157,10 @@ def _name(xml: XmlFile, element: ET.Element) -> str:
 
 def _link_of(xml: XmlFile, joint: ET.Element, which: str, item: str) -> str:
     element = joint.find(which)
-    if element is None or not element.get("link"):
+    link = None if element is None else element.get("link")
+    if not link:
         raise xml.error(f"<joint> needs <{which} link=\"...\">", joint, item)
-    return element.get("link")
+    return link
 
 
 def _joint(xml: XmlFile, element: ET.Element) -> JointDescription:
@@ -172,10 +174,11 @@ def _joint(xml: XmlFile, element: ET.Element) -> JointDescription:
                         "and a revolute joint through massless links", element, item)
     if kind == FLOATING:
         return JointDescription(name, xml.line(element), kind, parent, child, None)
-    if element.find("mimic") is not None:
+    mimic = element.find("mimic")
+    if mimic is not None:
         raise xml.error("mimic joints are not supported (a joint that follows another has no "
                         "coordinate of its own); remove <mimic> to make it a free joint",
-                        element.find("mimic"), item)
+                        mimic, item)
     if kind not in JOINT_TYPES:
         raise xml.error(f"type {kind!r} is not a joint type: use one of "
                         f"{', '.join([*JOINT_TYPES, FLOATING])}", element, item)
@@ -192,6 +195,7 @@ def _joint(xml: XmlFile, element: ET.Element) -> JointDescription:
         dynamics = element.find("dynamics")
         damping = 0.0 if dynamics is None else xml.number(dynamics, "damping", 0.0, item)
         if damping < 0:
+            assert dynamics is not None  # without <dynamics> the damping is 0
             raise xml.error(f"the damping is {damping:g}; give a non-negative damping",
                             dynamics, item)
         joint = JOINT_TYPES[kind](axis, origin, _limits(xml, element, item), damping,

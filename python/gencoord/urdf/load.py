@@ -89,11 +89,13 @@ def add_robot(model: Model, robot: RobotDescription, gravity: bool = True,
                 # the root is the world, or welded to it: add_link gives it no body
                 link = add_link(model, name, None, Fixed(Origin()))
             else:
+                assert joint.joint is not None  # only a floating joint has none
                 link = add_link(model, name, links[joint.parent], joint.joint,
                                 **_inertial_arguments(robot, name))
         link.geometry = robot.links[name].geometry
         links[name] = link
         if link.coordinate is not None:
+            assert joint is not None  # a coordinate of its own: the link has a moving joint
             links.coordinates[joint.name] = link.coordinate
         elif link.joint is None:
             links.coordinates.update((str(q), q) for q in link.coordinates)
@@ -130,14 +132,14 @@ def urdf_model(path: str) -> Model:
     joint frees the base."""
     robot = read_urdf(path)
     floating = any(joint.kind == FLOATING for joint in robot.joints.values())
-    charts = list(EULER_CHARTS) if floating else [None]
+    charts: list[str | None] = list(EULER_CHARTS) if floating else [None]
     models = []
     for chart in charts:
         model = Model(dim=3, description=_description(robot), chart=chart)
         add_robot(model, robot, chart=chart, stamp=True)
         model.line = robot.links[robot.root].line
         models.append(model)
-    for chart in models[1:]:
-        models[0].add_chart(chart)
-        chart.line = models[0].line
+    for other in models[1:]:
+        models[0].add_chart(other)
+        other.line = models[0].line
     return models[0]
