@@ -104,6 +104,7 @@ class LinkKinematics:
             w, v = split(self.velocity[i])
             located = [(p.name, r) for p, r in zip(body.particles, body.offsets)]
             located += [(p.name, p.offset) for p in body.points]
+            assert node.link.inertial is not None  # set with the link's body (joints.py)
             for name, r in located:
                 rho = node.link.inertial.point(r)
                 point_link[name] = (i, rho)

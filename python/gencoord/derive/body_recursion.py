@@ -98,8 +98,8 @@ def _newton_euler(links: LinkKinematics, accelerations, bias_force, tau) -> sp.M
 def _articulated_body(links: LinkKinematics, bias_force, nq: int) -> sp.Matrix:
     names, nodes = links.names, links.nodes
     n = len(nodes)
-    passed: list[tuple] = [None] * n             # (Ia, pa) in the parent's axes
-    solve: list[tuple] = [None] * n              # (U, D^-1, u) for the outward pass
+    passed: dict[int, tuple] = {}  # (Ia, pa) in the parent's axes
+    solve: dict[int, tuple] = {}   # a moving joint's (U, D^-1, u), for the outward pass
     for i in reversed(range(n)):
         node = nodes[i]
         IA, pA = links.inertia[i], bias_force[i]
@@ -128,7 +128,7 @@ def _articulated_body(links: LinkKinematics, bias_force, nq: int) -> sp.Matrix:
     for i, node in enumerate(nodes):
         base = links.world if node.parent is None else acceleration[node.parent]
         before = names.matrix(links.to_child(i, base) + links.bias[i])
-        if solve[i] is None:
+        if i not in solve:
             acceleration[i] = before
             continue
         U, D_inverse, u = solve[i]
@@ -160,11 +160,11 @@ def _composite_mass_matrix(links: LinkKinematics, nq: int) -> sp.Matrix:
         place_symmetric(names, mass_matrix, node.coordinates, node.coordinates,
                         product(node.subspace.T, force))
         j = i
-        while nodes[j].parent is not None:
+        while (parent := nodes[j].parent) is not None:
             E, r = links.rotation[j], links.translation[j]
             force = names.matrix(sp.Matrix.hstack(*[force_to_parent(E, r, force[:, k])
                                                     for k in range(force.shape[1])]))
-            j = nodes[j].parent
+            j = parent
             if nodes[j].coordinates:
                 place_symmetric(names, mass_matrix, nodes[j].coordinates, node.coordinates,
                                 product(nodes[j].subspace.T, force))
@@ -193,6 +193,7 @@ def _derivation(model: Model, kin, links: LinkKinematics, qdd, square_outputs: b
         body = node.link.body
         if body is None:
             continue
+        assert node.link.inertial is not None  # set with the link's body (joints.py)
         R = links.world_rotation[i]
         w, v = split(links.velocity[i])
         dw, dv = split(moving[i])
@@ -237,7 +238,7 @@ def _point_jacobian(links: LinkKinematics, world_subspace, i: int, x: sp.Matrix,
     """dx/dq of a point at x on link i: each joint a on the way to the root moves it by its
     world motion (omega_a; v_a) as v_a + omega_a x (x - o_a)."""
     jacobian = sp.zeros(3, nq)
-    a = i
+    a: int | None = i
     while a is not None:
         node = links.nodes[a]
         if node.coordinates:

@@ -62,6 +62,7 @@ def body_tree(model: Model) -> BodyTree | None:
         parent = None if link.parent is None else position_of[id(link.parent)]
         own = [q[index_of[c]] for c in link.coordinates]
         subspace, drift = _joint_motion(link, own, model.time)
+        assert link.local is not None  # add_link and add_free_base set it
         nodes.append(BodyNode(link, parent, [index_of[c] for c in link.coordinates],
                               link.local.rotation, link.local.origin, subspace, drift))
     return BodyTree(nodes)
@@ -78,6 +79,7 @@ def _joint_motion(link: Link, own: list[sp.Symbol], t: sp.Symbol
         return sp.Matrix.vstack(link.joint.unit_axis(), zero), sp.zeros(6, 1)
     if isinstance(link.joint, Prismatic):
         return sp.Matrix.vstack(zero, link.joint.unit_axis()), sp.zeros(6, 1)
+    assert link.local is not None  # add_link and add_free_base set it
     rotation, origin = link.local.rotation, link.local.origin
     columns = []
     for coordinate in [*own, t]:

@@ -17,7 +17,7 @@ from __future__ import annotations
 
 import dataclasses
 from dataclasses import dataclass
-from typing import Callable
+from typing import Callable, Literal, Protocol
 
 import sympy as sp
 
@@ -110,10 +110,11 @@ class Kinematics:
         self.particles = [p.name for p in model.particles]
         self.defaults = {p.symbol: sp.Float(p.default) for p in model.parameters}
         self._model = model
-        self._tree: PointTree | None | bool = False   # False: not looked for yet
-        self._numeric_jacobian = None
-        self._numeric_joints = None
-        self._point_substitution = None
+        self._tree: PointTree | None | Literal[False] = False   # False: not looked for yet
+        self._numeric_jacobian: Callable[[list[float], float], list[list[float]]] | None = None
+        self._numeric_joints: Callable[[list[float], float],
+                                       list[list[list[float]]]] | None = None
+        self._point_substitution: dict[sp.Symbol, sp.Expr] | None = None
         self.position: dict[str, sp.Matrix] = {p.name: p.position for p in model.points}
         self.jacobian: dict[str, sp.Matrix] = _PerPoint(
             lambda name: termwise_jacobian(self.position[name], self.q))
@@ -170,6 +171,7 @@ class Kinematics:
         node and its descendants.
         """
         if self._numeric_joints is None:
+            assert self.tree is not None  # called for a tree only
             nodes = self.tree.nodes
             entries = [entry.xreplace(self.defaults) for node in nodes
                        for entry in termwise_jacobian(node.offset,
@@ -185,6 +187,7 @@ class Kinematics:
         return self._numeric_joints
 
     def _tree_numeric_jacobian(self) -> Callable[[list[float], float], list[list[float]]]:
+        assert self.tree is not None  # called for a tree only
         nodes = self.tree.nodes
         joints = self.numeric_joint_jacobians()
         row_of = {name: k for k, name in enumerate(self.particles)}
@@ -199,7 +202,8 @@ class Kinematics:
                     for j, value in zip(node.coordinates, joint_row):
                         row[j] = value
                 rows_of_node.append(rows)
-            result: list[list[float]] = [None] * (self.dim * len(self.particles))
+            # every particle is a node: each slot is replaced below
+            result: list[list[float]] = [[]] * (self.dim * len(self.particles))
             for node, rows in zip(nodes, rows_of_node):
                 first = self.dim * row_of[node.particle.name]
                 result[first:first + self.dim] = rows
@@ -225,7 +229,17 @@ class Kinematics:
         return evaluate
 
 
-def particle_forces(model: Model, kin: Kinematics, gravity: bool = True
+class PointKinematics(Protocol):
+    """What forces and potentials read of a kinematics (Kinematics, and the named and the
+    maximal ones): each point's position and velocity, and the point symbols' values."""
+    @property
+    def position(self) -> dict[str, sp.Matrix]: ...
+    @property
+    def point_substitution(self) -> dict[sp.Symbol, sp.Expr]: ...
+    def of(self, point: Point) -> tuple[sp.Matrix, sp.Matrix]: ...
+
+
+def particle_forces(model: Model, kin: PointKinematics, gravity: bool = True
                     ) -> dict[str, sp.Matrix]:
     """The x-space force on each particle, as expressions of `kin`'s variables.
 
@@ -263,7 +277,7 @@ def particle_forces(model: Model, kin: Kinematics, gravity: bool = True
     return force
 
 
-def x_space_potential(model: Model, kin: Kinematics,
+def x_space_potential(model: Model, kin: PointKinematics,
                       gravity_at: list[tuple[sp.Expr, sp.Matrix]] | None = None) -> sp.Expr:
     """Gravity, spring and user-force potentials; forces without a potential add nothing.
 

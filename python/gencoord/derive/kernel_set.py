@@ -88,6 +88,12 @@ def _lower(name: str, matrix: sp.Matrix) -> Block:
                  symmetric=True)
 
 
+def _matrix(name: str, cxx_type: str, matrix: sp.Matrix) -> Block:
+    return Block(name, cxx_type, matrix.shape,
+                 [(i, j, matrix[i, j]) for i in range(matrix.shape[0])
+                  for j in range(matrix.shape[1])])
+
+
 def _jacobian(name: str, of: sp.Matrix, wrt: list[sp.Symbol]) -> Block:
     return Block(name, "QMatrix<Scalar>", (len(of), len(wrt)), [], jacobian_of=(list(of), wrt))
 
@@ -135,8 +141,11 @@ def build_kernels(d: Derivation, recursive: RecursiveDynamics | None = None,
     tree, looped.py) its loops replace the kernels of n^2 entries, and its products follow
     the others."""
     residual = None if tree_derived else d.residual()
-    kernels = _dense_kernels(d, residual, recursive.residual if tree_derived else residual,
-                             looped.replacing if looped else {})
+    differentiated = residual
+    if tree_derived:
+        assert recursive is not None  # a tree-derived model comes with its recursions
+        differentiated = recursive.residual
+    kernels = _dense_kernels(d, residual, differentiated, looped.replacing if looped else {})
     if looped:
         kernels += looped.products
     if recursive is None:
@@ -217,9 +226,7 @@ def _state_kernels(d: Derivation, unless_replaced) -> list[Kernel]:
                [_vector("result", "XVector<Scalar>", d.velocities)]),
         unless_replaced("jacobian", lambda: Kernel(
             "jacobian", "Jacobian J = dX/dq.", ("q", "t"),
-            [Block("result", "XJacobian<Scalar>", d.jacobian.shape,
-                   [(i, j, d.jacobian[i, j]) for i in range(d.jacobian.shape[0])
-                    for j in range(d.jacobian.shape[1])])])),
+            [_matrix("result", "XJacobian<Scalar>", d.jacobian)])),
         Kernel("bias_acceleration", "Velocity-product acceleration gamma (xddot at qddot = 0).",
                ("q", "v", "t"), [_vector("result", "XVector<Scalar>", d.bias_acceleration)]),
         Kernel("linear_momentum", "Linear momentum p = sum m_i xdot_i.", ("q", "v", "t"),

@@ -37,11 +37,11 @@ class MaximalKinematics:
             self.position[f.name], self.velocity[f.name] = f.position, f.position.diff(self.t)
         zero = sp.zeros(model.dim, 1)
         for body in model.bodies:
-            for point in body.points:  # the affine combination of the body's point masses
-                pairs = list(zip(point.weights, body.particles))
-                self.position[point.name] = sum((w * p.x for w, p in pairs), zero)
-                self.velocity[point.name] = sum((w * p.xdot for w, p in pairs), zero)
-        self.point_substitution = {}
+            for body_point in body.points:  # the affine combination of the body's point masses
+                pairs = list(zip(body_point.weights, body.particles))
+                self.position[body_point.name] = sum((w * p.x for w, p in pairs), zero)
+                self.velocity[body_point.name] = sum((w * p.xdot for w, p in pairs), zero)
+        self.point_substitution: dict[sp.Symbol, sp.Expr] = {}
         particles = {p.name for p in model.particles}
         for point in model.points:
             if point.name not in particles:

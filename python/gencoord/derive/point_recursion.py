@@ -189,7 +189,7 @@ def _node_order(tree: PointTree, particles) -> list[int]:
 def _particle_jacobian(tree: PointTree, joints: list[_Joint], i: int, nq: int) -> sp.Matrix:
     """dX_i/dq: S_a in the columns of every node a from i to the root."""
     jacobian = sp.zeros(joints[i].subspace.shape[0], nq)
-    a = i
+    a: int | None = i
     while a is not None:
         for k, j in enumerate(joints[a].coordinates):
             jacobian[:, j] = joints[a].subspace[:, k]
@@ -231,8 +231,8 @@ def _newton_euler(ctx, accelerations, force, tau) -> sp.Matrix:
 def _articulated_body(ctx, force, tau, root) -> sp.Matrix:
     names, nodes, children, joints = ctx
     n, dim = len(nodes), root.shape[0]
-    passed: list[tuple] = [None] * n             # (Ia, pa) handed to the parent
-    solve: list[tuple] = [None] * n              # (U, D^-1, u) for the outward pass
+    passed: dict[int, tuple] = {}  # (Ia, pa) handed to the parent
+    solve: dict[int, tuple] = {}   # a moving joint's (U, D^-1, u), for the outward pass
     for i in reversed(range(n)):
         node, joint = nodes[i], joints[i]
         IA = node.particle.mass * sp.eye(dim)
@@ -259,7 +259,7 @@ def _articulated_body(ctx, force, tau, root) -> sp.Matrix:
         base = root if node.parent is None else acceleration[node.parent]
         joint = joints[i]
         own = sp.zeros(0, 1)
-        if solve[i] is not None:
+        if i in solve:
             U, D_inverse, u = solve[i]
             own = names.matrix(product(D_inverse, u - product(U.T, base)))
             for j, value in zip(joint.coordinates, own):

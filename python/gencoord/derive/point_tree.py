@@ -89,7 +89,7 @@ def point_tree(model: Model) -> PointTree | None:
 
     position_in = {k: i for i, k in enumerate(order)}
     nodes = [TreeNode(particles[k],
-                      None if parents[k] is None else position_in[parents[k]],
+                      None if (parent := parents[k]) is None else position_in[parent],
                       sorted(index_of[c] for c in introduces[k]), offsets[k])
              for k in order]
     return PointTree(nodes)

@@ -104,7 +104,7 @@ class NamedKinematics:
                  velocity: dict[str, sp.Matrix]):
         self.t = t
         self.position, self.velocity = position, velocity
-        self.point_substitution = {}
+        self.point_substitution: dict[sp.Symbol, sp.Expr] = {}
         for point in model.points:
             self.point_substitution.update(zip(point.x, self.position[point.name]))
             self.point_substitution.update(zip(point.xdot, self.velocity[point.name]))
@@ -154,7 +154,8 @@ class _TermSums:
         self.mass_groups: dict[tuple[int, int], dict[tuple, list[sp.Expr]]] = {}
         self.projections: dict[int, dict[sp.Expr, tuple[list, list]]] = {a: {} for a in range(nq)}
         self.gammas: dict[str, sp.Matrix] = {}
-        self.kinetic, self.gravity_at = sp.Integer(0), []
+        self.kinetic = sp.Integer(0)
+        self.gravity_at: list[tuple[sp.Expr, sp.Matrix]] = []
         self.momentum = sp.zeros(dim, 1)
         self.angular = sp.zeros(3 if dim == 3 else 1, 1)
 
