@@ -56,6 +56,7 @@ def check_atlas(model: Model) -> None:
         return
     first = _signature(model)
     for chart in [model, *model.charts]:
+        assert chart.chart is not None  # add_chart refuses a chart without a name
         label = f"chart '{chart.chart}'"
         if not _CHART_NAME.match(chart.chart):
             raise ModelError("chart names are lower-case letters, digits and underscores "

@@ -133,8 +133,9 @@ def _iterative(rows: list[list[float]]) -> tuple[float, list[float]]:
         low = _cholesky([[v + shift * (i == j) for j, v in enumerate(row)]
                          for i, row in enumerate(a)])
         x = start
-        for _ in range(ITERATIONS if low else 0):
-            x = _unit(_solve(low, x))
+        if low:
+            for _ in range(ITERATIONS):
+                x = _unit(_solve(low, x))
         return 0.0, x
     x = start
     for _ in range(ITERATIONS):  # inverse iteration: the smallest eigenvalue

@@ -51,8 +51,8 @@ def forces_have_potential(model: Model, kin: Kinematics | None = None) -> bool:
     for force in model.particle_forces:
         if force.potential is None and not _vanishes(at_rest(force.force)):
             return False
-    for force in model.generalized_forces:
-        if force.potential is None and not _vanishes(at_rest(force.force)):
+    for generalized in model.generalized_forces:
+        if generalized.potential is None and not _vanishes(at_rest(generalized.force)):
             return False
     for torque in model.torques:
         if not _vanishes(at_rest(torque.torque)):

@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import math
 import random
+from typing import Callable
 
 from gencoord.checks.conditioning import smallest_direction
 from gencoord.derive.dense import Kinematics
@@ -30,6 +31,7 @@ def check_full_rank(model: Model, seed: int = 7, kin: Kinematics | None = None) 
     joints' S_i does (Kinematics.numeric_joint_jacobians), and a null direction of S_i,
     zero elsewhere, is one of J. Each sample then costs O(n) instead of O(n^3)."""
     kin = kin or Kinematics(model)  # the pipeline builds it once for every stage
+    evaluate: Callable[[list[float], float], list[list[list[float]]]]
     if kin.tree is None:
         blocks, jacobian = [list(range(len(model.coordinates)))], kin.numeric_jacobian()
 

@@ -49,8 +49,11 @@ def _gauss_newton(position, jacobian, target: list[float], q: list[float]) -> li
             return None
         trial = [a + b for a, b in zip(q, step)]
         x = position(trial)
-        trial_r = None if x is None else [a - b for a, b in zip(target, x)]
-        trial_norm = math.inf if x is None else math.sqrt(sum(v * v for v in trial_r))
+        if x is None:  # outside the domain of X: a shorter step
+            damping *= 10.0
+            continue
+        trial_r = [a - b for a, b in zip(target, x)]
+        trial_norm = math.sqrt(sum(v * v for v in trial_r))
         if trial_norm < norm:
             q, r, norm, damping = trial, trial_r, trial_norm, max(damping * 0.3, 1e-12)
         else:

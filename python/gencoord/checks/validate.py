@@ -41,7 +41,8 @@ def _check_names(model: Model) -> None:
 
 
 def _check_expression(expr, allowed: set, label: str, line: int | None, hint: str, *,
-                      constants: set, velocities: dict, inputs: set = frozenset()) -> None:
+                      constants: set, velocities: dict,
+                      inputs: set | frozenset = frozenset()) -> None:
     """`expr` uses only `allowed` symbols and what emittable.py accepts; `constants` are the
     parameters, `velocities` maps each coordinate's rate and acceleration to it, `inputs`
     are the control inputs (allowed in forces only)."""
@@ -157,12 +158,12 @@ def _check_forces(model: Model, symbols: _Symbols) -> None:
         if force.potential is not None:
             check(force.potential, symbols.points | t | params, force.label(),
                   force.line, "a potential may use points' .x, t and parameters")
-    for force in model.generalized_forces:
-        check(force.force, q | rates | t | forcing, force.label(), force.line,
+    for generalized in model.generalized_forces:
+        check(generalized.force, q | rates | t | forcing, generalized.label(), generalized.line,
               "a generalized force may use coordinates, model.rate(q), t, parameters")
-        if force.potential is not None:
-            check(force.potential, q | t | params, f"{force.label()} potential",
-                  force.line, "a potential may use coordinates, t and parameters")
+        if generalized.potential is not None:
+            check(generalized.potential, q | t | params, f"{generalized.label()} potential",
+                  generalized.line, "a potential may use coordinates, t and parameters")
 
 
 def _check_constraint_terms(model: Model, symbols: _Symbols) -> None:
