@@ -35,6 +35,8 @@ class _KernelWriter:
 
     def __init__(self, work: Optimization, options: OptimizeOptions):
         self.work, self.options = work, options
+        assert work.printed is not None  # print_program runs before write_kernels
+        self.printed = work.printed
         self.position = {symbol: k for k, (symbol, _) in enumerate(work.program)}
         self.depends = [[s for s in expr.free_symbols if s in self.position]
                         for _, expr in work.program]
@@ -71,7 +73,7 @@ class _KernelWriter:
         return sorted(needed)
 
     def statements(self, kept: list) -> _Statements:
-        program, printed = self.work.program, self.work.printed
+        program, printed = self.work.program, self.printed
         outputs = [(block, i, j, expr) for block, entries in kept for i, j, expr in entries]
         order = self.needed(outputs)
         free = ([program[k][1].free_symbols for k in order]
@@ -116,7 +118,7 @@ class _KernelWriter:
     def kernel_code(self, kernel: Kernel) -> KernelCode:
         kept, zero_filled = self.kept_entries(kernel)
         s = self.statements(kept)
-        names = self.work.printed.names
+        names = self.printed.names
         mirrored = [(block, i, j) for block, entries in kept if block.symmetric
                     for i, j, _ in entries if i != j]
         mirrors = [(lvalue(block, j, i), lvalue(block, i, j)) for block, i, j in mirrored]
@@ -135,7 +137,7 @@ class _KernelWriter:
             part.data_pointers = [data_pointer(block) for block in kernel.blocks
                                   if block.name in part.outputs
                                   and writes_through_pointer(block)]
-        printed = self.work.printed
+        printed = self.printed
         return KernelCode(
             kernel=kernel, **self.inputs_read(set().union(*s.free)),
             using=math_functions_used(code for _, code in s.code),

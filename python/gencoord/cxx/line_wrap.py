@@ -125,7 +125,8 @@ def _wrap_group(text: str, depths: list[int | None], column: int,
 
 def _pack(pieces: list[str], column: int, continuation: int) -> list[str]:
     """As many pieces on each line as fit; a piece too long alone is wrapped in turn."""
-    lines, current, at = [], pieces[0], column
+    lines: list[str] = []
+    current, at = pieces[0], column
     for piece in pieces[1:]:
         joined = current + _joiner(piece) + piece
         if at + len(joined) <= LINE_WIDTH:

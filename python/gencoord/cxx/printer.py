@@ -95,7 +95,8 @@ class ScalarCxxPrinter(CXX17CodePrinter):
         # doprint walks each whole tree again (re() handling, assignment wrapping) before
         # printing it; kernels of large models print tens of thousands of expressions, so
         # print directly and keep doprint for anything that needs it (constants like pi)
-        self._not_supported, self._number_symbols = set(), set()
+        self._not_supported: set[sp.Basic] = set()
+        self._number_symbols: set[tuple[sp.Basic, sp.Basic]] = set()
         text = self._print(expr)
         if self._not_supported or self._number_symbols or "\n" in text or expr.has(sp.re):
             return self.doprint(expr)

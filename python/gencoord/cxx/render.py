@@ -8,6 +8,7 @@ import functools
 import hashlib
 import os
 import tempfile
+from typing import Any, Sequence
 
 import jinja2
 import sympy as sp
@@ -50,7 +51,7 @@ def dedent(text: str, columns: int) -> str:
                      for line in text.split("\n"))
 
 
-_ENVIRONMENT_OPTIONS = dict(
+_ENVIRONMENT_OPTIONS: dict[str, Any] = dict(
     undefined=jinja2.StrictUndefined,  # a template typo fails instead of emitting ""
     trim_blocks=True, lstrip_blocks=True, keep_trailing_newline=True,
     autoescape=False, extensions=["jinja2.ext.do"])
@@ -186,7 +187,7 @@ def _chart_context(chart, first, unroll_max_nq: int) -> dict:
 
 
 def render_model(charts: list, name: str, docstring: str, source_path: str, header_path: str,
-                 analysis: list[str], flags: list[str] = (), translation_units: int = 0,
+                 analysis: list[str], flags: Sequence[str] = (), translation_units: int = 0,
                  unroll_max_nq: int = GenerateOptions.unroll_max_nq) -> str:
     """The text of generated/<name>.hpp: one struct per chart (pipeline.GeneratedChart).
 

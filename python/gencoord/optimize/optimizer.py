@@ -11,7 +11,7 @@ returned and the shared `OptimizeOptions`.
 from __future__ import annotations
 
 from dataclasses import dataclass, replace
-from typing import Callable
+from typing import Callable, Sequence
 
 import sympy as sp
 
@@ -22,7 +22,7 @@ from gencoord.cxx.kernel_code import KernelCode
 from gencoord.derive.kernel_set import Kernel
 from gencoord.optimize.opcount import count_ops
 from gencoord.optimize.state import InputIndex, OptimizeOptions, Optimization, PrintedProgram
-from gencoord.optimize.program import Program, dependency_order, final_names, without_aliases
+from gencoord.optimize.program import dependency_order, final_names, without_aliases
 from gencoord.cxx.kernel_writer import write_kernels
 
 __all__ = ["OptimizeOptions", "OptimizedModel", "optimize_model"]
@@ -78,6 +78,8 @@ def differentiate_jacobians(work: Optimization, options: OptimizeOptions) -> Opt
     """Jacobian and directional-derivative blocks: forward mode through the CSE'd code,
     appending the derivative intermediates to the program (differentiate.py)."""
     program, jacobians = work.program, {}
+    temporaries = work.temporaries
+    assert temporaries is not None  # set by eliminate_common_subexpressions, which runs first
     for kernel in work.kernels:
         for block in kernel.blocks:
             differentiated = block.tangent_of or block.jacobian_of
@@ -86,12 +88,12 @@ def differentiate_jacobians(work: Optimization, options: OptimizeOptions) -> Opt
             of = [work.reduced[work.index_of[e]] for e in differentiated[0]]
             if block.tangent_of:
                 new_definitions, along = directional_derivatives(
-                    program, of, block.tangent_of[1], work.temporaries)
+                    program, of, block.tangent_of[1], temporaries)
                 entries = [(i, 0, d) for i, d in enumerate(along)]
             else:
+                assert block.jacobian_of is not None  # differentiated, and not a tangent
                 wrt = block.jacobian_of[1]
-                new_definitions, jacobian = forward_derivatives(program, of, wrt,
-                                                                work.temporaries)
+                new_definitions, jacobian = forward_derivatives(program, of, wrt, temporaries)
                 pattern = block.pattern or [(i, j) for i in range(len(of))
                                             for j in range(len(wrt))]
                 entries = [(k, 0, jacobian[i][j]) if block.pattern else (i, j, jacobian[i][j])
@@ -122,6 +124,7 @@ def summarize(work: Optimization) -> OptimizedModel:
     """The kernels with the whole model's counts: ops, intermediates, outputs."""
     derivative_outputs = [expr for entries in work.jacobians.values() for *_, expr in entries]
     outputs = [*work.reduced[work.first_output:], *derivative_outputs]
+    assert work.printed is not None  # set by print_program
     total = (sum(work.printed.temporary_ops)
              + sum(work.printed.ops(expr) for expr in outputs))
     return OptimizedModel(work.codes, total, len(work.program),
@@ -129,7 +132,8 @@ def summarize(work: Optimization) -> OptimizedModel:
 
 
 def optimize_model(d: Derivation, kernels: list[Kernel], names: dict[sp.Symbol, str],
-                   input_of: dict[sp.Symbol, str], definitions: Program = (),
+                   input_of: dict[sp.Symbol, str],
+                   definitions: Sequence[tuple[sp.Symbol, sp.Expr]] = (),
                    options: OptimizeOptions = OptimizeOptions()) -> OptimizedModel:
     """Runs every stage over all kernels' outputs and the intermediates they are written in.
 

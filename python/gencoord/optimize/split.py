@@ -85,13 +85,13 @@ def plan_parts(defines: list[str | None], reads: list[set[str]],
     for p, chunk in enumerate(chunks):
         stores = {}
         for k in chunk:
-            name = defines[k]
-            if name and name in last_part:
+            defined = defines[k]
+            if defined and defined in last_part:
                 if free:
-                    slot_of[name] = heapq.heappop(free)
+                    slot_of[defined] = heapq.heappop(free)
                 else:
-                    slot_of[name], slots = slots, slots + 1
-                stores[k] = slot_of[name]
+                    slot_of[defined], slots = slots, slots + 1
+                stores[k] = slot_of[defined]
         loads: dict[int, list[tuple[str, int]]] = {}
         for name, k in first_use[p].items():
             loads.setdefault(k, []).append((name, slot_of[name]))
