@@ -12,6 +12,7 @@ import shlex
 import sys
 import tempfile
 import time
+from typing import Any
 
 from gencoord.errors import ModelError
 from gencoord.generate.failures import report_failure
@@ -50,7 +51,7 @@ def _add_knob_flags(parser: argparse.ArgumentParser) -> None:
         if not flag:
             continue
         kind = str if knob.name == "name" else (float if knob.name == "load_timeout" else int)
-        extra = {"choices": DYNAMICS_CHOICES} if knob.name == "dynamics" else {
+        extra: dict[str, Any] = {"choices": DYNAMICS_CHOICES} if knob.name == "dynamics" else {
             "type": kind, "metavar": knob.metadata["metavar"]}
         default = "" if knob.default is None else f" (default {knob.default})"
         parser.add_argument(flag, dest=knob.name, default=knob.default,

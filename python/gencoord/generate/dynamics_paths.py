@@ -76,7 +76,7 @@ def choose_paths(codes: list[KernelCode], nq: int, dynamics: str = "auto",
 
 
 def _line(kernel: str, use_recursive: bool, recursive: tuple[str, int],
-          dense: tuple[str, int]) -> str:
+          dense: tuple[str, int | None]) -> str:
     """`kernel: <chosen form>, <ops> operations (<other form>: <ops>)`; the other form's
     ops None: it was not generated."""
     (chosen, chosen_ops), (other, other_ops) = ((recursive, dense) if use_recursive

@@ -32,9 +32,8 @@ class LoadTimeout(BaseException):
 def wall_clock_limit(seconds: float | None):
     """Raises LoadTimeout inside the body after `seconds` (None or 0: no limit; where
     signals cannot be used, not the main thread, the body runs to its end)."""
-    usable = (seconds and hasattr(signal, "setitimer")
-              and threading.current_thread() is threading.main_thread())
-    if not usable:
+    if not (seconds and hasattr(signal, "setitimer")
+            and threading.current_thread() is threading.main_thread()):
         yield
         return
 

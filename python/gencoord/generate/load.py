@@ -78,6 +78,7 @@ def load_model(path: str, options: dict[str, str] | None = None, name: str | Non
             if is_urdf:
                 namespace["model"] = urdf_model(path)
             else:
+                assert code is not None  # compiled above: not a URDF
                 exec(code, namespace)  # noqa: S102 - running the user's model file is the point
     except LoadTimeout as error:
         raise ModelError(f"the model file still ran after {timeout:g} s (here when stopped); "

@@ -16,7 +16,7 @@ from gencoord.checks.atlas import check_atlas
 from gencoord.derive.body_tree import body_tree
 from gencoord.checks.conservative import forces_have_potential
 from gencoord.checks.constraints import verify_constraints
-from gencoord.derive.dense import Kinematics, derive
+from gencoord.derive.dense import Derivation, Kinematics, derive
 from gencoord.generate.dynamics_paths import PathChoice, choose_paths
 from gencoord.errors import ModelError
 from gencoord.cxx.render import instantiation_file_name, render_instantiation, render_model
@@ -24,16 +24,17 @@ from gencoord.derive.kernel_set import build_kernels, build_maximal_kernels
 from gencoord.generate.limits import size_warning
 from gencoord.generate.load import load_model
 from gencoord.derive.looped import looped_outputs
-from gencoord.derive.maximal import KAPPA, PENALTY_DAMPING, derive_maximal
+from gencoord.derive.maximal import KAPPA, PENALTY_DAMPING, MaximalDerivation, derive_maximal
 from gencoord.dsl.model import Model
 from gencoord.naming import chart_name
-from gencoord.optimize.optimizer import optimize_model
+from gencoord.optimize.optimizer import OptimizedModel, optimize_model
 from gencoord.optimize.state import OptimizeOptions
 from gencoord.options import GenerateOptions
 from gencoord.checks.full_rank import check_full_rank
 from gencoord.viewer.scene import scene_json
 from gencoord.checks.singularities import analyse_singularities
 from gencoord.optimize.split import assign_groups
+from gencoord.derive.point_recursion import RecursiveDynamics
 from gencoord.derive.structured import derive_structured
 from gencoord.derive.recursions import tree_dynamics
 from gencoord.checks.validate import validate
@@ -80,9 +81,9 @@ class GeneratedChart:
     """One chart's derivation, optimized and ready for the template."""
     model: Model
     name: str
-    optimized: object
+    optimized: OptimizedModel
     num_reduced_kernels: int
-    maximal: object
+    maximal: MaximalDerivation
     analysis: list[str]
     forces_have_potential: bool          # conservative.py: the struct's forces_have_potential
     paths: PathChoice                    # dense or recursive qddot and inverse_dynamics
@@ -114,11 +115,11 @@ class _ChartWork:
     notes: list[str] = field(default_factory=list)
     analysis: list[str] = field(default_factory=list)
     conservative: bool = False
-    recursive: object = None     # the tree's recursions (recursions.py), or None
+    recursive: RecursiveDynamics | None = None  # the tree's recursions (recursions.py)
     tree_derived: bool = False   # every output from the recursions, in O(n) intermediates
-    derivation: object = None
+    derivation: Derivation | None = None
     definitions: list = field(default_factory=list)
-    maximal: object = None
+    maximal: MaximalDerivation | None = None
 
     @property
     def small(self) -> bool:
@@ -161,6 +162,7 @@ def _derive(work: _ChartWork, observers: _Observers) -> None:
     if work.small:
         work.derivation, work.definitions = derive(chart, work.kin), []
     elif work.tree_derived:
+        assert work.recursive is not None  # tree_derived: the recursions give every output
         work.derivation, work.definitions = work.recursive.derivation, []
     else:
         work.derivation, work.definitions = derive_structured(chart, work.kin)
@@ -175,18 +177,22 @@ def _derive(work: _ChartWork, observers: _Observers) -> None:
 
 def _optimize(work: _ChartWork, name: str) -> GeneratedChart:
     chart, options = work.chart, work.options
-    looped = (looped_outputs(work.derivation, work.recursive.residual)
-              if work.tree_derived and work.large else None)
+    derivation, maximal = work.derivation, work.maximal
+    assert derivation is not None and maximal is not None  # set by _derive
+    looped = None
+    if work.tree_derived and work.large:
+        assert work.recursive is not None  # tree_derived: the recursions give every output
+        looped = looped_outputs(derivation, work.recursive.residual)
     part_statements = options.part_statements_for(looped is not None)
     optimize_options = OptimizeOptions(part_statements, always_parts=options.translation_units > 0,
                                        zero_fill_min=options.zero_fill_min)
-    kernels = build_kernels(work.derivation, work.recursive, work.tree_derived, looped)
-    maximal_kernels = build_maximal_kernels(work.maximal)
+    kernels = build_kernels(derivation, work.recursive, work.tree_derived, looped)
+    maximal_kernels = build_maximal_kernels(maximal)
     names, input_of = _symbol_names(chart)
     if looped:
         names.update(looped.names)
         input_of.update(looped.input_of)
-    optimized = optimize_model(work.derivation, kernels + maximal_kernels, names, input_of,
+    optimized = optimize_model(derivation, kernels + maximal_kernels, names, input_of,
                                work.definitions, optimize_options)
     optimized.kernels, paths = choose_paths(optimized.kernels, chart.nq, options.dynamics,
                                             work.tree_derived)
@@ -197,7 +203,7 @@ def _optimize(work: _ChartWork, name: str) -> GeneratedChart:
                         f"on); kernels cut into parts of at most {part_statements} statements")
     reduced = len(optimized.kernels) - len(maximal_kernels)
     return GeneratedChart(chart, chart_name(name, work.model, chart), optimized, reduced,
-                          work.maximal, analysis, work.conservative, paths)
+                          maximal, analysis, work.conservative, paths)
 
 
 def _generate_chart(path: str, model: Model, chart: Model, name: str, options: GenerateOptions,
