@@ -6,8 +6,12 @@ Supported: SymPy 1.11 to 1.14, Jinja2 3.0 and later. Each switch says why it exi
 from __future__ import annotations
 
 import re
+from typing import TYPE_CHECKING
 
 import jinja2
+
+if TYPE_CHECKING:
+    from sympy.printing.codeprinter import CodePrinter
 
 
 def version_tuple(version: str) -> tuple[int, ...]:
@@ -24,7 +28,7 @@ def version_tuple(version: str) -> tuple[int, ...]:
     return tuple(numbers)
 
 
-def code_printer_settings(printer_class: type, **settings) -> dict:
+def code_printer_settings(printer_class: type[CodePrinter], **settings) -> dict:
     """`settings`, less 'strict' where `printer_class` does not know it.
 
     SymPy 1.13 added the code printers' 'strict' setting (raise on an expression they cannot

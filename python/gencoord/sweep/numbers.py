@@ -6,11 +6,13 @@ from __future__ import annotations
 import ast
 import math
 import operator
+from typing import Callable
 
 _CONSTANTS = {"pi": math.pi, "tau": math.tau, "e": math.e}
 _BINARY = {ast.Add: operator.add, ast.Sub: operator.sub, ast.Mult: operator.mul,
            ast.Div: operator.truediv, ast.Pow: operator.pow}
-_UNARY = {ast.UAdd: operator.pos, ast.USub: operator.neg}
+_UNARY: dict[type[ast.unaryop], Callable[[float], float]] = {
+    ast.UAdd: operator.pos, ast.USub: operator.neg}
 
 
 class NotANumber(ValueError):

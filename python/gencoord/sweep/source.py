@@ -4,13 +4,14 @@ names the file, the line and the key (`flip.toml:12: error: samples.q.theta1.poi
 from __future__ import annotations
 
 import re
+import sys
 from dataclasses import dataclass, field
 
 from gencoord.tool.errors import ToolError
 
-try:
+if sys.version_info >= (3, 11):
     import tomllib
-except ModuleNotFoundError:  # Python < 3.11
+else:
     tomllib = None
 
 Key = tuple[str, ...]

@@ -7,6 +7,7 @@ from __future__ import annotations
 import math
 import os
 from dataclasses import dataclass, replace
+from typing import NoReturn
 
 from gencoord.sweep import event as event_module
 from gencoord.sweep.numbers import NotANumber, parse_number
@@ -89,7 +90,7 @@ class _Reader:
     def __init__(self, source: SweepSource):
         self.source = source
 
-    def fail(self, key: Key, message: str):
+    def fail(self, key: Key, message: str) -> NoReturn:
         raise self.source.error(key, message)
 
     def table(self, key: Key, value, allowed: tuple[str, ...] | None) -> dict:

@@ -12,6 +12,8 @@ independent): callers then sample.
 
 from __future__ import annotations
 
+from typing import Any
+
 import sympy as sp
 from sympy.polys.polyerrors import GeneratorsNeeded, PolynomialError
 
@@ -19,7 +21,7 @@ MAX_TERMS = 4000           # a bigger polynomial is not worth proving: sample it
 FLOAT_ROUND_OFF = 1e-12    # relative size of a coefficient that counts as zero with Floats
 
 
-def circle_symbols(expr) -> tuple[object, list[tuple[sp.Symbol, sp.Symbol]], dict]:
+def circle_symbols(expr) -> tuple[Any, list[tuple[sp.Symbol, sp.Symbol]], dict]:
     """expr (an expression or a matrix) with sin/cos/tan of each argument replaced by s_k,
     c_k, s_k / c_k; the (s_k, c_k) pairs; the map from them back to sin/cos."""
     functions = expr.atoms(sp.sin, sp.cos, sp.tan)

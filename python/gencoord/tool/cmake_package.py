@@ -56,6 +56,7 @@ def _write_if_changed(path: str, text: str) -> None:
 
 def cmake_package_dir(layout: Layout, *, verbose: bool = False) -> str:
     if not layout.source_dir:
+        assert layout.prefix is not None  # without a source_dir, an installation's prefix
         return os.path.join(layout.prefix, "lib", "cmake", "gencoord")
     targets_dir = runtime_targets_dir(layout, verbose=verbose)
     folder = os.path.join(cache_dir(), f"cmake-{runtime_key(layout.source_dir)}")

@@ -30,6 +30,7 @@ class Layout:
                      os.path.join(self.source_dir, "runtime", "src"),
                      os.path.join(self.source_dir, "cmake")]
         else:
+            assert self.prefix is not None  # without a source_dir, an installation's prefix
             dirs += [os.path.join(self.prefix, "include", "gencoord")]
         return dirs
 

@@ -62,7 +62,8 @@ def _parse_variants(path: str) -> list[Variant]:
             words = line.split("#", 1)[0].split()
             if not words:
                 continue
-            options = tuple(tuple(w.split("=", 1)) for w in words[1:] if "=" in w)
+            pairs = [w.partition("=") for w in words[1:] if "=" in w]
+            options = tuple((key, value) for key, _, value in pairs)
             others = [w for w in words[1:] if "=" not in w]
             if others not in ([], [BENCHMARKS_ONLY]):
                 raise SystemExit(f"{path}:{number}: expected `stem key=value ... "
@@ -140,4 +141,4 @@ def main() -> None:
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    main()

@@ -121,7 +121,8 @@ def panel_layout(panels: list[tuple[str, dict[str, list[float]]]]
                  ) -> tuple[list[tuple[float, float, float, float]], int]:
     """Each panel's plot rectangle (left, top, width, height), top to bottom, and the
     picture's height; room is left above each panel for its legend rows."""
-    rects, top = [], FIRST_TOP
+    rects: list[tuple[float, float, float, float]] = []
+    top = FIRST_TOP
     for _, series in panels:
         top += LEGEND_ROW * len(legend_rows(list(series))) + 6
         rects.append((PLOT_LEFT, top, PLOT_WIDTH, PANEL_HEIGHT))

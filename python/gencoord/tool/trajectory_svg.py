@@ -152,6 +152,7 @@ def path_panel(trajectory: Trajectory) -> list[str]:
 def legend(trajectory: Trajectory) -> list[str]:
     """One line under the path panel: each particle in its colour, then the fixed points."""
     left, top, _, height = PATH_RECT
+    x: float  # advances by each key's width
     y, x, parts = top + height + 72, left - 60, ['<g class="legend">']
     for k, particle in enumerate(trajectory.particles):
         parts += legend_key(x, y, COLOURS[k % len(COLOURS)], particle)

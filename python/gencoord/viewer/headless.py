@@ -87,7 +87,9 @@ class Browser:
         self._detached: set[str] = set()
         self._buffer = bytearray()
         self._next_id = 0
-        self._process = self._to_browser = self._from_browser = None
+        self._process: subprocess.Popen[bytes] | None = None
+        self._to_browser: int | None = None
+        self._from_browser: int | None = None
         self._scratch = tempfile.mkdtemp(prefix="gencoord-chromium-")
         self._log_path = os.path.join(self._scratch, "stderr.log")
         try:
@@ -168,6 +170,7 @@ class Browser:
         what = f"Chromium to answer {method}"
         timeout = self.timeout if timeout is None else timeout
         deadline = time.monotonic() + timeout
+        assert self._to_browser is not None  # open from _start until close
         while data:
             if not select.select([], [self._to_browser], [], _left(deadline))[1]:
                 raise BrowserError(f"timed out after {timeout:g} s waiting for {what}")
@@ -186,6 +189,7 @@ class Browser:
         naming `what` after `timeout` seconds."""
         timeout = self.timeout if timeout is None else timeout
         deadline = time.monotonic() + timeout
+        assert self._from_browser is not None  # open from _start until close
         while not done():
             if not select.select([self._from_browser], [], [], _left(deadline))[0]:
                 raise BrowserError(f"timed out after {timeout:g} s waiting for {what}")
@@ -207,6 +211,8 @@ class Browser:
                                                              message.get("params", {}))
 
     def _death(self, what: str) -> str:
+        assert self._process is not None  # started before the first call
+        code: int | str
         try:
             code = self._process.wait(5)
         except subprocess.TimeoutExpired:
@@ -251,7 +257,7 @@ class Page:
     def __init__(self, browser: Browser, target: str, session: str):
         self.browser, self.target, self.session = browser, target, session
         self.messages: list[tuple[str, str]] = []
-        self._loaded = set()
+        self._loaded: set[str] = set()
 
     @property
     def console_errors(self) -> list[str]:

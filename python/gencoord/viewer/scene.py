@@ -80,7 +80,8 @@ def _number(expr, numbers: dict) -> float | None:
 
 def _vector(vector: sp.Matrix, numbers: dict) -> list[float] | None:
     values = [_number(component, numbers) for component in vector]
-    return None if None in values else values
+    known = [value for value in values if value is not None]
+    return known if len(known) == len(values) else None
 
 
 def anchor(point: Point, numbers: dict) -> list | None:
@@ -102,7 +103,7 @@ def _up(model: Model, numbers: dict) -> list[float]:
         total += gravity.acceleration
     values = _vector(total, numbers)
     length = sum(v * v for v in values) ** 0.5 if values else 0.0
-    if not length:
+    if values is None or not length:
         return [0.0, 1.0] if model.dim == 2 else [0.0, 0.0, 1.0]
     return [_rounded(-v / length) for v in values]
 
@@ -146,6 +147,7 @@ def _ellipsoid(body: Body, mass: float | None, numbers: dict) -> dict | None:
     """The solid ellipsoid (in 2D the disk) with the body's mass and inertia: semi-axes
     a_i = sqrt(5 s_i / m) along the eigenvectors of the second moment S (disk radius
     sqrt(2 I / m)), in body axes."""
+    assert body.second_moment is not None  # set with the point masses (add_point_masses)
     moment = body.second_moment.xreplace(numbers)
     if not mass or not all(value.is_number for value in moment):
         return None
