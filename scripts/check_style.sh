@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
-# Format and lint checks: every hand-written C++ file is as clang-format 14 lays it out
-# (.clang-format), and every Python file passes flake8 (.flake8). Installs both from Debian
-# when missing. Exits non-zero listing the offending files.
+# Format, lint and type checks: every hand-written C++ file is as clang-format 14 lays it out
+# (.clang-format), every Python file passes flake8 (.flake8), and the gencoord package passes
+# mypy ([tool.mypy] in pyproject.toml). Installs the three from Debian when missing. Exits
+# non-zero listing the offending files.
 #   scripts/check_style.sh          check
 #   scripts/check_style.sh --fix    rewrite the C++ files in place (Python is fixed by hand)
 set -euo pipefail
@@ -10,6 +11,7 @@ cd "$(dirname "$0")/.."
 packages=()
 command -v clang-format-14 >/dev/null 2>&1 || packages+=(clang-format-14)
 /usr/bin/python3 -m flake8 --version >/dev/null 2>&1 || packages+=(flake8)
+/usr/bin/python3 -m mypy --version >/dev/null 2>&1 || packages+=(mypy)
 scripts/install_packages.sh check_style "${packages[@]}"
 
 # generated/ is written by the generator, which wraps its own lines
@@ -32,5 +34,12 @@ if [ ${#unformatted[@]} -gt 0 ]; then
   status=1
 fi
 /usr/bin/python3 -m flake8 "${python[@]}" || status=1
-[ $status -eq 0 ] && echo "check_style: ${#cxx[@]} C++ files formatted, ${#python[@]} Python files lint-free"
+# mypy's own report is printed only when it finds errors; on success it gives the file count
+if mypy_report=$(/usr/bin/python3 -m mypy --config-file pyproject.toml python/gencoord 2>&1); then
+  typed=$(sed -n 's/^Success: no issues found in \([0-9]*\) source files*$/\1/p' <<<"$mypy_report")
+else
+  printf '%s\n' "$mypy_report"
+  status=1
+fi
+[ $status -eq 0 ] && echo "check_style: ${#cxx[@]} C++ files formatted, ${#python[@]} Python files lint-free, ${typed:-all} gencoord files type-checked"
 exit $status
