@@ -50,7 +50,7 @@ def kernel_arguments(k: KernelCode) -> list[Argument]:
     arguments = [Argument(INPUT_TYPES[name], name, name in k.used_inputs)
                  for name in k.kernel.inputs]
     # a looped kernel passes params on to the products it calls (looped.py)
-    arguments.append(Argument("const Params& ", "params", bool(k.parameters or k.kernel.body)))
+    arguments.append(Argument("const Params& ", "params", bool(k.parameters or k.kernel.composed)))
     if not k.kernel.returns:
         arguments += [Argument(block.cxx_type + "* ", block.name) for block in k.kernel.blocks]
     return arguments

@@ -55,6 +55,27 @@ class Block:
         return f"{self.name}->data()" if self.out_param else f"{self.name}.data()"
 
 
+@dataclass(frozen=True)
+class Call:
+    """One output of a composed kernel computed by calling another kernel of the model: with
+    `inputs` its arguments before params, "unit" standing for the unit vector e_j."""
+    output: str
+    kernel: str
+    inputs: tuple[str, ...]
+
+
+@dataclass(frozen=True)
+class Composed:
+    """A kernel computed from others, with no entries of its own (looped.py): each call
+    once, or with `columns` once per column j of the outputs, along e_j."""
+    calls: tuple[Call, ...]
+    columns: int = 0
+
+    def call_counts(self) -> list[tuple[str, int]]:
+        """(kernel called, how many times) of each call."""
+        return [(call.kernel, self.columns or 1) for call in self.calls]
+
+
 @dataclass
 class Kernel:
     name: str
@@ -65,10 +86,8 @@ class Kernel:
     # "recursive": the O(n) alternative to the dense kernel of the same name; after the CSE
     # the cheaper of the two is kept (dynamics_paths.py)
     variant: str = ""
-    # a looped kernel: these C++ lines are its body, which calls each (kernel, times) of
-    # `calls` (looped.py); it has no entries of its own
-    body: list[str] = field(default_factory=list)
-    calls: list[tuple[str, int]] = field(default_factory=list)
+    # a kernel made of calls of others (looped.py): it has no entries of its own
+    composed: Composed | None = None
 
     @property
     def returns(self) -> str | None:
