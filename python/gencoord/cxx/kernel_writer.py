@@ -14,7 +14,7 @@ from gencoord.cxx.composed import composed_body
 from gencoord.cxx.printer import math_functions_used
 from gencoord.cxx.kernel_code import KernelCode, KernelPart
 from gencoord.derive.kernel_set import Block, Kernel
-from gencoord.cxx.lvalues import data_pointer, element, lvalue, writes_through_pointer
+from gencoord.cxx.lvalues import data_pointer, element, lvalue, target, writes_through_pointer
 from gencoord.optimize.state import OptimizeOptions, Optimization
 from gencoord.optimize.split import PartPlan, plan_parts
 
@@ -141,7 +141,7 @@ class _KernelWriter:
             kernel=kernel, **self.inputs_read(set().union(*s.free)),
             using=math_functions_used(code for _, code in s.code),
             intermediates=s.code[:len(s.order)], assignments=s.code[len(s.order):],
-            mirrors=mirrors, zero_filled=[block.target for block in zero_filled],
+            mirrors=mirrors, zero_filled=[target(block) for block in zero_filled],
             ops=sum(printed.temporary_ops[k] for k in s.order)
             + sum(printed.ops(expr) for *_, expr in s.outputs),
             parts=parts, carried_slots=slots)
