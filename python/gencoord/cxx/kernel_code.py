@@ -46,3 +46,4 @@ class KernelCode(InputsRead):
     carried_slots: int                     # size of the array the parts exchange values in
     # the blocks (their C++ targets) set to zero before the assignments, which skip their zeros
     zero_filled: list[str] = field(default_factory=list)
+    body: list[str] = field(default_factory=list)  # a composed kernel's code (composed.py)

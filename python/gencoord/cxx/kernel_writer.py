@@ -10,10 +10,11 @@ from dataclasses import dataclass, replace
 
 import sympy as sp
 
+from gencoord.cxx.composed import composed_body
 from gencoord.cxx.printer import math_functions_used
 from gencoord.cxx.kernel_code import KernelCode, KernelPart
 from gencoord.derive.kernel_set import Block, Kernel
-from gencoord.cxx.lvalues import data_pointer, element, lvalue, writes_through_pointer
+from gencoord.cxx.lvalues import data_pointer, element, lvalue, target, writes_through_pointer
 from gencoord.optimize.state import OptimizeOptions, Optimization
 from gencoord.optimize.split import PartPlan, plan_parts
 
@@ -142,30 +143,31 @@ class _KernelWriter:
             kernel=kernel, **self.inputs_read(set().union(*s.free)),
             using=math_functions_used(code for _, code in s.code),
             intermediates=s.code[:len(s.order)], assignments=s.code[len(s.order):],
-            mirrors=mirrors, zero_filled=[block.target for block in zero_filled],
+            mirrors=mirrors, zero_filled=[target(block) for block in zero_filled],
             ops=sum(printed.temporary_ops[k] for k in s.order)
             + sum(printed.ops(expr) for *_, expr in s.outputs),
             parts=parts, carried_slots=slots)
 
 
 def looped_kernel_code(kernel: Kernel, ops_of: dict[str, int]) -> KernelCode:
-    """A looped kernel (looped.py): its body is its code; it reads every input it takes
-    (they are passed on) and counts the operations of the calls it makes."""
+    """A composed kernel (looped.py): its body is calls (composed.py); it reads every input
+    it takes (they are passed on) and counts the operations of the calls it makes."""
+    assert kernel.composed is not None, kernel.name
+    ops = sum(ops_of[name] * times for name, times in kernel.composed.call_counts())
     return KernelCode(kernel=kernel, coordinates=[], rates=[], accelerations=[],
                       parameters=[], used_inputs=set(kernel.inputs), using=[],
                       intermediates=[], assignments=[], mirrors=[],
-                      ops=sum(ops_of[name] * times for name, times in kernel.calls),
-                      parts=[], carried_slots=0)
+                      ops=ops, parts=[], carried_slots=0, body=composed_body(kernel))
 
 
 def write_kernels(work: Optimization, options: OptimizeOptions) -> Optimization:
     """Each kernel's code: its statements, mirrored entries and parts; the looped kernels'
     last, as they count the operations of the kernels they call."""
     writer = _KernelWriter(work, options)
-    codes = {id(k): writer.kernel_code(k) for k in work.kernels if not k.body}
+    codes = {id(k): writer.kernel_code(k) for k in work.kernels if not k.composed}
     ops_of = {code.kernel.name: code.ops for code in codes.values()}
     for kernel in work.kernels:
-        if kernel.body:
+        if kernel.composed:
             codes[id(kernel)] = looped_kernel_code(kernel, ops_of)
             ops_of[kernel.name] = codes[id(kernel)].ops
     return replace(work, codes=[codes[id(kernel)] for kernel in work.kernels])

@@ -1,24 +1,40 @@
-"""The C++ lvalue of one entry of an output block, in a whole kernel or in a part."""
+"""An output block in C++: its type, the expression of the whole block, and the lvalue of one
+entry in a whole kernel or in a part."""
 
 from __future__ import annotations
 
 from gencoord.derive.kernel_set import Block
 
 
+def cxx_type(block: Block) -> str:
+    """`QMatrix<Scalar>` and the like, `Scalar`, or `std::array<Scalar, n>`."""
+    if block.is_scalar:
+        return "Scalar"
+    if block.array:
+        return f"std::array<Scalar, {block.shape[0]}>"
+    return f"{block.storage}<Scalar>"
+
+
+def target(block: Block) -> str:
+    """The whole output inside its kernel: `result`, or `(*Mt)` through its pointer."""
+    return f"(*{block.name})" if block.out_param else block.name
+
+
 def lvalue(block: Block, i: int, j: int) -> str:
     """Entry (i, j) through Eigen's operator() (or the array's [], or the scalar itself)."""
     if block.is_scalar:
-        return block.target
+        return target(block)
     if block.array:
-        return f"{block.target}[{i}]"
+        return f"{target(block)}[{i}]"
     if block.shape[1] == 1:
-        return f"{block.target}({i})"
-    return f"{block.target}({i}, {j})"
+        return f"{target(block)}({i})"
+    return f"{target(block)}({i}, {j})"
 
 
 def data_pointer(block: Block) -> tuple[str, str]:
     """(local, source) of the raw pointer a part writes an Eigen output block through."""
-    return f"{block.name}_data", block.data
+    source = f"{block.name}->data()" if block.out_param else f"{block.name}.data()"
+    return f"{block.name}_data", source
 
 
 def writes_through_pointer(block: Block) -> bool:

@@ -11,6 +11,7 @@ from dataclasses import dataclass
 
 from gencoord.cxx.kernel_code import KernelCode, KernelPart
 from gencoord.cxx.line_wrap import LINE_WIDTH
+from gencoord.cxx.lvalues import cxx_type
 
 NESTED_INDENT = 2  # what struct Maximal adds to its kernels' lines
 
@@ -50,9 +51,9 @@ def kernel_arguments(k: KernelCode) -> list[Argument]:
     arguments = [Argument(INPUT_TYPES[name], name, name in k.used_inputs)
                  for name in k.kernel.inputs]
     # a looped kernel passes params on to the products it calls (looped.py)
-    arguments.append(Argument("const Params& ", "params", bool(k.parameters or k.kernel.body)))
+    arguments.append(Argument("const Params& ", "params", bool(k.parameters or k.kernel.composed)))
     if not k.kernel.returns:
-        arguments += [Argument(block.cxx_type + "* ", block.name) for block in k.kernel.blocks]
+        arguments += [Argument(cxx_type(block) + "* ", block.name) for block in k.kernel.blocks]
     return arguments
 
 
@@ -65,9 +66,9 @@ def part_arguments(k: KernelCode, part: KernelPart) -> list[Argument]:
         arguments.append(Argument("const Params& ", "params", bool(part.parameters)))
     if k.kernel.returns:
         result = k.kernel.blocks[0]
-        arguments.append(Argument(result.cxx_type + "& ", result.name, bool(part.outputs)))
+        arguments.append(Argument(cxx_type(result) + "& ", result.name, bool(part.outputs)))
     else:
-        arguments += [Argument(block.cxx_type + "* ", block.name, block.name in part.outputs)
+        arguments += [Argument(cxx_type(block) + "* ", block.name, block.name in part.outputs)
                       for block in k.kernel.blocks]
     arguments.append(Argument("Scalar* ", "carried", part.uses_carried))
     return arguments

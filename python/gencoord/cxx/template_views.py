@@ -5,6 +5,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from gencoord.cxx.kernel_code import KernelCode, KernelPart
+from gencoord.cxx.lvalues import cxx_type
 from gencoord.cxx.signatures import kernel_arguments, part_arguments, signature
 
 
@@ -40,7 +41,7 @@ def _part_view(k: KernelCode, part: KernelPart, index: int, owner: str) -> PartV
 
 def kernel_view(k: KernelCode, owner: str) -> KernelView:
     """The view of a kernel of struct `owner` ("Chain", "Chain::Maximal")."""
-    result_type = k.kernel.blocks[0].cxx_type if k.kernel.returns else None
+    result_type = cxx_type(k.kernel.blocks[0]) if k.kernel.returns else None
     head = f"  static {result_type or 'void'} {k.kernel.name}("
     return KernelView(k, signature(head, kernel_arguments(k)), result_type,
                       [_part_view(k, part, index, owner) for index, part in enumerate(k.parts)])

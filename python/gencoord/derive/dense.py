@@ -23,6 +23,8 @@ import sympy as sp
 
 from gencoord.dsl.bodies import (InertialTerm, force_shares, inertial_terms,
                                  torque_generalized_forces)
+from gencoord.derive.body_jacobian import numeric_body_jacobian
+from gencoord.derive.body_tree import body_tree
 from gencoord.derive.differentiate import termwise_jacobian
 from gencoord.dsl.model import Model
 from gencoord.dsl.items import Point
@@ -155,11 +157,18 @@ class Kinematics:
         Compiled once (the rank check and the singularity analysis share it), from its
         distinct nonzero entries only: a 100-link chain's J has 20000 entries, 200 distinct.
         A tree's J is assembled from its joints' (numeric_joint_jacobians): a particle's rows
-        are its parent's plus its own joint's columns.
+        are its parent's plus its own joint's columns; a joint tree of bodies' from its links'
+        frames and joint subspaces (body_jacobian.py).
         """
         if self._numeric_jacobian is None:
-            self._numeric_jacobian = (self._flat_numeric_jacobian() if self.tree is None
-                                      else self._tree_numeric_jacobian())
+            bodies = body_tree(self._model) if self.tree is None else None
+            if self.tree is not None:
+                self._numeric_jacobian = self._tree_numeric_jacobian()
+            elif bodies is not None:
+                self._numeric_jacobian = numeric_body_jacobian(bodies, self.q, self.t,
+                                                               self.defaults, self.particles)
+            else:
+                self._numeric_jacobian = self._flat_numeric_jacobian()
         return self._numeric_jacobian
 
     def numeric_joint_jacobians(self) -> Callable[[list[float], float], list[list[list[float]]]]:

@@ -24,14 +24,15 @@ if TYPE_CHECKING:
 class Block:
     """One output of a kernel: `name(row, col) = expr` for each entry, or `name = expr`.
 
-    An out-parameter block is the pointer argument `cxx_type* name` of its kernel; any other
-    is the local the kernel returns."""
-    name: str                          # a C++ identifier: "result", "Mt"
-    cxx_type: str                      # e.g. "QMatrix<Scalar>", or "Scalar"
-    shape: tuple[int, int]             # (1, 1) with cxx_type "Scalar" is a plain scalar
+    An out-parameter block is a pointer argument of its kernel; any other is the value the
+    kernel returns. The C++ backend spells its type (cxx/lvalues.cxx_type)."""
+    name: str                          # an identifier: "result", "Mt"
+    # the model interface's type of its values: "QMatrix", "QVector", "XJacobian", ..., a
+    # plain "Scalar", or an "array" of shape[0] values (a sparse Jacobian's)
+    storage: str
+    shape: tuple[int, int]             # (1, 1) for a plain scalar
     entries: list[tuple[int, int, sp.Expr]]
     symmetric: bool = False            # entries hold the lower triangle; mirror the rest
-    array: bool = False                # a std::array of values: `name[row] = expr`
     # Jacobian blocks: entries are d(of[i]) / d(wrt[j]), computed after CSE (differentiate.py)
     jacobian_of: tuple[list[sp.Expr], list[sp.Symbol]] | None = None
     pattern: list[tuple[int, int]] | None = None  # sparse Jacobian: the (i, j) emitted, in order
@@ -42,17 +43,33 @@ class Block:
 
     @property
     def is_scalar(self) -> bool:
-        return self.cxx_type == "Scalar"
+        return self.storage == "Scalar"
 
     @property
-    def target(self) -> str:
-        """The C++ expression of the whole output inside its kernel: `result`, `(*Mt)`."""
-        return f"(*{self.name})" if self.out_param else self.name
+    def array(self) -> bool:
+        """Values indexed by one number, in the order of `entries` (or `pattern`)."""
+        return self.storage == "array"
 
-    @property
-    def data(self) -> str:
-        """The C++ expression of its first entry's address (Eigen blocks)."""
-        return f"{self.name}->data()" if self.out_param else f"{self.name}.data()"
+
+@dataclass(frozen=True)
+class Call:
+    """One output of a composed kernel computed by calling another kernel of the model: with
+    `inputs` its arguments before params, "unit" standing for the unit vector e_j."""
+    output: str
+    kernel: str
+    inputs: tuple[str, ...]
+
+
+@dataclass(frozen=True)
+class Composed:
+    """A kernel computed from others, with no entries of its own (looped.py): each call
+    once, or with `columns` once per column j of the outputs, along e_j."""
+    calls: tuple[Call, ...]
+    columns: int = 0
+
+    def call_counts(self) -> list[tuple[str, int]]:
+        """(kernel called, how many times) of each call."""
+        return [(call.kernel, self.columns or 1) for call in self.calls]
 
 
 @dataclass
@@ -65,10 +82,8 @@ class Kernel:
     # "recursive": the O(n) alternative to the dense kernel of the same name; after the CSE
     # the cheaper of the two is kept (dynamics_paths.py)
     variant: str = ""
-    # a looped kernel: these C++ lines are its body, which calls each (kernel, times) of
-    # `calls` (looped.py); it has no entries of its own
-    body: list[str] = field(default_factory=list)
-    calls: list[tuple[str, int]] = field(default_factory=list)
+    # a kernel made of calls of others (looped.py): it has no entries of its own
+    composed: Composed | None = None
 
     @property
     def returns(self) -> str | None:
@@ -76,31 +91,31 @@ class Kernel:
         return next((block.name for block in self.blocks if not block.out_param), None)
 
 
-def _vector(name: str, cxx_type: str, values: sp.Matrix) -> Block:
-    return Block(name, cxx_type, (len(values), 1),
+def _vector(name: str, storage: str, values: sp.Matrix) -> Block:
+    return Block(name, storage, (len(values), 1),
                  [(i, 0, values[i]) for i in range(len(values))])
 
 
 def _lower(name: str, matrix: sp.Matrix) -> Block:
     n = matrix.shape[0]
-    return Block(name, "QMatrix<Scalar>", (n, n),
+    return Block(name, "QMatrix", (n, n),
                  [(i, j, matrix[i, j]) for i in range(n) for j in range(i + 1)],
                  symmetric=True)
 
 
-def _matrix(name: str, cxx_type: str, matrix: sp.Matrix) -> Block:
-    return Block(name, cxx_type, matrix.shape,
+def _matrix(name: str, storage: str, matrix: sp.Matrix) -> Block:
+    return Block(name, storage, matrix.shape,
                  [(i, j, matrix[i, j]) for i in range(matrix.shape[0])
                   for j in range(matrix.shape[1])])
 
 
 def _jacobian(name: str, of: sp.Matrix, wrt: list[sp.Symbol]) -> Block:
-    return Block(name, "QMatrix<Scalar>", (len(of), len(wrt)), [], jacobian_of=(list(of), wrt))
+    return Block(name, "QMatrix", (len(of), len(wrt)), [], jacobian_of=(list(of), wrt))
 
 
 def _input_matrix(d: Derivation) -> Block:
     """B = dFt/du, nq x (number of inputs)."""
-    return Block("result", "InputMatrix<Scalar>", (len(d.applied_forces), len(d.inputs)), [],
+    return Block("result", "InputMatrix", (len(d.applied_forces), len(d.inputs)), [],
                  jacobian_of=(list(d.applied_forces), d.inputs))
 
 
@@ -120,12 +135,12 @@ def _recursive_kernels(r: RecursiveDynamics) -> dict[str, Kernel]:
         "dynamics": Kernel(
             "qddot", "Generalized accelerations qddot = Mt^-1 (Ft + Fi) by the articulated-body "
             "recursion (O(nq)); NaN or inf entries where Mt is singular.", ("q", "v", "t"),
-            [_vector("result", "QVector<Scalar>", r.qddot)], variant="recursive"),
+            [_vector("result", "QVector", r.qddot)], variant="recursive"),
         "inverse_dynamics": Kernel(
             "inverse_dynamics", "Inverse dynamics by the recursive Newton-Euler algorithm "
             "(O(nq)): the residual r = Mt qdd - Ft - Fi, i.e. the generalized force that "
             "produces qdd.", ("q", "v", "qdd", "t"),
-            [_vector("result", "QVector<Scalar>", r.residual)], variant="recursive"),
+            [_vector("result", "QVector", r.residual)], variant="recursive"),
     }
 
 
@@ -179,23 +194,23 @@ def _dynamics_kernels(d: Derivation, residual: sp.Matrix | None,
             "mass_matrix", "Reduced mass matrix Mt = J^T M J (symmetric).", ("q", "t"),
             [_lower("result", d.mass_matrix)])),
         Kernel("applied_forces", "Applied generalized forces Ft = J^T F + Q.",
-               ("q", "v", "t"), [_vector("result", "QVector<Scalar>", d.applied_forces)]),
+               ("q", "v", "t"), [_vector("result", "QVector", d.applied_forces)]),
         Kernel("generalized_forces", "Forces acting directly on q (joint torques, joint "
                "springs).", ("q", "v", "t"),
-               [_vector("result", "QVector<Scalar>", d.generalized_forces)]),
+               [_vector("result", "QVector", d.generalized_forces)]),
         Kernel("inertial_forces", "Inertial (Coriolis, centrifugal, moving-frame) forces "
                "Fi = -J^T M gamma.", ("q", "v", "t"),
-               [_vector("result", "QVector<Scalar>", d.inertial_forces)]),
+               [_vector("result", "QVector", d.inertial_forces)]),
         Kernel("forces", "Right-hand side Ft + Fi of Mt qddot = Ft + Fi.", ("q", "v", "t"),
-               [_vector("result", "QVector<Scalar>", total_force)]),
+               [_vector("result", "QVector", total_force)]),
         unless_replaced("dynamics", lambda: Kernel(
             "dynamics", "Mt and Ft + Fi in one pass, sharing their common terms.",
             ("q", "v", "t"),
-            [_out(_lower("Mt", d.mass_matrix)), _out(_vector("f", "QVector<Scalar>", total_force))],
+            [_out(_lower("Mt", d.mass_matrix)), _out(_vector("f", "QVector", total_force))],
             notes=["Mt and f must not be null."])),
         *([Kernel("inverse_dynamics", "Inverse dynamics: the residual r = Mt qdd - Ft - Fi, "
                   "i.e. the generalized force that produces qdd.", ("q", "v", "qdd", "t"),
-                  [_vector("result", "QVector<Scalar>", residual)])]
+                  [_vector("result", "QVector", residual)])]
           if residual is not None else []),
         unless_replaced("residual_jacobians", lambda: Kernel(
             "residual_jacobians", "Jacobians dr/dq and dr/dv of the residual (dr/dqdd = Mt), "
@@ -221,38 +236,38 @@ def _state_kernels(d: Derivation, unless_replaced) -> list[Kernel]:
         Kernel("energy", "Total energy E = T + V.", ("q", "v", "t"),
                [_scalar("result", d.kinetic_energy + d.potential_energy)]),
         Kernel("positions", "Particle positions x = X(q, t), stacked.", ("q", "t"),
-               [_vector("result", "XVector<Scalar>", d.positions)]),
+               [_vector("result", "XVector", d.positions)]),
         Kernel("velocities", "Particle velocities xdot = J v + X_t, stacked.", ("q", "v", "t"),
-               [_vector("result", "XVector<Scalar>", d.velocities)]),
+               [_vector("result", "XVector", d.velocities)]),
         unless_replaced("jacobian", lambda: Kernel(
             "jacobian", "Jacobian J = dX/dq.", ("q", "t"),
-            [_matrix("result", "XJacobian<Scalar>", d.jacobian)])),
+            [_matrix("result", "XJacobian", d.jacobian)])),
         Kernel("bias_acceleration", "Velocity-product acceleration gamma (xddot at qddot = 0).",
-               ("q", "v", "t"), [_vector("result", "XVector<Scalar>", d.bias_acceleration)]),
+               ("q", "v", "t"), [_vector("result", "XVector", d.bias_acceleration)]),
         Kernel("linear_momentum", "Linear momentum p = sum m_i xdot_i.", ("q", "v", "t"),
-               [_vector("result", "SpaceVector<Scalar>", d.linear_momentum)]),
+               [_vector("result", "SpaceVector", d.linear_momentum)]),
         Kernel("angular_momentum", "Angular momentum L = sum m_i x_i x xdot_i about the "
                "origin (z component in 2D).", ("q", "v", "t"),
-               [_vector("result", "AngularVector<Scalar>", d.angular_momentum)]),
+               [_vector("result", "AngularVector", d.angular_momentum)]),
         Kernel("particle_masses", "Particle masses, in particle order.", (),
-               [_vector("result", "ParticleVector<Scalar>", sp.Matrix(d.masses))]),
+               [_vector("result", "ParticleVector", sp.Matrix(d.masses))]),
         Kernel("fixed_point_positions", "Fixed-point positions (anchors, prescribed pivots), "
                "stacked.", ("t",),
-               [_vector("result", "FixedPointVector<Scalar>", d.fixed_point_positions)]),
+               [_vector("result", "FixedPointVector", d.fixed_point_positions)]),
     ]
 
 
 def _sparse_jacobian(name: str, of: sp.Matrix, wrt: list[sp.Symbol],
                      pattern: list[tuple[int, int]], values: list[sp.Expr] | None) -> Block:
-    """The entries of d of / d wrt at `pattern`, as a std::array in that order.
+    """The entries of d of / d wrt at `pattern`, as an array in that order.
 
     Given `values`, those are emitted; otherwise optimize/optimizer.py takes them by forward mode.
     """
     if values is not None:
-        return Block(name, f"std::array<Scalar, {len(values)}>", (len(values), 1),
-                     [(k, 0, expr) for k, expr in enumerate(values)], array=True)
-    return Block(name, f"std::array<Scalar, {len(pattern)}>", (len(pattern), 1), [],
-                 array=True, jacobian_of=(list(of), wrt), pattern=pattern)
+        return Block(name, "array", (len(values), 1),
+                     [(k, 0, expr) for k, expr in enumerate(values)])
+    return Block(name, "array", (len(pattern), 1), [],
+                 jacobian_of=(list(of), wrt), pattern=pattern)
 
 
 def build_maximal_kernels(m: MaximalDerivation) -> list[Kernel]:
@@ -260,11 +275,11 @@ def build_maximal_kernels(m: MaximalDerivation) -> list[Kernel]:
     return [
         Kernel("external_forces", "External forces F(x, xdot, t): gravity, springs, dampers, "
                "user forces.", ("pos", "vel", "t"),
-               [_vector("result", "XVector<Scalar>", m.external_forces)]),
+               [_vector("result", "XVector", m.external_forces)]),
         Kernel("penalty_forces", "Penalty forces: the declared constraints as stiff "
                "damped springs.",
                ("pos", "vel", "t", "kappa", "penalty_damping"),
-               [_vector("result", "XVector<Scalar>", m.penalty_forces)]),
+               [_vector("result", "XVector", m.penalty_forces)]),
         Kernel("force_jacobian_x", "Nonzero entries of d(F + F_penalty)/dx (see "
                "jacobian_x_rows, _cols).",
                ("pos", "vel", "t", "kappa", "penalty_damping"),
@@ -282,5 +297,5 @@ def build_maximal_kernels(m: MaximalDerivation) -> list[Kernel]:
                [_scalar("result", m.penalty_energy)]),
         Kernel("constraint_violations", "Constraint violations: rod |d| - L, pin |x - anchor|, "
                "plane distance.", ("pos", "t"),
-               [_vector("result", "ConstraintVector<Scalar>", m.violations)]),
+               [_vector("result", "ConstraintVector", m.violations)]),
     ]

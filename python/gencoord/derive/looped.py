@@ -25,7 +25,7 @@ from dataclasses import dataclass
 import sympy as sp
 
 from gencoord.derive.dense import Derivation
-from gencoord.derive.kernel_set import Block, Kernel
+from gencoord.derive.kernel_set import Block, Call, Composed, Kernel
 
 
 @dataclass
@@ -43,20 +43,10 @@ def _direction(argument: str, n: int) -> list[sp.Symbol]:
     return [sp.Symbol(f"__{argument}{j}") for j in range(n)]
 
 
-def _product(name: str, summary: str, inputs: tuple[str, ...], cxx_type: str,
+def _product(name: str, summary: str, inputs: tuple[str, ...], storage: str,
              of: sp.Matrix, seeds: dict[sp.Symbol, sp.Expr]) -> Kernel:
     return Kernel(name, summary, inputs,
-                  [Block("result", cxx_type, (len(of), 1), [], tangent_of=(list(of), seeds))])
-
-
-def _column_loop(assignments: list[str]) -> list[str]:
-    """Each assignment (reading `unit`, the unit vector e_j) for every column j."""
-    return ["QVector<Scalar> unit = QVector<Scalar>::Zero();",
-            "for (int j = 0; j < nq; ++j) {",
-            "  unit(j) = Scalar(1);",
-            *[f"  {line}" for line in assignments],
-            "  unit(j) = Scalar(0);",
-            "}"]
+                  [Block("result", storage, (len(of), 1), [], tangent_of=(list(of), seeds))])
 
 
 def looped_outputs(d: Derivation, residual: sp.Matrix) -> LoopedOutputs:
@@ -66,47 +56,47 @@ def looped_outputs(d: Derivation, residual: sp.Matrix) -> LoopedOutputs:
     dq, dv = _direction("dq", nq), _direction("dv", nq)
     products = [
         _product("mass_matrix_product", "Mt qdd without Mt: the derivative of Newton-Euler's "
-                 "residual along qdd (O(nq)).", ("q", "qdd", "t"), "QVector<Scalar>",
+                 "residual along qdd (O(nq)).", ("q", "qdd", "t"), "QVector",
                  residual, dict(zip(d.a, d.a))),
         _product("jacobian_product", "J dq without J: the derivative of the positions along dq "
-                 "(O(nq)).", ("q", "dq", "t"), "XVector<Scalar>", d.positions,
+                 "(O(nq)).", ("q", "dq", "t"), "XVector", d.positions,
                  dict(zip(d.q, dq))),
         _product("residual_derivative_q", "dr/dq dq: the derivative of Newton-Euler's residual "
-                 "along dq (O(nq)).", ("q", "v", "qdd", "dq", "t"), "QVector<Scalar>",
+                 "along dq (O(nq)).", ("q", "v", "qdd", "dq", "t"), "QVector",
                  residual, dict(zip(d.q, dq))),
         _product("residual_derivative_v", "dr/dv dv: the derivative of Newton-Euler's residual "
-                 "along dv (O(nq)).", ("q", "v", "qdd", "dv", "t"), "QVector<Scalar>",
+                 "along dv (O(nq)).", ("q", "v", "qdd", "dv", "t"), "QVector",
                  residual, dict(zip(d.v, dv))),
     ]
     looped = "a loop over its nq columns, each a product (O(nq^2) in all)"
     replacing = {
         "mass_matrix": Kernel(
             "mass_matrix", f"Reduced mass matrix Mt = J^T M J (symmetric), by {looped}.",
-            ("q", "t"), [Block("result", "QMatrix<Scalar>", (nq, nq), [])],
-            body=_column_loop(["result.col(j) = mass_matrix_product(q, unit, t, params);"]),
-            calls=[("mass_matrix_product", nq)]),
+            ("q", "t"), [Block("result", "QMatrix", (nq, nq), [])],
+            composed=Composed((Call("result", "mass_matrix_product", ("q", "unit", "t")),),
+                              columns=nq)),
         "dynamics": Kernel(
             "dynamics", "Mt and Ft + Fi.", ("q", "v", "t"),
-            [Block("Mt", "QMatrix<Scalar>", (nq, nq), [], out_param=True),
-             Block("f", "QVector<Scalar>", (nq, 1), [], out_param=True)],
+            [Block("Mt", "QMatrix", (nq, nq), [], out_param=True),
+             Block("f", "QVector", (nq, 1), [], out_param=True)],
             notes=["Mt and f must not be null."],
-            body=["*Mt = mass_matrix(q, t, params);", "*f = forces(q, v, t, params);"],
-            calls=[("mass_matrix", 1), ("forces", 1)]),
+            composed=Composed((Call("Mt", "mass_matrix", ("q", "t")),
+                               Call("f", "forces", ("q", "v", "t"))))),
         "residual_jacobians": Kernel(
             "residual_jacobians", "Jacobians dr/dq and dr/dv of the residual (dr/dqdd = Mt), "
             f"for Newton steps, by {looped}.", ("q", "v", "qdd", "t"),
-            [Block("dr_dq", "QMatrix<Scalar>", (nq, nq), [], out_param=True),
-             Block("dr_dv", "QMatrix<Scalar>", (nq, nq), [], out_param=True)],
+            [Block("dr_dq", "QMatrix", (nq, nq), [], out_param=True),
+             Block("dr_dv", "QMatrix", (nq, nq), [], out_param=True)],
             notes=["dr_dq and dr_dv must not be null."],
-            body=_column_loop(
-                ["dr_dq->col(j) = residual_derivative_q(q, v, qdd, unit, t, params);",
-                 "dr_dv->col(j) = residual_derivative_v(q, v, qdd, unit, t, params);"]),
-            calls=[("residual_derivative_q", nq), ("residual_derivative_v", nq)]),
+            composed=Composed(
+                (Call("dr_dq", "residual_derivative_q", ("q", "v", "qdd", "unit", "t")),
+                 Call("dr_dv", "residual_derivative_v", ("q", "v", "qdd", "unit", "t"))),
+                columns=nq)),
         "jacobian": Kernel(
             "jacobian", f"Jacobian J = dX/dq, by {looped}.", ("q", "t"),
-            [Block("result", "XJacobian<Scalar>", (len(d.positions), nq), [])],
-            body=_column_loop(["result.col(j) = jacobian_product(q, unit, t, params);"]),
-            calls=[("jacobian_product", nq)]),
+            [Block("result", "XJacobian", (len(d.positions), nq), [])],
+            composed=Composed((Call("result", "jacobian_product", ("q", "unit", "t")),),
+                              columns=nq)),
     }
     names = {**{s: f"dq({j})" for j, s in enumerate(dq)},
              **{s: f"dv({j})" for j, s in enumerate(dv)}}
