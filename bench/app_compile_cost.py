@@ -3,7 +3,7 @@
 
     python3 bench/app_compile_cost.py [--model models/double_pendulum.py] [--opt -O2]
 
-Configures the repository's example programs (apps/, the deformable demo) in a build folder
+Configures the repository's example programs (apps/, deformable/apps/) in a build folder
 of its own, builds the model's drivers through `gencoord simulate` into a fresh cache, and
 compiles every one of their source files once more, one at a time, with the optimization
 level replaced by --opt, under getrusage: user + system CPU seconds and the compiler's peak

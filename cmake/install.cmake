@@ -3,9 +3,12 @@
 #   <P>/include/gencoord/*.hpp         runtime headers
 #   <P>/lib/libgencoord_runtime.a      runtime library
 #   <P>/lib/libgencoord_control.a      the LQR design (gencoord::control)
+#   <P>/include/gencoord/deformable/   the deformable library's headers  } with
+#   <P>/lib/libgencoord_deformable.a   the deformable library            } GENCOORD_BUILD_DEFORMABLE
 #   <P>/lib/cmake/gencoord/            gencoordConfig.cmake, gencoordConfigVersion.cmake,
 #                                      gencoordTargets*.cmake (gencoord::runtime),
-#                                      gencoordControlTargets*.cmake (gencoord::control)
+#                                      gencoordControlTargets*.cmake (gencoord::control),
+#                                      gencoordDeformableTargets*.cmake (gencoord::deformable)
 #   <P>/bin/gencoord                   the gencoord command
 #   <P>/share/doc/gencoord/LICENSE     the licence (BSD-3-Clause)
 #   <P>/share/gencoord/                the generator and the command's parts, laid out as in
@@ -15,7 +18,9 @@
 #                                      bindings/python/
 # (lib and share are GNUInstallDirs' CMAKE_INSTALL_LIBDIR and CMAKE_INSTALL_DATADIR.)
 # The install component `runtime` is the runtime alone (headers, library, exported target):
-# the gencoord command builds it once per user into its cache and installs just it.
+# the gencoord command builds it once per user into its cache and installs just it. The
+# components `control` and `deformable` are those libraries (the deformable one with its
+# headers), each with an export set of its own.
 include(CMakePackageConfigHelpers)
 
 set(GENCOORD_INSTALL_CMAKEDIR "${CMAKE_INSTALL_LIBDIR}/cmake/gencoord")
@@ -33,6 +38,17 @@ install(TARGETS gencoord_control EXPORT gencoordControlTargets
         ARCHIVE DESTINATION "${CMAKE_INSTALL_LIBDIR}" COMPONENT control)
 install(EXPORT gencoordControlTargets NAMESPACE gencoord::
         DESTINATION "${GENCOORD_INSTALL_CMAKEDIR}" COMPONENT control)
+
+# --- deformable (deformable/): headers, library, exported target gencoord::deformable ---
+if(TARGET gencoord_deformable)
+  install(TARGETS gencoord_deformable EXPORT gencoordDeformableTargets
+          ARCHIVE DESTINATION "${CMAKE_INSTALL_LIBDIR}" COMPONENT deformable
+          LIBRARY DESTINATION "${CMAKE_INSTALL_LIBDIR}" COMPONENT deformable)
+  install(DIRECTORY "${PROJECT_SOURCE_DIR}/deformable/include/gencoord"
+          DESTINATION "${CMAKE_INSTALL_INCLUDEDIR}" COMPONENT deformable)
+  install(EXPORT gencoordDeformableTargets NAMESPACE gencoord::
+          DESTINATION "${GENCOORD_INSTALL_CMAKEDIR}" COMPONENT deformable)
+endif()
 
 # --- share/gencoord: what gencoord_add_model() runs, at the same relative paths as in the
 # repository (generate finds python/gencoord/ beside itself; gencoord.cmake finds generate one

@@ -11,5 +11,5 @@ python=$(scripts/setup.sh | tail -n 1)
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DGENCOORD_PYTHON="$python" \
       -DGENCOORD_BUILD_TESTS=OFF -DGENCOORD_BUILD_BENCHMARKS=OFF >/dev/null
 cmake --build build -j "$(nproc 2>/dev/null || echo 2)" --target deformable_demo
-build/apps/deformable_demo "$scenario" --out "out/${scenario}" "$@"
+build/deformable/deformable_demo "$scenario" --out "out/${scenario}" "$@"
 PYTHONPATH=python "$python" -m gencoord.viewer.deformable "out/${scenario}"

@@ -15,7 +15,10 @@
 # Both: build with 2 jobs, -Wall -Wextra -Werror; the program must exit 0 and print its checks.
 # -DLINK_FLAGS=... (optional) links the consumer with them, e.g. the sanitizers that an
 # installed library built with GENCOORD_SANITIZE needs; -DCXX_LAUNCHER=... (optional) compiles
-# through it, e.g. the build's ccache.
+# through it, e.g. the build's ccache. -DDEFORMABLE=ON (find_package route): BUILD_DIR has
+# gencoord::deformable, which must install too, and the consumer in deformable/ (outside the
+# repository as well) finds it with find_package(gencoord COMPONENTS deformable), builds and
+# runs.
 cmake_minimum_required(VERSION 3.20)
 
 foreach(var IN ITEMS ROUTE SOURCE_DIR BUILD_DIR WORK_DIR PYTHON GENERATOR CXX_COMPILER)
@@ -48,8 +51,12 @@ if(CXX_LAUNCHER)  # the build's own, e.g. ccache
 endif()
 
 if(ROUTE STREQUAL "find_package")
-  # cmake --install needs the library built
-  run("${CMAKE_COMMAND}" --build "${BUILD_DIR}" --target gencoord_runtime --parallel 2)
+  # cmake --install needs the libraries built
+  set(libraries gencoord_runtime gencoord_control)
+  if(DEFORMABLE)
+    list(APPEND libraries gencoord_deformable)
+  endif()
+  run("${CMAKE_COMMAND}" --build "${BUILD_DIR}" --target ${libraries} --parallel 2)
   set(staging "${WORK_DIR}/staging")
   set(prefix "${WORK_DIR}/prefix")
   run("${CMAKE_COMMAND}" --install "${BUILD_DIR}" --prefix "${staging}")
@@ -70,14 +77,21 @@ if(ROUTE STREQUAL "find_package")
       endforeach()
     endif()
   endforeach()
-  foreach(expected IN ITEMS
-          include/gencoord/gencoord.hpp lib/cmake/gencoord/gencoordConfig.cmake
-          lib/cmake/gencoord/gencoordConfigVersion.cmake lib/cmake/gencoord/gencoordTargets.cmake
-          share/gencoord/generate share/gencoord/python/gencoord/generate/cli.py
-          share/gencoord/python/gencoord/cxx/templates/model.hpp.j2 share/gencoord/cmake/gencoord.cmake
-          bin/gencoord share/gencoord/python/gencoord/tool/main.py share/gencoord/drivers/simulate.cpp
-          share/gencoord/drivers/gencoord_drivers.cmake share/gencoord/python/gencoord/viewer/page.html
-          share/gencoord/python/gencoord/viewer/viewer.js)
+  set(expected_files
+      include/gencoord/gencoord.hpp lib/cmake/gencoord/gencoordConfig.cmake
+      lib/cmake/gencoord/gencoordConfigVersion.cmake lib/cmake/gencoord/gencoordTargets.cmake
+      lib/cmake/gencoord/gencoordControlTargets.cmake
+      share/gencoord/generate share/gencoord/python/gencoord/generate/cli.py
+      share/gencoord/python/gencoord/cxx/templates/model.hpp.j2
+      share/gencoord/cmake/gencoord.cmake bin/gencoord share/gencoord/python/gencoord/tool/main.py
+      share/gencoord/drivers/simulate.cpp share/gencoord/drivers/gencoord_drivers.cmake
+      share/gencoord/python/gencoord/viewer/page.html
+      share/gencoord/python/gencoord/viewer/viewer.js)
+  if(DEFORMABLE)
+    list(APPEND expected_files include/gencoord/deformable/mass_spring_system.hpp
+         lib/cmake/gencoord/gencoordDeformableTargets.cmake)
+  endif()
+  foreach(expected IN LISTS expected_files)
     if(NOT EXISTS "${prefix}/${expected}")
       message(FATAL_ERROR "not installed: ${expected}")
     endif()
@@ -164,5 +178,19 @@ if(ROUTE STREQUAL "find_package")
   file(STRINGS "${driver_caches}" found REGEX "^gencoord_DIR:")
   if(NOT found STREQUAL "gencoord_DIR:PATH=${prefix}/lib/cmake/gencoord")
     message(FATAL_ERROR "the installed gencoord command built against another gencoord: ${found}")
+  endif()
+
+  if(DEFORMABLE)
+    set(deformable_build "${WORK_DIR}/deformable_build")
+    file(COPY "${SOURCE_DIR}/tests/install/deformable/" DESTINATION "${WORK_DIR}/deformable")
+    run("${CMAKE_COMMAND}" -S "${WORK_DIR}/deformable" -B "${deformable_build}"
+        ${common_arguments} "-DCMAKE_PREFIX_PATH=${prefix}")
+    run("${CMAKE_COMMAND}" --build "${deformable_build}" --parallel 2)
+    execute_process(COMMAND "${deformable_build}/rod_consumer" RESULT_VARIABLE rc
+                    OUTPUT_VARIABLE output ERROR_VARIABLE output)
+    message("${output}")
+    if(NOT rc EQUAL 0 OR NOT output MATCHES "all checks passed")
+      message(FATAL_ERROR "the consumer of gencoord::deformable failed (exit status ${rc})")
+    endif()
   endif()
 endif()

@@ -73,7 +73,7 @@ class DeformableDataTest(unittest.TestCase):
 
     def test_a_missing_run_says_how_to_make_one(self):
         with self.assertRaisesRegex(ToolError, "frames.csv: no such file; run "
-                                               "apps/deformable_demo"):
+                                               "deformable_demo"):
             deformable_data(self.folder)
 
 

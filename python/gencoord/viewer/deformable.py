@@ -1,6 +1,6 @@
-"""A deformable mass-spring run as a viewer page: the frames and springs that
-apps/deformable_demo writes (frames.csv: frame,time,node,x,y; springs.csv: spring,i,j,
-broken_at), played as nodes and springs, each spring gone from the time it broke.
+"""A deformable mass-spring run as a viewer page: the frames and springs that deformable_demo
+(deformable/apps/deformable_demo/) writes (frames.csv: frame,time,node,x,y; springs.csv:
+spring,i,j,broken_at), played as nodes and springs, each spring gone from the time it broke.
 
     python3 -m gencoord.viewer.deformable out/brittle-beam   # writes out/brittle-beam/frames.html
 
@@ -35,7 +35,7 @@ def _rows(path: str, header: list[str]):
                                 f"{','.join(first or [])}")
             yield from ((reader.line_num, row) for row in reader if row)
     except FileNotFoundError:
-        raise ToolError(f"{path}: no such file; run apps/deformable_demo (scripts/"
+        raise ToolError(f"{path}: no such file; run deformable_demo (scripts/"
                         f"deformable_demo.sh) to write it") from None
 
 

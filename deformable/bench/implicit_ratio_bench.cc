@@ -8,7 +8,7 @@
 // After its table comes one line per contender and size: ns per step per spring, minimum and
 // median over the repetitions, their ratios to the floor's, and CG iterations per step.
 //
-//   taskset -c 0 build/bench/bench_deformable_ratios --benchmark_repetitions=7
+//   taskset -c 0 build/deformable/bench_deformable_ratios --benchmark_repetitions=7
 //       --benchmark_enable_random_interleaving=true --benchmark_min_time=0.2   (one line)
 #include <benchmark/benchmark.h>
 #include <sched.h>

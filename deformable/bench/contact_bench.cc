@@ -6,7 +6,7 @@
 // evaluation of each (minimum and median over the repetitions), the contact's extra cost per
 // surface triangle, and the ratio of the two.
 //
-//   taskset -c 0 build/bench/bench_deformable_contact --benchmark_repetitions=7
+//   taskset -c 0 build/deformable/bench_deformable_contact --benchmark_repetitions=7
 //       --benchmark_enable_random_interleaving=true --benchmark_min_time=0.2   (one line)
 #include <benchmark/benchmark.h>
 #include <sched.h>

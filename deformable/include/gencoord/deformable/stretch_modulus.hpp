@@ -32,9 +32,9 @@ double stretch_modulus(const MassSpringSystem<Dim>& s,
 /// stretch_modulus() along `axis` is `youngs_modulus`, and its wave speed with them; returns the
 /// factor. Meant for slender bodies (strips, bars, beams) stretched along `axis`, their length: it
 /// keeps the calibration's isotropy and Poisson's ratio, and makes waves and static stretch along
-/// the length those of the material at any resolution (docs/deformables.md has the figures).
-/// \throws ObjectError as stretch_modulus(); MaterialError unless youngs_modulus is positive
-/// and finite.
+/// the length those of the material at any resolution (deformable/docs/deformables.md has the
+/// figures). \throws ObjectError as stretch_modulus(); MaterialError unless youngs_modulus is
+/// positive and finite.
 template <int Dim>
 double calibrate_to_stretch(MassSpringSystem<Dim>& s, const SimplexMesh<Dim>& mesh,
                             double youngs_modulus, int axis);

@@ -1,4 +1,4 @@
-// The 1D elastic rod (docs/deformables.md) and some node layouts for it.
+// The 1D elastic rod (deformable/docs/deformables.md) and some node layouts for it.
 #include "gencoord/deformable/rod.hpp"
 
 #include <cmath>

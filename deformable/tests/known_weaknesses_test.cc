@@ -1,7 +1,7 @@
-// Known weaknesses, shown rather than hidden (docs/deformables.md): a sheet whose springs run
-// in only three directions stays anisotropic after calibration (its stiffness depends on the
-// direction of stretch), and a spring network's Poisson's ratio is fixed (1/3 for a sheet),
-// whatever E and rho (Material::poisson_ratio adds area terms for a higher one:
+// Known weaknesses, shown rather than hidden (deformable/docs/deformables.md): a sheet whose
+// springs run in only three directions stays anisotropic after calibration (its stiffness
+// depends on the direction of stretch), and a spring network's Poisson's ratio is fixed (1/3
+// for a sheet), whatever E and rho (Material::poisson_ratio adds area terms for a higher one:
 // volume_terms_test.cc).
 #include <gtest/gtest.h>
 

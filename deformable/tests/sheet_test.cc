@@ -383,7 +383,7 @@ TEST(SheetStretchTest, StaticUniaxialStretchGivesYoungsModulus) {
   EXPECT_NEAR(grid.youngs, 1.0, 0.02);
   EXPECT_NEAR(lattice.youngs, 1.0, 0.02);
   EXPECT_NEAR(lattice.poisson, 1.0 / 3.0, 0.01);
-  // the grid's nodes of four edges relax in-plane too (docs/deformables.md)
+  // the grid's nodes of four edges relax in-plane too (deformable/docs/deformables.md)
   EXPECT_NEAR(grid.poisson, 1.0 / 3.0, 0.05);
 }
 

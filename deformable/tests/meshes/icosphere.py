@@ -3,7 +3,7 @@
 unit sphere, each triangle cut into four, the new vertices pushed out onto the sphere
 (42 vertices, 80 triangles, normals outward), centred at (0.2, -0.1, 0.3).
 
-    python3 tests/deformable/meshes/icosphere.py > tests/deformable/meshes/icosphere.obj
+    python3 deformable/tests/meshes/icosphere.py > deformable/tests/meshes/icosphere.obj
 """
 import math
 
@@ -47,7 +47,7 @@ def subdivide(points, faces):
 def main():
     points, faces = subdivide(*icosahedron())
     print("# icosphere: the icosahedron subdivided once, radius 1, centre %g %g %g" % CENTER)
-    print("# written by tests/deformable/meshes/icosphere.py")
+    print("# written by deformable/tests/meshes/icosphere.py")
     print("o icosphere")
     for p in points:
         print("v %.17g %.17g %.17g" % tuple(c + o for c, o in zip(p, CENTER)))

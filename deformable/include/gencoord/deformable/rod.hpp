@@ -1,6 +1,6 @@
 #pragma once
 /// \file rod.hpp
-/// The 1D elastic rod of lumped masses and strain springs (docs/deformables.md).
+/// The 1D elastic rod of lumped masses and strain springs (deformable/docs/deformables.md).
 ///
 /// Rest parameter p in [0, 1] (more generally [p_0, p_n]) with nodes p_0 < p_1 < ... < p_n
 /// spaced arbitrarily; the rod starts at rest with x_i = p_i.

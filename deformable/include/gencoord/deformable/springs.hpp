@@ -11,7 +11,7 @@
 ///
 /// where L is the rest length (m), k the stiffness (N: force per unit strain; for a 1D rod it
 /// is Young's modulus E) and c the damping (N s: force per unit strain rate). Dividing by L
-/// makes k and c independent of how finely the object is meshed (docs/deformables.md).
+/// makes k and c independent of how finely the object is meshed (deformable/docs/deformables.md).
 ///
 /// In 1D (Dim == 1) the direction is fixed to n = +1 (springs are oriented so that
 /// x_j > x_i at rest), which gives exactly the linear rod spring
