@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """setuptools' build step for `pip install .` (pyproject.toml holds the metadata): besides the
 Python package it copies what the gencoord command compiles against, the CMake project of the
 runtime, the drivers and the Python bindings, into gencoord/_data of the built package."""

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // atlas_pendulum: a spherical pendulum looping over its poles, integrated in one chart
 // (theta, phi) with a conditioning monitor, then with the two-chart atlas.
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // lqr_balance: the C++ side of apps/lqr_balance.py. Linearizes the cart-pole and the double
 // inverted pendulum on a cart about the upright equilibrium (gencoord::linearize), designs
 // LQR gains with the runtime's Riccati solver (gencoord::lqr_gain), and simulates each

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """Balances inverted poles on a cart with LQR: linearize the model about the upright
 equilibrium, design the gain with SciPy's solve_continuous_are, and simulate the nonlinear
 model under u = -K x from a 0.2 rad offset of the lower pole.

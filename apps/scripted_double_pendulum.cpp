@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // scripted_double_pendulum: drives the double pendulum's first joint along a prescribed
 // motion, theta1(t) = A sin(2 pi f t), lets the second joint swing freely, and writes the free
 // joint's trajectory and the driving torque to CSV.

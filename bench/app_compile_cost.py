@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: BSD-3-Clause
 """CPU time and peak memory of compiling each translation unit of gencoord's programs.
 
     python3 bench/app_compile_cost.py [--model models/double_pendulum.py] [--opt -O2]

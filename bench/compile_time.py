@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """Compile time of a whole generated n-link chain at -O2: every kernel, reduced and maximal.
 
     PYTHONHASHSEED=0 python3 bench/compile_time.py --n 50 --translation-units 4 --jobs 2

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Reduced vs maximal (penalty) model at equal accuracy: the wall time to simulate 5 s of the
 // double pendulum and the planar n-link chain (n = 5, 10, 20) with the largest particle-position
 // error at most 1e-3 (and, to show the trend, 1e-5) against a fine reference (reduced RK4,

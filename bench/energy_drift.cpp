@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Long-run energy drift of every integrator on the generated double pendulum, released from
 // theta = (pi/2, 0) at rest. Not a test: it prints a
 // table, for each integrator and step size, of

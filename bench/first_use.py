@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: BSD-3-Clause
 """How long a new user waits for a first result, from a fresh clone with the packages installed.
 
     python3 bench/first_use.py [--keep DIR]

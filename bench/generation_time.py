@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: BSD-3-Clause
 """Generation time (load, check, derive, CSE, emit) of every built-in model, and peak memory.
 
     PYTHONHASHSEED=0 python3 bench/generation_time.py [--chain 10,20,50] [--repeat 3]

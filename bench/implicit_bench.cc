@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Time per backward-Euler step with generated vs finite-difference Jacobians (the Newton
 // iteration's da/dq, da/dv), Newton iterations per step for both, and their ratio, on the
 // double pendulum, the 10-link chain and the stiff 10-link chain.

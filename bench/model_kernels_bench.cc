@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // ns per generated qddot (Mt, Ft + Fi and a fixed-size Cholesky) and per RK4 step, for every
 // built-in model (python/gencoord/tool/model_list.py --benchmarks: models/ and
 // models/variants.txt). Run: scripts/bench.sh (or build/bench/bench_model_kernels

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // gencoord vs its peers on the planar n-link chain, side by side in one run:
 //   qddot/{ours,sympy}/n       one generalized acceleration (generated Mt, Ft + Fi, fixed LLT)
 //   rk4_step/{ours,sympy}/n    one RK4 step (ours: gencoord::step; SymPy: the same formula)

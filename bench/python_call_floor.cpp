@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The floor under one call of a model module's qddot, for bench/python_lambdify.py. It holds
 // what no binding can avoid, measured apart:
 //   bare_qddot(q, v) -> (seconds, checksum)  the same kernel over N states from C++, no Python

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: BSD-3-Clause
 """qddot of the planar n-link chain from Python: the model's gencoord module against the
 route users of sympy.physics.mechanics take, lambdify of the mass matrix M and forcing f of
 LagrangesMethod, then numpy.linalg.solve(M, f).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The planar n-link chain's forward and inverse dynamics three ways, side by side in one
 // process pinned to one core: the O(n) recursions (articulated-body qddot, Newton-Euler
 // inverse_dynamics), the dense form (Mt, Ft + Fi and an LDL^T solve; Mt qdd - Ft - Fi) and

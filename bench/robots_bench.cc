@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The generated robot models against MuJoCo on the same URDF, side by side in one process
 // pinned to one core: qddot against mj_forward, mass_matrix against mj_fullM after MuJoCo's
 // position stage (mj_fwdPosition, which forms qM), inverse_dynamics against mj_rne. Each round

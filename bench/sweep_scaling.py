@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: BSD-3-Clause
 """Strong scaling of gencoord sweep on this machine, and the cost of a chunk.
 
     python3 bench/sweep_scaling.py [--points 128] [--ranks 1,2,4] [--repeat 3]

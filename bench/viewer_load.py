@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: BSD-3-Clause
 """How fast the viewer page loads and plays in headless Chromium (WebGL on its CPU renderer,
 SwiftShader, so a lower bound for a machine with a GPU): the double pendulum for 10 s at
 dt = 1e-3, the page `gencoord simulate` writes.

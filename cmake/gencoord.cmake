@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 # gencoord_add_model(<target> MODEL <model.py> [NAME <name>] [OPTIONS key=value ...]
 #                    [DEPENDS <file> ...] [DYNAMICS auto|dense|recursive]
 #                    [TRANSLATION_UNITS <k>] [MAX_FUNCTION_STATEMENTS <n>] [LOOP_MIN_NQ <n>]

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 # gencoord_add_python_module(<target> MODEL <model.py> [MODULE_NAME <module>] [NAME <name>]
 #                            [OPTIONS key=value ...] [DEPENDS <file> ...] [DYNAMICS ...]
 #                            [OUTPUT_DIR <dir>])

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 # Install rules (cmake --install <build> --prefix <P>). Every path below is relative to the
 # prefix, so the installed tree can be moved:
 #   <P>/include/gencoord/*.hpp         runtime headers

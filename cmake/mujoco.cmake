@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 # MuJoCo, the reference the robot tests and the peer benchmarks compare with, as the imported
 # target gencoord::mujoco (global, so every directory sees it) when it is installed (Debian:
 # libmujoco-dev); GENCOORD_HAVE_MUJOCO says whether it is. Found by path, not

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Command-line helpers shared by the drivers and the example programs: numbers and option
 // values, with errors that name the program and the option and exit with status 2.
 #pragma once

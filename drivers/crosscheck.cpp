@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // crosscheck: the maximal-coordinate penalty model against the reduced model, as kappa grows.
 //
 //   crosscheck [--kappa 1e2:1e8] [--points N] [--t 5] [--samples 100]

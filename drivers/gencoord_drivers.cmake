@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 # gencoord_add_driver(<target> DRIVER <simulate|crosscheck|sweep> MODEL <model target>
 #                     CLASS <C++ type> HEADER <generated/name.hpp>)
 #

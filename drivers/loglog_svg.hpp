@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // A log-log line plot as a standalone SVG file, hand-written (no dependencies): decade ticks
 // with labels on both axes, one polyline with markers per series, a legend.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // simulate: integrates one generated model and writes its trajectory as CSV.
 //
 //   simulate [--integrator rk4] [--dt 1e-3] [--duration 10] [--output FILE.csv]

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // sweep: runs the samples of a sweep of one generated model under MPI and records them in
 // one HDF5 file.
 //

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # Builds and runs the benchmarks: ns per qddot and per RK4 step for every model, then the
 # generation time of every model. Usage: scripts/bench.sh [extra Google Benchmark flags]
 set -euo pipefail

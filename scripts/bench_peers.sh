@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # gencoord vs its peers on the planar n-link chain, as one markdown table: ns per qddot (ours,
 # the SymPy-only pipeline, MuJoCo's mj_forward), ns per RK4 step, generation and -O2 compile
 # times, then batched qddot and RK4 on 1 and 2 threads.

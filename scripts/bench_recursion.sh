@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # The planar chain's recursive kernels against its dense ones and MuJoCo, at -O2 and pinned to
 # one core (bench/recursion_bench.cc): ns per call, minimum and median over rounds, and ratios.
 #

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # Format, lint and type checks: every hand-written C++ file is as clang-format 14 lays it out
 # (.clang-format), every Python file passes flake8 (.flake8), and the gencoord package passes
 # mypy ([tool.mypy] in pyproject.toml). Installs the three from Debian when missing. Exits

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # Deformable mass-spring demo, from a fresh clone: set up, build, run one scenario.
 #   scripts/deformable_demo.sh [disk-drop|cantilever|brittle-beam|particles] [options...]
 # Writes out/<scenario>/frames.csv, springs.csv, frames.svg (see --help for options) and

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # The main job, from a fresh clone: set up, then simulate a model and cross-check it against
 # the maximal-coordinate penalty model, through the gencoord command.
 #   scripts/demo.sh [model] [integrator] [duration]     (default: double_pendulum rk4 10)

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # The double pendulum's time-to-flip map from a fresh clone: installs what is missing (MPI,
 # HDF5, h5py, Matplotlib), runs examples/sweeps/double_pendulum_flip.toml on N ranks
 # (default 2) and draws out/double_pendulum_flip.png from out/double_pendulum_flip.h5.

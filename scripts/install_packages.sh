@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # Installs Debian packages for one of the project's scripts, through sudo unless run as root;
 # apt's output goes to stderr so that the caller's standard output stays its own.
 #   scripts/install_packages.sh CALLER PACKAGE...

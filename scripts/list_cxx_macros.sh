@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # Prints the object- and function-like macros a translation unit that includes a generated
 # header can see (the header's own includes, the common C library headers, GCC's predefined
 # names in the GNU dialect CMake uses by default), one per line: the names

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 # Wall-clock phases of a script, sourced by scripts/test.sh and .ci/run:
 #   phase NAME        ends the phase running (if any) and starts NAME, printing "== NAME"
 #   phases_report     ends the phase running and prints each phase's wall time and the total

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # Regenerates every checked-in header in generated/ from models/ (what the golden test checks):
 # the models python/gencoord/tool/model_list.py lists: models/*.py and models/variants.txt.
 set -euo pipefail

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # Installs what gencoord needs on a fresh Debian 12 machine, and nothing that is already there:
 # a C++17 compiler, CMake, Ninja, ccache, Eigen 3.4, GoogleTest, Google Benchmark, MuJoCo (the
 # reference the robot tests and benchmarks compare with), the tetgen program (read_mesh<3> of

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # Sets everything up and runs every test:
 #   0. the format and lint checks (scripts/check_style.sh);
 # then, through CTest,

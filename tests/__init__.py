@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """gencoord's tests. They import the package of this checkout (python/gencoord), not an
 installed one."""
 import os

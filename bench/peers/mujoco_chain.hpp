@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // MuJoCo peer: the planar n-link chain of models/n_link_chain.py as an MJCF model.
 //
 // MuJoCo is 3D with gravity along -z, so the chain hangs in the x-z plane: hinge k turns about

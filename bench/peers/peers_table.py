@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: BSD-3-Clause
 """The peers table of scripts/bench_peers.sh: run times from bench_peers' JSON, generation and
 compile times measured here.
 

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: BSD-3-Clause
 r"""SymPy-pipeline peer: the planar n-link chain by sympy.physics.mechanics, printed as C++.
 
 Usage: sympy_chain_peer.py N OUT.hpp

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The Python module of one generated model. The build defines which:
 //   GENCOORD_MODEL_HEADER  the generated header, e.g. "generated/double_pendulum.hpp"
 //   GENCOORD_MODEL_CLASS   its struct, e.g. gencoord::models::DoublePendulum

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Cost of contact: the forces of a tetrahedral cube with its surface's self-contact and a box
 // obstacle under it (the spatial hash rebuilt, every surface node tested against the
 // triangles near it) against the same forces without contact, on cubes of about 1e3, 1e4 and

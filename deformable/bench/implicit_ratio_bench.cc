@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Cost of a time step per spring against the floor, a bare loop over the same springs that
 // only computes their forces: symplectic Euler, and backward Euler with conjugate gradients
 // (warm started from the previous step's velocity change, and from zero) and with the sparse

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Cost of one time step per spring, explicit (symplectic Euler) and implicit (backward Euler
 // with conjugate gradient, the stepper keeping its pattern), on 2D sheets of about 1e3, 1e4
 // and 1e5 springs. The per-spring cost ("per_spring") should stay flat as the size grows:

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Backward Euler of a mass-spring object: one step of a fresh stepper.
 #include "gencoord/deformable/implicit_stepper.hpp"
 #include "gencoord/deformable/time_step.hpp"

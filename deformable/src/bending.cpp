@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Dihedral-angle bending hinges: angle, gradient, energy, forces, Jacobian, frequency bound
 // (bending.hpp).
 #include "gencoord/deformable/bending.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Closedness of a triangle surface: its edges in pairs of opposite directions, and a single fan
 // of triangles around each node; and the volume it encloses.
 #include "gencoord/deformable/closed_surface.hpp"

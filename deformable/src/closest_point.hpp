@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The closest point of a segment or a triangle to a point, as barycentric weights of its
 // corners. Private to the library (contact_forces.cpp).
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Surfaces of meshes and the contact settings of an object (collision.hpp).
 #include <Eigen/Geometry>
 #include <algorithm>

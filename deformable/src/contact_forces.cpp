@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Contact with obstacles and between surface simplices (collision.hpp).
 #include "contact_forces.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Contact forces, their energy and their diagonal Jacobian blocks (collision.hpp). Private to
 // the library: accumulate_forces() and potential_energy() add them, and the implicit steps
 // take their Jacobians.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Uniform sampling in a disk, by rejection and by the square-root radius.
 #include "gencoord/deformable/disk_sampling.hpp"
 

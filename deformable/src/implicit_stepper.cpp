@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Backward Euler of a mass-spring object with the step matrix and its factorization kept
 // between steps (implicit_stepper.hpp).
 #include "gencoord/deformable/implicit_stepper.hpp"

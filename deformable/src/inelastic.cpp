@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Brittle fracture and plasticity.
 #include "gencoord/deformable/inelastic.hpp"
 

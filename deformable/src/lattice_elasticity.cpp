@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // A spring network's stiffness tensor and its calibration (lattice_elasticity.hpp). Fully
 // symmetric rank-4 tensors are stored by their distinct components, one per monomial
 // n_x^a n_y^b (n_z^c) of degree 4, each scaled by the square root of how many index orders

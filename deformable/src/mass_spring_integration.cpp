@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The mass-spring object's side of the integrators' system interface.
 #include "gencoord/deformable/mass_spring_integration.hpp"
 

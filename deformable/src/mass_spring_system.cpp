@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Forces and energies of a mass-spring system.
 #include "gencoord/deformable/mass_spring_system.hpp"
 

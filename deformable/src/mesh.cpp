@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Procedural rectangle, disk and box meshes.
 #include "gencoord/deformable/mesh.hpp"
 

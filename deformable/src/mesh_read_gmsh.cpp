@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Gmsh .msh reader: ASCII format 2.x and 4.1, triangles (type 2) or tetrahedra (type 4).
 #include <cmath>
 #include <fstream>

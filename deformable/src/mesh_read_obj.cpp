@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Wavefront .obj reader: the v and f lines of a polygon surface, as triangles in 3D.
 #include <Eigen/Geometry>
 #include <algorithm>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // TetGen / Triangle reader: a .node file of points and a .ele file of tetrahedra or triangles.
 #include <fstream>
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Numbered lines and their words, the checks and clean-up shared by the mesh readers, and
 // read_mesh's choice of reader (an .obj surface is filled with tetrahedra by TetGen).
 #include "mesh_read_text.hpp"

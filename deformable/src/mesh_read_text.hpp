@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // What the mesh readers share (private): numbered lines split into words, numbers parsed with
 // errors that name the file and line, and the checks and clean-up of the mesh read.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Mass-spring object from a simplex mesh: lumped masses, k = c^2 m / L, then calibrated to
 // the material (lattice_elasticity.hpp), with area or volume terms for a Poisson's ratio
 // above the network's (volume_terms.hpp).

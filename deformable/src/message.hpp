@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // An error message from its parts, numbers written with 17 significant digits so that the
 // value at fault reads back exactly. Private to the library.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The 1D elastic rod (deformable/docs/deformables.md) and some node layouts for it.
 #include "gencoord/deformable/rod.hpp"
 

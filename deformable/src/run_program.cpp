@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Runs a program with posix_spawn, its output redirected to a file, and waits for it.
 #include "run_program.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Running another program (private): found on PATH, started without a shell, its output
 // caught in a file.

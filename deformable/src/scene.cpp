@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Several objects in one system (scene.hpp).
 #include "gencoord/deformable/scene.hpp"
 

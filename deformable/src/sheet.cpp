@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Sheets in 3D: springs along the edges, hinges across the interior ones, both calibrated
 // (sheet.hpp).
 #include "gencoord/deformable/sheet.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The broad phase of surface contact (spatial_hash.hpp).
 #include "spatial_hash.hpp"
 

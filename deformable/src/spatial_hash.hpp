@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The broad phase of surface contact: simplices hashed by the grid cells their bounding boxes
 // (grown by a margin) overlap, so that a point finds the simplices near it in one lookup.
 // Private to the library (contact_forces.cpp).

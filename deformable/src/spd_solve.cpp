@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Conjugate gradients for backward Euler's step matrix (spd_solve.hpp).
 #include "spd_solve.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The sparse symmetric positive definite solves of backward Euler's step matrix: conjugate
 // gradients with the stopping rule of ImplicitOptions, and the failure of a Cholesky
 // factorization as an error. Private to the library.

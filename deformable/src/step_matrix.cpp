@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Backward Euler's step matrix, kept between steps (step_matrix.hpp).
 #include "step_matrix.hpp"
 

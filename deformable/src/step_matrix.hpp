@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Backward Euler's step matrix A = M - dt D - dt^2 K over the free nodes of a mass-spring
 // object, kept between steps: its sparsity pattern is built once per set of springs and
 // pinned nodes, and each step writes the values into it in place. Private to the library.

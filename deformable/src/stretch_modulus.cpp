@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // A spring network's Young's modulus in a relaxed static stretch (stretch_modulus.hpp).
 #include "gencoord/deformable/stretch_modulus.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Symplectic Euler of a mass-spring object: the runtime's, with the CFL limit enforced.
 #include <algorithm>
 #include <cmath>

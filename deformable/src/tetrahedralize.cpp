@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Tetrahedra filling a closed surface, made by the TetGen program. TetGen is AGPL: it is run
 // as a program, never linked (libtet), so none of its code enters our binaries.
 #include "gencoord/deformable/tetrahedralize.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Checks of meshes, materials, objects and step sizes; each refusal names what it refuses.
 #include "gencoord/deformable/validate.hpp"
 

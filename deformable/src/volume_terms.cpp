@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Area and volume terms of simplex elements (volume_terms.hpp).
 #include "gencoord/deformable/volume_terms.hpp"
 

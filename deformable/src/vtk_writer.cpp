@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // VTK XML output for ParaView: .vtu frames and the .pvd collection.
 #include "gencoord/deformable/vtk_writer.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Contact with obstacles and between surfaces (collision.hpp): the penalty forces against
 // their energy, friction's bounds, the surfaces of meshes, and objects dropped on a step, on
 // each other and closing on themselves without passing through and without gaining energy.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Uniform sampling in a disk: a Kolmogorov-Smirnov test that r^2 / R^2 is uniform on [0, 1],
 // for both methods, and rejection sampling's acceptance rate pi / 4.
 #include "gencoord/deformable/disk_sampling.hpp"

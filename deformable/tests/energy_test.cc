@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Energy behaviour: bounded for undamped symplectic Euler, monotonically decreasing with
 // damping.
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Ground contact: a disk falls freely, hits the penalty ground and bounces back up.
 #include <gtest/gtest.h>
 

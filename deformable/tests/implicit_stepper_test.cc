@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Backward Euler's linear solves: the conjugate-gradient stopping rule near rest, and the
 // step matrix's pattern and factorization kept between steps (BackwardEulerStepper).
 #include "gencoord/deformable/implicit_stepper.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Fracture happens on the step where a spring's strain first passes the threshold; plasticity
 // leaves the permanent set documented in InelasticParams.
 #include "gencoord/deformable/inelastic.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Known weaknesses, shown rather than hidden (deformable/docs/deformables.md): a sheet whose
 // springs run in only three directions stays anisotropic after calibration (its stiffness
 // depends on the direction of stretch), and a spring network's Poisson's ratio is fixed (1/3

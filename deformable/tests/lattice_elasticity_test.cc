@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The stiffness of a spring network (lattice_elasticity.hpp): the tensor against the energy of
 // an affine strain, the plain k = c^2 m / L rule's modulus rho c^2 / 3 (2D) and / 6 (3D), and
 // the calibrated networks: isotropic with the requested E, and Poisson's ratio 1/3 or 1/4.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Reading meshes: Gmsh .msh (format 2.2 and 4.1) and TetGen / Triangle .node + .ele, the same
 // mesh from each giving the same springs, every refusal naming its file and line, and a read
 // mesh simulated end to end.

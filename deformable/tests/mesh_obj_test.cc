@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Wavefront .obj surfaces: reading them (vertex forms, negative indices, fans, the vertices
 // kept), every refusal naming its file and line, closedness, and closed surfaces filled with
 // tetrahedra by the tetgen program: the volume they enclose, positive tetrahedra, the surface's

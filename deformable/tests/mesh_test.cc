@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Procedural meshes and the mesh-to-springs rule k = c^2 m / L.
 #include "gencoord/deformable/mesh.hpp"
 

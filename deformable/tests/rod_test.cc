@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The 1D rod: lumped masses, mesh-independent static response, hanging under gravity.
 #include "gencoord/deformable/rod.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Sheets in 3D with bending hinges: the hinge's angle, forces and Jacobian against finite
 // differences and rigid motions; the calibrated in-plane and bending stiffness; a cantilever
 // against Euler-Bernoulli under refinement; energy and the CFL limit with bending; refusals.

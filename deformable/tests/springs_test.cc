@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Spring force and Jacobian: the 1D rod formula, and the analytic Jacobians against
 // central finite differences.
 #include "gencoord/deformable/springs.hpp"

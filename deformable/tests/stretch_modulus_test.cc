@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The relaxed static stretch (stretch_modulus.hpp): the affine calibration overestimates thin
 // strips and bars, the measured modulus approaches it as they get wider, and after
 // calibrate_to_stretch() a strip pulled by a force stretches by sigma / E in a simulation.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Helpers shared by the deformable tests: pulse set-up and arrival-time measurement.
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // CFL limit: explicit steps just below it are stable, above it the runtime refuses them (and,
 // forced, they blow up); backward Euler is stable at ten times the limit.
 #include "gencoord/deformable/time_step.hpp"

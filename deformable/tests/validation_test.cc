@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Bad meshes, materials, objects, step sizes and solver settings: each refused with its typed
 // error (gencoord/deformable/errors.hpp, or StepSizeError) naming the element, node or spring.
 #include "gencoord/deformable/validate.hpp"

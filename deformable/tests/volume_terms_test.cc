@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Area (2D) and volume (3D) terms (volume_terms.hpp): forces against the energy's gradient,
 // Jacobians against finite differences, rigid motions, the Poisson's ratio, Young's modulus
 // and bulk modulus measured on loaded blocks, refusals, the CFL limit and explicit and

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // ParaView output: the .vtu files read back (points, cells, strain, broken flags, velocity,
 // mass), the .pvd's frames and times, the same run giving the same bytes, and refusals.
 #include <gmock/gmock.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Speed of sound: a pulse travels at c = sqrt(E / rho) along a rod, a strip (2D) and a bar
 // (3D), on uniform and irregular meshes at several resolutions.
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The results file: one HDF5 file that rank 0 alone writes (serial HDF5; docs/sweep.md says
 // why). Created whole under a temporary name and renamed, with every dataset allocated at
 // its full, fixed size and contiguous, so that writing a chunk's results later changes raw

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The sweep's progress line (samples done, rate, time left), on standard error: redrawn in
 // place on a terminal, else one line per tenth of the sweep or per minute, for logs.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // What a sweep records per sample, a chunk of samples at a time: the status and error, the
 // final state, the energy drift, the event time and a decimated trajectory. A chunk's results
 // travel from a worker rank to rank 0 packed into bytes, in a layout both know from the table.

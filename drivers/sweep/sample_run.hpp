@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // One sample of a sweep: its parameters and initial state from the table's row, integrated
 // with fixed steps to t_end or to the event, its failure (if any) recorded instead of thrown.
 // Every sample is computed by this code alone, whichever rank and thread runs it, so the

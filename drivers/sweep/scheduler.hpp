@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Chunks handed out dynamically over MPI. Rank 0 coordinates: it gives the next pending chunk
 // to whichever rank asks (a worker's result is its request for more), runs chunks itself on
 // a compute thread, and writes the results as they arrive, so ranks that finish early take

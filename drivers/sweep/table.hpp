@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The sample table that `gencoord sweep` writes (python/gencoord/sweep/table.py): settings as `key
 // value` lines, then `samples N` and N rows of values. Rank 0 reads the file; the other ranks get
 // its settings from rank 0 (the header: every line up to `samples N`) and each chunk's rows

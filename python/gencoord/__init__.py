@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """gencoord: generalized-coordinate dynamics, from a model file to fast C++.
 
 Model files import what they need from here:

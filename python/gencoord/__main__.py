@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """`python -m gencoord ...`: the gencoord command."""
 
 from gencoord.commands import gencoord

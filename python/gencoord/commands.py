@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """The entry points of the `gencoord` and `generate` commands (the scripts of a checkout, an
 installation's bin/gencoord, pip's console scripts and `python -m gencoord`).
 

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """Errors a model file can cause, each naming the file, the line and the item."""
 
 from __future__ import annotations

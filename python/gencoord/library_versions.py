@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """Differences between the SymPy and Jinja2 versions the generator supports, in one place.
 
 Supported: SymPy 1.11 to 1.14, Jinja2 3.0 and later. Each switch says why it exists.

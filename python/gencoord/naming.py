@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """The names generated code takes from a model: the header's (model_name, chart_name) and the
 C++ type's (type_name). Imports neither SymPy nor Jinja2."""
 

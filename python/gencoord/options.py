@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """Every knob of one generation, in one frozen dataclass: `GenerateOptions`.
 
 The `generate` command line builds one from its flags (and through it `gencoord generate`,

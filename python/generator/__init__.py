@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """The generator's former package name, kept so that model files written for it still run.
 
 `from generator import Model` (and `from generator.urdf import load_urdf`) give the same

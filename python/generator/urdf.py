@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """`generator.urdf`, the former name of `gencoord.urdf`."""
 
 from generator import tell_to_rename

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "gencoord/errors.hpp"
 
 #include <sstream>

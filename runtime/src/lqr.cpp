@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // GCC 12 warns (-Wmaybe-uninitialized, a false positive) inside Eigen's triangular
 // matrix-vector product, which the Householder-based QR and Schur decompositions below
 // instantiate. The warning is placed at Eigen's lines, so silencing it while Eigen's headers

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "gencoord/sparse_lu.hpp"
 
 #include <Eigen/SparseLU>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Moving a state between charts: the particles' positions and velocities, hence the energy,
 // are the same before and after, and the new chart is the better-conditioned one.
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Test-property formatting for the atlas tests' measured figures.
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // A free rigid body tumbling through gimbal lock: in Z-Y-X Euler angles alone the pitch
 // reaches pi/2 and the mass matrix degenerates; with the two-order atlas (zyx, yzx) the
 // simulation changes order near each lock and conserves energy and angular momentum.

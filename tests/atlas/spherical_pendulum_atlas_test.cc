@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The spherical pendulum launched to pass close to the poles of its pole_down chart
 // (theta, phi): with the two-chart atlas the simulation switches to the pole_x chart and
 // back, conserves energy as well as away from the poles, and follows a Cartesian reference;

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The maximal penalty model converges to the reduced model as kappa grows, for point masses
 // and rigid bodies alike: over kappa in 1e3..1e7 the largest particle-position error falls
 // with a fitted log-log slope of -0.8 or steeper and the largest constraint violation like

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The inverse map (x, xdot) -> (q, v): recovers random states from X(q), J v + X_t to 1e-10
 // from a perturbed guess, and reports a point far off the manifold (InverseMapError).
 #include <cmath>

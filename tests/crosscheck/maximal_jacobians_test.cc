@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The generated sparse force Jacobians d(F_ext + F_pen)/dx and /dxdot against central
 // differences of external_forces + penalty_forces, at random states off the manifold (so the
 // penalty springs are stretched) with penalty damping on.

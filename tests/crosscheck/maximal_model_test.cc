@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The maximal model's pieces: consistent initial states, energy, generalized forces mapped to
 // x-space, the manifold spring, and the errors it reports.
 #include <cmath>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Explicit stability of the maximal model: the stable step computed from the stiffest mode
 // (omega_max^2 = largest eigenvalue of M^-1 K) keeps symplectic Euler and RK4 stable, 1.5
 // times it blows up; backward Euler (sparse Newton) stays stable at 10x the explicit limit.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Reduced coordinates cannot drift: the reduced model keeps every declared constraint to
 // 1e-12 over 1e5 RK4 steps (Maximal::constraint_violations at x = X(q)), while the maximal
 // penalty model's violation over the same motion is only O(1/kappa) (reported, not bounded).

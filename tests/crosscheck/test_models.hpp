@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The models the cross-check tests run on, and seeded random states for them.
 #pragma once
 

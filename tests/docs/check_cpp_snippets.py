@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: BSD-3-Clause
 """Compiles every ```cpp block of the given Markdown files, each as a translation unit of its
 own, and exits with status 1 if any fails or none was compiled.
 

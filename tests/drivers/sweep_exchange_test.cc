@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // What the sweep program's ranks exchange, without MPI: a chunk's results packed to bytes and
 // back, and the sample table rank 0 reads. Built under the sanitizers with the runtime suites.
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Random meshes, materials, rods and step sizes to the deformable library: construction
 // either refuses with a typed error (MeshError, MaterialError) or gives an object whose masses
 // and springs are usable; a step either refuses with a typed error (StepSizeError,

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Random values for the fuzz tests: mostly ordinary, sometimes extreme or invalid (0,
 // negative, tiny, huge, NaN, inf), from a seeded generator so every run is the same.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Random states and step sizes (huge, tiny, zero, negative, NaN, inf) to every integrator on
 // generated models and on a maximal penalty model: each step ends in a typed error or in a
 // finite state at t + h; an accepted backward Euler step solves its equation (checked here,

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 # Builds and runs the gantry-crane consumer (examples/consumer) against gencoord, by one route:
 #   cmake -DROUTE=find_package|pip|add_subdirectory -DSOURCE_DIR=<repository> -DBUILD_DIR=<its build>
 #         -DWORK_DIR=<scratch folder> -DPYTHON=<GENCOORD_PYTHON> -DGENERATOR=<CMake generator>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Energy conservation of RK4 on the generated 5-link chain released from horizontal, 10 s:
 // the chain's counterpart of the double-pendulum test in tests/models/closed_forms_test.cc
 // (|dE| / (E0 - E_rest) < 1e-8). The chain whips faster than the double pendulum (angular

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Shared helpers of the integrator tests on generated models: fixed-step runs, the error of
 // a run against a reference state, and the measured order of accuracy (fitted log-log slope
 // of error against step size).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Long-run energy behaviour of the integrators on the generated simple pendulum, 1e5 steps
 // of dt = 0.01 (about 480 periods) from a 1 rad swing. Its mass matrix m l^2 is constant, so
 // implicit midpoint and symplectic Euler are symplectic for it: their energy error stays

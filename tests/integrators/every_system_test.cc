@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Every integrator on every kind of system, through the one integrator core
 // (gencoord/integrate/): the measured order of accuracy (fitted log-log slope of the error
 // against the step size, nominal within 0.2) and the energy behaviour over a long run

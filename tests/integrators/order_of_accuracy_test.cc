@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Measured order of accuracy of every integrator on generated models: the error of (q, v)
 // against an RK4 run at a much finer step (the largest at five equally spaced times), for five
 // halving step sizes; the fitted log-log slope must be the nominal order within 0.15.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // A model whose Mt and J pass Eigen's stack limit (oscillator_bank.py, n = 130): the generated
 // types are gencoord::HeapMatrix, and the runtime integrates it explicitly and implicitly, maps
 // it to maximal coordinates and checks it, against the oscillators' closed forms.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The generated models every model test runs on, as a GoogleTest type list: every model that
 // python/gencoord/tool/model_list.py lists (model_list.hpp, written at build time), atlas charts
 // included.

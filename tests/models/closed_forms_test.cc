@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Generated models against closed forms that do not come from our code: the small-angle
 // pendulum period, the textbook double-pendulum equations, the bead on a rotating hoop's
 // equilibria, and energy conservation of the double pendulum.

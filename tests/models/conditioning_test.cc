@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The conditioning monitor on the spherical pendulum, whose coordinates are singular at the
 // poles: launched to pass over the pole, the monitor reports it; away from it, it is quiet.
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Every generated kernel instantiated with float agrees with the same kernel in double.
 //
 // Inputs (q, v, qdd, t, the Maximal state, the parameters) are rounded to float first, so

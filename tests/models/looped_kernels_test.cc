@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // A large tree's looped kernels (python/gencoord/derive/looped.py) compute what the unrolled ones
 // compute.
 //

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """Writes reference_values.hpp: every tested model's outputs at a few seeded random states,
 evaluated in 40-digit mpmath arithmetic straight from the unoptimized `derive()` and
 `derive_maximal()` results: every kernel of the reduced model and of its Maximal model.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Checks every generated model's kernels against each other and against finite differences:
 // Mt symmetric positive definite, J = dX/dq, xdot = J v + X_t, gamma = d(xdot)/dt at
 // qddot = 0, qddot solves Mt qddot = Ft + Fi, energy and momenta match their definitions.

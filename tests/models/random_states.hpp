@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Seeded random states and parameters for model tests: reproducible, away from coordinate
 // singularities.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Checks every generated kernel (after CSE and the C++ printer), of the reduced model and of
 // its Maximal model, against reference values evaluated in 40-digit arithmetic from the
 // unoptimized derivation, at random states with randomly perturbed parameters

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Generated rigid-body models against closed forms that do not come from our code: the
 // compound pendulum's small-angle period, the heavy top's cuspidal motion (its nutation
 // range, nutation period and mean precession from the quadrature of the exact solution) and

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Kernels cut into parts (python/gencoord/optimize/split.py) compute what the whole kernels
 // compute.
 //

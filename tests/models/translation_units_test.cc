@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Kernels compiled in translation units of their own (./generate --translation-units)
 // compute what the header-only kernels compute.
 //

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """The generator's Python tests (stdlib unittest only).
 
 Run from the repository root:

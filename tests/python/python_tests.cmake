@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 # gencoord_add_python_generator_tests(<python>): a CTest test per module of tests/python,
 # run by <python> with unittest, named generator_sympy<version>.<module> and labelled
 # `generator`.

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """Model files the generator must refuse, each with the key words its error must contain.
 
 A case is (model source, key words); `# <- error` marks the line the message must name (a

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """Shared helpers of the generator tests: paths, running ./generate, directory snapshots,
 numerical comparison in extended precision (mpmath; numpy is not available)."""
 

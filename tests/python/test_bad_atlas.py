@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """Bad atlases: charts that do not describe the same system are refused, naming the chart and
 the line of its add_chart() call, and nothing is written."""
 

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """Bad model files: a clear error naming the file, the item (and its line), a non-zero exit,
 and an output directory left exactly as it was (no header, no temporary file).
 

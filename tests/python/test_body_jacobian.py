@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """The numeric J of a joint tree of bodies (gencoord/derive/body_jacobian.py), which the
 sampled checks use, against the compiled symbolic J at random configurations: a fixed-base
 arm, a quadruped and a floating base in both Euler charts."""

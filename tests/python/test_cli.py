@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """The command line: ./generate models/<name>.py [-o DIR] [--set n=5] [-v]."""
 
 from __future__ import annotations

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """The switches between supported SymPy and Jinja2 versions (gencoord/library_versions.py), and the
 printer output they must leave the same under every supported version."""
 

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """forces_have_potential: which models' applied forces at rest are -dV/dq (the flag the model
 tests read instead of model names)."""
 

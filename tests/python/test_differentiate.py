@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """Forward-mode Jacobians through straight-line code (gencoord/derive/differentiate.py).
 
 The derivatives are checked against SymPy's `diff` of the flattened outputs at random points,

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """Golden files: regenerating every model reproduces generated/ byte for byte.
 
 The list of models is taken from scripts/regenerate_all.sh itself: a copy of the script runs

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """The generator's Mt and Ft + Fi agree with an independent sympy.physics.mechanics derivation.
 
 Every reference below is written from scratch with reference frames, points and

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """Control inputs (model.input): they are fields of Params, the input matrix B = dFt/du is
 their generalized force, and the header names them.
 

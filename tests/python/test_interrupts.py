@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """The commands end in one line, never a traceback: on SIGINT (status 130) and on any error
 of `gencoord info`, `simulate` and `crosscheck` before they build anything."""
 

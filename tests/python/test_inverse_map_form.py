@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """The J-form of the generator equals the inverse-map form of the equations of motion.
 
 For an invertible parameterization with a closed-form inverse q = Q(x), the equations of

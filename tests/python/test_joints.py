@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """Joint trees without a URDF: frames composed in URDF's conventions, bodies at their centre of
 mass, massless links, joint damping, and maximal-model pins whose two points coincide at
 every configuration."""

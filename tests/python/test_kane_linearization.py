@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """The Kane reference linearization (tests/python_module/kane_linearization.py) against the
 cart-pole's closed forms and central finite differences of its own nonlinear right-hand side."""
 

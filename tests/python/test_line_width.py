@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """Generated files keep within LINE_WIDTH columns, and wrapping changes only whitespace."""
 
 from __future__ import annotations

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """The maximal model's forces: plain expressions by default, named intermediates on request.
 
 `derive_maximal` gives the model tests' reference values expressions of x, xdot, t and the

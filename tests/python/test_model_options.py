@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """Model options reach Model.option explicitly: from the constructor, or from the options
 the loader requests while it runs a model file, and from nowhere else."""
 

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """No header that passed the generator fails to compile: the accepted cases of
 refused_cases.ACCEPTED (names next to reserved ones, functions smooth where defined) are
 generated and compiled (g++ -fsyntax-only, every kernel instantiated for double); and every

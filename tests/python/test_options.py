@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """GenerateOptions (gencoord/options.py): one frozen, documented set of knobs that the
 command line, the docs and the stages share."""
 

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """The shape of the gencoord package: each stage a sub-package, no import cycle, small
 modules and functions, and the folders docs/design.md's diagram names."""
 

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """gencoord/tool/trajectory_svg.py: axes, ticks, units, fixed points and the energy error axis of
 the SVG it draws, read back with xml.etree from small synthetic trajectories."""
 

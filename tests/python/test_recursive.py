@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """The O(n) recursions against the dense derivation.
 
 A model that is a translational tree of particles (point_tree.py, point_recursion.py) or a joint

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """Inputs the generator refuses: each ends in one `file:line: error: ...` line naming what is
 wrong, a non-zero exit, no traceback and an output folder left as it was.
 

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """Rigid bodies: the generator's Mt, Ft + Fi, kinetic energy and angular momentum agree with an
 independent sympy.physics.mechanics derivation built from RigidBody and inertia() dyadics.
 

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """The scene a viewer draws (gencoord/viewer/scene.py): what each item becomes, the body shapes'
 inertia, body points as affine combinations of the point masses, parameter values."""
 

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """Generation-time analysis of where J = dX/dq loses rank (gencoord/checks/singularities.py)."""
 
 import unittest

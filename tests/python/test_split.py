@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """Cutting long kernels into parts (gencoord/optimize/split.py): the plan runs like the whole
 kernel.
 

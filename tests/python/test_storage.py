@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """The Eigen types of a model's vectors and matrices: fixed-size up to Eigen's stack limit
 (16,384 doubles), gencoord::HeapMatrix beyond (gencoord/cxx/storage.py)."""
 import unittest

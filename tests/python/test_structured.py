@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """The structured derivation (named intermediates, grouped sums) against the plain one.
 
 gencoord/derive/structured.py rewrites every output in terms of intermediates so large models

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """The cache of compiled Jinja2 templates (gencoord/cxx/render.py): a damaged or unwritable entry
 only means compiling again, and a change of Jinja2 or of our environment options is a
 different entry, never the old compiled code."""

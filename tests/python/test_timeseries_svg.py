@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """gencoord/tool/timeseries_svg.py: stacked panels of time series, read back with xml.etree: one
 polyline per series at the right pixels, one time range for all panels, bounded point counts,
 and one-line errors for CSVs that cannot be drawn."""

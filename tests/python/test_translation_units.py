@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """--translation-units N: every kernel's parts compiled for double in N files of their own.
 
 The header declares each part group `extern template`; <name>_double_<k>.cpp instantiates

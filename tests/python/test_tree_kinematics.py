@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """The checks of a tree of particles read its joints, not the flat J.
 
 Kinematics.numeric_jacobian assembles a tree's J from each joint's S_i = d offset_i / d q_i

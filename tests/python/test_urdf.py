@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """URDF import: every refusal names the file, the line and the element without a traceback;
 a valid file's link frames match forward kinematics computed by hand; rpy and axis follow
 URDF's conventions; ./generate accepts a .urdf file."""

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """Model files as a new user writes them (tests/python/user_models/): positions with tan,
 1/q and sqrt, larger models whose checks must stay within seconds, and the checks' time
 budgets."""

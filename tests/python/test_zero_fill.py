@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """Matrices with many zero entries are set to zero at once (gencoord/cxx/kernel_writer.py): the
 chain's J, whose entries above the diagonal of each particle's rows are zero, gets one
 setZero() and an assignment per nonzero entry only, in whole kernels and in parts."""

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """Reference linearized dynamics of two planar cart systems, derived with Kane's method.
 
 An independent check of gencoord's linearizations, written from scratch with

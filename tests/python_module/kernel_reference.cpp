@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Every kernel of one model at the states read from standard input, printed exactly (%a), for
 // test_model_module.py to compare with the Python module's results bit for bit. The build
 // defines GENCOORD_MODEL_HEADER and GENCOORD_MODEL_CLASS as for the module.

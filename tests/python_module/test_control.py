@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """Control inputs and linearization from the models' Python modules: linearize() against an
 independent Kane derivation (kane_linearization.py) and finite differences, u= against the
 inputs held in Params, simulate(inputs=...) as an input script and as an LQR feedback law.

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """The models' Python modules (bindings/python) against the C++ kernels, SciPy's integrators,
 finite differences and the runtime's own simulation.
 

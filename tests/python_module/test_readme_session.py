@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """The README's Python session (the first ```python block under "## From Python") runs as
 written against the built double_pendulum module: it simulates and writes its plot."""
 

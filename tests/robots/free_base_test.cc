@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // A robot with a free-floating base against MuJoCo on the same URDF: the generated model in
 // each Euler chart (zyx and yzx, one model each) and MuJoCo's free joint (position and
 // quaternion, the body's angular velocity) mapped onto each other as free_joint.hpp

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // MuJoCo's free joint as the reference for a generated model with a free-floating base.
 //
 // The generated model's first chart moves the base link by x, y, z (the link frame's origin

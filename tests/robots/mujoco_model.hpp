@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // MuJoCo, loaded from the same URDF as a generated model, as the reference for its dynamics.
 //
 // MuJoCo orders its degrees of freedom its own way; `MujocoReference` maps them to the

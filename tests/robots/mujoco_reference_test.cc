@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The generated robot models against MuJoCo on the same URDF: the mass matrix (mj_fullM), the
 // bias forces (qfrc_bias), the accelerations (qacc of mj_forward) and inverse dynamics (mj_rne)
 // at random states, and a 2 s RK4 trajectory at the same step.

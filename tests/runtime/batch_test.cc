@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "gencoord/batch.hpp"
 #include "gencoord/integrate/step.hpp"
 #include "gencoord/reduced_system.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "gencoord/csv_writer.hpp"
 #include "gencoord/reduced_system.hpp"
 

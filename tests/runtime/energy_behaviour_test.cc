@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Long-run energy behaviour on the (nonlinear) pendulum, 1e5 steps of dt = 0.01:
 // implicit midpoint and symplectic Euler keep the energy error bounded (no secular drift),
 // backward Euler dissipates energy and forward Euler injects it.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Hand-written models satisfying docs/model_interface.md, so the runtime can be tested
 // independently of the generator. Written the way generated code will look: static members,
 // templated on Scalar.

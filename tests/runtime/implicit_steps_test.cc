@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The implicit integrators: the composed trapezoidal and midpoint steps against independent
 // direct implementations, and Newton's convergence, failure and counters.
 #include "gencoord/integrate/step.hpp"

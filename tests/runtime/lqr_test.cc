@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // GCC 12 warns (-Wmaybe-uninitialized, a false positive) inside Eigen's triangular
 // matrix-vector product, which the eigenvalue and SVD checks below instantiate; the warning
 // is placed at Eigen's lines, so it is silenced only while Eigen's headers are read.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "gencoord/model_traits.hpp"
 
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Measured order of accuracy of every integrator: error at t = 1 against the exact solution
 // of a damped harmonic oscillator, for halving step sizes; the fitted log-log slope must be
 // the nominal order within 0.15.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // CubicSpline: exact on cubics (clamped), natural end conditions, derivative consistency,
 // fourth-order convergence, and its errors.
 #include "gencoord/cubic_spline.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The falling cat: joint angles scripted through a closed cycle, root (x, y, psi) free, no
 // gravity. Angular momentum about the centre of mass stays zero and linear momentum is
 // conserved, yet the body ends the cycle rotated (a geometric phase).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The runtime's inverse_dynamics(): Mt a - (Ft + Fi) at any acceleration, zero at the forward
 // dynamics' acceleration; and the free rows of the scripted residual vanish.
 #include "gencoord/inverse_dynamics.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Implicit steps on generated Jacobians: da/dq, da/dv from the residual Jacobians agree with
 // finite differences, and backward Euler converges in no more Newton iterations with them.
 #include <cmath>

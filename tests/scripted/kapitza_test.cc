@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Kapitza's pendulum: the inverted position theta = pi is stable when the pivot drive
 // satisfies a^2 omega^2 > 2 g l, and falls over when the drive is much weaker.
 #include <cmath>

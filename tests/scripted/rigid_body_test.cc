@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // A free rigid body in Z-Y-X Euler angles (g = 0): energy and angular momentum conserved by
 // RK4 and implicit midpoint while the motion stays away from gimbal lock (|pitch| < 1.2 rad).
 #include <cmath>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Scripted coordinates on the double pendulum: the script is followed exactly by every
 // integrator; an empty script is the free model; a held joint gives the closed-form motion
 // and torque; scripting theta1 with its own free motion reproduces the free run.

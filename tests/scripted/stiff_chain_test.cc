@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The stiff chain (k = 1000 N m/rad joints): RK4 is limited by the fastest joint mode,
 // |h omega_max| <= 2 sqrt(2) on the imaginary axis; backward Euler is stable far beyond it.
 #include <cmath>

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """Prints, as JSON, the SHA-256 of every dataset's bytes in a sweep's results file and the
 values the tests look at. Run by /usr/bin/python3 (Debian's h5py), for the tests, whose own
 interpreter may lack h5py:  h5_digest.py FILE.h5"""

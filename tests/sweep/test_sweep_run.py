@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """gencoord sweep end to end under MPI: a small double-pendulum sweep gives byte-identical
 results (datasets, and whole files) with 1, 2 and 4 ranks (4 oversubscribed) and 1 or 2
 threads; a run killed midway resumes from its completed chunks without running them again

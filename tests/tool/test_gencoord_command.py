@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """The gencoord command on a model file that lives outside the repository: info, simulate and
 crosscheck build, cache and run its programs, write next to the user, and refuse bad input
 without a traceback. Builds the programs once (about a minute on 2 cores)."""

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """gencoord/viewer: headless Chromium over the DevTools pipe draws with WebGL2, evaluates, takes
 screenshots and gathers console errors; the PNG reader undoes every filter. The browser tests
 need Chromium (scripts/setup.sh --browser); GENCOORD_SKIP_BROWSER=1 skips them."""

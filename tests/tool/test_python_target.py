@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """gencoord python's choice of interpreter and the guard it writes beside a module."""
 
 from __future__ import annotations

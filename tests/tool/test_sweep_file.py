@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """The sweep file: its form and names checked with errors that name the file, the line and the
 key; the samples expanded in their documented order; the table written deterministically."""
 

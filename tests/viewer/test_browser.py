@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """The viewer page in a real browser (headless Chromium, WebGL on its CPU renderer): no
 console errors; after a seek the bob is drawn where the trajectory puts it, read both from the
 page and from the pixels of a screenshot; playing advances time; the energy plot spans the

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """A deformable run's page (gencoord/viewer/deformable.py): the frames and springs the demo
 writes, read with errors that name the file and line; in headless Chromium, a spring is drawn
 until the time it broke."""

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """The viewer page without a browser (gencoord/viewer/page.py): it carries everything it needs
 and nothing from the network, holds the trajectory exactly enough, stays light, and thins a
 long trajectory without hiding its worst energy error."""

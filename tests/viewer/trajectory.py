@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """The double pendulum's trajectory the viewer tests draw: 10 s at dt = 1e-3 with RK4, as
 `gencoord simulate` writes it. CTest passes the one its simulate program wrote
 (GENCOORD_VIEWER_CSV); run alone, a test makes one with the gencoord command (cached)."""

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // CSV frames and spring list.
 #include "frame_output.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // CSV output of the demo: node positions per frame and the spring list.
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // deformable_demo: runs one mass-spring scenario and writes CSV frames and SVG pictures, and
 // with --vtk the frames for ParaView.
 //

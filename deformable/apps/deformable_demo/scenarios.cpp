@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Demo scenarios: elastic disk dropped on the ground, cantilever sagging under gravity,
 // brittle beam breaking under a load, particles seeded in a disk falling as a heap.
 #include "scenarios.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // The demo's scenarios: each builds a 2D mass-spring object and says how to step it.
 

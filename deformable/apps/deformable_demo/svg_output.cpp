@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // SVG rendering with no dependency: one <g> per frame.
 #include "svg_output.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // SVG pictures of the demo: chosen frames side by side, and an optional animation.
 

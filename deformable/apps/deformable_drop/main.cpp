@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // deformable_drop: drops a tetrahedral mesh of your own, made of the material you give, onto
 // a sphere, a step or a soft block, and writes the frames for ParaView.
 //

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: BSD-3-Clause
 """Writes icosphere.obj, a coarse sphere for the .obj tests: the icosahedron inscribed in the
 unit sphere, each triangle cut into four, the new vertices pushed out onto the sphere
 (42 vertices, 80 triangles, normals outward), centred at (0.2, -0.1, 0.3).

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """Checks that the charts of an atlas describe one system in different coordinates.
 
 The runtime maps a state from one chart to another through the particle positions x and

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """Time budgets of the generation-time checks, in CPU seconds of this process.
 
 CPU time rather than wall time, so that a busy machine (a parallel build, the golden test's

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """sigma_min / sigma_max of a sampled Jacobian J, and its near-null direction (pure Python).
 
 Small J: Jacobi eigen-iteration on J^T J, exact to round-off. Large J (more than

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """Whether a model's applied forces at rest are conservative: the fact a test of
 potential_energy relies on, emitted as the model struct's `forces_have_potential`
 (generate/stages.py

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """Declared constraints: how far each is violated, its penalty force, and a check against X.
 
 Every declared constraint must hold identically on the parameterization, C(X(q, t)) = 0 for

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """Sampled rank check of J = dX/dq: refuses coordinates that are redundant everywhere.
 
 If J loses rank at every sampled configuration, some combination of coordinates moves no

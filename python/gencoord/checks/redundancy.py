@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """Redundancy within the sampled domain: distinct q that put every particle in the same place.
 
 Spherical coordinates map (theta, phi) and (-theta, phi + pi) to the same point; Z-Y-X Euler

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """Where the parameterization loses rank: gimbal lock, the poles of spherical coordinates.
 
 J = dX/dq losing rank at a configuration means some direction of q moves no particle there;

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """Checks a loaded model before anything is derived; each failure names the item and line."""
 
 from __future__ import annotations

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """The C++ body of a composed kernel (derive/kernel_set.Composed): calls of the model's other
 kernels, once each, or once per column j along the unit vector e_j in a loop."""
 

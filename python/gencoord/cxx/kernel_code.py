@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """The optimizer's product: each kernel's code as C++ strings, ready for the templates."""
 
 from __future__ import annotations

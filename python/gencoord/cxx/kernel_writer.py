@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """The optimizer's last stage: each kernel's statements, lvalues and parts as C++ strings.
 
 A kernel keeps only the intermediates its own outputs need (the closure over what they

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """Wraps the lines of generated C++ that are wider than LINE_WIDTH columns.
 
 Code breaks at the outermost level that has a break: before a binary + or -, else after a

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """An output block in C++: its type, the expression of the whole block, and the lvalue of one
 entry in a whole kernel or in a part."""
 

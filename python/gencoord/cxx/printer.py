@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """Prints SymPy expressions as C++ for kernels templated on `Scalar`.
 
 Literals are wrapped as `Scalar(...)` so float, double and autodiff scalars all work, math

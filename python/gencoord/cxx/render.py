@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """Renders optimized kernels through the Jinja2 templates (reserved_names.py reads their C++
 text for the names a model may not use)."""
 

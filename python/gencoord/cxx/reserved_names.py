@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """The names a model may not give its coordinates, parameters, particles and fixed points,
 and the check of the model's own (header and type) name.
 

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """The C++ signatures and calls of the kernels and their parts, for the templates to print.
 
 An argument a function does not read keeps its place in the signature with its name in a

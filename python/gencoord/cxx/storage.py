@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """The Eigen type of a model's vectors and matrices of nq and nx entries.
 
 Fixed-size Eigen objects live on the stack, and Eigen refuses one above 128 KiB (its

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """What the kernel template prints of one kernel: its code and its computed signatures."""
 
 from __future__ import annotations

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """J = dX/dq of a joint tree of bodies (body_tree.py) as floats, from its joints.
 
 The sampled checks (the rank of J, the singularity analysis) need J at a few hundred random

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """The motion of every link of a joint tree (body_tree.py), named link by link from the root.
 
 Per link i, in its own axes (spatial.py): the body-fixed velocity V_i = X_i V_parent + V_J

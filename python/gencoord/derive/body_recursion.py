@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """O(n) dynamics of a joint tree of rigid bodies (body_tree.py), unrolled over the links'
 named motion (body_kinematics.py).
 

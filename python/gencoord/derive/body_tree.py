@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """The joint tree of a model built from links (joints.py, URDF), as the rigid-body recursions
 walk it.
 

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """Derives the reduced equations of motion of a model: Mt qddot = Ft + Fi, the contract.
 
     J = dX/dq,  X_t = dX/dt,  xdot = J v + X_t,  gamma = d(xdot)/dq v + d(xdot)/dt

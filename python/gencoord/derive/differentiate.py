@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """Forward-mode differentiation through CSE'd code: Jacobians that reuse the intermediates.
 
 Differentiating the flattened output expressions repeats every shared subexpression in

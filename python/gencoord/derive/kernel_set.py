@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """Which C++ functions a model gets, with their inputs and symbolic outputs.
 
 This is the generator's side of docs/model_interface.md: each `Kernel` is one static

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """The n^2 outputs of a large tree as loops over O(n) products, so that their code grows like n.
 
 A tree's Mt, J and residual Jacobians have n^2 entries each. Written out one statement per

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """The maximal-coordinate model of the same file: free particles, penalty constraints.
 
 Every particle moves freely in R^d (x has dN entries); the same gravity, springs, dampers and

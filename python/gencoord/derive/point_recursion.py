@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """O(n) dynamics of a point-mass tree (point_tree.py), unrolled.
 
 For a tree whose node i is a particle of mass m_i at X_i = X_parent + d_i(q_i, t), with

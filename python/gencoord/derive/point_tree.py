@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """Finds the kinematic tree of a point-mass model, which the recursive kernels walk.
 
 A model of particles is a translational tree when each particle's position is its parent's

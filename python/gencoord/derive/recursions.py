@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """The O(n) recursions for a model that is a tree: of particles (point_tree.py,
 derive/point_recursion.py) or of rigid bodies joined by joints (body_tree.py, body_recursion.py)."""
 

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """Spatial vectors of rigid-body dynamics, 6 x 1 in a link's own axes.
 
 Motions are (omega; v), v the velocity of the frame's origin; forces are (moment about the

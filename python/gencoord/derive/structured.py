@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """The reduced dynamics as named intermediates, so no output grows like n^3.
 
 `derive.derive` writes every output as one flat expression: for an n-link chain each entry

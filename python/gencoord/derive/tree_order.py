@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """A kinematic tree's nodes, parents before children, as the recursions walk them."""
 
 from __future__ import annotations

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """A rigid body as point masses with its mass, centre of mass and inertia tensor.
 
 A body is the continuum x = p(q, t) + R(q, t) r over its mass. Everything the dynamics takes

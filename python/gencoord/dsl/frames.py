@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """Rotations and frames for rigid bodies: what a model file composes a body's pose from.
 
 A `Frame` is a pose in the world: the rotation `R` that takes body axes to world axes and

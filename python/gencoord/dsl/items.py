@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """What a model file declares, one dataclass per kind (coordinates, parameters, particles,
 bodies, forces, constraints), each with the model-file line it came from.
 

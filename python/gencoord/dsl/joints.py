@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """Kinematic trees: links joined by revolute, continuous, prismatic and fixed joints.
 
 `add_link` composes a link's frame from its parent's (URDF's conventions), declares the

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """The model-description API that `models/<name>.py` files use.
 
 A model file builds one `Model`:

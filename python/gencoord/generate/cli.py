@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """`./generate models/<name>.py [-o DIR] [--set key=value]`: writes DIR/<name>.hpp, the scene
 a viewer draws DIR/<name>.scene.json (scene.py) and, with --translation-units N,
 DIR/<name>_double_0.cpp ... <name>_double_<N-1>.cpp; DIR defaults to generated/ in the

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """Picks, per model, the dense or the recursive forward and inverse dynamics.
 
 A tree model gets both (derive/kernel_set.py): `qddot` as `dynamics` (Mt and Ft + Fi)

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """Every failure as one line, `file:line: error: ...`, never a traceback (but with --verbose).
 
 The commands catch everything their work raises and pass it here: a ModelError already says

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """Limits that keep a run from going on silently: a wall-clock limit on running the model
 file, and a warning before a generation expected to take minutes or more.
 

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """Runs a model file and returns the `Model` it builds, turning failures into ModelErrors."""
 
 from __future__ import annotations

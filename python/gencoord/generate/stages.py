@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """The stages of one generation, each timed: load, check, analyse, derive, optimize, emit.
 
 `generate` loads the model file, runs the per-chart stages for each chart of its atlas

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """Operation counts for the generated code's comments (`Ops: N`).
 
 `sympy.count_ops` spends about half a millisecond per expression telling subtraction from

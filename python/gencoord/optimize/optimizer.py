@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """One common-subexpression elimination over every output of a model, then per-kernel code.
 
 All kernels' expressions go through a single `sympy.cse` call, so a term shared by the mass

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """Straight-line programs `symbol = expr`: merging, alias removal and final naming.
 
 The structured derivation (structured.py) hands the optimizer named intermediates; CSE then

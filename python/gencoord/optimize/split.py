@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """Cuts a long kernel into part functions, so the C++ compiler's time stays near linear.
 
 GCC's register allocation grows much faster than linearly with the size of one function:

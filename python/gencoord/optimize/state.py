@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """The state the optimizer's stages (optimize/optimizer.py) hand on, and the options they share."""
 
 from __future__ import annotations

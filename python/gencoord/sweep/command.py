@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """`gencoord sweep FILE`: checks the sweep file, builds the model's sweep program, writes the
 sample table and runs the program under mpirun; the program prints the progress line and the
 summary, and writes the results file."""

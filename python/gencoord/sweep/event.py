@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """The event of a sweep: a condition on the state, `abs(theta1) > pi or abs(theta2) > pi`,
 checked at every step; the first time it holds is the sample's event time.
 

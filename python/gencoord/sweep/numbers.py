@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """Numbers in a sweep file: a TOML number, or a string of arithmetic on numbers and the
 constants pi, tau and e ("-pi", "pi/2", "2*pi"), since TOML has no pi."""
 

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """The samples of a sweep, in their fixed order: one row of values per sample, one value per
 variable (q, then v, then parameters, each in the file's order).
 

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """A sweep file as read: its text, its TOML, and the line of each key, so that every error
 names the file, the line and the key (`flip.toml:12: error: samples.q.theta1.points: ...`)."""
 

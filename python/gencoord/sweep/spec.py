@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """The sweep file's content, checked: which model, how to integrate, the event, the samples
 and what to record (docs/sweep.md describes each key). `parse()` checks the file's form;
 `check_names()` then checks the names in it against the loaded model."""

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """The sample table: what the sweep program reads (drivers/sweep/table.hpp). A text file of
 `key value` lines, then `samples N` and N rows of values, every number written so that it
 reads back to the same double (repr). Its `digest` line is the SHA-256 of everything after

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """What a user expression may contain: finite real numbers and functions that are smooth
 where they are defined, so that every derivative the generator takes exists there.
 

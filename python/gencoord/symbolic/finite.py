@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """Numeric evaluation of user expressions that may leave their domain.
 
 Positions such as sqrt(1 - s^2), 1 / s or tan(q) have no real value at some sampled

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """Sums of vectors' entries without SymPy's matrix arithmetic, for models of 1000 links.
 
 - difference: a chain's positions are flat sums, each its parent's plus a few terms (a

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """Expressions of sin, cos and tan as polynomials on circles: cheap exact proofs that one
 vanishes identically, and the form singularities.py factors det(J^T J) in.
 

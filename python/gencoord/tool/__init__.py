@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """The `gencoord` command: generation, and programs built and cached per model file.
 
 `gencoord generate` is the generator (gencoord/generate/cli.py). `gencoord simulate` and

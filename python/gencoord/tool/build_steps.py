@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """What every build the gencoord command runs shares: a lock on its cache folder, logged
 steps that show the log's end when they fail, and CMake."""
 

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """`gencoord --cmake-dir`: a folder for `find_package(gencoord)` (CMAKE_PREFIX_PATH or
 gencoord_DIR), wherever gencoord runs from.
 

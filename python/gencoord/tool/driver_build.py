@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """Builds the drivers (drivers/*.cpp) or the Python module of one model file into the
 per-user cache, once.
 

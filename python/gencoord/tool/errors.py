@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """The one error type of the gencoord command: a message for the user, no traceback."""
 
 

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """`gencoord info MODEL.py`: what a model file declares, without generating or building."""
 
 from __future__ import annotations

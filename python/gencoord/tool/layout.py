@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """Where gencoord's parts are: a source checkout, or an installation under a prefix."""
 
 from __future__ import annotations

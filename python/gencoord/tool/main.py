@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """gencoord {generate,simulate,crosscheck,python,view,sweep,info}: the command-line entry point."""
 
 from __future__ import annotations

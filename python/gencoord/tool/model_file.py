@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """A model file as the gencoord command sees it: loaded once to learn its options and
 parameters, so that `--set name=value` can mean either."""
 

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: BSD-3-Clause
 """The built-in models: every models/*.py file, once with its defaults, or once per line of
 models/variants.txt that names it. The one list that the build, scripts/regenerate_all.sh,
 the tests and the benchmarks derive theirs from.

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """Which interpreter `gencoord python` builds for, and the guard written beside the module
 that tells any other interpreter which one to use."""
 

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """The compiled runtime (gencoord::runtime) built once per user into the cache, for the
 programs the gencoord command builds from a source checkout.
 

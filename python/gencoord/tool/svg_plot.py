@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """SVG charts from the standard library: 1-2-5 ticks, frames that map data onto pixels, axes
 with grid and labels, polylines thinned to a few thousand points, legend keys. The trajectory
 and time-series plots (trajectory_svg.py, timeseries_svg.py) draw with them."""

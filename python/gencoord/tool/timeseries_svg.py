@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """Draws time series from a CSV as an SVG: stacked panels that share one time axis. By hand:
 
     python3 -m gencoord.tool.timeseries_svg run.csv run.svg \\

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """Draws a trajectory CSV as an SVG: particle paths and energy error. `gencoord simulate`
 draws one after every run; by hand:
 

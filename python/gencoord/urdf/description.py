@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """A URDF file read into links and joints, checked as a tree; nothing is declared on a model.
 
 Read: each link's <inertial> (origin, mass, inertia), visual and collision elements (kept as

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """URDF import: a robot description's links and joints added to a model as a joint tree.
 
 In a model file, to add forces or script joints on top:

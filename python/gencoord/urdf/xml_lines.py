@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """Reads an XML file into ElementTree elements that remember their line, and reads their
 attributes as numbers; every failure is a ModelError at the file and line."""
 

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """A deformable mass-spring run as a viewer page: the frames and springs that deformable_demo
 (deformable/apps/deformable_demo/) writes (frames.csv: frame,time,node,x,y; springs.csv:
 spring,i,j,broken_at), played as nodes and springs, each spring gone from the time it broke.

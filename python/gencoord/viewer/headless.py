@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """Headless Chromium driven through the DevTools protocol over a pipe, standard library only.
 
     with Browser(width=800, height=600) as browser:

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """A viewer page in headless Chromium: open_viewer() for programs (the browser test, the
 benchmark), and a PNG of the page at one time (the README's picture):
 

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """A trajectory as one self-contained HTML page that plays it in 3D (three.js, inline): the
 simulate program's CSV, the model's scene (gencoord/viewer/scene.py) and viewer.js, in one file
 that opens in any browser without a server or the network.

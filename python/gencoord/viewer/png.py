@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """A small PNG reader, enough for a test to look at a screenshot's pixels: 8-bit RGB or RGBA,
 not interlaced, which is what Chromium writes."""
 

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """What a picture of a model needs, as JSON: its particles, fixed points, bodies with an
 inertia-equivalent shape, the rods, springs, dampers, pins and planes it declares, and the
 direction against gravity.

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """three.js for the viewer page: one pinned release from the npm registry, checked against the
 registry's integrity hash and kept in the per-user cache, so that it is fetched once per
 machine and every page carries it inline (a page never fetches anything).

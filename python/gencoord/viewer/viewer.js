@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The viewer page's script (gencoord/viewer/page.py inlines it): plays the trajectory the page
 // holds with three.js, with a time slider, speed, trails, an orbiting camera and a plot of the
 // energy error or a coordinate with a cursor at the current time. `window.gencoordViewer`

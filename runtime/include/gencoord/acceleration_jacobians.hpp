@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Jacobians of the forward dynamics a(q, v, t) with respect to q and v, as needed by the
 // Newton iterations of the implicit integrators.
 //

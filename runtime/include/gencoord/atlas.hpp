@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Simulating through coordinate singularities with an atlas of charts.
 //
 // A generated atlas (e.g. models::SphericalPendulumAtlas) lists several charts of the same

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Batched evaluation: qddot or one integrator step for many states (and parameter sets) at
 // once, or any work per index (batch_for_each()), spread over threads.
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Moving a state from one chart of an atlas to another through the particles.
 //
 // Both charts describe the same particles, so the state (q, v) of chart From gives positions

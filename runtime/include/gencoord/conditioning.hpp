@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Conditioning monitor: warns about or stops at coordinate singularities (gimbal lock, the
 // poles of spherical coordinates) before the dynamics turn into garbage.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Trajectory output as CSV: one row per state, with energy and particle positions.
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Cubic spline interpolation of keyframes, with consistent first and second derivatives:
 // the scripted coordinates' q(t), v(t) = q'(t), a(t) = q''(t) come from one piecewise cubic.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Forward dynamics: qddot = Mt^-1 (Ft + Fi), by the model's articulated-body recursion when
 // it has a cheaper one, else by a fixed-size factorization of Mt. This is the integrators'
 // hot path: no heap allocation for fixed-size models, and the error diagnosis is out of line

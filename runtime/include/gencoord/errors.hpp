@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Exceptions thrown by the runtime. Each message names the model, the time and what to do.
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Umbrella header of the gencoord runtime core.
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // HeapMatrix: a matrix of sizes fixed by the model whose entries live on the heap.
 //
 // A generated model's vectors and matrices are fixed-size Eigen objects, which Eigen keeps on

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Inverse dynamics: the generalized force r = Mt(q, t) a - Ft(q, v, t) - Fi(q, v, t) that
 // produces the acceleration a, and its Jacobians dr/dq, dr/dv (dr/da = Mt), from the
 // generated kernels M::inverse_dynamics and M::residual_jacobians.

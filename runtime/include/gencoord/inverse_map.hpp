@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The inverse map: from a maximal state (x, xdot) at time t to the reduced state (q, v).
 //
 // q minimizes |x - X(q, t)|_2 (Gauss-Newton with the generated J from a guess q0, with a

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Least-squares straight line through (log10 x, log10 y): the exponent of a power law.
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The Model concept: what the runtime requires of a generated model struct.
 //
 // The contract is docs/model_interface.md. This header is the only place where the runtime

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // An output file whose write failures are errors: a full disk or a vanished folder throws
 // OutputError with the path instead of leaving a short file behind without a word.
 #pragma once

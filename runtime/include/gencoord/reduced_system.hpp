@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // A generated model with its parameters as a system for the integrators
 // (integrate/system.hpp): a = Mt^-1 (Ft + Fi), unit mass, dense Jacobians.
 #pragma once

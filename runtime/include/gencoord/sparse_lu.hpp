@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // A sparse LU solver compiled once in the runtime library: Eigen's SparseLU does not depend on
 // the model, and is among the costliest templates a program with the maximal model would
 // otherwise compile.

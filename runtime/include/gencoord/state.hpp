@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The state of a reduced-coordinate model: time, generalized coordinates and velocities.
 #pragma once
 

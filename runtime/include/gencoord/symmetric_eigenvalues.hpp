@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The largest eigenvalue of a dense symmetric matrix, compiled once in the runtime library:
 // Eigen's symmetric eigensolver is the costliest template a program including the maximal
 // model would otherwise compile.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // A small pool of persistent worker threads for batched evaluation (batch.hpp).
 //
 // Starting a std::thread costs tens of microseconds, as much as a whole batch of a few

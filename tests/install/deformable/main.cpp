@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // A program outside the repository on the installed gencoord::deformable: a stretched free rod
 // oscillates under symplectic Euler and backward Euler steps, and the steps refuse what they
 // should (a step above the CFL limit, a negative step with the runtime's StepSizeError).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // NumPy arrays in and out of the kernels: the checks that name the argument and the shape it
 // needs, and the copy between NumPy's row-major arrays and Eigen's column-major matrices.
 //

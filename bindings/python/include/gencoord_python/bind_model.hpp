@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Everything a generated model offers Python: metadata, Params, every kernel, the right-hand
 // side and its Jacobian for scipy.integrate.solve_ivp, and the runtime's simulation loop.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // linearize(): the model's dynamics linearized about a state and an input
 // (gencoord/control/linearize.hpp), as NumPy arrays for controller design.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The runtime's errors as Python exceptions of the model's module. StepSizeError and every
 // std::invalid_argument reach Python as ValueError (pybind11's translation).
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The model as a first-order system y' = (v, qddot(q, v, t)) with y = (q, v), in the calling
 // convention of scipy.integrate.solve_ivp: rhs(t, y) and its exact Jacobian jac(t, y), which
 // the implicit methods (Radau, BDF, LSODA) use instead of finite differences.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The generated kernels as Python functions over NumPy arrays, one state or a batch.
 //
 // kernel(q, v, ..., t=0.0, params=None, *, threads=None): each vector argument has shape

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // A model's Params as a Python class: one attribute per parameter, with the model file's name,
 // default and description, settable by keyword in the constructor.
 #pragma once

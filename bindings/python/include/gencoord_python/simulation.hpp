@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // simulate(): the runtime's fixed-step loop (integrate/simulate.hpp) from Python, with
 // scripted coordinates, control inputs and an observer, returning the trajectory as NumPy arrays.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 /// \file bending.hpp
 /// Bending of a sheet in 3D: one hinge per interior edge (MassSpringSystem::hinges), with the

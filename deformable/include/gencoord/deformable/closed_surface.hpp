@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 /// \file closed_surface.hpp
 /// Whether a triangle surface bounds a solid (a closed, consistently oriented 2-manifold, as

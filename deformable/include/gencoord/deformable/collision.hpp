@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 /// \file collision.hpp
 /// Contact of a mass-spring object with static obstacles (spheres and axis-aligned boxes) and

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 /// \file disk_sampling.hpp
 /// Points uniformly distributed in a disk, by two independent methods. Either can seed

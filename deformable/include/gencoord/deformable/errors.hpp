@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 /// \file errors.hpp
 /// Exceptions of the deformable library. Each message names what was refused (element, node,

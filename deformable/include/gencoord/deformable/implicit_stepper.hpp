@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 /// \file implicit_stepper.hpp
 /// Backward Euler steps of one mass-spring object that keep their linear-algebra set-up from

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 /// \file inelastic.hpp
 /// Brittle fracture and plasticity of springs (thresholds in MassSpringSystem::inelastic).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 /// \file lattice_elasticity.hpp
 /// The elastic moduli of a spring network, and springs calibrated to a requested material.

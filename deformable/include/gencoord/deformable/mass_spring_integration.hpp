@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 /// \file mass_spring_integration.hpp
 /// A mass-spring object as a system for the runtime's integrators

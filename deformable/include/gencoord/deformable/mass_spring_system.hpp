@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 /// \file mass_spring_system.hpp
 /// The state and parameters of a deformable mass-spring object in Dim = 1, 2 or 3 dimensions:

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 /// \file material.hpp
 /// Material constants of a homogeneous elastic object.

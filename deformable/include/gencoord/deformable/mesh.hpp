@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 /// \file mesh.hpp
 /// Procedural simplex meshes: triangles in 2D, tetrahedra in 3D. Their edges form a

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 /// \file mesh_io.hpp
 /// Reading triangle (Dim = 2) and tetrahedral (Dim = 3) meshes written by Gmsh (.msh, ASCII

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 /// \file mesh_to_springs.hpp
 /// Mass-spring object from a simplex mesh and a material, with a mesh-independent wave speed.

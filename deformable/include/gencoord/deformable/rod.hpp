@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 /// \file rod.hpp
 /// The 1D elastic rod of lumped masses and strain springs (deformable/docs/deformables.md).

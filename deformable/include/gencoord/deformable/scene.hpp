@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 /// \file scene.hpp
 /// Several objects in one mass-spring system, so that they step together and collide

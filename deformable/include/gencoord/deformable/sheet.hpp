@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 /// \file sheet.hpp
 /// Sheets in 3D (cloth, membranes, thin plates): a mass-spring object from a TriangleSurface,

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 /// \file springs.hpp
 /// One strain-form spring-damper between two nodes, with its analytic Jacobians.

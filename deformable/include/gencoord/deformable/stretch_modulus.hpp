@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 /// \file stretch_modulus.hpp
 /// The Young's modulus a spring network shows in a static stretch, with every node free to

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 /// \file tetrahedralize.hpp
 /// Tetrahedral meshes of solids given by their boundary, a closed triangle surface, made by

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 /// \file time_step.hpp
 /// Time stepping: symplectic Euler (explicit, limited by the CFL condition) and backward Euler

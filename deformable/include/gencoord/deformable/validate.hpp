@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 /// \file validate.hpp
 /// Checks of meshes, materials, objects and step sizes, run where they are built or stepped

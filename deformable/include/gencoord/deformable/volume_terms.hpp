@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 /// \file volume_terms.hpp
 /// Area (2D) and volume (3D) terms: per simplex element, an energy that resists a change of

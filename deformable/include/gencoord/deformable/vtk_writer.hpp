@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 /// \file vtk_writer.hpp
 /// ParaView output: each frame of a mass-spring object as a VTK XML unstructured grid (.vtu,

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // A model driven by a control law u = law(t, q, v), as a system for the integrators
 // (integrate/system.hpp): every acceleration the integrators ask for is taken with the inputs
 // the law gives at that stage's time and state.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // A model's control inputs as a vector: they live in its Params (one field each, in the
 // order of M::input_names), so every kernel reads them like parameters.
 #pragma once

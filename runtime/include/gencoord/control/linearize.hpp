@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The linearization of a model's dynamics about a state and an input, for controller design.
 //
 // With x = (q, v) and qdot = v, qddot = a(q, v, u, t) the first-order system is

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Continuous-time algebraic Riccati equation (CARE) and the infinite-horizon LQR gain, for
 // designing a state-feedback controller around a linearization of a model.
 #pragma once

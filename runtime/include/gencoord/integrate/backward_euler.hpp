@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Backward Euler for any system (system.hpp), and the trapezoidal rule and implicit midpoint
 // built from its half steps, not as separate solvers.
 //

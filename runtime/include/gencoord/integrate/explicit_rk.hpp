@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Explicit one-step methods on y = (q, v), ydot = (v, a(t, q, v)), for any system
 // (system.hpp): the Runge-Kutta methods from their coefficient (Butcher) tables, and
 // symplectic Euler, which is a partitioned method and has no such table.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The integration methods by name, and what each one is.
 #pragma once
 

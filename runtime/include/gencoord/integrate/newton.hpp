@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Newton's method on the end velocity of an implicit step: its settings, work counters and
 // the iteration loop of backward_euler_step().
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The fixed-step simulation loop, for any system.
 #pragma once
 

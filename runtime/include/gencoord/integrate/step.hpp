@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // One step of any integrator for any system: the one place that maps Integrator to a method.
 #pragma once
 

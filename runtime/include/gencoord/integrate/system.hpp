@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // What the integrators (explicit_rk.hpp, backward_euler.hpp, step.hpp, simulate.hpp) require
 // of a system: every method is written once over this interface, and each kind of system
 // (reduced model, scripted coordinates, maximal penalty model, deformable mass-spring object)

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The maximal-coordinate cross-check: run the reduced model (RK4, small fixed step) as the
 // reference, run the maximal penalty model from the same consistent initial state for each
 // penalty stiffness kappa, and compare particle positions at common sample times. As

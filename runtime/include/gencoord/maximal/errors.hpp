@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Exceptions of the maximal-coordinate side: the inverse map (x, xdot) -> (q, v) and the
 // maximal (penalty) model's simulations. Header-only: each message is built where it is thrown.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The maximal-coordinate (penalty) model of a generated model M: every particle free in
 // x (nx = dim * num_particles), the same external forces, each declared constraint a stiff
 // spring of stiffness kappa (generated `M::Maximal` kernels), plus two terms the runtime adds:

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Explicit stability limits of the maximal model: the stiffest mode's frequency omega_max and
 // the largest stable step of symplectic Euler (h omega < 2) and RK4 (h omega < 2 sqrt 2).
 #pragma once

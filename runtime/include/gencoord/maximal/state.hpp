@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The state of a maximal-coordinate (free particle) model, and the consistent maximal state of
 // a reduced one.
 #pragma once

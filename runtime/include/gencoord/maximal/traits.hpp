@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // What the maximal-coordinate runtime needs of a generated model beyond docs/model_interface.md:
 // the nested `M::Maximal` struct (penalty model kernels), and the per-coordinate masses.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Dynamics with scripted (prescribed) coordinates, chosen at runtime without regenerating.
 //
 // Split q = (q_f, q_s): the script gives q_s(t), v_s(t), a_s(t); the free part obeys

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // A prescribed motion of some generalized coordinates: q_s(t), v_s(t), a_s(t), given as a
 // function or as keyframes interpolated by cubic splines. Model-independent: it names the
 // scripted coordinates by index; ScriptedModel (scripted/model.hpp) checks them against a
