@@ -22,7 +22,7 @@
 #include "command_line.hpp"
 #include "gencoord/integrate/integrator.hpp"
 #include "gencoord/integrate/simulate.hpp"
-#include "gencoord/output_file.hpp"
+#include "gencoord/io/output_file.hpp"
 #include "gencoord/scripted/model.hpp"
 #include "generated/double_pendulum.hpp"
 

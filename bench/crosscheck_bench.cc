@@ -20,7 +20,7 @@
 
 #include "gencoord/integrate/simulate.hpp"
 #include "gencoord/maximal/crosscheck.hpp"
-#include "gencoord/reduced_system.hpp"
+#include "gencoord/model/reduced_system.hpp"
 #include "generated/double_pendulum.hpp"
 #include "generated/n_link_chain_10.hpp"
 #include "generated/n_link_chain_20.hpp"

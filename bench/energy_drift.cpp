@@ -22,7 +22,7 @@
 #include "gencoord/errors.hpp"
 #include "gencoord/integrate/integrator.hpp"
 #include "gencoord/integrate/simulate.hpp"
-#include "gencoord/reduced_system.hpp"
+#include "gencoord/model/reduced_system.hpp"
 #include "generated/double_pendulum.hpp"
 
 namespace {

@@ -14,8 +14,8 @@
 #include <benchmark/benchmark.h>
 
 #include "gencoord/integrate/step.hpp"
-#include "gencoord/reduced_system.hpp"
-#include "gencoord/state.hpp"
+#include "gencoord/model/reduced_system.hpp"
+#include "gencoord/model/state.hpp"
 #include "generated/double_pendulum.hpp"
 #include "generated/n_link_chain_10.hpp"
 #include "generated/stiff_chain_10.hpp"

@@ -9,8 +9,8 @@
 
 #include "gencoord/integrate/integrator.hpp"
 #include "gencoord/integrate/step.hpp"
-#include "gencoord/reduced_system.hpp"
-#include "gencoord/state.hpp"
+#include "gencoord/model/reduced_system.hpp"
+#include "gencoord/model/state.hpp"
 #include "model_list.hpp"  // every built-in model, written at build time
 
 namespace {

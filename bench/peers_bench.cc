@@ -3,7 +3,7 @@
 //   qddot/{ours,sympy}/n       one generalized acceleration (generated Mt, Ft + Fi, fixed LLT)
 //   rk4_step/{ours,sympy}/n    one RK4 step (ours: gencoord::step; SymPy: the same formula)
 //   mj_forward/n               MuJoCo's mj_forward (everything before integration, qacc too)
-//   batch_{qddot,rk4}/ours/n/threads:T   gencoord/batch.hpp over 4096 states, T threads
+//   batch_{qddot,rk4}/ours/n/threads:T   gencoord/parallel/batch.hpp over 4096 states, T threads
 // Before any timing, the peers are checked against ours at random states and parameters
 // (SymPy to 1e-9 relative, MuJoCo to 1e-6: its point masses carry a tiny inertia); a mismatch
 // aborts the run. Sizes: GENCOORD_PEER_CHAIN_SIZES. Run: scripts/bench_peers.sh.
@@ -18,11 +18,11 @@
 
 #include <benchmark/benchmark.h>
 
-#include "gencoord/batch.hpp"
 #include "gencoord/integrate/integrator.hpp"
 #include "gencoord/integrate/step.hpp"
-#include "gencoord/reduced_system.hpp"
-#include "gencoord/state.hpp"
+#include "gencoord/model/reduced_system.hpp"
+#include "gencoord/model/state.hpp"
+#include "gencoord/parallel/batch.hpp"
 #include "peer_chains.hpp"  // generated: the headers of each size, GENCOORD_PEER_CHAINS(X)
 #ifdef GENCOORD_HAVE_MUJOCO
 #include "peers/mujoco_chain.hpp"

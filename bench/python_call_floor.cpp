@@ -14,7 +14,7 @@
 #include <stdexcept>
 #include <utility>
 
-#include "gencoord/model_traits.hpp"
+#include "gencoord/model/model_traits.hpp"
 
 #include GENCOORD_MODEL_HEADER
 

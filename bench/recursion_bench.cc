@@ -26,8 +26,8 @@
 #include <vector>
 
 #include "gencoord/integrate/explicit_rk.hpp"
-#include "gencoord/reduced_system.hpp"
-#include "gencoord/state.hpp"
+#include "gencoord/model/reduced_system.hpp"
+#include "gencoord/model/state.hpp"
 #include "peers/mujoco_chain.hpp"
 #include "recursion_chains.hpp"  // generated: GENCOORD_RECURSION_CHAINS(X), X(n, Dense, Recursive)
 

@@ -28,7 +28,7 @@
 
 #include "command_line.hpp"
 #include "driver_model.hpp"
-#include "gencoord/csv_writer.hpp"
+#include "gencoord/io/csv_writer.hpp"
 #include "gencoord/maximal/crosscheck.hpp"
 #include "loglog_svg.hpp"
 

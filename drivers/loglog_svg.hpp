@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "gencoord/output_file.hpp"
+#include "gencoord/io/output_file.hpp"
 
 namespace gencoord::drivers {
 

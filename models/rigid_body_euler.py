@@ -21,7 +21,7 @@ the body's x axis points along the world's z axis.
 
 A second chart, 'yzx', uses R = Ry(heading) Rz(attitude) Rx(bank), singular at
 attitude = +-pi/2, where the body's x axis points along the world's y axis. The two singular
-sets are disjoint, so the atlas (gencoord/atlas.hpp) can tumble through either. No gravity
+sets are disjoint, so the atlas (gencoord/atlas/atlas.hpp) can tumble through either. No gravity
 by default, so energy and angular momentum are conserved.
 """
 from gencoord import EULER_CHARTS, Frame, Matrix, Model, rotation_about, rpy

@@ -14,7 +14,7 @@ singular at theta = 0 and theta = pi (the poles): there J loses rank and phi is 
 An atlas of two charts keeps the simulation going through the poles: chart 'pole_down'
 (above) and chart 'pole_x', spherical coordinates about the x axis,
 x = l (cos(alpha), sin(alpha) cos(beta), sin(alpha) sin(beta)), singular only where the bob
-is on the x axis. No configuration is singular in both, so gencoord/atlas.hpp can always
+is on the x axis. No configuration is singular in both, so gencoord/atlas/atlas.hpp can always
 move to a well-conditioned chart.
 """
 from gencoord import Model, cos, sin

@@ -132,8 +132,8 @@ def main():
                  fmt(kane_total), fmt(ours_cc), fmt(sym_cc)]
         print("| " + " | ".join(str(c) for c in cells) + " |", flush=True)
 
-    print("\nBatched (gencoord/batch.hpp, 4096 states, wall ns per state; speedup = 1 thread / "
-          "2 threads)\n")
+    print("\nBatched (gencoord/parallel/batch.hpp, 4096 states, wall ns per state; "
+          "speedup = 1 thread / 2 threads)\n")
     print("| n | qddot 1 thread | qddot 2 threads | speedup | RK4 1 thread | RK4 2 threads | "
           "speedup |")
     print("|" + " --- |" * 7)

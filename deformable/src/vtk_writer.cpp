@@ -12,7 +12,7 @@
 #include <stdexcept>
 #include <utility>
 
-#include "gencoord/output_file.hpp"
+#include "gencoord/io/output_file.hpp"
 
 namespace gencoord::deformable {
 

@@ -18,7 +18,7 @@
 #include "gencoord/deformable/mesh_to_springs.hpp"
 #include "gencoord/deformable/time_step.hpp"
 #include "gencoord/deformable/vtk_writer.hpp"
-#include "gencoord/output_file.hpp"
+#include "gencoord/io/output_file.hpp"
 
 namespace gencoord::deformable {
 namespace {

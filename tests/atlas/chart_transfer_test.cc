@@ -5,8 +5,8 @@
 
 #include <cmath>
 
-#include "gencoord/atlas.hpp"
-#include "gencoord/chart_transfer.hpp"
+#include "gencoord/atlas/atlas.hpp"
+#include "gencoord/atlas/chart_transfer.hpp"
 #include "generated/rigid_body_euler.hpp"
 #include "generated/spherical_pendulum.hpp"
 

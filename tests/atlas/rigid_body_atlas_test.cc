@@ -8,10 +8,10 @@
 #include <cmath>
 
 #include "figures.hpp"
-#include "gencoord/atlas.hpp"
-#include "gencoord/conditioning.hpp"
+#include "gencoord/atlas/atlas.hpp"
 #include "gencoord/integrate/simulate.hpp"
-#include "gencoord/reduced_system.hpp"
+#include "gencoord/model/conditioning.hpp"
+#include "gencoord/model/reduced_system.hpp"
 #include "generated/rigid_body_euler.hpp"
 
 namespace gencoord::testing {

@@ -12,10 +12,10 @@
 #include <vector>
 
 #include "figures.hpp"
-#include "gencoord/atlas.hpp"
-#include "gencoord/conditioning.hpp"
+#include "gencoord/atlas/atlas.hpp"
 #include "gencoord/integrate/simulate.hpp"
-#include "gencoord/reduced_system.hpp"
+#include "gencoord/model/conditioning.hpp"
+#include "gencoord/model/reduced_system.hpp"
 #include "generated/spherical_pendulum.hpp"
 
 namespace gencoord::testing {

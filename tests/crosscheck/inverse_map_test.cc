@@ -8,7 +8,7 @@
 
 #include <gtest/gtest.h>
 
-#include "gencoord/inverse_map.hpp"
+#include "gencoord/maximal/inverse_map.hpp"
 #include "gencoord/maximal/state.hpp"
 #include "test_models.hpp"
 

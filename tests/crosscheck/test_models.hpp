@@ -5,7 +5,7 @@
 #include <random>
 
 #include "gencoord/maximal/traits.hpp"
-#include "gencoord/state.hpp"
+#include "gencoord/model/state.hpp"
 #include "generated/bead_on_parabola.hpp"
 #include "generated/bead_on_rotating_hoop.hpp"
 #include "generated/cart_pole.hpp"

@@ -15,7 +15,7 @@
 #include "gencoord/integrate/step.hpp"
 #include "gencoord/maximal/errors.hpp"
 #include "gencoord/maximal/model.hpp"
-#include "gencoord/reduced_system.hpp"
+#include "gencoord/model/reduced_system.hpp"
 #include "generated/double_pendulum.hpp"
 #include "generated/pendulum.hpp"
 #include "generated/stiff_chain_3.hpp"

@@ -11,7 +11,7 @@
 #include <gtest/gtest.h>
 
 #include "gencoord/integrate/simulate.hpp"
-#include "gencoord/reduced_system.hpp"
+#include "gencoord/model/reduced_system.hpp"
 #include "generated/n_link_chain_5.hpp"
 
 namespace gencoord::testing {

@@ -13,10 +13,10 @@
 
 #include "gencoord/integrate/integrator.hpp"
 #include "gencoord/integrate/simulate.hpp"
-#include "gencoord/loglog_fit.hpp"
-#include "gencoord/model_traits.hpp"
-#include "gencoord/reduced_system.hpp"
-#include "gencoord/state.hpp"
+#include "gencoord/model/model_traits.hpp"
+#include "gencoord/model/reduced_system.hpp"
+#include "gencoord/model/state.hpp"
+#include "gencoord/numerics/loglog_fit.hpp"
 
 namespace gencoord::testing {
 

@@ -14,7 +14,7 @@
 #include <gtest/gtest.h>
 
 #include "gencoord/integrate/simulate.hpp"
-#include "gencoord/reduced_system.hpp"
+#include "gencoord/model/reduced_system.hpp"
 #include "generated/pendulum.hpp"
 
 namespace gencoord::testing {

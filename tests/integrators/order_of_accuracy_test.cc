@@ -20,7 +20,7 @@
 
 #include "convergence.hpp"
 #include "gencoord/integrate/step.hpp"
-#include "gencoord/reduced_system.hpp"
+#include "gencoord/model/reduced_system.hpp"
 #include "generated/bead_on_rotating_hoop.hpp"
 #include "generated/double_pendulum.hpp"
 #include "generated/kapitza_pendulum.hpp"

@@ -7,9 +7,9 @@
 
 #include <gtest/gtest.h>
 
-#include "gencoord/dynamics.hpp"
 #include "gencoord/integrate/simulate.hpp"
-#include "gencoord/reduced_system.hpp"
+#include "gencoord/model/dynamics.hpp"
+#include "gencoord/model/reduced_system.hpp"
 #include "generated/bead_on_rotating_hoop.hpp"
 #include "generated/double_pendulum.hpp"
 #include "generated/pendulum.hpp"

@@ -3,9 +3,9 @@
 // poles: launched to pass over the pole, the monitor reports it; away from it, it is quiet.
 #include <gtest/gtest.h>
 
-#include "gencoord/conditioning.hpp"
 #include "gencoord/integrate/simulate.hpp"
-#include "gencoord/reduced_system.hpp"
+#include "gencoord/model/conditioning.hpp"
+#include "gencoord/model/reduced_system.hpp"
 #include "generated/spherical_pendulum.hpp"
 
 namespace gencoord::testing {

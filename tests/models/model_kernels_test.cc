@@ -12,7 +12,7 @@
 #include <gtest/gtest.h>
 
 #include "all_models.hpp"
-#include "gencoord/dynamics.hpp"
+#include "gencoord/model/dynamics.hpp"
 #include "random_states.hpp"
 
 namespace gencoord::testing {

@@ -14,9 +14,9 @@
 #include <gtest/gtest.h>
 #include <Eigen/Geometry>
 
-#include "gencoord/dynamics.hpp"
 #include "gencoord/integrate/simulate.hpp"
-#include "gencoord/reduced_system.hpp"
+#include "gencoord/model/dynamics.hpp"
+#include "gencoord/model/reduced_system.hpp"
 #include "generated/compound_pendulum.hpp"
 #include "generated/free_box.hpp"
 #include "generated/heavy_top.hpp"

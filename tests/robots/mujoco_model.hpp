@@ -15,7 +15,7 @@
 #include <mujoco/mujoco.h>
 #include <Eigen/Core>
 
-#include "gencoord/state.hpp"
+#include "gencoord/model/state.hpp"
 
 namespace gencoord::robot_testing {
 

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "gencoord/csv_writer.hpp"
-#include "gencoord/reduced_system.hpp"
+#include "gencoord/io/csv_writer.hpp"
+#include "gencoord/model/reduced_system.hpp"
 
 #include <cstdio>
 #include <cstdlib>
@@ -14,7 +14,7 @@
 #include <gtest/gtest.h>
 
 #include "gencoord/integrate/simulate.hpp"
-#include "gencoord/output_file.hpp"
+#include "gencoord/io/output_file.hpp"
 #include "hand_models.hpp"
 
 namespace gencoord {

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "gencoord/dynamics.hpp"
+#include "gencoord/model/dynamics.hpp"
 #include "gencoord/integrate/step.hpp"
-#include "gencoord/reduced_system.hpp"
+#include "gencoord/model/reduced_system.hpp"
 
 #include <cmath>
 #include <limits>
@@ -10,8 +10,8 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include "gencoord/acceleration_jacobians.hpp"
 #include "gencoord/integrate/integrator.hpp"
+#include "gencoord/model/acceleration_jacobians.hpp"
 #include "hand_models.hpp"
 
 namespace gencoord {

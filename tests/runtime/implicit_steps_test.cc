@@ -2,7 +2,7 @@
 // The implicit integrators: the composed trapezoidal and midpoint steps against independent
 // direct implementations, and Newton's convergence, failure and counters.
 #include "gencoord/integrate/step.hpp"
-#include "gencoord/reduced_system.hpp"
+#include "gencoord/model/reduced_system.hpp"
 
 #include <cmath>
 #include <limits>

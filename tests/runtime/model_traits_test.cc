@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "gencoord/model_traits.hpp"
+#include "gencoord/model/model_traits.hpp"
 
 #include <gtest/gtest.h>
 

@@ -10,7 +10,7 @@
 
 #include "gencoord/integrate/integrator.hpp"
 #include "gencoord/integrate/simulate.hpp"
-#include "gencoord/reduced_system.hpp"
+#include "gencoord/model/reduced_system.hpp"
 #include "hand_models.hpp"
 
 namespace gencoord {

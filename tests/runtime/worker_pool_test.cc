@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "gencoord/worker_pool.hpp"
+#include "gencoord/parallel/worker_pool.hpp"
 
 #include <atomic>
 #include <cstddef>

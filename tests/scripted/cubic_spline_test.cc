@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // CubicSpline: exact on cubics (clamped), natural end conditions, derivative consistency,
 // fourth-order convergence, and its errors.
-#include "gencoord/cubic_spline.hpp"
+#include "gencoord/numerics/cubic_spline.hpp"
 
 #include <cmath>
 #include <cstdio>

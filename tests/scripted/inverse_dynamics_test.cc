@@ -1,14 +1,14 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // The runtime's inverse_dynamics(): Mt a - (Ft + Fi) at any acceleration, zero at the forward
 // dynamics' acceleration; and the free rows of the scripted residual vanish.
-#include "gencoord/inverse_dynamics.hpp"
+#include "gencoord/model/inverse_dynamics.hpp"
 
 #include <cmath>
 #include <random>
 
 #include <gtest/gtest.h>
 
-#include "gencoord/dynamics.hpp"
+#include "gencoord/model/dynamics.hpp"
 #include "generated/double_pendulum.hpp"
 #include "generated/kapitza_pendulum.hpp"
 #include "generated/n_link_chain_10.hpp"

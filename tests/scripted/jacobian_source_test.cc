@@ -7,10 +7,10 @@
 
 #include <gtest/gtest.h>
 
-#include "gencoord/acceleration_jacobians.hpp"
 #include "gencoord/integrate/integrator.hpp"
 #include "gencoord/integrate/step.hpp"
-#include "gencoord/reduced_system.hpp"
+#include "gencoord/model/acceleration_jacobians.hpp"
+#include "gencoord/model/reduced_system.hpp"
 #include "generated/double_pendulum.hpp"
 #include "generated/n_link_chain_10.hpp"
 

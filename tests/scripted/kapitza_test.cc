@@ -8,7 +8,7 @@
 
 #include "gencoord/integrate/integrator.hpp"
 #include "gencoord/integrate/simulate.hpp"
-#include "gencoord/reduced_system.hpp"
+#include "gencoord/model/reduced_system.hpp"
 #include "generated/kapitza_pendulum.hpp"
 
 namespace gencoord {

@@ -9,10 +9,10 @@
 
 #include <gtest/gtest.h>
 
-#include "gencoord/dynamics.hpp"
 #include "gencoord/integrate/integrator.hpp"
 #include "gencoord/integrate/simulate.hpp"
-#include "gencoord/reduced_system.hpp"
+#include "gencoord/model/dynamics.hpp"
+#include "gencoord/model/reduced_system.hpp"
 #include "gencoord/scripted/model.hpp"
 #include "generated/double_pendulum.hpp"
 #include "generated/n_link_chain_10.hpp"

@@ -12,8 +12,8 @@
 #include "gencoord/errors.hpp"
 #include "gencoord/integrate/integrator.hpp"
 #include "gencoord/integrate/step.hpp"
-#include "gencoord/inverse_dynamics.hpp"
-#include "gencoord/reduced_system.hpp"
+#include "gencoord/model/inverse_dynamics.hpp"
+#include "gencoord/model/reduced_system.hpp"
 #include "generated/stiff_chain_10.hpp"
 
 namespace gencoord {

@@ -4,7 +4,7 @@
 
 #include <memory>
 
-#include "gencoord/output_file.hpp"
+#include "gencoord/io/output_file.hpp"
 
 namespace gencoord::deformable::demo {
 

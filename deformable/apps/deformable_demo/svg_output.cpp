@@ -6,7 +6,7 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "gencoord/output_file.hpp"
+#include "gencoord/io/output_file.hpp"
 
 namespace gencoord::deformable::demo {
 

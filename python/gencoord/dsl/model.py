@@ -109,7 +109,7 @@ class Model:
     def add_chart(self, chart: "Model") -> None:
         """Adds another parameterization (chart) of the same particles, parameters and forces.
 
-        The runtime (gencoord/atlas.hpp) switches to the best-conditioned chart when the
+        The runtime (gencoord/atlas/atlas.hpp) switches to the best-conditioned chart when the
         current one nears a singular configuration. Both models must be named charts:
         `Model(dim=3, chart="pole_down")`. The generator checks that the particles, masses,
         parameters and forces agree.

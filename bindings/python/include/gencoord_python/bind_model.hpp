@@ -11,7 +11,7 @@
 #include <tuple>
 
 #include "gencoord/integrate/integrator.hpp"
-#include "gencoord/model_traits.hpp"
+#include "gencoord/model/model_traits.hpp"
 #include "gencoord_python/arrays.hpp"
 #include "gencoord_python/control.hpp"
 #include "gencoord_python/errors.hpp"

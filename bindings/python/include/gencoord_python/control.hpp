@@ -8,10 +8,10 @@
 
 #include <string>
 
-#include "gencoord/acceleration_jacobians.hpp"
 #include "gencoord/control/inputs.hpp"
 #include "gencoord/control/linearize.hpp"
-#include "gencoord/model_traits.hpp"
+#include "gencoord/model/acceleration_jacobians.hpp"
+#include "gencoord/model/model_traits.hpp"
 #include "gencoord_python/arrays.hpp"
 #include "gencoord_python/kernels.hpp"
 

@@ -9,10 +9,10 @@
 
 #include <string>
 
-#include "gencoord/acceleration_jacobians.hpp"
-#include "gencoord/dynamics.hpp"
 #include "gencoord/errors.hpp"
-#include "gencoord/model_traits.hpp"
+#include "gencoord/model/acceleration_jacobians.hpp"
+#include "gencoord/model/dynamics.hpp"
+#include "gencoord/model/model_traits.hpp"
 #include "gencoord_python/arrays.hpp"
 #include "gencoord_python/kernels.hpp"
 

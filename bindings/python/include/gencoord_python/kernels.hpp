@@ -21,9 +21,9 @@
 #include <utility>
 #include <vector>
 
-#include "gencoord/batch.hpp"
 #include "gencoord/control/inputs.hpp"
-#include "gencoord/model_traits.hpp"
+#include "gencoord/model/model_traits.hpp"
+#include "gencoord/parallel/batch.hpp"
 #include "gencoord_python/arrays.hpp"
 
 namespace gencoord::python {

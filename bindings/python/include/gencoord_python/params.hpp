@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "gencoord/model_traits.hpp"
+#include "gencoord/model/model_traits.hpp"
 
 namespace gencoord::python {
 

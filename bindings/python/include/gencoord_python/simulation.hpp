@@ -16,14 +16,14 @@
 
 #include "gencoord/control/controlled_system.hpp"
 #include "gencoord/control/inputs.hpp"
-#include "gencoord/cubic_spline.hpp"
 #include "gencoord/integrate/integrator.hpp"
 #include "gencoord/integrate/simulate.hpp"
-#include "gencoord/model_traits.hpp"
-#include "gencoord/reduced_system.hpp"
+#include "gencoord/model/model_traits.hpp"
+#include "gencoord/model/reduced_system.hpp"
+#include "gencoord/model/state.hpp"
+#include "gencoord/numerics/cubic_spline.hpp"
 #include "gencoord/scripted/model.hpp"
 #include "gencoord/scripted/script.hpp"
-#include "gencoord/state.hpp"
 #include "gencoord_python/arrays.hpp"
 #include "gencoord_python/kernels.hpp"
 

@@ -14,13 +14,13 @@
 #include <functional>
 #include <utility>
 
-#include "gencoord/acceleration_jacobians.hpp"
 #include "gencoord/control/inputs.hpp"
 #include "gencoord/control/linearize.hpp"
-#include "gencoord/dynamics.hpp"
 #include "gencoord/integrate/system.hpp"
-#include "gencoord/model_traits.hpp"
-#include "gencoord/state.hpp"
+#include "gencoord/model/acceleration_jacobians.hpp"
+#include "gencoord/model/dynamics.hpp"
+#include "gencoord/model/model_traits.hpp"
+#include "gencoord/model/state.hpp"
 
 namespace gencoord {
 

@@ -6,7 +6,7 @@
 #include <array>
 #include <cstddef>
 
-#include "gencoord/model_traits.hpp"
+#include "gencoord/model/model_traits.hpp"
 
 namespace gencoord {
 

@@ -12,10 +12,10 @@
 #include <Eigen/Cholesky>
 #include <Eigen/Core>
 
-#include "gencoord/acceleration_jacobians.hpp"
 #include "gencoord/control/inputs.hpp"
-#include "gencoord/dynamics.hpp"
-#include "gencoord/model_traits.hpp"
+#include "gencoord/model/acceleration_jacobians.hpp"
+#include "gencoord/model/dynamics.hpp"
+#include "gencoord/model/model_traits.hpp"
 
 namespace gencoord {
 

@@ -8,8 +8,8 @@
 #include <limits>
 #include <stdexcept>
 
-#include "gencoord/acceleration_jacobians.hpp"
 #include "gencoord/errors.hpp"
+#include "gencoord/model/acceleration_jacobians.hpp"
 
 namespace gencoord {
 

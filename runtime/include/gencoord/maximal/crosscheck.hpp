@@ -14,13 +14,13 @@
 
 #include "gencoord/integrate/integrator.hpp"
 #include "gencoord/integrate/simulate.hpp"
-#include "gencoord/loglog_fit.hpp"
 #include "gencoord/maximal/model.hpp"
 #include "gencoord/maximal/stability.hpp"
 #include "gencoord/maximal/state.hpp"
 #include "gencoord/maximal/traits.hpp"
-#include "gencoord/reduced_system.hpp"
-#include "gencoord/state.hpp"
+#include "gencoord/model/reduced_system.hpp"
+#include "gencoord/model/state.hpp"
+#include "gencoord/numerics/loglog_fit.hpp"
 
 namespace gencoord {
 

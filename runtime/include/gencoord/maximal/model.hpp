@@ -22,15 +22,15 @@
 #include <Eigen/QR>
 #include <Eigen/SparseCore>
 
-#include "gencoord/acceleration_jacobians.hpp"
-#include "gencoord/heap_matrix.hpp"
 #include "gencoord/integrate/system.hpp"
-#include "gencoord/inverse_map.hpp"
 #include "gencoord/maximal/errors.hpp"
+#include "gencoord/maximal/inverse_map.hpp"
 #include "gencoord/maximal/state.hpp"
 #include "gencoord/maximal/traits.hpp"
-#include "gencoord/model_traits.hpp"
-#include "gencoord/sparse_lu.hpp"
+#include "gencoord/model/acceleration_jacobians.hpp"
+#include "gencoord/model/heap_matrix.hpp"
+#include "gencoord/model/model_traits.hpp"
+#include "gencoord/numerics/sparse_lu.hpp"
 
 namespace gencoord {
 

@@ -12,7 +12,7 @@
 #include "gencoord/integrate/integrator.hpp"
 #include "gencoord/maximal/model.hpp"
 #include "gencoord/maximal/state.hpp"
-#include "gencoord/symmetric_eigenvalues.hpp"
+#include "gencoord/numerics/symmetric_eigenvalues.hpp"
 
 namespace gencoord {
 

@@ -7,7 +7,7 @@
 
 #include <Eigen/Core>
 
-#include "gencoord/model_traits.hpp"
+#include "gencoord/model/model_traits.hpp"
 
 namespace gencoord {
 

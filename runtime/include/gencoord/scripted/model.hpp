@@ -20,14 +20,14 @@
 #include <Eigen/Cholesky>
 #include <Eigen/Core>
 
-#include "gencoord/acceleration_jacobians.hpp"
 #include "gencoord/errors.hpp"
-#include "gencoord/heap_matrix.hpp"
 #include "gencoord/integrate/system.hpp"
-#include "gencoord/inverse_dynamics.hpp"
-#include "gencoord/model_traits.hpp"
+#include "gencoord/model/acceleration_jacobians.hpp"
+#include "gencoord/model/heap_matrix.hpp"
+#include "gencoord/model/inverse_dynamics.hpp"
+#include "gencoord/model/model_traits.hpp"
+#include "gencoord/model/state.hpp"
 #include "gencoord/scripted/script.hpp"
-#include "gencoord/state.hpp"
 
 namespace gencoord {
 

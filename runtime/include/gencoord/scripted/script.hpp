@@ -10,7 +10,7 @@
 
 #include <Eigen/Core>
 
-#include "gencoord/cubic_spline.hpp"
+#include "gencoord/numerics/cubic_spline.hpp"
 
 namespace gencoord {
 

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "gencoord/symmetric_eigenvalues.hpp"
+#include "gencoord/numerics/symmetric_eigenvalues.hpp"
 
 #include <limits>
 

@@ -2,7 +2,7 @@
 // The state of a reduced-coordinate model: time, generalized coordinates and velocities.
 #pragma once
 
-#include "gencoord/model_traits.hpp"
+#include "gencoord/model/model_traits.hpp"
 
 namespace gencoord {
 

@@ -13,7 +13,7 @@
 
 #include <Eigen/Core>
 
-#include "gencoord/heap_matrix.hpp"
+#include "gencoord/model/heap_matrix.hpp"
 
 namespace gencoord {
 

@@ -9,8 +9,8 @@
 #include <stdexcept>
 #include <string>
 
-#include "gencoord/model_traits.hpp"
-#include "gencoord/state.hpp"
+#include "gencoord/model/model_traits.hpp"
+#include "gencoord/model/state.hpp"
 
 namespace gencoord {
 

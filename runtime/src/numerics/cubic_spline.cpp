@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "gencoord/cubic_spline.hpp"
+#include "gencoord/numerics/cubic_spline.hpp"
 
 #include <algorithm>
 #include <cmath>

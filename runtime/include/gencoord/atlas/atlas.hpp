@@ -18,11 +18,11 @@
 #include <utility>
 #include <vector>
 
-#include "gencoord/chart_transfer.hpp"
+#include "gencoord/atlas/chart_transfer.hpp"
 #include "gencoord/integrate/integrator.hpp"
 #include "gencoord/integrate/step.hpp"
-#include "gencoord/reduced_system.hpp"
-#include "gencoord/state.hpp"
+#include "gencoord/model/reduced_system.hpp"
+#include "gencoord/model/state.hpp"
 
 namespace gencoord {
 

@@ -10,8 +10,8 @@
 #include <utility>
 
 #include "gencoord/errors.hpp"
-#include "gencoord/model_traits.hpp"
-#include "gencoord/state.hpp"
+#include "gencoord/model/model_traits.hpp"
+#include "gencoord/model/state.hpp"
 
 namespace gencoord {
 

@@ -21,13 +21,13 @@
 #include <thread>
 #include <vector>
 
-#include "gencoord/dynamics.hpp"
 #include "gencoord/integrate/integrator.hpp"
 #include "gencoord/integrate/step.hpp"
-#include "gencoord/model_traits.hpp"
-#include "gencoord/reduced_system.hpp"
-#include "gencoord/state.hpp"
-#include "gencoord/worker_pool.hpp"
+#include "gencoord/model/dynamics.hpp"
+#include "gencoord/model/model_traits.hpp"
+#include "gencoord/model/reduced_system.hpp"
+#include "gencoord/model/state.hpp"
+#include "gencoord/parallel/worker_pool.hpp"
 
 namespace gencoord {
 

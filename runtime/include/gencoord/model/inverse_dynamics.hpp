@@ -7,7 +7,7 @@
 #include <type_traits>
 #include <utility>
 
-#include "gencoord/model_traits.hpp"
+#include "gencoord/model/model_traits.hpp"
 
 namespace gencoord {
 

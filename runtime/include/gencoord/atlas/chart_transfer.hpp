@@ -18,11 +18,11 @@
 
 #include <Eigen/Cholesky>
 
-#include "gencoord/conditioning.hpp"
-#include "gencoord/inverse_map.hpp"
+#include "gencoord/maximal/inverse_map.hpp"
 #include "gencoord/maximal/traits.hpp"
-#include "gencoord/model_traits.hpp"
-#include "gencoord/state.hpp"
+#include "gencoord/model/conditioning.hpp"
+#include "gencoord/model/model_traits.hpp"
+#include "gencoord/model/state.hpp"
 
 namespace gencoord {
 

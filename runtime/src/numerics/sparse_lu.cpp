@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "gencoord/sparse_lu.hpp"
+#include "gencoord/numerics/sparse_lu.hpp"
 
 #include <Eigen/SparseLU>
 

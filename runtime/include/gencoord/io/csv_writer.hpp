@@ -9,9 +9,9 @@
 #include <string>
 #include <utility>
 
-#include "gencoord/model_traits.hpp"
-#include "gencoord/output_file.hpp"
-#include "gencoord/state.hpp"
+#include "gencoord/io/output_file.hpp"
+#include "gencoord/model/model_traits.hpp"
+#include "gencoord/model/state.hpp"
 
 namespace gencoord {
 

@@ -19,10 +19,10 @@
 
 #include <Eigen/Cholesky>
 
-#include "gencoord/dynamics.hpp"
 #include "gencoord/errors.hpp"
-#include "gencoord/inverse_dynamics.hpp"
-#include "gencoord/model_traits.hpp"
+#include "gencoord/model/dynamics.hpp"
+#include "gencoord/model/inverse_dynamics.hpp"
+#include "gencoord/model/model_traits.hpp"
 
 namespace gencoord {
 

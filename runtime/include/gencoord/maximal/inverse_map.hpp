@@ -18,8 +18,8 @@
 
 #include "gencoord/maximal/errors.hpp"
 #include "gencoord/maximal/traits.hpp"
-#include "gencoord/model_traits.hpp"
-#include "gencoord/state.hpp"
+#include "gencoord/model/model_traits.hpp"
+#include "gencoord/model/state.hpp"
 
 namespace gencoord {
 
