@@ -61,7 +61,7 @@
  *
  * A second chart, 'yzx', uses R = Ry(heading) Rz(attitude) Rx(bank), singular at
  * attitude = +-pi/2, where the body's x axis points along the world's y axis. The two singular
- * sets are disjoint, so the atlas (gencoord/atlas.hpp) can tumble through either. No gravity
+ * sets are disjoint, so the atlas (gencoord/atlas/atlas.hpp) can tumble through either. No gravity
  * by default, so energy and angular momentum are conserved.
  */
 
@@ -11946,7 +11946,7 @@ struct RigidBodyEulerYzx {
 };
 
 /// RigidBodyEulerAtlas: the atlas of model 'rigid_body_euler', 2 charts of
-/// the same particles, parameters and forces. gencoord/atlas.hpp integrates in one chart and
+/// the same particles, parameters and forces. gencoord/atlas/atlas.hpp integrates in one chart and
 /// moves the state to a better-conditioned chart near a coordinate singularity.
 struct RigidBodyEulerAtlas {
   static constexpr const char* name = "rigid_body_euler";

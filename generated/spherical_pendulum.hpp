@@ -56,7 +56,7 @@
  * An atlas of two charts keeps the simulation going through the poles: chart 'pole_down'
  * (above) and chart 'pole_x', spherical coordinates about the x axis,
  * x = l (cos(alpha), sin(alpha) cos(beta), sin(alpha) sin(beta)), singular only where the bob
- * is on the x axis. No configuration is singular in both, so gencoord/atlas.hpp can always
+ * is on the x axis. No configuration is singular in both, so gencoord/atlas/atlas.hpp can always
  * move to a well-conditioned chart.
  */
 
@@ -2401,7 +2401,7 @@ struct SphericalPendulumPoleX {
 };
 
 /// SphericalPendulumAtlas: the atlas of model 'spherical_pendulum', 2 charts of
-/// the same particles, parameters and forces. gencoord/atlas.hpp integrates in one chart and
+/// the same particles, parameters and forces. gencoord/atlas/atlas.hpp integrates in one chart and
 /// moves the state to a better-conditioned chart near a coordinate singularity.
 struct SphericalPendulumAtlas {
   static constexpr const char* name = "spherical_pendulum";

@@ -174,6 +174,20 @@ BODIES = {
         'theta = model.coordinate("theta", "angle from the downward vertical (rad)")\n'
         f'bar = model.body("bar", mass=1, inertia=-0.5, frame=Frame(theta, [0, -1]))  {MARK}\n',
         ["body 'bar'", "inertia is -0.5", "positive"]),
+    "frame_scaled_rotation": (
+        BODY_PREAMBLE.replace("rotation_z\n", "rotation_x, rotation_z\n")
+        + 'top = model.body("top", mass=1, inertia=Matrix.diag(1, 1, 1.5), '
+        f"frame=Frame(2 * rotation_z(phi) * rotation_x(0.3), [1, 0, 0]))  {MARK}\n",
+        ["body 'top'", "rotation is not orthonormal", "rotation_x/y/z"]),
+    "frame_reflection": (_body("mirror", "Matrix.diag(1, 1, 1.5)").replace(
+        "Frame(rotation_z(phi), ", "Frame(Matrix.diag(1, 1, -1) * rotation_z(phi), "),
+        ["body 'mirror'", "a reflection", "det R = -1"]),
+    "planar_frame_sheared": (
+        'from gencoord import Frame, Matrix, Model\nmodel = Model(dim=2)\n'
+        'theta = model.coordinate("theta", "angle from the downward vertical (rad)")\n'
+        'bar = model.body("bar", mass=1, inertia=0.5, '
+        f"frame=Frame(Matrix([[1, theta], [0, 1]]), [0, -1]))  {MARK}\n",
+        ["body 'bar'", "not orthonormal"]),
     "torque_on_a_particle": (
         _torque_on("bob", 'bob = model.particle("bob", mass=1, position=[1, phi, 0])\n'),
         ["torque 'on bob'", "not on particle 'bob'", "model.force()"]),
@@ -186,6 +200,25 @@ BODIES = {
         _torque_on('"lump"', 'lump = model.body("lump", mass=1, inertia=Matrix.diag(1, 1, 1), '
                    "frame=Frame(rotation_z(phi), [1, 0, 0]))\n"),
         ["torque 'on lump'", "acts on a body", "not on 'lump'"]),
+}
+
+# --- declarations that make no sense, and descriptions that cannot be printed -----------------
+DECLARATIONS = {
+    "gravity_as_a_word": (PREAMBLE + BOB + f'model.gravity("down")  {MARK}\n',
+                          ["gravity", "'down', not a vector", "a list of 2"]),
+    "spring_to_itself": (PREAMBLE + BOB + f"model.spring(bob, bob, 10, 1)  {MARK}\n",
+                         ["spring 'bob-bob'", "to itself"]),
+    "damper_to_itself": (PREAMBLE + BOB + f"model.damper(bob, bob, 0.5)  {MARK}\n",
+                         ["to itself"]),
+    "description_with_a_line_break": (
+        PREAMBLE + f'phi = model.coordinate("phi", "first line\\nsecond")  {MARK}\n'
+        + BOB.replace("theta", "theta + phi"), ["coordinate 'phi'", "line break"]),
+    "description_ending_in_a_backslash": (
+        PREAMBLE + f'phi = model.coordinate("phi", "an angle \\\\")  {MARK}\n'
+        + BOB.replace("theta", "theta + phi"), ["coordinate 'phi'", "backslash"]),
+    "description_not_text": (
+        PREAMBLE + f'k = model.parameter("k", 1.0, 3.5)  {MARK}\n' + BOB.replace(
+            "mass=1", "mass=k"), ["parameter 'k'", "description is 3.5, not text"]),
 }
 
 # --- accepted: each must generate, and its header compile (test_name_clashes.py) -------------

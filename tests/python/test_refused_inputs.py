@@ -85,6 +85,9 @@ class RefusedInputTest(unittest.TestCase):
     def test_bodies_and_torques(self):
         self.check_table(refused_cases.BODIES)
 
+    def test_declarations_and_descriptions(self):
+        self.check_table(refused_cases.DECLARATIONS)
+
     def test_float_option_that_is_not_finite(self):
         path = self.write("scaled", refused_cases.PREAMBLE + (
             'scale = model.option("scale", 1.0, "a length (m)")  ' + MARK + "\n"

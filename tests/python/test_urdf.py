@@ -228,6 +228,11 @@ class UrdfRefusalTest(unittest.TestCase):
             '\n  <limit lower="nan" upper="1"/>' + HERE)))
         self.refuse(text, "joint 'j'", "not finite")
 
+    def test_reversed_limits(self):
+        text = robot(link("a"), link("b"), joint("j", "a", "b", extra=(
+            '\n  <limit lower="2" upper="1" effort="1" velocity="1"/>' + HERE)))
+        self.refuse(text, "joint 'j'", '<limit lower="2" upper="1"> is reversed')
+
     def test_duplicate_names(self):
         self.refuse(robot(link("a"), link("a", mark=HERE)), "link 'a'", "a second link")
         self.refuse(robot(link("a"), link("b"), link("c"), joint("j", "a", "b"),

@@ -6,11 +6,12 @@ from __future__ import annotations
 import sympy as sp
 from sympy.core.function import AppliedUndef
 
+from gencoord.checks.rotations import rotation_problem
 from gencoord.errors import ModelError
 from gencoord.symbolic.emittable import expression_problem
 from gencoord.dsl.bodies import inertia_problem
 from gencoord.dsl.model import Model
-from gencoord.dsl.items import Body, Pin, Point, Rod
+from gencoord.dsl.items import Body, Damper, Pin, Point, Rod, Spring
 from gencoord.cxx.reserved_names import name_problem
 
 
@@ -106,8 +107,14 @@ _DECLARE = "declare it with model.parameter() or model.coordinate()"
 def _check_expressions(model: Model, defaults: dict) -> None:
     symbols = _Symbols(model)
     kinematic = symbols.q | symbols.t | symbols.params
+    composed = {id(link.body) for link in model.links}  # joints.py's frames are rotations
     for body in model.bodies:
         _check_body(body, defaults, symbols.check, kinematic, symbols.params)
+        if id(body) not in composed:
+            variables = [*(c.symbol for c in model.coordinates), model.time]
+            problem = rotation_problem(body.frame.rotation, variables, defaults)
+            if problem:
+                raise ModelError(problem, item=body.label(), line=body.line)
     for torque in model.torques:
         symbols.check(torque.torque, symbols.q | symbols.rates | symbols.t | symbols.forcing,
                       torque.label(), torque.line,
@@ -216,6 +223,33 @@ def _check_positive_mass(particle, defaults: dict) -> None:
                          line=particle.line)
 
 
+def _check_descriptions(model: Model) -> None:
+    """Descriptions are printed into one-line C++ comments (`/// ...`): one line of text,
+    not ending in a backslash, which would continue the comment onto the next line."""
+    described = [(c.label(), c.description, c.line) for c in model.coordinates]
+    described += [(p.label(), p.description, p.line) for p in model.parameters]
+    for label, text, line in described:
+        if not isinstance(text, str):
+            raise ModelError(f"description is {text!r}, not text; give a string",
+                             item=label, line=line)
+        if any(ord(character) < 32 for character in text):
+            raise ModelError("description has a line break or another control character; "
+                             "write it on one line", item=label, line=line)
+        if text.rstrip().endswith("\\"):
+            raise ModelError("description ends in a backslash, which would continue the C++ "
+                             "comment it is printed in; remove it", item=label, line=line)
+
+
+def _check_connections(model: Model) -> None:
+    """A spring, damper or rod joins two different points."""
+    joined: list[Spring | Damper | Rod] = [*model.springs, *model.dampers]
+    joined += [c for c in model.constraints if isinstance(c, Rod)]
+    for item in joined:
+        if item.a is item.b:
+            raise ModelError(f"connects {item.a.label()} to itself; give two different points",
+                             item=item.label(), line=item.line)
+
+
 def _check_rest_lengths(model: Model, defaults: dict) -> None:
     """The strain spring divides by its rest length: it must be positive (when it is a
     number with the default parameters; one that varies with t is the model's to keep so)."""
@@ -250,6 +284,8 @@ def validate(model: Model) -> None:
         raise ModelError("the model declares no particles; add model.particle(...)",
                          item="model", line=model.line)
     _check_names(model)
+    _check_descriptions(model)
+    _check_connections(model)
     defaults = _default_values(model)
     _check_expressions(model, defaults)
     _check_rest_lengths(model, defaults)

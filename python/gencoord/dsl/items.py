@@ -248,6 +248,13 @@ class Plane(Item):
 
 def as_vector(values: Iterable, what: str, dim: int, line: int | None) -> sp.Matrix:
     try:
+        is_sequence = not isinstance(values, (str, bytes)) and iter(values) is not None
+    except TypeError:
+        is_sequence = False
+    if not is_sequence:
+        raise ModelError(f"is {values!r}, not a vector; give a list of {dim} numbers or "
+                         "expressions", item=what, line=line)
+    try:
         vector = sp.Matrix([sp.sympify(value) for value in values])
     except (TypeError, sp.SympifyError) as error:
         raise ModelError(f"is not a vector of expressions ({error})", item=what, line=line)

@@ -146,6 +146,10 @@ def _limits(xml: XmlFile, joint: ET.Element, item: str) -> Limits | None:
         # URDF's defaults for a ranged joint
         values = {key: 0.0 if value is None and key in ("lower", "upper") else value
                   for key, value in values.items()}
+    lower, upper = values["lower"], values["upper"]
+    if lower is not None and upper is not None and lower > upper:
+        raise xml.error(f"<limit lower=\"{limit.get('lower')}\" upper=\"{limit.get('upper')}\">"
+                        " is reversed: lower must not exceed upper", limit, item)
     return Limits(**values)
 
 
