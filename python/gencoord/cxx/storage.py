@@ -4,7 +4,7 @@
 Fixed-size Eigen objects live on the stack, and Eigen refuses one above 128 KiB (its
 EIGEN_STACK_ALLOCATION_LIMIT): a 100-link planar chain's J alone is 200 x 100 doubles,
 160 KiB. A type within the limit is a fixed-size Eigen::Matrix; one beyond it is
-gencoord::HeapMatrix (runtime/include/gencoord/heap_matrix.hpp), the same sizes on the heap,
+gencoord::HeapMatrix (runtime/include/gencoord/model/heap_matrix.hpp), the same sizes on the heap,
 which default-constructs at its size like a fixed-size matrix.
 """
 
