@@ -36,6 +36,8 @@ EXITS = {
     "raise_system_exit": (PREAMBLE + BOB + f"raise SystemExit  {MARK}\n", ["exited"]),
     "exit_with_message": (PREAMBLE + BOB + f'raise SystemExit("done")  {MARK}\n',
                           ["exited", "done"]),
+    "os_exit_0": (PREAMBLE + BOB + f"import os\ntry:\n    os._exit(0)  {MARK}\n"
+                  "except Exception:\n    pass\n", ["called os._exit(0)"]),
 }
 
 # --- names: keywords, library macros, what the generated code declares -----------------------

@@ -73,6 +73,25 @@ class InterruptTest(unittest.TestCase):
         self.assertEqual(result.stderr.strip(), "gencoord: interrupted")
 
 
+class HangTest(unittest.TestCase):
+
+    def test_a_model_that_ignores_the_time_limit_ends_in_one_line(self):
+        """The load limit's signal can be ignored; the watchdog still ends the run."""
+        with tempfile.TemporaryDirectory(prefix="gencoord-hang-") as scratch:
+            model = Path(scratch) / "stubborn.py"
+            model.write_text("import signal\nsignal.signal(signal.SIGALRM, signal.SIG_IGN)\n"
+                             + PREAMBLE + BOB + "while True:\n    pass\n")
+            result = subprocess.run([sys.executable, str(REPO / "generate"), str(model),
+                                     "-o", str(Path(scratch) / "out"), "--load-timeout", "1"],
+                                    capture_output=True, text=True, timeout=120,
+                                    env=dict(os.environ, PYTHONHASHSEED="0"))
+            self.assertEqual(result.returncode, 1, result.stderr)
+            self.assertEqual(len(result.stderr.strip().splitlines()), 1, result.stderr)
+            self.assertIn(f"{model}: error: the model file still ran 1 s", result.stderr)
+            self.assertIn("did not stop", result.stderr)
+            self.assertFalse((Path(scratch) / "out").exists())
+
+
 class ToolErrorTest(unittest.TestCase):
 
     def test_help_says_a_model_file_runs_with_the_users_rights(self):

@@ -21,6 +21,7 @@ from gencoord.checks.atlas import check_atlas
 from gencoord.generate.cli import main as generate_main
 from gencoord.errors import ModelError
 from gencoord.urdf.description import read_urdf
+from gencoord.urdf.load import urdf_model
 
 from .support import MODELS, describe, run_generate
 
@@ -227,6 +228,20 @@ class UrdfRefusalTest(unittest.TestCase):
         text = robot(link("a"), link("b"), joint("j", "a", "b", extra=(
             '\n  <limit lower="nan" upper="1"/>' + HERE)))
         self.refuse(text, "joint 'j'", "not finite")
+
+    def test_no_link_with_a_mass(self):
+        self.refuse(robot(f'<link name="a"/>{HERE}', '<link name="b"/>', joint("j", "a", "b")),
+                    "no link of the robot has a mass", "<inertial>")
+
+    def test_a_long_comment_is_read_in_one_piece(self):
+        """A valid URDF behind a 5 MB comment loads (fed to expat in blocks, the comment was
+        rescanned at every block: minutes for a few megabytes)."""
+        text = robot(link("a"), link("b"), joint("j", "a", "b"))
+        path = self.folder / "commented.urdf"
+        declaration, _, rest = text.partition("\n")
+        path.write_text(f"{declaration}\n<!-- {'x' * 5_000_000} -->\n{rest}", encoding="utf-8")
+        model = urdf_model(str(path))
+        self.assertEqual([link.name for link in model.links], ["a", "b"])
 
     def test_reversed_limits(self):
         text = robot(link("a"), link("b"), joint("j", "a", "b", extra=(

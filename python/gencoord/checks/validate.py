@@ -280,6 +280,10 @@ def validate(model: Model) -> None:
     if not model.coordinates:
         raise ModelError("the model declares no coordinates; add model.coordinate(...)",
                          item="model", line=model.line)
+    if not model.particles and model.links:
+        raise ModelError("no link of the robot has a mass: give at least one link an "
+                         "<inertial> with <mass> and <inertia> (or model.body(...) in a model "
+                         "file)", item="model", line=model.line)
     if not model.particles:
         raise ModelError("the model declares no particles; add model.particle(...)",
                          item="model", line=model.line)

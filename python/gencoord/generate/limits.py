@@ -14,6 +14,7 @@ from __future__ import annotations
 import contextlib
 import signal
 import threading
+from typing import Callable
 
 import sympy as sp
 
@@ -21,6 +22,7 @@ SECONDS_AT_50 = 9.0      # a model that is no tree, at nq = 50: CPU
 TREE_SECONDS_AT_100 = 10.0  # a tree at nq = 100 (the n-link chain), CPU
 TREE_EXPONENT = 1.3         # the chain's growth from 100 to 1000 links
 WARN_SECONDS = 180.0     # expected generation time that earns a warning
+HANG_GRACE = 5.0         # seconds a body may take to stop once its time is up
 NODE_LIMIT = 200_000     # expression nodes in the positions beyond which a warning is due
 
 
@@ -30,9 +32,12 @@ class LoadTimeout(BaseException):
 
 
 @contextlib.contextmanager
-def wall_clock_limit(seconds: float | None):
+def wall_clock_limit(seconds: float | None, on_hang: Callable[[], None] | None = None):
     """Raises LoadTimeout inside the body after `seconds` (None or 0: no limit; where
-    signals cannot be used, not the main thread, the body runs to its end)."""
+    signals cannot be used, not the main thread, the body runs to its end). A body that
+    ignores the signal (it replaced the handler, or catches BaseException) is still running
+    HANG_GRACE seconds later: then `on_hang` is called from another thread, to end the
+    process with a message."""
     if not (seconds and hasattr(signal, "setitimer")
             and threading.current_thread() is threading.main_thread()):
         yield
@@ -41,11 +46,19 @@ def wall_clock_limit(seconds: float | None):
     def expire(signum, frame):
         raise LoadTimeout()
 
+    finished, patience = threading.Event(), seconds + HANG_GRACE
+
+    def watch() -> None:
+        if not finished.wait(patience) and on_hang is not None:
+            on_hang()
+
     previous = signal.signal(signal.SIGALRM, expire)
     signal.setitimer(signal.ITIMER_REAL, seconds)
+    threading.Thread(target=watch, daemon=True, name="gencoord-load-watchdog").start()
     try:
         yield
     finally:
+        finished.set()
         signal.setitimer(signal.ITIMER_REAL, 0)
         signal.signal(signal.SIGALRM, previous)
 

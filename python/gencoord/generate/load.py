@@ -3,8 +3,10 @@
 
 from __future__ import annotations
 
+import contextlib
 import os
 import re
+import sys
 
 from gencoord.errors import ModelError, model_file_line
 from gencoord.generate.limits import LoadTimeout, wall_clock_limit
@@ -59,6 +61,75 @@ def _compiled(path: str):
         raise ModelError(f"not a Python source file ({error})", filename=path) from None
 
 
+_END_PROCESS = os._exit  # the real one, which _exits_reported replaces while a model file runs
+
+
+class _ProcessExit(BaseException):
+    """os._exit called by a model file; a BaseException, which its `except Exception`
+    cannot swallow."""
+
+    def __init__(self, status):
+        super().__init__(status)
+        self.status = status
+
+
+@contextlib.contextmanager
+def _exits_reported():
+    """While a model file runs, os._exit raises instead of ending the process at once with
+    no header and no word."""
+    original = os._exit
+
+    def refuse(status):
+        raise _ProcessExit(status)
+    os._exit = refuse  # type: ignore[assignment]  # restored below; typed NoReturn in typeshed
+    try:
+        yield
+    finally:
+        os._exit = original
+
+
+def _hung(path: str, timeout: float | None) -> None:
+    """The end of a model file that does not stop at its time limit: one line, exit 1."""
+    print(f"{path}: error: the model file still ran {timeout:g} s after it started and did "
+          "not stop when told to (it ignores SIGALRM or catches every exception); look for "
+          "an endless loop, or raise the limit with --load-timeout", file=sys.stderr, flush=True)
+    _END_PROCESS(1)
+
+
+def _run(path: str, code, options: dict[str, str], timeout: float | None) -> dict:
+    """The namespace the model file (or URDF) leaves, every failure a ModelError."""
+    namespace: dict = {"__name__": "gencoord_model", "__file__": path}
+    # a URDF runs no user code: the wall-clock limit, meant for runaway model programs,
+    # would only refuse a large robot on a loaded machine
+    limit = None if code is None else timeout
+    try:
+        with requesting_options(options), _exits_reported(), \
+                wall_clock_limit(limit, on_hang=lambda: _hung(path, limit)):
+            if code is None:
+                namespace["model"] = urdf_model(path)
+            else:
+                exec(code, namespace)  # noqa: S102 - running the user's model file is the point
+    except LoadTimeout as error:
+        raise ModelError(f"the model file still ran after {timeout:g} s (here when stopped); "
+                         "a model file should take seconds: look for an endless loop or an "
+                         "option too large, or raise the limit with --load-timeout",
+                         filename=path, line=model_file_line(path, error)) from None
+    except ModelError as error:
+        line = error.line if error.line else model_file_line(path, error)
+        raise error.located(path, line) from None
+    except (SystemExit, _ProcessExit) as error:
+        # a model that exits would otherwise end generation with status 0 and no header
+        how = (f"called os._exit({error.status!r})" if isinstance(error, _ProcessExit)
+               else f"exited (SystemExit({error.code!r}))")
+        raise ModelError(f"the model file {how} before it finished; a model file must run "
+                         "to its end and assign 'model'", filename=path,
+                         line=model_file_line(path, error)) from None
+    except Exception as error:  # the model file's own bug: report it at its line
+        raise ModelError(f"{type(error).__name__}: {error}", filename=path,
+                         line=model_file_line(path, error)) from None
+    return namespace
+
+
 def load_model(path: str, options: dict[str, str] | None = None, name: str | None = None,
                timeout: float | None = GenerateOptions.load_timeout) -> tuple[Model, str, str]:
     """Executes `path` and returns (model, name, docstring); `name` replaces the file's stem
@@ -73,31 +144,7 @@ def load_model(path: str, options: dict[str, str] | None = None, name: str | Non
     is_urdf = path.lower().endswith(".urdf")
     code = None if is_urdf else _compiled(path)
 
-    namespace: dict = {"__name__": "gencoord_model", "__file__": path}
-    try:
-        with requesting_options(options or {}), wall_clock_limit(timeout):
-            if is_urdf:
-                namespace["model"] = urdf_model(path)
-            else:
-                assert code is not None  # compiled above: not a URDF
-                exec(code, namespace)  # noqa: S102 - running the user's model file is the point
-    except LoadTimeout as error:
-        raise ModelError(f"the model file still ran after {timeout:g} s (here when stopped); "
-                         "a model file should take seconds: look for an endless loop or an "
-                         "option too large, or raise the limit with --load-timeout",
-                         filename=path, line=model_file_line(path, error)) from None
-    except ModelError as error:
-        line = error.line if error.line else model_file_line(path, error)
-        raise error.located(path, line) from None
-    except SystemExit as error:
-        # a model that exits would otherwise end generation with status 0 and no header
-        raise ModelError(f"the model file exited (SystemExit({error.code!r})) before it "
-                         "finished; a model file must run to its end and assign 'model'",
-                         filename=path, line=model_file_line(path, error)) from None
-    except Exception as error:  # the model file's own bug: report it at its line
-        raise ModelError(f"{type(error).__name__}: {error}", filename=path,
-                         line=model_file_line(path, error)) from None
-
+    namespace = _run(path, code, options or {}, timeout)
     model = namespace.get("model")
     if not isinstance(model, Model):
         raise ModelError("the file must assign a gencoord Model to a variable named 'model' "

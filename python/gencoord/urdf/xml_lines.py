@@ -36,7 +36,10 @@ class XmlFile:
         parser.CommentHandler = comment
         try:
             with open(path, "rb") as handle:
-                parser.ParseFile(handle)
+                data = handle.read()
+            # in one piece: fed in blocks, expat rescans a long token (a 5 MB comment) at every
+            # block, which is quadratic
+            parser.Parse(data, True)
         except OSError as error:
             raise ModelError(f"cannot read the file: {error.strerror}", filename=path) from None
         except expat.ExpatError as error:
