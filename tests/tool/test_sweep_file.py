@@ -252,6 +252,22 @@ class SweepFileTest(unittest.TestCase):
             "from = -1, to = 1", "from = -1, to = 1, points = 3"), 20,
             "samples.q.theta1.points", "unknown key", "takes from, to")
 
+    def test_numbers_a_double_cannot_hold(self):
+        self.assertFileError(self.replaced("points = 3", "points = 1000000000000"), 19,
+                             "samples.q.theta1.points", "more than the 100000000 samples")
+        huge = self.replaced('from = "-pi", to = "pi", points = 3',
+                             "from = -1e308, to = 1e308, points = 3")
+        self.assertFileError(huge, 19, "samples.q.theta1", "spacing overflows")
+        wide = self.random_file("monte_carlo").replace("from = -1, to = 1",
+                                                       "from = -1e308, to = 1e308")
+        self.assertFileError(wide, 20, "samples.q.theta1", "wider than a double holds")
+        seeded = self.random_file("monte_carlo").replace("seed = 7", f"seed = {2**63}")
+        self.assertFileError(seeded, 17, "samples.seed", "at most 2^63 - 1")
+        nested = self.replaced("dt = 0.01", 'dt = "' + "(" * 5000 + "0.01" + ")" * 5000 + '"')
+        self.assertFileError(nested, 8, "integration.dt", "characters")
+        deep = self.replaced("dt = 0.01", 'dt = "' + "-" * 995 + '0.01"')
+        self.assertFileError(deep, 8, "integration.dt", "nested too deeply")
+
     def test_names(self):
         self.assertFileError(self.replaced("g = 9.81", "gravity = 9.81"), 4,
                              "model.parameters.gravity", "has no parameter 'gravity'",

@@ -9,6 +9,7 @@ import math
 import operator
 from typing import Callable
 
+MAX_TEXT = 1000  # characters of arithmetic in one number: "pi/2" needs few
 _CONSTANTS = {"pi": math.pi, "tau": math.tau, "e": math.e}
 _BINARY = {ast.Add: operator.add, ast.Sub: operator.sub, ast.Mult: operator.mul,
            ast.Div: operator.truediv, ast.Pow: operator.pow}
@@ -48,12 +49,18 @@ def parse_number(value) -> float:
     if isinstance(value, (int, float)):
         result = float(value)
     elif isinstance(value, str):
+        if len(value) > MAX_TEXT:
+            raise NotANumber(f"a number of {len(value)} characters; write it in at most "
+                             f"{MAX_TEXT}")
         try:
             tree = ast.parse(value.strip(), mode="eval")
+            result = value_of(tree.body)
         except SyntaxError:
             raise NotANumber(f"'{value}' is not a number or arithmetic such as \"-pi/2\"") \
                 from None
-        result = value_of(tree.body)
+        except (RecursionError, MemoryError):  # parentheses nested thousands deep
+            raise NotANumber("the arithmetic is nested too deeply; write the number out") \
+                from None
     else:
         raise NotANumber(f"expects a number (or a string such as \"pi/2\"), got {value!r}")
     if not math.isfinite(result):

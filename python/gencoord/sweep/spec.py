@@ -19,6 +19,7 @@ INTEGRATORS = ("forward_euler", "symplectic_euler", "rk4", "backward_euler", "tr
 METHODS = ("grid", "latin_hypercube", "monte_carlo")
 KINDS = ("q", "v", "parameters")  # what a sampled variable sets, in the order they vary
 MAX_SAMPLES = 100_000_000
+MAX_SEED = 2**63 - 1  # the result file holds the seed as a signed 64-bit integer
 DEFAULT_CHUNK = 256
 ERROR_BYTES = 64  # a sample's error text, as the program stores it
 MPI_MESSAGE_BYTES = 2**31 - 1  # MPI counts a message's bytes in an int
@@ -166,9 +167,15 @@ def _variable(reader: _Reader, key: Key, spec, method: str) -> Variable:
         low = reader.number(key + ("from",), table["from"])
         high = reader.number(key + ("to",), table["to"])
         points = reader.integer(key + ("points",), table["points"], 1)
+        if points > MAX_SAMPLES:
+            reader.fail(key + ("points",), f"{points} points is more than the {MAX_SAMPLES} "
+                        "samples a sweep may have; split the sweep into several files")
         if points == 1:
             return Variable(kind, name, key, values=(low,))
         step = (high - low) / (points - 1)
+        if not math.isfinite(step):
+            reader.fail(key, f"the points from {low!r} to {high!r} are not finite numbers "
+                        "(their spacing overflows); give a range of at most about 1e308")
         # numpy.linspace's points: low + k step, and the last one exactly `high`
         values = tuple(low + k * step for k in range(points - 1)) + (high,)
         return Variable(kind, name, key, values=values)
@@ -179,6 +186,9 @@ def _variable(reader: _Reader, key: Key, spec, method: str) -> Variable:
     high = reader.number(key + ("to",), table["to"])
     if not high >= low:
         reader.fail(key + ("to",), f"expects to >= from, got from = {low!r}, to = {high!r}")
+    if not math.isfinite(high - low):
+        reader.fail(key, f"the range from {low!r} to {high!r} is wider than a double holds; "
+                    "give a range of at most about 1e308")
     return Variable(kind, name, key, low=low, high=high)
 
 
@@ -204,6 +214,9 @@ def _samples(reader: _Reader, data: dict):
     else:
         count = reader.integer(key + ("count",), reader.required(table, key + ("count",)), 1)
         seed = reader.integer(key + ("seed",), reader.required(table, key + ("seed",)), 0)
+        if seed > MAX_SEED:
+            reader.fail(key + ("seed",), f"expects a seed of at most 2^63 - 1 = {MAX_SEED} "
+                        f"(the result file records it as a 64-bit integer), got {seed}")
     if count > MAX_SAMPLES:
         reader.fail(key, f"{count} samples is more than {MAX_SAMPLES}; split the sweep into "
                          "several files")
