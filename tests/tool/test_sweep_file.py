@@ -267,6 +267,8 @@ class SweepFileTest(unittest.TestCase):
         self.assertFileError(nested, 8, "integration.dt", "characters")
         deep = self.replaced("dt = 0.01", 'dt = "' + "-" * 995 + '0.01"')
         self.assertFileError(deep, 8, "integration.dt", "nested too deeply")
+        tiny = self.replaced("dt = 0.01", "dt = 1e-12")
+        self.assertFileError(tiny, 8, "integration.dt", "2e+12 steps", "raise dt")
 
     def test_names(self):
         self.assertFileError(self.replaced("g = 9.81", "gravity = 9.81"), 4,

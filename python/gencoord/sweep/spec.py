@@ -19,6 +19,7 @@ INTEGRATORS = ("forward_euler", "symplectic_euler", "rk4", "backward_euler", "tr
 METHODS = ("grid", "latin_hypercube", "monte_carlo")
 KINDS = ("q", "v", "parameters")  # what a sampled variable sets, in the order they vary
 MAX_SAMPLES = 100_000_000
+MAX_STEPS = 10**9  # steps of one sample
 MAX_SEED = 2**63 - 1  # the result file holds the seed as a signed 64-bit integer
 DEFAULT_CHUNK = 256
 ERROR_BYTES = 64  # a sample's error text, as the program stores it
@@ -143,6 +144,12 @@ def _steps(reader: _Reader, dt: float, t_end: float) -> int:
     if not t_end > 0:
         reader.fail(("integration", "t_end"), f"expects a positive end time, got {t_end!r}")
     steps = round(t_end / dt)
+    if steps > MAX_STEPS:
+        reader.fail(("integration", "dt"),
+                    f"dt = {dt!r} makes {steps:.3g} steps of each sample to t_end = {t_end!r}, "
+                    f"more than the {MAX_STEPS:.0e} a sweep allows (at tens of nanoseconds a "
+                    "step, 10^9 steps are a minute of CPU per sample); raise dt or shorten "
+                    "t_end")
     if abs(steps * dt - t_end) > 1e-6 * dt:  # as the runtime's step_count() demands
         reader.fail(("integration", "t_end"),
                     f"t_end = {t_end!r} is not a whole number of steps of dt = {dt!r} "
