@@ -12,15 +12,17 @@ from __future__ import annotations
 import dataclasses
 import shlex
 from dataclasses import dataclass
-from typing import Any
+from typing import Any, Callable
 
 DYNAMICS_CHOICES = ("auto", "dense", "recursive")
 
 
-def _knob(default: Any, help: str, flag: str | None = None, metavar: str | None = None):
-    """A field with its documentation; `flag` is its command-line option, if it has one."""
-    return dataclasses.field(default=default,
-                             metadata={"help": help, "flag": flag, "metavar": metavar})
+def _knob(default: Any, help: str, flag: str | None = None, metavar: str | None = None,
+          parse: Callable[[str], Any] | None = None):
+    """A field with its documentation; `flag` is its command-line option, if it has one,
+    whose text `parse` turns into the field's value."""
+    return dataclasses.field(default=default, metadata={"help": help, "flag": flag,
+                                                        "metavar": metavar, "parse": parse})
 
 
 @dataclass(frozen=True)
@@ -32,27 +34,27 @@ class GenerateOptions:
         None, "emit a kernel of more statements as several functions, which keeps C++ compile "
         "time near linear (default: part_statements, or large_tree_part_statements for a tree "
         "of loop_min_nq coordinates or more; 0: never)",
-        "--max-function-statements", "N")
+        "--max-function-statements", "N", int)
     loop_min_nq: int = _knob(
         40, "a tree of N coordinates or more gets Mt, J and the residual Jacobians as loops "
         "over O(nq) products, so that their code grows like nq, not nq^2. Unrolled, the "
         "outputs run faster (composite bodies take O(1) per entry of Mt) and, for a few dozen "
         "coordinates, still generate in seconds; past that their n^2 code dominates",
-        "--loop-min-nq", "N")
+        "--loop-min-nq", "N", int)
     translation_units: int = _knob(
         0, "compile the kernels for double in N source files of their own "
         "(DIR/<name>_double_K.cpp), which build in parallel; the header declares them extern "
-        "template (0: header only)", "--translation-units", "N")
+        "template (0: header only)", "--translation-units", "N", int)
     name: str | None = _knob(
         None, "the model's name instead of the file's stem (the header NAME.hpp, the C++ "
-        "type; option values are still appended): a C++ identifier", "--name", "NAME")
+        "type; option values are still appended): a C++ identifier", "--name", "NAME", str)
     dynamics: str = _knob(
         "auto", "qddot and inverse_dynamics of a model that is a tree (of particles, or of "
         "bodies joined by joints): by the O(nq) recursions, dense (Mt, Ft + Fi), or auto: "
-        "whichever takes fewer operations", "--dynamics", "{auto,dense,recursive}")
+        "whichever takes fewer operations", "--dynamics", "{auto,dense,recursive}", str)
     load_timeout: float | None = _knob(
         60.0, "stop with an error when running the model file takes longer than this many "
-        "seconds of wall-clock time (0: no limit)", "--load-timeout", "SECONDS")
+        "seconds of wall-clock time (0: no limit)", "--load-timeout", "SECONDS", float)
     # Knobs without a flag: measured trade-offs (docs/performance.md), fixed for a release.
     flat_max_nq: int = _knob(
         3, "up to this many coordinates every output is one flat expression, which lets SymPy "

@@ -51,9 +51,8 @@ def _add_knob_flags(parser: argparse.ArgumentParser) -> None:
         flag = knob.metadata["flag"]
         if not flag:
             continue
-        kind = str if knob.name == "name" else (float if knob.name == "load_timeout" else int)
         extra: dict[str, Any] = {"choices": DYNAMICS_CHOICES} if knob.name == "dynamics" else {
-            "type": kind, "metavar": knob.metadata["metavar"]}
+            "type": knob.metadata["parse"], "metavar": knob.metadata["metavar"]}
         default = "" if knob.default is None else f" (default {knob.default})"
         parser.add_argument(flag, dest=knob.name, default=knob.default,
                             help=knob.metadata["help"] + default, **extra)

@@ -14,6 +14,7 @@ import os
 import sys
 
 from gencoord import __version__
+from gencoord.generate.cli import write_atomically
 from gencoord.tool.layout import Layout, cache_dir
 from gencoord.tool.runtime_build import runtime_key, runtime_targets_dir
 
@@ -45,27 +46,16 @@ endif()
 """
 
 
-def _write_if_changed(path: str, text: str) -> None:
-    if os.path.isfile(path):
-        with open(path, encoding="utf-8") as handle:
-            if handle.read() == text:
-                return
-    with open(path + ".partial", "w", encoding="utf-8") as handle:
-        handle.write(text)
-    os.replace(path + ".partial", path)
-
-
 def cmake_package_dir(layout: Layout, *, verbose: bool = False) -> str:
     if not layout.source_dir:
         assert layout.prefix is not None  # without a source_dir, an installation's prefix
         return os.path.join(layout.prefix, "lib", "cmake", "gencoord")
     targets_dir = runtime_targets_dir(layout, verbose=verbose)
     folder = os.path.join(cache_dir(), f"cmake-{runtime_key(layout.source_dir)}")
-    os.makedirs(folder, exist_ok=True)
     major, minor = __version__.split(".")[:2]
-    _write_if_changed(os.path.join(folder, "gencoordConfig.cmake"),
-                      _CONFIG.format(source_dir=layout.source_dir, targets_dir=targets_dir,
-                                     python=sys.executable))
-    _write_if_changed(os.path.join(folder, "gencoordConfigVersion.cmake"),
-                      _VERSION.format(version=__version__, major=major, minor=minor))
+    write_atomically(os.path.join(folder, "gencoordConfig.cmake"),
+                     _CONFIG.format(source_dir=layout.source_dir, targets_dir=targets_dir,
+                                    python=sys.executable))
+    write_atomically(os.path.join(folder, "gencoordConfigVersion.cmake"),
+                     _VERSION.format(version=__version__, major=major, minor=minor))
     return folder
