@@ -52,10 +52,11 @@ namespace models {
 /// Fixed points (1; massless anchors, stacked in fixed_point_positions):
 ///   (0..2) = centre
 /// Kernels are static functions templated on Scalar; every one takes the parameters last.
-/// Equations of motion: mass_matrix(q, t) * qddot = forces(q, v, t).
+/// Equations of motion: mass_matrix(q, t) * dv/dt = forces(q, v, t).
 struct BeadOnRotatingHoop {
   static constexpr const char* name = "bead_on_rotating_hoop";
   static constexpr int nq = 1;
+  static constexpr int nv = 1;
   static constexpr int dim = 3;
   static constexpr int num_particles = 1;
   static constexpr int nx = dim * num_particles;
@@ -69,7 +70,7 @@ struct BeadOnRotatingHoop {
   static constexpr std::array<const char*, num_inputs> input_names{{}};
   /// A suggested initial state, from the model file.
   static constexpr std::array<double, nq> initial_q{{0.3}};
-  static constexpr std::array<double, nq> initial_v{{0.0}};
+  static constexpr std::array<double, nv> initial_v{{0.0}};
   static constexpr std::array<const char*, num_particles> particle_names{{"bead"}};
   static constexpr std::array<const char*, num_fixed_points> fixed_point_names{{"centre"}};
   /// Whether applied_forces at rest (v = 0) is -d(potential_energy)/dq: every force without
@@ -85,9 +86,15 @@ struct BeadOnRotatingHoop {
   template <typename Scalar>
   using QMatrix = Eigen::Matrix<Scalar, nq, nq>;
   template <typename Scalar>
+  using VVector = Eigen::Matrix<Scalar, nv, 1>;
+  template <typename Scalar>
+  using VMatrix = Eigen::Matrix<Scalar, nv, nv>;
+  template <typename Scalar>
+  using VQMatrix = Eigen::Matrix<Scalar, nv, nq>;
+  template <typename Scalar>
   using XVector = Eigen::Matrix<Scalar, nx, 1>;
   template <typename Scalar>
-  using XJacobian = Eigen::Matrix<Scalar, nx, nq>;
+  using XJacobian = Eigen::Matrix<Scalar, nx, nv>;
   template <typename Scalar>
   using SpaceVector = Eigen::Matrix<Scalar, dim, 1>;
   template <typename Scalar>
@@ -97,7 +104,7 @@ struct BeadOnRotatingHoop {
   template <typename Scalar>
   using FixedPointVector = Eigen::Matrix<Scalar, dim * num_fixed_points, 1>;
   template <typename Scalar>
-  using InputMatrix = Eigen::Matrix<Scalar, nq, num_inputs>;
+  using InputMatrix = Eigen::Matrix<Scalar, nv, num_inputs>;
 
   /// Model parameters; the defaults are the model file's.
   struct Params {
@@ -143,10 +150,10 @@ struct BeadOnRotatingHoop {
   /// \param[in] q  generalized coordinates (nq = 1)
   /// \param[in] t  time
   /// \param[in] params  model parameters
-  /// \return Mt (nq x nq)
+  /// \return Mt (nv x nv)
   /// Ops: 17
   template <typename Scalar>
-  static QMatrix<Scalar> mass_matrix(const QVector<Scalar>& q,
+  static VMatrix<Scalar> mass_matrix(const QVector<Scalar>& q,
                                      const Scalar& t,
                                      const Params& params) {
     using std::cos;
@@ -166,7 +173,7 @@ struct BeadOnRotatingHoop {
     const Scalar tmp59 = tmp56*(tmp2*tmp2);
     const Scalar tmp60 = (tmp1*tmp1);
     const Scalar tmp61 = m*(tmp57 + tmp58*tmp59 + tmp59*tmp60);
-    QMatrix<Scalar> result;
+    VMatrix<Scalar> result;
     result(0) = tmp61;
     return result;
   }
@@ -176,11 +183,11 @@ struct BeadOnRotatingHoop {
   /// \param[in] v  generalized velocities (nq = 1)
   /// \param[in] t  time
   /// \param[in] params  model parameters
-  /// \return Ft (nq)
+  /// \return Ft (nv)
   /// Ops: 7
   template <typename Scalar>
-  static QVector<Scalar> applied_forces(const QVector<Scalar>& q,
-                                        const QVector<Scalar>& v,
+  static VVector<Scalar> applied_forces(const QVector<Scalar>& q,
+                                        const VVector<Scalar>& v,
                                         const Scalar& /*t*/,
                                         const Params& params) {
     using std::sin;
@@ -195,7 +202,7 @@ struct BeadOnRotatingHoop {
     const Scalar tmp29 = c*theta_dot;
     const Scalar tmp62 = g*m;
     const Scalar tmp63 = tmp29 + tmp62*tmp8;
-    QVector<Scalar> result;
+    VVector<Scalar> result;
     result(0) = -tmp63;
     return result;
   }
@@ -205,17 +212,17 @@ struct BeadOnRotatingHoop {
   /// \param[in] v  generalized velocities (nq = 1)
   /// \param[in] t  time
   /// \param[in] params  model parameters
-  /// \return Q (nq)
+  /// \return Q (nv)
   /// Ops: 2
   template <typename Scalar>
-  static QVector<Scalar> generalized_forces(const QVector<Scalar>& /*q*/,
-                                            const QVector<Scalar>& v,
+  static VVector<Scalar> generalized_forces(const QVector<Scalar>& /*q*/,
+                                            const VVector<Scalar>& v,
                                             const Scalar& /*t*/,
                                             const Params& params) {
     const Scalar theta_dot = v(0);
     const Scalar c = Scalar(params.c);
     const Scalar tmp29 = c*theta_dot;
-    QVector<Scalar> result;
+    VVector<Scalar> result;
     result(0) = -tmp29;
     return result;
   }
@@ -225,11 +232,11 @@ struct BeadOnRotatingHoop {
   /// \param[in] v  generalized velocities (nq = 1)
   /// \param[in] t  time
   /// \param[in] params  model parameters
-  /// \return Fi (nq)
+  /// \return Fi (nv)
   /// Ops: 45
   template <typename Scalar>
-  static QVector<Scalar> inertial_forces(const QVector<Scalar>& q,
-                                         const QVector<Scalar>& v,
+  static VVector<Scalar> inertial_forces(const QVector<Scalar>& q,
+                                         const VVector<Scalar>& v,
                                          const Scalar& t,
                                          const Params& params) {
     using std::cos;
@@ -258,7 +265,7 @@ struct BeadOnRotatingHoop {
     const Scalar tmp16 = (theta_dot*theta_dot);
     const Scalar tmp56 = (R*R);
     const Scalar tmp64 = m*(tmp12*tmp4 + tmp15*tmp6 + tmp16*tmp2*tmp56*tmp7);
-    QVector<Scalar> result;
+    VVector<Scalar> result;
     result(0) = -tmp64;
     return result;
   }
@@ -268,11 +275,11 @@ struct BeadOnRotatingHoop {
   /// \param[in] v  generalized velocities (nq = 1)
   /// \param[in] t  time
   /// \param[in] params  model parameters
-  /// \return Ft + Fi (nq)
+  /// \return Ft + Fi (nv)
   /// Ops: 50
   template <typename Scalar>
-  static QVector<Scalar> forces(const QVector<Scalar>& q,
-                                const QVector<Scalar>& v,
+  static VVector<Scalar> forces(const QVector<Scalar>& q,
+                                const VVector<Scalar>& v,
                                 const Scalar& t,
                                 const Params& params) {
     using std::cos;
@@ -307,7 +314,7 @@ struct BeadOnRotatingHoop {
     const Scalar tmp63 = tmp29 + tmp62*tmp8;
     const Scalar tmp64 = m*(tmp12*tmp4 + tmp15*tmp6 + tmp16*tmp2*tmp56*tmp7);
     const Scalar tmp65 = tmp63 + tmp64;
-    QVector<Scalar> result;
+    VVector<Scalar> result;
     result(0) = -tmp65;
     return result;
   }
@@ -321,11 +328,11 @@ struct BeadOnRotatingHoop {
   /// Ops: 61
   template <typename Scalar>
   static void dynamics(const QVector<Scalar>& q,
-                       const QVector<Scalar>& v,
+                       const VVector<Scalar>& v,
                        const Scalar& t,
                        const Params& params,
-                       QMatrix<Scalar>* Mt,
-                       QVector<Scalar>* f) {
+                       VMatrix<Scalar>* Mt,
+                       VVector<Scalar>* f) {
     using std::cos;
     using std::sin;
     const Scalar theta = q(0);
@@ -374,12 +381,12 @@ struct BeadOnRotatingHoop {
   /// \param[in] qdd  generalized accelerations (nq = 1)
   /// \param[in] t  time
   /// \param[in] params  model parameters
-  /// \return r = tau (nq)
+  /// \return r = tau (nv)
   /// Ops: 62
   template <typename Scalar>
-  static QVector<Scalar> inverse_dynamics(const QVector<Scalar>& q,
-                                          const QVector<Scalar>& v,
-                                          const QVector<Scalar>& qdd,
+  static VVector<Scalar> inverse_dynamics(const QVector<Scalar>& q,
+                                          const VVector<Scalar>& v,
+                                          const VVector<Scalar>& qdd,
                                           const Scalar& t,
                                           const Params& params) {
     using std::cos;
@@ -420,7 +427,7 @@ struct BeadOnRotatingHoop {
     const Scalar tmp63 = tmp29 + tmp62*tmp8;
     const Scalar tmp64 = m*(tmp12*tmp4 + tmp15*tmp6 + tmp16*tmp2*tmp56*tmp7);
     const Scalar tmp65 = tmp63 + tmp64;
-    QVector<Scalar> result;
+    VVector<Scalar> result;
     result(0) = tmp65 + tmp61*theta_ddot;
     return result;
   }
@@ -435,12 +442,12 @@ struct BeadOnRotatingHoop {
   /// Ops: 120
   template <typename Scalar>
   static void residual_jacobians(const QVector<Scalar>& q,
-                                 const QVector<Scalar>& v,
-                                 const QVector<Scalar>& qdd,
+                                 const VVector<Scalar>& v,
+                                 const VVector<Scalar>& qdd,
                                  const Scalar& t,
                                  const Params& params,
-                                 QMatrix<Scalar>* dr_dq,
-                                 QMatrix<Scalar>* dr_dv) {
+                                 VQMatrix<Scalar>* dr_dq,
+                                 VMatrix<Scalar>* dr_dv) {
     using std::cos;
     using std::sin;
     const Scalar theta = q(0);
@@ -508,7 +515,7 @@ struct BeadOnRotatingHoop {
   /// Ops: 30
   template <typename Scalar>
   static Scalar kinetic_energy(const QVector<Scalar>& q,
-                               const QVector<Scalar>& v,
+                               const VVector<Scalar>& v,
                                const Scalar& t,
                                const Params& params) {
     using std::cos;
@@ -589,7 +596,7 @@ struct BeadOnRotatingHoop {
   /// Ops: 34
   template <typename Scalar>
   static Scalar energy(const QVector<Scalar>& q,
-                       const QVector<Scalar>& v,
+                       const VVector<Scalar>& v,
                        const Scalar& t,
                        const Params& params) {
     using std::cos;
@@ -665,7 +672,7 @@ struct BeadOnRotatingHoop {
   /// Ops: 20
   template <typename Scalar>
   static XVector<Scalar> velocities(const QVector<Scalar>& q,
-                                    const QVector<Scalar>& v,
+                                    const VVector<Scalar>& v,
                                     const Scalar& t,
                                     const Params& params) {
     using std::cos;
@@ -700,7 +707,7 @@ struct BeadOnRotatingHoop {
   /// \param[in] q  generalized coordinates (nq = 1)
   /// \param[in] t  time
   /// \param[in] params  model parameters
-  /// \return J (nx x nq)
+  /// \return J (nx x nv)
   /// Ops: 9
   template <typename Scalar>
   static XJacobian<Scalar> jacobian(const QVector<Scalar>& q,
@@ -736,7 +743,7 @@ struct BeadOnRotatingHoop {
   /// Ops: 36
   template <typename Scalar>
   static XVector<Scalar> bias_acceleration(const QVector<Scalar>& q,
-                                           const QVector<Scalar>& v,
+                                           const VVector<Scalar>& v,
                                            const Scalar& t,
                                            const Params& params) {
     using std::cos;
@@ -778,7 +785,7 @@ struct BeadOnRotatingHoop {
   /// Ops: 23
   template <typename Scalar>
   static SpaceVector<Scalar> linear_momentum(const QVector<Scalar>& q,
-                                             const QVector<Scalar>& v,
+                                             const VVector<Scalar>& v,
                                              const Scalar& t,
                                              const Params& params) {
     using std::cos;
@@ -819,7 +826,7 @@ struct BeadOnRotatingHoop {
   /// Ops: 40
   template <typename Scalar>
   static AngularVector<Scalar> angular_momentum(const QVector<Scalar>& q,
-                                                const QVector<Scalar>& v,
+                                                const VVector<Scalar>& v,
                                                 const Scalar& t,
                                                 const Params& params) {
     using std::cos;
@@ -884,11 +891,11 @@ struct BeadOnRotatingHoop {
   /// Solves Mt a = f by an LDL^T factorization of Mt written out entry by entry;
   /// reads only the lower triangle of Mt. Returns false, leaving *a unspecified, when Mt is
   /// not positive definite or anything is NaN.
-  /// \param[in] Mt  the mass matrix (nq = 1)
-  /// \param[in] f   the right-hand side (nq)
-  /// \param[out] a  the solution (nq); must not be null
+  /// \param[in] Mt  the mass matrix (nv = 1)
+  /// \param[in] f   the right-hand side (nv)
+  /// \param[out] a  the solution (nv); must not be null
   template <typename Scalar>
-  static bool solve(const QMatrix<Scalar>& Mt, const QVector<Scalar>& f, QVector<Scalar>* a) {
+  static bool solve(const VMatrix<Scalar>& Mt, const VVector<Scalar>& f, VVector<Scalar>* a) {
     const Scalar d0 = Mt(0, 0);
     if (!(d0 > Scalar(0))) return false;
     const Scalar inv0 = Scalar(1) / d0;
@@ -906,14 +913,14 @@ struct BeadOnRotatingHoop {
   /// \param[in] v  generalized velocities (nq = 1)
   /// \param[in] t  time
   /// \param[in] params  model parameters
-  /// \return qddot (nq = 1)
+  /// \return qddot (nv = 1)
   template <typename Scalar>
-  static QVector<Scalar> qddot(const QVector<Scalar>& q, const QVector<Scalar>& v,
+  static VVector<Scalar> qddot(const QVector<Scalar>& q, const VVector<Scalar>& v,
                                const Scalar& t, const Params& params) {
-    QMatrix<Scalar> Mt;
-    QVector<Scalar> f;
+    VMatrix<Scalar> Mt;
+    VVector<Scalar> f;
     dynamics(q, v, t, params, &Mt, &f);
-    QVector<Scalar> a;
+    VVector<Scalar> a;
     if (!solve(Mt, f, &a)) a.setConstant(std::numeric_limits<Scalar>::quiet_NaN());
     return a;
   }

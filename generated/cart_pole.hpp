@@ -51,10 +51,11 @@ namespace models {
 ///   x(0..1) = cart, mass m_cart
 ///   x(2..3) = tip, mass m_pole
 /// Kernels are static functions templated on Scalar; every one takes the parameters last.
-/// Equations of motion: mass_matrix(q, t) * qddot = forces(q, v, t).
+/// Equations of motion: mass_matrix(q, t) * dv/dt = forces(q, v, t).
 struct CartPole {
   static constexpr const char* name = "cart_pole";
   static constexpr int nq = 2;
+  static constexpr int nv = 2;
   static constexpr int dim = 2;
   static constexpr int num_particles = 2;
   static constexpr int nx = dim * num_particles;
@@ -68,7 +69,7 @@ struct CartPole {
   static constexpr std::array<const char*, num_inputs> input_names{{"u"}};
   /// A suggested initial state, from the model file.
   static constexpr std::array<double, nq> initial_q{{0.0, 0.2}};
-  static constexpr std::array<double, nq> initial_v{{0.0, 0.0}};
+  static constexpr std::array<double, nv> initial_v{{0.0, 0.0}};
   static constexpr std::array<const char*, num_particles> particle_names{{"cart", "tip"}};
   static constexpr std::array<const char*, num_fixed_points> fixed_point_names{{}};
   /// Whether applied_forces at rest (v = 0) is -d(potential_energy)/dq: every force without
@@ -84,9 +85,15 @@ struct CartPole {
   template <typename Scalar>
   using QMatrix = Eigen::Matrix<Scalar, nq, nq>;
   template <typename Scalar>
+  using VVector = Eigen::Matrix<Scalar, nv, 1>;
+  template <typename Scalar>
+  using VMatrix = Eigen::Matrix<Scalar, nv, nv>;
+  template <typename Scalar>
+  using VQMatrix = Eigen::Matrix<Scalar, nv, nq>;
+  template <typename Scalar>
   using XVector = Eigen::Matrix<Scalar, nx, 1>;
   template <typename Scalar>
-  using XJacobian = Eigen::Matrix<Scalar, nx, nq>;
+  using XJacobian = Eigen::Matrix<Scalar, nx, nv>;
   template <typename Scalar>
   using SpaceVector = Eigen::Matrix<Scalar, dim, 1>;
   template <typename Scalar>
@@ -96,7 +103,7 @@ struct CartPole {
   template <typename Scalar>
   using FixedPointVector = Eigen::Matrix<Scalar, dim * num_fixed_points, 1>;
   template <typename Scalar>
-  using InputMatrix = Eigen::Matrix<Scalar, nq, num_inputs>;
+  using InputMatrix = Eigen::Matrix<Scalar, nv, num_inputs>;
 
   /// Model parameters; the defaults are the model file's.
   struct Params {
@@ -145,10 +152,10 @@ struct CartPole {
   /// \param[in] q  generalized coordinates (nq = 2)
   /// \param[in] t  time
   /// \param[in] params  model parameters
-  /// \return Mt (nq x nq)
+  /// \return Mt (nv x nv)
   /// Ops: 12
   template <typename Scalar>
-  static QMatrix<Scalar> mass_matrix(const QVector<Scalar>& q,
+  static VMatrix<Scalar> mass_matrix(const QVector<Scalar>& q,
                                      const Scalar& /*t*/,
                                      const Params& params) {
     using std::cos;
@@ -165,7 +172,7 @@ struct CartPole {
     const Scalar tmp53 = (l*l);
     const Scalar tmp54 = tmp53*(tmp2*tmp2);
     const Scalar tmp55 = m_pole*(tmp54 + tmp53*(tmp0*tmp0));
-    QMatrix<Scalar> result;
+    VMatrix<Scalar> result;
     result(0, 0) = tmp51;
     result(1, 0) = tmp52;
     result(1, 1) = tmp55;
@@ -178,11 +185,11 @@ struct CartPole {
   /// \param[in] v  generalized velocities (nq = 2)
   /// \param[in] t  time
   /// \param[in] params  model parameters
-  /// \return Ft (nq)
+  /// \return Ft (nv)
   /// Ops: 4
   template <typename Scalar>
-  static QVector<Scalar> applied_forces(const QVector<Scalar>& q,
-                                        const QVector<Scalar>& /*v*/,
+  static VVector<Scalar> applied_forces(const QVector<Scalar>& q,
+                                        const VVector<Scalar>& /*v*/,
                                         const Scalar& /*t*/,
                                         const Params& params) {
     using std::sin;
@@ -195,7 +202,7 @@ struct CartPole {
     const Scalar tmp3 = tmp2*l;
     const Scalar tmp56 = g*m_pole;
     const Scalar tmp57 = tmp56*tmp3;
-    QVector<Scalar> result;
+    VVector<Scalar> result;
     result(0) = u;
     result(1) = tmp57;
     return result;
@@ -206,15 +213,15 @@ struct CartPole {
   /// \param[in] v  generalized velocities (nq = 2)
   /// \param[in] t  time
   /// \param[in] params  model parameters
-  /// \return Q (nq)
+  /// \return Q (nv)
   /// Ops: 0
   template <typename Scalar>
-  static QVector<Scalar> generalized_forces(const QVector<Scalar>& /*q*/,
-                                            const QVector<Scalar>& /*v*/,
+  static VVector<Scalar> generalized_forces(const QVector<Scalar>& /*q*/,
+                                            const VVector<Scalar>& /*v*/,
                                             const Scalar& /*t*/,
                                             const Params& params) {
     const Scalar u = Scalar(params.u);
-    QVector<Scalar> result;
+    VVector<Scalar> result;
     result(0) = u;
     result(1) = Scalar(0);
     return result;
@@ -225,11 +232,11 @@ struct CartPole {
   /// \param[in] v  generalized velocities (nq = 2)
   /// \param[in] t  time
   /// \param[in] params  model parameters
-  /// \return Fi (nq)
+  /// \return Fi (nv)
   /// Ops: 5
   template <typename Scalar>
-  static QVector<Scalar> inertial_forces(const QVector<Scalar>& q,
-                                         const QVector<Scalar>& v,
+  static VVector<Scalar> inertial_forces(const QVector<Scalar>& q,
+                                         const VVector<Scalar>& v,
                                          const Scalar& /*t*/,
                                          const Params& params) {
     using std::sin;
@@ -242,7 +249,7 @@ struct CartPole {
     const Scalar tmp5 = (theta_dot*theta_dot);
     const Scalar tmp6 = tmp3*tmp5;
     const Scalar tmp58 = tmp6*m_pole;
-    QVector<Scalar> result;
+    VVector<Scalar> result;
     result(0) = tmp58;
     result(1) = Scalar(0);
     return result;
@@ -253,11 +260,11 @@ struct CartPole {
   /// \param[in] v  generalized velocities (nq = 2)
   /// \param[in] t  time
   /// \param[in] params  model parameters
-  /// \return Ft + Fi (nq)
+  /// \return Ft + Fi (nv)
   /// Ops: 8
   template <typename Scalar>
-  static QVector<Scalar> forces(const QVector<Scalar>& q,
-                                const QVector<Scalar>& v,
+  static VVector<Scalar> forces(const QVector<Scalar>& q,
+                                const VVector<Scalar>& v,
                                 const Scalar& /*t*/,
                                 const Params& params) {
     using std::sin;
@@ -274,7 +281,7 @@ struct CartPole {
     const Scalar tmp56 = g*m_pole;
     const Scalar tmp57 = tmp56*tmp3;
     const Scalar tmp58 = tmp6*m_pole;
-    QVector<Scalar> result;
+    VVector<Scalar> result;
     result(0) = tmp58 + u;
     result(1) = tmp57;
     return result;
@@ -289,11 +296,11 @@ struct CartPole {
   /// Ops: 19
   template <typename Scalar>
   static void dynamics(const QVector<Scalar>& q,
-                       const QVector<Scalar>& v,
+                       const VVector<Scalar>& v,
                        const Scalar& /*t*/,
                        const Params& params,
-                       QMatrix<Scalar>* Mt,
-                       QVector<Scalar>* f) {
+                       VMatrix<Scalar>* Mt,
+                       VVector<Scalar>* f) {
     using std::cos;
     using std::sin;
     const Scalar theta = q(1);
@@ -332,12 +339,12 @@ struct CartPole {
   /// \param[in] qdd  generalized accelerations (nq = 2)
   /// \param[in] t  time
   /// \param[in] params  model parameters
-  /// \return r = tau (nq)
+  /// \return r = tau (nv)
   /// Ops: 30
   template <typename Scalar>
-  static QVector<Scalar> inverse_dynamics(const QVector<Scalar>& q,
-                                          const QVector<Scalar>& v,
-                                          const QVector<Scalar>& qdd,
+  static VVector<Scalar> inverse_dynamics(const QVector<Scalar>& q,
+                                          const VVector<Scalar>& v,
+                                          const VVector<Scalar>& qdd,
                                           const Scalar& /*t*/,
                                           const Params& params) {
     using std::cos;
@@ -366,7 +373,7 @@ struct CartPole {
     const Scalar tmp56 = g*m_pole;
     const Scalar tmp57 = tmp56*tmp3;
     const Scalar tmp58 = tmp6*m_pole;
-    QVector<Scalar> result;
+    VVector<Scalar> result;
     result(0) = tmp28 - tmp58 + tmp51*s_ddot + tmp52*theta_ddot;
     result(1) = -tmp57 + tmp52*s_ddot + tmp55*theta_ddot;
     return result;
@@ -382,12 +389,12 @@ struct CartPole {
   /// Ops: 34
   template <typename Scalar>
   static void residual_jacobians(const QVector<Scalar>& q,
-                                 const QVector<Scalar>& v,
-                                 const QVector<Scalar>& qdd,
+                                 const VVector<Scalar>& v,
+                                 const VVector<Scalar>& qdd,
                                  const Scalar& /*t*/,
                                  const Params& params,
-                                 QMatrix<Scalar>* dr_dq,
-                                 QMatrix<Scalar>* dr_dv) {
+                                 VQMatrix<Scalar>* dr_dq,
+                                 VMatrix<Scalar>* dr_dv) {
     using std::cos;
     using std::sin;
     const Scalar theta = q(1);
@@ -431,11 +438,11 @@ struct CartPole {
   /// \param[in] v  generalized velocities (nq = 2)
   /// \param[in] t  time
   /// \param[in] params  model parameters
-  /// \return B = dFt/du (nq x num_inputs)
+  /// \return B = dFt/du (nv x num_inputs)
   /// Ops: 0
   template <typename Scalar>
   static InputMatrix<Scalar> input_matrix(const QVector<Scalar>& /*q*/,
-                                          const QVector<Scalar>& /*v*/,
+                                          const VVector<Scalar>& /*v*/,
                                           const Scalar& /*t*/,
                                           const Params& /*params*/) {
     InputMatrix<Scalar> result;
@@ -453,7 +460,7 @@ struct CartPole {
   /// Ops: 18
   template <typename Scalar>
   static Scalar kinetic_energy(const QVector<Scalar>& q,
-                               const QVector<Scalar>& v,
+                               const VVector<Scalar>& v,
                                const Scalar& /*t*/,
                                const Params& params) {
     using std::cos;
@@ -526,7 +533,7 @@ struct CartPole {
   /// Ops: 21
   template <typename Scalar>
   static Scalar energy(const QVector<Scalar>& q,
-                       const QVector<Scalar>& v,
+                       const VVector<Scalar>& v,
                        const Scalar& /*t*/,
                        const Params& params) {
     using std::cos;
@@ -591,7 +598,7 @@ struct CartPole {
   /// Ops: 8
   template <typename Scalar>
   static XVector<Scalar> velocities(const QVector<Scalar>& q,
-                                    const QVector<Scalar>& v,
+                                    const VVector<Scalar>& v,
                                     const Scalar& /*t*/,
                                     const Params& params) {
     using std::cos;
@@ -618,7 +625,7 @@ struct CartPole {
   /// \param[in] q  generalized coordinates (nq = 2)
   /// \param[in] t  time
   /// \param[in] params  model parameters
-  /// \return J (nx x nq)
+  /// \return J (nx x nv)
   /// Ops: 5
   template <typename Scalar>
   static XJacobian<Scalar> jacobian(const QVector<Scalar>& q,
@@ -653,7 +660,7 @@ struct CartPole {
   /// Ops: 9
   template <typename Scalar>
   static XVector<Scalar> bias_acceleration(const QVector<Scalar>& q,
-                                           const QVector<Scalar>& v,
+                                           const VVector<Scalar>& v,
                                            const Scalar& /*t*/,
                                            const Params& params) {
     using std::cos;
@@ -684,7 +691,7 @@ struct CartPole {
   /// Ops: 12
   template <typename Scalar>
   static SpaceVector<Scalar> linear_momentum(const QVector<Scalar>& q,
-                                             const QVector<Scalar>& v,
+                                             const VVector<Scalar>& v,
                                              const Scalar& /*t*/,
                                              const Params& params) {
     using std::cos;
@@ -716,7 +723,7 @@ struct CartPole {
   /// Ops: 14
   template <typename Scalar>
   static AngularVector<Scalar> angular_momentum(const QVector<Scalar>& q,
-                                                const QVector<Scalar>& v,
+                                                const VVector<Scalar>& v,
                                                 const Scalar& /*t*/,
                                                 const Params& params) {
     using std::cos;
@@ -769,11 +776,11 @@ struct CartPole {
   /// Solves Mt a = f by an LDL^T factorization of Mt written out entry by entry;
   /// reads only the lower triangle of Mt. Returns false, leaving *a unspecified, when Mt is
   /// not positive definite or anything is NaN.
-  /// \param[in] Mt  the mass matrix (nq = 2)
-  /// \param[in] f   the right-hand side (nq)
-  /// \param[out] a  the solution (nq); must not be null
+  /// \param[in] Mt  the mass matrix (nv = 2)
+  /// \param[in] f   the right-hand side (nv)
+  /// \param[out] a  the solution (nv); must not be null
   template <typename Scalar>
-  static bool solve(const QMatrix<Scalar>& Mt, const QVector<Scalar>& f, QVector<Scalar>* a) {
+  static bool solve(const VMatrix<Scalar>& Mt, const VVector<Scalar>& f, VVector<Scalar>* a) {
     const Scalar d0 = Mt(0, 0);
     if (!(d0 > Scalar(0))) return false;
     const Scalar inv0 = Scalar(1) / d0;
@@ -799,14 +806,14 @@ struct CartPole {
   /// \param[in] v  generalized velocities (nq = 2)
   /// \param[in] t  time
   /// \param[in] params  model parameters
-  /// \return qddot (nq = 2)
+  /// \return qddot (nv = 2)
   template <typename Scalar>
-  static QVector<Scalar> qddot(const QVector<Scalar>& q, const QVector<Scalar>& v,
+  static VVector<Scalar> qddot(const QVector<Scalar>& q, const VVector<Scalar>& v,
                                const Scalar& t, const Params& params) {
-    QMatrix<Scalar> Mt;
-    QVector<Scalar> f;
+    VMatrix<Scalar> Mt;
+    VVector<Scalar> f;
     dynamics(q, v, t, params, &Mt, &f);
-    QVector<Scalar> a;
+    VVector<Scalar> a;
     if (!solve(Mt, f, &a)) a.setConstant(std::numeric_limits<Scalar>::quiet_NaN());
     return a;
   }

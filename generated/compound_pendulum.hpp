@@ -48,10 +48,11 @@ namespace models {
 ///   x(2..3) = bar_1, mass m/3
 ///   x(4..5) = bar_2, mass m/3
 /// Kernels are static functions templated on Scalar; every one takes the parameters last.
-/// Equations of motion: mass_matrix(q, t) * qddot = forces(q, v, t).
+/// Equations of motion: mass_matrix(q, t) * dv/dt = forces(q, v, t).
 struct CompoundPendulum {
   static constexpr const char* name = "compound_pendulum";
   static constexpr int nq = 1;
+  static constexpr int nv = 1;
   static constexpr int dim = 2;
   static constexpr int num_particles = 3;
   static constexpr int nx = dim * num_particles;
@@ -65,7 +66,7 @@ struct CompoundPendulum {
   static constexpr std::array<const char*, num_inputs> input_names{{}};
   /// A suggested initial state, from the model file.
   static constexpr std::array<double, nq> initial_q{{0.3}};
-  static constexpr std::array<double, nq> initial_v{{0.0}};
+  static constexpr std::array<double, nv> initial_v{{0.0}};
   static constexpr std::array<const char*, num_particles> particle_names{{"bar_0", "bar_1",
       "bar_2"}};
   static constexpr std::array<const char*, num_fixed_points> fixed_point_names{{}};
@@ -82,9 +83,15 @@ struct CompoundPendulum {
   template <typename Scalar>
   using QMatrix = Eigen::Matrix<Scalar, nq, nq>;
   template <typename Scalar>
+  using VVector = Eigen::Matrix<Scalar, nv, 1>;
+  template <typename Scalar>
+  using VMatrix = Eigen::Matrix<Scalar, nv, nv>;
+  template <typename Scalar>
+  using VQMatrix = Eigen::Matrix<Scalar, nv, nq>;
+  template <typename Scalar>
   using XVector = Eigen::Matrix<Scalar, nx, 1>;
   template <typename Scalar>
-  using XJacobian = Eigen::Matrix<Scalar, nx, nq>;
+  using XJacobian = Eigen::Matrix<Scalar, nx, nv>;
   template <typename Scalar>
   using SpaceVector = Eigen::Matrix<Scalar, dim, 1>;
   template <typename Scalar>
@@ -94,7 +101,7 @@ struct CompoundPendulum {
   template <typename Scalar>
   using FixedPointVector = Eigen::Matrix<Scalar, dim * num_fixed_points, 1>;
   template <typename Scalar>
-  using InputMatrix = Eigen::Matrix<Scalar, nq, num_inputs>;
+  using InputMatrix = Eigen::Matrix<Scalar, nv, num_inputs>;
 
   /// Model parameters; the defaults are the model file's.
   struct Params {
@@ -136,10 +143,10 @@ struct CompoundPendulum {
   /// \param[in] q  generalized coordinates (nq = 1)
   /// \param[in] t  time
   /// \param[in] params  model parameters
-  /// \return Mt (nq x nq)
+  /// \return Mt (nv x nv)
   /// Ops: 12
   template <typename Scalar>
-  static QMatrix<Scalar> mass_matrix(const QVector<Scalar>& q,
+  static VMatrix<Scalar> mass_matrix(const QVector<Scalar>& q,
                                      const Scalar& /*t*/,
                                      const Params& params) {
     using std::cos;
@@ -156,7 +163,7 @@ struct CompoundPendulum {
     const Scalar tmp63 = tmp59*tmp62;
     const Scalar tmp64 = tmp61*tmp62;
     const Scalar tmp65 = I_c*(tmp59 + tmp61) + m*(tmp63 + tmp64);
-    QMatrix<Scalar> result;
+    VMatrix<Scalar> result;
     result(0) = tmp65;
     return result;
   }
@@ -166,11 +173,11 @@ struct CompoundPendulum {
   /// \param[in] v  generalized velocities (nq = 1)
   /// \param[in] t  time
   /// \param[in] params  model parameters
-  /// \return Ft (nq)
+  /// \return Ft (nv)
   /// Ops: 5
   template <typename Scalar>
-  static QVector<Scalar> applied_forces(const QVector<Scalar>& q,
-                                        const QVector<Scalar>& /*v*/,
+  static VVector<Scalar> applied_forces(const QVector<Scalar>& q,
+                                        const VVector<Scalar>& /*v*/,
                                         const Scalar& /*t*/,
                                         const Params& params) {
     using std::sin;
@@ -182,7 +189,7 @@ struct CompoundPendulum {
     const Scalar tmp66 = tmp58*d;
     const Scalar tmp67 = g*m;
     const Scalar tmp68 = tmp66*tmp67;
-    QVector<Scalar> result;
+    VVector<Scalar> result;
     result(0) = -tmp68;
     return result;
   }
@@ -192,14 +199,14 @@ struct CompoundPendulum {
   /// \param[in] v  generalized velocities (nq = 1)
   /// \param[in] t  time
   /// \param[in] params  model parameters
-  /// \return Q (nq)
+  /// \return Q (nv)
   /// Ops: 0
   template <typename Scalar>
-  static QVector<Scalar> generalized_forces(const QVector<Scalar>& /*q*/,
-                                            const QVector<Scalar>& /*v*/,
+  static VVector<Scalar> generalized_forces(const QVector<Scalar>& /*q*/,
+                                            const VVector<Scalar>& /*v*/,
                                             const Scalar& /*t*/,
                                             const Params& /*params*/) {
-    QVector<Scalar> result;
+    VVector<Scalar> result;
     result(0) = Scalar(0);
     return result;
   }
@@ -209,14 +216,14 @@ struct CompoundPendulum {
   /// \param[in] v  generalized velocities (nq = 1)
   /// \param[in] t  time
   /// \param[in] params  model parameters
-  /// \return Fi (nq)
+  /// \return Fi (nv)
   /// Ops: 0
   template <typename Scalar>
-  static QVector<Scalar> inertial_forces(const QVector<Scalar>& /*q*/,
-                                         const QVector<Scalar>& /*v*/,
+  static VVector<Scalar> inertial_forces(const QVector<Scalar>& /*q*/,
+                                         const VVector<Scalar>& /*v*/,
                                          const Scalar& /*t*/,
                                          const Params& /*params*/) {
-    QVector<Scalar> result;
+    VVector<Scalar> result;
     result(0) = Scalar(0);
     return result;
   }
@@ -226,11 +233,11 @@ struct CompoundPendulum {
   /// \param[in] v  generalized velocities (nq = 1)
   /// \param[in] t  time
   /// \param[in] params  model parameters
-  /// \return Ft + Fi (nq)
+  /// \return Ft + Fi (nv)
   /// Ops: 5
   template <typename Scalar>
-  static QVector<Scalar> forces(const QVector<Scalar>& q,
-                                const QVector<Scalar>& /*v*/,
+  static VVector<Scalar> forces(const QVector<Scalar>& q,
+                                const VVector<Scalar>& /*v*/,
                                 const Scalar& /*t*/,
                                 const Params& params) {
     using std::sin;
@@ -242,7 +249,7 @@ struct CompoundPendulum {
     const Scalar tmp66 = tmp58*d;
     const Scalar tmp67 = g*m;
     const Scalar tmp68 = tmp66*tmp67;
-    QVector<Scalar> result;
+    VVector<Scalar> result;
     result(0) = -tmp68;
     return result;
   }
@@ -256,11 +263,11 @@ struct CompoundPendulum {
   /// Ops: 16
   template <typename Scalar>
   static void dynamics(const QVector<Scalar>& q,
-                       const QVector<Scalar>& /*v*/,
+                       const VVector<Scalar>& /*v*/,
                        const Scalar& /*t*/,
                        const Params& params,
-                       QMatrix<Scalar>* Mt,
-                       QVector<Scalar>* f) {
+                       VMatrix<Scalar>* Mt,
+                       VVector<Scalar>* f) {
     using std::cos;
     using std::sin;
     const Scalar theta = q(0);
@@ -290,12 +297,12 @@ struct CompoundPendulum {
   /// \param[in] qdd  generalized accelerations (nq = 1)
   /// \param[in] t  time
   /// \param[in] params  model parameters
-  /// \return r = tau (nq)
+  /// \return r = tau (nv)
   /// Ops: 17
   template <typename Scalar>
-  static QVector<Scalar> inverse_dynamics(const QVector<Scalar>& q,
-                                          const QVector<Scalar>& /*v*/,
-                                          const QVector<Scalar>& qdd,
+  static VVector<Scalar> inverse_dynamics(const QVector<Scalar>& q,
+                                          const VVector<Scalar>& /*v*/,
+                                          const VVector<Scalar>& qdd,
                                           const Scalar& /*t*/,
                                           const Params& params) {
     using std::cos;
@@ -317,7 +324,7 @@ struct CompoundPendulum {
     const Scalar tmp66 = tmp58*d;
     const Scalar tmp67 = g*m;
     const Scalar tmp68 = tmp66*tmp67;
-    QVector<Scalar> result;
+    VVector<Scalar> result;
     result(0) = tmp68 + tmp65*theta_ddot;
     return result;
   }
@@ -332,12 +339,12 @@ struct CompoundPendulum {
   /// Ops: 22
   template <typename Scalar>
   static void residual_jacobians(const QVector<Scalar>& q,
-                                 const QVector<Scalar>& /*v*/,
-                                 const QVector<Scalar>& qdd,
+                                 const VVector<Scalar>& /*v*/,
+                                 const VVector<Scalar>& qdd,
                                  const Scalar& /*t*/,
                                  const Params& params,
-                                 QMatrix<Scalar>* dr_dq,
-                                 QMatrix<Scalar>* dr_dv) {
+                                 VQMatrix<Scalar>* dr_dq,
+                                 VMatrix<Scalar>* dr_dv) {
     using std::cos;
     using std::sin;
     const Scalar theta = q(0);
@@ -371,7 +378,7 @@ struct CompoundPendulum {
   /// Ops: 19
   template <typename Scalar>
   static Scalar kinetic_energy(const QVector<Scalar>& q,
-                               const QVector<Scalar>& v,
+                               const VVector<Scalar>& v,
                                const Scalar& /*t*/,
                                const Params& params) {
     using std::cos;
@@ -444,7 +451,7 @@ struct CompoundPendulum {
   /// Ops: 24
   template <typename Scalar>
   static Scalar energy(const QVector<Scalar>& q,
-                       const QVector<Scalar>& v,
+                       const VVector<Scalar>& v,
                        const Scalar& /*t*/,
                        const Params& params) {
     using std::cos;
@@ -528,7 +535,7 @@ struct CompoundPendulum {
   /// Ops: 35
   template <typename Scalar>
   static XVector<Scalar> velocities(const QVector<Scalar>& q,
-                                    const QVector<Scalar>& v,
+                                    const VVector<Scalar>& v,
                                     const Scalar& /*t*/,
                                     const Params& params) {
     using std::cos;
@@ -572,7 +579,7 @@ struct CompoundPendulum {
   /// \param[in] q  generalized coordinates (nq = 1)
   /// \param[in] t  time
   /// \param[in] params  model parameters
-  /// \return J (nx x nq)
+  /// \return J (nx x nv)
   /// Ops: 29
   template <typename Scalar>
   static XJacobian<Scalar> jacobian(const QVector<Scalar>& q,
@@ -623,7 +630,7 @@ struct CompoundPendulum {
   /// Ops: 39
   template <typename Scalar>
   static XVector<Scalar> bias_acceleration(const QVector<Scalar>& q,
-                                           const QVector<Scalar>& v,
+                                           const VVector<Scalar>& v,
                                            const Scalar& /*t*/,
                                            const Params& params) {
     using std::cos;
@@ -673,7 +680,7 @@ struct CompoundPendulum {
   /// Ops: 7
   template <typename Scalar>
   static SpaceVector<Scalar> linear_momentum(const QVector<Scalar>& q,
-                                             const QVector<Scalar>& v,
+                                             const VVector<Scalar>& v,
                                              const Scalar& /*t*/,
                                              const Params& params) {
     using std::cos;
@@ -702,7 +709,7 @@ struct CompoundPendulum {
   /// Ops: 16
   template <typename Scalar>
   static AngularVector<Scalar> angular_momentum(const QVector<Scalar>& q,
-                                                const QVector<Scalar>& v,
+                                                const VVector<Scalar>& v,
                                                 const Scalar& /*t*/,
                                                 const Params& params) {
     using std::cos;
@@ -755,11 +762,11 @@ struct CompoundPendulum {
   /// Solves Mt a = f by an LDL^T factorization of Mt written out entry by entry;
   /// reads only the lower triangle of Mt. Returns false, leaving *a unspecified, when Mt is
   /// not positive definite or anything is NaN.
-  /// \param[in] Mt  the mass matrix (nq = 1)
-  /// \param[in] f   the right-hand side (nq)
-  /// \param[out] a  the solution (nq); must not be null
+  /// \param[in] Mt  the mass matrix (nv = 1)
+  /// \param[in] f   the right-hand side (nv)
+  /// \param[out] a  the solution (nv); must not be null
   template <typename Scalar>
-  static bool solve(const QMatrix<Scalar>& Mt, const QVector<Scalar>& f, QVector<Scalar>* a) {
+  static bool solve(const VMatrix<Scalar>& Mt, const VVector<Scalar>& f, VVector<Scalar>* a) {
     const Scalar d0 = Mt(0, 0);
     if (!(d0 > Scalar(0))) return false;
     const Scalar inv0 = Scalar(1) / d0;
@@ -777,14 +784,14 @@ struct CompoundPendulum {
   /// \param[in] v  generalized velocities (nq = 1)
   /// \param[in] t  time
   /// \param[in] params  model parameters
-  /// \return qddot (nq = 1)
+  /// \return qddot (nv = 1)
   template <typename Scalar>
-  static QVector<Scalar> qddot(const QVector<Scalar>& q, const QVector<Scalar>& v,
+  static VVector<Scalar> qddot(const QVector<Scalar>& q, const VVector<Scalar>& v,
                                const Scalar& t, const Params& params) {
-    QMatrix<Scalar> Mt;
-    QVector<Scalar> f;
+    VMatrix<Scalar> Mt;
+    VVector<Scalar> f;
     dynamics(q, v, t, params, &Mt, &f);
-    QVector<Scalar> a;
+    VVector<Scalar> a;
     if (!solve(Mt, f, &a)) a.setConstant(std::numeric_limits<Scalar>::quiet_NaN());
     return a;
   }

@@ -56,10 +56,11 @@ namespace models {
 /// Fixed points (1; massless anchors, stacked in fixed_point_positions):
 ///   (0..1) = pivot
 /// Kernels are static functions templated on Scalar; every one takes the parameters last.
-/// Equations of motion: mass_matrix(q, t) * qddot = forces(q, v, t).
+/// Equations of motion: mass_matrix(q, t) * dv/dt = forces(q, v, t).
 struct DoublePendulum {
   static constexpr const char* name = "double_pendulum";
   static constexpr int nq = 2;
+  static constexpr int nv = 2;
   static constexpr int dim = 2;
   static constexpr int num_particles = 2;
   static constexpr int nx = dim * num_particles;
@@ -73,7 +74,7 @@ struct DoublePendulum {
   static constexpr std::array<const char*, num_inputs> input_names{{}};
   /// A suggested initial state, from the model file.
   static constexpr std::array<double, nq> initial_q{{1.5707963267948966, 0.0}};
-  static constexpr std::array<double, nq> initial_v{{0.0, 0.0}};
+  static constexpr std::array<double, nv> initial_v{{0.0, 0.0}};
   static constexpr std::array<const char*, num_particles> particle_names{{"bob1", "bob2"}};
   static constexpr std::array<const char*, num_fixed_points> fixed_point_names{{"pivot"}};
   /// Whether applied_forces at rest (v = 0) is -d(potential_energy)/dq: every force without
@@ -89,9 +90,15 @@ struct DoublePendulum {
   template <typename Scalar>
   using QMatrix = Eigen::Matrix<Scalar, nq, nq>;
   template <typename Scalar>
+  using VVector = Eigen::Matrix<Scalar, nv, 1>;
+  template <typename Scalar>
+  using VMatrix = Eigen::Matrix<Scalar, nv, nv>;
+  template <typename Scalar>
+  using VQMatrix = Eigen::Matrix<Scalar, nv, nq>;
+  template <typename Scalar>
   using XVector = Eigen::Matrix<Scalar, nx, 1>;
   template <typename Scalar>
-  using XJacobian = Eigen::Matrix<Scalar, nx, nq>;
+  using XJacobian = Eigen::Matrix<Scalar, nx, nv>;
   template <typename Scalar>
   using SpaceVector = Eigen::Matrix<Scalar, dim, 1>;
   template <typename Scalar>
@@ -101,7 +108,7 @@ struct DoublePendulum {
   template <typename Scalar>
   using FixedPointVector = Eigen::Matrix<Scalar, dim * num_fixed_points, 1>;
   template <typename Scalar>
-  using InputMatrix = Eigen::Matrix<Scalar, nq, num_inputs>;
+  using InputMatrix = Eigen::Matrix<Scalar, nv, num_inputs>;
 
   /// Model parameters; the defaults are the model file's.
   struct Params {
@@ -148,10 +155,10 @@ struct DoublePendulum {
   /// \param[in] q  generalized coordinates (nq = 2)
   /// \param[in] t  time
   /// \param[in] params  model parameters
-  /// \return Mt (nq x nq)
+  /// \return Mt (nv x nv)
   /// Ops: 28
   template <typename Scalar>
-  static QMatrix<Scalar> mass_matrix(const QVector<Scalar>& q,
+  static VMatrix<Scalar> mass_matrix(const QVector<Scalar>& q,
                                      const Scalar& /*t*/,
                                      const Params& params) {
     using std::cos;
@@ -178,7 +185,7 @@ struct DoublePendulum {
     const Scalar tmp74 = m2*(tmp1*tmp12 + tmp14*tmp3);
     const Scalar tmp75 = (l2*l2);
     const Scalar tmp76 = m2*(tmp75*(tmp11*tmp11) + tmp75*(tmp13*tmp13));
-    QMatrix<Scalar> result;
+    VMatrix<Scalar> result;
     result(0, 0) = tmp73;
     result(1, 0) = tmp74;
     result(1, 1) = tmp76;
@@ -191,11 +198,11 @@ struct DoublePendulum {
   /// \param[in] v  generalized velocities (nq = 2)
   /// \param[in] t  time
   /// \param[in] params  model parameters
-  /// \return Ft (nq)
+  /// \return Ft (nv)
   /// Ops: 12
   template <typename Scalar>
-  static QVector<Scalar> applied_forces(const QVector<Scalar>& q,
-                                        const QVector<Scalar>& /*v*/,
+  static VVector<Scalar> applied_forces(const QVector<Scalar>& q,
+                                        const VVector<Scalar>& /*v*/,
                                         const Scalar& /*t*/,
                                         const Params& params) {
     using std::sin;
@@ -214,7 +221,7 @@ struct DoublePendulum {
     const Scalar tmp78 = g*m2;
     const Scalar tmp79 = tmp77*tmp3 + tmp78*tmp3;
     const Scalar tmp80 = tmp14*tmp78;
-    QVector<Scalar> result;
+    VVector<Scalar> result;
     result(0) = -tmp79;
     result(1) = -tmp80;
     return result;
@@ -225,14 +232,14 @@ struct DoublePendulum {
   /// \param[in] v  generalized velocities (nq = 2)
   /// \param[in] t  time
   /// \param[in] params  model parameters
-  /// \return Q (nq)
+  /// \return Q (nv)
   /// Ops: 0
   template <typename Scalar>
-  static QVector<Scalar> generalized_forces(const QVector<Scalar>& /*q*/,
-                                            const QVector<Scalar>& /*v*/,
+  static VVector<Scalar> generalized_forces(const QVector<Scalar>& /*q*/,
+                                            const VVector<Scalar>& /*v*/,
                                             const Scalar& /*t*/,
                                             const Params& /*params*/) {
-    QVector<Scalar> result;
+    VVector<Scalar> result;
     result(0) = Scalar(0);
     result(1) = Scalar(0);
     return result;
@@ -243,11 +250,11 @@ struct DoublePendulum {
   /// \param[in] v  generalized velocities (nq = 2)
   /// \param[in] t  time
   /// \param[in] params  model parameters
-  /// \return Fi (nq)
+  /// \return Fi (nv)
   /// Ops: 28
   template <typename Scalar>
-  static QVector<Scalar> inertial_forces(const QVector<Scalar>& q,
-                                         const QVector<Scalar>& v,
+  static VVector<Scalar> inertial_forces(const QVector<Scalar>& q,
+                                         const VVector<Scalar>& v,
                                          const Scalar& /*t*/,
                                          const Params& params) {
     using std::cos;
@@ -277,7 +284,7 @@ struct DoublePendulum {
     const Scalar tmp82 = -tmp16 - tmp5;
     const Scalar tmp83 = m2*(tmp1*tmp82 + tmp3*tmp81);
     const Scalar tmp84 = m2*(tmp14*tmp81 + tmp82*tmp12);
-    QVector<Scalar> result;
+    VVector<Scalar> result;
     result(0) = -tmp83;
     result(1) = -tmp84;
     return result;
@@ -288,11 +295,11 @@ struct DoublePendulum {
   /// \param[in] v  generalized velocities (nq = 2)
   /// \param[in] t  time
   /// \param[in] params  model parameters
-  /// \return Ft + Fi (nq)
+  /// \return Ft + Fi (nv)
   /// Ops: 36
   template <typename Scalar>
-  static QVector<Scalar> forces(const QVector<Scalar>& q,
-                                const QVector<Scalar>& v,
+  static VVector<Scalar> forces(const QVector<Scalar>& q,
+                                const VVector<Scalar>& v,
                                 const Scalar& /*t*/,
                                 const Params& params) {
     using std::cos;
@@ -330,7 +337,7 @@ struct DoublePendulum {
     const Scalar tmp84 = m2*(tmp14*tmp81 + tmp82*tmp12);
     const Scalar tmp85 = tmp79 + tmp83;
     const Scalar tmp86 = tmp80 + tmp84;
-    QVector<Scalar> result;
+    VVector<Scalar> result;
     result(0) = -tmp85;
     result(1) = -tmp86;
     return result;
@@ -345,11 +352,11 @@ struct DoublePendulum {
   /// Ops: 56
   template <typename Scalar>
   static void dynamics(const QVector<Scalar>& q,
-                       const QVector<Scalar>& v,
+                       const VVector<Scalar>& v,
                        const Scalar& /*t*/,
                        const Params& params,
-                       QMatrix<Scalar>* Mt,
-                       QVector<Scalar>* f) {
+                       VMatrix<Scalar>* Mt,
+                       VVector<Scalar>* f) {
     using std::cos;
     using std::sin;
     const Scalar theta1 = q(0);
@@ -408,12 +415,12 @@ struct DoublePendulum {
   /// \param[in] qdd  generalized accelerations (nq = 2)
   /// \param[in] t  time
   /// \param[in] params  model parameters
-  /// \return r = tau (nq)
+  /// \return r = tau (nv)
   /// Ops: 39
   template <typename Scalar>
-  static QVector<Scalar> inverse_dynamics(const QVector<Scalar>& q,
-                                          const QVector<Scalar>& v,
-                                          const QVector<Scalar>& qdd,
+  static VVector<Scalar> inverse_dynamics(const QVector<Scalar>& q,
+                                          const VVector<Scalar>& v,
+                                          const VVector<Scalar>& qdd,
                                           const Scalar& /*t*/,
                                           const Params& params) {
     using std::cos;
@@ -456,7 +463,7 @@ struct DoublePendulum {
     const Scalar tmp66 = tmp63 + tmp59*m1;
     const Scalar tmp67 = tmp64 + tmp60*m1;
     const Scalar tmp68 = tmp1*tmp66 + tmp3*tmp67;
-    QVector<Scalar> result;
+    VVector<Scalar> result;
     result(0) = tmp68;
     result(1) = tmp65;
     return result;
@@ -472,12 +479,12 @@ struct DoublePendulum {
   /// Ops: 139
   template <typename Scalar>
   static void residual_jacobians(const QVector<Scalar>& q,
-                                 const QVector<Scalar>& v,
-                                 const QVector<Scalar>& qdd,
+                                 const VVector<Scalar>& v,
+                                 const VVector<Scalar>& qdd,
                                  const Scalar& /*t*/,
                                  const Params& params,
-                                 QMatrix<Scalar>* dr_dq,
-                                 QMatrix<Scalar>* dr_dv) {
+                                 VQMatrix<Scalar>* dr_dq,
+                                 VMatrix<Scalar>* dr_dv) {
     using std::cos;
     using std::sin;
     const Scalar theta1 = q(0);
@@ -569,7 +576,7 @@ struct DoublePendulum {
   /// Ops: 31
   template <typename Scalar>
   static Scalar kinetic_energy(const QVector<Scalar>& q,
-                               const QVector<Scalar>& v,
+                               const VVector<Scalar>& v,
                                const Scalar& /*t*/,
                                const Params& params) {
     using std::cos;
@@ -659,7 +666,7 @@ struct DoublePendulum {
   /// Ops: 41
   template <typename Scalar>
   static Scalar energy(const QVector<Scalar>& q,
-                       const QVector<Scalar>& v,
+                       const VVector<Scalar>& v,
                        const Scalar& /*t*/,
                        const Params& params) {
     using std::cos;
@@ -743,7 +750,7 @@ struct DoublePendulum {
   /// Ops: 14
   template <typename Scalar>
   static XVector<Scalar> velocities(const QVector<Scalar>& q,
-                                    const QVector<Scalar>& v,
+                                    const VVector<Scalar>& v,
                                     const Scalar& /*t*/,
                                     const Params& params) {
     using std::cos;
@@ -778,7 +785,7 @@ struct DoublePendulum {
   /// \param[in] q  generalized coordinates (nq = 2)
   /// \param[in] t  time
   /// \param[in] params  model parameters
-  /// \return J (nx x nq)
+  /// \return J (nx x nv)
   /// Ops: 8
   template <typename Scalar>
   static XJacobian<Scalar> jacobian(const QVector<Scalar>& q,
@@ -819,7 +826,7 @@ struct DoublePendulum {
   /// Ops: 19
   template <typename Scalar>
   static XVector<Scalar> bias_acceleration(const QVector<Scalar>& q,
-                                           const QVector<Scalar>& v,
+                                           const VVector<Scalar>& v,
                                            const Scalar& /*t*/,
                                            const Params& params) {
     using std::cos;
@@ -863,7 +870,7 @@ struct DoublePendulum {
   /// Ops: 20
   template <typename Scalar>
   static SpaceVector<Scalar> linear_momentum(const QVector<Scalar>& q,
-                                             const QVector<Scalar>& v,
+                                             const VVector<Scalar>& v,
                                              const Scalar& /*t*/,
                                              const Params& params) {
     using std::cos;
@@ -903,7 +910,7 @@ struct DoublePendulum {
   /// Ops: 33
   template <typename Scalar>
   static AngularVector<Scalar> angular_momentum(const QVector<Scalar>& q,
-                                                const QVector<Scalar>& v,
+                                                const VVector<Scalar>& v,
                                                 const Scalar& /*t*/,
                                                 const Params& params) {
     using std::cos;
@@ -970,11 +977,11 @@ struct DoublePendulum {
   /// Solves Mt a = f by an LDL^T factorization of Mt written out entry by entry;
   /// reads only the lower triangle of Mt. Returns false, leaving *a unspecified, when Mt is
   /// not positive definite or anything is NaN.
-  /// \param[in] Mt  the mass matrix (nq = 2)
-  /// \param[in] f   the right-hand side (nq)
-  /// \param[out] a  the solution (nq); must not be null
+  /// \param[in] Mt  the mass matrix (nv = 2)
+  /// \param[in] f   the right-hand side (nv)
+  /// \param[out] a  the solution (nv); must not be null
   template <typename Scalar>
-  static bool solve(const QMatrix<Scalar>& Mt, const QVector<Scalar>& f, QVector<Scalar>* a) {
+  static bool solve(const VMatrix<Scalar>& Mt, const VVector<Scalar>& f, VVector<Scalar>* a) {
     const Scalar d0 = Mt(0, 0);
     if (!(d0 > Scalar(0))) return false;
     const Scalar inv0 = Scalar(1) / d0;
@@ -1000,14 +1007,14 @@ struct DoublePendulum {
   /// \param[in] v  generalized velocities (nq = 2)
   /// \param[in] t  time
   /// \param[in] params  model parameters
-  /// \return qddot (nq = 2)
+  /// \return qddot (nv = 2)
   template <typename Scalar>
-  static QVector<Scalar> qddot(const QVector<Scalar>& q, const QVector<Scalar>& v,
+  static VVector<Scalar> qddot(const QVector<Scalar>& q, const VVector<Scalar>& v,
                                const Scalar& t, const Params& params) {
-    QMatrix<Scalar> Mt;
-    QVector<Scalar> f;
+    VMatrix<Scalar> Mt;
+    VVector<Scalar> f;
     dynamics(q, v, t, params, &Mt, &f);
-    QVector<Scalar> a;
+    VVector<Scalar> a;
     if (!solve(Mt, f, &a)) a.setConstant(std::numeric_limits<Scalar>::quiet_NaN());
     return a;
   }

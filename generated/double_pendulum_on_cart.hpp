@@ -58,10 +58,11 @@ namespace models {
 ///   x(2..3) = bob1, mass m1
 ///   x(4..5) = bob2, mass m2
 /// Kernels are static functions templated on Scalar; every one takes the parameters last.
-/// Equations of motion: mass_matrix(q, t) * qddot = forces(q, v, t).
+/// Equations of motion: mass_matrix(q, t) * dv/dt = forces(q, v, t).
 struct DoublePendulumOnCart {
   static constexpr const char* name = "double_pendulum_on_cart";
   static constexpr int nq = 3;
+  static constexpr int nv = 3;
   static constexpr int dim = 2;
   static constexpr int num_particles = 3;
   static constexpr int nx = dim * num_particles;
@@ -75,7 +76,7 @@ struct DoublePendulumOnCart {
   static constexpr std::array<const char*, num_inputs> input_names{{"u"}};
   /// A suggested initial state, from the model file.
   static constexpr std::array<double, nq> initial_q{{0.0, 0.2, 0.0}};
-  static constexpr std::array<double, nq> initial_v{{0.0, 0.0, 0.0}};
+  static constexpr std::array<double, nv> initial_v{{0.0, 0.0, 0.0}};
   static constexpr std::array<const char*, num_particles> particle_names{{"cart", "bob1", "bob2"}};
   static constexpr std::array<const char*, num_fixed_points> fixed_point_names{{}};
   /// Whether applied_forces at rest (v = 0) is -d(potential_energy)/dq: every force without
@@ -91,9 +92,15 @@ struct DoublePendulumOnCart {
   template <typename Scalar>
   using QMatrix = Eigen::Matrix<Scalar, nq, nq>;
   template <typename Scalar>
+  using VVector = Eigen::Matrix<Scalar, nv, 1>;
+  template <typename Scalar>
+  using VMatrix = Eigen::Matrix<Scalar, nv, nv>;
+  template <typename Scalar>
+  using VQMatrix = Eigen::Matrix<Scalar, nv, nq>;
+  template <typename Scalar>
   using XVector = Eigen::Matrix<Scalar, nx, 1>;
   template <typename Scalar>
-  using XJacobian = Eigen::Matrix<Scalar, nx, nq>;
+  using XJacobian = Eigen::Matrix<Scalar, nx, nv>;
   template <typename Scalar>
   using SpaceVector = Eigen::Matrix<Scalar, dim, 1>;
   template <typename Scalar>
@@ -103,7 +110,7 @@ struct DoublePendulumOnCart {
   template <typename Scalar>
   using FixedPointVector = Eigen::Matrix<Scalar, dim * num_fixed_points, 1>;
   template <typename Scalar>
-  using InputMatrix = Eigen::Matrix<Scalar, nq, num_inputs>;
+  using InputMatrix = Eigen::Matrix<Scalar, nv, num_inputs>;
 
   /// Model parameters; the defaults are the model file's.
   struct Params {
@@ -159,10 +166,10 @@ struct DoublePendulumOnCart {
   /// \param[in] q  generalized coordinates (nq = 3)
   /// \param[in] t  time
   /// \param[in] params  model parameters
-  /// \return Mt (nq x nq)
+  /// \return Mt (nv x nv)
   /// Ops: 34
   template <typename Scalar>
-  static QMatrix<Scalar> mass_matrix(const QVector<Scalar>& q,
+  static VMatrix<Scalar> mass_matrix(const QVector<Scalar>& q,
                                      const Scalar& /*t*/,
                                      const Params& params) {
     using std::cos;
@@ -192,7 +199,7 @@ struct DoublePendulumOnCart {
     const Scalar tmp97 = m2*(tmp1*tmp14 + tmp16*tmp3);
     const Scalar tmp98 = (l2*l2);
     const Scalar tmp99 = m2*(tmp98*(tmp15*tmp15) + tmp98*(tmp13*tmp13));
-    QMatrix<Scalar> result;
+    VMatrix<Scalar> result;
     result(0, 0) = tmp90;
     result(1, 0) = tmp91;
     result(1, 1) = tmp95;
@@ -210,11 +217,11 @@ struct DoublePendulumOnCart {
   /// \param[in] v  generalized velocities (nq = 3)
   /// \param[in] t  time
   /// \param[in] params  model parameters
-  /// \return Ft (nq)
+  /// \return Ft (nv)
   /// Ops: 10
   template <typename Scalar>
-  static QVector<Scalar> applied_forces(const QVector<Scalar>& q,
-                                        const QVector<Scalar>& /*v*/,
+  static VVector<Scalar> applied_forces(const QVector<Scalar>& q,
+                                        const VVector<Scalar>& /*v*/,
                                         const Scalar& /*t*/,
                                         const Params& params) {
     using std::sin;
@@ -236,7 +243,7 @@ struct DoublePendulumOnCart {
     const Scalar tmp103 = tmp3*tmp102;
     const Scalar tmp104 = tmp101 + tmp103;
     const Scalar tmp105 = tmp16*tmp102;
-    QVector<Scalar> result;
+    VVector<Scalar> result;
     result(0) = u;
     result(1) = tmp104;
     result(2) = tmp105;
@@ -248,15 +255,15 @@ struct DoublePendulumOnCart {
   /// \param[in] v  generalized velocities (nq = 3)
   /// \param[in] t  time
   /// \param[in] params  model parameters
-  /// \return Q (nq)
+  /// \return Q (nv)
   /// Ops: 0
   template <typename Scalar>
-  static QVector<Scalar> generalized_forces(const QVector<Scalar>& /*q*/,
-                                            const QVector<Scalar>& /*v*/,
+  static VVector<Scalar> generalized_forces(const QVector<Scalar>& /*q*/,
+                                            const VVector<Scalar>& /*v*/,
                                             const Scalar& /*t*/,
                                             const Params& params) {
     const Scalar u = Scalar(params.u);
-    QVector<Scalar> result;
+    VVector<Scalar> result;
     result(0) = u;
     result(1) = Scalar(0);
     result(2) = Scalar(0);
@@ -268,11 +275,11 @@ struct DoublePendulumOnCart {
   /// \param[in] v  generalized velocities (nq = 3)
   /// \param[in] t  time
   /// \param[in] params  model parameters
-  /// \return Fi (nq)
+  /// \return Fi (nv)
   /// Ops: 36
   template <typename Scalar>
-  static QVector<Scalar> inertial_forces(const QVector<Scalar>& q,
-                                         const QVector<Scalar>& v,
+  static VVector<Scalar> inertial_forces(const QVector<Scalar>& q,
+                                         const VVector<Scalar>& v,
                                          const Scalar& /*t*/,
                                          const Params& params) {
     using std::cos;
@@ -308,7 +315,7 @@ struct DoublePendulumOnCart {
     const Scalar tmp112 = -tmp111;
     const Scalar tmp113 = m2*(tmp107*tmp14 - tmp16*tmp110);
     const Scalar tmp114 = -tmp113;
-    QVector<Scalar> result;
+    VVector<Scalar> result;
     result(0) = tmp109;
     result(1) = tmp112;
     result(2) = tmp114;
@@ -320,11 +327,11 @@ struct DoublePendulumOnCart {
   /// \param[in] v  generalized velocities (nq = 3)
   /// \param[in] t  time
   /// \param[in] params  model parameters
-  /// \return Ft + Fi (nq)
+  /// \return Ft + Fi (nv)
   /// Ops: 45
   template <typename Scalar>
-  static QVector<Scalar> forces(const QVector<Scalar>& q,
-                                const QVector<Scalar>& v,
+  static VVector<Scalar> forces(const QVector<Scalar>& q,
+                                const VVector<Scalar>& v,
                                 const Scalar& /*t*/,
                                 const Params& params) {
     using std::cos;
@@ -368,7 +375,7 @@ struct DoublePendulumOnCart {
     const Scalar tmp112 = -tmp111;
     const Scalar tmp113 = m2*(tmp107*tmp14 - tmp16*tmp110);
     const Scalar tmp114 = -tmp113;
-    QVector<Scalar> result;
+    VVector<Scalar> result;
     result(0) = tmp109 + u;
     result(1) = tmp104 + tmp112;
     result(2) = tmp105 + tmp114;
@@ -384,11 +391,11 @@ struct DoublePendulumOnCart {
   /// Ops: 71
   template <typename Scalar>
   static void dynamics(const QVector<Scalar>& q,
-                       const QVector<Scalar>& v,
+                       const VVector<Scalar>& v,
                        const Scalar& /*t*/,
                        const Params& params,
-                       QMatrix<Scalar>* Mt,
-                       QVector<Scalar>* f) {
+                       VMatrix<Scalar>* Mt,
+                       VVector<Scalar>* f) {
     using std::cos;
     using std::sin;
     const Scalar theta1 = q(1);
@@ -462,12 +469,12 @@ struct DoublePendulumOnCart {
   /// \param[in] qdd  generalized accelerations (nq = 3)
   /// \param[in] t  time
   /// \param[in] params  model parameters
-  /// \return r = tau (nq)
+  /// \return r = tau (nv)
   /// Ops: 48
   template <typename Scalar>
-  static QVector<Scalar> inverse_dynamics(const QVector<Scalar>& q,
-                                          const QVector<Scalar>& v,
-                                          const QVector<Scalar>& qdd,
+  static VVector<Scalar> inverse_dynamics(const QVector<Scalar>& q,
+                                          const VVector<Scalar>& v,
+                                          const VVector<Scalar>& qdd,
                                           const Scalar& /*t*/,
                                           const Params& params) {
     using std::cos;
@@ -520,7 +527,7 @@ struct DoublePendulumOnCart {
     const Scalar tmp85 = tmp1*tmp83 + tmp4*tmp84;
     const Scalar tmp86 = tmp83 + m_cart*s_ddot;
     const Scalar tmp89 = tmp59 + tmp86;
-    QVector<Scalar> result;
+    VVector<Scalar> result;
     result(0) = tmp89;
     result(1) = tmp85;
     result(2) = tmp82;
@@ -537,12 +544,12 @@ struct DoublePendulumOnCart {
   /// Ops: 180
   template <typename Scalar>
   static void residual_jacobians(const QVector<Scalar>& q,
-                                 const QVector<Scalar>& v,
-                                 const QVector<Scalar>& qdd,
+                                 const VVector<Scalar>& v,
+                                 const VVector<Scalar>& qdd,
                                  const Scalar& /*t*/,
                                  const Params& params,
-                                 QMatrix<Scalar>* dr_dq,
-                                 QMatrix<Scalar>* dr_dv) {
+                                 VQMatrix<Scalar>* dr_dq,
+                                 VMatrix<Scalar>* dr_dv) {
     using std::cos;
     using std::sin;
     const Scalar theta1 = q(1);
@@ -653,11 +660,11 @@ struct DoublePendulumOnCart {
   /// \param[in] v  generalized velocities (nq = 3)
   /// \param[in] t  time
   /// \param[in] params  model parameters
-  /// \return B = dFt/du (nq x num_inputs)
+  /// \return B = dFt/du (nv x num_inputs)
   /// Ops: 0
   template <typename Scalar>
   static InputMatrix<Scalar> input_matrix(const QVector<Scalar>& /*q*/,
-                                          const QVector<Scalar>& /*v*/,
+                                          const VVector<Scalar>& /*v*/,
                                           const Scalar& /*t*/,
                                           const Params& /*params*/) {
     InputMatrix<Scalar> result;
@@ -676,7 +683,7 @@ struct DoublePendulumOnCart {
   /// Ops: 36
   template <typename Scalar>
   static Scalar kinetic_energy(const QVector<Scalar>& q,
-                               const QVector<Scalar>& v,
+                               const VVector<Scalar>& v,
                                const Scalar& /*t*/,
                                const Params& params) {
     using std::cos;
@@ -768,7 +775,7 @@ struct DoublePendulumOnCart {
   /// Ops: 43
   template <typename Scalar>
   static Scalar energy(const QVector<Scalar>& q,
-                       const QVector<Scalar>& v,
+                       const VVector<Scalar>& v,
                        const Scalar& /*t*/,
                        const Params& params) {
     using std::cos;
@@ -857,7 +864,7 @@ struct DoublePendulumOnCart {
   /// Ops: 18
   template <typename Scalar>
   static XVector<Scalar> velocities(const QVector<Scalar>& q,
-                                    const QVector<Scalar>& v,
+                                    const VVector<Scalar>& v,
                                     const Scalar& /*t*/,
                                     const Params& params) {
     using std::cos;
@@ -895,7 +902,7 @@ struct DoublePendulumOnCart {
   /// \param[in] q  generalized coordinates (nq = 3)
   /// \param[in] t  time
   /// \param[in] params  model parameters
-  /// \return J (nx x nq)
+  /// \return J (nx x nv)
   /// Ops: 11
   template <typename Scalar>
   static XJacobian<Scalar> jacobian(const QVector<Scalar>& q,
@@ -938,7 +945,7 @@ struct DoublePendulumOnCart {
   /// Ops: 22
   template <typename Scalar>
   static XVector<Scalar> bias_acceleration(const QVector<Scalar>& q,
-                                           const QVector<Scalar>& v,
+                                           const VVector<Scalar>& v,
                                            const Scalar& /*t*/,
                                            const Params& params) {
     using std::cos;
@@ -984,7 +991,7 @@ struct DoublePendulumOnCart {
   /// Ops: 26
   template <typename Scalar>
   static SpaceVector<Scalar> linear_momentum(const QVector<Scalar>& q,
-                                             const QVector<Scalar>& v,
+                                             const VVector<Scalar>& v,
                                              const Scalar& /*t*/,
                                              const Params& params) {
     using std::cos;
@@ -1026,7 +1033,7 @@ struct DoublePendulumOnCart {
   /// Ops: 32
   template <typename Scalar>
   static AngularVector<Scalar> angular_momentum(const QVector<Scalar>& q,
-                                                const QVector<Scalar>& v,
+                                                const VVector<Scalar>& v,
                                                 const Scalar& /*t*/,
                                                 const Params& params) {
     using std::cos;
@@ -1093,11 +1100,11 @@ struct DoublePendulumOnCart {
   /// Solves Mt a = f by an LDL^T factorization of Mt written out entry by entry;
   /// reads only the lower triangle of Mt. Returns false, leaving *a unspecified, when Mt is
   /// not positive definite or anything is NaN.
-  /// \param[in] Mt  the mass matrix (nq = 3)
-  /// \param[in] f   the right-hand side (nq)
-  /// \param[out] a  the solution (nq); must not be null
+  /// \param[in] Mt  the mass matrix (nv = 3)
+  /// \param[in] f   the right-hand side (nv)
+  /// \param[out] a  the solution (nv); must not be null
   template <typename Scalar>
-  static bool solve(const QMatrix<Scalar>& Mt, const QVector<Scalar>& f, QVector<Scalar>* a) {
+  static bool solve(const VMatrix<Scalar>& Mt, const VVector<Scalar>& f, VVector<Scalar>* a) {
     const Scalar d0 = Mt(0, 0);
     if (!(d0 > Scalar(0))) return false;
     const Scalar inv0 = Scalar(1) / d0;
@@ -1133,14 +1140,14 @@ struct DoublePendulumOnCart {
   /// \param[in] v  generalized velocities (nq = 3)
   /// \param[in] t  time
   /// \param[in] params  model parameters
-  /// \return qddot (nq = 3)
+  /// \return qddot (nv = 3)
   template <typename Scalar>
-  static QVector<Scalar> qddot(const QVector<Scalar>& q, const QVector<Scalar>& v,
+  static VVector<Scalar> qddot(const QVector<Scalar>& q, const VVector<Scalar>& v,
                                const Scalar& t, const Params& params) {
-    QMatrix<Scalar> Mt;
-    QVector<Scalar> f;
+    VMatrix<Scalar> Mt;
+    VVector<Scalar> f;
     dynamics(q, v, t, params, &Mt, &f);
-    QVector<Scalar> a;
+    VVector<Scalar> a;
     if (!solve(Mt, f, &a)) a.setConstant(std::numeric_limits<Scalar>::quiet_NaN());
     return a;
   }

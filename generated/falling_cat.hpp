@@ -53,10 +53,11 @@ namespace models {
 ///   x(4..5) = front, mass m_front
 ///   x(6..7) = rear, mass m_rear
 /// Kernels are static functions templated on Scalar; every one takes the parameters last.
-/// Equations of motion: mass_matrix(q, t) * qddot = forces(q, v, t).
+/// Equations of motion: mass_matrix(q, t) * dv/dt = forces(q, v, t).
 struct FallingCat {
   static constexpr const char* name = "falling_cat";
   static constexpr int nq = 5;
+  static constexpr int nv = 5;
   static constexpr int dim = 2;
   static constexpr int num_particles = 4;
   static constexpr int nx = dim * num_particles;
@@ -70,7 +71,7 @@ struct FallingCat {
   static constexpr std::array<const char*, num_inputs> input_names{{}};
   /// A suggested initial state, from the model file.
   static constexpr std::array<double, nq> initial_q{{0.0, 0.0, 0.0, 0.5, -0.5}};
-  static constexpr std::array<double, nq> initial_v{{0.0, 0.0, 0.0, 0.0, 0.0}};
+  static constexpr std::array<double, nv> initial_v{{0.0, 0.0, 0.0, 0.0, 0.0}};
   static constexpr std::array<const char*, num_particles> particle_names{{"shoulder", "hip",
       "front", "rear"}};
   static constexpr std::array<const char*, num_fixed_points> fixed_point_names{{}};
@@ -87,9 +88,15 @@ struct FallingCat {
   template <typename Scalar>
   using QMatrix = Eigen::Matrix<Scalar, nq, nq>;
   template <typename Scalar>
+  using VVector = Eigen::Matrix<Scalar, nv, 1>;
+  template <typename Scalar>
+  using VMatrix = Eigen::Matrix<Scalar, nv, nv>;
+  template <typename Scalar>
+  using VQMatrix = Eigen::Matrix<Scalar, nv, nq>;
+  template <typename Scalar>
   using XVector = Eigen::Matrix<Scalar, nx, 1>;
   template <typename Scalar>
-  using XJacobian = Eigen::Matrix<Scalar, nx, nq>;
+  using XJacobian = Eigen::Matrix<Scalar, nx, nv>;
   template <typename Scalar>
   using SpaceVector = Eigen::Matrix<Scalar, dim, 1>;
   template <typename Scalar>
@@ -99,7 +106,7 @@ struct FallingCat {
   template <typename Scalar>
   using FixedPointVector = Eigen::Matrix<Scalar, dim * num_fixed_points, 1>;
   template <typename Scalar>
-  using InputMatrix = Eigen::Matrix<Scalar, nq, num_inputs>;
+  using InputMatrix = Eigen::Matrix<Scalar, nv, num_inputs>;
 
   /// Model parameters; the defaults are the model file's.
   struct Params {
@@ -152,10 +159,10 @@ struct FallingCat {
   /// \param[in] q  generalized coordinates (nq = 5)
   /// \param[in] t  time
   /// \param[in] params  model parameters
-  /// \return Mt (nq x nq)
+  /// \return Mt (nv x nv)
   /// Ops: 80
   template <typename Scalar>
-  static QMatrix<Scalar> mass_matrix(const QVector<Scalar>& q,
+  static VMatrix<Scalar> mass_matrix(const QVector<Scalar>& q,
                                      const Scalar& /*t*/,
                                      const Params& params) {
     using std::cos;
@@ -206,7 +213,7 @@ struct FallingCat {
     const Scalar tmp66 = m_rear*(tmp34*tmp37 - tmp30*tmp42);
     const Scalar tmp67 = (l_rear*l_rear);
     const Scalar tmp68 = m_rear*(tmp67*(tmp29*tmp29) + tmp67*(tmp33*tmp33));
-    QMatrix<Scalar> result;
+    VMatrix<Scalar> result;
     result(0, 0) = tmp54;
     result(1, 0) = Scalar(0);
     result(1, 1) = tmp54;
@@ -240,14 +247,14 @@ struct FallingCat {
   /// \param[in] v  generalized velocities (nq = 5)
   /// \param[in] t  time
   /// \param[in] params  model parameters
-  /// \return Ft (nq)
+  /// \return Ft (nv)
   /// Ops: 0
   template <typename Scalar>
-  static QVector<Scalar> applied_forces(const QVector<Scalar>& /*q*/,
-                                        const QVector<Scalar>& /*v*/,
+  static VVector<Scalar> applied_forces(const QVector<Scalar>& /*q*/,
+                                        const VVector<Scalar>& /*v*/,
                                         const Scalar& /*t*/,
                                         const Params& /*params*/) {
-    QVector<Scalar> result;
+    VVector<Scalar> result;
     result(0) = Scalar(0);
     result(1) = Scalar(0);
     result(2) = Scalar(0);
@@ -261,14 +268,14 @@ struct FallingCat {
   /// \param[in] v  generalized velocities (nq = 5)
   /// \param[in] t  time
   /// \param[in] params  model parameters
-  /// \return Q (nq)
+  /// \return Q (nv)
   /// Ops: 0
   template <typename Scalar>
-  static QVector<Scalar> generalized_forces(const QVector<Scalar>& /*q*/,
-                                            const QVector<Scalar>& /*v*/,
+  static VVector<Scalar> generalized_forces(const QVector<Scalar>& /*q*/,
+                                            const VVector<Scalar>& /*v*/,
                                             const Scalar& /*t*/,
                                             const Params& /*params*/) {
-    QVector<Scalar> result;
+    VVector<Scalar> result;
     result(0) = Scalar(0);
     result(1) = Scalar(0);
     result(2) = Scalar(0);
@@ -282,11 +289,11 @@ struct FallingCat {
   /// \param[in] v  generalized velocities (nq = 5)
   /// \param[in] t  time
   /// \param[in] params  model parameters
-  /// \return Fi (nq)
+  /// \return Fi (nv)
   /// Ops: 116
   template <typename Scalar>
-  static QVector<Scalar> inertial_forces(const QVector<Scalar>& q,
-                                         const QVector<Scalar>& v,
+  static VVector<Scalar> inertial_forces(const QVector<Scalar>& q,
+                                         const VVector<Scalar>& v,
                                          const Scalar& /*t*/,
                                          const Params& params) {
     using std::cos;
@@ -353,7 +360,7 @@ struct FallingCat {
         - tmp71*tmp5 + (Scalar(0.5))*tmp0*tmp72*L + (Scalar(0.5))*tmp4*tmp69*L;
     const Scalar tmp82 = tmp20*tmp73 - tmp74*tmp17;
     const Scalar tmp83 = -tmp34*tmp75 + tmp29*tmp76*l_rear;
-    QVector<Scalar> result;
+    VVector<Scalar> result;
     result(0) = tmp79;
     result(1) = tmp80;
     result(2) = tmp81;
@@ -367,11 +374,11 @@ struct FallingCat {
   /// \param[in] v  generalized velocities (nq = 5)
   /// \param[in] t  time
   /// \param[in] params  model parameters
-  /// \return Ft + Fi (nq)
+  /// \return Ft + Fi (nv)
   /// Ops: 116
   template <typename Scalar>
-  static QVector<Scalar> forces(const QVector<Scalar>& q,
-                                const QVector<Scalar>& v,
+  static VVector<Scalar> forces(const QVector<Scalar>& q,
+                                const VVector<Scalar>& v,
                                 const Scalar& /*t*/,
                                 const Params& params) {
     using std::cos;
@@ -438,7 +445,7 @@ struct FallingCat {
         - tmp71*tmp5 + (Scalar(0.5))*tmp0*tmp72*L + (Scalar(0.5))*tmp4*tmp69*L;
     const Scalar tmp82 = tmp20*tmp73 - tmp74*tmp17;
     const Scalar tmp83 = -tmp34*tmp75 + tmp29*tmp76*l_rear;
-    QVector<Scalar> result;
+    VVector<Scalar> result;
     result(0) = tmp79;
     result(1) = tmp80;
     result(2) = tmp81;
@@ -456,11 +463,11 @@ struct FallingCat {
   /// Ops: 174
   template <typename Scalar>
   static void dynamics(const QVector<Scalar>& q,
-                       const QVector<Scalar>& v,
+                       const VVector<Scalar>& v,
                        const Scalar& /*t*/,
                        const Params& params,
-                       QMatrix<Scalar>* Mt,
-                       QVector<Scalar>* f) {
+                       VMatrix<Scalar>* Mt,
+                       VVector<Scalar>* f) {
     using std::cos;
     using std::sin;
     const Scalar psi = q(2);
@@ -581,12 +588,12 @@ struct FallingCat {
   /// \param[in] qdd  generalized accelerations (nq = 5)
   /// \param[in] t  time
   /// \param[in] params  model parameters
-  /// \return r = tau (nq)
+  /// \return r = tau (nv)
   /// Ops: 221
   template <typename Scalar>
-  static QVector<Scalar> inverse_dynamics(const QVector<Scalar>& q,
-                                          const QVector<Scalar>& v,
-                                          const QVector<Scalar>& qdd,
+  static VVector<Scalar> inverse_dynamics(const QVector<Scalar>& q,
+                                          const VVector<Scalar>& v,
+                                          const VVector<Scalar>& qdd,
                                           const Scalar& /*t*/,
                                           const Params& params) {
     using std::cos;
@@ -675,7 +682,7 @@ struct FallingCat {
         - tmp71*tmp5 + (Scalar(0.5))*tmp0*tmp72*L + (Scalar(0.5))*tmp4*tmp69*L;
     const Scalar tmp82 = tmp20*tmp73 - tmp74*tmp17;
     const Scalar tmp83 = -tmp34*tmp75 + tmp29*tmp76*l_rear;
-    QVector<Scalar> result;
+    VVector<Scalar> result;
     result(0) = -tmp79 + tmp54*x_ddot + tmp55*psi_ddot + tmp59*alpha_ddot + tmp64*beta_ddot;
     result(1) = -tmp80 + tmp54*y_ddot + tmp56*psi_ddot + tmp60*alpha_ddot + tmp65*beta_ddot;
     result(2) = -tmp81 + tmp55*x_ddot + tmp56*y_ddot + tmp58*psi_ddot + tmp61*alpha_ddot
@@ -695,12 +702,12 @@ struct FallingCat {
   /// Ops: 725
   template <typename Scalar>
   static void residual_jacobians(const QVector<Scalar>& q,
-                                 const QVector<Scalar>& v,
-                                 const QVector<Scalar>& qdd,
+                                 const VVector<Scalar>& v,
+                                 const VVector<Scalar>& qdd,
                                  const Scalar& /*t*/,
                                  const Params& params,
-                                 QMatrix<Scalar>* dr_dq,
-                                 QMatrix<Scalar>* dr_dv) {
+                                 VQMatrix<Scalar>* dr_dq,
+                                 VMatrix<Scalar>* dr_dv) {
     using std::cos;
     using std::sin;
     const Scalar psi = q(2);
@@ -960,7 +967,7 @@ struct FallingCat {
   /// Ops: 70
   template <typename Scalar>
   static Scalar kinetic_energy(const QVector<Scalar>& q,
-                               const QVector<Scalar>& v,
+                               const VVector<Scalar>& v,
                                const Scalar& /*t*/,
                                const Params& params) {
     using std::cos;
@@ -1061,7 +1068,7 @@ struct FallingCat {
   /// Ops: 70
   template <typename Scalar>
   static Scalar energy(const QVector<Scalar>& q,
-                       const QVector<Scalar>& v,
+                       const VVector<Scalar>& v,
                        const Scalar& /*t*/,
                        const Params& params) {
     using std::cos;
@@ -1188,7 +1195,7 @@ struct FallingCat {
   /// Ops: 48
   template <typename Scalar>
   static XVector<Scalar> velocities(const QVector<Scalar>& q,
-                                    const QVector<Scalar>& v,
+                                    const VVector<Scalar>& v,
                                     const Scalar& /*t*/,
                                     const Params& params) {
     using std::cos;
@@ -1255,7 +1262,7 @@ struct FallingCat {
   /// \param[in] q  generalized coordinates (nq = 5)
   /// \param[in] t  time
   /// \param[in] params  model parameters
-  /// \return J (nx x nq)
+  /// \return J (nx x nv)
   /// Ops: 26
   template <typename Scalar>
   static XJacobian<Scalar> jacobian(const QVector<Scalar>& q,
@@ -1324,7 +1331,7 @@ struct FallingCat {
   /// Ops: 65
   template <typename Scalar>
   static XVector<Scalar> bias_acceleration(const QVector<Scalar>& q,
-                                           const QVector<Scalar>& v,
+                                           const VVector<Scalar>& v,
                                            const Scalar& /*t*/,
                                            const Params& params) {
     using std::cos;
@@ -1392,7 +1399,7 @@ struct FallingCat {
   /// Ops: 62
   template <typename Scalar>
   static SpaceVector<Scalar> linear_momentum(const QVector<Scalar>& q,
-                                             const QVector<Scalar>& v,
+                                             const VVector<Scalar>& v,
                                              const Scalar& /*t*/,
                                              const Params& params) {
     using std::cos;
@@ -1461,7 +1468,7 @@ struct FallingCat {
   /// Ops: 83
   template <typename Scalar>
   static AngularVector<Scalar> angular_momentum(const QVector<Scalar>& q,
-                                                const QVector<Scalar>& v,
+                                                const VVector<Scalar>& v,
                                                 const Scalar& /*t*/,
                                                 const Params& params) {
     using std::cos;
@@ -1565,11 +1572,11 @@ struct FallingCat {
   /// Solves Mt a = f by an LDL^T factorization of Mt written out entry by entry;
   /// reads only the lower triangle of Mt. Returns false, leaving *a unspecified, when Mt is
   /// not positive definite or anything is NaN.
-  /// \param[in] Mt  the mass matrix (nq = 5)
-  /// \param[in] f   the right-hand side (nq)
-  /// \param[out] a  the solution (nq); must not be null
+  /// \param[in] Mt  the mass matrix (nv = 5)
+  /// \param[in] f   the right-hand side (nv)
+  /// \param[out] a  the solution (nv); must not be null
   template <typename Scalar>
-  static bool solve(const QMatrix<Scalar>& Mt, const QVector<Scalar>& f, QVector<Scalar>* a) {
+  static bool solve(const VMatrix<Scalar>& Mt, const VVector<Scalar>& f, VVector<Scalar>* a) {
     const Scalar d0 = Mt(0, 0);
     if (!(d0 > Scalar(0))) return false;
     const Scalar inv0 = Scalar(1) / d0;
@@ -1631,14 +1638,14 @@ struct FallingCat {
   /// \param[in] v  generalized velocities (nq = 5)
   /// \param[in] t  time
   /// \param[in] params  model parameters
-  /// \return qddot (nq = 5)
+  /// \return qddot (nv = 5)
   template <typename Scalar>
-  static QVector<Scalar> qddot(const QVector<Scalar>& q, const QVector<Scalar>& v,
+  static VVector<Scalar> qddot(const QVector<Scalar>& q, const VVector<Scalar>& v,
                                const Scalar& t, const Params& params) {
-    QMatrix<Scalar> Mt;
-    QVector<Scalar> f;
+    VMatrix<Scalar> Mt;
+    VVector<Scalar> f;
     dynamics(q, v, t, params, &Mt, &f);
-    QVector<Scalar> a;
+    VVector<Scalar> a;
     if (!solve(Mt, f, &a)) a.setConstant(std::numeric_limits<Scalar>::quiet_NaN());
     return a;
   }

@@ -54,10 +54,11 @@ namespace models {
 ///   x(18..20) = pendulum_2, mass m_p/4
 ///   x(21..23) = pendulum_3, mass m_p/4
 /// Kernels are static functions templated on Scalar; every one takes the parameters last.
-/// Equations of motion: mass_matrix(q, t) * qddot = forces(q, v, t).
+/// Equations of motion: mass_matrix(q, t) * dv/dt = forces(q, v, t).
 struct FurutaPendulum {
   static constexpr const char* name = "furuta_pendulum";
   static constexpr int nq = 2;
+  static constexpr int nv = 2;
   static constexpr int dim = 3;
   static constexpr int num_particles = 8;
   static constexpr int nx = dim * num_particles;
@@ -71,7 +72,7 @@ struct FurutaPendulum {
   static constexpr std::array<const char*, num_inputs> input_names{{}};
   /// A suggested initial state, from the model file.
   static constexpr std::array<double, nq> initial_q{{0.0, 2.5}};
-  static constexpr std::array<double, nq> initial_v{{1.0, 0.0}};
+  static constexpr std::array<double, nv> initial_v{{1.0, 0.0}};
   static constexpr std::array<const char*, num_particles> particle_names{{"arm_0", "arm_1", "arm_2",
       "arm_3", "pendulum_0", "pendulum_1", "pendulum_2", "pendulum_3"}};
   static constexpr std::array<const char*, num_fixed_points> fixed_point_names{{}};
@@ -88,9 +89,15 @@ struct FurutaPendulum {
   template <typename Scalar>
   using QMatrix = Eigen::Matrix<Scalar, nq, nq>;
   template <typename Scalar>
+  using VVector = Eigen::Matrix<Scalar, nv, 1>;
+  template <typename Scalar>
+  using VMatrix = Eigen::Matrix<Scalar, nv, nv>;
+  template <typename Scalar>
+  using VQMatrix = Eigen::Matrix<Scalar, nv, nq>;
+  template <typename Scalar>
   using XVector = Eigen::Matrix<Scalar, nx, 1>;
   template <typename Scalar>
-  using XJacobian = Eigen::Matrix<Scalar, nx, nq>;
+  using XJacobian = Eigen::Matrix<Scalar, nx, nv>;
   template <typename Scalar>
   using SpaceVector = Eigen::Matrix<Scalar, dim, 1>;
   template <typename Scalar>
@@ -100,7 +107,7 @@ struct FurutaPendulum {
   template <typename Scalar>
   using FixedPointVector = Eigen::Matrix<Scalar, dim * num_fixed_points, 1>;
   template <typename Scalar>
-  using InputMatrix = Eigen::Matrix<Scalar, nq, num_inputs>;
+  using InputMatrix = Eigen::Matrix<Scalar, nv, num_inputs>;
 
   /// Model parameters; the defaults are the model file's.
   struct Params {
@@ -153,10 +160,10 @@ struct FurutaPendulum {
   /// \param[in] q  generalized coordinates (nq = 2)
   /// \param[in] t  time
   /// \param[in] params  model parameters
-  /// \return Mt (nq x nq)
+  /// \return Mt (nv x nv)
   /// Ops: 86
   template <typename Scalar>
-  static QMatrix<Scalar> mass_matrix(const QVector<Scalar>& q,
+  static VMatrix<Scalar> mass_matrix(const QVector<Scalar>& q,
                                      const Scalar& /*t*/,
                                      const Params& params) {
     using std::cos;
@@ -209,7 +216,7 @@ struct FurutaPendulum {
     const Scalar tmp349 = (Scalar(0.25))*tmp139;
     const Scalar tmp350 = tmp138*(tmp327 + tmp344) + tmp140*(tmp330 + tmp343)
         + m_p*(tmp328*tmp349 + tmp329*tmp349 + tmp343*tmp349);
-    QMatrix<Scalar> result;
+    VMatrix<Scalar> result;
     result(0, 0) = tmp345;
     result(1, 0) = tmp348;
     result(1, 1) = tmp350;
@@ -222,11 +229,11 @@ struct FurutaPendulum {
   /// \param[in] v  generalized velocities (nq = 2)
   /// \param[in] t  time
   /// \param[in] params  model parameters
-  /// \return Ft (nq)
+  /// \return Ft (nv)
   /// Ops: 12
   template <typename Scalar>
-  static QVector<Scalar> applied_forces(const QVector<Scalar>& q,
-                                        const QVector<Scalar>& /*v*/,
+  static VVector<Scalar> applied_forces(const QVector<Scalar>& q,
+                                        const VVector<Scalar>& /*v*/,
                                         const Scalar& /*t*/,
                                         const Params& params) {
     using std::cos;
@@ -247,7 +254,7 @@ struct FurutaPendulum {
     const Scalar tmp352 = (Scalar(0.5))*m_p;
     const Scalar tmp353 = tmp352*L_p*g;
     const Scalar tmp354 = tmp332*tmp353;
-    QVector<Scalar> result;
+    VVector<Scalar> result;
     result(0) = tmp351;
     result(1) = -tmp354;
     return result;
@@ -258,11 +265,11 @@ struct FurutaPendulum {
   /// \param[in] v  generalized velocities (nq = 2)
   /// \param[in] t  time
   /// \param[in] params  model parameters
-  /// \return Q (nq)
+  /// \return Q (nv)
   /// Ops: 6
   template <typename Scalar>
-  static QVector<Scalar> generalized_forces(const QVector<Scalar>& q,
-                                            const QVector<Scalar>& /*v*/,
+  static VVector<Scalar> generalized_forces(const QVector<Scalar>& q,
+                                            const VVector<Scalar>& /*v*/,
                                             const Scalar& /*t*/,
                                             const Params& params) {
     using std::cos;
@@ -275,7 +282,7 @@ struct FurutaPendulum {
     const Scalar tmp323 = (tmp322*tmp322);
     const Scalar tmp324 = tmp321 + tmp323;
     const Scalar tmp351 = tmp324*tau;
-    QVector<Scalar> result;
+    VVector<Scalar> result;
     result(0) = tmp351;
     result(1) = Scalar(0);
     return result;
@@ -286,11 +293,11 @@ struct FurutaPendulum {
   /// \param[in] v  generalized velocities (nq = 2)
   /// \param[in] t  time
   /// \param[in] params  model parameters
-  /// \return Fi (nq)
+  /// \return Fi (nv)
   /// Ops: 130
   template <typename Scalar>
-  static QVector<Scalar> inertial_forces(const QVector<Scalar>& q,
-                                         const QVector<Scalar>& v,
+  static VVector<Scalar> inertial_forces(const QVector<Scalar>& q,
+                                         const VVector<Scalar>& v,
                                          const Scalar& /*t*/,
                                          const Params& params) {
     using std::cos;
@@ -352,7 +359,7 @@ struct FurutaPendulum {
     const Scalar tmp377 = tmp138*(-tmp375 - tmp339*tmp366 + tmp320*tmp332*tmp360)
         + tmp140*(tmp375 + tmp346*tmp368 - tmp361*tmp367)
         + m_p*(tmp349*tmp375 + tmp370*tmp376 - tmp347*tmp372);
-    QVector<Scalar> result;
+    VVector<Scalar> result;
     result(0) = -tmp373;
     result(1) = -tmp377;
     return result;
@@ -363,11 +370,11 @@ struct FurutaPendulum {
   /// \param[in] v  generalized velocities (nq = 2)
   /// \param[in] t  time
   /// \param[in] params  model parameters
-  /// \return Ft + Fi (nq)
+  /// \return Ft + Fi (nv)
   /// Ops: 141
   template <typename Scalar>
-  static QVector<Scalar> forces(const QVector<Scalar>& q,
-                                const QVector<Scalar>& v,
+  static VVector<Scalar> forces(const QVector<Scalar>& q,
+                                const VVector<Scalar>& v,
                                 const Scalar& /*t*/,
                                 const Params& params) {
     using std::cos;
@@ -440,7 +447,7 @@ struct FurutaPendulum {
         + m_p*(tmp349*tmp375 + tmp370*tmp376 - tmp347*tmp372);
     const Scalar tmp378 = tmp373 - tmp351;
     const Scalar tmp379 = tmp354 + tmp377;
-    QVector<Scalar> result;
+    VVector<Scalar> result;
     result(0) = -tmp378;
     result(1) = -tmp379;
     return result;
@@ -455,11 +462,11 @@ struct FurutaPendulum {
   /// Ops: 197
   template <typename Scalar>
   static void dynamics(const QVector<Scalar>& q,
-                       const QVector<Scalar>& v,
+                       const VVector<Scalar>& v,
                        const Scalar& /*t*/,
                        const Params& params,
-                       QMatrix<Scalar>* Mt,
-                       QVector<Scalar>* f) {
+                       VMatrix<Scalar>* Mt,
+                       VVector<Scalar>* f) {
     using std::cos;
     using std::sin;
     const Scalar phi = q(0);
@@ -562,12 +569,12 @@ struct FurutaPendulum {
   /// \param[in] qdd  generalized accelerations (nq = 2)
   /// \param[in] t  time
   /// \param[in] params  model parameters
-  /// \return r = tau (nq)
+  /// \return r = tau (nv)
   /// Ops: 203
   template <typename Scalar>
-  static QVector<Scalar> inverse_dynamics(const QVector<Scalar>& q,
-                                          const QVector<Scalar>& v,
-                                          const QVector<Scalar>& qdd,
+  static VVector<Scalar> inverse_dynamics(const QVector<Scalar>& q,
+                                          const VVector<Scalar>& v,
+                                          const VVector<Scalar>& qdd,
                                           const Scalar& /*t*/,
                                           const Params& params) {
     using std::cos;
@@ -659,7 +666,7 @@ struct FurutaPendulum {
         + m_p*(tmp349*tmp375 + tmp370*tmp376 - tmp347*tmp372);
     const Scalar tmp378 = tmp373 - tmp351;
     const Scalar tmp379 = tmp354 + tmp377;
-    QVector<Scalar> result;
+    VVector<Scalar> result;
     result(0) = tmp378 + tmp345*phi_ddot + tmp348*theta_ddot;
     result(1) = tmp379 + tmp348*phi_ddot + tmp350*theta_ddot;
     return result;
@@ -675,12 +682,12 @@ struct FurutaPendulum {
   /// Ops: 725
   template <typename Scalar>
   static void residual_jacobians(const QVector<Scalar>& q,
-                                 const QVector<Scalar>& v,
-                                 const QVector<Scalar>& qdd,
+                                 const VVector<Scalar>& v,
+                                 const VVector<Scalar>& qdd,
                                  const Scalar& /*t*/,
                                  const Params& params,
-                                 QMatrix<Scalar>* dr_dq,
-                                 QMatrix<Scalar>* dr_dv) {
+                                 VQMatrix<Scalar>* dr_dq,
+                                 VMatrix<Scalar>* dr_dv) {
     using std::cos;
     using std::sin;
     const Scalar phi = q(0);
@@ -904,7 +911,7 @@ struct FurutaPendulum {
   /// Ops: 108
   template <typename Scalar>
   static Scalar kinetic_energy(const QVector<Scalar>& q,
-                               const QVector<Scalar>& v,
+                               const VVector<Scalar>& v,
                                const Scalar& /*t*/,
                                const Params& params) {
     using std::cos;
@@ -1027,7 +1034,7 @@ struct FurutaPendulum {
   /// Ops: 113
   template <typename Scalar>
   static Scalar energy(const QVector<Scalar>& q,
-                       const QVector<Scalar>& v,
+                       const VVector<Scalar>& v,
                        const Scalar& /*t*/,
                        const Params& params) {
     using std::cos;
@@ -1245,7 +1252,7 @@ struct FurutaPendulum {
   /// Ops: 195
   template <typename Scalar>
   static XVector<Scalar> velocities(const QVector<Scalar>& q,
-                                    const QVector<Scalar>& v,
+                                    const VVector<Scalar>& v,
                                     const Scalar& /*t*/,
                                     const Params& params) {
     using std::abs;
@@ -1402,7 +1409,7 @@ struct FurutaPendulum {
   /// \param[in] q  generalized coordinates (nq = 2)
   /// \param[in] t  time
   /// \param[in] params  model parameters
-  /// \return J (nx x nq)
+  /// \return J (nx x nv)
   /// Ops: 159
   template <typename Scalar>
   static XJacobian<Scalar> jacobian(const QVector<Scalar>& q,
@@ -1566,7 +1573,7 @@ struct FurutaPendulum {
   /// Ops: 264
   template <typename Scalar>
   static XVector<Scalar> bias_acceleration(const QVector<Scalar>& q,
-                                           const QVector<Scalar>& v,
+                                           const VVector<Scalar>& v,
                                            const Scalar& /*t*/,
                                            const Params& params) {
     using std::abs;
@@ -1735,7 +1742,7 @@ struct FurutaPendulum {
   /// Ops: 41
   template <typename Scalar>
   static SpaceVector<Scalar> linear_momentum(const QVector<Scalar>& q,
-                                             const QVector<Scalar>& v,
+                                             const VVector<Scalar>& v,
                                              const Scalar& /*t*/,
                                              const Params& params) {
     using std::cos;
@@ -1790,7 +1797,7 @@ struct FurutaPendulum {
   /// Ops: 132
   template <typename Scalar>
   static AngularVector<Scalar> angular_momentum(const QVector<Scalar>& q,
-                                                const QVector<Scalar>& v,
+                                                const VVector<Scalar>& v,
                                                 const Scalar& /*t*/,
                                                 const Params& params) {
     using std::cos;
@@ -1903,11 +1910,11 @@ struct FurutaPendulum {
   /// Solves Mt a = f by an LDL^T factorization of Mt written out entry by entry;
   /// reads only the lower triangle of Mt. Returns false, leaving *a unspecified, when Mt is
   /// not positive definite or anything is NaN.
-  /// \param[in] Mt  the mass matrix (nq = 2)
-  /// \param[in] f   the right-hand side (nq)
-  /// \param[out] a  the solution (nq); must not be null
+  /// \param[in] Mt  the mass matrix (nv = 2)
+  /// \param[in] f   the right-hand side (nv)
+  /// \param[out] a  the solution (nv); must not be null
   template <typename Scalar>
-  static bool solve(const QMatrix<Scalar>& Mt, const QVector<Scalar>& f, QVector<Scalar>* a) {
+  static bool solve(const VMatrix<Scalar>& Mt, const VVector<Scalar>& f, VVector<Scalar>* a) {
     const Scalar d0 = Mt(0, 0);
     if (!(d0 > Scalar(0))) return false;
     const Scalar inv0 = Scalar(1) / d0;
@@ -1933,14 +1940,14 @@ struct FurutaPendulum {
   /// \param[in] v  generalized velocities (nq = 2)
   /// \param[in] t  time
   /// \param[in] params  model parameters
-  /// \return qddot (nq = 2)
+  /// \return qddot (nv = 2)
   template <typename Scalar>
-  static QVector<Scalar> qddot(const QVector<Scalar>& q, const QVector<Scalar>& v,
+  static VVector<Scalar> qddot(const QVector<Scalar>& q, const VVector<Scalar>& v,
                                const Scalar& t, const Params& params) {
-    QMatrix<Scalar> Mt;
-    QVector<Scalar> f;
+    VMatrix<Scalar> Mt;
+    VVector<Scalar> f;
     dynamics(q, v, t, params, &Mt, &f);
-    QVector<Scalar> a;
+    VVector<Scalar> a;
     if (!solve(Mt, f, &a)) a.setConstant(std::numeric_limits<Scalar>::quiet_NaN());
     return a;
   }

@@ -54,10 +54,11 @@ namespace models {
 ///   x(6..8) = top_2, mass m/4
 ///   x(9..11) = top_3, mass m/4
 /// Kernels are static functions templated on Scalar; every one takes the parameters last.
-/// Equations of motion: mass_matrix(q, t) * qddot = forces(q, v, t).
+/// Equations of motion: mass_matrix(q, t) * dv/dt = forces(q, v, t).
 struct HeavyTop {
   static constexpr const char* name = "heavy_top";
   static constexpr int nq = 3;
+  static constexpr int nv = 3;
   static constexpr int dim = 3;
   static constexpr int num_particles = 4;
   static constexpr int nx = dim * num_particles;
@@ -71,7 +72,7 @@ struct HeavyTop {
   static constexpr std::array<const char*, num_inputs> input_names{{}};
   /// A suggested initial state, from the model file.
   static constexpr std::array<double, nq> initial_q{{0.0, 0.5, 0.0}};
-  static constexpr std::array<double, nq> initial_v{{0.0, 0.0, 150.0}};
+  static constexpr std::array<double, nv> initial_v{{0.0, 0.0, 150.0}};
   static constexpr std::array<const char*, num_particles> particle_names{{"top_0", "top_1", "top_2",
       "top_3"}};
   static constexpr std::array<const char*, num_fixed_points> fixed_point_names{{}};
@@ -88,9 +89,15 @@ struct HeavyTop {
   template <typename Scalar>
   using QMatrix = Eigen::Matrix<Scalar, nq, nq>;
   template <typename Scalar>
+  using VVector = Eigen::Matrix<Scalar, nv, 1>;
+  template <typename Scalar>
+  using VMatrix = Eigen::Matrix<Scalar, nv, nv>;
+  template <typename Scalar>
+  using VQMatrix = Eigen::Matrix<Scalar, nv, nq>;
+  template <typename Scalar>
   using XVector = Eigen::Matrix<Scalar, nx, 1>;
   template <typename Scalar>
-  using XJacobian = Eigen::Matrix<Scalar, nx, nq>;
+  using XJacobian = Eigen::Matrix<Scalar, nx, nv>;
   template <typename Scalar>
   using SpaceVector = Eigen::Matrix<Scalar, dim, 1>;
   template <typename Scalar>
@@ -100,7 +107,7 @@ struct HeavyTop {
   template <typename Scalar>
   using FixedPointVector = Eigen::Matrix<Scalar, dim * num_fixed_points, 1>;
   template <typename Scalar>
-  using InputMatrix = Eigen::Matrix<Scalar, nq, num_inputs>;
+  using InputMatrix = Eigen::Matrix<Scalar, nv, num_inputs>;
 
   /// Model parameters; the defaults are the model file's.
   struct Params {
@@ -148,10 +155,10 @@ struct HeavyTop {
   /// \param[in] q  generalized coordinates (nq = 3)
   /// \param[in] t  time
   /// \param[in] params  model parameters
-  /// \return Mt (nq x nq)
+  /// \return Mt (nv x nv)
   /// Ops: 140
   template <typename Scalar>
-  static QMatrix<Scalar> mass_matrix(const QVector<Scalar>& q,
+  static VMatrix<Scalar> mass_matrix(const QVector<Scalar>& q,
                                      const Scalar& /*t*/,
                                      const Params& params) {
     using std::cos;
@@ -223,7 +230,7 @@ struct HeavyTop {
         + tmp8*(-tmp186 - tmp167*tmp171 + tmp141*tmp143*tmp152*tmp163);
     const Scalar tmp188 = tmp8*(tmp161 + (tmp182*tmp182) + tmp144*tmp180)
         + tmp8*(tmp168 + (tmp163*tmp163) + tmp144*tmp179);
-    QMatrix<Scalar> result;
+    VMatrix<Scalar> result;
     result(0, 0) = tmp169;
     result(1, 0) = tmp174;
     result(1, 1) = tmp181;
@@ -241,11 +248,11 @@ struct HeavyTop {
   /// \param[in] v  generalized velocities (nq = 3)
   /// \param[in] t  time
   /// \param[in] params  model parameters
-  /// \return Ft (nq)
+  /// \return Ft (nv)
   /// Ops: 4
   template <typename Scalar>
-  static QVector<Scalar> applied_forces(const QVector<Scalar>& q,
-                                        const QVector<Scalar>& /*v*/,
+  static VVector<Scalar> applied_forces(const QVector<Scalar>& q,
+                                        const VVector<Scalar>& /*v*/,
                                         const Scalar& /*t*/,
                                         const Params& params) {
     using std::sin;
@@ -257,7 +264,7 @@ struct HeavyTop {
     const Scalar tmp189 = tmp143*d;
     const Scalar tmp190 = g*m;
     const Scalar tmp191 = tmp189*tmp190;
-    QVector<Scalar> result;
+    VVector<Scalar> result;
     result(0) = Scalar(0);
     result(1) = tmp191;
     result(2) = Scalar(0);
@@ -269,14 +276,14 @@ struct HeavyTop {
   /// \param[in] v  generalized velocities (nq = 3)
   /// \param[in] t  time
   /// \param[in] params  model parameters
-  /// \return Q (nq)
+  /// \return Q (nv)
   /// Ops: 0
   template <typename Scalar>
-  static QVector<Scalar> generalized_forces(const QVector<Scalar>& /*q*/,
-                                            const QVector<Scalar>& /*v*/,
+  static VVector<Scalar> generalized_forces(const QVector<Scalar>& /*q*/,
+                                            const VVector<Scalar>& /*v*/,
                                             const Scalar& /*t*/,
                                             const Params& /*params*/) {
-    QVector<Scalar> result;
+    VVector<Scalar> result;
     result(0) = Scalar(0);
     result(1) = Scalar(0);
     result(2) = Scalar(0);
@@ -288,11 +295,11 @@ struct HeavyTop {
   /// \param[in] v  generalized velocities (nq = 3)
   /// \param[in] t  time
   /// \param[in] params  model parameters
-  /// \return Fi (nq)
+  /// \return Fi (nv)
   /// Ops: 268
   template <typename Scalar>
-  static QVector<Scalar> inertial_forces(const QVector<Scalar>& q,
-                                         const QVector<Scalar>& v,
+  static VVector<Scalar> inertial_forces(const QVector<Scalar>& q,
+                                         const VVector<Scalar>& v,
                                          const Scalar& /*t*/,
                                          const Params& params) {
     using std::cos;
@@ -393,7 +400,7 @@ struct HeavyTop {
         + m*(tmp140*tmp222 + tmp194*tmp200 - tmp196*tmp199);
     const Scalar tmp232 = tmp8*(tmp160*tmp216 + tmp182*tmp219 + tmp223*tmp230)
         + tmp8*(tmp163*tmp211 + tmp167*tmp215 - tmp226*tmp228);
-    QVector<Scalar> result;
+    VVector<Scalar> result;
     result(0) = -tmp220;
     result(1) = -tmp231;
     result(2) = -tmp232;
@@ -405,11 +412,11 @@ struct HeavyTop {
   /// \param[in] v  generalized velocities (nq = 3)
   /// \param[in] t  time
   /// \param[in] params  model parameters
-  /// \return Ft + Fi (nq)
+  /// \return Ft + Fi (nv)
   /// Ops: 272
   template <typename Scalar>
-  static QVector<Scalar> forces(const QVector<Scalar>& q,
-                                const QVector<Scalar>& v,
+  static VVector<Scalar> forces(const QVector<Scalar>& q,
+                                const VVector<Scalar>& v,
                                 const Scalar& /*t*/,
                                 const Params& params) {
     using std::cos;
@@ -514,7 +521,7 @@ struct HeavyTop {
     const Scalar tmp232 = tmp8*(tmp160*tmp216 + tmp182*tmp219 + tmp223*tmp230)
         + tmp8*(tmp163*tmp211 + tmp167*tmp215 - tmp226*tmp228);
     const Scalar tmp233 = tmp231 - tmp191;
-    QVector<Scalar> result;
+    VVector<Scalar> result;
     result(0) = -tmp220;
     result(1) = -tmp233;
     result(2) = -tmp232;
@@ -530,11 +537,11 @@ struct HeavyTop {
   /// Ops: 371
   template <typename Scalar>
   static void dynamics(const QVector<Scalar>& q,
-                       const QVector<Scalar>& v,
+                       const VVector<Scalar>& v,
                        const Scalar& /*t*/,
                        const Params& params,
-                       QMatrix<Scalar>* Mt,
-                       QVector<Scalar>* f) {
+                       VMatrix<Scalar>* Mt,
+                       VVector<Scalar>* f) {
     using std::cos;
     using std::sin;
     const Scalar phi = q(0);
@@ -685,12 +692,12 @@ struct HeavyTop {
   /// \param[in] qdd  generalized accelerations (nq = 3)
   /// \param[in] t  time
   /// \param[in] params  model parameters
-  /// \return r = tau (nq)
+  /// \return r = tau (nv)
   /// Ops: 386
   template <typename Scalar>
-  static QVector<Scalar> inverse_dynamics(const QVector<Scalar>& q,
-                                          const QVector<Scalar>& v,
-                                          const QVector<Scalar>& qdd,
+  static VVector<Scalar> inverse_dynamics(const QVector<Scalar>& q,
+                                          const VVector<Scalar>& v,
+                                          const VVector<Scalar>& qdd,
                                           const Scalar& /*t*/,
                                           const Params& params) {
     using std::cos;
@@ -825,7 +832,7 @@ struct HeavyTop {
     const Scalar tmp232 = tmp8*(tmp160*tmp216 + tmp182*tmp219 + tmp223*tmp230)
         + tmp8*(tmp163*tmp211 + tmp167*tmp215 - tmp226*tmp228);
     const Scalar tmp233 = tmp231 - tmp191;
-    QVector<Scalar> result;
+    VVector<Scalar> result;
     result(0) = tmp220 + tmp169*phi_ddot + tmp174*theta_ddot + tmp184*psi_ddot;
     result(1) = tmp233 + tmp174*phi_ddot + tmp181*theta_ddot + tmp187*psi_ddot;
     result(2) = tmp232 + tmp184*phi_ddot + tmp187*theta_ddot + tmp188*psi_ddot;
@@ -842,12 +849,12 @@ struct HeavyTop {
   /// Ops: 1915
   template <typename Scalar>
   static void residual_jacobians(const QVector<Scalar>& q,
-                                 const QVector<Scalar>& v,
-                                 const QVector<Scalar>& qdd,
+                                 const VVector<Scalar>& v,
+                                 const VVector<Scalar>& qdd,
                                  const Scalar& /*t*/,
                                  const Params& params,
-                                 QMatrix<Scalar>* dr_dq,
-                                 QMatrix<Scalar>* dr_dv) {
+                                 VQMatrix<Scalar>* dr_dq,
+                                 VMatrix<Scalar>* dr_dv) {
     using std::cos;
     using std::sin;
     const Scalar phi = q(0);
@@ -1298,7 +1305,7 @@ struct HeavyTop {
   /// Ops: 132
   template <typename Scalar>
   static Scalar kinetic_energy(const QVector<Scalar>& q,
-                               const QVector<Scalar>& v,
+                               const VVector<Scalar>& v,
                                const Scalar& /*t*/,
                                const Params& params) {
     using std::cos;
@@ -1430,7 +1437,7 @@ struct HeavyTop {
   /// Ops: 135
   template <typename Scalar>
   static Scalar energy(const QVector<Scalar>& q,
-                       const QVector<Scalar>& v,
+                       const VVector<Scalar>& v,
                        const Scalar& /*t*/,
                        const Params& params) {
     using std::cos;
@@ -1632,7 +1639,7 @@ struct HeavyTop {
   /// Ops: 224
   template <typename Scalar>
   static XVector<Scalar> velocities(const QVector<Scalar>& q,
-                                    const QVector<Scalar>& v,
+                                    const VVector<Scalar>& v,
                                     const Scalar& /*t*/,
                                     const Params& params) {
     using std::abs;
@@ -1809,7 +1816,7 @@ struct HeavyTop {
   /// \param[in] q  generalized coordinates (nq = 3)
   /// \param[in] t  time
   /// \param[in] params  model parameters
-  /// \return J (nx x nq)
+  /// \return J (nx x nv)
   /// Ops: 172
   template <typename Scalar>
   static XJacobian<Scalar> jacobian(const QVector<Scalar>& q,
@@ -2007,7 +2014,7 @@ struct HeavyTop {
   /// Ops: 411
   template <typename Scalar>
   static XVector<Scalar> bias_acceleration(const QVector<Scalar>& q,
-                                           const QVector<Scalar>& v,
+                                           const VVector<Scalar>& v,
                                            const Scalar& /*t*/,
                                            const Params& params) {
     using std::abs;
@@ -2212,7 +2219,7 @@ struct HeavyTop {
   /// Ops: 23
   template <typename Scalar>
   static SpaceVector<Scalar> linear_momentum(const QVector<Scalar>& q,
-                                             const QVector<Scalar>& v,
+                                             const VVector<Scalar>& v,
                                              const Scalar& /*t*/,
                                              const Params& params) {
     using std::cos;
@@ -2250,7 +2257,7 @@ struct HeavyTop {
   /// Ops: 169
   template <typename Scalar>
   static AngularVector<Scalar> angular_momentum(const QVector<Scalar>& q,
-                                                const QVector<Scalar>& v,
+                                                const VVector<Scalar>& v,
                                                 const Scalar& /*t*/,
                                                 const Params& params) {
     using std::cos;
@@ -2368,11 +2375,11 @@ struct HeavyTop {
   /// Solves Mt a = f by an LDL^T factorization of Mt written out entry by entry;
   /// reads only the lower triangle of Mt. Returns false, leaving *a unspecified, when Mt is
   /// not positive definite or anything is NaN.
-  /// \param[in] Mt  the mass matrix (nq = 3)
-  /// \param[in] f   the right-hand side (nq)
-  /// \param[out] a  the solution (nq); must not be null
+  /// \param[in] Mt  the mass matrix (nv = 3)
+  /// \param[in] f   the right-hand side (nv)
+  /// \param[out] a  the solution (nv); must not be null
   template <typename Scalar>
-  static bool solve(const QMatrix<Scalar>& Mt, const QVector<Scalar>& f, QVector<Scalar>* a) {
+  static bool solve(const VMatrix<Scalar>& Mt, const VVector<Scalar>& f, VVector<Scalar>* a) {
     const Scalar d0 = Mt(0, 0);
     if (!(d0 > Scalar(0))) return false;
     const Scalar inv0 = Scalar(1) / d0;
@@ -2408,14 +2415,14 @@ struct HeavyTop {
   /// \param[in] v  generalized velocities (nq = 3)
   /// \param[in] t  time
   /// \param[in] params  model parameters
-  /// \return qddot (nq = 3)
+  /// \return qddot (nv = 3)
   template <typename Scalar>
-  static QVector<Scalar> qddot(const QVector<Scalar>& q, const QVector<Scalar>& v,
+  static VVector<Scalar> qddot(const QVector<Scalar>& q, const VVector<Scalar>& v,
                                const Scalar& t, const Params& params) {
-    QMatrix<Scalar> Mt;
-    QVector<Scalar> f;
+    VMatrix<Scalar> Mt;
+    VVector<Scalar> f;
     dynamics(q, v, t, params, &Mt, &f);
-    QVector<Scalar> a;
+    VVector<Scalar> a;
     if (!solve(Mt, f, &a)) a.setConstant(std::numeric_limits<Scalar>::quiet_NaN());
     return a;
   }

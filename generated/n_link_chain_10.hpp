@@ -71,10 +71,11 @@ namespace models {
 /// Fixed points (1; massless anchors, stacked in fixed_point_positions):
 ///   (0..1) = pivot
 /// Kernels are static functions templated on Scalar; every one takes the parameters last.
-/// Equations of motion: mass_matrix(q, t) * qddot = forces(q, v, t).
+/// Equations of motion: mass_matrix(q, t) * dv/dt = forces(q, v, t).
 struct NLinkChain10 {
   static constexpr const char* name = "n_link_chain_10";
   static constexpr int nq = 10;
+  static constexpr int nv = 10;
   static constexpr int dim = 2;
   static constexpr int num_particles = 10;
   static constexpr int nx = dim * num_particles;
@@ -90,7 +91,7 @@ struct NLinkChain10 {
   /// A suggested initial state, from the model file.
   static constexpr std::array<double, nq> initial_q{{0.5, 0.5, 0.5, 0.5, 0.5, 0.5, 0.5, 0.5, 0.5,
       0.5}};
-  static constexpr std::array<double, nq> initial_v{{0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0,
+  static constexpr std::array<double, nv> initial_v{{0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0,
       0.0}};
   static constexpr std::array<const char*, num_particles> particle_names{{"bob1", "bob2", "bob3",
       "bob4", "bob5", "bob6", "bob7", "bob8", "bob9", "bob10"}};
@@ -108,9 +109,15 @@ struct NLinkChain10 {
   template <typename Scalar>
   using QMatrix = Eigen::Matrix<Scalar, nq, nq>;
   template <typename Scalar>
+  using VVector = Eigen::Matrix<Scalar, nv, 1>;
+  template <typename Scalar>
+  using VMatrix = Eigen::Matrix<Scalar, nv, nv>;
+  template <typename Scalar>
+  using VQMatrix = Eigen::Matrix<Scalar, nv, nq>;
+  template <typename Scalar>
   using XVector = Eigen::Matrix<Scalar, nx, 1>;
   template <typename Scalar>
-  using XJacobian = Eigen::Matrix<Scalar, nx, nq>;
+  using XJacobian = Eigen::Matrix<Scalar, nx, nv>;
   template <typename Scalar>
   using SpaceVector = Eigen::Matrix<Scalar, dim, 1>;
   template <typename Scalar>
@@ -120,7 +127,7 @@ struct NLinkChain10 {
   template <typename Scalar>
   using FixedPointVector = Eigen::Matrix<Scalar, dim * num_fixed_points, 1>;
   template <typename Scalar>
-  using InputMatrix = Eigen::Matrix<Scalar, nq, num_inputs>;
+  using InputMatrix = Eigen::Matrix<Scalar, nv, num_inputs>;
 
   /// Model parameters; the defaults are the model file's.
   struct Params {
@@ -224,10 +231,10 @@ struct NLinkChain10 {
   /// \param[in] q  generalized coordinates (nq = 10)
   /// \param[in] t  time
   /// \param[in] params  model parameters
-  /// \return Mt (nq x nq)
+  /// \return Mt (nv x nv)
   /// Ops: 234
   template <typename Scalar>
-  static QMatrix<Scalar> mass_matrix(const QVector<Scalar>& q,
+  static VMatrix<Scalar> mass_matrix(const QVector<Scalar>& q,
                                      const Scalar& /*t*/,
                                      const Params& params) {
     using std::cos;
@@ -366,7 +373,7 @@ struct NLinkChain10 {
     const Scalar tmp482 = tmp89*tmp17 + tmp90*tmp18;
     const Scalar tmp483 = tmp8*tmp89 + tmp90*tmp9;
     const Scalar tmp484 = tmp0*tmp89 + tmp1*tmp90;
-    QMatrix<Scalar> result;
+    VMatrix<Scalar> result;
     result(0, 0) = tmp415;
     result(1, 0) = tmp419;
     result(1, 1) = tmp418;
@@ -475,11 +482,11 @@ struct NLinkChain10 {
   /// \param[in] v  generalized velocities (nq = 10)
   /// \param[in] t  time
   /// \param[in] params  model parameters
-  /// \return Ft (nq)
+  /// \return Ft (nv)
   /// Ops: 59
   template <typename Scalar>
-  static QVector<Scalar> applied_forces(const QVector<Scalar>& q,
-                                        const QVector<Scalar>& /*v*/,
+  static VVector<Scalar> applied_forces(const QVector<Scalar>& q,
+                                        const VVector<Scalar>& /*v*/,
                                         const Scalar& /*t*/,
                                         const Params& params) {
     using std::sin;
@@ -563,7 +570,7 @@ struct NLinkChain10 {
     const Scalar tmp492 = -tmp382;
     const Scalar tmp493 = -tmp379;
     const Scalar tmp494 = -tmp376;
-    QVector<Scalar> result;
+    VVector<Scalar> result;
     result(0) = tmp485;
     result(1) = tmp486;
     result(2) = tmp487;
@@ -582,14 +589,14 @@ struct NLinkChain10 {
   /// \param[in] v  generalized velocities (nq = 10)
   /// \param[in] t  time
   /// \param[in] params  model parameters
-  /// \return Q (nq)
+  /// \return Q (nv)
   /// Ops: 0
   template <typename Scalar>
-  static QVector<Scalar> generalized_forces(const QVector<Scalar>& /*q*/,
-                                            const QVector<Scalar>& /*v*/,
+  static VVector<Scalar> generalized_forces(const QVector<Scalar>& /*q*/,
+                                            const VVector<Scalar>& /*v*/,
                                             const Scalar& /*t*/,
                                             const Params& /*params*/) {
-    QVector<Scalar> result;
+    VVector<Scalar> result;
     result.setZero();
     return result;
   }
@@ -599,11 +606,11 @@ struct NLinkChain10 {
   /// \param[in] v  generalized velocities (nq = 10)
   /// \param[in] t  time
   /// \param[in] params  model parameters
-  /// \return Fi (nq)
+  /// \return Fi (nv)
   /// Ops: 176
   template <typename Scalar>
-  static QVector<Scalar> inertial_forces(const QVector<Scalar>& q,
-                                         const QVector<Scalar>& v,
+  static VVector<Scalar> inertial_forces(const QVector<Scalar>& q,
+                                         const VVector<Scalar>& v,
                                          const Scalar& /*t*/,
                                          const Params& params) {
     using std::cos;
@@ -756,7 +763,7 @@ struct NLinkChain10 {
     const Scalar tmp502 = -tmp353;
     const Scalar tmp503 = -tmp350;
     const Scalar tmp504 = -tmp347;
-    QVector<Scalar> result;
+    VVector<Scalar> result;
     result(0) = tmp495;
     result(1) = tmp496;
     result(2) = tmp497;
@@ -775,11 +782,11 @@ struct NLinkChain10 {
   /// \param[in] v  generalized velocities (nq = 10)
   /// \param[in] t  time
   /// \param[in] params  model parameters
-  /// \return Ft + Fi (nq)
+  /// \return Ft + Fi (nv)
   /// Ops: 225
   template <typename Scalar>
-  static QVector<Scalar> forces(const QVector<Scalar>& q,
-                                const QVector<Scalar>& v,
+  static VVector<Scalar> forces(const QVector<Scalar>& q,
+                                const VVector<Scalar>& v,
                                 const Scalar& /*t*/,
                                 const Params& params) {
     using std::cos;
@@ -972,7 +979,7 @@ struct NLinkChain10 {
     const Scalar tmp502 = -tmp353;
     const Scalar tmp503 = -tmp350;
     const Scalar tmp504 = -tmp347;
-    QVector<Scalar> result;
+    VVector<Scalar> result;
     result(0) = tmp485 + tmp495;
     result(1) = tmp486 + tmp496;
     result(2) = tmp487 + tmp497;
@@ -995,11 +1002,11 @@ struct NLinkChain10 {
   /// Ops: 419
   template <typename Scalar>
   static void dynamics(const QVector<Scalar>& q,
-                       const QVector<Scalar>& v,
+                       const VVector<Scalar>& v,
                        const Scalar& /*t*/,
                        const Params& params,
-                       QMatrix<Scalar>* Mt,
-                       QVector<Scalar>* f) {
+                       VMatrix<Scalar>* Mt,
+                       VVector<Scalar>* f) {
     using std::cos;
     using std::sin;
     const Scalar theta1 = q(0);
@@ -1392,11 +1399,11 @@ struct NLinkChain10 {
   /// \param[in] v  generalized velocities (nq = 10)
   /// \param[in] t  time
   /// \param[in] params  model parameters
-  /// \return qddot (nq)
+  /// \return qddot (nv)
   /// Ops: 575
   template <typename Scalar>
-  static QVector<Scalar> qddot(const QVector<Scalar>& q,
-                               const QVector<Scalar>& v,
+  static VVector<Scalar> qddot(const QVector<Scalar>& q,
+                               const VVector<Scalar>& v,
                                const Scalar& /*t*/,
                                const Params& params) {
     using std::cos;
@@ -1671,7 +1678,7 @@ struct NLinkChain10 {
     const Scalar tmp272 = tmp269 + tmp74 + tmp71*tmp271;
     const Scalar tmp273 = tmp270 + tmp75 + tmp72*tmp271;
     const Scalar tmp274 = tmp92*(tmp93 - tmp89*tmp272 - tmp90*tmp273);
-    QVector<Scalar> result;
+    VVector<Scalar> result;
     result(0) = tmp246;
     result(1) = tmp250;
     result(2) = tmp253;
@@ -1692,12 +1699,12 @@ struct NLinkChain10 {
   /// \param[in] qdd  generalized accelerations (nq = 10)
   /// \param[in] t  time
   /// \param[in] params  model parameters
-  /// \return r = tau (nq)
+  /// \return r = tau (nv)
   /// Ops: 207
   template <typename Scalar>
-  static QVector<Scalar> inverse_dynamics(const QVector<Scalar>& q,
-                                          const QVector<Scalar>& v,
-                                          const QVector<Scalar>& qdd,
+  static VVector<Scalar> inverse_dynamics(const QVector<Scalar>& q,
+                                          const VVector<Scalar>& v,
+                                          const VVector<Scalar>& qdd,
                                           const Scalar& /*t*/,
                                           const Params& params) {
     using std::cos;
@@ -1854,7 +1861,7 @@ struct NLinkChain10 {
     const Scalar tmp324 = tmp321 + tmp277*m1;
     const Scalar tmp325 = tmp322 + tmp278*m1;
     const Scalar tmp326 = tmp0*tmp324 + tmp1*tmp325;
-    QVector<Scalar> result;
+    VVector<Scalar> result;
     result(0) = tmp326;
     result(1) = tmp323;
     result(2) = tmp320;
@@ -1878,12 +1885,12 @@ struct NLinkChain10 {
   /// Ops: 1377
   template <typename Scalar>
   static void residual_jacobians(const QVector<Scalar>& q,
-                                 const QVector<Scalar>& v,
-                                 const QVector<Scalar>& qdd,
+                                 const VVector<Scalar>& v,
+                                 const VVector<Scalar>& qdd,
                                  const Scalar& /*t*/,
                                  const Params& params,
-                                 QMatrix<Scalar>* dr_dq,
-                                 QMatrix<Scalar>* dr_dv) {
+                                 VQMatrix<Scalar>* dr_dq,
+                                 VMatrix<Scalar>* dr_dv) {
     using std::cos;
     using std::sin;
     const Scalar theta1 = q(0);
@@ -2749,7 +2756,7 @@ struct NLinkChain10 {
   /// Ops: 137
   template <typename Scalar>
   static Scalar kinetic_energy(const QVector<Scalar>& q,
-                               const QVector<Scalar>& v,
+                               const VVector<Scalar>& v,
                                const Scalar& /*t*/,
                                const Params& params) {
     using std::cos;
@@ -2954,7 +2961,7 @@ struct NLinkChain10 {
   /// Ops: 186
   template <typename Scalar>
   static Scalar energy(const QVector<Scalar>& q,
-                       const QVector<Scalar>& v,
+                       const VVector<Scalar>& v,
                        const Scalar& /*t*/,
                        const Params& params) {
     using std::cos;
@@ -3183,7 +3190,7 @@ struct NLinkChain10 {
   /// Ops: 78
   template <typename Scalar>
   static XVector<Scalar> velocities(const QVector<Scalar>& q,
-                                    const QVector<Scalar>& v,
+                                    const VVector<Scalar>& v,
                                     const Scalar& /*t*/,
                                     const Params& params) {
     using std::cos;
@@ -3286,7 +3293,7 @@ struct NLinkChain10 {
   /// \param[in] q  generalized coordinates (nq = 10)
   /// \param[in] t  time
   /// \param[in] params  model parameters
-  /// \return J (nx x nq)
+  /// \return J (nx x nv)
   /// Ops: 40
   template <typename Scalar>
   static XJacobian<Scalar> jacobian(const QVector<Scalar>& q,
@@ -3458,7 +3465,7 @@ struct NLinkChain10 {
   /// Ops: 98
   template <typename Scalar>
   static XVector<Scalar> bias_acceleration(const QVector<Scalar>& q,
-                                           const QVector<Scalar>& v,
+                                           const VVector<Scalar>& v,
                                            const Scalar& /*t*/,
                                            const Params& params) {
     using std::cos;
@@ -3594,7 +3601,7 @@ struct NLinkChain10 {
   /// Ops: 116
   template <typename Scalar>
   static SpaceVector<Scalar> linear_momentum(const QVector<Scalar>& q,
-                                             const QVector<Scalar>& v,
+                                             const VVector<Scalar>& v,
                                              const Scalar& /*t*/,
                                              const Params& params) {
     using std::cos;
@@ -3696,7 +3703,7 @@ struct NLinkChain10 {
   /// Ops: 165
   template <typename Scalar>
   static AngularVector<Scalar> angular_momentum(const QVector<Scalar>& q,
-                                                const QVector<Scalar>& v,
+                                                const VVector<Scalar>& v,
                                                 const Scalar& /*t*/,
                                                 const Params& params) {
     using std::cos;
@@ -3857,33 +3864,33 @@ struct NLinkChain10 {
   /// Solves Mt a = f by an LDL^T factorization of Mt;
   /// reads only the lower triangle of Mt. Returns false, leaving *a unspecified, when Mt is
   /// not positive definite or anything is NaN.
-  /// \param[in] Mt  the mass matrix (nq = 10)
-  /// \param[in] f   the right-hand side (nq)
-  /// \param[out] a  the solution (nq); must not be null
+  /// \param[in] Mt  the mass matrix (nv = 10)
+  /// \param[in] f   the right-hand side (nv)
+  /// \param[out] a  the solution (nv); must not be null
   template <typename Scalar>
-  static bool solve(const QMatrix<Scalar>& Mt, const QVector<Scalar>& f, QVector<Scalar>* a) {
-    QMatrix<Scalar> L;  // unit lower triangle below the diagonal, D on it
-    for (int j = 0; j < nq; ++j) {
+  static bool solve(const VMatrix<Scalar>& Mt, const VVector<Scalar>& f, VVector<Scalar>* a) {
+    VMatrix<Scalar> L;  // unit lower triangle below the diagonal, D on it
+    for (int j = 0; j < nv; ++j) {
       Scalar d = Mt(j, j);
       for (int k = 0; k < j; ++k) d -= L(j, k) * L(j, k) * L(k, k);
       if (!(d > Scalar(0))) return false;
       L(j, j) = d;
       const Scalar inv = Scalar(1) / d;
-      for (int i = j + 1; i < nq; ++i) {
+      for (int i = j + 1; i < nv; ++i) {
         Scalar s = Mt(i, j);
         for (int k = 0; k < j; ++k) s -= L(i, k) * L(j, k) * L(k, k);
         L(i, j) = s * inv;
       }
     }
-    QVector<Scalar>& x = *a;
-    for (int i = 0; i < nq; ++i) {
+    VVector<Scalar>& x = *a;
+    for (int i = 0; i < nv; ++i) {
       Scalar s = f(i);
       for (int k = 0; k < i; ++k) s -= L(i, k) * x(k);
       x(i) = s;
     }
-    for (int i = nq - 1; i >= 0; --i) {
+    for (int i = nv - 1; i >= 0; --i) {
       Scalar s = x(i) / L(i, i);
-      for (int k = i + 1; k < nq; ++k) s -= L(k, i) * x(k);
+      for (int k = i + 1; k < nv; ++k) s -= L(k, i) * x(k);
       x(i) = s;
     }
     return true;

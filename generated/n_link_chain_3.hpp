@@ -55,10 +55,11 @@ namespace models {
 /// Fixed points (1; massless anchors, stacked in fixed_point_positions):
 ///   (0..1) = pivot
 /// Kernels are static functions templated on Scalar; every one takes the parameters last.
-/// Equations of motion: mass_matrix(q, t) * qddot = forces(q, v, t).
+/// Equations of motion: mass_matrix(q, t) * dv/dt = forces(q, v, t).
 struct NLinkChain3 {
   static constexpr const char* name = "n_link_chain_3";
   static constexpr int nq = 3;
+  static constexpr int nv = 3;
   static constexpr int dim = 2;
   static constexpr int num_particles = 3;
   static constexpr int nx = dim * num_particles;
@@ -72,7 +73,7 @@ struct NLinkChain3 {
   static constexpr std::array<const char*, num_inputs> input_names{{}};
   /// A suggested initial state, from the model file.
   static constexpr std::array<double, nq> initial_q{{0.5, 0.5, 0.5}};
-  static constexpr std::array<double, nq> initial_v{{0.0, 0.0, 0.0}};
+  static constexpr std::array<double, nv> initial_v{{0.0, 0.0, 0.0}};
   static constexpr std::array<const char*, num_particles> particle_names{{"bob1", "bob2", "bob3"}};
   static constexpr std::array<const char*, num_fixed_points> fixed_point_names{{"pivot"}};
   /// Whether applied_forces at rest (v = 0) is -d(potential_energy)/dq: every force without
@@ -88,9 +89,15 @@ struct NLinkChain3 {
   template <typename Scalar>
   using QMatrix = Eigen::Matrix<Scalar, nq, nq>;
   template <typename Scalar>
+  using VVector = Eigen::Matrix<Scalar, nv, 1>;
+  template <typename Scalar>
+  using VMatrix = Eigen::Matrix<Scalar, nv, nv>;
+  template <typename Scalar>
+  using VQMatrix = Eigen::Matrix<Scalar, nv, nq>;
+  template <typename Scalar>
   using XVector = Eigen::Matrix<Scalar, nx, 1>;
   template <typename Scalar>
-  using XJacobian = Eigen::Matrix<Scalar, nx, nq>;
+  using XJacobian = Eigen::Matrix<Scalar, nx, nv>;
   template <typename Scalar>
   using SpaceVector = Eigen::Matrix<Scalar, dim, 1>;
   template <typename Scalar>
@@ -100,7 +107,7 @@ struct NLinkChain3 {
   template <typename Scalar>
   using FixedPointVector = Eigen::Matrix<Scalar, dim * num_fixed_points, 1>;
   template <typename Scalar>
-  using InputMatrix = Eigen::Matrix<Scalar, nq, num_inputs>;
+  using InputMatrix = Eigen::Matrix<Scalar, nv, num_inputs>;
 
   /// Model parameters; the defaults are the model file's.
   struct Params {
@@ -154,10 +161,10 @@ struct NLinkChain3 {
   /// \param[in] q  generalized coordinates (nq = 3)
   /// \param[in] t  time
   /// \param[in] params  model parameters
-  /// \return Mt (nq x nq)
+  /// \return Mt (nv x nv)
   /// Ops: 53
   template <typename Scalar>
-  static QMatrix<Scalar> mass_matrix(const QVector<Scalar>& q,
+  static VMatrix<Scalar> mass_matrix(const QVector<Scalar>& q,
                                      const Scalar& /*t*/,
                                      const Params& params) {
     using std::cos;
@@ -197,7 +204,7 @@ struct NLinkChain3 {
     const Scalar tmp116 = m3*(tmp14*tmp26 + tmp24*tmp12);
     const Scalar tmp117 = (l3*l3);
     const Scalar tmp118 = m3*(tmp117*(tmp23*tmp23) + tmp117*(tmp25*tmp25));
-    QMatrix<Scalar> result;
+    VMatrix<Scalar> result;
     result(0, 0) = tmp109;
     result(1, 0) = tmp111;
     result(1, 1) = tmp114;
@@ -215,11 +222,11 @@ struct NLinkChain3 {
   /// \param[in] v  generalized velocities (nq = 3)
   /// \param[in] t  time
   /// \param[in] params  model parameters
-  /// \return Ft (nq)
+  /// \return Ft (nv)
   /// Ops: 21
   template <typename Scalar>
-  static QVector<Scalar> applied_forces(const QVector<Scalar>& q,
-                                        const QVector<Scalar>& /*v*/,
+  static VVector<Scalar> applied_forces(const QVector<Scalar>& q,
+                                        const VVector<Scalar>& /*v*/,
                                         const Scalar& /*t*/,
                                         const Params& params) {
     using std::sin;
@@ -245,7 +252,7 @@ struct NLinkChain3 {
     const Scalar tmp122 = tmp3*tmp119 + tmp3*tmp120 + tmp3*tmp121;
     const Scalar tmp123 = tmp14*tmp120 + tmp14*tmp121;
     const Scalar tmp124 = tmp26*tmp121;
-    QVector<Scalar> result;
+    VVector<Scalar> result;
     result(0) = -tmp122;
     result(1) = -tmp123;
     result(2) = -tmp124;
@@ -257,14 +264,14 @@ struct NLinkChain3 {
   /// \param[in] v  generalized velocities (nq = 3)
   /// \param[in] t  time
   /// \param[in] params  model parameters
-  /// \return Q (nq)
+  /// \return Q (nv)
   /// Ops: 0
   template <typename Scalar>
-  static QVector<Scalar> generalized_forces(const QVector<Scalar>& /*q*/,
-                                            const QVector<Scalar>& /*v*/,
+  static VVector<Scalar> generalized_forces(const QVector<Scalar>& /*q*/,
+                                            const VVector<Scalar>& /*v*/,
                                             const Scalar& /*t*/,
                                             const Params& /*params*/) {
-    QVector<Scalar> result;
+    VVector<Scalar> result;
     result(0) = Scalar(0);
     result(1) = Scalar(0);
     result(2) = Scalar(0);
@@ -276,11 +283,11 @@ struct NLinkChain3 {
   /// \param[in] v  generalized velocities (nq = 3)
   /// \param[in] t  time
   /// \param[in] params  model parameters
-  /// \return Fi (nq)
+  /// \return Fi (nv)
   /// Ops: 53
   template <typename Scalar>
-  static QVector<Scalar> inertial_forces(const QVector<Scalar>& q,
-                                         const QVector<Scalar>& v,
+  static VVector<Scalar> inertial_forces(const QVector<Scalar>& q,
+                                         const VVector<Scalar>& v,
                                          const Scalar& /*t*/,
                                          const Params& params) {
     using std::cos;
@@ -325,7 +332,7 @@ struct NLinkChain3 {
     const Scalar tmp130 = m2*(tmp1*tmp127 + tmp3*tmp125) + m3*(tmp1*tmp129 + tmp3*tmp128);
     const Scalar tmp131 = m2*(tmp14*tmp125 + tmp127*tmp12) + m3*(tmp14*tmp128 + tmp129*tmp12);
     const Scalar tmp132 = m3*(tmp24*tmp129 + tmp26*tmp128);
-    QVector<Scalar> result;
+    VVector<Scalar> result;
     result(0) = -tmp130;
     result(1) = -tmp131;
     result(2) = -tmp132;
@@ -337,11 +344,11 @@ struct NLinkChain3 {
   /// \param[in] v  generalized velocities (nq = 3)
   /// \param[in] t  time
   /// \param[in] params  model parameters
-  /// \return Ft + Fi (nq)
+  /// \return Ft + Fi (nv)
   /// Ops: 68
   template <typename Scalar>
-  static QVector<Scalar> forces(const QVector<Scalar>& q,
-                                const QVector<Scalar>& v,
+  static VVector<Scalar> forces(const QVector<Scalar>& q,
+                                const VVector<Scalar>& v,
                                 const Scalar& /*t*/,
                                 const Params& params) {
     using std::cos;
@@ -397,7 +404,7 @@ struct NLinkChain3 {
     const Scalar tmp133 = tmp122 + tmp130;
     const Scalar tmp134 = tmp123 + tmp131;
     const Scalar tmp135 = tmp124 + tmp132;
-    QVector<Scalar> result;
+    VVector<Scalar> result;
     result(0) = -tmp133;
     result(1) = -tmp134;
     result(2) = -tmp135;
@@ -413,11 +420,11 @@ struct NLinkChain3 {
   /// Ops: 109
   template <typename Scalar>
   static void dynamics(const QVector<Scalar>& q,
-                       const QVector<Scalar>& v,
+                       const VVector<Scalar>& v,
                        const Scalar& /*t*/,
                        const Params& params,
-                       QMatrix<Scalar>* Mt,
-                       QVector<Scalar>* f) {
+                       VMatrix<Scalar>* Mt,
+                       VVector<Scalar>* f) {
     using std::cos;
     using std::sin;
     const Scalar theta1 = q(0);
@@ -506,12 +513,12 @@ struct NLinkChain3 {
   /// \param[in] qdd  generalized accelerations (nq = 3)
   /// \param[in] t  time
   /// \param[in] params  model parameters
-  /// \return r = tau (nq)
+  /// \return r = tau (nv)
   /// Ops: 60
   template <typename Scalar>
-  static QVector<Scalar> inverse_dynamics(const QVector<Scalar>& q,
-                                          const QVector<Scalar>& v,
-                                          const QVector<Scalar>& qdd,
+  static VVector<Scalar> inverse_dynamics(const QVector<Scalar>& q,
+                                          const VVector<Scalar>& v,
+                                          const VVector<Scalar>& qdd,
                                           const Scalar& /*t*/,
                                           const Params& params) {
     using std::cos;
@@ -572,7 +579,7 @@ struct NLinkChain3 {
     const Scalar tmp102 = tmp99 + tmp90*m1;
     const Scalar tmp103 = tmp100 + tmp91*m1;
     const Scalar tmp104 = tmp1*tmp102 + tmp3*tmp103;
-    QVector<Scalar> result;
+    VVector<Scalar> result;
     result(0) = tmp104;
     result(1) = tmp101;
     result(2) = tmp98;
@@ -589,12 +596,12 @@ struct NLinkChain3 {
   /// Ops: 321
   template <typename Scalar>
   static void residual_jacobians(const QVector<Scalar>& q,
-                                 const QVector<Scalar>& v,
-                                 const QVector<Scalar>& qdd,
+                                 const VVector<Scalar>& v,
+                                 const VVector<Scalar>& qdd,
                                  const Scalar& /*t*/,
                                  const Params& params,
-                                 QMatrix<Scalar>* dr_dq,
-                                 QMatrix<Scalar>* dr_dv) {
+                                 VQMatrix<Scalar>* dr_dq,
+                                 VMatrix<Scalar>* dr_dv) {
     using std::cos;
     using std::sin;
     const Scalar theta1 = q(0);
@@ -749,7 +756,7 @@ struct NLinkChain3 {
   /// Ops: 45
   template <typename Scalar>
   static Scalar kinetic_energy(const QVector<Scalar>& q,
-                               const QVector<Scalar>& v,
+                               const VVector<Scalar>& v,
                                const Scalar& /*t*/,
                                const Params& params) {
     using std::cos;
@@ -859,7 +866,7 @@ struct NLinkChain3 {
   /// Ops: 60
   template <typename Scalar>
   static Scalar energy(const QVector<Scalar>& q,
-                       const QVector<Scalar>& v,
+                       const VVector<Scalar>& v,
                        const Scalar& /*t*/,
                        const Params& params) {
     using std::cos;
@@ -968,7 +975,7 @@ struct NLinkChain3 {
   /// Ops: 22
   template <typename Scalar>
   static XVector<Scalar> velocities(const QVector<Scalar>& q,
-                                    const QVector<Scalar>& v,
+                                    const VVector<Scalar>& v,
                                     const Scalar& /*t*/,
                                     const Params& params) {
     using std::cos;
@@ -1014,7 +1021,7 @@ struct NLinkChain3 {
   /// \param[in] q  generalized coordinates (nq = 3)
   /// \param[in] t  time
   /// \param[in] params  model parameters
-  /// \return J (nx x nq)
+  /// \return J (nx x nv)
   /// Ops: 12
   template <typename Scalar>
   static XJacobian<Scalar> jacobian(const QVector<Scalar>& q,
@@ -1071,7 +1078,7 @@ struct NLinkChain3 {
   /// Ops: 29
   template <typename Scalar>
   static XVector<Scalar> bias_acceleration(const QVector<Scalar>& q,
-                                           const QVector<Scalar>& v,
+                                           const VVector<Scalar>& v,
                                            const Scalar& /*t*/,
                                            const Params& params) {
     using std::cos;
@@ -1130,7 +1137,7 @@ struct NLinkChain3 {
   /// Ops: 32
   template <typename Scalar>
   static SpaceVector<Scalar> linear_momentum(const QVector<Scalar>& q,
-                                             const QVector<Scalar>& v,
+                                             const VVector<Scalar>& v,
                                              const Scalar& /*t*/,
                                              const Params& params) {
     using std::cos;
@@ -1180,7 +1187,7 @@ struct NLinkChain3 {
   /// Ops: 50
   template <typename Scalar>
   static AngularVector<Scalar> angular_momentum(const QVector<Scalar>& q,
-                                                const QVector<Scalar>& v,
+                                                const VVector<Scalar>& v,
                                                 const Scalar& /*t*/,
                                                 const Params& params) {
     using std::cos;
@@ -1263,11 +1270,11 @@ struct NLinkChain3 {
   /// Solves Mt a = f by an LDL^T factorization of Mt written out entry by entry;
   /// reads only the lower triangle of Mt. Returns false, leaving *a unspecified, when Mt is
   /// not positive definite or anything is NaN.
-  /// \param[in] Mt  the mass matrix (nq = 3)
-  /// \param[in] f   the right-hand side (nq)
-  /// \param[out] a  the solution (nq); must not be null
+  /// \param[in] Mt  the mass matrix (nv = 3)
+  /// \param[in] f   the right-hand side (nv)
+  /// \param[out] a  the solution (nv); must not be null
   template <typename Scalar>
-  static bool solve(const QMatrix<Scalar>& Mt, const QVector<Scalar>& f, QVector<Scalar>* a) {
+  static bool solve(const VMatrix<Scalar>& Mt, const VVector<Scalar>& f, VVector<Scalar>* a) {
     const Scalar d0 = Mt(0, 0);
     if (!(d0 > Scalar(0))) return false;
     const Scalar inv0 = Scalar(1) / d0;
@@ -1303,14 +1310,14 @@ struct NLinkChain3 {
   /// \param[in] v  generalized velocities (nq = 3)
   /// \param[in] t  time
   /// \param[in] params  model parameters
-  /// \return qddot (nq = 3)
+  /// \return qddot (nv = 3)
   template <typename Scalar>
-  static QVector<Scalar> qddot(const QVector<Scalar>& q, const QVector<Scalar>& v,
+  static VVector<Scalar> qddot(const QVector<Scalar>& q, const VVector<Scalar>& v,
                                const Scalar& t, const Params& params) {
-    QMatrix<Scalar> Mt;
-    QVector<Scalar> f;
+    VMatrix<Scalar> Mt;
+    VVector<Scalar> f;
     dynamics(q, v, t, params, &Mt, &f);
-    QVector<Scalar> a;
+    VVector<Scalar> a;
     if (!solve(Mt, f, &a)) a.setConstant(std::numeric_limits<Scalar>::quiet_NaN());
     return a;
   }

@@ -60,10 +60,11 @@ namespace models {
 /// Fixed points (1; massless anchors, stacked in fixed_point_positions):
 ///   (0..1) = pivot
 /// Kernels are static functions templated on Scalar; every one takes the parameters last.
-/// Equations of motion: mass_matrix(q, t) * qddot = forces(q, v, t).
+/// Equations of motion: mass_matrix(q, t) * dv/dt = forces(q, v, t).
 struct NLinkChain5 {
   static constexpr const char* name = "n_link_chain_5";
   static constexpr int nq = 5;
+  static constexpr int nv = 5;
   static constexpr int dim = 2;
   static constexpr int num_particles = 5;
   static constexpr int nx = dim * num_particles;
@@ -78,7 +79,7 @@ struct NLinkChain5 {
   static constexpr std::array<const char*, num_inputs> input_names{{}};
   /// A suggested initial state, from the model file.
   static constexpr std::array<double, nq> initial_q{{0.5, 0.5, 0.5, 0.5, 0.5}};
-  static constexpr std::array<double, nq> initial_v{{0.0, 0.0, 0.0, 0.0, 0.0}};
+  static constexpr std::array<double, nv> initial_v{{0.0, 0.0, 0.0, 0.0, 0.0}};
   static constexpr std::array<const char*, num_particles> particle_names{{"bob1", "bob2", "bob3",
       "bob4", "bob5"}};
   static constexpr std::array<const char*, num_fixed_points> fixed_point_names{{"pivot"}};
@@ -95,9 +96,15 @@ struct NLinkChain5 {
   template <typename Scalar>
   using QMatrix = Eigen::Matrix<Scalar, nq, nq>;
   template <typename Scalar>
+  using VVector = Eigen::Matrix<Scalar, nv, 1>;
+  template <typename Scalar>
+  using VMatrix = Eigen::Matrix<Scalar, nv, nv>;
+  template <typename Scalar>
+  using VQMatrix = Eigen::Matrix<Scalar, nv, nq>;
+  template <typename Scalar>
   using XVector = Eigen::Matrix<Scalar, nx, 1>;
   template <typename Scalar>
-  using XJacobian = Eigen::Matrix<Scalar, nx, nq>;
+  using XJacobian = Eigen::Matrix<Scalar, nx, nv>;
   template <typename Scalar>
   using SpaceVector = Eigen::Matrix<Scalar, dim, 1>;
   template <typename Scalar>
@@ -107,7 +114,7 @@ struct NLinkChain5 {
   template <typename Scalar>
   using FixedPointVector = Eigen::Matrix<Scalar, dim * num_fixed_points, 1>;
   template <typename Scalar>
-  using InputMatrix = Eigen::Matrix<Scalar, nq, num_inputs>;
+  using InputMatrix = Eigen::Matrix<Scalar, nv, num_inputs>;
 
   /// Model parameters; the defaults are the model file's.
   struct Params {
@@ -175,10 +182,10 @@ struct NLinkChain5 {
   /// \param[in] q  generalized coordinates (nq = 5)
   /// \param[in] t  time
   /// \param[in] params  model parameters
-  /// \return Mt (nq x nq)
+  /// \return Mt (nv x nv)
   /// Ops: 79
   template <typename Scalar>
-  static QMatrix<Scalar> mass_matrix(const QVector<Scalar>& q,
+  static VMatrix<Scalar> mass_matrix(const QVector<Scalar>& q,
                                      const Scalar& /*t*/,
                                      const Params& params) {
     using std::cos;
@@ -237,7 +244,7 @@ struct NLinkChain5 {
     const Scalar tmp222 = tmp44*tmp17 + tmp45*tmp18;
     const Scalar tmp223 = tmp44*tmp8 + tmp45*tmp9;
     const Scalar tmp224 = tmp0*tmp44 + tmp1*tmp45;
-    QMatrix<Scalar> result;
+    VMatrix<Scalar> result;
     result(0, 0) = tmp205;
     result(1, 0) = tmp209;
     result(1, 1) = tmp208;
@@ -271,11 +278,11 @@ struct NLinkChain5 {
   /// \param[in] v  generalized velocities (nq = 5)
   /// \param[in] t  time
   /// \param[in] params  model parameters
-  /// \return Ft (nq)
+  /// \return Ft (nv)
   /// Ops: 29
   template <typename Scalar>
-  static QVector<Scalar> applied_forces(const QVector<Scalar>& q,
-                                        const QVector<Scalar>& /*v*/,
+  static VVector<Scalar> applied_forces(const QVector<Scalar>& q,
+                                        const VVector<Scalar>& /*v*/,
                                         const Scalar& /*t*/,
                                         const Params& params) {
     using std::sin;
@@ -319,7 +326,7 @@ struct NLinkChain5 {
     const Scalar tmp227 = -tmp192;
     const Scalar tmp228 = -tmp189;
     const Scalar tmp229 = -tmp186;
-    QVector<Scalar> result;
+    VVector<Scalar> result;
     result(0) = tmp225;
     result(1) = tmp226;
     result(2) = tmp227;
@@ -333,14 +340,14 @@ struct NLinkChain5 {
   /// \param[in] v  generalized velocities (nq = 5)
   /// \param[in] t  time
   /// \param[in] params  model parameters
-  /// \return Q (nq)
+  /// \return Q (nv)
   /// Ops: 0
   template <typename Scalar>
-  static QVector<Scalar> generalized_forces(const QVector<Scalar>& /*q*/,
-                                            const QVector<Scalar>& /*v*/,
+  static VVector<Scalar> generalized_forces(const QVector<Scalar>& /*q*/,
+                                            const VVector<Scalar>& /*v*/,
                                             const Scalar& /*t*/,
                                             const Params& /*params*/) {
-    QVector<Scalar> result;
+    VVector<Scalar> result;
     result(0) = Scalar(0);
     result(1) = Scalar(0);
     result(2) = Scalar(0);
@@ -354,11 +361,11 @@ struct NLinkChain5 {
   /// \param[in] v  generalized velocities (nq = 5)
   /// \param[in] t  time
   /// \param[in] params  model parameters
-  /// \return Fi (nq)
+  /// \return Fi (nv)
   /// Ops: 86
   template <typename Scalar>
-  static QVector<Scalar> inertial_forces(const QVector<Scalar>& q,
-                                         const QVector<Scalar>& v,
+  static VVector<Scalar> inertial_forces(const QVector<Scalar>& q,
+                                         const VVector<Scalar>& v,
                                          const Scalar& /*t*/,
                                          const Params& params) {
     using std::cos;
@@ -436,7 +443,7 @@ struct NLinkChain5 {
     const Scalar tmp232 = -tmp178;
     const Scalar tmp233 = -tmp175;
     const Scalar tmp234 = -tmp172;
-    QVector<Scalar> result;
+    VVector<Scalar> result;
     result(0) = tmp230;
     result(1) = tmp231;
     result(2) = tmp232;
@@ -450,11 +457,11 @@ struct NLinkChain5 {
   /// \param[in] v  generalized velocities (nq = 5)
   /// \param[in] t  time
   /// \param[in] params  model parameters
-  /// \return Ft + Fi (nq)
+  /// \return Ft + Fi (nv)
   /// Ops: 110
   template <typename Scalar>
-  static QVector<Scalar> forces(const QVector<Scalar>& q,
-                                const QVector<Scalar>& v,
+  static VVector<Scalar> forces(const QVector<Scalar>& q,
+                                const VVector<Scalar>& v,
                                 const Scalar& /*t*/,
                                 const Params& params) {
     using std::cos;
@@ -552,7 +559,7 @@ struct NLinkChain5 {
     const Scalar tmp232 = -tmp178;
     const Scalar tmp233 = -tmp175;
     const Scalar tmp234 = -tmp172;
-    QVector<Scalar> result;
+    VVector<Scalar> result;
     result(0) = tmp225 + tmp230;
     result(1) = tmp226 + tmp231;
     result(2) = tmp227 + tmp232;
@@ -570,11 +577,11 @@ struct NLinkChain5 {
   /// Ops: 169
   template <typename Scalar>
   static void dynamics(const QVector<Scalar>& q,
-                       const QVector<Scalar>& v,
+                       const VVector<Scalar>& v,
                        const Scalar& /*t*/,
                        const Params& params,
-                       QMatrix<Scalar>* Mt,
-                       QVector<Scalar>* f) {
+                       VMatrix<Scalar>* Mt,
+                       VVector<Scalar>* f) {
     using std::cos;
     using std::sin;
     const Scalar theta1 = q(0);
@@ -737,11 +744,11 @@ struct NLinkChain5 {
   /// \param[in] v  generalized velocities (nq = 5)
   /// \param[in] t  time
   /// \param[in] params  model parameters
-  /// \return qddot (nq)
+  /// \return qddot (nv)
   /// Ops: 270
   template <typename Scalar>
-  static QVector<Scalar> qddot(const QVector<Scalar>& q,
-                               const QVector<Scalar>& v,
+  static VVector<Scalar> qddot(const QVector<Scalar>& q,
+                               const VVector<Scalar>& v,
                                const Scalar& /*t*/,
                                const Params& params) {
     using std::cos;
@@ -876,7 +883,7 @@ struct NLinkChain5 {
     const Scalar tmp132 = tmp129 + tmp29 + tmp26*tmp131;
     const Scalar tmp133 = tmp130 + tmp30 + tmp27*tmp131;
     const Scalar tmp134 = tmp47*(tmp48 - tmp44*tmp132 - tmp45*tmp133);
-    QVector<Scalar> result;
+    VVector<Scalar> result;
     result(0) = tmp121;
     result(1) = tmp125;
     result(2) = tmp128;
@@ -892,12 +899,12 @@ struct NLinkChain5 {
   /// \param[in] qdd  generalized accelerations (nq = 5)
   /// \param[in] t  time
   /// \param[in] params  model parameters
-  /// \return r = tau (nq)
+  /// \return r = tau (nv)
   /// Ops: 102
   template <typename Scalar>
-  static QVector<Scalar> inverse_dynamics(const QVector<Scalar>& q,
-                                          const QVector<Scalar>& v,
-                                          const QVector<Scalar>& qdd,
+  static VVector<Scalar> inverse_dynamics(const QVector<Scalar>& q,
+                                          const VVector<Scalar>& v,
+                                          const VVector<Scalar>& qdd,
                                           const Scalar& /*t*/,
                                           const Params& params) {
     using std::cos;
@@ -979,7 +986,7 @@ struct NLinkChain5 {
     const Scalar tmp159 = tmp156 + tmp137*m1;
     const Scalar tmp160 = tmp157 + tmp138*m1;
     const Scalar tmp161 = tmp0*tmp159 + tmp1*tmp160;
-    QVector<Scalar> result;
+    VVector<Scalar> result;
     result(0) = tmp161;
     result(1) = tmp158;
     result(2) = tmp155;
@@ -998,12 +1005,12 @@ struct NLinkChain5 {
   /// Ops: 437
   template <typename Scalar>
   static void residual_jacobians(const QVector<Scalar>& q,
-                                 const QVector<Scalar>& v,
-                                 const QVector<Scalar>& qdd,
+                                 const VVector<Scalar>& v,
+                                 const VVector<Scalar>& qdd,
                                  const Scalar& /*t*/,
                                  const Params& params,
-                                 QMatrix<Scalar>* dr_dq,
-                                 QMatrix<Scalar>* dr_dv) {
+                                 VQMatrix<Scalar>* dr_dq,
+                                 VMatrix<Scalar>* dr_dv) {
     using std::cos;
     using std::sin;
     const Scalar theta1 = q(0);
@@ -1294,7 +1301,7 @@ struct NLinkChain5 {
   /// Ops: 67
   template <typename Scalar>
   static Scalar kinetic_energy(const QVector<Scalar>& q,
-                               const QVector<Scalar>& v,
+                               const VVector<Scalar>& v,
                                const Scalar& /*t*/,
                                const Params& params) {
     using std::cos;
@@ -1422,7 +1429,7 @@ struct NLinkChain5 {
   /// Ops: 91
   template <typename Scalar>
   static Scalar energy(const QVector<Scalar>& q,
-                       const QVector<Scalar>& v,
+                       const VVector<Scalar>& v,
                        const Scalar& /*t*/,
                        const Params& params) {
     using std::cos;
@@ -1554,7 +1561,7 @@ struct NLinkChain5 {
   /// Ops: 38
   template <typename Scalar>
   static XVector<Scalar> velocities(const QVector<Scalar>& q,
-                                    const QVector<Scalar>& v,
+                                    const VVector<Scalar>& v,
                                     const Scalar& /*t*/,
                                     const Params& params) {
     using std::cos;
@@ -1612,7 +1619,7 @@ struct NLinkChain5 {
   /// \param[in] q  generalized coordinates (nq = 5)
   /// \param[in] t  time
   /// \param[in] params  model parameters
-  /// \return J (nx x nq)
+  /// \return J (nx x nv)
   /// Ops: 20
   template <typename Scalar>
   static XJacobian<Scalar> jacobian(const QVector<Scalar>& q,
@@ -1684,7 +1691,7 @@ struct NLinkChain5 {
   /// Ops: 48
   template <typename Scalar>
   static XVector<Scalar> bias_acceleration(const QVector<Scalar>& q,
-                                           const QVector<Scalar>& v,
+                                           const VVector<Scalar>& v,
                                            const Scalar& /*t*/,
                                            const Params& params) {
     using std::cos;
@@ -1760,7 +1767,7 @@ struct NLinkChain5 {
   /// Ops: 56
   template <typename Scalar>
   static SpaceVector<Scalar> linear_momentum(const QVector<Scalar>& q,
-                                             const QVector<Scalar>& v,
+                                             const VVector<Scalar>& v,
                                              const Scalar& /*t*/,
                                              const Params& params) {
     using std::cos;
@@ -1820,7 +1827,7 @@ struct NLinkChain5 {
   /// Ops: 80
   template <typename Scalar>
   static AngularVector<Scalar> angular_momentum(const QVector<Scalar>& q,
-                                                const QVector<Scalar>& v,
+                                                const VVector<Scalar>& v,
                                                 const Scalar& /*t*/,
                                                 const Params& params) {
     using std::cos;
@@ -1919,11 +1926,11 @@ struct NLinkChain5 {
   /// Solves Mt a = f by an LDL^T factorization of Mt written out entry by entry;
   /// reads only the lower triangle of Mt. Returns false, leaving *a unspecified, when Mt is
   /// not positive definite or anything is NaN.
-  /// \param[in] Mt  the mass matrix (nq = 5)
-  /// \param[in] f   the right-hand side (nq)
-  /// \param[out] a  the solution (nq); must not be null
+  /// \param[in] Mt  the mass matrix (nv = 5)
+  /// \param[in] f   the right-hand side (nv)
+  /// \param[out] a  the solution (nv); must not be null
   template <typename Scalar>
-  static bool solve(const QMatrix<Scalar>& Mt, const QVector<Scalar>& f, QVector<Scalar>* a) {
+  static bool solve(const VMatrix<Scalar>& Mt, const VVector<Scalar>& f, VVector<Scalar>* a) {
     const Scalar d0 = Mt(0, 0);
     if (!(d0 > Scalar(0))) return false;
     const Scalar inv0 = Scalar(1) / d0;

@@ -54,10 +54,11 @@ namespace models {
 /// Fixed points (1; massless anchors, stacked in fixed_point_positions):
 ///   (0..2) = origin
 /// Kernels are static functions templated on Scalar; every one takes the parameters last.
-/// Equations of motion: mass_matrix(q, t) * qddot = forces(q, v, t).
+/// Equations of motion: mass_matrix(q, t) * dv/dt = forces(q, v, t).
 struct Pendulum3d {
   static constexpr const char* name = "pendulum_3d";
   static constexpr int nq = 1;
+  static constexpr int nv = 1;
   static constexpr int dim = 3;
   static constexpr int num_particles = 2;
   static constexpr int nx = dim * num_particles;
@@ -71,7 +72,7 @@ struct Pendulum3d {
   static constexpr std::array<const char*, num_inputs> input_names{{}};
   /// A suggested initial state, from the model file.
   static constexpr std::array<double, nq> initial_q{{0.5}};
-  static constexpr std::array<double, nq> initial_v{{0.0}};
+  static constexpr std::array<double, nv> initial_v{{0.0}};
   static constexpr std::array<const char*, num_particles> particle_names{{"pivot", "bob"}};
   static constexpr std::array<const char*, num_fixed_points> fixed_point_names{{"origin"}};
   /// Whether applied_forces at rest (v = 0) is -d(potential_energy)/dq: every force without
@@ -87,9 +88,15 @@ struct Pendulum3d {
   template <typename Scalar>
   using QMatrix = Eigen::Matrix<Scalar, nq, nq>;
   template <typename Scalar>
+  using VVector = Eigen::Matrix<Scalar, nv, 1>;
+  template <typename Scalar>
+  using VMatrix = Eigen::Matrix<Scalar, nv, nv>;
+  template <typename Scalar>
+  using VQMatrix = Eigen::Matrix<Scalar, nv, nq>;
+  template <typename Scalar>
   using XVector = Eigen::Matrix<Scalar, nx, 1>;
   template <typename Scalar>
-  using XJacobian = Eigen::Matrix<Scalar, nx, nq>;
+  using XJacobian = Eigen::Matrix<Scalar, nx, nv>;
   template <typename Scalar>
   using SpaceVector = Eigen::Matrix<Scalar, dim, 1>;
   template <typename Scalar>
@@ -99,7 +106,7 @@ struct Pendulum3d {
   template <typename Scalar>
   using FixedPointVector = Eigen::Matrix<Scalar, dim * num_fixed_points, 1>;
   template <typename Scalar>
-  using InputMatrix = Eigen::Matrix<Scalar, nq, num_inputs>;
+  using InputMatrix = Eigen::Matrix<Scalar, nv, num_inputs>;
 
   /// Model parameters; the defaults are the model file's.
   struct Params {
@@ -142,10 +149,10 @@ struct Pendulum3d {
   /// \param[in] q  generalized coordinates (nq = 1)
   /// \param[in] t  time
   /// \param[in] params  model parameters
-  /// \return Mt (nq x nq)
+  /// \return Mt (nv x nv)
   /// Ops: 9
   template <typename Scalar>
-  static QMatrix<Scalar> mass_matrix(const QVector<Scalar>& q,
+  static VMatrix<Scalar> mass_matrix(const QVector<Scalar>& q,
                                      const Scalar& /*t*/,
                                      const Params& params) {
     using std::cos;
@@ -159,7 +166,7 @@ struct Pendulum3d {
     const Scalar tmp34 = tmp33*(tmp2*tmp2);
     const Scalar tmp35 = tmp33*(tmp0*tmp0);
     const Scalar tmp36 = m*(tmp34 + tmp35);
-    QMatrix<Scalar> result;
+    VMatrix<Scalar> result;
     result(0) = tmp36;
     return result;
   }
@@ -169,11 +176,11 @@ struct Pendulum3d {
   /// \param[in] v  generalized velocities (nq = 1)
   /// \param[in] t  time
   /// \param[in] params  model parameters
-  /// \return Ft (nq)
+  /// \return Ft (nv)
   /// Ops: 5
   template <typename Scalar>
-  static QVector<Scalar> applied_forces(const QVector<Scalar>& q,
-                                        const QVector<Scalar>& /*v*/,
+  static VVector<Scalar> applied_forces(const QVector<Scalar>& q,
+                                        const VVector<Scalar>& /*v*/,
                                         const Scalar& /*t*/,
                                         const Params& params) {
     using std::sin;
@@ -185,7 +192,7 @@ struct Pendulum3d {
     const Scalar tmp3 = tmp2*l;
     const Scalar tmp37 = g*m;
     const Scalar tmp38 = tmp37*tmp3;
-    QVector<Scalar> result;
+    VVector<Scalar> result;
     result(0) = -tmp38;
     return result;
   }
@@ -195,14 +202,14 @@ struct Pendulum3d {
   /// \param[in] v  generalized velocities (nq = 1)
   /// \param[in] t  time
   /// \param[in] params  model parameters
-  /// \return Q (nq)
+  /// \return Q (nv)
   /// Ops: 0
   template <typename Scalar>
-  static QVector<Scalar> generalized_forces(const QVector<Scalar>& /*q*/,
-                                            const QVector<Scalar>& /*v*/,
+  static VVector<Scalar> generalized_forces(const QVector<Scalar>& /*q*/,
+                                            const VVector<Scalar>& /*v*/,
                                             const Scalar& /*t*/,
                                             const Params& /*params*/) {
-    QVector<Scalar> result;
+    VVector<Scalar> result;
     result(0) = Scalar(0);
     return result;
   }
@@ -212,14 +219,14 @@ struct Pendulum3d {
   /// \param[in] v  generalized velocities (nq = 1)
   /// \param[in] t  time
   /// \param[in] params  model parameters
-  /// \return Fi (nq)
+  /// \return Fi (nv)
   /// Ops: 0
   template <typename Scalar>
-  static QVector<Scalar> inertial_forces(const QVector<Scalar>& /*q*/,
-                                         const QVector<Scalar>& /*v*/,
+  static VVector<Scalar> inertial_forces(const QVector<Scalar>& /*q*/,
+                                         const VVector<Scalar>& /*v*/,
                                          const Scalar& /*t*/,
                                          const Params& /*params*/) {
-    QVector<Scalar> result;
+    VVector<Scalar> result;
     result(0) = Scalar(0);
     return result;
   }
@@ -229,11 +236,11 @@ struct Pendulum3d {
   /// \param[in] v  generalized velocities (nq = 1)
   /// \param[in] t  time
   /// \param[in] params  model parameters
-  /// \return Ft + Fi (nq)
+  /// \return Ft + Fi (nv)
   /// Ops: 5
   template <typename Scalar>
-  static QVector<Scalar> forces(const QVector<Scalar>& q,
-                                const QVector<Scalar>& /*v*/,
+  static VVector<Scalar> forces(const QVector<Scalar>& q,
+                                const VVector<Scalar>& /*v*/,
                                 const Scalar& /*t*/,
                                 const Params& params) {
     using std::sin;
@@ -245,7 +252,7 @@ struct Pendulum3d {
     const Scalar tmp3 = tmp2*l;
     const Scalar tmp37 = g*m;
     const Scalar tmp38 = tmp37*tmp3;
-    QVector<Scalar> result;
+    VVector<Scalar> result;
     result(0) = -tmp38;
     return result;
   }
@@ -259,11 +266,11 @@ struct Pendulum3d {
   /// Ops: 13
   template <typename Scalar>
   static void dynamics(const QVector<Scalar>& q,
-                       const QVector<Scalar>& /*v*/,
+                       const VVector<Scalar>& /*v*/,
                        const Scalar& /*t*/,
                        const Params& params,
-                       QMatrix<Scalar>* Mt,
-                       QVector<Scalar>* f) {
+                       VMatrix<Scalar>* Mt,
+                       VVector<Scalar>* f) {
     using std::cos;
     using std::sin;
     const Scalar theta = q(0);
@@ -290,12 +297,12 @@ struct Pendulum3d {
   /// \param[in] qdd  generalized accelerations (nq = 1)
   /// \param[in] t  time
   /// \param[in] params  model parameters
-  /// \return r = tau (nq)
+  /// \return r = tau (nv)
   /// Ops: 14
   template <typename Scalar>
-  static QVector<Scalar> inverse_dynamics(const QVector<Scalar>& q,
-                                          const QVector<Scalar>& /*v*/,
-                                          const QVector<Scalar>& qdd,
+  static VVector<Scalar> inverse_dynamics(const QVector<Scalar>& q,
+                                          const VVector<Scalar>& /*v*/,
+                                          const VVector<Scalar>& qdd,
                                           const Scalar& /*t*/,
                                           const Params& params) {
     using std::cos;
@@ -314,7 +321,7 @@ struct Pendulum3d {
     const Scalar tmp36 = m*(tmp34 + tmp35);
     const Scalar tmp37 = g*m;
     const Scalar tmp38 = tmp37*tmp3;
-    QVector<Scalar> result;
+    VVector<Scalar> result;
     result(0) = tmp38 + tmp36*theta_ddot;
     return result;
   }
@@ -329,12 +336,12 @@ struct Pendulum3d {
   /// Ops: 18
   template <typename Scalar>
   static void residual_jacobians(const QVector<Scalar>& q,
-                                 const QVector<Scalar>& /*v*/,
-                                 const QVector<Scalar>& qdd,
+                                 const VVector<Scalar>& /*v*/,
+                                 const VVector<Scalar>& qdd,
                                  const Scalar& /*t*/,
                                  const Params& params,
-                                 QMatrix<Scalar>* dr_dq,
-                                 QMatrix<Scalar>* dr_dv) {
+                                 VQMatrix<Scalar>* dr_dq,
+                                 VMatrix<Scalar>* dr_dv) {
     using std::cos;
     using std::sin;
     const Scalar theta = q(0);
@@ -365,7 +372,7 @@ struct Pendulum3d {
   /// Ops: 13
   template <typename Scalar>
   static Scalar kinetic_energy(const QVector<Scalar>& q,
-                               const QVector<Scalar>& v,
+                               const VVector<Scalar>& v,
                                const Scalar& /*t*/,
                                const Params& params) {
     using std::cos;
@@ -434,7 +441,7 @@ struct Pendulum3d {
   /// Ops: 18
   template <typename Scalar>
   static Scalar energy(const QVector<Scalar>& q,
-                       const QVector<Scalar>& v,
+                       const VVector<Scalar>& v,
                        const Scalar& /*t*/,
                        const Params& params) {
     using std::cos;
@@ -496,7 +503,7 @@ struct Pendulum3d {
   /// Ops: 6
   template <typename Scalar>
   static XVector<Scalar> velocities(const QVector<Scalar>& q,
-                                    const QVector<Scalar>& v,
+                                    const VVector<Scalar>& v,
                                     const Scalar& /*t*/,
                                     const Params& params) {
     using std::cos;
@@ -524,7 +531,7 @@ struct Pendulum3d {
   /// \param[in] q  generalized coordinates (nq = 1)
   /// \param[in] t  time
   /// \param[in] params  model parameters
-  /// \return J (nx x nq)
+  /// \return J (nx x nv)
   /// Ops: 4
   template <typename Scalar>
   static XJacobian<Scalar> jacobian(const QVector<Scalar>& q,
@@ -557,7 +564,7 @@ struct Pendulum3d {
   /// Ops: 8
   template <typename Scalar>
   static XVector<Scalar> bias_acceleration(const QVector<Scalar>& q,
-                                           const QVector<Scalar>& v,
+                                           const VVector<Scalar>& v,
                                            const Scalar& /*t*/,
                                            const Params& params) {
     using std::cos;
@@ -589,7 +596,7 @@ struct Pendulum3d {
   /// Ops: 8
   template <typename Scalar>
   static SpaceVector<Scalar> linear_momentum(const QVector<Scalar>& q,
-                                             const QVector<Scalar>& v,
+                                             const VVector<Scalar>& v,
                                              const Scalar& /*t*/,
                                              const Params& params) {
     using std::cos;
@@ -620,7 +627,7 @@ struct Pendulum3d {
   /// Ops: 11
   template <typename Scalar>
   static AngularVector<Scalar> angular_momentum(const QVector<Scalar>& q,
-                                                const QVector<Scalar>& v,
+                                                const VVector<Scalar>& v,
                                                 const Scalar& /*t*/,
                                                 const Params& params) {
     using std::cos;
@@ -674,11 +681,11 @@ struct Pendulum3d {
   /// Solves Mt a = f by an LDL^T factorization of Mt written out entry by entry;
   /// reads only the lower triangle of Mt. Returns false, leaving *a unspecified, when Mt is
   /// not positive definite or anything is NaN.
-  /// \param[in] Mt  the mass matrix (nq = 1)
-  /// \param[in] f   the right-hand side (nq)
-  /// \param[out] a  the solution (nq); must not be null
+  /// \param[in] Mt  the mass matrix (nv = 1)
+  /// \param[in] f   the right-hand side (nv)
+  /// \param[out] a  the solution (nv); must not be null
   template <typename Scalar>
-  static bool solve(const QMatrix<Scalar>& Mt, const QVector<Scalar>& f, QVector<Scalar>* a) {
+  static bool solve(const VMatrix<Scalar>& Mt, const VVector<Scalar>& f, VVector<Scalar>* a) {
     const Scalar d0 = Mt(0, 0);
     if (!(d0 > Scalar(0))) return false;
     const Scalar inv0 = Scalar(1) / d0;
@@ -696,14 +703,14 @@ struct Pendulum3d {
   /// \param[in] v  generalized velocities (nq = 1)
   /// \param[in] t  time
   /// \param[in] params  model parameters
-  /// \return qddot (nq = 1)
+  /// \return qddot (nv = 1)
   template <typename Scalar>
-  static QVector<Scalar> qddot(const QVector<Scalar>& q, const QVector<Scalar>& v,
+  static VVector<Scalar> qddot(const QVector<Scalar>& q, const VVector<Scalar>& v,
                                const Scalar& t, const Params& params) {
-    QMatrix<Scalar> Mt;
-    QVector<Scalar> f;
+    VMatrix<Scalar> Mt;
+    VVector<Scalar> f;
     dynamics(q, v, t, params, &Mt, &f);
-    QVector<Scalar> a;
+    VVector<Scalar> a;
     if (!solve(Mt, f, &a)) a.setConstant(std::numeric_limits<Scalar>::quiet_NaN());
     return a;
   }

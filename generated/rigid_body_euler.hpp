@@ -83,10 +83,11 @@ namespace models {
 ///   x(6..8) = body_2, mass m/4
 ///   x(9..11) = body_3, mass m/4
 /// Kernels are static functions templated on Scalar; every one takes the parameters last.
-/// Equations of motion: mass_matrix(q, t) * qddot = forces(q, v, t).
+/// Equations of motion: mass_matrix(q, t) * dv/dt = forces(q, v, t).
 struct RigidBodyEuler {
   static constexpr const char* name = "rigid_body_euler";
   static constexpr int nq = 6;
+  static constexpr int nv = 6;
   static constexpr int dim = 3;
   static constexpr int num_particles = 4;
   static constexpr int nx = dim * num_particles;
@@ -101,7 +102,7 @@ struct RigidBodyEuler {
   static constexpr std::array<const char*, num_inputs> input_names{{}};
   /// A suggested initial state, from the model file.
   static constexpr std::array<double, nq> initial_q{{0.0, 0.0, 0.0, 0.0, 0.2, 0.0}};
-  static constexpr std::array<double, nq> initial_v{{0.0, 0.0, 0.0, 0.3, 1.0, 2.0}};
+  static constexpr std::array<double, nv> initial_v{{0.0, 0.0, 0.0, 0.3, 1.0, 2.0}};
   static constexpr std::array<const char*, num_particles> particle_names{{"body_0", "body_1",
       "body_2", "body_3"}};
   static constexpr std::array<const char*, num_fixed_points> fixed_point_names{{}};
@@ -118,9 +119,15 @@ struct RigidBodyEuler {
   template <typename Scalar>
   using QMatrix = Eigen::Matrix<Scalar, nq, nq>;
   template <typename Scalar>
+  using VVector = Eigen::Matrix<Scalar, nv, 1>;
+  template <typename Scalar>
+  using VMatrix = Eigen::Matrix<Scalar, nv, nv>;
+  template <typename Scalar>
+  using VQMatrix = Eigen::Matrix<Scalar, nv, nq>;
+  template <typename Scalar>
   using XVector = Eigen::Matrix<Scalar, nx, 1>;
   template <typename Scalar>
-  using XJacobian = Eigen::Matrix<Scalar, nx, nq>;
+  using XJacobian = Eigen::Matrix<Scalar, nx, nv>;
   template <typename Scalar>
   using SpaceVector = Eigen::Matrix<Scalar, dim, 1>;
   template <typename Scalar>
@@ -130,7 +137,7 @@ struct RigidBodyEuler {
   template <typename Scalar>
   using FixedPointVector = Eigen::Matrix<Scalar, dim * num_fixed_points, 1>;
   template <typename Scalar>
-  using InputMatrix = Eigen::Matrix<Scalar, nq, num_inputs>;
+  using InputMatrix = Eigen::Matrix<Scalar, nv, num_inputs>;
 
   /// Model parameters; the defaults are the model file's.
   struct Params {
@@ -190,10 +197,10 @@ struct RigidBodyEuler {
   /// \param[in] q  generalized coordinates (nq = 6)
   /// \param[in] t  time
   /// \param[in] params  model parameters
-  /// \return Mt (nq x nq)
+  /// \return Mt (nv x nv)
   /// Ops: 351
   template <typename Scalar>
-  static QMatrix<Scalar> mass_matrix(const QVector<Scalar>& q,
+  static VMatrix<Scalar> mass_matrix(const QVector<Scalar>& q,
                                      const Scalar& /*t*/,
                                      const Params& params) {
     using std::cos;
@@ -330,7 +337,7 @@ struct RigidBodyEuler {
         + tmp24*((tmp238*tmp238) + (tmp242*tmp242) + (tmp244*tmp244))
         + tmp37*((tmp75*tmp75) + (tmp85*tmp85) + tmp272*(tmp4*tmp4))
         + m*((tmp107*tmp107) + (tmp76*tmp76) + (tmp95*tmp95));
-    QMatrix<Scalar> result;
+    VMatrix<Scalar> result;
     result(0, 0) = m;
     result(1, 0) = Scalar(0);
     result(1, 1) = m;
@@ -375,11 +382,11 @@ struct RigidBodyEuler {
   /// \param[in] v  generalized velocities (nq = 6)
   /// \param[in] t  time
   /// \param[in] params  model parameters
-  /// \return Ft (nq)
+  /// \return Ft (nv)
   /// Ops: 22
   template <typename Scalar>
-  static QVector<Scalar> applied_forces(const QVector<Scalar>& q,
-                                        const QVector<Scalar>& /*v*/,
+  static VVector<Scalar> applied_forces(const QVector<Scalar>& q,
+                                        const VVector<Scalar>& /*v*/,
                                         const Scalar& /*t*/,
                                         const Params& params) {
     using std::cos;
@@ -407,7 +414,7 @@ struct RigidBodyEuler {
     const Scalar tmp282 = -tmp281;
     const Scalar tmp295 = tmp192*tmp282;
     const Scalar tmp296 = tmp107*tmp282;
-    QVector<Scalar> result;
+    VVector<Scalar> result;
     result(0) = Scalar(0);
     result(1) = Scalar(0);
     result(2) = tmp282;
@@ -422,14 +429,14 @@ struct RigidBodyEuler {
   /// \param[in] v  generalized velocities (nq = 6)
   /// \param[in] t  time
   /// \param[in] params  model parameters
-  /// \return Q (nq)
+  /// \return Q (nv)
   /// Ops: 0
   template <typename Scalar>
-  static QVector<Scalar> generalized_forces(const QVector<Scalar>& /*q*/,
-                                            const QVector<Scalar>& /*v*/,
+  static VVector<Scalar> generalized_forces(const QVector<Scalar>& /*q*/,
+                                            const VVector<Scalar>& /*v*/,
                                             const Scalar& /*t*/,
                                             const Params& /*params*/) {
-    QVector<Scalar> result;
+    VVector<Scalar> result;
     result(0) = Scalar(0);
     result(1) = Scalar(0);
     result(2) = Scalar(0);
@@ -444,11 +451,11 @@ struct RigidBodyEuler {
   /// \param[in] v  generalized velocities (nq = 6)
   /// \param[in] t  time
   /// \param[in] params  model parameters
-  /// \return Fi (nq)
+  /// \return Fi (nv)
   /// Ops: 637
   template <typename Scalar>
-  static QVector<Scalar> inertial_forces(const QVector<Scalar>& q,
-                                         const QVector<Scalar>& v,
+  static VVector<Scalar> inertial_forces(const QVector<Scalar>& q,
+                                         const VVector<Scalar>& v,
                                          const Scalar& /*t*/,
                                          const Params& params) {
     using std::cos;
@@ -648,7 +655,7 @@ struct RigidBodyEuler {
     const Scalar tmp302 = -tmp107*tmp285 - tmp214*tmp286 - tmp219*tmp287 - tmp221*tmp292
         - tmp238*tmp288 - tmp242*tmp289 - tmp244*tmp293 - tmp75*tmp290 - tmp76*tmp283 - tmp85*tmp291
         - tmp95*tmp284 + tmp4*tmp44*tmp294;
-    QVector<Scalar> result;
+    VVector<Scalar> result;
     result(0) = tmp297;
     result(1) = tmp298;
     result(2) = tmp299;
@@ -663,11 +670,11 @@ struct RigidBodyEuler {
   /// \param[in] v  generalized velocities (nq = 6)
   /// \param[in] t  time
   /// \param[in] params  model parameters
-  /// \return Ft + Fi (nq)
+  /// \return Ft + Fi (nv)
   /// Ops: 644
   template <typename Scalar>
-  static QVector<Scalar> forces(const QVector<Scalar>& q,
-                                const QVector<Scalar>& v,
+  static VVector<Scalar> forces(const QVector<Scalar>& q,
+                                const VVector<Scalar>& v,
                                 const Scalar& /*t*/,
                                 const Params& params) {
     using std::cos;
@@ -872,7 +879,7 @@ struct RigidBodyEuler {
     const Scalar tmp302 = -tmp107*tmp285 - tmp214*tmp286 - tmp219*tmp287 - tmp221*tmp292
         - tmp238*tmp288 - tmp242*tmp289 - tmp244*tmp293 - tmp75*tmp290 - tmp76*tmp283 - tmp85*tmp291
         - tmp95*tmp284 + tmp4*tmp44*tmp294;
-    QVector<Scalar> result;
+    VVector<Scalar> result;
     result(0) = tmp297;
     result(1) = tmp298;
     result(2) = tmp282 + tmp299;
@@ -891,11 +898,11 @@ struct RigidBodyEuler {
   /// Ops: 797
   template <typename Scalar>
   static void dynamics(const QVector<Scalar>& q,
-                       const QVector<Scalar>& v,
+                       const VVector<Scalar>& v,
                        const Scalar& /*t*/,
                        const Params& params,
-                       QMatrix<Scalar>* Mt,
-                       QVector<Scalar>* f) {
+                       VMatrix<Scalar>* Mt,
+                       VVector<Scalar>* f) {
     using std::cos;
     using std::sin;
     const Scalar yaw = q(3);
@@ -1181,12 +1188,12 @@ struct RigidBodyEuler {
   /// \param[in] qdd  generalized accelerations (nq = 6)
   /// \param[in] t  time
   /// \param[in] params  model parameters
-  /// \return r = tau (nq)
+  /// \return r = tau (nv)
   /// Ops: 862
   template <typename Scalar>
-  static QVector<Scalar> inverse_dynamics(const QVector<Scalar>& q,
-                                          const QVector<Scalar>& v,
-                                          const QVector<Scalar>& qdd,
+  static VVector<Scalar> inverse_dynamics(const QVector<Scalar>& q,
+                                          const VVector<Scalar>& v,
+                                          const VVector<Scalar>& qdd,
                                           const Scalar& /*t*/,
                                           const Params& params) {
     using std::cos;
@@ -1429,7 +1436,7 @@ struct RigidBodyEuler {
     const Scalar tmp302 = -tmp107*tmp285 - tmp214*tmp286 - tmp219*tmp287 - tmp221*tmp292
         - tmp238*tmp288 - tmp242*tmp289 - tmp244*tmp293 - tmp75*tmp290 - tmp76*tmp283 - tmp85*tmp291
         - tmp95*tmp284 + tmp4*tmp44*tmp294;
-    QVector<Scalar> result;
+    VVector<Scalar> result;
     result(0) = -tmp297 + tmp264*yaw_ddot + tmp267*pitch_ddot + tmp275*roll_ddot + m*x_ddot;
     result(1) = -tmp298 + tmp265*yaw_ddot + tmp268*pitch_ddot + tmp276*roll_ddot + m*y_ddot;
     result(2) = -tmp282 - tmp299 + tmp269*pitch_ddot + tmp277*roll_ddot + m*z_ddot;
@@ -1452,12 +1459,12 @@ struct RigidBodyEuler {
   /// Ops: 3964
   template <typename Scalar>
   static void residual_jacobians(const QVector<Scalar>& q,
-                                 const QVector<Scalar>& v,
-                                 const QVector<Scalar>& qdd,
+                                 const VVector<Scalar>& v,
+                                 const VVector<Scalar>& qdd,
                                  const Scalar& /*t*/,
                                  const Params& params,
-                                 QMatrix<Scalar>* dr_dq,
-                                 QMatrix<Scalar>* dr_dv) {
+                                 VQMatrix<Scalar>* dr_dq,
+                                 VMatrix<Scalar>* dr_dv) {
     using std::cos;
     using std::sin;
     const Scalar yaw = q(3);
@@ -2354,7 +2361,7 @@ struct RigidBodyEuler {
   /// Ops: 286
   template <typename Scalar>
   static Scalar kinetic_energy(const QVector<Scalar>& q,
-                               const QVector<Scalar>& v,
+                               const VVector<Scalar>& v,
                                const Scalar& /*t*/,
                                const Params& params) {
     using std::cos;
@@ -2549,7 +2556,7 @@ struct RigidBodyEuler {
   /// Ops: 295
   template <typename Scalar>
   static Scalar energy(const QVector<Scalar>& q,
-                       const QVector<Scalar>& v,
+                       const VVector<Scalar>& v,
                        const Scalar& /*t*/,
                        const Params& params) {
     using std::cos;
@@ -2853,7 +2860,7 @@ struct RigidBodyEuler {
   /// Ops: 398
   template <typename Scalar>
   static XVector<Scalar> velocities(const QVector<Scalar>& q,
-                                    const QVector<Scalar>& v,
+                                    const VVector<Scalar>& v,
                                     const Scalar& /*t*/,
                                     const Params& params) {
     using std::cos;
@@ -3062,7 +3069,7 @@ struct RigidBodyEuler {
   /// \param[in] q  generalized coordinates (nq = 6)
   /// \param[in] t  time
   /// \param[in] params  model parameters
-  /// \return J (nx x nq)
+  /// \return J (nx x nv)
   /// Ops: 334
   template <typename Scalar>
   static XJacobian<Scalar> jacobian(const QVector<Scalar>& q,
@@ -3290,7 +3297,7 @@ struct RigidBodyEuler {
   /// Ops: 681
   template <typename Scalar>
   static XVector<Scalar> bias_acceleration(const QVector<Scalar>& q,
-                                           const QVector<Scalar>& v,
+                                           const VVector<Scalar>& v,
                                            const Scalar& /*t*/,
                                            const Params& params) {
     using std::cos;
@@ -3548,7 +3555,7 @@ struct RigidBodyEuler {
   /// Ops: 90
   template <typename Scalar>
   static SpaceVector<Scalar> linear_momentum(const QVector<Scalar>& q,
-                                             const QVector<Scalar>& v,
+                                             const VVector<Scalar>& v,
                                              const Scalar& /*t*/,
                                              const Params& params) {
     using std::cos;
@@ -3629,7 +3636,7 @@ struct RigidBodyEuler {
   /// Ops: 349
   template <typename Scalar>
   static AngularVector<Scalar> angular_momentum(const QVector<Scalar>& q,
-                                                const QVector<Scalar>& v,
+                                                const VVector<Scalar>& v,
                                                 const Scalar& /*t*/,
                                                 const Params& params) {
     using std::cos;
@@ -3808,11 +3815,11 @@ struct RigidBodyEuler {
   /// Solves Mt a = f by an LDL^T factorization of Mt written out entry by entry;
   /// reads only the lower triangle of Mt. Returns false, leaving *a unspecified, when Mt is
   /// not positive definite or anything is NaN.
-  /// \param[in] Mt  the mass matrix (nq = 6)
-  /// \param[in] f   the right-hand side (nq)
-  /// \param[out] a  the solution (nq); must not be null
+  /// \param[in] Mt  the mass matrix (nv = 6)
+  /// \param[in] f   the right-hand side (nv)
+  /// \param[out] a  the solution (nv); must not be null
   template <typename Scalar>
-  static bool solve(const QMatrix<Scalar>& Mt, const QVector<Scalar>& f, QVector<Scalar>* a) {
+  static bool solve(const VMatrix<Scalar>& Mt, const VVector<Scalar>& f, VVector<Scalar>* a) {
     const Scalar d0 = Mt(0, 0);
     if (!(d0 > Scalar(0))) return false;
     const Scalar inv0 = Scalar(1) / d0;
@@ -3891,14 +3898,14 @@ struct RigidBodyEuler {
   /// \param[in] v  generalized velocities (nq = 6)
   /// \param[in] t  time
   /// \param[in] params  model parameters
-  /// \return qddot (nq = 6)
+  /// \return qddot (nv = 6)
   template <typename Scalar>
-  static QVector<Scalar> qddot(const QVector<Scalar>& q, const QVector<Scalar>& v,
+  static VVector<Scalar> qddot(const QVector<Scalar>& q, const VVector<Scalar>& v,
                                const Scalar& t, const Params& params) {
-    QMatrix<Scalar> Mt;
-    QVector<Scalar> f;
+    VMatrix<Scalar> Mt;
+    VVector<Scalar> f;
     dynamics(q, v, t, params, &Mt, &f);
-    QVector<Scalar> a;
+    VVector<Scalar> a;
     if (!solve(Mt, f, &a)) a.setConstant(std::numeric_limits<Scalar>::quiet_NaN());
     return a;
   }
@@ -5981,10 +5988,11 @@ struct RigidBodyEuler {
 ///   x(6..8) = body_2, mass m/4
 ///   x(9..11) = body_3, mass m/4
 /// Kernels are static functions templated on Scalar; every one takes the parameters last.
-/// Equations of motion: mass_matrix(q, t) * qddot = forces(q, v, t).
+/// Equations of motion: mass_matrix(q, t) * dv/dt = forces(q, v, t).
 struct RigidBodyEulerYzx {
   static constexpr const char* name = "rigid_body_euler_yzx";
   static constexpr int nq = 6;
+  static constexpr int nv = 6;
   static constexpr int dim = 3;
   static constexpr int num_particles = 4;
   static constexpr int nx = dim * num_particles;
@@ -5999,7 +6007,7 @@ struct RigidBodyEulerYzx {
   static constexpr std::array<const char*, num_inputs> input_names{{}};
   /// A suggested initial state, from the model file.
   static constexpr std::array<double, nq> initial_q{{0.0, 0.0, 0.0, 0.0, 0.0, 0.0}};
-  static constexpr std::array<double, nq> initial_v{{0.0, 0.0, 0.0, 0.0, 0.0, 0.0}};
+  static constexpr std::array<double, nv> initial_v{{0.0, 0.0, 0.0, 0.0, 0.0, 0.0}};
   static constexpr std::array<const char*, num_particles> particle_names{{"body_0", "body_1",
       "body_2", "body_3"}};
   static constexpr std::array<const char*, num_fixed_points> fixed_point_names{{}};
@@ -6016,9 +6024,15 @@ struct RigidBodyEulerYzx {
   template <typename Scalar>
   using QMatrix = Eigen::Matrix<Scalar, nq, nq>;
   template <typename Scalar>
+  using VVector = Eigen::Matrix<Scalar, nv, 1>;
+  template <typename Scalar>
+  using VMatrix = Eigen::Matrix<Scalar, nv, nv>;
+  template <typename Scalar>
+  using VQMatrix = Eigen::Matrix<Scalar, nv, nq>;
+  template <typename Scalar>
   using XVector = Eigen::Matrix<Scalar, nx, 1>;
   template <typename Scalar>
-  using XJacobian = Eigen::Matrix<Scalar, nx, nq>;
+  using XJacobian = Eigen::Matrix<Scalar, nx, nv>;
   template <typename Scalar>
   using SpaceVector = Eigen::Matrix<Scalar, dim, 1>;
   template <typename Scalar>
@@ -6028,7 +6042,7 @@ struct RigidBodyEulerYzx {
   template <typename Scalar>
   using FixedPointVector = Eigen::Matrix<Scalar, dim * num_fixed_points, 1>;
   template <typename Scalar>
-  using InputMatrix = Eigen::Matrix<Scalar, nq, num_inputs>;
+  using InputMatrix = Eigen::Matrix<Scalar, nv, num_inputs>;
 
   /// Model parameters: one type for every chart of the atlas (RigidBodyEuler's).
   using Params = RigidBodyEuler::Params;
@@ -6060,10 +6074,10 @@ struct RigidBodyEulerYzx {
   /// \param[in] q  generalized coordinates (nq = 6)
   /// \param[in] t  time
   /// \param[in] params  model parameters
-  /// \return Mt (nq x nq)
+  /// \return Mt (nv x nv)
   /// Ops: 366
   template <typename Scalar>
-  static QMatrix<Scalar> mass_matrix(const QVector<Scalar>& q,
+  static VMatrix<Scalar> mass_matrix(const QVector<Scalar>& q,
                                      const Scalar& /*t*/,
                                      const Params& params) {
     using std::cos;
@@ -6202,7 +6216,7 @@ struct RigidBodyEulerYzx {
         + tmp25*((tmp247*tmp247) + (tmp250*tmp250) + (tmp253*tmp253))
         + tmp38*((tmp8*tmp8) + (tmp98*tmp98) + tmp281*(tmp4*tmp4))
         + m*((tmp197*tmp197) + (tmp77*tmp77) + (tmp99*tmp99));
-    QMatrix<Scalar> result;
+    VMatrix<Scalar> result;
     result(0, 0) = m;
     result(1, 0) = Scalar(0);
     result(1, 1) = m;
@@ -6247,11 +6261,11 @@ struct RigidBodyEulerYzx {
   /// \param[in] v  generalized velocities (nq = 6)
   /// \param[in] t  time
   /// \param[in] params  model parameters
-  /// \return Ft (nq)
+  /// \return Ft (nv)
   /// Ops: 48
   template <typename Scalar>
-  static QVector<Scalar> applied_forces(const QVector<Scalar>& q,
-                                        const QVector<Scalar>& /*v*/,
+  static VVector<Scalar> applied_forces(const QVector<Scalar>& q,
+                                        const VVector<Scalar>& /*v*/,
                                         const Scalar& /*t*/,
                                         const Params& params) {
     using std::cos;
@@ -6299,7 +6313,7 @@ struct RigidBodyEulerYzx {
     const Scalar tmp304 = tmp112*tmp291;
     const Scalar tmp305 = tmp105*tmp291;
     const Scalar tmp306 = tmp99*tmp291;
-    QVector<Scalar> result;
+    VVector<Scalar> result;
     result(0) = Scalar(0);
     result(1) = Scalar(0);
     result(2) = tmp291;
@@ -6314,14 +6328,14 @@ struct RigidBodyEulerYzx {
   /// \param[in] v  generalized velocities (nq = 6)
   /// \param[in] t  time
   /// \param[in] params  model parameters
-  /// \return Q (nq)
+  /// \return Q (nv)
   /// Ops: 0
   template <typename Scalar>
-  static QVector<Scalar> generalized_forces(const QVector<Scalar>& /*q*/,
-                                            const QVector<Scalar>& /*v*/,
+  static VVector<Scalar> generalized_forces(const QVector<Scalar>& /*q*/,
+                                            const VVector<Scalar>& /*v*/,
                                             const Scalar& /*t*/,
                                             const Params& /*params*/) {
-    QVector<Scalar> result;
+    VVector<Scalar> result;
     result(0) = Scalar(0);
     result(1) = Scalar(0);
     result(2) = Scalar(0);
@@ -6336,11 +6350,11 @@ struct RigidBodyEulerYzx {
   /// \param[in] v  generalized velocities (nq = 6)
   /// \param[in] t  time
   /// \param[in] params  model parameters
-  /// \return Fi (nq)
+  /// \return Fi (nv)
   /// Ops: 631
   template <typename Scalar>
-  static QVector<Scalar> inertial_forces(const QVector<Scalar>& q,
-                                         const QVector<Scalar>& v,
+  static VVector<Scalar> inertial_forces(const QVector<Scalar>& q,
+                                         const VVector<Scalar>& v,
                                          const Scalar& /*t*/,
                                          const Params& params) {
     using std::cos;
@@ -6543,7 +6557,7 @@ struct RigidBodyEulerYzx {
     const Scalar tmp312 = -tmp197*tmp293 - tmp222*tmp295 - tmp224*tmp301 - tmp228*tmp296
         - tmp247*tmp297 - tmp250*tmp302 - tmp253*tmp298 - tmp77*tmp292 - tmp8*tmp299 - tmp98*tmp300
         - tmp99*tmp294 + tmp4*tmp44*tmp303;
-    QVector<Scalar> result;
+    VVector<Scalar> result;
     result(0) = tmp307;
     result(1) = tmp308;
     result(2) = tmp309;
@@ -6558,11 +6572,11 @@ struct RigidBodyEulerYzx {
   /// \param[in] v  generalized velocities (nq = 6)
   /// \param[in] t  time
   /// \param[in] params  model parameters
-  /// \return Ft + Fi (nq)
+  /// \return Ft + Fi (nv)
   /// Ops: 640
   template <typename Scalar>
-  static QVector<Scalar> forces(const QVector<Scalar>& q,
-                                const QVector<Scalar>& v,
+  static VVector<Scalar> forces(const QVector<Scalar>& q,
+                                const VVector<Scalar>& v,
                                 const Scalar& /*t*/,
                                 const Params& params) {
     using std::cos;
@@ -6771,7 +6785,7 @@ struct RigidBodyEulerYzx {
     const Scalar tmp312 = -tmp197*tmp293 - tmp222*tmp295 - tmp224*tmp301 - tmp228*tmp296
         - tmp247*tmp297 - tmp250*tmp302 - tmp253*tmp298 - tmp77*tmp292 - tmp8*tmp299 - tmp98*tmp300
         - tmp99*tmp294 + tmp4*tmp44*tmp303;
-    QVector<Scalar> result;
+    VVector<Scalar> result;
     result(0) = tmp307;
     result(1) = tmp308;
     result(2) = tmp291 + tmp309;
@@ -6790,11 +6804,11 @@ struct RigidBodyEulerYzx {
   /// Ops: 798
   template <typename Scalar>
   static void dynamics(const QVector<Scalar>& q,
-                       const QVector<Scalar>& v,
+                       const VVector<Scalar>& v,
                        const Scalar& /*t*/,
                        const Params& params,
-                       QMatrix<Scalar>* Mt,
-                       QVector<Scalar>* f) {
+                       VMatrix<Scalar>* Mt,
+                       VVector<Scalar>* f) {
     using std::cos;
     using std::sin;
     const Scalar heading = q(3);
@@ -7084,12 +7098,12 @@ struct RigidBodyEulerYzx {
   /// \param[in] qdd  generalized accelerations (nq = 6)
   /// \param[in] t  time
   /// \param[in] params  model parameters
-  /// \return r = tau (nq)
+  /// \return r = tau (nv)
   /// Ops: 864
   template <typename Scalar>
-  static QVector<Scalar> inverse_dynamics(const QVector<Scalar>& q,
-                                          const QVector<Scalar>& v,
-                                          const QVector<Scalar>& qdd,
+  static VVector<Scalar> inverse_dynamics(const QVector<Scalar>& q,
+                                          const VVector<Scalar>& v,
+                                          const VVector<Scalar>& qdd,
                                           const Scalar& /*t*/,
                                           const Params& params) {
     using std::cos;
@@ -7336,7 +7350,7 @@ struct RigidBodyEulerYzx {
     const Scalar tmp312 = -tmp197*tmp293 - tmp222*tmp295 - tmp224*tmp301 - tmp228*tmp296
         - tmp247*tmp297 - tmp250*tmp302 - tmp253*tmp298 - tmp77*tmp292 - tmp8*tmp299 - tmp98*tmp300
         - tmp99*tmp294 + tmp4*tmp44*tmp303;
-    QVector<Scalar> result;
+    VVector<Scalar> result;
     result(0) = -tmp307 + tmp273*heading_ddot + tmp276*attitude_ddot + tmp284*bank_ddot + m*x_ddot;
     result(1) = -tmp308 + tmp277*attitude_ddot + tmp285*bank_ddot + m*y_ddot;
     result(2) = -tmp291 - tmp309 + tmp274*heading_ddot + tmp278*attitude_ddot + tmp286*bank_ddot
@@ -7360,12 +7374,12 @@ struct RigidBodyEulerYzx {
   /// Ops: 4021
   template <typename Scalar>
   static void residual_jacobians(const QVector<Scalar>& q,
-                                 const QVector<Scalar>& v,
-                                 const QVector<Scalar>& qdd,
+                                 const VVector<Scalar>& v,
+                                 const VVector<Scalar>& qdd,
                                  const Scalar& /*t*/,
                                  const Params& params,
-                                 QMatrix<Scalar>* dr_dq,
-                                 QMatrix<Scalar>* dr_dv) {
+                                 VQMatrix<Scalar>* dr_dq,
+                                 VMatrix<Scalar>* dr_dv) {
     using std::cos;
     using std::sin;
     const Scalar heading = q(3);
@@ -8292,7 +8306,7 @@ struct RigidBodyEulerYzx {
   /// Ops: 296
   template <typename Scalar>
   static Scalar kinetic_energy(const QVector<Scalar>& q,
-                               const QVector<Scalar>& v,
+                               const VVector<Scalar>& v,
                                const Scalar& /*t*/,
                                const Params& params) {
     using std::cos;
@@ -8498,7 +8512,7 @@ struct RigidBodyEulerYzx {
   /// Ops: 300
   template <typename Scalar>
   static Scalar energy(const QVector<Scalar>& q,
-                       const QVector<Scalar>& v,
+                       const VVector<Scalar>& v,
                        const Scalar& /*t*/,
                        const Params& params) {
     using std::cos;
@@ -8806,7 +8820,7 @@ struct RigidBodyEulerYzx {
   /// Ops: 425
   template <typename Scalar>
   static XVector<Scalar> velocities(const QVector<Scalar>& q,
-                                    const QVector<Scalar>& v,
+                                    const VVector<Scalar>& v,
                                     const Scalar& /*t*/,
                                     const Params& params) {
     using std::cos;
@@ -9020,7 +9034,7 @@ struct RigidBodyEulerYzx {
   /// \param[in] q  generalized coordinates (nq = 6)
   /// \param[in] t  time
   /// \param[in] params  model parameters
-  /// \return J (nx x nq)
+  /// \return J (nx x nv)
   /// Ops: 361
   template <typename Scalar>
   static XJacobian<Scalar> jacobian(const QVector<Scalar>& q,
@@ -9253,7 +9267,7 @@ struct RigidBodyEulerYzx {
   /// Ops: 692
   template <typename Scalar>
   static XVector<Scalar> bias_acceleration(const QVector<Scalar>& q,
-                                           const QVector<Scalar>& v,
+                                           const VVector<Scalar>& v,
                                            const Scalar& /*t*/,
                                            const Params& params) {
     using std::cos;
@@ -9510,7 +9524,7 @@ struct RigidBodyEulerYzx {
   /// Ops: 94
   template <typename Scalar>
   static SpaceVector<Scalar> linear_momentum(const QVector<Scalar>& q,
-                                             const QVector<Scalar>& v,
+                                             const VVector<Scalar>& v,
                                              const Scalar& /*t*/,
                                              const Params& params) {
     using std::cos;
@@ -9591,7 +9605,7 @@ struct RigidBodyEulerYzx {
   /// Ops: 366
   template <typename Scalar>
   static AngularVector<Scalar> angular_momentum(const QVector<Scalar>& q,
-                                                const QVector<Scalar>& v,
+                                                const VVector<Scalar>& v,
                                                 const Scalar& /*t*/,
                                                 const Params& params) {
     using std::cos;
@@ -9777,11 +9791,11 @@ struct RigidBodyEulerYzx {
   /// Solves Mt a = f by an LDL^T factorization of Mt written out entry by entry;
   /// reads only the lower triangle of Mt. Returns false, leaving *a unspecified, when Mt is
   /// not positive definite or anything is NaN.
-  /// \param[in] Mt  the mass matrix (nq = 6)
-  /// \param[in] f   the right-hand side (nq)
-  /// \param[out] a  the solution (nq); must not be null
+  /// \param[in] Mt  the mass matrix (nv = 6)
+  /// \param[in] f   the right-hand side (nv)
+  /// \param[out] a  the solution (nv); must not be null
   template <typename Scalar>
-  static bool solve(const QMatrix<Scalar>& Mt, const QVector<Scalar>& f, QVector<Scalar>* a) {
+  static bool solve(const VMatrix<Scalar>& Mt, const VVector<Scalar>& f, VVector<Scalar>* a) {
     const Scalar d0 = Mt(0, 0);
     if (!(d0 > Scalar(0))) return false;
     const Scalar inv0 = Scalar(1) / d0;
@@ -9860,14 +9874,14 @@ struct RigidBodyEulerYzx {
   /// \param[in] v  generalized velocities (nq = 6)
   /// \param[in] t  time
   /// \param[in] params  model parameters
-  /// \return qddot (nq = 6)
+  /// \return qddot (nv = 6)
   template <typename Scalar>
-  static QVector<Scalar> qddot(const QVector<Scalar>& q, const QVector<Scalar>& v,
+  static VVector<Scalar> qddot(const QVector<Scalar>& q, const VVector<Scalar>& v,
                                const Scalar& t, const Params& params) {
-    QMatrix<Scalar> Mt;
-    QVector<Scalar> f;
+    VMatrix<Scalar> Mt;
+    VVector<Scalar> f;
     dynamics(q, v, t, params, &Mt, &f);
-    QVector<Scalar> a;
+    VVector<Scalar> a;
     if (!solve(Mt, f, &a)) a.setConstant(std::numeric_limits<Scalar>::quiet_NaN());
     return a;
   }

@@ -73,10 +73,11 @@ namespace models {
 /// Fixed points (1; massless anchors, stacked in fixed_point_positions):
 ///   (0..2) = pivot
 /// Kernels are static functions templated on Scalar; every one takes the parameters last.
-/// Equations of motion: mass_matrix(q, t) * qddot = forces(q, v, t).
+/// Equations of motion: mass_matrix(q, t) * dv/dt = forces(q, v, t).
 struct SphericalPendulum {
   static constexpr const char* name = "spherical_pendulum";
   static constexpr int nq = 2;
+  static constexpr int nv = 2;
   static constexpr int dim = 3;
   static constexpr int num_particles = 1;
   static constexpr int nx = dim * num_particles;
@@ -90,7 +91,7 @@ struct SphericalPendulum {
   static constexpr std::array<const char*, num_inputs> input_names{{}};
   /// A suggested initial state, from the model file.
   static constexpr std::array<double, nq> initial_q{{1.0, 0.0}};
-  static constexpr std::array<double, nq> initial_v{{0.0, 2.0}};
+  static constexpr std::array<double, nv> initial_v{{0.0, 2.0}};
   static constexpr std::array<const char*, num_particles> particle_names{{"bob"}};
   static constexpr std::array<const char*, num_fixed_points> fixed_point_names{{"pivot"}};
   /// Whether applied_forces at rest (v = 0) is -d(potential_energy)/dq: every force without
@@ -106,9 +107,15 @@ struct SphericalPendulum {
   template <typename Scalar>
   using QMatrix = Eigen::Matrix<Scalar, nq, nq>;
   template <typename Scalar>
+  using VVector = Eigen::Matrix<Scalar, nv, 1>;
+  template <typename Scalar>
+  using VMatrix = Eigen::Matrix<Scalar, nv, nv>;
+  template <typename Scalar>
+  using VQMatrix = Eigen::Matrix<Scalar, nv, nq>;
+  template <typename Scalar>
   using XVector = Eigen::Matrix<Scalar, nx, 1>;
   template <typename Scalar>
-  using XJacobian = Eigen::Matrix<Scalar, nx, nq>;
+  using XJacobian = Eigen::Matrix<Scalar, nx, nv>;
   template <typename Scalar>
   using SpaceVector = Eigen::Matrix<Scalar, dim, 1>;
   template <typename Scalar>
@@ -118,7 +125,7 @@ struct SphericalPendulum {
   template <typename Scalar>
   using FixedPointVector = Eigen::Matrix<Scalar, dim * num_fixed_points, 1>;
   template <typename Scalar>
-  using InputMatrix = Eigen::Matrix<Scalar, nq, num_inputs>;
+  using InputMatrix = Eigen::Matrix<Scalar, nv, num_inputs>;
 
   /// Model parameters; the defaults are the model file's.
   struct Params {
@@ -158,10 +165,10 @@ struct SphericalPendulum {
   /// \param[in] q  generalized coordinates (nq = 2)
   /// \param[in] t  time
   /// \param[in] params  model parameters
-  /// \return Mt (nq x nq)
+  /// \return Mt (nv x nv)
   /// Ops: 20
   template <typename Scalar>
-  static QMatrix<Scalar> mass_matrix(const QVector<Scalar>& q,
+  static VMatrix<Scalar> mass_matrix(const QVector<Scalar>& q,
                                      const Scalar& /*t*/,
                                      const Params& params) {
     using std::cos;
@@ -181,7 +188,7 @@ struct SphericalPendulum {
     const Scalar tmp71 = (tmp0*tmp0);
     const Scalar tmp72 = m*(tmp68 + tmp69*tmp70 + tmp70*tmp71);
     const Scalar tmp73 = m*(tmp68*tmp69 + tmp68*tmp71);
-    QMatrix<Scalar> result;
+    VMatrix<Scalar> result;
     result(0, 0) = tmp72;
     result(1, 0) = Scalar(0);
     result(1, 1) = tmp73;
@@ -194,11 +201,11 @@ struct SphericalPendulum {
   /// \param[in] v  generalized velocities (nq = 2)
   /// \param[in] t  time
   /// \param[in] params  model parameters
-  /// \return Ft (nq)
+  /// \return Ft (nv)
   /// Ops: 5
   template <typename Scalar>
-  static QVector<Scalar> applied_forces(const QVector<Scalar>& q,
-                                        const QVector<Scalar>& /*v*/,
+  static VVector<Scalar> applied_forces(const QVector<Scalar>& q,
+                                        const VVector<Scalar>& /*v*/,
                                         const Scalar& /*t*/,
                                         const Params& params) {
     using std::sin;
@@ -210,7 +217,7 @@ struct SphericalPendulum {
     const Scalar tmp6 = tmp5*l;
     const Scalar tmp74 = g*m;
     const Scalar tmp75 = tmp74*tmp6;
-    QVector<Scalar> result;
+    VVector<Scalar> result;
     result(0) = -tmp75;
     result(1) = Scalar(0);
     return result;
@@ -221,14 +228,14 @@ struct SphericalPendulum {
   /// \param[in] v  generalized velocities (nq = 2)
   /// \param[in] t  time
   /// \param[in] params  model parameters
-  /// \return Q (nq)
+  /// \return Q (nv)
   /// Ops: 0
   template <typename Scalar>
-  static QVector<Scalar> generalized_forces(const QVector<Scalar>& /*q*/,
-                                            const QVector<Scalar>& /*v*/,
+  static VVector<Scalar> generalized_forces(const QVector<Scalar>& /*q*/,
+                                            const VVector<Scalar>& /*v*/,
                                             const Scalar& /*t*/,
                                             const Params& /*params*/) {
-    QVector<Scalar> result;
+    VVector<Scalar> result;
     result(0) = Scalar(0);
     result(1) = Scalar(0);
     return result;
@@ -239,11 +246,11 @@ struct SphericalPendulum {
   /// \param[in] v  generalized velocities (nq = 2)
   /// \param[in] t  time
   /// \param[in] params  model parameters
-  /// \return Fi (nq)
+  /// \return Fi (nv)
   /// Ops: 52
   template <typename Scalar>
-  static QVector<Scalar> inertial_forces(const QVector<Scalar>& q,
-                                         const QVector<Scalar>& v,
+  static VVector<Scalar> inertial_forces(const QVector<Scalar>& q,
+                                         const VVector<Scalar>& v,
                                          const Scalar& /*t*/,
                                          const Params& params) {
     using std::cos;
@@ -272,7 +279,7 @@ struct SphericalPendulum {
     const Scalar tmp67 = (l*l);
     const Scalar tmp76 = m*(tmp12*tmp3 + tmp14*tmp9 + tmp1*tmp15*tmp67*tmp5);
     const Scalar tmp77 = m*(tmp14*tmp10 - tmp12*tmp7);
-    QVector<Scalar> result;
+    VVector<Scalar> result;
     result(0) = -tmp76;
     result(1) = -tmp77;
     return result;
@@ -283,11 +290,11 @@ struct SphericalPendulum {
   /// \param[in] v  generalized velocities (nq = 2)
   /// \param[in] t  time
   /// \param[in] params  model parameters
-  /// \return Ft + Fi (nq)
+  /// \return Ft + Fi (nv)
   /// Ops: 55
   template <typename Scalar>
-  static QVector<Scalar> forces(const QVector<Scalar>& q,
-                                const QVector<Scalar>& v,
+  static VVector<Scalar> forces(const QVector<Scalar>& q,
+                                const VVector<Scalar>& v,
                                 const Scalar& /*t*/,
                                 const Params& params) {
     using std::cos;
@@ -320,7 +327,7 @@ struct SphericalPendulum {
     const Scalar tmp76 = m*(tmp12*tmp3 + tmp14*tmp9 + tmp1*tmp15*tmp67*tmp5);
     const Scalar tmp77 = m*(tmp14*tmp10 - tmp12*tmp7);
     const Scalar tmp78 = tmp75 + tmp76;
-    QVector<Scalar> result;
+    VVector<Scalar> result;
     result(0) = -tmp78;
     result(1) = -tmp77;
     return result;
@@ -335,11 +342,11 @@ struct SphericalPendulum {
   /// Ops: 70
   template <typename Scalar>
   static void dynamics(const QVector<Scalar>& q,
-                       const QVector<Scalar>& v,
+                       const VVector<Scalar>& v,
                        const Scalar& /*t*/,
                        const Params& params,
-                       QMatrix<Scalar>* Mt,
-                       QVector<Scalar>* f) {
+                       VMatrix<Scalar>* Mt,
+                       VVector<Scalar>* f) {
     using std::cos;
     using std::sin;
     const Scalar theta = q(0);
@@ -391,12 +398,12 @@ struct SphericalPendulum {
   /// \param[in] qdd  generalized accelerations (nq = 2)
   /// \param[in] t  time
   /// \param[in] params  model parameters
-  /// \return r = tau (nq)
+  /// \return r = tau (nv)
   /// Ops: 72
   template <typename Scalar>
-  static QVector<Scalar> inverse_dynamics(const QVector<Scalar>& q,
-                                          const QVector<Scalar>& v,
-                                          const QVector<Scalar>& qdd,
+  static VVector<Scalar> inverse_dynamics(const QVector<Scalar>& q,
+                                          const VVector<Scalar>& v,
+                                          const VVector<Scalar>& qdd,
                                           const Scalar& /*t*/,
                                           const Params& params) {
     using std::cos;
@@ -437,7 +444,7 @@ struct SphericalPendulum {
     const Scalar tmp76 = m*(tmp12*tmp3 + tmp14*tmp9 + tmp1*tmp15*tmp67*tmp5);
     const Scalar tmp77 = m*(tmp14*tmp10 - tmp12*tmp7);
     const Scalar tmp78 = tmp75 + tmp76;
-    QVector<Scalar> result;
+    VVector<Scalar> result;
     result(0) = tmp78 + tmp72*theta_ddot;
     result(1) = tmp77 + tmp73*phi_ddot;
     return result;
@@ -453,12 +460,12 @@ struct SphericalPendulum {
   /// Ops: 262
   template <typename Scalar>
   static void residual_jacobians(const QVector<Scalar>& q,
-                                 const QVector<Scalar>& v,
-                                 const QVector<Scalar>& qdd,
+                                 const VVector<Scalar>& v,
+                                 const VVector<Scalar>& qdd,
                                  const Scalar& /*t*/,
                                  const Params& params,
-                                 QMatrix<Scalar>* dr_dq,
-                                 QMatrix<Scalar>* dr_dv) {
+                                 VQMatrix<Scalar>* dr_dq,
+                                 VMatrix<Scalar>* dr_dv) {
     using std::cos;
     using std::sin;
     const Scalar theta = q(0);
@@ -556,7 +563,7 @@ struct SphericalPendulum {
   /// Ops: 29
   template <typename Scalar>
   static Scalar kinetic_energy(const QVector<Scalar>& q,
-                               const QVector<Scalar>& v,
+                               const VVector<Scalar>& v,
                                const Scalar& /*t*/,
                                const Params& params) {
     using std::cos;
@@ -635,7 +642,7 @@ struct SphericalPendulum {
   /// Ops: 33
   template <typename Scalar>
   static Scalar energy(const QVector<Scalar>& q,
-                       const QVector<Scalar>& v,
+                       const VVector<Scalar>& v,
                        const Scalar& /*t*/,
                        const Params& params) {
     using std::cos;
@@ -708,7 +715,7 @@ struct SphericalPendulum {
   /// Ops: 19
   template <typename Scalar>
   static XVector<Scalar> velocities(const QVector<Scalar>& q,
-                                    const QVector<Scalar>& v,
+                                    const VVector<Scalar>& v,
                                     const Scalar& /*t*/,
                                     const Params& params) {
     using std::cos;
@@ -741,7 +748,7 @@ struct SphericalPendulum {
   /// \param[in] q  generalized coordinates (nq = 2)
   /// \param[in] t  time
   /// \param[in] params  model parameters
-  /// \return J (nx x nq)
+  /// \return J (nx x nv)
   /// Ops: 11
   template <typename Scalar>
   static XJacobian<Scalar> jacobian(const QVector<Scalar>& q,
@@ -781,7 +788,7 @@ struct SphericalPendulum {
   /// Ops: 37
   template <typename Scalar>
   static XVector<Scalar> bias_acceleration(const QVector<Scalar>& q,
-                                           const QVector<Scalar>& v,
+                                           const VVector<Scalar>& v,
                                            const Scalar& /*t*/,
                                            const Params& params) {
     using std::cos;
@@ -822,7 +829,7 @@ struct SphericalPendulum {
   /// Ops: 22
   template <typename Scalar>
   static SpaceVector<Scalar> linear_momentum(const QVector<Scalar>& q,
-                                             const QVector<Scalar>& v,
+                                             const VVector<Scalar>& v,
                                              const Scalar& /*t*/,
                                              const Params& params) {
     using std::cos;
@@ -861,7 +868,7 @@ struct SphericalPendulum {
   /// Ops: 39
   template <typename Scalar>
   static AngularVector<Scalar> angular_momentum(const QVector<Scalar>& q,
-                                                const QVector<Scalar>& v,
+                                                const VVector<Scalar>& v,
                                                 const Scalar& /*t*/,
                                                 const Params& params) {
     using std::cos;
@@ -924,11 +931,11 @@ struct SphericalPendulum {
   /// Solves Mt a = f by an LDL^T factorization of Mt written out entry by entry;
   /// reads only the lower triangle of Mt. Returns false, leaving *a unspecified, when Mt is
   /// not positive definite or anything is NaN.
-  /// \param[in] Mt  the mass matrix (nq = 2)
-  /// \param[in] f   the right-hand side (nq)
-  /// \param[out] a  the solution (nq); must not be null
+  /// \param[in] Mt  the mass matrix (nv = 2)
+  /// \param[in] f   the right-hand side (nv)
+  /// \param[out] a  the solution (nv); must not be null
   template <typename Scalar>
-  static bool solve(const QMatrix<Scalar>& Mt, const QVector<Scalar>& f, QVector<Scalar>* a) {
+  static bool solve(const VMatrix<Scalar>& Mt, const VVector<Scalar>& f, VVector<Scalar>* a) {
     const Scalar d0 = Mt(0, 0);
     if (!(d0 > Scalar(0))) return false;
     const Scalar inv0 = Scalar(1) / d0;
@@ -954,14 +961,14 @@ struct SphericalPendulum {
   /// \param[in] v  generalized velocities (nq = 2)
   /// \param[in] t  time
   /// \param[in] params  model parameters
-  /// \return qddot (nq = 2)
+  /// \return qddot (nv = 2)
   template <typename Scalar>
-  static QVector<Scalar> qddot(const QVector<Scalar>& q, const QVector<Scalar>& v,
+  static VVector<Scalar> qddot(const QVector<Scalar>& q, const VVector<Scalar>& v,
                                const Scalar& t, const Params& params) {
-    QMatrix<Scalar> Mt;
-    QVector<Scalar> f;
+    VMatrix<Scalar> Mt;
+    VVector<Scalar> f;
     dynamics(q, v, t, params, &Mt, &f);
-    QVector<Scalar> a;
+    VVector<Scalar> a;
     if (!solve(Mt, f, &a)) a.setConstant(std::numeric_limits<Scalar>::quiet_NaN());
     return a;
   }
@@ -1235,10 +1242,11 @@ struct SphericalPendulum {
 /// Fixed points (1; massless anchors, stacked in fixed_point_positions):
 ///   (0..2) = pivot
 /// Kernels are static functions templated on Scalar; every one takes the parameters last.
-/// Equations of motion: mass_matrix(q, t) * qddot = forces(q, v, t).
+/// Equations of motion: mass_matrix(q, t) * dv/dt = forces(q, v, t).
 struct SphericalPendulumPoleX {
   static constexpr const char* name = "spherical_pendulum_pole_x";
   static constexpr int nq = 2;
+  static constexpr int nv = 2;
   static constexpr int dim = 3;
   static constexpr int num_particles = 1;
   static constexpr int nx = dim * num_particles;
@@ -1252,7 +1260,7 @@ struct SphericalPendulumPoleX {
   static constexpr std::array<const char*, num_inputs> input_names{{}};
   /// A suggested initial state, from the model file.
   static constexpr std::array<double, nq> initial_q{{1.5707963267948966, -1.5707963267948966}};
-  static constexpr std::array<double, nq> initial_v{{0.0, 0.0}};
+  static constexpr std::array<double, nv> initial_v{{0.0, 0.0}};
   static constexpr std::array<const char*, num_particles> particle_names{{"bob"}};
   static constexpr std::array<const char*, num_fixed_points> fixed_point_names{{"pivot"}};
   /// Whether applied_forces at rest (v = 0) is -d(potential_energy)/dq: every force without
@@ -1268,9 +1276,15 @@ struct SphericalPendulumPoleX {
   template <typename Scalar>
   using QMatrix = Eigen::Matrix<Scalar, nq, nq>;
   template <typename Scalar>
+  using VVector = Eigen::Matrix<Scalar, nv, 1>;
+  template <typename Scalar>
+  using VMatrix = Eigen::Matrix<Scalar, nv, nv>;
+  template <typename Scalar>
+  using VQMatrix = Eigen::Matrix<Scalar, nv, nq>;
+  template <typename Scalar>
   using XVector = Eigen::Matrix<Scalar, nx, 1>;
   template <typename Scalar>
-  using XJacobian = Eigen::Matrix<Scalar, nx, nq>;
+  using XJacobian = Eigen::Matrix<Scalar, nx, nv>;
   template <typename Scalar>
   using SpaceVector = Eigen::Matrix<Scalar, dim, 1>;
   template <typename Scalar>
@@ -1280,7 +1294,7 @@ struct SphericalPendulumPoleX {
   template <typename Scalar>
   using FixedPointVector = Eigen::Matrix<Scalar, dim * num_fixed_points, 1>;
   template <typename Scalar>
-  using InputMatrix = Eigen::Matrix<Scalar, nq, num_inputs>;
+  using InputMatrix = Eigen::Matrix<Scalar, nv, num_inputs>;
 
   /// Model parameters: one type for every chart of the atlas (SphericalPendulum's).
   using Params = SphericalPendulum::Params;
@@ -1302,10 +1316,10 @@ struct SphericalPendulumPoleX {
   /// \param[in] q  generalized coordinates (nq = 2)
   /// \param[in] t  time
   /// \param[in] params  model parameters
-  /// \return Mt (nq x nq)
+  /// \return Mt (nv x nv)
   /// Ops: 20
   template <typename Scalar>
-  static QMatrix<Scalar> mass_matrix(const QVector<Scalar>& q,
+  static VMatrix<Scalar> mass_matrix(const QVector<Scalar>& q,
                                      const Scalar& /*t*/,
                                      const Params& params) {
     using std::cos;
@@ -1325,7 +1339,7 @@ struct SphericalPendulumPoleX {
     const Scalar tmp72 = (tmp3*tmp3);
     const Scalar tmp73 = m*(tmp69 + tmp70*tmp71 + tmp71*tmp72);
     const Scalar tmp74 = m*(tmp69*tmp70 + tmp69*tmp72);
-    QMatrix<Scalar> result;
+    VMatrix<Scalar> result;
     result(0, 0) = tmp73;
     result(1, 0) = Scalar(0);
     result(1, 1) = tmp74;
@@ -1338,11 +1352,11 @@ struct SphericalPendulumPoleX {
   /// \param[in] v  generalized velocities (nq = 2)
   /// \param[in] t  time
   /// \param[in] params  model parameters
-  /// \return Ft (nq)
+  /// \return Ft (nv)
   /// Ops: 13
   template <typename Scalar>
-  static QVector<Scalar> applied_forces(const QVector<Scalar>& q,
-                                        const QVector<Scalar>& /*v*/,
+  static VVector<Scalar> applied_forces(const QVector<Scalar>& q,
+                                        const VVector<Scalar>& /*v*/,
                                         const Scalar& /*t*/,
                                         const Params& params) {
     using std::cos;
@@ -1363,7 +1377,7 @@ struct SphericalPendulumPoleX {
     const Scalar tmp75 = g*m;
     const Scalar tmp76 = tmp75*tmp10;
     const Scalar tmp77 = tmp75*tmp11;
-    QVector<Scalar> result;
+    VVector<Scalar> result;
     result(0) = -tmp76;
     result(1) = -tmp77;
     return result;
@@ -1374,14 +1388,14 @@ struct SphericalPendulumPoleX {
   /// \param[in] v  generalized velocities (nq = 2)
   /// \param[in] t  time
   /// \param[in] params  model parameters
-  /// \return Q (nq)
+  /// \return Q (nv)
   /// Ops: 0
   template <typename Scalar>
-  static QVector<Scalar> generalized_forces(const QVector<Scalar>& /*q*/,
-                                            const QVector<Scalar>& /*v*/,
+  static VVector<Scalar> generalized_forces(const QVector<Scalar>& /*q*/,
+                                            const VVector<Scalar>& /*v*/,
                                             const Scalar& /*t*/,
                                             const Params& /*params*/) {
-    QVector<Scalar> result;
+    VVector<Scalar> result;
     result(0) = Scalar(0);
     result(1) = Scalar(0);
     return result;
@@ -1392,11 +1406,11 @@ struct SphericalPendulumPoleX {
   /// \param[in] v  generalized velocities (nq = 2)
   /// \param[in] t  time
   /// \param[in] params  model parameters
-  /// \return Fi (nq)
+  /// \return Fi (nv)
   /// Ops: 52
   template <typename Scalar>
-  static QVector<Scalar> inertial_forces(const QVector<Scalar>& q,
-                                         const QVector<Scalar>& v,
+  static VVector<Scalar> inertial_forces(const QVector<Scalar>& q,
+                                         const VVector<Scalar>& v,
                                          const Scalar& /*t*/,
                                          const Params& params) {
     using std::cos;
@@ -1425,7 +1439,7 @@ struct SphericalPendulumPoleX {
     const Scalar tmp68 = (l*l);
     const Scalar tmp78 = m*(tmp15*tmp6 + tmp17*tmp10 + tmp0*tmp12*tmp68*tmp4);
     const Scalar tmp79 = m*(tmp17*tmp11 - tmp15*tmp8);
-    QVector<Scalar> result;
+    VVector<Scalar> result;
     result(0) = -tmp78;
     result(1) = -tmp79;
     return result;
@@ -1436,11 +1450,11 @@ struct SphericalPendulumPoleX {
   /// \param[in] v  generalized velocities (nq = 2)
   /// \param[in] t  time
   /// \param[in] params  model parameters
-  /// \return Ft + Fi (nq)
+  /// \return Ft + Fi (nv)
   /// Ops: 57
   template <typename Scalar>
-  static QVector<Scalar> forces(const QVector<Scalar>& q,
-                                const QVector<Scalar>& v,
+  static VVector<Scalar> forces(const QVector<Scalar>& q,
+                                const VVector<Scalar>& v,
                                 const Scalar& /*t*/,
                                 const Params& params) {
     using std::cos;
@@ -1475,7 +1489,7 @@ struct SphericalPendulumPoleX {
     const Scalar tmp79 = m*(tmp17*tmp11 - tmp15*tmp8);
     const Scalar tmp80 = tmp76 + tmp78;
     const Scalar tmp81 = tmp77 + tmp79;
-    QVector<Scalar> result;
+    VVector<Scalar> result;
     result(0) = -tmp80;
     result(1) = -tmp81;
     return result;
@@ -1490,11 +1504,11 @@ struct SphericalPendulumPoleX {
   /// Ops: 72
   template <typename Scalar>
   static void dynamics(const QVector<Scalar>& q,
-                       const QVector<Scalar>& v,
+                       const VVector<Scalar>& v,
                        const Scalar& /*t*/,
                        const Params& params,
-                       QMatrix<Scalar>* Mt,
-                       QVector<Scalar>* f) {
+                       VMatrix<Scalar>* Mt,
+                       VVector<Scalar>* f) {
     using std::cos;
     using std::sin;
     const Scalar alpha = q(0);
@@ -1548,12 +1562,12 @@ struct SphericalPendulumPoleX {
   /// \param[in] qdd  generalized accelerations (nq = 2)
   /// \param[in] t  time
   /// \param[in] params  model parameters
-  /// \return r = tau (nq)
+  /// \return r = tau (nv)
   /// Ops: 74
   template <typename Scalar>
-  static QVector<Scalar> inverse_dynamics(const QVector<Scalar>& q,
-                                          const QVector<Scalar>& v,
-                                          const QVector<Scalar>& qdd,
+  static VVector<Scalar> inverse_dynamics(const QVector<Scalar>& q,
+                                          const VVector<Scalar>& v,
+                                          const VVector<Scalar>& qdd,
                                           const Scalar& /*t*/,
                                           const Params& params) {
     using std::cos;
@@ -1596,7 +1610,7 @@ struct SphericalPendulumPoleX {
     const Scalar tmp79 = m*(tmp17*tmp11 - tmp15*tmp8);
     const Scalar tmp80 = tmp76 + tmp78;
     const Scalar tmp81 = tmp77 + tmp79;
-    QVector<Scalar> result;
+    VVector<Scalar> result;
     result(0) = tmp80 + tmp73*alpha_ddot;
     result(1) = tmp81 + tmp74*beta_ddot;
     return result;
@@ -1612,12 +1626,12 @@ struct SphericalPendulumPoleX {
   /// Ops: 270
   template <typename Scalar>
   static void residual_jacobians(const QVector<Scalar>& q,
-                                 const QVector<Scalar>& v,
-                                 const QVector<Scalar>& qdd,
+                                 const VVector<Scalar>& v,
+                                 const VVector<Scalar>& qdd,
                                  const Scalar& /*t*/,
                                  const Params& params,
-                                 QMatrix<Scalar>* dr_dq,
-                                 QMatrix<Scalar>* dr_dv) {
+                                 VQMatrix<Scalar>* dr_dq,
+                                 VMatrix<Scalar>* dr_dv) {
     using std::cos;
     using std::sin;
     const Scalar alpha = q(0);
@@ -1724,7 +1738,7 @@ struct SphericalPendulumPoleX {
   /// Ops: 28
   template <typename Scalar>
   static Scalar kinetic_energy(const QVector<Scalar>& q,
-                               const QVector<Scalar>& v,
+                               const VVector<Scalar>& v,
                                const Scalar& /*t*/,
                                const Params& params) {
     using std::cos;
@@ -1807,7 +1821,7 @@ struct SphericalPendulumPoleX {
   /// Ops: 31
   template <typename Scalar>
   static Scalar energy(const QVector<Scalar>& q,
-                       const QVector<Scalar>& v,
+                       const VVector<Scalar>& v,
                        const Scalar& /*t*/,
                        const Params& params) {
     using std::cos;
@@ -1881,7 +1895,7 @@ struct SphericalPendulumPoleX {
   /// Ops: 19
   template <typename Scalar>
   static XVector<Scalar> velocities(const QVector<Scalar>& q,
-                                    const QVector<Scalar>& v,
+                                    const VVector<Scalar>& v,
                                     const Scalar& /*t*/,
                                     const Params& params) {
     using std::cos;
@@ -1915,7 +1929,7 @@ struct SphericalPendulumPoleX {
   /// \param[in] q  generalized coordinates (nq = 2)
   /// \param[in] t  time
   /// \param[in] params  model parameters
-  /// \return J (nx x nq)
+  /// \return J (nx x nv)
   /// Ops: 12
   template <typename Scalar>
   static XJacobian<Scalar> jacobian(const QVector<Scalar>& q,
@@ -1955,7 +1969,7 @@ struct SphericalPendulumPoleX {
   /// Ops: 38
   template <typename Scalar>
   static XVector<Scalar> bias_acceleration(const QVector<Scalar>& q,
-                                           const QVector<Scalar>& v,
+                                           const VVector<Scalar>& v,
                                            const Scalar& /*t*/,
                                            const Params& params) {
     using std::cos;
@@ -1996,7 +2010,7 @@ struct SphericalPendulumPoleX {
   /// Ops: 22
   template <typename Scalar>
   static SpaceVector<Scalar> linear_momentum(const QVector<Scalar>& q,
-                                             const QVector<Scalar>& v,
+                                             const VVector<Scalar>& v,
                                              const Scalar& /*t*/,
                                              const Params& params) {
     using std::cos;
@@ -2036,7 +2050,7 @@ struct SphericalPendulumPoleX {
   /// Ops: 36
   template <typename Scalar>
   static AngularVector<Scalar> angular_momentum(const QVector<Scalar>& q,
-                                                const QVector<Scalar>& v,
+                                                const VVector<Scalar>& v,
                                                 const Scalar& /*t*/,
                                                 const Params& params) {
     using std::cos;
@@ -2100,11 +2114,11 @@ struct SphericalPendulumPoleX {
   /// Solves Mt a = f by an LDL^T factorization of Mt written out entry by entry;
   /// reads only the lower triangle of Mt. Returns false, leaving *a unspecified, when Mt is
   /// not positive definite or anything is NaN.
-  /// \param[in] Mt  the mass matrix (nq = 2)
-  /// \param[in] f   the right-hand side (nq)
-  /// \param[out] a  the solution (nq); must not be null
+  /// \param[in] Mt  the mass matrix (nv = 2)
+  /// \param[in] f   the right-hand side (nv)
+  /// \param[out] a  the solution (nv); must not be null
   template <typename Scalar>
-  static bool solve(const QMatrix<Scalar>& Mt, const QVector<Scalar>& f, QVector<Scalar>* a) {
+  static bool solve(const VMatrix<Scalar>& Mt, const VVector<Scalar>& f, VVector<Scalar>* a) {
     const Scalar d0 = Mt(0, 0);
     if (!(d0 > Scalar(0))) return false;
     const Scalar inv0 = Scalar(1) / d0;
@@ -2130,14 +2144,14 @@ struct SphericalPendulumPoleX {
   /// \param[in] v  generalized velocities (nq = 2)
   /// \param[in] t  time
   /// \param[in] params  model parameters
-  /// \return qddot (nq = 2)
+  /// \return qddot (nv = 2)
   template <typename Scalar>
-  static QVector<Scalar> qddot(const QVector<Scalar>& q, const QVector<Scalar>& v,
+  static VVector<Scalar> qddot(const QVector<Scalar>& q, const VVector<Scalar>& v,
                                const Scalar& t, const Params& params) {
-    QMatrix<Scalar> Mt;
-    QVector<Scalar> f;
+    VMatrix<Scalar> Mt;
+    VVector<Scalar> f;
     dynamics(q, v, t, params, &Mt, &f);
-    QVector<Scalar> a;
+    VVector<Scalar> a;
     if (!solve(Mt, f, &a)) a.setConstant(std::numeric_limits<Scalar>::quiet_NaN());
     return a;
   }

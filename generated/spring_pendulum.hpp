@@ -54,10 +54,11 @@ namespace models {
 /// Fixed points (1; massless anchors, stacked in fixed_point_positions):
 ///   (0..1) = pivot
 /// Kernels are static functions templated on Scalar; every one takes the parameters last.
-/// Equations of motion: mass_matrix(q, t) * qddot = forces(q, v, t).
+/// Equations of motion: mass_matrix(q, t) * dv/dt = forces(q, v, t).
 struct SpringPendulum {
   static constexpr const char* name = "spring_pendulum";
   static constexpr int nq = 2;
+  static constexpr int nv = 2;
   static constexpr int dim = 2;
   static constexpr int num_particles = 1;
   static constexpr int nx = dim * num_particles;
@@ -71,7 +72,7 @@ struct SpringPendulum {
   static constexpr std::array<const char*, num_inputs> input_names{{}};
   /// A suggested initial state, from the model file.
   static constexpr std::array<double, nq> initial_q{{1.2, 0.8}};
-  static constexpr std::array<double, nq> initial_v{{0.0, 0.0}};
+  static constexpr std::array<double, nv> initial_v{{0.0, 0.0}};
   static constexpr std::array<const char*, num_particles> particle_names{{"bob"}};
   static constexpr std::array<const char*, num_fixed_points> fixed_point_names{{"pivot"}};
   /// Whether applied_forces at rest (v = 0) is -d(potential_energy)/dq: every force without
@@ -87,9 +88,15 @@ struct SpringPendulum {
   template <typename Scalar>
   using QMatrix = Eigen::Matrix<Scalar, nq, nq>;
   template <typename Scalar>
+  using VVector = Eigen::Matrix<Scalar, nv, 1>;
+  template <typename Scalar>
+  using VMatrix = Eigen::Matrix<Scalar, nv, nv>;
+  template <typename Scalar>
+  using VQMatrix = Eigen::Matrix<Scalar, nv, nq>;
+  template <typename Scalar>
   using XVector = Eigen::Matrix<Scalar, nx, 1>;
   template <typename Scalar>
-  using XJacobian = Eigen::Matrix<Scalar, nx, nq>;
+  using XJacobian = Eigen::Matrix<Scalar, nx, nv>;
   template <typename Scalar>
   using SpaceVector = Eigen::Matrix<Scalar, dim, 1>;
   template <typename Scalar>
@@ -99,7 +106,7 @@ struct SpringPendulum {
   template <typename Scalar>
   using FixedPointVector = Eigen::Matrix<Scalar, dim * num_fixed_points, 1>;
   template <typename Scalar>
-  using InputMatrix = Eigen::Matrix<Scalar, nq, num_inputs>;
+  using InputMatrix = Eigen::Matrix<Scalar, nv, num_inputs>;
 
   /// Model parameters; the defaults are the model file's.
   struct Params {
@@ -146,10 +153,10 @@ struct SpringPendulum {
   /// \param[in] q  generalized coordinates (nq = 2)
   /// \param[in] t  time
   /// \param[in] params  model parameters
-  /// \return Mt (nq x nq)
+  /// \return Mt (nv x nv)
   /// Ops: 11
   template <typename Scalar>
-  static QMatrix<Scalar> mass_matrix(const QVector<Scalar>& q,
+  static VMatrix<Scalar> mass_matrix(const QVector<Scalar>& q,
                                      const Scalar& /*t*/,
                                      const Params& params) {
     using std::cos;
@@ -165,7 +172,7 @@ struct SpringPendulum {
     const Scalar tmp63 = (r*r);
     const Scalar tmp64 = tmp60*tmp63 + tmp61*tmp63;
     const Scalar tmp65 = tmp64*m;
-    QMatrix<Scalar> result;
+    VMatrix<Scalar> result;
     result(0, 0) = tmp62;
     result(1, 0) = Scalar(0);
     result(1, 1) = tmp65;
@@ -178,11 +185,11 @@ struct SpringPendulum {
   /// \param[in] v  generalized velocities (nq = 2)
   /// \param[in] t  time
   /// \param[in] params  model parameters
-  /// \return Ft (nq)
+  /// \return Ft (nv)
   /// Ops: 51
   template <typename Scalar>
-  static QVector<Scalar> applied_forces(const QVector<Scalar>& q,
-                                        const QVector<Scalar>& v,
+  static VVector<Scalar> applied_forces(const QVector<Scalar>& q,
+                                        const VVector<Scalar>& v,
                                         const Scalar& /*t*/,
                                         const Params& params) {
     using std::cos;
@@ -223,7 +230,7 @@ struct SpringPendulum {
     const Scalar tmp76 = tmp66*tmp4;
     const Scalar tmp77 = tmp4*tmp73;
     const Scalar tmp78 = tmp2*tmp71;
-    QVector<Scalar> result;
+    VVector<Scalar> result;
     result(0) = tmp75;
     result(1) = tmp77 + tmp78 - tmp76;
     return result;
@@ -234,14 +241,14 @@ struct SpringPendulum {
   /// \param[in] v  generalized velocities (nq = 2)
   /// \param[in] t  time
   /// \param[in] params  model parameters
-  /// \return Q (nq)
+  /// \return Q (nv)
   /// Ops: 0
   template <typename Scalar>
-  static QVector<Scalar> generalized_forces(const QVector<Scalar>& /*q*/,
-                                            const QVector<Scalar>& /*v*/,
+  static VVector<Scalar> generalized_forces(const QVector<Scalar>& /*q*/,
+                                            const VVector<Scalar>& /*v*/,
                                             const Scalar& /*t*/,
                                             const Params& /*params*/) {
-    QVector<Scalar> result;
+    VVector<Scalar> result;
     result(0) = Scalar(0);
     result(1) = Scalar(0);
     return result;
@@ -252,11 +259,11 @@ struct SpringPendulum {
   /// \param[in] v  generalized velocities (nq = 2)
   /// \param[in] t  time
   /// \param[in] params  model parameters
-  /// \return Fi (nq)
+  /// \return Fi (nv)
   /// Ops: 30
   template <typename Scalar>
-  static QVector<Scalar> inertial_forces(const QVector<Scalar>& q,
-                                         const QVector<Scalar>& v,
+  static VVector<Scalar> inertial_forces(const QVector<Scalar>& q,
+                                         const VVector<Scalar>& v,
                                          const Scalar& /*t*/,
                                          const Params& params) {
     using std::cos;
@@ -278,7 +285,7 @@ struct SpringPendulum {
     const Scalar tmp79 = m*(tmp0*tmp6 - tmp1*tmp9);
     const Scalar tmp80 = -tmp79;
     const Scalar tmp81 = m*(tmp2*tmp6 + tmp4*tmp9);
-    QVector<Scalar> result;
+    VVector<Scalar> result;
     result(0) = tmp80;
     result(1) = -tmp81;
     return result;
@@ -289,11 +296,11 @@ struct SpringPendulum {
   /// \param[in] v  generalized velocities (nq = 2)
   /// \param[in] t  time
   /// \param[in] params  model parameters
-  /// \return Ft + Fi (nq)
+  /// \return Ft + Fi (nv)
   /// Ops: 73
   template <typename Scalar>
-  static QVector<Scalar> forces(const QVector<Scalar>& q,
-                                const QVector<Scalar>& v,
+  static VVector<Scalar> forces(const QVector<Scalar>& q,
+                                const VVector<Scalar>& v,
                                 const Scalar& /*t*/,
                                 const Params& params) {
     using std::cos;
@@ -340,7 +347,7 @@ struct SpringPendulum {
     const Scalar tmp80 = -tmp79;
     const Scalar tmp81 = m*(tmp2*tmp6 + tmp4*tmp9);
     const Scalar tmp82 = tmp76 + tmp81 - tmp77 - tmp78;
-    QVector<Scalar> result;
+    VVector<Scalar> result;
     result(0) = tmp75 + tmp80;
     result(1) = -tmp82;
     return result;
@@ -355,11 +362,11 @@ struct SpringPendulum {
   /// Ops: 76
   template <typename Scalar>
   static void dynamics(const QVector<Scalar>& q,
-                       const QVector<Scalar>& v,
+                       const VVector<Scalar>& v,
                        const Scalar& /*t*/,
                        const Params& params,
-                       QMatrix<Scalar>* Mt,
-                       QVector<Scalar>* f) {
+                       VMatrix<Scalar>* Mt,
+                       VVector<Scalar>* f) {
     using std::cos;
     using std::sin;
     using std::sqrt;
@@ -421,12 +428,12 @@ struct SpringPendulum {
   /// \param[in] qdd  generalized accelerations (nq = 2)
   /// \param[in] t  time
   /// \param[in] params  model parameters
-  /// \return r = tau (nq)
+  /// \return r = tau (nv)
   /// Ops: 79
   template <typename Scalar>
-  static QVector<Scalar> inverse_dynamics(const QVector<Scalar>& q,
-                                          const QVector<Scalar>& v,
-                                          const QVector<Scalar>& qdd,
+  static VVector<Scalar> inverse_dynamics(const QVector<Scalar>& q,
+                                          const VVector<Scalar>& v,
+                                          const VVector<Scalar>& qdd,
                                           const Scalar& /*t*/,
                                           const Params& params) {
     using std::cos;
@@ -475,7 +482,7 @@ struct SpringPendulum {
     const Scalar tmp79 = m*(tmp0*tmp6 - tmp1*tmp9);
     const Scalar tmp81 = m*(tmp2*tmp6 + tmp4*tmp9);
     const Scalar tmp82 = tmp76 + tmp81 - tmp77 - tmp78;
-    QVector<Scalar> result;
+    VVector<Scalar> result;
     result(0) = tmp74 + tmp79 - tmp67 - tmp72 + tmp62*r_ddot;
     result(1) = tmp82 + tmp65*theta_ddot;
     return result;
@@ -491,12 +498,12 @@ struct SpringPendulum {
   /// Ops: 326
   template <typename Scalar>
   static void residual_jacobians(const QVector<Scalar>& q,
-                                 const QVector<Scalar>& v,
-                                 const QVector<Scalar>& qdd,
+                                 const VVector<Scalar>& v,
+                                 const VVector<Scalar>& qdd,
                                  const Scalar& /*t*/,
                                  const Params& params,
-                                 QMatrix<Scalar>* dr_dq,
-                                 QMatrix<Scalar>* dr_dv) {
+                                 VQMatrix<Scalar>* dr_dq,
+                                 VMatrix<Scalar>* dr_dv) {
     using std::cos;
     using std::sin;
     using std::sqrt;
@@ -623,7 +630,7 @@ struct SpringPendulum {
   /// Ops: 16
   template <typename Scalar>
   static Scalar kinetic_energy(const QVector<Scalar>& q,
-                               const QVector<Scalar>& v,
+                               const VVector<Scalar>& v,
                                const Scalar& /*t*/,
                                const Params& params) {
     using std::cos;
@@ -707,7 +714,7 @@ struct SpringPendulum {
   /// Ops: 35
   template <typename Scalar>
   static Scalar energy(const QVector<Scalar>& q,
-                       const QVector<Scalar>& v,
+                       const VVector<Scalar>& v,
                        const Scalar& /*t*/,
                        const Params& params) {
     using std::cos;
@@ -779,7 +786,7 @@ struct SpringPendulum {
   /// Ops: 11
   template <typename Scalar>
   static XVector<Scalar> velocities(const QVector<Scalar>& q,
-                                    const QVector<Scalar>& v,
+                                    const VVector<Scalar>& v,
                                     const Scalar& /*t*/,
                                     const Params& /*params*/) {
     using std::cos;
@@ -805,7 +812,7 @@ struct SpringPendulum {
   /// \param[in] q  generalized coordinates (nq = 2)
   /// \param[in] t  time
   /// \param[in] params  model parameters
-  /// \return J (nx x nq)
+  /// \return J (nx x nv)
   /// Ops: 5
   template <typename Scalar>
   static XJacobian<Scalar> jacobian(const QVector<Scalar>& q,
@@ -836,7 +843,7 @@ struct SpringPendulum {
   /// Ops: 19
   template <typename Scalar>
   static XVector<Scalar> bias_acceleration(const QVector<Scalar>& q,
-                                           const QVector<Scalar>& v,
+                                           const VVector<Scalar>& v,
                                            const Scalar& /*t*/,
                                            const Params& /*params*/) {
     using std::cos;
@@ -869,7 +876,7 @@ struct SpringPendulum {
   /// Ops: 13
   template <typename Scalar>
   static SpaceVector<Scalar> linear_momentum(const QVector<Scalar>& q,
-                                             const QVector<Scalar>& v,
+                                             const VVector<Scalar>& v,
                                              const Scalar& /*t*/,
                                              const Params& params) {
     using std::cos;
@@ -901,7 +908,7 @@ struct SpringPendulum {
   /// Ops: 15
   template <typename Scalar>
   static AngularVector<Scalar> angular_momentum(const QVector<Scalar>& q,
-                                                const QVector<Scalar>& v,
+                                                const VVector<Scalar>& v,
                                                 const Scalar& /*t*/,
                                                 const Params& params) {
     using std::cos;
@@ -953,11 +960,11 @@ struct SpringPendulum {
   /// Solves Mt a = f by an LDL^T factorization of Mt written out entry by entry;
   /// reads only the lower triangle of Mt. Returns false, leaving *a unspecified, when Mt is
   /// not positive definite or anything is NaN.
-  /// \param[in] Mt  the mass matrix (nq = 2)
-  /// \param[in] f   the right-hand side (nq)
-  /// \param[out] a  the solution (nq); must not be null
+  /// \param[in] Mt  the mass matrix (nv = 2)
+  /// \param[in] f   the right-hand side (nv)
+  /// \param[out] a  the solution (nv); must not be null
   template <typename Scalar>
-  static bool solve(const QMatrix<Scalar>& Mt, const QVector<Scalar>& f, QVector<Scalar>* a) {
+  static bool solve(const VMatrix<Scalar>& Mt, const VVector<Scalar>& f, VVector<Scalar>* a) {
     const Scalar d0 = Mt(0, 0);
     if (!(d0 > Scalar(0))) return false;
     const Scalar inv0 = Scalar(1) / d0;
@@ -983,14 +990,14 @@ struct SpringPendulum {
   /// \param[in] v  generalized velocities (nq = 2)
   /// \param[in] t  time
   /// \param[in] params  model parameters
-  /// \return qddot (nq = 2)
+  /// \return qddot (nv = 2)
   template <typename Scalar>
-  static QVector<Scalar> qddot(const QVector<Scalar>& q, const QVector<Scalar>& v,
+  static VVector<Scalar> qddot(const QVector<Scalar>& q, const VVector<Scalar>& v,
                                const Scalar& t, const Params& params) {
-    QMatrix<Scalar> Mt;
-    QVector<Scalar> f;
+    VMatrix<Scalar> Mt;
+    VVector<Scalar> f;
     dynamics(q, v, t, params, &Mt, &f);
-    QVector<Scalar> a;
+    VVector<Scalar> a;
     if (!solve(Mt, f, &a)) a.setConstant(std::numeric_limits<Scalar>::quiet_NaN());
     return a;
   }

@@ -83,10 +83,11 @@ namespace models {
 /// Fixed points (1; massless anchors, stacked in fixed_point_positions):
 ///   (0..1) = pivot
 /// Kernels are static functions templated on Scalar; every one takes the parameters last.
-/// Equations of motion: mass_matrix(q, t) * qddot = forces(q, v, t).
+/// Equations of motion: mass_matrix(q, t) * dv/dt = forces(q, v, t).
 struct StiffChain10 {
   static constexpr const char* name = "stiff_chain_10";
   static constexpr int nq = 10;
+  static constexpr int nv = 10;
   static constexpr int dim = 2;
   static constexpr int num_particles = 10;
   static constexpr int nx = dim * num_particles;
@@ -102,7 +103,7 @@ struct StiffChain10 {
   /// A suggested initial state, from the model file.
   static constexpr std::array<double, nq> initial_q{{0.3, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0,
       0.0}};
-  static constexpr std::array<double, nq> initial_v{{0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0,
+  static constexpr std::array<double, nv> initial_v{{0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0,
       0.0}};
   static constexpr std::array<const char*, num_particles> particle_names{{"bob1", "bob2", "bob3",
       "bob4", "bob5", "bob6", "bob7", "bob8", "bob9", "bob10"}};
@@ -120,9 +121,15 @@ struct StiffChain10 {
   template <typename Scalar>
   using QMatrix = Eigen::Matrix<Scalar, nq, nq>;
   template <typename Scalar>
+  using VVector = Eigen::Matrix<Scalar, nv, 1>;
+  template <typename Scalar>
+  using VMatrix = Eigen::Matrix<Scalar, nv, nv>;
+  template <typename Scalar>
+  using VQMatrix = Eigen::Matrix<Scalar, nv, nq>;
+  template <typename Scalar>
   using XVector = Eigen::Matrix<Scalar, nx, 1>;
   template <typename Scalar>
-  using XJacobian = Eigen::Matrix<Scalar, nx, nq>;
+  using XJacobian = Eigen::Matrix<Scalar, nx, nv>;
   template <typename Scalar>
   using SpaceVector = Eigen::Matrix<Scalar, dim, 1>;
   template <typename Scalar>
@@ -132,7 +139,7 @@ struct StiffChain10 {
   template <typename Scalar>
   using FixedPointVector = Eigen::Matrix<Scalar, dim * num_fixed_points, 1>;
   template <typename Scalar>
-  using InputMatrix = Eigen::Matrix<Scalar, nq, num_inputs>;
+  using InputMatrix = Eigen::Matrix<Scalar, nv, num_inputs>;
 
   /// Model parameters; the defaults are the model file's.
   struct Params {
@@ -187,10 +194,10 @@ struct StiffChain10 {
   /// \param[in] q  generalized coordinates (nq = 10)
   /// \param[in] t  time
   /// \param[in] params  model parameters
-  /// \return Mt (nq x nq)
+  /// \return Mt (nv x nv)
   /// Ops: 1205
   template <typename Scalar>
-  static QMatrix<Scalar> mass_matrix(const QVector<Scalar>& q,
+  static VMatrix<Scalar> mass_matrix(const QVector<Scalar>& q,
                                      const Scalar& /*t*/,
                                      const Params& params) {
     using std::cos;
@@ -477,7 +484,7 @@ struct StiffChain10 {
     const Scalar tmp378 = m*(tmp197*tmp223 + tmp200*tmp205);
     const Scalar tmp379 = m*(tmp197*tmp222 + tmp200*tmp202);
     const Scalar tmp380 = m*(tmp325*(tmp196*tmp196) + tmp325*(tmp199*tmp199));
-    QMatrix<Scalar> result;
+    VMatrix<Scalar> result;
     result(0, 0) = tmp326;
     result(1, 0) = tmp327;
     result(1, 1) = tmp328;
@@ -586,11 +593,11 @@ struct StiffChain10 {
   /// \param[in] v  generalized velocities (nq = 10)
   /// \param[in] t  time
   /// \param[in] params  model parameters
-  /// \return Ft (nq)
+  /// \return Ft (nv)
   /// Ops: 236
   template <typename Scalar>
-  static QVector<Scalar> applied_forces(const QVector<Scalar>& q,
-                                        const QVector<Scalar>& v,
+  static VVector<Scalar> applied_forces(const QVector<Scalar>& q,
+                                        const VVector<Scalar>& v,
                                         const Scalar& /*t*/,
                                         const Params& params) {
     using std::sin;
@@ -732,7 +739,7 @@ struct StiffChain10 {
     const Scalar tmp429 = -tmp427 - tmp428 + tmp163*tmp382 + tmp222*tmp382;
     const Scalar tmp430 = c*phi10_dot + k*phi10;
     const Scalar tmp431 = -tmp430 + tmp196*tmp382*l;
-    QVector<Scalar> result;
+    VVector<Scalar> result;
     result(0) = tmp405;
     result(1) = tmp408;
     result(2) = tmp411;
@@ -751,11 +758,11 @@ struct StiffChain10 {
   /// \param[in] v  generalized velocities (nq = 10)
   /// \param[in] t  time
   /// \param[in] params  model parameters
-  /// \return Q (nq)
+  /// \return Q (nv)
   /// Ops: 49
   template <typename Scalar>
-  static QVector<Scalar> generalized_forces(const QVector<Scalar>& q,
-                                            const QVector<Scalar>& v,
+  static VVector<Scalar> generalized_forces(const QVector<Scalar>& q,
+                                            const VVector<Scalar>& v,
                                             const Scalar& /*t*/,
                                             const Params& params) {
     const Scalar phi1 = q(0);
@@ -799,7 +806,7 @@ struct StiffChain10 {
     const Scalar tmp427 = c*phi9_dot;
     const Scalar tmp428 = k*phi9;
     const Scalar tmp430 = c*phi10_dot + k*phi10;
-    QVector<Scalar> result;
+    VVector<Scalar> result;
     result(0) = -tmp403 - tmp404;
     result(1) = -tmp406 - tmp407;
     result(2) = -tmp409 - tmp410;
@@ -818,11 +825,11 @@ struct StiffChain10 {
   /// \param[in] v  generalized velocities (nq = 10)
   /// \param[in] t  time
   /// \param[in] params  model parameters
-  /// \return Fi (nq)
+  /// \return Fi (nv)
   /// Ops: 1647
   template <typename Scalar>
-  static QVector<Scalar> inertial_forces(const QVector<Scalar>& q,
-                                         const QVector<Scalar>& v,
+  static VVector<Scalar> inertial_forces(const QVector<Scalar>& q,
+                                         const VVector<Scalar>& v,
                                          const Scalar& /*t*/,
                                          const Params& params) {
     using std::cos;
@@ -1295,7 +1302,7 @@ struct StiffChain10 {
         - tmp205*tmp401 - tmp223*tmp402;
     const Scalar tmp440 = -tmp163*tmp400 - tmp166*tmp399 - tmp202*tmp401 - tmp222*tmp402;
     const Scalar tmp441 = -tmp197*tmp402 - tmp200*tmp401;
-    QVector<Scalar> result;
+    VVector<Scalar> result;
     result(0) = tmp432;
     result(1) = tmp433;
     result(2) = tmp434;
@@ -1314,11 +1321,11 @@ struct StiffChain10 {
   /// \param[in] v  generalized velocities (nq = 10)
   /// \param[in] t  time
   /// \param[in] params  model parameters
-  /// \return Ft + Fi (nq)
+  /// \return Ft + Fi (nv)
   /// Ops: 1819
   template <typename Scalar>
-  static QVector<Scalar> forces(const QVector<Scalar>& q,
-                                const QVector<Scalar>& v,
+  static VVector<Scalar> forces(const QVector<Scalar>& q,
+                                const VVector<Scalar>& v,
                                 const Scalar& /*t*/,
                                 const Params& params) {
     using std::cos;
@@ -1833,7 +1840,7 @@ struct StiffChain10 {
         - tmp205*tmp401 - tmp223*tmp402;
     const Scalar tmp440 = -tmp163*tmp400 - tmp166*tmp399 - tmp202*tmp401 - tmp222*tmp402;
     const Scalar tmp441 = -tmp197*tmp402 - tmp200*tmp401;
-    QVector<Scalar> result;
+    VVector<Scalar> result;
     result(0) = tmp405 + tmp432;
     result(1) = tmp408 + tmp433;
     result(2) = tmp411 + tmp434;
@@ -1856,11 +1863,11 @@ struct StiffChain10 {
   /// Ops: 2885
   template <typename Scalar>
   static void dynamics(const QVector<Scalar>& q,
-                       const QVector<Scalar>& v,
+                       const VVector<Scalar>& v,
                        const Scalar& /*t*/,
                        const Params& params,
-                       QMatrix<Scalar>* Mt,
-                       QVector<Scalar>* f) {
+                       VMatrix<Scalar>* Mt,
+                       VVector<Scalar>* f) {
     using std::cos;
     using std::sin;
     const Scalar phi1 = q(0);
@@ -2623,12 +2630,12 @@ struct StiffChain10 {
   /// \param[in] qdd  generalized accelerations (nq = 10)
   /// \param[in] t  time
   /// \param[in] params  model parameters
-  /// \return r = tau (nq)
+  /// \return r = tau (nv)
   /// Ops: 3105
   template <typename Scalar>
-  static QVector<Scalar> inverse_dynamics(const QVector<Scalar>& q,
-                                          const QVector<Scalar>& v,
-                                          const QVector<Scalar>& qdd,
+  static VVector<Scalar> inverse_dynamics(const QVector<Scalar>& q,
+                                          const VVector<Scalar>& v,
+                                          const VVector<Scalar>& qdd,
                                           const Scalar& /*t*/,
                                           const Params& params) {
     using std::cos;
@@ -3284,7 +3291,7 @@ struct StiffChain10 {
         - tmp205*tmp401 - tmp223*tmp402;
     const Scalar tmp440 = -tmp163*tmp400 - tmp166*tmp399 - tmp202*tmp401 - tmp222*tmp402;
     const Scalar tmp441 = -tmp197*tmp402 - tmp200*tmp401;
-    QVector<Scalar> result;
+    VVector<Scalar> result;
     result(0) = -tmp405 - tmp432 + tmp371*phi10_ddot + tmp326*phi1_ddot + tmp327*phi2_ddot
         + tmp329*phi3_ddot + tmp332*phi4_ddot + tmp336*phi5_ddot + tmp341*phi6_ddot
         + tmp347*phi7_ddot + tmp354*phi8_ddot + tmp362*phi9_ddot;
@@ -3322,11 +3329,11 @@ struct StiffChain10 {
   /// cut into functions of their own so that its compile time stays near linear).
   template <typename Scalar>
   GENCOORD_NOINLINE static void residual_jacobians_part0(const QVector<Scalar>& q,
-                                                         const QVector<Scalar>& v,
-                                                         const QVector<Scalar>& qdd,
+                                                         const VVector<Scalar>& v,
+                                                         const VVector<Scalar>& qdd,
                                                          const Params& params,
-                                                         QMatrix<Scalar>* dr_dq,
-                                                         QMatrix<Scalar>* /*dr_dv*/,
+                                                         VQMatrix<Scalar>* dr_dq,
+                                                         VMatrix<Scalar>* /*dr_dv*/,
                                                          Scalar* carried) {
     using std::cos;
     using std::sin;
@@ -6830,11 +6837,11 @@ struct StiffChain10 {
   /// cut into functions of their own so that its compile time stays near linear).
   template <typename Scalar>
   GENCOORD_NOINLINE static void residual_jacobians_part1(const QVector<Scalar>& /*q*/,
-                                                         const QVector<Scalar>& v,
-                                                         const QVector<Scalar>& qdd,
+                                                         const VVector<Scalar>& v,
+                                                         const VVector<Scalar>& qdd,
                                                          const Params& params,
-                                                         QMatrix<Scalar>* dr_dq,
-                                                         QMatrix<Scalar>* dr_dv,
+                                                         VQMatrix<Scalar>* dr_dq,
+                                                         VMatrix<Scalar>* dr_dv,
                                                          Scalar* carried) {
     const Scalar phi1_dot = v.data()[0];
     const Scalar phi2_dot = v.data()[1];
@@ -10561,12 +10568,12 @@ struct StiffChain10 {
   /// Ops: 39530
   template <typename Scalar>
   static void residual_jacobians(const QVector<Scalar>& q,
-                                 const QVector<Scalar>& v,
-                                 const QVector<Scalar>& qdd,
+                                 const VVector<Scalar>& v,
+                                 const VVector<Scalar>& qdd,
                                  const Scalar& /*t*/,
                                  const Params& params,
-                                 QMatrix<Scalar>* dr_dq,
-                                 QMatrix<Scalar>* dr_dv) {
+                                 VQMatrix<Scalar>* dr_dq,
+                                 VMatrix<Scalar>* dr_dv) {
     std::array<Scalar, 428> carried;  // values one part passes to later ones
     residual_jacobians_part0<Scalar>(q, v, qdd, params, dr_dq, dr_dv, carried.data());
     residual_jacobians_part1<Scalar>(q, v, qdd, params, dr_dq, dr_dv, carried.data());
@@ -10581,7 +10588,7 @@ struct StiffChain10 {
   /// Ops: 389
   template <typename Scalar>
   static Scalar kinetic_energy(const QVector<Scalar>& q,
-                               const QVector<Scalar>& v,
+                               const VVector<Scalar>& v,
                                const Scalar& /*t*/,
                                const Params& params) {
     using std::cos;
@@ -10955,7 +10962,7 @@ struct StiffChain10 {
   /// Ops: 460
   template <typename Scalar>
   static Scalar energy(const QVector<Scalar>& q,
-                       const QVector<Scalar>& v,
+                       const VVector<Scalar>& v,
                        const Scalar& /*t*/,
                        const Params& params) {
     using std::cos;
@@ -11357,7 +11364,7 @@ struct StiffChain10 {
   /// Ops: 339
   template <typename Scalar>
   static XVector<Scalar> velocities(const QVector<Scalar>& q,
-                                    const QVector<Scalar>& v,
+                                    const VVector<Scalar>& v,
                                     const Scalar& /*t*/,
                                     const Params& params) {
     using std::cos;
@@ -11630,7 +11637,7 @@ struct StiffChain10 {
   /// \param[in] q  generalized coordinates (nq = 10)
   /// \param[in] t  time
   /// \param[in] params  model parameters
-  /// \return J (nx x nq)
+  /// \return J (nx x nv)
   /// Ops: 139
   template <typename Scalar>
   static XJacobian<Scalar> jacobian(const QVector<Scalar>& q,
@@ -11912,7 +11919,7 @@ struct StiffChain10 {
   /// Ops: 1307
   template <typename Scalar>
   static XVector<Scalar> bias_acceleration(const QVector<Scalar>& q,
-                                           const QVector<Scalar>& v,
+                                           const VVector<Scalar>& v,
                                            const Scalar& /*t*/,
                                            const Params& params) {
     using std::cos;
@@ -12371,7 +12378,7 @@ struct StiffChain10 {
   /// Ops: 377
   template <typename Scalar>
   static SpaceVector<Scalar> linear_momentum(const QVector<Scalar>& q,
-                                             const QVector<Scalar>& v,
+                                             const VVector<Scalar>& v,
                                              const Scalar& /*t*/,
                                              const Params& params) {
     using std::cos;
@@ -12634,7 +12641,7 @@ struct StiffChain10 {
   /// Ops: 426
   template <typename Scalar>
   static AngularVector<Scalar> angular_momentum(const QVector<Scalar>& q,
-                                                const QVector<Scalar>& v,
+                                                const VVector<Scalar>& v,
                                                 const Scalar& /*t*/,
                                                 const Params& params) {
     using std::cos;
@@ -12947,33 +12954,33 @@ struct StiffChain10 {
   /// Solves Mt a = f by an LDL^T factorization of Mt;
   /// reads only the lower triangle of Mt. Returns false, leaving *a unspecified, when Mt is
   /// not positive definite or anything is NaN.
-  /// \param[in] Mt  the mass matrix (nq = 10)
-  /// \param[in] f   the right-hand side (nq)
-  /// \param[out] a  the solution (nq); must not be null
+  /// \param[in] Mt  the mass matrix (nv = 10)
+  /// \param[in] f   the right-hand side (nv)
+  /// \param[out] a  the solution (nv); must not be null
   template <typename Scalar>
-  static bool solve(const QMatrix<Scalar>& Mt, const QVector<Scalar>& f, QVector<Scalar>* a) {
-    QMatrix<Scalar> L;  // unit lower triangle below the diagonal, D on it
-    for (int j = 0; j < nq; ++j) {
+  static bool solve(const VMatrix<Scalar>& Mt, const VVector<Scalar>& f, VVector<Scalar>* a) {
+    VMatrix<Scalar> L;  // unit lower triangle below the diagonal, D on it
+    for (int j = 0; j < nv; ++j) {
       Scalar d = Mt(j, j);
       for (int k = 0; k < j; ++k) d -= L(j, k) * L(j, k) * L(k, k);
       if (!(d > Scalar(0))) return false;
       L(j, j) = d;
       const Scalar inv = Scalar(1) / d;
-      for (int i = j + 1; i < nq; ++i) {
+      for (int i = j + 1; i < nv; ++i) {
         Scalar s = Mt(i, j);
         for (int k = 0; k < j; ++k) s -= L(i, k) * L(j, k) * L(k, k);
         L(i, j) = s * inv;
       }
     }
-    QVector<Scalar>& x = *a;
-    for (int i = 0; i < nq; ++i) {
+    VVector<Scalar>& x = *a;
+    for (int i = 0; i < nv; ++i) {
       Scalar s = f(i);
       for (int k = 0; k < i; ++k) s -= L(i, k) * x(k);
       x(i) = s;
     }
-    for (int i = nq - 1; i >= 0; --i) {
+    for (int i = nv - 1; i >= 0; --i) {
       Scalar s = x(i) / L(i, i);
-      for (int k = i + 1; k < nq; ++k) s -= L(k, i) * x(k);
+      for (int k = i + 1; k < nv; ++k) s -= L(k, i) * x(k);
       x(i) = s;
     }
     return true;
@@ -12986,14 +12993,14 @@ struct StiffChain10 {
   /// \param[in] v  generalized velocities (nq = 10)
   /// \param[in] t  time
   /// \param[in] params  model parameters
-  /// \return qddot (nq = 10)
+  /// \return qddot (nv = 10)
   template <typename Scalar>
-  static QVector<Scalar> qddot(const QVector<Scalar>& q, const QVector<Scalar>& v,
+  static VVector<Scalar> qddot(const QVector<Scalar>& q, const VVector<Scalar>& v,
                                const Scalar& t, const Params& params) {
-    QMatrix<Scalar> Mt;
-    QVector<Scalar> f;
+    VMatrix<Scalar> Mt;
+    VVector<Scalar> f;
     dynamics(q, v, t, params, &Mt, &f);
-    QVector<Scalar> a;
+    VVector<Scalar> a;
     if (!solve(Mt, f, &a)) a.setConstant(std::numeric_limits<Scalar>::quiet_NaN());
     return a;
   }

@@ -52,10 +52,11 @@ namespace models {
 /// Fixed points (1; massless anchors, stacked in fixed_point_positions):
 ///   (0..1) = pivot
 /// Kernels are static functions templated on Scalar; every one takes the parameters last.
-/// Equations of motion: mass_matrix(q, t) * qddot = forces(q, v, t).
+/// Equations of motion: mass_matrix(q, t) * dv/dt = forces(q, v, t).
 struct StiffChain3 {
   static constexpr const char* name = "stiff_chain_3";
   static constexpr int nq = 3;
+  static constexpr int nv = 3;
   static constexpr int dim = 2;
   static constexpr int num_particles = 3;
   static constexpr int nx = dim * num_particles;
@@ -69,7 +70,7 @@ struct StiffChain3 {
   static constexpr std::array<const char*, num_inputs> input_names{{}};
   /// A suggested initial state, from the model file.
   static constexpr std::array<double, nq> initial_q{{0.3, 0.0, 0.0}};
-  static constexpr std::array<double, nq> initial_v{{0.0, 0.0, 0.0}};
+  static constexpr std::array<double, nv> initial_v{{0.0, 0.0, 0.0}};
   static constexpr std::array<const char*, num_particles> particle_names{{"bob1", "bob2", "bob3"}};
   static constexpr std::array<const char*, num_fixed_points> fixed_point_names{{"pivot"}};
   /// Whether applied_forces at rest (v = 0) is -d(potential_energy)/dq: every force without
@@ -85,9 +86,15 @@ struct StiffChain3 {
   template <typename Scalar>
   using QMatrix = Eigen::Matrix<Scalar, nq, nq>;
   template <typename Scalar>
+  using VVector = Eigen::Matrix<Scalar, nv, 1>;
+  template <typename Scalar>
+  using VMatrix = Eigen::Matrix<Scalar, nv, nv>;
+  template <typename Scalar>
+  using VQMatrix = Eigen::Matrix<Scalar, nv, nq>;
+  template <typename Scalar>
   using XVector = Eigen::Matrix<Scalar, nx, 1>;
   template <typename Scalar>
-  using XJacobian = Eigen::Matrix<Scalar, nx, nq>;
+  using XJacobian = Eigen::Matrix<Scalar, nx, nv>;
   template <typename Scalar>
   using SpaceVector = Eigen::Matrix<Scalar, dim, 1>;
   template <typename Scalar>
@@ -97,7 +104,7 @@ struct StiffChain3 {
   template <typename Scalar>
   using FixedPointVector = Eigen::Matrix<Scalar, dim * num_fixed_points, 1>;
   template <typename Scalar>
-  using InputMatrix = Eigen::Matrix<Scalar, nq, num_inputs>;
+  using InputMatrix = Eigen::Matrix<Scalar, nv, num_inputs>;
 
   /// Model parameters; the defaults are the model file's.
   struct Params {
@@ -145,10 +152,10 @@ struct StiffChain3 {
   /// \param[in] q  generalized coordinates (nq = 3)
   /// \param[in] t  time
   /// \param[in] params  model parameters
-  /// \return Mt (nq x nq)
+  /// \return Mt (nv x nv)
   /// Ops: 71
   template <typename Scalar>
-  static QMatrix<Scalar> mass_matrix(const QVector<Scalar>& q,
+  static VMatrix<Scalar> mass_matrix(const QVector<Scalar>& q,
                                      const Scalar& /*t*/,
                                      const Params& params) {
     using std::cos;
@@ -189,7 +196,7 @@ struct StiffChain3 {
     const Scalar tmp26 = m*(tmp16*tmp17 + tmp19*tmp20);
     const Scalar tmp27 = m*(tmp16*tmp22 + tmp19*tmp23);
     const Scalar tmp28 = m*(tmp0*(tmp15*tmp15) + tmp0*(tmp18*tmp18));
-    QMatrix<Scalar> result;
+    VMatrix<Scalar> result;
     result(0, 0) = tmp21;
     result(1, 0) = tmp24;
     result(1, 1) = tmp25;
@@ -207,11 +214,11 @@ struct StiffChain3 {
   /// \param[in] v  generalized velocities (nq = 3)
   /// \param[in] t  time
   /// \param[in] params  model parameters
-  /// \return Ft (nq)
+  /// \return Ft (nv)
   /// Ops: 36
   template <typename Scalar>
-  static QVector<Scalar> applied_forces(const QVector<Scalar>& q,
-                                        const QVector<Scalar>& v,
+  static VVector<Scalar> applied_forces(const QVector<Scalar>& q,
+                                        const VVector<Scalar>& v,
                                         const Scalar& /*t*/,
                                         const Params& params) {
     using std::sin;
@@ -244,7 +251,7 @@ struct StiffChain3 {
     const Scalar tmp33 = tmp32 + tmp22*tmp29 + tmp29*tmp8;
     const Scalar tmp34 = c*phi3_dot + k*phi3;
     const Scalar tmp35 = tmp34 + tmp16*tmp29;
-    QVector<Scalar> result;
+    VVector<Scalar> result;
     result(0) = -tmp31;
     result(1) = -tmp33;
     result(2) = -tmp35;
@@ -256,11 +263,11 @@ struct StiffChain3 {
   /// \param[in] v  generalized velocities (nq = 3)
   /// \param[in] t  time
   /// \param[in] params  model parameters
-  /// \return Q (nq)
+  /// \return Q (nv)
   /// Ops: 12
   template <typename Scalar>
-  static QVector<Scalar> generalized_forces(const QVector<Scalar>& q,
-                                            const QVector<Scalar>& v,
+  static VVector<Scalar> generalized_forces(const QVector<Scalar>& q,
+                                            const VVector<Scalar>& v,
                                             const Scalar& /*t*/,
                                             const Params& params) {
     const Scalar phi1 = q(0);
@@ -274,7 +281,7 @@ struct StiffChain3 {
     const Scalar tmp30 = c*phi1_dot + k*phi1;
     const Scalar tmp32 = c*phi2_dot + k*phi2;
     const Scalar tmp34 = c*phi3_dot + k*phi3;
-    QVector<Scalar> result;
+    VVector<Scalar> result;
     result(0) = -tmp30;
     result(1) = -tmp32;
     result(2) = -tmp34;
@@ -286,11 +293,11 @@ struct StiffChain3 {
   /// \param[in] v  generalized velocities (nq = 3)
   /// \param[in] t  time
   /// \param[in] params  model parameters
-  /// \return Fi (nq)
+  /// \return Fi (nv)
   /// Ops: 103
   template <typename Scalar>
-  static QVector<Scalar> inertial_forces(const QVector<Scalar>& q,
-                                         const QVector<Scalar>& v,
+  static VVector<Scalar> inertial_forces(const QVector<Scalar>& q,
+                                         const VVector<Scalar>& v,
                                          const Scalar& /*t*/,
                                          const Params& params) {
     using std::cos;
@@ -341,7 +348,7 @@ struct StiffChain3 {
     const Scalar tmp49 = m*(tmp13*tmp40 + tmp38*tmp9) + m*(tmp17*tmp44 + tmp20*tmp48);
     const Scalar tmp50 = m*(tmp12*tmp40 + tmp38*tmp8) + m*(tmp22*tmp44 + tmp23*tmp48);
     const Scalar tmp51 = m*(tmp16*tmp44 + tmp19*tmp48);
-    QVector<Scalar> result;
+    VVector<Scalar> result;
     result(0) = -tmp49;
     result(1) = -tmp50;
     result(2) = -tmp51;
@@ -353,11 +360,11 @@ struct StiffChain3 {
   /// \param[in] v  generalized velocities (nq = 3)
   /// \param[in] t  time
   /// \param[in] params  model parameters
-  /// \return Ft + Fi (nq)
+  /// \return Ft + Fi (nv)
   /// Ops: 128
   template <typename Scalar>
-  static QVector<Scalar> forces(const QVector<Scalar>& q,
-                                const QVector<Scalar>& v,
+  static VVector<Scalar> forces(const QVector<Scalar>& q,
+                                const VVector<Scalar>& v,
                                 const Scalar& /*t*/,
                                 const Params& params) {
     using std::cos;
@@ -421,7 +428,7 @@ struct StiffChain3 {
     const Scalar tmp52 = tmp31 + tmp49;
     const Scalar tmp53 = tmp33 + tmp50;
     const Scalar tmp54 = tmp35 + tmp51;
-    QVector<Scalar> result;
+    VVector<Scalar> result;
     result(0) = -tmp52;
     result(1) = -tmp53;
     result(2) = -tmp54;
@@ -437,11 +444,11 @@ struct StiffChain3 {
   /// Ops: 179
   template <typename Scalar>
   static void dynamics(const QVector<Scalar>& q,
-                       const QVector<Scalar>& v,
+                       const VVector<Scalar>& v,
                        const Scalar& /*t*/,
                        const Params& params,
-                       QMatrix<Scalar>* Mt,
-                       QVector<Scalar>* f) {
+                       VMatrix<Scalar>* Mt,
+                       VVector<Scalar>* f) {
     using std::cos;
     using std::sin;
     const Scalar phi1 = q(0);
@@ -535,12 +542,12 @@ struct StiffChain3 {
   /// \param[in] qdd  generalized accelerations (nq = 3)
   /// \param[in] t  time
   /// \param[in] params  model parameters
-  /// \return r = tau (nq)
+  /// \return r = tau (nv)
   /// Ops: 194
   template <typename Scalar>
-  static QVector<Scalar> inverse_dynamics(const QVector<Scalar>& q,
-                                          const QVector<Scalar>& v,
-                                          const QVector<Scalar>& qdd,
+  static VVector<Scalar> inverse_dynamics(const QVector<Scalar>& q,
+                                          const VVector<Scalar>& v,
+                                          const VVector<Scalar>& qdd,
                                           const Scalar& /*t*/,
                                           const Params& params) {
     using std::cos;
@@ -618,7 +625,7 @@ struct StiffChain3 {
     const Scalar tmp52 = tmp31 + tmp49;
     const Scalar tmp53 = tmp33 + tmp50;
     const Scalar tmp54 = tmp35 + tmp51;
-    QVector<Scalar> result;
+    VVector<Scalar> result;
     result(0) = tmp52 + tmp21*phi1_ddot + tmp24*phi2_ddot + tmp26*phi3_ddot;
     result(1) = tmp53 + tmp24*phi1_ddot + tmp25*phi2_ddot + tmp27*phi3_ddot;
     result(2) = tmp54 + tmp26*phi1_ddot + tmp27*phi2_ddot + tmp28*phi3_ddot;
@@ -635,12 +642,12 @@ struct StiffChain3 {
   /// Ops: 879
   template <typename Scalar>
   static void residual_jacobians(const QVector<Scalar>& q,
-                                 const QVector<Scalar>& v,
-                                 const QVector<Scalar>& qdd,
+                                 const VVector<Scalar>& v,
+                                 const VVector<Scalar>& qdd,
                                  const Scalar& /*t*/,
                                  const Params& params,
-                                 QMatrix<Scalar>* dr_dq,
-                                 QMatrix<Scalar>* dr_dv) {
+                                 VQMatrix<Scalar>* dr_dq,
+                                 VMatrix<Scalar>* dr_dv) {
     using std::cos;
     using std::sin;
     const Scalar phi1 = q(0);
@@ -875,7 +882,7 @@ struct StiffChain3 {
   /// Ops: 57
   template <typename Scalar>
   static Scalar kinetic_energy(const QVector<Scalar>& q,
-                               const QVector<Scalar>& v,
+                               const VVector<Scalar>& v,
                                const Scalar& /*t*/,
                                const Params& params) {
     using std::cos;
@@ -998,7 +1005,7 @@ struct StiffChain3 {
   /// Ops: 77
   template <typename Scalar>
   static Scalar energy(const QVector<Scalar>& q,
-                       const QVector<Scalar>& v,
+                       const VVector<Scalar>& v,
                        const Scalar& /*t*/,
                        const Params& params) {
     using std::cos;
@@ -1115,7 +1122,7 @@ struct StiffChain3 {
   /// Ops: 38
   template <typename Scalar>
   static XVector<Scalar> velocities(const QVector<Scalar>& q,
-                                    const QVector<Scalar>& v,
+                                    const VVector<Scalar>& v,
                                     const Scalar& /*t*/,
                                     const Params& params) {
     using std::cos;
@@ -1172,7 +1179,7 @@ struct StiffChain3 {
   /// \param[in] q  generalized coordinates (nq = 3)
   /// \param[in] t  time
   /// \param[in] params  model parameters
-  /// \return J (nx x nq)
+  /// \return J (nx x nv)
   /// Ops: 20
   template <typename Scalar>
   static XJacobian<Scalar> jacobian(const QVector<Scalar>& q,
@@ -1235,7 +1242,7 @@ struct StiffChain3 {
   /// Ops: 82
   template <typename Scalar>
   static XVector<Scalar> bias_acceleration(const QVector<Scalar>& q,
-                                           const QVector<Scalar>& v,
+                                           const VVector<Scalar>& v,
                                            const Scalar& /*t*/,
                                            const Params& params) {
     using std::cos;
@@ -1302,7 +1309,7 @@ struct StiffChain3 {
   /// Ops: 48
   template <typename Scalar>
   static SpaceVector<Scalar> linear_momentum(const QVector<Scalar>& q,
-                                             const QVector<Scalar>& v,
+                                             const VVector<Scalar>& v,
                                              const Scalar& /*t*/,
                                              const Params& params) {
     using std::cos;
@@ -1361,7 +1368,7 @@ struct StiffChain3 {
   /// Ops: 59
   template <typename Scalar>
   static AngularVector<Scalar> angular_momentum(const QVector<Scalar>& q,
-                                                const QVector<Scalar>& v,
+                                                const VVector<Scalar>& v,
                                                 const Scalar& /*t*/,
                                                 const Params& params) {
     using std::cos;
@@ -1446,11 +1453,11 @@ struct StiffChain3 {
   /// Solves Mt a = f by an LDL^T factorization of Mt written out entry by entry;
   /// reads only the lower triangle of Mt. Returns false, leaving *a unspecified, when Mt is
   /// not positive definite or anything is NaN.
-  /// \param[in] Mt  the mass matrix (nq = 3)
-  /// \param[in] f   the right-hand side (nq)
-  /// \param[out] a  the solution (nq); must not be null
+  /// \param[in] Mt  the mass matrix (nv = 3)
+  /// \param[in] f   the right-hand side (nv)
+  /// \param[out] a  the solution (nv); must not be null
   template <typename Scalar>
-  static bool solve(const QMatrix<Scalar>& Mt, const QVector<Scalar>& f, QVector<Scalar>* a) {
+  static bool solve(const VMatrix<Scalar>& Mt, const VVector<Scalar>& f, VVector<Scalar>* a) {
     const Scalar d0 = Mt(0, 0);
     if (!(d0 > Scalar(0))) return false;
     const Scalar inv0 = Scalar(1) / d0;
@@ -1486,14 +1493,14 @@ struct StiffChain3 {
   /// \param[in] v  generalized velocities (nq = 3)
   /// \param[in] t  time
   /// \param[in] params  model parameters
-  /// \return qddot (nq = 3)
+  /// \return qddot (nv = 3)
   template <typename Scalar>
-  static QVector<Scalar> qddot(const QVector<Scalar>& q, const QVector<Scalar>& v,
+  static VVector<Scalar> qddot(const QVector<Scalar>& q, const VVector<Scalar>& v,
                                const Scalar& t, const Params& params) {
-    QMatrix<Scalar> Mt;
-    QVector<Scalar> f;
+    VMatrix<Scalar> Mt;
+    VVector<Scalar> f;
     dynamics(q, v, t, params, &Mt, &f);
-    QVector<Scalar> a;
+    VVector<Scalar> a;
     if (!solve(Mt, f, &a)) a.setConstant(std::numeric_limits<Scalar>::quiet_NaN());
     return a;
   }

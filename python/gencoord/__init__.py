@@ -30,9 +30,9 @@ _API = {
                                                 "rotation_about", "rotation_x", "rotation_y",
                                                 "rotation_z", "rpy")},
     "Model": "gencoord.dsl.model",
-    **{name: "gencoord.dsl.joints" for name in ("Continuous", "Fixed", "Limits", "Origin",
-                                                "Prismatic", "Revolute", "EULER_CHARTS",
-                                                "add_free_base", "add_link")},
+    **{name: "gencoord.dsl.joints" for name in ("Ball", "Continuous", "Fixed", "Free", "Limits",
+                                                "Origin", "Prismatic", "Revolute",
+                                                "EULER_CHARTS", "add_free_base", "add_link")},
     "load_urdf": "gencoord.urdf.load",
 }
 

@@ -407,7 +407,7 @@ FLOATING = robot('<link name="world"/>', link("box"), link("arm"),
 
 
 class UrdfGenerateTest(unittest.TestCase):
-    """./generate robot.urdf: the model takes the file's stem; a floating base is an atlas."""
+    """./generate robot.urdf: the model takes the file's stem; a floating base is a free joint."""
 
     def setUp(self):
         self.scratch = tempfile.TemporaryDirectory(prefix="gencoord-urdf-")
@@ -426,12 +426,37 @@ class UrdfGenerateTest(unittest.TestCase):
         self.assertRegex(header, r"\bnq = 1;")
         self.assertIn("Robot 'test' from urdf_pendulum.urdf", header)
 
-    def test_floating_base_is_an_atlas_of_euler_charts(self):
+    def test_floating_base_is_a_free_joint(self):
         from gencoord.generate.load import load_model
         path = self.folder / "floater.urdf"
-        path.write_text(FLOATING, encoding="utf-8")
+        path.write_text(FLOATING.replace('type="floating">', 'type="floating">\n  <origin '
+                                         'xyz="0 0 2" rpy="0 0 1.5707963267948966"/>'),
+                        encoding="utf-8")
         model, name, _ = load_model(str(path))
-        self.assertEqual(name, "floater")
+        self.assertEqual((name, model.chart, model.charts), ("floater", None, []))
+        self.assertEqual([c.name for c in model.coordinates],
+                         ["box_x", "box_y", "box_z", "box_qw", "box_qx", "box_qy", "box_qz",
+                          "hinge"])
+        self.assertEqual([s.name for s in model.speeds],
+                         ["box_vx", "box_vy", "box_vz", "box_wx", "box_wy", "box_wz", "hinge"])
+        # the floating joint's origin is the initial pose: z = 2, a quarter turn about z
+        initial = [c.initial for c in model.coordinates]
+        self.assertEqual(initial[:3], [0.0, 0.0, 2.0])
+        for value, expected in zip(initial[3:7], [math.sqrt(0.5), 0, 0, math.sqrt(0.5)]):
+            self.assertAlmostEqual(value, expected, places=15)
+        self.assertEqual(len(model.generalized_forces), 1)  # the hinge's damping acts on q
+
+    def test_a_model_file_keeps_the_atlas_of_euler_charts(self):
+        from gencoord.generate.load import load_model
+        (self.folder / "floater.urdf").write_text(FLOATING, encoding="utf-8")
+        (self.folder / "floater_atlas.py").write_text(
+            "from gencoord import Model, load_urdf\n"
+            "models = [Model(dim=3, chart=chart) for chart in ('zyx', 'yzx')]\n"
+            "for model in models:\n"
+            "    load_urdf(model, 'floater.urdf')\n"
+            "model = models[0]\n"
+            "model.add_chart(models[1])\n", encoding="utf-8")
+        model, _, _ = load_model(str(self.folder / "floater_atlas.py"))
         self.assertEqual([model.chart, *(c.chart for c in model.charts)], ["zyx", "yzx"])
         for chart, angle in ((model, "yaw"), (model.charts[0], "heading")):
             self.assertEqual([c.name for c in chart.coordinates][::3], ["x", angle, "hinge"])
@@ -447,8 +472,10 @@ class UrdfGenerateTest(unittest.TestCase):
         model, _, _ = load_model(str(path))
         lines = FLOATING.splitlines()
         hinge = next(n for n, t in enumerate(lines, start=1) if 'name="hinge"' in t)
+        free = next(n for n, t in enumerate(lines, start=1) if 'name="free"' in t)
         self.assertEqual(model.coordinates[-1].line, hinge)
-        self.assertEqual({t.line for t in model.torques}, {hinge})
+        self.assertEqual({c.line for c in model.coordinates[:7]}, {free})
+        self.assertEqual({g.line for g in model.generalized_forces}, {hinge})
 
 
 class BuiltInRobotsTest(unittest.TestCase):

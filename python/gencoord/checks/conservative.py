@@ -27,7 +27,7 @@ def forces_have_potential(model: Model, kin: Kinematics | None = None) -> bool:
     """
     t = model.time
     kin = kin or Kinematics(model)
-    still = {c.rate: 0 for c in model.coordinates}
+    still = {speed.symbol: 0 for speed in model.speeds}
     points = {symbol: point for point in model.points for symbol in (*point.x, *point.xdot)}
 
     def at_rest(expr):

@@ -181,7 +181,7 @@ def verify_constraints(model: Model, seed: int = 20261121,
     q = [c.symbol for c in model.coordinates]
     params = [p.symbol for p in model.parameters]
     rng = random.Random(seed)
-    samples = [([rng.uniform(-math.pi, math.pi) for _ in q],
+    samples = [(model.on_manifold([rng.uniform(-math.pi, math.pi) for _ in q]),
                 [_sampled_value(p.default, rng) for p in model.parameters],
                 rng.uniform(0.0, 10.0)) for _ in range(SAMPLES)]
     proven = _proven(declared, kin) if len(q) <= SYMBOLIC_MAX_NQ else set()

@@ -34,7 +34,7 @@ def check_full_rank(model: Model, seed: int = 7, kin: Kinematics | None = None) 
     kin = kin or Kinematics(model)  # the pipeline builds it once for every stage
     evaluate: Callable[[list[float], float], list[list[list[float]]]]
     if kin.tree is None:
-        blocks, jacobian = [list(range(len(model.coordinates)))], kin.numeric_jacobian()
+        blocks, jacobian = [list(range(model.nv))], kin.numeric_jacobian()
 
         def evaluate(q: list[float], t: float) -> list[list[list[float]]]:
             return [jacobian(q, t)]
@@ -46,7 +46,7 @@ def check_full_rank(model: Model, seed: int = 7, kin: Kinematics | None = None) 
     null_vectors: dict[int, list[float]] = {}
     evaluated = 0
     for _ in range(SAMPLES):
-        values = [rng.uniform(-math.pi, math.pi) for _ in model.coordinates]
+        values = model.on_manifold([rng.uniform(-math.pi, math.pi) for _ in model.coordinates])
         matrices = finite_or_none(evaluate, values, rng.uniform(0.0, 10.0))
         if matrices is None:
             continue  # outside the domain of X (sqrt of a negative, a pole)
@@ -61,13 +61,14 @@ def check_full_rank(model: Model, seed: int = 7, kin: Kinematics | None = None) 
         return [f"Rank check skipped: J = dX/dq is not finite at any of {SAMPLES} sampled "
                 "configurations (q in [-pi, pi]), so redundant coordinates were not looked for"]
     block = min(unproven)
-    null_vector = [0.0] * len(model.coordinates)
+    null_vector = [0.0] * model.nv
     for j, value in zip(blocks[block], null_vectors[block]):
         null_vector[j] = value
     scale = max(abs(c) for c in null_vector)
+    speeds = model.speeds  # an ordinary coordinate's speed has its name
     combination = ", ".join(f"{c.name}: {v / scale:+.3g}" for c, v in
-                            zip(model.coordinates, null_vector) if abs(v) > 1e-6 * scale)
-    names = [c.name for c, v in zip(model.coordinates, null_vector) if abs(v) > 1e-6 * scale]
+                            zip(speeds, null_vector) if abs(v) > 1e-6 * scale)
+    names = [c.name for c, v in zip(speeds, null_vector) if abs(v) > 1e-6 * scale]
     raise ModelError(
         f"the coordinates {', '.join(names)} are redundant: J = dX/dq loses rank at every one "
         f"of {evaluated} sampled configurations, because moving them together in the direction "

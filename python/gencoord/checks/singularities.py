@@ -64,12 +64,13 @@ class SingularityReport:
     redundancy: str | None = None                             # redundancy.find_redundancy
     samples: int = SAMPLES
     candidates_searched: bool = True
+    why_sampled_only: str = f"nq > {SAMPLED_FULLY_NQ}"
     notes: list[str] = field(default_factory=list)           # what was skipped, and why
 
     def lines(self, width: int = 90) -> list[str]:
         found = ", ".join(self.singular_sets) if self.singular_sets else "none found"
         if not self.singular_sets and not self.candidates_searched:
-            found += f" (searched by sampling only, nq > {SAMPLED_FULLY_NQ})"
+            found += f" (searched by sampling only, {self.why_sampled_only})"
         lines = textwrap.wrap(f"Singular configurations (J loses rank): {found}", width,
                               subsequent_indent="  ")
         if self.singular_sets:
@@ -179,7 +180,7 @@ def _sample_conditioning(report: SingularityReport, model: Model, evaluate, rng)
                                 f"({SAMPLING_SECONDS:g} s CPU) after {sample} of {planned} "
                                 "configurations")
             break
-        values = [rng.uniform(-math.pi, math.pi) for _ in q]
+        values = model.on_manifold([rng.uniform(-math.pi, math.pi) for _ in q])
         matrix = finite_or_none(evaluate, values, rng.uniform(0.0, 10.0))
         if matrix is None:
             skipped += 1
@@ -203,7 +204,10 @@ def analyse_singularities(model: Model, seed: int = 11,
     evaluate = kin.numeric_jacobian()
     rng = random.Random(seed)
     report = SingularityReport()
-    report.candidates_searched = len(q) <= SAMPLED_FULLY_NQ
+    # unit quaternions have no singular set: a model with them is sampled only
+    report.candidates_searched = len(q) <= SAMPLED_FULLY_NQ and not model.has_generalized_speeds
+    if model.has_generalized_speeds:
+        report.why_sampled_only = "unit quaternions have no singular set"
     if report.candidates_searched:  # the symbolic J only where it is small
         jacobian = sp.Matrix.vstack(*[kin.jacobian[p.name] for p in model.particles])
         if len(q) <= SYMBOLIC_MAX_NQ and sp.count_ops(jacobian) < 400:
@@ -218,5 +222,9 @@ def analyse_singularities(model: Model, seed: int = 11,
         report.notes.append(f"Conditioning of J not sampled: one sample costs about nq^3 = "
                             f"{len(q)**3:.2g} operations in Python (sampled up to nq = "
                             f"{CONDITIONING_MAX_NQ})")
-    report.redundancy = find_redundancy(model, kin, notes=report.notes)
+    if model.has_generalized_speeds:  # q and -q are the same rotation: redundant by design
+        report.notes.append("Redundancy not searched: q and -q of a unit quaternion are the "
+                            "same rotation")
+    else:
+        report.redundancy = find_redundancy(model, kin, notes=report.notes)
     return report

@@ -23,7 +23,8 @@ def _check_name(name: str, label: str, line: int | None) -> None:
 
 def _check_names(model: Model) -> None:
     seen: dict[str, str] = {}
-    symbols = [*model.coordinates, *model.parameters]
+    symbols = [*model.coordinates, *[s for s in model.speeds if s.symbol not in
+                                     {c.rate for c in model.coordinates}], *model.parameters]
     body_points = [point for body in model.bodies for point in body.points]
     for item in [*symbols, *model.bodies, *model.particles, *model.fixed_points, *body_points]:
         _check_name(item.name, item.label(), item.line)
@@ -91,7 +92,7 @@ class _Symbols:
         self.inputs = {p.symbol for p in model.inputs}
         self.params = self.forcing - self.inputs
         self.q = {c.symbol for c in model.coordinates}
-        self.rates = {c.rate for c in model.coordinates}
+        self.rates = {speed.symbol for speed in model.speeds}
         self.t = {model.time}
         self.points = {s for point in model.points for s in (*point.x, *point.xdot)}
         self.velocities = {s: c for c in model.coordinates for s in (c.rate, c.acceleration)}
@@ -167,6 +168,11 @@ def _check_forces(model: Model, symbols: _Symbols) -> None:
             check(force.potential, symbols.points | t | params, force.label(),
                   force.line, "a potential may use points' .x, t and parameters")
     for generalized in model.generalized_forces:
+        if not generalized.coordinate.has_speed:
+            raise ModelError(f"acts on {generalized.coordinate.name}, a coordinate of a free or "
+                             "ball joint, whose rate is no speed; act on its link with "
+                             "model.torque(...) and point forces", item=generalized.label(),
+                             line=generalized.line)
         check(generalized.force, q | rates | t | forcing, generalized.label(), generalized.line,
               "a generalized force may use coordinates, model.rate(q), t, parameters")
         if generalized.potential is not None:

@@ -27,21 +27,22 @@ MODEL_TEMPLATE = "model.hpp.j2"
 INSTANTIATION_TEMPLATE = "instantiation.cpp.j2"
 
 _RETURN_DOCS = {
-    "mass_matrix": "Mt (nq x nq)", "applied_forces": "Ft (nq)", "inertial_forces": "Fi (nq)",
-    "forces": "Ft + Fi (nq)", "kinetic_energy": "T", "potential_energy": "V",
+    "mass_matrix": "Mt (nv x nv)", "applied_forces": "Ft (nv)", "inertial_forces": "Fi (nv)",
+    "forces": "Ft + Fi (nv)", "kinetic_energy": "T", "potential_energy": "V",
     "energy": "T + V", "positions": "x (nx)", "velocities": "xdot (nx)",
-    "jacobian": "J (nx x nq)", "bias_acceleration": "gamma (nx)",
+    "jacobian": "J (nx x nv)", "bias_acceleration": "gamma (nx)",
     "linear_momentum": "p (dim)", "angular_momentum": "L (angular_dim)",
     "particle_masses": "masses (num_particles)",
     "fixed_point_positions": "fixed-point positions (dim * num_fixed_points)",
-    "generalized_forces": "Q (nq)", "input_matrix": "B = dFt/du (nq x num_inputs)",
-    "inverse_dynamics": "r = tau (nq)", "qddot": "qddot (nq)",
+    "generalized_forces": "Q (nv)", "input_matrix": "B = dFt/du (nv x num_inputs)",
+    "inverse_dynamics": "r = tau (nv)", "qddot": "qddot (nv)",
+    "coordinate_rates": "dq/dt (nq)",
     "generalized_potential_energy": "V_q", "external_forces": "F (nx)",
     "penalty_forces": "F_penalty (nx)", "force_jacobian_x": "values (jacobian_x_nonzeros)",
     "force_jacobian_xdot": "values (jacobian_xdot_nonzeros)",
     "penalty_energy": "V_penalty", "constraint_violations": "C (num_constraints)",
-    "mass_matrix_product": "Mt qdd (nq)", "jacobian_product": "J dq (nx)",
-    "residual_derivative_q": "dr/dq dq (nq)", "residual_derivative_v": "dr/dv dv (nq)",
+    "mass_matrix_product": "Mt qdd (nv)", "jacobian_product": "J dq (nx)",
+    "residual_derivative_q": "dr/dq dq (nv)", "residual_derivative_v": "dr/dv dv (nv)",
 }
 
 
@@ -145,15 +146,21 @@ def _part_groups(kernels) -> list[int]:
 def _chart_context(chart, first, unroll_max_nq: int) -> dict:
     """The template context of one chart (gencoord/cxx/templates/model_struct.j2)."""
     model, optimized, n = chart.model, chart.optimized, chart.num_reduced_kernels
-    nq = model.nq
+    nq, nv = model.nq, model.nv
+    generalized = model.has_generalized_speeds
+    velocities = f"speeds (nv = {nv})" if generalized else f"generalized velocities (nq = {nq})"
     owner = type_name(chart.name)
     offsets = range(0, model.dim * len(model.particles), model.dim)
     return dict(
-        name=chart.name, type_name=owner, nq=nq, dim=model.dim,
+        name=chart.name, type_name=owner, nq=nq, nv=nv, dim=model.dim,
         unroll_max_nq=unroll_max_nq,
         params_from=None if chart is first else type_name(first.name),
         num_particles=len(model.particles), nx=model.dim * len(model.particles),
-        types=model_types(nq, model.dim * len(model.particles)),
+        types=model_types(nq, nv, model.dim * len(model.particles)),
+        speeds=([dict(name=s.name, description=s.description) for s in model.speeds]
+                if generalized else []),
+        quaternions=model.quaternions,
+        initial_v=[_format_default(s.initial) for s in model.speeds],
         coordinates=[dict(name=c.name, description=c.description,
                           initial=_format_default(c.initial),
                           initial_rate=_format_default(c.initial_rate))
@@ -176,10 +183,12 @@ def _chart_context(chart, first, unroll_max_nq: int) -> dict:
         jacobian_x=chart.maximal.force_jacobian_x,
         jacobian_xdot=chart.maximal.force_jacobian_xdot,
         input_docs={"q": f"generalized coordinates (nq = {nq})",
-                    "v": f"generalized velocities (nq = {nq})", "t": "time",
-                    "qdd": f"generalized accelerations (nq = {nq})",
+                    "v": velocities, "t": "time",
+                    "qdd": (f"accelerations dv/dt (nv = {nv})" if generalized
+                            else f"generalized accelerations (nq = {nq})"),
                     "dq": f"a direction in q (nq = {nq})",
-                    "dv": f"a direction in v (nq = {nq})",
+                    "dv": f"a direction in v (nv = {nv})" if generalized
+                          else f"a direction in v (nq = {nq})",
                     "pos": "particle positions x, stacked (nx)",
                     "vel": "particle velocities xdot, stacked (nx)",
                     "kappa": "penalty stiffness (rods: force per strain; pins, planes: N/m)",

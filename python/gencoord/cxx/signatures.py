@@ -16,9 +16,9 @@ from gencoord.cxx.lvalues import cxx_type
 
 NESTED_INDENT = 2  # what struct Maximal adds to its kernels' lines
 
-INPUT_TYPES = {"q": "const QVector<Scalar>& ", "v": "const QVector<Scalar>& ",
-               "qdd": "const QVector<Scalar>& ", "dq": "const QVector<Scalar>& ",
-               "dv": "const QVector<Scalar>& ",
+INPUT_TYPES = {"q": "const QVector<Scalar>& ", "v": "const VVector<Scalar>& ",
+               "qdd": "const VVector<Scalar>& ", "dq": "const QVector<Scalar>& ",
+               "dv": "const VVector<Scalar>& ",
                "t": "const Scalar& ", "pos": "const XVector<Scalar>& ",
                "vel": "const XVector<Scalar>& ", "kappa": "const Scalar& ",
                "penalty_damping": "const Scalar& "}

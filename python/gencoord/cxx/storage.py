@@ -1,5 +1,5 @@
 # SPDX-License-Identifier: BSD-3-Clause
-"""The Eigen type of a model's vectors and matrices of nq and nx entries.
+"""The Eigen type of a model's vectors and matrices of nq, nv and nx entries.
 
 Fixed-size Eigen objects live on the stack, and Eigen refuses one above 128 KiB (its
 EIGEN_STACK_ALLOCATION_LIMIT): a 100-link planar chain's J alone is 200 x 100 doubles,
@@ -20,10 +20,13 @@ def eigen_type(rows: str, columns: str, entries: int) -> str:
     return f"{template}<Scalar, {rows}, {columns}>"
 
 
-def model_types(nq: int, nx: int) -> dict[str, str]:
-    """QVector, QMatrix, XVector and XJacobian of a model struct (templates/model_struct.j2)."""
+def model_types(nq: int, nv: int, nx: int) -> dict[str, str]:
+    """QVector, QMatrix, VVector, VMatrix, VQMatrix, XVector and XJacobian of a model struct
+    (templates/model_struct.j2): q has nq entries, v nv, x nx."""
     return {"QVector": eigen_type("nq", "1", nq), "QMatrix": eigen_type("nq", "nq", nq * nq),
-            "XVector": eigen_type("nx", "1", nx), "XJacobian": eigen_type("nx", "nq", nx * nq)}
+            "VVector": eigen_type("nv", "1", nv), "VMatrix": eigen_type("nv", "nv", nv * nv),
+            "VQMatrix": eigen_type("nv", "nq", nv * nq),
+            "XVector": eigen_type("nx", "1", nx), "XJacobian": eigen_type("nx", "nv", nx * nv)}
 
 
 def needs_heap_matrix(types: dict[str, str]) -> bool:

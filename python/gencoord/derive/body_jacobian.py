@@ -1,5 +1,5 @@
 # SPDX-License-Identifier: BSD-3-Clause
-"""J = dX/dq of a joint tree of bodies (body_tree.py) as floats, from its joints.
+"""J = dX/dv of a joint tree of bodies (body_tree.py) as floats, from its joints.
 
 The sampled checks (the rank of J, the singularity analysis) need J at a few hundred random
 configurations. Compiling the symbolic J of a robot takes a second of CPU; this evaluates
@@ -52,7 +52,8 @@ def numeric_body_jacobian(tree: BodyTree, q: list[sp.Symbol], t: sp.Symbol,
                           ) -> Callable[[list[float], float], list[list[float]]]:
     """(q, t) -> J of the particles (3 rows each, in `particles` order), parameters at
     `defaults`."""
-    nodes, nq = tree.nodes, len(q)
+    nodes = tree.nodes
+    nv = sum(len(node.speeds) for node in nodes)  # J's columns: one per speed
     entries = [entry.xreplace(defaults) for node in nodes
                for entry in (*node.rotation, *node.translation, *node.subspace)]
     values = sp.lambdify([q, t], entries, modules="math", cse=True)
@@ -68,7 +69,7 @@ def numeric_body_jacobian(tree: BodyTree, q: list[sp.Symbol], t: sp.Symbol,
         for node in nodes:
             E = [[next(computed) for _ in range(3)] for _ in range(3)]
             r = [next(computed) for _ in range(3)]
-            k = len(node.coordinates)
+            k = len(node.speeds)
             S = [[next(computed) for _ in range(k)] for _ in range(6)]
             if node.parent is None:
                 R, o = E, r
@@ -82,11 +83,11 @@ def numeric_body_jacobian(tree: BodyTree, q: list[sp.Symbol], t: sp.Symbol,
         for node_index, local in points:
             R, o, _ = world[node_index]
             x = [a + b for a, b in zip(o, _rotate(R, local))]
-            block = [[0.0] * nq for _ in range(3)]
+            block = [[0.0] * nv for _ in range(3)]
             for a in ancestors[node_index]:
                 _, o_a, axes = world[a]
                 arm = [x_i - o_i for x_i, o_i in zip(x, o_a)]
-                for column, (spin, slide) in zip(nodes[a].coordinates, axes):
+                for column, (spin, slide) in zip(nodes[a].speeds, axes):
                     moved = _cross(spin, arm)
                     for i in range(3):
                         block[i][column] = slide[i] + moved[i]

@@ -19,7 +19,8 @@ from __future__ import annotations
 import sympy as sp
 
 from gencoord.derive.body_tree import BodyTree
-from gencoord.derive.dense import bias_acceleration, coordinate_forces, particle_forces
+from gencoord.derive.dense import bias_acceleration, particle_forces
+from gencoord.derive.speed_forces import coordinate_forces
 from gencoord.dsl.model import Model
 from gencoord.derive.spatial import cross_force, cross_motion, motion_to_child, rigid_inertia, split
 from gencoord.derive.structured import Intermediates, NamedKinematics
@@ -41,12 +42,12 @@ class LinkKinematics:
         self.bias: list[sp.Matrix] = [None] * n          # c_i
         for i, node in enumerate(self.nodes):
             own_q = [q[j] for j in node.coordinates]
-            own_v = sp.Matrix(len(own_q), 1, [v[j] for j in node.coordinates])
+            own_v = sp.Matrix(len(node.speeds), 1, [v[j] for j in node.speeds])
             joint_velocity = product(node.subspace, own_v) + node.drift
             carried = (sp.zeros(6, 1) if node.parent is None else
                        self.to_child(i, self.velocity[node.parent]))
             self.velocity[i] = names.matrix(carried + joint_velocity)
-            change = bias_acceleration(joint_velocity, own_q, list(own_v), self.t)
+            change = bias_acceleration(joint_velocity, own_q, node.rates, self.t)
             self.bias[i] = names.matrix(change + cross_motion(self.velocity[i], joint_velocity))
         self.inertia = [self._link_inertia(node) for node in self.nodes]
         self.momentum_change = [names.matrix(cross_force(self.velocity[i],
@@ -55,7 +56,7 @@ class LinkKinematics:
         self.world_rotation, self.world_origin = self._world_frames()
         self.points, self.point_link = self._points()
         self.external = self._external_wrenches()
-        self.tau = coordinate_forces(model, q)  # body torques enter as wrenches
+        self.tau = coordinate_forces(model)  # body torques enter as wrenches
         gravity = sum((field.acceleration for field in model.gravities), sp.zeros(3, 1))
         self.world = sp.Matrix.vstack(sp.zeros(3, 1), names.matrix(-gravity))  # A_world
 

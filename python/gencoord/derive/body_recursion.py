@@ -33,8 +33,9 @@ import sympy as sp
 
 from gencoord.derive.body_kinematics import LinkKinematics
 from gencoord.derive.body_tree import BodyTree
-from gencoord.derive.dense import (Derivation, fixed_point_positions, generalized_force_vector,
-                                   generalized_potential, x_space_potential)
+from gencoord.derive.dense import (Derivation, fixed_point_positions, generalized_potential,
+                                   x_space_potential)
+from gencoord.derive.speed_forces import generalized_force_vector
 from gencoord.dsl.model import Model
 from gencoord.derive.point_recursion import RecursiveDynamics, place_symmetric, spd_inverse
 from gencoord.derive.spatial import force_to_parent, inertia_to_parent, split
@@ -49,13 +50,12 @@ def body_recursive_dynamics(model: Model, kin, tree: BodyTree, derivation: bool 
     `square_outputs` no Mt or J (a looped tree's, looped.py)."""
     names = Intermediates(prefix="__r")
     links = LinkKinematics(model, kin, tree, names)
-    qdd = [c.acceleration for c in model.coordinates]
-    nq = len(qdd)
+    qdd = [speed.acceleration for speed in model.speeds]
+    nv = len(qdd)
     bias_force = [names.matrix(links.momentum_change[i] - links.external[i])
                   for i in range(len(tree.nodes))]
-    qddot = _articulated_body(links, bias_force, nq)
-    joint = [node.subspace * sp.Matrix(len(node.coordinates), 1,
-                                       [qdd[j] for j in node.coordinates])
+    qddot = _articulated_body(links, bias_force, nv)
+    joint = [node.subspace * sp.Matrix(len(node.speeds), 1, [qdd[j] for j in node.speeds])
              for node in tree.nodes]
     residual = _newton_euler(links, _accelerations(links, links.world, joint, True),
                              bias_force, links.tau)
@@ -91,12 +91,12 @@ def _newton_euler(links: LinkKinematics, accelerations, bias_force, tau) -> sp.M
             F = F + force_to_parent(links.rotation[c], links.translation[c], transmitted[c])
         transmitted[i] = names.matrix(F)
         carried = product(nodes[i].subspace.T, transmitted[i])
-        for j, value in zip(nodes[i].coordinates, carried):
+        for j, value in zip(nodes[i].speeds, carried):
             residual[j] = names.name(value - tau[j])
     return sp.Matrix(residual)
 
 
-def _articulated_body(links: LinkKinematics, bias_force, nq: int) -> sp.Matrix:
+def _articulated_body(links: LinkKinematics, bias_force, nv: int) -> sp.Matrix:
     names, nodes = links.names, links.nodes
     n = len(nodes)
     passed: dict[int, tuple] = {}  # (Ia, pa) in the parent's axes
@@ -113,7 +113,7 @@ def _articulated_body(links: LinkKinematics, bias_force, nq: int) -> sp.Matrix:
         else:
             U = names.matrix(product(IA, S))
             D_inverse = spd_inverse(names, names.symmetric(product(S.T, U)))
-            own_tau = sp.Matrix([links.tau[j] for j in node.coordinates])
+            own_tau = sp.Matrix([links.tau[j] for j in node.speeds])
             u = names.matrix(own_tau - product(S.T, pA))
             UD = names.matrix(product(U, D_inverse))
             Ia = names.symmetric(IA - product(UD, U.T))
@@ -124,7 +124,7 @@ def _articulated_body(links: LinkKinematics, bias_force, nq: int) -> sp.Matrix:
             passed[i] = (names.symmetric(inertia_to_parent(E, r, Ia, names)),
                          names.matrix(force_to_parent(E, r, pa)))
 
-    qddot = [sp.Integer(0)] * nq
+    qddot = [sp.Integer(0)] * nv
     acceleration: list[sp.Matrix] = [None] * n
     for i, node in enumerate(nodes):
         base = links.world if node.parent is None else acceleration[node.parent]
@@ -134,13 +134,13 @@ def _articulated_body(links: LinkKinematics, bias_force, nq: int) -> sp.Matrix:
             continue
         U, D_inverse, u = solve[i]
         own = names.matrix(product(D_inverse, u - product(U.T, before)))
-        for j, value in zip(node.coordinates, own):
+        for j, value in zip(node.speeds, own):
             qddot[j] = value
         acceleration[i] = names.matrix(before + product(node.subspace, own))
     return sp.Matrix(qddot)
 
 
-def _composite_mass_matrix(links: LinkKinematics, nq: int) -> sp.Matrix:
+def _composite_mass_matrix(links: LinkKinematics, nv: int) -> sp.Matrix:
     names, nodes = links.names, links.nodes
     n = len(nodes)
     composite: list[sp.Matrix] = [None] * n
@@ -153,12 +153,12 @@ def _composite_mass_matrix(links: LinkKinematics, nq: int) -> sp.Matrix:
         if nodes[i].parent is not None:
             passed[i] = names.symmetric(inertia_to_parent(
                 links.rotation[i], links.translation[i], composite[i], names))
-    mass_matrix = sp.zeros(nq, nq)
+    mass_matrix = sp.zeros(nv, nv)
     for i, node in enumerate(nodes):
-        if not node.coordinates:
+        if not node.speeds:
             continue
         force = names.matrix(product(composite[i], node.subspace))
-        place_symmetric(names, mass_matrix, node.coordinates, node.coordinates,
+        place_symmetric(names, mass_matrix, node.speeds, node.speeds,
                         product(node.subspace.T, force))
         j = i
         while (parent := nodes[j].parent) is not None:
@@ -166,8 +166,8 @@ def _composite_mass_matrix(links: LinkKinematics, nq: int) -> sp.Matrix:
             force = names.matrix(sp.Matrix.hstack(*[force_to_parent(E, r, force[:, k])
                                                     for k in range(force.shape[1])]))
             j = parent
-            if nodes[j].coordinates:
-                place_symmetric(names, mass_matrix, nodes[j].coordinates, node.coordinates,
+            if nodes[j].speeds:
+                place_symmetric(names, mass_matrix, nodes[j].speeds, node.speeds,
                                 product(nodes[j].subspace.T, force))
     return mass_matrix
 
@@ -177,11 +177,11 @@ def _derivation(model: Model, kin, links: LinkKinematics, qdd, square_outputs: b
     """Every output of derive/dense.py, from the links' motion and the recursions; Mt and J only
     with `square_outputs`."""
     names, nodes = links.names, links.nodes
-    nq, n = len(qdd), len(nodes)
+    nv, n = len(qdd), len(nodes)
     none = [None] * n
     # gamma's accelerations: at qddot = 0 with the world at rest
     moving = _accelerations(links, sp.zeros(6, 1), none, True)
-    inertial = -_newton_euler(links, moving, links.momentum_change, sp.zeros(nq, 1))
+    inertial = -_newton_euler(links, moving, links.momentum_change, sp.zeros(nv, 1))
     applied = -_newton_euler(links, _accelerations(links, links.world, none, False),
                              [-wrench for wrench in links.external], links.tau)
 
@@ -204,11 +204,10 @@ def _derivation(model: Model, kin, links: LinkKinematics, qdd, square_outputs: b
                 R * (dv + dw.cross(rho) + w.cross(v + w.cross(rho))))
             if square_outputs:
                 jacobians[particle.name] = _point_jacobian(
-                    links, world_subspace, i, links.points.position[particle.name], nq)
+                    links, world_subspace, i, links.points.position[particle.name], nv)
         centre = links.world_origin[i] + R * node.link.inertial.origin
         centre_velocity = R * (v + w.cross(node.link.inertial.origin))
-        kinetic += names.name((links.velocity[i].T * links.inertia[i] * links.velocity[i])[0]
-                              / 2)
+        kinetic += names.name((links.velocity[i].T * links.inertia[i] * links.velocity[i])[0] / 2)
         momentum += body.mass * centre_velocity
         angular += (body.mass * centre.cross(centre_velocity)
                     + R * (links.inertia_at_centre(node) * w))
@@ -224,27 +223,28 @@ def _derivation(model: Model, kin, links: LinkKinematics, qdd, square_outputs: b
         jacobian=(sp.Matrix.vstack(*[jacobians[p.name] for p in particles])
                   if square_outputs else None),
         bias_acceleration=sp.Matrix.vstack(*[gammas[p.name] for p in particles]),
-        mass_matrix=_composite_mass_matrix(links, nq) if square_outputs else None,
+        mass_matrix=_composite_mass_matrix(links, nv) if square_outputs else None,
         applied_forces=names.vector(applied), inertial_forces=names.vector(inertial),
         generalized_forces=generalized_force_vector(model, kin.q),
         kinetic_energy=kinetic,
         potential_energy=(x_space_potential(model, links.points, gravity_at)
                           + generalized_potential(model)),
         generalized_potential=generalized_potential(model),
-        linear_momentum=momentum, angular_momentum=angular)
+        linear_momentum=momentum, angular_momentum=angular,
+        rates=sp.Matrix(kin.rates) if model.has_generalized_speeds else None)
 
 
-def _point_jacobian(links: LinkKinematics, world_subspace, i: int, x: sp.Matrix, nq: int
+def _point_jacobian(links: LinkKinematics, world_subspace, i: int, x: sp.Matrix, nv: int
                     ) -> sp.Matrix:
     """dx/dq of a point at x on link i: each joint a on the way to the root moves it by its
     world motion (omega_a; v_a) as v_a + omega_a x (x - o_a)."""
-    jacobian = sp.zeros(3, nq)
+    jacobian = sp.zeros(3, nv)
     a: int | None = i
     while a is not None:
         node = links.nodes[a]
-        if node.coordinates:
+        if node.speeds:
             arm = x - links.world_origin[a]
-            for k, j in enumerate(node.coordinates):
+            for k, j in enumerate(node.speeds):
                 spin, slide = split(world_subspace[a][:, k])
                 jacobian[:, j] = slide + spin.cross(arm)
         a = node.parent

@@ -7,8 +7,10 @@ the parent's, r the child's origin), a function of the joint's own coordinates; 
 motion subspace S and its velocity at zero rates sigma, in the link's axes, so that the
 link's body-fixed velocity (omega; v), v the velocity of the link frame's origin, is
 
-    V_i = X_i V_parent + S_i qdot_i + sigma_i,    X_i (omega; v) = (E^T omega, E^T (v + omega x r))
+    V_i = X_i V_parent + S_i v_i + sigma_i,    X_i (omega; v) = (E^T omega, E^T (v + omega x r))
 
+with v_i the joint's speeds: its coordinates' rates, or a ball or free joint's twist, for
+which S is constant (speeds.py)
 and its body's spatial inertia about the link origin in the link's axes. The tree is taken
 from the links the model recorded, not read off expressions: a model qualifies when it is 3D,
 every body is a link's body and no particle stands alone (bodies.py's point masses aside).
@@ -21,7 +23,7 @@ from dataclasses import dataclass
 import sympy as sp
 
 from gencoord.dsl.frames import unskew
-from gencoord.dsl.joints import Link, Prismatic, Revolute
+from gencoord.dsl.joints import Ball, Free, Link, Prismatic, Revolute
 from gencoord.dsl.model import Model
 from gencoord.dsl.items import BodyParticle
 from gencoord.derive.tree_order import Tree
@@ -32,9 +34,11 @@ class BodyNode:
     link: Link
     parent: int | None           # index in BodyTree.nodes; None: the world
     coordinates: list[int]       # indices into model.coordinates this joint moves
+    speeds: list[int]            # indices into model.speeds: v_i
+    rates: list[sp.Expr]         # q_i' in terms of the speeds
     rotation: sp.Matrix          # E: the link's axes in its parent's
     translation: sp.Matrix       # r: the link's origin in its parent's axes
-    subspace: sp.Matrix          # S: 6 x k, (angular; linear) in the link's axes
+    subspace: sp.Matrix          # S: 6 x len(speeds), (angular; linear) in the link's axes
     drift: sp.Matrix             # sigma: the joint's velocity at zero rates (time-dependence)
 
 
@@ -58,6 +62,8 @@ def body_tree(model: Model) -> BodyTree | None:
     if sorted(moved) != list(range(len(q))):
         return None
     position_of = {id(link): k for k, link in enumerate(model.links)}
+    speed_of = {speed.symbol: k for k, speed in enumerate(model.speeds)}
+    rates = model.coordinate_rates()
     nodes = []
     for link in model.links:
         parent = None if link.parent is None else position_of[id(link.parent)]
@@ -65,6 +71,8 @@ def body_tree(model: Model) -> BodyTree | None:
         subspace, drift = _joint_motion(link, own, model.time)
         assert link.local is not None  # add_link and add_free_base set it
         nodes.append(BodyNode(link, parent, [index_of[c] for c in link.coordinates],
+                              [speed_of[v] for v in link.speeds],
+                              [rates[index_of[c]] for c in link.coordinates],
                               link.local.rotation, link.local.origin, subspace, drift))
     return BodyTree(nodes)
 
@@ -76,6 +84,11 @@ def _joint_motion(link: Link, own: list[sp.Symbol], t: sp.Symbol
     motion (a free base's translation and Euler angles) has (omega; v) = (unskew(E^T dE/dt),
     E^T dr/dt), simplified once per joint so S holds no cos^2 + sin^2."""
     zero = sp.zeros(3, 1)
+    if isinstance(link.joint, Free):  # speeds (v; omega), the twist in the link's axes
+        return sp.Matrix.vstack(sp.Matrix.hstack(sp.zeros(3), sp.eye(3)),
+                                sp.Matrix.hstack(sp.eye(3), sp.zeros(3))), sp.zeros(6, 1)
+    if isinstance(link.joint, Ball):
+        return sp.Matrix.vstack(sp.eye(3), sp.zeros(3)), sp.zeros(6, 1)
     if isinstance(link.joint, Revolute):
         return sp.Matrix.vstack(link.joint.unit_axis(), zero), sp.zeros(6, 1)
     if isinstance(link.joint, Prismatic):

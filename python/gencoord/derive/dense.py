@@ -22,11 +22,11 @@ from typing import Callable, Literal, Protocol
 
 import sympy as sp
 
-from gencoord.dsl.bodies import (InertialTerm, force_shares, inertial_terms,
-                                 torque_generalized_forces)
+from gencoord.dsl.bodies import InertialTerm, force_shares, inertial_terms
 from gencoord.derive.body_jacobian import numeric_body_jacobian
 from gencoord.derive.body_tree import body_tree
 from gencoord.derive.differentiate import termwise_jacobian
+from gencoord.derive.speed_forces import generalized_force_vector, rate_matrix
 from gencoord.dsl.model import Model
 from gencoord.dsl.items import Point
 from gencoord.derive.point_tree import PointTree, point_tree
@@ -35,28 +35,30 @@ from gencoord.symbolic.sums import dot
 
 @dataclass
 class Derivation:
-    """All symbolic outputs of one model, as SymPy expressions of q, v, t and parameters."""
+    """All symbolic outputs of one model, as SymPy expressions of q, v, t and parameters;
+    v are the speeds (nv of them, q' where the model has no free or ball joint)."""
     q: list[sp.Symbol]
     v: list[sp.Symbol]
-    a: list[sp.Symbol]               # accelerations qddot, input of the inverse dynamics
+    a: list[sp.Symbol]               # accelerations v', input of the inverse dynamics
     t: sp.Symbol
     params: list[sp.Symbol]
     masses: list[sp.Expr]            # one per particle
     positions: sp.Matrix             # nx
     fixed_point_positions: sp.Matrix  # dim per fixed point, stacked; functions of t only
     velocities: sp.Matrix            # nx: J v + X_t
-    jacobian: sp.Matrix | None       # nx x nq; None for a looped tree (looped.py)
+    jacobian: sp.Matrix | None       # nx x nv (dX/dv); None for a looped tree (looped.py)
     bias_acceleration: sp.Matrix     # nx: gamma
-    mass_matrix: sp.Matrix | None    # nq x nq, symmetric; None for a looped tree
-    applied_forces: sp.Matrix        # nq: J^T F + generalized forces
-    inertial_forces: sp.Matrix       # nq: -J^T M gamma
-    generalized_forces: sp.Matrix    # nq: the part of applied_forces acting on q directly
+    mass_matrix: sp.Matrix | None    # nv x nv, symmetric; None for a looped tree
+    applied_forces: sp.Matrix        # nv: J^T F + generalized forces
+    inertial_forces: sp.Matrix       # nv: -J^T M gamma
+    generalized_forces: sp.Matrix    # nv: the part of applied_forces acting on q directly
     kinetic_energy: sp.Expr
     potential_energy: sp.Expr        # all of V
     generalized_potential: sp.Expr   # the part of V given with generalized forces
     linear_momentum: sp.Matrix       # dim
     angular_momentum: sp.Matrix      # 3 in 3D, 1 (the z component) in 2D
     inputs: list[sp.Symbol] = dataclasses.field(default_factory=list)  # the control inputs
+    rates: sp.Matrix | None = None   # nq: q' = G(q) v
 
     def residual(self) -> sp.Matrix:
         """Inverse-dynamics residual r(q, v, a, t) = Mt a - Ft - Fi (the force to apply)."""
@@ -75,10 +77,11 @@ def _times(matrix: sp.Matrix, vector: list[sp.Expr]) -> sp.Matrix:
                                if matrix[i, j] != 0]) for i in range(matrix.shape[0])])
 
 
-def bias_acceleration(xdot: sp.Matrix, q: list[sp.Symbol], v: list[sp.Symbol],
+def bias_acceleration(xdot: sp.Matrix, q: list[sp.Symbol], rates: list[sp.Expr],
                       t: sp.Symbol) -> sp.Matrix:
-    """gamma = d(xdot)/dq v + d(xdot)/dt: the acceleration at qddot = 0."""
-    return _times(termwise_jacobian(xdot, q), v) + xdot.diff(t)
+    """gamma = d(xdot)/dq q' + d(xdot)/dt: the acceleration at v' = 0 (q' = v for ordinary
+    coordinates, G(q) v for a free or ball joint's)."""
+    return _times(termwise_jacobian(xdot, q), rates) + xdot.diff(t)
 
 
 def _norm(d: sp.Matrix) -> sp.Expr:
@@ -107,7 +110,10 @@ class Kinematics:
 
     def __init__(self, model: Model):
         self.q = [c.symbol for c in model.coordinates]
-        self.v = [c.rate for c in model.coordinates]
+        self.v = [s.symbol for s in model.speeds]
+        self.rates = model.coordinate_rates()  # q' = G(q) v
+        # G, which takes dX/dq to J = dX/dv; None where q' = v
+        self._rate_matrix = rate_matrix(model) if model.has_generalized_speeds else None
         self.t = model.time
         self.dim = model.dim
         self.particles = [p.name for p in model.particles]
@@ -120,10 +126,14 @@ class Kinematics:
         self._point_substitution: dict[sp.Symbol, sp.Expr] | None = None
         self.position: dict[str, sp.Matrix] = {p.name: p.position for p in model.points}
         self.jacobian: dict[str, sp.Matrix] = _PerPoint(
-            lambda name: termwise_jacobian(self.position[name], self.q))
+            lambda name: self.to_speeds(termwise_jacobian(self.position[name], self.q)))
         self.velocity: dict[str, sp.Matrix] = _PerPoint(
             lambda name: (_times(self.jacobian[name], self.v)
                           + self.position[name].diff(self.t)))
+
+    def to_speeds(self, jacobian_q: sp.Matrix) -> sp.Matrix:
+        """d/dv of what `jacobian_q` is d/dq of: times G."""
+        return jacobian_q if self._rate_matrix is None else jacobian_q * self._rate_matrix
 
     @property
     def tree(self) -> PointTree | None:
@@ -149,7 +159,7 @@ class Kinematics:
         """(y, J_y, ydot) of an inertial term: a particle's as derived, a body's computed."""
         if term.name in self.position:
             return self.position[term.name], self.jacobian[term.name], self.velocity[term.name]
-        jac = termwise_jacobian(term.position, self.q)
+        jac = self.to_speeds(termwise_jacobian(term.position, self.q))
         return term.position, jac, _times(jac, self.v) + term.position.diff(self.t)
 
     def numeric_jacobian(self) -> Callable[[list[float], float], list[list[float]]]:
@@ -313,19 +323,6 @@ def generalized_potential(model: Model) -> sp.Expr:
                sp.Integer(0))
 
 
-def coordinate_forces(model: Model, q: list[sp.Symbol]) -> sp.Matrix:
-    """The forces the model file puts on coordinates (generalized forces, joint springs)."""
-    forces = sp.zeros(len(q), 1)
-    for g in model.generalized_forces:
-        forces[q.index(g.coordinate.symbol)] += g.force
-    return forces
-
-
-def generalized_force_vector(model: Model, q: list[sp.Symbol]) -> sp.Matrix:
-    """Q: the forces acting directly on q (generalized forces, joint springs, body torques)."""
-    return torque_generalized_forces(model, q) + coordinate_forces(model, q)
-
-
 def fixed_point_positions(model: Model, kin: Kinematics) -> sp.Matrix:
     """The fixed points' positions, stacked (an empty column when the model has none)."""
     return sp.Matrix.vstack(sp.zeros(0, 1), *[kin.position[p.name] for p in model.fixed_points])
@@ -343,13 +340,13 @@ def derive(model: Model, kin: Kinematics | None = None) -> Derivation:
     """The reduced dynamics of `model`: Mt = J^T M J, Ft = J^T F, Fi = -J^T M gamma, energy,
     momenta and the Jacobians of the residual."""
     kin = kin or Kinematics(model)  # the pipeline builds it once for every stage
-    nq = model.nq
+    nv = model.nv
     q, v, t = kin.q, kin.v, kin.t
     force = particle_forces(model, kin, gravity=False)
 
-    mass_matrix = sp.zeros(nq, nq)
-    applied = sp.zeros(nq, 1)
-    inertial = sp.zeros(nq, 1)
+    mass_matrix = sp.zeros(nv, nv)
+    applied = sp.zeros(nv, 1)
+    inertial = sp.zeros(nv, 1)
     kinetic = sp.Integer(0)
     momentum = sp.zeros(model.dim, 1)
     angular = sp.zeros(3 if model.dim == 3 else 1, 1)
@@ -357,8 +354,8 @@ def derive(model: Model, kin: Kinematics | None = None) -> Derivation:
     for term in inertial_terms(model):
         y, jac, ydot = kin.of_term(term)
         w = term.weight
-        gamma = gammas[term.name] = bias_acceleration(ydot, q, v, t)
-        for a in range(nq):
+        gamma = gammas[term.name] = bias_acceleration(ydot, q, kin.rates, t)
+        for a in range(nv):
             for b in range(a + 1):
                 mass_matrix[a, b] += w * dot(jac[:, a], jac[:, b])
         applied += jac.T * gravity_force(model, term)
@@ -368,7 +365,7 @@ def derive(model: Model, kin: Kinematics | None = None) -> Derivation:
         if term.translational:
             momentum += w * ydot
             gravity_at.append((w, y))
-    for a in range(nq):
+    for a in range(nv):
         for b in range(a):
             mass_matrix[b, a] = mass_matrix[a, b]
     for p in model.particles:
@@ -377,7 +374,8 @@ def derive(model: Model, kin: Kinematics | None = None) -> Derivation:
     applied += generalized
 
     return Derivation(
-        q=q, v=v, a=[c.acceleration for c in model.coordinates], t=t,
+        q=q, v=v, a=[s.acceleration for s in model.speeds],
+        rates=sp.Matrix(kin.rates) if model.has_generalized_speeds else None, t=t,
         params=[prm.symbol for prm in model.parameters],
         inputs=[prm.symbol for prm in model.inputs],
         masses=[p.mass for p in model.particles],
@@ -387,7 +385,7 @@ def derive(model: Model, kin: Kinematics | None = None) -> Derivation:
         jacobian=sp.Matrix.vstack(*[kin.jacobian[p.name] for p in model.particles]),
         bias_acceleration=sp.Matrix.vstack(*[
             gammas[p.name] if p.name in gammas
-            else bias_acceleration(kin.velocity[p.name], q, v, t)
+            else bias_acceleration(kin.velocity[p.name], q, kin.rates, t)
             for p in model.particles]),
         mass_matrix=mass_matrix, applied_forces=applied, inertial_forces=inertial,
         generalized_forces=generalized,

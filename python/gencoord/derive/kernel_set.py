@@ -99,7 +99,7 @@ def _vector(name: str, storage: str, values: sp.Matrix) -> Block:
 
 def _lower(name: str, matrix: sp.Matrix) -> Block:
     n = matrix.shape[0]
-    return Block(name, "QMatrix", (n, n),
+    return Block(name, "VMatrix", (n, n),
                  [(i, j, matrix[i, j]) for i in range(n) for j in range(i + 1)],
                  symmetric=True)
 
@@ -110,12 +110,12 @@ def _matrix(name: str, storage: str, matrix: sp.Matrix) -> Block:
                   for j in range(matrix.shape[1])])
 
 
-def _jacobian(name: str, of: sp.Matrix, wrt: list[sp.Symbol]) -> Block:
-    return Block(name, "QMatrix", (len(of), len(wrt)), [], jacobian_of=(list(of), wrt))
+def _jacobian(name: str, storage: str, of: sp.Matrix, wrt: list[sp.Symbol]) -> Block:
+    return Block(name, storage, (len(of), len(wrt)), [], jacobian_of=(list(of), wrt))
 
 
 def _input_matrix(d: Derivation) -> Block:
-    """B = dFt/du, nq x (number of inputs)."""
+    """B = dFt/du, nv x (number of inputs)."""
     return Block("result", "InputMatrix", (len(d.applied_forces), len(d.inputs)), [],
                  jacobian_of=(list(d.applied_forces), d.inputs))
 
@@ -136,12 +136,12 @@ def _recursive_kernels(r: RecursiveDynamics) -> dict[str, Kernel]:
         "dynamics": Kernel(
             "qddot", "Generalized accelerations qddot = Mt^-1 (Ft + Fi) by the articulated-body "
             "recursion (O(nq)); NaN or inf entries where Mt is singular.", ("q", "v", "t"),
-            [_vector("result", "QVector", r.qddot)], variant="recursive"),
+            [_vector("result", "VVector", r.qddot)], variant="recursive"),
         "inverse_dynamics": Kernel(
             "inverse_dynamics", "Inverse dynamics by the recursive Newton-Euler algorithm "
             "(O(nq)): the residual r = Mt qdd - Ft - Fi, i.e. the generalized force that "
             "produces qdd.", ("q", "v", "qdd", "t"),
-            [_vector("result", "QVector", r.residual)], variant="recursive"),
+            [_vector("result", "VVector", r.residual)], variant="recursive"),
     }
 
 
@@ -195,29 +195,29 @@ def _dynamics_kernels(d: Derivation, residual: sp.Matrix | None,
             "mass_matrix", "Reduced mass matrix Mt = J^T M J (symmetric).", ("q", "t"),
             [_lower("result", d.mass_matrix)])),
         Kernel("applied_forces", "Applied generalized forces Ft = J^T F + Q.",
-               ("q", "v", "t"), [_vector("result", "QVector", d.applied_forces)]),
+               ("q", "v", "t"), [_vector("result", "VVector", d.applied_forces)]),
         Kernel("generalized_forces", "Forces acting directly on q (joint torques, joint "
                "springs).", ("q", "v", "t"),
-               [_vector("result", "QVector", d.generalized_forces)]),
+               [_vector("result", "VVector", d.generalized_forces)]),
         Kernel("inertial_forces", "Inertial (Coriolis, centrifugal, moving-frame) forces "
                "Fi = -J^T M gamma.", ("q", "v", "t"),
-               [_vector("result", "QVector", d.inertial_forces)]),
+               [_vector("result", "VVector", d.inertial_forces)]),
         Kernel("forces", "Right-hand side Ft + Fi of Mt qddot = Ft + Fi.", ("q", "v", "t"),
-               [_vector("result", "QVector", total_force)]),
+               [_vector("result", "VVector", total_force)]),
         unless_replaced("dynamics", lambda: Kernel(
             "dynamics", "Mt and Ft + Fi in one pass, sharing their common terms.",
             ("q", "v", "t"),
-            [_out(_lower("Mt", d.mass_matrix)), _out(_vector("f", "QVector", total_force))],
+            [_out(_lower("Mt", d.mass_matrix)), _out(_vector("f", "VVector", total_force))],
             notes=["Mt and f must not be null."])),
         *([Kernel("inverse_dynamics", "Inverse dynamics: the residual r = Mt qdd - Ft - Fi, "
                   "i.e. the generalized force that produces qdd.", ("q", "v", "qdd", "t"),
-                  [_vector("result", "QVector", residual)])]
+                  [_vector("result", "VVector", residual)])]
           if residual is not None else []),
         unless_replaced("residual_jacobians", lambda: Kernel(
             "residual_jacobians", "Jacobians dr/dq and dr/dv of the residual (dr/dqdd = Mt), "
             "for Newton steps.", ("q", "v", "qdd", "t"),
-            [_out(_jacobian("dr_dq", differentiated_residual, d.q)),
-             _out(_jacobian("dr_dv", differentiated_residual, d.v))],
+            [_out(_jacobian("dr_dq", "VQMatrix", differentiated_residual, d.q)),
+             _out(_jacobian("dr_dv", "VMatrix", differentiated_residual, d.v))],
             notes=["dr_dq and dr_dv must not be null."])),
         *([Kernel("input_matrix", "Input matrix B = dFt/du: the generalized force per unit of "
                   "each control input (Ft = B u + the rest when u enters linearly).",
@@ -228,6 +228,9 @@ def _dynamics_kernels(d: Derivation, residual: sp.Matrix | None,
 def _state_kernels(d: Derivation, unless_replaced) -> list[Kernel]:
     """Energies, positions, velocities, J, gamma, momenta, masses and fixed points."""
     return [
+        *([Kernel("coordinate_rates", "Kinematic equation dq/dt = G(q) v: the rates of the "
+                  "coordinates, linear in the speeds.", ("q", "v", "t"),
+                  [_vector("result", "QVector", d.rates)])] if d.rates is not None else []),
         Kernel("kinetic_energy", "Kinetic energy T = 1/2 xdot^T M xdot.", ("q", "v", "t"),
                [_scalar("result", d.kinetic_energy)]),
         Kernel("potential_energy", "Potential energy V (gravity, springs, given potentials).",
@@ -241,7 +244,8 @@ def _state_kernels(d: Derivation, unless_replaced) -> list[Kernel]:
         Kernel("velocities", "Particle velocities xdot = J v + X_t, stacked.", ("q", "v", "t"),
                [_vector("result", "XVector", d.velocities)]),
         unless_replaced("jacobian", lambda: Kernel(
-            "jacobian", "Jacobian J = dX/dq.", ("q", "t"),
+            "jacobian", "Jacobian J = dX/dq." if d.rates is None else "Jacobian J = d xdot / d v "
+            "(xdot = J v + X_t).", ("q", "t"),
             [_matrix("result", "XJacobian", d.jacobian)])),
         Kernel("bias_acceleration", "Velocity-product acceleration gamma (xddot at qddot = 0).",
                ("q", "v", "t"), [_vector("result", "XVector", d.bias_acceleration)]),

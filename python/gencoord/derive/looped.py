@@ -57,37 +57,37 @@ def looped_outputs(d: Derivation, residual: sp.Matrix) -> LoopedOutputs:
     dq, dv = _direction("dq", nq), _direction("dv", nq)
     products = [
         _product("mass_matrix_product", "Mt qdd without Mt: the derivative of Newton-Euler's "
-                 "residual along qdd (O(nq)).", ("q", "qdd", "t"), "QVector",
+                 "residual along qdd (O(nq)).", ("q", "qdd", "t"), "VVector",
                  residual, dict(zip(d.a, d.a))),
         _product("jacobian_product", "J dq without J: the derivative of the positions along dq "
                  "(O(nq)).", ("q", "dq", "t"), "XVector", d.positions,
                  dict(zip(d.q, dq))),
         _product("residual_derivative_q", "dr/dq dq: the derivative of Newton-Euler's residual "
-                 "along dq (O(nq)).", ("q", "v", "qdd", "dq", "t"), "QVector",
+                 "along dq (O(nq)).", ("q", "v", "qdd", "dq", "t"), "VVector",
                  residual, dict(zip(d.q, dq))),
         _product("residual_derivative_v", "dr/dv dv: the derivative of Newton-Euler's residual "
-                 "along dv (O(nq)).", ("q", "v", "qdd", "dv", "t"), "QVector",
+                 "along dv (O(nq)).", ("q", "v", "qdd", "dv", "t"), "VVector",
                  residual, dict(zip(d.v, dv))),
     ]
     looped = "a loop over its nq columns, each a product (O(nq^2) in all)"
     replacing = {
         "mass_matrix": Kernel(
             "mass_matrix", f"Reduced mass matrix Mt = J^T M J (symmetric), by {looped}.",
-            ("q", "t"), [Block("result", "QMatrix", (nq, nq), [])],
+            ("q", "t"), [Block("result", "VMatrix", (nq, nq), [])],
             composed=Composed((Call("result", "mass_matrix_product", ("q", "unit", "t")),),
                               columns=nq)),
         "dynamics": Kernel(
             "dynamics", "Mt and Ft + Fi.", ("q", "v", "t"),
-            [Block("Mt", "QMatrix", (nq, nq), [], out_param=True),
-             Block("f", "QVector", (nq, 1), [], out_param=True)],
+            [Block("Mt", "VMatrix", (nq, nq), [], out_param=True),
+             Block("f", "VVector", (nq, 1), [], out_param=True)],
             notes=["Mt and f must not be null."],
             composed=Composed((Call("Mt", "mass_matrix", ("q", "t")),
                                Call("f", "forces", ("q", "v", "t"))))),
         "residual_jacobians": Kernel(
             "residual_jacobians", "Jacobians dr/dq and dr/dv of the residual (dr/dqdd = Mt), "
             f"for Newton steps, by {looped}.", ("q", "v", "qdd", "t"),
-            [Block("dr_dq", "QMatrix", (nq, nq), [], out_param=True),
-             Block("dr_dv", "QMatrix", (nq, nq), [], out_param=True)],
+            [Block("dr_dq", "VQMatrix", (nq, nq), [], out_param=True),
+             Block("dr_dv", "VMatrix", (nq, nq), [], out_param=True)],
             notes=["dr_dq and dr_dv must not be null."],
             composed=Composed(
                 (Call("dr_dq", "residual_derivative_q", ("q", "v", "qdd", "unit", "t")),

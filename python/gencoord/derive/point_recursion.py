@@ -39,8 +39,8 @@ from dataclasses import dataclass
 import sympy as sp
 
 from gencoord.derive.dense import (Derivation, _cross, bias_acceleration, fixed_point_positions,
-                                   generalized_force_vector, generalized_potential, particle_forces,
-                                   x_space_potential)
+                                   generalized_potential, particle_forces, x_space_potential)
+from gencoord.derive.speed_forces import generalized_force_vector
 from gencoord.derive.differentiate import termwise_jacobian
 from gencoord.dsl.model import Model
 from gencoord.derive.point_tree import PointTree
@@ -57,12 +57,47 @@ class RecursiveDynamics:
     derivation: Derivation | None = None
 
 
+# up to this size the adjugate over the determinant is cheapest; beyond it (a free joint's
+# 6 x 6 articulated inertia: 36 determinants of 5 x 5) an LDL^T factorization is
+ADJUGATE_MAX_SIZE = 3
+
+
 def spd_inverse(names: Intermediates, matrix: sp.Matrix) -> sp.Matrix:
     """The inverse of a small symmetric positive definite matrix of named entries."""
     if matrix.shape == (1, 1):
         return sp.Matrix([[names.name(1 / matrix[0, 0])]])
+    if matrix.shape[0] > ADJUGATE_MAX_SIZE:
+        return _ldlt_inverse(names, matrix)
     inverse_det = names.name(1 / names.name(matrix.det(method="berkowitz")))
     return names.symmetric(matrix.adjugate() * inverse_det)
+
+
+def _ldlt_inverse(names: Intermediates, matrix: sp.Matrix) -> sp.Matrix:
+    """A^-1 = L^-T D^-1 L^-1 from A = L D L^T (L unit lower triangular), every entry named;
+    about n^3 / 2 operations."""
+    n = matrix.shape[0]
+    lower, scaled = sp.eye(n), sp.zeros(n, n)  # scaled[i, k] = L[i, k] D[k]
+    pivot, inverse_pivot = [sp.Integer(0)] * n, [sp.Integer(0)] * n
+    for j in range(n):
+        pivot[j] = names.name(matrix[j, j] - sum((lower[j, k] * scaled[j, k] for k in range(j)),
+                                                 sp.Integer(0)))
+        inverse_pivot[j] = names.name(1 / pivot[j])
+        for i in range(j + 1, n):
+            scaled[i, j] = names.name(matrix[i, j] - sum((lower[i, k] * scaled[j, k]
+                                                          for k in range(j)), sp.Integer(0)))
+            lower[i, j] = names.name(scaled[i, j] * inverse_pivot[j])
+    lower_inverse = sp.eye(n)  # L^-1, unit lower triangular, by forward substitution
+    for i in range(n):
+        for j in range(i):
+            lower_inverse[i, j] = names.name(-sum((lower[i, k] * lower_inverse[k, j]
+                                                   for k in range(j, i)), sp.Integer(0)))
+    result = sp.zeros(n, n)
+    for i in range(n):
+        for j in range(i + 1):
+            result[i, j] = result[j, i] = names.name(sum(
+                (lower_inverse[k, i] * lower_inverse[k, j] * inverse_pivot[k]
+                 for k in range(i, n)), sp.Integer(0)))
+    return result
 
 
 def place_symmetric(names: Intermediates, matrix: sp.Matrix, rows: list[int],
@@ -152,7 +187,7 @@ def _derivation(model: Model, kin, tree: PointTree, ctx, local: NamedKinematics,
                              force, tau)
     gamma_of = {node.particle.name: moving[i] for i, node in enumerate(nodes)}
     return Derivation(
-        q=kin.q, v=kin.v, a=[c.acceleration for c in model.coordinates], t=kin.t,
+        q=kin.q, v=kin.v, a=[s.acceleration for s in model.speeds], t=kin.t,
         params=[p.symbol for p in model.parameters],
         inputs=[p.symbol for p in model.inputs],
         masses=[p.mass for p in particles],

@@ -19,9 +19,9 @@ import sympy as sp
 
 from gencoord.dsl.bodies import inertial_terms
 from gencoord.derive.dense import (Derivation, Kinematics, _cross, bias_acceleration,
-                                   fixed_point_positions, generalized_force_vector,
-                                   generalized_potential, gravity_force, particle_forces,
-                                   x_space_potential)
+                                   fixed_point_positions, generalized_potential, gravity_force,
+                                   particle_forces, x_space_potential)
+from gencoord.derive.speed_forces import generalized_force_vector
 from gencoord.dsl.model import Model
 from gencoord.dsl.items import Point
 from gencoord.symbolic.sums import dot
@@ -150,10 +150,10 @@ class _TermSums:
     def __init__(self, model: Model, kin: Kinematics, names: Intermediates,
                  local: NamedKinematics):
         self.model, self.kin, self.names, self.local = model, kin, names, local
-        nq, dim = model.nq, model.dim
+        nv, dim = model.nv, model.dim
         # (a, b) -> {(column a, column b): weights}; a -> {J entry: (w gamma terms, F terms)}
         self.mass_groups: dict[tuple[int, int], dict[tuple, list[sp.Expr]]] = {}
-        self.projections: dict[int, dict[sp.Expr, tuple[list, list]]] = {a: {} for a in range(nq)}
+        self.projections: dict[int, dict[sp.Expr, tuple[list, list]]] = {a: {} for a in range(nv)}
         self.gammas: dict[str, sp.Matrix] = {}
         self.kinetic = sp.Integer(0)
         self.gravity_at: list[tuple[sp.Expr, sp.Matrix]] = []
@@ -162,7 +162,7 @@ class _TermSums:
 
     def project(self, jac: sp.Matrix, vector: sp.Matrix, slot: int) -> None:
         """Adds J^T vector's terms to the projections, grouped by J entry."""
-        for a in range(self.model.nq):
+        for a in range(self.model.nv):
             for k in range(self.model.dim):
                 if jac[k, a] != 0 and vector[k] != 0:
                     self.projections[a].setdefault(jac[k, a], ([], []))[slot].append(vector[k])
@@ -176,8 +176,8 @@ class _TermSums:
             y, ydot = names.vector(raw_y), names.vector(raw_ydot)
         w = term.weight
         gamma = self.gammas[term.name] = names.vector(
-            bias_acceleration(raw_ydot, kin.q, kin.v, kin.t))
-        columns = {a: tuple(jac[k, a] for k in range(dim)) for a in range(self.model.nq)
+            bias_acceleration(raw_ydot, kin.q, kin.rates, kin.t))
+        columns = {a: tuple(jac[k, a] for k in range(dim)) for a in range(self.model.nv)
                    if any(jac[k, a] != 0 for k in range(dim))}
         for a, column_a in columns.items():
             for b, column_b in columns.items():
@@ -194,8 +194,8 @@ class _TermSums:
             self.gravity_at.append((w, y))
 
     def mass_matrix(self) -> sp.Matrix:
-        nq = self.model.nq
-        mass_matrix = sp.zeros(nq, nq)
+        nv = self.model.nv
+        mass_matrix = sp.zeros(nv, nv)
         entries = list(self.mass_groups)
         dots: list[dict[sp.Expr, list[sp.Expr]]] = [{} for _ in entries]
         for products, entry in zip(dots, entries):  # different column pairs: equal products
@@ -207,13 +207,13 @@ class _TermSums:
 
     def forces(self, generalized: sp.Matrix) -> tuple[sp.Matrix, sp.Matrix]:
         """(Ft, Fi): the applied forces with the `generalized` ones, the inertial forces."""
-        nq, names, projections = self.model.nq, self.names, self.projections
+        nv, names, projections = self.model.nv, self.names, self.projections
         applied_sums = _grouped_sums([{e: terms[1] for e, terms in projections[a].items()}
-                                      for a in range(nq)], names)
+                                      for a in range(nv)], names)
         inertial_sums = _grouped_sums([{e: terms[0] for e, terms in projections[a].items()}
-                                       for a in range(nq)], names)
-        applied = sp.Matrix([names.name(applied_sums[a] + generalized[a]) for a in range(nq)])
-        inertial = sp.Matrix([names.name(-inertial_sums[a]) for a in range(nq)])
+                                       for a in range(nv)], names)
+        applied = sp.Matrix([names.name(applied_sums[a] + generalized[a]) for a in range(nv)])
+        inertial = sp.Matrix([names.name(-inertial_sums[a]) for a in range(nv)])
         return applied, inertial
 
 
@@ -235,7 +235,8 @@ def derive_structured(model: Model, kin: Kinematics
     applied, inertial = sums.forces(generalized)
     particles = model.particles
     derivation = Derivation(
-        q=q, v=v, a=[c.acceleration for c in model.coordinates], t=t,
+        q=q, v=v, a=[s.acceleration for s in model.speeds], t=t,
+        rates=sp.Matrix(kin.rates) if model.has_generalized_speeds else None,
         params=[prm.symbol for prm in model.parameters],
         inputs=[prm.symbol for prm in model.inputs],
         masses=[p.mass for p in particles],
@@ -245,7 +246,7 @@ def derive_structured(model: Model, kin: Kinematics
         jacobian=sp.Matrix.vstack(*[kin.jacobian[p.name] for p in particles]),
         bias_acceleration=sp.Matrix.vstack(*[
             sums.gammas[p.name] if p.name in sums.gammas
-            else names.vector(bias_acceleration(kin.velocity[p.name], q, v, t))
+            else names.vector(bias_acceleration(kin.velocity[p.name], q, kin.rates, t))
             for p in particles]),
         mass_matrix=mass_matrix, applied_forces=applied, inertial_forces=inertial,
         generalized_forces=generalized, kinetic_energy=sums.kinetic,

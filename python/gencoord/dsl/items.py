@@ -59,7 +59,20 @@ class Coordinate(Item):
     description: str
     initial: float = 0.0
     initial_rate: float = 0.0
+    # False for a coordinate of a free or ball joint: its rate is G(q) v, not a speed
+    has_speed: bool = True
     kind = "coordinate"
+
+
+@dataclass
+class Speed(Item):
+    """A generalized speed: one entry of v. An ordinary coordinate's speed is its rate q'
+    (the same symbol); a free or ball joint's are the components of its body's twist."""
+    symbol: sp.Symbol
+    acceleration: sp.Symbol
+    description: str
+    initial: float = 0.0
+    kind = "speed"
 
 
 @dataclass

@@ -18,16 +18,21 @@ its inertia given in the axes of `com`.
 
 from __future__ import annotations
 
-import math
-import re
 from dataclasses import dataclass, field
-from typing import Sequence
 
 import sympy as sp
 
 from gencoord.errors import ModelError
-from gencoord.dsl.frames import Frame, axis_angle, rotation_about, rpy
+from gencoord.dsl.frames import Frame, rotation_about
 from gencoord.dsl.items import Body
+from gencoord.dsl.joint_types import (Ball, Continuous, Fixed, Free, Joint, Limits, Origin,
+                                      Prismatic, Revolute, _Moving, _QuaternionJoint,
+                                      identifier, number)
+from gencoord.dsl.quaternions import (quaternion_from_rpy, quaternion_rate,
+                                      quaternion_rotation)
+
+__all__ = ["Ball", "Continuous", "Fixed", "Free", "Joint", "Limits", "Origin", "Prismatic",
+           "Revolute", "Link", "add_link", "add_free_base", "identifier", "number"]
 
 # Euler-angle charts of a free-floating base: each angle's name, axis and description,
 # outermost (world) first; the two charts' singular sets are disjoint (see atlas.py).
@@ -39,142 +44,6 @@ EULER_CHARTS = {
             ("attitude", "z", "rotation about the new z (rad)"),
             ("bank", "x", "rotation about the new x (rad)")],
 }
-# an angle this close to a multiple of pi/2 (relative) is that multiple: below double
-# precision, and the exact rotation keeps zeros out of every expression built on it
-_RIGHT_ANGLE_TOLERANCE = 1e-12
-
-
-def identifier(name: str) -> str:
-    """A C++ identifier close to `name`: other characters become _, a leading digit gets a
-    prefix."""
-    text = re.sub(r"[^A-Za-z0-9_]", "_", name) or "unnamed"
-    return text if not text[0].isdigit() else "j_" + text
-
-
-def number(value):
-    """A literal for an expression: an integer when the float is one (exact zeros and ones
-    keep expressions small), else a Float; SymPy expressions are kept."""
-    if isinstance(value, sp.Basic):
-        return value
-    value = float(value)
-    return sp.Integer(int(value)) if value.is_integer() else sp.Float(value)
-
-
-def angle(value):
-    """A literal angle, exact when it is a multiple of pi/2 to within double precision."""
-    if isinstance(value, sp.Basic):
-        return value
-    value = float(value)
-    quarter_turns = round(value / (math.pi / 2))
-    if abs(value - quarter_turns * math.pi / 2) <= _RIGHT_ANGLE_TOLERANCE * max(1.0, abs(value)):
-        return quarter_turns * sp.pi / 2
-    return number(value)
-
-
-@dataclass
-class Origin:
-    """A pose in a parent frame: translation `xyz`, then rotation rpy(roll, pitch, yaw)."""
-    xyz: Sequence = (0, 0, 0)
-    rpy: Sequence = (0, 0, 0)
-
-    def __post_init__(self):
-        self.xyz = tuple(number(v) for v in self.xyz)
-        self.rpy = tuple(angle(v) for v in self.rpy)
-        if len(self.xyz) != 3 or len(self.rpy) != 3:
-            raise ValueError("an origin's xyz and rpy have 3 components each")
-
-    def frame(self) -> Frame:
-        return Frame(rpy(*self.rpy), self.xyz)
-
-
-@dataclass
-class Limits:
-    """A joint's range and ratings as URDF gives them; reported, not enforced."""
-    lower: float | None = None
-    upper: float | None = None
-    effort: float | None = None
-    velocity: float | None = None
-
-    def __str__(self) -> str:
-        parts = []
-        if self.lower is not None or self.upper is not None:
-            parts.append(f"limits [{_text(self.lower)}, {_text(self.upper)}]")
-        if self.effort is not None:
-            parts.append(f"effort {_text(self.effort)}")
-        if self.velocity is not None:
-            parts.append(f"velocity {_text(self.velocity)}")
-        return ", ".join(parts)
-
-
-def _text(value) -> str:
-    return "-" if value is None else f"{value:g}"
-
-
-@dataclass
-class Joint:
-    """A joint's placement in its parent link; `name` names its coordinate (default: the
-    child link's name and _joint)."""
-    origin: Origin = field(default_factory=Origin)
-    name: str | None = field(default=None, kw_only=True)
-
-    kind = "joint"
-    unit = ""
-
-    def moves(self) -> bool:
-        return False
-
-    def motion(self, q) -> Frame:
-        """The child link's frame in the joint frame at coordinate q."""
-        return Frame.identity()
-
-
-@dataclass(init=False)
-class _Moving(Joint):
-    """A joint with a coordinate: it moves about or along `axis` (joint-frame components)."""
-    axis: Sequence = (1, 0, 0)
-    limits: Limits | None = None
-    damping: float = 0
-
-    def __init__(self, axis: Sequence, origin: Origin | None = None,
-                 limits: Limits | None = None, damping=0, name: str | None = None):
-        self.axis = tuple(number(v) for v in axis)
-        self.origin = origin if origin is not None else Origin()
-        self.limits, self.damping, self.name = limits, number(damping), name
-
-    def moves(self) -> bool:
-        return True
-
-    def unit_axis(self) -> sp.Matrix:
-        axis = sp.Matrix(self.axis)
-        return axis / sp.sqrt(axis.dot(axis))
-
-
-class Revolute(_Moving):
-    """A rotation by q about `axis` (through the joint frame's origin), within `limits`."""
-    kind = "revolute"
-    unit = "rad"
-
-    def motion(self, q) -> Frame:
-        return Frame(axis_angle(self.axis, q), [0, 0, 0])
-
-
-class Continuous(Revolute):
-    """A revolute joint without a range."""
-    kind = "continuous"
-
-
-class Prismatic(_Moving):
-    """A translation by q along `axis`."""
-    kind = "prismatic"
-    unit = "m"
-
-    def motion(self, q) -> Frame:
-        return Frame(sp.eye(3), list(self.unit_axis() * q))
-
-
-class Fixed(Joint):
-    """A weld: the child link's frame is the joint frame."""
-    kind = "fixed"
 
 
 @dataclass
@@ -188,6 +57,8 @@ class Link:
     body: Body | None = None
     coordinate: sp.Symbol | None = None
     coordinates: list = field(default_factory=list)
+    # v of its joint: its coordinates' rates, or a quaternion joint's twist (speeds.py)
+    speeds: list = field(default_factory=list)
     limits: Limits | None = None
     # visual and collision elements, kept for tools; dynamics ignores them
     geometry: list = field(default_factory=list)
@@ -212,8 +83,8 @@ def _grounded(frame: Frame, model) -> bool:
 def _unused(model, name: str, suffix: str) -> str:
     """`name`, with `suffix` appended while the model already uses it: URDF names links and
     joints apart, so a link and its joint may share a name."""
-    taken = {item.name for item in [*model.coordinates, *model.parameters, *model.bodies,
-                                    *model.points]}
+    taken = {item.name for item in [*model.coordinates, *model.speeds, *model.parameters,
+                                    *model.bodies, *model.points]}
     while name in taken:
         name += suffix
     return name
@@ -249,7 +120,7 @@ def add_link(model, name: str, parent: Link | None, joint: Joint, mass=None, ine
     """
     com = com if com is not None else Origin()
     if not isinstance(joint, Joint):
-        raise ModelError("give a Revolute, Continuous, Prismatic or Fixed joint",
+        raise ModelError("give a Revolute, Continuous, Prismatic, Fixed, Ball or Free joint",
                          item=f"link '{name}'")
     if parent is not None and not isinstance(parent, Link):
         raise ModelError("the parent is a Link that add_link returned, or None for the world",
@@ -260,18 +131,27 @@ def add_link(model, name: str, parent: Link | None, joint: Joint, mass=None, ine
     joint_label = joint.name or f"{name}_joint"
     label = f"joint '{joint_label}'"
     _check_axis(joint, label)
-    joint_frame = (parent.frame if parent else Frame.identity()) * joint.origin.frame()
+    parent_frame = parent.frame if parent else Frame.identity()
+    joint_frame = parent_frame * joint.origin.frame()
     joint_name = _unused(model, identifier(joint_label), "_q")
     q = None
-    if isinstance(joint, _Moving):
-        description = f"{joint.kind} joint '{joint_label}' ({joint.unit})"
-        if joint.limits is not None and str(joint.limits):
-            description += f", {joint.limits}"
-        q = model.coordinate(joint_name, description, initial=_initial(joint.limits))
-    local = joint.origin.frame() * joint.motion(q)
-    link = Link(name, joint_frame * joint.motion(q), joint, parent, coordinate=q,
-                coordinates=[q] if q is not None else [],
-                limits=getattr(joint, "limits", None), local=local)
+    if isinstance(joint, _QuaternionJoint):
+        coordinates, speeds, local = _quaternion_joint(model, identifier(name), joint, label)
+        if isinstance(joint, Free):
+            joint_frame = parent_frame  # a free joint's origin is the initial pose
+        link = Link(name, parent_frame * local, joint, parent, coordinates=coordinates,
+                    speeds=speeds, local=local)
+    else:
+        if isinstance(joint, _Moving):
+            description = f"{joint.kind} joint '{joint_label}' ({joint.unit})"
+            if joint.limits is not None and str(joint.limits):
+                description += f", {joint.limits}"
+            q = model.coordinate(joint_name, description, initial=_initial(joint.limits))
+        local = joint.origin.frame() * joint.motion(q)
+        link = Link(name, joint_frame * joint.motion(q), joint, parent, coordinate=q,
+                    coordinates=[q] if q is not None else [],
+                    speeds=[model.rate(q)] if q is not None else [],
+                    limits=getattr(joint, "limits", None), local=local)
     model.links.append(link)
     if _grounded(link.frame, model):
         link.support = (None, link.frame)  # welded to the world: its mass does nothing
@@ -287,6 +167,39 @@ def add_link(model, name: str, parent: Link | None, joint: Joint, mass=None, ine
     if link.body is not None:
         _pin(model, link, parent, joint, joint_name)
     return link
+
+
+def _quaternion_joint(model, name: str, joint: _QuaternionJoint, label: str
+                      ) -> tuple[list[sp.Symbol], list[sp.Symbol], Frame]:
+    """A ball or free joint's coordinates, speeds and rates (named after its link), and the
+    link's frame in its parent's."""
+    free = isinstance(joint, Free)
+    pose = [float(value) for value in (*joint.origin.xyz, *joint.origin.rpy)] if free else []
+    position = []
+    if free:
+        position = [model.coordinate(_unused(model, f"{name}_{axis}", "_q"),
+                                     f"{label}: position of the link origin, {axis} (m)",
+                                     initial=value, has_speed=False)
+                    for axis, value in zip("xyz", pose)]
+    start = len(model.coordinates)
+    initial = quaternion_from_rpy(*pose[3:]) if free else [1.0, 0.0, 0.0, 0.0]
+    quaternion = [model.coordinate(_unused(model, f"{name}_q{part}", "_q"),
+                                   f"{label}: unit quaternion, {part} (scalar first)",
+                                   initial=value, has_speed=False)
+                  for part, value in zip("wxyz", initial)]
+    model.quaternions.append(start)
+    linear = [model.speed(_unused(model, f"{name}_v{axis}", "_q"),
+                          f"{label}: velocity of the link origin along the link's {axis} (m/s)")
+              for axis in ("xyz" if free else "")]
+    angular = [model.speed(_unused(model, f"{name}_w{axis}", "_q"),
+                           f"{label}: angular velocity about the link's {axis} (rad/s)")
+               for axis in "xyz"]
+    rotation = quaternion_rotation(quaternion)
+    model.rates.update(zip(quaternion, quaternion_rate(quaternion, angular)))
+    if free:
+        model.rates.update(zip(position, rotation * sp.Matrix(linear)))
+        return position + quaternion, linear + angular, Frame(rotation, position)
+    return quaternion, angular, joint.origin.frame() * Frame(rotation, [0, 0, 0])
 
 
 def _damp(model, link: Link, joint_frame: Frame, joint_name: str, label: str) -> None:
@@ -329,6 +242,9 @@ def _pin(model, link: Link, parent: Link | None, joint: Joint, joint_name: str) 
         # cannot say without also stopping the slide: the penalty model leaves it free
         link.unpinned = "a prismatic joint cannot be held by point pins"
         return
+    if isinstance(joint, Free):
+        link.unpinned = "a free joint holds nothing"
+        return
     support = (None, Frame.identity()) if parent is None else parent.support
     if support is None:
         assert parent is not None  # the world supports a root link
@@ -338,6 +254,8 @@ def _pin(model, link: Link, parent: Link | None, joint: Joint, joint_name: str) 
     if isinstance(joint, Revolute):
         # two points of the axis: the child may turn about it and nothing else
         points = [[0, 0, 0], list(joint.unit_axis())]
+    elif isinstance(joint, Ball):
+        points = [[0, 0, 0]]  # the centre: the child may turn about it
     else:
         # three non-collinear points weld the child
         points = [[0, 0, 0], [1, 0, 0], [0, 1, 0]]
@@ -371,7 +289,8 @@ def add_free_base(model, name: str, mass, inertia, com: Origin | None = None,
         angles.append(model.coordinate(angle_name, f"'{name}': {description}"))
         rotation = rotation * rotation_about(axis, angles[-1])
     frame = Frame(rotation, position)
-    link = Link(name, frame, None, None, coordinates=[*position, *angles], local=frame)
+    link = Link(name, frame, None, None, coordinates=[*position, *angles],
+                speeds=[model.rate(q) for q in [*position, *angles]], local=frame)
     model.links.append(link)
     link.body, link.inertial = _declare_body(model, name, frame, mass, inertia,
                                              com if com is not None else Origin(),

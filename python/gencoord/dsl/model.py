@@ -26,10 +26,11 @@ import sympy as sp
 from gencoord.errors import ModelError
 from gencoord.dsl.bodies import add_point_masses, as_inertia
 from gencoord.dsl.frames import Frame
+from gencoord.dsl.speeds import GeneralizedSpeeds
 from gencoord.dsl.items import (Body, BodyTorque, Coordinate, Damper, FixedPoint, GeneralizedForce,
                                 Gravity, Input, Item, Parameter, Particle, ParticleForce, Pin,
-                                Plane, Point, Rod, Spring, as_scalar, as_vector, caller_line,
-                                point_symbols)
+                                Plane, Point, Rod, Speed, Spring, as_scalar, as_vector,
+                                caller_line, point_symbols)
 
 # The model options (`--set n=5`) requested of the model file being run: a Model built while
 # the loader runs the file takes them, since the file itself only says `Model(dim=2)`.
@@ -48,7 +49,7 @@ def requesting_options(options: Mapping[str, str]) -> Iterator[None]:
         REQUESTED_OPTIONS.reset(token)
 
 
-class Model:
+class Model(GeneralizedSpeeds):
     """A mechanical system described by particle positions x = X(q, t).
 
     `options` are the requested values of its build options (`option`), as text; by default
@@ -65,6 +66,12 @@ class Model:
         self.line = line
         self.time = sp.Symbol("t", real=True)
         self.coordinates: list[Coordinate] = []
+        # v in declaration order: ordinary coordinates (v = q') and free and ball joints'
+        # speeds; rates[q] = q' in terms of v for the coordinates without a speed, and the
+        # index in q of each unit quaternion's first entry (joints.py declares them)
+        self._speed_order: list[Coordinate | Speed] = []
+        self.rates: dict[sp.Symbol, sp.Expr] = {}
+        self.quaternions: list[int] = []
         self.parameters: list[Parameter] = []
         self.particles: list[Particle] = []
         self.fixed_points: list[FixedPoint] = []
@@ -133,10 +140,12 @@ class Model:
 
     # --- coordinates, time and parameters ---------------------------------------------------
     def coordinate(self, name: str, description: str = "", initial: float = 0.0,
-                   initial_rate: float = 0.0) -> sp.Symbol:
+                   initial_rate: float = 0.0, *, has_speed: bool = True) -> sp.Symbol:
         """Declares a generalized coordinate; returns its symbol (use `rate(q)` for q-dot).
 
-        `initial` and `initial_rate` suggest a starting state for demos and tools.
+        `initial` and `initial_rate` suggest a starting state for demos and tools. A free or
+        ball joint declares its coordinates without a speed (`has_speed=False`), then its
+        speeds (`speed`) and their rates.
         """
         line = caller_line()
         try:
@@ -151,12 +160,19 @@ class Model:
         rate = sp.Symbol(f"{name}_dot", real=True)
         acceleration = sp.Symbol(f"{name}_ddot", real=True)
         self.coordinates.append(Coordinate(name, symbol, rate, acceleration, description, initial,
-                                           initial_rate, line=line))
+                                           initial_rate, has_speed, line=line))
+        if has_speed:
+            self._speed_order.append(self.coordinates[-1])
         return symbol
 
     def rate(self, coordinate: sp.Symbol) -> sp.Symbol:
         """The generalized velocity symbol of a coordinate, for generalized forces."""
         for c in self.coordinates:
+            if c.symbol == coordinate and not c.has_speed:
+                raise ModelError(f"{coordinate} belongs to a free or ball joint, whose rate is "
+                                 "no speed of its own; write forces on that joint's link as "
+                                 "body torques and point forces", item="rate()",
+                                 line=caller_line())
             if c.symbol == coordinate:
                 return c.rate
         raise ModelError(f"{coordinate} is not a declared coordinate", item="rate()",

@@ -63,8 +63,9 @@ def _symbol_names(model: Model) -> tuple[dict, dict]:
     names, input_of = {}, {}
     for c in model.coordinates:
         names[c.symbol], input_of[c.symbol] = c.name, "q"
-        names[c.rate], input_of[c.rate] = c.rate.name, "v"
-        names[c.acceleration], input_of[c.acceleration] = c.acceleration.name, "qdd"
+    for speed in model.speeds:
+        names[speed.symbol], input_of[speed.symbol] = speed.symbol.name, "v"
+        names[speed.acceleration], input_of[speed.acceleration] = speed.acceleration.name, "qdd"
     for p in model.parameters:
         names[p.symbol] = p.name
     names[model.time], input_of[model.time] = "t", "t"
@@ -128,7 +129,9 @@ class _ChartWork:
 
     @property
     def large(self) -> bool:
-        return self.chart.nq >= self.options.loop_min_nq
+        # looped.py's column loops take v = q' (one direction type for q and v)
+        return (self.chart.nq >= self.options.loop_min_nq
+                and not self.chart.has_generalized_speeds)
 
 
 def _check(work: _ChartWork, observers: _Observers) -> None:

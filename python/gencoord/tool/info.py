@@ -28,7 +28,8 @@ def _expression(value) -> str:
 def describe(loaded: LoadedModel) -> list[str]:
     model, target = loaded.model, loaded.target
     lines = [_row("model", f"{target.name} ({os.path.relpath(target.path)}), "
-                           f"{model.dim}D, nq = {len(model.coordinates)}")]
+                           f"{model.dim}D, nq = {len(model.coordinates)}"
+                           + (f", nv = {model.nv}" if model.has_generalized_speeds else ""))]
     summary = loaded.docstring.split("\n\n", 1)[0]  # the docstring's first paragraph
     for text in summary.splitlines():
         lines.append(_row("", text.strip()))
@@ -38,8 +39,12 @@ def describe(loaded: LoadedModel) -> list[str]:
         lines.append(_row("options" if k == 0 else "", f"{name} = {value}"))
     for k, c in enumerate(model.coordinates):
         lines.append(_row("coordinates" if k == 0 else "",
-                          f"{c.name}: {c.description} (initial {c.initial:g}, "
-                          f"rate {c.initial_rate:g})"))
+                          f"{c.name}: {c.description} (initial {c.initial:g}"
+                          + (f", rate {c.initial_rate:g})" if c.has_speed else ")")))
+    speeds = [s for s in model.speeds if s.symbol not in {c.rate for c in model.coordinates}]
+    for k, speed in enumerate(speeds):  # a free or ball joint's: dq/dt = G(q) v
+        lines.append(_row("speeds" if k == 0 else "",
+                          f"{speed.name}: {speed.description} (initial {speed.initial:g})"))
     for k, p in enumerate(model.parameters):
         lines.append(_row("parameters" if k == 0 else "",
                           f"{p.name} = {p.default:g}: {p.description}"))

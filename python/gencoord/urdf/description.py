@@ -16,7 +16,8 @@ import sympy as sp
 
 from gencoord.dsl.bodies import inertia_problem
 from gencoord.errors import ModelError
-from gencoord.dsl.joints import Continuous, Fixed, Joint, Limits, Origin, Prismatic, Revolute
+from gencoord.dsl.joints import (Continuous, Fixed, Free, Joint, Limits, Origin, Prismatic,
+                                 Revolute)
 from gencoord.urdf.xml_lines import XmlFile
 
 JOINT_TYPES = {"revolute": Revolute, "continuous": Continuous, "prismatic": Prismatic,
@@ -58,7 +59,7 @@ class JointDescription:
     kind: str
     parent: str
     child: str
-    joint: Joint | None  # None for a floating joint
+    joint: Joint
 
 
 @dataclass
@@ -177,8 +178,9 @@ def _joint(xml: XmlFile, element: ET.Element) -> JointDescription:
     if kind == "planar":
         raise xml.error("planar joints are not supported; model one as two prismatic joints "
                         "and a revolute joint through massless links", element, item)
-    if kind == FLOATING:
-        return JointDescription(name, xml.line(element), kind, parent, child, None)
+    if kind == FLOATING:  # its origin is the base's initial pose
+        return JointDescription(name, xml.line(element), kind, parent, child,
+                                Free(origin, name=name))
     mimic = element.find("mimic")
     if mimic is not None:
         raise xml.error("mimic joints are not supported (a joint that follows another has no "

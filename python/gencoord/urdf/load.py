@@ -19,7 +19,7 @@ import contextlib
 import os
 
 from gencoord.errors import ModelError
-from gencoord.dsl.joints import EULER_CHARTS, Fixed, Link, Origin, add_free_base, add_link
+from gencoord.dsl.joints import Fixed, Free, Joint, Link, Origin, add_free_base, add_link
 from gencoord.dsl.model import Model
 from gencoord.dsl.items import model_file_frame
 from gencoord.urdf.description import FLOATING, RobotDescription, read_urdf
@@ -66,12 +66,17 @@ def _inertial_arguments(robot: RobotDescription, name: str) -> dict:
     return {"mass": inertial.mass, "inertia": inertial.inertia, "com": inertial.origin}
 
 
-def _free_base(model: Model, robot: RobotDescription, name: str, chart: str | None) -> Link:
+def _free_base(model: Model, robot: RobotDescription, name: str, joint: Joint,
+               chart: str | None) -> Link:
+    """The base link, free: a unit quaternion and the body twist (a Free joint whose origin is
+    the initial pose), or with `chart` (or in a model that is a chart) three Euler angles."""
     arguments = _inertial_arguments(robot, name)
     if not arguments:
         raise ModelError("a free-floating base needs an <inertial> with its mass",
                          item=f"link '{name}'", filename=robot.path, line=robot.links[name].line)
-    return add_free_base(model, name, chart=chart or model.chart or "zyx", **arguments)
+    if chart or model.chart:
+        return add_free_base(model, name, chart=chart or model.chart or "zyx", **arguments)
+    return add_link(model, name, None, joint, **arguments)
 
 
 def add_robot(model: Model, robot: RobotDescription, gravity: bool = True,
@@ -84,13 +89,14 @@ def add_robot(model: Model, robot: RobotDescription, gravity: bool = True,
         joint = robot.joints.get(name)
         line = robot.links[name].line if joint is None else joint.line
         with _at(model, robot.path, line, stamp):
-            if (joint is None and free_base) or (joint is not None and joint.kind == FLOATING):
-                link = _free_base(model, robot, name, chart)
+            if joint is None and free_base:
+                link = _free_base(model, robot, name, Free(Origin()), chart)
+            elif joint is not None and joint.kind == FLOATING:
+                link = _free_base(model, robot, name, joint.joint, chart)
             elif joint is None:
                 # the root is the world, or welded to it: add_link gives it no body
                 link = add_link(model, name, None, Fixed(Origin()))
             else:
-                assert joint.joint is not None  # only a floating joint has none
                 link = add_link(model, name, links[joint.parent], joint.joint,
                                 **_inertial_arguments(robot, name))
         link.geometry = robot.links[name].geometry
@@ -98,7 +104,7 @@ def add_robot(model: Model, robot: RobotDescription, gravity: bool = True,
         if link.coordinate is not None:
             assert joint is not None  # a coordinate of its own: the link has a moving joint
             links.coordinates[joint.name] = link.coordinate
-        elif link.joint is None:
+        elif link.coordinates:  # a free base
             links.coordinates.update((str(q), q) for q in link.coordinates)
     if gravity:
         with _at(model, robot.path, robot.links[robot.root].line, stamp):
@@ -113,7 +119,8 @@ def load_urdf(model: Model, path: str, gravity: bool = True, free_base: bool = F
 
     `path` is relative to the calling model file. The root link is welded to the world
     unless `free_base` is true or a floating joint joins it to the base: the base then moves
-    freely, in the Euler angles of `chart` ('zyx' or 'yzx', default the model's chart name).
+    freely, its orientation a unit quaternion (the floating joint's origin is its initial
+    pose), or with `chart` ('zyx' or 'yzx', or the model's chart name) three Euler angles.
     With `gravity`, -g along z and the parameter g (9.81 m/s^2).
     """
     if not os.path.isabs(path):
@@ -129,18 +136,10 @@ def _description(robot: RobotDescription) -> str:
 
 
 def urdf_model(path: str) -> Model:
-    """The model of a URDF file: one chart, or an atlas of the Euler charts when a floating
-    joint frees the base."""
+    """The model of a URDF file (a floating joint's base is a free joint: a unit quaternion
+    and the body twist; a model file that loads the URDF into a chart gets Euler angles)."""
     robot = read_urdf(path)
-    floating = any(joint.kind == FLOATING for joint in robot.joints.values())
-    charts: list[str | None] = list(EULER_CHARTS) if floating else [None]
-    models = []
-    for chart in charts:
-        model = Model(dim=3, description=_description(robot), chart=chart)
-        add_robot(model, robot, chart=chart, stamp=True)
-        model.line = robot.links[robot.root].line
-        models.append(model)
-    for other in models[1:]:
-        models[0].add_chart(other)
-        other.line = models[0].line
-    return models[0]
+    model = Model(dim=3, description=_description(robot))
+    add_robot(model, robot, stamp=True)
+    model.line = robot.links[robot.root].line
+    return model
