@@ -16,6 +16,7 @@
 
 #include <array>
 #include <cmath>
+#include <string>
 
 #include <Eigen/Dense>
 
@@ -66,6 +67,15 @@ struct FreeBody {
     double I2 = 1.5;
     double I3 = 2.0;
     double g = 9.81;  // gravitational acceleration along -z (m/s^2)
+
+    double* find(const std::string& name) {
+      if (name == "m") return &m;
+      if (name == "I1") return &I1;
+      if (name == "I2") return &I2;
+      if (name == "I3") return &I3;
+      if (name == "g") return &g;
+      return nullptr;
+    }
   };
 
   template <typename S>
