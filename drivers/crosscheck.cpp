@@ -35,6 +35,10 @@
 namespace {
 
 using M = gencoord::drivers::Model;
+static_assert(!gencoord::has_generalized_speeds_v<M>,
+              "gencoord: the crosscheck program does not support models with generalized speeds "
+              "(free or ball "
+              "joints) yet");
 
 struct Options {
   double kappa_lo = 1e2, kappa_hi = 1e8;

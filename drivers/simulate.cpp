@@ -6,7 +6,9 @@
 //
 // The model is chosen when the program is compiled (driver_model.hpp, written by
 // gencoord_add_driver()); `gencoord simulate MODEL.py` builds and runs it for any model file.
-// Prints a short summary: steps, wall time, energy drift, final state.
+// Prints a short summary: steps, wall time, energy drift, final state. --v takes nv values:
+// the generalized speeds of a model that has them (free and ball joints), whose unit
+// quaternions in --q are normalized before the run.
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -38,7 +40,7 @@ struct Options {
                "                [--output FILE.csv] [--q a,b,...] [--v a,b,...]\n"
                "                [--set param=value ...]\n"
                "  model:       "
-            << M::name << " (nq = " << M::nq << ")"
+            << M::name << " (nq = " << M::nq << ", nv = " << gencoord::nv_of_v<M> << ")"
             << "\n  integrators: " << gencoord::integrator_names()
             << "\n  defaults:    rk4, dt 1e-3, duration 10, the model file's initial state\n";
   std::exit(status);
@@ -87,6 +89,42 @@ Options parse(int argc, char** argv) {
   return o;
 }
 
+// A model with generalized speeds: its unit quaternions in the initial q, normalized (false,
+// with the error printed, for one that is zero or not finite). Templates, so that the
+// members of such a model are looked up only for it.
+template <class Model>
+bool normalize_quaternions(const gencoord::ReducedSystem<Model>& system,
+                           gencoord::State<Model>* s) {
+  if constexpr (gencoord::has_generalized_speeds_v<Model>) {
+    for (const int start : Model::quaternion_starts) {
+      const auto quaternion = s->q.segment(start, 4);
+      if (!(quaternion.norm() > 0.0) || !quaternion.allFinite()) {
+        std::cerr << "simulate: error: the quaternion at " << Model::coordinate_names[start]
+                  << " in --q is zero or not finite; give a rotation (w, x, y, z)\n";
+        return false;
+      }
+    }
+    gencoord::normalize(system, s);
+  } else {
+    (void)system;
+    (void)s;
+  }
+  return true;
+}
+
+// the final speeds of a model that has them (its q are not its velocities' integrals)
+template <class Model>
+void print_speeds(const gencoord::State<Model>& end) {
+  if constexpr (gencoord::has_generalized_speeds_v<Model>) {
+    std::printf("final v    ");
+    for (int i = 0; i < gencoord::nv_of_v<Model>; ++i)
+      std::printf(" %s = %.6f", Model::speed_names[i], end.v[i]);
+    std::printf("\n");
+  } else {
+    (void)end;
+  }
+}
+
 int run(const Options& o) {
   using gencoord::State;
   typename M::Params params;
@@ -98,20 +136,29 @@ int run(const Options& o) {
     }
     *slot = value;
   }
+  constexpr int nv = gencoord::nv_of_v<M>;
   State<M> s;
-  for (int i = 0; i < M::nq; ++i) {
-    s.q[i] = M::initial_q[i];
-    s.v[i] = M::initial_v[i];
-  }
-  for (auto [given, target] : {std::pair{&o.q, &s.q}, std::pair{&o.v, &s.v}}) {
-    if (given->empty()) continue;
-    if (static_cast<int>(given->size()) != M::nq) {
+  for (int i = 0; i < M::nq; ++i) s.q[i] = M::initial_q[i];
+  for (int i = 0; i < nv; ++i) s.v[i] = M::initial_v[i];
+  if (!o.q.empty()) {
+    if (static_cast<int>(o.q.size()) != M::nq) {
       std::cerr << "simulate: error: model " << M::name << " has " << M::nq
-                << " coordinates; --q and --v need that many values\n";
+                << " coordinates; --q needs that many values\n";
       return 2;
     }
-    for (int i = 0; i < M::nq; ++i) (*target)[i] = (*given)[i];
+    for (int i = 0; i < M::nq; ++i) s.q[i] = o.q[i];
   }
+  if (!o.v.empty()) {
+    if (static_cast<int>(o.v.size()) != nv) {
+      std::cerr << "simulate: error: model " << M::name << " has " << nv
+                << (nv == M::nq ? " coordinates" : " generalized speeds")
+                << "; --v needs that many values\n";
+      return 2;
+    }
+    for (int i = 0; i < nv; ++i) s.v[i] = o.v[i];
+  }
+  const gencoord::ReducedSystem<M> system(params);
+  if (!normalize_quaternions<M>(system, &s)) return 2;
   const gencoord::Integrator integrator = gencoord::parse_integrator(o.integrator);
 
   const double e0 = M::energy(s.q, s.v, s.t, params);
@@ -124,15 +171,19 @@ int run(const Options& o) {
     if (csv) (*csv)(state);
   };
   const auto start = std::chrono::steady_clock::now();
-  const State<M> end = gencoord::simulate(gencoord::ReducedSystem<M>(params), s,
-                                          {integrator, o.dt, o.duration}, observer);
+  const State<M> end = gencoord::simulate(system, s, {integrator, o.dt, o.duration}, observer);
   if (csv) csv->close();  // throws gencoord::OutputError if a row did not reach the file
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const long long steps = gencoord::step_count(o.dt, o.duration);
 
-  std::printf("model       %s (nq = %d, %d particles in %dD)\n", M::name, M::nq, M::num_particles,
-              M::dim);
+  if constexpr (nv != M::nq) {
+    std::printf("model       %s (nq = %d, nv = %d, %d particles in %dD)\n", M::name, M::nq, nv,
+                M::num_particles, M::dim);
+  } else {
+    std::printf("model       %s (nq = %d, %d particles in %dD)\n", M::name, M::nq, M::num_particles,
+                M::dim);
+  }
   std::printf("integrator  %s, dt = %g s, %lld steps to t = %g s\n",
               gencoord::to_string(integrator), o.dt, steps, end.t);
   std::printf("wall time   %.3f ms (%.1f ns per step, CSV output included)\n", seconds * 1e3,
@@ -142,6 +193,7 @@ int run(const Options& o) {
   std::printf("final q    ");
   for (int i = 0; i < M::nq; ++i) std::printf(" %s = %.6f", M::coordinate_names[i], end.q[i]);
   std::printf("\n");
+  print_speeds<M>(end);
   if (!o.output.empty()) std::printf("trajectory  %s (%lld rows)\n", o.output.c_str(), steps + 1);
   return 0;
 }

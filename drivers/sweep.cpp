@@ -39,6 +39,10 @@
 namespace {
 
 using M = gencoord::drivers::Model;
+static_assert(
+    !gencoord::has_generalized_speeds_v<M>,
+    "gencoord: the sweep program does not support models with generalized speeds (free or ball "
+    "joints) yet");
 namespace sw = gencoord::sweep;
 
 struct Options {

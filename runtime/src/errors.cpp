@@ -112,9 +112,9 @@ NewtonError::NewtonError(std::string model, double t, double h, int iterations, 
 namespace detail {
 
 void throw_dynamics_error(const char* model, DynamicsError::Reason reason, double t,
-                          const double* q, const double* v, int nq) {
+                          const double* q, const double* v, int nq, int nv) {
   throw DynamicsError(model, reason, t, std::vector<double>(q, q + nq),
-                      std::vector<double>(v, v + nq));
+                      std::vector<double>(v, v + (nv < 0 ? nq : nv)));
 }
 
 void throw_newton_error(const char* model, double t, double h, int iterations, double update_norm,

@@ -87,8 +87,9 @@ class DivergedError : public std::runtime_error {
 namespace detail {
 
 // Cold paths, out of line so the inlined hot paths stay small.
+// nv: the size of v where it differs from nq (generalized speeds); -1 for nq
 [[noreturn]] void throw_dynamics_error(const char* model, DynamicsError::Reason reason, double t,
-                                       const double* q, const double* v, int nq);
+                                       const double* q, const double* v, int nq, int nv = -1);
 [[noreturn]] void throw_newton_error(const char* model, double t, double h, int iterations,
                                      double update_norm, double residual_norm, double tolerance,
                                      double residual_scale, double residual_tolerance);

@@ -209,6 +209,10 @@ void bind_kernels(py::module_& m) {
 template <class M>
 void bind_model(py::module_& module) {
   static_assert(assert_model_v<M>);
+  static_assert(
+      !has_generalized_speeds_v<M>,
+      "gencoord: the Python bindings does not support models with generalized speeds (free or ball "
+      "joints) yet");
   module.doc() = std::string("gencoord model ") + M::name +
                  ": generated kernels, scipy.integrate right-hand side and simulation.";
   bind_metadata<M>(module);

@@ -81,6 +81,13 @@ void with_index(int index, F&& f) {
     }
   }
 }
+
+// whether any chart of an atlas has generalized speeds
+template <class Charts>
+struct any_generalized_speeds;
+template <class... Charts>
+struct any_generalized_speeds<std::tuple<Charts...>>
+    : std::bool_constant<(has_generalized_speeds_v<Charts> || ...)> {};
 }  // namespace detail
 
 /// Integrates a generated atlas A, switching charts near coordinate singularities.
@@ -90,6 +97,9 @@ class AtlasSimulation {
   using Charts = typename A::Charts;
   template <int I>
   using Chart = std::tuple_element_t<I, Charts>;
+  static_assert(!detail::any_generalized_speeds<Charts>::value,
+                "gencoord: the atlas does not support models with generalized speeds (free or ball "
+                "joints) yet");
   using Params = typename A::Params;
   static constexpr int num_charts = A::num_charts;
   static constexpr int nx = Chart<0>::nx;

@@ -71,6 +71,14 @@ std::optional<State<To>> transfer_state(const ParamsOf<From>& p, const State<Fro
                                         const std::vector<QVec<To>>& guesses,
                                         const InverseMapOptions& options = {}) {
   static_assert(From::nx == To::nx, "charts of an atlas move the same particles");
+  static_assert(!has_generalized_speeds_v<From>,
+                "gencoord: the atlas's chart transfer does not support models with generalized "
+                "speeds (free or ball "
+                "joints) yet");
+  static_assert(!has_generalized_speeds_v<To>,
+                "gencoord: the atlas's chart transfer does not support models with generalized "
+                "speeds (free or ball "
+                "joints) yet");
   const XVec<From> x = From::positions(s.q, s.t, p);
   const XVec<From> xdot = From::velocities(s.q, s.v, s.t, p);
   for (const QVec<To>& guess : guesses) {

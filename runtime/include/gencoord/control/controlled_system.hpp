@@ -33,6 +33,11 @@ enum class LawKind { Feedback, OpenLoop };
 
 template <class M>
 class ControlledSystem {
+  static_assert(
+      !has_generalized_speeds_v<M>,
+      "gencoord: ControlledSystem does not support models with generalized speeds (free or ball "
+      "joints) yet");
+
  public:
   using State = gencoord::State<M>;
   using Unknowns = QVec<M>;

@@ -43,6 +43,10 @@ void acceleration_and_input_jacobians(const ParamsOf<M>& p, const QVec<M>& q, co
                                       const InputVec<M>& u, double t, JacobianSource source,
                                       QVec<M>* a, QMat<M>* a_D_q, QMat<M>* a_D_v,
                                       InputJacobian<M>* a_D_u) {
+  static_assert(
+      !has_generalized_speeds_v<M>,
+      "gencoord: linearization does not support models with generalized speeds (free or ball "
+      "joints) yet");
   const ParamsOf<M> pu = with_inputs<M>(p, u);
   if (resolve_jacobian_source<M>(source) == JacobianSource::FiniteDifference) {
     acceleration_and_jacobians<M>(pu, q, v, t, source, a, a_D_q, a_D_v);
@@ -87,6 +91,10 @@ LinearizedDynamics linearize(const ParamsOf<M>& p, const QVec<M>& q, const QVec<
                              const InputVec<M>& u, double t,
                              JacobianSource source = JacobianSource::Auto) {
   static_assert(assert_model_v<M>);
+  static_assert(
+      !has_generalized_speeds_v<M>,
+      "gencoord: linearization does not support models with generalized speeds (free or ball "
+      "joints) yet");
   constexpr int n = M::nq;
   QVec<M> a;
   QMat<M> a_D_q, a_D_v;

@@ -6,6 +6,14 @@
 //   g(v1) = m (v1 - v0) - h F(t1, q0 + h v1, v1),    dg/dv1 = m - h (h dF/dq + dF/dv),
 // m the system's diagonal mass (1 for a unit-mass system, whose F is the acceleration).
 // Prescribed entries of q1 and v1 come from S::impose() at t1.
+//
+// With generalized speeds (system.hpp, coordinate_rate) the end coordinates solve
+// q1 = q0 + h G(q1) v1 for the current v1 by fixed-point iteration, a contraction for
+// h |dG/dq v1| < 1. G at q1, not q0: the trapezoidal rule and implicit midpoint are built from
+// these half steps, and G(q0) there would leave an O(h^2) local error in q (first order).
+// The Newton Jacobian takes dq1/dv1 as h G, with the system's dF/dq already multiplied by G
+// at the linearization state (quasi-Newton; its error is O(h) relative, which costs at most
+// an iteration).
 #pragma once
 
 #include "gencoord/errors.hpp"
@@ -15,9 +23,43 @@
 
 namespace gencoord {
 
+namespace detail {
+
+// the most fixed-point iterations for q1 = q0 + h G(q1) v1: at h |dG/dq v1| = 1/2 each gains a
+// bit, and a step that needs more is too large for its rotation rate anyway
+inline constexpr int kMaxCoordinateIterations = 60;
+
+// s1->q = q0 + h qdot for the end velocity s1->v: qdot = v1, or with generalized speeds
+// G(q1) v1 at the end coordinates themselves (fixed point from the current s1->q).
+// \throws NewtonError if the fixed-point iteration does not settle.
+template <class S>
+void end_coordinates(const S& system, const typename S::State& s0, double h,
+                     typename S::State* s1) {
+  if constexpr (has_coordinate_rate_v<S>) {
+    for (int k = 1;; ++k) {
+      const auto q1 = (s0.q + h * coordinate_rate(system, *s1)).eval();
+      const double change = max_abs((q1 - s1->q).eval());
+      const double scale = 1.0 + max_abs(q1);
+      s1->q = q1;
+      // 8 ulps: round-off in G(q) v alone moves q1 by a few
+      if (change <= 8 * std::numeric_limits<double>::epsilon() * scale) break;
+      if (k == kMaxCoordinateIterations || !std::isfinite(change))
+        throw_newton_error(system.name(), s0.t, h, k, change, change,
+                           8 * std::numeric_limits<double>::epsilon(), scale,
+                           8 * std::numeric_limits<double>::epsilon());
+    }
+  } else {
+    s1->q = s0.q + h * s1->v;
+  }
+  system.impose(s1);
+}
+
+}  // namespace detail
+
 /// Backward Euler: y1 = y0 + h f(t0 + h, y1). First order, L-stable (damps energy).
 /// Newton from v1 = v0 (see the file comment); options.linearized takes one update of the
-/// equation linearized about the start state (linearly implicit Euler). q1 = q0 + h v1.
+/// equation linearized about the start state (linearly implicit Euler). q1 = q0 + h v1, or
+/// q1 = q0 + h G(q1) v1 for a system with generalized speeds.
 /// \param[in]     system   The system.
 /// \param[in]     s        The state at the start of the step.
 /// \param[in]     h        The step size.
@@ -68,8 +110,7 @@ typename S::State backward_euler_step(const S& system, const typename S::State& 
   };
   auto update = [&] {
     // residual and its Jacobian at the current iterate
-    s1.q = s0.q + h * s1.v;
-    system.impose(&s1);
+    detail::end_coordinates(system, s0, h, &s1);
     if (options.linearized) {
       // linearly implicit Euler: F(q0 + h v1, v1) taken as F(q0, v1) + h dF/dq v1, so the one
       // update solves (m - h dF/dv - h^2 dF/dq) dv = h (F0 + h dF/dq v0) about the start state,
@@ -104,16 +145,14 @@ typename S::State backward_euler_step(const S& system, const typename S::State& 
   };
   // the residual test after an update that passed the update test: the force at the new iterate
   auto residual = [&] {
-    s1.q = s0.q + h * s1.v;
-    system.impose(&s1);
+    detail::end_coordinates(system, s0, h, &s1);
     Unknowns force = system.free_part(system.acceleration(s1));
     if constexpr (!S::unit_mass) force = system.masses().cwiseProduct(force);
     Unknowns g;
     return residual_of(force, &g);
   };
   detail::newton_iterate(system.name(), s.t, h, options, stats, nothing_to_solve, update, residual);
-  s1.q = s0.q + h * s1.v;
-  system.impose(&s1);
+  detail::end_coordinates(system, s0, h, &s1);
   return s1;
 }
 

@@ -3,7 +3,8 @@
 // (system.hpp): the Runge-Kutta methods from their coefficient (Butcher) tables, and
 // symplectic Euler, which is a partitioned method and has no such table.
 // Stage states get their prescribed entries from S::impose() at the stage time, so the
-// stage velocities are the prescribed ones.
+// stage velocities are the prescribed ones. The stage derivative of q is coordinate_rate() of
+// the stage state (its v, unless the system has generalized speeds; system.hpp).
 #pragma once
 
 #include <array>
@@ -40,13 +41,15 @@ template <class S, int Stages>
 typename S::State explicit_rk_step(const S& system, const ButcherTableau<Stages>& tableau,
                                    const typename S::State& s, double h) {
   using State = typename S::State;
-  using Vector = std::decay_t<decltype(std::declval<State&>().q)>;
+  using QVector = std::decay_t<decltype(std::declval<State&>().q)>;
+  using VVector = std::decay_t<decltype(std::declval<State&>().v)>;
   State s0 = s;
   system.impose(&s0);
   // stage derivatives: of q (the stage velocity) and of v (the stage acceleration)
-  std::array<Vector, Stages> kq, kv;
+  std::array<QVector, Stages> kq;
+  std::array<VVector, Stages> kv;
   // stage 0 (c_0 = 0, no a_0j) is s0 itself
-  kq[0] = s0.v;
+  kq[0] = coordinate_rate(system, s0);
   kv[0] = system.acceleration(s0);
   for (int i = 1; i < Stages; ++i) {
     State y = s0;
@@ -57,11 +60,11 @@ typename S::State explicit_rk_step(const S& system, const ButcherTableau<Stages>
       y.v += (tableau.a[i][j] * h) * kv[j];
     }
     system.impose(&y);
-    kq[i] = y.v;
+    kq[i] = coordinate_rate(system, y);
     kv[i] = system.acceleration(y);
   }
-  Vector dq = tableau.b[0] * kq[0];
-  Vector dv = tableau.b[0] * kv[0];
+  QVector dq = tableau.b[0] * kq[0];
+  VVector dv = tableau.b[0] * kv[0];
   for (int i = 1; i < Stages; ++i) {
     dq += tableau.b[i] * kq[i];
     dv += tableau.b[i] * kv[i];
@@ -86,8 +89,9 @@ typename S::State rk4_step(const S& system, const typename S::State& s, double h
   return explicit_rk_step(system, kRK4Tableau, s, h);
 }
 
-/// Symplectic (semi-implicit) Euler: v1 = v0 + h a(t0, q0, v0), then q1 = q0 + h v1.
-/// First order; symplectic when a does not depend on v.
+/// Symplectic (semi-implicit) Euler: v1 = v0 + h a(t0, q0, v0), then q1 = q0 + h v1
+/// (q1 = q0 + h G(q0) v1 with generalized speeds). First order; symplectic when a does not
+/// depend on v (and v = q').
 /// \throws as explicit_rk_step().
 template <class S>
 typename S::State symplectic_euler_step(const S& system, const typename S::State& s, double h) {
@@ -96,7 +100,11 @@ typename S::State symplectic_euler_step(const S& system, const typename S::State
   typename S::State out = s0;
   out.t = s.t + h;
   out.v = s0.v + h * system.acceleration(s0);
-  out.q = s0.q + h * out.v;
+  if constexpr (has_coordinate_rate_v<S>) {
+    out.q = s0.q + h * coordinate_rate(system, out);  // out.q is still q0: G(q0) v1
+  } else {
+    out.q = s0.q + h * out.v;
+  }
   system.impose(&out);
   return out;
 }

@@ -1,5 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// One step of any integrator for any system: the one place that maps Integrator to a method.
+// One step of any integrator for any system: the one place that maps Integrator to a method,
+// and the one place that normalizes (system.hpp): the step's end state only, so that stages
+// and half steps stay the method's own arithmetic.
 #pragma once
 
 #include <cmath>
@@ -65,7 +67,8 @@ typename S::State step_of(IntegratorSet<Methods...>, const S& system, Integrator
 
 }  // namespace detail
 
-/// One step of size dt of `integrator` from `s`; returns the state at s.t + dt.
+/// One step of size dt of `integrator` from `s`; returns the state at s.t + dt, normalized by
+/// the system's normalize() where it has one (unit quaternions).
 /// \param[in]     system      The system (system.hpp).
 /// \param[in]     integrator  Which integrator.
 /// \param[in]     s           The state at the start of the step.
@@ -87,6 +90,7 @@ typename S::State step(const S& system, Integrator integrator, const typename S:
                         std::to_string(s.t));
   if (stats) ++stats->steps;
   typename S::State out = detail::step_of(Methods{}, system, integrator, s, dt, newton, stats);
+  normalize(system, &out);
   if (!std::isfinite(detail::max_abs(out.q)) || !std::isfinite(detail::max_abs(out.v))) {
     system.check(out, dt);  // the system's own error for it, if it has one
     detail::throw_diverged_error(system.name(), to_string(integrator), s.t, dt);

@@ -26,11 +26,25 @@
 //                                                  the free force (mass times acceleration)
 //                                                  and its free-free Jacobians dF/dq, dF/dv;
 //   bool solve(const Matrix& A, const Unknowns& b, Unknowns* x) const;   A x = b.
+//
+// Two members are optional (detected at compile time, so systems whose v is q' need neither):
+//   auto coordinate_rate(const State& s) const;    q' = G(q) v at s, linear in v, for systems
+//                                                  whose v are generalized speeds (v may be
+//                                                  shorter than q); default s.v;
+//   void normalize(State* s) const;                puts q back on its manifold (unit
+//                                                  quaternions); default nothing.
+// The methods then integrate q' = coordinate_rate(s): the explicit stages take it at each
+// stage state, symplectic Euler at (t0, q0, v1), and backward Euler solves q1 = q0 + h G(q1) v1
+// with its v1 (so that the trapezoidal rule and implicit midpoint built from its half steps keep
+// order 2); its Newton Jacobian takes dF/dq as the derivative along the speeds, dF/dq G (nv x
+// nv). step() calls normalize() once on each step's end state, never on stages or half steps.
 #pragma once
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <type_traits>
+#include <utility>
 
 #include <Eigen/Core>
 #include <Eigen/LU>
@@ -52,6 +66,47 @@ struct Linearization {
   typename S::Matrix force_D_q;  // dF/dq
   typename S::Matrix force_D_v;  // dF/dv
 };
+
+namespace detail {
+
+template <class S, class = void>
+struct has_coordinate_rate : std::false_type {};
+template <class S>
+struct has_coordinate_rate<S, std::void_t<decltype(std::declval<const S&>().coordinate_rate(
+                                  std::declval<const typename S::State&>()))>> : std::true_type {};
+template <class S, class = void>
+struct has_normalize : std::false_type {};
+template <class S>
+struct has_normalize<S, std::void_t<decltype(std::declval<const S&>().normalize(
+                            std::declval<typename S::State*>()))>> : std::true_type {};
+
+}  // namespace detail
+
+/// True when system S has generalized speeds: q' = S::coordinate_rate(s) instead of v.
+template <class S>
+inline constexpr bool has_coordinate_rate_v = detail::has_coordinate_rate<S>::value;
+
+/// q' at s: the system's coordinate_rate(s) where it has one, else s.v.
+template <class S>
+auto coordinate_rate(const S& system, const typename S::State& s) {
+  if constexpr (has_coordinate_rate_v<S>) {
+    return system.coordinate_rate(s);
+  } else {
+    (void)system;
+    return s.v;
+  }
+}
+
+/// Puts s's coordinates back on their manifold where the system has a normalize(); else nothing.
+template <class S>
+void normalize(const S& system, typename S::State* s) {
+  if constexpr (detail::has_normalize<S>::value) {
+    system.normalize(s);
+  } else {
+    (void)system;
+    (void)s;
+  }
+}
 
 namespace detail {
 

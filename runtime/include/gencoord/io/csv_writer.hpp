@@ -18,7 +18,9 @@ namespace gencoord {
 /// Writes states of model M as CSV rows. Header:
 ///   t,q_<coord>...,v_<coord>...,energy,<particle>_x,<particle>_y[,<particle>_z]...
 ///   [,fixed:<point>_x,fixed:<point>_y[,fixed:<point>_z]...]
-/// (1 + 2 nq + 1 + nx columns, then dim per fixed point when M has fixed points, see
+/// where a model with generalized speeds (has_generalized_speeds_v) names its v columns
+/// v_<speed> after M::speed_names instead
+/// (1 + nq + nv + 1 + nx columns, then dim per fixed point when M has fixed points, see
 /// has_fixed_points_v; written on every row, since a prescribed pivot moves with t). The
 /// "fixed:" prefix, which no model name can contain, tells anchors from particles.
 /// Numbers are written in the shortest form that reads back to the same double
@@ -102,7 +104,7 @@ class TrajectoryCsvWriter {
   void write_row(const State<M>& s) {
     write_number(s.t);
     for (int i = 0; i < M::nq; ++i) write_field(s.q[i]);
-    for (int i = 0; i < M::nq; ++i) write_field(s.v[i]);
+    for (int i = 0; i < nv_of_v<M>; ++i) write_field(s.v[i]);
     write_field(static_cast<double>(M::energy(s.q, s.v, s.t, p_)));
     const XVec<M> x = M::positions(s.q, s.t, p_);
     for (int i = 0; i < M::nx; ++i) write_field(x[i]);
@@ -122,7 +124,11 @@ class TrajectoryCsvWriter {
     static constexpr const char* kAxes[] = {"_x", "_y", "_z"};
     *out_ << 't';
     for (const char* c : M::coordinate_names) *out_ << ",q_" << c;
-    for (const char* c : M::coordinate_names) *out_ << ",v_" << c;
+    if constexpr (has_generalized_speeds_v<M>) {
+      for (const char* c : M::speed_names) *out_ << ",v_" << c;
+    } else {
+      for (const char* c : M::coordinate_names) *out_ << ",v_" << c;
+    }
     *out_ << ",energy";
     for (const char* particle : M::particle_names)
       for (int k = 0; k < M::dim; ++k) *out_ << ',' << particle << kAxes[k];

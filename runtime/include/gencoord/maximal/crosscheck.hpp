@@ -85,6 +85,10 @@ inline double divisor_step(double interval, double limit) {
 template <class M>
 ReducedReference<M> reduced_reference(const ParamsOf<M>& p, const State<M>& initial,
                                       const CrosscheckOptions& o) {
+  static_assert(
+      !has_generalized_speeds_v<M>,
+      "gencoord: the cross-check does not support models with generalized speeds (free or ball "
+      "joints) yet");
   const double interval = sample_interval(o);
   ReducedReference<M> ref;
   ref.reference_dt = divisor_step(interval, o.reference_dt);

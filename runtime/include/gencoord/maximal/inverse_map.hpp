@@ -60,6 +60,10 @@ InversePositions<M> inverse_map_positions(const ParamsOf<M>& p, const XVec<M>& x
                                           const QVec<M>& q0,
                                           const InverseMapOptions& options = {}) {
   static_assert(assert_model_v<M>);
+  static_assert(
+      !has_generalized_speeds_v<M>,
+      "gencoord: the inverse map does not support models with generalized speeds (free or ball "
+      "joints) yet");
   using Reason = InverseMapError::Reason;
   InversePositions<M> out;
   out.q = q0;
@@ -143,6 +147,10 @@ template <class M>
 QVec<M> inverse_map_velocities(const ParamsOf<M>& p, const QVec<M>& q, const XVec<M>& xdot,
                                double t) {
   static_assert(assert_model_v<M>);
+  static_assert(
+      !has_generalized_speeds_v<M>,
+      "gencoord: the inverse map does not support models with generalized speeds (free or ball "
+      "joints) yet");
   const XJac<M> J = M::jacobian(q, t, p);
   const XVec<M> x_t = M::velocities(q, QVec<M>::Zero().eval(), t, p);
   const XVec<M> m = coordinate_masses<M>(p);
@@ -170,6 +178,10 @@ QVec<M> inverse_map_velocities(const ParamsOf<M>& p, const QVec<M>& q, const XVe
 template <class M>
 State<M> inverse_map(const ParamsOf<M>& p, const XVec<M>& x, const XVec<M>& xdot, double t,
                      const QVec<M>& q0, const InverseMapOptions& options = {}) {
+  static_assert(
+      !has_generalized_speeds_v<M>,
+      "gencoord: the inverse map does not support models with generalized speeds (free or ball "
+      "joints) yet");
   State<M> s;
   s.t = t;
   s.q = inverse_map_positions<M>(p, x, t, q0, options).q;

@@ -40,6 +40,11 @@ namespace gencoord {
 /// mutable cache): one instance must not be used from several threads at once.
 template <class M>
 class MaximalModel {
+  static_assert(!has_generalized_speeds_v<M>,
+                "gencoord: the maximal-coordinate model does not support models with generalized "
+                "speeds (free or ball "
+                "joints) yet");
+
  public:
   using Max = MaximalOf<M>;
   static constexpr int nx = M::nx;

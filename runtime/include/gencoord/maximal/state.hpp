@@ -26,6 +26,10 @@ struct MaximalState {
 /// \return The maximal state at s.t (on the constraint manifold, tangent to it).
 template <class M>
 MaximalState<M> to_maximal(const ParamsOf<M>& p, const State<M>& s) {
+  static_assert(!has_generalized_speeds_v<M>,
+                "gencoord: the maximal-coordinate model does not support models with generalized "
+                "speeds (free or ball "
+                "joints) yet");
   MaximalState<M> out;
   out.t = s.t;
   out.q = M::positions(s.q, s.t, p);

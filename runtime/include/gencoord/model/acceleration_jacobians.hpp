@@ -7,8 +7,10 @@
 //    r(q, v, a(q, v, t), t) = 0 identically, so dr/dq + Mt da/dq = 0 and
 //      da/dq = -Mt^-1 dr/dq,   da/dv = -Mt^-1 dr/dv,
 //    with the one Cholesky factor of Mt that computing a already needed. Exact to round-off.
-//  - FiniteDifference: central differences of acceleration(), 4 nq evaluations of the
+//  - FiniteDifference: central differences of acceleration(), 2 (nq + nv) evaluations of the
 //    dynamics; kept so that the two can be compared (tests, bench/implicit_bench.cc).
+// With generalized speeds, da/dq is nv x nq (a derivative in the embedding of q, quaternion
+// entries perturbed off the unit sphere) and da/dv nv x nv.
 #pragma once
 
 #include <algorithm>
@@ -59,14 +61,14 @@ inline double central_difference_step(double x) {
 /// round-off error both O(eps^(2/3)) relative.
 /// \param[in]  p      The model parameters.
 /// \param[in]  q      The generalized coordinates (dim M::nq).
-/// \param[in]  v      The generalized velocities (dim M::nq).
+/// \param[in]  v      The generalized velocities or speeds (dim nv).
 /// \param[in]  t      The time.
-/// \param[out] a_D_q  da/dq (dim M::nq x M::nq); must not be null.
-/// \param[out] a_D_v  da/dv (dim M::nq x M::nq); must not be null.
+/// \param[out] a_D_q  da/dq (dim nv x nq); must not be null.
+/// \param[out] a_D_v  da/dv (dim nv x nv); must not be null.
 /// \throws DynamicsError if the dynamics fail at a perturbed state.
 template <class M>
-void acceleration_jacobians_fd(const ParamsOf<M>& p, const QVec<M>& q, const QVec<M>& v, double t,
-                               QMat<M>* a_D_q, QMat<M>* a_D_v) {
+void acceleration_jacobians_fd(const ParamsOf<M>& p, const QVec<M>& q, const VVec<M>& v, double t,
+                               VQMat<M>* a_D_q, VMat<M>* a_D_v) {
   using detail::central_difference_step;
   for (int j = 0; j < M::nq; ++j) {
     // columns of da/dq
@@ -75,8 +77,10 @@ void acceleration_jacobians_fd(const ParamsOf<M>& p, const QVec<M>& q, const QVe
     qm[j] -= central_difference_step(q[j]);
     // divide by the representable step, not the nominal one
     a_D_q->col(j) = (acceleration<M>(p, qp, v, t) - acceleration<M>(p, qm, v, t)) / (qp[j] - qm[j]);
+  }
+  for (int j = 0; j < nv_of_v<M>; ++j) {
     // columns of da/dv
-    QVec<M> vp = v, vm = v;
+    VVec<M> vp = v, vm = v;
     vp[j] += central_difference_step(v[j]);
     vm[j] -= central_difference_step(v[j]);
     a_D_v->col(j) = (acceleration<M>(p, q, vp, t) - acceleration<M>(p, q, vm, t)) / (vp[j] - vm[j]);
@@ -87,22 +91,23 @@ namespace detail {
 
 // factors Mt and solves for a, with the checks of acceleration()
 template <class M>
-void factor_and_solve(const ParamsOf<M>& p, const QVec<M>& q, const QVec<M>& v, double t,
-                      Eigen::LLT<PlainOf<QMat<M>>>* llt, QVec<M>* a) {
+void factor_and_solve(const ParamsOf<M>& p, const QVec<M>& q, const VVec<M>& v, double t,
+                      Eigen::LLT<PlainOf<VMat<M>>>* llt, VVec<M>* a) {
   using Reason = DynamicsError::Reason;
-  QMat<M> Mt;
-  QVec<M> f;
+  constexpr int nv = nv_of_v<M>;
+  VMat<M> Mt;
+  VVec<M> f;
   M::dynamics(q, v, t, p, &Mt, &f);
   if (!Mt.allFinite())
-    throw_dynamics_error(M::name, Reason::kNonFiniteMassMatrix, t, q.data(), v.data(), M::nq);
+    throw_dynamics_error(M::name, Reason::kNonFiniteMassMatrix, t, q.data(), v.data(), M::nq, nv);
   if (!f.allFinite())
-    throw_dynamics_error(M::name, Reason::kNonFiniteForces, t, q.data(), v.data(), M::nq);
+    throw_dynamics_error(M::name, Reason::kNonFiniteForces, t, q.data(), v.data(), M::nq, nv);
   llt->compute(Mt);
   if (llt->info() != Eigen::Success)
-    throw_dynamics_error(M::name, Reason::kNotPositiveDefinite, t, q.data(), v.data(), M::nq);
+    throw_dynamics_error(M::name, Reason::kNotPositiveDefinite, t, q.data(), v.data(), M::nq, nv);
   *a = llt->solve(f);
   if (!a->allFinite())
-    throw_dynamics_error(M::name, Reason::kNonFiniteAcceleration, t, q.data(), v.data(), M::nq);
+    throw_dynamics_error(M::name, Reason::kNonFiniteAcceleration, t, q.data(), v.data(), M::nq, nv);
 }
 
 [[noreturn]] inline void throw_no_generated_jacobians(const char* model) {
@@ -117,23 +122,24 @@ void factor_and_solve(const ParamsOf<M>& p, const QVec<M>& q, const QVec<M>& v, 
 /// The acceleration and its Jacobians in one pass: a = acceleration<M>(p, q, v, t),
 /// da/dq and da/dv from `source`. With generated Jacobians this costs one dynamics
 /// evaluation, one Cholesky factorization of Mt, one residual_jacobians() call and two
-/// triangular solves with nq right-hand sides each; with finite differences, 4 nq + 1
+/// triangular solves with nq and nv right-hand sides; with finite differences, 2 (nq + nv) + 1
 /// acceleration() evaluations.
 /// \param[in]  p       The model parameters.
 /// \param[in]  q       The generalized coordinates (dim M::nq).
-/// \param[in]  v       The generalized velocities (dim M::nq).
+/// \param[in]  v       The generalized velocities or speeds (dim nv).
 /// \param[in]  t       The time.
 /// \param[in]  source  Where the Jacobians come from (see JacobianSource).
-/// \param[out] a       The acceleration (dim M::nq); must not be null.
-/// \param[out] a_D_q   da/dq (dim M::nq x M::nq); must not be null.
-/// \param[out] a_D_v   da/dv (dim M::nq x M::nq); must not be null.
+/// \param[out] a       The acceleration (dim nv); must not be null.
+/// \param[out] a_D_q   da/dq (dim nv x nq); must not be null.
+/// \param[out] a_D_v   da/dv (dim nv x nv); must not be null.
 /// \throws DynamicsError if the dynamics fail at (q, v, t) (or, for finite differences, at a
 ///         perturbed state); std::invalid_argument if source is Generated and the model has no
 ///         residual_jacobians(). Non-finite generated Jacobians are not checked here: they
 ///         make the Newton update non-finite, which the implicit steps report as NewtonError.
 template <class M>
-void acceleration_and_jacobians(const ParamsOf<M>& p, const QVec<M>& q, const QVec<M>& v, double t,
-                                JacobianSource source, QVec<M>* a, QMat<M>* a_D_q, QMat<M>* a_D_v) {
+void acceleration_and_jacobians(const ParamsOf<M>& p, const QVec<M>& q, const VVec<M>& v, double t,
+                                JacobianSource source, VVec<M>* a, VQMat<M>* a_D_q,
+                                VMat<M>* a_D_v) {
   static_assert(assert_model_v<M>);
   const JacobianSource resolved = resolve_jacobian_source<M>(source);
   if (resolved == JacobianSource::FiniteDifference) {
@@ -143,9 +149,10 @@ void acceleration_and_jacobians(const ParamsOf<M>& p, const QVec<M>& q, const QV
   }
   if constexpr (has_residual_jacobians_v<M>) {
     // r(q, v, a(q, v)) = 0  =>  Mt da/dq = -dr/dq, Mt da/dv = -dr/dv
-    Eigen::LLT<PlainOf<QMat<M>>> llt;
+    Eigen::LLT<PlainOf<VMat<M>>> llt;
     detail::factor_and_solve<M>(p, q, v, t, &llt, a);
-    QMat<M> r_D_q, r_D_v;
+    VQMat<M> r_D_q;
+    VMat<M> r_D_v;
     M::residual_jacobians(q, v, *a, t, p, &r_D_q, &r_D_v);
     *a_D_q = -llt.solve(r_D_q);
     *a_D_v = -llt.solve(r_D_v);
@@ -154,14 +161,14 @@ void acceleration_and_jacobians(const ParamsOf<M>& p, const QVec<M>& q, const QV
   }
 }
 
-/// Jacobians da/dq and da/dv of acceleration() at (q, v, t), each (dim M::nq x M::nq); see
+/// Jacobians da/dq (nv x nq) and da/dv (nv x nv) of acceleration() at (q, v, t); see
 /// acceleration_and_jacobians() for the sources and their cost.
 /// \throws DynamicsError, std::invalid_argument as acceleration_and_jacobians().
 template <class M>
-void acceleration_jacobians(const ParamsOf<M>& p, const QVec<M>& q, const QVec<M>& v, double t,
-                            QMat<M>* a_D_q, QMat<M>* a_D_v,
+void acceleration_jacobians(const ParamsOf<M>& p, const QVec<M>& q, const VVec<M>& v, double t,
+                            VQMat<M>* a_D_q, VMat<M>* a_D_v,
                             JacobianSource source = JacobianSource::Auto) {
-  QVec<M> a;
+  VVec<M> a;
   acceleration_and_jacobians<M>(p, q, v, t, source, &a, a_D_q, a_D_v);
 }
 

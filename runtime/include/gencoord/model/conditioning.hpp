@@ -55,8 +55,8 @@ class ConditioningMonitor {
 
   /// Checks one state. \throws SingularityError (policy Stop) past the threshold.
   void operator()(const State<M>& s) {
-    const QMat<M> Mt = M::mass_matrix(s.q, s.t, p_);
-    const double estimate = condition_estimate(Eigen::LLT<PlainOf<QMat<M>>>(Mt));
+    const VMat<M> Mt = M::mass_matrix(s.q, s.t, p_);
+    const double estimate = condition_estimate(Eigen::LLT<PlainOf<VMat<M>>>(Mt));
     if (!(estimate <= worst_)) {  // also records NaN/inf as the worst
       worst_ = estimate;
       worst_time_ = s.t;

@@ -15,13 +15,13 @@ namespace detail {
 
 template <class M>
 using inverse_dynamics_op =
-    require_convertible<decltype(M::inverse_dynamics(q_arg<M>(), q_arg<M>(), q_arg<M>(), t_arg(),
+    require_convertible<decltype(M::inverse_dynamics(q_arg<M>(), v_arg<M>(), v_arg<M>(), t_arg(),
                                                      p_arg<M>())),
-                        QVec<M>>;
+                        VVec<M>>;
 template <class M>
 using residual_jacobians_op =
-    decltype(M::residual_jacobians(q_arg<M>(), q_arg<M>(), q_arg<M>(), t_arg(), p_arg<M>(),
-                                   std::declval<QMat<M>*>(), std::declval<QMat<M>*>()));
+    decltype(M::residual_jacobians(q_arg<M>(), v_arg<M>(), v_arg<M>(), t_arg(), p_arg<M>(),
+                                   std::declval<VQMat<M>*>(), std::declval<VMat<M>*>()));
 
 }  // namespace detail
 
@@ -30,8 +30,9 @@ using residual_jacobians_op =
 template <class M>
 inline constexpr bool has_inverse_dynamics_v = detail::detected_v<M, detail::inverse_dynamics_op>;
 
-/// True when M emits `void residual_jacobians(q, v, qdd, t, p, QMatrix<S>* dr_dq,
-/// QMatrix<S>* dr_dv)`, the exact Jacobians of the inverse-dynamics residual.
+/// True when M emits `void residual_jacobians(q, v, qdd, t, p, VQMatrix<S>* dr_dq,
+/// VMatrix<S>* dr_dv)` (QMatrix both without generalized speeds), the exact Jacobians of the
+/// inverse-dynamics residual.
 template <class M>
 inline constexpr bool has_residual_jacobians_v =
     detail::detected_v<M, detail::residual_jacobians_op>;
@@ -43,13 +44,13 @@ inline constexpr bool has_residual_jacobians_v =
 /// M::mass_matrix(q, t) qdd - M::forces(q, v, t) (same value, two kernel calls).
 /// \param[in] p    The model parameters.
 /// \param[in] q    The generalized coordinates (dim M::nq).
-/// \param[in] v    The generalized velocities (dim M::nq).
-/// \param[in] qdd  The generalized accelerations (dim M::nq).
+/// \param[in] v    The generalized velocities or speeds (dim nv_of_v<M>).
+/// \param[in] qdd  Their rates v' (dim nv_of_v<M>).
 /// \param[in] t    The time.
-/// \return tau (dim M::nq). Throws nothing; NaN/inf in the inputs propagate to the result.
+/// \return tau (dim nv_of_v<M>). Throws nothing; NaN/inf in the inputs propagate to the result.
 template <class M>
-QVec<M> inverse_dynamics(const ParamsOf<M>& p, const QVec<M>& q, const QVec<M>& v,
-                         const QVec<M>& qdd, double t) {
+VVec<M> inverse_dynamics(const ParamsOf<M>& p, const QVec<M>& q, const VVec<M>& v,
+                         const VVec<M>& qdd, double t) {
   static_assert(assert_model_v<M>);
   if constexpr (has_inverse_dynamics_v<M>) {
     return M::inverse_dynamics(q, v, qdd, t, p);
@@ -59,14 +60,14 @@ QVec<M> inverse_dynamics(const ParamsOf<M>& p, const QVec<M>& q, const QVec<M>& 
 }
 
 /// Exact Jacobians of the residual r(q, v, qdd, t) of inverse_dynamics(): dr/dq and dr/dv,
-/// each (dim M::nq x M::nq); dr/dqdd is M::mass_matrix(q, t). Compiles only for models that
+/// (dim nv x nq and nv x nv); dr/dqdd is M::mass_matrix(q, t). Compiles only for models that
 /// emit M::residual_jacobians (has_residual_jacobians_v<M>).
-/// \param[out] r_D_q  dr/dq (dim M::nq x M::nq); must not be null.
-/// \param[out] r_D_v  dr/dv (dim M::nq x M::nq); must not be null.
+/// \param[out] r_D_q  dr/dq (dim nv x nq); must not be null.
+/// \param[out] r_D_v  dr/dv (dim nv x nv); must not be null.
 /// Throws nothing; NaN/inf in the inputs propagate to the result.
 template <class M>
-void residual_jacobians(const ParamsOf<M>& p, const QVec<M>& q, const QVec<M>& v,
-                        const QVec<M>& qdd, double t, QMat<M>* r_D_q, QMat<M>* r_D_v) {
+void residual_jacobians(const ParamsOf<M>& p, const QVec<M>& q, const VVec<M>& v,
+                        const VVec<M>& qdd, double t, VQMat<M>* r_D_q, VMat<M>* r_D_v) {
   static_assert(has_residual_jacobians_v<M>,
                 "gencoord: this model does not emit residual_jacobians(q, v, qdd, t, p, "
                 "dr_dq, dr_dv); regenerate it with the current generator");

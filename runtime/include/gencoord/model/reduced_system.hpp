@@ -1,9 +1,14 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // A generated model with its parameters as a system for the integrators
-// (integrate/system.hpp): a = Mt^-1 (Ft + Fi), unit mass, dense Jacobians.
+// (integrate/system.hpp): a = Mt^-1 (Ft + Fi), unit mass, dense Jacobians. A model with
+// generalized speeds also gives the system coordinate_rate (M::coordinate_rates) and
+// normalize (its unit quaternions).
 #pragma once
 
+#include <type_traits>
 #include <utility>
+
+#include <Eigen/Core>
 
 #include "gencoord/integrate/system.hpp"
 #include "gencoord/model/acceleration_jacobians.hpp"
@@ -17,8 +22,8 @@ template <class M>
 class ReducedSystem {
  public:
   using State = gencoord::State<M>;
-  using Unknowns = QVec<M>;
-  using Matrix = QMat<M>;
+  using Unknowns = VVec<M>;
+  using Matrix = VMat<M>;
   static constexpr bool unit_mass = true;
 
   explicit ReducedSystem(ParamsOf<M> p) : p_(std::move(p)) { static_assert(assert_model_v<M>); }
@@ -26,23 +31,61 @@ class ReducedSystem {
   const ParamsOf<M>& params() const { return p_; }
   const char* name() const { return M::name; }
   /// \throws DynamicsError as gencoord::acceleration().
-  QVec<M> acceleration(const State& s) const { return gencoord::acceleration<M>(p_, s); }
+  VVec<M> acceleration(const State& s) const { return gencoord::acceleration<M>(p_, s); }
   void impose(State*) const {}
   void check(const State&, double) const {}
 
-  const QVec<M>& free_part(const QVec<M>& x) const { return x; }
-  void add_to_free(const QVec<M>& dx, QVec<M>* x) const { *x += dx; }
-  /// The acceleration and its Jacobians (acceleration_and_jacobians()).
+  const VVec<M>& free_part(const VVec<M>& x) const { return x; }
+  void add_to_free(const VVec<M>& dx, VVec<M>* x) const { *x += dx; }
+  /// The acceleration and its Jacobians (acceleration_and_jacobians()). With generalized
+  /// speeds force_D_q is (da/dq) G(q) at s (nv x nv): the derivative along q1 = q0 + h G v1
+  /// that backward Euler's Newton needs, with G frozen at s (backward_euler.hpp).
   void linearize(const State& s, JacobianSource source, Linearization<ReducedSystem>* out) const {
-    acceleration_and_jacobians<M>(p_, s.q, s.v, s.t, source, &out->force, &out->force_D_q,
-                                  &out->force_D_v);
+    if constexpr (has_generalized_speeds_v<M>) {
+      VQMat<M> a_D_q;
+      acceleration_and_jacobians<M>(p_, s.q, s.v, s.t, source, &out->force, &a_D_q,
+                                    &out->force_D_v);
+      out->force_D_q = a_D_q * rate_matrix(s);
+    } else {
+      acceleration_and_jacobians<M>(p_, s.q, s.v, s.t, source, &out->force, &out->force_D_q,
+                                    &out->force_D_v);
+    }
   }
   /// A singular A gives a non-finite x.
-  bool solve(const QMat<M>& A, const QVec<M>& b, QVec<M>* x) const {
+  bool solve(const VMat<M>& A, const VVec<M>& b, VVec<M>* x) const {
     return detail::dense_lu_solve(A, b, x);
   }
 
+  /// q' = G(q) v (M::coordinate_rates); only for models with generalized speeds.
+  template <class Model = M, class = std::enable_if_t<has_generalized_speeds_v<Model>>>
+  QVec<M> coordinate_rate(const State& s) const {
+    return M::coordinate_rates(s.q, s.v, s.t, p_);
+  }
+  /// Divides each unit quaternion of q by its norm; only for models with generalized speeds.
+  template <class Model = M, class = std::enable_if_t<has_generalized_speeds_v<Model>>>
+  void normalize(State* s) const {
+    for (const int start : M::quaternion_starts) {
+      auto quaternion = s->q.segment(start, 4);
+      quaternion /= quaternion.norm();
+    }
+  }
+
  private:
+  // G(q) (nq x nv) at s, column j = coordinate_rates(q, e_j), since q' is linear in v; on the
+  // heap past Eigen's fixed-size limit
+  auto rate_matrix(const State& s) const {
+    constexpr int nq = M::nq, nv = nv_of_v<M>;
+    std::conditional_t<(nq * nv <= 16384), Eigen::Matrix<double, nq, nv>, Eigen::MatrixXd> G;
+    G.resize(nq, nv);
+    VVec<M> e = VVec<M>::Zero();
+    for (int j = 0; j < nv; ++j) {
+      e[j] = 1.0;
+      G.col(j) = M::coordinate_rates(s.q, e, s.t, p_);
+      e[j] = 0.0;
+    }
+    return G;
+  }
+
   ParamsOf<M> p_;
 };
 

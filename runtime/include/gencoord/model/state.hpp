@@ -6,13 +6,14 @@
 
 namespace gencoord {
 
-/// State of model M at time t: q and v = qdot, each of size M::nq.
+/// State of model M at time t: q (M::nq) and v (nv_of_v<M>): v = q' for most models, the
+/// generalized speeds with q' = M::coordinate_rates(q, v, t, p) for models that have them.
 /// Fixed-size Eigen members: no heap allocation; C++17 aligned new makes it safe in containers.
 template <class Model>
 struct State {
   double t = 0.0;                       // time (s)
   QVec<Model> q = QVec<Model>::Zero();  // generalized coordinates (nq)
-  QVec<Model> v = QVec<Model>::Zero();  // generalized velocities (nq)
+  VVec<Model> v = VVec<Model>::Zero();  // generalized velocities or speeds (nv)
 };
 
 }  // namespace gencoord

@@ -103,7 +103,7 @@ void parallel_chunks(std::size_t count, int threads, const Body& body) {
 }  // namespace detail
 
 /// Generalized accelerations of many states: (*out)[i] = acceleration<M>(params[i], states[i]).
-/// \param[in]  states   The states (q, v of dim M::nq, t).
+/// \param[in]  states   The states (t, q of dim M::nq, v of dim nv_of_v<M>).
 /// \param[in]  params   One parameter set for every state, or one per state.
 /// \param[out] out      Resized to states.size() and filled; not null.
 /// \param[in]  threads  Threads to use, at least 1 (the caller's thread counts as one).
@@ -111,7 +111,7 @@ void parallel_chunks(std::size_t count, int threads, const Body& body) {
 ///         acceleration() (the first failing chunk's), after all threads have finished.
 template <class M>
 void batch_qddot(const std::vector<State<M>>& states, const std::vector<ParamsOf<M>>& params,
-                 std::vector<QVec<M>>* out, int threads = default_batch_threads()) {
+                 std::vector<VVec<M>>* out, int threads = default_batch_threads()) {
   static_assert(assert_model_v<M>);
   detail::check_batch_sizes(states.size(), params, threads);
   out->resize(states.size());

@@ -38,6 +38,11 @@ namespace gencoord {
 /// const and thread-compatible.
 template <class M>
 class ScriptedModel {
+  static_assert(!has_generalized_speeds_v<M>,
+                "gencoord: scripted coordinates does not support models with generalized speeds "
+                "(free or ball "
+                "joints) yet");
+
  public:
   /// Vectors and matrices over the free coordinates (dim n_f <= M::nq): fixed capacity, no
   /// heap allocation, except for a matrix whose capacity would pass Eigen's stack limit.
