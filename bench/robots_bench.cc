@@ -3,7 +3,8 @@
 // pinned to one core: qddot against mj_forward, mass_matrix against mj_fullM after MuJoCo's
 // position stage (mj_fwdPosition, which forms qM), inverse_dynamics against mj_rne. Each round
 // times every contender over the same 256 random states, interleaved; the table gives the
-// minimum and the median over the rounds of the time per call, and the ratios.
+// minimum and the median over the rounds of the time per call, and the ratios. The floating
+// quadruped's base is a free joint (unit quaternion, body twist) on both sides.
 //   build/bench/bench_robots [rounds]
 #include <sched.h>
 
@@ -17,14 +18,17 @@
 #include <vector>
 
 #include "gencoord/gencoord.hpp"
+#include "generated/floating_quadruped.hpp"
 #include "generated/iiwa14.hpp"
 #include "generated/quadruped.hpp"
 #include "robots/mujoco_model.hpp"
+#include "robots/quaternion_base.hpp"
 
 namespace {
 
 using gencoord::State;
 using gencoord::robot_testing::MujocoReference;
+using gencoord::robot_testing::QuaternionBaseReference;
 
 constexpr int kStates = 256;
 volatile double sink = 0.0;  // keeps the results alive
@@ -46,9 +50,9 @@ Summary summarize(std::vector<double> values) {
   return {values.front(), values[values.size() / 2]};
 }
 
-template <class M>
+template <class M, class Reference = MujocoReference<M>>
 void compare(const char* robot, const char* urdf, int rounds) {
-  MujocoReference<M> mujoco(urdf);
+  Reference mujoco(urdf);
   mjModel* m = mujoco.model();
   mjData* d = mujoco.data();
   const typename M::Params p;
@@ -56,12 +60,11 @@ void compare(const char* robot, const char* urdf, int rounds) {
   std::uniform_real_distribution<double> angle(-M_PI, M_PI), rate(-2.0, 2.0);
   std::vector<State<M>> states(kStates);
   for (auto& s : states) {
-    for (int i = 0; i < M::nq; ++i) {
-      s.q[i] = angle(rng);
-      s.v[i] = rate(rng);
-    }
+    for (int i = 0; i < M::nq; ++i) s.q[i] = angle(rng);
+    for (int i = 0; i < M::nv; ++i) s.v[i] = rate(rng);
+    if constexpr (gencoord::has_generalized_speeds_v<M>) s.q.template segment<4>(3).normalize();
   }
-  std::vector<gencoord::QVec<M>> qdd(kStates);
+  std::vector<gencoord::VVec<M>> qdd(kStates);
   for (int k = 0; k < kStates; ++k) qdd[k] = M::qddot(states[k].q, states[k].v, 0.0, p);
   std::vector<double> full(m->nv * m->nv);
   std::vector<mjtNum> rne(m->nv);
@@ -99,14 +102,14 @@ void compare(const char* robot, const char* urdf, int rounds) {
          mujoco.set(states[k].q, states[k].v);
          mj_fwdPosition(m, d);
          mj_fwdVelocity(m, d);
-         for (int i = 0; i < M::nq; ++i) d->qacc[i] = qdd[k][i];
+         for (int i = 0; i < M::nv; ++i) d->qacc[i] = qdd[k][i];
          mj_rne(m, d, 1, rne.data());
          sink = sink + rne[0];
        },
        {}},
       {"mj_rne alone",
        [&](int k) {
-         for (int i = 0; i < M::nq; ++i) d->qacc[i] = qdd[k][i];
+         for (int i = 0; i < M::nv; ++i) d->qacc[i] = qdd[k][i];
          mj_rne(m, d, 1, rne.data());
          sink = sink + rne[0];
        },
@@ -115,8 +118,8 @@ void compare(const char* robot, const char* urdf, int rounds) {
   for (int round = 0; round < rounds; ++round) {
     for (auto& c : contenders) c.ns.push_back(time_per_call(c.call));
   }
-  std::printf("\n%s (nq = %d), ns per call over %d rounds of %d states\n", robot, M::nq, rounds,
-              kStates);
+  std::printf("\n%s (nq = %d, nv = %d), ns per call over %d rounds of %d states\n", robot, M::nq,
+              gencoord::nv_of_v<M>, rounds, kStates);
   std::printf("%-48s %10s %10s\n", "contender", "min", "median");
   std::vector<Summary> summaries;
   for (auto& c : contenders) {
@@ -146,4 +149,7 @@ int main(int argc, char** argv) {
   }
   compare<gencoord::models::Iiwa14>("iiwa14", GENCOORD_ROOT "/models/iiwa14.urdf", rounds);
   compare<gencoord::models::Quadruped>("quadruped", GENCOORD_ROOT "/models/quadruped.urdf", rounds);
+  using Floating = gencoord::models::FloatingQuadruped;
+  compare<Floating, QuaternionBaseReference<Floating>>(
+      "floating_quadruped", GENCOORD_ROOT "/models/floating_quadruped.urdf", rounds);
 }

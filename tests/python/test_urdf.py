@@ -406,6 +406,12 @@ FLOATING = robot('<link name="world"/>', link("box"), link("arm"),
                  joint("hinge", "box", "arm", extra='\n  <dynamics damping="0.2"/>'))
 
 
+# A massless base link on the floating joint, the mass on a trunk welded to it (Unitree's files)
+MASSLESS_BASE = robot('<link name="world"/>', '<link name="base"/>', link("trunk"), link("arm"),
+                      joint("free", "world", "base", "floating"),
+                      joint("weld", "base", "trunk", "fixed"), joint("hinge", "trunk", "arm"))
+
+
 class UrdfGenerateTest(unittest.TestCase):
     """./generate robot.urdf: the model takes the file's stem; a floating base is a free joint."""
 
@@ -445,6 +451,22 @@ class UrdfGenerateTest(unittest.TestCase):
         for value, expected in zip(initial[3:7], [math.sqrt(0.5), 0, 0, math.sqrt(0.5)]):
             self.assertAlmostEqual(value, expected, places=15)
         self.assertEqual(len(model.generalized_forces), 1)  # the hinge's damping acts on q
+
+    def test_a_massless_base_welded_to_its_trunk_floats(self):
+        path = self.folder / "massless_base.urdf"
+        path.write_text(MASSLESS_BASE, encoding="utf-8")
+        result = run_generate(str(path), "-o", str(self.folder / "out"))
+        self.assertEqual(result.returncode, 0, describe(result))
+        header = (self.folder / "out" / "massless_base.hpp").read_text(encoding="utf-8")
+        self.assertRegex(header, r"\bnq = 8;")
+        self.assertRegex(header, r"\bnv = 7;")
+        # alone, a massless base moves nothing: the rank check refuses it
+        path.write_text(robot('<link name="world"/>', '<link name="base"/>', link("arm"),
+                              joint("free", "world", "base", "floating"),
+                              joint("hinge", "base", "arm")), encoding="utf-8")
+        result = run_generate(str(path), "-o", str(self.folder / "out"))
+        self.assertEqual(result.returncode, 1, describe(result))
+        self.assertRegex(result.stderr, r"massless_base\.urdf.*error: .*redundant")
 
     def test_a_model_file_keeps_the_atlas_of_euler_charts(self):
         from gencoord.generate.load import load_model

@@ -23,6 +23,19 @@ GENCOORD = REPOSITORY / "gencoord"
 CRANE = (REPOSITORY / "examples" / "consumer" / "gantry_crane.py").read_text(encoding="utf-8")
 
 
+# A free-floating trunk with an arm on a ball joint, spinning and falling: every coordinate
+# of both joints is a unit quaternion or a position, every speed a twist component.
+TUMBLER = """from gencoord import Ball, Free, Model, Origin, add_link
+
+model = Model(dim=3)
+I = [[0.02, 0, 0], [0, 0.03, 0], [0, 0, 0.04]]
+trunk = add_link(model, "trunk", None, Free(Origin(xyz=[0, 0, 1])), mass=5.0, inertia=I)
+arm = add_link(model, "arm", trunk, Ball(Origin(xyz=[0, 0, -0.2])), mass=1.0, inertia=I,
+               com=Origin(xyz=[0, 0.1, -0.3]))
+model.gravity([0, 0, -9.81])
+"""
+
+
 class GencoordCommandTest(unittest.TestCase):
 
     @classmethod
@@ -149,6 +162,29 @@ class GencoordCommandTest(unittest.TestCase):
         log = logs[0].read_text(encoding="utf-8")
         self.assertIn("simulate.cpp", log)
         self.assertNotRegex(log, r"runtime/src/\w+\.cpp", "the runtime was compiled again")
+
+    def test_8_a_free_body_simulates_on_its_speeds(self):
+        # a free trunk with a ball-jointed arm: unit quaternions, nq = 11, nv = 9
+        (self.user / "tumbler.py").write_text(TUMBLER, encoding="utf-8")
+        result = self.gencoord("simulate", "tumbler.py", "--duration", "1", "--dt", "1e-3",
+                               "--v", "0,0,0,1,2,3,0.5,0,0")
+        self.assertSucceeded(result)
+        with (self.user / "out" / "tumbler.csv").open(encoding="utf-8") as handle:
+            rows = list(csv.DictReader(handle))
+        self.assertEqual(len(rows), 1001)
+        self.assertIn("v_trunk_wx", rows[0])
+        self.assertIn("v_arm_wz", rows[0])
+        for row in rows[::100]:
+            norm = sum(float(row[f"q_arm_q{c}"]) ** 2 for c in "wxyz")
+            self.assertAlmostEqual(norm, 1.0, places=12)
+        drift = float(re.search(r"max \|E - E\(0\)\| = (\S+) J", result.stdout).group(1))
+        self.assertLess(drift, 1e-7 * max(abs(float(rows[0]["energy"])), 1.0), result.stdout)
+        for command in ("crosscheck", "python"):
+            refused = self.gencoord(command, "tumbler.py")
+            self.assertEqual(refused.returncode, 1, refused.stderr)
+            self.assertIn(f"gencoord {command} does not take models with free or ball joints",
+                          refused.stderr)
+            self.assertNoTraceback(refused)
 
     def test_bad_input_is_one_clear_line(self):
         cases = [

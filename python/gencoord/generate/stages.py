@@ -85,7 +85,8 @@ class GeneratedChart:
     name: str
     optimized: OptimizedModel
     num_reduced_kernels: int
-    maximal: MaximalDerivation
+    # None for a model with generalized speeds: the cross-check does not take them yet
+    maximal: MaximalDerivation | None
     analysis: list[str]
     forces_have_potential: bool          # conservative.py: the struct's forces_have_potential
     paths: PathChoice                    # dense or recursive qddot and inverse_dynamics
@@ -175,14 +176,15 @@ def _derive(work: _ChartWork, observers: _Observers) -> None:
     # a body's rods and pins make symbolic derivatives of the penalty forces slow (seconds
     # for one top); forward mode after CSE gives the same values
     symbolic = work.small and not chart.bodies
-    work.maximal = derive_maximal(chart, symbolic_jacobians=symbolic, named=not symbolic)
-    work.definitions = [*work.definitions, *work.maximal.definitions]
+    if not chart.has_generalized_speeds:
+        work.maximal = derive_maximal(chart, symbolic_jacobians=symbolic, named=not symbolic)
+        work.definitions = [*work.definitions, *work.maximal.definitions]
 
 
 def _optimize(work: _ChartWork, name: str) -> GeneratedChart:
     chart, options = work.chart, work.options
     derivation, maximal = work.derivation, work.maximal
-    assert derivation is not None and maximal is not None  # set by _derive
+    assert derivation is not None  # set by _derive
     looped = None
     if work.tree_derived and work.large:
         assert work.recursive is not None  # tree_derived: the recursions give every output
@@ -191,7 +193,7 @@ def _optimize(work: _ChartWork, name: str) -> GeneratedChart:
     optimize_options = OptimizeOptions(part_statements, always_parts=options.translation_units > 0,
                                        zero_fill_min=options.zero_fill_min)
     kernels = build_kernels(derivation, work.recursive, work.tree_derived, looped)
-    maximal_kernels = build_maximal_kernels(maximal)
+    maximal_kernels = build_maximal_kernels(maximal) if maximal else []
     names, input_of = _symbol_names(chart)
     if looped:
         names.update(looped.names)

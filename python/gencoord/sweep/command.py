@@ -37,6 +37,9 @@ def _load_model(sweep: spec.Sweep):
         loaded = load(sweep.model_file, dict(sweep.options))
     except ToolError as error:
         raise sweep.source.error(("model", "options"), str(error)) from None
+    if loaded.model.has_generalized_speeds:
+        raise sweep.source.error(("model",), "the model has free or ball joints (generalized "
+                                 "speeds), which gencoord sweep does not take yet")
     if loaded.parameters:
         names = ", ".join(loaded.parameters)
         raise sweep.source.error(("model", "options"),

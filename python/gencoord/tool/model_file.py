@@ -51,3 +51,11 @@ def load(path: str, settings: dict[str, str], stem: str | None = None) -> Loaded
     target = ModelTarget(path=os.path.abspath(path), options=options, name=name,
                          class_name=type_name(name), stem=stem)
     return LoadedModel(model=model, docstring=docstring, target=target, parameters=parameters)
+
+
+def refuse_generalized_speeds(loaded, command: str) -> None:
+    """A model with free or ball joints, for a command whose program does not take them."""
+    if loaded.model.has_generalized_speeds:
+        raise ToolError(f"{loaded.target.path}: gencoord {command} does not take models with "
+                        "free or ball joints (generalized speeds) yet; gencoord simulate and "
+                        "view do, and so does the model's header from C++")

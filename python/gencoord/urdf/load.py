@@ -69,12 +69,16 @@ def _inertial_arguments(robot: RobotDescription, name: str) -> dict:
 def _free_base(model: Model, robot: RobotDescription, name: str, joint: Joint,
                chart: str | None) -> Link:
     """The base link, free: a unit quaternion and the body twist (a Free joint whose origin is
-    the initial pose), or with `chart` (or in a model that is a chart) three Euler angles."""
+    the initial pose), or with `chart` (or in a model that is a chart) three Euler angles. A
+    free joint's base may be massless (a frame link welded to a massive trunk, as robots ship
+    it); the rank check refuses it when no mass follows it rigidly."""
     arguments = _inertial_arguments(robot, name)
-    if not arguments:
-        raise ModelError("a free-floating base needs an <inertial> with its mass",
-                         item=f"link '{name}'", filename=robot.path, line=robot.links[name].line)
     if chart or model.chart:
+        if not arguments:
+            raise ModelError("a free-floating base in Euler angles needs an <inertial> with its "
+                             "mass (or load the URDF without a chart: a free joint)",
+                             item=f"link '{name}'", filename=robot.path,
+                             line=robot.links[name].line)
         return add_free_base(model, name, chart=chart or model.chart or "zyx", **arguments)
     return add_link(model, name, None, joint, **arguments)
 

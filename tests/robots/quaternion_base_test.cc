@@ -1,0 +1,153 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// A floating robot whose base is a free joint (unit quaternion, body twist) against MuJoCo's
+// free joint on the same URDF (quaternion_base.hpp maps one onto the other): at random states
+// the mass matrix, the bias forces, the speeds' rates and the inverse dynamics; a 1 s RK4
+// trajectory of the falling robot at MuJoCo's step; and the quaternion's norm over 10 s. On
+// the quadruped's URDF with diagonal inertias MuJoCo stores every number exactly, and the two
+// agree to round-off; on the original, to MuJoCo's storage of the inertias.
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <random>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "gencoord/gencoord.hpp"
+#include "generated/floating_quadruped.hpp"
+#include "generated/floating_quadruped_diagonal.hpp"
+#include "quaternion_base.hpp"
+
+namespace gencoord {
+namespace {
+
+using robot_testing::QuaternionBaseReference;
+
+/// Each robot's URDF and bounds: `kernels` for the mass matrix and the bias forces, `solved`
+/// for the speeds' rates, the inverse dynamics and the trajectory (mujoco_reference_test.cc
+/// says why the original's are not 1e-12).
+template <class M>
+struct Robot;
+template <>
+struct Robot<models::FloatingQuadruped> {
+  static constexpr const char* urdf = GENCOORD_ROOT "/models/floating_quadruped.urdf";
+  static constexpr double kernels = 1e-8, solved = 1e-6;
+};
+template <>
+struct Robot<models::FloatingQuadrupedDiagonal> {
+  static constexpr const char* urdf = GENCOORD_BINARY_DIR "/floating_quadruped_diagonal.urdf";
+  static constexpr double kernels = 1e-12, solved = 1e-12;
+};
+
+template <class A, class B>
+double relative(const A& a, const B& b) {
+  return (a - b).norm() / std::max(1.0, std::max(a.norm(), b.norm()));
+}
+
+/// The base within 1 m of the origin at up to 2 m/s in any orientation, turning at up to
+/// 2 rad/s; the joints in (-pi, pi) at up to 2 rad/s.
+template <class M>
+State<M> random_state(std::mt19937& rng) {
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  State<M> s;
+  for (int i = 0; i < M::nq; ++i) s.q[i] = (i < 3 ? 1.0 : M_PI) * unit(rng);
+  s.q.template segment<4>(3).normalize();
+  for (int i = 0; i < M::nv; ++i) s.v[i] = 2.0 * unit(rng);
+  return s;
+}
+
+void record(const char* key, double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.2g", value);
+  ::testing::Test::RecordProperty(key, text);
+}
+
+template <class M>
+class QuaternionBaseMujoco : public ::testing::Test {};
+
+using Robots = ::testing::Types<models::FloatingQuadruped, models::FloatingQuadrupedDiagonal>;
+TYPED_TEST_SUITE(QuaternionBaseMujoco, Robots);
+
+TYPED_TEST(QuaternionBaseMujoco, KernelsMatchAtRandomStates) {
+  using M = TypeParam;
+  QuaternionBaseReference<M> mujoco(Robot<M>::urdf);
+  const typename M::Params p;
+  std::mt19937 rng(20261127);
+  double worst_mass = 0, worst_bias = 0, worst_acceleration = 0, worst_rne = 0;
+  for (int k = 0; k < 100; ++k) {
+    const State<M> s = random_state<M>(rng);
+    mujoco.forward(s.q, s.v);
+    worst_mass = std::max(worst_mass, relative(M::mass_matrix(s.q, s.t, p), mujoco.mass_matrix()));
+    // Ft + Fi is what the speeds' rates are at zero force: -(M v' + bias) = 0 at v' = 0
+    const auto zero = M::template VVector<double>::Zero().eval();
+    worst_bias =
+        std::max(worst_bias, relative(M::forces(s.q, s.v, s.t, p), -mujoco.inverse_dynamics(zero)));
+    mujoco.forward(s.q, s.v);
+    const auto vdot = M::qddot(s.q, s.v, s.t, p);
+    worst_acceleration =
+        std::max(worst_acceleration, relative(mujoco.qacc_from(vdot), mujoco.qacc()));
+    worst_rne = std::max(worst_rne, relative(M::inverse_dynamics(s.q, s.v, vdot, s.t, p),
+                                             mujoco.inverse_dynamics(vdot)));
+  }
+  record("mass_matrix", worst_mass);
+  record("bias", worst_bias);
+  record("qddot", worst_acceleration);
+  record("inverse_dynamics", worst_rne);
+  EXPECT_LT(worst_mass, Robot<M>::kernels);
+  EXPECT_LT(worst_bias, Robot<M>::kernels);
+  EXPECT_LT(worst_acceleration, Robot<M>::solved);
+  EXPECT_LT(worst_rne, Robot<M>::solved);
+  std::printf(
+      "%s (quaternion base): worst relative difference over 100 states: mass matrix %.2g, "
+      "bias %.2g, qddot %.2g, inverse dynamics %.2g\n",
+      M::name, worst_mass, worst_bias, worst_acceleration, worst_rne);
+}
+
+TYPED_TEST(QuaternionBaseMujoco, RK4TrajectoryFollowsMujoco) {
+  // compared through mj_differentiatePos: the base's displacement (m), its rotation (rad) and
+  // the joints' differences (rad); MuJoCo's RK4 turns the quaternion by the exponential map,
+  // gencoord's adds q' and normalizes, so the two differ at the methods' truncation error
+  using M = TypeParam;
+  QuaternionBaseReference<M> mujoco(Robot<M>::urdf);
+  const typename M::Params p;
+  std::mt19937 rng(7);
+  State<M> initial = random_state<M>(rng);
+  initial.v *= 0.25;
+  const double dt = 1e-3, duration = 1.0;
+  mujoco.forward(initial.q, initial.v);
+  mujoco.model()->opt.timestep = dt;
+  double worst = 0.0;
+  int step = 0;
+  simulate(ReducedSystem<M>(p), initial, SimulateOptions(Integrator::RK4, dt, duration),
+           [&](const State<M>& s) {
+             if (step++ > 0) mj_step(mujoco.model(), mujoco.data());
+             const auto gap = mujoco.difference(
+                 mujoco.qpos(s.q),
+                 Eigen::Map<const typename M::template QVector<double>>(mujoco.data()->qpos));
+             worst = std::max(worst, gap.template lpNorm<Eigen::Infinity>());
+           });
+  EXPECT_EQ(step, 1001);
+  EXPECT_LT(worst, 1e-6);
+  record("trajectory", worst);
+  std::printf("%s (quaternion base): largest |q - q_MuJoCo| over 1 s of RK4 at dt = 1 ms: %.2g\n",
+              M::name, worst);
+}
+
+TYPED_TEST(QuaternionBaseMujoco, QuaternionStaysUnitOver10Seconds) {
+  using M = TypeParam;
+  const typename M::Params p;
+  std::mt19937 rng(11);
+  const State<M> initial = random_state<M>(rng);
+  double drift = 0.0;
+  simulate(ReducedSystem<M>(p), initial, SimulateOptions(Integrator::RK4, 1e-3, 10.0),
+           [&](const State<M>& s) {
+             drift = std::max(drift, std::abs(s.q.template segment<4>(3).norm() - 1.0));
+           });
+  record("quaternion_norm_drift", drift);
+  EXPECT_LT(drift, 1e-12);
+  std::printf("%s (quaternion base): largest | |quaternion| - 1 | over 10 s of RK4: %.2g\n",
+              M::name, drift);
+}
+
+}  // namespace
+}  // namespace gencoord
