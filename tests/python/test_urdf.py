@@ -468,6 +468,20 @@ class UrdfGenerateTest(unittest.TestCase):
         self.assertEqual(result.returncode, 1, describe(result))
         self.assertRegex(result.stderr, r"massless_base\.urdf.*error: .*redundant")
 
+    def test_what_is_not_read_is_listed_once(self):
+        from gencoord.generate.load import load_model
+        path = self.folder / "shipped.urdf"
+        path.write_text(robot(link("base"), link("arm"),
+                              joint("hinge", "base", "arm",
+                                    extra='\n  <dynamics damping="0.1" friction="0.3"/>'),
+                              '<transmission name="t"/>', '<gazebo/>', '<gazebo/>'),
+                        encoding="utf-8")
+        model, _, _ = load_model(str(path))
+        self.assertEqual(model.ignored, [
+            "<dynamics friction> of 1 joint(s) (hinge): joint friction is not modelled",
+            "1 <transmission> element(s): actuator transmissions",
+            "2 <gazebo> element(s): Gazebo extensions"])
+
     def test_a_model_file_keeps_the_atlas_of_euler_charts(self):
         from gencoord.generate.load import load_model
         (self.folder / "floater.urdf").write_text(FLOATING, encoding="utf-8")

@@ -85,6 +85,8 @@ class Model(GeneralizedSpeeds):
         self.torques: list[BodyTorque] = []
         # a joint tree's links (joints.py), parents first: the rigid-body recursions walk it
         self.links: list = []
+        # what a loaded description (URDF) holds that the model leaves out, one line each
+        self.ignored: list[str] = []
         self.options: dict[str, int | float | str] = {}
         self.requested_options = dict(REQUESTED_OPTIONS.get() if options is None else options)
         # an atlas: this model is the first chart; add_chart() appends the others

@@ -56,6 +56,8 @@ def describe(loaded: LoadedModel) -> list[str]:
     lines.append(_row("forces", ", ".join(f.label() for f in forces) or "none"))
     lines.append(_row("constraints", ", ".join(c.label() for c in model.constraints)
                       or "none (the cross-check's maximal model has none to enforce)"))
+    for k, line in enumerate(model.ignored):
+        lines.append(_row("not read" if k == 0 else "", line))
     if model.charts:
         names = [model.chart or "", *(c.chart or "" for c in model.charts)]
         lines.append(_row("charts", ", ".join(names)))

@@ -70,6 +70,7 @@ class RobotDescription:
     joints: dict[str, JointDescription]  # by the child link's name
     root: str
     comments: list[str]
+    ignored: list[str] = field(default_factory=list)  # what the file holds that is not read
 
     def order(self) -> list[str]:
         """The links depth first from the root, children in the file's order: a leg's joints
@@ -281,4 +282,29 @@ def read_urdf(path: str) -> RobotDescription:
                             "its parent",
                             elements[joint.name], f"joint '{joint.name}'")
     return RobotDescription(root.get("name") or "robot", path, links, by_child, root_link,
-                            [textwrap.dedent(c.strip("\n")).strip() for c in xml.leading_comments])
+                            [textwrap.dedent(c.strip("\n")).strip() for c in xml.leading_comments],
+                            _ignored(root))
+
+
+# elements a URDF may hold that the dynamics does not read, and what each is
+_NOT_READ = {"transmission": "actuator transmissions", "gazebo": "Gazebo extensions",
+             "material": "materials", "safety_controller": "safety controllers",
+             "calibration": "joint calibrations"}
+
+
+def _ignored(root) -> list[str]:
+    """One line per kind of element the model leaves out: joint friction, and the elements
+    of _NOT_READ, each with its count."""
+    lines = []
+    friction = [joint.get("name") or "?" for joint in root.findall("joint")
+                for dynamics in joint.findall("dynamics")
+                if dynamics.get("friction", "0").strip() not in ("0", "0.0", "")]
+    if friction:
+        shown = ", ".join(friction[:3]) + (", ..." if len(friction) > 3 else "")
+        lines.append(f"<dynamics friction> of {len(friction)} joint(s) ({shown}): joint "
+                     "friction is not modelled")
+    for tag, what in _NOT_READ.items():
+        count = sum(1 for _ in root.iter(tag))
+        if count:
+            lines.append(f"{count} <{tag}> element(s): {what}")
+    return lines

@@ -89,6 +89,7 @@ def add_robot(model: Model, robot: RobotDescription, gravity: bool = True,
     """Adds a read URDF's links to `model` (see load_urdf); `stamp` makes the declared items'
     lines the URDF's (when the model has no file of its own)."""
     links = UrdfTree(robot)
+    model.ignored.extend(robot.ignored)
     for name in robot.order():
         joint = robot.joints.get(name)
         line = robot.links[name].line if joint is None else joint.line
