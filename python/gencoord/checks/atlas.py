@@ -62,6 +62,10 @@ def check_atlas(model: Model) -> None:
         if not _CHART_NAME.match(chart.chart):
             raise ModelError("chart names are lower-case letters, digits and underscores "
                              "(they name C++ types and files)", item=label, line=chart.line)
+        if chart.has_generalized_speeds:
+            raise ModelError("an atlas's charts cannot have free or ball joints: their unit "
+                             "quaternions have no singular set, so one chart is enough",
+                             item=label, line=chart.line)
         if chart.generalized_forces:
             raise ModelError("an atlas cannot have forces acting directly on q (generalized "
                              "forces, joint springs): they depend on one chart's coordinates; "

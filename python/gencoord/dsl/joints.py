@@ -136,6 +136,8 @@ def add_link(model, name: str, parent: Link | None, joint: Joint, mass=None, ine
     joint_name = _unused(model, identifier(joint_label), "_q")
     q = None
     if isinstance(joint, _QuaternionJoint):
+        if model.dim != 3:
+            raise ModelError(f"a {joint.kind} joint needs a 3D model: Model(dim=3)", item=label)
         coordinates, speeds, local = _quaternion_joint(model, identifier(name), joint, label)
         if isinstance(joint, Free):
             joint_frame = parent_frame  # a free joint's origin is the initial pose

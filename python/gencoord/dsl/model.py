@@ -369,6 +369,10 @@ class Model(GeneralizedSpeeds):
     # --- helpers -------------------------------------------------------------------------
     def _coordinate_of(self, symbol: sp.Symbol, where: str, line: int | None) -> Coordinate:
         for c in self.coordinates:
+            if c.symbol == symbol and not c.has_speed:
+                raise ModelError(f"{symbol} belongs to a free or ball joint, whose rate is no "
+                                 "speed; act on its link with model.torque(...) and point "
+                                 "forces", item=where, line=line)
             if c.symbol == symbol:
                 return c
         raise ModelError(f"{symbol} is not a declared coordinate", item=where, line=line)

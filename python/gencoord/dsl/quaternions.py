@@ -5,8 +5,10 @@ for an angular velocity given in the rotated (body) axes.
     R(q) = I + 2 w [u]x + 2 [u]x^2,  u = (x, y, z)      (orthogonal when |q| = 1)
     q' = 1/2 q (x) (0, omega)
 
-R is written in the form that is exact on the unit sphere and polynomial off it; the runtime
-divides q by its norm after each step, so the kernels only ever see unit quaternions.
+R is written in the form that is exact on the unit sphere and polynomial off it. The runtime
+divides q by its norm after each step; within a step (Runge-Kutta stages, Newton iterates)
+the kernels see quaternions a little off the sphere, where R and G are smooth, and the exact
+flow keeps |q| constant, so every method keeps its order.
 """
 
 from __future__ import annotations

@@ -111,9 +111,11 @@ def _sweep_command(subparsers) -> None:
 
 
 def _model_command(subparsers, name: str, help_text: str, epilog: str):
+    # no abbreviations: the program's own options pass through (simulate's --v is not
+    # --verbose)
     parser = subparsers.add_parser(name, help=help_text,
                                    description=help_text + ".\n\n" + _TRUST,
-                                   epilog=epilog,
+                                   epilog=epilog, allow_abbrev=False,
                                    formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("model", help="the model file (any path)")
     parser.add_argument("--set", dest="settings", action="append", default=[],
