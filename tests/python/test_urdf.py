@@ -482,6 +482,31 @@ class UrdfGenerateTest(unittest.TestCase):
             "1 <transmission> element(s): actuator transmissions",
             "2 <gazebo> element(s): Gazebo extensions"])
 
+    def test_a_point_mass_on_a_fixed_joint_joins_its_parent(self):
+        point = ('<link name="imu"><inertial><origin xyz="0 0 0.5"/><mass value="2"/>'
+                 '<inertia ixx="0" iyy="0" izz="0"/></inertial></link>')
+        weld = ('<joint name="imu_weld" type="fixed"><origin xyz="0.5 0 0"/>'
+                '<parent link="arm"/><child link="imu"/></joint>')
+        path = self.folder / "point_mass.urdf"
+        path.write_text(robot(link("base"), link("arm"), point, joint("hinge", "base", "arm"),
+                              weld), encoding="utf-8")
+        robot_description = read_urdf(str(path))
+        self.assertIsNone(robot_description.links["imu"].inertial)
+        arm = robot_description.links["arm"].inertial
+        # 1 kg at the arm's origin and 2 kg at (0.5, 0, 0.5): the centre at a third of the way
+        self.assertAlmostEqual(float(arm.mass), 3.0)
+        for value, expected in zip(arm.origin.xyz, [1 / 3, 0, 1 / 3]):
+            self.assertAlmostEqual(float(value), expected, places=15)
+        # about the new centre: 0.1 + 1 kg and 2 kg at their offsets (parallel axes)
+        offset_arm, offset_point = [-1 / 3, 0, -1 / 3], [1 / 6, 0, 1 / 6]
+        expected_iyy = 0.1 + 1 * (offset_arm[0] ** 2 + offset_arm[2] ** 2) + \
+            2 * (offset_point[0] ** 2 + offset_point[2] ** 2)
+        self.assertAlmostEqual(float(arm.inertia[1, 1]), expected_iyy, places=14)
+        path.write_text(robot(link("base"), point, joint("hinge", "base", "imu")),
+                        encoding="utf-8")
+        with self.assertRaisesRegex(ModelError, "link 'imu': a point mass .* on a moving joint"):
+            read_urdf(str(path))
+
     def test_a_model_file_keeps_the_atlas_of_euler_charts(self):
         from gencoord.generate.load import load_model
         (self.folder / "floater.urdf").write_text(FLOATING, encoding="utf-8")

@@ -18,6 +18,7 @@ from gencoord.dsl.bodies import inertia_problem
 from gencoord.errors import ModelError
 from gencoord.dsl.joints import (Continuous, Fixed, Free, Joint, Limits, Origin, Prismatic,
                                  Revolute)
+from gencoord.urdf.point_masses import fold_point_masses
 from gencoord.urdf.xml_lines import XmlFile
 
 JOINT_TYPES = {"revolute": Revolute, "continuous": Continuous, "prismatic": Prismatic,
@@ -96,7 +97,10 @@ def _origin(xml: XmlFile, parent: ET.Element, item: str) -> Origin:
 
 def _check_inertia(xml: XmlFile, element: ET.Element, mass: float, matrix: sp.Matrix,
                    item: str) -> None:
-    """Refuses an inertia tensor no rigid body has (bodies.inertia_problem)."""
+    """Refuses an inertia tensor no rigid body has (bodies.inertia_problem); a zero one is a
+    point mass (point_masses.py)."""
+    if all(sp.sympify(value).is_zero for value in matrix):
+        return
     problem = inertia_problem(sp.Float(mass), matrix)
     if problem:
         raise xml.error(problem, element, item)
@@ -281,9 +285,11 @@ def read_urdf(path: str) -> RobotDescription:
                             f"but its parent '{joint.parent}' is not the root; make the root "
                             "its parent",
                             elements[joint.name], f"joint '{joint.name}'")
-    return RobotDescription(root.get("name") or "robot", path, links, by_child, root_link,
-                            [textwrap.dedent(c.strip("\n")).strip() for c in xml.leading_comments],
-                            _ignored(root))
+    robot = RobotDescription(root.get("name") or "robot", path, links, by_child, root_link,
+                             [textwrap.dedent(c.strip("\n")).strip()
+                              for c in xml.leading_comments], _ignored(root))
+    fold_point_masses(robot, Inertial)
+    return robot
 
 
 # elements a URDF may hold that the dynamics does not read, and what each is
