@@ -17,12 +17,15 @@
 #include "gencoord/gencoord.hpp"
 #include "generated/floating_leg.hpp"
 #include "generated/floating_leg_yzx.hpp"
+#include "kernel_comparison.hpp"
 
 namespace gencoord {
 namespace {
 
 using robot_testing::euler_chart_of;
 using robot_testing::FreeBaseReference;
+using robot_testing::record;
+using robot_testing::relative;
 
 const char* const kUrdf = GENCOORD_ROOT "/tests/robots/floating_leg.urdf";
 // the fixed-base quadruped's bounds (mujoco_reference_test.cc says why they are not 1e-9):
@@ -32,12 +35,6 @@ constexpr double kKernels = 1e-8, kSolved = 1e-6;
 // the middle angle (q[4]: pitch or attitude) stays this far from pi/2, where its chart is
 // singular (gimbal lock)
 constexpr double kMiddleAngleLimit = 1.2;
-
-/// |a - b| relative to the larger of the two and 1.
-template <class A, class B>
-double relative(const A& a, const B& b) {
-  return (a - b).norm() / std::max(1.0, std::max(a.norm(), b.norm()));
-}
 
 /// The base anywhere within 1 m of the origin moving at up to 2 m/s, the outer and inner
 /// angles in (-pi, pi), the middle one in (-1.2, 1.2), the joints in (-pi, pi), angle rates in
@@ -51,12 +48,6 @@ State<M> random_state(std::mt19937& rng) {
     s.v[i] = 2.0 * unit(rng);
   }
   return s;
-}
-
-void record(const char* key, double value) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.2g", value);
-  ::testing::Test::RecordProperty(key, text);
 }
 
 /// The floating leg in one Euler chart.
@@ -108,29 +99,20 @@ TYPED_TEST(FreeBaseMujoco, KernelsMatchAtRandomStates) {
   FreeBaseReference<M> mujoco(kUrdf);
   const typename M::Params p;
   std::mt19937 rng(20261123);
-  double worst_mass = 0, worst_bias = 0, worst_qdd = 0, worst_rne = 0;
+  robot_testing::WorstDifferences worst;
   for (int k = 0; k < 100; ++k) {
     const State<M> s = random_state<M>(rng);
     mujoco.forward(s.q, s.v);
-    worst_mass = std::max(worst_mass, relative(M::mass_matrix(s.q, s.t, p), mujoco.mass_matrix()));
-    worst_bias = std::max(worst_bias, relative(M::forces(s.q, s.v, s.t, p), -mujoco.bias()));
+    worst.mass_matrix =
+        std::max(worst.mass_matrix, relative(M::mass_matrix(s.q, s.t, p), mujoco.mass_matrix()));
+    worst.bias = std::max(worst.bias, relative(M::forces(s.q, s.v, s.t, p), -mujoco.bias()));
     const QVec qdd = M::qddot(s.q, s.v, s.t, p);
-    worst_qdd = std::max(worst_qdd, relative(mujoco.qacc_from(qdd), mujoco.qacc()));
-    worst_rne = std::max(worst_rne, relative(M::inverse_dynamics(s.q, s.v, qdd, s.t, p),
-                                             mujoco.inverse_dynamics(qdd)));
+    worst.qddot = std::max(worst.qddot, relative(mujoco.qacc_from(qdd), mujoco.qacc()));
+    worst.inverse_dynamics = std::max(
+        worst.inverse_dynamics,
+        relative(M::inverse_dynamics(s.q, s.v, qdd, s.t, p), mujoco.inverse_dynamics(qdd)));
   }
-  record("mass_matrix", worst_mass);
-  record("bias", worst_bias);
-  record("qddot", worst_qdd);
-  record("inverse_dynamics", worst_rne);
-  EXPECT_LT(worst_mass, kKernels);
-  EXPECT_LT(worst_bias, kKernels);
-  EXPECT_LT(worst_qdd, kSolved);
-  EXPECT_LT(worst_rne, kSolved);
-  std::printf(
-      "%s (free base): worst relative difference over 100 states: mass matrix %.2g, bias "
-      "%.2g, qddot %.2g, inverse dynamics %.2g\n",
-      M::name, worst_mass, worst_bias, worst_qdd, worst_rne);
+  worst.check((std::string(M::name) + " (free base)").c_str(), kKernels, kSolved);
 }
 
 TYPED_TEST(FreeBaseMujoco, RK4TrajectoryFollowsMujoco) {

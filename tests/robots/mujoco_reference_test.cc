@@ -11,12 +11,14 @@
 #include "gencoord/gencoord.hpp"
 #include "generated/iiwa14.hpp"
 #include "generated/quadruped.hpp"
+#include "kernel_comparison.hpp"
 #include "mujoco_model.hpp"
 
 namespace gencoord {
 namespace {
 
 using robot_testing::MujocoReference;
+using robot_testing::relative;
 
 template <class M>
 struct Robot;
@@ -42,12 +44,6 @@ class MujocoReferenceTest : public ::testing::Test {};
 using Robots = ::testing::Types<models::Iiwa14, models::Quadruped>;
 TYPED_TEST_SUITE(MujocoReferenceTest, Robots);
 
-/// |a - b| relative to the larger of the two and 1.
-template <class A, class B>
-double relative(const A& a, const B& b) {
-  return (a - b).norm() / std::max(1.0, std::max(a.norm(), b.norm()));
-}
-
 /// q anywhere in (-pi, pi), v in (-2, 2) rad/s.
 template <class M>
 State<M> random_state(std::mt19937& rng) {
@@ -65,26 +61,21 @@ TYPED_TEST(MujocoReferenceTest, KernelsMatchAtRandomStates) {
   MujocoReference<M> mujoco(Robot<M>::urdf);
   const typename M::Params p;
   std::mt19937 rng(20261123);
-  double worst_mass = 0, worst_bias = 0, worst_qdd = 0, worst_rne = 0;
+  robot_testing::WorstDifferences worst;
   for (int k = 0; k < 100; ++k) {
     const State<M> s = random_state<M>(rng);
     mujoco.forward(s.q, s.v);
-    worst_mass = std::max(worst_mass, relative(M::mass_matrix(s.q, s.t, p), mujoco.mass_matrix()));
+    worst.mass_matrix =
+        std::max(worst.mass_matrix, relative(M::mass_matrix(s.q, s.t, p), mujoco.mass_matrix()));
     const auto f = M::forces(s.q, s.v, s.t, p);
-    worst_bias = std::max(worst_bias, relative(f, -mujoco.bias()));
+    worst.bias = std::max(worst.bias, relative(f, -mujoco.bias()));
     const auto qdd = M::qddot(s.q, s.v, s.t, p);
-    worst_qdd = std::max(worst_qdd, relative(qdd, mujoco.qacc()));
-    worst_rne = std::max(worst_rne, relative(M::inverse_dynamics(s.q, s.v, qdd, s.t, p),
-                                             mujoco.inverse_dynamics(qdd)));
+    worst.qddot = std::max(worst.qddot, relative(qdd, mujoco.qacc()));
+    worst.inverse_dynamics = std::max(
+        worst.inverse_dynamics,
+        relative(M::inverse_dynamics(s.q, s.v, qdd, s.t, p), mujoco.inverse_dynamics(qdd)));
   }
-  EXPECT_LT(worst_mass, Robot<M>::kernels);
-  EXPECT_LT(worst_bias, Robot<M>::kernels);
-  EXPECT_LT(worst_qdd, Robot<M>::solved);
-  EXPECT_LT(worst_rne, Robot<M>::solved);
-  std::printf(
-      "%s: worst relative difference over 100 states: mass matrix %.2g, bias %.2g, "
-      "qddot %.2g, inverse dynamics %.2g\n",
-      M::name, worst_mass, worst_bias, worst_qdd, worst_rne);
+  worst.check(M::name, Robot<M>::kernels, Robot<M>::solved);
 }
 
 TYPED_TEST(MujocoReferenceTest, RK4TrajectoryFollowsMujoco) {

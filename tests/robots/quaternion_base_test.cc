@@ -18,12 +18,15 @@
 #include "generated/floating_quadruped.hpp"
 #include "generated/floating_quadruped_diagonal.hpp"
 #include "generated/shipped_leg.hpp"
+#include "kernel_comparison.hpp"
 #include "quaternion_base.hpp"
 
 namespace gencoord {
 namespace {
 
 using robot_testing::QuaternionBaseReference;
+using robot_testing::record;
+using robot_testing::relative;
 
 /// Each robot's URDF and bounds: `kernels` for the mass matrix and the bias forces, `solved`
 /// for the speeds' rates, the inverse dynamics and the trajectory (mujoco_reference_test.cc
@@ -49,11 +52,6 @@ struct Robot<models::ShippedLeg> {
   static constexpr double kernels = 1e-11, solved = 1e-9;
 };
 
-template <class A, class B>
-double relative(const A& a, const B& b) {
-  return (a - b).norm() / std::max(1.0, std::max(a.norm(), b.norm()));
-}
-
 /// The base within 1 m of the origin at up to 2 m/s in any orientation, turning at up to
 /// 2 rad/s; the joints in (-pi, pi) at up to 2 rad/s.
 template <class M>
@@ -64,12 +62,6 @@ State<M> random_state(std::mt19937& rng) {
   s.q.template segment<4>(3).normalize();
   for (int i = 0; i < M::nv; ++i) s.v[i] = 2.0 * unit(rng);
   return s;
-}
-
-void record(const char* key, double value) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.2g", value);
-  ::testing::Test::RecordProperty(key, text);
 }
 
 template <class M>
@@ -84,34 +76,25 @@ TYPED_TEST(QuaternionBaseMujoco, KernelsMatchAtRandomStates) {
   QuaternionBaseReference<M> mujoco(Robot<M>::urdf);
   const typename M::Params p;
   std::mt19937 rng(20261127);
-  double worst_mass = 0, worst_bias = 0, worst_acceleration = 0, worst_rne = 0;
+  robot_testing::WorstDifferences worst;
   for (int k = 0; k < 100; ++k) {
     const State<M> s = random_state<M>(rng);
     mujoco.forward(s.q, s.v);
-    worst_mass = std::max(worst_mass, relative(M::mass_matrix(s.q, s.t, p), mujoco.mass_matrix()));
+    worst.mass_matrix =
+        std::max(worst.mass_matrix, relative(M::mass_matrix(s.q, s.t, p), mujoco.mass_matrix()));
     // Ft + Fi is what the speeds' rates are at zero force: -(M v' + bias) = 0 at v' = 0
     const auto zero = M::template VVector<double>::Zero().eval();
-    worst_bias =
-        std::max(worst_bias, relative(M::forces(s.q, s.v, s.t, p), -mujoco.inverse_dynamics(zero)));
+    worst.bias =
+        std::max(worst.bias, relative(M::forces(s.q, s.v, s.t, p), -mujoco.inverse_dynamics(zero)));
     mujoco.forward(s.q, s.v);
     const auto vdot = M::qddot(s.q, s.v, s.t, p);
-    worst_acceleration =
-        std::max(worst_acceleration, relative(mujoco.qacc_from(vdot), mujoco.qacc()));
-    worst_rne = std::max(worst_rne, relative(M::inverse_dynamics(s.q, s.v, vdot, s.t, p),
-                                             mujoco.inverse_dynamics(vdot)));
+    worst.qddot = std::max(worst.qddot, relative(mujoco.qacc_from(vdot), mujoco.qacc()));
+    worst.inverse_dynamics = std::max(
+        worst.inverse_dynamics,
+        relative(M::inverse_dynamics(s.q, s.v, vdot, s.t, p), mujoco.inverse_dynamics(vdot)));
   }
-  record("mass_matrix", worst_mass);
-  record("bias", worst_bias);
-  record("qddot", worst_acceleration);
-  record("inverse_dynamics", worst_rne);
-  EXPECT_LT(worst_mass, Robot<M>::kernels);
-  EXPECT_LT(worst_bias, Robot<M>::kernels);
-  EXPECT_LT(worst_acceleration, Robot<M>::solved);
-  EXPECT_LT(worst_rne, Robot<M>::solved);
-  std::printf(
-      "%s (quaternion base): worst relative difference over 100 states: mass matrix %.2g, "
-      "bias %.2g, qddot %.2g, inverse dynamics %.2g\n",
-      M::name, worst_mass, worst_bias, worst_acceleration, worst_rne);
+  worst.check((std::string(M::name) + " (quaternion base)").c_str(), Robot<M>::kernels,
+              Robot<M>::solved);
 }
 
 TYPED_TEST(QuaternionBaseMujoco, RK4TrajectoryFollowsMujoco) {
