@@ -177,13 +177,9 @@ int run(const Options& o) {
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const long long steps = gencoord::step_count(o.dt, o.duration);
 
-  if constexpr (nv != M::nq) {
-    std::printf("model       %s (nq = %d, nv = %d, %d particles in %dD)\n", M::name, M::nq, nv,
-                M::num_particles, M::dim);
-  } else {
-    std::printf("model       %s (nq = %d, %d particles in %dD)\n", M::name, M::nq, M::num_particles,
-                M::dim);
-  }
+  const std::string speeds = nv != M::nq ? ", nv = " + std::to_string(nv) : "";
+  std::printf("model       %s (nq = %d%s, %d particles in %dD)\n", M::name, M::nq, speeds.c_str(),
+              M::num_particles, M::dim);
   std::printf("integrator  %s, dt = %g s, %lld steps to t = %g s\n",
               gencoord::to_string(integrator), o.dt, steps, end.t);
   std::printf("wall time   %.3f ms (%.1f ns per step, CSV output included)\n", seconds * 1e3,

@@ -82,13 +82,13 @@ TYPED_TEST(QuaternionBaseMujoco, KernelsMatchAtRandomStates) {
     mujoco.forward(s.q, s.v);
     worst.mass_matrix =
         std::max(worst.mass_matrix, relative(M::mass_matrix(s.q, s.t, p), mujoco.mass_matrix()));
-    // Ft + Fi is what the speeds' rates are at zero force: -(M v' + bias) = 0 at v' = 0
+    // MuJoCo's qacc first: inverse_dynamics() overwrites it
+    const auto vdot = M::qddot(s.q, s.v, s.t, p);
+    worst.qddot = std::max(worst.qddot, relative(mujoco.qacc_from(vdot), mujoco.qacc()));
+    // Ft + Fi is the force that holds v' at zero, with the sign turned: -r(q, v, 0)
     const auto zero = M::template VVector<double>::Zero().eval();
     worst.bias =
         std::max(worst.bias, relative(M::forces(s.q, s.v, s.t, p), -mujoco.inverse_dynamics(zero)));
-    mujoco.forward(s.q, s.v);
-    const auto vdot = M::qddot(s.q, s.v, s.t, p);
-    worst.qddot = std::max(worst.qddot, relative(mujoco.qacc_from(vdot), mujoco.qacc()));
     worst.inverse_dynamics = std::max(
         worst.inverse_dynamics,
         relative(M::inverse_dynamics(s.q, s.v, vdot, s.t, p), mujoco.inverse_dynamics(vdot)));

@@ -23,8 +23,7 @@ def _check_name(name: str, label: str, line: int | None) -> None:
 
 def _check_names(model: Model) -> None:
     seen: dict[str, str] = {}
-    symbols = [*model.coordinates, *[s for s in model.speeds if s.symbol not in
-                                     {c.rate for c in model.coordinates}], *model.parameters]
+    symbols = [*model.coordinates, *model.joint_speeds, *model.parameters]
     body_points = [point for body in model.bodies for point in body.points]
     for item in [*symbols, *model.bodies, *model.particles, *model.fixed_points, *body_points]:
         _check_name(item.name, item.label(), item.line)

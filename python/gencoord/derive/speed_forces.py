@@ -31,8 +31,6 @@ def generalized_force_vector(model: Model, q: list[sp.Symbol]) -> sp.Matrix:
     """Q: the forces acting directly on v (generalized forces, joint springs, body torques);
     a body torque's virtual work Q_q . dq per unit speed is G^T Q_q."""
     torques = torque_generalized_forces(model, q)
-    if model.has_generalized_speeds and model.torques:
+    if model.has_generalized_speeds:
         torques = rate_matrix(model).T * torques
-    elif model.has_generalized_speeds:
-        torques = sp.zeros(model.nv, 1)
     return torques + coordinate_forces(model)

@@ -39,6 +39,11 @@ class GeneralizedSpeeds:
                       item.initial_rate, line=item.line)
                 for item in self._speed_order]
 
+    @property
+    def joint_speeds(self) -> list[Speed]:
+        """The speeds that are no coordinate's rate: free and ball joints' twists."""
+        return [item for item in self._speed_order if isinstance(item, Speed)]
+
     def coordinate_rates(self) -> list[sp.Expr]:
         """q' = G(q) v, one expression per coordinate."""
         return [self.rates.get(c.symbol, c.rate) for c in self.coordinates]

@@ -41,8 +41,7 @@ def describe(loaded: LoadedModel) -> list[str]:
         lines.append(_row("coordinates" if k == 0 else "",
                           f"{c.name}: {c.description} (initial {c.initial:g}"
                           + (f", rate {c.initial_rate:g})" if c.has_speed else ")")))
-    speeds = [s for s in model.speeds if s.symbol not in {c.rate for c in model.coordinates}]
-    for k, speed in enumerate(speeds):  # a free or ball joint's: dq/dt = G(q) v
+    for k, speed in enumerate(model.joint_speeds):  # a free or ball joint's: dq/dt = G(q) v
         lines.append(_row("speeds" if k == 0 else "",
                           f"{speed.name}: {speed.description} (initial {speed.initial:g})"))
     for k, p in enumerate(model.parameters):

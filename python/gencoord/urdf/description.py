@@ -18,7 +18,7 @@ from gencoord.dsl.bodies import inertia_problem
 from gencoord.errors import ModelError
 from gencoord.dsl.joints import (Continuous, Fixed, Free, Joint, Limits, Origin, Prismatic,
                                  Revolute)
-from gencoord.urdf.point_masses import fold_point_masses
+from gencoord.urdf.point_masses import fold_point_masses, is_zero_tensor
 from gencoord.urdf.xml_lines import XmlFile
 
 JOINT_TYPES = {"revolute": Revolute, "continuous": Continuous, "prismatic": Prismatic,
@@ -99,7 +99,7 @@ def _check_inertia(xml: XmlFile, element: ET.Element, mass: float, matrix: sp.Ma
                    item: str) -> None:
     """Refuses an inertia tensor no rigid body has (bodies.inertia_problem); a zero one is a
     point mass (point_masses.py)."""
-    if all(sp.sympify(value).is_zero for value in matrix):
+    if is_zero_tensor(matrix):
         return
     problem = inertia_problem(sp.Float(mass), matrix)
     if problem:
@@ -288,7 +288,7 @@ def read_urdf(path: str) -> RobotDescription:
     robot = RobotDescription(root.get("name") or "robot", path, links, by_child, root_link,
                              [textwrap.dedent(c.strip("\n")).strip()
                               for c in xml.leading_comments], _ignored(root))
-    fold_point_masses(robot, Inertial)
+    fold_point_masses(robot)
     return robot
 
 

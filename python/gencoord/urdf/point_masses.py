@@ -8,6 +8,8 @@ On a moving joint a point mass is refused: a link that turns needs a tensor.
 
 from __future__ import annotations
 
+import dataclasses
+
 import sympy as sp
 
 from gencoord.dsl.frames import rpy
@@ -15,8 +17,9 @@ from gencoord.dsl.joint_types import Origin
 from gencoord.errors import ModelError
 
 
-def is_point_mass(inertial) -> bool:
-    return inertial is not None and all(sp.sympify(value).is_zero for value in inertial.inertia)
+def is_zero_tensor(inertia: sp.Matrix) -> bool:
+    """A point mass's inertia: every entry zero."""
+    return all(sp.sympify(value).is_zero for value in inertia)
 
 
 def _numbers(matrix: sp.Matrix) -> sp.Matrix:
@@ -35,13 +38,13 @@ def _shifted(mass, inertia: sp.Matrix, offset: sp.Matrix) -> sp.Matrix:
     return inertia + mass * (offset.dot(offset) * sp.eye(3) - offset * offset.T)
 
 
-def fold_point_masses(robot, inertial_type) -> None:
+def fold_point_masses(robot) -> None:
     """Adds every point-mass link on a fixed joint to its parent's inertial (leaves first, so
     a chain of them folds up to the first link with a tensor), leaving it massless."""
     parents = robot.joints  # by the child link's name
     for name in reversed(robot.order()):
         link = robot.links[name]
-        if not is_point_mass(link.inertial):
+        if link.inertial is None or not is_zero_tensor(link.inertial.inertia):
             continue
         joint = parents.get(name)
         if joint is None or joint.kind != "fixed":
@@ -54,14 +57,15 @@ def fold_point_masses(robot, inertial_type) -> None:
         position = _numbers(frame.point(list(link.inertial.origin.xyz)))
         mass = float(link.inertial.mass)
         if parent.inertial is None:
-            parent.inertial = inertial_type(mass, sp.zeros(3, 3),
-                                            Origin(xyz=[float(v) for v in position]))
+            parent.inertial = dataclasses.replace(
+                link.inertial, origin=Origin(xyz=[float(v) for v in position]))
         else:
             total = float(parent.inertial.mass) + mass
             centre, inertia = _in_link_axes(parent.inertial)
             new_centre = (float(parent.inertial.mass) * centre + mass * position) / total
             inertia = (_shifted(float(parent.inertial.mass), inertia, centre - new_centre)
                        + _shifted(mass, sp.zeros(3, 3), position - new_centre))
-            parent.inertial = inertial_type(total, inertia,
-                                            Origin(xyz=[float(v) for v in new_centre]))
+            parent.inertial = dataclasses.replace(
+                parent.inertial, mass=total, inertia=inertia,
+                origin=Origin(xyz=[float(v) for v in new_centre]))
         link.inertial = None

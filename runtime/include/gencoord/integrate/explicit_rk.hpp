@@ -100,11 +100,7 @@ typename S::State symplectic_euler_step(const S& system, const typename S::State
   typename S::State out = s0;
   out.t = s.t + h;
   out.v = s0.v + h * system.acceleration(s0);
-  if constexpr (has_coordinate_rate_v<S>) {
-    out.q = s0.q + h * coordinate_rate(system, out);  // out.q is still q0: G(q0) v1
-  } else {
-    out.q = s0.q + h * out.v;
-  }
+  out.q = s0.q + h * coordinate_rate(system, out);  // out.q is still q0: G(q0) v1
   system.impose(&out);
   return out;
 }

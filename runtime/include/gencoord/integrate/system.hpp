@@ -86,14 +86,15 @@ struct has_normalize<S, std::void_t<decltype(std::declval<const S&>().normalize(
 template <class S>
 inline constexpr bool has_coordinate_rate_v = detail::has_coordinate_rate<S>::value;
 
-/// q' at s: the system's coordinate_rate(s) where it has one, else s.v.
+/// q' at s: the system's coordinate_rate(s) where it has one, else s.v itself (a reference:
+/// the stages of a system whose v is q' copy nothing more than before).
 template <class S>
-auto coordinate_rate(const S& system, const typename S::State& s) {
+decltype(auto) coordinate_rate(const S& system, const typename S::State& s) {
   if constexpr (has_coordinate_rate_v<S>) {
     return system.coordinate_rate(s);
   } else {
     (void)system;
-    return s.v;
+    return (s.v);
   }
 }
 

@@ -5,7 +5,6 @@
 // normalize (its unit quaternions).
 #pragma once
 
-#include <type_traits>
 #include <utility>
 
 #include <Eigen/Core>
@@ -45,7 +44,7 @@ class ReducedSystem {
       VQMat<M> a_D_q;
       acceleration_and_jacobians<M>(p_, s.q, s.v, s.t, source, &out->force, &a_D_q,
                                     &out->force_D_v);
-      out->force_D_q = a_D_q * rate_matrix(s);
+      out->force_D_q = a_D_q * rate_matrix_transposed(s).transpose();
     } else {
       acceleration_and_jacobians<M>(p_, s.q, s.v, s.t, source, &out->force, &out->force_D_q,
                                     &out->force_D_v);
@@ -73,17 +72,17 @@ class ReducedSystem {
  private:
   // G(q) (nq x nv) at s, column j = coordinate_rates(q, e_j), since q' is linear in v; on the
   // heap past Eigen's fixed-size limit
-  auto rate_matrix(const State& s) const {
-    constexpr int nq = M::nq, nv = nv_of_v<M>;
-    std::conditional_t<(nq * nv <= 16384), Eigen::Matrix<double, nq, nv>, Eigen::MatrixXd> G;
-    G.resize(nq, nv);
+  // G^T, row j the rates of unit speed j (coordinate_rates is linear in v); in the model's
+  // own nv x nq type, which is a HeapMatrix past Eigen's stack limit
+  VQMat<M> rate_matrix_transposed(const State& s) const {
+    VQMat<M> rates_of;
     VVec<M> e = VVec<M>::Zero();
-    for (int j = 0; j < nv; ++j) {
+    for (int j = 0; j < nv_of_v<M>; ++j) {
       e[j] = 1.0;
-      G.col(j) = M::coordinate_rates(s.q, e, s.t, p_);
+      rates_of.row(j) = M::coordinate_rates(s.q, e, s.t, p_).transpose();
       e[j] = 0.0;
     }
-    return G;
+    return rates_of;
   }
 
   ParamsOf<M> p_;
