@@ -8,7 +8,10 @@
 // gencoord_add_driver()); `gencoord simulate MODEL.py` builds and runs it for any model file.
 // Prints a short summary: steps, wall time, energy drift, final state. --v takes nv values:
 // the generalized speeds of a model that has them (free and ball joints), whose unit
-// quaternions in --q are normalized before the run.
+// quaternions in --q are normalized before the run. A model with kinematic constraints starts
+// from --q and --v projected onto its constraints, and the summary gives the largest
+// constraint residuals of the run.
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -89,12 +92,12 @@ Options parse(int argc, char** argv) {
   return o;
 }
 
-// A model with generalized speeds: its unit quaternions in the initial q, normalized (false,
-// with the error printed, for one that is zero or not finite). Templates, so that the
-// members of such a model are looked up only for it.
+// The initial state on the model's manifold: unit quaternions normalized, a constrained
+// model's state projected onto its constraints (false, with the error printed, for a
+// quaternion that is zero or not finite). Templates, so that the members of such a model
+// are looked up only for it.
 template <class Model>
-bool normalize_quaternions(const gencoord::ReducedSystem<Model>& system,
-                           gencoord::State<Model>* s) {
+bool put_on_manifold(const gencoord::ReducedSystem<Model>& system, gencoord::State<Model>* s) {
   if constexpr (gencoord::has_generalized_speeds_v<Model>) {
     for (const int start : Model::quaternion_starts) {
       const auto quaternion = s->q.segment(start, 4);
@@ -104,12 +107,35 @@ bool normalize_quaternions(const gencoord::ReducedSystem<Model>& system,
         return false;
       }
     }
-    gencoord::normalize(system, s);
+  }
+  gencoord::normalize(system, s);
+  return true;
+}
+
+// the largest constraint residual at s: |C| and |A v + b| (0 for a model without constraints)
+template <class Model>
+double constraint_residual(const typename Model::Params& p, const gencoord::State<Model>& s) {
+  double worst = 0.0;
+  if constexpr (gencoord::has_kinematic_constraints_v<Model>) {
+    worst = Model::constraint_velocities(s.q, s.v, s.t, p).cwiseAbs().maxCoeff();
+    if constexpr (gencoord::has_holonomic_constraints_v<Model>)
+      worst = std::max(worst, Model::holonomic_constraints(s.q, s.t, p).cwiseAbs().maxCoeff());
   } else {
-    (void)system;
+    (void)p;
     (void)s;
   }
-  return true;
+  return worst;
+}
+
+// the drift of a constrained model's run
+template <class Model>
+void print_constraint_residual(double worst) {
+  if constexpr (gencoord::has_kinematic_constraints_v<Model>) {
+    std::printf("constraints %d, max |C| and |A v + b| over the run = %.3e\n",
+                Model::num_constraints, worst);
+  } else {
+    (void)worst;
+  }
 }
 
 // the final speeds of a model that has them (its q are not its velocities' integrals)
@@ -158,16 +184,18 @@ int run(const Options& o) {
     for (int i = 0; i < nv; ++i) s.v[i] = o.v[i];
   }
   const gencoord::ReducedSystem<M> system(params);
-  if (!normalize_quaternions<M>(system, &s)) return 2;
+  if (!put_on_manifold<M>(system, &s)) return 2;
   const gencoord::Integrator integrator = gencoord::parse_integrator(o.integrator);
 
   const double e0 = M::energy(s.q, s.v, s.t, params);
-  double max_energy_error = 0.0;
+  double max_energy_error = 0.0, max_constraint_residual = 0.0;
   std::unique_ptr<gencoord::TrajectoryCsvWriter<M>> csv;
   if (!o.output.empty()) csv = std::make_unique<gencoord::TrajectoryCsvWriter<M>>(o.output, params);
   auto observer = [&](const State<M>& state) {
     max_energy_error =
         std::max(max_energy_error, std::abs(M::energy(state.q, state.v, state.t, params) - e0));
+    max_constraint_residual =
+        std::max(max_constraint_residual, constraint_residual<M>(params, state));
     if (csv) (*csv)(state);
   };
   const auto start = std::chrono::steady_clock::now();
@@ -186,6 +214,7 @@ int run(const Options& o) {
               seconds * 1e9 / static_cast<double>(steps > 0 ? steps : 1));
   std::printf("energy      E(0) = %.10g J, E(end) = %.10g J, max |E - E(0)| = %.3e J\n", e0,
               M::energy(end.q, end.v, end.t, params), max_energy_error);
+  print_constraint_residual<M>(max_constraint_residual);
   std::printf("final q    ");
   for (int i = 0; i < M::nq; ++i) std::printf(" %s = %.6f", M::coordinate_names[i], end.q[i]);
   std::printf("\n");

@@ -54,13 +54,13 @@ phase "format and lint"
 scripts/check_style.sh
 
 if [ "${GENCOORD_SKIP_SANITIZERS:-0}" != 1 ]; then
-  sanitized_suites="^(runtime|deformable|crosscheck|fuzz|sweep_exchange)$"
+  sanitized_suites="^(runtime|deformable|crosscheck|constrained|fuzz|sweep_exchange)$"
   phase "build: the suites under AddressSanitizer + UndefinedBehaviorSanitizer"
   # -O1: quick to compile, fast enough to run, and what the sanitizers' authors recommend
   configure "${build}-sanitize" -DCMAKE_BUILD_TYPE=Sanitize -DCMAKE_CXX_FLAGS_SANITIZE=-O1 \
             -DGENCOORD_SANITIZE=ON -DGENCOORD_BUILD_TESTS=ON
   targets=$(cmake --build "${build}-sanitize" --target help | grep -oE \
-            'gencoord_(runtime|crosscheck|fuzz|sweep_exchange)_tests|deformable_(tests|demo|drop)' \
+            'gencoord_(runtime|crosscheck|constrained|fuzz|sweep_exchange)_tests|deformable_(tests|demo|drop)' \
             | sort -u)
   # shellcheck disable=SC2086
   cmake --build "${build}-sanitize" -j "$jobs" --target $targets

@@ -35,6 +35,15 @@ const char* describe(DynamicsError::Reason reason) {
              "forces are finite: Mt is numerically singular. The coordinates are probably at "
              "or very near a singularity (J loses rank); choose coordinates or an initial state "
              "that avoid it";
+    case DynamicsError::Reason::kDependentConstraints:
+      return "the kinematic constraints are dependent here (A Mt^-1 A^T is singular: a row of "
+             "the constraint Jacobian A is a combination of the others). The mechanism is at "
+             "a singular configuration of its loops (a four-bar folded flat), or a constraint "
+             "is declared twice; avoid the configuration or remove the redundant constraint";
+    case DynamicsError::Reason::kNonFiniteConstraints:
+      return "the constraint Jacobian A or the bias gamma contains NaN or inf entries. Check "
+             "the parameters and the state for NaN/inf; if this appears during a simulation, "
+             "the solution has diverged: reduce the step size";
   }
   return "unknown failure";
 }

@@ -24,9 +24,11 @@ ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)
 sys.path.insert(0, os.path.join(ROOT, "python"))
 
 from gencoord.dsl.bodies import inertia_problem  # noqa: E402
-from gencoord.derive.dense import derive  # noqa: E402
+from gencoord.derive.dense import Kinematics, derive  # noqa: E402
+from gencoord.derive.kinematic_constraints import derive_kinematic_constraints  # noqa: E402
 from gencoord.generate.load import load_model  # noqa: E402
-from gencoord.derive.maximal import KAPPA, PENALTY_DAMPING, derive_maximal  # noqa: E402
+from gencoord.derive.maximal import (KAPPA, PENALTY_DAMPING, derive_maximal,  # noqa: E402
+                                     has_maximal_model)
 from gencoord.tool.model_list import Variant, variants  # noqa: E402
 
 STATES = 5
@@ -49,8 +51,20 @@ ACCELERATIONS = ["inverse_dynamics", "dr_dq", "dr_dv", "qddot"]
 MAXIMAL = ["maximal_external_forces", "maximal_penalty_forces", "maximal_force_jacobian_x",
            "maximal_force_jacobian_xdot", "maximal_potential_energy", "maximal_penalty_energy",
            "maximal_constraint_violations"]
-OUTPUTS = REDUCED + SUMS + ACCELERATIONS + MAXIMAL
+# the kinematic constraints' kernels (empty for a model without them)
+CONSTRAINTS = ["holonomic_constraints", "holonomic_jacobian", "constraint_jacobian",
+               "constraint_velocities", "constraint_bias"]
+OUTPUTS = REDUCED + SUMS + ACCELERATIONS + MAXIMAL + CONSTRAINTS
 INPUTS = ["q", "v", "qdd", "params", "pos", "vel"]
+
+
+def constraint_outputs(c) -> dict[str, sp.Matrix]:
+    """The ConstraintDerivation's outputs of (q, v, t, params); none without constraints."""
+    if c is None:
+        return {}
+    return {"holonomic_constraints": c.holonomic, "holonomic_jacobian": c.holonomic_jacobian,
+            "constraint_jacobian": c.jacobian, "constraint_velocities": c.velocity,
+            "constraint_bias": c.bias}
 
 
 def outputs(d) -> dict[str, sp.Matrix]:
@@ -92,7 +106,9 @@ def lambdified(arguments: list, exprs: dict, name: str) -> dict:
         extra = set().union(*(sp.sympify(e).free_symbols for e in matrix)) - set(arguments)
         if extra:
             raise SystemExit(f"{name}: {key} depends on unknown symbols {extra}")
-    return {key: sp.lambdify(arguments, list(matrix), modules="mpmath")
+    # through a CSE: the large models' expression trees print and evaluate several times
+    # faster so
+    return {key: sp.lambdify(arguments, list(matrix), modules="mpmath", cse=True)
             for key, matrix in exprs.items()}
 
 
@@ -136,15 +152,38 @@ def sampled_parameters(model, rng: random.Random) -> list[float]:
     raise RuntimeError("no parameters near the defaults make every body physical")
 
 
-def reference_model(name: str, model, seed: int) -> str:
-    d = derive(model)
-    md = derive_maximal(model, symbolic_jacobians=False)
+def maximal_values(md, maximal: dict, values: list[float]) -> dict[str, list]:
+    """The Maximal model's outputs at (pos, vel, t, kappa, damping, params): each kernel's,
+    and its force Jacobians' sparse entries as forward differences."""
     nx = len(md.x)
+    inputs = [mpmath.mpf(x) for x in values]
+
+    def total_forces(*arguments):
+        return [a + b for a, b in zip(maximal["maximal_external_forces"](*arguments),
+                                      maximal["maximal_penalty_forces"](*arguments))]
+
+    results = {key: f(*inputs) for key, f in maximal.items()}
+    total = total_forces(*inputs)
+    for key, pattern, offset in [("maximal_force_jacobian_x", md.force_jacobian_x, 0),
+                                 ("maximal_force_jacobian_xdot", md.force_jacobian_xdot, nx)]:
+        columns = {c: difference(total_forces, inputs, total, offset + c)
+                   for c in sorted({c for _, c in pattern})}
+        results[key] = [columns[c][r] for r, c in pattern]
+    return results
+
+
+def reference_model(name: str, model, seed: int) -> str:
+    kin = Kinematics(model)
+    d = derive(model, kin)
+    constraints = derive_kinematic_constraints(model, kin)
+    # a model without a Maximal struct (generated_speeds, kinematic constraints) gets no
+    # maximal values: its header has nothing to compare them with
+    md = derive_maximal(model, symbolic_jacobians=False) if has_maximal_model(model) else None
     nq = len(d.q)
     arguments = [*d.q, *d.v, d.t, *d.params]
-    functions = lambdified(arguments, outputs(d), name)
+    functions = lambdified(arguments, {**outputs(d), **constraint_outputs(constraints)}, name)
     maximal = lambdified([*md.x, *md.xdot, d.t, KAPPA, PENALTY_DAMPING, *d.params],
-                         maximal_outputs(md), name)
+                         maximal_outputs(md), name) if md else {}
 
     def residual(qdd, *arguments, mass=None):
         """Inverse-dynamics residual r = Mt qdd - Ft - Fi at (q, v, t, params); `mass`: Mt
@@ -154,10 +193,6 @@ def reference_model(name: str, model, seed: int) -> str:
                                        functions["inertial_forces"](*arguments))]
         return [sum(mass[r * nq + c] * qdd[c] for c in range(nq)) - force[r]
                 for r in range(nq)]
-
-    def total_forces(*arguments):
-        return [a + b for a, b in zip(maximal["maximal_external_forces"](*arguments),
-                                      maximal["maximal_penalty_forces"](*arguments))]
 
     rng = random.Random(seed)
     states = []
@@ -171,7 +206,8 @@ def reference_model(name: str, model, seed: int) -> str:
         kappa, damping = rng.uniform(1e2, 1e4), rng.uniform(0.1, 1.0)
         with mpmath.workdps(DIGITS):
             values = [mpmath.mpf(x) for x in [*q, *v, t, *params]]  # the doubles, exactly
-            results = {key: f(*values) for key, f in functions.items()}
+            results = {key: [] for key in CONSTRAINTS}
+            results.update({key: f(*values) for key, f in functions.items()})
             results["forces"] = [a + b for a, b in zip(results["applied_forces"],
                                                        results["inertial_forces"])]
             results["energy"] = [results["kinetic_energy"][0] + results["potential_energy"][0]]
@@ -193,15 +229,10 @@ def reference_model(name: str, model, seed: int) -> str:
             results["qddot"] = list(mpmath.lu_solve(mass, mpmath.matrix(results["forces"])))
             pos = [float(x) + rng.uniform(-0.05, 0.05) for x in results["positions"]]
             vel = [float(x) + rng.uniform(-0.05, 0.05) for x in results["velocities"]]
-            inputs = [mpmath.mpf(x) for x in [*pos, *vel, t, kappa, damping, *params]]
-            results.update({key: f(*inputs) for key, f in maximal.items()})
-            total = total_forces(*inputs)
-            for key, pattern, offset in [("maximal_force_jacobian_x", md.force_jacobian_x, 0),
-                                         ("maximal_force_jacobian_xdot", md.force_jacobian_xdot,
-                                          nx)]:
-                columns = {c: difference(total_forces, inputs, total, offset + c)
-                           for c in sorted({c for _, c in pattern})}
-                results[key] = [columns[c][r] for r, c in pattern]
+            results.update({key: [] for key in MAXIMAL})
+            if md:
+                results.update(maximal_values(md, maximal, [*pos, *vel, t, kappa, damping,
+                                                            *params]))
         fields = [f"/* t */ {number(t)}", f"/* kappa */ {number(kappa)}",
                   f"/* penalty_damping */ {number(damping)}"]
         fields += [f"/* {key} */ {array(value)}" for key, value in

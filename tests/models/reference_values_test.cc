@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// Checks every generated kernel (after CSE and the C++ printer), of the reduced model and of
-// its Maximal model, against reference values evaluated in 40-digit arithmetic from the
-// unoptimized derivation, at random states with randomly perturbed parameters
+// Checks every generated kernel (after CSE and the C++ printer), of the reduced model, of its
+// kinematic constraints and of its Maximal model, against reference values evaluated in 40-digit
+// arithmetic from the unoptimized derivation, at random states with randomly perturbed parameters
 // (reference_values.hpp, written at build time by make_reference_values.py).
 #include <algorithm>
 #include <array>
@@ -16,6 +16,8 @@
 #include <gtest/gtest.h>
 
 #include "all_models.hpp"
+#include "gencoord/maximal/traits.hpp"
+#include "gencoord/model/model_traits.hpp"
 #include "reference_values.hpp"
 
 namespace gencoord::testing {
@@ -98,6 +100,31 @@ class Comparison {
   std::map<std::string, double> worst_;
 };
 
+/// The Maximal model's kernels at one reference state.
+template <class M>
+void check_maximal(const ReferenceState& s, double t, const typename M::Params& p,
+                   Comparison* comparison) {
+  Comparison& expect = *comparison;
+  using X = typename M::Maximal;
+  const auto pos = vector_of<M::nx>(s.pos);
+  const auto vel = vector_of<M::nx>(s.vel);
+  const double kappa = s.kappa, damping = s.penalty_damping;
+  expect("Maximal::external_forces", X::external_forces(pos, vel, t, p), s.maximal_external_forces);
+  expect("Maximal::penalty_forces", X::penalty_forces(pos, vel, t, kappa, damping, p),
+         s.maximal_penalty_forces);
+  expect("Maximal::force_jacobian_x", array_of(X::force_jacobian_x(pos, vel, t, kappa, damping, p)),
+         s.maximal_force_jacobian_x);
+  expect("Maximal::force_jacobian_xdot",
+         array_of(X::force_jacobian_xdot(pos, vel, t, kappa, damping, p)),
+         s.maximal_force_jacobian_xdot);
+  expect.scalar("Maximal::potential_energy", X::potential_energy(pos, t, p),
+                s.maximal_potential_energy);
+  expect.scalar("Maximal::penalty_energy", X::penalty_energy(pos, t, kappa, p),
+                s.maximal_penalty_energy);
+  expect("Maximal::constraint_violations", X::constraint_violations(pos, t, p),
+         s.maximal_constraint_violations);
+}
+
 TYPED_TEST(ReferenceValues, KernelsMatchTheUnoptimizedDerivation) {
   using M = TypeParam;
   const ReferenceModel* reference = find_reference(M::name);
@@ -165,26 +192,17 @@ TYPED_TEST(ReferenceValues, KernelsMatchTheUnoptimizedDerivation) {
     // by entry, so each entry is compared relative to the largest
     expect("qddot", M::qddot(q, v, t, p), s.qddot, 1.0);
 
-    using X = typename M::Maximal;
-    const auto pos = vector_of<M::nx>(s.pos);
-    const auto vel = vector_of<M::nx>(s.vel);
-    const double kappa = s.kappa, damping = s.penalty_damping;
-    expect("Maximal::external_forces", X::external_forces(pos, vel, t, p),
-           s.maximal_external_forces);
-    expect("Maximal::penalty_forces", X::penalty_forces(pos, vel, t, kappa, damping, p),
-           s.maximal_penalty_forces);
-    expect("Maximal::force_jacobian_x",
-           array_of(X::force_jacobian_x(pos, vel, t, kappa, damping, p)),
-           s.maximal_force_jacobian_x);
-    expect("Maximal::force_jacobian_xdot",
-           array_of(X::force_jacobian_xdot(pos, vel, t, kappa, damping, p)),
-           s.maximal_force_jacobian_xdot);
-    expect.scalar("Maximal::potential_energy", X::potential_energy(pos, t, p),
-                  s.maximal_potential_energy);
-    expect.scalar("Maximal::penalty_energy", X::penalty_energy(pos, t, kappa, p),
-                  s.maximal_penalty_energy);
-    expect("Maximal::constraint_violations", X::constraint_violations(pos, t, p),
-           s.maximal_constraint_violations);
+    if constexpr (has_kinematic_constraints_v<M>) {
+      expect("constraint_jacobian", M::constraint_jacobian(q, t, p), s.constraint_jacobian);
+      expect("constraint_velocities", M::constraint_velocities(q, v, t, p),
+             s.constraint_velocities);
+      expect("constraint_bias", M::constraint_bias(q, v, t, p), s.constraint_bias);
+    }
+    if constexpr (has_holonomic_constraints_v<M>) {
+      expect("holonomic_constraints", M::holonomic_constraints(q, t, p), s.holonomic_constraints);
+      expect("holonomic_jacobian", M::holonomic_jacobian(q, t, p), s.holonomic_jacobian);
+    }
+    if constexpr (has_maximal_v<M>) check_maximal<M>(s, t, p, &expect);
   }
   std::cout << "[          ] " << expect.summary() << "\n";
 }

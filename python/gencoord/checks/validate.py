@@ -125,6 +125,7 @@ def _check_expressions(model: Model, defaults: dict) -> None:
                       point.line, "a fixed point may depend only on parameters and t")
     _check_forces(model, symbols)
     _check_constraint_terms(model, symbols)
+    _check_kinematic_constraint_terms(model, symbols)
 
 
 def _check_particles(model: Model, symbols: _Symbols, defaults: dict) -> None:
@@ -191,6 +192,28 @@ def _check_constraint_terms(model: Model, symbols: _Symbols) -> None:
         for what, expr in parts:
             symbols.check(expr, symbols.t | symbols.params, f"{constraint.label()} {what}",
                           constraint.line, "a constraint may depend only on parameters and t")
+
+
+def _check_kinematic_constraint_terms(model: Model, symbols: _Symbols) -> None:
+    """Holonomic constraints: q, t, parameters, points' .x; velocity constraints also the
+    speeds and points' .xdot. Each row's name once."""
+    positions = {s for point in model.points for s in point.x}
+    seen: set[str] = set()
+    for item in model.holonomic_constraints:
+        symbols.check(item.expr, symbols.q | symbols.t | symbols.params | positions,
+                      item.label(), item.line, "a holonomic constraint may use coordinates, "
+                      "t, parameters and points' .x")
+    for row in model.velocity_constraints:
+        symbols.check(row.expr, symbols.q | symbols.rates | symbols.t | symbols.params
+                      | symbols.points, row.label(), row.line, "a velocity constraint may "
+                      "use coordinates, speeds (model.rate(q)), t, parameters and points' .x "
+                      "and .xdot")
+    for constraint in [*model.holonomic_constraints, *model.velocity_constraints]:
+        if constraint.name in seen:
+            raise ModelError(f"the name '{constraint.name}' is already used by another "
+                             "constraint; give each constraint its own name",
+                             item=constraint.label(), line=constraint.line)
+        seen.add(constraint.name)
 
 
 def _check_body(body: Body, defaults: dict, check_symbols, kinematic: set, params: set) -> None:

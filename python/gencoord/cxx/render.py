@@ -43,6 +43,11 @@ _RETURN_DOCS = {
     "penalty_energy": "V_penalty", "constraint_violations": "C (num_constraints)",
     "mass_matrix_product": "Mt qdd (nv)", "jacobian_product": "J dq (nx)",
     "residual_derivative_q": "dr/dq dq (nv)", "residual_derivative_v": "dr/dv dv (nv)",
+    "holonomic_constraints": "C (num_holonomic_constraints)",
+    "holonomic_jacobian": "dC/dq (num_holonomic_constraints x nq)",
+    "constraint_jacobian": "A (num_constraints x nv)",
+    "constraint_velocities": "A v + b (num_constraints)",
+    "constraint_bias": "gamma (num_constraints)",
 }
 
 
@@ -160,6 +165,9 @@ def _chart_context(chart, first, unroll_max_nq: int) -> dict:
         speeds=([dict(name=s.name, description=s.description) for s in model.speeds]
                 if generalized else []),
         quaternions=model.quaternions,
+        kinematic_constraints=[dict(name=c.name, holonomic=k < len(model.holonomic_constraints))
+                               for k, c in enumerate([*model.holonomic_constraints,
+                                                      *model.velocity_constraints])],
         initial_v=[_format_default(s.initial) for s in model.speeds],
         coordinates=[dict(name=c.name, description=c.description,
                           initial=_format_default(c.initial),

@@ -18,7 +18,7 @@ from __future__ import annotations
 
 import dataclasses
 from dataclasses import dataclass
-from typing import Callable, Literal, Protocol
+from typing import TYPE_CHECKING, Callable, Literal, Protocol
 
 import sympy as sp
 
@@ -31,6 +31,9 @@ from gencoord.dsl.model import Model
 from gencoord.dsl.items import Point
 from gencoord.derive.point_tree import PointTree, point_tree
 from gencoord.symbolic.sums import dot
+
+if TYPE_CHECKING:
+    from gencoord.derive.kinematic_constraints import ConstraintDerivation
 
 
 @dataclass
@@ -59,6 +62,8 @@ class Derivation:
     angular_momentum: sp.Matrix      # 3 in 3D, 1 (the z component) in 2D
     inputs: list[sp.Symbol] = dataclasses.field(default_factory=list)  # the control inputs
     rates: sp.Matrix | None = None   # nq: q' = G(q) v
+    # the kinematic constraints' equations (kinematic_constraints.py); None without any
+    constraints: "ConstraintDerivation | None" = None
 
     def residual(self) -> sp.Matrix:
         """Inverse-dynamics residual r(q, v, a, t) = Mt a - Ft - Fi (the force to apply)."""

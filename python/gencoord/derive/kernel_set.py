@@ -14,6 +14,7 @@ from typing import TYPE_CHECKING
 import sympy as sp
 
 from gencoord.derive.dense import Derivation
+from gencoord.derive.kinematic_constraints import ConstraintDerivation
 from gencoord.derive.maximal import MaximalDerivation
 from gencoord.derive.point_recursion import RecursiveDynamics
 
@@ -164,6 +165,8 @@ def build_kernels(d: Derivation, recursive: RecursiveDynamics | None = None,
     kernels = _dense_kernels(d, residual, differentiated, looped.replacing if looped else {})
     if looped:
         kernels += looped.products
+    if d.constraints is not None:
+        kernels += _constraint_kernels(d.constraints)
     if recursive is None:
         return kernels
     alternatives = _recursive_kernels(recursive)
@@ -259,6 +262,29 @@ def _state_kernels(d: Derivation, unless_replaced) -> list[Kernel]:
         Kernel("fixed_point_positions", "Fixed-point positions (anchors, prescribed pivots), "
                "stacked.", ("t",),
                [_vector("result", "FixedPointVector", d.fixed_point_positions)]),
+    ]
+
+
+def _constraint_kernels(c: ConstraintDerivation) -> list[Kernel]:
+    """The kinematic constraints: C and dC/dq where some are holonomic, then A, A v + b and
+    gamma of all of them (kinematic_constraints.py)."""
+    holonomic = [
+        Kernel("holonomic_constraints", "Holonomic constraint residuals C(q, t) (0 on the "
+               "constraints).", ("q", "t"), [_vector("result", "HVector", c.holonomic)]),
+        Kernel("holonomic_jacobian", "dC/dq (num_holonomic_constraints x nq): the Newton "
+               "steps that put q back on the constraints.", ("q", "t"),
+               [_matrix("result", "HJacobian", c.holonomic_jacobian)]),
+    ] if c.num_holonomic else []
+    return holonomic + [
+        Kernel("constraint_jacobian", "Constraint Jacobian A (num_constraints x nv): every "
+               "constraint at the velocity level is A v + b = 0.", ("q", "t"),
+               [_matrix("result", "CJacobian", c.jacobian)]),
+        Kernel("constraint_velocities", "Constraint residuals at the velocity level, A v + b "
+               "(0 on the constraints).", ("q", "v", "t"),
+               [_vector("result", "CVector", c.velocity)]),
+        Kernel("constraint_bias", "Acceleration-level bias gamma: A dv/dt + gamma = 0 along "
+               "every motion that keeps the constraints.", ("q", "v", "t"),
+               [_vector("result", "CVector", c.bias)]),
     ]
 
 

@@ -101,6 +101,12 @@ def _pattern_through(force: sp.Matrix, variables: list[sp.Symbol],
     return [(r, c) for r in range(force.shape[0]) for c in sorted(columns(force[r]))]
 
 
+def has_maximal_model(model: Model) -> bool:
+    """Whether the model gets a maximal-coordinate (penalty) model: not yet one with free or
+    ball joints (generalized speeds) or kinematic constraints."""
+    return not model.has_generalized_speeds and not model.has_kinematic_constraints
+
+
 def derive_maximal(model: Model, symbolic_jacobians: bool = True,
                    named: bool = False) -> MaximalDerivation:
     """The maximal model's outputs, as expressions of x, xdot, t and the parameters.

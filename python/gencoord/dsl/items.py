@@ -259,6 +259,22 @@ class Plane(Item):
     kind = "plane"
 
 
+@dataclass
+class HolonomicConstraint(Item):
+    """C(q, t) = 0 where the coordinates do not satisfy it by construction (a closed loop):
+    one scalar row, an expression of q, t, parameters and points' `.x`."""
+    expr: sp.Expr
+    kind = "holonomic constraint"
+
+
+@dataclass
+class VelocityConstraint(Item):
+    """A(q, t) v + b(q, t) = 0 (rolling without slipping): one scalar row, linear in the
+    speeds, an expression of q, the speeds, t, parameters and points' `.x` and `.xdot`."""
+    expr: sp.Expr
+    kind = "velocity constraint"
+
+
 def as_vector(values: Iterable, what: str, dim: int, line: int | None) -> sp.Matrix:
     try:
         is_sequence = not isinstance(values, (str, bytes)) and iter(values) is not None

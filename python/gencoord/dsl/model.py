@@ -26,11 +26,13 @@ import sympy as sp
 from gencoord.errors import ModelError
 from gencoord.dsl.bodies import add_point_masses, as_inertia
 from gencoord.dsl.frames import Frame
+from gencoord.dsl.kinematic_constraints import KinematicConstraints
 from gencoord.dsl.speeds import GeneralizedSpeeds
 from gencoord.dsl.items import (Body, BodyTorque, Coordinate, Damper, FixedPoint, GeneralizedForce,
-                                Gravity, Input, Item, Parameter, Particle, ParticleForce, Pin,
-                                Plane, Point, Rod, Speed, Spring, as_scalar, as_vector,
-                                caller_line, point_symbols)
+                                Gravity, HolonomicConstraint, Input, Item, Parameter, Particle,
+                                ParticleForce, Pin, Plane, Point, Rod, Speed, Spring,
+                                VelocityConstraint, as_scalar, as_vector, caller_line,
+                                point_symbols)
 
 # The model options (`--set n=5`) requested of the model file being run: a Model built while
 # the loader runs the file takes them, since the file itself only says `Model(dim=2)`.
@@ -49,7 +51,7 @@ def requesting_options(options: Mapping[str, str]) -> Iterator[None]:
         REQUESTED_OPTIONS.reset(token)
 
 
-class Model(GeneralizedSpeeds):
+class Model(GeneralizedSpeeds, KinematicConstraints):
     """A mechanical system described by particle positions x = X(q, t).
 
     `options` are the requested values of its build options (`option`), as text; by default
@@ -81,6 +83,9 @@ class Model(GeneralizedSpeeds):
         self.particle_forces: list[ParticleForce] = []
         self.generalized_forces: list[GeneralizedForce] = []
         self.constraints: list[Rod | Pin | Plane] = []
+        # constraints the coordinates do not remove (kinematic_constraints.py)
+        self.holonomic_constraints: list[HolonomicConstraint] = []
+        self.velocity_constraints: list[VelocityConstraint] = []
         self.bodies: list[Body] = []
         self.torques: list[BodyTorque] = []
         # a joint tree's links (joints.py), parents first: the rigid-body recursions walk it

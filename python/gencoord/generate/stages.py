@@ -17,6 +17,7 @@ from gencoord.checks.atlas import check_atlas
 from gencoord.derive.body_tree import body_tree
 from gencoord.checks.conservative import forces_have_potential
 from gencoord.checks.constraints import verify_constraints
+from gencoord.checks.kinematic_constraints import check_kinematic_constraints
 from gencoord.derive.dense import Derivation, Kinematics, derive
 from gencoord.generate.dynamics_paths import PathChoice, choose_paths
 from gencoord.errors import ModelError
@@ -24,8 +25,11 @@ from gencoord.cxx.render import instantiation_file_name, render_instantiation, r
 from gencoord.derive.kernel_set import build_kernels, build_maximal_kernels
 from gencoord.generate.limits import size_warning
 from gencoord.generate.load import load_model
+from gencoord.derive.kinematic_constraints import (ConstraintDerivation,
+                                                   derive_kinematic_constraints)
 from gencoord.derive.looped import looped_outputs
-from gencoord.derive.maximal import KAPPA, PENALTY_DAMPING, MaximalDerivation, derive_maximal
+from gencoord.derive.maximal import (KAPPA, PENALTY_DAMPING, MaximalDerivation, derive_maximal,
+                                     has_maximal_model)
 from gencoord.dsl.model import Model
 from gencoord.naming import chart_name
 from gencoord.optimize.optimizer import OptimizedModel, optimize_model
@@ -85,7 +89,8 @@ class GeneratedChart:
     name: str
     optimized: OptimizedModel
     num_reduced_kernels: int
-    # None for a model with generalized speeds: the cross-check does not take them yet
+    # None for a model with generalized speeds or kinematic constraints: the cross-check
+    # does not take them yet
     maximal: MaximalDerivation | None
     analysis: list[str]
     forces_have_potential: bool          # conservative.py: the struct's forces_have_potential
@@ -123,6 +128,7 @@ class _ChartWork:
     derivation: Derivation | None = None
     definitions: list = field(default_factory=list)
     maximal: MaximalDerivation | None = None
+    constraints: ConstraintDerivation | None = None  # the kinematic constraints' equations
 
     @property
     def small(self) -> bool:
@@ -137,13 +143,15 @@ class _ChartWork:
 
 def _check(work: _ChartWork, observers: _Observers) -> None:
     validate(work.chart)
+    work.constraints = derive_kinematic_constraints(work.chart, work.kin)
     if work.chart is work.model:
         tree = work.kin.tree is not None or body_tree(work.model) is not None
         warning = size_warning(work.model, tree)
         if warning and observers.on_warning:
             observers.on_warning(warning)
     work.notes = (check_full_rank(work.chart, kin=work.kin)
-                  + verify_constraints(work.chart, kin=work.kin))
+                  + verify_constraints(work.chart, kin=work.kin)
+                  + check_kinematic_constraints(work.chart, work.constraints, work.kin))
 
 
 def _analyse(work: _ChartWork, observers: _Observers) -> None:
@@ -176,7 +184,9 @@ def _derive(work: _ChartWork, observers: _Observers) -> None:
     # a body's rods and pins make symbolic derivatives of the penalty forces slow (seconds
     # for one top); forward mode after CSE gives the same values
     symbolic = work.small and not chart.bodies
-    if not chart.has_generalized_speeds:
+    assert work.derivation is not None  # set above
+    work.derivation.constraints = work.constraints
+    if has_maximal_model(chart):
         work.maximal = derive_maximal(chart, symbolic_jacobians=symbolic, named=not symbolic)
         work.definitions = [*work.definitions, *work.maximal.definitions]
 

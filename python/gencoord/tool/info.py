@@ -55,6 +55,12 @@ def describe(loaded: LoadedModel) -> list[str]:
     lines.append(_row("forces", ", ".join(f.label() for f in forces) or "none"))
     lines.append(_row("constraints", ", ".join(c.label() for c in model.constraints)
                       or "none (the cross-check's maximal model has none to enforce)"))
+    kinematic = [*model.holonomic_constraints, *model.velocity_constraints]
+    if kinematic:
+        lines.append(_row("closures", ", ".join(c.label() for c in kinematic)))
+        free = model.nv - len(kinematic)
+        lines.append(_row("", f"{free} degree{'s' if free != 1 else ''} of freedom of motion "
+                              f"({model.nv} speeds, {len(kinematic)} constraints)"))
     for k, line in enumerate(model.ignored):
         lines.append(_row("not read" if k == 0 else "", line))
     if model.charts:

@@ -20,7 +20,7 @@ from gencoord.tool.cmake_package import cmake_package_dir
 from gencoord.tool.driver_build import driver_program, python_module
 from gencoord.tool.errors import ToolError
 from gencoord.tool.layout import find_layout
-from gencoord.tool.model_file import load, refuse_generalized_speeds, split_settings
+from gencoord.tool.model_file import load, refuse_unsupported_kinds, split_settings
 from gencoord.tool.python_target import default_python, interpreter_version, write_import_guard
 from gencoord.sweep.command import run_sweep
 from gencoord.viewer import page as viewer_page
@@ -192,7 +192,7 @@ def _prepared(args, forwarded: list[str], driver: str):
     program's arguments: the forwarded options and the parameters set with --set."""
     loaded = load(args.model, split_settings(args.settings), args.name)
     if driver != "simulate":
-        refuse_generalized_speeds(loaded, driver)
+        refuse_unsupported_kinds(loaded, driver)
     program = driver_program(find_layout(), loaded.target, driver, rebuild=args.rebuild,
                              verbose=args.verbose)
     arguments = list(forwarded)
@@ -268,7 +268,7 @@ def _has_rows(csv: str) -> bool:
 
 def _python(args) -> int:
     loaded = load(args.model, split_settings(args.settings), args.name)
-    refuse_generalized_speeds(loaded, "python")
+    refuse_unsupported_kinds(loaded, "python")
     python = args.python or default_python()
     built = python_module(find_layout(), loaded.target, python, rebuild=args.rebuild,
                           verbose=args.verbose)

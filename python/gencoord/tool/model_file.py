@@ -53,9 +53,14 @@ def load(path: str, settings: dict[str, str], stem: str | None = None) -> Loaded
     return LoadedModel(model=model, docstring=docstring, target=target, parameters=parameters)
 
 
-def refuse_generalized_speeds(loaded, command: str) -> None:
-    """A model with free or ball joints, for a command whose program does not take them."""
-    if loaded.model.has_generalized_speeds:
+def refuse_unsupported_kinds(loaded, command: str) -> None:
+    """A model with free or ball joints or with kinematic constraints, for a command whose
+    program does not take them."""
+    kinds = [kind for kind, present in (
+        ("free or ball joints (generalized speeds)", loaded.model.has_generalized_speeds),
+        ("kinematic constraints (closed loops, rolling)",
+         loaded.model.has_kinematic_constraints)) if present]
+    if kinds:
         raise ToolError(f"{loaded.target.path}: gencoord {command} does not take models with "
-                        "free or ball joints (generalized speeds) yet; gencoord simulate and "
-                        "view do, and so does the model's header from C++")
+                        f"{kinds[0]} yet; gencoord simulate and view do, and so does the "
+                        "model's header from C++")

@@ -17,6 +17,8 @@ class DynamicsError : public std::runtime_error {
     kNonFiniteMassMatrix,    // NaN or inf in Mt
     kNonFiniteForces,        // NaN or inf in Ft + Fi
     kNonFiniteAcceleration,  // NaN or inf in Mt^-1 (Ft + Fi), e.g. Mt nearly singular
+    kDependentConstraints,   // A Mt^-1 A^T singular: kinematic constraints dependent here
+    kNonFiniteConstraints,   // NaN or inf in the constraint Jacobian A or the bias gamma
   };
 
   DynamicsError(std::string model, Reason reason, double t, std::vector<double> q,

@@ -47,6 +47,10 @@ void acceleration_and_input_jacobians(const ParamsOf<M>& p, const QVec<M>& q, co
       !has_generalized_speeds_v<M>,
       "gencoord: linearization does not support models with generalized speeds (free or ball "
       "joints) yet");
+  static_assert(!has_kinematic_constraints_v<M>,
+                "gencoord: a model with kinematic constraints is linearized in its independent "
+                "coordinates and speeds: use linearize_constrained() "
+                "(gencoord/control/constrained_linearization.hpp)");
   const ParamsOf<M> pu = with_inputs<M>(p, u);
   if (resolve_jacobian_source<M>(source) == JacobianSource::FiniteDifference) {
     acceleration_and_jacobians<M>(pu, q, v, t, source, a, a_D_q, a_D_v);

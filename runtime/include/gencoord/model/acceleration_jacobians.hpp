@@ -31,7 +31,8 @@ namespace gencoord {
 /// Where the Newton iterations of implicit steps get da/dq and da/dv from.
 enum class JacobianSource {
   Auto,              ///< Generated when the model emits residual_jacobians (every generated
-                     ///< model does), else FiniteDifference; decided at compile time per model.
+                     ///< model does) and has no kinematic constraints, else FiniteDifference;
+                     ///< decided at compile time per model.
   Generated,         ///< the generated residual Jacobians; std::invalid_argument if absent
   FiniteDifference,  ///< central differences of acceleration()
 };
@@ -39,9 +40,12 @@ enum class JacobianSource {
 /// The source that `source` means for model M: Auto resolved, the others unchanged.
 template <class M>
 constexpr JacobianSource resolve_jacobian_source(JacobianSource source) {
+  // the generated residual leaves out the constraint forces: a constrained model's
+  // acceleration is differentiated numerically
   if (source == JacobianSource::Auto)
-    return has_residual_jacobians_v<M> ? JacobianSource::Generated
-                                       : JacobianSource::FiniteDifference;
+    return has_residual_jacobians_v<M> && !has_kinematic_constraints_v<M>
+               ? JacobianSource::Generated
+               : JacobianSource::FiniteDifference;
   return source;
 }
 
@@ -113,8 +117,8 @@ void factor_and_solve(const ParamsOf<M>& p, const QVec<M>& q, const VVec<M>& v, 
 [[noreturn]] inline void throw_no_generated_jacobians(const char* model) {
   throw std::invalid_argument(
       std::string("gencoord: JacobianSource::Generated requested, but model '") + model +
-      "' does not emit residual_jacobians(); regenerate it, or use JacobianSource::Auto or "
-      "FiniteDifference");
+      "' does not emit residual_jacobians() of its whole dynamics (a model with kinematic "
+      "constraints has none); use JacobianSource::Auto or FiniteDifference");
 }
 
 }  // namespace detail
@@ -147,7 +151,7 @@ void acceleration_and_jacobians(const ParamsOf<M>& p, const QVec<M>& q, const VV
     acceleration_jacobians_fd<M>(p, q, v, t, a_D_q, a_D_v);
     return;
   }
-  if constexpr (has_residual_jacobians_v<M>) {
+  if constexpr (has_residual_jacobians_v<M> && !has_kinematic_constraints_v<M>) {
     // r(q, v, a(q, v)) = 0  =>  Mt da/dq = -dr/dq, Mt da/dv = -dr/dv
     Eigen::LLT<PlainOf<VMat<M>>> llt;
     detail::factor_and_solve<M>(p, q, v, t, &llt, a);

@@ -10,6 +10,7 @@
 #include <utility>
 
 #include "gencoord/errors.hpp"
+#include "gencoord/model/constrained_dynamics.hpp"
 #include "gencoord/model/model_traits.hpp"
 #include "gencoord/model/state.hpp"
 
@@ -35,7 +36,8 @@ bool solve_mass_matrix(const VMat<M>& Mt, const VVec<M>& f, VVec<M>* a) {
   }
 }
 
-/// Generalized acceleration a = Mt(q, t)^-1 (Ft + Fi)(q, v, t) of model M.
+/// Generalized acceleration a = Mt(q, t)^-1 (Ft + Fi)(q, v, t) of model M; with kinematic
+/// constraints, the constrained one (constrained_acceleration()).
 /// \param[in] p  The model parameters.
 /// \param[in] q  The generalized coordinates (dim M::nq).
 /// \param[in] v  The generalized velocities or speeds (dim nv_of_v<M>).
@@ -44,10 +46,12 @@ bool solve_mass_matrix(const VMat<M>& Mt, const VVec<M>& f, VVec<M>* a) {
 /// \throws DynamicsError if Mt is not positive definite, or Mt, the forces or the result
 ///         contain NaN or inf. A model with a recursive qddot reports an indefinite Mt only
 ///         where the recursion meets a zero pivot: its pivots are not checked for sign.
+///         A constrained model also when its constraints are dependent at q.
 template <class M>
 VVec<M> acceleration(const ParamsOf<M>& p, const QVec<M>& q, const VVec<M>& v, double t) {
   static_assert(assert_model_v<M>);
   using Reason = DynamicsError::Reason;
+  if constexpr (has_kinematic_constraints_v<M>) return constrained_acceleration<M>(p, q, v, t);
   if constexpr (has_recursive_qddot_v<M>) {
     // the recursion divides by the articulated inertias, so a singular Mt shows as NaN or
     // inf and goes to the diagnosis below; an indefinite one (a negative mass) does not

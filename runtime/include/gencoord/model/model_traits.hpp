@@ -232,7 +232,39 @@ using speed_members_op = std::enable_if_t<
     std::is_same_v<std::remove_cv_t<decltype(M::quaternion_starts)>,
                    std::array<int, static_cast<std::size_t>(M::num_quaternions)>>>;
 
+// kinematic constraints: A(q, t) v + b = 0 (all of them), C(q, t) = 0 (the holonomic ones)
+template <class M>
+using kinematic_constraints_op = std::enable_if_t<
+    std::is_integral_v<std::remove_cv_t<decltype(M::num_constraints)>> &&
+    std::is_convertible_v<decltype(M::constraint_jacobian(q_arg<M>(), t_arg(), p_arg<M>())),
+                          typename M::template CJacobian<double>> &&
+    std::is_convertible_v<decltype(M::constraint_velocities(q_arg<M>(), v_arg<M>(), t_arg(),
+                                                            p_arg<M>())),
+                          typename M::template CVector<double>> &&
+    std::is_convertible_v<decltype(M::constraint_bias(q_arg<M>(), v_arg<M>(), t_arg(), p_arg<M>())),
+                          typename M::template CVector<double>>>;
+template <class M>
+using holonomic_constraints_op = std::enable_if_t<
+    std::is_convertible_v<decltype(M::holonomic_constraints(q_arg<M>(), t_arg(), p_arg<M>())),
+                          typename M::template HVector<double>> &&
+    std::is_convertible_v<decltype(M::holonomic_jacobian(q_arg<M>(), t_arg(), p_arg<M>())),
+                          typename M::template HJacobian<double>>>;
+
 }  // namespace detail
+
+/// True when M has kinematic constraints that its coordinates do not satisfy by
+/// construction (closed loops, rolling): A(q, t) v + b(q, t) = 0 with M::num_constraints
+/// rows, M::constraint_jacobian, constraint_velocities and constraint_bias (gamma, with
+/// A v' + gamma = 0). acceleration() then solves the constrained dynamics.
+template <class M>
+inline constexpr bool has_kinematic_constraints_v =
+    detail::detected_v<M, detail::kinematic_constraints_op>;
+
+/// True when some of M's kinematic constraints are holonomic, C(q, t) = 0:
+/// M::holonomic_constraints and M::holonomic_jacobian (dC/dq).
+template <class M>
+inline constexpr bool has_holonomic_constraints_v =
+    detail::detected_v<M, detail::holonomic_constraints_op>;
 
 /// True when M::qddot is a recursion that is cheaper than Mt, Ft + Fi and a factorization
 /// (generated tree models that say `recursive_qddot = true`); acceleration() then calls it.

@@ -2,7 +2,8 @@
 // A generated model with its parameters as a system for the integrators
 // (integrate/system.hpp): a = Mt^-1 (Ft + Fi), unit mass, dense Jacobians. A model with
 // generalized speeds also gives the system coordinate_rate (M::coordinate_rates) and
-// normalize (its unit quaternions).
+// normalize (its unit quaternions); one with kinematic constraints gets the constrained
+// acceleration, and normalize projects each step's end state onto the constraints.
 #pragma once
 
 #include <utility>
@@ -11,6 +12,7 @@
 
 #include "gencoord/integrate/system.hpp"
 #include "gencoord/model/acceleration_jacobians.hpp"
+#include "gencoord/model/constrained_dynamics.hpp"
 #include "gencoord/model/dynamics.hpp"
 #include "gencoord/model/model_traits.hpp"
 #include "gencoord/model/state.hpp"
@@ -60,18 +62,17 @@ class ReducedSystem {
   QVec<M> coordinate_rate(const State& s) const {
     return M::coordinate_rates(s.q, s.v, s.t, p_);
   }
-  /// Divides each unit quaternion of q by its norm; only for models with generalized speeds.
-  template <class Model = M, class = std::enable_if_t<has_generalized_speeds_v<Model>>>
+  /// Puts s back on its manifold: divides each unit quaternion of q by its norm, and projects
+  /// a constrained model's state onto its constraints (project_onto_constraints()); only for
+  /// models with generalized speeds or kinematic constraints.
+  template <class Model = M, class = std::enable_if_t<has_generalized_speeds_v<Model> ||
+                                                      has_kinematic_constraints_v<Model>>>
   void normalize(State* s) const {
-    for (const int start : M::quaternion_starts) {
-      auto quaternion = s->q.segment(start, 4);
-      quaternion /= quaternion.norm();
-    }
+    detail::normalize_quaternions<M>(&s->q);
+    if constexpr (has_kinematic_constraints_v<M>) project_onto_constraints<M>(p_, s);
   }
 
  private:
-  // G(q) (nq x nv) at s, column j = coordinate_rates(q, e_j), since q' is linear in v; on the
-  // heap past Eigen's fixed-size limit
   // G^T, row j the rates of unit speed j (coordinate_rates is linear in v); in the model's
   // own nv x nq type, which is a HeapMatrix past Eigen's stack limit
   VQMat<M> rate_matrix_transposed(const State& s) const {

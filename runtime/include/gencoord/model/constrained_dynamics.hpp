@@ -1,0 +1,157 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Forward dynamics with kinematic constraints (closed loops, rolling): the generated model
+// gives Mt, the forces f = Ft + Fi, the constraint Jacobian A (m x nv, every constraint at
+// the velocity level A v + b = 0) and the bias gamma (A v' + gamma = 0). The acceleration
+// and the multipliers lambda solve
+//
+//   Mt v' = f + A^T lambda,   A v' = -gamma,
+//
+// by the range-space method: with Y = Mt^-1 A^T and the Schur complement S = A Y (SPD when A
+// has full row rank), lambda = -S^-1 (gamma + A Mt^-1 f) and v' = Mt^-1 f + Y lambda. A^T
+// lambda is the constraint force in generalized coordinates; lambda itself is in the
+// constraint's units (a loop closure x_b - x_a = 0: the force on b, in newtons).
+//
+// project_onto_constraints() puts a state back on the constraints after a step: Gauss-Newton
+// steps of least change on C(q, t) = 0, then the velocity change of least kinetic energy onto
+// A v + b = 0.
+#pragma once
+
+#include <Eigen/Cholesky>
+#include <Eigen/Core>
+#include <cmath>
+#include <limits>
+
+#include "gencoord/errors.hpp"
+#include "gencoord/model/model_traits.hpp"
+#include "gencoord/model/state.hpp"
+
+namespace gencoord {
+
+template <class M>
+using CVec = typename M::template CVector<double>;  // (num_constraints)
+template <class M>
+using CJac = typename M::template CJacobian<double>;  // (num_constraints x nv)
+
+namespace detail {
+
+// Whether an SPD factorization of a Gram matrix (A Mt^-1 A^T, C_q C_q^T) succeeded with no
+// pivot below round-off of the largest diagonal entry: a row of A that is a combination of
+// the others gives a pivot at the rounding level, which LLT accepts as positive.
+template <class Gram, class LLT>
+bool independent_rows(const Gram& gram, const LLT& llt) {
+  if (llt.info() != Eigen::Success) return false;
+  const double largest = gram.diagonal().maxCoeff();
+  const auto pivots = llt.matrixLLT().diagonal();
+  return (pivots.array() * pivots.array()).minCoeff() >
+         64 * std::numeric_limits<double>::epsilon() * largest;
+}
+
+template <class M>
+using ConstraintGram = Eigen::Matrix<double, M::num_constraints, M::num_constraints>;
+template <class M>
+using MinvAT = Eigen::Matrix<double, nv_of_v<M>, M::num_constraints>;
+
+// unit quaternions back on the sphere (a Gauss-Newton step on q leaves them off it)
+template <class M>
+void normalize_quaternions(QVec<M>* q) {
+  if constexpr (has_generalized_speeds_v<M>) {
+    for (const int start : M::quaternion_starts) {
+      auto quaternion = q->segment(start, 4);
+      quaternion /= quaternion.norm();
+    }
+  }
+}
+
+}  // namespace detail
+
+/// The constrained generalized acceleration v' of model M, and optionally the multipliers.
+/// \param[in]  p       The model parameters.
+/// \param[in]  q, v, t The state (q: nq, v: nv).
+/// \param[out] lambda  The multipliers (num_constraints), or nullptr.
+/// \throws DynamicsError if Mt is not positive definite, the constraints are dependent at q
+///         (kDependentConstraints), or Mt, the forces, A, gamma or the result are not finite.
+template <class M>
+VVec<M> constrained_acceleration(const ParamsOf<M>& p, const QVec<M>& q, const VVec<M>& v, double t,
+                                 CVec<M>* lambda = nullptr) {
+  static_assert(has_kinematic_constraints_v<M>);
+  using Reason = DynamicsError::Reason;
+  VMat<M> Mt;
+  VVec<M> f;
+  M::dynamics(q, v, t, p, &Mt, &f);
+  const CJac<M> A = M::constraint_jacobian(q, t, p);
+  const CVec<M> gamma = M::constraint_bias(q, v, t, p);
+  const Eigen::LLT<PlainOf<VMat<M>>> mass(Mt);
+  Reason reason = Reason::kNotPositiveDefinite;
+  if (mass.info() == Eigen::Success) {
+    VVec<M> a = mass.solve(f);
+    const detail::MinvAT<M> Y = mass.solve(A.transpose());
+    const detail::ConstraintGram<M> S = A * Y;
+    const Eigen::LLT<detail::ConstraintGram<M>> schur(S);
+    reason = Reason::kDependentConstraints;
+    if (detail::independent_rows(S, schur)) {
+      const CVec<M> multipliers = schur.solve(-(gamma + A * a));
+      a += Y * multipliers;
+      if (a.allFinite() && multipliers.allFinite()) {
+        if (lambda) *lambda = multipliers;
+        return a;
+      }
+      reason = Reason::kNonFiniteAcceleration;
+    }
+  }
+  // diagnosis, off the hot path
+  if (!Mt.allFinite()) reason = Reason::kNonFiniteMassMatrix;
+  else if (!f.allFinite()) reason = Reason::kNonFiniteForces;
+  else if (!A.allFinite() || !gamma.allFinite()) reason = Reason::kNonFiniteConstraints;
+  detail::throw_dynamics_error(M::name, reason, t, q.data(), v.data(), M::nq, nv_of_v<M>);
+}
+
+/// The multipliers lambda of the constraints at a state (see constrained_acceleration):
+/// A^T lambda is the constraint force on the coordinates.
+/// \throws DynamicsError as constrained_acceleration().
+template <class M>
+CVec<M> constraint_forces(const ParamsOf<M>& p, const State<M>& s) {
+  CVec<M> lambda;
+  constrained_acceleration<M>(p, s.q, s.v, s.t, &lambda);
+  return lambda;
+}
+
+/// Puts s back on the constraints: Gauss-Newton steps dq = -C_q^T (C_q C_q^T)^-1 C on the
+/// holonomic ones until a step is at round-off (at most `max_steps`), then
+/// v -= Y S^-1 (A v + b), the velocity change of least kinetic energy that satisfies every
+/// constraint. A state within the integrator's error of the constraints needs one or two
+/// steps. Leaves s unchanged where Mt or the constraint Gram matrices are singular (the
+/// dynamics report that on the next evaluation).
+template <class M>
+void project_onto_constraints(const ParamsOf<M>& p, State<M>* s, int max_steps = 8) {
+  static_assert(has_kinematic_constraints_v<M>);
+  constexpr double eps = std::numeric_limits<double>::epsilon();
+  if constexpr (has_holonomic_constraints_v<M>) {
+    using Gram = Eigen::Matrix<double, M::num_holonomic_constraints, M::num_holonomic_constraints>;
+    for (int step = 0; step < max_steps; ++step) {
+      const auto C = M::holonomic_constraints(s->q, s->t, p);
+      const auto C_q = M::holonomic_jacobian(s->q, s->t, p);
+      const Gram product = C_q * C_q.transpose();
+      const Eigen::LLT<Gram> gram(product);
+      if (!detail::independent_rows(product, gram)) break;
+      const QVec<M> dq = -C_q.transpose() * gram.solve(C);
+      if (!dq.allFinite()) break;
+      s->q += dq;
+      detail::normalize_quaternions<M>(&s->q);
+      if (dq.template lpNorm<Eigen::Infinity>() <=
+          4 * eps * (1 + s->q.template lpNorm<Eigen::Infinity>()))
+        break;
+    }
+  }
+  const VMat<M> Mt = M::mass_matrix(s->q, s->t, p);
+  const Eigen::LLT<PlainOf<VMat<M>>> mass(Mt);
+  if (mass.info() != Eigen::Success) return;
+  const CJac<M> A = M::constraint_jacobian(s->q, s->t, p);
+  const detail::MinvAT<M> Y = mass.solve(A.transpose());
+  const detail::ConstraintGram<M> S = A * Y;
+  const Eigen::LLT<detail::ConstraintGram<M>> schur(S);
+  if (!detail::independent_rows(S, schur)) return;
+  const VVec<M> dv = -Y * schur.solve(M::constraint_velocities(s->q, s->v, s->t, p));
+  if (dv.allFinite()) s->v += dv;
+}
+
+}  // namespace gencoord
