@@ -37,29 +37,33 @@ using Eigenvalues = std::array<std::complex<double>, 4>;
 // q = (x, y, psi, phi, theta, theta_r, delta, theta_f), v the same coordinates' rates
 enum Index { kX, kY, kYaw, kRoll, kPitch, kRearWheel, kSteer, kFrontWheel };
 
-/// Upright straight running at forward speed `speed` (m/s): on the constraints, the rear
-/// wheel turning at -speed / r_r.
-inline State<Bicycle> upright(const Bicycle::Params& p, double speed) {
-  State<Bicycle> s;
-  s.q.setZero();
-  s.v.setZero();
-  s.v[kRearWheel] = -speed / p.r_r;
-  project_onto_constraints<Bicycle>(p, &s);
-  return s;
-}
-
-/// d z' / d z for z = (phi, delta, phi', delta') about upright running at `speed`.
-inline Eigen::Matrix4d roll_steer_matrix(const Bicycle::Params& p, double speed) {
+/// Which coordinates and speeds are independent (roll, steer), dependent (pitch; x', y',
+/// psi', theta', theta_f') and held (the rest: position, heading, the wheels' angles and the
+/// rear wheel's rate, which sets the speed).
+inline CoordinateSplit roll_and_steer() {
   CoordinateSplit split;
   split.independent_q = {kRoll, kSteer};
   split.dependent_q = {kPitch};
   split.independent_v = {kRoll, kSteer};
   split.dependent_v = {kX, kY, kYaw, kPitch, kFrontWheel};
-  State<Bicycle> reference;
-  reference.q.setZero();
-  reference.v.setZero();
-  reference.v[kRearWheel] = -speed / p.r_r;
-  return linearize_constrained<Bicycle>(p, reference, split).A;
+  return split;
+}
+
+/// Upright straight running at forward speed `speed` (m/s), the rear wheel turning at
+/// -speed / r_r, with a roll rate `roll_rate` (a push; 0 for the steady motion): on the
+/// constraints.
+inline State<Bicycle> upright(const Bicycle::Params& p, double speed, double roll_rate = 0) {
+  State<Bicycle> s;
+  s.q.setZero();
+  s.v.setZero();
+  s.v[kRearWheel] = -speed / p.r_r;
+  s.v[kRoll] = roll_rate;
+  return state_on_constraints<Bicycle>(p, s, roll_and_steer());
+}
+
+/// d z' / d z for z = (phi, delta, phi', delta') about upright running at `speed`.
+inline Eigen::Matrix4d roll_steer_matrix(const Bicycle::Params& p, double speed) {
+  return linearize_constrained<Bicycle>(p, upright(p, speed), roll_and_steer()).A;
 }
 
 /// The four eigenvalues at `speed`, by increasing real part, then imaginary part.

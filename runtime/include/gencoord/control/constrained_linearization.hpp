@@ -130,6 +130,21 @@ Eigen::VectorXd extrapolated_derivative(const F& f, double x, double h) {
 
 }  // namespace detail
 
+/// `reference` put on the constraints as the split says: its independent and held
+/// coordinates and speeds kept, the dependent ones solved (a steady motion from its
+/// nonzero independent values, or a push on it).
+/// \throws std::invalid_argument for a split of the wrong sizes.
+template <class M>
+State<M> state_on_constraints(const ParamsOf<M>& p, const State<M>& reference,
+                              const CoordinateSplit& split) {
+  detail::check_split<M>(split);
+  const int nqi = static_cast<int>(split.independent_q.size());
+  Eigen::VectorXd z(nqi + split.independent_v.size());
+  for (int k = 0; k < nqi; ++k) z[k] = reference.q[split.independent_q[k]];
+  for (int k = nqi; k < z.size(); ++k) z[k] = reference.v[split.independent_v[k - nqi]];
+  return detail::full_state<M>(p, reference, split, z);
+}
+
 /// The linearization of a constrained model about `reference` (a state on its
 /// constraints, for instance a steady motion) in the reduced state z = (q_i, v_i).
 /// \param[in] p          The model parameters (their inputs are u0).
