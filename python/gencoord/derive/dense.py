@@ -62,8 +62,7 @@ class Derivation:
     angular_momentum: sp.Matrix      # 3 in 3D, 1 (the z component) in 2D
     inputs: list[sp.Symbol] = dataclasses.field(default_factory=list)  # the control inputs
     rates: sp.Matrix | None = None   # nq: q' = G(q) v
-    # the kinematic constraints' equations (kinematic_constraints.py); None without any
-    constraints: "ConstraintDerivation | None" = None
+    constraints: "ConstraintDerivation | None" = None  # kinematic_constraints.py
 
     def residual(self) -> sp.Matrix:
         """Inverse-dynamics residual r(q, v, a, t) = Mt a - Ft - Fi (the force to apply)."""
