@@ -10,9 +10,9 @@
 // initial coordinates moved onto the holonomic constraints: crank 1.2 -> 1.1999884280560671,
 // coupler 0.3863 -> 0.38628268367369317, rocker 1.3185 -> 1.3185234546301559
 //
-// Total ops: 579
-// Intermediate terms (189)
-// Output terms (129)
+// Total ops: 416
+// Intermediate terms (136)
+// Output terms (111)
 #pragma once
 
 #include <array>
@@ -634,151 +634,6 @@ struct FourBar {
     result(1) = tmp57 + tmp20*crank_ddot + tmp27*coupler_ddot;
     result(2) = tmp46 + tmp36*rocker_ddot;
     return result;
-  }
-
-  /// Jacobians dr/dq and dr/dv of the residual (dr/dqdd = Mt), for Newton steps.
-  /// \param[in] q  generalized coordinates (nq = 3)
-  /// \param[in] v  generalized velocities (nq = 3)
-  /// \param[in] qdd  generalized accelerations (nq = 3)
-  /// \param[in] t  time
-  /// \param[in] params  model parameters
-  /// dr_dq and dr_dv must not be null.
-  /// Ops: 205
-  template <typename Scalar>
-  static void residual_jacobians(const QVector<Scalar>& q,
-                                 const VVector<Scalar>& v,
-                                 const VVector<Scalar>& qdd,
-                                 const Scalar& /*t*/,
-                                 const Params& params,
-                                 VQMatrix<Scalar>* dr_dq,
-                                 VMatrix<Scalar>* dr_dv) {
-    using std::cos;
-    using std::sin;
-    const Scalar crank = q(0);
-    const Scalar coupler = q(1);
-    const Scalar rocker = q(2);
-    const Scalar crank_dot = v(0);
-    const Scalar coupler_dot = v(1);
-    const Scalar crank_ddot = qdd(0);
-    const Scalar coupler_ddot = qdd(1);
-    const Scalar rocker_ddot = qdd(2);
-    const Scalar a = Scalar(params.a);
-    const Scalar b = Scalar(params.b);
-    const Scalar c = Scalar(params.c);
-    const Scalar m_a = Scalar(params.m_a);
-    const Scalar m_b = Scalar(params.m_b);
-    const Scalar m_c = Scalar(params.m_c);
-    const Scalar g = Scalar(params.g);
-    const Scalar tmp0 = sin(crank);
-    const Scalar tmp2 = cos(crank);
-    const Scalar tmp4 = (a*a);
-    const Scalar tmp5 = tmp4*m_a;
-    const Scalar tmp6 = ((Scalar(1)/Scalar(12)))*tmp5;
-    const Scalar tmp12 = tmp0*a;
-    const Scalar tmp13 = sin(coupler);
-    const Scalar tmp14 = tmp13*b;
-    const Scalar tmp15 = (Scalar(0.5))*tmp14;
-    const Scalar tmp16 = cos(coupler);
-    const Scalar tmp17 = tmp16*b;
-    const Scalar tmp18 = tmp2*a;
-    const Scalar tmp19 = (Scalar(0.5))*tmp18;
-    const Scalar tmp23 = (b*b);
-    const Scalar tmp24 = tmp23*m_b;
-    const Scalar tmp25 = ((Scalar(1)/Scalar(12)))*tmp24;
-    const Scalar tmp26 = (Scalar(0.25))*tmp23;
-    const Scalar tmp28 = sin(rocker);
-    const Scalar tmp30 = cos(rocker);
-    const Scalar tmp32 = (c*c);
-    const Scalar tmp33 = tmp32*m_c;
-    const Scalar tmp34 = ((Scalar(1)/Scalar(12)))*tmp33;
-    const Scalar tmp35 = (Scalar(0.25))*tmp32;
-    const Scalar tmp37 = g*m_b;
-    const Scalar tmp38 = (Scalar(0.5))*m_a;
-    const Scalar tmp39 = tmp38*g;
-    const Scalar tmp41 = (Scalar(0.5))*m_b;
-    const Scalar tmp44 = (Scalar(0.5))*m_c;
-    const Scalar tmp45 = tmp44*g;
-    const Scalar tmp47 = (crank_dot*crank_dot);
-    const Scalar tmp48 = tmp12*tmp47;
-    const Scalar tmp49 = (coupler_dot*coupler_dot);
-    const Scalar tmp50 = -tmp48 - tmp15*tmp49;
-    const Scalar tmp51 = tmp18*tmp47;
-    const Scalar tmp52 = (Scalar(0.5))*tmp17;
-    const Scalar tmp53 = -tmp51 - tmp49*tmp52;
-    const Scalar tmp136 = Scalar(2)*tmp0*tmp2;
-    const Scalar tmp137 = -tmp0;
-    const Scalar tmp138 = Scalar(2)*tmp2*tmp137;
-    const Scalar tmp139 = tmp4*tmp136;
-    const Scalar tmp140 = tmp4*tmp138;
-    const Scalar tmp141 = Scalar(0.25)*tmp139;
-    const Scalar tmp142 = Scalar(0.25)*tmp140;
-    const Scalar tmp143 = tmp6*tmp136 + m_a*tmp142 + tmp6*tmp138 + m_b*tmp139 + m_b*tmp140
-        + m_a*tmp141;
-    const Scalar tmp144 = a*tmp2;
-    const Scalar tmp145 = a*tmp137;
-    const Scalar tmp146 = Scalar(0.5)*tmp145;
-    const Scalar tmp147 = tmp15*m_b*tmp144 + tmp17*m_b*tmp146;
-    const Scalar tmp148 = (tmp37 + tmp39)*tmp145;
-    const Scalar tmp149 = tmp47*tmp144;
-    const Scalar tmp150 = -tmp149;
-    const Scalar tmp151 = tmp47*tmp145;
-    const Scalar tmp152 = -tmp151;
-    const Scalar tmp153 = -tmp53*m_b*tmp144 + tmp50*m_b*tmp145 + tmp18*m_b*tmp150
-        - tmp12*m_b*tmp152;
-    const Scalar tmp154 = tmp52*m_b*tmp150 - tmp15*m_b*tmp152;
-    const Scalar tmp155 = tmp148 + tmp153;
-    const Scalar tmp156 = b*tmp16;
-    const Scalar tmp157 = Scalar(0.5)*tmp156;
-    const Scalar tmp158 = -tmp13;
-    const Scalar tmp159 = b*tmp158;
-    const Scalar tmp160 = tmp12*m_b*tmp157 + tmp19*m_b*tmp159;
-    const Scalar tmp161 = Scalar(2)*tmp13*tmp16;
-    const Scalar tmp162 = Scalar(2)*tmp16*tmp158;
-    const Scalar tmp163 = (tmp25 + tmp26*m_b)*tmp161 + (tmp25 + tmp26*m_b)*tmp162;
-    const Scalar tmp164 = tmp41*g*tmp159;
-    const Scalar tmp165 = -tmp49*tmp157;
-    const Scalar tmp166 = Scalar(0.5)*tmp159;
-    const Scalar tmp167 = -tmp49*tmp166;
-    const Scalar tmp168 = tmp18*m_b*tmp165 - tmp12*m_b*tmp167;
-    const Scalar tmp169 = -tmp53*m_b*tmp157 + tmp52*m_b*tmp165 + tmp50*m_b*tmp166
-        - tmp15*m_b*tmp167;
-    const Scalar tmp170 = tmp164 + tmp169;
-    const Scalar tmp171 = Scalar(2)*tmp28*tmp30;
-    const Scalar tmp172 = -tmp28;
-    const Scalar tmp173 = Scalar(2)*tmp30*tmp172;
-    const Scalar tmp174 = (tmp34 + tmp35*m_c)*tmp171 + (tmp34 + tmp35*m_c)*tmp173;
-    const Scalar tmp175 = c*tmp172;
-    const Scalar tmp176 = tmp45*tmp175;
-    const Scalar tmp177 = Scalar(2)*crank_dot;
-    const Scalar tmp178 = tmp12*tmp177;
-    const Scalar tmp179 = -tmp178;
-    const Scalar tmp180 = tmp18*tmp177;
-    const Scalar tmp181 = -tmp180;
-    const Scalar tmp182 = tmp18*m_b*tmp179 - tmp12*m_b*tmp181;
-    const Scalar tmp183 = tmp52*m_b*tmp179 - tmp15*m_b*tmp181;
-    const Scalar tmp184 = Scalar(2)*coupler_dot;
-    const Scalar tmp185 = -tmp15*tmp184;
-    const Scalar tmp186 = -tmp52*tmp184;
-    const Scalar tmp187 = tmp18*m_b*tmp185 - tmp12*m_b*tmp186;
-    const Scalar tmp188 = tmp52*m_b*tmp185 - tmp15*m_b*tmp186;
-    (*dr_dq)(0, 0) = crank_ddot*tmp143 + coupler_ddot*tmp147 + tmp155;
-    (*dr_dq)(0, 1) = coupler_ddot*tmp160 + tmp168;
-    (*dr_dq)(0, 2) = Scalar(0);
-    (*dr_dq)(1, 0) = crank_ddot*tmp147 + tmp154;
-    (*dr_dq)(1, 1) = crank_ddot*tmp160 + coupler_ddot*tmp163 + tmp170;
-    (*dr_dq)(1, 2) = Scalar(0);
-    (*dr_dq)(2, 0) = Scalar(0);
-    (*dr_dq)(2, 1) = Scalar(0);
-    (*dr_dq)(2, 2) = rocker_ddot*tmp174 + tmp176;
-    (*dr_dv)(0, 0) = tmp182;
-    (*dr_dv)(0, 1) = tmp187;
-    (*dr_dv)(0, 2) = Scalar(0);
-    (*dr_dv)(1, 0) = tmp183;
-    (*dr_dv)(1, 1) = tmp188;
-    (*dr_dv)(1, 2) = Scalar(0);
-    (*dr_dv)(2, 0) = Scalar(0);
-    (*dr_dv)(2, 1) = Scalar(0);
-    (*dr_dv)(2, 2) = Scalar(0);
   }
 
   /// Input matrix B = dFt/du: the generalized force per unit of each control input (Ft = B u + the

@@ -215,7 +215,8 @@ def reference_model(name: str, model, seed: int) -> str:
             r = results["inverse_dynamics"] = residual(qdd_values, *values,
                                                        mass=results["mass_matrix"])
             results["dr_dq"] = results["dr_dv"] = []
-            if nq <= JACOBIAN_MAX_NQ or not states:
+            # a constrained model has no residual_jacobians kernel (kernel_set.py)
+            if constraints is None and (nq <= JACOBIAN_MAX_NQ or not states):
                 columns = [difference(lambda *at: residual(qdd_values, *at), values, r, k)
                            for k in range(nq)]
                 columns += [difference(lambda *at: residual(qdd_values, *at,

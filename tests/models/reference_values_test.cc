@@ -17,6 +17,7 @@
 
 #include "all_models.hpp"
 #include "gencoord/maximal/traits.hpp"
+#include "gencoord/model/inverse_dynamics.hpp"
 #include "gencoord/model/model_traits.hpp"
 #include "reference_values.hpp"
 
@@ -100,6 +101,29 @@ class Comparison {
   std::map<std::string, double> worst_;
 };
 
+/// The residual Jacobians at one reference state (where it has them: large models only at
+/// the first).
+template <class M, class Q>
+void check_residual_jacobians(const ReferenceState& s, const Q& q, const Q& v, const Q& qdd,
+                              double t, const typename M::Params& p, Comparison* comparison) {
+  if (s.dr_dq.empty()) return;
+  Comparison& expect = *comparison;
+  // one comparison, so that an entry that is zero in both (dr/dv of a model whose forces
+  // do not depend on v) is measured against the Jacobian's scale, not its own
+  typename M::template QMatrix<double> dr_dq, dr_dv;
+  M::residual_jacobians(q, v, qdd, t, p, &dr_dq, &dr_dv);
+  Eigen::MatrixXd both(2 * M::nq, M::nq);
+  for (int r = 0; r < M::nq; ++r) {
+    for (int c = 0; c < M::nq; ++c) {
+      both(r, c) = dr_dq(r, c);
+      both(M::nq + r, c) = dr_dv(r, c);
+    }
+  }
+  std::vector<double> expected = s.dr_dq;
+  expected.insert(expected.end(), s.dr_dv.begin(), s.dr_dv.end());
+  expect("residual_jacobians ([dr/dq; dr/dv])", both, expected);
+}
+
 /// The Maximal model's kernels at one reference state.
 template <class M>
 void check_maximal(const ReferenceState& s, double t, const typename M::Params& p,
@@ -172,22 +196,9 @@ TYPED_TEST(ReferenceValues, KernelsMatchTheUnoptimizedDerivation) {
 
     const auto qdd = vector_of<M::nq>(s.qdd);
     expect("inverse_dynamics", M::inverse_dynamics(q, v, qdd, t, p), s.inverse_dynamics);
-    if (!s.dr_dq.empty()) {  // large models: at the first state only
-      // one comparison, so that an entry that is zero in both (dr/dv of a model whose forces
-      // do not depend on v) is measured against the Jacobian's scale, not its own
-      typename M::template QMatrix<double> dr_dq, dr_dv;
-      M::residual_jacobians(q, v, qdd, t, p, &dr_dq, &dr_dv);
-      Eigen::MatrixXd both(2 * M::nq, M::nq);
-      for (int r = 0; r < M::nq; ++r) {
-        for (int c = 0; c < M::nq; ++c) {
-          both(r, c) = dr_dq(r, c);
-          both(M::nq + r, c) = dr_dv(r, c);
-        }
-      }
-      std::vector<double> expected = s.dr_dq;
-      expected.insert(expected.end(), s.dr_dv.begin(), s.dr_dv.end());
-      expect("residual_jacobians ([dr/dq; dr/dv])", both, expected);
-    }
+    // large models: at the first state only; constrained ones have none
+    if constexpr (has_residual_jacobians_v<M>)
+      check_residual_jacobians<M>(s, q, v, qdd, t, p, &expect);
     // qddot solves Mt qdd = f: round-off bounds its error normwise (times cond(Mt)), not entry
     // by entry, so each entry is compared relative to the largest
     expect("qddot", M::qddot(q, v, t, p), s.qddot, 1.0);

@@ -111,6 +111,16 @@ def solve_normal_equations(rows: list[list[float]], r: list[float],
     return _solve(low, [sum(row[i] * ri for row, ri in zip(rows, r)) for i in range(len(a))])
 
 
+def least_change_step(rows: list[list[float]], residual: list[float]) -> list[float] | None:
+    """The smallest dx with J dx = -residual (J's rows given), -J^T (J J^T)^-1 residual, or
+    None where J has dependent rows."""
+    low = _cholesky(_gram([list(column) for column in zip(*rows)]))
+    if low is None:
+        return None
+    y = _solve(low, residual)
+    return [-sum(row[j] * y[i] for i, row in enumerate(rows)) for j in range(len(rows[0]))]
+
+
 def _unit(x: list[float]) -> list[float]:
     norm = math.sqrt(sum(v * v for v in x))
     return [v / norm for v in x]

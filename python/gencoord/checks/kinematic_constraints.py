@@ -17,6 +17,7 @@ import random
 
 import sympy as sp
 
+from gencoord.checks.conditioning import least_change_step
 from gencoord.derive.dense import Kinematics
 from gencoord.derive.differentiate import termwise_jacobian
 from gencoord.derive.kinematic_constraints import ConstraintDerivation
@@ -31,29 +32,6 @@ POSITION_TOLERANCE = 1e-13  # |C| the initial coordinates are brought to (relati
 
 def _largest(values: list[float]) -> float:
     return max((abs(value) for value in values), default=0.0)
-
-
-def _solve(matrix: list[list[float]], rhs: list[float]) -> list[float]:
-    """matrix^-1 rhs by Gaussian elimination with partial pivoting (small systems)."""
-    n = len(rhs)
-    rows = [list(matrix[i]) + [rhs[i]] for i in range(n)]
-    for k in range(n):
-        pivot = max(range(k, n), key=lambda i: abs(rows[i][k]))
-        rows[k], rows[pivot] = rows[pivot], rows[k]
-        for i in range(k + 1, n):
-            factor = rows[i][k] / rows[k][k]
-            rows[i] = [a - factor * b for a, b in zip(rows[i], rows[k])]
-    x = [0.0] * n
-    for k in reversed(range(n)):
-        x[k] = (rows[k][n] - sum(rows[k][j] * x[j] for j in range(k + 1, n))) / rows[k][k]
-    return x
-
-
-def _least_change(jacobian: list[list[float]], residual: list[float]) -> list[float]:
-    """The smallest dx with jacobian dx = -residual: -J^T (J J^T)^-1 residual."""
-    gram = [[sum(a * b for a, b in zip(row_i, row_j)) for row_j in jacobian] for row_i in jacobian]
-    y = _solve(gram, residual)
-    return [-sum(jacobian[i][j] * y[i] for i in range(len(y))) for j in range(len(jacobian[0]))]
 
 
 def _dependent_row(matrix: list[list[float]]) -> int | None:
@@ -127,7 +105,7 @@ def _project_initial_q(model: Model, kin: Kinematics, holonomic: sp.Matrix) -> l
             c = residual(q)
             if _largest(c) <= POSITION_TOLERANCE * (1 + _largest(q)):
                 break
-            step = _least_change(jacobian(q), c)
+            step = least_change_step(jacobian(q), c)
         except (ZeroDivisionError, ValueError, OverflowError):
             step = None
         if step is None or not all(map(math.isfinite, step)):
@@ -190,7 +168,9 @@ def check_kinematic_constraints(model: Model, c: ConstraintDerivation | None,
     v0 = [s.initial for s in speeds]
     residual = [float(r) for r in c.velocity.xreplace(point).xreplace(dict(zip(kin.v, v0)))]
     if _largest(residual) > 1e-15 * (1 + _largest(v0)):
-        v1 = [x + dx for x, dx in zip(v0, _least_change(a, residual))]
+        step = least_change_step(a, residual)
+        assert step is not None  # A's rows are independent: checked above
+        v1 = [x + dx for x, dx in zip(v0, step)]
         _set_initial_speeds(model, v1)
         notes.append("initial speeds moved onto the velocity constraints (least change): "
                      + ", ".join(f"{s.name} {old:.6g} -> {new:.17g}"

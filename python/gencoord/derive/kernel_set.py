@@ -216,12 +216,14 @@ def _dynamics_kernels(d: Derivation, residual: sp.Matrix | None,
                   "i.e. the generalized force that produces qdd.", ("q", "v", "qdd", "t"),
                   [_vector("result", "VVector", residual)])]
           if residual is not None else []),
-        unless_replaced("residual_jacobians", lambda: Kernel(
+        # a constrained model's implicit steps difference its constrained acceleration, which
+        # this residual leaves out (the bicycle's would be 40% of its header)
+        *([unless_replaced("residual_jacobians", lambda: Kernel(
             "residual_jacobians", "Jacobians dr/dq and dr/dv of the residual (dr/dqdd = Mt), "
             "for Newton steps.", ("q", "v", "qdd", "t"),
             [_out(_jacobian("dr_dq", "VQMatrix", differentiated_residual, d.q)),
              _out(_jacobian("dr_dv", "VMatrix", differentiated_residual, d.v))],
-            notes=["dr_dq and dr_dv must not be null."])),
+            notes=["dr_dq and dr_dv must not be null."]))] if d.constraints is None else []),
         *([Kernel("input_matrix", "Input matrix B = dFt/du: the generalized force per unit of "
                   "each control input (Ft = B u + the rest when u enters linearly).",
                   ("q", "v", "t"), [_input_matrix(d)])] if d.inputs else []),

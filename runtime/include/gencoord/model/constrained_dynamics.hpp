@@ -18,6 +18,7 @@
 
 #include <Eigen/Cholesky>
 #include <Eigen/Core>
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -62,7 +63,36 @@ void normalize_quaternions(QVec<M>* q) {
   }
 }
 
+// Mt^-1 A^T and the Schur complement S = A Mt^-1 A^T, factored: what the constrained
+// acceleration and the velocity projection both solve with. `ok` is false where Mt is not
+// positive definite or A's rows are dependent (mass_ok tells which).
+template <class M>
+struct RangeSpace {
+  RangeSpace(const VMat<M>& Mt, const CJac<M>& A) : mass(Mt) {
+    mass_ok = mass.info() == Eigen::Success;
+    if (!mass_ok) return;
+    Y = mass.solve(A.transpose());
+    const ConstraintGram<M> S = A * Y;
+    schur.compute(S);
+    ok = independent_rows(S, schur);
+  }
+  Eigen::LLT<PlainOf<VMat<M>>> mass;
+  MinvAT<M> Y;
+  Eigen::LLT<ConstraintGram<M>> schur;
+  bool mass_ok = false, ok = false;
+};
+
 }  // namespace detail
+
+/// The largest constraint residual at s: max |C| and |A v + b| (drift from the constraints).
+template <class M>
+double constraint_residual(const ParamsOf<M>& p, const State<M>& s) {
+  static_assert(has_kinematic_constraints_v<M>);
+  double largest = M::constraint_velocities(s.q, s.v, s.t, p).cwiseAbs().maxCoeff();
+  if constexpr (has_holonomic_constraints_v<M>)
+    largest = std::max(largest, M::holonomic_constraints(s.q, s.t, p).cwiseAbs().maxCoeff());
+  return largest;
+}
 
 /// The constrained generalized acceleration v' of model M, and optionally the multipliers.
 /// \param[in]  p       The model parameters.
@@ -80,23 +110,17 @@ VVec<M> constrained_acceleration(const ParamsOf<M>& p, const QVec<M>& q, const V
   M::dynamics(q, v, t, p, &Mt, &f);
   const CJac<M> A = M::constraint_jacobian(q, t, p);
   const CVec<M> gamma = M::constraint_bias(q, v, t, p);
-  const Eigen::LLT<PlainOf<VMat<M>>> mass(Mt);
-  Reason reason = Reason::kNotPositiveDefinite;
-  if (mass.info() == Eigen::Success) {
-    VVec<M> a = mass.solve(f);
-    const detail::MinvAT<M> Y = mass.solve(A.transpose());
-    const detail::ConstraintGram<M> S = A * Y;
-    const Eigen::LLT<detail::ConstraintGram<M>> schur(S);
-    reason = Reason::kDependentConstraints;
-    if (detail::independent_rows(S, schur)) {
-      const CVec<M> multipliers = schur.solve(-(gamma + A * a));
-      a += Y * multipliers;
-      if (a.allFinite() && multipliers.allFinite()) {
-        if (lambda) *lambda = multipliers;
-        return a;
-      }
-      reason = Reason::kNonFiniteAcceleration;
+  const detail::RangeSpace<M> solver(Mt, A);
+  Reason reason = solver.mass_ok ? Reason::kDependentConstraints : Reason::kNotPositiveDefinite;
+  if (solver.ok) {
+    VVec<M> a = solver.mass.solve(f);
+    const CVec<M> multipliers = solver.schur.solve(-(gamma + A * a));
+    a += solver.Y * multipliers;
+    if (a.allFinite() && multipliers.allFinite()) {
+      if (lambda) *lambda = multipliers;
+      return a;
     }
+    reason = Reason::kNonFiniteAcceleration;
   }
   // diagnosis, off the hot path
   if (!Mt.allFinite()) reason = Reason::kNonFiniteMassMatrix;
@@ -142,15 +166,10 @@ void project_onto_constraints(const ParamsOf<M>& p, State<M>* s, int max_steps =
         break;
     }
   }
-  const VMat<M> Mt = M::mass_matrix(s->q, s->t, p);
-  const Eigen::LLT<PlainOf<VMat<M>>> mass(Mt);
-  if (mass.info() != Eigen::Success) return;
-  const CJac<M> A = M::constraint_jacobian(s->q, s->t, p);
-  const detail::MinvAT<M> Y = mass.solve(A.transpose());
-  const detail::ConstraintGram<M> S = A * Y;
-  const Eigen::LLT<detail::ConstraintGram<M>> schur(S);
-  if (!detail::independent_rows(S, schur)) return;
-  const VVec<M> dv = -Y * schur.solve(M::constraint_velocities(s->q, s->v, s->t, p));
+  const detail::RangeSpace<M> solver(M::mass_matrix(s->q, s->t, p),
+                                     M::constraint_jacobian(s->q, s->t, p));
+  if (!solver.ok) return;
+  const VVec<M> dv = -solver.Y * solver.schur.solve(M::constraint_velocities(s->q, s->v, s->t, p));
   if (dv.allFinite()) s->v += dv;
 }
 
