@@ -9,12 +9,11 @@
 #include <algorithm>
 #include <cmath>
 #include <complex>
-#include <cstdio>
-#include <string>
 
 #include <gtest/gtest.h>
 
 #include "bicycle_stability.hpp"
+#include "figures.hpp"
 #include "gencoord/control/constrained_linearization.hpp"
 #include "gencoord/integrate/step.hpp"
 #include "gencoord/model/reduced_system.hpp"
@@ -26,12 +25,6 @@ namespace gencoord::testing {
 namespace {
 
 using models::RollingDisk;
-
-std::string scientific(double x) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.3e", x);
-  return text;
-}
 
 // the disk's eigenvalues: 0 and +-sqrt((m g r - (C + m r^2) C Omega^2 / A) / (A + m r^2))
 std::complex<double> disk_root(const RollingDisk::Params& p, double spin) {
@@ -110,9 +103,7 @@ double roll_after_push(double speed, double push, double seconds, double* drift,
   const int steps = static_cast<int>(seconds * 1000);
   for (int k = 0; k < steps; ++k) {
     s = step(system, Integrator::RK4, s, 1e-3);
-    *drift = std::max(
-        *drift, bicycle::Bicycle::constraint_velocities(s.q, s.v, s.t, p).cwiseAbs().maxCoeff());
-    *drift = std::max(*drift, std::abs(bicycle::Bicycle::holonomic_constraints(s.q, s.t, p)[0]));
+    *drift = std::max(*drift, constraint_residual<bicycle::Bicycle>(p, s));
     if (k >= steps - 1000) late_roll = std::max(late_roll, std::abs(s.q[bicycle::kRoll]));
   }
   *energy_change = std::abs(bicycle::Bicycle::energy(s.q, s.v, s.t, p) - e0) / e0;

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// Test-property formatting for the atlas tests' measured figures.
+// Test-property formatting for the tests' measured figures (RecordProperty).
 #pragma once
 
 #include <cstdio>
