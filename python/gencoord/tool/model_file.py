@@ -56,10 +56,11 @@ def load(path: str, settings: dict[str, str], stem: str | None = None) -> Loaded
 def refuse_unsupported_kinds(loaded, command: str) -> None:
     """A model with free or ball joints or with kinematic constraints, for a command whose
     program does not take them."""
-    kinds = [kind for kind, present in (
-        ("free or ball joints (generalized speeds)", loaded.model.has_generalized_speeds),
+    kinds = [kind for kind, present, commands in (
+        ("free or ball joints (generalized speeds)", loaded.model.has_generalized_speeds, ()),
         ("kinematic constraints (closed loops, rolling)",
-         loaded.model.has_kinematic_constraints)) if present]
+         loaded.model.has_kinematic_constraints, ("python",)))
+        if present and command not in commands]
     if kinds:
         raise ToolError(f"{loaded.target.path}: gencoord {command} does not take models with "
                         f"{kinds[0]} yet; gencoord simulate and view do, and so does the "

@@ -129,6 +129,13 @@ inline py::array_t<double> matrix_array(const Eigen::MatrixXd& matrix) {
   return array;
 }
 
+/// A float64 array of shape (size,) holding a copy of a vector.
+inline py::array_t<double> vector_array(const Eigen::VectorXd& vector) {
+  py::array_t<double> array(static_cast<py::ssize_t>(vector.size()));
+  std::copy(vector.data(), vector.data() + vector.size(), array.mutable_data());
+  return array;
+}
+
 /// A read-only float64 array holding a copy of `values`.
 template <class Container>
 py::array_t<double> read_only_array(const Container& values) {

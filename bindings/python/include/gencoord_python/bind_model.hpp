@@ -11,8 +11,10 @@
 #include <tuple>
 
 #include "gencoord/integrate/integrator.hpp"
+#include "gencoord/model/inverse_dynamics.hpp"
 #include "gencoord/model/model_traits.hpp"
 #include "gencoord_python/arrays.hpp"
+#include "gencoord_python/constraints.hpp"
 #include "gencoord_python/control.hpp"
 #include "gencoord_python/errors.hpp"
 #include "gencoord_python/first_order.hpp"
@@ -122,14 +124,16 @@ void bind_kernels(py::module_& m) {
                 qva, [](const std::array<V, 3>& x, double t, const P& p) {
                   return V(M::inverse_dynamics(x[0], x[1], x[2], t, p));
                 });
-  def_kernel<M>(m, "residual_jacobians",
-                kernel_doc("Jacobians dr/dq and dr/dv of the residual r(q, v, qdd).",
-                           "(dr_dq, dr_dv), each (nq, nq)"),
-                qva, [](const std::array<V, 3>& x, double t, const P& p) {
-                  QMat<M> r_D_q, r_D_v;
-                  M::residual_jacobians(x[0], x[1], x[2], t, p, &r_D_q, &r_D_v);
-                  return std::make_tuple(r_D_q, r_D_v);
-                });
+  if constexpr (has_residual_jacobians_v<M>) {
+    def_kernel<M>(m, "residual_jacobians",
+                  kernel_doc("Jacobians dr/dq and dr/dv of the residual r(q, v, qdd).",
+                             "(dr_dq, dr_dv), each (nq, nq)"),
+                  qva, [](const std::array<V, 3>& x, double t, const P& p) {
+                    QMat<M> r_D_q, r_D_v;
+                    M::residual_jacobians(x[0], x[1], x[2], t, p, &r_D_q, &r_D_v);
+                    return std::make_tuple(r_D_q, r_D_v);
+                  });
+  }
   if constexpr (has_inputs_v<M>) {
     def_kernel<M>(m, "input_matrix",
                   kernel_doc("Input matrix B = dFt/du: the generalized force per unit of each "
@@ -220,7 +224,11 @@ void bind_model(py::module_& module) {
   bind_params<M>(module);
   bind_kernels<M>(module);
   bind_first_order<M>(module);
-  bind_control<M>(module);
+  if constexpr (has_kinematic_constraints_v<M>) {
+    bind_constraints<M>(module);  // linearize_constrained in place of linearize
+  } else {
+    bind_control<M>(module);
+  }
   bind_simulation<M>(module);
 }
 

@@ -72,7 +72,7 @@ void bind_first_order(py::module_& module) {
           py::gil_scoped_release unlocked;
           QMat<M> a_D_q, a_D_v;
           acceleration_jacobians<M>(parameters.at(0), q, v, t, &a_D_q, &a_D_v,
-                                    JacobianSource::Generated);
+                                    JacobianSource::Auto);
           // row-major [[0, I], [da/dq, da/dv]]
           for (int r = 0; r < n; ++r)
             for (int c = 0; c < 2 * n; ++c) {
@@ -83,7 +83,8 @@ void bind_first_order(py::module_& module) {
         return jacobian;
       },
       "d(rhs)/dy, shape (2 nq, 2 nq): [[0, I], [da/dq, da/dv]] from the generated residual\n"
-      "Jacobians (da/dq = -Mt^-1 dr/dq, da/dv = -Mt^-1 dr/dv): the jac of solve_ivp.",
+      "Jacobians (da/dq = -Mt^-1 dr/dq, da/dv = -Mt^-1 dr/dv): the jac of solve_ivp. A model\n"
+      "with kinematic constraints takes central differences of its constrained acceleration.",
       py::arg("t"), py::arg("y"), py::arg("params") = py::none());
 }
 

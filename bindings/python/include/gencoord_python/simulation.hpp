@@ -18,6 +18,7 @@
 #include "gencoord/control/inputs.hpp"
 #include "gencoord/integrate/integrator.hpp"
 #include "gencoord/integrate/simulate.hpp"
+#include "gencoord/model/constrained_dynamics.hpp"
 #include "gencoord/model/model_traits.hpp"
 #include "gencoord/model/reduced_system.hpp"
 #include "gencoord/model/state.hpp"
@@ -225,7 +226,15 @@ void bind_simulation(py::module_& module) {
           ++row;
         };
         Script script = detail::script_of<M>(scripted);
-        if (!inputs.is_none()) {
+        if constexpr (has_kinematic_constraints_v<M>) {
+          if (script.size() != 0 || !inputs.is_none())
+            throw py::value_error(
+                "scripted, inputs: a model with kinematic constraints takes neither yet; set "
+                "constant inputs in its params");
+          project_onto_constraints<M>(p, &initial);  // as every step's end state is
+          py::gil_scoped_release unlocked;
+          simulate(ReducedSystem<M>(p), initial, options, record);
+        } else if (!inputs.is_none()) {
           if constexpr (has_inputs_v<M>) {
             if (script.size() != 0)
               throw py::value_error(
@@ -258,6 +267,8 @@ void bind_simulation(py::module_& module) {
       "              f(t, q, v) -> u, or {input name or index: f(t) -> value, or\n"
       "              keyframes (times, values)}; by default those the params hold\n"
       "  observer    called as observer(t, q, v) at each recorded state\n"
+      "A model with kinematic constraints starts from q0, v0 projected onto them and takes\n"
+      "neither scripted coordinates nor an inputs argument.\n"
       "Raises DynamicsError, NewtonError, or ValueError for a step that does not divide\n"
       "t_end - t0.",
       py::arg("q0") = py::none(), py::arg("v0") = py::none(), py::arg("t_end") = 10.0,
