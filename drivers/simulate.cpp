@@ -2,7 +2,7 @@
 // simulate: integrates one generated model and writes its trajectory as CSV.
 //
 //   simulate [--integrator rk4] [--dt 1e-3] [--duration 10] [--output FILE.csv]
-//            [--q a,b,...] [--v a,b,...] [--set name=value ...]
+//            [--q a,b,...] [--v a,b,...] [--set name=value ...] [--baumgarte RATE]
 //
 // The model is chosen when the program is compiled (driver_model.hpp, written by
 // gencoord_add_driver()); `gencoord simulate MODEL.py` builds and runs it for any model file.
@@ -10,7 +10,8 @@
 // the generalized speeds of a model that has them (free and ball joints), whose unit
 // quaternions in --q are normalized before the run. A model with kinematic constraints starts
 // from --q and --v projected onto its constraints, and the summary gives the largest
-// constraint residuals of the run.
+// constraint residuals of the run; each step's end state is projected too, or, with
+// --baumgarte, Baumgarte's feedback keeps the drift down instead.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -36,16 +37,19 @@ struct Options {
   std::string output;
   std::vector<double> q, v;
   std::vector<std::pair<std::string, double>> parameters;
+  double baumgarte = 0.0;  // 1/s; 0: each step's end state projected onto the constraints
 };
 
 [[noreturn]] void usage(int status) {
   std::cerr << "usage: simulate [--integrator NAME] [--dt DT] [--duration T]\n"
                "                [--output FILE.csv] [--q a,b,...] [--v a,b,...]\n"
-               "                [--set param=value ...]\n"
+               "                [--set param=value ...] [--baumgarte RATE]\n"
                "  model:       "
             << M::name << " (nq = " << M::nq << ", nv = " << gencoord::nv_of_v<M> << ")"
             << "\n  integrators: " << gencoord::integrator_names()
-            << "\n  defaults:    rk4, dt 1e-3, duration 10, the model file's initial state\n";
+            << "\n  defaults:    rk4, dt 1e-3, duration 10, the model file's initial state"
+            << "\n  --baumgarte: a model with kinematic constraints kept on them by Baumgarte's"
+               "\n               feedback at RATE (1/s) instead of projecting each step\n";
   std::exit(status);
 }
 
@@ -73,6 +77,7 @@ Options parse(int argc, char** argv) {
     else if (arg == "--output" || arg == "-o") o.output = value();
     else if (arg == "--q") o.q = parse_list(value(), arg);
     else if (arg == "--v") o.v = parse_list(value(), arg);
+    else if (arg == "--baumgarte") o.baumgarte = parse_number(value(), arg);
     else if (arg == "--set") {
       const std::string pair = value();
       const auto eq = pair.find('=');
@@ -109,7 +114,22 @@ bool put_on_manifold(const gencoord::ReducedSystem<Model>& system, gencoord::Sta
     }
   }
   gencoord::normalize(system, s);
+  if constexpr (gencoord::has_kinematic_constraints_v<Model>) {
+    gencoord::project_onto_constraints<Model>(system.params(), s);  // also under Baumgarte
+  }
   return true;
+}
+
+// The system to integrate: a constrained model kept on its constraints by projection, or by
+// Baumgarte's feedback at `baumgarte` (1/s, critically damped) where that is positive.
+template <class Model>
+gencoord::ReducedSystem<Model> system_of(const typename Model::Params& p, double baumgarte) {
+  if constexpr (gencoord::has_kinematic_constraints_v<Model>) {
+    if (baumgarte > 0) return gencoord::ReducedSystem<Model>(p, {false, {baumgarte, baumgarte}});
+  } else {
+    (void)baumgarte;
+  }
+  return gencoord::ReducedSystem<Model>(p);
 }
 
 // the largest constraint residual at s (0 for a model without constraints)
@@ -126,12 +146,15 @@ double drift_of(const typename Model::Params& p, const gencoord::State<Model>& s
 
 // the drift of a constrained model's run
 template <class Model>
-void print_constraint_residual(double worst) {
+void print_constraint_residual(double worst, double baumgarte) {
   if constexpr (gencoord::has_kinematic_constraints_v<Model>) {
-    std::printf("constraints %d, max |C| and |A v + b| over the run = %.3e\n",
-                Model::num_constraints, worst);
+    std::printf("constraints %d, max |C| and |A v + b| over the run = %.3e", Model::num_constraints,
+                worst);
+    if (baumgarte > 0) std::printf(" (Baumgarte at %g 1/s, no projection)", baumgarte);
+    std::printf("\n");
   } else {
     (void)worst;
+    (void)baumgarte;
   }
 }
 
@@ -180,7 +203,17 @@ int run(const Options& o) {
     }
     for (int i = 0; i < nv; ++i) s.v[i] = o.v[i];
   }
-  const gencoord::ReducedSystem<M> system(params);
+  if (!(o.baumgarte >= 0) || !std::isfinite(o.baumgarte)) {
+    std::cerr << "simulate: error: --baumgarte needs a rate of 0 or more (1/s), got " << o.baumgarte
+              << "\n";
+    return 2;
+  }
+  if (o.baumgarte > 0 && !gencoord::has_kinematic_constraints_v<M>) {
+    std::cerr << "simulate: error: --baumgarte is for models with kinematic constraints; "
+              << M::name << " has none\n";
+    return 2;
+  }
+  const gencoord::ReducedSystem<M> system = system_of<M>(params, o.baumgarte);
   if (!put_on_manifold<M>(system, &s)) return 2;
   const gencoord::Integrator integrator = gencoord::parse_integrator(o.integrator);
 
@@ -210,7 +243,7 @@ int run(const Options& o) {
               seconds * 1e9 / static_cast<double>(steps > 0 ? steps : 1));
   std::printf("energy      E(0) = %.10g J, E(end) = %.10g J, max |E - E(0)| = %.3e J\n", e0,
               M::energy(end.q, end.v, end.t, params), max_energy_error);
-  print_constraint_residual<M>(max_drift);
+  print_constraint_residual<M>(max_drift, o.baumgarte);
   std::printf("final q    ");
   for (int i = 0; i < M::nq; ++i) std::printf(" %s = %.6f", M::coordinate_names[i], end.q[i]);
   std::printf("\n");

@@ -36,6 +36,10 @@ model.gravity([0, 0, -9.81])
 """
 
 
+# A four-bar linkage closed by a loop constraint, as a user's own file.
+LINKAGE = (REPOSITORY / "models" / "four_bar.py").read_text(encoding="utf-8")
+
+
 class GencoordCommandTest(unittest.TestCase):
 
     @classmethod
@@ -185,6 +189,32 @@ class GencoordCommandTest(unittest.TestCase):
             self.assertIn(f"gencoord {command} does not take models with free or ball joints",
                           refused.stderr)
             self.assertNoTraceback(refused)
+
+    def test_9_a_closed_loop_stays_closed_by_projection_or_baumgarte(self):
+        (self.user / "linkage.py").write_text(LINKAGE, encoding="utf-8")
+        projected = self.gencoord("simulate", "linkage.py", "--duration", "5", "--v", "3,0,0")
+        self.assertSucceeded(projected)
+        drift = float(re.search(r"max \|C\| and \|A v \+ b\| over the run = (\S+)",
+                                projected.stdout).group(1))
+        self.assertLess(drift, 1e-10, projected.stdout)
+        held = self.gencoord("simulate", "linkage.py", "--duration", "5", "--v", "3,0,0",
+                             "--baumgarte", "20")
+        self.assertSucceeded(held)
+        self.assertIn("(Baumgarte at 20 1/s, no projection)", held.stdout)
+        drift = float(re.search(r"max \|C\| and \|A v \+ b\| over the run = (\S+)",
+                                held.stdout).group(1))
+        self.assertLess(drift, 1e-7, held.stdout)
+        for arguments, message in (
+                (("simulate", "crane.py", "--baumgarte", "20"),
+                 "--baumgarte is for models with kinematic constraints"),
+                (("simulate", "linkage.py", "--baumgarte", "-1"), "--baumgarte needs a rate"),
+                (("crosscheck", "linkage.py"),
+                 "gencoord crosscheck does not take models with kinematic constraints")):
+            with self.subTest(arguments=arguments):
+                refused = self.gencoord(*arguments)
+                self.assertNotEqual(refused.returncode, 0, refused.stderr)
+                self.assertIn(message, refused.stderr)
+                self.assertNoTraceback(refused)
 
     def test_bad_input_is_one_clear_line(self):
         cases = [

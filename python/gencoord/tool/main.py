@@ -52,6 +52,8 @@ Options for the simulation itself go to the compiled program:
   --dt DT             step size in s (default 1e-3)
   --duration T        simulated time in s (default 10)
   --q a,b,...  --v a,b,...   initial state (default: the model file's)
+  --baumgarte RATE    closed loops, rolling: Baumgarte's feedback at RATE (1/s) keeps the
+                      state on the constraints instead of projecting each step
 Writes DIR/<name>.csv (t, q, v, energy, positions), DIR/<name>.svg and DIR/<name>.html
 (the motion in 3D in any browser; see gencoord view --help)."""
 

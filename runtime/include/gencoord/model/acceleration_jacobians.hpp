@@ -60,19 +60,19 @@ inline double central_difference_step(double x) {
 
 }  // namespace detail
 
-/// Central finite-difference Jacobians of acceleration() at (q, v, t).
+/// Central finite-difference Jacobians of an acceleration a(q, v, t) of model M's state.
 /// Each column costs two evaluations; step cbrt(eps) * max(1, |x_j|), truncation and
 /// round-off error both O(eps^(2/3)) relative.
-/// \param[in]  p      The model parameters.
+/// \param[in]  acceleration  a(q, v, t) -> VVec<M>.
 /// \param[in]  q      The generalized coordinates (dim M::nq).
 /// \param[in]  v      The generalized velocities or speeds (dim nv).
 /// \param[in]  t      The time.
 /// \param[out] a_D_q  da/dq (dim nv x nq); must not be null.
 /// \param[out] a_D_v  da/dv (dim nv x nv); must not be null.
-/// \throws DynamicsError if the dynamics fail at a perturbed state.
-template <class M>
-void acceleration_jacobians_fd(const ParamsOf<M>& p, const QVec<M>& q, const VVec<M>& v, double t,
-                               VQMat<M>* a_D_q, VMat<M>* a_D_v) {
+/// \throws what `acceleration` throws at a perturbed state.
+template <class M, class Acceleration>
+void central_difference_jacobians(const Acceleration& acceleration, const QVec<M>& q,
+                                  const VVec<M>& v, double t, VQMat<M>* a_D_q, VMat<M>* a_D_v) {
   using detail::central_difference_step;
   for (int j = 0; j < M::nq; ++j) {
     // columns of da/dq
@@ -80,15 +80,26 @@ void acceleration_jacobians_fd(const ParamsOf<M>& p, const QVec<M>& q, const VVe
     qp[j] += central_difference_step(q[j]);
     qm[j] -= central_difference_step(q[j]);
     // divide by the representable step, not the nominal one
-    a_D_q->col(j) = (acceleration<M>(p, qp, v, t) - acceleration<M>(p, qm, v, t)) / (qp[j] - qm[j]);
+    a_D_q->col(j) = (acceleration(qp, v, t) - acceleration(qm, v, t)) / (qp[j] - qm[j]);
   }
   for (int j = 0; j < nv_of_v<M>; ++j) {
     // columns of da/dv
     VVec<M> vp = v, vm = v;
     vp[j] += central_difference_step(v[j]);
     vm[j] -= central_difference_step(v[j]);
-    a_D_v->col(j) = (acceleration<M>(p, q, vp, t) - acceleration<M>(p, q, vm, t)) / (vp[j] - vm[j]);
+    a_D_v->col(j) = (acceleration(q, vp, t) - acceleration(q, vm, t)) / (vp[j] - vm[j]);
   }
+}
+
+/// Central finite-difference Jacobians of acceleration() at (q, v, t)
+/// (central_difference_jacobians()).
+/// \throws DynamicsError if the dynamics fail at a perturbed state.
+template <class M>
+void acceleration_jacobians_fd(const ParamsOf<M>& p, const QVec<M>& q, const VVec<M>& v, double t,
+                               VQMat<M>* a_D_q, VMat<M>* a_D_v) {
+  central_difference_jacobians<M>([&p](const QVec<M>& qx, const VVec<M>& vx,
+                                       double tx) { return acceleration<M>(p, qx, vx, tx); },
+                                  q, v, t, a_D_q, a_D_v);
 }
 
 namespace detail {

@@ -13,7 +13,9 @@
 //
 // project_onto_constraints() puts a state back on the constraints after a step: Gauss-Newton
 // steps of least change on C(q, t) = 0, then the velocity change of least kinetic energy onto
-// A v + b = 0.
+// A v + b = 0. Baumgarte's stabilization is the alternative that changes the dynamics instead
+// of the state: it asks A v' + gamma = -2 alpha (A v + b) - beta^2 C, so that drift decays
+// like a damped oscillator rather than growing.
 #pragma once
 
 #include <Eigen/Cholesky>
@@ -94,22 +96,48 @@ double constraint_residual(const ParamsOf<M>& p, const State<M>& s) {
   return largest;
 }
 
+/// Baumgarte's stabilization: the rates (1/s) of the feedback on the drift, -2 alpha (A v + b)
+/// on every constraint and -beta^2 C on the holonomic ones (the first rows). alpha = beta is
+/// critically damped; zero (the default) keeps the exact constraint A v' + gamma = 0. Drift
+/// then decays in a few 1/alpha instead of growing; it is not removed to round-off, as
+/// project_onto_constraints() removes it, and too large a rate makes the system stiff.
+struct Baumgarte {
+  double alpha = 0.0;
+  double beta = 0.0;
+  bool active() const { return alpha != 0.0 || beta != 0.0; }
+};
+
+/// How a constrained model stays on its constraints during a simulation: each step's end
+/// state projected (the default), Baumgarte's feedback in the acceleration, or both.
+struct ConstraintStabilization {
+  bool project = true;
+  Baumgarte baumgarte;
+};
+
 /// The constrained generalized acceleration v' of model M, and optionally the multipliers.
-/// \param[in]  p       The model parameters.
-/// \param[in]  q, v, t The state (q: nq, v: nv).
-/// \param[out] lambda  The multipliers (num_constraints), or nullptr.
+/// \param[in]  p         The model parameters.
+/// \param[in]  q, v, t   The state (q: nq, v: nv).
+/// \param[out] lambda    The multipliers (num_constraints), or nullptr.
+/// \param[in]  baumgarte Feedback on the drift (none by default).
 /// \throws DynamicsError if Mt is not positive definite, the constraints are dependent at q
 ///         (kDependentConstraints), or Mt, the forces, A, gamma or the result are not finite.
 template <class M>
 VVec<M> constrained_acceleration(const ParamsOf<M>& p, const QVec<M>& q, const VVec<M>& v, double t,
-                                 CVec<M>* lambda = nullptr) {
+                                 CVec<M>* lambda = nullptr, const Baumgarte& baumgarte = {}) {
   static_assert(has_kinematic_constraints_v<M>);
   using Reason = DynamicsError::Reason;
   VMat<M> Mt;
   VVec<M> f;
   M::dynamics(q, v, t, p, &Mt, &f);
   const CJac<M> A = M::constraint_jacobian(q, t, p);
-  const CVec<M> gamma = M::constraint_bias(q, v, t, p);
+  CVec<M> gamma = M::constraint_bias(q, v, t, p);
+  if (baumgarte.active()) {
+    gamma += 2 * baumgarte.alpha * M::constraint_velocities(q, v, t, p);
+    if constexpr (has_holonomic_constraints_v<M>) {
+      gamma.template head<M::num_holonomic_constraints>() +=
+          baumgarte.beta * baumgarte.beta * M::holonomic_constraints(q, t, p);
+    }
+  }
   const detail::RangeSpace<M> solver(Mt, A);
   Reason reason = solver.mass_ok ? Reason::kDependentConstraints : Reason::kNotPositiveDefinite;
   if (solver.ok) {

@@ -3,7 +3,8 @@
 // (integrate/system.hpp): a = Mt^-1 (Ft + Fi), unit mass, dense Jacobians. A model with
 // generalized speeds also gives the system coordinate_rate (M::coordinate_rates) and
 // normalize (its unit quaternions); one with kinematic constraints gets the constrained
-// acceleration, and normalize projects each step's end state onto the constraints.
+// acceleration, and normalize projects each step's end state onto the constraints (or, as
+// its ConstraintStabilization says, Baumgarte's feedback acts in the acceleration).
 #pragma once
 
 #include <utility>
@@ -28,11 +29,24 @@ class ReducedSystem {
   static constexpr bool unit_mass = true;
 
   explicit ReducedSystem(ParamsOf<M> p) : p_(std::move(p)) { static_assert(assert_model_v<M>); }
+  /// A model with kinematic constraints, kept on them as `stabilization` says.
+  ReducedSystem(ParamsOf<M> p, ConstraintStabilization stabilization)
+      : p_(std::move(p)), stabilization_(stabilization) {
+    static_assert(has_kinematic_constraints_v<M>,
+                  "gencoord: a ConstraintStabilization is for models with kinematic constraints");
+  }
 
   const ParamsOf<M>& params() const { return p_; }
+  const ConstraintStabilization& stabilization() const { return stabilization_; }
   const char* name() const { return M::name; }
   /// \throws DynamicsError as gencoord::acceleration().
-  VVec<M> acceleration(const State& s) const { return gencoord::acceleration<M>(p_, s); }
+  VVec<M> acceleration(const State& s) const {
+    if constexpr (has_kinematic_constraints_v<M>) {
+      return constrained_acceleration<M>(p_, s.q, s.v, s.t, nullptr, stabilization_.baumgarte);
+    } else {
+      return gencoord::acceleration<M>(p_, s);
+    }
+  }
   void impose(State*) const {}
   void check(const State&, double) const {}
 
@@ -42,6 +56,23 @@ class ReducedSystem {
   /// speeds force_D_q is (da/dq) G(q) at s (nv x nv): the derivative along q1 = q0 + h G v1
   /// that backward Euler's Newton needs, with G frozen at s (backward_euler.hpp).
   void linearize(const State& s, JacobianSource source, Linearization<ReducedSystem>* out) const {
+    if constexpr (has_kinematic_constraints_v<M>) {
+      if (stabilization_.baumgarte.active()) {  // the feedback is in the acceleration
+        out->force = acceleration(s);
+        VQMat<M> a_D_q;
+        central_difference_jacobians<M>(
+            [this](const QVec<M>& q, const VVec<M>& v, double t) {
+              return constrained_acceleration<M>(p_, q, v, t, nullptr, stabilization_.baumgarte);
+            },
+            s.q, s.v, s.t, &a_D_q, &out->force_D_v);
+        if constexpr (has_generalized_speeds_v<M>) {
+          out->force_D_q = a_D_q * rate_matrix_transposed(s).transpose();
+        } else {
+          out->force_D_q = a_D_q;
+        }
+        return;
+      }
+    }
     if constexpr (has_generalized_speeds_v<M>) {
       VQMat<M> a_D_q;
       acceleration_and_jacobians<M>(p_, s.q, s.v, s.t, source, &out->force, &a_D_q,
@@ -69,7 +100,9 @@ class ReducedSystem {
                                                       has_kinematic_constraints_v<Model>>>
   void normalize(State* s) const {
     detail::normalize_quaternions<M>(&s->q);
-    if constexpr (has_kinematic_constraints_v<M>) project_onto_constraints<M>(p_, s);
+    if constexpr (has_kinematic_constraints_v<M>) {
+      if (stabilization_.project) project_onto_constraints<M>(p_, s);
+    }
   }
 
  private:
@@ -87,6 +120,7 @@ class ReducedSystem {
   }
 
   ParamsOf<M> p_;
+  ConstraintStabilization stabilization_;
 };
 
 }  // namespace gencoord
