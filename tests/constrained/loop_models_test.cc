@@ -7,7 +7,10 @@
 //  - the Delta robot (models/delta_robot.py) holds still under the motor torques that statics
 //    gives by hand, with each lower arm carrying a third of the platform's weight; its
 //    platform obeys Newton under the three arms' forces; it stays on its three loops and
-//    conserves energy over 100 s.
+//    conserves energy over 100 s;
+//  - inverse dynamics (constrained_inverse_dynamics): the motor torques for a prescribed
+//    motion of the Delta's platform and of the four-bar's crank, which forward dynamics turns
+//    back into that motion, and at rest the torques of statics.
 #include <algorithm>
 #include <cmath>
 #include <random>
@@ -15,10 +18,12 @@
 #include <gtest/gtest.h>
 
 #include "figures.hpp"
+#include "gencoord/control/constrained_inverse_dynamics.hpp"
 #include "gencoord/integrate/step.hpp"
 #include "gencoord/model/constrained_dynamics.hpp"
 #include "gencoord/model/reduced_system.hpp"
 #include "generated/delta_robot.hpp"
+#include "generated/four_bar.hpp"
 #include "generated/slider_crank.hpp"
 #include "generated/slider_crank_reduced.hpp"
 
@@ -26,6 +31,7 @@ namespace gencoord::testing {
 namespace {
 
 using models::DeltaRobot;
+using models::FourBar;
 using models::SliderCrank;
 using models::SliderCrankReduced;
 
@@ -135,20 +141,26 @@ DeltaArm lower_arm(const DeltaRobot::Params& p, double theta, double platform_z)
   return {radial / p.l_b, up / p.l_b};
 }
 
-TEST(DeltaRobot, HoldsStillUnderTheTorquesOfStatics) {
-  // symmetric pose: each lower arm carries a third of the platform's weight W along its
-  // length, lambda = W / (3 d_up) (negative: tension); the motor balances the arm's own
-  // weight, the elbow's half of the lower arm and the lower arm's pull at the elbow
-  DeltaRobot::Params p;
-  const State<DeltaRobot> s = initial_state<DeltaRobot>();
+// The motor torque that holds the Delta still in its symmetric pose (every arm at s.q[0]):
+// each lower arm carries a third of the platform's weight W along its length,
+// lambda = W / (3 d_up) (negative: tension); the motor balances the arm's own weight, the
+// elbow's half of the lower arm and the lower arm's pull at the elbow.
+double holding_torque(const DeltaRobot::Params& p, const State<DeltaRobot>& s, double* lambda) {
   const double theta = s.q[0];
   const DeltaArm d = lower_arm(p, theta, s.q[5]);
   const double weight = (p.m_p + 1.5 * p.m_b) * p.g;
-  const double lambda = weight / (3 * d.up);
+  *lambda = weight / (3 * d.up);
   // dJ/dtheta = l_a (-sin theta, -cos theta) in (radial, up); the arm pulls the elbow with
   // -lambda d, gravity pulls the arm's middle and the elbow's mass down
-  const double torque = -(p.m_a / 2 + p.m_b / 2) * p.g * p.l_a * std::cos(theta) -
-                        lambda * p.l_a * (std::sin(theta) * d.radial + std::cos(theta) * d.up);
+  return -(p.m_a / 2 + p.m_b / 2) * p.g * p.l_a * std::cos(theta) -
+         *lambda * p.l_a * (std::sin(theta) * d.radial + std::cos(theta) * d.up);
+}
+
+TEST(DeltaRobot, HoldsStillUnderTheTorquesOfStatics) {
+  DeltaRobot::Params p;
+  const State<DeltaRobot> s = initial_state<DeltaRobot>();
+  double lambda = 0;
+  const double torque = holding_torque(p, s, &lambda);
   p.set_inputs({{torque, torque, torque}});
   DeltaRobot::CVector<double> multipliers;
   const auto a = constrained_acceleration<DeltaRobot>(p, s.q, s.v, s.t, &multipliers);
@@ -237,6 +249,51 @@ TEST(DeltaRobot, StaysOnItsLoopsAndConservesEnergyOver100Seconds) {
   EXPECT_LT(worst_drift, 1e-10);
   EXPECT_LT(worst_energy, 1e-9);
   EXPECT_GT(farthest, 0.01);  // the platform swung
+}
+
+TEST(DeltaRobot, InverseDynamicsGivesTheTorquesOfAPrescribedMotion) {
+  DeltaRobot::Params p;
+  State<DeltaRobot> s = initial_state<DeltaRobot>();
+  // at rest with no platform acceleration: the torques of statics
+  double lambda = 0;
+  const double torque = holding_torque(p, s, &lambda);
+  const auto still =
+      constrained_inverse_dynamics<DeltaRobot>(p, s, {3, 4, 5}, Eigen::Vector3d::Zero());
+  for (int i = 0; i < 3; ++i) {
+    EXPECT_NEAR(still.inputs[i], torque, 1e-12 * std::abs(torque));
+    EXPECT_NEAR(still.multipliers[i], lambda, 1e-12 * std::abs(lambda));
+  }
+  // moving off centre, the platform accelerating: forward dynamics with the torques found
+  // gives back the prescribed acceleration
+  s.q.tail<3>() += Eigen::Vector3d(0.06, -0.04, 0.05);
+  s.v << 0.7, -0.3, 0.4, 0.0, 0.0, 0.0;
+  project_onto_constraints<DeltaRobot>(p, &s);
+  const Eigen::Vector3d prescribed(0.8, -0.5, 2.0);
+  const auto found = constrained_inverse_dynamics<DeltaRobot>(p, s, {3, 4, 5}, prescribed);
+  p.set_inputs({{found.inputs[0], found.inputs[1], found.inputs[2]}});
+  DeltaRobot::CVector<double> multipliers;
+  const auto a = constrained_acceleration<DeltaRobot>(p, s.q, s.v, s.t, &multipliers);
+  EXPECT_LT((a.tail<3>() - prescribed).cwiseAbs().maxCoeff(), 1e-11);
+  EXPECT_LT((a - found.acceleration).cwiseAbs().maxCoeff(), 1e-11);
+  EXPECT_LT((multipliers - found.multipliers).cwiseAbs().maxCoeff(),
+            1e-11 * found.multipliers.cwiseAbs().maxCoeff());
+  EXPECT_THROW(constrained_inverse_dynamics<DeltaRobot>(p, s, {3, 4}, prescribed.head<2>()),
+               std::invalid_argument);
+}
+
+TEST(FourBar, InverseDynamicsGivesTheMotorTorqueOfAPrescribedCrankMotion) {
+  FourBar::Params p;
+  State<FourBar> s = initial_state<FourBar>();
+  s.v << 2.5, 0.0, 0.0;
+  project_onto_constraints<FourBar>(p, &s);
+  Eigen::VectorXd prescribed(1);
+  prescribed << -3.0;
+  const auto found = constrained_inverse_dynamics<FourBar>(p, s, {0}, prescribed);
+  p.u = found.inputs[0];
+  const auto a = constrained_acceleration<FourBar>(p, s.q, s.v, s.t);
+  EXPECT_NEAR(a[0], -3.0, 1e-11);
+  EXPECT_LT((a - found.acceleration).cwiseAbs().maxCoeff(), 1e-11);
+  EXPECT_GT(std::abs(found.inputs[0]), 0.1);
 }
 
 }  // namespace
