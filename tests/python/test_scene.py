@@ -83,6 +83,26 @@ class SceneTest(unittest.TestCase):
                                                          "position": [0.0, 0.0],
                                                          "body": "bar"}])
 
+    def test_a_rolling_wheel_is_its_disk_on_the_ground(self):
+        model, name = loaded("whipple_bicycle")
+        drawn = scene(model, name)
+        wheels = {body["name"]: body["shape"] for body in drawn["bodies"]
+                  if body["shape"]["kind"] == "wheel"}
+        self.assertEqual(sorted(wheels), ["front_wheel", "rear_wheel"])
+        defaults = {p.name: p.default for p in model.parameters}
+        self.assertEqual(wheels["rear_wheel"]["radius"], defaults["r_r"])
+        self.assertEqual(wheels["front_wheel"]["radius"], defaults["r_f"])
+        for shape in wheels.values():
+            self.assertEqual(shape["axle"], [0.0, 1.0, 0.0])
+            self.assertEqual(shape["center"], [0.0, 0.0, 0.0])  # the wheels' centres of mass
+        self.assertIn({"name": "ground", "particle": None, "normal": [0.0, 0.0, 1.0],
+                       "offset": 0.0}, drawn["planes"])
+        # the rear frame is no wheel: its inertia ellipsoid
+        kinds = {body["name"]: body["shape"]["kind"] for body in drawn["bodies"]}
+        self.assertEqual(kinds["rear_frame"], "ellipsoid")
+        model, name = loaded("four_bar")
+        self.assertEqual(scene(model, name)["planes"], [])  # no wheel, no ground
+
     def test_a_body_point_is_an_affine_combination_of_the_point_masses(self):
         model, name = loaded("furuta_pendulum")
         drawn = scene(model, name)

@@ -275,6 +275,17 @@ class VelocityConstraint(Item):
     kind = "velocity constraint"
 
 
+@dataclass
+class Wheel(Item):
+    """A wheel of `rolling_wheel`, kept for pictures: its body, radius, and axle and centre in
+    the body's axes (the dynamics have its velocity constraints)."""
+    body: Body
+    radius: sp.Expr
+    axle: sp.Matrix
+    center: sp.Matrix
+    kind = "wheel"
+
+
 def as_vector(values: Iterable, what: str, dim: int, line: int | None) -> sp.Matrix:
     try:
         is_sequence = not isinstance(values, (str, bytes)) and iter(values) is not None

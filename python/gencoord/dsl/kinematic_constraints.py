@@ -20,7 +20,7 @@ from typing import TYPE_CHECKING, Iterable
 
 import sympy as sp
 
-from gencoord.dsl.items import (Body, HolonomicConstraint, Point, VelocityConstraint,
+from gencoord.dsl.items import (Body, HolonomicConstraint, Point, VelocityConstraint, Wheel,
                                 as_scalar, as_vector, caller_line)
 from gencoord.dsl.rolling import contact_rows, positive_number, vanishes_near
 from gencoord.errors import ModelError
@@ -49,6 +49,7 @@ class KinematicConstraints:
     """The kinematic-constraints part of a Model (model.py declares the lists)."""
     holonomic_constraints: list[HolonomicConstraint]
     velocity_constraints: list[VelocityConstraint]
+    wheels: list[Wheel]
     dim: int
     coordinates: list
     parameters: list
@@ -121,6 +122,7 @@ class KinematicConstraints:
                                     self.time)
         self.velocity_constraints += [VelocityConstraint(row_name, row, line=line)
                                       for row_name, row in zip(_names(name, 2, "xy"), rows)]
+        self.wheels.append(Wheel(name, body, radius, axle, center, line=line))
         defaults = {p.symbol: sp.Float(p.default) for p in self.parameters}
         initial = self.on_manifold([c.initial for c in self.coordinates])
         if not vanishes_near(height, q, initial, self.time, defaults,

@@ -31,7 +31,7 @@ from gencoord.dsl.speeds import GeneralizedSpeeds
 from gencoord.dsl.items import (Body, BodyTorque, Coordinate, Damper, FixedPoint, GeneralizedForce,
                                 Gravity, HolonomicConstraint, Input, Item, Parameter, Particle,
                                 ParticleForce, Pin, Plane, Point, Rod, Speed, Spring,
-                                VelocityConstraint, as_scalar, as_vector, caller_line,
+                                VelocityConstraint, Wheel, as_scalar, as_vector, caller_line,
                                 point_symbols)
 
 # The model options (`--set n=5`) requested of the model file being run: a Model built while
@@ -83,9 +83,10 @@ class Model(GeneralizedSpeeds, KinematicConstraints):
         self.particle_forces: list[ParticleForce] = []
         self.generalized_forces: list[GeneralizedForce] = []
         self.constraints: list[Rod | Pin | Plane] = []
-        # constraints the coordinates do not remove (kinematic_constraints.py)
+        # constraints the coordinates do not remove (kinematic_constraints.py); wheels: pictures
         self.holonomic_constraints: list[HolonomicConstraint] = []
         self.velocity_constraints: list[VelocityConstraint] = []
+        self.wheels: list[Wheel] = []
         self.bodies: list[Body] = []
         self.torques: list[BodyTorque] = []
         # a joint tree's links (joints.py), parents first: the rigid-body recursions walk it

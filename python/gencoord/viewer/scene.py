@@ -1,7 +1,8 @@
 # SPDX-License-Identifier: BSD-3-Clause
 """What a picture of a model needs, as JSON: its particles, fixed points, bodies with an
-inertia-equivalent shape, the rods, springs, dampers, pins and planes it declares, and the
-direction against gravity.
+inertia-equivalent shape (a rolling wheel: its disk), the rods, springs, dampers, pins and
+planes it declares (the ground plane under rolling wheels), and the direction against
+gravity.
 
 Positions are not in the scene: a trajectory (the simulate program's CSV) holds those of the
 particles and fixed points, row by row. Every other point is given as an affine combination
@@ -24,10 +25,15 @@ import sympy as sp
 
 from gencoord.dsl.model import Model
 
-from gencoord.dsl.items import Body, BodyParticle, BodyPoint, FixedPoint, Pin, Plane, Point, Rod
+from gencoord.dsl.items import (Body, BodyParticle, BodyPoint, FixedPoint, Pin, Plane, Point, Rod,
+                                Wheel)
 
 FORMAT = "gencoord-scene 1"
 FIXED_PREFIX = "fixed:"  # the CSV's columns of fixed points (runtime csv_writer.hpp)
+# what rolling wheels roll on (rolling_wheel): the plane z = 0
+GROUND = {"name": "ground", "particle": None, "normal": [0.0, 0.0, 1.0], "offset": 0.0}
+# a wheel's width as a fraction of its radius, for its picture
+WHEEL_WIDTH = 0.15
 # a body whose inertia vanishes about some axis (a thin rod) still gets this fraction of its
 # largest semi-axis, so that it stays visible
 MIN_THICKNESS = 0.05
@@ -40,6 +46,7 @@ def scene(model: Model, name: str, values: Mapping[str, float] | None = None) ->
     numbers = {p.symbol: sp.Float(float(given.get(p.name, p.default)))
                for p in model.parameters}
     body_particles = {p.name for body in model.bodies for p in body.particles}
+    wheels = {wheel.body.name: wheel for wheel in model.wheels}
     return {
         "format": FORMAT,
         "name": name,
@@ -48,10 +55,10 @@ def scene(model: Model, name: str, values: Mapping[str, float] | None = None) ->
         "particles": [{"name": p.name, "mass": _number(p.mass, numbers)}
                       for p in model.particles if not isinstance(p, BodyParticle)],
         "fixed_points": [p.name for p in model.fixed_points],
-        "bodies": [_body(body, numbers) for body in model.bodies],
+        "bodies": [_body(body, numbers, wheels.get(body.name)) for body in model.bodies],
         "links": [link for link in _links(model, numbers, body_particles) if link],
-        "planes": [_plane(plane, numbers) for plane in model.constraints
-                   if isinstance(plane, Plane)],
+        "planes": ([_plane(plane, numbers) for plane in model.constraints
+                    if isinstance(plane, Plane)] + ([GROUND] if model.wheels else [])),
         # pins to a position that never moves: where they hold their point (with the body
         # whose point it is, drawn joined to its centre)
         "pivots": [{"name": pin.name, "position": _vector(pin.anchor, numbers),
@@ -137,11 +144,26 @@ def _plane(plane: Plane, numbers: dict) -> dict:
             "normal": _vector(plane.normal, numbers), "offset": _number(plane.offset, numbers)}
 
 
-def _body(body: Body, numbers: dict) -> dict:
+def _body(body: Body, numbers: dict, wheel: Wheel | None) -> dict:
     mass = _number(body.mass, numbers)
     offsets = [_vector(r, numbers) for r in body.offsets]
+    shape = _wheel(wheel, offsets, numbers) if wheel else None
     return {"name": body.name, "mass": mass, "points": [p.name for p in body.particles],
-            "offsets": offsets, "shape": _ellipsoid(body, mass, numbers)}
+            "offsets": offsets, "shape": shape or _ellipsoid(body, mass, numbers)}
+
+
+def _wheel(wheel: Wheel, offsets: list, numbers: dict) -> dict | None:
+    """A rolling wheel's disk: its radius, its unit axle in body axes, and its centre in body
+    axes from the body's point masses' mean (where the viewer puts the body's origin)."""
+    radius, axle, center = (_number(wheel.radius, numbers), _vector(wheel.axle, numbers),
+                            _vector(wheel.center, numbers))
+    if radius is None or axle is None or center is None or None in offsets:
+        return None
+    length = sum(a * a for a in axle) ** 0.5
+    mean = [sum(r[i] for r in offsets) / len(offsets) for i in range(3)]
+    return {"kind": "wheel", "radius": radius, "width": _rounded(WHEEL_WIDTH * radius),
+            "axle": [_rounded(a / length) for a in axle],
+            "center": [_rounded(c - m) for c, m in zip(center, mean)]}
 
 
 def _ellipsoid(body: Body, mass: float | None, numbers: dict) -> dict | None:

@@ -267,7 +267,14 @@ function drawModel(prefix, faded, shift) {
     const inverse = differences.clone().invert();
     let geometry;
     const shape = new THREE.Matrix4();
-    if (body.shape && body.shape.kind === "ellipsoid") {
+    if (body.shape && body.shape.kind === "wheel") {
+      // a disk about the axle at the wheel's centre (the cylinder's own axis is y)
+      const { radius, width, axle, center } = body.shape;
+      geometry = new THREE.CylinderGeometry(radius, radius, width, 48);
+      shape.compose(new THREE.Vector3(...center),
+        new THREE.Quaternion().setFromUnitVectors(new THREE.Vector3(0, 1, 0),
+          new THREE.Vector3(...axle)), new THREE.Vector3(1, 1, 1));
+    } else if (body.shape && body.shape.kind === "ellipsoid") {
       geometry = new THREE.SphereGeometry(1, 48, 24);
       const [a, b, c] = body.shape.semi_axes;
       const axes = body.shape.axes; // rows: principal axes in body axes
