@@ -41,10 +41,9 @@
  * platform keeps its arms in tension, negative). Three degrees of freedom
  * are left: the platform's position.
  *
- * The upper arms are uniform solid rods (mass m_a,
-     radius rho); each lower arm is modelled as two point masses,
- * half its mass m_b at the elbow and half at the platform, the usual model of a parallelogram
- * of light rods. The motors apply the torques u_1, u_2, u_3.
+ * The upper arms are uniform solid rods (mass m_a, radius rho); each lower arm is modelled as
+ * two point masses, half its mass m_b at the elbow and half at the platform, the usual model of
+ * a parallelogram of light rods. The motors apply the torques u_1, u_2, u_3.
  */
 
 namespace gencoord {

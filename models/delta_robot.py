@@ -17,13 +17,13 @@ length in newtons (positive: the arm pushes the platform away from the elbow; a 
 platform keeps its arms in tension, negative). Three degrees of freedom
 are left: the platform's position.
 
-The upper arms are uniform solid rods (mass m_a, radius rho); each lower arm is modelled as two point masses,
-half its mass m_b at the elbow and half at the platform, the usual model of a parallelogram
-of light rods. The motors apply the torques u_1, u_2, u_3.
+The upper arms are uniform solid rods (mass m_a, radius rho); each lower arm is modelled as
+two point masses, half its mass m_b at the elbow and half at the platform, the usual model of
+a parallelogram of light rods. The motors apply the torques u_1, u_2, u_3.
 """
 import math
 
-from gencoord import Frame, Matrix, Model, cos, rotation_y, rotation_z, sin
+from gencoord import Frame, Matrix, Model, rotation_y, rotation_z
 
 R_BASE, R_PLATFORM, UPPER, LOWER, THETA0 = 0.2, 0.05, 0.35, 0.8, 0.5
 # the platform's height below the base when every upper arm is at THETA0

@@ -7,7 +7,8 @@ constraint that is not linear in the speeds or does not involve them, as many co
 speeds, a redundant or an inconsistent set at the initial state, a rolling wheel in 2D or on
 something that is no body, a loop between things that are no points, constraints in an atlas.
 Accepted: initial values near the constraints are moved onto them and the report says so; a
-rolling wheel adds a contact-height constraint only where the coordinates do not satisfy it.
+rolling wheel adds a contact-height constraint only where the coordinates do not satisfy it;
+a URDF robot takes a loop closure in its model file.
 """
 
 from __future__ import annotations
@@ -138,6 +139,34 @@ class ConstraintGenerationTest(unittest.TestCase):
                          ["front_rolling_contact"])  # sets the pitch
         self.assertEqual(len(bicycle.velocity_constraints), 4)
         self.assertEqual((bicycle.nq, bicycle.nv), (8, 8))
+
+    def test_a_urdf_robot_takes_a_loop_closure_in_its_model_file(self):
+        # the iiwa14 with its flange pinned where it starts: three holonomic constraints on a
+        # 7-joint tree, which keeps its articulated-body recursion
+        with tempfile.TemporaryDirectory(prefix="gencoord-pinned-") as scratch:
+            path = Path(scratch) / "pinned_arm.py"
+            path.write_text(PINNED_ARM.format(urdf=MODELS / "iiwa14.urdf"), encoding="utf-8")
+            generated = generate(str(path))
+        self.assertIn("static constexpr int num_constraints = 3;", generated.header)
+        self.assertRegex(generated.header, r'"pinned_x",\s+"pinned_y",\s+"pinned_z"')
+        self.assertFalse([line for line in generated.analysis if "moved onto" in line])
+        self.assertIn("qddot: articulated-body recursion", "\n".join(generated.analysis))
+
+
+PINNED_ARM = """\
+from gencoord import Model, load_urdf
+model = Model(dim=3)
+links = load_urdf(model, "{urdf}")
+for coordinate, angle in zip(model.coordinates, [0.3, 0.8, -0.2, -1.2, 0.4, 0.9, 0.1]):
+    coordinate.initial = angle
+body = links["iiwa_link_7"].body
+flange = body.point([0, 0, 0.045], name="flange")
+start = {{c.symbol: c.initial for c in model.coordinates}}
+start.update({{p.symbol: p.default for p in model.parameters}})
+flange_at_start = [float(x.subs(start)) for x in body.frame.point([0, 0, 0.045])]
+anchor = model.fixed_point("anchor", flange_at_start)
+model.close_loop(flange, anchor, name="pinned")
+"""
 
 
 if __name__ == "__main__":
