@@ -4,15 +4,33 @@
 from __future__ import annotations
 
 import re
+import tempfile
 import unittest
+from pathlib import Path
 
 from gencoord.cxx.line_wrap import LINE_WIDTH, wrap_line, wrap_long_lines
+from gencoord.generate.stages import generate
 
 from .support import GENERATED
 
 LONG_SUM = "    const Scalar tmp7 = " + " + ".join(f"tmp{k}*(q{k} - v{k})" for k in range(30)) + ";"
 NAMES = ("  static constexpr std::array<const char*, nq> names{{"
          + ", ".join(f'"theta{k}"' for k in range(40)) + "}};")
+
+
+def render_model_of_docstring(docstring: str) -> str:
+    """The header of a one-particle model whose file has `docstring`."""
+    with tempfile.TemporaryDirectory(prefix="gencoord-docstring-") as scratch:
+        path = Path(scratch) / "documented.py"
+        path.write_text(f'"""{docstring}"""\n' + PARTICLE, encoding="utf-8")
+        return generate(str(path)).header
+
+
+PARTICLE = """from gencoord import Model
+model = Model(dim=2)
+x = model.coordinate("x", "position (m)")
+model.particle("p", mass=1, position=[x, 0])
+"""
 
 
 def _tokens(text: str) -> str:
@@ -56,6 +74,18 @@ class WrapTest(unittest.TestCase):
         self.assertLessEqual(max(map(len, lines)), LINE_WIDTH)
         self.assertTrue(all(line.startswith("  /// word") for line in lines))
         self.assertEqual(sum(line.count("word") for line in lines), 40)
+
+    def test_a_long_docstring_line_stays_in_its_comment(self):
+        # a model file's docstring line wider than a header line: wrapped between words,
+        # every piece still a " * " line of the /* */ comment
+        docstring = "Title.\n\n    " + ", ".join(f"item {k} (kg, m)" for k in range(20)) + "."
+        header = render_model_of_docstring(docstring)
+        comment = header[header.index("/*\n"):header.index(" */", header.index("/*\n"))]
+        lines = comment.splitlines()[1:]
+        self.assertTrue(all(line == " *" or line.startswith(" * ") for line in lines), lines)
+        self.assertLessEqual(max(map(len, lines)), LINE_WIDTH)
+        self.assertTrue(all(line.startswith(" *     ") for line in lines[2:]), lines)
+        self.assertEqual(sum(line.count("item") for line in lines), 20)
 
     def test_banner_command_stays_one_line(self):
         line = "//   regenerate: gencoord generate models/pendulum.py" + " --set a=1" * 12

@@ -158,6 +158,26 @@ def _wrap_comment(line: str, indent: int) -> list[str]:
     return lines + [current]
 
 
+def wrap_prose(line: str, width: int) -> list[str]:
+    """A line of text (a model file's docstring) broken between words within `width` columns,
+    each piece with the line's own indentation; a word wider than that stays whole. A line
+    that fits stays as it is (drawings keep their spacing)."""
+    if len(line) <= width:
+        return [line]
+    indent = line[:len(line) - len(line.lstrip(" "))]
+    words = line.split()
+    if not words:
+        return [""]
+    lines, current = [], indent + words[0]
+    for word in words[1:]:
+        if len(current) + 1 + len(word) > width:
+            lines.append(current)
+            current = indent + word
+        else:
+            current += " " + word
+    return lines + [current]
+
+
 def wrap_line(line: str) -> list[str]:
     if len(line) <= LINE_WIDTH:
         return [line]

@@ -18,7 +18,7 @@ from gencoord import __version__
 from gencoord.options import GenerateOptions
 from gencoord.library_versions import JINJA2_CACHE_IS_SAFE
 from gencoord.cxx.template_views import kernel_view
-from gencoord.cxx.line_wrap import LINE_WIDTH, wrap_long_lines
+from gencoord.cxx.line_wrap import LINE_WIDTH, wrap_long_lines, wrap_prose
 from gencoord.naming import type_name
 from gencoord.cxx.reserved_names import TEMPLATE_DIR
 from gencoord.cxx.storage import model_types, needs_heap_matrix
@@ -224,8 +224,10 @@ def render_model(charts: list, name: str, docstring: str, source_path: str, head
         version=__version__, sympy_version=sp.__version__,
         options=[(k, v) for k, v in model.options.items()],
         flags="".join(" " + flag for flag in flags),  # generator flags other than defaults
-        # the docstring goes in a /* */ comment: keep it from closing early
-        docstring=[line.rstrip().replace("*/", "* /") for line in docstring.splitlines()],
+        # the docstring goes in a /* */ comment, each line after " * ": keep it from closing
+        # early, and wrap it here (wrap_long_lines breaks code, not prose)
+        docstring=[piece for line in docstring.splitlines()
+                   for piece in wrap_prose(line.rstrip().replace("*/", "* /"), LINE_WIDTH - 3)],
         analysis=analysis,
         total_ops=sum(c.optimized.total_ops for c in charts),
         intermediate_count=sum(c.optimized.intermediate_count for c in charts),
