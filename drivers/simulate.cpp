@@ -115,7 +115,9 @@ bool put_on_manifold(const gencoord::ReducedSystem<Model>& system, gencoord::Sta
   }
   gencoord::normalize(system, s);
   if constexpr (gencoord::has_kinematic_constraints_v<Model>) {
-    gencoord::project_onto_constraints<Model>(system.params(), s);  // also under Baumgarte
+    // normalize() projects unless Baumgarte's feedback replaces projection; start on them
+    if (!system.stabilization().project)
+      gencoord::project_onto_constraints<Model>(system.params(), s);
   }
   return true;
 }

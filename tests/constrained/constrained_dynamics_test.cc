@@ -22,6 +22,7 @@
 #include "generated/four_bar.hpp"
 #include "generated/pendulum.hpp"
 #include "generated/rolling_coin.hpp"
+#include "initial_state.hpp"
 
 namespace gencoord::testing {
 namespace {
@@ -36,14 +37,6 @@ static_assert(has_kinematic_constraints_v<RollingCoin> &&
               !has_holonomic_constraints_v<RollingCoin>);
 static_assert(!has_kinematic_constraints_v<Pendulum>);
 static_assert(FourBar::num_constraints == 2 && RollingCoin::num_constraints == 2);
-
-template <class M>
-State<M> initial_state() {
-  State<M> s;
-  for (int i = 0; i < M::nq; ++i) s.q[i] = M::initial_q[i];
-  for (int i = 0; i < M::nv; ++i) s.v[i] = M::initial_v[i];
-  return s;
-}
 
 TEST(CartesianPendulum, MovesAsThePendulumAndItsMultiplierIsTheTension) {
   const ReducedSystem<CartesianPendulum> cartesian({});

@@ -26,6 +26,7 @@
 #include "generated/four_bar.hpp"
 #include "generated/slider_crank.hpp"
 #include "generated/slider_crank_reduced.hpp"
+#include "initial_state.hpp"
 
 namespace gencoord::testing {
 namespace {
@@ -36,14 +37,6 @@ using models::SliderCrank;
 using models::SliderCrankReduced;
 
 static_assert(SliderCrank::num_constraints == 2 && DeltaRobot::num_constraints == 3);
-
-template <class M>
-State<M> initial_state() {
-  State<M> s;
-  for (int i = 0; i < M::nq; ++i) s.q[i] = M::initial_q[i];
-  for (int i = 0; i < M::nv; ++i) s.v[i] = M::initial_v[i];
-  return s;
-}
 
 // The slider-crank's state on its loop for a crank angle and rate: the loop's closed form,
 // sin(rod) = -a sin(crank) / b and s = a cos(crank) + b cos(rod), and its time derivative.
