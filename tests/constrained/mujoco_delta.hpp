@@ -11,15 +11,14 @@
 #pragma once
 
 #include <cmath>
-#include <memory>
 #include <sstream>
-#include <stdexcept>
 #include <string>
 
 #include <mujoco/mujoco.h>
 #include <Eigen/Dense>
 
 #include "generated/delta_robot.hpp"
+#include "mujoco_load.hpp"
 
 namespace gencoord::constrained_testing {
 
@@ -30,36 +29,14 @@ class MujocoDelta {
 
   /// MuJoCo's Delta with the parameters `p`, built in the configuration `reference` (which
   /// must satisfy the loops: MuJoCo places each connect's second point there).
-  MujocoDelta(const M::Params& p, const Vec& reference) : p_(p), reference_(reference) {
-    const std::string xml = mjcf();
-    auto vfs = std::make_unique<mjVFS>();
-    mj_defaultVFS(vfs.get());
-    mj_makeEmptyFileVFS(vfs.get(), "delta.xml", static_cast<int>(xml.size()));
-    const int file = mj_findFileVFS(vfs.get(), "delta.xml");
-    std::copy(xml.begin(), xml.end(), static_cast<char*>(vfs->filedata[file]));
-    char error[1000] = "";
-    model_ = mj_loadXML("delta.xml", vfs.get(), error, sizeof error);
-    mj_deleteVFS(vfs.get());
-    if (!model_) throw std::runtime_error(std::string("MuJoCo cannot load the Delta: ") + error);
-    data_ = mj_makeData(model_);
-  }
-  ~MujocoDelta() {
-    mj_deleteData(data_);
-    mj_deleteModel(model_);
-  }
-  MujocoDelta(const MujocoDelta&) = delete;
-  MujocoDelta& operator=(const MujocoDelta&) = delete;
+  MujocoDelta(const M::Params& p, const Vec& reference)
+      : p_(p), reference_(reference), mujoco_(mjcf()) {}
 
-  mjModel* model() { return model_; }
-  mjData* data() { return data_; }
+  mjModel* model() { return mujoco_.model(); }
+  mjData* data() { return mujoco_.data(); }
 
   /// Sets every equality's impedance to d (MuJoCo keeps it in [0.0001, 0.9999]).
-  void set_impedance(double d) {
-    for (int e = 0; e < model_->neq; ++e) {
-      mjtNum* solimp = model_->eq_solimp + e * mjNIMP;
-      solimp[0] = solimp[1] = d;
-    }
-  }
+  void set_impedance(double d) { mujoco_.set_impedance(d); }
 
   /// MuJoCo's state for the generated model's (q, v), which must satisfy the constraints:
   /// the rods' orientations and angular velocities follow from the elbows and the platform
@@ -76,42 +53,38 @@ class MujocoDelta {
           Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::UnitX(), parent.transpose() * d);
       const Eigen::Matrix3d child = parent * ball.toRotationMatrix();
       const Eigen::Vector3d relative = d.cross(d_rate) - v[i] * arm.axis;
-      const int hinge = joint(("theta_" + std::to_string(i + 1)).c_str());
-      data_->qpos[model_->jnt_qposadr[hinge]] = q[i];
-      data_->qvel[model_->jnt_dofadr[hinge]] = v[i];
-      data_->qfrc_applied[model_->jnt_dofadr[hinge]] = torques[i];
-      const int elbow = joint(("elbow_" + std::to_string(i + 1)).c_str());
-      mjtNum* quat = data_->qpos + model_->jnt_qposadr[elbow];
+      const int hinge = joint("theta_" + std::to_string(i + 1));
+      mujoco_.data()->qpos[mujoco_.model()->jnt_qposadr[hinge]] = q[i];
+      mujoco_.data()->qvel[mujoco_.model()->jnt_dofadr[hinge]] = v[i];
+      mujoco_.data()->qfrc_applied[mujoco_.model()->jnt_dofadr[hinge]] = torques[i];
+      const int elbow = joint("elbow_" + std::to_string(i + 1));
+      mjtNum* quat = mujoco_.data()->qpos + mujoco_.model()->jnt_qposadr[elbow];
       quat[0] = ball.w(), quat[1] = ball.x(), quat[2] = ball.y(), quat[3] = ball.z();
       const Eigen::Vector3d local = child.transpose() * relative;
-      for (int k = 0; k < 3; ++k) data_->qvel[model_->jnt_dofadr[elbow] + k] = local[k];
+      for (int k = 0; k < 3; ++k)
+        mujoco_.data()->qvel[mujoco_.model()->jnt_dofadr[elbow] + k] = local[k];
     }
     const char* slides[3] = {"x", "y", "z"};
     for (int k = 0; k < 3; ++k) {
       const int slide = joint(slides[k]);
-      data_->qpos[model_->jnt_qposadr[slide]] = q[3 + k] - reference_[3 + k];
-      data_->qvel[model_->jnt_dofadr[slide]] = v[3 + k];
+      mujoco_.data()->qpos[mujoco_.model()->jnt_qposadr[slide]] = q[3 + k] - reference_[3 + k];
+      mujoco_.data()->qvel[mujoco_.model()->jnt_dofadr[slide]] = v[3 + k];
     }
   }
 
   /// mj_forward at the state `set` gave; the generated model's v' from MuJoCo's qacc.
   Vec forward() {
-    mj_forward(model_, data_);
+    mj_forward(mujoco_.model(), mujoco_.data());
     Vec acceleration;
     const char* names[6] = {"theta_1", "theta_2", "theta_3", "x", "y", "z"};
-    for (int k = 0; k < 6; ++k) acceleration[k] = data_->qacc[model_->jnt_dofadr[joint(names[k])]];
+    for (int k = 0; k < 6; ++k)
+      acceleration[k] = mujoco_.data()->qacc[mujoco_.model()->jnt_dofadr[joint(names[k])]];
     return acceleration;
   }
 
   /// The largest |position| and |velocity| of MuJoCo's constraint rows after `forward`: zero
   /// when `set` put MuJoCo on its constraints.
-  double constraint_residual() const {
-    double worst = 0;
-    for (int r = 0; r < data_->nefc; ++r) {
-      worst = std::max({worst, std::abs(data_->efc_pos[r]), std::abs(data_->efc_vel[r])});
-    }
-    return worst;
-  }
+  double constraint_residual() const { return mujoco_.constraint_residual(); }
 
  private:
   struct Arm {
@@ -140,11 +113,7 @@ class MujocoDelta {
         .toRotationMatrix();
   }
 
-  int joint(const char* name) const {
-    const int id = mj_name2id(model_, mjOBJ_JOINT, name);
-    if (id < 0) throw std::runtime_error(std::string("MuJoCo's Delta has no joint ") + name);
-    return id;
-  }
+  int joint(const std::string& name) const { return mujoco_.joint(name); }
 
   static std::string quat(const Eigen::Matrix3d& rotation) {
     const Eigen::Quaterniond q(rotation);
@@ -196,8 +165,7 @@ class MujocoDelta {
 
   M::Params p_;
   Vec reference_;
-  mjModel* model_ = nullptr;
-  mjData* data_ = nullptr;
+  MujocoModel mujoco_;
 };
 
 }  // namespace gencoord::constrained_testing

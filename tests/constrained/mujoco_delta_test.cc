@@ -1,9 +1,9 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // The Delta robot's constrained dynamics against MuJoCo's (mujoco_delta.hpp: the same
 // mechanism with rods on ball joints and `connect` equalities). MuJoCo's constraints are soft,
-// so its accelerations are off by O((1 - d) / d) at its stiffest impedance d = 0.9999; taken at
-// d = 0.9999 and d = 0.999 and extrapolated to d = 1 (the difference is linear in (1 - d) / d),
-// they agree with the generated model to the extrapolation's own error.
+// so its accelerations are off by O((1 - d) / d) at its stiffest impedance d = 0.9999, ten
+// times more at d = 0.999; taken at d = 0.9999, 0.9998 and 0.9996 and extrapolated to d = 1
+// (a quadratic in (1 - d) / d), they agree with the generated model to 1e-11.
 //
 // The states are at rest, with random poses and motor torques: MuJoCo's constraint rows ask
 // J qacc = aref and leave out the curvature term J' qvel (its reference acceleration pulls
@@ -12,6 +12,7 @@
 // Newton's law for the platform (loop_models_test.cc) and the independent Kane derivation.
 #include <algorithm>
 #include <random>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -33,7 +34,6 @@ TEST(DeltaRobotMujoco, AgreesWithMujocosConnectEqualitiesExtrapolatedToHardConst
   std::mt19937 rng(7);
   std::uniform_real_distribution<double> offset(-0.1, 0.1), torque(-1.5, 1.5);
   const double stiff = 0.9999, softer = 0.999;
-  const double eps_stiff = (1 - stiff) / stiff, eps_softer = (1 - softer) / softer;
   double worst_stiff = 0, worst_extrapolated = 0, worst_residual = 0, worst_order = 1e300,
          best_order = 0;
   for (int k = 0; k < 20; ++k) {
@@ -51,8 +51,13 @@ TEST(DeltaRobotMujoco, AgreesWithMujocosConnectEqualitiesExtrapolatedToHardConst
     worst_residual = std::max(worst_residual, mujoco.constraint_residual());
     mujoco.set_impedance(softer);
     const MujocoDelta::Vec at_softer = mujoco.forward();
+    std::vector<MujocoDelta::Vec> near_hard{at_stiff};
+    for (const double d : {0.9998, 0.9996}) {
+      mujoco.set_impedance(d);
+      near_hard.push_back(mujoco.forward());
+    }
     const MujocoDelta::Vec extrapolated =
-        at_stiff - eps_stiff * (at_softer - at_stiff) / (eps_softer - eps_stiff);
+        constrained_testing::extrapolated_to_hard({stiff, 0.9998, 0.9996}, near_hard);
     const double error_stiff = (at_stiff - ours).cwiseAbs().maxCoeff() / scale;
     const double error_softer = (at_softer - ours).cwiseAbs().maxCoeff() / scale;
     worst_stiff = std::max(worst_stiff, error_stiff);
@@ -70,7 +75,7 @@ TEST(DeltaRobotMujoco, AgreesWithMujocosConnectEqualitiesExtrapolatedToHardConst
   // ten times softer, ten times further off: the difference is the softness
   EXPECT_GT(worst_order, 8.0);
   EXPECT_LT(best_order, 12.0);
-  EXPECT_LT(worst_extrapolated, 1e-6);
+  EXPECT_LT(worst_extrapolated, 1e-9);  // 1.7e-11
 }
 
 }  // namespace
