@@ -28,17 +28,21 @@ enum class Status : std::int8_t {
   kNewtonFailed = 6,  // NewtonError in an implicit step
   kDiverged = 7,      // DivergedError: a step ended at NaN or inf
   kOtherError = 8,
+  kDependentConstraints = 9,   // DynamicsError: the kinematic constraints are dependent here
+  kConstraintsNotFinite = 10,  // DynamicsError: NaN or inf in the constraint Jacobian or bias
 };
 
-inline constexpr std::array<const char*, 9> kStatusNames{"pending",
-                                                         "ok",
-                                                         "mass_matrix_not_positive_definite",
-                                                         "mass_matrix_not_finite",
-                                                         "forces_not_finite",
-                                                         "acceleration_not_finite",
-                                                         "newton_not_converged",
-                                                         "diverged",
-                                                         "error"};
+inline constexpr std::array<const char*, 11> kStatusNames{"pending",
+                                                          "ok",
+                                                          "mass_matrix_not_positive_definite",
+                                                          "mass_matrix_not_finite",
+                                                          "forces_not_finite",
+                                                          "acceleration_not_finite",
+                                                          "newton_not_converged",
+                                                          "diverged",
+                                                          "error",
+                                                          "constraints_dependent",
+                                                          "constraints_not_finite"};
 
 /// Bytes of a sample's error text, zero padded.
 inline constexpr std::size_t kErrorLength = 64;

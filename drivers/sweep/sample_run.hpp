@@ -173,6 +173,9 @@ void run_sample(const Plan<M>& plan, const double* row, long long i, ChunkResult
     else if (setter.kind == Kind::kV) s.v[setter.index] = row[k];
     else *p.find(setter.name) = row[k];
   }
+  // a constrained model starts on its constraints (the table's values may leave them) and
+  // is projected back after every step
+  if constexpr (has_kinematic_constraints_v<M>) project_onto_constraints<M>(p, &s);
   const ReducedSystem<M> system(p);
   const auto n = static_cast<std::size_t>(i);
   const auto nq = static_cast<std::size_t>(M::nq);
@@ -212,10 +215,12 @@ void run_sample(const Plan<M>& plan, const double* row, long long i, ChunkResult
     simulate(system, s, SimulateOptions{plan.integrator, plan.dt, plan.duration}, observe);
   } catch (const DynamicsError& e) {
     using Reason = DynamicsError::Reason;
-    status = e.reason() == Reason::kNotPositiveDefinite   ? Status::kNotPositiveDefinite
-             : e.reason() == Reason::kNonFiniteMassMatrix ? Status::kMassMatrixNotFinite
-             : e.reason() == Reason::kNonFiniteForces     ? Status::kForcesNotFinite
-                                                          : Status::kAccelerationNotFinite;
+    status = e.reason() == Reason::kNotPositiveDefinite    ? Status::kNotPositiveDefinite
+             : e.reason() == Reason::kNonFiniteMassMatrix  ? Status::kMassMatrixNotFinite
+             : e.reason() == Reason::kNonFiniteForces      ? Status::kForcesNotFinite
+             : e.reason() == Reason::kDependentConstraints ? Status::kDependentConstraints
+             : e.reason() == Reason::kNonFiniteConstraints ? Status::kConstraintsNotFinite
+                                                           : Status::kAccelerationNotFinite;
     error_time = e.time();
     error = detail::configuration(e.q());  // the status says what failed
   } catch (const NewtonError& e) {

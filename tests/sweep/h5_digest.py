@@ -27,6 +27,8 @@ def main(path: str) -> None:
             "banner": results.attrs["banner"].decode(),
             "sweep": results.attrs["sweep"].decode(),
         }
+        if "final_q" in results:
+            report["final_q"] = results["final_q"][()].tolist()
     json.dump(report, sys.stdout)
 
 

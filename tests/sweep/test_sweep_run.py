@@ -3,13 +3,15 @@
 results (datasets, and whole files) with 1, 2 and 4 ranks (4 oversubscribed) and 1 or 2
 threads; a run killed midway resumes from its completed chunks without running them again
 and ends with the bytes of an uninterrupted run; samples whose dynamics fail are recorded and
-the run goes on; a rank that dies is reported.
+the run goes on; a rank that dies is reported; a closed loop (the four-bar) starts each sample
+on its constraint and ends on it.
 Needs mpirun, the sweep program's MPI and HDF5, and h5py for $GENCOORD_H5PY_PYTHON (default
 /usr/bin/python3), which reads the results (tests/sweep/h5_digest.py)."""
 
 from __future__ import annotations
 
 import json
+import math
 import os
 import re
 import shutil
@@ -78,6 +80,28 @@ m2 = {{ values = [1.0, 0.0] }}
 g = {{ values = [9.81, 1e300] }}
 """
 
+# the four-bar, closed by a loop constraint, driven at a range of crank rates and torques
+FOUR_BAR = f"""\
+[model]
+file = "{REPOSITORY / "models" / "four_bar.py"}"
+
+[integration]
+dt = 0.001
+t_end = 5.0
+
+[samples]
+method = "grid"
+
+[samples.v]
+crank = {{ from = 0, to = 6, points = 4 }}
+
+[samples.parameters]
+u = {{ values = [0.0, 2.0] }}
+
+[record]
+final_state = true
+"""
+
 
 class SweepRunTest(unittest.TestCase):
 
@@ -89,7 +113,8 @@ class SweepRunTest(unittest.TestCase):
         if os.environ.get("GENCOORD_TEST_CACHE_DIR"):
             shutil.rmtree(cache, ignore_errors=True)  # every run builds from nothing
         cls.environment = dict(os.environ, PYTHONHASHSEED="0", GENCOORD_CACHE_DIR=cache)
-        for name, text in (("small", SMALL), ("longer", LONGER), ("failing", FAILING)):
+        for name, text in (("small", SMALL), ("longer", LONGER), ("failing", FAILING),
+                           ("four_bar", FOUR_BAR)):
             (cls.home / f"{name}.toml").write_text(text, encoding="utf-8")
 
     @classmethod
@@ -207,6 +232,19 @@ class SweepRunTest(unittest.TestCase):
             return Path(f"/proc/{pid}/cmdline").read_bytes()
         except OSError:
             return b""
+
+    def test_6_a_closed_loop_starts_and_stays_on_its_constraints(self):
+        # the table sets the crank's rate alone; each sample starts projected onto the loop
+        result = self.gencoord("four_bar.toml", "--ranks", "1", folder="loop")
+        self.assertSucceeded(result)
+        self.assertIn("status      8 ok, 0 failed", result.stdout)
+        final = self.results(self.home / "loop" / "four_bar.h5")["final_q"]
+        a, b, c, d = 0.3, 0.8, 0.6, 0.7  # the model's lengths
+        for crank, coupler, rocker in final:
+            gap = math.hypot(a * math.cos(crank) + b * math.cos(coupler) - d - c * math.cos(rocker),
+                             a * math.sin(crank) + b * math.sin(coupler) - c * math.sin(rocker))
+            self.assertLess(gap, 1e-12)
+        self.assertGreater(max(abs(q[0]) for q in final), 20)  # driven cranks turn many times
 
     def test_3_failing_samples_are_recorded_and_the_run_goes_on(self):
         result = self.gencoord("failing.toml", "--ranks", "2", folder="failing")
