@@ -1,8 +1,9 @@
 # SPDX-License-Identifier: BSD-3-Clause
 """The Python modules of models with kinematic constraints (the four-bar, the slider-crank):
 the constraint kernels, the constrained acceleration and its multipliers against the KKT
-equations they solve, rhs and simulate on the constraints, and linearize_constrained against
-the slider-crank's small oscillation about its hanging pose in closed form.
+equations they solve, rhs and simulate on the constraints (projected, or held by Baumgarte's
+feedback), inverse dynamics against forward dynamics, and linearize_constrained against the
+slider-crank's small oscillation about its hanging pose in closed form.
 
 Run by CTest (python_module_tests) with the built modules on PYTHONPATH.
 """
@@ -74,6 +75,34 @@ class ConstrainedModuleTest(unittest.TestCase):
         self.assertLess(abs(energy[-1] - energy[0]) / abs(energy[0]), 1e-8)
         with self.assertRaisesRegex(ValueError, "kinematic constraints"):
             model.simulate(t_end=0.01, inputs={"u": lambda t: 1.0})
+
+    def test_baumgarte_keeps_the_loop_near_closed_without_projection(self):
+        model = self.four_bar
+        t, q, v, energy = model.simulate(None, [3.0, 0.0, 0.0], t_end=2.0, dt=1e-3,
+                                         baumgarte=20.0)
+        gaps = [np.abs(model.holonomic_constraints(q[k])).max() for k in range(len(t))]
+        self.assertLess(max(gaps), 1e-7)  # held near, not at round-off: no projection
+        self.assertGreater(max(gaps), 1e-13)
+        with self.assertRaisesRegex(ValueError, "baumgarte: expected a rate >= 0"):
+            model.simulate(t_end=0.01, baumgarte=-1.0)
+
+    def test_inverse_dynamics_gives_the_torque_that_forward_dynamics_turns_back(self):
+        model = self.four_bar
+        params = model.Params()
+        for seed in range(3):
+            q, v = self.state_on_the_loop(model, seed)
+            u, lam, vdot = model.inverse_dynamics_constrained(q, v, [0], [2.5], params=params)
+            self.assertEqual(u.shape, (1,))
+            self.assertAlmostEqual(vdot[0], 2.5, places=10)
+            params.u = u[0]
+            np.testing.assert_allclose(model.constrained_qddot(q, v, params=params), vdot,
+                                       rtol=1e-10, atol=1e-10)
+            np.testing.assert_allclose(model.constraint_forces(q, v, params=params), lam,
+                                       rtol=1e-10, atol=1e-10)
+        with self.assertRaisesRegex(ValueError, "independent"):
+            model.inverse_dynamics_constrained(q, v, [0, 1], [0.0, 0.0])
+        # the slider-crank has two inputs for one degree of freedom: no unique answer
+        self.assertFalse(hasattr(self.slider_crank, "inverse_dynamics_constrained"))
 
     def test_linearize_constrained_gives_the_slider_cranks_small_oscillation(self):
         # hanging pose: crank straight down, the rod and the slider then move with the crank's

@@ -1,8 +1,9 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // The kinematic constraints of a model with closed loops or rolling contacts, for Python:
 // their generated kernels, the constrained acceleration and its multipliers, the projection
-// onto the constraints and the linearization in independent coordinates and speeds
-// (gencoord/model/constrained_dynamics.hpp, gencoord/control/constrained_linearization.hpp).
+// onto the constraints, inverse dynamics (one input per degree of freedom) and the
+// linearization in independent coordinates and speeds (gencoord/model/constrained_dynamics.hpp,
+// gencoord/control/constrained_inverse_dynamics.hpp, constrained_linearization.hpp).
 #pragma once
 
 #include <pybind11/numpy.h>
@@ -13,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "gencoord/control/constrained_inverse_dynamics.hpp"
 #include "gencoord/control/constrained_linearization.hpp"
 #include "gencoord/model/constrained_dynamics.hpp"
 #include "gencoord/model/model_traits.hpp"
@@ -101,6 +103,40 @@ void bind_constraints(py::module_& m) {
       "the least-kinetic-energy change of v onto A v + b = 0 (what every integration step "
       "does). Returns (q, v).",
       py::arg("q"), py::arg("v"), py::arg("t") = 0.0, py::arg("params") = py::none());
+  if constexpr (has_inputs_v<M>) {
+    if constexpr (num_inputs_v<M> + M::num_constraints == nv_of_v<M>) {
+      m.def(
+          "inverse_dynamics_constrained",
+          [](py::handle q, py::handle v, std::vector<int> independent, py::handle prescribed,
+             double t, py::handle params) {
+            State<M> s;
+            s.q = one_state_vector<M>(q, "q");
+            s.v = one_state_vector<M>(v, "v");
+            s.t = t;
+            const P p = params_input<M>(params, -1).at(0);
+            const auto wanted = py::cast<std::vector<double>>(prescribed);
+            const Eigen::VectorXd accelerations =
+                Eigen::Map<const Eigen::VectorXd>(wanted.data(), Eigen::Index(wanted.size()));
+            ConstrainedInverseDynamics<M> out;
+            try {
+              py::gil_scoped_release unlocked;
+              out = constrained_inverse_dynamics<M>(p, s, independent, accelerations);
+            } catch (const std::invalid_argument& error) {
+              throw py::value_error(error.what());
+            }
+            return py::make_tuple(vector_array(out.inputs), vector_array(out.multipliers),
+                                  vector_array(out.acceleration));
+          },
+          "The control inputs that give the independent speeds v[independent] the\n"
+          "accelerations `prescribed` at a state on the constraints (one input per degree of\n"
+          "freedom). Returns (u, lambda, vdot): the inputs, the constraint forces and the\n"
+          "whole acceleration, which constrained_qddot gives back with those inputs. Raises\n"
+          "ValueError for wrong indices or sizes, DynamicsError where the inputs cannot\n"
+          "produce the motion.",
+          py::arg("q"), py::arg("v"), py::arg("independent"), py::arg("prescribed"),
+          py::arg("t") = 0.0, py::arg("params") = py::none());
+    }
+  }
   m.def(
       "linearize_constrained",
       [](py::handle q, py::handle v, std::vector<int> independent_q, std::vector<int> dependent_q,

@@ -7,6 +7,7 @@
 #include <pybind11/pybind11.h>
 
 #include <array>
+#include <cmath>
 #include <cstddef>
 #include <functional>
 #include <memory>
@@ -192,7 +193,7 @@ void bind_simulation(py::module_& module) {
       "simulate",
       [](py::handle q0, py::handle v0, double t_end, double dt, const std::string& integrator,
          py::handle params, double t0, py::handle scripted, py::handle inputs, py::handle observer,
-         long every) {
+         long every, double baumgarte) {
         if (every < 1)
           throw py::value_error("every: expected at least 1, got " + std::to_string(every));
         State<M> initial;
@@ -226,14 +227,22 @@ void bind_simulation(py::module_& module) {
           ++row;
         };
         Script script = detail::script_of<M>(scripted);
+        if (!(baumgarte >= 0) || !std::isfinite(baumgarte))
+          throw py::value_error("baumgarte: expected a rate >= 0 (1/s), got " +
+                                std::to_string(baumgarte));
         if constexpr (has_kinematic_constraints_v<M>) {
           if (script.size() != 0 || !inputs.is_none())
             throw py::value_error(
                 "scripted, inputs: a model with kinematic constraints takes neither yet; set "
                 "constant inputs in its params");
           project_onto_constraints<M>(p, &initial);  // as every step's end state is
+          // Baumgarte's feedback, critically damped, replaces the projection after each step
+          const ConstraintStabilization stabilization{baumgarte == 0, {baumgarte, baumgarte}};
           py::gil_scoped_release unlocked;
-          simulate(ReducedSystem<M>(p), initial, options, record);
+          simulate(ReducedSystem<M>(p, stabilization), initial, options, record);
+        } else if (baumgarte > 0) {
+          throw py::value_error("baumgarte: " + std::string(M::name) +
+                                " has no kinematic constraints to keep");
         } else if (!inputs.is_none()) {
           if constexpr (has_inputs_v<M>) {
             if (script.size() != 0)
@@ -267,6 +276,9 @@ void bind_simulation(py::module_& module) {
       "              f(t, q, v) -> u, or {input name or index: f(t) -> value, or\n"
       "              keyframes (times, values)}; by default those the params hold\n"
       "  observer    called as observer(t, q, v) at each recorded state\n"
+      "  baumgarte   a model with kinematic constraints: 0 (default) projects each step's\n"
+      "              end state onto them; a rate > 0 (1/s) applies Baumgarte's feedback,\n"
+      "              critically damped, instead\n"
       "A model with kinematic constraints starts from q0, v0 projected onto them and takes\n"
       "neither scripted coordinates nor an inputs argument.\n"
       "Raises DynamicsError, NewtonError, or ValueError for a step that does not divide\n"
@@ -274,7 +286,8 @@ void bind_simulation(py::module_& module) {
       py::arg("q0") = py::none(), py::arg("v0") = py::none(), py::arg("t_end") = 10.0,
       py::arg("dt") = 1e-3, py::arg("integrator") = "rk4", py::arg("params") = py::none(),
       py::kw_only(), py::arg("t0") = 0.0, py::arg("scripted") = py::none(),
-      py::arg("inputs") = py::none(), py::arg("observer") = py::none(), py::arg("every") = 1);
+      py::arg("inputs") = py::none(), py::arg("observer") = py::none(), py::arg("every") = 1,
+      py::arg("baumgarte") = 0.0);
 }
 
 }  // namespace gencoord::python
