@@ -299,7 +299,8 @@ function drawModel(prefix, faded, shift) {
     frame.renderOrder = 3;
     frame.material.depthTest = false; // seen through the body
     world.add(frame);
-    return { points: body.points.map((name) => prefix + name), mesh, frame, shape, inverse, n };
+    return { name: body.name, points: body.points.map((name) => prefix + name), mesh, frame,
+      shape, inverse, n };
   });
   return { particles, fixedPoints, links, bodies, spindles };
 }
@@ -685,6 +686,14 @@ window.gencoordViewer = {
     const particle = particles.find((p) => p.name === name);
     const c = particle ? particle.colour : null; // sRGB, as the canvas shows it
     return particle ? [(c >> 16) & 255, (c >> 8) & 255, c & 255] : null;
+  },
+  /** Shows or hides a body's drawn shape (its frame stays); false for no such body. */
+  showBody(name, on) {
+    const body = drawings[0].bodies.find((b) => b.name === name);
+    if (!body) return false;
+    body.mesh.visible = on;
+    render();
+    return true;
   },
   plot: () => ({ ...plotInfo, x: undefined }),
   /** The springs of a deformable object drawn now (null for a model). */
