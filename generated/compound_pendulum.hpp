@@ -804,6 +804,9 @@ struct CompoundPendulum {
     /// Whether the reduced model has forces acting directly on q (see generalized_forces).
     static constexpr bool has_generalized_forces = false;
     static constexpr int num_constraints = 4;
+    /// The first constraints, declared (rods, pins, planes), hold on X(q, t); the kinematic
+    /// constraints' rows (closed loops, rolling) follow.
+    static constexpr int num_declared_constraints = 4;
     static constexpr std::array<const char*, num_constraints> constraint_names{{"rod 'bar_0-bar_1'",
         "rod 'bar_0-bar_2'", "rod 'bar_1-bar_2'", "pin 'pivot'"}};
     /// Sparsity of force_jacobian_x and force_jacobian_xdot (row, column of each value).

@@ -1960,6 +1960,9 @@ struct FurutaPendulum {
     /// Whether the reduced model has forces acting directly on q (see generalized_forces).
     static constexpr bool has_generalized_forces = false;
     static constexpr int num_constraints = 16;
+    /// The first constraints, declared (rods, pins, planes), hold on X(q, t); the kinematic
+    /// constraints' rows (closed loops, rolling) follow.
+    static constexpr int num_declared_constraints = 16;
     static constexpr std::array<const char*, num_constraints> constraint_names{{"rod 'arm_0-arm_1'",
         "rod 'arm_0-arm_2'", "rod 'arm_0-arm_3'", "rod 'arm_1-arm_2'", "rod 'arm_1-arm_3'",
         "rod 'arm_2-arm_3'", "rod 'pendulum_0-pendulum_1'", "rod 'pendulum_0-pendulum_2'",

@@ -2435,6 +2435,9 @@ struct HeavyTop {
     /// Whether the reduced model has forces acting directly on q (see generalized_forces).
     static constexpr bool has_generalized_forces = false;
     static constexpr int num_constraints = 7;
+    /// The first constraints, declared (rods, pins, planes), hold on X(q, t); the kinematic
+    /// constraints' rows (closed loops, rolling) follow.
+    static constexpr int num_declared_constraints = 7;
     static constexpr std::array<const char*, num_constraints> constraint_names{{"rod 'top_0-top_1'",
         "rod 'top_0-top_2'", "rod 'top_0-top_3'", "rod 'top_1-top_2'", "rod 'top_1-top_3'",
         "rod 'top_2-top_3'", "pin 'tip'"}};

@@ -3918,6 +3918,9 @@ struct RigidBodyEuler {
     /// Whether the reduced model has forces acting directly on q (see generalized_forces).
     static constexpr bool has_generalized_forces = false;
     static constexpr int num_constraints = 6;
+    /// The first constraints, declared (rods, pins, planes), hold on X(q, t); the kinematic
+    /// constraints' rows (closed loops, rolling) follow.
+    static constexpr int num_declared_constraints = 6;
     static constexpr std::array<const char*, num_constraints> constraint_names{{
         "rod 'body_0-body_1'", "rod 'body_0-body_2'", "rod 'body_0-body_3'", "rod 'body_1-body_2'",
         "rod 'body_1-body_3'", "rod 'body_2-body_3'"}};
@@ -9894,6 +9897,9 @@ struct RigidBodyEulerYzx {
     /// Whether the reduced model has forces acting directly on q (see generalized_forces).
     static constexpr bool has_generalized_forces = false;
     static constexpr int num_constraints = 6;
+    /// The first constraints, declared (rods, pins, planes), hold on X(q, t); the kinematic
+    /// constraints' rows (closed loops, rolling) follow.
+    static constexpr int num_declared_constraints = 6;
     static constexpr std::array<const char*, num_constraints> constraint_names{{
         "rod 'body_0-body_1'", "rod 'body_0-body_2'", "rod 'body_0-body_3'", "rod 'body_1-body_2'",
         "rod 'body_1-body_3'", "rod 'body_2-body_3'"}};

@@ -13013,6 +13013,9 @@ struct StiffChain10 {
     /// Whether the reduced model has forces acting directly on q (see generalized_forces).
     static constexpr bool has_generalized_forces = true;
     static constexpr int num_constraints = 10;
+    /// The first constraints, declared (rods, pins, planes), hold on X(q, t); the kinematic
+    /// constraints' rows (closed loops, rolling) follow.
+    static constexpr int num_declared_constraints = 10;
     static constexpr std::array<const char*, num_constraints> constraint_names{{"rod 'pivot-bob1'",
         "rod 'bob1-bob2'", "rod 'bob2-bob3'", "rod 'bob3-bob4'", "rod 'bob4-bob5'",
         "rod 'bob5-bob6'", "rod 'bob6-bob7'", "rod 'bob7-bob8'", "rod 'bob8-bob9'",

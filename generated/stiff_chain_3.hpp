@@ -1513,6 +1513,9 @@ struct StiffChain3 {
     /// Whether the reduced model has forces acting directly on q (see generalized_forces).
     static constexpr bool has_generalized_forces = true;
     static constexpr int num_constraints = 3;
+    /// The first constraints, declared (rods, pins, planes), hold on X(q, t); the kinematic
+    /// constraints' rows (closed loops, rolling) follow.
+    static constexpr int num_declared_constraints = 3;
     static constexpr std::array<const char*, num_constraints> constraint_names{{"rod 'pivot-bob1'",
         "rod 'bob1-bob2'", "rod 'bob2-bob3'"}};
     /// Sparsity of force_jacobian_x and force_jacobian_xdot (row, column of each value).

@@ -48,19 +48,27 @@ g = model.parameter("g", 9.81, "gravitational acceleration (m/s^2)")
 
 centre = Matrix([x, y, z])
 platform_mass = m_p + 3 * m_b / 2
-model.particle("platform", mass=platform_mass, position=centre)
+platform = model.particle("platform", mass=platform_mass, position=centre)
 for i, theta in enumerate(thetas, start=1):
     alpha = 2 * math.pi * (i - 1) / 3
     radial = Matrix([math.cos(alpha), math.sin(alpha), 0])
     arm_axes = rotation_z(alpha) * rotation_y(theta)  # x along the arm, y its motor's axis
     along = arm_axes * Matrix([1, 0, 0])
-    model.body(f"upper_arm_{i}", mass=m_a,
-               inertia=Matrix.diag(m_a * rho**2 / 2, *[m_a * (3 * rho**2 + l_a**2) / 12] * 2),
-               frame=Frame(arm_axes, base * radial + l_a / 2 * along))
-    elbow = base * radial + l_a * along
-    model.particle(f"elbow_{i}", mass=m_b / 2, position=elbow)
-    span = centre + platform_radius * radial - elbow
+    arm = model.body(f"upper_arm_{i}", mass=m_a,
+                     inertia=Matrix.diag(m_a * rho**2 / 2,
+                                         *[m_a * (3 * rho**2 + l_a**2) / 12] * 2),
+                     frame=Frame(arm_axes, base * radial + l_a / 2 * along))
+    elbow = model.particle(f"elbow_{i}", mass=m_b / 2, position=base * radial + l_a * along)
+    span = platform.x + platform_radius * radial - elbow.x
     model.holonomic_constraint((span.dot(span) - l_b**2) / (2 * l_b), name=f"lower_arm_{i}")
+    # the motor's hinge (two points of its axis) and the elbow, which the coordinates
+    # already keep, restated for the maximal-coordinate model (gencoord crosscheck)
+    motor_axis = rotation_z(alpha) * Matrix([0, 1, 0])
+    model.pin(arm.point([-l_a / 2, 0, 0], name=f"motor_{i}_near"), base * radial,
+              name=f"motor_{i}_near")
+    model.pin(arm.point([-l_a / 2, l_a / 2, 0], name=f"motor_{i}_far"),
+              base * radial + l_a / 2 * motor_axis, name=f"motor_{i}_far")
+    model.pin(elbow, arm.point([l_a / 2, 0, 0], name=f"elbow_{i}_joint"), name=f"elbow_{i}")
     model.generalized_force(theta, model.input(f"u_{i}", f"motor torque on arm {i} (N m)"),
                             name=f"motor_{i}")
 model.gravity([0, 0, -g])

@@ -32,18 +32,21 @@ g = model.parameter("g", 9.81, "gravitational acceleration (m/s^2)")
 u = model.input("u", "motor torque on the crank at A (N m)")
 
 
-def bar(name, mass, length, angle, start):
-    """A uniform bar from `start` along `angle`; returns its far end, a point on it."""
+def bar(name, mass, length, angle, start, joint):
+    """A uniform bar from `start` along `angle`, its start pinned to `joint` (a point, or a
+    fixed position); returns its far end, a point on it."""
     middle = [start[0] + length / 2 * cos(angle), start[1] + length / 2 * sin(angle)]
     body = model.body(name, mass=mass, inertia=mass * length**2 / 12,
                       frame=Frame(angle, middle))
+    model.pin(body.point([-length / 2, 0], name=f"{name}_end"), joint, name=f"{name}_joint")
     return body.point([length / 2, 0], name=f"{name}_tip")
 
 
-crank_tip = bar("crank_bar", m_a, a, crank, [0, 0])
-coupler_tip = bar("coupler_bar", m_b, b, coupler,
-                  [a * cos(crank), a * sin(crank)])
-rocker_tip = bar("rocker_bar", m_c, c, rocker, [d, 0])
+# the pins restate the tree's joints, which the coordinates already keep, for the
+# maximal-coordinate model (gencoord crosscheck), where every bar moves freely
+crank_tip = bar("crank_bar", m_a, a, crank, [0, 0], [0, 0])
+coupler_tip = bar("coupler_bar", m_b, b, coupler, [a * cos(crank), a * sin(crank)], crank_tip)
+rocker_tip = bar("rocker_bar", m_c, c, rocker, [d, 0], [d, 0])
 model.close_loop(coupler_tip, rocker_tip, name="loop_C")
 model.generalized_force(crank, u, name="motor")
 model.gravity([0, -g])

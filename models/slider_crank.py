@@ -34,13 +34,19 @@ u = model.input("u", "motor torque on the crank at A (N m)")
 p = model.input("p", "force on the slider along +x (N)")
 
 crank_end = [a * cos(crank), a * sin(crank)]
-model.body("crank_bar", mass=m_a, inertia=m_a * a**2 / 12,
-           frame=Frame(crank, [a / 2 * cos(crank), a / 2 * sin(crank)]))
+crank_bar = model.body("crank_bar", mass=m_a, inertia=m_a * a**2 / 12,
+                       frame=Frame(crank, [a / 2 * cos(crank), a / 2 * sin(crank)]))
 rod_bar = model.body("rod_bar", mass=m_b, inertia=m_b * b**2 / 12,
                      frame=Frame(rod, [crank_end[0] + b / 2 * cos(rod),
                                        crank_end[1] + b / 2 * sin(rod)]))
 slider = model.particle("slider", mass=m_s, position=[s, 0])
 model.close_loop(rod_bar.point([b / 2, 0], name="rod_tip"), slider, name="loop_C")
+# the joints and the guide, which the coordinates already keep, restated for the
+# maximal-coordinate model (gencoord crosscheck), where every part moves freely
+model.pin(crank_bar.point([-a / 2, 0], name="crank_pivot"), [0, 0], name="pivot_A")
+model.pin(rod_bar.point([-b / 2, 0], name="rod_end"),
+          crank_bar.point([a / 2, 0], name="crank_tip"), name="pin_B")
+model.plane(slider, [0, 1], name="guide")
 model.generalized_force(crank, u, name="motor")
 model.generalized_force(s, p, name="gas")
 model.gravity([0, -g])

@@ -93,13 +93,32 @@ front_centre = steer_point + front_frame * Matrix([-c, 0, -r_f])
 
 rear_wheel = model.body("rear_wheel", mass=m_r, inertia=inertia(I_rxx, I_ryy, I_rxx),
                         frame=frame(rear_frame * rotation_y(theta_r), rear_centre))
-model.body("rear_frame", mass=m_b, inertia=inertia(I_bxx, I_byy, I_bzz, I_bxz),
-           frame=frame(rear_frame, rear_centre + rear_frame * Matrix([x_b, 0, z_b + r_r])))
-model.body("front_frame", mass=m_h, inertia=inertia(I_hxx, I_hyy, I_hzz, I_hxz),
-           frame=frame(front_frame,
-                       steer_point + front_frame * Matrix([x_h - w - c, 0, z_h])))
+rear_body_centre = Matrix([x_b, 0, z_b + r_r])  # from the rear wheel's centre, rear frame axes
+rear_body = model.body("rear_frame", mass=m_b, inertia=inertia(I_bxx, I_byy, I_bzz, I_bxz),
+                       frame=frame(rear_frame, rear_centre + rear_frame * rear_body_centre))
+front_body_centre = Matrix([x_h - w - c, 0, z_h])  # from the steer point, front frame axes
+front_body = model.body("front_frame", mass=m_h, inertia=inertia(I_hxx, I_hyy, I_hzz, I_hxz),
+                        frame=frame(front_frame, steer_point + front_frame * front_body_centre))
 front_wheel = model.body("front_wheel", mass=m_f, inertia=inertia(I_fxx, I_fyy, I_fxx),
                          frame=frame(front_frame * rotation_y(theta_f), front_centre))
 model.gravity([0, 0, -g])
 model.rolling_wheel(rear_wheel, r_r, axle=[0, 1, 0], name="rear_rolling")
 model.rolling_wheel(front_wheel, r_f, axle=[0, 1, 0], name="front_rolling")
+
+# The three hinges (each two points of its axis, 0.1 m apart), which the coordinates already
+# keep, restated for the maximal-coordinate model (gencoord crosscheck), where every body
+# moves freely. Offsets are from each body's centre of mass in the paper's axes (T maps them).
+for side, sign in (("left", 1), ("right", -1)):
+    along_axle = Matrix([0, 0.05 * sign, 0])
+    along_steer = 0.05 * sign * steer_axis
+    model.pin(rear_wheel.point(T * along_axle, name=f"rear_hub_{side}"),
+              rear_body.point(T * (along_axle - rear_body_centre), name=f"rear_dropout_{side}"),
+              name=f"rear_axle_{side}")
+    model.pin(rear_body.point(T * (Matrix([w + c, 0, r_r]) + along_steer - rear_body_centre),
+                              name=f"head_tube_{side}"),
+              front_body.point(T * (along_steer - front_body_centre), name=f"steerer_{side}"),
+              name=f"steer_axis_{side}")
+    model.pin(front_wheel.point(T * along_axle, name=f"front_hub_{side}"),
+              front_body.point(T * (Matrix([-c, 0, -r_f]) + along_axle - front_body_centre),
+                               name=f"fork_end_{side}"),
+              name=f"front_axle_{side}")

@@ -78,12 +78,50 @@ _OUTPUT_ENTRY = re.compile(r"^( +(?:result|\(\*\w+\))(?:\(\d+(?:, \d+)?\)|\[\d+\
 _COUNT_COMMENT = re.compile(r"^ *//.*(?:[Oo]ps:|terms \().*$", re.MULTILINE)
 
 
+# A split kernel: its parts, and the values they pass on, whose number and cuts follow the
+# sizes of SymPy's CSE.
+_PART = re.compile(r"^(?P<indent> *)/// Part (?P<k>\d+) of (?P<n>\d+) of (?P<name>\w+)\(\)")
+_MASKED_ENTRY = re.compile(r"^ +\S.* = \(expression\);$")
+_CARRIED = re.compile(r"std::array<Scalar, \d+> carried;")
+
+
+def _merged_parts(text: str) -> str:
+    """Each split kernel's parts (`/// Part k of n of name()` to the closing brace of part n)
+    as one sorted list of the output entries they set: which part sets which entry depends
+    on where the cuts fall, so on SymPy's version."""
+    lines = text.split("\n")
+    out: list[str] = []
+    i = 0
+    while i < len(lines):
+        first = _PART.match(lines[i])
+        if not first or first["k"] != "1":
+            out.append(lines[i])
+            i += 1
+            continue
+        entries: list[str] = []
+        part = 0
+        while i < len(lines):
+            line = lines[i]
+            i += 1
+            match = _PART.match(line)
+            if match and match["name"] == first["name"]:
+                part = int(match["k"])
+            if _MASKED_ENTRY.match(line):
+                entries.append(line.strip())
+            if part == int(first["n"]) and line == first["indent"] + "}":
+                break
+        out.append(f"{first['indent']}// the parts of {first['name']}() set: "
+                   + " ".join(sorted(entries)))
+    return _CARRIED.sub("std::array<Scalar, N> carried;", "\n".join(out))
+
+
 def header_skeleton(text: str) -> str:
     """A generated file with its arithmetic masked: what must not depend on SymPy's version
     (structs, kernel signatures, which outputs are set, the solve, the comments)."""
     text = re.sub(r"(?m)^(//   generator:  gencoord \S+, SymPy )\S+$", r"\1(version)", text)
     text = _TEMPORARY.sub("", text)
     text = _OUTPUT_ENTRY.sub(r"\1 = (expression);", text)
+    text = _merged_parts(text)
     return _COUNT_COMMENT.sub(lambda match: re.sub(r"\d+", "N", match.group()), text)
 
 

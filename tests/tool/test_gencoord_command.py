@@ -39,6 +39,17 @@ model.gravity([0, 0, -9.81])
 # A four-bar linkage closed by a loop constraint, as a user's own file.
 LINKAGE = (REPOSITORY / "models" / "four_bar.py").read_text(encoding="utf-8")
 
+# A pendulum in Cartesian coordinates whose rod is a constraint written in the coordinates:
+# the reduced model's alone, with no form in the maximal model's particle positions.
+CIRCLE = """from gencoord import Model
+model = Model(dim=2)
+x = model.coordinate("x", "bob, x (m)", initial=1.0)
+y = model.coordinate("y", "bob, y (m)")
+model.particle("bob", mass=1.0, position=[x, y])
+model.holonomic_constraint(x**2 + y**2 - 1, name="rod")
+model.gravity([0, -9.81])
+"""
+
 
 class GencoordCommandTest(unittest.TestCase):
 
@@ -192,6 +203,7 @@ class GencoordCommandTest(unittest.TestCase):
 
     def test_9_a_closed_loop_stays_closed_by_projection_or_baumgarte(self):
         (self.user / "linkage.py").write_text(LINKAGE, encoding="utf-8")
+        (self.user / "circle.py").write_text(CIRCLE, encoding="utf-8")
         projected = self.gencoord("simulate", "linkage.py", "--duration", "5", "--v", "3,0,0")
         self.assertSucceeded(projected)
         drift = float(re.search(r"max \|C\| and \|A v \+ b\| over the run = (\S+)",
@@ -208,13 +220,21 @@ class GencoordCommandTest(unittest.TestCase):
                 (("simulate", "crane.py", "--baumgarte", "20"),
                  "--baumgarte is for models with kinematic constraints"),
                 (("simulate", "linkage.py", "--baumgarte", "-1"), "--baumgarte needs a rate"),
-                (("crosscheck", "linkage.py"),
-                 "gencoord crosscheck does not take models with kinematic constraints")):
+                (("crosscheck", "circle.py"),
+                 "holonomic constraint 'rod' (line 6) is written in the coordinates; the "
+                 "maximal-coordinate model needs it in the points' positions")):
             with self.subTest(arguments=arguments):
                 refused = self.gencoord(*arguments)
                 self.assertNotEqual(refused.returncode, 0, refused.stderr)
                 self.assertIn(message, refused.stderr)
                 self.assertNoTraceback(refused)
+
+    def test_9_a_closed_loop_crosschecks_against_its_penalty_model(self):
+        (self.user / "linkage.py").write_text(LINKAGE, encoding="utf-8")
+        result = self.gencoord("crosscheck", "linkage.py", "--kappa", "1e4:1e7", "--t", "0.5")
+        self.assertSucceeded(result)
+        slope = float(re.search(r"position error (-?[0-9.]+)", result.stdout).group(1))
+        self.assertLess(slope, -0.8, result.stdout)
 
     def test_bad_input_is_one_clear_line(self):
         cases = [

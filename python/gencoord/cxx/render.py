@@ -186,6 +186,7 @@ def _chart_context(chart, first, unroll_max_nq: int) -> dict:
         maximal_part_groups=_part_groups(optimized.kernels[n:]),
         has_maximal=chart.maximal is not None,
         constraint_names=chart.maximal.constraint_names if chart.maximal else [],
+        declared_constraints=chart.maximal.declared_constraints if chart.maximal else 0,
         has_generalized_forces=bool(model.generalized_forces),
         forces_have_potential=chart.forces_have_potential,
         recursive_qddot=chart.paths.recursive_qddot,

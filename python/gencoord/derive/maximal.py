@@ -17,6 +17,8 @@ import sympy as sp
 from gencoord.dsl.bodies import force_shares
 from gencoord.checks.constraints import penalty, violation
 from gencoord.derive.dense import particle_forces, x_space_potential
+from gencoord.derive.maximal_constraints import (kinematic_penalties, maximal_constraint_problem,
+                                                 maximal_rows)
 from gencoord.dsl.model import Model
 from gencoord.dsl.items import Point
 from gencoord.derive.structured import Intermediates
@@ -70,6 +72,9 @@ class MaximalDerivation:
     penalty_energy: sp.Expr
     violations: sp.Matrix               # one per declared constraint
     constraint_names: list[str]
+    # the first entries of violations: the declared constraints, which hold on X(q, t); the
+    # kinematic constraints' rows follow
+    declared_constraints: int
     # the named intermediates the forces are written in (derive_maximal)
     definitions: list[tuple[sp.Symbol, sp.Expr]]
 
@@ -103,8 +108,9 @@ def _pattern_through(force: sp.Matrix, variables: list[sp.Symbol],
 
 def has_maximal_model(model: Model) -> bool:
     """Whether the model gets a maximal-coordinate (penalty) model: not yet one with free or
-    ball joints (generalized speeds) or kinematic constraints."""
-    return not model.has_generalized_speeds and not model.has_kinematic_constraints
+    ball joints (generalized speeds), nor one whose kinematic constraints are written in the
+    coordinates (maximal_constraints.py)."""
+    return not model.has_generalized_speeds and maximal_constraint_problem(model) is None
 
 
 def derive_maximal(model: Model, symbolic_jacobians: bool = True,
@@ -135,7 +141,11 @@ def derive_maximal(model: Model, symbolic_jacobians: bool = True,
                 if target.name in penalties:  # a fixed point takes its reaction itself
                     penalties[target.name] = penalties[target.name] + share
         penalty_energy += energy
-    penalty_total = stack(penalties)
+    rows = maximal_rows(model, kin.point_substitution, x, xdot)
+    kinematic, kinematic_energy = kinematic_penalties(rows, xdot, model.time, KAPPA,
+                                                      PENALTY_DAMPING)
+    penalty_total = stack(penalties) + kinematic
+    penalty_energy += kinematic_energy
     total = external + penalty_total
     definitions = names.definitions if names is not None else []
     pattern_x = _pattern_through(total, x, definitions)
@@ -147,5 +157,8 @@ def derive_maximal(model: Model, symbolic_jacobians: bool = True,
         force_jacobian_xdot_values=(_values(total, xdot, pattern_xdot) if symbolic_jacobians
                                     else None),
         potential_energy=x_space_potential(model, kin), penalty_energy=penalty_energy,
-        violations=sp.Matrix([violation(c, kin)[0] for c in model.constraints]),
-        constraint_names=[c.label() for c in model.constraints], definitions=definitions)
+        violations=sp.Matrix([violation(c, kin)[0] for c in model.constraints]
+                             + [row.value for row in rows.holonomic]),
+        constraint_names=[c.label() for c in model.constraints]
+        + [row.label for row in rows.holonomic],
+        declared_constraints=len(model.constraints), definitions=definitions)

@@ -152,15 +152,20 @@ class Body(Item):
         affine combination of the point masses, w_k = 1/n + m_k r_k^T S^-1 offset (the r_k
         have mass-weighted mean zero and second moment S)."""
         count = len(self.offsets)
-        moment = self.second_moment
-        assert moment is not None  # set with the point masses (bodies.add_point_masses)
-        if moment.is_diagonal() or not moment.free_symbols:
-            inverse = moment.inv()
-        else:  # SymPy 1.11's inv() (elimination, simplifying as it goes) takes minutes on it
-            inverse = moment.adjugate() / moment.det()
+        inverse = self.second_moment_inverse()
         share = self.mass / count
         return [sp.Rational(1, count) + share * (r.T * inverse * offset)[0]
                 for r in self.offsets]
+
+    def second_moment_inverse(self) -> sp.Matrix:
+        """S^-1, which places points by the point masses (affine_weights, and the maximal
+        model's fit of the body's orientation)."""
+        moment = self.second_moment
+        assert moment is not None  # set with the point masses (bodies.add_point_masses)
+        if moment.is_diagonal() or not moment.free_symbols:
+            return moment.inv()
+        # SymPy 1.11's inv() (elimination, simplifying as it goes) takes minutes on it
+        return moment.adjugate() / moment.det()
 
     def point(self, offset: Sequence, name: str | None = None) -> BodyPoint:
         """The point fixed on this body at `offset` (body axes, from the centre of mass);
@@ -264,6 +269,7 @@ class HolonomicConstraint(Item):
     """C(q, t) = 0 where the coordinates do not satisfy it by construction (a closed loop):
     one scalar row, an expression of q, t, parameters and points' `.x`."""
     expr: sp.Expr
+    wheel: str = field(default="", kw_only=True)  # the rolling wheel it belongs to, if any
     kind = "holonomic constraint"
 
 
@@ -272,6 +278,7 @@ class VelocityConstraint(Item):
     """A(q, t) v + b(q, t) = 0 (rolling without slipping): one scalar row, linear in the
     speeds, an expression of q, the speeds, t, parameters and points' `.x` and `.xdot`."""
     expr: sp.Expr
+    wheel: str = field(default="", kw_only=True)  # the rolling wheel it belongs to, if any
     kind = "velocity constraint"
 
 

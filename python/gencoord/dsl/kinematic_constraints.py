@@ -120,7 +120,7 @@ class KinematicConstraints:
         q = [c.symbol for c in self.coordinates]
         rows, height = contact_rows(body, radius, axle, center, q, self.coordinate_rates(),
                                     self.time)
-        self.velocity_constraints += [VelocityConstraint(row_name, row, line=line)
+        self.velocity_constraints += [VelocityConstraint(row_name, row, line=line, wheel=name)
                                       for row_name, row in zip(_names(name, 2, "xy"), rows)]
         self.wheels.append(Wheel(name, body, radius, axle, center, line=line))
         defaults = {p.symbol: sp.Float(p.default) for p in self.parameters}
@@ -128,7 +128,7 @@ class KinematicConstraints:
         if not vanishes_near(height, q, initial, self.time, defaults,
                              positive_number(radius, defaults)):
             self.holonomic_constraints.append(
-                HolonomicConstraint(f"{name}_contact", height, line=line))
+                HolonomicConstraint(f"{name}_contact", height, line=line, wheel=name))
 
     @property
     def has_kinematic_constraints(self) -> bool:

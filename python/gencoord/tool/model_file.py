@@ -7,6 +7,7 @@ from __future__ import annotations
 import os
 from dataclasses import dataclass
 
+from gencoord.derive.maximal_constraints import maximal_constraint_problem
 from gencoord.generate.load import load_model
 from gencoord.dsl.model import Model
 from gencoord.naming import type_name
@@ -55,11 +56,16 @@ def load(path: str, settings: dict[str, str], stem: str | None = None) -> Loaded
 
 def refuse_unsupported_kinds(loaded, command: str) -> None:
     """A model with free or ball joints or with kinematic constraints, for a command whose
-    program does not take them."""
+    program does not take them; for crosscheck, constraints that have no maximal form."""
+    model = loaded.model
+    if command == "crosscheck" and model.has_kinematic_constraints:
+        problem = maximal_constraint_problem(model)
+        if problem:
+            raise ToolError(f"{loaded.target.path}: gencoord crosscheck: {problem}")
     kinds = [kind for kind, present, commands in (
-        ("free or ball joints (generalized speeds)", loaded.model.has_generalized_speeds, ()),
+        ("free or ball joints (generalized speeds)", model.has_generalized_speeds, ()),
         ("kinematic constraints (closed loops, rolling)",
-         loaded.model.has_kinematic_constraints, ("python",)))
+         model.has_kinematic_constraints, ("python", "crosscheck")))
         if present and command not in commands]
     if kinds:
         raise ToolError(f"{loaded.target.path}: gencoord {command} does not take models with "

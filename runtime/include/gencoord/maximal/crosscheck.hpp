@@ -18,6 +18,7 @@
 #include "gencoord/maximal/stability.hpp"
 #include "gencoord/maximal/state.hpp"
 #include "gencoord/maximal/traits.hpp"
+#include "gencoord/model/constrained_dynamics.hpp"
 #include "gencoord/model/reduced_system.hpp"
 #include "gencoord/model/state.hpp"
 #include "gencoord/numerics/loglog_fit.hpp"
@@ -80,7 +81,9 @@ inline double divisor_step(double interval, double limit) {
 }
 
 /// Runs the reduced model with RK4 from `initial` and samples it every duration / points.
-/// Also records the largest declared-constraint violation of X(q) over every step.
+/// Also records the largest declared-constraint violation of X(q) over every step. A model
+/// with kinematic constraints starts from `initial` projected onto them and is kept on them
+/// after every step (ReducedSystem's projection).
 /// \throws std::invalid_argument for bad options; DynamicsError from the reduced dynamics.
 template <class M>
 ReducedReference<M> reduced_reference(const ParamsOf<M>& p, const State<M>& initial,
@@ -102,9 +105,11 @@ ReducedReference<M> reduced_reference(const ParamsOf<M>& p, const State<M>& init
                        .cwiseAbs()
                        .maxCoeff());
   };
+  State<M> start_state = initial;
+  if constexpr (has_kinematic_constraints_v<M>) project_onto_constraints<M>(p, &start_state);
   long long k = 0;  // states observed
   simulate<IntegratorSet<Integrator::RK4>>(
-      ReducedSystem<M>(p), initial,
+      ReducedSystem<M>(p), start_state,
       SimulateOptions{Integrator::RK4, ref.reference_dt, interval * o.points},
       [&](const State<M>& s) {
         violation(s);
@@ -180,6 +185,23 @@ inline std::vector<double> log_spaced(double lo, double hi, int count) {
                              : std::pow(10.0, std::log10(lo) + (std::log10(hi) - std::log10(lo)) *
                                                                    i / (count - 1)));
   return out;
+}
+
+/// Whether M has velocity (nonholonomic) constraints. Their maximal form is a viscous
+/// penalty of coefficient sqrt(kappa m), so the maximal model converges to the reduced one
+/// like kappa^-1/2 instead of 1/kappa.
+template <class M>
+constexpr bool has_velocity_constraints() {
+  if constexpr (has_holonomic_constraints_v<M>)
+    return M::num_constraints > M::num_holonomic_constraints;
+  else return has_kinematic_constraints_v<M>;
+}
+
+/// The error slope against kappa a cross-check of M expects at least: -0.8 (1/kappa, with
+/// room), -0.4 with velocity constraints (kappa^-1/2).
+template <class M>
+constexpr double expected_error_slope() {
+  return has_velocity_constraints<M>() ? -0.4 : -0.8;
 }
 
 /// Whether the maximal model of M is the reduced one in other coordinates (no declared
