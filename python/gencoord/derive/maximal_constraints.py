@@ -67,9 +67,9 @@ def _is_flat(body: Body, defaults: dict) -> bool:
     """Whether the body's mass lies in a plane or on a line at the default parameters (a
     disk of no thickness): its point masses cannot fix its orientation."""
     assert body.second_moment is not None  # set with the point masses (bodies.py)
+    moment = body.second_moment.xreplace(defaults)
     try:
-        determinant = float(body.second_moment.xreplace(defaults).det())
-        scale = float(body.second_moment.xreplace(defaults).trace())
+        determinant, scale = float(moment.det()), float(moment.trace())
     except (TypeError, ValueError):
         return False  # not a number at the defaults: judged by the run, not here
     return not abs(determinant) > 1e-9 * abs(scale) ** 3

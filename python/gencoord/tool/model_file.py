@@ -55,19 +55,14 @@ def load(path: str, settings: dict[str, str], stem: str | None = None) -> Loaded
 
 
 def refuse_unsupported_kinds(loaded, command: str) -> None:
-    """A model with free or ball joints or with kinematic constraints, for a command whose
-    program does not take them; for crosscheck, constraints that have no maximal form."""
+    """A model with free or ball joints, for a command whose program does not take them; for
+    crosscheck, kinematic constraints that have no maximal form."""
     model = loaded.model
     if command == "crosscheck" and model.has_kinematic_constraints:
         problem = maximal_constraint_problem(model)
         if problem:
             raise ToolError(f"{loaded.target.path}: gencoord crosscheck: {problem}")
-    kinds = [kind for kind, present, commands in (
-        ("free or ball joints (generalized speeds)", model.has_generalized_speeds, ()),
-        ("kinematic constraints (closed loops, rolling)",
-         model.has_kinematic_constraints, ("python", "crosscheck")))
-        if present and command not in commands]
-    if kinds:
+    if model.has_generalized_speeds:
         raise ToolError(f"{loaded.target.path}: gencoord {command} does not take models with "
-                        f"{kinds[0]} yet; gencoord simulate and view do, and so does the "
-                        "model's header from C++")
+                        "free or ball joints (generalized speeds) yet; gencoord simulate and "
+                        "view do, and so does the model's header from C++")

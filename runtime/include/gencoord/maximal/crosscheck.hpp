@@ -142,10 +142,11 @@ struct IgnoreSamples {
 /// (x = X(q0), xdot = J v0 + X_t), step = the largest divisor of the sample interval below
 /// both the stability limit (safety times, with omega_max_along()) and o.max_dt.
 /// `on_sample(reduced, maximal)` sees both states at every sample time (a side-by-side
-/// trajectory).
+/// trajectory). `Integrators`, the set compiled, may be narrowed to o.integrator alone: each
+/// integrator instantiated on a model costs compile time.
 /// \throws MaximalDivergedError, InverseMapError, NewtonError from the run;
-///         std::invalid_argument for an integrator outside CrosscheckIntegrators.
-template <class M, class SampleObserver = IgnoreSamples>
+///         std::invalid_argument for an integrator outside Integrators.
+template <class M, class Integrators = CrosscheckIntegrators, class SampleObserver = IgnoreSamples>
 CrosscheckRow crosscheck_at(const ParamsOf<M>& p, const ReducedReference<M>& ref, double kappa,
                             const CrosscheckOptions& o, SampleObserver&& on_sample = {}) {
   const double interval = sample_interval(o);
@@ -161,7 +162,7 @@ CrosscheckRow crosscheck_at(const ParamsOf<M>& p, const ReducedReference<M>& ref
   long long k = 0;
   const auto start = std::chrono::steady_clock::now();
   const SimulateOptions run{o.integrator, row.dt, interval * o.points, o.newton};
-  simulate<CrosscheckIntegrators>(model, initial, run, [&](const MaximalState<M>& s) {
+  simulate<Integrators>(model, initial, run, [&](const MaximalState<M>& s) {
     if (k++ % per_sample != 0) return;
     const State<M>& r = ref.samples[static_cast<std::size_t>((k - 1) / per_sample)];
     on_sample(r, s);
@@ -187,21 +188,12 @@ inline std::vector<double> log_spaced(double lo, double hi, int count) {
   return out;
 }
 
-/// Whether M has velocity (nonholonomic) constraints. Their maximal form is a viscous
-/// penalty of coefficient sqrt(kappa m), so the maximal model converges to the reduced one
-/// like kappa^-1/2 instead of 1/kappa.
-template <class M>
-constexpr bool has_velocity_constraints() {
-  if constexpr (has_holonomic_constraints_v<M>)
-    return M::num_constraints > M::num_holonomic_constraints;
-  else return has_kinematic_constraints_v<M>;
-}
-
 /// The error slope against kappa a cross-check of M expects at least: -0.8 (1/kappa, with
-/// room), -0.4 with velocity constraints (kappa^-1/2).
+/// room), or -0.4 with velocity constraints, whose maximal form is a viscous penalty of
+/// coefficient sqrt(kappa m) and converges like kappa^-1/2.
 template <class M>
 constexpr double expected_error_slope() {
-  return has_velocity_constraints<M>() ? -0.4 : -0.8;
+  return has_velocity_constraints_v<M> ? -0.4 : -0.8;
 }
 
 /// Whether the maximal model of M is the reduced one in other coordinates (no declared

@@ -214,12 +214,22 @@ class MaximalModel {
 
   /// Dense K_x = dF/dx (nx x nx), from force_jacobian_triplets().
   Eigen::MatrixXd force_jacobian_x_dense(const XVec<M>& x, const XVec<M>& xdot, double t) const {
-    std::vector<Eigen::Triplet<double>> triplets;
-    triplets.reserve(jacobian_triplet_count(Max::jacobian_x_nonzeros));
-    force_jacobian_triplets(x, xdot, t, &triplets, nullptr);
-    Eigen::MatrixXd K = Eigen::MatrixXd::Zero(nx, nx);
-    for (const auto& e : triplets) K(e.row(), e.col()) += e.value();
-    return K;
+    Eigen::MatrixXd K_x;
+    force_jacobians_dense(x, xdot, t, &K_x, nullptr);
+    return K_x;
+  }
+
+  /// Dense K_x = dF/dx and K_v = dF/dxdot (nx x nx each; either may be null), from one
+  /// force_jacobian_triplets().
+  void force_jacobians_dense(const XVec<M>& x, const XVec<M>& xdot, double t, Eigen::MatrixXd* K_x,
+                             Eigen::MatrixXd* K_v) const {
+    std::vector<Eigen::Triplet<double>> x_triplets, v_triplets;
+    force_jacobian_triplets(x, xdot, t, K_x ? &x_triplets : nullptr, K_v ? &v_triplets : nullptr);
+    for (auto [K, triplets] : {std::pair{K_x, &x_triplets}, std::pair{K_v, &v_triplets}}) {
+      if (!K) continue;
+      K->setZero(nx, nx);
+      for (const auto& e : *triplets) (*K)(e.row(), e.col()) += e.value();
+    }
   }
 
  private:

@@ -266,6 +266,20 @@ template <class M>
 inline constexpr bool has_holonomic_constraints_v =
     detail::detected_v<M, detail::holonomic_constraints_op>;
 
+namespace detail {
+template <class M>
+constexpr bool has_velocity_rows() {
+  if constexpr (has_holonomic_constraints_v<M>)
+    return M::num_constraints > M::num_holonomic_constraints;
+  else return has_kinematic_constraints_v<M>;
+}
+}  // namespace detail
+
+/// True when some of M's kinematic constraints are velocity (nonholonomic) constraints,
+/// A(q, t) v + b = 0 with no C(q, t) behind them: the rows after the holonomic ones.
+template <class M>
+inline constexpr bool has_velocity_constraints_v = detail::has_velocity_rows<M>();
+
 /// True when M::qddot is a recursion that is cheaper than Mt, Ft + Fi and a factorization
 /// (generated tree models that say `recursive_qddot = true`); acceleration() then calls it.
 template <class M>
