@@ -3,6 +3,7 @@
 //
 //   simulate [--integrator rk4] [--dt 1e-3] [--duration 10] [--output FILE.csv]
 //            [--q a,b,...] [--v a,b,...] [--set name=value ...] [--baumgarte RATE]
+//            [--no-limits]
 //
 // The model is chosen when the program is compiled (driver_model.hpp, written by
 // gencoord_add_driver()); `gencoord simulate MODEL.py` builds and runs it for any model file.
@@ -11,8 +12,12 @@
 // quaternions in --q are normalized before the run. A model with kinematic constraints starts
 // from --q and --v projected onto its constraints, and the summary gives the largest
 // constraint residuals of the run; each step's end state is projected too, or, with
-// --baumgarte, Baumgarte's feedback keeps the drift down instead.
+// --baumgarte, Baumgarte's feedback keeps the drift down instead. A model with joint limits
+// keeps its limited coordinates in their ranges (gencoord/model/joint_limits.hpp) unless
+// --no-limits; the summary names the limits the run reached and the speed ratings it exceeded,
+// and the CSV has a limit:<name> column for each (-1, 0, +1: lower end, inside, upper end).
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -38,18 +43,20 @@ struct Options {
   std::vector<double> q, v;
   std::vector<std::pair<std::string, double>> parameters;
   double baumgarte = 0.0;  // 1/s; 0: each step's end state projected onto the constraints
+  bool joint_limits = true;
 };
 
 [[noreturn]] void usage(int status) {
   std::cerr << "usage: simulate [--integrator NAME] [--dt DT] [--duration T]\n"
                "                [--output FILE.csv] [--q a,b,...] [--v a,b,...]\n"
-               "                [--set param=value ...] [--baumgarte RATE]\n"
+               "                [--set param=value ...] [--baumgarte RATE] [--no-limits]\n"
                "  model:       "
             << M::name << " (nq = " << M::nq << ", nv = " << gencoord::nv_of_v<M> << ")"
             << "\n  integrators: " << gencoord::integrator_names()
             << "\n  defaults:    rk4, dt 1e-3, duration 10, the model file's initial state"
             << "\n  --baumgarte: a model with kinematic constraints kept on them by Baumgarte's"
-               "\n               feedback at RATE (1/s) instead of projecting each step\n";
+               "\n               feedback at RATE (1/s) instead of projecting each step"
+               "\n  --no-limits: a model with joint limits run without them\n";
   std::exit(status);
 }
 
@@ -78,6 +85,7 @@ Options parse(int argc, char** argv) {
     else if (arg == "--q") o.q = parse_list(value(), arg);
     else if (arg == "--v") o.v = parse_list(value(), arg);
     else if (arg == "--baumgarte") o.baumgarte = parse_number(value(), arg);
+    else if (arg == "--no-limits") o.joint_limits = false;
     else if (arg == "--set") {
       const std::string pair = value();
       const auto eq = pair.find('=');
@@ -160,6 +168,79 @@ void print_constraint_residual(double worst, double baumgarte) {
   }
 }
 
+template <class Model>
+constexpr int num_limits_of() {
+  if constexpr (gencoord::has_joint_limits_v<Model>) {
+    return Model::num_limits;
+  } else {
+    return 0;
+  }
+}
+
+// false, with the error printed, where the start puts a limited coordinate outside its range
+template <class Model>
+bool start_within_limits(const gencoord::State<Model>& s) {
+  if constexpr (gencoord::has_joint_limits_v<Model>) {
+    for (int i = 0; i < Model::num_limits; ++i) {
+      const double q = s.q[Model::limited_coordinates[i]];
+      if (q < Model::lower_limits[i] || q > Model::upper_limits[i]) {
+        std::cerr << "simulate: error: the start puts " << Model::limit_names[i] << " at " << q
+                  << ", outside its limits [" << Model::lower_limits[i] << ", "
+                  << Model::upper_limits[i] << "]; give --q inside them, or --no-limits\n";
+        return false;
+      }
+    }
+  } else {
+    (void)s;
+  }
+  return true;
+}
+
+// What the run did at each joint limit: the steps that ended with the coordinate on an end of
+// its range (or beyond it, with --no-limits) and the largest |v| of its speed.
+template <class Model>
+class LimitReport {
+ public:
+  void operator()(const gencoord::State<Model>& state) {
+    if constexpr (gencoord::has_joint_limits_v<Model>) {
+      for (int i = 0; i < Model::num_limits; ++i) {
+        if (gencoord::limit_side<Model>(state.q, i) != 0) ++steps_[i];
+        fastest_[i] = std::max(fastest_[i], std::abs(state.v[Model::limited_speeds[i]]));
+      }
+    } else {
+      (void)state;
+    }
+  }
+  // the limits the run reached, and the speed ratings it exceeded
+  void print(bool enforced) const {
+    if constexpr (gencoord::has_joint_limits_v<Model>) {
+      std::printf("limits      %d%s", Model::num_limits,
+                  enforced ? "" : ", ranges not enforced (--no-limits)");
+      int reached = 0;
+      for (int i = 0; i < Model::num_limits; ++i) {
+        if (steps_[i] == 0) continue;
+        std::printf("%s %s (%lld steps)", reached++ ? "," : ", reached by", Model::limit_names[i],
+                    steps_[i]);
+      }
+      if (reached == 0) std::printf(", none reached");
+      int exceeded = 0;
+      for (int i = 0; i < Model::num_limits; ++i) {
+        if (!(fastest_[i] > Model::velocity_limits[i])) continue;
+        std::printf("%s %s (|v| up to %.4g, rated %.4g)",
+                    exceeded++ ? "," : "; speed rating exceeded by", Model::limit_names[i],
+                    fastest_[i], Model::velocity_limits[i]);
+      }
+      std::printf("\n");
+    } else {
+      (void)enforced;
+    }
+  }
+
+ private:
+  std::array<long long, num_limits_of<Model>()> steps_{};
+  std::array<double, num_limits_of<Model>()> fastest_{};
+};
+
 // the final speeds of a model that has them (its q are not its velocities' integrals)
 template <class Model>
 void print_speeds(const gencoord::State<Model>& end) {
@@ -215,7 +296,9 @@ int run(const Options& o) {
               << M::name << " has none\n";
     return 2;
   }
-  const gencoord::ReducedSystem<M> system = system_of<M>(params, o.baumgarte);
+  gencoord::ReducedSystem<M> system = system_of<M>(params, o.baumgarte);
+  if constexpr (gencoord::has_joint_limits_v<M>) system.set_joint_limits(o.joint_limits);
+  if (o.joint_limits && !start_within_limits<M>(s)) return 2;
   if (!put_on_manifold<M>(system, &s)) return 2;
   const gencoord::Integrator integrator = gencoord::parse_integrator(o.integrator);
 
@@ -223,10 +306,12 @@ int run(const Options& o) {
   double max_energy_error = 0.0, max_drift = 0.0;
   std::unique_ptr<gencoord::TrajectoryCsvWriter<M>> csv;
   if (!o.output.empty()) csv = std::make_unique<gencoord::TrajectoryCsvWriter<M>>(o.output, params);
+  LimitReport<M> limits;
   auto observer = [&](const State<M>& state) {
     max_energy_error =
         std::max(max_energy_error, std::abs(M::energy(state.q, state.v, state.t, params) - e0));
     max_drift = std::max(max_drift, drift_of<M>(params, state));
+    limits(state);
     if (csv) (*csv)(state);
   };
   const auto start = std::chrono::steady_clock::now();
@@ -246,6 +331,7 @@ int run(const Options& o) {
   std::printf("energy      E(0) = %.10g J, E(end) = %.10g J, max |E - E(0)| = %.3e J\n", e0,
               M::energy(end.q, end.v, end.t, params), max_energy_error);
   print_constraint_residual<M>(max_drift, o.baumgarte);
+  limits.print(o.joint_limits);
   std::printf("final q    ");
   for (int i = 0; i < M::nq; ++i) std::printf(" %s = %.6f", M::coordinate_names[i], end.q[i]);
   std::printf("\n");

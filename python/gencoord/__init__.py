@@ -31,7 +31,7 @@ _API = {
                                                 "rotation_z", "rpy")},
     "Model": "gencoord.dsl.model",
     **{name: "gencoord.dsl.joints" for name in ("Ball", "Continuous", "Fixed", "Free", "Limits",
-                                                "Origin", "Prismatic", "Revolute",
+                                                "Mimic", "Origin", "Prismatic", "Revolute",
                                                 "EULER_CHARTS", "add_free_base", "add_link")},
     "load_urdf": "gencoord.urdf.load",
 }

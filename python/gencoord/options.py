@@ -10,6 +10,7 @@ docs/generator.md lists: `python3 -m gencoord.options` prints that table.
 from __future__ import annotations
 
 import dataclasses
+import math
 import shlex
 from dataclasses import dataclass
 from typing import Any, Callable
@@ -86,8 +87,8 @@ class GenerateOptions:
             problems.append("loop_min_nq must be positive")
         if self.translation_units < 0:
             problems.append("translation_units must be 0 (header only) or positive")
-        if self.load_timeout is not None and self.load_timeout < 0:
-            problems.append("load_timeout must be 0 (no limit) or positive")
+        if self.load_timeout is not None and not (0 <= self.load_timeout < math.inf):
+            problems.append("load_timeout must be 0 (no limit) or a positive number of seconds")
         if self.dynamics not in DYNAMICS_CHOICES:
             problems.append(f"dynamics must be one of {', '.join(DYNAMICS_CHOICES)}")
         if problems:

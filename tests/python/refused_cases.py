@@ -221,6 +221,9 @@ DECLARATIONS = {
     "description_not_text": (
         PREAMBLE + f'k = model.parameter("k", 1.0, 3.5)  {MARK}\n' + BOB.replace(
             "mass=1", "mass=k"), ["parameter 'k'", "description is 3.5, not text"]),
+    "model_description_not_text": (
+        PREAMBLE.replace("model = Model(dim=2)", f"model = Model(dim=2, description=42)  {MARK}")
+        + BOB, ["Model", "description is 42, not text"]),
 }
 
 # --- accepted: each must generate, and its header compile (test_name_clashes.py) -------------

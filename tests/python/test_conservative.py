@@ -1,13 +1,14 @@
 # SPDX-License-Identifier: BSD-3-Clause
 """forces_have_potential: which models' applied forces at rest are -dV/dq (the flag the model
-tests read instead of model names)."""
+tests read instead of model names); conserves_energy: which models keep E = T + V (the plots
+call E - E0 an error for them and the energy's change for the others)."""
 
 from __future__ import annotations
 
 import unittest
 
 from gencoord import Model, cos, sin
-from gencoord.checks.conservative import forces_have_potential
+from gencoord.checks.conservative import conserves_energy, forces_have_potential
 from gencoord.generate.load import load_model
 
 from .support import MODELS
@@ -57,3 +58,42 @@ class ForcesHavePotentialTest(unittest.TestCase):
 
 if __name__ == "__main__":
     unittest.main()
+
+
+class ConservesEnergyTest(unittest.TestCase):
+
+    def test_built_in_models(self):
+        # the cart-pole has an input, the Kapitza pendulum's pivot moves with t
+        for stem, expected in [("pendulum", True), ("double_pendulum", True),
+                               ("cart_pole", False), ("kapitza_pendulum", False)]:
+            with self.subTest(stem):
+                model, _, _ = load_model(str(MODELS / f"{stem}.py"))
+                self.assertIs(conserves_energy(model), expected)
+
+    def test_what_changes_the_energy(self):
+        def damper(model, theta, c, pivot, bob):
+            model.damper(pivot, bob, c)
+
+        def damped_spring(model, theta, c, pivot, bob):
+            model.spring(pivot, bob, 10.0, 1.0, damping=c)
+
+        def joint_damping(model, theta, c, pivot, bob):
+            model.joint_spring(theta, 1.0, damping=c)
+
+        def force_without_potential(model, theta, c, pivot, bob):
+            model.generalized_force(theta, -c * model.rate(theta))
+
+        def limit(model, theta, c, pivot, bob):
+            model.limit(theta, -0.5, 0.5)
+
+        def spring_with_potential(model, theta, c, pivot, bob):
+            model.spring(pivot, bob, 10.0, 1.0)
+
+        for change, conserved in [(damper, False), (damped_spring, False),
+                                  (joint_damping, False), (force_without_potential, False),
+                                  (limit, False), (spring_with_potential, True)]:
+            with self.subTest(change.__name__):
+                model, *items = pendulum()
+                change(model, *items)
+                self.assertIs(conserves_energy(model), conserved)
+        self.assertFalse(conserves_energy(pendulum(moving_pivot=True)[0]))

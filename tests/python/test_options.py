@@ -26,6 +26,7 @@ class GenerateOptionsTest(unittest.TestCase):
     def test_bad_values_are_refused_with_the_field_named(self):
         for field, value in (("max_part_statements", -1), ("loop_min_nq", 0),
                              ("translation_units", -2), ("load_timeout", -1.0),
+                             ("load_timeout", float("nan")), ("load_timeout", float("inf")),
                              ("dynamics", "fast")):
             with self.assertRaisesRegex(ValueError, field.split("_")[0]):
                 GenerateOptions(**{field: value})

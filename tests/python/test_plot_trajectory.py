@@ -188,6 +188,15 @@ class EnergyPanelTest(unittest.TestCase):
         title = root.find(f".//{SVG}text[@class='max-error']").text
         self.assertIn("1.50e-06", title)
 
+    def test_a_model_that_does_not_conserve_energy_plots_its_change(self):
+        trajectory = plot.parse_trajectory(io.StringIO(pendulum_csv(lambda t: 10.0 - t)))
+        root = ET.fromstring(plot.render_svg(trajectory, "damped", conserved=False))
+        label = Panel(root, "energy-panel").axis_label("y")
+        self.assertIn("relative energy change", label)
+        titles = [t.text for t in root.iter(f"{SVG}text") if t.get("class") == "title"]
+        self.assertIn("damped: energy change", titles)
+        self.assertNotIn("error", " ".join([label, *titles]))
+
     def test_time_axis_in_seconds_from_start_to_end(self):
         panel = Panel(render(pendulum_csv(lambda t: 10.0)), "energy-panel")
         self.assertEqual(panel.axis_label("x"), "t (s)")

@@ -253,9 +253,10 @@ class UrdfRefusalTest(unittest.TestCase):
         self.refuse(robot(link("a"), link("b"), link("c"), joint("j", "a", "b"),
                           joint("j", "a", "c", mark=HERE)), "joint 'j'", "a second joint")
 
-    def test_mimic_joint(self):
+    def test_mimic_of_a_joint_not_in_the_file(self):
         self.refuse(robot(link("a"), link("b"), joint("j", "a", "b", extra=(
-            '\n  <mimic joint="k" multiplier="2"/>' + HERE))), "joint 'j'", "mimic joints")
+            '\n  <mimic joint="k" multiplier="2"/>' + HERE))), "joint 'j'",
+            "it follows joint 'k', which is not a <joint> of this file")
 
     def test_joint_without_child(self):
         self.refuse(robot(link("a"), '<joint name="j" type="fixed">' + HERE

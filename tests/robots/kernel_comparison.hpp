@@ -8,6 +8,8 @@
 
 #include <gtest/gtest.h>
 
+#include "gencoord/model/reduced_system.hpp"
+
 namespace gencoord::robot_testing {
 
 /// |a - b| relative to the larger of the two and 1.
@@ -44,5 +46,14 @@ struct WorstDifferences {
         robot, mass_matrix, bias, qddot, inverse_dynamics);
   }
 };
+
+/// The reduced system with its joint limits off: the trajectories are compared with MuJoCo's
+/// run with its constraints, limits among them, disabled (mujoco_model.hpp).
+template <class M>
+ReducedSystem<M> without_limits(const ParamsOf<M>& p) {
+  ReducedSystem<M> system(p);
+  if constexpr (has_joint_limits_v<M>) system.set_joint_limits(false);
+  return system;
+}
 
 }  // namespace gencoord::robot_testing

@@ -164,12 +164,28 @@ class GencoordCommandTest(unittest.TestCase):
                                   check=False)
         self.assertEqual((imported.returncode, imported.stdout), (0, "2\n"), imported.stderr)
 
+    def swing(self, model: str) -> list[float]:
+        """The rope angle theta of each row of the model's trajectory."""
+        with (self.user / "out" / f"{model}.csv").open(encoding="utf-8") as handle:
+            return [float(row["q_theta"]) for row in csv.DictReader(handle)]
+
     def test_7_a_second_model_recompiles_no_runtime_code(self):
         self.assertSucceeded(self.gencoord("simulate", "crane.py", "--duration", "0.1"))
         trolley = self.user / "trolley.py"
-        trolley.write_text(CRANE.replace("40.0", "41.0"), encoding="utf-8")
-        result = self.gencoord("simulate", "trolley.py", "--duration", "0.1")
+        # the rope's swing from 0.6 rad limited to -0.5 rad on the other side
+        trolley.write_text(CRANE.replace("40.0", "41.0") + "model.limit(theta, -0.5, 0.65)\n",
+                           encoding="utf-8")
+        result = self.gencoord("simulate", "trolley.py", "--duration", "1.5")
         self.assertSucceeded(result)
+        self.assertRegex(result.stdout, r"limits +1, reached by theta \(\d+ steps\)")
+        self.assertEqual(min(self.swing("trolley")), -0.5)
+        free = self.gencoord("simulate", "trolley.py", "--duration", "1.5", "--no-limits")
+        self.assertIn("not enforced (--no-limits)", free.stdout)
+        self.assertLess(min(self.swing("trolley")), -0.55)
+        outside = self.gencoord("simulate", "trolley.py", "--q", "1.3,0.7")
+        self.assertEqual(outside.returncode, 2, outside.stderr)
+        self.assertIn("the start puts theta at 0.7, outside its limits [-0.5, 0.65]",
+                      outside.stderr)
         self.assertIn("building the simulate program for trolley", result.stderr)
         self.assertNotIn("runtime library", result.stderr)
         logs = list(Path(self.environment["GENCOORD_CACHE_DIR"]).glob("trolley-*/build.log"))

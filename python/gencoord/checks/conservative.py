@@ -9,6 +9,7 @@ from __future__ import annotations
 import sympy as sp
 
 from gencoord.derive.dense import Kinematics
+from gencoord.dsl.items import GeneralizedForce, ParticleForce
 from gencoord.dsl.model import Model
 
 
@@ -59,3 +60,23 @@ def forces_have_potential(model: Model, kin: Kinematics | None = None) -> bool:
         if not _vanishes(at_rest(torque.torque)):
             return False
     return True
+
+
+def conserves_energy(model: Model) -> bool:
+    """Whether E = T + V is a constant of the motion as the model is written: every force has
+    a potential (no damping, no body torques, no force without a potential), no input drives
+    it, no point moves with t, and no joint limit stops it inelastically. Where it is not, the
+    plots of a run call E - E0 the energy's change, not an error."""
+    moves_with_t = any(model.time in sp.Matrix(point.position).free_symbols
+                       for point in model.points)
+    # a force with a potential may still depend on velocities (a joint spring's damping) or t
+    changing = {model.time, *(speed.symbol for speed in model.speeds),
+                *(symbol for point in model.points for symbol in point.xdot)}
+    forces: list[ParticleForce | GeneralizedForce] = [*model.particle_forces,
+                                                      *model.generalized_forces]
+    unbalanced = [force for force in forces
+                  if force.potential is None
+                  or sp.Matrix([force.force]).free_symbols & changing]
+    damped = model.dampers or any(spring.damping != 0 for spring in model.springs)
+    return not (damped or unbalanced or model.torques or model.inputs or model.limits
+                or moves_with_t)

@@ -7,6 +7,7 @@ from __future__ import annotations
 import contextlib
 import functools
 import hashlib
+import math
 import os
 import tempfile
 from typing import Any, Sequence
@@ -148,6 +149,21 @@ def _part_groups(kernels) -> list[int]:
     return sorted({part.group for k in kernels for part in k.parts if part.group is not None})
 
 
+def _limits_view(model) -> list[dict]:
+    """Each joint limit's coordinate and speed (indices in q and v), ends and speed rating."""
+    speeds = [s.symbol for s in model.speeds]
+
+    def end(value: float) -> str:
+        if math.isinf(value):
+            return f"{'-' if value < 0 else ''}std::numeric_limits<double>::infinity()"
+        return _format_default(value)
+
+    return [dict(name=limit.name, coordinate=model.coordinates.index(limit.coordinate),
+                 speed=speeds.index(limit.coordinate.rate), lower=end(limit.lower),
+                 upper=end(limit.upper), velocity=end(limit.velocity))
+            for limit in model.limits]
+
+
 def _chart_context(chart, first, unroll_max_nq: int) -> dict:
     """The template context of one chart (gencoord/cxx/templates/model_struct.j2)."""
     model, optimized, n = chart.model, chart.optimized, chart.num_reduced_kernels
@@ -165,6 +181,7 @@ def _chart_context(chart, first, unroll_max_nq: int) -> dict:
         speeds=([dict(name=s.name, description=s.description) for s in model.speeds]
                 if generalized else []),
         quaternions=model.quaternions,
+        limits=_limits_view(model),
         kinematic_constraints=[dict(name=c.name, holonomic=k < len(model.holonomic_constraints))
                                for k, c in enumerate([*model.holonomic_constraints,
                                                       *model.velocity_constraints])],

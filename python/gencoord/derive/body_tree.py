@@ -13,7 +13,8 @@ with v_i the joint's speeds: its coordinates' rates, or a ball or free joint's t
 which S is constant (speeds.py)
 and its body's spatial inertia about the link origin in the link's axes. The tree is taken
 from the links the model recorded, not read off expressions: a model qualifies when it is 3D,
-every body is a link's body and no particle stands alone (bodies.py's point masses aside).
+every body is a link's body, no particle stands alone (bodies.py's point masses aside) and
+every link moves by its own joint's coordinates only (no mimic joints).
 """
 
 from __future__ import annotations
@@ -61,6 +62,11 @@ def body_tree(model: Model) -> BodyTree | None:
     moved = [index_of[c] for link in model.links for c in link.coordinates]
     if sorted(moved) != list(range(len(q))):
         return None
+    for link in model.links:  # a mimic joint moves by another joint's coordinate: no tree
+        assert link.local is not None  # add_link and add_free_base set it
+        moving = (link.local.rotation.free_symbols | link.local.origin.free_symbols) & set(q)
+        if not moving <= set(link.coordinates):
+            return None
     position_of = {id(link): k for k, link in enumerate(model.links)}
     speed_of = {speed.symbol: k for k, speed in enumerate(model.speeds)}
     rates = model.coordinate_rates()

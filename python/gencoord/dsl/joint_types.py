@@ -70,7 +70,9 @@ class Origin:
 
 @dataclass
 class Limits:
-    """A joint's range and ratings as URDF gives them; reported, not enforced."""
+    """A joint's range and ratings as URDF gives them: the range is enforced while the model
+    runs, a speed above the velocity rating is reported (joint_limits.py); the effort is
+    described, not enforced."""
     lower: float | None = None
     upper: float | None = None
     effort: float | None = None
@@ -109,18 +111,31 @@ class Joint:
         return Frame.identity()
 
 
+@dataclass
+class Mimic:
+    """A joint that follows another (URDF <mimic>): its value is multiplier * q + offset, q the
+    followed joint's coordinate; it has no coordinate of its own."""
+    coordinate: sp.Symbol
+    multiplier: float = 1.0
+    offset: float = 0.0
+
+
 @dataclass(init=False)
 class _Moving(Joint):
-    """A joint with a coordinate: it moves about or along `axis` (joint-frame components)."""
+    """A joint with a coordinate: it moves about or along `axis` (joint-frame components); with
+    `mimic`, by the followed joint's coordinate instead of one of its own."""
     axis: Sequence = (1, 0, 0)
     limits: Limits | None = None
     damping: float = 0
+    mimic: Mimic | None = None
 
     def __init__(self, axis: Sequence, origin: Origin | None = None,
-                 limits: Limits | None = None, damping=0, name: str | None = None):
+                 limits: Limits | None = None, damping=0, name: str | None = None,
+                 mimic: Mimic | None = None):
         self.axis = tuple(number(v) for v in axis)
         self.origin = origin if origin is not None else Origin()
         self.limits, self.damping, self.name = limits, number(damping), name
+        self.mimic = mimic
 
     def moves(self) -> bool:
         return True

@@ -25,13 +25,13 @@ import sympy as sp
 from gencoord.errors import ModelError
 from gencoord.dsl.frames import Frame, rotation_about
 from gencoord.dsl.items import Body
-from gencoord.dsl.joint_types import (Ball, Continuous, Fixed, Free, Joint, Limits, Origin,
+from gencoord.dsl.joint_types import (Ball, Continuous, Fixed, Free, Joint, Limits, Mimic, Origin,
                                       Prismatic, Revolute, _Moving, _QuaternionJoint,
                                       identifier, number)
 from gencoord.dsl.quaternions import (quaternion_from_rpy, quaternion_rate,
                                       quaternion_rotation)
 
-__all__ = ["Ball", "Continuous", "Fixed", "Free", "Joint", "Limits", "Origin", "Prismatic",
+__all__ = ["Ball", "Continuous", "Fixed", "Free", "Joint", "Limits", "Mimic", "Origin", "Prismatic",
            "Revolute", "Link", "add_link", "add_free_base", "identifier", "number"]
 
 # Euler-angle charts of a free-floating base: each angle's name, axis and description,
@@ -60,8 +60,9 @@ class Link:
     # v of its joint: its coordinates' rates, or a quaternion joint's twist (speeds.py)
     speeds: list = field(default_factory=list)
     limits: Limits | None = None
-    # visual and collision elements, kept for tools; dynamics ignores them
-    geometry: list = field(default_factory=list)
+    # a URDF link's visual and collision elements, for the viewer; dynamics ignores them
+    # (None: the link was not read from a URDF)
+    geometry: list | None = None
     # what holds this link's frame rigidly: (body or None for the world, this frame in that
     # body's axes -- or in the world's), None when a moving massless link lies in between
     support: tuple | None = None
@@ -144,13 +145,9 @@ def add_link(model, name: str, parent: Link | None, joint: Joint, mass=None, ine
         link = Link(name, parent_frame * local, joint, parent, coordinates=coordinates,
                     speeds=speeds, local=local)
     else:
-        if isinstance(joint, _Moving):
-            description = f"{joint.kind} joint '{joint_label}' ({joint.unit})"
-            if joint.limits is not None and str(joint.limits):
-                description += f", {joint.limits}"
-            q = model.coordinate(joint_name, description, initial=_initial(joint.limits))
-        local = joint.origin.frame() * joint.motion(q)
-        link = Link(name, joint_frame * joint.motion(q), joint, parent, coordinate=q,
+        q, value = _joint_value(model, joint, joint_name, joint_label, label)
+        local = joint.origin.frame() * joint.motion(value)
+        link = Link(name, joint_frame * joint.motion(value), joint, parent, coordinate=q,
                     coordinates=[q] if q is not None else [],
                     speeds=[model.rate(q)] if q is not None else [],
                     limits=getattr(joint, "limits", None), local=local)
@@ -204,12 +201,53 @@ def _quaternion_joint(model, name: str, joint: _QuaternionJoint, label: str
     return quaternion, angular, joint.origin.frame() * Frame(rotation, [0, 0, 0])
 
 
+def _joint_value(model, joint: Joint, joint_name: str, joint_label: str, label: str
+                 ) -> tuple[sp.Symbol | None, sp.Expr | None]:
+    """A revolute or prismatic joint's coordinate (declared here, with its limits) and value:
+    the coordinate, or for a mimic joint none and the followed coordinate, mapped; neither
+    for a fixed joint."""
+    if not isinstance(joint, _Moving):
+        return None, None
+    if joint.mimic is not None:
+        return None, _followed(model, joint, label)
+    description = f"{joint.kind} joint '{joint_label}' ({joint.unit})"
+    if joint.limits is not None and str(joint.limits):
+        description += f", {joint.limits}"
+    q = model.coordinate(joint_name, description, initial=_initial(joint.limits))
+    if joint.limits is not None:
+        _limit(model, q, joint, joint_label)
+    return q, q
+
+
+def _followed(model, joint: _Moving, label: str) -> sp.Expr:
+    """A mimic joint's value, multiplier * q + offset, q the followed joint's coordinate."""
+    mimic = joint.mimic
+    assert mimic is not None  # called for a mimic joint
+    followed = model._coordinate_of(mimic.coordinate, label, None)
+    ranged = joint.limits is not None and (joint.limits.lower is not None
+                                           or joint.limits.upper is not None)
+    if ranged and not isinstance(joint, Continuous):
+        model.ignored.append(f"{label}: a mimic joint's range (the followed joint's holds it)")
+    return number(mimic.multiplier) * followed.symbol + number(mimic.offset)
+
+
 def _damp(model, link: Link, joint_frame: Frame, joint_name: str, label: str) -> None:
     """Joint damping: the generalized force -c qdot; in a chart of an atlas, which refuses
     forces on q, the same as torques -+c qdot about the joint axis on the two bodies (their
-    virtual work is -c qdot dq)."""
-    joint, rate = link.joint, model.rate(link.coordinate)
+    virtual work is -c qdot dq). A mimic joint's, -c m^2 qdot on the coordinate it follows
+    (its rate is m qdot, its virtual displacement m dq)."""
+    joint = link.joint
     assert isinstance(joint, _Moving)  # only a moving joint has damping
+    if joint.mimic is not None:
+        if model.chart:
+            raise ModelError("in an atlas, a mimic joint's damping is not supported; set it to 0",
+                             item=label)
+        multiplier = number(joint.mimic.multiplier)
+        followed = joint.mimic.coordinate
+        model.generalized_force(followed, -joint.damping * multiplier**2 * model.rate(followed),
+                                name=f"{joint_name}_damping")
+        return
+    rate = model.rate(link.coordinate)
     if not model.chart:
         model.generalized_force(link.coordinate, -joint.damping * rate,
                                 name=f"{joint_name}_damping")
@@ -224,6 +262,15 @@ def _damp(model, link: Link, joint_frame: Frame, joint_name: str, label: str) ->
     model.torque(link.body, torque, name=f"{joint_name}_damping")
     if parent_support[0] is not None:
         model.torque(parent_support[0], -torque, name=f"{joint_name}_damping_reaction")
+
+
+def _limit(model, q, joint, label: str) -> None:
+    """The joint's range (none for a continuous joint, as in URDF) and velocity rating."""
+    limits = joint.limits
+    ranged = not isinstance(joint, Continuous)
+    lower, upper = (limits.lower, limits.upper) if ranged else (None, None)
+    if lower is not None or upper is not None or limits.velocity is not None:
+        model.limit(q, lower, upper, limits.velocity, name=label)
 
 
 def _initial(limits: Limits | None) -> float:

@@ -26,6 +26,7 @@ import sympy as sp
 from gencoord.errors import ModelError
 from gencoord.dsl.bodies import add_point_masses, as_inertia
 from gencoord.dsl.frames import Frame
+from gencoord.dsl.joint_limits import JointLimits
 from gencoord.dsl.kinematic_constraints import KinematicConstraints
 from gencoord.dsl.speeds import GeneralizedSpeeds
 from gencoord.dsl.items import (Body, BodyTorque, Coordinate, Damper, FixedPoint, GeneralizedForce,
@@ -51,7 +52,7 @@ def requesting_options(options: Mapping[str, str]) -> Iterator[None]:
         REQUESTED_OPTIONS.reset(token)
 
 
-class Model(GeneralizedSpeeds, KinematicConstraints):
+class Model(GeneralizedSpeeds, KinematicConstraints, JointLimits):
     """A mechanical system described by particle positions x = X(q, t).
 
     `options` are the requested values of its build options (`option`), as text; by default
@@ -87,6 +88,7 @@ class Model(GeneralizedSpeeds, KinematicConstraints):
         self.holonomic_constraints: list[HolonomicConstraint] = []
         self.velocity_constraints: list[VelocityConstraint] = []
         self.wheels: list[Wheel] = []
+        self.limits: list = []  # joint_limits.py
         self.bodies: list[Body] = []
         self.torques: list[BodyTorque] = []
         # a joint tree's links (joints.py), parents first: the rigid-body recursions walk it

@@ -153,6 +153,9 @@ def load_model(path: str, options: dict[str, str] | None = None, name: str | Non
     if unknown:
         raise ModelError(f"--set {', '.join(sorted(unknown))}: not an option of this model "
                          f"(its options: {', '.join(model.options) or 'none'})", filename=path)
+    if model.description is not None and not isinstance(model.description, str):
+        raise ModelError(f"description is {model.description!r}, not text; give a string",
+                         item="Model", filename=path, line=model.line)
     docstring = model.description or namespace.get("__doc__") or ""
     full_name = model_name(path, model.options, name)
     _check_model_name(path, full_name, name)

@@ -12,6 +12,8 @@ import textwrap
 
 from gencoord.generate import cli as generator_cli
 from gencoord.generate.failures import report_failure
+from gencoord.checks.conservative import conserves_energy
+from gencoord.viewer.robot_geometry import package_path
 from gencoord.viewer.scene import scene as scene_of
 
 from gencoord import __version__
@@ -148,7 +150,8 @@ def _parser() -> argparse.ArgumentParser:
     parser.add_argument("--version", action="version", version=f"gencoord {__version__}")
     subparsers = parser.add_subparsers(dest="command", metavar="COMMAND")
     subparsers.add_parser("generate", help="the C++ header of a model file", add_help=False)
-    _model_command(subparsers, "simulate", "simulate a model file", _SIMULATE_EPILOG)
+    simulate_parser = _model_command(subparsers, "simulate", "simulate a model file",
+                                     _SIMULATE_EPILOG)
     _model_command(subparsers, "crosscheck",
                    "cross-check a model file against its maximal-coordinate penalty model",
                    _CROSSCHECK_EPILOG)
@@ -167,6 +170,11 @@ def _parser() -> argparse.ArgumentParser:
                                  _VIEW_EPILOG)
     view_parser.add_argument("--csv", help="the trajectory (default: DIR/<name>.csv, which "
                                            "gencoord simulate writes)")
+    for drawing in (simulate_parser, view_parser):
+        drawing.add_argument("--package-path", action="append", default=[], metavar="DIR",
+                             help="a folder that holds the packages a URDF's package:// mesh "
+                                  "files name (repeatable; ROS_PACKAGE_PATH's are searched "
+                                  "after these)")
     _sweep_command(subparsers)
     info_parser = subparsers.add_parser(
         "info", help="what a model file declares",
@@ -215,17 +223,17 @@ def _simulate(args, forwarded: list[str]) -> int:
     status = _run(program, arguments)
     if status == 0 and csv:
         svg = os.path.splitext(csv)[0] + ".svg"
-        trajectory_svg.write_svg(csv, svg, loaded.target.name)
+        trajectory_svg.write_svg(csv, svg, loaded.target.name, conserves_energy(loaded.model))
         print(f"picture     {svg}")
         html = os.path.splitext(csv)[0] + ".html"
-        _write_view(loaded, csv, html)
+        _write_view(loaded, csv, html, args.package_path)
         print(f"viewer      {html} (open it in a browser)")
     return status
 
 
-def _write_view(loaded, csv: str, html: str) -> None:
+def _write_view(loaded, csv: str, html: str, packages: list[str]) -> None:
     values = {name: float(value) for name, value in loaded.parameters.items()}
-    scene = scene_of(loaded.model, loaded.target.name, values)
+    scene = scene_of(loaded.model, loaded.target.name, values, package_path(packages))
     viewer_page.write_page(csv, scene, html, loaded.target.name)
 
 
@@ -238,7 +246,7 @@ def _view(args) -> int:
     os.makedirs(args.output_dir, exist_ok=True)
     html = os.path.join(args.output_dir,
                         os.path.splitext(os.path.basename(csv))[0] + ".html")
-    _write_view(loaded, csv, html)
+    _write_view(loaded, csv, html, args.package_path)
     print(html)
     return 0
 
@@ -254,7 +262,7 @@ def _crosscheck(args, forwarded: list[str]) -> int:
     status = _run(program, arguments)
     trajectory = stem + "_trajectory.csv"
     if not _has_option(forwarded, "--trajectory", "-h", "--help") and _has_rows(trajectory):
-        _write_view(loaded, trajectory, stem + ".html")
+        _write_view(loaded, trajectory, stem + ".html", [])
         print(f"viewer      {stem}.html: reduced and maximal side by side")
     return status
 

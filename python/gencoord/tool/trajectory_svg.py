@@ -61,7 +61,7 @@ def parse_trajectory(lines) -> Trajectory:
     header = rows[0]
     values = list(zip(*[[float(x) for x in row] for row in rows[1:] if row]))
     columns = dict(zip(header, (list(v) for v in values)))
-    point_columns = [name for name in header if not name.startswith(("q_", "v_"))
+    point_columns = [name for name in header if not name.startswith(("q_", "v_", "limit:"))
                      and name.rsplit("_", 1)[-1] in ("x", "y", "z") and "_" in name]
     points = list(dict.fromkeys(name.rsplit("_", 1)[0] for name in point_columns))
     axes = [a for a in "xyz" if f"{points[0]}_{a}" in columns]
@@ -175,20 +175,22 @@ class EnergyError:
     values: list[float]
     relative: bool                   # (E - E0) / |E0|; else E - E0 in J, because E0 = 0
     label: str
+    name: str = "energy error"       # "energy change" for a model that does not conserve E
 
     @property
     def worst(self) -> float:
         return max(abs(v) for v in self.values)
 
 
-def energy_error(energy: list[float]) -> EnergyError:
-    """The error of each E(t) against E(0): relative when E(0) != 0, else absolute in J."""
-    e0 = energy[0]
+def energy_error(energy: list[float], conserved: bool = True) -> EnergyError:
+    """E(t) against E(0): relative when E(0) != 0, else absolute in J. An error where the model
+    conserves energy; its change where damping, inputs, time or joint limits change it."""
+    e0, name = energy[0], "energy error" if conserved else "energy change"
     if e0 != 0:
         return EnergyError([(e - e0) / abs(e0) for e in energy], True,
-                           "relative energy error (E \u2212 E\u2080) / |E\u2080|")
+                           f"relative {name} (E \u2212 E\u2080) / |E\u2080|", name)
     return EnergyError([e - e0 for e in energy], False,
-                       "energy error E \u2212 E\u2080 (J), absolute: E\u2080 = 0")
+                       f"{name} E \u2212 E\u2080 (J), absolute: E\u2080 = 0", name)
 
 
 def error_axis(values: list[float]) -> tuple[float, float, float]:
@@ -220,9 +222,10 @@ def energy_panel(trajectory: Trajectory, error: EnergyError) -> list[str]:
 
 # --- the picture -------------------------------------------------------------------------
 
-def render_svg(trajectory: Trajectory, name: str) -> str:
-    """The whole picture as SVG text."""
-    error = energy_error(trajectory.energy)
+def render_svg(trajectory: Trajectory, name: str, conserved: bool = True) -> str:
+    """The whole picture as SVG text; `conserved`: whether the model conserves energy (its
+    panel then shows the energy error, else the energy's change)."""
+    error = energy_error(trajectory.energy, conserved)
     ax, ay = plane_of_motion(trajectory)
     worst = (f"max |E \u2212 E\u2080| / |E\u2080| = {error.worst:.2e}" if error.relative
              else f"max |E \u2212 E\u2080| = {error.worst:.2e} J (E\u2080 = 0)")
@@ -234,7 +237,7 @@ def render_svg(trajectory: Trajectory, name: str) -> str:
                      x=PATH_RECT[0] - 60, y=28, font_size=15, font_weight="bold"),
              element("text", f"{len(t)} states, t = {t[0]:g} \u2026 {t[-1]:g} s",
                      x=PATH_RECT[0] - 60, y=48, fill="#555"),
-             element("text", f"{name}: energy error", class_="title", x=ENERGY_RECT[0] - 80,
+             element("text", f"{name}: {error.name}", class_="title", x=ENERGY_RECT[0] - 80,
                      y=28, font_size=15, font_weight="bold"),
              element("text", worst, class_="max-error", x=ENERGY_RECT[0] - 80, y=48,
                      fill="#555"),
@@ -242,10 +245,11 @@ def render_svg(trajectory: Trajectory, name: str) -> str:
     return "\n".join(parts) + "\n"
 
 
-def write_svg(source: str, target: str, name: str | None = None) -> None:
-    """Draws the trajectory CSV `source` into `target`; `name` defaults to the CSV's stem."""
+def write_svg(source: str, target: str, name: str | None = None, conserved: bool = True) -> None:
+    """Draws the trajectory CSV `source` into `target`; `name` defaults to the CSV's stem;
+    `conserved` as render_svg's."""
     name = name or os.path.splitext(os.path.basename(source))[0]
-    svg = render_svg(read_trajectory(source), name)
+    svg = render_svg(read_trajectory(source), name, conserved)
     with open(target, "w", encoding="utf-8") as handle:
         handle.write(svg)
 

@@ -43,6 +43,7 @@ class Geometry:
     shape: str | None
     attributes: dict
     line: int | None
+    source: str | None = None  # the URDF's path, which a mesh's file name is relative to
 
 
 @dataclass
@@ -54,6 +55,15 @@ class LinkDescription:
 
 
 @dataclass
+class MimicDescription:
+    """A <mimic>: the joint follows `joint` as multiplier * q + offset."""
+    joint: str
+    multiplier: float
+    offset: float
+    line: int | None
+
+
+@dataclass
 class JointDescription:
     name: str
     line: int | None
@@ -61,6 +71,7 @@ class JointDescription:
     parent: str
     child: str
     joint: Joint
+    mimic: MimicDescription | None = None
 
 
 @dataclass
@@ -138,7 +149,7 @@ def _geometry(xml: XmlFile, link: ET.Element, item: str) -> list[Geometry]:
             found.append(Geometry(kind, element.get("name"), _origin(xml, element, item),
                                   None if shape is None else shape.tag,
                                   {} if shape is None else dict(shape.attrib),
-                                  xml.line(element)))
+                                  xml.line(element), xml.path))
     return found
 
 
@@ -186,11 +197,6 @@ def _joint(xml: XmlFile, element: ET.Element) -> JointDescription:
     if kind == FLOATING:  # its origin is the base's initial pose
         return JointDescription(name, xml.line(element), kind, parent, child,
                                 Free(origin, name=name))
-    mimic = element.find("mimic")
-    if mimic is not None:
-        raise xml.error("mimic joints are not supported (a joint that follows another has no "
-                        "coordinate of its own); remove <mimic> to make it a free joint",
-                        mimic, item)
     if kind not in JOINT_TYPES:
         raise xml.error(f"type {kind!r} is not a joint type: use one of "
                         f"{', '.join([*JOINT_TYPES, FLOATING])}", element, item)
@@ -212,7 +218,44 @@ def _joint(xml: XmlFile, element: ET.Element) -> JointDescription:
                             dynamics, item)
         joint = JOINT_TYPES[kind](axis, origin, _limits(xml, element, item), damping,
                                   name=name)
-    return JointDescription(name, xml.line(element), kind, parent, child, joint)
+    return JointDescription(name, xml.line(element), kind, parent, child, joint,
+                            _mimic(xml, element, kind, item))
+
+
+def _check_mimic(xml: XmlFile, joint: JointDescription, joints: dict, elements: dict) -> None:
+    """Refuses a <mimic> of a joint that is not in the file, has no coordinate to follow, or
+    follows another."""
+    if joint.mimic is None:
+        return
+    mimic = elements[joint.name].find("mimic")
+    followed = joints.get(joint.mimic.joint)
+    problem = None
+    if followed is None:
+        problem = f"it follows joint '{joint.mimic.joint}', which is not a <joint> of this file"
+    elif followed is joint:
+        problem = "it follows itself"
+    elif followed.kind not in ("revolute", "continuous", "prismatic"):
+        problem = (f"it follows joint '{followed.name}', a {followed.kind} joint, which has no "
+                   "coordinate to follow")
+    elif followed.mimic is not None:
+        problem = (f"it follows joint '{followed.name}', which follows '{followed.mimic.joint}'; "
+                   "follow that joint instead")
+    if problem:
+        raise xml.error(problem, mimic, f"joint '{joint.name}'")
+
+
+def _mimic(xml: XmlFile, element: ET.Element, kind: str, item: str) -> MimicDescription | None:
+    mimic = element.find("mimic")
+    if mimic is None:
+        return None
+    if kind not in ("revolute", "continuous", "prismatic"):
+        raise xml.error(f"a {kind} joint cannot mimic another; only revolute, continuous and "
+                        "prismatic joints can", mimic, item)
+    followed = mimic.get("joint")
+    if not followed:
+        raise xml.error("<mimic> needs joint=\"...\", the joint it follows", mimic, item)
+    return MimicDescription(followed, xml.number(mimic, "multiplier", 1.0, item),
+                            xml.number(mimic, "offset", 0.0, item), xml.line(mimic))
 
 
 def _check_tree(xml: XmlFile, links: dict, joints: list[JointDescription],
@@ -285,6 +328,7 @@ def read_urdf(path: str) -> RobotDescription:
                             f"but its parent '{joint.parent}' is not the root; make the root "
                             "its parent",
                             elements[joint.name], f"joint '{joint.name}'")
+        _check_mimic(xml, joint, {j.name: j for j in joints}, elements)
     robot = RobotDescription(root.get("name") or "robot", path, links, by_child, root_link,
                              [textwrap.dedent(c.strip("\n")).strip()
                               for c in xml.leading_comments], _ignored(root))

@@ -19,7 +19,8 @@ import contextlib
 import os
 
 from gencoord.errors import ModelError
-from gencoord.dsl.joints import Fixed, Free, Joint, Link, Origin, add_free_base, add_link
+from gencoord.dsl.joints import (Fixed, Free, Joint, Link, Mimic, Origin, Prismatic, Revolute,
+                                 add_free_base, add_link)
 from gencoord.dsl.model import Model
 from gencoord.dsl.items import model_file_frame
 from gencoord.urdf.description import FLOATING, RobotDescription, read_urdf
@@ -83,6 +84,18 @@ def _free_base(model: Model, robot: RobotDescription, name: str, joint: Joint,
     return add_link(model, name, None, joint, **arguments)
 
 
+def _mimic(robot: RobotDescription, joint, links: UrdfTree) -> Mimic:
+    """The Mimic of a joint whose <mimic> follows a joint loaded before it."""
+    mimic = joint.mimic
+    followed = links.coordinates.get(mimic.joint)
+    if followed is None:
+        raise ModelError(f"it follows joint '{mimic.joint}', which comes after it in the tree "
+                         "(depth first from the root, children in the file's order); put the "
+                         "followed joint's branch first", item=f"joint '{joint.name}'",
+                         filename=robot.path, line=mimic.line)
+    return Mimic(followed, mimic.multiplier, mimic.offset)
+
+
 def add_robot(model: Model, robot: RobotDescription, gravity: bool = True,
               free_base: bool = False, chart: str | None = None,
               stamp: bool = False) -> UrdfTree:
@@ -102,6 +115,9 @@ def add_robot(model: Model, robot: RobotDescription, gravity: bool = True,
                 # the root is the world, or welded to it: add_link gives it no body
                 link = add_link(model, name, None, Fixed(Origin()))
             else:
+                if joint.mimic is not None:
+                    assert isinstance(joint.joint, (Revolute, Prismatic))  # _check_mimic
+                    joint.joint.mimic = _mimic(robot, joint, links)
                 link = add_link(model, name, links[joint.parent], joint.joint,
                                 **_inertial_arguments(robot, name))
         link.geometry = robot.links[name].geometry

@@ -93,7 +93,7 @@ def page_data(csv_path: str, scene: dict) -> dict:
     points = [*(p for p in trajectory.particles if not p.startswith(COMPANION)),
               *trajectory.fixed_points, *companion]
     rows, stride = kept_rows(len(trajectory.t), 2 + len(coordinates) + dim * len(points))
-    error = energy_error(trajectory.energy)
+    error = energy_error(trajectory.energy, scene.get("conserves_energy", True))
     positions = [columns[f"{point}_{axis}"][row]
                  for row in rows for point in points for axis in "xyz"[:dim]]
     return {
@@ -104,7 +104,8 @@ def page_data(csv_path: str, scene: dict) -> dict:
         "points": points,            # particles, "fixed:<name>", then the companion's
         "companion": COMPANION if companion else None,
         "companion_shift": shift,
-        "energy": {"label": error.label, "relative": error.relative, "worst": error.worst},
+        "energy": {"label": error.label, "name": error.name, "relative": error.relative,
+                   "worst": error.worst},
         "arrays": {
             "t": encoded([trajectory.t[row] for row in rows], "d"),
             "energy_error": encoded(_worst_in_buckets(error.values, rows), "f"),

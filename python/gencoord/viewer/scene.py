@@ -1,8 +1,8 @@
 # SPDX-License-Identifier: BSD-3-Clause
 """What a picture of a model needs, as JSON: its particles, fixed points, bodies with an
-inertia-equivalent shape (a rolling wheel: its disk), the rods, springs, dampers, pins and
-planes it declares (the ground plane under rolling wheels), and the direction against
-gravity.
+inertia-equivalent shape (a rolling wheel: its disk; a robot's link: its URDF visuals or a
+skeleton, robot_geometry.py), the rods, springs, dampers, pins and planes it declares (the
+ground plane under rolling wheels), and the direction against gravity.
 
 Positions are not in the scene: a trajectory (the simulate program's CSV) holds those of the
 particles and fixed points, row by row. Every other point is given as an affine combination
@@ -18,15 +18,17 @@ beside the header, the values of a run when the viewer draws one.
 from __future__ import annotations
 
 import json
-from typing import Mapping
+from typing import Mapping, Sequence
 
 import mpmath
 import sympy as sp
 
+from gencoord.checks.conservative import conserves_energy
 from gencoord.dsl.model import Model
 
 from gencoord.dsl.items import (Body, BodyParticle, BodyPoint, FixedPoint, Pin, Plane, Point, Rod,
                                 Wheel)
+from gencoord.viewer.robot_geometry import package_path, robot_visuals
 
 FORMAT = "gencoord-scene 1"
 FIXED_PREFIX = "fixed:"  # the CSV's columns of fixed points (runtime csv_writer.hpp)
@@ -39,24 +41,38 @@ WHEEL_WIDTH = 0.15
 MIN_THICKNESS = 0.05
 
 
-def scene(model: Model, name: str, values: Mapping[str, float] | None = None) -> dict:
+def scene(model: Model, name: str, values: Mapping[str, float] | None = None,
+          packages: Sequence[str] = ()) -> dict:
     """The scene of `model` as a JSON-ready dict, with parameters at `values` (by name) and
-    at their defaults otherwise."""
+    at their defaults otherwise; a URDF's mesh files found through `packages` (folders that
+    hold package:// packages)."""
     given = dict(values or {})
     numbers = {p.symbol: sp.Float(float(given.get(p.name, p.default)))
                for p in model.parameters}
     body_particles = {p.name for body in model.bodies for p in body.particles}
     wheels = {wheel.body.name: wheel for wheel in model.wheels}
+    visuals, world_visuals = robot_visuals(model, numbers, packages)
+    bodies = [_body(body, numbers, wheels.get(body.name)) for body in model.bodies]
+    for body in bodies:
+        if body["name"] in visuals:  # a robot's link: drawn as its URDF visuals or skeleton
+            body["visuals"] = visuals[body["name"]]
+    # a robot's joints are drawn by its links: not the maximal model's pins on them (two per
+    # hinge, the second a metre along its axis)
+    on_links = {p.name for body in model.bodies if body.name in visuals for p in body.particles}
+    links = [link for link in _links(model, numbers, body_particles) if link and not (
+        link["kind"] == "pin" and {c for end in ("a", "b") for c, _ in link[end]} <= on_links)]
     return {
         "format": FORMAT,
         "name": name,
         "dim": model.dim,
         "up": _up(model, numbers),
+        # whether E - E0 of a run is an error (a conservative model) or the energy's change
+        "conserves_energy": conserves_energy(model),
         "particles": [{"name": p.name, "mass": _number(p.mass, numbers)}
                       for p in model.particles if not isinstance(p, BodyParticle)],
         "fixed_points": [p.name for p in model.fixed_points],
-        "bodies": [_body(body, numbers, wheels.get(body.name)) for body in model.bodies],
-        "links": [link for link in _links(model, numbers, body_particles) if link],
+        "bodies": bodies,
+        "links": links,
         "planes": ([_plane(plane, numbers) for plane in model.constraints
                     if isinstance(plane, Plane)] + ([GROUND] if model.wheels else [])),
         # pins to a position that never moves: where they hold their point (with the body
@@ -65,13 +81,16 @@ def scene(model: Model, name: str, values: Mapping[str, float] | None = None) ->
                     "body": pin.particle.body.name if isinstance(pin.particle, BodyPoint)
                     else None}
                    for pin in model.constraints if isinstance(pin, Pin)
-                   and not isinstance(pin.anchor, Point) and _vector(pin.anchor, numbers)],
+                   and not isinstance(pin.anchor, Point) and _vector(pin.anchor, numbers)
+                   and not (isinstance(pin.particle, BodyPoint)
+                            and pin.particle.body.name in visuals)],
+        **({"world_visuals": world_visuals} if world_visuals else {}),
     }
 
 
 def scene_json(model: Model, name: str, values: Mapping[str, float] | None = None) -> str:
     """The scene as JSON text, byte for byte the same for the same model and values."""
-    return json.dumps(scene(model, name, values), indent=1) + "\n"
+    return json.dumps(scene(model, name, values, package_path()), indent=1) + "\n"
 
 
 def _rounded(value: float) -> float:

@@ -163,6 +163,43 @@ function drawCoil(entry) {
 
 // The model's drawing: `prefix` names its points in the trajectory ("" for the model, the
 // cross-check's "maximal:" for the penalty model drawn beside it, faded and moved by `shift`)
+// A robot link's shapes (robot_geometry.py): boxes, cylinders and capsules along their z,
+// spheres and triangle meshes, each posed by its row-major 4x4 in the body's (or the world's)
+// axes; one group, so that the body's pose moves them all.
+const Y_TO_Z = new THREE.Matrix4().makeRotationX(Math.PI / 2); // three.js's round shapes: y
+function visualShapes(visuals, colour, faded) {
+  const group = new THREE.Group();
+  for (const visual of visuals) {
+    let geometry;
+    let turn = null;
+    if (visual.kind === "box") {
+      geometry = new THREE.BoxGeometry(...visual.size);
+    } else if (visual.kind === "cylinder") {
+      geometry = new THREE.CylinderGeometry(visual.radius, visual.radius, visual.length, 32);
+      turn = Y_TO_Z;
+    } else if (visual.kind === "capsule") {
+      geometry = new THREE.CapsuleGeometry(visual.radius, visual.length, 8, 24);
+      turn = Y_TO_Z;
+    } else if (visual.kind === "sphere") {
+      geometry = new THREE.SphereGeometry(visual.radius, 32, 16);
+    } else if (visual.kind === "mesh") {
+      geometry = new THREE.BufferGeometry();
+      geometry.setAttribute("position",
+        new THREE.BufferAttribute(decode(visual.triangles, Float32Array), 3));
+      geometry.computeVertexNormals();
+    } else {
+      continue;
+    }
+    const shape = new THREE.Mesh(geometry, material(colour, faded));
+    if (visual.kind === "mesh") shape.material.side = THREE.DoubleSide;
+    shape.matrixAutoUpdate = false;
+    shape.matrix.set(...visual.pose);
+    if (turn) shape.matrix.multiply(turn);
+    group.add(shape);
+  }
+  return group;
+}
+
 function drawModel(prefix, faded, shift) {
   const masses = model.particles.map((p) => p.mass).filter((m) => m > 0);
   const heaviest = masses.length ? Math.max(...masses) : 1;
@@ -265,9 +302,11 @@ function drawModel(prefix, faded, shift) {
       columns[0].y, columns[1].y, columns[2].y,
       columns[0].z, columns[1].z, columns[2].z);
     const inverse = differences.clone().invert();
-    let geometry;
+    let geometry = null;
     const shape = new THREE.Matrix4();
-    if (body.shape && body.shape.kind === "wheel") {
+    if (body.visuals) {
+      // drawn below as the robot link's shapes, each with its own pose
+    } else if (body.shape && body.shape.kind === "wheel") {
       // a disk about the axle at the wheel's centre (the cylinder's own axis is y)
       const { radius, width, axle, center } = body.shape;
       geometry = new THREE.CylinderGeometry(radius, radius, width, 48);
@@ -286,8 +325,9 @@ function drawModel(prefix, faded, shift) {
       const r = body.shape ? body.shape.radius : radius0 * 2;
       geometry = new THREE.CircleGeometry(r, 48);
     }
-    const mesh = new THREE.Mesh(geometry,
-      material(COLOURS[(k + particles.length) % COLOURS.length], faded));
+    const colour = COLOURS[(k + particles.length) % COLOURS.length];
+    const mesh = geometry ? new THREE.Mesh(geometry, material(colour, faded))
+      : visualShapes(body.visuals, colour, faded);
     if (is2d) mesh.material.side = THREE.DoubleSide;
     mesh.matrixAutoUpdate = false;
     world.add(mesh);
@@ -302,6 +342,12 @@ function drawModel(prefix, faded, shift) {
     return { name: body.name, points: body.points.map((name) => prefix + name), mesh, frame,
       shape, inverse, n };
   });
+  // a robot's links welded to the world: their shapes, in world axes
+  if (model.world_visuals) {
+    const base = visualShapes(model.world_visuals, 0x888888, faded);
+    base.position.copy(shift);
+    world.add(base);
+  }
   return { particles, fixedPoints, links, bodies, spindles };
 }
 
@@ -439,7 +485,7 @@ if (mesh) {
   for (let i = 0; i < frames; ++i) values[i] = mesh.intactAt(times[i]);
   series.push({ label: "springs intact", values });
 }
-series.forEach((s) => seriesSelect.add(new Option(s.values === energyError ? "energy error"
+series.forEach((s) => seriesSelect.add(new Option(s.values === energyError ? data.energy.name
   : s.label, seriesSelect.options.length)));
 const PLOT_MARGIN = { left: 70, right: 14, top: 20, bottom: 22 };
 let plotInfo = null; // null: the plot is to be drawn again (resize, another series)
@@ -564,6 +610,10 @@ const slider = document.getElementById("slider");
 const playButton = document.getElementById("play");
 const speedSelect = document.getElementById("speed");
 const trailsBox = document.getElementById("trails");
+// bodies' frames: on by default, off for a robot (its links' drawing shows its joints)
+const framesBox = document.getElementById("frames");
+framesBox.checked = !model.bodies.some((body) => body.visuals);
+document.getElementById("frames-label").hidden = model.bodies.length === 0;
 const clock = document.getElementById("clock");
 slider.min = t0;
 slider.max = t1;
@@ -586,7 +636,10 @@ function render() {
   for (const { particles: spheres, fixedPoints, bodies, links, spindles } of drawings) {
     for (const { name, mesh } of spheres) pointAt(name, mesh.position);
     for (const { name, mesh } of fixedPoints) pointAt(name, mesh.position);
-    for (const entry of bodies) poseBody(entry);
+    for (const entry of bodies) {
+      poseBody(entry);
+      entry.frame.visible = framesBox.checked;
+    }
     for (const { rod, at, body } of spindles) placeBetween(rod, at, bodies[body].centre);
     for (const entry of links) {
       anchorPosition(entry.link.a, entry.a);
@@ -646,6 +699,7 @@ slider.addEventListener("input", () => {
   render();
 });
 trailsBox.addEventListener("change", render);
+framesBox.addEventListener("change", render);
 controls.addEventListener("change", () => {
   if (!playing) render();
 });
@@ -673,6 +727,11 @@ window.gencoordViewer = {
   playing: () => playing,
   setTrails(on) {
     trailsBox.checked = on;
+    render();
+  },
+  /** Shows or hides the bodies' frames (their axes at the centre of mass). */
+  setFrames(on) {
+    framesBox.checked = on;
     render();
   },
   /** Screen position (CSS pixels in the page) of a point in model coordinates. */

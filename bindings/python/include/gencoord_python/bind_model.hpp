@@ -12,6 +12,7 @@
 
 #include "gencoord/integrate/integrator.hpp"
 #include "gencoord/model/inverse_dynamics.hpp"
+#include "gencoord/model/joint_limits.hpp"
 #include "gencoord/model/model_traits.hpp"
 #include "gencoord_python/arrays.hpp"
 #include "gencoord_python/constraints.hpp"
@@ -57,6 +58,17 @@ void bind_metadata(py::module_& module) {
   module.attr("fixed_point_names") = string_tuple(M::fixed_point_names);
   module.attr("initial_q") = read_only_array(M::initial_q);
   module.attr("initial_v") = read_only_array(M::initial_v);
+  if constexpr (has_joint_limits_v<M>) {  // limited coordinates' indices, ends and ratings
+    module.attr("limit_names") = string_tuple(M::limit_names);
+    py::tuple coordinates(M::num_limits);
+    for (int i = 0; i < M::num_limits; ++i) coordinates[i] = M::limited_coordinates[i];
+    module.attr("limited_coordinates") = coordinates;
+    module.attr("lower_limits") = read_only_array(M::lower_limits);
+    module.attr("upper_limits") = read_only_array(M::upper_limits);
+    module.attr("velocity_limits") = read_only_array(M::velocity_limits);
+  } else {
+    module.attr("limit_names") = py::tuple();
+  }
   module.attr("forces_have_potential") = M::forces_have_potential;
   module.attr("recursive_qddot") = M::recursive_qddot;
   // the names parse_integrator() accepts, in the runtime's order

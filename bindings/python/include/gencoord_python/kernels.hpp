@@ -126,11 +126,15 @@ InputsInput<M> inputs_input(py::handle value, py::ssize_t batch) {
   return input;
 }
 
+/// Threads for a batch: `threads`, at most the batch's size; refused below 1 and above 64
+/// times the machine's hardware threads, where starting them fails (and aborted the process).
 inline int thread_count(py::handle threads, py::ssize_t batch) {
+  const long wanted = threads.is_none() ? default_batch_threads() : threads.cast<long>();
+  const long most = 64L * default_batch_threads();
+  if (wanted < 1 || wanted > most)
+    throw py::value_error("threads: expected 1 to " + std::to_string(most) + " (64 per hardware " +
+                          "thread), got " + std::to_string(wanted));
   if (batch < 2) return 1;
-  const int wanted = threads.is_none() ? default_batch_threads() : threads.cast<int>();
-  if (wanted < 1)
-    throw py::value_error("threads: expected at least 1, got " + std::to_string(wanted));
   return static_cast<int>(std::min<py::ssize_t>(wanted, batch));
 }
 

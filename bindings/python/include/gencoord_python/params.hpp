@@ -5,6 +5,7 @@
 
 #include <pybind11/pybind11.h>
 
+#include <cmath>
 #include <cstddef>
 #include <string>
 #include <vector>
@@ -20,6 +21,19 @@ namespace detail {
 template <class M>
 double& parameter(ParamsOf<M>& params, std::size_t k) {
   return *params.find(M::parameter_names[k]);
+}
+
+// A parameter's value from Python: a finite number, else a ValueError naming the parameter.
+inline double parameter_value(const std::string& name, py::handle value) {
+  double number = 0.0;
+  try {
+    number = value.cast<double>();
+  } catch (const py::cast_error&) {
+    throw py::value_error(name + ": expected a number, got " + std::string(py::repr(value)));
+  }
+  if (!std::isfinite(number))
+    throw py::value_error(name + ": expected a finite number, got " + std::string(py::repr(value)));
+  return number;
 }
 
 template <class M>
@@ -49,7 +63,7 @@ void bind_params(py::module_& module) {
                  if (!slot)
                    throw py::type_error(std::string(M::name) + ": no parameter called '" + name +
                                         "'; the parameters are " + detail::names_list<M>());
-                 *slot = value.template cast<double>();
+                 *slot = detail::parameter_value(name, value);
                }
                return p;
              }),
@@ -57,7 +71,9 @@ void bind_params(py::module_& module) {
   for (std::size_t k = 0; k < M::parameter_names.size(); ++k) {
     params.def_property(
         M::parameter_names[k], [k](Params& p) { return detail::parameter<M>(p, k); },
-        [k](Params& p, double value) { detail::parameter<M>(p, k) = value; },
+        [k](Params& p, py::handle value) {
+          detail::parameter<M>(p, k) = detail::parameter_value(M::parameter_names[k], value);
+        },
         M::parameter_descriptions[k]);
   }
   params.def("__repr__", [](Params& p) {

@@ -193,7 +193,8 @@ void bind_simulation(py::module_& module) {
       "simulate",
       [](py::handle q0, py::handle v0, double t_end, double dt, const std::string& integrator,
          py::handle params, double t0, py::handle scripted, py::handle inputs, py::handle observer,
-         long every, double baumgarte) {
+         long every, double baumgarte, bool joint_limits) {
+        (void)joint_limits;  // used only for a model with joint limits
         if (every < 1)
           throw py::value_error("every: expected at least 1, got " + std::to_string(every));
         State<M> initial;
@@ -238,8 +239,10 @@ void bind_simulation(py::module_& module) {
           project_onto_constraints<M>(p, &initial);  // as every step's end state is
           // Baumgarte's feedback, critically damped, replaces the projection after each step
           const ConstraintStabilization stabilization{baumgarte == 0, {baumgarte, baumgarte}};
+          ReducedSystem<M> system(p, stabilization);
+          if constexpr (has_joint_limits_v<M>) system.set_joint_limits(joint_limits);
           py::gil_scoped_release unlocked;
-          simulate(ReducedSystem<M>(p, stabilization), initial, options, record);
+          simulate(system, initial, options, record);
         } else if (baumgarte > 0) {
           throw py::value_error("baumgarte: " + std::string(M::name) +
                                 " has no kinematic constraints to keep");
@@ -251,15 +254,19 @@ void bind_simulation(py::module_& module) {
                   "in one simulation");
             LawKind kind = LawKind::Feedback;
             ControlLaw<M> law = detail::control_law<M>(inputs, &kind);
+            ControlledSystem<M> system(p, std::move(law), kind);
+            if constexpr (has_joint_limits_v<M>) system.set_joint_limits(joint_limits);
             py::gil_scoped_release unlocked;
-            simulate(ControlledSystem<M>(p, std::move(law), kind), initial, options, record);
+            simulate(system, initial, options, record);
           } else {
             throw py::value_error("inputs: " + std::string(M::name) +
                                   " declares no inputs (model.input() in its model file)");
           }
         } else {
+          ReducedSystem<M> system(p);
+          if constexpr (has_joint_limits_v<M>) system.set_joint_limits(joint_limits);
           py::gil_scoped_release unlocked;
-          if (script.size() == 0) simulate(ReducedSystem<M>(p), initial, options, record);
+          if (script.size() == 0) simulate(system, initial, options, record);
           else simulate(ScriptedModel<M>(p, std::move(script)), initial, options, record);
         }
         return py::make_tuple(t, q, v, energy);
@@ -279,6 +286,9 @@ void bind_simulation(py::module_& module) {
       "  baumgarte   a model with kinematic constraints: 0 (default) projects each step's\n"
       "              end state onto them; a rate > 0 (1/s) applies Baumgarte's feedback,\n"
       "              critically damped, instead\n"
+      "  joint_limits  a model with joint limits: True (default) keeps its limited\n"
+      "              coordinates in their ranges (an inelastic stop at each end); False\n"
+      "              lets them pass; scripted runs do not enforce them\n"
       "A model with kinematic constraints starts from q0, v0 projected onto them and takes\n"
       "neither scripted coordinates nor an inputs argument.\n"
       "Raises DynamicsError, NewtonError, or ValueError for a step that does not divide\n"
@@ -287,7 +297,7 @@ void bind_simulation(py::module_& module) {
       py::arg("dt") = 1e-3, py::arg("integrator") = "rk4", py::arg("params") = py::none(),
       py::kw_only(), py::arg("t0") = 0.0, py::arg("scripted") = py::none(),
       py::arg("inputs") = py::none(), py::arg("observer") = py::none(), py::arg("every") = 1,
-      py::arg("baumgarte") = 0.0);
+      py::arg("baumgarte") = 0.0, py::arg("joint_limits") = true);
 }
 
 }  // namespace gencoord::python

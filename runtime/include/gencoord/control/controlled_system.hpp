@@ -19,6 +19,7 @@
 #include "gencoord/integrate/system.hpp"
 #include "gencoord/model/acceleration_jacobians.hpp"
 #include "gencoord/model/dynamics.hpp"
+#include "gencoord/model/joint_limits.hpp"
 #include "gencoord/model/model_traits.hpp"
 #include "gencoord/model/state.hpp"
 
@@ -100,10 +101,25 @@ class ControlledSystem {
     return detail::dense_lu_solve(A, b, x);
   }
 
+  /// Whether normalize() enforces the model's joint limits (on by default), as
+  /// ReducedSystem::set_joint_limits().
+  ControlledSystem& set_joint_limits(bool enforce) {
+    static_assert(has_joint_limits_v<M>, "gencoord: this model has no joint limits");
+    enforce_limits_ = enforce;
+    return *this;
+  }
+  /// Enforces the joint limits on each step's end state (enforce_joint_limits(); the inputs
+  /// are forces, so the impulse does not depend on them); only for models that have limits.
+  template <class Model = M, class = std::enable_if_t<has_joint_limits_v<Model>>>
+  void normalize(State* s) const {
+    if (enforce_limits_) enforce_joint_limits<M>(p_, s);
+  }
+
  private:
   ParamsOf<M> p_;
   ControlLaw<M> law_;
   LawKind kind_;
+  bool enforce_limits_ = true;
 };
 
 }  // namespace gencoord

@@ -10,6 +10,7 @@
 #include <utility>
 
 #include "gencoord/io/output_file.hpp"
+#include "gencoord/model/joint_limits.hpp"
 #include "gencoord/model/model_traits.hpp"
 #include "gencoord/model/state.hpp"
 
@@ -27,7 +28,9 @@ namespace gencoord {
 /// (std::to_chars), independent of the stream's locale and precision.
 /// A writer given a `companion` prefix (e.g. "maximal:") also has the positions of a second
 /// model of the same particles, <companion><particle>_x, ..., after the fixed points; its
-/// rows come from write(s, companion_x).
+/// rows come from write(s, companion_x). A model with joint limits ends each row with one
+/// column per limit, limit:<name>: -1 where its coordinate is on (or below) its lower end, +1
+/// on (or above) its upper end, 0 inside its range.
 /// Usable directly as a simulate() observer.
 /// Write failures throw OutputError (output_file.hpp) with the path (or "the output stream"):
 /// each row checks the stream, which sees a failed write at the next flush of its buffer;
@@ -58,6 +61,7 @@ class TrajectoryCsvWriter {
     if (!companion_.empty())
       throw std::logic_error("gencoord: a trajectory with companion positions needs them");
     write_row(s);
+    write_limits(s);
     end_row();
   }
 
@@ -66,6 +70,7 @@ class TrajectoryCsvWriter {
   void write(const State<M>& s, const XVec<M>& companion_x) {
     write_row(s);
     for (int i = 0; i < M::nx; ++i) write_field(companion_x[i]);
+    write_limits(s);
     end_row();
   }
 
@@ -114,6 +119,14 @@ class TrajectoryCsvWriter {
     }
   }
 
+  // each joint limit's side (limit_side: -1 lower end, +1 upper end, 0 inside)
+  void write_limits(const State<M>& s) {
+    if constexpr (has_joint_limits_v<M>) {
+      for (int i = 0; i < M::num_limits; ++i) *out_ << ',' << limit_side<M>(s.q, i);
+    } else {
+      (void)s;
+    }
+  }
   void end_row() {
     *out_ << '\n';
     check();
@@ -139,6 +152,9 @@ class TrajectoryCsvWriter {
     if (!companion_.empty()) {
       for (const char* particle : M::particle_names)
         for (int k = 0; k < M::dim; ++k) *out_ << ',' << companion_ << particle << kAxes[k];
+    }
+    if constexpr (has_joint_limits_v<M>) {
+      for (const char* limit : M::limit_names) *out_ << ",limit:" << limit;
     }
     *out_ << '\n';
     check();

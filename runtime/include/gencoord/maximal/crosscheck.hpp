@@ -83,7 +83,8 @@ inline double divisor_step(double interval, double limit) {
 /// Runs the reduced model with RK4 from `initial` and samples it every duration / points.
 /// Also records the largest declared-constraint violation of X(q) over every step. A model
 /// with kinematic constraints starts from `initial` projected onto them and is kept on them
-/// after every step (ReducedSystem's projection).
+/// after every step (ReducedSystem's projection). Joint limits are left out, as the maximal
+/// model has none.
 /// \throws std::invalid_argument for bad options; DynamicsError from the reduced dynamics.
 template <class M>
 ReducedReference<M> reduced_reference(const ParamsOf<M>& p, const State<M>& initial,
@@ -107,10 +108,11 @@ ReducedReference<M> reduced_reference(const ParamsOf<M>& p, const State<M>& init
   };
   State<M> start_state = initial;
   if constexpr (has_kinematic_constraints_v<M>) project_onto_constraints<M>(p, &start_state);
+  ReducedSystem<M> system(p);
+  if constexpr (has_joint_limits_v<M>) system.set_joint_limits(false);
   long long k = 0;  // states observed
   simulate<IntegratorSet<Integrator::RK4>>(
-      ReducedSystem<M>(p), start_state,
-      SimulateOptions{Integrator::RK4, ref.reference_dt, interval * o.points},
+      system, start_state, SimulateOptions{Integrator::RK4, ref.reference_dt, interval * o.points},
       [&](const State<M>& s) {
         violation(s);
         if (k++ % per_sample == 0) ref.samples.push_back(s);

@@ -4,7 +4,8 @@
 // generalized speeds also gives the system coordinate_rate (M::coordinate_rates) and
 // normalize (its unit quaternions); one with kinematic constraints gets the constrained
 // acceleration, and normalize projects each step's end state onto the constraints (or, as
-// its ConstraintStabilization says, Baumgarte's feedback acts in the acceleration).
+// its ConstraintStabilization says, Baumgarte's feedback acts in the acceleration). A model
+// with joint limits has them enforced on each step's end state unless set_joint_limits(false).
 #pragma once
 
 #include <utility>
@@ -15,6 +16,7 @@
 #include "gencoord/model/acceleration_jacobians.hpp"
 #include "gencoord/model/constrained_dynamics.hpp"
 #include "gencoord/model/dynamics.hpp"
+#include "gencoord/model/joint_limits.hpp"
 #include "gencoord/model/model_traits.hpp"
 #include "gencoord/model/state.hpp"
 
@@ -37,6 +39,14 @@ class ReducedSystem {
   }
 
   const ParamsOf<M>& params() const { return p_; }
+  /// Whether normalize() enforces the model's joint limits (enforce_joint_limits()); on by
+  /// default for a model that has them.
+  ReducedSystem& set_joint_limits(bool enforce) {
+    static_assert(has_joint_limits_v<M>, "gencoord: this model has no joint limits");
+    enforce_limits_ = enforce;
+    return *this;
+  }
+  bool joint_limits_enforced() const { return has_joint_limits_v<M> && enforce_limits_; }
   const ConstraintStabilization& stabilization() const { return stabilization_; }
   const char* name() const { return M::name; }
   /// \throws DynamicsError as gencoord::acceleration().
@@ -93,13 +103,18 @@ class ReducedSystem {
   QVec<M> coordinate_rate(const State& s) const {
     return M::coordinate_rates(s.q, s.v, s.t, p_);
   }
-  /// Puts s back on its manifold: divides each unit quaternion of q by its norm, and projects
-  /// a constrained model's state onto its constraints (project_onto_constraints()); only for
-  /// models with generalized speeds or kinematic constraints.
-  template <class Model = M, class = std::enable_if_t<has_generalized_speeds_v<Model> ||
-                                                      has_kinematic_constraints_v<Model>>>
+  /// Puts s back on its manifold: divides each unit quaternion of q by its norm, enforces the
+  /// joint limits (enforce_joint_limits(), unless set_joint_limits(false)), and projects a
+  /// constrained model's state onto its constraints (project_onto_constraints()); only for
+  /// models with generalized speeds, joint limits or kinematic constraints.
+  template <class Model = M,
+            class = std::enable_if_t<has_generalized_speeds_v<Model> || has_joint_limits_v<Model> ||
+                                     has_kinematic_constraints_v<Model>>>
   void normalize(State* s) const {
     detail::normalize_quaternions<M>(&s->q);
+    if constexpr (has_joint_limits_v<M>) {
+      if (enforce_limits_) enforce_joint_limits<M>(p_, s);
+    }
     if constexpr (has_kinematic_constraints_v<M>) {
       if (stabilization_.project) project_onto_constraints<M>(p_, s);
     }
@@ -121,6 +136,7 @@ class ReducedSystem {
 
   ParamsOf<M> p_;
   ConstraintStabilization stabilization_;
+  bool enforce_limits_ = true;
 };
 
 }  // namespace gencoord
