@@ -17,6 +17,8 @@
 #                                        for /usr/bin/python3 (the sweep's picture scripts)
 #   scripts/setup.sh --pip               also venv and pip for /usr/bin/python3, with which a
 #                                        test installs the package (pip install .)
+#   scripts/setup.sh --property-tests    also Hypothesis for /usr/bin/python3 (the property
+#                                        tests of the input readers, tests/properties)
 # The options combine.
 set -euo pipefail
 
@@ -24,12 +26,14 @@ python_modules=false
 browser=false
 sweep=false
 pip=false
+property_tests=false
 for option in "$@"; do
   case $option in
     --python-modules) python_modules=true ;;
     --browser) browser=true ;;
     --sweep) sweep=true ;;
     --pip) pip=true ;;
+    --property-tests) property_tests=true ;;
   esac
 done
 
@@ -99,6 +103,10 @@ fi
 if $pip; then
   /usr/bin/python3 -c "import ensurepip, venv" >/dev/null 2>&1 || packages+=(python3-venv)
   /usr/bin/python3 -m pip --version >/dev/null 2>&1 || packages+=(python3-pip)
+fi
+
+if $property_tests; then
+  /usr/bin/python3 -c "import hypothesis" >/dev/null 2>&1 || packages+=(python3-hypothesis)
 fi
 
 "$(dirname "$0")/install_packages.sh" setup "${packages[@]}"

@@ -12,8 +12,8 @@
 #      another version (independent derivations, golden files of generated/ compared byte for
 #      byte by the SymPy that wrote them, bad models), the generated models' tests, the models'
 #      Python modules (built for Debian's /usr/bin/python3, which has NumPy and SciPy), the
-#      viewer page in headless Chromium, gencoord sweep under MPI (Open MPI, HDF5, h5py), and
-#      the runtime suites.
+#      viewer page in headless Chromium, gencoord sweep under MPI (Open MPI, HDF5, h5py), the
+#      property tests of the input readers (Hypothesis), and the runtime suites.
 # Builds use Ninja and ccache where installed (scripts/setup.sh installs both): ccache keeps
 # compiled objects in the user's cache (~/.cache/ccache), shared by every checkout of the
 # repository, so a second run compiles only what changed. Prints each phase's wall time and
@@ -26,7 +26,7 @@ build=${1:-build}
 jobs=$(nproc 2>/dev/null || echo 2)
 
 phase "set-up (scripts/setup.sh)"
-python=$(scripts/setup.sh --python-modules --browser --sweep --pip | tail -n 1)
+python=$(scripts/setup.sh --python-modules --browser --sweep --pip --property-tests | tail -n 1)
 # the generator's tests run with every SymPy at hand: the python3 on PATH too, if it has one
 test_pythons=""
 if path_python=$(command -v python3) && "$path_python" -c "import sympy, jinja2" 2>/dev/null; then
