@@ -200,6 +200,12 @@ class SweepFileTest(unittest.TestCase):
                              "expects a number")
         self.assertFileError(self.replaced("dt = 0.01", 'dt = "(-8)**(1/3)"'), 8,
                              "integration.dt", "not a real number")
+        # found by tests/properties/test_sweep_fuzz.py: t_end / dt overflows, and an integer
+        # no double holds
+        self.assertFileError(self.replaced("t_end = 2.0", "t_end = 1e308"), 8,
+                             "integration.dt", "inf steps")
+        self.assertFileError(self.replaced("dt = 0.01", f'dt = "{"1" * 400}"'), 8,
+                             "integration.dt", "(400 digits) is too large for a double")
 
     def test_event(self):
         self.assertFileError(self.replaced("or abs", "and abs"), 12, "event.when",

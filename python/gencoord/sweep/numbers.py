@@ -21,10 +21,19 @@ class NotANumber(ValueError):
     """The text is not arithmetic on numbers and pi, tau, e; the message says why."""
 
 
+def as_float(value: int | float) -> float:
+    """The number as a double; NotANumber for an integer no double holds."""
+    try:
+        return float(value)
+    except OverflowError:
+        raise NotANumber(f"{str(value)[:20]}... ({len(str(value))} digits) is too large for "
+                         "a double") from None
+
+
 def value_of(node: ast.AST) -> float:
     """The value of a parsed constant expression."""
     if isinstance(node, ast.Constant) and type(node.value) in (int, float):
-        return float(node.value)
+        return as_float(node.value)
     if isinstance(node, ast.Name) and node.id in _CONSTANTS:
         return _CONSTANTS[node.id]
     if isinstance(node, ast.UnaryOp) and type(node.op) in _UNARY:
@@ -47,7 +56,7 @@ def parse_number(value) -> float:
     if isinstance(value, bool):
         raise NotANumber(f"expects a number, got {str(value).lower()}")
     if isinstance(value, (int, float)):
-        result = float(value)
+        result = as_float(value)
     elif isinstance(value, str):
         if len(value) > MAX_TEXT:
             raise NotANumber(f"a number of {len(value)} characters; write it in at most "

@@ -143,13 +143,14 @@ def _steps(reader: _Reader, dt: float, t_end: float) -> int:
         reader.fail(("integration", "dt"), f"expects a positive step, got {dt!r}")
     if not t_end > 0:
         reader.fail(("integration", "t_end"), f"expects a positive end time, got {t_end!r}")
-    steps = round(t_end / dt)
-    if steps > MAX_STEPS:
+    ratio = t_end / dt  # inf where t_end is near the largest double and dt small
+    if not ratio <= MAX_STEPS:
         reader.fail(("integration", "dt"),
-                    f"dt = {dt!r} makes {steps:.3g} steps of each sample to t_end = {t_end!r}, "
+                    f"dt = {dt!r} makes {ratio:.3g} steps of each sample to t_end = {t_end!r}, "
                     f"more than the {MAX_STEPS:.0e} a sweep allows (at tens of nanoseconds a "
                     "step, 10^9 steps are a minute of CPU per sample); raise dt or shorten "
                     "t_end")
+    steps = round(ratio)
     if abs(steps * dt - t_end) > 1e-6 * dt:  # as the runtime's step_count() demands
         reader.fail(("integration", "t_end"),
                     f"t_end = {t_end!r} is not a whole number of steps of dt = {dt!r} "
