@@ -19,6 +19,7 @@
 #                                        test installs the package (pip install .)
 #   scripts/setup.sh --property-tests    also Hypothesis for /usr/bin/python3 (the property
 #                                        tests of the input readers, tests/properties)
+#   scripts/setup.sh --fuzz              also clang and libFuzzer (scripts/fuzz.sh)
 # The options combine.
 set -euo pipefail
 
@@ -27,6 +28,7 @@ browser=false
 sweep=false
 pip=false
 property_tests=false
+fuzz=false
 for option in "$@"; do
   case $option in
     --python-modules) python_modules=true ;;
@@ -34,6 +36,7 @@ for option in "$@"; do
     --sweep) sweep=true ;;
     --pip) pip=true ;;
     --property-tests) property_tests=true ;;
+    --fuzz) fuzz=true ;;
   esac
 done
 
@@ -107,6 +110,12 @@ fi
 
 if $property_tests; then
   /usr/bin/python3 -c "import hypothesis" >/dev/null 2>&1 || packages+=(python3-hypothesis)
+fi
+
+if $fuzz; then
+  command -v clang++ >/dev/null 2>&1 || packages+=(clang)
+  compgen -G "/usr/lib/llvm-*/lib/clang/*/lib/linux/libclang_rt.fuzzer-x86_64.a" >/dev/null \
+    || packages+=(libclang-rt-14-dev)
 fi
 
 "$(dirname "$0")/install_packages.sh" setup "${packages[@]}"

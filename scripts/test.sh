@@ -13,7 +13,8 @@
 #      byte by the SymPy that wrote them, bad models), the generated models' tests, the models'
 #      Python modules (built for Debian's /usr/bin/python3, which has NumPy and SciPy), the
 #      viewer page in headless Chromium, gencoord sweep under MPI (Open MPI, HDF5, h5py), the
-#      property tests of the input readers (Hypothesis), and the runtime suites.
+#      property tests of the input readers (Hypothesis), and the runtime suites;
+#   3. the C++ mesh readers under libFuzzer for a minute (scripts/fuzz.sh).
 # Builds use Ninja and ccache where installed (scripts/setup.sh installs both): ccache keeps
 # compiled objects in the user's cache (~/.cache/ccache), shared by every checkout of the
 # repository, so a second run compiles only what changed. Prints each phase's wall time and
@@ -26,7 +27,8 @@ build=${1:-build}
 jobs=$(nproc 2>/dev/null || echo 2)
 
 phase "set-up (scripts/setup.sh)"
-python=$(scripts/setup.sh --python-modules --browser --sweep --pip --property-tests | tail -n 1)
+python=$(scripts/setup.sh --python-modules --browser --sweep --pip --property-tests --fuzz \
+         | tail -n 1)
 # the generator's tests run with every SymPy at hand: the python3 on PATH too, if it has one
 test_pythons=""
 if path_python=$(command -v python3) && "$path_python" -c "import sympy, jinja2" 2>/dev/null; then
@@ -68,6 +70,11 @@ if [ "${GENCOORD_SKIP_SANITIZERS:-0}" != 1 ]; then
   ctest --test-dir "${build}-sanitize" -L "$sanitized_suites" --output-on-failure \
         --no-tests=error -j "$jobs"
 fi
+
+phase "fuzz: the mesh readers under libFuzzer (scripts/fuzz.sh, 60 s)"
+scripts/fuzz.sh 60 "${build}-fuzz" > "${build}-fuzz.log" 2>&1 \
+  || { tail -n 40 "${build}-fuzz.log"; exit 1; }
+tail -n 6 "${build}-fuzz.log"
 
 phase "build: everything, Release"
 # tests ON explicitly: scripts/demo.sh configures the same build directory with them off

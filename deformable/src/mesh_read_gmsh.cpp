@@ -100,7 +100,7 @@ void read_nodes_v4(TextLines& lines, GmshNodes& nodes) {
     const long long entity_dim = lines.integer(0, "$Nodes block: entity dimension");
     const bool parametric = lines.integer(2, "$Nodes block: parametric") != 0;
     const long long in_block = count_at(lines, 3, "$Nodes block: number of nodes");
-    if (read + in_block > count) {
+    if (in_block > count - read) {  // read <= count: no overflow
       lines.fail("$Nodes block: " + str(in_block) + " more nodes make more than the " + str(count) +
                  " announced on line " + str(count_line) + "; the count and the entries disagree");
     }
@@ -173,6 +173,11 @@ void read_elements_v2(ElementReader<Dim>& r) {
       ++r.skipped[type];
       continue;
     }
+    const long long words = static_cast<long long>(lines.words().size());
+    if (tags > words) {  // before 3 + tags + ..., which could overflow
+      lines.fail("$Elements: " + str(tags) + " tags announced, but the line has " + str(words) +
+                 " numbers in all");
+    }
     lines.expect_words(
         3 + tags + Dim + 1, "$Elements",
         "tag, type, number of tags, " + str(tags) + " tags, " + str(Dim + 1) + " node tags");
@@ -196,7 +201,7 @@ void read_elements_v4(ElementReader<Dim>& r) {
                        "entity dimension, entity tag, element type, elements");
     const long long type = lines.integer(2, "$Elements block: element type");
     const long long in_block = count_at(lines, 3, "$Elements block: number of elements");
-    if (read + in_block > count) {
+    if (in_block > count - read) {  // read <= count: no overflow
       lines.fail("$Elements block: " + str(in_block) + " more elements make more than the " +
                  str(count) + " announced on line " + str(count_line) +
                  "; the count and the entries disagree");

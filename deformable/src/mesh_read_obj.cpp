@@ -99,7 +99,7 @@ Face read_face(const TextLines& lines, long long defined) {
           "f: vertex index 0 names no v line; indices count the v lines from 1 (or back "
           "from -1, the last v line above)");
     }
-    if (index < 0 && -index > defined) {
+    if (index < 0 && index < -defined) {  // -index overflows for the smallest long long
       lines.fail("f: vertex index " + str(index) + " counts back past the first v line: only " +
                  str(defined) + " v lines are above this line");
     }

@@ -20,6 +20,15 @@ long long count_at(TextLines& lines, size_t k, const std::string& what) {
   return n;
 }
 
+// Attributes per line: a count no line holds would overflow the words expected of a line.
+long long attributes_at(TextLines& lines, size_t k) {
+  constexpr long long kMost = 1 << 20;
+  const long long n = count_at(lines, k, "attributes");
+  if (n > kMost)
+    lines.fail("attributes: " + str(n) + ", more than the " + str(kMost) + " a line may have");
+  return n;
+}
+
 // After the last entry of a file only comments and blank lines may follow.
 void expect_no_more(TextLines& lines, long long count, int count_line) {
   if (lines.next()) {
@@ -40,7 +49,7 @@ long long read_node_file(TextLines& lines, RawMesh<Dim>& raw) {
   const int count_line = lines.line();
   const long long count = count_at(lines, 0, "number of points");
   const long long dim = lines.integer(1, "dimension");
-  const long long attributes = lines.words().size() > 2 ? count_at(lines, 2, "attributes") : 0;
+  const long long attributes = lines.words().size() > 2 ? attributes_at(lines, 2) : 0;
   const long long markers = lines.words().size() > 3 ? count_at(lines, 3, "boundary markers") : 0;
   if (dim != Dim) {
     lines.fail("the points are " + str(dim) + "-dimensional, but a " + str(Dim) +
@@ -88,7 +97,7 @@ void read_ele_file(TextLines& lines, long long base, RawMesh<Dim>& raw) {
   const int count_line = lines.line();
   const long long count = count_at(lines, 0, std::string("number of ") + kind);
   const long long corners = lines.integer(1, "nodes per element");
-  const long long attributes = lines.words().size() > 2 ? count_at(lines, 2, "attributes") : 0;
+  const long long attributes = lines.words().size() > 2 ? attributes_at(lines, 2) : 0;
   const long long second_order = Dim == 2 ? 6 : 10;
   if (corners != Dim + 1 && corners != second_order) {
     lines.fail("nodes per element: " + str(corners) + "; " + kind + " have " + str(Dim + 1) +

@@ -365,6 +365,17 @@ TEST(MeshIoTest, RefusesACountThatDisagrees) {
                 "line 31");
   ExpectRefused([&] { ReadTetgen<3>(kCubeNode, std::string(kCubeEle) + "7 1 2 3 5 7\n"); }, 8,
                 "mesh.ele:8: more entries than the 6 announced on line 1");
+  // counts near the largest long long, whose sums overflowed (found by scripts/fuzz.sh)
+  text = kCubeV4;
+  text.replace(text.find("3 1 4 6"), 7, "3 1 4 9223372036854775806");
+  ExpectRefused([&] { ReadGmsh<3>(text); }, 36,
+                "$Elements block: 9223372036854775806 more elements make more than the 8");
+  text = kCubeV2;
+  text.replace(text.find("12 4 2 1 1 1 5 7 15"), 19, "12 4 9223372036854775806 1 1 1 5 7 15");
+  ExpectRefused([&] { ReadGmsh<3>(text); }, 27,
+                "$Elements: 9223372036854775806 tags announced, but the line has 9 numbers");
+  ExpectRefused([&] { ReadTetgen<2>("4 2 9223372036854775806 0\n", kSquareEle); }, 1,
+                "mesh.node:1: attributes: 9223372036854775806, more than the 1048576");
 }
 
 TEST(MeshIoTest, RefusesALineWithTooFewNumbers) {

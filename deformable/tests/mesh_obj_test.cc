@@ -190,6 +190,9 @@ TEST(MeshObjTest, RefusesIndicesThatNameNoVertex) {
   ExpectRefused([&] { ReadObj(triangle + "f -1 -2 -4\n"); }, 4,
                 "surface.obj:4: f: vertex index -4 counts back past the first v line: only 3 v "
                 "lines are above this line");
+  // the smallest long long, whose negation overflows (found by scripts/fuzz.sh)
+  ExpectRefused([&] { ReadObj(triangle + "f -9223372036854775808 1 2\n"); }, 4,
+                "vertex index -9223372036854775808 counts back past the first v line");
 }
 
 TEST(MeshObjTest, RefusesFacesThatAreNotTriangles) {
