@@ -219,8 +219,8 @@ class LimitReport {
       int reached = 0;
       for (int i = 0; i < Model::num_limits; ++i) {
         if (steps_[i] == 0) continue;
-        std::printf("%s %s (%lld steps)", reached++ ? "," : ", reached by", Model::limit_names[i],
-                    steps_[i]);
+        std::printf("%s %s (%lld step%s)", reached++ ? "," : ", reached by", Model::limit_names[i],
+                    steps_[i], steps_[i] == 1 ? "" : "s");
       }
       if (reached == 0) std::printf(", none reached");
       int exceeded = 0;
