@@ -210,12 +210,11 @@ class GencoordCommandTest(unittest.TestCase):
             self.assertAlmostEqual(norm, 1.0, places=12)
         drift = float(re.search(r"max \|E - E\(0\)\| = (\S+) J", result.stdout).group(1))
         self.assertLess(drift, 1e-7 * max(abs(float(rows[0]["energy"])), 1.0), result.stdout)
-        for command in ("crosscheck", "python"):
-            refused = self.gencoord(command, "tumbler.py")
-            self.assertEqual(refused.returncode, 1, refused.stderr)
-            self.assertIn(f"gencoord {command} does not take models with free or ball joints",
-                          refused.stderr)
-            self.assertNoTraceback(refused)
+        refused = self.gencoord("crosscheck", "tumbler.py")  # no maximal model yet
+        self.assertEqual(refused.returncode, 1, refused.stderr)
+        self.assertIn("gencoord crosscheck does not take models with free or ball joints",
+                      refused.stderr)
+        self.assertNoTraceback(refused)
 
     def test_9_a_closed_loop_stays_closed_by_projection_or_baumgarte(self):
         (self.user / "linkage.py").write_text(LINKAGE, encoding="utf-8")

@@ -22,6 +22,7 @@
 #include "gencoord_python/kernels.hpp"
 #include "gencoord_python/params.hpp"
 #include "gencoord_python/simulation.hpp"
+#include "gencoord_python/speeds.hpp"
 
 namespace gencoord::python {
 
@@ -38,6 +39,7 @@ template <class M>
 void bind_metadata(py::module_& module) {
   module.attr("name") = M::name;
   module.attr("nq") = M::nq;
+  module.attr("nv") = nv_of_v<M>;
   module.attr("dim") = M::dim;
   module.attr("num_particles") = M::num_particles;
   module.attr("nx") = M::nx;
@@ -56,6 +58,15 @@ void bind_metadata(py::module_& module) {
   }
   module.attr("particle_names") = string_tuple(M::particle_names);
   module.attr("fixed_point_names") = string_tuple(M::fixed_point_names);
+  if constexpr (has_generalized_speeds_v<M>) {  // q' = G(q) v: speeds of their own
+    module.attr("speed_names") = string_tuple(M::speed_names);
+    py::tuple starts(M::num_quaternions);
+    for (int k = 0; k < M::num_quaternions; ++k) starts[k] = M::quaternion_starts[k];
+    module.attr("quaternion_starts") = starts;
+  } else {
+    module.attr("speed_names") = string_tuple(M::coordinate_names);
+    module.attr("quaternion_starts") = py::tuple();
+  }
   module.attr("initial_q") = read_only_array(M::initial_q);
   module.attr("initial_v") = read_only_array(M::initial_v);
   if constexpr (has_joint_limits_v<M>) {  // limited coordinates' indices, ends and ratings
@@ -88,61 +99,54 @@ inline std::string kernel_doc(const char* summary, const char* returns) {
 template <class M>
 void bind_kernels(py::module_& m) {
   using P = ParamsOf<M>;
-  using V = QVec<M>;
+  using V = VVec<M>;  // forces and accelerations: one entry per speed
+  using X = StateVectors<M>;
   using detail::kernel_doc;
   const std::array<const char*, 1> q{"q"};
   const std::array<const char*, 2> qv{"q", "v"};
   const std::array<const char*, 3> qva{"q", "v", "qdd"};
-  def_kernel<M>(m, "mass_matrix", kernel_doc("Reduced mass matrix Mt = J^T M J.", "(nq, nq)"), q,
-                [](const std::array<V, 1>& x, double t, const P& p) {
-                  return QMat<M>(M::mass_matrix(x[0], t, p));
-                });
-  def_kernel<M>(m, "applied_forces",
-                kernel_doc("Applied forces Ft = J^T F plus the generalized forces.", "(nq,)"), qv,
-                [](const std::array<V, 2>& x, double t, const P& p) {
-                  return V(M::applied_forces(x[0], x[1], t, p));
-                });
-  def_kernel<M>(m, "generalized_forces",
-                kernel_doc("The part of Ft that acts on q directly.", "(nq,)"), qv,
-                [](const std::array<V, 2>& x, double t, const P& p) {
-                  return V(M::generalized_forces(x[0], x[1], t, p));
-                });
-  def_kernel<M>(m, "inertial_forces", kernel_doc("Inertial forces Fi = -J^T M gamma.", "(nq,)"), qv,
-                [](const std::array<V, 2>& x, double t, const P& p) {
-                  return V(M::inertial_forces(x[0], x[1], t, p));
-                });
-  def_kernel<M>(m, "forces", kernel_doc("Right-hand side Ft + Fi of Mt qddot = Ft + Fi.", "(nq,)"),
-                qv, [](const std::array<V, 2>& x, double t, const P& p) {
-                  return V(M::forces(x[0], x[1], t, p));
-                });
+  def_kernel<M>(
+      m, "mass_matrix", kernel_doc("Reduced mass matrix Mt = J^T M J.", "(nv, nv)"), q,
+      [](const X& x, double t, const P& p) { return VMat<M>(M::mass_matrix(x.q, t, p)); });
+  def_kernel<M>(
+      m, "applied_forces",
+      kernel_doc("Applied forces Ft = J^T F plus the generalized forces.", "(nv,)"), qv,
+      [](const X& x, double t, const P& p) { return V(M::applied_forces(x.q, x.v, t, p)); });
+  def_kernel<M>(
+      m, "generalized_forces", kernel_doc("The part of Ft that acts on q directly.", "(nv,)"), qv,
+      [](const X& x, double t, const P& p) { return V(M::generalized_forces(x.q, x.v, t, p)); });
+  def_kernel<M>(
+      m, "inertial_forces", kernel_doc("Inertial forces Fi = -J^T M gamma.", "(nv,)"), qv,
+      [](const X& x, double t, const P& p) { return V(M::inertial_forces(x.q, x.v, t, p)); });
+  def_kernel<M>(m, "forces", kernel_doc("Right-hand side Ft + Fi of Mt qddot = Ft + Fi.", "(nv,)"),
+                qv, [](const X& x, double t, const P& p) { return V(M::forces(x.q, x.v, t, p)); });
   def_kernel<M>(m, "dynamics", kernel_doc("Mt and Ft + Fi in one pass.", "(Mt, f)"), qv,
-                [](const std::array<V, 2>& x, double t, const P& p) {
-                  QMat<M> Mt;
+                [](const X& x, double t, const P& p) {
+                  VMat<M> Mt;
                   V f;
-                  M::dynamics(x[0], x[1], t, p, &Mt, &f);
+                  M::dynamics(x.q, x.v, t, p, &Mt, &f);
                   return std::make_tuple(Mt, f);
                 });
   def_kernel<M>(m, "qddot",
                 kernel_doc("Generalized accelerations Mt^-1 (Ft + Fi); NaN entries where Mt is "
                            "not positive definite.",
-                           "(nq,)"),
-                qv, [](const std::array<V, 2>& x, double t, const P& p) {
-                  return V(M::qddot(x[0], x[1], t, p));
-                });
+                           "(nv,)"),
+                qv, [](const X& x, double t, const P& p) { return V(M::qddot(x.q, x.v, t, p)); });
   def_kernel<M>(m, "inverse_dynamics",
                 kernel_doc("Residual r = Mt qdd - Ft - Fi: the generalized force that gives "
                            "the acceleration qdd.",
-                           "(nq,)"),
-                qva, [](const std::array<V, 3>& x, double t, const P& p) {
-                  return V(M::inverse_dynamics(x[0], x[1], x[2], t, p));
+                           "(nv,)"),
+                qva, [](const X& x, double t, const P& p) {
+                  return V(M::inverse_dynamics(x.q, x.v, x.qdd, t, p));
                 });
   if constexpr (has_residual_jacobians_v<M>) {
     def_kernel<M>(m, "residual_jacobians",
                   kernel_doc("Jacobians dr/dq and dr/dv of the residual r(q, v, qdd).",
-                             "(dr_dq, dr_dv), each (nq, nq)"),
-                  qva, [](const std::array<V, 3>& x, double t, const P& p) {
-                    QMat<M> r_D_q, r_D_v;
-                    M::residual_jacobians(x[0], x[1], x[2], t, p, &r_D_q, &r_D_v);
+                             "(dr_dq, dr_dv), of shapes (nv, nq), (nv, nv)"),
+                  qva, [](const X& x, double t, const P& p) {
+                    VQMat<M> r_D_q;
+                    VMat<M> r_D_v;
+                    M::residual_jacobians(x.q, x.v, x.qdd, t, p, &r_D_q, &r_D_v);
                     return std::make_tuple(r_D_q, r_D_v);
                   });
   }
@@ -150,62 +154,56 @@ void bind_kernels(py::module_& m) {
     def_kernel<M>(m, "input_matrix",
                   kernel_doc("Input matrix B = dFt/du: the generalized force per unit of each "
                              "control input.",
-                             "(nq, num_inputs)"),
-                  qv, [](const std::array<V, 2>& x, double t, const P& p) {
+                             "(nv, num_inputs)"),
+                  qv, [](const X& x, double t, const P& p) {
                     return AsMatrix<typename M::template InputMatrix<double>>{
-                        M::input_matrix(x[0], x[1], t, p)};
+                        M::input_matrix(x.q, x.v, t, p)};
                   });
   }
-  def_kernel<M>(m, "kinetic_energy", kernel_doc("Kinetic energy T.", "a float"), qv,
-                [](const std::array<V, 2>& x, double t, const P& p) {
-                  return double(M::kinetic_energy(x[0], x[1], t, p));
-                });
-  def_kernel<M>(m, "potential_energy", kernel_doc("Potential energy V.", "a float"), q,
-                [](const std::array<V, 1>& x, double t, const P& p) {
-                  return double(M::potential_energy(x[0], t, p));
-                });
+  def_kernel<M>(
+      m, "kinetic_energy", kernel_doc("Kinetic energy T.", "a float"), qv,
+      [](const X& x, double t, const P& p) { return double(M::kinetic_energy(x.q, x.v, t, p)); });
+  def_kernel<M>(
+      m, "potential_energy", kernel_doc("Potential energy V.", "a float"), q,
+      [](const X& x, double t, const P& p) { return double(M::potential_energy(x.q, t, p)); });
   def_kernel<M>(m, "generalized_potential_energy",
                 kernel_doc("The joint-spring part of V.", "a float"), q,
-                [](const std::array<V, 1>& x, double t, const P& p) {
-                  return double(M::generalized_potential_energy(x[0], t, p));
+                [](const X& x, double t, const P& p) {
+                  return double(M::generalized_potential_energy(x.q, t, p));
                 });
   def_kernel<M>(m, "energy", kernel_doc("Total energy T + V.", "a float"), qv,
-                [](const std::array<V, 2>& x, double t, const P& p) {
-                  return double(M::energy(x[0], x[1], t, p));
-                });
+                [](const X& x, double t, const P& p) { return double(M::energy(x.q, x.v, t, p)); });
   def_kernel<M>(m, "positions",
                 kernel_doc("Particle positions x, dim entries per particle.", "(nx,)"), q,
-                [](const std::array<V, 1>& x, double t, const P& p) {
-                  return XVec<M>(M::positions(x[0], t, p));
-                });
-  def_kernel<M>(m, "velocities", kernel_doc("Particle velocities J v + X_t.", "(nx,)"), qv,
-                [](const std::array<V, 2>& x, double t, const P& p) {
-                  return XVec<M>(M::velocities(x[0], x[1], t, p));
-                });
-  def_kernel<M>(m, "jacobian", kernel_doc("Jacobian J = dX/dq of the positions.", "(nx, nq)"), q,
-                [](const std::array<V, 1>& x, double t, const P& p) {
-                  return XJac<M>(M::jacobian(x[0], t, p));
-                });
+                [](const X& x, double t, const P& p) { return XVec<M>(M::positions(x.q, t, p)); });
+  def_kernel<M>(
+      m, "velocities", kernel_doc("Particle velocities J v + X_t.", "(nx,)"), qv,
+      [](const X& x, double t, const P& p) { return XVec<M>(M::velocities(x.q, x.v, t, p)); });
+  def_kernel<M>(m, "jacobian",
+                kernel_doc("Jacobian J = dX/dq G of the positions (v = q', G = I, without speeds).",
+                           "(nx, nv)"),
+                q,
+                [](const X& x, double t, const P& p) { return XJac<M>(M::jacobian(x.q, t, p)); });
   def_kernel<M>(
       m, "bias_acceleration",
       kernel_doc("Bias acceleration gamma: the particles' acceleration at qddot = 0.", "(nx,)"), qv,
-      [](const std::array<V, 2>& x, double t, const P& p) {
-        return XVec<M>(M::bias_acceleration(x[0], x[1], t, p));
+      [](const X& x, double t, const P& p) {
+        return XVec<M>(M::bias_acceleration(x.q, x.v, t, p));
       });
-  def_kernel<M>(
-      m, "linear_momentum", kernel_doc("Linear momentum p.", "(dim,)"), qv,
-      [](const std::array<V, 2>& x, double t, const P& p) {
-        return typename M::template SpaceVector<double>(M::linear_momentum(x[0], x[1], t, p));
-      });
+  def_kernel<M>(m, "linear_momentum", kernel_doc("Linear momentum p.", "(dim,)"), qv,
+                [](const X& x, double t, const P& p) {
+                  return
+                      typename M::template SpaceVector<double>(M::linear_momentum(x.q, x.v, t, p));
+                });
   def_kernel<M>(
       m, "angular_momentum",
       kernel_doc("Angular momentum L about the origin (its z component in 2D).", "(angular_dim,)"),
-      qv, [](const std::array<V, 2>& x, double t, const P& p) {
-        return typename M::template AngularVector<double>(M::angular_momentum(x[0], x[1], t, p));
+      qv, [](const X& x, double t, const P& p) {
+        return typename M::template AngularVector<double>(M::angular_momentum(x.q, x.v, t, p));
       });
   def_kernel<M>(m, "fixed_point_positions",
                 kernel_doc("Positions of the fixed points, stacked.", "(dim * num_fixed_points,)"),
-                std::array<const char*, 0>{}, [](const std::array<V, 0>&, double t, const P& p) {
+                std::array<const char*, 0>{}, [](const X&, double t, const P& p) {
                   return
                       typename M::template FixedPointVector<double>(M::fixed_point_positions(t, p));
                 });
@@ -225,16 +223,16 @@ void bind_kernels(py::module_& m) {
 template <class M>
 void bind_model(py::module_& module) {
   static_assert(assert_model_v<M>);
-  static_assert(
-      !has_generalized_speeds_v<M>,
-      "gencoord: the Python bindings does not support models with generalized speeds (free or ball "
-      "joints) yet");
+  static_assert(!(has_generalized_speeds_v<M> && has_kinematic_constraints_v<M>),
+                "gencoord: the Python bindings do not take a model with both generalized speeds "
+                "(free or ball joints) and kinematic constraints");
   module.doc() = std::string("gencoord model ") + M::name +
                  ": generated kernels, scipy.integrate right-hand side and simulation.";
   bind_metadata<M>(module);
   bind_errors(module);
   bind_params<M>(module);
   bind_kernels<M>(module);
+  if constexpr (has_generalized_speeds_v<M>) bind_speeds<M>(module);
   bind_first_order<M>(module);
   if constexpr (has_kinematic_constraints_v<M>) {
     bind_constraints<M>(module);  // linearize_constrained in place of linearize

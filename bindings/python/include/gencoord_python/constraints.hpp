@@ -28,7 +28,8 @@ namespace py = pybind11;
 template <class M>
 void bind_constraints(py::module_& m) {
   using P = ParamsOf<M>;
-  using V = QVec<M>;
+  using V = VVec<M>;
+  using X = StateVectors<M>;
   using CJacobian = typename M::template CJacobian<double>;
   const std::array<const char*, 1> q{"q"};
   const std::array<const char*, 2> qv{"q", "v"};
@@ -43,46 +44,45 @@ void bind_constraints(py::module_& m) {
     def_kernel<M>(m, "holonomic_constraints",
                   "The holonomic constraints C(q, t), zero on the constraints: "
                   "(num_holonomic_constraints,).",
-                  q, [](const std::array<V, 1>& x, double t, const P& p) {
+                  q, [](const X& x, double t, const P& p) {
                     return
-                        typename M::template HVector<double>(M::holonomic_constraints(x[0], t, p));
+                        typename M::template HVector<double>(M::holonomic_constraints(x.q, t, p));
                   });
     def_kernel<M>(m, "holonomic_jacobian", "dC/dq: (num_holonomic_constraints, nq).", q,
-                  [](const std::array<V, 1>& x, double t, const P& p) {
-                    return AsMatrix<HJacobian>{M::holonomic_jacobian(x[0], t, p)};
+                  [](const X& x, double t, const P& p) {
+                    return AsMatrix<HJacobian>{M::holonomic_jacobian(x.q, t, p)};
                   });
   }
   m.attr("num_holonomic_constraints") = holonomic;
   def_kernel<M>(m, "constraint_jacobian",
                 "The constraint Jacobian A(q, t) of A v + b = 0 (every constraint, holonomic "
                 "ones differentiated): (num_constraints, nq).",
-                q, [](const std::array<V, 1>& x, double t, const P& p) {
-                  return AsMatrix<CJacobian>{M::constraint_jacobian(x[0], t, p)};
+                q, [](const X& x, double t, const P& p) {
+                  return AsMatrix<CJacobian>{M::constraint_jacobian(x.q, t, p)};
                 });
   def_kernel<M>(m, "constraint_velocities",
                 "A v + b, zero when the speeds satisfy the constraints: (num_constraints,).", qv,
-                [](const std::array<V, 2>& x, double t, const P& p) {
-                  return CVec<M>(M::constraint_velocities(x[0], x[1], t, p));
+                [](const X& x, double t, const P& p) {
+                  return CVec<M>(M::constraint_velocities(x.q, x.v, t, p));
                 });
-  def_kernel<M>(m, "constraint_bias",
-                "gamma, with A v' + gamma = 0 on the constraints: (num_constraints,).", qv,
-                [](const std::array<V, 2>& x, double t, const P& p) {
-                  return CVec<M>(M::constraint_bias(x[0], x[1], t, p));
-                });
+  def_kernel<M>(
+      m, "constraint_bias", "gamma, with A v' + gamma = 0 on the constraints: (num_constraints,).",
+      qv,
+      [](const X& x, double t, const P& p) { return CVec<M>(M::constraint_bias(x.q, x.v, t, p)); });
   def_kernel<M>(m, "constrained_qddot",
                 "The constrained acceleration v' (what rhs and simulate integrate; qddot is the "
                 "tree's, its loops open): (nq,). Raises DynamicsError where the constraints are "
                 "dependent.",
-                qv, [](const std::array<V, 2>& x, double t, const P& p) {
-                  return V(constrained_acceleration<M>(p, x[0], x[1], t));
+                qv, [](const X& x, double t, const P& p) {
+                  return V(constrained_acceleration<M>(p, x.q, x.v, t));
                 });
   def_kernel<M>(m, "constraint_forces",
                 "The multipliers lambda of Mt v' = Ft + Fi + A^T lambda: each constraint's "
                 "force in its own units (for a closed loop, the force on its second point in "
                 "newtons): (num_constraints,).",
-                qv, [](const std::array<V, 2>& x, double t, const P& p) {
+                qv, [](const X& x, double t, const P& p) {
                   CVec<M> lambda;
-                  constrained_acceleration<M>(p, x[0], x[1], t, &lambda);
+                  constrained_acceleration<M>(p, x.q, x.v, t, &lambda);
                   return lambda;
                 });
   m.def(

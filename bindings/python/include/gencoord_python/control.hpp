@@ -26,7 +26,7 @@ void bind_control(py::module_& module) {
       [](py::handle q, py::handle v, py::handle u, double t, py::handle params,
          const std::string& method) {
         const QVec<M> q0 = one_state_vector<M>(q, "q");
-        const QVec<M> v0 = one_state_vector<M>(v, "v");
+        const VVec<M> v0 = one_speed_vector<M>(v, "v");
         const ParamsOf<M> p = params_input<M>(params, -1).at(0);
         const InputsInput<M> controls = inputs_input<M>(u, -1);
         const InputVec<M> u0 =
@@ -48,6 +48,8 @@ void bind_control(py::module_& module) {
       "qddot's rows come from the generated Jacobians: -Mt^-1 dr/dq, -Mt^-1 dr/dv and\n"
       "Mt^-1 B(q), exact to round-off; method='finite_difference' takes central differences\n"
       "instead. u defaults to the inputs the params hold (0 unless set).\n"
+      "With generalized speeds x = (delta, v), 2 nv entries, where q = retract(q, delta)\n"
+      "names the configurations near q (local_coordinates(q, q_other) gives delta back).\n"
       "Raises DynamicsError where Mt is singular.",
       py::arg("q"), py::arg("v"), py::arg("u") = py::none(), py::arg("t") = 0.0,
       py::arg("params") = py::none(), py::kw_only(), py::arg("method") = "generated");

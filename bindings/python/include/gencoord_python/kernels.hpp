@@ -1,8 +1,9 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // The generated kernels as Python functions over NumPy arrays, one state or a batch.
 //
-// kernel(q, v, ..., t=0.0, params=None, *, threads=None): each vector argument has shape
-// (nq,) for one state or (N, nq) for a batch of N; t is a number, or in a batch also an array
+// kernel(q, v, ..., t=0.0, params=None, *, threads=None): q has shape (nq,) for one state or
+// (N, nq) for a batch of N, v and qdd (nv,) or (N, nv) (nv = nq unless the model has
+// generalized speeds); t is a number, or in a batch also an array
 // of N times; params is a Params, None for the defaults, or in a batch also a sequence of N;
 // a model with control inputs takes u=, which overrides the inputs the params hold.
 // A batch returns arrays with a leading dimension N, computed on `threads` threads (default:
@@ -30,14 +31,33 @@ namespace gencoord::python {
 
 namespace py = pybind11;
 
-/// One vector of shape (nq,), not a batch: a state where only one makes sense.
+/// One vector of shape (size,), not a batch: a state where only one makes sense.
+template <class Vector>
+Vector one_vector(py::handle value, const std::string& name, int size) {
+  const VectorInput input = vector_input(value, name, size);
+  if (input.batch >= 0)
+    throw py::value_error(name + ": expected one state of shape (" + std::to_string(size) + ",)");
+  return to_vector<Vector>(input.row(0));
+}
+
+/// One vector of coordinates, shape (nq,).
 template <class M>
 QVec<M> one_state_vector(py::handle value, const std::string& name) {
-  const VectorInput input = vector_input(value, name, M::nq);
-  if (input.batch >= 0)
-    throw py::value_error(name + ": expected one state of shape (" + std::to_string(M::nq) + ",)");
-  return to_vector<QVec<M>>(input.row(0));
+  return one_vector<QVec<M>>(value, name, M::nq);
 }
+
+/// One vector of speeds (velocities, accelerations), shape (nv,).
+template <class M>
+VVec<M> one_speed_vector(py::handle value, const std::string& name) {
+  return one_vector<VVec<M>>(value, name, nv_of_v<M>);
+}
+
+/// The state vectors of one kernel call: the first K of (q, v, qdd) that it takes.
+template <class M>
+struct StateVectors {
+  QVec<M> q;
+  VVec<M> v, qdd;
+};
 
 /// The parameters of each batch element: one set for all, or one per element.
 template <class M>
@@ -215,25 +235,29 @@ py::ssize_t common_batch(const std::array<VectorInput, K>& inputs,
 
 /// Binds `kernel(vectors, t, params)` as module.name(<names>..., t=0.0, params=None, *,
 /// threads=None), with u=None before threads for a model with inputs; `kernel` gets the K
-/// vectors as the model's QVector<double>.
+/// vectors, which are the first K of (q, v, qdd), as StateVectors<M>.
 template <class M, std::size_t... I, class Kernel>
 void def_kernel(py::module_& module, const char* name, const std::string& doc,
                 const std::array<const char*, sizeof...(I)>& names, Kernel kernel,
                 std::index_sequence<I...>) {
   constexpr std::size_t K = sizeof...(I);
-  using Vector = QVec<M>;
+  static_assert(K <= 3, "def_kernel: a kernel takes q, v and qdd at most");
   const auto call = [names, kernel](std::conditional_t<true, py::object, decltype(I)>... values,
                                     py::object t, py::object params, py::object u,
                                     py::object threads) {
-    const std::array<VectorInput, K> inputs{vector_input(values, names[I], M::nq)...};
+    const std::array<VectorInput, K> inputs{
+        vector_input(values, names[I], I == 0 ? M::nq : nv_of_v<M>)...};
     const py::ssize_t batch = common_batch(inputs, names);
     const TimeInput times = time_input(t, batch);
     const ParamsInput<M> parameters = params_input<M>(params, batch);
     const InputsInput<M> controls = inputs_input<M>(u, batch);
     return gather(batch, thread_count(threads, batch), [&](py::ssize_t i) {
-      const std::array<Vector, K> vectors{to_vector<Vector>(inputs[I].row(i))...};
-      if (controls.given) return kernel(vectors, times.at(i), controls.apply(parameters.at(i), i));
-      return kernel(vectors, times.at(i), parameters.at(i));
+      StateVectors<M> x;
+      if constexpr (K > 0) x.q = to_vector<QVec<M>>(inputs[0].row(i));
+      if constexpr (K > 1) x.v = to_vector<VVec<M>>(inputs[1].row(i));
+      if constexpr (K > 2) x.qdd = to_vector<VVec<M>>(inputs[2].row(i));
+      if (controls.given) return kernel(x, times.at(i), controls.apply(parameters.at(i), i));
+      return kernel(x, times.at(i), parameters.at(i));
     });
   };
   if constexpr (has_inputs_v<M>) {

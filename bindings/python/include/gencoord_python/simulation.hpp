@@ -131,7 +131,7 @@ ControlLaw<M> control_law(py::handle inputs, LawKind* kind) {
   if (PyCallable_Check(inputs.ptr())) {
     *kind = LawKind::Feedback;
     const std::shared_ptr<py::function> law = shared_function(inputs);
-    return [law](double t, const QVec<M>& q, const QVec<M>& v) {
+    return [law](double t, const QVec<M>& q, const VVec<M>& v) {
       py::gil_scoped_acquire locked;
       const py::object value = (*law)(t, read_only_array(q), read_only_array(v));
       const Float64Array u = float64_array(value, "inputs(t, q, v)", "an array of the inputs");
@@ -172,17 +172,18 @@ ControlLaw<M> control_law(py::handle inputs, LawKind* kind) {
       });
     }
   }
-  return [signals](double t, const QVec<M>&, const QVec<M>&) {
+  return [signals](double t, const QVec<M>&, const VVec<M>&) {
     InputVec<M> u = InputVec<M>::Zero();
     for (const auto& [k, signal] : signals) u[k] = signal(t);
     return u;
   };
 }
 
-template <class M>
-QVec<M> state_vector(py::handle value, const char* name, const std::array<double, M::nq>& initial) {
-  if (value.is_none()) return to_vector<QVec<M>>(initial.data());
-  return one_state_vector<M>(value, name);
+// `value` as a vector of `size` entries, or the model file's `initial` values for None
+template <class Vector, std::size_t N>
+Vector state_vector(py::handle value, const char* name, const std::array<double, N>& initial) {
+  if (value.is_none()) return to_vector<Vector>(initial.data());
+  return one_vector<Vector>(value, name, static_cast<int>(N));
 }
 
 }  // namespace detail
@@ -199,13 +200,14 @@ void bind_simulation(py::module_& module) {
           throw py::value_error("every: expected at least 1, got " + std::to_string(every));
         State<M> initial;
         initial.t = t0;
-        initial.q = detail::state_vector<M>(q0, "q0", M::initial_q);
-        initial.v = detail::state_vector<M>(v0, "v0", M::initial_v);
+        initial.q = detail::state_vector<QVec<M>>(q0, "q0", M::initial_q);
+        initial.v = detail::state_vector<VVec<M>>(v0, "v0", M::initial_v);
         const ParamsOf<M> p = params_input<M>(params, -1).at(0);
         const SimulateOptions options{parse_integrator(integrator), dt, t_end - t0};
         const long long steps = step_count(dt, t_end - t0);
         const auto rows = static_cast<py::ssize_t>(steps / every + 1);
-        py::array_t<double> t({rows}), q({rows, py::ssize_t{M::nq}}), v({rows, py::ssize_t{M::nq}}),
+        constexpr int nv = nv_of_v<M>;
+        py::array_t<double> t({rows}), q({rows, py::ssize_t{M::nq}}), v({rows, py::ssize_t{nv}}),
             energy({rows});
         double *t_out = t.mutable_data(), *q_out = q.mutable_data(), *v_out = v.mutable_data(),
                *e_out = energy.mutable_data();
@@ -217,10 +219,8 @@ void bind_simulation(py::module_& module) {
           if (k++ % every) return;
           t_out[row] = s.t;
           e_out[row] = M::energy(s.q, s.v, s.t, p);
-          for (int i = 0; i < M::nq; ++i) {
-            q_out[row * M::nq + i] = s.q(i);
-            v_out[row * M::nq + i] = s.v(i);
-          }
+          for (int i = 0; i < M::nq; ++i) q_out[row * M::nq + i] = s.q(i);
+          for (int i = 0; i < nv; ++i) v_out[row * nv + i] = s.v(i);
           if (observed) {
             py::gil_scoped_acquire locked;
             observe(s.t, read_only_array(s.q), read_only_array(s.v));
@@ -228,6 +228,10 @@ void bind_simulation(py::module_& module) {
           ++row;
         };
         Script script = detail::script_of<M>(scripted);
+        if (has_generalized_speeds_v<M> && script.size() != 0)
+          throw py::value_error("scripted: " + std::string(M::name) +
+                                " has free or ball joints (generalized speeds); scripted "
+                                "coordinates are for models whose speeds are their rates");
         if (!(baumgarte >= 0) || !std::isfinite(baumgarte))
           throw py::value_error("baumgarte: expected a rate >= 0 (1/s), got " +
                                 std::to_string(baumgarte));
@@ -266,13 +270,16 @@ void bind_simulation(py::module_& module) {
           ReducedSystem<M> system(p);
           if constexpr (has_joint_limits_v<M>) system.set_joint_limits(joint_limits);
           py::gil_scoped_release unlocked;
-          if (script.size() == 0) simulate(system, initial, options, record);
-          else simulate(ScriptedModel<M>(p, std::move(script)), initial, options, record);
+          if (script.size() == 0) {
+            simulate(system, initial, options, record);
+          } else if constexpr (!has_generalized_speeds_v<M>) {  // refused above
+            simulate(ScriptedModel<M>(p, std::move(script)), initial, options, record);
+          }
         }
         return py::make_tuple(t, q, v, energy);
       },
       "Integrates from (q0, v0) at t0 to t_end with fixed steps dt; returns (t, q, v, energy)\n"
-      "as arrays of shapes (K,), (K, nq), (K, nq), (K,) holding every `every`-th state,\n"
+      "as arrays of shapes (K,), (K, nq), (K, nv), (K,) holding every `every`-th state,\n"
       "the first and the last included when every divides the step count.\n"
       "  q0, v0      initial state (default: the model file's initial_q, initial_v)\n"
       "  integrator  one of `integrators` (rk4 default)\n"
