@@ -20,6 +20,8 @@
 #   scripts/setup.sh --property-tests    also Hypothesis for /usr/bin/python3 (the property
 #                                        tests of the input readers, tests/properties)
 #   scripts/setup.sh --fuzz              also clang and libFuzzer (scripts/fuzz.sh)
+#   scripts/setup.sh --dart              also DART and its URDF loader, the robot tests' second
+#                                        reference (tests/robots/dart_reference_test.cc)
 # The options combine.
 set -euo pipefail
 
@@ -29,6 +31,7 @@ sweep=false
 pip=false
 property_tests=false
 fuzz=false
+dart=false
 for option in "$@"; do
   case $option in
     --python-modules) python_modules=true ;;
@@ -37,6 +40,7 @@ for option in "$@"; do
     --pip) pip=true ;;
     --property-tests) property_tests=true ;;
     --fuzz) fuzz=true ;;
+    --dart) dart=true ;;
   esac
 done
 
@@ -116,6 +120,11 @@ if $fuzz; then
   command -v clang++ >/dev/null 2>&1 || packages+=(clang)
   compgen -G "/usr/lib/llvm-*/lib/clang/*/lib/linux/libclang_rt.fuzzer-x86_64.a" >/dev/null \
     || packages+=(libclang-rt-14-dev)
+fi
+
+if $dart; then
+  [ -f /usr/share/dart/cmake/DARTConfig.cmake ] || packages+=(libdart-dev)
+  [ -f /usr/include/dart/utils/urdf/DartLoader.hpp ] || packages+=(libdart-utils-urdf-dev)
 fi
 
 "$(dirname "$0")/install_packages.sh" setup "${packages[@]}"

@@ -132,9 +132,9 @@ QVec<M> retract(const ParamsOf<M>& p, const QVec<M>& q0, const VVec<M>& delta, d
   for (int i : layout.others_q) q[i] += moved[i];
   for (int k = 0; k < M::num_quaternions; ++k) {
     const int s = M::quaternion_starts[k], w = layout.omega_start(k);
-    const detail::Quaternion turned = detail::quaternion_product(
-        {q0[s], q0[s + 1], q0[s + 2], q0[s + 3]},
-        detail::quaternion_exp(delta[w], delta[w + 1], delta[w + 2]));
+    const detail::Quaternion turned =
+        detail::quaternion_product({q0[s], q0[s + 1], q0[s + 2], q0[s + 3]},
+                                   detail::quaternion_exp(delta[w], delta[w + 1], delta[w + 2]));
     for (int i = 0; i < 4; ++i) q[s + i] = turned[i];
   }
   return q;
@@ -151,8 +151,8 @@ VVec<M> local_coordinates(const ParamsOf<M>& p, const QVec<M>& q0, const QVec<M>
   VVec<M> delta = VVec<M>::Zero();
   for (int k = 0; k < M::num_quaternions; ++k) {
     const int s = M::quaternion_starts[k], w = layout.omega_start(k);
-    const double norm = std::sqrt(q[s] * q[s] + q[s + 1] * q[s + 1] + q[s + 2] * q[s + 2] +
-                                  q[s + 3] * q[s + 3]);
+    const double norm =
+        std::sqrt(q[s] * q[s] + q[s + 1] * q[s + 1] + q[s + 2] * q[s + 2] + q[s + 3] * q[s + 3]);
     const detail::Quaternion relative = detail::quaternion_product(
         {q0[s], -q0[s + 1], -q0[s + 2], -q0[s + 3]},
         {q[s] / norm, q[s + 1] / norm, q[s + 2] / norm, q[s + 3] / norm});
