@@ -64,6 +64,37 @@ class ControlTest(unittest.TestCase):
             self.assertEqual(A.shape, (2 * model.nq, 2 * model.nq))
             self.assertEqual(B.shape, (2 * model.nq, model.num_inputs))
 
+    def test_dynamics_derivatives_are_kanes_and_finite_differences(self):
+        # the carts are small, derived densely; the 10-link chain's derivatives come from its
+        # Newton-Euler recursion, differentiated
+        rng = np.random.default_rng(8)
+        for name in (*CARTS, "n_link_chain_10"):
+            model = load(name)
+            q, v = 0.5 * rng.standard_normal(model.nq), rng.standard_normal(model.nq)
+            a, a_q, a_v, a_tau = model.dynamics_derivatives(q, v)
+            np.testing.assert_allclose(a, model.qddot(q, v), rtol=1e-12, atol=1e-12)
+            np.testing.assert_allclose(a_tau @ model.mass_matrix(q), np.eye(model.nq),
+                                       atol=1e-10, err_msg=name)
+            for j in range(model.nq):
+                e = 1e-6 * np.eye(model.nq)[j]
+                np.testing.assert_allclose(
+                    a_q[:, j], (model.qddot(q + e, v) - model.qddot(q - e, v)) / 2e-6,
+                    rtol=1e-6, atol=1e-6, err_msg=f"{name}: da/dq, column {j}")
+                np.testing.assert_allclose(
+                    a_v[:, j], (model.qddot(q, v + e) - model.qddot(q, v - e)) / 2e-6,
+                    rtol=1e-6, atol=1e-6, err_msg=f"{name}: da/dv, column {j}")
+            if name in CARTS:
+                A_kane, _ = linearization(name, q.tolist(), v.tolist(), 0.0,
+                                          params_dict(model, model.Params()))
+                n = model.nq
+                np.testing.assert_allclose(np.hstack([a_q, a_v]), A_kane[n:], rtol=1e-10,
+                                           atol=1e-10, err_msg=name)
+            qs, vs = rng.standard_normal((4, model.nq)), rng.standard_normal((4, model.nq))
+            batch = model.dynamics_derivatives(qs, vs, threads=2)
+            for k in range(4):
+                for part, single in zip(batch, model.dynamics_derivatives(qs[k], vs[k])):
+                    np.testing.assert_array_equal(part[k], single)
+
     def test_u_overrides_the_inputs_that_params_hold(self):
         model = load("double_pendulum_on_cart")
         rng = np.random.default_rng(7)

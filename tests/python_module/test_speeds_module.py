@@ -169,6 +169,12 @@ class SpeedsModuleTest(unittest.TestCase):
         self.assertLess(self.relative_error(A, central_differences(f, x0, 1e-6)), 1e-7)
         self.assertLess(self.relative_error(
             A, m.linearize(q, v, u, method="finite_difference")[0]), 1e-7)
+        # dynamics_derivatives: da/dq in the embedding of q, which G(q) takes to delta
+        _, a_q, a_v, a_tau = m.dynamics_derivatives(q, v, u=u)
+        rate_matrix = np.column_stack([m.coordinate_rates(q, e) for e in np.eye(10)])
+        self.assertEqual(a_q.shape, (10, 12))
+        self.assertLess(self.relative_error(A[10:], np.hstack([a_q @ rate_matrix, a_v])), 1e-13)
+        self.assertLess(self.relative_error(a_tau @ m.mass_matrix(q), np.eye(10)), 1e-12)
         # B = [0; Mt^-1 B(q)]
         np.testing.assert_array_equal(B[:10], 0)
         self.assertLess(self.relative_error(

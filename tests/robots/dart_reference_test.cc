@@ -94,9 +94,9 @@ TYPED_TEST(DartReferenceTest, KernelsMatchAtRandomStates) {
     const auto vdot = M::qddot(s.q, s.v, s.t, p);
     worst.qddot = std::max(worst.qddot, relative(vdot, dart.qddot()));
     if (square) forward = std::max(forward, relative(vdot, dart.forward_dynamics()));
-    worst.inverse_dynamics =
-        std::max(worst.inverse_dynamics,
-                 relative(M::inverse_dynamics(s.q, s.v, vdot, s.t, p), dart.inverse_dynamics(vdot)));
+    worst.inverse_dynamics = std::max(
+        worst.inverse_dynamics,
+        relative(M::inverse_dynamics(s.q, s.v, vdot, s.t, p), dart.inverse_dynamics(vdot)));
   }
   worst.check((std::string(M::name) + " against DART").c_str(), 1e-13, 1e-11);
   if (square) {

@@ -1,16 +1,20 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // linearize(): the model's dynamics linearized about a state and an input
-// (gencoord/control/linearize.hpp), as NumPy arrays for controller design.
+// (gencoord/control/linearize.hpp), and dynamics_derivatives() (model/dynamics_derivatives.hpp),
+// as NumPy arrays for controller design and trajectory optimization.
 #pragma once
 
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 
+#include <array>
 #include <string>
+#include <tuple>
 
 #include "gencoord/control/inputs.hpp"
 #include "gencoord/control/linearize.hpp"
 #include "gencoord/model/acceleration_jacobians.hpp"
+#include "gencoord/model/dynamics_derivatives.hpp"
 #include "gencoord/model/model_traits.hpp"
 #include "gencoord_python/arrays.hpp"
 #include "gencoord_python/kernels.hpp"
@@ -21,6 +25,19 @@ namespace py = pybind11;
 
 template <class M>
 void bind_control(py::module_& module) {
+  const std::array<const char*, 2> qv{"q", "v"};
+  def_kernel<M>(
+      module, "dynamics_derivatives",
+      "The forward dynamics' derivatives for control, with a generalized force tau on every\n"
+      "speed (Mt a = Ft + Fi + tau): returns (a, da_dq, da_dv, da_dtau) of shapes (nv,),\n"
+      "(nv, nq), (nv, nv), (nv, nv), da_dtau = Mt^-1; da/dq and da/dv from the generated\n"
+      "residual Jacobians (a tree's: Newton-Euler's, differentiated) and one Cholesky factor\n"
+      "of Mt. With a batch of N states, one tuple of arrays with a leading dimension N.\n"
+      "Raises DynamicsError where Mt is not positive definite.",
+      qv, [](const StateVectors<M>& x, double t, const ParamsOf<M>& p) {
+        DynamicsDerivatives<M> d = dynamics_derivatives<M>(p, x.q, x.v, t);
+        return std::make_tuple(d.a, d.a_D_q, d.a_D_v, d.a_D_tau);
+      });
   module.def(
       "linearize",
       [](py::handle q, py::handle v, py::handle u, double t, py::handle params,
