@@ -10,6 +10,7 @@
 #include <pybind11/pybind11.h>
 
 #include <algorithm>
+#include <cmath>
 #include <string>
 #include <type_traits>
 #include <utility>
@@ -55,14 +56,32 @@ struct VectorInput {
   const double* row(py::ssize_t i) const { return data.data() + (batch < 0 ? 0 : i * size); }
 };
 
+/// ValueError naming the first entry of `array` that is NaN or infinite: a state, an input or
+/// a time must be finite in every entry point alike (the kernels would return NaN for it
+/// where rhs and simulate raise).
+inline void require_finite(const Float64Array& array, const std::string& name) {
+  const double* data = array.data();
+  const py::ssize_t count = array.size();
+  for (py::ssize_t k = 0; k < count; ++k) {
+    if (std::isfinite(data[k])) continue;
+    std::string where = name;
+    if (array.ndim() == 2)
+      where += "[" + std::to_string(k / array.shape(1)) + ", " +
+               std::to_string(k % array.shape(1)) + "]";
+    else if (array.ndim() == 1) where += "[" + std::to_string(k) + "]";
+    throw py::value_error(where + " is " + std::string(py::str(py::float_(data[k]))) +
+                          ": expected finite numbers");
+  }
+}
+
 inline VectorInput vector_input(py::handle value, const std::string& name, py::ssize_t size) {
   const std::string expected =
       "an array of shape " + shape_text({size}) + " or (N, " + std::to_string(size) + ")";
   VectorInput input{float64_array(value, name, expected), -1, size};
   const py::array& array = input.data;
-  if (array.ndim() == 1 && array.shape(0) == size) return input;
-  if (array.ndim() == 2 && array.shape(1) == size) {
-    input.batch = array.shape(0);
+  if (array.ndim() == 2 && array.shape(1) == size) input.batch = array.shape(0);
+  if (input.batch >= 0 || (array.ndim() == 1 && array.shape(0) == size)) {
+    require_finite(input.data, name);
     return input;
   }
   std::vector<py::ssize_t> shape(array.shape(), array.shape() + array.ndim());

@@ -105,6 +105,7 @@ inline TimeInput time_input(py::handle value, py::ssize_t batch) {
   const std::string expected =
       batch < 0 ? "a number" : "a number or an array of shape (" + std::to_string(batch) + ",)";
   TimeInput input{float64_array(value, "t", expected)};
+  require_finite(input.data, "t");
   const py::array& array = input.data;
   if (array.ndim() == 0) return input;
   if (batch >= 0 && array.ndim() == 1 && array.shape(0) == batch) {
