@@ -58,9 +58,11 @@ void compare(const char* name, int rounds) {
   };
   std::vector<Contender> contenders = {
       {"batch_qddot (scalar)", [&] { gencoord::batch_qddot<M>(states, {p}, &out, 1); }, {}},
-      {"batch_qddot_simd, 4 lanes", [&] { gencoord::batch_qddot_simd<M, 4>(states, p, &out, 1); },
+      {"batch_qddot_simd, 4 lanes",
+       [&] { gencoord::batch_qddot_simd<M, 4>(states, p, &out, 1); },
        {}},
-      {"batch_qddot_simd, 8 lanes", [&] { gencoord::batch_qddot_simd<M, 8>(states, p, &out, 1); },
+      {"batch_qddot_simd, 8 lanes",
+       [&] { gencoord::batch_qddot_simd<M, 8>(states, p, &out, 1); },
        {}},
   };
   for (int round = 0; round < rounds; ++round) {
@@ -72,8 +74,8 @@ void compare(const char* name, int rounds) {
       c.ns.push_back(std::chrono::duration<double, std::nano>(stop - start).count() / kStates);
     }
   }
-  std::printf("\n%s (nq = %d), ns per state over %d rounds of %d states, one thread\n", name,
-              M::nq, rounds, kStates);
+  std::printf("\n%s (nq = %d), ns per state over %d rounds of %d states, one thread\n", name, M::nq,
+              rounds, kStates);
   std::printf("%-40s %10s %10s\n", "contender", "min", "median");
   std::vector<Summary> summaries;
   for (auto& c : contenders) {

@@ -22,6 +22,7 @@
 #   scripts/setup.sh --fuzz              also clang and libFuzzer (scripts/fuzz.sh)
 #   scripts/setup.sh --dart              also DART and its URDF loader, the robot tests' second
 #                                        reference (tests/robots/dart_reference_test.cc)
+#   scripts/setup.sh --ipopt             also IPOPT, which apps/swing_up.cpp optimizes with
 # The options combine.
 set -euo pipefail
 
@@ -32,6 +33,7 @@ pip=false
 property_tests=false
 fuzz=false
 dart=false
+ipopt=false
 for option in "$@"; do
   case $option in
     --python-modules) python_modules=true ;;
@@ -41,6 +43,7 @@ for option in "$@"; do
     --property-tests) property_tests=true ;;
     --fuzz) fuzz=true ;;
     --dart) dart=true ;;
+    --ipopt) ipopt=true ;;
   esac
 done
 
@@ -125,6 +128,10 @@ fi
 if $dart; then
   [ -f /usr/share/dart/cmake/DARTConfig.cmake ] || packages+=(libdart-dev)
   [ -f /usr/include/dart/utils/urdf/DartLoader.hpp ] || packages+=(libdart-utils-urdf-dev)
+fi
+
+if $ipopt; then
+  [ -f /usr/include/coin/IpIpoptApplication.hpp ] || packages+=(coinor-libipopt-dev pkg-config)
 fi
 
 "$(dirname "$0")/install_packages.sh" setup "${packages[@]}"

@@ -27,7 +27,7 @@ build=${1:-build}
 jobs=$(nproc 2>/dev/null || echo 2)
 
 phase "set-up (scripts/setup.sh)"
-python=$(scripts/setup.sh --python-modules --browser --sweep --pip --property-tests --fuzz --dart \
+python=$(scripts/setup.sh --python-modules --browser --sweep --pip --property-tests --fuzz --dart --ipopt \
          | tail -n 1)
 # the generator's tests run with every SymPy at hand: the python3 on PATH too, if it has one
 test_pythons=""

@@ -97,8 +97,8 @@ TYPED_TEST(SimdBatch, EqualsTheScalarBatchToRoundOff) {
   double worst = 0.0;
   for (std::size_t i = 0; i < states.size(); ++i) {
     const double scale = std::max(1.0, scalar[i].norm());
-    worst = std::max({worst, (packed[i] - scalar[i]).norm() / scale,
-                      (wide[i] - scalar[i]).norm() / scale});
+    worst = std::max(
+        {worst, (packed[i] - scalar[i]).norm() / scale, (wide[i] - scalar[i]).norm() / scale});
   }
   char text[32];
   std::snprintf(text, sizeof text, "%.2g", worst);
