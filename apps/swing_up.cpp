@@ -56,15 +56,13 @@ struct Problem {
 struct Dynamics {
   M::Params params;
   Vec f(const Vec& x, double u) const {
-    const auto linear =
-        gencoord::linearize<M>(params, x.head<M::nq>(), x.tail<M::nq>(),
-                               gencoord::InputVec<M>::Constant(u), 0.0);
+    const auto linear = gencoord::linearize<M>(params, x.head<M::nq>(), x.tail<M::nq>(),
+                                               gencoord::InputVec<M>::Constant(u), 0.0);
     return linear.xdot;
   }
   void f_and_jacobian(const Vec& x, double u, Vec* f, Jac* J) const {
-    const auto linear =
-        gencoord::linearize<M>(params, x.head<M::nq>(), x.tail<M::nq>(),
-                               gencoord::InputVec<M>::Constant(u), 0.0);
+    const auto linear = gencoord::linearize<M>(params, x.head<M::nq>(), x.tail<M::nq>(),
+                                               gencoord::InputVec<M>::Constant(u), 0.0);
     *f = linear.xdot;
     J->leftCols<kStates>() = linear.A;
     J->rightCols<1>() = linear.B;
@@ -82,8 +80,8 @@ class SwingUp : public Ipopt::TNLP {
   int iterations = 0;
   double violation = 0.0;
 
-  bool get_nlp_info(Ipopt::Index& n, Ipopt::Index& m, Ipopt::Index& nnz_jac,
-                    Ipopt::Index& nnz_h, IndexStyleEnum& style) override {
+  bool get_nlp_info(Ipopt::Index& n, Ipopt::Index& m, Ipopt::Index& nnz_jac, Ipopt::Index& nnz_h,
+                    IndexStyleEnum& style) override {
     n = (p_.nodes + 1) * kNode;
     m = p_.nodes * kStates;
     nnz_jac = p_.nodes * kStates * 2 * kNode;  // each defect reads both nodes' x and u
@@ -92,8 +90,8 @@ class SwingUp : public Ipopt::TNLP {
     return true;
   }
 
-  bool get_bounds_info(Ipopt::Index n, Ipopt::Number* lower, Ipopt::Number* upper,
-                       Ipopt::Index m, Ipopt::Number* g_lower, Ipopt::Number* g_upper) override {
+  bool get_bounds_info(Ipopt::Index n, Ipopt::Number* lower, Ipopt::Number* upper, Ipopt::Index m,
+                       Ipopt::Number* g_lower, Ipopt::Number* g_upper) override {
     for (Ipopt::Index i = 0; i < n; ++i) {
       lower[i] = -2e19;
       upper[i] = 2e19;
@@ -142,8 +140,7 @@ class SwingUp : public Ipopt::TNLP {
     return true;
   }
 
-  bool eval_g(Ipopt::Index, const Ipopt::Number* z, bool, Ipopt::Index,
-              Ipopt::Number* g) override {
+  bool eval_g(Ipopt::Index, const Ipopt::Number* z, bool, Ipopt::Index, Ipopt::Number* g) override {
     for (int k = 0; k < p_.nodes; ++k) {
       Eigen::Map<Vec>(g + k * kStates) = defect(z, k, nullptr, nullptr);
     }
@@ -286,7 +283,8 @@ int main(int argc, char** argv) {
   // the optimized forces replayed open loop by RK4
   const std::vector<double> z = nlp->solution;
   const gencoord::ControlledSystem<M> system(
-      M::Params{}, [&](double t, const gencoord::QVec<M>&, const gencoord::VVec<M>&) {
+      M::Params{},
+      [&](double t, const gencoord::QVec<M>&, const gencoord::VVec<M>&) {
         return gencoord::InputVec<M>::Constant(force_at(z, problem, t));
       },
       gencoord::LawKind::OpenLoop);
@@ -297,18 +295,19 @@ int main(int argc, char** argv) {
   std::ofstream csv(output_dir + "/swing_up.csv");
   csv << "t,s,theta,s_dot,theta_dot,u\n";
   long step = 0;
-  const gencoord::State<M> end = gencoord::simulate(
-      system, initial, {gencoord::Integrator::RK4, 1e-3, problem.duration},
-      [&](const gencoord::State<M>& s) {
-        if (step++ % 10) return;
-        csv << s.t << ',' << s.q[0] << ',' << s.q[1] << ',' << s.v[0] << ',' << s.v[1] << ','
-            << force_at(z, problem, s.t) << '\n';
-      });
+  const gencoord::State<M> end =
+      gencoord::simulate(system, initial, {gencoord::Integrator::RK4, 1e-3, problem.duration},
+                         [&](const gencoord::State<M>& s) {
+                           if (step++ % 10) return;
+                           csv << s.t << ',' << s.q[0] << ',' << s.q[1] << ',' << s.v[0] << ','
+                               << s.v[1] << ',' << force_at(z, problem, s.t) << '\n';
+                         });
   Vec last;
   last << end.q, end.v;
   const double miss = (last - goal).lpNorm<Eigen::Infinity>();
-  std::printf("replay (RK4, dt = 1 ms, open loop): end state s = %.4f m, theta = %.4f rad, "
-              "s' = %.4f m/s, theta' = %.4f rad/s; largest miss %.2e\n",
-              end.q[0], end.q[1], end.v[0], end.v[1], miss);
+  std::printf(
+      "replay (RK4, dt = 1 ms, open loop): end state s = %.4f m, theta = %.4f rad, "
+      "s' = %.4f m/s, theta' = %.4f rad/s; largest miss %.2e\n",
+      end.q[0], end.q[1], end.v[0], end.v[1], miss);
   return miss < 0.05 ? 0 : 1;
 }
