@@ -8,8 +8,6 @@
 // the minimum and the median over the rounds of the time per call, and their ratios. The
 // tree's own qddot (the loops left open) is listed to show what the constraints cost.
 //   build/bench/bench_constrained [rounds]
-#include <sched.h>
-
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -22,6 +20,8 @@
 #include "gencoord/model/constrained_dynamics.hpp"
 #include "gencoord/model/state.hpp"
 
+#include "interleaved.hpp"
+
 namespace {
 
 using gencoord::State;
@@ -32,20 +32,11 @@ constexpr int kStates = 256;
 volatile double sink = 0.0;  // keeps the results alive
 
 double time_per_call(const std::function<void(int)>& call) {
-  const auto start = std::chrono::steady_clock::now();
-  for (int k = 0; k < kStates; ++k) call(k);
-  const auto stop = std::chrono::steady_clock::now();
-  return std::chrono::duration<double, std::nano>(stop - start).count() / kStates;
+  return gencoord::bench::ns_per_call(kStates, call);
 }
 
-struct Summary {
-  double min, median;
-};
-
-Summary summarize(std::vector<double> values) {
-  std::sort(values.begin(), values.end());
-  return {values.front(), values[values.size() / 2]};
-}
+using gencoord::bench::summarize;
+using gencoord::bench::Summary;
 
 void compare_delta(int rounds) {
   Delta::Params p;
@@ -116,11 +107,6 @@ void compare_delta(int rounds) {
 
 int main(int argc, char** argv) {
   const int rounds = argc > 1 ? std::atoi(argv[1]) : 51;
-  cpu_set_t one_core;
-  CPU_ZERO(&one_core);
-  CPU_SET(0, &one_core);
-  if (sched_setaffinity(0, sizeof one_core, &one_core) != 0) {
-    std::fprintf(stderr, "bench_constrained: could not pin to core 0; figures may be noisier\n");
-  }
+  gencoord::bench::pin_to_one_core("bench_constrained");
   compare_delta(rounds);
 }

@@ -9,8 +9,6 @@
 // against both; a mismatch stops the run. Sizes above GENCOORD_RECURSION_DENSE_MAX (CMake) have
 // no dense contender, and MuJoCo is checked against the recursion there.
 //   scripts/bench_recursion.sh [rounds]
-#include <sched.h>
-
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -31,6 +29,8 @@
 #include "peers/mujoco_chain.hpp"
 #include "recursion_chains.hpp"  // generated: GENCOORD_RECURSION_CHAINS(X), X(n, Dense, Recursive)
 
+#include "interleaved.hpp"
+
 namespace {
 
 constexpr int kStates = 64;
@@ -38,10 +38,7 @@ constexpr double kStep = 1e-4;
 volatile double sink = 0.0;  // keeps the results alive
 
 double time_per_call(const std::function<void(int)>& call) {
-  const auto start = std::chrono::steady_clock::now();
-  for (int k = 0; k < kStates; ++k) call(k);
-  const auto stop = std::chrono::steady_clock::now();
-  return std::chrono::duration<double, std::nano>(stop - start).count() / kStates;
+  return gencoord::bench::ns_per_call(kStates, call);
 }
 
 struct Contender {
@@ -221,11 +218,7 @@ void compare(int n, int rounds) {
 
 int main(int argc, char** argv) {
   const int rounds = argc > 1 ? std::atoi(argv[1]) : 21;
-  cpu_set_t one_core;
-  CPU_ZERO(&one_core);
-  CPU_SET(0, &one_core);
-  if (sched_setaffinity(0, sizeof one_core, &one_core) != 0)
-    std::fprintf(stderr, "bench_recursion: could not pin to core 0; figures may be noisier\n");
+  gencoord::bench::pin_to_one_core("bench_recursion");
 #define GENCOORD_COMPARE(n, Dense, Recursive) compare<Dense, Recursive>(n, rounds);
   GENCOORD_RECURSION_CHAINS(GENCOORD_COMPARE)
 #undef GENCOORD_COMPARE

@@ -6,8 +6,6 @@
 // minimum and the median over the rounds of the time per call, and the ratios. The floating
 // quadruped's base is a free joint (unit quaternion, body twist) on both sides.
 //   build/bench/bench_robots [rounds]
-#include <sched.h>
-
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -24,6 +22,8 @@
 #include "robots/mujoco_model.hpp"
 #include "robots/quaternion_base.hpp"
 
+#include "interleaved.hpp"
+
 namespace {
 
 using gencoord::State;
@@ -35,20 +35,11 @@ volatile double sink = 0.0;  // keeps the results alive
 
 /// Nanoseconds per call of `call(k)` over k = 0 .. kStates - 1.
 double time_per_call(const std::function<void(int)>& call) {
-  const auto start = std::chrono::steady_clock::now();
-  for (int k = 0; k < kStates; ++k) call(k);
-  const auto stop = std::chrono::steady_clock::now();
-  return std::chrono::duration<double, std::nano>(stop - start).count() / kStates;
+  return gencoord::bench::ns_per_call(kStates, call);
 }
 
-struct Summary {
-  double min, median;
-};
-
-Summary summarize(std::vector<double> values) {
-  std::sort(values.begin(), values.end());
-  return {values.front(), values[values.size() / 2]};
-}
+using gencoord::bench::summarize;
+using gencoord::bench::Summary;
 
 template <class M, class Reference = MujocoReference<M>>
 void compare(const char* robot, const char* urdf, int rounds) {
@@ -141,12 +132,7 @@ void compare(const char* robot, const char* urdf, int rounds) {
 
 int main(int argc, char** argv) {
   const int rounds = argc > 1 ? std::atoi(argv[1]) : 51;
-  cpu_set_t one_core;
-  CPU_ZERO(&one_core);
-  CPU_SET(0, &one_core);
-  if (sched_setaffinity(0, sizeof one_core, &one_core) != 0) {
-    std::fprintf(stderr, "bench_robots: could not pin to core 0; figures may be noisier\n");
-  }
+  gencoord::bench::pin_to_one_core("bench_robots");
   compare<gencoord::models::Iiwa14>("iiwa14", GENCOORD_ROOT "/models/iiwa14.urdf", rounds);
   compare<gencoord::models::Quadruped>("quadruped", GENCOORD_ROOT "/models/quadruped.urdf", rounds);
   using Floating = gencoord::models::FloatingQuadruped;

@@ -5,8 +5,6 @@
 // one core. The table gives the minimum and the median over the rounds of the time per state,
 // and the ratios.
 //   build/bench/bench_simd [rounds]
-#include <sched.h>
-
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -22,6 +20,8 @@
 #include "generated/iiwa14.hpp"
 #include "generated/n_link_chain_10.hpp"
 
+#include "interleaved.hpp"
+
 namespace {
 
 using gencoord::State;
@@ -29,14 +29,8 @@ using gencoord::State;
 constexpr int kStates = 1024;
 volatile double sink = 0.0;  // keeps the results alive
 
-struct Summary {
-  double min, median;
-};
-
-Summary summarize(std::vector<double> values) {
-  std::sort(values.begin(), values.end());
-  return {values.front(), values[values.size() / 2]};
-}
+using gencoord::bench::summarize;
+using gencoord::bench::Summary;
 
 template <class M>
 void compare(const char* name, int rounds) {
@@ -91,11 +85,7 @@ void compare(const char* name, int rounds) {
 
 int main(int argc, char** argv) {
   const int rounds = argc > 1 ? std::atoi(argv[1]) : 51;
-  cpu_set_t one_core;
-  CPU_ZERO(&one_core);
-  CPU_SET(0, &one_core);
-  if (sched_setaffinity(0, sizeof one_core, &one_core) != 0)
-    std::fprintf(stderr, "bench_simd: could not pin to core 0; figures may be noisier\n");
+  gencoord::bench::pin_to_one_core("bench_simd");
   std::printf("Pack<4>: %s; sin and cos: %s\n",
 #if defined(__AVX2__)
               "one AVX2 register",

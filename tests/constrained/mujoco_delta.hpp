@@ -32,6 +32,10 @@ class MujocoDelta {
   MujocoDelta(const M::Params& p, const Vec& reference)
       : p_(p), reference_(reference), mujoco_(mjcf()) {}
 
+  // bench/constrained_bench.cc times mj_forward on them
+  mjModel* model() { return mujoco_.model(); }
+  mjData* data() { return mujoco_.data(); }
+
   /// Sets every equality's impedance to d (MuJoCo keeps it in [0.0001, 0.9999]).
   void set_impedance(double d) { mujoco_.set_impedance(d); }
 
