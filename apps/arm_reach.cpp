@@ -31,7 +31,7 @@ int main(int argc, char** argv) {
   problem.goal.setZero();
   problem.goal.head<M::nq>() << 0.8, 0.6, -0.4, -1.2, 0.3, 0.9, 0.5;  // rad
   problem.input_limit.setConstant(300.0);
-  problem.velocity_weight = 10.0;  // (N m)^2 per (rad/s)^2: no whipping of the light wrist
+  problem.velocity_weight = 10.0;          // (N m)^2 per (rad/s)^2: no whipping of the light wrist
   for (int l = 0; l < M::num_limits; ++l)  // the URDF's ranges, symmetric about 0 here
     problem.state_limit[M::limited_coordinates[l]] =
         std::min(-M::lower_limits[l], M::upper_limits[l]);
@@ -57,8 +57,8 @@ int main(int argc, char** argv) {
   const auto result = gencoord::apps::optimize(problem, 1e-8, derivative_test, 1e-4);
   std::printf("arm_reach: iiwa14, %d Hermite-Simpson intervals over %g s, |tau| <= 300 N m\n",
               problem.intervals, problem.duration);
-  std::printf("IPOPT: status %d, %d iterations, %.3f s, constraint violation %.2e\n",
-              result.status, result.iterations, result.seconds, result.violation);
+  std::printf("IPOPT: status %d, %d iterations, %.3f s, constraint violation %.2e\n", result.status,
+              result.iterations, result.seconds, result.violation);
   if (!result.solved()) return 1;
 
   const double h = problem.duration / problem.intervals;
@@ -72,12 +72,13 @@ int main(int argc, char** argv) {
         x << s.q, s.v;
         gap = std::max(gap, (x - result.x[k]).cwiseAbs().maxCoeff());
       });
-  const double miss =
-      std::max((end.q - problem.goal.head<M::nq>()).cwiseAbs().maxCoeff(), end.v.cwiseAbs().maxCoeff());
+  const double miss = std::max((end.q - problem.goal.head<M::nq>()).cwiseAbs().maxCoeff(),
+                               end.v.cwiseAbs().maxCoeff());
   double peak = 0.0;
   for (const auto& u : result.u) peak = std::max(peak, u.cwiseAbs().maxCoeff());
-  std::printf("replay (RK4, dt = 1 ms, open loop): largest miss of the goal %.2e (rad, rad/s), "
-              "of a node %.2e; largest torque %.1f N m\n",
-              miss, gap, peak);
+  std::printf(
+      "replay (RK4, dt = 1 ms, open loop): largest miss of the goal %.2e (rad, rad/s), "
+      "of a node %.2e; largest torque %.1f N m\n",
+      miss, gap, peak);
   return miss < 0.05 ? 0 : 1;
 }

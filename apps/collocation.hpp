@@ -7,12 +7,12 @@
 // through both nodes' states and rates; its midpoint's rate f(x_c, u_c), u_c the mean input),
 // fourth-order accurate; the cost is the inputs' effort, the integral of |u|^2 by Simpson's
 // rule, plus velocity_weight times the integral of |v|^2 by the trapezoidal rule (a smooth
-// motion where some joints are light enough to whip for free). f and its Jacobians [df/dx, df/du] come from gencoord::linearize (the generated
-// residual Jacobians and input matrix: exact), chained through the midpoint by hand; IPOPT
-// approximates the Lagrangian's Hessian by L-BFGS. The start and the goal are fixed states;
-// the inputs and, optionally, some coordinates have bounds. replay() runs the optimized
-// inputs, piecewise quadratic in time as Simpson's rule has them, open loop through
-// ControlledSystem and RK4: the test that the optimum is a motion of the model, not only of
+// motion where some joints are light enough to whip for free). f and its Jacobians [df/dx, df/du]
+// come from gencoord::linearize (the generated residual Jacobians and input matrix: exact), chained
+// through the midpoint by hand; IPOPT approximates the Lagrangian's Hessian by L-BFGS. The start
+// and the goal are fixed states; the inputs and, optionally, some coordinates have bounds. replay()
+// runs the optimized inputs, piecewise quadratic in time as Simpson's rule has them, open loop
+// through ControlledSystem and RK4: the test that the optimum is a motion of the model, not only of
 // the collocation.
 #pragma once
 
@@ -71,8 +71,8 @@ class CollocationNlp : public Ipopt::TNLP {
   explicit CollocationNlp(const Problem& p) : p_(p), h_(p.duration / p.intervals) {}
   CollocationResult<M> result;
 
-  bool get_nlp_info(Ipopt::Index& n, Ipopt::Index& m, Ipopt::Index& nnz_jac,
-                    Ipopt::Index& nnz_h, IndexStyleEnum& style) override {
+  bool get_nlp_info(Ipopt::Index& n, Ipopt::Index& m, Ipopt::Index& nnz_jac, Ipopt::Index& nnz_h,
+                    IndexStyleEnum& style) override {
     n = (p_.intervals + 1) * node;
     m = p_.intervals * nx;
     nnz_jac = p_.intervals * nx * 2 * node;  // each defect reads both nodes' x and u
@@ -127,15 +127,15 @@ class CollocationNlp : public Ipopt::TNLP {
       Eigen::Map<U>(grad + k * node + nx) += h_ / 6 * (2 * a + 4 * c);
       Eigen::Map<U>(grad + (k + 1) * node + nx) += h_ / 6 * (2 * b + 4 * c);
       using V = Eigen::Matrix<double, M::nq, 1>;
-      Eigen::Map<V>(grad + k * node + M::nq) += p_.velocity_weight * h_ * x(z, k).template tail<M::nq>();
+      Eigen::Map<V>(grad + k * node + M::nq) +=
+          p_.velocity_weight * h_ * x(z, k).template tail<M::nq>();
       Eigen::Map<V>(grad + (k + 1) * node + M::nq) +=
           p_.velocity_weight * h_ * x(z, k + 1).template tail<M::nq>();
     }
     return true;
   }
 
-  bool eval_g(Ipopt::Index, const Ipopt::Number* z, bool, Ipopt::Index,
-              Ipopt::Number* g) override {
+  bool eval_g(Ipopt::Index, const Ipopt::Number* z, bool, Ipopt::Index, Ipopt::Number* g) override {
     for (int k = 0; k < p_.intervals; ++k)
       Eigen::Map<X>(g + k * nx) = defect(z, k, nullptr, nullptr);
     return true;
