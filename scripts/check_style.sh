@@ -15,9 +15,11 @@ command -v clang-format-14 >/dev/null 2>&1 || packages+=(clang-format-14)
 /usr/bin/python3 -m mypy --version >/dev/null 2>&1 || packages+=(mypy)
 scripts/install_packages.sh check_style "${packages[@]}"
 
-# generated/ is written by the generator, which wraps its own lines
-mapfile -t cxx < <(git ls-files '*.hpp' '*.cpp' '*.cc' '*.h' | grep -v '^generated/')
-mapfile -t python < <(git ls-files '*.py'; echo gencoord; echo generate)
+# the files git tracks and the new ones it does not ignore (a file is checked before its first
+# commit); generated/ is written by the generator, which wraps its own lines
+files=(git ls-files --cached --others --exclude-standard)
+mapfile -t cxx < <("${files[@]}" '*.hpp' '*.cpp' '*.cc' '*.h' | grep -v '^generated/')
+mapfile -t python < <("${files[@]}" '*.py'; echo gencoord; echo generate)
 
 if [ "${1:-}" = --fix ]; then
   clang-format-14 -i "${cxx[@]}"
