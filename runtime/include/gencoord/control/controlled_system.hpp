@@ -113,10 +113,11 @@ class ControlledSystem {
     enforce_limits_ = enforce;
     return *this;
   }
-  /// q' = G(q) v (M::coordinate_rates); only for models with generalized speeds.
+  /// q' = G(q) v (M::coordinate_rates); only for models with generalized speeds. The
+  /// kinematics read no input, so the law is not called for it.
   template <class Model = M, class = std::enable_if_t<has_generalized_speeds_v<Model>>>
   QVec<M> coordinate_rate(const State& s) const {
-    return M::coordinate_rates(s.q, s.v, s.t, params(s));
+    return M::coordinate_rates(s.q, s.v, s.t, p_);
   }
   /// Divides each unit quaternion by its norm and enforces the joint limits on each step's
   /// end state (enforce_joint_limits(); the inputs are forces, so the impulse does not depend
