@@ -15,7 +15,7 @@ downward vertical. Generate a variant with `./generate models/n_link_chain.py --
 from gencoord import Model, cos, sin
 
 model = Model(dim=2)
-n = model.option("n", 3, "number of links")
+n = model.option("n", 3, "number of links", minimum=1)
 g = model.parameter("g", 9.81, "gravitational acceleration (m/s^2)")
 
 previous = model.fixed_point("pivot", [0, 0])

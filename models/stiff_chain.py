@@ -14,7 +14,7 @@ take tiny steps; implicit ones do not need to. `--set n=N` (default 10).
 from gencoord import Model, cos, sin
 
 model = Model(dim=2)
-n = model.option("n", 10, "number of links")
+n = model.option("n", 10, "number of links", minimum=1)
 g = model.parameter("g", 9.81, "gravitational acceleration (m/s^2)")
 l = model.parameter("l", 0.2, "length of every link (m)")
 m = model.parameter("m", 0.1, "mass at the end of every link (kg)")

@@ -24,7 +24,7 @@ clang=${CXX_FUZZ:-clang++}
   tests/fuzz/mesh_reader_fuzzer.cc deformable/src/mesh_read_gmsh.cpp \
   deformable/src/mesh_read_tetgen.cpp deformable/src/mesh_read_obj.cpp \
   deformable/src/mesh_read_text.cpp deformable/src/mesh.cpp deformable/src/tetrahedralize.cpp \
-  deformable/src/closed_surface.cpp deformable/src/run_program.cpp \
+  deformable/src/closed_surface.cpp deformable/src/run_program.cpp deformable/src/simplex_shape.cpp \
   -o "$build/mesh_reader_fuzzer"
 cd "$build"
 ./mesh_reader_fuzzer -max_total_time="$seconds" -max_len=4096 -timeout=10 -rss_limit_mb=2048 \

@@ -12,6 +12,7 @@
 #include "gencoord/deformable/mesh_io.hpp"
 #include "gencoord/deformable/validate.hpp"
 #include "mesh_read_text.hpp"
+#include "simplex_shape.hpp"
 
 namespace gencoord::deformable {
 
@@ -135,18 +136,14 @@ void add_triangles(const TextLines& lines, const Face& face,
     const std::array<long long, 3> tri = {face.vertices[0].resolved, face.vertices[j].resolved,
                                           face.vertices[j + 1].resolved};
     const Eigen::Vector3d a = vertices[tri[0]], b = vertices[tri[1]], c = vertices[tri[2]];
-    const double longest = std::max({(b - a).norm(), (c - b).norm(), (a - c).norm()});
-    const double area = 0.5 * (b - a).cross(c - a).norm();
-    const double floor = kMinRelativeMeasure * longest * longest;
-    if (!(area > floor)) {
+    const std::string problem = detail::shape_problem(
+        detail::triangle_shape(b - a, c - a), "vertices", " (remove the face or fix its vertices)");
+    if (!problem.empty()) {
       std::ostringstream what;
       what << "f: the triangle of vertices " << tri[0] + 1 << " " << tri[1] + 1 << " "
            << tri[2] + 1;
       if (n > 3) what << " (cut from this face of " << n << " vertices)";
-      what << " is degenerate: its area " << area << " is not above " << floor << " ("
-           << static_cast<float>(kMinRelativeMeasure)
-           << " times its longest edge squared); its vertices are (nearly) collinear (remove "
-              "the face or fix its vertices)";
+      what << " " << problem;
       lines.fail_at(face.line, what.str());
     }
     triangles.push_back(tri);

@@ -13,6 +13,7 @@
 #include "gencoord/deformable/mesh_io.hpp"
 #include "gencoord/deformable/tetrahedralize.hpp"
 #include "gencoord/deformable/validate.hpp"
+#include "simplex_shape.hpp"
 
 namespace gencoord::deformable::detail {
 
@@ -80,8 +81,6 @@ SimplexMesh<Dim> finish_mesh(RawMesh<Dim> raw, const std::string& name) {
   auto fail_at = [&name](int line, const std::string& what, int element, int node) {
     throw MeshFileError(name + ":" + std::to_string(line) + ": " + what, name, line, element, node);
   };
-  const char* measure_name = Dim == 2 ? "area" : "volume";
-  const double factorial = Dim == 2 ? 2.0 : 6.0;
   for (size_t e = 0; e < raw.elements.size(); ++e) {
     auto& el = raw.elements[e];
     const int line = raw.element_lines[e];
@@ -98,22 +97,10 @@ SimplexMesh<Dim> finish_mesh(RawMesh<Dim> raw, const std::string& name) {
     }
     Eigen::Matrix<double, Dim, Dim> edges;
     for (int c = 0; c < Dim; ++c) edges.col(c) = raw.nodes[el[c + 1]] - raw.nodes[el[0]];
-    double longest = 0.0;
-    for (int a = 0; a <= Dim; ++a) {
-      for (int b = a + 1; b <= Dim; ++b) {
-        longest = std::max(longest, (raw.nodes[el[b]] - raw.nodes[el[a]]).norm());
-      }
-    }
-    const double signed_measure = edges.determinant() / factorial;
-    const double floor = kMinRelativeMeasure * std::pow(longest, Dim);
-    if (!(std::abs(signed_measure) > floor)) {
-      std::ostringstream what;
-      what << label << " is degenerate: its " << measure_name << " " << std::abs(signed_measure)
-           << " is not above " << floor << " (" << static_cast<float>(kMinRelativeMeasure)
-           << " times its longest edge to the power " << Dim << "); its nodes are (nearly) "
-           << (Dim == 2 ? "collinear" : "coplanar") << " (remove it or mesh again)";
-      fail_at(line, what.str(), static_cast<int>(e), -1);
-    }
+    const std::string problem = detail::shape_problem(detail::simplex_shape<Dim>(edges), "nodes",
+                                                      " (remove it or mesh again)");
+    if (!problem.empty()) fail_at(line, label + " " + problem, static_cast<int>(e), -1);
+    const double signed_measure = edges.determinant();
     if (signed_measure < 0.0) std::swap(el[Dim - 1], el[Dim]);
   }
 

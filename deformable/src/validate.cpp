@@ -12,6 +12,7 @@
 
 #include "gencoord/errors.hpp"
 #include "message.hpp"
+#include "simplex_shape.hpp"
 
 namespace gencoord::deformable {
 
@@ -100,22 +101,10 @@ void validate_mesh(const SimplexMesh<Dim>& mesh) {
       }
       used[el[a]] = 1;
     }
-    double longest = 0.0;
-    for (int a = 0; a <= Dim; ++a) {
-      for (int b = a + 1; b <= Dim; ++b) {
-        longest = std::max(longest, (mesh.nodes.col(el[b]) - mesh.nodes.col(el[a])).norm());
-      }
-    }
-    const double measure = element_measure(mesh, e);
-    const double floor = kMinRelativeMeasure * std::pow(longest, Dim);
-    const double relative = kMinRelativeMeasure;  // printed without 17 digits of noise
-    if (!(measure > floor))
-      throw MeshError(
-          message("mesh: element ", e, " is degenerate: its ", Dim == 2 ? "area" : "volume", " ",
-                  measure, " is not above ", floor, " (", static_cast<float>(relative),
-                  " times its longest edge to the power ", Dim, "); its nodes are (nearly) ",
-                  Dim == 2 ? "collinear" : "coplanar"),
-          e, -1);
+    Eigen::Matrix<double, Dim, Dim> edges;
+    for (int c = 0; c < Dim; ++c) edges.col(c) = mesh.nodes.col(el[c + 1]) - mesh.nodes.col(el[0]);
+    const std::string problem = detail::shape_problem(detail::simplex_shape<Dim>(edges), "nodes");
+    if (!problem.empty()) throw MeshError(message("mesh: element ", e, " ", problem), e, -1);
   }
   for (int n = 0; n < count; ++n) {
     if (!used[n])
@@ -208,15 +197,8 @@ void validate_surface(const TriangleSurface& surface) {
     }
     const Eigen::Vector3d x0 = surface.nodes.col(tri[0]);
     const Eigen::Vector3d e1 = surface.nodes.col(tri[1]) - x0, e2 = surface.nodes.col(tri[2]) - x0;
-    const double longest = std::max({e1.norm(), e2.norm(), (e2 - e1).norm()});
-    const double area = 0.5 * e1.cross(e2).norm();
-    const double floor = kMinRelativeMeasure * longest * longest;
-    const double relative = kMinRelativeMeasure;  // printed without 17 digits of noise
-    if (!(area > floor))
-      throw MeshError(message("surface: triangle ", t, " is degenerate: its area ", area,
-                              " is not above ", floor, " (", static_cast<float>(relative),
-                              " times its longest edge squared); its nodes are (nearly) collinear"),
-                      t, -1);
+    const std::string problem = detail::shape_problem(detail::triangle_shape(e1, e2), "nodes");
+    if (!problem.empty()) throw MeshError(message("surface: triangle ", t, " ", problem), t, -1);
     std::array<int, 3> nodes = tri;
     std::sort(nodes.begin(), nodes.end());
     sorted_triangles.push_back({nodes[0], nodes[1], nodes[2], t});

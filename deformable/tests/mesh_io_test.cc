@@ -25,6 +25,7 @@ namespace gencoord::deformable {
 namespace {
 
 using ::testing::HasSubstr;
+using ::testing::Not;
 
 // The unit cube cut into the six Kuhn tetrahedra around its diagonal from node 0 to node 7
 // (node i + 2 j + 4 k at (i, j, k)); some are written negatively oriented. Node tags have
@@ -442,6 +443,28 @@ TEST(MeshIoTest, RefusesADegenerateElement) {
   }
   ExpectRefused([&] { ReadTetgen<2>(kSquareNode, "2 3 0\n0 0 1 2\n1 0 2 2\n"); }, 3,
                 "mesh.ele:3: element 1 uses node 2 twice");
+}
+
+// The degeneracy check is scale-free: a square of side 1e100 reads as one of side 1; one whose
+// area overflows (side 1e200) or underflows (1e-200) a double is told so, not called collinear.
+TEST(MeshIoTest, JudgesElementShapesAtAnyScale) {
+  auto square = [](const char* side) {
+    return "4 2 0 0\n0 0 0\n1 " + std::string(side) + " 0\n2 " + side + " " + side + "\n3 0 " +
+           side + "\n";
+  };
+  EXPECT_EQ(ReadTetgen<2>(square("1e100"), kSquareEle).elements.size(), 2u);
+  EXPECT_EQ(ReadTetgen<2>(square("1e-100"), kSquareEle).elements.size(), 2u);
+  for (const char* side : {"1e200", "1e-200"}) {
+    ExpectRefused([&] { ReadTetgen<2>(square(side), kSquareEle); }, 2,
+                  "mesh.ele:2: element 0 has an area (");
+    try {
+      ReadTetgen<2>(square(side), kSquareEle);
+    } catch (const MeshFileError& e) {
+      EXPECT_THAT(e.what(), HasSubstr("outside the range of a double; give its coordinates in "
+                                      "metres or rescale the mesh"));
+      EXPECT_THAT(e.what(), Not(HasSubstr("collinear")));
+    }
+  }
 }
 
 TEST(MeshIoTest, RefusesAMeshOfAnotherDimension) {

@@ -208,6 +208,15 @@ TEST(MeshObjTest, RefusesFacesThatAreNotTriangles) {
   ExpectRefused([&] { ReadObj(square + "f 1 2 2/1\n"); }, 5, "uses vertex 2 twice");
 }
 
+TEST(MeshObjTest, JudgesTrianglesAtAnyScale) {
+  EXPECT_EQ(ReadObj("v 0 0 0\nv 1e100 0 0\nv 0 1e100 0\nf 1 2 3\n").triangles.size(), 1u);
+  for (const char* side : {"1e200", "1e-200"}) {
+    const std::string s = side;
+    ExpectRefused([&] { ReadObj("v 0 0 0\nv " + s + " 0 0\nv 0 " + s + " 0\nf 1 2 3\n"); }, 4,
+                  "surface.obj:4: f: the triangle of vertices 1 2 3 has an area (");
+  }
+}
+
 TEST(MeshObjTest, RefusesOtherStatementsAndFilesWithoutFaces) {
   ExpectRefused([] { ReadObj("v 0 0 0\nv 1 0 0\nv 0 1 0\n# no faces\n"); }, 4,
                 "surface.obj:4: the file has no faces (f lines) after 3 vertices; export the "

@@ -20,6 +20,7 @@ namespace {
 
 using ::testing::AllOf;
 using ::testing::HasSubstr;
+using ::testing::Not;
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kInf = std::numeric_limits<double>::infinity();
@@ -93,6 +94,21 @@ TEST(ValidationTest, CollinearTriangleAndCoincidentNodes) {
               AllOf(HasSubstr("element 0"), HasSubstr("area"), HasSubstr("collinear")));
   mesh.nodes.col(2) = mesh.nodes.col(1);  // a zero-length edge
   EXPECT_THROW(make_mass_spring(mesh, Material{}), MeshError);
+}
+
+TEST(ValidationTest, ShapesAreJudgedAtAnyScale) {
+  SimplexMesh<3> mesh = Tetrahedron();
+  mesh.nodes *= 1e100;  // a volume of 1e300 / 6: representable, and as regular as at scale 1
+  EXPECT_NO_THROW(make_mass_spring(mesh, Material{}));
+  for (double scale : {1e200, 1e-200}) {
+    mesh = Tetrahedron();
+    mesh.nodes *= scale;
+    EXPECT_THAT(Refused<MeshError>([&] { make_mass_spring(mesh, Material{}); }).what(),
+                AllOf(HasSubstr("element 0 has a volume"),
+                      HasSubstr("outside the range of a "
+                                "double"),
+                      Not(HasSubstr("coplanar"))));
+  }
 }
 
 TEST(ValidationTest, UnusedNode) {

@@ -10,9 +10,9 @@ import re
 
 def model_name(path: str, options: dict, stem: str | None = None) -> str:
     """The generated model's name: the file stem (or `stem`), plus each option's value
-    (`chain_5`)."""
+    (`chain_5`; a minus sign is spelled `m`: `scale_m1_5`)."""
     stem = stem or os.path.splitext(os.path.basename(path))[0]
-    suffix = "".join(f"_{value}" for value in options.values())
+    suffix = "".join(f"_{value}".replace("-", "m") for value in options.values())
     return re.sub(r"[^A-Za-z0-9_]", "_", stem + suffix)
 
 

@@ -11,7 +11,7 @@ entries and J 33,800 (Eigen's limit is 16,384 doubles).
 from gencoord import Model
 
 model = Model(dim=2)
-n = model.option("n", 130, "number of oscillators")
+n = model.option("n", 130, "number of oscillators", minimum=1)
 k = model.parameter("k", 50.0, "stiffness of the first spring, force per unit strain (N)")
 L = model.parameter("L", 1.0, "spring rest length (m)")
 m = model.parameter("m", 1.0, "mass of each bob (kg)")

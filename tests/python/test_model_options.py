@@ -8,7 +8,9 @@ import unittest
 
 from gencoord.errors import ModelError
 from gencoord.generate.load import load_model
-from gencoord.dsl.model import REQUESTED_OPTIONS, Model, requesting_options
+from gencoord.dsl.build_options import REQUESTED_OPTIONS, requesting_options
+from gencoord.dsl.model import Model
+from gencoord.naming import model_name
 
 from .support import MODELS
 
@@ -26,6 +28,17 @@ class ModelOptionsTest(unittest.TestCase):
     def test_a_value_of_the_wrong_type_is_refused(self):
         with self.assertRaisesRegex(ModelError, "n=many is not a int"):
             Model(dim=2, options={"n": "many"}).option("n", 3, "links")
+
+    def test_a_value_outside_the_declared_range_is_refused_with_the_range(self):
+        with self.assertRaisesRegex(ModelError, r"n=0 is outside the option's range >= 1"):
+            Model(dim=2, options={"n": "0"}).option("n", 3, "links", minimum=1)
+        with self.assertRaisesRegex(ModelError, r"L=9.5 is outside .* \[0.5, 2\] \(length\)"):
+            Model(dim=2, options={"L": "9.5"}).option("L", 1.0, "length", minimum=0.5, maximum=2)
+        with self.assertRaisesRegex(ModelError, r"n=-3 is outside the option's range >= 1"):
+            load_model(str(MODELS / "n_link_chain.py"), {"n": "-3"})
+
+    def test_a_negative_value_names_the_model_with_m_for_the_sign(self):
+        self.assertEqual(model_name("models/bar.py", {"scale": -1.5}), "bar_m1_5")
 
     def test_requested_options_hold_only_inside_the_block(self):
         with requesting_options({"n": "4"}):

@@ -15,16 +15,14 @@ Nothing here derives anything: `derive/dense.py` does that from the recorded dec
 
 from __future__ import annotations
 
-import contextlib
 import math
-from contextvars import ContextVar
-from types import MappingProxyType
-from typing import Iterator, Mapping, Sequence
+from typing import Mapping, Sequence
 
 import sympy as sp
 
 from gencoord.errors import ModelError
 from gencoord.dsl.bodies import add_point_masses, as_inertia
+from gencoord.dsl.build_options import REQUESTED_OPTIONS, option_value
 from gencoord.dsl.frames import Frame
 from gencoord.dsl.joint_limits import JointLimits
 from gencoord.dsl.kinematic_constraints import KinematicConstraints
@@ -34,23 +32,6 @@ from gencoord.dsl.items import (Body, BodyTorque, Coordinate, Damper, FixedPoint
                                 ParticleForce, Pin, Plane, Point, Rod, Speed, Spring,
                                 VelocityConstraint, Wheel, as_scalar, as_vector, caller_line,
                                 point_symbols)
-
-# The model options (`--set n=5`) requested of the model file being run: a Model built while
-# the loader runs the file takes them, since the file itself only says `Model(dim=2)`.
-REQUESTED_OPTIONS: ContextVar[Mapping[str, str]] = ContextVar(
-    "gencoord_requested_options", default=MappingProxyType({}))
-
-
-@contextlib.contextmanager
-def requesting_options(options: Mapping[str, str]) -> Iterator[None]:
-    """Every Model built inside the block takes these requested options (a read-only view;
-    each Model copies them)."""
-    token = REQUESTED_OPTIONS.set(MappingProxyType(options))
-    try:
-        yield
-    finally:
-        REQUESTED_OPTIONS.reset(token)
-
 
 class Model(GeneralizedSpeeds, KinematicConstraints, JointLimits):
     """A mechanical system described by particle positions x = X(q, t).
@@ -102,23 +83,17 @@ class Model(GeneralizedSpeeds, KinematicConstraints, JointLimits):
         self.charts: list[Model] = []
 
     # --- options -------------------------------------------------------------------------
-    def option(self, name: str, default, description: str):
+    def option(self, name: str, default, description: str, minimum=None, maximum=None):
         """A build option such as a chain's number of links; `generate --set name=value`.
 
         The generated model's name gets the value appended (`n_link_chain_5`), so every
-        variant has its own header and C++ type.
+        variant has its own header and C++ type. A requested value outside
+        [minimum, maximum] (either bound optional) is refused with the range.
         """
         value = default
         if name in self.requested_options:
-            raw = self.requested_options[name]
-            try:
-                value = type(default)(raw)
-            except ValueError:
-                raise ModelError(f"--set {name}={raw} is not a {type(default).__name__}",
-                                 item=f"option '{name}'", line=caller_line())
-            if isinstance(value, float) and not math.isfinite(value):
-                raise ModelError(f"--set {name}={raw} is not finite", item=f"option '{name}'",
-                                 line=caller_line())
+            value = option_value(name, self.requested_options[name], default, description,
+                                 minimum, maximum)
         self.options[name] = value
         return value
 
@@ -398,3 +373,4 @@ class Model(GeneralizedSpeeds, KinematicConstraints, JointLimits):
     @property
     def nq(self) -> int:
         return len(self.coordinates)
+

@@ -11,7 +11,8 @@ import sys
 from gencoord.errors import ModelError, model_file_line
 from gencoord.generate.limits import LoadTimeout, wall_clock_limit
 from gencoord.options import GenerateOptions
-from gencoord.dsl.model import Model, requesting_options
+from gencoord.dsl.build_options import requesting_options
+from gencoord.dsl.model import Model
 from gencoord.naming import model_name, type_name
 from gencoord.cxx.reserved_names import model_name_problem
 from gencoord.urdf.load import urdf_model
