@@ -315,8 +315,16 @@ int run(const Options& o) {
     if (csv) (*csv)(state);
   };
   const auto start = std::chrono::steady_clock::now();
-  const State<M> end = gencoord::simulate(system, s, {integrator, o.dt, o.duration}, observer);
-  if (csv) csv->close();  // throws gencoord::OutputError if a row did not reach the file
+  State<M> end;
+  try {
+    end = gencoord::simulate(system, s, {integrator, o.dt, o.duration}, observer);
+    if (csv) csv->close();  // throws gencoord::OutputError if a row did not reach the file
+  } catch (const gencoord::OutputError& error) {
+    if (csv)
+      csv->discard();  // only the CSV's writes throw OutputError: a partial trajectory is no result
+    std::cerr << "simulate: error: " << error.what() << "; removed it\n";
+    return 1;
+  }
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const long long steps = gencoord::step_count(o.dt, o.duration);

@@ -2,6 +2,7 @@
 #include "gencoord/io/csv_writer.hpp"
 #include "gencoord/model/reduced_system.hpp"
 
+#include <cerrno>
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
@@ -184,8 +185,11 @@ TEST(TrajectoryCsvWriter, AFullDiskIsAnErrorWithThePathAndNoRowsAreClaimed) {
     } catch (const OutputError& e) {
       EXPECT_EQ(e.path(), "/dev/full");
       EXPECT_THAT(e.what(), ::testing::HasSubstr("'/dev/full'"));
-      EXPECT_THAT(e.what(), ::testing::HasSubstr("disk full"));
+      EXPECT_THAT(e.what(), ::testing::HasSubstr("failed: No space left on device"));
+      EXPECT_EQ(e.error_number(), ENOSPC);
       EXPECT_EQ(writer.rows(), 0);  // none reached the file
+      writer.discard();             // leaves the device alone: it is not a regular file
+      EXPECT_TRUE(have_dev_full());
     }
   } catch (const OutputError& e) {
     ADD_FAILURE() << "the header alone should not fail: " << e.what();
@@ -199,6 +203,14 @@ TEST(TrajectoryCsvWriter, AFullDiskIsAnErrorWithThePathAndNoRowsAreClaimed) {
   EXPECT_EQ(writer.rows(), 0);
   TrajectoryCsvWriter<HandPendulum> flushed("/dev/full", HandPendulum::Params{});
   EXPECT_THROW(flushed.flush(), OutputError);
+}
+
+TEST(TrajectoryCsvWriter, DiscardRemovesTheWritersFile) {
+  const std::string path = ::testing::TempDir() + "gencoord_csv_discard_test.csv";
+  TrajectoryCsvWriter<HandPendulum> writer(path, HandPendulum::Params{});
+  writer(State<HandPendulum>{});
+  writer.discard();
+  EXPECT_FALSE(std::ifstream(path).good());
 }
 
 TEST(TrajectoryCsvWriter, AFailedStreamIsAnError) {

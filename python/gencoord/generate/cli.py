@@ -74,24 +74,65 @@ def options_of(args, parser: argparse.ArgumentParser) -> GenerateOptions:
 
 def write_atomically(path: str, text: str) -> bool:
     """Writes `text` to `path` via a temporary file and a rename; False if unchanged."""
-    if os.path.exists(path):
-        with open(path, encoding="utf-8") as handle:
-            if handle.read() == text:
-                return False
-    directory = os.path.dirname(os.path.abspath(path))
-    os.makedirs(directory, exist_ok=True)
-    descriptor, temporary = tempfile.mkstemp(prefix=".gencoord-", dir=directory)
+    return write_all_atomically({path: text})
+
+
+def write_all_atomically(files: dict[str, str]) -> bool:
+    """Writes each path's text: every changed file goes to a temporary file first, and only
+    when all are written are they renamed into place, so a failure (a full disk) changes no
+    file. False if none changed. \raises ModelError naming the file that could not be written.
+    """
+    changed = {path: text for path, text in files.items() if not _holds(path, text)}
+    temporaries: dict[str, str] = {}
     try:
-        with os.fdopen(descriptor, "w", encoding="utf-8", newline="\n") as handle:
-            handle.write(text)
+        for path, text in changed.items():
+            temporaries[path] = _written_temporary(path, text)
+        for path, temporary in temporaries.items():
+            _write_step(path, lambda: os.replace(temporary, path))
+    finally:
+        for temporary in temporaries.values():
+            if os.path.exists(temporary):
+                os.unlink(temporary)
+    return bool(changed)
+
+
+def _holds(path: str, text: str) -> bool:
+    if not os.path.isfile(path):
+        return False
+    with open(path, encoding="utf-8") as handle:
+        return handle.read() == text
+
+
+def _written_temporary(path: str, text: str) -> str:
+    """A temporary file beside `path` (same file system, so the rename is atomic) holding
+    `text`, with an ordinary file's permissions."""
+    directory = os.path.dirname(os.path.abspath(path))
+    _write_step(path, lambda: os.makedirs(directory, exist_ok=True))
+    descriptor, temporary = _write_step(
+        path, lambda: tempfile.mkstemp(prefix=".gencoord-", dir=directory))
+    try:
+        def write() -> None:
+            with os.fdopen(descriptor, "w", encoding="utf-8", newline="\n") as handle:
+                handle.write(text)
+        _write_step(path, write)
         umask = os.umask(0)
         os.umask(umask)
         os.chmod(temporary, 0o666 & ~umask)  # mkstemp makes 0600; headers are ordinary files
-        os.replace(temporary, path)
     except BaseException:
         os.unlink(temporary)
         raise
-    return True
+    return temporary
+
+
+def _write_step(path: str, step):
+    """Runs one step of writing `path`; an OSError (a full disk, no permission) becomes a
+    one-line error naming the file."""
+    try:
+        return step()
+    except OSError as error:
+        reason = error.strerror or str(error)
+        raise ModelError(f"writing failed: {reason}; no output file was changed",
+                         filename=path) from None
 
 
 def build_parser(prog: str = "generate") -> argparse.ArgumentParser:
@@ -142,11 +183,11 @@ def _generate_and_write(args, options: GenerateOptions, report, started: float) 
         for line in generated.analysis:
             print(f"  {line}")
     path = os.path.join(args.output_dir, f"{generated.name}.hpp")
-    changed = write_atomically(path, generated.header)
-    changed = write_atomically(os.path.join(args.output_dir, f"{generated.name}.scene.json"),
-                               generated.scene) or changed
+    files = {path: generated.header,
+             os.path.join(args.output_dir, f"{generated.name}.scene.json"): generated.scene}
     for file_name, text in generated.sources.items():
-        changed = write_atomically(os.path.join(args.output_dir, file_name), text) or changed
+        files[os.path.join(args.output_dir, file_name)] = text
+    changed = write_all_atomically(files)
     removed = _remove_stale_sources(args.output_dir, generated.name, generated.sources)
     if not args.quiet:
         elapsed = time.perf_counter() - started

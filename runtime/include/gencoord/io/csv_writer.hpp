@@ -86,6 +86,12 @@ class TrajectoryCsvWriter {
     flushed_rows_ = rows_;
   }
 
+  /// For a file opened by the writer: closes it and removes it (a regular file only), after
+  /// a write failed. Does nothing for a stream given to the writer.
+  void discard() noexcept {
+    if (file_) file_->discard();
+  }
+
   /// Flushes and, for a file opened by the writer, closes it; no rows may follow.
   /// \throws OutputError if this or an earlier write failed.
   void close() {

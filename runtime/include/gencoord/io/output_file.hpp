@@ -3,7 +3,10 @@
 // OutputError with the path instead of leaving a short file behind without a word.
 #pragma once
 
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <ostream>
 #include <stdexcept>
@@ -13,17 +16,24 @@
 namespace gencoord {
 
 /// Writing a file failed (it could not be opened, or a write, flush or close failed).
+/// `error_number` is the errno the failure left (ENOSPC for a full disk), 0 when unknown.
 class OutputError : public std::runtime_error {
  public:
-  OutputError(const std::string& path, const std::string& what)
-      : std::runtime_error("gencoord: " + what + " '" + path +
-                           "' failed (disk full, no permission, or the folder is gone?); the "
-                           "file is incomplete"),
-        path_(path) {}
+  OutputError(const std::string& path, const std::string& what, int error_number = 0)
+      : std::runtime_error("gencoord: " + what + " '" + path + "' failed" + cause(error_number) +
+                           "; the file is incomplete"),
+        path_(path),
+        error_number_(error_number) {}
   const std::string& path() const { return path_; }
+  int error_number() const { return error_number_; }
 
  private:
+  static std::string cause(int error_number) {
+    if (error_number == 0) return " (disk full, no permission, or the folder is gone?)";
+    return std::string(": ") + std::strerror(error_number);
+  }
   std::string path_;
+  int error_number_;
 };
 
 /// A file opened (truncated) for writing. Writes go through stream(); check() after them,
@@ -33,8 +43,10 @@ class OutputError : public std::runtime_error {
 class OutputFile {
  public:
   /// \throws OutputError if the file cannot be opened.
-  explicit OutputFile(std::string path) : path_(std::move(path)), out_(path_) {
-    if (!out_) throw OutputError(path_, "opening");
+  explicit OutputFile(std::string path) : path_(std::move(path)) {
+    errno = 0;  // so that a failure's errno is the stream's own
+    out_.open(path_);
+    if (!out_) throw OutputError(path_, "opening", errno);
   }
   OutputFile(const OutputFile&) = delete;
   OutputFile& operator=(const OutputFile&) = delete;
@@ -51,7 +63,7 @@ class OutputFile {
 
   /// \throws OutputError if a write to the stream has failed.
   void check() const {
-    if (!out_) throw OutputError(path_, "writing");
+    if (!out_) throw OutputError(path_, "writing", errno);
   }
   /// Flushes the buffer to the file. \throws OutputError if that or an earlier write failed.
   void flush() {
@@ -63,8 +75,16 @@ class OutputFile {
     if (!out_.is_open()) return;
     out_.flush();
     const bool written = static_cast<bool>(out_);
+    const int flush_errno = errno;
     out_.close();
-    if (!written || !out_) throw OutputError(path_, "writing");
+    if (!written || !out_) throw OutputError(path_, "writing", written ? errno : flush_errno);
+  }
+  /// Closes the file, ignoring errors, and removes it if it is a regular file (not a device
+  /// such as /dev/stdout): what a failed write leaves is not a result.
+  void discard() noexcept {
+    out_.close();
+    std::error_code ignored;
+    if (std::filesystem::is_regular_file(path_, ignored)) std::filesystem::remove(path_, ignored);
   }
 
  private:
