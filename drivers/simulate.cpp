@@ -320,9 +320,9 @@ int run(const Options& o) {
     end = gencoord::simulate(system, s, {integrator, o.dt, o.duration}, observer);
     if (csv) csv->close();  // throws gencoord::OutputError if a row did not reach the file
   } catch (const gencoord::OutputError& error) {
-    if (csv)
-      csv->discard();  // only the CSV's writes throw OutputError: a partial trajectory is no result
-    std::cerr << "simulate: error: " << error.what() << "; removed it\n";
+    // only the CSV's writes throw OutputError: a partial trajectory is no result
+    const bool removed = csv && csv->discard();
+    std::cerr << "simulate: error: " << error.what() << (removed ? "; removed it" : "") << "\n";
     return 1;
   }
   const double seconds =

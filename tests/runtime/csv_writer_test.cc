@@ -187,8 +187,8 @@ TEST(TrajectoryCsvWriter, AFullDiskIsAnErrorWithThePathAndNoRowsAreClaimed) {
       EXPECT_THAT(e.what(), ::testing::HasSubstr("'/dev/full'"));
       EXPECT_THAT(e.what(), ::testing::HasSubstr("failed: No space left on device"));
       EXPECT_EQ(e.error_number(), ENOSPC);
-      EXPECT_EQ(writer.rows(), 0);  // none reached the file
-      writer.discard();             // leaves the device alone: it is not a regular file
+      EXPECT_EQ(writer.rows(), 0);     // none reached the file
+      EXPECT_FALSE(writer.discard());  // leaves the device alone: it is not a regular file
       EXPECT_TRUE(have_dev_full());
     }
   } catch (const OutputError& e) {
@@ -209,7 +209,7 @@ TEST(TrajectoryCsvWriter, DiscardRemovesTheWritersFile) {
   const std::string path = ::testing::TempDir() + "gencoord_csv_discard_test.csv";
   TrajectoryCsvWriter<HandPendulum> writer(path, HandPendulum::Params{});
   writer(State<HandPendulum>{});
-  writer.discard();
+  EXPECT_TRUE(writer.discard());
   EXPECT_FALSE(std::ifstream(path).good());
 }
 

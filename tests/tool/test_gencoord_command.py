@@ -106,6 +106,12 @@ class GencoordCommandTest(unittest.TestCase):
         result = self.gencoord("simulate", "crane.py", "--duration", "0.1", "--set", "m_load=2")
         self.assertSucceeded(result)
         self.assertNotIn("building", result.stderr)
+        if os.path.exists("/dev/full"):  # a full disk: one line with the cause, status 1
+            result = self.gencoord("simulate", "crane.py", "--duration", "0.1", "--output",
+                                   "/dev/full")
+            self.assertEqual(result.returncode, 1, result.stderr)
+            self.assertRegex(result.stderr, r"^simulate: error: gencoord: writing '/dev/full' "
+                             r"failed: No space left on device; the file is incomplete\n$")
 
     def test_3_parameters_reach_the_program(self):
         # a rope twice as long swings slower: the load is elsewhere at the end

@@ -87,10 +87,8 @@ class TrajectoryCsvWriter {
   }
 
   /// For a file opened by the writer: closes it and removes it (a regular file only), after
-  /// a write failed. Does nothing for a stream given to the writer.
-  void discard() noexcept {
-    if (file_) file_->discard();
-  }
+  /// a write failed. Does nothing for a stream given to the writer. True if it removed one.
+  bool discard() noexcept { return file_ && file_->discard(); }
 
   /// Flushes and, for a file opened by the writer, closes it; no rows may follow.
   /// \throws OutputError if this or an earlier write failed.

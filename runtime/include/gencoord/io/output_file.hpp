@@ -80,11 +80,12 @@ class OutputFile {
     if (!written || !out_) throw OutputError(path_, "writing", written ? errno : flush_errno);
   }
   /// Closes the file, ignoring errors, and removes it if it is a regular file (not a device
-  /// such as /dev/stdout): what a failed write leaves is not a result.
-  void discard() noexcept {
+  /// such as /dev/stdout): what a failed write leaves is not a result. True if it removed it.
+  bool discard() noexcept {
     out_.close();
     std::error_code ignored;
-    if (std::filesystem::is_regular_file(path_, ignored)) std::filesystem::remove(path_, ignored);
+    return std::filesystem::is_regular_file(path_, ignored) &&
+           std::filesystem::remove(path_, ignored);
   }
 
  private:
