@@ -14,6 +14,8 @@
 #include <algorithm>
 #include <cstdint>
 #include <cstdio>
+#include <cstdlib>
+#include <cstring>
 #include <limits>
 #include <map>
 #include <stdexcept>
@@ -62,18 +64,27 @@ class H5Id {
 
 namespace detail {
 
-// the innermost message of HDF5's error stack, which says what went wrong
+// the first message of HDF5's error stack, which says what failed, and the system's reason
+// where a message of the stack quotes an errno (the file driver's "errno = 28": a full disk)
 inline std::string h5_message() {
-  std::string message;
+  struct Found {
+    std::string message;
+    int error_number = 0;
+  } found;
   H5Ewalk2(
       H5E_DEFAULT, H5E_WALK_DOWNWARD,
       [](unsigned, const H5E_error2_t* e, void* out) -> herr_t {
-        auto* text = static_cast<std::string*>(out);
-        if (text->empty() && e->desc) *text = e->desc;
+        auto* f = static_cast<Found*>(out);
+        if (!e->desc) return 0;
+        if (f->message.empty()) f->message = e->desc;
+        const char* quoted = std::strstr(e->desc, "errno = ");
+        if (quoted && f->error_number == 0) f->error_number = std::atoi(quoted + 8);
         return 0;
       },
-      &message);
-  return message.empty() ? "no detail" : message;
+      &found);
+  std::string message = found.message.empty() ? "no detail" : found.message;
+  if (found.error_number > 0) message += std::string(": ") + std::strerror(found.error_number);
+  return message;
 }
 
 class H5Calls {
@@ -118,52 +129,17 @@ class ResultsFile {
   static void create(const std::string& path, const Table& table, const Layout& layout,
                      const std::vector<std::string>& coordinates) {
     const std::string partial = path + ".partial";
-    {
-      const detail::H5Calls h5(partial);
-      H5Id file(h5.check(H5Fcreate(partial.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT),
-                         "create the file"),
-                H5Fclose);
-      Creator make{h5, file.get(), table.samples};
-      const hsize_t n = static_cast<hsize_t>(table.samples);
-      const auto nq = static_cast<hsize_t>(layout.nq);
-      const auto points = static_cast<hsize_t>(layout.trajectory_points);
-      const H5Id samples = make.doubles("samples", {n, table.columns.size()});
-      make.write_all(samples.get(), H5T_NATIVE_DOUBLE, table.values.data(), "samples");
-      std::vector<std::string> labels;
-      for (const Column& c : table.columns) labels.push_back(c.label());
-      make.strings(samples.get(), "columns", labels);
-      const H5Id status_type = detail::status_type();
-      const auto pending = static_cast<std::int8_t>(Status::kPending);
-      make.dataset("status", status_type.get(), {n}, &pending);
-      make.doubles("error_time", {n});
-      const H5Id error_type = detail::string_type(kErrorLength);
-      const std::vector<char> no_error(kErrorLength, '\0');
-      make.dataset("error", error_type.get(), {n}, no_error.data());
-      if (layout.final_state) {
-        make.doubles("final_t", {n});
-        make.doubles("final_q", {n, nq});
-        make.doubles("final_v", {n, nq});
-      }
-      if (layout.energy_drift) make.doubles("energy_drift", {n});
-      if (layout.event_time) make.doubles("event_time", {n});
-      if (points > 0) {
-        const H5Id times = make.doubles("trajectory_t", {points});
-        std::vector<double> t(points);
-        for (hsize_t j = 0; j < points; ++j)
-          t[j] = static_cast<double>(j * static_cast<hsize_t>(table.trajectory_every)) * table.dt;
-        make.write_all(times.get(), H5T_NATIVE_DOUBLE, t.data(), "trajectory_t");
-        make.doubles("trajectory_q", {n, points, nq});
-        make.doubles("trajectory_v", {n, points, nq});
-      }
-      const std::uint8_t zero = 0;
-      make.dataset("chunk_done", H5T_STD_U8LE, {static_cast<hsize_t>(table.chunks())}, &zero);
-      make.attributes(table, coordinates);
-      h5.check(H5Fflush(file.get(), H5F_SCOPE_GLOBAL), "flush the new file");
-      h5.check(file.close(), "close the new file");
+    try {
+      write_new(partial, table, layout, coordinates);
+    } catch (...) {
+      std::remove(partial.c_str());  // a half-made file is no result (it may hold gigabytes)
+      throw;
     }
     sync_path(partial);
-    if (std::rename(partial.c_str(), path.c_str()) != 0)
+    if (std::rename(partial.c_str(), path.c_str()) != 0) {
+      std::remove(partial.c_str());
       throw ResultsError(partial + ": cannot rename it to " + path);
+    }
     const std::size_t slash = path.rfind('/');
     sync_path(slash == std::string::npos ? "." : slash == 0 ? "/" : path.substr(0, slash));
   }
@@ -226,6 +202,52 @@ class ResultsFile {
   }
 
  private:
+  // the whole file, at `partial`: every dataset allocated, the samples, the attributes
+  static void write_new(const std::string& partial, const Table& table, const Layout& layout,
+                        const std::vector<std::string>& coordinates) {
+    const detail::H5Calls h5(partial);
+    H5Id file(h5.check(H5Fcreate(partial.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT),
+                       "create the file"),
+              H5Fclose);
+    Creator make{h5, file.get(), table.samples};
+    const hsize_t n = static_cast<hsize_t>(table.samples);
+    const auto nq = static_cast<hsize_t>(layout.nq);
+    const auto points = static_cast<hsize_t>(layout.trajectory_points);
+    const H5Id samples = make.doubles("samples", {n, table.columns.size()});
+    make.write_all(samples.get(), H5T_NATIVE_DOUBLE, table.values.data(), "samples");
+    std::vector<std::string> labels;
+    for (const Column& c : table.columns) labels.push_back(c.label());
+    make.strings(samples.get(), "columns", labels);
+    const H5Id status_type = detail::status_type();
+    const auto pending = static_cast<std::int8_t>(Status::kPending);
+    make.dataset("status", status_type.get(), {n}, &pending);
+    make.doubles("error_time", {n});
+    const H5Id error_type = detail::string_type(kErrorLength);
+    const std::vector<char> no_error(kErrorLength, '\0');
+    make.dataset("error", error_type.get(), {n}, no_error.data());
+    if (layout.final_state) {
+      make.doubles("final_t", {n});
+      make.doubles("final_q", {n, nq});
+      make.doubles("final_v", {n, nq});
+    }
+    if (layout.energy_drift) make.doubles("energy_drift", {n});
+    if (layout.event_time) make.doubles("event_time", {n});
+    if (points > 0) {
+      const H5Id times = make.doubles("trajectory_t", {points});
+      std::vector<double> t(points);
+      for (hsize_t j = 0; j < points; ++j)
+        t[j] = static_cast<double>(j * static_cast<hsize_t>(table.trajectory_every)) * table.dt;
+      make.write_all(times.get(), H5T_NATIVE_DOUBLE, t.data(), "trajectory_t");
+      make.doubles("trajectory_q", {n, points, nq});
+      make.doubles("trajectory_v", {n, points, nq});
+    }
+    const std::uint8_t zero = 0;
+    make.dataset("chunk_done", H5T_STD_U8LE, {static_cast<hsize_t>(table.chunks())}, &zero);
+    make.attributes(table, coordinates);
+    h5.check(H5Fflush(file.get(), H5F_SCOPE_GLOBAL), "flush the new file");
+    h5.check(file.close(), "close the new file");
+  }
+
   void write_data(const ChunkResults& r) {
     const H5Id status_type = detail::status_type();
     const H5Id error_type = detail::string_type(kErrorLength);

@@ -146,6 +146,13 @@ class SweepRunTest(unittest.TestCase):
             result = self.gencoord("small.toml", *options, folder=f"run{k}")
             self.assertSucceeded(result)
             self.assertIn("400 samples of double_pendulum in 50 chunks of 8", result.stdout)
+            # the preflight's estimate bounds the file: the data exactly, metadata up to 1 MiB
+            estimate = re.search(r"gencoord: small: 400 samples x 2000 steps \(800,000 steps "
+                                 r"in all\), results file about ([0-9.]+) MB", result.stdout)
+            self.assertIsNotNone(estimate, result.stdout)
+            size = (self.home / f"run{k}" / "small.h5").stat().st_size
+            self.assertLess(size, float(estimate.group(1)) * 1.005e6)
+            self.assertGreater(size, float(estimate.group(1)) * 0.995e6 - (1 << 20))
             self.assertIn("status      400 ok, 0 failed", result.stdout)
             reports[label] = self.results(self.home / f"run{k}" / "small.h5")
         reference = reports["1 rank"]
@@ -274,7 +281,8 @@ class SweepRunTest(unittest.TestCase):
                                stderr=subprocess.STDOUT, text=True, start_new_session=True)
         table = str(self.home / "dies" / "longer.table").encode()
         try:
-            seen = run.stdout.readline()  # the first progress line: the ranks are working
+            seen = run.stdout.readline()  # the preflight line: samples, steps, file size
+            seen += run.stdout.readline()  # the first progress line: the ranks are working
             ranks = []
             deadline = time.monotonic() + 60
             while len(ranks) < 2 and time.monotonic() < deadline:

@@ -6,12 +6,15 @@ from __future__ import annotations
 
 import math
 import random
+import shutil
 import tempfile
 import unittest
 from pathlib import Path
+from unittest import mock
 
-from gencoord.sweep import event, samples, spec, table
+from gencoord.sweep import event, preflight, samples, spec, table
 from gencoord.sweep.source import SweepFileError, read_source
+from gencoord.tool.errors import ToolError
 
 REPOSITORY = Path(__file__).resolve().parents[2]
 MODEL = REPOSITORY / "models" / "double_pendulum.py"
@@ -248,6 +251,25 @@ class SweepFileTest(unittest.TestCase):
         # 100001 trajectory points of q and v (2 x 2 doubles) per sample: 3.2 MB a sample
         self.assertFileError(text, 16, "samples.chunk", "more than one MPI message holds",
                              "set chunk <= 671")
+
+    def test_the_results_file_size_is_estimated_and_checked_against_free_space(self):
+        sweep = self.parse(GOOD)  # 6 samples of 2 variables; 5 trajectory points of q and v
+        per_sample = 16 + 1 + 8 + 64 + (8 + 32) + 8 + 8 + 5 * 32
+        self.assertEqual(preflight.results_bytes(sweep, 2),
+                         6 * per_sample + 5 * 8 + 2 + preflight.METADATA)
+        self.assertEqual(preflight.summary(sweep, 2), "gencoord: sweep: 6 samples x 200 steps "
+                         "(1,200 steps in all), results file about 1.05 MB")
+        preflight.check_disk(sweep, 2, str(self.folder))  # this disk has a megabyte free
+        full = mock.Mock(return_value=shutil._ntuple_diskusage(10**9, 10**9 - 5000, 5000))
+        with mock.patch.object(preflight.shutil, "disk_usage", full):
+            with self.assertRaises(ToolError) as caught:
+                preflight.check_disk(sweep, 2, "out")
+            self.assertEqual(str(caught.exception),
+                             "the results file of sweep would take about 1.05 MB, but the disk "
+                             "of out has 5 kB free; free some space, record less (fewer "
+                             "samples, a larger trajectory_every, no trajectory) or give "
+                             "another --output-dir")
+            preflight.check_disk(sweep, 2, "out", replaced=2 * 10**6)  # --overwrite frees it
 
     def test_random_samples_need_count_and_seed(self):
         text = self.random_file("monte_carlo").replace("seed = 7\n", "")

@@ -14,7 +14,7 @@ from gencoord.tool.driver_build import entry_dir, generated_header, sweep_progra
 from gencoord.tool.errors import ToolError
 from gencoord.tool.layout import find_layout
 from gencoord.tool.model_file import load
-from gencoord.sweep import spec
+from gencoord.sweep import preflight, spec
 from gencoord.sweep.source import read_source
 from gencoord.sweep.table import table_text, write_table
 
@@ -80,15 +80,20 @@ def run_sweep(args) -> int:
     model = loaded.model
     sweep = spec.check_names(sweep, [c.name for c in model.coordinates],
                              [p.name for p in model.parameters])
-    layout = find_layout()
-    program = sweep_program(layout, loaded.target, rebuild=args.rebuild, verbose=args.verbose)
-    header = generated_header(layout, loaded.target)
     os.makedirs(args.output_dir, exist_ok=True)
     stem = os.path.join(os.path.abspath(args.output_dir), sweep.name)
     table, results = stem + ".table", stem + ".h5"
     if os.path.exists(results) and not (args.resume or args.overwrite):
         raise ToolError(f"{results} exists: --resume continues that sweep, --overwrite starts "
                         "it again")
+    nq = len(model.coordinates)
+    print(preflight.summary(sweep, nq), flush=True)
+    if not (args.resume and os.path.exists(results)):  # a resumed file is already allocated
+        old = os.path.getsize(results) if os.path.exists(results) else 0
+        preflight.check_disk(sweep, nq, args.output_dir, replaced=old)
+    layout = find_layout()
+    program = sweep_program(layout, loaded.target, rebuild=args.rebuild, verbose=args.verbose)
+    header = generated_header(layout, loaded.target)
     if args.overwrite and os.path.exists(results):
         os.unlink(results)
     build = os.path.basename(entry_dir(layout, loaded.target))  # the program's cache key

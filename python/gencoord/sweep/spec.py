@@ -334,14 +334,24 @@ def check_names(sweep: Sweep, coordinates: list[str], parameters: list[str]) -> 
     return replace(sweep, event=replace(sweep.event, clauses=clauses))
 
 
+def trajectory_points(sweep: Sweep) -> int:
+    """Recorded trajectory points of one sample: steps 0, every, 2 every, ... (0: none)."""
+    every = sweep.record.trajectory_every
+    return sweep.steps // every + 1 if every else 0
+
+
+def result_bytes(sweep: Sweep, nq: int) -> int:
+    """One sample's results: status, error time and text, and what the file records."""
+    record = sweep.record
+    return (1 + 8 + ERROR_BYTES + (8 + 16 * nq if record.final_state else 0)
+            + 8 * record.energy_drift + 8 * record.event_time
+            + 16 * trajectory_points(sweep) * nq)
+
+
 def _check_chunk_bytes(reader: _Reader, sweep: Sweep, nq: int) -> None:
     """A chunk travels between ranks as one MPI message, whose size is an int: its rows and its
     results must each stay under 2 GiB."""
-    record = sweep.record
-    points = sweep.steps // record.trajectory_every + 1 if record.trajectory_every else 0
-    result = (1 + 8 + ERROR_BYTES + (8 + 16 * nq if record.final_state else 0)
-              + 8 * record.energy_drift + 8 * record.event_time + 16 * points * nq)
-    per_sample = max(result, 8 * len(sweep.variables))
+    per_sample = max(result_bytes(sweep, nq), 8 * len(sweep.variables))
     largest = (MPI_MESSAGE_BYTES - 64) // per_sample
     if sweep.chunk > largest:
         reader.fail(("samples", "chunk"),
