@@ -81,7 +81,8 @@ class PageTest(unittest.TestCase):
                 for i in range(rows):
                     energy = 1.0 + (1e-3 if i == 517 else 0.0)  # one spike between kept rows
                     handle.write(f"{i * 0.01},{i},{0},{energy},{i},{-i},0,0\n")
-            scene = dict(double_pendulum_scene(), particles=[{"name": "p", "mass": 1.0}])
+            scene = dict(double_pendulum_scene(), particles=[{"name": "p", "mass": 1.0}],
+                         fixed_points=["o"])
             with mock.patch.object(page, "MAX_NUMBERS", 1000):
                 data = page.page_data(csv, scene)
         per_row = 2 + 1 + 2 * 2
@@ -127,6 +128,29 @@ class PageTest(unittest.TestCase):
             self.assertEqual(os.listdir(folder), [])
             page.write_page(self.csv, double_pendulum_scene(), target, "x")
             self.assertEqual(os.listdir(folder), ["view.html"])
+
+    def test_a_csv_that_is_not_this_models_trajectory_is_one_line_naming_it(self):
+        scene = double_pendulum_scene()
+        cases = {
+            "t,q_theta\n0,1\nx,y,z\n": r"bad\.csv:3: 3 values for 2 columns",
+            "t,energy\n0,x\n": r"bad\.csv:2: column 'energy': 'x' is not a number",
+            "t,q_theta\n0,1\n": r"bad\.csv: no column 'energy'",
+            "t,energy,bob1_x\n0,1,2\n": r"bad\.csv: no column 'bob1_y': every point needs",
+            "t,energy,foo_x,foo_y\n0,1,2,3\n": r"bad\.csv: no position columns of 'bob1' of "
+                                                r"double_pendulum; is it a trajectory of another",
+            "t,energy,a_x,a_y,a_z\n0,1,2,3,4\n": r"bad\.csv: positions in 3D, but "
+                                                  r"double_pendulum is a 2D model",
+            "": r"bad\.csv: empty file",
+        }
+        with tempfile.TemporaryDirectory() as folder:
+            path = os.path.join(folder, "bad.csv")
+            for text, message in cases.items():
+                with self.subTest(text=text):
+                    with open(path, "w", encoding="utf-8") as handle:
+                        handle.write(text)
+                    with self.assertRaisesRegex(ToolError, message) as caught:
+                        page.page_data(path, scene)
+                    self.assertNotIn("\n", str(caught.exception))
 
 
 class ThreeJsTest(unittest.TestCase):

@@ -21,6 +21,8 @@ import os
 from dataclasses import dataclass
 from xml.sax.saxutils import quoteattr
 
+from gencoord.tool.csv_columns import parse_columns, read_columns
+from gencoord.tool.errors import ToolError
 from gencoord.tool.svg_plot import (COLOURS, Frame, TICK_TARGET, axes, decade_of, element, envelope,
                                     key_width, legend_key, nice_step, padded_range, polyline,
                                     scaled_label, ticks_within, time_axis)
@@ -55,25 +57,41 @@ class Trajectory:
         return self.columns[f"{point}_{axis}"]
 
 
-def parse_trajectory(lines) -> Trajectory:
-    """Reads CSV text (an iterable of lines) in csv_writer.hpp's layout."""
-    rows = list(csv.reader(lines))
-    header = rows[0]
-    values = list(zip(*[[float(x) for x in row] for row in rows[1:] if row]))
-    columns = dict(zip(header, (list(v) for v in values)))
+def parse_trajectory(lines, path: str = "the CSV") -> Trajectory:
+    """Reads CSV text (an iterable of lines) in csv_writer.hpp's layout; a ToolError naming
+    `path` and the line for anything else."""
+    try:
+        columns = parse_columns(csv.reader(lines, skipinitialspace=True), path)
+    except csv.Error as error:
+        raise ToolError(f"{path}: not a CSV file ({error})") from None
+    return _trajectory(columns, path)
+
+
+def read_trajectory(path: str) -> Trajectory:
+    return _trajectory(read_columns(path), path)
+
+
+def _trajectory(columns: dict[str, list[float]], path: str) -> Trajectory:
+    header = list(columns)
+    if "energy" not in columns:
+        raise ToolError(f"{path}: no column 'energy'; expected a trajectory of gencoord "
+                        "simulate (t, q_..., v_..., energy, positions)")
     point_columns = [name for name in header if not name.startswith(("q_", "v_", "limit:"))
                      and name.rsplit("_", 1)[-1] in ("x", "y", "z") and "_" in name]
     points = list(dict.fromkeys(name.rsplit("_", 1)[0] for name in point_columns))
-    axes = [a for a in "xyz" if f"{points[0]}_{a}" in columns]
+    if not points:
+        raise ToolError(f"{path}: no position columns (<particle>_x, <particle>_y, ...); "
+                        "expected a trajectory of gencoord simulate")
+    axes = ["x", "y"] + (["z"] if f"{points[0]}_z" in columns else [])
+    for point in points:
+        missing = [f"{point}_{a}" for a in axes if f"{point}_{a}" not in columns]
+        if missing:
+            raise ToolError(f"{path}: no column {missing[0]!r}: every point needs its "
+                            f"{', '.join(axes)} columns")
     return Trajectory(columns=columns,
                       particles=[p for p in points if not p.startswith(FIXED_PREFIX)],
                       fixed_points=[p for p in points if p.startswith(FIXED_PREFIX)],
                       axes=axes)
-
-
-def read_trajectory(path: str) -> Trajectory:
-    with open(path, newline="") as handle:
-        return parse_trajectory(handle)
 
 
 def display_name(point: str) -> str:

@@ -38,6 +38,8 @@ def _rows(path: str, header: list[str]):
     except FileNotFoundError:
         raise ToolError(f"{path}: no such file; run deformable_demo (scripts/"
                         f"deformable_demo.sh) to write it") from None
+    except (csv.Error, UnicodeDecodeError) as error:
+        raise ToolError(f"{path}: not a CSV file ({error})") from None
 
 
 def _number(text: str, path: str, line: int) -> float:
@@ -45,6 +47,13 @@ def _number(text: str, path: str, line: int) -> float:
         return float(text)
     except ValueError:
         raise ToolError(f"{path}:{line}: '{text}' is not a number") from None
+
+
+def _index(text: str, path: str, line: int) -> int:
+    value = _number(text, path, line)
+    if not (math.isfinite(value) and value == int(value) and value >= 0):
+        raise ToolError(f"{path}:{line}: '{text}' is not a whole number >= 0")
+    return int(value)
 
 
 def deformable_data(folder: str) -> dict:
@@ -56,8 +65,8 @@ def deformable_data(folder: str) -> dict:
     for line, row in _rows(frames_csv, ["frame", "time", "node", "x", "y"]):
         if len(row) != 5:
             raise ToolError(f"{frames_csv}:{line}: expected 5 fields, got {len(row)}")
-        frame = int(_number(row[0], frames_csv, line))
-        node = int(_number(row[2], frames_csv, line))
+        frame = _index(row[0], frames_csv, line)
+        node = _index(row[2], frames_csv, line)
         if frame == len(frames):
             frames.append([])
             times.append(_number(row[1], frames_csv, line))
@@ -70,7 +79,9 @@ def deformable_data(folder: str) -> dict:
     nodes = len(frames[0])
     springs = []
     for line, row in _rows(springs_csv, ["spring", "i", "j", "broken_at"]):
-        i, j = int(_number(row[1], springs_csv, line)), int(_number(row[2], springs_csv, line))
+        if len(row) != 4:
+            raise ToolError(f"{springs_csv}:{line}: expected 4 fields, got {len(row)}")
+        i, j = _index(row[1], springs_csv, line), _index(row[2], springs_csv, line)
         if not (0 <= i < nodes and 0 <= j < nodes):
             raise ToolError(f"{springs_csv}:{line}: node {max(i, j)} does not exist "
                             f"({nodes} nodes)")

@@ -28,7 +28,7 @@ import sys
 import tempfile
 
 from gencoord.tool.errors import ToolError
-from gencoord.tool.trajectory_svg import energy_error, read_trajectory
+from gencoord.tool.trajectory_svg import FIXED_PREFIX, energy_error, read_trajectory
 from gencoord.viewer import three_js
 
 MAX_NUMBERS = 2_000_000   # 8 MB of float32 before base64: what a browser tab holds at ease
@@ -88,6 +88,7 @@ def page_data(csv_path: str, scene: dict) -> dict:
     """Everything the page's script reads: the scene and the trajectory's arrays."""
     trajectory = read_trajectory(csv_path)
     columns, dim = trajectory.columns, scene["dim"]
+    _check_matches(trajectory, scene, csv_path)
     coordinates = [name[2:] for name in columns if name.startswith("q_")]
     companion, shift = _side_by_side(trajectory, scene)
     points = [*(p for p in trajectory.particles if not p.startswith(COMPANION)),
@@ -113,6 +114,21 @@ def page_data(csv_path: str, scene: dict) -> dict:
             "positions": encoded(positions, "f"),   # frames x points x dim
         },
     }
+
+
+def _check_matches(trajectory, scene: dict, csv_path: str) -> None:
+    """A ToolError unless the CSV has the scene's dimension and a path for each of its
+    particles and fixed points (a trajectory of another model has not)."""
+    if len(trajectory.axes) != scene["dim"]:
+        raise ToolError(f"{csv_path}: positions in {len(trajectory.axes)}D, but {scene['name']} "
+                        f"is a {scene['dim']}D model; is it a trajectory of another model?")
+    names = [p["name"] for p in scene["particles"]] + \
+        [FIXED_PREFIX + p for p in scene["fixed_points"]]
+    known = set(trajectory.particles) | set(trajectory.fixed_points)
+    for name in names:
+        if name not in known:
+            raise ToolError(f"{csv_path}: no position columns of {name!r} of {scene['name']}; "
+                            "is it a trajectory of another model?")
 
 
 def _data_url(source: str) -> str:
