@@ -30,7 +30,8 @@ class FullDiskTest(unittest.TestCase):
             opened.append(descriptor)
             handle = real_fdopen(descriptor, *args, **kwargs)
             if len(opened) == 2:
-                handle.write = mock.Mock(side_effect=OSError(errno.ENOSPC, os.strerror(errno.ENOSPC)))
+                full = OSError(errno.ENOSPC, os.strerror(errno.ENOSPC))
+                handle.write = mock.Mock(side_effect=full)
             return handle
 
         with mock.patch.object(cli.os, "fdopen", fdopen):

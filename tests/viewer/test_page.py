@@ -136,10 +136,10 @@ class PageTest(unittest.TestCase):
             "t,energy\n0,x\n": r"bad\.csv:2: column 'energy': 'x' is not a number",
             "t,q_theta\n0,1\n": r"bad\.csv: no column 'energy'",
             "t,energy,bob1_x\n0,1,2\n": r"bad\.csv: no column 'bob1_y': every point needs",
-            "t,energy,foo_x,foo_y\n0,1,2,3\n": r"bad\.csv: no position columns of 'bob1' of "
-                                                r"double_pendulum; is it a trajectory of another",
-            "t,energy,a_x,a_y,a_z\n0,1,2,3,4\n": r"bad\.csv: positions in 3D, but "
-                                                  r"double_pendulum is a 2D model",
+            "t,energy,foo_x,foo_y\n0,1,2,3\n":
+                r"bad\.csv: no position columns of 'bob1' of double_pendulum; is it a trajectory",
+            "t,energy,a_x,a_y,a_z\n0,1,2,3,4\n":
+                r"bad\.csv: positions in 3D, but double_pendulum is a 2D model",
             "": r"bad\.csv: empty file",
         }
         with tempfile.TemporaryDirectory() as folder:
