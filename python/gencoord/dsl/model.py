@@ -33,6 +33,7 @@ from gencoord.dsl.items import (Body, BodyTorque, Coordinate, Damper, FixedPoint
                                 VelocityConstraint, Wheel, as_scalar, as_vector, caller_line,
                                 point_symbols)
 
+
 class Model(GeneralizedSpeeds, KinematicConstraints, JointLimits):
     """A mechanical system described by particle positions x = X(q, t).
 
@@ -373,4 +374,3 @@ class Model(GeneralizedSpeeds, KinematicConstraints, JointLimits):
     @property
     def nq(self) -> int:
         return len(self.coordinates)
-
