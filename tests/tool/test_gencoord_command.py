@@ -262,6 +262,11 @@ class GencoordCommandTest(unittest.TestCase):
             (("simulate", "crane.py", "--set", "nope=1"), r"nope: not an option or a parameter"),
             (("simulate", "missing.py"), r"missing\.py: error: no such model file"),
             (("info", "crane.py", "--set", "L"), r"--set expects name=value"),
+            (("python", "crane.py", "--python", "/bin/true"),
+             r"^gencoord: error: /bin/true is not a Python interpreter that runs here \(it did "
+             r"not answer as Python 3 does\); name one with --python\n$"),
+            (("python", "crane.py", "--python", str(REPOSITORY / "README.md")),
+             r"README\.md is not a Python interpreter that runs here \(Permission denied\)"),
         ]
         for arguments, message in cases:
             with self.subTest(arguments=arguments):

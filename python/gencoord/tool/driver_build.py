@@ -216,17 +216,33 @@ def _write_project(target: ModelTarget, entry: str, rebuild: bool) -> str:
     return project
 
 
+_PROBE = ("import sys, sysconfig; print('gencoord-python'); print(sys.version.splitlines()[0]); "
+          "print(sysconfig.get_config_var('EXT_SUFFIX'))")
+
+
+def _interpreter(python: str) -> tuple[str, str]:
+    """The version and the extension-module suffix of the Python `python`; a ToolError if it
+    cannot be run or does not answer as a Python 3 does."""
+    refused = f"{python} is not a Python interpreter that runs here"
+    try:
+        answer = subprocess.run([python, "-c", _PROBE], capture_output=True, text=True,
+                                check=False, stdin=subprocess.DEVNULL, timeout=60)
+    except (OSError, subprocess.TimeoutExpired) as error:
+        reason = error.strerror if isinstance(error, OSError) else "it did not answer in 60 s"
+        raise ToolError(f"{refused} ({reason}); name one with --python") from None
+    lines = answer.stdout.splitlines()
+    if answer.returncode != 0 or len(lines) != 3 or lines[0] != "gencoord-python" \
+            or lines[2] in ("", "None"):
+        raise ToolError(f"{refused} (it did not answer as Python 3 does); name one with "
+                        "--python")
+    return lines[1], lines[2]
+
+
 def python_module(layout: Layout, target: ModelTarget, python: str, *, rebuild: bool = False,
                   verbose: bool = False) -> str:
     """The path of the model's Python extension module built for `python` (an interpreter),
     built into the cache entry the first time; one build folder per interpreter."""
-    interpreter = subprocess.run(
-        [python, "-c", "import sys, sysconfig; print(sys.version); "
-                       "print(sysconfig.get_config_var('EXT_SUFFIX'))"],
-        capture_output=True, text=True, check=False)
-    if interpreter.returncode != 0:
-        raise ToolError(f"cannot run the Python interpreter {python}; name one with --python")
-    version, suffix = interpreter.stdout.splitlines()[-2:]
+    version, suffix = _interpreter(python)
     key = hashlib.sha256((os.path.realpath(python) + "\0" + version).encode()).hexdigest()[:12]
     build = os.path.join(entry_dir(layout, target), f"build-python-{key}")
     module = os.path.join(build, target.name + suffix)
