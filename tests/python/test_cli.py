@@ -7,6 +7,7 @@ import ast
 import re
 import shlex
 import shutil
+import subprocess
 import tempfile
 import unittest
 from pathlib import Path
@@ -129,6 +130,22 @@ class OutputNextToTheUserTest(unittest.TestCase):
         self.assertEqual(result.returncode, 0, describe(result))
         self.assertEqual((self.work / "out dir" / "crane.hpp").read_text(encoding="utf-8"),
                          header, "the banner's command did not reproduce the header")
+
+    def test_paths_with_line_breaks_stay_inside_the_banner_comment(self):
+        odd = self.model.parent.parent / "line\nbreak\\"
+        odd.mkdir()
+        shutil.copy2(self.model, odd / "crane.py")
+        result = run_generate(str(odd / "crane.py"), "-o", "out\ndir", "--quiet", cwd=self.work)
+        self.assertEqual(result.returncode, 0, describe(result))
+        header = (self.work / "out\ndir" / "crane.hpp").read_text(encoding="utf-8")
+        banner = header.split("\n//\n", 1)[0].splitlines()
+        self.assertEqual(len(banner), 5, banner)
+        for line in banner:
+            self.assertTrue(line.startswith("// ") and not line.endswith("\\"), line)
+        command = re.search(r"^//   regenerate: gencoord generate (.*)$", header, re.M).group(1)
+        words = subprocess.run(["bash", "-c", "printf '%s\\0' " + command], check=True,
+                               capture_output=True, text=True).stdout.split("\0")[:-1]
+        self.assertEqual(words, ["../line\nbreak\\/crane.py", "-o", "out\ndir"])
 
     def test_options_appear_in_the_regenerate_line(self):
         result = run_generate(str(MODELS / "n_link_chain.py"), "--set", "n=2", "--quiet",

@@ -22,6 +22,7 @@ from gencoord.cxx.template_views import kernel_view
 from gencoord.cxx.line_wrap import LINE_WIDTH, wrap_long_lines, wrap_prose
 from gencoord.naming import type_name
 from gencoord.cxx.reserved_names import TEMPLATE_DIR
+from gencoord.cxx.shell_words import shell_word
 from gencoord.cxx.storage import model_types, needs_heap_matrix
 
 MODEL_TEMPLATE = "model.hpp.j2"
@@ -240,7 +241,7 @@ def render_model(charts: list, name: str, docstring: str, source_path: str, head
     context = dict(
         header_path=header_path, source_path=source_path, template_name=MODEL_TEMPLATE,
         version=__version__, sympy_version=sp.__version__,
-        options=[(k, v) for k, v in model.options.items()],
+        options=[shell_word(f"{key}={value}") for key, value in model.options.items()],
         flags="".join(" " + flag for flag in flags),  # generator flags other than defaults
         # the docstring goes in a /* */ comment, each line after " * ": keep it from closing
         # early, and wrap it here (wrap_long_lines breaks code, not prose)
@@ -271,7 +272,7 @@ def render_instantiation(charts: list, name: str, source_path: str, flags: list[
         file_name=instantiation_file_name(name, group), header=f"{name}.hpp",
         name=name, source_path=source_path, template_name=INSTANTIATION_TEMPLATE,
         version=__version__, sympy_version=sp.__version__,
-        options=[(k, v) for k, v in model.options.items()],
+        options=[shell_word(f"{key}={value}") for key, value in model.options.items()],
         flags="".join(" " + flag for flag in flags),
         group=group, translation_units=translation_units,
         structs=[struct for c in charts for struct, kernels in (

@@ -9,12 +9,12 @@ from __future__ import annotations
 import argparse
 import os
 import re
-import shlex
 import sys
 import tempfile
 import time
 from typing import Any
 
+from gencoord.cxx.shell_words import shell_word
 from gencoord.errors import ModelError
 from gencoord.generate.failures import report_failure
 from gencoord.generate.stages import generate
@@ -41,7 +41,7 @@ def _output_flags(args) -> list[str]:
     """The banner's `-o DIR` (relative to the working directory), none for the default."""
     if os.path.abspath(args.output_dir) == os.path.abspath(DEFAULT_OUTPUT):
         return []
-    return ["-o " + shlex.quote(
+    return ["-o " + shell_word(
         os.path.relpath(os.path.abspath(args.output_dir)).replace(os.sep, "/"))]
 
 

@@ -8,7 +8,6 @@
 from __future__ import annotations
 
 import os
-import shlex
 import time
 from dataclasses import dataclass, field
 from typing import Callable, Optional, Sequence
@@ -22,6 +21,7 @@ from gencoord.derive.dense import Derivation, Kinematics, derive
 from gencoord.generate.dynamics_paths import PathChoice, choose_paths
 from gencoord.errors import ModelError
 from gencoord.cxx.render import instantiation_file_name, render_instantiation, render_model
+from gencoord.cxx.shell_words import shell_word
 from gencoord.derive.kernel_set import build_kernels, build_maximal_kernels
 from gencoord.generate.limits import size_warning
 from gencoord.generate.load import load_model
@@ -255,7 +255,7 @@ def _emit(path: str, model: Model, name: str, docstring: str, charts: list[Gener
         for part, group in zip(parts, assign_groups([len(p.lines) for p in parts], units)):
             part.group = group
     flags = options.banner_flags() + list(output_flags)
-    source_path = shlex.quote(working_directory_relative(path))
+    source_path = shell_word(working_directory_relative(path))
     header = render_model(charts, name, docstring, source_path, f"generated/{name}.hpp",
                           analysis, flags, units, options.unroll_max_nq)
     sources = {instantiation_file_name(name, group): render_instantiation(
