@@ -14,7 +14,8 @@
 #      Python modules (built for Debian's /usr/bin/python3, which has NumPy and SciPy), the
 #      viewer page in headless Chromium, gencoord sweep under MPI (Open MPI, HDF5, h5py), the
 #      property tests of the input readers (Hypothesis), and the runtime suites;
-#   3. the C++ mesh readers under libFuzzer for a minute (scripts/fuzz.sh).
+#   3. the C++ readers of outside input (meshes, the sweep program's sample table) under
+#      libFuzzer for a minute (scripts/fuzz.sh).
 # Builds use Ninja and ccache where installed (scripts/setup.sh installs both): ccache keeps
 # compiled objects in the user's cache (~/.cache/ccache), shared by every checkout of the
 # repository, so a second run compiles only what changed. Prints each phase's wall time and
@@ -71,10 +72,10 @@ if [ "${GENCOORD_SKIP_SANITIZERS:-0}" != 1 ]; then
         --no-tests=error -j "$jobs"
 fi
 
-phase "fuzz: the mesh readers under libFuzzer (scripts/fuzz.sh, 60 s)"
+phase "fuzz: the mesh and sample-table readers under libFuzzer (scripts/fuzz.sh, 60 s)"
 scripts/fuzz.sh 60 "${build}-fuzz" > "${build}-fuzz.log" 2>&1 \
   || { tail -n 40 "${build}-fuzz.log"; exit 1; }
-tail -n 6 "${build}-fuzz.log"
+grep -E '^Done [0-9]+ runs' "${build}-fuzz.log"
 
 phase "build: everything, Release"
 # tests ON explicitly: scripts/demo.sh configures the same build directory with them off

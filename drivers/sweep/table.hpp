@@ -51,7 +51,7 @@ struct Table {
   long long samples = 0;
   std::vector<double> values;  // samples x columns, row by row
 
-  long long chunks() const { return (samples + chunk - 1) / chunk; }
+  long long chunks() const { return samples / chunk + (samples % chunk != 0); }  // no overflow
   long long chunk_begin(long long c) const { return c * chunk; }
   long long chunk_size(long long c) const { return std::min(chunk, samples - chunk_begin(c)); }
   /// Recorded trajectory points: steps 0, every, 2 every, ... up to `steps`.
@@ -159,10 +159,16 @@ inline Table parse_table(const std::string& text_of_file, const std::string& pat
     }
   }
   if (t.digest.empty() || t.model.empty() || !(t.dt > 0) || t.steps < 0 || t.chunk < 1 ||
-      t.samples < 1 || t.columns.empty())
+      t.samples < 1 || t.columns.empty() || t.trajectory_every < 0)
     throw TableError(path + ": incomplete sample table; run gencoord sweep again");
   if (!values) return t;
   const std::size_t width = t.columns.size();
+  // a row holds `width` numbers and their separators: at least 2 width bytes, so a count the
+  // rest of the file cannot hold is refused before anything is allocated for it
+  const auto rest =
+      static_cast<long long>(text_of_file.size()) - static_cast<long long>(in.tellg());
+  if (in.tellg() < 0 || t.samples > rest / static_cast<long long>(2 * width) + 1)
+    fail("the table ends before its " + std::to_string(t.samples) + " samples");
   t.values.resize(static_cast<std::size_t>(t.samples) * width);
   for (long long s = 0; s < t.samples; ++s) {
     ++line;

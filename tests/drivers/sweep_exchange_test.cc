@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -96,6 +97,9 @@ TEST(SweepTable, IsReadWithItsSettingsAndRows) {
   EXPECT_EQ(t.model, "double_pendulum");
   EXPECT_EQ(t.steps, 100);
   EXPECT_EQ(t.chunks(), 2);
+  Table huge = t;  // chunks() cannot overflow at the largest counts
+  huge.samples = huge.chunk = std::numeric_limits<long long>::max();
+  EXPECT_EQ(huge.chunks(), 1);
   EXPECT_EQ(t.chunk_size(1), 1);
   ASSERT_EQ(t.clauses.size(), 1u);
   EXPECT_TRUE(t.clauses[0].absolute);
@@ -113,7 +117,12 @@ TEST(SweepTable, ShortOrWideRowsAndUnknownKeysNameTheLine) {
            {std::string(kTable).replace(std::string(kTable).find("0.0 0.2"), 7, "0.0 0.2 9"),
             "t.table:20: more values than the 2 columns"},
            {std::string(kTable).replace(std::string(kTable).find("build"), 5, "built"),
-            "t.table:3: unknown key 'built'"}}) {
+            "t.table:3: unknown key 'built'"},
+           // a count the file cannot hold is refused before its rows are allocated (found by
+           // scripts/fuzz.sh: 10^17 samples of 2 columns asked for 1.6 EB)
+           {std::string(kTable).replace(std::string(kTable).find("samples 3"), 9,
+                                        "samples 100000000000000000"),
+            "t.table:18: the table ends before its 100000000000000000 samples"}}) {
     try {
       parse_table(text, "t.table", true);
       ADD_FAILURE() << "accepted: " << phrase;
