@@ -224,6 +224,21 @@ DECLARATIONS = {
     "model_description_not_text": (
         PREAMBLE.replace("model = Model(dim=2)", f"model = Model(dim=2, description=42)  {MARK}")
         + BOB, ["Model", "description is 42, not text"]),
+    # found by tests/properties/test_model_fuzz.py: each was an internal error, a SymPy
+    # warning of many lines, or a message that quoted an object's repr over many lines
+    "a_name_that_is_not_text": (_position("sin(theta)").replace('"bob"', "{}"),
+                                ["particle", "the name is {}, not text"]),
+    "a_point_where_a_number_goes": (PREAMBLE + BOB + f"model.gravity([0, bob])  {MARK}\n",
+                                    ["gravity[1]", "particle 'bob', not a number"]),
+    "a_coordinate_where_a_point_goes": (PREAMBLE + BOB + f"model.damper(bob, theta, 1)  {MARK}\n",
+                                        ["damper", "acts on points", "not theta"]),
+    "sin_of_a_point": (_position("sin(bob0)", 'bob0 = model.fixed_point("o", [0, 0])\n'),
+                       ["fixed point 'o'", "not a number or an expression"]),
+    "sin_of_the_model": (_position("sin(model)"), ["the model is not a number"]),
+    "cos_of_infinity": (_position("sin(theta) + cos(1e400)"),
+                        ["position[0]", "AccumBounds", "infinite number"]),
+    "none_in_a_position": (_position("None"), ["position[0]", "is None"]),
+    "text_in_a_position": (_position("'x'"), ["position[0]", "the text 'x'"]),
 }
 
 # --- accepted: each must generate, and its header compile (test_name_clashes.py) -------------

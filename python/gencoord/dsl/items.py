@@ -10,7 +10,7 @@ from __future__ import annotations
 import os
 import sys
 from dataclasses import dataclass, field
-from typing import Iterable, Sequence
+from typing import Iterable, Sequence, TypeVar
 
 import sympy as sp
 
@@ -47,8 +47,20 @@ class Item:
 
     kind = "item"
 
+    def __post_init__(self):
+        # every name reaches C++ identifiers and dictionaries: it must be text
+        if not isinstance(self.name, str):
+            raise ModelError(f"the name is {self.name!r}, not text; give a name such as "
+                             f"\"{self.kind.split()[-1]}1\"", item=self.kind, line=self.line)
+
     def label(self) -> str:
         return f"{self.kind} '{self.name}'"
+
+    def _sympy_(self):
+        # sympify() of an item (sin(particle)) would fall back to parsing its repr
+        raise ModelError("is not a number or an expression; use a symbol that "
+                         "coordinate() or parameter() returns, or a point's .x or .xdot",
+                         item=self.label())  # the loader finds the line in the traceback
 
 
 @dataclass
@@ -301,25 +313,56 @@ def as_vector(values: Iterable, what: str, dim: int, line: int | None) -> sp.Mat
     if not is_sequence:
         raise ModelError(f"is {values!r}, not a vector; give a list of {dim} numbers or "
                          "expressions", item=what, line=line)
-    try:
-        vector = sp.Matrix([sp.sympify(value) for value in values])
-    except (TypeError, sp.SympifyError) as error:
-        raise ModelError(f"is not a vector of expressions ({error})", item=what, line=line)
-    if vector.shape[0] != dim:
+    entries = list(values)
+    if len(entries) != dim:
         raise ModelError(
-            f"has {vector.shape[0]} components but the model is {dim}-dimensional; give "
+            f"has {len(entries)} components but the model is {dim}-dimensional; give "
             f"exactly {dim}", item=what, line=line)
-    return vector
+    return sp.Matrix([as_scalar(value, f"{what}[{k}]", line) for k, value in enumerate(entries)])
 
 
 def as_scalar(value, what: str, line: int | None) -> sp.Expr:
+    """`value` as a finite SymPy expression, or a ModelError naming `what`: text, None,
+    booleans, containers, NaN and infinities are refused (the imaginary unit later, by the
+    checks of every expression)."""
+    if isinstance(value, (str, bytes)):
+        raise ModelError(f"is the text {value!r}, not an expression; use numbers and the "
+                         "symbols that coordinate(), parameter() and input() return",
+                         item=what, line=line)
+    if value is None or isinstance(value, bool):
+        raise ModelError(f"is {value!r}, not a number or an expression", item=what, line=line)
+    if isinstance(value, Item):
+        raise ModelError(f"is {value.label()}, not a number or an expression", item=what,
+                         line=line)
     try:
-        expr = sp.sympify(value)
-    except (TypeError, sp.SympifyError) as error:
-        raise ModelError(f"is not a scalar expression ({error})", item=what, line=line)
+        expr = sp.sympify(value, strict=True)
+    except (TypeError, ValueError, sp.SympifyError):
+        raise ModelError(f"is a {type(value).__name__}, not a number or an expression",
+                         item=what, line=line) from None
     if not isinstance(expr, sp.Expr):
-        raise ModelError("is not a scalar expression", item=what, line=line)
+        raise ModelError(f"is a {type(value).__name__}, not a scalar expression", item=what,
+                         line=line)
+    if expr.has(sp.AccumBounds):
+        raise ModelError(f"is {expr}: a function of an infinite number (such as cos(1e400)); "
+                         "give finite numbers", item=what, line=line)
+    if expr.has(sp.nan, sp.oo, -sp.oo, sp.zoo):
+        raise ModelError(f"is {expr} (not finite); give a finite number or expression",
+                         item=what, line=line)
     return expr
+
+
+PointKind = TypeVar("PointKind", bound="Point")
+
+
+def as_point(value, what: str, line: int | None, kind: type[PointKind]) -> PointKind:
+    """`value` if it is a `kind` of point (Point: a particle, a fixed point, a body's point;
+    Particle: one with mass), else a ModelError naming `what`."""
+    if not isinstance(value, kind):
+        given = value.label() if isinstance(value, Item) else f"{value!r}"
+        wanted = ("points (what particle(), fixed_point() or body.point() return)"
+                  if kind is Point else "a particle or a body's point")
+        raise ModelError(f"acts on {wanted}, not {given}", item=what, line=line)
+    return value
 
 
 def point_symbols(name: str, dim: int) -> tuple[sp.Matrix, sp.Matrix]:

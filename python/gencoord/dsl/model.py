@@ -30,8 +30,8 @@ from gencoord.dsl.speeds import GeneralizedSpeeds
 from gencoord.dsl.items import (Body, BodyTorque, Coordinate, Damper, FixedPoint, GeneralizedForce,
                                 Gravity, HolonomicConstraint, Input, Item, Parameter, Particle,
                                 ParticleForce, Pin, Plane, Point, Rod, Speed, Spring,
-                                VelocityConstraint, Wheel, as_scalar, as_vector, caller_line,
-                                point_symbols)
+                                VelocityConstraint, Wheel, as_point, as_scalar, as_vector,
+                                caller_line, point_symbols)
 
 
 class Model(GeneralizedSpeeds, KinematicConstraints, JointLimits):
@@ -82,6 +82,11 @@ class Model(GeneralizedSpeeds, KinematicConstraints, JointLimits):
         # an atlas: this model is the first chart; add_chart() appends the others
         self.chart = chart
         self.charts: list[Model] = []
+
+    def _sympy_(self):
+        # sympify() of the model (sin(model)) would fall back to parsing its repr
+        raise ModelError("the model is not a number or an expression; use a symbol that "
+                         "coordinate() or parameter() returns")  # the loader finds the line
 
     # --- options -------------------------------------------------------------------------
     def option(self, name: str, default, description: str, minimum=None, maximum=None):
@@ -265,6 +270,7 @@ class Model(GeneralizedSpeeds, KinematicConstraints, JointLimits):
                name: str | None = None) -> None:
         """A spring between two points in strain form (k is force per unit strain)."""
         line = caller_line()
+        a, b = (as_point(point, "spring", line, Point) for point in (a, b))
         name = name or f"{a.name}-{b.name}"
         label = f"spring '{name}'"
         self.springs.append(Spring(
@@ -275,6 +281,7 @@ class Model(GeneralizedSpeeds, KinematicConstraints, JointLimits):
     def damper(self, a: Point, b: Point, coefficient, name: str | None = None) -> None:
         """A linear damper between two points; against a fixed point it is plain drag."""
         line = caller_line()
+        a, b = (as_point(point, "damper", line, Point) for point in (a, b))
         name = name or f"{a.name}-{b.name}"
         self.dampers.append(Damper(name, a, b, as_scalar(
             coefficient, f"damper '{name}' coefficient", line), line=line))
@@ -287,6 +294,7 @@ class Model(GeneralizedSpeeds, KinematicConstraints, JointLimits):
         enters the energy.
         """
         line = caller_line()
+        particle = as_point(particle, "force", line, Particle)
         name = name or f"on {particle.name}"
         label = f"force '{name}'"
         self.particle_forces.append(ParticleForce(
@@ -326,6 +334,7 @@ class Model(GeneralizedSpeeds, KinematicConstraints, JointLimits):
     def rod(self, a: Point, b: Point, length, name: str | None = None) -> None:
         """A rigid rod: |x_b - x_a| = length must hold for every q and t."""
         line = caller_line()
+        a, b = (as_point(point, "rod", line, Point) for point in (a, b))
         name = name or f"{a.name}-{b.name}"
         self.constraints.append(Rod(name, a, b, as_scalar(length, f"rod '{name}' length",
                                                           line), line=line))
@@ -334,6 +343,7 @@ class Model(GeneralizedSpeeds, KinematicConstraints, JointLimits):
         """A pin: the particle (or body point) sits at `anchor`: a position vector of t, a
         fixed point, or another moving point (two bodies joined at a point)."""
         line = caller_line()
+        particle = as_point(particle, "pin", line, Point)
         name = name or f"{particle.name}"
         if isinstance(anchor, FixedPoint):
             anchor = anchor.position
@@ -345,6 +355,7 @@ class Model(GeneralizedSpeeds, KinematicConstraints, JointLimits):
               name: str | None = None) -> None:
         """A plane: normal . x = offset for the particle."""
         line = caller_line()
+        particle = as_point(particle, "plane", line, Particle)
         name = name or f"{particle.name}"
         self.constraints.append(Plane(
             name, particle, as_vector(normal, f"plane '{name}' normal", self.dim, line),

@@ -18,7 +18,11 @@ INTERRUPTED = 130  # the shell's status for a command ended by SIGINT
 
 
 def describe_failure(error: BaseException, model_path: str | None, prog: str) -> str:
-    """The one line that reports `error`."""
+    """The one line that reports `error`, whatever its message holds."""
+    return " ".join(_description(error, model_path, prog).split())
+
+
+def _description(error: BaseException, model_path: str | None, prog: str) -> str:
     if isinstance(error, ModelError):
         return str(error.located(model_path, None))
     if isinstance(error, KeyboardInterrupt):
