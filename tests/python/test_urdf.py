@@ -233,6 +233,19 @@ class UrdfRefusalTest(unittest.TestCase):
         self.refuse(robot(f'<link name="a"/>{HERE}', '<link name="b"/>', joint("j", "a", "b")),
                     "no link of the robot has a mass", "<inertial>")
 
+    def test_a_robot_without_a_moving_joint(self):
+        self.refuse(robot(link("a", mark=HERE), link("b"), joint("j", "a", "b", kind="fixed")),
+                    "no joint of the robot moves (it has 1 joints")
+
+    def test_entity_expansion_and_external_entities(self):
+        levels = "".join(f'<!ENTITY e{k} "{f"&e{k - 1};" * 10}">' for k in range(1, 9))
+        head = '<?xml version="1.0"?>\n<!DOCTYPE robot [<!ENTITY e0 "aaaaaaaaaa">'
+        self.refuse(head + levels + f']>\n<robot name="r">{HERE}<link name="&e8;"/></robot>\n',
+                    "malformed XML", "amplification")  # 10^9 characters, refused by expat
+        head = '<?xml version="1.0"?>\n<!DOCTYPE robot [<!ENTITY x SYSTEM "file:///etc/passwd">'
+        self.refuse(head + f']>\n<robot name="r">{HERE}<link name="&x;"/></robot>\n',
+                    "malformed XML", "external entity")
+
     def test_a_long_comment_is_read_in_one_piece(self):
         """A valid URDF behind a 5 MB comment loads (fed to expat in blocks, the comment was
         rescanned at every block: minutes for a few megabytes)."""

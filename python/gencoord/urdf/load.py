@@ -163,4 +163,8 @@ def urdf_model(path: str) -> Model:
     model = Model(dim=3, description=_description(robot))
     add_robot(model, robot, stamp=True)
     model.line = robot.links[robot.root].line
+    if not model.coordinates:  # validate's advice (model.coordinate) is for model files
+        raise ModelError(f"no joint of the robot moves (it has {len(robot.joints)} joints, "
+                         "none of them revolute, continuous, prismatic or floating); there is "
+                         "nothing to simulate", filename=path, line=model.line)
     return model
