@@ -8,7 +8,7 @@ import random
 import subprocess
 import unittest
 
-from gencoord.cxx.shell_words import shell_word
+from gencoord.cxx.escapes import shell_word
 
 ALPHABET = "ab /'\"\\$`!*?~\n\t\r\x01\x7f é"
 

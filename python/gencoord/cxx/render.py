@@ -22,7 +22,7 @@ from gencoord.cxx.template_views import kernel_view
 from gencoord.cxx.line_wrap import LINE_WIDTH, wrap_long_lines, wrap_prose
 from gencoord.naming import type_name
 from gencoord.cxx.reserved_names import TEMPLATE_DIR
-from gencoord.cxx.shell_words import shell_word
+from gencoord.cxx.escapes import backslash_escaped, shell_word
 from gencoord.cxx.storage import model_types, needs_heap_matrix
 
 MODEL_TEMPLATE = "model.hpp.j2"
@@ -106,25 +106,13 @@ def _environment() -> jinja2.Environment:
     return environment
 
 
-def _escaped(text: str) -> str:
-    escaped = []
-    for char in text:
-        if char in '"\\':
-            escaped.append("\\" + char)
-        elif ord(char) < 0x20 or ord(char) == 0x7F:
-            escaped.append(f"\\{ord(char):03o}")
-        else:
-            escaped.append(char)
-    return "".join(escaped)
-
-
 def cxx_string_literal(text: str, indent: int) -> str:
     """`text` as a C++ string literal (quotes, backslashes and control characters escaped)
     on a line indented by `indent` columns, with room for a comma after it; a longer text
     becomes adjacent literals ("..." "..."), one per line, cut after spaces."""
     room = LINE_WIDTH - indent - 3  # the quotes and a comma
     pieces, current = [], ""
-    for word in _escaped(text).split(" "):
+    for word in backslash_escaped(text, '"\\').split(" "):
         candidate = word if not current else current + " " + word
         if current and len(candidate) > room:
             pieces.append(current + " ")

@@ -14,7 +14,7 @@ import tempfile
 import time
 from typing import Any
 
-from gencoord.cxx.shell_words import shell_word
+from gencoord.cxx.escapes import shell_word
 from gencoord.errors import ModelError
 from gencoord.generate.failures import report_failure
 from gencoord.generate.stages import generate

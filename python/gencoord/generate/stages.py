@@ -21,7 +21,7 @@ from gencoord.derive.dense import Derivation, Kinematics, derive
 from gencoord.generate.dynamics_paths import PathChoice, choose_paths
 from gencoord.errors import ModelError
 from gencoord.cxx.render import instantiation_file_name, render_instantiation, render_model
-from gencoord.cxx.shell_words import shell_word
+from gencoord.cxx.escapes import shell_word
 from gencoord.derive.kernel_set import build_kernels, build_maximal_kernels
 from gencoord.generate.limits import size_warning
 from gencoord.generate.load import load_model
