@@ -118,6 +118,12 @@ void MassSpringIntegration<Dim>::linearize(const State& y, JacobianSource,
                              [&](int a, int b, const Eigen::Matrix<double, Dim, Dim>& block) {
                                add_block<Dim>(k_x, dof_, a, b, block);
                              });
+  for_each_continuum_block(s_, y.q,
+                           [&](int a, int b, const Eigen::Matrix<double, Dim, Dim>& stiffness,
+                               const Eigen::Matrix<double, Dim, Dim>& damping) {
+                             add_block<Dim>(k_x, dof_, a, b, stiffness);
+                             add_block<Dim>(k_v, dof_, a, b, damping);
+                           });
   add_bending_jacobian(s_, y.q, dof_, &k_x);  // hinges: Gauss-Newton blocks (bending.hpp)
   // ground contact: a penalty spring and damper along the up axis while it pushes
   if (s_.ground) {

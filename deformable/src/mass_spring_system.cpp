@@ -36,6 +36,7 @@ void accumulate_forces(const MassSpringSystem<Dim>& s,
     f.col(sp.j) -= sf.f_i;
   }
   accumulate_volume_term_forces(s, x, f);
+  accumulate_continuum_forces(s, x, v, f);
   accumulate_bending_forces(s, x, f);  // hinges (3D sheets)
   // gravity
   for (int n = 0; n < s.num_nodes(); ++n) f.col(n) += s.mass(n) * s.gravity;
@@ -74,6 +75,7 @@ double potential_energy(const MassSpringSystem<Dim>& s) {
     e += spring_energy(length, sp.params);
   }
   e += volume_terms_energy(s);
+  e += continuum_energy(s);
   e += bending_energy(s, s.x);  // hinges (3D sheets)
   for (int n = 0; n < s.num_nodes(); ++n) {
     if (s.pinned[n]) continue;

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <tuple>
 
+#include "gencoord/deformable/continuum_elements.hpp"
 #include "gencoord/deformable/lattice_elasticity.hpp"
 #include "gencoord/deformable/validate.hpp"
 #include "gencoord/deformable/volume_terms.hpp"
@@ -18,8 +19,11 @@ template <int Dim>
 MassSpringSystem<Dim> make_mass_spring(const SimplexMesh<Dim>& mesh, const Material& material) {
   validate_mesh(mesh);
   validate_material(material);
+  const bool continuum = material.elasticity == Elasticity::kCorotated;
   // the springs carry mu (all of it) and as much lambda; the terms add lambda - mu
-  const LameSplit split = lame_split<Dim>(material);
+  const LameSplit split = continuum ? LameSplit{} : lame_split<Dim>(material);
+  const std::array<double, 2> lame =
+      continuum ? continuum_lame<Dim>(material) : std::array<double, 2>{};
   constexpr int kNodesPerElement = Dim + 1;
   constexpr int kEdgesPerElement = (Dim + 1) * Dim / 2;
   const int count = static_cast<int>(mesh.nodes.cols());
@@ -64,6 +68,15 @@ MassSpringSystem<Dim> make_mass_spring(const SimplexMesh<Dim>& mesh, const Mater
     sp.params.stiffness = c * c * m / sp.params.rest_length;
     sp.params.damping = material.damping * m / (rho * sp.params.rest_length);
     s.springs.push_back(sp);
+  }
+  if (continuum) {
+    // the edges stay as springs without stiffness: rest lengths for the CFL limit, fracture
+    // and contact; the elements carry the material
+    for (Spring& sp : s.springs) sp.params.stiffness = sp.params.damping = 0.0;
+    add_continuum_elements(s, mesh.elements, mesh.nodes, lame[0], lame[1],
+                           material.damping / material.youngs_modulus);
+    s.wave_speed = 0.5 * min_rest_length(s) * continuum_highest_frequency(s);
+    return s;
   }
   // the network's own modulus is rho c^2 / 3 (2D) or / 6 (3D); lattice_elasticity.hpp
   double measure = 0.0;

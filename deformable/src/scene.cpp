@@ -39,6 +39,11 @@ int append_object(MassSpringSystem<Dim>& scene, const MassSpringSystem<Dim>& obj
     for (int& k : term.springs) k += first_spring;
     scene.volume_terms.push_back(term);
   }
+  for (ContinuumElement<Dim> element : object.elements) {
+    for (int& n : element.nodes) n += offset;
+    for (int& k : element.springs) k += first_spring;
+    scene.elements.push_back(element);
+  }
   scene.wave_speed = empty ? object.wave_speed : std::max(scene.wave_speed, object.wave_speed);
   if (object.collisions) {
     Collisions<Dim> added = *object.collisions;

@@ -159,6 +159,16 @@ void StepMatrix<Dim>::assemble(const MassSpringSystem<Dim>& s, const Points& q, 
     }
     k_v->template segment<Dim>(dof_[a]) += k_ab * v.col(b);
   });
+  // continuum elements: as the volume terms, with their damping blocks
+  for_each_continuum_block(s, q, [&](int a, int b, const Block& k_ab, const Block& d_ab) {
+    if (dof_[a] < 0 || dof_[b] < 0) return;
+    const Block c = dt * d_ab + (dt * dt) * k_ab;
+    for (int col = 0; col < Dim; ++col) {
+      const int at = slot(a, b, col);
+      for (int r = 0; r < Dim; ++r) values[at + r] -= c(r, col);
+    }
+    k_v->template segment<Dim>(dof_[a]) += k_ab * v.col(b);
+  });
   // hinges: K_ab = -2 kb g_a g_b^T (bending.hpp), so A gets dt^2 2 kb g_a g_b^T
   if constexpr (Dim == 3) {
     for (std::size_t k = 0; k < s.hinges.size(); ++k) {

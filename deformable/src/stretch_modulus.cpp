@@ -20,9 +20,9 @@ constexpr double kEndFraction = 0.05;
 }  // namespace
 
 template <int Dim>
-double stretch_modulus(const MassSpringSystem<Dim>& s,
-                       const Eigen::Matrix<double, Dim, Eigen::Dynamic>& rest, double measure,
-                       int axis) {
+StretchResponse stretch_response(const MassSpringSystem<Dim>& s,
+                                 const Eigen::Matrix<double, Dim, Eigen::Dynamic>& rest,
+                                 double measure, int axis) {
   using Block = Eigen::Matrix<double, Dim, Dim>;
   const int count = static_cast<int>(rest.cols());
   const double low = rest.row(axis).minCoeff(), high = rest.row(axis).maxCoeff();
@@ -63,6 +63,9 @@ double stretch_modulus(const MassSpringSystem<Dim>& s,
     for_each_volume_term_block(s, rest, /*definite=*/true, [&](int a, int b, const Block& d_force) {
       visit(a, b, Block(-d_force));
     });
+    for_each_continuum_block(s, rest, [&](int a, int b, const Block& d_force, const Block&) {
+      visit(a, b, Block(-d_force));
+    });
   };
   // K_ff u_f = -K_fp u_p
   std::vector<Eigen::Triplet<double>> triplets;
@@ -101,7 +104,34 @@ double stretch_modulus(const MassSpringSystem<Dim>& s,
   if (!(force > 0.0))
     throw ObjectError("stretch_modulus: no spring carries a stretch from one end to the other", -1,
                       -1);
-  return force / (measure / length) / eps;
+  StretchResponse out;
+  out.youngs_modulus = force / (measure / length) / eps;
+  // each lateral displacement's least-squares slope in its own coordinate over the middle
+  // half of the length, where the ends' constraint has decayed
+  double slopes = 0.0;
+  for (int d = 0; d < Dim; ++d) {
+    if (d == axis) continue;
+    double n = 0.0, sp = 0.0, su = 0.0, spp = 0.0, spu = 0.0;
+    for (int k = 0; k < count; ++k) {
+      if (std::abs(rest(axis, k) - 0.5 * (low + high)) > 0.25 * length) continue;
+      const double p = rest(d, k), disp = u(Dim * k + d);
+      n += 1.0;
+      sp += p;
+      su += disp;
+      spp += p * p;
+      spu += p * disp;
+    }
+    slopes += (n * spu - sp * su) / (n * spp - sp * sp);
+  }
+  out.poisson_ratio = -slopes / (Dim - 1) / eps;
+  return out;
+}
+
+template <int Dim>
+double stretch_modulus(const MassSpringSystem<Dim>& s,
+                       const Eigen::Matrix<double, Dim, Eigen::Dynamic>& rest, double measure,
+                       int axis) {
+  return stretch_response(s, rest, measure, axis).youngs_modulus;
 }
 
 template <int Dim>
@@ -118,10 +148,18 @@ double calibrate_to_stretch(MassSpringSystem<Dim>& s, const SimplexMesh<Dim>& me
     sp.params.damping *= factor;
   }
   for (VolumeTerm<Dim>& term : s.volume_terms) term.stiffness *= factor;
+  for (ContinuumElement<Dim>& element : s.elements) {
+    element.mu *= factor;
+    element.lambda *= factor;
+  }
   s.wave_speed *= std::sqrt(factor);
   return factor;
 }
 
+template StretchResponse stretch_response<2>(const MassSpringSystem<2>&, const Eigen::Matrix2Xd&,
+                                             double, int);
+template StretchResponse stretch_response<3>(const MassSpringSystem<3>&, const Eigen::Matrix3Xd&,
+                                             double, int);
 template double stretch_modulus<2>(const MassSpringSystem<2>&, const Eigen::Matrix2Xd&, double,
                                    int);
 template double stretch_modulus<3>(const MassSpringSystem<3>&, const Eigen::Matrix3Xd&, double,

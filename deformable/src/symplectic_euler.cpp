@@ -22,6 +22,12 @@ double damping_ratio_at_cfl(const MassSpringSystem<Dim>& s) {
       d_over_k = std::max(d_over_k, sp.params.damping / sp.params.stiffness);
     }
   }
+  // continuum elements: stiffness-proportional damping with the same ratio beta = D / E
+  if constexpr (Dim >= 2) {
+    for (const ContinuumElement<Dim>& element : s.elements) {
+      if (continuum_element_active(s, element)) d_over_k = std::max(d_over_k, element.damping_time);
+    }
+  }
   return d_over_k * s.wave_speed / min_rest_length(s);
 }
 

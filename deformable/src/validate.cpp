@@ -22,40 +22,71 @@ using detail::message;
 
 bool finite_non_negative(double x) { return std::isfinite(x) && x >= 0.0; }
 
-// each term's nodes distinct and in range, its edges springs joining them, V0 > 0, kappa >= 0
-template <int Dim>
-void validate_volume_terms(const MassSpringSystem<Dim>& s) {
+// an element's nodes distinct and in range, its edges the springs joining them; `what` names
+// it ("volume term 3")
+template <int Dim, class Element>
+void validate_element_nodes(const MassSpringSystem<Dim>& s, const Element& element,
+                            const std::string& what) {
   const int count = s.num_nodes();
   const int springs = static_cast<int>(s.springs.size());
+  for (int node : element.nodes) {
+    if (node < 0 || node >= count)
+      throw ObjectError(message("mass-spring object: ", what, " refers to node ", node,
+                                ", out of range [0, ", count, ")"),
+                        -1, -1);
+  }
+  int edge = 0;
+  for (int a = 0; a <= Dim; ++a) {
+    for (int b = a + 1; b <= Dim; ++b, ++edge) {
+      const int k = element.springs[edge];
+      const int i = element.nodes[a], j = element.nodes[b];
+      const bool joins = k >= 0 && k < springs &&
+                         ((s.springs[k].i == i && s.springs[k].j == j) ||
+                          (s.springs[k].i == j && s.springs[k].j == i));
+      if (i == j || !joins)
+        throw ObjectError(
+            message("mass-spring object: ", what, "'s edge (", i, ", ", j, ") names spring ", k,
+                    ", which does not join those two distinct nodes"),
+            i, k >= 0 && k < springs ? k : -1);
+    }
+  }
+}
+
+// each term's nodes and edges, V0 > 0, kappa >= 0
+template <int Dim>
+void validate_volume_terms(const MassSpringSystem<Dim>& s) {
   for (int t = 0; t < static_cast<int>(s.volume_terms.size()); ++t) {
     const VolumeTerm<Dim>& term = s.volume_terms[t];
-    for (int node : term.nodes) {
-      if (node < 0 || node >= count)
-        throw ObjectError(message("mass-spring object: volume term ", t, " refers to node ", node,
-                                  ", out of range [0, ", count, ")"),
-                          -1, -1);
-    }
-    int edge = 0;
-    for (int a = 0; a <= Dim; ++a) {
-      for (int b = a + 1; b <= Dim; ++b, ++edge) {
-        const int k = term.springs[edge];
-        const int i = term.nodes[a], j = term.nodes[b];
-        const bool joins = k >= 0 && k < springs &&
-                           ((s.springs[k].i == i && s.springs[k].j == j) ||
-                            (s.springs[k].i == j && s.springs[k].j == i));
-        if (i == j || !joins)
-          throw ObjectError(
-              message("mass-spring object: volume term ", t, "'s edge (", i, ", ", j,
-                      ") names spring ", k, ", which does not join those two distinct nodes"),
-              i, k >= 0 && k < springs ? k : -1);
-      }
-    }
+    validate_element_nodes(s, term, message("volume term ", t));
     if (!(std::isfinite(term.rest_measure) && term.rest_measure > 0.0) ||
         !finite_non_negative(term.stiffness))
       throw ObjectError(message("mass-spring object: volume term ", t, " has rest measure ",
                                 term.rest_measure, " and stiffness ", term.stiffness,
                                 "; need a positive, finite measure and a finite stiffness >= 0"),
                         term.nodes[0], -1);
+  }
+}
+
+// each element's nodes and edges, V0 > 0, finite Dm^-1, mu, lambda, beta >= 0
+template <int Dim>
+void validate_continuum_elements(const MassSpringSystem<Dim>& s) {
+  if (Dim == 1 && !s.elements.empty())
+    throw ObjectError(message("mass-spring object: ", s.elements.size(),
+                              " continuum elements in 1D; they exist in 2D and 3D"),
+                      -1, -1);
+  for (int t = 0; t < static_cast<int>(s.elements.size()); ++t) {
+    const ContinuumElement<Dim>& element = s.elements[t];
+    validate_element_nodes(s, element, message("continuum element ", t));
+    if (!(std::isfinite(element.rest_measure) && element.rest_measure > 0.0) ||
+        !element.rest_inverse.allFinite() || !finite_non_negative(element.mu) ||
+        !finite_non_negative(element.lambda) || !finite_non_negative(element.damping_time))
+      throw ObjectError(
+          message("mass-spring object: continuum element ", t, " has rest measure ",
+                  element.rest_measure, ", mu ", element.mu, ", lambda ", element.lambda,
+                  " and damping time ", element.damping_time,
+                  "; need a positive, finite measure, a finite rest shape and finite constants "
+                  ">= 0"),
+          element.nodes[0], -1);
   }
 }
 constexpr double kPi = 3.14159265358979323846;
@@ -272,6 +303,7 @@ void validate_object(const MassSpringSystem<Dim>& s) {
                         -1, k);
   }
   validate_volume_terms(s);
+  validate_continuum_elements(s);
   if (Dim != 3 && !s.hinges.empty())
     throw ObjectError(message("mass-spring object: ", s.hinges.size(), " hinges in ", Dim,
                               "D; bending hinges exist only in 3D"),

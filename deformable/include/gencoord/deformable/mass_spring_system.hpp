@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "gencoord/deformable/collision.hpp"
+#include "gencoord/deformable/continuum_elements.hpp"
 #include "gencoord/deformable/springs.hpp"
 #include "gencoord/deformable/volume_terms.hpp"
 
@@ -79,6 +80,8 @@ struct MassSpringSystem {
   std::vector<Spring> springs;
   /// area (2D) or volume (3D) terms of the elements (volume_terms.hpp); none in 1D
   std::vector<VolumeTerm<Dim>> volume_terms;
+  /// continuum elements (continuum_elements.hpp); none in 1D
+  std::vector<ContinuumElement<Dim>> elements;
   std::vector<Hinge> hinges;  ///< bending hinges; only in 3D (sheet.hpp)
   Vec gravity = Vec::Zero();  ///< acceleration (m/s^2)
   std::optional<GroundPlane> ground;
@@ -87,7 +90,8 @@ struct MassSpringSystem {
   std::vector<FractureEvent> fractures;  ///< appended to by the time steppers
   /// the fastest spring's sqrt(k L / m) (m/s; c for a rod), for the CFL limit; raised for the
   /// volume terms (add_volume_terms()) and, for a sheet with hinges, so that it also covers
-  /// their frequency (bending.hpp)
+  /// their frequency (bending.hpp); for continuum elements omega_max L_min / 2
+  /// (make_mass_spring())
   double wave_speed = 1.0;
   double t = 0.0;  ///< time (s)
   long steps = 0;  ///< steps taken
@@ -96,8 +100,8 @@ struct MassSpringSystem {
   int num_unbroken_springs() const;
 };
 
-/// Adds the total force (springs, dampers, volume terms, hinges, gravity, ground, contact) on
-/// every node to f (N), Dim x n.
+/// Adds the total force (springs, dampers, volume terms, continuum elements, hinges, gravity,
+/// ground, contact) on every node to f (N), Dim x n.
 template <int Dim>
 void accumulate_forces(const MassSpringSystem<Dim>& s,
                        Eigen::Matrix<double, Dim, Eigen::Dynamic>& f);
@@ -113,8 +117,8 @@ void accumulate_forces(const MassSpringSystem<Dim>& s,
 template <int Dim>
 double kinetic_energy(const MassSpringSystem<Dim>& s);
 
-/// Elastic (springs, volume terms, hinges, ground and contact penalties) plus gravitational
-/// potential energy (J).
+/// Elastic (springs, volume terms, continuum elements, hinges, ground and contact penalties) plus
+/// gravitational potential energy (J).
 template <int Dim>
 double potential_energy(const MassSpringSystem<Dim>& s);
 

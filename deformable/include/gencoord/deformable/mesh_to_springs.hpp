@@ -12,6 +12,12 @@
 /// The springs are then calibrated to the material's E (lattice_elasticity.hpp); with a
 /// Poisson's ratio (Material::poisson_ratio) to the network that has its shear modulus, and
 /// every element gets an area or volume term for the rest of lambda (volume_terms.hpp).
+///
+/// With Material::elasticity = Elasticity::kCorotated the elements carry the material instead
+/// (continuum_elements.hpp): every element becomes a co-rotated linear triangle or tetrahedron
+/// with the material's E, nu and damping, the springs along the edges keep their rest lengths
+/// but have no stiffness or damping, and the wave speed is set from the elements' highest
+/// frequency (continuum_highest_frequency()) so that cfl_limit() is 2 / omega_max.
 
 #include "gencoord/deformable/mass_spring_system.hpp"
 #include "gencoord/deformable/material.hpp"
@@ -20,7 +26,8 @@
 namespace gencoord::deformable {
 
 /// Builds the object at rest in the mesh's rest shape. Nothing pinned, no gravity, no ground.
-/// \throws MeshError, MaterialError (validate.hpp; lame_split() for the Poisson's ratio).
+/// \throws MeshError, MaterialError (validate.hpp; lame_split() for the Poisson's ratio of the
+///         springs, continuum_lame() for the elements').
 template <int Dim>
 MassSpringSystem<Dim> make_mass_spring(const SimplexMesh<Dim>& mesh, const Material& material);
 

@@ -14,7 +14,8 @@
 
 namespace gencoord::deformable {
 
-/// Young's modulus of `s` (its unbroken springs and active volume terms) as a bar along
+/// Young's modulus of `s` (its unbroken springs, active volume terms and continuum elements) as
+/// a bar along
 /// `axis`: the nodes within 5%
 /// of the length from either end (rest coordinates `rest` along the axis) are moved along it
 /// by a small uniform strain eps, everything else relaxes to equilibrium (the springs
@@ -27,6 +28,22 @@ template <int Dim>
 double stretch_modulus(const MassSpringSystem<Dim>& s,
                        const Eigen::Matrix<double, Dim, Eigen::Dynamic>& rest, double measure,
                        int axis);
+
+/// What a relaxed static stretch shows (stretch_response()).
+struct StretchResponse {
+  double youngs_modulus = 0.0;  ///< as stretch_modulus()
+  /// minus the lateral strain over the axial strain, from the least-squares slope of each
+  /// lateral displacement across the body over the middle half of its length (averaged over
+  /// the lateral axes in 3D)
+  double poisson_ratio = 0.0;
+};
+
+/// The Young's modulus and Poisson's ratio of `s` in the stretch of stretch_modulus().
+/// \throws ObjectError as stretch_modulus().
+template <int Dim>
+StretchResponse stretch_response(const MassSpringSystem<Dim>& s,
+                                 const Eigen::Matrix<double, Dim, Eigen::Dynamic>& rest,
+                                 double measure, int axis);
 
 /// Scales the stiffness and damping of every spring of `s`, made from `mesh`
 /// (make_mass_spring()), and the stiffness of its volume terms, by one factor so that its

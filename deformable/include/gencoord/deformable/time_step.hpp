@@ -20,7 +20,9 @@ double damping_ratio_at_cfl(const MassSpringSystem<Dim>& s);
 /// CFL limit of the explicit step (s): dt <= L_min / c, so that no step moves information
 /// further than one (shortest) spring (c = s.wave_speed, raised for volume terms by
 /// add_volume_terms() and for a sheet's bending hinges, bending.hpp, so that the limit holds
-/// for them too); for a uniform rod it is exactly the stability limit of symplectic Euler.
+/// for them too); for a uniform rod it is exactly the stability limit of symplectic Euler, and
+/// for continuum elements 2 / omega_max from an estimate of their highest frequency, within
+/// 5% of the true limit (continuum_highest_frequency()).
 /// With damping it is multiplied by sqrt(1 + zeta^2) - zeta (<= 1), the stability bound for a
 /// damped mode. Infinity when no spring is left.
 template <int Dim>

@@ -40,7 +40,9 @@ void validate_surface(const TriangleSurface& surface);
 /// range with a finite rest length > 0 (sign-free in 1D) and finite stiffness and damping
 /// >= 0; every volume term's nodes are distinct and in range, each of its edges names the
 /// spring joining its two nodes, its rest measure is positive and its stiffness >= 0 (both
-/// finite); every hinge (3D only) has four distinct nodes in range, a spring index in
+/// finite); every continuum element (2D and 3D only) has the same node and edge checks, a
+/// positive, finite rest measure, a finite rest shape and finite mu, lambda and damping time
+/// >= 0; every hinge (3D only) has four distinct nodes in range, a spring index in
 /// [-1, springs), a finite stiffness >= 0 and a rest angle in [-pi, pi]; gravity, the ground
 /// and the wave speed (> 0) are finite; the contact settings, obstacles and surface are
 /// usable; the inelastic settings are not NaN and the plastic fraction is in [0, 1].

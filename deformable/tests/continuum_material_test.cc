@@ -1,0 +1,337 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Objects of continuum elements (Elasticity::kCorotated): the material's E and nu in a
+// relaxed stretch on structured, jittered, TetGen and Gmsh meshes (beside what the springs
+// reach on the same meshes), the highest-frequency estimate against a dense eigensolve and
+// the explicit step it allows, energy in explicit and implicit steps, and inverted elements
+// that recover.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <Eigen/Eigenvalues>
+#include <Eigen/SparseCholesky>
+#include <cmath>
+#include <cstdio>
+#include <random>
+#include <string>
+
+#include "gencoord/deformable/errors.hpp"
+#include "gencoord/deformable/implicit_stepper.hpp"
+#include "gencoord/deformable/mesh_io.hpp"
+#include "gencoord/deformable/mesh_to_springs.hpp"
+#include "gencoord/deformable/stretch_modulus.hpp"
+#include "gencoord/deformable/tetrahedralize.hpp"
+#include "gencoord/deformable/time_step.hpp"
+
+namespace gencoord::deformable {
+namespace {
+
+const std::string kMeshes = GENCOORD_DEFORMABLE_MESHES;
+
+Material corotated(double youngs, double nu, double damping = 0.0) {
+  Material m{youngs, 1000.0, damping};
+  m.poisson_ratio = nu;
+  m.elasticity = Elasticity::kCorotated;
+  return m;
+}
+
+// every node moved by up to `fraction` of `h` along each axis (seeded), but not off the
+// bounding box's faces it lies on: an irregular mesh of the same prism
+template <int Dim>
+SimplexMesh<Dim> jittered(SimplexMesh<Dim> mesh, double h, double fraction, unsigned seed) {
+  std::mt19937 random(seed);
+  std::uniform_real_distribution<double> offset(-fraction * h, fraction * h);
+  const Eigen::Matrix<double, Dim, 1> low = mesh.nodes.rowwise().minCoeff();
+  const Eigen::Matrix<double, Dim, 1> high = mesh.nodes.rowwise().maxCoeff();
+  for (int n = 0; n < mesh.nodes.cols(); ++n) {
+    for (int axis = 0; axis < Dim; ++axis) {
+      const double move = offset(random), p = mesh.nodes(axis, n);
+      if (p > low(axis) + 1e-12 && p < high(axis) - 1e-12) mesh.nodes(axis, n) += move;
+    }
+  }
+  return mesh;
+}
+
+template <int Dim>
+double total_measure(const SimplexMesh<Dim>& mesh) {
+  double sum = 0.0;
+  for (int e = 0; e < static_cast<int>(mesh.elements.size()); ++e) sum += element_measure(mesh, e);
+  return sum;
+}
+
+// the 12 triangles of the box [0, lx] x [0, ly] x [0, lz], outward
+TriangleSurface box_surface(double lx, double ly, double lz) {
+  TriangleSurface s;
+  s.nodes.resize(3, 8);
+  for (int k = 0; k < 8; ++k)
+    s.nodes.col(k) << (k & 1 ? lx : 0.0), (k & 2 ? ly : 0.0), (k & 4 ? lz : 0.0);
+  s.triangles = {{0, 2, 1}, {1, 2, 3}, {4, 5, 6}, {5, 7, 6}, {0, 1, 4}, {1, 5, 4},
+                 {2, 6, 3}, {3, 6, 7}, {0, 4, 2}, {2, 4, 6}, {1, 3, 5}, {3, 7, 5}};
+  return s;
+}
+
+struct NamedMesh3 {
+  std::string name;
+  SimplexMesh<3> mesh;
+};
+struct NamedMesh2 {
+  std::string name;
+  SimplexMesh<2> mesh;
+};
+
+std::vector<NamedMesh3> bars() {
+  return {{"structured 60x2x2", box_mesh(3.0, 0.1, 0.1, 60, 2, 2)},
+          {"jittered 60x2x2", jittered(box_mesh(3.0, 0.1, 0.1, 60, 2, 2), 0.05, 0.2, 5)},
+          {"TetGen", tetrahedralize(box_surface(3.0, 0.1, 0.1), "bar", TetgenOptions{1.414, 5e-6})},
+          {"Gmsh h = 0.05", read_gmsh<3>(kMeshes + "/bar_h050.msh")},
+          {"Gmsh h = 0.033", read_gmsh<3>(kMeshes + "/bar_h033.msh")}};
+}
+
+std::vector<NamedMesh2> strips() {
+  return {{"structured 120x4", rectangle_mesh(3.0, 0.1, 120, 4)},
+          {"jittered 120x4", jittered(rectangle_mesh(3.0, 0.1, 120, 4), 0.025, 0.2, 5)},
+          {"Gmsh h = 0.025", read_gmsh<2>(kMeshes + "/strip_h025.msh")},
+          {"Gmsh h = 0.0125", read_gmsh<2>(kMeshes + "/strip_h0125.msh")}};
+}
+
+// E and nu of the relaxed stretch along x, continuum elements within 2% and 0.01 of the
+// material on every mesh (linear elements represent uniaxial stress exactly); the springs'
+// figures on the same meshes are printed for the docs
+template <int Dim, class Named>
+void ExpectTheMaterialsStretch(const std::vector<Named>& meshes) {
+  const double youngs = 1.0e5;
+  for (const Named& named : meshes) {
+    for (const double nu : {0.3, 0.45, 0.49}) {
+      const MassSpringSystem<Dim> s = make_mass_spring(named.mesh, corotated(youngs, nu));
+      const StretchResponse got =
+          stretch_response(s, named.mesh.nodes, total_measure(named.mesh), 0);
+      EXPECT_NEAR(got.youngs_modulus / youngs, 1.0, 0.02) << named.name << ", nu " << nu;
+      EXPECT_NEAR(got.poisson_ratio, nu, 0.01) << named.name << ", nu " << nu;
+      // the springs with area terms reach a 2D nu of 1/3 and up only
+      Material springy = corotated(youngs, Dim == 2 ? std::max(nu, 1.0 / 3.0) : nu);
+      springy.elasticity = Elasticity::kSprings;
+      const MassSpringSystem<Dim> springs = make_mass_spring(named.mesh, springy);
+      const StretchResponse by_springs =
+          stretch_response(springs, named.mesh.nodes, total_measure(named.mesh), 0);
+      std::printf(
+          "[ %dD stretch ] %-18s nu %.2f: co-rotated E/E0 %.4f nu %.4f; springs (nu %.2f) E/E0 "
+          "%.4f nu %.4f\n",
+          Dim, named.name.c_str(), nu, got.youngs_modulus / youngs, got.poisson_ratio,
+          springy.poisson_ratio, by_springs.youngs_modulus / youngs, by_springs.poisson_ratio);
+    }
+  }
+}
+
+TEST(ContinuumMaterial, StripShowsTheMaterialOnEveryMesh) {
+  ExpectTheMaterialsStretch<2>(strips());
+}
+
+TEST(ContinuumMaterial, BarShowsTheMaterialOnEveryMesh) { ExpectTheMaterialsStretch<3>(bars()); }
+
+TEST(ContinuumMaterial, ElementsReplaceTheSpringsStiffness) {
+  const SimplexMesh<3> mesh = box_mesh(0.3, 0.1, 0.1, 3, 1, 1);
+  const MassSpringSystem<3> s = make_mass_spring(mesh, corotated(1e5, 0.3, 10.0));
+  EXPECT_EQ(s.elements.size(), mesh.elements.size());
+  EXPECT_TRUE(s.volume_terms.empty());
+  for (const Spring& sp : s.springs) {
+    EXPECT_EQ(sp.params.stiffness, 0.0);
+    EXPECT_EQ(sp.params.damping, 0.0);
+  }
+  EXPECT_NEAR(s.elements[0].damping_time, 1e-4, 1e-18);  // D / E
+  EXPECT_NEAR(s.mass.sum(), 1000.0 * 0.3 * 0.1 * 0.1, 1e-12);
+  EXPECT_THROW(make_mass_spring(mesh, corotated(1e5, 0.5)), MaterialError);
+  EXPECT_THROW(make_mass_spring(mesh, corotated(1e5, -0.1)), MaterialError);
+  // a broken element is refused before it is stepped, naming it
+  MassSpringSystem<3> bad = s;
+  bad.elements[4].mu = std::nan("");
+  EXPECT_THAT([&] { symplectic_euler_step(bad, 1e-6); },
+              ::testing::ThrowsMessage<ObjectError>(::testing::HasSubstr("continuum element 4")));
+  bad = s;
+  bad.elements[2].springs[1] = bad.elements[2].springs[0];
+  EXPECT_THAT(
+      [&] { symplectic_euler_step(bad, 1e-6); },
+      ::testing::ThrowsMessage<ObjectError>(::testing::HasSubstr("continuum element 2's edge")));
+}
+
+// omega_max of M^-1 K by dense eigensolve, every node free
+template <int Dim>
+double dense_highest_frequency(const MassSpringSystem<Dim>& s) {
+  const int n = Dim * s.num_nodes();
+  Eigen::MatrixXd k = Eigen::MatrixXd::Zero(n, n);
+  for_each_continuum_block(s, s.x, [&](int a, int b, const auto& block, const auto&) {
+    k.block<Dim, Dim>(Dim * a, Dim * b) -= block / std::sqrt(s.mass(a) * s.mass(b));
+  });
+  return std::sqrt(Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(k).eigenvalues().maxCoeff());
+}
+
+// The estimate is above the true highest frequency and within 10% of it, so the CFL limit is
+// stable and within 10% of the true limit 2 / omega_max
+template <int Dim>
+void ExpectTightFrequencyEstimate(const SimplexMesh<Dim>& mesh, const char* name) {
+  const MassSpringSystem<Dim> s = make_mass_spring(mesh, corotated(1e5, 0.3));
+  const double estimate = continuum_highest_frequency(s), exact = dense_highest_frequency(s);
+  std::printf("[ %dD frequency ] %s: estimate / exact %.4f; CFL limit %.3e s, true %.3e s\n", Dim,
+              name, estimate / exact, cfl_limit(s), 2.0 / exact);
+  EXPECT_GE(estimate, exact);
+  EXPECT_LT(estimate, 1.1 * exact);
+  EXPECT_NEAR(cfl_limit(s), 2.0 / estimate, 1e-12 * cfl_limit(s));
+}
+
+TEST(ContinuumMaterial, HighestFrequencyEstimateIsTight) {
+  ExpectTightFrequencyEstimate<2>(rectangle_mesh(1.0, 0.2, 20, 4), "structured strip");
+  ExpectTightFrequencyEstimate<2>(jittered(rectangle_mesh(1.0, 0.2, 20, 4), 0.05, 0.25, 3),
+                                  "jittered strip");
+  ExpectTightFrequencyEstimate<3>(box_mesh(0.4, 0.1, 0.1, 8, 2, 2), "structured bar");
+  ExpectTightFrequencyEstimate<3>(read_gmsh<3>(kMeshes + "/block_v41.msh"), "Gmsh block");
+}
+
+// An undamped block set ringing in all its modes: symplectic Euler at 0.95 of the CFL limit
+// stays bounded over 3000 steps (its energy swings, as symplectic Euler's does in modes near
+// their limit, but does not grow); at 1.3 times the true limit 2 / omega_max it diverges, so
+// the limit is not far below what is stable
+TEST(ContinuumMaterial, ExplicitStepAtTheLimitIsStableAndAboveItIsNot) {
+  const SimplexMesh<3> mesh = read_gmsh<3>(kMeshes + "/block_v41.msh");
+  auto ringing = [&] {
+    MassSpringSystem<3> s = make_mass_spring(mesh, corotated(1e5, 0.3));
+    std::mt19937 random(11);
+    std::normal_distribution<double> kick(0.0, 0.05);
+    for (int n = 0; n < s.num_nodes(); ++n)
+      for (int d = 0; d < 3; ++d) s.v(d, n) = kick(random);
+    return s;
+  };
+  MassSpringSystem<3> s = ringing();
+  const double limit = cfl_limit(s), e0 = total_energy(s);
+  double first = 0.0, last = 0.0;  // the largest energy in the first and the last 1000 steps
+  for (int k = 0; k < 3000; ++k) {
+    symplectic_euler_step(s, 0.95 * limit);
+    const double e = total_energy(s) / e0;
+    if (k < 1000) first = std::max(first, e);
+    if (k >= 2000) last = std::max(last, e);
+  }
+  EXPECT_LT(first, 3.0);
+  EXPECT_LT(last, 1.05 * first);
+  MassSpringSystem<3> fast = ringing();
+  const double true_limit = 2.0 / dense_highest_frequency(fast);
+  ExplicitOptions anyway;
+  anyway.allow_cfl_violation = true;
+  bool diverged = false;
+  try {
+    for (int k = 0; k < 3000 && !diverged; ++k) {
+      symplectic_euler_step(fast, 1.3 * true_limit, anyway);
+      diverged = total_energy(fast) > 1e3 * e0;
+    }
+  } catch (const ObjectError&) {
+    diverged = true;
+  }
+  EXPECT_TRUE(diverged);
+  std::printf(
+      "[ 3D explicit ] CFL limit %.3e s = %.3f of the true limit; largest energy %.3f E0 in the "
+      "first 1000 steps, %.3f in the last\n",
+      limit, limit / true_limit, first, last);
+}
+
+// A cube kneaded at random until a third of its tetrahedra are inverted comes back to its
+// rest shape under damped backward Euler at 20 times the CFL limit, none inverted, the elastic
+// energy falling to nothing
+TEST(ContinuumMaterial, InvertedElementsRecover) {
+  const SimplexMesh<3> mesh = box_mesh(0.1, 0.1, 0.1, 3, 3, 3);
+  MassSpringSystem<3> s = make_mass_spring(mesh, corotated(1e4, 0.3, 50.0));
+  s.x = jittered(mesh, 0.1 / 3, 0.9, 2).nodes;
+  auto inverted = [&] {
+    int count = 0;
+    for (const auto& e : s.elements) count += signed_measure<3>(corners_of(e, s.x)) < 0.0;
+    return count;
+  };
+  const int at_start = inverted();
+  EXPECT_GT(at_start, static_cast<int>(s.elements.size()) / 5);
+  const double e_start = potential_energy(s);
+  BackwardEulerStepper<3> stepper;
+  const double dt = 20.0 * cfl_limit(s);
+  for (int k = 0; k < 400; ++k) stepper.step(s, dt);
+  EXPECT_EQ(inverted(), 0);
+  EXPECT_LT(potential_energy(s), 1e-8 * e_start);
+  std::printf("[ 3D inversion ] %d of %zu tetrahedra inverted at the start, %d after 400 steps\n",
+              at_start, s.elements.size(), inverted());
+}
+
+// backward Euler on an undamped, swinging and shearing strip never gains energy
+TEST(ContinuumMaterial, ImplicitStepNeverGainsEnergy) {
+  const SimplexMesh<2> mesh = rectangle_mesh(1.0, 0.1, 40, 4);
+  MassSpringSystem<2> s = make_mass_spring(mesh, corotated(1e5, 0.3));
+  for (int n = 0; n < s.num_nodes(); ++n) s.v(1, n) = 0.2 * mesh.nodes(0, n);  // a bending swing
+  BackwardEulerStepper<2> stepper;
+  const double e0 = total_energy(s);
+  double previous = e0;
+  for (int k = 0; k < 300; ++k) {
+    stepper.step(s, 5.0 * cfl_limit(s));
+    const double now = total_energy(s);
+    EXPECT_LE(now, previous * (1.0 + 1e-9)) << "step " << k;
+    previous = now;
+  }
+  EXPECT_LT(previous, e0);
+}
+
+// Tip deflection of a cantilever of length 1 and depth 0.1 (square in 3D), clamped at x = 0
+// and loaded at its tip, in a linear static solve with the elements' stiffness at rest,
+// over Timoshenko's P L^3 / (3 E I) + P L / (kappa G A), kappa = 5/6
+template <int Dim>
+double cantilever_tip_ratio(int across) {
+  const double youngs = 1e5, nu = 0.3, length = 1.0, depth = 0.1, load = 1e-3;
+  SimplexMesh<Dim> mesh;
+  if constexpr (Dim == 2) {
+    mesh = rectangle_mesh(length, depth, 10 * across, across);
+  } else {
+    mesh = box_mesh(length, depth, depth, 10 * across, across, across);
+  }
+  const MassSpringSystem<Dim> s = make_mass_spring(mesh, corotated(youngs, nu));
+  std::vector<int> index(Dim * s.num_nodes(), -1), tip;
+  int unknowns = 0;
+  for (int n = 0; n < s.num_nodes(); ++n) {
+    if (mesh.nodes(0, n) > 1e-9)
+      for (int d = 0; d < Dim; ++d) index[Dim * n + d] = unknowns++;
+    if (mesh.nodes(0, n) > length - 1e-9) tip.push_back(n);
+  }
+  std::vector<Eigen::Triplet<double>> entries;
+  for_each_continuum_block(s, s.x, [&](int a, int b, const auto& k, const auto&) {
+    for (int r = 0; r < Dim; ++r)
+      for (int c = 0; c < Dim; ++c) {
+        const int i = index[Dim * a + r], j = index[Dim * b + c];
+        if (i >= 0 && j >= 0) entries.emplace_back(i, j, -k(r, c));
+      }
+  });
+  Eigen::SparseMatrix<double> stiffness(unknowns, unknowns);
+  stiffness.setFromTriplets(entries.begin(), entries.end());
+  Eigen::VectorXd force = Eigen::VectorXd::Zero(unknowns);
+  for (int n : tip) force(index[Dim * n + Dim - 1]) = -load / tip.size();
+  const Eigen::VectorXd u =
+      Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>>(stiffness).solve(force);
+  double deflection = 0.0;
+  for (int n : tip) deflection -= u(index[Dim * n + Dim - 1]) / tip.size();
+  const double area = Dim == 2 ? depth : depth * depth;
+  const double inertia = area * depth * depth / 12.0, shear = youngs / (2.0 * (1.0 + nu));
+  const double timoshenko = load * std::pow(length, 3) / (3.0 * youngs * inertia) +
+                            load * length / (5.0 / 6.0 * shear * area);
+  return deflection / timoshenko;
+}
+
+// Linear elements are too stiff in bending (they cannot bend without shearing): the tip
+// deflection converges to Timoshenko's from below, about 0.29, 0.62, 0.87 and 0.96 of it at 1,
+// 2, 4 and 8 cells through the depth in 2D; the test holds those within 0.02
+TEST(ContinuumMaterial, CantileverConvergesToTimoshenkoFromBelow) {
+  const double expected_2d[] = {0.287, 0.623, 0.866, 0.961};
+  double previous = 0.0;
+  for (int level = 0; level < 4; ++level) {
+    const double ratio = cantilever_tip_ratio<2>(1 << level);
+    std::printf("[ 2D cantilever ] %d cells through the depth: tip / Timoshenko %.4f\n", 1 << level,
+                ratio);
+    EXPECT_NEAR(ratio, expected_2d[level], 0.02);
+    EXPECT_GT(ratio, previous);
+    previous = ratio;
+  }
+  EXPECT_LT(previous, 1.0);
+  const double at_4 = cantilever_tip_ratio<3>(4);
+  std::printf("[ 3D cantilever ] 4 cells through the depth: tip / Timoshenko %.4f\n", at_4);
+  EXPECT_NEAR(at_4, 0.850, 0.02);
+}
+
+}  // namespace
+}  // namespace gencoord::deformable
