@@ -4,7 +4,11 @@
 #include "gencoord/deformable/implicit_stepper.hpp"
 
 #include <Eigen/SparseCholesky>
+#include <algorithm>
+#include <cmath>
+#include <vector>
 
+#include "contact_forces.hpp"
 #include "gencoord/deformable/mass_spring_integration.hpp"
 #include "gencoord/deformable/validate.hpp"
 #include "spd_solve.hpp"
@@ -41,9 +45,41 @@ const ImplicitOptions& BackwardEulerStepper<Dim>::options() const {
   return kept_->options;
 }
 
+namespace {
+
+template <int Dim>
+using Points = typename MassSpringSystem<Dim>::Points;
+
+// The contacts at (q, v), as the sorted list of the nodes in them (the ground's, obstacles'
+// and the surface's): what the step matrix's contact blocks were built from.
+template <int Dim>
+std::vector<int> contact_set(const MassSpringSystem<Dim>& s, const Points<Dim>& q,
+                             const Points<Dim>& v) {
+  std::vector<int> nodes;
+  if (s.ground) {
+    for (int n = 0; n < s.num_nodes(); ++n) {
+      if (q(Dim - 1, n) < s.ground->height) nodes.push_back(n);
+    }
+  }
+  if constexpr (Dim > 1) {
+    if (s.collisions) {
+      for (const auto& block : detail::contact_jacobians<Dim>(s, q, v))
+        nodes.push_back(block.node + s.num_nodes());  // apart from the ground's
+    }
+  }
+  std::sort(nodes.begin(), nodes.end());
+  return nodes;
+}
+
+// |y|_{M^-1} over the free unknowns
+double inverse_mass_norm(const Eigen::VectorXd& y, const Eigen::VectorXd& masses) {
+  return std::sqrt((y.array().square() / masses.array()).sum());
+}
+
+}  // namespace
+
 template <int Dim>
 ImplicitStats BackwardEulerStepper<Dim>::step(MassSpringSystem<Dim>& s, double dt) {
-  using Points = typename MassSpringSystem<Dim>::Points;
   validate_time_step(dt);
   validate_object(s);
   Kept& k = *kept_;
@@ -56,47 +92,90 @@ ImplicitStats BackwardEulerStepper<Dim>::step(MassSpringSystem<Dim>& s, double d
     ++k.pattern_analyses;
     k.last_dv.resize(0);
   }
+  const int count = s.num_nodes();
+  const int unknowns = k.matrix.unknowns();
+  ImplicitStats stats;
+  stats.unknowns = unknowns;
+  Eigen::VectorXd masses, k_v;
+  int iterations = 0;  // CG's, over all solves of the step
+  // solves A x = b with the matrix as assembled last, from the start x
+  auto solve = [&](const Eigen::VectorXd& b, const Eigen::VectorXd& v_free, Eigen::VectorXd* x) {
+    if (cholesky) {
+      k.cholesky.factorize(k.matrix.matrix());
+      if (k.cholesky.info() == Eigen::Success) *x = k.cholesky.solve(b);
+      if (k.cholesky.info() != Eigen::Success || !x->allFinite())
+        detail::throw_cholesky_failure(&stats);
+    } else {
+      detail::solve_by_conjugate_gradient(k.matrix.matrix(), b, masses, v_free, k.options, x,
+                                          &stats);
+      iterations += stats.iterations;
+    }
+  };
   // linearized about the start of the step with the pinned nodes at their end positions
   // (the runtime's linearly implicit Euler, gencoord/integrate/backward_euler.hpp):
   // (M - dt D - dt^2 K) dv = dt (f + dt K v) over the free nodes
-  Points q = s.x;
-  for (int n = 0; n < s.num_nodes(); ++n) {
+  Points<Dim> q = s.x;
+  for (int n = 0; n < count; ++n) {
     if (s.pinned[n]) q.col(n) += dt * s.v.col(n);
   }
-  Points f = Points::Zero(Dim, s.num_nodes());
+  Points<Dim> f = Points<Dim>::Zero(Dim, count);
   accumulate_forces(s, q, s.v, f);
-  Eigen::VectorXd masses, k_v;
   k.matrix.assemble(s, q, s.v, dt, &masses, &k_v);
-  const int unknowns = k.matrix.unknowns();
   Eigen::VectorXd b(unknowns), v_free(unknowns);
-  for (int n = 0; n < s.num_nodes(); ++n) {
+  for (int n = 0; n < count; ++n) {
     const int d = k.matrix.dof(n);
     if (d < 0) continue;
     b.template segment<Dim>(d) = dt * (f.col(n) + dt * k_v.template segment<Dim>(d));
     v_free.template segment<Dim>(d) = s.v.col(n);
   }
-
-  ImplicitStats stats;
-  stats.unknowns = unknowns;
   Eigen::VectorXd dv;
-  if (cholesky) {
-    k.cholesky.factorize(k.matrix.matrix());
-    if (k.cholesky.info() == Eigen::Success) dv = k.cholesky.solve(b);
-    if (k.cholesky.info() != Eigen::Success || !dv.allFinite())
-      detail::throw_cholesky_failure(&stats);
-  } else {
-    if (k.options.warm_start) dv = k.last_dv;
-    detail::solve_by_conjugate_gradient(k.matrix.matrix(), b, masses, v_free, k.options, &dv,
-                                        &stats);
-  }
-  stats.pattern_analyses = k.pattern_analyses;
+  if (!cholesky && k.options.warm_start) dv = k.last_dv;
+  solve(b, v_free, &dv);
 
-  typename MassSpringIntegration<Dim>::State end{s.t + dt, s.v, s.v};
-  for (int n = 0; n < s.num_nodes(); ++n) {
-    const int d = k.matrix.dof(n);
-    if (d >= 0) end.v.col(n) += dv.template segment<Dim>(d);
+  typename MassSpringIntegration<Dim>::State end{s.t + dt, s.x, s.v};
+  auto set_end = [&] {
+    end.v = s.v;
+    for (int n = 0; n < count; ++n) {
+      const int d = k.matrix.dof(n);
+      if (d >= 0) end.v.col(n) += dv.template segment<Dim>(d);
+    }
+    end.q = s.x + dt * end.v;  // a pinned node moves with its own velocity
+  };
+  set_end();
+  // A contact that begins or ends during the step is not in the matrix it was solved with,
+  // and a penalty that starts unseen returns more energy than the step stored: then Newton's
+  // method on the nonlinear backward Euler equation g(v1) = M (v1 - v) - dt f(x + dt v1, v1)
+  // = 0, each iteration linearized at the end of the last, until the residual is small (it is
+  // the residual at the end's own contacts, whichever they are).
+  const std::vector<int> linearized = contact_set<Dim>(s, q, s.v);
+  for (int iteration = 0; iteration < k.options.max_contact_iterations; ++iteration) {
+    if (iteration == 0 && contact_set<Dim>(s, end.q, end.v) == linearized)
+      break;  // the linearized step saw every contact
+    f.setZero();
+    accumulate_forces(s, end.q, end.v, f);
+    Eigen::VectorXd residual(unknowns), impulse(unknowns);
+    for (int n = 0; n < count; ++n) {
+      const int d = k.matrix.dof(n);
+      if (d < 0) continue;
+      impulse.template segment<Dim>(d) = dt * f.col(n);
+      residual.template segment<Dim>(d) = dt * f.col(n) - s.mass(n) * (end.v.col(n) - s.v.col(n));
+    }
+    if (inverse_mass_norm(residual, masses) <=
+        k.options.contact_tolerance * inverse_mass_norm(impulse, masses))
+      break;
+    k.matrix.assemble(s, end.q, end.v, dt, &masses, &k_v);
+    for (int n = 0; n < count; ++n) {
+      const int d = k.matrix.dof(n);
+      if (d >= 0) v_free.template segment<Dim>(d) = end.v.col(n);
+    }
+    Eigen::VectorXd correction;
+    solve(residual, v_free, &correction);
+    dv += correction;
+    set_end();
+    ++stats.contact_iterations;
   }
-  end.q = s.x + dt * end.v;  // a pinned node moves with its own velocity
+  stats.iterations = iterations;
+  stats.pattern_analyses = k.pattern_analyses;
   finish_step<Dim>(std::move(end), dt, &s);
   k.last_dv = std::move(dv);
   return stats;

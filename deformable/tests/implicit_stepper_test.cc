@@ -124,8 +124,9 @@ TEST(ImplicitStepperTest, PatternIsAnalysedOnceWithoutFracture) {
   }
 }
 
-// The stepper is the runtime's linearized backward Euler on MassSpringIntegration (K v, the
-// moving pinned nodes, the ground penalty), to rounding.
+// The stepper's linearized step (no Newton iterations for contacts that begin inside a step)
+// is the runtime's linearized backward Euler on MassSpringIntegration (K v, the moving pinned
+// nodes, the ground penalty), to rounding.
 TEST(ImplicitStepperTest, StepperMatchesTheRuntimesLinearizedBackwardEuler) {
   MassSpringSystem<2> s = make_mass_spring(rectangle_mesh(0.5, 0.1, 5, 2), Material{2e3, 1.0, 1.0});
   pin_nodes_where(s, 0, 0.0);
@@ -138,6 +139,7 @@ TEST(ImplicitStepperTest, StepperMatchesTheRuntimesLinearizedBackwardEuler) {
   with_ground(s, 0.0, 0.3);
   ImplicitOptions cholesky;
   cholesky.solver = LinearSolver::kSparseCholesky;
+  cholesky.max_contact_iterations = 0;
   const double dt = 5e-3;
   MassSpringSystem<2> runtime = s;
   BackwardEulerStepper<2> stepper(cholesky);

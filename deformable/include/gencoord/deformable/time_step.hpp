@@ -63,23 +63,39 @@ struct ImplicitOptions {
   /// CG starts from the previous step's velocity change (BackwardEulerStepper keeps it)
   /// instead of zero.
   bool warm_start = true;
+  /// When a contact begins or ends during a step, at most this many Newton iterations of the
+  /// nonlinear backward Euler equation follow the linearized solve (see
+  /// backward_euler_step()); 0 keeps the linearized step always.
+  int max_contact_iterations = 20;
+  /// They stop when the equation's residual |M (v1 - v) - dt f(x1, v1)|_{M^-1} is at most
+  /// this times |dt f(x1, v1)|_{M^-1}.
+  double contact_tolerance = 1e-6;
 };
 
 /// What one backward Euler solve did.
 struct ImplicitStats {
-  int iterations = 0;     ///< CG iterations (0 for Cholesky and for a zero right-hand side)
+  int iterations = 0;     ///< CG iterations, over all solves (0 for Cholesky and a zero right side)
   double residual = 0.0;  ///< CG relative residual |r| / |b| (inverse-mass norms, as above)
   int unknowns = 0;       ///< free degrees of freedom
   /// Builds of the step matrix's pattern (with Cholesky, each with its symbolic analysis)
   /// by the stepper so far, this step's included: 1 while no spring breaks.
   int pattern_analyses = 0;
+  /// Newton iterations after the linearized solve, for contacts that began or ended during
+  /// the step (0 when the linearized step saw every contact)
+  int contact_iterations = 0;
 };
 
 /// One backward Euler step of dt (s), linearized (one Newton update from v1 = v):
 ///     (M - dt D - dt^2 K) dv = dt (f + dt K v),  v += dv,  x += dt v,
 /// with f, K = df/dx, D = df/dv over the free nodes at (x, v); K uses the definite spring
 /// Jacobian, the volume terms' Gauss-Newton part (volume_terms.hpp) and the hinges'
-/// Gauss-Newton blocks (bending.hpp), so the matrix is symmetric positive definite. Throws
+/// Gauss-Newton blocks (bending.hpp), so the matrix is symmetric positive definite. When the
+/// contacts at the step's end (ground, obstacles, surfaces) are not those at its start, the
+/// matrix lacked a contact's stiffness, and a penalty that begins unseen inside a step gives
+/// back more energy than the step stored in it; the step then continues with Newton's method
+/// on the nonlinear equation M (v1 - v) = dt f(x + dt v1, v1), each iteration linearized at
+/// the last iterate's end, until its residual meets ImplicitOptions::contact_tolerance (or
+/// max_contact_iterations). Throws
 /// LinearSolveError if the solve fails; StepSizeError and ObjectError as
 /// symplectic_euler_step(). Each call builds the matrix's pattern anew; BackwardEulerStepper
 /// (implicit_stepper.hpp) keeps it between steps.
