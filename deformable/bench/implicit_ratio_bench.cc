@@ -21,6 +21,7 @@
 #include <string>
 #include <vector>
 
+#include "gencoord/deformable/explicit_stepper.hpp"
 #include "gencoord/deformable/implicit_stepper.hpp"
 #include "gencoord/deformable/mesh_to_springs.hpp"
 #include "gencoord/deformable/time_step.hpp"
@@ -78,6 +79,19 @@ void BM_SymplecticEuler(benchmark::State& state) {
   const double dt = 0.9 * gd::cfl_limit(s);
   for (auto _ : state) {
     gd::symplectic_euler_step(s, dt);
+    benchmark::DoNotOptimize(s.x.data());
+  }
+  SetCounters(state, s, 0.0);
+}
+
+// the same steps by ExplicitStepper, which validates the sheet at its first step only
+void BM_ExplicitStepper(benchmark::State& state) {
+  Sheet s = SheetOf(state.range(0));
+  const double dt = 0.9 * gd::cfl_limit(s);
+  gd::ExplicitStepper<2> stepper;
+  stepper.step(s, dt);
+  for (auto _ : state) {
+    stepper.step(s, dt);
     benchmark::DoNotOptimize(s.x.data());
   }
   SetCounters(state, s, 0.0);
@@ -154,6 +168,7 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "bench_deformable_ratios: could not pin to core 0\n");
   const char* contenders[] = {"floor",
                               "symplectic_euler",
+                              "explicit_stepper",
                               "backward_euler_cg",
                               "backward_euler_cg_cold",
                               "backward_euler_cholesky",
@@ -161,17 +176,18 @@ int main(int argc, char** argv) {
   for (long n : kSizes) {
     benchmark::RegisterBenchmark(contenders[0], BM_Floor)->Arg(n);
     benchmark::RegisterBenchmark(contenders[1], BM_SymplecticEuler)->Arg(n);
-    benchmark::RegisterBenchmark(contenders[2], BM_BackwardEuler,
+    benchmark::RegisterBenchmark(contenders[2], BM_ExplicitStepper)->Arg(n);
+    benchmark::RegisterBenchmark(contenders[3], BM_BackwardEuler,
                                  gd::LinearSolver::kConjugateGradient, true)
         ->Arg(n);
-    benchmark::RegisterBenchmark(contenders[3], BM_BackwardEuler,
+    benchmark::RegisterBenchmark(contenders[4], BM_BackwardEuler,
                                  gd::LinearSolver::kConjugateGradient, false)
         ->Arg(n);
-    benchmark::RegisterBenchmark(contenders[4], BM_BackwardEuler, gd::LinearSolver::kSparseCholesky,
+    benchmark::RegisterBenchmark(contenders[5], BM_BackwardEuler, gd::LinearSolver::kSparseCholesky,
                                  true)
         ->Arg(n);
     if (n <= kLargestFresh)
-      benchmark::RegisterBenchmark(contenders[5], BM_BackwardEulerFresh)->Arg(n);
+      benchmark::RegisterBenchmark(contenders[6], BM_BackwardEulerFresh)->Arg(n);
   }
   benchmark::Initialize(&argc, argv);
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;

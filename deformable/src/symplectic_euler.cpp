@@ -4,11 +4,12 @@
 #include <cmath>
 #include <cstdio>
 #include <string>
+#include <utility>
 
+#include "explicit_step.hpp"
 #include "gencoord/deformable/mass_spring_integration.hpp"
 #include "gencoord/deformable/time_step.hpp"
 #include "gencoord/deformable/validate.hpp"
-#include "gencoord/integrate/explicit_rk.hpp"
 
 namespace gencoord::deformable {
 
@@ -49,24 +50,55 @@ double cfl_limit(const MassSpringSystem<Dim>& s) {
   return cfl_limit_at(s, damping_ratio_at_cfl(s));
 }
 
+namespace detail {
+
+template <int Dim>
+double checked_cfl_limit(const MassSpringSystem<Dim>& s, double dt,
+                         const ExplicitOptions& options) {
+  const double zeta = damping_ratio_at_cfl(s);
+  const double limit = cfl_limit_at(s, zeta);
+  check_cfl(s, dt, limit, options);
+  return limit;
+}
+
+template <int Dim>
+void check_cfl(const MassSpringSystem<Dim>& s, double dt, double limit,
+               const ExplicitOptions& options) {
+  if (dt <= limit || options.allow_cfl_violation) return;
+  char message[384];
+  std::snprintf(
+      message, sizeof message,
+      "explicit step dt = %.6g s exceeds the CFL limit %.6g s = L_min / c_s "
+      "(L_min = %.6g m, fastest spring c_s = %.6g m/s) times %.6g for damping; take a smaller "
+      "step, use backward Euler, or set ExplicitOptions::allow_cfl_violation",
+      dt, limit, min_rest_length(s), s.wave_speed, damping_factor(damping_ratio_at_cfl(s)));
+  throw CflViolation(message);
+}
+
+template <int Dim>
+void take_symplectic_euler_step(MassSpringSystem<Dim>& s, double dt) {
+  // the runtime's symplectic Euler on MassSpringIntegration (gencoord/integrate/), written out
+  // to the same operations in one pass, without the generic state's copies:
+  // v1 = v + dt f / m, x1 = x + dt v1; a pinned node keeps its v and moves with it
+  typename MassSpringIntegration<Dim>::State end{s.t + dt, s.x, s.v};
+  typename MassSpringSystem<Dim>::Points f =
+      MassSpringSystem<Dim>::Points::Zero(Dim, s.num_nodes());
+  accumulate_forces(s, s.x, s.v, f);
+  for (int n = 0; n < s.num_nodes(); ++n) {
+    if (!s.pinned[n]) end.v.col(n) += dt * (f.col(n) / s.mass(n));
+    end.q.col(n) += dt * end.v.col(n);
+  }
+  finish_step<Dim>(std::move(end), dt, &s);
+}
+
+}  // namespace detail
+
 template <int Dim>
 void symplectic_euler_step(MassSpringSystem<Dim>& s, double dt, const ExplicitOptions& options) {
   validate_time_step(dt);
   validate_object(s);
-  const double zeta = damping_ratio_at_cfl(s);
-  const double limit = cfl_limit_at(s, zeta);
-  if (!(dt <= limit) && !options.allow_cfl_violation) {
-    char message[384];
-    std::snprintf(
-        message, sizeof message,
-        "explicit step dt = %.6g s exceeds the CFL limit %.6g s = L_min / c_s "
-        "(L_min = %.6g m, fastest spring c_s = %.6g m/s) times %.6g for damping; take a smaller "
-        "step, use backward Euler, or set ExplicitOptions::allow_cfl_violation",
-        dt, limit, min_rest_length(s), s.wave_speed, damping_factor(zeta));
-    throw CflViolation(message);
-  }
-  const MassSpringIntegration<Dim> system(s);
-  finish_step<Dim>(gencoord::symplectic_euler_step(system, system.state(), dt), dt, &s);
+  detail::checked_cfl_limit(s, dt, options);
+  detail::take_symplectic_euler_step(s, dt);
 }
 
 template double damping_ratio_at_cfl<1>(const MassSpringSystem<1>&);
@@ -75,6 +107,16 @@ template double damping_ratio_at_cfl<3>(const MassSpringSystem<3>&);
 template double cfl_limit<1>(const MassSpringSystem<1>&);
 template double cfl_limit<2>(const MassSpringSystem<2>&);
 template double cfl_limit<3>(const MassSpringSystem<3>&);
+#define GENCOORD_INSTANTIATE(D)                                                    \
+  template double detail::checked_cfl_limit<D>(const MassSpringSystem<D>&, double, \
+                                               const ExplicitOptions&);            \
+  template void detail::check_cfl<D>(const MassSpringSystem<D>&, double, double,   \
+                                     const ExplicitOptions&);                      \
+  template void detail::take_symplectic_euler_step<D>(MassSpringSystem<D>&, double);
+GENCOORD_INSTANTIATE(1)
+GENCOORD_INSTANTIATE(2)
+GENCOORD_INSTANTIATE(3)
+#undef GENCOORD_INSTANTIATE
 template void symplectic_euler_step<1>(MassSpringSystem<1>&, double, const ExplicitOptions&);
 template void symplectic_euler_step<2>(MassSpringSystem<2>&, double, const ExplicitOptions&);
 template void symplectic_euler_step<3>(MassSpringSystem<3>&, double, const ExplicitOptions&);

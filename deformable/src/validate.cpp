@@ -22,16 +22,16 @@ using detail::message;
 
 bool finite_non_negative(double x) { return std::isfinite(x) && x >= 0.0; }
 
-// an element's nodes distinct and in range, its edges the springs joining them; `what` names
-// it ("volume term 3")
+// an element's nodes distinct and in range, its edges the springs joining them; `kind` and
+// `index` name it ("volume term" 3)
 template <int Dim, class Element>
 void validate_element_nodes(const MassSpringSystem<Dim>& s, const Element& element,
-                            const std::string& what) {
+                            const char* kind, int index) {
   const int count = s.num_nodes();
   const int springs = static_cast<int>(s.springs.size());
   for (int node : element.nodes) {
     if (node < 0 || node >= count)
-      throw ObjectError(message("mass-spring object: ", what, " refers to node ", node,
+      throw ObjectError(message("mass-spring object: ", kind, " ", index, " refers to node ", node,
                                 ", out of range [0, ", count, ")"),
                         -1, -1);
   }
@@ -45,8 +45,8 @@ void validate_element_nodes(const MassSpringSystem<Dim>& s, const Element& eleme
                           (s.springs[k].i == j && s.springs[k].j == i));
       if (i == j || !joins)
         throw ObjectError(
-            message("mass-spring object: ", what, "'s edge (", i, ", ", j, ") names spring ", k,
-                    ", which does not join those two distinct nodes"),
+            message("mass-spring object: ", kind, " ", index, "'s edge (", i, ", ", j,
+                    ") names spring ", k, ", which does not join those two distinct nodes"),
             i, k >= 0 && k < springs ? k : -1);
     }
   }
@@ -57,7 +57,7 @@ template <int Dim>
 void validate_volume_terms(const MassSpringSystem<Dim>& s) {
   for (int t = 0; t < static_cast<int>(s.volume_terms.size()); ++t) {
     const VolumeTerm<Dim>& term = s.volume_terms[t];
-    validate_element_nodes(s, term, message("volume term ", t));
+    validate_element_nodes(s, term, "volume term", t);
     if (!(std::isfinite(term.rest_measure) && term.rest_measure > 0.0) ||
         !finite_non_negative(term.stiffness))
       throw ObjectError(message("mass-spring object: volume term ", t, " has rest measure ",
@@ -76,7 +76,7 @@ void validate_continuum_elements(const MassSpringSystem<Dim>& s) {
                       -1, -1);
   for (int t = 0; t < static_cast<int>(s.elements.size()); ++t) {
     const ContinuumElement<Dim>& element = s.elements[t];
-    validate_element_nodes(s, element, message("continuum element ", t));
+    validate_element_nodes(s, element, "continuum element", t);
     if (!(std::isfinite(element.rest_measure) && element.rest_measure > 0.0) ||
         !element.rest_inverse.allFinite() || !finite_non_negative(element.mu) ||
         !finite_non_negative(element.lambda) || !finite_non_negative(element.damping_time))

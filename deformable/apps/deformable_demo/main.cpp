@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "frame_output.hpp"
+#include "gencoord/deformable/explicit_stepper.hpp"
 #include "gencoord/deformable/implicit_stepper.hpp"
 #include "gencoord/deformable/time_step.hpp"
 #include "gencoord/deformable/vtk_writer.hpp"
@@ -162,11 +163,12 @@ int Run(const Options& o) {
   }
   const double energy0 = gd::total_energy(s);
   gd::BackwardEulerStepper<2> stepper;  // keeps the step matrix's pattern between steps
+  gd::ExplicitStepper<2> explicit_stepper(explicit_options);  // validates once
   for (int k = 1; k <= steps; ++k) {
     if (implicit) {
       stepper.step(s, dt);
     } else {
-      gd::symplectic_euler_step(s, dt, explicit_options);
+      explicit_stepper.step(s, dt);
     }
     // save when the step crosses the next frame time
     const int frame_due = static_cast<int>(static_cast<long>(k) * (o.frames - 1) / steps);

@@ -15,6 +15,7 @@
 #include <string>
 
 #include "gencoord/deformable/collision.hpp"
+#include "gencoord/deformable/explicit_stepper.hpp"
 #include "gencoord/deformable/implicit_stepper.hpp"
 #include "gencoord/deformable/mesh_io.hpp"
 #include "gencoord/deformable/mesh_to_springs.hpp"
@@ -221,12 +222,13 @@ int Run(const Options& o) {
   const double energy0 = gd::total_energy(scene);
   double lowest = INFINITY;  // the part's lowest node over the whole run
   gd::BackwardEulerStepper<3> stepper;
+  gd::ExplicitStepper<3> explicit_stepper;
   int written = 1;
   for (long k = 1; k <= steps; ++k) {
     if (o.implicit) {
       stepper.step(scene, dt);
     } else {
-      gd::symplectic_euler_step(scene, dt);
+      explicit_stepper.step(scene, dt);
     }
     lowest = std::min(lowest, scene.x.rightCols(part.nodes.cols()).row(2).minCoeff());
     const int due = static_cast<int>(k * (o.frames - 1) / steps);
