@@ -20,6 +20,7 @@
 #include "gencoord/deformable/implicit_stepper.hpp"
 #include "gencoord/deformable/mesh_io.hpp"
 #include "gencoord/deformable/mesh_to_springs.hpp"
+#include "gencoord/deformable/scene.hpp"
 #include "gencoord/deformable/stretch_modulus.hpp"
 #include "gencoord/deformable/tetrahedralize.hpp"
 #include "gencoord/deformable/time_step.hpp"
@@ -152,6 +153,35 @@ TEST(ContinuumMaterial, ElementsReplaceTheSpringsStiffness) {
   EXPECT_THAT(
       [&] { symplectic_euler_step(bad, 1e-6); },
       ::testing::ThrowsMessage<ObjectError>(::testing::HasSubstr("continuum element 2's edge")));
+}
+
+// Two objects of elements in one scene keep their own forces and energies
+TEST(ContinuumMaterial, ScenesKeepEachObjectsElements) {
+  MassSpringSystem<3> a = make_mass_spring(box_mesh(0.2, 0.1, 0.1, 2, 1, 1), corotated(1e5, 0.3));
+  MassSpringSystem<3> b = make_mass_spring(
+      box_mesh(0.1, 0.1, 0.1, 1, 1, 1, Eigen::Vector3d(0.5, 0.0, 0.0)), corotated(3e4, 0.4, 1.0));
+  std::mt19937 random(5);
+  std::uniform_real_distribution<double> u(-0.01, 0.01);
+  for (auto* s : {&a, &b}) {
+    for (int n = 0; n < s->num_nodes(); ++n)
+      for (int d = 0; d < 3; ++d) {
+        s->x(d, n) += u(random);
+        s->v(d, n) = 10.0 * u(random);
+      }
+  }
+  MassSpringSystem<3> scene = a;
+  const int first = append_object(scene, b);
+  EXPECT_EQ(scene.elements.size(), a.elements.size() + b.elements.size());
+  EXPECT_NEAR(potential_energy(scene), potential_energy(a) + potential_energy(b),
+              1e-12 * potential_energy(scene));
+  Eigen::Matrix3Xd f = Eigen::Matrix3Xd::Zero(3, scene.num_nodes());
+  Eigen::Matrix3Xd fa = Eigen::Matrix3Xd::Zero(3, a.num_nodes());
+  Eigen::Matrix3Xd fb = Eigen::Matrix3Xd::Zero(3, b.num_nodes());
+  accumulate_forces(scene, f);
+  accumulate_forces(a, fa);
+  accumulate_forces(b, fb);
+  EXPECT_LT((f.leftCols(first) - fa).norm(), 1e-12 * fa.norm());
+  EXPECT_LT((f.rightCols(b.num_nodes()) - fb).norm(), 1e-12 * fb.norm());
 }
 
 // omega_max of M^-1 K by dense eigensolve, every node free
