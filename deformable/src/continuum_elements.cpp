@@ -9,8 +9,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <tuple>
 
+#include "element_edges.hpp"
 #include "gencoord/deformable/errors.hpp"
 #include "gencoord/deformable/mass_spring_system.hpp"
 #include "message.hpp"
@@ -297,47 +297,18 @@ void add_continuum_elements(MassSpringSystem<Dim>& s,
                             const std::vector<std::array<int, Dim + 1>>& elements,
                             const Eigen::Matrix<double, Dim, Eigen::Dynamic>& rest, double mu,
                             double lambda, double damping_time) {
-  std::vector<std::tuple<int, int, int>> by_pair;  // springs by their node pair
-  by_pair.reserve(s.springs.size());
-  for (int k = 0; k < static_cast<int>(s.springs.size()); ++k) {
-    const Spring& sp = s.springs[k];
-    by_pair.emplace_back(std::min(sp.i, sp.j), std::max(sp.i, sp.j), k);
-  }
-  std::sort(by_pair.begin(), by_pair.end());
+  const detail::SpringsByPair springs(s.springs);
   for (int e = 0; e < static_cast<int>(elements.size()); ++e) {
     ContinuumElement<Dim> element;
-    element.nodes = elements[e];
     element.mu = mu;
     element.lambda = lambda;
     element.damping_time = damping_time;
-    Corners<Dim> corners = corners_of(element, rest);
-    double measure = signed_measure<Dim>(corners);
-    if (measure < 0.0) {  // an odd permutation turns it positive
-      std::swap(element.nodes[Dim - 1], element.nodes[Dim]);
-      std::swap(corners[Dim - 1], corners[Dim]);
-      measure = -measure;
-    }
-    if (!(measure > 0.0 && std::isfinite(measure)))
-      throw ObjectError(message("continuum elements: element ", e, " has rest measure ", measure,
-                                "; need a positive, finite area or volume"),
-                        element.nodes[0], -1);
-    element.rest_measure = measure;
+    element.rest_measure =
+        detail::place_element<Dim>(springs, elements[e], rest, "continuum elements", e, &element);
+    const Corners<Dim> corners = corners_of(element, rest);
     Mat<Dim> dm;
     for (int a = 1; a <= Dim; ++a) dm.col(a - 1) = corners[a] - corners[0];
     element.rest_inverse = dm.inverse();
-    int edge = 0;
-    for (int a = 0; a <= Dim; ++a) {
-      for (int b = a + 1; b <= Dim; ++b, ++edge) {
-        const int i = std::min(element.nodes[a], element.nodes[b]);
-        const int j = std::max(element.nodes[a], element.nodes[b]);
-        const auto it = std::lower_bound(by_pair.begin(), by_pair.end(), std::make_tuple(i, j, -1));
-        if (it == by_pair.end() || std::get<0>(*it) != i || std::get<1>(*it) != j)
-          throw ObjectError(message("continuum elements: element ", e, "'s edge (", i, ", ", j,
-                                    ") is not a spring of the object; every edge needs one"),
-                            i, -1);
-        element.springs[edge] = std::get<2>(*it);
-      }
-    }
     s.elements.push_back(element);
   }
 }

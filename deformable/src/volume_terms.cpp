@@ -9,6 +9,7 @@
 #include <string>
 #include <tuple>
 
+#include "element_edges.hpp"
 #include "gencoord/deformable/errors.hpp"
 #include "gencoord/deformable/mass_spring_system.hpp"
 #include "message.hpp"
@@ -216,42 +217,13 @@ template <int Dim>
 void add_volume_terms(MassSpringSystem<Dim>& s,
                       const std::vector<std::array<int, Dim + 1>>& elements,
                       const Eigen::Matrix<double, Dim, Eigen::Dynamic>& rest, double stiffness) {
-  // springs by their node pair, to find each edge's spring
-  std::vector<std::tuple<int, int, int>> by_pair;
-  by_pair.reserve(s.springs.size());
-  for (int k = 0; k < static_cast<int>(s.springs.size()); ++k) {
-    const Spring& sp = s.springs[k];
-    by_pair.emplace_back(std::min(sp.i, sp.j), std::max(sp.i, sp.j), k);
-  }
-  std::sort(by_pair.begin(), by_pair.end());
+  const detail::SpringsByPair springs(s.springs);
   const double spring_speed = s.wave_speed;
   for (int e = 0; e < static_cast<int>(elements.size()); ++e) {
     VolumeTerm<Dim> term;
-    term.nodes = elements[e];
     term.stiffness = stiffness;
-    double measure = signed_measure<Dim>(corners_of(term, rest));
-    if (measure < 0.0) {  // an odd permutation turns it positive; edges and springs stay
-      std::swap(term.nodes[Dim - 1], term.nodes[Dim]);
-      measure = -measure;
-    }
-    if (!(measure > 0.0 && std::isfinite(measure)))
-      throw ObjectError(message("volume terms: element ", e, " has rest measure ", measure,
-                                "; need a positive, finite area or volume"),
-                        term.nodes[0], -1);
-    term.rest_measure = measure;
-    int edge = 0;
-    for (int a = 0; a <= Dim; ++a) {
-      for (int b = a + 1; b <= Dim; ++b, ++edge) {
-        const int i = std::min(term.nodes[a], term.nodes[b]);
-        const int j = std::max(term.nodes[a], term.nodes[b]);
-        const auto it = std::lower_bound(by_pair.begin(), by_pair.end(), std::make_tuple(i, j, -1));
-        if (it == by_pair.end() || std::get<0>(*it) != i || std::get<1>(*it) != j)
-          throw ObjectError(message("volume terms: element ", e, "'s edge (", i, ", ", j,
-                                    ") is not a spring of the object; every edge needs one"),
-                            i, -1);
-        term.springs[edge] = std::get<2>(*it);
-      }
-    }
+    term.rest_measure =
+        detail::place_element<Dim>(springs, elements[e], rest, "volume terms", e, &term);
     s.volume_terms.push_back(term);
   }
   const double volume_speed = volume_terms_speed(s, rest);
