@@ -265,9 +265,9 @@ double continuum_highest_frequency(const MassSpringSystem<Dim>& s) {
   std::vector<Eigen::Triplet<double>> entries;
   for_each_continuum_block(s, s.x, [&](int a, int b, const Mat<Dim>& k, const Mat<Dim>&) {
     if (s.pinned[a] || s.pinned[b]) return;
+    const double scale = std::sqrt(s.mass(a) * s.mass(b));
     for (int r = 0; r < Dim; ++r) {
       for (int c = 0; c < Dim; ++c) {
-        const double scale = std::sqrt(s.mass(a) * s.mass(b));
         entries.emplace_back(Dim * a + r, Dim * b + c, -k(r, c) / scale);
       }
     }

@@ -50,25 +50,15 @@ namespace {
 template <int Dim>
 using Points = typename MassSpringSystem<Dim>::Points;
 
-// The contacts at (q, v), as the sorted list of the nodes in them (the ground's, obstacles'
-// and the surface's): what the step matrix's contact blocks were built from.
+// detail::contact_set() at (q, v)
 template <int Dim>
-std::vector<int> contact_set(const MassSpringSystem<Dim>& s, const Points<Dim>& q,
+std::vector<int> contacts_at(const MassSpringSystem<Dim>& s, const Points<Dim>& q,
                              const Points<Dim>& v) {
-  std::vector<int> nodes;
-  if (s.ground) {
-    for (int n = 0; n < s.num_nodes(); ++n) {
-      if (q(Dim - 1, n) < s.ground->height) nodes.push_back(n);
-    }
-  }
+  std::vector<detail::ContactJacobian<Dim>> blocks;
   if constexpr (Dim > 1) {
-    if (s.collisions) {
-      for (const auto& block : detail::contact_jacobians<Dim>(s, q, v))
-        nodes.push_back(block.node + s.num_nodes());  // apart from the ground's
-    }
+    if (s.collisions) blocks = detail::contact_jacobians<Dim>(s, q, v);
   }
-  std::sort(nodes.begin(), nodes.end());
-  return nodes;
+  return detail::contact_set<Dim>(s, q, blocks);
 }
 
 // |y|_{M^-1} over the free unknowns
@@ -147,9 +137,8 @@ ImplicitStats BackwardEulerStepper<Dim>::step(MassSpringSystem<Dim>& s, double d
   // method on the nonlinear backward Euler equation g(v1) = M (v1 - v) - dt f(x + dt v1, v1)
   // = 0, each iteration linearized at the end of the last, until the residual is small (it is
   // the residual at the end's own contacts, whichever they are).
-  const std::vector<int> linearized = contact_set<Dim>(s, q, s.v);
   for (int iteration = 0; iteration < k.options.max_contact_iterations; ++iteration) {
-    if (iteration == 0 && contact_set<Dim>(s, end.q, end.v) == linearized)
+    if (iteration == 0 && contacts_at<Dim>(s, end.q, end.v) == k.matrix.contacts())
       break;  // the linearized step saw every contact
     f.setZero();
     accumulate_forces(s, end.q, end.v, f);

@@ -209,8 +209,11 @@ void StepMatrix<Dim>::assemble(const MassSpringSystem<Dim>& s, const Points& q, 
     }
   }
   // contacts: their diagonal blocks, in the pattern whatever touches what (collision.hpp)
+  std::vector<ContactJacobian<Dim>> blocks;
+  if constexpr (Dim > 1) blocks = contact_jacobians<Dim>(s, q, v);
+  contacts_ = contact_set<Dim>(s, q, blocks);
   if constexpr (Dim > 1) {
-    for (const auto& block : contact_jacobians<Dim>(s, q, v)) {
+    for (const auto& block : blocks) {
       const int d = dof_[block.node];
       if (d < 0) continue;
       const Block c = -(dt * block.d_velocity + (dt * dt) * block.d_position);
@@ -223,6 +226,30 @@ void StepMatrix<Dim>::assemble(const MassSpringSystem<Dim>& s, const Points& q, 
   }
 }
 
+template <int Dim>
+std::vector<int> contact_set(const MassSpringSystem<Dim>& s,
+                             const typename MassSpringSystem<Dim>::Points& q,
+                             const std::vector<ContactJacobian<Dim>>& blocks) {
+  std::vector<int> nodes;
+  if (s.ground) {
+    for (int n = 0; n < s.num_nodes(); ++n) {
+      if (q(Dim - 1, n) < s.ground->height) nodes.push_back(n);
+    }
+  }
+  for (const auto& block : blocks) nodes.push_back(block.node + s.num_nodes());
+  std::sort(nodes.begin(), nodes.end());
+  return nodes;
+}
+
+template std::vector<int> contact_set<1>(const MassSpringSystem<1>&,
+                                         const MassSpringSystem<1>::Points&,
+                                         const std::vector<ContactJacobian<1>>&);
+template std::vector<int> contact_set<2>(const MassSpringSystem<2>&,
+                                         const MassSpringSystem<2>::Points&,
+                                         const std::vector<ContactJacobian<2>>&);
+template std::vector<int> contact_set<3>(const MassSpringSystem<3>&,
+                                         const MassSpringSystem<3>::Points&,
+                                         const std::vector<ContactJacobian<3>>&);
 template class StepMatrix<1>;
 template class StepMatrix<2>;
 template class StepMatrix<3>;

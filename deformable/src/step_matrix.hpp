@@ -7,9 +7,17 @@
 #include <Eigen/SparseCore>
 #include <vector>
 
+#include "contact_forces.hpp"
 #include "gencoord/deformable/mass_spring_system.hpp"
 
 namespace gencoord::deformable::detail {
+
+/// The contacts at positions q, as the sorted list of the nodes in them: the nodes below the
+/// ground, then those of `blocks` (contact_jacobians() at q), offset by the node count.
+template <int Dim>
+std::vector<int> contact_set(const MassSpringSystem<Dim>& s,
+                             const typename MassSpringSystem<Dim>::Points& q,
+                             const std::vector<ContactJacobian<Dim>>& blocks);
 
 template <int Dim>
 class StepMatrix {
@@ -34,6 +42,8 @@ class StepMatrix {
                 Eigen::VectorXd* masses, Eigen::VectorXd* k_v);
 
   const Eigen::SparseMatrix<double>& matrix() const { return a_; }
+  /// The contacts the last assemble() included, as contact_set() of its (q, v).
+  const std::vector<int>& contacts() const { return contacts_; }
   /// First free unknown of node n, -1 if it is pinned.
   int dof(int n) const { return dof_[n]; }
   int unknowns() const { return static_cast<int>(a_.rows()); }
@@ -43,6 +53,7 @@ class StepMatrix {
   int slot(int a, int b, int c) const;
 
   Eigen::SparseMatrix<double> a_;
+  std::vector<int> contacts_;
   std::vector<int> dof_;
   std::vector<char> pinned_;
   std::vector<int> spring_nodes_;  // i, j and broken of each spring, as built
