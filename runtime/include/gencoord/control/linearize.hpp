@@ -73,10 +73,11 @@ void acceleration_and_input_jacobians(const ParamsOf<M>& p, const QVec<M>& q, co
     VQMat<M> r_D_q;
     VMat<M> r_D_v;
     M::residual_jacobians(q, v, *a, t, pu, &r_D_q, &r_D_v);
-    *a_D_q = -llt.solve(r_D_q);
-    *a_D_v = -llt.solve(r_D_v);
+    PlainOf<VMat<M>> Mt_inverse;
+    const bool want_u = has_inputs_v<M> && a_D_u;
+    detail::apply_inverse_mass<M>(llt, r_D_q, r_D_v, a_D_q, a_D_v, want_u ? &Mt_inverse : nullptr);
     if constexpr (has_inputs_v<M>)
-      if (a_D_u) *a_D_u = llt.solve(M::input_matrix(q, v, t, pu));
+      if (a_D_u) *a_D_u = Mt_inverse * M::input_matrix(q, v, t, pu);
   } else {
     detail::throw_no_generated_jacobians(M::name);
   }

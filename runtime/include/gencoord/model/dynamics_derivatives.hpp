@@ -40,15 +40,16 @@ DynamicsDerivatives<M> dynamics_derivatives(const ParamsOf<M>& p, const QVec<M>&
   DynamicsDerivatives<M> out;
   Eigen::LLT<PlainOf<VMat<M>>> llt;
   detail::factor_and_solve<M>(p, q, v, t, &llt, &out.a);
-  out.a_D_tau = llt.solve(PlainOf<VMat<M>>::Identity(nv_of_v<M>, nv_of_v<M>));
   if (resolve_jacobian_source<M>(source) == JacobianSource::FiniteDifference) {
+    out.a_D_tau = llt.solve(PlainOf<VMat<M>>::Identity(nv_of_v<M>, nv_of_v<M>));
     acceleration_jacobians_fd<M>(p, q, v, t, &out.a_D_q, &out.a_D_v);
   } else if constexpr (has_residual_jacobians_v<M> && !has_kinematic_constraints_v<M>) {
     VQMat<M> r_D_q;
     VMat<M> r_D_v;
     M::residual_jacobians(q, v, out.a, t, p, &r_D_q, &r_D_v);
-    out.a_D_q = -llt.solve(r_D_q);
-    out.a_D_v = -llt.solve(r_D_v);
+    PlainOf<VMat<M>> Mt_inverse;
+    detail::apply_inverse_mass<M>(llt, r_D_q, r_D_v, &out.a_D_q, &out.a_D_v, &Mt_inverse);
+    out.a_D_tau = Mt_inverse;
   } else {
     detail::throw_no_generated_jacobians(M::name);
   }
