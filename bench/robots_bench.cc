@@ -19,6 +19,7 @@
 #include "generated/floating_quadruped.hpp"
 #include "generated/iiwa14.hpp"
 #include "generated/quadruped.hpp"
+#include "generated/ur5e.hpp"
 #include "robots/mujoco_model.hpp"
 #include "robots/quaternion_base.hpp"
 
@@ -134,6 +135,7 @@ int main(int argc, char** argv) {
   const int rounds = argc > 1 ? std::atoi(argv[1]) : 51;
   gencoord::bench::pin_to_one_core("bench_robots");
   compare<gencoord::models::Iiwa14>("iiwa14", GENCOORD_ROOT "/models/iiwa14.urdf", rounds);
+  compare<gencoord::models::Ur5e>("ur5e", GENCOORD_ROOT "/models/ur5e.urdf", rounds);
   compare<gencoord::models::Quadruped>("quadruped", GENCOORD_ROOT "/models/quadruped.urdf", rounds);
   using Floating = gencoord::models::FloatingQuadruped;
   compare<Floating, QuaternionBaseReference<Floating>>(

@@ -20,6 +20,7 @@
 #include "generated/mimic_gripper.hpp"
 #include "generated/quadruped.hpp"
 #include "generated/shipped_leg.hpp"
+#include "generated/ur5e.hpp"
 #include "kernel_comparison.hpp"
 
 namespace gencoord {
@@ -33,6 +34,10 @@ struct Robot;
 template <>
 struct Robot<models::Iiwa14> {
   static constexpr const char* urdf = GENCOORD_ROOT "/models/iiwa14.urdf";
+};
+template <>
+struct Robot<models::Ur5e> {
+  static constexpr const char* urdf = GENCOORD_ROOT "/models/ur5e.urdf";
 };
 template <>
 struct Robot<models::Quadruped> {
@@ -70,8 +75,9 @@ State<M> random_state(std::mt19937& rng) {
 
 template <class M>
 class DartReferenceTest : public ::testing::Test {};
-using Robots = ::testing::Types<models::Iiwa14, models::Quadruped, models::FloatingQuadruped,
-                                models::ShippedLeg, models::MimicGripper>;
+using Robots =
+    ::testing::Types<models::Iiwa14, models::Ur5e, models::Quadruped, models::FloatingQuadruped,
+                     models::ShippedLeg, models::MimicGripper>;
 TYPED_TEST_SUITE(DartReferenceTest, Robots);
 
 TYPED_TEST(DartReferenceTest, KernelsMatchAtRandomStates) {

@@ -11,6 +11,7 @@
 #include "gencoord/gencoord.hpp"
 #include "generated/iiwa14.hpp"
 #include "generated/quadruped.hpp"
+#include "generated/ur5e.hpp"
 #include "kernel_comparison.hpp"
 #include "mujoco_model.hpp"
 
@@ -34,6 +35,11 @@ struct Robot<models::Iiwa14> {
   static constexpr double kernels = 1e-9, solved = 1e-9, trajectory = 1e-8;
 };
 template <>
+struct Robot<models::Ur5e> {  // diagonal inertias too
+  static constexpr const char* urdf = GENCOORD_ROOT "/models/ur5e.urdf";
+  static constexpr double kernels = 1e-9, solved = 1e-9, trajectory = 1e-8;
+};
+template <>
 struct Robot<models::Quadruped> {
   static constexpr const char* urdf = GENCOORD_ROOT "/models/quadruped.urdf";
   static constexpr double kernels = 1e-8, solved = 1e-6, trajectory = 1e-6;
@@ -41,7 +47,7 @@ struct Robot<models::Quadruped> {
 
 template <class M>
 class MujocoReferenceTest : public ::testing::Test {};
-using Robots = ::testing::Types<models::Iiwa14, models::Quadruped>;
+using Robots = ::testing::Types<models::Iiwa14, models::Ur5e, models::Quadruped>;
 TYPED_TEST_SUITE(MujocoReferenceTest, Robots);
 
 /// q anywhere in (-pi, pi), v in (-2, 2) rad/s.
