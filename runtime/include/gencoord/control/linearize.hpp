@@ -73,7 +73,7 @@ void acceleration_and_input_jacobians(const ParamsOf<M>& p, const QVec<M>& q, co
     VQMat<M> r_D_q;
     VMat<M> r_D_v;
     M::residual_jacobians(q, v, *a, t, pu, &r_D_q, &r_D_v);
-    PlainOf<VMat<M>> Mt_inverse;
+    VMat<M> Mt_inverse;
     const bool want_u = has_inputs_v<M> && a_D_u;
     detail::apply_inverse_mass<M>(llt, r_D_q, r_D_v, a_D_q, a_D_v, want_u ? &Mt_inverse : nullptr);
     if constexpr (has_inputs_v<M>)

@@ -132,12 +132,11 @@ void factor_and_solve(const ParamsOf<M>& p, const QVec<M>& q, const VVec<M>& v, 
 template <class M>
 void apply_inverse_mass(const Eigen::LLT<PlainOf<VMat<M>>>& llt, const VQMat<M>& r_D_q,
                         const VMat<M>& r_D_v, VQMat<M>* a_D_q, VMat<M>* a_D_v,
-                        PlainOf<VMat<M>>* inverse = nullptr) {
+                        VMat<M>* inverse = nullptr) {
   constexpr int size = PlainOf<VMat<M>>::RowsAtCompileTime;
   constexpr bool small = size != Eigen::Dynamic && size <= 16;
   if (small || inverse) {
-    const PlainOf<VMat<M>> Mt_inverse =
-        llt.solve(PlainOf<VMat<M>>::Identity(nv_of_v<M>, nv_of_v<M>));
+    const VMat<M> Mt_inverse = llt.solve(PlainOf<VMat<M>>::Identity(nv_of_v<M>, nv_of_v<M>));
     if (inverse) *inverse = Mt_inverse;
     if (small) {
       a_D_q->noalias() = -Mt_inverse * r_D_q;
@@ -161,14 +160,17 @@ void apply_inverse_mass(const Eigen::LLT<PlainOf<VMat<M>>>& llt, const VQMat<M>&
 /// The acceleration and its Jacobians in one pass: a = acceleration<M>(p, q, v, t),
 /// da/dq and da/dv from `source`. With generated Jacobians this costs one dynamics
 /// evaluation, one Cholesky factorization of Mt, one residual_jacobians() call and Mt^-1
-/// applied to its nq + nv columns (detail::apply_inverse_mass); with finite differences, 2 (nq +
-/// nv) + 1 acceleration() evaluations. \param[in]  p       The model parameters. \param[in]  q The
-/// generalized coordinates (dim M::nq). \param[in]  v       The generalized velocities or speeds
-/// (dim nv). \param[in]  t       The time. \param[in]  source  Where the Jacobians come from (see
-/// JacobianSource). \param[out] a       The acceleration (dim nv); must not be null. \param[out]
-/// a_D_q   da/dq (dim nv x nq); must not be null. \param[out] a_D_v   da/dv (dim nv x nv); must not
-/// be null. \throws DynamicsError if the dynamics fail at (q, v, t) (or, for finite differences, at
-/// a
+/// applied to its nq + nv columns (detail::apply_inverse_mass); with finite differences,
+/// 2 (nq + nv) + 1 acceleration() evaluations.
+/// \param[in]  p       The model parameters.
+/// \param[in]  q       The generalized coordinates (dim M::nq).
+/// \param[in]  v       The generalized velocities or speeds (dim nv).
+/// \param[in]  t       The time.
+/// \param[in]  source  Where the Jacobians come from (see JacobianSource).
+/// \param[out] a       The acceleration (dim nv); must not be null.
+/// \param[out] a_D_q   da/dq (dim nv x nq); must not be null.
+/// \param[out] a_D_v   da/dv (dim nv x nv); must not be null.
+/// \throws DynamicsError if the dynamics fail at (q, v, t) (or, for finite differences, at a
 ///         perturbed state); std::invalid_argument if source is Generated and the model has no
 ///         residual_jacobians(). Non-finite generated Jacobians are not checked here: they
 ///         make the Newton update non-finite, which the implicit steps report as NewtonError.

@@ -47,9 +47,7 @@ DynamicsDerivatives<M> dynamics_derivatives(const ParamsOf<M>& p, const QVec<M>&
     VQMat<M> r_D_q;
     VMat<M> r_D_v;
     M::residual_jacobians(q, v, out.a, t, p, &r_D_q, &r_D_v);
-    PlainOf<VMat<M>> Mt_inverse;
-    detail::apply_inverse_mass<M>(llt, r_D_q, r_D_v, &out.a_D_q, &out.a_D_v, &Mt_inverse);
-    out.a_D_tau = Mt_inverse;
+    detail::apply_inverse_mass<M>(llt, r_D_q, r_D_v, &out.a_D_q, &out.a_D_v, &out.a_D_tau);
   } else {
     detail::throw_no_generated_jacobians(M::name);
   }
