@@ -15,8 +15,7 @@ from gencoord.derive.dense import Kinematics
 from gencoord.generate.load import load_model
 
 REPOSITORY = Path(__file__).resolve().parents[2]
-ROBOTS = [REPOSITORY / "models" / "iiwa14.urdf", REPOSITORY / "models" / "ur5e.urdf",
-          REPOSITORY / "models" / "quadruped.urdf",
+ROBOTS = [REPOSITORY / "models" / "iiwa14.urdf", REPOSITORY / "models" / "quadruped.urdf",
           REPOSITORY / "tests" / "robots" / "floating_leg.py",
           REPOSITORY / "tests" / "robots" / "floating_leg_yzx.py"]
 
