@@ -83,7 +83,8 @@ def main() -> None:
     with tempfile.TemporaryDirectory(prefix="gencoord-compile-") as folder:
         command = [sys.executable, os.path.join(ROOT, "generate"), "-q",
                    os.path.join(ROOT, "models", "n_link_chain.py"), "--set", f"n={args.n}",
-                   "-o", folder, "--translation-units", str(args.translation_units)]
+                   "-o", folder, "--translation-units", str(args.translation_units),
+                   "--maximal"]
         if args.max_function_statements is not None:
             command += ["--max-function-statements", str(args.max_function_statements)]
         started = time.perf_counter()

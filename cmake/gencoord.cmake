@@ -2,7 +2,7 @@
 # gencoord_add_model(<target> MODEL <model.py> [NAME <name>] [OPTIONS key=value ...]
 #                    [DEPENDS <file> ...] [DYNAMICS auto|dense|recursive]
 #                    [TRANSLATION_UNITS <k>] [MAX_FUNCTION_STATEMENTS <n>] [LOOP_MIN_NQ <n>]
-#                    [OUTPUT_DIR <dir>])
+#                    [OUTPUT_DIR <dir>] [MAXIMAL])
 #
 # Generates <name>.hpp from a gencoord model file at build time and makes <target> an
 # INTERFACE library that carries it: `target_link_libraries(app PRIVATE <target>)` and then
@@ -21,7 +21,8 @@
 # --max-function-statements, LOOP_MIN_NQ --loop-min-nq (from how many coordinates a tree's
 # Mt, J and residual Jacobians are loops over O(nq) products); OUTPUT_DIR replaces
 # ${CMAKE_BINARY_DIR}/gencoord_generated as the folder that holds generated/<name>.hpp (the
-# include directory).
+# include directory). MAXIMAL passes --maximal: the header also holds the maximal-coordinate
+# penalty model (struct Maximal) that the crosscheck driver and gencoord/maximal/ run.
 #
 # This file works from three places: gencoord's own build, a project that added gencoord with
 # add_subdirectory(), and an install (gencoordConfig.cmake includes it from share/gencoord/cmake/).
@@ -57,7 +58,7 @@ set(GENCOORD_GENERATOR_SOURCES ${_gencoord_generator_sources} "${GENCOORD_ROOT}/
     CACHE INTERNAL "files whose change regenerates every model")
 
 function(gencoord_add_model target)
-  cmake_parse_arguments(ARG ""
+  cmake_parse_arguments(ARG "MAXIMAL"
                         "MODEL;NAME;DYNAMICS;TRANSLATION_UNITS;MAX_FUNCTION_STATEMENTS;LOOP_MIN_NQ;OUTPUT_DIR"
                         "OPTIONS;DEPENDS" ${ARGN})
   if(NOT ARG_MODEL)
@@ -83,6 +84,9 @@ function(gencoord_add_model target)
   endif()
   if(DEFINED ARG_LOOP_MIN_NQ)
     list(APPEND set_arguments --loop-min-nq ${ARG_LOOP_MIN_NQ})
+  endif()
+  if(ARG_MAXIMAL)
+    list(APPEND set_arguments --maximal)
   endif()
 
   set(include_dir "${CMAKE_BINARY_DIR}/gencoord_generated")

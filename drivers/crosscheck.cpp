@@ -40,6 +40,9 @@ static_assert(!gencoord::has_generalized_speeds_v<M>,
               "gencoord: the crosscheck program does not support models with generalized speeds "
               "(free or ball "
               "joints) yet");
+static_assert(gencoord::has_maximal_v<M>,
+              "gencoord: the model has no struct Maximal; generate it with --maximal "
+              "(gencoord_add_model(... MAXIMAL))");
 
 struct Options {
   double kappa_lo = 1e2, kappa_hi = 1e8;

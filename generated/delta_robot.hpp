@@ -2,7 +2,7 @@
 //   model:      models/delta_robot.py
 //   template:   gencoord/cxx/templates/model.hpp.j2
 //   generator:  gencoord 0.1.0, SymPy 1.14.0
-//   regenerate: gencoord generate models/delta_robot.py
+//   regenerate: gencoord generate models/delta_robot.py --maximal
 //
 // Singular configurations (J loses rank): none found
 // Worst conditioning of J in 200 random configurations: sigma_min / sigma_max = 0.535 at

@@ -2,7 +2,7 @@
 //   model:      models/heavy_top.py
 //   template:   gencoord/cxx/templates/model.hpp.j2
 //   generator:  gencoord 0.1.0, SymPy 1.14.0
-//   regenerate: gencoord generate models/heavy_top.py
+//   regenerate: gencoord generate models/heavy_top.py --maximal
 //
 // Singular configurations (J loses rank): sin(theta) = 0
 //   found from the rank of J at the zeros of sin and cos of each angle

@@ -2,7 +2,7 @@
 //   model:      models/n_link_chain.py --set n=2
 //   template:   gencoord/cxx/templates/model.hpp.j2
 //   generator:  gencoord 0.1.0, SymPy 1.14.0
-//   regenerate: gencoord generate models/n_link_chain.py --set n=2
+//   regenerate: gencoord generate models/n_link_chain.py --set n=2 --maximal
 //
 // Singular configurations (J loses rank): none found
 // Worst conditioning of J in 200 random configurations: sigma_min / sigma_max = 0.382 at

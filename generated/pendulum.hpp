@@ -2,7 +2,7 @@
 //   model:      models/pendulum.py
 //   template:   gencoord/cxx/templates/model.hpp.j2
 //   generator:  gencoord 0.1.0, SymPy 1.14.0
-//   regenerate: gencoord generate models/pendulum.py
+//   regenerate: gencoord generate models/pendulum.py --maximal
 //
 // Singular configurations (J loses rank): none found
 // Worst conditioning of J in 200 random configurations: sigma_min / sigma_max = 1 at theta =

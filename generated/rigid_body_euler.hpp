@@ -2,7 +2,7 @@
 //   model:      models/rigid_body_euler.py
 //   template:   gencoord/cxx/templates/model.hpp.j2
 //   generator:  gencoord 0.1.0, SymPy 1.14.0
-//   regenerate: gencoord generate models/rigid_body_euler.py
+//   regenerate: gencoord generate models/rigid_body_euler.py --maximal
 //
 // Chart 'zyx' (rigid_body_euler):
 //   Singular configurations (J loses rank): cos(pitch) = 0

@@ -2,7 +2,7 @@
 //   model:      models/spherical_pendulum.py
 //   template:   gencoord/cxx/templates/model.hpp.j2
 //   generator:  gencoord 0.1.0, SymPy 1.14.0
-//   regenerate: gencoord generate models/spherical_pendulum.py
+//   regenerate: gencoord generate models/spherical_pendulum.py --maximal
 //
 // Chart 'pole_down' (spherical_pendulum):
 //   Singular configurations (J loses rank): sin(theta) = 0

@@ -2,7 +2,7 @@
 //   model:      models/spring_pendulum.py
 //   template:   gencoord/cxx/templates/model.hpp.j2
 //   generator:  gencoord 0.1.0, SymPy 1.14.0
-//   regenerate: gencoord generate models/spring_pendulum.py
+//   regenerate: gencoord generate models/spring_pendulum.py --maximal
 //
 // Singular configurations (J loses rank): r = 0
 //   found from the factors of det(J^T J)

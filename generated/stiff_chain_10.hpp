@@ -2,7 +2,7 @@
 //   model:      models/stiff_chain.py --set n=10
 //   template:   gencoord/cxx/templates/model.hpp.j2
 //   generator:  gencoord 0.1.0, SymPy 1.14.0
-//   regenerate: gencoord generate models/stiff_chain.py --set n=10
+//   regenerate: gencoord generate models/stiff_chain.py --set n=10 --maximal
 //
 // Singular configurations (J loses rank): none found (searched by sampling only, nq > 6)
 // Worst conditioning of J in 43 random configurations: sigma_min / sigma_max = 0.0116 at

@@ -2,7 +2,7 @@
 //   model:      models/whipple_bicycle.py
 //   template:   gencoord/cxx/templates/model.hpp.j2
 //   generator:  gencoord 0.1.0, SymPy 1.14.0
-//   regenerate: gencoord generate models/whipple_bicycle.py
+//   regenerate: gencoord generate models/whipple_bicycle.py --maximal
 //
 // Singular configurations (J loses rank): none found (searched by sampling only, nq > 6)
 // Worst conditioning of J in 84 random configurations: sigma_min / sigma_max = 0.000633 at x

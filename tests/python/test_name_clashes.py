@@ -45,7 +45,8 @@ class AcceptedHeadersCompileTest(unittest.TestCase):
                 with self.subTest(case=stem):
                     model = root / f"{stem}.py"
                     model.write_text(textwrap.dedent(source), encoding="utf-8")
-                    status, _, err = run_cli(model, "-o", root / "generated", "--quiet")
+                    status, _, err = run_cli(model, "-o", root / "generated", "--quiet",
+                                             "--maximal")
                     self.assertEqual(status, 0, err)
                     header = (root / "generated" / f"{stem}.hpp").read_text(encoding="utf-8")
                     use = root / f"{stem}.cpp"

@@ -123,7 +123,7 @@ class SplitHeaderTest(unittest.TestCase):
         """A tree that gets looped kernels is cut into parts of 500 statements unless told
         otherwise, which the report says; an explicit size is kept and recorded."""
         chain = str(REPO / "models" / "n_link_chain.py")
-        chosen = generate(chain, {"n": "12"}, GenerateOptions(loop_min_nq=10))
+        chosen = generate(chain, {"n": "12"}, GenerateOptions(loop_min_nq=10, maximal=True))
         self.assertIn("kernels cut into parts of at most "
                       f"{GenerateOptions.large_tree_part_statements} "
                       "statements", " ".join(chosen.analysis))
@@ -132,7 +132,8 @@ class SplitHeaderTest(unittest.TestCase):
         # every kernel of the 12-link chain is under 2000 statements: told so, none is cut
         every = GenerateOptions.part_statements
         told = generate(chain, {"n": "12"},
-                        GenerateOptions(loop_min_nq=10, max_part_statements=every))
+                        GenerateOptions(loop_min_nq=10, maximal=True,
+                                        max_part_statements=every))
         self.assertIn(f"--max-function-statements {every}", told.header)
         self.assertNotIn("GENCOORD_NOINLINE static void", told.header)
 

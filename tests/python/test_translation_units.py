@@ -141,7 +141,8 @@ class TranslationUnitsTest(unittest.TestCase):
     @unittest.skipUnless(shutil.which("g++") and shutil.which("nm") and EIGEN.is_dir(),
                          "needs g++, nm and Eigen")
     def test_including_file_compiles_no_part_for_double(self):
-        self.generate("--translation-units", "2", "--max-function-statements", "40")
+        self.generate("--translation-units", "2", "--max-function-statements", "40",
+                      "--maximal")
         user = self.output / "user.cpp"
         user.write_text(
             '#include "double_pendulum.hpp"\n'

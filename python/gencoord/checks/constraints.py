@@ -212,7 +212,10 @@ def verify_constraints(model: Model, seed: int = 20261121,
 
 
 def _rigid_by_construction(constraint) -> bool:
-    """A rod between two point masses of one body: they move with the body's frame."""
+    """A rod between two point masses of one body: they move with the body's frame; a pin
+    that holds a joint's halves together: the joint's motion keeps them on each other."""
+    if isinstance(constraint, Pin):
+        return constraint.joint is not None
     return (isinstance(constraint, Rod) and isinstance(constraint.a, BodyParticle)
             and isinstance(constraint.b, BodyParticle)
             and constraint.a.body_name == constraint.b.body_name)

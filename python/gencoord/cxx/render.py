@@ -191,6 +191,7 @@ def _chart_context(chart, first, unroll_max_nq: int) -> dict:
         part_groups=_part_groups(optimized.kernels[:n]),
         maximal_part_groups=_part_groups(optimized.kernels[n:]),
         has_maximal=chart.maximal is not None,
+        no_maximal=chart.no_maximal,
         constraint_names=chart.maximal.constraint_names if chart.maximal else [],
         declared_constraints=chart.maximal.declared_constraints if chart.maximal else 0,
         has_generalized_forces=bool(model.generalized_forces),

@@ -265,6 +265,8 @@ class Pin(Item):
     (a joint between two bodies)."""
     particle: Point
     anchor: sp.Matrix | Point
+    # the joint whose two halves it holds: true by the joint's kinematics, so not checked
+    joint: str | None = field(default=None, kw_only=True)
     kind = "pin"
 
 

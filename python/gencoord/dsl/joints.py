@@ -321,6 +321,7 @@ def _pin(model, link: Link, parent: Link | None, joint: Joint, joint_name: str) 
         else:
             anchor = parent_body.point(list(in_parent), name=f"{joint_name}_{suffix}_parent")
         model.pin(child_point, anchor, name=f"{joint_name}_{suffix}")
+        model.constraints[-1].joint = joint_name
 
 
 def add_free_base(model, name: str, mass, inertia, com: Origin | None = None,

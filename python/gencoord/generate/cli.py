@@ -53,7 +53,10 @@ def _add_knob_flags(parser: argparse.ArgumentParser) -> None:
             continue
         extra: dict[str, Any] = {"choices": DYNAMICS_CHOICES} if knob.name == "dynamics" else {
             "type": knob.metadata["parse"], "metavar": knob.metadata["metavar"]}
-        default = "" if knob.default is None else f" (default {knob.default})"
+        if isinstance(knob.default, bool):
+            extra = {"action": "store_true"}
+        default = ("" if knob.default is None or isinstance(knob.default, bool)
+                   else f" (default {knob.default})")
         parser.add_argument(flag, dest=knob.name, default=knob.default,
                             help=knob.metadata["help"] + default, **extra)
 

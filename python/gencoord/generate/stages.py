@@ -29,7 +29,7 @@ from gencoord.derive.kinematic_constraints import (ConstraintDerivation,
                                                    derive_kinematic_constraints)
 from gencoord.derive.looped import looped_outputs
 from gencoord.derive.maximal import (KAPPA, PENALTY_DAMPING, MaximalDerivation, derive_maximal,
-                                     has_maximal_model)
+                                     has_maximal_model, why_no_maximal_model)
 from gencoord.dsl.model import Model
 from gencoord.naming import chart_name
 from gencoord.optimize.optimizer import OptimizedModel, optimize_model
@@ -89,12 +89,12 @@ class GeneratedChart:
     name: str
     optimized: OptimizedModel
     num_reduced_kernels: int
-    # None for a model with generalized speeds or kinematic constraints: the cross-check
-    # does not take them yet
+    # None without --maximal, or for a model that can have none (no_maximal says why)
     maximal: MaximalDerivation | None
     analysis: list[str]
     forces_have_potential: bool          # conservative.py: the struct's forces_have_potential
     paths: PathChoice                    # dense or recursive qddot and inverse_dynamics
+    no_maximal: str = ""                 # why the header has no struct Maximal
 
 
 @dataclass
@@ -186,7 +186,7 @@ def _derive(work: _ChartWork, observers: _Observers) -> None:
     symbolic = work.small and not chart.bodies
     assert work.derivation is not None  # set above
     work.derivation.constraints = work.constraints
-    if has_maximal_model(chart):
+    if work.options.maximal and has_maximal_model(chart):
         work.maximal = derive_maximal(chart, symbolic_jacobians=symbolic, named=not symbolic)
         work.definitions = [*work.definitions, *work.maximal.definitions]
 
@@ -218,8 +218,11 @@ def _optimize(work: _ChartWork, name: str) -> GeneratedChart:
                         f"product (nq = {chart.nq}, from --loop-min-nq {options.loop_min_nq} "
                         f"on); kernels cut into parts of at most {part_statements} statements")
     reduced = len(optimized.kernels) - len(maximal_kernels)
+    no_maximal = "" if maximal else (
+        why_no_maximal_model(chart) if options.maximal else
+        "generated without --maximal (gencoord crosscheck generates with it)")
     return GeneratedChart(chart, chart_name(name, work.model, chart), optimized, reduced,
-                          maximal, analysis, work.conservative, paths)
+                          maximal, analysis, work.conservative, paths, no_maximal or "")
 
 
 def _generate_chart(path: str, model: Model, chart: Model, name: str, options: GenerateOptions,

@@ -4,13 +4,14 @@ per-user cache, once.
 
 A cache entry is a folder named after the model and a key: the hash of the model file, its
 options, gencoord's own sources (generator, templates, drivers, bindings, runtime), the Python
-and SymPy that generate, and the C++ compiler. It holds the generated header, a small CMake
-project that compiles the drivers and the module against the runtime (the one the cache holds
-for every model, runtime_build.py, or an installation's), its builds (the drivers', and one per
-Python interpreter for the module), and in each build a stamp written only after everything it
-builds is complete: without it the build runs again. A lock file
-serializes concurrent builds of the same entry. Files the model file imports are not part of
-the key; `--rebuild` forces a fresh build.
+and SymPy that generate, and the C++ compiler. It holds the generated header (and, once
+`crosscheck` asks for it, the header generated with --maximal, which adds the maximal model
+that only that driver runs), a small CMake project that compiles the drivers and the module
+against the runtime (the one the cache holds for every model, runtime_build.py, or an
+installation's), its builds (the drivers', and one per Python interpreter for the module),
+and in each build a stamp written only after everything it builds is complete: without it the
+build runs again. A lock file serializes concurrent builds of the same entry. Files the model
+file imports are not part of the key; `--rebuild` forces a fresh build.
 """
 
 from __future__ import annotations
@@ -19,6 +20,7 @@ import contextlib
 import hashlib
 import json
 import os
+import shutil
 import subprocess
 import sys
 from dataclasses import dataclass
@@ -52,10 +54,13 @@ add_library(model INTERFACE)
 target_include_directories(model INTERFACE "${{CMAKE_CURRENT_SOURCE_DIR}}/../include")
 set_target_properties(model PROPERTIES GENCOORD_MODEL_NAME {name}
                       GENCOORD_MODEL_CLASS gencoord::models::{class_name})
-foreach(driver IN ITEMS simulate crosscheck)
-  gencoord_add_driver(${{driver}} DRIVER ${{driver}} MODEL model
-                      CLASS gencoord::models::{class_name} HEADER generated/{name}.hpp)
-endforeach()
+add_library(model_maximal INTERFACE)  # the same model with its maximal model (--maximal)
+target_include_directories(model_maximal INTERFACE
+                           "${{CMAKE_CURRENT_SOURCE_DIR}}/../include-maximal")
+gencoord_add_driver(simulate DRIVER simulate MODEL model
+                    CLASS gencoord::models::{class_name} HEADER generated/{name}.hpp)
+gencoord_add_driver(crosscheck DRIVER crosscheck MODEL model_maximal
+                    CLASS gencoord::models::{class_name} HEADER generated/{name}.hpp)
 if(GENCOORD_PYTHON_MODULE)
   gencoord_add_python_module(python_module MODEL_TARGET model)
 endif()
@@ -105,8 +110,10 @@ def entry_dir(layout: Layout, target: ModelTarget) -> str:
     return os.path.join(cache_dir(), f"{target.name}-{digest.hexdigest()[:16]}")
 
 
-def _generate_header(target: ModelTarget, include_dir: str) -> None:
+def _generate_header(target: ModelTarget, include_dir: str, maximal: bool) -> None:
     arguments = [target.path, "-o", os.path.join(include_dir, "generated")]
+    if maximal:
+        arguments.append("--maximal")
     for key, value in target.options.items():
         arguments += ["--set", f"{key}={value}"]
     if target.stem:
@@ -144,11 +151,12 @@ def _forget_builds(entry: str) -> None:
 
 def _cached_build(layout: Layout, target: ModelTarget, build: str, outputs: list[str], *,
                   cmake_targets: list[str], configure: list[str], what: str, rebuild: bool,
-                  verbose: bool, needs: str = "") -> None:
+                  verbose: bool, needs: str = "", maximal: bool = False) -> None:
     """Builds `cmake_targets` of the model's project in `build` unless a stamp there says that
     `outputs` were built completely; the cache entry is locked meanwhile. `rebuild`
     regenerates the header, so every build of the entry is done again when next asked for.
-    `needs` says what the configuration needs beyond a compiler and CMake, when it fails."""
+    `needs` says what the configuration needs beyond a compiler and CMake, when it fails;
+    `maximal`, that the targets read the header generated with --maximal."""
     entry = entry_dir(layout, target)
     stamp = _stamp(build, cmake_targets)
     with locked(entry):
@@ -161,7 +169,7 @@ def _cached_build(layout: Layout, target: ModelTarget, build: str, outputs: list
         for output in outputs:
             with contextlib.suppress(FileNotFoundError):
                 os.unlink(output)  # a link cut short would look up to date
-        project = _write_project(target, entry, rebuild)
+        project = _write_project(target, entry, rebuild, maximal)
         log = os.path.join(entry, "build.log")
         if not os.path.isfile(os.path.join(build, "CMakeCache.txt")):
             run_logged(_configure_command(layout, project, build, verbose) + configure, log,
@@ -179,7 +187,7 @@ def driver_program(layout: Layout, target: ModelTarget, driver: str, *, rebuild:
     program = os.path.join(build, driver)
     _cached_build(layout, target, build, [program], cmake_targets=[driver], configure=[],
                   what=f"the {driver} program for {target.name}", rebuild=rebuild,
-                  verbose=verbose)
+                  verbose=verbose, maximal=driver == "crosscheck")
     return program
 
 
@@ -202,13 +210,19 @@ def generated_header(layout: Layout, target: ModelTarget) -> str:
     return os.path.join(entry_dir(layout, target), "include", "generated", f"{target.name}.hpp")
 
 
-def _write_project(target: ModelTarget, entry: str, rebuild: bool) -> str:
-    """Generates the header unless the entry has it, writes the CMake project, returns its
-    folder."""
+def _write_project(target: ModelTarget, entry: str, rebuild: bool, maximal: bool) -> str:
+    """Generates the header unless the entry has it (and the one with the maximal model if
+    `maximal`), writes the CMake project, returns its folder. `rebuild` regenerates the
+    header and drops the maximal one, which its next user generates again."""
     include_dir = os.path.join(entry, "include")
-    if rebuild or not os.path.isfile(os.path.join(include_dir, "generated",
-                                                  f"{target.name}.hpp")):
-        _generate_header(target, include_dir)
+    maximal_dir = os.path.join(entry, "include-maximal")
+    if rebuild:
+        shutil.rmtree(maximal_dir, ignore_errors=True)
+    header = os.path.join("generated", f"{target.name}.hpp")
+    if rebuild or not os.path.isfile(os.path.join(include_dir, header)):
+        _generate_header(target, include_dir, maximal=False)
+    if maximal and not os.path.isfile(os.path.join(maximal_dir, header)):
+        _generate_header(target, maximal_dir, maximal=True)
     project = os.path.join(entry, "project")
     os.makedirs(project, exist_ok=True)
     with open(os.path.join(project, "CMakeLists.txt"), "w", encoding="utf-8") as handle:
