@@ -491,8 +491,7 @@ class UrdfGenerateTest(unittest.TestCase):
                               '<transmission name="t"/>', '<gazebo/>', '<gazebo/>'),
                         encoding="utf-8")
         model, _, _ = load_model(str(path))
-        self.assertEqual(model.ignored, [
-            "<dynamics friction> of 1 joint(s) (hinge): joint friction is not modelled",
+        self.assertEqual(model.ignored, [  # the hinge's friction is read (test_joint_friction)
             "1 <transmission> element(s): actuator transmissions",
             "2 <gazebo> element(s): Gazebo extensions"])
 
@@ -577,7 +576,11 @@ class BuiltInRobotsTest(unittest.TestCase):
         self.assertNotIn("trunk", [b.name for b in model.bodies])
         thigh = next(b for b in model.bodies if b.name == "FR_thigh")
         self.assertNotEqual(thigh.inertia[0, 2], 0)
-        self.assertEqual([p.name for p in model.parameters], ["g"])
+        self.assertEqual([p.name for p in model.parameters], ["joint_friction_speed", "g"])
+        # damping 0.01 and friction 0.2 on every joint
+        self.assertEqual(sorted({f.name.rsplit("_", 1)[1] for f in model.generalized_forces}),
+                         ["damping", "friction"])
+        self.assertEqual(len(model.generalized_forces), 24)
 
 
 class UrdfModelFileTest(unittest.TestCase):

@@ -13,6 +13,7 @@
 #pragma once
 
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -21,6 +22,7 @@
 #include <Eigen/Geometry>
 
 #include <dart/dynamics/BodyNode.hpp>
+#include <dart/dynamics/DegreeOfFreedom.hpp>
 #include <dart/dynamics/FreeJoint.hpp>
 #include <dart/dynamics/Joint.hpp>
 #include <dart/dynamics/Skeleton.hpp>
@@ -48,6 +50,9 @@ class DartReference {
     // is the continuous equations' -D v
     skeleton_->setTimeStep(1e-30);
     map_speeds();
+    typename M::Params params;
+    const double* speed = params.find("joint_friction_speed");
+    if (speed) friction_speed_ = *speed;
   }
 
   int dofs() const { return static_cast<int>(skeleton_->getNumDofs()); }
@@ -83,11 +88,24 @@ class DartReference {
   /// S^T M S at the state set.
   Eigen::MatrixXd mass_matrix() const { return S_.transpose() * skeleton_->getMassMatrix() * S_; }
 
-  /// S^T tau: the generalized force that gives v' (gravity, Coriolis, damping included).
+  /// S^T tau: the generalized force that gives v' (gravity, Coriolis, damping and friction
+  /// included).
   Eigen::VectorXd inverse_dynamics(const VVec<M>& vdot) {
     skeleton_->setAccelerations(S_ * Eigen::VectorXd(vdot));
     skeleton_->computeInverseDynamics(false, true, true);
-    return S_.transpose() * skeleton_->getForces();
+    return S_.transpose() * (skeleton_->getForces() + friction());
+  }
+
+  /// The generated models' joint friction F tanh(v / s) that each degree of freedom's motion
+  /// meets, F DART's Coulomb friction (its URDF reader takes it from <dynamics friction>),
+  /// which DART itself applies only in its constraint solver.
+  Eigen::VectorXd friction() const {
+    Eigen::VectorXd out(dofs());
+    for (int i = 0; i < dofs(); ++i) {
+      const dart::dynamics::DegreeOfFreedom* dof = skeleton_->getDof(static_cast<std::size_t>(i));
+      out[i] = dof->getCoulombFriction() * std::tanh(dof->getVelocity() / friction_speed_);
+    }
+    return out;
   }
 
   /// v' with no force applied: S^T M S v' = -S^T tau(q, v, 0).
@@ -99,7 +117,7 @@ class DartReference {
   /// DART's own forward dynamics, in gencoord's speeds (S square: no mimic joints).
   Eigen::VectorXd forward_dynamics() {
     skeleton_->resetCommands();
-    skeleton_->setForces(Eigen::VectorXd::Zero(dofs()));
+    skeleton_->setForces(-friction());
     skeleton_->computeForwardDynamics();
     return S_.partialPivLu().solve(skeleton_->getAccelerations());
   }
@@ -150,6 +168,7 @@ class DartReference {
 
   dart::dynamics::SkeletonPtr skeleton_;
   Eigen::MatrixXd S_;  // DART's velocities per unit speed of gencoord's
+  double friction_speed_ = std::numeric_limits<double>::infinity();  // none without friction
 };
 
 }  // namespace gencoord::robot_testing

@@ -107,6 +107,7 @@ class FreeBaseReference {
 
   explicit FreeBaseReference(const std::string& urdf_path)
       : model_(load_smooth_model(urdf_path)), chart_(&euler_chart_of<M>()) {
+    use_joint_friction_of<M>();
     if (model_->nq != nq || model_->nv != nv) {
       throw std::runtime_error(urdf_path + ": MuJoCo has nq = " + std::to_string(model_->nq) +
                                " and nv = " + std::to_string(model_->nv) +

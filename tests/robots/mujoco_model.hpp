@@ -8,6 +8,8 @@
 #pragma once
 
 #include <array>
+#include <cmath>
+#include <limits>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -39,6 +41,32 @@ inline ModelPtr load_smooth_model(const std::string& urdf_path) {
   return model;
 }
 
+/// The smoothing speed s of the generated model's joint friction -F tanh(v / s); infinite (no
+/// friction) for a model without any.
+inline double& joint_friction_speed() {
+  static double speed = std::numeric_limits<double>::infinity();
+  return speed;
+}
+
+/// MuJoCo's passive-force callback: the generated models' joint friction -F tanh(v / s), F
+/// MuJoCo's frictionloss (its URDF reader takes it from <dynamics friction>). MuJoCo's own
+/// friction loss is a constraint, and constraints are off in the smooth model.
+inline void smooth_joint_friction(const mjModel* model, mjData* data) {
+  for (int i = 0; i < model->nv; ++i) {
+    data->qfrc_passive[i] -=
+        model->dof_frictionloss[i] * std::tanh(data->qvel[i] / joint_friction_speed());
+  }
+}
+
+/// Gives MuJoCo the joint friction of model M (its parameter joint_friction_speed).
+template <class M>
+void use_joint_friction_of() {
+  typename M::Params params;
+  const double* speed = params.find("joint_friction_speed");
+  joint_friction_speed() = speed ? *speed : std::numeric_limits<double>::infinity();
+  mjcb_passive = smooth_joint_friction;
+}
+
 /// The joint called `name` (a generated coordinate's name), or an error naming the URDF.
 inline int joint_called(const mjModel* model, const std::string& urdf_path, const char* name) {
   const int joint = mj_name2id(model, mjOBJ_JOINT, name);
@@ -55,6 +83,7 @@ class MujocoReference {
   using QMat = Eigen::Matrix<double, M::nq, M::nq>;
 
   explicit MujocoReference(const std::string& urdf_path) : model_(load_smooth_model(urdf_path)) {
+    use_joint_friction_of<M>();
     if (model_->nq != M::nq || model_->nv != M::nq) {
       throw std::runtime_error(urdf_path + ": MuJoCo has nq = " + std::to_string(model_->nq) +
                                ", the generated model " + std::to_string(M::nq));
@@ -87,7 +116,8 @@ class MujocoReference {
   QVec q() const { return gather(data_->qpos, qpos_); }
   QVec v() const { return gather(data_->qvel, dof_); }
   QVec qacc() const { return gather(data_->qacc, dof_); }
-  /// c(q, v) - passive forces: Coriolis, centrifugal and gravity minus joint damping; the
+  /// c(q, v) - passive forces: Coriolis, centrifugal and gravity minus joint damping and
+  /// friction; the
   /// generated model's Ft + Fi is its negative.
   QVec bias() const {
     QVec out;

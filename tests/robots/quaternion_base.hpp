@@ -31,6 +31,7 @@ class QuaternionBaseReference {
 
   explicit QuaternionBaseReference(const std::string& urdf_path)
       : model_(load_smooth_model(urdf_path)) {
+    use_joint_friction_of<M>();
     static_assert(M::num_quaternions >= 1, "the model's base is a free joint");
     if (model_->nq != M::nq || model_->nv != M::nv || model_->jnt_type[0] != mjJNT_FREE) {
       throw std::runtime_error(urdf_path + ": MuJoCo has nq = " + std::to_string(model_->nq) +

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Pack<N> as the generated kernels' Scalar (gencoord/simd/): its sin and cos within 4 ulp of
-// std::sin and std::cos, its arithmetic lane by lane as scalar code, and batch_qddot_simd()
+// std::sin and std::cos, its arithmetic and other functions lane by lane as scalar code, and
+// batch_qddot_simd()
 // against the scalar batch on planar and 3D models, a 10-link chain, the 7-joint arm and the
 // floating quadruped (unit quaternions), with a batch size that leaves a scalar tail, and a
 // failing state that throws as the scalar batch does.
@@ -62,6 +63,26 @@ TEST(Pack, ArithmeticIsLaneByLane) {
   for (int k = 0; k < 4; ++k) EXPECT_EQ(r[k], (a[k] * b[k] - b[k] / a[k] + 2.0) * -a[k]);
   EXPECT_EQ(sqrt(a)[1], std::sqrt(a[1]));
   EXPECT_EQ(abs(b)[3], std::abs(b[3]));
+}
+
+// the compiler may call libmvec for a loop over lanes: a few ulp from the scalar function
+TEST(Pack, EveryOtherFunctionOfTheKernelsIsWithinFourUlpOfTheScalarOne) {
+  const Pack<4> x = Pack<4>::generate([](int k) { return 0.15 * k + 0.2; });  // in (0, 1)
+  const Pack<4> y = Pack<4>::generate([](int k) { return 1.5 - 0.4 * k; });
+  for (int k = 0; k < 4; ++k) {
+    EXPECT_LE(ulps(tan(x)[k], std::tan(x[k])), 4);
+    EXPECT_LE(ulps(asin(x)[k], std::asin(x[k])), 4);
+    EXPECT_LE(ulps(acos(x)[k], std::acos(x[k])), 4);
+    EXPECT_LE(ulps(atan(x)[k], std::atan(x[k])), 4);
+    EXPECT_LE(ulps(sinh(x)[k], std::sinh(x[k])), 4);
+    EXPECT_LE(ulps(cosh(x)[k], std::cosh(x[k])), 4);
+    EXPECT_LE(ulps(tanh(y)[k], std::tanh(y[k])), 4);
+    EXPECT_LE(ulps(exp(y)[k], std::exp(y[k])), 4);
+    EXPECT_LE(ulps(log(x)[k], std::log(x[k])), 4);
+    EXPECT_LE(ulps(cbrt(y)[k], std::cbrt(y[k])), 4);
+    EXPECT_LE(ulps(atan2(y, x)[k], std::atan2(y[k], x[k])), 4);
+    EXPECT_LE(ulps(pow(x, y)[k], std::pow(x[k], y[k])), 4);
+  }
 }
 
 template <class M>

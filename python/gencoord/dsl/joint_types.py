@@ -123,19 +123,22 @@ class Mimic:
 @dataclass(init=False)
 class _Moving(Joint):
     """A joint with a coordinate: it moves about or along `axis` (joint-frame components); with
-    `mimic`, by the followed joint's coordinate instead of one of its own."""
+    `mimic`, by the followed joint's coordinate instead of one of its own. `damping` c resists
+    its rate qdot with -c qdot, `friction` F (Coulomb's, a torque or a force) with the smooth
+    -F tanh(qdot / s), s the model's parameter joint_friction_speed (joints.py)."""
     axis: Sequence = (1, 0, 0)
     limits: Limits | None = None
     damping: float = 0
     mimic: Mimic | None = None
+    friction: float = 0
 
     def __init__(self, axis: Sequence, origin: Origin | None = None,
                  limits: Limits | None = None, damping=0, name: str | None = None,
-                 mimic: Mimic | None = None):
+                 mimic: Mimic | None = None, friction=0):
         self.axis = tuple(number(v) for v in axis)
         self.origin = origin if origin is not None else Origin()
         self.limits, self.damping, self.name = limits, number(damping), name
-        self.mimic = mimic
+        self.mimic, self.friction = mimic, number(friction)
 
     def moves(self) -> bool:
         return True

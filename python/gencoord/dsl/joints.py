@@ -2,8 +2,8 @@
 """Kinematic trees: links joined by revolute, continuous, prismatic and fixed joints.
 
 `add_link` composes a link's frame from its parent's (URDF's conventions), declares the
-joint's coordinate, the link's body, the joint's damping and the pins that hold the joint
-together in the maximal-coordinate model:
+joint's coordinate, the link's body, the joint's damping and friction and the pins that hold
+the joint together in the maximal-coordinate model:
 
     turret = add_link(model, "turret", None, Revolute([0, 0, 1], Origin(xyz=[0, 0, 0.1])),
                       mass=4.0, inertia=I0)
@@ -33,6 +33,13 @@ from gencoord.dsl.quaternions import (quaternion_from_rpy, quaternion_rate,
 
 __all__ = ["Ball", "Continuous", "Fixed", "Free", "Joint", "Limits", "Mimic", "Origin", "Prismatic",
            "Revolute", "Link", "add_link", "add_free_base", "identifier", "number"]
+
+# Joint friction's smoothing speed s, a parameter of the model (Params changes it at run
+# time): -F tanh(qdot / s) acts like a damping F / s near rest, which an explicit step must
+# resolve, so the default is a speed a robot's joints pass through quickly, not a tiny one.
+FRICTION_SPEED = 0.1
+FRICTION_SPEED_DESCRIPTION = ("speed at which joint friction -F tanh(qdot / s) reaches 76% of "
+                              "F (rad/s or m/s)")
 
 # Euler-angle charts of a free-floating base: each angle's name, axis and description,
 # outermost (world) first; the two charts' singular sets are disjoint (see atlas.py).
@@ -111,13 +118,24 @@ def _check_axis(joint: Joint, label: str) -> None:
                              "along, e.g. [0, 0, 1]", item=label)
 
 
+def _check_resistances(joint: Joint, label: str) -> None:
+    """Damping and friction must not feed energy in: a negative value is refused."""
+    if isinstance(joint, _Moving):
+        for what, given in (("damping", joint.damping), ("friction", joint.friction)):
+            value = sp.sympify(given)  # number() made it a SymPy number or expression
+            if value.is_number and value.is_negative:
+                raise ModelError(f"the {what} is {float(value):g}; give a non-negative {what}",
+                                 item=label)
+
+
 def add_link(model, name: str, parent: Link | None, joint: Joint, mass=None, inertia=None,
              com: Origin | None = None) -> Link:
     """Adds link `name`, joined to `parent` (None: the world) by `joint`; with `mass`, the
     link is a body whose `inertia` (3x3, about the centre of mass) is given in `com`'s axes.
 
     The joint's coordinate is named after the joint; a moving joint's damping c adds the
-    generalized force -c qdot. Returns the Link.
+    generalized force -c qdot, its friction F the smoothed Coulomb friction -F tanh(qdot / s)
+    (`_friction_speed`). Returns the Link.
     """
     com = com if com is not None else Origin()
     if not isinstance(joint, Joint):
@@ -132,6 +150,7 @@ def add_link(model, name: str, parent: Link | None, joint: Joint, mass=None, ine
     joint_label = joint.name or f"{name}_joint"
     label = f"joint '{joint_label}'"
     _check_axis(joint, label)
+    _check_resistances(joint, label)
     parent_frame = parent.frame if parent else Frame.identity()
     joint_frame = parent_frame * joint.origin.frame()
     joint_name = _unused(model, identifier(joint_label), "_q")
@@ -161,8 +180,15 @@ def add_link(model, name: str, parent: Link | None, joint: Joint, mass=None, ine
     elif not joint.moves() and parent is not None and parent.support is not None:
         body, offset = parent.support
         link.support = (body, offset * joint.origin.frame())
-    if isinstance(joint, _Moving) and joint.damping != 0:
-        _damp(model, link, joint_frame, joint_name, label)
+    if isinstance(joint, _Moving):
+        if joint.damping != 0:
+            _resist(model, link, joint_frame, lambda rate: -joint.damping * rate,
+                    f"{joint_name}_damping", "damping", label)
+        if joint.friction != 0:
+            speed = _friction_speed(model)
+            _resist(model, link, joint_frame,
+                    lambda rate: -joint.friction * sp.tanh(rate / speed),
+                    f"{joint_name}_friction", "friction", label)
     if link.body is not None:
         _pin(model, link, parent, joint, joint_name)
     return link
@@ -231,37 +257,49 @@ def _followed(model, joint: _Moving, label: str) -> sp.Expr:
     return number(mimic.multiplier) * followed.symbol + number(mimic.offset)
 
 
-def _damp(model, link: Link, joint_frame: Frame, joint_name: str, label: str) -> None:
-    """Joint damping: the generalized force -c qdot; in a chart of an atlas, which refuses
-    forces on q, the same as torques -+c qdot about the joint axis on the two bodies (their
-    virtual work is -c qdot dq). A mimic joint's, -c m^2 qdot on the coordinate it follows
-    (its rate is m qdot, its virtual displacement m dq)."""
+def _friction_speed(model) -> sp.Symbol:
+    """The parameter s of every joint's smoothed Coulomb friction -F tanh(qdot / s), declared
+    with the first joint that has friction: the friction reaches 76% of F at |qdot| = s and
+    99.9% at 4 s. A smaller s is closer to Coulomb's law and stiffer to integrate (the slope
+    F / s at rest acts as a damping)."""
+    for parameter in model.parameters:
+        if parameter.description == FRICTION_SPEED_DESCRIPTION:
+            return parameter.symbol
+    return model.parameter(_unused(model, "joint_friction_speed", "_"), FRICTION_SPEED,
+                           FRICTION_SPEED_DESCRIPTION)
+
+
+def _resist(model, link: Link, joint_frame: Frame, law, name: str, what: str,
+            label: str) -> None:
+    """A force of the joint's rate alone, law(qdot) (damping, friction), on its coordinate; in
+    a chart of an atlas, which refuses forces on q, the same as torques +-law(qdot) about the
+    joint axis on the two bodies (their virtual work is law(qdot) dq). A mimic joint's rate is
+    m qdot, q the coordinate it follows, and its virtual displacement m dq: m law(m qdot) on q."""
     joint = link.joint
-    assert isinstance(joint, _Moving)  # only a moving joint has damping
+    assert isinstance(joint, _Moving)  # only a moving joint has a rate
     if joint.mimic is not None:
         if model.chart:
-            raise ModelError("in an atlas, a mimic joint's damping is not supported; set it to 0",
+            raise ModelError(f"in an atlas, a mimic joint's {what} is not supported; set it to 0",
                              item=label)
         multiplier = number(joint.mimic.multiplier)
         followed = joint.mimic.coordinate
-        model.generalized_force(followed, -joint.damping * multiplier**2 * model.rate(followed),
-                                name=f"{joint_name}_damping")
+        model.generalized_force(followed, multiplier * law(multiplier * model.rate(followed)),
+                                name=name)
         return
     rate = model.rate(link.coordinate)
     if not model.chart:
-        model.generalized_force(link.coordinate, -joint.damping * rate,
-                                name=f"{joint_name}_damping")
+        model.generalized_force(link.coordinate, law(rate), name=name)
         return
     parent_support = (None, None) if link.parent is None else link.parent.support
     if not isinstance(joint, Revolute) or link.body is None or parent_support is None:
-        raise ModelError("in an atlas, joint damping acts as torques between two bodies: the "
+        raise ModelError(f"in an atlas, joint {what} acts as torques between two bodies: the "
                          "joint must be revolute or continuous, its child link and the link "
-                         "its parent is welded to must have mass; set the damping to 0",
+                         f"its parent is welded to must have mass; set the {what} to 0",
                          item=label)
-    torque = -joint.damping * rate * (joint_frame.rotation * joint.unit_axis())
-    model.torque(link.body, torque, name=f"{joint_name}_damping")
+    torque = law(rate) * (joint_frame.rotation * joint.unit_axis())
+    model.torque(link.body, torque, name=name)
     if parent_support[0] is not None:
-        model.torque(parent_support[0], -torque, name=f"{joint_name}_damping_reaction")
+        model.torque(parent_support[0], -torque, name=f"{name}_reaction")
 
 
 def _limit(model, q, joint, label: str) -> None:

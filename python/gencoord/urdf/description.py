@@ -211,15 +211,21 @@ def _joint(xml: XmlFile, element: ET.Element) -> JointDescription:
                             "along, e.g. <axis xyz=\"0 0 1\"/>",
                             element if axis_element is None else axis_element, item)
         dynamics = element.find("dynamics")
-        damping = 0.0 if dynamics is None else xml.number(dynamics, "damping", 0.0, item)
-        if damping < 0:
-            assert dynamics is not None  # without <dynamics> the damping is 0
-            raise xml.error(f"the damping is {damping:g}; give a non-negative damping",
-                            dynamics, item)
+        damping, friction = (0.0, 0.0) if dynamics is None else (
+            _resistance(xml, dynamics, "damping", item),
+            _resistance(xml, dynamics, "friction", item))
         joint = JOINT_TYPES[kind](axis, origin, _limits(xml, element, item), damping,
-                                  name=name)
+                                  name=name, friction=friction)
     return JointDescription(name, xml.line(element), kind, parent, child, joint,
                             _mimic(xml, element, kind, item))
+
+
+def _resistance(xml: XmlFile, dynamics: ET.Element, what: str, item: str) -> float:
+    """<dynamics damping> or <dynamics friction>: a non-negative number, 0 when absent."""
+    value = xml.number(dynamics, what, 0.0, item)
+    if value < 0:
+        raise xml.error(f"the {what} is {value:g}; give a non-negative {what}", dynamics, item)
+    return value
 
 
 def _check_mimic(xml: XmlFile, joint: JointDescription, joints: dict, elements: dict) -> None:
@@ -343,16 +349,19 @@ _NOT_READ = {"transmission": "actuator transmissions", "gazebo": "Gazebo extensi
 
 
 def _ignored(root) -> list[str]:
-    """One line per kind of element the model leaves out: joint friction, and the elements
-    of _NOT_READ, each with its count."""
+    """One line per kind of element the model leaves out: the <dynamics> of fixed and floating
+    joints (nothing moves for them to resist), and the elements of _NOT_READ, each with its
+    count."""
     lines = []
-    friction = [joint.get("name") or "?" for joint in root.findall("joint")
-                for dynamics in joint.findall("dynamics")
-                if dynamics.get("friction", "0").strip() not in ("0", "0.0", "")]
-    if friction:
-        shown = ", ".join(friction[:3]) + (", ..." if len(friction) > 3 else "")
-        lines.append(f"<dynamics friction> of {len(friction)} joint(s) ({shown}): joint "
-                     "friction is not modelled")
+    unread = [joint.get("name") or "?" for joint in root.findall("joint")
+              if joint.get("type") in ("fixed", FLOATING)
+              for dynamics in joint.findall("dynamics")
+              if any(dynamics.get(what, "0").strip() not in ("0", "0.0", "")
+                     for what in ("damping", "friction"))]
+    if unread:
+        shown = ", ".join(unread[:3]) + (", ..." if len(unread) > 3 else "")
+        lines.append(f"<dynamics> of {len(unread)} fixed or floating joint(s) ({shown}): "
+                     "such a joint has no coordinate to damp")
     for tag, what in _NOT_READ.items():
         count = sum(1 for _ in root.iter(tag))
         if count:

@@ -9,8 +9,8 @@
 // IEEE operations lane by lane, as in scalar code. sin and cos come from glibc's vector math
 // library (libmvec: 4 lanes per AVX2 call, 2 per SSE call; within 4 ulp of the correctly
 // rounded result, as its manual states), elsewhere lane by lane from std::sin and std::cos;
-// sqrt and abs lane by lane (the compiler vectorizes those loops). Users link libmvec
-// (-lmvec) where GENCOORD_HAVE_LIBMVEC is 1; cmake/simd.cmake does it.
+// sqrt, abs and the other functions lane by lane (the compiler vectorizes sqrt and abs).
+// Users link libmvec (-lmvec) where GENCOORD_HAVE_LIBMVEC is 1; cmake/simd.cmake does it.
 #pragma once
 
 #include <cmath>
@@ -180,6 +180,57 @@ Pack<N> sqrt(const Pack<N>& x) {
 template <int N>
 Pack<N> abs(const Pack<N>& x) {
   return detail::lane_by_lane(x, [](double a) { return std::abs(a); });
+}
+
+// The other functions a generated kernel may call (gencoord/cxx/printer.py's MATH_FUNCTIONS),
+// lane by lane.
+template <int N>
+Pack<N> tan(const Pack<N>& x) {
+  return detail::lane_by_lane(x, [](double a) { return std::tan(a); });
+}
+template <int N>
+Pack<N> asin(const Pack<N>& x) {
+  return detail::lane_by_lane(x, [](double a) { return std::asin(a); });
+}
+template <int N>
+Pack<N> acos(const Pack<N>& x) {
+  return detail::lane_by_lane(x, [](double a) { return std::acos(a); });
+}
+template <int N>
+Pack<N> atan(const Pack<N>& x) {
+  return detail::lane_by_lane(x, [](double a) { return std::atan(a); });
+}
+template <int N>
+Pack<N> sinh(const Pack<N>& x) {
+  return detail::lane_by_lane(x, [](double a) { return std::sinh(a); });
+}
+template <int N>
+Pack<N> cosh(const Pack<N>& x) {
+  return detail::lane_by_lane(x, [](double a) { return std::cosh(a); });
+}
+template <int N>
+Pack<N> tanh(const Pack<N>& x) {
+  return detail::lane_by_lane(x, [](double a) { return std::tanh(a); });
+}
+template <int N>
+Pack<N> exp(const Pack<N>& x) {
+  return detail::lane_by_lane(x, [](double a) { return std::exp(a); });
+}
+template <int N>
+Pack<N> log(const Pack<N>& x) {
+  return detail::lane_by_lane(x, [](double a) { return std::log(a); });
+}
+template <int N>
+Pack<N> cbrt(const Pack<N>& x) {
+  return detail::lane_by_lane(x, [](double a) { return std::cbrt(a); });
+}
+template <int N>
+Pack<N> atan2(const Pack<N>& a, const Pack<N>& b) {
+  return Pack<N>::generate([&](int k) { return std::atan2(a.lanes[k], b.lanes[k]); });
+}
+template <int N>
+Pack<N> pow(const Pack<N>& a, const Pack<N>& b) {
+  return Pack<N>::generate([&](int k) { return std::pow(a.lanes[k], b.lanes[k]); });
 }
 
 }  // namespace gencoord
