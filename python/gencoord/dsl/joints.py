@@ -181,14 +181,7 @@ def add_link(model, name: str, parent: Link | None, joint: Joint, mass=None, ine
         body, offset = parent.support
         link.support = (body, offset * joint.origin.frame())
     if isinstance(joint, _Moving):
-        if joint.damping != 0:
-            _resist(model, link, joint_frame, lambda rate: -joint.damping * rate,
-                    f"{joint_name}_damping", "damping", label)
-        if joint.friction != 0:
-            speed = _friction_speed(model)
-            _resist(model, link, joint_frame,
-                    lambda rate: -joint.friction * sp.tanh(rate / speed),
-                    f"{joint_name}_friction", "friction", label)
+        _add_resistances(model, link, joint, joint_frame, joint_name, label)
     if link.body is not None:
         _pin(model, link, parent, joint, joint_name)
     return link
@@ -255,6 +248,18 @@ def _followed(model, joint: _Moving, label: str) -> sp.Expr:
     if ranged and not isinstance(joint, Continuous):
         model.ignored.append(f"{label}: a mimic joint's range (the followed joint's holds it)")
     return number(mimic.multiplier) * followed.symbol + number(mimic.offset)
+
+
+def _add_resistances(model, link: Link, joint: _Moving, joint_frame: Frame, joint_name: str,
+                     label: str) -> None:
+    """The joint's damping -c qdot and friction -F tanh(qdot / s), where it has them."""
+    if joint.damping != 0:
+        _resist(model, link, joint_frame, lambda rate: -joint.damping * rate,
+                f"{joint_name}_damping", "damping", label)
+    if joint.friction != 0:
+        speed = _friction_speed(model)
+        _resist(model, link, joint_frame, lambda rate: -joint.friction * sp.tanh(rate / speed),
+                f"{joint_name}_friction", "friction", label)
 
 
 def _friction_speed(model) -> sp.Symbol:
