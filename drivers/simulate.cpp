@@ -7,8 +7,9 @@
 //
 // The model is chosen when the program is compiled (driver_model.hpp, written by
 // gencoord_add_driver()); `gencoord simulate MODEL.py` builds and runs it for any model file.
-// Prints a short summary: steps, wall time, energy drift, final state. --v takes nv values:
-// the generalized speeds of a model that has them (free and ball joints), whose unit
+// Prints a short summary: steps, wall time, energy drift (for a dissipative model also the
+// balance E - E(0) - W, W the work of its dampers and friction), final state. --v takes nv
+// values: the generalized speeds of a model that has them (free and ball joints), whose unit
 // quaternions in --q are normalized before the run. A model with kinematic constraints starts
 // from --q and --v projected onto its constraints, and the summary gives the largest
 // constraint residuals of the run; each step's end state is projected too, or, with
@@ -303,13 +304,16 @@ int run(const Options& o) {
   const gencoord::Integrator integrator = gencoord::parse_integrator(o.integrator);
 
   const double e0 = M::energy(s.q, s.v, s.t, params);
-  double max_energy_error = 0.0, max_drift = 0.0;
+  double max_energy_error = 0.0, max_drift = 0.0, max_balance_error = 0.0;
+  gencoord::DissipatedWork<M> work(params);
   std::unique_ptr<gencoord::TrajectoryCsvWriter<M>> csv;
   if (!o.output.empty()) csv = std::make_unique<gencoord::TrajectoryCsvWriter<M>>(o.output, params);
   LimitReport<M> limits;
   auto observer = [&](const State<M>& state) {
-    max_energy_error =
-        std::max(max_energy_error, std::abs(M::energy(state.q, state.v, state.t, params) - e0));
+    const double change = M::energy(state.q, state.v, state.t, params) - e0;
+    max_energy_error = std::max(max_energy_error, std::abs(change));
+    if constexpr (gencoord::is_dissipative_v<M>)
+      max_balance_error = std::max(max_balance_error, std::abs(change - work(state)));
     max_drift = std::max(max_drift, drift_of<M>(params, state));
     limits(state);
     if (csv) (*csv)(state);
@@ -338,6 +342,11 @@ int run(const Options& o) {
               seconds * 1e9 / static_cast<double>(steps > 0 ? steps : 1));
   std::printf("energy      E(0) = %.10g J, E(end) = %.10g J, max |E - E(0)| = %.3e J\n", e0,
               M::energy(end.q, end.v, end.t, params), max_energy_error);
+  if constexpr (gencoord::is_dissipative_v<M>) {
+    std::printf(
+        "balance     W(end) = %.10g J by dampers and friction, max |E - E(0) - W| = %.3e J\n",
+        work.work(), max_balance_error);
+  }
   print_constraint_residual<M>(max_drift, o.baumgarte);
   limits.print(o.joint_limits);
   std::printf("final q    ");

@@ -80,6 +80,10 @@ struct DoublePendulum {
   /// Whether applied_forces at rest (v = 0) is -d(potential_energy)/dq: every force without
   /// a declared potential vanishes at rest (gencoord/checks/conservative.py).
   static constexpr bool forces_have_potential = true;
+  /// Whether E(t) - E(0) is the work of the forces that vanish at rest (dampers, friction)
+  /// and of nothing else, and the model has such forces (gencoord/checks/conservative.py):
+  /// gencoord/model/dissipated_work.hpp integrates that work, the CSV's work column.
+  static constexpr bool dissipative = false;
   /// Whether qddot is the articulated-body recursion over the model's tree of particles,
   /// chosen at generation because it takes fewer operations than Mt, Ft + Fi and an LDL^T
   /// solve (gencoord/generate/dynamics_paths.py); gencoord::acceleration() then calls it.

@@ -197,6 +197,28 @@ class EnergyPanelTest(unittest.TestCase):
         self.assertIn("damped: energy change", titles)
         self.assertNotIn("error", " ".join([label, *titles]))
 
+    def test_a_dissipative_model_plots_its_energy_change_with_the_dampers_work(self):
+        """With a work column, E - E0 and W share the panel, and the balance is the figure."""
+        text = pendulum_csv(lambda t: 10.0 - t)
+        header, *rows = text.splitlines()
+        columns = header.split(",")
+        at = columns.index("energy") + 1
+        lines = [",".join([*columns[:at], "work", *columns[at:]])]
+        for row in rows:  # W = -t + 1e-4 t^2: the balance E - E0 - W = -1e-4 t^2
+            values = row.split(",")
+            t = float(values[0])
+            lines.append(",".join([*values[:at], repr(-t + 1e-4 * t * t), *values[at:]]))
+        trajectory = plot.parse_trajectory(io.StringIO("\n".join(lines) + "\n"))
+        root = ET.fromstring(plot.render_svg(trajectory, "damped", conserved=False))
+        panel = Panel(root, "energy-panel")
+        self.assertIsNotNone(panel.element.find(f"{SVG}polyline[@class='work']"))
+        self.assertIn("and W", panel.axis_label("y"))
+        summary = root.find(f".//{SVG}text[@class='max-error']").text
+        self.assertIn("E \u2212 E\u2080 \u2212 W", summary)
+        self.assertIn(f"{1e-4 * 25 / 10:.2e}", summary)  # at t = 5 s, relative to E0 = 10 J
+        values = panel.tick_values("y")
+        self.assertLessEqual(values[0], -0.5)  # the axis holds both curves
+
     def test_time_axis_in_seconds_from_start_to_end(self):
         panel = Panel(render(pendulum_csv(lambda t: 10.0)), "energy-panel")
         self.assertEqual(panel.axis_label("x"), "t (s)")

@@ -95,6 +95,26 @@ class PageTest(unittest.TestCase):
         self.assertAlmostEqual(max(decoded(data["arrays"]["energy_error"], "f")), 1e-3,
                                places=9)
 
+    def test_a_dissipative_trajectory_carries_the_dampers_work_scaled_as_the_energy(self):
+        with tempfile.TemporaryDirectory() as folder:
+            csv = os.path.join(folder, "damped.csv")
+            with open(csv, "w", encoding="utf-8") as handle:
+                handle.write("t,q_a,v_a,energy,work,p_x,p_y,fixed:o_x,fixed:o_y\n")
+                for i in range(101):  # E falls from 4 J by W = -0.02 t, to 1e-6 J
+                    t = i * 0.01
+                    energy = 4.0 - 0.02 * t + (1e-6 if i == 50 else 0.0)
+                    handle.write(f"{t},{i},0,{energy},{-0.02 * t},{i},{-i},0,0\n")
+            scene = dict(double_pendulum_scene(), particles=[{"name": "p", "mass": 1.0}],
+                         fixed_points=["o"], conserves_energy=False)
+            data = page.page_data(csv, scene)
+        work = decoded(data["arrays"]["work"], "f")
+        change = decoded(data["arrays"]["energy_error"], "f")
+        self.assertAlmostEqual(work[-1], -0.02 / 4.0, places=7)  # relative to E0, as E - E0
+        self.assertAlmostEqual(change[-1], work[-1], places=7)
+        self.assertIn("E \u2212 E\u2080 \u2212 W", data["energy"]["summary"])
+        self.assertIn(f"{1e-6 / 4:.2e}", data["energy"]["summary"])
+        self.assertNotIn("work", page.page_data(self.csv, double_pendulum_scene())["arrays"])
+
     def test_a_crosscheck_trajectory_puts_the_maximal_model_beside_the_reduced(self):
         with tempfile.TemporaryDirectory() as folder:
             csv = os.path.join(folder, "crosscheck.csv")

@@ -62,11 +62,34 @@ def forces_have_potential(model: Model, kin: Kinematics | None = None) -> bool:
     return True
 
 
-def conserves_energy(model: Model) -> bool:
+def _driven(model: Model) -> bool:
+    """Whether anything but the state changes the model's energy: an input, a point that
+    moves with t, or a force that reads t."""
+    moves_with_t = any(model.time in sp.Matrix(point.position).free_symbols
+                       for point in model.points)
+    forces: list[ParticleForce | GeneralizedForce] = [*model.particle_forces,
+                                                      *model.generalized_forces]
+    reads_t = any(model.time in sp.Matrix([force.force]).free_symbols for force in forces)
+    return bool(model.inputs) or moves_with_t or reads_t
+
+
+def dissipative(model: Model, have_potential: bool) -> bool:
+    """Whether E(t) - E(0) is the work of the forces that vanish at rest (dampers, friction,
+    a joint spring's damping) and of nothing else, and the model has such forces: the forces
+    have a potential at rest (`have_potential`, forces_have_potential's answer), nothing
+    drives the model (`_driven`) and it does not conserve energy without joint limits. The
+    generated struct's `dissipative`; the runtime integrates that work (dissipated_work.hpp)."""
+    if not have_potential or _driven(model):
+        return False
+    return not conserves_energy(model, limits_stop=False)
+
+
+def conserves_energy(model: Model, limits_stop: bool = True) -> bool:
     """Whether E = T + V is a constant of the motion as the model is written: every force has
     a potential (no damping, no body torques, no force without a potential), no input drives
-    it, no point moves with t, and no joint limit stops it inelastically. Where it is not, the
-    plots of a run call E - E0 the energy's change, not an error."""
+    it, no point moves with t, and no joint limit stops it inelastically (`limits_stop`: the
+    runtime enforces them). Where it is not, the plots of a run call E - E0 the energy's
+    change, not an error."""
     moves_with_t = any(model.time in sp.Matrix(point.position).free_symbols
                        for point in model.points)
     # a force with a potential may still depend on velocities (a joint spring's damping) or t
@@ -78,5 +101,5 @@ def conserves_energy(model: Model) -> bool:
                   if force.potential is None
                   or sp.Matrix([force.force]).free_symbols & changing]
     damped = model.dampers or any(spring.damping != 0 for spring in model.springs)
-    return not (damped or unbalanced or model.torques or model.inputs or model.limits
-                or moves_with_t)
+    return not (damped or unbalanced or model.torques or model.inputs
+                or (limits_stop and model.limits) or moves_with_t)

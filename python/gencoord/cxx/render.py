@@ -196,6 +196,7 @@ def _chart_context(chart, first, unroll_max_nq: int) -> dict:
         declared_constraints=chart.maximal.declared_constraints if chart.maximal else 0,
         has_generalized_forces=bool(model.generalized_forces),
         forces_have_potential=chart.forces_have_potential,
+        dissipative=chart.dissipative,
         recursive_qddot=chart.paths.recursive_qddot,
         jacobian_x=chart.maximal.force_jacobian_x if chart.maximal else [],
         jacobian_xdot=chart.maximal.force_jacobian_xdot if chart.maximal else [],

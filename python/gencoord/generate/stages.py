@@ -14,7 +14,7 @@ from typing import Callable, Optional, Sequence
 
 from gencoord.checks.atlas import check_atlas
 from gencoord.derive.body_tree import body_tree
-from gencoord.checks.conservative import forces_have_potential
+from gencoord.checks.conservative import dissipative, forces_have_potential
 from gencoord.checks.constraints import verify_constraints
 from gencoord.checks.kinematic_constraints import check_kinematic_constraints
 from gencoord.derive.dense import Derivation, Kinematics, derive
@@ -93,6 +93,7 @@ class GeneratedChart:
     maximal: MaximalDerivation | None
     analysis: list[str]
     forces_have_potential: bool          # conservative.py: the struct's forces_have_potential
+    dissipative: bool                    # conservative.py: the struct's dissipative
     paths: PathChoice                    # dense or recursive qddot and inverse_dynamics
     no_maximal: str = ""                 # why the header has no struct Maximal
 
@@ -123,6 +124,7 @@ class _ChartWork:
     notes: list[str] = field(default_factory=list)
     analysis: list[str] = field(default_factory=list)
     conservative: bool = False
+    dissipative: bool = False
     recursive: RecursiveDynamics | None = None  # the tree's recursions (recursions.py)
     tree_derived: bool = False   # every output from the recursions, in O(n) intermediates
     derivation: Derivation | None = None
@@ -157,6 +159,7 @@ def _check(work: _ChartWork, observers: _Observers) -> None:
 def _analyse(work: _ChartWork, observers: _Observers) -> None:
     work.analysis = analyse_singularities(work.chart, kin=work.kin).lines() + work.notes
     work.conservative = forces_have_potential(work.chart, work.kin)
+    work.dissipative = dissipative(work.chart, work.conservative)
 
 
 def _derive(work: _ChartWork, observers: _Observers) -> None:
@@ -222,7 +225,8 @@ def _optimize(work: _ChartWork, name: str) -> GeneratedChart:
         why_no_maximal_model(chart) if options.maximal else
         "generated without --maximal (gencoord crosscheck generates with it)")
     return GeneratedChart(chart, chart_name(name, work.model, chart), optimized, reduced,
-                          maximal, analysis, work.conservative, paths, no_maximal or "")
+                          maximal, analysis, work.conservative, work.dissipative, paths,
+                          no_maximal or "")
 
 
 def _generate_chart(path: str, model: Model, chart: Model, name: str, options: GenerateOptions,

@@ -52,6 +52,11 @@ class Trajectory:
     def energy(self) -> list[float]:
         return self.columns["energy"]
 
+    @property
+    def work(self) -> list[float] | None:
+        """W(t), the work of a dissipative model's dampers and friction (csv_writer.hpp)."""
+        return self.columns.get("work")
+
     def path(self, point: str, axis: str) -> list[float]:
         """The coordinate `axis` of a particle or fixed point over time."""
         return self.columns[f"{point}_{axis}"]
@@ -194,21 +199,44 @@ class EnergyError:
     relative: bool                   # (E - E0) / |E0|; else E - E0 in J, because E0 = 0
     label: str
     name: str = "energy error"       # "energy change" for a model that does not conserve E
+    # W(t), scaled as `values`, for a model whose energy changes by its dampers' and
+    # friction's work alone: E - E0 should follow it, and the gap is the integrator's error
+    work: list[float] | None = None
 
     @property
     def worst(self) -> float:
         return max(abs(v) for v in self.values)
 
+    @property
+    def balance(self) -> float:
+        """max |E - E0 - W|, scaled as `values` (0 without W)."""
+        return max((abs(e - w) for e, w in zip(self.values, self.work or [])), default=0.0)
 
-def energy_error(energy: list[float], conserved: bool = True) -> EnergyError:
+    def summary(self) -> str:
+        """The figure a run is judged by: the energy error, or the energy balance's."""
+        gap = "E \u2212 E\u2080 \u2212 W" if self.work is not None else "E \u2212 E\u2080"
+        value = self.balance if self.work is not None else self.worst
+        text = (f"max |{gap}| / |E\u2080| = {value:.2e}" if self.relative
+                else f"max |{gap}| = {value:.2e} J (E\u2080 = 0)")
+        return text + (", W the dampers' and friction's work" if self.work is not None else "")
+
+
+def energy_error(energy: list[float], conserved: bool = True,
+                 work: list[float] | None = None) -> EnergyError:
     """E(t) against E(0): relative when E(0) != 0, else absolute in J. An error where the model
-    conserves energy; its change where damping, inputs, time or joint limits change it."""
+    conserves energy; its change where damping, inputs, time or joint limits change it, with
+    `work`, W(t) of a dissipative model's dampers and friction, scaled alike."""
     e0, name = energy[0], "energy error" if conserved else "energy change"
+    scale = abs(e0) if e0 != 0 else 1.0
+    with_work = " and W" if work is not None else ""
+    scaled_work = [w / scale for w in work] if work is not None else None
     if e0 != 0:
-        return EnergyError([(e - e0) / abs(e0) for e in energy], True,
-                           f"relative {name} (E \u2212 E\u2080) / |E\u2080|", name)
+        return EnergyError([(e - e0) / scale for e in energy], True,
+                           f"relative {name} (E \u2212 E\u2080){with_work} / |E\u2080|", name,
+                           scaled_work)
     return EnergyError([e - e0 for e in energy], False,
-                       f"{name} E \u2212 E\u2080 (J), absolute: E\u2080 = 0", name)
+                       f"{name} E \u2212 E\u2080{with_work} (J), absolute: E\u2080 = 0", name,
+                       scaled_work)
 
 
 def error_axis(values: list[float]) -> tuple[float, float, float]:
@@ -223,18 +251,22 @@ def error_axis(values: list[float]) -> tuple[float, float, float]:
 def energy_panel(trajectory: Trajectory, error: EnergyError) -> list[str]:
     t = trajectory.t
     t0, t1, t_ticks = time_axis(t)
-    lo, hi, step = error_axis(error.values)
+    lo, hi, step = error_axis([*error.values, *(error.work or [])])
     frame = Frame((t0, t1, lo, hi), ENERGY_RECT)
     y_ticks = ticks_within(lo, hi, step)
     scale = decade_of(y_ticks)
     xs, ys = envelope(t, error.values)
+    work = []
+    if error.work is not None:  # dashed over E - E0, which it should follow
+        wx, wy = envelope(t, error.work)
+        work = [polyline(frame, wx, wy, "#d62728", class_="work", stroke_dasharray="6 4")]
     return ['<g id="energy-panel">',
             *axes(frame, t_ticks, y_ticks, "t (s)", scaled_label(error.label, scale),
                   y_scale=scale),
             element("line", x1=ENERGY_RECT[0], y1=f"{frame.py(0):.1f}",
                     x2=ENERGY_RECT[0] + ENERGY_RECT[2], y2=f"{frame.py(0):.1f}",
                     stroke="#999", stroke_dasharray="4 3"),
-            polyline(frame, xs, ys, "#333", class_="energy-error"),
+            polyline(frame, xs, ys, "#333", class_="energy-error"), *work,
             "</g>"]
 
 
@@ -243,10 +275,9 @@ def energy_panel(trajectory: Trajectory, error: EnergyError) -> list[str]:
 def render_svg(trajectory: Trajectory, name: str, conserved: bool = True) -> str:
     """The whole picture as SVG text; `conserved`: whether the model conserves energy (its
     panel then shows the energy error, else the energy's change)."""
-    error = energy_error(trajectory.energy, conserved)
+    error = energy_error(trajectory.energy, conserved, trajectory.work)
     ax, ay = plane_of_motion(trajectory)
-    worst = (f"max |E \u2212 E\u2080| / |E\u2080| = {error.worst:.2e}" if error.relative
-             else f"max |E \u2212 E\u2080| = {error.worst:.2e} J (E\u2080 = 0)")
+    worst = error.summary()
     t = trajectory.t
     parts = [f'<svg xmlns="http://www.w3.org/2000/svg" width="{WIDTH}" height="{HEIGHT}" '
              f'viewBox="0 0 {WIDTH} {HEIGHT}" font-family="sans-serif" font-size="13">',

@@ -94,7 +94,8 @@ def page_data(csv_path: str, scene: dict) -> dict:
     points = [*(p for p in trajectory.particles if not p.startswith(COMPANION)),
               *trajectory.fixed_points, *companion]
     rows, stride = kept_rows(len(trajectory.t), 2 + len(coordinates) + dim * len(points))
-    error = energy_error(trajectory.energy, scene.get("conserves_energy", True))
+    error = energy_error(trajectory.energy, scene.get("conserves_energy", True),
+                         trajectory.work)
     positions = [columns[f"{point}_{axis}"][row]
                  for row in rows for point in points for axis in "xyz"[:dim]]
     return {
@@ -106,10 +107,13 @@ def page_data(csv_path: str, scene: dict) -> dict:
         "companion": COMPANION if companion else None,
         "companion_shift": shift,
         "energy": {"label": error.label, "name": error.name, "relative": error.relative,
-                   "worst": error.worst},
+                   "worst": error.worst, "summary": error.summary()},
         "arrays": {
             "t": encoded([trajectory.t[row] for row in rows], "d"),
             "energy_error": encoded(_worst_in_buckets(error.values, rows), "f"),
+            # a dissipative model's W(t), scaled alike, drawn with it: E - E0 should follow it
+            **({"work": encoded([error.work[row] for row in rows], "f")}
+               if error.work is not None else {}),
             "q": encoded([columns["q_" + c][row] for row in rows for c in coordinates], "f"),
             "positions": encoded(positions, "f"),   # frames x points x dim
         },

@@ -20,6 +20,8 @@ function decode(text, Type) {
 const times = decode(data.arrays.t, Float64Array);
 // a model's run has an energy error and coordinates; a deformable run a mesh of springs
 const energyError = data.energy ? decode(data.arrays.energy_error, Float32Array) : null;
+// a dissipative model's work of its dampers and friction, drawn with its energy change
+const work = data.arrays.work ? decode(data.arrays.work, Float32Array) : null;
 const coordinates = data.arrays.q ? decode(data.arrays.q, Float32Array) : new Float32Array();
 const frames = data.frames;
 const numPoints = data.points.length;
@@ -474,7 +476,8 @@ controls.update();
 const plotCanvas = document.getElementById("plot");
 const seriesSelect = document.getElementById("series");
 const nq = data.coordinates.length;
-const series = data.energy ? [{ label: data.energy.label, values: energyError }] : [];
+const series = data.energy
+  ? [{ label: data.energy.label, values: energyError, reference: work }] : [];
 data.coordinates.forEach((name, k) => {
   const values = new Float32Array(frames);
   for (let i = 0; i < frames; ++i) values[i] = coordinates[i * nq + k];
@@ -497,10 +500,10 @@ function drawPlot() {
   plotCanvas.width = Math.round(width * ratio);
   plotCanvas.height = Math.round(height * ratio);
   const chosen = series[Number(seriesSelect.value) || 0];
-  const { values } = chosen;
+  const { values, reference } = chosen;
   let lo = Infinity;
   let hi = -Infinity;
-  for (const v of values) {
+  for (const v of reference ? [...values, ...reference] : values) {
     lo = Math.min(lo, v);
     hi = Math.max(hi, v);
   }
@@ -577,10 +580,29 @@ function drawPlot() {
     flush();
   }
   context.stroke();
+  if (reference) {
+    // the work W dashed over E - E0: a sample a column, enough for a curve this smooth
+    context.strokeStyle = "#d62728";
+    context.setLineDash([6, 4]);
+    context.beginPath();
+    const step = Math.max(1, Math.floor(frames / area.width));
+    for (let i = 0; i < frames; i += step) {
+      if (i === 0) context.moveTo(x(times[i]), y(reference[i]));
+      else context.lineTo(x(times[i]), y(reference[i]));
+    }
+    context.lineTo(x(times[frames - 1]), y(reference[frames - 1]));
+    context.stroke();
+    context.setLineDash([]);
+  }
   let worst = 0;
   for (const v of values) worst = Math.max(worst, Math.abs(v));
+  let balance = null; // max |E - E0 - W| where W is drawn
+  if (reference) {
+    balance = 0;
+    for (let i = 0; i < frames; ++i) balance = Math.max(balance, Math.abs(values[i] - reference[i]));
+  }
   const box = plotCanvas.getBoundingClientRect();
-  plotInfo = { label: chosen.label, lo, hi, worst, t0, t1,
+  plotInfo = { label: chosen.label, lo, hi, worst, balance, t0, t1,
     left: box.left + area.left, top: box.top + area.top,
     width: area.width, height: area.height };
   plotInfo.x = x;

@@ -14,6 +14,7 @@
 #include "gencoord/integrate/step.hpp"
 #include "gencoord/io/csv_writer.hpp"
 #include "gencoord/model/acceleration_jacobians.hpp"
+#include "gencoord/model/dissipated_work.hpp"
 #include "gencoord/model/dynamics.hpp"
 #include "gencoord/model/inverse_dynamics.hpp"
 #include "gencoord/model/model_traits.hpp"

@@ -11,6 +11,7 @@
 #include <tuple>
 
 #include "gencoord/integrate/integrator.hpp"
+#include "gencoord/model/dissipated_work.hpp"
 #include "gencoord/model/inverse_dynamics.hpp"
 #include "gencoord/model/joint_limits.hpp"
 #include "gencoord/model/model_traits.hpp"
@@ -81,6 +82,7 @@ void bind_metadata(py::module_& module) {
     module.attr("limit_names") = py::tuple();
   }
   module.attr("forces_have_potential") = M::forces_have_potential;
+  module.attr("dissipative") = is_dissipative_v<M>;
   module.attr("recursive_qddot") = M::recursive_qddot;
   // the names parse_integrator() accepts, in the runtime's order
   module.attr("integrators") = py::tuple(py::str(integrator_names()).attr("split")(", "));

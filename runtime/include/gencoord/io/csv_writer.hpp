@@ -10,6 +10,7 @@
 #include <utility>
 
 #include "gencoord/io/output_file.hpp"
+#include "gencoord/model/dissipated_work.hpp"
 #include "gencoord/model/joint_limits.hpp"
 #include "gencoord/model/model_traits.hpp"
 #include "gencoord/model/state.hpp"
@@ -17,12 +18,15 @@
 namespace gencoord {
 
 /// Writes states of model M as CSV rows. Header:
-///   t,q_<coord>...,v_<coord>...,energy,<particle>_x,<particle>_y[,<particle>_z]...
+///   t,q_<coord>...,v_<coord>...,energy[,work],<particle>_x,<particle>_y[,<particle>_z]...
 ///   [,fixed:<point>_x,fixed:<point>_y[,fixed:<point>_z]...]
 /// where a model with generalized speeds (has_generalized_speeds_v) names its v columns
-/// v_<speed> after M::speed_names instead
-/// (1 + nq + nv + 1 + nx columns, then dim per fixed point when M has fixed points, see
-/// has_fixed_points_v; written on every row, since a prescribed pivot moves with t). The
+/// v_<speed> after M::speed_names instead, and a dissipative model (is_dissipative_v) has the
+/// work W(t) of its dampers and friction since the first row (dissipated_work.hpp), so that
+/// E(t) - E(0) - W(t) is the integrator's error: the rows must be a simulation's states in
+/// order (1 + nq + nv + 1 + nx columns, one more for work, then dim per fixed point when M has
+/// fixed points, see has_fixed_points_v; written on every row, since a prescribed pivot moves
+/// with t). The
 /// "fixed:" prefix, which no model name can contain, tells anchors from particles.
 /// Numbers are written in the shortest form that reads back to the same double
 /// (std::to_chars), independent of the stream's locale and precision.
@@ -41,7 +45,7 @@ class TrajectoryCsvWriter {
   /// Writes the header to `out`, which must outlive the writer.
   /// \throws OutputError if the stream has failed.
   TrajectoryCsvWriter(std::ostream& out, const ParamsOf<M>& p, std::string companion = {})
-      : out_(&out), p_(p), companion_(std::move(companion)) {
+      : out_(&out), p_(p), companion_(std::move(companion)), work_(p) {
     write_header();
   }
 
@@ -51,7 +55,8 @@ class TrajectoryCsvWriter {
       : file_(std::make_unique<OutputFile>(path)),
         out_(&file_->stream()),
         p_(p),
-        companion_(std::move(companion)) {
+        companion_(std::move(companion)),
+        work_(p) {
     write_header();
   }
 
@@ -115,6 +120,7 @@ class TrajectoryCsvWriter {
     for (int i = 0; i < M::nq; ++i) write_field(s.q[i]);
     for (int i = 0; i < nv_of_v<M>; ++i) write_field(s.v[i]);
     write_field(static_cast<double>(M::energy(s.q, s.v, s.t, p_)));
+    if constexpr (is_dissipative_v<M>) write_field(work_(s));
     const XVec<M> x = M::positions(s.q, s.t, p_);
     for (int i = 0; i < M::nx; ++i) write_field(x[i]);
     if constexpr (has_fixed_points_v<M>) {
@@ -147,6 +153,7 @@ class TrajectoryCsvWriter {
       for (const char* c : M::coordinate_names) *out_ << ",v_" << c;
     }
     *out_ << ",energy";
+    if constexpr (is_dissipative_v<M>) *out_ << ",work";
     for (const char* particle : M::particle_names)
       for (int k = 0; k < M::dim; ++k) *out_ << ',' << particle << kAxes[k];
     if constexpr (has_fixed_points_v<M>) {
@@ -186,7 +193,8 @@ class TrajectoryCsvWriter {
   std::unique_ptr<OutputFile> file_;  // owned file, if constructed from a path
   std::ostream* out_;
   ParamsOf<M> p_;
-  std::string companion_;  // prefix of the companion model's position columns, or empty
+  std::string companion_;   // prefix of the companion model's position columns, or empty
+  DissipatedWork<M> work_;  // the work column's running sum (dissipative models only)
   long rows_ = 0;
   long flushed_rows_ = 0;
 };
