@@ -24,16 +24,23 @@
 namespace gencoord {
 
 namespace detail {
-template <class M, class = void>
-struct is_dissipative : std::false_type {};
 template <class M>
-struct is_dissipative<M, std::void_t<decltype(M::dissipative)>>
-    : std::bool_constant<M::dissipative> {};
+using dissipative_op = decltype(M::dissipative);
+
+template <class M>
+constexpr bool dissipative_flag() {
+  if constexpr (detected_v<M, dissipative_op>) {
+    return M::dissipative;
+  } else {
+    return false;
+  }
+}
 }  // namespace detail
 
-/// Whether model M says its energy changes only by the work of forces that vanish at rest.
+/// Whether model M says its energy changes only by the work of forces that vanish at rest
+/// (false for a model without the flag, such as a hand-written one).
 template <class M>
-inline constexpr bool is_dissipative_v = detail::is_dissipative<M>::value;
+inline constexpr bool is_dissipative_v = detail::dissipative_flag<M>();
 
 /// P = v . (Ft(q, v, t) - Ft(q, 0, t)), the power of the forces that vanish at rest (W).
 template <class M>
