@@ -267,11 +267,11 @@ def _friction_speed(model) -> sp.Symbol:
     with the first joint that has friction: the friction reaches 76% of F at |qdot| = s and
     99.9% at 4 s. A smaller s is closer to Coulomb's law and stiffer to integrate (the slope
     F / s at rest acts as a damping)."""
-    for parameter in model.parameters:
-        if parameter.description == FRICTION_SPEED_DESCRIPTION:
-            return parameter.symbol
-    return model.parameter(_unused(model, "joint_friction_speed", "_"), FRICTION_SPEED,
-                           FRICTION_SPEED_DESCRIPTION)
+    if model.joint_friction_speed is None:
+        model.joint_friction_speed = model.parameter(
+            _unused(model, "joint_friction_speed", "_"), FRICTION_SPEED,
+            FRICTION_SPEED_DESCRIPTION)
+    return model.joint_friction_speed
 
 
 def _resist(model, link: Link, joint_frame: Frame, law, name: str, what: str,

@@ -75,6 +75,8 @@ class Model(GeneralizedSpeeds, KinematicConstraints, JointLimits):
         self.torques: list[BodyTorque] = []
         # a joint tree's links (joints.py), parents first: the rigid-body recursions walk it
         self.links: list = []
+        # the parameter s of its joints' friction -F tanh(qdot / s), once one has friction
+        self.joint_friction_speed: sp.Symbol | None = None
         # what a loaded description (URDF) holds that the model leaves out, one line each
         self.ignored: list[str] = []
         self.options: dict[str, int | float | str] = {}
