@@ -47,7 +47,8 @@
 #include <utility>
 
 #include <Eigen/Core>
-#include <Eigen/LU>
+
+#include "gencoord/numerics/dense_solve.hpp"
 
 namespace gencoord {
 
@@ -124,12 +125,12 @@ double max_abs(const Dense& x) {
   return m;
 }
 
-// x = A^-1 b by LU with partial pivoting (dense systems' solve()); a singular A gives a
-// non-finite x, so it always returns true
+// x = A^-1 b by LU with partial pivoting (dense systems' solve(), through the library's
+// lu_solve()); a singular A gives a non-finite x, so it always returns true
 template <class Matrix, class Vector>
 bool dense_lu_solve(const Matrix& A, const Vector& b, Vector* x) {
-  *x = A.partialPivLu().solve(b);
-  return true;
+  x->resize(b.size());
+  return lu_solve(A, b, *x);
 }
 
 }  // namespace detail

@@ -17,7 +17,6 @@
 #include <utility>
 #include <vector>
 
-#include <Eigen/Cholesky>
 #include <Eigen/Core>
 
 #include "gencoord/errors.hpp"
@@ -27,6 +26,7 @@
 #include "gencoord/model/inverse_dynamics.hpp"
 #include "gencoord/model/model_traits.hpp"
 #include "gencoord/model/state.hpp"
+#include "gencoord/numerics/dense_solve.hpp"
 #include "gencoord/scripted/script.hpp"
 
 namespace gencoord {
@@ -134,8 +134,8 @@ class ScriptedModel {
   /// \param[in] at  The script at t (sample(t)).
   /// \throws DynamicsError if Mt_ff is not positive definite or something is not finite.
   QVec<M> acceleration(const QVec<M>& q, const QVec<M>& v, double t, const ScriptSample& at) const {
-    Eigen::LLT<FreeMatrix> llt;
-    return solve_acceleration(q, v, t, at, &llt);
+    FreeMatrix factor;
+    return solve_acceleration(q, v, t, at, &factor);
   }
 
   /// acceleration(q, v, t, sample(t)). \throws as acceleration() and Script::operator().
@@ -164,13 +164,15 @@ class ScriptedModel {
       return;
     }
     if constexpr (has_residual_jacobians_v<M>) {
-      Eigen::LLT<FreeMatrix> llt;
-      *a = solve_acceleration(q, v, t, at, &llt);
+      FreeMatrix factor;
+      *a = solve_acceleration(q, v, t, at, &factor);
       if (nf == 0) return;  // everything scripted: no unknowns
       QMat<M> r_D_q, r_D_v;
       M::residual_jacobians(q, v, *a, t, p_, &r_D_q, &r_D_v);
-      *af_D_qf = -llt.solve(free_block(r_D_q));
-      *af_D_vf = -llt.solve(free_block(r_D_v));
+      *af_D_qf = -free_block(r_D_q);
+      *af_D_vf = -free_block(r_D_v);
+      cholesky_solve(factor, *af_D_qf);
+      cholesky_solve(factor, *af_D_vf);
     } else {
       detail::throw_no_generated_jacobians(M::name);
     }
@@ -217,7 +219,7 @@ class ScriptedModel {
   }
 
   QVec<M> solve_acceleration(const QVec<M>& q, const QVec<M>& v, double t, const ScriptSample& at,
-                             Eigen::LLT<FreeMatrix>* llt) const {
+                             FreeMatrix* factor) const {
     using Reason = DynamicsError::Reason;
     QMat<M> Mt;
     QVec<M> f;
@@ -234,11 +236,12 @@ class ScriptedModel {
     const int nf = num_free();
     if (nf == 0) return a;
     const QVec<M> rhs_full = f - Mt * a;  // free rows: (Ft + Fi)_f - Mt_fs a_s
-    llt->compute(free_block(Mt));
-    if (llt->info() != Eigen::Success)
+    *factor = free_block(Mt);
+    if (!cholesky_factor(*factor))
       detail::throw_dynamics_error(M::name, Reason::kNotPositiveDefinite, t, q.data(), v.data(),
                                    M::nq);
-    const FreeVector af = llt->solve(free_part(rhs_full));
+    FreeVector af = free_part(rhs_full);
+    cholesky_solve(*factor, af);
     if (!af.allFinite())
       detail::throw_dynamics_error(M::name, Reason::kNonFiniteAcceleration, t, q.data(), v.data(),
                                    M::nq);
