@@ -137,6 +137,8 @@ TEST(DissipatedWork, TheCsvOfADissipativeModelHasTheWorkColumn) {
   EXPECT_EQ(work[0], 0.0);
   EXPECT_LT(work[1], 0.0);  // the damper takes energy out
   EXPECT_LT(work[2], work[1]);
+  EXPECT_NEAR(csv.work(), work[2], 1e-12 * std::abs(work[2]));  // the column's last value
+  EXPECT_EQ(plain.work(), 0.0);
 }
 
 }  // namespace

@@ -84,6 +84,10 @@ class TrajectoryCsvWriter {
   /// last successful flush().
   long rows() const { return rows_; }
 
+  /// The work column's value at the last row: W, the work of the dampers and friction since
+  /// the first row (DissipatedWork); 0 for a model that is not dissipative.
+  double work() const { return work_.work(); }
+
   /// Flushes the stream. \throws OutputError if this or an earlier write failed.
   void flush() {
     out_->flush();
