@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Dense solves compiled once in the runtime library: the implicit integrators' Newton systems
 // and a scripted model's free blocks. Instantiated inline, Eigen's LU and Cholesky and their
-// triangular solves were a fifth of the compile time of a model's Python module, once per
-// matrix type of every system; behind Eigen::Ref they are built once per user. Up to 32
+// triangular solves cost about a fifth of the compile time of a model's Python module, once
+// per matrix type of every system; behind Eigen::Ref they are built once per user. Up to 32
 // unknowns the work matrices live on the stack, so a step of a fixed-size system allocates
 // nothing.
 #pragma once
