@@ -17,6 +17,8 @@
 #include <algorithm>
 #include <array>
 #include <cstddef>
+#include <functional>
+#include <memory>
 #include <string>
 #include <tuple>
 #include <utility>
@@ -219,12 +221,12 @@ py::object gather(py::ssize_t batch, int threads, const Element& element) {
       std::make_index_sequence<std::tuple_size_v<Values>>{});
 }
 
-/// The batch size the vector arguments agree on (-1 for one state), or ValueError.
-template <std::size_t K>
-py::ssize_t common_batch(const std::array<VectorInput, K>& inputs,
-                         const std::array<const char*, K>& names) {
-  py::ssize_t batch = K ? inputs[0].batch : -1;
-  for (std::size_t k = 1; k < K; ++k)
+/// The batch size the first `count` vector arguments agree on (-1 for one state), or
+/// ValueError.
+inline py::ssize_t common_batch(const std::array<VectorInput, 3>& inputs,
+                                const std::array<const char*, 3>& names, std::size_t count) {
+  py::ssize_t batch = count ? inputs[0].batch : -1;
+  for (std::size_t k = 1; k < count; ++k)
     if (inputs[k].batch != batch)
       throw py::value_error(std::string(names[k]) + ": expected the batch shape of " + names[0] +
                             " (" + (batch < 0 ? "one state" : "N = " + std::to_string(batch)) +
@@ -234,52 +236,138 @@ py::ssize_t common_batch(const std::array<VectorInput, K>& inputs,
   return batch;
 }
 
-/// Binds `kernel(vectors, t, params)` as module.name(<names>..., t=0.0, params=None, *,
-/// threads=None), with u=None before threads for a model with inputs; `kernel` gets the K
-/// vectors, which are the first K of (q, v, qdd), as StateVectors<M>.
-template <class M, std::size_t... I, class Kernel>
-void def_kernel(py::module_& module, const char* name, const std::string& doc,
-                const std::array<const char*, sizeof...(I)>& names, Kernel kernel,
-                std::index_sequence<I...>) {
-  constexpr std::size_t K = sizeof...(I);
-  static_assert(K <= 3, "def_kernel: a kernel takes q, v and qdd at most");
-  const auto call = [names, kernel](std::conditional_t<true, py::object, decltype(I)>... values,
-                                    py::object t, py::object params, py::object u,
-                                    py::object threads) {
-    const std::array<VectorInput, K> inputs{
-        vector_input(values, names[I], I == 0 ? M::nq : nv_of_v<M>)...};
-    const py::ssize_t batch = common_batch(inputs, names);
-    const TimeInput times = time_input(t, batch);
-    const ParamsInput<M> parameters = params_input<M>(params, batch);
-    const InputsInput<M> controls = inputs_input<M>(u, batch);
-    return gather(batch, thread_count(threads, batch), [&](py::ssize_t i) {
-      StateVectors<M> x;
-      if constexpr (K > 0) x.q = to_vector<QVec<M>>(inputs[0].row(i));
-      if constexpr (K > 1) x.v = to_vector<VVec<M>>(inputs[1].row(i));
-      if constexpr (K > 2) x.qdd = to_vector<VVec<M>>(inputs[2].row(i));
-      if (controls.given) return kernel(x, times.at(i), controls.apply(parameters.at(i), i));
-      return kernel(x, times.at(i), parameters.at(i));
-    });
+/// One kernel as the bindings run it: its evaluation at one state, writing each result
+/// row-major to its output, behind a std::function. Every kernel of a model with the same
+/// arguments then shares one bound Python function type and one batch loop: pybind11
+/// instantiates its whole call machinery for each distinct callable it binds, which made
+/// the kernels the largest part of a module's compile time.
+template <class M>
+struct KernelEntry {
+  using Evaluate =
+      std::function<void(const StateVectors<M>&, double, const ParamsOf<M>&, double* const*)>;
+  Evaluate evaluate;
+  std::vector<std::vector<py::ssize_t>> shapes;  // each result's shape for one state
+  std::array<const char*, 3> names{};            // its vector arguments, the first `arity`
+  std::size_t arity = 0;
+};
+
+namespace detail {
+
+constexpr std::size_t max_kernel_results = 4;
+
+// kernel(values..., t, params, u, threads) for one state or a batch (see the file comment)
+template <class M>
+py::object call_kernel(const KernelEntry<M>& kernel, const std::array<py::object, 3>& values,
+                       py::object t, py::object params, py::object u, py::object threads) {
+  std::array<VectorInput, 3> inputs;
+  for (std::size_t k = 0; k < kernel.arity; ++k)
+    inputs[k] = vector_input(values[k], kernel.names[k], k == 0 ? M::nq : nv_of_v<M>);
+  const py::ssize_t batch = common_batch(inputs, kernel.names, kernel.arity);
+  const TimeInput times = time_input(t, batch);
+  const ParamsInput<M> parameters = params_input<M>(params, batch);
+  const InputsInput<M> controls = inputs_input<M>(u, batch);
+  const int workers = thread_count(threads, batch);
+  const std::size_t count = kernel.shapes.size();
+  const py::ssize_t elements = std::max<py::ssize_t>(batch, 1);
+  std::vector<py::array_t<double>> arrays;
+  std::array<double*, max_kernel_results> data{};
+  std::array<py::ssize_t, max_kernel_results> sizes{};
+  for (std::size_t r = 0; r < count; ++r) {
+    arrays.push_back(output_array(batch, kernel.shapes[r]));
+    data[r] = arrays[r].mutable_data();
+    sizes[r] = arrays[r].size() / elements;
+  }
+  {
+    py::gil_scoped_release unlocked;
+    gencoord::detail::parallel_chunks(
+        static_cast<std::size_t>(elements), workers, [&](std::size_t begin, std::size_t end) {
+          for (auto i = static_cast<py::ssize_t>(begin); i < static_cast<py::ssize_t>(end); ++i) {
+            StateVectors<M> x;
+            if (kernel.arity > 0) x.q = to_vector<QVec<M>>(inputs[0].row(i));
+            if (kernel.arity > 1) x.v = to_vector<VVec<M>>(inputs[1].row(i));
+            if (kernel.arity > 2) x.qdd = to_vector<VVec<M>>(inputs[2].row(i));
+            std::array<double*, max_kernel_results> out{};
+            for (std::size_t r = 0; r < count; ++r) out[r] = data[r] + i * sizes[r];
+            if (controls.given) {
+              kernel.evaluate(x, times.at(i), controls.apply(parameters.at(i), i), out.data());
+            } else {
+              kernel.evaluate(x, times.at(i), parameters.at(i), out.data());
+            }
+          }
+        });
+  }
+  const auto finish = [batch](py::array_t<double>& array) -> py::object {
+    if (batch < 0 && array.ndim() == 0) return py::float_(*array.data());
+    return std::move(array);
   };
+  if (count == 1) return finish(arrays[0]);
+  py::tuple results(count);
+  for (std::size_t r = 0; r < count; ++r) results[r] = finish(arrays[r]);
+  return results;
+}
+
+// Binds `kernel` as module.name(<its vector arguments>..., t=0.0, params=None, *,
+// threads=None), with u=None before threads for a model with inputs. Not a template of the
+// kernel: one instantiation per model and arity.
+template <class M, std::size_t... I>
+void def_kernel_entry(py::module_& module, const char* name, const std::string& doc,
+                      std::shared_ptr<const KernelEntry<M>> kernel, std::index_sequence<I...>) {
   if constexpr (has_inputs_v<M>) {
-    module.def(name, call, doc.c_str(), py::arg(names[I])..., py::arg("t") = 0.0,
-               py::arg("params") = py::none(), py::kw_only(), py::arg("u") = py::none(),
-               py::arg("threads") = py::none());
+    module.def(
+        name,
+        [kernel](std::conditional_t<true, py::object, decltype(I)>... values, py::object t,
+                 py::object params, py::object u, py::object threads) {
+          return call_kernel(*kernel, {std::move(values)...}, t, params, u, threads);
+        },
+        doc.c_str(), py::arg(kernel->names[I])..., py::arg("t") = 0.0,
+        py::arg("params") = py::none(), py::kw_only(), py::arg("u") = py::none(),
+        py::arg("threads") = py::none());
   } else {
     module.def(
         name,
-        [call](std::conditional_t<true, py::object, decltype(I)>... values, py::object t,
-               py::object params,
-               py::object threads) { return call(values..., t, params, py::none(), threads); },
-        doc.c_str(), py::arg(names[I])..., py::arg("t") = 0.0, py::arg("params") = py::none(),
-        py::kw_only(), py::arg("threads") = py::none());
+        [kernel](std::conditional_t<true, py::object, decltype(I)>... values, py::object t,
+                 py::object params, py::object threads) {
+          return call_kernel(*kernel, {std::move(values)...}, t, params, py::none(), threads);
+        },
+        doc.c_str(), py::arg(kernel->names[I])..., py::arg("t") = 0.0,
+        py::arg("params") = py::none(), py::kw_only(), py::arg("threads") = py::none());
   }
 }
 
+// The entry of `kernel`, whose results are Values (a tuple)
+template <class M, class Value, class Kernel, std::size_t... R>
+KernelEntry<M> kernel_entry(Kernel kernel, std::index_sequence<R...>) {
+  using Values = typename AsTuple<Value>::Type;
+  static_assert(sizeof...(R) <= max_kernel_results, "def_kernel: too many results");
+  KernelEntry<M> entry;
+  entry.shapes = {Result<std::tuple_element_t<R, Values>>::shape()...};
+  entry.evaluate = [kernel](const StateVectors<M>& x, double t, const ParamsOf<M>& p,
+                            double* const* out) {
+    const Values values = AsTuple<Value>::of(kernel(x, t, p));
+    (Result<std::tuple_element_t<R, Values>>::copy(std::get<R>(values), out[R]), ...);
+  };
+  return entry;
+}
+
+}  // namespace detail
+
+/// Binds `kernel(vectors, t, params)` as module.name(<names>..., t=0.0, params=None, *,
+/// threads=None), with u=None before threads for a model with inputs; `kernel` gets the K
+/// vectors, which are the first K of (q, v, qdd), as StateVectors<M>, and returns a value
+/// (a number, an Eigen vector or matrix, an AsMatrix) or a tuple of them.
 template <class M, std::size_t K, class Kernel>
 void def_kernel(py::module_& module, const char* name, const std::string& doc,
                 const std::array<const char*, K>& names, Kernel kernel) {
-  def_kernel<M>(module, name, doc, names, kernel, std::make_index_sequence<K>{});
+  static_assert(K <= 3, "def_kernel: a kernel takes q, v and qdd at most");
+  using Value = decltype(kernel(std::declval<const StateVectors<M>&>(), 0.0,
+                                std::declval<const ParamsOf<M>&>()));
+  constexpr std::size_t results = std::tuple_size_v<typename detail::AsTuple<Value>::Type>;
+  auto entry = std::make_shared<KernelEntry<M>>(
+      detail::kernel_entry<M, Value>(std::move(kernel), std::make_index_sequence<results>{}));
+  for (std::size_t k = 0; k < K; ++k) entry->names[k] = names[k];
+  entry->arity = K;
+  detail::def_kernel_entry<M>(module, name, doc, std::shared_ptr<const KernelEntry<M>>(entry),
+                              std::make_index_sequence<K>{});
 }
 
 }  // namespace gencoord::python
