@@ -212,11 +212,11 @@ void bind_kernels(py::module_& m) {
   m.def(
       "particle_masses",
       [](py::object params) {
-        const ParamsInput<M> parameters = params_input<M>(params, -1);
-        return gather(-1, 1, [&](py::ssize_t) {
-          return typename M::template ParticleVector<double>(
-              M::template particle_masses<double>(parameters.at(0)));
-        });
+        using Masses = typename M::template ParticleVector<double>;
+        const Masses masses(M::template particle_masses<double>(params_input<M>(params, -1).at(0)));
+        py::array_t<double> array = output_array(-1, Result<Masses>::shape());
+        Result<Masses>::copy(masses, array.mutable_data());
+        return array;
       },
       "The particles' masses, (num_particles,).", py::arg("params") = py::none());
 }

@@ -176,50 +176,7 @@ struct AsTuple<std::tuple<Values...>> {
   static Type of(Type values) { return values; }
 };
 
-template <class Values, std::size_t... I, class Element>
-py::object gather(py::ssize_t batch, int threads, const Element& element,
-                  std::index_sequence<I...>) {
-  constexpr std::size_t count = sizeof...(I);
-  const py::ssize_t elements = std::max<py::ssize_t>(batch, 1);
-  std::array<py::array_t<double>, count> arrays{
-      output_array(batch, Result<std::tuple_element_t<I, Values>>::shape())...};
-  std::array<double*, count> data{arrays[I].mutable_data()...};
-  std::array<py::ssize_t, count> sizes{arrays[I].size() / elements...};
-  {
-    py::gil_scoped_release unlocked;
-    gencoord::detail::parallel_chunks(
-        static_cast<std::size_t>(elements), threads, [&](std::size_t begin, std::size_t end) {
-          for (auto i = static_cast<py::ssize_t>(begin); i < static_cast<py::ssize_t>(end); ++i) {
-            const Values values = element(i);
-            (Result<std::tuple_element_t<I, Values>>::copy(std::get<I>(values),
-                                                           data[I] + i * sizes[I]),
-             ...);
-          }
-        });
-  }
-  const auto finish = [batch](py::array_t<double>& array) -> py::object {
-    if (batch < 0 && array.ndim() == 0) return py::float_(*array.data());
-    return std::move(array);
-  };
-  if constexpr (count == 1) {
-    return finish(arrays[0]);
-  } else {
-    return py::make_tuple(finish(arrays[I])...);
-  }
-}
-
 }  // namespace detail
-
-/// Runs element(i) for each element of the batch (i = 0 once when batch < 0) on `threads`
-/// threads without the GIL, and returns its results as arrays: one, or a tuple of them.
-template <class Element>
-py::object gather(py::ssize_t batch, int threads, const Element& element) {
-  using Value = decltype(element(py::ssize_t{0}));
-  using Values = typename detail::AsTuple<Value>::Type;
-  return detail::gather<Values>(
-      batch, threads, [&](py::ssize_t i) { return detail::AsTuple<Value>::of(element(i)); },
-      std::make_index_sequence<std::tuple_size_v<Values>>{});
-}
 
 /// The batch size the first `count` vector arguments agree on (-1 for one state), or
 /// ValueError.
