@@ -2,11 +2,12 @@
 # SPDX-License-Identifier: BSD-3-Clause
 """Generation time (load, check, derive, CSE, emit) of every built-in model, and peak memory.
 
-    PYTHONHASHSEED=0 python3 bench/generation_time.py [--chain 10,20,50] [--repeat 3]
+    PYTHONHASHSEED=0 python3 bench/generation_time.py [MODEL ...] [--chain 10,20,50] [--repeat 3]
 
-The built-in models are gencoord/tool/model_list.py's, benchmark variants included (models/
-and models/variants.txt); --chain adds planar chains (models/n_link_chain.py) of the sizes given,
---chain-only leaves out every other model.
+Without MODEL arguments the built-in models are measured: gencoord/tool/model_list.py's,
+benchmark variants included (models/ and models/variants.txt). MODEL arguments (model files or
+URDFs, e.g. models/iiwa14.urdf) replace them. --chain adds planar chains (models/n_link_chain.py)
+of the sizes given, --chain-only leaves out every other model.
 
 Each model is generated in a fresh process (as the build does), into a temporary folder,
 `--repeat` times; the fastest run is shown. Columns: derive + CSE + emit (what
@@ -56,6 +57,8 @@ def measure(arguments, output):
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("models", nargs="*", metavar="MODEL",
+                        help="model files or URDFs to measure instead of the built-in models")
     parser.add_argument("--chain", default="",
                         help="comma-separated sizes n of further planar chains")
     parser.add_argument("--repeat", type=int, default=1,
@@ -63,8 +66,11 @@ def main():
     parser.add_argument("--chain-only", action="store_true",
                         help="only the planar chains (built-in and --chain)")
     args = parser.parse_args()
-    jobs = {v.name: v.generate_arguments() for v in variants(benchmarks=True)
-            if v.stem == "n_link_chain" or not args.chain_only}
+    if args.models:
+        jobs = {os.path.splitext(os.path.basename(path))[0]: [path] for path in args.models}
+    else:
+        jobs = {v.name: v.generate_arguments() for v in variants(benchmarks=True)
+                if v.stem == "n_link_chain" or not args.chain_only}
     jobs.update((f"n_link_chain_{n}", ["models/n_link_chain.py", "--set", f"n={n}"])
                 for n in args.chain.split(",") if n)
     print(f"{'model':<22} {'derive+CSE+emit s':>17} {'process CPU s':>13} {'wall s':>7} "
