@@ -2,6 +2,7 @@
 # Wall-clock phases of a script, sourced by scripts/test.sh and .ci/run:
 #   phase NAME        ends the phase running (if any) and starts NAME, printing "== NAME"
 #   phases_report     ends the phase running and prints each phase's wall time and the total
+#   phases_report_on_exit NAME   prints that report when the script exits, failed or not
 #   slowest_tests LOG N   the N slowest tests of a ctest output saved in LOG
 _phase_names=()
 _phase_seconds=()
@@ -32,6 +33,11 @@ phases_report() {
     printf '  %6d s  %s\n' "${_phase_seconds[$i]}" "${_phase_names[$i]}"
   done
   printf '  %6d s  total (%d min)\n' $((SECONDS - _phases_start)) $(((SECONDS - _phases_start) / 60))
+}
+
+phases_report_on_exit() {
+  # shellcheck disable=SC2064  # NAME is expanded now, on purpose
+  trap "phases_report '$1'" EXIT
 }
 
 slowest_tests() {

@@ -24,6 +24,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 source scripts/phases.sh
+phases_report_on_exit "scripts/test.sh"
 build=${1:-build}
 jobs=$(nproc 2>/dev/null || echo 2)
 
@@ -85,7 +86,6 @@ cmake --build "$build" -j "$jobs"
 phase "run: every test, Release"
 ctest --test-dir "$build" --output-on-failure --no-tests=error -j "$jobs" \
   | tee "$build/ctest-output.log"
-phases_report "scripts/test.sh"
 slowest_tests "$build/ctest-output.log" 15
 if command -v ccache >/dev/null 2>&1; then
   echo "== ccache"
