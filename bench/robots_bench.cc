@@ -39,6 +39,7 @@ double time_per_call(const std::function<void(int)>& call) {
   return gencoord::bench::ns_per_call(kStates, call);
 }
 
+using gencoord::bench::kept;
 using gencoord::bench::summarize;
 using gencoord::bench::Summary;
 
@@ -67,7 +68,9 @@ void compare(const char* robot, const char* urdf, int rounds) {
     std::vector<double> ns;
   };
   std::vector<Contender> contenders = {
-      {"qddot", [&](int k) { sink = sink + M::qddot(states[k].q, states[k].v, 0.0, p)[0]; }, {}},
+      {"qddot",
+       [&](int k) { sink = sink + kept(M::qddot(states[k].q, states[k].v, 0.0, p))[0]; },
+       {}},
       {"mj_forward",
        [&](int k) {
          mujoco.set(states[k].q, states[k].v);
@@ -75,7 +78,9 @@ void compare(const char* robot, const char* urdf, int rounds) {
          sink = sink + d->qacc[0];
        },
        {}},
-      {"mass_matrix", [&](int k) { sink = sink + M::mass_matrix(states[k].q, 0.0, p)(0, 0); }, {}},
+      {"mass_matrix",
+       [&](int k) { sink = sink + kept(M::mass_matrix(states[k].q, 0.0, p))(0, 0); },
+       {}},
       {"mj_fwdPosition+mj_fullM",
        [&](int k) {
          mujoco.set(states[k].q, states[k].v);
@@ -86,7 +91,7 @@ void compare(const char* robot, const char* urdf, int rounds) {
        {}},
       {"inverse_dynamics",
        [&](int k) {
-         sink = sink + M::inverse_dynamics(states[k].q, states[k].v, qdd[k], 0.0, p)[0];
+         sink = sink + kept(M::inverse_dynamics(states[k].q, states[k].v, qdd[k], 0.0, p))[0];
        },
        {}},
       {"mj_rne (after mj_fwdPosition+mj_fwdVelocity)",
