@@ -33,6 +33,8 @@
 
 namespace {
 
+using gencoord::bench::kept;
+
 constexpr int kStates = 64;
 constexpr double kStep = 1e-4;
 volatile double sink = 0.0;  // keeps the results alive
@@ -140,23 +142,21 @@ void compare(int n, int rounds) {
   auto recursive_state = gencoord::State<Recursive>{};
   std::vector<Contender> contenders;
   contenders.emplace_back("qddot recursive", [&](int k) {
-    sink = sink + gencoord::bench::kept(Recursive::qddot(q[k], v[k], 0.0, recursive_params))[0];
+    sink = sink + kept(Recursive::qddot(q[k], v[k], 0.0, recursive_params))[0];
   });
   // the dense lambdas own their parameters and state: Dense names no type where it is void
   if constexpr (kDense) {
     contenders.emplace_back("qddot dense", [&, params = typename Dense::Params{}](int k) {
-      sink = sink + gencoord::bench::kept(Dense::qddot(q[k], v[k], 0.0, params))[0];
+      sink = sink + kept(Dense::qddot(q[k], v[k], 0.0, params))[0];
     });
   }
   contenders.emplace_back("inverse_dynamics recursive", [&](int k) {
-    sink = sink + gencoord::bench::kept(
-                      Recursive::inverse_dynamics(q[k], v[k], qdd[k], 0.0, recursive_params))[0];
+    sink = sink + kept(Recursive::inverse_dynamics(q[k], v[k], qdd[k], 0.0, recursive_params))[0];
   });
   if constexpr (kDense) {
     contenders.emplace_back(
         "inverse_dynamics dense", [&, params = typename Dense::Params{}](int k) {
-          sink = sink +
-                 gencoord::bench::kept(Dense::inverse_dynamics(q[k], v[k], qdd[k], 0.0, params))[0];
+          sink = sink + kept(Dense::inverse_dynamics(q[k], v[k], qdd[k], 0.0, params))[0];
         });
   }
   contenders.emplace_back("rk4 step recursive", [&](int k) {
