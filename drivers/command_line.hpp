@@ -6,7 +6,9 @@
 #include <cmath>
 #include <cstdlib>
 #include <iostream>
+#include <sstream>
 #include <string>
+#include <vector>
 
 namespace gencoord::drivers {
 
@@ -20,6 +22,16 @@ inline double parse_number(const char* program, const std::string& text, const s
     std::exit(2);
   }
   return value;
+}
+
+/// Comma-separated numbers (`1,2.5,-3`), each as parse_number().
+inline std::vector<double> parse_list(const char* program, const std::string& text,
+                                      const std::string& what) {
+  std::vector<double> values;
+  std::stringstream stream(text);
+  for (std::string item; std::getline(stream, item, ',');)
+    values.push_back(parse_number(program, item, what));
+  return values;
 }
 
 /// The value of option argv[i], advancing i past it; exits with status 2 when it is missing.

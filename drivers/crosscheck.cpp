@@ -4,19 +4,20 @@
 //   crosscheck [--kappa 1e2:1e8] [--points N] [--t 5] [--samples 100]
 //              [--integrator rk4|symplectic_euler|backward_euler] [--max-dt 1e-4]
 //              [--safety 0.9] [--damping 0] [--reference-dt 1e-4] [--set name=value ...]
-//              [--csv FILE] [--svg FILE] [--trajectory FILE] [--min-slope S]
+//              [--q a,b,...] [--v a,b,...] [--csv FILE] [--svg FILE] [--trajectory FILE]
+//              [--min-slope S]
 //
 // The model is chosen when the program is compiled (driver_model.hpp, written by
 // gencoord_add_driver()); `gencoord crosscheck MODEL.py` builds and runs it for any model file.
 // Runs the reduced model (RK4) as the reference and the maximal model from the same consistent
-// initial state for N log-spaced kappa (default: one per decade), prints one row per kappa
-// (step, largest particle-position error, energy drift, largest constraint violation, wall
-// time), the fitted log-log slopes of error and violation against kappa, and writes a CSV and
-// an SVG plot. Exit status: 0 when the error falls with a slope at least as steep as
-// --min-slope (-0.8, or -0.4 for a model with velocity constraints, whose viscous penalty
-// converges like kappa^-1/2; or, for a model without declared constraints whose maximal
-// model is the reduced one in other coordinates, when the error sits at the integration floor
-// for every kappa); 1 when it does not; 2 for bad usage.
+// initial state (the model file's, or --q and --v as simulate takes them) for N log-spaced kappa
+// (default: one per decade), prints one row per kappa (step, largest particle-position error,
+// energy drift, largest constraint violation, wall time), the fitted log-log slopes of error and
+// violation against kappa, and writes a CSV and an SVG plot. Exit status: 0 when the error falls
+// with a slope at least as steep as --min-slope (-0.8, or -0.4 for a model with velocity
+// constraints, whose viscous penalty converges like kappa^-1/2; or, for a model without declared
+// constraints whose maximal model is the reduced one in other coordinates, when the error sits
+// at the integration floor for every kappa); 1 when it does not; 2 for bad usage.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -31,15 +32,12 @@
 #include "driver_model.hpp"
 #include "gencoord/io/csv_writer.hpp"
 #include "gencoord/maximal/crosscheck.hpp"
+#include "initial_state.hpp"
 #include "loglog_svg.hpp"
 
 namespace {
 
 using M = gencoord::drivers::Model;
-static_assert(!gencoord::has_generalized_speeds_v<M>,
-              "gencoord: the crosscheck program does not support models with generalized speeds "
-              "(free or ball "
-              "joints) yet");
 static_assert(gencoord::has_maximal_v<M>,
               "gencoord: the model has no struct Maximal; generate it with --maximal "
               "(gencoord_add_model(... MAXIMAL))");
@@ -52,6 +50,7 @@ struct Options {
   std::string trajectory;  // both models at the smallest kappa, sample by sample
   double min_slope = gencoord::expected_error_slope<M>();
   std::vector<std::pair<std::string, double>> parameters;
+  std::vector<double> q, v;  // initial state; empty: the model file's
 };
 
 [[noreturn]] void usage(int status) {
@@ -59,8 +58,8 @@ struct Options {
       << "usage: crosscheck [--kappa LO:HI] [--points N] [--t T] [--samples S]\n"
          "                  [--integrator rk4|symplectic_euler|backward_euler] [--max-dt DT]\n"
          "                  [--safety F] [--damping C] [--reference-dt DT]\n"
-         "                  [--set param=value ...] [--csv FILE] [--svg FILE]\n"
-         "                  [--trajectory FILE] [--min-slope S]\n"
+         "                  [--set param=value ...] [--q a,b,...] [--v a,b,...]\n"
+         "                  [--csv FILE] [--svg FILE] [--trajectory FILE] [--min-slope S]\n"
          "  --kappa      penalty stiffness range, log-spaced (or one value); default 1e2:1e8\n"
          "  --points     number of kappa values; default one per decade\n"
          "  --t          simulated time; default 5\n"
@@ -71,6 +70,8 @@ struct Options {
          "               -0.4 for a model with velocity constraints (rolling: kappa^-1/2)\n"
          "  --trajectory the reduced and the maximal model at the smallest kappa, at every\n"
          "               sample (CSV: the simulate layout, then maximal:<particle>_x, ...)\n"
+         "  --q, --v     the initial coordinates (nq) and velocities (nv: a model's generalized\n"
+         "               speeds); default the model file's initial state\n"
          "  model:       "
       << M::name << '\n';
   std::exit(status);
@@ -102,6 +103,8 @@ Options parse(int argc, char** argv) {
     else if (arg == "--csv") o.csv = value();
     else if (arg == "--svg") o.svg = value();
     else if (arg == "--trajectory") o.trajectory = value();
+    else if (arg == "--q") o.q = gencoord::drivers::parse_list("crosscheck", value(), arg);
+    else if (arg == "--v") o.v = gencoord::drivers::parse_list("crosscheck", value(), arg);
     else if (arg == "--integrator") {
       try {
         o.run.integrator = gencoord::parse_integrator(value());
@@ -165,11 +168,17 @@ int run(const Options& o) {
     *slot = value;
   }
   gencoord::State<M> s0;
-  s0.q = gencoord::initial_q_of<M>();
-  s0.v = gencoord::initial_v_of<M>();
+  if (!gencoord::drivers::initial_state<M>("crosscheck", o.q, o.v, &s0)) return 2;
+  gencoord::ReducedSystem<M> system(p);
+  if constexpr (gencoord::has_joint_limits_v<M>)
+    system.set_joint_limits(false);  // as the reference
+  if (!gencoord::drivers::put_on_manifold<M>("crosscheck", system, &s0)) return 2;
 
   const auto ref = gencoord::reduced_reference<M>(p, s0, o.run);
-  std::printf("model       %s (nq = %d, nx = %d, %d declared constraints%s%s)\n", M::name, M::nq,
+  std::printf("model       %s (nq = %d%s, nx = %d, %d declared constraints%s%s)\n", M::name, M::nq,
+              gencoord::has_generalized_speeds_v<M>
+                  ? (", nv = " + std::to_string(gencoord::nv_of_v<M>)).c_str()
+                  : "",
               M::nx, M::Maximal::num_constraints,
               M::Maximal::has_generalized_forces ? ", generalized forces mapped by M J Mt^-1" : "",
               gencoord::uses_manifold_spring_v<M> ? ", manifold spring" : "");
@@ -232,7 +241,7 @@ int run(const Options& o) {
   char note[160];
   if constexpr (gencoord::kappa_independent_v<M>)
     std::snprintf(note, sizeof note,
-                  "no declared constraints, nq = nx: error at the integration floor");
+                  "no declared constraints, nv = nx: error at the integration floor");
   else
     std::snprintf(note, sizeof note, "fitted slopes: position error %.3f, violation %.3f",
                   error_fit.slope, violation_fit.slope);
@@ -257,12 +266,12 @@ int run(const Options& o) {
   const double lo = *std::min_element(errors.begin(), errors.end());
   const double hi = *std::max_element(errors.begin(), errors.end());
   if (gencoord::kappa_independent_v<M> || hi <= 1e-10) {
-    // no declared constraints and nq == nx: the maximal model is the reduced one in other
+    // no declared constraints and nv == nx: the maximal model is the reduced one in other
     // coordinates, kappa acts on nothing; or nothing loads the constraints (no motion): the
     // error is the integrators' floor
     std::printf("%s: the error sits at the integration floor %.3e .. %.3e for every kappa\n",
                 gencoord::kappa_independent_v<M>
-                    ? "no declared constraints, nq = nx: kappa acts on nothing"
+                    ? "no declared constraints, nv = nx: kappa acts on nothing"
                     : "the constraints carry no load",
                 lo, hi);
     std::printf("csv %s, plot %s\n", o.csv.c_str(), o.svg.c_str());

@@ -26,13 +26,13 @@
 #include <iostream>
 #include <memory>
 #include <optional>
-#include <sstream>
 #include <string>
 #include <vector>
 
 #include "command_line.hpp"
 #include "driver_model.hpp"
 #include "gencoord/gencoord.hpp"
+#include "initial_state.hpp"
 
 namespace {
 
@@ -67,14 +67,6 @@ double parse_number(const std::string& text, const std::string& what) {
   return gencoord::drivers::parse_number("simulate", text, what);
 }
 
-std::vector<double> parse_list(const std::string& text, const std::string& what) {
-  std::vector<double> values;
-  std::stringstream stream(text);
-  for (std::string item; std::getline(stream, item, ',');)
-    values.push_back(parse_number(item, what));
-  return values;
-}
-
 Options parse(int argc, char** argv) {
   Options o;
   for (int i = 1; i < argc; ++i) {
@@ -85,8 +77,8 @@ Options parse(int argc, char** argv) {
     else if (arg == "--dt") o.dt = parse_number(value(), arg);
     else if (arg == "--duration") o.duration = parse_number(value(), arg);
     else if (arg == "--output" || arg == "-o") o.output = value();
-    else if (arg == "--q") o.q = parse_list(value(), arg);
-    else if (arg == "--v") o.v = parse_list(value(), arg);
+    else if (arg == "--q") o.q = gencoord::drivers::parse_list("simulate", value(), arg);
+    else if (arg == "--v") o.v = gencoord::drivers::parse_list("simulate", value(), arg);
     else if (arg == "--baumgarte") o.baumgarte = parse_number(value(), arg);
     else if (arg == "--no-limits") o.joint_limits = false;
     else if (arg == "--set") {
@@ -106,31 +98,6 @@ Options parse(int argc, char** argv) {
     }
   }
   return o;
-}
-
-// The initial state on the model's manifold: unit quaternions normalized, a constrained
-// model's state projected onto its constraints (false, with the error printed, for a
-// quaternion that is zero or not finite). Templates, so that the members of such a model
-// are looked up only for it.
-template <class Model>
-bool put_on_manifold(const gencoord::ReducedSystem<Model>& system, gencoord::State<Model>* s) {
-  if constexpr (gencoord::has_generalized_speeds_v<Model>) {
-    for (const int start : Model::quaternion_starts) {
-      const auto quaternion = s->q.segment(start, 4);
-      if (!(quaternion.norm() > 0.0) || !quaternion.allFinite()) {
-        std::cerr << "simulate: error: the quaternion at " << Model::coordinate_names[start]
-                  << " in --q is zero or not finite; give a rotation (w, x, y, z)\n";
-        return false;
-      }
-    }
-  }
-  gencoord::normalize(system, s);
-  if constexpr (gencoord::has_kinematic_constraints_v<Model>) {
-    // normalize() projects unless Baumgarte's feedback replaces projection; start on them
-    if (!system.stabilization().project)
-      gencoord::project_onto_constraints<Model>(system.params(), s);
-  }
-  return true;
 }
 
 // The system to integrate: a constrained model kept on its constraints by projection, or by
@@ -268,27 +235,8 @@ int run(const Options& o) {
     }
     *slot = value;
   }
-  constexpr int nv = gencoord::nv_of_v<M>;
   State<M> s;
-  for (int i = 0; i < M::nq; ++i) s.q[i] = M::initial_q[i];
-  for (int i = 0; i < nv; ++i) s.v[i] = M::initial_v[i];
-  if (!o.q.empty()) {
-    if (static_cast<int>(o.q.size()) != M::nq) {
-      std::cerr << "simulate: error: model " << M::name << " has " << M::nq
-                << " coordinates; --q needs that many values\n";
-      return 2;
-    }
-    for (int i = 0; i < M::nq; ++i) s.q[i] = o.q[i];
-  }
-  if (!o.v.empty()) {
-    if (static_cast<int>(o.v.size()) != nv) {
-      std::cerr << "simulate: error: model " << M::name << " has " << nv
-                << (nv == M::nq ? " coordinates" : " generalized speeds")
-                << "; --v needs that many values\n";
-      return 2;
-    }
-    for (int i = 0; i < nv; ++i) s.v[i] = o.v[i];
-  }
+  if (!gencoord::drivers::initial_state<M>("simulate", o.q, o.v, &s)) return 2;
   if (!(o.baumgarte >= 0) || !std::isfinite(o.baumgarte)) {
     std::cerr << "simulate: error: --baumgarte needs a rate of 0 or more (1/s), got " << o.baumgarte
               << "\n";
@@ -302,7 +250,7 @@ int run(const Options& o) {
   gencoord::ReducedSystem<M> system = system_of<M>(params, o.baumgarte);
   if constexpr (gencoord::has_joint_limits_v<M>) system.set_joint_limits(o.joint_limits);
   if (o.joint_limits && !start_within_limits<M>(s)) return 2;
-  if (!put_on_manifold<M>(system, &s)) return 2;
+  if (!gencoord::drivers::put_on_manifold<M>("simulate", system, &s)) return 2;
   const gencoord::Integrator integrator = gencoord::parse_integrator(o.integrator);
 
   const double e0 = M::energy(s.q, s.v, s.t, params);
@@ -341,6 +289,7 @@ int run(const Options& o) {
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const long long steps = gencoord::step_count(o.dt, o.duration);
 
+  constexpr int nv = gencoord::nv_of_v<M>;
   const std::string speeds = nv != M::nq ? ", nv = " + std::to_string(nv) : "";
   std::printf("model       %s (nq = %d%s, %d particles in %dD)\n", M::name, M::nq, speeds.c_str(),
               M::num_particles, M::dim);

@@ -200,7 +200,7 @@ class GencoordCommandTest(unittest.TestCase):
         self.assertIn("simulate.cpp", log)
         self.assertNotRegex(log, r"runtime/src/\w+\.cpp", "the runtime was compiled again")
 
-    def test_8_a_free_body_simulates_on_its_speeds(self):
+    def test_8_a_free_body_simulates_and_crosschecks_on_its_speeds(self):
         # a free trunk with a ball-jointed arm: unit quaternions, nq = 11, nv = 9
         (self.user / "tumbler.py").write_text(TUMBLER, encoding="utf-8")
         result = self.gencoord("simulate", "tumbler.py", "--duration", "1", "--dt", "1e-3",
@@ -216,11 +216,17 @@ class GencoordCommandTest(unittest.TestCase):
             self.assertAlmostEqual(norm, 1.0, places=12)
         drift = float(re.search(r"max \|E - E\(0\)\| = (\S+) J", result.stdout).group(1))
         self.assertLess(drift, 1e-7 * max(abs(float(rows[0]["energy"])), 1.0), result.stdout)
-        refused = self.gencoord("crosscheck", "tumbler.py")  # no maximal model yet
-        self.assertEqual(refused.returncode, 1, refused.stderr)
-        self.assertIn("gencoord crosscheck does not take models with free or ball joints",
-                      refused.stderr)
-        self.assertNoTraceback(refused)
+        # the penalty model of the same bodies converges to it, from the same spinning start
+        checked = self.gencoord("crosscheck", "tumbler.py", "--t", "0.5", "--kappa", "1e3:1e5",
+                                "--v", "0,0,0,1,2,3,0.5,0,0")
+        self.assertSucceeded(checked)
+        self.assertIn("(nq = 11, nv = 9, nx = 24", checked.stdout)
+        slope = float(re.search(r"position error (\S+), constraint violation",
+                                checked.stdout).group(1))
+        self.assertLess(slope, -0.8, checked.stdout)
+        refused = self.gencoord("crosscheck", "tumbler.py", "--v", "1,2,3")
+        self.assertEqual(refused.returncode, 2, refused.stderr)
+        self.assertIn("has 9 generalized speeds; --v needs that many values", refused.stderr)
 
     def test_9_a_closed_loop_stays_closed_by_projection_or_baumgarte(self):
         (self.user / "linkage.py").write_text(LINKAGE, encoding="utf-8")

@@ -107,16 +107,13 @@ def _pattern_through(force: sp.Matrix, variables: list[sp.Symbol],
 
 
 def has_maximal_model(model: Model) -> bool:
-    """Whether the model can have a maximal-coordinate (penalty) model: not yet one with free
-    or ball joints (generalized speeds), nor one whose kinematic constraints are written in the
-    coordinates (maximal_constraints.py)."""
+    """Whether the model can have a maximal-coordinate (penalty) model: not one whose kinematic
+    constraints are written in the coordinates (maximal_constraints.py)."""
     return why_no_maximal_model(model) is None
 
 
 def why_no_maximal_model(model: Model) -> str | None:
     """Why the model can have no maximal-coordinate model, or None."""
-    if model.has_generalized_speeds:
-        return "the cross-check's maximal model does not take generalized speeds yet"
     return maximal_constraint_problem(model)
 
 

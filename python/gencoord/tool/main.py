@@ -73,6 +73,8 @@ Options for the cross-check itself go to the compiled program:
   --t T               simulated time (default 5), --samples S compared samples (default 100)
   --integrator rk4|symplectic_euler|backward_euler   the maximal model's integrator
   --max-dt DT, --safety F, --damping C, --reference-dt DT, --min-slope S
+  --q a,b,... --v a,b,...   the initial state (default the model file's; --v takes the
+                      generalized speeds of a model with free or ball joints)
 Writes DIR/<name>_crosscheck.csv and DIR/<name>_crosscheck.svg, and DIR/<name>_crosscheck.html
 with DIR/<name>_crosscheck_trajectory.csv: the reduced and the maximal model at the smallest
 kappa side by side (see gencoord view --help); exit status 1 when the maximal model does not

@@ -89,10 +89,6 @@ inline double divisor_step(double interval, double limit) {
 template <class M>
 ReducedReference<M> reduced_reference(const ParamsOf<M>& p, const State<M>& initial,
                                       const CrosscheckOptions& o) {
-  static_assert(
-      !has_generalized_speeds_v<M>,
-      "gencoord: the cross-check does not support models with generalized speeds (free or ball "
-      "joints) yet");
   const double interval = sample_interval(o);
   ReducedReference<M> ref;
   ref.reference_dt = divisor_step(interval, o.reference_dt);
@@ -199,8 +195,9 @@ constexpr double expected_error_slope() {
 }
 
 /// Whether the maximal model of M is the reduced one in other coordinates (no declared
-/// constraints, nq == nx): its error does not depend on kappa and sits at the integration floor.
+/// constraints, nv == nx): its error does not depend on kappa and sits at the integration floor.
 template <class M>
-inline constexpr bool kappa_independent_v = MaximalOf<M>::num_constraints == 0 && M::nq == M::nx;
+inline constexpr bool kappa_independent_v =
+    MaximalOf<M>::num_constraints == 0 && nv_of_v<M> == M::nx;
 
 }  // namespace gencoord

@@ -6,7 +6,9 @@
 // is the mass-weighted least-squares solution of J v = xdot - X_t, i.e. Mt v = J^T M (xdot - X_t)
 // with X_t = velocities(q, 0, t). On the manifold this recovers (q, v) exactly; off it, q is the
 // closest point (the maximal model uses that for its manifold spring and for mapping generalized
-// forces).
+// forces). J = d xdot / d v has a column per speed: the iterations step in the speeds' local
+// coordinates, q + dq where the speeds are the rates, retract(q, dq) (tangent_space.hpp) for a
+// model with generalized speeds, whose quaternions so stay unit.
 #pragma once
 
 #include <cmath>
@@ -20,14 +22,25 @@
 #include "gencoord/maximal/traits.hpp"
 #include "gencoord/model/model_traits.hpp"
 #include "gencoord/model/state.hpp"
+#include "gencoord/model/tangent_space.hpp"
 
 namespace gencoord {
+
+namespace detail {
+// q moved by dq along the speeds (nv): q + dq where the speeds are the rates, else retract()
+template <class M>
+QVec<M> moved_along_speeds(const ParamsOf<M>& p, const QVec<M>& q, const VVec<M>& dq, double t) {
+  if constexpr (has_generalized_speeds_v<M>) return retract<M>(p, q, dq, t);
+  else return q + dq;
+}
+}  // namespace detail
 
 /// Settings of the inverse map.
 struct InverseMapOptions {
   /// Gauss-Newton iterations allowed before InverseMapError (kNotConverged).
   int max_iterations = 50;
-  /// Converged when the last step dq satisfies |dq|_inf <= step_tolerance * (1 + |q|_inf).
+  /// Converged when the last step dq (nv, along the speeds) satisfies
+  /// |dq|_inf <= step_tolerance * (1 + |q|_inf).
   double step_tolerance = 1e-13;
   /// Largest |x - X(q, t)|_2 accepted at the solution (length units); a point farther from the
   /// manifold throws InverseMapError (kOffManifold). Infinity accepts the closest point of any x.
@@ -60,10 +73,6 @@ InversePositions<M> inverse_map_positions(const ParamsOf<M>& p, const XVec<M>& x
                                           const QVec<M>& q0,
                                           const InverseMapOptions& options = {}) {
   static_assert(assert_model_v<M>);
-  static_assert(
-      !has_generalized_speeds_v<M>,
-      "gencoord: the inverse map does not support models with generalized speeds (free or ball "
-      "joints) yet");
   using Reason = InverseMapError::Reason;
   InversePositions<M> out;
   out.q = q0;
@@ -79,30 +88,34 @@ InversePositions<M> inverse_map_positions(const ParamsOf<M>& p, const XVec<M>& x
     // Gauss-Newton step: least squares J dq = r (rank-revealing, so singular J is caught)
     const XJac<M> J = M::jacobian(out.q, t, p);
     const Eigen::ColPivHouseholderQR<PlainOf<XJac<M>>> qr(J);
-    if (!J.allFinite() || qr.rank() < M::nq) fail(Reason::kSingular);
-    QVec<M> dq = qr.solve(r);
+    if (!J.allFinite() || qr.rank() < nv_of_v<M>) fail(Reason::kSingular);
+    VVec<M> dq = qr.solve(r);
     // far from the manifold Gauss-Newton converges only linearly (slowly where the manifold is
     // curved): there, take Newton's step with the curvature term of the Hessian,
     // H = J^T J - sum_i r_i d2X_i/dq2, the second term by central differences of J^T r
     if (f > 1e-6 * (1.0 + x.template lpNorm<Eigen::Infinity>())) {
-      QMat<M> H = J.transpose() * J;
-      for (int j = 0; j < M::nq; ++j) {
-        const double h = 1e-5 * (1.0 + std::abs(out.q(j)));
-        QVec<M> qp = out.q, qm = out.q;
-        qp(j) += h;
-        qm(j) -= h;
+      VMat<M> H = J.transpose() * J;
+      VVec<M> e = VVec<M>::Zero();
+      for (int j = 0; j < nv_of_v<M>; ++j) {
+        const double h =
+            1e-5 * (1.0 + (has_generalized_speeds_v<M> ? out.q.template lpNorm<Eigen::Infinity>()
+                                                       : std::abs(out.q(j))));
+        e(j) = h;
+        const QVec<M> qp = detail::moved_along_speeds<M>(p, out.q, e, t);
+        const QVec<M> qm = detail::moved_along_speeds<M>(p, out.q, (-e).eval(), t);
+        e(j) = 0.0;
         H.col(j) -= (M::jacobian(qp, t, p) - M::jacobian(qm, t, p)).transpose() * r / (2.0 * h);
       }
-      const Eigen::LLT<PlainOf<QMat<M>>> llt(0.5 * (H + H.transpose()));
+      const Eigen::LLT<PlainOf<VMat<M>>> llt(0.5 * (H + H.transpose()));
       if (llt.info() == Eigen::Success) {  // else beyond a focal point: keep Gauss-Newton's
-        const QVec<M> newton = llt.solve(J.transpose() * r);
+        const VVec<M> newton = llt.solve(J.transpose() * r);
         if (newton.allFinite()) dq = newton;
       }
     }
     if (!dq.allFinite()) fail(Reason::kSingular);
     const double dq_norm = dq.template lpNorm<Eigen::Infinity>();
     if (dq_norm <= options.step_tolerance * (1.0 + out.q.template lpNorm<Eigen::Infinity>())) {
-      out.q += dq;
+      out.q = detail::moved_along_speeds<M>(p, out.q, dq, t);
       r = x - M::positions(out.q, t, p);
       f = r.norm();
       break;
@@ -117,7 +130,7 @@ InversePositions<M> inverse_map_positions(const ParamsOf<M>& p, const XVec<M>& x
     double alpha = 1.0;
     bool accepted = false;
     for (int halvings = 0; halvings < 40 && !accepted; ++halvings, alpha *= 0.5) {
-      const QVec<M> q_try = out.q + alpha * dq;
+      const QVec<M> q_try = detail::moved_along_speeds<M>(p, out.q, (alpha * dq).eval(), t);
       const XVec<M> r_try = x - M::positions(q_try, t, p);
       const double f_try = r_try.norm();
       if (std::isfinite(f_try) &&
@@ -141,22 +154,18 @@ InversePositions<M> inverse_map_positions(const ParamsOf<M>& p, const XVec<M>& x
 /// \param[in] q     Generalized coordinates (nq), e.g. from inverse_map_positions().
 /// \param[in] xdot  Particle velocities (nx).
 /// \param[in] t     The time.
-/// \return v (nq).
+/// \return v (nv).
 /// \throws InverseMapError (kSingular) when Mt is not positive definite or v is not finite.
 template <class M>
-QVec<M> inverse_map_velocities(const ParamsOf<M>& p, const QVec<M>& q, const XVec<M>& xdot,
+VVec<M> inverse_map_velocities(const ParamsOf<M>& p, const QVec<M>& q, const XVec<M>& xdot,
                                double t) {
   static_assert(assert_model_v<M>);
-  static_assert(
-      !has_generalized_speeds_v<M>,
-      "gencoord: the inverse map does not support models with generalized speeds (free or ball "
-      "joints) yet");
   const XJac<M> J = M::jacobian(q, t, p);
-  const XVec<M> x_t = M::velocities(q, QVec<M>::Zero().eval(), t, p);
+  const XVec<M> x_t = M::velocities(q, VVec<M>::Zero().eval(), t, p);
   const XVec<M> m = coordinate_masses<M>(p);
-  const QMat<M> Mt = J.transpose() * m.asDiagonal() * J;
-  const Eigen::LLT<PlainOf<QMat<M>>> llt(Mt);
-  QVec<M> v = QVec<M>::Zero();
+  const VMat<M> Mt = J.transpose() * m.asDiagonal() * J;
+  const Eigen::LLT<PlainOf<VMat<M>>> llt(Mt);
+  VVec<M> v = VVec<M>::Zero();
   if (llt.info() == Eigen::Success) v = llt.solve(J.transpose() * (m.asDiagonal() * (xdot - x_t)));
   if (llt.info() != Eigen::Success || !v.allFinite())
     throw InverseMapError(M::name, InverseMapError::Reason::kSingular, t,
@@ -178,10 +187,6 @@ QVec<M> inverse_map_velocities(const ParamsOf<M>& p, const QVec<M>& q, const XVe
 template <class M>
 State<M> inverse_map(const ParamsOf<M>& p, const XVec<M>& x, const XVec<M>& xdot, double t,
                      const QVec<M>& q0, const InverseMapOptions& options = {}) {
-  static_assert(
-      !has_generalized_speeds_v<M>,
-      "gencoord: the inverse map does not support models with generalized speeds (free or ball "
-      "joints) yet");
   State<M> s;
   s.t = t;
   s.q = inverse_map_positions<M>(p, x, t, q0, options).q;

@@ -4,7 +4,7 @@
 // spring of stiffness kappa (generated `M::Maximal` kernels), plus two terms the runtime adds:
 //  - generalized forces Q(q, v) (acting on q in the reduced model) mapped to x-space as
 //    F = M J Mt^-1 Q at (q, v) from the inverse map, so that J^T F = Q;
-//  - for a model without declared constraints but with nq < nx, a zero-length spring kappa
+//  - for a model without declared constraints but with nv < nx, a zero-length spring kappa
 //    from every particle to its closest point X(q*(x)) on the parameterized manifold.
 #pragma once
 
@@ -40,16 +40,11 @@ namespace gencoord {
 /// mutable cache): one instance must not be used from several threads at once.
 template <class M>
 class MaximalModel {
-  static_assert(!has_generalized_speeds_v<M>,
-                "gencoord: the maximal-coordinate model does not support models with generalized "
-                "speeds (free or ball "
-                "joints) yet");
-
  public:
   using Max = MaximalOf<M>;
   static constexpr int nx = M::nx;
   static constexpr int num_constraints = Max::num_constraints;
-  /// Whether the manifold spring replaces declared constraints (none declared, nq < nx).
+  /// Whether the manifold spring replaces declared constraints (none declared, nv < nx).
   static constexpr bool manifold_spring = uses_manifold_spring_v<M>;
   /// Whether forces need the inverse map (generalized forces, or the manifold spring).
   static constexpr bool needs_inverse_map = needs_inverse_map_v<M>;
@@ -103,7 +98,7 @@ class MaximalModel {
                 Max::penalty_forces(x, xdot, t, kappa_, damping_, p_);
     if constexpr (needs_inverse_map) {
       const QVec<M> q = closest_point(x, t);
-      const QVec<M> v = inverse_map_velocities<M>(p_, q, xdot, t);
+      const VVec<M> v = inverse_map_velocities<M>(p_, q, xdot, t);
       if constexpr (Max::has_generalized_forces) f += mapped_generalized_forces(q, v, t);
       if constexpr (manifold_spring)
         f -= kappa_ * (x - M::positions(q, t, p_)) + damping_ * (xdot - M::velocities(q, v, t, p_));
@@ -245,10 +240,10 @@ class MaximalModel {
   }
 
   // F = M J Mt^-1 Q: the x-space force whose J^T-projection is Q
-  XVec<M> mapped_generalized_forces(const QVec<M>& q, const QVec<M>& v, double t) const {
-    const QVec<M> Q = M::generalized_forces(q, v, t, p_);
+  XVec<M> mapped_generalized_forces(const QVec<M>& q, const VVec<M>& v, double t) const {
+    const VVec<M> Q = M::generalized_forces(q, v, t, p_);
     const XJac<M> J = M::jacobian(q, t, p_);
-    const QMat<M> Mt = J.transpose() * masses_.asDiagonal() * J;
+    const VMat<M> Mt = J.transpose() * masses_.asDiagonal() * J;
     return masses_.asDiagonal() * (J * Mt.llt().solve(Q));
   }
 

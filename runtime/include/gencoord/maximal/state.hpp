@@ -22,14 +22,10 @@ struct MaximalState {
 
 /// The maximal state consistent with a reduced one: x = X(q, t), xdot = J v + X_t.
 /// \param[in] p  The model parameters.
-/// \param[in] s  The reduced state (q, v of dim nq).
+/// \param[in] s  The reduced state (q, v of dims nq, nv).
 /// \return The maximal state at s.t (on the constraint manifold, tangent to it).
 template <class M>
 MaximalState<M> to_maximal(const ParamsOf<M>& p, const State<M>& s) {
-  static_assert(!has_generalized_speeds_v<M>,
-                "gencoord: the maximal-coordinate model does not support models with generalized "
-                "speeds (free or ball "
-                "joints) yet");
   MaximalState<M> out;
   out.t = s.t;
   out.q = M::positions(s.q, s.t, p);

@@ -32,10 +32,10 @@ inline constexpr bool has_maximal_v = detail::has_maximal<M>::value;
 
 /// Whether the maximal model of M needs the inverse map (x, xdot) -> (q, v) in its forces:
 /// for generalized forces (mapped to x as M J Mt^-1 Q), or for the manifold spring of a model
-/// that declares no constraints but has fewer coordinates than particles' degrees of freedom.
+/// that declares no constraints but has fewer speeds than particles' degrees of freedom.
 template <class M>
 inline constexpr bool uses_manifold_spring_v = MaximalOf<M>::num_constraints == 0 &&
-                                               (M::nq < M::nx);
+                                               (nv_of_v<M> < M::nx);
 template <class M>
 inline constexpr bool needs_inverse_map_v =
     MaximalOf<M>::has_generalized_forces || uses_manifold_spring_v<M>;
@@ -50,7 +50,7 @@ XVec<M> coordinate_masses(const ParamsOf<M>& p) {
   return out;
 }
 
-/// The model's suggested initial state (M::initial_q, M::initial_v) as vectors (nq).
+/// The model's suggested initial state (M::initial_q, M::initial_v) as vectors (nq, nv).
 template <class M>
 QVec<M> initial_q_of() {
   QVec<M> q;
@@ -58,9 +58,9 @@ QVec<M> initial_q_of() {
   return q;
 }
 template <class M>
-QVec<M> initial_v_of() {
-  QVec<M> v;
-  for (int i = 0; i < M::nq; ++i) v(i) = M::initial_v[static_cast<std::size_t>(i)];
+VVec<M> initial_v_of() {
+  VVec<M> v;
+  for (int i = 0; i < nv_of_v<M>; ++i) v(i) = M::initial_v[static_cast<std::size_t>(i)];
   return v;
 }
 
