@@ -1,9 +1,9 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// The maximal model of a model with generalized speeds (tumbling_arm.py: a free trunk, a
-// ball-jointed arm and a damped hinge; nq = 12, nv = 10): the inverse map steps along the
-// speeds and keeps quaternions unit, recovers random states from X(q), J v + X_t, finds the
-// closest point of a point off the manifold (J^T (x - X(q)) = 0), and the hinge's damping
-// torque maps to an x-space force whose J^T-projection is the torque.
+// The maximal model of a model with generalized speeds (tests/python_module/floating_arm.py:
+// a free trunk, a ball-jointed arm and a motorized hand; nq = 12, nv = 10): the inverse map
+// steps along the speeds and keeps quaternions unit, recovers random states from X(q),
+// J v + X_t, finds the closest point of a point off the manifold (J^T (x - X(q)) = 0), and
+// the hand's motor torque maps to an x-space force whose J^T-projection is the torque.
 #include <cmath>
 #include <limits>
 #include <random>
@@ -14,12 +14,12 @@
 #include "gencoord/maximal/model.hpp"
 #include "gencoord/maximal/state.hpp"
 #include "gencoord/model/tangent_space.hpp"
-#include "generated/tumbling_arm.hpp"
+#include "generated/floating_arm.hpp"
 
 namespace gencoord {
 namespace {
 
-using M = models::TumblingArm;
+using M = models::FloatingArm;
 static_assert(has_generalized_speeds_v<M> && M::nq == 12 && nv_of_v<M> == 10);
 static_assert(MaximalOf<M>::has_generalized_forces && MaximalOf<M>::num_constraints > 0);
 
@@ -88,10 +88,10 @@ TEST(SpeedsInverseMap, FindsTheClosestPointOffTheManifold) {
   }
 }
 
-// the hinge's damping torque -c qdot, mapped as F = M J Mt^-1 Q, projects back: J^T F = Q
-TEST(SpeedsMaximalModel, DampingTorqueProjectsBack) {
+// the hand's motor torque, mapped as F = M J Mt^-1 Q, projects back: J^T F = Q
+TEST(SpeedsMaximalModel, MotorTorqueProjectsBack) {
   ParamsOf<M> p;
-  p.c = 0.4;
+  p.u = 0.4;
   const double kappa = 1e5;
   const MaximalModel<M> model(p, kappa);
   std::mt19937 rng(13);
