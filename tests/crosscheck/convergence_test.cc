@@ -14,9 +14,9 @@
 
 #include "gencoord/maximal/crosscheck.hpp"
 #include "generated/compound_pendulum.hpp"
+#include "generated/floating_arm.hpp"
 #include "generated/furuta_pendulum.hpp"
 #include "generated/heavy_top.hpp"
-#include "generated/floating_arm.hpp"
 #include "test_models.hpp"
 
 namespace gencoord {
