@@ -39,10 +39,6 @@
 namespace {
 
 using M = gencoord::drivers::Model;
-static_assert(
-    !gencoord::has_generalized_speeds_v<M>,
-    "gencoord: the sweep program does not support models with generalized speeds (free or ball "
-    "joints) yet");
 namespace sw = gencoord::sweep;
 
 struct Options {
@@ -59,7 +55,7 @@ bool mpi_started = false;
                  "                          [--threads T]\n"
                  "       sweep --check --table FILE.table --output FILE.h5\n"
                  "  model: "
-              << M::name << " (nq = " << M::nq
+              << M::name << " (nq = " << M::nq << ", nv = " << gencoord::nv_of_v<M>
               << ")\n"
                  "  gencoord sweep SWEEP.toml writes the table and runs this (docs/sweep.md)\n";
   if (mpi_started) MPI_Finalize();
@@ -136,8 +132,9 @@ sw::ResultsFile open_results(const Options& o, const sw::Table& table, const sw:
                            " exists: --resume continues that run; remove it to "
                            "start again");
   if (!exists(o.output)) {
-    std::vector<std::string> names(M::coordinate_names.begin(), M::coordinate_names.end());
-    sw::ResultsFile::create(o.output, table, layout, names);
+    const std::vector<std::string> coordinates(M::coordinate_names.begin(),
+                                               M::coordinate_names.end());
+    sw::ResultsFile::create(o.output, table, layout, coordinates, sw::detail::speed_names<M>());
   }
   sw::ResultsFile file(o.output, table, layout);
   const std::vector<std::uint8_t> done = file.chunk_done();

@@ -125,12 +125,14 @@ class ResultsFile {
  public:
   /// Creates the results file of `table` at `path` (replacing one there): every dataset at
   /// its full size, filled with NaN (or pending, or 0), the samples' values, and the sweep,
-  /// the generator's banner and the settings as attributes. \throws ResultsError.
+  /// the generator's banner and the settings as attributes (`coordinates` and `speeds` name
+  /// q's and v's entries). \throws ResultsError.
   static void create(const std::string& path, const Table& table, const Layout& layout,
-                     const std::vector<std::string>& coordinates) {
+                     const std::vector<std::string>& coordinates,
+                     const std::vector<std::string>& speeds) {
     const std::string partial = path + ".partial";
     try {
-      write_new(partial, table, layout, coordinates);
+      write_new(partial, table, layout, coordinates, speeds);
     } catch (...) {
       std::remove(partial.c_str());  // a half-made file is no result (it may hold gigabytes)
       throw;
@@ -204,7 +206,8 @@ class ResultsFile {
  private:
   // the whole file, at `partial`: every dataset allocated, the samples, the attributes
   static void write_new(const std::string& partial, const Table& table, const Layout& layout,
-                        const std::vector<std::string>& coordinates) {
+                        const std::vector<std::string>& coordinates,
+                        const std::vector<std::string>& speeds) {
     const detail::H5Calls h5(partial);
     H5Id file(h5.check(H5Fcreate(partial.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT),
                        "create the file"),
@@ -212,6 +215,7 @@ class ResultsFile {
     Creator make{h5, file.get(), table.samples};
     const hsize_t n = static_cast<hsize_t>(table.samples);
     const auto nq = static_cast<hsize_t>(layout.nq);
+    const auto nv = static_cast<hsize_t>(layout.nv);
     const auto points = static_cast<hsize_t>(layout.trajectory_points);
     const H5Id samples = make.doubles("samples", {n, table.columns.size()});
     make.write_all(samples.get(), H5T_NATIVE_DOUBLE, table.values.data(), "samples");
@@ -228,7 +232,7 @@ class ResultsFile {
     if (layout.final_state) {
       make.doubles("final_t", {n});
       make.doubles("final_q", {n, nq});
-      make.doubles("final_v", {n, nq});
+      make.doubles("final_v", {n, nv});
     }
     if (layout.energy_drift) make.doubles("energy_drift", {n});
     if (layout.event_time) make.doubles("event_time", {n});
@@ -239,11 +243,11 @@ class ResultsFile {
         t[j] = static_cast<double>(j * static_cast<hsize_t>(table.trajectory_every)) * table.dt;
       make.write_all(times.get(), H5T_NATIVE_DOUBLE, t.data(), "trajectory_t");
       make.doubles("trajectory_q", {n, points, nq});
-      make.doubles("trajectory_v", {n, points, nq});
+      make.doubles("trajectory_v", {n, points, nv});
     }
     const std::uint8_t zero = 0;
     make.dataset("chunk_done", H5T_STD_U8LE, {static_cast<hsize_t>(table.chunks())}, &zero);
-    make.attributes(table, coordinates);
+    make.attributes(table, coordinates, speeds);
     h5.check(H5Fflush(file.get(), H5F_SCOPE_GLOBAL), "flush the new file");
     h5.check(file.close(), "close the new file");
   }
@@ -323,7 +327,8 @@ class ResultsFile {
       if (values.size() == 1) attribute(object, name, H5T_NATIVE_LLONG, {}, values.data());
       else attribute(object, name, H5T_NATIVE_LLONG, {values.size()}, values.data());
     }
-    void attributes(const Table& t, const std::vector<std::string>& coordinates) const {
+    void attributes(const Table& t, const std::vector<std::string>& coordinates,
+                    const std::vector<std::string>& speeds) const {
       auto joined = [](const std::vector<std::string>& lines) {
         std::string all;
         for (const auto& line : lines) all += line + "\n";
@@ -337,6 +342,7 @@ class ResultsFile {
       text(file, "build", t.build);
       text(file, "model", t.model);
       strings(file, "coordinates", coordinates);
+      strings(file, "speeds", speeds);
       text(file, "integrator", t.integrator);
       number(file, "dt", t.dt);
       number(file, "t_end", t.t_end);

@@ -49,13 +49,13 @@ inline constexpr std::size_t kErrorLength = 64;
 
 /// The sizes every chunk's results share.
 struct Layout {
-  int nq = 0;
+  int nq = 0, nv = 0;  // coordinates and velocities (the generalized speeds where nv < nq)
   long long trajectory_points = 0;  // 0: no trajectory
   bool final_state = false, energy_drift = false, event_time = false;
 };
 
 /// The results of samples [begin, begin + count) of chunk `chunk`, one array per field, sample
-/// by sample (q and v nq per sample; trajectories points x nq per sample).
+/// by sample (q nq and v nv per sample; trajectories points x nq and points x nv per sample).
 struct ChunkResults {
   long long chunk = -1, begin = 0, count = 0;
   std::vector<std::int8_t> status;
@@ -71,6 +71,7 @@ struct ChunkResults {
     count = size;
     const auto n = static_cast<std::size_t>(size);
     const auto nq = static_cast<std::size_t>(layout.nq);
+    const auto nv = static_cast<std::size_t>(layout.nv);
     const auto points = static_cast<std::size_t>(layout.trajectory_points);
     const double nan = std::numeric_limits<double>::quiet_NaN();
     status.assign(n, static_cast<std::int8_t>(Status::kPending));
@@ -78,11 +79,11 @@ struct ChunkResults {
     error.assign(n * kErrorLength, '\0');
     final_t.assign(layout.final_state ? n : 0, nan);
     final_q.assign(layout.final_state ? n * nq : 0, nan);
-    final_v.assign(layout.final_state ? n * nq : 0, nan);
+    final_v.assign(layout.final_state ? n * nv : 0, nan);
     energy_drift.assign(layout.energy_drift ? n : 0, nan);
     event_time.assign(layout.event_time ? n : 0, nan);
     trajectory_q.assign(n * points * nq, nan);
-    trajectory_v.assign(n * points * nq, nan);
+    trajectory_v.assign(n * points * nv, nan);
   }
 
   /// The double-valued fields with their datasets' names, in the order pack() sends them; a

@@ -56,6 +56,27 @@ int coordinate_index(const Table& table, const std::string& name) {
   throw TableError(table.path + ": model " + M::name + " has no coordinate '" + name + "'");
 }
 
+/// The names of v's entries: a model's generalized speeds, or its coordinates where v = q'.
+template <class M>
+std::vector<std::string> speed_names() {
+  if constexpr (has_generalized_speeds_v<M>) return {M::speed_names.begin(), M::speed_names.end()};
+  else return {M::coordinate_names.begin(), M::coordinate_names.end()};
+}
+
+template <class M>
+int speed_index(const Table& table, const std::string& name) {
+  const std::vector<std::string> names = speed_names<M>();
+  for (std::size_t i = 0; i < names.size(); ++i)
+    if (name == names[i]) return static_cast<int>(i);
+  throw TableError(table.path + ": model " + M::name + " has no speed '" + name + "'");
+}
+
+// the index of a q or v entry called `name`
+template <class M>
+int state_index(const Table& table, typename Plan<M>::Kind kind, const std::string& name) {
+  return kind == Plan<M>::Kind::kV ? speed_index<M>(table, name) : coordinate_index<M>(table, name);
+}
+
 template <class M>
 typename Plan<M>::Kind kind_of(const Table& table, const std::string& kind) {
   using Kind = typename Plan<M>::Kind;
@@ -87,13 +108,13 @@ Plan<M> make_plan(const Table& table) {
     return slot;
   };
   for (const auto& [name, value] : table.parameters) *parameter(plan.params, name) = value;
-  for (int i = 0; i < M::nq; ++i) {
-    plan.initial.q[i] = M::initial_q[static_cast<std::size_t>(i)];
+  for (int i = 0; i < M::nq; ++i) plan.initial.q[i] = M::initial_q[static_cast<std::size_t>(i)];
+  for (int i = 0; i < nv_of_v<M>; ++i)
     plan.initial.v[i] = M::initial_v[static_cast<std::size_t>(i)];
-  }
   for (const auto& initial : table.initial) {
-    const int i = detail::coordinate_index<M>(table, initial.name);
-    (initial.kind == "q" ? plan.initial.q : plan.initial.v)[i] = initial.value;
+    if (initial.kind == "q")
+      plan.initial.q[detail::coordinate_index<M>(table, initial.name)] = initial.value;
+    else plan.initial.v[detail::speed_index<M>(table, initial.name)] = initial.value;
   }
   for (const Column& column : table.columns) {
     const Kind kind = detail::kind_of<M>(table, column.kind);
@@ -102,13 +123,13 @@ Plan<M> make_plan(const Table& table) {
       parameter(probe, column.name);
       plan.setters.push_back({kind, -1, column.name});
     } else {
-      plan.setters.push_back({kind, detail::coordinate_index<M>(table, column.name), ""});
+      plan.setters.push_back({kind, detail::state_index<M>(table, kind, column.name), ""});
     }
   }
   for (const EventClause& clause : table.clauses) {
     const Kind kind = detail::kind_of<M>(table, clause.kind);
     const int index =
-        kind == Kind::kEnergy ? -1 : detail::coordinate_index<M>(table, clause.coordinate);
+        kind == Kind::kEnergy ? -1 : detail::state_index<M>(table, kind, clause.coordinate);
     plan.checks.push_back({kind, index, clause.absolute, clause.op, clause.value});
     plan.need_energy = plan.need_energy || kind == Kind::kEnergy;
   }
@@ -118,8 +139,12 @@ Plan<M> make_plan(const Table& table) {
   plan.every = table.trajectory_every;
   plan.stop_at_event = table.event_stop;
   plan.need_energy = plan.need_energy || table.record_energy_drift;
-  plan.layout = {M::nq, table.trajectory_points(), table.record_final_state,
-                 table.record_energy_drift, table.record_event_time};
+  plan.layout = {M::nq,
+                 nv_of_v<M>,
+                 table.trajectory_points(),
+                 table.record_final_state,
+                 table.record_energy_drift,
+                 table.record_event_time};
   return plan;
 }
 
@@ -173,12 +198,15 @@ void run_sample(const Plan<M>& plan, const double* row, long long i, ChunkResult
     else if (setter.kind == Kind::kV) s.v[setter.index] = row[k];
     else *p.find(setter.name) = row[k];
   }
-  // a constrained model starts on its constraints (the table's values may leave them) and
-  // is projected back after every step
-  if constexpr (has_kinematic_constraints_v<M>) project_onto_constraints<M>(p, &s);
+  // the table's values may leave the model's manifold: a constrained model starts on its
+  // constraints and is projected back after every step, and a unit quaternion whose
+  // components the table set one by one starts normalized (normalize() does both)
   const ReducedSystem<M> system(p);
+  if constexpr (has_generalized_speeds_v<M>) normalize(system, &s);
+  else if constexpr (has_kinematic_constraints_v<M>) project_onto_constraints<M>(p, &s);
   const auto n = static_cast<std::size_t>(i);
   const auto nq = static_cast<std::size_t>(M::nq);
+  const auto nv = static_cast<std::size_t>(nv_of_v<M>);
   const double nan = std::numeric_limits<double>::quiet_NaN();
   double e0 = nan, drift = 0.0, event_time = nan;
   long long k = 0;  // the step whose state is observed
@@ -194,13 +222,12 @@ void run_sample(const Plan<M>& plan, const double* row, long long i, ChunkResult
       if (std::isnan(change) || change > drift) drift = change;  // a NaN energy stays NaN
     }
     if (plan.every > 0 && k % plan.every == 0) {
-      const std::size_t at = (n * static_cast<std::size_t>(plan.layout.trajectory_points) +
-                              static_cast<std::size_t>(k / plan.every)) *
-                             nq;
-      for (std::size_t j = 0; j < nq; ++j) {
-        out->trajectory_q[at + j] = x.q[static_cast<Eigen::Index>(j)];
-        out->trajectory_v[at + j] = x.v[static_cast<Eigen::Index>(j)];
-      }
+      const std::size_t at = n * static_cast<std::size_t>(plan.layout.trajectory_points) +
+                             static_cast<std::size_t>(k / plan.every);
+      for (std::size_t j = 0; j < nq; ++j)
+        out->trajectory_q[at * nq + j] = x.q[static_cast<Eigen::Index>(j)];
+      for (std::size_t j = 0; j < nv; ++j)
+        out->trajectory_v[at * nv + j] = x.v[static_cast<Eigen::Index>(j)];
     }
     ++k;
     if (plan.checks.empty() || !std::isnan(event_time)) return false;
@@ -242,10 +269,10 @@ void run_sample(const Plan<M>& plan, const double* row, long long i, ChunkResult
   out->set_error(i, error);
   if (plan.layout.final_state) {
     out->final_t[n] = s.t;
-    for (std::size_t j = 0; j < nq; ++j) {
+    for (std::size_t j = 0; j < nq; ++j)
       out->final_q[n * nq + j] = s.q[static_cast<Eigen::Index>(j)];
-      out->final_v[n * nq + j] = s.v[static_cast<Eigen::Index>(j)];
-    }
+    for (std::size_t j = 0; j < nv; ++j)
+      out->final_v[n * nv + j] = s.v[static_cast<Eigen::Index>(j)];
   }
   if (plan.layout.energy_drift) out->energy_drift[n] = drift;
   if (plan.layout.event_time) out->event_time[n] = event_time;

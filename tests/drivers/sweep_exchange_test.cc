@@ -42,9 +42,10 @@ void expect_equal(const ChunkResults& a, const ChunkResults& b) {
 }
 
 TEST(SweepResults, PackedBytesUnpackToTheSameResultsWithAndWithoutOptionalFields) {
-  const Layout bare{2, 0, false, false, false};  // optional fields empty: null data()
-  const Layout full{2, 5, true, true, true};
-  for (const Layout& layout : {bare, full}) {
+  const Layout bare{2, 2, 0, false, false, false};  // optional fields empty: null data()
+  const Layout full{2, 2, 5, true, true, true};
+  const Layout speeds{7, 6, 5, true, true, true};  // a free body: nv < nq
+  for (const Layout& layout : {bare, full, speeds}) {
     const ChunkResults r = filled(layout, 4);
     expect_equal(unpack(pack(r), layout, 4), r);
   }
@@ -52,7 +53,7 @@ TEST(SweepResults, PackedBytesUnpackToTheSameResultsWithAndWithoutOptionalFields
 
 TEST(SweepResults, ErrorTextIsCutAndZeroPadded) {
   ChunkResults r;
-  r.reset(Layout{1, 0, false, false, false}, 0, 0, 2);
+  r.reset(Layout{1, 1, 0, false, false, false}, 0, 0, 2);
   r.set_error(1, std::string(200, 'x'));
   const char* slot = r.error.data() + kErrorLength;
   EXPECT_EQ(std::string(slot), std::string(kErrorLength - 1, 'x'));
@@ -60,7 +61,7 @@ TEST(SweepResults, ErrorTextIsCutAndZeroPadded) {
 }
 
 TEST(SweepResults, BytesOfAnotherSizeAreRefused) {
-  const Layout layout{2, 0, true, true, false};
+  const Layout layout{2, 2, 0, true, true, false};
   std::vector<char> bytes = pack(filled(layout, 3));
   EXPECT_THROW(unpack(bytes, layout, 2), std::runtime_error);  // more samples than a chunk
   bytes.push_back('\0');

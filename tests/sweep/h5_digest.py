@@ -27,8 +27,10 @@ def main(path: str) -> None:
             "banner": results.attrs["banner"].decode(),
             "sweep": results.attrs["sweep"].decode(),
         }
-        if "final_q" in results:
-            report["final_q"] = results["final_q"][()].tolist()
+        for name in ("final_q", "final_v", "trajectory_q", "energy_drift"):
+            if name in results:
+                report[name] = results[name][()].tolist()
+        report["speeds"] = [s.decode() for s in results.attrs["speeds"]]
     json.dump(report, sys.stdout)
 
 

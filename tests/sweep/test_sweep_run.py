@@ -4,7 +4,8 @@ results (datasets, and whole files) with 1, 2 and 4 ranks (4 oversubscribed) and
 threads; a run killed midway resumes from its completed chunks without running them again
 and ends with the bytes of an uninterrupted run; samples whose dynamics fail are recorded and
 the run goes on; a rank that dies is reported; a closed loop (the four-bar) starts each sample
-on its constraint and ends on it.
+on its constraint and ends on it; a free trunk with a ball-jointed arm (unit quaternions,
+generalized speeds) starts each sample with its quaternions normalized and keeps them unit.
 Needs mpirun, the sweep program's MPI and HDF5, and h5py for $GENCOORD_H5PY_PYTHON (default
 /usr/bin/python3), which reads the results (tests/sweep/h5_digest.py)."""
 
@@ -103,6 +104,33 @@ final_state = true
 """
 
 
+# a free trunk, a ball-jointed arm and a hand (tests/python_module/floating_arm.py: nq = 12,
+# nv = 10): the table sets one component of the trunk's quaternion and its spin
+FLOATING = f"""\
+[model]
+file = "{REPOSITORY / "tests" / "python_module" / "floating_arm.py"}"
+
+[integration]
+dt = 0.001
+t_end = 1.0
+
+[event]
+when = "abs(arm_wz) > 100 or hand_joint_dot > 100"
+
+[samples]
+method = "grid"
+
+[samples.q]
+trunk_qx = {{ values = [0.0, 0.5] }}
+
+[samples.v]
+trunk_wz = {{ values = [0.0, 3.0] }}
+
+[record]
+trajectory_every = 250
+"""
+
+
 class SweepRunTest(unittest.TestCase):
 
     @classmethod
@@ -114,7 +142,7 @@ class SweepRunTest(unittest.TestCase):
             shutil.rmtree(cache, ignore_errors=True)  # every run builds from nothing
         cls.environment = dict(os.environ, PYTHONHASHSEED="0", GENCOORD_CACHE_DIR=cache)
         for name, text in (("small", SMALL), ("longer", LONGER), ("failing", FAILING),
-                           ("four_bar", FOUR_BAR)):
+                           ("four_bar", FOUR_BAR), ("floating", FLOATING)):
             (cls.home / f"{name}.toml").write_text(text, encoding="utf-8")
 
     @classmethod
@@ -252,6 +280,29 @@ class SweepRunTest(unittest.TestCase):
                              a * math.sin(crank) + b * math.sin(coupler) - c * math.sin(rocker))
             self.assertLess(gap, 1e-12)
         self.assertGreater(max(abs(q[0]) for q in final), 20)  # driven cranks turn many times
+
+    def test_7_a_free_body_is_swept_on_its_speeds(self):
+        result = self.gencoord("floating.toml", "--ranks", "1", folder="floating")
+        self.assertSucceeded(result)
+        self.assertIn("status      4 ok, 0 failed", result.stdout)
+        report = self.results(self.home / "floating" / "floating.h5")
+        self.assertEqual(report["shapes"]["final_q"], [4, 12])
+        self.assertEqual(report["shapes"]["final_v"], [4, 10])
+        self.assertEqual(report["shapes"]["trajectory_v"], [4, 5, 10])
+        self.assertEqual(report["speeds"][3:6], ["trunk_wx", "trunk_wy", "trunk_wz"])
+        # sample 2 sets the trunk's qx to 0.5 in the initial quaternion, the turn rpy = (0.1,
+        # 0.2, 0) of the file's Free origin, and starts from it normalized
+        w, x, y, z = (math.cos(0.1) * math.cos(0.05), 0.5, math.sin(0.1) * math.cos(0.05),
+                      -math.sin(0.1) * math.sin(0.05))
+        norm = math.sqrt(w * w + x * x + y * y + z * z)
+        for got, expected in zip(report["trajectory_q"][2][0][3:7], (w, x, y, z)):
+            self.assertAlmostEqual(got, expected / norm, places=14)
+        for q in report["final_q"] + [point for sample in report["trajectory_q"]
+                                      for point in sample]:
+            for first in (3, 7):
+                self.assertAlmostEqual(math.hypot(*q[first:first + 4]), 1.0, places=13)
+        self.assertTrue(all(math.isfinite(v) for sample in report["final_v"] for v in sample))
+        self.assertLess(max(report["energy_drift"]), 1e-8)  # no damping, no motor torque
 
     def test_3_failing_samples_are_recorded_and_the_run_goes_on(self):
         result = self.gencoord("failing.toml", "--ranks", "2", folder="failing")

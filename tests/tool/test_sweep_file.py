@@ -116,9 +116,34 @@ class SweepFileTest(unittest.TestCase):
                          [("theta1", False, ">", math.pi), ("theta2_dot", False, "<=",
                                                             -2 * math.pi),
                           ("energy", False, ">", 1.0)])
-        resolved = [event.resolve(c, COORDINATES) for c in clauses]
+        resolved = [event.resolve(c, COORDINATES, event.velocity_names(COORDINATES))
+                    for c in clauses]
         self.assertEqual([(c.kind, c.coordinate) for c in resolved],
                          [("q", "theta1"), ("v", "theta2"), ("energy", "")])
+
+    def test_a_model_with_generalized_speeds_names_its_velocities_by_its_speeds(self):
+        # a free trunk (position, quaternion; twist) and a hinge: nq = 8, nv = 7
+        coordinates = ["trunk_x", "trunk_y", "trunk_z", "trunk_qw", "trunk_qx", "trunk_qy",
+                       "trunk_qz", "hinge"]
+        speeds = ["trunk_vx", "trunk_vy", "trunk_vz", "trunk_wx", "trunk_wy", "trunk_wz",
+                  "hinge"]
+        text = GOOD.replace("theta1", "trunk_qx").replace("theta2", "hinge").replace(
+            "[record]", "[samples.v]\ntrunk_wz = { values = [1.0, 2.0] }\n\n[record]").replace(
+            "abs(hinge) > pi", "abs(trunk_wz) > 3 or hinge_dot < -1")
+        sweep = spec.check_names(spec.parse(read_source(self.write(text))), coordinates,
+                                 PARAMETERS, speeds)
+        self.assertEqual([(v.kind, v.name) for v in sweep.variables],
+                         [("q", "trunk_qx"), ("q", "hinge"), ("v", "trunk_wz")])
+        self.assertEqual([(c.kind, c.coordinate) for c in sweep.event.clauses],
+                         [("q", "trunk_qx"), ("v", "trunk_wz"), ("v", "hinge")])
+        wrong = text.replace("[samples.v]\ntrunk_wz", "[samples.v]\ntrunk_qw")
+        with self.assertRaises(SweepFileError) as caught:
+            spec.check_names(spec.parse(read_source(self.write(wrong))), coordinates,
+                             PARAMETERS, speeds)
+        self.assertIn("has no speed 'trunk_qw' (it has trunk_vx", str(caught.exception))
+        # q 8 and v 7 doubles: at the end and at each of the 5 trajectory points
+        self.assertEqual(spec.result_bytes(sweep, 8, 7) - spec.result_bytes(sweep, 8, 8),
+                         -8 * (1 + 5))
 
     # --- random samples ------------------------------------------------------------------
     def random_file(self, method: str, seed: int = 7, count: int = 20) -> str:
@@ -255,21 +280,21 @@ class SweepFileTest(unittest.TestCase):
     def test_the_results_file_size_is_estimated_and_checked_against_free_space(self):
         sweep = self.parse(GOOD)  # 6 samples of 2 variables; 5 trajectory points of q and v
         per_sample = 16 + 1 + 8 + 64 + (8 + 32) + 8 + 8 + 5 * 32
-        self.assertEqual(preflight.results_bytes(sweep, 2),
+        self.assertEqual(preflight.results_bytes(sweep, 2, 2),
                          6 * per_sample + 5 * 8 + 2 + preflight.METADATA)
-        self.assertEqual(preflight.summary(sweep, 2), "gencoord: sweep: 6 samples x 200 steps "
+        self.assertEqual(preflight.summary(sweep, 2, 2), "gencoord: sweep: 6 samples x 200 steps "
                          "(1,200 steps in all), results file about 1.05 MB")
-        preflight.check_disk(sweep, 2, str(self.folder))  # this disk has a megabyte free
+        preflight.check_disk(sweep, 2, 2, str(self.folder))  # this disk has a megabyte free
         full = mock.Mock(return_value=shutil._ntuple_diskusage(10**9, 10**9 - 5000, 5000))
         with mock.patch.object(preflight.shutil, "disk_usage", full):
             with self.assertRaises(ToolError) as caught:
-                preflight.check_disk(sweep, 2, "out")
+                preflight.check_disk(sweep, 2, 2, "out")
             self.assertEqual(str(caught.exception),
                              "the results file of sweep would take about 1.05 MB, but the disk "
                              "of out has 5 kB free; free some space, record less (fewer "
                              "samples, a larger trajectory_every, no trajectory) or give "
                              "another --output-dir")
-            preflight.check_disk(sweep, 2, "out", replaced=2 * 10**6)  # --overwrite frees it
+            preflight.check_disk(sweep, 2, 2, "out", replaced=2 * 10**6)  # --overwrite frees it
 
     def test_random_samples_need_count_and_seed(self):
         text = self.random_file("monte_carlo").replace("seed = 7\n", "")

@@ -37,9 +37,6 @@ def _load_model(sweep: spec.Sweep):
         loaded = load(sweep.model_file, dict(sweep.options))
     except ToolError as error:
         raise sweep.source.error(("model", "options"), str(error)) from None
-    if loaded.model.has_generalized_speeds:
-        raise sweep.source.error(("model",), "the model has free or ball joints (generalized "
-                                 "speeds), which gencoord sweep does not take yet")
     if loaded.parameters:
         names = ", ".join(loaded.parameters)
         raise sweep.source.error(("model", "options"),
@@ -78,19 +75,20 @@ def run_sweep(args) -> int:
     sweep = spec.parse(source)
     loaded = _load_model(sweep)
     model = loaded.model
-    sweep = spec.check_names(sweep, [c.name for c in model.coordinates],
-                             [p.name for p in model.parameters])
+    coordinates = [c.name for c in model.coordinates]
+    speeds = [s.name for s in model.speeds] if model.has_generalized_speeds else None
+    sweep = spec.check_names(sweep, coordinates, [p.name for p in model.parameters], speeds)
     os.makedirs(args.output_dir, exist_ok=True)
     stem = os.path.join(os.path.abspath(args.output_dir), sweep.name)
     table, results = stem + ".table", stem + ".h5"
     if os.path.exists(results) and not (args.resume or args.overwrite):
         raise ToolError(f"{results} exists: --resume continues that sweep, --overwrite starts "
                         "it again")
-    nq = len(model.coordinates)
-    print(preflight.summary(sweep, nq), flush=True)
+    nq, nv = model.nq, model.nv
+    print(preflight.summary(sweep, nq, nv), flush=True)
     if not (args.resume and os.path.exists(results)):  # a resumed file is already allocated
         old = os.path.getsize(results) if os.path.exists(results) else 0
-        preflight.check_disk(sweep, nq, args.output_dir, replaced=old)
+        preflight.check_disk(sweep, nq, nv, args.output_dir, replaced=old)
     layout = find_layout()
     program = sweep_program(layout, loaded.target, rebuild=args.rebuild, verbose=args.verbose)
     header = generated_header(layout, loaded.target)

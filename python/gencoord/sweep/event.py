@@ -86,18 +86,26 @@ def parse_condition(text: str) -> tuple[Clause, ...]:
     return (_clause(body),)
 
 
-def resolve(clause: Clause, coordinates: list[str]) -> Clause:
-    """The clause with its quantity's kind: a coordinate (q), a velocity (v) or energy.
+def velocity_names(coordinates: list[str], speeds: list[str] | None = None) -> dict[str, str]:
+    """What an event calls each entry of v, mapped to the entry's name: `<coordinate>_dot`
+    where the speed is a coordinate's rate, a free or ball joint's speed by its own name
+    (`trunk_wz`); `speeds` the names of v's entries (None: the coordinates, v = q')."""
+    return {(s + "_dot" if s in coordinates else s): s
+            for s in (coordinates if speeds is None else speeds)}
+
+
+def resolve(clause: Clause, coordinates: list[str], velocities: dict[str, str]) -> Clause:
+    """The clause with its quantity's kind: a coordinate (q), a velocity (v, `velocities` as
+    velocity_names() gives them) or energy.
     \\throws EventSyntaxError naming what the model has, for another name."""
     if clause.name in coordinates:
         kind, coordinate = "q", clause.name
-    elif clause.name.endswith("_dot") and clause.name[:-4] in coordinates:
-        kind, coordinate = "v", clause.name[:-4]
+    elif clause.name in velocities:
+        kind, coordinate = "v", velocities[clause.name]
     elif clause.name == "energy":
         kind, coordinate = "energy", ""
     else:
         raise EventSyntaxError(
             f"'{clause.name}' is not a coordinate, a velocity or energy of the model (it has "
-            f"{', '.join(coordinates)}; velocities "
-            f"{', '.join(c + '_dot' for c in coordinates)}; and energy)")
+            f"{', '.join(coordinates)}; velocities {', '.join(velocities)}; and energy)")
     return Clause(clause.name, clause.absolute, clause.op, clause.value, kind, coordinate)

@@ -13,12 +13,12 @@ from gencoord.tool.errors import ToolError
 METADATA = 1 << 20  # HDF5's headers, the attributes and the sweep file, at most
 
 
-def results_bytes(sweep: Sweep, nq: int) -> int:
+def results_bytes(sweep: Sweep, nq: int, nv: int) -> int:
     """The results file's size: every dataset the program allocates (drivers/sweep/h5_file.hpp)
     at its full size (the samples' values, their results, the trajectory's times, the chunk
-    flags), plus a bound on the metadata."""
+    flags), plus a bound on the metadata; q has nq entries, v nv."""
     chunks = -(-sweep.count // sweep.chunk)
-    return (sweep.count * (8 * len(sweep.variables) + result_bytes(sweep, nq))
+    return (sweep.count * (8 * len(sweep.variables) + result_bytes(sweep, nq, nv))
             + 8 * trajectory_points(sweep) + chunks + METADATA)
 
 
@@ -30,17 +30,17 @@ def size_text(size: float) -> str:
     raise AssertionError("unreachable")
 
 
-def summary(sweep: Sweep, nq: int) -> str:
+def summary(sweep: Sweep, nq: int, nv: int) -> str:
     """The line `gencoord sweep` prints before it runs."""
     return (f"gencoord: {sweep.name}: {sweep.count} samples x {sweep.steps} steps "
             f"({sweep.count * sweep.steps:,} steps in all), results file about "
-            f"{size_text(results_bytes(sweep, nq))}")
+            f"{size_text(results_bytes(sweep, nq, nv))}")
 
 
-def check_disk(sweep: Sweep, nq: int, folder: str, replaced: int = 0) -> None:
+def check_disk(sweep: Sweep, nq: int, nv: int, folder: str, replaced: int = 0) -> None:
     """\\raises ToolError if the results file would not fit in the free space of `folder`'s
     disk (plus `replaced` bytes: an old results file that --overwrite removes)."""
-    needed = results_bytes(sweep, nq)
+    needed = results_bytes(sweep, nq, nv)
     free = shutil.disk_usage(folder).free + replaced
     if needed > free:
         raise ToolError(f"the results file of {sweep.name} would take about {size_text(needed)}, "

@@ -304,9 +304,11 @@ def parse(source: SweepSource) -> Sweep:
                  chunk=chunk, variables=variables, record=record)
 
 
-def check_names(sweep: Sweep, coordinates: list[str], parameters: list[str]) -> Sweep:
-    """Checks every coordinate and parameter the sweep names against the model's; returns the
-    sweep with its event's quantities resolved."""
+def check_names(sweep: Sweep, coordinates: list[str], parameters: list[str],
+                speeds: list[str] | None = None) -> Sweep:
+    """Checks every coordinate, velocity and parameter the sweep names against the model's;
+    returns the sweep with its event's quantities resolved. `speeds` names v's entries, a
+    model's generalized speeds (None: its coordinates, v = q')."""
     reader = _Reader(sweep.source)
     model_name = os.path.basename(sweep.model_file)
 
@@ -317,18 +319,21 @@ def check_names(sweep: Sweep, coordinates: list[str], parameters: list[str]) -> 
 
     for name in sweep.parameters:
         check(("model", "parameters", name), name, parameters, "parameter")
+    velocities = coordinates if speeds is None else speeds
+    known = {"q": (coordinates, "coordinate"),
+             "v": (velocities, "coordinate" if speeds is None else "speed"),
+             "parameters": (parameters, "parameter")}
     for kind in ("q", "v"):
         for name in sweep.initial[kind]:
-            check(("initial", kind, name), name, coordinates, "coordinate")
+            check(("initial", kind, name), name, *known[kind])
     for variable in sweep.variables:
-        known = parameters if variable.kind == "parameters" else coordinates
-        check(variable.key, variable.name, known,
-              "parameter" if variable.kind == "parameters" else "coordinate")
-    _check_chunk_bytes(reader, sweep, len(coordinates))
+        check(variable.key, variable.name, *known[variable.kind])
+    _check_chunk_bytes(reader, sweep, len(coordinates), len(velocities))
     if sweep.event is None:
         return sweep
+    names = event_module.velocity_names(coordinates, speeds)
     try:
-        clauses = tuple(event_module.resolve(c, coordinates) for c in sweep.event.clauses)
+        clauses = tuple(event_module.resolve(c, coordinates, names) for c in sweep.event.clauses)
     except event_module.EventSyntaxError as error:
         reader.fail(("event", "when"), str(error))
     return replace(sweep, event=replace(sweep.event, clauses=clauses))
@@ -340,18 +345,20 @@ def trajectory_points(sweep: Sweep) -> int:
     return sweep.steps // every + 1 if every else 0
 
 
-def result_bytes(sweep: Sweep, nq: int) -> int:
-    """One sample's results: status, error time and text, and what the file records."""
+def result_bytes(sweep: Sweep, nq: int, nv: int | None = None) -> int:
+    """One sample's results: status, error time and text, and what the file records (q has
+    nq entries, v nv: nq where v = q')."""
     record = sweep.record
-    return (1 + 8 + ERROR_BYTES + (8 + 16 * nq if record.final_state else 0)
+    state = 8 * (nq + (nq if nv is None else nv))
+    return (1 + 8 + ERROR_BYTES + (8 + state if record.final_state else 0)
             + 8 * record.energy_drift + 8 * record.event_time
-            + 16 * trajectory_points(sweep) * nq)
+            + trajectory_points(sweep) * state)
 
 
-def _check_chunk_bytes(reader: _Reader, sweep: Sweep, nq: int) -> None:
+def _check_chunk_bytes(reader: _Reader, sweep: Sweep, nq: int, nv: int) -> None:
     """A chunk travels between ranks as one MPI message, whose size is an int: its rows and its
     results must each stay under 2 GiB."""
-    per_sample = max(result_bytes(sweep, nq), 8 * len(sweep.variables))
+    per_sample = max(result_bytes(sweep, nq, nv), 8 * len(sweep.variables))
     largest = (MPI_MESSAGE_BYTES - 64) // per_sample
     if sweep.chunk > largest:
         reader.fail(("samples", "chunk"),

@@ -55,21 +55,15 @@ def load(path: str, settings: dict[str, str], stem: str | None = None) -> Loaded
 
 
 def refuse_unsupported_kinds(loaded, command: str) -> None:
-    """A model with free or ball joints, for a command whose program does not take them (the
-    Python module and the cross-check do, unless the model also has kinematic constraints);
-    for crosscheck, kinematic constraints that have no maximal form."""
+    """For python and crosscheck, a model with both free or ball joints and kinematic
+    constraints, which their programs do not take; for crosscheck, kinematic constraints that
+    have no maximal form."""
     model = loaded.model
     if command == "crosscheck" and model.has_kinematic_constraints:
         problem = maximal_constraint_problem(model)
         if problem:
             raise ToolError(f"{loaded.target.path}: gencoord crosscheck: {problem}")
-    if not model.has_generalized_speeds:
-        return
-    if command in ("python", "crosscheck") and model.has_kinematic_constraints:
+    if model.has_generalized_speeds and model.has_kinematic_constraints:
         raise ToolError(f"{loaded.target.path}: gencoord {command} does not take a model with "
                         "both free or ball joints (generalized speeds) and kinematic "
                         "constraints yet; its header does, from C++")
-    if command not in ("python", "crosscheck"):
-        raise ToolError(f"{loaded.target.path}: gencoord {command} does not take models with "
-                        "free or ball joints (generalized speeds) yet; gencoord simulate, "
-                        "crosscheck, view and python do, and so does the model's header from C++")
