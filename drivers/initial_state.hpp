@@ -7,6 +7,7 @@
 #include <iostream>
 #include <vector>
 
+#include "gencoord/maximal/traits.hpp"
 #include "gencoord/model/constrained_dynamics.hpp"
 #include "gencoord/model/reduced_system.hpp"
 #include "gencoord/model/state.hpp"
@@ -20,8 +21,8 @@ template <class M>
 bool initial_state(const char* program, const std::vector<double>& q, const std::vector<double>& v,
                    State<M>* s) {
   constexpr int nv = nv_of_v<M>;
-  for (int i = 0; i < M::nq; ++i) s->q[i] = M::initial_q[i];
-  for (int i = 0; i < nv; ++i) s->v[i] = M::initial_v[i];
+  s->q = initial_q_of<M>();
+  s->v = initial_v_of<M>();
   if (!q.empty()) {
     if (static_cast<int>(q.size()) != M::nq) {
       std::cerr << program << ": error: model " << M::name << " has " << M::nq
