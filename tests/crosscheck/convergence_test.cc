@@ -68,8 +68,9 @@ Sweep sweep(const ParamsOf<M>& p, double lo, double hi, int count,
 
 template <class M>
 void expect_convergence(const ParamsOf<M>& p, const std::string& label, double lo = 1e3,
-                        double hi = 1e7, const State<M>& s0 = initial_state<M>()) {
-  const Sweep s = sweep<M>(p, lo, hi, 5, short_run(), s0);
+                        double hi = 1e7, const State<M>& s0 = initial_state<M>(),
+                        const CrosscheckOptions& o = short_run()) {
+  const Sweep s = sweep<M>(p, lo, hi, 5, o, s0);
   std::printf("  %-22s slopes: error %.3f, violation %.3f\n", M::name, s.error_fit.slope,
               s.violation_fit.slope);
   ::testing::Test::RecordProperty(label + "_error_slope", std::to_string(s.error_fit.slope));
@@ -127,7 +128,11 @@ TEST(CrosscheckConvergence, FloatingArmOnItsSpeeds) {
   s0.v << 0.2, -0.1, 0.5, 1.0, 2.0, 3.0, 0.5, -1.0, 0.3, 2.0;  // trunk twist, arm spin, hand
   M::Params p;
   p.u = 0.05;
-  expect_convergence<M>(p, "floating_arm", 1e3, 1e7, s0);
+  // 1 s: each force of its penalty model runs the inverse map (the motor torque), the
+  // costliest model of this suite
+  CrosscheckOptions o = short_run();
+  o.duration = 1.0;
+  expect_convergence<M>(p, "floating_arm", 1e3, 1e7, s0, o);
 }
 
 // no declared constraint: the runtime's manifold spring holds the bead on its wire
