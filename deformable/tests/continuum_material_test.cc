@@ -26,11 +26,12 @@
 #include "gencoord/deformable/stretch_modulus.hpp"
 #include "gencoord/deformable/tetrahedralize.hpp"
 #include "gencoord/deformable/time_step.hpp"
+#include "mesh_files.hpp"
 
 namespace gencoord::deformable {
 namespace {
 
-const std::string kMeshes = GENCOORD_DEFORMABLE_MESHES;
+const std::string kMeshes = test_meshes_dir();
 
 Material corotated(double youngs, double nu, double damping = 0.0) {
   Material m{youngs, 1000.0, damping};

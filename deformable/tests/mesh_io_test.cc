@@ -20,6 +20,7 @@
 #include "gencoord/deformable/mesh_io.hpp"
 #include "gencoord/deformable/mesh_to_springs.hpp"
 #include "gencoord/deformable/time_step.hpp"
+#include "mesh_files.hpp"
 
 namespace gencoord::deformable {
 namespace {
@@ -310,7 +311,7 @@ TEST(MeshIoTest, PlanarGmshMeshAtAnotherHeightIsRead) {
   EXPECT_NEAR(TotalMeasure(ReadGmsh<2>(text)), 1.0, 1e-15);
 }
 
-const std::string kMeshes = GENCOORD_DEFORMABLE_MESHES;
+const std::string kMeshes = test_meshes_dir();
 
 TEST(MeshIoTest, GmshFixturesBothVersionsAgree) {
   const SimplexMesh<3> v41 = read_gmsh<3>(kMeshes + "/block_v41.msh");

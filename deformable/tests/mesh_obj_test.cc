@@ -27,13 +27,14 @@
 #include "gencoord/deformable/mesh_to_springs.hpp"
 #include "gencoord/deformable/tetrahedralize.hpp"
 #include "gencoord/deformable/time_step.hpp"
+#include "mesh_files.hpp"
 
 namespace gencoord::deformable {
 namespace {
 
 using ::testing::HasSubstr;
 
-const std::string kMeshes = GENCOORD_DEFORMABLE_MESHES;
+const std::string kMeshes = test_meshes_dir();
 
 TriangleSurface ReadObj(const std::string& text, ObjSource* source = nullptr) {
   std::istringstream in(text);

@@ -16,6 +16,7 @@
 #include "gencoord/deformable/rod.hpp"
 #include "gencoord/deformable/stretch_modulus.hpp"
 #include "gencoord/deformable/time_step.hpp"
+#include "mesh_files.hpp"
 #include "test_helpers.hpp"
 
 namespace gencoord::deformable {
@@ -175,7 +176,7 @@ TEST(WaveSpeedTest, SolidWaveSpeedConvergesToTheMaterials) {
 // neither the lumped masses' dispersion (second order in h / width) nor the bar's own
 // (Love's lateral inertia, nu^2 times the square of the width over the pulse's) shows.
 TEST(WaveSpeedTest, ContinuumElementsCarryTheMaterialsSpeedOnGmshMeshes) {
-  const std::string meshes = GENCOORD_DEFORMABLE_MESHES;
+  const std::string meshes = test_meshes_dir();
   Material material{2.25, 1.0, 0.0};  // c = 1.5 m/s
   material.poisson_ratio = 0.3;
   material.elasticity = Elasticity::kCorotated;

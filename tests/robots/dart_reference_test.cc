@@ -22,6 +22,7 @@
 #include "generated/shipped_leg.hpp"
 #include "generated/ur5e.hpp"
 #include "kernel_comparison.hpp"
+#include "test_files.hpp"
 
 namespace gencoord {
 namespace {
@@ -33,27 +34,29 @@ template <class M>
 struct Robot;
 template <>
 struct Robot<models::Iiwa14> {
-  static constexpr const char* urdf = GENCOORD_ROOT "/models/iiwa14.urdf";
+  static std::string urdf() { return robot_testing::source_file("models/iiwa14.urdf"); }
 };
 template <>
 struct Robot<models::Ur5e> {
-  static constexpr const char* urdf = GENCOORD_ROOT "/models/ur5e.urdf";
+  static std::string urdf() { return robot_testing::source_file("models/ur5e.urdf"); }
 };
 template <>
 struct Robot<models::Quadruped> {
-  static constexpr const char* urdf = GENCOORD_ROOT "/models/quadruped.urdf";
+  static std::string urdf() { return robot_testing::source_file("models/quadruped.urdf"); }
 };
 template <>
 struct Robot<models::FloatingQuadruped> {
-  static constexpr const char* urdf = GENCOORD_ROOT "/models/floating_quadruped.urdf";
+  static std::string urdf() { return robot_testing::source_file("models/floating_quadruped.urdf"); }
 };
 template <>
 struct Robot<models::ShippedLeg> {
-  static constexpr const char* urdf = GENCOORD_ROOT "/tests/robots/shipped_leg.urdf";
+  static std::string urdf() { return robot_testing::source_file("tests/robots/shipped_leg.urdf"); }
 };
 template <>
 struct Robot<models::MimicGripper> {
-  static constexpr const char* urdf = GENCOORD_ROOT "/tests/python/tree_models/mimic_gripper.urdf";
+  static std::string urdf() {
+    return robot_testing::source_file("tests/python/tree_models/mimic_gripper.urdf");
+  }
 };
 
 /// A free joint's position within 1 m of the origin in any orientation, every other
@@ -84,7 +87,7 @@ TYPED_TEST(DartReferenceTest, KernelsMatchAtRandomStates) {
   using M = TypeParam;
   typename M::Params defaults;
   const typename M::Params p = defaults;
-  DartReference<M> dart(Robot<M>::urdf, *defaults.find("g"));
+  DartReference<M> dart(Robot<M>::urdf(), *defaults.find("g"));
   std::mt19937 rng(20261202);
   robot_testing::WorstDifferences worst;
   double forward = 0.0;  // DART's own forward dynamics, where it has no extra mimic dofs
@@ -114,7 +117,7 @@ TYPED_TEST(DartReferenceTest, KernelsMatchAtRandomStates) {
 
 TEST(DartReference, MimicJointsAreDartsDegreesOfFreedomEliminated) {
   // the gripper's URDF has four joints, two of them <mimic>: DART keeps four dofs
-  DartReference<models::MimicGripper> dart(Robot<models::MimicGripper>::urdf, 9.81);
+  DartReference<models::MimicGripper> dart(Robot<models::MimicGripper>::urdf(), 9.81);
   EXPECT_EQ(dart.dofs(), 4);
   EXPECT_EQ(models::MimicGripper::nq, 2);
   // the mirrored finger follows at 1.5 and the thumb at -0.5 times the shoulder

@@ -18,6 +18,7 @@
 #include "generated/floating_leg.hpp"
 #include "generated/floating_leg_yzx.hpp"
 #include "kernel_comparison.hpp"
+#include "test_files.hpp"
 
 namespace gencoord {
 namespace {
@@ -27,7 +28,7 @@ using robot_testing::FreeBaseReference;
 using robot_testing::record;
 using robot_testing::relative;
 
-const char* const kUrdf = GENCOORD_ROOT "/tests/robots/floating_leg.urdf";
+const std::string kUrdf = robot_testing::source_file("tests/robots/floating_leg.urdf");
 // the fixed-base quadruped's bounds (mujoco_reference_test.cc says why they are not 1e-9):
 // `kernels` for the mass matrix and the bias forces, `solved` for qddot, inverse dynamics and
 // the trajectory

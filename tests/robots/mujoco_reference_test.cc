@@ -14,6 +14,7 @@
 #include "generated/ur5e.hpp"
 #include "kernel_comparison.hpp"
 #include "mujoco_model.hpp"
+#include "test_files.hpp"
 
 namespace gencoord {
 namespace {
@@ -31,17 +32,17 @@ struct Robot;
 // that by the conditioning of Mt.
 template <>
 struct Robot<models::Iiwa14> {
-  static constexpr const char* urdf = GENCOORD_ROOT "/models/iiwa14.urdf";
+  static std::string urdf() { return robot_testing::source_file("models/iiwa14.urdf"); }
   static constexpr double kernels = 1e-9, solved = 1e-9, trajectory = 1e-8;
 };
 template <>
 struct Robot<models::Ur5e> {  // diagonal inertias too
-  static constexpr const char* urdf = GENCOORD_ROOT "/models/ur5e.urdf";
+  static std::string urdf() { return robot_testing::source_file("models/ur5e.urdf"); }
   static constexpr double kernels = 1e-9, solved = 1e-9, trajectory = 1e-8;
 };
 template <>
 struct Robot<models::Quadruped> {
-  static constexpr const char* urdf = GENCOORD_ROOT "/models/quadruped.urdf";
+  static std::string urdf() { return robot_testing::source_file("models/quadruped.urdf"); }
   static constexpr double kernels = 1e-8, solved = 1e-6, trajectory = 1e-6;
 };
 
@@ -64,7 +65,7 @@ State<M> random_state(std::mt19937& rng) {
 
 TYPED_TEST(MujocoReferenceTest, KernelsMatchAtRandomStates) {
   using M = TypeParam;
-  MujocoReference<M> mujoco(Robot<M>::urdf);
+  MujocoReference<M> mujoco(Robot<M>::urdf());
   const typename M::Params p;
   std::mt19937 rng(20261123);
   robot_testing::WorstDifferences worst;
@@ -86,7 +87,7 @@ TYPED_TEST(MujocoReferenceTest, KernelsMatchAtRandomStates) {
 
 TYPED_TEST(MujocoReferenceTest, RK4TrajectoryFollowsMujoco) {
   using M = TypeParam;
-  MujocoReference<M> mujoco(Robot<M>::urdf);
+  MujocoReference<M> mujoco(Robot<M>::urdf());
   const typename M::Params p;
   std::mt19937 rng(7);
   std::uniform_real_distribution<double> angle(-1.0, 1.0), rate(-0.5, 0.5);

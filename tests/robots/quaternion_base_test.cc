@@ -20,6 +20,7 @@
 #include "generated/shipped_leg.hpp"
 #include "kernel_comparison.hpp"
 #include "quaternion_base.hpp"
+#include "test_files.hpp"
 
 namespace gencoord {
 namespace {
@@ -35,12 +36,14 @@ template <class M>
 struct Robot;
 template <>
 struct Robot<models::FloatingQuadruped> {
-  static constexpr const char* urdf = GENCOORD_ROOT "/models/floating_quadruped.urdf";
+  static std::string urdf() { return robot_testing::source_file("models/floating_quadruped.urdf"); }
   static constexpr double kernels = 1e-8, solved = 1e-6;
 };
 template <>
 struct Robot<models::FloatingQuadrupedDiagonal> {
-  static constexpr const char* urdf = GENCOORD_BINARY_DIR "/floating_quadruped_diagonal.urdf";
+  static std::string urdf() {
+    return robot_testing::build_file("floating_quadruped_diagonal.urdf");
+  }
   static constexpr double kernels = 1e-12, solved = 1e-12;
 };
 // a massless floating base and a point mass welded to the trunk: both sides fold the point
@@ -48,7 +51,7 @@ struct Robot<models::FloatingQuadrupedDiagonal> {
 // principal moments and a rotation again (measured: 7e-13 mass matrix, 2e-11 qddot)
 template <>
 struct Robot<models::ShippedLeg> {
-  static constexpr const char* urdf = GENCOORD_ROOT "/tests/robots/shipped_leg.urdf";
+  static std::string urdf() { return robot_testing::source_file("tests/robots/shipped_leg.urdf"); }
   static constexpr double kernels = 1e-11, solved = 1e-9;
 };
 
@@ -73,7 +76,7 @@ TYPED_TEST_SUITE(QuaternionBaseMujoco, Robots);
 
 TYPED_TEST(QuaternionBaseMujoco, KernelsMatchAtRandomStates) {
   using M = TypeParam;
-  QuaternionBaseReference<M> mujoco(Robot<M>::urdf);
+  QuaternionBaseReference<M> mujoco(Robot<M>::urdf());
   const typename M::Params p;
   std::mt19937 rng(20261127);
   robot_testing::WorstDifferences worst;
@@ -102,7 +105,7 @@ TYPED_TEST(QuaternionBaseMujoco, RK4TrajectoryFollowsMujoco) {
   // the joints' differences (rad); MuJoCo's RK4 turns the quaternion by the exponential map,
   // gencoord's adds q' and normalizes, so the two differ at the methods' truncation error
   using M = TypeParam;
-  QuaternionBaseReference<M> mujoco(Robot<M>::urdf);
+  QuaternionBaseReference<M> mujoco(Robot<M>::urdf());
   const typename M::Params p;
   std::mt19937 rng(7);
   State<M> initial = random_state<M>(rng);
