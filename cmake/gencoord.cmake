@@ -24,6 +24,11 @@
 # include directory). MAXIMAL passes --maximal: the header also holds the maximal-coordinate
 # penalty model (struct Maximal) that the crosscheck driver and gencoord/maximal/ run.
 #
+# GENCOORD_GENERATION_CACHE (a cache variable, empty by default) names a folder where generate
+# keeps what it generated and reuses it for the same inputs (generate --cache): a fresh build
+# folder or a second checkout then derives no model again. The key holds the model file and its
+# DEPENDS, so a model file that reads files it does not name there must not use it.
+#
 # This file works from three places: gencoord's own build, a project that added gencoord with
 # add_subdirectory(), and an install (gencoordConfig.cmake includes it from share/gencoord/cmake/).
 # In all three the generator sits one folder up with the same layout: the script `generate`
@@ -56,6 +61,22 @@ file(GLOB_RECURSE _gencoord_generator_sources CONFIGURE_DEPENDS
      "${GENCOORD_ROOT}/python/gencoord/*.txt")
 set(GENCOORD_GENERATOR_SOURCES ${_gencoord_generator_sources} "${GENCOORD_ROOT}/generate"
     CACHE INTERNAL "files whose change regenerates every model")
+set(GENCOORD_GENERATION_CACHE "" CACHE PATH
+    "a folder where generate keeps its outputs and reuses them for the same inputs (--cache)")
+
+# gencoord_generation_cache_arguments(<variable> [<file the model reads> ...]): the arguments
+# of generate that use GENCOORD_GENERATION_CACHE, none when it is empty
+function(gencoord_generation_cache_arguments variable)
+  set(arguments)
+  if(GENCOORD_GENERATION_CACHE)
+    list(APPEND arguments --cache "${GENCOORD_GENERATION_CACHE}")
+    foreach(dependency IN LISTS ARGN)
+      get_filename_component(dependency "${dependency}" ABSOLUTE)
+      list(APPEND arguments --depends "${dependency}")
+    endforeach()
+  endif()
+  set(${variable} ${arguments} PARENT_SCOPE)
+endfunction()
 
 function(gencoord_add_model target)
   cmake_parse_arguments(ARG "MAXIMAL"
@@ -88,6 +109,7 @@ function(gencoord_add_model target)
   if(ARG_MAXIMAL)
     list(APPEND set_arguments --maximal)
   endif()
+  gencoord_generation_cache_arguments(cache_arguments ${ARG_DEPENDS})
 
   set(include_dir "${CMAKE_BINARY_DIR}/gencoord_generated")
   if(ARG_OUTPUT_DIR)
@@ -106,7 +128,7 @@ function(gencoord_add_model target)
     OUTPUT "${header}" ${sources}
     COMMAND ${CMAKE_COMMAND} -E env PYTHONHASHSEED=0
             "${GENCOORD_PYTHON}" "${GENCOORD_ROOT}/generate" "${model}"
-            -o "${include_dir}/generated" --quiet ${set_arguments}
+            -o "${include_dir}/generated" --quiet ${set_arguments} ${cache_arguments}
     # generate leaves unchanged files alone; touch them so the build sees them up to date,
     # but never create one: a header generate did not write must stay missing
     COMMAND ${CMAKE_COMMAND} -E touch_nocreate "${header}" ${sources}

@@ -18,8 +18,10 @@
 #      libFuzzer for a minute (scripts/fuzz.sh).
 # Builds use Ninja and ccache where installed (scripts/setup.sh installs both): ccache keeps
 # compiled objects in the user's cache (~/.cache/ccache), shared by every checkout of the
-# repository, so a second run compiles only what changed. Prints each phase's wall time and
-# the slowest tests at the end.
+# repository, so a second run compiles only what changed. Generated headers and the reference
+# values are kept the same way (GENCOORD_GENERATION_CACHE, ~/.cache/gencoord/generation), so
+# a second run derives only the models whose inputs or generator changed. Prints each phase's
+# wall time and the slowest tests at the end.
 # Usage: scripts/test.sh [build-dir]     (GENCOORD_SKIP_SANITIZERS=1 skips step 1)
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -51,6 +53,7 @@ configure() {
     generator=(-G Ninja)
   fi
   cmake -S . -B "$dir" "${generator[@]}" "${launcher[@]}" -DGENCOORD_PYTHON="$python" \
+        -DGENCOORD_GENERATION_CACHE="${XDG_CACHE_HOME:-$HOME/.cache}/gencoord/generation" \
         -DGENCOORD_BUILD_BENCHMARKS=OFF -DPYTHON_EXECUTABLE=/usr/bin/python3 "$@" >/dev/null
 }
 

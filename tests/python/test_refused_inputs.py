@@ -156,7 +156,8 @@ class RefusedInputTest(unittest.TestCase):
 
     def test_unexpected_exception_is_one_line_and_verbose_shows_the_traceback(self):
         path = self.write("pendulum_like", refused_cases.PREAMBLE + refused_cases.BOB)
-        with mock.patch.object(cli, "generate", side_effect=RuntimeError("boom\nsecond")):
+        with mock.patch("gencoord.generate.stages.generate",
+                        side_effect=RuntimeError("boom\nsecond")):
             err = self.expect_refused(path, ["internal error", "RuntimeError", "boom second",
                                              "--verbose"], None)
             status, _, verbose = run_cli(path, "-o", self.output, "--verbose")
@@ -166,7 +167,7 @@ class RefusedInputTest(unittest.TestCase):
 
     def test_keyboard_interrupt_is_one_line_and_status_130(self):
         path = self.write("pendulum_like", refused_cases.PREAMBLE + refused_cases.BOB)
-        with mock.patch.object(cli, "generate", side_effect=KeyboardInterrupt):
+        with mock.patch("gencoord.generate.stages.generate", side_effect=KeyboardInterrupt):
             status, _, err = run_cli(path, "-o", self.output)
         self.assertEqual(status, 130)
         self.assertEqual(err.strip(), "generate: interrupted")

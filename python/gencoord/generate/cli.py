@@ -12,12 +12,11 @@ import re
 import sys
 import tempfile
 import time
-from typing import Any
+from typing import Any, Container
 
 from gencoord.cxx.escapes import shell_word
 from gencoord.errors import ModelError
-from gencoord.generate.failures import report_failure
-from gencoord.generate.stages import generate
+from gencoord.generate.output_cache import OutputCache, cache_key
 from gencoord.options import DYNAMICS_CHOICES, GenerateOptions, knobs
 
 # Relative to the directory generate runs in: output lands next to the user, never in the
@@ -151,6 +150,15 @@ def build_parser(prog: str = "generate") -> argparse.ArgumentParser:
     parser.add_argument("--set", dest="options", action="append", default=[],
                         metavar="KEY=VALUE", help="a model option, e.g. --set n=5")
     _add_knob_flags(parser)
+    parser.add_argument("--cache", metavar="DIR",
+                        help="reuse the outputs of an earlier generation with the same inputs "
+                             "from DIR, and keep this one's there (a build's cache: the key "
+                             "is the model file, the files named by --depends, the arguments, "
+                             "the generator's sources and the Python, SymPy, mpmath and Jinja2 "
+                             "versions)")
+    parser.add_argument("--depends", action="append", default=[], metavar="FILE",
+                        help="a file the model file reads (a URDF its load_urdf() loads), part "
+                             "of the --cache key; repeat for each")
     parser.add_argument("-v", "--verbose", action="store_true",
                         help="print every stage's timing even when generation is fast, and the "
                              "traceback of an error")
@@ -173,6 +181,8 @@ def main(argv: list[str] | None = None, prog: str = "generate") -> int:
     try:
         return _generate_and_write(args, options, report, started)
     except (Exception, KeyboardInterrupt) as error:
+        # imported here: it imports SymPy, which a generation found in --cache never needs
+        from gencoord.generate.failures import report_failure
         return report_failure(error, args.model, prog, verbose=args.verbose)
 
 
@@ -180,27 +190,69 @@ def _generate_and_write(args, options: GenerateOptions, report, started: float) 
     def warn(text: str) -> None:  # even with --quiet: it comes before a long wait
         print(f"{args.model}: warning: {text}", file=sys.stderr, flush=True)
 
-    generated = generate(args.model, _parse_options(args.options), options, on_stage=report,
-                         on_warning=warn, output_flags=_output_flags(args))
+    cache = OutputCache(args.cache) if args.cache else None
+    key = _cache_key(args, options) if cache else ""
+    entry = cache.load(key) if cache and key else None
+    from_cache = entry is not None
+    if entry is None:
+        entry = _generated_entry(args, options, report, warn)
+        if cache and key:
+            cache.store(key, entry)
+    else:
+        for text in entry["warnings"]:
+            warn(text)
     if not args.quiet:
-        for line in generated.analysis:
+        for line in entry["analysis"]:
             print(f"  {line}")
-    path = os.path.join(args.output_dir, f"{generated.name}.hpp")
-    files = {path: generated.header,
-             os.path.join(args.output_dir, f"{generated.name}.scene.json"): generated.scene}
-    for file_name, text in generated.sources.items():
-        files[os.path.join(args.output_dir, file_name)] = text
-    changed = write_all_atomically(files)
-    removed = _remove_stale_sources(args.output_dir, generated.name, generated.sources)
+    name, sources = entry["name"], entry["sources"]
+    path = os.path.join(args.output_dir, f"{name}.hpp")
+    changed = write_all_atomically({os.path.join(args.output_dir, file_name): text
+                                    for file_name, text in entry["files"].items()})
+    removed = _remove_stale_sources(args.output_dir, name, sources)
     if not args.quiet:
         elapsed = time.perf_counter() - started
         state = "wrote" if changed or removed else "unchanged"
-        extra = f" and {len(generated.sources)} source files" if generated.sources else ""
-        print(f"generate: {state} {os.path.relpath(path)}{extra} ({elapsed:.2f} s)")
+        extra = f" and {len(sources)} source files" if sources else ""
+        origin = ", from the cache" if from_cache else ""
+        print(f"generate: {state} {os.path.relpath(path)}{extra} ({elapsed:.2f} s{origin})")
     return 0
 
 
-def _remove_stale_sources(directory: str, name: str, keep: dict[str, str]) -> list[str]:
+def _generated_entry(args, options: GenerateOptions, report, warn) -> dict:
+    """Generates the model: the output files' names (in the output folder) and texts, the
+    analysis lines and the warnings, as the cache keeps them."""
+    from gencoord.generate.stages import generate  # SymPy: only when generating
+
+    warnings: list[str] = []
+
+    def warn_and_keep(text: str) -> None:
+        warnings.append(text)
+        warn(text)
+
+    generated = generate(args.model, _parse_options(args.options), options, on_stage=report,
+                         on_warning=warn_and_keep, output_flags=_output_flags(args))
+    files = {f"{generated.name}.hpp": generated.header,
+             f"{generated.name}.scene.json": generated.scene, **generated.sources}
+    return {"name": generated.name, "files": files, "sources": sorted(generated.sources),
+            "analysis": generated.analysis, "warnings": warnings}
+
+
+def _cache_key(args, options: GenerateOptions) -> str:
+    """What decides the outputs: the model file and the files it reads, and every argument
+    that reaches them (the banner names the model and -o relative to the working folder).
+    Empty when the model file cannot be read: generating then says why."""
+    for path in args.depends:
+        if not os.path.isfile(path):
+            raise ModelError("--depends names no readable file; name the files the model "
+                             "file reads", filename=path)
+    if not os.path.isfile(args.model):
+        return ""
+    values = [os.path.relpath(os.path.abspath(args.model)), *_output_flags(args),
+              repr(args.options), repr(options)]
+    return cache_key("generate", [args.model, *args.depends], values)
+
+
+def _remove_stale_sources(directory: str, name: str, keep: Container[str]) -> list[str]:
     """Deletes <name>_double_K.cpp files an earlier --translation-units left that this
     generation did not write (they would instantiate parts the header no longer has)."""
     pattern = re.compile(re.escape(name) + r"_double_[0-9]+\.cpp")
