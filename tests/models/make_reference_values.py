@@ -7,11 +7,15 @@ reference_values_test.cc compares the generated kernels (after CSE and the C++ p
 these values, so a printing or CSE bug shows up as a mismatch. The models are the ones
 gencoord/tool/model_list.py lists (the tests' type list), atlas charts included.
 
-    make_reference_values.py <output.hpp>
+    make_reference_values.py <output.hpp> [--cache DIR]
+
+With --cache, the text is kept in DIR (gencoord's generation cache) under a key of this
+script, every file of models/ and the generator, and reused while none of them changes.
 """
 
 from __future__ import annotations
 
+import argparse
 import os
 import random
 import sys
@@ -21,7 +25,7 @@ import mpmath
 import sympy as sp
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-sys.path.insert(0, os.path.join(ROOT, "python"))
+sys.path[:0] = [os.path.join(ROOT, "python"), ROOT]
 
 from gencoord.dsl.bodies import inertia_problem  # noqa: E402
 from gencoord.derive.dense import Kinematics, derive  # noqa: E402
@@ -29,7 +33,9 @@ from gencoord.derive.kinematic_constraints import derive_kinematic_constraints  
 from gencoord.generate.load import load_model  # noqa: E402
 from gencoord.derive.maximal import (KAPPA, PENALTY_DAMPING, derive_maximal,  # noqa: E402
                                      has_maximal_model)
-from gencoord.tool.model_list import Variant, variants  # noqa: E402
+from gencoord.generate.output_cache import OutputCache, cache_key  # noqa: E402
+from gencoord.tool.model_list import MODELS, Variant, variants  # noqa: E402
+from tests.python.graph_values import GraphFunction  # noqa: E402
 
 STATES = 5
 DIGITS = 40
@@ -106,10 +112,9 @@ def lambdified(arguments: list, exprs: dict, name: str) -> dict:
         extra = set().union(*(sp.sympify(e).free_symbols for e in matrix)) - set(arguments)
         if extra:
             raise SystemExit(f"{name}: {key} depends on unknown symbols {extra}")
-    # through a CSE: the large models' expression trees print and evaluate several times
-    # faster so
-    return {key: sp.lambdify(arguments, list(matrix), modules="mpmath", cse=True)
-            for key, matrix in exprs.items()}
+    # over the expressions' graph of shared nodes: the large models' expression trees take
+    # minutes to print (lambdify), and as long to search for common subexpressions
+    return {key: GraphFunction(arguments, list(matrix)) for key, matrix in exprs.items()}
 
 
 def difference(function, point: list, value: list, k: int) -> list:
@@ -244,8 +249,7 @@ def reference_model(name: str, model, seed: int) -> str:
     return (f'  {{"{name}",\n   {{{names}}},\n   {{\n' + ",\n".join(states) + "\n   }}")
 
 
-def main() -> None:
-    output = sys.argv[1]
+def reference_header() -> str:
     # each model's seed comes from its name, so adding a model leaves the others' states
     models = ",\n".join(entry for variant in variants()
                         for entry in reference_models(variant, zlib.crc32(variant.name.encode())))
@@ -290,9 +294,27 @@ inline const ReferenceModel* find_reference(std::string_view name) {{
 
 }}  // namespace gencoord::testing
 """
-    os.makedirs(os.path.dirname(os.path.abspath(output)), exist_ok=True)
-    with open(output, "w", encoding="utf-8") as handle:
-        handle.write(text)
+    return text
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("output", help="the header to write")
+    parser.add_argument("--cache", metavar="DIR", help="gencoord's generation cache")
+    args = parser.parse_args()
+    inputs = [os.path.abspath(__file__)] + sorted(
+        os.path.join(MODELS, name) for name in os.listdir(MODELS)
+        if os.path.isfile(os.path.join(MODELS, name)))
+    cache = OutputCache(args.cache) if args.cache else None
+    key = cache_key("reference values", inputs, []) if cache else ""
+    entry = cache.load(key) if cache else None
+    if entry is None:
+        entry = {"text": reference_header()}
+        if cache:
+            cache.store(key, entry)
+    os.makedirs(os.path.dirname(os.path.abspath(args.output)), exist_ok=True)
+    with open(args.output, "w", encoding="utf-8") as handle:
+        handle.write(entry["text"])
 
 
 if __name__ == "__main__":

@@ -8,7 +8,7 @@
 # on one core. A module missing here (a few seconds or less) costs 2. After a run CTest keeps
 # its own measured costs in the build folder and uses those.
 set(_GENCOORD_PYTHON_TEST_COST
-  test_recursive 300 test_bad_models 56 test_golden 45 test_cli 15 test_name_clashes 14
+  test_recursive 120 test_bad_models 56 test_golden 45 test_cli 15 test_name_clashes 14
   test_interrupts 14 test_translation_units 13 test_rigid_bodies 9 test_bad_atlas 6
   test_urdf 5 test_refused_inputs 4 test_split 4 test_structured 4 test_user_models 4
   test_independent_derivation 3 test_zero_fill 3

@@ -33,6 +33,7 @@ from gencoord.options import GenerateOptions
 from gencoord.derive.point_tree import PointTree, point_tree
 from gencoord.derive.point_recursion import recursive_dynamics
 
+from .graph_values import graph_values
 from .support import DIGITS, MODELS, relative_error
 
 BRANCHED = Path(__file__).parent / "tree_models" / "branched_pendulum.py"
@@ -101,6 +102,14 @@ def _as_list(value) -> list:
     return list(value) if isinstance(value, sp.MatrixBase) else [value]
 
 
+def _dense_values(dense, fields, numbers: dict) -> dict[str, list]:
+    """Each field of the dense derivation at `numbers`, sharing what the fields share (a
+    robot's dense expressions take minutes to evaluate by substitution)."""
+    entries = {f: _as_list(getattr(dense, f)) for f in fields}
+    flat = iter(graph_values([e for f in fields for e in entries[f]], numbers))
+    return {f: [next(flat) for _ in entries[f]] for f in fields}
+
+
 def _assert_equal_to_dense(test: unittest.TestCase, model, kin: Kinematics, name: str,
                            recursive, tolerance=None) -> None:
     """Both recursions and every output of the recursive derivation against the dense
@@ -108,11 +117,6 @@ def _assert_equal_to_dense(test: unittest.TestCase, model, kin: Kinematics, name
     units of the last digit)."""
     dense = derive(model, kin)
     inputs = [*dense.q, *dense.v, *dense.a, *dense.params, dense.t]
-    # compiled once, through a CSE: a robot's dense expression trees take minutes to
-    # evaluate by substitution, and as long to print whole (one CSE per output: one over
-    # all of them takes three times as long)
-    compiled = {f: sp.lambdify(inputs, _as_list(getattr(dense, f)), modules="mpmath", cse=True)
-                for f in FIELDS}
     rng = random.Random(name)
     with mpmath.workdps(DIGITS):
         tolerance = tolerance or mpmath.mpf(10) ** (8 - DIGITS)
@@ -134,7 +138,7 @@ def _assert_equal_to_dense(test: unittest.TestCase, model, kin: Kinematics, name
 
             # the outputs at one state; Mt and the forces at every state
             fields = FIELDS if state == 0 else FIELDS[:3]
-            expected = {f: compiled[f](*arguments) for f in fields}
+            expected = _dense_values(dense, fields, dict(zip(inputs, arguments)))
             for field in fields:
                 test.assertLess(relative_error(values(getattr(recursive.derivation, field)),
                                                expected[field]), tolerance, f"{name}: {field}")
@@ -215,9 +219,9 @@ class BodyTreeTest(unittest.TestCase):
         # moment rounds at 1e-16, which bounds the agreement there)
         # (a floating robot's dense form with a quaternion takes many minutes: the quaternion
         # tree has the same free and ball joints, and tests/robots checks the floating
-        # quadruped against MuJoCo. Its dense form takes 2 minutes with SymPy 1.14 and about
-        # 10 with 1.11, so it is compared under the newer SymPy only: the recursions are the
-        # same code under both)
+        # quadruped against MuJoCo. Deriving its dense form takes 40 s of CPU with SymPy 1.14
+        # and 70 s with 1.11, so it is compared under the newer SymPy only: the recursions are
+        # the same code under both)
         # (the UR5e-like arm is a revolute chain as the iiwa is; its dense form would add 9 s
         # of CPU under SymPy 1.14 and 19 s under 1.11, and tests/robots checks its kernels
         # against MuJoCo and DART)

@@ -27,6 +27,7 @@ from sympy.physics import mechanics as me
 from gencoord.derive.dense import derive
 from gencoord.generate.load import load_model
 
+from .graph_values import GraphFunction
 from .support import DIGITS, MODELS, format_numbers, relative_error
 
 STATES = 24
@@ -36,9 +37,10 @@ t = me.dynamicsymbols._t
 
 
 def compiled(args, matrix):
-    """The entries of `matrix` (row major) as mpmath numbers, a function of `args`; common
-    subexpressions are shared (these expressions have tens of thousands of operations)."""
-    return sp.lambdify(args, list(matrix), modules="mpmath", cse=True)
+    """The entries of `matrix` (row major) as mpmath numbers, a function of `args`; shared
+    subexpressions are evaluated once (these expressions have tens of thousands of
+    operations)."""
+    return GraphFunction(args, list(matrix))
 
 
 class Reference:
