@@ -108,8 +108,19 @@ struct Scenario {
 
 class ImplicitContact : public ::testing::TestWithParam<double> {};
 
+// Built with AddressSanitizer (GCC defines this; the sanitizer builds use GCC)
+#ifdef __SANITIZE_ADDRESS__
+constexpr bool kSanitized = true;
+#else
+constexpr bool kSanitized = false;
+#endif
+
 TEST_P(ImplicitContact, DropsNeverGainEnergy) {
   const double multiple = GetParam();
+  // the 1 x CFL drops take ten times the steps of the 10 x ones through the same code, two
+  // minutes under the sanitizers: they check memory at 5 x and 10 x, the physics at all three
+  // in the Release build
+  if (kSanitized && multiple < 5.0) GTEST_SKIP() << "run in the Release build";
   const Scenario scenarios[] = {{"cube on the ground", cube_on_ground, 0.5},
                                 {"soft cube on a sphere", soft_cube_on_sphere, 0.6},
                                 {"soft elements, fast", soft_elements_on_ground, 0.4},
