@@ -60,8 +60,8 @@ class GenerateOptions:
     maximal: bool = _knob(
         False, "also generate the model's maximal-coordinate penalty model (the nested struct "
         "Maximal) that `gencoord crosscheck` and the runtime's gencoord/maximal/ headers run. "
-        "It is about as large as the reduced model: the 7-joint arm generates in 3.5 s "
-        "of CPU without it, 6.5 s with it (docs/performance.md)", "--maximal")
+        "It is about as large as the reduced model: the 7-joint arm generates in 4 s "
+        "of CPU without it, 7 s with it (docs/performance.md)", "--maximal")
     # Knobs without a flag: measured trade-offs (docs/performance.md), fixed for a release.
     flat_max_nq: int = _knob(
         3, "up to this many coordinates every output is one flat expression, which lets SymPy "
