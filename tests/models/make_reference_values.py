@@ -305,13 +305,12 @@ def main() -> None:
     inputs = [os.path.abspath(__file__)] + sorted(
         os.path.join(MODELS, name) for name in os.listdir(MODELS)
         if os.path.isfile(os.path.join(MODELS, name)))
-    cache = OutputCache(args.cache) if args.cache else None
-    key = cache_key("reference values", inputs, []) if cache else ""
-    entry = cache.load(key) if cache else None
-    if entry is None:
-        entry = {"text": reference_header()}
-        if cache:
-            cache.store(key, entry)
+
+    def make() -> dict:
+        return {"text": reference_header()}
+
+    entry = (OutputCache(args.cache).cached(cache_key("reference values", inputs, []), make)[0]
+             if args.cache else make())
     os.makedirs(os.path.dirname(os.path.abspath(args.output)), exist_ok=True)
     with open(args.output, "w", encoding="utf-8") as handle:
         handle.write(entry["text"])

@@ -190,15 +190,12 @@ def _generate_and_write(args, options: GenerateOptions, report, started: float) 
     def warn(text: str) -> None:  # even with --quiet: it comes before a long wait
         print(f"{args.model}: warning: {text}", file=sys.stderr, flush=True)
 
-    cache = OutputCache(args.cache) if args.cache else None
-    key = _cache_key(args, options) if cache else ""
-    entry = cache.load(key) if cache and key else None
-    from_cache = entry is not None
-    if entry is None:
-        entry = _generated_entry(args, options, report, warn)
-        if cache and key:
-            cache.store(key, entry)
-    else:
+    def make() -> dict:
+        return _generated_entry(args, options, report, warn)
+
+    key = _cache_key(args, options) if args.cache else ""
+    entry, from_cache = OutputCache(args.cache).cached(key, make) if key else (make(), False)
+    if from_cache:
         for text in entry["warnings"]:
             warn(text)
     if not args.quiet:

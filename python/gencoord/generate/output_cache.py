@@ -23,7 +23,7 @@ import json
 import os
 import sys
 import tempfile
-from typing import Iterable
+from typing import Callable, Iterable
 
 from gencoord import __version__
 
@@ -106,6 +106,15 @@ class OutputCache:
         except (OSError, ValueError):
             return None
         return entry if isinstance(entry, dict) else None
+
+    def cached(self, key: str, make: Callable[[], dict]) -> tuple[dict, bool]:
+        """The entry under `key` and True, or else make()'s, stored under `key`, and False."""
+        entry = self.load(key)
+        if entry is not None:
+            return entry, True
+        entry = make()
+        self.store(key, entry)
+        return entry, False
 
     def store(self, key: str, entry: dict) -> None:
         """Stores `entry` under `key`. A cache that cannot be written (a full disk, no
