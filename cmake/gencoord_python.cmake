@@ -18,6 +18,7 @@
 # Python_EXECUTABLE (with PYBIND11_FINDPYTHON=ON) select it.
 
 include_guard(GLOBAL)
+include("${CMAKE_CURRENT_LIST_DIR}/simd.cmake")
 
 set(GENCOORD_PYTHON_BINDINGS_DIR "${CMAKE_CURRENT_LIST_DIR}/../bindings/python" CACHE INTERNAL
     "gencoord's pybind11 bindings: include/gencoord_python/*.hpp and model_module.cpp")
@@ -53,7 +54,10 @@ function(gencoord_add_python_module target)
 
   # NO_EXTRAS: no link-time optimization, which doubles the build for no measured gain
   pybind11_add_module(${target} MODULE NO_EXTRAS
-                      "${GENCOORD_PYTHON_BINDINGS_DIR}/model_module.cpp")
+                      "${GENCOORD_PYTHON_BINDINGS_DIR}/model_module.cpp"
+                      "${GENCOORD_PYTHON_BINDINGS_DIR}/qddot_lanes.cpp")
+  # qddot_simd's Pack<4> kernel alone gets the SIMD flags
+  gencoord_enable_simd_source(${target} "${GENCOORD_PYTHON_BINDINGS_DIR}/qddot_lanes.cpp")
   target_include_directories(${target} PRIVATE "${GENCOORD_PYTHON_BINDINGS_DIR}/include")
   target_compile_definitions(${target} PRIVATE
                              "GENCOORD_MODEL_HEADER=\"generated/${name}.hpp\""

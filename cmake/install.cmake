@@ -15,7 +15,7 @@
 #   <P>/share/gencoord/                the generator and the command's parts, laid out as in
 #                                      the repository: generate, python/gencoord/ (the
 #                                      package, its templates and data files),
-#                                      cmake/gencoord*.cmake, drivers/*.cpp, *.hpp, *.cmake,
+#                                      cmake/gencoord*.cmake and simd.cmake, drivers/*.cpp, *.hpp, *.cmake,
 #                                      bindings/python/
 # (lib and share are GNUInstallDirs' CMAKE_INSTALL_LIBDIR and CMAKE_INSTALL_DATADIR.)
 # The install component `runtime` is the runtime alone (headers, library, exported target):
@@ -72,6 +72,7 @@ _gencoord_install_share(python/gencoord "*.py" "*.j2" "*.txt" "*.html" "*.js")
 _gencoord_install_share(python/generator "*.py")  # the former name, for old model files
 install(FILES "${PROJECT_SOURCE_DIR}/cmake/gencoord.cmake"
               "${PROJECT_SOURCE_DIR}/cmake/gencoord_python.cmake"
+              "${PROJECT_SOURCE_DIR}/cmake/simd.cmake"
         DESTINATION "${GENCOORD_INSTALL_DATADIR}/cmake")
 # what gencoord_add_python_module() compiles
 _gencoord_install_share(bindings "*.cpp" "*.hpp")

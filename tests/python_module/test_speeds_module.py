@@ -126,6 +126,8 @@ class SpeedsModuleTest(unittest.TestCase):
         batch = m.qddot(qs, vs, threads=2)
         for k in range(5):
             np.testing.assert_array_equal(batch[k], m.qddot(qs[k], vs[k]))
+        # four states per call across SIMD lanes, and the fifth alone
+        self.assertLess(self.relative_error(m.qddot_simd(qs, vs), batch), 1e-13)
         with self.assertRaisesRegex(ValueError, r"v: expected an array of shape \(10,\)"):
             m.qddot(q, np.zeros(12))
 

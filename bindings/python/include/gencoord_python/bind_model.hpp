@@ -22,6 +22,7 @@
 #include "gencoord_python/first_order.hpp"
 #include "gencoord_python/kernels.hpp"
 #include "gencoord_python/params.hpp"
+#include "gencoord_python/qddot_lanes.hpp"
 #include "gencoord_python/simulation.hpp"
 #include "gencoord_python/speeds.hpp"
 
@@ -134,6 +135,16 @@ void bind_kernels(py::module_& m) {
                            "not positive definite.",
                            "(nv,)"),
                 qv, [](const X& x, double t, const P& p) { return V(M::qddot(x.q, x.v, t, p)); });
+  if constexpr (!has_kinematic_constraints_v<M>) {
+    def_kernel<M>(
+        m, "qddot_simd",
+        kernel_doc("qddot, a batch evaluated 4 states per call across SIMD lanes: equal to qddot "
+                   "to a few ulp (sin and cos from glibc's vector library), NaN where qddot is "
+                   "NaN; one Params and one u for the whole batch.",
+                   "(nv,)"),
+        qv, [](const X& x, double t, const P& p) { return V(M::qddot(x.q, x.v, t, p)); },
+        simd_qddot_lanes<M>);
+  }
   def_kernel<M>(m, "inverse_dynamics",
                 kernel_doc("Residual r = Mt qdd - Ft - Fi: the generalized force that gives "
                            "the acceleration qdd.",

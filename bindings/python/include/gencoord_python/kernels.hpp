@@ -8,7 +8,9 @@
 // a model with control inputs takes u=, which overrides the inputs the params hold.
 // A batch returns arrays with a leading dimension N, computed on `threads` threads (default:
 // the machine's cores) with the GIL released, each element by exactly the code a single call
-// runs, so the results equal single calls bit for bit.
+// runs, so the results equal single calls bit for bit. A kernel with a lane-parallel form
+// (qddot_simd) evaluates a batch kSimdLanes states per call instead, which equals single
+// calls to a few ulp, and takes one parameter set and one u for the whole batch.
 #pragma once
 
 #include <pybind11/numpy.h>
@@ -16,6 +18,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstddef>
 #include <functional>
 #include <memory>
@@ -27,6 +30,7 @@
 #include "gencoord/control/inputs.hpp"
 #include "gencoord/model/model_traits.hpp"
 #include "gencoord/parallel/batch.hpp"
+#include "gencoord/simd/pack.hpp"
 #include "gencoord_python/arrays.hpp"
 
 namespace gencoord::python {
@@ -202,7 +206,15 @@ template <class M>
 struct KernelEntry {
   using Evaluate =
       std::function<void(const StateVectors<M>&, double, const ParamsOf<M>&, double* const*)>;
+  /// Its lane-parallel form, where it has one: kLanes states (q[k], v[k], t[k]) in one call,
+  /// sharing one parameter set, the one result of state k written to out[k] (NaN or infinite
+  /// where the single call's may be); empty otherwise. Plain arrays, as qddot_lanes() takes.
+  using EvaluateLanes = std::function<void(const double* const*, const double* const*,
+                                           const double*, const ParamsOf<M>&, double* const*)>;
+  static constexpr int kLanes = kSimdLanes;
+
   Evaluate evaluate;
+  EvaluateLanes lanes;
   std::vector<std::vector<py::ssize_t>> shapes;  // each result's shape for one state
   std::array<const char*, 3> names{};            // its vector arguments, the first `arity`
   std::size_t arity = 0;
@@ -211,6 +223,39 @@ struct KernelEntry {
 namespace detail {
 
 constexpr std::size_t max_kernel_results = 4;
+
+// The one parameter set of a lane-parallel batch: its inputs those of `controls` where given.
+template <class M>
+ParamsOf<M> lane_params(const ParamsInput<M>& parameters, const InputsInput<M>& controls) {
+  if (parameters.values.size() != 1 || (controls.given && controls.values.batch >= 0))
+    throw py::value_error(
+        "params, u: the lanes of a SIMD batch share one parameter set: pass one Params and one "
+        "u for the whole batch, or call the scalar kernel (qddot) for one per state");
+  return controls.given ? controls.apply(parameters.values[0], 0) : parameters.values[0];
+}
+
+// Elements i .. i + kLanes - 1 in one lane-parallel call, writing rows of `out` (`size`
+// entries each); an element whose result is not finite is evaluated again by `evaluate`, the
+// single call, so it is NaN exactly where the single call's is.
+template <class M, class Evaluate>
+void evaluate_lanes(const KernelEntry<M>& kernel, const std::array<VectorInput, 3>& inputs,
+                    const TimeInput& times, const ParamsOf<M>& params, py::ssize_t i, double* out,
+                    py::ssize_t size, const Evaluate& evaluate) {
+  constexpr int lanes = KernelEntry<M>::kLanes;
+  std::array<const double*, lanes> q{}, v{};
+  std::array<double, lanes> t{};
+  std::array<double*, lanes> rows{};
+  for (int k = 0; k < lanes; ++k) {
+    q[k] = inputs[0].row(i + k);
+    v[k] = inputs[1].row(i + k);
+    t[k] = times.at(i + k);
+    rows[k] = out + (i + k) * size;
+  }
+  kernel.lanes(q.data(), v.data(), t.data(), params, rows.data());
+  for (int k = 0; k < lanes; ++k)
+    if (!std::all_of(rows[k], rows[k] + size, [](double x) { return std::isfinite(x); }))
+      evaluate(i + k);
+}
 
 // kernel(values..., t, params, u, threads) for one state or a batch (see the file comment)
 template <class M>
@@ -234,23 +279,37 @@ py::object call_kernel(const KernelEntry<M>& kernel, const std::array<py::object
     data[r] = arrays[r].mutable_data();
     sizes[r] = arrays[r].size() / elements;
   }
-  {
+  const auto evaluate = [&](py::ssize_t i) {
+    StateVectors<M> x;
+    if (kernel.arity > 0) x.q = to_vector<QVec<M>>(inputs[0].row(i));
+    if (kernel.arity > 1) x.v = to_vector<VVec<M>>(inputs[1].row(i));
+    if (kernel.arity > 2) x.qdd = to_vector<VVec<M>>(inputs[2].row(i));
+    std::array<double*, max_kernel_results> out{};
+    for (std::size_t r = 0; r < count; ++r) out[r] = data[r] + i * sizes[r];
+    if (controls.given) {
+      kernel.evaluate(x, times.at(i), controls.apply(parameters.at(i), i), out.data());
+    } else {
+      kernel.evaluate(x, times.at(i), parameters.at(i), out.data());
+    }
+  };
+  if (kernel.lanes && batch >= 0) {
+    const ParamsOf<M> shared = lane_params(parameters, controls);
     py::gil_scoped_release unlocked;
     gencoord::detail::parallel_chunks(
         static_cast<std::size_t>(elements), workers, [&](std::size_t begin, std::size_t end) {
-          for (auto i = static_cast<py::ssize_t>(begin); i < static_cast<py::ssize_t>(end); ++i) {
-            StateVectors<M> x;
-            if (kernel.arity > 0) x.q = to_vector<QVec<M>>(inputs[0].row(i));
-            if (kernel.arity > 1) x.v = to_vector<VVec<M>>(inputs[1].row(i));
-            if (kernel.arity > 2) x.qdd = to_vector<VVec<M>>(inputs[2].row(i));
-            std::array<double*, max_kernel_results> out{};
-            for (std::size_t r = 0; r < count; ++r) out[r] = data[r] + i * sizes[r];
-            if (controls.given) {
-              kernel.evaluate(x, times.at(i), controls.apply(parameters.at(i), i), out.data());
-            } else {
-              kernel.evaluate(x, times.at(i), parameters.at(i), out.data());
-            }
+          auto i = static_cast<py::ssize_t>(begin);
+          for (; i + KernelEntry<M>::kLanes <= static_cast<py::ssize_t>(end);
+               i += KernelEntry<M>::kLanes) {
+            evaluate_lanes(kernel, inputs, times, shared, i, data[0], sizes[0], evaluate);
           }
+          for (; i < static_cast<py::ssize_t>(end); ++i) evaluate(i);
+        });
+  } else {
+    py::gil_scoped_release unlocked;
+    gencoord::detail::parallel_chunks(
+        static_cast<std::size_t>(elements), workers, [&](std::size_t begin, std::size_t end) {
+          for (auto i = static_cast<py::ssize_t>(begin); i < static_cast<py::ssize_t>(end); ++i)
+            evaluate(i);
         });
   }
   const auto finish = [batch](py::array_t<double>& array) -> py::object {
@@ -311,10 +370,12 @@ KernelEntry<M> kernel_entry(Kernel kernel, std::index_sequence<R...>) {
 /// Binds `kernel(vectors, t, params)` as module.name(<names>..., t=0.0, params=None, *,
 /// threads=None), with u=None before threads for a model with inputs; `kernel` gets the K
 /// vectors, which are the first K of (q, v, qdd), as StateVectors<M>, and returns a value
-/// (a number, an Eigen vector or matrix, an AsMatrix) or a tuple of them.
+/// (a number, an Eigen vector or matrix, an AsMatrix) or a tuple of them. `lanes`, where
+/// given, is its lane-parallel form for (q, v) kernels of one result, which batches use.
 template <class M, std::size_t K, class Kernel>
 void def_kernel(py::module_& module, const char* name, const std::string& doc,
-                const std::array<const char*, K>& names, Kernel kernel) {
+                const std::array<const char*, K>& names, Kernel kernel,
+                typename KernelEntry<M>::EvaluateLanes lanes = {}) {
   static_assert(K <= 3, "def_kernel: a kernel takes q, v and qdd at most");
   using Value = decltype(kernel(std::declval<const StateVectors<M>&>(), 0.0,
                                 std::declval<const ParamsOf<M>&>()));
@@ -323,6 +384,7 @@ void def_kernel(py::module_& module, const char* name, const std::string& doc,
       detail::kernel_entry<M, Value>(std::move(kernel), std::make_index_sequence<results>{}));
   for (std::size_t k = 0; k < K; ++k) entry->names[k] = names[k];
   entry->arity = K;
+  entry->lanes = std::move(lanes);
   detail::def_kernel_entry<M>(module, name, doc, std::shared_ptr<const KernelEntry<M>>(entry),
                               std::make_index_sequence<K>{});
 }
