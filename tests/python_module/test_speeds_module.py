@@ -221,9 +221,20 @@ class SpeedsModuleTest(unittest.TestCase):
             self.assertLess(energy[-1], 0.9 * energy[0], integrator)
             self.assertLess(np.abs(np.linalg.norm(q[:, ARM], axis=1) - 1).max(), 1e-14)
 
-    def test_scripted_coordinates_are_refused_in_one_line(self):
-        with self.assertRaisesRegex(ValueError, "scripted: floating_arm has free or ball joints"):
-            self.m.simulate(t_end=0.1, scripted={"hand_joint": lambda t: (t, 1.0, 0.0)})
+    def test_a_scripted_hand_follows_its_script_on_unit_quaternions(self):
+        m = self.m
+        hand = m.coordinate_names.index("hand_joint")
+        t, q, v, _ = m.simulate(t_end=1.0, dt=1e-3, every=10, scripted={
+            "hand_joint": lambda s: (0.4 * np.sin(3 * s), 1.2 * np.cos(3 * s),
+                                     -3.6 * np.sin(3 * s))})
+        np.testing.assert_allclose(q[:, hand], 0.4 * np.sin(3 * t), rtol=0, atol=1e-15)
+        np.testing.assert_allclose(v[:, HAND], 1.2 * np.cos(3 * t), rtol=0, atol=1e-15)
+        for part in (TRUNK, ARM):
+            self.assertLess(np.abs(np.linalg.norm(q[:, part], axis=1) - 1).max(), 1e-14)
+        self.assertGreater(np.abs(q[:, ARM] - q[0, ARM]).max(), 1e-2)  # the arm swings
+        with self.assertRaisesRegex(ValueError, "scripted: coordinate 'trunk_x' of model "
+                                                "'floating_arm' belongs to a free or ball joint"):
+            m.simulate(t_end=0.1, scripted={"trunk_x": lambda s: (s, 1.0, 0.0)})
 
 
 if __name__ == "__main__":

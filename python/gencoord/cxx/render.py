@@ -153,6 +153,13 @@ def _limits_view(model) -> list[dict]:
             for limit in model.limits]
 
 
+def _coordinate_speeds(model) -> list[int]:
+    """For each coordinate, the index in v of the speed that is its rate, or -1 for a free or
+    ball joint's coordinate, whose rate combines its joint's speeds."""
+    speeds = [s.symbol for s in model.speeds]
+    return [speeds.index(c.rate) if c.rate in speeds else -1 for c in model.coordinates]
+
+
 def _chart_context(chart, first, unroll_max_nq: int) -> dict:
     """The template context of one chart (gencoord/cxx/templates/model_struct.j2)."""
     model, optimized, n = chart.model, chart.optimized, chart.num_reduced_kernels
@@ -170,6 +177,7 @@ def _chart_context(chart, first, unroll_max_nq: int) -> dict:
         speeds=([dict(name=s.name, description=s.description) for s in model.speeds]
                 if generalized else []),
         quaternions=model.quaternions,
+        coordinate_speeds=_coordinate_speeds(model) if generalized else [],
         limits=_limits_view(model),
         kinematic_constraints=[dict(name=c.name, holonomic=k < len(model.holonomic_constraints))
                                for k, c in enumerate([*model.holonomic_constraints,

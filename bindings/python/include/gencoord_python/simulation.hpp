@@ -11,6 +11,7 @@
 #include <cstddef>
 #include <functional>
 #include <memory>
+#include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
@@ -122,6 +123,20 @@ Script script_of(py::handle scripted) {
   });
 }
 
+/// The model with `script`'s coordinates prescribed; a coordinate that cannot be scripted
+/// (a free or ball joint's) is a ValueError.
+template <class M>
+ScriptedModel<M> scripted_model(const ParamsOf<M>& p, Script script) {
+  try {
+    return ScriptedModel<M>(p, std::move(script));
+  } catch (const std::invalid_argument& error) {
+    const std::string message = error.what();
+    const std::string prefix = "gencoord: ";
+    throw py::value_error(
+        "scripted: " + (message.rfind(prefix, 0) == 0 ? message.substr(prefix.size()) : message));
+  }
+}
+
 /// The control law of `inputs`: a function (t, q, v) -> u of shape (num_inputs,), a feedback
 /// law; or {input name or index: f(t) -> value, or keyframes (times, values)}, an input
 /// script (an input it does not name is 0).
@@ -228,10 +243,6 @@ void bind_simulation(py::module_& module) {
           ++row;
         };
         Script script = detail::script_of<M>(scripted);
-        if (has_generalized_speeds_v<M> && script.size() != 0)
-          throw py::value_error("scripted: " + std::string(M::name) +
-                                " has free or ball joints (generalized speeds); scripted "
-                                "coordinates are for models whose speeds are their rates");
         if (!(baumgarte >= 0) || !std::isfinite(baumgarte))
           throw py::value_error("baumgarte: expected a rate >= 0 (1/s), got " +
                                 std::to_string(baumgarte));
@@ -267,13 +278,15 @@ void bind_simulation(py::module_& module) {
                                   " declares no inputs (model.input() in its model file)");
           }
         } else {
-          ReducedSystem<M> system(p);
-          if constexpr (has_joint_limits_v<M>) system.set_joint_limits(joint_limits);
-          py::gil_scoped_release unlocked;
           if (script.size() == 0) {
+            ReducedSystem<M> system(p);
+            if constexpr (has_joint_limits_v<M>) system.set_joint_limits(joint_limits);
+            py::gil_scoped_release unlocked;
             simulate(system, initial, options, record);
-          } else if constexpr (!has_generalized_speeds_v<M>) {  // refused above
-            simulate(ScriptedModel<M>(p, std::move(script)), initial, options, record);
+          } else {
+            const ScriptedModel<M> system = detail::scripted_model<M>(p, std::move(script));
+            py::gil_scoped_release unlocked;
+            simulate(system, initial, options, record);
           }
         }
         return py::make_tuple(t, q, v, energy);

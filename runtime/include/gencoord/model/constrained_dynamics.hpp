@@ -27,6 +27,7 @@
 #include "gencoord/errors.hpp"
 #include "gencoord/model/model_traits.hpp"
 #include "gencoord/model/state.hpp"
+#include "gencoord/model/tangent_space.hpp"
 
 namespace gencoord {
 
@@ -53,17 +54,6 @@ template <class M>
 using ConstraintGram = Eigen::Matrix<double, M::num_constraints, M::num_constraints>;
 template <class M>
 using MinvAT = Eigen::Matrix<double, nv_of_v<M>, M::num_constraints>;
-
-// unit quaternions back on the sphere (a Gauss-Newton step on q leaves them off it)
-template <class M>
-void normalize_quaternions(QVec<M>* q) {
-  if constexpr (has_generalized_speeds_v<M>) {
-    for (const int start : M::quaternion_starts) {
-      auto quaternion = q->segment(start, 4);
-      quaternion /= quaternion.norm();
-    }
-  }
-}
 
 // Mt^-1 A^T and the Schur complement S = A Mt^-1 A^T, factored: what the constrained
 // acceleration and the velocity projection both solve with. `ok` is false where Mt is not

@@ -19,6 +19,7 @@
 #include "gencoord/model/joint_limits.hpp"
 #include "gencoord/model/model_traits.hpp"
 #include "gencoord/model/state.hpp"
+#include "gencoord/model/tangent_space.hpp"
 
 namespace gencoord {
 
@@ -76,7 +77,7 @@ class ReducedSystem {
             },
             s.q, s.v, s.t, &a_D_q, &out->force_D_v);
         if constexpr (has_generalized_speeds_v<M>) {
-          out->force_D_q = a_D_q * rate_matrix_transposed(s).transpose();
+          out->force_D_q = a_D_q * detail::rate_matrix_transposed<M>(p_, s.q, s.t).transpose();
         } else {
           out->force_D_q = a_D_q;
         }
@@ -87,7 +88,7 @@ class ReducedSystem {
       VQMat<M> a_D_q;
       acceleration_and_jacobians<M>(p_, s.q, s.v, s.t, source, &out->force, &a_D_q,
                                     &out->force_D_v);
-      out->force_D_q = a_D_q * rate_matrix_transposed(s).transpose();
+      out->force_D_q = a_D_q * detail::rate_matrix_transposed<M>(p_, s.q, s.t).transpose();
     } else {
       acceleration_and_jacobians<M>(p_, s.q, s.v, s.t, source, &out->force, &out->force_D_q,
                                     &out->force_D_v);
@@ -121,19 +122,6 @@ class ReducedSystem {
   }
 
  private:
-  // G^T, row j the rates of unit speed j (coordinate_rates is linear in v); in the model's
-  // own nv x nq type, which is a HeapMatrix past Eigen's stack limit
-  VQMat<M> rate_matrix_transposed(const State& s) const {
-    VQMat<M> rates_of;
-    VVec<M> e = VVec<M>::Zero();
-    for (int j = 0; j < nv_of_v<M>; ++j) {
-      e[j] = 1.0;
-      rates_of.row(j) = M::coordinate_rates(s.q, e, s.t, p_).transpose();
-      e[j] = 0.0;
-    }
-    return rates_of;
-  }
-
   ParamsOf<M> p_;
   ConstraintStabilization stabilization_;
   bool enforce_limits_ = true;

@@ -60,6 +60,31 @@ Eigen::MatrixXd coordinate_rate_matrix(const ParamsOf<M>& p, const QVec<M>& q, d
 
 namespace detail {
 
+// unit quaternions back on the sphere (a step on q, or a Gauss-Newton step, leaves them off it)
+template <class M>
+void normalize_quaternions(QVec<M>* q) {
+  if constexpr (has_generalized_speeds_v<M>) {
+    for (const int start : M::quaternion_starts) {
+      auto quaternion = q->segment(start, 4);
+      quaternion /= quaternion.norm();
+    }
+  }
+}
+
+// G(q)^T, row j the rates of unit speed j, in the model's own nv x nq type (a HeapMatrix past
+// Eigen's stack limit), so that the systems' Newton Jacobians allocate nothing
+template <class M>
+VQMat<M> rate_matrix_transposed(const ParamsOf<M>& p, const QVec<M>& q, double t) {
+  VQMat<M> rates_of;
+  VVec<M> e = VVec<M>::Zero();
+  for (int j = 0; j < nv_of_v<M>; ++j) {
+    e[j] = 1.0;
+    rates_of.row(j) = M::coordinate_rates(q, e, t, p).transpose();
+    e[j] = 0.0;
+  }
+  return rates_of;
+}
+
 using Quaternion = std::array<double, 4>;  // (w, x, y, z)
 
 inline Quaternion quaternion_product(const Quaternion& a, const Quaternion& b) {
