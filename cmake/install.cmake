@@ -15,8 +15,8 @@
 #   <P>/share/gencoord/                the generator and the command's parts, laid out as in
 #                                      the repository: generate, python/gencoord/ (the
 #                                      package, its templates and data files),
-#                                      cmake/gencoord*.cmake and simd.cmake, drivers/*.cpp, *.hpp, *.cmake,
-#                                      bindings/python/
+#                                      cmake/gencoord*.cmake and simd.cmake,
+#                                      drivers/*.cpp, *.hpp, *.cmake, bindings/python/
 # (lib and share are GNUInstallDirs' CMAKE_INSTALL_LIBDIR and CMAKE_INSTALL_DATADIR.)
 # The install component `runtime` is the runtime alone (headers, library, exported target):
 # the gencoord command builds it once per user into its cache and installs just it. The
