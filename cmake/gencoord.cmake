@@ -143,8 +143,9 @@ function(gencoord_add_model target)
   endif()
   if(sources)
     add_library(${target} STATIC ${sources})
-    # each file defines GENCOORD_PART_GROUP for the one header it includes
-    set_target_properties(${target} PROPERTIES UNITY_BUILD OFF)
+    # each file defines GENCOORD_PART_GROUP for the one header it includes; position-independent
+    # so that a Python module (a shared library) can link the model too
+    set_target_properties(${target} PROPERTIES UNITY_BUILD OFF POSITION_INDEPENDENT_CODE ON)
     target_include_directories(${target} PUBLIC "${include_dir}")
     target_link_libraries(${target} PUBLIC Eigen3::Eigen)
     target_compile_features(${target} PUBLIC cxx_std_17)

@@ -138,17 +138,33 @@ class FloatCheck {
   template <class Kernel>
   void operator()(const std::string& name, Kernel kernel, double condition = 1.0,
                   double scale = 0.0) {
+    // only the evaluations depend on the kernel's type; judge() is compiled once per model
     const Eigen::VectorXd exact = column(kernel(0.0, in_));
     const Eigen::VectorXd single = column(kernel(0.0f, in_));
+    std::array<Eigen::VectorXd, kPerturbations> moved;
+    if (exact.size() != 0) {
+      for (Eigen::VectorXd& column_moved : moved) column_moved = column(kernel(0.0, perturbed()));
+    }
+    judge(name, exact, single, moved, condition, scale);
+  }
+
+  void set_inputs(const Inputs<M>& in) { in_ = in; }
+
+  /// The inputs, each scaled by (1 + e) with e in [-kFloatEpsilon, kFloatEpsilon].
+  Inputs<M> perturbed() const {
+    std::uniform_real_distribution<double> e(-kFloatEpsilon, kFloatEpsilon);
+    return in_.map([&](double x) { return x * (1 + e(*rng_)); });
+  }
+
+  void judge(const std::string& name, const Eigen::VectorXd& exact, const Eigen::VectorXd& single,
+             const std::array<Eigen::VectorXd, kPerturbations>& moved, double condition,
+             double scale) {
     ASSERT_EQ(exact.size(), single.size());
     if (exact.size() == 0) return;
     ASSERT_TRUE(exact.allFinite()) << M::name << "::" << name;
     double sensitivity = 0;
-    std::uniform_real_distribution<double> e(-kFloatEpsilon, kFloatEpsilon);
-    for (int k = 0; k < kPerturbations; ++k) {
-      const auto moved = in_.map([&](double x) { return x * (1 + e(*rng_)); });
-      sensitivity =
-          std::max(sensitivity, (column(kernel(0.0, moved)) - exact).cwiseAbs().maxCoeff());
+    for (const Eigen::VectorXd& column_moved : moved) {
+      sensitivity = std::max(sensitivity, (column_moved - exact).cwiseAbs().maxCoeff());
     }
     const double bound = std::max(
         kFloatEpsilon * condition * std::max(exact.cwiseAbs().maxCoeff(), scale), sensitivity);
@@ -159,8 +175,6 @@ class FloatCheck {
                                  << "\n double " << exact.transpose() << "\n sensitivity "
                                  << sensitivity;
   }
-
-  void set_inputs(const Inputs<M>& in) { in_ = in; }
   const Inputs<M>& inputs() const { return in_; }
 
   std::string summary() const {

@@ -57,8 +57,8 @@ class Comparison {
   /// reference value, or to `floor` times the largest reference entry of the kernel, or to
   /// `scale`, where those are larger (so sums that cancel to near zero are not held to 1e-12
   /// of their tiny result).
-  template <class Derived>
-  void operator()(const std::string& kernel, const Eigen::MatrixBase<Derived>& actual,
+  // not a template: compiled once, not once per kernel type of every model
+  void operator()(const std::string& kernel, const Eigen::MatrixXd& actual,
                   const std::vector<double>& expected, double floor = 1e-3, double scale = 0) {
     ASSERT_EQ(static_cast<long>(expected.size()), static_cast<long>(actual.size()))
         << model_ << "::" << kernel << ": reference and kernel sizes differ";

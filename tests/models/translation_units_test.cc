@@ -6,8 +6,8 @@
 // --translation-units 3 and --max-function-statements 3 (gencoord_add_model's
 // TRANSLATION_UNITS): every kernel's many parts are spread over three class templates,
 // compiled for double only in <name>_double_{0,1,2}.cpp, which this program links. Those
-// models keep their names, so this is a program of its own, and the header-only versions
-// (generated for every test) are included here inside namespace `whole`.
+// models keep their names, so this is a program of its own, and header-only versions cut
+// the same way (the split-kernel test's) are included here inside namespace `whole`.
 #include <array>
 #include <cmath>
 #include <limits>
@@ -24,8 +24,8 @@
 #include "same_kernels.hpp"
 
 namespace whole {
-#include "gencoord_generated/generated/double_pendulum.hpp"  // NOLINT(build/include)
-#include "gencoord_generated/generated/n_link_chain_5.hpp"   // NOLINT(build/include)
+#include "split/generated/double_pendulum.hpp"  // NOLINT(build/include)
+#include "split/generated/n_link_chain_5.hpp"   // NOLINT(build/include)
 }  // namespace whole
 
 namespace gencoord::testing {
