@@ -150,12 +150,24 @@ class FloatCheck {
 
   void set_inputs(const Inputs<M>& in) { in_ = in; }
 
+  const Inputs<M>& inputs() const { return in_; }
+
+  std::string summary() const {
+    std::ostringstream out;
+    out << M::name << ": worst error / (a, b)";
+    for (const auto& [name, worst] : worst_) out << " " << name << " " << worst;
+    return out.str();
+  }
+
+ private:
   /// The inputs, each scaled by (1 + e) with e in [-kFloatEpsilon, kFloatEpsilon].
   Inputs<M> perturbed() const {
     std::uniform_real_distribution<double> e(-kFloatEpsilon, kFloatEpsilon);
     return in_.map([&](double x) { return x * (1 + e(*rng_)); });
   }
 
+  /// The kernel's worst error relative to its bound, from its double and float results and
+  /// its double results at perturbed inputs (compiled once per model, not per kernel).
   void judge(const std::string& name, const Eigen::VectorXd& exact, const Eigen::VectorXd& single,
              const std::array<Eigen::VectorXd, kPerturbations>& moved, double condition,
              double scale) {
@@ -175,16 +187,7 @@ class FloatCheck {
                                  << "\n double " << exact.transpose() << "\n sensitivity "
                                  << sensitivity;
   }
-  const Inputs<M>& inputs() const { return in_; }
 
-  std::string summary() const {
-    std::ostringstream out;
-    out << M::name << ": worst error / (a, b)";
-    for (const auto& [name, worst] : worst_) out << " " << name << " " << worst;
-    return out.str();
-  }
-
- private:
   Inputs<M> in_;
   std::mt19937* rng_;
   std::map<std::string, double> worst_;

@@ -236,7 +236,7 @@ void check_residual_jacobians(const ModelView& m) {
   }
 }
 
-void check_declared_constraints(ModelView m) {
+void check_declared_constraints(const ModelView& m) {
   // A constraint must hold on X(q, t) for every parameter value, not only the defaults: a
   // rod of literal length 1 over a pendulum of length l = 1 would pass at the defaults.
   if (!m.constraint_violations) GTEST_SKIP() << m.name << " has no Maximal model";
