@@ -3,6 +3,7 @@
 // they depend on may have changed (explicit_stepper.hpp).
 #include "gencoord/deformable/explicit_stepper.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <optional>
@@ -22,10 +23,12 @@ template <int Dim>
 struct Signature {
   const MassSpringSystem<Dim>* object = nullptr;
   std::vector<std::size_t> counts;
+  std::size_t fractures = 0;
   std::vector<double> settings;
   std::vector<char> pinned;
 
-  explicit Signature(const MassSpringSystem<Dim>& s) : object(&s), pinned(s.pinned) {
+  explicit Signature(const MassSpringSystem<Dim>& s)
+      : object(&s), fractures(s.fractures.size()), pinned(s.pinned) {
     counts = {static_cast<std::size_t>(s.x.cols()),
               static_cast<std::size_t>(s.v.cols()),
               static_cast<std::size_t>(s.mass.size()),
@@ -33,7 +36,6 @@ struct Signature {
               s.elements.size(),
               s.volume_terms.size(),
               s.hinges.size(),
-              s.fractures.size(),
               s.ground.has_value(),
               s.collisions.has_value()};
     settings = {s.wave_speed, s.inelastic.fracture_strain, s.inelastic.yield_strain,
@@ -50,6 +52,10 @@ struct Signature {
   }
   // NaN settings compare unequal, so an object with one is validated (and refused) again
   bool operator==(const Signature& o) const {
+    return fractures == o.fractures && same_but_fractures(o);
+  }
+  // a fracture only removes stiffness, so it lowers every frequency: the last estimate holds
+  bool same_but_fractures(const Signature& o) const {
     return object == o.object && counts == o.counts && settings == o.settings && pinned == o.pinned;
   }
 };
@@ -61,6 +67,8 @@ struct ExplicitStepper<Dim>::Kept {
   ExplicitOptions options;
   std::optional<Signature<Dim>> validated;  // the object as last validated
   double limit = 0.0;
+  // stable_step_limit() and cfl_limit() when it was computed, for plasticity's steps
+  double estimated = 0.0, conservative = 0.0;
 };
 
 template <int Dim>
@@ -93,14 +101,23 @@ void ExplicitStepper<Dim>::step(MassSpringSystem<Dim>& s, double dt) {
   Signature<Dim> now(s);
   const bool plastic = std::isfinite(s.inelastic.yield_strain);
   if (!k.validated || !(*k.validated == now)) {
+    const bool fractured = k.validated && k.validated->same_but_fractures(now);
     k.validated.reset();
     validate_object(s);
-    k.limit = deformable::cfl_limit(s);
+    if (fractured) {
+      k.limit = std::max(deformable::cfl_limit(s), k.limit);
+    } else {
+      k.limit = k.estimated = stable_step_limit(s);
+      k.conservative = deformable::cfl_limit(s);
+    }
     k.validated = std::move(now);
   } else if (plastic) {
-    k.limit = deformable::cfl_limit(s);  // yielding changes rest lengths, so L_min
+    // yielding changes rest lengths: the estimate (too costly to repeat every step) follows
+    // the change of L_min / c_s when that shrinks, and never grows
+    const double conservative = deformable::cfl_limit(s);
+    k.limit = std::max(conservative, k.estimated * std::min(1.0, conservative / k.conservative));
   }
-  detail::check_cfl(s, dt, k.limit, k.options);
+  detail::check_cfl(s, dt, k.limit, k.options, /*estimated=*/true);
   try {
     detail::take_symplectic_euler_step(s, dt);
   } catch (const ObjectError&) {

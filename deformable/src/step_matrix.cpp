@@ -109,6 +109,21 @@ void StepMatrix<Dim>::build(const MassSpringSystem<Dim>& s) {
 template <int Dim>
 void StepMatrix<Dim>::assemble(const MassSpringSystem<Dim>& s, const Points& q, const Points& v,
                                double dt, Eigen::VectorXd* masses, Eigen::VectorXd* k_v) {
+  fill(s, q, v, {1.0, dt, dt * dt, true}, masses, k_v);
+}
+
+template <int Dim>
+void StepMatrix<Dim>::assemble_stiffness(const MassSpringSystem<Dim>& s, const Points& q,
+                                         Eigen::VectorXd* masses) {
+  Eigen::VectorXd k_v;
+  fill(s, q, Points::Zero(Dim, s.num_nodes()), {0.0, 0.0, 1.0, false}, masses, &k_v);
+}
+
+template <int Dim>
+void StepMatrix<Dim>::fill(const MassSpringSystem<Dim>& s, const Points& q, const Points& v,
+                           const Scales& scales, Eigen::VectorXd* masses, Eigen::VectorXd* k_v) {
+  // A = scales.mass M - scales.damping D - scales.stiffness K (dt and dt^2 for a step)
+  const double h_d = scales.damping, h_k = scales.stiffness;
   using Vec = Eigen::Matrix<double, Dim, 1>;
   using Block = Eigen::Matrix<double, Dim, Dim>;
   double* values = a_.valuePtr();
@@ -119,7 +134,7 @@ void StepMatrix<Dim>::assemble(const MassSpringSystem<Dim>& s, const Points& q, 
     if (dof_[n] < 0) continue;
     for (int c = 0; c < Dim; ++c) {
       (*masses)[dof_[n] + c] = s.mass(n);
-      values[diagonal_slots_[dof_[n] + c]] = s.mass(n);
+      values[diagonal_slots_[dof_[n] + c]] = scales.mass * s.mass(n);
     }
   }
   // adds sign * block at the block's slots (one per column; its Dim rows follow)
@@ -136,7 +151,7 @@ void StepMatrix<Dim>::assemble(const MassSpringSystem<Dim>& s, const Points& q, 
         spring_force<Dim>(q.col(sp.i), q.col(sp.j), v.col(sp.i), v.col(sp.j), sp.params);
     const SpringJacobian<Dim> jac = spring_jacobian<Dim>(sf, sp.params, /*definite=*/true);
     // K has -J at ii and jj and +J at ij and ji (springs.hpp), D the same with the damping J
-    const Block c = dt * jac.f_i_D_dv + (dt * dt) * jac.f_i_D_d;
+    const Block c = h_d * jac.f_i_D_dv + h_k * jac.f_i_D_d;
     const int* slots = &spring_slots_[k * 4 * Dim];
     add(slots, 1.0, c);
     add(slots + Dim, 1.0, c);
@@ -155,21 +170,21 @@ void StepMatrix<Dim>::assemble(const MassSpringSystem<Dim>& s, const Points& q, 
     if (dof_[a] < 0 || dof_[b] < 0) return;
     for (int c = 0; c < Dim; ++c) {
       const int at = slot(a, b, c);
-      for (int r = 0; r < Dim; ++r) values[at + r] -= dt * dt * k_ab(r, c);
+      for (int r = 0; r < Dim; ++r) values[at + r] -= h_k * k_ab(r, c);
     }
     k_v->template segment<Dim>(dof_[a]) += k_ab * v.col(b);
   });
   // continuum elements: as the volume terms, with their damping blocks
   for_each_continuum_block(s, q, [&](int a, int b, const Block& k_ab, const Block& d_ab) {
     if (dof_[a] < 0 || dof_[b] < 0) return;
-    const Block c = dt * d_ab + (dt * dt) * k_ab;
+    const Block c = h_d * d_ab + h_k * k_ab;
     for (int col = 0; col < Dim; ++col) {
       const int at = slot(a, b, col);
       for (int r = 0; r < Dim; ++r) values[at + r] -= c(r, col);
     }
     k_v->template segment<Dim>(dof_[a]) += k_ab * v.col(b);
   });
-  // hinges: K_ab = -2 kb g_a g_b^T (bending.hpp), so A gets dt^2 2 kb g_a g_b^T
+  // hinges: K_ab = -2 kb g_a g_b^T (bending.hpp), so A gets h_k 2 kb g_a g_b^T
   if constexpr (Dim == 3) {
     for (std::size_t k = 0; k < s.hinges.size(); ++k) {
       const Hinge& h = s.hinges[k];
@@ -186,12 +201,13 @@ void StepMatrix<Dim>::assemble(const MassSpringSystem<Dim>& s, const Points& q, 
         if (da < 0) continue;
         k_v->template segment<Dim>(da) -= (weight * g_v) * angle.gradient[a];
         for (int b = 0; b < 4; ++b) {
-          add(&hinge_slots_[(k * 16 + a * 4 + b) * Dim], dt * dt * weight,
+          add(&hinge_slots_[(k * 16 + a * 4 + b) * Dim], h_k * weight,
               angle.gradient[a] * angle.gradient[b].transpose());
         }
       }
     }
   }
+  if (!scales.penalties) return;
   // ground contact: a penalty spring and damper along the up axis while it pushes
   if (s.ground) {
     const GroundPlane& g = *s.ground;
@@ -203,7 +219,7 @@ void StepMatrix<Dim>::assemble(const MassSpringSystem<Dim>& s, const Points& q, 
       if (depth > 0.0 && push > 0.0) {
         const double stiffness = s.mass(n) * g.omega * g.omega;
         const double damping = s.mass(n) * 2.0 * g.damping_ratio * g.omega;
-        values[diagonal_slots_[dof_[n] + up]] += dt * damping + dt * dt * stiffness;
+        values[diagonal_slots_[dof_[n] + up]] += h_d * damping + h_k * stiffness;
         (*k_v)[dof_[n] + up] -= stiffness * v(up, n);
       }
     }
@@ -216,7 +232,7 @@ void StepMatrix<Dim>::assemble(const MassSpringSystem<Dim>& s, const Points& q, 
     for (const auto& block : blocks) {
       const int d = dof_[block.node];
       if (d < 0) continue;
-      const Block c = -(dt * block.d_velocity + (dt * dt) * block.d_position);
+      const Block c = -(h_d * block.d_velocity + h_k * block.d_position);
       for (int col = 0; col < Dim; ++col) {
         const int column_start = diagonal_slots_[d + col] - col;
         for (int r = 0; r < Dim; ++r) values[column_start + r] += c(r, col);

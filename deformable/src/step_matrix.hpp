@@ -41,6 +41,11 @@ class StepMatrix {
   void assemble(const MassSpringSystem<Dim>& s, const Points& q, const Points& v, double dt,
                 Eigen::VectorXd* masses, Eigen::VectorXd* k_v);
 
+  /// Writes -K at q into the pattern, K the stiffness of the springs (definite), volume terms,
+  /// continuum elements and hinges, without mass, damping, ground or contacts (so contacts()
+  /// keeps its value); the free masses into `masses`.
+  void assemble_stiffness(const MassSpringSystem<Dim>& s, const Points& q, Eigen::VectorXd* masses);
+
   const Eigen::SparseMatrix<double>& matrix() const { return a_; }
   /// The contacts the last assemble() included, as contact_set() of its (q, v).
   const std::vector<int>& contacts() const { return contacts_; }
@@ -49,6 +54,12 @@ class StepMatrix {
   int unknowns() const { return static_cast<int>(a_.rows()); }
 
  private:
+  struct Scales {
+    double mass, damping, stiffness;  // A = mass M - damping D - stiffness K
+    bool penalties;                   // the ground's and the contacts' terms too
+  };
+  void fill(const MassSpringSystem<Dim>& s, const Points& q, const Points& v, const Scales& scales,
+            Eigen::VectorXd* masses, Eigen::VectorXd* k_v);
   // where the (a, b) block of node rows a and node columns b starts in column c of the block
   int slot(int a, int b, int c) const;
 

@@ -13,10 +13,10 @@
 
 namespace gencoord::deformable {
 
+namespace detail {
+
 template <int Dim>
-double damping_ratio_at_cfl(const MassSpringSystem<Dim>& s) {
-  // the stiffest mode (wavelength 2 L_min) has omega = 2 c / L_min and, since every spring has
-  // the same d / k = D / E, damping ratio zeta = (d / k) omega / 2
+double damping_over_stiffness(const MassSpringSystem<Dim>& s) {
   double d_over_k = 0.0;
   for (const Spring& sp : s.springs) {
     if (!sp.broken && sp.params.stiffness > 0.0) {
@@ -29,12 +29,22 @@ double damping_ratio_at_cfl(const MassSpringSystem<Dim>& s) {
       if (continuum_element_active(s, element)) d_over_k = std::max(d_over_k, element.damping_time);
     }
   }
-  return d_over_k * s.wave_speed / min_rest_length(s);
+  return d_over_k;
+}
+
+double damping_factor(double zeta) { return 1.0 / (std::hypot(1.0, zeta) + zeta); }
+
+}  // namespace detail
+
+template <int Dim>
+double damping_ratio_at_cfl(const MassSpringSystem<Dim>& s) {
+  // the stiffest mode (wavelength 2 L_min) has omega = 2 c / L_min and, since every spring has
+  // the same d / k = D / E, damping ratio zeta = (d / k) omega / 2
+  return detail::damping_over_stiffness(s) * s.wave_speed / min_rest_length(s);
 }
 
 namespace {
-// sqrt(1 + zeta^2) - zeta, written so that it neither overflows nor cancels for large zeta
-double damping_factor(double zeta) { return 1.0 / (std::hypot(1.0, zeta) + zeta); }
+using detail::damping_factor;
 
 // undamped: L_min / c_s (c_s: the fastest spring's own speed). Damping evaluated explicitly shrinks
 // it by sqrt(1 + zeta^2) - zeta (the stability bound of symplectic Euler on a damped mode); the
@@ -63,15 +73,23 @@ double checked_cfl_limit(const MassSpringSystem<Dim>& s, double dt,
 
 template <int Dim>
 void check_cfl(const MassSpringSystem<Dim>& s, double dt, double limit,
-               const ExplicitOptions& options) {
+               const ExplicitOptions& options, bool estimated) {
   if (dt <= limit || options.allow_cfl_violation) return;
-  char message[384];
-  std::snprintf(
-      message, sizeof message,
-      "explicit step dt = %.6g s exceeds the CFL limit %.6g s = L_min / c_s "
-      "(L_min = %.6g m, fastest spring c_s = %.6g m/s) times %.6g for damping; take a smaller "
-      "step, use backward Euler, or set ExplicitOptions::allow_cfl_violation",
-      dt, limit, min_rest_length(s), s.wave_speed, damping_factor(damping_ratio_at_cfl(s)));
+  static const char kWhatToDo[] =
+      "take a smaller step, use backward Euler, or set ExplicitOptions::allow_cfl_violation";
+  char message[512];
+  if (estimated) {
+    std::snprintf(message, sizeof message,
+                  "explicit step dt = %.6g s exceeds the stable step %.6g s (the larger of "
+                  "L_min / c_s and 2 / omega_max, omega_max estimated, with damping); %s",
+                  dt, limit, kWhatToDo);
+  } else {
+    std::snprintf(message, sizeof message,
+                  "explicit step dt = %.6g s exceeds the CFL limit %.6g s = L_min / c_s "
+                  "(L_min = %.6g m, fastest spring c_s = %.6g m/s) times %.6g for damping; %s",
+                  dt, limit, min_rest_length(s), s.wave_speed,
+                  damping_factor(damping_ratio_at_cfl(s)), kWhatToDo);
+  }
   throw CflViolation(message);
 }
 
@@ -108,10 +126,11 @@ template double cfl_limit<1>(const MassSpringSystem<1>&);
 template double cfl_limit<2>(const MassSpringSystem<2>&);
 template double cfl_limit<3>(const MassSpringSystem<3>&);
 #define GENCOORD_INSTANTIATE(D)                                                    \
+  template double detail::damping_over_stiffness<D>(const MassSpringSystem<D>&);   \
   template double detail::checked_cfl_limit<D>(const MassSpringSystem<D>&, double, \
                                                const ExplicitOptions&);            \
   template void detail::check_cfl<D>(const MassSpringSystem<D>&, double, double,   \
-                                     const ExplicitOptions&);                      \
+                                     const ExplicitOptions&, bool);                \
   template void detail::take_symplectic_euler_step<D>(MassSpringSystem<D>&, double);
 GENCOORD_INSTANTIATE(1)
 GENCOORD_INSTANTIATE(2)

@@ -15,6 +15,7 @@
 #include <random>
 #include <string>
 
+#include "dense_frequency.hpp"
 #include "gencoord/deformable/errors.hpp"
 #include "gencoord/deformable/explicit_stepper.hpp"
 #include "gencoord/deformable/implicit_stepper.hpp"
@@ -32,6 +33,7 @@ namespace gencoord::deformable {
 namespace {
 
 const std::string kMeshes = test_meshes_dir();
+using testing::dense_highest_frequency;
 
 Material corotated(double youngs, double nu, double damping = 0.0) {
   Material m{youngs, 1000.0, damping};
@@ -189,21 +191,6 @@ TEST(ContinuumMaterial, ScenesKeepEachObjectsElements) {
 
 // omega_max of M^-1 K by dense eigensolve of the object's linearized stiffness at rest
 // (springs, terms and elements; every node free)
-template <int Dim>
-double dense_highest_frequency(const MassSpringSystem<Dim>& s) {
-  const MassSpringIntegration<Dim> system(s);
-  Linearization<MassSpringIntegration<Dim>> lin;
-  system.linearize({s.t, s.x, s.v}, JacobianSource::Auto, &lin);
-  const Eigen::MatrixXd k(lin.force_D_q);
-  Eigen::VectorXd scale(k.rows());
-  for (int n = 0; n < s.num_nodes(); ++n)
-    scale.segment<Dim>(Dim * n).setConstant(1.0 / std::sqrt(s.mass(n)));
-  const Eigen::MatrixXd a = -(scale.asDiagonal() * k * scale.asDiagonal());
-  return std::sqrt(Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(0.5 * (a + a.transpose()))
-                       .eigenvalues()
-                       .maxCoeff());
-}
-
 // The estimate is above the true highest frequency and within 10% of it, so the CFL limit is
 // stable and within 10% of the true limit 2 / omega_max
 template <int Dim>
@@ -227,7 +214,7 @@ TEST(ContinuumMaterial, HighestFrequencyEstimateIsTight) {
 
 // The springs' CFL limit L_min / c against the true limit 2 / omega_max (dense eigensolve of
 // their linearized stiffness at rest): exact for a uniform rod, safe but 2 to 2.7 times too
-// small in 2D and 3D (a weakness the docs state, which the elements' estimate does not have)
+// small in 2D and 3D (the docs state it; stable_step_limit(), stable_step_test.cc, is tight)
 template <int Dim>
 double spring_cfl_over_true(const MassSpringSystem<Dim>& s) {
   return cfl_limit(s) / (2.0 / dense_highest_frequency(s));

@@ -46,7 +46,8 @@ TEST(ExplicitStepper, TakesTheRuntimesStepsBitForBitThroughFracture) {
   }
   EXPECT_GT(kept.fractures.size(), 0u) << "the strip should have broken";
   EXPECT_EQ(kept.fractures.size(), runtime.fractures.size());
-  EXPECT_DOUBLE_EQ(stepper.cfl_limit(), cfl_limit(kept));
+  // stable_step_limit() as computed after the last fracture: at least the CFL limit
+  EXPECT_GE(stepper.cfl_limit(), cfl_limit(kept));
 }
 
 TEST(ExplicitStepper, ChecksWhatChangesBetweenSteps) {
@@ -55,7 +56,7 @@ TEST(ExplicitStepper, ChecksWhatChangesBetweenSteps) {
   ExplicitStepper<2> stepper;
   const double dt = 0.5 * cfl_limit(s);
   stepper.step(s, dt);
-  EXPECT_THROW(stepper.step(s, 3.0 * cfl_limit(s)), CflViolation);
+  EXPECT_THROW(stepper.step(s, 1.01 * stepper.cfl_limit()), CflViolation);
   MassSpringSystem<2> bad = s;
   bad.wave_speed = std::nan("");
   EXPECT_THAT([&] { stepper.step(bad, dt); }, ThrowsMessage<ObjectError>(HasSubstr("wave speed")));

@@ -146,8 +146,10 @@ int Run(const Options& o) {
   dt = duration / steps;  // land exactly on the duration
 
   std::printf("%s: %s\n", sc.name.c_str(), sc.description.c_str());
-  std::printf("  %d nodes, %zu springs, fastest spring %.4g m/s, CFL limit %.4g s\n", s.num_nodes(),
-              s.springs.size(), s.wave_speed, cfl);
+  std::printf(
+      "  %d nodes, %zu springs, fastest spring %.4g m/s, CFL limit %.4g s, stable step "
+      "%.4g s\n",
+      s.num_nodes(), s.springs.size(), s.wave_speed, cfl, gd::stable_step_limit(s));
   std::printf("  %s Euler, dt = %.4g s (%.3g x CFL), %d steps, %.3g s\n",
               implicit ? "backward" : "symplectic", dt, dt / cfl, steps, duration);
 

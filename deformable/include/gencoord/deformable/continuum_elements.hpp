@@ -134,9 +134,9 @@ void for_each_continuum_block(const MassSpringSystem<Dim>& s,
 
 /// An estimate from above of the highest angular frequency (1/s) of the elements of `s`
 /// about positions s.x, over its free nodes: sqrt of the largest eigenvalue of M^-1 K (K their
-/// definite stiffness, M the lumped masses) by power iteration, raised by a margin that covers
-/// what the iteration has not converged (continuum_elements.cpp). Symplectic Euler is stable
-/// for dt <= 2 / omega_max; pinning more nodes only lowers it. 0 without elements.
+/// definite stiffness, M the lumped masses) by Lanczos iterations, raised by a 5% margin that
+/// covers what the iterations have not converged (continuum_elements.cpp). Symplectic Euler is
+/// stable for dt <= 2 / omega_max; pinning more nodes only lowers it. 0 without elements.
 template <int Dim>
 double continuum_highest_frequency(const MassSpringSystem<Dim>& s);
 

@@ -4,10 +4,13 @@
 /// Symplectic Euler steps of one mass-spring object that check it once: symplectic_euler_step()
 /// (time_step.hpp) validates the whole object and recomputes the CFL limit at every step,
 /// which costs more than the step's force sum on a large object. ExplicitStepper validates the
-/// object and computes the limit at its first step, and again only when what they depend on
-/// may have changed: the counts of nodes, springs, elements, terms and hinges, a spring that
+/// object and computes its limit, stable_step_limit() (up to 2.5 times cfl_limit() in 3D, from
+/// an estimate of the highest frequency), at its first step, and again only when what they depend
+/// on may have changed: the counts of nodes, springs, elements, terms and hinges, a spring that
 /// broke (a new fracture event), the wave speed, the gravity, the ground, the collisions, the
-/// pinned nodes, or, while plasticity is on, every step (yielding changes rest lengths). A value
+/// pinned nodes, or, while plasticity is on, every step (yielding changes rest lengths; the
+/// limit then follows the change of cfl_limit() below the last estimate). A fracture keeps the
+/// estimate: removing a spring lowers every frequency. A value
 /// the user changes in place between steps (a spring's stiffness, a node's mass) is not
 /// re-checked: call invalidate() after such a change. A step whose result is not finite is
 /// still refused (ObjectError, the object left unchanged), with the full validation's message
@@ -32,7 +35,8 @@ class ExplicitStepper {
   /// \throws as symplectic_euler_step(); s is then left unchanged.
   void step(MassSpringSystem<Dim>& s, double dt);
 
-  /// The CFL limit the last step was checked against (s); 0 before the first step.
+  /// The limit the last step was checked against (s), stable_step_limit() of the object when
+  /// last computed; 0 before the first step.
   double cfl_limit() const;
 
   /// Forgets the validation, so the next step validates the object again.
