@@ -10,11 +10,10 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
-#include <random>
 #include <string>
 #include <vector>
 
-#include "dense_frequency.hpp"
+#include "explicit_stability.hpp"
 #include "gencoord/deformable/errors.hpp"
 #include "gencoord/deformable/explicit_stepper.hpp"
 #include "gencoord/deformable/mesh_io.hpp"
@@ -92,49 +91,24 @@ TEST(StableStep, EstimateIsBelowTheTrueLimitAndWithinSixPercent) {
 // limit (about 2.4 times L_min / c) and stays bounded over 3000 steps; above its limit it
 // refuses; at 1.3 times the true limit the step diverges
 TEST(StableStep, ExplicitStepperTakesStepsUpToTheTrueLimit) {
-  const SimplexMesh<3> mesh = read_gmsh<3>(kMeshes + "/block_v41.msh");
-  auto ringing = [&] {
-    MassSpringSystem<3> s = make_mass_spring(mesh, springs());
-    std::mt19937 random(11);
-    std::normal_distribution<double> kick(0.0, 0.05);
-    for (int n = 0; n < s.num_nodes(); ++n)
-      for (int d = 0; d < 3; ++d) s.v(d, n) = kick(random);
-    return s;
-  };
-  MassSpringSystem<3> s = ringing();
-  const double e0 = total_energy(s), limit = stable_step_limit(s);
+  const MassSpringSystem<3> start =
+      testing::ringing(make_mass_spring(read_gmsh<3>(kMeshes + "/block_v41.msh"), springs()));
+  MassSpringSystem<3> s = start;
+  const double limit = stable_step_limit(s);
   EXPECT_GT(limit, 2.0 * cfl_limit(s));
   ExplicitStepper<3> stepper;
   EXPECT_THROW(stepper.step(s, 1.01 * limit), CflViolation);
-  double first = 0.0, last = 0.0;  // the largest energy in the first and the last 1000 steps
-  for (int k = 0; k < 3000; ++k) {
-    stepper.step(s, 0.98 * limit);
-    const double e = total_energy(s) / e0;
-    if (k < 1000) first = std::max(first, e);
-    if (k >= 2000) last = std::max(last, e);
-  }
+  const testing::EnergySwing swing =
+      testing::energy_swing(s, [&](MassSpringSystem<3>& o) { stepper.step(o, 0.98 * limit); });
   EXPECT_DOUBLE_EQ(stepper.cfl_limit(), limit);
-  EXPECT_LT(first, 3.0);
-  EXPECT_LT(last, 1.05 * first);
-  MassSpringSystem<3> fast = ringing();
-  const double true_limit = 2.0 / dense_highest_frequency(fast);
-  ExplicitOptions anyway;
-  anyway.allow_cfl_violation = true;
-  ExplicitStepper<3> forced(anyway);
-  bool diverged = false;
-  try {
-    for (int k = 0; k < 3000 && !diverged; ++k) {
-      forced.step(fast, 1.3 * true_limit);
-      diverged = total_energy(fast) > 1e3 * e0;
-    }
-  } catch (const ObjectError&) {
-    diverged = true;
-  }
-  EXPECT_TRUE(diverged);
+  EXPECT_LT(swing.first, 3.0);
+  EXPECT_LT(swing.last, 1.05 * swing.first);
+  const double true_limit = 2.0 / dense_highest_frequency(start);
+  EXPECT_TRUE(testing::diverges(start, 1.3 * true_limit));
   std::printf(
       "[ stable step ] springs block: limit %.3e s = %.3f of the true limit, %.2f times "
       "L_min / c; largest energy %.3f E0 in the first 1000 steps, %.3f in the last\n",
-      limit, limit / true_limit, limit / cfl_limit(s), first, last);
+      limit, limit / true_limit, limit / cfl_limit(s), swing.first, swing.last);
 }
 
 // The ground's penalty lowers the limit (to 2 / sqrt(omega^2 + omega_g^2), a bound for a node
