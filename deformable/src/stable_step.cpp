@@ -36,8 +36,8 @@ double stable_step_limit(const MassSpringSystem<Dim>& s) {
     omega_p = s.ground->omega;
     zeta_p = s.ground->damping_ratio;
   }
-  if (s.collisions && s.collisions->params.omega > omega_p) {
-    omega_p = s.collisions->params.omega;
+  if (s.collisions) {
+    omega_p = std::max(omega_p, s.collisions->params.omega);
     zeta_p = std::max(zeta_p, s.collisions->params.damping_ratio);
   }
   const double zeta = std::max(detail::damping_over_stiffness(s) * omega / 2.0, zeta_p);
