@@ -40,8 +40,8 @@ double highest_frequency(const MassSpringSystem<Dim>& s);
 /// The step up to which symplectic Euler is stable (s): the larger of cfl_limit(s) and
 /// 2 / omega (omega: highest_frequency(s), raised to sqrt(omega^2 + omega_p^2) by the ground's
 /// or the contacts' penalty omega_p) times sqrt(1 + zeta^2) - zeta for the damping ratio
-/// zeta of that mode. Within 5% of the true limit on the meshes the tests measure, where
-/// cfl_limit(s) is 0.4 to 0.8 of it in 2D and 3D; ExplicitStepper checks its steps against
+/// zeta of that mode. Within 6% of the true limit on the meshes the tests measure, where
+/// cfl_limit(s) is 0.3 to 0.8 of it in 2D and 3D; ExplicitStepper checks its steps against
 /// it. Infinity when nothing is stiff.
 template <int Dim>
 double stable_step_limit(const MassSpringSystem<Dim>& s);
