@@ -3,8 +3,8 @@
 // strain-rate damping (continuum_elements.hpp).
 #include "gencoord/deformable/continuum_elements.hpp"
 
+#include <Eigen/Geometry>
 #include <Eigen/LU>
-#include <Eigen/SVD>
 #include <Eigen/SparseCore>
 #include <algorithm>
 #include <cmath>
@@ -59,29 +59,72 @@ Polar<2> polar(const Mat<2>& f) {
   return out;
 }
 
+// V by cyclic Jacobi rotations on F^T F (accurate eigenvectors, a few sweeps for 3 x 3), then
+// U from the columns of B = F V, which are orthogonal: Gram-Schmidt on the two longest and
+// u_2 = u_0 x u_1, so that U is proper and the smallest stretch u_2 . b_2 is negative for an
+// inverted F. An element's whole force costs less than Eigen's JacobiSVD of its F alone
+// (bench/element_force_bench.cc).
 Polar<3> polar(const Mat<3>& f) {
-  const Eigen::JacobiSVD<Mat<3>> svd(f, Eigen::ComputeFullU | Eigen::ComputeFullV);
-  Mat<3> u = svd.matrixU(), v = svd.matrixV();
-  Vec<3> stretch = svd.singularValues();  // descending, >= 0
-  // proper rotations: a reflection moves to the smallest stretch, which turns negative
-  if (u.determinant() < 0.0) {
-    u.col(2) *= -1.0;
-    stretch(2) *= -1.0;
+  Mat<3> a = f.transpose() * f;
+  Mat<3> v = Mat<3>::Identity();
+  constexpr int pairs[3][3] = {{0, 1, 2}, {0, 2, 1}, {1, 2, 0}};  // p, q and the third axis
+  for (int sweep = 0; sweep < 10; ++sweep) {
+    const double off = a(0, 1) * a(0, 1) + a(0, 2) * a(0, 2) + a(1, 2) * a(1, 2);
+    if (!(off > 1e-33 * a.diagonal().squaredNorm())) break;  // also on NaN
+    for (const auto& pair : pairs) {
+      const int p = pair[0], q = pair[1], r = pair[2];
+      const double apq = a(p, q);
+      if (apq == 0.0) continue;
+      // the rotation J (c, s in (p, q), -s in (q, p)) that zeroes (p, q) of J^T A J (Golub
+      // and Van Loan, the symmetric Schur decomposition), applied entry by entry
+      const double tau = (a(q, q) - a(p, p)) / (2.0 * apq);
+      const double t = std::abs(tau) > 1e150
+                           ? 0.5 / tau
+                           : std::copysign(1.0, tau) / (std::abs(tau) + std::sqrt(1.0 + tau * tau));
+      const double c = 1.0 / std::sqrt(1.0 + t * t), sn = t * c;
+      a(p, p) -= t * apq;
+      a(q, q) += t * apq;
+      a(p, q) = a(q, p) = 0.0;
+      const double arp = a(r, p), arq = a(r, q);
+      a(r, p) = a(p, r) = c * arp - sn * arq;
+      a(r, q) = a(q, r) = sn * arp + c * arq;
+      for (int k = 0; k < 3; ++k) {
+        const double vkp = v(k, p), vkq = v(k, q);
+        v(k, p) = c * vkp - sn * vkq;
+        v(k, q) = sn * vkp + c * vkq;
+      }
+    }
   }
-  if (v.determinant() < 0.0) {
-    v.col(2) *= -1.0;
-    stretch(2) *= -1.0;
-  }
+  Mat<3> b = f * v;
+  // columns by decreasing length; a swap negates one column to keep V proper
+  auto order = [&](int i, int k) {
+    if (b.col(i).squaredNorm() >= b.col(k).squaredNorm()) return;
+    b.col(i).swap(b.col(k));
+    v.col(i).swap(v.col(k));
+    b.col(k) *= -1.0;
+    v.col(k) *= -1.0;
+  };
+  order(0, 1);
+  order(0, 2);
+  order(1, 2);
+  Mat<3> u;
+  const double n0 = b.col(0).norm();
+  u.col(0) = n0 > 0.0 ? Vec<3>(b.col(0) / n0) : Vec<3>::UnitX();
+  Vec<3> u1 = b.col(1) - u.col(0).dot(b.col(1)) * u.col(0);
+  const double n1 = u1.norm();
+  u.col(1) = n1 > 0.0 ? Vec<3>(u1 / n1) : Vec<3>(u.col(0).unitOrthogonal());
+  u.col(2) = u.col(0).cross(u.col(1));
+  const Vec<3> stretch(n0, u.col(1).dot(b.col(1)), u.col(2).dot(b.col(2)));
   Polar<3> out;
   out.rotation = u * v.transpose();
   out.trace_s = stretch.sum();
-  constexpr int pairs[3][2] = {{0, 1}, {1, 2}, {0, 2}};
+  constexpr int twist_pairs[3][2] = {{0, 1}, {1, 2}, {0, 2}};
   for (int t = 0; t < 3; ++t) {
-    const int i = pairs[t][0], j = pairs[t][1];
-    Mat<3> a = Mat<3>::Zero();
-    a(i, j) = -1.0;
-    a(j, i) = 1.0;
-    out.twists[t] = u * a * v.transpose() / std::sqrt(2.0);
+    const int i = twist_pairs[t][0], j = twist_pairs[t][1];
+    Mat<3> turn = Mat<3>::Zero();
+    turn(i, j) = -1.0;
+    turn(j, i) = 1.0;
+    out.twists[t] = u * turn * v.transpose() / std::sqrt(2.0);
     out.stretch_sums[t] = stretch(i) + stretch(j);
   }
   return out;

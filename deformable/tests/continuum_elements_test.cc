@@ -10,8 +10,11 @@
 
 #include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
+#include <Eigen/SVD>
 #include <cmath>
 #include <random>
+#include <utility>
+#include <vector>
 
 #include "gencoord/deformable/continuum_elements.hpp"
 #include "gencoord/deformable/errors.hpp"
@@ -263,6 +266,72 @@ TYPED_TEST(ContinuumElementTest, InvertedElementsPushBack) {
     // the last node, the one off the base, is pushed toward its rest height
     const double push = continuum_element_forces(e, x, zero)[Dim](Dim - 1);
     EXPECT_GT(push * (rest[Dim](Dim - 1) - x[Dim](Dim - 1)), 0.0) << s;
+  }
+}
+
+// The tetrahedron's polar decomposition F = R S (rotation-variant: an inverted F keeps a proper
+// R and a negative stretch) against one from Eigen's JacobiSVD, through the energy and the
+// forces of an element whose rest shape is the unit corner tetrahedron (so F is its corners):
+// random, near-rest, inverted and reflected gradients, repeated and vanishing stretches. Where
+// two stretches vanish, or all three are equal with F inverted, R is not unique, but the
+// energy is.
+double reference_energy(const ContinuumElement<3>& e, const Mat<3>& f, Mat<3>* stress) {
+  const Eigen::JacobiSVD<Mat<3>> svd(f, Eigen::ComputeFullU | Eigen::ComputeFullV);
+  Mat<3> u = svd.matrixU(), v = svd.matrixV();
+  Vec<3> s = svd.singularValues();
+  if (u.determinant() < 0.0) {
+    u.col(2) *= -1.0;
+    s(2) *= -1.0;
+  }
+  if (v.determinant() < 0.0) {
+    v.col(2) *= -1.0;
+    s(2) *= -1.0;
+  }
+  const Mat<3> r = u * v.transpose();
+  *stress = 2.0 * e.mu * (f - r) + e.lambda * (s.sum() - 3.0) * r;
+  return e.rest_measure *
+         (e.mu * (f - r).squaredNorm() + 0.5 * e.lambda * std::pow(s.sum() - 3.0, 2));
+}
+
+TEST(ContinuumElement3D, PolarDecompositionMatchesEigensJacobiSvd) {
+  Corners<3> rest;
+  rest[0] = Vec<3>::Zero();
+  for (int a = 1; a <= 3; ++a) rest[a] = Vec<3>::Unit(a - 1);
+  const ContinuumElement<3> e = make_element<3>(rest);
+  std::mt19937 random(3);
+  std::normal_distribution<double> entry(0.0, 1.0);
+  const Mat<3> turn = rotation<3>(0.7);
+  std::vector<std::pair<Mat<3>, bool>> cases;  // F, whether R is unique
+  for (int k = 0; k < 200; ++k) {
+    Mat<3> f;
+    for (int i = 0; i < 9; ++i) f.data()[i] = entry(random) * (k < 100 ? 0.05 : 1.0);
+    if (k < 100) f += Mat<3>::Identity();  // near rest
+    if (k % 4 == 3) f.col(0) *= -1.0;      // inverted or reflected
+    cases.emplace_back(f, true);
+  }
+  cases.emplace_back(Mat<3>::Identity(), true);
+  cases.emplace_back(turn, true);
+  cases.emplace_back(turn * Vec<3>(2.0, 2.0, 0.5).asDiagonal() * rotation<3>(-1.1), true);
+  cases.emplace_back(turn * Vec<3>(1.5, 0.5, 0.5).asDiagonal(), true);
+  cases.emplace_back(turn * Vec<3>(1.0, 1.0, -1e-7).asDiagonal(), true);
+  cases.emplace_back(turn * Vec<3>(1.0, 0.0, 0.0).asDiagonal(), false);
+  cases.emplace_back(-turn, false);  // which stretch turns negative is any
+  cases.emplace_back(Mat<3>::Zero(), false);
+  const Corners<3> still{};
+  for (const auto& [f, unique] : cases) {
+    Corners<3> x;
+    x[0] = Vec<3>::Zero();
+    for (int a = 1; a <= 3; ++a) x[a] = f.col(a - 1);
+    Mat<3> stress;
+    const double expected = reference_energy(e, f, &stress);
+    EXPECT_NEAR(continuum_element_energy(e, x), expected, 1e-12 * (1.0 + expected)) << f;
+    if (!unique) continue;
+    const Corners<3> forces = continuum_element_forces(e, x, still);
+    for (int a = 1; a <= 3; ++a) {  // f_a = -V0 P g_a, g_a = e_(a-1)
+      EXPECT_LT((forces[a] + e.rest_measure * stress.col(a - 1)).norm(),
+                e.rest_measure * (1e-14 * (e.mu + e.lambda) + 1e-12 * stress.norm()))
+          << f;
+    }
   }
 }
 
