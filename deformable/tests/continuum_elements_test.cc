@@ -276,7 +276,9 @@ TYPED_TEST(ContinuumElementTest, InvertedElementsPushBack) {
 // two stretches vanish, or all three are equal with F inverted, R is not unique, but the
 // energy is.
 double reference_energy(const ContinuumElement<3>& e, const Mat<3>& f, Mat<3>* stress) {
-  const Eigen::JacobiSVD<Mat<3>> svd(f, Eigen::ComputeFullU | Eigen::ComputeFullV);
+  // dynamic size: GCC 12 warns of an uninitialized value inside the fixed-size 3 x 3 JacobiSVD
+  const Eigen::JacobiSVD<Eigen::MatrixXd> svd(Eigen::MatrixXd(f),
+                                              Eigen::ComputeFullU | Eigen::ComputeFullV);
   Mat<3> u = svd.matrixU(), v = svd.matrixV();
   Vec<3> s = svd.singularValues();
   if (u.determinant() < 0.0) {
