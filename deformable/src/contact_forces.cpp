@@ -107,20 +107,26 @@ void for_each_contact(const MassSpringSystem<Dim>& s,
       if (inside_box(box, p, &contact.normal, &contact.depth)) visit(contact);
     }
   }
-  if (c.surface.empty() || !(c.params.thickness > 0.0)) return;
+  // each simplex's thickness; the hash's margin the largest
+  auto thickness = [&](std::size_t k) {
+    return c.surface_thickness.empty() ? c.params.thickness : c.surface_thickness[k];
+  };
+  double thickest = c.params.thickness;
+  for (const double h : c.surface_thickness) thickest = std::max(thickest, h);
+  if (c.surface.empty() || !(thickest > 0.0)) return;
   std::vector<int> nodes;
   for (const auto& simplex : c.surface) nodes.insert(nodes.end(), simplex.begin(), simplex.end());
   std::sort(nodes.begin(), nodes.end());
   nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
-  const double h = c.params.thickness;
   SimplexHash<Dim> hash;
-  hash.build(x, c.surface, h);
+  hash.build(x, c.surface, thickest);
   contact.num_corners = Dim;
   for (const int n : nodes) {
     const Vec<Dim> p = x.col(n);
     hash.for_each_candidate(p, [&](int k) {
       const std::array<int, Dim>& simplex = c.surface[k];
-      if (std::find(simplex.begin(), simplex.end(), n) != simplex.end()) return;
+      const double h = thickness(k);
+      if (!(h > 0.0) || std::find(simplex.begin(), simplex.end(), n) != simplex.end()) return;
       const std::array<double, Dim> w = closest_weights<Dim>(x, n, simplex);
       Vec<Dim> closest = Vec<Dim>::Zero();
       bool all_pinned = s.pinned[n] != 0, inside_face = true;

@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// What the volume terms and the continuum elements do alike when they are added to an
-// object: orient each mesh element positively at rest and find the spring along each of its
-// edges. Private to the library.
+// What the volume terms and the continuum elements do alike: orient each mesh element
+// positively at rest and find the spring along each of its edges when they are added to an
+// object, gather their nodes' positions, and act only while none of their springs is broken.
+// Private to the library.
 #pragma once
 
 #include <Eigen/Core>
@@ -74,6 +75,22 @@ double place_element(const SpringsByPair& springs, const std::array<int, Dim + 1
     }
   }
   return measure;
+}
+
+/// Whether none of the element's springs is broken: it still acts.
+template <int Dim, class Element>
+bool no_spring_broken(const MassSpringSystem<Dim>& s, const Element& element) {
+  return std::none_of(element.springs.begin(), element.springs.end(),
+                      [&](int k) { return s.springs[k].broken; });
+}
+
+/// The columns of x (Dim x n) at the element's nodes, in its node order.
+template <int Dim, std::size_t N>
+std::array<Eigen::Matrix<double, Dim, 1>, N> gather(
+    const std::array<int, N>& nodes, const Eigen::Matrix<double, Dim, Eigen::Dynamic>& x) {
+  std::array<Eigen::Matrix<double, Dim, 1>, N> out;
+  for (std::size_t a = 0; a < N; ++a) out[a] = x.col(nodes[a]);
+  return out;
 }
 
 }  // namespace gencoord::deformable::detail

@@ -34,6 +34,7 @@ struct Signature {
               static_cast<std::size_t>(s.mass.size()),
               s.springs.size(),
               s.elements.size(),
+              s.quadratic_elements.size(),
               s.volume_terms.size(),
               s.hinges.size(),
               s.ground.has_value(),

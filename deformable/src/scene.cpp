@@ -44,6 +44,11 @@ int append_object(MassSpringSystem<Dim>& scene, const MassSpringSystem<Dim>& obj
     for (int& k : element.springs) k += first_spring;
     scene.elements.push_back(element);
   }
+  for (QuadraticElement<Dim> element : object.quadratic_elements) {
+    for (int& n : element.nodes) n += offset;
+    for (int& k : element.springs) k += first_spring;
+    scene.quadratic_elements.push_back(element);
+  }
   scene.wave_speed = empty ? object.wave_speed : std::max(scene.wave_speed, object.wave_speed);
   if (object.collisions) {
     Collisions<Dim> added = *object.collisions;
@@ -55,6 +60,14 @@ int append_object(MassSpringSystem<Dim>& scene, const MassSpringSystem<Dim>& obj
     } else {
       Collisions<Dim>& c = *scene.collisions;
       c.params.omega = std::min(c.params.omega, added.params.omega);
+      // each surface keeps its thickness: both lists written out once they differ
+      if (!c.surface_thickness.empty() || !added.surface_thickness.empty() ||
+          c.params.thickness != added.params.thickness) {
+        c.surface_thickness.resize(c.surface.size(), c.params.thickness);
+        added.surface_thickness.resize(added.surface.size(), added.params.thickness);
+        c.surface_thickness.insert(c.surface_thickness.end(), added.surface_thickness.begin(),
+                                   added.surface_thickness.end());
+      }
       c.params.thickness = std::min(c.params.thickness, added.params.thickness);
       // both sidedness lists written out once either object has two-sided simplices
       if (!c.two_sided.empty() || !added.two_sided.empty()) {

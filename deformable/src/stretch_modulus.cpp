@@ -152,6 +152,10 @@ double calibrate_to_stretch(MassSpringSystem<Dim>& s, const SimplexMesh<Dim>& me
     element.mu *= factor;
     element.lambda *= factor;
   }
+  for (QuadraticElement<Dim>& element : s.quadratic_elements) {
+    element.mu *= factor;
+    element.lambda *= factor;
+  }
   s.wave_speed *= std::sqrt(factor);
   return factor;
 }

@@ -28,6 +28,9 @@ double damping_over_stiffness(const MassSpringSystem<Dim>& s) {
     for (const ContinuumElement<Dim>& element : s.elements) {
       if (continuum_element_active(s, element)) d_over_k = std::max(d_over_k, element.damping_time);
     }
+    for (const QuadraticElement<Dim>& element : s.quadratic_elements) {
+      if (quadratic_element_active(s, element)) d_over_k = std::max(d_over_k, element.damping_time);
+    }
   }
   return d_over_k;
 }

@@ -36,8 +36,8 @@ void validate_element_nodes(const MassSpringSystem<Dim>& s, const Element& eleme
                         -1, -1);
   }
   int edge = 0;
-  for (int a = 0; a <= Dim; ++a) {
-    for (int b = a + 1; b <= Dim; ++b, ++edge) {
+  for (int a = 0; a < Element::kNodes; ++a) {
+    for (int b = a + 1; b < Element::kNodes; ++b, ++edge) {
       const int k = element.springs[edge];
       const int i = element.nodes[a], j = element.nodes[b];
       const bool joins = k >= 0 && k < springs &&
@@ -67,28 +67,50 @@ void validate_volume_terms(const MassSpringSystem<Dim>& s) {
   }
 }
 
-// each element's nodes and edges, V0 > 0, finite Dm^-1, mu, lambda, beta >= 0
+// Dm^-1 of a linear element, the shape-function gradients of a quadratic one
+template <int Dim>
+bool rest_shape_finite(const ContinuumElement<Dim>& element) {
+  return element.rest_inverse.allFinite();
+}
+template <int Dim>
+bool rest_shape_finite(const QuadraticElement<Dim>& element) {
+  for (const auto& point : element.gradients)
+    for (const auto& g : point)
+      if (!g.allFinite()) return false;
+  return true;
+}
+
+// an element's nodes and edges, V0 > 0, a finite rest shape, mu, lambda, beta >= 0
+template <int Dim, class Element>
+void validate_continuum_element(const MassSpringSystem<Dim>& s, const Element& element,
+                                const char* kind, int t) {
+  validate_element_nodes(s, element, kind, t);
+  if (!(std::isfinite(element.rest_measure) && element.rest_measure > 0.0) ||
+      !rest_shape_finite(element) || !finite_non_negative(element.mu) ||
+      !finite_non_negative(element.lambda) || !finite_non_negative(element.damping_time))
+    throw ObjectError(
+        message("mass-spring object: ", kind, " ", t, " has rest measure ", element.rest_measure,
+                ", mu ", element.mu, ", lambda ", element.lambda, " and damping time ",
+                element.damping_time,
+                "; need a positive, finite measure, a finite rest shape and finite constants "
+                ">= 0"),
+        element.nodes[0], -1);
+}
+
+// each element's nodes and edges, V0 > 0, a finite rest shape, mu, lambda, beta >= 0
 template <int Dim>
 void validate_continuum_elements(const MassSpringSystem<Dim>& s) {
-  if (Dim == 1 && !s.elements.empty())
-    throw ObjectError(message("mass-spring object: ", s.elements.size(),
-                              " continuum elements in 1D; they exist in 2D and 3D"),
-                      -1, -1);
-  for (int t = 0; t < static_cast<int>(s.elements.size()); ++t) {
-    const ContinuumElement<Dim>& element = s.elements[t];
-    validate_element_nodes(s, element, "continuum element", t);
-    if (!(std::isfinite(element.rest_measure) && element.rest_measure > 0.0) ||
-        !element.rest_inverse.allFinite() || !finite_non_negative(element.mu) ||
-        !finite_non_negative(element.lambda) || !finite_non_negative(element.damping_time))
-      throw ObjectError(
-          message("mass-spring object: continuum element ", t, " has rest measure ",
-                  element.rest_measure, ", mu ", element.mu, ", lambda ", element.lambda,
-                  " and damping time ", element.damping_time,
-                  "; need a positive, finite measure, a finite rest shape and finite constants "
-                  ">= 0"),
-          element.nodes[0], -1);
-  }
+  if (Dim == 1 && !(s.elements.empty() && s.quadratic_elements.empty()))
+    throw ObjectError(
+        message("mass-spring object: ", s.elements.size() + s.quadratic_elements.size(),
+                " continuum elements in 1D; they exist in 2D and 3D"),
+        -1, -1);
+  for (int t = 0; t < static_cast<int>(s.elements.size()); ++t)
+    validate_continuum_element(s, s.elements[t], "continuum element", t);
+  for (int t = 0; t < static_cast<int>(s.quadratic_elements.size()); ++t)
+    validate_continuum_element(s, s.quadratic_elements[t], "quadratic element", t);
 }
+
 constexpr double kPi = 3.14159265358979323846;
 
 }  // namespace
@@ -105,8 +127,11 @@ void validate_material(const Material& m) {
         message("material: damping D = ", m.damping, " must be non-negative and finite"));
 }
 
-template <int Dim>
-void validate_mesh(const SimplexMesh<Dim>& mesh) {
+namespace {
+
+// the checks of validate_mesh() on a linear or quadratic mesh: the shape is the corners'
+template <int Dim, class Mesh>
+void validate_any_mesh(const Mesh& mesh) {
   const int count = static_cast<int>(mesh.nodes.cols());
   if (count == 0 || mesh.elements.empty())
     throw MeshError(message("mesh: ", count, " nodes and ", mesh.elements.size(),
@@ -121,7 +146,7 @@ void validate_mesh(const SimplexMesh<Dim>& mesh) {
   std::vector<char> used(count, 0);
   for (int e = 0; e < static_cast<int>(mesh.elements.size()); ++e) {
     const auto& el = mesh.elements[e];
-    for (int a = 0; a <= Dim; ++a) {
+    for (int a = 0; a < static_cast<int>(el.size()); ++a) {
       if (el[a] < 0 || el[a] >= count)
         throw MeshError(message("mesh: element ", e, " refers to node ", el[a],
                                 ", out of range (the mesh has ", count, " nodes)"),
@@ -142,6 +167,34 @@ void validate_mesh(const SimplexMesh<Dim>& mesh) {
       throw MeshError(
           message("mesh: node ", n, " belongs to no element, so it would get no mass; remove it"),
           -1, n);
+  }
+}
+
+}  // namespace
+
+template <int Dim>
+void validate_mesh(const SimplexMesh<Dim>& mesh) {
+  validate_any_mesh<Dim>(mesh);
+}
+
+template <int Dim>
+void validate_mesh(const QuadraticMesh<Dim>& mesh) {
+  validate_any_mesh<Dim>(mesh);
+  for (int e = 0; e < static_cast<int>(mesh.elements.size()); ++e) {
+    const auto& el = mesh.elements[e];
+    int m = Dim + 1;
+    for (int a = 0; a <= Dim; ++a) {
+      for (int b = a + 1; b <= Dim; ++b, ++m) {
+        const auto middle = 0.5 * (mesh.nodes.col(el[a]) + mesh.nodes.col(el[b]));
+        const double edge = (mesh.nodes.col(el[b]) - mesh.nodes.col(el[a])).norm();
+        if (!((mesh.nodes.col(el[m]) - middle).norm() <= kMaxRelativeMidpointOffset * edge))
+          throw MeshError(message("mesh: element ", e, "'s node ", el[m],
+                                  " is not at the middle of its edge (", el[a], ", ", el[b],
+                                  "); curved quadratic elements are not supported: place it "
+                                  "at the middle"),
+                          e, el[m]);
+      }
+    }
   }
 }
 
@@ -180,6 +233,18 @@ void validate_collisions(const Collisions<Dim>& c, int count) {
                               " contact surface simplices; give one per simplex "
                               "or none"),
                       -1, -1);
+  if (!c.surface_thickness.empty() && c.surface_thickness.size() != c.surface.size())
+    throw ObjectError(
+        message("mass-spring object: ", c.surface_thickness.size(), " thicknesses for ",
+                c.surface.size(), " contact surface simplices; give one per simplex or none"),
+        -1, -1);
+  for (std::size_t k = 0; k < c.surface_thickness.size(); ++k) {
+    if (!finite_non_negative(c.surface_thickness[k]))
+      throw ObjectError(
+          message("mass-spring object: contact surface simplex ", k, " has thickness ",
+                  c.surface_thickness[k], "; it must be finite and >= 0"),
+          -1, -1);
+  }
   for (std::size_t k = 0; k < c.surface.size(); ++k) {
     for (int a = 0; a < Dim; ++a) {
       const int n = c.surface[k][a];
@@ -379,6 +444,8 @@ void validate_step_result(const typename MassSpringSystem<Dim>::Points& x,
 
 template void validate_mesh<2>(const SimplexMesh<2>&);
 template void validate_mesh<3>(const SimplexMesh<3>&);
+template void validate_mesh<2>(const QuadraticMesh<2>&);
+template void validate_mesh<3>(const QuadraticMesh<3>&);
 template void validate_object<1>(const MassSpringSystem<1>&);
 template void validate_object<2>(const MassSpringSystem<2>&);
 template void validate_object<3>(const MassSpringSystem<3>&);

@@ -147,17 +147,13 @@ VolumeTermJacobian<Dim> volume_term_jacobian(const VolumeTerm<Dim>& term, const 
 
 template <int Dim>
 bool volume_term_active(const MassSpringSystem<Dim>& s, const VolumeTerm<Dim>& term) {
-  for (int k : term.springs)
-    if (s.springs[k].broken) return false;
-  return true;
+  return detail::no_spring_broken(s, term);
 }
 
 template <int Dim>
 Corners<Dim> corners_of(const VolumeTerm<Dim>& term,
                         const Eigen::Matrix<double, Dim, Eigen::Dynamic>& x) {
-  Corners<Dim> out;
-  for (int a = 0; a <= Dim; ++a) out[a] = x.col(term.nodes[a]);
-  return out;
+  return detail::gather<Dim>(term.nodes, x);
 }
 
 template <int Dim>

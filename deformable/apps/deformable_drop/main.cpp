@@ -36,6 +36,7 @@ struct Options {
   double damping_ratio = 0.3;
   double duration = 1.0;
   int frames = 60;
+  std::string elements = "springs";
   bool implicit = false;
   double dt = -1.0;  // < 0: half the CFL limit (explicit), 10 times it (implicit)
   std::string vtk;
@@ -54,10 +55,14 @@ void PrintHelp() {
       "  --youngs E         Young's modulus in Pa (default 2e5)\n"
       "  --density RHO      density in kg/m^3 (default 1000)\n"
       "  --damping D        material damping in Pa s (default 20)\n"
-      "  --poisson NU       Poisson's ratio in [0.25, 0.5) (default: the spring network's 0.25;\n"
-      "                     above it, volume terms are added)\n"
+      "  --poisson NU       Poisson's ratio (default: the spring network's 0.25); springs take\n"
+      "                     [0.25, 0.5), adding volume terms above 0.25, elements [0, 0.5)\n"
+      "  --elements MODEL   the dropped mesh's material model: springs (default), linear\n"
+      "                     (co-rotated linear tetrahedra) or quadratic (10-node co-rotated\n"
+      "                     tetrahedra, a node added at the middle of every edge)\n"
       "  --onto TARGET      sphere, step (a box whose edge is under the mesh's centre) or block\n"
-      "                     (a soft block of the same material glued to the ground; default)\n"
+      "                     (a soft block of the same material glued to the ground, of linear\n"
+      "                     elements where the part has quadratic ones; default)\n"
       "  --height H         gap between the mesh and the target's top in m (default: half the\n"
       "                     mesh's size)\n"
       "  --friction MU      Coulomb friction coefficient of every contact (default 0.5)\n"
@@ -102,6 +107,11 @@ Options Parse(int argc, char** argv) {
       o.material.damping = Number(arg, value());
     } else if (arg == "--poisson") {
       o.material.poisson_ratio = Number(arg, value());
+    } else if (arg == "--elements") {
+      o.elements = value();
+      if (o.elements != "springs" && o.elements != "linear" && o.elements != "quadratic")
+        throw std::invalid_argument("--elements is springs, linear or quadratic, not '" +
+                                    o.elements + "'");
     } else if (arg == "--onto") {
       o.onto = value();
       if (o.onto != "sphere" && o.onto != "step" && o.onto != "block")
@@ -154,6 +164,10 @@ int Run(const Options& o) {
   const double width = size.head<2>().maxCoeff();
   const double gap = o.height >= 0.0 ? o.height : 0.5 * size.maxCoeff();
 
+  // the part's material, and the block's (linear elements where the part has quadratic ones)
+  gd::Material material = o.material;
+  if (o.elements != "springs") material.elasticity = gd::Elasticity::kCorotated;
+
   // the target, resting on the ground with its top at z = top
   gd::MassSpringSystem<3> scene;
   gd::SimplexMesh<3> frames_mesh;  // what the frames show: the block (if any), then the part
@@ -172,7 +186,7 @@ int Run(const Options& o) {
     const int layers = std::max(2, static_cast<int>(std::round(0.5 * side / cell)));
     frames_mesh = gd::box_mesh(side, side, 0.5 * side, cells, cells, layers,
                                Eigen::Vector3d(-0.5 * side, -0.5 * side, 0.0));
-    scene = gd::make_mass_spring(frames_mesh, o.material);
+    scene = gd::make_mass_spring(frames_mesh, material);
     gd::pin_nodes_where(scene, 2, 0.0);  // glued to the ground
     gd::enable_collisions<3>(scene, gd::boundary_triangles(frames_mesh), o.friction,
                              o.damping_ratio);
@@ -183,16 +197,27 @@ int Run(const Options& o) {
   const Eigen::Vector3d shift(-0.5 * (lower.x() + upper.x()), -0.5 * (lower.y() + upper.y()),
                               top + gap - lower.z());
   part.nodes.colwise() += shift;
-  gd::MassSpringSystem<3> dropped = gd::make_mass_spring(part, o.material);
-  gd::enable_collisions<3>(dropped, gd::boundary_triangles(part), o.friction, o.damping_ratio);
+  // `shown`: the linear tetrahedra on the part's nodes, which the frames draw and whose
+  // boundary collides (a quadratic element's eight)
+  gd::MassSpringSystem<3> dropped;
+  gd::SimplexMesh<3> shown = part;
+  if (o.elements == "quadratic") {
+    const gd::QuadraticMesh<3> quadratic = gd::quadratic_mesh(part);
+    dropped = gd::make_mass_spring(quadratic, material);
+    shown = gd::subdivided_mesh(quadratic);
+  } else {
+    dropped = gd::make_mass_spring(part, material);
+  }
+  gd::enable_collisions<3>(dropped, gd::boundary_triangles(shown), o.friction, o.damping_ratio);
   const int first = gd::append_object(scene, dropped);
-  for (auto& element : part.elements) {
+  const int count = dropped.num_nodes();
+  for (auto& element : shown.elements) {
     for (int& n : element) n += first;
   }
   frames_mesh.nodes.conservativeResize(3, scene.num_nodes());
-  frames_mesh.nodes.rightCols(part.nodes.cols()) = part.nodes;
-  frames_mesh.elements.insert(frames_mesh.elements.end(), part.elements.begin(),
-                              part.elements.end());
+  frames_mesh.nodes.rightCols(count) = shown.nodes;
+  frames_mesh.elements.insert(frames_mesh.elements.end(), shown.elements.begin(),
+                              shown.elements.end());
   gd::Collisions<3>& contact = *scene.collisions;
   contact.spheres = obstacles.spheres;
   contact.boxes = obstacles.boxes;
@@ -205,9 +230,9 @@ int Run(const Options& o) {
   double dt = o.dt > 0.0 ? o.dt : (o.implicit ? 10.0 : 0.5) * cfl;
   const long steps = static_cast<long>(std::ceil(o.duration / dt));
   dt = o.duration / static_cast<double>(steps);
-  std::printf("%s: %d nodes, %zu tetrahedra, %.4g x %.4g x %.4g m, dropped %.4g m onto a %s\n",
-              o.mesh.c_str(), static_cast<int>(part.nodes.cols()), part.elements.size(), size.x(),
-              size.y(), size.z(), gap, o.onto.c_str());
+  std::printf("%s: %d nodes, %zu tetrahedra (%s), %.4g x %.4g x %.4g m, dropped %.4g m onto a %s\n",
+              o.mesh.c_str(), count, part.elements.size(), o.elements.c_str(), size.x(), size.y(),
+              size.z(), gap, o.onto.c_str());
   std::printf("  E = %.4g Pa, rho = %.4g kg/m^3: c = %.4g m/s; contact thickness %.4g m\n",
               o.material.youngs_modulus, o.material.density, o.material.wave_speed(),
               contact.params.thickness);
@@ -230,14 +255,14 @@ int Run(const Options& o) {
     } else {
       explicit_stepper.step(scene, dt);
     }
-    lowest = std::min(lowest, scene.x.rightCols(part.nodes.cols()).row(2).minCoeff());
+    lowest = std::min(lowest, scene.x.rightCols(count).row(2).minCoeff());
     const int due = static_cast<int>(k * (o.frames - 1) / steps);
     if (vtk && due >= written) {
       vtk->write_frame(scene, &frames_mesh);
       ++written;
     }
   }
-  const Eigen::Vector3d centre = scene.x.rightCols(part.nodes.cols()).rowwise().mean();
+  const Eigen::Vector3d centre = scene.x.rightCols(count).rowwise().mean();
   std::printf(
       "  energy %.5g J -> %.5g J; the part's centre ends at (%.4g, %.4g, %.4g) m, its\n"
       "  lowest node went down to z = %.4g m (the target's top is at %.4g m)\n",

@@ -33,7 +33,8 @@
 ///   evaluation (no stale hierarchy to refit as the object deforms). `thickness` must stay below
 ///   the distance from any surface node to the surface simplices it is not a corner of at rest:
 ///   enable_collisions() takes a quarter of the shortest surface edge (a right-angled grid's
-///   nearest such simplex is 0.71 of an edge away).
+///   nearest such simplex is 0.71 of an edge away). In a scene of several objects each
+///   simplex keeps its object's thickness (Collisions::surface_thickness).
 /// - Implicit steps (backward Euler) include each contact's stiffness and damping on the
 ///   diagonal blocks of the nodes involved only: the pairs change from step to step and the
 ///   step matrix keeps its sparsity pattern (implicit_stepper.hpp).
@@ -65,7 +66,8 @@ struct ContactParams {
   double omega = 0.0;          ///< penalty frequency (1/s)
   double damping_ratio = 0.0;  ///< zeta of the normal damper
   double friction = 0.0;       ///< Coulomb coefficient mu, >= 0
-  double thickness = 0.0;      ///< (m) how close nodes come to surface simplices
+  double thickness = 0.0;      ///< (m) how close nodes come to surface simplices (the thinnest's,
+                               ///< when Collisions::surface_thickness gives each its own)
 };
 
 /// Everything that can be touched, and how.
@@ -79,6 +81,10 @@ struct Collisions {
   /// Per simplex of `surface`, whether both of its sides repel (a sheet's triangles); empty:
   /// every simplex is one-sided (a solid's boundary, oriented outward).
   std::vector<char> two_sided;
+  /// Per simplex of `surface`, its own thickness (m), where objects of different thickness
+  /// share a scene (append_object()): each keeps the layer its own mesh allows, so a fine
+  /// object does not thin a coarse one's; empty: params.thickness for every simplex.
+  std::vector<double> surface_thickness;
 };
 
 /// The boundary of a mesh: the faces that belong to one element only, each oriented with its

@@ -41,6 +41,7 @@
 #include <vector>
 
 #include "gencoord/deformable/material.hpp"
+#include "gencoord/deformable/quadratic_elements.hpp"
 #include "gencoord/deformable/volume_terms.hpp"
 
 namespace gencoord::deformable {
@@ -113,21 +114,22 @@ template <int Dim>
 Corners<Dim> corners_of(const ContinuumElement<Dim>& element,
                         const Eigen::Matrix<double, Dim, Eigen::Dynamic>& x);
 
-/// Adds the forces of every active element of `s` at positions x and velocities v to f (N).
-/// Nothing in 1D.
+/// Adds the forces of every active element of `s`, linear and quadratic, at positions x and
+/// velocities v to f (N). Nothing in 1D.
 template <int Dim>
 void accumulate_continuum_forces(const MassSpringSystem<Dim>& s,
                                  const Eigen::Matrix<double, Dim, Eigen::Dynamic>& x,
                                  const Eigen::Matrix<double, Dim, Eigen::Dynamic>& v,
                                  Eigen::Matrix<double, Dim, Eigen::Dynamic>& f);
 
-/// Elastic energy of every active element of `s` at its positions s.x (J). 0 in 1D.
+/// Elastic energy of every active element of `s`, linear and quadratic, at its positions s.x
+/// (J). 0 in 1D.
 template <int Dim>
 double continuum_energy(const MassSpringSystem<Dim>& s);
 
 /// Calls visit(a, b, stiffness, damping) with the blocks d f_a / d x_b (definite) and
-/// d f_a / d v_b of every active element of `s` at positions x, a and b node indices of `s`,
-/// for all (Dim + 1)^2 ordered pairs of its nodes. Nothing in 1D.
+/// d f_a / d v_b of every active element of `s`, linear and quadratic, at positions x, a and b
+/// node indices of `s`, for all ordered pairs of its nodes. Nothing in 1D.
 template <int Dim, class Visit>
 void for_each_continuum_block(const MassSpringSystem<Dim>& s,
                               const Eigen::Matrix<double, Dim, Eigen::Dynamic>& x, Visit&& visit);
@@ -162,6 +164,16 @@ void for_each_continuum_block(const MassSpringSystem<Dim>& s,
       const ElementJacobian<Dim> d = continuum_element_damping(element, corners);
       for (int a = 0; a <= Dim; ++a)
         for (int b = 0; b <= Dim; ++b) visit(element.nodes[a], element.nodes[b], k[a][b], d[a][b]);
+    }
+    for (const QuadraticElement<Dim>& element : s.quadratic_elements) {
+      if (!quadratic_element_active(s, element)) continue;
+      const QuadraticNodes<Dim> nodes = nodes_of(element, x);
+      const QuadraticJacobian<Dim> k = quadratic_element_stiffness(element, nodes, true);
+      const QuadraticJacobian<Dim> d = quadratic_element_damping(element, nodes);
+      constexpr int kNodes = QuadraticElement<Dim>::kNodes;
+      for (int a = 0; a < kNodes; ++a)
+        for (int b = 0; b < kNodes; ++b)
+          visit(element.nodes[a], element.nodes[b], k[a][b], d[a][b]);
     }
   }
 }

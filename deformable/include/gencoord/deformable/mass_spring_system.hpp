@@ -14,6 +14,7 @@
 
 #include "gencoord/deformable/collision.hpp"
 #include "gencoord/deformable/continuum_elements.hpp"
+#include "gencoord/deformable/quadratic_elements.hpp"
 #include "gencoord/deformable/springs.hpp"
 #include "gencoord/deformable/volume_terms.hpp"
 
@@ -82,6 +83,8 @@ struct MassSpringSystem {
   std::vector<VolumeTerm<Dim>> volume_terms;
   /// continuum elements (continuum_elements.hpp); none in 1D
   std::vector<ContinuumElement<Dim>> elements;
+  /// quadratic continuum elements (quadratic_elements.hpp); none in 1D
+  std::vector<QuadraticElement<Dim>> quadratic_elements;
   std::vector<Hinge> hinges;  ///< bending hinges; only in 3D (sheet.hpp)
   Vec gravity = Vec::Zero();  ///< acceleration (m/s^2)
   std::optional<GroundPlane> ground;

@@ -22,6 +22,7 @@
 #include "gencoord/deformable/mass_spring_system.hpp"
 #include "gencoord/deformable/material.hpp"
 #include "gencoord/deformable/mesh.hpp"
+#include "gencoord/deformable/quadratic_mesh.hpp"
 
 namespace gencoord::deformable {
 
@@ -30,6 +31,18 @@ namespace gencoord::deformable {
 ///         springs, continuum_lame() for the elements').
 template <int Dim>
 MassSpringSystem<Dim> make_mass_spring(const SimplexMesh<Dim>& mesh, const Material& material);
+
+/// Builds the object of quadratic continuum elements (quadratic_elements.hpp) of `material` on
+/// a quadratic mesh (quadratic_mesh()), at rest. Each element's mass is lumped by the
+/// diagonal of its consistent mass matrix scaled to the element's mass (row sums would give
+/// a quadratic tetrahedron's corners negative masses): a triangle gives 1/19 of it to each
+/// corner and 16/57 to each midpoint, a tetrahedron 1/36 and 4/27. Every node pair of an
+/// element is a spring without stiffness; the wave speed is set from the elements' highest
+/// frequency so that cfl_limit() is 2 / omega_max, as for linear elements.
+/// \throws MeshError (validate_mesh()), MaterialError (validate_material(), continuum_lame(),
+///         or a material whose elasticity is not Elasticity::kCorotated).
+template <int Dim>
+MassSpringSystem<Dim> make_mass_spring(const QuadraticMesh<Dim>& mesh, const Material& material);
 
 /// Pins every node whose coordinate `axis` is within `tolerance` of `value`; returns how many.
 template <int Dim>

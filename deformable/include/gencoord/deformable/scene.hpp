@@ -13,8 +13,9 @@ namespace gencoord::deformable {
 /// which is returned (the first index of the object's nodes in the scene). The scene keeps its own
 /// time, gravity, ground and inelastic settings; its wave speed becomes the faster of the two (the
 /// CFL limit holds for both). Contact: the object's surface simplices and obstacles join the
-/// scene's, with the smaller penalty frequency and thickness of the two when both have contact, so
-/// that the limits of each still hold; a scene without contact takes the object's settings. \throws
+/// scene's, with the smaller penalty frequency of the two when both have contact, so that the
+/// limits of each still hold, and each surface simplex keeps its object's thickness
+/// (Collisions::surface_thickness); a scene without contact takes the object's settings. \throws
 /// ObjectError if the scene has taken steps (append objects before simulating).
 template <int Dim>
 int append_object(MassSpringSystem<Dim>& scene, const MassSpringSystem<Dim>& object);

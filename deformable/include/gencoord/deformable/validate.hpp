@@ -9,12 +9,16 @@
 #include "gencoord/deformable/mass_spring_system.hpp"
 #include "gencoord/deformable/material.hpp"
 #include "gencoord/deformable/mesh.hpp"
+#include "gencoord/deformable/quadratic_mesh.hpp"
 
 namespace gencoord::deformable {
 
 /// Smallest accepted element measure, relative to its longest edge to the power Dim: an
 /// element flatter than this is degenerate (its lumped mass and spring stiffness vanish).
 inline constexpr double kMinRelativeMeasure = 1e-10;
+/// Largest accepted distance of a quadratic element's midpoint node from the middle of its
+/// edge at rest, relative to the edge's length (curved elements are not supported).
+inline constexpr double kMaxRelativeMidpointOffset = 1e-9;
 /// Smallest accepted spacing of rod nodes, relative to the rod's length.
 inline constexpr double kMinRelativeLength = 1e-12;
 
@@ -26,6 +30,12 @@ void validate_material(const Material& material);
 /// element's measure exceeds kMinRelativeMeasure times its longest edge to the power Dim.
 template <int Dim>
 void validate_mesh(const SimplexMesh<Dim>& mesh);
+
+/// \throws MeshError for what validate_mesh() refuses in a linear mesh (the measure being the
+/// corners'), or a midpoint node more than kMaxRelativeMidpointOffset times its edge's length
+/// from the middle of that edge.
+template <int Dim>
+void validate_mesh(const QuadraticMesh<Dim>& mesh);
 
 /// \throws MeshError unless the surface has nodes and triangles, every node is finite and used
 /// by some triangle, every index is in range and distinct within its triangle, every
@@ -40,8 +50,9 @@ void validate_surface(const TriangleSurface& surface);
 /// range with a finite rest length > 0 (sign-free in 1D) and finite stiffness and damping
 /// >= 0; every volume term's nodes are distinct and in range, each of its edges names the
 /// spring joining its two nodes, its rest measure is positive and its stiffness >= 0 (both
-/// finite); every continuum element (2D and 3D only) has the same node and edge checks, a
-/// positive, finite rest measure, a finite rest shape and finite mu, lambda and damping time
+/// finite); every continuum element, linear or quadratic (2D and 3D only), has the same node
+/// and pair checks, a positive, finite rest measure, a finite rest shape and finite mu, lambda and
+/// damping time
 /// >= 0; every hinge (3D only) has four distinct nodes in range, a spring index in
 /// [-1, springs), a finite stiffness >= 0 and a rest angle in [-pi, pi]; gravity, the ground
 /// and the wave speed (> 0) are finite; the contact settings, obstacles and surface are
