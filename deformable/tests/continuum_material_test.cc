@@ -16,6 +16,7 @@
 #include <string>
 
 #include "explicit_stability.hpp"
+#include "figures.hpp"
 #include "gencoord/deformable/errors.hpp"
 #include "gencoord/deformable/explicit_stepper.hpp"
 #include "gencoord/deformable/implicit_stepper.hpp"
@@ -38,29 +39,7 @@ using testing::dense_highest_frequency;
 
 using testing::corotated;
 
-// every node moved by up to `fraction` of `h` along each axis (seeded), but not off the
-// bounding box's faces it lies on: an irregular mesh of the same prism
-template <int Dim>
-SimplexMesh<Dim> jittered(SimplexMesh<Dim> mesh, double h, double fraction, unsigned seed) {
-  std::mt19937 random(seed);
-  std::uniform_real_distribution<double> offset(-fraction * h, fraction * h);
-  const Eigen::Matrix<double, Dim, 1> low = mesh.nodes.rowwise().minCoeff();
-  const Eigen::Matrix<double, Dim, 1> high = mesh.nodes.rowwise().maxCoeff();
-  for (int n = 0; n < mesh.nodes.cols(); ++n) {
-    for (int axis = 0; axis < Dim; ++axis) {
-      const double move = offset(random), p = mesh.nodes(axis, n);
-      if (p > low(axis) + 1e-12 && p < high(axis) - 1e-12) mesh.nodes(axis, n) += move;
-    }
-  }
-  return mesh;
-}
-
-template <int Dim>
-double total_measure(const SimplexMesh<Dim>& mesh) {
-  double sum = 0.0;
-  for (int e = 0; e < static_cast<int>(mesh.elements.size()); ++e) sum += element_measure(mesh, e);
-  return sum;
-}
+using validation::jittered;
 
 // the 12 triangles of the box [0, lx] x [0, ly] x [0, lz], outward
 TriangleSurface box_surface(double lx, double ly, double lz) {
@@ -105,22 +84,19 @@ void ExpectTheMaterialsStretch(const std::vector<Named>& meshes) {
   const double youngs = 1.0e5;
   for (const Named& named : meshes) {
     for (const double nu : {0.3, 0.45, 0.49}) {
-      const MassSpringSystem<Dim> s = make_mass_spring(named.mesh, corotated(youngs, nu));
       const StretchResponse got =
-          stretch_response(s, named.mesh.nodes, total_measure(named.mesh), 0);
+          validation::stretch(named.mesh, youngs, nu, validation::Model::kLinear);
       EXPECT_NEAR(got.youngs_modulus / youngs, 1.0, 0.02) << named.name << ", nu " << nu;
       EXPECT_NEAR(got.poisson_ratio, nu, 0.01) << named.name << ", nu " << nu;
       // the springs with area terms reach a 2D nu of 1/3 and up only
-      Material springy = corotated(youngs, Dim == 2 ? std::max(nu, 1.0 / 3.0) : nu);
-      springy.elasticity = Elasticity::kSprings;
-      const MassSpringSystem<Dim> springs = make_mass_spring(named.mesh, springy);
+      const double springy = Dim == 2 ? std::max(nu, 1.0 / 3.0) : nu;
       const StretchResponse by_springs =
-          stretch_response(springs, named.mesh.nodes, total_measure(named.mesh), 0);
+          validation::stretch(named.mesh, youngs, springy, validation::Model::kSprings);
       std::printf(
           "[ %dD stretch ] %-18s nu %.2f: co-rotated E/E0 %.4f nu %.4f; springs (nu %.2f) E/E0 "
           "%.4f nu %.4f\n",
-          Dim, named.name.c_str(), nu, got.youngs_modulus / youngs, got.poisson_ratio,
-          springy.poisson_ratio, by_springs.youngs_modulus / youngs, by_springs.poisson_ratio);
+          Dim, named.name.c_str(), nu, got.youngs_modulus / youngs, got.poisson_ratio, springy,
+          by_springs.youngs_modulus / youngs, by_springs.poisson_ratio);
     }
   }
 }
@@ -213,7 +189,7 @@ TEST(ContinuumMaterial, HighestFrequencyEstimateIsTight) {
 // small in 2D and 3D (the docs state it; stable_step_limit(), stable_step_test.cc, is tight)
 template <int Dim>
 double spring_cfl_over_true(const MassSpringSystem<Dim>& s) {
-  return cfl_limit(s) / (2.0 / dense_highest_frequency(s));
+  return validation::stable_step_ratios(s).cfl;
 }
 
 TEST(ContinuumMaterial, SpringsCflLimitIsSafeButLoose) {
@@ -301,52 +277,6 @@ TEST(ContinuumMaterial, ImplicitStepNeverGainsEnergy) {
   EXPECT_LT(previous, e0);
 }
 
-// Tip deflection of a cantilever of length 1 and depth 0.1 (square in 3D), clamped at x = 0
-// and loaded at its tip, in a linear static solve with the elements' stiffness at rest,
-// over Timoshenko's P L^3 / (3 E I) + P L / (kappa G A), kappa = 5/6; linear or quadratic
-// elements
-template <int Dim>
-double cantilever_tip_ratio(int across, bool quadratic = false) {
-  const double youngs = 1e5, nu = 0.3, length = 1.0, depth = 0.1, load = 1e-3;
-  SimplexMesh<Dim> mesh;
-  if constexpr (Dim == 2) {
-    mesh = rectangle_mesh(length, depth, 10 * across, across);
-  } else {
-    mesh = box_mesh(length, depth, depth, 10 * across, across, across);
-  }
-  const MassSpringSystem<Dim> s =
-      quadratic ? make_mass_spring(quadratic_mesh(mesh), corotated(youngs, nu))
-                : make_mass_spring(mesh, corotated(youngs, nu));
-  std::vector<int> index(Dim * s.num_nodes(), -1), tip;
-  int unknowns = 0;
-  for (int n = 0; n < s.num_nodes(); ++n) {
-    if (s.x(0, n) > 1e-9)
-      for (int d = 0; d < Dim; ++d) index[Dim * n + d] = unknowns++;
-    if (s.x(0, n) > length - 1e-9) tip.push_back(n);
-  }
-  std::vector<Eigen::Triplet<double>> entries;
-  for_each_continuum_block(s, s.x, [&](int a, int b, const auto& k, const auto&) {
-    for (int r = 0; r < Dim; ++r)
-      for (int c = 0; c < Dim; ++c) {
-        const int i = index[Dim * a + r], j = index[Dim * b + c];
-        if (i >= 0 && j >= 0) entries.emplace_back(i, j, -k(r, c));
-      }
-  });
-  Eigen::SparseMatrix<double> stiffness(unknowns, unknowns);
-  stiffness.setFromTriplets(entries.begin(), entries.end());
-  Eigen::VectorXd force = Eigen::VectorXd::Zero(unknowns);
-  for (int n : tip) force(index[Dim * n + Dim - 1]) = -load / tip.size();
-  const Eigen::VectorXd u =
-      Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>>(stiffness).solve(force);
-  double deflection = 0.0;
-  for (int n : tip) deflection -= u(index[Dim * n + Dim - 1]) / tip.size();
-  const double area = Dim == 2 ? depth : depth * depth;
-  const double inertia = area * depth * depth / 12.0, shear = youngs / (2.0 * (1.0 + nu));
-  const double timoshenko = load * std::pow(length, 3) / (3.0 * youngs * inertia) +
-                            load * length / (5.0 / 6.0 * shear * area);
-  return deflection / timoshenko;
-}
-
 // Linear elements are too stiff in bending (they cannot bend without shearing): the tip
 // deflection converges to Timoshenko's from below, about 0.29, 0.62, 0.87 and 0.96 of it at 1,
 // 2, 4 and 8 cells through the depth in 2D; the test holds those within 0.02 (quadratic
@@ -355,7 +285,8 @@ TEST(ContinuumMaterial, CantileverConvergesToTimoshenkoFromBelow) {
   const double expected_2d[] = {0.287, 0.623, 0.866, 0.961};
   double previous = 0.0;
   for (int level = 0; level < 4; ++level) {
-    const double ratio = cantilever_tip_ratio<2>(1 << level);
+    const double ratio =
+        validation::cantilever_tip_ratio<2>(1 << level, validation::Model::kLinear);
     std::printf("[ 2D cantilever ] %d cells through the depth: tip / Timoshenko %.4f\n", 1 << level,
                 ratio);
     EXPECT_NEAR(ratio, expected_2d[level], 0.02);
@@ -363,7 +294,7 @@ TEST(ContinuumMaterial, CantileverConvergesToTimoshenkoFromBelow) {
     previous = ratio;
   }
   EXPECT_LT(previous, 1.0);
-  const double at_4 = cantilever_tip_ratio<3>(4);
+  const double at_4 = validation::cantilever_tip_ratio<3>(4, validation::Model::kLinear);
   std::printf("[ 3D cantilever ] 4 cells through the depth: tip / Timoshenko %.4f\n", at_4);
   EXPECT_NEAR(at_4, 0.850, 0.02);
 }
@@ -374,7 +305,8 @@ TEST(ContinuumMaterial, CantileverConvergesToTimoshenkoFromBelow) {
 TEST(ContinuumMaterial, QuadraticCantileverIsWithinTwoPercentAtFourCells) {
   double previous = 0.0;
   for (int level = 0; level < 3; ++level) {
-    const double ratio = cantilever_tip_ratio<2>(1 << level, true);
+    const double ratio =
+        validation::cantilever_tip_ratio<2>(1 << level, validation::Model::kQuadratic);
     std::printf("[ 2D cantilever ] quadratic, %d cells through the depth: tip / Timoshenko %.4f\n",
                 1 << level, ratio);
     EXPECT_NEAR(ratio, 1.0, 0.01);
@@ -382,7 +314,8 @@ TEST(ContinuumMaterial, QuadraticCantileverIsWithinTwoPercentAtFourCells) {
     previous = ratio;
   }
   for (int level = 1; level < 3; ++level) {
-    const double ratio = cantilever_tip_ratio<3>(1 << level, true);
+    const double ratio =
+        validation::cantilever_tip_ratio<3>(1 << level, validation::Model::kQuadratic);
     std::printf("[ 3D cantilever ] quadratic, %d cells through the depth: tip / Timoshenko %.4f\n",
                 1 << level, ratio);
     EXPECT_NEAR(ratio, 1.0, level == 2 ? 0.01 : 0.015);

@@ -13,6 +13,7 @@
 #include <random>
 
 #include "explicit_stability.hpp"
+#include "figures.hpp"
 #include "gencoord/deformable/collision.hpp"
 #include "gencoord/deformable/errors.hpp"
 #include "gencoord/deformable/implicit_stepper.hpp"
@@ -280,16 +281,12 @@ TEST(QuadraticElement, DampingIsLinearAndLeavesRotationsAlone) {
 TEST(QuadraticElement, StretchShowsTheMaterial) {
   const double youngs = 1e5;
   for (const double nu : {0.3, 0.49}) {
-    const SimplexMesh<2> strip = read_gmsh<2>(kMeshes + "/strip_h025.msh");
-    const QuadraticMesh<2> strip_q = quadratic_mesh(strip);
-    const StretchResponse s2 = stretch_response(make_mass_spring(strip_q, corotated(youngs, nu)),
-                                                strip_q.nodes, measure_of(strip), 0);
+    const StretchResponse s2 = validation::stretch(read_gmsh<2>(kMeshes + "/strip_h025.msh"),
+                                                   youngs, nu, validation::Model::kQuadratic);
     EXPECT_NEAR(s2.youngs_modulus / youngs, 1.0, 1e-4) << "strip, nu " << nu;
     EXPECT_NEAR(s2.poisson_ratio, nu, 1e-4) << "strip, nu " << nu;
-    const SimplexMesh<3> bar = read_gmsh<3>(kMeshes + "/bar_h050.msh");
-    const QuadraticMesh<3> bar_q = quadratic_mesh(bar);
-    const StretchResponse s3 = stretch_response(make_mass_spring(bar_q, corotated(youngs, nu)),
-                                                bar_q.nodes, measure_of(bar), 0);
+    const StretchResponse s3 = validation::stretch(read_gmsh<3>(kMeshes + "/bar_h050.msh"), youngs,
+                                                   nu, validation::Model::kQuadratic);
     EXPECT_NEAR(s3.youngs_modulus / youngs, 1.0, 1e-4) << "bar, nu " << nu;
     EXPECT_NEAR(s3.poisson_ratio, nu, 1e-4) << "bar, nu " << nu;
   }

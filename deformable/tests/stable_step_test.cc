@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "explicit_stability.hpp"
+#include "figures.hpp"
 #include "gencoord/deformable/errors.hpp"
 #include "gencoord/deformable/explicit_stepper.hpp"
 #include "gencoord/deformable/mesh_io.hpp"
@@ -43,20 +44,12 @@ Material with(Elasticity elasticity, double nu) {
 // top mode when damped), printed
 template <int Dim>
 double over_true_limit(const MassSpringSystem<Dim>& s, const char* name) {
-  const double omega = dense_highest_frequency(s);
-  double d_over_k = 0.0;
-  for (const Spring& sp : s.springs) {
-    if (sp.params.stiffness > 0.0)
-      d_over_k = std::max(d_over_k, sp.params.damping / sp.params.stiffness);
-  }
-  const double zeta = d_over_k * omega / 2.0;
-  const double true_limit = 2.0 / omega / (std::hypot(1.0, zeta) + zeta);
-  const double ratio = stable_step_limit(s) / true_limit;
+  const validation::StableStepRatios r = validation::stable_step_ratios(s);
   std::printf(
       "[ stable step ] %-28s estimate / true limit %.4f (L_min / c: %.4f), omega_max "
       "estimate / true %.4f\n",
-      name, ratio, cfl_limit(s) / true_limit, highest_frequency(s) / omega);
-  return ratio;
+      name, r.stable_step, r.cfl, r.frequency);
+  return r.stable_step;
 }
 
 TEST(StableStep, EstimateIsBelowTheTrueLimitAndWithinSixPercent) {

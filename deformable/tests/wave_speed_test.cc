@@ -11,6 +11,7 @@
 #include <utility>
 #include <vector>
 
+#include "figures.hpp"
 #include "gencoord/deformable/mesh_io.hpp"
 #include "gencoord/deformable/mesh_to_springs.hpp"
 #include "gencoord/deformable/rod.hpp"
@@ -78,43 +79,17 @@ SimplexMesh<Dim> jittered(SimplexMesh<Dim> mesh, double h, double fraction, unsi
   return mesh;
 }
 
-// Plane pulse along x in a long strip (2D) or bar (3D) of length 3 with free sides; the probe
-// value is the mean x-displacement of the nodes whose rest x is within h / 2 of the probe.
-// With `stretched`, the springs are calibrated to the strip's static stretch along x
-// (stretch_modulus.hpp) as well. `width`: the pulse's (m).
+// Plane pulse along x in a long strip (2D) or bar (3D) of length 3 with free sides
+// (validation::pulse_speed()); `width`: the pulse's (m).
 template <int Dim>
 double MeasureStripSpeed(const SimplexMesh<Dim>& mesh, double h, const Material& material,
                          bool stretched = false, double width = 0.15) {
-  MassSpringSystem<Dim> s = make_mass_spring(mesh, material);
-  if (stretched) calibrate_to_stretch(s, mesh, material.youngs_modulus, 0);
-  const double c = material.wave_speed();
-  const GaussianPulse pulse{1e-3, 0.6, width, c};
-  const double probe_a = 1.2, probe_b = 2.0;
-  std::vector<int> column_a, column_b;
-  for (int n = 0; n < s.num_nodes(); ++n) {
-    const double px = mesh.nodes(0, n);
-    s.x(0, n) += pulse.displacement(px);
-    s.v(0, n) = pulse.velocity(px);
-    if (std::abs(px - probe_a) < 0.5 * h) column_a.push_back(n);
-    if (std::abs(px - probe_b) < 0.5 * h) column_b.push_back(n);
-  }
-  EXPECT_FALSE(column_a.empty() || column_b.empty());
-  auto mean_ux = [&](const std::vector<int>& column) {
-    double sum = 0.0;
-    for (int n : column) sum += s.x(0, n) - mesh.nodes(0, n);
-    return sum / column.size();
-  };
-  const double dt = 0.5 * cfl_limit(s);
-  // up to 1.5 times the time the pulse needs to reach probe b, before the reflection from
-  // the far end (which arrives after 3.4 / c) can
-  const int steps = static_cast<int>(2.2 / c / dt);
-  std::vector<double> at_a, at_b;
-  for (int k = 0; k < steps; ++k) {
-    symplectic_euler_step(s, dt);
-    at_a.push_back(mean_ux(column_a));
-    at_b.push_back(mean_ux(column_b));
-  }
-  return (probe_b - probe_a) / (peak_time(at_b, dt) - peak_time(at_a, dt));
+  const validation::Model model = material.elasticity == Elasticity::kCorotated
+                                      ? validation::Model::kLinear
+                                      : validation::Model::kSprings;
+  const double speed = validation::pulse_speed(mesh, h, material, model, width, stretched);
+  EXPECT_FALSE(std::isnan(speed)) << "no node near a probe";
+  return speed;
 }
 
 // A thin strip or bar carries longitudinal waves at sqrt(E / rho) of its material: with the
