@@ -253,7 +253,8 @@ int Run(int argc, char** argv) {
           "folder of the Gmsh meshes (default: deformable/tests/meshes of this checkout).\n");
       return 0;
     }
-    if ((arg == "--section" || arg == "--meshes") && a + 1 < argc) {
+    if (arg == "--section" || arg == "--meshes") {
+      if (a + 1 >= argc) throw std::invalid_argument(arg + " needs a value (see --help)");
       const std::string value = argv[++a];
       if (arg == "--meshes") {
         dir = value;
