@@ -48,7 +48,10 @@ struct Signature {
       const ContactParams& p = s.collisions->params;
       settings.insert(settings.end(), {p.omega, p.damping_ratio, p.friction, p.thickness});
       counts.insert(counts.end(), {s.collisions->spheres.size(), s.collisions->boxes.size(),
-                                   s.collisions->surface.size(), s.collisions->two_sided.size()});
+                                   s.collisions->surface.size(), s.collisions->two_sided.size(),
+                                   s.collisions->surface_thickness.size()});
+      settings.insert(settings.end(), s.collisions->surface_thickness.begin(),
+                      s.collisions->surface_thickness.end());
     }
   }
   // NaN settings compare unequal, so an object with one is validated (and refused) again

@@ -11,8 +11,11 @@
 
 #include "gencoord/deformable/errors.hpp"
 #include "gencoord/deformable/volume_terms.hpp"
+#include "message.hpp"
 
 namespace gencoord::deformable {
+
+using detail::message;
 
 namespace {
 // the end zones held at the uniform strain, as a fraction of the length
@@ -25,6 +28,12 @@ StretchResponse stretch_response(const MassSpringSystem<Dim>& s,
                                  double measure, int axis) {
   using Block = Eigen::Matrix<double, Dim, Dim>;
   const int count = static_cast<int>(rest.cols());
+  if (count != s.num_nodes())
+    throw ObjectError(
+        message("stretch: ", count, " rest positions for an object of ", s.num_nodes(),
+                " nodes; give the rest positions of its own nodes (for quadratic "
+                "elements, those of the quadratic mesh)"),
+        -1, -1);
   const double low = rest.row(axis).minCoeff(), high = rest.row(axis).maxCoeff();
   const double length = high - low, end = kEndFraction * length;
   const double eps = 1e-6;

@@ -180,6 +180,8 @@ void validate_mesh(const SimplexMesh<Dim>& mesh) {
 template <int Dim>
 void validate_mesh(const QuadraticMesh<Dim>& mesh) {
   validate_any_mesh<Dim>(mesh);
+  // (corner, corner, midpoint, element) of every edge, to find edges given two midpoints
+  std::vector<std::array<int, 4>> edges;
   for (int e = 0; e < static_cast<int>(mesh.elements.size()); ++e) {
     const auto& el = mesh.elements[e];
     int m = Dim + 1;
@@ -193,8 +195,18 @@ void validate_mesh(const QuadraticMesh<Dim>& mesh) {
                                   "); curved quadratic elements are not supported: place it "
                                   "at the middle"),
                           e, el[m]);
+        edges.push_back({std::min(el[a], el[b]), std::max(el[a], el[b]), el[m], e});
       }
     }
+  }
+  std::sort(edges.begin(), edges.end());
+  for (std::size_t k = 1; k < edges.size(); ++k) {
+    const auto &p = edges[k - 1], &q = edges[k];
+    if (p[0] == q[0] && p[1] == q[1] && p[2] != q[2])
+      throw MeshError(message("mesh: elements ", p[3], " and ", q[3], " give their shared edge (",
+                              p[0], ", ", p[1], ") different midpoint nodes, ", p[2], " and ", q[2],
+                              ", which leaves a crack between them; share one node"),
+                      q[3], q[2]);
   }
 }
 

@@ -208,7 +208,9 @@ int Run(const Options& o) {
   } else {
     dropped = gd::make_mass_spring(part, material);
   }
-  gd::enable_collisions<3>(dropped, gd::boundary_triangles(shown), o.friction, o.damping_ratio);
+  const double thickness =
+      gd::enable_collisions<3>(dropped, gd::boundary_triangles(shown), o.friction, o.damping_ratio)
+          .params.thickness;
   const int first = gd::append_object(scene, dropped);
   const int count = dropped.num_nodes();
   for (auto& element : shown.elements) {
@@ -233,9 +235,8 @@ int Run(const Options& o) {
   std::printf("%s: %d nodes, %zu tetrahedra (%s), %.4g x %.4g x %.4g m, dropped %.4g m onto a %s\n",
               o.mesh.c_str(), count, part.elements.size(), o.elements.c_str(), size.x(), size.y(),
               size.z(), gap, o.onto.c_str());
-  std::printf("  E = %.4g Pa, rho = %.4g kg/m^3: c = %.4g m/s; contact thickness %.4g m\n",
-              o.material.youngs_modulus, o.material.density, o.material.wave_speed(),
-              contact.params.thickness);
+  std::printf("  E = %.4g Pa, rho = %.4g kg/m^3: c = %.4g m/s; its contact thickness %.4g m\n",
+              o.material.youngs_modulus, o.material.density, o.material.wave_speed(), thickness);
   std::printf("  %s Euler, dt = %.4g s (%.3g x CFL), %ld steps, %.3g s\n",
               o.implicit ? "backward" : "symplectic", dt, dt / cfl, steps, o.duration);
 

@@ -23,7 +23,8 @@ namespace gencoord::deformable {
 /// the high end zone and the cross-section `measure` (area in 2D, volume in 3D) over the
 /// length. For a prismatic body this is uniaxial stress: the
 /// sides and the ends are free laterally.
-/// \throws ObjectError if nothing carries the stretch from one end to the other.
+/// \throws ObjectError if nothing carries the stretch from one end to the other, or `rest`
+///         has not one column per node of `s`.
 template <int Dim>
 double stretch_modulus(const MassSpringSystem<Dim>& s,
                        const Eigen::Matrix<double, Dim, Eigen::Dynamic>& rest, double measure,

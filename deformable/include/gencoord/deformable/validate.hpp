@@ -32,8 +32,8 @@ template <int Dim>
 void validate_mesh(const SimplexMesh<Dim>& mesh);
 
 /// \throws MeshError for what validate_mesh() refuses in a linear mesh (the measure being the
-/// corners'), or a midpoint node more than kMaxRelativeMidpointOffset times its edge's length
-/// from the middle of that edge.
+/// corners'), a midpoint node more than kMaxRelativeMidpointOffset times its edge's length
+/// from the middle of that edge, or two elements sharing an edge with different midpoints.
 template <int Dim>
 void validate_mesh(const QuadraticMesh<Dim>& mesh);
 
