@@ -250,10 +250,12 @@ std::vector<ContactJacobian<Dim>> contact_jacobians(
         const Mat k = -contact.mass * p.omega * p.omega * nn;
         const Mat d =
             -contact.mass * (2.0 * p.damping_ratio * p.omega * nn + drag * (Mat::Identity() - nn));
-        out.push_back({contact.node, k, d});
+        // |u|_1 |u_i| of the header's bound: 2 for the node and 2 w_a for corner a
+        const double node_scale = contact.num_corners > 0 ? 2.0 : 1.0;
+        out.push_back({contact.node, node_scale * k, node_scale * d});
         for (int c = 0; c < contact.num_corners; ++c) {
-          const double w2 = contact.weights[c] * contact.weights[c];
-          if (w2 > 0.0) out.push_back({contact.corners[c], w2 * k, w2 * d});
+          const double scale = 2.0 * contact.weights[c];
+          if (scale > 0.0) out.push_back({contact.corners[c], scale * k, scale * d});
         }
       });
   return out;

@@ -139,7 +139,7 @@ void MassSpringIntegration<Dim>::linearize(const State& y, JacobianSource,
       }
     }
   }
-  // contacts: their diagonal blocks (collision.hpp)
+  // contacts: diagonal blocks that bound them from above (collision.hpp)
   if constexpr (Dim > 1) {
     for (const auto& block : detail::contact_jacobians<Dim>(s_, y.q, y.v)) {
       add_block<Dim>(k_x, dof_, block.node, block.node, block.d_position);

@@ -224,7 +224,8 @@ void StepMatrix<Dim>::fill(const MassSpringSystem<Dim>& s, const Points& q, cons
       }
     }
   }
-  // contacts: their diagonal blocks, in the pattern whatever touches what (collision.hpp)
+  // contacts: diagonal blocks that bound them from above, in the pattern whatever touches
+  // what (collision.hpp)
   std::vector<ContactJacobian<Dim>> blocks;
   if constexpr (Dim > 1) blocks = contact_jacobians<Dim>(s, q, v);
   contacts_ = contact_set<Dim>(s, q, blocks);

@@ -36,8 +36,10 @@
 ///   nearest such simplex is 0.71 of an edge away). In a scene of several objects each
 ///   simplex keeps its object's thickness (Collisions::surface_thickness).
 /// - Implicit steps (backward Euler) include each contact's stiffness and damping on the
-///   diagonal blocks of the nodes involved only: the pairs change from step to step and the
-///   step matrix keeps its sparsity pattern (implicit_stepper.hpp).
+///   diagonal blocks of the nodes involved only, the pairs changing from step to step while the
+///   step matrix keeps its sparsity pattern (implicit_stepper.hpp): blocks that bound the
+///   contact's coupling of a node and a simplex from above, 2 K on the node and 2 w_a K on the
+///   simplex's corner a, K the penalty's block and w_a the closest point's weights.
 
 #include <Eigen/Core>
 #include <array>

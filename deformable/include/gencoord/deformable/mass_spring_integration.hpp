@@ -45,8 +45,8 @@ class MassSpringIntegration {
   Unknowns free_part(const Points& x) const;
   void add_to_free(const Unknowns& dx, Points* x) const;
   /// The free forces and their Jacobians K = df/dx, D = df/dv (definite spring and volume
-  /// term blocks, the hinges' Gauss-Newton blocks, the ground penalty while it pushes, the
-  /// contacts' diagonal blocks).
+  /// term blocks, the hinges' Gauss-Newton blocks, the ground penalty while it pushes, and for
+  /// the contacts diagonal blocks that bound them from above: collision.hpp).
   void linearize(const State& y, JacobianSource, Linearization<MassSpringIntegration>* out) const;
   /// Conjugate gradients stop by ImplicitOptions::tolerance's rule, its velocity floor being
   /// the velocities of the last linearize() call's state.
