@@ -39,7 +39,7 @@ double contact_energy(const MassSpringSystem<Dim>& s,
 /// u u^T <= diag(|u_i| |u|_1) and |u|_1 = 2, the node gets 2 K and corner a gets 2 w_a K (an
 /// obstacle's contact, with no corners, K), so the matrix is at least as stiff as the contact in
 /// every direction. (The blocks u_i^2 K alone are softer in the node's motion against the
-/// surface, and implicit drops of one object onto another then gained up to 1% of their energy.)
+/// surface: with them an implicit drop of one object onto another gains up to 1% of its energy.)
 template <int Dim>
 std::vector<ContactJacobian<Dim>> contact_jacobians(
     const MassSpringSystem<Dim>& s, const typename MassSpringSystem<Dim>::Points& x,

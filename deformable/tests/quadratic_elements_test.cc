@@ -347,9 +347,9 @@ TEST(QuadraticElement, ImplicitStepNeverGainsEnergy) {
 // limit and implicit ones at 10 times it. Each surface keeps its own contact thickness, so the
 // cube's finer surface does not thin the block's (with the thinner layer for both, it sinks
 // 4.5 cm into the block and its energy doubles). No step gains energy, implicit ones included,
-// also with the linear tetrahedra that tile the quadratic ones on the same nodes (with the
-// contacts' diagonal blocks of the implicit matrix not bounding their coupling from above,
-// src/contact_forces.hpp, they gained 0.7% and 1.2%).
+// also with the linear tetrahedra that tile the quadratic ones on the same nodes (the implicit
+// matrix's contact blocks bound their coupling from above, src/contact_forces.hpp; the
+// Hessian's own diagonal blocks would let them gain 0.7% and 1.2%).
 void ExpectCubeStaysOnTheBlock(bool implicit, bool quadratic) {
   const double edge = 0.2;
   Material rubber = corotated(2e5, 0.3, 20.0);
