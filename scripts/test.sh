@@ -67,7 +67,7 @@ if [ "${GENCOORD_SKIP_SANITIZERS:-0}" != 1 ]; then
   configure "${build}-sanitize" -DCMAKE_BUILD_TYPE=Sanitize -DCMAKE_CXX_FLAGS_SANITIZE=-O1 \
             -DGENCOORD_SANITIZE=ON -DGENCOORD_BUILD_TESTS=ON
   targets=$(cmake --build "${build}-sanitize" --target help | grep -oE \
-            'gencoord_(runtime|crosscheck|constrained|fuzz|sweep_exchange)_tests|deformable_(tests|demo|drop|validation)' \
+            'gencoord_(runtime|crosscheck|constrained|fuzz|sweep_exchange)_tests|deformable_(tests|demo|drop)' \
             | sort -u)
   # shellcheck disable=SC2086
   cmake --build "${build}-sanitize" -j "$jobs" --target $targets

@@ -10,6 +10,7 @@
 
 #include "figures.hpp"
 #include "gencoord/deformable/implicit_stepper.hpp"
+#include "test_helpers.hpp"
 
 namespace gencoord::deformable {
 namespace {
@@ -20,12 +21,7 @@ using validation::implicit_drop;
 
 class ImplicitContact : public ::testing::TestWithParam<double> {};
 
-// Built with AddressSanitizer (GCC defines this; the sanitizer builds use GCC)
-#ifdef __SANITIZE_ADDRESS__
-constexpr bool kSanitized = true;
-#else
-constexpr bool kSanitized = false;
-#endif
+using testing::kSanitized;
 
 TEST_P(ImplicitContact, DropsNeverGainEnergy) {
   const double multiple = GetParam();

@@ -25,6 +25,7 @@
 #include "gencoord/deformable/time_step.hpp"
 #include "gencoord/deformable/validate.hpp"
 #include "mesh_files.hpp"
+#include "test_helpers.hpp"
 #include "test_materials.hpp"
 
 namespace gencoord::deformable {
@@ -393,8 +394,10 @@ void ExpectCubeStaysOnTheBlock(bool implicit, bool quadratic) {
 }
 
 TEST(QuadraticElement, CubeDroppedOnABlockStaysOnIt) {
-  ExpectCubeStaysOnTheBlock(false, true);
   ExpectCubeStaysOnTheBlock(true, true);
+  // the same code at other settings: 45 s under the sanitizers, so in the Release build only
+  if (testing::kSanitized) GTEST_SKIP() << "the explicit and linear drops run in the Release build";
+  ExpectCubeStaysOnTheBlock(false, true);
   ExpectCubeStaysOnTheBlock(true, false);
 }
 

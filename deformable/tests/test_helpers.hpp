@@ -1,12 +1,21 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #pragma once
-// Helpers shared by the deformable tests: pulse set-up and arrival-time measurement.
+// Helpers shared by the deformable tests: pulse set-up and arrival-time measurement, and
+// whether the build is the sanitizers'.
 
 #include <Eigen/Core>
 #include <cmath>
 #include <vector>
 
 namespace gencoord::deformable::testing {
+
+/// Built with AddressSanitizer (GCC defines this; the sanitizer builds use GCC): tests that
+/// repeat a run through the same code at other settings keep the repeats for the Release build.
+#ifdef __SANITIZE_ADDRESS__
+inline constexpr bool kSanitized = true;
+#else
+inline constexpr bool kSanitized = false;
+#endif
 
 /// A right-travelling Gaussian pulse of axial displacement u = a exp(-((p - p0) / w)^2), with
 /// the velocity -c du/dp that makes it travel toward +p at speed c.
