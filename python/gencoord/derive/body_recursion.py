@@ -40,6 +40,7 @@ from gencoord.dsl.model import Model
 from gencoord.derive.point_recursion import RecursiveDynamics, place_symmetric, spd_inverse
 from gencoord.derive.spatial import force_to_parent, inertia_to_parent, split
 from gencoord.derive.structured import Intermediates
+from gencoord.derive.tree_derivatives import analytic_residual_jacobians
 from gencoord.symbolic.sums import product
 
 
@@ -59,9 +60,13 @@ def body_recursive_dynamics(model: Model, kin, tree: BodyTree, derivation: bool 
              for node in tree.nodes]
     residual = _newton_euler(links, _accelerations(links, links.world, joint, True),
                              bias_force, links.tau)
+    # the closed form serves the unrolled kernels of a derived tree (a looped one differentiates
+    # its products)
+    jacobians = (analytic_residual_jacobians(model, links, kin.q, kin.v, qdd)
+                 if derivation and square_outputs else None)
     return RecursiveDynamics(qddot, residual, names.definitions,
                              _derivation(model, kin, links, qdd, square_outputs)
-                             if derivation else None)
+                             if derivation else None, jacobians)
 
 
 def _accelerations(links: LinkKinematics, world: sp.Matrix, joint, with_bias: bool

@@ -153,8 +153,9 @@ def build_kernels(d: Derivation, recursive: RecursiveDynamics | None = None,
 
     With the tree recursions, their kernels follow the dense ones they may replace. A model
     whose derivation came from its recursions (`tree_derived`) gets the residual's Jacobians
-    through Newton-Euler's residual (n directions of O(n) operations each, where Mt qdd takes
-    n^2 each), and no dense inverse dynamics: Newton-Euler is it. With `looped` (a large
+    in closed form where its joints allow (tree_derivatives.py), else by forward mode through
+    Newton-Euler's residual (n directions of O(n) operations each, where Mt qdd takes n^2
+    each), and no dense inverse dynamics: Newton-Euler is it. With `looped` (a large
     tree, looped.py) its loops replace the kernels of n^2 entries, and its products follow
     the others."""
     residual = None if tree_derived else d.residual()
@@ -162,7 +163,13 @@ def build_kernels(d: Derivation, recursive: RecursiveDynamics | None = None,
     if tree_derived:
         assert recursive is not None  # a tree-derived model comes with its recursions
         differentiated = recursive.residual
-    kernels = _dense_kernels(d, residual, differentiated, looped.replacing if looped else {})
+    replacing = dict(looped.replacing) if looped else {}
+    if (tree_derived and recursive is not None and recursive.residual_jacobians
+            and "residual_jacobians" not in replacing):
+        dr_dq, dr_dv = recursive.residual_jacobians
+        replacing["residual_jacobians"] = _residual_jacobians(
+            _matrix("dr_dq", "VQMatrix", dr_dq), _matrix("dr_dv", "VMatrix", dr_dv))
+    kernels = _dense_kernels(d, residual, differentiated, replacing)
     if looped:
         kernels += looped.products
     if d.constraints is not None:
@@ -218,16 +225,20 @@ def _dynamics_kernels(d: Derivation, residual: sp.Matrix | None,
           if residual is not None else []),
         # a constrained model's implicit steps difference its constrained acceleration, which
         # this residual leaves out (the bicycle's would be 40% of its header)
-        *([unless_replaced("residual_jacobians", lambda: Kernel(
-            "residual_jacobians", "Jacobians dr/dq and dr/dv of the residual (dr/dqdd = Mt), "
-            "for Newton steps.", ("q", "v", "qdd", "t"),
-            [_out(_jacobian("dr_dq", "VQMatrix", differentiated_residual, d.q)),
-             _out(_jacobian("dr_dv", "VMatrix", differentiated_residual, d.v))],
-            notes=["dr_dq and dr_dv must not be null."]))] if d.constraints is None else []),
+        *([unless_replaced("residual_jacobians", lambda: _residual_jacobians(
+            _jacobian("dr_dq", "VQMatrix", differentiated_residual, d.q),
+            _jacobian("dr_dv", "VMatrix", differentiated_residual, d.v)))]
+          if d.constraints is None else []),
         *([Kernel("input_matrix", "Input matrix B = dFt/du: the generalized force per unit of "
                   "each control input (Ft = B u + the rest when u enters linearly).",
                   ("q", "v", "t"), [_input_matrix(d)])] if d.inputs else []),
     ]
+
+
+def _residual_jacobians(dr_dq: Block, dr_dv: Block) -> Kernel:
+    return Kernel("residual_jacobians", "Jacobians dr/dq and dr/dv of the residual "
+                  "(dr/dqdd = Mt), for Newton steps.", ("q", "v", "qdd", "t"),
+                  [_out(dr_dq), _out(dr_dv)], notes=["dr_dq and dr_dv must not be null."])
 
 
 def _state_kernels(d: Derivation, unless_replaced) -> list[Kernel]:

@@ -55,6 +55,9 @@ class RecursiveDynamics:
     definitions: list[tuple[sp.Symbol, sp.Expr]]
     # every output of derive/dense.py, by the recursions (composite bodies for Mt), when asked for
     derivation: Derivation | None = None
+    # (dr/dq, dr/dv) of the residual where a tree has them in closed form (tree_derivatives.py);
+    # None: forward mode through the residual
+    residual_jacobians: tuple[sp.Matrix, sp.Matrix] | None = None
 
 
 # up to this size the adjugate over the determinant is cheapest; beyond it (a free joint's

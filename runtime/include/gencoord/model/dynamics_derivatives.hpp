@@ -5,9 +5,10 @@
 // the acceleration a(q, v, tau) has
 //   da/dq = -Mt^-1 dr/dq,   da/dv = -Mt^-1 dr/dv,   da/dtau = Mt^-1,
 // r = Mt a - Ft - Fi the inverse-dynamics residual. Generated: one Cholesky factor of Mt and
-// residual_jacobians(), which for a joint tree is the forward-mode derivative of the recursive
-// Newton-Euler residual (O(n) intermediates per direction: the route through the inverse
-// dynamics' derivatives and Mt^-1 of Carpentier and Mansard, RSS 2018). FiniteDifference:
+// residual_jacobians(), which for a joint tree is the derivative of the recursive Newton-Euler
+// residual, in closed form for an arm-like tree of revolute and prismatic joints and by forward
+// mode otherwise (the route through the inverse dynamics' derivatives and Mt^-1 of Carpentier
+// and Mansard, RSS 2018). FiniteDifference:
 // central differences of acceleration(), 2 (nq + nv) dynamics evaluations, for comparison.
 // With generalized speeds da/dq is nv x nq, in the embedding of q (control/linearize.hpp
 // takes it to local coordinates).
