@@ -1,11 +1,13 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // The derivatives of the forward dynamics of the URDF robots, side by side in one process
 // pinned to one core, over the same 256 random states: gencoord's dynamics_derivatives (a,
-// da/dq, da/dv and da/dtau = Mt^-1 from residual_jacobians, the forward-mode derivative of the
-// recursive Newton-Euler residual, and one Cholesky factor), the same from central differences
+// da/dq, da/dv and da/dtau = Mt^-1 from residual_jacobians, the derivative of the recursive
+// Newton-Euler residual, in closed form for the arms and by forward mode for the quadrupeds,
+// and one Cholesky factor), the same from central differences
 // of gencoord's own acceleration, and MuJoCo's finite-difference linearization mjd_transitionFD
 // (forward differences, its faster mode; it differences mj_step, one step of its Euler
-// integrator per column). Each round times every contender; the table gives the minimum and the
+// integrator per column); for scale, qddot and residual_jacobians alone (the generated part of
+// the derivatives). Each round times every contender; the table gives the minimum and the
 // median over the rounds of the time per call, and the ratios.
 //   build/bench/bench_derivatives [rounds]
 #include <algorithm>
@@ -60,6 +62,9 @@ void compare(const char* robot, const char* urdf, int rounds) {
     for (int i = 0; i < gencoord::nv_of_v<M>; ++i) s.v[i] = rate(rng);
     if constexpr (gencoord::has_generalized_speeds_v<M>) s.q.template segment<4>(3).normalize();
   }
+  // the accelerations at which dynamics_derivatives evaluates the residual's Jacobians
+  std::vector<gencoord::VVec<M>> accelerations;
+  for (const auto& s : states) accelerations.push_back(gencoord::acceleration<M>(p, s.q, s.v, 0.0));
   const int n = 2 * m->nv + m->na;
   std::vector<mjtNum> A(static_cast<std::size_t>(n) * n);
 
@@ -88,6 +93,15 @@ void compare(const char* robot, const char* urdf, int rounds) {
        {}},
       {"qddot (one call, for scale)",
        [&](int k) { sink = sink + kept(M::qddot(states[k].q, states[k].v, 0.0, p))[0]; },
+       {}},
+      {"residual_jacobians (one call, its share)",
+       [&](int k) {
+         gencoord::VQMat<M> r_D_q;
+         gencoord::VMat<M> r_D_v;
+         M::residual_jacobians(states[k].q, states[k].v, accelerations[k], 0.0, p, &r_D_q,
+                               &r_D_v);
+         sink = sink + kept(r_D_q)(0, 0) + kept(r_D_v)(0, 0);
+       },
        {}},
   };
   for (int round = 0; round < rounds; ++round)
