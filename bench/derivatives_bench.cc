@@ -98,8 +98,7 @@ void compare(const char* robot, const char* urdf, int rounds) {
        [&](int k) {
          gencoord::VQMat<M> r_D_q;
          gencoord::VMat<M> r_D_v;
-         M::residual_jacobians(states[k].q, states[k].v, accelerations[k], 0.0, p, &r_D_q,
-                               &r_D_v);
+         M::residual_jacobians(states[k].q, states[k].v, accelerations[k], 0.0, p, &r_D_q, &r_D_v);
          sink = sink + kept(r_D_q)(0, 0) + kept(r_D_v)(0, 0);
        },
        {}},
