@@ -38,6 +38,7 @@ from .support import DIGITS, MODELS, relative_error
 
 BRANCHED = Path(__file__).parent / "tree_models" / "branched_pendulum.py"
 FORCED_ARM = Path(__file__).parent / "tree_models" / "forced_arm.py"
+MOVING_PIVOT = Path(__file__).parent / "tree_models" / "moving_pivot.py"
 FLOATING_LEG = Path(__file__).parents[1] / "robots" / "floating_leg.py"
 QUATERNION_TREE = Path(__file__).parent / "tree_models" / "quaternion_tree.py"
 SIX_LINKS = (MODELS / "n_link_chain.py", {"n": "6"})
@@ -214,7 +215,8 @@ class BodyTreeTest(unittest.TestCase):
 
     def test_rigid_body_recursions_equal_the_dense_dynamics(self):
         # torques, springs, dampers, a moving anchor, joint springs and damping, a massless
-        # link and a welded one; then a free base in Euler angles
+        # link and a welded one; a joint whose pivot moves in time; then a free base in Euler
+        # angles
         # (a URDF's numbers are binary floats: the dense form's LDL^T of a body's second
         # moment rounds at 1e-16, which bounds the agreement there)
         # (a floating robot's dense form with a quaternion takes many minutes: the quaternion
@@ -228,7 +230,8 @@ class BodyTreeTest(unittest.TestCase):
         fixed_base = [path for path in sorted(MODELS.glob("*.urdf"))
                       if "floating" not in path.name and path.name != "ur5e.urdf"]
         quaternion_tree = [(QUATERNION_TREE, None)] if _SYMPY_AT_LEAST_1_13 else []
-        for path, tolerance in ((FORCED_ARM, None), *quaternion_tree, (FLOATING_LEG, 1e-12),
+        for path, tolerance in ((FORCED_ARM, None), (MOVING_PIVOT, None), *quaternion_tree,
+                                (FLOATING_LEG, 1e-12),
                                 *((path, 1e-12) for path in fixed_base)):
             model, name = _load(path)
             kin = Kinematics(model)

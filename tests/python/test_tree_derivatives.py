@@ -31,6 +31,7 @@ from .support import MODELS, relative_error
 
 BRANCHED_ARM = Path(__file__).parent / "tree_models" / "branched_arm.urdf"
 FORCED_ARM = Path(__file__).parent / "tree_models" / "forced_arm.py"
+MOVING_PIVOT = Path(__file__).parent / "tree_models" / "moving_pivot.py"
 QUATERNION_TREE = Path(__file__).parent / "tree_models" / "quaternion_tree.py"
 DIGITS = 40
 STEP = mpmath.mpf("1e-12")
@@ -75,30 +76,29 @@ class ClosedFormJacobiansTest(unittest.TestCase):
         # damping and friction (its subtrees are too short for the closed form to pay, so it is
         # asked for); the arms' generated kernels are checked in C++ (tests/robots/
         # derivatives_test.cc, tests/models/looped_kernels_test.cc)
-        for path, min_mean_subtree in ((BRANCHED_ARM, 0.0),):
-            model, kin = _load(path)
-            (dr_dq, dr_dv), definitions = _closed_form(model, kin, min_mean_subtree)
-            recursive = body_recursive_dynamics(model, kin, body_tree(model), derivation=False)
-            residual = _evaluator(recursive.definitions, list(recursive.residual))
-            jacobians = _evaluator(definitions, [*dr_dq, *dr_dv])
-            rng = random.Random(path.name)
-            inputs = [*kin.q, *kin.v, *(s.acceleration for s in model.speeds)]
-            with mpmath.workdps(DIGITS):
-                point = {s: sp.Float(rng.uniform(-1.5, 1.5), DIGITS) for s in inputs}
-                point.update({p.symbol: sp.Float(p.default * rng.uniform(0.8, 1.2), DIGITS)
-                              for p in model.parameters})
-                point[kin.t] = sp.Float(0.3, DIGITS)
-                columns = []
-                for w in [*kin.q, *kin.v]:
-                    ahead, behind = dict(point), dict(point)
-                    ahead[w] = point[w] + STEP
-                    behind[w] = point[w] - STEP
-                    columns.append([(a - b) / (2 * STEP) for a, b
-                                    in zip(residual(ahead), residual(behind))])
-                n = len(kin.q)
-                expected = [columns[j][i] for i in range(model.nv) for j in range(n)]
-                expected += [columns[n + j][i] for i in range(model.nv) for j in range(model.nv)]
-                self.assertLess(relative_error(jacobians(point), expected), 1e-12, path.name)
+        model, kin = _load(BRANCHED_ARM)
+        (dr_dq, dr_dv), definitions = _closed_form(model, kin, 0.0)
+        recursive = body_recursive_dynamics(model, kin, body_tree(model), derivation=False)
+        residual = _evaluator(recursive.definitions, list(recursive.residual))
+        jacobians = _evaluator(definitions, [*dr_dq, *dr_dv])
+        rng = random.Random(BRANCHED_ARM.name)
+        inputs = [*kin.q, *kin.v, *(s.acceleration for s in model.speeds)]
+        with mpmath.workdps(DIGITS):
+            point = {s: sp.Float(rng.uniform(-1.5, 1.5), DIGITS) for s in inputs}
+            point.update({p.symbol: sp.Float(p.default * rng.uniform(0.8, 1.2), DIGITS)
+                          for p in model.parameters})
+            point[kin.t] = sp.Float(0.3, DIGITS)
+            columns = []
+            for w in [*kin.q, *kin.v]:
+                ahead, behind = dict(point), dict(point)
+                ahead[w] = point[w] + STEP
+                behind[w] = point[w] - STEP
+                columns.append([(a - b) / (2 * STEP) for a, b
+                                in zip(residual(ahead), residual(behind))])
+            n = len(kin.q)
+            expected = [columns[j][i] for i in range(model.nv) for j in range(n)]
+            expected += [columns[n + j][i] for i in range(model.nv) for j in range(model.nv)]
+            self.assertLess(relative_error(jacobians(point), expected), 1e-12)
 
     def test_which_trees_get_the_closed_form(self):
         # the arms' joints carry long subtrees; the fixed-base quadruped's legs are 3 deep
@@ -108,8 +108,9 @@ class ClosedFormJacobiansTest(unittest.TestCase):
                              (FORCED_ARM, False), (QUATERNION_TREE, False)):
             model, kin = _load(path)
             self.assertEqual(_closed_form(model, kin)[0] is not None, closed, path.name)
-        model, kin = _load(FORCED_ARM)
-        self.assertIsNone(_closed_form(model, kin, 0.0)[0])
+        for path in (FORCED_ARM, MOVING_PIVOT):  # wrenches; a joint frame moving in time
+            model, kin = _load(path)
+            self.assertIsNone(_closed_form(model, kin, 0.0)[0], path.name)
         # and the recursions hand it to the kernels
         model, kin = _load(MODELS / "ur5e.urdf")
         self.assertIsNotNone(body_recursive_dynamics(model, kin, body_tree(model))

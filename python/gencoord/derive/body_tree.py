@@ -86,21 +86,23 @@ def body_tree(model: Model) -> BodyTree | None:
 def _joint_motion(link: Link, own: list[sp.Symbol], t: sp.Symbol
                   ) -> tuple[sp.Matrix, sp.Matrix]:
     """S and sigma of the link's joint. A revolute joint turns about its axis, which the
-    turn leaves fixed, and a prismatic one slides along it: S is the axis, exactly. Any other
-    motion (a free base's translation and Euler angles) has (omega; v) = (unskew(E^T dE/dt),
-    E^T dr/dt), simplified once per joint so S holds no cos^2 + sin^2."""
+    turn leaves fixed, and a prismatic one slides along it: S is the axis, exactly, and sigma
+    is zero unless the joint's frame moves in time. Any other motion (a free base's
+    translation and Euler angles, a joint whose origin moves in time) has (omega; v) =
+    (unskew(E^T dE/dt), E^T dr/dt), simplified once per joint so S holds no cos^2 + sin^2."""
     zero = sp.zeros(3, 1)
+    assert link.local is not None  # add_link and add_free_base set it
+    rotation, origin = link.local.rotation, link.local.origin
+    moves_in_time = t in rotation.free_symbols | origin.free_symbols
     if isinstance(link.joint, Free):  # speeds (v; omega), the twist in the link's axes
         return sp.Matrix.vstack(sp.Matrix.hstack(sp.zeros(3), sp.eye(3)),
                                 sp.Matrix.hstack(sp.eye(3), sp.zeros(3))), sp.zeros(6, 1)
     if isinstance(link.joint, Ball):
         return sp.Matrix.vstack(sp.eye(3), sp.zeros(3)), sp.zeros(6, 1)
-    if isinstance(link.joint, Revolute):
+    if isinstance(link.joint, Revolute) and not moves_in_time:
         return sp.Matrix.vstack(link.joint.unit_axis(), zero), sp.zeros(6, 1)
-    if isinstance(link.joint, Prismatic):
+    if isinstance(link.joint, Prismatic) and not moves_in_time:
         return sp.Matrix.vstack(zero, link.joint.unit_axis()), sp.zeros(6, 1)
-    assert link.local is not None  # add_link and add_free_base set it
-    rotation, origin = link.local.rotation, link.local.origin
     columns = []
     for coordinate in [*own, t]:
         spin = unskew((rotation.T * rotation.diff(coordinate)).applyfunc(sp.trigsimp))

@@ -1,6 +1,6 @@
 # SPDX-License-Identifier: BSD-3-Clause
 """dr/dq and dr/dv of Newton-Euler's residual for a tree of revolute and prismatic joints,
-analytically, in world axes: O(n) spatial products and one dot product per entry.
+analytically, in world axes: O(n) spatial products and one or two dot products per entry.
 
 Every spatial quantity here is in the world's axes about the world's origin (spatial.py's
 conventions): joint i's axis S_i, link i's velocity v_i and acceleration a_i (gravity as the
@@ -35,8 +35,8 @@ and for j below i (the subtree of j is in i's) dr_i/dq_j = S_i . Phi_j, dr_i/dv_
 with Phi_j and Psi_j the right-hand sides above at i = j. tau's own derivatives are
 subtracted. B_k is K_k + H(I_k v_k) with K_k = v_k x* I_k - I_k v_k x = dI_k/dt and
 H(h) w = w x* h, both linear in what the subtree sums: BC_i = K_i + H(hc_i), with K_i the
-composite of dJ/dt and dh/dt (K = [[dJ/dt, -[dh/dt]x], [[dh/dt]x, 0]]) and hc_i that of the
-momenta I_k v_k.
+composite of dJ/dt and kappa = -dh/dt (K = [[dJ/dt, -[kappa]x], [[kappa]x, 0]]) and hc_i
+that of the momenta I_k v_k.
 
 This is the structure of the derivatives of Carpentier and Mansard (RSS 2018), derived here
 for the generator's own conventions. Forward mode through the link-axes recursion carries each
@@ -60,7 +60,8 @@ from gencoord.symbolic.sums import dot, product
 # The closed form costs a constant per joint and a dot product or two per entry; forward mode
 # costs each direction the joints below it, so the closed form pays where joints carry long
 # subtrees. Operations of residual_jacobians (the `/// Ops:` line of the header that
-# `./generate ROBOT.urdf` writes), forward mode / closed form: models/iiwa14.urdf (a mean
+# `./generate ROBOT.urdf` writes with MIN_MEAN_SUBTREE set to infinity and to 0), forward
+# mode / closed form: models/iiwa14.urdf (a mean
 # subtree of 4 joints) 9403 / 6249, models/ur5e.urdf (3.5) 5819 / 4597,
 # tests/python/tree_models/branched_arm.urdf (2.4) 4537 / 4553, models/quadruped.urdf (2)
 # 6699 / 7444.
@@ -140,7 +141,8 @@ def _qualifies(model: Model, links: LinkKinematics, min_mean_subtree: float) -> 
     for node in links.nodes:
         joint = node.link.joint
         moving = isinstance(joint, (Revolute, Prismatic)) and len(node.speeds) == 1
-        if not (moving or (joint is None or isinstance(joint, Fixed)) and not node.speeds):
+        welded = (joint is None or isinstance(joint, Fixed)) and not node.speeds
+        if not (moving or welded):
             return False
         if any(node.drift) or t in node.rotation.free_symbols | node.translation.free_symbols:
             return False
@@ -179,7 +181,7 @@ class _SpatialInertia:
 
 
 class _CompositeB:
-    """B = K + H(hc) of a subtree, K = dI/dt = [[dJ/dt, -[dh/dt]x], [[dh/dt]x, 0]] (the
+    """B = K + H(hc) of a subtree, K = dI/dt = [[dJ/dt, -[kappa]x], [[kappa]x, 0]] (the
     file comment) kept as dJ/dt and kappa = -dh/dt; K x is shared by B x and B^T x."""
 
     def __init__(self, J_rate: sp.Matrix, kappa: sp.Matrix, momentum: sp.Matrix, names):
@@ -203,7 +205,7 @@ class _CompositeB:
 
 class _WorldMotion:
     """Each joint's axis S, psi and alpha and each link's velocity and acceleration, in world
-    axes; and each body's inertia, force, P and momentum there."""
+    axes; and each body's inertia, force, dI/dt and momentum there (body_terms)."""
 
     def __init__(self, links: LinkKinematics, v: list[sp.Symbol], qdd: list[sp.Symbol]):
         self.links = links
