@@ -174,11 +174,6 @@ class _SpatialInertia:
         return sp.Matrix.vstack(product(self.rotational, w) + h.cross(u),
                                 self.mass * u - h.cross(w))
 
-    def matrix(self) -> sp.Matrix:
-        H = skew(self.moment)
-        return sp.Matrix.vstack(sp.Matrix.hstack(self.rotational, H),
-                                sp.Matrix.hstack(H.T, self.mass * sp.eye(3)))
-
 
 class _CompositeB:
     """B = K + H(hc) of a subtree, K = dI/dt = [[dJ/dt, -[kappa]x], [[kappa]x, 0]] (the
