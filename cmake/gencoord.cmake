@@ -17,7 +17,8 @@
 # TRANSLATION_UNITS <k> (./generate --translation-units, for large models) also generates
 # <name>_double_0.cpp ... <name>_double_<k-1>.cpp, which compile every kernel for double once
 # and in parallel; <target> is then a static library of them, and files that include the
-# header compile no kernel body for double. MAX_FUNCTION_STATEMENTS passes
+# header compile no kernel body for double. Where the building machine has AVX2 and FMA, those
+# files are compiled for them (GENCOORD_AVX2_KERNELS, simd.cmake). MAX_FUNCTION_STATEMENTS passes
 # --max-function-statements, LOOP_MIN_NQ --loop-min-nq (from how many coordinates a tree's
 # Mt, J and residual Jacobians are loops over O(nq) products); OUTPUT_DIR replaces
 # ${CMAKE_BINARY_DIR}/gencoord_generated as the folder that holds generated/<name>.hpp (the
@@ -37,6 +38,7 @@
 # unless given.
 
 include_guard(GLOBAL)
+include("${CMAKE_CURRENT_LIST_DIR}/simd.cmake")  # gencoord_enable_avx2_kernels()
 
 # Cache variables, not plain ones: the function runs in its callers' directories, which need
 # not see the variables of the directory that included this file.
@@ -146,6 +148,7 @@ function(gencoord_add_model target)
     # each file defines GENCOORD_PART_GROUP for the one header it includes; position-independent
     # so that a Python module (a shared library) can link the model too
     set_target_properties(${target} PROPERTIES UNITY_BUILD OFF POSITION_INDEPENDENT_CODE ON)
+    gencoord_enable_avx2_kernels(${target})
     target_include_directories(${target} PUBLIC "${include_dir}")
     target_link_libraries(${target} PUBLIC Eigen3::Eigen)
     target_compile_features(${target} PUBLIC cxx_std_17)

@@ -3,6 +3,7 @@
 # compiler and the building machine both have AVX2 and FMA, -mavx2 -mfma (named flags, not
 # -march=native, so that ccache never hands an object to another processor), so that a Pack<4>
 # is one register; and libmvec, glibc's vector sin and cos, where it is found.
+# gencoord_enable_avx2_kernels(TARGET): the same instruction sets for a model's kernel objects.
 include_guard(GLOBAL)
 include(CheckCXXSourceRuns)
 include(CMakePushCheckState)
@@ -20,6 +21,25 @@ check_cxx_source_runs("
   }" GENCOORD_HAVE_AVX2)
 cmake_pop_check_state()
 find_library(GENCOORD_LIBMVEC NAMES mvec)
+
+option(GENCOORD_AVX2_KERNELS
+       "Compile models' kernel translation units (gencoord_add_model's TRANSLATION_UNITS) with -mavx2 -mfma where the compiler and the building machine have both"
+       ON)
+
+# gencoord_enable_avx2_kernels(TARGET): the static library of a model's kernel translation
+# units, compiled for AVX2 and FMA where GENCOORD_HAVE_AVX2 and GENCOORD_AVX2_KERNELS hold.
+# Long straight-line kernels gain most: three-operand encodings make their code shorter, which
+# matters once it outgrows the instruction cache, and FMA contracts a * b + c into one rounding
+# (docs/performance.md measures both). Eigen's alignment stays at 16 bytes in these objects, so
+# that fixed-size Eigen types keep the layout, and heap blocks the allocation, of the
+# baseline-ISA objects they are linked with.
+function(gencoord_enable_avx2_kernels target)
+  if(GENCOORD_HAVE_AVX2 AND GENCOORD_AVX2_KERNELS)
+    target_compile_options(${target} PRIVATE -mavx2 -mfma)
+    target_compile_definitions(${target} PRIVATE EIGEN_MAX_STATIC_ALIGN_BYTES=16
+                               EIGEN_MAX_ALIGN_BYTES=16)
+  endif()
+endfunction()
 
 function(gencoord_enable_simd target)
   if(GENCOORD_HAVE_AVX2)

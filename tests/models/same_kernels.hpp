@@ -14,8 +14,12 @@
 
 namespace gencoord::testing {
 
-// The same expressions in the same order: only rounding-free moves through memory differ.
-constexpr double kTolerance = 1e-14;
+// The same expressions in the same order. One side may be compiled with FMA (a model's kernel
+// objects where the machine has it: cmake/simd.cmake), which rounds a * b + c once, and only
+// where a statement's parts meet in one function: the maximal model's penalty forces,
+// differences of stiff terms, then differ by about 2e-14 of their size. A wrong part differs at
+// order one.
+constexpr double kTolerance = 1e-12;
 
 template <class A, class B>
 void expect_same(const std::string& kernel, const A& whole, const B& parts) {
