@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// Pack<N> as the generated kernels' Scalar (gencoord/simd/): its sin and cos within 4 ulp of
-// std::sin and std::cos, its arithmetic and other functions lane by lane as scalar code, and
+// Pack<N> as the generated kernels' Scalar (gencoord/simd/): its sin, cos, tanh, exp and log
+// within 4 ulp of std::'s, its arithmetic and other functions lane by lane as scalar code, and
 // batch_qddot_simd()
 // against the scalar batch on planar and 3D models, a 10-link chain, the 7-joint arm and the
 // floating quadruped (unit quaternions), with a batch size that leaves a scalar tail, and a
@@ -50,6 +50,35 @@ TEST(Pack, SinAndCosAreWithinFourUlp) {
       if (std::abs(fc) > 1e-3) worst = std::max(worst, ulps(c[k], fc));
       EXPECT_NEAR(s[k], fs, 1e-15);
       EXPECT_NEAR(c[k], fc, 1e-15);
+    }
+  }
+  RecordProperty("worst_ulps", static_cast<int>(worst));
+  EXPECT_LE(worst, 4);
+}
+
+// tanh (a smooth joint friction's law), exp and log: through libmvec where it has them, over
+// the arguments where each changes character (tanh's linear start and saturation, exp's
+// underflow and large values, log near 1)
+TEST(Pack, TanhExpAndLogAreWithinFourUlp) {
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> wide(-30.0, 30.0), exponent(-12.0, 12.0);
+  std::int64_t worst = 0;
+  for (int round = 0; round < 20000; ++round) {
+    const Pack<4> x = Pack<4>::generate([&](int k) {
+      return k < 2 ? wide(rng) : std::copysign(std::pow(10.0, exponent(rng)), wide(rng));
+    });
+    const Pack<4> positive = Pack<4>::generate([&](int k) { return std::abs(x[k]); });
+    const Pack<4> t = tanh(x), e = exp(x), l = log(positive);
+    for (int k = 0; k < 4; ++k) {
+      worst = std::max(worst, ulps(t[k], std::tanh(x[k])));
+      worst = std::max(worst, ulps(e[k], std::exp(x[k])));
+      // near log's zero an ulp of the result is tiny: compare there to an ulp of 1e-16
+      const double fl = std::log(positive[k]);
+      if (std::abs(fl) > 1e-3) {
+        worst = std::max(worst, ulps(l[k], fl));
+      } else {
+        EXPECT_NEAR(l[k], fl, 1e-16);
+      }
     }
   }
   RecordProperty("worst_ulps", static_cast<int>(worst));

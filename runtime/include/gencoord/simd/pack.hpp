@@ -6,10 +6,11 @@
 // The lanes are a GCC/Clang vector (vector_size), which the compiler maps onto the widest
 // registers the target has: N = 4 is one AVX2 register where the build enables AVX2
 // (-mavx2, or -march=native on such a machine), two SSE2 registers otherwise. +, -, *, / are
-// IEEE operations lane by lane, as in scalar code. sin and cos come from glibc's vector math
-// library (libmvec: 4 lanes per AVX2 call, 2 per SSE call; within 4 ulp of the correctly
-// rounded result, as its manual states), elsewhere lane by lane from std::sin and std::cos;
-// sqrt, abs and the other functions lane by lane (the compiler vectorizes sqrt and abs).
+// IEEE operations lane by lane, as in scalar code. sin, cos, exp, log and (glibc 2.35 on) tanh
+// come from glibc's vector math library (libmvec: 4 lanes per AVX2 call, 2 per SSE call;
+// within 4 ulp of the correctly rounded result, as its manual states), elsewhere lane by lane
+// from std::; sqrt, abs and the other functions lane by lane (the compiler vectorizes sqrt and
+// abs).
 // Users link libmvec (-lmvec) where GENCOORD_HAVE_LIBMVEC is 1; cmake/simd.cmake does it.
 #pragma once
 
@@ -23,16 +24,30 @@
 #if defined(__x86_64__) && defined(__GLIBC__) && !defined(GENCOORD_NO_LIBMVEC)
 #include <immintrin.h>
 #define GENCOORD_HAVE_LIBMVEC 1
-extern "C" {
-__m128d _ZGVbN2v_sin(__m128d);
-__m128d _ZGVbN2v_cos(__m128d);
+// libmvec's 2-lane (SSE) and 4-lane (AVX2) variants of FUNCTION
 #if defined(__AVX2__)
-__m256d _ZGVdN4v_sin(__m256d);
-__m256d _ZGVdN4v_cos(__m256d);
+#define GENCOORD_LIBMVEC_DECLARE(FUNCTION) \
+  __m128d _ZGVbN2v_##FUNCTION(__m128d);    \
+  __m256d _ZGVdN4v_##FUNCTION(__m256d);
+#else
+#define GENCOORD_LIBMVEC_DECLARE(FUNCTION) __m128d _ZGVbN2v_##FUNCTION(__m128d);
+#endif
+extern "C" {
+GENCOORD_LIBMVEC_DECLARE(sin)
+GENCOORD_LIBMVEC_DECLARE(cos)
+GENCOORD_LIBMVEC_DECLARE(exp)
+GENCOORD_LIBMVEC_DECLARE(log)
+#if __GLIBC_PREREQ(2, 35)  // the release that added tanh to libmvec
+#define GENCOORD_HAVE_LIBMVEC_TANH 1
+GENCOORD_LIBMVEC_DECLARE(tanh)
 #endif
 }
+#undef GENCOORD_LIBMVEC_DECLARE
 #else
 #define GENCOORD_HAVE_LIBMVEC 0
+#endif
+#ifndef GENCOORD_HAVE_LIBMVEC_TANH
+#define GENCOORD_HAVE_LIBMVEC_TANH 0
 #endif
 
 namespace gencoord {
@@ -123,7 +138,7 @@ Pack<N> lane_by_lane(const Pack<N>& x, F f) {
 }
 
 #if GENCOORD_HAVE_LIBMVEC
-// sin or cos of every lane through libmvec, `Two` and `Four` its 2- and 4-lane functions
+// a function of every lane through libmvec, `Two` and `Four` its 2- and 4-lane variants
 template <int N, class Two, class Four>
 Pack<N> vector_math(const Pack<N>& x, Two two, [[maybe_unused]] Four four) {
   Pack<N> out;
@@ -146,31 +161,40 @@ Pack<N> vector_math(const Pack<N>& x, Two two, [[maybe_unused]] Four four) {
 
 }  // namespace detail
 
-template <int N>
-Pack<N> sin(const Pack<N>& x) {
-#if GENCOORD_HAVE_LIBMVEC
-#if defined(__AVX2__)
-  return detail::vector_math(x, _ZGVbN2v_sin, _ZGVdN4v_sin);
+// FUNCTION of every lane: GENCOORD_PACK_LANE_FUNCTION lane by lane from std::FUNCTION,
+// GENCOORD_PACK_VECTOR_FUNCTION through libmvec where it is at hand
+#define GENCOORD_PACK_LANE_FUNCTION(FUNCTION)                                  \
+  template <int N>                                                             \
+  Pack<N> FUNCTION(const Pack<N>& x) {                                         \
+    return detail::lane_by_lane(x, [](double a) { return std::FUNCTION(a); }); \
+  }
+#if GENCOORD_HAVE_LIBMVEC && defined(__AVX2__)
+#define GENCOORD_PACK_VECTOR_FUNCTION(FUNCTION)                              \
+  template <int N>                                                           \
+  Pack<N> FUNCTION(const Pack<N>& x) {                                       \
+    return detail::vector_math(x, _ZGVbN2v_##FUNCTION, _ZGVdN4v_##FUNCTION); \
+  }
+#elif GENCOORD_HAVE_LIBMVEC
+#define GENCOORD_PACK_VECTOR_FUNCTION(FUNCTION)                  \
+  template <int N>                                               \
+  Pack<N> FUNCTION(const Pack<N>& x) {                           \
+    return detail::vector_math(x, _ZGVbN2v_##FUNCTION, nullptr); \
+  }
 #else
-  return detail::vector_math(x, _ZGVbN2v_sin, nullptr);
+#define GENCOORD_PACK_VECTOR_FUNCTION(FUNCTION) GENCOORD_PACK_LANE_FUNCTION(FUNCTION)
 #endif
-#else
-  return detail::lane_by_lane(x, [](double a) { return std::sin(a); });
-#endif
-}
 
-template <int N>
-Pack<N> cos(const Pack<N>& x) {
-#if GENCOORD_HAVE_LIBMVEC
-#if defined(__AVX2__)
-  return detail::vector_math(x, _ZGVbN2v_cos, _ZGVdN4v_cos);
+GENCOORD_PACK_VECTOR_FUNCTION(sin)
+GENCOORD_PACK_VECTOR_FUNCTION(cos)
+GENCOORD_PACK_VECTOR_FUNCTION(exp)
+GENCOORD_PACK_VECTOR_FUNCTION(log)
+#if GENCOORD_HAVE_LIBMVEC_TANH
+GENCOORD_PACK_VECTOR_FUNCTION(tanh)
 #else
-  return detail::vector_math(x, _ZGVbN2v_cos, nullptr);
+GENCOORD_PACK_LANE_FUNCTION(tanh)
 #endif
-#else
-  return detail::lane_by_lane(x, [](double a) { return std::cos(a); });
-#endif
-}
+#undef GENCOORD_PACK_VECTOR_FUNCTION
+#undef GENCOORD_PACK_LANE_FUNCTION
 
 template <int N>
 Pack<N> sqrt(const Pack<N>& x) {
@@ -207,18 +231,6 @@ Pack<N> sinh(const Pack<N>& x) {
 template <int N>
 Pack<N> cosh(const Pack<N>& x) {
   return detail::lane_by_lane(x, [](double a) { return std::cosh(a); });
-}
-template <int N>
-Pack<N> tanh(const Pack<N>& x) {
-  return detail::lane_by_lane(x, [](double a) { return std::tanh(a); });
-}
-template <int N>
-Pack<N> exp(const Pack<N>& x) {
-  return detail::lane_by_lane(x, [](double a) { return std::exp(a); });
-}
-template <int N>
-Pack<N> log(const Pack<N>& x) {
-  return detail::lane_by_lane(x, [](double a) { return std::log(a); });
 }
 template <int N>
 Pack<N> cbrt(const Pack<N>& x) {
