@@ -6,8 +6,8 @@
 # table (tests/fuzz/sweep_table_fuzzer.cc), from the seeds in tests/fuzz/mesh_corpus and
 # table_corpus. Needs clang and libFuzzer (Debian: clang, libclang-rt-14-dev;
 # scripts/setup.sh --fuzz). The corpora grow in BUILD/*_corpus, not in the checkout.
-#   scripts/fuzz.sh [SECONDS [BUILD]]    SECONDS of fuzzing in all (default 60; two thirds to
-#                                        the mesh readers); BUILD: build-fuzz
+#   scripts/fuzz.sh [SECONDS [BUILD]]    SECONDS of fuzzing for each target, the two side by
+#                                        side, one per core (default 40); BUILD: build-fuzz
 # GENCOORD_FUZZ_SEED (default 1) seeds libFuzzer, so that a run is repeatable; give another to
 # explore elsewhere.
 # A finding leaves its input in BUILD (crash-*, leak-*, timeout-*) and exits non-zero; rerun
@@ -15,7 +15,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 root=$PWD
-seconds=${1:-60}
+seconds=${1:-40}
 build=${2:-build-fuzz}
 clang=${CXX_FUZZ:-clang++}
 flags=(-std=c++17 -O1 -g -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=all)
@@ -34,12 +34,16 @@ table_build=$!
   -o "$build/mesh_reader_fuzzer"
 wait "$table_build"
 cd "$build"
-# two thirds of the time to the mesh readers, which have the most code
-mesh_seconds=$(( (2 * seconds + 2) / 3 ))
-table_seconds=$(( seconds - mesh_seconds > 0 ? seconds - mesh_seconds : 1 ))
-common=(-max_len=4096 -timeout=10 -rss_limit_mb=2048 -seed="${GENCOORD_FUZZ_SEED:-1}"
-        -print_final_stats=1)
-./mesh_reader_fuzzer -max_total_time="$mesh_seconds" -dict="$root/tests/fuzz/mesh.dict" \
-  "${common[@]}" mesh_corpus
-./sweep_table_fuzzer -max_total_time="$table_seconds" -dict="$root/tests/fuzz/table.dict" \
-  "${common[@]}" table_corpus
+common=(-max_len=4096 -timeout=10 -rss_limit_mb=2048 -max_total_time="$seconds"
+        -seed="${GENCOORD_FUZZ_SEED:-1}" -print_final_stats=1)
+# the table beside the mesh readers, each on its own core; its output follows theirs
+./sweep_table_fuzzer -dict="$root/tests/fuzz/table.dict" "${common[@]}" table_corpus \
+  > sweep_table_fuzzer.log 2>&1 &
+table_fuzz=$!
+mesh_status=0
+./mesh_reader_fuzzer -dict="$root/tests/fuzz/mesh.dict" "${common[@]}" mesh_corpus \
+  || mesh_status=$?
+table_status=0
+wait "$table_fuzz" || table_status=$?
+cat sweep_table_fuzzer.log
+[ "$mesh_status" -eq 0 ] && [ "$table_status" -eq 0 ]

@@ -15,7 +15,7 @@
 #      viewer page in headless Chromium, gencoord sweep under MPI (Open MPI, HDF5, h5py), the
 #      property tests of the input readers (Hypothesis), and the runtime suites;
 #   3. the C++ readers of outside input (meshes, the sweep program's sample table) under
-#      libFuzzer for a minute (scripts/fuzz.sh).
+#      libFuzzer, 40 s for each, side by side (scripts/fuzz.sh).
 # Builds use Ninja and ccache where installed (scripts/setup.sh installs both): ccache keeps
 # compiled objects in the user's cache (~/.cache/ccache), shared by every checkout of the
 # repository, so a second run compiles only what changed. Generated headers and the reference
@@ -76,8 +76,8 @@ if [ "${GENCOORD_SKIP_SANITIZERS:-0}" != 1 ]; then
         --no-tests=error -j "$jobs"
 fi
 
-phase "fuzz: the mesh and sample-table readers under libFuzzer (scripts/fuzz.sh, 60 s)"
-scripts/fuzz.sh 60 "${build}-fuzz" > "${build}-fuzz.log" 2>&1 \
+phase "fuzz: the mesh and sample-table readers under libFuzzer (scripts/fuzz.sh, 40 s each)"
+scripts/fuzz.sh 40 "${build}-fuzz" > "${build}-fuzz.log" 2>&1 \
   || { tail -n 40 "${build}-fuzz.log"; exit 1; }
 grep -E '^Done [0-9]+ runs' "${build}-fuzz.log"
 
