@@ -39,7 +39,10 @@ URDF = f"""<robot name="drawn">
       <mesh filename="package://parts/meshes/wedge.stl" scale="2 2 2"/></geometry></visual>
   </link>
   <link name="hand"><inertial><mass value="0.5"/>{INERTIA}</inertial>
-    <visual><geometry><mesh filename="hand.obj"/></geometry></visual></link>
+    <visual><geometry><mesh filename="hand.obj"/></geometry></visual>
+    <visual><origin xyz="0 0 -0.02" rpy="0 0 0.3"/><geometry>
+      <mesh filename="package://parts/meshes/palm.dae" scale="0.5 0.5 0.5"/></geometry></visual>
+  </link>
   <link name="finger"><inertial><mass value="0.1"/>{INERTIA}</inertial>
     <visual><geometry><mesh filename="package://parts/missing.stl"/></geometry></visual></link>
   <link name="tip"><visual><geometry><box size="0.01 0.02 0.03"/></geometry></visual></link>
@@ -71,6 +74,22 @@ def obj(path: Path) -> None:
                     + "f 1 3 2\nf 1/1 2/2 4/4\nf 1//1 4//1 3//1 2//1\n")
 
 
+def collada(path: Path) -> None:
+    """The wedge in millimetres, z up, as COLLADA triangles."""
+    positions = " ".join(f"{1000 * c:g}" for corner in WEDGE for c in corner)
+    indices = " ".join(str(i) for face in FACES for i in face)
+    path.write_text(f"""<COLLADA xmlns="http://www.collada.org/2005/11/COLLADASchema">
+  <asset><unit meter="0.001"/><up_axis>Z_UP</up_axis></asset>
+  <library_geometries><geometry id="wedge"><mesh>
+    <source id="p"><float_array id="a" count="12">{positions}</float_array></source>
+    <vertices id="v"><input semantic="POSITION" source="#p"/></vertices>
+    <triangles count="4"><input semantic="VERTEX" source="#v" offset="0"/><p>{indices}</p>
+    </triangles></mesh></geometry></library_geometries>
+  <library_visual_scenes><visual_scene id="s"><node><instance_geometry url="#wedge"/></node>
+  </visual_scene></library_visual_scenes>
+</COLLADA>""")
+
+
 def matrix(pose: list[float]) -> sp.Matrix:
     return sp.Matrix(4, 4, pose)
 
@@ -92,6 +111,7 @@ class RobotGeometryTest(unittest.TestCase):
         cls.urdf.write_text(URDF, encoding="utf-8")
         binary_stl(root / "packages" / "parts" / "meshes" / "wedge.stl")
         obj(root / "robot" / "hand.obj")
+        collada(root / "packages" / "parts" / "meshes" / "palm.dae")
         cls.packages = [str(root / "packages")]
         cls.model = Model(dim=3)
         cls.links = load_urdf(cls.model, str(cls.urdf))
@@ -107,7 +127,7 @@ class RobotGeometryTest(unittest.TestCase):
         # the finger's mesh is missing: a capsule to its child's joint; the tip, massless and
         # welded to the finger, rides on it
         self.assertEqual(kinds, {"upper": ["cylinder", "sphere"], "lower": ["mesh"],
-                                 "hand": ["mesh"], "finger": ["capsule", "box"]})
+                                 "hand": ["mesh", "mesh"], "finger": ["capsule", "box"]})
         self.assertEqual([v["kind"] for v in self.scene["world_visuals"]], ["box"])
         self.assertEqual(self.scene["world_visuals"][0]["size"], [0.2, 0.2, 0.1])
 
@@ -116,8 +136,12 @@ class RobotGeometryTest(unittest.TestCase):
         corners = array("f", base64.b64decode(wedge["triangles"])).tolist()
         self.assertEqual(len(corners), 4 * 9)
         self.assertAlmostEqual(max(corners), 0.2, places=6)  # scale 2
-        (hand,) = self.bodies["hand"]["visuals"]
+        hand, palm = self.bodies["hand"]["visuals"]
         self.assertEqual(len(array("f", base64.b64decode(hand["triangles"]))), 4 * 9)
+        # COLLADA in millimetres, then the URDF's scale
+        corners = array("f", base64.b64decode(palm["triangles"])).tolist()
+        self.assertEqual(len(corners), 4 * 9)
+        self.assertAlmostEqual(max(corners), 0.05, places=6)
 
     def test_poses_put_every_shape_where_the_urdf_does(self):
         rng = random.Random(3)

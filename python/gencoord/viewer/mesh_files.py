@@ -1,8 +1,9 @@
 # SPDX-License-Identifier: BSD-3-Clause
-"""Triangle meshes of URDF visuals, read for the viewer: STL (binary or ASCII) and Wavefront
-OBJ (vertices and faces; polygons split into fans). Each reader returns the triangles'
-corners as one flat list of floats (x, y, z per corner, three corners per triangle), in the
-file's own units; a file it cannot read gives None, and the viewer draws the link's skeleton.
+"""Triangle meshes of URDF visuals, read for the viewer: STL (binary or ASCII), Wavefront
+OBJ (vertices and faces; polygons split into fans) and COLLADA (collada.py). Each reader
+returns the triangles' corners as one flat list of floats (x, y, z per corner, three corners
+per triangle), in the file's own units (COLLADA's in metres, as its file says); a file it
+cannot read gives None, and the viewer draws the link's skeleton.
 
 `resolve` finds a URDF's mesh file name: a path relative to the URDF, an absolute path or
 file:// URL, or package://<package>/<path> looked up in a search path of folders that hold
@@ -14,6 +15,8 @@ from __future__ import annotations
 import os
 import struct
 from typing import Sequence
+
+from gencoord.viewer.collada import collada_triangles
 
 MAX_TRIANGLES = 200_000  # a larger mesh is not embedded in the page: the skeleton stands in
 
@@ -31,7 +34,8 @@ def resolve(filename: str, urdf_path: str, package_path: Sequence[str]) -> str |
 
 
 def read_triangles(path: str) -> list[float] | None:
-    """The triangles of an .stl or .obj file, or None for another kind or a broken file."""
+    """The triangles of an .stl, .obj or .dae file, or None for another kind or a broken
+    file."""
     extension = os.path.splitext(path)[1].lower()
     try:
         with open(path, "rb") as handle:
@@ -42,6 +46,8 @@ def read_triangles(path: str) -> list[float] | None:
         return _stl(data)
     if extension == ".obj":
         return _obj(data.decode("utf-8", errors="replace"))
+    if extension == ".dae":
+        return collada_triangles(data, MAX_TRIANGLES)
     return None
 
 
