@@ -8,8 +8,8 @@ the nodes above them (<matrix>, <translate>, <rotate>, <scale>, in document orde
 instantiated from <library_nodes>); each geometry's <triangles>, <polylist> and <polygons>
 (polygons split into fans; their holes and <lines> are not drawn). The corners are then
 scaled to metres by the <asset>'s <unit meter> and turned so that its <up_axis> (Y_UP when
-the file names none, as the format says) is the link's z, as Gazebo reads them. Materials,
-normals, texture coordinates, cameras, lights and animations are not read.
+the file names none, as the format says) is the link's z. Materials, normals, texture
+coordinates, cameras, lights and animations are not read.
 
 A file that is not such a COLLADA document, holds a transform the viewer does not read
 (<lookat>, <skew>), an index or a reference to nothing, a number that is not finite, or more
