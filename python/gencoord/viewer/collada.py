@@ -79,6 +79,10 @@ def _integers(element: ET.Element | None) -> list[int]:
     return [int(word) for word in ((element.text or "") if element is not None else "").split()]
 
 
+def _scaling(x: float, y: float, z: float) -> Matrix:
+    return [[x, 0.0, 0.0, 0.0], [0.0, y, 0.0, 0.0], [0.0, 0.0, z, 0.0], [0.0, 0.0, 0.0, 1.0]]
+
+
 def _product(a: Matrix, b: Matrix) -> Matrix:
     return [[sum(a[i][k] * b[k][j] for k in range(4)) for j in range(4)] for i in range(4)]
 
@@ -94,8 +98,7 @@ def _transform(element: ET.Element) -> Matrix | None:
         x, y, z = _numbers(element, 3)
         return [[1.0, 0.0, 0.0, x], [0.0, 1.0, 0.0, y], [0.0, 0.0, 1.0, z], [0.0, 0.0, 0.0, 1.0]]
     if kind == "scale":
-        x, y, z = _numbers(element, 3)
-        return [[x, 0.0, 0.0, 0.0], [0.0, y, 0.0, 0.0], [0.0, 0.0, z, 0.0], [0.0, 0.0, 0.0, 1.0]]
+        return _scaling(*_numbers(element, 3))
     if kind == "rotate":
         x, y, z, degrees = _numbers(element, 4)
         norm = math.sqrt(x * x + y * y + z * z)
@@ -122,6 +125,7 @@ class _Document:
         self.ids = {element.get("id"): element for element in root.iter() if element.get("id")}
         self.corners: list[float] = []
         self.visits = 0
+        self.sources: dict[int, list[list[float]]] = {}  # id(<source>): its positions
 
     def triangles(self) -> list[float] | None:
         asset = _child(self.root, "asset")
@@ -131,8 +135,7 @@ class _Document:
         up_axis = (up.text or "").strip() if up is not None else "Y_UP"
         if not math.isfinite(metres) or metres <= 0.0 or up_axis not in _UP_AXIS:
             return None
-        top = _product(_UP_AXIS[up_axis], [[metres if i == j and i < 3 else float(i == j)
-                                            for j in range(4)] for i in range(4)])
+        top = _product(_UP_AXIS[up_axis], _scaling(metres, metres, metres))
         scene = self._visual_scene()
         if scene is None:
             for geometries in _children(self.root, "library_geometries"):
@@ -185,14 +188,15 @@ class _Document:
         mesh = _child(geometry, "mesh")
         if mesh is None:  # a spline or a convex mesh: nothing to draw
             return
+        placed: dict[int, list[list[float]]] = {}  # id(<source>): its positions at `pose`
         for primitive in mesh:
             kind = _local(primitive)
             if kind in ("triangles", "polylist", "polygons"):
-                self._add_primitive(primitive, kind, pose)
+                self._add_primitive(primitive, kind, pose, placed)
 
-    def _positions(self, primitive: ET.Element) -> tuple[list[list[float]], int, int]:
-        """The positions a primitive's VERTEX input names, that input's offset and the number
-        of indices per corner."""
+    def _positions(self, primitive: ET.Element) -> tuple[ET.Element, int, int]:
+        """The <source> of the positions a primitive's VERTEX input names, that input's offset
+        and the number of indices per corner."""
         inputs = _children(primitive, "input")
         if not inputs:
             raise _Unreadable("a primitive without inputs")
@@ -206,11 +210,12 @@ class _Document:
                          if element.get("semantic") == "POSITION"), None)
         if position is None:
             raise _Unreadable("<vertices> without a POSITION input")
-        source = self._referenced_source(position)
+        source = self._referenced(position, "source", "source")
         return source, int(vertex.get("offset", "0")), stride
 
-    def _referenced_source(self, input_element: ET.Element) -> list[list[float]]:
-        source = self._referenced(input_element, "source", "source")
+    def _read_positions(self, source: ET.Element) -> list[list[float]]:
+        if id(source) in self.sources:
+            return self.sources[id(source)]
         array = _child(source, "float_array")
         if array is None:
             raise _Unreadable("a <source> without a <float_array>")
@@ -221,10 +226,13 @@ class _Document:
         offset = int(accessor.get("offset", "0")) if accessor is not None else 0
         if stride < 3 or offset < 0:
             raise _Unreadable("positions of fewer than three numbers")
-        return [values[k:k + 3] for k in range(offset, len(values) - 2, stride)]
+        positions = [values[k:k + 3] for k in range(offset, len(values) - 2, stride)]
+        self.sources[id(source)] = positions
+        return positions
 
-    def _add_primitive(self, primitive: ET.Element, kind: str, pose: Matrix) -> None:
-        positions, offset, stride = self._positions(primitive)
+    def _add_primitive(self, primitive: ET.Element, kind: str, pose: Matrix,
+                       placed: dict[int, list[list[float]]]) -> None:
+        source, offset, stride = self._positions(primitive)
         if kind == "polygons":
             polygons = [_integers(p) for p in _children(primitive, "p")]
         else:
@@ -239,12 +247,16 @@ class _Document:
                 start += count * stride
             if start != len(indices):
                 raise _Unreadable("<p> does not hold the corners its counts say")
-        placed = [_apply(pose, corner) for corner in positions]
+        if id(source) not in placed:
+            placed[id(source)] = [_apply(pose, point) for point in self._read_positions(source)]
+        points = placed[id(source)]
         for polygon in polygons:
             if len(polygon) % stride:
                 raise _Unreadable("a polygon whose indices are not whole corners")
-            corners = [placed[index] if 0 <= index < len(placed) else _missing(index)
-                       for index in polygon[offset::stride]]
+            indices = polygon[offset::stride]
+            if not all(0 <= index < len(points) for index in indices):
+                raise _Unreadable("an index that names no position")
+            corners = [points[index] for index in indices]
             for k in range(1, len(corners) - 1):
                 if len(self.corners) // 9 >= self.max_triangles:
                     raise _Unreadable("more triangles than the page embeds")
@@ -255,7 +267,3 @@ class _Document:
 def _apply(pose: Matrix, point: list[float]) -> list[float]:
     x, y, z = point
     return [pose[i][0] * x + pose[i][1] * y + pose[i][2] * z + pose[i][3] for i in range(3)]
-
-
-def _missing(index: int) -> list[float]:
-    raise _Unreadable(f"index {index} names no position")

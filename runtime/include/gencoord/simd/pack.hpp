@@ -168,17 +168,16 @@ Pack<N> vector_math(const Pack<N>& x, Two two, [[maybe_unused]] Four four) {
   Pack<N> FUNCTION(const Pack<N>& x) {                                         \
     return detail::lane_by_lane(x, [](double a) { return std::FUNCTION(a); }); \
   }
-#if GENCOORD_HAVE_LIBMVEC && defined(__AVX2__)
-#define GENCOORD_PACK_VECTOR_FUNCTION(FUNCTION)                              \
-  template <int N>                                                           \
-  Pack<N> FUNCTION(const Pack<N>& x) {                                       \
-    return detail::vector_math(x, _ZGVbN2v_##FUNCTION, _ZGVdN4v_##FUNCTION); \
-  }
-#elif GENCOORD_HAVE_LIBMVEC
-#define GENCOORD_PACK_VECTOR_FUNCTION(FUNCTION)                  \
-  template <int N>                                               \
-  Pack<N> FUNCTION(const Pack<N>& x) {                           \
-    return detail::vector_math(x, _ZGVbN2v_##FUNCTION, nullptr); \
+#if GENCOORD_HAVE_LIBMVEC
+#if defined(__AVX2__)
+#define GENCOORD_LIBMVEC_FOUR_LANES(FUNCTION) _ZGVdN4v_##FUNCTION
+#else
+#define GENCOORD_LIBMVEC_FOUR_LANES(FUNCTION) nullptr
+#endif
+#define GENCOORD_PACK_VECTOR_FUNCTION(FUNCTION)                                                \
+  template <int N>                                                                             \
+  Pack<N> FUNCTION(const Pack<N>& x) {                                                         \
+    return detail::vector_math(x, _ZGVbN2v_##FUNCTION, GENCOORD_LIBMVEC_FOUR_LANES(FUNCTION)); \
   }
 #else
 #define GENCOORD_PACK_VECTOR_FUNCTION(FUNCTION) GENCOORD_PACK_LANE_FUNCTION(FUNCTION)
@@ -195,6 +194,7 @@ GENCOORD_PACK_LANE_FUNCTION(tanh)
 #endif
 #undef GENCOORD_PACK_VECTOR_FUNCTION
 #undef GENCOORD_PACK_LANE_FUNCTION
+#undef GENCOORD_LIBMVEC_FOUR_LANES
 
 template <int N>
 Pack<N> sqrt(const Pack<N>& x) {
