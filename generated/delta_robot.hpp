@@ -36,6 +36,78 @@
 // The parts write Eigen matrices through data(), entry (i, j) at i + rows * j.
 static_assert(!Eigen::Matrix<double, 2, 2>::IsRowMajor,
               "gencoord's kernel parts need Eigen's default column-major storage");
+// gencoord_kernel_math::sin_cos(x, s, c) sets s[i] = sin(x[i]) and c[i] = cos(x[i]). For
+// double on x86-64 with glibc it works in vector registers, through glibc's vector math
+// library (libmvec, which C++ programs link through libm; within 4 ulp, as its manual states):
+// 4 lanes a call where the compiler targets AVX2, 2 otherwise. The inline namespace keeps the
+// two apart when objects of both are linked together. Elsewhere, or with GENCOORD_NO_LIBMVEC
+// defined, it calls sin and cos.
+#ifndef GENCOORD_KERNEL_SIN_COS
+#define GENCOORD_KERNEL_SIN_COS
+#if defined(__x86_64__) && defined(__GLIBC__) && !defined(GENCOORD_NO_LIBMVEC)
+#include <immintrin.h>
+#define GENCOORD_KERNEL_LIBMVEC 1
+extern "C" {
+#if defined(__AVX2__)
+__m256d _ZGVdN4v_sin(__m256d);
+__m256d _ZGVdN4v_cos(__m256d);
+#else
+__m128d _ZGVbN2v_sin(__m128d);
+__m128d _ZGVbN2v_cos(__m128d);
+#endif
+}
+#endif
+
+namespace gencoord_kernel_math {
+#if defined(GENCOORD_KERNEL_LIBMVEC) && defined(__AVX2__)
+inline namespace avx2 {
+constexpr int kLanes = 4;
+inline void sin_cos_lanes(const double* x, double* s, double* c) {
+  const __m256d lanes = _mm256_loadu_pd(x);
+  _mm256_storeu_pd(s, _ZGVdN4v_sin(lanes));
+  _mm256_storeu_pd(c, _ZGVdN4v_cos(lanes));
+}
+#elif defined(GENCOORD_KERNEL_LIBMVEC)
+inline namespace sse2 {
+constexpr int kLanes = 2;
+inline void sin_cos_lanes(const double* x, double* s, double* c) {
+  const __m128d lanes = _mm_loadu_pd(x);
+  _mm_storeu_pd(s, _ZGVbN2v_sin(lanes));
+  _mm_storeu_pd(c, _ZGVbN2v_cos(lanes));
+}
+#else
+inline namespace scalar {
+#endif
+
+template <class Scalar, int n>
+inline void sin_cos(const Scalar (&x)[n], Scalar (&s)[n], Scalar (&c)[n]) {
+  using std::cos;
+  using std::sin;
+  for (int i = 0; i < n; ++i) {
+    s[i] = sin(x[i]);
+    c[i] = cos(x[i]);
+  }
+}
+
+#ifdef GENCOORD_KERNEL_LIBMVEC
+template <int n>
+inline void sin_cos(const double (&x)[n], double (&s)[n], double (&c)[n]) {
+  constexpr int whole = n - n % kLanes;
+  for (int i = 0; i < whole; i += kLanes) sin_cos_lanes(x + i, s + i, c + i);
+  if constexpr (whole < n) {  // the rest, padded with copies of the last argument
+    double rest[kLanes], sines[kLanes], cosines[kLanes];
+    for (int k = 0; k < kLanes; ++k) rest[k] = x[whole + k < n ? whole + k : n - 1];
+    sin_cos_lanes(rest, sines, cosines);
+    for (int i = whole; i < n; ++i) {
+      s[i] = sines[i - whole];
+      c[i] = cosines[i - whole];
+    }
+  }
+}
+#endif
+}  // inline namespace
+}  // namespace gencoord_kernel_math
+#endif  // GENCOORD_KERNEL_SIN_COS
 
 /*
  * Delta robot: three motors on a fixed base each swing an upper arm; a parallelogram of two
@@ -253,28 +325,29 @@ struct DeltaRobot {
   static VMatrix<Scalar> mass_matrix(const QVector<Scalar>& q,
                                      const Scalar& /*t*/,
                                      const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar theta_1 = q(0);
     const Scalar theta_2 = q(1);
     const Scalar theta_3 = q(2);
+    const Scalar sin_cos_of[3] = {theta_1, theta_2, theta_3};
+    Scalar sin_of[3], cos_of[3];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar l_a = Scalar(params.l_a);
     const Scalar m_a = Scalar(params.m_a);
     const Scalar rho = Scalar(params.rho);
     const Scalar m_b = Scalar(params.m_b);
     const Scalar m_p = Scalar(params.m_p);
-    const Scalar tmp1 = cos(theta_1);
-    const Scalar tmp5 = sin(theta_1);
+    const Scalar tmp1 = cos_of[0];
+    const Scalar tmp5 = sin_of[0];
     const Scalar tmp9 = (rho*rho);
     const Scalar tmp10 = (Scalar(0.25))*m_a;
     const Scalar tmp11 = tmp10*tmp9;
     const Scalar tmp12 = (l_a*l_a);
     const Scalar tmp13 = tmp12 + Scalar(3)*tmp9;
     const Scalar tmp14 = -tmp11 + ((Scalar(1)/Scalar(12)))*tmp13*m_a;
-    const Scalar tmp60 = sin(theta_2);
-    const Scalar tmp63 = cos(theta_2);
-    const Scalar tmp166 = cos(theta_3);
-    const Scalar tmp170 = sin(theta_3);
+    const Scalar tmp60 = sin_of[1];
+    const Scalar tmp63 = cos_of[1];
+    const Scalar tmp166 = cos_of[2];
+    const Scalar tmp170 = sin_of[2];
     const Scalar tmp337 = m_p + (Scalar(1.5))*m_b;
     const Scalar tmp338 = (Scalar(0.5))*m_b;
     const Scalar tmp339 = ((Scalar(1)/Scalar(12)))*tmp13*m_a;
@@ -320,10 +393,12 @@ struct DeltaRobot {
                                         const VVector<Scalar>& /*v*/,
                                         const Scalar& /*t*/,
                                         const Params& params) {
-    using std::cos;
     const Scalar theta_1 = q(0);
     const Scalar theta_2 = q(1);
     const Scalar theta_3 = q(2);
+    const Scalar sin_cos_of[3] = {theta_1, theta_2, theta_3};
+    Scalar sin_of[3], cos_of[3];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar l_a = Scalar(params.l_a);
     const Scalar m_a = Scalar(params.m_a);
     const Scalar m_b = Scalar(params.m_b);
@@ -332,13 +407,13 @@ struct DeltaRobot {
     const Scalar u_1 = Scalar(params.u_1);
     const Scalar u_2 = Scalar(params.u_2);
     const Scalar u_3 = Scalar(params.u_3);
-    const Scalar tmp1 = cos(theta_1);
+    const Scalar tmp1 = cos_of[0];
     const Scalar tmp2 = tmp1*l_a;
     const Scalar tmp3 = (Scalar(0.5))*tmp2;
-    const Scalar tmp63 = cos(theta_2);
+    const Scalar tmp63 = cos_of[1];
     const Scalar tmp105 = (Scalar(0.5))*l_a;
     const Scalar tmp106 = tmp63*tmp105;
-    const Scalar tmp166 = cos(theta_3);
+    const Scalar tmp166 = cos_of[2];
     const Scalar tmp209 = tmp166*tmp105;
     const Scalar tmp337 = m_p + (Scalar(1.5))*m_b;
     const Scalar tmp338 = (Scalar(0.5))*m_b;
@@ -400,22 +475,23 @@ struct DeltaRobot {
                                          const VVector<Scalar>& v,
                                          const Scalar& /*t*/,
                                          const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar theta_1 = q(0);
     const Scalar theta_2 = q(1);
     const Scalar theta_3 = q(2);
     const Scalar theta_1_dot = v(0);
     const Scalar theta_2_dot = v(1);
     const Scalar theta_3_dot = v(2);
+    const Scalar sin_cos_of[3] = {theta_1, theta_2, theta_3};
+    Scalar sin_of[3], cos_of[3];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar l_a = Scalar(params.l_a);
     const Scalar m_a = Scalar(params.m_a);
     const Scalar rho = Scalar(params.rho);
     const Scalar m_b = Scalar(params.m_b);
-    const Scalar tmp1 = cos(theta_1);
+    const Scalar tmp1 = cos_of[0];
     const Scalar tmp2 = tmp1*l_a;
     const Scalar tmp3 = (Scalar(0.5))*tmp2;
-    const Scalar tmp5 = sin(theta_1);
+    const Scalar tmp5 = sin_of[0];
     const Scalar tmp9 = (rho*rho);
     const Scalar tmp10 = (Scalar(0.25))*m_a;
     const Scalar tmp11 = tmp10*tmp9;
@@ -424,8 +500,8 @@ struct DeltaRobot {
     const Scalar tmp14 = -tmp11 + ((Scalar(1)/Scalar(12)))*tmp13*m_a;
     const Scalar tmp21 = tmp5*l_a;
     const Scalar tmp22 = (Scalar(0.5))*tmp21;
-    const Scalar tmp60 = sin(theta_2);
-    const Scalar tmp63 = cos(theta_2);
+    const Scalar tmp60 = sin_of[1];
+    const Scalar tmp63 = cos_of[1];
     const Scalar tmp64 = Scalar(0.4999999999999998)*tmp63;
     const Scalar tmp69 = Scalar(0.2499999999999999)*l_a;
     const Scalar tmp75 = Scalar(0.4330127018922194)*l_a;
@@ -442,9 +518,9 @@ struct DeltaRobot {
     const Scalar tmp153 = tmp79*l_a;
     const Scalar tmp156 = Scalar(0.4999999999999998)*tmp84;
     const Scalar tmp158 = Scalar(0.8660254037844388)*tmp84;
-    const Scalar tmp166 = cos(theta_3);
+    const Scalar tmp166 = cos_of[2];
     const Scalar tmp167 = Scalar(0.2500000000000002)*l_a;
-    const Scalar tmp170 = sin(theta_3);
+    const Scalar tmp170 = sin_of[2];
     const Scalar tmp173 = Scalar(0.5000000000000004)*tmp166;
     const Scalar tmp178 = Scalar(0.8660254037844384)*tmp166;
     const Scalar tmp182 = Scalar(0.4330127018922192)*l_a;
@@ -558,14 +634,15 @@ struct DeltaRobot {
                                 const VVector<Scalar>& v,
                                 const Scalar& /*t*/,
                                 const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar theta_1 = q(0);
     const Scalar theta_2 = q(1);
     const Scalar theta_3 = q(2);
     const Scalar theta_1_dot = v(0);
     const Scalar theta_2_dot = v(1);
     const Scalar theta_3_dot = v(2);
+    const Scalar sin_cos_of[3] = {theta_1, theta_2, theta_3};
+    Scalar sin_of[3], cos_of[3];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar l_a = Scalar(params.l_a);
     const Scalar m_a = Scalar(params.m_a);
     const Scalar rho = Scalar(params.rho);
@@ -575,10 +652,10 @@ struct DeltaRobot {
     const Scalar u_1 = Scalar(params.u_1);
     const Scalar u_2 = Scalar(params.u_2);
     const Scalar u_3 = Scalar(params.u_3);
-    const Scalar tmp1 = cos(theta_1);
+    const Scalar tmp1 = cos_of[0];
     const Scalar tmp2 = tmp1*l_a;
     const Scalar tmp3 = (Scalar(0.5))*tmp2;
-    const Scalar tmp5 = sin(theta_1);
+    const Scalar tmp5 = sin_of[0];
     const Scalar tmp9 = (rho*rho);
     const Scalar tmp10 = (Scalar(0.25))*m_a;
     const Scalar tmp11 = tmp10*tmp9;
@@ -587,8 +664,8 @@ struct DeltaRobot {
     const Scalar tmp14 = -tmp11 + ((Scalar(1)/Scalar(12)))*tmp13*m_a;
     const Scalar tmp21 = tmp5*l_a;
     const Scalar tmp22 = (Scalar(0.5))*tmp21;
-    const Scalar tmp60 = sin(theta_2);
-    const Scalar tmp63 = cos(theta_2);
+    const Scalar tmp60 = sin_of[1];
+    const Scalar tmp63 = cos_of[1];
     const Scalar tmp64 = Scalar(0.4999999999999998)*tmp63;
     const Scalar tmp69 = Scalar(0.2499999999999999)*l_a;
     const Scalar tmp75 = Scalar(0.4330127018922194)*l_a;
@@ -605,9 +682,9 @@ struct DeltaRobot {
     const Scalar tmp153 = tmp79*l_a;
     const Scalar tmp156 = Scalar(0.4999999999999998)*tmp84;
     const Scalar tmp158 = Scalar(0.8660254037844388)*tmp84;
-    const Scalar tmp166 = cos(theta_3);
+    const Scalar tmp166 = cos_of[2];
     const Scalar tmp167 = Scalar(0.2500000000000002)*l_a;
-    const Scalar tmp170 = sin(theta_3);
+    const Scalar tmp170 = sin_of[2];
     const Scalar tmp173 = Scalar(0.5000000000000004)*tmp166;
     const Scalar tmp178 = Scalar(0.8660254037844384)*tmp166;
     const Scalar tmp182 = Scalar(0.4330127018922192)*l_a;
@@ -738,14 +815,15 @@ struct DeltaRobot {
                        const Params& params,
                        VMatrix<Scalar>* Mt,
                        VVector<Scalar>* f) {
-    using std::cos;
-    using std::sin;
     const Scalar theta_1 = q(0);
     const Scalar theta_2 = q(1);
     const Scalar theta_3 = q(2);
     const Scalar theta_1_dot = v(0);
     const Scalar theta_2_dot = v(1);
     const Scalar theta_3_dot = v(2);
+    const Scalar sin_cos_of[3] = {theta_1, theta_2, theta_3};
+    Scalar sin_of[3], cos_of[3];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar l_a = Scalar(params.l_a);
     const Scalar m_a = Scalar(params.m_a);
     const Scalar rho = Scalar(params.rho);
@@ -755,10 +833,10 @@ struct DeltaRobot {
     const Scalar u_1 = Scalar(params.u_1);
     const Scalar u_2 = Scalar(params.u_2);
     const Scalar u_3 = Scalar(params.u_3);
-    const Scalar tmp1 = cos(theta_1);
+    const Scalar tmp1 = cos_of[0];
     const Scalar tmp2 = tmp1*l_a;
     const Scalar tmp3 = (Scalar(0.5))*tmp2;
-    const Scalar tmp5 = sin(theta_1);
+    const Scalar tmp5 = sin_of[0];
     const Scalar tmp9 = (rho*rho);
     const Scalar tmp10 = (Scalar(0.25))*m_a;
     const Scalar tmp11 = tmp10*tmp9;
@@ -767,8 +845,8 @@ struct DeltaRobot {
     const Scalar tmp14 = -tmp11 + ((Scalar(1)/Scalar(12)))*tmp13*m_a;
     const Scalar tmp21 = tmp5*l_a;
     const Scalar tmp22 = (Scalar(0.5))*tmp21;
-    const Scalar tmp60 = sin(theta_2);
-    const Scalar tmp63 = cos(theta_2);
+    const Scalar tmp60 = sin_of[1];
+    const Scalar tmp63 = cos_of[1];
     const Scalar tmp64 = Scalar(0.4999999999999998)*tmp63;
     const Scalar tmp69 = Scalar(0.2499999999999999)*l_a;
     const Scalar tmp75 = Scalar(0.4330127018922194)*l_a;
@@ -785,9 +863,9 @@ struct DeltaRobot {
     const Scalar tmp153 = tmp79*l_a;
     const Scalar tmp156 = Scalar(0.4999999999999998)*tmp84;
     const Scalar tmp158 = Scalar(0.8660254037844388)*tmp84;
-    const Scalar tmp166 = cos(theta_3);
+    const Scalar tmp166 = cos_of[2];
     const Scalar tmp167 = Scalar(0.2500000000000002)*l_a;
-    const Scalar tmp170 = sin(theta_3);
+    const Scalar tmp170 = sin_of[2];
     const Scalar tmp173 = Scalar(0.5000000000000004)*tmp166;
     const Scalar tmp178 = Scalar(0.8660254037844384)*tmp166;
     const Scalar tmp182 = Scalar(0.4330127018922192)*l_a;
@@ -944,8 +1022,6 @@ struct DeltaRobot {
                                           const VVector<Scalar>& qdd,
                                           const Scalar& /*t*/,
                                           const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar theta_1 = q(0);
     const Scalar theta_2 = q(1);
     const Scalar theta_3 = q(2);
@@ -958,6 +1034,9 @@ struct DeltaRobot {
     const Scalar x_ddot = qdd(3);
     const Scalar y_ddot = qdd(4);
     const Scalar z_ddot = qdd(5);
+    const Scalar sin_cos_of[3] = {theta_1, theta_2, theta_3};
+    Scalar sin_of[3], cos_of[3];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar l_a = Scalar(params.l_a);
     const Scalar m_a = Scalar(params.m_a);
     const Scalar rho = Scalar(params.rho);
@@ -967,10 +1046,10 @@ struct DeltaRobot {
     const Scalar u_1 = Scalar(params.u_1);
     const Scalar u_2 = Scalar(params.u_2);
     const Scalar u_3 = Scalar(params.u_3);
-    const Scalar tmp1 = cos(theta_1);
+    const Scalar tmp1 = cos_of[0];
     const Scalar tmp2 = tmp1*l_a;
     const Scalar tmp3 = (Scalar(0.5))*tmp2;
-    const Scalar tmp5 = sin(theta_1);
+    const Scalar tmp5 = sin_of[0];
     const Scalar tmp9 = (rho*rho);
     const Scalar tmp10 = (Scalar(0.25))*m_a;
     const Scalar tmp11 = tmp10*tmp9;
@@ -979,8 +1058,8 @@ struct DeltaRobot {
     const Scalar tmp14 = -tmp11 + ((Scalar(1)/Scalar(12)))*tmp13*m_a;
     const Scalar tmp21 = tmp5*l_a;
     const Scalar tmp22 = (Scalar(0.5))*tmp21;
-    const Scalar tmp60 = sin(theta_2);
-    const Scalar tmp63 = cos(theta_2);
+    const Scalar tmp60 = sin_of[1];
+    const Scalar tmp63 = cos_of[1];
     const Scalar tmp64 = Scalar(0.4999999999999998)*tmp63;
     const Scalar tmp69 = Scalar(0.2499999999999999)*l_a;
     const Scalar tmp75 = Scalar(0.4330127018922194)*l_a;
@@ -997,9 +1076,9 @@ struct DeltaRobot {
     const Scalar tmp153 = tmp79*l_a;
     const Scalar tmp156 = Scalar(0.4999999999999998)*tmp84;
     const Scalar tmp158 = Scalar(0.8660254037844388)*tmp84;
-    const Scalar tmp166 = cos(theta_3);
+    const Scalar tmp166 = cos_of[2];
     const Scalar tmp167 = Scalar(0.2500000000000002)*l_a;
-    const Scalar tmp170 = sin(theta_3);
+    const Scalar tmp170 = sin_of[2];
     const Scalar tmp173 = Scalar(0.5000000000000004)*tmp166;
     const Scalar tmp178 = Scalar(0.8660254037844384)*tmp166;
     const Scalar tmp182 = Scalar(0.4330127018922192)*l_a;
@@ -1169,8 +1248,6 @@ struct DeltaRobot {
                                const VVector<Scalar>& v,
                                const Scalar& /*t*/,
                                const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar theta_1 = q(0);
     const Scalar theta_2 = q(1);
     const Scalar theta_3 = q(2);
@@ -1180,15 +1257,18 @@ struct DeltaRobot {
     const Scalar x_dot = v(3);
     const Scalar y_dot = v(4);
     const Scalar z_dot = v(5);
+    const Scalar sin_cos_of[3] = {theta_1, theta_2, theta_3};
+    Scalar sin_of[3], cos_of[3];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar l_a = Scalar(params.l_a);
     const Scalar m_a = Scalar(params.m_a);
     const Scalar rho = Scalar(params.rho);
     const Scalar m_b = Scalar(params.m_b);
     const Scalar m_p = Scalar(params.m_p);
-    const Scalar tmp1 = cos(theta_1);
+    const Scalar tmp1 = cos_of[0];
     const Scalar tmp2 = tmp1*l_a;
     const Scalar tmp3 = (Scalar(0.5))*tmp2;
-    const Scalar tmp5 = sin(theta_1);
+    const Scalar tmp5 = sin_of[0];
     const Scalar tmp9 = (rho*rho);
     const Scalar tmp10 = (Scalar(0.25))*m_a;
     const Scalar tmp11 = tmp10*tmp9;
@@ -1201,8 +1281,8 @@ struct DeltaRobot {
     const Scalar tmp57 = -tmp56;
     const Scalar tmp58 = tmp2*theta_1_dot;
     const Scalar tmp59 = -tmp58;
-    const Scalar tmp60 = sin(theta_2);
-    const Scalar tmp63 = cos(theta_2);
+    const Scalar tmp60 = sin_of[1];
+    const Scalar tmp63 = cos_of[1];
     const Scalar tmp64 = Scalar(0.4999999999999998)*tmp63;
     const Scalar tmp79 = Scalar(0.8660254037844388)*tmp63;
     const Scalar tmp84 = tmp60*l_a;
@@ -1219,8 +1299,8 @@ struct DeltaRobot {
     const Scalar tmp161 = tmp63*theta_2_dot;
     const Scalar tmp162 = tmp161*l_a;
     const Scalar tmp163 = -tmp162;
-    const Scalar tmp166 = cos(theta_3);
-    const Scalar tmp170 = sin(theta_3);
+    const Scalar tmp166 = cos_of[2];
+    const Scalar tmp170 = sin_of[2];
     const Scalar tmp173 = Scalar(0.5000000000000004)*tmp166;
     const Scalar tmp178 = Scalar(0.8660254037844384)*tmp166;
     const Scalar tmp188 = tmp170*l_a;
@@ -1293,27 +1373,29 @@ struct DeltaRobot {
   static Scalar potential_energy(const QVector<Scalar>& q,
                                  const Scalar& /*t*/,
                                  const Params& params) {
-    using std::sin;
     const Scalar theta_1 = q(0);
     const Scalar theta_2 = q(1);
     const Scalar theta_3 = q(2);
     const Scalar z = q(5);
+    const Scalar sin_cos_of[3] = {theta_1, theta_2, theta_3};
+    Scalar sin_of[3], cos_of[3];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar l_a = Scalar(params.l_a);
     const Scalar m_a = Scalar(params.m_a);
     const Scalar m_b = Scalar(params.m_b);
     const Scalar m_p = Scalar(params.m_p);
     const Scalar g = Scalar(params.g);
-    const Scalar tmp5 = sin(theta_1);
+    const Scalar tmp5 = sin_of[0];
     const Scalar tmp21 = tmp5*l_a;
     const Scalar tmp22 = (Scalar(0.5))*tmp21;
     const Scalar tmp49 = -tmp22;
     const Scalar tmp55 = -tmp21;
-    const Scalar tmp60 = sin(theta_2);
+    const Scalar tmp60 = sin_of[1];
     const Scalar tmp84 = tmp60*l_a;
     const Scalar tmp85 = (Scalar(0.5))*tmp84;
     const Scalar tmp142 = -tmp85;
     const Scalar tmp155 = -tmp84;
-    const Scalar tmp170 = sin(theta_3);
+    const Scalar tmp170 = sin_of[2];
     const Scalar tmp188 = tmp170*l_a;
     const Scalar tmp189 = (Scalar(0.5))*tmp188;
     const Scalar tmp244 = -tmp189;
@@ -1357,8 +1439,6 @@ struct DeltaRobot {
                        const VVector<Scalar>& v,
                        const Scalar& /*t*/,
                        const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar theta_1 = q(0);
     const Scalar theta_2 = q(1);
     const Scalar theta_3 = q(2);
@@ -1369,16 +1449,19 @@ struct DeltaRobot {
     const Scalar x_dot = v(3);
     const Scalar y_dot = v(4);
     const Scalar z_dot = v(5);
+    const Scalar sin_cos_of[3] = {theta_1, theta_2, theta_3};
+    Scalar sin_of[3], cos_of[3];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar l_a = Scalar(params.l_a);
     const Scalar m_a = Scalar(params.m_a);
     const Scalar rho = Scalar(params.rho);
     const Scalar m_b = Scalar(params.m_b);
     const Scalar m_p = Scalar(params.m_p);
     const Scalar g = Scalar(params.g);
-    const Scalar tmp1 = cos(theta_1);
+    const Scalar tmp1 = cos_of[0];
     const Scalar tmp2 = tmp1*l_a;
     const Scalar tmp3 = (Scalar(0.5))*tmp2;
-    const Scalar tmp5 = sin(theta_1);
+    const Scalar tmp5 = sin_of[0];
     const Scalar tmp9 = (rho*rho);
     const Scalar tmp10 = (Scalar(0.25))*m_a;
     const Scalar tmp11 = tmp10*tmp9;
@@ -1393,8 +1476,8 @@ struct DeltaRobot {
     const Scalar tmp57 = -tmp56;
     const Scalar tmp58 = tmp2*theta_1_dot;
     const Scalar tmp59 = -tmp58;
-    const Scalar tmp60 = sin(theta_2);
-    const Scalar tmp63 = cos(theta_2);
+    const Scalar tmp60 = sin_of[1];
+    const Scalar tmp63 = cos_of[1];
     const Scalar tmp64 = Scalar(0.4999999999999998)*tmp63;
     const Scalar tmp79 = Scalar(0.8660254037844388)*tmp63;
     const Scalar tmp84 = tmp60*l_a;
@@ -1414,8 +1497,8 @@ struct DeltaRobot {
     const Scalar tmp161 = tmp63*theta_2_dot;
     const Scalar tmp162 = tmp161*l_a;
     const Scalar tmp163 = -tmp162;
-    const Scalar tmp166 = cos(theta_3);
-    const Scalar tmp170 = sin(theta_3);
+    const Scalar tmp166 = cos_of[2];
+    const Scalar tmp170 = sin_of[2];
     const Scalar tmp173 = Scalar(0.5000000000000004)*tmp166;
     const Scalar tmp178 = Scalar(0.8660254037844384)*tmp166;
     const Scalar tmp188 = tmp170*l_a;
@@ -1498,8 +1581,6 @@ struct DeltaRobot {
                                    const Scalar& /*t*/,
                                    const Params& params) {
     using std::abs;
-    using std::cos;
-    using std::sin;
     using std::sqrt;
     const Scalar theta_1 = q(0);
     const Scalar theta_2 = q(1);
@@ -1507,16 +1588,19 @@ struct DeltaRobot {
     const Scalar x = q(3);
     const Scalar y = q(4);
     const Scalar z = q(5);
+    const Scalar sin_cos_of[3] = {theta_1, theta_2, theta_3};
+    Scalar sin_of[3], cos_of[3];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar R = Scalar(params.R);
     const Scalar l_a = Scalar(params.l_a);
     const Scalar m_a = Scalar(params.m_a);
     const Scalar rho = Scalar(params.rho);
     const Scalar tmp0 = Scalar(1.0)*R;
-    const Scalar tmp1 = cos(theta_1);
+    const Scalar tmp1 = cos_of[0];
     const Scalar tmp2 = tmp1*l_a;
     const Scalar tmp3 = (Scalar(0.5))*tmp2;
     const Scalar tmp4 = tmp0 + tmp3;
-    const Scalar tmp5 = sin(theta_1);
+    const Scalar tmp5 = sin_of[0];
     const Scalar tmp6 = abs(rho);
     const Scalar tmp7 = (Scalar(0.5))*tmp6;
     const Scalar tmp8 = tmp5*tmp7;
@@ -1554,10 +1638,10 @@ struct DeltaRobot {
     const Scalar tmp50 = tmp20 + tmp23 + tmp49;
     const Scalar tmp54 = tmp0 + tmp2;
     const Scalar tmp55 = -tmp21;
-    const Scalar tmp60 = sin(theta_2);
+    const Scalar tmp60 = sin_of[1];
     const Scalar tmp61 = Scalar(0.2499999999999999)*tmp6;
     const Scalar tmp62 = tmp60*tmp61;
-    const Scalar tmp63 = cos(theta_2);
+    const Scalar tmp63 = cos_of[1];
     const Scalar tmp64 = Scalar(0.4999999999999998)*tmp63;
     const Scalar tmp65 = tmp16*tmp64;
     const Scalar tmp66 = tmp62 + tmp65;
@@ -1613,11 +1697,11 @@ struct DeltaRobot {
     const Scalar tmp155 = -tmp84;
     const Scalar tmp164 = Scalar(0.4330127018922192)*tmp6;
     const Scalar tmp165 = Scalar(0.5000000000000004)*R;
-    const Scalar tmp166 = cos(theta_3);
+    const Scalar tmp166 = cos_of[2];
     const Scalar tmp167 = Scalar(0.2500000000000002)*l_a;
     const Scalar tmp168 = tmp166*tmp167;
     const Scalar tmp169 = tmp165 + tmp168;
-    const Scalar tmp170 = sin(theta_3);
+    const Scalar tmp170 = sin_of[2];
     const Scalar tmp171 = Scalar(0.2500000000000002)*tmp6;
     const Scalar tmp172 = tmp170*tmp171;
     const Scalar tmp173 = Scalar(0.5000000000000004)*tmp166;
@@ -1733,8 +1817,6 @@ struct DeltaRobot {
                                     const Scalar& /*t*/,
                                     const Params& params) {
     using std::abs;
-    using std::cos;
-    using std::sin;
     using std::sqrt;
     const Scalar theta_1 = q(0);
     const Scalar theta_2 = q(1);
@@ -1745,13 +1827,16 @@ struct DeltaRobot {
     const Scalar x_dot = v(3);
     const Scalar y_dot = v(4);
     const Scalar z_dot = v(5);
+    const Scalar sin_cos_of[3] = {theta_1, theta_2, theta_3};
+    Scalar sin_of[3], cos_of[3];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar l_a = Scalar(params.l_a);
     const Scalar m_a = Scalar(params.m_a);
     const Scalar rho = Scalar(params.rho);
-    const Scalar tmp1 = cos(theta_1);
+    const Scalar tmp1 = cos_of[0];
     const Scalar tmp2 = tmp1*l_a;
     const Scalar tmp3 = (Scalar(0.5))*tmp2;
-    const Scalar tmp5 = sin(theta_1);
+    const Scalar tmp5 = sin_of[0];
     const Scalar tmp6 = abs(rho);
     const Scalar tmp7 = (Scalar(0.5))*tmp6;
     const Scalar tmp8 = tmp5*tmp7;
@@ -1798,9 +1883,9 @@ struct DeltaRobot {
     const Scalar tmp57 = -tmp56;
     const Scalar tmp58 = tmp2*theta_1_dot;
     const Scalar tmp59 = -tmp58;
-    const Scalar tmp60 = sin(theta_2);
+    const Scalar tmp60 = sin_of[1];
     const Scalar tmp61 = Scalar(0.2499999999999999)*tmp6;
-    const Scalar tmp63 = cos(theta_2);
+    const Scalar tmp63 = cos_of[1];
     const Scalar tmp67 = Scalar(0.4330127018922194)*tmp6;
     const Scalar tmp84 = tmp60*l_a;
     const Scalar tmp90 = tmp61*tmp63;
@@ -1851,8 +1936,8 @@ struct DeltaRobot {
     const Scalar tmp162 = tmp161*l_a;
     const Scalar tmp163 = -tmp162;
     const Scalar tmp164 = Scalar(0.4330127018922192)*tmp6;
-    const Scalar tmp166 = cos(theta_3);
-    const Scalar tmp170 = sin(theta_3);
+    const Scalar tmp166 = cos_of[2];
+    const Scalar tmp170 = sin_of[2];
     const Scalar tmp171 = Scalar(0.2500000000000002)*tmp6;
     const Scalar tmp188 = tmp170*l_a;
     const Scalar tmp194 = tmp166*tmp171;
@@ -1963,19 +2048,20 @@ struct DeltaRobot {
                                     const Scalar& /*t*/,
                                     const Params& params) {
     using std::abs;
-    using std::cos;
-    using std::sin;
     using std::sqrt;
     const Scalar theta_1 = q(0);
     const Scalar theta_2 = q(1);
     const Scalar theta_3 = q(2);
+    const Scalar sin_cos_of[3] = {theta_1, theta_2, theta_3};
+    Scalar sin_of[3], cos_of[3];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar l_a = Scalar(params.l_a);
     const Scalar m_a = Scalar(params.m_a);
     const Scalar rho = Scalar(params.rho);
-    const Scalar tmp1 = cos(theta_1);
+    const Scalar tmp1 = cos_of[0];
     const Scalar tmp2 = tmp1*l_a;
     const Scalar tmp3 = (Scalar(0.5))*tmp2;
-    const Scalar tmp5 = sin(theta_1);
+    const Scalar tmp5 = sin_of[0];
     const Scalar tmp6 = abs(rho);
     const Scalar tmp7 = (Scalar(0.5))*tmp6;
     const Scalar tmp8 = tmp5*tmp7;
@@ -2010,9 +2096,9 @@ struct DeltaRobot {
     const Scalar tmp49 = -tmp22;
     const Scalar tmp50 = tmp20 + tmp23 + tmp49;
     const Scalar tmp52 = -tmp3 - tmp47;
-    const Scalar tmp60 = sin(theta_2);
+    const Scalar tmp60 = sin_of[1];
     const Scalar tmp61 = Scalar(0.2499999999999999)*tmp6;
-    const Scalar tmp63 = cos(theta_2);
+    const Scalar tmp63 = cos_of[1];
     const Scalar tmp67 = Scalar(0.4330127018922194)*tmp6;
     const Scalar tmp84 = tmp60*l_a;
     const Scalar tmp90 = tmp61*tmp63;
@@ -2045,8 +2131,8 @@ struct DeltaRobot {
     const Scalar tmp156 = Scalar(0.4999999999999998)*tmp84;
     const Scalar tmp158 = Scalar(0.8660254037844388)*tmp84;
     const Scalar tmp164 = Scalar(0.4330127018922192)*tmp6;
-    const Scalar tmp166 = cos(theta_3);
-    const Scalar tmp170 = sin(theta_3);
+    const Scalar tmp166 = cos_of[2];
+    const Scalar tmp170 = sin_of[2];
     const Scalar tmp171 = Scalar(0.2500000000000002)*tmp6;
     const Scalar tmp188 = tmp170*l_a;
     const Scalar tmp194 = tmp166*tmp171;
@@ -2140,8 +2226,6 @@ struct DeltaRobot {
                                            const Scalar& /*t*/,
                                            const Params& params) {
     using std::abs;
-    using std::cos;
-    using std::sin;
     using std::sqrt;
     const Scalar theta_1 = q(0);
     const Scalar theta_2 = q(1);
@@ -2149,13 +2233,16 @@ struct DeltaRobot {
     const Scalar theta_1_dot = v(0);
     const Scalar theta_2_dot = v(1);
     const Scalar theta_3_dot = v(2);
+    const Scalar sin_cos_of[3] = {theta_1, theta_2, theta_3};
+    Scalar sin_of[3], cos_of[3];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar l_a = Scalar(params.l_a);
     const Scalar m_a = Scalar(params.m_a);
     const Scalar rho = Scalar(params.rho);
-    const Scalar tmp1 = cos(theta_1);
+    const Scalar tmp1 = cos_of[0];
     const Scalar tmp2 = tmp1*l_a;
     const Scalar tmp3 = (Scalar(0.5))*tmp2;
-    const Scalar tmp5 = sin(theta_1);
+    const Scalar tmp5 = sin_of[0];
     const Scalar tmp6 = abs(rho);
     const Scalar tmp7 = (Scalar(0.5))*tmp6;
     const Scalar tmp8 = tmp5*tmp7;
@@ -2187,10 +2274,10 @@ struct DeltaRobot {
     const Scalar tmp49 = -tmp22;
     const Scalar tmp50 = tmp20 + tmp23 + tmp49;
     const Scalar tmp52 = -tmp3 - tmp47;
-    const Scalar tmp60 = sin(theta_2);
+    const Scalar tmp60 = sin_of[1];
     const Scalar tmp61 = Scalar(0.2499999999999999)*tmp6;
     const Scalar tmp62 = tmp60*tmp61;
-    const Scalar tmp63 = cos(theta_2);
+    const Scalar tmp63 = cos_of[1];
     const Scalar tmp64 = Scalar(0.4999999999999998)*tmp63;
     const Scalar tmp65 = tmp16*tmp64;
     const Scalar tmp66 = tmp62 + tmp65;
@@ -2222,10 +2309,10 @@ struct DeltaRobot {
     const Scalar tmp150 = tmp64*l_a;
     const Scalar tmp153 = tmp79*l_a;
     const Scalar tmp164 = Scalar(0.4330127018922192)*tmp6;
-    const Scalar tmp166 = cos(theta_3);
+    const Scalar tmp166 = cos_of[2];
     const Scalar tmp167 = Scalar(0.2500000000000002)*l_a;
     const Scalar tmp168 = tmp166*tmp167;
-    const Scalar tmp170 = sin(theta_3);
+    const Scalar tmp170 = sin_of[2];
     const Scalar tmp171 = Scalar(0.2500000000000002)*tmp6;
     const Scalar tmp172 = tmp170*tmp171;
     const Scalar tmp173 = Scalar(0.5000000000000004)*tmp166;
@@ -2359,8 +2446,6 @@ struct DeltaRobot {
                                              const VVector<Scalar>& v,
                                              const Scalar& /*t*/,
                                              const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar theta_1 = q(0);
     const Scalar theta_2 = q(1);
     const Scalar theta_3 = q(2);
@@ -2370,22 +2455,25 @@ struct DeltaRobot {
     const Scalar x_dot = v(3);
     const Scalar y_dot = v(4);
     const Scalar z_dot = v(5);
+    const Scalar sin_cos_of[3] = {theta_1, theta_2, theta_3};
+    Scalar sin_of[3], cos_of[3];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar l_a = Scalar(params.l_a);
     const Scalar m_a = Scalar(params.m_a);
     const Scalar m_b = Scalar(params.m_b);
     const Scalar m_p = Scalar(params.m_p);
-    const Scalar tmp1 = cos(theta_1);
+    const Scalar tmp1 = cos_of[0];
     const Scalar tmp2 = tmp1*l_a;
     const Scalar tmp3 = (Scalar(0.5))*tmp2;
-    const Scalar tmp5 = sin(theta_1);
+    const Scalar tmp5 = sin_of[0];
     const Scalar tmp21 = tmp5*l_a;
     const Scalar tmp22 = (Scalar(0.5))*tmp21;
     const Scalar tmp56 = tmp21*theta_1_dot;
     const Scalar tmp57 = -tmp56;
     const Scalar tmp58 = tmp2*theta_1_dot;
     const Scalar tmp59 = -tmp58;
-    const Scalar tmp60 = sin(theta_2);
-    const Scalar tmp63 = cos(theta_2);
+    const Scalar tmp60 = sin_of[1];
+    const Scalar tmp63 = cos_of[1];
     const Scalar tmp84 = tmp60*l_a;
     const Scalar tmp91 = Scalar(0.2499999999999999)*tmp84;
     const Scalar tmp98 = Scalar(0.4330127018922194)*tmp84;
@@ -2398,8 +2486,8 @@ struct DeltaRobot {
     const Scalar tmp161 = tmp63*theta_2_dot;
     const Scalar tmp162 = tmp161*l_a;
     const Scalar tmp163 = -tmp162;
-    const Scalar tmp166 = cos(theta_3);
-    const Scalar tmp170 = sin(theta_3);
+    const Scalar tmp166 = cos_of[2];
+    const Scalar tmp170 = sin_of[2];
     const Scalar tmp188 = tmp170*l_a;
     const Scalar tmp195 = Scalar(0.2500000000000002)*tmp188;
     const Scalar tmp202 = Scalar(0.4330127018922192)*tmp188;
@@ -2441,8 +2529,6 @@ struct DeltaRobot {
                                                 const VVector<Scalar>& v,
                                                 const Scalar& /*t*/,
                                                 const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar theta_1 = q(0);
     const Scalar theta_2 = q(1);
     const Scalar theta_3 = q(2);
@@ -2455,6 +2541,9 @@ struct DeltaRobot {
     const Scalar x_dot = v(3);
     const Scalar y_dot = v(4);
     const Scalar z_dot = v(5);
+    const Scalar sin_cos_of[3] = {theta_1, theta_2, theta_3};
+    Scalar sin_of[3], cos_of[3];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar R = Scalar(params.R);
     const Scalar l_a = Scalar(params.l_a);
     const Scalar m_a = Scalar(params.m_a);
@@ -2462,11 +2551,11 @@ struct DeltaRobot {
     const Scalar m_b = Scalar(params.m_b);
     const Scalar m_p = Scalar(params.m_p);
     const Scalar tmp0 = Scalar(1.0)*R;
-    const Scalar tmp1 = cos(theta_1);
+    const Scalar tmp1 = cos_of[0];
     const Scalar tmp2 = tmp1*l_a;
     const Scalar tmp3 = (Scalar(0.5))*tmp2;
     const Scalar tmp4 = tmp0 + tmp3;
-    const Scalar tmp5 = sin(theta_1);
+    const Scalar tmp5 = sin_of[0];
     const Scalar tmp9 = (rho*rho);
     const Scalar tmp10 = (Scalar(0.25))*m_a;
     const Scalar tmp11 = tmp10*tmp9;
@@ -2482,8 +2571,8 @@ struct DeltaRobot {
     const Scalar tmp57 = -tmp56;
     const Scalar tmp58 = tmp2*theta_1_dot;
     const Scalar tmp59 = -tmp58;
-    const Scalar tmp60 = sin(theta_2);
-    const Scalar tmp63 = cos(theta_2);
+    const Scalar tmp60 = sin_of[1];
+    const Scalar tmp63 = cos_of[1];
     const Scalar tmp64 = Scalar(0.4999999999999998)*tmp63;
     const Scalar tmp68 = Scalar(0.4999999999999998)*R;
     const Scalar tmp69 = Scalar(0.2499999999999999)*l_a;
@@ -2517,11 +2606,11 @@ struct DeltaRobot {
     const Scalar tmp162 = tmp161*l_a;
     const Scalar tmp163 = -tmp162;
     const Scalar tmp165 = Scalar(0.5000000000000004)*R;
-    const Scalar tmp166 = cos(theta_3);
+    const Scalar tmp166 = cos_of[2];
     const Scalar tmp167 = Scalar(0.2500000000000002)*l_a;
     const Scalar tmp168 = tmp166*tmp167;
     const Scalar tmp169 = tmp165 + tmp168;
-    const Scalar tmp170 = sin(theta_3);
+    const Scalar tmp170 = sin_of[2];
     const Scalar tmp173 = Scalar(0.5000000000000004)*tmp166;
     const Scalar tmp178 = Scalar(0.8660254037844384)*tmp166;
     const Scalar tmp181 = Scalar(0.8660254037844384)*R;
@@ -2661,26 +2750,27 @@ struct DeltaRobot {
   static HVector<Scalar> holonomic_constraints(const QVector<Scalar>& q,
                                                const Scalar& /*t*/,
                                                const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar theta_1 = q(0);
     const Scalar theta_2 = q(1);
     const Scalar theta_3 = q(2);
     const Scalar x = q(3);
     const Scalar y = q(4);
     const Scalar z = q(5);
+    const Scalar sin_cos_of[3] = {theta_1, theta_2, theta_3};
+    Scalar sin_of[3], cos_of[3];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar R = Scalar(params.R);
     const Scalar r = Scalar(params.r);
     const Scalar l_a = Scalar(params.l_a);
     const Scalar l_b = Scalar(params.l_b);
     const Scalar tmp0 = Scalar(1.0)*R;
-    const Scalar tmp1 = cos(theta_1);
+    const Scalar tmp1 = cos_of[0];
     const Scalar tmp2 = tmp1*l_a;
-    const Scalar tmp5 = sin(theta_1);
+    const Scalar tmp5 = sin_of[0];
     const Scalar tmp21 = tmp5*l_a;
     const Scalar tmp54 = tmp0 + tmp2;
-    const Scalar tmp60 = sin(theta_2);
-    const Scalar tmp63 = cos(theta_2);
+    const Scalar tmp60 = sin_of[1];
+    const Scalar tmp63 = cos_of[1];
     const Scalar tmp64 = Scalar(0.4999999999999998)*tmp63;
     const Scalar tmp68 = Scalar(0.4999999999999998)*R;
     const Scalar tmp74 = Scalar(0.8660254037844387)*R;
@@ -2691,8 +2781,8 @@ struct DeltaRobot {
     const Scalar tmp153 = tmp79*l_a;
     const Scalar tmp154 = tmp153 + tmp74;
     const Scalar tmp165 = Scalar(0.5000000000000004)*R;
-    const Scalar tmp166 = cos(theta_3);
-    const Scalar tmp170 = sin(theta_3);
+    const Scalar tmp166 = cos_of[2];
+    const Scalar tmp170 = sin_of[2];
     const Scalar tmp173 = Scalar(0.5000000000000004)*tmp166;
     const Scalar tmp178 = Scalar(0.8660254037844384)*tmp166;
     const Scalar tmp181 = Scalar(0.8660254037844384)*R;
@@ -2731,29 +2821,30 @@ struct DeltaRobot {
   static HJacobian<Scalar> holonomic_jacobian(const QVector<Scalar>& q,
                                               const Scalar& /*t*/,
                                               const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar theta_1 = q(0);
     const Scalar theta_2 = q(1);
     const Scalar theta_3 = q(2);
     const Scalar x = q(3);
     const Scalar y = q(4);
     const Scalar z = q(5);
+    const Scalar sin_cos_of[3] = {theta_1, theta_2, theta_3};
+    Scalar sin_of[3], cos_of[3];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar R = Scalar(params.R);
     const Scalar r = Scalar(params.r);
     const Scalar l_a = Scalar(params.l_a);
     const Scalar l_b = Scalar(params.l_b);
-    const Scalar tmp1 = cos(theta_1);
+    const Scalar tmp1 = cos_of[0];
     const Scalar tmp2 = tmp1*l_a;
-    const Scalar tmp5 = sin(theta_1);
+    const Scalar tmp5 = sin_of[0];
     const Scalar tmp21 = tmp5*l_a;
-    const Scalar tmp60 = sin(theta_2);
-    const Scalar tmp63 = cos(theta_2);
+    const Scalar tmp60 = sin_of[1];
+    const Scalar tmp63 = cos_of[1];
     const Scalar tmp84 = tmp60*l_a;
     const Scalar tmp156 = Scalar(0.4999999999999998)*tmp84;
     const Scalar tmp158 = Scalar(0.8660254037844388)*tmp84;
-    const Scalar tmp166 = cos(theta_3);
-    const Scalar tmp170 = sin(theta_3);
+    const Scalar tmp166 = cos_of[2];
+    const Scalar tmp170 = sin_of[2];
     const Scalar tmp188 = tmp170*l_a;
     const Scalar tmp259 = Scalar(0.5000000000000004)*tmp188;
     const Scalar tmp261 = Scalar(0.8660254037844384)*tmp188;
@@ -2817,29 +2908,30 @@ struct DeltaRobot {
   static CJacobian<Scalar> constraint_jacobian(const QVector<Scalar>& q,
                                                const Scalar& /*t*/,
                                                const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar theta_1 = q(0);
     const Scalar theta_2 = q(1);
     const Scalar theta_3 = q(2);
     const Scalar x = q(3);
     const Scalar y = q(4);
     const Scalar z = q(5);
+    const Scalar sin_cos_of[3] = {theta_1, theta_2, theta_3};
+    Scalar sin_of[3], cos_of[3];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar R = Scalar(params.R);
     const Scalar r = Scalar(params.r);
     const Scalar l_a = Scalar(params.l_a);
     const Scalar l_b = Scalar(params.l_b);
-    const Scalar tmp1 = cos(theta_1);
+    const Scalar tmp1 = cos_of[0];
     const Scalar tmp2 = tmp1*l_a;
-    const Scalar tmp5 = sin(theta_1);
+    const Scalar tmp5 = sin_of[0];
     const Scalar tmp21 = tmp5*l_a;
-    const Scalar tmp60 = sin(theta_2);
-    const Scalar tmp63 = cos(theta_2);
+    const Scalar tmp60 = sin_of[1];
+    const Scalar tmp63 = cos_of[1];
     const Scalar tmp84 = tmp60*l_a;
     const Scalar tmp156 = Scalar(0.4999999999999998)*tmp84;
     const Scalar tmp158 = Scalar(0.8660254037844388)*tmp84;
-    const Scalar tmp166 = cos(theta_3);
-    const Scalar tmp170 = sin(theta_3);
+    const Scalar tmp166 = cos_of[2];
+    const Scalar tmp170 = sin_of[2];
     const Scalar tmp188 = tmp170*l_a;
     const Scalar tmp259 = Scalar(0.5000000000000004)*tmp188;
     const Scalar tmp261 = Scalar(0.8660254037844384)*tmp188;
@@ -2904,8 +2996,6 @@ struct DeltaRobot {
                                                const VVector<Scalar>& v,
                                                const Scalar& /*t*/,
                                                const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar theta_1 = q(0);
     const Scalar theta_2 = q(1);
     const Scalar theta_3 = q(2);
@@ -2918,21 +3008,24 @@ struct DeltaRobot {
     const Scalar x_dot = v(3);
     const Scalar y_dot = v(4);
     const Scalar z_dot = v(5);
+    const Scalar sin_cos_of[3] = {theta_1, theta_2, theta_3};
+    Scalar sin_of[3], cos_of[3];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar R = Scalar(params.R);
     const Scalar r = Scalar(params.r);
     const Scalar l_a = Scalar(params.l_a);
     const Scalar l_b = Scalar(params.l_b);
-    const Scalar tmp1 = cos(theta_1);
+    const Scalar tmp1 = cos_of[0];
     const Scalar tmp2 = tmp1*l_a;
-    const Scalar tmp5 = sin(theta_1);
+    const Scalar tmp5 = sin_of[0];
     const Scalar tmp21 = tmp5*l_a;
-    const Scalar tmp60 = sin(theta_2);
-    const Scalar tmp63 = cos(theta_2);
+    const Scalar tmp60 = sin_of[1];
+    const Scalar tmp63 = cos_of[1];
     const Scalar tmp84 = tmp60*l_a;
     const Scalar tmp156 = Scalar(0.4999999999999998)*tmp84;
     const Scalar tmp158 = Scalar(0.8660254037844388)*tmp84;
-    const Scalar tmp166 = cos(theta_3);
-    const Scalar tmp170 = sin(theta_3);
+    const Scalar tmp166 = cos_of[2];
+    const Scalar tmp170 = sin_of[2];
     const Scalar tmp188 = tmp170*l_a;
     const Scalar tmp259 = Scalar(0.5000000000000004)*tmp188;
     const Scalar tmp261 = Scalar(0.8660254037844384)*tmp188;
@@ -2989,8 +3082,6 @@ struct DeltaRobot {
                                          const VVector<Scalar>& v,
                                          const Scalar& /*t*/,
                                          const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar theta_1 = q(0);
     const Scalar theta_2 = q(1);
     const Scalar theta_3 = q(2);
@@ -3003,19 +3094,22 @@ struct DeltaRobot {
     const Scalar x_dot = v(3);
     const Scalar y_dot = v(4);
     const Scalar z_dot = v(5);
+    const Scalar sin_cos_of[3] = {theta_1, theta_2, theta_3};
+    Scalar sin_of[3], cos_of[3];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar R = Scalar(params.R);
     const Scalar r = Scalar(params.r);
     const Scalar l_a = Scalar(params.l_a);
     const Scalar l_b = Scalar(params.l_b);
-    const Scalar tmp1 = cos(theta_1);
+    const Scalar tmp1 = cos_of[0];
     const Scalar tmp2 = tmp1*l_a;
-    const Scalar tmp5 = sin(theta_1);
+    const Scalar tmp5 = sin_of[0];
     const Scalar tmp12 = (l_a*l_a);
     const Scalar tmp21 = tmp5*l_a;
     const Scalar tmp56 = tmp21*theta_1_dot;
     const Scalar tmp58 = tmp2*theta_1_dot;
-    const Scalar tmp60 = sin(theta_2);
-    const Scalar tmp63 = cos(theta_2);
+    const Scalar tmp60 = sin_of[1];
+    const Scalar tmp63 = cos_of[1];
     const Scalar tmp64 = Scalar(0.4999999999999998)*tmp63;
     const Scalar tmp79 = Scalar(0.8660254037844388)*tmp63;
     const Scalar tmp84 = tmp60*l_a;
@@ -3027,8 +3121,8 @@ struct DeltaRobot {
     const Scalar tmp159 = tmp158*theta_2_dot;
     const Scalar tmp161 = tmp63*theta_2_dot;
     const Scalar tmp162 = tmp161*l_a;
-    const Scalar tmp166 = cos(theta_3);
-    const Scalar tmp170 = sin(theta_3);
+    const Scalar tmp166 = cos_of[2];
+    const Scalar tmp170 = sin_of[2];
     const Scalar tmp173 = Scalar(0.5000000000000004)*tmp166;
     const Scalar tmp178 = Scalar(0.8660254037844384)*tmp166;
     const Scalar tmp188 = tmp170*l_a;

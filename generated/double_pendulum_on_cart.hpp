@@ -22,6 +22,78 @@
 
 #include <Eigen/Cholesky>
 #include <Eigen/Core>
+// gencoord_kernel_math::sin_cos(x, s, c) sets s[i] = sin(x[i]) and c[i] = cos(x[i]). For
+// double on x86-64 with glibc it works in vector registers, through glibc's vector math
+// library (libmvec, which C++ programs link through libm; within 4 ulp, as its manual states):
+// 4 lanes a call where the compiler targets AVX2, 2 otherwise. The inline namespace keeps the
+// two apart when objects of both are linked together. Elsewhere, or with GENCOORD_NO_LIBMVEC
+// defined, it calls sin and cos.
+#ifndef GENCOORD_KERNEL_SIN_COS
+#define GENCOORD_KERNEL_SIN_COS
+#if defined(__x86_64__) && defined(__GLIBC__) && !defined(GENCOORD_NO_LIBMVEC)
+#include <immintrin.h>
+#define GENCOORD_KERNEL_LIBMVEC 1
+extern "C" {
+#if defined(__AVX2__)
+__m256d _ZGVdN4v_sin(__m256d);
+__m256d _ZGVdN4v_cos(__m256d);
+#else
+__m128d _ZGVbN2v_sin(__m128d);
+__m128d _ZGVbN2v_cos(__m128d);
+#endif
+}
+#endif
+
+namespace gencoord_kernel_math {
+#if defined(GENCOORD_KERNEL_LIBMVEC) && defined(__AVX2__)
+inline namespace avx2 {
+constexpr int kLanes = 4;
+inline void sin_cos_lanes(const double* x, double* s, double* c) {
+  const __m256d lanes = _mm256_loadu_pd(x);
+  _mm256_storeu_pd(s, _ZGVdN4v_sin(lanes));
+  _mm256_storeu_pd(c, _ZGVdN4v_cos(lanes));
+}
+#elif defined(GENCOORD_KERNEL_LIBMVEC)
+inline namespace sse2 {
+constexpr int kLanes = 2;
+inline void sin_cos_lanes(const double* x, double* s, double* c) {
+  const __m128d lanes = _mm_loadu_pd(x);
+  _mm_storeu_pd(s, _ZGVbN2v_sin(lanes));
+  _mm_storeu_pd(c, _ZGVbN2v_cos(lanes));
+}
+#else
+inline namespace scalar {
+#endif
+
+template <class Scalar, int n>
+inline void sin_cos(const Scalar (&x)[n], Scalar (&s)[n], Scalar (&c)[n]) {
+  using std::cos;
+  using std::sin;
+  for (int i = 0; i < n; ++i) {
+    s[i] = sin(x[i]);
+    c[i] = cos(x[i]);
+  }
+}
+
+#ifdef GENCOORD_KERNEL_LIBMVEC
+template <int n>
+inline void sin_cos(const double (&x)[n], double (&s)[n], double (&c)[n]) {
+  constexpr int whole = n - n % kLanes;
+  for (int i = 0; i < whole; i += kLanes) sin_cos_lanes(x + i, s + i, c + i);
+  if constexpr (whole < n) {  // the rest, padded with copies of the last argument
+    double rest[kLanes], sines[kLanes], cosines[kLanes];
+    for (int k = 0; k < kLanes; ++k) rest[k] = x[whole + k < n ? whole + k : n - 1];
+    sin_cos_lanes(rest, sines, cosines);
+    for (int i = whole; i < n; ++i) {
+      s[i] = sines[i - whole];
+      c[i] = cosines[i - whole];
+    }
+  }
+}
+#endif
+}  // inline namespace
+}  // namespace gencoord_kernel_math
+#endif  // GENCOORD_KERNEL_SIN_COS
 
 /*
  * Double inverted pendulum on a cart: a cart on a horizontal track carrying two poles in
@@ -176,22 +248,23 @@ struct DoublePendulumOnCart {
   static VMatrix<Scalar> mass_matrix(const QVector<Scalar>& q,
                                      const Scalar& /*t*/,
                                      const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar theta1 = q(1);
     const Scalar theta2 = q(2);
+    const Scalar sin_cos_of[2] = {theta1, theta2};
+    Scalar sin_of[2], cos_of[2];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar l1 = Scalar(params.l1);
     const Scalar l2 = Scalar(params.l2);
     const Scalar m_cart = Scalar(params.m_cart);
     const Scalar m1 = Scalar(params.m1);
     const Scalar m2 = Scalar(params.m2);
-    const Scalar tmp0 = cos(theta1);
+    const Scalar tmp0 = cos_of[0];
     const Scalar tmp1 = tmp0*l1;
-    const Scalar tmp2 = sin(theta1);
+    const Scalar tmp2 = sin_of[0];
     const Scalar tmp3 = tmp2*l1;
-    const Scalar tmp13 = cos(theta2);
+    const Scalar tmp13 = cos_of[1];
     const Scalar tmp14 = tmp13*l2;
-    const Scalar tmp15 = sin(theta2);
+    const Scalar tmp15 = sin_of[1];
     const Scalar tmp16 = tmp15*l2;
     const Scalar tmp90 = m1 + m2 + m_cart;
     const Scalar tmp91 = tmp1*m1 + tmp1*m2;
@@ -228,18 +301,20 @@ struct DoublePendulumOnCart {
                                         const VVector<Scalar>& /*v*/,
                                         const Scalar& /*t*/,
                                         const Params& params) {
-    using std::sin;
     const Scalar theta1 = q(1);
     const Scalar theta2 = q(2);
+    const Scalar sin_cos_of[2] = {theta1, theta2};
+    Scalar sin_of[2], cos_of[2];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar l1 = Scalar(params.l1);
     const Scalar l2 = Scalar(params.l2);
     const Scalar m1 = Scalar(params.m1);
     const Scalar m2 = Scalar(params.m2);
     const Scalar g = Scalar(params.g);
     const Scalar u = Scalar(params.u);
-    const Scalar tmp2 = sin(theta1);
+    const Scalar tmp2 = sin_of[0];
     const Scalar tmp3 = tmp2*l1;
-    const Scalar tmp15 = sin(theta2);
+    const Scalar tmp15 = sin_of[1];
     const Scalar tmp16 = tmp15*l2;
     const Scalar tmp100 = g*m1;
     const Scalar tmp101 = tmp3*tmp100;
@@ -286,26 +361,27 @@ struct DoublePendulumOnCart {
                                          const VVector<Scalar>& v,
                                          const Scalar& /*t*/,
                                          const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar theta1 = q(1);
     const Scalar theta2 = q(2);
     const Scalar theta1_dot = v(1);
     const Scalar theta2_dot = v(2);
+    const Scalar sin_cos_of[2] = {theta1, theta2};
+    Scalar sin_of[2], cos_of[2];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar l1 = Scalar(params.l1);
     const Scalar l2 = Scalar(params.l2);
     const Scalar m1 = Scalar(params.m1);
     const Scalar m2 = Scalar(params.m2);
-    const Scalar tmp0 = cos(theta1);
+    const Scalar tmp0 = cos_of[0];
     const Scalar tmp1 = tmp0*l1;
-    const Scalar tmp2 = sin(theta1);
+    const Scalar tmp2 = sin_of[0];
     const Scalar tmp3 = tmp2*l1;
     const Scalar tmp5 = (theta1_dot*theta1_dot);
     const Scalar tmp6 = tmp3*tmp5;
     const Scalar tmp8 = tmp1*tmp5;
-    const Scalar tmp13 = cos(theta2);
+    const Scalar tmp13 = cos_of[1];
     const Scalar tmp14 = tmp13*l2;
-    const Scalar tmp15 = sin(theta2);
+    const Scalar tmp15 = sin_of[1];
     const Scalar tmp16 = tmp15*l2;
     const Scalar tmp18 = (theta2_dot*theta2_dot);
     const Scalar tmp19 = tmp16*tmp18;
@@ -338,28 +414,29 @@ struct DoublePendulumOnCart {
                                 const VVector<Scalar>& v,
                                 const Scalar& /*t*/,
                                 const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar theta1 = q(1);
     const Scalar theta2 = q(2);
     const Scalar theta1_dot = v(1);
     const Scalar theta2_dot = v(2);
+    const Scalar sin_cos_of[2] = {theta1, theta2};
+    Scalar sin_of[2], cos_of[2];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar l1 = Scalar(params.l1);
     const Scalar l2 = Scalar(params.l2);
     const Scalar m1 = Scalar(params.m1);
     const Scalar m2 = Scalar(params.m2);
     const Scalar g = Scalar(params.g);
     const Scalar u = Scalar(params.u);
-    const Scalar tmp0 = cos(theta1);
+    const Scalar tmp0 = cos_of[0];
     const Scalar tmp1 = tmp0*l1;
-    const Scalar tmp2 = sin(theta1);
+    const Scalar tmp2 = sin_of[0];
     const Scalar tmp3 = tmp2*l1;
     const Scalar tmp5 = (theta1_dot*theta1_dot);
     const Scalar tmp6 = tmp3*tmp5;
     const Scalar tmp8 = tmp1*tmp5;
-    const Scalar tmp13 = cos(theta2);
+    const Scalar tmp13 = cos_of[1];
     const Scalar tmp14 = tmp13*l2;
-    const Scalar tmp15 = sin(theta2);
+    const Scalar tmp15 = sin_of[1];
     const Scalar tmp16 = tmp15*l2;
     const Scalar tmp18 = (theta2_dot*theta2_dot);
     const Scalar tmp19 = tmp16*tmp18;
@@ -400,12 +477,13 @@ struct DoublePendulumOnCart {
                        const Params& params,
                        VMatrix<Scalar>* Mt,
                        VVector<Scalar>* f) {
-    using std::cos;
-    using std::sin;
     const Scalar theta1 = q(1);
     const Scalar theta2 = q(2);
     const Scalar theta1_dot = v(1);
     const Scalar theta2_dot = v(2);
+    const Scalar sin_cos_of[2] = {theta1, theta2};
+    Scalar sin_of[2], cos_of[2];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar l1 = Scalar(params.l1);
     const Scalar l2 = Scalar(params.l2);
     const Scalar m_cart = Scalar(params.m_cart);
@@ -413,16 +491,16 @@ struct DoublePendulumOnCart {
     const Scalar m2 = Scalar(params.m2);
     const Scalar g = Scalar(params.g);
     const Scalar u = Scalar(params.u);
-    const Scalar tmp0 = cos(theta1);
+    const Scalar tmp0 = cos_of[0];
     const Scalar tmp1 = tmp0*l1;
-    const Scalar tmp2 = sin(theta1);
+    const Scalar tmp2 = sin_of[0];
     const Scalar tmp3 = tmp2*l1;
     const Scalar tmp5 = (theta1_dot*theta1_dot);
     const Scalar tmp6 = tmp3*tmp5;
     const Scalar tmp8 = tmp1*tmp5;
-    const Scalar tmp13 = cos(theta2);
+    const Scalar tmp13 = cos_of[1];
     const Scalar tmp14 = tmp13*l2;
-    const Scalar tmp15 = sin(theta2);
+    const Scalar tmp15 = sin_of[1];
     const Scalar tmp16 = tmp15*l2;
     const Scalar tmp18 = (theta2_dot*theta2_dot);
     const Scalar tmp19 = tmp16*tmp18;
@@ -481,8 +559,6 @@ struct DoublePendulumOnCart {
                                           const VVector<Scalar>& qdd,
                                           const Scalar& /*t*/,
                                           const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar theta1 = q(1);
     const Scalar theta2 = q(2);
     const Scalar theta1_dot = v(1);
@@ -490,6 +566,9 @@ struct DoublePendulumOnCart {
     const Scalar s_ddot = qdd(0);
     const Scalar theta1_ddot = qdd(1);
     const Scalar theta2_ddot = qdd(2);
+    const Scalar sin_cos_of[2] = {theta1, theta2};
+    Scalar sin_of[2], cos_of[2];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar l1 = Scalar(params.l1);
     const Scalar l2 = Scalar(params.l2);
     const Scalar m_cart = Scalar(params.m_cart);
@@ -497,9 +576,9 @@ struct DoublePendulumOnCart {
     const Scalar m2 = Scalar(params.m2);
     const Scalar g = Scalar(params.g);
     const Scalar u = Scalar(params.u);
-    const Scalar tmp0 = cos(theta1);
+    const Scalar tmp0 = cos_of[0];
     const Scalar tmp1 = tmp0*l1;
-    const Scalar tmp2 = sin(theta1);
+    const Scalar tmp2 = sin_of[0];
     const Scalar tmp3 = tmp2*l1;
     const Scalar tmp4 = -tmp3;
     const Scalar tmp5 = (theta1_dot*theta1_dot);
@@ -507,9 +586,9 @@ struct DoublePendulumOnCart {
     const Scalar tmp7 = -tmp6;
     const Scalar tmp8 = tmp1*tmp5;
     const Scalar tmp9 = -tmp8;
-    const Scalar tmp13 = cos(theta2);
+    const Scalar tmp13 = cos_of[1];
     const Scalar tmp14 = tmp13*l2;
-    const Scalar tmp15 = sin(theta2);
+    const Scalar tmp15 = sin_of[1];
     const Scalar tmp16 = tmp15*l2;
     const Scalar tmp17 = -tmp16;
     const Scalar tmp18 = (theta2_dot*theta2_dot);
@@ -554,8 +633,6 @@ struct DoublePendulumOnCart {
                                  const Params& params,
                                  VQMatrix<Scalar>* dr_dq,
                                  VMatrix<Scalar>* dr_dv) {
-    using std::cos;
-    using std::sin;
     const Scalar theta1 = q(1);
     const Scalar theta2 = q(2);
     const Scalar theta1_dot = v(1);
@@ -563,21 +640,24 @@ struct DoublePendulumOnCart {
     const Scalar s_ddot = qdd(0);
     const Scalar theta1_ddot = qdd(1);
     const Scalar theta2_ddot = qdd(2);
+    const Scalar sin_cos_of[2] = {theta1, theta2};
+    Scalar sin_of[2], cos_of[2];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar l1 = Scalar(params.l1);
     const Scalar l2 = Scalar(params.l2);
     const Scalar m1 = Scalar(params.m1);
     const Scalar m2 = Scalar(params.m2);
     const Scalar g = Scalar(params.g);
-    const Scalar tmp0 = cos(theta1);
+    const Scalar tmp0 = cos_of[0];
     const Scalar tmp1 = tmp0*l1;
-    const Scalar tmp2 = sin(theta1);
+    const Scalar tmp2 = sin_of[0];
     const Scalar tmp3 = tmp2*l1;
     const Scalar tmp5 = (theta1_dot*theta1_dot);
     const Scalar tmp6 = tmp3*tmp5;
     const Scalar tmp8 = tmp1*tmp5;
-    const Scalar tmp13 = cos(theta2);
+    const Scalar tmp13 = cos_of[1];
     const Scalar tmp14 = tmp13*l2;
-    const Scalar tmp15 = sin(theta2);
+    const Scalar tmp15 = sin_of[1];
     const Scalar tmp16 = tmp15*l2;
     const Scalar tmp18 = (theta2_dot*theta2_dot);
     const Scalar tmp19 = tmp16*tmp18;
@@ -690,26 +770,27 @@ struct DoublePendulumOnCart {
                                const VVector<Scalar>& v,
                                const Scalar& /*t*/,
                                const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar theta1 = q(1);
     const Scalar theta2 = q(2);
     const Scalar s_dot = v(0);
     const Scalar theta1_dot = v(1);
     const Scalar theta2_dot = v(2);
+    const Scalar sin_cos_of[2] = {theta1, theta2};
+    Scalar sin_of[2], cos_of[2];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar l1 = Scalar(params.l1);
     const Scalar l2 = Scalar(params.l2);
     const Scalar m_cart = Scalar(params.m_cart);
     const Scalar m1 = Scalar(params.m1);
     const Scalar m2 = Scalar(params.m2);
-    const Scalar tmp0 = cos(theta1);
+    const Scalar tmp0 = cos_of[0];
     const Scalar tmp1 = tmp0*l1;
-    const Scalar tmp2 = sin(theta1);
+    const Scalar tmp2 = sin_of[0];
     const Scalar tmp3 = tmp2*l1;
     const Scalar tmp5 = (theta1_dot*theta1_dot);
-    const Scalar tmp13 = cos(theta2);
+    const Scalar tmp13 = cos_of[1];
     const Scalar tmp14 = tmp13*l2;
-    const Scalar tmp15 = sin(theta2);
+    const Scalar tmp15 = sin_of[1];
     const Scalar tmp16 = tmp15*l2;
     const Scalar tmp92 = (l1*l1);
     const Scalar tmp93 = tmp92*(tmp2*tmp2);
@@ -734,17 +815,19 @@ struct DoublePendulumOnCart {
   static Scalar potential_energy(const QVector<Scalar>& q,
                                  const Scalar& /*t*/,
                                  const Params& params) {
-    using std::cos;
     const Scalar theta1 = q(1);
     const Scalar theta2 = q(2);
+    const Scalar sin_cos_of[2] = {theta1, theta2};
+    Scalar sin_of[2], cos_of[2];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar l1 = Scalar(params.l1);
     const Scalar l2 = Scalar(params.l2);
     const Scalar m1 = Scalar(params.m1);
     const Scalar m2 = Scalar(params.m2);
     const Scalar g = Scalar(params.g);
-    const Scalar tmp0 = cos(theta1);
+    const Scalar tmp0 = cos_of[0];
     const Scalar tmp1 = tmp0*l1;
-    const Scalar tmp13 = cos(theta2);
+    const Scalar tmp13 = cos_of[1];
     const Scalar tmp14 = tmp13*l2;
     const Scalar tmp100 = g*m1;
     const Scalar tmp102 = g*m2;
@@ -782,27 +865,28 @@ struct DoublePendulumOnCart {
                        const VVector<Scalar>& v,
                        const Scalar& /*t*/,
                        const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar theta1 = q(1);
     const Scalar theta2 = q(2);
     const Scalar s_dot = v(0);
     const Scalar theta1_dot = v(1);
     const Scalar theta2_dot = v(2);
+    const Scalar sin_cos_of[2] = {theta1, theta2};
+    Scalar sin_of[2], cos_of[2];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar l1 = Scalar(params.l1);
     const Scalar l2 = Scalar(params.l2);
     const Scalar m_cart = Scalar(params.m_cart);
     const Scalar m1 = Scalar(params.m1);
     const Scalar m2 = Scalar(params.m2);
     const Scalar g = Scalar(params.g);
-    const Scalar tmp0 = cos(theta1);
+    const Scalar tmp0 = cos_of[0];
     const Scalar tmp1 = tmp0*l1;
-    const Scalar tmp2 = sin(theta1);
+    const Scalar tmp2 = sin_of[0];
     const Scalar tmp3 = tmp2*l1;
     const Scalar tmp5 = (theta1_dot*theta1_dot);
-    const Scalar tmp13 = cos(theta2);
+    const Scalar tmp13 = cos_of[1];
     const Scalar tmp14 = tmp13*l2;
-    const Scalar tmp15 = sin(theta2);
+    const Scalar tmp15 = sin_of[1];
     const Scalar tmp16 = tmp15*l2;
     const Scalar tmp92 = (l1*l1);
     const Scalar tmp93 = tmp92*(tmp2*tmp2);
@@ -831,21 +915,22 @@ struct DoublePendulumOnCart {
   static XVector<Scalar> positions(const QVector<Scalar>& q,
                                    const Scalar& /*t*/,
                                    const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar s = q(0);
     const Scalar theta1 = q(1);
     const Scalar theta2 = q(2);
+    const Scalar sin_cos_of[2] = {theta1, theta2};
+    Scalar sin_of[2], cos_of[2];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar l1 = Scalar(params.l1);
     const Scalar l2 = Scalar(params.l2);
-    const Scalar tmp0 = cos(theta1);
+    const Scalar tmp0 = cos_of[0];
     const Scalar tmp1 = tmp0*l1;
-    const Scalar tmp2 = sin(theta1);
+    const Scalar tmp2 = sin_of[0];
     const Scalar tmp3 = tmp2*l1;
     const Scalar tmp10 = tmp3 + s;
-    const Scalar tmp13 = cos(theta2);
+    const Scalar tmp13 = cos_of[1];
     const Scalar tmp14 = tmp13*l2;
-    const Scalar tmp15 = sin(theta2);
+    const Scalar tmp15 = sin_of[1];
     const Scalar tmp16 = tmp15*l2;
     const Scalar tmp120 = tmp1 + tmp14;
     const Scalar tmp122 = tmp16 + tmp10;
@@ -871,22 +956,23 @@ struct DoublePendulumOnCart {
                                     const VVector<Scalar>& v,
                                     const Scalar& /*t*/,
                                     const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar theta1 = q(1);
     const Scalar theta2 = q(2);
     const Scalar s_dot = v(0);
     const Scalar theta1_dot = v(1);
     const Scalar theta2_dot = v(2);
+    const Scalar sin_cos_of[2] = {theta1, theta2};
+    Scalar sin_of[2], cos_of[2];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar l1 = Scalar(params.l1);
     const Scalar l2 = Scalar(params.l2);
-    const Scalar tmp0 = cos(theta1);
+    const Scalar tmp0 = cos_of[0];
     const Scalar tmp1 = tmp0*l1;
-    const Scalar tmp2 = sin(theta1);
+    const Scalar tmp2 = sin_of[0];
     const Scalar tmp3 = tmp2*l1;
-    const Scalar tmp13 = cos(theta2);
+    const Scalar tmp13 = cos_of[1];
     const Scalar tmp14 = tmp13*l2;
-    const Scalar tmp15 = sin(theta2);
+    const Scalar tmp15 = sin_of[1];
     const Scalar tmp16 = tmp15*l2;
     const Scalar tmp115 = s_dot + tmp1*theta1_dot;
     const Scalar tmp116 = tmp115 + tmp14*theta2_dot;
@@ -912,19 +998,20 @@ struct DoublePendulumOnCart {
   static XJacobian<Scalar> jacobian(const QVector<Scalar>& q,
                                     const Scalar& /*t*/,
                                     const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar theta1 = q(1);
     const Scalar theta2 = q(2);
+    const Scalar sin_cos_of[2] = {theta1, theta2};
+    Scalar sin_of[2], cos_of[2];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar l1 = Scalar(params.l1);
     const Scalar l2 = Scalar(params.l2);
-    const Scalar tmp0 = cos(theta1);
+    const Scalar tmp0 = cos_of[0];
     const Scalar tmp1 = tmp0*l1;
-    const Scalar tmp2 = sin(theta1);
+    const Scalar tmp2 = sin_of[0];
     const Scalar tmp3 = tmp2*l1;
-    const Scalar tmp13 = cos(theta2);
+    const Scalar tmp13 = cos_of[1];
     const Scalar tmp14 = tmp13*l2;
-    const Scalar tmp15 = sin(theta2);
+    const Scalar tmp15 = sin_of[1];
     const Scalar tmp16 = tmp15*l2;
     XJacobian<Scalar> result;
     result.setZero();
@@ -952,24 +1039,25 @@ struct DoublePendulumOnCart {
                                            const VVector<Scalar>& v,
                                            const Scalar& /*t*/,
                                            const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar theta1 = q(1);
     const Scalar theta2 = q(2);
     const Scalar theta1_dot = v(1);
     const Scalar theta2_dot = v(2);
+    const Scalar sin_cos_of[2] = {theta1, theta2};
+    Scalar sin_of[2], cos_of[2];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar l1 = Scalar(params.l1);
     const Scalar l2 = Scalar(params.l2);
-    const Scalar tmp0 = cos(theta1);
+    const Scalar tmp0 = cos_of[0];
     const Scalar tmp1 = tmp0*l1;
-    const Scalar tmp2 = sin(theta1);
+    const Scalar tmp2 = sin_of[0];
     const Scalar tmp3 = tmp2*l1;
     const Scalar tmp5 = (theta1_dot*theta1_dot);
     const Scalar tmp6 = tmp3*tmp5;
     const Scalar tmp8 = tmp1*tmp5;
-    const Scalar tmp13 = cos(theta2);
+    const Scalar tmp13 = cos_of[1];
     const Scalar tmp14 = tmp13*l2;
-    const Scalar tmp15 = sin(theta2);
+    const Scalar tmp15 = sin_of[1];
     const Scalar tmp16 = tmp15*l2;
     const Scalar tmp18 = (theta2_dot*theta2_dot);
     const Scalar tmp19 = tmp16*tmp18;
@@ -998,25 +1086,26 @@ struct DoublePendulumOnCart {
                                              const VVector<Scalar>& v,
                                              const Scalar& /*t*/,
                                              const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar theta1 = q(1);
     const Scalar theta2 = q(2);
     const Scalar s_dot = v(0);
     const Scalar theta1_dot = v(1);
     const Scalar theta2_dot = v(2);
+    const Scalar sin_cos_of[2] = {theta1, theta2};
+    Scalar sin_of[2], cos_of[2];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar l1 = Scalar(params.l1);
     const Scalar l2 = Scalar(params.l2);
     const Scalar m_cart = Scalar(params.m_cart);
     const Scalar m1 = Scalar(params.m1);
     const Scalar m2 = Scalar(params.m2);
-    const Scalar tmp0 = cos(theta1);
+    const Scalar tmp0 = cos_of[0];
     const Scalar tmp1 = tmp0*l1;
-    const Scalar tmp2 = sin(theta1);
+    const Scalar tmp2 = sin_of[0];
     const Scalar tmp3 = tmp2*l1;
-    const Scalar tmp13 = cos(theta2);
+    const Scalar tmp13 = cos_of[1];
     const Scalar tmp14 = tmp13*l2;
-    const Scalar tmp15 = sin(theta2);
+    const Scalar tmp15 = sin_of[1];
     const Scalar tmp16 = tmp15*l2;
     const Scalar tmp115 = s_dot + tmp1*theta1_dot;
     const Scalar tmp116 = tmp115 + tmp14*theta2_dot;
@@ -1040,26 +1129,27 @@ struct DoublePendulumOnCart {
                                                 const VVector<Scalar>& v,
                                                 const Scalar& /*t*/,
                                                 const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar s = q(0);
     const Scalar theta1 = q(1);
     const Scalar theta2 = q(2);
     const Scalar s_dot = v(0);
     const Scalar theta1_dot = v(1);
     const Scalar theta2_dot = v(2);
+    const Scalar sin_cos_of[2] = {theta1, theta2};
+    Scalar sin_of[2], cos_of[2];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar l1 = Scalar(params.l1);
     const Scalar l2 = Scalar(params.l2);
     const Scalar m1 = Scalar(params.m1);
     const Scalar m2 = Scalar(params.m2);
-    const Scalar tmp0 = cos(theta1);
+    const Scalar tmp0 = cos_of[0];
     const Scalar tmp1 = tmp0*l1;
-    const Scalar tmp2 = sin(theta1);
+    const Scalar tmp2 = sin_of[0];
     const Scalar tmp3 = tmp2*l1;
     const Scalar tmp10 = tmp3 + s;
-    const Scalar tmp13 = cos(theta2);
+    const Scalar tmp13 = cos_of[1];
     const Scalar tmp14 = tmp13*l2;
-    const Scalar tmp15 = sin(theta2);
+    const Scalar tmp15 = sin_of[1];
     const Scalar tmp16 = tmp15*l2;
     const Scalar tmp115 = s_dot + tmp1*theta1_dot;
     const Scalar tmp116 = tmp115 + tmp14*theta2_dot;

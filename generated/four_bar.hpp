@@ -22,6 +22,78 @@
 
 #include <Eigen/Cholesky>
 #include <Eigen/Core>
+// gencoord_kernel_math::sin_cos(x, s, c) sets s[i] = sin(x[i]) and c[i] = cos(x[i]). For
+// double on x86-64 with glibc it works in vector registers, through glibc's vector math
+// library (libmvec, which C++ programs link through libm; within 4 ulp, as its manual states):
+// 4 lanes a call where the compiler targets AVX2, 2 otherwise. The inline namespace keeps the
+// two apart when objects of both are linked together. Elsewhere, or with GENCOORD_NO_LIBMVEC
+// defined, it calls sin and cos.
+#ifndef GENCOORD_KERNEL_SIN_COS
+#define GENCOORD_KERNEL_SIN_COS
+#if defined(__x86_64__) && defined(__GLIBC__) && !defined(GENCOORD_NO_LIBMVEC)
+#include <immintrin.h>
+#define GENCOORD_KERNEL_LIBMVEC 1
+extern "C" {
+#if defined(__AVX2__)
+__m256d _ZGVdN4v_sin(__m256d);
+__m256d _ZGVdN4v_cos(__m256d);
+#else
+__m128d _ZGVbN2v_sin(__m128d);
+__m128d _ZGVbN2v_cos(__m128d);
+#endif
+}
+#endif
+
+namespace gencoord_kernel_math {
+#if defined(GENCOORD_KERNEL_LIBMVEC) && defined(__AVX2__)
+inline namespace avx2 {
+constexpr int kLanes = 4;
+inline void sin_cos_lanes(const double* x, double* s, double* c) {
+  const __m256d lanes = _mm256_loadu_pd(x);
+  _mm256_storeu_pd(s, _ZGVdN4v_sin(lanes));
+  _mm256_storeu_pd(c, _ZGVdN4v_cos(lanes));
+}
+#elif defined(GENCOORD_KERNEL_LIBMVEC)
+inline namespace sse2 {
+constexpr int kLanes = 2;
+inline void sin_cos_lanes(const double* x, double* s, double* c) {
+  const __m128d lanes = _mm_loadu_pd(x);
+  _mm_storeu_pd(s, _ZGVbN2v_sin(lanes));
+  _mm_storeu_pd(c, _ZGVbN2v_cos(lanes));
+}
+#else
+inline namespace scalar {
+#endif
+
+template <class Scalar, int n>
+inline void sin_cos(const Scalar (&x)[n], Scalar (&s)[n], Scalar (&c)[n]) {
+  using std::cos;
+  using std::sin;
+  for (int i = 0; i < n; ++i) {
+    s[i] = sin(x[i]);
+    c[i] = cos(x[i]);
+  }
+}
+
+#ifdef GENCOORD_KERNEL_LIBMVEC
+template <int n>
+inline void sin_cos(const double (&x)[n], double (&s)[n], double (&c)[n]) {
+  constexpr int whole = n - n % kLanes;
+  for (int i = 0; i < whole; i += kLanes) sin_cos_lanes(x + i, s + i, c + i);
+  if constexpr (whole < n) {  // the rest, padded with copies of the last argument
+    double rest[kLanes], sines[kLanes], cosines[kLanes];
+    for (int k = 0; k < kLanes; ++k) rest[k] = x[whole + k < n ? whole + k : n - 1];
+    sin_cos_lanes(rest, sines, cosines);
+    for (int i = whole; i < n; ++i) {
+      s[i] = sines[i - whole];
+      c[i] = cosines[i - whole];
+    }
+  }
+}
+#endif
+}  // inline namespace
+}  // namespace gencoord_kernel_math
+#endif  // GENCOORD_KERNEL_SIN_COS
 
 /*
  * Four-bar linkage: a crank, a coupler and a rocker between two ground pivots, in a vertical
@@ -203,20 +275,21 @@ struct FourBar {
   static VMatrix<Scalar> mass_matrix(const QVector<Scalar>& q,
                                      const Scalar& /*t*/,
                                      const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar crank = q(0);
     const Scalar coupler = q(1);
     const Scalar rocker = q(2);
+    const Scalar sin_cos_of[3] = {crank, coupler, rocker};
+    Scalar sin_of[3], cos_of[3];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar a = Scalar(params.a);
     const Scalar b = Scalar(params.b);
     const Scalar c = Scalar(params.c);
     const Scalar m_a = Scalar(params.m_a);
     const Scalar m_b = Scalar(params.m_b);
     const Scalar m_c = Scalar(params.m_c);
-    const Scalar tmp183 = sin(crank);
+    const Scalar tmp183 = sin_of[0];
     const Scalar tmp184 = (tmp183*tmp183);
-    const Scalar tmp185 = cos(crank);
+    const Scalar tmp185 = cos_of[0];
     const Scalar tmp186 = (tmp185*tmp185);
     const Scalar tmp187 = (a*a);
     const Scalar tmp188 = tmp187*m_a;
@@ -227,10 +300,10 @@ struct FourBar {
     const Scalar tmp193 = (Scalar(0.25))*tmp191;
     const Scalar tmp194 = tmp189*(tmp184 + tmp186) + m_a*(tmp192 + tmp193) + m_b*(tmp190 + tmp191);
     const Scalar tmp195 = tmp183*a;
-    const Scalar tmp196 = sin(coupler);
+    const Scalar tmp196 = sin_of[1];
     const Scalar tmp197 = tmp196*b;
     const Scalar tmp198 = (Scalar(0.5))*tmp197;
-    const Scalar tmp199 = cos(coupler);
+    const Scalar tmp199 = cos_of[1];
     const Scalar tmp200 = tmp199*b;
     const Scalar tmp201 = tmp185*a;
     const Scalar tmp202 = (Scalar(0.5))*tmp201;
@@ -242,9 +315,9 @@ struct FourBar {
     const Scalar tmp208 = ((Scalar(1)/Scalar(12)))*tmp207;
     const Scalar tmp209 = (Scalar(0.25))*tmp206;
     const Scalar tmp210 = tmp208*(tmp204 + tmp205) + m_b*(tmp204*tmp209 + tmp205*tmp209);
-    const Scalar tmp211 = sin(rocker);
+    const Scalar tmp211 = sin_of[2];
     const Scalar tmp212 = (tmp211*tmp211);
-    const Scalar tmp213 = cos(rocker);
+    const Scalar tmp213 = cos_of[2];
     const Scalar tmp214 = (tmp213*tmp213);
     const Scalar tmp215 = (c*c);
     const Scalar tmp216 = tmp215*m_c;
@@ -276,10 +349,12 @@ struct FourBar {
                                         const VVector<Scalar>& /*v*/,
                                         const Scalar& /*t*/,
                                         const Params& params) {
-    using std::cos;
     const Scalar crank = q(0);
     const Scalar coupler = q(1);
     const Scalar rocker = q(2);
+    const Scalar sin_cos_of[3] = {crank, coupler, rocker};
+    Scalar sin_of[3], cos_of[3];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar a = Scalar(params.a);
     const Scalar b = Scalar(params.b);
     const Scalar c = Scalar(params.c);
@@ -288,11 +363,11 @@ struct FourBar {
     const Scalar m_c = Scalar(params.m_c);
     const Scalar g = Scalar(params.g);
     const Scalar u = Scalar(params.u);
-    const Scalar tmp185 = cos(crank);
-    const Scalar tmp199 = cos(coupler);
+    const Scalar tmp185 = cos_of[0];
+    const Scalar tmp199 = cos_of[1];
     const Scalar tmp200 = tmp199*b;
     const Scalar tmp201 = tmp185*a;
-    const Scalar tmp213 = cos(rocker);
+    const Scalar tmp213 = cos_of[2];
     const Scalar tmp220 = g*m_b;
     const Scalar tmp221 = (Scalar(0.5))*m_a;
     const Scalar tmp222 = tmp221*g;
@@ -342,22 +417,23 @@ struct FourBar {
                                          const VVector<Scalar>& v,
                                          const Scalar& /*t*/,
                                          const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar crank = q(0);
     const Scalar coupler = q(1);
     const Scalar crank_dot = v(0);
     const Scalar coupler_dot = v(1);
+    const Scalar sin_cos_of[2] = {crank, coupler};
+    Scalar sin_of[2], cos_of[2];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar a = Scalar(params.a);
     const Scalar b = Scalar(params.b);
     const Scalar m_b = Scalar(params.m_b);
-    const Scalar tmp183 = sin(crank);
-    const Scalar tmp185 = cos(crank);
+    const Scalar tmp183 = sin_of[0];
+    const Scalar tmp185 = cos_of[0];
     const Scalar tmp195 = tmp183*a;
-    const Scalar tmp196 = sin(coupler);
+    const Scalar tmp196 = sin_of[1];
     const Scalar tmp197 = tmp196*b;
     const Scalar tmp198 = (Scalar(0.5))*tmp197;
-    const Scalar tmp199 = cos(coupler);
+    const Scalar tmp199 = cos_of[1];
     const Scalar tmp200 = tmp199*b;
     const Scalar tmp201 = tmp185*a;
     const Scalar tmp230 = (crank_dot*crank_dot);
@@ -388,13 +464,14 @@ struct FourBar {
                                 const VVector<Scalar>& v,
                                 const Scalar& /*t*/,
                                 const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar crank = q(0);
     const Scalar coupler = q(1);
     const Scalar rocker = q(2);
     const Scalar crank_dot = v(0);
     const Scalar coupler_dot = v(1);
+    const Scalar sin_cos_of[3] = {crank, coupler, rocker};
+    Scalar sin_of[3], cos_of[3];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar a = Scalar(params.a);
     const Scalar b = Scalar(params.b);
     const Scalar c = Scalar(params.c);
@@ -403,16 +480,16 @@ struct FourBar {
     const Scalar m_c = Scalar(params.m_c);
     const Scalar g = Scalar(params.g);
     const Scalar u = Scalar(params.u);
-    const Scalar tmp183 = sin(crank);
-    const Scalar tmp185 = cos(crank);
+    const Scalar tmp183 = sin_of[0];
+    const Scalar tmp185 = cos_of[0];
     const Scalar tmp195 = tmp183*a;
-    const Scalar tmp196 = sin(coupler);
+    const Scalar tmp196 = sin_of[1];
     const Scalar tmp197 = tmp196*b;
     const Scalar tmp198 = (Scalar(0.5))*tmp197;
-    const Scalar tmp199 = cos(coupler);
+    const Scalar tmp199 = cos_of[1];
     const Scalar tmp200 = tmp199*b;
     const Scalar tmp201 = tmp185*a;
-    const Scalar tmp213 = cos(rocker);
+    const Scalar tmp213 = cos_of[2];
     const Scalar tmp220 = g*m_b;
     const Scalar tmp221 = (Scalar(0.5))*m_a;
     const Scalar tmp222 = tmp221*g;
@@ -455,13 +532,14 @@ struct FourBar {
                        const Params& params,
                        VMatrix<Scalar>* Mt,
                        VVector<Scalar>* f) {
-    using std::cos;
-    using std::sin;
     const Scalar crank = q(0);
     const Scalar coupler = q(1);
     const Scalar rocker = q(2);
     const Scalar crank_dot = v(0);
     const Scalar coupler_dot = v(1);
+    const Scalar sin_cos_of[3] = {crank, coupler, rocker};
+    Scalar sin_of[3], cos_of[3];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar a = Scalar(params.a);
     const Scalar b = Scalar(params.b);
     const Scalar c = Scalar(params.c);
@@ -470,9 +548,9 @@ struct FourBar {
     const Scalar m_c = Scalar(params.m_c);
     const Scalar g = Scalar(params.g);
     const Scalar u = Scalar(params.u);
-    const Scalar tmp183 = sin(crank);
+    const Scalar tmp183 = sin_of[0];
     const Scalar tmp184 = (tmp183*tmp183);
-    const Scalar tmp185 = cos(crank);
+    const Scalar tmp185 = cos_of[0];
     const Scalar tmp186 = (tmp185*tmp185);
     const Scalar tmp187 = (a*a);
     const Scalar tmp188 = tmp187*m_a;
@@ -483,10 +561,10 @@ struct FourBar {
     const Scalar tmp193 = (Scalar(0.25))*tmp191;
     const Scalar tmp194 = tmp189*(tmp184 + tmp186) + m_a*(tmp192 + tmp193) + m_b*(tmp190 + tmp191);
     const Scalar tmp195 = tmp183*a;
-    const Scalar tmp196 = sin(coupler);
+    const Scalar tmp196 = sin_of[1];
     const Scalar tmp197 = tmp196*b;
     const Scalar tmp198 = (Scalar(0.5))*tmp197;
-    const Scalar tmp199 = cos(coupler);
+    const Scalar tmp199 = cos_of[1];
     const Scalar tmp200 = tmp199*b;
     const Scalar tmp201 = tmp185*a;
     const Scalar tmp202 = (Scalar(0.5))*tmp201;
@@ -498,9 +576,9 @@ struct FourBar {
     const Scalar tmp208 = ((Scalar(1)/Scalar(12)))*tmp207;
     const Scalar tmp209 = (Scalar(0.25))*tmp206;
     const Scalar tmp210 = tmp208*(tmp204 + tmp205) + m_b*(tmp204*tmp209 + tmp205*tmp209);
-    const Scalar tmp211 = sin(rocker);
+    const Scalar tmp211 = sin_of[2];
     const Scalar tmp212 = (tmp211*tmp211);
-    const Scalar tmp213 = cos(rocker);
+    const Scalar tmp213 = cos_of[2];
     const Scalar tmp214 = (tmp213*tmp213);
     const Scalar tmp215 = (c*c);
     const Scalar tmp216 = tmp215*m_c;
@@ -557,8 +635,6 @@ struct FourBar {
                                           const VVector<Scalar>& qdd,
                                           const Scalar& /*t*/,
                                           const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar crank = q(0);
     const Scalar coupler = q(1);
     const Scalar rocker = q(2);
@@ -567,6 +643,9 @@ struct FourBar {
     const Scalar crank_ddot = qdd(0);
     const Scalar coupler_ddot = qdd(1);
     const Scalar rocker_ddot = qdd(2);
+    const Scalar sin_cos_of[3] = {crank, coupler, rocker};
+    Scalar sin_of[3], cos_of[3];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar a = Scalar(params.a);
     const Scalar b = Scalar(params.b);
     const Scalar c = Scalar(params.c);
@@ -575,9 +654,9 @@ struct FourBar {
     const Scalar m_c = Scalar(params.m_c);
     const Scalar g = Scalar(params.g);
     const Scalar u = Scalar(params.u);
-    const Scalar tmp183 = sin(crank);
+    const Scalar tmp183 = sin_of[0];
     const Scalar tmp184 = (tmp183*tmp183);
-    const Scalar tmp185 = cos(crank);
+    const Scalar tmp185 = cos_of[0];
     const Scalar tmp186 = (tmp185*tmp185);
     const Scalar tmp187 = (a*a);
     const Scalar tmp188 = tmp187*m_a;
@@ -588,10 +667,10 @@ struct FourBar {
     const Scalar tmp193 = (Scalar(0.25))*tmp191;
     const Scalar tmp194 = tmp189*(tmp184 + tmp186) + m_a*(tmp192 + tmp193) + m_b*(tmp190 + tmp191);
     const Scalar tmp195 = tmp183*a;
-    const Scalar tmp196 = sin(coupler);
+    const Scalar tmp196 = sin_of[1];
     const Scalar tmp197 = tmp196*b;
     const Scalar tmp198 = (Scalar(0.5))*tmp197;
-    const Scalar tmp199 = cos(coupler);
+    const Scalar tmp199 = cos_of[1];
     const Scalar tmp200 = tmp199*b;
     const Scalar tmp201 = tmp185*a;
     const Scalar tmp202 = (Scalar(0.5))*tmp201;
@@ -603,9 +682,9 @@ struct FourBar {
     const Scalar tmp208 = ((Scalar(1)/Scalar(12)))*tmp207;
     const Scalar tmp209 = (Scalar(0.25))*tmp206;
     const Scalar tmp210 = tmp208*(tmp204 + tmp205) + m_b*(tmp204*tmp209 + tmp205*tmp209);
-    const Scalar tmp211 = sin(rocker);
+    const Scalar tmp211 = sin_of[2];
     const Scalar tmp212 = (tmp211*tmp211);
-    const Scalar tmp213 = cos(rocker);
+    const Scalar tmp213 = cos_of[2];
     const Scalar tmp214 = (tmp213*tmp213);
     const Scalar tmp215 = (c*c);
     const Scalar tmp216 = tmp215*m_c;
@@ -672,23 +751,24 @@ struct FourBar {
                                const VVector<Scalar>& v,
                                const Scalar& /*t*/,
                                const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar crank = q(0);
     const Scalar coupler = q(1);
     const Scalar rocker = q(2);
     const Scalar crank_dot = v(0);
     const Scalar coupler_dot = v(1);
     const Scalar rocker_dot = v(2);
+    const Scalar sin_cos_of[3] = {crank, coupler, rocker};
+    Scalar sin_of[3], cos_of[3];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar a = Scalar(params.a);
     const Scalar b = Scalar(params.b);
     const Scalar c = Scalar(params.c);
     const Scalar m_a = Scalar(params.m_a);
     const Scalar m_b = Scalar(params.m_b);
     const Scalar m_c = Scalar(params.m_c);
-    const Scalar tmp183 = sin(crank);
+    const Scalar tmp183 = sin_of[0];
     const Scalar tmp184 = (tmp183*tmp183);
-    const Scalar tmp185 = cos(crank);
+    const Scalar tmp185 = cos_of[0];
     const Scalar tmp186 = (tmp185*tmp185);
     const Scalar tmp187 = (a*a);
     const Scalar tmp188 = tmp187*m_a;
@@ -697,19 +777,19 @@ struct FourBar {
     const Scalar tmp192 = (Scalar(0.25))*tmp190;
     const Scalar tmp193 = (Scalar(0.25))*tmp191;
     const Scalar tmp195 = tmp183*a;
-    const Scalar tmp196 = sin(coupler);
+    const Scalar tmp196 = sin_of[1];
     const Scalar tmp197 = tmp196*b;
     const Scalar tmp198 = (Scalar(0.5))*tmp197;
-    const Scalar tmp199 = cos(coupler);
+    const Scalar tmp199 = cos_of[1];
     const Scalar tmp200 = tmp199*b;
     const Scalar tmp201 = tmp185*a;
     const Scalar tmp204 = (tmp196*tmp196);
     const Scalar tmp205 = (tmp199*tmp199);
     const Scalar tmp206 = (b*b);
     const Scalar tmp207 = tmp206*m_b;
-    const Scalar tmp211 = sin(rocker);
+    const Scalar tmp211 = sin_of[2];
     const Scalar tmp212 = (tmp211*tmp211);
-    const Scalar tmp213 = cos(rocker);
+    const Scalar tmp213 = cos_of[2];
     const Scalar tmp214 = (tmp213*tmp213);
     const Scalar tmp215 = (c*c);
     const Scalar tmp216 = tmp215*m_c;
@@ -747,10 +827,12 @@ struct FourBar {
   static Scalar potential_energy(const QVector<Scalar>& q,
                                  const Scalar& /*t*/,
                                  const Params& params) {
-    using std::sin;
     const Scalar crank = q(0);
     const Scalar coupler = q(1);
     const Scalar rocker = q(2);
+    const Scalar sin_cos_of[3] = {crank, coupler, rocker};
+    Scalar sin_of[3], cos_of[3];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar a = Scalar(params.a);
     const Scalar b = Scalar(params.b);
     const Scalar c = Scalar(params.c);
@@ -758,12 +840,12 @@ struct FourBar {
     const Scalar m_b = Scalar(params.m_b);
     const Scalar m_c = Scalar(params.m_c);
     const Scalar g = Scalar(params.g);
-    const Scalar tmp183 = sin(crank);
+    const Scalar tmp183 = sin_of[0];
     const Scalar tmp195 = tmp183*a;
-    const Scalar tmp196 = sin(coupler);
+    const Scalar tmp196 = sin_of[1];
     const Scalar tmp197 = tmp196*b;
     const Scalar tmp198 = (Scalar(0.5))*tmp197;
-    const Scalar tmp211 = sin(rocker);
+    const Scalar tmp211 = sin_of[2];
     const Scalar tmp220 = g*m_b;
     const Scalar tmp221 = (Scalar(0.5))*m_a;
     const Scalar tmp222 = tmp221*g;
@@ -804,14 +886,15 @@ struct FourBar {
                        const VVector<Scalar>& v,
                        const Scalar& /*t*/,
                        const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar crank = q(0);
     const Scalar coupler = q(1);
     const Scalar rocker = q(2);
     const Scalar crank_dot = v(0);
     const Scalar coupler_dot = v(1);
     const Scalar rocker_dot = v(2);
+    const Scalar sin_cos_of[3] = {crank, coupler, rocker};
+    Scalar sin_of[3], cos_of[3];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar a = Scalar(params.a);
     const Scalar b = Scalar(params.b);
     const Scalar c = Scalar(params.c);
@@ -819,9 +902,9 @@ struct FourBar {
     const Scalar m_b = Scalar(params.m_b);
     const Scalar m_c = Scalar(params.m_c);
     const Scalar g = Scalar(params.g);
-    const Scalar tmp183 = sin(crank);
+    const Scalar tmp183 = sin_of[0];
     const Scalar tmp184 = (tmp183*tmp183);
-    const Scalar tmp185 = cos(crank);
+    const Scalar tmp185 = cos_of[0];
     const Scalar tmp186 = (tmp185*tmp185);
     const Scalar tmp187 = (a*a);
     const Scalar tmp188 = tmp187*m_a;
@@ -830,19 +913,19 @@ struct FourBar {
     const Scalar tmp192 = (Scalar(0.25))*tmp190;
     const Scalar tmp193 = (Scalar(0.25))*tmp191;
     const Scalar tmp195 = tmp183*a;
-    const Scalar tmp196 = sin(coupler);
+    const Scalar tmp196 = sin_of[1];
     const Scalar tmp197 = tmp196*b;
     const Scalar tmp198 = (Scalar(0.5))*tmp197;
-    const Scalar tmp199 = cos(coupler);
+    const Scalar tmp199 = cos_of[1];
     const Scalar tmp200 = tmp199*b;
     const Scalar tmp201 = tmp185*a;
     const Scalar tmp204 = (tmp196*tmp196);
     const Scalar tmp205 = (tmp199*tmp199);
     const Scalar tmp206 = (b*b);
     const Scalar tmp207 = tmp206*m_b;
-    const Scalar tmp211 = sin(rocker);
+    const Scalar tmp211 = sin_of[2];
     const Scalar tmp212 = (tmp211*tmp211);
-    const Scalar tmp213 = cos(rocker);
+    const Scalar tmp213 = cos_of[2];
     const Scalar tmp214 = (tmp213*tmp213);
     const Scalar tmp215 = (c*c);
     const Scalar tmp216 = tmp215*m_c;
@@ -887,12 +970,13 @@ struct FourBar {
                                    const Scalar& /*t*/,
                                    const Params& params) {
     using std::abs;
-    using std::cos;
-    using std::sin;
     using std::sqrt;
     const Scalar crank = q(0);
     const Scalar coupler = q(1);
     const Scalar rocker = q(2);
+    const Scalar sin_cos_of[3] = {crank, coupler, rocker};
+    Scalar sin_of[3], cos_of[3];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar a = Scalar(params.a);
     const Scalar b = Scalar(params.b);
     const Scalar c = Scalar(params.c);
@@ -900,18 +984,18 @@ struct FourBar {
     const Scalar tmp5 = abs(a);
     const Scalar tmp66 = abs(b);
     const Scalar tmp128 = abs(c);
-    const Scalar tmp183 = sin(crank);
-    const Scalar tmp185 = cos(crank);
+    const Scalar tmp183 = sin_of[0];
+    const Scalar tmp185 = cos_of[0];
     const Scalar tmp195 = tmp183*a;
-    const Scalar tmp196 = sin(coupler);
+    const Scalar tmp196 = sin_of[1];
     const Scalar tmp197 = tmp196*b;
     const Scalar tmp198 = (Scalar(0.5))*tmp197;
-    const Scalar tmp199 = cos(coupler);
+    const Scalar tmp199 = cos_of[1];
     const Scalar tmp200 = tmp199*b;
     const Scalar tmp201 = tmp185*a;
     const Scalar tmp202 = (Scalar(0.5))*tmp201;
-    const Scalar tmp211 = sin(rocker);
-    const Scalar tmp213 = cos(rocker);
+    const Scalar tmp211 = sin_of[2];
+    const Scalar tmp213 = cos_of[2];
     const Scalar tmp226 = tmp213*c;
     const Scalar tmp235 = (Scalar(0.5))*tmp200;
     const Scalar tmp249 = tmp211*c;
@@ -999,8 +1083,6 @@ struct FourBar {
                                     const Scalar& /*t*/,
                                     const Params& params) {
     using std::abs;
-    using std::cos;
-    using std::sin;
     using std::sqrt;
     const Scalar crank = q(0);
     const Scalar coupler = q(1);
@@ -1008,24 +1090,27 @@ struct FourBar {
     const Scalar crank_dot = v(0);
     const Scalar coupler_dot = v(1);
     const Scalar rocker_dot = v(2);
+    const Scalar sin_cos_of[3] = {crank, coupler, rocker};
+    Scalar sin_of[3], cos_of[3];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar a = Scalar(params.a);
     const Scalar b = Scalar(params.b);
     const Scalar c = Scalar(params.c);
     const Scalar tmp5 = abs(a);
     const Scalar tmp66 = abs(b);
     const Scalar tmp128 = abs(c);
-    const Scalar tmp183 = sin(crank);
-    const Scalar tmp185 = cos(crank);
+    const Scalar tmp183 = sin_of[0];
+    const Scalar tmp185 = cos_of[0];
     const Scalar tmp195 = tmp183*a;
-    const Scalar tmp196 = sin(coupler);
+    const Scalar tmp196 = sin_of[1];
     const Scalar tmp197 = tmp196*b;
     const Scalar tmp198 = (Scalar(0.5))*tmp197;
-    const Scalar tmp199 = cos(coupler);
+    const Scalar tmp199 = cos_of[1];
     const Scalar tmp200 = tmp199*b;
     const Scalar tmp201 = tmp185*a;
     const Scalar tmp202 = (Scalar(0.5))*tmp201;
-    const Scalar tmp211 = sin(rocker);
-    const Scalar tmp213 = cos(rocker);
+    const Scalar tmp211 = sin_of[2];
+    const Scalar tmp213 = cos_of[2];
     const Scalar tmp226 = tmp213*c;
     const Scalar tmp235 = (Scalar(0.5))*tmp200;
     const Scalar tmp244 = tmp201*crank_dot;
@@ -1121,30 +1206,31 @@ struct FourBar {
                                     const Scalar& /*t*/,
                                     const Params& params) {
     using std::abs;
-    using std::cos;
-    using std::sin;
     using std::sqrt;
     const Scalar crank = q(0);
     const Scalar coupler = q(1);
     const Scalar rocker = q(2);
+    const Scalar sin_cos_of[3] = {crank, coupler, rocker};
+    Scalar sin_of[3], cos_of[3];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar a = Scalar(params.a);
     const Scalar b = Scalar(params.b);
     const Scalar c = Scalar(params.c);
     const Scalar tmp5 = abs(a);
     const Scalar tmp66 = abs(b);
     const Scalar tmp128 = abs(c);
-    const Scalar tmp183 = sin(crank);
-    const Scalar tmp185 = cos(crank);
+    const Scalar tmp183 = sin_of[0];
+    const Scalar tmp185 = cos_of[0];
     const Scalar tmp195 = tmp183*a;
-    const Scalar tmp196 = sin(coupler);
+    const Scalar tmp196 = sin_of[1];
     const Scalar tmp197 = tmp196*b;
     const Scalar tmp198 = (Scalar(0.5))*tmp197;
-    const Scalar tmp199 = cos(coupler);
+    const Scalar tmp199 = cos_of[1];
     const Scalar tmp200 = tmp199*b;
     const Scalar tmp201 = tmp185*a;
     const Scalar tmp202 = (Scalar(0.5))*tmp201;
-    const Scalar tmp211 = sin(rocker);
-    const Scalar tmp213 = cos(rocker);
+    const Scalar tmp211 = sin_of[2];
+    const Scalar tmp213 = cos_of[2];
     const Scalar tmp226 = tmp213*c;
     const Scalar tmp235 = (Scalar(0.5))*tmp200;
     const Scalar tmp249 = tmp211*c;
@@ -1247,8 +1333,6 @@ struct FourBar {
                                            const Scalar& /*t*/,
                                            const Params& params) {
     using std::abs;
-    using std::cos;
-    using std::sin;
     using std::sqrt;
     const Scalar crank = q(0);
     const Scalar coupler = q(1);
@@ -1256,24 +1340,27 @@ struct FourBar {
     const Scalar crank_dot = v(0);
     const Scalar coupler_dot = v(1);
     const Scalar rocker_dot = v(2);
+    const Scalar sin_cos_of[3] = {crank, coupler, rocker};
+    Scalar sin_of[3], cos_of[3];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar a = Scalar(params.a);
     const Scalar b = Scalar(params.b);
     const Scalar c = Scalar(params.c);
     const Scalar tmp5 = abs(a);
     const Scalar tmp66 = abs(b);
     const Scalar tmp128 = abs(c);
-    const Scalar tmp183 = sin(crank);
-    const Scalar tmp185 = cos(crank);
+    const Scalar tmp183 = sin_of[0];
+    const Scalar tmp185 = cos_of[0];
     const Scalar tmp195 = tmp183*a;
-    const Scalar tmp196 = sin(coupler);
+    const Scalar tmp196 = sin_of[1];
     const Scalar tmp197 = tmp196*b;
     const Scalar tmp198 = (Scalar(0.5))*tmp197;
-    const Scalar tmp199 = cos(coupler);
+    const Scalar tmp199 = cos_of[1];
     const Scalar tmp200 = tmp199*b;
     const Scalar tmp201 = tmp185*a;
     const Scalar tmp202 = (Scalar(0.5))*tmp201;
-    const Scalar tmp211 = sin(rocker);
-    const Scalar tmp213 = cos(rocker);
+    const Scalar tmp211 = sin_of[2];
+    const Scalar tmp213 = cos_of[2];
     const Scalar tmp226 = tmp213*c;
     const Scalar tmp230 = (crank_dot*crank_dot);
     const Scalar tmp231 = tmp195*tmp230;
@@ -1373,31 +1460,32 @@ struct FourBar {
                                              const VVector<Scalar>& v,
                                              const Scalar& /*t*/,
                                              const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar crank = q(0);
     const Scalar coupler = q(1);
     const Scalar rocker = q(2);
     const Scalar crank_dot = v(0);
     const Scalar coupler_dot = v(1);
     const Scalar rocker_dot = v(2);
+    const Scalar sin_cos_of[3] = {crank, coupler, rocker};
+    Scalar sin_of[3], cos_of[3];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar a = Scalar(params.a);
     const Scalar b = Scalar(params.b);
     const Scalar c = Scalar(params.c);
     const Scalar m_a = Scalar(params.m_a);
     const Scalar m_b = Scalar(params.m_b);
     const Scalar m_c = Scalar(params.m_c);
-    const Scalar tmp183 = sin(crank);
-    const Scalar tmp185 = cos(crank);
+    const Scalar tmp183 = sin_of[0];
+    const Scalar tmp185 = cos_of[0];
     const Scalar tmp195 = tmp183*a;
-    const Scalar tmp196 = sin(coupler);
+    const Scalar tmp196 = sin_of[1];
     const Scalar tmp197 = tmp196*b;
     const Scalar tmp198 = (Scalar(0.5))*tmp197;
-    const Scalar tmp199 = cos(coupler);
+    const Scalar tmp199 = cos_of[1];
     const Scalar tmp200 = tmp199*b;
     const Scalar tmp201 = tmp185*a;
-    const Scalar tmp211 = sin(rocker);
-    const Scalar tmp213 = cos(rocker);
+    const Scalar tmp211 = sin_of[2];
+    const Scalar tmp213 = cos_of[2];
     const Scalar tmp221 = (Scalar(0.5))*m_a;
     const Scalar tmp226 = tmp213*c;
     const Scalar tmp227 = (Scalar(0.5))*m_c;
@@ -1426,14 +1514,15 @@ struct FourBar {
                                                 const VVector<Scalar>& v,
                                                 const Scalar& /*t*/,
                                                 const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar crank = q(0);
     const Scalar coupler = q(1);
     const Scalar rocker = q(2);
     const Scalar crank_dot = v(0);
     const Scalar coupler_dot = v(1);
     const Scalar rocker_dot = v(2);
+    const Scalar sin_cos_of[3] = {crank, coupler, rocker};
+    Scalar sin_of[3], cos_of[3];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar a = Scalar(params.a);
     const Scalar b = Scalar(params.b);
     const Scalar c = Scalar(params.c);
@@ -1441,9 +1530,9 @@ struct FourBar {
     const Scalar m_a = Scalar(params.m_a);
     const Scalar m_b = Scalar(params.m_b);
     const Scalar m_c = Scalar(params.m_c);
-    const Scalar tmp183 = sin(crank);
+    const Scalar tmp183 = sin_of[0];
     const Scalar tmp184 = (tmp183*tmp183);
-    const Scalar tmp185 = cos(crank);
+    const Scalar tmp185 = cos_of[0];
     const Scalar tmp186 = (tmp185*tmp185);
     const Scalar tmp187 = (a*a);
     const Scalar tmp188 = tmp187*m_a;
@@ -1453,10 +1542,10 @@ struct FourBar {
     const Scalar tmp192 = (Scalar(0.25))*tmp190;
     const Scalar tmp193 = (Scalar(0.25))*tmp191;
     const Scalar tmp195 = tmp183*a;
-    const Scalar tmp196 = sin(coupler);
+    const Scalar tmp196 = sin_of[1];
     const Scalar tmp197 = tmp196*b;
     const Scalar tmp198 = (Scalar(0.5))*tmp197;
-    const Scalar tmp199 = cos(coupler);
+    const Scalar tmp199 = cos_of[1];
     const Scalar tmp200 = tmp199*b;
     const Scalar tmp201 = tmp185*a;
     const Scalar tmp204 = (tmp196*tmp196);
@@ -1464,9 +1553,9 @@ struct FourBar {
     const Scalar tmp206 = (b*b);
     const Scalar tmp207 = tmp206*m_b;
     const Scalar tmp208 = ((Scalar(1)/Scalar(12)))*tmp207;
-    const Scalar tmp211 = sin(rocker);
+    const Scalar tmp211 = sin_of[2];
     const Scalar tmp212 = (tmp211*tmp211);
-    const Scalar tmp213 = cos(rocker);
+    const Scalar tmp213 = cos_of[2];
     const Scalar tmp214 = (tmp213*tmp213);
     const Scalar tmp215 = (c*c);
     const Scalar tmp216 = tmp215*m_c;
@@ -1538,26 +1627,27 @@ struct FourBar {
   static HVector<Scalar> holonomic_constraints(const QVector<Scalar>& q,
                                                const Scalar& /*t*/,
                                                const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar crank = q(0);
     const Scalar coupler = q(1);
     const Scalar rocker = q(2);
+    const Scalar sin_cos_of[3] = {crank, coupler, rocker};
+    Scalar sin_of[3], cos_of[3];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar a = Scalar(params.a);
     const Scalar b = Scalar(params.b);
     const Scalar c = Scalar(params.c);
     const Scalar d = Scalar(params.d);
     const Scalar tmp176 = -d;
-    const Scalar tmp183 = sin(crank);
-    const Scalar tmp185 = cos(crank);
+    const Scalar tmp183 = sin_of[0];
+    const Scalar tmp185 = cos_of[0];
     const Scalar tmp195 = tmp183*a;
-    const Scalar tmp196 = sin(coupler);
+    const Scalar tmp196 = sin_of[1];
     const Scalar tmp197 = tmp196*b;
-    const Scalar tmp199 = cos(coupler);
+    const Scalar tmp199 = cos_of[1];
     const Scalar tmp200 = tmp199*b;
     const Scalar tmp201 = tmp185*a;
-    const Scalar tmp211 = sin(rocker);
-    const Scalar tmp213 = cos(rocker);
+    const Scalar tmp211 = sin_of[2];
+    const Scalar tmp213 = cos_of[2];
     const Scalar tmp249 = tmp211*c;
     const Scalar tmp318 = -tmp249;
     HVector<Scalar> result;
@@ -1576,24 +1666,25 @@ struct FourBar {
   static HJacobian<Scalar> holonomic_jacobian(const QVector<Scalar>& q,
                                               const Scalar& /*t*/,
                                               const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar crank = q(0);
     const Scalar coupler = q(1);
     const Scalar rocker = q(2);
+    const Scalar sin_cos_of[3] = {crank, coupler, rocker};
+    Scalar sin_of[3], cos_of[3];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar a = Scalar(params.a);
     const Scalar b = Scalar(params.b);
     const Scalar c = Scalar(params.c);
-    const Scalar tmp183 = sin(crank);
-    const Scalar tmp185 = cos(crank);
+    const Scalar tmp183 = sin_of[0];
+    const Scalar tmp185 = cos_of[0];
     const Scalar tmp195 = tmp183*a;
-    const Scalar tmp196 = sin(coupler);
+    const Scalar tmp196 = sin_of[1];
     const Scalar tmp197 = tmp196*b;
-    const Scalar tmp199 = cos(coupler);
+    const Scalar tmp199 = cos_of[1];
     const Scalar tmp200 = tmp199*b;
     const Scalar tmp201 = tmp185*a;
-    const Scalar tmp211 = sin(rocker);
-    const Scalar tmp213 = cos(rocker);
+    const Scalar tmp211 = sin_of[2];
+    const Scalar tmp213 = cos_of[2];
     const Scalar tmp226 = tmp213*c;
     const Scalar tmp249 = tmp211*c;
     const Scalar tmp318 = -tmp249;
@@ -1618,24 +1709,25 @@ struct FourBar {
   static CJacobian<Scalar> constraint_jacobian(const QVector<Scalar>& q,
                                                const Scalar& /*t*/,
                                                const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar crank = q(0);
     const Scalar coupler = q(1);
     const Scalar rocker = q(2);
+    const Scalar sin_cos_of[3] = {crank, coupler, rocker};
+    Scalar sin_of[3], cos_of[3];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar a = Scalar(params.a);
     const Scalar b = Scalar(params.b);
     const Scalar c = Scalar(params.c);
-    const Scalar tmp183 = sin(crank);
-    const Scalar tmp185 = cos(crank);
+    const Scalar tmp183 = sin_of[0];
+    const Scalar tmp185 = cos_of[0];
     const Scalar tmp195 = tmp183*a;
-    const Scalar tmp196 = sin(coupler);
+    const Scalar tmp196 = sin_of[1];
     const Scalar tmp197 = tmp196*b;
-    const Scalar tmp199 = cos(coupler);
+    const Scalar tmp199 = cos_of[1];
     const Scalar tmp200 = tmp199*b;
     const Scalar tmp201 = tmp185*a;
-    const Scalar tmp211 = sin(rocker);
-    const Scalar tmp213 = cos(rocker);
+    const Scalar tmp211 = sin_of[2];
+    const Scalar tmp213 = cos_of[2];
     const Scalar tmp226 = tmp213*c;
     const Scalar tmp249 = tmp211*c;
     const Scalar tmp318 = -tmp249;
@@ -1661,27 +1753,28 @@ struct FourBar {
                                                const VVector<Scalar>& v,
                                                const Scalar& /*t*/,
                                                const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar crank = q(0);
     const Scalar coupler = q(1);
     const Scalar rocker = q(2);
     const Scalar crank_dot = v(0);
     const Scalar coupler_dot = v(1);
     const Scalar rocker_dot = v(2);
+    const Scalar sin_cos_of[3] = {crank, coupler, rocker};
+    Scalar sin_of[3], cos_of[3];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar a = Scalar(params.a);
     const Scalar b = Scalar(params.b);
     const Scalar c = Scalar(params.c);
-    const Scalar tmp183 = sin(crank);
-    const Scalar tmp185 = cos(crank);
+    const Scalar tmp183 = sin_of[0];
+    const Scalar tmp185 = cos_of[0];
     const Scalar tmp195 = tmp183*a;
-    const Scalar tmp196 = sin(coupler);
+    const Scalar tmp196 = sin_of[1];
     const Scalar tmp197 = tmp196*b;
-    const Scalar tmp199 = cos(coupler);
+    const Scalar tmp199 = cos_of[1];
     const Scalar tmp200 = tmp199*b;
     const Scalar tmp201 = tmp185*a;
-    const Scalar tmp211 = sin(rocker);
-    const Scalar tmp213 = cos(rocker);
+    const Scalar tmp211 = sin_of[2];
+    const Scalar tmp213 = cos_of[2];
     const Scalar tmp244 = tmp201*crank_dot;
     const Scalar tmp246 = tmp195*crank_dot;
     const Scalar tmp249 = tmp211*c;
@@ -1705,27 +1798,28 @@ struct FourBar {
                                          const VVector<Scalar>& v,
                                          const Scalar& /*t*/,
                                          const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar crank = q(0);
     const Scalar coupler = q(1);
     const Scalar rocker = q(2);
     const Scalar crank_dot = v(0);
     const Scalar coupler_dot = v(1);
     const Scalar rocker_dot = v(2);
+    const Scalar sin_cos_of[3] = {crank, coupler, rocker};
+    Scalar sin_of[3], cos_of[3];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar a = Scalar(params.a);
     const Scalar b = Scalar(params.b);
     const Scalar c = Scalar(params.c);
-    const Scalar tmp183 = sin(crank);
-    const Scalar tmp185 = cos(crank);
+    const Scalar tmp183 = sin_of[0];
+    const Scalar tmp185 = cos_of[0];
     const Scalar tmp195 = tmp183*a;
-    const Scalar tmp196 = sin(coupler);
+    const Scalar tmp196 = sin_of[1];
     const Scalar tmp197 = tmp196*b;
-    const Scalar tmp199 = cos(coupler);
+    const Scalar tmp199 = cos_of[1];
     const Scalar tmp200 = tmp199*b;
     const Scalar tmp201 = tmp185*a;
-    const Scalar tmp211 = sin(rocker);
-    const Scalar tmp213 = cos(rocker);
+    const Scalar tmp211 = sin_of[2];
+    const Scalar tmp213 = cos_of[2];
     const Scalar tmp226 = tmp213*c;
     const Scalar tmp230 = (crank_dot*crank_dot);
     const Scalar tmp231 = tmp195*tmp230;

@@ -20,6 +20,78 @@
 
 #include <Eigen/Cholesky>
 #include <Eigen/Core>
+// gencoord_kernel_math::sin_cos(x, s, c) sets s[i] = sin(x[i]) and c[i] = cos(x[i]). For
+// double on x86-64 with glibc it works in vector registers, through glibc's vector math
+// library (libmvec, which C++ programs link through libm; within 4 ulp, as its manual states):
+// 4 lanes a call where the compiler targets AVX2, 2 otherwise. The inline namespace keeps the
+// two apart when objects of both are linked together. Elsewhere, or with GENCOORD_NO_LIBMVEC
+// defined, it calls sin and cos.
+#ifndef GENCOORD_KERNEL_SIN_COS
+#define GENCOORD_KERNEL_SIN_COS
+#if defined(__x86_64__) && defined(__GLIBC__) && !defined(GENCOORD_NO_LIBMVEC)
+#include <immintrin.h>
+#define GENCOORD_KERNEL_LIBMVEC 1
+extern "C" {
+#if defined(__AVX2__)
+__m256d _ZGVdN4v_sin(__m256d);
+__m256d _ZGVdN4v_cos(__m256d);
+#else
+__m128d _ZGVbN2v_sin(__m128d);
+__m128d _ZGVbN2v_cos(__m128d);
+#endif
+}
+#endif
+
+namespace gencoord_kernel_math {
+#if defined(GENCOORD_KERNEL_LIBMVEC) && defined(__AVX2__)
+inline namespace avx2 {
+constexpr int kLanes = 4;
+inline void sin_cos_lanes(const double* x, double* s, double* c) {
+  const __m256d lanes = _mm256_loadu_pd(x);
+  _mm256_storeu_pd(s, _ZGVdN4v_sin(lanes));
+  _mm256_storeu_pd(c, _ZGVdN4v_cos(lanes));
+}
+#elif defined(GENCOORD_KERNEL_LIBMVEC)
+inline namespace sse2 {
+constexpr int kLanes = 2;
+inline void sin_cos_lanes(const double* x, double* s, double* c) {
+  const __m128d lanes = _mm_loadu_pd(x);
+  _mm_storeu_pd(s, _ZGVbN2v_sin(lanes));
+  _mm_storeu_pd(c, _ZGVbN2v_cos(lanes));
+}
+#else
+inline namespace scalar {
+#endif
+
+template <class Scalar, int n>
+inline void sin_cos(const Scalar (&x)[n], Scalar (&s)[n], Scalar (&c)[n]) {
+  using std::cos;
+  using std::sin;
+  for (int i = 0; i < n; ++i) {
+    s[i] = sin(x[i]);
+    c[i] = cos(x[i]);
+  }
+}
+
+#ifdef GENCOORD_KERNEL_LIBMVEC
+template <int n>
+inline void sin_cos(const double (&x)[n], double (&s)[n], double (&c)[n]) {
+  constexpr int whole = n - n % kLanes;
+  for (int i = 0; i < whole; i += kLanes) sin_cos_lanes(x + i, s + i, c + i);
+  if constexpr (whole < n) {  // the rest, padded with copies of the last argument
+    double rest[kLanes], sines[kLanes], cosines[kLanes];
+    for (int k = 0; k < kLanes; ++k) rest[k] = x[whole + k < n ? whole + k : n - 1];
+    sin_cos_lanes(rest, sines, cosines);
+    for (int i = whole; i < n; ++i) {
+      s[i] = sines[i - whole];
+      c[i] = cosines[i - whole];
+    }
+  }
+}
+#endif
+}  // inline namespace
+}  // namespace gencoord_kernel_math
+#endif  // GENCOORD_KERNEL_SIN_COS
 
 /*
  * The Furuta (rotary inverted) pendulum: a horizontal arm turned by a motor about the vertical,
@@ -170,10 +242,11 @@ struct FurutaPendulum {
   static VMatrix<Scalar> mass_matrix(const QVector<Scalar>& q,
                                      const Scalar& /*t*/,
                                      const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar phi = q(0);
     const Scalar theta = q(1);
+    const Scalar sin_cos_of[2] = {phi, theta};
+    Scalar sin_of[2], cos_of[2];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar m_a = Scalar(params.m_a);
     const Scalar L_a = Scalar(params.L_a);
     const Scalar m_p = Scalar(params.m_p);
@@ -186,19 +259,19 @@ struct FurutaPendulum {
     const Scalar tmp138 = ((Scalar(1)/Scalar(12)))*tmp33*m_p;
     const Scalar tmp139 = (L_p*L_p);
     const Scalar tmp140 = -tmp138 + ((Scalar(1)/Scalar(12)))*m_p*(tmp139 + tmp33);
-    const Scalar tmp320 = sin(phi);
+    const Scalar tmp320 = sin_of[0];
     const Scalar tmp321 = (tmp320*tmp320);
-    const Scalar tmp322 = cos(phi);
+    const Scalar tmp322 = cos_of[0];
     const Scalar tmp323 = (tmp322*tmp322);
     const Scalar tmp324 = tmp321 + tmp323;
     const Scalar tmp325 = (Scalar(0.25))*tmp37;
-    const Scalar tmp326 = cos(theta);
+    const Scalar tmp326 = cos_of[1];
     const Scalar tmp327 = (tmp326*tmp326);
     const Scalar tmp328 = tmp321*tmp327;
     const Scalar tmp329 = tmp323*tmp327;
     const Scalar tmp330 = tmp328 + tmp329;
     const Scalar tmp331 = tmp322*L_a;
-    const Scalar tmp332 = sin(theta);
+    const Scalar tmp332 = sin_of[1];
     const Scalar tmp333 = tmp320*tmp332;
     const Scalar tmp334 = (Scalar(0.5))*L_p;
     const Scalar tmp335 = tmp333*tmp334;
@@ -240,20 +313,21 @@ struct FurutaPendulum {
                                         const VVector<Scalar>& /*v*/,
                                         const Scalar& /*t*/,
                                         const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar phi = q(0);
     const Scalar theta = q(1);
+    const Scalar sin_cos_of[2] = {phi, theta};
+    Scalar sin_of[2], cos_of[2];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar m_p = Scalar(params.m_p);
     const Scalar L_p = Scalar(params.L_p);
     const Scalar g = Scalar(params.g);
     const Scalar tau = Scalar(params.tau);
-    const Scalar tmp320 = sin(phi);
+    const Scalar tmp320 = sin_of[0];
     const Scalar tmp321 = (tmp320*tmp320);
-    const Scalar tmp322 = cos(phi);
+    const Scalar tmp322 = cos_of[0];
     const Scalar tmp323 = (tmp322*tmp322);
     const Scalar tmp324 = tmp321 + tmp323;
-    const Scalar tmp332 = sin(theta);
+    const Scalar tmp332 = sin_of[1];
     const Scalar tmp351 = tmp324*tau;
     const Scalar tmp352 = (Scalar(0.5))*m_p;
     const Scalar tmp353 = tmp352*L_p*g;
@@ -304,12 +378,13 @@ struct FurutaPendulum {
                                          const VVector<Scalar>& v,
                                          const Scalar& /*t*/,
                                          const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar phi = q(0);
     const Scalar theta = q(1);
     const Scalar phi_dot = v(0);
     const Scalar theta_dot = v(1);
+    const Scalar sin_cos_of[2] = {phi, theta};
+    Scalar sin_of[2], cos_of[2];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar L_a = Scalar(params.L_a);
     const Scalar m_p = Scalar(params.m_p);
     const Scalar L_p = Scalar(params.L_p);
@@ -318,11 +393,11 @@ struct FurutaPendulum {
     const Scalar tmp138 = ((Scalar(1)/Scalar(12)))*tmp33*m_p;
     const Scalar tmp139 = (L_p*L_p);
     const Scalar tmp140 = -tmp138 + ((Scalar(1)/Scalar(12)))*m_p*(tmp139 + tmp33);
-    const Scalar tmp320 = sin(phi);
-    const Scalar tmp322 = cos(phi);
-    const Scalar tmp326 = cos(theta);
+    const Scalar tmp320 = sin_of[0];
+    const Scalar tmp322 = cos_of[0];
+    const Scalar tmp326 = cos_of[1];
     const Scalar tmp331 = tmp322*L_a;
-    const Scalar tmp332 = sin(theta);
+    const Scalar tmp332 = sin_of[1];
     const Scalar tmp333 = tmp320*tmp332;
     const Scalar tmp334 = (Scalar(0.5))*L_p;
     const Scalar tmp335 = tmp333*tmp334;
@@ -381,12 +456,13 @@ struct FurutaPendulum {
                                 const VVector<Scalar>& v,
                                 const Scalar& /*t*/,
                                 const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar phi = q(0);
     const Scalar theta = q(1);
     const Scalar phi_dot = v(0);
     const Scalar theta_dot = v(1);
+    const Scalar sin_cos_of[2] = {phi, theta};
+    Scalar sin_of[2], cos_of[2];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar L_a = Scalar(params.L_a);
     const Scalar m_p = Scalar(params.m_p);
     const Scalar L_p = Scalar(params.L_p);
@@ -397,14 +473,14 @@ struct FurutaPendulum {
     const Scalar tmp138 = ((Scalar(1)/Scalar(12)))*tmp33*m_p;
     const Scalar tmp139 = (L_p*L_p);
     const Scalar tmp140 = -tmp138 + ((Scalar(1)/Scalar(12)))*m_p*(tmp139 + tmp33);
-    const Scalar tmp320 = sin(phi);
+    const Scalar tmp320 = sin_of[0];
     const Scalar tmp321 = (tmp320*tmp320);
-    const Scalar tmp322 = cos(phi);
+    const Scalar tmp322 = cos_of[0];
     const Scalar tmp323 = (tmp322*tmp322);
     const Scalar tmp324 = tmp321 + tmp323;
-    const Scalar tmp326 = cos(theta);
+    const Scalar tmp326 = cos_of[1];
     const Scalar tmp331 = tmp322*L_a;
-    const Scalar tmp332 = sin(theta);
+    const Scalar tmp332 = sin_of[1];
     const Scalar tmp333 = tmp320*tmp332;
     const Scalar tmp334 = (Scalar(0.5))*L_p;
     const Scalar tmp335 = tmp333*tmp334;
@@ -471,12 +547,13 @@ struct FurutaPendulum {
                        const Params& params,
                        VMatrix<Scalar>* Mt,
                        VVector<Scalar>* f) {
-    using std::cos;
-    using std::sin;
     const Scalar phi = q(0);
     const Scalar theta = q(1);
     const Scalar phi_dot = v(0);
     const Scalar theta_dot = v(1);
+    const Scalar sin_cos_of[2] = {phi, theta};
+    Scalar sin_of[2], cos_of[2];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar m_a = Scalar(params.m_a);
     const Scalar L_a = Scalar(params.L_a);
     const Scalar m_p = Scalar(params.m_p);
@@ -491,19 +568,19 @@ struct FurutaPendulum {
     const Scalar tmp138 = ((Scalar(1)/Scalar(12)))*tmp33*m_p;
     const Scalar tmp139 = (L_p*L_p);
     const Scalar tmp140 = -tmp138 + ((Scalar(1)/Scalar(12)))*m_p*(tmp139 + tmp33);
-    const Scalar tmp320 = sin(phi);
+    const Scalar tmp320 = sin_of[0];
     const Scalar tmp321 = (tmp320*tmp320);
-    const Scalar tmp322 = cos(phi);
+    const Scalar tmp322 = cos_of[0];
     const Scalar tmp323 = (tmp322*tmp322);
     const Scalar tmp324 = tmp321 + tmp323;
     const Scalar tmp325 = (Scalar(0.25))*tmp37;
-    const Scalar tmp326 = cos(theta);
+    const Scalar tmp326 = cos_of[1];
     const Scalar tmp327 = (tmp326*tmp326);
     const Scalar tmp328 = tmp321*tmp327;
     const Scalar tmp329 = tmp323*tmp327;
     const Scalar tmp330 = tmp328 + tmp329;
     const Scalar tmp331 = tmp322*L_a;
-    const Scalar tmp332 = sin(theta);
+    const Scalar tmp332 = sin_of[1];
     const Scalar tmp333 = tmp320*tmp332;
     const Scalar tmp334 = (Scalar(0.5))*L_p;
     const Scalar tmp335 = tmp333*tmp334;
@@ -581,14 +658,15 @@ struct FurutaPendulum {
                                           const VVector<Scalar>& qdd,
                                           const Scalar& /*t*/,
                                           const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar phi = q(0);
     const Scalar theta = q(1);
     const Scalar phi_dot = v(0);
     const Scalar theta_dot = v(1);
     const Scalar phi_ddot = qdd(0);
     const Scalar theta_ddot = qdd(1);
+    const Scalar sin_cos_of[2] = {phi, theta};
+    Scalar sin_of[2], cos_of[2];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar m_a = Scalar(params.m_a);
     const Scalar L_a = Scalar(params.L_a);
     const Scalar m_p = Scalar(params.m_p);
@@ -603,19 +681,19 @@ struct FurutaPendulum {
     const Scalar tmp138 = ((Scalar(1)/Scalar(12)))*tmp33*m_p;
     const Scalar tmp139 = (L_p*L_p);
     const Scalar tmp140 = -tmp138 + ((Scalar(1)/Scalar(12)))*m_p*(tmp139 + tmp33);
-    const Scalar tmp320 = sin(phi);
+    const Scalar tmp320 = sin_of[0];
     const Scalar tmp321 = (tmp320*tmp320);
-    const Scalar tmp322 = cos(phi);
+    const Scalar tmp322 = cos_of[0];
     const Scalar tmp323 = (tmp322*tmp322);
     const Scalar tmp324 = tmp321 + tmp323;
     const Scalar tmp325 = (Scalar(0.25))*tmp37;
-    const Scalar tmp326 = cos(theta);
+    const Scalar tmp326 = cos_of[1];
     const Scalar tmp327 = (tmp326*tmp326);
     const Scalar tmp328 = tmp321*tmp327;
     const Scalar tmp329 = tmp323*tmp327;
     const Scalar tmp330 = tmp328 + tmp329;
     const Scalar tmp331 = tmp322*L_a;
-    const Scalar tmp332 = sin(theta);
+    const Scalar tmp332 = sin_of[1];
     const Scalar tmp333 = tmp320*tmp332;
     const Scalar tmp334 = (Scalar(0.5))*L_p;
     const Scalar tmp335 = tmp333*tmp334;
@@ -692,14 +770,15 @@ struct FurutaPendulum {
                                  const Params& params,
                                  VQMatrix<Scalar>* dr_dq,
                                  VMatrix<Scalar>* dr_dv) {
-    using std::cos;
-    using std::sin;
     const Scalar phi = q(0);
     const Scalar theta = q(1);
     const Scalar phi_dot = v(0);
     const Scalar theta_dot = v(1);
     const Scalar phi_ddot = qdd(0);
     const Scalar theta_ddot = qdd(1);
+    const Scalar sin_cos_of[2] = {phi, theta};
+    Scalar sin_of[2], cos_of[2];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar m_a = Scalar(params.m_a);
     const Scalar L_a = Scalar(params.L_a);
     const Scalar m_p = Scalar(params.m_p);
@@ -714,15 +793,15 @@ struct FurutaPendulum {
     const Scalar tmp138 = ((Scalar(1)/Scalar(12)))*tmp33*m_p;
     const Scalar tmp139 = (L_p*L_p);
     const Scalar tmp140 = -tmp138 + ((Scalar(1)/Scalar(12)))*m_p*(tmp139 + tmp33);
-    const Scalar tmp320 = sin(phi);
+    const Scalar tmp320 = sin_of[0];
     const Scalar tmp321 = (tmp320*tmp320);
-    const Scalar tmp322 = cos(phi);
+    const Scalar tmp322 = cos_of[0];
     const Scalar tmp323 = (tmp322*tmp322);
     const Scalar tmp325 = (Scalar(0.25))*tmp37;
-    const Scalar tmp326 = cos(theta);
+    const Scalar tmp326 = cos_of[1];
     const Scalar tmp327 = (tmp326*tmp326);
     const Scalar tmp331 = tmp322*L_a;
-    const Scalar tmp332 = sin(theta);
+    const Scalar tmp332 = sin_of[1];
     const Scalar tmp333 = tmp320*tmp332;
     const Scalar tmp334 = (Scalar(0.5))*L_p;
     const Scalar tmp335 = tmp333*tmp334;
@@ -918,12 +997,13 @@ struct FurutaPendulum {
                                const VVector<Scalar>& v,
                                const Scalar& /*t*/,
                                const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar phi = q(0);
     const Scalar theta = q(1);
     const Scalar phi_dot = v(0);
     const Scalar theta_dot = v(1);
+    const Scalar sin_cos_of[2] = {phi, theta};
+    Scalar sin_of[2], cos_of[2];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar m_a = Scalar(params.m_a);
     const Scalar L_a = Scalar(params.L_a);
     const Scalar m_p = Scalar(params.m_p);
@@ -936,15 +1016,15 @@ struct FurutaPendulum {
     const Scalar tmp138 = ((Scalar(1)/Scalar(12)))*tmp33*m_p;
     const Scalar tmp139 = (L_p*L_p);
     const Scalar tmp140 = -tmp138 + ((Scalar(1)/Scalar(12)))*m_p*(tmp139 + tmp33);
-    const Scalar tmp320 = sin(phi);
+    const Scalar tmp320 = sin_of[0];
     const Scalar tmp321 = (tmp320*tmp320);
-    const Scalar tmp322 = cos(phi);
+    const Scalar tmp322 = cos_of[0];
     const Scalar tmp323 = (tmp322*tmp322);
     const Scalar tmp325 = (Scalar(0.25))*tmp37;
-    const Scalar tmp326 = cos(theta);
+    const Scalar tmp326 = cos_of[1];
     const Scalar tmp327 = (tmp326*tmp326);
     const Scalar tmp331 = tmp322*L_a;
-    const Scalar tmp332 = sin(theta);
+    const Scalar tmp332 = sin_of[1];
     const Scalar tmp333 = tmp320*tmp332;
     const Scalar tmp334 = (Scalar(0.5))*L_p;
     const Scalar tmp335 = tmp333*tmp334;
@@ -1041,12 +1121,13 @@ struct FurutaPendulum {
                        const VVector<Scalar>& v,
                        const Scalar& /*t*/,
                        const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar phi = q(0);
     const Scalar theta = q(1);
     const Scalar phi_dot = v(0);
     const Scalar theta_dot = v(1);
+    const Scalar sin_cos_of[2] = {phi, theta};
+    Scalar sin_of[2], cos_of[2];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar m_a = Scalar(params.m_a);
     const Scalar L_a = Scalar(params.L_a);
     const Scalar m_p = Scalar(params.m_p);
@@ -1060,15 +1141,15 @@ struct FurutaPendulum {
     const Scalar tmp138 = ((Scalar(1)/Scalar(12)))*tmp33*m_p;
     const Scalar tmp139 = (L_p*L_p);
     const Scalar tmp140 = -tmp138 + ((Scalar(1)/Scalar(12)))*m_p*(tmp139 + tmp33);
-    const Scalar tmp320 = sin(phi);
+    const Scalar tmp320 = sin_of[0];
     const Scalar tmp321 = (tmp320*tmp320);
-    const Scalar tmp322 = cos(phi);
+    const Scalar tmp322 = cos_of[0];
     const Scalar tmp323 = (tmp322*tmp322);
     const Scalar tmp325 = (Scalar(0.25))*tmp37;
-    const Scalar tmp326 = cos(theta);
+    const Scalar tmp326 = cos_of[1];
     const Scalar tmp327 = (tmp326*tmp326);
     const Scalar tmp331 = tmp322*L_a;
-    const Scalar tmp332 = sin(theta);
+    const Scalar tmp332 = sin_of[1];
     const Scalar tmp333 = tmp320*tmp332;
     const Scalar tmp334 = (Scalar(0.5))*L_p;
     const Scalar tmp335 = tmp333*tmp334;
@@ -1127,11 +1208,12 @@ struct FurutaPendulum {
                                    const Scalar& /*t*/,
                                    const Params& params) {
     using std::abs;
-    using std::cos;
-    using std::sin;
     using std::sqrt;
     const Scalar phi = q(0);
     const Scalar theta = q(1);
+    const Scalar sin_cos_of[2] = {phi, theta};
+    Scalar sin_of[2], cos_of[2];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar m_a = Scalar(params.m_a);
     const Scalar L_a = Scalar(params.L_a);
     const Scalar m_p = Scalar(params.m_p);
@@ -1151,11 +1233,11 @@ struct FurutaPendulum {
     const Scalar tmp281 = (Scalar(0.5))*L_a;
     const Scalar tmp285 = sqrt(tmp140);
     const Scalar tmp286 = tmp285/sqrt(m_p);
-    const Scalar tmp320 = sin(phi);
-    const Scalar tmp322 = cos(phi);
-    const Scalar tmp326 = cos(theta);
+    const Scalar tmp320 = sin_of[0];
+    const Scalar tmp322 = cos_of[0];
+    const Scalar tmp326 = cos_of[1];
     const Scalar tmp331 = tmp322*L_a;
-    const Scalar tmp332 = sin(theta);
+    const Scalar tmp332 = sin_of[1];
     const Scalar tmp333 = tmp320*tmp332;
     const Scalar tmp334 = (Scalar(0.5))*L_p;
     const Scalar tmp335 = tmp333*tmp334;
@@ -1260,13 +1342,14 @@ struct FurutaPendulum {
                                     const Scalar& /*t*/,
                                     const Params& params) {
     using std::abs;
-    using std::cos;
-    using std::sin;
     using std::sqrt;
     const Scalar phi = q(0);
     const Scalar theta = q(1);
     const Scalar phi_dot = v(0);
     const Scalar theta_dot = v(1);
+    const Scalar sin_cos_of[2] = {phi, theta};
+    Scalar sin_of[2], cos_of[2];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar m_a = Scalar(params.m_a);
     const Scalar L_a = Scalar(params.L_a);
     const Scalar m_p = Scalar(params.m_p);
@@ -1286,11 +1369,11 @@ struct FurutaPendulum {
     const Scalar tmp281 = (Scalar(0.5))*L_a;
     const Scalar tmp285 = sqrt(tmp140);
     const Scalar tmp286 = tmp285/sqrt(m_p);
-    const Scalar tmp320 = sin(phi);
-    const Scalar tmp322 = cos(phi);
-    const Scalar tmp326 = cos(theta);
+    const Scalar tmp320 = sin_of[0];
+    const Scalar tmp322 = cos_of[0];
+    const Scalar tmp326 = cos_of[1];
     const Scalar tmp331 = tmp322*L_a;
-    const Scalar tmp332 = sin(theta);
+    const Scalar tmp332 = sin_of[1];
     const Scalar tmp333 = tmp320*tmp332;
     const Scalar tmp334 = (Scalar(0.5))*L_p;
     const Scalar tmp335 = tmp333*tmp334;
@@ -1420,11 +1503,12 @@ struct FurutaPendulum {
                                     const Scalar& /*t*/,
                                     const Params& params) {
     using std::abs;
-    using std::cos;
-    using std::sin;
     using std::sqrt;
     const Scalar phi = q(0);
     const Scalar theta = q(1);
+    const Scalar sin_cos_of[2] = {phi, theta};
+    Scalar sin_of[2], cos_of[2];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar m_a = Scalar(params.m_a);
     const Scalar L_a = Scalar(params.L_a);
     const Scalar m_p = Scalar(params.m_p);
@@ -1444,11 +1528,11 @@ struct FurutaPendulum {
     const Scalar tmp281 = (Scalar(0.5))*L_a;
     const Scalar tmp285 = sqrt(tmp140);
     const Scalar tmp286 = tmp285/sqrt(m_p);
-    const Scalar tmp320 = sin(phi);
-    const Scalar tmp322 = cos(phi);
-    const Scalar tmp326 = cos(theta);
+    const Scalar tmp320 = sin_of[0];
+    const Scalar tmp322 = cos_of[0];
+    const Scalar tmp326 = cos_of[1];
     const Scalar tmp331 = tmp322*L_a;
-    const Scalar tmp332 = sin(theta);
+    const Scalar tmp332 = sin_of[1];
     const Scalar tmp333 = tmp320*tmp332;
     const Scalar tmp334 = (Scalar(0.5))*L_p;
     const Scalar tmp335 = tmp333*tmp334;
@@ -1581,13 +1665,14 @@ struct FurutaPendulum {
                                            const Scalar& /*t*/,
                                            const Params& params) {
     using std::abs;
-    using std::cos;
-    using std::sin;
     using std::sqrt;
     const Scalar phi = q(0);
     const Scalar theta = q(1);
     const Scalar phi_dot = v(0);
     const Scalar theta_dot = v(1);
+    const Scalar sin_cos_of[2] = {phi, theta};
+    Scalar sin_of[2], cos_of[2];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar m_a = Scalar(params.m_a);
     const Scalar L_a = Scalar(params.L_a);
     const Scalar m_p = Scalar(params.m_p);
@@ -1607,11 +1692,11 @@ struct FurutaPendulum {
     const Scalar tmp281 = (Scalar(0.5))*L_a;
     const Scalar tmp285 = sqrt(tmp140);
     const Scalar tmp286 = tmp285/sqrt(m_p);
-    const Scalar tmp320 = sin(phi);
-    const Scalar tmp322 = cos(phi);
-    const Scalar tmp326 = cos(theta);
+    const Scalar tmp320 = sin_of[0];
+    const Scalar tmp322 = cos_of[0];
+    const Scalar tmp326 = cos_of[1];
     const Scalar tmp331 = tmp322*L_a;
-    const Scalar tmp332 = sin(theta);
+    const Scalar tmp332 = sin_of[1];
     const Scalar tmp333 = tmp320*tmp332;
     const Scalar tmp334 = (Scalar(0.5))*L_p;
     const Scalar tmp335 = tmp333*tmp334;
@@ -1749,22 +1834,23 @@ struct FurutaPendulum {
                                              const VVector<Scalar>& v,
                                              const Scalar& /*t*/,
                                              const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar phi = q(0);
     const Scalar theta = q(1);
     const Scalar phi_dot = v(0);
     const Scalar theta_dot = v(1);
+    const Scalar sin_cos_of[2] = {phi, theta};
+    Scalar sin_of[2], cos_of[2];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar m_a = Scalar(params.m_a);
     const Scalar L_a = Scalar(params.L_a);
     const Scalar m_p = Scalar(params.m_p);
     const Scalar L_p = Scalar(params.L_p);
     const Scalar tmp281 = (Scalar(0.5))*L_a;
-    const Scalar tmp320 = sin(phi);
-    const Scalar tmp322 = cos(phi);
-    const Scalar tmp326 = cos(theta);
+    const Scalar tmp320 = sin_of[0];
+    const Scalar tmp322 = cos_of[0];
+    const Scalar tmp326 = cos_of[1];
     const Scalar tmp331 = tmp322*L_a;
-    const Scalar tmp332 = sin(theta);
+    const Scalar tmp332 = sin_of[1];
     const Scalar tmp333 = tmp320*tmp332;
     const Scalar tmp334 = (Scalar(0.5))*L_p;
     const Scalar tmp335 = tmp333*tmp334;
@@ -1804,12 +1890,13 @@ struct FurutaPendulum {
                                                 const VVector<Scalar>& v,
                                                 const Scalar& /*t*/,
                                                 const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar phi = q(0);
     const Scalar theta = q(1);
     const Scalar phi_dot = v(0);
     const Scalar theta_dot = v(1);
+    const Scalar sin_cos_of[2] = {phi, theta};
+    Scalar sin_of[2], cos_of[2];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar m_a = Scalar(params.m_a);
     const Scalar L_a = Scalar(params.L_a);
     const Scalar m_p = Scalar(params.m_p);
@@ -1822,15 +1909,15 @@ struct FurutaPendulum {
     const Scalar tmp138 = ((Scalar(1)/Scalar(12)))*tmp33*m_p;
     const Scalar tmp139 = (L_p*L_p);
     const Scalar tmp140 = -tmp138 + ((Scalar(1)/Scalar(12)))*m_p*(tmp139 + tmp33);
-    const Scalar tmp320 = sin(phi);
+    const Scalar tmp320 = sin_of[0];
     const Scalar tmp321 = (tmp320*tmp320);
-    const Scalar tmp322 = cos(phi);
+    const Scalar tmp322 = cos_of[0];
     const Scalar tmp323 = (tmp322*tmp322);
     const Scalar tmp325 = (Scalar(0.25))*tmp37;
-    const Scalar tmp326 = cos(theta);
+    const Scalar tmp326 = cos_of[1];
     const Scalar tmp327 = (tmp326*tmp326);
     const Scalar tmp331 = tmp322*L_a;
-    const Scalar tmp332 = sin(theta);
+    const Scalar tmp332 = sin_of[1];
     const Scalar tmp333 = tmp320*tmp332;
     const Scalar tmp334 = (Scalar(0.5))*L_p;
     const Scalar tmp335 = tmp333*tmp334;

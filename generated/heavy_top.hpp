@@ -24,6 +24,78 @@
 
 #include <Eigen/Cholesky>
 #include <Eigen/Core>
+// gencoord_kernel_math::sin_cos(x, s, c) sets s[i] = sin(x[i]) and c[i] = cos(x[i]). For
+// double on x86-64 with glibc it works in vector registers, through glibc's vector math
+// library (libmvec, which C++ programs link through libm; within 4 ulp, as its manual states):
+// 4 lanes a call where the compiler targets AVX2, 2 otherwise. The inline namespace keeps the
+// two apart when objects of both are linked together. Elsewhere, or with GENCOORD_NO_LIBMVEC
+// defined, it calls sin and cos.
+#ifndef GENCOORD_KERNEL_SIN_COS
+#define GENCOORD_KERNEL_SIN_COS
+#if defined(__x86_64__) && defined(__GLIBC__) && !defined(GENCOORD_NO_LIBMVEC)
+#include <immintrin.h>
+#define GENCOORD_KERNEL_LIBMVEC 1
+extern "C" {
+#if defined(__AVX2__)
+__m256d _ZGVdN4v_sin(__m256d);
+__m256d _ZGVdN4v_cos(__m256d);
+#else
+__m128d _ZGVbN2v_sin(__m128d);
+__m128d _ZGVbN2v_cos(__m128d);
+#endif
+}
+#endif
+
+namespace gencoord_kernel_math {
+#if defined(GENCOORD_KERNEL_LIBMVEC) && defined(__AVX2__)
+inline namespace avx2 {
+constexpr int kLanes = 4;
+inline void sin_cos_lanes(const double* x, double* s, double* c) {
+  const __m256d lanes = _mm256_loadu_pd(x);
+  _mm256_storeu_pd(s, _ZGVdN4v_sin(lanes));
+  _mm256_storeu_pd(c, _ZGVdN4v_cos(lanes));
+}
+#elif defined(GENCOORD_KERNEL_LIBMVEC)
+inline namespace sse2 {
+constexpr int kLanes = 2;
+inline void sin_cos_lanes(const double* x, double* s, double* c) {
+  const __m128d lanes = _mm_loadu_pd(x);
+  _mm_storeu_pd(s, _ZGVbN2v_sin(lanes));
+  _mm_storeu_pd(c, _ZGVbN2v_cos(lanes));
+}
+#else
+inline namespace scalar {
+#endif
+
+template <class Scalar, int n>
+inline void sin_cos(const Scalar (&x)[n], Scalar (&s)[n], Scalar (&c)[n]) {
+  using std::cos;
+  using std::sin;
+  for (int i = 0; i < n; ++i) {
+    s[i] = sin(x[i]);
+    c[i] = cos(x[i]);
+  }
+}
+
+#ifdef GENCOORD_KERNEL_LIBMVEC
+template <int n>
+inline void sin_cos(const double (&x)[n], double (&s)[n], double (&c)[n]) {
+  constexpr int whole = n - n % kLanes;
+  for (int i = 0; i < whole; i += kLanes) sin_cos_lanes(x + i, s + i, c + i);
+  if constexpr (whole < n) {  // the rest, padded with copies of the last argument
+    double rest[kLanes], sines[kLanes], cosines[kLanes];
+    for (int k = 0; k < kLanes; ++k) rest[k] = x[whole + k < n ? whole + k : n - 1];
+    sin_cos_lanes(rest, sines, cosines);
+    for (int i = whole; i < n; ++i) {
+      s[i] = sines[i - whole];
+      c[i] = cosines[i - whole];
+    }
+  }
+}
+#endif
+}  // inline namespace
+}  // namespace gencoord_kernel_math
+#endif  // GENCOORD_KERNEL_SIN_COS
 
 /*
  * A heavy symmetric top spinning with its tip on a fixed point.
@@ -165,11 +237,12 @@ struct HeavyTop {
   static VMatrix<Scalar> mass_matrix(const QVector<Scalar>& q,
                                      const Scalar& /*t*/,
                                      const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar phi = q(0);
     const Scalar theta = q(1);
     const Scalar psi = q(2);
+    const Scalar sin_cos_of[3] = {phi, theta, psi};
+    Scalar sin_of[3], cos_of[3];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar m = Scalar(params.m);
     const Scalar d = Scalar(params.d);
     const Scalar r = Scalar(params.r);
@@ -180,18 +253,18 @@ struct HeavyTop {
     const Scalar tmp9 = (h*h);
     const Scalar tmp10 = -tmp8 + ((Scalar(1)/Scalar(12)))*m*(tmp9 + Scalar(3)*tmp6);
     const Scalar tmp140 = (d*d);
-    const Scalar tmp141 = sin(phi);
+    const Scalar tmp141 = sin_of[0];
     const Scalar tmp142 = (tmp141*tmp141);
-    const Scalar tmp143 = sin(theta);
+    const Scalar tmp143 = sin_of[1];
     const Scalar tmp144 = (tmp143*tmp143);
     const Scalar tmp145 = tmp142*tmp144;
-    const Scalar tmp146 = cos(phi);
+    const Scalar tmp146 = cos_of[0];
     const Scalar tmp147 = (tmp146*tmp146);
     const Scalar tmp148 = tmp144*tmp147;
-    const Scalar tmp149 = sin(psi);
+    const Scalar tmp149 = sin_of[2];
     const Scalar tmp150 = tmp141*tmp149;
-    const Scalar tmp151 = cos(theta);
-    const Scalar tmp152 = cos(psi);
+    const Scalar tmp151 = cos_of[1];
+    const Scalar tmp152 = cos_of[2];
     const Scalar tmp153 = tmp146*tmp152;
     const Scalar tmp154 = tmp151*tmp153;
     const Scalar tmp155 = tmp150 - tmp154;
@@ -306,14 +379,15 @@ struct HeavyTop {
                                          const VVector<Scalar>& v,
                                          const Scalar& /*t*/,
                                          const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar phi = q(0);
     const Scalar theta = q(1);
     const Scalar psi = q(2);
     const Scalar phi_dot = v(0);
     const Scalar theta_dot = v(1);
     const Scalar psi_dot = v(2);
+    const Scalar sin_cos_of[3] = {phi, theta, psi};
+    Scalar sin_of[3], cos_of[3];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar m = Scalar(params.m);
     const Scalar d = Scalar(params.d);
     const Scalar r = Scalar(params.r);
@@ -324,13 +398,13 @@ struct HeavyTop {
     const Scalar tmp9 = (h*h);
     const Scalar tmp10 = -tmp8 + ((Scalar(1)/Scalar(12)))*m*(tmp9 + Scalar(3)*tmp6);
     const Scalar tmp140 = (d*d);
-    const Scalar tmp141 = sin(phi);
-    const Scalar tmp143 = sin(theta);
-    const Scalar tmp146 = cos(phi);
-    const Scalar tmp149 = sin(psi);
+    const Scalar tmp141 = sin_of[0];
+    const Scalar tmp143 = sin_of[1];
+    const Scalar tmp146 = cos_of[0];
+    const Scalar tmp149 = sin_of[2];
     const Scalar tmp150 = tmp141*tmp149;
-    const Scalar tmp151 = cos(theta);
-    const Scalar tmp152 = cos(psi);
+    const Scalar tmp151 = cos_of[1];
+    const Scalar tmp152 = cos_of[2];
     const Scalar tmp153 = tmp146*tmp152;
     const Scalar tmp154 = tmp151*tmp153;
     const Scalar tmp155 = tmp150 - tmp154;
@@ -423,14 +497,15 @@ struct HeavyTop {
                                 const VVector<Scalar>& v,
                                 const Scalar& /*t*/,
                                 const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar phi = q(0);
     const Scalar theta = q(1);
     const Scalar psi = q(2);
     const Scalar phi_dot = v(0);
     const Scalar theta_dot = v(1);
     const Scalar psi_dot = v(2);
+    const Scalar sin_cos_of[3] = {phi, theta, psi};
+    Scalar sin_of[3], cos_of[3];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar m = Scalar(params.m);
     const Scalar d = Scalar(params.d);
     const Scalar r = Scalar(params.r);
@@ -442,13 +517,13 @@ struct HeavyTop {
     const Scalar tmp9 = (h*h);
     const Scalar tmp10 = -tmp8 + ((Scalar(1)/Scalar(12)))*m*(tmp9 + Scalar(3)*tmp6);
     const Scalar tmp140 = (d*d);
-    const Scalar tmp141 = sin(phi);
-    const Scalar tmp143 = sin(theta);
-    const Scalar tmp146 = cos(phi);
-    const Scalar tmp149 = sin(psi);
+    const Scalar tmp141 = sin_of[0];
+    const Scalar tmp143 = sin_of[1];
+    const Scalar tmp146 = cos_of[0];
+    const Scalar tmp149 = sin_of[2];
     const Scalar tmp150 = tmp141*tmp149;
-    const Scalar tmp151 = cos(theta);
-    const Scalar tmp152 = cos(psi);
+    const Scalar tmp151 = cos_of[1];
+    const Scalar tmp152 = cos_of[2];
     const Scalar tmp153 = tmp146*tmp152;
     const Scalar tmp154 = tmp151*tmp153;
     const Scalar tmp155 = tmp150 - tmp154;
@@ -546,14 +621,15 @@ struct HeavyTop {
                        const Params& params,
                        VMatrix<Scalar>* Mt,
                        VVector<Scalar>* f) {
-    using std::cos;
-    using std::sin;
     const Scalar phi = q(0);
     const Scalar theta = q(1);
     const Scalar psi = q(2);
     const Scalar phi_dot = v(0);
     const Scalar theta_dot = v(1);
     const Scalar psi_dot = v(2);
+    const Scalar sin_cos_of[3] = {phi, theta, psi};
+    Scalar sin_of[3], cos_of[3];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar m = Scalar(params.m);
     const Scalar d = Scalar(params.d);
     const Scalar r = Scalar(params.r);
@@ -565,18 +641,18 @@ struct HeavyTop {
     const Scalar tmp9 = (h*h);
     const Scalar tmp10 = -tmp8 + ((Scalar(1)/Scalar(12)))*m*(tmp9 + Scalar(3)*tmp6);
     const Scalar tmp140 = (d*d);
-    const Scalar tmp141 = sin(phi);
+    const Scalar tmp141 = sin_of[0];
     const Scalar tmp142 = (tmp141*tmp141);
-    const Scalar tmp143 = sin(theta);
+    const Scalar tmp143 = sin_of[1];
     const Scalar tmp144 = (tmp143*tmp143);
     const Scalar tmp145 = tmp142*tmp144;
-    const Scalar tmp146 = cos(phi);
+    const Scalar tmp146 = cos_of[0];
     const Scalar tmp147 = (tmp146*tmp146);
     const Scalar tmp148 = tmp144*tmp147;
-    const Scalar tmp149 = sin(psi);
+    const Scalar tmp149 = sin_of[2];
     const Scalar tmp150 = tmp141*tmp149;
-    const Scalar tmp151 = cos(theta);
-    const Scalar tmp152 = cos(psi);
+    const Scalar tmp151 = cos_of[1];
+    const Scalar tmp152 = cos_of[2];
     const Scalar tmp153 = tmp146*tmp152;
     const Scalar tmp154 = tmp151*tmp153;
     const Scalar tmp155 = tmp150 - tmp154;
@@ -704,8 +780,6 @@ struct HeavyTop {
                                           const VVector<Scalar>& qdd,
                                           const Scalar& /*t*/,
                                           const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar phi = q(0);
     const Scalar theta = q(1);
     const Scalar psi = q(2);
@@ -715,6 +789,9 @@ struct HeavyTop {
     const Scalar phi_ddot = qdd(0);
     const Scalar theta_ddot = qdd(1);
     const Scalar psi_ddot = qdd(2);
+    const Scalar sin_cos_of[3] = {phi, theta, psi};
+    Scalar sin_of[3], cos_of[3];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar m = Scalar(params.m);
     const Scalar d = Scalar(params.d);
     const Scalar r = Scalar(params.r);
@@ -726,18 +803,18 @@ struct HeavyTop {
     const Scalar tmp9 = (h*h);
     const Scalar tmp10 = -tmp8 + ((Scalar(1)/Scalar(12)))*m*(tmp9 + Scalar(3)*tmp6);
     const Scalar tmp140 = (d*d);
-    const Scalar tmp141 = sin(phi);
+    const Scalar tmp141 = sin_of[0];
     const Scalar tmp142 = (tmp141*tmp141);
-    const Scalar tmp143 = sin(theta);
+    const Scalar tmp143 = sin_of[1];
     const Scalar tmp144 = (tmp143*tmp143);
     const Scalar tmp145 = tmp142*tmp144;
-    const Scalar tmp146 = cos(phi);
+    const Scalar tmp146 = cos_of[0];
     const Scalar tmp147 = (tmp146*tmp146);
     const Scalar tmp148 = tmp144*tmp147;
-    const Scalar tmp149 = sin(psi);
+    const Scalar tmp149 = sin_of[2];
     const Scalar tmp150 = tmp141*tmp149;
-    const Scalar tmp151 = cos(theta);
-    const Scalar tmp152 = cos(psi);
+    const Scalar tmp151 = cos_of[1];
+    const Scalar tmp152 = cos_of[2];
     const Scalar tmp153 = tmp146*tmp152;
     const Scalar tmp154 = tmp151*tmp153;
     const Scalar tmp155 = tmp150 - tmp154;
@@ -859,8 +936,6 @@ struct HeavyTop {
                                  const Params& params,
                                  VQMatrix<Scalar>* dr_dq,
                                  VMatrix<Scalar>* dr_dv) {
-    using std::cos;
-    using std::sin;
     const Scalar phi = q(0);
     const Scalar theta = q(1);
     const Scalar psi = q(2);
@@ -870,6 +945,9 @@ struct HeavyTop {
     const Scalar phi_ddot = qdd(0);
     const Scalar theta_ddot = qdd(1);
     const Scalar psi_ddot = qdd(2);
+    const Scalar sin_cos_of[3] = {phi, theta, psi};
+    Scalar sin_of[3], cos_of[3];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar m = Scalar(params.m);
     const Scalar d = Scalar(params.d);
     const Scalar r = Scalar(params.r);
@@ -881,18 +959,18 @@ struct HeavyTop {
     const Scalar tmp9 = (h*h);
     const Scalar tmp10 = -tmp8 + ((Scalar(1)/Scalar(12)))*m*(tmp9 + Scalar(3)*tmp6);
     const Scalar tmp140 = (d*d);
-    const Scalar tmp141 = sin(phi);
+    const Scalar tmp141 = sin_of[0];
     const Scalar tmp142 = (tmp141*tmp141);
-    const Scalar tmp143 = sin(theta);
+    const Scalar tmp143 = sin_of[1];
     const Scalar tmp144 = (tmp143*tmp143);
     const Scalar tmp145 = tmp142*tmp144;
-    const Scalar tmp146 = cos(phi);
+    const Scalar tmp146 = cos_of[0];
     const Scalar tmp147 = (tmp146*tmp146);
     const Scalar tmp148 = tmp144*tmp147;
-    const Scalar tmp149 = sin(psi);
+    const Scalar tmp149 = sin_of[2];
     const Scalar tmp150 = tmp141*tmp149;
-    const Scalar tmp151 = cos(theta);
-    const Scalar tmp152 = cos(psi);
+    const Scalar tmp151 = cos_of[1];
+    const Scalar tmp152 = cos_of[2];
     const Scalar tmp153 = tmp146*tmp152;
     const Scalar tmp154 = tmp151*tmp153;
     const Scalar tmp155 = tmp150 - tmp154;
@@ -1312,14 +1390,15 @@ struct HeavyTop {
                                const VVector<Scalar>& v,
                                const Scalar& /*t*/,
                                const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar phi = q(0);
     const Scalar theta = q(1);
     const Scalar psi = q(2);
     const Scalar phi_dot = v(0);
     const Scalar theta_dot = v(1);
     const Scalar psi_dot = v(2);
+    const Scalar sin_cos_of[3] = {phi, theta, psi};
+    Scalar sin_of[3], cos_of[3];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar m = Scalar(params.m);
     const Scalar d = Scalar(params.d);
     const Scalar r = Scalar(params.r);
@@ -1330,14 +1409,14 @@ struct HeavyTop {
     const Scalar tmp9 = (h*h);
     const Scalar tmp10 = -tmp8 + ((Scalar(1)/Scalar(12)))*m*(tmp9 + Scalar(3)*tmp6);
     const Scalar tmp140 = (d*d);
-    const Scalar tmp141 = sin(phi);
-    const Scalar tmp143 = sin(theta);
+    const Scalar tmp141 = sin_of[0];
+    const Scalar tmp143 = sin_of[1];
     const Scalar tmp144 = (tmp143*tmp143);
-    const Scalar tmp146 = cos(phi);
-    const Scalar tmp149 = sin(psi);
+    const Scalar tmp146 = cos_of[0];
+    const Scalar tmp149 = sin_of[2];
     const Scalar tmp150 = tmp141*tmp149;
-    const Scalar tmp151 = cos(theta);
-    const Scalar tmp152 = cos(psi);
+    const Scalar tmp151 = cos_of[1];
+    const Scalar tmp152 = cos_of[2];
     const Scalar tmp153 = tmp146*tmp152;
     const Scalar tmp154 = tmp151*tmp153;
     const Scalar tmp155 = tmp150 - tmp154;
@@ -1444,14 +1523,15 @@ struct HeavyTop {
                        const VVector<Scalar>& v,
                        const Scalar& /*t*/,
                        const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar phi = q(0);
     const Scalar theta = q(1);
     const Scalar psi = q(2);
     const Scalar phi_dot = v(0);
     const Scalar theta_dot = v(1);
     const Scalar psi_dot = v(2);
+    const Scalar sin_cos_of[3] = {phi, theta, psi};
+    Scalar sin_of[3], cos_of[3];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar m = Scalar(params.m);
     const Scalar d = Scalar(params.d);
     const Scalar r = Scalar(params.r);
@@ -1463,14 +1543,14 @@ struct HeavyTop {
     const Scalar tmp9 = (h*h);
     const Scalar tmp10 = -tmp8 + ((Scalar(1)/Scalar(12)))*m*(tmp9 + Scalar(3)*tmp6);
     const Scalar tmp140 = (d*d);
-    const Scalar tmp141 = sin(phi);
-    const Scalar tmp143 = sin(theta);
+    const Scalar tmp141 = sin_of[0];
+    const Scalar tmp143 = sin_of[1];
     const Scalar tmp144 = (tmp143*tmp143);
-    const Scalar tmp146 = cos(phi);
-    const Scalar tmp149 = sin(psi);
+    const Scalar tmp146 = cos_of[0];
+    const Scalar tmp149 = sin_of[2];
     const Scalar tmp150 = tmp141*tmp149;
-    const Scalar tmp151 = cos(theta);
-    const Scalar tmp152 = cos(psi);
+    const Scalar tmp151 = cos_of[1];
+    const Scalar tmp152 = cos_of[2];
     const Scalar tmp153 = tmp146*tmp152;
     const Scalar tmp154 = tmp151*tmp153;
     const Scalar tmp155 = tmp150 - tmp154;
@@ -1539,12 +1619,13 @@ struct HeavyTop {
                                    const Scalar& /*t*/,
                                    const Params& params) {
     using std::abs;
-    using std::cos;
-    using std::sin;
     using std::sqrt;
     const Scalar phi = q(0);
     const Scalar theta = q(1);
     const Scalar psi = q(2);
+    const Scalar sin_cos_of[3] = {phi, theta, psi};
+    Scalar sin_of[3], cos_of[3];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar m = Scalar(params.m);
     const Scalar d = Scalar(params.d);
     const Scalar r = Scalar(params.r);
@@ -1556,13 +1637,13 @@ struct HeavyTop {
     const Scalar tmp10 = -tmp8 + ((Scalar(1)/Scalar(12)))*m*(tmp9 + Scalar(3)*tmp6);
     const Scalar tmp58 = abs(r);
     const Scalar tmp130 = sqrt(tmp10)/sqrt(m);
-    const Scalar tmp141 = sin(phi);
-    const Scalar tmp143 = sin(theta);
-    const Scalar tmp146 = cos(phi);
-    const Scalar tmp149 = sin(psi);
+    const Scalar tmp141 = sin_of[0];
+    const Scalar tmp143 = sin_of[1];
+    const Scalar tmp146 = cos_of[0];
+    const Scalar tmp149 = sin_of[2];
     const Scalar tmp150 = tmp141*tmp149;
-    const Scalar tmp151 = cos(theta);
-    const Scalar tmp152 = cos(psi);
+    const Scalar tmp151 = cos_of[1];
+    const Scalar tmp152 = cos_of[2];
     const Scalar tmp153 = tmp146*tmp152;
     const Scalar tmp154 = tmp151*tmp153;
     const Scalar tmp155 = tmp150 - tmp154;
@@ -1647,8 +1728,6 @@ struct HeavyTop {
                                     const Scalar& /*t*/,
                                     const Params& params) {
     using std::abs;
-    using std::cos;
-    using std::sin;
     using std::sqrt;
     const Scalar phi = q(0);
     const Scalar theta = q(1);
@@ -1656,6 +1735,9 @@ struct HeavyTop {
     const Scalar phi_dot = v(0);
     const Scalar theta_dot = v(1);
     const Scalar psi_dot = v(2);
+    const Scalar sin_cos_of[3] = {phi, theta, psi};
+    Scalar sin_of[3], cos_of[3];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar m = Scalar(params.m);
     const Scalar d = Scalar(params.d);
     const Scalar r = Scalar(params.r);
@@ -1667,13 +1749,13 @@ struct HeavyTop {
     const Scalar tmp10 = -tmp8 + ((Scalar(1)/Scalar(12)))*m*(tmp9 + Scalar(3)*tmp6);
     const Scalar tmp58 = abs(r);
     const Scalar tmp130 = sqrt(tmp10)/sqrt(m);
-    const Scalar tmp141 = sin(phi);
-    const Scalar tmp143 = sin(theta);
-    const Scalar tmp146 = cos(phi);
-    const Scalar tmp149 = sin(psi);
+    const Scalar tmp141 = sin_of[0];
+    const Scalar tmp143 = sin_of[1];
+    const Scalar tmp146 = cos_of[0];
+    const Scalar tmp149 = sin_of[2];
     const Scalar tmp150 = tmp141*tmp149;
-    const Scalar tmp151 = cos(theta);
-    const Scalar tmp152 = cos(psi);
+    const Scalar tmp151 = cos_of[1];
+    const Scalar tmp152 = cos_of[2];
     const Scalar tmp153 = tmp146*tmp152;
     const Scalar tmp154 = tmp151*tmp153;
     const Scalar tmp155 = tmp150 - tmp154;
@@ -1827,12 +1909,13 @@ struct HeavyTop {
                                     const Scalar& /*t*/,
                                     const Params& params) {
     using std::abs;
-    using std::cos;
-    using std::sin;
     using std::sqrt;
     const Scalar phi = q(0);
     const Scalar theta = q(1);
     const Scalar psi = q(2);
+    const Scalar sin_cos_of[3] = {phi, theta, psi};
+    Scalar sin_of[3], cos_of[3];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar m = Scalar(params.m);
     const Scalar d = Scalar(params.d);
     const Scalar r = Scalar(params.r);
@@ -1844,13 +1927,13 @@ struct HeavyTop {
     const Scalar tmp10 = -tmp8 + ((Scalar(1)/Scalar(12)))*m*(tmp9 + Scalar(3)*tmp6);
     const Scalar tmp58 = abs(r);
     const Scalar tmp130 = sqrt(tmp10)/sqrt(m);
-    const Scalar tmp141 = sin(phi);
-    const Scalar tmp143 = sin(theta);
-    const Scalar tmp146 = cos(phi);
-    const Scalar tmp149 = sin(psi);
+    const Scalar tmp141 = sin_of[0];
+    const Scalar tmp143 = sin_of[1];
+    const Scalar tmp146 = cos_of[0];
+    const Scalar tmp149 = sin_of[2];
     const Scalar tmp150 = tmp141*tmp149;
-    const Scalar tmp151 = cos(theta);
-    const Scalar tmp152 = cos(psi);
+    const Scalar tmp151 = cos_of[1];
+    const Scalar tmp152 = cos_of[2];
     const Scalar tmp153 = tmp146*tmp152;
     const Scalar tmp154 = tmp151*tmp153;
     const Scalar tmp155 = tmp150 - tmp154;
@@ -2022,8 +2105,6 @@ struct HeavyTop {
                                            const Scalar& /*t*/,
                                            const Params& params) {
     using std::abs;
-    using std::cos;
-    using std::sin;
     using std::sqrt;
     const Scalar phi = q(0);
     const Scalar theta = q(1);
@@ -2031,6 +2112,9 @@ struct HeavyTop {
     const Scalar phi_dot = v(0);
     const Scalar theta_dot = v(1);
     const Scalar psi_dot = v(2);
+    const Scalar sin_cos_of[3] = {phi, theta, psi};
+    Scalar sin_of[3], cos_of[3];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar m = Scalar(params.m);
     const Scalar d = Scalar(params.d);
     const Scalar r = Scalar(params.r);
@@ -2042,13 +2126,13 @@ struct HeavyTop {
     const Scalar tmp10 = -tmp8 + ((Scalar(1)/Scalar(12)))*m*(tmp9 + Scalar(3)*tmp6);
     const Scalar tmp58 = abs(r);
     const Scalar tmp130 = sqrt(tmp10)/sqrt(m);
-    const Scalar tmp141 = sin(phi);
-    const Scalar tmp143 = sin(theta);
-    const Scalar tmp146 = cos(phi);
-    const Scalar tmp149 = sin(psi);
+    const Scalar tmp141 = sin_of[0];
+    const Scalar tmp143 = sin_of[1];
+    const Scalar tmp146 = cos_of[0];
+    const Scalar tmp149 = sin_of[2];
     const Scalar tmp150 = tmp141*tmp149;
-    const Scalar tmp151 = cos(theta);
-    const Scalar tmp152 = cos(psi);
+    const Scalar tmp151 = cos_of[1];
+    const Scalar tmp152 = cos_of[2];
     const Scalar tmp153 = tmp146*tmp152;
     const Scalar tmp154 = tmp151*tmp153;
     const Scalar tmp155 = tmp150 - tmp154;
@@ -2226,18 +2310,19 @@ struct HeavyTop {
                                              const VVector<Scalar>& v,
                                              const Scalar& /*t*/,
                                              const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar phi = q(0);
     const Scalar theta = q(1);
     const Scalar phi_dot = v(0);
     const Scalar theta_dot = v(1);
+    const Scalar sin_cos_of[2] = {phi, theta};
+    Scalar sin_of[2], cos_of[2];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar m = Scalar(params.m);
     const Scalar d = Scalar(params.d);
-    const Scalar tmp141 = sin(phi);
-    const Scalar tmp143 = sin(theta);
-    const Scalar tmp146 = cos(phi);
-    const Scalar tmp151 = cos(theta);
+    const Scalar tmp141 = sin_of[0];
+    const Scalar tmp143 = sin_of[1];
+    const Scalar tmp146 = cos_of[0];
+    const Scalar tmp151 = cos_of[1];
     const Scalar tmp189 = tmp143*d;
     const Scalar tmp192 = tmp146*tmp189;
     const Scalar tmp193 = tmp151*d;
@@ -2264,14 +2349,15 @@ struct HeavyTop {
                                                 const VVector<Scalar>& v,
                                                 const Scalar& /*t*/,
                                                 const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar phi = q(0);
     const Scalar theta = q(1);
     const Scalar psi = q(2);
     const Scalar phi_dot = v(0);
     const Scalar theta_dot = v(1);
     const Scalar psi_dot = v(2);
+    const Scalar sin_cos_of[3] = {phi, theta, psi};
+    Scalar sin_of[3], cos_of[3];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar m = Scalar(params.m);
     const Scalar d = Scalar(params.d);
     const Scalar r = Scalar(params.r);
@@ -2282,14 +2368,14 @@ struct HeavyTop {
     const Scalar tmp9 = (h*h);
     const Scalar tmp10 = -tmp8 + ((Scalar(1)/Scalar(12)))*m*(tmp9 + Scalar(3)*tmp6);
     const Scalar tmp140 = (d*d);
-    const Scalar tmp141 = sin(phi);
-    const Scalar tmp143 = sin(theta);
+    const Scalar tmp141 = sin_of[0];
+    const Scalar tmp143 = sin_of[1];
     const Scalar tmp144 = (tmp143*tmp143);
-    const Scalar tmp146 = cos(phi);
-    const Scalar tmp149 = sin(psi);
+    const Scalar tmp146 = cos_of[0];
+    const Scalar tmp149 = sin_of[2];
     const Scalar tmp150 = tmp141*tmp149;
-    const Scalar tmp151 = cos(theta);
-    const Scalar tmp152 = cos(psi);
+    const Scalar tmp151 = cos_of[1];
+    const Scalar tmp152 = cos_of[2];
     const Scalar tmp153 = tmp146*tmp152;
     const Scalar tmp154 = tmp151*tmp153;
     const Scalar tmp155 = tmp150 - tmp154;

@@ -24,6 +24,78 @@
 
 #include <Eigen/Cholesky>
 #include <Eigen/Core>
+// gencoord_kernel_math::sin_cos(x, s, c) sets s[i] = sin(x[i]) and c[i] = cos(x[i]). For
+// double on x86-64 with glibc it works in vector registers, through glibc's vector math
+// library (libmvec, which C++ programs link through libm; within 4 ulp, as its manual states):
+// 4 lanes a call where the compiler targets AVX2, 2 otherwise. The inline namespace keeps the
+// two apart when objects of both are linked together. Elsewhere, or with GENCOORD_NO_LIBMVEC
+// defined, it calls sin and cos.
+#ifndef GENCOORD_KERNEL_SIN_COS
+#define GENCOORD_KERNEL_SIN_COS
+#if defined(__x86_64__) && defined(__GLIBC__) && !defined(GENCOORD_NO_LIBMVEC)
+#include <immintrin.h>
+#define GENCOORD_KERNEL_LIBMVEC 1
+extern "C" {
+#if defined(__AVX2__)
+__m256d _ZGVdN4v_sin(__m256d);
+__m256d _ZGVdN4v_cos(__m256d);
+#else
+__m128d _ZGVbN2v_sin(__m128d);
+__m128d _ZGVbN2v_cos(__m128d);
+#endif
+}
+#endif
+
+namespace gencoord_kernel_math {
+#if defined(GENCOORD_KERNEL_LIBMVEC) && defined(__AVX2__)
+inline namespace avx2 {
+constexpr int kLanes = 4;
+inline void sin_cos_lanes(const double* x, double* s, double* c) {
+  const __m256d lanes = _mm256_loadu_pd(x);
+  _mm256_storeu_pd(s, _ZGVdN4v_sin(lanes));
+  _mm256_storeu_pd(c, _ZGVdN4v_cos(lanes));
+}
+#elif defined(GENCOORD_KERNEL_LIBMVEC)
+inline namespace sse2 {
+constexpr int kLanes = 2;
+inline void sin_cos_lanes(const double* x, double* s, double* c) {
+  const __m128d lanes = _mm_loadu_pd(x);
+  _mm_storeu_pd(s, _ZGVbN2v_sin(lanes));
+  _mm_storeu_pd(c, _ZGVbN2v_cos(lanes));
+}
+#else
+inline namespace scalar {
+#endif
+
+template <class Scalar, int n>
+inline void sin_cos(const Scalar (&x)[n], Scalar (&s)[n], Scalar (&c)[n]) {
+  using std::cos;
+  using std::sin;
+  for (int i = 0; i < n; ++i) {
+    s[i] = sin(x[i]);
+    c[i] = cos(x[i]);
+  }
+}
+
+#ifdef GENCOORD_KERNEL_LIBMVEC
+template <int n>
+inline void sin_cos(const double (&x)[n], double (&s)[n], double (&c)[n]) {
+  constexpr int whole = n - n % kLanes;
+  for (int i = 0; i < whole; i += kLanes) sin_cos_lanes(x + i, s + i, c + i);
+  if constexpr (whole < n) {  // the rest, padded with copies of the last argument
+    double rest[kLanes], sines[kLanes], cosines[kLanes];
+    for (int k = 0; k < kLanes; ++k) rest[k] = x[whole + k < n ? whole + k : n - 1];
+    sin_cos_lanes(rest, sines, cosines);
+    for (int i = whole; i < n; ++i) {
+      s[i] = sines[i - whole];
+      c[i] = cosines[i - whole];
+    }
+  }
+}
+#endif
+}  // inline namespace
+}  // namespace gencoord_kernel_math
+#endif  // GENCOORD_KERNEL_SIN_COS
 
 /*
  * Planar n-link chain (n-link pendulum): point masses on massless rods, absolute angles.
@@ -241,8 +313,6 @@ struct NLinkChain10 {
   static VMatrix<Scalar> mass_matrix(const QVector<Scalar>& q,
                                      const Scalar& /*t*/,
                                      const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar theta1 = q(0);
     const Scalar theta2 = q(1);
     const Scalar theta3 = q(2);
@@ -253,6 +323,10 @@ struct NLinkChain10 {
     const Scalar theta8 = q(7);
     const Scalar theta9 = q(8);
     const Scalar theta10 = q(9);
+    const Scalar sin_cos_of[10] = {theta1, theta2, theta3, theta4, theta5, theta6, theta7, theta8,
+        theta9, theta10};
+    Scalar sin_of[10], cos_of[10];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar l1 = Scalar(params.l1);
     const Scalar m1 = Scalar(params.m1);
     const Scalar l2 = Scalar(params.l2);
@@ -273,26 +347,26 @@ struct NLinkChain10 {
     const Scalar m9 = Scalar(params.m9);
     const Scalar l10 = Scalar(params.l10);
     const Scalar m10 = Scalar(params.m10);
-    const Scalar tmp0 = l1*cos(theta1);
-    const Scalar tmp1 = l1*sin(theta1);
-    const Scalar tmp8 = l2*cos(theta2);
-    const Scalar tmp9 = l2*sin(theta2);
-    const Scalar tmp17 = l3*cos(theta3);
-    const Scalar tmp18 = l3*sin(theta3);
-    const Scalar tmp26 = l4*cos(theta4);
-    const Scalar tmp27 = l4*sin(theta4);
-    const Scalar tmp35 = l5*cos(theta5);
-    const Scalar tmp36 = l5*sin(theta5);
-    const Scalar tmp44 = l6*cos(theta6);
-    const Scalar tmp45 = l6*sin(theta6);
-    const Scalar tmp53 = l7*cos(theta7);
-    const Scalar tmp54 = l7*sin(theta7);
-    const Scalar tmp62 = l8*cos(theta8);
-    const Scalar tmp63 = l8*sin(theta8);
-    const Scalar tmp71 = l9*cos(theta9);
-    const Scalar tmp72 = l9*sin(theta9);
-    const Scalar tmp80 = l10*cos(theta10);
-    const Scalar tmp81 = l10*sin(theta10);
+    const Scalar tmp0 = l1*cos_of[0];
+    const Scalar tmp1 = l1*sin_of[0];
+    const Scalar tmp8 = l2*cos_of[1];
+    const Scalar tmp9 = l2*sin_of[1];
+    const Scalar tmp17 = l3*cos_of[2];
+    const Scalar tmp18 = l3*sin_of[2];
+    const Scalar tmp26 = l4*cos_of[3];
+    const Scalar tmp27 = l4*sin_of[3];
+    const Scalar tmp35 = l5*cos_of[4];
+    const Scalar tmp36 = l5*sin_of[4];
+    const Scalar tmp44 = l6*cos_of[5];
+    const Scalar tmp45 = l6*sin_of[5];
+    const Scalar tmp53 = l7*cos_of[6];
+    const Scalar tmp54 = l7*sin_of[6];
+    const Scalar tmp62 = l8*cos_of[7];
+    const Scalar tmp63 = l8*sin_of[7];
+    const Scalar tmp71 = l9*cos_of[8];
+    const Scalar tmp72 = l9*sin_of[8];
+    const Scalar tmp80 = l10*cos_of[9];
+    const Scalar tmp81 = l10*sin_of[9];
     const Scalar tmp89 = tmp80*m10;
     const Scalar tmp90 = tmp81*m10;
     const Scalar tmp91 = tmp80*tmp89 + tmp81*tmp90;
@@ -493,7 +567,6 @@ struct NLinkChain10 {
                                         const VVector<Scalar>& /*v*/,
                                         const Scalar& /*t*/,
                                         const Params& params) {
-    using std::sin;
     const Scalar theta1 = q(0);
     const Scalar theta2 = q(1);
     const Scalar theta3 = q(2);
@@ -504,6 +577,10 @@ struct NLinkChain10 {
     const Scalar theta8 = q(7);
     const Scalar theta9 = q(8);
     const Scalar theta10 = q(9);
+    const Scalar sin_cos_of[10] = {theta1, theta2, theta3, theta4, theta5, theta6, theta7, theta8,
+        theta9, theta10};
+    Scalar sin_of[10], cos_of[10];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar g = Scalar(params.g);
     const Scalar l1 = Scalar(params.l1);
     const Scalar m1 = Scalar(params.m1);
@@ -525,16 +602,16 @@ struct NLinkChain10 {
     const Scalar m9 = Scalar(params.m9);
     const Scalar l10 = Scalar(params.l10);
     const Scalar m10 = Scalar(params.m10);
-    const Scalar tmp1 = l1*sin(theta1);
-    const Scalar tmp9 = l2*sin(theta2);
-    const Scalar tmp18 = l3*sin(theta3);
-    const Scalar tmp27 = l4*sin(theta4);
-    const Scalar tmp36 = l5*sin(theta5);
-    const Scalar tmp45 = l6*sin(theta6);
-    const Scalar tmp54 = l7*sin(theta7);
-    const Scalar tmp63 = l8*sin(theta8);
-    const Scalar tmp72 = l9*sin(theta9);
-    const Scalar tmp81 = l10*sin(theta10);
+    const Scalar tmp1 = l1*sin_of[0];
+    const Scalar tmp9 = l2*sin_of[1];
+    const Scalar tmp18 = l3*sin_of[2];
+    const Scalar tmp27 = l4*sin_of[3];
+    const Scalar tmp36 = l5*sin_of[4];
+    const Scalar tmp45 = l6*sin_of[5];
+    const Scalar tmp54 = l7*sin_of[6];
+    const Scalar tmp63 = l8*sin_of[7];
+    const Scalar tmp72 = l9*sin_of[8];
+    const Scalar tmp81 = l10*sin_of[9];
     const Scalar tmp375 = g*m10;
     const Scalar tmp376 = tmp81*tmp375;
     const Scalar tmp377 = g*m9;
@@ -617,8 +694,6 @@ struct NLinkChain10 {
                                          const VVector<Scalar>& v,
                                          const Scalar& /*t*/,
                                          const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar theta1 = q(0);
     const Scalar theta2 = q(1);
     const Scalar theta3 = q(2);
@@ -639,6 +714,10 @@ struct NLinkChain10 {
     const Scalar theta8_dot = v(7);
     const Scalar theta9_dot = v(8);
     const Scalar theta10_dot = v(9);
+    const Scalar sin_cos_of[10] = {theta1, theta2, theta3, theta4, theta5, theta6, theta7, theta8,
+        theta9, theta10};
+    Scalar sin_of[10], cos_of[10];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar l1 = Scalar(params.l1);
     const Scalar m1 = Scalar(params.m1);
     const Scalar l2 = Scalar(params.l2);
@@ -659,53 +738,53 @@ struct NLinkChain10 {
     const Scalar m9 = Scalar(params.m9);
     const Scalar l10 = Scalar(params.l10);
     const Scalar m10 = Scalar(params.m10);
-    const Scalar tmp0 = l1*cos(theta1);
-    const Scalar tmp1 = l1*sin(theta1);
+    const Scalar tmp0 = l1*cos_of[0];
+    const Scalar tmp1 = l1*sin_of[0];
     const Scalar tmp2 = (theta1_dot*theta1_dot);
     const Scalar tmp3 = -tmp1*tmp2;
     const Scalar tmp4 = tmp0*tmp2;
-    const Scalar tmp8 = l2*cos(theta2);
-    const Scalar tmp9 = l2*sin(theta2);
+    const Scalar tmp8 = l2*cos_of[1];
+    const Scalar tmp9 = l2*sin_of[1];
     const Scalar tmp10 = (theta2_dot*theta2_dot);
     const Scalar tmp11 = -tmp9*tmp10;
     const Scalar tmp12 = tmp8*tmp10;
-    const Scalar tmp17 = l3*cos(theta3);
-    const Scalar tmp18 = l3*sin(theta3);
+    const Scalar tmp17 = l3*cos_of[2];
+    const Scalar tmp18 = l3*sin_of[2];
     const Scalar tmp19 = (theta3_dot*theta3_dot);
     const Scalar tmp20 = -tmp18*tmp19;
     const Scalar tmp21 = tmp17*tmp19;
-    const Scalar tmp26 = l4*cos(theta4);
-    const Scalar tmp27 = l4*sin(theta4);
+    const Scalar tmp26 = l4*cos_of[3];
+    const Scalar tmp27 = l4*sin_of[3];
     const Scalar tmp28 = (theta4_dot*theta4_dot);
     const Scalar tmp29 = -tmp27*tmp28;
     const Scalar tmp30 = tmp28*tmp26;
-    const Scalar tmp35 = l5*cos(theta5);
-    const Scalar tmp36 = l5*sin(theta5);
+    const Scalar tmp35 = l5*cos_of[4];
+    const Scalar tmp36 = l5*sin_of[4];
     const Scalar tmp37 = (theta5_dot*theta5_dot);
     const Scalar tmp38 = -tmp36*tmp37;
     const Scalar tmp39 = tmp35*tmp37;
-    const Scalar tmp44 = l6*cos(theta6);
-    const Scalar tmp45 = l6*sin(theta6);
+    const Scalar tmp44 = l6*cos_of[5];
+    const Scalar tmp45 = l6*sin_of[5];
     const Scalar tmp46 = (theta6_dot*theta6_dot);
     const Scalar tmp47 = -tmp45*tmp46;
     const Scalar tmp48 = tmp44*tmp46;
-    const Scalar tmp53 = l7*cos(theta7);
-    const Scalar tmp54 = l7*sin(theta7);
+    const Scalar tmp53 = l7*cos_of[6];
+    const Scalar tmp54 = l7*sin_of[6];
     const Scalar tmp55 = (theta7_dot*theta7_dot);
     const Scalar tmp56 = -tmp54*tmp55;
     const Scalar tmp57 = tmp53*tmp55;
-    const Scalar tmp62 = l8*cos(theta8);
-    const Scalar tmp63 = l8*sin(theta8);
+    const Scalar tmp62 = l8*cos_of[7];
+    const Scalar tmp63 = l8*sin_of[7];
     const Scalar tmp64 = (theta8_dot*theta8_dot);
     const Scalar tmp65 = -tmp63*tmp64;
     const Scalar tmp66 = tmp62*tmp64;
-    const Scalar tmp71 = l9*cos(theta9);
-    const Scalar tmp72 = l9*sin(theta9);
+    const Scalar tmp71 = l9*cos_of[8];
+    const Scalar tmp72 = l9*sin_of[8];
     const Scalar tmp73 = (theta9_dot*theta9_dot);
     const Scalar tmp74 = -tmp72*tmp73;
     const Scalar tmp75 = tmp71*tmp73;
-    const Scalar tmp80 = l10*cos(theta10);
-    const Scalar tmp81 = l10*sin(theta10);
+    const Scalar tmp80 = l10*cos_of[9];
+    const Scalar tmp81 = l10*sin_of[9];
     const Scalar tmp82 = (theta10_dot*theta10_dot);
     const Scalar tmp83 = -tmp81*tmp82;
     const Scalar tmp84 = tmp80*tmp82;
@@ -793,8 +872,6 @@ struct NLinkChain10 {
                                 const VVector<Scalar>& v,
                                 const Scalar& /*t*/,
                                 const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar theta1 = q(0);
     const Scalar theta2 = q(1);
     const Scalar theta3 = q(2);
@@ -815,6 +892,10 @@ struct NLinkChain10 {
     const Scalar theta8_dot = v(7);
     const Scalar theta9_dot = v(8);
     const Scalar theta10_dot = v(9);
+    const Scalar sin_cos_of[10] = {theta1, theta2, theta3, theta4, theta5, theta6, theta7, theta8,
+        theta9, theta10};
+    Scalar sin_of[10], cos_of[10];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar g = Scalar(params.g);
     const Scalar l1 = Scalar(params.l1);
     const Scalar m1 = Scalar(params.m1);
@@ -836,53 +917,53 @@ struct NLinkChain10 {
     const Scalar m9 = Scalar(params.m9);
     const Scalar l10 = Scalar(params.l10);
     const Scalar m10 = Scalar(params.m10);
-    const Scalar tmp0 = l1*cos(theta1);
-    const Scalar tmp1 = l1*sin(theta1);
+    const Scalar tmp0 = l1*cos_of[0];
+    const Scalar tmp1 = l1*sin_of[0];
     const Scalar tmp2 = (theta1_dot*theta1_dot);
     const Scalar tmp3 = -tmp1*tmp2;
     const Scalar tmp4 = tmp0*tmp2;
-    const Scalar tmp8 = l2*cos(theta2);
-    const Scalar tmp9 = l2*sin(theta2);
+    const Scalar tmp8 = l2*cos_of[1];
+    const Scalar tmp9 = l2*sin_of[1];
     const Scalar tmp10 = (theta2_dot*theta2_dot);
     const Scalar tmp11 = -tmp9*tmp10;
     const Scalar tmp12 = tmp8*tmp10;
-    const Scalar tmp17 = l3*cos(theta3);
-    const Scalar tmp18 = l3*sin(theta3);
+    const Scalar tmp17 = l3*cos_of[2];
+    const Scalar tmp18 = l3*sin_of[2];
     const Scalar tmp19 = (theta3_dot*theta3_dot);
     const Scalar tmp20 = -tmp18*tmp19;
     const Scalar tmp21 = tmp17*tmp19;
-    const Scalar tmp26 = l4*cos(theta4);
-    const Scalar tmp27 = l4*sin(theta4);
+    const Scalar tmp26 = l4*cos_of[3];
+    const Scalar tmp27 = l4*sin_of[3];
     const Scalar tmp28 = (theta4_dot*theta4_dot);
     const Scalar tmp29 = -tmp27*tmp28;
     const Scalar tmp30 = tmp28*tmp26;
-    const Scalar tmp35 = l5*cos(theta5);
-    const Scalar tmp36 = l5*sin(theta5);
+    const Scalar tmp35 = l5*cos_of[4];
+    const Scalar tmp36 = l5*sin_of[4];
     const Scalar tmp37 = (theta5_dot*theta5_dot);
     const Scalar tmp38 = -tmp36*tmp37;
     const Scalar tmp39 = tmp35*tmp37;
-    const Scalar tmp44 = l6*cos(theta6);
-    const Scalar tmp45 = l6*sin(theta6);
+    const Scalar tmp44 = l6*cos_of[5];
+    const Scalar tmp45 = l6*sin_of[5];
     const Scalar tmp46 = (theta6_dot*theta6_dot);
     const Scalar tmp47 = -tmp45*tmp46;
     const Scalar tmp48 = tmp44*tmp46;
-    const Scalar tmp53 = l7*cos(theta7);
-    const Scalar tmp54 = l7*sin(theta7);
+    const Scalar tmp53 = l7*cos_of[6];
+    const Scalar tmp54 = l7*sin_of[6];
     const Scalar tmp55 = (theta7_dot*theta7_dot);
     const Scalar tmp56 = -tmp54*tmp55;
     const Scalar tmp57 = tmp53*tmp55;
-    const Scalar tmp62 = l8*cos(theta8);
-    const Scalar tmp63 = l8*sin(theta8);
+    const Scalar tmp62 = l8*cos_of[7];
+    const Scalar tmp63 = l8*sin_of[7];
     const Scalar tmp64 = (theta8_dot*theta8_dot);
     const Scalar tmp65 = -tmp63*tmp64;
     const Scalar tmp66 = tmp62*tmp64;
-    const Scalar tmp71 = l9*cos(theta9);
-    const Scalar tmp72 = l9*sin(theta9);
+    const Scalar tmp71 = l9*cos_of[8];
+    const Scalar tmp72 = l9*sin_of[8];
     const Scalar tmp73 = (theta9_dot*theta9_dot);
     const Scalar tmp74 = -tmp72*tmp73;
     const Scalar tmp75 = tmp71*tmp73;
-    const Scalar tmp80 = l10*cos(theta10);
-    const Scalar tmp81 = l10*sin(theta10);
+    const Scalar tmp80 = l10*cos_of[9];
+    const Scalar tmp81 = l10*sin_of[9];
     const Scalar tmp82 = (theta10_dot*theta10_dot);
     const Scalar tmp83 = -tmp81*tmp82;
     const Scalar tmp84 = tmp80*tmp82;
@@ -1011,8 +1092,6 @@ struct NLinkChain10 {
                        const Params& params,
                        VMatrix<Scalar>* Mt,
                        VVector<Scalar>* f) {
-    using std::cos;
-    using std::sin;
     const Scalar theta1 = q(0);
     const Scalar theta2 = q(1);
     const Scalar theta3 = q(2);
@@ -1033,6 +1112,10 @@ struct NLinkChain10 {
     const Scalar theta8_dot = v(7);
     const Scalar theta9_dot = v(8);
     const Scalar theta10_dot = v(9);
+    const Scalar sin_cos_of[10] = {theta1, theta2, theta3, theta4, theta5, theta6, theta7, theta8,
+        theta9, theta10};
+    Scalar sin_of[10], cos_of[10];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar g = Scalar(params.g);
     const Scalar l1 = Scalar(params.l1);
     const Scalar m1 = Scalar(params.m1);
@@ -1054,53 +1137,53 @@ struct NLinkChain10 {
     const Scalar m9 = Scalar(params.m9);
     const Scalar l10 = Scalar(params.l10);
     const Scalar m10 = Scalar(params.m10);
-    const Scalar tmp0 = l1*cos(theta1);
-    const Scalar tmp1 = l1*sin(theta1);
+    const Scalar tmp0 = l1*cos_of[0];
+    const Scalar tmp1 = l1*sin_of[0];
     const Scalar tmp2 = (theta1_dot*theta1_dot);
     const Scalar tmp3 = -tmp1*tmp2;
     const Scalar tmp4 = tmp0*tmp2;
-    const Scalar tmp8 = l2*cos(theta2);
-    const Scalar tmp9 = l2*sin(theta2);
+    const Scalar tmp8 = l2*cos_of[1];
+    const Scalar tmp9 = l2*sin_of[1];
     const Scalar tmp10 = (theta2_dot*theta2_dot);
     const Scalar tmp11 = -tmp9*tmp10;
     const Scalar tmp12 = tmp8*tmp10;
-    const Scalar tmp17 = l3*cos(theta3);
-    const Scalar tmp18 = l3*sin(theta3);
+    const Scalar tmp17 = l3*cos_of[2];
+    const Scalar tmp18 = l3*sin_of[2];
     const Scalar tmp19 = (theta3_dot*theta3_dot);
     const Scalar tmp20 = -tmp18*tmp19;
     const Scalar tmp21 = tmp17*tmp19;
-    const Scalar tmp26 = l4*cos(theta4);
-    const Scalar tmp27 = l4*sin(theta4);
+    const Scalar tmp26 = l4*cos_of[3];
+    const Scalar tmp27 = l4*sin_of[3];
     const Scalar tmp28 = (theta4_dot*theta4_dot);
     const Scalar tmp29 = -tmp27*tmp28;
     const Scalar tmp30 = tmp28*tmp26;
-    const Scalar tmp35 = l5*cos(theta5);
-    const Scalar tmp36 = l5*sin(theta5);
+    const Scalar tmp35 = l5*cos_of[4];
+    const Scalar tmp36 = l5*sin_of[4];
     const Scalar tmp37 = (theta5_dot*theta5_dot);
     const Scalar tmp38 = -tmp36*tmp37;
     const Scalar tmp39 = tmp35*tmp37;
-    const Scalar tmp44 = l6*cos(theta6);
-    const Scalar tmp45 = l6*sin(theta6);
+    const Scalar tmp44 = l6*cos_of[5];
+    const Scalar tmp45 = l6*sin_of[5];
     const Scalar tmp46 = (theta6_dot*theta6_dot);
     const Scalar tmp47 = -tmp45*tmp46;
     const Scalar tmp48 = tmp44*tmp46;
-    const Scalar tmp53 = l7*cos(theta7);
-    const Scalar tmp54 = l7*sin(theta7);
+    const Scalar tmp53 = l7*cos_of[6];
+    const Scalar tmp54 = l7*sin_of[6];
     const Scalar tmp55 = (theta7_dot*theta7_dot);
     const Scalar tmp56 = -tmp54*tmp55;
     const Scalar tmp57 = tmp53*tmp55;
-    const Scalar tmp62 = l8*cos(theta8);
-    const Scalar tmp63 = l8*sin(theta8);
+    const Scalar tmp62 = l8*cos_of[7];
+    const Scalar tmp63 = l8*sin_of[7];
     const Scalar tmp64 = (theta8_dot*theta8_dot);
     const Scalar tmp65 = -tmp63*tmp64;
     const Scalar tmp66 = tmp62*tmp64;
-    const Scalar tmp71 = l9*cos(theta9);
-    const Scalar tmp72 = l9*sin(theta9);
+    const Scalar tmp71 = l9*cos_of[8];
+    const Scalar tmp72 = l9*sin_of[8];
     const Scalar tmp73 = (theta9_dot*theta9_dot);
     const Scalar tmp74 = -tmp72*tmp73;
     const Scalar tmp75 = tmp71*tmp73;
-    const Scalar tmp80 = l10*cos(theta10);
-    const Scalar tmp81 = l10*sin(theta10);
+    const Scalar tmp80 = l10*cos_of[9];
+    const Scalar tmp81 = l10*sin_of[9];
     const Scalar tmp82 = (theta10_dot*theta10_dot);
     const Scalar tmp83 = -tmp81*tmp82;
     const Scalar tmp84 = tmp80*tmp82;
@@ -1410,8 +1493,6 @@ struct NLinkChain10 {
                                const VVector<Scalar>& v,
                                const Scalar& /*t*/,
                                const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar theta1 = q(0);
     const Scalar theta2 = q(1);
     const Scalar theta3 = q(2);
@@ -1432,6 +1513,10 @@ struct NLinkChain10 {
     const Scalar theta8_dot = v(7);
     const Scalar theta9_dot = v(8);
     const Scalar theta10_dot = v(9);
+    const Scalar sin_cos_of[10] = {theta1, theta2, theta3, theta4, theta5, theta6, theta7, theta8,
+        theta9, theta10};
+    Scalar sin_of[10], cos_of[10];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar g = Scalar(params.g);
     const Scalar l1 = Scalar(params.l1);
     const Scalar m1 = Scalar(params.m1);
@@ -1453,53 +1538,53 @@ struct NLinkChain10 {
     const Scalar m9 = Scalar(params.m9);
     const Scalar l10 = Scalar(params.l10);
     const Scalar m10 = Scalar(params.m10);
-    const Scalar tmp0 = l1*cos(theta1);
-    const Scalar tmp1 = l1*sin(theta1);
+    const Scalar tmp0 = l1*cos_of[0];
+    const Scalar tmp1 = l1*sin_of[0];
     const Scalar tmp2 = (theta1_dot*theta1_dot);
     const Scalar tmp3 = -tmp1*tmp2;
     const Scalar tmp4 = tmp0*tmp2;
-    const Scalar tmp8 = l2*cos(theta2);
-    const Scalar tmp9 = l2*sin(theta2);
+    const Scalar tmp8 = l2*cos_of[1];
+    const Scalar tmp9 = l2*sin_of[1];
     const Scalar tmp10 = (theta2_dot*theta2_dot);
     const Scalar tmp11 = -tmp9*tmp10;
     const Scalar tmp12 = tmp8*tmp10;
-    const Scalar tmp17 = l3*cos(theta3);
-    const Scalar tmp18 = l3*sin(theta3);
+    const Scalar tmp17 = l3*cos_of[2];
+    const Scalar tmp18 = l3*sin_of[2];
     const Scalar tmp19 = (theta3_dot*theta3_dot);
     const Scalar tmp20 = -tmp18*tmp19;
     const Scalar tmp21 = tmp17*tmp19;
-    const Scalar tmp26 = l4*cos(theta4);
-    const Scalar tmp27 = l4*sin(theta4);
+    const Scalar tmp26 = l4*cos_of[3];
+    const Scalar tmp27 = l4*sin_of[3];
     const Scalar tmp28 = (theta4_dot*theta4_dot);
     const Scalar tmp29 = -tmp27*tmp28;
     const Scalar tmp30 = tmp28*tmp26;
-    const Scalar tmp35 = l5*cos(theta5);
-    const Scalar tmp36 = l5*sin(theta5);
+    const Scalar tmp35 = l5*cos_of[4];
+    const Scalar tmp36 = l5*sin_of[4];
     const Scalar tmp37 = (theta5_dot*theta5_dot);
     const Scalar tmp38 = -tmp36*tmp37;
     const Scalar tmp39 = tmp35*tmp37;
-    const Scalar tmp44 = l6*cos(theta6);
-    const Scalar tmp45 = l6*sin(theta6);
+    const Scalar tmp44 = l6*cos_of[5];
+    const Scalar tmp45 = l6*sin_of[5];
     const Scalar tmp46 = (theta6_dot*theta6_dot);
     const Scalar tmp47 = -tmp45*tmp46;
     const Scalar tmp48 = tmp44*tmp46;
-    const Scalar tmp53 = l7*cos(theta7);
-    const Scalar tmp54 = l7*sin(theta7);
+    const Scalar tmp53 = l7*cos_of[6];
+    const Scalar tmp54 = l7*sin_of[6];
     const Scalar tmp55 = (theta7_dot*theta7_dot);
     const Scalar tmp56 = -tmp54*tmp55;
     const Scalar tmp57 = tmp53*tmp55;
-    const Scalar tmp62 = l8*cos(theta8);
-    const Scalar tmp63 = l8*sin(theta8);
+    const Scalar tmp62 = l8*cos_of[7];
+    const Scalar tmp63 = l8*sin_of[7];
     const Scalar tmp64 = (theta8_dot*theta8_dot);
     const Scalar tmp65 = -tmp63*tmp64;
     const Scalar tmp66 = tmp62*tmp64;
-    const Scalar tmp71 = l9*cos(theta9);
-    const Scalar tmp72 = l9*sin(theta9);
+    const Scalar tmp71 = l9*cos_of[8];
+    const Scalar tmp72 = l9*sin_of[8];
     const Scalar tmp73 = (theta9_dot*theta9_dot);
     const Scalar tmp74 = -tmp72*tmp73;
     const Scalar tmp75 = tmp71*tmp73;
-    const Scalar tmp80 = l10*cos(theta10);
-    const Scalar tmp81 = l10*sin(theta10);
+    const Scalar tmp80 = l10*cos_of[9];
+    const Scalar tmp81 = l10*sin_of[9];
     const Scalar tmp82 = (theta10_dot*theta10_dot);
     const Scalar tmp83 = -tmp81*tmp82;
     const Scalar tmp84 = tmp80*tmp82;
@@ -1711,8 +1796,6 @@ struct NLinkChain10 {
                                           const VVector<Scalar>& qdd,
                                           const Scalar& /*t*/,
                                           const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar theta1 = q(0);
     const Scalar theta2 = q(1);
     const Scalar theta3 = q(2);
@@ -1743,6 +1826,10 @@ struct NLinkChain10 {
     const Scalar theta8_ddot = qdd(7);
     const Scalar theta9_ddot = qdd(8);
     const Scalar theta10_ddot = qdd(9);
+    const Scalar sin_cos_of[10] = {theta1, theta2, theta3, theta4, theta5, theta6, theta7, theta8,
+        theta9, theta10};
+    Scalar sin_of[10], cos_of[10];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar g = Scalar(params.g);
     const Scalar l1 = Scalar(params.l1);
     const Scalar m1 = Scalar(params.m1);
@@ -1764,53 +1851,53 @@ struct NLinkChain10 {
     const Scalar m9 = Scalar(params.m9);
     const Scalar l10 = Scalar(params.l10);
     const Scalar m10 = Scalar(params.m10);
-    const Scalar tmp0 = l1*cos(theta1);
-    const Scalar tmp1 = l1*sin(theta1);
+    const Scalar tmp0 = l1*cos_of[0];
+    const Scalar tmp1 = l1*sin_of[0];
     const Scalar tmp2 = (theta1_dot*theta1_dot);
     const Scalar tmp3 = -tmp1*tmp2;
     const Scalar tmp4 = tmp0*tmp2;
-    const Scalar tmp8 = l2*cos(theta2);
-    const Scalar tmp9 = l2*sin(theta2);
+    const Scalar tmp8 = l2*cos_of[1];
+    const Scalar tmp9 = l2*sin_of[1];
     const Scalar tmp10 = (theta2_dot*theta2_dot);
     const Scalar tmp11 = -tmp9*tmp10;
     const Scalar tmp12 = tmp8*tmp10;
-    const Scalar tmp17 = l3*cos(theta3);
-    const Scalar tmp18 = l3*sin(theta3);
+    const Scalar tmp17 = l3*cos_of[2];
+    const Scalar tmp18 = l3*sin_of[2];
     const Scalar tmp19 = (theta3_dot*theta3_dot);
     const Scalar tmp20 = -tmp18*tmp19;
     const Scalar tmp21 = tmp17*tmp19;
-    const Scalar tmp26 = l4*cos(theta4);
-    const Scalar tmp27 = l4*sin(theta4);
+    const Scalar tmp26 = l4*cos_of[3];
+    const Scalar tmp27 = l4*sin_of[3];
     const Scalar tmp28 = (theta4_dot*theta4_dot);
     const Scalar tmp29 = -tmp27*tmp28;
     const Scalar tmp30 = tmp28*tmp26;
-    const Scalar tmp35 = l5*cos(theta5);
-    const Scalar tmp36 = l5*sin(theta5);
+    const Scalar tmp35 = l5*cos_of[4];
+    const Scalar tmp36 = l5*sin_of[4];
     const Scalar tmp37 = (theta5_dot*theta5_dot);
     const Scalar tmp38 = -tmp36*tmp37;
     const Scalar tmp39 = tmp35*tmp37;
-    const Scalar tmp44 = l6*cos(theta6);
-    const Scalar tmp45 = l6*sin(theta6);
+    const Scalar tmp44 = l6*cos_of[5];
+    const Scalar tmp45 = l6*sin_of[5];
     const Scalar tmp46 = (theta6_dot*theta6_dot);
     const Scalar tmp47 = -tmp45*tmp46;
     const Scalar tmp48 = tmp44*tmp46;
-    const Scalar tmp53 = l7*cos(theta7);
-    const Scalar tmp54 = l7*sin(theta7);
+    const Scalar tmp53 = l7*cos_of[6];
+    const Scalar tmp54 = l7*sin_of[6];
     const Scalar tmp55 = (theta7_dot*theta7_dot);
     const Scalar tmp56 = -tmp54*tmp55;
     const Scalar tmp57 = tmp53*tmp55;
-    const Scalar tmp62 = l8*cos(theta8);
-    const Scalar tmp63 = l8*sin(theta8);
+    const Scalar tmp62 = l8*cos_of[7];
+    const Scalar tmp63 = l8*sin_of[7];
     const Scalar tmp64 = (theta8_dot*theta8_dot);
     const Scalar tmp65 = -tmp63*tmp64;
     const Scalar tmp66 = tmp62*tmp64;
-    const Scalar tmp71 = l9*cos(theta9);
-    const Scalar tmp72 = l9*sin(theta9);
+    const Scalar tmp71 = l9*cos_of[8];
+    const Scalar tmp72 = l9*sin_of[8];
     const Scalar tmp73 = (theta9_dot*theta9_dot);
     const Scalar tmp74 = -tmp72*tmp73;
     const Scalar tmp75 = tmp71*tmp73;
-    const Scalar tmp80 = l10*cos(theta10);
-    const Scalar tmp81 = l10*sin(theta10);
+    const Scalar tmp80 = l10*cos_of[9];
+    const Scalar tmp81 = l10*sin_of[9];
     const Scalar tmp82 = (theta10_dot*theta10_dot);
     const Scalar tmp83 = -tmp81*tmp82;
     const Scalar tmp84 = tmp80*tmp82;
@@ -1895,8 +1982,6 @@ struct NLinkChain10 {
                                  const Params& params,
                                  VQMatrix<Scalar>* dr_dq,
                                  VMatrix<Scalar>* dr_dv) {
-    using std::cos;
-    using std::sin;
     const Scalar theta1 = q(0);
     const Scalar theta2 = q(1);
     const Scalar theta3 = q(2);
@@ -1927,6 +2012,10 @@ struct NLinkChain10 {
     const Scalar theta8_ddot = qdd(7);
     const Scalar theta9_ddot = qdd(8);
     const Scalar theta10_ddot = qdd(9);
+    const Scalar sin_cos_of[10] = {theta1, theta2, theta3, theta4, theta5, theta6, theta7, theta8,
+        theta9, theta10};
+    Scalar sin_of[10], cos_of[10];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar g = Scalar(params.g);
     const Scalar l1 = Scalar(params.l1);
     const Scalar m1 = Scalar(params.m1);
@@ -1948,53 +2037,53 @@ struct NLinkChain10 {
     const Scalar m9 = Scalar(params.m9);
     const Scalar l10 = Scalar(params.l10);
     const Scalar m10 = Scalar(params.m10);
-    const Scalar tmp0 = l1*cos(theta1);
-    const Scalar tmp1 = l1*sin(theta1);
+    const Scalar tmp0 = l1*cos_of[0];
+    const Scalar tmp1 = l1*sin_of[0];
     const Scalar tmp2 = (theta1_dot*theta1_dot);
     const Scalar tmp3 = -tmp1*tmp2;
     const Scalar tmp4 = tmp0*tmp2;
-    const Scalar tmp8 = l2*cos(theta2);
-    const Scalar tmp9 = l2*sin(theta2);
+    const Scalar tmp8 = l2*cos_of[1];
+    const Scalar tmp9 = l2*sin_of[1];
     const Scalar tmp10 = (theta2_dot*theta2_dot);
     const Scalar tmp11 = -tmp9*tmp10;
     const Scalar tmp12 = tmp8*tmp10;
-    const Scalar tmp17 = l3*cos(theta3);
-    const Scalar tmp18 = l3*sin(theta3);
+    const Scalar tmp17 = l3*cos_of[2];
+    const Scalar tmp18 = l3*sin_of[2];
     const Scalar tmp19 = (theta3_dot*theta3_dot);
     const Scalar tmp20 = -tmp18*tmp19;
     const Scalar tmp21 = tmp17*tmp19;
-    const Scalar tmp26 = l4*cos(theta4);
-    const Scalar tmp27 = l4*sin(theta4);
+    const Scalar tmp26 = l4*cos_of[3];
+    const Scalar tmp27 = l4*sin_of[3];
     const Scalar tmp28 = (theta4_dot*theta4_dot);
     const Scalar tmp29 = -tmp27*tmp28;
     const Scalar tmp30 = tmp28*tmp26;
-    const Scalar tmp35 = l5*cos(theta5);
-    const Scalar tmp36 = l5*sin(theta5);
+    const Scalar tmp35 = l5*cos_of[4];
+    const Scalar tmp36 = l5*sin_of[4];
     const Scalar tmp37 = (theta5_dot*theta5_dot);
     const Scalar tmp38 = -tmp36*tmp37;
     const Scalar tmp39 = tmp35*tmp37;
-    const Scalar tmp44 = l6*cos(theta6);
-    const Scalar tmp45 = l6*sin(theta6);
+    const Scalar tmp44 = l6*cos_of[5];
+    const Scalar tmp45 = l6*sin_of[5];
     const Scalar tmp46 = (theta6_dot*theta6_dot);
     const Scalar tmp47 = -tmp45*tmp46;
     const Scalar tmp48 = tmp44*tmp46;
-    const Scalar tmp53 = l7*cos(theta7);
-    const Scalar tmp54 = l7*sin(theta7);
+    const Scalar tmp53 = l7*cos_of[6];
+    const Scalar tmp54 = l7*sin_of[6];
     const Scalar tmp55 = (theta7_dot*theta7_dot);
     const Scalar tmp56 = -tmp54*tmp55;
     const Scalar tmp57 = tmp53*tmp55;
-    const Scalar tmp62 = l8*cos(theta8);
-    const Scalar tmp63 = l8*sin(theta8);
+    const Scalar tmp62 = l8*cos_of[7];
+    const Scalar tmp63 = l8*sin_of[7];
     const Scalar tmp64 = (theta8_dot*theta8_dot);
     const Scalar tmp65 = -tmp63*tmp64;
     const Scalar tmp66 = tmp62*tmp64;
-    const Scalar tmp71 = l9*cos(theta9);
-    const Scalar tmp72 = l9*sin(theta9);
+    const Scalar tmp71 = l9*cos_of[8];
+    const Scalar tmp72 = l9*sin_of[8];
     const Scalar tmp73 = (theta9_dot*theta9_dot);
     const Scalar tmp74 = -tmp72*tmp73;
     const Scalar tmp75 = tmp71*tmp73;
-    const Scalar tmp80 = l10*cos(theta10);
-    const Scalar tmp81 = l10*sin(theta10);
+    const Scalar tmp80 = l10*cos_of[9];
+    const Scalar tmp81 = l10*sin_of[9];
     const Scalar tmp82 = (theta10_dot*theta10_dot);
     const Scalar tmp83 = -tmp81*tmp82;
     const Scalar tmp84 = tmp80*tmp82;
@@ -2039,8 +2128,8 @@ struct NLinkChain10 {
     const Scalar tmp322 = tmp319 + tmp280*m2;
     const Scalar tmp324 = tmp321 + tmp277*m1;
     const Scalar tmp325 = tmp322 + tmp278*m1;
-    const Scalar tmp688 = -l1*sin(theta1);
-    const Scalar tmp689 = l1*cos(theta1);
+    const Scalar tmp688 = -l1*sin_of[0];
+    const Scalar tmp689 = l1*cos_of[0];
     const Scalar tmp690 = -tmp2*tmp689;
     const Scalar tmp691 = tmp2*tmp688;
     const Scalar tmp692 = theta1_ddot*tmp688 + tmp690;
@@ -2075,8 +2164,8 @@ struct NLinkChain10 {
     const Scalar tmp721 = m1*tmp692 + tmp718;
     const Scalar tmp722 = m1*tmp693 + tmp719;
     const Scalar tmp723 = tmp324*tmp688 + tmp325*tmp689 + tmp0*tmp721 + tmp1*tmp722;
-    const Scalar tmp724 = -l2*sin(theta2);
-    const Scalar tmp725 = l2*cos(theta2);
+    const Scalar tmp724 = -l2*sin_of[1];
+    const Scalar tmp725 = l2*cos_of[1];
     const Scalar tmp726 = -tmp10*tmp725;
     const Scalar tmp727 = tmp10*tmp724;
     const Scalar tmp728 = theta2_ddot*tmp724 + tmp726;
@@ -2109,8 +2198,8 @@ struct NLinkChain10 {
     const Scalar tmp755 = m2*tmp729 + tmp752;
     const Scalar tmp756 = tmp321*tmp724 + tmp322*tmp725 + tmp8*tmp754 + tmp9*tmp755;
     const Scalar tmp757 = tmp0*tmp754 + tmp1*tmp755;
-    const Scalar tmp758 = -l3*sin(theta3);
-    const Scalar tmp759 = l3*cos(theta3);
+    const Scalar tmp758 = -l3*sin_of[2];
+    const Scalar tmp759 = l3*cos_of[2];
     const Scalar tmp760 = -tmp19*tmp759;
     const Scalar tmp761 = tmp19*tmp758;
     const Scalar tmp762 = theta3_ddot*tmp758 + tmp760;
@@ -2141,8 +2230,8 @@ struct NLinkChain10 {
     const Scalar tmp787 = tmp318*tmp758 + tmp319*tmp759 + tmp17*tmp785 + tmp18*tmp786;
     const Scalar tmp788 = tmp8*tmp785 + tmp9*tmp786;
     const Scalar tmp789 = tmp0*tmp785 + tmp1*tmp786;
-    const Scalar tmp790 = -l4*sin(theta4);
-    const Scalar tmp791 = l4*cos(theta4);
+    const Scalar tmp790 = -l4*sin_of[3];
+    const Scalar tmp791 = l4*cos_of[3];
     const Scalar tmp792 = -tmp28*tmp791;
     const Scalar tmp793 = tmp28*tmp790;
     const Scalar tmp794 = theta4_ddot*tmp790 + tmp792;
@@ -2171,8 +2260,8 @@ struct NLinkChain10 {
     const Scalar tmp817 = tmp17*tmp814 + tmp18*tmp815;
     const Scalar tmp818 = tmp8*tmp814 + tmp9*tmp815;
     const Scalar tmp819 = tmp0*tmp814 + tmp1*tmp815;
-    const Scalar tmp820 = -l5*sin(theta5);
-    const Scalar tmp821 = l5*cos(theta5);
+    const Scalar tmp820 = -l5*sin_of[4];
+    const Scalar tmp821 = l5*cos_of[4];
     const Scalar tmp822 = -tmp37*tmp821;
     const Scalar tmp823 = tmp37*tmp820;
     const Scalar tmp824 = theta5_ddot*tmp820 + tmp822;
@@ -2199,8 +2288,8 @@ struct NLinkChain10 {
     const Scalar tmp845 = tmp17*tmp841 + tmp18*tmp842;
     const Scalar tmp846 = tmp8*tmp841 + tmp9*tmp842;
     const Scalar tmp847 = tmp0*tmp841 + tmp1*tmp842;
-    const Scalar tmp848 = -l6*sin(theta6);
-    const Scalar tmp849 = l6*cos(theta6);
+    const Scalar tmp848 = -l6*sin_of[5];
+    const Scalar tmp849 = l6*cos_of[5];
     const Scalar tmp850 = -tmp46*tmp849;
     const Scalar tmp851 = tmp46*tmp848;
     const Scalar tmp852 = theta6_ddot*tmp848 + tmp850;
@@ -2225,8 +2314,8 @@ struct NLinkChain10 {
     const Scalar tmp871 = tmp17*tmp866 + tmp18*tmp867;
     const Scalar tmp872 = tmp8*tmp866 + tmp9*tmp867;
     const Scalar tmp873 = tmp0*tmp866 + tmp1*tmp867;
-    const Scalar tmp874 = -l7*sin(theta7);
-    const Scalar tmp875 = l7*cos(theta7);
+    const Scalar tmp874 = -l7*sin_of[6];
+    const Scalar tmp875 = l7*cos_of[6];
     const Scalar tmp876 = -tmp55*tmp875;
     const Scalar tmp877 = tmp55*tmp874;
     const Scalar tmp878 = theta7_ddot*tmp874 + tmp876;
@@ -2249,8 +2338,8 @@ struct NLinkChain10 {
     const Scalar tmp895 = tmp17*tmp889 + tmp18*tmp890;
     const Scalar tmp896 = tmp8*tmp889 + tmp9*tmp890;
     const Scalar tmp897 = tmp0*tmp889 + tmp1*tmp890;
-    const Scalar tmp898 = -l8*sin(theta8);
-    const Scalar tmp899 = l8*cos(theta8);
+    const Scalar tmp898 = -l8*sin_of[7];
+    const Scalar tmp899 = l8*cos_of[7];
     const Scalar tmp900 = -tmp64*tmp899;
     const Scalar tmp901 = tmp64*tmp898;
     const Scalar tmp902 = theta8_ddot*tmp898 + tmp900;
@@ -2271,8 +2360,8 @@ struct NLinkChain10 {
     const Scalar tmp917 = tmp17*tmp910 + tmp18*tmp911;
     const Scalar tmp918 = tmp8*tmp910 + tmp9*tmp911;
     const Scalar tmp919 = tmp0*tmp910 + tmp1*tmp911;
-    const Scalar tmp920 = -l9*sin(theta9);
-    const Scalar tmp921 = l9*cos(theta9);
+    const Scalar tmp920 = -l9*sin_of[8];
+    const Scalar tmp921 = l9*cos_of[8];
     const Scalar tmp922 = -tmp73*tmp921;
     const Scalar tmp923 = tmp73*tmp920;
     const Scalar tmp924 = theta9_ddot*tmp920 + tmp922;
@@ -2291,8 +2380,8 @@ struct NLinkChain10 {
     const Scalar tmp937 = tmp17*tmp929 + tmp18*tmp930;
     const Scalar tmp938 = tmp8*tmp929 + tmp9*tmp930;
     const Scalar tmp939 = tmp0*tmp929 + tmp1*tmp930;
-    const Scalar tmp940 = -l10*sin(theta10);
-    const Scalar tmp941 = l10*cos(theta10);
+    const Scalar tmp940 = -l10*sin_of[9];
+    const Scalar tmp941 = l10*cos_of[9];
     const Scalar tmp942 = -tmp82*tmp941;
     const Scalar tmp943 = tmp82*tmp940;
     const Scalar tmp944 = theta10_ddot*tmp940 + tmp942;
@@ -2763,8 +2852,6 @@ struct NLinkChain10 {
                                const VVector<Scalar>& v,
                                const Scalar& /*t*/,
                                const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar theta1 = q(0);
     const Scalar theta2 = q(1);
     const Scalar theta3 = q(2);
@@ -2785,6 +2872,10 @@ struct NLinkChain10 {
     const Scalar theta8_dot = v(7);
     const Scalar theta9_dot = v(8);
     const Scalar theta10_dot = v(9);
+    const Scalar sin_cos_of[10] = {theta1, theta2, theta3, theta4, theta5, theta6, theta7, theta8,
+        theta9, theta10};
+    Scalar sin_of[10], cos_of[10];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar l1 = Scalar(params.l1);
     const Scalar m1 = Scalar(params.m1);
     const Scalar l2 = Scalar(params.l2);
@@ -2805,44 +2896,44 @@ struct NLinkChain10 {
     const Scalar m9 = Scalar(params.m9);
     const Scalar l10 = Scalar(params.l10);
     const Scalar m10 = Scalar(params.m10);
-    const Scalar tmp0 = l1*cos(theta1);
-    const Scalar tmp1 = l1*sin(theta1);
+    const Scalar tmp0 = l1*cos_of[0];
+    const Scalar tmp1 = l1*sin_of[0];
     const Scalar tmp6 = tmp0*theta1_dot;
     const Scalar tmp7 = tmp1*theta1_dot;
-    const Scalar tmp8 = l2*cos(theta2);
-    const Scalar tmp9 = l2*sin(theta2);
+    const Scalar tmp8 = l2*cos_of[1];
+    const Scalar tmp9 = l2*sin_of[1];
     const Scalar tmp15 = tmp6 + tmp8*theta2_dot;
     const Scalar tmp16 = tmp7 + tmp9*theta2_dot;
-    const Scalar tmp17 = l3*cos(theta3);
-    const Scalar tmp18 = l3*sin(theta3);
+    const Scalar tmp17 = l3*cos_of[2];
+    const Scalar tmp18 = l3*sin_of[2];
     const Scalar tmp24 = tmp15 + tmp17*theta3_dot;
     const Scalar tmp25 = tmp16 + tmp18*theta3_dot;
-    const Scalar tmp26 = l4*cos(theta4);
-    const Scalar tmp27 = l4*sin(theta4);
+    const Scalar tmp26 = l4*cos_of[3];
+    const Scalar tmp27 = l4*sin_of[3];
     const Scalar tmp33 = tmp24 + tmp26*theta4_dot;
     const Scalar tmp34 = tmp25 + tmp27*theta4_dot;
-    const Scalar tmp35 = l5*cos(theta5);
-    const Scalar tmp36 = l5*sin(theta5);
+    const Scalar tmp35 = l5*cos_of[4];
+    const Scalar tmp36 = l5*sin_of[4];
     const Scalar tmp42 = tmp33 + tmp35*theta5_dot;
     const Scalar tmp43 = tmp34 + tmp36*theta5_dot;
-    const Scalar tmp44 = l6*cos(theta6);
-    const Scalar tmp45 = l6*sin(theta6);
+    const Scalar tmp44 = l6*cos_of[5];
+    const Scalar tmp45 = l6*sin_of[5];
     const Scalar tmp51 = tmp42 + tmp44*theta6_dot;
     const Scalar tmp52 = tmp43 + tmp45*theta6_dot;
-    const Scalar tmp53 = l7*cos(theta7);
-    const Scalar tmp54 = l7*sin(theta7);
+    const Scalar tmp53 = l7*cos_of[6];
+    const Scalar tmp54 = l7*sin_of[6];
     const Scalar tmp60 = tmp51 + tmp53*theta7_dot;
     const Scalar tmp61 = tmp52 + tmp54*theta7_dot;
-    const Scalar tmp62 = l8*cos(theta8);
-    const Scalar tmp63 = l8*sin(theta8);
+    const Scalar tmp62 = l8*cos_of[7];
+    const Scalar tmp63 = l8*sin_of[7];
     const Scalar tmp69 = tmp60 + tmp62*theta8_dot;
     const Scalar tmp70 = tmp61 + tmp63*theta8_dot;
-    const Scalar tmp71 = l9*cos(theta9);
-    const Scalar tmp72 = l9*sin(theta9);
+    const Scalar tmp71 = l9*cos_of[8];
+    const Scalar tmp72 = l9*sin_of[8];
     const Scalar tmp78 = tmp69 + tmp71*theta9_dot;
     const Scalar tmp79 = tmp70 + tmp72*theta9_dot;
-    const Scalar tmp80 = l10*cos(theta10);
-    const Scalar tmp81 = l10*sin(theta10);
+    const Scalar tmp80 = l10*cos_of[9];
+    const Scalar tmp81 = l10*sin_of[9];
     const Scalar tmp87 = tmp78 + tmp80*theta10_dot;
     const Scalar tmp88 = tmp79 + tmp81*theta10_dot;
     const Scalar tmp505 = (Scalar(0.5))*m1*((tmp6*tmp6) + (tmp7*tmp7));
@@ -2872,7 +2963,6 @@ struct NLinkChain10 {
   static Scalar potential_energy(const QVector<Scalar>& q,
                                  const Scalar& /*t*/,
                                  const Params& params) {
-    using std::cos;
     const Scalar theta1 = q(0);
     const Scalar theta2 = q(1);
     const Scalar theta3 = q(2);
@@ -2883,6 +2973,10 @@ struct NLinkChain10 {
     const Scalar theta8 = q(7);
     const Scalar theta9 = q(8);
     const Scalar theta10 = q(9);
+    const Scalar sin_cos_of[10] = {theta1, theta2, theta3, theta4, theta5, theta6, theta7, theta8,
+        theta9, theta10};
+    Scalar sin_of[10], cos_of[10];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar g = Scalar(params.g);
     const Scalar l1 = Scalar(params.l1);
     const Scalar m1 = Scalar(params.m1);
@@ -2904,25 +2998,25 @@ struct NLinkChain10 {
     const Scalar m9 = Scalar(params.m9);
     const Scalar l10 = Scalar(params.l10);
     const Scalar m10 = Scalar(params.m10);
-    const Scalar tmp0 = l1*cos(theta1);
+    const Scalar tmp0 = l1*cos_of[0];
     const Scalar tmp5 = -tmp0;
-    const Scalar tmp8 = l2*cos(theta2);
+    const Scalar tmp8 = l2*cos_of[1];
     const Scalar tmp14 = tmp5 - tmp8;
-    const Scalar tmp17 = l3*cos(theta3);
+    const Scalar tmp17 = l3*cos_of[2];
     const Scalar tmp23 = tmp14 - tmp17;
-    const Scalar tmp26 = l4*cos(theta4);
+    const Scalar tmp26 = l4*cos_of[3];
     const Scalar tmp32 = tmp23 - tmp26;
-    const Scalar tmp35 = l5*cos(theta5);
+    const Scalar tmp35 = l5*cos_of[4];
     const Scalar tmp41 = tmp32 - tmp35;
-    const Scalar tmp44 = l6*cos(theta6);
+    const Scalar tmp44 = l6*cos_of[5];
     const Scalar tmp50 = tmp41 - tmp44;
-    const Scalar tmp53 = l7*cos(theta7);
+    const Scalar tmp53 = l7*cos_of[6];
     const Scalar tmp59 = tmp50 - tmp53;
-    const Scalar tmp62 = l8*cos(theta8);
+    const Scalar tmp62 = l8*cos_of[7];
     const Scalar tmp68 = tmp59 - tmp62;
-    const Scalar tmp71 = l9*cos(theta9);
+    const Scalar tmp71 = l9*cos_of[8];
     const Scalar tmp77 = tmp68 - tmp71;
-    const Scalar tmp80 = l10*cos(theta10);
+    const Scalar tmp80 = l10*cos_of[9];
     const Scalar tmp86 = tmp77 - tmp80;
     const Scalar tmp375 = g*m10;
     const Scalar tmp377 = g*m9;
@@ -2968,8 +3062,6 @@ struct NLinkChain10 {
                        const VVector<Scalar>& v,
                        const Scalar& /*t*/,
                        const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar theta1 = q(0);
     const Scalar theta2 = q(1);
     const Scalar theta3 = q(2);
@@ -2990,6 +3082,10 @@ struct NLinkChain10 {
     const Scalar theta8_dot = v(7);
     const Scalar theta9_dot = v(8);
     const Scalar theta10_dot = v(9);
+    const Scalar sin_cos_of[10] = {theta1, theta2, theta3, theta4, theta5, theta6, theta7, theta8,
+        theta9, theta10};
+    Scalar sin_of[10], cos_of[10];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar g = Scalar(params.g);
     const Scalar l1 = Scalar(params.l1);
     const Scalar m1 = Scalar(params.m1);
@@ -3011,53 +3107,53 @@ struct NLinkChain10 {
     const Scalar m9 = Scalar(params.m9);
     const Scalar l10 = Scalar(params.l10);
     const Scalar m10 = Scalar(params.m10);
-    const Scalar tmp0 = l1*cos(theta1);
-    const Scalar tmp1 = l1*sin(theta1);
+    const Scalar tmp0 = l1*cos_of[0];
+    const Scalar tmp1 = l1*sin_of[0];
     const Scalar tmp5 = -tmp0;
     const Scalar tmp6 = tmp0*theta1_dot;
     const Scalar tmp7 = tmp1*theta1_dot;
-    const Scalar tmp8 = l2*cos(theta2);
-    const Scalar tmp9 = l2*sin(theta2);
+    const Scalar tmp8 = l2*cos_of[1];
+    const Scalar tmp9 = l2*sin_of[1];
     const Scalar tmp14 = tmp5 - tmp8;
     const Scalar tmp15 = tmp6 + tmp8*theta2_dot;
     const Scalar tmp16 = tmp7 + tmp9*theta2_dot;
-    const Scalar tmp17 = l3*cos(theta3);
-    const Scalar tmp18 = l3*sin(theta3);
+    const Scalar tmp17 = l3*cos_of[2];
+    const Scalar tmp18 = l3*sin_of[2];
     const Scalar tmp23 = tmp14 - tmp17;
     const Scalar tmp24 = tmp15 + tmp17*theta3_dot;
     const Scalar tmp25 = tmp16 + tmp18*theta3_dot;
-    const Scalar tmp26 = l4*cos(theta4);
-    const Scalar tmp27 = l4*sin(theta4);
+    const Scalar tmp26 = l4*cos_of[3];
+    const Scalar tmp27 = l4*sin_of[3];
     const Scalar tmp32 = tmp23 - tmp26;
     const Scalar tmp33 = tmp24 + tmp26*theta4_dot;
     const Scalar tmp34 = tmp25 + tmp27*theta4_dot;
-    const Scalar tmp35 = l5*cos(theta5);
-    const Scalar tmp36 = l5*sin(theta5);
+    const Scalar tmp35 = l5*cos_of[4];
+    const Scalar tmp36 = l5*sin_of[4];
     const Scalar tmp41 = tmp32 - tmp35;
     const Scalar tmp42 = tmp33 + tmp35*theta5_dot;
     const Scalar tmp43 = tmp34 + tmp36*theta5_dot;
-    const Scalar tmp44 = l6*cos(theta6);
-    const Scalar tmp45 = l6*sin(theta6);
+    const Scalar tmp44 = l6*cos_of[5];
+    const Scalar tmp45 = l6*sin_of[5];
     const Scalar tmp50 = tmp41 - tmp44;
     const Scalar tmp51 = tmp42 + tmp44*theta6_dot;
     const Scalar tmp52 = tmp43 + tmp45*theta6_dot;
-    const Scalar tmp53 = l7*cos(theta7);
-    const Scalar tmp54 = l7*sin(theta7);
+    const Scalar tmp53 = l7*cos_of[6];
+    const Scalar tmp54 = l7*sin_of[6];
     const Scalar tmp59 = tmp50 - tmp53;
     const Scalar tmp60 = tmp51 + tmp53*theta7_dot;
     const Scalar tmp61 = tmp52 + tmp54*theta7_dot;
-    const Scalar tmp62 = l8*cos(theta8);
-    const Scalar tmp63 = l8*sin(theta8);
+    const Scalar tmp62 = l8*cos_of[7];
+    const Scalar tmp63 = l8*sin_of[7];
     const Scalar tmp68 = tmp59 - tmp62;
     const Scalar tmp69 = tmp60 + tmp62*theta8_dot;
     const Scalar tmp70 = tmp61 + tmp63*theta8_dot;
-    const Scalar tmp71 = l9*cos(theta9);
-    const Scalar tmp72 = l9*sin(theta9);
+    const Scalar tmp71 = l9*cos_of[8];
+    const Scalar tmp72 = l9*sin_of[8];
     const Scalar tmp77 = tmp68 - tmp71;
     const Scalar tmp78 = tmp69 + tmp71*theta9_dot;
     const Scalar tmp79 = tmp70 + tmp72*theta9_dot;
-    const Scalar tmp80 = l10*cos(theta10);
-    const Scalar tmp81 = l10*sin(theta10);
+    const Scalar tmp80 = l10*cos_of[9];
+    const Scalar tmp81 = l10*sin_of[9];
     const Scalar tmp86 = tmp77 - tmp80;
     const Scalar tmp87 = tmp78 + tmp80*theta10_dot;
     const Scalar tmp88 = tmp79 + tmp81*theta10_dot;
@@ -3100,8 +3196,6 @@ struct NLinkChain10 {
   static XVector<Scalar> positions(const QVector<Scalar>& q,
                                    const Scalar& /*t*/,
                                    const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar theta1 = q(0);
     const Scalar theta2 = q(1);
     const Scalar theta3 = q(2);
@@ -3112,6 +3206,10 @@ struct NLinkChain10 {
     const Scalar theta8 = q(7);
     const Scalar theta9 = q(8);
     const Scalar theta10 = q(9);
+    const Scalar sin_cos_of[10] = {theta1, theta2, theta3, theta4, theta5, theta6, theta7, theta8,
+        theta9, theta10};
+    Scalar sin_of[10], cos_of[10];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar l1 = Scalar(params.l1);
     const Scalar l2 = Scalar(params.l2);
     const Scalar l3 = Scalar(params.l3);
@@ -3122,43 +3220,43 @@ struct NLinkChain10 {
     const Scalar l8 = Scalar(params.l8);
     const Scalar l9 = Scalar(params.l9);
     const Scalar l10 = Scalar(params.l10);
-    const Scalar tmp0 = l1*cos(theta1);
-    const Scalar tmp1 = l1*sin(theta1);
+    const Scalar tmp0 = l1*cos_of[0];
+    const Scalar tmp1 = l1*sin_of[0];
     const Scalar tmp5 = -tmp0;
-    const Scalar tmp8 = l2*cos(theta2);
-    const Scalar tmp9 = l2*sin(theta2);
+    const Scalar tmp8 = l2*cos_of[1];
+    const Scalar tmp9 = l2*sin_of[1];
     const Scalar tmp13 = tmp1 + tmp9;
     const Scalar tmp14 = tmp5 - tmp8;
-    const Scalar tmp17 = l3*cos(theta3);
-    const Scalar tmp18 = l3*sin(theta3);
+    const Scalar tmp17 = l3*cos_of[2];
+    const Scalar tmp18 = l3*sin_of[2];
     const Scalar tmp22 = tmp18 + tmp13;
     const Scalar tmp23 = tmp14 - tmp17;
-    const Scalar tmp26 = l4*cos(theta4);
-    const Scalar tmp27 = l4*sin(theta4);
+    const Scalar tmp26 = l4*cos_of[3];
+    const Scalar tmp27 = l4*sin_of[3];
     const Scalar tmp31 = tmp27 + tmp22;
     const Scalar tmp32 = tmp23 - tmp26;
-    const Scalar tmp35 = l5*cos(theta5);
-    const Scalar tmp36 = l5*sin(theta5);
+    const Scalar tmp35 = l5*cos_of[4];
+    const Scalar tmp36 = l5*sin_of[4];
     const Scalar tmp40 = tmp36 + tmp31;
     const Scalar tmp41 = tmp32 - tmp35;
-    const Scalar tmp44 = l6*cos(theta6);
-    const Scalar tmp45 = l6*sin(theta6);
+    const Scalar tmp44 = l6*cos_of[5];
+    const Scalar tmp45 = l6*sin_of[5];
     const Scalar tmp49 = tmp45 + tmp40;
     const Scalar tmp50 = tmp41 - tmp44;
-    const Scalar tmp53 = l7*cos(theta7);
-    const Scalar tmp54 = l7*sin(theta7);
+    const Scalar tmp53 = l7*cos_of[6];
+    const Scalar tmp54 = l7*sin_of[6];
     const Scalar tmp58 = tmp54 + tmp49;
     const Scalar tmp59 = tmp50 - tmp53;
-    const Scalar tmp62 = l8*cos(theta8);
-    const Scalar tmp63 = l8*sin(theta8);
+    const Scalar tmp62 = l8*cos_of[7];
+    const Scalar tmp63 = l8*sin_of[7];
     const Scalar tmp67 = tmp63 + tmp58;
     const Scalar tmp68 = tmp59 - tmp62;
-    const Scalar tmp71 = l9*cos(theta9);
-    const Scalar tmp72 = l9*sin(theta9);
+    const Scalar tmp71 = l9*cos_of[8];
+    const Scalar tmp72 = l9*sin_of[8];
     const Scalar tmp76 = tmp72 + tmp67;
     const Scalar tmp77 = tmp68 - tmp71;
-    const Scalar tmp80 = l10*cos(theta10);
-    const Scalar tmp81 = l10*sin(theta10);
+    const Scalar tmp80 = l10*cos_of[9];
+    const Scalar tmp81 = l10*sin_of[9];
     const Scalar tmp85 = tmp81 + tmp76;
     const Scalar tmp86 = tmp77 - tmp80;
     XVector<Scalar> result;
@@ -3197,8 +3295,6 @@ struct NLinkChain10 {
                                     const VVector<Scalar>& v,
                                     const Scalar& /*t*/,
                                     const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar theta1 = q(0);
     const Scalar theta2 = q(1);
     const Scalar theta3 = q(2);
@@ -3219,6 +3315,10 @@ struct NLinkChain10 {
     const Scalar theta8_dot = v(7);
     const Scalar theta9_dot = v(8);
     const Scalar theta10_dot = v(9);
+    const Scalar sin_cos_of[10] = {theta1, theta2, theta3, theta4, theta5, theta6, theta7, theta8,
+        theta9, theta10};
+    Scalar sin_of[10], cos_of[10];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar l1 = Scalar(params.l1);
     const Scalar l2 = Scalar(params.l2);
     const Scalar l3 = Scalar(params.l3);
@@ -3229,44 +3329,44 @@ struct NLinkChain10 {
     const Scalar l8 = Scalar(params.l8);
     const Scalar l9 = Scalar(params.l9);
     const Scalar l10 = Scalar(params.l10);
-    const Scalar tmp0 = l1*cos(theta1);
-    const Scalar tmp1 = l1*sin(theta1);
+    const Scalar tmp0 = l1*cos_of[0];
+    const Scalar tmp1 = l1*sin_of[0];
     const Scalar tmp6 = tmp0*theta1_dot;
     const Scalar tmp7 = tmp1*theta1_dot;
-    const Scalar tmp8 = l2*cos(theta2);
-    const Scalar tmp9 = l2*sin(theta2);
+    const Scalar tmp8 = l2*cos_of[1];
+    const Scalar tmp9 = l2*sin_of[1];
     const Scalar tmp15 = tmp6 + tmp8*theta2_dot;
     const Scalar tmp16 = tmp7 + tmp9*theta2_dot;
-    const Scalar tmp17 = l3*cos(theta3);
-    const Scalar tmp18 = l3*sin(theta3);
+    const Scalar tmp17 = l3*cos_of[2];
+    const Scalar tmp18 = l3*sin_of[2];
     const Scalar tmp24 = tmp15 + tmp17*theta3_dot;
     const Scalar tmp25 = tmp16 + tmp18*theta3_dot;
-    const Scalar tmp26 = l4*cos(theta4);
-    const Scalar tmp27 = l4*sin(theta4);
+    const Scalar tmp26 = l4*cos_of[3];
+    const Scalar tmp27 = l4*sin_of[3];
     const Scalar tmp33 = tmp24 + tmp26*theta4_dot;
     const Scalar tmp34 = tmp25 + tmp27*theta4_dot;
-    const Scalar tmp35 = l5*cos(theta5);
-    const Scalar tmp36 = l5*sin(theta5);
+    const Scalar tmp35 = l5*cos_of[4];
+    const Scalar tmp36 = l5*sin_of[4];
     const Scalar tmp42 = tmp33 + tmp35*theta5_dot;
     const Scalar tmp43 = tmp34 + tmp36*theta5_dot;
-    const Scalar tmp44 = l6*cos(theta6);
-    const Scalar tmp45 = l6*sin(theta6);
+    const Scalar tmp44 = l6*cos_of[5];
+    const Scalar tmp45 = l6*sin_of[5];
     const Scalar tmp51 = tmp42 + tmp44*theta6_dot;
     const Scalar tmp52 = tmp43 + tmp45*theta6_dot;
-    const Scalar tmp53 = l7*cos(theta7);
-    const Scalar tmp54 = l7*sin(theta7);
+    const Scalar tmp53 = l7*cos_of[6];
+    const Scalar tmp54 = l7*sin_of[6];
     const Scalar tmp60 = tmp51 + tmp53*theta7_dot;
     const Scalar tmp61 = tmp52 + tmp54*theta7_dot;
-    const Scalar tmp62 = l8*cos(theta8);
-    const Scalar tmp63 = l8*sin(theta8);
+    const Scalar tmp62 = l8*cos_of[7];
+    const Scalar tmp63 = l8*sin_of[7];
     const Scalar tmp69 = tmp60 + tmp62*theta8_dot;
     const Scalar tmp70 = tmp61 + tmp63*theta8_dot;
-    const Scalar tmp71 = l9*cos(theta9);
-    const Scalar tmp72 = l9*sin(theta9);
+    const Scalar tmp71 = l9*cos_of[8];
+    const Scalar tmp72 = l9*sin_of[8];
     const Scalar tmp78 = tmp69 + tmp71*theta9_dot;
     const Scalar tmp79 = tmp70 + tmp72*theta9_dot;
-    const Scalar tmp80 = l10*cos(theta10);
-    const Scalar tmp81 = l10*sin(theta10);
+    const Scalar tmp80 = l10*cos_of[9];
+    const Scalar tmp81 = l10*sin_of[9];
     const Scalar tmp87 = tmp78 + tmp80*theta10_dot;
     const Scalar tmp88 = tmp79 + tmp81*theta10_dot;
     XVector<Scalar> result;
@@ -3303,8 +3403,6 @@ struct NLinkChain10 {
   static XJacobian<Scalar> jacobian(const QVector<Scalar>& q,
                                     const Scalar& /*t*/,
                                     const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar theta1 = q(0);
     const Scalar theta2 = q(1);
     const Scalar theta3 = q(2);
@@ -3315,6 +3413,10 @@ struct NLinkChain10 {
     const Scalar theta8 = q(7);
     const Scalar theta9 = q(8);
     const Scalar theta10 = q(9);
+    const Scalar sin_cos_of[10] = {theta1, theta2, theta3, theta4, theta5, theta6, theta7, theta8,
+        theta9, theta10};
+    Scalar sin_of[10], cos_of[10];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar l1 = Scalar(params.l1);
     const Scalar l2 = Scalar(params.l2);
     const Scalar l3 = Scalar(params.l3);
@@ -3325,26 +3427,26 @@ struct NLinkChain10 {
     const Scalar l8 = Scalar(params.l8);
     const Scalar l9 = Scalar(params.l9);
     const Scalar l10 = Scalar(params.l10);
-    const Scalar tmp0 = l1*cos(theta1);
-    const Scalar tmp1 = l1*sin(theta1);
-    const Scalar tmp8 = l2*cos(theta2);
-    const Scalar tmp9 = l2*sin(theta2);
-    const Scalar tmp17 = l3*cos(theta3);
-    const Scalar tmp18 = l3*sin(theta3);
-    const Scalar tmp26 = l4*cos(theta4);
-    const Scalar tmp27 = l4*sin(theta4);
-    const Scalar tmp35 = l5*cos(theta5);
-    const Scalar tmp36 = l5*sin(theta5);
-    const Scalar tmp44 = l6*cos(theta6);
-    const Scalar tmp45 = l6*sin(theta6);
-    const Scalar tmp53 = l7*cos(theta7);
-    const Scalar tmp54 = l7*sin(theta7);
-    const Scalar tmp62 = l8*cos(theta8);
-    const Scalar tmp63 = l8*sin(theta8);
-    const Scalar tmp71 = l9*cos(theta9);
-    const Scalar tmp72 = l9*sin(theta9);
-    const Scalar tmp80 = l10*cos(theta10);
-    const Scalar tmp81 = l10*sin(theta10);
+    const Scalar tmp0 = l1*cos_of[0];
+    const Scalar tmp1 = l1*sin_of[0];
+    const Scalar tmp8 = l2*cos_of[1];
+    const Scalar tmp9 = l2*sin_of[1];
+    const Scalar tmp17 = l3*cos_of[2];
+    const Scalar tmp18 = l3*sin_of[2];
+    const Scalar tmp26 = l4*cos_of[3];
+    const Scalar tmp27 = l4*sin_of[3];
+    const Scalar tmp35 = l5*cos_of[4];
+    const Scalar tmp36 = l5*sin_of[4];
+    const Scalar tmp44 = l6*cos_of[5];
+    const Scalar tmp45 = l6*sin_of[5];
+    const Scalar tmp53 = l7*cos_of[6];
+    const Scalar tmp54 = l7*sin_of[6];
+    const Scalar tmp62 = l8*cos_of[7];
+    const Scalar tmp63 = l8*sin_of[7];
+    const Scalar tmp71 = l9*cos_of[8];
+    const Scalar tmp72 = l9*sin_of[8];
+    const Scalar tmp80 = l10*cos_of[9];
+    const Scalar tmp81 = l10*sin_of[9];
     XJacobian<Scalar> result;
     result.setZero();
     result(0, 0) = tmp0;
@@ -3472,8 +3574,6 @@ struct NLinkChain10 {
                                            const VVector<Scalar>& v,
                                            const Scalar& /*t*/,
                                            const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar theta1 = q(0);
     const Scalar theta2 = q(1);
     const Scalar theta3 = q(2);
@@ -3494,6 +3594,10 @@ struct NLinkChain10 {
     const Scalar theta8_dot = v(7);
     const Scalar theta9_dot = v(8);
     const Scalar theta10_dot = v(9);
+    const Scalar sin_cos_of[10] = {theta1, theta2, theta3, theta4, theta5, theta6, theta7, theta8,
+        theta9, theta10};
+    Scalar sin_of[10], cos_of[10];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar l1 = Scalar(params.l1);
     const Scalar l2 = Scalar(params.l2);
     const Scalar l3 = Scalar(params.l3);
@@ -3504,53 +3608,53 @@ struct NLinkChain10 {
     const Scalar l8 = Scalar(params.l8);
     const Scalar l9 = Scalar(params.l9);
     const Scalar l10 = Scalar(params.l10);
-    const Scalar tmp0 = l1*cos(theta1);
-    const Scalar tmp1 = l1*sin(theta1);
+    const Scalar tmp0 = l1*cos_of[0];
+    const Scalar tmp1 = l1*sin_of[0];
     const Scalar tmp2 = (theta1_dot*theta1_dot);
     const Scalar tmp3 = -tmp1*tmp2;
     const Scalar tmp4 = tmp0*tmp2;
-    const Scalar tmp8 = l2*cos(theta2);
-    const Scalar tmp9 = l2*sin(theta2);
+    const Scalar tmp8 = l2*cos_of[1];
+    const Scalar tmp9 = l2*sin_of[1];
     const Scalar tmp10 = (theta2_dot*theta2_dot);
     const Scalar tmp11 = -tmp9*tmp10;
     const Scalar tmp12 = tmp8*tmp10;
-    const Scalar tmp17 = l3*cos(theta3);
-    const Scalar tmp18 = l3*sin(theta3);
+    const Scalar tmp17 = l3*cos_of[2];
+    const Scalar tmp18 = l3*sin_of[2];
     const Scalar tmp19 = (theta3_dot*theta3_dot);
     const Scalar tmp20 = -tmp18*tmp19;
     const Scalar tmp21 = tmp17*tmp19;
-    const Scalar tmp26 = l4*cos(theta4);
-    const Scalar tmp27 = l4*sin(theta4);
+    const Scalar tmp26 = l4*cos_of[3];
+    const Scalar tmp27 = l4*sin_of[3];
     const Scalar tmp28 = (theta4_dot*theta4_dot);
     const Scalar tmp29 = -tmp27*tmp28;
     const Scalar tmp30 = tmp28*tmp26;
-    const Scalar tmp35 = l5*cos(theta5);
-    const Scalar tmp36 = l5*sin(theta5);
+    const Scalar tmp35 = l5*cos_of[4];
+    const Scalar tmp36 = l5*sin_of[4];
     const Scalar tmp37 = (theta5_dot*theta5_dot);
     const Scalar tmp38 = -tmp36*tmp37;
     const Scalar tmp39 = tmp35*tmp37;
-    const Scalar tmp44 = l6*cos(theta6);
-    const Scalar tmp45 = l6*sin(theta6);
+    const Scalar tmp44 = l6*cos_of[5];
+    const Scalar tmp45 = l6*sin_of[5];
     const Scalar tmp46 = (theta6_dot*theta6_dot);
     const Scalar tmp47 = -tmp45*tmp46;
     const Scalar tmp48 = tmp44*tmp46;
-    const Scalar tmp53 = l7*cos(theta7);
-    const Scalar tmp54 = l7*sin(theta7);
+    const Scalar tmp53 = l7*cos_of[6];
+    const Scalar tmp54 = l7*sin_of[6];
     const Scalar tmp55 = (theta7_dot*theta7_dot);
     const Scalar tmp56 = -tmp54*tmp55;
     const Scalar tmp57 = tmp53*tmp55;
-    const Scalar tmp62 = l8*cos(theta8);
-    const Scalar tmp63 = l8*sin(theta8);
+    const Scalar tmp62 = l8*cos_of[7];
+    const Scalar tmp63 = l8*sin_of[7];
     const Scalar tmp64 = (theta8_dot*theta8_dot);
     const Scalar tmp65 = -tmp63*tmp64;
     const Scalar tmp66 = tmp62*tmp64;
-    const Scalar tmp71 = l9*cos(theta9);
-    const Scalar tmp72 = l9*sin(theta9);
+    const Scalar tmp71 = l9*cos_of[8];
+    const Scalar tmp72 = l9*sin_of[8];
     const Scalar tmp73 = (theta9_dot*theta9_dot);
     const Scalar tmp74 = -tmp72*tmp73;
     const Scalar tmp75 = tmp71*tmp73;
-    const Scalar tmp80 = l10*cos(theta10);
-    const Scalar tmp81 = l10*sin(theta10);
+    const Scalar tmp80 = l10*cos_of[9];
+    const Scalar tmp81 = l10*sin_of[9];
     const Scalar tmp82 = (theta10_dot*theta10_dot);
     const Scalar tmp83 = -tmp81*tmp82;
     const Scalar tmp84 = tmp80*tmp82;
@@ -3608,8 +3712,6 @@ struct NLinkChain10 {
                                              const VVector<Scalar>& v,
                                              const Scalar& /*t*/,
                                              const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar theta1 = q(0);
     const Scalar theta2 = q(1);
     const Scalar theta3 = q(2);
@@ -3630,6 +3732,10 @@ struct NLinkChain10 {
     const Scalar theta8_dot = v(7);
     const Scalar theta9_dot = v(8);
     const Scalar theta10_dot = v(9);
+    const Scalar sin_cos_of[10] = {theta1, theta2, theta3, theta4, theta5, theta6, theta7, theta8,
+        theta9, theta10};
+    Scalar sin_of[10], cos_of[10];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar l1 = Scalar(params.l1);
     const Scalar m1 = Scalar(params.m1);
     const Scalar l2 = Scalar(params.l2);
@@ -3650,44 +3756,44 @@ struct NLinkChain10 {
     const Scalar m9 = Scalar(params.m9);
     const Scalar l10 = Scalar(params.l10);
     const Scalar m10 = Scalar(params.m10);
-    const Scalar tmp0 = l1*cos(theta1);
-    const Scalar tmp1 = l1*sin(theta1);
+    const Scalar tmp0 = l1*cos_of[0];
+    const Scalar tmp1 = l1*sin_of[0];
     const Scalar tmp6 = tmp0*theta1_dot;
     const Scalar tmp7 = tmp1*theta1_dot;
-    const Scalar tmp8 = l2*cos(theta2);
-    const Scalar tmp9 = l2*sin(theta2);
+    const Scalar tmp8 = l2*cos_of[1];
+    const Scalar tmp9 = l2*sin_of[1];
     const Scalar tmp15 = tmp6 + tmp8*theta2_dot;
     const Scalar tmp16 = tmp7 + tmp9*theta2_dot;
-    const Scalar tmp17 = l3*cos(theta3);
-    const Scalar tmp18 = l3*sin(theta3);
+    const Scalar tmp17 = l3*cos_of[2];
+    const Scalar tmp18 = l3*sin_of[2];
     const Scalar tmp24 = tmp15 + tmp17*theta3_dot;
     const Scalar tmp25 = tmp16 + tmp18*theta3_dot;
-    const Scalar tmp26 = l4*cos(theta4);
-    const Scalar tmp27 = l4*sin(theta4);
+    const Scalar tmp26 = l4*cos_of[3];
+    const Scalar tmp27 = l4*sin_of[3];
     const Scalar tmp33 = tmp24 + tmp26*theta4_dot;
     const Scalar tmp34 = tmp25 + tmp27*theta4_dot;
-    const Scalar tmp35 = l5*cos(theta5);
-    const Scalar tmp36 = l5*sin(theta5);
+    const Scalar tmp35 = l5*cos_of[4];
+    const Scalar tmp36 = l5*sin_of[4];
     const Scalar tmp42 = tmp33 + tmp35*theta5_dot;
     const Scalar tmp43 = tmp34 + tmp36*theta5_dot;
-    const Scalar tmp44 = l6*cos(theta6);
-    const Scalar tmp45 = l6*sin(theta6);
+    const Scalar tmp44 = l6*cos_of[5];
+    const Scalar tmp45 = l6*sin_of[5];
     const Scalar tmp51 = tmp42 + tmp44*theta6_dot;
     const Scalar tmp52 = tmp43 + tmp45*theta6_dot;
-    const Scalar tmp53 = l7*cos(theta7);
-    const Scalar tmp54 = l7*sin(theta7);
+    const Scalar tmp53 = l7*cos_of[6];
+    const Scalar tmp54 = l7*sin_of[6];
     const Scalar tmp60 = tmp51 + tmp53*theta7_dot;
     const Scalar tmp61 = tmp52 + tmp54*theta7_dot;
-    const Scalar tmp62 = l8*cos(theta8);
-    const Scalar tmp63 = l8*sin(theta8);
+    const Scalar tmp62 = l8*cos_of[7];
+    const Scalar tmp63 = l8*sin_of[7];
     const Scalar tmp69 = tmp60 + tmp62*theta8_dot;
     const Scalar tmp70 = tmp61 + tmp63*theta8_dot;
-    const Scalar tmp71 = l9*cos(theta9);
-    const Scalar tmp72 = l9*sin(theta9);
+    const Scalar tmp71 = l9*cos_of[8];
+    const Scalar tmp72 = l9*sin_of[8];
     const Scalar tmp78 = tmp69 + tmp71*theta9_dot;
     const Scalar tmp79 = tmp70 + tmp72*theta9_dot;
-    const Scalar tmp80 = l10*cos(theta10);
-    const Scalar tmp81 = l10*sin(theta10);
+    const Scalar tmp80 = l10*cos_of[9];
+    const Scalar tmp81 = l10*sin_of[9];
     const Scalar tmp87 = tmp78 + tmp80*theta10_dot;
     const Scalar tmp88 = tmp79 + tmp81*theta10_dot;
     SpaceVector<Scalar> result;
@@ -3710,8 +3816,6 @@ struct NLinkChain10 {
                                                 const VVector<Scalar>& v,
                                                 const Scalar& /*t*/,
                                                 const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar theta1 = q(0);
     const Scalar theta2 = q(1);
     const Scalar theta3 = q(2);
@@ -3732,6 +3836,10 @@ struct NLinkChain10 {
     const Scalar theta8_dot = v(7);
     const Scalar theta9_dot = v(8);
     const Scalar theta10_dot = v(9);
+    const Scalar sin_cos_of[10] = {theta1, theta2, theta3, theta4, theta5, theta6, theta7, theta8,
+        theta9, theta10};
+    Scalar sin_of[10], cos_of[10];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar l1 = Scalar(params.l1);
     const Scalar m1 = Scalar(params.m1);
     const Scalar l2 = Scalar(params.l2);
@@ -3752,61 +3860,61 @@ struct NLinkChain10 {
     const Scalar m9 = Scalar(params.m9);
     const Scalar l10 = Scalar(params.l10);
     const Scalar m10 = Scalar(params.m10);
-    const Scalar tmp0 = l1*cos(theta1);
-    const Scalar tmp1 = l1*sin(theta1);
+    const Scalar tmp0 = l1*cos_of[0];
+    const Scalar tmp1 = l1*sin_of[0];
     const Scalar tmp5 = -tmp0;
     const Scalar tmp6 = tmp0*theta1_dot;
     const Scalar tmp7 = tmp1*theta1_dot;
-    const Scalar tmp8 = l2*cos(theta2);
-    const Scalar tmp9 = l2*sin(theta2);
+    const Scalar tmp8 = l2*cos_of[1];
+    const Scalar tmp9 = l2*sin_of[1];
     const Scalar tmp13 = tmp1 + tmp9;
     const Scalar tmp14 = tmp5 - tmp8;
     const Scalar tmp15 = tmp6 + tmp8*theta2_dot;
     const Scalar tmp16 = tmp7 + tmp9*theta2_dot;
-    const Scalar tmp17 = l3*cos(theta3);
-    const Scalar tmp18 = l3*sin(theta3);
+    const Scalar tmp17 = l3*cos_of[2];
+    const Scalar tmp18 = l3*sin_of[2];
     const Scalar tmp22 = tmp18 + tmp13;
     const Scalar tmp23 = tmp14 - tmp17;
     const Scalar tmp24 = tmp15 + tmp17*theta3_dot;
     const Scalar tmp25 = tmp16 + tmp18*theta3_dot;
-    const Scalar tmp26 = l4*cos(theta4);
-    const Scalar tmp27 = l4*sin(theta4);
+    const Scalar tmp26 = l4*cos_of[3];
+    const Scalar tmp27 = l4*sin_of[3];
     const Scalar tmp31 = tmp27 + tmp22;
     const Scalar tmp32 = tmp23 - tmp26;
     const Scalar tmp33 = tmp24 + tmp26*theta4_dot;
     const Scalar tmp34 = tmp25 + tmp27*theta4_dot;
-    const Scalar tmp35 = l5*cos(theta5);
-    const Scalar tmp36 = l5*sin(theta5);
+    const Scalar tmp35 = l5*cos_of[4];
+    const Scalar tmp36 = l5*sin_of[4];
     const Scalar tmp40 = tmp36 + tmp31;
     const Scalar tmp41 = tmp32 - tmp35;
     const Scalar tmp42 = tmp33 + tmp35*theta5_dot;
     const Scalar tmp43 = tmp34 + tmp36*theta5_dot;
-    const Scalar tmp44 = l6*cos(theta6);
-    const Scalar tmp45 = l6*sin(theta6);
+    const Scalar tmp44 = l6*cos_of[5];
+    const Scalar tmp45 = l6*sin_of[5];
     const Scalar tmp49 = tmp45 + tmp40;
     const Scalar tmp50 = tmp41 - tmp44;
     const Scalar tmp51 = tmp42 + tmp44*theta6_dot;
     const Scalar tmp52 = tmp43 + tmp45*theta6_dot;
-    const Scalar tmp53 = l7*cos(theta7);
-    const Scalar tmp54 = l7*sin(theta7);
+    const Scalar tmp53 = l7*cos_of[6];
+    const Scalar tmp54 = l7*sin_of[6];
     const Scalar tmp58 = tmp54 + tmp49;
     const Scalar tmp59 = tmp50 - tmp53;
     const Scalar tmp60 = tmp51 + tmp53*theta7_dot;
     const Scalar tmp61 = tmp52 + tmp54*theta7_dot;
-    const Scalar tmp62 = l8*cos(theta8);
-    const Scalar tmp63 = l8*sin(theta8);
+    const Scalar tmp62 = l8*cos_of[7];
+    const Scalar tmp63 = l8*sin_of[7];
     const Scalar tmp67 = tmp63 + tmp58;
     const Scalar tmp68 = tmp59 - tmp62;
     const Scalar tmp69 = tmp60 + tmp62*theta8_dot;
     const Scalar tmp70 = tmp61 + tmp63*theta8_dot;
-    const Scalar tmp71 = l9*cos(theta9);
-    const Scalar tmp72 = l9*sin(theta9);
+    const Scalar tmp71 = l9*cos_of[8];
+    const Scalar tmp72 = l9*sin_of[8];
     const Scalar tmp76 = tmp72 + tmp67;
     const Scalar tmp77 = tmp68 - tmp71;
     const Scalar tmp78 = tmp69 + tmp71*theta9_dot;
     const Scalar tmp79 = tmp70 + tmp72*theta9_dot;
-    const Scalar tmp80 = l10*cos(theta10);
-    const Scalar tmp81 = l10*sin(theta10);
+    const Scalar tmp80 = l10*cos_of[9];
+    const Scalar tmp81 = l10*sin_of[9];
     const Scalar tmp85 = tmp81 + tmp76;
     const Scalar tmp86 = tmp77 - tmp80;
     const Scalar tmp87 = tmp78 + tmp80*theta10_dot;

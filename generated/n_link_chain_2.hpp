@@ -22,6 +22,78 @@
 
 #include <Eigen/Cholesky>
 #include <Eigen/Core>
+// gencoord_kernel_math::sin_cos(x, s, c) sets s[i] = sin(x[i]) and c[i] = cos(x[i]). For
+// double on x86-64 with glibc it works in vector registers, through glibc's vector math
+// library (libmvec, which C++ programs link through libm; within 4 ulp, as its manual states):
+// 4 lanes a call where the compiler targets AVX2, 2 otherwise. The inline namespace keeps the
+// two apart when objects of both are linked together. Elsewhere, or with GENCOORD_NO_LIBMVEC
+// defined, it calls sin and cos.
+#ifndef GENCOORD_KERNEL_SIN_COS
+#define GENCOORD_KERNEL_SIN_COS
+#if defined(__x86_64__) && defined(__GLIBC__) && !defined(GENCOORD_NO_LIBMVEC)
+#include <immintrin.h>
+#define GENCOORD_KERNEL_LIBMVEC 1
+extern "C" {
+#if defined(__AVX2__)
+__m256d _ZGVdN4v_sin(__m256d);
+__m256d _ZGVdN4v_cos(__m256d);
+#else
+__m128d _ZGVbN2v_sin(__m128d);
+__m128d _ZGVbN2v_cos(__m128d);
+#endif
+}
+#endif
+
+namespace gencoord_kernel_math {
+#if defined(GENCOORD_KERNEL_LIBMVEC) && defined(__AVX2__)
+inline namespace avx2 {
+constexpr int kLanes = 4;
+inline void sin_cos_lanes(const double* x, double* s, double* c) {
+  const __m256d lanes = _mm256_loadu_pd(x);
+  _mm256_storeu_pd(s, _ZGVdN4v_sin(lanes));
+  _mm256_storeu_pd(c, _ZGVdN4v_cos(lanes));
+}
+#elif defined(GENCOORD_KERNEL_LIBMVEC)
+inline namespace sse2 {
+constexpr int kLanes = 2;
+inline void sin_cos_lanes(const double* x, double* s, double* c) {
+  const __m128d lanes = _mm_loadu_pd(x);
+  _mm_storeu_pd(s, _ZGVbN2v_sin(lanes));
+  _mm_storeu_pd(c, _ZGVbN2v_cos(lanes));
+}
+#else
+inline namespace scalar {
+#endif
+
+template <class Scalar, int n>
+inline void sin_cos(const Scalar (&x)[n], Scalar (&s)[n], Scalar (&c)[n]) {
+  using std::cos;
+  using std::sin;
+  for (int i = 0; i < n; ++i) {
+    s[i] = sin(x[i]);
+    c[i] = cos(x[i]);
+  }
+}
+
+#ifdef GENCOORD_KERNEL_LIBMVEC
+template <int n>
+inline void sin_cos(const double (&x)[n], double (&s)[n], double (&c)[n]) {
+  constexpr int whole = n - n % kLanes;
+  for (int i = 0; i < whole; i += kLanes) sin_cos_lanes(x + i, s + i, c + i);
+  if constexpr (whole < n) {  // the rest, padded with copies of the last argument
+    double rest[kLanes], sines[kLanes], cosines[kLanes];
+    for (int k = 0; k < kLanes; ++k) rest[k] = x[whole + k < n ? whole + k : n - 1];
+    sin_cos_lanes(rest, sines, cosines);
+    for (int i = whole; i < n; ++i) {
+      s[i] = sines[i - whole];
+      c[i] = cosines[i - whole];
+    }
+  }
+}
+#endif
+}  // inline namespace
+}  // namespace gencoord_kernel_math
+#endif  // GENCOORD_KERNEL_SIN_COS
 
 /*
  * Planar n-link chain (n-link pendulum): point masses on massless rods, absolute angles.
@@ -162,21 +234,22 @@ struct NLinkChain2 {
   static VMatrix<Scalar> mass_matrix(const QVector<Scalar>& q,
                                      const Scalar& /*t*/,
                                      const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar theta1 = q(0);
     const Scalar theta2 = q(1);
+    const Scalar sin_cos_of[2] = {theta1, theta2};
+    Scalar sin_of[2], cos_of[2];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar l1 = Scalar(params.l1);
     const Scalar m1 = Scalar(params.m1);
     const Scalar l2 = Scalar(params.l2);
     const Scalar m2 = Scalar(params.m2);
-    const Scalar tmp0 = cos(theta1);
+    const Scalar tmp0 = cos_of[0];
     const Scalar tmp1 = tmp0*l1;
-    const Scalar tmp2 = sin(theta1);
+    const Scalar tmp2 = sin_of[0];
     const Scalar tmp3 = tmp2*l1;
-    const Scalar tmp11 = cos(theta2);
+    const Scalar tmp11 = cos_of[1];
     const Scalar tmp12 = tmp11*l2;
-    const Scalar tmp13 = sin(theta2);
+    const Scalar tmp13 = sin_of[1];
     const Scalar tmp14 = tmp13*l2;
     const Scalar tmp69 = (l1*l1);
     const Scalar tmp70 = tmp69*(tmp2*tmp2);
@@ -206,17 +279,19 @@ struct NLinkChain2 {
                                         const VVector<Scalar>& /*v*/,
                                         const Scalar& /*t*/,
                                         const Params& params) {
-    using std::sin;
     const Scalar theta1 = q(0);
     const Scalar theta2 = q(1);
+    const Scalar sin_cos_of[2] = {theta1, theta2};
+    Scalar sin_of[2], cos_of[2];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar g = Scalar(params.g);
     const Scalar l1 = Scalar(params.l1);
     const Scalar m1 = Scalar(params.m1);
     const Scalar l2 = Scalar(params.l2);
     const Scalar m2 = Scalar(params.m2);
-    const Scalar tmp2 = sin(theta1);
+    const Scalar tmp2 = sin_of[0];
     const Scalar tmp3 = tmp2*l1;
-    const Scalar tmp13 = sin(theta2);
+    const Scalar tmp13 = sin_of[1];
     const Scalar tmp14 = tmp13*l2;
     const Scalar tmp77 = g*m1;
     const Scalar tmp78 = g*m2;
@@ -258,25 +333,26 @@ struct NLinkChain2 {
                                          const VVector<Scalar>& v,
                                          const Scalar& /*t*/,
                                          const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar theta1 = q(0);
     const Scalar theta2 = q(1);
     const Scalar theta1_dot = v(0);
     const Scalar theta2_dot = v(1);
+    const Scalar sin_cos_of[2] = {theta1, theta2};
+    Scalar sin_of[2], cos_of[2];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar l1 = Scalar(params.l1);
     const Scalar l2 = Scalar(params.l2);
     const Scalar m2 = Scalar(params.m2);
-    const Scalar tmp0 = cos(theta1);
+    const Scalar tmp0 = cos_of[0];
     const Scalar tmp1 = tmp0*l1;
-    const Scalar tmp2 = sin(theta1);
+    const Scalar tmp2 = sin_of[0];
     const Scalar tmp3 = tmp2*l1;
     const Scalar tmp4 = (theta1_dot*theta1_dot);
     const Scalar tmp5 = tmp3*tmp4;
     const Scalar tmp7 = tmp1*tmp4;
-    const Scalar tmp11 = cos(theta2);
+    const Scalar tmp11 = cos_of[1];
     const Scalar tmp12 = tmp11*l2;
-    const Scalar tmp13 = sin(theta2);
+    const Scalar tmp13 = sin_of[1];
     const Scalar tmp14 = tmp13*l2;
     const Scalar tmp15 = (theta2_dot*theta2_dot);
     const Scalar tmp16 = tmp14*tmp15;
@@ -303,27 +379,28 @@ struct NLinkChain2 {
                                 const VVector<Scalar>& v,
                                 const Scalar& /*t*/,
                                 const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar theta1 = q(0);
     const Scalar theta2 = q(1);
     const Scalar theta1_dot = v(0);
     const Scalar theta2_dot = v(1);
+    const Scalar sin_cos_of[2] = {theta1, theta2};
+    Scalar sin_of[2], cos_of[2];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar g = Scalar(params.g);
     const Scalar l1 = Scalar(params.l1);
     const Scalar m1 = Scalar(params.m1);
     const Scalar l2 = Scalar(params.l2);
     const Scalar m2 = Scalar(params.m2);
-    const Scalar tmp0 = cos(theta1);
+    const Scalar tmp0 = cos_of[0];
     const Scalar tmp1 = tmp0*l1;
-    const Scalar tmp2 = sin(theta1);
+    const Scalar tmp2 = sin_of[0];
     const Scalar tmp3 = tmp2*l1;
     const Scalar tmp4 = (theta1_dot*theta1_dot);
     const Scalar tmp5 = tmp3*tmp4;
     const Scalar tmp7 = tmp1*tmp4;
-    const Scalar tmp11 = cos(theta2);
+    const Scalar tmp11 = cos_of[1];
     const Scalar tmp12 = tmp11*l2;
-    const Scalar tmp13 = sin(theta2);
+    const Scalar tmp13 = sin_of[1];
     const Scalar tmp14 = tmp13*l2;
     const Scalar tmp15 = (theta2_dot*theta2_dot);
     const Scalar tmp16 = tmp14*tmp15;
@@ -358,27 +435,28 @@ struct NLinkChain2 {
                        const Params& params,
                        VMatrix<Scalar>* Mt,
                        VVector<Scalar>* f) {
-    using std::cos;
-    using std::sin;
     const Scalar theta1 = q(0);
     const Scalar theta2 = q(1);
     const Scalar theta1_dot = v(0);
     const Scalar theta2_dot = v(1);
+    const Scalar sin_cos_of[2] = {theta1, theta2};
+    Scalar sin_of[2], cos_of[2];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar g = Scalar(params.g);
     const Scalar l1 = Scalar(params.l1);
     const Scalar m1 = Scalar(params.m1);
     const Scalar l2 = Scalar(params.l2);
     const Scalar m2 = Scalar(params.m2);
-    const Scalar tmp0 = cos(theta1);
+    const Scalar tmp0 = cos_of[0];
     const Scalar tmp1 = tmp0*l1;
-    const Scalar tmp2 = sin(theta1);
+    const Scalar tmp2 = sin_of[0];
     const Scalar tmp3 = tmp2*l1;
     const Scalar tmp4 = (theta1_dot*theta1_dot);
     const Scalar tmp5 = tmp3*tmp4;
     const Scalar tmp7 = tmp1*tmp4;
-    const Scalar tmp11 = cos(theta2);
+    const Scalar tmp11 = cos_of[1];
     const Scalar tmp12 = tmp11*l2;
-    const Scalar tmp13 = sin(theta2);
+    const Scalar tmp13 = sin_of[1];
     const Scalar tmp14 = tmp13*l2;
     const Scalar tmp15 = (theta2_dot*theta2_dot);
     const Scalar tmp16 = tmp14*tmp15;
@@ -424,30 +502,31 @@ struct NLinkChain2 {
                                           const VVector<Scalar>& qdd,
                                           const Scalar& /*t*/,
                                           const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar theta1 = q(0);
     const Scalar theta2 = q(1);
     const Scalar theta1_dot = v(0);
     const Scalar theta2_dot = v(1);
     const Scalar theta1_ddot = qdd(0);
     const Scalar theta2_ddot = qdd(1);
+    const Scalar sin_cos_of[2] = {theta1, theta2};
+    Scalar sin_of[2], cos_of[2];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar g = Scalar(params.g);
     const Scalar l1 = Scalar(params.l1);
     const Scalar m1 = Scalar(params.m1);
     const Scalar l2 = Scalar(params.l2);
     const Scalar m2 = Scalar(params.m2);
-    const Scalar tmp0 = cos(theta1);
+    const Scalar tmp0 = cos_of[0];
     const Scalar tmp1 = tmp0*l1;
-    const Scalar tmp2 = sin(theta1);
+    const Scalar tmp2 = sin_of[0];
     const Scalar tmp3 = tmp2*l1;
     const Scalar tmp4 = (theta1_dot*theta1_dot);
     const Scalar tmp5 = tmp3*tmp4;
     const Scalar tmp6 = -tmp5;
     const Scalar tmp7 = tmp1*tmp4;
-    const Scalar tmp11 = cos(theta2);
+    const Scalar tmp11 = cos_of[1];
     const Scalar tmp12 = tmp11*l2;
-    const Scalar tmp13 = sin(theta2);
+    const Scalar tmp13 = sin_of[1];
     const Scalar tmp14 = tmp13*l2;
     const Scalar tmp15 = (theta2_dot*theta2_dot);
     const Scalar tmp16 = tmp14*tmp15;
@@ -486,29 +565,30 @@ struct NLinkChain2 {
                                  const Params& params,
                                  VQMatrix<Scalar>* dr_dq,
                                  VMatrix<Scalar>* dr_dv) {
-    using std::cos;
-    using std::sin;
     const Scalar theta1 = q(0);
     const Scalar theta2 = q(1);
     const Scalar theta1_dot = v(0);
     const Scalar theta2_dot = v(1);
     const Scalar theta1_ddot = qdd(0);
     const Scalar theta2_ddot = qdd(1);
+    const Scalar sin_cos_of[2] = {theta1, theta2};
+    Scalar sin_of[2], cos_of[2];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar g = Scalar(params.g);
     const Scalar l1 = Scalar(params.l1);
     const Scalar m1 = Scalar(params.m1);
     const Scalar l2 = Scalar(params.l2);
     const Scalar m2 = Scalar(params.m2);
-    const Scalar tmp0 = cos(theta1);
+    const Scalar tmp0 = cos_of[0];
     const Scalar tmp1 = tmp0*l1;
-    const Scalar tmp2 = sin(theta1);
+    const Scalar tmp2 = sin_of[0];
     const Scalar tmp3 = tmp2*l1;
     const Scalar tmp4 = (theta1_dot*theta1_dot);
     const Scalar tmp5 = tmp3*tmp4;
     const Scalar tmp7 = tmp1*tmp4;
-    const Scalar tmp11 = cos(theta2);
+    const Scalar tmp11 = cos_of[1];
     const Scalar tmp12 = tmp11*l2;
-    const Scalar tmp13 = sin(theta2);
+    const Scalar tmp13 = sin_of[1];
     const Scalar tmp14 = tmp13*l2;
     const Scalar tmp15 = (theta2_dot*theta2_dot);
     const Scalar tmp16 = tmp14*tmp15;
@@ -580,24 +660,25 @@ struct NLinkChain2 {
                                const VVector<Scalar>& v,
                                const Scalar& /*t*/,
                                const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar theta1 = q(0);
     const Scalar theta2 = q(1);
     const Scalar theta1_dot = v(0);
     const Scalar theta2_dot = v(1);
+    const Scalar sin_cos_of[2] = {theta1, theta2};
+    Scalar sin_of[2], cos_of[2];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar l1 = Scalar(params.l1);
     const Scalar m1 = Scalar(params.m1);
     const Scalar l2 = Scalar(params.l2);
     const Scalar m2 = Scalar(params.m2);
-    const Scalar tmp0 = cos(theta1);
+    const Scalar tmp0 = cos_of[0];
     const Scalar tmp1 = tmp0*l1;
-    const Scalar tmp2 = sin(theta1);
+    const Scalar tmp2 = sin_of[0];
     const Scalar tmp3 = tmp2*l1;
     const Scalar tmp4 = (theta1_dot*theta1_dot);
-    const Scalar tmp11 = cos(theta2);
+    const Scalar tmp11 = cos_of[1];
     const Scalar tmp12 = tmp11*l2;
-    const Scalar tmp13 = sin(theta2);
+    const Scalar tmp13 = sin_of[1];
     const Scalar tmp14 = tmp13*l2;
     const Scalar tmp69 = (l1*l1);
     const Scalar tmp70 = tmp69*(tmp2*tmp2);
@@ -623,17 +704,19 @@ struct NLinkChain2 {
   static Scalar potential_energy(const QVector<Scalar>& q,
                                  const Scalar& /*t*/,
                                  const Params& params) {
-    using std::cos;
     const Scalar theta1 = q(0);
     const Scalar theta2 = q(1);
+    const Scalar sin_cos_of[2] = {theta1, theta2};
+    Scalar sin_of[2], cos_of[2];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar g = Scalar(params.g);
     const Scalar l1 = Scalar(params.l1);
     const Scalar m1 = Scalar(params.m1);
     const Scalar l2 = Scalar(params.l2);
     const Scalar m2 = Scalar(params.m2);
-    const Scalar tmp0 = cos(theta1);
+    const Scalar tmp0 = cos_of[0];
     const Scalar tmp1 = tmp0*l1;
-    const Scalar tmp11 = cos(theta2);
+    const Scalar tmp11 = cos_of[1];
     const Scalar tmp12 = tmp11*l2;
     const Scalar tmp77 = g*m1;
     const Scalar tmp92 = tmp1*tmp77;
@@ -670,25 +753,26 @@ struct NLinkChain2 {
                        const VVector<Scalar>& v,
                        const Scalar& /*t*/,
                        const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar theta1 = q(0);
     const Scalar theta2 = q(1);
     const Scalar theta1_dot = v(0);
     const Scalar theta2_dot = v(1);
+    const Scalar sin_cos_of[2] = {theta1, theta2};
+    Scalar sin_of[2], cos_of[2];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar g = Scalar(params.g);
     const Scalar l1 = Scalar(params.l1);
     const Scalar m1 = Scalar(params.m1);
     const Scalar l2 = Scalar(params.l2);
     const Scalar m2 = Scalar(params.m2);
-    const Scalar tmp0 = cos(theta1);
+    const Scalar tmp0 = cos_of[0];
     const Scalar tmp1 = tmp0*l1;
-    const Scalar tmp2 = sin(theta1);
+    const Scalar tmp2 = sin_of[0];
     const Scalar tmp3 = tmp2*l1;
     const Scalar tmp4 = (theta1_dot*theta1_dot);
-    const Scalar tmp11 = cos(theta2);
+    const Scalar tmp11 = cos_of[1];
     const Scalar tmp12 = tmp11*l2;
-    const Scalar tmp13 = sin(theta2);
+    const Scalar tmp13 = sin_of[1];
     const Scalar tmp14 = tmp13*l2;
     const Scalar tmp69 = (l1*l1);
     const Scalar tmp70 = tmp69*(tmp2*tmp2);
@@ -718,19 +802,20 @@ struct NLinkChain2 {
   static XVector<Scalar> positions(const QVector<Scalar>& q,
                                    const Scalar& /*t*/,
                                    const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar theta1 = q(0);
     const Scalar theta2 = q(1);
+    const Scalar sin_cos_of[2] = {theta1, theta2};
+    Scalar sin_of[2], cos_of[2];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar l1 = Scalar(params.l1);
     const Scalar l2 = Scalar(params.l2);
-    const Scalar tmp0 = cos(theta1);
+    const Scalar tmp0 = cos_of[0];
     const Scalar tmp1 = tmp0*l1;
-    const Scalar tmp2 = sin(theta1);
+    const Scalar tmp2 = sin_of[0];
     const Scalar tmp3 = tmp2*l1;
-    const Scalar tmp11 = cos(theta2);
+    const Scalar tmp11 = cos_of[1];
     const Scalar tmp12 = tmp11*l2;
-    const Scalar tmp13 = sin(theta2);
+    const Scalar tmp13 = sin_of[1];
     const Scalar tmp14 = tmp13*l2;
     const Scalar tmp93 = -tmp1 - tmp12;
     const Scalar tmp94 = tmp14 + tmp3;
@@ -754,21 +839,22 @@ struct NLinkChain2 {
                                     const VVector<Scalar>& v,
                                     const Scalar& /*t*/,
                                     const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar theta1 = q(0);
     const Scalar theta2 = q(1);
     const Scalar theta1_dot = v(0);
     const Scalar theta2_dot = v(1);
+    const Scalar sin_cos_of[2] = {theta1, theta2};
+    Scalar sin_of[2], cos_of[2];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar l1 = Scalar(params.l1);
     const Scalar l2 = Scalar(params.l2);
-    const Scalar tmp0 = cos(theta1);
+    const Scalar tmp0 = cos_of[0];
     const Scalar tmp1 = tmp0*l1;
-    const Scalar tmp2 = sin(theta1);
+    const Scalar tmp2 = sin_of[0];
     const Scalar tmp3 = tmp2*l1;
-    const Scalar tmp11 = cos(theta2);
+    const Scalar tmp11 = cos_of[1];
     const Scalar tmp12 = tmp11*l2;
-    const Scalar tmp13 = sin(theta2);
+    const Scalar tmp13 = sin_of[1];
     const Scalar tmp14 = tmp13*l2;
     const Scalar tmp87 = tmp3*theta1_dot;
     const Scalar tmp88 = tmp87 + tmp14*theta2_dot;
@@ -792,19 +878,20 @@ struct NLinkChain2 {
   static XJacobian<Scalar> jacobian(const QVector<Scalar>& q,
                                     const Scalar& /*t*/,
                                     const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar theta1 = q(0);
     const Scalar theta2 = q(1);
+    const Scalar sin_cos_of[2] = {theta1, theta2};
+    Scalar sin_of[2], cos_of[2];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar l1 = Scalar(params.l1);
     const Scalar l2 = Scalar(params.l2);
-    const Scalar tmp0 = cos(theta1);
+    const Scalar tmp0 = cos_of[0];
     const Scalar tmp1 = tmp0*l1;
-    const Scalar tmp2 = sin(theta1);
+    const Scalar tmp2 = sin_of[0];
     const Scalar tmp3 = tmp2*l1;
-    const Scalar tmp11 = cos(theta2);
+    const Scalar tmp11 = cos_of[1];
     const Scalar tmp12 = tmp11*l2;
-    const Scalar tmp13 = sin(theta2);
+    const Scalar tmp13 = sin_of[1];
     const Scalar tmp14 = tmp13*l2;
     XJacobian<Scalar> result;
     result(0, 0) = tmp1;
@@ -830,24 +917,25 @@ struct NLinkChain2 {
                                            const VVector<Scalar>& v,
                                            const Scalar& /*t*/,
                                            const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar theta1 = q(0);
     const Scalar theta2 = q(1);
     const Scalar theta1_dot = v(0);
     const Scalar theta2_dot = v(1);
+    const Scalar sin_cos_of[2] = {theta1, theta2};
+    Scalar sin_of[2], cos_of[2];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar l1 = Scalar(params.l1);
     const Scalar l2 = Scalar(params.l2);
-    const Scalar tmp0 = cos(theta1);
+    const Scalar tmp0 = cos_of[0];
     const Scalar tmp1 = tmp0*l1;
-    const Scalar tmp2 = sin(theta1);
+    const Scalar tmp2 = sin_of[0];
     const Scalar tmp3 = tmp2*l1;
     const Scalar tmp4 = (theta1_dot*theta1_dot);
     const Scalar tmp5 = tmp3*tmp4;
     const Scalar tmp7 = tmp1*tmp4;
-    const Scalar tmp11 = cos(theta2);
+    const Scalar tmp11 = cos_of[1];
     const Scalar tmp12 = tmp11*l2;
-    const Scalar tmp13 = sin(theta2);
+    const Scalar tmp13 = sin_of[1];
     const Scalar tmp14 = tmp13*l2;
     const Scalar tmp15 = (theta2_dot*theta2_dot);
     const Scalar tmp16 = tmp14*tmp15;
@@ -874,23 +962,24 @@ struct NLinkChain2 {
                                              const VVector<Scalar>& v,
                                              const Scalar& /*t*/,
                                              const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar theta1 = q(0);
     const Scalar theta2 = q(1);
     const Scalar theta1_dot = v(0);
     const Scalar theta2_dot = v(1);
+    const Scalar sin_cos_of[2] = {theta1, theta2};
+    Scalar sin_of[2], cos_of[2];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar l1 = Scalar(params.l1);
     const Scalar m1 = Scalar(params.m1);
     const Scalar l2 = Scalar(params.l2);
     const Scalar m2 = Scalar(params.m2);
-    const Scalar tmp0 = cos(theta1);
+    const Scalar tmp0 = cos_of[0];
     const Scalar tmp1 = tmp0*l1;
-    const Scalar tmp2 = sin(theta1);
+    const Scalar tmp2 = sin_of[0];
     const Scalar tmp3 = tmp2*l1;
-    const Scalar tmp11 = cos(theta2);
+    const Scalar tmp11 = cos_of[1];
     const Scalar tmp12 = tmp11*l2;
-    const Scalar tmp13 = sin(theta2);
+    const Scalar tmp13 = sin_of[1];
     const Scalar tmp14 = tmp13*l2;
     const Scalar tmp87 = tmp3*theta1_dot;
     const Scalar tmp88 = tmp87 + tmp14*theta2_dot;
@@ -914,23 +1003,24 @@ struct NLinkChain2 {
                                                 const VVector<Scalar>& v,
                                                 const Scalar& /*t*/,
                                                 const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar theta1 = q(0);
     const Scalar theta2 = q(1);
     const Scalar theta1_dot = v(0);
     const Scalar theta2_dot = v(1);
+    const Scalar sin_cos_of[2] = {theta1, theta2};
+    Scalar sin_of[2], cos_of[2];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar l1 = Scalar(params.l1);
     const Scalar m1 = Scalar(params.m1);
     const Scalar l2 = Scalar(params.l2);
     const Scalar m2 = Scalar(params.m2);
-    const Scalar tmp0 = cos(theta1);
+    const Scalar tmp0 = cos_of[0];
     const Scalar tmp1 = tmp0*l1;
-    const Scalar tmp2 = sin(theta1);
+    const Scalar tmp2 = sin_of[0];
     const Scalar tmp3 = tmp2*l1;
-    const Scalar tmp11 = cos(theta2);
+    const Scalar tmp11 = cos_of[1];
     const Scalar tmp12 = tmp11*l2;
-    const Scalar tmp13 = sin(theta2);
+    const Scalar tmp13 = sin_of[1];
     const Scalar tmp14 = tmp13*l2;
     const Scalar tmp69 = (l1*l1);
     const Scalar tmp70 = tmp69*(tmp2*tmp2);

@@ -23,6 +23,78 @@
 
 #include <Eigen/Cholesky>
 #include <Eigen/Core>
+// gencoord_kernel_math::sin_cos(x, s, c) sets s[i] = sin(x[i]) and c[i] = cos(x[i]). For
+// double on x86-64 with glibc it works in vector registers, through glibc's vector math
+// library (libmvec, which C++ programs link through libm; within 4 ulp, as its manual states):
+// 4 lanes a call where the compiler targets AVX2, 2 otherwise. The inline namespace keeps the
+// two apart when objects of both are linked together. Elsewhere, or with GENCOORD_NO_LIBMVEC
+// defined, it calls sin and cos.
+#ifndef GENCOORD_KERNEL_SIN_COS
+#define GENCOORD_KERNEL_SIN_COS
+#if defined(__x86_64__) && defined(__GLIBC__) && !defined(GENCOORD_NO_LIBMVEC)
+#include <immintrin.h>
+#define GENCOORD_KERNEL_LIBMVEC 1
+extern "C" {
+#if defined(__AVX2__)
+__m256d _ZGVdN4v_sin(__m256d);
+__m256d _ZGVdN4v_cos(__m256d);
+#else
+__m128d _ZGVbN2v_sin(__m128d);
+__m128d _ZGVbN2v_cos(__m128d);
+#endif
+}
+#endif
+
+namespace gencoord_kernel_math {
+#if defined(GENCOORD_KERNEL_LIBMVEC) && defined(__AVX2__)
+inline namespace avx2 {
+constexpr int kLanes = 4;
+inline void sin_cos_lanes(const double* x, double* s, double* c) {
+  const __m256d lanes = _mm256_loadu_pd(x);
+  _mm256_storeu_pd(s, _ZGVdN4v_sin(lanes));
+  _mm256_storeu_pd(c, _ZGVdN4v_cos(lanes));
+}
+#elif defined(GENCOORD_KERNEL_LIBMVEC)
+inline namespace sse2 {
+constexpr int kLanes = 2;
+inline void sin_cos_lanes(const double* x, double* s, double* c) {
+  const __m128d lanes = _mm_loadu_pd(x);
+  _mm_storeu_pd(s, _ZGVbN2v_sin(lanes));
+  _mm_storeu_pd(c, _ZGVbN2v_cos(lanes));
+}
+#else
+inline namespace scalar {
+#endif
+
+template <class Scalar, int n>
+inline void sin_cos(const Scalar (&x)[n], Scalar (&s)[n], Scalar (&c)[n]) {
+  using std::cos;
+  using std::sin;
+  for (int i = 0; i < n; ++i) {
+    s[i] = sin(x[i]);
+    c[i] = cos(x[i]);
+  }
+}
+
+#ifdef GENCOORD_KERNEL_LIBMVEC
+template <int n>
+inline void sin_cos(const double (&x)[n], double (&s)[n], double (&c)[n]) {
+  constexpr int whole = n - n % kLanes;
+  for (int i = 0; i < whole; i += kLanes) sin_cos_lanes(x + i, s + i, c + i);
+  if constexpr (whole < n) {  // the rest, padded with copies of the last argument
+    double rest[kLanes], sines[kLanes], cosines[kLanes];
+    for (int k = 0; k < kLanes; ++k) rest[k] = x[whole + k < n ? whole + k : n - 1];
+    sin_cos_lanes(rest, sines, cosines);
+    for (int i = whole; i < n; ++i) {
+      s[i] = sines[i - whole];
+      c[i] = cosines[i - whole];
+    }
+  }
+}
+#endif
+}  // inline namespace
+}  // namespace gencoord_kernel_math
+#endif  // GENCOORD_KERNEL_SIN_COS
 
 /*
  * Planar n-link chain (n-link pendulum): point masses on massless rods, absolute angles.
@@ -192,13 +264,14 @@ struct NLinkChain5 {
   static VMatrix<Scalar> mass_matrix(const QVector<Scalar>& q,
                                      const Scalar& /*t*/,
                                      const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar theta1 = q(0);
     const Scalar theta2 = q(1);
     const Scalar theta3 = q(2);
     const Scalar theta4 = q(3);
     const Scalar theta5 = q(4);
+    const Scalar sin_cos_of[5] = {theta1, theta2, theta3, theta4, theta5};
+    Scalar sin_of[5], cos_of[5];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar l1 = Scalar(params.l1);
     const Scalar m1 = Scalar(params.m1);
     const Scalar l2 = Scalar(params.l2);
@@ -209,16 +282,16 @@ struct NLinkChain5 {
     const Scalar m4 = Scalar(params.m4);
     const Scalar l5 = Scalar(params.l5);
     const Scalar m5 = Scalar(params.m5);
-    const Scalar tmp0 = l1*cos(theta1);
-    const Scalar tmp1 = l1*sin(theta1);
-    const Scalar tmp8 = l2*cos(theta2);
-    const Scalar tmp9 = l2*sin(theta2);
-    const Scalar tmp17 = l3*cos(theta3);
-    const Scalar tmp18 = l3*sin(theta3);
-    const Scalar tmp26 = l4*cos(theta4);
-    const Scalar tmp27 = l4*sin(theta4);
-    const Scalar tmp35 = l5*cos(theta5);
-    const Scalar tmp36 = l5*sin(theta5);
+    const Scalar tmp0 = l1*cos_of[0];
+    const Scalar tmp1 = l1*sin_of[0];
+    const Scalar tmp8 = l2*cos_of[1];
+    const Scalar tmp9 = l2*sin_of[1];
+    const Scalar tmp17 = l3*cos_of[2];
+    const Scalar tmp18 = l3*sin_of[2];
+    const Scalar tmp26 = l4*cos_of[3];
+    const Scalar tmp27 = l4*sin_of[3];
+    const Scalar tmp35 = l5*cos_of[4];
+    const Scalar tmp36 = l5*sin_of[4];
     const Scalar tmp44 = tmp35*m5;
     const Scalar tmp45 = tmp36*m5;
     const Scalar tmp46 = tmp35*tmp44 + tmp36*tmp45;
@@ -289,12 +362,14 @@ struct NLinkChain5 {
                                         const VVector<Scalar>& /*v*/,
                                         const Scalar& /*t*/,
                                         const Params& params) {
-    using std::sin;
     const Scalar theta1 = q(0);
     const Scalar theta2 = q(1);
     const Scalar theta3 = q(2);
     const Scalar theta4 = q(3);
     const Scalar theta5 = q(4);
+    const Scalar sin_cos_of[5] = {theta1, theta2, theta3, theta4, theta5};
+    Scalar sin_of[5], cos_of[5];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar g = Scalar(params.g);
     const Scalar l1 = Scalar(params.l1);
     const Scalar m1 = Scalar(params.m1);
@@ -306,11 +381,11 @@ struct NLinkChain5 {
     const Scalar m4 = Scalar(params.m4);
     const Scalar l5 = Scalar(params.l5);
     const Scalar m5 = Scalar(params.m5);
-    const Scalar tmp1 = l1*sin(theta1);
-    const Scalar tmp9 = l2*sin(theta2);
-    const Scalar tmp18 = l3*sin(theta3);
-    const Scalar tmp27 = l4*sin(theta4);
-    const Scalar tmp36 = l5*sin(theta5);
+    const Scalar tmp1 = l1*sin_of[0];
+    const Scalar tmp9 = l2*sin_of[1];
+    const Scalar tmp18 = l3*sin_of[2];
+    const Scalar tmp27 = l4*sin_of[3];
+    const Scalar tmp36 = l5*sin_of[4];
     const Scalar tmp185 = g*m5;
     const Scalar tmp186 = tmp36*tmp185;
     const Scalar tmp187 = g*m4;
@@ -372,8 +447,6 @@ struct NLinkChain5 {
                                          const VVector<Scalar>& v,
                                          const Scalar& /*t*/,
                                          const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar theta1 = q(0);
     const Scalar theta2 = q(1);
     const Scalar theta3 = q(2);
@@ -384,6 +457,9 @@ struct NLinkChain5 {
     const Scalar theta3_dot = v(2);
     const Scalar theta4_dot = v(3);
     const Scalar theta5_dot = v(4);
+    const Scalar sin_cos_of[5] = {theta1, theta2, theta3, theta4, theta5};
+    Scalar sin_of[5], cos_of[5];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar l1 = Scalar(params.l1);
     const Scalar m1 = Scalar(params.m1);
     const Scalar l2 = Scalar(params.l2);
@@ -394,28 +470,28 @@ struct NLinkChain5 {
     const Scalar m4 = Scalar(params.m4);
     const Scalar l5 = Scalar(params.l5);
     const Scalar m5 = Scalar(params.m5);
-    const Scalar tmp0 = l1*cos(theta1);
-    const Scalar tmp1 = l1*sin(theta1);
+    const Scalar tmp0 = l1*cos_of[0];
+    const Scalar tmp1 = l1*sin_of[0];
     const Scalar tmp2 = (theta1_dot*theta1_dot);
     const Scalar tmp3 = -tmp1*tmp2;
     const Scalar tmp4 = tmp0*tmp2;
-    const Scalar tmp8 = l2*cos(theta2);
-    const Scalar tmp9 = l2*sin(theta2);
+    const Scalar tmp8 = l2*cos_of[1];
+    const Scalar tmp9 = l2*sin_of[1];
     const Scalar tmp10 = (theta2_dot*theta2_dot);
     const Scalar tmp11 = -tmp9*tmp10;
     const Scalar tmp12 = tmp8*tmp10;
-    const Scalar tmp17 = l3*cos(theta3);
-    const Scalar tmp18 = l3*sin(theta3);
+    const Scalar tmp17 = l3*cos_of[2];
+    const Scalar tmp18 = l3*sin_of[2];
     const Scalar tmp19 = (theta3_dot*theta3_dot);
     const Scalar tmp20 = -tmp18*tmp19;
     const Scalar tmp21 = tmp17*tmp19;
-    const Scalar tmp26 = l4*cos(theta4);
-    const Scalar tmp27 = l4*sin(theta4);
+    const Scalar tmp26 = l4*cos_of[3];
+    const Scalar tmp27 = l4*sin_of[3];
     const Scalar tmp28 = (theta4_dot*theta4_dot);
     const Scalar tmp29 = -tmp27*tmp28;
     const Scalar tmp30 = tmp28*tmp26;
-    const Scalar tmp35 = l5*cos(theta5);
-    const Scalar tmp36 = l5*sin(theta5);
+    const Scalar tmp35 = l5*cos_of[4];
+    const Scalar tmp36 = l5*sin_of[4];
     const Scalar tmp37 = (theta5_dot*theta5_dot);
     const Scalar tmp38 = -tmp36*tmp37;
     const Scalar tmp39 = tmp35*tmp37;
@@ -468,8 +544,6 @@ struct NLinkChain5 {
                                 const VVector<Scalar>& v,
                                 const Scalar& /*t*/,
                                 const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar theta1 = q(0);
     const Scalar theta2 = q(1);
     const Scalar theta3 = q(2);
@@ -480,6 +554,9 @@ struct NLinkChain5 {
     const Scalar theta3_dot = v(2);
     const Scalar theta4_dot = v(3);
     const Scalar theta5_dot = v(4);
+    const Scalar sin_cos_of[5] = {theta1, theta2, theta3, theta4, theta5};
+    Scalar sin_of[5], cos_of[5];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar g = Scalar(params.g);
     const Scalar l1 = Scalar(params.l1);
     const Scalar m1 = Scalar(params.m1);
@@ -491,28 +568,28 @@ struct NLinkChain5 {
     const Scalar m4 = Scalar(params.m4);
     const Scalar l5 = Scalar(params.l5);
     const Scalar m5 = Scalar(params.m5);
-    const Scalar tmp0 = l1*cos(theta1);
-    const Scalar tmp1 = l1*sin(theta1);
+    const Scalar tmp0 = l1*cos_of[0];
+    const Scalar tmp1 = l1*sin_of[0];
     const Scalar tmp2 = (theta1_dot*theta1_dot);
     const Scalar tmp3 = -tmp1*tmp2;
     const Scalar tmp4 = tmp0*tmp2;
-    const Scalar tmp8 = l2*cos(theta2);
-    const Scalar tmp9 = l2*sin(theta2);
+    const Scalar tmp8 = l2*cos_of[1];
+    const Scalar tmp9 = l2*sin_of[1];
     const Scalar tmp10 = (theta2_dot*theta2_dot);
     const Scalar tmp11 = -tmp9*tmp10;
     const Scalar tmp12 = tmp8*tmp10;
-    const Scalar tmp17 = l3*cos(theta3);
-    const Scalar tmp18 = l3*sin(theta3);
+    const Scalar tmp17 = l3*cos_of[2];
+    const Scalar tmp18 = l3*sin_of[2];
     const Scalar tmp19 = (theta3_dot*theta3_dot);
     const Scalar tmp20 = -tmp18*tmp19;
     const Scalar tmp21 = tmp17*tmp19;
-    const Scalar tmp26 = l4*cos(theta4);
-    const Scalar tmp27 = l4*sin(theta4);
+    const Scalar tmp26 = l4*cos_of[3];
+    const Scalar tmp27 = l4*sin_of[3];
     const Scalar tmp28 = (theta4_dot*theta4_dot);
     const Scalar tmp29 = -tmp27*tmp28;
     const Scalar tmp30 = tmp28*tmp26;
-    const Scalar tmp35 = l5*cos(theta5);
-    const Scalar tmp36 = l5*sin(theta5);
+    const Scalar tmp35 = l5*cos_of[4];
+    const Scalar tmp36 = l5*sin_of[4];
     const Scalar tmp37 = (theta5_dot*theta5_dot);
     const Scalar tmp38 = -tmp36*tmp37;
     const Scalar tmp39 = tmp35*tmp37;
@@ -586,8 +663,6 @@ struct NLinkChain5 {
                        const Params& params,
                        VMatrix<Scalar>* Mt,
                        VVector<Scalar>* f) {
-    using std::cos;
-    using std::sin;
     const Scalar theta1 = q(0);
     const Scalar theta2 = q(1);
     const Scalar theta3 = q(2);
@@ -598,6 +673,9 @@ struct NLinkChain5 {
     const Scalar theta3_dot = v(2);
     const Scalar theta4_dot = v(3);
     const Scalar theta5_dot = v(4);
+    const Scalar sin_cos_of[5] = {theta1, theta2, theta3, theta4, theta5};
+    Scalar sin_of[5], cos_of[5];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar g = Scalar(params.g);
     const Scalar l1 = Scalar(params.l1);
     const Scalar m1 = Scalar(params.m1);
@@ -609,28 +687,28 @@ struct NLinkChain5 {
     const Scalar m4 = Scalar(params.m4);
     const Scalar l5 = Scalar(params.l5);
     const Scalar m5 = Scalar(params.m5);
-    const Scalar tmp0 = l1*cos(theta1);
-    const Scalar tmp1 = l1*sin(theta1);
+    const Scalar tmp0 = l1*cos_of[0];
+    const Scalar tmp1 = l1*sin_of[0];
     const Scalar tmp2 = (theta1_dot*theta1_dot);
     const Scalar tmp3 = -tmp1*tmp2;
     const Scalar tmp4 = tmp0*tmp2;
-    const Scalar tmp8 = l2*cos(theta2);
-    const Scalar tmp9 = l2*sin(theta2);
+    const Scalar tmp8 = l2*cos_of[1];
+    const Scalar tmp9 = l2*sin_of[1];
     const Scalar tmp10 = (theta2_dot*theta2_dot);
     const Scalar tmp11 = -tmp9*tmp10;
     const Scalar tmp12 = tmp8*tmp10;
-    const Scalar tmp17 = l3*cos(theta3);
-    const Scalar tmp18 = l3*sin(theta3);
+    const Scalar tmp17 = l3*cos_of[2];
+    const Scalar tmp18 = l3*sin_of[2];
     const Scalar tmp19 = (theta3_dot*theta3_dot);
     const Scalar tmp20 = -tmp18*tmp19;
     const Scalar tmp21 = tmp17*tmp19;
-    const Scalar tmp26 = l4*cos(theta4);
-    const Scalar tmp27 = l4*sin(theta4);
+    const Scalar tmp26 = l4*cos_of[3];
+    const Scalar tmp27 = l4*sin_of[3];
     const Scalar tmp28 = (theta4_dot*theta4_dot);
     const Scalar tmp29 = -tmp27*tmp28;
     const Scalar tmp30 = tmp28*tmp26;
-    const Scalar tmp35 = l5*cos(theta5);
-    const Scalar tmp36 = l5*sin(theta5);
+    const Scalar tmp35 = l5*cos_of[4];
+    const Scalar tmp36 = l5*sin_of[4];
     const Scalar tmp37 = (theta5_dot*theta5_dot);
     const Scalar tmp38 = -tmp36*tmp37;
     const Scalar tmp39 = tmp35*tmp37;
@@ -755,8 +833,6 @@ struct NLinkChain5 {
                                const VVector<Scalar>& v,
                                const Scalar& /*t*/,
                                const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar theta1 = q(0);
     const Scalar theta2 = q(1);
     const Scalar theta3 = q(2);
@@ -767,6 +843,9 @@ struct NLinkChain5 {
     const Scalar theta3_dot = v(2);
     const Scalar theta4_dot = v(3);
     const Scalar theta5_dot = v(4);
+    const Scalar sin_cos_of[5] = {theta1, theta2, theta3, theta4, theta5};
+    Scalar sin_of[5], cos_of[5];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar g = Scalar(params.g);
     const Scalar l1 = Scalar(params.l1);
     const Scalar m1 = Scalar(params.m1);
@@ -778,28 +857,28 @@ struct NLinkChain5 {
     const Scalar m4 = Scalar(params.m4);
     const Scalar l5 = Scalar(params.l5);
     const Scalar m5 = Scalar(params.m5);
-    const Scalar tmp0 = l1*cos(theta1);
-    const Scalar tmp1 = l1*sin(theta1);
+    const Scalar tmp0 = l1*cos_of[0];
+    const Scalar tmp1 = l1*sin_of[0];
     const Scalar tmp2 = (theta1_dot*theta1_dot);
     const Scalar tmp3 = -tmp1*tmp2;
     const Scalar tmp4 = tmp0*tmp2;
-    const Scalar tmp8 = l2*cos(theta2);
-    const Scalar tmp9 = l2*sin(theta2);
+    const Scalar tmp8 = l2*cos_of[1];
+    const Scalar tmp9 = l2*sin_of[1];
     const Scalar tmp10 = (theta2_dot*theta2_dot);
     const Scalar tmp11 = -tmp9*tmp10;
     const Scalar tmp12 = tmp8*tmp10;
-    const Scalar tmp17 = l3*cos(theta3);
-    const Scalar tmp18 = l3*sin(theta3);
+    const Scalar tmp17 = l3*cos_of[2];
+    const Scalar tmp18 = l3*sin_of[2];
     const Scalar tmp19 = (theta3_dot*theta3_dot);
     const Scalar tmp20 = -tmp18*tmp19;
     const Scalar tmp21 = tmp17*tmp19;
-    const Scalar tmp26 = l4*cos(theta4);
-    const Scalar tmp27 = l4*sin(theta4);
+    const Scalar tmp26 = l4*cos_of[3];
+    const Scalar tmp27 = l4*sin_of[3];
     const Scalar tmp28 = (theta4_dot*theta4_dot);
     const Scalar tmp29 = -tmp27*tmp28;
     const Scalar tmp30 = tmp28*tmp26;
-    const Scalar tmp35 = l5*cos(theta5);
-    const Scalar tmp36 = l5*sin(theta5);
+    const Scalar tmp35 = l5*cos_of[4];
+    const Scalar tmp36 = l5*sin_of[4];
     const Scalar tmp37 = (theta5_dot*theta5_dot);
     const Scalar tmp38 = -tmp36*tmp37;
     const Scalar tmp39 = tmp35*tmp37;
@@ -911,8 +990,6 @@ struct NLinkChain5 {
                                           const VVector<Scalar>& qdd,
                                           const Scalar& /*t*/,
                                           const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar theta1 = q(0);
     const Scalar theta2 = q(1);
     const Scalar theta3 = q(2);
@@ -928,6 +1005,9 @@ struct NLinkChain5 {
     const Scalar theta3_ddot = qdd(2);
     const Scalar theta4_ddot = qdd(3);
     const Scalar theta5_ddot = qdd(4);
+    const Scalar sin_cos_of[5] = {theta1, theta2, theta3, theta4, theta5};
+    Scalar sin_of[5], cos_of[5];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar g = Scalar(params.g);
     const Scalar l1 = Scalar(params.l1);
     const Scalar m1 = Scalar(params.m1);
@@ -939,28 +1019,28 @@ struct NLinkChain5 {
     const Scalar m4 = Scalar(params.m4);
     const Scalar l5 = Scalar(params.l5);
     const Scalar m5 = Scalar(params.m5);
-    const Scalar tmp0 = l1*cos(theta1);
-    const Scalar tmp1 = l1*sin(theta1);
+    const Scalar tmp0 = l1*cos_of[0];
+    const Scalar tmp1 = l1*sin_of[0];
     const Scalar tmp2 = (theta1_dot*theta1_dot);
     const Scalar tmp3 = -tmp1*tmp2;
     const Scalar tmp4 = tmp0*tmp2;
-    const Scalar tmp8 = l2*cos(theta2);
-    const Scalar tmp9 = l2*sin(theta2);
+    const Scalar tmp8 = l2*cos_of[1];
+    const Scalar tmp9 = l2*sin_of[1];
     const Scalar tmp10 = (theta2_dot*theta2_dot);
     const Scalar tmp11 = -tmp9*tmp10;
     const Scalar tmp12 = tmp8*tmp10;
-    const Scalar tmp17 = l3*cos(theta3);
-    const Scalar tmp18 = l3*sin(theta3);
+    const Scalar tmp17 = l3*cos_of[2];
+    const Scalar tmp18 = l3*sin_of[2];
     const Scalar tmp19 = (theta3_dot*theta3_dot);
     const Scalar tmp20 = -tmp18*tmp19;
     const Scalar tmp21 = tmp17*tmp19;
-    const Scalar tmp26 = l4*cos(theta4);
-    const Scalar tmp27 = l4*sin(theta4);
+    const Scalar tmp26 = l4*cos_of[3];
+    const Scalar tmp27 = l4*sin_of[3];
     const Scalar tmp28 = (theta4_dot*theta4_dot);
     const Scalar tmp29 = -tmp27*tmp28;
     const Scalar tmp30 = tmp28*tmp26;
-    const Scalar tmp35 = l5*cos(theta5);
-    const Scalar tmp36 = l5*sin(theta5);
+    const Scalar tmp35 = l5*cos_of[4];
+    const Scalar tmp36 = l5*sin_of[4];
     const Scalar tmp37 = (theta5_dot*theta5_dot);
     const Scalar tmp38 = -tmp36*tmp37;
     const Scalar tmp39 = tmp35*tmp37;
@@ -1015,8 +1095,6 @@ struct NLinkChain5 {
                                  const Params& params,
                                  VQMatrix<Scalar>* dr_dq,
                                  VMatrix<Scalar>* dr_dv) {
-    using std::cos;
-    using std::sin;
     const Scalar theta1 = q(0);
     const Scalar theta2 = q(1);
     const Scalar theta3 = q(2);
@@ -1032,6 +1110,9 @@ struct NLinkChain5 {
     const Scalar theta3_ddot = qdd(2);
     const Scalar theta4_ddot = qdd(3);
     const Scalar theta5_ddot = qdd(4);
+    const Scalar sin_cos_of[5] = {theta1, theta2, theta3, theta4, theta5};
+    Scalar sin_of[5], cos_of[5];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar g = Scalar(params.g);
     const Scalar l1 = Scalar(params.l1);
     const Scalar m1 = Scalar(params.m1);
@@ -1043,28 +1124,28 @@ struct NLinkChain5 {
     const Scalar m4 = Scalar(params.m4);
     const Scalar l5 = Scalar(params.l5);
     const Scalar m5 = Scalar(params.m5);
-    const Scalar tmp0 = l1*cos(theta1);
-    const Scalar tmp1 = l1*sin(theta1);
+    const Scalar tmp0 = l1*cos_of[0];
+    const Scalar tmp1 = l1*sin_of[0];
     const Scalar tmp2 = (theta1_dot*theta1_dot);
     const Scalar tmp3 = -tmp1*tmp2;
     const Scalar tmp4 = tmp0*tmp2;
-    const Scalar tmp8 = l2*cos(theta2);
-    const Scalar tmp9 = l2*sin(theta2);
+    const Scalar tmp8 = l2*cos_of[1];
+    const Scalar tmp9 = l2*sin_of[1];
     const Scalar tmp10 = (theta2_dot*theta2_dot);
     const Scalar tmp11 = -tmp9*tmp10;
     const Scalar tmp12 = tmp8*tmp10;
-    const Scalar tmp17 = l3*cos(theta3);
-    const Scalar tmp18 = l3*sin(theta3);
+    const Scalar tmp17 = l3*cos_of[2];
+    const Scalar tmp18 = l3*sin_of[2];
     const Scalar tmp19 = (theta3_dot*theta3_dot);
     const Scalar tmp20 = -tmp18*tmp19;
     const Scalar tmp21 = tmp17*tmp19;
-    const Scalar tmp26 = l4*cos(theta4);
-    const Scalar tmp27 = l4*sin(theta4);
+    const Scalar tmp26 = l4*cos_of[3];
+    const Scalar tmp27 = l4*sin_of[3];
     const Scalar tmp28 = (theta4_dot*theta4_dot);
     const Scalar tmp29 = -tmp27*tmp28;
     const Scalar tmp30 = tmp28*tmp26;
-    const Scalar tmp35 = l5*cos(theta5);
-    const Scalar tmp36 = l5*sin(theta5);
+    const Scalar tmp35 = l5*cos_of[4];
+    const Scalar tmp36 = l5*sin_of[4];
     const Scalar tmp37 = (theta5_dot*theta5_dot);
     const Scalar tmp38 = -tmp36*tmp37;
     const Scalar tmp39 = tmp35*tmp37;
@@ -1089,8 +1170,8 @@ struct NLinkChain5 {
     const Scalar tmp157 = tmp154 + tmp140*m2;
     const Scalar tmp159 = tmp156 + tmp137*m1;
     const Scalar tmp160 = tmp157 + tmp138*m1;
-    const Scalar tmp324 = -l1*sin(theta1);
-    const Scalar tmp325 = l1*cos(theta1);
+    const Scalar tmp324 = -l1*sin_of[0];
+    const Scalar tmp325 = l1*cos_of[0];
     const Scalar tmp326 = -tmp2*tmp325;
     const Scalar tmp327 = tmp2*tmp324;
     const Scalar tmp328 = theta1_ddot*tmp324 + tmp326;
@@ -1110,8 +1191,8 @@ struct NLinkChain5 {
     const Scalar tmp342 = m1*tmp328 + tmp339;
     const Scalar tmp343 = m1*tmp329 + tmp340;
     const Scalar tmp344 = tmp159*tmp324 + tmp160*tmp325 + tmp0*tmp342 + tmp1*tmp343;
-    const Scalar tmp345 = -l2*sin(theta2);
-    const Scalar tmp346 = l2*cos(theta2);
+    const Scalar tmp345 = -l2*sin_of[1];
+    const Scalar tmp346 = l2*cos_of[1];
     const Scalar tmp347 = -tmp10*tmp346;
     const Scalar tmp348 = tmp10*tmp345;
     const Scalar tmp349 = theta2_ddot*tmp345 + tmp347;
@@ -1129,8 +1210,8 @@ struct NLinkChain5 {
     const Scalar tmp361 = m2*tmp350 + tmp358;
     const Scalar tmp362 = tmp156*tmp345 + tmp157*tmp346 + tmp8*tmp360 + tmp9*tmp361;
     const Scalar tmp363 = tmp0*tmp360 + tmp1*tmp361;
-    const Scalar tmp364 = -l3*sin(theta3);
-    const Scalar tmp365 = l3*cos(theta3);
+    const Scalar tmp364 = -l3*sin_of[2];
+    const Scalar tmp365 = l3*cos_of[2];
     const Scalar tmp366 = -tmp19*tmp365;
     const Scalar tmp367 = tmp19*tmp364;
     const Scalar tmp368 = theta3_ddot*tmp364 + tmp366;
@@ -1146,8 +1227,8 @@ struct NLinkChain5 {
     const Scalar tmp378 = tmp153*tmp364 + tmp154*tmp365 + tmp17*tmp376 + tmp18*tmp377;
     const Scalar tmp379 = tmp8*tmp376 + tmp9*tmp377;
     const Scalar tmp380 = tmp0*tmp376 + tmp1*tmp377;
-    const Scalar tmp381 = -l4*sin(theta4);
-    const Scalar tmp382 = l4*cos(theta4);
+    const Scalar tmp381 = -l4*sin_of[3];
+    const Scalar tmp382 = l4*cos_of[3];
     const Scalar tmp383 = -tmp28*tmp382;
     const Scalar tmp384 = tmp28*tmp381;
     const Scalar tmp385 = theta4_ddot*tmp381 + tmp383;
@@ -1161,8 +1242,8 @@ struct NLinkChain5 {
     const Scalar tmp393 = tmp17*tmp390 + tmp18*tmp391;
     const Scalar tmp394 = tmp8*tmp390 + tmp9*tmp391;
     const Scalar tmp395 = tmp0*tmp390 + tmp1*tmp391;
-    const Scalar tmp396 = -l5*sin(theta5);
-    const Scalar tmp397 = l5*cos(theta5);
+    const Scalar tmp396 = -l5*sin_of[4];
+    const Scalar tmp397 = l5*cos_of[4];
     const Scalar tmp398 = -tmp37*tmp397;
     const Scalar tmp399 = tmp37*tmp396;
     const Scalar tmp400 = theta5_ddot*tmp396 + tmp398;
@@ -1308,8 +1389,6 @@ struct NLinkChain5 {
                                const VVector<Scalar>& v,
                                const Scalar& /*t*/,
                                const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar theta1 = q(0);
     const Scalar theta2 = q(1);
     const Scalar theta3 = q(2);
@@ -1320,6 +1399,9 @@ struct NLinkChain5 {
     const Scalar theta3_dot = v(2);
     const Scalar theta4_dot = v(3);
     const Scalar theta5_dot = v(4);
+    const Scalar sin_cos_of[5] = {theta1, theta2, theta3, theta4, theta5};
+    Scalar sin_of[5], cos_of[5];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar l1 = Scalar(params.l1);
     const Scalar m1 = Scalar(params.m1);
     const Scalar l2 = Scalar(params.l2);
@@ -1330,24 +1412,24 @@ struct NLinkChain5 {
     const Scalar m4 = Scalar(params.m4);
     const Scalar l5 = Scalar(params.l5);
     const Scalar m5 = Scalar(params.m5);
-    const Scalar tmp0 = l1*cos(theta1);
-    const Scalar tmp1 = l1*sin(theta1);
+    const Scalar tmp0 = l1*cos_of[0];
+    const Scalar tmp1 = l1*sin_of[0];
     const Scalar tmp6 = tmp0*theta1_dot;
     const Scalar tmp7 = tmp1*theta1_dot;
-    const Scalar tmp8 = l2*cos(theta2);
-    const Scalar tmp9 = l2*sin(theta2);
+    const Scalar tmp8 = l2*cos_of[1];
+    const Scalar tmp9 = l2*sin_of[1];
     const Scalar tmp15 = tmp6 + tmp8*theta2_dot;
     const Scalar tmp16 = tmp7 + tmp9*theta2_dot;
-    const Scalar tmp17 = l3*cos(theta3);
-    const Scalar tmp18 = l3*sin(theta3);
+    const Scalar tmp17 = l3*cos_of[2];
+    const Scalar tmp18 = l3*sin_of[2];
     const Scalar tmp24 = tmp15 + tmp17*theta3_dot;
     const Scalar tmp25 = tmp16 + tmp18*theta3_dot;
-    const Scalar tmp26 = l4*cos(theta4);
-    const Scalar tmp27 = l4*sin(theta4);
+    const Scalar tmp26 = l4*cos_of[3];
+    const Scalar tmp27 = l4*sin_of[3];
     const Scalar tmp33 = tmp24 + tmp26*theta4_dot;
     const Scalar tmp34 = tmp25 + tmp27*theta4_dot;
-    const Scalar tmp35 = l5*cos(theta5);
-    const Scalar tmp36 = l5*sin(theta5);
+    const Scalar tmp35 = l5*cos_of[4];
+    const Scalar tmp36 = l5*sin_of[4];
     const Scalar tmp42 = tmp33 + tmp35*theta5_dot;
     const Scalar tmp43 = tmp34 + tmp36*theta5_dot;
     const Scalar tmp235 = (Scalar(0.5))*m1*((tmp6*tmp6) + (tmp7*tmp7));
@@ -1371,12 +1453,14 @@ struct NLinkChain5 {
   static Scalar potential_energy(const QVector<Scalar>& q,
                                  const Scalar& /*t*/,
                                  const Params& params) {
-    using std::cos;
     const Scalar theta1 = q(0);
     const Scalar theta2 = q(1);
     const Scalar theta3 = q(2);
     const Scalar theta4 = q(3);
     const Scalar theta5 = q(4);
+    const Scalar sin_cos_of[5] = {theta1, theta2, theta3, theta4, theta5};
+    Scalar sin_of[5], cos_of[5];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar g = Scalar(params.g);
     const Scalar l1 = Scalar(params.l1);
     const Scalar m1 = Scalar(params.m1);
@@ -1388,15 +1472,15 @@ struct NLinkChain5 {
     const Scalar m4 = Scalar(params.m4);
     const Scalar l5 = Scalar(params.l5);
     const Scalar m5 = Scalar(params.m5);
-    const Scalar tmp0 = l1*cos(theta1);
+    const Scalar tmp0 = l1*cos_of[0];
     const Scalar tmp5 = -tmp0;
-    const Scalar tmp8 = l2*cos(theta2);
+    const Scalar tmp8 = l2*cos_of[1];
     const Scalar tmp14 = tmp5 - tmp8;
-    const Scalar tmp17 = l3*cos(theta3);
+    const Scalar tmp17 = l3*cos_of[2];
     const Scalar tmp23 = tmp14 - tmp17;
-    const Scalar tmp26 = l4*cos(theta4);
+    const Scalar tmp26 = l4*cos_of[3];
     const Scalar tmp32 = tmp23 - tmp26;
-    const Scalar tmp35 = l5*cos(theta5);
+    const Scalar tmp35 = l5*cos_of[4];
     const Scalar tmp41 = tmp32 - tmp35;
     const Scalar tmp185 = g*m5;
     const Scalar tmp187 = g*m4;
@@ -1436,8 +1520,6 @@ struct NLinkChain5 {
                        const VVector<Scalar>& v,
                        const Scalar& /*t*/,
                        const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar theta1 = q(0);
     const Scalar theta2 = q(1);
     const Scalar theta3 = q(2);
@@ -1448,6 +1530,9 @@ struct NLinkChain5 {
     const Scalar theta3_dot = v(2);
     const Scalar theta4_dot = v(3);
     const Scalar theta5_dot = v(4);
+    const Scalar sin_cos_of[5] = {theta1, theta2, theta3, theta4, theta5};
+    Scalar sin_of[5], cos_of[5];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar g = Scalar(params.g);
     const Scalar l1 = Scalar(params.l1);
     const Scalar m1 = Scalar(params.m1);
@@ -1459,28 +1544,28 @@ struct NLinkChain5 {
     const Scalar m4 = Scalar(params.m4);
     const Scalar l5 = Scalar(params.l5);
     const Scalar m5 = Scalar(params.m5);
-    const Scalar tmp0 = l1*cos(theta1);
-    const Scalar tmp1 = l1*sin(theta1);
+    const Scalar tmp0 = l1*cos_of[0];
+    const Scalar tmp1 = l1*sin_of[0];
     const Scalar tmp5 = -tmp0;
     const Scalar tmp6 = tmp0*theta1_dot;
     const Scalar tmp7 = tmp1*theta1_dot;
-    const Scalar tmp8 = l2*cos(theta2);
-    const Scalar tmp9 = l2*sin(theta2);
+    const Scalar tmp8 = l2*cos_of[1];
+    const Scalar tmp9 = l2*sin_of[1];
     const Scalar tmp14 = tmp5 - tmp8;
     const Scalar tmp15 = tmp6 + tmp8*theta2_dot;
     const Scalar tmp16 = tmp7 + tmp9*theta2_dot;
-    const Scalar tmp17 = l3*cos(theta3);
-    const Scalar tmp18 = l3*sin(theta3);
+    const Scalar tmp17 = l3*cos_of[2];
+    const Scalar tmp18 = l3*sin_of[2];
     const Scalar tmp23 = tmp14 - tmp17;
     const Scalar tmp24 = tmp15 + tmp17*theta3_dot;
     const Scalar tmp25 = tmp16 + tmp18*theta3_dot;
-    const Scalar tmp26 = l4*cos(theta4);
-    const Scalar tmp27 = l4*sin(theta4);
+    const Scalar tmp26 = l4*cos_of[3];
+    const Scalar tmp27 = l4*sin_of[3];
     const Scalar tmp32 = tmp23 - tmp26;
     const Scalar tmp33 = tmp24 + tmp26*theta4_dot;
     const Scalar tmp34 = tmp25 + tmp27*theta4_dot;
-    const Scalar tmp35 = l5*cos(theta5);
-    const Scalar tmp36 = l5*sin(theta5);
+    const Scalar tmp35 = l5*cos_of[4];
+    const Scalar tmp36 = l5*sin_of[4];
     const Scalar tmp41 = tmp32 - tmp35;
     const Scalar tmp42 = tmp33 + tmp35*theta5_dot;
     const Scalar tmp43 = tmp34 + tmp36*theta5_dot;
@@ -1511,35 +1596,36 @@ struct NLinkChain5 {
   static XVector<Scalar> positions(const QVector<Scalar>& q,
                                    const Scalar& /*t*/,
                                    const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar theta1 = q(0);
     const Scalar theta2 = q(1);
     const Scalar theta3 = q(2);
     const Scalar theta4 = q(3);
     const Scalar theta5 = q(4);
+    const Scalar sin_cos_of[5] = {theta1, theta2, theta3, theta4, theta5};
+    Scalar sin_of[5], cos_of[5];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar l1 = Scalar(params.l1);
     const Scalar l2 = Scalar(params.l2);
     const Scalar l3 = Scalar(params.l3);
     const Scalar l4 = Scalar(params.l4);
     const Scalar l5 = Scalar(params.l5);
-    const Scalar tmp0 = l1*cos(theta1);
-    const Scalar tmp1 = l1*sin(theta1);
+    const Scalar tmp0 = l1*cos_of[0];
+    const Scalar tmp1 = l1*sin_of[0];
     const Scalar tmp5 = -tmp0;
-    const Scalar tmp8 = l2*cos(theta2);
-    const Scalar tmp9 = l2*sin(theta2);
+    const Scalar tmp8 = l2*cos_of[1];
+    const Scalar tmp9 = l2*sin_of[1];
     const Scalar tmp13 = tmp1 + tmp9;
     const Scalar tmp14 = tmp5 - tmp8;
-    const Scalar tmp17 = l3*cos(theta3);
-    const Scalar tmp18 = l3*sin(theta3);
+    const Scalar tmp17 = l3*cos_of[2];
+    const Scalar tmp18 = l3*sin_of[2];
     const Scalar tmp22 = tmp18 + tmp13;
     const Scalar tmp23 = tmp14 - tmp17;
-    const Scalar tmp26 = l4*cos(theta4);
-    const Scalar tmp27 = l4*sin(theta4);
+    const Scalar tmp26 = l4*cos_of[3];
+    const Scalar tmp27 = l4*sin_of[3];
     const Scalar tmp31 = tmp27 + tmp22;
     const Scalar tmp32 = tmp23 - tmp26;
-    const Scalar tmp35 = l5*cos(theta5);
-    const Scalar tmp36 = l5*sin(theta5);
+    const Scalar tmp35 = l5*cos_of[4];
+    const Scalar tmp36 = l5*sin_of[4];
     const Scalar tmp40 = tmp36 + tmp31;
     const Scalar tmp41 = tmp32 - tmp35;
     XVector<Scalar> result;
@@ -1568,8 +1654,6 @@ struct NLinkChain5 {
                                     const VVector<Scalar>& v,
                                     const Scalar& /*t*/,
                                     const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar theta1 = q(0);
     const Scalar theta2 = q(1);
     const Scalar theta3 = q(2);
@@ -1580,29 +1664,32 @@ struct NLinkChain5 {
     const Scalar theta3_dot = v(2);
     const Scalar theta4_dot = v(3);
     const Scalar theta5_dot = v(4);
+    const Scalar sin_cos_of[5] = {theta1, theta2, theta3, theta4, theta5};
+    Scalar sin_of[5], cos_of[5];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar l1 = Scalar(params.l1);
     const Scalar l2 = Scalar(params.l2);
     const Scalar l3 = Scalar(params.l3);
     const Scalar l4 = Scalar(params.l4);
     const Scalar l5 = Scalar(params.l5);
-    const Scalar tmp0 = l1*cos(theta1);
-    const Scalar tmp1 = l1*sin(theta1);
+    const Scalar tmp0 = l1*cos_of[0];
+    const Scalar tmp1 = l1*sin_of[0];
     const Scalar tmp6 = tmp0*theta1_dot;
     const Scalar tmp7 = tmp1*theta1_dot;
-    const Scalar tmp8 = l2*cos(theta2);
-    const Scalar tmp9 = l2*sin(theta2);
+    const Scalar tmp8 = l2*cos_of[1];
+    const Scalar tmp9 = l2*sin_of[1];
     const Scalar tmp15 = tmp6 + tmp8*theta2_dot;
     const Scalar tmp16 = tmp7 + tmp9*theta2_dot;
-    const Scalar tmp17 = l3*cos(theta3);
-    const Scalar tmp18 = l3*sin(theta3);
+    const Scalar tmp17 = l3*cos_of[2];
+    const Scalar tmp18 = l3*sin_of[2];
     const Scalar tmp24 = tmp15 + tmp17*theta3_dot;
     const Scalar tmp25 = tmp16 + tmp18*theta3_dot;
-    const Scalar tmp26 = l4*cos(theta4);
-    const Scalar tmp27 = l4*sin(theta4);
+    const Scalar tmp26 = l4*cos_of[3];
+    const Scalar tmp27 = l4*sin_of[3];
     const Scalar tmp33 = tmp24 + tmp26*theta4_dot;
     const Scalar tmp34 = tmp25 + tmp27*theta4_dot;
-    const Scalar tmp35 = l5*cos(theta5);
-    const Scalar tmp36 = l5*sin(theta5);
+    const Scalar tmp35 = l5*cos_of[4];
+    const Scalar tmp36 = l5*sin_of[4];
     const Scalar tmp42 = tmp33 + tmp35*theta5_dot;
     const Scalar tmp43 = tmp34 + tmp36*theta5_dot;
     XVector<Scalar> result;
@@ -1629,28 +1716,29 @@ struct NLinkChain5 {
   static XJacobian<Scalar> jacobian(const QVector<Scalar>& q,
                                     const Scalar& /*t*/,
                                     const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar theta1 = q(0);
     const Scalar theta2 = q(1);
     const Scalar theta3 = q(2);
     const Scalar theta4 = q(3);
     const Scalar theta5 = q(4);
+    const Scalar sin_cos_of[5] = {theta1, theta2, theta3, theta4, theta5};
+    Scalar sin_of[5], cos_of[5];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar l1 = Scalar(params.l1);
     const Scalar l2 = Scalar(params.l2);
     const Scalar l3 = Scalar(params.l3);
     const Scalar l4 = Scalar(params.l4);
     const Scalar l5 = Scalar(params.l5);
-    const Scalar tmp0 = l1*cos(theta1);
-    const Scalar tmp1 = l1*sin(theta1);
-    const Scalar tmp8 = l2*cos(theta2);
-    const Scalar tmp9 = l2*sin(theta2);
-    const Scalar tmp17 = l3*cos(theta3);
-    const Scalar tmp18 = l3*sin(theta3);
-    const Scalar tmp26 = l4*cos(theta4);
-    const Scalar tmp27 = l4*sin(theta4);
-    const Scalar tmp35 = l5*cos(theta5);
-    const Scalar tmp36 = l5*sin(theta5);
+    const Scalar tmp0 = l1*cos_of[0];
+    const Scalar tmp1 = l1*sin_of[0];
+    const Scalar tmp8 = l2*cos_of[1];
+    const Scalar tmp9 = l2*sin_of[1];
+    const Scalar tmp17 = l3*cos_of[2];
+    const Scalar tmp18 = l3*sin_of[2];
+    const Scalar tmp26 = l4*cos_of[3];
+    const Scalar tmp27 = l4*sin_of[3];
+    const Scalar tmp35 = l5*cos_of[4];
+    const Scalar tmp36 = l5*sin_of[4];
     XJacobian<Scalar> result;
     result.setZero();
     result(0, 0) = tmp0;
@@ -1698,8 +1786,6 @@ struct NLinkChain5 {
                                            const VVector<Scalar>& v,
                                            const Scalar& /*t*/,
                                            const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar theta1 = q(0);
     const Scalar theta2 = q(1);
     const Scalar theta3 = q(2);
@@ -1710,33 +1796,36 @@ struct NLinkChain5 {
     const Scalar theta3_dot = v(2);
     const Scalar theta4_dot = v(3);
     const Scalar theta5_dot = v(4);
+    const Scalar sin_cos_of[5] = {theta1, theta2, theta3, theta4, theta5};
+    Scalar sin_of[5], cos_of[5];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar l1 = Scalar(params.l1);
     const Scalar l2 = Scalar(params.l2);
     const Scalar l3 = Scalar(params.l3);
     const Scalar l4 = Scalar(params.l4);
     const Scalar l5 = Scalar(params.l5);
-    const Scalar tmp0 = l1*cos(theta1);
-    const Scalar tmp1 = l1*sin(theta1);
+    const Scalar tmp0 = l1*cos_of[0];
+    const Scalar tmp1 = l1*sin_of[0];
     const Scalar tmp2 = (theta1_dot*theta1_dot);
     const Scalar tmp3 = -tmp1*tmp2;
     const Scalar tmp4 = tmp0*tmp2;
-    const Scalar tmp8 = l2*cos(theta2);
-    const Scalar tmp9 = l2*sin(theta2);
+    const Scalar tmp8 = l2*cos_of[1];
+    const Scalar tmp9 = l2*sin_of[1];
     const Scalar tmp10 = (theta2_dot*theta2_dot);
     const Scalar tmp11 = -tmp9*tmp10;
     const Scalar tmp12 = tmp8*tmp10;
-    const Scalar tmp17 = l3*cos(theta3);
-    const Scalar tmp18 = l3*sin(theta3);
+    const Scalar tmp17 = l3*cos_of[2];
+    const Scalar tmp18 = l3*sin_of[2];
     const Scalar tmp19 = (theta3_dot*theta3_dot);
     const Scalar tmp20 = -tmp18*tmp19;
     const Scalar tmp21 = tmp17*tmp19;
-    const Scalar tmp26 = l4*cos(theta4);
-    const Scalar tmp27 = l4*sin(theta4);
+    const Scalar tmp26 = l4*cos_of[3];
+    const Scalar tmp27 = l4*sin_of[3];
     const Scalar tmp28 = (theta4_dot*theta4_dot);
     const Scalar tmp29 = -tmp27*tmp28;
     const Scalar tmp30 = tmp28*tmp26;
-    const Scalar tmp35 = l5*cos(theta5);
-    const Scalar tmp36 = l5*sin(theta5);
+    const Scalar tmp35 = l5*cos_of[4];
+    const Scalar tmp36 = l5*sin_of[4];
     const Scalar tmp37 = (theta5_dot*theta5_dot);
     const Scalar tmp38 = -tmp36*tmp37;
     const Scalar tmp39 = tmp35*tmp37;
@@ -1774,8 +1863,6 @@ struct NLinkChain5 {
                                              const VVector<Scalar>& v,
                                              const Scalar& /*t*/,
                                              const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar theta1 = q(0);
     const Scalar theta2 = q(1);
     const Scalar theta3 = q(2);
@@ -1786,6 +1873,9 @@ struct NLinkChain5 {
     const Scalar theta3_dot = v(2);
     const Scalar theta4_dot = v(3);
     const Scalar theta5_dot = v(4);
+    const Scalar sin_cos_of[5] = {theta1, theta2, theta3, theta4, theta5};
+    Scalar sin_of[5], cos_of[5];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar l1 = Scalar(params.l1);
     const Scalar m1 = Scalar(params.m1);
     const Scalar l2 = Scalar(params.l2);
@@ -1796,24 +1886,24 @@ struct NLinkChain5 {
     const Scalar m4 = Scalar(params.m4);
     const Scalar l5 = Scalar(params.l5);
     const Scalar m5 = Scalar(params.m5);
-    const Scalar tmp0 = l1*cos(theta1);
-    const Scalar tmp1 = l1*sin(theta1);
+    const Scalar tmp0 = l1*cos_of[0];
+    const Scalar tmp1 = l1*sin_of[0];
     const Scalar tmp6 = tmp0*theta1_dot;
     const Scalar tmp7 = tmp1*theta1_dot;
-    const Scalar tmp8 = l2*cos(theta2);
-    const Scalar tmp9 = l2*sin(theta2);
+    const Scalar tmp8 = l2*cos_of[1];
+    const Scalar tmp9 = l2*sin_of[1];
     const Scalar tmp15 = tmp6 + tmp8*theta2_dot;
     const Scalar tmp16 = tmp7 + tmp9*theta2_dot;
-    const Scalar tmp17 = l3*cos(theta3);
-    const Scalar tmp18 = l3*sin(theta3);
+    const Scalar tmp17 = l3*cos_of[2];
+    const Scalar tmp18 = l3*sin_of[2];
     const Scalar tmp24 = tmp15 + tmp17*theta3_dot;
     const Scalar tmp25 = tmp16 + tmp18*theta3_dot;
-    const Scalar tmp26 = l4*cos(theta4);
-    const Scalar tmp27 = l4*sin(theta4);
+    const Scalar tmp26 = l4*cos_of[3];
+    const Scalar tmp27 = l4*sin_of[3];
     const Scalar tmp33 = tmp24 + tmp26*theta4_dot;
     const Scalar tmp34 = tmp25 + tmp27*theta4_dot;
-    const Scalar tmp35 = l5*cos(theta5);
-    const Scalar tmp36 = l5*sin(theta5);
+    const Scalar tmp35 = l5*cos_of[4];
+    const Scalar tmp36 = l5*sin_of[4];
     const Scalar tmp42 = tmp33 + tmp35*theta5_dot;
     const Scalar tmp43 = tmp34 + tmp36*theta5_dot;
     SpaceVector<Scalar> result;
@@ -1834,8 +1924,6 @@ struct NLinkChain5 {
                                                 const VVector<Scalar>& v,
                                                 const Scalar& /*t*/,
                                                 const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar theta1 = q(0);
     const Scalar theta2 = q(1);
     const Scalar theta3 = q(2);
@@ -1846,6 +1934,9 @@ struct NLinkChain5 {
     const Scalar theta3_dot = v(2);
     const Scalar theta4_dot = v(3);
     const Scalar theta5_dot = v(4);
+    const Scalar sin_cos_of[5] = {theta1, theta2, theta3, theta4, theta5};
+    Scalar sin_of[5], cos_of[5];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar l1 = Scalar(params.l1);
     const Scalar m1 = Scalar(params.m1);
     const Scalar l2 = Scalar(params.l2);
@@ -1856,31 +1947,31 @@ struct NLinkChain5 {
     const Scalar m4 = Scalar(params.m4);
     const Scalar l5 = Scalar(params.l5);
     const Scalar m5 = Scalar(params.m5);
-    const Scalar tmp0 = l1*cos(theta1);
-    const Scalar tmp1 = l1*sin(theta1);
+    const Scalar tmp0 = l1*cos_of[0];
+    const Scalar tmp1 = l1*sin_of[0];
     const Scalar tmp5 = -tmp0;
     const Scalar tmp6 = tmp0*theta1_dot;
     const Scalar tmp7 = tmp1*theta1_dot;
-    const Scalar tmp8 = l2*cos(theta2);
-    const Scalar tmp9 = l2*sin(theta2);
+    const Scalar tmp8 = l2*cos_of[1];
+    const Scalar tmp9 = l2*sin_of[1];
     const Scalar tmp13 = tmp1 + tmp9;
     const Scalar tmp14 = tmp5 - tmp8;
     const Scalar tmp15 = tmp6 + tmp8*theta2_dot;
     const Scalar tmp16 = tmp7 + tmp9*theta2_dot;
-    const Scalar tmp17 = l3*cos(theta3);
-    const Scalar tmp18 = l3*sin(theta3);
+    const Scalar tmp17 = l3*cos_of[2];
+    const Scalar tmp18 = l3*sin_of[2];
     const Scalar tmp22 = tmp18 + tmp13;
     const Scalar tmp23 = tmp14 - tmp17;
     const Scalar tmp24 = tmp15 + tmp17*theta3_dot;
     const Scalar tmp25 = tmp16 + tmp18*theta3_dot;
-    const Scalar tmp26 = l4*cos(theta4);
-    const Scalar tmp27 = l4*sin(theta4);
+    const Scalar tmp26 = l4*cos_of[3];
+    const Scalar tmp27 = l4*sin_of[3];
     const Scalar tmp31 = tmp27 + tmp22;
     const Scalar tmp32 = tmp23 - tmp26;
     const Scalar tmp33 = tmp24 + tmp26*theta4_dot;
     const Scalar tmp34 = tmp25 + tmp27*theta4_dot;
-    const Scalar tmp35 = l5*cos(theta5);
-    const Scalar tmp36 = l5*sin(theta5);
+    const Scalar tmp35 = l5*cos_of[4];
+    const Scalar tmp36 = l5*sin_of[4];
     const Scalar tmp40 = tmp36 + tmp31;
     const Scalar tmp41 = tmp32 - tmp35;
     const Scalar tmp42 = tmp33 + tmp35*theta5_dot;

@@ -36,6 +36,78 @@
 
 #include <Eigen/Cholesky>
 #include <Eigen/Core>
+// gencoord_kernel_math::sin_cos(x, s, c) sets s[i] = sin(x[i]) and c[i] = cos(x[i]). For
+// double on x86-64 with glibc it works in vector registers, through glibc's vector math
+// library (libmvec, which C++ programs link through libm; within 4 ulp, as its manual states):
+// 4 lanes a call where the compiler targets AVX2, 2 otherwise. The inline namespace keeps the
+// two apart when objects of both are linked together. Elsewhere, or with GENCOORD_NO_LIBMVEC
+// defined, it calls sin and cos.
+#ifndef GENCOORD_KERNEL_SIN_COS
+#define GENCOORD_KERNEL_SIN_COS
+#if defined(__x86_64__) && defined(__GLIBC__) && !defined(GENCOORD_NO_LIBMVEC)
+#include <immintrin.h>
+#define GENCOORD_KERNEL_LIBMVEC 1
+extern "C" {
+#if defined(__AVX2__)
+__m256d _ZGVdN4v_sin(__m256d);
+__m256d _ZGVdN4v_cos(__m256d);
+#else
+__m128d _ZGVbN2v_sin(__m128d);
+__m128d _ZGVbN2v_cos(__m128d);
+#endif
+}
+#endif
+
+namespace gencoord_kernel_math {
+#if defined(GENCOORD_KERNEL_LIBMVEC) && defined(__AVX2__)
+inline namespace avx2 {
+constexpr int kLanes = 4;
+inline void sin_cos_lanes(const double* x, double* s, double* c) {
+  const __m256d lanes = _mm256_loadu_pd(x);
+  _mm256_storeu_pd(s, _ZGVdN4v_sin(lanes));
+  _mm256_storeu_pd(c, _ZGVdN4v_cos(lanes));
+}
+#elif defined(GENCOORD_KERNEL_LIBMVEC)
+inline namespace sse2 {
+constexpr int kLanes = 2;
+inline void sin_cos_lanes(const double* x, double* s, double* c) {
+  const __m128d lanes = _mm_loadu_pd(x);
+  _mm_storeu_pd(s, _ZGVbN2v_sin(lanes));
+  _mm_storeu_pd(c, _ZGVbN2v_cos(lanes));
+}
+#else
+inline namespace scalar {
+#endif
+
+template <class Scalar, int n>
+inline void sin_cos(const Scalar (&x)[n], Scalar (&s)[n], Scalar (&c)[n]) {
+  using std::cos;
+  using std::sin;
+  for (int i = 0; i < n; ++i) {
+    s[i] = sin(x[i]);
+    c[i] = cos(x[i]);
+  }
+}
+
+#ifdef GENCOORD_KERNEL_LIBMVEC
+template <int n>
+inline void sin_cos(const double (&x)[n], double (&s)[n], double (&c)[n]) {
+  constexpr int whole = n - n % kLanes;
+  for (int i = 0; i < whole; i += kLanes) sin_cos_lanes(x + i, s + i, c + i);
+  if constexpr (whole < n) {  // the rest, padded with copies of the last argument
+    double rest[kLanes], sines[kLanes], cosines[kLanes];
+    for (int k = 0; k < kLanes; ++k) rest[k] = x[whole + k < n ? whole + k : n - 1];
+    sin_cos_lanes(rest, sines, cosines);
+    for (int i = whole; i < n; ++i) {
+      s[i] = sines[i - whole];
+      c[i] = cosines[i - whole];
+    }
+  }
+}
+#endif
+}  // inline namespace
+}  // namespace gencoord_kernel_math
+#endif  // GENCOORD_KERNEL_SIN_COS
 
 /*
  * A free 3D rigid body in Z-Y-X Euler angles: one body, whose centre of mass is off its
@@ -207,11 +279,12 @@ struct RigidBodyEuler {
   static VMatrix<Scalar> mass_matrix(const QVector<Scalar>& q,
                                      const Scalar& /*t*/,
                                      const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar yaw = q(3);
     const Scalar pitch = q(4);
     const Scalar roll = q(5);
+    const Scalar sin_cos_of[3] = {yaw, pitch, roll};
+    Scalar sin_of[3], cos_of[3];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar m = Scalar(params.m);
     const Scalar com_x = Scalar(params.com_x);
     const Scalar com_y = Scalar(params.com_y);
@@ -219,12 +292,12 @@ struct RigidBodyEuler {
     const Scalar a = Scalar(params.a);
     const Scalar b = Scalar(params.b);
     const Scalar c = Scalar(params.c);
-    const Scalar tmp0 = sin(yaw);
-    const Scalar tmp1 = cos(roll);
+    const Scalar tmp0 = sin_of[0];
+    const Scalar tmp1 = cos_of[2];
     const Scalar tmp2 = tmp0*tmp1;
-    const Scalar tmp3 = sin(pitch);
-    const Scalar tmp4 = sin(roll);
-    const Scalar tmp5 = cos(yaw);
+    const Scalar tmp3 = sin_of[1];
+    const Scalar tmp4 = sin_of[2];
+    const Scalar tmp5 = cos_of[0];
     const Scalar tmp6 = tmp4*tmp5;
     const Scalar tmp7 = tmp3*tmp6;
     const Scalar tmp8 = tmp7 - tmp2;
@@ -256,7 +329,7 @@ struct RigidBodyEuler {
     const Scalar tmp37 = -Scalar(0.008495035709756703)*tmp12 - tmp23*(tmp32*tmp32)
         - tmp34*(tmp36*tmp36) + Scalar(0.02950190206578425)*tmp14*m
         + Scalar(0.020659800310639128)*tmp16*m;
-    const Scalar tmp44 = cos(pitch);
+    const Scalar tmp44 = cos_of[1];
     const Scalar tmp45 = tmp44*tmp5;
     const Scalar tmp48 = tmp44*com_x;
     const Scalar tmp49 = tmp48*tmp5;
@@ -393,19 +466,20 @@ struct RigidBodyEuler {
                                         const VVector<Scalar>& /*v*/,
                                         const Scalar& /*t*/,
                                         const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar pitch = q(4);
     const Scalar roll = q(5);
+    const Scalar sin_cos_of[2] = {pitch, roll};
+    Scalar sin_of[2], cos_of[2];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar g = Scalar(params.g);
     const Scalar m = Scalar(params.m);
     const Scalar com_x = Scalar(params.com_x);
     const Scalar com_y = Scalar(params.com_y);
     const Scalar com_z = Scalar(params.com_z);
-    const Scalar tmp1 = cos(roll);
-    const Scalar tmp3 = sin(pitch);
-    const Scalar tmp4 = sin(roll);
-    const Scalar tmp44 = cos(pitch);
+    const Scalar tmp1 = cos_of[1];
+    const Scalar tmp3 = sin_of[0];
+    const Scalar tmp4 = sin_of[1];
+    const Scalar tmp44 = cos_of[0];
     const Scalar tmp48 = tmp44*com_x;
     const Scalar tmp64 = tmp4*tmp44;
     const Scalar tmp65 = tmp1*tmp44;
@@ -462,14 +536,15 @@ struct RigidBodyEuler {
                                          const VVector<Scalar>& v,
                                          const Scalar& /*t*/,
                                          const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar yaw = q(3);
     const Scalar pitch = q(4);
     const Scalar roll = q(5);
     const Scalar yaw_dot = v(3);
     const Scalar pitch_dot = v(4);
     const Scalar roll_dot = v(5);
+    const Scalar sin_cos_of[3] = {yaw, pitch, roll};
+    Scalar sin_of[3], cos_of[3];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar m = Scalar(params.m);
     const Scalar com_x = Scalar(params.com_x);
     const Scalar com_y = Scalar(params.com_y);
@@ -477,12 +552,12 @@ struct RigidBodyEuler {
     const Scalar a = Scalar(params.a);
     const Scalar b = Scalar(params.b);
     const Scalar c = Scalar(params.c);
-    const Scalar tmp0 = sin(yaw);
-    const Scalar tmp1 = cos(roll);
+    const Scalar tmp0 = sin_of[0];
+    const Scalar tmp1 = cos_of[2];
     const Scalar tmp2 = tmp0*tmp1;
-    const Scalar tmp3 = sin(pitch);
-    const Scalar tmp4 = sin(roll);
-    const Scalar tmp5 = cos(yaw);
+    const Scalar tmp3 = sin_of[1];
+    const Scalar tmp4 = sin_of[2];
+    const Scalar tmp5 = cos_of[0];
     const Scalar tmp6 = tmp4*tmp5;
     const Scalar tmp7 = tmp3*tmp6;
     const Scalar tmp8 = tmp7 - tmp2;
@@ -514,7 +589,7 @@ struct RigidBodyEuler {
     const Scalar tmp37 = -Scalar(0.008495035709756703)*tmp12 - tmp23*(tmp32*tmp32)
         - tmp34*(tmp36*tmp36) + Scalar(0.02950190206578425)*tmp14*m
         + Scalar(0.020659800310639128)*tmp16*m;
-    const Scalar tmp44 = cos(pitch);
+    const Scalar tmp44 = cos_of[1];
     const Scalar tmp45 = tmp44*tmp5;
     const Scalar tmp48 = tmp44*com_x;
     const Scalar tmp49 = tmp48*tmp5;
@@ -681,14 +756,15 @@ struct RigidBodyEuler {
                                 const VVector<Scalar>& v,
                                 const Scalar& /*t*/,
                                 const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar yaw = q(3);
     const Scalar pitch = q(4);
     const Scalar roll = q(5);
     const Scalar yaw_dot = v(3);
     const Scalar pitch_dot = v(4);
     const Scalar roll_dot = v(5);
+    const Scalar sin_cos_of[3] = {yaw, pitch, roll};
+    Scalar sin_of[3], cos_of[3];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar g = Scalar(params.g);
     const Scalar m = Scalar(params.m);
     const Scalar com_x = Scalar(params.com_x);
@@ -697,12 +773,12 @@ struct RigidBodyEuler {
     const Scalar a = Scalar(params.a);
     const Scalar b = Scalar(params.b);
     const Scalar c = Scalar(params.c);
-    const Scalar tmp0 = sin(yaw);
-    const Scalar tmp1 = cos(roll);
+    const Scalar tmp0 = sin_of[0];
+    const Scalar tmp1 = cos_of[2];
     const Scalar tmp2 = tmp0*tmp1;
-    const Scalar tmp3 = sin(pitch);
-    const Scalar tmp4 = sin(roll);
-    const Scalar tmp5 = cos(yaw);
+    const Scalar tmp3 = sin_of[1];
+    const Scalar tmp4 = sin_of[2];
+    const Scalar tmp5 = cos_of[0];
     const Scalar tmp6 = tmp4*tmp5;
     const Scalar tmp7 = tmp3*tmp6;
     const Scalar tmp8 = tmp7 - tmp2;
@@ -734,7 +810,7 @@ struct RigidBodyEuler {
     const Scalar tmp37 = -Scalar(0.008495035709756703)*tmp12 - tmp23*(tmp32*tmp32)
         - tmp34*(tmp36*tmp36) + Scalar(0.02950190206578425)*tmp14*m
         + Scalar(0.020659800310639128)*tmp16*m;
-    const Scalar tmp44 = cos(pitch);
+    const Scalar tmp44 = cos_of[1];
     const Scalar tmp45 = tmp44*tmp5;
     const Scalar tmp48 = tmp44*com_x;
     const Scalar tmp49 = tmp48*tmp5;
@@ -907,14 +983,15 @@ struct RigidBodyEuler {
                        const Params& params,
                        VMatrix<Scalar>* Mt,
                        VVector<Scalar>* f) {
-    using std::cos;
-    using std::sin;
     const Scalar yaw = q(3);
     const Scalar pitch = q(4);
     const Scalar roll = q(5);
     const Scalar yaw_dot = v(3);
     const Scalar pitch_dot = v(4);
     const Scalar roll_dot = v(5);
+    const Scalar sin_cos_of[3] = {yaw, pitch, roll};
+    Scalar sin_of[3], cos_of[3];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar g = Scalar(params.g);
     const Scalar m = Scalar(params.m);
     const Scalar com_x = Scalar(params.com_x);
@@ -923,12 +1000,12 @@ struct RigidBodyEuler {
     const Scalar a = Scalar(params.a);
     const Scalar b = Scalar(params.b);
     const Scalar c = Scalar(params.c);
-    const Scalar tmp0 = sin(yaw);
-    const Scalar tmp1 = cos(roll);
+    const Scalar tmp0 = sin_of[0];
+    const Scalar tmp1 = cos_of[2];
     const Scalar tmp2 = tmp0*tmp1;
-    const Scalar tmp3 = sin(pitch);
-    const Scalar tmp4 = sin(roll);
-    const Scalar tmp5 = cos(yaw);
+    const Scalar tmp3 = sin_of[1];
+    const Scalar tmp4 = sin_of[2];
+    const Scalar tmp5 = cos_of[0];
     const Scalar tmp6 = tmp4*tmp5;
     const Scalar tmp7 = tmp3*tmp6;
     const Scalar tmp8 = tmp7 - tmp2;
@@ -960,7 +1037,7 @@ struct RigidBodyEuler {
     const Scalar tmp37 = -Scalar(0.008495035709756703)*tmp12 - tmp23*(tmp32*tmp32)
         - tmp34*(tmp36*tmp36) + Scalar(0.02950190206578425)*tmp14*m
         + Scalar(0.020659800310639128)*tmp16*m;
-    const Scalar tmp44 = cos(pitch);
+    const Scalar tmp44 = cos_of[1];
     const Scalar tmp45 = tmp44*tmp5;
     const Scalar tmp48 = tmp44*com_x;
     const Scalar tmp49 = tmp48*tmp5;
@@ -1200,8 +1277,6 @@ struct RigidBodyEuler {
                                           const VVector<Scalar>& qdd,
                                           const Scalar& /*t*/,
                                           const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar yaw = q(3);
     const Scalar pitch = q(4);
     const Scalar roll = q(5);
@@ -1214,6 +1289,9 @@ struct RigidBodyEuler {
     const Scalar yaw_ddot = qdd(3);
     const Scalar pitch_ddot = qdd(4);
     const Scalar roll_ddot = qdd(5);
+    const Scalar sin_cos_of[3] = {yaw, pitch, roll};
+    Scalar sin_of[3], cos_of[3];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar g = Scalar(params.g);
     const Scalar m = Scalar(params.m);
     const Scalar com_x = Scalar(params.com_x);
@@ -1222,12 +1300,12 @@ struct RigidBodyEuler {
     const Scalar a = Scalar(params.a);
     const Scalar b = Scalar(params.b);
     const Scalar c = Scalar(params.c);
-    const Scalar tmp0 = sin(yaw);
-    const Scalar tmp1 = cos(roll);
+    const Scalar tmp0 = sin_of[0];
+    const Scalar tmp1 = cos_of[2];
     const Scalar tmp2 = tmp0*tmp1;
-    const Scalar tmp3 = sin(pitch);
-    const Scalar tmp4 = sin(roll);
-    const Scalar tmp5 = cos(yaw);
+    const Scalar tmp3 = sin_of[1];
+    const Scalar tmp4 = sin_of[2];
+    const Scalar tmp5 = cos_of[0];
     const Scalar tmp6 = tmp4*tmp5;
     const Scalar tmp7 = tmp3*tmp6;
     const Scalar tmp8 = tmp7 - tmp2;
@@ -1259,7 +1337,7 @@ struct RigidBodyEuler {
     const Scalar tmp37 = -Scalar(0.008495035709756703)*tmp12 - tmp23*(tmp32*tmp32)
         - tmp34*(tmp36*tmp36) + Scalar(0.02950190206578425)*tmp14*m
         + Scalar(0.020659800310639128)*tmp16*m;
-    const Scalar tmp44 = cos(pitch);
+    const Scalar tmp44 = cos_of[1];
     const Scalar tmp45 = tmp44*tmp5;
     const Scalar tmp48 = tmp44*com_x;
     const Scalar tmp49 = tmp48*tmp5;
@@ -1469,8 +1547,6 @@ struct RigidBodyEuler {
                                  const Params& params,
                                  VQMatrix<Scalar>* dr_dq,
                                  VMatrix<Scalar>* dr_dv) {
-    using std::cos;
-    using std::sin;
     const Scalar yaw = q(3);
     const Scalar pitch = q(4);
     const Scalar roll = q(5);
@@ -1483,6 +1559,9 @@ struct RigidBodyEuler {
     const Scalar yaw_ddot = qdd(3);
     const Scalar pitch_ddot = qdd(4);
     const Scalar roll_ddot = qdd(5);
+    const Scalar sin_cos_of[3] = {yaw, pitch, roll};
+    Scalar sin_of[3], cos_of[3];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar g = Scalar(params.g);
     const Scalar m = Scalar(params.m);
     const Scalar com_x = Scalar(params.com_x);
@@ -1491,12 +1570,12 @@ struct RigidBodyEuler {
     const Scalar a = Scalar(params.a);
     const Scalar b = Scalar(params.b);
     const Scalar c = Scalar(params.c);
-    const Scalar tmp0 = sin(yaw);
-    const Scalar tmp1 = cos(roll);
+    const Scalar tmp0 = sin_of[0];
+    const Scalar tmp1 = cos_of[2];
     const Scalar tmp2 = tmp0*tmp1;
-    const Scalar tmp3 = sin(pitch);
-    const Scalar tmp4 = sin(roll);
-    const Scalar tmp5 = cos(yaw);
+    const Scalar tmp3 = sin_of[1];
+    const Scalar tmp4 = sin_of[2];
+    const Scalar tmp5 = cos_of[0];
     const Scalar tmp6 = tmp4*tmp5;
     const Scalar tmp7 = tmp3*tmp6;
     const Scalar tmp8 = tmp7 - tmp2;
@@ -1528,7 +1607,7 @@ struct RigidBodyEuler {
     const Scalar tmp37 = -Scalar(0.008495035709756703)*tmp12 - tmp23*(tmp32*tmp32)
         - tmp34*(tmp36*tmp36) + Scalar(0.02950190206578425)*tmp14*m
         + Scalar(0.020659800310639128)*tmp16*m;
-    const Scalar tmp44 = cos(pitch);
+    const Scalar tmp44 = cos_of[1];
     const Scalar tmp45 = tmp44*tmp5;
     const Scalar tmp48 = tmp44*com_x;
     const Scalar tmp49 = tmp48*tmp5;
@@ -2368,8 +2447,6 @@ struct RigidBodyEuler {
                                const VVector<Scalar>& v,
                                const Scalar& /*t*/,
                                const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar yaw = q(3);
     const Scalar pitch = q(4);
     const Scalar roll = q(5);
@@ -2379,6 +2456,9 @@ struct RigidBodyEuler {
     const Scalar yaw_dot = v(3);
     const Scalar pitch_dot = v(4);
     const Scalar roll_dot = v(5);
+    const Scalar sin_cos_of[3] = {yaw, pitch, roll};
+    Scalar sin_of[3], cos_of[3];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar m = Scalar(params.m);
     const Scalar com_x = Scalar(params.com_x);
     const Scalar com_y = Scalar(params.com_y);
@@ -2386,12 +2466,12 @@ struct RigidBodyEuler {
     const Scalar a = Scalar(params.a);
     const Scalar b = Scalar(params.b);
     const Scalar c = Scalar(params.c);
-    const Scalar tmp0 = sin(yaw);
-    const Scalar tmp1 = cos(roll);
+    const Scalar tmp0 = sin_of[0];
+    const Scalar tmp1 = cos_of[2];
     const Scalar tmp2 = tmp0*tmp1;
-    const Scalar tmp3 = sin(pitch);
-    const Scalar tmp4 = sin(roll);
-    const Scalar tmp5 = cos(yaw);
+    const Scalar tmp3 = sin_of[1];
+    const Scalar tmp4 = sin_of[2];
+    const Scalar tmp5 = cos_of[0];
     const Scalar tmp6 = tmp4*tmp5;
     const Scalar tmp7 = tmp3*tmp6;
     const Scalar tmp8 = tmp7 - tmp2;
@@ -2423,7 +2503,7 @@ struct RigidBodyEuler {
     const Scalar tmp37 = -Scalar(0.008495035709756703)*tmp12 - tmp23*(tmp32*tmp32)
         - tmp34*(tmp36*tmp36) + Scalar(0.02950190206578425)*tmp14*m
         + Scalar(0.020659800310639128)*tmp16*m;
-    const Scalar tmp44 = cos(pitch);
+    const Scalar tmp44 = cos_of[1];
     const Scalar tmp45 = tmp44*tmp5;
     const Scalar tmp48 = tmp44*com_x;
     const Scalar tmp49 = tmp48*tmp5;
@@ -2509,20 +2589,21 @@ struct RigidBodyEuler {
   static Scalar potential_energy(const QVector<Scalar>& q,
                                  const Scalar& /*t*/,
                                  const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar z = q(2);
     const Scalar pitch = q(4);
     const Scalar roll = q(5);
+    const Scalar sin_cos_of[2] = {pitch, roll};
+    Scalar sin_of[2], cos_of[2];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar g = Scalar(params.g);
     const Scalar m = Scalar(params.m);
     const Scalar com_x = Scalar(params.com_x);
     const Scalar com_y = Scalar(params.com_y);
     const Scalar com_z = Scalar(params.com_z);
-    const Scalar tmp1 = cos(roll);
-    const Scalar tmp3 = sin(pitch);
-    const Scalar tmp4 = sin(roll);
-    const Scalar tmp44 = cos(pitch);
+    const Scalar tmp1 = cos_of[1];
+    const Scalar tmp3 = sin_of[0];
+    const Scalar tmp4 = sin_of[1];
+    const Scalar tmp44 = cos_of[0];
     const Scalar tmp64 = tmp4*tmp44;
     const Scalar tmp65 = tmp1*tmp44;
     const Scalar tmp69 = tmp3*com_x;
@@ -2563,8 +2644,6 @@ struct RigidBodyEuler {
                        const VVector<Scalar>& v,
                        const Scalar& /*t*/,
                        const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar z = q(2);
     const Scalar yaw = q(3);
     const Scalar pitch = q(4);
@@ -2575,6 +2654,9 @@ struct RigidBodyEuler {
     const Scalar yaw_dot = v(3);
     const Scalar pitch_dot = v(4);
     const Scalar roll_dot = v(5);
+    const Scalar sin_cos_of[3] = {yaw, pitch, roll};
+    Scalar sin_of[3], cos_of[3];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar g = Scalar(params.g);
     const Scalar m = Scalar(params.m);
     const Scalar com_x = Scalar(params.com_x);
@@ -2583,12 +2665,12 @@ struct RigidBodyEuler {
     const Scalar a = Scalar(params.a);
     const Scalar b = Scalar(params.b);
     const Scalar c = Scalar(params.c);
-    const Scalar tmp0 = sin(yaw);
-    const Scalar tmp1 = cos(roll);
+    const Scalar tmp0 = sin_of[0];
+    const Scalar tmp1 = cos_of[2];
     const Scalar tmp2 = tmp0*tmp1;
-    const Scalar tmp3 = sin(pitch);
-    const Scalar tmp4 = sin(roll);
-    const Scalar tmp5 = cos(yaw);
+    const Scalar tmp3 = sin_of[1];
+    const Scalar tmp4 = sin_of[2];
+    const Scalar tmp5 = cos_of[0];
     const Scalar tmp6 = tmp4*tmp5;
     const Scalar tmp7 = tmp3*tmp6;
     const Scalar tmp8 = tmp7 - tmp2;
@@ -2620,7 +2702,7 @@ struct RigidBodyEuler {
     const Scalar tmp37 = -Scalar(0.008495035709756703)*tmp12 - tmp23*(tmp32*tmp32)
         - tmp34*(tmp36*tmp36) + Scalar(0.02950190206578425)*tmp14*m
         + Scalar(0.020659800310639128)*tmp16*m;
-    const Scalar tmp44 = cos(pitch);
+    const Scalar tmp44 = cos_of[1];
     const Scalar tmp45 = tmp44*tmp5;
     const Scalar tmp48 = tmp44*com_x;
     const Scalar tmp49 = tmp48*tmp5;
@@ -2711,8 +2793,6 @@ struct RigidBodyEuler {
   static XVector<Scalar> positions(const QVector<Scalar>& q,
                                    const Scalar& /*t*/,
                                    const Params& params) {
-    using std::cos;
-    using std::sin;
     using std::sqrt;
     const Scalar x = q(0);
     const Scalar y = q(1);
@@ -2720,6 +2800,9 @@ struct RigidBodyEuler {
     const Scalar yaw = q(3);
     const Scalar pitch = q(4);
     const Scalar roll = q(5);
+    const Scalar sin_cos_of[3] = {yaw, pitch, roll};
+    Scalar sin_of[3], cos_of[3];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar m = Scalar(params.m);
     const Scalar com_x = Scalar(params.com_x);
     const Scalar com_y = Scalar(params.com_y);
@@ -2727,12 +2810,12 @@ struct RigidBodyEuler {
     const Scalar a = Scalar(params.a);
     const Scalar b = Scalar(params.b);
     const Scalar c = Scalar(params.c);
-    const Scalar tmp0 = sin(yaw);
-    const Scalar tmp1 = cos(roll);
+    const Scalar tmp0 = sin_of[0];
+    const Scalar tmp1 = cos_of[2];
     const Scalar tmp2 = tmp0*tmp1;
-    const Scalar tmp3 = sin(pitch);
-    const Scalar tmp4 = sin(roll);
-    const Scalar tmp5 = cos(yaw);
+    const Scalar tmp3 = sin_of[1];
+    const Scalar tmp4 = sin_of[2];
+    const Scalar tmp5 = cos_of[0];
     const Scalar tmp6 = tmp4*tmp5;
     const Scalar tmp7 = tmp3*tmp6;
     const Scalar tmp8 = tmp7 - tmp2;
@@ -2778,7 +2861,7 @@ struct RigidBodyEuler {
     const Scalar tmp41 = tmp33 + tmp40;
     const Scalar tmp42 = tmp41*tmp9;
     const Scalar tmp43 = tmp27*tmp8 + tmp31*tmp42;
-    const Scalar tmp44 = cos(pitch);
+    const Scalar tmp44 = cos_of[1];
     const Scalar tmp45 = tmp44*tmp5;
     const Scalar tmp46 = tmp20*tmp9;
     const Scalar tmp47 = tmp45*tmp46;
@@ -2867,8 +2950,6 @@ struct RigidBodyEuler {
                                     const VVector<Scalar>& v,
                                     const Scalar& /*t*/,
                                     const Params& params) {
-    using std::cos;
-    using std::sin;
     using std::sqrt;
     const Scalar yaw = q(3);
     const Scalar pitch = q(4);
@@ -2879,6 +2960,9 @@ struct RigidBodyEuler {
     const Scalar yaw_dot = v(3);
     const Scalar pitch_dot = v(4);
     const Scalar roll_dot = v(5);
+    const Scalar sin_cos_of[3] = {yaw, pitch, roll};
+    Scalar sin_of[3], cos_of[3];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar m = Scalar(params.m);
     const Scalar com_x = Scalar(params.com_x);
     const Scalar com_y = Scalar(params.com_y);
@@ -2886,12 +2970,12 @@ struct RigidBodyEuler {
     const Scalar a = Scalar(params.a);
     const Scalar b = Scalar(params.b);
     const Scalar c = Scalar(params.c);
-    const Scalar tmp0 = sin(yaw);
-    const Scalar tmp1 = cos(roll);
+    const Scalar tmp0 = sin_of[0];
+    const Scalar tmp1 = cos_of[2];
     const Scalar tmp2 = tmp0*tmp1;
-    const Scalar tmp3 = sin(pitch);
-    const Scalar tmp4 = sin(roll);
-    const Scalar tmp5 = cos(yaw);
+    const Scalar tmp3 = sin_of[1];
+    const Scalar tmp4 = sin_of[2];
+    const Scalar tmp5 = cos_of[0];
     const Scalar tmp6 = tmp4*tmp5;
     const Scalar tmp7 = tmp3*tmp6;
     const Scalar tmp8 = tmp7 - tmp2;
@@ -2937,7 +3021,7 @@ struct RigidBodyEuler {
     const Scalar tmp41 = tmp33 + tmp40;
     const Scalar tmp42 = tmp41*tmp9;
     const Scalar tmp43 = tmp27*tmp8 + tmp31*tmp42;
-    const Scalar tmp44 = cos(pitch);
+    const Scalar tmp44 = cos_of[1];
     const Scalar tmp45 = tmp44*tmp5;
     const Scalar tmp46 = tmp20*tmp9;
     const Scalar tmp47 = tmp45*tmp46;
@@ -3079,12 +3163,13 @@ struct RigidBodyEuler {
   static XJacobian<Scalar> jacobian(const QVector<Scalar>& q,
                                     const Scalar& /*t*/,
                                     const Params& params) {
-    using std::cos;
-    using std::sin;
     using std::sqrt;
     const Scalar yaw = q(3);
     const Scalar pitch = q(4);
     const Scalar roll = q(5);
+    const Scalar sin_cos_of[3] = {yaw, pitch, roll};
+    Scalar sin_of[3], cos_of[3];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar m = Scalar(params.m);
     const Scalar com_x = Scalar(params.com_x);
     const Scalar com_y = Scalar(params.com_y);
@@ -3092,12 +3177,12 @@ struct RigidBodyEuler {
     const Scalar a = Scalar(params.a);
     const Scalar b = Scalar(params.b);
     const Scalar c = Scalar(params.c);
-    const Scalar tmp0 = sin(yaw);
-    const Scalar tmp1 = cos(roll);
+    const Scalar tmp0 = sin_of[0];
+    const Scalar tmp1 = cos_of[2];
     const Scalar tmp2 = tmp0*tmp1;
-    const Scalar tmp3 = sin(pitch);
-    const Scalar tmp4 = sin(roll);
-    const Scalar tmp5 = cos(yaw);
+    const Scalar tmp3 = sin_of[1];
+    const Scalar tmp4 = sin_of[2];
+    const Scalar tmp5 = cos_of[0];
     const Scalar tmp6 = tmp4*tmp5;
     const Scalar tmp7 = tmp3*tmp6;
     const Scalar tmp8 = tmp7 - tmp2;
@@ -3143,7 +3228,7 @@ struct RigidBodyEuler {
     const Scalar tmp41 = tmp33 + tmp40;
     const Scalar tmp42 = tmp41*tmp9;
     const Scalar tmp43 = tmp27*tmp8 + tmp31*tmp42;
-    const Scalar tmp44 = cos(pitch);
+    const Scalar tmp44 = cos_of[1];
     const Scalar tmp45 = tmp44*tmp5;
     const Scalar tmp46 = tmp20*tmp9;
     const Scalar tmp47 = tmp45*tmp46;
@@ -3304,8 +3389,6 @@ struct RigidBodyEuler {
                                            const VVector<Scalar>& v,
                                            const Scalar& /*t*/,
                                            const Params& params) {
-    using std::cos;
-    using std::sin;
     using std::sqrt;
     const Scalar yaw = q(3);
     const Scalar pitch = q(4);
@@ -3313,6 +3396,9 @@ struct RigidBodyEuler {
     const Scalar yaw_dot = v(3);
     const Scalar pitch_dot = v(4);
     const Scalar roll_dot = v(5);
+    const Scalar sin_cos_of[3] = {yaw, pitch, roll};
+    Scalar sin_of[3], cos_of[3];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar m = Scalar(params.m);
     const Scalar com_x = Scalar(params.com_x);
     const Scalar com_y = Scalar(params.com_y);
@@ -3320,12 +3406,12 @@ struct RigidBodyEuler {
     const Scalar a = Scalar(params.a);
     const Scalar b = Scalar(params.b);
     const Scalar c = Scalar(params.c);
-    const Scalar tmp0 = sin(yaw);
-    const Scalar tmp1 = cos(roll);
+    const Scalar tmp0 = sin_of[0];
+    const Scalar tmp1 = cos_of[2];
     const Scalar tmp2 = tmp0*tmp1;
-    const Scalar tmp3 = sin(pitch);
-    const Scalar tmp4 = sin(roll);
-    const Scalar tmp5 = cos(yaw);
+    const Scalar tmp3 = sin_of[1];
+    const Scalar tmp4 = sin_of[2];
+    const Scalar tmp5 = cos_of[0];
     const Scalar tmp6 = tmp4*tmp5;
     const Scalar tmp7 = tmp3*tmp6;
     const Scalar tmp8 = tmp7 - tmp2;
@@ -3370,7 +3456,7 @@ struct RigidBodyEuler {
     const Scalar tmp40 = tmp38 + tmp39;
     const Scalar tmp41 = tmp33 + tmp40;
     const Scalar tmp42 = tmp41*tmp9;
-    const Scalar tmp44 = cos(pitch);
+    const Scalar tmp44 = cos_of[1];
     const Scalar tmp45 = tmp44*tmp5;
     const Scalar tmp46 = tmp20*tmp9;
     const Scalar tmp47 = tmp45*tmp46;
@@ -3562,8 +3648,6 @@ struct RigidBodyEuler {
                                              const VVector<Scalar>& v,
                                              const Scalar& /*t*/,
                                              const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar yaw = q(3);
     const Scalar pitch = q(4);
     const Scalar roll = q(5);
@@ -3573,16 +3657,19 @@ struct RigidBodyEuler {
     const Scalar yaw_dot = v(3);
     const Scalar pitch_dot = v(4);
     const Scalar roll_dot = v(5);
+    const Scalar sin_cos_of[3] = {yaw, pitch, roll};
+    Scalar sin_of[3], cos_of[3];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar m = Scalar(params.m);
     const Scalar com_x = Scalar(params.com_x);
     const Scalar com_y = Scalar(params.com_y);
     const Scalar com_z = Scalar(params.com_z);
-    const Scalar tmp0 = sin(yaw);
-    const Scalar tmp1 = cos(roll);
+    const Scalar tmp0 = sin_of[0];
+    const Scalar tmp1 = cos_of[2];
     const Scalar tmp2 = tmp0*tmp1;
-    const Scalar tmp3 = sin(pitch);
-    const Scalar tmp4 = sin(roll);
-    const Scalar tmp5 = cos(yaw);
+    const Scalar tmp3 = sin_of[1];
+    const Scalar tmp4 = sin_of[2];
+    const Scalar tmp5 = cos_of[0];
     const Scalar tmp6 = tmp4*tmp5;
     const Scalar tmp7 = tmp3*tmp6;
     const Scalar tmp8 = tmp7 - tmp2;
@@ -3590,7 +3677,7 @@ struct RigidBodyEuler {
     const Scalar tmp29 = tmp1*tmp5;
     const Scalar tmp30 = tmp29*tmp3;
     const Scalar tmp31 = tmp28 + tmp30;
-    const Scalar tmp44 = cos(pitch);
+    const Scalar tmp44 = cos_of[1];
     const Scalar tmp48 = tmp44*com_x;
     const Scalar tmp49 = tmp48*tmp5;
     const Scalar tmp50 = tmp49 + tmp31*com_z + tmp8*com_y;
@@ -3643,8 +3730,6 @@ struct RigidBodyEuler {
                                                 const VVector<Scalar>& v,
                                                 const Scalar& /*t*/,
                                                 const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar x = q(0);
     const Scalar y = q(1);
     const Scalar z = q(2);
@@ -3657,6 +3742,9 @@ struct RigidBodyEuler {
     const Scalar yaw_dot = v(3);
     const Scalar pitch_dot = v(4);
     const Scalar roll_dot = v(5);
+    const Scalar sin_cos_of[3] = {yaw, pitch, roll};
+    Scalar sin_of[3], cos_of[3];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar m = Scalar(params.m);
     const Scalar com_x = Scalar(params.com_x);
     const Scalar com_y = Scalar(params.com_y);
@@ -3664,12 +3752,12 @@ struct RigidBodyEuler {
     const Scalar a = Scalar(params.a);
     const Scalar b = Scalar(params.b);
     const Scalar c = Scalar(params.c);
-    const Scalar tmp0 = sin(yaw);
-    const Scalar tmp1 = cos(roll);
+    const Scalar tmp0 = sin_of[0];
+    const Scalar tmp1 = cos_of[2];
     const Scalar tmp2 = tmp0*tmp1;
-    const Scalar tmp3 = sin(pitch);
-    const Scalar tmp4 = sin(roll);
-    const Scalar tmp5 = cos(yaw);
+    const Scalar tmp3 = sin_of[1];
+    const Scalar tmp4 = sin_of[2];
+    const Scalar tmp5 = cos_of[0];
     const Scalar tmp6 = tmp4*tmp5;
     const Scalar tmp7 = tmp3*tmp6;
     const Scalar tmp8 = tmp7 - tmp2;
@@ -3701,7 +3789,7 @@ struct RigidBodyEuler {
     const Scalar tmp37 = -Scalar(0.008495035709756703)*tmp12 - tmp23*(tmp32*tmp32)
         - tmp34*(tmp36*tmp36) + Scalar(0.02950190206578425)*tmp14*m
         + Scalar(0.020659800310639128)*tmp16*m;
-    const Scalar tmp44 = cos(pitch);
+    const Scalar tmp44 = cos_of[1];
     const Scalar tmp45 = tmp44*tmp5;
     const Scalar tmp48 = tmp44*com_x;
     const Scalar tmp49 = tmp48*tmp5;
@@ -6091,11 +6179,12 @@ struct RigidBodyEulerYzx {
   static VMatrix<Scalar> mass_matrix(const QVector<Scalar>& q,
                                      const Scalar& /*t*/,
                                      const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar heading = q(3);
     const Scalar attitude = q(4);
     const Scalar bank = q(5);
+    const Scalar sin_cos_of[3] = {heading, attitude, bank};
+    Scalar sin_of[3], cos_of[3];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar m = Scalar(params.m);
     const Scalar com_x = Scalar(params.com_x);
     const Scalar com_y = Scalar(params.com_y);
@@ -6103,12 +6192,12 @@ struct RigidBodyEulerYzx {
     const Scalar a = Scalar(params.a);
     const Scalar b = Scalar(params.b);
     const Scalar c = Scalar(params.c);
-    const Scalar tmp0 = sin(bank);
-    const Scalar tmp1 = sin(heading);
+    const Scalar tmp0 = sin_of[2];
+    const Scalar tmp1 = sin_of[0];
     const Scalar tmp2 = tmp0*tmp1;
-    const Scalar tmp3 = sin(attitude);
-    const Scalar tmp4 = cos(bank);
-    const Scalar tmp5 = cos(heading);
+    const Scalar tmp3 = sin_of[1];
+    const Scalar tmp4 = cos_of[2];
+    const Scalar tmp5 = cos_of[0];
     const Scalar tmp6 = tmp4*tmp5;
     const Scalar tmp7 = tmp3*tmp6;
     const Scalar tmp8 = tmp7 - tmp2;
@@ -6140,7 +6229,7 @@ struct RigidBodyEulerYzx {
     const Scalar tmp38 = -Scalar(0.008495035709756703)*tmp13 - tmp24*(tmp33*tmp33)
         - tmp35*(tmp37*tmp37) + Scalar(0.02950190206578425)*tmp15*m
         + Scalar(0.020659800310639128)*tmp17*m;
-    const Scalar tmp44 = cos(attitude);
+    const Scalar tmp44 = cos_of[1];
     const Scalar tmp45 = tmp44*tmp5;
     const Scalar tmp48 = tmp44*com_x;
     const Scalar tmp49 = tmp48*tmp5;
@@ -6279,22 +6368,23 @@ struct RigidBodyEulerYzx {
                                         const VVector<Scalar>& /*v*/,
                                         const Scalar& /*t*/,
                                         const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar heading = q(3);
     const Scalar attitude = q(4);
     const Scalar bank = q(5);
+    const Scalar sin_cos_of[3] = {heading, attitude, bank};
+    Scalar sin_of[3], cos_of[3];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar g = Scalar(params.g);
     const Scalar m = Scalar(params.m);
     const Scalar com_x = Scalar(params.com_x);
     const Scalar com_y = Scalar(params.com_y);
     const Scalar com_z = Scalar(params.com_z);
-    const Scalar tmp0 = sin(bank);
-    const Scalar tmp1 = sin(heading);
+    const Scalar tmp0 = sin_of[2];
+    const Scalar tmp1 = sin_of[0];
     const Scalar tmp2 = tmp0*tmp1;
-    const Scalar tmp3 = sin(attitude);
-    const Scalar tmp4 = cos(bank);
-    const Scalar tmp5 = cos(heading);
+    const Scalar tmp3 = sin_of[1];
+    const Scalar tmp4 = cos_of[2];
+    const Scalar tmp5 = cos_of[0];
     const Scalar tmp6 = tmp4*tmp5;
     const Scalar tmp7 = tmp3*tmp6;
     const Scalar tmp8 = tmp7 - tmp2;
@@ -6302,7 +6392,7 @@ struct RigidBodyEulerYzx {
     const Scalar tmp30 = tmp0*tmp5;
     const Scalar tmp31 = tmp3*tmp30;
     const Scalar tmp32 = tmp29 + tmp31;
-    const Scalar tmp44 = cos(attitude);
+    const Scalar tmp44 = cos_of[1];
     const Scalar tmp48 = tmp44*com_x;
     const Scalar tmp49 = tmp48*tmp5;
     const Scalar tmp57 = tmp3*com_x;
@@ -6368,14 +6458,15 @@ struct RigidBodyEulerYzx {
                                          const VVector<Scalar>& v,
                                          const Scalar& /*t*/,
                                          const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar heading = q(3);
     const Scalar attitude = q(4);
     const Scalar bank = q(5);
     const Scalar heading_dot = v(3);
     const Scalar attitude_dot = v(4);
     const Scalar bank_dot = v(5);
+    const Scalar sin_cos_of[3] = {heading, attitude, bank};
+    Scalar sin_of[3], cos_of[3];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar m = Scalar(params.m);
     const Scalar com_x = Scalar(params.com_x);
     const Scalar com_y = Scalar(params.com_y);
@@ -6383,12 +6474,12 @@ struct RigidBodyEulerYzx {
     const Scalar a = Scalar(params.a);
     const Scalar b = Scalar(params.b);
     const Scalar c = Scalar(params.c);
-    const Scalar tmp0 = sin(bank);
-    const Scalar tmp1 = sin(heading);
+    const Scalar tmp0 = sin_of[2];
+    const Scalar tmp1 = sin_of[0];
     const Scalar tmp2 = tmp0*tmp1;
-    const Scalar tmp3 = sin(attitude);
-    const Scalar tmp4 = cos(bank);
-    const Scalar tmp5 = cos(heading);
+    const Scalar tmp3 = sin_of[1];
+    const Scalar tmp4 = cos_of[2];
+    const Scalar tmp5 = cos_of[0];
     const Scalar tmp6 = tmp4*tmp5;
     const Scalar tmp7 = tmp3*tmp6;
     const Scalar tmp8 = tmp7 - tmp2;
@@ -6421,7 +6512,7 @@ struct RigidBodyEulerYzx {
     const Scalar tmp38 = -Scalar(0.008495035709756703)*tmp13 - tmp24*(tmp33*tmp33)
         - tmp35*(tmp37*tmp37) + Scalar(0.02950190206578425)*tmp15*m
         + Scalar(0.020659800310639128)*tmp17*m;
-    const Scalar tmp44 = cos(attitude);
+    const Scalar tmp44 = cos_of[1];
     const Scalar tmp45 = tmp44*tmp5;
     const Scalar tmp48 = tmp44*com_x;
     const Scalar tmp49 = tmp48*tmp5;
@@ -6590,14 +6681,15 @@ struct RigidBodyEulerYzx {
                                 const VVector<Scalar>& v,
                                 const Scalar& /*t*/,
                                 const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar heading = q(3);
     const Scalar attitude = q(4);
     const Scalar bank = q(5);
     const Scalar heading_dot = v(3);
     const Scalar attitude_dot = v(4);
     const Scalar bank_dot = v(5);
+    const Scalar sin_cos_of[3] = {heading, attitude, bank};
+    Scalar sin_of[3], cos_of[3];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar g = Scalar(params.g);
     const Scalar m = Scalar(params.m);
     const Scalar com_x = Scalar(params.com_x);
@@ -6606,12 +6698,12 @@ struct RigidBodyEulerYzx {
     const Scalar a = Scalar(params.a);
     const Scalar b = Scalar(params.b);
     const Scalar c = Scalar(params.c);
-    const Scalar tmp0 = sin(bank);
-    const Scalar tmp1 = sin(heading);
+    const Scalar tmp0 = sin_of[2];
+    const Scalar tmp1 = sin_of[0];
     const Scalar tmp2 = tmp0*tmp1;
-    const Scalar tmp3 = sin(attitude);
-    const Scalar tmp4 = cos(bank);
-    const Scalar tmp5 = cos(heading);
+    const Scalar tmp3 = sin_of[1];
+    const Scalar tmp4 = cos_of[2];
+    const Scalar tmp5 = cos_of[0];
     const Scalar tmp6 = tmp4*tmp5;
     const Scalar tmp7 = tmp3*tmp6;
     const Scalar tmp8 = tmp7 - tmp2;
@@ -6644,7 +6736,7 @@ struct RigidBodyEulerYzx {
     const Scalar tmp38 = -Scalar(0.008495035709756703)*tmp13 - tmp24*(tmp33*tmp33)
         - tmp35*(tmp37*tmp37) + Scalar(0.02950190206578425)*tmp15*m
         + Scalar(0.020659800310639128)*tmp17*m;
-    const Scalar tmp44 = cos(attitude);
+    const Scalar tmp44 = cos_of[1];
     const Scalar tmp45 = tmp44*tmp5;
     const Scalar tmp48 = tmp44*com_x;
     const Scalar tmp49 = tmp48*tmp5;
@@ -6820,14 +6912,15 @@ struct RigidBodyEulerYzx {
                        const Params& params,
                        VMatrix<Scalar>* Mt,
                        VVector<Scalar>* f) {
-    using std::cos;
-    using std::sin;
     const Scalar heading = q(3);
     const Scalar attitude = q(4);
     const Scalar bank = q(5);
     const Scalar heading_dot = v(3);
     const Scalar attitude_dot = v(4);
     const Scalar bank_dot = v(5);
+    const Scalar sin_cos_of[3] = {heading, attitude, bank};
+    Scalar sin_of[3], cos_of[3];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar g = Scalar(params.g);
     const Scalar m = Scalar(params.m);
     const Scalar com_x = Scalar(params.com_x);
@@ -6836,12 +6929,12 @@ struct RigidBodyEulerYzx {
     const Scalar a = Scalar(params.a);
     const Scalar b = Scalar(params.b);
     const Scalar c = Scalar(params.c);
-    const Scalar tmp0 = sin(bank);
-    const Scalar tmp1 = sin(heading);
+    const Scalar tmp0 = sin_of[2];
+    const Scalar tmp1 = sin_of[0];
     const Scalar tmp2 = tmp0*tmp1;
-    const Scalar tmp3 = sin(attitude);
-    const Scalar tmp4 = cos(bank);
-    const Scalar tmp5 = cos(heading);
+    const Scalar tmp3 = sin_of[1];
+    const Scalar tmp4 = cos_of[2];
+    const Scalar tmp5 = cos_of[0];
     const Scalar tmp6 = tmp4*tmp5;
     const Scalar tmp7 = tmp3*tmp6;
     const Scalar tmp8 = tmp7 - tmp2;
@@ -6874,7 +6967,7 @@ struct RigidBodyEulerYzx {
     const Scalar tmp38 = -Scalar(0.008495035709756703)*tmp13 - tmp24*(tmp33*tmp33)
         - tmp35*(tmp37*tmp37) + Scalar(0.02950190206578425)*tmp15*m
         + Scalar(0.020659800310639128)*tmp17*m;
-    const Scalar tmp44 = cos(attitude);
+    const Scalar tmp44 = cos_of[1];
     const Scalar tmp45 = tmp44*tmp5;
     const Scalar tmp48 = tmp44*com_x;
     const Scalar tmp49 = tmp48*tmp5;
@@ -7117,8 +7210,6 @@ struct RigidBodyEulerYzx {
                                           const VVector<Scalar>& qdd,
                                           const Scalar& /*t*/,
                                           const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar heading = q(3);
     const Scalar attitude = q(4);
     const Scalar bank = q(5);
@@ -7131,6 +7222,9 @@ struct RigidBodyEulerYzx {
     const Scalar heading_ddot = qdd(3);
     const Scalar attitude_ddot = qdd(4);
     const Scalar bank_ddot = qdd(5);
+    const Scalar sin_cos_of[3] = {heading, attitude, bank};
+    Scalar sin_of[3], cos_of[3];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar g = Scalar(params.g);
     const Scalar m = Scalar(params.m);
     const Scalar com_x = Scalar(params.com_x);
@@ -7139,12 +7233,12 @@ struct RigidBodyEulerYzx {
     const Scalar a = Scalar(params.a);
     const Scalar b = Scalar(params.b);
     const Scalar c = Scalar(params.c);
-    const Scalar tmp0 = sin(bank);
-    const Scalar tmp1 = sin(heading);
+    const Scalar tmp0 = sin_of[2];
+    const Scalar tmp1 = sin_of[0];
     const Scalar tmp2 = tmp0*tmp1;
-    const Scalar tmp3 = sin(attitude);
-    const Scalar tmp4 = cos(bank);
-    const Scalar tmp5 = cos(heading);
+    const Scalar tmp3 = sin_of[1];
+    const Scalar tmp4 = cos_of[2];
+    const Scalar tmp5 = cos_of[0];
     const Scalar tmp6 = tmp4*tmp5;
     const Scalar tmp7 = tmp3*tmp6;
     const Scalar tmp8 = tmp7 - tmp2;
@@ -7177,7 +7271,7 @@ struct RigidBodyEulerYzx {
     const Scalar tmp38 = -Scalar(0.008495035709756703)*tmp13 - tmp24*(tmp33*tmp33)
         - tmp35*(tmp37*tmp37) + Scalar(0.02950190206578425)*tmp15*m
         + Scalar(0.020659800310639128)*tmp17*m;
-    const Scalar tmp44 = cos(attitude);
+    const Scalar tmp44 = cos_of[1];
     const Scalar tmp45 = tmp44*tmp5;
     const Scalar tmp48 = tmp44*com_x;
     const Scalar tmp49 = tmp48*tmp5;
@@ -7391,8 +7485,6 @@ struct RigidBodyEulerYzx {
                                  const Params& params,
                                  VQMatrix<Scalar>* dr_dq,
                                  VMatrix<Scalar>* dr_dv) {
-    using std::cos;
-    using std::sin;
     const Scalar heading = q(3);
     const Scalar attitude = q(4);
     const Scalar bank = q(5);
@@ -7405,6 +7497,9 @@ struct RigidBodyEulerYzx {
     const Scalar heading_ddot = qdd(3);
     const Scalar attitude_ddot = qdd(4);
     const Scalar bank_ddot = qdd(5);
+    const Scalar sin_cos_of[3] = {heading, attitude, bank};
+    Scalar sin_of[3], cos_of[3];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar g = Scalar(params.g);
     const Scalar m = Scalar(params.m);
     const Scalar com_x = Scalar(params.com_x);
@@ -7413,12 +7508,12 @@ struct RigidBodyEulerYzx {
     const Scalar a = Scalar(params.a);
     const Scalar b = Scalar(params.b);
     const Scalar c = Scalar(params.c);
-    const Scalar tmp0 = sin(bank);
-    const Scalar tmp1 = sin(heading);
+    const Scalar tmp0 = sin_of[2];
+    const Scalar tmp1 = sin_of[0];
     const Scalar tmp2 = tmp0*tmp1;
-    const Scalar tmp3 = sin(attitude);
-    const Scalar tmp4 = cos(bank);
-    const Scalar tmp5 = cos(heading);
+    const Scalar tmp3 = sin_of[1];
+    const Scalar tmp4 = cos_of[2];
+    const Scalar tmp5 = cos_of[0];
     const Scalar tmp6 = tmp4*tmp5;
     const Scalar tmp7 = tmp3*tmp6;
     const Scalar tmp8 = tmp7 - tmp2;
@@ -7451,7 +7546,7 @@ struct RigidBodyEulerYzx {
     const Scalar tmp38 = -Scalar(0.008495035709756703)*tmp13 - tmp24*(tmp33*tmp33)
         - tmp35*(tmp37*tmp37) + Scalar(0.02950190206578425)*tmp15*m
         + Scalar(0.020659800310639128)*tmp17*m;
-    const Scalar tmp44 = cos(attitude);
+    const Scalar tmp44 = cos_of[1];
     const Scalar tmp45 = tmp44*tmp5;
     const Scalar tmp48 = tmp44*com_x;
     const Scalar tmp49 = tmp48*tmp5;
@@ -8320,8 +8415,6 @@ struct RigidBodyEulerYzx {
                                const VVector<Scalar>& v,
                                const Scalar& /*t*/,
                                const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar heading = q(3);
     const Scalar attitude = q(4);
     const Scalar bank = q(5);
@@ -8331,6 +8424,9 @@ struct RigidBodyEulerYzx {
     const Scalar heading_dot = v(3);
     const Scalar attitude_dot = v(4);
     const Scalar bank_dot = v(5);
+    const Scalar sin_cos_of[3] = {heading, attitude, bank};
+    Scalar sin_of[3], cos_of[3];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar m = Scalar(params.m);
     const Scalar com_x = Scalar(params.com_x);
     const Scalar com_y = Scalar(params.com_y);
@@ -8338,12 +8434,12 @@ struct RigidBodyEulerYzx {
     const Scalar a = Scalar(params.a);
     const Scalar b = Scalar(params.b);
     const Scalar c = Scalar(params.c);
-    const Scalar tmp0 = sin(bank);
-    const Scalar tmp1 = sin(heading);
+    const Scalar tmp0 = sin_of[2];
+    const Scalar tmp1 = sin_of[0];
     const Scalar tmp2 = tmp0*tmp1;
-    const Scalar tmp3 = sin(attitude);
-    const Scalar tmp4 = cos(bank);
-    const Scalar tmp5 = cos(heading);
+    const Scalar tmp3 = sin_of[1];
+    const Scalar tmp4 = cos_of[2];
+    const Scalar tmp5 = cos_of[0];
     const Scalar tmp6 = tmp4*tmp5;
     const Scalar tmp7 = tmp3*tmp6;
     const Scalar tmp8 = tmp7 - tmp2;
@@ -8375,7 +8471,7 @@ struct RigidBodyEulerYzx {
     const Scalar tmp38 = -Scalar(0.008495035709756703)*tmp13 - tmp24*(tmp33*tmp33)
         - tmp35*(tmp37*tmp37) + Scalar(0.02950190206578425)*tmp15*m
         + Scalar(0.020659800310639128)*tmp17*m;
-    const Scalar tmp44 = cos(attitude);
+    const Scalar tmp44 = cos_of[1];
     const Scalar tmp45 = tmp44*tmp5;
     const Scalar tmp48 = tmp44*com_x;
     const Scalar tmp49 = tmp48*tmp5;
@@ -8463,26 +8559,27 @@ struct RigidBodyEulerYzx {
   static Scalar potential_energy(const QVector<Scalar>& q,
                                  const Scalar& /*t*/,
                                  const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar z = q(2);
     const Scalar heading = q(3);
     const Scalar attitude = q(4);
     const Scalar bank = q(5);
+    const Scalar sin_cos_of[3] = {heading, attitude, bank};
+    Scalar sin_of[3], cos_of[3];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar g = Scalar(params.g);
     const Scalar m = Scalar(params.m);
     const Scalar com_x = Scalar(params.com_x);
     const Scalar com_y = Scalar(params.com_y);
     const Scalar com_z = Scalar(params.com_z);
-    const Scalar tmp0 = sin(bank);
-    const Scalar tmp1 = sin(heading);
+    const Scalar tmp0 = sin_of[2];
+    const Scalar tmp1 = sin_of[0];
     const Scalar tmp2 = tmp0*tmp1;
-    const Scalar tmp3 = sin(attitude);
-    const Scalar tmp4 = cos(bank);
-    const Scalar tmp5 = cos(heading);
+    const Scalar tmp3 = sin_of[1];
+    const Scalar tmp4 = cos_of[2];
+    const Scalar tmp5 = cos_of[0];
     const Scalar tmp29 = tmp1*tmp4;
     const Scalar tmp30 = tmp0*tmp5;
-    const Scalar tmp44 = cos(attitude);
+    const Scalar tmp44 = cos_of[1];
     const Scalar tmp48 = tmp44*com_x;
     const Scalar tmp63 = tmp29*tmp3;
     const Scalar tmp64 = tmp30 + tmp63;
@@ -8526,8 +8623,6 @@ struct RigidBodyEulerYzx {
                        const VVector<Scalar>& v,
                        const Scalar& /*t*/,
                        const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar z = q(2);
     const Scalar heading = q(3);
     const Scalar attitude = q(4);
@@ -8538,6 +8633,9 @@ struct RigidBodyEulerYzx {
     const Scalar heading_dot = v(3);
     const Scalar attitude_dot = v(4);
     const Scalar bank_dot = v(5);
+    const Scalar sin_cos_of[3] = {heading, attitude, bank};
+    Scalar sin_of[3], cos_of[3];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar g = Scalar(params.g);
     const Scalar m = Scalar(params.m);
     const Scalar com_x = Scalar(params.com_x);
@@ -8546,12 +8644,12 @@ struct RigidBodyEulerYzx {
     const Scalar a = Scalar(params.a);
     const Scalar b = Scalar(params.b);
     const Scalar c = Scalar(params.c);
-    const Scalar tmp0 = sin(bank);
-    const Scalar tmp1 = sin(heading);
+    const Scalar tmp0 = sin_of[2];
+    const Scalar tmp1 = sin_of[0];
     const Scalar tmp2 = tmp0*tmp1;
-    const Scalar tmp3 = sin(attitude);
-    const Scalar tmp4 = cos(bank);
-    const Scalar tmp5 = cos(heading);
+    const Scalar tmp3 = sin_of[1];
+    const Scalar tmp4 = cos_of[2];
+    const Scalar tmp5 = cos_of[0];
     const Scalar tmp6 = tmp4*tmp5;
     const Scalar tmp7 = tmp3*tmp6;
     const Scalar tmp8 = tmp7 - tmp2;
@@ -8583,7 +8681,7 @@ struct RigidBodyEulerYzx {
     const Scalar tmp38 = -Scalar(0.008495035709756703)*tmp13 - tmp24*(tmp33*tmp33)
         - tmp35*(tmp37*tmp37) + Scalar(0.02950190206578425)*tmp15*m
         + Scalar(0.020659800310639128)*tmp17*m;
-    const Scalar tmp44 = cos(attitude);
+    const Scalar tmp44 = cos_of[1];
     const Scalar tmp45 = tmp44*tmp5;
     const Scalar tmp48 = tmp44*com_x;
     const Scalar tmp49 = tmp48*tmp5;
@@ -8674,8 +8772,6 @@ struct RigidBodyEulerYzx {
   static XVector<Scalar> positions(const QVector<Scalar>& q,
                                    const Scalar& /*t*/,
                                    const Params& params) {
-    using std::cos;
-    using std::sin;
     using std::sqrt;
     const Scalar x = q(0);
     const Scalar y = q(1);
@@ -8683,6 +8779,9 @@ struct RigidBodyEulerYzx {
     const Scalar heading = q(3);
     const Scalar attitude = q(4);
     const Scalar bank = q(5);
+    const Scalar sin_cos_of[3] = {heading, attitude, bank};
+    Scalar sin_of[3], cos_of[3];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar m = Scalar(params.m);
     const Scalar com_x = Scalar(params.com_x);
     const Scalar com_y = Scalar(params.com_y);
@@ -8690,12 +8789,12 @@ struct RigidBodyEulerYzx {
     const Scalar a = Scalar(params.a);
     const Scalar b = Scalar(params.b);
     const Scalar c = Scalar(params.c);
-    const Scalar tmp0 = sin(bank);
-    const Scalar tmp1 = sin(heading);
+    const Scalar tmp0 = sin_of[2];
+    const Scalar tmp1 = sin_of[0];
     const Scalar tmp2 = tmp0*tmp1;
-    const Scalar tmp3 = sin(attitude);
-    const Scalar tmp4 = cos(bank);
-    const Scalar tmp5 = cos(heading);
+    const Scalar tmp3 = sin_of[1];
+    const Scalar tmp4 = cos_of[2];
+    const Scalar tmp5 = cos_of[0];
     const Scalar tmp6 = tmp4*tmp5;
     const Scalar tmp7 = tmp3*tmp6;
     const Scalar tmp8 = tmp7 - tmp2;
@@ -8741,7 +8840,7 @@ struct RigidBodyEulerYzx {
     const Scalar tmp41 = tmp39 + tmp40;
     const Scalar tmp42 = tmp34 + tmp41;
     const Scalar tmp43 = tmp10*tmp42;
-    const Scalar tmp44 = cos(attitude);
+    const Scalar tmp44 = cos_of[1];
     const Scalar tmp45 = tmp44*tmp5;
     const Scalar tmp46 = tmp10*tmp21;
     const Scalar tmp47 = tmp45*tmp46;
@@ -8834,8 +8933,6 @@ struct RigidBodyEulerYzx {
                                     const VVector<Scalar>& v,
                                     const Scalar& /*t*/,
                                     const Params& params) {
-    using std::cos;
-    using std::sin;
     using std::sqrt;
     const Scalar heading = q(3);
     const Scalar attitude = q(4);
@@ -8846,6 +8943,9 @@ struct RigidBodyEulerYzx {
     const Scalar heading_dot = v(3);
     const Scalar attitude_dot = v(4);
     const Scalar bank_dot = v(5);
+    const Scalar sin_cos_of[3] = {heading, attitude, bank};
+    Scalar sin_of[3], cos_of[3];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar m = Scalar(params.m);
     const Scalar com_x = Scalar(params.com_x);
     const Scalar com_y = Scalar(params.com_y);
@@ -8853,12 +8953,12 @@ struct RigidBodyEulerYzx {
     const Scalar a = Scalar(params.a);
     const Scalar b = Scalar(params.b);
     const Scalar c = Scalar(params.c);
-    const Scalar tmp0 = sin(bank);
-    const Scalar tmp1 = sin(heading);
+    const Scalar tmp0 = sin_of[2];
+    const Scalar tmp1 = sin_of[0];
     const Scalar tmp2 = tmp0*tmp1;
-    const Scalar tmp3 = sin(attitude);
-    const Scalar tmp4 = cos(bank);
-    const Scalar tmp5 = cos(heading);
+    const Scalar tmp3 = sin_of[1];
+    const Scalar tmp4 = cos_of[2];
+    const Scalar tmp5 = cos_of[0];
     const Scalar tmp6 = tmp4*tmp5;
     const Scalar tmp7 = tmp3*tmp6;
     const Scalar tmp8 = tmp7 - tmp2;
@@ -8903,7 +9003,7 @@ struct RigidBodyEulerYzx {
     const Scalar tmp41 = tmp39 + tmp40;
     const Scalar tmp42 = tmp34 + tmp41;
     const Scalar tmp43 = tmp10*tmp42;
-    const Scalar tmp44 = cos(attitude);
+    const Scalar tmp44 = cos_of[1];
     const Scalar tmp45 = tmp44*tmp5;
     const Scalar tmp46 = tmp10*tmp21;
     const Scalar tmp47 = tmp45*tmp46;
@@ -9051,12 +9151,13 @@ struct RigidBodyEulerYzx {
   static XJacobian<Scalar> jacobian(const QVector<Scalar>& q,
                                     const Scalar& /*t*/,
                                     const Params& params) {
-    using std::cos;
-    using std::sin;
     using std::sqrt;
     const Scalar heading = q(3);
     const Scalar attitude = q(4);
     const Scalar bank = q(5);
+    const Scalar sin_cos_of[3] = {heading, attitude, bank};
+    Scalar sin_of[3], cos_of[3];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar m = Scalar(params.m);
     const Scalar com_x = Scalar(params.com_x);
     const Scalar com_y = Scalar(params.com_y);
@@ -9064,12 +9165,12 @@ struct RigidBodyEulerYzx {
     const Scalar a = Scalar(params.a);
     const Scalar b = Scalar(params.b);
     const Scalar c = Scalar(params.c);
-    const Scalar tmp0 = sin(bank);
-    const Scalar tmp1 = sin(heading);
+    const Scalar tmp0 = sin_of[2];
+    const Scalar tmp1 = sin_of[0];
     const Scalar tmp2 = tmp0*tmp1;
-    const Scalar tmp3 = sin(attitude);
-    const Scalar tmp4 = cos(bank);
-    const Scalar tmp5 = cos(heading);
+    const Scalar tmp3 = sin_of[1];
+    const Scalar tmp4 = cos_of[2];
+    const Scalar tmp5 = cos_of[0];
     const Scalar tmp6 = tmp4*tmp5;
     const Scalar tmp7 = tmp3*tmp6;
     const Scalar tmp8 = tmp7 - tmp2;
@@ -9114,7 +9215,7 @@ struct RigidBodyEulerYzx {
     const Scalar tmp41 = tmp39 + tmp40;
     const Scalar tmp42 = tmp34 + tmp41;
     const Scalar tmp43 = tmp10*tmp42;
-    const Scalar tmp44 = cos(attitude);
+    const Scalar tmp44 = cos_of[1];
     const Scalar tmp45 = tmp44*tmp5;
     const Scalar tmp46 = tmp10*tmp21;
     const Scalar tmp47 = tmp45*tmp46;
@@ -9281,8 +9382,6 @@ struct RigidBodyEulerYzx {
                                            const VVector<Scalar>& v,
                                            const Scalar& /*t*/,
                                            const Params& params) {
-    using std::cos;
-    using std::sin;
     using std::sqrt;
     const Scalar heading = q(3);
     const Scalar attitude = q(4);
@@ -9290,6 +9389,9 @@ struct RigidBodyEulerYzx {
     const Scalar heading_dot = v(3);
     const Scalar attitude_dot = v(4);
     const Scalar bank_dot = v(5);
+    const Scalar sin_cos_of[3] = {heading, attitude, bank};
+    Scalar sin_of[3], cos_of[3];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar m = Scalar(params.m);
     const Scalar com_x = Scalar(params.com_x);
     const Scalar com_y = Scalar(params.com_y);
@@ -9297,12 +9399,12 @@ struct RigidBodyEulerYzx {
     const Scalar a = Scalar(params.a);
     const Scalar b = Scalar(params.b);
     const Scalar c = Scalar(params.c);
-    const Scalar tmp0 = sin(bank);
-    const Scalar tmp1 = sin(heading);
+    const Scalar tmp0 = sin_of[2];
+    const Scalar tmp1 = sin_of[0];
     const Scalar tmp2 = tmp0*tmp1;
-    const Scalar tmp3 = sin(attitude);
-    const Scalar tmp4 = cos(bank);
-    const Scalar tmp5 = cos(heading);
+    const Scalar tmp3 = sin_of[1];
+    const Scalar tmp4 = cos_of[2];
+    const Scalar tmp5 = cos_of[0];
     const Scalar tmp6 = tmp4*tmp5;
     const Scalar tmp7 = tmp3*tmp6;
     const Scalar tmp8 = tmp7 - tmp2;
@@ -9348,7 +9450,7 @@ struct RigidBodyEulerYzx {
     const Scalar tmp41 = tmp39 + tmp40;
     const Scalar tmp42 = tmp34 + tmp41;
     const Scalar tmp43 = tmp10*tmp42;
-    const Scalar tmp44 = cos(attitude);
+    const Scalar tmp44 = cos_of[1];
     const Scalar tmp45 = tmp44*tmp5;
     const Scalar tmp46 = tmp10*tmp21;
     const Scalar tmp47 = tmp45*tmp46;
@@ -9538,8 +9640,6 @@ struct RigidBodyEulerYzx {
                                              const VVector<Scalar>& v,
                                              const Scalar& /*t*/,
                                              const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar heading = q(3);
     const Scalar attitude = q(4);
     const Scalar bank = q(5);
@@ -9549,16 +9649,19 @@ struct RigidBodyEulerYzx {
     const Scalar heading_dot = v(3);
     const Scalar attitude_dot = v(4);
     const Scalar bank_dot = v(5);
+    const Scalar sin_cos_of[3] = {heading, attitude, bank};
+    Scalar sin_of[3], cos_of[3];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar m = Scalar(params.m);
     const Scalar com_x = Scalar(params.com_x);
     const Scalar com_y = Scalar(params.com_y);
     const Scalar com_z = Scalar(params.com_z);
-    const Scalar tmp0 = sin(bank);
-    const Scalar tmp1 = sin(heading);
+    const Scalar tmp0 = sin_of[2];
+    const Scalar tmp1 = sin_of[0];
     const Scalar tmp2 = tmp0*tmp1;
-    const Scalar tmp3 = sin(attitude);
-    const Scalar tmp4 = cos(bank);
-    const Scalar tmp5 = cos(heading);
+    const Scalar tmp3 = sin_of[1];
+    const Scalar tmp4 = cos_of[2];
+    const Scalar tmp5 = cos_of[0];
     const Scalar tmp6 = tmp4*tmp5;
     const Scalar tmp7 = tmp3*tmp6;
     const Scalar tmp8 = tmp7 - tmp2;
@@ -9566,7 +9669,7 @@ struct RigidBodyEulerYzx {
     const Scalar tmp30 = tmp0*tmp5;
     const Scalar tmp31 = tmp3*tmp30;
     const Scalar tmp32 = tmp29 + tmp31;
-    const Scalar tmp44 = cos(attitude);
+    const Scalar tmp44 = cos_of[1];
     const Scalar tmp48 = tmp44*com_x;
     const Scalar tmp49 = tmp48*tmp5;
     const Scalar tmp53 = tmp4*tmp44;
@@ -9619,8 +9722,6 @@ struct RigidBodyEulerYzx {
                                                 const VVector<Scalar>& v,
                                                 const Scalar& /*t*/,
                                                 const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar x = q(0);
     const Scalar y = q(1);
     const Scalar z = q(2);
@@ -9633,6 +9734,9 @@ struct RigidBodyEulerYzx {
     const Scalar heading_dot = v(3);
     const Scalar attitude_dot = v(4);
     const Scalar bank_dot = v(5);
+    const Scalar sin_cos_of[3] = {heading, attitude, bank};
+    Scalar sin_of[3], cos_of[3];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar m = Scalar(params.m);
     const Scalar com_x = Scalar(params.com_x);
     const Scalar com_y = Scalar(params.com_y);
@@ -9640,12 +9744,12 @@ struct RigidBodyEulerYzx {
     const Scalar a = Scalar(params.a);
     const Scalar b = Scalar(params.b);
     const Scalar c = Scalar(params.c);
-    const Scalar tmp0 = sin(bank);
-    const Scalar tmp1 = sin(heading);
+    const Scalar tmp0 = sin_of[2];
+    const Scalar tmp1 = sin_of[0];
     const Scalar tmp2 = tmp0*tmp1;
-    const Scalar tmp3 = sin(attitude);
-    const Scalar tmp4 = cos(bank);
-    const Scalar tmp5 = cos(heading);
+    const Scalar tmp3 = sin_of[1];
+    const Scalar tmp4 = cos_of[2];
+    const Scalar tmp5 = cos_of[0];
     const Scalar tmp6 = tmp4*tmp5;
     const Scalar tmp7 = tmp3*tmp6;
     const Scalar tmp8 = tmp7 - tmp2;
@@ -9678,7 +9782,7 @@ struct RigidBodyEulerYzx {
     const Scalar tmp38 = -Scalar(0.008495035709756703)*tmp13 - tmp24*(tmp33*tmp33)
         - tmp35*(tmp37*tmp37) + Scalar(0.02950190206578425)*tmp15*m
         + Scalar(0.020659800310639128)*tmp17*m;
-    const Scalar tmp44 = cos(attitude);
+    const Scalar tmp44 = cos_of[1];
     const Scalar tmp45 = tmp44*tmp5;
     const Scalar tmp48 = tmp44*com_x;
     const Scalar tmp49 = tmp48*tmp5;

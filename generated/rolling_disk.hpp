@@ -21,6 +21,78 @@
 
 #include <Eigen/Cholesky>
 #include <Eigen/Core>
+// gencoord_kernel_math::sin_cos(x, s, c) sets s[i] = sin(x[i]) and c[i] = cos(x[i]). For
+// double on x86-64 with glibc it works in vector registers, through glibc's vector math
+// library (libmvec, which C++ programs link through libm; within 4 ulp, as its manual states):
+// 4 lanes a call where the compiler targets AVX2, 2 otherwise. The inline namespace keeps the
+// two apart when objects of both are linked together. Elsewhere, or with GENCOORD_NO_LIBMVEC
+// defined, it calls sin and cos.
+#ifndef GENCOORD_KERNEL_SIN_COS
+#define GENCOORD_KERNEL_SIN_COS
+#if defined(__x86_64__) && defined(__GLIBC__) && !defined(GENCOORD_NO_LIBMVEC)
+#include <immintrin.h>
+#define GENCOORD_KERNEL_LIBMVEC 1
+extern "C" {
+#if defined(__AVX2__)
+__m256d _ZGVdN4v_sin(__m256d);
+__m256d _ZGVdN4v_cos(__m256d);
+#else
+__m128d _ZGVbN2v_sin(__m128d);
+__m128d _ZGVbN2v_cos(__m128d);
+#endif
+}
+#endif
+
+namespace gencoord_kernel_math {
+#if defined(GENCOORD_KERNEL_LIBMVEC) && defined(__AVX2__)
+inline namespace avx2 {
+constexpr int kLanes = 4;
+inline void sin_cos_lanes(const double* x, double* s, double* c) {
+  const __m256d lanes = _mm256_loadu_pd(x);
+  _mm256_storeu_pd(s, _ZGVdN4v_sin(lanes));
+  _mm256_storeu_pd(c, _ZGVdN4v_cos(lanes));
+}
+#elif defined(GENCOORD_KERNEL_LIBMVEC)
+inline namespace sse2 {
+constexpr int kLanes = 2;
+inline void sin_cos_lanes(const double* x, double* s, double* c) {
+  const __m128d lanes = _mm_loadu_pd(x);
+  _mm_storeu_pd(s, _ZGVbN2v_sin(lanes));
+  _mm_storeu_pd(c, _ZGVbN2v_cos(lanes));
+}
+#else
+inline namespace scalar {
+#endif
+
+template <class Scalar, int n>
+inline void sin_cos(const Scalar (&x)[n], Scalar (&s)[n], Scalar (&c)[n]) {
+  using std::cos;
+  using std::sin;
+  for (int i = 0; i < n; ++i) {
+    s[i] = sin(x[i]);
+    c[i] = cos(x[i]);
+  }
+}
+
+#ifdef GENCOORD_KERNEL_LIBMVEC
+template <int n>
+inline void sin_cos(const double (&x)[n], double (&s)[n], double (&c)[n]) {
+  constexpr int whole = n - n % kLanes;
+  for (int i = 0; i < whole; i += kLanes) sin_cos_lanes(x + i, s + i, c + i);
+  if constexpr (whole < n) {  // the rest, padded with copies of the last argument
+    double rest[kLanes], sines[kLanes], cosines[kLanes];
+    for (int k = 0; k < kLanes; ++k) rest[k] = x[whole + k < n ? whole + k : n - 1];
+    sin_cos_lanes(rest, sines, cosines);
+    for (int i = whole; i < n; ++i) {
+      s[i] = sines[i - whole];
+      c[i] = cosines[i - whole];
+    }
+  }
+}
+#endif
+}  // inline namespace
+}  // namespace gencoord_kernel_math
+#endif  // GENCOORD_KERNEL_SIN_COS
 
 /*
  * A rolling disk: a uniform disk of radius r, thickness h and mass m rolling without slipping
@@ -185,24 +257,25 @@ struct RollingDisk {
   static VMatrix<Scalar> mass_matrix(const QVector<Scalar>& q,
                                      const Scalar& /*t*/,
                                      const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar psi = q(2);
     const Scalar phi = q(3);
     const Scalar theta = q(4);
+    const Scalar sin_cos_of[3] = {psi, phi, theta};
+    Scalar sin_of[3], cos_of[3];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar r = Scalar(params.r);
     const Scalar h = Scalar(params.h);
     const Scalar m = Scalar(params.m);
-    const Scalar tmp0 = sin(theta);
-    const Scalar tmp1 = cos(psi);
+    const Scalar tmp0 = sin_of[2];
+    const Scalar tmp1 = cos_of[0];
     const Scalar tmp2 = tmp0*tmp1;
-    const Scalar tmp3 = sin(phi);
-    const Scalar tmp4 = sin(psi);
-    const Scalar tmp5 = cos(theta);
+    const Scalar tmp3 = sin_of[1];
+    const Scalar tmp4 = sin_of[0];
+    const Scalar tmp5 = cos_of[2];
     const Scalar tmp6 = tmp4*tmp5;
     const Scalar tmp7 = tmp3*tmp6;
     const Scalar tmp8 = tmp2 + tmp7;
-    const Scalar tmp12 = cos(phi);
+    const Scalar tmp12 = cos_of[1];
     const Scalar tmp18 = tmp0*tmp4;
     const Scalar tmp19 = tmp18*tmp3;
     const Scalar tmp20 = tmp19 - tmp1*tmp5;
@@ -359,27 +432,28 @@ struct RollingDisk {
                                          const VVector<Scalar>& v,
                                          const Scalar& /*t*/,
                                          const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar psi = q(2);
     const Scalar phi = q(3);
     const Scalar theta = q(4);
     const Scalar psi_dot = v(2);
     const Scalar phi_dot = v(3);
     const Scalar theta_dot = v(4);
+    const Scalar sin_cos_of[3] = {psi, phi, theta};
+    Scalar sin_of[3], cos_of[3];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar r = Scalar(params.r);
     const Scalar h = Scalar(params.h);
     const Scalar m = Scalar(params.m);
-    const Scalar tmp0 = sin(theta);
-    const Scalar tmp1 = cos(psi);
+    const Scalar tmp0 = sin_of[2];
+    const Scalar tmp1 = cos_of[0];
     const Scalar tmp2 = tmp0*tmp1;
-    const Scalar tmp3 = sin(phi);
-    const Scalar tmp4 = sin(psi);
-    const Scalar tmp5 = cos(theta);
+    const Scalar tmp3 = sin_of[1];
+    const Scalar tmp4 = sin_of[0];
+    const Scalar tmp5 = cos_of[2];
     const Scalar tmp6 = tmp4*tmp5;
     const Scalar tmp7 = tmp3*tmp6;
     const Scalar tmp8 = tmp2 + tmp7;
-    const Scalar tmp12 = cos(phi);
+    const Scalar tmp12 = cos_of[1];
     const Scalar tmp13 = tmp12*tmp4;
     const Scalar tmp18 = tmp0*tmp4;
     const Scalar tmp19 = tmp18*tmp3;
@@ -497,28 +571,29 @@ struct RollingDisk {
                                 const VVector<Scalar>& v,
                                 const Scalar& /*t*/,
                                 const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar psi = q(2);
     const Scalar phi = q(3);
     const Scalar theta = q(4);
     const Scalar psi_dot = v(2);
     const Scalar phi_dot = v(3);
     const Scalar theta_dot = v(4);
+    const Scalar sin_cos_of[3] = {psi, phi, theta};
+    Scalar sin_of[3], cos_of[3];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar r = Scalar(params.r);
     const Scalar h = Scalar(params.h);
     const Scalar m = Scalar(params.m);
     const Scalar g = Scalar(params.g);
-    const Scalar tmp0 = sin(theta);
-    const Scalar tmp1 = cos(psi);
+    const Scalar tmp0 = sin_of[2];
+    const Scalar tmp1 = cos_of[0];
     const Scalar tmp2 = tmp0*tmp1;
-    const Scalar tmp3 = sin(phi);
-    const Scalar tmp4 = sin(psi);
-    const Scalar tmp5 = cos(theta);
+    const Scalar tmp3 = sin_of[1];
+    const Scalar tmp4 = sin_of[0];
+    const Scalar tmp5 = cos_of[2];
     const Scalar tmp6 = tmp4*tmp5;
     const Scalar tmp7 = tmp3*tmp6;
     const Scalar tmp8 = tmp2 + tmp7;
-    const Scalar tmp12 = cos(phi);
+    const Scalar tmp12 = cos_of[1];
     const Scalar tmp13 = tmp12*tmp4;
     const Scalar tmp18 = tmp0*tmp4;
     const Scalar tmp19 = tmp18*tmp3;
@@ -641,28 +716,29 @@ struct RollingDisk {
                        const Params& params,
                        VMatrix<Scalar>* Mt,
                        VVector<Scalar>* f) {
-    using std::cos;
-    using std::sin;
     const Scalar psi = q(2);
     const Scalar phi = q(3);
     const Scalar theta = q(4);
     const Scalar psi_dot = v(2);
     const Scalar phi_dot = v(3);
     const Scalar theta_dot = v(4);
+    const Scalar sin_cos_of[3] = {psi, phi, theta};
+    Scalar sin_of[3], cos_of[3];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar r = Scalar(params.r);
     const Scalar h = Scalar(params.h);
     const Scalar m = Scalar(params.m);
     const Scalar g = Scalar(params.g);
-    const Scalar tmp0 = sin(theta);
-    const Scalar tmp1 = cos(psi);
+    const Scalar tmp0 = sin_of[2];
+    const Scalar tmp1 = cos_of[0];
     const Scalar tmp2 = tmp0*tmp1;
-    const Scalar tmp3 = sin(phi);
-    const Scalar tmp4 = sin(psi);
-    const Scalar tmp5 = cos(theta);
+    const Scalar tmp3 = sin_of[1];
+    const Scalar tmp4 = sin_of[0];
+    const Scalar tmp5 = cos_of[2];
     const Scalar tmp6 = tmp4*tmp5;
     const Scalar tmp7 = tmp3*tmp6;
     const Scalar tmp8 = tmp2 + tmp7;
-    const Scalar tmp12 = cos(phi);
+    const Scalar tmp12 = cos_of[1];
     const Scalar tmp13 = tmp12*tmp4;
     const Scalar tmp18 = tmp0*tmp4;
     const Scalar tmp19 = tmp18*tmp3;
@@ -848,8 +924,6 @@ struct RollingDisk {
                                           const VVector<Scalar>& qdd,
                                           const Scalar& /*t*/,
                                           const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar psi = q(2);
     const Scalar phi = q(3);
     const Scalar theta = q(4);
@@ -861,20 +935,23 @@ struct RollingDisk {
     const Scalar psi_ddot = qdd(2);
     const Scalar phi_ddot = qdd(3);
     const Scalar theta_ddot = qdd(4);
+    const Scalar sin_cos_of[3] = {psi, phi, theta};
+    Scalar sin_of[3], cos_of[3];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar r = Scalar(params.r);
     const Scalar h = Scalar(params.h);
     const Scalar m = Scalar(params.m);
     const Scalar g = Scalar(params.g);
-    const Scalar tmp0 = sin(theta);
-    const Scalar tmp1 = cos(psi);
+    const Scalar tmp0 = sin_of[2];
+    const Scalar tmp1 = cos_of[0];
     const Scalar tmp2 = tmp0*tmp1;
-    const Scalar tmp3 = sin(phi);
-    const Scalar tmp4 = sin(psi);
-    const Scalar tmp5 = cos(theta);
+    const Scalar tmp3 = sin_of[1];
+    const Scalar tmp4 = sin_of[0];
+    const Scalar tmp5 = cos_of[2];
     const Scalar tmp6 = tmp4*tmp5;
     const Scalar tmp7 = tmp3*tmp6;
     const Scalar tmp8 = tmp2 + tmp7;
-    const Scalar tmp12 = cos(phi);
+    const Scalar tmp12 = cos_of[1];
     const Scalar tmp13 = tmp12*tmp4;
     const Scalar tmp18 = tmp0*tmp4;
     const Scalar tmp19 = tmp18*tmp3;
@@ -1036,8 +1113,6 @@ struct RollingDisk {
                                const VVector<Scalar>& v,
                                const Scalar& /*t*/,
                                const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar psi = q(2);
     const Scalar phi = q(3);
     const Scalar theta = q(4);
@@ -1046,19 +1121,22 @@ struct RollingDisk {
     const Scalar psi_dot = v(2);
     const Scalar phi_dot = v(3);
     const Scalar theta_dot = v(4);
+    const Scalar sin_cos_of[3] = {psi, phi, theta};
+    Scalar sin_of[3], cos_of[3];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar r = Scalar(params.r);
     const Scalar h = Scalar(params.h);
     const Scalar m = Scalar(params.m);
-    const Scalar tmp0 = sin(theta);
-    const Scalar tmp1 = cos(psi);
+    const Scalar tmp0 = sin_of[2];
+    const Scalar tmp1 = cos_of[0];
     const Scalar tmp2 = tmp0*tmp1;
-    const Scalar tmp3 = sin(phi);
-    const Scalar tmp4 = sin(psi);
-    const Scalar tmp5 = cos(theta);
+    const Scalar tmp3 = sin_of[1];
+    const Scalar tmp4 = sin_of[0];
+    const Scalar tmp5 = cos_of[2];
     const Scalar tmp6 = tmp4*tmp5;
     const Scalar tmp7 = tmp3*tmp6;
     const Scalar tmp8 = tmp2 + tmp7;
-    const Scalar tmp12 = cos(phi);
+    const Scalar tmp12 = cos_of[1];
     const Scalar tmp13 = tmp12*tmp4;
     const Scalar tmp18 = tmp0*tmp4;
     const Scalar tmp19 = tmp18*tmp3;
@@ -1165,8 +1243,6 @@ struct RollingDisk {
                        const VVector<Scalar>& v,
                        const Scalar& /*t*/,
                        const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar psi = q(2);
     const Scalar phi = q(3);
     const Scalar theta = q(4);
@@ -1175,20 +1251,23 @@ struct RollingDisk {
     const Scalar psi_dot = v(2);
     const Scalar phi_dot = v(3);
     const Scalar theta_dot = v(4);
+    const Scalar sin_cos_of[3] = {psi, phi, theta};
+    Scalar sin_of[3], cos_of[3];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar r = Scalar(params.r);
     const Scalar h = Scalar(params.h);
     const Scalar m = Scalar(params.m);
     const Scalar g = Scalar(params.g);
-    const Scalar tmp0 = sin(theta);
-    const Scalar tmp1 = cos(psi);
+    const Scalar tmp0 = sin_of[2];
+    const Scalar tmp1 = cos_of[0];
     const Scalar tmp2 = tmp0*tmp1;
-    const Scalar tmp3 = sin(phi);
-    const Scalar tmp4 = sin(psi);
-    const Scalar tmp5 = cos(theta);
+    const Scalar tmp3 = sin_of[1];
+    const Scalar tmp4 = sin_of[0];
+    const Scalar tmp5 = cos_of[2];
     const Scalar tmp6 = tmp4*tmp5;
     const Scalar tmp7 = tmp3*tmp6;
     const Scalar tmp8 = tmp2 + tmp7;
-    const Scalar tmp12 = cos(phi);
+    const Scalar tmp12 = cos_of[1];
     const Scalar tmp13 = tmp12*tmp4;
     const Scalar tmp18 = tmp0*tmp4;
     const Scalar tmp19 = tmp18*tmp3;
@@ -1257,29 +1336,30 @@ struct RollingDisk {
                                    const Scalar& /*t*/,
                                    const Params& params) {
     using std::abs;
-    using std::cos;
-    using std::sin;
     using std::sqrt;
     const Scalar x = q(0);
     const Scalar y = q(1);
     const Scalar psi = q(2);
     const Scalar phi = q(3);
     const Scalar theta = q(4);
+    const Scalar sin_cos_of[3] = {psi, phi, theta};
+    Scalar sin_of[3], cos_of[3];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar r = Scalar(params.r);
     const Scalar h = Scalar(params.h);
-    const Scalar tmp0 = sin(theta);
-    const Scalar tmp1 = cos(psi);
+    const Scalar tmp0 = sin_of[2];
+    const Scalar tmp1 = cos_of[0];
     const Scalar tmp2 = tmp0*tmp1;
-    const Scalar tmp3 = sin(phi);
-    const Scalar tmp4 = sin(psi);
-    const Scalar tmp5 = cos(theta);
+    const Scalar tmp3 = sin_of[1];
+    const Scalar tmp4 = sin_of[0];
+    const Scalar tmp5 = cos_of[2];
     const Scalar tmp6 = tmp4*tmp5;
     const Scalar tmp7 = tmp3*tmp6;
     const Scalar tmp8 = tmp2 + tmp7;
     const Scalar tmp9 = abs(r);
     const Scalar tmp10 = (Scalar(0.5))*tmp9;
     const Scalar tmp11 = tmp10*tmp8;
-    const Scalar tmp12 = cos(phi);
+    const Scalar tmp12 = cos_of[1];
     const Scalar tmp13 = tmp12*tmp4;
     const Scalar tmp14 = ((Scalar(1)/Scalar(6)))*sqrt(Scalar(3))*abs(h);
     const Scalar tmp15 = tmp13*tmp14;
@@ -1367,8 +1447,6 @@ struct RollingDisk {
                                     const Scalar& /*t*/,
                                     const Params& params) {
     using std::abs;
-    using std::cos;
-    using std::sin;
     using std::sqrt;
     const Scalar psi = q(2);
     const Scalar phi = q(3);
@@ -1378,21 +1456,24 @@ struct RollingDisk {
     const Scalar psi_dot = v(2);
     const Scalar phi_dot = v(3);
     const Scalar theta_dot = v(4);
+    const Scalar sin_cos_of[3] = {psi, phi, theta};
+    Scalar sin_of[3], cos_of[3];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar r = Scalar(params.r);
     const Scalar h = Scalar(params.h);
-    const Scalar tmp0 = sin(theta);
-    const Scalar tmp1 = cos(psi);
+    const Scalar tmp0 = sin_of[2];
+    const Scalar tmp1 = cos_of[0];
     const Scalar tmp2 = tmp0*tmp1;
-    const Scalar tmp3 = sin(phi);
-    const Scalar tmp4 = sin(psi);
-    const Scalar tmp5 = cos(theta);
+    const Scalar tmp3 = sin_of[1];
+    const Scalar tmp4 = sin_of[0];
+    const Scalar tmp5 = cos_of[2];
     const Scalar tmp6 = tmp4*tmp5;
     const Scalar tmp7 = tmp3*tmp6;
     const Scalar tmp8 = tmp2 + tmp7;
     const Scalar tmp9 = abs(r);
     const Scalar tmp10 = (Scalar(0.5))*tmp9;
     const Scalar tmp11 = tmp10*tmp8;
-    const Scalar tmp12 = cos(phi);
+    const Scalar tmp12 = cos_of[1];
     const Scalar tmp13 = tmp12*tmp4;
     const Scalar tmp14 = ((Scalar(1)/Scalar(6)))*sqrt(Scalar(3))*abs(h);
     const Scalar tmp15 = tmp13*tmp14;
@@ -1550,27 +1631,28 @@ struct RollingDisk {
                                     const Scalar& /*t*/,
                                     const Params& params) {
     using std::abs;
-    using std::cos;
-    using std::sin;
     using std::sqrt;
     const Scalar psi = q(2);
     const Scalar phi = q(3);
     const Scalar theta = q(4);
+    const Scalar sin_cos_of[3] = {psi, phi, theta};
+    Scalar sin_of[3], cos_of[3];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar r = Scalar(params.r);
     const Scalar h = Scalar(params.h);
-    const Scalar tmp0 = sin(theta);
-    const Scalar tmp1 = cos(psi);
+    const Scalar tmp0 = sin_of[2];
+    const Scalar tmp1 = cos_of[0];
     const Scalar tmp2 = tmp0*tmp1;
-    const Scalar tmp3 = sin(phi);
-    const Scalar tmp4 = sin(psi);
-    const Scalar tmp5 = cos(theta);
+    const Scalar tmp3 = sin_of[1];
+    const Scalar tmp4 = sin_of[0];
+    const Scalar tmp5 = cos_of[2];
     const Scalar tmp6 = tmp4*tmp5;
     const Scalar tmp7 = tmp3*tmp6;
     const Scalar tmp8 = tmp2 + tmp7;
     const Scalar tmp9 = abs(r);
     const Scalar tmp10 = (Scalar(0.5))*tmp9;
     const Scalar tmp11 = tmp10*tmp8;
-    const Scalar tmp12 = cos(phi);
+    const Scalar tmp12 = cos_of[1];
     const Scalar tmp13 = tmp12*tmp4;
     const Scalar tmp14 = ((Scalar(1)/Scalar(6)))*sqrt(Scalar(3))*abs(h);
     const Scalar tmp15 = tmp13*tmp14;
@@ -1739,8 +1821,6 @@ struct RollingDisk {
                                            const Scalar& /*t*/,
                                            const Params& params) {
     using std::abs;
-    using std::cos;
-    using std::sin;
     using std::sqrt;
     const Scalar psi = q(2);
     const Scalar phi = q(3);
@@ -1748,20 +1828,23 @@ struct RollingDisk {
     const Scalar psi_dot = v(2);
     const Scalar phi_dot = v(3);
     const Scalar theta_dot = v(4);
+    const Scalar sin_cos_of[3] = {psi, phi, theta};
+    Scalar sin_of[3], cos_of[3];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar r = Scalar(params.r);
     const Scalar h = Scalar(params.h);
-    const Scalar tmp0 = sin(theta);
-    const Scalar tmp1 = cos(psi);
+    const Scalar tmp0 = sin_of[2];
+    const Scalar tmp1 = cos_of[0];
     const Scalar tmp2 = tmp0*tmp1;
-    const Scalar tmp3 = sin(phi);
-    const Scalar tmp4 = sin(psi);
-    const Scalar tmp5 = cos(theta);
+    const Scalar tmp3 = sin_of[1];
+    const Scalar tmp4 = sin_of[0];
+    const Scalar tmp5 = cos_of[2];
     const Scalar tmp6 = tmp4*tmp5;
     const Scalar tmp7 = tmp3*tmp6;
     const Scalar tmp8 = tmp2 + tmp7;
     const Scalar tmp9 = abs(r);
     const Scalar tmp10 = (Scalar(0.5))*tmp9;
-    const Scalar tmp12 = cos(phi);
+    const Scalar tmp12 = cos_of[1];
     const Scalar tmp13 = tmp12*tmp4;
     const Scalar tmp14 = ((Scalar(1)/Scalar(6)))*sqrt(Scalar(3))*abs(h);
     const Scalar tmp15 = tmp13*tmp14;
@@ -1952,20 +2035,21 @@ struct RollingDisk {
                                              const VVector<Scalar>& v,
                                              const Scalar& /*t*/,
                                              const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar psi = q(2);
     const Scalar phi = q(3);
     const Scalar x_dot = v(0);
     const Scalar y_dot = v(1);
     const Scalar psi_dot = v(2);
     const Scalar phi_dot = v(3);
+    const Scalar sin_cos_of[2] = {psi, phi};
+    Scalar sin_of[2], cos_of[2];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar r = Scalar(params.r);
     const Scalar m = Scalar(params.m);
-    const Scalar tmp1 = cos(psi);
-    const Scalar tmp3 = sin(phi);
-    const Scalar tmp4 = sin(psi);
-    const Scalar tmp12 = cos(phi);
+    const Scalar tmp1 = cos_of[0];
+    const Scalar tmp3 = sin_of[1];
+    const Scalar tmp4 = sin_of[0];
+    const Scalar tmp12 = cos_of[1];
     const Scalar tmp23 = tmp3*r;
     const Scalar tmp24 = tmp23*tmp4;
     const Scalar tmp30 = tmp1*tmp23;
@@ -1997,8 +2081,6 @@ struct RollingDisk {
                                                 const VVector<Scalar>& v,
                                                 const Scalar& /*t*/,
                                                 const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar x = q(0);
     const Scalar y = q(1);
     const Scalar psi = q(2);
@@ -2009,19 +2091,22 @@ struct RollingDisk {
     const Scalar psi_dot = v(2);
     const Scalar phi_dot = v(3);
     const Scalar theta_dot = v(4);
+    const Scalar sin_cos_of[3] = {psi, phi, theta};
+    Scalar sin_of[3], cos_of[3];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar r = Scalar(params.r);
     const Scalar h = Scalar(params.h);
     const Scalar m = Scalar(params.m);
-    const Scalar tmp0 = sin(theta);
-    const Scalar tmp1 = cos(psi);
+    const Scalar tmp0 = sin_of[2];
+    const Scalar tmp1 = cos_of[0];
     const Scalar tmp2 = tmp0*tmp1;
-    const Scalar tmp3 = sin(phi);
-    const Scalar tmp4 = sin(psi);
-    const Scalar tmp5 = cos(theta);
+    const Scalar tmp3 = sin_of[1];
+    const Scalar tmp4 = sin_of[0];
+    const Scalar tmp5 = cos_of[2];
     const Scalar tmp6 = tmp4*tmp5;
     const Scalar tmp7 = tmp3*tmp6;
     const Scalar tmp8 = tmp2 + tmp7;
-    const Scalar tmp12 = cos(phi);
+    const Scalar tmp12 = cos_of[1];
     const Scalar tmp13 = tmp12*tmp4;
     const Scalar tmp18 = tmp0*tmp4;
     const Scalar tmp19 = tmp18*tmp3;
@@ -2125,23 +2210,24 @@ struct RollingDisk {
   static CJacobian<Scalar> constraint_jacobian(const QVector<Scalar>& q,
                                                const Scalar& /*t*/,
                                                const Params& params) {
-    using std::cos;
-    using std::sin;
     using std::sqrt;
     const Scalar psi = q(2);
     const Scalar phi = q(3);
     const Scalar theta = q(4);
+    const Scalar sin_cos_of[3] = {psi, phi, theta};
+    Scalar sin_of[3], cos_of[3];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar r = Scalar(params.r);
-    const Scalar tmp0 = sin(theta);
-    const Scalar tmp1 = cos(psi);
+    const Scalar tmp0 = sin_of[2];
+    const Scalar tmp1 = cos_of[0];
     const Scalar tmp2 = tmp0*tmp1;
-    const Scalar tmp3 = sin(phi);
-    const Scalar tmp4 = sin(psi);
-    const Scalar tmp5 = cos(theta);
+    const Scalar tmp3 = sin_of[1];
+    const Scalar tmp4 = sin_of[0];
+    const Scalar tmp5 = cos_of[2];
     const Scalar tmp6 = tmp4*tmp5;
     const Scalar tmp7 = tmp3*tmp6;
     const Scalar tmp8 = tmp2 + tmp7;
-    const Scalar tmp12 = cos(phi);
+    const Scalar tmp12 = cos_of[1];
     const Scalar tmp13 = tmp12*tmp4;
     const Scalar tmp18 = tmp0*tmp4;
     const Scalar tmp19 = tmp18*tmp3;
@@ -2221,8 +2307,6 @@ struct RollingDisk {
                                                const VVector<Scalar>& v,
                                                const Scalar& /*t*/,
                                                const Params& params) {
-    using std::cos;
-    using std::sin;
     using std::sqrt;
     const Scalar psi = q(2);
     const Scalar phi = q(3);
@@ -2232,17 +2316,20 @@ struct RollingDisk {
     const Scalar psi_dot = v(2);
     const Scalar phi_dot = v(3);
     const Scalar theta_dot = v(4);
+    const Scalar sin_cos_of[3] = {psi, phi, theta};
+    Scalar sin_of[3], cos_of[3];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar r = Scalar(params.r);
-    const Scalar tmp0 = sin(theta);
-    const Scalar tmp1 = cos(psi);
+    const Scalar tmp0 = sin_of[2];
+    const Scalar tmp1 = cos_of[0];
     const Scalar tmp2 = tmp0*tmp1;
-    const Scalar tmp3 = sin(phi);
-    const Scalar tmp4 = sin(psi);
-    const Scalar tmp5 = cos(theta);
+    const Scalar tmp3 = sin_of[1];
+    const Scalar tmp4 = sin_of[0];
+    const Scalar tmp5 = cos_of[2];
     const Scalar tmp6 = tmp4*tmp5;
     const Scalar tmp7 = tmp3*tmp6;
     const Scalar tmp8 = tmp2 + tmp7;
-    const Scalar tmp12 = cos(phi);
+    const Scalar tmp12 = cos_of[1];
     const Scalar tmp13 = tmp12*tmp4;
     const Scalar tmp18 = tmp0*tmp4;
     const Scalar tmp19 = tmp18*tmp3;
@@ -2320,8 +2407,6 @@ struct RollingDisk {
                                          const VVector<Scalar>& v,
                                          const Scalar& /*t*/,
                                          const Params& params) {
-    using std::cos;
-    using std::sin;
     using std::sqrt;
     const Scalar psi = q(2);
     const Scalar phi = q(3);
@@ -2329,17 +2414,20 @@ struct RollingDisk {
     const Scalar psi_dot = v(2);
     const Scalar phi_dot = v(3);
     const Scalar theta_dot = v(4);
+    const Scalar sin_cos_of[3] = {psi, phi, theta};
+    Scalar sin_of[3], cos_of[3];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar r = Scalar(params.r);
-    const Scalar tmp0 = sin(theta);
-    const Scalar tmp1 = cos(psi);
+    const Scalar tmp0 = sin_of[2];
+    const Scalar tmp1 = cos_of[0];
     const Scalar tmp2 = tmp0*tmp1;
-    const Scalar tmp3 = sin(phi);
-    const Scalar tmp4 = sin(psi);
-    const Scalar tmp5 = cos(theta);
+    const Scalar tmp3 = sin_of[1];
+    const Scalar tmp4 = sin_of[0];
+    const Scalar tmp5 = cos_of[2];
     const Scalar tmp6 = tmp4*tmp5;
     const Scalar tmp7 = tmp3*tmp6;
     const Scalar tmp8 = tmp2 + tmp7;
-    const Scalar tmp12 = cos(phi);
+    const Scalar tmp12 = cos_of[1];
     const Scalar tmp13 = tmp12*tmp4;
     const Scalar tmp18 = tmp0*tmp4;
     const Scalar tmp19 = tmp18*tmp3;

@@ -20,6 +20,78 @@
 
 #include <Eigen/Cholesky>
 #include <Eigen/Core>
+// gencoord_kernel_math::sin_cos(x, s, c) sets s[i] = sin(x[i]) and c[i] = cos(x[i]). For
+// double on x86-64 with glibc it works in vector registers, through glibc's vector math
+// library (libmvec, which C++ programs link through libm; within 4 ulp, as its manual states):
+// 4 lanes a call where the compiler targets AVX2, 2 otherwise. The inline namespace keeps the
+// two apart when objects of both are linked together. Elsewhere, or with GENCOORD_NO_LIBMVEC
+// defined, it calls sin and cos.
+#ifndef GENCOORD_KERNEL_SIN_COS
+#define GENCOORD_KERNEL_SIN_COS
+#if defined(__x86_64__) && defined(__GLIBC__) && !defined(GENCOORD_NO_LIBMVEC)
+#include <immintrin.h>
+#define GENCOORD_KERNEL_LIBMVEC 1
+extern "C" {
+#if defined(__AVX2__)
+__m256d _ZGVdN4v_sin(__m256d);
+__m256d _ZGVdN4v_cos(__m256d);
+#else
+__m128d _ZGVbN2v_sin(__m128d);
+__m128d _ZGVbN2v_cos(__m128d);
+#endif
+}
+#endif
+
+namespace gencoord_kernel_math {
+#if defined(GENCOORD_KERNEL_LIBMVEC) && defined(__AVX2__)
+inline namespace avx2 {
+constexpr int kLanes = 4;
+inline void sin_cos_lanes(const double* x, double* s, double* c) {
+  const __m256d lanes = _mm256_loadu_pd(x);
+  _mm256_storeu_pd(s, _ZGVdN4v_sin(lanes));
+  _mm256_storeu_pd(c, _ZGVdN4v_cos(lanes));
+}
+#elif defined(GENCOORD_KERNEL_LIBMVEC)
+inline namespace sse2 {
+constexpr int kLanes = 2;
+inline void sin_cos_lanes(const double* x, double* s, double* c) {
+  const __m128d lanes = _mm_loadu_pd(x);
+  _mm_storeu_pd(s, _ZGVbN2v_sin(lanes));
+  _mm_storeu_pd(c, _ZGVbN2v_cos(lanes));
+}
+#else
+inline namespace scalar {
+#endif
+
+template <class Scalar, int n>
+inline void sin_cos(const Scalar (&x)[n], Scalar (&s)[n], Scalar (&c)[n]) {
+  using std::cos;
+  using std::sin;
+  for (int i = 0; i < n; ++i) {
+    s[i] = sin(x[i]);
+    c[i] = cos(x[i]);
+  }
+}
+
+#ifdef GENCOORD_KERNEL_LIBMVEC
+template <int n>
+inline void sin_cos(const double (&x)[n], double (&s)[n], double (&c)[n]) {
+  constexpr int whole = n - n % kLanes;
+  for (int i = 0; i < whole; i += kLanes) sin_cos_lanes(x + i, s + i, c + i);
+  if constexpr (whole < n) {  // the rest, padded with copies of the last argument
+    double rest[kLanes], sines[kLanes], cosines[kLanes];
+    for (int k = 0; k < kLanes; ++k) rest[k] = x[whole + k < n ? whole + k : n - 1];
+    sin_cos_lanes(rest, sines, cosines);
+    for (int i = whole; i < n; ++i) {
+      s[i] = sines[i - whole];
+      c[i] = cosines[i - whole];
+    }
+  }
+}
+#endif
+}  // inline namespace
+}  // namespace gencoord_kernel_math
+#endif  // GENCOORD_KERNEL_SIN_COS
 
 /*
  * Slider-crank: a crank turning about a fixed pivot drives a slider along a straight guide
@@ -201,18 +273,19 @@ struct SliderCrank {
   static VMatrix<Scalar> mass_matrix(const QVector<Scalar>& q,
                                      const Scalar& /*t*/,
                                      const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar crank = q(0);
     const Scalar rod = q(1);
+    const Scalar sin_cos_of[2] = {crank, rod};
+    Scalar sin_of[2], cos_of[2];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar a = Scalar(params.a);
     const Scalar b = Scalar(params.b);
     const Scalar m_a = Scalar(params.m_a);
     const Scalar m_b = Scalar(params.m_b);
     const Scalar m_s = Scalar(params.m_s);
-    const Scalar tmp124 = sin(crank);
+    const Scalar tmp124 = sin_of[0];
     const Scalar tmp125 = (tmp124*tmp124);
-    const Scalar tmp126 = cos(crank);
+    const Scalar tmp126 = cos_of[0];
     const Scalar tmp127 = (tmp126*tmp126);
     const Scalar tmp128 = (a*a);
     const Scalar tmp129 = tmp128*m_a;
@@ -223,10 +296,10 @@ struct SliderCrank {
     const Scalar tmp134 = (Scalar(0.25))*tmp132;
     const Scalar tmp135 = tmp130*(tmp125 + tmp127) + m_a*(tmp133 + tmp134) + m_b*(tmp131 + tmp132);
     const Scalar tmp136 = tmp124*a;
-    const Scalar tmp137 = sin(rod);
+    const Scalar tmp137 = sin_of[1];
     const Scalar tmp138 = tmp137*b;
     const Scalar tmp139 = (Scalar(0.5))*tmp138;
-    const Scalar tmp140 = cos(rod);
+    const Scalar tmp140 = cos_of[1];
     const Scalar tmp141 = tmp140*b;
     const Scalar tmp142 = tmp126*a;
     const Scalar tmp143 = (Scalar(0.5))*tmp142;
@@ -263,9 +336,11 @@ struct SliderCrank {
                                         const VVector<Scalar>& /*v*/,
                                         const Scalar& /*t*/,
                                         const Params& params) {
-    using std::cos;
     const Scalar crank = q(0);
     const Scalar rod = q(1);
+    const Scalar sin_cos_of[2] = {crank, rod};
+    Scalar sin_of[2], cos_of[2];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar a = Scalar(params.a);
     const Scalar b = Scalar(params.b);
     const Scalar m_a = Scalar(params.m_a);
@@ -273,8 +348,8 @@ struct SliderCrank {
     const Scalar g = Scalar(params.g);
     const Scalar u = Scalar(params.u);
     const Scalar p = Scalar(params.p);
-    const Scalar tmp126 = cos(crank);
-    const Scalar tmp140 = cos(rod);
+    const Scalar tmp126 = cos_of[0];
+    const Scalar tmp140 = cos_of[1];
     const Scalar tmp141 = tmp140*b;
     const Scalar tmp142 = tmp126*a;
     const Scalar tmp152 = g*m_b;
@@ -323,22 +398,23 @@ struct SliderCrank {
                                          const VVector<Scalar>& v,
                                          const Scalar& /*t*/,
                                          const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar crank = q(0);
     const Scalar rod = q(1);
     const Scalar crank_dot = v(0);
     const Scalar rod_dot = v(1);
+    const Scalar sin_cos_of[2] = {crank, rod};
+    Scalar sin_of[2], cos_of[2];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar a = Scalar(params.a);
     const Scalar b = Scalar(params.b);
     const Scalar m_b = Scalar(params.m_b);
-    const Scalar tmp124 = sin(crank);
-    const Scalar tmp126 = cos(crank);
+    const Scalar tmp124 = sin_of[0];
+    const Scalar tmp126 = cos_of[0];
     const Scalar tmp136 = tmp124*a;
-    const Scalar tmp137 = sin(rod);
+    const Scalar tmp137 = sin_of[1];
     const Scalar tmp138 = tmp137*b;
     const Scalar tmp139 = (Scalar(0.5))*tmp138;
-    const Scalar tmp140 = cos(rod);
+    const Scalar tmp140 = cos_of[1];
     const Scalar tmp141 = tmp140*b;
     const Scalar tmp142 = tmp126*a;
     const Scalar tmp158 = (crank_dot*crank_dot);
@@ -369,12 +445,13 @@ struct SliderCrank {
                                 const VVector<Scalar>& v,
                                 const Scalar& /*t*/,
                                 const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar crank = q(0);
     const Scalar rod = q(1);
     const Scalar crank_dot = v(0);
     const Scalar rod_dot = v(1);
+    const Scalar sin_cos_of[2] = {crank, rod};
+    Scalar sin_of[2], cos_of[2];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar a = Scalar(params.a);
     const Scalar b = Scalar(params.b);
     const Scalar m_a = Scalar(params.m_a);
@@ -382,13 +459,13 @@ struct SliderCrank {
     const Scalar g = Scalar(params.g);
     const Scalar u = Scalar(params.u);
     const Scalar p = Scalar(params.p);
-    const Scalar tmp124 = sin(crank);
-    const Scalar tmp126 = cos(crank);
+    const Scalar tmp124 = sin_of[0];
+    const Scalar tmp126 = cos_of[0];
     const Scalar tmp136 = tmp124*a;
-    const Scalar tmp137 = sin(rod);
+    const Scalar tmp137 = sin_of[1];
     const Scalar tmp138 = tmp137*b;
     const Scalar tmp139 = (Scalar(0.5))*tmp138;
-    const Scalar tmp140 = cos(rod);
+    const Scalar tmp140 = cos_of[1];
     const Scalar tmp141 = tmp140*b;
     const Scalar tmp142 = tmp126*a;
     const Scalar tmp152 = g*m_b;
@@ -429,12 +506,13 @@ struct SliderCrank {
                        const Params& params,
                        VMatrix<Scalar>* Mt,
                        VVector<Scalar>* f) {
-    using std::cos;
-    using std::sin;
     const Scalar crank = q(0);
     const Scalar rod = q(1);
     const Scalar crank_dot = v(0);
     const Scalar rod_dot = v(1);
+    const Scalar sin_cos_of[2] = {crank, rod};
+    Scalar sin_of[2], cos_of[2];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar a = Scalar(params.a);
     const Scalar b = Scalar(params.b);
     const Scalar m_a = Scalar(params.m_a);
@@ -443,9 +521,9 @@ struct SliderCrank {
     const Scalar g = Scalar(params.g);
     const Scalar u = Scalar(params.u);
     const Scalar p = Scalar(params.p);
-    const Scalar tmp124 = sin(crank);
+    const Scalar tmp124 = sin_of[0];
     const Scalar tmp125 = (tmp124*tmp124);
-    const Scalar tmp126 = cos(crank);
+    const Scalar tmp126 = cos_of[0];
     const Scalar tmp127 = (tmp126*tmp126);
     const Scalar tmp128 = (a*a);
     const Scalar tmp129 = tmp128*m_a;
@@ -456,10 +534,10 @@ struct SliderCrank {
     const Scalar tmp134 = (Scalar(0.25))*tmp132;
     const Scalar tmp135 = tmp130*(tmp125 + tmp127) + m_a*(tmp133 + tmp134) + m_b*(tmp131 + tmp132);
     const Scalar tmp136 = tmp124*a;
-    const Scalar tmp137 = sin(rod);
+    const Scalar tmp137 = sin_of[1];
     const Scalar tmp138 = tmp137*b;
     const Scalar tmp139 = (Scalar(0.5))*tmp138;
-    const Scalar tmp140 = cos(rod);
+    const Scalar tmp140 = cos_of[1];
     const Scalar tmp141 = tmp140*b;
     const Scalar tmp142 = tmp126*a;
     const Scalar tmp143 = (Scalar(0.5))*tmp142;
@@ -517,8 +595,6 @@ struct SliderCrank {
                                           const VVector<Scalar>& qdd,
                                           const Scalar& /*t*/,
                                           const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar crank = q(0);
     const Scalar rod = q(1);
     const Scalar crank_dot = v(0);
@@ -526,6 +602,9 @@ struct SliderCrank {
     const Scalar crank_ddot = qdd(0);
     const Scalar rod_ddot = qdd(1);
     const Scalar s_ddot = qdd(2);
+    const Scalar sin_cos_of[2] = {crank, rod};
+    Scalar sin_of[2], cos_of[2];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar a = Scalar(params.a);
     const Scalar b = Scalar(params.b);
     const Scalar m_a = Scalar(params.m_a);
@@ -534,9 +613,9 @@ struct SliderCrank {
     const Scalar g = Scalar(params.g);
     const Scalar u = Scalar(params.u);
     const Scalar p = Scalar(params.p);
-    const Scalar tmp124 = sin(crank);
+    const Scalar tmp124 = sin_of[0];
     const Scalar tmp125 = (tmp124*tmp124);
-    const Scalar tmp126 = cos(crank);
+    const Scalar tmp126 = cos_of[0];
     const Scalar tmp127 = (tmp126*tmp126);
     const Scalar tmp128 = (a*a);
     const Scalar tmp129 = tmp128*m_a;
@@ -547,10 +626,10 @@ struct SliderCrank {
     const Scalar tmp134 = (Scalar(0.25))*tmp132;
     const Scalar tmp135 = tmp130*(tmp125 + tmp127) + m_a*(tmp133 + tmp134) + m_b*(tmp131 + tmp132);
     const Scalar tmp136 = tmp124*a;
-    const Scalar tmp137 = sin(rod);
+    const Scalar tmp137 = sin_of[1];
     const Scalar tmp138 = tmp137*b;
     const Scalar tmp139 = (Scalar(0.5))*tmp138;
-    const Scalar tmp140 = cos(rod);
+    const Scalar tmp140 = cos_of[1];
     const Scalar tmp141 = tmp140*b;
     const Scalar tmp142 = tmp126*a;
     const Scalar tmp143 = (Scalar(0.5))*tmp142;
@@ -621,21 +700,22 @@ struct SliderCrank {
                                const VVector<Scalar>& v,
                                const Scalar& /*t*/,
                                const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar crank = q(0);
     const Scalar rod = q(1);
     const Scalar crank_dot = v(0);
     const Scalar rod_dot = v(1);
     const Scalar s_dot = v(2);
+    const Scalar sin_cos_of[2] = {crank, rod};
+    Scalar sin_of[2], cos_of[2];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar a = Scalar(params.a);
     const Scalar b = Scalar(params.b);
     const Scalar m_a = Scalar(params.m_a);
     const Scalar m_b = Scalar(params.m_b);
     const Scalar m_s = Scalar(params.m_s);
-    const Scalar tmp124 = sin(crank);
+    const Scalar tmp124 = sin_of[0];
     const Scalar tmp125 = (tmp124*tmp124);
-    const Scalar tmp126 = cos(crank);
+    const Scalar tmp126 = cos_of[0];
     const Scalar tmp127 = (tmp126*tmp126);
     const Scalar tmp128 = (a*a);
     const Scalar tmp129 = tmp128*m_a;
@@ -644,10 +724,10 @@ struct SliderCrank {
     const Scalar tmp133 = (Scalar(0.25))*tmp131;
     const Scalar tmp134 = (Scalar(0.25))*tmp132;
     const Scalar tmp136 = tmp124*a;
-    const Scalar tmp137 = sin(rod);
+    const Scalar tmp137 = sin_of[1];
     const Scalar tmp138 = tmp137*b;
     const Scalar tmp139 = (Scalar(0.5))*tmp138;
-    const Scalar tmp140 = cos(rod);
+    const Scalar tmp140 = cos_of[1];
     const Scalar tmp141 = tmp140*b;
     const Scalar tmp142 = tmp126*a;
     const Scalar tmp145 = (tmp137*tmp137);
@@ -682,17 +762,19 @@ struct SliderCrank {
   static Scalar potential_energy(const QVector<Scalar>& q,
                                  const Scalar& /*t*/,
                                  const Params& params) {
-    using std::sin;
     const Scalar crank = q(0);
     const Scalar rod = q(1);
+    const Scalar sin_cos_of[2] = {crank, rod};
+    Scalar sin_of[2], cos_of[2];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar a = Scalar(params.a);
     const Scalar b = Scalar(params.b);
     const Scalar m_a = Scalar(params.m_a);
     const Scalar m_b = Scalar(params.m_b);
     const Scalar g = Scalar(params.g);
-    const Scalar tmp124 = sin(crank);
+    const Scalar tmp124 = sin_of[0];
     const Scalar tmp136 = tmp124*a;
-    const Scalar tmp137 = sin(rod);
+    const Scalar tmp137 = sin_of[1];
     const Scalar tmp138 = tmp137*b;
     const Scalar tmp139 = (Scalar(0.5))*tmp138;
     const Scalar tmp152 = g*m_b;
@@ -732,22 +814,23 @@ struct SliderCrank {
                        const VVector<Scalar>& v,
                        const Scalar& /*t*/,
                        const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar crank = q(0);
     const Scalar rod = q(1);
     const Scalar crank_dot = v(0);
     const Scalar rod_dot = v(1);
     const Scalar s_dot = v(2);
+    const Scalar sin_cos_of[2] = {crank, rod};
+    Scalar sin_of[2], cos_of[2];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar a = Scalar(params.a);
     const Scalar b = Scalar(params.b);
     const Scalar m_a = Scalar(params.m_a);
     const Scalar m_b = Scalar(params.m_b);
     const Scalar m_s = Scalar(params.m_s);
     const Scalar g = Scalar(params.g);
-    const Scalar tmp124 = sin(crank);
+    const Scalar tmp124 = sin_of[0];
     const Scalar tmp125 = (tmp124*tmp124);
-    const Scalar tmp126 = cos(crank);
+    const Scalar tmp126 = cos_of[0];
     const Scalar tmp127 = (tmp126*tmp126);
     const Scalar tmp128 = (a*a);
     const Scalar tmp129 = tmp128*m_a;
@@ -756,10 +839,10 @@ struct SliderCrank {
     const Scalar tmp133 = (Scalar(0.25))*tmp131;
     const Scalar tmp134 = (Scalar(0.25))*tmp132;
     const Scalar tmp136 = tmp124*a;
-    const Scalar tmp137 = sin(rod);
+    const Scalar tmp137 = sin_of[1];
     const Scalar tmp138 = tmp137*b;
     const Scalar tmp139 = (Scalar(0.5))*tmp138;
-    const Scalar tmp140 = cos(rod);
+    const Scalar tmp140 = cos_of[1];
     const Scalar tmp141 = tmp140*b;
     const Scalar tmp142 = tmp126*a;
     const Scalar tmp145 = (tmp137*tmp137);
@@ -799,23 +882,24 @@ struct SliderCrank {
                                    const Scalar& /*t*/,
                                    const Params& params) {
     using std::abs;
-    using std::cos;
-    using std::sin;
     using std::sqrt;
     const Scalar crank = q(0);
     const Scalar rod = q(1);
     const Scalar s = q(2);
+    const Scalar sin_cos_of[2] = {crank, rod};
+    Scalar sin_of[2], cos_of[2];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar a = Scalar(params.a);
     const Scalar b = Scalar(params.b);
     const Scalar tmp5 = abs(a);
     const Scalar tmp55 = abs(b);
-    const Scalar tmp124 = sin(crank);
-    const Scalar tmp126 = cos(crank);
+    const Scalar tmp124 = sin_of[0];
+    const Scalar tmp126 = cos_of[0];
     const Scalar tmp136 = tmp124*a;
-    const Scalar tmp137 = sin(rod);
+    const Scalar tmp137 = sin_of[1];
     const Scalar tmp138 = tmp137*b;
     const Scalar tmp139 = (Scalar(0.5))*tmp138;
-    const Scalar tmp140 = cos(rod);
+    const Scalar tmp140 = cos_of[1];
     const Scalar tmp141 = tmp140*b;
     const Scalar tmp142 = tmp126*a;
     const Scalar tmp143 = (Scalar(0.5))*tmp142;
@@ -883,25 +967,26 @@ struct SliderCrank {
                                     const Scalar& /*t*/,
                                     const Params& params) {
     using std::abs;
-    using std::cos;
-    using std::sin;
     using std::sqrt;
     const Scalar crank = q(0);
     const Scalar rod = q(1);
     const Scalar crank_dot = v(0);
     const Scalar rod_dot = v(1);
     const Scalar s_dot = v(2);
+    const Scalar sin_cos_of[2] = {crank, rod};
+    Scalar sin_of[2], cos_of[2];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar a = Scalar(params.a);
     const Scalar b = Scalar(params.b);
     const Scalar tmp5 = abs(a);
     const Scalar tmp55 = abs(b);
-    const Scalar tmp124 = sin(crank);
-    const Scalar tmp126 = cos(crank);
+    const Scalar tmp124 = sin_of[0];
+    const Scalar tmp126 = cos_of[0];
     const Scalar tmp136 = tmp124*a;
-    const Scalar tmp137 = sin(rod);
+    const Scalar tmp137 = sin_of[1];
     const Scalar tmp138 = tmp137*b;
     const Scalar tmp139 = (Scalar(0.5))*tmp138;
-    const Scalar tmp140 = cos(rod);
+    const Scalar tmp140 = cos_of[1];
     const Scalar tmp141 = tmp140*b;
     const Scalar tmp142 = tmp126*a;
     const Scalar tmp143 = (Scalar(0.5))*tmp142;
@@ -974,22 +1059,23 @@ struct SliderCrank {
                                     const Scalar& /*t*/,
                                     const Params& params) {
     using std::abs;
-    using std::cos;
-    using std::sin;
     using std::sqrt;
     const Scalar crank = q(0);
     const Scalar rod = q(1);
+    const Scalar sin_cos_of[2] = {crank, rod};
+    Scalar sin_of[2], cos_of[2];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar a = Scalar(params.a);
     const Scalar b = Scalar(params.b);
     const Scalar tmp5 = abs(a);
     const Scalar tmp55 = abs(b);
-    const Scalar tmp124 = sin(crank);
-    const Scalar tmp126 = cos(crank);
+    const Scalar tmp124 = sin_of[0];
+    const Scalar tmp126 = cos_of[0];
     const Scalar tmp136 = tmp124*a;
-    const Scalar tmp137 = sin(rod);
+    const Scalar tmp137 = sin_of[1];
     const Scalar tmp138 = tmp137*b;
     const Scalar tmp139 = (Scalar(0.5))*tmp138;
-    const Scalar tmp140 = cos(rod);
+    const Scalar tmp140 = cos_of[1];
     const Scalar tmp141 = tmp140*b;
     const Scalar tmp142 = tmp126*a;
     const Scalar tmp143 = (Scalar(0.5))*tmp142;
@@ -1068,24 +1154,25 @@ struct SliderCrank {
                                            const Scalar& /*t*/,
                                            const Params& params) {
     using std::abs;
-    using std::cos;
-    using std::sin;
     using std::sqrt;
     const Scalar crank = q(0);
     const Scalar rod = q(1);
     const Scalar crank_dot = v(0);
     const Scalar rod_dot = v(1);
+    const Scalar sin_cos_of[2] = {crank, rod};
+    Scalar sin_of[2], cos_of[2];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar a = Scalar(params.a);
     const Scalar b = Scalar(params.b);
     const Scalar tmp5 = abs(a);
     const Scalar tmp55 = abs(b);
-    const Scalar tmp124 = sin(crank);
-    const Scalar tmp126 = cos(crank);
+    const Scalar tmp124 = sin_of[0];
+    const Scalar tmp126 = cos_of[0];
     const Scalar tmp136 = tmp124*a;
-    const Scalar tmp137 = sin(rod);
+    const Scalar tmp137 = sin_of[1];
     const Scalar tmp138 = tmp137*b;
     const Scalar tmp139 = (Scalar(0.5))*tmp138;
-    const Scalar tmp140 = cos(rod);
+    const Scalar tmp140 = cos_of[1];
     const Scalar tmp141 = tmp140*b;
     const Scalar tmp142 = tmp126*a;
     const Scalar tmp143 = (Scalar(0.5))*tmp142;
@@ -1161,25 +1248,26 @@ struct SliderCrank {
                                              const VVector<Scalar>& v,
                                              const Scalar& /*t*/,
                                              const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar crank = q(0);
     const Scalar rod = q(1);
     const Scalar crank_dot = v(0);
     const Scalar rod_dot = v(1);
     const Scalar s_dot = v(2);
+    const Scalar sin_cos_of[2] = {crank, rod};
+    Scalar sin_of[2], cos_of[2];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar a = Scalar(params.a);
     const Scalar b = Scalar(params.b);
     const Scalar m_a = Scalar(params.m_a);
     const Scalar m_b = Scalar(params.m_b);
     const Scalar m_s = Scalar(params.m_s);
-    const Scalar tmp124 = sin(crank);
-    const Scalar tmp126 = cos(crank);
+    const Scalar tmp124 = sin_of[0];
+    const Scalar tmp126 = cos_of[0];
     const Scalar tmp136 = tmp124*a;
-    const Scalar tmp137 = sin(rod);
+    const Scalar tmp137 = sin_of[1];
     const Scalar tmp138 = tmp137*b;
     const Scalar tmp139 = (Scalar(0.5))*tmp138;
-    const Scalar tmp140 = cos(rod);
+    const Scalar tmp140 = cos_of[1];
     const Scalar tmp141 = tmp140*b;
     const Scalar tmp142 = tmp126*a;
     const Scalar tmp153 = (Scalar(0.5))*m_a;
@@ -1206,19 +1294,20 @@ struct SliderCrank {
                                                 const VVector<Scalar>& v,
                                                 const Scalar& /*t*/,
                                                 const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar crank = q(0);
     const Scalar rod = q(1);
     const Scalar crank_dot = v(0);
     const Scalar rod_dot = v(1);
+    const Scalar sin_cos_of[2] = {crank, rod};
+    Scalar sin_of[2], cos_of[2];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar a = Scalar(params.a);
     const Scalar b = Scalar(params.b);
     const Scalar m_a = Scalar(params.m_a);
     const Scalar m_b = Scalar(params.m_b);
-    const Scalar tmp124 = sin(crank);
+    const Scalar tmp124 = sin_of[0];
     const Scalar tmp125 = (tmp124*tmp124);
-    const Scalar tmp126 = cos(crank);
+    const Scalar tmp126 = cos_of[0];
     const Scalar tmp127 = (tmp126*tmp126);
     const Scalar tmp128 = (a*a);
     const Scalar tmp129 = tmp128*m_a;
@@ -1228,10 +1317,10 @@ struct SliderCrank {
     const Scalar tmp133 = (Scalar(0.25))*tmp131;
     const Scalar tmp134 = (Scalar(0.25))*tmp132;
     const Scalar tmp136 = tmp124*a;
-    const Scalar tmp137 = sin(rod);
+    const Scalar tmp137 = sin_of[1];
     const Scalar tmp138 = tmp137*b;
     const Scalar tmp139 = (Scalar(0.5))*tmp138;
-    const Scalar tmp140 = cos(rod);
+    const Scalar tmp140 = cos_of[1];
     const Scalar tmp141 = tmp140*b;
     const Scalar tmp142 = tmp126*a;
     const Scalar tmp145 = (tmp137*tmp137);
@@ -1297,19 +1386,20 @@ struct SliderCrank {
   static HVector<Scalar> holonomic_constraints(const QVector<Scalar>& q,
                                                const Scalar& /*t*/,
                                                const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar crank = q(0);
     const Scalar rod = q(1);
     const Scalar s = q(2);
+    const Scalar sin_cos_of[2] = {crank, rod};
+    Scalar sin_of[2], cos_of[2];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar a = Scalar(params.a);
     const Scalar b = Scalar(params.b);
-    const Scalar tmp124 = sin(crank);
-    const Scalar tmp126 = cos(crank);
+    const Scalar tmp124 = sin_of[0];
+    const Scalar tmp126 = cos_of[0];
     const Scalar tmp136 = tmp124*a;
-    const Scalar tmp137 = sin(rod);
+    const Scalar tmp137 = sin_of[1];
     const Scalar tmp138 = tmp137*b;
-    const Scalar tmp140 = cos(rod);
+    const Scalar tmp140 = cos_of[1];
     const Scalar tmp141 = tmp140*b;
     const Scalar tmp142 = tmp126*a;
     HVector<Scalar> result;
@@ -1328,18 +1418,19 @@ struct SliderCrank {
   static HJacobian<Scalar> holonomic_jacobian(const QVector<Scalar>& q,
                                               const Scalar& /*t*/,
                                               const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar crank = q(0);
     const Scalar rod = q(1);
+    const Scalar sin_cos_of[2] = {crank, rod};
+    Scalar sin_of[2], cos_of[2];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar a = Scalar(params.a);
     const Scalar b = Scalar(params.b);
-    const Scalar tmp124 = sin(crank);
-    const Scalar tmp126 = cos(crank);
+    const Scalar tmp124 = sin_of[0];
+    const Scalar tmp126 = cos_of[0];
     const Scalar tmp136 = tmp124*a;
-    const Scalar tmp137 = sin(rod);
+    const Scalar tmp137 = sin_of[1];
     const Scalar tmp138 = tmp137*b;
-    const Scalar tmp140 = cos(rod);
+    const Scalar tmp140 = cos_of[1];
     const Scalar tmp141 = tmp140*b;
     const Scalar tmp142 = tmp126*a;
     HJacobian<Scalar> result;
@@ -1363,18 +1454,19 @@ struct SliderCrank {
   static CJacobian<Scalar> constraint_jacobian(const QVector<Scalar>& q,
                                                const Scalar& /*t*/,
                                                const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar crank = q(0);
     const Scalar rod = q(1);
+    const Scalar sin_cos_of[2] = {crank, rod};
+    Scalar sin_of[2], cos_of[2];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar a = Scalar(params.a);
     const Scalar b = Scalar(params.b);
-    const Scalar tmp124 = sin(crank);
-    const Scalar tmp126 = cos(crank);
+    const Scalar tmp124 = sin_of[0];
+    const Scalar tmp126 = cos_of[0];
     const Scalar tmp136 = tmp124*a;
-    const Scalar tmp137 = sin(rod);
+    const Scalar tmp137 = sin_of[1];
     const Scalar tmp138 = tmp137*b;
-    const Scalar tmp140 = cos(rod);
+    const Scalar tmp140 = cos_of[1];
     const Scalar tmp141 = tmp140*b;
     const Scalar tmp142 = tmp126*a;
     CJacobian<Scalar> result;
@@ -1399,21 +1491,22 @@ struct SliderCrank {
                                                const VVector<Scalar>& v,
                                                const Scalar& /*t*/,
                                                const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar crank = q(0);
     const Scalar rod = q(1);
     const Scalar crank_dot = v(0);
     const Scalar rod_dot = v(1);
     const Scalar s_dot = v(2);
+    const Scalar sin_cos_of[2] = {crank, rod};
+    Scalar sin_of[2], cos_of[2];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar a = Scalar(params.a);
     const Scalar b = Scalar(params.b);
-    const Scalar tmp124 = sin(crank);
-    const Scalar tmp126 = cos(crank);
+    const Scalar tmp124 = sin_of[0];
+    const Scalar tmp126 = cos_of[0];
     const Scalar tmp136 = tmp124*a;
-    const Scalar tmp137 = sin(rod);
+    const Scalar tmp137 = sin_of[1];
     const Scalar tmp138 = tmp137*b;
-    const Scalar tmp140 = cos(rod);
+    const Scalar tmp140 = cos_of[1];
     const Scalar tmp141 = tmp140*b;
     const Scalar tmp142 = tmp126*a;
     const Scalar tmp169 = tmp142*crank_dot;
@@ -1437,20 +1530,21 @@ struct SliderCrank {
                                          const VVector<Scalar>& v,
                                          const Scalar& /*t*/,
                                          const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar crank = q(0);
     const Scalar rod = q(1);
     const Scalar crank_dot = v(0);
     const Scalar rod_dot = v(1);
+    const Scalar sin_cos_of[2] = {crank, rod};
+    Scalar sin_of[2], cos_of[2];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar a = Scalar(params.a);
     const Scalar b = Scalar(params.b);
-    const Scalar tmp124 = sin(crank);
-    const Scalar tmp126 = cos(crank);
+    const Scalar tmp124 = sin_of[0];
+    const Scalar tmp126 = cos_of[0];
     const Scalar tmp136 = tmp124*a;
-    const Scalar tmp137 = sin(rod);
+    const Scalar tmp137 = sin_of[1];
     const Scalar tmp138 = tmp137*b;
-    const Scalar tmp140 = cos(rod);
+    const Scalar tmp140 = cos_of[1];
     const Scalar tmp141 = tmp140*b;
     const Scalar tmp142 = tmp126*a;
     const Scalar tmp158 = (crank_dot*crank_dot);

@@ -38,6 +38,78 @@
 
 #include <Eigen/Cholesky>
 #include <Eigen/Core>
+// gencoord_kernel_math::sin_cos(x, s, c) sets s[i] = sin(x[i]) and c[i] = cos(x[i]). For
+// double on x86-64 with glibc it works in vector registers, through glibc's vector math
+// library (libmvec, which C++ programs link through libm; within 4 ulp, as its manual states):
+// 4 lanes a call where the compiler targets AVX2, 2 otherwise. The inline namespace keeps the
+// two apart when objects of both are linked together. Elsewhere, or with GENCOORD_NO_LIBMVEC
+// defined, it calls sin and cos.
+#ifndef GENCOORD_KERNEL_SIN_COS
+#define GENCOORD_KERNEL_SIN_COS
+#if defined(__x86_64__) && defined(__GLIBC__) && !defined(GENCOORD_NO_LIBMVEC)
+#include <immintrin.h>
+#define GENCOORD_KERNEL_LIBMVEC 1
+extern "C" {
+#if defined(__AVX2__)
+__m256d _ZGVdN4v_sin(__m256d);
+__m256d _ZGVdN4v_cos(__m256d);
+#else
+__m128d _ZGVbN2v_sin(__m128d);
+__m128d _ZGVbN2v_cos(__m128d);
+#endif
+}
+#endif
+
+namespace gencoord_kernel_math {
+#if defined(GENCOORD_KERNEL_LIBMVEC) && defined(__AVX2__)
+inline namespace avx2 {
+constexpr int kLanes = 4;
+inline void sin_cos_lanes(const double* x, double* s, double* c) {
+  const __m256d lanes = _mm256_loadu_pd(x);
+  _mm256_storeu_pd(s, _ZGVdN4v_sin(lanes));
+  _mm256_storeu_pd(c, _ZGVdN4v_cos(lanes));
+}
+#elif defined(GENCOORD_KERNEL_LIBMVEC)
+inline namespace sse2 {
+constexpr int kLanes = 2;
+inline void sin_cos_lanes(const double* x, double* s, double* c) {
+  const __m128d lanes = _mm_loadu_pd(x);
+  _mm_storeu_pd(s, _ZGVbN2v_sin(lanes));
+  _mm_storeu_pd(c, _ZGVbN2v_cos(lanes));
+}
+#else
+inline namespace scalar {
+#endif
+
+template <class Scalar, int n>
+inline void sin_cos(const Scalar (&x)[n], Scalar (&s)[n], Scalar (&c)[n]) {
+  using std::cos;
+  using std::sin;
+  for (int i = 0; i < n; ++i) {
+    s[i] = sin(x[i]);
+    c[i] = cos(x[i]);
+  }
+}
+
+#ifdef GENCOORD_KERNEL_LIBMVEC
+template <int n>
+inline void sin_cos(const double (&x)[n], double (&s)[n], double (&c)[n]) {
+  constexpr int whole = n - n % kLanes;
+  for (int i = 0; i < whole; i += kLanes) sin_cos_lanes(x + i, s + i, c + i);
+  if constexpr (whole < n) {  // the rest, padded with copies of the last argument
+    double rest[kLanes], sines[kLanes], cosines[kLanes];
+    for (int k = 0; k < kLanes; ++k) rest[k] = x[whole + k < n ? whole + k : n - 1];
+    sin_cos_lanes(rest, sines, cosines);
+    for (int i = whole; i < n; ++i) {
+      s[i] = sines[i - whole];
+      c[i] = cosines[i - whole];
+    }
+  }
+}
+#endif
+}  // inline namespace
+}  // namespace gencoord_kernel_math
+#endif  // GENCOORD_KERNEL_SIN_COS
 
 /*
  * Spherical pendulum: a point mass on a rod free to swing in any direction.
@@ -175,16 +247,17 @@ struct SphericalPendulum {
   static VMatrix<Scalar> mass_matrix(const QVector<Scalar>& q,
                                      const Scalar& /*t*/,
                                      const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar theta = q(0);
     const Scalar phi = q(1);
+    const Scalar sin_cos_of[2] = {theta, phi};
+    Scalar sin_of[2], cos_of[2];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar l = Scalar(params.l);
     const Scalar m = Scalar(params.m);
-    const Scalar tmp0 = cos(phi);
-    const Scalar tmp1 = cos(theta);
-    const Scalar tmp4 = sin(phi);
-    const Scalar tmp5 = sin(theta);
+    const Scalar tmp0 = cos_of[1];
+    const Scalar tmp1 = cos_of[0];
+    const Scalar tmp4 = sin_of[1];
+    const Scalar tmp5 = sin_of[0];
     const Scalar tmp67 = (l*l);
     const Scalar tmp68 = tmp67*(tmp5*tmp5);
     const Scalar tmp69 = (tmp4*tmp4);
@@ -257,20 +330,21 @@ struct SphericalPendulum {
                                          const VVector<Scalar>& v,
                                          const Scalar& /*t*/,
                                          const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar theta = q(0);
     const Scalar phi = q(1);
     const Scalar theta_dot = v(0);
     const Scalar phi_dot = v(1);
+    const Scalar sin_cos_of[2] = {theta, phi};
+    Scalar sin_of[2], cos_of[2];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar l = Scalar(params.l);
     const Scalar m = Scalar(params.m);
-    const Scalar tmp0 = cos(phi);
-    const Scalar tmp1 = cos(theta);
+    const Scalar tmp0 = cos_of[1];
+    const Scalar tmp1 = cos_of[0];
     const Scalar tmp2 = tmp1*l;
     const Scalar tmp3 = tmp0*tmp2;
-    const Scalar tmp4 = sin(phi);
-    const Scalar tmp5 = sin(theta);
+    const Scalar tmp4 = sin_of[1];
+    const Scalar tmp5 = sin_of[0];
     const Scalar tmp6 = tmp5*l;
     const Scalar tmp7 = tmp4*tmp6;
     const Scalar tmp9 = tmp2*tmp4;
@@ -301,21 +375,22 @@ struct SphericalPendulum {
                                 const VVector<Scalar>& v,
                                 const Scalar& /*t*/,
                                 const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar theta = q(0);
     const Scalar phi = q(1);
     const Scalar theta_dot = v(0);
     const Scalar phi_dot = v(1);
+    const Scalar sin_cos_of[2] = {theta, phi};
+    Scalar sin_of[2], cos_of[2];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar l = Scalar(params.l);
     const Scalar m = Scalar(params.m);
     const Scalar g = Scalar(params.g);
-    const Scalar tmp0 = cos(phi);
-    const Scalar tmp1 = cos(theta);
+    const Scalar tmp0 = cos_of[1];
+    const Scalar tmp1 = cos_of[0];
     const Scalar tmp2 = tmp1*l;
     const Scalar tmp3 = tmp0*tmp2;
-    const Scalar tmp4 = sin(phi);
-    const Scalar tmp5 = sin(theta);
+    const Scalar tmp4 = sin_of[1];
+    const Scalar tmp5 = sin_of[0];
     const Scalar tmp6 = tmp5*l;
     const Scalar tmp7 = tmp4*tmp6;
     const Scalar tmp9 = tmp2*tmp4;
@@ -351,21 +426,22 @@ struct SphericalPendulum {
                        const Params& params,
                        VMatrix<Scalar>* Mt,
                        VVector<Scalar>* f) {
-    using std::cos;
-    using std::sin;
     const Scalar theta = q(0);
     const Scalar phi = q(1);
     const Scalar theta_dot = v(0);
     const Scalar phi_dot = v(1);
+    const Scalar sin_cos_of[2] = {theta, phi};
+    Scalar sin_of[2], cos_of[2];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar l = Scalar(params.l);
     const Scalar m = Scalar(params.m);
     const Scalar g = Scalar(params.g);
-    const Scalar tmp0 = cos(phi);
-    const Scalar tmp1 = cos(theta);
+    const Scalar tmp0 = cos_of[1];
+    const Scalar tmp1 = cos_of[0];
     const Scalar tmp2 = tmp1*l;
     const Scalar tmp3 = tmp0*tmp2;
-    const Scalar tmp4 = sin(phi);
-    const Scalar tmp5 = sin(theta);
+    const Scalar tmp4 = sin_of[1];
+    const Scalar tmp5 = sin_of[0];
     const Scalar tmp6 = tmp5*l;
     const Scalar tmp7 = tmp4*tmp6;
     const Scalar tmp9 = tmp2*tmp4;
@@ -410,23 +486,24 @@ struct SphericalPendulum {
                                           const VVector<Scalar>& qdd,
                                           const Scalar& /*t*/,
                                           const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar theta = q(0);
     const Scalar phi = q(1);
     const Scalar theta_dot = v(0);
     const Scalar phi_dot = v(1);
     const Scalar theta_ddot = qdd(0);
     const Scalar phi_ddot = qdd(1);
+    const Scalar sin_cos_of[2] = {theta, phi};
+    Scalar sin_of[2], cos_of[2];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar l = Scalar(params.l);
     const Scalar m = Scalar(params.m);
     const Scalar g = Scalar(params.g);
-    const Scalar tmp0 = cos(phi);
-    const Scalar tmp1 = cos(theta);
+    const Scalar tmp0 = cos_of[1];
+    const Scalar tmp1 = cos_of[0];
     const Scalar tmp2 = tmp1*l;
     const Scalar tmp3 = tmp0*tmp2;
-    const Scalar tmp4 = sin(phi);
-    const Scalar tmp5 = sin(theta);
+    const Scalar tmp4 = sin_of[1];
+    const Scalar tmp5 = sin_of[0];
     const Scalar tmp6 = tmp5*l;
     const Scalar tmp7 = tmp4*tmp6;
     const Scalar tmp9 = tmp2*tmp4;
@@ -470,23 +547,24 @@ struct SphericalPendulum {
                                  const Params& params,
                                  VQMatrix<Scalar>* dr_dq,
                                  VMatrix<Scalar>* dr_dv) {
-    using std::cos;
-    using std::sin;
     const Scalar theta = q(0);
     const Scalar phi = q(1);
     const Scalar theta_dot = v(0);
     const Scalar phi_dot = v(1);
     const Scalar theta_ddot = qdd(0);
     const Scalar phi_ddot = qdd(1);
+    const Scalar sin_cos_of[2] = {theta, phi};
+    Scalar sin_of[2], cos_of[2];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar l = Scalar(params.l);
     const Scalar m = Scalar(params.m);
     const Scalar g = Scalar(params.g);
-    const Scalar tmp0 = cos(phi);
-    const Scalar tmp1 = cos(theta);
+    const Scalar tmp0 = cos_of[1];
+    const Scalar tmp1 = cos_of[0];
     const Scalar tmp2 = tmp1*l;
     const Scalar tmp3 = tmp0*tmp2;
-    const Scalar tmp4 = sin(phi);
-    const Scalar tmp5 = sin(theta);
+    const Scalar tmp4 = sin_of[1];
+    const Scalar tmp5 = sin_of[0];
     const Scalar tmp6 = tmp5*l;
     const Scalar tmp7 = tmp4*tmp6;
     const Scalar tmp9 = tmp2*tmp4;
@@ -570,19 +648,20 @@ struct SphericalPendulum {
                                const VVector<Scalar>& v,
                                const Scalar& /*t*/,
                                const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar theta = q(0);
     const Scalar phi = q(1);
     const Scalar theta_dot = v(0);
     const Scalar phi_dot = v(1);
+    const Scalar sin_cos_of[2] = {theta, phi};
+    Scalar sin_of[2], cos_of[2];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar l = Scalar(params.l);
     const Scalar m = Scalar(params.m);
-    const Scalar tmp0 = cos(phi);
-    const Scalar tmp1 = cos(theta);
+    const Scalar tmp0 = cos_of[1];
+    const Scalar tmp1 = cos_of[0];
     const Scalar tmp2 = tmp1*l;
-    const Scalar tmp4 = sin(phi);
-    const Scalar tmp5 = sin(theta);
+    const Scalar tmp4 = sin_of[1];
+    const Scalar tmp5 = sin_of[0];
     const Scalar tmp6 = tmp5*l;
     const Scalar tmp7 = tmp4*tmp6;
     const Scalar tmp9 = tmp2*tmp4;
@@ -649,20 +728,21 @@ struct SphericalPendulum {
                        const VVector<Scalar>& v,
                        const Scalar& /*t*/,
                        const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar theta = q(0);
     const Scalar phi = q(1);
     const Scalar theta_dot = v(0);
     const Scalar phi_dot = v(1);
+    const Scalar sin_cos_of[2] = {theta, phi};
+    Scalar sin_of[2], cos_of[2];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar l = Scalar(params.l);
     const Scalar m = Scalar(params.m);
     const Scalar g = Scalar(params.g);
-    const Scalar tmp0 = cos(phi);
-    const Scalar tmp1 = cos(theta);
+    const Scalar tmp0 = cos_of[1];
+    const Scalar tmp1 = cos_of[0];
     const Scalar tmp2 = tmp1*l;
-    const Scalar tmp4 = sin(phi);
-    const Scalar tmp5 = sin(theta);
+    const Scalar tmp4 = sin_of[1];
+    const Scalar tmp5 = sin_of[0];
     const Scalar tmp6 = tmp5*l;
     const Scalar tmp7 = tmp4*tmp6;
     const Scalar tmp9 = tmp2*tmp4;
@@ -690,16 +770,17 @@ struct SphericalPendulum {
   static XVector<Scalar> positions(const QVector<Scalar>& q,
                                    const Scalar& /*t*/,
                                    const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar theta = q(0);
     const Scalar phi = q(1);
+    const Scalar sin_cos_of[2] = {theta, phi};
+    Scalar sin_of[2], cos_of[2];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar l = Scalar(params.l);
-    const Scalar tmp0 = cos(phi);
-    const Scalar tmp1 = cos(theta);
+    const Scalar tmp0 = cos_of[1];
+    const Scalar tmp1 = cos_of[0];
     const Scalar tmp2 = tmp1*l;
-    const Scalar tmp4 = sin(phi);
-    const Scalar tmp5 = sin(theta);
+    const Scalar tmp4 = sin_of[1];
+    const Scalar tmp5 = sin_of[0];
     const Scalar tmp6 = tmp5*l;
     const Scalar tmp7 = tmp4*tmp6;
     const Scalar tmp10 = tmp0*tmp6;
@@ -722,18 +803,19 @@ struct SphericalPendulum {
                                     const VVector<Scalar>& v,
                                     const Scalar& /*t*/,
                                     const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar theta = q(0);
     const Scalar phi = q(1);
     const Scalar theta_dot = v(0);
     const Scalar phi_dot = v(1);
+    const Scalar sin_cos_of[2] = {theta, phi};
+    Scalar sin_of[2], cos_of[2];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar l = Scalar(params.l);
-    const Scalar tmp0 = cos(phi);
-    const Scalar tmp1 = cos(theta);
+    const Scalar tmp0 = cos_of[1];
+    const Scalar tmp1 = cos_of[0];
     const Scalar tmp2 = tmp1*l;
-    const Scalar tmp4 = sin(phi);
-    const Scalar tmp5 = sin(theta);
+    const Scalar tmp4 = sin_of[1];
+    const Scalar tmp5 = sin_of[0];
     const Scalar tmp6 = tmp5*l;
     const Scalar tmp7 = tmp4*tmp6;
     const Scalar tmp9 = tmp2*tmp4;
@@ -758,17 +840,18 @@ struct SphericalPendulum {
   static XJacobian<Scalar> jacobian(const QVector<Scalar>& q,
                                     const Scalar& /*t*/,
                                     const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar theta = q(0);
     const Scalar phi = q(1);
+    const Scalar sin_cos_of[2] = {theta, phi};
+    Scalar sin_of[2], cos_of[2];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar l = Scalar(params.l);
-    const Scalar tmp0 = cos(phi);
-    const Scalar tmp1 = cos(theta);
+    const Scalar tmp0 = cos_of[1];
+    const Scalar tmp1 = cos_of[0];
     const Scalar tmp2 = tmp1*l;
     const Scalar tmp3 = tmp0*tmp2;
-    const Scalar tmp4 = sin(phi);
-    const Scalar tmp5 = sin(theta);
+    const Scalar tmp4 = sin_of[1];
+    const Scalar tmp5 = sin_of[0];
     const Scalar tmp6 = tmp5*l;
     const Scalar tmp7 = tmp4*tmp6;
     const Scalar tmp9 = tmp2*tmp4;
@@ -795,19 +878,20 @@ struct SphericalPendulum {
                                            const VVector<Scalar>& v,
                                            const Scalar& /*t*/,
                                            const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar theta = q(0);
     const Scalar phi = q(1);
     const Scalar theta_dot = v(0);
     const Scalar phi_dot = v(1);
+    const Scalar sin_cos_of[2] = {theta, phi};
+    Scalar sin_of[2], cos_of[2];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar l = Scalar(params.l);
-    const Scalar tmp0 = cos(phi);
-    const Scalar tmp1 = cos(theta);
+    const Scalar tmp0 = cos_of[1];
+    const Scalar tmp1 = cos_of[0];
     const Scalar tmp2 = tmp1*l;
     const Scalar tmp3 = tmp0*tmp2;
-    const Scalar tmp4 = sin(phi);
-    const Scalar tmp5 = sin(theta);
+    const Scalar tmp4 = sin_of[1];
+    const Scalar tmp5 = sin_of[0];
     const Scalar tmp6 = tmp5*l;
     const Scalar tmp7 = tmp4*tmp6;
     const Scalar tmp9 = tmp2*tmp4;
@@ -836,19 +920,20 @@ struct SphericalPendulum {
                                              const VVector<Scalar>& v,
                                              const Scalar& /*t*/,
                                              const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar theta = q(0);
     const Scalar phi = q(1);
     const Scalar theta_dot = v(0);
     const Scalar phi_dot = v(1);
+    const Scalar sin_cos_of[2] = {theta, phi};
+    Scalar sin_of[2], cos_of[2];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar l = Scalar(params.l);
     const Scalar m = Scalar(params.m);
-    const Scalar tmp0 = cos(phi);
-    const Scalar tmp1 = cos(theta);
+    const Scalar tmp0 = cos_of[1];
+    const Scalar tmp1 = cos_of[0];
     const Scalar tmp2 = tmp1*l;
-    const Scalar tmp4 = sin(phi);
-    const Scalar tmp5 = sin(theta);
+    const Scalar tmp4 = sin_of[1];
+    const Scalar tmp5 = sin_of[0];
     const Scalar tmp6 = tmp5*l;
     const Scalar tmp7 = tmp4*tmp6;
     const Scalar tmp9 = tmp2*tmp4;
@@ -875,19 +960,20 @@ struct SphericalPendulum {
                                                 const VVector<Scalar>& v,
                                                 const Scalar& /*t*/,
                                                 const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar theta = q(0);
     const Scalar phi = q(1);
     const Scalar theta_dot = v(0);
     const Scalar phi_dot = v(1);
+    const Scalar sin_cos_of[2] = {theta, phi};
+    Scalar sin_of[2], cos_of[2];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar l = Scalar(params.l);
     const Scalar m = Scalar(params.m);
-    const Scalar tmp0 = cos(phi);
-    const Scalar tmp1 = cos(theta);
+    const Scalar tmp0 = cos_of[1];
+    const Scalar tmp1 = cos_of[0];
     const Scalar tmp2 = tmp1*l;
-    const Scalar tmp4 = sin(phi);
-    const Scalar tmp5 = sin(theta);
+    const Scalar tmp4 = sin_of[1];
+    const Scalar tmp5 = sin_of[0];
     const Scalar tmp6 = tmp5*l;
     const Scalar tmp7 = tmp4*tmp6;
     const Scalar tmp9 = tmp2*tmp4;
@@ -1333,16 +1419,17 @@ struct SphericalPendulumPoleX {
   static VMatrix<Scalar> mass_matrix(const QVector<Scalar>& q,
                                      const Scalar& /*t*/,
                                      const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar alpha = q(0);
     const Scalar beta = q(1);
+    const Scalar sin_cos_of[2] = {alpha, beta};
+    Scalar sin_of[2], cos_of[2];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar l = Scalar(params.l);
     const Scalar m = Scalar(params.m);
-    const Scalar tmp0 = sin(alpha);
-    const Scalar tmp3 = cos(beta);
-    const Scalar tmp4 = cos(alpha);
-    const Scalar tmp7 = sin(beta);
+    const Scalar tmp0 = sin_of[0];
+    const Scalar tmp3 = cos_of[1];
+    const Scalar tmp4 = cos_of[0];
+    const Scalar tmp7 = sin_of[1];
     const Scalar tmp68 = (l*l);
     const Scalar tmp69 = tmp68*(tmp0*tmp0);
     const Scalar tmp70 = (tmp7*tmp7);
@@ -1370,19 +1457,20 @@ struct SphericalPendulumPoleX {
                                         const VVector<Scalar>& /*v*/,
                                         const Scalar& /*t*/,
                                         const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar alpha = q(0);
     const Scalar beta = q(1);
+    const Scalar sin_cos_of[2] = {alpha, beta};
+    Scalar sin_of[2], cos_of[2];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar l = Scalar(params.l);
     const Scalar m = Scalar(params.m);
     const Scalar g = Scalar(params.g);
-    const Scalar tmp0 = sin(alpha);
+    const Scalar tmp0 = sin_of[0];
     const Scalar tmp1 = tmp0*l;
-    const Scalar tmp3 = cos(beta);
-    const Scalar tmp4 = cos(alpha);
+    const Scalar tmp3 = cos_of[1];
+    const Scalar tmp4 = cos_of[0];
     const Scalar tmp5 = tmp4*l;
-    const Scalar tmp7 = sin(beta);
+    const Scalar tmp7 = sin_of[1];
     const Scalar tmp10 = tmp5*tmp7;
     const Scalar tmp11 = tmp1*tmp3;
     const Scalar tmp75 = g*m;
@@ -1424,21 +1512,22 @@ struct SphericalPendulumPoleX {
                                          const VVector<Scalar>& v,
                                          const Scalar& /*t*/,
                                          const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar alpha = q(0);
     const Scalar beta = q(1);
     const Scalar alpha_dot = v(0);
     const Scalar beta_dot = v(1);
+    const Scalar sin_cos_of[2] = {alpha, beta};
+    Scalar sin_of[2], cos_of[2];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar l = Scalar(params.l);
     const Scalar m = Scalar(params.m);
-    const Scalar tmp0 = sin(alpha);
+    const Scalar tmp0 = sin_of[0];
     const Scalar tmp1 = tmp0*l;
-    const Scalar tmp3 = cos(beta);
-    const Scalar tmp4 = cos(alpha);
+    const Scalar tmp3 = cos_of[1];
+    const Scalar tmp4 = cos_of[0];
     const Scalar tmp5 = tmp4*l;
     const Scalar tmp6 = tmp3*tmp5;
-    const Scalar tmp7 = sin(beta);
+    const Scalar tmp7 = sin_of[1];
     const Scalar tmp8 = tmp1*tmp7;
     const Scalar tmp10 = tmp5*tmp7;
     const Scalar tmp11 = tmp1*tmp3;
@@ -1468,22 +1557,23 @@ struct SphericalPendulumPoleX {
                                 const VVector<Scalar>& v,
                                 const Scalar& /*t*/,
                                 const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar alpha = q(0);
     const Scalar beta = q(1);
     const Scalar alpha_dot = v(0);
     const Scalar beta_dot = v(1);
+    const Scalar sin_cos_of[2] = {alpha, beta};
+    Scalar sin_of[2], cos_of[2];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar l = Scalar(params.l);
     const Scalar m = Scalar(params.m);
     const Scalar g = Scalar(params.g);
-    const Scalar tmp0 = sin(alpha);
+    const Scalar tmp0 = sin_of[0];
     const Scalar tmp1 = tmp0*l;
-    const Scalar tmp3 = cos(beta);
-    const Scalar tmp4 = cos(alpha);
+    const Scalar tmp3 = cos_of[1];
+    const Scalar tmp4 = cos_of[0];
     const Scalar tmp5 = tmp4*l;
     const Scalar tmp6 = tmp3*tmp5;
-    const Scalar tmp7 = sin(beta);
+    const Scalar tmp7 = sin_of[1];
     const Scalar tmp8 = tmp1*tmp7;
     const Scalar tmp10 = tmp5*tmp7;
     const Scalar tmp11 = tmp1*tmp3;
@@ -1520,22 +1610,23 @@ struct SphericalPendulumPoleX {
                        const Params& params,
                        VMatrix<Scalar>* Mt,
                        VVector<Scalar>* f) {
-    using std::cos;
-    using std::sin;
     const Scalar alpha = q(0);
     const Scalar beta = q(1);
     const Scalar alpha_dot = v(0);
     const Scalar beta_dot = v(1);
+    const Scalar sin_cos_of[2] = {alpha, beta};
+    Scalar sin_of[2], cos_of[2];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar l = Scalar(params.l);
     const Scalar m = Scalar(params.m);
     const Scalar g = Scalar(params.g);
-    const Scalar tmp0 = sin(alpha);
+    const Scalar tmp0 = sin_of[0];
     const Scalar tmp1 = tmp0*l;
-    const Scalar tmp3 = cos(beta);
-    const Scalar tmp4 = cos(alpha);
+    const Scalar tmp3 = cos_of[1];
+    const Scalar tmp4 = cos_of[0];
     const Scalar tmp5 = tmp4*l;
     const Scalar tmp6 = tmp3*tmp5;
-    const Scalar tmp7 = sin(beta);
+    const Scalar tmp7 = sin_of[1];
     const Scalar tmp8 = tmp1*tmp7;
     const Scalar tmp10 = tmp5*tmp7;
     const Scalar tmp11 = tmp1*tmp3;
@@ -1581,24 +1672,25 @@ struct SphericalPendulumPoleX {
                                           const VVector<Scalar>& qdd,
                                           const Scalar& /*t*/,
                                           const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar alpha = q(0);
     const Scalar beta = q(1);
     const Scalar alpha_dot = v(0);
     const Scalar beta_dot = v(1);
     const Scalar alpha_ddot = qdd(0);
     const Scalar beta_ddot = qdd(1);
+    const Scalar sin_cos_of[2] = {alpha, beta};
+    Scalar sin_of[2], cos_of[2];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar l = Scalar(params.l);
     const Scalar m = Scalar(params.m);
     const Scalar g = Scalar(params.g);
-    const Scalar tmp0 = sin(alpha);
+    const Scalar tmp0 = sin_of[0];
     const Scalar tmp1 = tmp0*l;
-    const Scalar tmp3 = cos(beta);
-    const Scalar tmp4 = cos(alpha);
+    const Scalar tmp3 = cos_of[1];
+    const Scalar tmp4 = cos_of[0];
     const Scalar tmp5 = tmp4*l;
     const Scalar tmp6 = tmp3*tmp5;
-    const Scalar tmp7 = sin(beta);
+    const Scalar tmp7 = sin_of[1];
     const Scalar tmp8 = tmp1*tmp7;
     const Scalar tmp10 = tmp5*tmp7;
     const Scalar tmp11 = tmp1*tmp3;
@@ -1643,24 +1735,25 @@ struct SphericalPendulumPoleX {
                                  const Params& params,
                                  VQMatrix<Scalar>* dr_dq,
                                  VMatrix<Scalar>* dr_dv) {
-    using std::cos;
-    using std::sin;
     const Scalar alpha = q(0);
     const Scalar beta = q(1);
     const Scalar alpha_dot = v(0);
     const Scalar beta_dot = v(1);
     const Scalar alpha_ddot = qdd(0);
     const Scalar beta_ddot = qdd(1);
+    const Scalar sin_cos_of[2] = {alpha, beta};
+    Scalar sin_of[2], cos_of[2];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar l = Scalar(params.l);
     const Scalar m = Scalar(params.m);
     const Scalar g = Scalar(params.g);
-    const Scalar tmp0 = sin(alpha);
+    const Scalar tmp0 = sin_of[0];
     const Scalar tmp1 = tmp0*l;
-    const Scalar tmp3 = cos(beta);
-    const Scalar tmp4 = cos(alpha);
+    const Scalar tmp3 = cos_of[1];
+    const Scalar tmp4 = cos_of[0];
     const Scalar tmp5 = tmp4*l;
     const Scalar tmp6 = tmp3*tmp5;
-    const Scalar tmp7 = sin(beta);
+    const Scalar tmp7 = sin_of[1];
     const Scalar tmp8 = tmp1*tmp7;
     const Scalar tmp10 = tmp5*tmp7;
     const Scalar tmp11 = tmp1*tmp3;
@@ -1752,21 +1845,22 @@ struct SphericalPendulumPoleX {
                                const VVector<Scalar>& v,
                                const Scalar& /*t*/,
                                const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar alpha = q(0);
     const Scalar beta = q(1);
     const Scalar alpha_dot = v(0);
     const Scalar beta_dot = v(1);
+    const Scalar sin_cos_of[2] = {alpha, beta};
+    Scalar sin_of[2], cos_of[2];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar l = Scalar(params.l);
     const Scalar m = Scalar(params.m);
-    const Scalar tmp0 = sin(alpha);
+    const Scalar tmp0 = sin_of[0];
     const Scalar tmp1 = tmp0*l;
-    const Scalar tmp3 = cos(beta);
-    const Scalar tmp4 = cos(alpha);
+    const Scalar tmp3 = cos_of[1];
+    const Scalar tmp4 = cos_of[0];
     const Scalar tmp5 = tmp4*l;
     const Scalar tmp6 = tmp3*tmp5;
-    const Scalar tmp7 = sin(beta);
+    const Scalar tmp7 = sin_of[1];
     const Scalar tmp8 = tmp1*tmp7;
     const Scalar tmp10 = tmp5*tmp7;
     const Scalar tmp11 = tmp1*tmp3;
@@ -1791,15 +1885,17 @@ struct SphericalPendulumPoleX {
   static Scalar potential_energy(const QVector<Scalar>& q,
                                  const Scalar& /*t*/,
                                  const Params& params) {
-    using std::sin;
     const Scalar alpha = q(0);
     const Scalar beta = q(1);
+    const Scalar sin_cos_of[2] = {alpha, beta};
+    Scalar sin_of[2], cos_of[2];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar l = Scalar(params.l);
     const Scalar m = Scalar(params.m);
     const Scalar g = Scalar(params.g);
-    const Scalar tmp0 = sin(alpha);
+    const Scalar tmp0 = sin_of[0];
     const Scalar tmp1 = tmp0*l;
-    const Scalar tmp7 = sin(beta);
+    const Scalar tmp7 = sin_of[1];
     const Scalar tmp8 = tmp1*tmp7;
     const Scalar tmp75 = g*m;
     const Scalar tmp83 = tmp75*tmp8;
@@ -1835,22 +1931,23 @@ struct SphericalPendulumPoleX {
                        const VVector<Scalar>& v,
                        const Scalar& /*t*/,
                        const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar alpha = q(0);
     const Scalar beta = q(1);
     const Scalar alpha_dot = v(0);
     const Scalar beta_dot = v(1);
+    const Scalar sin_cos_of[2] = {alpha, beta};
+    Scalar sin_of[2], cos_of[2];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar l = Scalar(params.l);
     const Scalar m = Scalar(params.m);
     const Scalar g = Scalar(params.g);
-    const Scalar tmp0 = sin(alpha);
+    const Scalar tmp0 = sin_of[0];
     const Scalar tmp1 = tmp0*l;
-    const Scalar tmp3 = cos(beta);
-    const Scalar tmp4 = cos(alpha);
+    const Scalar tmp3 = cos_of[1];
+    const Scalar tmp4 = cos_of[0];
     const Scalar tmp5 = tmp4*l;
     const Scalar tmp6 = tmp3*tmp5;
-    const Scalar tmp7 = sin(beta);
+    const Scalar tmp7 = sin_of[1];
     const Scalar tmp8 = tmp1*tmp7;
     const Scalar tmp10 = tmp5*tmp7;
     const Scalar tmp11 = tmp1*tmp3;
@@ -1877,17 +1974,18 @@ struct SphericalPendulumPoleX {
   static XVector<Scalar> positions(const QVector<Scalar>& q,
                                    const Scalar& /*t*/,
                                    const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar alpha = q(0);
     const Scalar beta = q(1);
+    const Scalar sin_cos_of[2] = {alpha, beta};
+    Scalar sin_of[2], cos_of[2];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar l = Scalar(params.l);
-    const Scalar tmp0 = sin(alpha);
+    const Scalar tmp0 = sin_of[0];
     const Scalar tmp1 = tmp0*l;
-    const Scalar tmp3 = cos(beta);
-    const Scalar tmp4 = cos(alpha);
+    const Scalar tmp3 = cos_of[1];
+    const Scalar tmp4 = cos_of[0];
     const Scalar tmp5 = tmp4*l;
-    const Scalar tmp7 = sin(beta);
+    const Scalar tmp7 = sin_of[1];
     const Scalar tmp8 = tmp1*tmp7;
     const Scalar tmp11 = tmp1*tmp3;
     XVector<Scalar> result;
@@ -1909,20 +2007,21 @@ struct SphericalPendulumPoleX {
                                     const VVector<Scalar>& v,
                                     const Scalar& /*t*/,
                                     const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar alpha = q(0);
     const Scalar beta = q(1);
     const Scalar alpha_dot = v(0);
     const Scalar beta_dot = v(1);
+    const Scalar sin_cos_of[2] = {alpha, beta};
+    Scalar sin_of[2], cos_of[2];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar l = Scalar(params.l);
-    const Scalar tmp0 = sin(alpha);
+    const Scalar tmp0 = sin_of[0];
     const Scalar tmp1 = tmp0*l;
-    const Scalar tmp3 = cos(beta);
-    const Scalar tmp4 = cos(alpha);
+    const Scalar tmp3 = cos_of[1];
+    const Scalar tmp4 = cos_of[0];
     const Scalar tmp5 = tmp4*l;
     const Scalar tmp6 = tmp3*tmp5;
-    const Scalar tmp7 = sin(beta);
+    const Scalar tmp7 = sin_of[1];
     const Scalar tmp8 = tmp1*tmp7;
     const Scalar tmp10 = tmp5*tmp7;
     const Scalar tmp11 = tmp1*tmp3;
@@ -1946,18 +2045,19 @@ struct SphericalPendulumPoleX {
   static XJacobian<Scalar> jacobian(const QVector<Scalar>& q,
                                     const Scalar& /*t*/,
                                     const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar alpha = q(0);
     const Scalar beta = q(1);
+    const Scalar sin_cos_of[2] = {alpha, beta};
+    Scalar sin_of[2], cos_of[2];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar l = Scalar(params.l);
-    const Scalar tmp0 = sin(alpha);
+    const Scalar tmp0 = sin_of[0];
     const Scalar tmp1 = tmp0*l;
-    const Scalar tmp3 = cos(beta);
-    const Scalar tmp4 = cos(alpha);
+    const Scalar tmp3 = cos_of[1];
+    const Scalar tmp4 = cos_of[0];
     const Scalar tmp5 = tmp4*l;
     const Scalar tmp6 = tmp3*tmp5;
-    const Scalar tmp7 = sin(beta);
+    const Scalar tmp7 = sin_of[1];
     const Scalar tmp8 = tmp1*tmp7;
     const Scalar tmp10 = tmp5*tmp7;
     const Scalar tmp11 = tmp1*tmp3;
@@ -1983,20 +2083,21 @@ struct SphericalPendulumPoleX {
                                            const VVector<Scalar>& v,
                                            const Scalar& /*t*/,
                                            const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar alpha = q(0);
     const Scalar beta = q(1);
     const Scalar alpha_dot = v(0);
     const Scalar beta_dot = v(1);
+    const Scalar sin_cos_of[2] = {alpha, beta};
+    Scalar sin_of[2], cos_of[2];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar l = Scalar(params.l);
-    const Scalar tmp0 = sin(alpha);
+    const Scalar tmp0 = sin_of[0];
     const Scalar tmp1 = tmp0*l;
-    const Scalar tmp3 = cos(beta);
-    const Scalar tmp4 = cos(alpha);
+    const Scalar tmp3 = cos_of[1];
+    const Scalar tmp4 = cos_of[0];
     const Scalar tmp5 = tmp4*l;
     const Scalar tmp6 = tmp3*tmp5;
-    const Scalar tmp7 = sin(beta);
+    const Scalar tmp7 = sin_of[1];
     const Scalar tmp8 = tmp1*tmp7;
     const Scalar tmp10 = tmp5*tmp7;
     const Scalar tmp11 = tmp1*tmp3;
@@ -2024,21 +2125,22 @@ struct SphericalPendulumPoleX {
                                              const VVector<Scalar>& v,
                                              const Scalar& /*t*/,
                                              const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar alpha = q(0);
     const Scalar beta = q(1);
     const Scalar alpha_dot = v(0);
     const Scalar beta_dot = v(1);
+    const Scalar sin_cos_of[2] = {alpha, beta};
+    Scalar sin_of[2], cos_of[2];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar l = Scalar(params.l);
     const Scalar m = Scalar(params.m);
-    const Scalar tmp0 = sin(alpha);
+    const Scalar tmp0 = sin_of[0];
     const Scalar tmp1 = tmp0*l;
-    const Scalar tmp3 = cos(beta);
-    const Scalar tmp4 = cos(alpha);
+    const Scalar tmp3 = cos_of[1];
+    const Scalar tmp4 = cos_of[0];
     const Scalar tmp5 = tmp4*l;
     const Scalar tmp6 = tmp3*tmp5;
-    const Scalar tmp7 = sin(beta);
+    const Scalar tmp7 = sin_of[1];
     const Scalar tmp8 = tmp1*tmp7;
     const Scalar tmp10 = tmp5*tmp7;
     const Scalar tmp11 = tmp1*tmp3;
@@ -2064,21 +2166,22 @@ struct SphericalPendulumPoleX {
                                                 const VVector<Scalar>& v,
                                                 const Scalar& /*t*/,
                                                 const Params& params) {
-    using std::cos;
-    using std::sin;
     const Scalar alpha = q(0);
     const Scalar beta = q(1);
     const Scalar alpha_dot = v(0);
     const Scalar beta_dot = v(1);
+    const Scalar sin_cos_of[2] = {alpha, beta};
+    Scalar sin_of[2], cos_of[2];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar l = Scalar(params.l);
     const Scalar m = Scalar(params.m);
-    const Scalar tmp0 = sin(alpha);
+    const Scalar tmp0 = sin_of[0];
     const Scalar tmp1 = tmp0*l;
-    const Scalar tmp3 = cos(beta);
-    const Scalar tmp4 = cos(alpha);
+    const Scalar tmp3 = cos_of[1];
+    const Scalar tmp4 = cos_of[0];
     const Scalar tmp5 = tmp4*l;
     const Scalar tmp6 = tmp3*tmp5;
-    const Scalar tmp7 = sin(beta);
+    const Scalar tmp7 = sin_of[1];
     const Scalar tmp8 = tmp1*tmp7;
     const Scalar tmp10 = tmp5*tmp7;
     const Scalar tmp11 = tmp1*tmp3;

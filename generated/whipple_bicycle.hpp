@@ -37,6 +37,78 @@
 // The parts write Eigen matrices through data(), entry (i, j) at i + rows * j.
 static_assert(!Eigen::Matrix<double, 2, 2>::IsRowMajor,
               "gencoord's kernel parts need Eigen's default column-major storage");
+// gencoord_kernel_math::sin_cos(x, s, c) sets s[i] = sin(x[i]) and c[i] = cos(x[i]). For
+// double on x86-64 with glibc it works in vector registers, through glibc's vector math
+// library (libmvec, which C++ programs link through libm; within 4 ulp, as its manual states):
+// 4 lanes a call where the compiler targets AVX2, 2 otherwise. The inline namespace keeps the
+// two apart when objects of both are linked together. Elsewhere, or with GENCOORD_NO_LIBMVEC
+// defined, it calls sin and cos.
+#ifndef GENCOORD_KERNEL_SIN_COS
+#define GENCOORD_KERNEL_SIN_COS
+#if defined(__x86_64__) && defined(__GLIBC__) && !defined(GENCOORD_NO_LIBMVEC)
+#include <immintrin.h>
+#define GENCOORD_KERNEL_LIBMVEC 1
+extern "C" {
+#if defined(__AVX2__)
+__m256d _ZGVdN4v_sin(__m256d);
+__m256d _ZGVdN4v_cos(__m256d);
+#else
+__m128d _ZGVbN2v_sin(__m128d);
+__m128d _ZGVbN2v_cos(__m128d);
+#endif
+}
+#endif
+
+namespace gencoord_kernel_math {
+#if defined(GENCOORD_KERNEL_LIBMVEC) && defined(__AVX2__)
+inline namespace avx2 {
+constexpr int kLanes = 4;
+inline void sin_cos_lanes(const double* x, double* s, double* c) {
+  const __m256d lanes = _mm256_loadu_pd(x);
+  _mm256_storeu_pd(s, _ZGVdN4v_sin(lanes));
+  _mm256_storeu_pd(c, _ZGVdN4v_cos(lanes));
+}
+#elif defined(GENCOORD_KERNEL_LIBMVEC)
+inline namespace sse2 {
+constexpr int kLanes = 2;
+inline void sin_cos_lanes(const double* x, double* s, double* c) {
+  const __m128d lanes = _mm_loadu_pd(x);
+  _mm_storeu_pd(s, _ZGVbN2v_sin(lanes));
+  _mm_storeu_pd(c, _ZGVbN2v_cos(lanes));
+}
+#else
+inline namespace scalar {
+#endif
+
+template <class Scalar, int n>
+inline void sin_cos(const Scalar (&x)[n], Scalar (&s)[n], Scalar (&c)[n]) {
+  using std::cos;
+  using std::sin;
+  for (int i = 0; i < n; ++i) {
+    s[i] = sin(x[i]);
+    c[i] = cos(x[i]);
+  }
+}
+
+#ifdef GENCOORD_KERNEL_LIBMVEC
+template <int n>
+inline void sin_cos(const double (&x)[n], double (&s)[n], double (&c)[n]) {
+  constexpr int whole = n - n % kLanes;
+  for (int i = 0; i < whole; i += kLanes) sin_cos_lanes(x + i, s + i, c + i);
+  if constexpr (whole < n) {  // the rest, padded with copies of the last argument
+    double rest[kLanes], sines[kLanes], cosines[kLanes];
+    for (int k = 0; k < kLanes; ++k) rest[k] = x[whole + k < n ? whole + k : n - 1];
+    sin_cos_lanes(rest, sines, cosines);
+    for (int i = whole; i < n; ++i) {
+      s[i] = sines[i - whole];
+      c[i] = cosines[i - whole];
+    }
+  }
+}
+#endif
+}  // inline namespace
+}  // namespace gencoord_kernel_math
+#endif  // GENCOORD_KERNEL_SIN_COS
 
 /*
  * The Whipple bicycle with the benchmark parameters of Meijaard, Papadopoulos, Ruina and
@@ -314,6 +386,9 @@ struct WhippleBicycle {
     const Scalar theta_r = q(5);
     const Scalar delta = q(6);
     const Scalar theta_f = q(7);
+    const Scalar sin_cos_of[6] = {psi, phi, theta, theta_r, delta, theta_f};
+    Scalar sin_of[6], cos_of[6];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar w = Scalar(params.w);
     const Scalar c = Scalar(params.c);
     const Scalar lam = Scalar(params.lam);
@@ -339,24 +414,24 @@ struct WhippleBicycle {
     const Scalar m_f = Scalar(params.m_f);
     const Scalar I_fxx = Scalar(params.I_fxx);
     const Scalar I_fyy = Scalar(params.I_fyy);
-    const Scalar tmp0 = sin(psi);
-    const Scalar tmp1 = sin(phi);
+    const Scalar tmp0 = sin_of[0];
+    const Scalar tmp1 = sin_of[1];
     const Scalar tmp2 = tmp1*r_r;
     const Scalar tmp3 = tmp0*tmp2;
     const Scalar tmp4 = -tmp3;
-    const Scalar tmp5 = cos(phi);
+    const Scalar tmp5 = cos_of[1];
     const Scalar tmp6 = tmp0*tmp5;
     const Scalar tmp9 = (Scalar(0.5))*I_ryy;
     const Scalar tmp10 = I_rxx - tmp9;
-    const Scalar tmp15 = cos(theta_r);
-    const Scalar tmp16 = sin(theta);
-    const Scalar tmp17 = cos(psi);
+    const Scalar tmp15 = cos_of[3];
+    const Scalar tmp16 = sin_of[2];
+    const Scalar tmp17 = cos_of[0];
     const Scalar tmp18 = tmp16*tmp17;
-    const Scalar tmp19 = cos(theta);
+    const Scalar tmp19 = cos_of[2];
     const Scalar tmp20 = tmp0*tmp19;
     const Scalar tmp21 = tmp1*tmp20;
     const Scalar tmp22 = tmp18 + tmp21;
-    const Scalar tmp23 = sin(theta_r);
+    const Scalar tmp23 = sin_of[3];
     const Scalar tmp24 = tmp17*tmp19;
     const Scalar tmp25 = tmp0*tmp16;
     const Scalar tmp26 = tmp1*tmp25;
@@ -449,7 +524,7 @@ struct WhippleBicycle {
     const Scalar tmp296 = tmp249*tmp49 + tmp52*x_b;
     const Scalar tmp307 = tmp249*tmp65 + tmp66*x_b;
     const Scalar tmp313 = tmp2 + tmp145*x_b - tmp1*tmp19*tmp249;
-    const Scalar tmp395 = sin(delta);
+    const Scalar tmp395 = sin_of[4];
     const Scalar tmp396 = sin(lam);
     const Scalar tmp397 = (tmp396*tmp396);
     const Scalar tmp398 = cos(lam);
@@ -462,7 +537,7 @@ struct WhippleBicycle {
     const Scalar tmp405 = tmp396*tmp402;
     const Scalar tmp406 = tmp22*tmp405;
     const Scalar tmp407 = (Scalar(1)/tmp400);
-    const Scalar tmp408 = cos(delta);
+    const Scalar tmp408 = cos_of[4];
     const Scalar tmp409 = Scalar(1) - tmp408;
     const Scalar tmp410 = tmp407*tmp409;
     const Scalar tmp411 = tmp399*tmp410;
@@ -651,8 +726,8 @@ struct WhippleBicycle {
     const Scalar tmp712 = tmp653 + tmp656;
     const Scalar tmp714 = tmp2 + tmp673 - tmp1*tmp19*r_r;
     const Scalar tmp715 = tmp667 + tmp672 + tmp714;
-    const Scalar tmp766 = sin(theta_f);
-    const Scalar tmp767 = cos(theta_f);
+    const Scalar tmp766 = sin_of[5];
+    const Scalar tmp767 = cos_of[5];
     const Scalar tmp768 = tmp428*tmp766 - tmp445*tmp767;
     const Scalar tmp776 = tmp445*c;
     const Scalar tmp777 = tmp428*r_f;
@@ -980,6 +1055,9 @@ struct WhippleBicycle {
     const Scalar phi = q(3);
     const Scalar theta = q(4);
     const Scalar delta = q(6);
+    const Scalar sin_cos_of[3] = {phi, theta, delta};
+    Scalar sin_of[3], cos_of[3];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar w = Scalar(params.w);
     const Scalar c = Scalar(params.c);
     const Scalar lam = Scalar(params.lam);
@@ -994,11 +1072,11 @@ struct WhippleBicycle {
     const Scalar m_h = Scalar(params.m_h);
     const Scalar r_f = Scalar(params.r_f);
     const Scalar m_f = Scalar(params.m_f);
-    const Scalar tmp1 = sin(phi);
+    const Scalar tmp1 = sin_of[0];
     const Scalar tmp2 = tmp1*r_r;
-    const Scalar tmp5 = cos(phi);
-    const Scalar tmp16 = sin(theta);
-    const Scalar tmp19 = cos(theta);
+    const Scalar tmp5 = cos_of[0];
+    const Scalar tmp16 = sin_of[1];
+    const Scalar tmp19 = cos_of[1];
     const Scalar tmp64 = tmp5*r_r;
     const Scalar tmp65 = tmp16*tmp5;
     const Scalar tmp66 = tmp19*tmp5;
@@ -1008,7 +1086,7 @@ struct WhippleBicycle {
     const Scalar tmp249 = r_r + z_b;
     const Scalar tmp307 = tmp249*tmp65 + tmp66*x_b;
     const Scalar tmp313 = tmp2 + tmp145*x_b - tmp1*tmp19*tmp249;
-    const Scalar tmp395 = sin(delta);
+    const Scalar tmp395 = sin_of[2];
     const Scalar tmp396 = sin(lam);
     const Scalar tmp397 = (tmp396*tmp396);
     const Scalar tmp398 = cos(lam);
@@ -1018,7 +1096,7 @@ struct WhippleBicycle {
     const Scalar tmp402 = tmp395*tmp401;
     const Scalar tmp405 = tmp396*tmp402;
     const Scalar tmp407 = (Scalar(1)/tmp400);
-    const Scalar tmp408 = cos(delta);
+    const Scalar tmp408 = cos_of[2];
     const Scalar tmp409 = Scalar(1) - tmp408;
     const Scalar tmp410 = tmp407*tmp409;
     const Scalar tmp411 = tmp399*tmp410;
@@ -1141,6 +1219,9 @@ struct WhippleBicycle {
     const Scalar theta_r_dot = v(5);
     const Scalar delta_dot = v(6);
     const Scalar theta_f_dot = v(7);
+    const Scalar sin_cos_of[6] = {psi, phi, theta, theta_r, delta, theta_f};
+    Scalar sin_of[6], cos_of[6];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar w = Scalar(params.w);
     const Scalar c = Scalar(params.c);
     const Scalar lam = Scalar(params.lam);
@@ -1166,24 +1247,24 @@ struct WhippleBicycle {
     const Scalar m_f = Scalar(params.m_f);
     const Scalar I_fxx = Scalar(params.I_fxx);
     const Scalar I_fyy = Scalar(params.I_fyy);
-    const Scalar tmp0 = sin(psi);
-    const Scalar tmp1 = sin(phi);
+    const Scalar tmp0 = sin_of[0];
+    const Scalar tmp1 = sin_of[1];
     const Scalar tmp2 = tmp1*r_r;
     const Scalar tmp3 = tmp0*tmp2;
     const Scalar tmp4 = -tmp3;
-    const Scalar tmp5 = cos(phi);
+    const Scalar tmp5 = cos_of[1];
     const Scalar tmp6 = tmp0*tmp5;
     const Scalar tmp9 = (Scalar(0.5))*I_ryy;
     const Scalar tmp10 = I_rxx - tmp9;
-    const Scalar tmp15 = cos(theta_r);
-    const Scalar tmp16 = sin(theta);
-    const Scalar tmp17 = cos(psi);
+    const Scalar tmp15 = cos_of[3];
+    const Scalar tmp16 = sin_of[2];
+    const Scalar tmp17 = cos_of[0];
     const Scalar tmp18 = tmp16*tmp17;
-    const Scalar tmp19 = cos(theta);
+    const Scalar tmp19 = cos_of[2];
     const Scalar tmp20 = tmp0*tmp19;
     const Scalar tmp21 = tmp1*tmp20;
     const Scalar tmp22 = tmp18 + tmp21;
-    const Scalar tmp23 = sin(theta_r);
+    const Scalar tmp23 = sin_of[3];
     const Scalar tmp24 = tmp17*tmp19;
     const Scalar tmp25 = tmp0*tmp16;
     const Scalar tmp26 = tmp1*tmp25;
@@ -1279,7 +1360,7 @@ struct WhippleBicycle {
     const Scalar tmp296 = tmp249*tmp49 + tmp52*x_b;
     const Scalar tmp307 = tmp249*tmp65 + tmp66*x_b;
     const Scalar tmp313 = tmp2 + tmp145*x_b - tmp1*tmp19*tmp249;
-    const Scalar tmp395 = sin(delta);
+    const Scalar tmp395 = sin_of[4];
     const Scalar tmp396 = sin(lam);
     const Scalar tmp397 = (tmp396*tmp396);
     const Scalar tmp398 = cos(lam);
@@ -1292,7 +1373,7 @@ struct WhippleBicycle {
     const Scalar tmp405 = tmp396*tmp402;
     const Scalar tmp406 = tmp22*tmp405;
     const Scalar tmp407 = (Scalar(1)/tmp400);
-    const Scalar tmp408 = cos(delta);
+    const Scalar tmp408 = cos_of[4];
     const Scalar tmp409 = Scalar(1) - tmp408;
     const Scalar tmp410 = tmp407*tmp409;
     const Scalar tmp411 = tmp399*tmp410;
@@ -1493,8 +1574,8 @@ struct WhippleBicycle {
     const Scalar tmp712 = tmp653 + tmp656;
     const Scalar tmp714 = tmp2 + tmp673 - tmp1*tmp19*r_r;
     const Scalar tmp715 = tmp667 + tmp672 + tmp714;
-    const Scalar tmp766 = sin(theta_f);
-    const Scalar tmp767 = cos(theta_f);
+    const Scalar tmp766 = sin_of[5];
+    const Scalar tmp767 = cos_of[5];
     const Scalar tmp768 = tmp428*tmp766 - tmp445*tmp767;
     const Scalar tmp769 = -tmp768;
     const Scalar tmp776 = tmp445*c;
@@ -2252,6 +2333,9 @@ struct WhippleBicycle {
     const Scalar theta_r_dot = v(5);
     const Scalar delta_dot = v(6);
     const Scalar theta_f_dot = v(7);
+    const Scalar sin_cos_of[6] = {psi, phi, theta, theta_r, delta, theta_f};
+    Scalar sin_of[6], cos_of[6];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar w = Scalar(params.w);
     const Scalar c = Scalar(params.c);
     const Scalar lam = Scalar(params.lam);
@@ -2278,24 +2362,24 @@ struct WhippleBicycle {
     const Scalar m_f = Scalar(params.m_f);
     const Scalar I_fxx = Scalar(params.I_fxx);
     const Scalar I_fyy = Scalar(params.I_fyy);
-    const Scalar tmp0 = sin(psi);
-    const Scalar tmp1 = sin(phi);
+    const Scalar tmp0 = sin_of[0];
+    const Scalar tmp1 = sin_of[1];
     const Scalar tmp2 = tmp1*r_r;
     const Scalar tmp3 = tmp0*tmp2;
     const Scalar tmp4 = -tmp3;
-    const Scalar tmp5 = cos(phi);
+    const Scalar tmp5 = cos_of[1];
     const Scalar tmp6 = tmp0*tmp5;
     const Scalar tmp9 = (Scalar(0.5))*I_ryy;
     const Scalar tmp10 = I_rxx - tmp9;
-    const Scalar tmp15 = cos(theta_r);
-    const Scalar tmp16 = sin(theta);
-    const Scalar tmp17 = cos(psi);
+    const Scalar tmp15 = cos_of[3];
+    const Scalar tmp16 = sin_of[2];
+    const Scalar tmp17 = cos_of[0];
     const Scalar tmp18 = tmp16*tmp17;
-    const Scalar tmp19 = cos(theta);
+    const Scalar tmp19 = cos_of[2];
     const Scalar tmp20 = tmp0*tmp19;
     const Scalar tmp21 = tmp1*tmp20;
     const Scalar tmp22 = tmp18 + tmp21;
-    const Scalar tmp23 = sin(theta_r);
+    const Scalar tmp23 = sin_of[3];
     const Scalar tmp24 = tmp17*tmp19;
     const Scalar tmp25 = tmp0*tmp16;
     const Scalar tmp26 = tmp1*tmp25;
@@ -2391,7 +2475,7 @@ struct WhippleBicycle {
     const Scalar tmp296 = tmp249*tmp49 + tmp52*x_b;
     const Scalar tmp307 = tmp249*tmp65 + tmp66*x_b;
     const Scalar tmp313 = tmp2 + tmp145*x_b - tmp1*tmp19*tmp249;
-    const Scalar tmp395 = sin(delta);
+    const Scalar tmp395 = sin_of[4];
     const Scalar tmp396 = sin(lam);
     const Scalar tmp397 = (tmp396*tmp396);
     const Scalar tmp398 = cos(lam);
@@ -2404,7 +2488,7 @@ struct WhippleBicycle {
     const Scalar tmp405 = tmp396*tmp402;
     const Scalar tmp406 = tmp22*tmp405;
     const Scalar tmp407 = (Scalar(1)/tmp400);
-    const Scalar tmp408 = cos(delta);
+    const Scalar tmp408 = cos_of[4];
     const Scalar tmp409 = Scalar(1) - tmp408;
     const Scalar tmp410 = tmp407*tmp409;
     const Scalar tmp411 = tmp399*tmp410;
@@ -2605,8 +2689,8 @@ struct WhippleBicycle {
     const Scalar tmp712 = tmp653 + tmp656;
     const Scalar tmp714 = tmp2 + tmp673 - tmp1*tmp19*r_r;
     const Scalar tmp715 = tmp667 + tmp672 + tmp714;
-    const Scalar tmp766 = sin(theta_f);
-    const Scalar tmp767 = cos(theta_f);
+    const Scalar tmp766 = sin_of[5];
+    const Scalar tmp767 = cos_of[5];
     const Scalar tmp768 = tmp428*tmp766 - tmp445*tmp767;
     const Scalar tmp769 = -tmp768;
     const Scalar tmp776 = tmp445*c;
@@ -3377,6 +3461,9 @@ struct WhippleBicycle {
     const Scalar theta_r_dot = v(5);
     const Scalar delta_dot = v(6);
     const Scalar theta_f_dot = v(7);
+    const Scalar sin_cos_of[6] = {psi, phi, theta, theta_r, delta, theta_f};
+    Scalar sin_of[6], cos_of[6];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar w = Scalar(params.w);
     const Scalar c = Scalar(params.c);
     const Scalar lam = Scalar(params.lam);
@@ -3403,24 +3490,24 @@ struct WhippleBicycle {
     const Scalar m_f = Scalar(params.m_f);
     const Scalar I_fxx = Scalar(params.I_fxx);
     const Scalar I_fyy = Scalar(params.I_fyy);
-    const Scalar tmp0 = sin(psi);
-    const Scalar tmp1 = sin(phi);
+    const Scalar tmp0 = sin_of[0];
+    const Scalar tmp1 = sin_of[1];
     const Scalar tmp2 = tmp1*r_r;
     const Scalar tmp3 = tmp0*tmp2;
     const Scalar tmp4 = -tmp3;
-    const Scalar tmp5 = cos(phi);
+    const Scalar tmp5 = cos_of[1];
     const Scalar tmp6 = tmp0*tmp5;
     const Scalar tmp9 = (Scalar(0.5))*I_ryy;
     const Scalar tmp10 = I_rxx - tmp9;
-    const Scalar tmp15 = cos(theta_r);
-    const Scalar tmp16 = sin(theta);
-    const Scalar tmp17 = cos(psi);
+    const Scalar tmp15 = cos_of[3];
+    const Scalar tmp16 = sin_of[2];
+    const Scalar tmp17 = cos_of[0];
     const Scalar tmp18 = tmp16*tmp17;
-    const Scalar tmp19 = cos(theta);
+    const Scalar tmp19 = cos_of[2];
     const Scalar tmp20 = tmp0*tmp19;
     const Scalar tmp21 = tmp1*tmp20;
     const Scalar tmp22 = tmp18 + tmp21;
-    const Scalar tmp23 = sin(theta_r);
+    const Scalar tmp23 = sin_of[3];
     const Scalar tmp24 = tmp17*tmp19;
     const Scalar tmp25 = tmp0*tmp16;
     const Scalar tmp26 = tmp1*tmp25;
@@ -3516,7 +3603,7 @@ struct WhippleBicycle {
     const Scalar tmp296 = tmp249*tmp49 + tmp52*x_b;
     const Scalar tmp307 = tmp249*tmp65 + tmp66*x_b;
     const Scalar tmp313 = tmp2 + tmp145*x_b - tmp1*tmp19*tmp249;
-    const Scalar tmp395 = sin(delta);
+    const Scalar tmp395 = sin_of[4];
     const Scalar tmp396 = sin(lam);
     const Scalar tmp397 = (tmp396*tmp396);
     const Scalar tmp398 = cos(lam);
@@ -3529,7 +3616,7 @@ struct WhippleBicycle {
     const Scalar tmp405 = tmp396*tmp402;
     const Scalar tmp406 = tmp22*tmp405;
     const Scalar tmp407 = (Scalar(1)/tmp400);
-    const Scalar tmp408 = cos(delta);
+    const Scalar tmp408 = cos_of[4];
     const Scalar tmp409 = Scalar(1) - tmp408;
     const Scalar tmp410 = tmp407*tmp409;
     const Scalar tmp411 = tmp399*tmp410;
@@ -3730,8 +3817,8 @@ struct WhippleBicycle {
     const Scalar tmp712 = tmp653 + tmp656;
     const Scalar tmp714 = tmp2 + tmp673 - tmp1*tmp19*r_r;
     const Scalar tmp715 = tmp667 + tmp672 + tmp714;
-    const Scalar tmp766 = sin(theta_f);
-    const Scalar tmp767 = cos(theta_f);
+    const Scalar tmp766 = sin_of[5];
+    const Scalar tmp767 = cos_of[5];
     const Scalar tmp768 = tmp428*tmp766 - tmp445*tmp767;
     const Scalar tmp769 = -tmp768;
     const Scalar tmp776 = tmp445*c;
@@ -4708,6 +4795,9 @@ struct WhippleBicycle {
     const Scalar theta_r_ddot = qdd(5);
     const Scalar delta_ddot = qdd(6);
     const Scalar theta_f_ddot = qdd(7);
+    const Scalar sin_cos_of[6] = {psi, phi, theta, theta_r, delta, theta_f};
+    Scalar sin_of[6], cos_of[6];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar w = Scalar(params.w);
     const Scalar c = Scalar(params.c);
     const Scalar lam = Scalar(params.lam);
@@ -4734,24 +4824,24 @@ struct WhippleBicycle {
     const Scalar m_f = Scalar(params.m_f);
     const Scalar I_fxx = Scalar(params.I_fxx);
     const Scalar I_fyy = Scalar(params.I_fyy);
-    const Scalar tmp0 = sin(psi);
-    const Scalar tmp1 = sin(phi);
+    const Scalar tmp0 = sin_of[0];
+    const Scalar tmp1 = sin_of[1];
     const Scalar tmp2 = tmp1*r_r;
     const Scalar tmp3 = tmp0*tmp2;
     const Scalar tmp4 = -tmp3;
-    const Scalar tmp5 = cos(phi);
+    const Scalar tmp5 = cos_of[1];
     const Scalar tmp6 = tmp0*tmp5;
     const Scalar tmp9 = (Scalar(0.5))*I_ryy;
     const Scalar tmp10 = I_rxx - tmp9;
-    const Scalar tmp15 = cos(theta_r);
-    const Scalar tmp16 = sin(theta);
-    const Scalar tmp17 = cos(psi);
+    const Scalar tmp15 = cos_of[3];
+    const Scalar tmp16 = sin_of[2];
+    const Scalar tmp17 = cos_of[0];
     const Scalar tmp18 = tmp16*tmp17;
-    const Scalar tmp19 = cos(theta);
+    const Scalar tmp19 = cos_of[2];
     const Scalar tmp20 = tmp0*tmp19;
     const Scalar tmp21 = tmp1*tmp20;
     const Scalar tmp22 = tmp18 + tmp21;
-    const Scalar tmp23 = sin(theta_r);
+    const Scalar tmp23 = sin_of[3];
     const Scalar tmp24 = tmp17*tmp19;
     const Scalar tmp25 = tmp0*tmp16;
     const Scalar tmp26 = tmp1*tmp25;
@@ -4847,7 +4937,7 @@ struct WhippleBicycle {
     const Scalar tmp296 = tmp249*tmp49 + tmp52*x_b;
     const Scalar tmp307 = tmp249*tmp65 + tmp66*x_b;
     const Scalar tmp313 = tmp2 + tmp145*x_b - tmp1*tmp19*tmp249;
-    const Scalar tmp395 = sin(delta);
+    const Scalar tmp395 = sin_of[4];
     const Scalar tmp396 = sin(lam);
     const Scalar tmp397 = (tmp396*tmp396);
     const Scalar tmp398 = cos(lam);
@@ -4860,7 +4950,7 @@ struct WhippleBicycle {
     const Scalar tmp405 = tmp396*tmp402;
     const Scalar tmp406 = tmp22*tmp405;
     const Scalar tmp407 = (Scalar(1)/tmp400);
-    const Scalar tmp408 = cos(delta);
+    const Scalar tmp408 = cos_of[4];
     const Scalar tmp409 = Scalar(1) - tmp408;
     const Scalar tmp410 = tmp407*tmp409;
     const Scalar tmp411 = tmp399*tmp410;
@@ -5061,8 +5151,8 @@ struct WhippleBicycle {
     const Scalar tmp712 = tmp653 + tmp656;
     const Scalar tmp714 = tmp2 + tmp673 - tmp1*tmp19*r_r;
     const Scalar tmp715 = tmp667 + tmp672 + tmp714;
-    const Scalar tmp766 = sin(theta_f);
-    const Scalar tmp767 = cos(theta_f);
+    const Scalar tmp766 = sin_of[5];
+    const Scalar tmp767 = cos_of[5];
     const Scalar tmp768 = tmp428*tmp766 - tmp445*tmp767;
     const Scalar tmp769 = -tmp768;
     const Scalar tmp776 = tmp445*c;
@@ -5978,6 +6068,9 @@ struct WhippleBicycle {
     const Scalar theta_r_dot = v(5);
     const Scalar delta_dot = v(6);
     const Scalar theta_f_dot = v(7);
+    const Scalar sin_cos_of[6] = {psi, phi, theta, theta_r, delta, theta_f};
+    Scalar sin_of[6], cos_of[6];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar w = Scalar(params.w);
     const Scalar c = Scalar(params.c);
     const Scalar lam = Scalar(params.lam);
@@ -6003,24 +6096,24 @@ struct WhippleBicycle {
     const Scalar m_f = Scalar(params.m_f);
     const Scalar I_fxx = Scalar(params.I_fxx);
     const Scalar I_fyy = Scalar(params.I_fyy);
-    const Scalar tmp0 = sin(psi);
-    const Scalar tmp1 = sin(phi);
+    const Scalar tmp0 = sin_of[0];
+    const Scalar tmp1 = sin_of[1];
     const Scalar tmp2 = tmp1*r_r;
     const Scalar tmp3 = tmp0*tmp2;
     const Scalar tmp4 = -tmp3;
-    const Scalar tmp5 = cos(phi);
+    const Scalar tmp5 = cos_of[1];
     const Scalar tmp6 = tmp0*tmp5;
     const Scalar tmp9 = (Scalar(0.5))*I_ryy;
     const Scalar tmp10 = I_rxx - tmp9;
-    const Scalar tmp15 = cos(theta_r);
-    const Scalar tmp16 = sin(theta);
-    const Scalar tmp17 = cos(psi);
+    const Scalar tmp15 = cos_of[3];
+    const Scalar tmp16 = sin_of[2];
+    const Scalar tmp17 = cos_of[0];
     const Scalar tmp18 = tmp16*tmp17;
-    const Scalar tmp19 = cos(theta);
+    const Scalar tmp19 = cos_of[2];
     const Scalar tmp20 = tmp0*tmp19;
     const Scalar tmp21 = tmp1*tmp20;
     const Scalar tmp22 = tmp18 + tmp21;
-    const Scalar tmp23 = sin(theta_r);
+    const Scalar tmp23 = sin_of[3];
     const Scalar tmp24 = tmp17*tmp19;
     const Scalar tmp25 = tmp0*tmp16;
     const Scalar tmp26 = tmp1*tmp25;
@@ -6114,7 +6207,7 @@ struct WhippleBicycle {
     const Scalar tmp296 = tmp249*tmp49 + tmp52*x_b;
     const Scalar tmp307 = tmp249*tmp65 + tmp66*x_b;
     const Scalar tmp313 = tmp2 + tmp145*x_b - tmp1*tmp19*tmp249;
-    const Scalar tmp395 = sin(delta);
+    const Scalar tmp395 = sin_of[4];
     const Scalar tmp396 = sin(lam);
     const Scalar tmp397 = (tmp396*tmp396);
     const Scalar tmp398 = cos(lam);
@@ -6127,7 +6220,7 @@ struct WhippleBicycle {
     const Scalar tmp405 = tmp396*tmp402;
     const Scalar tmp406 = tmp22*tmp405;
     const Scalar tmp407 = (Scalar(1)/tmp400);
-    const Scalar tmp408 = cos(delta);
+    const Scalar tmp408 = cos_of[4];
     const Scalar tmp409 = Scalar(1) - tmp408;
     const Scalar tmp410 = tmp407*tmp409;
     const Scalar tmp411 = tmp399*tmp410;
@@ -6316,8 +6409,8 @@ struct WhippleBicycle {
     const Scalar tmp712 = tmp653 + tmp656;
     const Scalar tmp714 = tmp2 + tmp673 - tmp1*tmp19*r_r;
     const Scalar tmp715 = tmp667 + tmp672 + tmp714;
-    const Scalar tmp766 = sin(theta_f);
-    const Scalar tmp767 = cos(theta_f);
+    const Scalar tmp766 = sin_of[5];
+    const Scalar tmp767 = cos_of[5];
     const Scalar tmp768 = tmp428*tmp766 - tmp445*tmp767;
     const Scalar tmp776 = tmp445*c;
     const Scalar tmp777 = tmp428*r_f;
@@ -6535,6 +6628,9 @@ struct WhippleBicycle {
     const Scalar phi = q(3);
     const Scalar theta = q(4);
     const Scalar delta = q(6);
+    const Scalar sin_cos_of[3] = {phi, theta, delta};
+    Scalar sin_of[3], cos_of[3];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar w = Scalar(params.w);
     const Scalar c = Scalar(params.c);
     const Scalar lam = Scalar(params.lam);
@@ -6549,16 +6645,16 @@ struct WhippleBicycle {
     const Scalar m_h = Scalar(params.m_h);
     const Scalar r_f = Scalar(params.r_f);
     const Scalar m_f = Scalar(params.m_f);
-    const Scalar tmp1 = sin(phi);
-    const Scalar tmp5 = cos(phi);
-    const Scalar tmp16 = sin(theta);
-    const Scalar tmp19 = cos(theta);
+    const Scalar tmp1 = sin_of[0];
+    const Scalar tmp5 = cos_of[0];
+    const Scalar tmp16 = sin_of[1];
+    const Scalar tmp19 = cos_of[1];
     const Scalar tmp64 = tmp5*r_r;
     const Scalar tmp65 = tmp16*tmp5;
     const Scalar tmp66 = tmp19*tmp5;
     const Scalar tmp249 = r_r + z_b;
     const Scalar tmp267 = tmp65*x_b - tmp249*tmp66;
-    const Scalar tmp395 = sin(delta);
+    const Scalar tmp395 = sin_of[2];
     const Scalar tmp396 = sin(lam);
     const Scalar tmp397 = (tmp396*tmp396);
     const Scalar tmp398 = cos(lam);
@@ -6568,7 +6664,7 @@ struct WhippleBicycle {
     const Scalar tmp402 = tmp395*tmp401;
     const Scalar tmp405 = tmp396*tmp402;
     const Scalar tmp407 = (Scalar(1)/tmp400);
-    const Scalar tmp408 = cos(delta);
+    const Scalar tmp408 = cos_of[2];
     const Scalar tmp409 = Scalar(1) - tmp408;
     const Scalar tmp410 = tmp407*tmp409;
     const Scalar tmp411 = tmp399*tmp410;
@@ -6657,6 +6753,9 @@ struct WhippleBicycle {
     const Scalar theta_r_dot = v(5);
     const Scalar delta_dot = v(6);
     const Scalar theta_f_dot = v(7);
+    const Scalar sin_cos_of[6] = {psi, phi, theta, theta_r, delta, theta_f};
+    Scalar sin_of[6], cos_of[6];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar w = Scalar(params.w);
     const Scalar c = Scalar(params.c);
     const Scalar lam = Scalar(params.lam);
@@ -6683,24 +6782,24 @@ struct WhippleBicycle {
     const Scalar m_f = Scalar(params.m_f);
     const Scalar I_fxx = Scalar(params.I_fxx);
     const Scalar I_fyy = Scalar(params.I_fyy);
-    const Scalar tmp0 = sin(psi);
-    const Scalar tmp1 = sin(phi);
+    const Scalar tmp0 = sin_of[0];
+    const Scalar tmp1 = sin_of[1];
     const Scalar tmp2 = tmp1*r_r;
     const Scalar tmp3 = tmp0*tmp2;
     const Scalar tmp4 = -tmp3;
-    const Scalar tmp5 = cos(phi);
+    const Scalar tmp5 = cos_of[1];
     const Scalar tmp6 = tmp0*tmp5;
     const Scalar tmp9 = (Scalar(0.5))*I_ryy;
     const Scalar tmp10 = I_rxx - tmp9;
-    const Scalar tmp15 = cos(theta_r);
-    const Scalar tmp16 = sin(theta);
-    const Scalar tmp17 = cos(psi);
+    const Scalar tmp15 = cos_of[3];
+    const Scalar tmp16 = sin_of[2];
+    const Scalar tmp17 = cos_of[0];
     const Scalar tmp18 = tmp16*tmp17;
-    const Scalar tmp19 = cos(theta);
+    const Scalar tmp19 = cos_of[2];
     const Scalar tmp20 = tmp0*tmp19;
     const Scalar tmp21 = tmp1*tmp20;
     const Scalar tmp22 = tmp18 + tmp21;
-    const Scalar tmp23 = sin(theta_r);
+    const Scalar tmp23 = sin_of[3];
     const Scalar tmp24 = tmp17*tmp19;
     const Scalar tmp25 = tmp0*tmp16;
     const Scalar tmp26 = tmp1*tmp25;
@@ -6795,7 +6894,7 @@ struct WhippleBicycle {
     const Scalar tmp296 = tmp249*tmp49 + tmp52*x_b;
     const Scalar tmp307 = tmp249*tmp65 + tmp66*x_b;
     const Scalar tmp313 = tmp2 + tmp145*x_b - tmp1*tmp19*tmp249;
-    const Scalar tmp395 = sin(delta);
+    const Scalar tmp395 = sin_of[4];
     const Scalar tmp396 = sin(lam);
     const Scalar tmp397 = (tmp396*tmp396);
     const Scalar tmp398 = cos(lam);
@@ -6808,7 +6907,7 @@ struct WhippleBicycle {
     const Scalar tmp405 = tmp396*tmp402;
     const Scalar tmp406 = tmp22*tmp405;
     const Scalar tmp407 = (Scalar(1)/tmp400);
-    const Scalar tmp408 = cos(delta);
+    const Scalar tmp408 = cos_of[4];
     const Scalar tmp409 = Scalar(1) - tmp408;
     const Scalar tmp410 = tmp407*tmp409;
     const Scalar tmp411 = tmp399*tmp410;
@@ -7004,8 +7103,8 @@ struct WhippleBicycle {
     const Scalar tmp712 = tmp653 + tmp656;
     const Scalar tmp714 = tmp2 + tmp673 - tmp1*tmp19*r_r;
     const Scalar tmp715 = tmp667 + tmp672 + tmp714;
-    const Scalar tmp766 = sin(theta_f);
-    const Scalar tmp767 = cos(theta_f);
+    const Scalar tmp766 = sin_of[5];
+    const Scalar tmp767 = cos_of[5];
     const Scalar tmp768 = tmp428*tmp766 - tmp445*tmp767;
     const Scalar tmp776 = tmp445*c;
     const Scalar tmp777 = tmp428*r_f;
@@ -7237,6 +7336,9 @@ struct WhippleBicycle {
     const Scalar theta_r = q(5);
     const Scalar delta = q(6);
     const Scalar theta_f = q(7);
+    const Scalar sin_cos_of[6] = {psi, phi, theta, theta_r, delta, theta_f};
+    Scalar sin_of[6], cos_of[6];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar w = Scalar(params.w);
     const Scalar c = Scalar(params.c);
     const Scalar lam = Scalar(params.lam);
@@ -7262,12 +7364,12 @@ struct WhippleBicycle {
     const Scalar m_f = Scalar(params.m_f);
     const Scalar I_fxx = Scalar(params.I_fxx);
     const Scalar I_fyy = Scalar(params.I_fyy);
-    const Scalar tmp0 = sin(psi);
-    const Scalar tmp1 = sin(phi);
+    const Scalar tmp0 = sin_of[0];
+    const Scalar tmp1 = sin_of[1];
     const Scalar tmp2 = tmp1*r_r;
     const Scalar tmp3 = tmp0*tmp2;
     const Scalar tmp4 = -tmp3;
-    const Scalar tmp5 = cos(phi);
+    const Scalar tmp5 = cos_of[1];
     const Scalar tmp6 = tmp0*tmp5;
     const Scalar tmp7 = sqrt(m_r);
     const Scalar tmp8 = (Scalar(1)/tmp7);
@@ -7277,15 +7379,15 @@ struct WhippleBicycle {
     const Scalar tmp12 = tmp11*tmp8;
     const Scalar tmp13 = tmp12*tmp6;
     const Scalar tmp14 = tmp13 + tmp4;
-    const Scalar tmp15 = cos(theta_r);
-    const Scalar tmp16 = sin(theta);
-    const Scalar tmp17 = cos(psi);
+    const Scalar tmp15 = cos_of[3];
+    const Scalar tmp16 = sin_of[2];
+    const Scalar tmp17 = cos_of[0];
     const Scalar tmp18 = tmp16*tmp17;
-    const Scalar tmp19 = cos(theta);
+    const Scalar tmp19 = cos_of[2];
     const Scalar tmp20 = tmp0*tmp19;
     const Scalar tmp21 = tmp1*tmp20;
     const Scalar tmp22 = tmp18 + tmp21;
-    const Scalar tmp23 = sin(theta_r);
+    const Scalar tmp23 = sin_of[3];
     const Scalar tmp24 = tmp17*tmp19;
     const Scalar tmp25 = tmp0*tmp16;
     const Scalar tmp26 = tmp1*tmp25;
@@ -7424,7 +7526,7 @@ struct WhippleBicycle {
     const Scalar tmp375 = -tmp261 - tmp374;
     const Scalar tmp376 = tmp372*tmp66;
     const Scalar tmp377 = tmp322 + tmp349 + tmp376;
-    const Scalar tmp395 = sin(delta);
+    const Scalar tmp395 = sin_of[4];
     const Scalar tmp396 = sin(lam);
     const Scalar tmp397 = (tmp396*tmp396);
     const Scalar tmp398 = cos(lam);
@@ -7437,7 +7539,7 @@ struct WhippleBicycle {
     const Scalar tmp405 = tmp396*tmp402;
     const Scalar tmp406 = tmp22*tmp405;
     const Scalar tmp407 = (Scalar(1)/tmp400);
-    const Scalar tmp408 = cos(delta);
+    const Scalar tmp408 = cos_of[4];
     const Scalar tmp409 = Scalar(1) - tmp408;
     const Scalar tmp410 = tmp407*tmp409;
     const Scalar tmp411 = tmp399*tmp410;
@@ -7557,8 +7659,8 @@ struct WhippleBicycle {
     const Scalar tmp749 = tmp685 + tmp720 + tmp429*tmp748;
     const Scalar tmp750 = -tmp465 - tmp722 + tmp417*tmp469*tmp747;
     const Scalar tmp751 = -tmp505 - tmp690 + tmp417*tmp485*tmp747;
-    const Scalar tmp766 = sin(theta_f);
-    const Scalar tmp767 = cos(theta_f);
+    const Scalar tmp766 = sin_of[5];
+    const Scalar tmp767 = cos_of[5];
     const Scalar tmp768 = tmp428*tmp766 - tmp445*tmp767;
     const Scalar tmp769 = -tmp768;
     const Scalar tmp770 = sqrt(I_fyy);
@@ -7698,6 +7800,9 @@ struct WhippleBicycle {
     const Scalar theta_r_dot = v(5);
     const Scalar delta_dot = v(6);
     const Scalar theta_f_dot = v(7);
+    const Scalar sin_cos_of[6] = {psi, phi, theta, theta_r, delta, theta_f};
+    Scalar sin_of[6], cos_of[6];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar w = Scalar(params.w);
     const Scalar c = Scalar(params.c);
     const Scalar lam = Scalar(params.lam);
@@ -7723,12 +7828,12 @@ struct WhippleBicycle {
     const Scalar m_f = Scalar(params.m_f);
     const Scalar I_fxx = Scalar(params.I_fxx);
     const Scalar I_fyy = Scalar(params.I_fyy);
-    const Scalar tmp0 = sin(psi);
-    const Scalar tmp1 = sin(phi);
+    const Scalar tmp0 = sin_of[0];
+    const Scalar tmp1 = sin_of[1];
     const Scalar tmp2 = tmp1*r_r;
     const Scalar tmp3 = tmp0*tmp2;
     const Scalar tmp4 = -tmp3;
-    const Scalar tmp5 = cos(phi);
+    const Scalar tmp5 = cos_of[1];
     const Scalar tmp6 = tmp0*tmp5;
     const Scalar tmp7 = sqrt(m_r);
     const Scalar tmp8 = (Scalar(1)/tmp7);
@@ -7738,15 +7843,15 @@ struct WhippleBicycle {
     const Scalar tmp12 = tmp11*tmp8;
     const Scalar tmp13 = tmp12*tmp6;
     const Scalar tmp14 = tmp13 + tmp4;
-    const Scalar tmp15 = cos(theta_r);
-    const Scalar tmp16 = sin(theta);
-    const Scalar tmp17 = cos(psi);
+    const Scalar tmp15 = cos_of[3];
+    const Scalar tmp16 = sin_of[2];
+    const Scalar tmp17 = cos_of[0];
     const Scalar tmp18 = tmp16*tmp17;
-    const Scalar tmp19 = cos(theta);
+    const Scalar tmp19 = cos_of[2];
     const Scalar tmp20 = tmp0*tmp19;
     const Scalar tmp21 = tmp1*tmp20;
     const Scalar tmp22 = tmp18 + tmp21;
-    const Scalar tmp23 = sin(theta_r);
+    const Scalar tmp23 = sin_of[3];
     const Scalar tmp24 = tmp17*tmp19;
     const Scalar tmp25 = tmp0*tmp16;
     const Scalar tmp26 = tmp1*tmp25;
@@ -8062,7 +8167,7 @@ struct WhippleBicycle {
     const Scalar tmp392 = tmp366 - tmp372*tmp65;
     const Scalar tmp393 = -tmp310 - tmp368 - tmp146*tmp372;
     const Scalar tmp394 = tmp392*theta_dot + tmp393*phi_dot;
-    const Scalar tmp395 = sin(delta);
+    const Scalar tmp395 = sin_of[4];
     const Scalar tmp396 = sin(lam);
     const Scalar tmp397 = (tmp396*tmp396);
     const Scalar tmp398 = cos(lam);
@@ -8075,7 +8180,7 @@ struct WhippleBicycle {
     const Scalar tmp405 = tmp396*tmp402;
     const Scalar tmp406 = tmp22*tmp405;
     const Scalar tmp407 = (Scalar(1)/tmp400);
-    const Scalar tmp408 = cos(delta);
+    const Scalar tmp408 = cos_of[4];
     const Scalar tmp409 = Scalar(1) - tmp408;
     const Scalar tmp410 = tmp407*tmp409;
     const Scalar tmp411 = tmp399*tmp410;
@@ -8393,8 +8498,8 @@ struct WhippleBicycle {
     const Scalar tmp763 = -tmp663 - tmp712 + tmp417*tmp652*tmp747;
     const Scalar tmp764 = -tmp680 - tmp715 + tmp417*tmp666*tmp747;
     const Scalar tmp765 = tmp762*theta_dot + tmp763*delta_dot + tmp764*phi_dot;
-    const Scalar tmp766 = sin(theta_f);
-    const Scalar tmp767 = cos(theta_f);
+    const Scalar tmp766 = sin_of[5];
+    const Scalar tmp767 = cos_of[5];
     const Scalar tmp768 = tmp428*tmp766 - tmp445*tmp767;
     const Scalar tmp770 = sqrt(I_fyy);
     const Scalar tmp771 = sqrt(m_f);
@@ -8701,6 +8806,9 @@ struct WhippleBicycle {
     const Scalar theta_r = q(5);
     const Scalar delta = q(6);
     const Scalar theta_f = q(7);
+    const Scalar sin_cos_of[6] = {psi, phi, theta, theta_r, delta, theta_f};
+    Scalar sin_of[6], cos_of[6];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar w = Scalar(params.w);
     const Scalar c = Scalar(params.c);
     const Scalar lam = Scalar(params.lam);
@@ -8726,12 +8834,12 @@ struct WhippleBicycle {
     const Scalar m_f = Scalar(params.m_f);
     const Scalar I_fxx = Scalar(params.I_fxx);
     const Scalar I_fyy = Scalar(params.I_fyy);
-    const Scalar tmp0 = sin(psi);
-    const Scalar tmp1 = sin(phi);
+    const Scalar tmp0 = sin_of[0];
+    const Scalar tmp1 = sin_of[1];
     const Scalar tmp2 = tmp1*r_r;
     const Scalar tmp3 = tmp0*tmp2;
     const Scalar tmp4 = -tmp3;
-    const Scalar tmp5 = cos(phi);
+    const Scalar tmp5 = cos_of[1];
     const Scalar tmp6 = tmp0*tmp5;
     const Scalar tmp7 = sqrt(m_r);
     const Scalar tmp8 = (Scalar(1)/tmp7);
@@ -8741,15 +8849,15 @@ struct WhippleBicycle {
     const Scalar tmp12 = tmp11*tmp8;
     const Scalar tmp13 = tmp12*tmp6;
     const Scalar tmp14 = tmp13 + tmp4;
-    const Scalar tmp15 = cos(theta_r);
-    const Scalar tmp16 = sin(theta);
-    const Scalar tmp17 = cos(psi);
+    const Scalar tmp15 = cos_of[3];
+    const Scalar tmp16 = sin_of[2];
+    const Scalar tmp17 = cos_of[0];
     const Scalar tmp18 = tmp16*tmp17;
-    const Scalar tmp19 = cos(theta);
+    const Scalar tmp19 = cos_of[2];
     const Scalar tmp20 = tmp0*tmp19;
     const Scalar tmp21 = tmp1*tmp20;
     const Scalar tmp22 = tmp18 + tmp21;
-    const Scalar tmp23 = sin(theta_r);
+    const Scalar tmp23 = sin_of[3];
     const Scalar tmp24 = tmp17*tmp19;
     const Scalar tmp25 = tmp0*tmp16;
     const Scalar tmp26 = tmp1*tmp25;
@@ -9028,7 +9136,7 @@ struct WhippleBicycle {
     const Scalar tmp390 = tmp299 + tmp389;
     const Scalar tmp392 = tmp366 - tmp372*tmp65;
     const Scalar tmp393 = -tmp310 - tmp368 - tmp146*tmp372;
-    const Scalar tmp395 = sin(delta);
+    const Scalar tmp395 = sin_of[4];
     const Scalar tmp396 = sin(lam);
     const Scalar tmp397 = (tmp396*tmp396);
     const Scalar tmp398 = cos(lam);
@@ -9041,7 +9149,7 @@ struct WhippleBicycle {
     const Scalar tmp405 = tmp396*tmp402;
     const Scalar tmp406 = tmp22*tmp405;
     const Scalar tmp407 = (Scalar(1)/tmp400);
-    const Scalar tmp408 = cos(delta);
+    const Scalar tmp408 = cos_of[4];
     const Scalar tmp409 = Scalar(1) - tmp408;
     const Scalar tmp410 = tmp407*tmp409;
     const Scalar tmp411 = tmp399*tmp410;
@@ -9339,8 +9447,8 @@ struct WhippleBicycle {
         + tmp417*tmp641*tmp747;
     const Scalar tmp763 = -tmp663 - tmp712 + tmp417*tmp652*tmp747;
     const Scalar tmp764 = -tmp680 - tmp715 + tmp417*tmp666*tmp747;
-    const Scalar tmp766 = sin(theta_f);
-    const Scalar tmp767 = cos(theta_f);
+    const Scalar tmp766 = sin_of[5];
+    const Scalar tmp767 = cos_of[5];
     const Scalar tmp768 = tmp428*tmp766 - tmp445*tmp767;
     const Scalar tmp770 = sqrt(I_fyy);
     const Scalar tmp771 = sqrt(m_f);
@@ -9794,6 +9902,9 @@ struct WhippleBicycle {
     const Scalar theta_r_dot = v(5);
     const Scalar delta_dot = v(6);
     const Scalar theta_f_dot = v(7);
+    const Scalar sin_cos_of[6] = {psi, phi, theta, theta_r, delta, theta_f};
+    Scalar sin_of[6], cos_of[6];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar w = Scalar(params.w);
     const Scalar c = Scalar(params.c);
     const Scalar lam = Scalar(params.lam);
@@ -9819,12 +9930,12 @@ struct WhippleBicycle {
     const Scalar m_f = Scalar(params.m_f);
     const Scalar I_fxx = Scalar(params.I_fxx);
     const Scalar I_fyy = Scalar(params.I_fyy);
-    const Scalar tmp0 = sin(psi);
-    const Scalar tmp1 = sin(phi);
+    const Scalar tmp0 = sin_of[0];
+    const Scalar tmp1 = sin_of[1];
     const Scalar tmp2 = tmp1*r_r;
     const Scalar tmp3 = tmp0*tmp2;
     const Scalar tmp4 = -tmp3;
-    const Scalar tmp5 = cos(phi);
+    const Scalar tmp5 = cos_of[1];
     const Scalar tmp6 = tmp0*tmp5;
     const Scalar tmp7 = sqrt(m_r);
     const Scalar tmp8 = (Scalar(1)/tmp7);
@@ -9834,15 +9945,15 @@ struct WhippleBicycle {
     const Scalar tmp12 = tmp11*tmp8;
     const Scalar tmp13 = tmp12*tmp6;
     const Scalar tmp14 = tmp13 + tmp4;
-    const Scalar tmp15 = cos(theta_r);
-    const Scalar tmp16 = sin(theta);
-    const Scalar tmp17 = cos(psi);
+    const Scalar tmp15 = cos_of[3];
+    const Scalar tmp16 = sin_of[2];
+    const Scalar tmp17 = cos_of[0];
     const Scalar tmp18 = tmp16*tmp17;
-    const Scalar tmp19 = cos(theta);
+    const Scalar tmp19 = cos_of[2];
     const Scalar tmp20 = tmp0*tmp19;
     const Scalar tmp21 = tmp1*tmp20;
     const Scalar tmp22 = tmp18 + tmp21;
-    const Scalar tmp23 = sin(theta_r);
+    const Scalar tmp23 = sin_of[3];
     const Scalar tmp24 = tmp17*tmp19;
     const Scalar tmp25 = tmp0*tmp16;
     const Scalar tmp26 = tmp1*tmp25;
@@ -10038,7 +10149,7 @@ struct WhippleBicycle {
     const Scalar tmp387 = -tmp300;
     const Scalar tmp388 = tmp22*tmp372;
     const Scalar tmp389 = tmp236 + tmp387 + tmp388;
-    const Scalar tmp395 = sin(delta);
+    const Scalar tmp395 = sin_of[4];
     const Scalar tmp396 = sin(lam);
     const Scalar tmp397 = (tmp396*tmp396);
     const Scalar tmp398 = cos(lam);
@@ -10051,7 +10162,7 @@ struct WhippleBicycle {
     const Scalar tmp405 = tmp396*tmp402;
     const Scalar tmp406 = tmp22*tmp405;
     const Scalar tmp407 = (Scalar(1)/tmp400);
-    const Scalar tmp408 = cos(delta);
+    const Scalar tmp408 = cos_of[4];
     const Scalar tmp409 = Scalar(1) - tmp408;
     const Scalar tmp410 = tmp407*tmp409;
     const Scalar tmp411 = tmp399*tmp410;
@@ -10228,8 +10339,8 @@ struct WhippleBicycle {
     const Scalar tmp738 = tmp627 + tmp737;
     const Scalar tmp747 = -tmp683;
     const Scalar tmp748 = tmp417*tmp747;
-    const Scalar tmp766 = sin(theta_f);
-    const Scalar tmp767 = cos(theta_f);
+    const Scalar tmp766 = sin_of[5];
+    const Scalar tmp767 = cos_of[5];
     const Scalar tmp768 = tmp428*tmp766 - tmp445*tmp767;
     const Scalar tmp769 = -tmp768;
     const Scalar tmp770 = sqrt(I_fyy);
@@ -11524,6 +11635,9 @@ struct WhippleBicycle {
     const Scalar phi_dot = v(3);
     const Scalar theta_dot = v(4);
     const Scalar delta_dot = v(6);
+    const Scalar sin_cos_of[4] = {psi, phi, theta, delta};
+    Scalar sin_of[4], cos_of[4];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar w = Scalar(params.w);
     const Scalar c = Scalar(params.c);
     const Scalar lam = Scalar(params.lam);
@@ -11537,17 +11651,17 @@ struct WhippleBicycle {
     const Scalar m_h = Scalar(params.m_h);
     const Scalar r_f = Scalar(params.r_f);
     const Scalar m_f = Scalar(params.m_f);
-    const Scalar tmp0 = sin(psi);
-    const Scalar tmp1 = sin(phi);
+    const Scalar tmp0 = sin_of[0];
+    const Scalar tmp1 = sin_of[1];
     const Scalar tmp2 = tmp1*r_r;
     const Scalar tmp3 = tmp0*tmp2;
     const Scalar tmp4 = -tmp3;
-    const Scalar tmp5 = cos(phi);
+    const Scalar tmp5 = cos_of[1];
     const Scalar tmp6 = tmp0*tmp5;
-    const Scalar tmp16 = sin(theta);
-    const Scalar tmp17 = cos(psi);
+    const Scalar tmp16 = sin_of[2];
+    const Scalar tmp17 = cos_of[0];
     const Scalar tmp18 = tmp16*tmp17;
-    const Scalar tmp19 = cos(theta);
+    const Scalar tmp19 = cos_of[2];
     const Scalar tmp20 = tmp0*tmp19;
     const Scalar tmp21 = tmp1*tmp20;
     const Scalar tmp22 = tmp18 + tmp21;
@@ -11596,7 +11710,7 @@ struct WhippleBicycle {
     const Scalar tmp296 = tmp249*tmp49 + tmp52*x_b;
     const Scalar tmp307 = tmp249*tmp65 + tmp66*x_b;
     const Scalar tmp313 = tmp2 + tmp145*x_b - tmp1*tmp19*tmp249;
-    const Scalar tmp395 = sin(delta);
+    const Scalar tmp395 = sin_of[3];
     const Scalar tmp396 = sin(lam);
     const Scalar tmp397 = (tmp396*tmp396);
     const Scalar tmp398 = cos(lam);
@@ -11607,7 +11721,7 @@ struct WhippleBicycle {
     const Scalar tmp403 = tmp28*tmp398;
     const Scalar tmp405 = tmp396*tmp402;
     const Scalar tmp407 = (Scalar(1)/tmp400);
-    const Scalar tmp408 = cos(delta);
+    const Scalar tmp408 = cos_of[3];
     const Scalar tmp409 = Scalar(1) - tmp408;
     const Scalar tmp410 = tmp407*tmp409;
     const Scalar tmp411 = tmp399*tmp410;
@@ -11849,6 +11963,9 @@ struct WhippleBicycle {
     const Scalar theta_r_dot = v(5);
     const Scalar delta_dot = v(6);
     const Scalar theta_f_dot = v(7);
+    const Scalar sin_cos_of[6] = {psi, phi, theta, theta_r, delta, theta_f};
+    Scalar sin_of[6], cos_of[6];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar w = Scalar(params.w);
     const Scalar c = Scalar(params.c);
     const Scalar lam = Scalar(params.lam);
@@ -11874,24 +11991,24 @@ struct WhippleBicycle {
     const Scalar m_f = Scalar(params.m_f);
     const Scalar I_fxx = Scalar(params.I_fxx);
     const Scalar I_fyy = Scalar(params.I_fyy);
-    const Scalar tmp0 = sin(psi);
-    const Scalar tmp1 = sin(phi);
+    const Scalar tmp0 = sin_of[0];
+    const Scalar tmp1 = sin_of[1];
     const Scalar tmp2 = tmp1*r_r;
     const Scalar tmp3 = tmp0*tmp2;
     const Scalar tmp4 = -tmp3;
-    const Scalar tmp5 = cos(phi);
+    const Scalar tmp5 = cos_of[1];
     const Scalar tmp6 = tmp0*tmp5;
     const Scalar tmp9 = (Scalar(0.5))*I_ryy;
     const Scalar tmp10 = I_rxx - tmp9;
-    const Scalar tmp15 = cos(theta_r);
-    const Scalar tmp16 = sin(theta);
-    const Scalar tmp17 = cos(psi);
+    const Scalar tmp15 = cos_of[3];
+    const Scalar tmp16 = sin_of[2];
+    const Scalar tmp17 = cos_of[0];
     const Scalar tmp18 = tmp16*tmp17;
-    const Scalar tmp19 = cos(theta);
+    const Scalar tmp19 = cos_of[2];
     const Scalar tmp20 = tmp0*tmp19;
     const Scalar tmp21 = tmp1*tmp20;
     const Scalar tmp22 = tmp18 + tmp21;
-    const Scalar tmp23 = sin(theta_r);
+    const Scalar tmp23 = sin_of[3];
     const Scalar tmp24 = tmp17*tmp19;
     const Scalar tmp25 = tmp0*tmp16;
     const Scalar tmp26 = tmp1*tmp25;
@@ -11990,7 +12107,7 @@ struct WhippleBicycle {
     const Scalar tmp296 = tmp249*tmp49 + tmp52*x_b;
     const Scalar tmp307 = tmp249*tmp65 + tmp66*x_b;
     const Scalar tmp313 = tmp2 + tmp145*x_b - tmp1*tmp19*tmp249;
-    const Scalar tmp395 = sin(delta);
+    const Scalar tmp395 = sin_of[4];
     const Scalar tmp396 = sin(lam);
     const Scalar tmp397 = (tmp396*tmp396);
     const Scalar tmp398 = cos(lam);
@@ -12003,7 +12120,7 @@ struct WhippleBicycle {
     const Scalar tmp405 = tmp396*tmp402;
     const Scalar tmp406 = tmp22*tmp405;
     const Scalar tmp407 = (Scalar(1)/tmp400);
-    const Scalar tmp408 = cos(delta);
+    const Scalar tmp408 = cos_of[4];
     const Scalar tmp409 = Scalar(1) - tmp408;
     const Scalar tmp410 = tmp407*tmp409;
     const Scalar tmp411 = tmp399*tmp410;
@@ -12211,8 +12328,8 @@ struct WhippleBicycle {
     const Scalar tmp712 = tmp653 + tmp656;
     const Scalar tmp714 = tmp2 + tmp673 - tmp1*tmp19*r_r;
     const Scalar tmp715 = tmp667 + tmp672 + tmp714;
-    const Scalar tmp766 = sin(theta_f);
-    const Scalar tmp767 = cos(theta_f);
+    const Scalar tmp766 = sin_of[5];
+    const Scalar tmp767 = cos_of[5];
     const Scalar tmp768 = tmp428*tmp766 - tmp445*tmp767;
     const Scalar tmp769 = -tmp768;
     const Scalar tmp776 = tmp445*c;
@@ -12503,19 +12620,22 @@ struct WhippleBicycle {
     const Scalar phi = q(3);
     const Scalar theta = q(4);
     const Scalar delta = q(6);
+    const Scalar sin_cos_of[3] = {phi, theta, delta};
+    Scalar sin_of[3], cos_of[3];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar w = Scalar(params.w);
     const Scalar c = Scalar(params.c);
     const Scalar lam = Scalar(params.lam);
     const Scalar r_r = Scalar(params.r_r);
     const Scalar r_f = Scalar(params.r_f);
-    const Scalar tmp1 = sin(phi);
-    const Scalar tmp5 = cos(phi);
-    const Scalar tmp16 = sin(theta);
-    const Scalar tmp19 = cos(theta);
+    const Scalar tmp1 = sin_of[0];
+    const Scalar tmp5 = cos_of[0];
+    const Scalar tmp16 = sin_of[1];
+    const Scalar tmp19 = cos_of[1];
     const Scalar tmp64 = tmp5*r_r;
     const Scalar tmp65 = tmp16*tmp5;
     const Scalar tmp66 = tmp19*tmp5;
-    const Scalar tmp395 = sin(delta);
+    const Scalar tmp395 = sin_of[2];
     const Scalar tmp396 = sin(lam);
     const Scalar tmp397 = (tmp396*tmp396);
     const Scalar tmp398 = cos(lam);
@@ -12525,7 +12645,7 @@ struct WhippleBicycle {
     const Scalar tmp402 = tmp395*tmp401;
     const Scalar tmp405 = tmp396*tmp402;
     const Scalar tmp407 = (Scalar(1)/tmp400);
-    const Scalar tmp408 = cos(delta);
+    const Scalar tmp408 = cos_of[2];
     const Scalar tmp409 = Scalar(1) - tmp408;
     const Scalar tmp410 = tmp407*tmp409;
     const Scalar tmp411 = tmp399*tmp410;
@@ -12584,23 +12704,26 @@ struct WhippleBicycle {
     const Scalar phi = q(3);
     const Scalar theta = q(4);
     const Scalar delta = q(6);
+    const Scalar sin_cos_of[3] = {phi, theta, delta};
+    Scalar sin_of[3], cos_of[3];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar w = Scalar(params.w);
     const Scalar c = Scalar(params.c);
     const Scalar lam = Scalar(params.lam);
     const Scalar r_r = Scalar(params.r_r);
     const Scalar r_f = Scalar(params.r_f);
-    const Scalar tmp1 = sin(phi);
+    const Scalar tmp1 = sin_of[0];
     const Scalar tmp2 = tmp1*r_r;
-    const Scalar tmp5 = cos(phi);
-    const Scalar tmp16 = sin(theta);
-    const Scalar tmp19 = cos(theta);
+    const Scalar tmp5 = cos_of[0];
+    const Scalar tmp16 = sin_of[1];
+    const Scalar tmp19 = cos_of[1];
     const Scalar tmp64 = tmp5*r_r;
     const Scalar tmp65 = tmp16*tmp5;
     const Scalar tmp66 = tmp19*tmp5;
     const Scalar tmp144 = -tmp2;
     const Scalar tmp145 = tmp1*tmp16;
     const Scalar tmp146 = tmp1*tmp19;
-    const Scalar tmp395 = sin(delta);
+    const Scalar tmp395 = sin_of[2];
     const Scalar tmp396 = sin(lam);
     const Scalar tmp397 = (tmp396*tmp396);
     const Scalar tmp398 = cos(lam);
@@ -12610,7 +12733,7 @@ struct WhippleBicycle {
     const Scalar tmp402 = tmp395*tmp401;
     const Scalar tmp405 = tmp396*tmp402;
     const Scalar tmp407 = (Scalar(1)/tmp400);
-    const Scalar tmp408 = cos(delta);
+    const Scalar tmp408 = cos_of[2];
     const Scalar tmp409 = Scalar(1) - tmp408;
     const Scalar tmp410 = tmp407*tmp409;
     const Scalar tmp411 = tmp399*tmp410;
@@ -12716,26 +12839,29 @@ struct WhippleBicycle {
     const Scalar theta_r = q(5);
     const Scalar delta = q(6);
     const Scalar theta_f = q(7);
+    const Scalar sin_cos_of[6] = {psi, phi, theta, theta_r, delta, theta_f};
+    Scalar sin_of[6], cos_of[6];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar w = Scalar(params.w);
     const Scalar c = Scalar(params.c);
     const Scalar lam = Scalar(params.lam);
     const Scalar r_r = Scalar(params.r_r);
     const Scalar r_f = Scalar(params.r_f);
-    const Scalar tmp0 = sin(psi);
-    const Scalar tmp1 = sin(phi);
+    const Scalar tmp0 = sin_of[0];
+    const Scalar tmp1 = sin_of[1];
     const Scalar tmp2 = tmp1*r_r;
     const Scalar tmp3 = tmp0*tmp2;
-    const Scalar tmp5 = cos(phi);
+    const Scalar tmp5 = cos_of[1];
     const Scalar tmp6 = tmp0*tmp5;
-    const Scalar tmp15 = cos(theta_r);
-    const Scalar tmp16 = sin(theta);
-    const Scalar tmp17 = cos(psi);
+    const Scalar tmp15 = cos_of[3];
+    const Scalar tmp16 = sin_of[2];
+    const Scalar tmp17 = cos_of[0];
     const Scalar tmp18 = tmp16*tmp17;
-    const Scalar tmp19 = cos(theta);
+    const Scalar tmp19 = cos_of[2];
     const Scalar tmp20 = tmp0*tmp19;
     const Scalar tmp21 = tmp1*tmp20;
     const Scalar tmp22 = tmp18 + tmp21;
-    const Scalar tmp23 = sin(theta_r);
+    const Scalar tmp23 = sin_of[3];
     const Scalar tmp24 = tmp17*tmp19;
     const Scalar tmp25 = tmp0*tmp16;
     const Scalar tmp26 = tmp1*tmp25;
@@ -12804,7 +12930,7 @@ struct WhippleBicycle {
     const Scalar tmp147 = tmp145*tmp15 + tmp146*tmp23;
     const Scalar tmp148 = -tmp147;
     const Scalar tmp150 = tmp145*tmp23 - tmp146*tmp15;
-    const Scalar tmp395 = sin(delta);
+    const Scalar tmp395 = sin_of[4];
     const Scalar tmp396 = sin(lam);
     const Scalar tmp397 = (tmp396*tmp396);
     const Scalar tmp398 = cos(lam);
@@ -12817,7 +12943,7 @@ struct WhippleBicycle {
     const Scalar tmp405 = tmp396*tmp402;
     const Scalar tmp406 = tmp22*tmp405;
     const Scalar tmp407 = (Scalar(1)/tmp400);
-    const Scalar tmp408 = cos(delta);
+    const Scalar tmp408 = cos_of[4];
     const Scalar tmp409 = Scalar(1) - tmp408;
     const Scalar tmp410 = tmp407*tmp409;
     const Scalar tmp411 = tmp399*tmp410;
@@ -12964,8 +13090,8 @@ struct WhippleBicycle {
     const Scalar tmp675 = tmp146*tmp405;
     const Scalar tmp676 = tmp145*tmp439;
     const Scalar tmp677 = -tmp675 - tmp676 + tmp413*tmp5;
-    const Scalar tmp766 = sin(theta_f);
-    const Scalar tmp767 = cos(theta_f);
+    const Scalar tmp766 = sin_of[5];
+    const Scalar tmp767 = cos_of[5];
     const Scalar tmp768 = tmp428*tmp766 - tmp445*tmp767;
     const Scalar tmp769 = -tmp768;
     const Scalar tmp776 = tmp445*c;
@@ -13152,26 +13278,29 @@ struct WhippleBicycle {
     const Scalar theta_r_dot = v(5);
     const Scalar delta_dot = v(6);
     const Scalar theta_f_dot = v(7);
+    const Scalar sin_cos_of[6] = {psi, phi, theta, theta_r, delta, theta_f};
+    Scalar sin_of[6], cos_of[6];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar w = Scalar(params.w);
     const Scalar c = Scalar(params.c);
     const Scalar lam = Scalar(params.lam);
     const Scalar r_r = Scalar(params.r_r);
     const Scalar r_f = Scalar(params.r_f);
-    const Scalar tmp0 = sin(psi);
-    const Scalar tmp1 = sin(phi);
+    const Scalar tmp0 = sin_of[0];
+    const Scalar tmp1 = sin_of[1];
     const Scalar tmp2 = tmp1*r_r;
     const Scalar tmp3 = tmp0*tmp2;
-    const Scalar tmp5 = cos(phi);
+    const Scalar tmp5 = cos_of[1];
     const Scalar tmp6 = tmp0*tmp5;
-    const Scalar tmp15 = cos(theta_r);
-    const Scalar tmp16 = sin(theta);
-    const Scalar tmp17 = cos(psi);
+    const Scalar tmp15 = cos_of[3];
+    const Scalar tmp16 = sin_of[2];
+    const Scalar tmp17 = cos_of[0];
     const Scalar tmp18 = tmp16*tmp17;
-    const Scalar tmp19 = cos(theta);
+    const Scalar tmp19 = cos_of[2];
     const Scalar tmp20 = tmp0*tmp19;
     const Scalar tmp21 = tmp1*tmp20;
     const Scalar tmp22 = tmp18 + tmp21;
-    const Scalar tmp23 = sin(theta_r);
+    const Scalar tmp23 = sin_of[3];
     const Scalar tmp24 = tmp17*tmp19;
     const Scalar tmp25 = tmp0*tmp16;
     const Scalar tmp26 = tmp1*tmp25;
@@ -13241,7 +13370,7 @@ struct WhippleBicycle {
     const Scalar tmp147 = tmp145*tmp15 + tmp146*tmp23;
     const Scalar tmp148 = -tmp147;
     const Scalar tmp150 = tmp145*tmp23 - tmp146*tmp15;
-    const Scalar tmp395 = sin(delta);
+    const Scalar tmp395 = sin_of[4];
     const Scalar tmp396 = sin(lam);
     const Scalar tmp397 = (tmp396*tmp396);
     const Scalar tmp398 = cos(lam);
@@ -13254,7 +13383,7 @@ struct WhippleBicycle {
     const Scalar tmp405 = tmp396*tmp402;
     const Scalar tmp406 = tmp22*tmp405;
     const Scalar tmp407 = (Scalar(1)/tmp400);
-    const Scalar tmp408 = cos(delta);
+    const Scalar tmp408 = cos_of[4];
     const Scalar tmp409 = Scalar(1) - tmp408;
     const Scalar tmp410 = tmp407*tmp409;
     const Scalar tmp411 = tmp399*tmp410;
@@ -13401,8 +13530,8 @@ struct WhippleBicycle {
     const Scalar tmp675 = tmp146*tmp405;
     const Scalar tmp676 = tmp145*tmp439;
     const Scalar tmp677 = -tmp675 - tmp676 + tmp413*tmp5;
-    const Scalar tmp766 = sin(theta_f);
-    const Scalar tmp767 = cos(theta_f);
+    const Scalar tmp766 = sin_of[5];
+    const Scalar tmp767 = cos_of[5];
     const Scalar tmp768 = tmp428*tmp766 - tmp445*tmp767;
     const Scalar tmp769 = -tmp768;
     const Scalar tmp776 = tmp445*c;
@@ -13589,27 +13718,30 @@ struct WhippleBicycle {
     const Scalar theta_r_dot = v(5);
     const Scalar delta_dot = v(6);
     const Scalar theta_f_dot = v(7);
+    const Scalar sin_cos_of[6] = {psi, phi, theta, theta_r, delta, theta_f};
+    Scalar sin_of[6], cos_of[6];
+    gencoord_kernel_math::sin_cos(sin_cos_of, sin_of, cos_of);  // in vector registers
     const Scalar w = Scalar(params.w);
     const Scalar c = Scalar(params.c);
     const Scalar lam = Scalar(params.lam);
     const Scalar r_r = Scalar(params.r_r);
     const Scalar r_f = Scalar(params.r_f);
-    const Scalar tmp0 = sin(psi);
-    const Scalar tmp1 = sin(phi);
+    const Scalar tmp0 = sin_of[0];
+    const Scalar tmp1 = sin_of[1];
     const Scalar tmp2 = tmp1*r_r;
     const Scalar tmp3 = tmp0*tmp2;
     const Scalar tmp4 = -tmp3;
-    const Scalar tmp5 = cos(phi);
+    const Scalar tmp5 = cos_of[1];
     const Scalar tmp6 = tmp0*tmp5;
-    const Scalar tmp15 = cos(theta_r);
-    const Scalar tmp16 = sin(theta);
-    const Scalar tmp17 = cos(psi);
+    const Scalar tmp15 = cos_of[3];
+    const Scalar tmp16 = sin_of[2];
+    const Scalar tmp17 = cos_of[0];
     const Scalar tmp18 = tmp16*tmp17;
-    const Scalar tmp19 = cos(theta);
+    const Scalar tmp19 = cos_of[2];
     const Scalar tmp20 = tmp0*tmp19;
     const Scalar tmp21 = tmp1*tmp20;
     const Scalar tmp22 = tmp18 + tmp21;
-    const Scalar tmp23 = sin(theta_r);
+    const Scalar tmp23 = sin_of[3];
     const Scalar tmp24 = tmp17*tmp19;
     const Scalar tmp25 = tmp0*tmp16;
     const Scalar tmp26 = tmp1*tmp25;
@@ -13677,7 +13809,7 @@ struct WhippleBicycle {
     const Scalar tmp148 = -tmp147;
     const Scalar tmp150 = tmp145*tmp23 - tmp146*tmp15;
     const Scalar tmp163 = -tmp64;
-    const Scalar tmp395 = sin(delta);
+    const Scalar tmp395 = sin_of[4];
     const Scalar tmp396 = sin(lam);
     const Scalar tmp397 = (tmp396*tmp396);
     const Scalar tmp398 = cos(lam);
@@ -13690,7 +13822,7 @@ struct WhippleBicycle {
     const Scalar tmp405 = tmp396*tmp402;
     const Scalar tmp406 = tmp22*tmp405;
     const Scalar tmp407 = (Scalar(1)/tmp400);
-    const Scalar tmp408 = cos(delta);
+    const Scalar tmp408 = cos_of[4];
     const Scalar tmp409 = Scalar(1) - tmp408;
     const Scalar tmp410 = tmp407*tmp409;
     const Scalar tmp411 = tmp399*tmp410;
@@ -13834,8 +13966,8 @@ struct WhippleBicycle {
     const Scalar tmp677 = -tmp675 - tmp676 + tmp413*tmp5;
     const Scalar tmp688 = tmp494 - tmp493;
     const Scalar tmp704 = tmp115 + tmp623 - tmp622;
-    const Scalar tmp766 = sin(theta_f);
-    const Scalar tmp767 = cos(theta_f);
+    const Scalar tmp766 = sin_of[5];
+    const Scalar tmp767 = cos_of[5];
     const Scalar tmp768 = tmp428*tmp766 - tmp445*tmp767;
     const Scalar tmp769 = -tmp768;
     const Scalar tmp780 = tmp428*tmp767 + tmp445*tmp766;

@@ -17,6 +17,7 @@ class InputsRead:
     parameters: list[str]                  # parameters read from params
     used_inputs: set[str]                  # the kernel inputs its expressions read
     using: list[str]                       # math functions to bring in with using std::
+    sin_cos: list[str]                     # coordinates whose sin and cos one call gives
 
 
 @dataclass

@@ -14,6 +14,7 @@ import sympy as sp
 from gencoord.cxx.composed import composed_body
 from gencoord.cxx.printer import math_functions_used
 from gencoord.cxx.kernel_code import KernelCode, KernelPart
+from gencoord.cxx.sin_cos import batch_sin_cos
 from gencoord.derive.kernel_set import Block, Kernel
 from gencoord.cxx.lvalues import data_pointer, element, lvalue, target, writes_through_pointer
 from gencoord.optimize.state import OptimizeOptions, Optimization
@@ -87,7 +88,7 @@ class _KernelWriter:
                            [element(block, i, j) for block, i, j, _ in outputs])
 
     def inputs_read(self, free: set[sp.Symbol]) -> dict:
-        """The InputsRead fields (but `using`) of code with these free symbols."""
+        """The InputsRead fields (but `using` and `sin_cos`) of code with these free symbols."""
         names, inputs = self.work.names, self.work.inputs
 
         def indexed(index: dict[sp.Symbol, int]) -> list[tuple[str, int]]:
@@ -110,9 +111,12 @@ class _KernelWriter:
                 lines.append((False, s.elements[k - len(s.order)], s.code[k][1]))
             if k in plan.stores:
                 lines.append((False, f"carried[{plan.stores[k]}]", s.code[k][0]))
+        inputs = self.inputs_read(set().union(*(s.free[k] for k in plan.statements)))
+        sin_cos, codes = batch_sin_cos([name for name, _ in inputs["coordinates"]],
+                                       [code for *_, code in lines])
+        lines = [(defines, left, code) for (defines, left, _), code in zip(lines, codes)]
         return KernelPart(
-            **self.inputs_read(set().union(*(s.free[k] for k in plan.statements))),
-            using=math_functions_used(s.code[k][1] for k in plan.statements),
+            **inputs, using=math_functions_used(codes), sin_cos=sin_cos,
             lines=lines, uses_carried=bool(plan.loads or plan.stores),
             outputs={s.outputs[k - len(s.order)][0].name for k in plan.statements
                      if k >= len(s.order)})
@@ -140,10 +144,13 @@ class _KernelWriter:
                                   if block.name in part.outputs
                                   and writes_through_pointer(block)]
         printed = self.printed
+        inputs = self.inputs_read(set().union(*s.free))
+        sin_cos, codes = ([], [code for _, code in s.code]) if parts else batch_sin_cos(
+            [name for name, _ in inputs["coordinates"]], [code for _, code in s.code])
+        code = [(left, text) for (left, _), text in zip(s.code, codes)]
         return KernelCode(
-            kernel=kernel, **self.inputs_read(set().union(*s.free)),
-            using=math_functions_used(code for _, code in s.code),
-            intermediates=s.code[:len(s.order)], assignments=s.code[len(s.order):],
+            kernel=kernel, **inputs, using=math_functions_used(codes), sin_cos=sin_cos,
+            intermediates=code[:len(s.order)], assignments=code[len(s.order):],
             mirrors=mirrors, zero_filled=[target(block) for block in zero_filled],
             ops=sum(printed.temporary_ops[k] for k in s.order)
             + sum(printed.ops(expr) for *_, expr in s.outputs),
@@ -156,7 +163,7 @@ def looped_kernel_code(kernel: Kernel, ops_of: dict[str, int]) -> KernelCode:
     assert kernel.composed is not None, kernel.name
     ops = sum(ops_of[name] * times for name, times in kernel.composed.call_counts())
     return KernelCode(kernel=kernel, coordinates=[], rates=[], accelerations=[],
-                      parameters=[], used_inputs=set(kernel.inputs), using=[],
+                      parameters=[], used_inputs=set(kernel.inputs), using=[], sin_cos=[],
                       intermediates=[], assignments=[], mirrors=[],
                       ops=ops, parts=[], carried_slots=0, body=composed_body(kernel))
 

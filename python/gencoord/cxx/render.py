@@ -254,6 +254,8 @@ def render_model(charts: list, name: str, docstring: str, source_path: str, head
                    chart_names=[c.model.chart for c in charts]) if len(charts) > 1 else None,
         return_docs=_RETURN_DOCS,
         any_split=any(k.parts for c in charts for k in c.optimized.kernels),
+        any_sin_cos=any(k.sin_cos or any(p.sin_cos for p in k.parts)
+                        for c in charts for k in c.optimized.kernels),
         heap_matrix=any(needs_heap_matrix(chart["types"]) for chart in chart_contexts),
         translation_units=translation_units,
         instantiation_files=[instantiation_file_name(name, g) for g in range(translation_units)],

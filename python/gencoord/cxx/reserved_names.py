@@ -37,12 +37,15 @@ def generated_in_kernels() -> frozenset[str]:
     """What the generator prints into kernel bodies besides the templates' own text: the
     kernels' inputs and outputs (signatures.py, derive/kernel_set.py), the raw output
     pointers of kernel parts (lvalues.data_pointer), the math functions (printer.py), the
-    parts' `carried` array and the namespaces and scalar type the printed code names."""
+    locals of the batched sines and cosines (sin_cos.py), the parts' `carried` array and the
+    namespaces and scalar type the printed code names."""
     # imported here: those modules import SymPy, and validate.py imports this one
     from gencoord.cxx.printer import MATH_FUNCTIONS
     from gencoord.cxx.signatures import INPUT_TYPES
+    from gencoord.cxx.sin_cos import SIN_COS_LOCALS
     return frozenset({*INPUT_TYPES, "params", *_KERNEL_OUTPUTS,
                       *(f"{name}_data" for name in _KERNEL_OUTPUTS), *MATH_FUNCTIONS,
+                      *SIN_COS_LOCALS,
                       "carried", "Scalar", "std", "Eigen"})
 
 

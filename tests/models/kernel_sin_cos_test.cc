@@ -1,0 +1,20 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// The generated headers' batched sines and cosines, as header-only models evaluate them (the
+// baseline instruction set: two lanes a call on x86-64): within 4 ulp of std::sin and
+// std::cos.
+#include <gtest/gtest.h>
+
+#include "kernel_sin_cos.hpp"
+
+namespace gencoord::testing {
+namespace {
+
+TEST(KernelSinCos, WithinFourUlpAtTheBaselineInstructionSet) {
+  const KernelSinCosError worst = worst_kernel_sin_cos(3000);
+  RecordProperty("worst_ulps", static_cast<int>(worst.ulps));
+  EXPECT_LE(worst.ulps, 4);
+  EXPECT_LE(worst.absolute, 1e-15);
+}
+
+}  // namespace
+}  // namespace gencoord::testing
