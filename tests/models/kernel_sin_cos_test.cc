@@ -14,6 +14,10 @@ TEST(KernelSinCos, WithinFourUlpAtTheBaselineInstructionSet) {
   RecordProperty("worst_ulps", static_cast<int>(worst.ulps));
   EXPECT_LE(worst.ulps, 4);
   EXPECT_LE(worst.absolute, 1e-15);
+#ifdef GENCOORD_KERNEL_LIBMVEC
+  // libmvec rounds differently from libm somewhere: the vector path is the one taken
+  EXPECT_GT(worst.inexact, 0);
+#endif
 }
 
 }  // namespace
