@@ -29,9 +29,11 @@ class BatchSinCosTest(unittest.TestCase):
         self.assertEqual(batched[6:], ["sin_of[0]", "cos_of[1]"])
 
     def test_fewer_than_the_minimum_stay_calls(self):
-        self.assertEqual(MIN_ARGUMENTS, 2)
-        codes = ["sin(q0)*cos(q0)", "sin(q0 + q1)"]
-        self.assertEqual(batch_sin_cos(["q0", "q1"], codes), ([], codes))
+        fewer = [f"q{k}" for k in range(MIN_ARGUMENTS - 1)]
+        codes = [f"sin({name})*cos({name})" for name in fewer] + ["sin(q8 + q9)"]
+        self.assertEqual(batch_sin_cos(fewer + ["q8", "q9"], codes), ([], codes))
+        enough = fewer + ["q8"]
+        self.assertEqual(batch_sin_cos(enough, codes + ["cos(q8)"])[0], enough)
 
 
 class HeaderTest(unittest.TestCase):

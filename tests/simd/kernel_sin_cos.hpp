@@ -8,21 +8,13 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <cstring>
 #include <random>
 #include <utility>  // std::integer_sequence
 
-#include "generated/iiwa14.hpp"
+#include "generated/double_pendulum.hpp"  // a small header that defines the helper
+#include "ulp_distance.hpp"
 
 namespace gencoord::testing {
-
-// distance in units in the last place between two finite doubles of the same sign
-inline std::int64_t kernel_sin_cos_ulps(double a, double b) {
-  std::int64_t x, y;
-  std::memcpy(&x, &a, sizeof x);
-  std::memcpy(&y, &b, sizeof y);
-  return x > y ? x - y : y - x;
-}
 
 /// The worst distance so far, in ulp and absolute, from std::sin and std::cos (near a zero
 /// of sin or cos an ulp of the result is tiny: the ulp count skips results below 1e-3).
@@ -42,8 +34,8 @@ void check_kernel_sin_cos(std::mt19937& rng, int rounds, KernelSinCosError* wors
     gencoord_kernel_math::sin_cos(x, s, c);
     for (int i = 0; i < n; ++i) {
       const double fs = std::sin(x[i]), fc = std::cos(x[i]);
-      if (std::abs(fs) > 1e-3) worst->ulps = std::max(worst->ulps, kernel_sin_cos_ulps(s[i], fs));
-      if (std::abs(fc) > 1e-3) worst->ulps = std::max(worst->ulps, kernel_sin_cos_ulps(c[i], fc));
+      if (std::abs(fs) > 1e-3) worst->ulps = std::max(worst->ulps, ulp_distance(s[i], fs));
+      if (std::abs(fc) > 1e-3) worst->ulps = std::max(worst->ulps, ulp_distance(c[i], fc));
       worst->absolute = std::max({worst->absolute, std::abs(s[i] - fs), std::abs(c[i] - fc)});
       worst->inexact += (s[i] != fs) + (c[i] != fc);
     }

@@ -8,7 +8,6 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
-#include <cstring>
 #include <limits>
 #include <random>
 #include <vector>
@@ -24,17 +23,12 @@
 #include "generated/heavy_top.hpp"
 #include "generated/iiwa14.hpp"
 #include "generated/n_link_chain_10.hpp"
+#include "ulp_distance.hpp"
 
 namespace gencoord {
 namespace {
 
-// distance in units in the last place between two finite doubles of the same sign
-std::int64_t ulps(double a, double b) {
-  std::int64_t x, y;
-  std::memcpy(&x, &a, sizeof x);
-  std::memcpy(&y, &b, sizeof y);
-  return x > y ? x - y : y - x;
-}
+using gencoord::testing::ulp_distance;
 
 TEST(Pack, SinAndCosAreWithinFourUlp) {
   std::mt19937 rng(3);
@@ -46,8 +40,8 @@ TEST(Pack, SinAndCosAreWithinFourUlp) {
     for (int k = 0; k < 4; ++k) {
       // near a zero an ulp of the result is tiny: compare there to an ulp of 1e-16
       const double fs = std::sin(x[k]), fc = std::cos(x[k]);
-      if (std::abs(fs) > 1e-3) worst = std::max(worst, ulps(s[k], fs));
-      if (std::abs(fc) > 1e-3) worst = std::max(worst, ulps(c[k], fc));
+      if (std::abs(fs) > 1e-3) worst = std::max(worst, ulp_distance(s[k], fs));
+      if (std::abs(fc) > 1e-3) worst = std::max(worst, ulp_distance(c[k], fc));
       EXPECT_NEAR(s[k], fs, 1e-15);
       EXPECT_NEAR(c[k], fc, 1e-15);
     }
@@ -70,12 +64,12 @@ TEST(Pack, TanhExpAndLogAreWithinFourUlp) {
     const Pack<4> positive = Pack<4>::generate([&](int k) { return std::abs(x[k]); });
     const Pack<4> t = tanh(x), e = exp(x), l = log(positive);
     for (int k = 0; k < 4; ++k) {
-      worst = std::max(worst, ulps(t[k], std::tanh(x[k])));
-      worst = std::max(worst, ulps(e[k], std::exp(x[k])));
+      worst = std::max(worst, ulp_distance(t[k], std::tanh(x[k])));
+      worst = std::max(worst, ulp_distance(e[k], std::exp(x[k])));
       // near log's zero an ulp of the result is tiny: compare there to an ulp of 1e-16
       const double fl = std::log(positive[k]);
       if (std::abs(fl) > 1e-3) {
-        worst = std::max(worst, ulps(l[k], fl));
+        worst = std::max(worst, ulp_distance(l[k], fl));
       } else {
         EXPECT_NEAR(l[k], fl, 1e-16);
       }
@@ -99,18 +93,18 @@ TEST(Pack, EveryOtherFunctionOfTheKernelsIsWithinFourUlpOfTheScalarOne) {
   const Pack<4> x = Pack<4>::generate([](int k) { return 0.15 * k + 0.2; });  // in (0, 1)
   const Pack<4> y = Pack<4>::generate([](int k) { return 1.5 - 0.4 * k; });
   for (int k = 0; k < 4; ++k) {
-    EXPECT_LE(ulps(tan(x)[k], std::tan(x[k])), 4);
-    EXPECT_LE(ulps(asin(x)[k], std::asin(x[k])), 4);
-    EXPECT_LE(ulps(acos(x)[k], std::acos(x[k])), 4);
-    EXPECT_LE(ulps(atan(x)[k], std::atan(x[k])), 4);
-    EXPECT_LE(ulps(sinh(x)[k], std::sinh(x[k])), 4);
-    EXPECT_LE(ulps(cosh(x)[k], std::cosh(x[k])), 4);
-    EXPECT_LE(ulps(tanh(y)[k], std::tanh(y[k])), 4);
-    EXPECT_LE(ulps(exp(y)[k], std::exp(y[k])), 4);
-    EXPECT_LE(ulps(log(x)[k], std::log(x[k])), 4);
-    EXPECT_LE(ulps(cbrt(y)[k], std::cbrt(y[k])), 4);
-    EXPECT_LE(ulps(atan2(y, x)[k], std::atan2(y[k], x[k])), 4);
-    EXPECT_LE(ulps(pow(x, y)[k], std::pow(x[k], y[k])), 4);
+    EXPECT_LE(ulp_distance(tan(x)[k], std::tan(x[k])), 4);
+    EXPECT_LE(ulp_distance(asin(x)[k], std::asin(x[k])), 4);
+    EXPECT_LE(ulp_distance(acos(x)[k], std::acos(x[k])), 4);
+    EXPECT_LE(ulp_distance(atan(x)[k], std::atan(x[k])), 4);
+    EXPECT_LE(ulp_distance(sinh(x)[k], std::sinh(x[k])), 4);
+    EXPECT_LE(ulp_distance(cosh(x)[k], std::cosh(x[k])), 4);
+    EXPECT_LE(ulp_distance(tanh(y)[k], std::tanh(y[k])), 4);
+    EXPECT_LE(ulp_distance(exp(y)[k], std::exp(y[k])), 4);
+    EXPECT_LE(ulp_distance(log(x)[k], std::log(x[k])), 4);
+    EXPECT_LE(ulp_distance(cbrt(y)[k], std::cbrt(y[k])), 4);
+    EXPECT_LE(ulp_distance(atan2(y, x)[k], std::atan2(y[k], x[k])), 4);
+    EXPECT_LE(ulp_distance(pow(x, y)[k], std::pow(x[k], y[k])), 4);
   }
 }
 

@@ -1,10 +1,9 @@
 # SPDX-License-Identifier: BSD-3-Clause
 """Sines and cosines of a kernel's coordinates, all in one call.
 
-Straight-line code takes `sin` and `cos` of most coordinates of a tree of revolute joints.
-As libm calls (about 6 ns each, for both functions of one argument) they would take a quarter
-of the 7-joint arm's inverse dynamics, and a call may overwrite every vector register, which
-costs the code around it more. A kernel or part that takes them of two or more coordinates gets them
+Straight-line code takes `sin` and `cos` of most coordinates of a tree of revolute joints,
+one libm call per argument, a sizeable share of a small kernel (docs/performance.md,
+section 6). A kernel or part that takes them of two or more coordinates gets them
 instead from one call of the header's `gencoord_kernel_math::sin_cos` at its start, which
 evaluates them for double in vector registers through glibc's vector math library
 (sin_cos.j2). The code's `sin(name)` and `cos(name)` of those coordinates become `sin_of[i]`
