@@ -15,7 +15,8 @@
 
 namespace gencoord::deformable {
 
-namespace {
+// named, not anonymous: a member of ExplicitStepper<Dim>::Kept, which has external linkage
+namespace detail {
 
 // What the validation and the CFL limit depend on, short of every value: counts, events and
 // the few settings a user changes between steps.
@@ -64,12 +65,12 @@ struct Signature {
   }
 };
 
-}  // namespace
+}  // namespace detail
 
 template <int Dim>
 struct ExplicitStepper<Dim>::Kept {
   ExplicitOptions options;
-  std::optional<Signature<Dim>> validated;  // the object as last validated
+  std::optional<detail::Signature<Dim>> validated;  // the object as last validated
   double limit = 0.0;
   // stable_step_limit() and cfl_limit() when it was computed, for plasticity's steps
   double estimated = 0.0, conservative = 0.0;
@@ -102,7 +103,7 @@ template <int Dim>
 void ExplicitStepper<Dim>::step(MassSpringSystem<Dim>& s, double dt) {
   validate_time_step(dt);
   Kept& k = *kept_;
-  Signature<Dim> now(s);
+  detail::Signature<Dim> now(s);
   const bool plastic = std::isfinite(s.inelastic.yield_strain);
   if (!k.validated || !(*k.validated == now)) {
     const bool fractured = k.validated && k.validated->same_but_fractures(now);

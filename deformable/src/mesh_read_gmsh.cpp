@@ -16,8 +16,6 @@ namespace {
 using detail::RawMesh;
 using detail::TextLines;
 
-std::string str(long long n) { return std::to_string(n); }
-
 // The nodes of a .msh by tag, before the elements say which are used.
 struct GmshNodes {
   std::vector<Eigen::Vector3d> x;
@@ -31,8 +29,8 @@ void add_node(TextLines& lines, GmshNodes& nodes, long long tag, const Eigen::Ve
               const std::string& section) {
   const auto [it, inserted] = nodes.index.emplace(tag, static_cast<int>(nodes.x.size()));
   if (!inserted) {
-    lines.fail(section + ": node tag " + str(tag) + " is defined twice (first on line " +
-               str(nodes.lines[it->second]) + "); node tags must be unique");
+    lines.fail(section + ": node tag " + std::to_string(tag) + " is defined twice (first on line " +
+               std::to_string(nodes.lines[it->second]) + "); node tags must be unique");
   }
   nodes.x.push_back(x);
   nodes.tags.push_back(tag);
@@ -44,27 +42,27 @@ void expect_end(TextLines& lines, const std::string& section, long long count, i
   const std::string end = "$End" + section.substr(1);
   lines.expect_next("inside " + section + ", before " + end);
   if (lines.words()[0] != end) {
-    lines.fail(section + ": expected " + end + " after the " + str(count) +
-               " entries announced on line " + str(count_line) + ", got '" + lines.words()[0] +
-               "'; the count and the entries disagree");
+    lines.fail(section + ": expected " + end + " after the " + std::to_string(count) +
+               " entries announced on line " + std::to_string(count_line) + ", got '" +
+               lines.words()[0] + "'; the count and the entries disagree");
   }
 }
 
 // Reads the next entry line of a section, refusing a section that ends before its count.
 void next_entry(TextLines& lines, const std::string& section, long long read, long long count,
                 int count_line) {
-  lines.expect_next("inside " + section + " after " + str(read) + " of its " + str(count) +
-                    " entries");
+  lines.expect_next("inside " + section + " after " + std::to_string(read) + " of its " +
+                    std::to_string(count) + " entries");
   if (lines.words()[0][0] == '$') {
-    lines.fail(section + ": '" + lines.words()[0] + "' after " + str(read) + " entries, but line " +
-               str(count_line) + " announces " + str(count) +
-               "; the count and the entries disagree");
+    lines.fail(section + ": '" + lines.words()[0] + "' after " + std::to_string(read) +
+               " entries, but line " + std::to_string(count_line) + " announces " +
+               std::to_string(count) + "; the count and the entries disagree");
   }
 }
 
 long long count_at(TextLines& lines, size_t k, const std::string& what) {
   const long long n = lines.integer(k, what);
-  if (n < 0) lines.fail(what + ": " + str(n) + " is negative");
+  if (n < 0) lines.fail(what + ": " + std::to_string(n) + " is negative");
   return n;
 }
 
@@ -101,8 +99,9 @@ void read_nodes_v4(TextLines& lines, GmshNodes& nodes) {
     const bool parametric = lines.integer(2, "$Nodes block: parametric") != 0;
     const long long in_block = count_at(lines, 3, "$Nodes block: number of nodes");
     if (in_block > count - read) {  // read <= count: no overflow
-      lines.fail("$Nodes block: " + str(in_block) + " more nodes make more than the " + str(count) +
-                 " announced on line " + str(count_line) + "; the count and the entries disagree");
+      lines.fail("$Nodes block: " + std::to_string(in_block) + " more nodes make more than the " +
+                 std::to_string(count) + " announced on line " + std::to_string(count_line) +
+                 "; the count and the entries disagree");
     }
     // the block lists its tags first, then their coordinates in the same order
     std::vector<long long> tags;
@@ -120,8 +119,8 @@ void read_nodes_v4(TextLines& lines, GmshNodes& nodes) {
     read += in_block;
   }
   if (read != count) {
-    lines.fail_at(count_line, "$Nodes: announces " + str(count) + " nodes, but its " + str(blocks) +
-                                  " blocks hold " + str(read));
+    lines.fail_at(count_line, "$Nodes: announces " + std::to_string(count) + " nodes, but its " +
+                                  std::to_string(blocks) + " blocks hold " + std::to_string(read));
   }
   expect_end(lines, "$Nodes", count, count_line);
 }
@@ -143,8 +142,8 @@ struct ElementReader {
       const long long node = lines.integer(first_node + a, "$Elements: node tag");
       const auto it = nodes.index.find(node);
       if (it == nodes.index.end()) {
-        lines.fail("$Elements: element " + str(tag) + " refers to node tag " + str(node) +
-                       ", which $Nodes does not define",
+        lines.fail("$Elements: element " + std::to_string(tag) + " refers to node tag " +
+                       std::to_string(node) + ", which $Nodes does not define",
                    static_cast<int>(raw.elements.size()), -1);
       }
       el[a] = it->second;
@@ -175,12 +174,12 @@ void read_elements_v2(ElementReader<Dim>& r) {
     }
     const long long words = static_cast<long long>(lines.words().size());
     if (tags > words) {  // before 3 + tags + ..., which could overflow
-      lines.fail("$Elements: " + str(tags) + " tags announced, but the line has " + str(words) +
-                 " numbers in all");
+      lines.fail("$Elements: " + std::to_string(tags) + " tags announced, but the line has " +
+                 std::to_string(words) + " numbers in all");
     }
-    lines.expect_words(
-        3 + tags + Dim + 1, "$Elements",
-        "tag, type, number of tags, " + str(tags) + " tags, " + str(Dim + 1) + " node tags");
+    lines.expect_words(3 + tags + Dim + 1, "$Elements",
+                       "tag, type, number of tags, " + std::to_string(tags) + " tags, " +
+                           std::to_string(Dim + 1) + " node tags");
     r.add(3 + static_cast<size_t>(tags));  // the node tags follow the element's tags
   }
   expect_end(lines, "$Elements", count, count_line);
@@ -202,22 +201,24 @@ void read_elements_v4(ElementReader<Dim>& r) {
     const long long type = lines.integer(2, "$Elements block: element type");
     const long long in_block = count_at(lines, 3, "$Elements block: number of elements");
     if (in_block > count - read) {  // read <= count: no overflow
-      lines.fail("$Elements block: " + str(in_block) + " more elements make more than the " +
-                 str(count) + " announced on line " + str(count_line) +
+      lines.fail("$Elements block: " + std::to_string(in_block) +
+                 " more elements make more than the " + std::to_string(count) +
+                 " announced on line " + std::to_string(count_line) +
                  "; the count and the entries disagree");
     }
     for (long long k = 0; k < in_block; ++k) {
       next_entry(lines, "$Elements", read + k, count, count_line);
       if (type != ElementReader<Dim>::kType) continue;
-      lines.expect_words(Dim + 2, "$Elements", "tag and " + str(Dim + 1) + " node tags");
+      lines.expect_words(Dim + 2, "$Elements", "tag and " + std::to_string(Dim + 1) + " node tags");
       r.add(1);
     }
     if (type != ElementReader<Dim>::kType) r.skipped[type] += in_block;
     read += in_block;
   }
   if (read != count) {
-    lines.fail_at(count_line, "$Elements: announces " + str(count) + " elements, but its " +
-                                  str(blocks) + " blocks hold " + str(read));
+    lines.fail_at(count_line, "$Elements: announces " + std::to_string(count) +
+                                  " elements, but its " + std::to_string(blocks) + " blocks hold " +
+                                  std::to_string(read));
   }
   expect_end(lines, "$Elements", count, count_line);
 }
@@ -273,7 +274,7 @@ SimplexMesh<Dim> read_gmsh(std::istream& in, const std::string& name) {
       const std::string end = "$End" + section.substr(1);
       const int start = lines.line();
       do {
-        lines.expect_next("inside " + section + " (started on line " + str(start) + ")");
+        lines.expect_next("inside " + section + " (started on line " + std::to_string(start) + ")");
       } while (lines.words()[0] != end);
     } else {
       lines.fail("expected a section such as $Nodes or $Elements, got '" + section + "'");
@@ -284,13 +285,13 @@ SimplexMesh<Dim> read_gmsh(std::istream& in, const std::string& name) {
                " section; save the mesh again");
   }
   if (Dim == 2 && elements.skipped.count(4) != 0) {
-    lines.fail_at(elements_line, "$Elements: the file has " + str(elements.skipped[4]) +
+    lines.fail_at(elements_line, "$Elements: the file has " + std::to_string(elements.skipped[4]) +
                                      " tetrahedra (type 4): it is a 3D mesh; read it as 3D");
   }
   if (raw.elements.empty()) {
     std::string other;
     for (const auto& [type, n] : elements.skipped) {
-      other += (other.empty() ? "" : ", ") + str(n) + " of type " + str(type);
+      other += (other.empty() ? "" : ", ") + std::to_string(n) + " of type " + std::to_string(type);
     }
     lines.fail_at(elements_line,
                   std::string("$Elements: no ") +

@@ -20,8 +20,6 @@ namespace {
 
 using detail::TextLines;
 
-std::string str(long long n) { return std::to_string(n); }
-
 // Statements that do not change the surface's shape: texture and normal vertices, groups,
 // smoothing, materials, lines, points and display settings.
 const std::set<std::string> kSkipped = {
@@ -67,7 +65,7 @@ long long vertex_index(const TextLines& lines, size_t k) {
                   (parts.size() < 2 || parts[1].empty() || parse_integer(parts[1], other)) &&
                   (parts.size() < 3 || parse_integer(parts[2], other));
   if (!ok) {
-    lines.fail("f: vertex " + str(static_cast<long long>(k)) + " is '" + word +
+    lines.fail("f: vertex " + std::to_string(static_cast<long long>(k)) + " is '" + word +
                "', not a vertex reference; write i, i/t, i//n or i/t/n with integers (i counts "
                "the v lines from 1)");
   }
@@ -78,7 +76,7 @@ void read_vertex(const TextLines& lines, std::vector<Eigen::Vector3d>& vertices)
   const size_t numbers = lines.words().size() - 1;
   if (numbers != 3 && numbers != 4 && numbers != 6) {
     lines.fail("v: expected 3 numbers (x y z), or 4 (x y z w) or 6 (x y z r g b), got " +
-               str(static_cast<long long>(numbers)));
+               std::to_string(static_cast<long long>(numbers)));
   }
   Eigen::Vector3d x;
   for (int c = 0; c < 3; ++c) x(c) = lines.real(1 + c, std::string("v: ") + "xyz"[c]);
@@ -89,8 +87,8 @@ void read_vertex(const TextLines& lines, std::vector<Eigen::Vector3d>& vertices)
 Face read_face(const TextLines& lines, long long defined) {
   const size_t count = lines.words().size() - 1;
   if (count < 3) {
-    lines.fail("f: a face needs at least 3 vertices, got " + str(static_cast<long long>(count)) +
-               " (remove the line)");
+    lines.fail("f: a face needs at least 3 vertices, got " +
+               std::to_string(static_cast<long long>(count)) + " (remove the line)");
   }
   Face face{lines.line(), {}};
   for (size_t k = 1; k <= count; ++k) {
@@ -101,8 +99,9 @@ Face read_face(const TextLines& lines, long long defined) {
           "from -1, the last v line above)");
     }
     if (index < 0 && index < -defined) {  // -index overflows for the smallest long long
-      lines.fail("f: vertex index " + str(index) + " counts back past the first v line: only " +
-                 str(defined) + " v lines are above this line");
+      lines.fail("f: vertex index " + std::to_string(index) +
+                 " counts back past the first v line: only " + std::to_string(defined) +
+                 " v lines are above this line");
     }
     face.vertices.push_back({index, index < 0 ? defined + index : index - 1});
   }
@@ -116,8 +115,8 @@ void add_triangles(const TextLines& lines, const Face& face,
   const long long count = static_cast<long long>(vertices.size());
   for (const FaceVertex& v : face.vertices) {
     if (v.resolved >= count) {
-      lines.fail_at(face.line, "f: vertex index " + str(v.written) +
-                                   " names no v line: the file has " + str(count) +
+      lines.fail_at(face.line, "f: vertex index " + std::to_string(v.written) +
+                                   " names no v line: the file has " + std::to_string(count) +
                                    (count == 1 ? " vertex" : " vertices"));
     }
   }
@@ -125,8 +124,10 @@ void add_triangles(const TextLines& lines, const Face& face,
   for (size_t i = 0; i < n; ++i) {
     for (size_t j = 0; j < i; ++j) {
       if (face.vertices[i].resolved == face.vertices[j].resolved) {
-        lines.fail_at(face.line, "f: the face uses vertex " + str(face.vertices[i].resolved + 1) +
-                                     " twice (as its vertex " + str(j + 1) + " and " + str(i + 1) +
+        lines.fail_at(face.line, "f: the face uses vertex " +
+                                     std::to_string(face.vertices[i].resolved + 1) +
+                                     " twice (as its vertex " + std::to_string(j + 1) + " and " +
+                                     std::to_string(i + 1) +
                                      "); every corner must be a different vertex (remove the "
                                      "face or fix it)");
       }
@@ -180,7 +181,7 @@ TriangleSurface read_obj(std::istream& in, const std::string& name, ObjSource* s
   }
   if (faces.empty()) {
     lines.fail("the file has no faces (f lines) after " +
-               str(static_cast<long long>(vertices.size())) +
+               std::to_string(static_cast<long long>(vertices.size())) +
                " vertices; export the surface with its faces");
   }
 

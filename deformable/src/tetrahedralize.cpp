@@ -28,8 +28,6 @@ namespace {
 namespace fs = std::filesystem;
 using detail::ProgramRun;
 
-std::string str(long long n) { return std::to_string(n); }
-
 // How messages name the surface's lines and nodes: the file's, when it was read from one.
 class Names {
  public:
@@ -42,18 +40,19 @@ class Names {
   }
   int line(int triangle) const { return source_ != nullptr ? source_->face_lines[triangle] : 0; }
   std::string node(int n) const {
-    return source_ != nullptr ? "vertex " + str(source_->vertex_numbers[n]) : "node " + str(n);
+    return source_ != nullptr ? "vertex " + std::to_string(source_->vertex_numbers[n])
+                              : "node " + std::to_string(n);
   }
   // "this face" when the message is at the triangle's line, else its index
   std::string face(int triangle) const {
-    return source_ != nullptr ? "this face" : "triangle " + str(triangle);
+    return source_ != nullptr ? "this face" : "triangle " + std::to_string(triangle);
   }
   std::string other_face(int triangle) const {
-    return source_ != nullptr ? "the face on line " + str(line(triangle))
-                              : "triangle " + str(triangle);
+    return source_ != nullptr ? "the face on line " + std::to_string(line(triangle))
+                              : "triangle " + std::to_string(triangle);
   }
   [[noreturn]] void fail(int line, const std::string& what, int element = -1, int node = -1) const {
-    const std::string where = line > 0 ? name_ + ":" + str(line) + ": " : name_ + ": ";
+    const std::string where = line > 0 ? name_ + ":" + std::to_string(line) + ": " : name_ + ": ";
     throw MeshFileError(where + what, name_, line, element, node);
   }
 
@@ -116,12 +115,12 @@ void refuse_defect(const SurfaceDefect& d, const TriangleSurface& surface, const
       break;
     case SurfaceDefect::Kind::kNonManifoldEdge:
       what = "the surface is not a manifold: the edge between " + names.node(d.a) + " and " +
-             names.node(d.b) + " is in " + str(d.count) + " faces (" + names.face(d.triangle) +
-             " and " + names.other_face(d.other) + " among them)";
+             names.node(d.b) + " is in " + std::to_string(d.count) + " faces (" +
+             names.face(d.triangle) + " and " + names.other_face(d.other) + " among them)";
       break;
     case SurfaceDefect::Kind::kNonManifoldVertex:
       what = "the surface is not a manifold: the faces around " + names.node(d.a) + " (" +
-             names.face(d.triangle) + " among them) form " + str(d.count) +
+             names.face(d.triangle) + " among them) form " + std::to_string(d.count) +
              " fans that meet only at that vertex (separate the parts that touch there)";
       break;
   }
@@ -252,11 +251,11 @@ void refuse_self_intersection(const std::string& tetgen, const TempDir& dir,
   labels.erase(std::unique(labels.begin(), labels.end()), labels.end());
   std::string list = names.line(crossing[0]) > 0 ? "in the faces on lines " : "triangles ";
   const size_t shown = std::min<size_t>(labels.size(), 8);
-  for (size_t k = 0; k < shown; ++k) list += (k == 0 ? "" : ", ") + str(labels[k]);
-  if (labels.size() > shown) list += " and " + str(labels.size() - shown) + " more";
+  for (size_t k = 0; k < shown; ++k) list += (k == 0 ? "" : ", ") + std::to_string(labels[k]);
+  if (labels.size() > shown) list += " and " + std::to_string(labels.size() - shown) + " more";
   names.fail(names.line(crossing[0]),  // the triangles, and so their lines, are in file order
-             "the surface intersects itself: TetGen cannot fill it; " + str(crossing.size()) +
-                 " triangles cross others (" + list +
+             "the surface intersects itself: TetGen cannot fill it; " +
+                 std::to_string(crossing.size()) + " triangles cross others (" + list +
                  "); move their vertices so that faces meet only along their shared edges and "
                  "corners",
              crossing[0]);

@@ -33,8 +33,6 @@
 
 namespace gencoord::deformable {
 namespace {
-
-const std::string kMeshes = test_meshes_dir();
 using testing::dense_highest_frequency;
 
 using testing::corotated;

@@ -9,11 +9,12 @@
 #include <cmath>
 #include <functional>
 #include <vector>
+#include "test_helpers.hpp"
 
 namespace gencoord::deformable {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using testing::kPi;
 
 // KS statistic sup |F_n(x) - x| of samples in [0, 1] against the uniform distribution.
 double KsStatisticAgainstUniform(std::vector<double> u) {

@@ -8,11 +8,12 @@
 
 #include "gencoord/deformable/rod.hpp"
 #include "gencoord/deformable/time_step.hpp"
+#include "test_helpers.hpp"
 
 namespace gencoord::deformable {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using testing::kPi;
 
 // A free rod on a non-uniform mesh, set vibrating in its first two modes.
 MassSpringSystem<1> VibratingRod(double damping) {

@@ -10,11 +10,12 @@
 #include <cstdio>
 
 #include "gencoord/deformable/mesh_to_springs.hpp"
+#include "test_helpers.hpp"
 
 namespace gencoord::deformable {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using testing::kPi;
 
 // Elastic energy per unit area of the unit square under a small uniaxial strain e along the
 // direction at angle theta: x = X + e (a . X) a.

@@ -11,11 +11,12 @@
 
 #include "gencoord/deformable/lattice_elasticity.hpp"
 #include "gencoord/deformable/mesh_to_springs.hpp"
+#include "test_helpers.hpp"
 
 namespace gencoord::deformable {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using testing::kPi;
 
 template <int Dim>
 double measure_of(const SimplexMesh<Dim>& mesh) {

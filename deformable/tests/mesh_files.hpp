@@ -11,4 +11,7 @@ namespace gencoord::deformable {
 /// The folder of the test meshes (Gmsh .msh, .obj), without a trailing '/'.
 std::string test_meshes_dir();
 
+/// test_meshes_dir(), for the tests' paths.
+inline const std::string kMeshes = test_meshes_dir();
+
 }  // namespace gencoord::deformable

@@ -10,12 +10,12 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
-#include <functional>
 #include <sstream>
 #include <tuple>
 
 #include <unistd.h>
 
+#include "expect_refused.hpp"
 #include "gencoord/deformable/errors.hpp"
 #include "gencoord/deformable/mesh_io.hpp"
 #include "gencoord/deformable/mesh_to_springs.hpp"
@@ -189,17 +189,7 @@ SimplexMesh<Dim> ReadTetgen(const std::string& node, const std::string& ele) {
   return read_tetgen<Dim>(node_in, "mesh.node", ele_in, "mesh.ele");
 }
 
-// Runs `read`, expects a MeshFileError at `line` whose message contains `text`.
-void ExpectRefused(const std::function<void()>& read, int line, const std::string& text) {
-  try {
-    read();
-    ADD_FAILURE() << "accepted; expected a refusal containing: " << text;
-  } catch (const MeshFileError& e) {
-    EXPECT_EQ(e.line(), line) << e.what();
-    EXPECT_THAT(e.what(), HasSubstr(text));
-    std::printf("[ refused ] %s\n", e.what());
-  }
-}
+using testing::ExpectRefused;
 
 template <int Dim>
 double SignedMeasure(const SimplexMesh<Dim>& mesh, int e) {
@@ -310,8 +300,6 @@ TEST(MeshIoTest, PlanarGmshMeshAtAnotherHeightIsRead) {
   }
   EXPECT_NEAR(TotalMeasure(ReadGmsh<2>(text)), 1.0, 1e-15);
 }
-
-const std::string kMeshes = test_meshes_dir();
 
 TEST(MeshIoTest, GmshFixturesBothVersionsAgree) {
   const SimplexMesh<3> v41 = read_gmsh<3>(kMeshes + "/block_v41.msh");

@@ -14,13 +14,13 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
-#include <functional>
 #include <map>
 #include <optional>
 #include <sstream>
 
 #include <unistd.h>
 
+#include "expect_refused.hpp"
 #include "gencoord/deformable/closed_surface.hpp"
 #include "gencoord/deformable/errors.hpp"
 #include "gencoord/deformable/mesh_io.hpp"
@@ -32,26 +32,12 @@
 namespace gencoord::deformable {
 namespace {
 
-using ::testing::HasSubstr;
-
-const std::string kMeshes = test_meshes_dir();
-
 TriangleSurface ReadObj(const std::string& text, ObjSource* source = nullptr) {
   std::istringstream in(text);
   return read_obj(in, "surface.obj", source);
 }
 
-// Runs `read`, expects a MeshFileError at `line` whose message contains `text`.
-void ExpectRefused(const std::function<void()>& read, int line, const std::string& text) {
-  try {
-    read();
-    ADD_FAILURE() << "accepted; expected a refusal containing: " << text;
-  } catch (const MeshFileError& e) {
-    EXPECT_EQ(e.line(), line) << e.what();
-    EXPECT_THAT(e.what(), HasSubstr(text));
-    std::printf("[ refused ] %s\n", e.what());
-  }
-}
+using testing::ExpectRefused;
 
 double SignedVolume(const SimplexMesh<3>& mesh, int e) {
   Eigen::Matrix3d edges;

@@ -9,11 +9,12 @@
 #include <map>
 
 #include "gencoord/deformable/mesh_to_springs.hpp"
+#include "test_helpers.hpp"
 
 namespace gencoord::deformable {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using testing::kPi;
 
 TEST(MeshTest, RectangleHasTheExpectedNodesEdgesAndMass) {
   const int nx = 7, ny = 4;

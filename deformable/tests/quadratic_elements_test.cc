@@ -31,8 +31,6 @@
 namespace gencoord::deformable {
 namespace {
 
-const std::string kMeshes = test_meshes_dir();
-
 template <int Dim>
 using Vec = Eigen::Matrix<double, Dim, 1>;
 template <int Dim>
@@ -40,7 +38,7 @@ using Mat = Eigen::Matrix<double, Dim, Dim>;
 template <int Dim>
 constexpr int kNodes = QuadraticElement<Dim>::kNodes;
 template <int Dim>
-using Flat = Eigen::Matrix<double, Dim * kNodes<Dim>, 1>;
+using FlatNodes = Eigen::Matrix<double, Dim * kNodes<Dim>, 1>;
 template <int Dim>
 using Square = Eigen::Matrix<double, Dim * kNodes<Dim>, Dim * kNodes<Dim>>;
 
@@ -69,14 +67,14 @@ double measure_of(const SimplexMesh<Dim>& mesh) {
 }
 
 template <int Dim>
-Flat<Dim> flatten(const QuadraticNodes<Dim>& x) {
-  Flat<Dim> out;
+FlatNodes<Dim> flatten(const QuadraticNodes<Dim>& x) {
+  FlatNodes<Dim> out;
   for (int a = 0; a < kNodes<Dim>; ++a) out.template segment<Dim>(Dim * a) = x[a];
   return out;
 }
 
 template <int Dim>
-QuadraticNodes<Dim> unflatten(const Flat<Dim>& y) {
+QuadraticNodes<Dim> unflatten(const FlatNodes<Dim>& y) {
   QuadraticNodes<Dim> out;
   for (int a = 0; a < kNodes<Dim>; ++a) out[a] = y.template segment<Dim>(Dim * a);
   return out;
@@ -175,14 +173,14 @@ template <int Dim>
 void ExpectDerivativesMatchCentralDifferences(bool invert) {
   const QuadraticElement<Dim> e = one_element<Dim>();
   const QuadraticNodes<Dim> x = deformed<Dim>(0.02, 7, invert);
-  const Flat<Dim> y = flatten<Dim>(x);
-  const Flat<Dim> f = flatten<Dim>(quadratic_element_forces(e, x, zero_nodes<Dim>()));
+  const FlatNodes<Dim> y = flatten<Dim>(x);
+  const FlatNodes<Dim> f = flatten<Dim>(quadratic_element_forces(e, x, zero_nodes<Dim>()));
   const Square<Dim> k = assemble<Dim>(quadratic_element_stiffness(e, x, false));
   const double h = 1e-7;
-  Flat<Dim> grad;
+  FlatNodes<Dim> grad;
   Square<Dim> jac;
   for (int i = 0; i < y.size(); ++i) {
-    Flat<Dim> up = y, down = y;
+    FlatNodes<Dim> up = y, down = y;
     up(i) += h;
     down(i) -= h;
     grad(i) = (quadratic_element_energy(e, unflatten<Dim>(up)) -
@@ -257,8 +255,9 @@ void ExpectDampingLinearInVelocity() {
   const QuadraticNodes<Dim> x = deformed<Dim>(0.01, 3);
   QuadraticNodes<Dim> v = deformed<Dim>(0.5, 4);
   for (int a = 0; a < kNodes<Dim>; ++a) v[a] -= rest_nodes<Dim>()[a];
-  const Flat<Dim> damping_force = flatten<Dim>(quadratic_element_forces(e, x, v)) -
-                                  flatten<Dim>(quadratic_element_forces(e, x, zero_nodes<Dim>()));
+  const FlatNodes<Dim> damping_force =
+      flatten<Dim>(quadratic_element_forces(e, x, v)) -
+      flatten<Dim>(quadratic_element_forces(e, x, zero_nodes<Dim>()));
   const Square<Dim> d = assemble<Dim>(quadratic_element_damping(e, x));
   EXPECT_LT((damping_force - d * flatten<Dim>(v)).norm(), 1e-10 * damping_force.norm());
   EXPECT_GT(damping_force.norm(), 0.0);

@@ -24,11 +24,12 @@
 #include "gencoord/deformable/time_step.hpp"
 #include "gencoord/deformable/validate.hpp"
 #include "gencoord/integrate/backward_euler.hpp"
+#include "test_helpers.hpp"
 
 namespace gencoord::deformable {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using testing::kPi;
 
 Eigen::Vector3d random_point(std::mt19937_64& rng) {
   std::uniform_real_distribution<double> u(-1.0, 1.0);

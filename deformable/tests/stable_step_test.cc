@@ -29,8 +29,6 @@ namespace {
 
 using testing::dense_highest_frequency;
 
-const std::string kMeshes = test_meshes_dir();
-
 Material springs(double damping = 0.0) { return Material{1e5, 1000.0, damping}; }
 
 Material with(Elasticity elasticity, double nu) {

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #pragma once
-// Helpers shared by the deformable tests: pulse set-up and arrival-time measurement, and
+// Helpers shared by the deformable tests: pi, pulse set-up and arrival-time measurement, and
 // whether the build is the sanitizers'.
 
 #include <Eigen/Core>
@@ -16,6 +16,8 @@ inline constexpr bool kSanitized = true;
 #else
 inline constexpr bool kSanitized = false;
 #endif
+
+inline constexpr double kPi = 3.14159265358979323846;
 
 /// A right-travelling Gaussian pulse of axial displacement u = a exp(-((p - p0) / w)^2), with
 /// the velocity -c du/dp that makes it travel toward +p at speed c.

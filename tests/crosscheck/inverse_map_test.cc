@@ -21,11 +21,11 @@ using crosscheck_testing::random_vector;
 template <class M>
 class InverseMapTest : public ::testing::Test {};
 
-using Models =
+using InverseMapModels =
     ::testing::Types<models::Pendulum, models::Pendulum3d, models::DoublePendulum,
                      models::SpringPendulum, models::CartPole, models::BeadOnRotatingHoop,
                      models::NLinkChain5, models::BeadOnParabola>;
-TYPED_TEST_SUITE(InverseMapTest, Models);
+TYPED_TEST_SUITE(InverseMapTest, InverseMapModels);
 
 TYPED_TEST(InverseMapTest, RecoversRandomStates) {
   using M = TypeParam;

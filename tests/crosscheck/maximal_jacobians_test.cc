@@ -21,10 +21,11 @@ using crosscheck_testing::random_vector;
 template <class M>
 class MaximalJacobianTest : public ::testing::Test {};
 
-using Models = ::testing::Types<models::Pendulum, models::Pendulum3d, models::DoublePendulum,
-                                models::SpringPendulum, models::CartPole,
-                                models::BeadOnRotatingHoop, models::NLinkChain5>;
-TYPED_TEST_SUITE(MaximalJacobianTest, Models);
+using JacobianModels =
+    ::testing::Types<models::Pendulum, models::Pendulum3d, models::DoublePendulum,
+                     models::SpringPendulum, models::CartPole, models::BeadOnRotatingHoop,
+                     models::NLinkChain5>;
+TYPED_TEST_SUITE(MaximalJacobianTest, JacobianModels);
 
 template <class M>
 XVec<M> generated_force(const ParamsOf<M>& p, const XVec<M>& x, const XVec<M>& xdot, double t,

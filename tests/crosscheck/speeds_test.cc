@@ -24,7 +24,7 @@ static_assert(has_generalized_speeds_v<M> && M::nq == 12 && nv_of_v<M> == 10);
 static_assert(MaximalOf<M>::has_generalized_forces && MaximalOf<M>::num_constraints > 0);
 
 // the initial pose turned and moved by a random deviation (unit quaternions), random speeds
-State<M> random_state(std::mt19937& rng) {
+State<M> random_turned_state(std::mt19937& rng) {
   std::uniform_real_distribution<double> turn(-1.0, 1.0), speed(-2.0, 2.0), time(0.0, 2.0);
   const ParamsOf<M> p;
   VVec<M> delta, v;
@@ -50,7 +50,7 @@ TEST(SpeedsInverseMap, RecoversRandomStates) {
   std::mt19937 rng(11);
   std::uniform_real_distribution<double> nudge(-0.15, 0.15);
   for (int trial = 0; trial < 100; ++trial) {
-    const State<M> s = random_state(rng);
+    const State<M> s = random_turned_state(rng);
     const MaximalState<M> xs = to_maximal<M>(p, s);
     VVec<M> off;
     for (int j = 0; j < nv_of_v<M>; ++j) off[j] = nudge(rng);
@@ -73,7 +73,7 @@ TEST(SpeedsInverseMap, FindsTheClosestPointOffTheManifold) {
   InverseMapOptions anywhere;
   anywhere.max_residual = std::numeric_limits<double>::infinity();
   for (int trial = 0; trial < 20; ++trial) {
-    const State<M> s = random_state(rng);
+    const State<M> s = random_turned_state(rng);
     XVec<M> offset;
     for (int i = 0; i < M::nx; ++i) offset[i] = push(rng);
     const XVec<M> x = M::positions(s.q, s.t, p) + offset;
@@ -96,7 +96,7 @@ TEST(SpeedsMaximalModel, MotorTorqueProjectsBack) {
   const MaximalModel<M> model(p, kappa);
   std::mt19937 rng(13);
   for (int trial = 0; trial < 20; ++trial) {
-    const State<M> s = random_state(rng);
+    const State<M> s = random_turned_state(rng);
     const MaximalState<M> xs = to_maximal<M>(p, s);
     model.set_warm_start(s.q);
     const XVec<M> mapped = model.force(xs.q, xs.v, xs.t) -
@@ -115,7 +115,7 @@ TEST(SpeedsMaximalModel, ConsistentStateHasTheReducedEnergyAndNoViolation) {
   const MaximalModel<M> model(p, 1e5);
   std::mt19937 rng(14);
   for (int trial = 0; trial < 20; ++trial) {
-    const State<M> s = random_state(rng);
+    const State<M> s = random_turned_state(rng);
     const MaximalState<M> xs = to_maximal<M>(p, s);
     model.set_warm_start(s.q);
     EXPECT_LT(model.max_constraint_violation(xs.q, xs.t), 1e-12);

@@ -29,6 +29,9 @@
 #include "generated/pendulum.hpp"
 
 namespace gencoord::testing {
+// a namespace of its own: its helpers share names with its neighbours', which compile in
+// the same batch (cmake/unity.cmake)
+namespace every_system {
 namespace {
 
 using models::DoublePendulum;
@@ -234,4 +237,5 @@ TYPED_TEST(EverySystem, EnergyBehavesAsEachMethodPromises) {
 }
 
 }  // namespace
+}  // namespace every_system
 }  // namespace gencoord::testing

@@ -23,6 +23,9 @@
 #include "generated/pendulum.hpp"
 
 namespace gencoord::testing {
+// a namespace of its own: its helpers share names with its neighbours', which compile in
+// the same batch (cmake/unity.cmake)
+namespace free_body {
 namespace {
 
 using test_models::FreeBody;
@@ -219,4 +222,5 @@ INSTANTIATE_TEST_SUITE_P(Integrators, FreeBodyOrder,
                          });
 
 }  // namespace
+}  // namespace free_body
 }  // namespace gencoord::testing

@@ -3,14 +3,14 @@
 //
 // Inputs (q, v, qdd, t, the Maximal state, the parameters) are rounded to float first, so
 // both precisions see the same numbers and only the float arithmetic inside the kernel
-// differs. Its error is bounded relative to the kernel's condition at that state: kTolerance
+// differs. Its error is bounded relative to the kernel's condition at that state: kFloatTolerance
 // times the larger of (a) float's unit round-off times the kernel's largest entry and (b) how
 // much the double kernel moves when every input is perturbed by a relative float round-off
 // (the kernel's sensitivity: a phase omega t with omega t large, a difference of nearly equal
 // terms). qddot solves Mt a = f, which multiplies the rounding of Mt and f by Mt's condition
 // number: its (a) is multiplied by it. Each operation rounds once, and the generated code's
 // intermediate terms can be larger than its results (sums that cancel after CSE), which
-// input perturbations do not see: kTolerance = 1000 allows for both. The inertial forces Fi
+// input perturbations do not see: kFloatTolerance = 1000 allows for both. The inertial forces Fi
 // enter the dynamics only in Ft + Fi, and a tree whose every joint turns about a fixed axis
 // has Fi = 0 as a sum that cancels (the Delta robot's arms): their (a) takes the largest
 // entry of Ft + Fi as the scale where that is larger. Observed worst ratios of
@@ -39,9 +39,9 @@
 namespace gencoord::testing {
 namespace {
 
-constexpr int kStates = 8;
+constexpr int kFloatStates = 8;
 constexpr int kPerturbations = 3;
-constexpr double kTolerance = 1000.0;
+constexpr double kFloatTolerance = 1000.0;
 constexpr double kFloatEpsilon = std::numeric_limits<float>::epsilon();
 
 template <class M>
@@ -183,9 +183,9 @@ class FloatCheck {
     const double ratio = (single - exact).cwiseAbs().maxCoeff() / std::max(bound, 1e-300);
     double& worst = worst_[name];
     worst = std::max(worst, ratio);
-    EXPECT_LE(ratio, kTolerance) << M::name << "::" << name << ": float " << single.transpose()
-                                 << "\n double " << exact.transpose() << "\n sensitivity "
-                                 << sensitivity;
+    EXPECT_LE(ratio, kFloatTolerance)
+        << M::name << "::" << name << ": float " << single.transpose() << "\n double "
+        << exact.transpose() << "\n sensitivity " << sensitivity;
   }
 
   Inputs<M> in_;
@@ -219,7 +219,7 @@ TYPED_TEST(FloatKernels, AgreeWithDoubleWithinTheKernelsCondition) {
   using M = TypeParam;
   std::mt19937 rng(11);
   FloatCheck<M> check(random_inputs<M>(rng), &rng);
-  for (int state = 0; state < kStates; ++state) {
+  for (int state = 0; state < kFloatStates; ++state) {
     check.set_inputs(random_inputs<M>(rng));
     const Inputs<M>& in = check.inputs();
     const auto K = [](auto body) { return kernel_of<M>(body); };

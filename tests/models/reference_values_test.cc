@@ -24,7 +24,7 @@
 namespace gencoord::testing {
 namespace {
 
-constexpr double kTolerance = 1e-12;
+constexpr double kReferenceTolerance = 1e-12;
 
 template <class M>
 class ReferenceValues : public ::testing::Test {};
@@ -72,7 +72,7 @@ class Comparison {
         ++comparisons_;
         double& worst = worst_[kernel];
         worst = std::max(worst, error);
-        EXPECT_LE(error, kTolerance)
+        EXPECT_LE(error, kReferenceTolerance)
             << std::setprecision(17) << model_ << "::" << kernel << " entry (" << r << ", " << c
             << ") at state " << state_ << ": generated " << a << ", reference " << e
             << ", relative error " << std::setprecision(3) << error;

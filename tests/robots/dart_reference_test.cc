@@ -62,7 +62,7 @@ struct Robot<models::MimicGripper> {
 /// A free joint's position within 1 m of the origin in any orientation, every other
 /// coordinate in (-pi, pi); speeds in (-2, 2).
 template <class M>
-State<M> random_state(std::mt19937& rng) {
+State<M> random_dart_state(std::mt19937& rng) {
   std::uniform_real_distribution<double> unit(-1.0, 1.0);
   State<M> s;
   for (int i = 0; i < M::nq; ++i) s.q[i] = M_PI * unit(rng);
@@ -78,10 +78,10 @@ State<M> random_state(std::mt19937& rng) {
 
 template <class M>
 class DartReferenceTest : public ::testing::Test {};
-using Robots =
+using DartRobots =
     ::testing::Types<models::Iiwa14, models::Ur5e, models::Quadruped, models::FloatingQuadruped,
                      models::ShippedLeg, models::MimicGripper>;
-TYPED_TEST_SUITE(DartReferenceTest, Robots);
+TYPED_TEST_SUITE(DartReferenceTest, DartRobots);
 
 TYPED_TEST(DartReferenceTest, KernelsMatchAtRandomStates) {
   using M = TypeParam;
@@ -93,7 +93,7 @@ TYPED_TEST(DartReferenceTest, KernelsMatchAtRandomStates) {
   double forward = 0.0;  // DART's own forward dynamics, where it has no extra mimic dofs
   const bool square = dart.dofs() == nv_of_v<M>;
   for (int k = 0; k < 100; ++k) {
-    const State<M> s = random_state<M>(rng);
+    const State<M> s = random_dart_state<M>(rng);
     dart.set_state(s.q, s.v);
     worst.mass_matrix =
         std::max(worst.mass_matrix, relative(M::mass_matrix(s.q, s.t, p), dart.mass_matrix()));

@@ -35,7 +35,7 @@ void expect_close(const std::string& what, const Eigen::MatrixXd& actual,
 }
 
 template <class M>
-State<M> random_state(std::mt19937& rng) {
+State<M> random_derivative_state(std::mt19937& rng) {
   std::uniform_real_distribution<double> angle(-M_PI, M_PI), rate(-2.0, 2.0);
   State<M> s;
   for (int i = 0; i < M::nq; ++i) s.q[i] = angle(rng);
@@ -51,7 +51,7 @@ void check_residual_jacobians(const std::string& robot) {
   const typename M::Params p;
   std::mt19937 rng(7);
   for (int k = 0; k < kStates; ++k) {
-    const State<M> s = random_state<M>(rng);
+    const State<M> s = random_derivative_state<M>(rng);
     VVec<M> qdd;
     for (int i = 0; i < nv_of_v<M>; ++i) qdd[i] = std::uniform_real_distribution<>(-5, 5)(rng);
     VQMat<M> r_D_q;
@@ -74,7 +74,7 @@ void check_dynamics_derivatives(const std::string& robot) {
   const typename M::Params p;
   std::mt19937 rng(11);
   for (int k = 0; k < kStates; ++k) {
-    const State<M> s = random_state<M>(rng);
+    const State<M> s = random_derivative_state<M>(rng);
     const auto generated = dynamics_derivatives<M>(p, s.q, s.v, s.t);
     const auto differences =
         dynamics_derivatives<M>(p, s.q, s.v, s.t, JacobianSource::FiniteDifference);

@@ -41,7 +41,7 @@ constexpr double kMiddleAngleLimit = 1.2;
 /// angles in (-pi, pi), the middle one in (-1.2, 1.2), the joints in (-pi, pi), angle rates in
 /// (-2, 2) rad/s.
 template <class M>
-State<M> random_state(std::mt19937& rng) {
+State<M> random_free_base_state(std::mt19937& rng) {
   std::uniform_real_distribution<double> unit(-1.0, 1.0);
   State<M> s;
   for (int i = 0; i < M::nq; ++i) {
@@ -77,7 +77,7 @@ TYPED_TEST(FreeBaseMujoco, VelocityMapIsMujocosDerivativeOfThePose) {
   const double h = 1e-5;
   double worst_velocity = 0, worst_bias = 0;
   for (int k = 0; k < 100; ++k) {
-    const State<M> s = random_state<M>(rng);
+    const State<M> s = random_free_base_state<M>(rng);
     const QVec qvel = mujoco.velocity_map(s.q) * s.v;
     const QVec secant =
         mujoco.difference(mujoco.qpos(s.q - h * s.v), mujoco.qpos(s.q + h * s.v)) / (2 * h);
@@ -102,7 +102,7 @@ TYPED_TEST(FreeBaseMujoco, KernelsMatchAtRandomStates) {
   std::mt19937 rng(20261123);
   robot_testing::WorstDifferences worst;
   for (int k = 0; k < 100; ++k) {
-    const State<M> s = random_state<M>(rng);
+    const State<M> s = random_free_base_state<M>(rng);
     mujoco.forward(s.q, s.v);
     worst.mass_matrix =
         std::max(worst.mass_matrix, relative(M::mass_matrix(s.q, s.t, p), mujoco.mass_matrix()));

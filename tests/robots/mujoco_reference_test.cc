@@ -48,12 +48,12 @@ struct Robot<models::Quadruped> {
 
 template <class M>
 class MujocoReferenceTest : public ::testing::Test {};
-using Robots = ::testing::Types<models::Iiwa14, models::Ur5e, models::Quadruped>;
-TYPED_TEST_SUITE(MujocoReferenceTest, Robots);
+using MujocoRobots = ::testing::Types<models::Iiwa14, models::Ur5e, models::Quadruped>;
+TYPED_TEST_SUITE(MujocoReferenceTest, MujocoRobots);
 
 /// q anywhere in (-pi, pi), v in (-2, 2) rad/s.
 template <class M>
-State<M> random_state(std::mt19937& rng) {
+State<M> random_mujoco_state(std::mt19937& rng) {
   std::uniform_real_distribution<double> angle(-M_PI, M_PI), rate(-2.0, 2.0);
   State<M> s;
   for (int i = 0; i < M::nq; ++i) {
@@ -70,7 +70,7 @@ TYPED_TEST(MujocoReferenceTest, KernelsMatchAtRandomStates) {
   std::mt19937 rng(20261123);
   robot_testing::WorstDifferences worst;
   for (int k = 0; k < 100; ++k) {
-    const State<M> s = random_state<M>(rng);
+    const State<M> s = random_mujoco_state<M>(rng);
     mujoco.forward(s.q, s.v);
     worst.mass_matrix =
         std::max(worst.mass_matrix, relative(M::mass_matrix(s.q, s.t, p), mujoco.mass_matrix()));

@@ -58,7 +58,7 @@ struct Robot<models::ShippedLeg> {
 /// The base within 1 m of the origin at up to 2 m/s in any orientation, turning at up to
 /// 2 rad/s; the joints in (-pi, pi) at up to 2 rad/s.
 template <class M>
-State<M> random_state(std::mt19937& rng) {
+State<M> random_quaternion_base_state(std::mt19937& rng) {
   std::uniform_real_distribution<double> unit(-1.0, 1.0);
   State<M> s;
   for (int i = 0; i < M::nq; ++i) s.q[i] = (i < 3 ? 1.0 : M_PI) * unit(rng);
@@ -70,9 +70,9 @@ State<M> random_state(std::mt19937& rng) {
 template <class M>
 class QuaternionBaseMujoco : public ::testing::Test {};
 
-using Robots = ::testing::Types<models::FloatingQuadruped, models::FloatingQuadrupedDiagonal,
-                                models::ShippedLeg>;
-TYPED_TEST_SUITE(QuaternionBaseMujoco, Robots);
+using QuaternionRobots = ::testing::Types<models::FloatingQuadruped,
+                                          models::FloatingQuadrupedDiagonal, models::ShippedLeg>;
+TYPED_TEST_SUITE(QuaternionBaseMujoco, QuaternionRobots);
 
 TYPED_TEST(QuaternionBaseMujoco, KernelsMatchAtRandomStates) {
   using M = TypeParam;
@@ -81,7 +81,7 @@ TYPED_TEST(QuaternionBaseMujoco, KernelsMatchAtRandomStates) {
   std::mt19937 rng(20261127);
   robot_testing::WorstDifferences worst;
   for (int k = 0; k < 100; ++k) {
-    const State<M> s = random_state<M>(rng);
+    const State<M> s = random_quaternion_base_state<M>(rng);
     mujoco.forward(s.q, s.v);
     worst.mass_matrix =
         std::max(worst.mass_matrix, relative(M::mass_matrix(s.q, s.t, p), mujoco.mass_matrix()));
@@ -108,7 +108,7 @@ TYPED_TEST(QuaternionBaseMujoco, RK4TrajectoryFollowsMujoco) {
   QuaternionBaseReference<M> mujoco(Robot<M>::urdf());
   const typename M::Params p;
   std::mt19937 rng(7);
-  State<M> initial = random_state<M>(rng);
+  State<M> initial = random_quaternion_base_state<M>(rng);
   initial.v *= 0.25;
   const double dt = 1e-3, duration = 1.0;
   mujoco.forward(initial.q, initial.v);
@@ -134,7 +134,7 @@ TYPED_TEST(QuaternionBaseMujoco, QuaternionStaysUnitOver10Seconds) {
   using M = TypeParam;
   const typename M::Params p;
   std::mt19937 rng(11);
-  const State<M> initial = random_state<M>(rng);
+  const State<M> initial = random_quaternion_base_state<M>(rng);
   double drift = 0.0;
   simulate(ReducedSystem<M>(p), initial, SimulateOptions(Integrator::RK4, 1e-3, 10.0),
            [&](const State<M>& s) {

@@ -24,20 +24,20 @@ using Chain = models::StiffChain10;
 // The linearization at rest, Mt a + D v + K q = 0 with K = dr/dq and D = dr/dv at
 // (q, v, a) = 0 (K: joint springs plus gravity, the stiffness Hessian; D: joint dampers),
 // from the generated residual Jacobians.
-struct Linearization {
+struct RestLinearization {
   QMat<Chain> Mt, K, D;
 };
 
-Linearization linearize_at_rest(const ParamsOf<Chain>& p) {
+RestLinearization linearize_at_rest(const ParamsOf<Chain>& p) {
   const QVec<Chain> zero = QVec<Chain>::Zero();
-  Linearization lin;
+  RestLinearization lin;
   residual_jacobians<Chain>(p, zero, zero, zero, 0.0, &lin.K, &lin.D);
   lin.Mt = Chain::mass_matrix(zero, 0.0, p);
   return lin;
 }
 
 // highest undamped angular frequency: omega_max^2 = largest eigenvalue of Mt^-1 K
-double omega_max(const Linearization& lin) {
+double omega_max(const RestLinearization& lin) {
   const Eigen::GeneralizedSelfAdjointEigenSolver<QMat<Chain>> eig(0.5 * (lin.K + lin.K.transpose()),
                                                                   lin.Mt);
   return std::sqrt(eig.eigenvalues().maxCoeff());
@@ -45,7 +45,7 @@ double omega_max(const Linearization& lin) {
 
 // largest h with |R(h lambda)| <= 1 for every eigenvalue lambda of the damped linearization
 // y' = [[0, I], [-Mt^-1 K, -Mt^-1 D]] y, R(z) = 1 + z + z^2/2 + z^3/6 + z^4/24 (RK4)
-double rk4_limit_damped(const Linearization& lin) {
+double rk4_limit_damped(const RestLinearization& lin) {
   constexpr int n = Chain::nq;
   Eigen::Matrix<double, 2 * n, 2 * n> A = Eigen::Matrix<double, 2 * n, 2 * n>::Zero();
   A.topRightCorner<n, n>().setIdentity();
@@ -100,7 +100,7 @@ bool stays_bounded(Integrator integrator, double h, double duration, double ampl
 
 TEST(StiffChain, Rk4DivergesAboveItsStabilityLimitAndBackwardEulerIsStableAt100Times) {
   const ParamsOf<Chain> p;
-  const Linearization lin = linearize_at_rest(p);
+  const RestLinearization lin = linearize_at_rest(p);
   const double w = omega_max(lin);
   const double h_undamped = 2.0 * std::sqrt(2.0) / w;  // RK4's stability interval on i R
   const double h_limit = rk4_limit_damped(lin);
