@@ -3,11 +3,12 @@
 #include "gencoord/deformable/disk_sampling.hpp"
 
 #include <cmath>
+#include "pi.hpp"
 
 namespace gencoord::deformable {
 
 namespace {
-constexpr double kPi = 3.14159265358979323846;
+using detail::kPi;
 }  // namespace
 
 RejectionSamples sample_disk_rejection(double radius, int n, std::mt19937_64& rng,

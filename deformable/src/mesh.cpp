@@ -6,11 +6,12 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include "pi.hpp"
 
 namespace gencoord::deformable {
 
 namespace {
-constexpr double kPi = 3.14159265358979323846;
+using detail::kPi;
 }  // namespace
 
 SimplexMesh<2> rectangle_mesh(double width, double height, int nx, int ny, DiagonalPattern pattern,

@@ -60,12 +60,6 @@ void next_entry(TextLines& lines, const std::string& section, long long read, lo
   }
 }
 
-long long count_at(TextLines& lines, size_t k, const std::string& what) {
-  const long long n = lines.integer(k, what);
-  if (n < 0) lines.fail(what + ": " + std::to_string(n) + " is negative");
-  return n;
-}
-
 Eigen::Vector3d coordinates(TextLines& lines, size_t first, const std::string& section) {
   return {lines.real(first, section + ": x"), lines.real(first + 1, section + ": y"),
           lines.real(first + 2, section + ": z")};
@@ -75,7 +69,7 @@ void read_nodes_v2(TextLines& lines, GmshNodes& nodes) {
   lines.expect_next("inside $Nodes");
   lines.expect_words(1, "$Nodes", "number of nodes");
   const int count_line = lines.line();
-  const long long count = count_at(lines, 0, "$Nodes: number of nodes");
+  const long long count = lines.count(0, "$Nodes: number of nodes");
   for (long long k = 0; k < count; ++k) {
     next_entry(lines, "$Nodes", k, count, count_line);
     lines.expect_words(4, "$Nodes", "tag x y z");
@@ -89,15 +83,15 @@ void read_nodes_v4(TextLines& lines, GmshNodes& nodes) {
   lines.expect_next("inside $Nodes");
   lines.expect_words(4, "$Nodes", "entity blocks, nodes, smallest tag, largest tag");
   const int count_line = lines.line();
-  const long long blocks = count_at(lines, 0, "$Nodes: number of entity blocks");
-  const long long count = count_at(lines, 1, "$Nodes: number of nodes");
+  const long long blocks = lines.count(0, "$Nodes: number of entity blocks");
+  const long long count = lines.count(1, "$Nodes: number of nodes");
   long long read = 0;
   for (long long b = 0; b < blocks; ++b) {
     next_entry(lines, "$Nodes", read, count, count_line);
     lines.expect_words(4, "$Nodes block", "entity dimension, entity tag, parametric, nodes");
     const long long entity_dim = lines.integer(0, "$Nodes block: entity dimension");
     const bool parametric = lines.integer(2, "$Nodes block: parametric") != 0;
-    const long long in_block = count_at(lines, 3, "$Nodes block: number of nodes");
+    const long long in_block = lines.count(3, "$Nodes block: number of nodes");
     if (in_block > count - read) {  // read <= count: no overflow
       lines.fail("$Nodes block: " + std::to_string(in_block) + " more nodes make more than the " +
                  std::to_string(count) + " announced on line " + std::to_string(count_line) +
@@ -160,14 +154,14 @@ void read_elements_v2(ElementReader<Dim>& r) {
   lines.expect_next("inside $Elements");
   lines.expect_words(1, "$Elements", "number of elements");
   const int count_line = lines.line();
-  const long long count = count_at(lines, 0, "$Elements: number of elements");
+  const long long count = lines.count(0, "$Elements: number of elements");
   for (long long k = 0; k < count; ++k) {
     next_entry(lines, "$Elements", k, count, count_line);
     if (lines.words().size() < 3) {
       lines.expect_words(3, "$Elements", "at least tag, type, number of tags");
     }
     const long long type = lines.integer(1, "$Elements: element type");
-    const long long tags = count_at(lines, 2, "$Elements: number of tags");
+    const long long tags = lines.count(2, "$Elements: number of tags");
     if (type != ElementReader<Dim>::kType) {
       ++r.skipped[type];
       continue;
@@ -191,15 +185,15 @@ void read_elements_v4(ElementReader<Dim>& r) {
   lines.expect_next("inside $Elements");
   lines.expect_words(4, "$Elements", "entity blocks, elements, smallest tag, largest tag");
   const int count_line = lines.line();
-  const long long blocks = count_at(lines, 0, "$Elements: number of entity blocks");
-  const long long count = count_at(lines, 1, "$Elements: number of elements");
+  const long long blocks = lines.count(0, "$Elements: number of entity blocks");
+  const long long count = lines.count(1, "$Elements: number of elements");
   long long read = 0;
   for (long long b = 0; b < blocks; ++b) {
     next_entry(lines, "$Elements", read, count, count_line);
     lines.expect_words(4, "$Elements block",
                        "entity dimension, entity tag, element type, elements");
     const long long type = lines.integer(2, "$Elements block: element type");
-    const long long in_block = count_at(lines, 3, "$Elements block: number of elements");
+    const long long in_block = lines.count(3, "$Elements block: number of elements");
     if (in_block > count - read) {  // read <= count: no overflow
       lines.fail("$Elements block: " + std::to_string(in_block) +
                  " more elements make more than the " + std::to_string(count) +

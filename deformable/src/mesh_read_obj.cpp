@@ -65,7 +65,7 @@ long long vertex_index(const TextLines& lines, size_t k) {
                   (parts.size() < 2 || parts[1].empty() || parse_integer(parts[1], other)) &&
                   (parts.size() < 3 || parse_integer(parts[2], other));
   if (!ok) {
-    lines.fail("f: vertex " + std::to_string(static_cast<long long>(k)) + " is '" + word +
+    lines.fail("f: vertex " + std::to_string(k) + " is '" + word +
                "', not a vertex reference; write i, i/t, i//n or i/t/n with integers (i counts "
                "the v lines from 1)");
   }
@@ -76,7 +76,7 @@ void read_vertex(const TextLines& lines, std::vector<Eigen::Vector3d>& vertices)
   const size_t numbers = lines.words().size() - 1;
   if (numbers != 3 && numbers != 4 && numbers != 6) {
     lines.fail("v: expected 3 numbers (x y z), or 4 (x y z w) or 6 (x y z r g b), got " +
-               std::to_string(static_cast<long long>(numbers)));
+               std::to_string(numbers));
   }
   Eigen::Vector3d x;
   for (int c = 0; c < 3; ++c) x(c) = lines.real(1 + c, std::string("v: ") + "xyz"[c]);
@@ -87,8 +87,8 @@ void read_vertex(const TextLines& lines, std::vector<Eigen::Vector3d>& vertices)
 Face read_face(const TextLines& lines, long long defined) {
   const size_t count = lines.words().size() - 1;
   if (count < 3) {
-    lines.fail("f: a face needs at least 3 vertices, got " +
-               std::to_string(static_cast<long long>(count)) + " (remove the line)");
+    lines.fail("f: a face needs at least 3 vertices, got " + std::to_string(count) +
+               " (remove the line)");
   }
   Face face{lines.line(), {}};
   for (size_t k = 1; k <= count; ++k) {
@@ -180,8 +180,7 @@ TriangleSurface read_obj(std::istream& in, const std::string& name, ObjSource* s
     }
   }
   if (faces.empty()) {
-    lines.fail("the file has no faces (f lines) after " +
-               std::to_string(static_cast<long long>(vertices.size())) +
+    lines.fail("the file has no faces (f lines) after " + std::to_string(vertices.size()) +
                " vertices; export the surface with its faces");
   }
 

@@ -12,16 +12,10 @@ namespace {
 using detail::RawMesh;
 using detail::TextLines;
 
-long long count_at(TextLines& lines, size_t k, const std::string& what) {
-  const long long n = lines.integer(k, what);
-  if (n < 0) lines.fail(what + ": " + std::to_string(n) + " is negative");
-  return n;
-}
-
 // Attributes per line: a count no line holds would overflow the words expected of a line.
 long long attributes_at(TextLines& lines, size_t k) {
   constexpr long long kMost = 1 << 20;
-  const long long n = count_at(lines, k, "attributes");
+  const long long n = lines.count(k, "attributes");
   if (n > kMost)
     lines.fail("attributes: " + std::to_string(n) + ", more than the " + std::to_string(kMost) +
                " a line may have");
@@ -47,10 +41,10 @@ long long read_node_file(TextLines& lines, RawMesh<Dim>& raw) {
                std::to_string(lines.words().size()));
   }
   const int count_line = lines.line();
-  const long long count = count_at(lines, 0, "number of points");
+  const long long count = lines.count(0, "number of points");
   const long long dim = lines.integer(1, "dimension");
   const long long attributes = lines.words().size() > 2 ? attributes_at(lines, 2) : 0;
-  const long long markers = lines.words().size() > 3 ? count_at(lines, 3, "boundary markers") : 0;
+  const long long markers = lines.words().size() > 3 ? lines.count(3, "boundary markers") : 0;
   if (dim != Dim) {
     lines.fail("the points are " + std::to_string(dim) + "-dimensional, but a " +
                std::to_string(Dim) + "D mesh was asked for; read it as " + std::to_string(dim) +
@@ -98,7 +92,7 @@ void read_ele_file(TextLines& lines, long long base, RawMesh<Dim>& raw) {
                std::to_string(lines.words().size()));
   }
   const int count_line = lines.line();
-  const long long count = count_at(lines, 0, std::string("number of ") + kind);
+  const long long count = lines.count(0, std::string("number of ") + kind);
   const long long corners = lines.integer(1, "nodes per element");
   const long long attributes = lines.words().size() > 2 ? attributes_at(lines, 2) : 0;
   const long long second_order = Dim == 2 ? 6 : 10;

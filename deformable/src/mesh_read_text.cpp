@@ -67,6 +67,12 @@ long long TextLines::integer(size_t k, const std::string& what) const {
   return value;
 }
 
+long long TextLines::count(size_t k, const std::string& what) const {
+  const long long n = integer(k, what);
+  if (n < 0) fail(what + ": " + std::to_string(n) + " is negative");
+  return n;
+}
+
 double TextLines::real(size_t k, const std::string& what) const {
   const std::string& w = words_.at(k);
   char* end = nullptr;

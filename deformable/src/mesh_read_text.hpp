@@ -41,6 +41,8 @@ class TextLines {
   void expect_words(size_t count, const std::string& what, const std::string& names) const;
   /// Word k as an integer / a finite number, or throws naming `what`.
   long long integer(size_t k, const std::string& what) const;
+  /// Word k as a count: an integer, or throws naming `what`, also when it is negative.
+  long long count(size_t k, const std::string& what) const;
   double real(size_t k, const std::string& what) const;
 
  private:

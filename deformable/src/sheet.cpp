@@ -24,7 +24,7 @@ namespace {
 constexpr double kPlanarTolerance = 1e-9;
 // calibrate_hinges() accepts direction-dependent factors down to this fraction of the
 // uniform one (as calibrate_springs() does)
-constexpr double kSmallestFactor = 0.2;
+constexpr double kSmallestHingeFactor = 0.2;
 
 // One triangle's use of an edge (i < j): the triangle and its third node.
 struct EdgeUse {
@@ -137,7 +137,7 @@ void calibrate_hinges(std::vector<double>& kb, const std::vector<Eigen::Matrix3d
     for (std::size_t h = 0; h < count && directional; ++h) {
       factor[h] = 1.0 + phi[h].dot(project * y);
       // directions too few for isotropy ask for factors near or below zero: keep the uniform
-      directional = std::isfinite(factor[h]) && factor[h] >= kSmallestFactor;
+      directional = std::isfinite(factor[h]) && factor[h] >= kSmallestHingeFactor;
     }
     if (directional) {
       for (std::size_t h = 0; h < count; ++h) kb[h] *= factor[h];

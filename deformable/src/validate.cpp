@@ -12,6 +12,7 @@
 
 #include "gencoord/errors.hpp"
 #include "message.hpp"
+#include "pi.hpp"
 #include "simplex_shape.hpp"
 
 namespace gencoord::deformable {
@@ -111,7 +112,7 @@ void validate_continuum_elements(const MassSpringSystem<Dim>& s) {
     validate_continuum_element(s, s.quadratic_elements[t], "quadratic element", t);
 }
 
-constexpr double kPi = 3.14159265358979323846;
+using detail::kPi;
 
 }  // namespace
 
