@@ -40,6 +40,8 @@ class LinkKinematics:
         self.translation = [names.matrix(node.translation) for node in self.nodes]
         self.velocity: list[sp.Matrix] = [None] * n
         self.bias: list[sp.Matrix] = [None] * n          # c_i
+        self.joint_velocity: list[sp.Matrix] = [None] * n  # V_J
+        self.joint_change: list[sp.Matrix] = [None] * n    # dV_J/dt at qddot = 0
         for i, node in enumerate(self.nodes):
             own_q = [q[j] for j in node.coordinates]
             own_v = sp.Matrix(len(node.speeds), 1, [v[j] for j in node.speeds])
@@ -48,6 +50,7 @@ class LinkKinematics:
                        self.to_child(i, self.velocity[node.parent]))
             self.velocity[i] = names.matrix(carried + joint_velocity)
             change = bias_acceleration(joint_velocity, own_q, node.rates, self.t)
+            self.joint_velocity[i], self.joint_change[i] = joint_velocity, change
             self.bias[i] = names.matrix(change + cross_motion(self.velocity[i], joint_velocity))
         self.inertia = [self._link_inertia(node) for node in self.nodes]
         self.momentum_change = [names.matrix(cross_force(self.velocity[i],

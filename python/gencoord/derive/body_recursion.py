@@ -16,6 +16,10 @@ link i, tau_i the forces the model puts on its joint's coordinates.
       U = IA S, D = S^T U, u = tau - S^T pA,   Ia = IA - U D^-1 U^T, pa = pA + Ia c + U D^-1 u
 
   and from the root out qddot_i = D^-1 (u - U^T (X_i A_parent + c_i)).
+
+  Both are unrolled in the classical accelerations of the link origins
+  (classical_accelerations.py), whose c_i and V x* I V need no linear velocities; the residual
+  and qddot are the same.
 - The mass matrix (composite bodies): Ic_i = I_i + sum_c X_c^T Ic_c X_c; the block of
   coordinates j, i (j an ancestor of i, or i) is S_j^T (X^T Ic_i S_i), the force Ic_i S_i
   carried from link i to link j.
@@ -33,6 +37,8 @@ import sympy as sp
 
 from gencoord.derive.body_kinematics import LinkKinematics
 from gencoord.derive.body_tree import BodyTree
+from gencoord.derive.classical_accelerations import (classical_accelerations, classical_bias,
+                                                     classical_bias_forces)
 from gencoord.derive.dense import (Derivation, fixed_point_positions, generalized_potential,
                                    x_space_potential)
 from gencoord.derive.speed_forces import generalized_force_vector
@@ -53,13 +59,11 @@ def body_recursive_dynamics(model: Model, kin, tree: BodyTree, derivation: bool 
     links = LinkKinematics(model, kin, tree, names)
     qdd = [speed.acceleration for speed in model.speeds]
     nv = len(qdd)
-    bias_force = [names.matrix(links.momentum_change[i] - links.external[i])
-                  for i in range(len(tree.nodes))]
-    qddot = _articulated_body(links, bias_force, nv)
+    bias_force = classical_bias_forces(links)
+    qddot = _articulated_body(links, classical_bias(links), bias_force, nv)
     joint = [node.subspace * sp.Matrix(len(node.speeds), 1, [qdd[j] for j in node.speeds])
              for node in tree.nodes]
-    residual = _newton_euler(links, _accelerations(links, links.world, joint, True),
-                             bias_force, links.tau)
+    residual = _newton_euler(links, classical_accelerations(links, joint), bias_force, links.tau)
     # the closed form serves the unrolled kernels of a derived tree (a looped one differentiates
     # its products)
     jacobians = (analytic_residual_jacobians(model, links, kin.q, kin.v, qdd)
@@ -101,7 +105,7 @@ def _newton_euler(links: LinkKinematics, accelerations, bias_force, tau) -> sp.M
     return sp.Matrix(residual)
 
 
-def _articulated_body(links: LinkKinematics, bias_force, nv: int) -> sp.Matrix:
+def _articulated_body(links: LinkKinematics, bias, bias_force, nv: int) -> sp.Matrix:
     names, nodes = links.names, links.nodes
     n = len(nodes)
     passed: dict[int, tuple] = {}  # (Ia, pa) in the parent's axes
@@ -114,7 +118,7 @@ def _articulated_body(links: LinkKinematics, bias_force, nv: int) -> sp.Matrix:
         IA, pA = names.symmetric(IA), names.matrix(pA)
         S = node.subspace
         if S.shape[1] == 0:
-            Ia, pa = IA, names.matrix(pA + product(IA, links.bias[i]))
+            Ia, pa = IA, names.matrix(pA + product(IA, bias[i]))
         else:
             U = names.matrix(product(IA, S))
             D_inverse = spd_inverse(names, names.symmetric(product(S.T, U)))
@@ -122,7 +126,7 @@ def _articulated_body(links: LinkKinematics, bias_force, nv: int) -> sp.Matrix:
             u = names.matrix(own_tau - product(S.T, pA))
             UD = names.matrix(product(U, D_inverse))
             Ia = names.symmetric(IA - product(UD, U.T))
-            pa = names.matrix(pA + product(Ia, links.bias[i]) + product(UD, u))
+            pa = names.matrix(pA + product(Ia, bias[i]) + product(UD, u))
             solve[i] = (U, D_inverse, u)
         if node.parent is not None:
             E, r = links.rotation[i], links.translation[i]
@@ -133,7 +137,7 @@ def _articulated_body(links: LinkKinematics, bias_force, nv: int) -> sp.Matrix:
     acceleration: list[sp.Matrix] = [None] * n
     for i, node in enumerate(nodes):
         base = links.world if node.parent is None else acceleration[node.parent]
-        before = names.matrix(links.to_child(i, base) + links.bias[i])
+        before = names.matrix(links.to_child(i, base) + bias[i])
         if i not in solve:
             acceleration[i] = before
             continue

@@ -61,11 +61,10 @@ from gencoord.symbolic.sums import dot, product
 # costs each direction the joints below it, so the closed form pays where joints carry long
 # subtrees. Operations of residual_jacobians (the `/// Ops:` line of the header that
 # `./generate ROBOT.urdf` writes with MIN_MEAN_SUBTREE set to infinity and to 0), forward
-# mode / closed form: models/iiwa14.urdf (a mean
-# subtree of 4 joints) 9403 / 6249, models/ur5e.urdf (3.5) 5819 / 4597,
-# tests/python/tree_models/branched_arm.urdf (2.4) 4537 / 4553, models/quadruped.urdf (2)
-# 6699 / 7444.
-MIN_MEAN_SUBTREE = 3.0
+# mode / closed form: models/iiwa14.urdf (a mean subtree of 4 joints) 7393 / 6249,
+# models/ur5e.urdf (3.5) 4461 / 4603, tests/python/tree_models/branched_arm.urdf (2.4)
+# 3607 / 4553, models/quadruped.urdf (2) 5215 / 7441.
+MIN_MEAN_SUBTREE = 3.75
 
 
 def analytic_residual_jacobians(model: Model, links: LinkKinematics, q: list[sp.Symbol],
