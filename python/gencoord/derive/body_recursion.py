@@ -38,7 +38,7 @@ import sympy as sp
 from gencoord.derive.body_kinematics import LinkKinematics
 from gencoord.derive.body_tree import BodyTree
 from gencoord.derive.classical_accelerations import (classical_accelerations, classical_bias,
-                                                     classical_bias_forces)
+                                                     classical_bias_forces, classical_terms)
 from gencoord.derive.dense import (Derivation, fixed_point_positions, generalized_potential,
                                    x_space_potential)
 from gencoord.derive.speed_forces import generalized_force_vector
@@ -59,11 +59,12 @@ def body_recursive_dynamics(model: Model, kin, tree: BodyTree, derivation: bool 
     links = LinkKinematics(model, kin, tree, names)
     qdd = [speed.acceleration for speed in model.speeds]
     nv = len(qdd)
-    bias_force = classical_bias_forces(links)
-    qddot = _articulated_body(links, classical_bias(links), bias_force, nv)
+    bias_force, terms = classical_bias_forces(links), classical_terms(links)
+    qddot = _articulated_body(links, classical_bias(links, terms), bias_force, nv)
     joint = [node.subspace * sp.Matrix(len(node.speeds), 1, [qdd[j] for j in node.speeds])
              for node in tree.nodes]
-    residual = _newton_euler(links, classical_accelerations(links, joint), bias_force, links.tau)
+    residual = _newton_euler(links, classical_accelerations(links, terms, joint), bias_force,
+                             links.tau)
     # the closed form serves the unrolled kernels of a derived tree (a looped one differentiates
     # its products)
     jacobians = (analytic_residual_jacobians(model, links, kin.q, kin.v, qdd)
@@ -73,16 +74,12 @@ def body_recursive_dynamics(model: Model, kin, tree: BodyTree, derivation: bool 
                              if derivation else None, jacobians)
 
 
-def _accelerations(links: LinkKinematics, world: sp.Matrix, joint, with_bias: bool
-                   ) -> list[sp.Matrix]:
-    """A_i = X_i A_parent + joint_i + c_i (c_i only `with_bias`) from A_world = `world`;
-    joint_i is S_i qddot_i, or None for zero."""
+def _accelerations(links: LinkKinematics, world: sp.Matrix, with_bias: bool) -> list[sp.Matrix]:
+    """A_i = X_i A_parent + c_i (c_i only `with_bias`) from A_world = `world`, at qddot = 0."""
     accelerations: list[sp.Matrix] = []
     for i, node in enumerate(links.nodes):
         base = world if node.parent is None else accelerations[node.parent]
         A = links.to_child(i, base)
-        if joint[i] is not None:
-            A += joint[i]
         if with_bias:
             A += links.bias[i]
         accelerations.append(links.names.matrix(A))
@@ -186,12 +183,11 @@ def _derivation(model: Model, kin, links: LinkKinematics, qdd, square_outputs: b
     """Every output of derive/dense.py, from the links' motion and the recursions; Mt and J only
     with `square_outputs`."""
     names, nodes = links.names, links.nodes
-    nv, n = len(qdd), len(nodes)
-    none = [None] * n
+    nv = len(qdd)
     # gamma's accelerations: at qddot = 0 with the world at rest
-    moving = _accelerations(links, sp.zeros(6, 1), none, True)
+    moving = _accelerations(links, sp.zeros(6, 1), True)
     inertial = -_newton_euler(links, moving, links.momentum_change, sp.zeros(nv, 1))
-    applied = -_newton_euler(links, _accelerations(links, links.world, none, False),
+    applied = -_newton_euler(links, _accelerations(links, links.world, False),
                              [-wrench for wrench in links.external], links.tau)
 
     jacobians, gammas = {}, {}

@@ -34,12 +34,19 @@ from gencoord.dsl.frames import unskew
 from gencoord.symbolic.sums import product
 
 
-def classical_accelerations(links: LinkKinematics, joint) -> list[sp.Matrix]:
-    """A'_i from the root out, with A'_world = links.world; joint_i is S_i qddot_i or None."""
+def classical_terms(links: LinkKinematics) -> list[tuple[sp.Matrix, sp.Matrix]]:
+    """Per link, the terms A'_i adds to its parent's before the move to link i's axes, and
+    after: A'_i = X_i (A'_p + before_i) + S qddot + after_i."""
+    return [_classical_terms(links, i) for i in range(len(links.nodes))]
+
+
+def classical_accelerations(links: LinkKinematics, terms, joint) -> list[sp.Matrix]:
+    """A'_i from the root out, with A'_world = links.world; `terms` from classical_terms,
+    joint_i S_i qddot_i or None."""
     result: list[sp.Matrix] = []
     for i, node in enumerate(links.nodes):
         base = links.world if node.parent is None else result[node.parent]
-        before, after = _classical_bias(links, i)
+        before, after = terms[i]
         A = links.to_child(i, base + before) + after
         if joint[i] is not None:
             A += joint[i]
@@ -47,17 +54,14 @@ def classical_accelerations(links: LinkKinematics, joint) -> list[sp.Matrix]:
     return result
 
 
-def classical_bias(links: LinkKinematics) -> list[sp.Matrix]:
+def classical_bias(links: LinkKinematics, terms) -> list[sp.Matrix]:
     """c'_i = X_i before_i + after_i, so that A'_i = X_i A'_p + S qddot + c'_i."""
-    biases = []
-    for i in range(len(links.nodes)):
-        before, after = _classical_bias(links, i)
-        biases.append(links.names.matrix(links.to_child(i, before) + after))
-    return biases
+    return [links.names.matrix(links.to_child(i, before) + after)
+            for i, (before, after) in enumerate(terms)]
 
 
-def _classical_bias(links: LinkKinematics, i: int) -> tuple[sp.Matrix, sp.Matrix]:
-    """The terms A'_i adds to its parent's before the move to link i's axes, and after."""
+def _classical_terms(links: LinkKinematics, i: int) -> tuple[sp.Matrix, sp.Matrix]:
+    """Link i's (before, after) of classical_terms."""
     node = links.nodes[i]
     w, v = split(links.velocity[i])
     V_J, change = links.joint_velocity[i], links.joint_change[i]
