@@ -18,7 +18,10 @@
 # <name>_double_0.cpp ... <name>_double_<k-1>.cpp, which compile every kernel for double once
 # and in parallel; <target> is then a static library of them, and files that include the
 # header compile no kernel body for double. Where the building machine has AVX2 and FMA, those
-# files are compiled for them (GENCOORD_AVX2_KERNELS, simd.cmake). MAX_FUNCTION_STATEMENTS passes
+# files are compiled for them (GENCOORD_AVX2_KERNELS, simd.cmake). With two or more, the first
+# holds the kernels that run alone in a call (qddot, inverse_dynamics, mass_matrix, ...), the
+# others the derivative path (dynamics, residual_jacobians) and the Jacobians, and GCC compiles
+# the first with pre-register-allocation scheduling (GENCOORD_SCHEDULED_KERNELS). MAX_FUNCTION_STATEMENTS passes
 # --max-function-statements, LOOP_MIN_NQ --loop-min-nq (from how many coordinates a tree's
 # Mt, J and residual Jacobians are loops over O(nq) products); OUTPUT_DIR replaces
 # ${CMAKE_BINARY_DIR}/gencoord_generated as the folder that holds generated/<name>.hpp (the
@@ -78,6 +81,21 @@ function(gencoord_generation_cache_arguments variable)
     endforeach()
   endif()
   set(${variable} ${arguments} PARENT_SCOPE)
+endfunction()
+
+option(GENCOORD_SCHEDULED_KERNELS
+       "Compile group 0 of a model's kernel translation units (TRANSLATION_UNITS 2 or more) with GCC's -fschedule-insns -fsched-pressure"
+       ON)
+
+# With two translation units or more, group 0 holds every kernel but those of the derivative
+# path and the Jacobians (gencoord/optimize/split.py says why), and GCC compiles it with
+# register-pressure-aware scheduling before register allocation, which x86 leaves off: it
+# interleaves the independent chains of a recursion's latency-bound code (docs/performance.md).
+function(_gencoord_schedule_kernels target source)
+  if(GENCOORD_SCHEDULED_KERNELS AND CMAKE_CXX_COMPILER_ID STREQUAL "GNU")
+    set_source_files_properties("${source}" TARGET_DIRECTORY ${target} PROPERTIES
+                                COMPILE_OPTIONS "-fschedule-insns;-fsched-pressure")
+  endif()
 endfunction()
 
 function(gencoord_add_model target)
@@ -149,6 +167,10 @@ function(gencoord_add_model target)
     # so that a Python module (a shared library) can link the model too
     set_target_properties(${target} PROPERTIES UNITY_BUILD OFF POSITION_INDEPENDENT_CODE ON)
     gencoord_enable_avx2_kernels(${target})
+    list(LENGTH sources count)
+    if(count GREATER 1)
+      _gencoord_schedule_kernels(${target} "${include_dir}/generated/${name}_double_0.cpp")
+    endif()
     target_include_directories(${target} PUBLIC "${include_dir}")
     target_link_libraries(${target} PUBLIC Eigen3::Eigen)
     target_compile_features(${target} PUBLIC cxx_std_17)

@@ -3,11 +3,13 @@
 
 The header declares each part group `extern template`; <name>_double_<k>.cpp instantiates
 group k and, defining GENCOORD_PART_GROUP k, sees only group k's definitions. Checked
-here: the groups are balanced and deterministic, every part is in exactly one file and inside
-its group's guard, stale files of an earlier run are removed, and (with g++ and nm) a file that
-includes the header and calls every kernel compiles no part for double itself but leaves
-them to the group files, which define each exactly once. tests/models/translation_units_test.cc
-checks that the linked program computes what the header-only kernels compute.
+here: the groups are deterministic, group 0 holds the kernels off the derivative path (which
+CMake compiles with other scheduling) and the other groups are balanced, every part is in
+exactly one file and inside its group's guard, stale files of an earlier run are removed, and
+(with g++ and nm) a file that includes the header and calls every kernel compiles no part for
+double itself but leaves them to the group files, which define each exactly once.
+tests/models/translation_units_test.cc checks that the linked program computes what the
+header-only kernels compute.
 """
 
 from __future__ import annotations
@@ -20,7 +22,8 @@ import tempfile
 import unittest
 from pathlib import Path
 
-from gencoord.optimize.split import assign_groups, plan_parts
+from gencoord.optimize.split import (assign_groups, assign_role_groups, is_derivative_path,
+                                     plan_parts)
 
 from .support import describe, run_generate
 
@@ -44,6 +47,30 @@ class GroupAssignmentTest(unittest.TestCase):
             if sizes:
                 self.assertLessEqual(max(load), sum(sizes) / groups + max(sizes),
                                      (sizes, groups, load))
+
+    def test_derivative_path_is_kept_out_of_group_zero(self):
+        self.assertTrue(all(map(is_derivative_path, ("dynamics", "residual_jacobians",
+                                                     "jacobian", "force_jacobian_x"))))
+        self.assertFalse(any(map(is_derivative_path, ("qddot", "inverse_dynamics",
+                                                      "mass_matrix", "forces"))))
+        rng = random.Random(7)
+        for _ in range(200):
+            count = rng.randint(0, 30)
+            sizes = [rng.randint(1, 3000) for _ in range(count)]
+            on_path = [rng.random() < 0.4 for _ in range(count)]
+            groups = rng.randint(1, 5)
+            group_of = assign_role_groups(sizes, on_path, groups)
+            self.assertEqual(group_of, assign_role_groups(sizes, on_path, groups))
+            if groups == 1:
+                self.assertEqual(group_of, [0] * count)
+                continue
+            for path, group in zip(on_path, group_of):
+                self.assertEqual(group == 0, not path, (on_path, group_of))
+            self.assertTrue(all(g < groups for g in group_of))
+            # the derivative path balanced over groups 1 and up as assign_groups balances
+            apart = [k for k in range(count) if on_path[k]]
+            self.assertEqual([group_of[k] - 1 for k in apart],
+                             assign_groups([sizes[k] for k in apart], groups - 1))
 
     def test_always_makes_one_part_of_a_short_kernel(self):
         defines = ["t0", "t1", None]

@@ -38,7 +38,7 @@ from gencoord.options import GenerateOptions
 from gencoord.checks.full_rank import check_full_rank
 from gencoord.viewer.scene import scene_json
 from gencoord.checks.singularities import analyse_singularities
-from gencoord.optimize.split import assign_groups
+from gencoord.optimize.split import assign_role_groups, is_derivative_path
 from gencoord.derive.point_recursion import RecursiveDynamics
 from gencoord.derive.structured import derive_structured
 from gencoord.derive.recursions import tree_dynamics
@@ -257,9 +257,11 @@ def _emit(path: str, model: Model, name: str, docstring: str, charts: list[Gener
     analysis = _analysis_lines(model, charts)
     units = options.translation_units
     if units:
-        parts = [part for chart in charts for kernel in chart.optimized.kernels
-                 for part in kernel.parts]
-        for part, group in zip(parts, assign_groups([len(p.lines) for p in parts], units)):
+        parts = [(part, is_derivative_path(kernel.kernel.name)) for chart in charts
+                 for kernel in chart.optimized.kernels for part in kernel.parts]
+        groups = assign_role_groups([len(part.lines) for part, _ in parts],
+                                    [on_path for _, on_path in parts], units)
+        for (part, _), group in zip(parts, groups):
             part.group = group
     flags = options.banner_flags() + list(output_flags)
     source_path = shell_word(working_directory_relative(path))
