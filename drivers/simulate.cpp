@@ -15,8 +15,10 @@
 // constraint residuals of the run; each step's end state is projected too, or, with
 // --baumgarte, Baumgarte's feedback keeps the drift down instead. A model with joint limits
 // keeps its limited coordinates in their ranges (gencoord/model/joint_limits.hpp) unless
-// --no-limits; the summary names the limits the run reached and the speed ratings it exceeded,
-// and the CSV has a limit:<name> column for each (-1, 0, +1: lower end, inside, upper end).
+// --no-limits; the summary names the limits the run reached and the speed and effort ratings it
+// exceeded (the effort: the generalized force of the control inputs, which --set gives, at the
+// joint), and the CSV has a limit:<name> column for each (-1, 0, +1: lower end, inside, upper
+// end).
 #include <algorithm>
 #include <array>
 #include <chrono>
@@ -167,21 +169,26 @@ bool start_within_limits(const gencoord::State<Model>& s) {
 }
 
 // What the run did at each joint limit: the steps that ended with the coordinate on an end of
-// its range (or beyond it, with --no-limits) and the largest |v| of its speed.
+// its range (or beyond it, with --no-limits), the largest |v| of its speed and the largest
+// generalized force of the control inputs at it.
 template <class Model>
 class LimitReport {
  public:
+  explicit LimitReport(const typename Model::Params& params) : params_(params) {}
+
   void operator()(const gencoord::State<Model>& state) {
     if constexpr (gencoord::has_joint_limits_v<Model>) {
+      const auto efforts = gencoord::input_efforts<Model>(state, params_);
       for (int i = 0; i < Model::num_limits; ++i) {
         if (gencoord::limit_side<Model>(state.q, i) != 0) ++steps_[i];
         fastest_[i] = std::max(fastest_[i], std::abs(state.v[Model::limited_speeds[i]]));
+        strongest_[i] = std::max(strongest_[i], std::abs(efforts[i]));
       }
     } else {
       (void)state;
     }
   }
-  // the limits the run reached, and the speed ratings it exceeded
+  // the limits the run reached, and the speed and effort ratings it exceeded
   void print(bool enforced) const {
     if constexpr (gencoord::has_joint_limits_v<Model>) {
       std::printf("limits      %d%s", Model::num_limits,
@@ -200,6 +207,13 @@ class LimitReport {
                     exceeded++ ? "," : "; speed rating exceeded by", Model::limit_names[i],
                     fastest_[i], Model::velocity_limits[i]);
       }
+      exceeded = 0;
+      for (int i = 0; i < Model::num_limits; ++i) {
+        if (!(strongest_[i] > Model::effort_limits[i])) continue;
+        std::printf("%s %s (inputs' force up to %.4g, rated %.4g)",
+                    exceeded++ ? "," : "; effort rating exceeded by", Model::limit_names[i],
+                    strongest_[i], Model::effort_limits[i]);
+      }
       std::printf("\n");
     } else {
       (void)enforced;
@@ -207,8 +221,10 @@ class LimitReport {
   }
 
  private:
+  const typename Model::Params& params_;
   std::array<long long, num_limits_of<Model>()> steps_{};
   std::array<double, num_limits_of<Model>()> fastest_{};
+  std::array<double, num_limits_of<Model>()> strongest_{};
 };
 
 // the final speeds of a model that has them (its q are not its velocities' integrals)
@@ -262,7 +278,7 @@ int run(const Options& o) {
   std::optional<gencoord::DissipatedWork<M>> own_work;
   if (gencoord::is_dissipative_v<M> && !csv) own_work.emplace(params);
   [[maybe_unused]] double work = 0.0;
-  LimitReport<M> limits;
+  LimitReport<M> limits(params);
   auto observer = [&](const State<M>& state) {
     if (csv) (*csv)(state);
     const double change = M::energy(state.q, state.v, state.t, params) - e0;

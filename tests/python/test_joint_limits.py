@@ -1,7 +1,7 @@
 # SPDX-License-Identifier: BSD-3-Clause
 """Joint limits: what a model records from `model.limit(...)`, from a joint's `Limits` and from
 a URDF `<limit>`, the header's members (each limit's coordinate, its speed, its ends and its
-speed rating), and every refusal with its item. The runtime's enforcement is tested in
+speed and effort ratings), and every refusal with its item. The runtime's enforcement is tested in
 tests/robots/joint_limits_test.cc."""
 
 from __future__ import annotations
@@ -49,8 +49,8 @@ class ModelLimitsTest(unittest.TestCase):
         model, q = self._pendulum()
         model.limit(q, lower=-0.5)
         (limit,) = model.limits
-        self.assertEqual((limit.name, limit.lower, limit.upper, limit.velocity),
-                         ("theta", -0.5, math.inf, math.inf))
+        self.assertEqual((limit.name, limit.lower, limit.upper, limit.velocity, limit.effort),
+                         ("theta", -0.5, math.inf, math.inf, math.inf))
 
     def test_a_joint_with_limits_declares_them_and_a_continuous_joint_no_range(self):
         model = Model(dim=3)
@@ -62,10 +62,12 @@ class ModelLimitsTest(unittest.TestCase):
                  mass=1.0, inertia=INERTIA)
         add_link(model, "finger", arm, Prismatic([1, 0, 0], Origin(), Limits(effort=3)),
                  mass=0.1, inertia=INERTIA)
-        self.assertEqual([(limit.name, limit.lower, limit.upper, limit.velocity)
+        # a joint with only an effort rating is a limit without a range: its effort is rated
+        self.assertEqual([(limit.name, limit.lower, limit.upper, limit.velocity, limit.effort)
                           for limit in model.limits],
-                         [("shoulder", -1.0, 2.0, math.inf),
-                          ("wrist_joint", -math.inf, math.inf, 4.0)])
+                         [("shoulder", -1.0, 2.0, math.inf, math.inf),
+                          ("wrist_joint", -math.inf, math.inf, 4.0, math.inf),
+                          ("finger_joint", -math.inf, math.inf, math.inf, 3.0)])
 
     def test_refusals_name_the_limit(self):
         model, q = self._pendulum()
@@ -73,12 +75,15 @@ class ModelLimitsTest(unittest.TestCase):
         add_link(free, "body", None, Free(Origin()), mass=1.0, inertia=INERTIA)
         quaternion = free.coordinates[3].symbol
         cases = [
-            (lambda: model.limit(q), "give a lower end, an upper end, a velocity rating"),
+            (lambda: model.limit(q), "give a lower end, an upper end, a velocity or effort "
+                                     "rating"),
             (lambda: model.limit(q, 1, 0), "its lower end 1 exceeds its upper end 0"),
             (lambda: model.limit(q, math.nan, 1), "its lower end must be finite"),
             (lambda: model.limit(q, -math.inf), "leave it out"),
             (lambda: model.limit(q, "low"), "its lower end must be a number, not 'low'"),
             (lambda: model.limit(q, velocity=0), "its velocity rating must be positive"),
+            (lambda: model.limit(q, effort=-2), "its effort rating must be positive, not -2"),
+            (lambda: model.limit(q, effort=math.inf), "its effort rating must be finite"),
             (lambda: free.limit(quaternion, -1, 1), "body_qw belongs to a free or ball joint"),
             (lambda: model.limit(model.t, 0, 1), "t is not a declared coordinate"),
         ]
@@ -120,7 +125,7 @@ class HeaderLimitsTest(unittest.TestCase):
                      "limited_coordinates{{0, 1, 2}}", "limited_speeds{{0, 1, 2}}",
                      f"lower_limits{{{{-1.5, -{infinity}, 0.0}}}}",
                      f"upper_limits{{{{2.0, {infinity}, 0.04}}}}",
-                     "velocity_limits{{3.0, 3.0, 1.0}}"):
+                     "velocity_limits{{3.0, 3.0, 1.0}}", "effort_limits{{10.0, 5.0, 1.0}}"):
             self.assertIn(text, " ".join(self.urdf_header.split()))
 
     def test_a_limit_after_a_free_joint_names_its_speed_apart_from_its_coordinate(self):

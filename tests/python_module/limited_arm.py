@@ -1,6 +1,7 @@
 r"""Two-link planar arm with an elbow stop: the elbow angle is limited to [-0.5, 0.5] rad, and a
-motor torque u drives the shoulder. Point masses of 1 kg at the ends of two 1 m links; the
-Python module's joint-limit tests (test_joint_limits_module.py) swing it onto its stop.
+motor torque u, rated at 40 N m, drives the shoulder. Point masses of 1 kg at the ends of two
+1 m links; the Python module's joint-limit tests (test_joint_limits_module.py) swing it onto
+its stop.
 """
 from gencoord import Model, cos, sin
 
@@ -15,3 +16,4 @@ model.particle("hand", 1.0, [sin(a) + sin(a + b), -cos(a) - cos(a + b)])
 model.gravity([0, -g])
 model.generalized_force(a, u, name="shoulder motor")
 model.limit(b, -0.5, 0.5, name="elbow stop")
+model.limit(a, effort=40.0, name="shoulder motor")

@@ -1,8 +1,9 @@
 # SPDX-License-Identifier: BSD-3-Clause
 """The Python module of a model with a joint limit (limited_arm.py: a two-link arm whose elbow
-is stopped at +-0.5 rad): simulate keeps the elbow in its range, with or without an inputs
-argument, and the energy of the conservative arm never rises (the stops are inelastic); with
-joint_limits=False the same swing leaves the range.
+is stopped at +-0.5 rad, its shoulder motor rated): the module lists the limits and ratings;
+simulate keeps the elbow in its range, with or without an inputs argument, and the energy of
+the conservative arm never rises (the stops are inelastic); with joint_limits=False the same
+swing leaves the range.
 
 Run by CTest (python_module_tests) with the built modules on PYTHONPATH.
 """
@@ -24,10 +25,13 @@ class JointLimitsModuleTest(unittest.TestCase):
         cls.arm = importlib.import_module("limited_arm")
 
     def test_the_module_lists_the_limits(self):
-        self.assertEqual(self.arm.limit_names, ("elbow stop",))
-        self.assertEqual(self.arm.limited_coordinates, (1,))
+        self.assertEqual(self.arm.limit_names, ("elbow stop", "shoulder motor"))
+        self.assertEqual(self.arm.limited_coordinates, (1, 0))
         self.assertEqual((self.arm.lower_limits[0], self.arm.upper_limits[0]), (-0.5, 0.5))
         self.assertEqual(self.arm.velocity_limits[0], np.inf)
+        # the shoulder's motor is rated, its range open
+        self.assertEqual(list(self.arm.effort_limits), [np.inf, 40.0])
+        self.assertEqual((self.arm.lower_limits[1], self.arm.upper_limits[1]), (-np.inf, np.inf))
 
     def test_the_elbow_stays_on_its_stops_and_energy_never_rises(self):
         _, q, _, energy = self.arm.simulate(t_end=3.0, dt=1e-3)

@@ -36,6 +36,19 @@ model.gravity([0, 0, -9.81])
 """
 
 
+# A two-link arm whose shoulder motor, a control input, is rated at 40 N m.
+RATED_ARM = """from gencoord import Model, cos, sin
+model = Model(dim=2)
+a = model.coordinate("shoulder", initial=1.2)
+b = model.coordinate("elbow")
+u = model.input("u", "shoulder motor torque (N m)")
+model.particle("elbow_mass", 1.0, [sin(a), -cos(a)])
+model.particle("hand", 1.0, [sin(a) + sin(a + b), -cos(a) - cos(a + b)])
+model.gravity([0, -9.81])
+model.generalized_force(a, u, name="shoulder motor")
+model.limit(a, effort=40.0, name="shoulder motor")
+"""
+
 # A four-bar linkage closed by a loop constraint, as a user's own file.
 LINKAGE = (REPOSITORY / "models" / "four_bar.py").read_text(encoding="utf-8")
 
@@ -199,6 +212,15 @@ class GencoordCommandTest(unittest.TestCase):
         log = logs[0].read_text(encoding="utf-8")
         self.assertIn("simulate.cpp", log)
         self.assertNotRegex(log, r"runtime/src/\w+\.cpp", "the runtime was compiled again")
+        # a motor's rating: the summary names the joint whose input force passed it
+        (self.user / "rated.py").write_text(RATED_ARM, encoding="utf-8")
+        driven = self.gencoord("simulate", "rated.py", "--duration", "0.2", "--set", "u=50")
+        self.assertSucceeded(driven)
+        self.assertIn("effort rating exceeded by shoulder motor (inputs' force up to 50, "
+                      "rated 40)", driven.stdout)
+        gentle = self.gencoord("simulate", "rated.py", "--duration", "0.2", "--set", "u=30")
+        self.assertSucceeded(gentle)
+        self.assertNotIn("effort rating exceeded", gentle.stdout)
 
     def test_8_a_free_body_simulates_and_crosschecks_on_its_speeds(self):
         # a free trunk with a ball-jointed arm: unit quaternions, nq = 11, nv = 9

@@ -139,7 +139,7 @@ def _part_groups(kernels) -> list[int]:
 
 
 def _limits_view(model) -> list[dict]:
-    """Each joint limit's coordinate and speed (indices in q and v), ends and speed rating."""
+    """Each joint limit's coordinate and speed (indices in q and v), ends and ratings."""
     speeds = [s.symbol for s in model.speeds]
 
     def end(value: float) -> str:
@@ -149,7 +149,8 @@ def _limits_view(model) -> list[dict]:
 
     return [dict(name=limit.name, coordinate=model.coordinates.index(limit.coordinate),
                  speed=speeds.index(limit.coordinate.rate), lower=end(limit.lower),
-                 upper=end(limit.upper), velocity=end(limit.velocity))
+                 upper=end(limit.upper), velocity=end(limit.velocity),
+                 effort=end(limit.effort))
             for limit in model.limits]
 
 

@@ -71,8 +71,8 @@ class Origin:
 @dataclass
 class Limits:
     """A joint's range and ratings as URDF gives them: the range is enforced while the model
-    runs, a speed above the velocity rating is reported (joint_limits.py); the effort is
-    described, not enforced."""
+    runs; a speed above the velocity rating, and a generalized force of the control inputs
+    above the effort rating, are reported (joint_limits.py)."""
     lower: float | None = None
     upper: float | None = None
     effort: float | None = None

@@ -308,12 +308,13 @@ def _resist(model, link: Link, joint_frame: Frame, law, name: str, what: str,
 
 
 def _limit(model, q, joint, label: str) -> None:
-    """The joint's range (none for a continuous joint, as in URDF) and velocity rating."""
+    """The joint's range (none for a continuous joint, as in URDF) and its velocity and effort
+    ratings."""
     limits = joint.limits
     ranged = not isinstance(joint, Continuous)
     lower, upper = (limits.lower, limits.upper) if ranged else (None, None)
-    if lower is not None or upper is not None or limits.velocity is not None:
-        model.limit(q, lower, upper, limits.velocity, name=label)
+    if any(value is not None for value in (lower, upper, limits.velocity, limits.effort)):
+        model.limit(q, lower, upper, limits.velocity, name=label, effort=limits.effort)
 
 
 def _initial(limits: Limits | None) -> float:

@@ -79,6 +79,7 @@ void bind_metadata(py::module_& module) {
     module.attr("lower_limits") = read_only_array(M::lower_limits);
     module.attr("upper_limits") = read_only_array(M::upper_limits);
     module.attr("velocity_limits") = read_only_array(M::velocity_limits);
+    module.attr("effort_limits") = read_only_array(M::effort_limits);
   } else {
     module.attr("limit_names") = py::tuple();
   }
