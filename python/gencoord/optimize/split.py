@@ -128,10 +128,10 @@ def is_derivative_path(kernel_name: str) -> bool:
     Group 0 holds the other kernels' parts once there are two groups or more, and CMake
     compiles it with GCC's register-pressure-aware scheduling before register allocation
     (gencoord_add_model), which shortens the latency-bound kernels (a 7-joint arm's
-    inverse_dynamics by about a sixth) but lengthens their code by about a tenth. The
-    derivative path's code nearly fills a 64 KiB instruction cache on a 7-joint arm, so it
-    keeps the default scheduling: grown by it, it ran half as long again (docs/performance.md,
-    section 9).
+    inverse_dynamics by about a sixth) but lengthens long code (the arm's residual_jacobians
+    by a seventh). The derivative path's code nearly fills a 64 KiB instruction cache on a
+    7-joint arm, so it keeps the default scheduling: grown by it, it ran half as long again
+    (docs/performance.md, section 9).
     """
     return kernel_name == "dynamics" or "jacobian" in kernel_name
 
