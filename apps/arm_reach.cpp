@@ -24,7 +24,6 @@
 
 #include "collocation.hpp"
 #include "gencoord/control/inputs.hpp"
-#include "gencoord/model/joint_limits.hpp"
 #include "generated/iiwa14_torques.hpp"
 
 namespace {

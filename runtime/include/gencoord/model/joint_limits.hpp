@@ -2,7 +2,7 @@
 // Joint limits: a model whose header lists them (num_limits, limited_coordinates,
 // limited_speeds, lower_limits, upper_limits, velocity_limits, effort_limits, limit_names) keeps
 // those coordinates in their ranges; the speed and effort ratings are for reports (limit_side,
-// input_efforts, simulate).
+// input_efforts in gencoord/control/inputs.hpp, simulate).
 // enforce_joint_limits() acts on a step's end state: a coordinate past a limit is put back on it,
 // and the speeds into the limits are stopped by one inelastic impulse through the mass matrix, Mt
 // (v+ - v-) = sum_i mu_i e_k(i) (k(i) the limit's speed). That is Moreau's impact law with zero
@@ -14,7 +14,6 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <cstddef>
 #include <type_traits>
 #include <vector>
 
@@ -47,26 +46,6 @@ template <class M>
 int limit_side(const QVec<M>& q, int i) {
   const double value = q[M::limited_coordinates[i]];
   return value <= M::lower_limits[i] ? -1 : value >= M::upper_limits[i] ? 1 : 0;
-}
-
-/// The generalized force the control inputs that p holds apply at each limit's speed,
-/// (B u)[limited_speeds[i]] with B = input_matrix(q, v, t, p): what effort_limits[i] rates,
-/// such as a motor's torque at its joint. All zero for a model without control inputs.
-template <class M>
-std::array<double, M::num_limits> input_efforts(const State<M>& s, const ParamsOf<M>& p) {
-  std::array<double, M::num_limits> efforts{};
-  if constexpr (has_inputs_v<M>) {
-    const auto values = p.inputs();
-    InputVec<M> u;
-    for (int k = 0; k < M::num_inputs; ++k) u[k] = values[static_cast<std::size_t>(k)];
-    const VVec<M> applied = M::input_matrix(s.q, s.v, s.t, p) * u;
-    for (int i = 0; i < M::num_limits; ++i)
-      efforts[static_cast<std::size_t>(i)] = applied[M::limited_speeds[i]];
-  } else {
-    (void)s;
-    (void)p;
-  }
-  return efforts;
 }
 
 /// What enforce_joint_limits() found and did at one state.
