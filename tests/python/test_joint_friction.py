@@ -8,6 +8,7 @@ refused in one line."""
 from __future__ import annotations
 
 import math
+import shutil
 import tempfile
 import unittest
 from pathlib import Path
@@ -45,6 +46,7 @@ class UrdfFrictionTest(unittest.TestCase):
 
     def setUp(self):
         self.folder = Path(tempfile.mkdtemp())
+        self.addCleanup(shutil.rmtree, self.folder, ignore_errors=True)
 
     def load(self, text: str) -> Model:
         path = self.folder / "robot.urdf"

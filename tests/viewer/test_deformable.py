@@ -8,6 +8,7 @@ from __future__ import annotations
 import array
 import base64
 import os
+import shutil
 import tempfile
 import unittest
 
@@ -43,6 +44,7 @@ def decoded(text: str, kind: str) -> list:
 class DeformableDataTest(unittest.TestCase):
     def setUp(self):
         self.folder = tempfile.mkdtemp(prefix="gencoord-deformable-")
+        self.addCleanup(shutil.rmtree, self.folder, ignore_errors=True)
 
     def test_frames_and_springs(self):
         write_run(self.folder)
