@@ -3,17 +3,18 @@
 # Sets everything up and runs every test:
 #   0. the format and lint checks (scripts/check_style.sh);
 # then, through CTest,
-#   1. the suites of the code that can have memory errors, built with AddressSanitizer and
-#      UndefinedBehaviorSanitizer: the runtime (on hand-written models), the deformables, the
-#      maximal model (the cross-check), the fuzz targets' corpora and the sweep program's
-#      exchange between ranks;
-#   2. the whole suite in a Release build: the generator's Python tests, one CTest test per
-#      module, with the python that generates and with the python3 on PATH when its SymPy is
-#      another version (independent derivations, golden files of generated/ compared byte for
-#      byte by the SymPy that wrote them, bad models), the generated models' tests, the models'
-#      Python modules (built for Debian's /usr/bin/python3, which has NumPy and SciPy), the
-#      viewer page in headless Chromium, gencoord sweep under MPI (Open MPI, HDF5, h5py), the
-#      property tests of the input readers (Hypothesis), and the runtime suites;
+#   1. the suites of the code that can have memory errors (GENCOORD_MEMORY_SUITES), built
+#      with AddressSanitizer and UndefinedBehaviorSanitizer: the runtime (on hand-written
+#      models), the deformables, the maximal model (the cross-check), constraints, the fuzz
+#      targets' corpora and the sweep program's exchange between ranks;
+#   2. every other suite in a Release build, which leaves the memory suites to step 1 (and
+#      builds them itself when step 1 is skipped): the generator's Python tests, one CTest test
+#      per module, with the python that generates and with the python3 on PATH when its SymPy
+#      is another version (independent derivations, golden files of generated/ compared byte
+#      for byte by the SymPy that wrote them, bad models), the generated models' tests, the
+#      models' Python modules (built for Debian's /usr/bin/python3, which has NumPy and SciPy),
+#      the viewer page in headless Chromium, gencoord sweep under MPI (Open MPI, HDF5, h5py),
+#      the property tests of the input readers (Hypothesis), and the longest deformable runs;
 #   3. the C++ readers of outside input (meshes, the sweep program's sample table) under
 #      libFuzzer, 40 s for each, side by side (scripts/fuzz.sh).
 # Builds use Ninja and ccache where installed (scripts/setup.sh installs both): ccache keeps
@@ -60,20 +61,20 @@ configure() {
 phase "format and lint"
 scripts/check_style.sh
 
+# the suites of the code that can have memory errors (GENCOORD_MEMORY_SUITES,
+# cmake/memory_suites.cmake) run once: under the sanitizers, or in the Release build when those
+# are skipped
+memory_suites_in_release=ON
 if [ "${GENCOORD_SKIP_SANITIZERS:-0}" != 1 ]; then
-  sanitized_suites="^(runtime|deformable|crosscheck|constrained|fuzz|sweep_exchange)$"
   phase "build: the suites under AddressSanitizer + UndefinedBehaviorSanitizer"
   # -O1: quick to compile, fast enough to run, and what the sanitizers' authors recommend
   configure "${build}-sanitize" -DCMAKE_BUILD_TYPE=Sanitize -DCMAKE_CXX_FLAGS_SANITIZE=-O1 \
-            -DGENCOORD_SANITIZE=ON -DGENCOORD_BUILD_TESTS=ON
-  targets=$(cmake --build "${build}-sanitize" --target help | grep -oE \
-            'gencoord_(runtime|crosscheck|constrained|fuzz|sweep_exchange)_tests|deformable_(tests|demo|drop)' \
-            | sort -u)
-  # shellcheck disable=SC2086
-  cmake --build "${build}-sanitize" -j "$jobs" --target $targets
+            -DGENCOORD_SANITIZE=ON -DGENCOORD_BUILD_TESTS=ON -DGENCOORD_MEMORY_SUITES=ON
+  cmake --build "${build}-sanitize" -j "$jobs" --target gencoord_memory_suites
   phase "run: the suites under AddressSanitizer + UndefinedBehaviorSanitizer"
-  ctest --test-dir "${build}-sanitize" -L "$sanitized_suites" --output-on-failure \
-        --no-tests=error -j "$jobs"
+  ctest --test-dir "${build}-sanitize" -L "$(cat "${build}-sanitize/memory_suites.labels")" \
+        --output-on-failure --no-tests=error -j "$jobs"
+  memory_suites_in_release=OFF
 fi
 
 phase "fuzz: the mesh and sample-table readers under libFuzzer (scripts/fuzz.sh, 40 s each)"
@@ -84,7 +85,7 @@ grep -E '^Done [0-9]+ runs' "${build}-fuzz.log"
 phase "build: everything, Release"
 # tests ON explicitly: scripts/demo.sh configures the same build directory with them off
 configure "$build" -DCMAKE_BUILD_TYPE=Release -DGENCOORD_BUILD_TESTS=ON \
-          -DGENCOORD_TEST_PYTHONS="$test_pythons"
+          -DGENCOORD_MEMORY_SUITES="$memory_suites_in_release" -DGENCOORD_TEST_PYTHONS="$test_pythons"
 cmake --build "$build" -j "$jobs"
 phase "run: every test, Release"
 ctest --test-dir "$build" --output-on-failure --no-tests=error -j "$jobs" \

@@ -24,6 +24,7 @@
 #include "gencoord/deformable/stretch_modulus.hpp"
 #include "gencoord/deformable/time_step.hpp"
 #include "gencoord/deformable/validate.hpp"
+#include "long_run_checks.hpp"
 #include "mesh_files.hpp"
 #include "test_helpers.hpp"
 #include "test_materials.hpp"
@@ -341,64 +342,9 @@ TEST(QuadraticElement, ImplicitStepNeverGainsEnergy) {
   EXPECT_LT(previous, e0);
 }
 
-// A cube of quadratic elements dropped from 0.15 m onto a block of linear ones glued to the
-// ground, colliding through its subdivided boundary: no node of it comes half a cell of the
-// block below the block's top and it ends on the block, in explicit steps at half the CFL
-// limit and implicit ones at 10 times it. Each surface keeps its own contact thickness, so the
-// cube's finer surface does not thin the block's (with the thinner layer for both, it sinks
-// 4.5 cm into the block and its energy doubles). No step gains energy, implicit ones included,
-// also with the linear tetrahedra that tile the quadratic ones on the same nodes (the implicit
-// matrix's contact blocks bound their coupling from above, src/contact_forces.hpp; the
-// Hessian's own diagonal blocks would let them gain 0.7% and 1.2%).
-void ExpectCubeStaysOnTheBlock(bool implicit, bool quadratic) {
-  const double edge = 0.2;
-  Material rubber = corotated(2e5, 0.3, 20.0);
-  const SimplexMesh<3> block_mesh =
-      box_mesh(edge, edge, 0.5 * edge, 4, 4, 2, Eigen::Vector3d(-0.5 * edge, -0.5 * edge, 0.0));
-  MassSpringSystem<3> scene = make_mass_spring(block_mesh, rubber);
-  pin_nodes_where(scene, 2, 0.0);
-  enable_collisions<3>(scene, boundary_triangles(block_mesh), 0.5, 0.3);
-  const QuadraticMesh<3> cube_mesh =
-      quadratic_mesh(box_mesh(0.5 * edge, 0.5 * edge, 0.5 * edge, 2, 2, 2,
-                              Eigen::Vector3d(-0.25 * edge, -0.2 * edge, 0.25)));
-  const SimplexMesh<3> tiles = subdivided_mesh(cube_mesh);
-  MassSpringSystem<3> cube =
-      quadratic ? make_mass_spring(cube_mesh, rubber) : make_mass_spring(tiles, rubber);
-  enable_collisions<3>(cube, boundary_triangles(tiles), 0.5, 0.3);
-  const int first = append_object(scene, cube), count = scene.num_nodes();
-  ASSERT_EQ(scene.collisions->surface_thickness.size(), scene.collisions->surface.size());
-  scene.gravity << 0.0, 0.0, -9.81;
-  const double dt = (implicit ? 10.0 : 0.5) * cfl_limit(scene), e0 = total_energy(scene);
-  const double top = 0.5 * edge, allowed = 0.5 * 0.25 * edge;
-  double lowest = 1.0, highest_energy = e0;
-  BackwardEulerStepper<3> stepper;
-  while (scene.t < 0.5) {
-    if (implicit) {
-      stepper.step(scene, dt);
-    } else {
-      symplectic_euler_step(scene, dt);
-    }
-    lowest = std::min(lowest, scene.x.rightCols(count - first).row(2).minCoeff());
-    highest_energy = std::max(highest_energy, total_energy(scene));
-  }
-  const Eigen::Vector3d centre = scene.x.rightCols(count - first).rowwise().mean();
-  std::printf(
-      "[ cube drop ] %s, %s: lowest node %.4f m (the block's top %.2f m), energy %.4f J -> %.4f "
-      "J (highest %.4f J), centre ends at z = %.4f m\n",
-      quadratic ? "quadratic" : "linear on the same nodes", implicit ? "implicit" : "explicit",
-      lowest, top, e0, total_energy(scene), highest_energy, centre.z());
-  EXPECT_GT(lowest, top - allowed);
-  EXPECT_LE(highest_energy, e0 * (1.0 + 1e-6));
-  EXPECT_GT(centre.z(), top);
-}
-
-TEST(QuadraticElement, CubeDroppedOnABlockStaysOnIt) {
-  ExpectCubeStaysOnTheBlock(true, true);
-  // the same code at other settings: 45 s under the sanitizers, so in the Release build only
-  if (testing::kSanitized) GTEST_SKIP() << "the explicit and linear drops run in the Release build";
-  ExpectCubeStaysOnTheBlock(false, true);
-  ExpectCubeStaysOnTheBlock(true, false);
-}
+// The cube of quadratic elements dropped onto the block in implicit steps (long_run_checks.hpp);
+// deformable_long_tests repeats it in explicit steps and with linear elements
+TEST(QuadraticElement, CubeDroppedOnABlockStaysOnIt) { ExpectCubeStaysOnTheBlock(true, true); }
 
 TEST(QuadraticElement, MalformedInputIsRefused) {
   QuadraticMesh<2> curved = quadratic_mesh(rectangle_mesh(1.0, 0.5, 2, 1));

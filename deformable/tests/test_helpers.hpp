@@ -1,21 +1,12 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #pragma once
-// Helpers shared by the deformable tests: pi, pulse set-up and arrival-time measurement, and
-// whether the build is the sanitizers'.
+// Helpers shared by the deformable tests: pi, pulse set-up and arrival-time measurement.
 
 #include <Eigen/Core>
 #include <cmath>
 #include <vector>
 
 namespace gencoord::deformable::testing {
-
-/// Built with AddressSanitizer (GCC defines this; the sanitizer builds use GCC): tests that
-/// repeat a run through the same code at other settings keep the repeats for the Release build.
-#ifdef __SANITIZE_ADDRESS__
-inline constexpr bool kSanitized = true;
-#else
-inline constexpr bool kSanitized = false;
-#endif
 
 inline constexpr double kPi = 3.14159265358979323846;
 
