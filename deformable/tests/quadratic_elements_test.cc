@@ -14,13 +14,11 @@
 
 #include "explicit_stability.hpp"
 #include "figures.hpp"
-#include "gencoord/deformable/collision.hpp"
 #include "gencoord/deformable/errors.hpp"
 #include "gencoord/deformable/implicit_stepper.hpp"
 #include "gencoord/deformable/mass_spring_integration.hpp"
 #include "gencoord/deformable/mesh_io.hpp"
 #include "gencoord/deformable/mesh_to_springs.hpp"
-#include "gencoord/deformable/scene.hpp"
 #include "gencoord/deformable/stretch_modulus.hpp"
 #include "gencoord/deformable/time_step.hpp"
 #include "gencoord/deformable/validate.hpp"
