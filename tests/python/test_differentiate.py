@@ -15,7 +15,8 @@ import unittest
 import sympy as sp
 
 from gencoord.cxx.printer import ScalarCxxPrinter
-from gencoord.derive.differentiate import ChainSum, directional_derivatives, forward_derivatives
+from gencoord.derive.differentiate import (ChainSum, directional_derivatives,
+                                           forward_derivatives, free_symbols_of)
 from gencoord.optimize.opcount import count_ops
 
 from .support import DIGITS
@@ -132,6 +133,23 @@ class AbsoluteValueTest(unittest.TestCase):
         self.assertFalse(derivative.has(sp.Derivative, sp.re, sp.im), derivative)
         # d/dx |x y + p| y = sign(x y + p) y^2, and x y + p < 0 here
         self.assertAlmostEqual(float(derivative.xreplace(values)), -(1.3**2), places=12)
+
+
+class FreeSymbolsTest(unittest.TestCase):
+    """free_symbols_of, which partial() asks at every level, is SymPy's free_symbols."""
+
+    def test_every_subexpression_agrees_with_sympy(self):
+        q = sp.Function("q")(t[0])
+        s = sp.Symbol("s")
+        exprs = [*(e for _, e in PROGRAM), *OUTPUTS, sp.Abs(x * y + p) ** sp.Rational(3, 2),
+                 sp.sin(q) * y + sp.Integer(2), sp.Integral(x * s, (s, 0, y)) * p,
+                 sp.Derivative(q, t[0]) + x, sp.Float("0.5") * sp.pi]
+        memo: dict = {}
+        for expr in exprs:
+            for sub in sp.preorder_traversal(expr):
+                self.assertEqual(free_symbols_of(sub, memo), sub.free_symbols, sub)
+        # the bound variable of the integral is not free
+        self.assertNotIn(s, free_symbols_of(exprs[-3], memo))
 
 
 class ChainSumPrintingTest(unittest.TestCase):

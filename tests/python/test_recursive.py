@@ -221,12 +221,12 @@ class BodyTreeTest(unittest.TestCase):
         # moment rounds at 1e-16, which bounds the agreement there)
         # (a floating robot's dense form with a quaternion takes many minutes: the quaternion
         # tree has the same free and ball joints, and tests/robots checks the floating
-        # quadruped against MuJoCo. Deriving its dense form takes 40 s of CPU with SymPy 1.14
-        # and 70 s with 1.11, so it is compared under the newer SymPy only: the recursions are
-        # the same code under both)
-        # (the UR5e-like arm is a revolute chain as the iiwa is; its dense form would add 9 s
-        # of CPU under SymPy 1.14 and 19 s under 1.11, and tests/robots checks its kernels
-        # against MuJoCo and DART)
+        # quadruped against MuJoCo. Comparing it takes 19 s of CPU with SymPy 1.14 and 59 s
+        # with 1.11, so it is compared under the newer SymPy only: the recursions are the same
+        # code under both)
+        # (the UR5e-like arm is a revolute chain as the iiwa is; comparing it would add 4 s of
+        # CPU under SymPy 1.14 and 7 s under 1.11, and tests/robots checks its kernels against
+        # MuJoCo and DART)
         fixed_base = [path for path in sorted(MODELS.glob("*.urdf"))
                       if "floating" not in path.name and path.name != "ur5e.urdf"]
         quaternion_tree = [(QUATERNION_TREE, None)] if _SYMPY_AT_LEAST_1_13 else []

@@ -30,7 +30,7 @@ from gencoord.derive.speed_forces import generalized_force_vector, rate_matrix
 from gencoord.dsl.model import Model
 from gencoord.dsl.items import Point
 from gencoord.derive.point_tree import PointTree, point_tree
-from gencoord.symbolic.sums import dot
+from gencoord.symbolic.sums import dot, product
 
 if TYPE_CHECKING:
     from gencoord.derive.kinematic_constraints import ConstraintDerivation
@@ -137,7 +137,7 @@ class Kinematics:
 
     def to_speeds(self, jacobian_q: sp.Matrix) -> sp.Matrix:
         """d/dv of what `jacobian_q` is d/dq of: times G."""
-        return jacobian_q if self._rate_matrix is None else jacobian_q * self._rate_matrix
+        return jacobian_q if self._rate_matrix is None else product(jacobian_q, self._rate_matrix)
 
     @property
     def tree(self) -> PointTree | None:
@@ -362,8 +362,8 @@ def derive(model: Model, kin: Kinematics | None = None) -> Derivation:
         for a in range(nv):
             for b in range(a + 1):
                 mass_matrix[a, b] += w * dot(jac[:, a], jac[:, b])
-        applied += jac.T * gravity_force(model, term)
-        inertial -= w * (jac.T * gamma)
+        applied += product(jac.T, gravity_force(model, term))
+        inertial -= w * product(jac.T, gamma)
         kinetic += w * dot(ydot, ydot) / 2
         angular += w * _cross(y, ydot)
         if term.translational:
@@ -373,7 +373,7 @@ def derive(model: Model, kin: Kinematics | None = None) -> Derivation:
         for b in range(a):
             mass_matrix[b, a] = mass_matrix[a, b]
     for p in model.particles:
-        applied += kin.jacobian[p.name].T * force[p.name]
+        applied += product(kin.jacobian[p.name].T, force[p.name])
     generalized = generalized_force_vector(model, q)
     applied += generalized
 

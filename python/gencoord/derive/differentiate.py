@@ -170,43 +170,63 @@ def directional_derivatives(replacements: list[tuple[sp.Symbol, sp.Expr]],
     return mode.definitions, mode.sweep(None, dict(seeds))
 
 
-def partial(expr: sp.Expr, variable: sp.Symbol, named: dict | None = None) -> sp.Expr:
+def free_symbols_of(expr: sp.Expr, memo: dict) -> frozenset:
+    """expr.free_symbols, kept in `memo` for every subexpression: SymPy computes the property
+    from the leaves on each access, so asking it at every level of a recursion over an
+    expression costs its size times its depth."""
+    found = memo.get(expr)
+    if found is None:
+        if expr.is_Symbol:
+            found = frozenset((expr,))
+        elif expr.is_Add or expr.is_Mul or expr.is_Pow or expr.is_Function:
+            found = frozenset().union(*(free_symbols_of(arg, memo) for arg in expr.args))
+        else:  # numbers, and forms with bound variables, whose own rule SymPy knows
+            found = frozenset(expr.free_symbols)
+        memo[expr] = found
+    return found
+
+
+def partial(expr: sp.Expr, variable: sp.Symbol, named: dict | None = None,
+            memo: dict | None = None) -> sp.Expr:
     """d expr / d variable by the sum, product, power and chain rules.
 
     SymPy's `diff` spends about a millisecond per call on bookkeeping; the generator takes
     tens of thousands of derivatives of small expressions. Anything beyond +, *, constant
     powers, sin and cos is left to `diff`. `named` maps expressions the code already computes
     to their intermediates: the derivative of sin(q) reads cos(q)'s instead of calling cos again.
+    `memo` keeps the subexpressions' free symbols (free_symbols_of) between calls on the same
+    expression.
     """
     named = named or {}
+    memo = {} if memo is None else memo
     if expr == variable:
         return sp.Integer(1)
-    if expr.is_Atom or variable not in expr.free_symbols:
+    if expr.is_Atom or variable not in free_symbols_of(expr, memo):
         return sp.Integer(0)
     if expr.is_Add:
-        return sp.Add(*[partial(term, variable, named) for term in expr.args])
+        return sp.Add(*[partial(term, variable, named, memo) for term in expr.args])
     if expr.is_Mul:
         factors = expr.args
         terms = []
         for k, factor in enumerate(factors):
-            d = partial(factor, variable, named)
+            d = partial(factor, variable, named, memo)
             if d != 0:
                 terms.append(sp.Mul(*factors[:k], d, *factors[k + 1:]))
         return sp.Add(*terms)
-    if expr.is_Pow and variable not in expr.exp.free_symbols:
+    if expr.is_Pow and variable not in free_symbols_of(expr.exp, memo):
         base, exponent = expr.args
-        return exponent * base**(exponent - 1) * partial(base, variable, named)
+        return exponent * base**(exponent - 1) * partial(base, variable, named, memo)
     if isinstance(expr, sp.sin):
         cosine = sp.cos(expr.args[0])
-        return named.get(cosine, cosine) * partial(expr.args[0], variable, named)
+        return named.get(cosine, cosine) * partial(expr.args[0], variable, named, memo)
     if isinstance(expr, sp.cos):
         sine = sp.sin(expr.args[0])
-        return -named.get(sine, sine) * partial(expr.args[0], variable, named)
+        return -named.get(sine, sine) * partial(expr.args[0], variable, named, memo)
     if isinstance(expr, sp.Abs):
         # every value in the generated code is real, intermediates too: d|u| = u / |u| du
         # (SymPy's diff allows a complex u and leaves derivatives of re(u) and im(u))
         argument = expr.args[0]
-        return argument / expr * partial(argument, variable, named)
+        return argument / expr * partial(argument, variable, named, memo)
     return expr.diff(variable)
 
 
@@ -219,9 +239,10 @@ def termwise_gradient(expr: sp.Expr, variables: list[sp.Symbol],
     """
     wanted = set(variables)
     parts: dict[sp.Symbol, list[sp.Expr]] = {}
+    memo: dict = {}
     for term in (expr.args if expr.is_Add else (expr,)):
-        for variable in term.free_symbols & wanted:
-            parts.setdefault(variable, []).append(partial(term, variable, named))
+        for variable in free_symbols_of(term, memo) & wanted:
+            parts.setdefault(variable, []).append(partial(term, variable, named, memo))
     gradient = {w: sp.Add(*parts[w]) for w in variables if w in parts}
     return {w: d for w, d in gradient.items() if d != 0}
 
