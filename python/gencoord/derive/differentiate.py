@@ -57,7 +57,7 @@ class _ForwardMode:
                       if isinstance(expr, (sp.sin, sp.cos))}
         self.definitions: list[tuple[sp.Symbol, Derivative]] = []
         self.gradients: dict[sp.Expr, dict[sp.Symbol, sp.Expr]] = {}  # each expression's
-        self.free_of: dict[sp.Expr, frozenset] = {}                     # each entry's
+        self.free_of: dict[sp.Expr, frozenset] = {}  # free_symbols_of's, for the entries'
         reads = [expr.free_symbols & self.wanted for _, expr in replacements]
         # only the intermediates the outputs read, directly or not, need derivatives
         needed = set().union(*(output.free_symbols & self.wanted for output in outputs))
@@ -77,9 +77,6 @@ class _ForwardMode:
         if expr not in self.gradients:
             present = sorted(expr.free_symbols & self.wanted, key=sp.default_sort_key)
             self.gradients[expr] = termwise_gradient(expr, present, self.named)
-            for d in self.gradients[expr].values():
-                if d not in self.free_of:
-                    self.free_of[d] = frozenset(d.free_symbols)
         return self.gradients[expr]
 
     def derivative(self, expr: sp.Expr, variable: sp.Symbol | None, known: dict) -> Derivative:
@@ -104,9 +101,9 @@ class _ForwardMode:
                 return factor
             if factor == 1:  # x = y + ... passes dy on as is
                 return symbol
-        free = set()
+        free: set[sp.Symbol] = set()
         for factor, symbol in terms:
-            free |= self.free_of[factor] if factor in self.free_of else factor.free_symbols
+            free |= free_symbols_of(factor, self.free_of)
             if symbol is not None:
                 free.add(symbol)
         return ChainSum(terms, free)
