@@ -261,10 +261,10 @@ TEST(SheetBendingTest, CalibrationMakesTheGridAnIsotropicPlate) {
 
 TEST(SheetBendingTest, EquilateralMeshIsIsotropicWithNegativePoissonRatio) {
   // rows of unit triangles, every other row shifted by half an edge
-  const int n = 60;
+  constexpr int n = 60;
   TriangleSurface mesh;
   mesh.nodes.resize(3, (n + 1) * (n + 1));
-  auto id = [n](int i, int j) { return j * (n + 1) + i; };
+  auto id = [](int i, int j) { return j * (n + 1) + i; };
   const double row = std::sqrt(3.0) / 2.0;
   for (int j = 0; j <= n; ++j) {
     for (int i = 0; i <= n; ++i) mesh.nodes.col(id(i, j)) << i + 0.5 * (j % 2), j * row, 0.0;
