@@ -73,7 +73,15 @@ if [ "${GENCOORD_SKIP_SANITIZERS:-0}" != 1 ]; then
   # GCC's time, and brings a second compiler's warnings; the Release build is the default
   # compiler's, the one users build with.
   compiler=()
-  command -v clang++ >/dev/null 2>&1 && compiler=(-DCMAKE_CXX_COMPILER=clang++)
+  if clang=$(command -v clang++); then
+    compiler=(-DCMAKE_CXX_COMPILER="$clang")
+    # CMake drops a folder's settings when its compiler changes: one configured with another
+    # compiler starts afresh
+    if [ -f "${build}-sanitize/CMakeCache.txt" ] \
+       && ! grep -q "^CMAKE_CXX_COMPILER:[A-Z]*=$clang\$" "${build}-sanitize/CMakeCache.txt"; then
+      rm -rf "${build}-sanitize"
+    fi
+  fi
   configure "${build}-sanitize" "${compiler[@]}" -DCMAKE_BUILD_TYPE=Sanitize \
             -DCMAKE_CXX_FLAGS_SANITIZE=-O1 -DGENCOORD_SANITIZE=ON -DGENCOORD_BUILD_TESTS=ON \
             -DGENCOORD_MEMORY_SUITES=ON
