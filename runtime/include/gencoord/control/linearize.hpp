@@ -68,16 +68,15 @@ void acceleration_and_input_jacobians(const ParamsOf<M>& p, const QVec<M>& q, co
       }
     }
   } else if constexpr (has_residual_jacobians_v<M>) {
-    Eigen::LLT<PlainOf<VMat<M>>> llt;
-    detail::factor_and_solve<M>(pu, q, v, t, &llt, a);
+    detail::InverseMass<M> inverse_mass;
+    inverse_mass.compute(pu, q, v, t, a);
     VQMat<M> r_D_q;
     VMat<M> r_D_v;
     M::residual_jacobians(q, v, *a, t, pu, &r_D_q, &r_D_v);
-    VMat<M> Mt_inverse;
-    const bool want_u = has_inputs_v<M> && a_D_u;
-    detail::apply_inverse_mass<M>(llt, r_D_q, r_D_v, a_D_q, a_D_v, want_u ? &Mt_inverse : nullptr);
+    inverse_mass.apply_negated(r_D_q, a_D_q);
+    inverse_mass.apply_negated(r_D_v, a_D_v);
     if constexpr (has_inputs_v<M>)
-      if (a_D_u) *a_D_u = Mt_inverse * M::input_matrix(q, v, t, pu);
+      if (a_D_u) *a_D_u = inverse_mass.inverse() * M::input_matrix(q, v, t, pu);
   } else {
     detail::throw_no_generated_jacobians(M::name);
   }

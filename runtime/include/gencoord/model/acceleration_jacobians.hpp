@@ -18,6 +18,7 @@
 #include <limits>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 
 #include <Eigen/Cholesky>
 
@@ -25,6 +26,7 @@
 #include "gencoord/model/dynamics.hpp"
 #include "gencoord/model/inverse_dynamics.hpp"
 #include "gencoord/model/model_traits.hpp"
+#include "gencoord/numerics/small_dense.hpp"
 
 namespace gencoord {
 
@@ -104,69 +106,68 @@ void acceleration_jacobians_fd(const ParamsOf<M>& p, const QVec<M>& q, const VVe
 
 namespace detail {
 
-// factors Mt and solves for a, with the checks of acceleration()
+// Mt^-1 at a state, as the derivative paths apply it. Where Mt has a fixed size of at most
+// kSmallDenseMaxOrder, Mt^-1 is formed whole and applied as products by the runtime library's
+// small dense kernels (numerics/small_dense.hpp: compiled once, for the machine's vector
+// instructions; docs/performance.md, section 9, times the path); otherwise Eigen's Cholesky
+// factor of Mt is kept and solved with.
 template <class M>
-void factor_and_solve(const ParamsOf<M>& p, const QVec<M>& q, const VVec<M>& v, double t,
-                      Eigen::LLT<PlainOf<VMat<M>>>* llt, VVec<M>* a) {
-  using Reason = DynamicsError::Reason;
-  constexpr int nv = nv_of_v<M>;
-  VMat<M> Mt;
-  VVec<M> f;
-  M::dynamics(q, v, t, p, &Mt, &f);
-  if (!Mt.allFinite())
-    throw_dynamics_error(M::name, Reason::kNonFiniteMassMatrix, t, q.data(), v.data(), M::nq, nv);
-  if (!f.allFinite())
-    throw_dynamics_error(M::name, Reason::kNonFiniteForces, t, q.data(), v.data(), M::nq, nv);
-  llt->compute(Mt);
-  if (llt->info() != Eigen::Success)
-    throw_dynamics_error(M::name, Reason::kNotPositiveDefinite, t, q.data(), v.data(), M::nq, nv);
-  *a = llt->solve(f);
-  if (!a->allFinite())
-    throw_dynamics_error(M::name, Reason::kNonFiniteAcceleration, t, q.data(), v.data(), M::nq, nv);
-}
+class InverseMass {
+ public:
+  using Matrix = PlainOf<VMat<M>>;
+  static constexpr bool kSmall = Matrix::RowsAtCompileTime != Eigen::Dynamic &&
+                                 Matrix::RowsAtCompileTime <= kSmallDenseMaxOrder;
 
-// (L L^T)^-1 = X^T X from the Cholesky factor of a fixed-size matrix, X = L^-1 row by row:
-// each row of X is the unit row less a combination of the rows above it, whole rows that the
-// compiler vectorizes, where Eigen's column-wise triangular solve is one long chain of
-// dependent steps.
-template <class Matrix>
-Matrix inverse_from_cholesky(const Eigen::LLT<Matrix>& llt) {
-  constexpr int n = Matrix::RowsAtCompileTime;
-  static_assert(n != Eigen::Dynamic, "inverse_from_cholesky: fixed sizes only");
-  using Row = Eigen::Matrix<typename Matrix::Scalar, 1, n>;
-  const Matrix& L = llt.matrixLLT();  // L in the lower triangle
-  Eigen::Matrix<typename Matrix::Scalar, n, n, Eigen::RowMajor> X;
-  for (int i = 0; i < n; ++i) {
-    Row row = Row::Unit(i);
-    for (int k = 0; k < i; ++k) row -= L(i, k) * X.row(k);
-    X.row(i) = row / L(i, i);
+  /// Mt and f at (q, v, t), Mt^-1 and *a = Mt^-1 f, with the checks of acceleration().
+  /// \throws DynamicsError as acceleration() does.
+  void compute(const ParamsOf<M>& p, const QVec<M>& q, const VVec<M>& v, double t, VVec<M>* a) {
+    using Reason = DynamicsError::Reason;
+    constexpr int nv = nv_of_v<M>;
+    const auto fail = [&](Reason reason) {
+      throw_dynamics_error(M::name, reason, t, q.data(), v.data(), M::nq, nv);
+    };
+    VMat<M> Mt;
+    VVec<M> f;
+    M::dynamics(q, v, t, p, &Mt, &f);
+    if (!Mt.allFinite()) fail(Reason::kNonFiniteMassMatrix);
+    if (!f.allFinite()) fail(Reason::kNonFiniteForces);
+    if constexpr (kSmall) {
+      if (!small_spd_inverse(nv, Mt.data(), inverse_.data())) fail(Reason::kNotPositiveDefinite);
+      small_product(nv, 1, inverse_.data(), f.data(), 1.0, a->data());
+    } else {
+      llt_.compute(Mt);
+      if (llt_.info() != Eigen::Success) fail(Reason::kNotPositiveDefinite);
+      *a = llt_.solve(f);
+    }
+    if (!a->allFinite()) fail(Reason::kNonFiniteAcceleration);
   }
-  return X.transpose() * X;
-}
 
-// Mt^-1 times the residual's Jacobians: *a_D_q = -Mt^-1 r_D_q, *a_D_v = -Mt^-1 r_D_v, and
-// Mt^-1 itself into *inverse unless it is null. At fixed sizes up to 24 Eigen's triangular
-// solves are bound by latency (the iiwa's 7 x 7: about 430 ns a solve, 55 ns a 7 x 7 product),
-// so there Mt^-1 is formed from the factor (inverse_from_cholesky) and the rest are products
-// (the floating quadruped's derivatives, nv = 18: 12.0 us against 16.0 us solving each
-// block); otherwise each block is solved.
-template <class M>
-void apply_inverse_mass(const Eigen::LLT<PlainOf<VMat<M>>>& llt, const VQMat<M>& r_D_q,
-                        const VMat<M>& r_D_v, VQMat<M>* a_D_q, VMat<M>* a_D_v,
-                        VMat<M>* inverse = nullptr) {
-  constexpr int size = PlainOf<VMat<M>>::RowsAtCompileTime;
-  constexpr bool small = size != Eigen::Dynamic && size <= 24;
-  if constexpr (small) {
-    const VMat<M> Mt_inverse = inverse_from_cholesky(llt);
-    if (inverse) *inverse = Mt_inverse;
-    a_D_q->noalias() = -Mt_inverse * r_D_q;
-    a_D_v->noalias() = -Mt_inverse * r_D_v;
-    return;
+  /// Mt^-1.
+  Matrix inverse() const {
+    if constexpr (kSmall) {
+      return inverse_;
+    } else {
+      return llt_.solve(Matrix::Identity(nv_of_v<M>, nv_of_v<M>));
+    }
   }
-  if (inverse) *inverse = llt.solve(PlainOf<VMat<M>>::Identity(nv_of_v<M>, nv_of_v<M>));
-  *a_D_q = -llt.solve(r_D_q);
-  *a_D_v = -llt.solve(r_D_v);
-}
+
+  /// *result = -Mt^-1 rhs, for rhs of nv rows (dr/dq, dr/dv: the derivatives of a).
+  template <class Rhs>
+  void apply_negated(const Rhs& rhs, Rhs* result) const {
+    if constexpr (kSmall) {
+      static_assert(!Rhs::IsRowMajor, "small_product() reads and writes column-major data");
+      small_product(nv_of_v<M>, static_cast<int>(rhs.cols()), inverse_.data(), rhs.data(), -1.0,
+                    result->data());
+    } else {
+      *result = -llt_.solve(rhs);
+    }
+  }
+
+ private:
+  struct Unused {};
+  std::conditional_t<kSmall, Matrix, Unused> inverse_;
+  std::conditional_t<kSmall, Unused, Eigen::LLT<Matrix>> llt_;
+};
 
 [[noreturn]] inline void throw_no_generated_jacobians(const char* model) {
   throw std::invalid_argument(
@@ -179,8 +180,8 @@ void apply_inverse_mass(const Eigen::LLT<PlainOf<VMat<M>>>& llt, const VQMat<M>&
 
 /// The acceleration and its Jacobians in one pass: a = acceleration<M>(p, q, v, t),
 /// da/dq and da/dv from `source`. With generated Jacobians this costs one dynamics
-/// evaluation, one Cholesky factorization of Mt, one residual_jacobians() call and Mt^-1
-/// applied to its nq + nv columns (detail::apply_inverse_mass); with finite differences,
+/// evaluation, Mt^-1 (detail::InverseMass), one residual_jacobians() call and Mt^-1
+/// applied to its nq + nv columns; with finite differences,
 /// 2 (nq + nv) + 1 acceleration() evaluations.
 /// \param[in]  p       The model parameters.
 /// \param[in]  q       The generalized coordinates (dim M::nq).
@@ -207,12 +208,13 @@ void acceleration_and_jacobians(const ParamsOf<M>& p, const QVec<M>& q, const VV
   }
   if constexpr (has_residual_jacobians_v<M> && !has_kinematic_constraints_v<M>) {
     // r(q, v, a(q, v)) = 0  =>  Mt da/dq = -dr/dq, Mt da/dv = -dr/dv
-    Eigen::LLT<PlainOf<VMat<M>>> llt;
-    detail::factor_and_solve<M>(p, q, v, t, &llt, a);
+    detail::InverseMass<M> inverse_mass;
+    inverse_mass.compute(p, q, v, t, a);
     VQMat<M> r_D_q;
     VMat<M> r_D_v;
     M::residual_jacobians(q, v, *a, t, p, &r_D_q, &r_D_v);
-    detail::apply_inverse_mass<M>(llt, r_D_q, r_D_v, a_D_q, a_D_v);
+    inverse_mass.apply_negated(r_D_q, a_D_q);
+    inverse_mass.apply_negated(r_D_v, a_D_v);
   } else {
     detail::throw_no_generated_jacobians(M::name);
   }
