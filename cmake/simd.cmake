@@ -3,7 +3,8 @@
 # compiler and the building machine both have AVX2 and FMA, -mavx2 -mfma (named flags, not
 # -march=native, so that ccache never hands an object to another processor), so that a Pack<4>
 # is one register; and libmvec, glibc's vector sin and cos, where it is found.
-# gencoord_enable_avx2_kernels(TARGET): the same instruction sets for a model's kernel objects.
+# gencoord_enable_avx2_kernels(TARGET): the same instruction sets for a model's kernel objects,
+# and AVX-512 F and VL besides where the building machine has them.
 include_guard(GLOBAL)
 include(CheckCXXSourceRuns)
 include(CMakePushCheckState)
@@ -20,22 +21,51 @@ check_cxx_source_runs("
     return _mm256_cvtsd_f64(a) == 2.0 ? 0 : 1;
   }" GENCOORD_HAVE_AVX2)
 cmake_pop_check_state()
+# AVX-512 F and VL: the same instructions on 32 vector registers instead of 16
+cmake_push_check_state(RESET)
+set(CMAKE_REQUIRED_FLAGS "-mavx2 -mfma -mavx512f -mavx512vl")
+check_cxx_source_runs("
+  #include <immintrin.h>
+  int main() {
+    if (!__builtin_cpu_supports(\"avx512f\") || !__builtin_cpu_supports(\"avx512vl\")) return 1;
+    volatile double x = 1.0;
+    __m256d a = _mm256_set1_pd(x);
+    a = _mm256_maskz_add_pd(0x1, a, a);
+    return _mm256_cvtsd_f64(a) == 2.0 ? 0 : 1;
+  }" GENCOORD_HAVE_AVX512)
+cmake_pop_check_state()
 find_library(GENCOORD_LIBMVEC NAMES mvec)
 
 option(GENCOORD_AVX2_KERNELS
        "Compile models' kernel translation units (gencoord_add_model's TRANSLATION_UNITS) with -mavx2 -mfma where the compiler and the building machine have both"
        ON)
+option(GENCOORD_AVX512_KERNELS
+       "With GENCOORD_AVX2_KERNELS, add -mavx512f -mavx512vl (32 vector registers; vectors kept at 256 bits) where the compiler and the building machine have both"
+       ON)
+
+# The instruction-set options of the kernel objects and of the runtime's small dense kernels.
+# AVX-512's 32 registers spare a long kernel most of its spills to the stack; its vectors stay
+# at 256 bits (-mprefer-vector-width), as in the AVX2 code, so that a processor that slows its
+# clock for 512-bit vectors does not here (docs/performance.md measures both).
+set(GENCOORD_KERNEL_ISA_OPTIONS "")
+if(GENCOORD_HAVE_AVX2 AND GENCOORD_AVX2_KERNELS)
+  list(APPEND GENCOORD_KERNEL_ISA_OPTIONS -mavx2 -mfma)
+  if(GENCOORD_HAVE_AVX512 AND GENCOORD_AVX512_KERNELS)
+    list(APPEND GENCOORD_KERNEL_ISA_OPTIONS -mavx512f -mavx512vl -mprefer-vector-width=256)
+  endif()
+endif()
 
 # gencoord_enable_avx2_kernels(TARGET): the static library of a model's kernel translation
-# units, compiled for AVX2 and FMA where GENCOORD_HAVE_AVX2 and GENCOORD_AVX2_KERNELS hold.
+# units, compiled for AVX2 and FMA where GENCOORD_HAVE_AVX2 and GENCOORD_AVX2_KERNELS hold, and
+# for AVX-512 F and VL besides where GENCOORD_HAVE_AVX512 and GENCOORD_AVX512_KERNELS do.
 # Long straight-line kernels gain most: three-operand encodings make their code shorter, which
 # matters once it outgrows the instruction cache, and FMA contracts a * b + c into one rounding
 # (docs/performance.md measures both). Eigen's alignment stays at 16 bytes in these objects, so
 # that fixed-size Eigen types keep the layout, and heap blocks the allocation, of the
 # baseline-ISA objects they are linked with.
 function(gencoord_enable_avx2_kernels target)
-  if(GENCOORD_HAVE_AVX2 AND GENCOORD_AVX2_KERNELS)
-    target_compile_options(${target} PRIVATE -mavx2 -mfma)
+  if(GENCOORD_KERNEL_ISA_OPTIONS)
+    target_compile_options(${target} PRIVATE ${GENCOORD_KERNEL_ISA_OPTIONS})
     target_compile_definitions(${target} PRIVATE EIGEN_MAX_STATIC_ALIGN_BYTES=16
                                EIGEN_MAX_ALIGN_BYTES=16)
   endif()
