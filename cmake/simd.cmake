@@ -9,31 +9,31 @@ include_guard(GLOBAL)
 include(CheckCXXSourceRuns)
 include(CMakePushCheckState)
 
-cmake_push_check_state(RESET)
-set(CMAKE_REQUIRED_FLAGS "-mavx2 -mfma")
-check_cxx_source_runs("
-  #include <immintrin.h>
-  int main() {
-    if (!__builtin_cpu_supports(\"avx2\") || !__builtin_cpu_supports(\"fma\")) return 1;
-    volatile double x = 1.0;
-    __m256d a = _mm256_set1_pd(x);
-    a = _mm256_fmadd_pd(a, a, a);
-    return _mm256_cvtsd_f64(a) == 2.0 ? 0 : 1;
-  }" GENCOORD_HAVE_AVX2)
-cmake_pop_check_state()
+# _gencoord_isa_runs(VAR FLAGS FEATURES OPERATION): VAR is true where code compiled with FLAGS
+# runs on the building machine: it reports each of FEATURES, and OPERATION on the __m256d
+# a = (1, 1, 1, 1) leaves 2 in the lowest lane.
+function(_gencoord_isa_runs var flags features operation)
+  set(unsupported "")
+  foreach(feature IN LISTS features)
+    string(APPEND unsupported " || !__builtin_cpu_supports(\"${feature}\")")
+  endforeach()
+  cmake_push_check_state(RESET)
+  set(CMAKE_REQUIRED_FLAGS "${flags}")
+  check_cxx_source_runs("
+    #include <immintrin.h>
+    int main() {
+      if (false${unsupported}) return 1;
+      volatile double x = 1.0;
+      __m256d a = _mm256_set1_pd(x);
+      a = ${operation};
+      return _mm256_cvtsd_f64(a) == 2.0 ? 0 : 1;
+    }" ${var})
+  cmake_pop_check_state()
+endfunction()
+_gencoord_isa_runs(GENCOORD_HAVE_AVX2 "-mavx2 -mfma" "avx2;fma" "_mm256_fmadd_pd(a, a, a)")
 # AVX-512 F and VL: the same instructions on 32 vector registers instead of 16
-cmake_push_check_state(RESET)
-set(CMAKE_REQUIRED_FLAGS "-mavx2 -mfma -mavx512f -mavx512vl")
-check_cxx_source_runs("
-  #include <immintrin.h>
-  int main() {
-    if (!__builtin_cpu_supports(\"avx512f\") || !__builtin_cpu_supports(\"avx512vl\")) return 1;
-    volatile double x = 1.0;
-    __m256d a = _mm256_set1_pd(x);
-    a = _mm256_maskz_add_pd(0x1, a, a);
-    return _mm256_cvtsd_f64(a) == 2.0 ? 0 : 1;
-  }" GENCOORD_HAVE_AVX512)
-cmake_pop_check_state()
+_gencoord_isa_runs(GENCOORD_HAVE_AVX512 "-mavx2 -mfma -mavx512f -mavx512vl" "avx512f;avx512vl"
+                   "_mm256_maskz_add_pd(0x1, a, a)")
 find_library(GENCOORD_LIBMVEC NAMES mvec)
 
 option(GENCOORD_AVX2_KERNELS

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Dense kernels for the small matrices of the derivative path (a mass matrix of up to 24
 // speeds, its inverse applied to the residual's Jacobians), compiled once in the runtime
-// library with the vector instructions the building machine has (AVX2 and FMA where
+// library with the instruction sets of the models' kernels (AVX2 and FMA, and AVX-512 where
 // cmake/simd.cmake finds them). At these sizes Eigen's fixed-size factor, triangular solves
 // and products are bound by the latency of long chains of scalar steps, and they are compiled
 // in the user's translation unit for the baseline instruction set; here every column is a few
