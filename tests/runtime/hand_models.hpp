@@ -368,4 +368,136 @@ struct HandCoupled {
   }
 };
 
+// N unit masses on a line, each held by a spring and a damper, their inertias coupled with
+// their neighbours' and growing with the square of their own coordinate:
+//   Mt_ii = 1 + 0.1 q_i^2,  Mt_i,i+1 = coupling,  f = -k q - c v + f_bias,
+// so that the residual r = Mt(q) a - f has the closed-form Jacobians
+//   dr/dq = diag(0.2 q_i a_i) + k I,  dr/dv = c I.
+// Of any size, so that both of the derivative path's ways to Mt^-1 are exercised (the small
+// dense kernels up to 24 coordinates, Eigen's Cholesky factor above).
+template <int N>
+struct HandSpringChain {
+  static constexpr const char* name = "hand_spring_chain";
+  static constexpr int nq = N;
+  static constexpr int dim = 3;
+  static constexpr int num_particles = 1;
+  static constexpr int nx = dim * num_particles;
+  static constexpr int angular_dim = dim == 3 ? 3 : 1;
+  static constexpr std::array<const char*, nq> coordinate_names = [] {
+    std::array<const char*, nq> names{};
+    for (auto& name : names) name = "q";
+    return names;
+  }();
+  static constexpr std::array<const char*, num_particles> particle_names{{"first"}};
+
+  template <typename S>
+  using QVector = Eigen::Matrix<S, nq, 1>;
+  template <typename S>
+  using QMatrix = Eigen::Matrix<S, nq, nq>;
+  template <typename S>
+  using XVector = Eigen::Matrix<S, nx, 1>;
+  template <typename S>
+  using XJacobian = Eigen::Matrix<S, nx, nq>;
+  template <typename S>
+  using SpaceVector = Eigen::Matrix<S, dim, 1>;
+  template <typename S>
+  using AngularVector = Eigen::Matrix<S, angular_dim, 1>;
+  template <typename S>
+  using ParticleVector = Eigen::Matrix<S, num_particles, 1>;
+
+  struct Params {
+    double coupling = 0.2;  // inertial coupling of neighbours (kg); 3 makes Mt indefinite
+    double k = 3.0;         // spring stiffness (N/m)
+    double c = 0.5;         // damping (N s/m)
+    double f_bias = 0.0;    // constant force on every mass (N); NaN makes the forces non-finite
+  };
+
+  template <typename S>
+  static QMatrix<S> mass_matrix(const QVector<S>& q, const S&, const Params& p) {
+    QMatrix<S> Mt = QMatrix<S>::Zero();
+    for (int i = 0; i < nq; ++i) {
+      Mt(i, i) = S(1) + S(0.1) * q[i] * q[i];
+      if (i + 1 < nq) Mt(i, i + 1) = Mt(i + 1, i) = S(p.coupling);
+    }
+    return Mt;
+  }
+  template <typename S>
+  static QVector<S> applied_forces(const QVector<S>& q, const QVector<S>& v, const S&,
+                                   const Params& p) {
+    return -p.k * q - p.c * v + QVector<S>::Constant(S(p.f_bias));
+  }
+  template <typename S>
+  static QVector<S> inertial_forces(const QVector<S>&, const QVector<S>&, const S&, const Params&) {
+    return QVector<S>::Zero();
+  }
+  template <typename S>
+  static QVector<S> forces(const QVector<S>& q, const QVector<S>& v, const S& t, const Params& p) {
+    return applied_forces(q, v, t, p) + inertial_forces(q, v, t, p);
+  }
+  template <typename S>
+  static void dynamics(const QVector<S>& q, const QVector<S>& v, const S& t, const Params& p,
+                       QMatrix<S>* Mt, QVector<S>* f) {
+    if (Mt) *Mt = mass_matrix(q, t, p);
+    if (f) *f = forces(q, v, t, p);
+  }
+  template <typename S>
+  static QVector<S> qddot(const QVector<S>& q, const QVector<S>& v, const S& t, const Params& p) {
+    return mass_matrix(q, t, p).llt().solve(forces(q, v, t, p));
+  }
+  template <typename S>
+  static void residual_jacobians(const QVector<S>& q, const QVector<S>&, const QVector<S>& qdd,
+                                 const S&, const Params& p, QMatrix<S>* dr_dq, QMatrix<S>* dr_dv) {
+    *dr_dq = S(p.k) * QMatrix<S>::Identity();
+    dr_dq->diagonal() += S(0.2) * q.cwiseProduct(qdd);
+    *dr_dv = S(p.c) * QMatrix<S>::Identity();
+  }
+  template <typename S>
+  static S kinetic_energy(const QVector<S>& q, const QVector<S>& v, const S& t, const Params& p) {
+    return S(0.5) * v.dot(mass_matrix(q, t, p) * v);
+  }
+  template <typename S>
+  static S potential_energy(const QVector<S>& q, const S&, const Params& p) {
+    return S(0.5 * p.k) * q.squaredNorm() - p.f_bias * q.sum();
+  }
+  template <typename S>
+  static S energy(const QVector<S>& q, const QVector<S>& v, const S& t, const Params& p) {
+    return kinetic_energy(q, v, t, p) + potential_energy(q, t, p);
+  }
+  // the particle follows the first coordinate
+  template <typename S>
+  static XVector<S> positions(const QVector<S>& q, const S&, const Params&) {
+    return XVector<S>(q[0], S(0), S(0));
+  }
+  template <typename S>
+  static XJacobian<S> jacobian(const QVector<S>&, const S&, const Params&) {
+    XJacobian<S> J = XJacobian<S>::Zero();
+    J(0, 0) = S(1);
+    return J;
+  }
+  template <typename S>
+  static XVector<S> velocities(const QVector<S>& q, const QVector<S>& v, const S& t,
+                               const Params& p) {
+    return jacobian(q, t, p) * v;
+  }
+  template <typename S>
+  static XVector<S> bias_acceleration(const QVector<S>&, const QVector<S>&, const S&,
+                                      const Params&) {
+    return XVector<S>::Zero();
+  }
+  template <typename S>
+  static SpaceVector<S> linear_momentum(const QVector<S>& q, const QVector<S>& v, const S& t,
+                                        const Params& p) {
+    return jacobian(q, t, p) * (mass_matrix(q, t, p) * v);
+  }
+  template <typename S>
+  static AngularVector<S> angular_momentum(const QVector<S>& q, const QVector<S>& v, const S& t,
+                                           const Params& p) {
+    return positions(q, t, p).cross(linear_momentum(q, v, t, p));
+  }
+  template <typename S>
+  static ParticleVector<S> particle_masses(const Params&) {
+    return ParticleVector<S>::Constant(S(1));
+  }
+};
+
 }  // namespace gencoord::test_models
