@@ -11,24 +11,20 @@
 
 namespace gencoord::test_models {
 
-// Planar pendulum: a bob of mass m on a massless rod of length l, angle theta from the
-// downward vertical.
-//
-//        O
-//        |\  l (rod)
-//        |θ\ .
-//        |  o bob   x = (l sin θ, -l cos θ)
-//
-// Mt = m l^2, Ft = -m g l sin θ, Fi = 0, so  m l^2 θ'' = -m g l sin θ.
-struct HandPendulum {
-  static constexpr const char* name = "hand_pendulum";
-  static constexpr int nq = 1;
-  static constexpr int dim = 2;
-  static constexpr int num_particles = 1;
+// What the hand models share (CRTP: Model derives from HandModel<Model, ...>): the sizes and
+// types of docs/model_interface.md for Nq coordinates and NumParticles particles in Dim
+// dimensions, and the members that follow from a model's own, written as the generator writes
+// them: forces = applied + inertial, dynamics, qddot = Mt^-1 f, the kinetic energy
+// v^T Mt v / 2, energy = kinetic + potential, velocities = J v and the momenta J Mt v and
+// x cross it. A model's own member of the same name hides the one here. (The Model argument is
+// a defaulted template parameter of each member, so that Model is complete when it is used.)
+template <class Model, int Nq, int Dim, int NumParticles>
+struct HandModel {
+  static constexpr int nq = Nq;
+  static constexpr int dim = Dim;
+  static constexpr int num_particles = NumParticles;
   static constexpr int nx = dim * num_particles;
   static constexpr int angular_dim = dim == 3 ? 3 : 1;
-  static constexpr std::array<const char*, nq> coordinate_names{{"theta"}};
-  static constexpr std::array<const char*, num_particles> particle_names{{"bob"}};
 
   template <typename S>
   using QVector = Eigen::Matrix<S, nq, 1>;
@@ -44,6 +40,63 @@ struct HandPendulum {
   using AngularVector = Eigen::Matrix<S, angular_dim, 1>;
   template <typename S>
   using ParticleVector = Eigen::Matrix<S, num_particles, 1>;
+
+  template <typename S, class M = Model>
+  static QVector<S> forces(const QVector<S>& q, const QVector<S>& v, const S& t,
+                           const typename M::Params& p) {
+    return M::applied_forces(q, v, t, p) + M::inertial_forces(q, v, t, p);
+  }
+  template <typename S, class M = Model>
+  static void dynamics(const QVector<S>& q, const QVector<S>& v, const S& t,
+                       const typename M::Params& p, QMatrix<S>* Mt, QVector<S>* f) {
+    if (Mt) *Mt = M::mass_matrix(q, t, p);
+    if (f) *f = M::forces(q, v, t, p);
+  }
+  template <typename S, class M = Model>
+  static QVector<S> qddot(const QVector<S>& q, const QVector<S>& v, const S& t,
+                          const typename M::Params& p) {
+    return M::mass_matrix(q, t, p).llt().solve(M::forces(q, v, t, p));
+  }
+  template <typename S, class M = Model>
+  static S kinetic_energy(const QVector<S>& q, const QVector<S>& v, const S& t,
+                          const typename M::Params& p) {
+    return S(0.5) * v.dot(M::mass_matrix(q, t, p) * v);
+  }
+  template <typename S, class M = Model>
+  static S energy(const QVector<S>& q, const QVector<S>& v, const S& t,
+                  const typename M::Params& p) {
+    return M::kinetic_energy(q, v, t, p) + M::potential_energy(q, t, p);
+  }
+  template <typename S, class M = Model>
+  static XVector<S> velocities(const QVector<S>& q, const QVector<S>& v, const S& t,
+                               const typename M::Params& p) {
+    return M::jacobian(q, t, p) * v;
+  }
+  template <typename S, class M = Model>
+  static SpaceVector<S> linear_momentum(const QVector<S>& q, const QVector<S>& v, const S& t,
+                                        const typename M::Params& p) {
+    return M::jacobian(q, t, p) * (M::mass_matrix(q, t, p) * v);
+  }
+  template <typename S, class M = Model>
+  static AngularVector<S> angular_momentum(const QVector<S>& q, const QVector<S>& v, const S& t,
+                                           const typename M::Params& p) {
+    return M::positions(q, t, p).cross(M::linear_momentum(q, v, t, p));
+  }
+};
+
+// Planar pendulum: a bob of mass m on a massless rod of length l, angle theta from the
+// downward vertical.
+//
+//        O
+//        |\  l (rod)
+//        |θ\ .
+//        |  o bob   x = (l sin θ, -l cos θ)
+//
+// Mt = m l^2, Ft = -m g l sin θ, Fi = 0, so  m l^2 θ'' = -m g l sin θ.
+struct HandPendulum : HandModel<HandPendulum, 1, 2, 1> {
+  static constexpr const char* name = "hand_pendulum";
+  static constexpr std::array<const char*, nq> coordinate_names{{"theta"}};
+  static constexpr std::array<const char*, num_particles> particle_names{{"bob"}};
 
   struct Params {
     double l = 1.0;   // rod length (m)
@@ -66,20 +119,6 @@ struct HandPendulum {
     return QVector<S>::Zero();
   }
   template <typename S>
-  static QVector<S> forces(const QVector<S>& q, const QVector<S>& v, const S& t, const Params& p) {
-    return applied_forces(q, v, t, p) + inertial_forces(q, v, t, p);
-  }
-  template <typename S>
-  static void dynamics(const QVector<S>& q, const QVector<S>& v, const S& t, const Params& p,
-                       QMatrix<S>* Mt, QVector<S>* f) {
-    if (Mt) *Mt = mass_matrix(q, t, p);
-    if (f) *f = forces(q, v, t, p);
-  }
-  template <typename S>
-  static QVector<S> qddot(const QVector<S>& q, const QVector<S>& v, const S& t, const Params& p) {
-    return mass_matrix(q, t, p).llt().solve(forces(q, v, t, p));
-  }
-  template <typename S>
   static S kinetic_energy(const QVector<S>&, const QVector<S>& v, const S&, const Params& p) {
     return S(0.5 * p.m * p.l * p.l) * v[0] * v[0];
   }
@@ -87,10 +126,6 @@ struct HandPendulum {
   static S potential_energy(const QVector<S>& q, const S&, const Params& p) {
     using std::cos;
     return -p.m * p.g * p.l * cos(q[0]);
-  }
-  template <typename S>
-  static S energy(const QVector<S>& q, const QVector<S>& v, const S& t, const Params& p) {
-    return kinetic_energy(q, v, t, p) + potential_energy(q, t, p);
   }
   template <typename S>
   static XVector<S> positions(const QVector<S>& q, const S&, const Params& p) {
@@ -103,11 +138,6 @@ struct HandPendulum {
     using std::cos;
     using std::sin;
     return XJacobian<S>(p.l * cos(q[0]), p.l * sin(q[0]));
-  }
-  template <typename S>
-  static XVector<S> velocities(const QVector<S>& q, const QVector<S>& v, const S& t,
-                               const Params& p) {
-    return jacobian(q, t, p) * v;
   }
   template <typename S>
   static XVector<S> bias_acceleration(const QVector<S>& q, const QVector<S>& v, const S&,
@@ -135,30 +165,10 @@ struct HandPendulum {
 // Driven, damped harmonic oscillator: a mass on a line, x = (q, 0).
 //   m q'' = -k q - c q' + F0 cos(Ω t)
 // With F0 = 0 and c^2 < 4 k m the exact solution is oscillator_exact().
-struct HandOscillator {
+struct HandOscillator : HandModel<HandOscillator, 1, 2, 1> {
   static constexpr const char* name = "hand_oscillator";
-  static constexpr int nq = 1;
-  static constexpr int dim = 2;
-  static constexpr int num_particles = 1;
-  static constexpr int nx = dim * num_particles;
-  static constexpr int angular_dim = dim == 3 ? 3 : 1;
   static constexpr std::array<const char*, nq> coordinate_names{{"q"}};
   static constexpr std::array<const char*, num_particles> particle_names{{"mass"}};
-
-  template <typename S>
-  using QVector = Eigen::Matrix<S, nq, 1>;
-  template <typename S>
-  using QMatrix = Eigen::Matrix<S, nq, nq>;
-  template <typename S>
-  using XVector = Eigen::Matrix<S, nx, 1>;
-  template <typename S>
-  using XJacobian = Eigen::Matrix<S, nx, nq>;
-  template <typename S>
-  using SpaceVector = Eigen::Matrix<S, dim, 1>;
-  template <typename S>
-  using AngularVector = Eigen::Matrix<S, angular_dim, 1>;
-  template <typename S>
-  using ParticleVector = Eigen::Matrix<S, num_particles, 1>;
 
   struct Params {
     double m = 1.0;      // mass (kg)
@@ -183,16 +193,6 @@ struct HandOscillator {
     return QVector<S>::Zero();
   }
   template <typename S>
-  static QVector<S> forces(const QVector<S>& q, const QVector<S>& v, const S& t, const Params& p) {
-    return applied_forces(q, v, t, p) + inertial_forces(q, v, t, p);
-  }
-  template <typename S>
-  static void dynamics(const QVector<S>& q, const QVector<S>& v, const S& t, const Params& p,
-                       QMatrix<S>* Mt, QVector<S>* f) {
-    if (Mt) *Mt = mass_matrix(q, t, p);
-    if (f) *f = forces(q, v, t, p);
-  }
-  template <typename S>
   static QVector<S> qddot(const QVector<S>& q, const QVector<S>& v, const S& t, const Params& p) {
     return forces(q, v, t, p) / S(p.m);
   }
@@ -203,10 +203,6 @@ struct HandOscillator {
   template <typename S>
   static S potential_energy(const QVector<S>& q, const S&, const Params& p) {
     return S(0.5 * p.k) * q[0] * q[0];
-  }
-  template <typename S>
-  static S energy(const QVector<S>& q, const QVector<S>& v, const S& t, const Params& p) {
-    return kinetic_energy(q, v, t, p) + potential_energy(q, t, p);
   }
   template <typename S>
   static XVector<S> positions(const QVector<S>& q, const S&, const Params&) {
@@ -260,30 +256,10 @@ inline Eigen::Vector2d oscillator_exact(const HandOscillator::Params& p, double 
 // indefinite (c^2 >= m1 m2) or NaN, to exercise DynamicsError. One particle in 3D at
 // x = (u, w, 0); Mt is deliberately not J^T M J (it is a test double, not physics).
 //   Mt a = -k q + f_bias
-struct HandCoupled {
+struct HandCoupled : HandModel<HandCoupled, 2, 3, 1> {
   static constexpr const char* name = "hand_coupled";
-  static constexpr int nq = 2;
-  static constexpr int dim = 3;
-  static constexpr int num_particles = 1;
-  static constexpr int nx = dim * num_particles;
-  static constexpr int angular_dim = dim == 3 ? 3 : 1;
   static constexpr std::array<const char*, nq> coordinate_names{{"u", "w"}};
   static constexpr std::array<const char*, num_particles> particle_names{{"body"}};
-
-  template <typename S>
-  using QVector = Eigen::Matrix<S, nq, 1>;
-  template <typename S>
-  using QMatrix = Eigen::Matrix<S, nq, nq>;
-  template <typename S>
-  using XVector = Eigen::Matrix<S, nx, 1>;
-  template <typename S>
-  using XJacobian = Eigen::Matrix<S, nx, nq>;
-  template <typename S>
-  using SpaceVector = Eigen::Matrix<S, dim, 1>;
-  template <typename S>
-  using AngularVector = Eigen::Matrix<S, angular_dim, 1>;
-  template <typename S>
-  using ParticleVector = Eigen::Matrix<S, num_particles, 1>;
 
   struct Params {
     double m1 = 1.0;      // mass of u (kg)
@@ -309,30 +285,8 @@ struct HandCoupled {
     return QVector<S>::Zero();
   }
   template <typename S>
-  static QVector<S> forces(const QVector<S>& q, const QVector<S>& v, const S& t, const Params& p) {
-    return applied_forces(q, v, t, p) + inertial_forces(q, v, t, p);
-  }
-  template <typename S>
-  static void dynamics(const QVector<S>& q, const QVector<S>& v, const S& t, const Params& p,
-                       QMatrix<S>* Mt, QVector<S>* f) {
-    if (Mt) *Mt = mass_matrix(q, t, p);
-    if (f) *f = forces(q, v, t, p);
-  }
-  template <typename S>
-  static QVector<S> qddot(const QVector<S>& q, const QVector<S>& v, const S& t, const Params& p) {
-    return mass_matrix(q, t, p).llt().solve(forces(q, v, t, p));
-  }
-  template <typename S>
-  static S kinetic_energy(const QVector<S>& q, const QVector<S>& v, const S& t, const Params& p) {
-    return S(0.5) * v.dot(mass_matrix(q, t, p) * v);
-  }
-  template <typename S>
   static S potential_energy(const QVector<S>& q, const S&, const Params& p) {
     return S(0.5 * p.k) * q.squaredNorm() - p.f_bias * q[0];
-  }
-  template <typename S>
-  static S energy(const QVector<S>& q, const QVector<S>& v, const S& t, const Params& p) {
-    return kinetic_energy(q, v, t, p) + potential_energy(q, t, p);
   }
   template <typename S>
   static XVector<S> positions(const QVector<S>& q, const S&, const Params&) {
@@ -343,24 +297,9 @@ struct HandCoupled {
     return XJacobian<S>::Identity();
   }
   template <typename S>
-  static XVector<S> velocities(const QVector<S>& q, const QVector<S>& v, const S& t,
-                               const Params& p) {
-    return jacobian(q, t, p) * v;
-  }
-  template <typename S>
   static XVector<S> bias_acceleration(const QVector<S>&, const QVector<S>&, const S&,
                                       const Params&) {
     return XVector<S>::Zero();
-  }
-  template <typename S>
-  static SpaceVector<S> linear_momentum(const QVector<S>& q, const QVector<S>& v, const S& t,
-                                        const Params& p) {
-    return jacobian(q, t, p) * (mass_matrix(q, t, p) * v);
-  }
-  template <typename S>
-  static AngularVector<S> angular_momentum(const QVector<S>& q, const QVector<S>& v, const S& t,
-                                           const Params& p) {
-    return positions(q, t, p).cross(linear_momentum(q, v, t, p));
   }
   template <typename S>
   static ParticleVector<S> particle_masses(const Params& p) {
@@ -376,34 +315,29 @@ struct HandCoupled {
 // Of any size, so that both of the derivative path's ways to Mt^-1 are exercised (the small
 // dense kernels up to 24 coordinates, Eigen's Cholesky factor above).
 template <int N>
-struct HandSpringChain {
+struct HandSpringChain : HandModel<HandSpringChain<N>, N, 3, 1> {
+  // the base depends on N, so its names are brought in
+  using Base = HandModel<HandSpringChain<N>, N, 3, 1>;
+  using Base::nq;
+  using Base::num_particles;
+  template <typename S>
+  using QVector = typename Base::template QVector<S>;
+  template <typename S>
+  using QMatrix = typename Base::template QMatrix<S>;
+  template <typename S>
+  using XVector = typename Base::template XVector<S>;
+  template <typename S>
+  using XJacobian = typename Base::template XJacobian<S>;
+  template <typename S>
+  using ParticleVector = typename Base::template ParticleVector<S>;
+
   static constexpr const char* name = "hand_spring_chain";
-  static constexpr int nq = N;
-  static constexpr int dim = 3;
-  static constexpr int num_particles = 1;
-  static constexpr int nx = dim * num_particles;
-  static constexpr int angular_dim = dim == 3 ? 3 : 1;
   static constexpr std::array<const char*, nq> coordinate_names = [] {
     std::array<const char*, nq> names{};
     for (auto& name : names) name = "q";
     return names;
   }();
   static constexpr std::array<const char*, num_particles> particle_names{{"first"}};
-
-  template <typename S>
-  using QVector = Eigen::Matrix<S, nq, 1>;
-  template <typename S>
-  using QMatrix = Eigen::Matrix<S, nq, nq>;
-  template <typename S>
-  using XVector = Eigen::Matrix<S, nx, 1>;
-  template <typename S>
-  using XJacobian = Eigen::Matrix<S, nx, nq>;
-  template <typename S>
-  using SpaceVector = Eigen::Matrix<S, dim, 1>;
-  template <typename S>
-  using AngularVector = Eigen::Matrix<S, angular_dim, 1>;
-  template <typename S>
-  using ParticleVector = Eigen::Matrix<S, num_particles, 1>;
 
   struct Params {
     double coupling = 0.2;  // inertial coupling of neighbours (kg); 3 makes Mt indefinite
@@ -431,20 +365,6 @@ struct HandSpringChain {
     return QVector<S>::Zero();
   }
   template <typename S>
-  static QVector<S> forces(const QVector<S>& q, const QVector<S>& v, const S& t, const Params& p) {
-    return applied_forces(q, v, t, p) + inertial_forces(q, v, t, p);
-  }
-  template <typename S>
-  static void dynamics(const QVector<S>& q, const QVector<S>& v, const S& t, const Params& p,
-                       QMatrix<S>* Mt, QVector<S>* f) {
-    if (Mt) *Mt = mass_matrix(q, t, p);
-    if (f) *f = forces(q, v, t, p);
-  }
-  template <typename S>
-  static QVector<S> qddot(const QVector<S>& q, const QVector<S>& v, const S& t, const Params& p) {
-    return mass_matrix(q, t, p).llt().solve(forces(q, v, t, p));
-  }
-  template <typename S>
   static void residual_jacobians(const QVector<S>& q, const QVector<S>&, const QVector<S>& qdd,
                                  const S&, const Params& p, QMatrix<S>* dr_dq, QMatrix<S>* dr_dv) {
     *dr_dq = S(p.k) * QMatrix<S>::Identity();
@@ -452,16 +372,8 @@ struct HandSpringChain {
     *dr_dv = S(p.c) * QMatrix<S>::Identity();
   }
   template <typename S>
-  static S kinetic_energy(const QVector<S>& q, const QVector<S>& v, const S& t, const Params& p) {
-    return S(0.5) * v.dot(mass_matrix(q, t, p) * v);
-  }
-  template <typename S>
   static S potential_energy(const QVector<S>& q, const S&, const Params& p) {
     return S(0.5 * p.k) * q.squaredNorm() - p.f_bias * q.sum();
-  }
-  template <typename S>
-  static S energy(const QVector<S>& q, const QVector<S>& v, const S& t, const Params& p) {
-    return kinetic_energy(q, v, t, p) + potential_energy(q, t, p);
   }
   // the particle follows the first coordinate
   template <typename S>
@@ -475,24 +387,9 @@ struct HandSpringChain {
     return J;
   }
   template <typename S>
-  static XVector<S> velocities(const QVector<S>& q, const QVector<S>& v, const S& t,
-                               const Params& p) {
-    return jacobian(q, t, p) * v;
-  }
-  template <typename S>
   static XVector<S> bias_acceleration(const QVector<S>&, const QVector<S>&, const S&,
                                       const Params&) {
     return XVector<S>::Zero();
-  }
-  template <typename S>
-  static SpaceVector<S> linear_momentum(const QVector<S>& q, const QVector<S>& v, const S& t,
-                                        const Params& p) {
-    return jacobian(q, t, p) * (mass_matrix(q, t, p) * v);
-  }
-  template <typename S>
-  static AngularVector<S> angular_momentum(const QVector<S>& q, const QVector<S>& v, const S& t,
-                                           const Params& p) {
-    return positions(q, t, p).cross(linear_momentum(q, v, t, p));
   }
   template <typename S>
   static ParticleVector<S> particle_masses(const Params&) {
