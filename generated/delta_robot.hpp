@@ -4193,8 +4193,8 @@ struct DeltaRobot {
       return result;
     }
 
-    /// Part 1 of 2 of force_jacobian_x(), which calls them in order (a long kernel is
-    /// cut into functions of their own so that its compile time stays near linear).
+    /// Part 1 of 2 of force_jacobian_x(), which calls them in order.
+    /// A long kernel is cut into functions of their own so its compile time stays near linear.
     template <typename Scalar>
     GENCOORD_NOINLINE static void force_jacobian_x_part0(const XVector<Scalar>& pos,
                                                          const XVector<Scalar>& vel,
@@ -5890,8 +5890,8 @@ struct DeltaRobot {
       carried[168] = tmp1819;
     }
 
-    /// Part 2 of 2 of force_jacobian_x(), which calls them in order (a long kernel is
-    /// cut into functions of their own so that its compile time stays near linear).
+    /// Part 2 of 2 of force_jacobian_x(), which calls them in order.
+    /// A long kernel is cut into functions of their own so its compile time stays near linear.
     template <typename Scalar>
     GENCOORD_NOINLINE static void force_jacobian_x_part1(const XVector<Scalar>& pos,
                                                          const XVector<Scalar>& vel,
@@ -7569,8 +7569,8 @@ struct DeltaRobot {
       return result;
     }
 
-    /// Part 1 of 2 of force_jacobian_xdot(), which calls them in order (a long kernel is
-    /// cut into functions of their own so that its compile time stays near linear).
+    /// Part 1 of 2 of force_jacobian_xdot(), which calls them in order.
+    /// A long kernel is cut into functions of their own so its compile time stays near linear.
     template <typename Scalar>
     GENCOORD_NOINLINE static void force_jacobian_xdot_part0(const XVector<Scalar>& pos,
                                                             const Scalar& penalty_damping,
@@ -8683,8 +8683,8 @@ struct DeltaRobot {
       carried[63] = tmp3430;
     }
 
-    /// Part 2 of 2 of force_jacobian_xdot(), which calls them in order (a long kernel is
-    /// cut into functions of their own so that its compile time stays near linear).
+    /// Part 2 of 2 of force_jacobian_xdot(), which calls them in order.
+    /// A long kernel is cut into functions of their own so its compile time stays near linear.
     template <typename Scalar>
     GENCOORD_NOINLINE static void force_jacobian_xdot_part1(const XVector<Scalar>& /*pos*/,
                                                             const Scalar& penalty_damping,

@@ -3329,8 +3329,8 @@ struct StiffChain10 {
     return result;
   }
 
-  /// Part 1 of 2 of residual_jacobians(), which calls them in order (a long kernel is
-  /// cut into functions of their own so that its compile time stays near linear).
+  /// Part 1 of 2 of residual_jacobians(), which calls them in order.
+  /// A long kernel is cut into functions of their own so its compile time stays near linear.
   template <typename Scalar>
   GENCOORD_NOINLINE static void residual_jacobians_part0(const QVector<Scalar>& q,
                                                          const VVector<Scalar>& v,
@@ -6837,8 +6837,8 @@ struct StiffChain10 {
     carried[427] = tmp1965;
   }
 
-  /// Part 2 of 2 of residual_jacobians(), which calls them in order (a long kernel is
-  /// cut into functions of their own so that its compile time stays near linear).
+  /// Part 2 of 2 of residual_jacobians(), which calls them in order.
+  /// A long kernel is cut into functions of their own so its compile time stays near linear.
   template <typename Scalar>
   GENCOORD_NOINLINE static void residual_jacobians_part1(const QVector<Scalar>& /*q*/,
                                                          const VVector<Scalar>& v,

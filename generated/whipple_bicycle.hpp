@@ -15956,8 +15956,8 @@ struct WhippleBicycle {
       return result;
     }
 
-    /// Part 1 of 3 of force_jacobian_x(), which calls them in order (a long kernel is
-    /// cut into functions of their own so that its compile time stays near linear).
+    /// Part 1 of 3 of force_jacobian_x(), which calls them in order.
+    /// A long kernel is cut into functions of their own so its compile time stays near linear.
     template <typename Scalar>
     GENCOORD_NOINLINE static void force_jacobian_x_part0(const XVector<Scalar>& pos,
                                                          const XVector<Scalar>& vel,
@@ -18162,8 +18162,8 @@ struct WhippleBicycle {
       carried[401] = tmp3974;
     }
 
-    /// Part 2 of 3 of force_jacobian_x(), which calls them in order (a long kernel is
-    /// cut into functions of their own so that its compile time stays near linear).
+    /// Part 2 of 3 of force_jacobian_x(), which calls them in order.
+    /// A long kernel is cut into functions of their own so its compile time stays near linear.
     template <typename Scalar>
     GENCOORD_NOINLINE static void force_jacobian_x_part1(const XVector<Scalar>& /*pos*/,
                                                          const XVector<Scalar>& vel,
@@ -20248,8 +20248,8 @@ struct WhippleBicycle {
       carried[409] = tmp5131;
     }
 
-    /// Part 3 of 3 of force_jacobian_x(), which calls them in order (a long kernel is
-    /// cut into functions of their own so that its compile time stays near linear).
+    /// Part 3 of 3 of force_jacobian_x(), which calls them in order.
+    /// A long kernel is cut into functions of their own so its compile time stays near linear.
     template <typename Scalar>
     GENCOORD_NOINLINE static void force_jacobian_x_part2(const XVector<Scalar>& /*pos*/,
                                                          const XVector<Scalar>& vel,
@@ -22299,8 +22299,8 @@ struct WhippleBicycle {
       return result;
     }
 
-    /// Part 1 of 2 of force_jacobian_xdot(), which calls them in order (a long kernel is
-    /// cut into functions of their own so that its compile time stays near linear).
+    /// Part 1 of 2 of force_jacobian_xdot(), which calls them in order.
+    /// A long kernel is cut into functions of their own so its compile time stays near linear.
     template <typename Scalar>
     GENCOORD_NOINLINE static void force_jacobian_xdot_part0(const XVector<Scalar>& pos,
                                                             const Scalar& kappa,
@@ -24039,8 +24039,8 @@ struct WhippleBicycle {
       carried[115] = tmp7044;
     }
 
-    /// Part 2 of 2 of force_jacobian_xdot(), which calls them in order (a long kernel is
-    /// cut into functions of their own so that its compile time stays near linear).
+    /// Part 2 of 2 of force_jacobian_xdot(), which calls them in order.
+    /// A long kernel is cut into functions of their own so its compile time stays near linear.
     template <typename Scalar>
     GENCOORD_NOINLINE static void force_jacobian_xdot_part1(const XVector<Scalar>& /*pos*/,
                                                             const Scalar& /*kappa*/,
